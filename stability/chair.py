@@ -1,0 +1,421 @@
+"""Chair-plus-user parameters: a frozen dataclass, presets and TOML I/O.
+
+The symbols follow Figure 6-1 of Collins (1987) and the variables of program
+WCHAIR (Appendix C, BLOCK DATA).  Distances are in metres, masses in kg,
+inertias in kg m^2, moments in N m and angles in degrees.
+
+Both rear-caster chairs (the thesis's) and front-caster chairs are first
+class: ``caster_position`` says where the casters are and every model moves
+the chair forward at positive speed.  ``s1`` and ``s2`` are always positive
+distances from the centre of gravity to the main axle and to the caster pins;
+:attr:`Chair.x_main` and :attr:`Chair.x_pin` give their signed body
+coordinates (x forward, y to the right, SAE axes).
+
+Examples
+--------
+>>> from stability import chair
+>>> c = chair.preset("ej-premier")
+>>> c.replace(trail=0.06).trail
+0.06
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import sys
+import tempfile
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+from typing import Any, Mapping
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = [
+    "Chair",
+    "preset",
+    "preset_names",
+    "load",
+    "save",
+    "from_mapping",
+    "to_mapping",
+    "parse_assignment",
+]
+
+
+def _doc(text: str, unit: str, symbol: str = "") -> dict[str, str]:
+    return {"doc": text, "unit": unit, "symbol": symbol}
+
+
+@dataclass(frozen=True)
+class Chair:
+    """A wheelchair with its user, as seen by the planar model of chapter 6.
+
+    Every field is validated on construction; a physically meaningless value
+    raises :class:`ValueError` naming the parameter, its value and the valid
+    range.  Field metadata (``dataclasses.fields(Chair)[i].metadata``) carries
+    the unit, the thesis symbol and a one-line description.
+
+    Attributes
+    ----------
+    name : str
+        Label used in reports and plot titles.
+    caster_position : {"rear", "front"}
+        Where the swivelling casters are.  The thesis's chair is "rear".
+    d1, d2 : float
+        Lateral offsets of the left and right main-wheel contacts from the
+        centre of gravity (m; d1, d2).
+    s1 : float
+        Longitudinal distance from the centre of gravity to the main axle
+        (m; s1).
+    s2 : float
+        Longitudinal distance from the centre of gravity to the caster pins
+        (m; s2).
+    trail : float
+        Caster trail, pin to caster contact point (m; l).
+    l1 : float
+        Pin to caster-assembly centre of gravity (m; l1).
+    t1, t2 : float
+        Lateral offsets of the left and right caster pins (m; t1, t2).
+    h : float
+        Height of the centre of gravity (m; h).
+    m : float
+        Total mass of chair, user and both casters (kg; m).
+    m_c : float
+        Mass of one caster assembly (kg; m_c).
+    i_z : float
+        Total yaw inertia about the system centre of gravity with the casters
+        trailing (kg m^2; I_z).
+    i_zp : float
+        Yaw inertia of one caster assembly about its pin (kg m^2; I_zp).
+    pin_friction_left, pin_friction_right : float
+        Coulomb friction moments at the left (A) and right (B) caster pins
+        (N m; M_af, M_bf).
+    pin_damping : float
+        Viscous pin damping used by the linear models (N m s/rad); Coulomb
+        friction has no linearisation.  Default 0.
+    roll_k : float
+        Roll coefficient k = k_f / k_r (eq 6-28): ratio of the roll stiffness
+        at the main wheels (the thesis's "front") to that at the casters.
+    camber_deg : float
+        Camber of the main wheels, tops inward (deg).
+    camber_coefficient : float or None
+        Camber coefficient f_c of eq 4-2; ``None`` uses the main tire's value
+        derived from the camber data (Figure 4-3).
+    toe_deg : float
+        Toe angle of the main wheels (deg).
+    main_tire, caster_tire : str
+        Tire names from :func:`stability.tires.names` or ``"linear:<N/deg>"``.
+    main_lateral_scale, main_rolling_scale : float
+        Scale factors on main-tire lateral and rolling forces (TYMOD, TXMOD).
+    caster_lateral_scale, caster_rolling_scale : float
+        Scale factors on caster lateral and rolling forces (CYMOD, CXMOD).
+        The thesis's studies switch rolling resistance off (TXMOD = CXMOD = 0).
+    g : float
+        Gravitational acceleration (m/s^2).
+    """
+
+    name: str = field(default="chair", metadata=_doc("label", "-"))
+    caster_position: str = field(default="rear", metadata=_doc("casters at the rear or front", "-"))
+    d1: float = field(default=0.265, metadata=_doc("c.g. to left main-wheel contact, lateral", "m", "d1"))
+    d2: float = field(default=0.265, metadata=_doc("c.g. to right main-wheel contact, lateral", "m", "d2"))
+    s1: float = field(default=0.345, metadata=_doc("c.g. to main axle, longitudinal", "m", "s1"))
+    s2: float = field(default=0.175, metadata=_doc("c.g. to caster pins, longitudinal", "m", "s2"))
+    trail: float = field(default=0.08, metadata=_doc("caster trail, pin to contact", "m", "l"))
+    l1: float = field(default=0.058, metadata=_doc("pin to caster c.g.", "m", "l1"))
+    t1: float = field(default=0.24, metadata=_doc("c.g. to left caster pin, lateral", "m", "t1"))
+    t2: float = field(default=0.24, metadata=_doc("c.g. to right caster pin, lateral", "m", "t2"))
+    h: float = field(default=0.61, metadata=_doc("c.g. height", "m", "h"))
+    m: float = field(default=95.0, metadata=_doc("total mass incl. user and casters", "kg", "m"))
+    m_c: float = field(default=1.2, metadata=_doc("one caster assembly mass", "kg", "m_c"))
+    i_z: float = field(default=5.6, metadata=_doc("total yaw inertia about c.g.", "kg m^2", "I_z"))
+    i_zp: float = field(default=0.02, metadata=_doc("caster yaw inertia about its pin", "kg m^2", "I_zp"))
+    pin_friction_left: float = field(default=0.1, metadata=_doc("Coulomb pin friction, left caster", "N m", "M_af"))
+    pin_friction_right: float = field(default=0.1, metadata=_doc("Coulomb pin friction, right caster", "N m", "M_bf"))
+    pin_damping: float = field(default=0.0, metadata=_doc("viscous pin damping (linear models)", "N m s/rad"))
+    roll_k: float = field(default=1.0, metadata=_doc("roll coefficient k_f/k_r", "-", "k"))
+    camber_deg: float = field(default=0.0, metadata=_doc("main-wheel camber", "deg", "gamma"))
+    camber_coefficient: float | None = field(default=None, metadata=_doc("camber coefficient (None: tire's)", "-", "f_c"))
+    toe_deg: float = field(default=0.0, metadata=_doc("main-wheel toe", "deg"))
+    main_tire: str = field(default="EJA", metadata=_doc("main tire", "-"))
+    caster_tire: str = field(default="ER", metadata=_doc("caster tire", "-"))
+    main_lateral_scale: float = field(default=1.0, metadata=_doc("main lateral force scale", "-", "TYMOD"))
+    main_rolling_scale: float = field(default=0.0, metadata=_doc("main rolling force scale", "-", "TXMOD"))
+    caster_lateral_scale: float = field(default=1.0, metadata=_doc("caster lateral force scale", "-", "CYMOD"))
+    caster_rolling_scale: float = field(default=0.0, metadata=_doc("caster rolling force scale", "-", "CXMOD"))
+    g: float = field(default=9.81, metadata=_doc("gravitational acceleration", "m/s^2", "g"))
+
+    def __post_init__(self) -> None:
+        _validate(self)
+
+    # -- geometry -------------------------------------------------------
+    @property
+    def x_main(self) -> float:
+        """Signed x coordinate of the main axle relative to the c.g. (m)."""
+        return self.s1 if self.caster_position == "rear" else -self.s1
+
+    @property
+    def x_pin(self) -> float:
+        """Signed x coordinate of the caster pins relative to the c.g. (m)."""
+        return -self.s2 if self.caster_position == "rear" else self.s2
+
+    @property
+    def wheelbase(self) -> float:
+        """Main axle to caster contact points with casters trailing (m): s1 + s2 + l."""
+        return self.s1 + self.s2 + self.trail
+
+    @property
+    def cg_ratio(self) -> float:
+        """Centre-of-gravity ratio s1/(s1 + s2) of eq 8-6."""
+        return self.s1 / (self.s1 + self.s2)
+
+    def replace(self, **changes: Any) -> "Chair":
+        """Return a copy with ``changes`` applied (validated)."""
+        unknown = set(changes) - {f.name for f in fields(self)}
+        if unknown:
+            raise ValueError(
+                f"unknown chair parameter(s) {sorted(unknown)}; valid names: {field_names()}"
+            )
+        return dataclasses.replace(self, **changes)
+
+    def main_tire_model(self):
+        """The main tire, scaled by TYMOD/TXMOD (:class:`stability.tires.Tire`)."""
+        from . import tires
+
+        return tires.get(self.main_tire).scaled(
+            lateral=self.main_lateral_scale, rolling=self.main_rolling_scale
+        )
+
+    def caster_tire_model(self):
+        """The caster tire, scaled by CYMOD/CXMOD (:class:`stability.tires.Tire`)."""
+        from . import tires
+
+        return tires.get(self.caster_tire).scaled(
+            lateral=self.caster_lateral_scale, rolling=self.caster_rolling_scale
+        )
+
+
+# ---------------------------------------------------------------------------
+# validation
+# ---------------------------------------------------------------------------
+_POSITIVE = ("s1", "s2", "m", "i_z", "g", "roll_k", "d1", "d2", "t1", "t2")
+_NONNEGATIVE = (
+    "trail", "l1", "h", "m_c", "i_zp", "pin_friction_left", "pin_friction_right",
+    "pin_damping", "main_lateral_scale", "main_rolling_scale", "caster_lateral_scale",
+    "caster_rolling_scale",
+)
+_ANGLES = ("camber_deg", "toe_deg")
+
+
+def field_names() -> list[str]:
+    """Names of all :class:`Chair` fields."""
+    return [f.name for f in fields(Chair)]
+
+
+def _validate(c: Chair) -> None:
+    def bad(name: str, value: Any, valid: str) -> ValueError:
+        return ValueError(f"chair parameter {name}={value!r} is invalid; valid range: {valid}")
+
+    for f in fields(c):
+        value = getattr(c, f.name)
+        if f.name in ("name", "caster_position", "main_tire", "caster_tire"):
+            if not isinstance(value, str):
+                raise bad(f.name, value, "a string")
+            continue
+        if f.name == "camber_coefficient" and value is None:
+            continue
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise bad(f.name, value, "a real number")
+        if not math.isfinite(value):
+            raise bad(f.name, value, "a finite number")
+    if c.caster_position not in ("rear", "front"):
+        raise bad("caster_position", c.caster_position, "'rear' or 'front'")
+    for name in _POSITIVE:
+        if getattr(c, name) <= 0:
+            raise bad(name, getattr(c, name), "> 0")
+    for name in _NONNEGATIVE:
+        if getattr(c, name) < 0:
+            raise bad(name, getattr(c, name), ">= 0")
+    for name in _ANGLES:
+        if abs(getattr(c, name)) >= 45:
+            raise bad(name, getattr(c, name), "-45 < value < 45 deg")
+    if c.camber_coefficient is not None and not 0 <= c.camber_coefficient <= 1:
+        raise bad("camber_coefficient", c.camber_coefficient, "0 to 1, or None for the tire's own")
+    if c.m_c * 2 >= c.m:
+        raise bad("m_c", c.m_c, f"0 <= m_c < m/2 = {c.m / 2:g} kg")
+    if c.l1 > c.trail + 0.5:
+        raise bad("l1", c.l1, "<= trail + 0.5 m")
+    if c.i_zp < c.m_c * c.l1**2 * (1 - 1e-12):
+        raise bad(
+            "i_zp", c.i_zp,
+            f">= m_c*l1^2 = {c.m_c * c.l1**2:.6g} kg m^2 (a caster's inertia about its pin "
+            "cannot be less than that of its mass concentrated at its c.g.)",
+        )
+    # caster contact points must stay on the far side of the c.g. from the main axle
+    if c.s2 - c.trail <= -c.s1:
+        raise bad("trail", c.trail, f"< s1 + s2 = {c.s1 + c.s2:g} m (zero or negative wheelbase)")
+    from . import tires
+
+    for name in ("main_tire", "caster_tire"):
+        try:
+            tires.get(getattr(c, name))
+        except (KeyError, ValueError) as exc:
+            raise bad(name, getattr(c, name), f"one of {list(tires.names())} or 'linear:<N/deg>'") from exc
+
+
+# ---------------------------------------------------------------------------
+# presets
+# ---------------------------------------------------------------------------
+def _presets() -> dict[str, dict[str, Any]]:
+    # Everest & Jennings Premier, chapter 8 defaults and WCHAIR BLOCK DATA:
+    # D1=D2=.265, S1=.345, S2=.175, L1=.058, L=.08, T1=T2=.24, H=.61,
+    # IZ=5.6, IZP=.02, M=95, MC=1.2, GR=9.81, MAF=MBF=.1, ROLLK=1,
+    # TXMOD=CXMOD=0, TYMOD=CYMOD=1; EJA main tires (chapter 8), ER casters
+    # (CASY holds the ER coefficients).
+    ej = dict(name="ej-premier")
+    # Front-caster equivalent of chapter 8 ("Method one"): s1 and s2
+    # exchanged, s1 = .175 m (c.g. to the main axle, now behind the c.g.),
+    # s2 = .345 m (c.g. to the caster pins, now ahead of it).
+    front = dict(name="ej-premier-front-caster", caster_position="front", s1=0.175, s2=0.345)
+    # Chapter 9 revised design (Figure 9-1): trail 8 -> 6 cm, main axle moved
+    # back so s1 = .345 -> .245 m, pins extended 5 cm behind the chair so
+    # s1 + s2 drops by only 5 cm: s2 = .175 + .05 = .225 m.
+    revised = dict(name="revised", s1=0.245, s2=0.225, trail=0.06)
+    return {"ej-premier": ej, "ej-premier-front-caster": front, "revised": revised}
+
+
+def preset_names() -> tuple[str, ...]:
+    """Names of the built-in chairs."""
+    return tuple(_presets())
+
+
+def preset(name: str) -> Chair:
+    """Return a built-in chair.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`preset_names`: ``"ej-premier"`` (the thesis's Everest &
+        Jennings rear-caster chair, chapter 8 defaults), ``"ej-premier-front-caster"``
+        (its front-caster equivalent, chapter 8) or ``"revised"`` (chapter 9).
+    """
+    table = _presets()
+    extra = _extra_presets()
+    if name in table:
+        return Chair(**table[name])
+    if name in extra:
+        return extra[name]()
+    raise ValueError(f"unknown chair preset {name!r}; valid presets: {list(table) + list(extra)}")
+
+
+def _extra_presets() -> dict[str, Any]:
+    """Presets defined by other modules (e.g. the power chair of :mod:`stability.assist`)."""
+    out: dict[str, Any] = {}
+    try:
+        from .power_chair import power_fwd  # noqa: WPS433
+    except ImportError:
+        return out
+    out["power-fwd"] = power_fwd
+    return out
+
+
+def all_preset_names() -> tuple[str, ...]:
+    """Built-in and add-on preset names."""
+    return tuple(_presets()) + tuple(_extra_presets())
+
+
+# ---------------------------------------------------------------------------
+# TOML I/O
+# ---------------------------------------------------------------------------
+def to_mapping(c: Chair) -> dict[str, Any]:
+    """Chair as a plain dict (``None`` values omitted)."""
+    return {f.name: getattr(c, f.name) for f in fields(c) if getattr(c, f.name) is not None}
+
+
+def from_mapping(data: Mapping[str, Any], base: Chair | None = None) -> Chair:
+    """Build a chair from a mapping of field values over ``base`` (default chair)."""
+    valid = set(field_names())
+    unknown = set(data) - valid
+    if unknown:
+        raise ValueError(f"unknown chair parameter(s) {sorted(unknown)}; valid names: {sorted(valid)}")
+    base = base or Chair()
+    return base.replace(**dict(data))
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return repr(value)
+    return repr(float(value))  # repr round-trips exactly
+
+
+def dumps(c: Chair) -> str:
+    """Chair as TOML text (a flat table; floats written with ``repr``: exact round trip)."""
+    lines = ["# stability chair parameters (units: m, kg, kg m^2, N m, deg)"]
+    for f in fields(c):
+        value = getattr(c, f.name)
+        if value is None:
+            continue
+        lines.append(f"{f.name} = {_toml_value(value)}  # {f.metadata['unit']}: {f.metadata['doc']}")
+    return "\n".join(lines) + "\n"
+
+
+def save(c: Chair, path: str | os.PathLike[str]) -> None:
+    """Write ``c`` to a TOML file atomically (temporary file + rename)."""
+    path = Path(path)
+    text = dumps(c)
+    fd, tmp = tempfile.mkstemp(dir=path.parent or ".", prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def load(path: str | os.PathLike[str]) -> Chair:
+    """Read a chair from a TOML file (missing fields take the default chair's values)."""
+    with open(path, "rb") as fh:
+        data = tomllib.load(fh)
+    if "chair" in data and isinstance(data["chair"], dict):
+        data = data["chair"]
+    return from_mapping(data)
+
+
+def resolve(spec: str) -> Chair:
+    """A preset name or a path to a TOML file."""
+    if spec in all_preset_names():
+        return preset(spec)
+    if spec.endswith(".toml") or os.path.exists(spec):
+        if not os.path.exists(spec):
+            raise ValueError(f"chair file {spec!r} does not exist")
+        return load(spec)
+    raise ValueError(f"unknown chair {spec!r}: not a preset {list(all_preset_names())} nor a TOML file")
+
+
+def parse_assignment(text: str) -> tuple[str, Any]:
+    """Parse ``NAME=VALUE`` (a ``--set`` option) into a field name and typed value."""
+    if "=" not in text:
+        raise ValueError(f"--set expects NAME=VALUE, got {text!r}")
+    name, raw = (s.strip() for s in text.split("=", 1))
+    kinds = {f.name: f for f in fields(Chair)}
+    if name not in kinds:
+        raise ValueError(f"unknown chair parameter {name!r}; valid names: {field_names()}")
+    if name in ("name", "caster_position", "main_tire", "caster_tire"):
+        return name, raw
+    if name == "camber_coefficient" and raw.lower() in ("none", "tire", ""):
+        return name, None
+    try:
+        value = float(raw)
+    except ValueError:
+        raise ValueError(f"chair parameter {name} needs a number, got {raw!r}") from None
+    return name, value
