@@ -1,0 +1,198 @@
+"""``python -m stability.critical_speed``: how stable is this chair, and at which speeds?
+
+Prints, for one chair and one model variant, the static loads and tire
+stiffnesses, the zero-width (bicycle, locked casters) understeer coefficient
+and critical speed (eqs 5-15, 5-16), the full-width locked-caster critical
+speed, the free-caster verdict (stable at all speeds, unstable at all speeds,
+or critical speeds) and the divergence rate and time-to-double of the least
+stable mode at a list of speeds.
+
+Examples
+--------
+::
+
+    python -m stability.critical_speed
+    python -m stability.critical_speed --chair revised --model thesis --json
+    python -m stability.critical_speed --set trail=0.05 --set pin_damping=0.02 --speeds 0.5:2:0.25
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Sequence
+
+import numpy as np
+
+from . import chair as chair_mod
+from .linear import StabilitySummary, analyse
+
+__all__ = ["main", "summary_dict", "parse_speeds", "format_summary"]
+
+
+def parse_speeds(text: str) -> np.ndarray:
+    """Parse ``START:STOP:STEP`` (inclusive of STOP) or a comma list into speeds (m/s)."""
+    try:
+        if ":" in text:
+            parts = [float(x) for x in text.split(":")]
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, step = parts
+            if step <= 0 or stop < start:
+                raise ValueError
+            n = int(math.floor((stop - start) / step + 1e-9)) + 1
+            speeds = start + step * np.arange(n)
+        else:
+            speeds = np.array([float(x) for x in text.split(",")])
+    except ValueError:
+        raise ValueError(f"--speeds {text!r} is invalid; expected START:STOP:STEP with STEP > 0 "
+                         "and STOP >= START, or a comma-separated list") from None
+    if np.any(speeds <= 0) or not np.all(np.isfinite(speeds)):
+        raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed > 0 m/s")
+    return speeds
+
+
+def _first(crossings, direction: str | None = None):
+    for c in crossings:
+        if direction is None or c.direction == direction:
+            return c.speed
+    return None
+
+
+def summary_dict(s: StabilitySummary) -> dict:
+    """The JSON structure printed by ``--json``."""
+    zw = s.zero_width
+
+    def cross(lst):
+        return [{"speed_m_s": c.speed, "kind": c.kind, "direction": c.direction,
+                 "eigenvalue": [c.eigenvalue.real, c.eigenvalue.imag]} for c in lst]
+
+    return {
+        "chair": s.chair.name,
+        "model": s.model,
+        "caster_position": s.chair.caster_position,
+        "static_load_N": {"main": s.static_loads["main"], "caster": s.static_loads["caster"]},
+        "cornering_stiffness_N_per_deg": dict(s.stiffness_n_per_deg),
+        "zero_width": {
+            "understeer_coefficient_rad": zw.understeer_coefficient,
+            "critical_speed_m_s": zw.critical_speed,
+            "load_N": {"main": zw.load_main, "caster": zw.load_caster},
+        },
+        "locked_casters": {"critical_speed_m_s": _first(s.locked_crossings), "crossings": cross(s.locked_crossings)},
+        "free_casters": {
+            "critical_speed_m_s": _first(s.free_crossings),
+            "stable_at_all_speeds": s.free_stable_at_all_speeds,
+            "unstable_at_all_speeds": s.free_unstable_at_all_speeds,
+            "crossings": cross(s.free_crossings),
+            "divergence": [{k: r[k] for k in ("speed_m_s", "rate_1_s", "time_to_double_s")} for r in s.divergence],
+        },
+        "search_range_m_s": list(s.search_range),
+    }
+
+
+def _fmt(x, unit: str = "", digits: int = 3) -> str:
+    if x is None:
+        return "none in range"
+    return f"{x:.{digits}g}{(' ' + unit) if unit else ''}"
+
+
+def interpretation(s: StabilitySummary) -> str:
+    """One sentence a wheelchair engineer can act on."""
+    lo, hi = s.search_range
+    c = s.chair.name
+    slow = next((r for r in s.divergence if r["rate_1_s"] > 0), None)
+    if s.free_unstable_at_all_speeds:
+        first = slow or s.divergence[0]
+        msg = (f"With free casters {c} is directionally unstable at every speed from {lo:g} to {hi:g} m/s "
+               f"(at {first['speed_m_s']:g} m/s a heading error doubles every "
+               f"{_fmt(first['time_to_double_s'], 's')}), so the user must steer continually")
+    elif s.free_stable_at_all_speeds:
+        msg = f"With free casters {c} is directionally stable at every speed from {lo:g} to {hi:g} m/s"
+    else:
+        v = _first(s.free_crossings, "destabilising")
+        msg = (f"With free casters {c} is stable below {_fmt(v, 'm/s')} and unstable above it"
+               if v is not None else f"With free casters {c} changes stability at {[round(x.speed, 3) for x in s.free_crossings]} m/s")
+    locked = _first(s.locked_crossings, "destabilising")
+    msg += (f"; with the casters locked it would be stable up to {_fmt(locked, 'm/s')}"
+            if locked is not None else "; with the casters locked it would be stable in the whole range")
+    return msg + "."
+
+
+def format_summary(s: StabilitySummary) -> str:
+    """Readable table."""
+    d = summary_dict(s)
+    lines = [
+        f"Chair: {s.chair.name} ({s.chair.caster_position} casters; main tire {s.chair.main_tire}, "
+        f"caster tire {s.chair.caster_tire})   model: {s.model}",
+        "",
+        f"{'':28s}{'main wheel':>14s}{'caster':>14s}",
+        f"{'static load (N)':28s}{d['static_load_N']['main']:14.1f}{d['static_load_N']['caster']:14.1f}",
+        f"{'cornering stiffness (N/deg)':28s}{d['cornering_stiffness_N_per_deg']['main']:14.2f}"
+        f"{d['cornering_stiffness_N_per_deg']['caster']:14.2f}",
+        "",
+        "Critical speeds (m/s)",
+        f"  zero-width model, locked casters (eq 5-15): {_fmt(s.zero_width.critical_speed, digits=4)}"
+        f"   [understeer coefficient k_us = {s.zero_width.understeer_coefficient:+.4f} rad, eq 5-16]",
+        f"  full-width model, locked casters:           {_fmt(_first(s.locked_crossings), digits=4)}",
+        f"  full-width model, free casters:             {_fmt(_first(s.free_crossings), digits=4)}"
+        + ("   (unstable at all speeds searched)" if s.free_unstable_at_all_speeds else "")
+        + ("   (stable at all speeds searched)" if s.free_stable_at_all_speeds else ""),
+        f"  searched {s.search_range[0]:g} to {s.search_range[1]:g} m/s",
+        "",
+        "Least stable mode, free casters",
+        f"  {'speed (m/s)':>12s}{'rate (1/s)':>12s}{'doubling (s)':>14s}{'freq (rad/s)':>14s}",
+    ]
+    for r in s.divergence:
+        t2 = "-" if r["time_to_double_s"] is None else f"{r['time_to_double_s']:.3g}"
+        lines.append(f"  {r['speed_m_s']:12.3g}{r['rate_1_s']:12.4f}{t2:>14s}{r['frequency_rad_s']:14.3g}")
+    lines += ["", interpretation(s)]
+    return "\n".join(lines)
+
+
+class OneLineErrorParser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line on stderr and exit status 2."""
+
+    def error(self, message: str):  # noqa: D102
+        print(f"error: {message}", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = OneLineErrorParser(prog="python -m stability.critical_speed", description=__doc__.split("\n\n")[0])
+    p.add_argument("--chair", default="ej-premier", help="preset name or TOML file (default ej-premier)")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="override a chair field (repeatable)")
+    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
+    p.add_argument("--speeds", default="0.25,0.5,0.75,1,1.5,2,3", help="speeds for the divergence table, START:STOP:STEP or a list (m/s)")
+    p.add_argument("--max-speed", type=float, default=30.0, help="upper end of the critical-speed search (m/s, default 30)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    return p
+
+
+def load_chair(spec: str, assignments: Sequence[str]):
+    """Chair from ``--chair`` and ``--set`` options (raises ValueError with one-line messages)."""
+    c = chair_mod.resolve(spec)
+    changes = dict(chair_mod.parse_assignment(a) for a in assignments)
+    return c.replace(**changes) if changes else c
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        c = load_chair(args.chair, args.set)
+        speeds = parse_speeds(args.speeds)
+        summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
+    except ValueError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    if args.json:
+        print(json.dumps(summary_dict(summary), indent=2))
+    else:
+        print(format_summary(summary))
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
