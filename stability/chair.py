@@ -164,9 +164,19 @@ class Chair:
         return -self.s2 if self.caster_position == "rear" else self.s2
 
     @property
+    def caster_contact_distance(self) -> float:
+        """Distance from the c.g. to the caster contact points with the casters trailing (m).
+
+        ``s2 + l`` for rear casters (the contacts trail behind the pins, away
+        from the c.g.), ``s2 - l`` for front casters (they trail back towards
+        the c.g.).
+        """
+        return self.s2 + self.trail if self.caster_position == "rear" else self.s2 - self.trail
+
+    @property
     def wheelbase(self) -> float:
-        """Main axle to caster contact points with casters trailing (m): s1 + s2 + l."""
-        return self.s1 + self.s2 + self.trail
+        """Main axle to caster contact points with the casters trailing (m)."""
+        return self.s1 + self.caster_contact_distance
 
     @property
     def cg_ratio(self) -> float:
@@ -255,9 +265,11 @@ def _validate(c: Chair) -> None:
             f">= m_c*l1^2 = {c.m_c * c.l1**2:.6g} kg m^2 (a caster's inertia about its pin "
             "cannot be less than that of its mass concentrated at its c.g.)",
         )
-    # caster contact points must stay on the far side of the c.g. from the main axle
-    if c.s2 - c.trail <= -c.s1:
+    # the caster contact points must lie beyond the main axle (positive wheelbase)
+    if c.caster_position == "front" and c.trail >= c.s1 + c.s2:
         raise bad("trail", c.trail, f"< s1 + s2 = {c.s1 + c.s2:g} m (zero or negative wheelbase)")
+    if c.trail > 0.5:
+        raise bad("trail", c.trail, "0 to 0.5 m (a longer trail leaves no wheelbase to speak of)")
     from . import tires
 
     for name in ("main_tire", "caster_tire"):

@@ -344,7 +344,7 @@ class ZeroWidthResult:
     ----------
     load_main, load_caster : float
         Static load on one main wheel and one caster (N), eq 5-13 with the
-        caster contact points at s2 + l behind (or ahead of) the c.g.
+        caster contact points at ``Chair.caster_contact_distance`` from the c.g.
     stiffness_main, stiffness_caster : float
         Cornering stiffness of one tire at that load (N/rad).
     understeer_coefficient : float
@@ -375,7 +375,7 @@ def zero_width(chair: Chair) -> ZeroWidthResult:
 
     s = chair.wheelbase
     d_main = chair.s1
-    d_caster = chair.s2 + chair.trail
+    d_caster = chair.caster_contact_distance
     W = chair.m * chair.g
     load_main = W * d_caster / (2 * s)
     load_caster = W * d_main / (2 * s)
