@@ -25,7 +25,6 @@ import dataclasses
 import math
 import os
 import sys
-import tempfile
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any, Mapping
@@ -381,17 +380,9 @@ def dumps(c: Chair) -> str:
 
 def save(c: Chair, path: str | os.PathLike[str]) -> None:
     """Write ``c`` to a TOML file atomically (temporary file + rename)."""
-    path = Path(path)
-    text = dumps(c)
-    fd, tmp = tempfile.mkstemp(dir=path.parent or ".", prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    from .output import atomic_write_text
+
+    atomic_write_text(path, dumps(c))
 
 
 def load(path: str | os.PathLike[str]) -> Chair:

@@ -1,4 +1,4 @@
-"""Reproducible, atomic multi-page PDF output (matplotlib ``PdfPages``).
+"""Atomic file output: reproducible multi-page PDFs (matplotlib ``PdfPages``) and text files.
 
 Every report of the toolkit goes through :func:`write_pdf`: the same figures
 give a byte-identical file (no creation or modification dates in the
