@@ -266,8 +266,9 @@ class RefitResult:
         Residuals of the measurements about the fitted polynomial *as used*
         (i.e. with ``d`` dropped), in N.
     r : ndarray
-        Correlation coefficient ``sqrt(1 - SS_res/SS_tot)`` of the fit
-        (the "R" column of Appendix B).
+        Correlation coefficient ``sqrt(1 - SS_res/SS_tot)`` of the full fit
+        over the points fitted (with ``"pwrstar"`` the origin is one of
+        them, which reproduces the "R" column of Appendix B to 0.001).
     """
 
     angles_deg: NDArray[np.int_]
@@ -355,8 +356,11 @@ def refit(
         x, y = raw["Fz_N"][sel], raw["Fy_N"][sel]
         c = _fit_cubic(x, y, method)
         res = y - (c[0] * x + c[1] * x**2 + c[2] * x**3)
-        full = res - (c[3] if c.size == 4 else 0.0)
-        ss_tot = float(np.sum((y - y.mean()) ** 2))
+        # R as PWRSTAR prints it: residuals of the full fit over the points
+        # it was fitted to (the origin included for "pwrstar").
+        xf, yf = (np.concatenate([[0.0], x]), np.concatenate([[0.0], y])) if method == "pwrstar" else (x, y)
+        full = yf - (c[0] * xf + c[1] * xf**2 + c[2] * xf**3) - (c[3] if c.size == 4 else 0.0)
+        ss_tot = float(np.sum((yf - yf.mean()) ** 2))
         coefs.append(c)
         npts.append(x.size)
         rms.append(float(np.sqrt(np.mean(res**2))))
@@ -623,13 +627,13 @@ class Tire:
         if n_s or n_f:
             if policy == "raise":
                 if n_s:
-                    v = slip[bad_s].flat[0]
+                    v = float(slip[bad_s].flat[0])
                     raise ValueError(
                         f"slip angle {v!r} deg is outside the fitted range "
                         f"[-{SLIP_MAX_DEG:g}, {SLIP_MAX_DEG:g}] deg (tire {self.name}; "
                         f"{n_s} such point(s))"
                     )
-                v = f[bad_f].flat[0]
+                v = float(f[bad_f].flat[0])
                 raise ValueError(
                     f"normal force {v!r} N is outside the fitted range [0, {FZ_MAX_N:g}] N "
                     f"(tire {self.name}; {n_f} such point(s))"
