@@ -110,7 +110,7 @@ def test_raw_normal_force_statics():
             design[:, 2 + j] = np.where(raw["slip_deg"][ok] == s, raw["Fy_lbf"][ok], 0.0)
         coef, *_ = np.linalg.lstsq(design, raw["Fz_lbf"][ok], rcond=None)
         resid = raw["Fz_lbf"][ok] - design @ coef
-        assert np.max(np.abs(resid)) < 0.045, tire
+        assert np.max(np.abs(resid)) < 0.025, tire
 
 
 def test_outlier_flagged_not_fixed():
