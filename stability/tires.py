@@ -312,12 +312,15 @@ def refit(
         ``"through_origin"``: fit ``a, b, c`` only. ``"pwrstar"``: fit
         ``a, b, c, d`` to the six points *plus the origin (0, 0)*.
         Only ``"pwrstar"`` reproduces the published Appendix B coefficients,
-        including the printed ``d``, to printing precision (median relative
-        difference about 5e-7 over the 53 complete blocks); ``"through_origin"``
-        agrees to within 0.3 % in force (Fz = 75..450 N) except for the
-        blocks with a missing measurement; the literal ``"with_intercept"``
-        fit is off by 0.3 % .. 2000 % in force and gives constant terms of
-        tens of newtons, contradicting the "about 1 N" stated in chapter 4.
+        including the printed ``d`` and ``R``, to printing precision (a, b, c
+        within 4e-6 relative, median 1.3e-6, over the 54 complete blocks;
+        forces at Fz = 75..450 N within 0.0012 %). ``"through_origin"`` is
+        close (force differences median 0.09 %, max 1.3 %); the literal
+        ``"with_intercept"`` fit is far off (median 48 %, max 381 %) and gives
+        constant terms up to 190 N, contradicting the "about 1 N" of
+        chapter 4. The two blocks with a missing measurement (IM 6 deg, ER
+        1 deg) differ by 2.4 % and 2.75 % (pwrstar; 2.4 % and 2.9 % through
+        the origin).
         The numbers are tabulated in ``provenance.md``.
     data : {"cornering", "camber"}
         Which raw table to fit (camber data exist for the main tires only).
