@@ -1,0 +1,141 @@
+"""A tiny progress bar: tqdm when it is installed, else a plain text bar on stderr.
+
+The bar is silent unless it is asked for (``enabled=True``, the default) AND
+stderr is a terminal, or it is forced (``force=True``): batch runs in CI,
+pipes and log files produce no progress noise.
+
+Examples
+--------
+>>> from stability.progress import ProgressBar
+>>> with ProgressBar(total=3, desc="runs", enabled=False) as bar:
+...     for _ in range(3):
+...         bar.update()
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from typing import IO, Iterable, Iterator, TypeVar
+
+__all__ = ["ProgressBar", "track", "should_show"]
+
+T = TypeVar("T")
+
+
+def should_show(enabled: bool = True, force: bool = False, file: IO[str] | None = None) -> bool:
+    """Whether a bar should be drawn: ``force``, or ``enabled`` and ``file`` (stderr) is a TTY."""
+    if force:
+        return True
+    if not enabled:
+        return False
+    stream = sys.stderr if file is None else file
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
+class ProgressBar:
+    """Progress over ``total`` units of work.
+
+    Parameters
+    ----------
+    total : int
+        Units of work (runs, steps, ...).
+    desc : str
+        Label shown before the bar.
+    enabled : bool
+        ``False`` disables the bar entirely (the ``progress=False`` option of
+        the public functions).
+    force : bool
+        Draw even when stderr is not a terminal.
+    file : text stream, optional
+        Where to draw (default ``sys.stderr``).
+    unit : str
+        Name of one unit of work.
+    """
+
+    def __init__(self, total: int, desc: str = "", *, enabled: bool = True, force: bool = False,
+                 file: IO[str] | None = None, unit: str = "it") -> None:
+        self.total = max(int(total), 0)
+        self.desc = desc
+        self.unit = unit
+        self.n = 0
+        self._file = sys.stderr if file is None else file
+        self._show = should_show(enabled, force, self._file)
+        self._tqdm = None
+        self._last_draw = 0.0
+        self._start = time.perf_counter()
+        self._closed = False
+        if self._show:
+            try:
+                from tqdm import tqdm  # type: ignore
+            except ImportError:  # pragma: no cover - depends on the environment
+                tqdm = None
+            if tqdm is not None:
+                self._tqdm = tqdm(total=self.total, desc=desc or None, file=self._file, unit=unit,
+                                  leave=False, dynamic_ncols=True)
+
+    # -- context manager ---------------------------------------------------
+    def __enter__(self) -> "ProgressBar":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    @property
+    def shown(self) -> bool:
+        """Whether anything is being drawn."""
+        return self._show
+
+    def update(self, n: int = 1) -> None:
+        """Advance by ``n`` units."""
+        self.n += n
+        if not self._show or self._closed:
+            return
+        if self._tqdm is not None:
+            self._tqdm.update(n)
+            return
+        now = time.perf_counter()
+        if now - self._last_draw >= 0.1 or self.n >= self.total:
+            self._last_draw = now
+            self._draw()
+
+    def _draw(self) -> None:
+        width = 30
+        frac = min(self.n / self.total, 1.0) if self.total else 1.0
+        filled = int(round(width * frac))
+        elapsed = time.perf_counter() - self._start
+        label = f"{self.desc}: " if self.desc else ""
+        self._file.write(f"\r{label}[{'#' * filled}{'.' * (width - filled)}] "
+                         f"{self.n}/{self.total} {self.unit} {elapsed:5.1f} s")
+        self._file.flush()
+
+    def close(self) -> None:
+        """Finish the bar (idempotent)."""
+        if self._closed:
+            return
+        self._closed = True
+        if not self._show:
+            return
+        if self._tqdm is not None:
+            self._tqdm.close()
+        else:
+            self._draw()
+            self._file.write("\n")
+            self._file.flush()
+
+
+def track(iterable: Iterable[T], total: int | None = None, desc: str = "", *, enabled: bool = True,
+          force: bool = False, file: IO[str] | None = None, unit: str = "it") -> Iterator[T]:
+    """Iterate over ``iterable`` with a :class:`ProgressBar`."""
+    if total is None:
+        try:
+            total = len(iterable)  # type: ignore[arg-type]
+        except TypeError:
+            total = 0
+    with ProgressBar(total, desc, enabled=enabled, force=force, file=file, unit=unit) as bar:
+        for item in iterable:
+            yield item
+            bar.update()
