@@ -626,6 +626,11 @@ class _NumpyOps:
     where = staticmethod(np.where)
 
 
+def _ops(x):
+    """math for Python floats, numpy for arrays."""
+    return _NumpyOps if isinstance(x, np.ndarray) else _MathOps
+
+
 class _TireGroup:
     """The tires of one group of runs (same tire models, scales, camber)."""
 
@@ -742,12 +747,12 @@ class _Kernel:
         return self._per_group(lambda g, s, f: g.main.lateral_force(s, f, policy=pol, warn=False), slip, fz)
 
     def caster_rolling(self, fz, vx):
-        xp = self.xp
+        xp = _ops(vx)
         return self._per_group(
             lambda g, f, w: xp.copysign(g.caster.rolling_resistance(f), -w) if g.caster_rolling else 0.0 * f, fz, vx)
 
     def main_rolling(self, fz, vx):
-        xp = self.xp
+        xp = _ops(vx)
         return self._per_group(
             lambda g, f, w: xp.copysign(g.main.rolling_resistance(f), -w) if g.main_rolling else 0.0 * f, fz, vx)
 
@@ -774,7 +779,7 @@ def _kinematics(K: _Kernel, u, v, r, ce, se, cb, sb, ed, bd):
 
 def _slips(K: _Kernel, vel):
     """Signed slip angles (deg): atan2(vy, |vx|); WCHAIR's SLIPx = abs of these."""
-    xp = K.xp
+    xp = _ops(vel[1])
     a2, dg = xp.atan2, xp.degrees
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
     return (dg(a2(vAy, abs(vAx))), dg(a2(vBy, abs(vBx))), dg(a2(vDy, abs(vDx))), dg(a2(vEy, abs(vEx))))
@@ -1320,7 +1325,7 @@ class _AdaptiveModel:
     def evaluate(self, t, y, modes, imp):
         """Derivatives and auxiliary quantities at ``(t, y)`` (floats or arrays of samples)."""
         K = self.K
-        xp = K.xp
+        xp = _ops(eta := y[6])
         X, Y, psi, u, v, r, eta, ed, beta, bd = y
         ma_mode, mb_mode = modes
         if ma_mode in (_STUCK, _LOCKED):
@@ -1666,7 +1671,7 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
         raise ValueError(f"speeds has shape {sp.shape}; expected a number or a 1-D array")
     if sp.size == 0:
         raise ValueError("speeds=[] is invalid; expected at least one speed > 0 m/s")
-    for s in np.atleast_1d(sp):
+    for s in np.atleast_1d(sp).tolist():
         _check_speed(s)
     try:
         shape = np.broadcast_shapes((len(chair_list),) if not isinstance(chairs, Chair) else (), sp.shape)

@@ -1,0 +1,487 @@
+"""The simulator: WCHAIR scheme mechanics, batches, the adaptive scheme, results, CLI.
+
+Thesis-reproduction checks (chapter 8) are in ``test_thesis_chapter8.py``.
+"""
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from stability import loads, models, tires
+from stability import simulate as sim
+from stability.chair import preset
+from stability.simulate import ChairState, SimulationResult, simulate, simulate_batch
+
+EJ = preset("ej-premier")
+FRONT = preset("ej-premier-front-caster")
+# no tire forces at all: the chair responds to the disturbances alone
+SLICK = EJ.replace(main_lateral_scale=0.0, caster_lateral_scale=0.0)
+
+
+# ---------------------------------------------------------------------------
+# bad input
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(speed=0.0), r"speed=0\.0 is invalid; valid range: speed > 0"),
+    (dict(speed=-0.75), r"speed=-0\.75 is invalid"),
+    (dict(speed=float("nan")), r"speed=nan is invalid"),
+    (dict(dt=0.0), r"dt=0\.0 is invalid; valid range"),
+    (dict(dt=-1e-3), r"dt=-0\.001 is invalid"),
+    (dict(duration=0.0), r"duration=0\.0 is invalid"),
+    (dict(duration=float("inf")), r"duration=inf is invalid"),
+    (dict(scheme="euler"), r"scheme='euler' is invalid; valid choices: \['wchair', 'adaptive'\]"),
+    (dict(model="kane"), r"model='kane' is invalid; valid choices: \['thesis', 'exact'\]"),
+    (dict(casters="welded"), r"casters='welded' is invalid"),
+    (dict(out_of_range="ignore"), r"out_of_range='ignore' is invalid"),
+    (dict(sample=0.0015), r"sample=0\.0015 is invalid for scheme 'wchair'; valid values: a whole multiple of dt"),
+    (dict(impulse_duration=-0.1), r"impulse_duration=-0\.1 is invalid"),
+    (dict(impulse_force=float("nan")), r"impulse_force=nan is invalid"),
+    (dict(rtol=0.0), r"rtol=0\.0 is invalid"),
+    (dict(yaw_moment=3.0), r"yaw_moment=3\.0 is invalid"),
+    (dict(dt=2.0, duration=1.0), r"dt=2\.0 is invalid; valid range: 0 < dt <= duration"),
+])
+def test_bad_input_names_parameter_value_and_range(kwargs, match):
+    args = dict(chair=EJ, speed=0.75, duration=0.01)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        simulate(args.pop("chair"), args.pop("speed"), **args)
+
+
+def test_bad_batch_input():
+    with pytest.raises(ValueError, match="chairs=\\[\\] is invalid"):
+        simulate_batch([], [0.75])
+    with pytest.raises(ValueError, match="cannot broadcast 2 chairs against 3 speeds"):
+        simulate_batch([EJ, EJ], [0.5, 0.6, 0.7], duration=0.01)
+    with pytest.raises(ValueError, match="speed=-1.0 is invalid"):
+        simulate_batch(EJ, [0.5, -1.0], duration=0.01)
+    with pytest.raises(ValueError, match="unknown option\\(s\\) \\['speed_mps'\\]"):
+        simulate_batch(EJ, [0.5], speed_mps=3)
+    with pytest.raises(ValueError, match="workers=0 is invalid"):
+        simulate_batch(EJ, [0.5], duration=0.01, workers=0)
+    with pytest.raises(ValueError, match="chair='ej-premier' is invalid"):
+        simulate("ej-premier", 0.75)
+
+
+# ---------------------------------------------------------------------------
+# WCHAIR scheme mechanics (Appendix C)
+# ---------------------------------------------------------------------------
+def test_time_loop_is_wchairs_do_loop():
+    """DO 99 T = 0, TTOTAL+TSTEP, TSTEP: samples at 0, dt, ..., TTOTAL + dt."""
+    r = simulate(EJ, 0.75, duration=0.05, dt=0.001)
+    assert len(r.t) == 52
+    assert r.t[0] == 0.0 and r.t[-1] == pytest.approx(0.051, abs=1e-12)
+    np.testing.assert_allclose(np.diff(r.t), 0.001, rtol=1e-9)
+    r = simulate(EJ, 0.75, duration=0.05, dt=0.001, sample=0.01)
+    np.testing.assert_allclose(r.t, np.arange(6) * 0.01, atol=1e-12)
+
+
+def test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update():
+    """MECHAN/DYNAM test T .LE. DUIMP: 40 N acts at t = 0, ..., 0.100 s (101 steps).
+
+    Without tire forces the chair only translates: VDD = FC2/M while the
+    force acts (thesis variant), UPDATE/ITRATE integrate it exactly, so
+    v = 40 * 0.101 / 95 afterwards and X = u t, Y = sum of the steps.
+    """
+    r = simulate(SLICK, 0.75, duration=0.2, dt=0.001)
+    i = np.searchsorted(r.t, 0.15)
+    assert r.v[i] == pytest.approx(40.0 * 0.101 / 95.0, rel=1e-12)
+    assert r.v[100] == pytest.approx(40.0 * 0.100 / 95.0, rel=1e-12)   # before the 101st step
+    assert np.all(r.yaw_rate == 0.0) and np.all(r.heading == 0.0)
+    np.testing.assert_allclose(r.x, 0.75 * r.t, rtol=1e-12, atol=1e-15)
+    a = 40.0 / 95.0
+    k = 50  # constant acceleration from rest: y = a t^2 / 2 exactly
+    assert r.y[k] == pytest.approx(0.5 * a * r.t[k] ** 2, rel=1e-9)
+
+
+def test_statics_uses_previous_steps_total_force_including_fcimp():
+    """STATICS is called before MECHAN/DYNAM with FC1, FC2 of the previous step (FCIMP included)."""
+    r = simulate(SLICK, 0.75, duration=0.01)
+    p = models.parameters(SLICK)
+    np.testing.assert_allclose(r.normal_load[0], loads.normal_loads(p), rtol=1e-12)      # FC = 0 at t = 0
+    np.testing.assert_allclose(r.normal_load[1], loads.normal_loads(p, 0.0, 40.0), rtol=1e-12)
+
+
+def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
+    """DYNAM forms Z10 = M*THEDD before updating THEDD: the caster rows lag one step."""
+    calls = []
+    real = sim._models.accelerations
+
+    def spy(*args, **kwargs):
+        out = real(*args, **kwargs)
+        calls.append((kwargs.get("r_dot_casters"), out[2], kwargs.get("variant")))
+        return out
+
+    monkeypatch.setattr(sim._models, "accelerations", spy)
+    simulate(EJ, 0.75, duration=0.02)
+    assert calls[0][0] == 0.0                       # THEDD = 0 in BLOCK DATA
+    for k in range(1, len(calls)):
+        assert calls[k][0] == calls[k - 1][1]
+        assert calls[k][2] == "thesis"
+    calls.clear()
+    simulate(EJ, 0.75, duration=0.02, model="exact")
+    assert all(c[0] is None and c[2] == "exact" for c in calls)
+
+
+def test_pin_friction_opposes_caster_rate_and_is_zero_at_rest():
+    """DYNAM 0810-0819: SIGN(MAF, -ED), exactly zero when ED == 0."""
+    r = simulate(EJ, 0.75, duration=1.0)
+    assert r.eta_dot[0] == 0.0 and np.all(r.pin_moment[0] == 0.0)
+    moving = r.eta_dot != 0.0
+    np.testing.assert_array_equal(r.pin_moment[moving, 0], -0.1 * np.sign(r.eta_dot[moving]))
+    moving = r.beta_dot != 0.0
+    np.testing.assert_array_equal(r.pin_moment[moving, 1], -0.1 * np.sign(r.beta_dot[moving]))
+
+
+def test_forces_oppose_contact_velocity_and_follow_the_tire_fits():
+    r = simulate(EJ, 0.75, duration=1.0)
+    main, caster = EJ.main_tire_model(), EJ.caster_tire_model()
+    k = 500
+    for w, tire in zip(range(4), (caster, caster, main, main)):
+        expect = tire.lateral_force(float(r.slip_deg[k, w]), float(r.normal_load[k, w]), warn=False)
+        assert r.fy[k, w] == pytest.approx(expect, rel=1e-12, abs=1e-12)
+    assert np.all(r.fy[1:] * r.slip_deg[1:] <= 0.0)
+    assert np.all(r.fx == 0.0)        # TXMOD = CXMOD = 0 by default
+
+
+def test_tire_impulse_replaces_main_tire_lateral_forces():
+    """MECHAN 0704-0706: FDY = FEY = FTIMP while t <= DUIMP."""
+    r = simulate(EJ, 0.75, duration=0.3, impulse_force=0.0, tire_impulse=25.0, impulse_duration=0.05)
+    on = r.t <= 0.05 + 1e-12
+    assert on.sum() == 51
+    np.testing.assert_array_equal(r.fy[on, 2], 25.0)
+    np.testing.assert_array_equal(r.fy[on, 3], 25.0)
+    k = int(np.flatnonzero(~on)[0])      # afterwards the tire fits again
+    main = EJ.main_tire_model()
+    assert r.fy[k, 2] == pytest.approx(main.lateral_force(float(r.slip_deg[k, 2]), float(r.normal_load[k, 2])))
+    assert r.yaw_rate[-1] != 0.0
+
+
+def test_initial_lateral_velocity_and_caster_angles():
+    r = simulate(EJ, 0.75, duration=0.01, impulse_force=0.0, lateral_velocity=0.04, eta0_deg=5.0, beta0_deg=-3.0)
+    assert r.v[0] == 0.04 and r.u[0] == 0.75
+    assert r.eta[0] == pytest.approx(math.radians(5.0)) and r.beta[0] == pytest.approx(math.radians(-3.0))
+    # eq 5-7: 0.04 m/s at 0.75 m/s is about 3 deg at the main wheels
+    assert abs(r.slip_deg[0, 2]) == pytest.approx(math.degrees(math.atan(0.04 / 0.75)), rel=1e-12)
+
+
+def test_no_disturbance_means_straight_motion():
+    r = simulate(EJ, 0.75, duration=1.0, impulse_force=0.0)
+    assert np.all(r.yaw_rate == 0.0) and np.all(r.y == 0.0) and np.all(r.eta == 0.0)
+    assert r.x[-1] == pytest.approx(0.75 * r.t[-1])
+
+
+def test_toe_and_camber_as_slip_and_mechan_apply_them():
+    """SLIP turns the right wheel frame by +toe and the left by -toe; MECHAN adds
+    CAMCOF*POLYFT(TIRY, INT(CAMANG), FZ) to the left wheel and subtracts it on the right."""
+    c = EJ.replace(toe_deg=1.0)
+    r = simulate(c, 0.75, duration=0.002, impulse_force=0.0)
+    assert r.slip_deg[0, 2] == pytest.approx(1.0, rel=1e-9)
+    assert r.slip_deg[0, 3] == pytest.approx(-1.0, rel=1e-9)
+    assert r.fy[0, 2] == pytest.approx(-r.fy[0, 3], rel=1e-12)
+    assert r.yaw_rate[-1] == 0.0                       # symmetric toe: no yaw
+    c = EJ.replace(camber_deg=2.7, camber_coefficient=0.2, main_lateral_scale=0.5)
+    r = simulate(c, 0.75, duration=0.002, impulse_force=0.0)
+    fz = r.normal_load[0, 2]
+    expect = tires.get("EJA").camber_force(2.0, fz, 0.2)   # whole degrees, unscaled, as WCHAIR
+    assert expect > 0
+    assert r.fy[0, 2] == pytest.approx(expect, rel=1e-12)
+    assert r.fy[0, 3] == pytest.approx(-expect, rel=1e-12)
+
+
+def test_rolling_resistance_when_switched_on():
+    c = EJ.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0)
+    r = simulate(c, 0.75, duration=2.0, impulse_force=0.0)
+    fz = r.normal_load[0]
+    assert r.fx[0, 2] == pytest.approx(-c.main_tire_model().rolling_resistance(float(fz[2])))
+    assert r.fx[0, 0] == pytest.approx(-c.caster_tire_model().rolling_resistance(float(fz[0])))
+    assert r.u[-1] < 0.75 - 0.05                          # the chair slows down (chapter 8)
+
+
+def test_warning_rule_stops_at_the_eleventh_warning():
+    """NWARN > 10: STOP 'TEST CASE TERMINATED' (MECHAN 0682-0683); the stopping step is not recorded."""
+    r = simulate(EJ, 0.75, duration=1.0, impulse_force=0.0, lateral_velocity=0.3)   # ~22 deg slip
+    assert r.stopped_by_warnings
+    assert r.warnings["slip"]["count"] == 11 and r.warnings["slip"]["first_time"] == 0.0
+    assert r.stop_time == pytest.approx(0.010) and len(r.t) == 10
+    r = simulate(EJ, 0.75, duration=0.05, impulse_force=0.0, lateral_velocity=0.3, stop_on_warnings=False)
+    assert not r.stopped_by_warnings and len(r.t) == 52
+    assert r.warnings["slip"]["count"] > 11
+    with pytest.raises(ValueError, match="slip angle .* outside the fitted range"):
+        simulate(EJ, 0.75, duration=0.05, impulse_force=0.0, lateral_velocity=0.3, out_of_range="raise")
+
+
+def test_range_rules_skip_linear_tires():
+    """A linear tire has no treadmill range: no warnings for its wheels."""
+    c = EJ.replace(main_tire="linear:25", caster_tire="linear:25")
+    r = simulate(c, 0.75, duration=0.05, impulse_force=0.0, lateral_velocity=0.3)
+    assert r.warnings["slip"]["count"] == 0 and not r.stopped_by_warnings
+
+
+def test_locked_casters_hold_their_angle_with_a_reaction_moment():
+    for model in ("thesis", "exact"):
+        r = simulate(EJ, 0.75, duration=1.0, casters="locked", model=model)
+        assert np.all(r.eta == 0.0) and np.all(r.beta == 0.0) and np.all(r.eta_dot == 0.0)
+        assert np.max(np.abs(r.pin_moment)) > 0.01
+        assert np.max(np.abs(r.yaw_rate)) > 0.0
+
+
+def test_yaw_moment_input_reaches_the_yaw_equation():
+    seen = []
+
+    def mz(t, state):
+        assert isinstance(state, ChairState)
+        seen.append(t)
+        return 5.0
+
+    r = simulate(SLICK, 0.75, duration=0.1, impulse_force=0.0, yaw_moment=mz)
+    assert seen[0] == 0.0 and len(seen) == len(r.t)
+    np.testing.assert_array_equal(r.yaw_moment_input, 5.0)
+    np.testing.assert_allclose(r.yaw_acceleration, 5.0 / EJ.i_z, rtol=1e-12)
+
+
+def test_tire_yaw_moment_is_the_yaw_equation_of_the_thesis_variant():
+    """Table 6-1's yaw row is I_z THEDD = moment of the tire forces (Figure 9-4)."""
+    r = simulate(EJ, 0.75, duration=3.0)
+    np.testing.assert_allclose(EJ.i_z * r.yaw_acceleration, r.tire_yaw_moment, rtol=1e-9, atol=1e-9)
+
+
+# ---------------------------------------------------------------------------
+# batches
+# ---------------------------------------------------------------------------
+def _close(a: SimulationResult, b: SimulationResult, t_end: float, rtol=1e-8, atol=1e-10):
+    sel = a.t <= t_end + 1e-12
+    for name in ("x", "y", "heading", "yaw_rate", "u", "v", "eta", "beta", "eta_dot", "beta_dot",
+                 "fy", "normal_load", "slip_deg"):
+        np.testing.assert_allclose(getattr(a, name)[sel], getattr(b, name)[: sel.sum()], rtol=rtol, atol=atol,
+                                   err_msg=name)
+
+
+def test_batch_equals_single_runs():
+    """The vectorised path reproduces the float path (to rounding: the chair is unstable)."""
+    speeds = [0.55, 0.75, 0.95]
+    res = simulate_batch(EJ, speeds, duration=3.0, sample=0.01, progress=False, workers=1)
+    for s, rb in zip(speeds, res):
+        r1 = simulate(EJ, s, duration=3.0, sample=0.01)
+        assert rb.speed == s and rb.chair is EJ
+        _close(rb, r1, 2.5, rtol=1e-6, atol=1e-9)
+        t1 = r1.first_time_abs_yaw_rate(0.5)
+        tb = rb.first_time_abs_yaw_rate(0.5)
+        assert (t1 is None and tb is None) or tb == pytest.approx(t1, rel=1e-6)
+
+
+def test_batch_mixed_chairs_groups_tires_and_stops_runs_individually():
+    chairs = [EJ, EJ.replace(main_tire="AG"), FRONT, EJ.replace(camber_deg=2.0, toe_deg=0.5)]
+    res = simulate_batch(chairs, 0.75, duration=1.0, sample=0.001, progress=False, lateral_velocity=0.03,
+                         impulse_force=0.0, workers=1)
+    for c, rb in zip(chairs, res):
+        r1 = simulate(c, 0.75, duration=1.0, lateral_velocity=0.03, impulse_force=0.0)
+        _close(rb, r1, 1.0)
+
+
+def test_batch_stops_runs_individually():
+    # a 0.3 m/s lateral velocity makes ~20 deg slip angles: stops at step 10; 0.01 m/s does not
+    res = simulate_batch([EJ, EJ], 0.75, duration=0.5, progress=False, workers=1, impulse_force=0.0, sample=0.001,
+                         lateral_velocity=0.3)
+    assert all(r.stopped_by_warnings and len(r.t) == 10 for r in res)
+    mixed = simulate_batch([EJ, EJ.replace(main_tire="linear:25", caster_tire="linear:25")], 0.75,
+                           duration=0.5, progress=False, workers=1, impulse_force=0.0, sample=0.001,
+                           lateral_velocity=0.3)
+    assert mixed[0].stopped_by_warnings and mixed[0].stop_time == pytest.approx(0.01)
+    assert not mixed[1].stopped_by_warnings and len(mixed[1].t) == 502
+    r1 = simulate(EJ.replace(main_tire="linear:25", caster_tire="linear:25"), 0.75, duration=0.5,
+                  impulse_force=0.0, lateral_velocity=0.3)
+    _close(mixed[1], r1, 0.5)
+
+
+def test_batch_processes_equal_in_process():
+    speeds = np.linspace(0.6, 0.9, 7)
+    a = simulate_batch(EJ, speeds, duration=1.0, progress=False, workers=1)
+    b = simulate_batch(EJ, speeds, duration=1.0, progress=False, workers=3)
+    for ra, rb in zip(a, b):
+        assert ra.speed == rb.speed
+        np.testing.assert_allclose(ra.yaw_rate, rb.yaw_rate, rtol=1e-12, atol=1e-15)
+
+
+def test_batch_yaw_moment_gets_arrays_with_run_indices():
+    runs = []
+
+    def mz(t, state):
+        runs.append(np.array(state.run))
+        return -2.0 * state.yaw_rate
+
+    res = simulate_batch(EJ, [0.7, 0.8], duration=0.2, progress=False, yaw_moment=mz)
+    np.testing.assert_array_equal(runs[0], [0, 1])
+    one = simulate(EJ, 0.8, duration=0.2, yaw_moment=lambda t, s: -2.0 * s.yaw_rate, sample=0.01)
+    np.testing.assert_allclose(res[1].yaw_rate, one.yaw_rate, rtol=1e-9, atol=1e-12)
+
+
+# ---------------------------------------------------------------------------
+# adaptive scheme
+# ---------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def adaptive_pair():
+    kw = dict(duration=4.0, scheme="adaptive")
+    a = simulate(EJ, 0.75, rtol=1e-6, atol=1e-9, **kw)
+    b = simulate(EJ, 0.75, rtol=0.5e-6, atol=0.5e-9, **kw)
+    return a, b
+
+
+def test_adaptive_converges_when_tolerances_are_halved(adaptive_pair):
+    """Halving rtol/atol changes the reported quantities by less than 0.5 %."""
+    a, b = adaptive_pair
+    for v in (0.5, 1.0):
+        ta, tb = a.first_time_abs_yaw_rate(v), b.first_time_abs_yaw_rate(v)
+        assert ta is not None and abs(ta - tb) < 0.005 * tb
+    ra, rb = a.at(3.0)["yaw_rate"], b.at(3.0)["yaw_rate"]
+    assert abs(ra - rb) < 0.005 * abs(rb)
+
+
+def test_adaptive_stick_slip(adaptive_pair):
+    """Casters stick while the holding moment is within the friction limit, else slip with friction opposing."""
+    r = adaptive_pair[0]
+    for side, rate in ((0, r.eta_dot), (1, r.beta_dot)):
+        m = r.pin_moment[:, side]
+        stuck = rate == 0.0
+        assert stuck[0]                                        # at rest at t = 0: stuck
+        assert np.all(np.abs(m[stuck]) <= 0.1 * (1 + 1e-6))
+        slipping = ~stuck
+        assert slipping.any()
+        np.testing.assert_allclose(m[slipping], -0.1 * np.sign(rate[slipping]), rtol=1e-12)
+    assert r.settings["switches"] >= 2
+    # close to the WCHAIR scheme (different load lag and friction model: a few per cent)
+    w = simulate(EJ, 0.75, duration=4.0)
+    assert r.first_time_abs_yaw_rate(1.0) == pytest.approx(w.first_time_abs_yaw_rate(1.0), rel=0.05)
+
+
+def test_adaptive_locked_and_samples():
+    r = simulate(EJ, 0.75, duration=1.0, scheme="adaptive", casters="locked", sample=0.05)
+    np.testing.assert_allclose(r.t, np.arange(21) * 0.05, atol=1e-12)
+    assert np.all(r.eta == 0.0) and np.all(r.beta == 0.0)
+    assert not r.stopped_by_warnings and r.settings["switches"] == 0
+
+
+def test_adaptive_loads_are_consistent_with_the_forces():
+    """Instantaneous (not lagged) load transfer, without the c.g. force."""
+    r = simulate(EJ, 0.75, duration=2.0, scheme="adaptive", sample=0.25)
+    p = models.parameters(EJ)
+    for k in range(len(r.t)):
+        ce, se, cb, sb = math.cos(r.eta[k]), math.sin(r.eta[k]), math.cos(r.beta[k]), math.sin(r.beta[k])
+        fx, fy = r.fx[k], r.fy[k]
+        sfx = fx[2] + fx[3] + fx[0] * ce - fy[0] * se + fx[1] * cb - fy[1] * sb
+        sfy = fy[2] + fy[3] + fx[0] * se + fy[0] * ce + fx[1] * sb + fy[1] * cb
+        np.testing.assert_allclose(r.normal_load[k], loads.normal_loads(p, sfx, sfy, ce, se, cb, sb), rtol=1e-9)
+
+
+# ---------------------------------------------------------------------------
+# results
+# ---------------------------------------------------------------------------
+def _synthetic(t, r):
+    rec = np.zeros((len(t), len(sim._COLS)))
+    rec[:, 0] = t
+    rec[:, sim._COLS.index("yaw_rate")] = r
+    return SimulationResult._from_records(rec, warnings=sim._new_warnings(), stopped=False, stop_time=None,
+                                          chair=EJ, speed=0.75, settings={"scheme": "wchair", "model": "thesis"})
+
+
+def test_first_time_abs_yaw_rate_interpolates():
+    res = _synthetic(np.array([0.0, 1.0, 2.0, 3.0]), np.array([0.0, -0.4, -0.8, -1.6]))
+    assert res.first_time_abs_yaw_rate(0.6) == pytest.approx(1.5)
+    assert res.first_time_abs_yaw_rate(1.2) == pytest.approx(2.5)
+    assert res.first_time_abs_yaw_rate(0.0) == 0.0
+    assert res.first_time_abs_yaw_rate(2.0) is None
+    with pytest.raises(ValueError, match="value=-1.0 is invalid"):
+        res.first_time_abs_yaw_rate(-1.0)
+
+
+def test_result_is_frozen_and_resamples():
+    r = simulate(EJ, 0.75, duration=0.5)
+    with pytest.raises(Exception):
+        r.speed = 1.0
+    with pytest.raises(ValueError):
+        r.yaw_rate[0] = 1.0
+    q = r.resample(0.05)
+    np.testing.assert_allclose(q.t, np.arange(11) * 0.05, atol=1e-12)
+    np.testing.assert_allclose(q.yaw_rate, np.interp(q.t, r.t, r.yaw_rate))
+    assert q.fy.shape == (11, 4) and q.pin_moment.shape == (11, 2)
+    d = r.to_dict()
+    json.dumps(d, allow_nan=False)
+    assert d["t"][-1] == pytest.approx(0.501)
+
+
+def test_to_csv_and_plot(tmp_path):
+    r = simulate(EJ, 0.75, duration=0.5, sample=0.01)
+    path = r.to_csv(tmp_path / "run.csv")
+    data = np.loadtxt(path, delimiter=",", comments="#", skiprows=5)
+    header = path.read_text().splitlines()[4].split(",")
+    assert header[:5] == ["t", "x", "y", "heading", "yaw_rate"] and "fy_A" in header
+    np.testing.assert_allclose(data[:, header.index("yaw_rate")], r.yaw_rate, rtol=1e-15)
+    assert not list(tmp_path.glob(".*tmp"))
+    pdf = r.plot(tmp_path / "run.pdf")
+    assert pdf.read_bytes()[:4] == b"%PDF"
+    png = r.plot(tmp_path / "run.png")
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots()
+    assert r.plot(ax) is ax
+    assert ax.get_xlabel() == "time (s)" and ax.get_ylabel() == "yaw rate (rad/s)"
+    assert "ej-premier" in ax.get_title() and "thesis" in ax.get_title()
+    plt.close(fig)
+    with pytest.raises(ValueError, match="does not exist"):
+        r.plot(tmp_path / "nope" / "x.pdf")
+
+
+def test_summary_mentions_the_essentials():
+    r = simulate(EJ, 0.75, duration=1.0)
+    text = r.summary()
+    assert "ej-premier" in text and "0.75 m/s" in text and "warnings" in text
+
+
+# ---------------------------------------------------------------------------
+# command line
+# ---------------------------------------------------------------------------
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "stability.simulate", *args], capture_output=True, text=True,
+                          timeout=120)
+
+
+def test_cli_json(tmp_path):
+    p = _cli("--chair", "ej-premier", "--speed", "0.75", "--impulse", "40", "0.1", "--duration", "4",
+             "--sample", "0.1", "--json", "--csv", str(tmp_path / "a.csv"), "--plot", str(tmp_path / "a.pdf"))
+    assert p.returncode == 0, p.stderr
+    d = json.loads(p.stdout)
+    for key in ("t", "yaw_rate", "heading", "x", "y", "stopped_by_warnings", "warnings", "first_time_abs_yaw_rate_s"):
+        assert key in d
+    assert len(d["t"]) == 41 and d["t"][1] == pytest.approx(0.1)
+    assert set(d["first_time_abs_yaw_rate_s"]) == {"0.5", "1.0"}
+    assert d["first_time_abs_yaw_rate_s"]["1.0"] == pytest.approx(
+        simulate(EJ, 0.75, duration=4).first_time_abs_yaw_rate(1.0))
+    assert (tmp_path / "a.csv").exists() and (tmp_path / "a.pdf").exists()
+
+
+def test_cli_summary_and_set(tmp_path):
+    p = _cli("--chair", "ej-premier", "--set", "pin_friction_left=0.2", "--set", "pin_friction_right=0.2",
+             "--duration", "1", "--scheme", "adaptive")
+    assert p.returncode == 0, p.stderr
+    assert "ej-premier" in p.stdout and "adaptive" in p.stdout
+
+
+@pytest.mark.parametrize("args, words", [
+    (("--speed", "-1"), "speed=-1.0 is invalid"),
+    (("--chair", "nope"), "unknown chair 'nope'"),
+    (("--set", "s9=1"), "unknown chair parameter 's9'"),
+    (("--scheme", "rk4"), "scheme='rk4' is invalid"),
+    (("--speed", "fast"), "argument --speed: invalid float value"),
+    (("--csv", "/nonexistent/dir/x.csv"), "does not exist"),
+])
+def test_cli_bad_input_one_line_status_2(args, words):
+    p = _cli(*args, "--duration", "0.1")
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and words in lines[0] and "Traceback" not in p.stderr
