@@ -1,0 +1,196 @@
+"""Root loci against speed, design parameters and a feedback gain (stability.rootlocus)."""
+
+import numpy as np
+import pytest
+
+from stability import linear, rootlocus
+from stability.chair import preset
+
+
+def _same_sets(a, b, rtol=1e-8, atol=1e-9):
+    """Two eigenvalue sets equal up to order."""
+    np.testing.assert_allclose(np.sort_complex(np.asarray(a)), np.sort_complex(np.asarray(b)), rtol=rtol, atol=atol)
+
+
+@pytest.fixture(scope="module")
+def ej():
+    return preset("ej-premier")
+
+
+# ---------------------------------------------------------------------------
+# parameter loci
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("name", ["cg_ratio", "s1_plus_s2", "trail", "caster_mass_factor", "pin_damping",
+                                  "mass_factor", "main_lateral_scale", "main_tire"])
+def test_parameter_locus_equals_per_chair_eigenvalues(ej, name):
+    """At each value the locus holds exactly the eigenvalues of state_matrices(chair.replace(...), speed)."""
+    loc = rootlocus.parameter_locus(ej, name, speed=0.75, n=25)
+    p = rootlocus.PARAMETERS[name]
+    assert loc.eigenvalues.shape == (len(loc.values), 6)
+    for k in range(0, len(loc.values), 4):
+        c = p.apply(ej, float(loc.values[k]))
+        assert c == loc.chairs[k]
+        ref = np.linalg.eigvals(linear.state_matrices(c, 0.75)[0])
+        _same_sets(loc.eigenvalues[k], ref)
+
+
+def test_cg_ratio_keeps_s1_plus_s2(ej):
+    """Eq 8-6: the c.g. ratio is varied at constant s1 + s2."""
+    loc = rootlocus.parameter_locus(ej, "cg_ratio", [0.5, 0.6, 0.66, 0.75], speed=0.75)
+    for r, c in zip(loc.values, loc.chairs):
+        assert c.s1 + c.s2 == pytest.approx(ej.s1 + ej.s2)
+        assert c.cg_ratio == pytest.approx(r)
+    assert loc.nominal == pytest.approx(ej.cg_ratio)
+
+
+def test_caster_mass_scales_mass_and_inertia_together(ej):
+    """Figure 8-12: m_c and I_zp multiplied by the same factor."""
+    loc = rootlocus.parameter_locus(ej, "caster_mass_factor", [1.0, 2.0, 3.0])
+    for f, c in zip(loc.values, loc.chairs):
+        assert c.m_c == pytest.approx(ej.m_c * f) and c.i_zp == pytest.approx(ej.i_zp * f)
+        assert c.m == ej.m and c.i_z == ej.i_z
+
+
+def test_one_batched_state_matrix_call(ej, monkeypatch):
+    """The whole locus comes from ONE call of state_matrices over the list of chairs."""
+    calls = []
+    real = rootlocus.state_matrices
+
+    def counting(chairs, speeds, model="exact", casters="free"):
+        calls.append(len(chairs) if isinstance(chairs, (list, tuple)) else 1)
+        return real(chairs, speeds, model, casters)
+
+    monkeypatch.setattr(rootlocus, "state_matrices", counting)
+    loc = rootlocus.parameter_locus(ej, "trail", speed=1.0, n=50)
+    assert calls == [len(loc.values)]
+
+
+@pytest.mark.parametrize("name", ["cg_ratio", "s1_plus_s2", "trail", "pin_damping", "mass_factor"])
+def test_branches_are_continuous(ej, name):
+    """Tracked branches: the largest jump between neighbouring values is small against the locus's spread."""
+    loc = rootlocus.parameter_locus(ej, name, speed=0.75, n=241)
+    eig = loc.eigenvalues
+    spread = np.abs(eig - eig.mean()).max()
+    jumps = np.abs(np.diff(eig, axis=0)).max()
+    assert jumps < 0.05 * spread
+    # and tracking does at least as well as the raw order of eigvals
+    raw = np.linalg.eigvals(linear.state_matrices(list(loc.chairs), np.full(len(loc.chairs), 0.75)))
+    assert np.abs(np.diff(eig, axis=0)).sum() <= np.abs(np.diff(raw, axis=0)).sum() + 1e-9
+
+
+def mirror(c):
+    """The chair reflected left-right."""
+    return c.replace(d1=c.d2, d2=c.d1, t1=c.t2, t2=c.t1, pin_friction_left=c.pin_friction_right,
+                     pin_friction_right=c.pin_friction_left)
+
+
+@pytest.mark.parametrize("name", ["cg_ratio", "trail", "s1_plus_s2"])
+@pytest.mark.parametrize("model", ["exact", "thesis"])
+def test_mirror_invariance(ej, name, model):
+    """A chair and its mirror image have the same loci (dynamics do not know left from right)."""
+    asym = ej.replace(d1=0.22, d2=0.30, t1=0.20, t2=0.27)
+    a = rootlocus.parameter_locus(asym, name, speed=0.9, model=model, n=15)
+    b = rootlocus.parameter_locus(mirror(asym), name, speed=0.9, model=model, n=15)
+    for k in range(len(a.values)):
+        _same_sets(a.eigenvalues[k], b.eigenvalues[k], rtol=1e-7, atol=1e-8)
+
+
+def test_symmetric_chair_cg_ratio_locus_is_real_symmetric(ej):
+    """Real state matrices: each row of the locus is closed under complex conjugation."""
+    loc = rootlocus.parameter_locus(ej, "cg_ratio", speed=0.75, n=31)
+    for row in loc.eigenvalues:
+        _same_sets(row, np.conj(row), rtol=1e-7, atol=1e-8)
+
+
+def test_main_tire_locus_is_categorical(ej):
+    from stability import tires
+
+    loc = rootlocus.parameter_locus(ej, "main_tire", speed=0.75)
+    assert loc.categorical and loc.labels == tuple(tires.MAIN_TIRES)
+    assert [c.main_tire for c in loc.chairs] == list(tires.MAIN_TIRES)
+    assert loc.nominal == tires.MAIN_TIRES.index("EJA")
+
+
+def test_bad_parameter_input(ej):
+    with pytest.raises(ValueError, match="unknown parameter 'nope'"):
+        rootlocus.parameter_locus(ej, "nope")
+    with pytest.raises(ValueError, match="no linearisation"):
+        rootlocus.parameter_locus(ej, "pin_friction")
+    with pytest.raises(ValueError, match="speed"):
+        rootlocus.parameter_locus(ej, "trail", speed=-1)
+    with pytest.raises(ValueError, match="cg_ratio"):
+        rootlocus.parameter_locus(ej, "cg_ratio", [1.2])
+
+
+def test_pin_damping_stabilises_free_casters_at_reference_speed(ej):
+    """Viscous pin damping, the linear stand-in for pin friction, lowers the growth rate (chapter 8 trend)."""
+    loc = rootlocus.parameter_locus(ej, "pin_damping", [0.0, 0.5, 2.0], speed=0.75)
+    assert loc.max_real[0] > loc.max_real[-1]
+
+
+# ---------------------------------------------------------------------------
+# speed loci
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("casters", ["free", "locked"])
+def test_speed_locus_matches_linear(ej, casters):
+    loc = rootlocus.speed_locus(ej, model="exact", casters=casters, n=200)
+    ref = linear.eigenvalues_vs_speed(ej, loc.speeds, "exact", casters, track=True)
+    np.testing.assert_allclose(loc.eigenvalues, ref)
+    crit = linear.critical_speeds(lambda U: linear.state_matrices(ej, U, "exact", casters), loc.speeds)
+    assert [c.speed for c in loc.crossings] == pytest.approx([c.speed for c in crit])
+    if casters == "locked":
+        # Figure 8-6: the locked chair turns unstable between 10 and 12.5 m/s (full-width model ~ eq 5-15)
+        first = [c.speed for c in loc.crossings if c.direction == "destabilising"][0]
+        assert 9.0 < first < 13.5
+        iv = loc.unstable_intervals()
+        assert iv[0][0] == pytest.approx(first)
+
+
+# ---------------------------------------------------------------------------
+# gain locus
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("speed", [0.75, 1.5])
+def test_gain_locus_at_zero_gain_is_open_loop(ej, speed):
+    g = rootlocus.gain_locus(ej, speed, n=60)
+    assert g.gains[0] == 0.0
+    A = linear.state_matrices(ej, speed)[0]
+    _same_sets(g.loci[0], np.linalg.eigvals(A), rtol=1e-6, atol=1e-6)
+    _same_sets(g.poles, np.linalg.eigvals(A), rtol=1e-6, atol=1e-6)
+
+
+def test_gain_locus_equals_closed_loop_eigenvalues(ej):
+    """control.root_locus_map's roots of 1 + K G(s) are the eigenvalues of A - K B C_r."""
+    g = rootlocus.gain_locus(ej, 0.75, gains=[0.0, 0.5, 2.0, 10.0, 50.0])
+    Acl = rootlocus.closed_loop_matrices(ej, 0.75, g.gains)
+    for k in range(len(g.gains)):
+        lam = np.linalg.eigvals(Acl[k])
+        _same_sets(g.loci[k], lam, rtol=1e-5, atol=1e-5 * max(1.0, np.abs(lam).max()))
+
+
+def test_stabilising_gain(ej):
+    g = rootlocus.gain_locus(ej, 0.75)
+    if g.stabilising_gain:
+        K = g.stabilising_gain
+        below = np.linalg.eigvals(rootlocus.closed_loop_matrices(ej, 0.75, [0.98 * K])[0]).real.max()
+        above = np.linalg.eigvals(rootlocus.closed_loop_matrices(ej, 0.75, [1.02 * K])[0]).real.max()
+        assert below > 0 > above
+
+
+# ---------------------------------------------------------------------------
+# plots: labelled axes, titles naming the chair and model
+# ---------------------------------------------------------------------------
+def test_locus_plots_are_labelled(ej):
+    from matplotlib.figure import Figure
+
+    from stability import plotting
+
+    fig = Figure()
+    axes = fig.subplots(2, 2)
+    plotting.speed_locus(rootlocus.speed_locus(ej, n=100), axes[0, 0])
+    plotting.parameter_locus(rootlocus.parameter_locus(ej, "trail", n=20), axes[0, 1])
+    plotting.gain_locus(rootlocus.gain_locus(ej, n=40), axes[1, 0])
+    plotting.parameter_locus(rootlocus.parameter_locus(ej, "main_tire"), axes[1, 1])
+    for ax in axes.flat:
+        assert "(1/s)" in ax.get_xlabel() and "(rad/s)" in ax.get_ylabel()
+    assert "ej-premier" in axes[0, 0].get_title() and "exact" in axes[0, 0].get_title()
+    assert "ej-premier" in axes[1, 0].get_title()

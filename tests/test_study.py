@@ -1,0 +1,168 @@
+"""Parametric studies with the nonlinear simulator (stability.study)."""
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from stability import linear, study
+from stability.chair import preset
+
+
+# ---------------------------------------------------------------------------
+# the criterion
+# ---------------------------------------------------------------------------
+def fake_result(t, r, stopped=False):
+    return SimpleNamespace(t=np.asarray(t, float), yaw_rate=np.asarray(r, float), stopped_by_warnings=stopped)
+
+
+def test_time_to_yaw_rate_interpolates():
+    t = np.linspace(0, 4, 401)
+    r = 0.1 * np.exp(t)                      # |r| = 1 at t = ln 10
+    assert study.time_to_yaw_rate(fake_result(t, r), 1.0) == pytest.approx(math.log(10), abs=1e-4)
+    assert study.time_to_yaw_rate(fake_result(t, -r), 1.0) == pytest.approx(math.log(10), abs=1e-4)
+
+
+def test_time_to_yaw_rate_never_and_stopped():
+    t = np.linspace(0, 10, 101)
+    assert study.time_to_yaw_rate(fake_result(t, 0.1 * np.ones_like(t)), 1.0, 10.0) == math.inf
+    # a run stopped early by the warning rule counts as having reached the level when it stopped
+    ts = t[t <= 4.0]
+    assert study.time_to_yaw_rate(fake_result(ts, 0.5 * np.ones_like(ts), True), 1.0, 10.0) == pytest.approx(4.0)
+
+
+def test_criterion_validation():
+    with pytest.raises(ValueError, match="yaw_rate"):
+        study.Criterion(yaw_rate=0)
+    with pytest.raises(ValueError, match="duration"):
+        study.Criterion(duration=-1)
+
+
+# ---------------------------------------------------------------------------
+# bisection logic on an analytic stand-in for the simulator
+# ---------------------------------------------------------------------------
+class FakeSim:
+    """time to 1 rad/s = 3.2 exp(-4 (U - U*)) with U* = 0.75 m/s * (friction / 0.1) (monotone in speed)."""
+
+    def __init__(self):
+        self.calls = []
+
+    def u_star(self, c):
+        return 0.75 * c.pin_friction_left / 0.1
+
+    def __call__(self, chairs, speeds, *, progress=False, desc="", **options):
+        self.calls.append(len(chairs))
+        out = []
+        for c, s in zip(chairs, speeds):
+            t1 = 3.2 * math.exp(-4.0 * (s - self.u_star(c)))
+            t = np.arange(0, options["duration"] + 1e-9, 0.01)
+            r = np.exp((t - t1) * 2.0)         # |r| = 1 exactly at t1
+            out.append(fake_result(t, r))
+        return out
+
+
+@pytest.fixture
+def fake(monkeypatch):
+    f = FakeSim()
+    monkeypatch.setattr(study, "_simulate_batch", f)
+    return f
+
+
+def test_equal_instability_bisection(fake):
+    ej = preset("ej-premier")
+    chairs = [ej] + study.friction_variants(ej, (0.8, 1.6)) + [ej.replace(pin_friction_left=0.01, pin_friction_right=0.01),
+                                                             ej.replace(pin_friction_left=0.5, pin_friction_right=0.5)]
+    res = study.equal_instability_speeds(chairs, tol=0.002, candidates=7, bracket=(0.2, 3.0), progress=False)
+    assert res[0].reference_time == pytest.approx(3.2, abs=1e-3)
+    assert res[0].status == "found" and res[0].speed == pytest.approx(0.75, abs=0.002)
+    assert res[1].speed == pytest.approx(0.6, abs=0.002)
+    assert res[2].speed == pytest.approx(1.2, abs=0.002)
+    assert res[3].status == "below" and res[3].speed is None and res[3].describe() == "< 0.2 m/s"
+    assert res[4].status == "above" and res[4].describe() == "> 3 m/s"
+    # one batch per round (plus one for the reference), all chairs together
+    n_rounds = len(fake.calls) - 1
+    assert fake.calls[0] == 1 and n_rounds <= 5
+    assert fake.calls[1] == len(chairs) * 9
+
+
+def test_equal_instability_speed_single(fake):
+    r = study.equal_instability_speed(preset("revised"), tol=0.001, progress=False)
+    assert r.speed == pytest.approx(0.75, abs=0.001)     # the fake ignores geometry
+    assert r.low <= r.speed <= r.high and r.high - r.low <= 0.001 + 1e-12
+
+
+def test_maps_use_one_batch(fake):
+    ej = preset("ej-premier")
+    m = study.stability_map(ej, [0.5, 1.0, 1.6], [0.05, 0.1, 0.2], reference=3.2, progress=False)
+    assert fake.calls == [9]
+    assert m.times.shape == (3, 3)
+    b = m.boundary()
+    assert np.isnan(b[0])                      # 0.05 N m: already past the reference at the slowest speed
+    assert b[1] == pytest.approx(0.75, abs=0.01)
+    assert 1.0 < b[2] < 1.6                    # 0.2 N m: between the grid speeds (never reached at 1.0 m/s)
+
+
+def test_parameter_sweeps_table(fake):
+    ej = preset("ej-premier")
+    table, extra = study.parameter_sweeps(ej, {"pin_friction": (0.05, 0.1, 0.15), "trail": (0.06, 0.08)},
+                                          extra_chairs=[preset("revised")], tol=0.002, progress=False)
+    pf = table.get("pin_friction")
+    np.testing.assert_allclose(pf.speeds, [0.375, 0.75, 1.125], atol=0.003)
+    assert pf.effect_percent == pytest.approx(100, abs=1)
+    assert table.get("trail").effect_percent == pytest.approx(0, abs=0.5)
+    assert [r["parameter"] for r in table.rows()] == ["pin_friction", "trail"]
+    assert len(extra) == 1
+
+
+def test_check_conclusions_verdicts(fake):
+    """With the analytic stand-in only friction matters: conclusions about geometry are 'disagree'."""
+    st, _, _ = study.thesis_study(plan={"s1": (0.245, 0.345), "trail": (0.06, 0.08), "camber_deg": (0.0, 5.0),
+                                        "main_tire": None}, tol=0.002, progress=False)
+    checks = study.check_conclusions(st)
+    assert [c.number for c in checks] == list(range(1, 10))
+    v = {c.number: c.verdict for c in checks}
+    assert v[2] == "disagree" and v[5] == "disagree"     # geometry has no effect in the fake
+    assert v[6] == "agree"                                  # speed proportional to friction
+    assert v[8] == "agree"                                  # camber: no effect
+    assert v[3] == "not tested"
+    for c in checks:
+        assert c.evidence and c.statement
+
+
+# ---------------------------------------------------------------------------
+# linear predictions
+# ---------------------------------------------------------------------------
+def test_lateral_force_input_and_yaw_moment_input_agree_with_linear():
+    """The Mz column built the same way as the lateral-force column equals linear.input_matrices."""
+    from stability.models import accelerations, parameters
+
+    for model in ("exact", "thesis"):
+        c = preset("ej-premier")
+        p = parameters(c)
+        z = 0.0
+        args = (p, 0.75, z, z, 1.0, z, 1.0, z, z, z) + (z,) * 10
+        a = [float(x) for x in accelerations(*args, Fy_ext=0.0, Mz_ext=1.0, variant=model)]
+        b = linear.input_matrices(c, 0.75, model)[0][:, 0]
+        np.testing.assert_allclose([a[1], a[2], a[3], a[4]], b[[0, 1, 3, 5]], rtol=1e-9, atol=1e-12)
+        bf = study.lateral_force_input(c, 0.75, model)
+        assert bf[0] > 0
+
+
+def test_linear_impulse_response_is_the_matrix_exponential_solution():
+    """x(t) = A^-1 (e^{At} - I) B F during the force, then e^{A(t-T)} x(T)."""
+    from scipy.linalg import expm
+
+    c = preset("ej-premier")
+    lin = study.linear_impulse_response(c, 0.75, 3.0, impulse=(40.0, 0.1), model="exact", step=0.01)
+    A = linear.state_matrices(c, 0.75)[0]
+    b = study.lateral_force_input(c, 0.75)
+    xT = np.linalg.solve(A, (expm(A * 0.1) - np.eye(6)) @ b * 40.0)
+    for tt in (0.05, 0.1, 1.0, 2.5):
+        k = int(round(tt / 0.01))
+        x = np.linalg.solve(A, (expm(A * tt) - np.eye(6)) @ b * 40.0) if tt <= 0.1 else expm(A * (tt - 0.1)) @ xT
+        assert lin["t"][k] == pytest.approx(tt)
+        assert lin["yaw_rate"][k] == pytest.approx(x[1], rel=1e-7, abs=1e-12)
+        assert lin["v"][k] == pytest.approx(x[0], rel=1e-7, abs=1e-12)
+    # heading is the integral of the yaw rate
+    np.testing.assert_allclose(lin["heading"][-1], np.trapezoid(lin["yaw_rate"], lin["t"]), rtol=1e-3)
