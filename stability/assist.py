@@ -135,6 +135,8 @@ __all__ = [
     "recovery_table",
     "recovery_runs",
     "decay_agreement",
+    "minimum_torque_limit",
+    "motor_overwhelmed_time",
     "settle_time",
     "destabilising_moment",
     "fit_decay_rate",
@@ -1018,6 +1020,41 @@ def recovery_table(runs: Sequence[tuple]) -> list[dict]:
     return rows
 
 
+def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = 400.0, *,
+                         max_heading_deg: float = 10.0, tol: float = 0.25, duration: float = 10.0) -> float:
+    """Smallest per-wheel torque limit with which the scheduled controller still recovers (N m).
+
+    The thesis's question (chapter 9, "Future work"): what motor torque is
+    needed to stabilise the chair against a disturbance.  The design (its
+    gains) is kept; only the saturation of the digital controller changes.
+    "Recovers": the disturbance response settles (:func:`settle_time`)
+    and the heading stays within ``max_heading_deg``.  Noise-free sensors
+    (the bias and noise would blur the threshold); bisection to ``tol``
+    N m between 0 and the drive train's limit.  Returns ``inf`` if even the
+    full limit does not recover.
+    """
+    speed = _check_speed(speed)
+    d = sched.at(speed)
+
+    def ok(limit: float) -> bool:
+        drive = replace(sched.drive, torque_limit=limit)
+        ctl = DigitalController(d, sched.chair, drive, gyro=sched.gyro, noise=False)
+        run = recovery(sched.chair, speed, ctl, impulse_force=impulse_force, duration=duration, model=sched.model)
+        return run.settle_time_s is not None and run.peak_heading_error_deg <= max_heading_deg
+
+    hi = float(sched.drive.torque_limit)
+    if not ok(hi):
+        return math.inf
+    lo = 0.0
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        if ok(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
 def decay_agreement(sched: Schedule, speed: float, *, impulse_force: float = 4.0, impulse_duration: float = 0.1,
                     decades: float = 3.0) -> dict:
     """Does the linear closed loop predict the nonlinear decay rate?
@@ -1243,6 +1280,10 @@ def figure_gains(sched: Schedule, rows: list[dict]):
     for j, (s, u) in enumerate(zip(STATES, units)):
         a = ax.flat[j]
         a.plot(U, K[:, j], "o-", ms=3)
+        a.ticklabel_format(axis="y", useOffset=False)
+        lo, hi = float(K[:, j].min()), float(K[:, j].max())
+        if hi - lo < 1e-3 * max(abs(lo), abs(hi), 1e-12):
+            a.set_ylim(min(0.9 * lo, 1.1 * lo), max(0.9 * hi, 1.1 * hi))
         a.set_title(f"k_{s}")
         a.set_xlabel("speed (m/s)")
         a.set_ylabel(u)
@@ -1353,26 +1394,58 @@ def figure_robustness(rob: Robustness, sched: Schedule):
     return _finish(fig)
 
 
+def _first_slip_warning(res) -> float:
+    w = res.warnings.get("slip", {}) if isinstance(res.warnings, dict) else {}
+    t = w.get("first_time")
+    return float(t) if t is not None else float(res.t[-1])
+
+
+def motor_overwhelmed_time(res, drive: DriveTrain, chair: Chair) -> float | None:
+    """First time the open-loop tire yaw moment exceeds the drive's largest yaw moment (s), or None.
+
+    The thesis's criterion (chapter 9, "Future work"): once the destabilising
+    moment of the tire forces exceeds what the motors can produce, the
+    chair cannot be returned to straight motion.
+    """
+    cap = drive.max_yaw_moment(chair)
+    i = np.flatnonzero(np.abs(np.asarray(res.tire_yaw_moment)) > cap)
+    return float(res.t[i[0]]) if i.size else None
+
+
 def figure_destabilising(ref, runs: Sequence, drive: DriveTrain, chair: Chair):
-    """Figure 9-4 (reference case) and the power chair's open-loop destabilising moment vs its motors."""
+    """Figure 9-4 (reference case) and the power chair's open-loop destabilising moment vs its motors.
+
+    Curves end at the first slip-angle warning (beyond 8 deg the caster
+    tire data are extrapolated); the reference run itself stops at WCHAIR's
+    eleventh warning.
+    """
     fig, ax = _page("Destabilising yaw moment of the tire forces (thesis Figure 9-4)",
-                    "open loop, lateral impulse at the c.g.; WCHAIR scheme", 1, 2)
+                    "open loop, lateral impulse at the c.g. (to the right), WCHAIR scheme; curves end at the first "
+                    "slip-angle warning (> 8 deg)", 1, 2)
     a = ax[0, 0]
-    a.plot(ref.t, ref.tire_yaw_moment, "k")
-    a.set_title(f"{ref.chair.name}, {ref.speed:g} m/s, 40 N for 0.1 s, thesis model")
+    tw = _first_slip_warning(ref)
+    k = np.asarray(ref.t) <= tw
+    a.plot(np.asarray(ref.t)[k], np.asarray(ref.tire_yaw_moment)[k], "k")
+    a.set_title(f"{ref.chair.name}, {ref.speed:g} m/s, 40 N for 0.1 s, {ref.model} model "
+                f"(first slip warning {tw:.2f} s)")
     a.set_xlabel("time (s)")
-    a.set_ylabel("yaw moment about the c.g. (N m)")
+    a.set_ylabel("yaw moment of the tire forces about the c.g. (N m)")
     a.grid(alpha=0.3)
     b = ax[0, 1]
-    for run in runs:
-        b.plot(run.result.t, run.result.tire_yaw_moment, label=f"{run.speed:g} m/s, {run.impulse_force:g} N")
     cap = drive.max_yaw_moment(chair)
+    for run in runs:
+        res = run.result
+        tw = _first_slip_warning(res)
+        k = np.asarray(res.t) <= tw
+        over = motor_overwhelmed_time(res, drive, chair)
+        b.plot(np.asarray(res.t)[k], np.asarray(res.tire_yaw_moment)[k],
+               label=f"{run.speed:g} m/s, {run.impulse_force:g} N (exceeds motors at "
+                     f"{'-' if over is None else f'{over:.2f}'} s)")
     b.axhline(cap, color="r", ls="--", label=f"motor limit {cap:.0f} N m")
     b.axhline(-cap, color="r", ls="--")
-    b.set_ylim(-1.5 * cap, 1.5 * cap)
-    b.set_title(f"{chair.name} open loop (exact model)")
+    b.set_title(f"{chair.name} open loop ({runs[0].result.model if runs else ''} model)")
     b.set_xlabel("time (s)")
-    b.set_ylabel("yaw moment about the c.g. (N m)")
+    b.set_ylabel("yaw moment of the tire forces about the c.g. (N m)")
     b.legend(fontsize=8)
     b.grid(alpha=0.3)
     return _finish(fig)
@@ -1422,7 +1495,13 @@ def figure_recovery_table(table: list[dict], sched: Schedule):
         from .plotting import table_page
         return table_page(f"Recovery in the nonlinear simulator: {sched.kind} LQR, {sched.chair.name}", header, rows,
                           "10 s, WCHAIR scheme 1 ms, exact model, Coulomb pin friction, torque limit "
-                          f"{sched.drive.torque_limit:g} N m per wheel")
+                          f"{sched.drive.torque_limit:g} N m per wheel",
+                          col_widths=[0.8, 1.1, 1.6, 1.2, 1.0, 1.0, 1.0, 1.3], wrap=[10, 14, 18, 14, 10, 10, 10, 14],
+                          notes="peak heading: largest |heading| of the closed loop (including the drift and wander "
+                                "the gyro bias and noise cause) / of the open-loop chair over 10 s; settle: the "
+                                "disturbance response (heading minus that of a twin run with the same gyro noise "
+                                "and no impulse) stays within 5 % of its peak; drift: heading slope over the last "
+                                "2 s.")
     except ImportError:  # pragma: no cover
         fig, ax = _page("Recovery in the nonlinear simulator")
         ax[0, 0].axis("off")
@@ -1481,6 +1560,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="controller sample rate (Hz, default 200)")
     p.add_argument("--seed", type=int, default=0, help="seed of the gyro noise (default 0)")
     p.add_argument("--no-check", action="store_true", help="skip the nonlinear simulations")
+    p.add_argument("--min-torque", action="store_true",
+                   help="also find the smallest torque limit that recovers from the 400 N disturbance "
+                        "at 1, 2, 3 m/s (bisection, ~1 min)")
     p.add_argument("--json", metavar="FILE", help="write the gain table as JSON (a list of rows, one per speed)")
     p.add_argument("--pdf", metavar="FILE", help="write the figures as a PDF")
     return p
@@ -1549,10 +1631,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("\nNonlinear recovery (10 s, WCHAIR scheme, exact model, pin friction, torque limit"
               + (", gyro noise and bias" if sched.kind == "gyro" else "") + "): closed loop vs open loop")
         print(format_recovery(table))
+        for closed, opened in runs:
+            if opened is not None and closed.impulse_force == 40.0:
+                over = motor_overwhelmed_time(opened.result, sched.drive, sched.chair)
+                print(f"open loop, {closed.speed:g} m/s, 40 N: tire yaw moment exceeds the motors' "
+                      f"{sched.drive.max_yaw_moment(sched.chair):.0f} N m at "
+                      + ("never" if over is None else f"{over:.2f} s (heading then "
+                         f"{np.degrees(np.interp(over, opened.result.t, opened.result.heading)):.0f} deg)"))
         agree = [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)]
         print("\nLinear vs nonlinear decay (4 N x 0.1 s, pin friction off, 1 kHz): "
               + "; ".join(f"{a['speed_m_s']:g} m/s: predicted {a['predicted_1_s']:.3f}, fitted "
                           f"{a['fitted_1_s']:.3f} 1/s ({a['relative_error']:.2%})" for a in agree))
+    if args.min_torque:
+        for s_ in (1.0, 2.0, 3.0):
+            mt = minimum_torque_limit(sched, s_)
+            print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
+                  f"{_fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
     if args.json:
         atomic_write_text(args.json, json.dumps(rows, indent=2) + "\n")
     if args.pdf:

@@ -1,0 +1,297 @@
+"""Motor assist for the power-fwd chair (stability.assist, stability.power_chair).
+
+What each test checks is in its docstring; the thesis references are to
+Collins (1987): chapter 9 "Future work" (motor torque to stabilise an electric
+chair, Figure 9-4) and eq 6-3 (moment of the wheel forces about the c.g.).
+"""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from stability import assist, chair as chair_mod, models
+from stability.linear import input_matrices, state_matrices
+from stability.power_chair import PARAMETERS, DriveTrain, drive_train, lumped_estimate, power_fwd
+
+SPEEDS = np.arange(0.5, 3.0001, 0.25)
+
+
+@pytest.fixture(scope="module")
+def chair():
+    return chair_mod.preset("power-fwd")
+
+
+@pytest.fixture(scope="module")
+def schedules(chair):
+    return {kind: assist.schedule(chair, SPEEDS, kind) for kind in assist.DESIGNS}
+
+
+# ---------------------------------------------------------------------------
+# the preset
+# ---------------------------------------------------------------------------
+def test_preset_validates_and_matches_its_documentation(chair):
+    """The preset builds a valid Chair (every field validated), is reachable by name and its
+    mass, c.g. position, c.g. height and yaw inertia agree with the lumped-mass table that
+    documents them; the static load puts about two thirds of the weight on the drive wheels."""
+    assert chair == power_fwd()
+    assert "power-fwd" in chair_mod.all_preset_names()
+    assert chair_mod.resolve("power-fwd") == chair
+    assert {f: getattr(chair, f) for f in PARAMETERS} == PARAMETERS
+    assert chair.caster_position == "rear"            # front-wheel drive = drive wheels ahead of the c.g.
+    est = lumped_estimate()
+    assert est["m"] == pytest.approx(chair.m)
+    assert est["s1"] == pytest.approx(chair.s1, abs=0.01)
+    assert est["h"] == pytest.approx(chair.h, abs=0.01)
+    assert est["i_z"] == pytest.approx(chair.i_z, rel=0.02)
+    from stability.loads import static_loads
+
+    loads = static_loads(chair)
+    drive_share = 2 * loads["main"] / (chair.m * chair.g)
+    assert drive_share == pytest.approx((chair.s2 + chair.trail) / chair.wheelbase)
+    assert 0.6 < drive_share < 0.72
+    # the caster tire is used inside its tested load range (75-450 N)
+    assert 75.0 < loads["caster"] < 450.0
+
+
+def test_drive_train_yaw_moment_is_the_couple_of_eq_6_3():
+    """Mz = tau (d1 + d2) / r, and equal and opposite wheel forces at D and E enter the equations
+    of motion (both variants, at a disturbed state with deflected casters) exactly as a pure yaw
+    moment Mz on the chair: same accelerations, no net force, nothing on the casters."""
+    c = power_fwd()
+    dt = drive_train()
+    assert dt.yaw_moment(c, 10.0) == pytest.approx(10.0 * (c.d1 + c.d2) / dt.wheel_radius)
+    assert dt.wheel_torque(c, dt.yaw_moment(c, 7.0)) == pytest.approx(7.0)
+    assert dt.max_yaw_moment(c) == pytest.approx(dt.torque_limit * 0.55 / 0.178)
+    fdx, fex = dt.wheel_forces(c, 20.0)
+    assert (fdx, fex) == pytest.approx((20.0 / dt.wheel_radius, -20.0 / dt.wheel_radius))
+    p = models.parameters(c)
+    eta, beta = 0.3, -0.2
+    state = dict(u=1.5, v=0.05, r=0.2, ce=math.cos(eta), se=math.sin(eta), cb=math.cos(beta), sb=math.sin(beta),
+                 eta_d=0.4, beta_d=-0.3)
+    tires = dict(FAx=0.0, FAy=12.0, FBx=0.0, FBy=-8.0, FDx=0.0, FDy=-30.0, FEx=0.0, FEy=-25.0, M_A=0.1, M_B=-0.1)
+    for variant in ("exact", "thesis"):
+        couple = dict(tires, FDx=fdx, FEx=fex)
+        a = models.accelerations(p, *state.values(), *couple.values(), variant=variant)
+        b = models.accelerations(p, *state.values(), *tires.values(), Mz_ext=dt.yaw_moment(c, 20.0),
+                                 variant=variant)
+        assert np.allclose(a, b, rtol=1e-12, atol=1e-12), variant
+    with pytest.raises(ValueError, match="torque_limit"):
+        DriveTrain(torque_limit=0.0)
+    with pytest.raises(ValueError, match="wheel_radius"):
+        DriveTrain(wheel_radius=2.0)
+
+
+# ---------------------------------------------------------------------------
+# design
+# ---------------------------------------------------------------------------
+def test_plant_is_the_linear_model_augmented_with_the_heading(chair):
+    """The design plant is stability.linear's model (states v, r, eta, eta_dot, beta, beta_dot, input Mz)
+    plus psi_dot = r; the chair alone is unstable at every scheduled speed (the reason for the assist)."""
+    for s in (0.5, 2.0):
+        p = assist.plant(chair, s)
+        assert np.allclose(p.A[:6, :6], state_matrices(chair, s)[0])
+        assert np.allclose(p.B[:6], input_matrices(chair, s)[0])
+        assert p.A[6, 1] == 1.0 and np.count_nonzero(p.A[6]) == 1 and p.B[6, 0] == 0.0
+        # a lateral force at the c.g. pushes the chair sideways: v_dot > 0
+        assert p.Bf[0, 0] > 0
+    ol = np.linalg.eigvals(state_matrices(chair, SPEEDS)).real.max(axis=1)
+    assert np.all(ol > 0)
+
+
+def test_bryson_weights_are_physical(chair):
+    """Q_psi = 1/psi_max^2 (rad), R = 1/Mz_max^2 with Mz_max the yaw moment of the torque budget
+    (default half the motor limit per wheel); for the heading the LQR gain is then
+    Mz_max/psi_max: an error of psi_max uses the budget."""
+    w = assist.Weights(max_heading_error_deg=2.0)
+    Q, R = w.matrices(chair, DriveTrain())
+    assert Q[6, 6] == pytest.approx(1 / math.radians(2.0) ** 2)
+    assert R[0, 0] == pytest.approx(1 / DriveTrain().yaw_moment(chair, 35.0) ** 2)
+    d = assist.design(chair, 1.0, "full-state", weights=w)
+    assert DriveTrain().wheel_torque(chair, d.K[0, 6]) * math.radians(2.0) == pytest.approx(35.0, rel=1e-3)
+    with pytest.raises(ValueError, match="max_heading_error_deg"):
+        assist.Weights(max_heading_error_deg=0.0)
+
+
+@pytest.mark.parametrize("kind", assist.DESIGNS)
+def test_closed_loop_stable_over_the_schedule(schedules, kind):
+    """All closed-loop eigenvalues in the open left half-plane at every scheduled speed, and at the
+    midpoints between them with the interpolated gains (and, for the gyro design, interpolated
+    estimator) acting on the true plant there."""
+    sched = schedules[kind]
+    for d in sched.designs:
+        lam = assist.closed_loop_poles(d)
+        assert lam.real.max() < -1.0, (kind, d.speed, lam[:3])
+    for s in 0.5 * (SPEEDS[1:] + SPEEDS[:-1]):
+        d = sched.at(s)
+        assert assist.closed_loop_poles(d).real.max() < -1.0, (kind, s)
+
+
+def test_lqr_and_separation(schedules):
+    """Full state: the closed-loop eigenvalues are those control.lqr returns; gyro: they are the
+    LQR eigenvalues plus the Kalman estimator's (the separation principle), and both designs
+    share the same LQR gain."""
+    import control
+
+    fs, gy = schedules["full-state"], schedules["gyro"]
+    for dfs, dgy in zip(fs.designs, gy.designs):
+        Q, R = fs.weights.matrices(fs.chair, fs.drive)
+        _, _, E = control.lqr(dfs.plant.A, dfs.plant.B, Q, R)
+        assert np.allclose(np.sort_complex(assist.closed_loop_poles(dfs)), np.sort_complex(E), rtol=1e-8)
+        assert np.allclose(dfs.K, dgy.K)
+        C = np.zeros((1, 6))
+        C[0, 1] = 1.0
+        est = np.linalg.eigvals(dgy.plant.A6 - dgy.L @ C)
+        both = np.sort_complex(np.concatenate([E, est]))
+        assert np.allclose(np.sort_complex(assist.closed_loop_poles(dgy)), both, rtol=1e-6, atol=1e-6)
+
+
+def test_margins_at_the_plant_input(schedules):
+    """Loop broken at the yaw-moment command (control.stability_margins): the full-state LQR keeps
+    its guarantees (|1 + L| >= 1, phase margin >= 60 deg, no upper gain limit); the gyro design,
+    with loop-transfer recovery, keeps a phase margin above 45 deg, |1 + L| above 0.8, a lower
+    gain margin below 0.5 (the torque may halve) and a delay margin well above the 7.5 ms of
+    its 200 Hz implementation."""
+    for d in schedules["full-state"].designs:
+        m = assist.loop_margins(d)
+        assert m["disk_margin"] >= 1 - 1e-6
+        assert m["phase_margin_deg"] >= 60.0
+        assert m["gain_margin_upper"] == math.inf
+        assert m["gain_margin_lower"] < 0.5
+    for d in schedules["gyro"].designs:
+        m = assist.loop_margins(d)
+        assert m["phase_margin_deg"] > 45.0
+        assert m["disk_margin"] > 0.8
+        assert m["gain_margin_lower"] < 0.5
+        assert m["delay_margin_s"] > 0.03
+
+
+@pytest.mark.parametrize("kind", assist.DESIGNS)
+def test_robustness_box_stable(schedules, kind):
+    """+/-30 % in mass, yaw inertia, main- and caster-tire cornering stiffness (16 corners, nominal
+    controller, every scheduled speed): every closed loop stays stable; the worst case is reported
+    with its corner."""
+    rob = assist.robustness(schedules[kind], box=0.3)
+    assert len(rob.corners) == 17 and rob.max_real.shape == (17, len(SPEEDS))
+    assert rob.stable
+    assert rob.worst["max_real_1_s"] == pytest.approx(rob.max_real.max())
+    assert rob.worst["max_real_1_s"] < -1.0
+    assert set(rob.worst["corner"].values()) <= {0.7, 1.3}
+
+
+# ---------------------------------------------------------------------------
+# nonlinear checks
+# ---------------------------------------------------------------------------
+def test_recovery_within_the_torque_limit(schedules, chair):
+    """Gyro design in the nonlinear simulator (WCHAIR scheme, exact model, Coulomb pin friction,
+    gyro noise and bias, 200 Hz, saturation) at 3 m/s after ten times the thesis's 4 N s impulse:
+    the torque stays within the motor limit, the disturbance response settles within 2 s and the
+    heading error stays under 2 deg, while the open-loop chair passes 10 deg within 0.5 s."""
+    sched = schedules["gyro"]
+    (closed, opened), = assist.recovery_runs(sched, speeds=(3.0,), impulses=(400.0,), seed=1)
+    assert 0 < closed.peak_torque_Nm <= sched.drive.torque_limit
+    assert closed.settle_time_s is not None and closed.settle_time_s < 2.0
+    assert closed.peak_heading_error_deg < 2.0
+    assert opened.time_to_10deg_s is not None and opened.time_to_10deg_s < 0.5
+    assert opened.settle_time_s is None
+
+
+def test_recovery_through_saturation(schedules, chair):
+    """Same gains, motors limited to 15 N m per wheel: the controller saturates (anti-windup: the
+    estimator is fed the applied torque) yet never exceeds the limit, and the chair still recovers
+    from ten times the thesis's impulse at 3 m/s (the smallest limit that does, noise-free, is
+    about 10.4 N m: minimum_torque_limit)."""
+    sched = schedules["gyro"]
+    d = sched.at(3.0)
+    weak = DriveTrain(torque_limit=15.0)
+    ctl = assist.DigitalController(d, chair, weak, gyro=sched.gyro, seed=3)
+    run = assist.recovery(chair, 3.0, ctl, impulse_force=400.0)
+    taus = np.array([s[1] for s in ctl.samples])
+    assert run.saturated_fraction > 0.01
+    assert np.max(np.abs(taus)) <= 15.0 + 1e-9
+    assert run.settle_time_s is not None and run.peak_heading_error_deg < 10.0
+
+
+def test_noise_is_seeded_and_deterministic(schedules, chair):
+    """Same seed, same run (bit for bit); another seed, another noise sequence."""
+    d = schedules["gyro"].at(1.0)
+
+    def torques(seed):
+        ctl = assist.DigitalController(d, chair, DriveTrain(), seed=seed)
+        assist.recovery(chair, 1.0, ctl, duration=1.0)
+        return np.array([s[1] for s in ctl.samples])
+
+    a, b, c = torques(5), torques(5), torques(6)
+    assert np.array_equal(a, b)
+    assert not np.array_equal(a, c)
+
+
+@pytest.mark.parametrize("kind", assist.DESIGNS)
+def test_linear_eigenvalues_predict_nonlinear_decay(schedules, kind):
+    """Small disturbance (4 N for 0.1 s), pin friction removed (the linear model's pins are
+    frictionless), controller sampled every 1 ms step: the decay rate fitted to the envelope of the
+    simulated yaw rate matches the real part of the slowest closed-loop eigenvalue within 5 %."""
+    for s in (1.0, 2.0):
+        a = assist.decay_agreement(schedules[kind], s)
+        assert a["relative_error"] < 0.05, a
+
+
+def test_fit_decay_rate_on_known_signals():
+    """The envelope fit recovers the rate of a damped sinusoid (peaks) and of an exponential."""
+    t = np.arange(0, 3, 0.001)
+    assert assist.fit_decay_rate(t, np.exp(-4 * t) * np.cos(9 * t + 0.3), 0.2, 2.5) == pytest.approx(-4, rel=1e-3)
+    assert assist.fit_decay_rate(t, 2 * np.exp(-1.5 * t), 0.5, 2.0) == pytest.approx(-1.5, rel=1e-9)
+
+
+def test_destabilising_moment_reference_case():
+    """Figure 9-4: in the reference case (E&J Premier, 0.75 m/s, 40 N for 0.1 s, thesis model,
+    WCHAIR scheme) the destabilising moment is the tire forces' yaw moment about the c.g., which
+    the thesis obtains from the yaw acceleration (I_z theta_dd, eq 6-19); it grows with the yaw
+    divergence after the impulse until the run stops at WCHAIR's warning rule."""
+    res = assist.destabilising_moment()
+    c = chair_mod.preset("ej-premier")
+    m = np.asarray(res.tire_yaw_moment)
+    assert np.allclose(m, c.i_z * np.asarray(res.yaw_acceleration), rtol=1e-9, atol=1e-9)
+    t = np.asarray(res.t)
+    m1, m3 = m[np.searchsorted(t, 1.0)], m[np.searchsorted(t, 3.0)]
+    assert abs(m3) > 3 * abs(m1) > 0
+    assert np.sign(m3) == np.sign(res.yaw_rate[np.searchsorted(t, 3.0)])
+
+
+# ---------------------------------------------------------------------------
+# command line
+# ---------------------------------------------------------------------------
+def test_cli_json_rows(tmp_path, capsys):
+    """python -m stability.assist writes a JSON list with one row per speed and the documented keys."""
+    out = tmp_path / "gains.json"
+    assert assist.main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "k_psi" in text and "Robustness" in text
+    rows = json.loads(out.read_text())
+    assert [r["speed_m_s"] for r in rows] == [1.0, 2.0, 3.0]
+    for r in rows:
+        assert {"speed_m_s", "gains", "closed_loop_poles", "stable", "peak_torque_Nm",
+                "peak_heading_error_deg"} <= set(r)
+        assert r["stable"] is True and len(r["gains"]) == 7
+        assert all(len(p) == 2 and p[0] < 0 for p in r["closed_loop_poles"])
+
+
+@pytest.mark.parametrize("argv, word", [
+    (["--speeds", "3:1:0.5"], "--speeds"),
+    (["--speeds", "0:1:0.5"], "--speeds"),
+    (["--chair", "no-such-chair"], "no-such-chair"),
+    (["--torque-limit", "-5"], "--torque-limit"),
+    (["--max-heading-error", "0"], "--max-heading-error"),
+    (["--design", "psychic"], "--design"),
+    (["--json", "/no/such/dir/x.json"], "--json"),
+])
+def test_cli_bad_input(argv, word, capsys):
+    """Bad input: one line on stderr naming the problem, exit status 2, no output file."""
+    try:
+        status = assist.main(argv)
+    except SystemExit as exc:
+        status = exc.code
+    err = capsys.readouterr().err.strip()
+    assert status == 2
+    assert len(err.splitlines()) == 1 and word in err
