@@ -125,7 +125,8 @@ def state_space(chair: Chair, speed: float, model: str = "exact", casters: str =
     C = np.zeros((2, len(states)))
     C[0, 0] = C[1, 1] = 1.0
     D = np.zeros((2, 1))
-    name = f"{chair.name} ({model}, {casters} casters, U={speed:g} m/s)"
+    # python-control forbids '.' in system names
+    name = f"{chair.name} ({model}, {casters} casters, U={speed:g} m per s)".replace(".", "p")
     return control.ss(A, B, C, D, states=states, inputs=["Mz"], outputs=["v", "r"], name=name)
 
 

@@ -184,7 +184,9 @@ def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str =
     if casters == "free":
         args.append(p.pin_damping)
     M, K, Bm = fn(*args, *p.inertia)
-    shape = U.shape
+    entries = [e for row in (*M, *K) for e in row] + list(Bm)
+    shape = np.broadcast_shapes(U.shape, *(np.shape(e) for e in entries),
+                                *(np.shape(x) for x in p.inertia))
 
     def stack(rows):
         return np.stack([np.stack([np.broadcast_to(np.asarray(e, dtype=float), shape) for e in row], -1)
