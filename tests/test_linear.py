@@ -89,16 +89,20 @@ def test_locked_critical_speed_matches_zero_width():
 
 
 def test_figure_8_6_locked_casters_transition():
-    """Figure 8-6: with the casters locked (m = 75 kg, mc = 1.2 kg, section 'Method Two') the
-    transition from stable to unstable lies between 11.25 and 12.5 m/s (thesis model)."""
+    """Figure 8-6: with the casters locked (m = 75 kg, mc = 1.2 kg, section 'Method Two') WCHAIR's
+    transition from stable to unstable lies between 11.25 and 12.5 m/s.  The thesis variant (what
+    WCHAIR integrates) reproduces it (11.74 m/s); the exact variant gives 12.61 m/s because the
+    thesis evaluates the locked caster's slip at the pin instead of at the contact point
+    (missing -trail*r, derivations/README.md), which shortens the caster's effective lever arm."""
     c = method_two_chair(m=75.0)
     grid = np.linspace(5, 20, 61)
+    speeds = {}
     for model in ("thesis", "exact"):
         cross = linear.critical_speeds(lambda U: linear.state_matrices(c, U, model, "locked"), grid)
-        assert len(cross) == 1
-        print(model, cross[0].speed)
-    thesis = linear.critical_speeds(lambda U: linear.state_matrices(c, U, "thesis", "locked"), grid)[0].speed
-    assert 11.0 < thesis < 13.5
+        assert len(cross) == 1 and cross[0].direction == "destabilising"
+        speeds[model] = cross[0].speed
+    assert 11.25 < speeds["thesis"] < 12.5
+    assert speeds["thesis"] < speeds["exact"] < 13.0
 
 
 # ---------------------------------------------------------------------------
