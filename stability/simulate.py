@@ -579,9 +579,11 @@ def _make_options(*, duration, scheme, model, dt, impulse_force, impulse_duratio
         stop_on_warnings = scheme == "wchair"
     stop_on_warnings = bool(stop_on_warnings)
     if sample is None and (scheme == "adaptive" or batch):
-        sample = _ADAPTIVE_SAMPLE if scheme == "adaptive" else _BATCH_SAMPLE
-        if scheme == "wchair" and sample < dt:
-            sample = dt
+        if scheme == "adaptive":
+            sample = min(_ADAPTIVE_SAMPLE, duration)
+        else:  # the multiple of dt nearest to 0.01 s
+            sample = dt * max(1, int(round(_BATCH_SAMPLE / dt)))
+            sample = min(sample, dt * max(1, int(duration / dt)))
     stride = 1
     if sample is not None:
         sample = _positive("sample", sample)
@@ -626,6 +628,11 @@ class _NumpyOps:
     where = staticmethod(np.where)
 
 
+def _shared_scalars(p):
+    """Params with every field that is equal across the batch as a Python float."""
+    return type(p)(*(float(f[0]) if np.ndim(f) and np.all(f == f[0]) else f for f in p))
+
+
 def _ops(x):
     """math for Python floats, numpy for arrays."""
     return _NumpyOps if isinstance(x, np.ndarray) else _MathOps
@@ -661,16 +668,26 @@ class _TireGroup:
 
 
 class _Kernel:
-    """Everything the physics glue needs: parameters, tires, options."""
+    """Everything the physics glue needs: parameters, tires, options.
+
+    The equations are the generated functions behind :mod:`stability.models`
+    (:mod:`stability._generated.full_width`), looked up once here so that a
+    step does not pay the facade's per-call dispatch.  In a batch, parameters
+    shared by all runs are passed as Python floats (fewer array operations).
+    """
 
     def __init__(self, chairs: Sequence[Chair], opts: _Options, vector: bool):
+        from ._generated import full_width as fw
+
         self.vector = vector
-        self.xp = _NumpyOps if vector else _MathOps
         self.variant = opts.model
         self.policy = opts.out_of_range
         self.opts = opts
+        self.cv_fn = getattr(fw, f"contact_velocities_{opts.model}")
+        self.acc_fn = getattr(fw, f"accelerations_{opts.model}")
+        self.thesis = opts.model == "thesis"
         if vector:
-            self.p = _models.parameters(list(chairs))
+            self.p = _shared_scalars(_models.parameters(list(chairs)))
             keys = [_TireGroup.key(c) for c in chairs]
             uniq: dict = {}
             for i, k in enumerate(keys):
@@ -679,8 +696,6 @@ class _Kernel:
             toe = np.array([math.radians(c.toe_deg) for c in chairs])
             self.toe = bool(np.any(toe != 0))
             self.ct, self.st = np.cos(toe), np.sin(toe)
-            self.maf = self.p.pin_friction_left
-            self.mbf = self.p.pin_friction_right
         else:
             c = chairs[0]
             self.p = _models.parameters(c)
@@ -688,14 +703,23 @@ class _Kernel:
             toe = math.radians(c.toe_deg)
             self.toe = toe != 0
             self.ct, self.st = math.cos(toe), math.sin(toe)
-            self.maf = float(c.pin_friction_left)
-            self.mbf = float(c.pin_friction_right)
+        self.maf = self.p.pin_friction_left
+        self.mbf = self.p.pin_friction_right
+        self.geom = self.p.geometry
+        self.inertia = self.p.inertia
         self.single_group = len(self.groups) == 1
         self.any_camber = any(g.camber_deg != 0 for g, _ in self.groups)
+        self.any_rolling = any(g.main_rolling or g.caster_rolling for g, _ in self.groups)
         self._range_masks()
         self.ftimp = opts.tire_impulse
         self.fcimp = opts.impulse_force
         self.duimp = opts.impulse_duration
+        if self.single_group:  # bind the tire calls once (hot path)
+            g0 = self.groups[0][0]
+            pol = self.policy
+            cl, ml = g0.caster.lateral_force, g0.main.lateral_force
+            self.caster_lateral = lambda slip, fz: cl(slip, fz, policy=pol, warn=False)
+            self.main_lateral = lambda slip, fz: ml(slip, fz, policy=pol, warn=False)
 
     def _range_masks(self) -> None:
         """Which wheels the thesis's range rules apply to (tested tires only)."""
@@ -717,8 +741,10 @@ class _Kernel:
     def compact(self, keep: np.ndarray) -> None:
         """Keep only the runs at positions ``keep`` (batch path)."""
         self.p = type(self.p)(*(f[keep] if np.ndim(f) else f for f in self.p))
-        self.maf = self.maf[keep]
-        self.mbf = self.mbf[keep]
+        self.maf = self.p.pin_friction_left
+        self.mbf = self.p.pin_friction_right
+        self.geom = self.p.geometry
+        self.inertia = self.p.inertia
         if self.toe:
             self.ct, self.st = self.ct[keep], self.st[keep]
         if not self.single_group:
@@ -761,15 +787,10 @@ class _Kernel:
             lambda g, f: (g.camber_tire.camber_force(g.camber_deg, f, g.camber_coefficient, policy=self.policy,
                                                      warn=False) if g.camber_deg != 0 else 0.0 * f), fz)
 
-    @property
-    def any_rolling(self):
-        return any(g.main_rolling or g.caster_rolling for g, _ in self.groups)
-
 
 def _kinematics(K: _Kernel, u, v, r, ce, se, cb, sb, ed, bd):
     """Contact velocities (SLIP), main wheels in their toed wheel frames."""
-    vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = _models.contact_velocities(
-        K.p, u, v, r, ce, se, cb, sb, ed, bd, K.variant)
+    vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = K.cv_fn(u, v, r, ce, se, cb, sb, ed, bd, *K.geom)
     if K.toe:  # SLIP lines 0564-0573: right wheel turned by +toe, left by -toe
         ct, st = K.ct, K.st
         vEx, vEy = vEx * ct + vEy * st, -vEx * st + vEy * ct
@@ -847,9 +868,11 @@ def _tire_yaw_moment(p, F, ce, se, cb, sb):
 
 
 def _accelerations(K: _Kernel, state, F, M_A, M_B, fy_ext, mz, rdc=None):
+    """(u_dot, v_dot, r_dot, eta_dd, beta_dd) from the model (DYNAM)."""
     u, v, r, ce, se, cb, sb, ed, bd = state
-    return _models.accelerations(K.p, u, v, r, ce, se, cb, sb, ed, bd, *F, M_A, M_B, fy_ext, mz,
-                                 variant=K.variant, r_dot_casters=rdc)
+    if K.thesis:
+        return K.acc_fn(u, v, r, ce, se, cb, sb, ed, bd, *F, M_A, M_B, fy_ext, mz, *K.inertia, r_dot_casters=rdc)
+    return K.acc_fn(u, v, r, ce, se, cb, sb, ed, bd, *F, M_A, M_B, fy_ext, mz, *K.inertia)
 
 
 def _held_accelerations(K: _Kernel, state, F, M_A, M_B, fy_ext, mz, hold_a, hold_b, rdc=None):
@@ -1080,16 +1103,21 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
             else:
                 nmax = np.where(K.chk_mask, N4, -np.inf).max(axis=0)
                 smax = np.where(K.chk_mask, np.abs(S4), 0.0).max(axis=0)
-            halt = np.zeros(run.size, dtype=bool)
-            flag("load", nmax > LOAD_LIMIT_N, t, nmax)
-            if stop:
-                halt |= cnt["load"][run] > WARNING_LIMIT
+            over_load = nmax > LOAD_LIMIT_N
             nmin = N4.min(axis=0)
-            flag("lift_off", (nmin < 0.0) & ~halt, t, nmin)
-            flag("slip", (smax > SLIP_LIMIT_DEG) & ~halt, t, smax)
-            if stop:
-                halt |= cnt["slip"][run] > WARNING_LIMIT
-            if halt.any():
+            under = nmin < 0.0
+            over_slip = smax > SLIP_LIMIT_DEG
+            halt = None
+            if over_load.any() or under.any() or over_slip.any():
+                halt = np.zeros(run.size, dtype=bool)
+                flag("load", over_load, t, nmax)
+                if stop:
+                    halt |= cnt["load"][run] > WARNING_LIMIT
+                flag("lift_off", under & ~halt, t, nmin)
+                flag("slip", over_slip & ~halt, t, smax)
+                if stop:
+                    halt |= cnt["slip"][run] > WARNING_LIMIT
+            if halt is not None and halt.any():
                 gone = run[halt]
                 stopped[gone] = True
                 stop_time[gone] = t
@@ -1186,10 +1214,20 @@ def _usable_cpus() -> int:
         return os.cpu_count() or 1
 
 
+def _idle_cpus() -> int:
+    """Usable CPUs not already busy (1-minute load average, this process excluded)."""
+    cpus = _usable_cpus()
+    try:
+        busy = max(0.0, os.getloadavg()[0] - 1.0)
+    except (AttributeError, OSError):  # pragma: no cover - no load average
+        busy = 0.0
+    return max(1, min(cpus, int(cpus - busy + 0.5)))
+
+
 def _auto_workers(n_runs: int, opts: _Options) -> int:
     if opts.yaw_moment is not None:
         return 1
-    return max(1, min(_usable_cpus(), n_runs // _RUNS_PER_WORKER))
+    return max(1, min(_idle_cpus(), n_runs // _RUNS_PER_WORKER))
 
 
 def _check_workers(workers) -> int:
@@ -1298,6 +1336,11 @@ class _AdaptiveModel:
 
     # loads consistent with forces: N = loads(sum F(N))
     def _consistent(self, t, imp, vel, slips, ce, se, cb, sb, guess):
+        """Fixed-point iteration of the load-transfer loop (a strong contraction).
+
+        Stops when the total tire force changes by less than 1e-9 of its size
+        between iterations; starts from the previous evaluation's solution.
+        """
         K = self.K
         p = K.p
         sfx, sfy = guess
@@ -1308,19 +1351,14 @@ class _AdaptiveModel:
             nfx, nfy = _resultant(F, ce, se, cb, sb)
             if vector:
                 err = float(np.max(np.abs(nfx - sfx) + np.abs(nfy - sfy), initial=0.0))
-                scale = 1.0 + float(np.max(np.abs(nfy), initial=0.0))
+                scale = 1.0 + float(np.max(np.abs(nfx) + np.abs(nfy), initial=0.0))
             else:
                 err = abs(nfx - sfx) + abs(nfy - sfy)
-                scale = 1.0 + abs(nfy)
+                scale = 1.0 + abs(nfx) + abs(nfy)
             sfx, sfy = nfx, nfy
-            if err <= 1e-11 * scale:
-                break
-        else:  # pragma: no cover - the load transfer is a strong contraction
-            raise RuntimeError("normal loads and tire forces did not converge (t = %g s)" % t)
-        if err > 0.0:  # loads consistent with the final resultant
-            N = _loads.normal_loads(p, sfx, sfy, ce, se, cb, sb)
-            F = _tire_forces(K, imp, vel, slips, *N)
-        return N, F, (sfx, sfy)
+            if err <= 1e-9 * scale:
+                return N, F, (sfx, sfy)
+        raise RuntimeError(f"normal loads and tire forces did not converge (t = {t!r} s)")  # pragma: no cover
 
     def evaluate(self, t, y, modes, imp):
         """Derivatives and auxiliary quantities at ``(t, y)`` (floats or arrays of samples)."""
@@ -1345,9 +1383,12 @@ class _AdaptiveModel:
         yaw_fn = opts.yaw_moment
         if yaw_fn is None:
             mz = 0.0
-        else:
-            mz = yaw_fn(t, ChairState(X, Y, psi, u, v, r, eta, ed, beta, bd, 0))
-            mz = float(mz) if not vector else np.broadcast_to(np.asarray(mz, dtype=float), np.shape(u))
+        elif not vector:
+            mz = float(yaw_fn(t, ChairState(X, Y, psi, u, v, r, eta, ed, beta, bd, 0)))
+        else:  # samples of a single run: the input sees floats, one call per sample
+            cols = np.broadcast_arrays(t, X, Y, psi, u, v, r, eta, ed, beta, bd)
+            mz = np.array([float(yaw_fn(float(row[0]), ChairState(*(float(x) for x in row[1:]), 0)))
+                           for row in zip(*cols)])
         MA = -K.maf * ma_mode if ma_mode in (_FREE_POS, _FREE_NEG) else 0.0
         MB = -K.mbf * mb_mode if mb_mode in (_FREE_POS, _FREE_NEG) else 0.0
         hold_a = ma_mode in (_STUCK, _LOCKED)
@@ -1405,7 +1446,7 @@ def _adaptive_single(chair: Chair, speed: float, opts: _Options) -> SimulationRe
     if impulse and 0.0 < opts.impulse_duration < T:
         breaks.insert(0, opts.impulse_duration)
     t = 0.0
-    imp = impulse and _impulse_on(opts, 0.0)
+    imp = impulse and opts.impulse_duration > 0.0   # a zero-length force has no effect on an ODE
 
     def settle(t, y, modes):
         """Stuck/free decision for resting casters (t = 0, after a breakpoint)."""
@@ -1649,10 +1690,11 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
     bar on a terminal.
 
     ``workers`` (wchair scheme): processes sharing the runs (forked, POSIX
-    only).  ``None`` picks one per 250 runs up to the usable CPUs, and one
-    when a ``yaw_moment`` input is given (a stateful controller must see all
-    its calls in this process); ``1`` keeps everything in this process.  The
-    results do not depend on it beyond floating-point rounding.
+    only).  ``None`` picks one per 250 runs up to the CPUs that are not
+    already busy (load average), and one when a ``yaw_moment`` input is
+    given (a stateful controller must see all its calls in this process);
+    ``1`` keeps everything in this process.  The results do not depend on it
+    beyond floating-point rounding.
 
     Returns
     -------

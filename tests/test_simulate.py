@@ -107,23 +107,29 @@ def test_statics_uses_previous_steps_total_force_including_fcimp():
 
 def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
     """DYNAM forms Z10 = M*THEDD before updating THEDD: the caster rows lag one step."""
+    from stability._generated import full_width
+
     calls = []
-    real = sim._models.accelerations
 
-    def spy(*args, **kwargs):
-        out = real(*args, **kwargs)
-        calls.append((kwargs.get("r_dot_casters"), out[2], kwargs.get("variant")))
-        return out
+    def spy(name):
+        real = getattr(full_width, name)
 
-    monkeypatch.setattr(sim._models, "accelerations", spy)
+        def f(*args, **kwargs):
+            out = real(*args, **kwargs)
+            calls.append((kwargs.get("r_dot_casters", "absent"), out[2], name))
+            return out
+        return f
+
+    for name in ("accelerations_thesis", "accelerations_exact"):
+        monkeypatch.setattr(full_width, name, spy(name))
     simulate(EJ, 0.75, duration=0.02)
-    assert calls[0][0] == 0.0                       # THEDD = 0 in BLOCK DATA
+    assert len(calls) == 22 and calls[0][0] == 0.0            # THEDD = 0 in BLOCK DATA
     for k in range(1, len(calls)):
         assert calls[k][0] == calls[k - 1][1]
-        assert calls[k][2] == "thesis"
+        assert calls[k][2] == "accelerations_thesis"
     calls.clear()
     simulate(EJ, 0.75, duration=0.02, model="exact")
-    assert all(c[0] is None and c[2] == "exact" for c in calls)
+    assert len(calls) == 22 and all(c[0] == "absent" and c[2] == "accelerations_exact" for c in calls)
 
 
 def test_pin_friction_opposes_caster_rate_and_is_zero_at_rest():
@@ -355,6 +361,17 @@ def test_adaptive_stick_slip(adaptive_pair):
     # close to the WCHAIR scheme (different load lag and friction model: a few per cent)
     w = simulate(EJ, 0.75, duration=4.0)
     assert r.first_time_abs_yaw_rate(1.0) == pytest.approx(w.first_time_abs_yaw_rate(1.0), rel=0.05)
+
+
+def test_adaptive_yaw_moment_sees_floats_and_acts():
+    def mz(t, state):
+        assert type(t) is float and type(state.yaw_rate) is float
+        return -20.0 * state.yaw_rate
+
+    free = simulate(EJ, 0.75, duration=3.0, scheme="adaptive")
+    damped = simulate(EJ, 0.75, duration=3.0, scheme="adaptive", yaw_moment=mz)
+    np.testing.assert_allclose(damped.yaw_moment_input, -20.0 * damped.yaw_rate, rtol=1e-12)
+    assert abs(damped.yaw_rate[-1]) < 0.2 * abs(free.yaw_rate[-1])
 
 
 def test_adaptive_locked_and_samples():
