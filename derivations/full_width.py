@@ -548,7 +548,7 @@ def _residuals(variant: str) -> List[sp.Expr]:
 
 
 @functools.lru_cache(maxsize=None)
-def linearise(variant: str, locked: bool = False):
+def linearise(variant: str, locked: bool = False) -> Tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
     """Linearise about straight running at speed ``U`` (all tire forces zero).
 
     Tires: ``Fy_i = -C_i atan(vy_i/vx_i)`` (N/rad at the static load), no
@@ -599,7 +599,9 @@ def linearise(variant: str, locked: bool = False):
     return M, K, Bm
 
 
-def hybrid_linear(k_slip=1, k_abs=1, k_pin=1, k_lat=1, k_yaw=1, k_fext=0):
+def hybrid_linear(k_slip: sp.Expr | int = 1, k_abs: sp.Expr | int = 1, k_pin: sp.Expr | int = 1,
+                  k_lat: sp.Expr | int = 1, k_yaw: sp.Expr | int = 1,
+                  k_fext: sp.Expr | int = 0) -> Tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
     """Linear model with each thesis-vs-exact difference switched separately.
 
     All switches 1: the exact linear model; all 0: the thesis's (both

@@ -208,7 +208,7 @@ def checks() -> Dict[str, sp.Expr]:
     return out
 
 
-def generated_functions():
+def generated_functions() -> list:
     """Expressions for :mod:`stability._generated.zero_width`.
 
     Returns
