@@ -40,6 +40,7 @@ __all__ = [
     "zero_width",
     "ZeroWidthResult",
     "divergence",
+    "massless_caster_rate",
     "StabilitySummary",
     "analyse",
 ]
@@ -412,6 +413,47 @@ def divergence(chair: Chair, speeds, model: str = "exact", casters: str = "free"
             "frequency_rad_s": abs(float(l.imag)),
         })
     return rows
+
+
+def massless_caster_rate(chair: Chair, speed):
+    """Closed-form growth rate of the free-caster chair in the massless-caster limit (1/s).
+
+    With massless, frictionless casters the caster tires can carry no lateral
+    force (a caster aligns with its contact velocity at once), so the chair is a
+    rigid body on one axle: the main wheels at signed position ``x_m`` with
+    stiffness ``C`` per tire.  Eqs 5-4b/5-4c with eq 5-5 then give the
+    characteristic equation
+
+    ``lambda^2 + (2C/U)(1/m + x_m^2/I_z) lambda - 2 C x_m / I_z = 0``,
+
+    whose constant term is negative for a rear-caster chair (``x_m > 0``): one
+    real root is positive at every speed, which is chapter 5's "infinitely
+    unstable" case two made quantitative.  At low speed the root tends to
+    ``U m x_m / (I_z + m x_m^2)``: the chair pivots about its main axle as a
+    trailer pushed backwards would.  For a front-caster chair (``x_m < 0``)
+    both roots are stable.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float or array_like
+        Forward speed (m/s).
+
+    Returns
+    -------
+    float or ndarray
+        The larger real part of the two roots (1/s).
+    """
+    from .models import static_stiffness
+
+    U = np.asarray(speed, dtype=float)
+    st = static_stiffness(chair)
+    C = 0.5 * (st["D"] + st["E"])
+    b = (2 * C / U) * (1 / chair.m + chair.x_main**2 / chair.i_z)
+    c = -2 * C * chair.x_main / chair.i_z
+    disc = b**2 - 4 * c
+    root = np.where(disc >= 0, (-b + np.sqrt(np.abs(disc))) / 2, -b / 2)
+    return float(root) if np.ndim(root) == 0 else root
 
 
 @dataclass(frozen=True)

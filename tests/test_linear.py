@@ -220,3 +220,31 @@ def test_mode_tracking_through_a_crossing_and_zero():
     tracked = linear.track_modes(shuffled)
     jumps = np.abs(np.diff(tracked, axis=0)).max()
     assert jumps <= 0.0100001
+
+
+@pytest.mark.parametrize("model", ["exact", "thesis"])
+def test_free_caster_rate_massless_limit_closed_form(model):
+    """Massless, frictionless casters carry no lateral force: the chair becomes a one-axle rigid body
+    (eqs 5-4b, 5-4c, 5-5 with the caster stiffness effectively zero, chapter 5 case two) whose
+    divergence rate solves lambda^2 + (2C/U)(1/m + s1^2/I_z) lambda - 2 C s1/I_z = 0."""
+    c = chair_mod.preset("ej-premier").replace(m_c=1e-7, i_zp=1e-9, l1=0.0)
+    speeds = np.array([0.3, 0.75, 1.5, 3.0])
+    rows = linear.divergence(c, speeds, model)
+    closed = linear.massless_caster_rate(c, speeds)
+    np.testing.assert_allclose([r["rate_1_s"] for r in rows], closed, rtol=1e-5)
+    # low-speed limit U m s1 / (I_z + m s1^2): pivoting about the main axle
+    assert closed[0] == pytest.approx(0.3 * c.m * c.s1 / (c.i_z + c.m * c.s1**2), rel=0.02)
+
+
+def test_real_casters_close_to_massless_limit():
+    """For the thesis chair (1.2 kg casters) the divergence rate stays within 5 % of the
+    massless-caster closed form over walking speeds: caster inertia is secondary (Figure 8-12)."""
+    c = chair_mod.preset("ej-premier").replace(pin_damping=0.0)
+    speeds = np.array([0.5, 0.75, 1.0, 1.5])
+    rates = np.array([r["rate_1_s"] for r in linear.divergence(c, speeds, "exact")])
+    np.testing.assert_allclose(rates, linear.massless_caster_rate(c, speeds), rtol=0.05)
+
+
+def test_front_caster_massless_limit_is_stable():
+    c = chair_mod.preset("ej-premier-front-caster")
+    assert np.all(linear.massless_caster_rate(c, np.array([0.5, 1.0, 3.0])) < 0)
