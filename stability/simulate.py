@@ -566,7 +566,10 @@ def _make_options(*, duration, scheme, model, dt, impulse_force, impulse_duratio
     if scheme == "wchair" and dt > duration:
         raise ValueError(f"dt={dt!r} is invalid; valid range: 0 < dt <= duration = {duration!r} s")
     impulse_force = _finite("impulse_force", impulse_force, " (N)")
-    impulse_duration = float(impulse_duration)
+    try:
+        impulse_duration = float(impulse_duration)
+    except (TypeError, ValueError):
+        impulse_duration = math.nan
     if math.isnan(impulse_duration) or impulse_duration < 0:
         raise ValueError(f"impulse_duration={impulse_duration!r} is invalid; valid range: >= 0 s (inf: constant force)")
     tire_impulse = _finite("tire_impulse", tire_impulse, " (N)")
@@ -1051,7 +1054,7 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
     fcimp = opts.impulse_force
     n = _n_steps(opts)
     nrec = (n - 1) // stride + 1
-    buf = np.full((nrun, nrec, _NC), np.nan)
+    buf = np.empty((nrun, nrec, _NC))   # rows beyond a run's length are never read
     nrec_run = np.zeros(nrun, dtype=int)
     stop_time = np.full(nrun, np.nan)
     stopped = np.zeros(nrun, dtype=bool)
@@ -1836,6 +1839,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except _UsageError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # output piped into e.g. head: stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1
     except (ValueError, OSError) as exc:
         msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         print(f"error: {msg}", file=sys.stderr)
