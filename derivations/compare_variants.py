@@ -6,10 +6,9 @@ ones quoted in ``derivations/README.md``).
 Chair: the Everest & Jennings Premier of WCHAIR's BLOCK DATA (x_m = 0.345,
 x_p = -0.175, d1 = d2 = 0.265, t1 = t2 = 0.24, trail = 0.08, l1 = 0.058,
 m = 95, m_c = 1.2, i_z = 5.6, i_zp = 0.02, g = 9.81), EJA main tires and ER
-casters.  Cornering stiffness at the static loads of eq 6-23 (with the
-thesis's s2 measured to the pins): main wheels ``m g s2 / (2 (s1 + s2))``,
-casters ``m g s1 / (2 (s1 + s2))``; from :func:`stability.tires.get` when
-that module is importable, else by linear interpolation of Table 4-1.  Pin
+casters (``stability.chair.preset("ej-premier")``).  Cornering stiffness of
+each tire at its static load from :func:`stability.models.static_stiffness`
+(loads of :mod:`stability.loads`, eq 6-25 with the trail, as WCHAIR's STATICS).  Pin
 damping: ``c_pin = 0`` by default (WCHAIR's pin friction is Coulomb, 0.1 N m,
 which has no linearisation); ``--c-pin`` changes it.
 
@@ -35,13 +34,14 @@ import sympy as sp  # noqa: E402
 
 from derivations import full_width as fw  # noqa: E402
 
-CHAIR = dict(x_m=0.345, x_p=-0.175, d1=0.265, d2=0.265, t1=0.24, t2=0.24, trail=0.08,
-             l1=0.058, m=95.0, m_c=1.2, i_z=5.6, i_zp=0.02)
-G_ACC = 9.81
-TABLE_4_1 = {  # N/deg at 75, 150, 225, 300, 375, 450 N
-    "EJA": (13.6, 25.4, 35.1, 42.5, 47.6, 50.2),
-    "ER": (14.7, 23.2, 26.9, 27.6, 26.7, 25.7),
-}
+from stability import chair as chair_mod  # noqa: E402
+from stability.models import parameters, static_stiffness  # noqa: E402
+
+#: the thesis chair (WCHAIR BLOCK DATA, chapter 8), from the package's one definition
+THESIS_CHAIR = chair_mod.preset("ej-premier")
+_P = parameters(THESIS_CHAIR)
+CHAIR = dict(x_m=_P.x_m, x_p=_P.x_p, d1=_P.d1, d2=_P.d2, t1=_P.t1, t2=_P.t2, trail=_P.trail,
+             l1=_P.l1, m=_P.m, m_c=_P.m_c, i_z=_P.i_z, i_zp=_P.i_zp)
 SWITCHES = ("k_slip", "k_abs", "k_pin", "k_lat", "k_yaw")
 SWITCH_TEXT = {
     "k_slip": "caster slip includes -trail*r (K-vAy/vBy)",
@@ -52,25 +52,15 @@ SWITCH_TEXT = {
 }
 
 
-def stiffness(name: str, fz: float) -> Tuple[float, str]:
-    """Cornering stiffness (N/rad) of tire ``name`` at normal load ``fz`` (N)."""
-    try:
-        from stability import tires  # type: ignore
+def chair_stiffness(chair=THESIS_CHAIR) -> Dict[str, object]:
+    """Per-tire stiffness (N/rad) at the static loads of :mod:`stability.loads` (eq 6-25,
+    trail included as WCHAIR's STATICS does), from :func:`stability.models.static_stiffness`."""
+    from stability.loads import static_loads
 
-        return float(tires.get(name).cornering_stiffness_per_rad(fz)), "stability.tires"
-    except Exception:  # pragma: no cover - fallback when the module is absent
-        loads = np.array([75.0, 150.0, 225.0, 300.0, 375.0, 450.0])
-        return float(np.interp(fz, loads, TABLE_4_1[name])) * 180.0 / math.pi, "Table 4-1"
-
-
-def chair_stiffness() -> Dict[str, object]:
-    s1, s2, m = CHAIR["x_m"], -CHAIR["x_p"], CHAIR["m"]
-    fz_main = m * G_ACC * s2 / (2 * (s1 + s2))
-    fz_caster = m * G_ACC * s1 / (2 * (s1 + s2))
-    c_main, src = stiffness("EJA", fz_main)
-    c_cast, _ = stiffness("ER", fz_caster)
-    return dict(C_A=c_cast, C_B=c_cast, C_D=c_main, C_E=c_main, fz_main=fz_main,
-                fz_caster=fz_caster, source=src)
+    st = static_stiffness(chair)
+    loads = static_loads(chair)
+    return dict(C_A=st["A"], C_B=st["B"], C_D=st["D"], C_E=st["E"], fz_main=loads["main"],
+                fz_caster=loads["caster"], source="stability.tires at stability.loads static loads")
 
 
 _HYB = None
@@ -200,11 +190,9 @@ def locked_critical_speeds() -> str:
     for variant in ("exact", "thesis"):
         Uc = brentq(lambda U: det_locked(U, variant), 1.0, 200.0)
         out.append((variant, Uc))
-    s1, s2c = CHAIR["x_m"], CHAIR["trail"] - CHAIR["x_p"]
-    W = CHAIR["m"] * G_ACC
-    Wf, Wr = W * s2c / (2 * (s1 + s2c)), W * s1 / (2 * (s1 + s2c))
-    k_us = Wf / C["C_D"] - Wr / C["C_A"]
-    uz = math.sqrt(-G_ACC * (s1 + s2c) / k_us)
+    from stability.linear import zero_width
+
+    uz = zero_width(THESIS_CHAIR).critical_speed
     lines = ["| model (casters locked) | critical speed (m/s) |", "|---|---|"]
     for v, Uc in out:
         lines.append(f"| {v} | {Uc:.2f} |")
@@ -289,20 +277,14 @@ def impulse_effect(U: float, c_pin: float, force: float = 40.0, duration: float 
 def front_caster(speeds: Sequence[float], c_pin: float) -> str:
     """The thesis's front-caster check (section 8, Figure 8-4b): s1 and s2
     exchanged, i.e. x_m = -0.175, x_p = +0.345, moving forward."""
-    from stability._generated import full_width as G
+    from stability.linear import state_matrices
 
-    p = dict(CHAIR, x_m=-0.175, x_p=0.345)
-    s1, s2 = -p["x_m"], p["x_p"]
-    W = p["m"] * G_ACC
-    c_main, _ = stiffness("EJA", W * s2 / (2 * (s1 + s2)))
-    c_cast, _ = stiffness("ER", W * s1 / (2 * (s1 + s2)))
+    fc = chair_mod.preset("ej-premier-front-caster").replace(pin_damping=c_pin)
     out = ["| U (m/s) | thesis: largest Re | exact: largest Re |", "|---|---|---|"]
     for U in speeds:
         cells = []
         for v in ("thesis", "exact"):
-            M, K, _ = (np.array(a, float) for a in getattr(G, f"linear_{v}")(
-                U, c_cast, c_cast, c_main, c_main, c_pin, *p.values()))
-            ev = np.linalg.eigvals(state_matrix(M, K))
+            ev = np.linalg.eigvals(state_matrices(fc, U, v, "free")[0])
             cells.append(fmt(ev[np.argmax(ev.real)]))
         out.append(f"| {U} | {cells[0]} | {cells[1]} |")
     return "\n".join(out)
