@@ -1,20 +1,55 @@
-"""Atomic file output: reproducible multi-page PDFs (matplotlib ``PdfPages``) and text files.
+"""Atomic file output: reproducible multi-page PDFs, single figures and text files.
 
-Every report of the toolkit goes through :func:`write_pdf`: the same figures
-give a byte-identical file (no creation or modification dates in the
-metadata, fixed producer string, ``SOURCE_DATE_EPOCH`` respected by
-matplotlib), and the file appears only when it is complete (written to a
-temporary file in the same directory, then renamed).
+Every file the toolkit writes goes through this module: it appears only when
+it is complete (written to a temporary file in the same directory, then
+renamed), and PDFs are byte-reproducible (no creation or modification dates
+in the metadata, fixed producer string; matplotlib honours
+``SOURCE_DATE_EPOCH``).
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
 import tempfile
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import Callable, Iterable, Iterator
 
-__all__ = ["write_pdf", "atomic_write_text"]
+__all__ = ["atomic_path", "write_pdf", "save_figure", "atomic_write_text", "PDF_METADATA"]
+
+#: metadata of every PDF written (no dates: byte-identical output for identical input)
+PDF_METADATA = {"Author": "stability", "Creator": "stability", "Producer": "stability",
+                "CreationDate": None, "ModDate": None}
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike[str]) -> Iterator[str]:
+    """Yield a temporary file name next to ``path``; rename it to ``path`` on success.
+
+    On any exception the temporary file is removed and ``path`` is untouched.
+    """
+    path = Path(path)
+    directory = path.parent if str(path.parent) else Path(".")
+    if not directory.exists():
+        raise ValueError(f"output directory {str(directory)!r} does not exist")
+    fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.", suffix=".tmp")
+    os.close(fd)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
 
 
 def write_pdf(figures: Iterable, path: str | os.PathLike[str], *, title: str = "stability report",
@@ -34,47 +69,36 @@ def write_pdf(figures: Iterable, path: str | os.PathLike[str], *, title: str = "
     on_page : callable, optional
         Called with the page number after each page (progress reporting).
     """
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    plt = _pyplot()
     from matplotlib.backends.backend_pdf import PdfPages
 
-    path = Path(path)
-    directory = path.parent if str(path.parent) else Path(".")
-    if not directory.exists():
-        raise ValueError(f"output directory {str(directory)!r} does not exist")
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    meta = {"Title": title, "Author": "stability", "Creator": "stability", "Producer": "stability",
-            "CreationDate": None, "ModDate": None}
-    try:
-        with PdfPages(tmp, metadata=meta) as pdf:
+    with atomic_path(path) as tmp:
+        with PdfPages(tmp, metadata={"Title": title, **PDF_METADATA}) as pdf:
             for i, fig in enumerate(figures, start=1):
                 pdf.savefig(fig)
                 if close:
                     plt.close(fig)
                 if on_page is not None:
                     on_page(i)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    return Path(path)
+
+
+def save_figure(fig, path: str | os.PathLike[str], *, title: str = "stability figure",
+                close: bool = False) -> Path:
+    """Save one figure atomically in the format named by the file suffix (PDF reproducible)."""
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower() or "png"
+    kwargs = {"metadata": {"Title": title, **PDF_METADATA}} if fmt == "pdf" else {}
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=fmt, **kwargs)
+    if close:
+        _pyplot().close(fig)
     return path
 
 
 def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
     """Write text to ``path`` atomically (temporary file in the same directory + rename)."""
-    path = Path(path)
-    directory = path.parent if str(path.parent) else Path(".")
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
+    return Path(path)
