@@ -631,6 +631,9 @@ class _NumpyOps:
     where = staticmethod(np.where)
 
 
+_NO_FORCE = float(0.0)  # the longitudinal forces when rolling resistance is off (identity-tested)
+
+
 def _shared_scalars(p):
     """Params with every field that is equal across the batch as a Python float."""
     return type(p)(*(float(f[0]) if np.ndim(f) and np.all(f == f[0]) else f for f in p))
@@ -840,7 +843,7 @@ def _tire_forces(K: _Kernel, impulse_on: bool, vel, slips, NA, NB, ND, NE, S4=No
         FDx = K.main_rolling(ND, vDx)
         FEx = K.main_rolling(NE, vEx)
     else:
-        FAx = FBx = FDx = FEx = 0.0
+        FAx = FBx = FDx = FEx = _NO_FORCE
     if K.any_camber:  # MECHAN 0729-0733: tops inward push the left wheel right, the right wheel left
         FDy = FDy + K.camber(ND)
         FEy = FEy - K.camber(NE)
@@ -854,6 +857,8 @@ def _tire_forces(K: _Kernel, impulse_on: bool, vel, slips, NA, NB, ND, NE, S4=No
 def _resultant(F, ce, se, cb, sb):
     """Total tire force in body axes (DYNAM's FC1, FC2 without FCIMP)."""
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    if FAx is _NO_FORCE and FBx is _NO_FORCE and FDx is _NO_FORCE and FEx is _NO_FORCE:  # no rolling, no toe
+        return -(FAy * se + FBy * sb), FDy + FEy + FAy * ce + FBy * cb
     fc1 = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
     fc2 = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
     return fc1, fc2
@@ -1064,12 +1069,17 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
 
     run = np.arange(nrun)
     u0, v0 = _initial(opts, 1.0)
-    UD = np.asarray(speeds, dtype=float) * u0
-    VD = np.full(nrun, v0)
+    # velocities Sv = (UD, VD, THED, ED, BD) and angles Sp = (THE, E, B) stacked:
+    # ITRATE is then a few operations on (5, n) and (3, n) arrays
+    Sv = np.zeros((5, nrun))
+    Sv[0] = np.asarray(speeds, dtype=float) * u0
+    Sv[1] = v0
+    Sp = np.zeros((3, nrun))
+    Sp[1], Sp[2] = opts.eta0, opts.beta0
+    UD, VD, THED, ED, BD = Sv
+    THE, E, B = Sp
     z = np.zeros(nrun)
-    X, Y, THE, THED, THEDD = z.copy(), z.copy(), z.copy(), z.copy(), z.copy()
-    E, B = np.full(nrun, opts.eta0), np.full(nrun, opts.beta0)
-    ED, BD = z.copy(), z.copy()
+    X, Y, THEDD = z.copy(), z.copy(), z.copy()
     FC1, FC2 = z.copy(), z.copy()
     p_loads = _loads.normal_loads
     rad2deg = 180.0 / math.pi
@@ -1127,9 +1137,11 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
                 keep = np.flatnonzero(~halt)
                 K.compact(keep)
                 run = run[keep]
-                (UD, VD, X, Y, THE, THED, THEDD, E, B, ED, BD, FC1, FC2, ce, se, cb, sb) = (
-                    a[keep] for a in (UD, VD, X, Y, THE, THED, THEDD, E, B, ED, BD, FC1, FC2, ce, se, cb, sb))
-                V, S4, N4 = V[:, keep], S4[:, keep], N4[:, keep]
+                (X, Y, THEDD, FC1, FC2, ce, se, cb, sb) = (
+                    a[keep] for a in (X, Y, THEDD, FC1, FC2, ce, se, cb, sb))
+                Sv, Sp, V, S4, N4 = Sv[:, keep], Sp[:, keep], V[:, keep], S4[:, keep], N4[:, keep]
+                UD, VD, THED, ED, BD = Sv
+                THE, E, B = Sp
                 if run.size == 0:
                     break
             vel = tuple(V)
@@ -1142,8 +1154,8 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
             if yaw_fn is None:
                 mz = 0.0
             else:
-                mz = np.broadcast_to(np.asarray(
-                    yaw_fn(t, ChairState(X, Y, THE, UD, VD, THED, E, ED, B, BD, run)), dtype=float), run.shape)
+                st_ = ChairState(*(a.copy() for a in (X, Y, THE, UD, VD, THED, E, ED, B, BD, run)))
+                mz = np.broadcast_to(np.asarray(yaw_fn(t, st_), dtype=float), run.shape)
             state = (UD, VD, THED, ce, se, cb, sb, ED, BD)
             rdc = THEDD if thesis else None
             if locked:
@@ -1155,7 +1167,7 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
                 acc = _accelerations(K, state, F, MA, MB, fy_ext, mz, rdc)
             UDD, VDD, THEDD_new, EDD, BDD = acc
             if locked:
-                EDD = BDD = 0.0
+                EDD = BDD = np.zeros(run.size)
             if k % stride == 0:
                 j = k // stride
                 cols = (t, X, Y, THE, THED, UD, VD, E, ED, B, BD, *F, NA, NB, ND, NE, *slips,
@@ -1165,22 +1177,19 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
                     block[:, i] = c
                 buf[run, j, :] = block
                 nrec_run[run] = j + 1
-            # UPDATE / ITRATE
-            THEDD = THEDD_new + 0.0 * UD
-            FC1, FC2 = fc1 + 0.0 * UD, fc2 + fy_ext
-            du = UD * dt + UDD * half_dt2
-            dv = VD * dt + VDD * half_dt2
+            # UPDATE / ITRATE: x += v dt + a dt^2/2 (global X, Y with the heading
+            # at the start of the step), then v += a dt
+            Acc = np.array((UDD, VDD, THEDD_new, EDD, BDD))
+            THEDD = THEDD_new          # (Acc is scaled in place below)
+            FC1, FC2 = fc1, fc2 + fy_ext
+            D = Sv * dt
+            D += Acc * half_dt2
             cost, sint = np.cos(THE), np.sin(THE)
-            X = X + (du * cost - dv * sint)
-            Y = Y + (du * sint + dv * cost)
-            UD = UD + UDD * dt
-            VD = VD + VDD * dt
-            B = B + (BD * dt + BDD * half_dt2)
-            BD = BD + BDD * dt
-            E = E + (ED * dt + EDD * half_dt2)
-            ED = ED + EDD * dt
-            THE = THE + (THED * dt + THEDD * half_dt2)
-            THED = THED + THEDD * dt
+            X = X + (D[0] * cost - D[1] * sint)
+            Y = Y + (D[0] * sint + D[1] * cost)
+            Sp += D[2:5]
+            Acc *= dt
+            Sv += Acc
             if k % 64 == 63:
                 bar.update(64)
                 done += 64
@@ -1217,20 +1226,10 @@ def _usable_cpus() -> int:
         return os.cpu_count() or 1
 
 
-def _idle_cpus() -> int:
-    """Usable CPUs not already busy (1-minute load average, this process excluded)."""
-    cpus = _usable_cpus()
-    try:
-        busy = max(0.0, os.getloadavg()[0] - 1.0)
-    except (AttributeError, OSError):  # pragma: no cover - no load average
-        busy = 0.0
-    return max(1, min(cpus, int(cpus - busy + 0.5)))
-
-
 def _auto_workers(n_runs: int, opts: _Options) -> int:
     if opts.yaw_moment is not None:
         return 1
-    return max(1, min(_idle_cpus(), n_runs // _RUNS_PER_WORKER))
+    return max(1, min(_usable_cpus(), n_runs // _RUNS_PER_WORKER))
 
 
 def _check_workers(workers) -> int:
@@ -1693,11 +1692,10 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
     bar on a terminal.
 
     ``workers`` (wchair scheme): processes sharing the runs (forked, POSIX
-    only).  ``None`` picks one per 250 runs up to the CPUs that are not
-    already busy (load average), and one when a ``yaw_moment`` input is
-    given (a stateful controller must see all its calls in this process);
-    ``1`` keeps everything in this process.  The results do not depend on it
-    beyond floating-point rounding.
+    only).  ``None`` picks one per 250 runs up to the usable CPUs, and one
+    when a ``yaw_moment`` input is given (a stateful controller must see all
+    its calls in this process); ``1`` keeps everything in this process.  The
+    results do not depend on it beyond floating-point rounding.
 
     Returns
     -------

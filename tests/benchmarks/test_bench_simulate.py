@@ -24,10 +24,11 @@ EJ = preset("ej-premier")
 
 
 @pytest.fixture
-def bench(benchmark):
-    if benchmark.disabled:
+def bench(request):
+    cfg = request.config
+    if cfg.getoption("benchmark_disable", False) and not cfg.getoption("benchmark_enable", False):
         pytest.skip("benchmarks are disabled (run with --benchmark-enable)")
-    return benchmark
+    return request.getfixturevalue("benchmark")
 
 
 def _timed(fn, repeat=1):
