@@ -65,14 +65,30 @@ def page(title: str, subtitle: str = "", *, nrows: int = 1, ncols: int = 1, size
     fig = Figure(figsize=size)
     fig.suptitle(title, fontsize=13, fontweight="bold", y=0.985)
     if subtitle:
-        fig.text(0.5, 0.945, subtitle, ha="center", va="top", fontsize=9, color="0.25")
+        fig.text(0.5, 0.948, "\n".join(textwrap.wrap(subtitle, 170)), ha="center", va="top", fontsize=8.5,
+                 color="0.25", linespacing=1.3)
     axes = fig.subplots(nrows, ncols, squeeze=False, **subplot_kw) if nrows * ncols else None
     return fig, axes
 
 
-def finish(fig: Figure, top: float = 0.93) -> Figure:
-    """Tight layout below the page titles."""
-    fig.tight_layout(rect=(0.0, 0.0, 1.0, top))
+def finish(fig: Figure, top: float = 0.90, *, left: float = 0.065, right: float = 0.975, bottom: float = 0.08,
+           wspace: float | None = None, hspace: float | None = None, tight: bool = False) -> Figure:
+    """Lay the axes out below the page titles.
+
+    Fixed margins by default (``tight_layout`` measures every tick label
+    and costs more than drawing the page); ``tight=True`` uses it.
+    """
+    if tight:
+        fig.tight_layout(rect=(0.0, 0.0, 1.0, top + 0.03))
+        return fig
+    axes = [a for a in fig.axes if a.get_subplotspec() is not None]
+    nrows = ncols = 1
+    if axes:
+        gs = axes[0].get_subplotspec().get_gridspec()
+        nrows, ncols = gs.get_geometry()
+    fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top,
+                        wspace=0.32 if wspace is None else wspace,
+                        hspace=(0.45 if nrows > 1 else 0.2) if hspace is None else hspace)
     return fig
 
 
@@ -200,11 +216,12 @@ def chair_geometry(chair, ax=None, *, title: str | None = None):
             va="bottom" if xm > xp else "top", fontsize=8)
     # direction of travel
     top = max(xm + r_main, xp + r_cast) + 0.05
-    ax.add_patch(FancyArrow(-off + 0.05, top - 0.2, 0, 0.15, width=0.01, head_width=0.05, head_length=0.04,
+    xa = -off - 0.02
+    ax.add_patch(FancyArrow(xa, top - 0.25, 0, 0.17, width=0.01, head_width=0.05, head_length=0.04,
                             color="C0"))
-    ax.text(-off + 0.08, top - 0.13, "travel", color="C0", fontsize=8)
+    ax.text(xa - 0.03, top - 0.17, "travel", color="C0", fontsize=8, rotation=90, ha="right", va="center")
     ax.set_aspect("equal")
-    ax.set_xlim(-off - 0.05, off + 0.45)
+    ax.set_xlim(xa - 0.12, off + 0.45)
     ax.set_ylim(min(xm - r_main, xp - c.trail - r_cast) - 0.08, top + 0.02)
     ax.set_xlabel("lateral position y (m, to the right)")
     ax.set_ylabel("longitudinal position x (m, forward)")
@@ -269,7 +286,7 @@ def tire_curves(tire_name: str, ax=None, *, loads=(75.0, 150.0, 225.0, 300.0, 37
     ax.set_ylabel("cornering force F_y (N)")
     ax.set_xlim(0, 8)
     ax.set_ylim(bottom=0)
-    ax.set_title(f"{tire_name}{' (' + role + ')' if role else ''}: cornering force at constant normal force",
+    ax.set_title(f"{tire_name}{' (' + role + ')' if role else ''}: F_y vs slip at constant F_z (Fig. 4-1)",
                  fontsize=9)
     ax.legend(title="normal force F_z", fontsize=7, title_fontsize=7, loc="upper left", ncol=2)
     ax.grid(True, alpha=0.3)
@@ -311,7 +328,7 @@ def cornering_stiffness_curves(ax=None, *, names=None, highlight: dict | None = 
     ax.set_ylabel("cornering stiffness C_α (N/deg)")
     ax.set_xlim(0, 450)
     ax.set_ylim(bottom=0)
-    ax.set_title("cornering stiffness vs normal force (lines: fits; dots: Table 4-1)", fontsize=9)
+    ax.set_title("C_α vs F_z (Fig. 4-2; lines: fits, dots: Table 4-1)", fontsize=9)
     ax.legend(fontsize=7, ncol=2, loc="upper left")
     ax.grid(True, alpha=0.3)
     return ax
@@ -339,7 +356,7 @@ def _colored_branches(ax, eig: np.ndarray, values: np.ndarray, norm, cmap, lw=1.
 
 
 def _auto_limits(eig: np.ndarray, keep: float = 0.9, pad: float = 0.15):
-    """Axis limits holding the slow (dominant) part of a locus: fast caster branches may leave the box."""
+    """Linear-axis limits holding the slow (dominant) part of a locus: fast caster branches may leave the box."""
     z = eig.reshape(-1)
     z = z[np.isfinite(z)]
     mag = np.abs(z)
@@ -351,58 +368,95 @@ def _auto_limits(eig: np.ndarray, keep: float = 0.9, pad: float = 0.15):
     return (re_lo - pad * span, re_hi + pad * span), (-im * (1 + pad), im * (1 + pad))
 
 
-def _axes_decor(ax, xlim, ylim):
+def _symlog_limits(eig: np.ndarray, linthresh: float):
+    z = eig.reshape(-1)
+    z = z[np.isfinite(z)]
+    lo = min(float(z.real.min()), -linthresh) if len(z) else -linthresh
+    hi = max(float(z.real.max()), linthresh) if len(z) else linthresh
+    im = max(float(np.abs(z.imag).max()) if len(z) else 0.0, linthresh)
+    return (lo * 2.0, hi * 2.0), (-im * 2.0, im * 2.0)
+
+
+def _axes_decor(ax, xlim, ylim, scale: str = "linear", linthresh: float = 1.0):
+    if scale == "symlog":
+        ax.set_xscale("symlog", linthresh=linthresh, linscale=0.6)
+        ax.set_yscale("symlog", linthresh=linthresh, linscale=0.6)
     ax.axvline(0, color="k", lw=0.8)
     ax.axhline(0, color="0.6", lw=0.5)
     ax.axvspan(0, max(xlim[1], 0), color="C3", alpha=0.06, lw=0)
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
-    ax.set_xlabel("real part σ (1/s)")
-    ax.set_ylabel("imaginary part ω (rad/s)")
+    note = f", symlog: linear within ±{linthresh:g}" if scale == "symlog" else ""
+    ax.set_xlabel(f"real part σ (1/s{note})", fontsize=8.5)
+    ax.set_ylabel(f"imaginary part ω (rad/s{note})", fontsize=8.5)
+    ax.tick_params(labelsize=7.5)
     ax.grid(True, alpha=0.3)
 
 
-def speed_locus(locus, ax=None, *, marks=(0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 10.0), xlim=None, ylim=None,
-                keep: float = 0.85, colorbar: bool = True, title: str | None = None):
+def _limits(eig, xlim, ylim, scale, keep, linthresh):
+    auto = _symlog_limits(eig, linthresh) if scale == "symlog" else _auto_limits(eig, keep)
+    return xlim or auto[0], ylim or auto[1]
+
+
+def _label_points(ax, pts, labels, fontsize=6.5, min_px=14.0):
+    """Annotate points, skipping any that would land within ``min_px`` pixels of one already labelled."""
+    placed = []
+    trans = ax.transData
+    xlim, ylim = ax.get_xlim(), ax.get_ylim()
+    for (x, y), lab in zip(pts, labels):
+        if not (min(xlim) <= x <= max(xlim) and min(ylim) <= y <= max(ylim)):
+            continue
+        px = trans.transform((x, y))
+        if any(np.hypot(*(px - q)) < min_px for q in placed):
+            continue
+        placed.append(px)
+        ax.annotate(lab, (x, y), xytext=(2, 3), textcoords="offset points", fontsize=fontsize)
+
+
+def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 10.0), xlim=None, ylim=None,
+                scale: str = "symlog", linthresh: float = 1.0, keep: float = 0.85, colorbar: bool = True,
+                title: str | None = None):
     """Eigenvalues in the complex plane as speed varies (parametric root locus).
 
     Each tracked branch is drawn coloured by speed (log scale, colour bar);
-    dots mark the speeds in ``marks`` on every branch, labelled on the
-    least-stable branch; stars mark the critical speeds (crossings of the
-    imaginary axis).  The default view holds the slow modes (``keep``
-    quantile of |λ|): fast caster modes may run off it.
+    dots mark the speeds in ``marks`` on every branch (labelled where there
+    is room); stars mark the critical speeds (crossings of the imaginary
+    axis).  Both axes are symmetric-log by default (linear within
+    ``±linthresh``): the caster modes lie two to three decades further from
+    the origin than the yaw modes.
     """
     if ax is None:
         fig = Figure(figsize=(7, 5.5))
         ax = fig.subplots()
     U, eig = locus.speeds, locus.eigenvalues
-    auto = _auto_limits(eig, keep)
-    xlim = xlim or auto[0]
-    ylim = ylim or auto[1]
+    xlim, ylim = _limits(eig, xlim, ylim, scale, keep, linthresh)
     norm = LogNorm(U[0], U[-1])
     lc = _colored_branches(ax, eig, U, norm, _cmap("plasma_r"))
-    # mark speeds
-    crit_branch = int(np.argmax(eig[-1].real)) if len(eig) else 0
-    for s in marks:
-        if not U[0] <= s <= U[-1]:
-            continue
-        k = int(np.argmin(np.abs(U - s)))
-        ax.plot(eig[k].real, eig[k].imag, "o", ms=2.5, color="k", zorder=4)
-        zb = eig[k, crit_branch]
-        if xlim[0] <= zb.real <= xlim[1] and ylim[0] <= zb.imag <= ylim[1] and zb.imag >= 0:
-            ax.annotate(f"{s:g}", (zb.real, zb.imag), xytext=(3, 3), textcoords="offset points", fontsize=7)
     for c in locus.crossings:
         ax.plot([c.eigenvalue.real], [c.eigenvalue.imag], "*", ms=11, color="C3", mec="k", zorder=6,
                 label=f"critical {c.speed:.3g} m/s ({c.kind}, {c.direction})")
         if abs(c.eigenvalue.imag) > 0:
             ax.plot([c.eigenvalue.real], [-c.eigenvalue.imag], "*", ms=11, color="C3", mec="k", zorder=6)
-    ax.plot(eig[0].real, eig[0].imag, "x", color="k", ms=5, label=f"U = {U[0]:g} m/s")
-    _axes_decor(ax, xlim, ylim)
+    ax.plot(eig[0].real, eig[0].imag, "x", color="k", ms=5, label=f"U = {U[0]:g} m/s (start)")
+    _axes_decor(ax, xlim, ylim, scale, linthresh)
+    pts, labs = [], []
+    for s in marks:
+        if not U[0] <= s <= U[-1]:
+            continue
+        k = int(np.argmin(np.abs(U - s)))
+        ax.plot(eig[k].real, eig[k].imag, "o", ms=2.5, color="k", zorder=4)
+        for z in eig[k]:
+            if z.imag >= 0:
+                pts.append((z.real, z.imag))
+                labs.append(f"{s:g}")
+    ax.plot([], [], "o", ms=2.5, color="k", label="speed marks (m/s)")
+    _label_points(ax, pts, labs)
     if colorbar and lc is not None:
         cb = ax.figure.colorbar(lc, ax=ax, pad=0.01)
-        cb.set_label("forward speed U (m/s)")
-    ax.legend(fontsize=7, loc="lower left")
-    ax.set_title(title or f"{locus.chair.name}: eigenvalues vs speed, {locus.model} model, {locus.casters} casters",
+        cb.set_label("forward speed U (m/s)", fontsize=8)
+        cb.ax.tick_params(labelsize=7)
+    ax.legend(fontsize=6.5, loc="lower left")
+    ax.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters",
                  fontsize=9)
     return ax
 
@@ -429,7 +483,7 @@ def eigenvalues_vs_speed(locus, axes=None, *, title: str | None = None, log_spee
     ax1, ax2 = axes
     U, eig = locus.speeds, locus.eigenvalues
     re_all = eig.real
-    lim = np.quantile(np.abs(re_all), 0.8) * 1.6 + 1e-3
+    lim = max(float(np.abs(re_all).max()) * 2.0, 2.0)
     for j in range(eig.shape[1]):
         ax1.plot(U, eig[:, j].real, lw=1.2, color=f"C{j % 10}", label=f"branch {j + 1}")
         ax2.plot(U, np.abs(eig[:, j].imag), lw=1.2, color=f"C{j % 10}")
@@ -442,25 +496,27 @@ def eigenvalues_vs_speed(locus, axes=None, *, title: str | None = None, log_spee
         ax1.annotate(f"{c.speed:.3g} m/s", (c.speed, 0), xytext=(4, 6), textcoords="offset points",
                      fontsize=8, color="C3")
     ax1.axhline(0, color="k", lw=0.8)
-    ax1.set_ylim(-lim, lim)
-    ax1.set_ylabel("real part σ (1/s)")
-    ax2.set_ylabel("|imaginary part| ω (rad/s)")
-    ax2.set_xlabel("forward speed U (m/s)")
+    ax1.set_yscale("symlog", linthresh=1.0, linscale=0.6)
+    ax1.set_ylim(-lim, max(float(re_all.max()) * 2.0, 2.0))
+    ax1.set_ylabel("real part σ (1/s, symlog)", fontsize=8.5)
+    ax2.set_ylabel("|imaginary part| ω (rad/s)", fontsize=8.5)
+    ax2.set_xlabel("forward speed U (m/s)", fontsize=8.5)
     ims = np.abs(eig.imag)
-    ax2.set_ylim(0, max(np.quantile(ims, 0.9) * 1.3, 1e-2))
+    ax2.set_ylim(0, max(float(ims.max()) * 1.15, 1.0))
     if log_speed:
         ax1.set_xscale("log")
     ax1.set_xlim(*(xlim or (U[0], U[-1])))
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3, which="both")
     ax1.legend(fontsize=7, ncol=3, loc="lower left")
-    ax1.set_title(title or f"{locus.chair.name}: eigenvalues vs speed, {locus.model} model, {locus.casters} casters"
-                  " (shaded: unstable)", fontsize=9)
+    ax1.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters (shaded: unstable)",
+                  fontsize=9)
+    ax2.set_title("imaginary parts (oscillation frequencies)", fontsize=8)
     return axes
 
 
-def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, keep: float = 0.85, colorbar: bool = True,
-                    title: str | None = None):
+def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlog", linthresh: float = 1.0,
+                    keep: float = 0.85, colorbar: bool = True, title: str | None = None):
     """Root locus against a design parameter at fixed speed (branches coloured by the parameter).
 
     The chair's own value is marked with black squares; a categorical
@@ -470,15 +526,12 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, keep: float = 0.85,
         fig = Figure(figsize=(6, 5))
         ax = fig.subplots()
     v, eig = locus.values, locus.eigenvalues
-    auto = _auto_limits(eig, keep)
-    xlim = xlim or auto[0]
-    ylim = ylim or auto[1]
+    xlim, ylim = _limits(eig, xlim, ylim, scale, keep, linthresh)
+    _axes_decor(ax, xlim, ylim, scale, linthresh)
     if locus.categorical:
         for i, lab in enumerate(locus.labels):
             ax.plot(eig[i].real, eig[i].imag, "o", ms=5, color=f"C{i % 10}", label=lab)
             z = eig[i][np.argmax(eig[i].real)]
-            ax.annotate(lab, (z.real, z.imag), xytext=(3, 3 + 7 * i), textcoords="offset points", fontsize=6,
-                        color=f"C{i % 10}")
         ax.legend(fontsize=7, loc="lower left", title="main tire", title_fontsize=7)
     else:
         norm = Normalize(v.min(), v.max())
@@ -491,11 +544,11 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, keep: float = 0.85,
         if np.isfinite(locus.nominal):
             k = int(np.argmin(np.abs(v - locus.nominal)))
             ax.plot(eig[k].real, eig[k].imag, "s", ms=5, mfc="none", mec="k", mew=1.2,
-                    label=f"chair: {locus.nominal:.4g}")
+                    label=f"chair: {locus.nominal:.4g} (largest σ {locus.max_real[k]:.3g} 1/s)")
+        ax.plot([], [], " ", label=f"largest σ {locus.max_real.min():.3g} .. {locus.max_real.max():.3g} 1/s")
         for b in locus.stability_boundaries():
-            ax.plot([], [], " ", label=f"crosses at {b:.4g}")
+            ax.plot([], [], " ", label=f"crosses σ = 0 at {b:.4g}")
         ax.legend(fontsize=6.5, loc="lower left")
-    _axes_decor(ax, xlim, ylim)
     ax.set_title(title or f"vs {locus.label}", fontsize=9)
     return ax
 
@@ -539,15 +592,15 @@ def growth_rate_vs_parameter(loci: Sequence, title: str, subtitle: str = "", nco
     return finish(fig)
 
 
-def gain_locus(locus, ax=None, *, xlim=None, ylim=None, keep: float = 0.9, title: str | None = None):
+def gain_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlog", linthresh: float = 1.0,
+               keep: float = 0.9, title: str | None = None):
     """Classical root locus of yaw-rate feedback ``Mz = -K r`` (branches coloured by K, log scale)."""
     if ax is None:
         fig = Figure(figsize=(7, 5.5))
         ax = fig.subplots()
     K, L = locus.gains, locus.loci
-    auto = _auto_limits(np.concatenate([L, locus.poles[None, :]], axis=0), keep)
-    xlim = xlim or auto[0]
-    ylim = ylim or auto[1]
+    xlim, ylim = _limits(np.concatenate([L, locus.poles[None, :]], axis=0), xlim, ylim, scale, keep, linthresh)
+    _axes_decor(ax, xlim, ylim, scale, linthresh)
     pos = K > 0
     norm = LogNorm(K[pos].min(), K.max())
     lc = _colored_branches(ax, L[pos], K[pos], norm, _cmap("cividis"))
@@ -562,9 +615,22 @@ def gain_locus(locus, ax=None, *, xlim=None, ylim=None, keep: float = 0.9, title
                                                      model=locus.model, casters=locus.casters)[0])
         ax.plot(lam.real, lam.imag, "D", ms=5, color="C2", mec="k",
                 label=f"K = {locus.stabilising_gain:.3g} N m s/rad (stable above)")
+    pts, labs = [], []
+    for kk in (1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0):
+        if not K[pos].min() <= kk <= K.max():
+            continue
+        k = int(np.argmin(np.abs(np.log(K[pos]) - math.log(kk))))
+        row = L[pos][k]
+        ax.plot(row.real, row.imag, "o", ms=2.5, color="k", zorder=4)
+        for z in row:
+            if z.imag >= 0:
+                pts.append((z.real, z.imag))
+                labs.append(f"{kk:g}")
+    ax.plot([], [], "o", ms=2.5, color="k", label="gain marks (N m s/rad)")
+    _label_points(ax, pts, labs)
     cb = ax.figure.colorbar(lc, ax=ax, pad=0.01)
-    cb.set_label("feedback gain K (N m s/rad)")
-    _axes_decor(ax, xlim, ylim)
+    cb.set_label("feedback gain K (N m s/rad)", fontsize=8)
+    cb.ax.tick_params(labelsize=7)
     ax.legend(fontsize=7, loc="lower left")
     ax.set_title(title or f"{locus.chair.name}: yaw-rate feedback Mz = -K r, {locus.model} model, "
                  f"{locus.casters} casters, U = {locus.speed:g} m/s", fontsize=9)
@@ -574,26 +640,39 @@ def gain_locus(locus, ax=None, *, xlim=None, ylim=None, keep: float = 0.9, title
 # ---------------------------------------------------------------------------
 # nonlinear studies
 # ---------------------------------------------------------------------------
+def _response_sign(rs) -> float:
+    """+1 or -1: the sign that makes the first run's largest yaw rate positive."""
+    for r in rs.responses:
+        a = np.asarray(r.yaw_rate)
+        if len(a) and np.any(a != 0):
+            return float(np.sign(a[int(np.argmax(np.abs(a)))]))
+    return 1.0
+
+
 def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim=(-0.25, 2.0),
-                       title: str | None = None, label_chair: bool = False):
+                       title: str | None = None, label_chair: bool = False, flip: bool | None = None):
     """Yaw rate against time for several runs (Figure 8-3a analogue), linear predictions dashed.
 
     A horizontal line marks the criterion's level and, if given, a vertical
-    line the reference case's time to reach it.
+    line the reference case's time to reach it.  Like the thesis's figures
+    the curves rise: with ``flip=None`` the sign is chosen so that the first
+    run's largest yaw rate is positive (the axis label says which sign is
+    shown; yaw is positive clockwise seen from above).
     """
     if ax is None:
         fig = Figure(figsize=(7, 5))
         ax = fig.subplots()
+    sgn = (_response_sign(rs) if flip is None else (-1.0 if flip else 1.0))
     for i, r in enumerate(rs.responses):
         col = f"C{i % 10}"
-        lab = (f"{r.chair.name}, " if label_chair else "") + f"{r.speed:g} m/s"
+        lab = (f"{r.chair.name}, " if label_chair else "") + f"{r.speed:.3g} m/s"
         if math.isfinite(r.time_to_level):
             lab += f" ({r.time_to_level:.2f} s)"
-        ax.plot(r.t, r.yaw_rate, color=col, lw=1.5, label=lab)
+        ax.plot(r.t, sgn * np.asarray(r.yaw_rate), color=col, lw=1.5, label=lab)
         if r.stopped_by_warnings:
-            ax.plot([r.t[-1]], [r.yaw_rate[-1]], "x", color=col, ms=7)
+            ax.plot([r.t[-1]], [sgn * r.yaw_rate[-1]], "x", color=col, ms=7)
         if r.linear is not None:
-            ax.plot(r.linear["t"], r.linear["yaw_rate"], color=col, lw=1.0, ls="--")
+            ax.plot(r.linear["t"], sgn * np.asarray(r.linear["yaw_rate"]), color=col, lw=1.0, ls="--")
     ax.axhline(rs.criterion.yaw_rate, color="k", lw=0.8, ls=":")
     ax.axhline(-rs.criterion.yaw_rate, color="k", lw=0.8, ls=":")
     if reference_time is not None and math.isfinite(reference_time):
@@ -603,7 +682,8 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
     ax.set_ylim(*ylim)
     ax.set_xlim(0, rs.criterion.duration)
     ax.set_xlabel("time t (s)")
-    ax.set_ylabel("yaw rate r (rad/s)")
+    ax.set_ylabel("yaw rate r (rad/s, clockwise positive)" if sgn > 0 else
+                  "yaw rate -r (rad/s, counter-clockwise positive)")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", ncol=2)
     f, d = rs.impulse
@@ -655,20 +735,22 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
     names = [r.chair.name for r in results]
     vals = [r.value_or_bound for r in results]
     y = np.arange(len(results))[::-1]
-    for yi, r, v in zip(y, results, vals):
-        ax.barh(yi, v, color="C0" if r.status == "found" else "0.8", hatch="" if r.status == "found" else "//",
-                ec="k", lw=0.5)
-        ax.text(v + 0.02, yi, r.describe(), va="center", fontsize=8)
-    if thesis:
-        first = True
-        for yi, n in zip(y, names):
-            if n in thesis:
-                lo, hi = thesis[n]
-                ax.plot([lo, hi], [yi, yi], color="C3", lw=3, solid_capstyle="butt",
-                        label="thesis (Figures 9-2, 9-3)" if first else None)
-                first = False
-        if not first:
-            ax.legend(fontsize=7, loc="lower right")
+    thesis = thesis or {}
+    first = True
+    for yi, r, v, n in zip(y, results, vals, names):
+        ax.barh(yi, v, height=0.6, color="C0" if r.status == "found" else "0.8",
+                hatch="" if r.status == "found" else "//", ec="k", lw=0.5)
+        right = v
+        if n in thesis:
+            lo, hi = thesis[n]
+            ax.plot([lo, hi], [yi + 0.38, yi + 0.38], color="C3", lw=3, solid_capstyle="butt")
+            ax.plot([0.5 * (lo + hi)], [yi + 0.38], "v", color="C3", ms=6,
+                    label="thesis (Figures 9-2, 9-3)" if first else None)
+            first = False
+            right = max(right, hi)
+        ax.text(right + 0.03, yi, r.describe(), va="center", fontsize=8)
+    if not first:
+        ax.legend(fontsize=7, loc="lower right")
     ax.set_yticks(y, names, fontsize=8)
     ax.set_xlabel("equal-instability speed (m/s)")
     ax.set_xlim(0, max(vals + [1.0]) * 1.25)
@@ -693,6 +775,9 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
         fig = Figure(figsize=PAGE_SIZE)
         axes = fig.subplots(nrows, ncols, squeeze=False)
     flat = list(np.asarray(axes).flat)
+    allv = np.concatenate([sw.speeds for sw in sweeps] + [[table.nominal.value_or_bound]])
+    ylo, yhi = float(allv.min()), float(allv.max())
+    pad = 0.08 * max(yhi - ylo, 0.05)
     for ax, s in zip(flat, sweeps):
         sp = s.speeds
         cens = np.array([r.status != "found" for r in s.results])
@@ -712,6 +797,7 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
             if math.isfinite(s.nominal_value):
                 ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
         ax.axhline(table.nominal.value_or_bound, color="k", lw=0.6, ls="--")
+        ax.set_ylim(max(0.0, ylo - pad) if s.labels is None else 0.0, yhi + pad)
         ax.set_xlabel(s.label if s.unit == "-" else f"{s.label} ({s.unit})", fontsize=7.5)
         ax.set_ylabel("equal-instability speed (m/s)", fontsize=7.5)
         ax.tick_params(labelsize=7)
@@ -757,7 +843,7 @@ def stability_map(smap, ax=None, *, title: str | None = None, nominal: float | N
     if handles:
         ax.legend(fontsize=7, loc="upper left")
     f, d = smap.impulse
-    dist = f"{f * d:g} N s" if smap.y_name != "impulse" else f"force for {d:g} s"
-    ax.set_title(title or f"{smap.chair.name}: speed x {smap.y_label} ({dist}), {smap.model} model, "
-                 f"{smap.scheme} scheme", fontsize=9)
+    dist = f"{f * d:g} N s at the c.g." if smap.y_name != "impulse" else f"force held {d:g} s"
+    ax.set_title(title or f"{smap.chair.name}: speed x {smap.y_name.replace('_', ' ')} ({dist}), "
+                 f"{smap.model} model", fontsize=9)
     return ax

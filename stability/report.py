@@ -68,7 +68,7 @@ class Settings:
             return cls()
         from .study import QUICK_PLAN
 
-        return cls(quick=True, speed_points=150, locus_points=41, gain_points=80, duration=6.0, dt=0.002,
+        return cls(quick=True, speed_points=150, locus_points=41, gain_points=80, duration=6.0, dt=0.001,
                    tol=0.05, candidates=5, bracket=(0.3, 2.5), plan=QUICK_PLAN,
                    map_speeds=(0.4, 0.8, 1.2, 1.6, 2.0), map_frictions=(0.0, 0.1, 0.2, 0.3),
                    map_impulses=(2.0, 4.0, 8.0))
@@ -442,11 +442,11 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
         ]
         y = 0.98
         for para in txt:
-            for line in P._wrap(para, 62):
+            for line in P._wrap(para, 56):
                 ax.text(0.0, y, line, fontsize=8, va="top", transform=ax.transAxes)
-                y -= 0.04
+                y -= 0.033
             y -= 0.02
-        return P.finish(fig)
+        return P.finish(fig, left=0.17)
 
     def p_sweeps():
         table = d.chair_sweeps
@@ -480,7 +480,8 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
         P.stability_map(d.friction_map, axes[0, 0], nominal=c.pin_friction_left)
         P.stability_map(d.disturbance_map, axes[0, 1], nominal=d.thesis.impulse[0] * d.thesis.impulse[1])
         fig.text(0.5, 0.015, "Heavy line: the reference case's time. Slower than the line (left): more time to react "
-                 "than in the reference case; faster (right): less. One batch of simulations per map.",
+                 "than in the reference case; faster (right): less. Left: one simulate_batch call; right: one per disturbance "
+                 "size (the simulator's disturbance is common to a batch).",
                  ha="center", fontsize=8, color="0.3")
         return P.finish(fig)
 

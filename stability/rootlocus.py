@@ -520,7 +520,7 @@ def _stabilising_gain(chair, speed, model, casters, gains) -> float | None:
 
 
 def gain_locus(chair: Chair, speed: float = 0.75, gains=None, *, model: str = "exact",
-               casters: str = "free", max_gain: float = 100.0, n: int = 400) -> GainLocus:
+               casters: str = "free", max_gain: float = 300.0, n: int = 400) -> GainLocus:
     """Root locus of yaw-rate feedback through the yaw-moment input, with :func:`control.root_locus_map`.
 
     ``G(s) = r(s) / Mz(s)`` is the linear model's yaw-rate response to a yaw
@@ -531,14 +531,14 @@ def gain_locus(chair: Chair, speed: float = 0.75, gains=None, *, model: str = "e
     ----------
     gains : array_like, optional
         Gains K >= 0 (N m s/rad), increasing; default 0 and ``n`` values
-        geometrically spaced up to ``max_gain``.
+        geometrically spaced from 0.1 to ``max_gain``.
     """
     import control
 
     _check_model(model, casters)
     speed = _check_speed(speed)
     if gains is None:
-        gains = np.concatenate([[0.0], np.geomspace(1e-3, max_gain, int(n))])
+        gains = np.concatenate([[0.0], np.geomspace(0.1, max_gain, int(n))])
     K = np.asarray(gains, dtype=float)
     if K.ndim != 1 or np.any(K < 0) or np.any(np.diff(K) <= 0):
         raise ValueError("gains must be an increasing 1-D array of gains K >= 0 (N m s/rad)")

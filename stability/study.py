@@ -453,6 +453,17 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
     from .progress import ProgressBar
 
     chairs = list(chairs)
+    # identical chairs (a sweep's nominal value is the base chair) are simulated once
+    unique: dict = {}
+    for c in chairs:
+        unique.setdefault(c, len(unique))
+    if len(unique) < len(chairs):
+        res = equal_instability_speeds(list(unique), reference_chair=reference_chair,
+                                       reference_speed=reference_speed, impulse=impulse, criterion=criterion,
+                                       model=model, scheme=scheme, bracket=bracket, tol=tol,
+                                       candidates=candidates, max_rounds=max_rounds, dt=dt, reference=reference,
+                                       progress=progress, **sim_options)
+        return [res[unique[c]] for c in chairs]
     impulse = _check_impulse(impulse)
     lo0, hi0 = (float(x) for x in bracket)
     if not (0 < lo0 < hi0 and math.isfinite(hi0)):
@@ -603,12 +614,17 @@ def _map(chair, speeds, y_name, y_label, y_unit, y_values, make_chair, impulses,
             run_force.append(f)
     forces = np.array([f[0] for f in run_force])
     length = run_force[0][1]
-    opts = _sim_options(model, scheme, (40.0, length), dt, criterion.duration, sim_options)
-    if np.all(forces == forces[0]):
-        opts["impulse_force"] = float(forces[0])
-    else:
-        opts["impulse_force"] = forces
-    results = _simulate_batch(run_chairs, run_speeds, progress=progress, desc=f"map speed x {y_name}", **opts)
+    # simulate_batch applies its options (the disturbance among them) to every run of a call: one
+    # call per map when only the chair changes, one per row when the disturbance does
+    results: list = [None] * len(run_chairs)
+    rows = sorted(set(forces.tolist()))
+    for f in rows:
+        idx = [i for i in range(len(run_chairs)) if forces[i] == f]
+        opts = _sim_options(model, scheme, (f, length), dt, criterion.duration, sim_options)
+        out = _simulate_batch([run_chairs[i] for i in idx], [run_speeds[i] for i in idx],
+                              progress=progress and len(rows) == 1, desc=f"map speed x {y_name}", **opts)
+        for i, r in zip(idx, out):
+            results[i] = r
     times = np.array([criterion.time(r) for r in results]).reshape(len(yv), len(speeds))
     return StabilityMap(chair, speeds, y_name, y_label, y_unit, yv, times, float(reference), criterion,
                         model, scheme, (float(forces[0]), float(length)))
