@@ -1104,7 +1104,8 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
             if run.size == 0:
                 break
             t = k * dt
-            ce, se, cb, sb = np.cos(E), np.sin(E), np.cos(B), np.sin(B)
+            Cp, Sn = np.cos(Sp), np.sin(Sp)            # heading, eta, beta at once
+            ce, se, cb, sb = Cp[1], Sn[1], Cp[2], Sn[2]
             V = np.array(_kinematics(K, UD, VD, THED, ce, se, cb, sb, ED, BD))   # (8, m): vx, vy per wheel
             with np.errstate(divide="ignore", invalid="ignore"):
                 S4 = np.arctan(V[1::2] / np.abs(V[0::2]))                        # = atan2(vy, |vx|)
@@ -1137,9 +1138,10 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
                 keep = np.flatnonzero(~halt)
                 K.compact(keep)
                 run = run[keep]
-                (X, Y, THEDD, FC1, FC2, ce, se, cb, sb) = (
-                    a[keep] for a in (X, Y, THEDD, FC1, FC2, ce, se, cb, sb))
+                (X, Y, THEDD, FC1, FC2) = (a[keep] for a in (X, Y, THEDD, FC1, FC2))
                 Sv, Sp, V, S4, N4 = Sv[:, keep], Sp[:, keep], V[:, keep], S4[:, keep], N4[:, keep]
+                Cp, Sn = Cp[:, keep], Sn[:, keep]
+                ce, se, cb, sb = Cp[1], Sn[1], Cp[2], Sn[2]
                 UD, VD, THED, ED, BD = Sv
                 THE, E, B = Sp
                 if run.size == 0:
@@ -1184,7 +1186,7 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
             FC1, FC2 = fc1, fc2 + fy_ext
             D = Sv * dt
             D += Acc * half_dt2
-            cost, sint = np.cos(THE), np.sin(THE)
+            cost, sint = Cp[0], Sn[0]           # heading at the start of the step
             X = X + (D[0] * cost - D[1] * sint)
             Y = Y + (D[0] * sint + D[1] * cost)
             Sp += D[2:5]
