@@ -191,6 +191,6 @@ def test_locus_plots_are_labelled(ej):
     plotting.gain_locus(rootlocus.gain_locus(ej, n=40), axes[1, 0])
     plotting.parameter_locus(rootlocus.parameter_locus(ej, "main_tire"), axes[1, 1])
     for ax in axes.flat:
-        assert "(1/s)" in ax.get_xlabel() and "(rad/s)" in ax.get_ylabel()
+        assert "(1/s" in ax.get_xlabel() and "(rad/s" in ax.get_ylabel()
     assert "ej-premier" in axes[0, 0].get_title() and "exact" in axes[0, 0].get_title()
     assert "ej-premier" in axes[1, 0].get_title()

@@ -166,3 +166,35 @@ def test_linear_impulse_response_is_the_matrix_exponential_solution():
         assert lin["v"][k] == pytest.approx(x[0], rel=1e-7, abs=1e-12)
     # heading is the integral of the yaw rate
     np.testing.assert_allclose(lin["heading"][-1], np.trapezoid(lin["yaw_rate"], lin["t"]), rtol=1e-3)
+
+
+# ---------------------------------------------------------------------------
+# against the nonlinear simulator
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("model", ["exact", "thesis"])
+def test_linear_overlay_matches_frictionless_simulation(model):
+    """Where the linear model applies (free frictionless casters, small yaw rate) it predicts the simulation."""
+    from stability.simulate import simulate
+
+    c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    res = simulate(c, 0.75, duration=1.5, model=model, stop_on_warnings=False)
+    lin = study.linear_impulse_response(c, 0.75, 1.5, impulse=(40.0, 0.1), model=model, step=0.01)
+    for tt in (0.3, 0.8, 1.5):
+        r_sim = float(np.interp(tt, res.t, res.yaw_rate))
+        r_lin = float(np.interp(tt, lin["t"], lin["yaw_rate"]))
+        assert r_lin == pytest.approx(r_sim, rel=0.08)
+    y_sim = float(np.interp(1.5, res.t, res.y))
+    assert lin["y"][-1] == pytest.approx(y_sim, rel=0.15, abs=0.005)
+
+
+def test_reference_case_and_revised_design():
+    """Thesis model, WCHAIR scheme: reference 'slightly over 3 s'; the reference chair rates itself 0.75 m/s;
+    the revised design about 1.10-1.15 m/s (Figure 9-2)."""
+    ref = study.reference_time(model="thesis")
+    assert 3.0 < ref < 3.5
+    ej, rev = preset("ej-premier"), preset("revised")
+    r = study.equal_instability_speeds([ej, rev], model="thesis", bracket=(0.5, 1.5), tol=0.01, candidates=5,
+                                       reference=ref, progress=False)
+    assert r[0].status == "found" and r[0].speed == pytest.approx(0.75, abs=0.01)
+    assert 1.05 < r[1].speed < 1.20
+    assert all(t2 <= t1 for (s1, t1), (s2, t2) in zip(r[1].evaluations, r[1].evaluations[1:]))  # monotone

@@ -1,0 +1,98 @@
+"""Linear-analysis benchmarks (pytest-benchmark).
+
+* Eigenvalues of the full (free-caster, 6-state) model at 10,001 speeds with
+  :func:`stability.linear.eigenvalues_vs_speed` (one batched evaluation of the
+  state matrices, one batched ``numpy.linalg.eigvals``, mode tracking) against
+  a Python loop that builds the model at each speed and asks
+  ``control.ss(...).poles()``.  The loop is timed on every tenth speed (1,001
+  speeds) and scaled by 10,001/1,001 -- it is linear in the number of speeds,
+  and timing all 10,001 would add ~10 s for no information.  Targets: the
+  batched call under 0.2 s and at least 10x faster than the loop.
+* ``python -m stability.critical_speed`` end to end (a fresh interpreter:
+  imports, analysis, printing) under 3 s.
+
+Run with ``pytest tests/benchmarks --benchmark-enable`` for statistics.  In
+the normal run (``--benchmark-disable`` in pyproject's addopts) they still run,
+once each, and still check the targets; the timings used for the checks are
+measured here (best of a few repeats), independently of pytest-benchmark,
+and recorded in ``extra_info`` when benchmarking is enabled.
+"""
+
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from stability import linear
+from stability.chair import preset
+
+EJ = preset("ej-premier")
+SPEEDS = np.linspace(0.05, 30.0, 10001)
+LOOP_STRIDE = 10
+
+
+def _best(fn, repeat=3):
+    best = float("inf")
+    out = None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def _batched():
+    return linear.eigenvalues_vs_speed(EJ, SPEEDS, "exact", "free", track=True)
+
+
+def _loop(speeds):
+    import control
+
+    C = np.zeros((2, 6))
+    C[0, 0] = C[1, 1] = 1.0
+    D = np.zeros((2, 1))
+    out = np.empty((len(speeds), 6), dtype=complex)
+    for k, u in enumerate(speeds):
+        A = linear.state_matrices(EJ, float(u), "exact", "free")[0]
+        B = linear.input_matrices(EJ, float(u), "exact", "free")[0]
+        out[k] = control.ss(A, B, C, D).poles()
+    return out
+
+
+def test_bench_eigenvalues_vs_speed(benchmark):
+    _batched()  # warm-up (imports, first call)
+    eig = benchmark(_batched)
+    assert eig.shape == (10001, 6)
+    t_batch, _ = _best(_batched, repeat=5)
+    sub = SPEEDS[::LOOP_STRIDE]
+    t_loop_sub, loop_eig = _best(lambda: _loop(sub), repeat=1)
+    t_loop = t_loop_sub * len(SPEEDS) / len(sub)
+    ratio = t_loop / t_batch
+    # same numbers either way
+    for k in range(0, len(sub), 100):
+        np.testing.assert_allclose(np.sort_complex(loop_eig[k]), np.sort_complex(eig[k * LOOP_STRIDE]),
+                                   rtol=1e-8, atol=1e-8)
+    benchmark.extra_info.update(batched_s=t_batch, loop_s_scaled=t_loop, loop_speeds_timed=len(sub),
+                                speedup=ratio)
+    print(f"\neigenvalues at {len(SPEEDS)} speeds: batched {t_batch:.3f} s; loop over control.ss().poles() "
+          f"{t_loop:.2f} s (timed on {len(sub)} speeds, scaled); batched is {ratio:.0f}x faster")
+    assert t_batch < 0.2
+    assert ratio >= 10
+
+
+def test_bench_critical_speed_cli(benchmark):
+    cmd = [sys.executable, "-m", "stability.critical_speed"]
+
+    def run():
+        return subprocess.run(cmd, capture_output=True, text=True, timeout=60)
+
+    proc = benchmark.pedantic(run, rounds=1, iterations=1)
+    assert proc.returncode == 0, proc.stderr
+    assert "Critical speeds" in proc.stdout
+    t, proc = _best(run, repeat=2)
+    assert proc.returncode == 0
+    benchmark.extra_info.update(cli_s=t)
+    print(f"\npython -m stability.critical_speed end to end: {t:.2f} s")
+    assert t < 3.0
