@@ -359,7 +359,8 @@ class SimulationResult:
         ]
         for v in (0.5, 1.0):
             tv = self.first_time_abs_yaw_rate(v)
-            lines.append(f"|yaw rate| reaches {v:g} rad/s at " + ("never" if tv is None else f"{tv:.3f} s"))
+            lines.append(f"|yaw rate| never reaches {v:g} rad/s" if tv is None
+                         else f"|yaw rate| reaches {v:g} rad/s at {tv:.3f} s")
         if len(self.t):
             lines.append(f"final: yaw rate {self.yaw_rate[-1]:+.4f} rad/s, heading "
                          f"{math.degrees(self.heading[-1]):+.2f} deg, position ({self.x[-1]:.3f}, {self.y[-1]:.3f}) m, "
@@ -399,7 +400,7 @@ class SimulationResult:
                 "D/E = left/right main wheel"]
         lines = meta + [",".join(_COLS)]
         lines += [",".join(repr(float(x)) for x in row) for row in rec]
-        return atomic_write_text(path, "\n".join(lines) + "\n")
+        return _usual_mode(atomic_write_text(path, "\n".join(lines) + "\n"))
 
     def plot(self, path_or_ax=None, *, title: str | None = None):
         """Plot the yaw rate against time.
@@ -456,7 +457,7 @@ def _save_figure(fig, path, title):
         raise ValueError(f"output directory {str(directory)!r} does not exist")
     ext = path.suffix.lower().lstrip(".")
     if ext == "pdf":
-        return write_pdf([fig], path, title=title, close=False)
+        return _usual_mode(write_pdf([fig], path, title=title, close=False))
     import tempfile
 
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -466,12 +467,24 @@ def _save_figure(fig, path, title):
     os.close(fd)
     try:
         fig.savefig(tmp, format=ext or "png")
+        _usual_mode(Path(tmp))
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
     return path
+
+
+def _usual_mode(path: Path) -> Path:
+    """Give a file written through a private temporary file the usual permissions (0666 & ~umask)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    try:
+        os.chmod(path, 0o666 & ~mask)
+    except OSError:  # pragma: no cover - e.g. a file system without modes
+        pass
+    return Path(path)
 
 
 def _json_scalar(v):
