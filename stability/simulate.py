@@ -90,7 +90,6 @@ Examples
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import math
 import os
@@ -275,14 +274,15 @@ class SimulationResult:
         )
 
     def _records(self) -> np.ndarray:
+        """All columns of :data:`_COLS` as one ``(n, 32)`` array."""
+        per_wheel = {"fx": self.fx, "fy": self.fy, "fz": self.normal_load, "slip": self.slip_deg}
         cols = []
         for name in _COLS:
-            if "_" in name and name.rsplit("_", 1)[1] in WHEELS and name.split("_")[0] in ("fx", "fy", "fz", "slip"):
-                prefix, w = name.rsplit("_", 1)
-                arr = {"fx": self.fx, "fy": self.fy, "fz": self.normal_load, "slip": self.slip_deg}[prefix]
-                cols.append(arr[:, WHEELS.index(w)])
-            elif name.startswith("pin_moment_"):
-                cols.append(self.pin_moment[:, "AB".index(name[-1])])
+            prefix, _, last = name.rpartition("_")
+            if prefix in per_wheel and last in WHEELS:
+                cols.append(per_wheel[prefix][:, WHEELS.index(last)])
+            elif prefix == "pin_moment":
+                cols.append(self.pin_moment[:, "AB".index(last)])
             else:
                 cols.append(getattr(self, name))
         return np.column_stack(cols) if len(self.t) else np.zeros((0, _NC))
@@ -642,10 +642,6 @@ class _MathOps:
     copysign = staticmethod(math.copysign)
     degrees = staticmethod(math.degrees)
 
-    @staticmethod
-    def where(cond, a, b):
-        return a if cond else b
-
 
 class _NumpyOps:
     cos = staticmethod(np.cos)
@@ -653,7 +649,6 @@ class _NumpyOps:
     atan2 = staticmethod(np.arctan2)
     copysign = staticmethod(np.copysign)
     degrees = staticmethod(np.degrees)
-    where = staticmethod(np.where)
 
 
 _NO_FORCE = float(0.0)  # the longitudinal forces when rolling resistance is off (identity-tested)
