@@ -504,3 +504,27 @@ def test_cli_bad_input_one_line_status_2(args, words):
     assert p.returncode == 2
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and words in lines[0] and "Traceback" not in p.stderr
+
+
+# ---------------------------------------------------------------------------
+# progress bar helper
+# ---------------------------------------------------------------------------
+def test_progress_bar_silent_unless_tty_or_forced(monkeypatch):
+    import io
+
+    from stability.progress import ProgressBar, track
+
+    buf = io.StringIO()                                   # not a TTY
+    with ProgressBar(10, "x", file=buf) as bar:
+        bar.update(10)
+    assert buf.getvalue() == "" and not bar.shown
+    with ProgressBar(10, "x", file=buf, enabled=False, force=False) as bar:
+        bar.update(5)
+    assert buf.getvalue() == ""
+    monkeypatch.setitem(sys.modules, "tqdm", None)       # plain fallback
+    with ProgressBar(4, "runs", file=buf, force=True, unit="run") as bar:
+        for _ in range(4):
+            bar.update()
+    out = buf.getvalue()
+    assert "runs: [" in out and "4/4 run" in out and out.endswith("\n")
+    assert list(track(range(3), enabled=False)) == [0, 1, 2]
