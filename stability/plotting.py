@@ -479,7 +479,7 @@ def eigenvalues_vs_speed(locus, axes=None, *, title: str | None = None, log_spee
     """Real and imaginary parts of the eigenvalues against speed, unstable regions shaded, critical speeds marked."""
     if axes is None:
         fig = Figure(figsize=(7, 6))
-        axes = fig.subplots(2, 1, sharex=True)
+        axes = fig.subplots(2, 1)
     ax1, ax2 = axes
     U, eig = locus.speeds, locus.eigenvalues
     re_all = eig.real
@@ -500,12 +500,14 @@ def eigenvalues_vs_speed(locus, axes=None, *, title: str | None = None, log_spee
     ax1.set_ylim(-lim, max(float(re_all.max()) * 2.0, 2.0))
     ax1.set_ylabel("real part σ (1/s, symlog)", fontsize=8.5)
     ax2.set_ylabel("|imaginary part| ω (rad/s)", fontsize=8.5)
+    ax1.set_xlabel("forward speed U (m/s)", fontsize=8.5)
     ax2.set_xlabel("forward speed U (m/s)", fontsize=8.5)
     ims = np.abs(eig.imag)
     ax2.set_ylim(0, max(float(ims.max()) * 1.15, 1.0))
-    if log_speed:
-        ax1.set_xscale("log")
-    ax1.set_xlim(*(xlim or (U[0], U[-1])))
+    for ax in (ax1, ax2):
+        if log_speed:
+            ax.set_xscale("log")
+        ax.set_xlim(*(xlim or (U[0], U[-1])))
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3, which="both")
     ax1.legend(fontsize=7, ncol=3, loc="lower left")
@@ -752,6 +754,7 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
     if not first:
         ax.legend(fontsize=7, loc="lower right")
     ax.set_yticks(y, names, fontsize=8)
+    ax.set_ylabel("chair")
     ax.set_xlabel("equal-instability speed (m/s)")
     ax.set_xlim(0, max(vals + [1.0]) * 1.25)
     ax.grid(True, axis="x", alpha=0.3)
@@ -798,7 +801,7 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
                 ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
         ax.axhline(table.nominal.value_or_bound, color="k", lw=0.6, ls="--")
         ax.set_ylim(max(0.0, ylo - pad) if s.labels is None else 0.0, yhi + pad)
-        ax.set_xlabel(s.label if s.unit == "-" else f"{s.label} ({s.unit})", fontsize=7.5)
+        ax.set_xlabel(f"{s.label} ({s.unit})" if s.labels is None else s.label, fontsize=7.5)
         ax.set_ylabel("equal-instability speed (m/s)", fontsize=7.5)
         ax.tick_params(labelsize=7)
         ax.set_title(f"{s.parameter}: spread {s.effect_percent:.0f} %{' (censored)' if s.censored else ''}",

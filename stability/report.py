@@ -69,7 +69,7 @@ class Settings:
         from .study import QUICK_PLAN
 
         return cls(quick=True, speed_points=150, locus_points=41, gain_points=80, duration=6.0, dt=0.001,
-                   tol=0.05, candidates=5, bracket=(0.3, 2.5), plan=QUICK_PLAN,
+                   tol=0.05, candidates=9, bracket=(0.3, 2.5), plan=QUICK_PLAN,
                    map_speeds=(0.4, 0.8, 1.2, 1.6, 2.0), map_frictions=(0.0, 0.1, 0.2, 0.3),
                    map_impulses=(2.0, 4.0, 8.0))
 
@@ -371,8 +371,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
                                    _title(d, "eigenvalues as speed varies (parametric root locus)"), sub)
 
     def p_re_im():
-        fig, axes = P.page(_title(d, "eigenvalues against speed (shaded: unstable)"), sub, nrows=2, ncols=2,
-                           sharex="col")
+        fig, axes = P.page(_title(d, "eigenvalues against speed (shaded: unstable)"), sub, nrows=2, ncols=2)
         for j, cs in enumerate(("free", "locked")):
             P.eigenvalues_vs_speed(d.speed_loci[(d.model, cs)], [axes[0, j], axes[1, j]])
         return P.finish(fig)

@@ -214,7 +214,7 @@ class Parameter:
     categorical: bool = False
 
     def axis_label(self) -> str:
-        return self.label if self.unit == "-" else f"{self.label} ({self.unit})"
+        return f"{self.label} ({self.unit})" if not self.categorical else self.label
 
 
 def _cg_ratio(c: Chair, r: float) -> Chair:
@@ -382,7 +382,7 @@ class ParameterLocus:
         return out
 
     def axis_label(self) -> str:
-        return self.label if self.unit == "-" else f"{self.label} ({self.unit})"
+        return f"{self.label} ({self.unit})" if not self.categorical else self.label
 
     @property
     def title(self) -> str:

@@ -1,0 +1,240 @@
+"""``python -m stability.report``: pages, their text, findings numbers, reproducibility, atomicity, CLI errors.
+
+The quick report of the E&J Premier is built once per module (``--quick``:
+coarse grids, a few batches of simulations); the other tests reuse its data.
+"""
+
+import math
+import os
+import re
+
+import numpy as np
+import pytest
+
+from stability import linear, report, rootlocus, study
+from stability.chair import preset
+
+EXPECTED_PAGES = [
+    "chair parameters and geometry", "tires", "linear stability: critical speeds", "eigenvalues as speed varies",
+    "eigenvalues against speed", "root loci against design parameters 1", "root loci against design parameters 2",
+    "growth rate against design parameters", "yaw-rate feedback root locus", "nonlinear yaw-rate responses",
+    "paths", "equal-instability speeds", "parametric study", "parametric study table", "stability maps",
+    "thesis conclusions", "findings",
+]
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    path = tmp_path_factory.mktemp("report") / "ej-premier-quick.pdf"
+    res = report.build(preset("ej-premier"), path, model="exact", quick=True, progress=False)
+    return res
+
+
+def _page(res, title):
+    return next(p for p in res.pages if p.title == title)
+
+
+def _text(res, title):
+    return "\n".join(_page(res, title).texts)
+
+
+# ---------------------------------------------------------------------------
+# pages and their text
+# ---------------------------------------------------------------------------
+def test_page_count_and_order(quick):
+    assert [p.title for p in quick.pages] == EXPECTED_PAGES
+    data = quick.path.read_bytes()
+    assert data.startswith(b"%PDF")
+    assert len(re.findall(rb"/Type\s*/Page\b", data)) == len(EXPECTED_PAGES)
+
+
+def test_every_page_is_titled_with_chair_and_model(quick):
+    for p in quick.pages:
+        head = p.texts
+        assert any(t.startswith("ej-premier | exact model | ") for t in head), p.title
+        assert any("QUICK" in t for t in head), p.title
+
+
+def test_page_texts(quick):
+    """Key text of each page, as drawn (the text dump is taken from the figures before they are saved)."""
+    expect = {
+        "chair parameters and geometry": ["pin_friction_left", "M_af", "s1 = 0.345 m", "lateral position y (m, to the right)"],
+        "tires": ["EJA (main wheels)", "ER (casters)", "slip angle α (deg)", "normal force F_z (N)",
+                  "cornering stiffness C_α (N/deg)"],
+        "linear stability: critical speeds": ["Critical speeds (m/s)", "zero-width model", "Least stable mode"],
+        "eigenvalues as speed varies": ["forward speed U (m/s)", "ej-premier: exact model, free casters",
+                                        "ej-premier: thesis model, locked casters"],
+        "eigenvalues against speed": ["forward speed U (m/s)", "real part σ (1/s, symlog)"],
+        "root loci against design parameters 1": ["vs c.g. ratio s1/(s1+s2)", "vs caster trail l"],
+        "root loci against design parameters 2": ["vs viscous pin damping", "vs main tire"],
+        "growth rate against design parameters": ["largest real part (1/s)"],
+        "yaw-rate feedback root locus": ["feedback gain K (N m s/rad)", "open-loop poles (K = 0)"],
+        "nonlinear yaw-rate responses": ["time t (s)", "linear (exact)"],
+        "paths": ["distance travelled X (m)", "lateral displacement Y (m, to the right)"],
+        "equal-instability speeds": ["equal-instability speed (m/s)", "revised x1.5 friction", "Criterion:"],
+        "parametric study": ["equal-instability speed (m/s)", "caster trail l (m)"],
+        "parametric study table": ["which parameters matter, by how much", "Coulomb pin friction M_f"],
+        "stability maps": ["forward speed U (m/s)", "pin friction M_f (both pins) (N m)", "lateral impulse at the c.g. (N s)"],
+        "thesis conclusions": ["AGREE", "Revised design"],
+        "findings": ["Linear model (exact)", "reference case"],
+    }
+    for title, needles in expect.items():
+        text = _text(quick, title)
+        for n in needles:
+            assert n in text, (title, n)
+
+
+def test_every_axis_is_labelled_with_units(quick):
+    """Rebuild each page's figure and check every plotting axes: x and y labels with a unit in parentheses."""
+    unitless = {"main tire", "chair"}      # categorical axes
+    for title, build in report.page_builders(quick.data):
+        fig = build()
+        for ax in fig.axes:
+            if not ax.axison or ax.get_label() == "<colorbar>":
+                continue
+            if not (ax.lines or ax.collections or ax.patches):
+                continue
+            for lab in (ax.get_xlabel(), ax.get_ylabel()):
+                assert lab, (title, ax.get_title())
+                assert "(" in lab or lab in unitless, (title, lab)
+        for ax in fig.axes:
+            if ax.get_label() == "<colorbar>":
+                assert ax.get_ylabel() or ax.get_xlabel(), title
+
+
+# ---------------------------------------------------------------------------
+# findings: every number computed, and equal to the analysis functions'
+# ---------------------------------------------------------------------------
+def test_findings_numbers_match_the_analysis(quick):
+    d = quick.data
+    text = " ".join(report.findings(d))
+    page = " ".join(_page(quick, "findings").texts).replace("\n", " ")
+    c = preset("ej-premier")
+    s = linear.analyse(c, "exact", speeds=(0.75,))
+    r = s.divergence[0]
+    assert f"grows at {r['rate_1_s']:.3g} 1/s" in text
+    assert f"doubles every {r['time_to_double_s']:.3g} s" in text
+    locked = [x.speed for x in s.locked_crossings if x.direction == "destabilising"][0]
+    assert f"stable up to {locked:.3g} m/s" in text
+    assert f"{linear.zero_width(c).critical_speed:.3g} m/s" in text
+    # nonlinear reference case, recomputed independently
+    st = d.settings
+    ref = study.reference_time(model="exact", criterion=study.Criterion(duration=st.duration), dt=st.dt)
+    assert ref == pytest.approx(d.thesis.reference_time, abs=1e-12)
+    assert f"after {ref:.2f} s" in text
+    # feedback gain
+    g = rootlocus.gain_locus(c, 0.75, model="exact", n=st.gain_points)
+    assert f"K > {g.stabilising_gain:.3g} N m s/rad" in text
+    # pin friction +/- 50 %: the numbers on the findings page are the study's
+    lo, hi = d.chair_friction
+    assert f"half the friction the equal-instability speed is {lo.describe()}" in text
+    assert lo.chair.pin_friction_left == pytest.approx(0.05) and hi.chair.pin_friction_left == pytest.approx(0.15)
+    # the page shows exactly these paragraphs
+    for para in report.findings(d):
+        for word in re.findall(r"\d+\.\d+", para):
+            assert word in page
+
+
+def test_conclusions_are_all_tested(quick):
+    checks = quick.data.conclusions
+    assert [c.number for c in checks] == list(range(1, 10))
+    assert all(c.verdict in ("agree", "partly", "disagree", "not tested") for c in checks)
+    v = {c.number: c.verdict for c in checks}
+    # quick plan: no tires, no camber; the rest is tested
+    assert v[9] == "not tested"
+    assert all(v[k] != "not tested" for k in (1, 2, 3, 4, 5, 6, 7, 8))
+
+
+def test_reference_chair_rates_itself_at_the_reference_speed(quick):
+    r = quick.data.chair_speed
+    assert r.status == "found" and r.speed == pytest.approx(0.75, abs=0.05)
+
+
+# ---------------------------------------------------------------------------
+# reproducibility, atomicity, command line
+# ---------------------------------------------------------------------------
+def test_cli_quick_is_byte_identical(quick, tmp_path, monkeypatch, capsys):
+    """The CLI build gives a file byte-identical to the fixture's build of the same data.
+
+    The computation is reused from the fixture (``compute`` patched) to keep the test fast; that the
+    computation itself is deterministic is checked by :func:`test_compute_is_deterministic`.
+    """
+    calls = []
+
+    def fake_compute(c, model="exact", *, quick=False, progress=True, **kw):
+        calls.append((c.name, model, quick))
+        return quick_data
+
+    quick_data = quick.data
+    monkeypatch.setattr(report, "compute", fake_compute)
+    a = tmp_path / "a.pdf"
+    txt = tmp_path / "a.txt"
+    assert report.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(a), "--text", str(txt)]) == 0
+    assert calls == [("ej-premier", "exact", True)]
+    assert a.read_bytes() == quick.path.read_bytes()
+    dump = txt.read_text()
+    assert dump.count("=== page ") == len(EXPECTED_PAGES)
+    out = capsys.readouterr().out
+    assert "17 pages" in out
+
+
+def test_compute_is_deterministic():
+    """The same input gives the same numbers (tiny settings: a few batches)."""
+    s = report.Settings(quick=True, speed_points=40, locus_points=9, gain_points=20, duration=4.5, dt=0.001,
+                        tol=0.1, candidates=9, bracket=(0.5, 1.5), plan={"trail": (0.06, 0.08)},
+                        map_speeds=(0.6, 1.0), map_frictions=(0.1,), map_impulses=(4.0,))
+    c = preset("revised")
+    d1 = report.compute(c, "thesis", settings=s, progress=False)
+    d2 = report.compute(c, "thesis", settings=s, progress=False)
+    assert report.findings(d1) == report.findings(d2)
+    np.testing.assert_array_equal(d1.friction_map.times, d2.friction_map.times)
+    assert [r.evaluations for r in d1.chair_sweeps.sweeps[0].results] == \
+        [r.evaluations for r in d2.chair_sweeps.sweeps[0].results]
+    for k in d1.speed_loci:
+        np.testing.assert_array_equal(d1.speed_loci[k].eigenvalues, d2.speed_loci[k].eigenvalues)
+
+
+def test_no_partial_file_when_a_page_fails(quick, tmp_path, monkeypatch):
+    real = report.page_builders
+
+    def failing(d):
+        pages = real(d)
+
+        def boom():
+            raise RuntimeError("page 3 failed")
+
+        pages[2] = ("broken", boom)
+        return pages
+
+    monkeypatch.setattr(report, "page_builders", failing)
+    out = tmp_path / "r.pdf"
+    with pytest.raises(RuntimeError, match="page 3 failed"):
+        report.build(preset("ej-premier"), out, data=quick.data, progress=False)
+    assert not out.exists()
+    assert os.listdir(tmp_path) == []
+    # an existing report is left untouched
+    out.write_bytes(b"old")
+    with pytest.raises(RuntimeError):
+        report.build(preset("ej-premier"), out, data=quick.data, progress=False)
+    assert out.read_bytes() == b"old"
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["--chair", "nope"], "unknown chair 'nope'"),
+    (["--set", "trail=abc"], "trail"),
+    (["--set", "trail=0.9"], "trail"),
+    (["--set", "wheels=3"], "unknown chair parameter 'wheels'"),
+    (["--model", "other"], "invalid choice"),
+    (["-o", "/nonexistent/dir/r.pdf"], "does not exist"),
+    (["-o", "report.txt"], "must end in .pdf"),
+    ([], "required"),
+])
+def test_bad_input_is_one_line_and_status_2(argv, needle, capsys, tmp_path):
+    if "-o" not in argv and argv != []:
+        argv = argv + ["-o", str(tmp_path / "r.pdf")]
+    with pytest.raises(SystemExit) as exc:
+        raise SystemExit(report.main(argv + ["--no-progress"]))
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("error:") and needle in err
+    assert not (tmp_path / "r.pdf").exists()
