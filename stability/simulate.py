@@ -400,7 +400,7 @@ class SimulationResult:
                 "D/E = left/right main wheel"]
         lines = meta + [",".join(_COLS)]
         lines += [",".join(repr(float(x)) for x in row) for row in rec]
-        return _usual_mode(atomic_write_text(path, "\n".join(lines) + "\n"))
+        return atomic_write_text(path, "\n".join(lines) + "\n")
 
     def plot(self, path_or_ax=None, *, title: str | None = None):
         """Plot the yaw rate against time.
@@ -449,42 +449,9 @@ class SimulationResult:
 
 
 def _save_figure(fig, path, title):
-    from .output import write_pdf
+    from .output import save_figure
 
-    path = Path(path)
-    directory = path.parent if str(path.parent) else Path(".")
-    if not directory.exists():
-        raise ValueError(f"output directory {str(directory)!r} does not exist")
-    ext = path.suffix.lower().lstrip(".")
-    if ext == "pdf":
-        return _usual_mode(write_pdf([fig], path, title=title, close=False))
-    import tempfile
-
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
-    FigureCanvasAgg(fig)
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        fig.savefig(tmp, format=ext or "png")
-        _usual_mode(Path(tmp))
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
-
-
-def _usual_mode(path: Path) -> Path:
-    """Give a file written through a private temporary file the usual permissions (0666 & ~umask)."""
-    mask = os.umask(0)
-    os.umask(mask)
-    try:
-        os.chmod(path, 0o666 & ~mask)
-    except OSError:  # pragma: no cover - e.g. a file system without modes
-        pass
-    return Path(path)
+    return save_figure(fig, path, title=title)
 
 
 def _json_scalar(v):
