@@ -506,6 +506,7 @@ class Tire:
     lateral_scale: float = 1.0
     rolling_scale: float = 1.0
     _array: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+    _segments: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if len(self.rows) != 9:
@@ -513,6 +514,14 @@ class Tire:
         arr = np.array(self.rows, dtype=float)
         arr.flags.writeable = False
         object.__setattr__(self, "_array", arr)
+        # per 1-deg segment k: coefficients at k and their increment to k+1, as 1-D columns
+        # (interpolating the coefficients then evaluating one cubic equals interpolating the
+        # forces, since the force is linear in the coefficients)
+        base, step = arr[:8], arr[1:] - arr[:8]
+        segs = tuple(np.ascontiguousarray(col) for col in (*base.T, *step.T))
+        for col in segs:
+            col.flags.writeable = False
+        object.__setattr__(self, "_segments", segs)
 
     # -- identity ---------------------------------------------------------
     @property
@@ -651,17 +660,18 @@ class Tire:
                     TireRangeWarning,
                     stacklevel=3,
                 )
-        on_ground = f > 0.0
-        fzp = np.where(on_ground, f, 0.0)
+        fzp = np.maximum(f, 0.0)                     # a wheel off the ground carries nothing; NaN stays NaN
         finite = np.isfinite(s)
-        i = np.minimum(np.floor(np.where(finite, s, 0.0)), 7.0).astype(np.intp)
-        c0 = self._array[i]
-        c1 = self._array[i + 1]
-        f0 = fzp * (c0[..., 0] + fzp * (c0[..., 1] + fzp * c0[..., 2]))
-        f1 = fzp * (c1[..., 0] + fzp * (c1[..., 1] + fzp * c1[..., 2]))
-        force = ((s - i) * (f1 - f0) + f0) * self.lateral_scale
-        force = np.where(on_ground | np.isnan(f), force, 0.0)
-        force = np.where(np.isnan(f), np.nan, force)
+        i = np.minimum(np.floor(np.where(finite, s, 0.0)), 7.0)
+        ii = i.astype(np.intp)
+        t = s - i
+        a0, b0, c0, da, db, dc = self._segments
+        a = a0.take(ii) + t * da.take(ii)
+        b = b0.take(ii) + t * db.take(ii)
+        c = c0.take(ii) + t * dc.take(ii)
+        force = fzp * (a + fzp * (b + fzp * c))
+        if self.lateral_scale != 1.0:
+            force = force * self.lateral_scale
         return np.where(slip > 0.0, -force, force) + 0.0
 
     # -- stiffness ------------------------------------------------------------
