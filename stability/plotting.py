@@ -63,7 +63,8 @@ def page(title: str, subtitle: str = "", *, nrows: int = 1, ncols: int = 1, size
     the titles; call ``fig.tight_layout(rect=...)`` via :func:`finish`.
     """
     fig = Figure(figsize=size)
-    fig.suptitle(title, fontsize=13, fontweight="bold", y=0.985)
+    fig.suptitle(title, fontsize=13 if len(title) <= 90 else max(9.0, 13 * 90 / len(title)), fontweight="bold",
+                 y=0.985)
     if subtitle:
         fig.text(0.5, 0.948, "\n".join(textwrap.wrap(subtitle, 170)), ha="center", va="top", fontsize=8.5,
                  color="0.25", linespacing=1.3)
@@ -247,7 +248,7 @@ def parameter_table(chair, ax=None, *, fontsize: float = 7.5):
             vs = str(v)
         rows.append([f.name, f.metadata.get("symbol", ""), vs, f.metadata.get("unit", ""), f.metadata.get("doc", "")])
     table_axes(ax, ["field", "symbol", "value", "unit", "meaning"], rows, col_widths=[0.2, 0.1, 0.17, 0.1, 0.43],
-               fontsize=fontsize, wrap=[24, 10, 18, 10, 44], top=1.0, bottom=0.0)
+               fontsize=fontsize, wrap=[24, 10, 18, 10, 44], top=0.97, bottom=0.0)
     ax.set_title(f"{chair.name}: parameters", fontsize=10)
     return ax
 
@@ -780,7 +781,7 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
     flat = list(np.asarray(axes).flat)
     allv = np.concatenate([sw.speeds for sw in sweeps] + [[table.nominal.value_or_bound]])
     ylo, yhi = float(allv.min()), float(allv.max())
-    pad = 0.08 * max(yhi - ylo, 0.05)
+    pad = max(0.08 * (yhi - ylo), 0.05)
     for ax, s in zip(flat, sweeps):
         sp = s.speeds
         cens = np.array([r.status != "found" for r in s.results])
@@ -801,6 +802,10 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
                 ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
         ax.axhline(table.nominal.value_or_bound, color="k", lw=0.6, ls="--")
         ax.set_ylim(max(0.0, ylo - pad) if s.labels is None else 0.0, yhi + pad)
+        if cens.all():
+            ax.text(0.5, 0.5, "all " + s.results[0].describe() if len({r.describe() for r in s.results}) == 1
+                    else "all outside the bracket", transform=ax.transAxes, ha="center", va="center", fontsize=8,
+                    bbox=dict(fc="w", ec="0.7"))
         ax.set_xlabel(f"{s.label} ({s.unit})" if s.labels is None else s.label, fontsize=7.5)
         ax.set_ylabel("equal-instability speed (m/s)", fontsize=7.5)
         ax.tick_params(labelsize=7)

@@ -150,7 +150,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         extra = [c] + study.friction_variants(c) if not is_ej else []
         thesis, extra_res, other_table = study.thesis_study(
             model=model, criterion=crit, plan=s.plan, extra_chairs=extra,
-            extra_plan_chair=None if is_ej else c, extra_plan=s.plan, progress=progress,
+            extra_plan_chair=None if is_ej else c, extra_plan=study.plan_for(c, s.plan), progress=progress,
             bracket=s.bracket, tol=s.tol, candidates=s.candidates, **sim)
         if is_ej:
             chair_sweeps = thesis.sweeps
@@ -231,7 +231,13 @@ def findings(d: ReportData) -> list[str]:
                f"{th.criterion.yaw_rate:g} rad/s after {th.reference_time:.2f} s (thesis: slightly over 3 s).")
     cs = d.chair_speed
     ref = th.speeds["ej-premier"]
-    if cs.status == "found":
+    if c == preset("ej-premier"):
+        rev = th.speeds["revised"]
+        out.append(f"{c.name} is the reference chair: bisection on speed finds its own equal-instability speed at "
+                   f"{cs.describe()} (the reference speed is 0.75 m/s). The chapter-9 revised design reaches the "
+                   f"same instability at {rev.describe()} (thesis: 1.10-1.15 m/s), "
+                   + (f"{100 * (rev.speed / cs.speed - 1):+.0f} %." if rev.status == cs.status == "found" else "."))
+    elif cs.status == "found":
         rel = 100 * (cs.speed / ref.value_or_bound - 1) if ref.status == "found" else float("nan")
         out.append(f"{c.name} shows the same instability at {cs.speed:.3g} m/s"
                    + (f", {rel:+.0f} % against the E&J Premier's {ref.speed:.3g} m/s." if math.isfinite(rel) else ".")
@@ -242,12 +248,21 @@ def findings(d: ReportData) -> list[str]:
                    "it is more stable than the reference case at every speed tested.")
     else:
         out.append(f"{c.name} is already less stable than the reference case at {cs.bracket[0]:g} m/s.")
+    fm = d.friction_map
+    j = int(np.argmin(np.abs(fm.y_values - c.pin_friction_left)))
+    finite = np.flatnonzero(np.isfinite(fm.times[j]))
+    if len(finite) and finite[0] > 0:
+        out.append(f"Pin friction holds the casters at low speed: with {fm.y_values[j]:g} N m the simulated chair "
+                   f"does not reach {th.criterion.yaw_rate:g} rad/s within {fm.criterion.duration:g} s at "
+                   f"{fm.speeds[finite[0] - 1]:g} m/s and below, but does at {fm.speeds[finite[0]]:g} m/s "
+                   f"(after {fm.times[j, finite[0]]:.2f} s), although the frictionless linear model is "
+                   + ("unstable at every speed." if s.free_unstable_at_all_speeds else "as described above."))
     f_lo, f_hi = d.chair_friction
     out.append(f"Pin friction: at half the friction the equal-instability speed is {f_lo.describe()}, at 1.5 times "
                f"it is {f_hi.describe()} (own friction: {cs.describe()}).")
     ranked = d.chair_sweeps.ranked()
-    top = ", ".join(f"{s.parameter} ({s.effect_percent:.0f} %)" for s in ranked[:4])
-    low = ", ".join(f"{s.parameter} ({s.effect_percent:.0f} %)" for s in ranked[-3:])
+    top = ", ".join(f"{sw.label} ({sw.effect_percent:.0f} %)" for sw in ranked[:4])
+    low = ", ".join(f"{sw.label} ({sw.effect_percent:.1f} %)" for sw in ranked[-3:])
     out.append(f"What matters most (spread of the equal-instability speed over the values tried, in % of the "
                f"chair's own): {top}. What matters least: {low}.")
     g = d.gain_loci[0]
@@ -452,7 +467,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
         n = len(table.sweeps)
         ncols = 4
         nrows = int(math.ceil(n / ncols))
-        fig, axes = P.page(_title(d, "parametric study: equal-instability speed against each chapter-8 parameter"),
+        fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
                            sub + "  |  dashed: this chair's speed; dotted: its value", nrows=nrows, ncols=ncols)
         P.sweep_chart(table, axes)
         return P.finish(fig)
@@ -463,7 +478,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
         for i, s in enumerate(table.ranked(), start=1):
             rows.append([str(i), s.label + ("" if s.unit == "-" else f" ({s.unit})"),
                          ", ".join(s.value_text(k) for k in range(len(s.values))),
-                         ", ".join(r.describe() for r in s.results),
+                         ", ".join(r.describe(unit=False) for r in s.results),
                          f"{s.effect_percent:.1f}" + (" (bound)" if s.censored else ""), s.how])
         return P.table_page(_title(d, "which parameters matter, by how much"),
                             ["rank", "parameter", "values tried", "equal-instability speed (m/s)", "spread (%)",
@@ -478,22 +493,22 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
         fig, axes = P.page(_title(d, "stability maps: time to |yaw rate| = 1 rad/s"), sub, nrows=1, ncols=2)
         P.stability_map(d.friction_map, axes[0, 0], nominal=c.pin_friction_left)
         P.stability_map(d.disturbance_map, axes[0, 1], nominal=d.thesis.impulse[0] * d.thesis.impulse[1])
-        fig.text(0.5, 0.015, "Heavy line: the reference case's time. Slower than the line (left): more time to react "
-                 "than in the reference case; faster (right): less. Left: one simulate_batch call; right: one per disturbance "
-                 "size (the simulator's disturbance is common to a batch).",
+        fig.text(0.5, 0.012, "Heavy line: the reference case's time. Slower than the line (left): more time to react than "
+                 "in the reference case; faster (right): less.\nLeft map: one simulate_batch call; right map: one call "
+                 "per disturbance size (a batch shares its disturbance). Dots: simulated grid points.",
                  ha="center", fontsize=8, color="0.3")
-        return P.finish(fig)
+        return P.finish(fig, bottom=0.12)
 
     def p_conclusions():
         rows = [[str(x.number), x.statement, x.verdict.upper(), x.evidence] for x in d.conclusions]
         return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers (E&J Premier, revised)"),
                             ["#", "conclusion (chapter 9)", "verdict", "our evidence"], rows, sub,
-                            col_widths=[0.03, 0.25, 0.08, 0.64], wrap=[3, 40, 10, 110], fontsize=8,
+                            col_widths=[0.03, 0.25, 0.08, 0.64], wrap=[3, 40, 10, 100], fontsize=8,
                             notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
                                   f"{d.thesis.criterion.describe()}.")
 
     def p_findings():
-        return P.text_page(_title(d, "findings"), "\n\n".join(findings(d)), sub, fontsize=10.5, width=125)
+        return P.text_page(_title(d, "findings"), "\n\n".join(findings(d)), sub, fontsize=10.5, width=140)
 
     return [
         ("chair parameters and geometry", p_chair),

@@ -76,6 +76,7 @@ __all__ = [
     "parameter_sweeps",
     "ThesisStudy",
     "thesis_study",
+    "plan_for",
     "ConclusionCheck",
     "check_conclusions",
     "THESIS",
@@ -393,12 +394,13 @@ class EqualInstability:
     impulse: tuple
     reference: str = ""
 
-    def describe(self, digits: int = 3) -> str:
+    def describe(self, digits: int = 3, unit: bool = True) -> str:
+        u = " m/s" if unit else ""
         if self.status == "found":
-            return f"{self.speed:.{digits}g} m/s"
+            return f"{self.speed:.{digits}g}{u}"
         if self.status == "above":
-            return f"> {self.bracket[1]:g} m/s"
-        return f"< {self.bracket[0]:g} m/s"
+            return f"> {self.bracket[1]:g}{u}"
+        return f"< {self.bracket[0]:g}{u}"
 
     @property
     def value_or_bound(self) -> float:
@@ -784,6 +786,47 @@ class SweepTable:
                 "censored": s.censored,
             })
         return out
+
+
+#: Parameters whose plan values scale with the chair's own value in :func:`plan_for`
+#: (the others shift with it).
+_MULTIPLICATIVE = ("pin_friction", "roll_k", "caster_mass_factor", "mass_factor", "width_factor",
+                   "main_lateral_scale", "pin_damping")
+
+
+def plan_for(chair: Chair, plan: dict | None = None, base: Chair | None = None) -> dict:
+    """A plan (written for ``base``, default the E&J Premier) moved to ``chair``'s own values.
+
+    Each parameter keeps the steps the thesis tried around its chair: values
+    shift by ``chair's value - base's value`` (lengths, ratios, angles) or
+    scale by ``chair's value / base's value`` (friction, factors).  Values
+    the chair cannot take (e.g. ``s1 + s2 <= s1``) are dropped.  For the E&J
+    Premier itself the plan is unchanged.
+    """
+    plan = DEFAULT_PLAN if plan is None else plan
+    base = base if base is not None else preset("ej-premier")
+    out: dict = {}
+    for name, values in plan.items():
+        p = get_parameter(name)
+        if p.categorical or values is None:
+            out[name] = values
+            continue
+        v0, c0 = float(p.current(base)), float(p.current(chair))
+        if name in _MULTIPLICATIVE:
+            new = [v * c0 / v0 if v0 else v for v in values]
+        else:
+            new = [v + (c0 - v0) for v in values]
+        ok = []
+        for v in new:
+            v = c0 if abs(v - c0) < 1e-9 else round(v, 4)
+            try:
+                p.apply(chair, v)
+            except ValueError:
+                continue
+            ok.append(v)
+        if ok:
+            out[name] = tuple(ok)
+    return out
 
 
 def _plan_values(chair: Chair, name: str, values) -> tuple[tuple, tuple | None]:

@@ -198,3 +198,15 @@ def test_reference_case_and_revised_design():
     assert r[0].status == "found" and r[0].speed == pytest.approx(0.75, abs=0.01)
     assert 1.05 < r[1].speed < 1.20
     assert all(t2 <= t1 for (s1, t1), (s2, t2) in zip(r[1].evaluations, r[1].evaluations[1:]))  # monotone
+
+
+def test_plan_for_moves_the_thesis_steps_to_the_chair():
+    ej, rev = preset("ej-premier"), preset("revised")
+    assert study.plan_for(ej) == {k: v for k, v in study.DEFAULT_PLAN.items()}
+    p = study.plan_for(rev)
+    assert p["s1"] == pytest.approx((0.145, 0.195, 0.245))               # shifted by s1 - 0.345
+    assert p["trail"] == pytest.approx((0.03, 0.04, 0.05, 0.06, 0.08))   # shifted by trail - 0.08
+    assert p["pin_friction"] == study.DEFAULT_PLAN["pin_friction"]        # scaled by 0.1 / 0.1
+    # values a chair cannot take are dropped (s1 + s2 must exceed s1)
+    tight = ej.replace(s1=0.45, s2=0.05)
+    assert all(v > 0.45 for v in study.plan_for(tight)["s1_plus_s2"])
