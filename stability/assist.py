@@ -27,12 +27,19 @@ the external loads at a fixed state).
 Weights (Bryson's rule)
 -----------------------
 ``Q = diag(1/x_max^2)``, ``R = 1/Mz_max^2`` with ``psi_max`` the acceptable
-heading error (default 2 deg), ``r_max`` an acceptable yaw rate (default
-10 deg/s, which damps the yaw motion), ``v_max`` an optional lateral-velocity
-limit (default none) and ``Mz_max`` the yaw moment of the torque budget
-(default half the motor limit per wheel, leaving the other half for larger
-disturbances before saturation).  The caster angles are not weighted: they
-are free to swivel, and the regulator only needs them to stay stable.
+heading error (default 2 deg) and ``Mz_max`` the yaw moment of the torque
+budget (default half the motor limit per wheel, 35 N m for the preset,
+leaving the other half for larger disturbances before saturation).  For the
+heading the LQR gain is then ``Mz_max/psi_max``: a 2 deg error commands the
+whole budget (17.5 N m per wheel per degree).  Optional limits on the yaw
+rate ``r_max`` and the lateral velocity ``v_max`` are off by default: the
+heading weight alone gives a well-damped loop (slowest closed-loop pair
+about ``-9 +/- 8j`` 1/s, crossover ~20 rad/s, delay margin ~50 ms), while a
+yaw-rate weight of 10 deg/s pushes the crossover to ~40 rad/s and halves
+the delay margin, which unmodelled lags (tire longitudinal relaxation,
+gearbox backlash, the user's body not being rigid) would eat.  The caster
+angles are not weighted: they are free to swivel, and the regulator only
+needs them to stay stable.
 
 Designs
 -------
@@ -56,7 +63,12 @@ Designs
     wheel hitting a bump) and the Doyle-Stein recovery knob: as ``W_Mz``
     grows the loop broken at the plant input approaches the LQR loop and
     its margins.  The measurement noise is the gyro's white noise plus the
-    frame vibration it picks up (``noise_density``).
+    frame vibration it picks up (``noise_density``).  The default recovery
+    (``EstimatorWeights.recovery = 1``) puts the estimator's new pole near
+    -160 1/s, about an eighth of the 200 Hz sample rate; it keeps a phase
+    margin of ~57 deg and ``min |1 + L|`` ~0.9 (LQR: 64 deg, 1.0).  More
+    recovery buys little margin for an estimator faster than the sampling
+    supports.
 
     Why an estimator rather than static output feedback (yaw-rate damping
     plus heading stiffness): the chair's instability is a coupled
@@ -136,7 +148,8 @@ __all__ = [
     "recovery_runs",
     "decay_agreement",
     "minimum_torque_limit",
-    "motor_overwhelmed_time",
+    "destabilising_summary",
+    "valid_until",
     "settle_time",
     "destabilising_moment",
     "fit_decay_rate",
@@ -250,11 +263,11 @@ class EstimatorWeights:
         4 N s impulse; one such impulse a second is a white force of density
         ``4^2 = 16 N^2 s``.
     recovery : float
-        Yaw-moment process noise at the plant input as a multiple of the
-        lateral force's yaw effect: ``W_Mz = (recovery * 0.5 m)^2 W_Fy``,
-        i.e. a lateral force with a lever of ``recovery * 0.5 m``.  Larger
-        values recover the LQR loop at the plant input (Doyle and Stein)
-        at the cost of a noisier estimate.
+        Yaw-moment process noise at the plant input,
+        ``W_Mz = (recovery * 0.5 m)^2 W_Fy``: the lateral-force noise acting
+        with a lever of ``recovery`` times 0.5 m (about the wheelbase).
+        Larger values recover the LQR loop at the plant input (Doyle and
+        Stein) at the cost of a faster, noisier estimator.
     """
 
     lateral_force: float = 16.0
@@ -1397,19 +1410,49 @@ def figure_robustness(rob: Robustness, sched: Schedule):
 def _first_slip_warning(res) -> float:
     w = res.warnings.get("slip", {}) if isinstance(res.warnings, dict) else {}
     t = w.get("first_time")
-    return float(t) if t is not None else float(res.t[-1])
+    return float(t) if t is not None else float(res.t[-1]) + 1e-9
 
 
-def motor_overwhelmed_time(res, drive: DriveTrain, chair: Chair) -> float | None:
-    """First time the open-loop tire yaw moment exceeds the drive's largest yaw moment (s), or None.
+def valid_until(res, max_heading_deg: float = 90.0) -> float:
+    """End of the meaningful part of an open-loop run (s).
 
-    The thesis's criterion (chapter 9, "Future work"): once the destabilising
-    moment of the tire forces exceeds what the motors can produce, the
-    chair cannot be returned to straight motion.
+    The first time any tire's slip angle passes 8 deg (the simulator's
+    warning; beyond it tested tire data are extrapolated and a linear tire
+    model is not defensible either) or the heading reaches
+    ``max_heading_deg``, whichever comes first.
     """
+    tw = _first_slip_warning(res)
+    slip = np.flatnonzero(np.any(np.abs(np.asarray(res.slip_deg)) > 8.0, axis=1))
+    if slip.size:
+        tw = min(tw, float(res.t[slip[0]]))
+    big = np.flatnonzero(np.abs(np.degrees(np.asarray(res.heading))) >= max_heading_deg)
+    return min(tw, float(res.t[big[0]])) if big.size else tw
+
+
+def destabilising_summary(res, drive: DriveTrain, chair: Chair) -> dict:
+    """The thesis's criterion (chapter 9, "Future work") applied to an open-loop run.
+
+    Once the destabilising moment of the tire forces exceeds what the
+    motors can produce, the chair cannot be returned to straight motion.
+    Over the meaningful part of the run (:func:`valid_until`) returns
+    ``{"valid_until_s", "heading_at_end_deg", "peak_moment_Nm",
+    "motor_capacity_Nm", "fraction_of_capacity", "exceeds_capacity_at_s"}``
+    (the last None if the moment stays below the capacity).
+    """
+    t = np.asarray(res.t)
+    end = valid_until(res)
+    k = t < end
+    m = np.abs(np.asarray(res.tire_yaw_moment))[k]
     cap = drive.max_yaw_moment(chair)
-    i = np.flatnonzero(np.abs(np.asarray(res.tire_yaw_moment)) > cap)
-    return float(res.t[i[0]]) if i.size else None
+    over = np.flatnonzero(m > cap)
+    return {
+        "valid_until_s": float(min(end, t[-1])),
+        "heading_at_end_deg": float(np.degrees(np.asarray(res.heading)[k][-1])) if k.any() else 0.0,
+        "peak_moment_Nm": float(m.max()) if m.size else 0.0,
+        "motor_capacity_Nm": float(cap),
+        "fraction_of_capacity": float(m.max() / cap) if m.size else 0.0,
+        "exceeds_capacity_at_s": float(t[k][over[0]]) if over.size else None,
+    }
 
 
 def figure_destabilising(ref, runs: Sequence, drive: DriveTrain, chair: Chair):
@@ -1421,12 +1464,12 @@ def figure_destabilising(ref, runs: Sequence, drive: DriveTrain, chair: Chair):
     """
     fig, ax = _page("Destabilising yaw moment of the tire forces (thesis Figure 9-4)",
                     "open loop, lateral impulse at the c.g. (to the right), WCHAIR scheme; curves end at the first "
-                    "slip-angle warning (> 8 deg)", 1, 2)
+                    "slip angle above 8 deg (any tire) or, right, at 90 deg of heading", 1, 2)
     a = ax[0, 0]
-    tw = _first_slip_warning(ref)
-    k = np.asarray(ref.t) <= tw
+    tw = valid_until(ref, max_heading_deg=math.inf)
+    k = np.asarray(ref.t) < tw
     a.plot(np.asarray(ref.t)[k], np.asarray(ref.tire_yaw_moment)[k], "k")
-    a.set_title(f"{ref.chair.name}, {ref.speed:g} m/s, 40 N for 0.1 s, {ref.model} model "
+    a.set_title(f"{ref.chair.name}, {ref.speed:g} m/s, 40 N for 0.1 s, {ref.settings.get('model')} model\n"
                 f"(first slip warning {tw:.2f} s)")
     a.set_xlabel("time (s)")
     a.set_ylabel("yaw moment of the tire forces about the c.g. (N m)")
@@ -1435,15 +1478,15 @@ def figure_destabilising(ref, runs: Sequence, drive: DriveTrain, chair: Chair):
     cap = drive.max_yaw_moment(chair)
     for run in runs:
         res = run.result
-        tw = _first_slip_warning(res)
-        k = np.asarray(res.t) <= tw
-        over = motor_overwhelmed_time(res, drive, chair)
+        k = np.asarray(res.t) < valid_until(res)
+        summ = destabilising_summary(res, drive, chair)
         b.plot(np.asarray(res.t)[k], np.asarray(res.tire_yaw_moment)[k],
-               label=f"{run.speed:g} m/s, {run.impulse_force:g} N (exceeds motors at "
-                     f"{'-' if over is None else f'{over:.2f}'} s)")
+               label=f"{run.speed:g} m/s, {run.impulse_force:g} N: peak {summ['peak_moment_Nm']:.0f} N m "
+                     f"({summ['fraction_of_capacity']:.0%} of the motors) by {summ['valid_until_s']:.2f} s")
     b.axhline(cap, color="r", ls="--", label=f"motor limit {cap:.0f} N m")
     b.axhline(-cap, color="r", ls="--")
-    b.set_title(f"{chair.name} open loop ({runs[0].result.model if runs else ''} model)")
+    b.set_title(f"{chair.name} open loop ({runs[0].result.settings.get('model') if runs else ''} model)")
+    b.set_ylim(-1.6 * cap, 1.6 * cap)
     b.set_xlabel("time (s)")
     b.set_ylabel("yaw moment of the tire forces about the c.g. (N m)")
     b.legend(fontsize=8)
@@ -1481,22 +1524,23 @@ def figure_recovery(runs: Sequence[tuple], sched: Schedule):
 
 def figure_recovery_table(table: list[dict], sched: Schedule):
     """The recovery table as a page."""
-    header = ["speed (m/s)", "impulse", "peak heading (deg) closed / open", "peak torque (N m)",
-              "saturated", "settle (s)", "drift (deg/s)", "open loop: 10 deg at (s)"]
+    header = ["U (m/s)", "impulse", "peak heading CL/OL", "response pk", "torque pk",
+              "saturated", "settle (s)", "drift", "OL 10 deg at"]
     rows = []
     for r in table:
         c, o = r["closed"], r.get("open", {})
         rows.append([f"{r['speed_m_s']:g}", f"{r['impulse_N']:g} N x 0.1 s",
-                     f"{c['peak_heading_error_deg']:.2f} / {_fmt(o.get('peak_heading_error_deg'), '.1f')}",
-                     f"{c['peak_torque_Nm']:.1f}", f"{c['saturated_fraction']:.1%}",
-                     _fmt(c["settle_time_s"], ".2f", "not settled"), _fmt(c["final_drift_deg_s"], ".3f"),
-                     _fmt(o.get("time_to_10deg_s"), ".2f", "not reached")])
+                     f"{c['peak_heading_error_deg']:.2f} / {_fmt(o.get('peak_heading_error_deg'), '.1f')} deg",
+                     f"{c['peak_response_deg']:.3f} deg", f"{c['peak_torque_Nm']:.1f} N m", f"{c['saturated_fraction']:.1%}",
+                     _fmt(c["settle_time_s"], ".2f", "not settled"), _fmt(c["final_drift_deg_s"], ".3f") + " deg/s",
+                     _fmt(o.get("time_to_10deg_s"), ".2f", "not reached") + " s"])
     try:
         from .plotting import table_page
         return table_page(f"Recovery in the nonlinear simulator: {sched.kind} LQR, {sched.chair.name}", header, rows,
                           "10 s, WCHAIR scheme 1 ms, exact model, Coulomb pin friction, torque limit "
                           f"{sched.drive.torque_limit:g} N m per wheel",
-                          col_widths=[0.8, 1.1, 1.6, 1.2, 1.0, 1.0, 1.0, 1.3], wrap=[10, 14, 18, 14, 10, 10, 10, 14],
+                          col_widths=[0.7, 1.1, 1.5, 1.1, 1.0, 0.9, 0.9, 1.1, 1.0],
+                          wrap=[8, 14, 20, 12, 12, 10, 10, 14, 12],
                           notes="peak heading: largest |heading| of the closed loop (including the drift and wander "
                                 "the gyro bias and noise cause) / of the open-loop chair over 10 s; settle: the "
                                 "disturbance response (heading minus that of a twin run with the same gyro noise "
@@ -1631,13 +1675,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("\nNonlinear recovery (10 s, WCHAIR scheme, exact model, pin friction, torque limit"
               + (", gyro noise and bias" if sched.kind == "gyro" else "") + "): closed loop vs open loop")
         print(format_recovery(table))
+        print("\nFigure 9-4 criterion, open loop (destabilising moment of the tire forces vs the motors' "
+              f"{sched.drive.max_yaw_moment(sched.chair):.0f} N m):")
         for closed, opened in runs:
-            if opened is not None and closed.impulse_force == 40.0:
-                over = motor_overwhelmed_time(opened.result, sched.drive, sched.chair)
-                print(f"open loop, {closed.speed:g} m/s, 40 N: tire yaw moment exceeds the motors' "
-                      f"{sched.drive.max_yaw_moment(sched.chair):.0f} N m at "
-                      + ("never" if over is None else f"{over:.2f} s (heading then "
-                         f"{np.degrees(np.interp(over, opened.result.t, opened.result.heading)):.0f} deg)"))
+            if opened is not None:
+                d_ = destabilising_summary(opened.result, sched.drive, sched.chair)
+                print(f"  {closed.speed:g} m/s, {closed.impulse_force:g} N: peak {d_['peak_moment_Nm']:.0f} N m "
+                      f"({d_['fraction_of_capacity']:.0%}) up to {d_['valid_until_s']:.2f} s (heading "
+                      f"{d_['heading_at_end_deg']:.0f} deg; a slip angle reaches 8 deg or the heading 90 deg)"
+                      + ("" if d_["exceeds_capacity_at_s"] is None else
+                         f"; exceeds the motors at {d_['exceeds_capacity_at_s']:.2f} s"))
         agree = [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)]
         print("\nLinear vs nonlinear decay (4 N x 0.1 s, pin friction off, 1 kHz): "
               + "; ".join(f"{a['speed_m_s']:g} m/s: predicted {a['predicted_1_s']:.3f}, fitted "
