@@ -1248,7 +1248,7 @@ def format_table(sched: Schedule, rows: list[dict]) -> str:
         k = r["wheel_torque_gains"]
         m = r["margins"]
         lines.append(
-            f"{r['speed_m_s']:5.2f} " + " ".join(f"{x:8.3g}" for x in k)
+            f"{r['speed_m_s']:5.2f} " + " ".join(f"{x:8.4g}" for x in k)
             + f" | {r['open_loop_max_real_1_s']:7.3f} {r['closed_loop_max_real_1_s']:7.3f} "
             f"{_fmt(m['gain_margin_upper'], '.3g'):>6s} {_fmt(m['gain_margin_lower'], '.2g'):>6s} "
             f"{_fmt(m['phase_margin_deg'], '.0f'):>5s} {_fmt(m['disk_margin'], '.2f'):>5s} | "
