@@ -105,7 +105,7 @@ class ReportData:
 def counterpart(c: Chair) -> Chair:
     """The same chair with its casters at the other end (s1 and s2 exchanged, as chapter 8's 'Method One')."""
     pos = "front" if c.caster_position == "rear" else "rear"
-    return c.replace(name=f"{c.name} ({pos} casters)", caster_position=pos, s1=c.s2, s2=c.s1)
+    return c.replace(name=f"{c.name}, casters swapped", caster_position=pos, s1=c.s2, s2=c.s1)
 
 
 def _response_speeds(u_star: float) -> list[float]:
@@ -263,8 +263,13 @@ def findings(d: ReportData) -> list[str]:
     ranked = d.chair_sweeps.ranked()
     top = ", ".join(f"{sw.label} ({sw.effect_percent:.0f} %)" for sw in ranked[:4])
     low = ", ".join(f"{sw.label} ({sw.effect_percent:.1f} %)" for sw in ranked[-3:])
-    out.append(f"What matters most (spread of the equal-instability speed over the values tried, in % of the "
-               f"chair's own): {top}. What matters least: {low}.")
+    if all(r.status != "found" for sw in ranked for r in sw.results) and cs.status != "found":
+        out.append(f"The parametric study cannot rank the parameters for {c.name}: every variant tried stays "
+                   f"outside the speed bracket ({cs.bracket[0]:g}-{cs.bracket[1]:g} m/s) of the reference instability.")
+    else:
+        out.append(f"What matters most (spread of the equal-instability speed over the values tried, in % of the "
+                   f"chair's own{'; some values are bounds' if any(sw.censored for sw in ranked) else ''}): {top}. "
+                   f"What matters least: {low}.")
     g = d.gain_loci[0]
     if g.stabilising_gain is None:
         out.append(f"Yaw-rate feedback Mz = -K r does not stabilise the linear model at {g.speed:g} m/s "
@@ -432,6 +437,12 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
                th.speeds["ej-premier-front-caster"]]
         if c != preset("ej-premier"):
             res = [d.chair_speed] + list(d.chair_friction) + res
+        seen, uniq = set(), []
+        for r in res:                      # a preset chair appears once
+            if r.chair.name not in seen:
+                seen.add(r.chair.name)
+                uniq.append(r)
+        res = uniq
         thesis_ranges = {"ej-premier": (0.75, 0.75), "revised": (1.10, 1.15), "revised x0.5 friction": (0.63, 0.67),
                          "revised x1.5 friction": (1.63, 1.67)}
         fig, axes = P.page(_title(d, "equal-instability speeds (chapter 9, Figures 9-2 and 9-3)"), sub, nrows=1,
@@ -460,7 +471,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
                 ax.text(0.0, y, line, fontsize=8, va="top", transform=ax.transAxes)
                 y -= 0.033
             y -= 0.02
-        return P.finish(fig, left=0.17)
+        return P.finish(fig, left=0.22)
 
     def p_sweeps():
         table = d.chair_sweeps
@@ -468,9 +479,12 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
         ncols = 4
         nrows = int(math.ceil(n / ncols))
         fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
-                           sub + "  |  dashed: this chair's speed; dotted: its value", nrows=nrows, ncols=ncols)
+                           sub, nrows=nrows, ncols=ncols)
         P.sweep_chart(table, axes)
-        return P.finish(fig)
+        fig.text(0.5, 0.012, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
+                 "parameter; other parameters at the chair's values. Same speed scale in every panel.",
+                 ha="center", fontsize=8, color="0.3")
+        return P.finish(fig, bottom=0.09)
 
     def p_sweep_table():
         table = d.chair_sweeps

@@ -47,6 +47,7 @@ from .linear import (
     Crossing,
     critical_speeds,
     state_matrices,
+    state_space,
     track_modes,
 )
 
@@ -542,17 +543,7 @@ def gain_locus(chair: Chair, speed: float = 0.75, gains=None, *, model: str = "e
     K = np.asarray(gains, dtype=float)
     if K.ndim != 1 or np.any(K < 0) or np.any(np.diff(K) <= 0):
         raise ValueError("gains must be an increasing 1-D array of gains K >= 0 (N m s/rad)")
-    from .linear import input_matrices
-
-    # G(s) = r / Mz as a SISO StateSpace (built here rather than with
-    # linear.state_space, whose system name holds a '.' that control 0.10
-    # rejects for speeds such as 0.75)
-    A = state_matrices(chair, speed, model, casters)[0]
-    B = input_matrices(chair, speed, model, casters)[0]
-    C = np.zeros((1, A.shape[0]))
-    C[0, 1] = 1.0
-    G = control.ss(A, B, C, np.zeros((1, 1)), inputs=["Mz"], outputs=["r"],
-                   name=f"{chair.name} yaw rate per yaw moment".replace(".", "_"))
+    G = state_space(chair, speed, model, casters)[1, 0]   # Mz -> r (SISO)
     rl = control.root_locus_map(G, gains=K)
     loci = track_modes(np.asarray(rl.loci))
     k_stab = _stabilising_gain(chair, speed, model, casters, K)
