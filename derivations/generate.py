@@ -73,6 +73,62 @@ def _cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str) -> List[str]:
     return lines
 
 
+# the chair's parameters: in a batch they are shared Python floats, so that
+# products of them cost nothing next to operations on arrays of runs
+PARAMETERS = frozenset(("x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "l1", "m", "m_c", "i_z", "i_zp"))
+
+
+def _split_by_parameters(named: Sequence[Tuple[str, sp.Expr]], tmp: str
+                         ) -> Tuple[List[Tuple[sp.Symbol, sp.Expr]], List[Tuple[str, sp.Expr]]]:
+    """Write each expression as ``sum(c_k * s_k)``: ``c_k`` parameters only, ``s_k`` the rest.
+
+    Every coefficient other than +-1 becomes one temporary (``_p0, _p1, ...``,
+    shared between equal coefficients) and the terms sharing a coefficient
+    are summed before it multiplies them, so that an expression costs about
+    one array operation per state factor, not one per factor.  Returns the
+    temporaries and the rewritten expressions.
+    """
+    params = {sp.Symbol(n, real=True) for n in PARAMETERS} | {sp.Symbol(n) for n in PARAMETERS}
+    coef_sym: Dict[sp.Expr, sp.Symbol] = {}
+    defs: List[Tuple[sp.Symbol, sp.Expr]] = []
+    out = []
+    for name, e in named:
+        groups: Dict[sp.Expr, sp.Expr] = {}
+        order: List[sp.Expr] = []
+        for term in sp.Add.make_args(sp.expand(sp.sympify(e))):
+            c, s = [], []
+            for f in sp.Mul.make_args(term):
+                (c if f.free_symbols <= params else s).append(f)
+            mono = sp.Mul(*s)
+            if mono not in groups:
+                order.append(mono)
+                groups[mono] = sp.Integer(0)
+            groups[mono] += sp.Mul(*c)
+        by_coef: Dict[sp.Expr, List[sp.Expr]] = {}
+        for mono in order:
+            coef = sp.factor_terms(groups[mono])
+            if coef == 0:
+                continue
+            if coef not in (1, -1) and not coef.is_Symbol:
+                if coef not in coef_sym:
+                    coef_sym[coef] = sp.Symbol(f"{tmp}{len(defs)}")
+                    defs.append((coef_sym[coef], coef))
+                coef = coef_sym[coef]
+            by_coef.setdefault(coef, []).append(mono)
+        # one multiplication per distinct coefficient: c * (s_1 + s_2 + ...)
+        terms = [c * sp.Add(*monos, evaluate=False) if len(monos) > 1 else c * monos[0]
+                 for c, monos in by_coef.items()]
+        out.append((name, sp.Add(*terms)))
+    return defs, out
+
+
+def _hoisted_cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str, ptmp: str) -> List[str]:
+    """Like :func:`_cse_lines`, parameter-only coefficients first (see :func:`_split_by_parameters`)."""
+    defs, rewritten = _split_by_parameters(named, ptmp)
+    lines = _cse_lines([(str(s), e) for s, e in defs], "_q" + ptmp.lstrip("_")) if defs else []
+    return lines + _cse_lines(rewritten, tmp)
+
+
 def _function(name: str, args: Sequence[str], doc: str, body: Iterable[str], ret: str,
               defaults: Dict[str, str] | None = None) -> str:
     defaults = defaults or {}
@@ -305,7 +361,7 @@ def render_full_width() -> str:
     vel_names = ("vAx", "vAy", "vBx", "vBy", "vDx", "vDy", "vEx", "vEy")
     for variant, note in (("exact", _VEL_NOTE_EXACT), ("thesis", _VEL_NOTE_THESIS)):
         named = list(zip(vel_names, g[f"vel_{variant}"]))
-        body = _cse_lines(named, "_a")
+        body = _hoisted_cse_lines(named, "_a", "_p")
         doc = _VEL_DOC.format(which={"exact": "exact kinematics",
                                      "thesis": "eqs 6-17a-d, SLIP"}[variant], note=note)
         name = f"contact_velocities_{variant}"
@@ -316,7 +372,7 @@ def render_full_width() -> str:
     M = g["M_exact"]
     named = [(f"m{i}{j}", M[(i, j)]) for (i, j) in sorted(M) if (i, j) != (3, 4)]
     named += [(f"f{i}", g["F_exact"][i]) for i in range(5)]
-    body = _cse_lines(named, "_a")
+    body = _hoisted_cse_lines(named, "_a", "_p")
     body += [
         "# eliminate the caster accelerations (caster block diagonal: m33, m44)",
         "k3 = 1/m33",
@@ -353,9 +409,9 @@ def render_full_width() -> str:
     rdc = fw.S.r_dot_casters
     for e in acc[:3]:
         assert not e.has(rdc)
-    body = _cse_lines(list(zip(("u_dot", "v_dot", "r_dot"), acc[:3])), "_a")
+    body = _hoisted_cse_lines(list(zip(("u_dot", "v_dot", "r_dot"), acc[:3])), "_a", "_p")
     body += ["if r_dot_casters is None:", "    r_dot_casters = r_dot"]
-    body += _cse_lines(list(zip(("eta_dd", "beta_dd"), acc[3:])), "_b")
+    body += _hoisted_cse_lines(list(zip(("eta_dd", "beta_dd"), acc[3:])), "_b", "_pb")
     parts.append(_function("accelerations_thesis", fw.ACCEL_ARGS + ("r_dot_casters",),
                            _ACC_THESIS_DOC, body, "(u_dot, v_dot, r_dot, eta_dd, beta_dd)",
                            {"r_dot_casters": "None"}))
