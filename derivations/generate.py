@@ -116,10 +116,30 @@ def _split_by_parameters(named: Sequence[Tuple[str, sp.Expr]], tmp: str
                 coef = coef_sym[coef]
             by_coef.setdefault(coef, []).append(mono)
         # one multiplication per distinct coefficient: c * (s_1 + s_2 + ...)
-        terms = [c * sp.Add(*monos, evaluate=False) if len(monos) > 1 else c * monos[0]
-                 for c, monos in by_coef.items()]
+        terms = [c * _factor_greedily(monos) for c, monos in by_coef.items()]
         out.append((name, sp.Add(*terms)))
     return defs, out
+
+
+def _factor_greedily(monos: Sequence[sp.Expr]) -> sp.Expr:
+    """``sum(monos)`` with the most frequent factor taken out, recursively.
+
+    ``a*x + b*x + c`` becomes ``x*(a + b) + c`` (two array operations fewer);
+    ties are broken by name, so the result is deterministic.
+    """
+    if len(monos) < 2:
+        return sp.Add(*monos)
+    counts: Dict[sp.Symbol, int] = {}
+    for mono in monos:
+        for sym in mono.free_symbols:
+            counts[sym] = counts.get(sym, 0) + 1
+    best = max(sorted(counts, key=str), key=lambda sym: counts[sym], default=None)
+    if best is None or counts[best] < 2:
+        return sp.Add(*monos, evaluate=False)
+    inner = [mono / best for mono in monos if mono.has(best)]
+    rest = [mono for mono in monos if not mono.has(best)]
+    factored = best * _factor_greedily(inner)
+    return sp.Add(factored, _factor_greedily(rest), evaluate=False) if rest else factored
 
 
 def _hoisted_cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str, ptmp: str) -> List[str]:

@@ -104,6 +104,7 @@ from . import loads as _loads
 from . import models as _models
 from .chair import Chair
 from .progress import ProgressBar
+from . import tires as _tires
 
 __all__ = [
     "SCHEMES",
@@ -253,7 +254,8 @@ class SimulationResult:
     # -- construction ----------------------------------------------------
     @classmethod
     def _from_records(cls, rec: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings):
-        c = {name: rec[:, i] for i, name in enumerate(_COLS)}
+        cols = np.ascontiguousarray(rec.T, dtype=float)  # one copy; every column below is a view of it
+        c = {name: cols[i] for i, name in enumerate(_COLS)}
 
         def wheels(prefix):
             return _frozen(np.stack([c[f"{prefix}_{w}"] for w in WHEELS], axis=1).reshape(-1, 4))
@@ -707,9 +709,13 @@ class _Kernel:
         self.ftimp = opts.tire_impulse
         self.fcimp = opts.impulse_force
         self.duimp = opts.impulse_duration
+        self.stack = None
         if self.single_group:  # bind the tire calls once (hot path)
             g0 = self.groups[0][0]
             pol = self.policy
+            if vector and isinstance(g0.caster, _tires.Tire) and isinstance(g0.main, _tires.Tire):
+                # all four wheels of every run in one call (rows A, B, D, E)
+                self.stack = _tires.TireStack((g0.caster, g0.caster, g0.main, g0.main))
             cl, ml = g0.caster.lateral_force, g0.main.lateral_force
             self.caster_lateral = lambda slip, fz: cl(slip, fz, policy=pol, warn=False)
             self.main_lateral = lambda slip, fz: ml(slip, fz, policy=pol, warn=False)
@@ -808,7 +814,9 @@ def _tire_forces(K: _Kernel, impulse_on: bool, vel, slips, NA, NB, ND, NE, S4=No
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
     sA, sB, sD, sE = slips
     ftimp_on = K.ftimp != 0.0 and impulse_on
-    if S4 is not None and K.single_group:
+    if S4 is not None and K.stack is not None:
+        FAy, FBy, FDy, FEy = K.stack.lateral_force(S4, N4, policy=K.policy)
+    elif S4 is not None and K.single_group:
         m = S4.shape[1]
         lat = K.caster_lateral(S4[0:2].reshape(-1), N4[0:2].reshape(-1))
         FAy, FBy = lat[:m], lat[m:]

@@ -67,6 +67,7 @@ __all__ = [
     "TABLE_4_1_FZ_N",
     "Tire",
     "TireRangeWarning",
+    "TireStack",
     "camber_coefficient_fit",
     "get",
     "names",
@@ -474,6 +475,40 @@ def _canonical(name: str) -> str:
     return key
 
 
+def _segment_force(segments: tuple, s: NDArray[np.float64], fz: NDArray[np.float64],
+                   offset: Any = None) -> NDArray[np.float64]:
+    """Magnitude of the interpolated cornering force (N): the force law of WCHAIR's MECHAN.
+
+    ``segments`` are the columns ``a0, b0, c0, da, db, dc`` of one-degree
+    segments (8 per tire, tires end to end, ``offset`` selecting the tire);
+    ``s`` the slip magnitude (deg, already limited as the policy says) and
+    ``fz`` the normal force (N).  Interpolating the coefficients linearly
+    in slip and evaluating one cubic equals interpolating the forces, since
+    the force is linear in the coefficients.  ``fz <= 0`` gives 0 (a wheel
+    off the ground); NaN in gives NaN out.
+    """
+    fzp = np.maximum(fz, 0.0)
+    i = np.floor(s)
+    np.fmin(i, 7.0, out=i)                   # NaN slip -> segment 7 (t stays NaN: NaN force)
+    t = s - i
+    ii = i.astype(np.intp)
+    if offset is not None:
+        ii += offset
+    a0, b0, c0, da, db, dc = segments
+    c = c0.take(ii)
+    c += t * dc.take(ii)
+    b = b0.take(ii)
+    b += t * db.take(ii)
+    a = a0.take(ii)
+    a += t * da.take(ii)
+    c *= fzp
+    c += b
+    c *= fzp
+    c += a
+    c *= fzp
+    return c
+
+
 @dataclass(frozen=True)
 class Tire:
     """A tested tire: cubic fits (4-1) per integer slip angle.
@@ -660,16 +695,7 @@ class Tire:
                     TireRangeWarning,
                     stacklevel=3,
                 )
-        fzp = np.maximum(f, 0.0)                     # a wheel off the ground carries nothing; NaN stays NaN
-        finite = np.isfinite(s)
-        i = np.minimum(np.floor(np.where(finite, s, 0.0)), 7.0)
-        ii = i.astype(np.intp)
-        t = s - i
-        a0, b0, c0, da, db, dc = self._segments
-        a = a0.take(ii) + t * da.take(ii)
-        b = b0.take(ii) + t * db.take(ii)
-        c = c0.take(ii) + t * dc.take(ii)
-        force = fzp * (a + fzp * (b + fzp * c))
+        force = _segment_force(self._segments, s, f)
         if self.lateral_scale != 1.0:
             force = force * self.lateral_scale
         return np.where(slip > 0.0, -force, force) + 0.0
@@ -955,6 +981,64 @@ class LinearTire:
 
 
 AnyTire = Union[Tire, LinearTire]
+
+
+class TireStack:
+    """Several tested tires evaluated in one call: row ``j`` of the input uses tire ``j``.
+
+    The batch simulator's kernel (:mod:`stability.simulate`): the four wheels
+    of every run of a batch, as ``(k, n)`` arrays of slip angles and normal
+    loads, go through one sequence of array operations instead of one per
+    tire.  The force law is exactly :meth:`Tire.lateral_force` (same
+    interpolation, same policies, same rounding), but no
+    :class:`TireRangeWarning` is emitted: the caller counts out-of-range
+    points itself, as WCHAIR's range warnings do.
+
+    Parameters
+    ----------
+    tires : sequence of Tire
+        One tested tire per row (:class:`LinearTire` has no table to stack).
+    """
+
+    def __init__(self, tires: "tuple[Tire, ...] | list[Tire]"):
+        tires = tuple(tires)
+        if not tires or not all(isinstance(t, Tire) for t in tires):
+            raise ValueError(f"tires={tires!r} is not valid; valid: a non-empty sequence of tested Tire objects")
+        k = len(tires)
+        # (6, 8 k): a0, b0, c0, da, db, dc of every tire's 8 one-degree segments, end to end
+        self._table = tuple(np.ascontiguousarray(np.concatenate([t._segments[c] for t in tires]))
+                            for c in range(6))
+        self._offset = (8 * np.arange(k, dtype=np.intp))[:, None]
+        scale = np.array([t.lateral_scale for t in tires], dtype=float)[:, None]
+        self._scale = None if np.all(scale == 1.0) else scale
+        self.names = tuple(t.name for t in tires)
+
+    def lateral_force(self, slip_deg: NDArray[np.float64], fz: NDArray[np.float64], *,
+                      policy: Policy = "clamp") -> NDArray[np.float64]:
+        """Cornering force (N) of each row's tire; ``slip_deg``, ``fz`` of shape ``(k, n)``.
+
+        See :meth:`Tire.lateral_force` for the force law and ``policy``
+        (``"raise"`` raises ValueError naming the first offending value).
+        """
+        s = np.abs(slip_deg)
+        if policy == "clamp":
+            np.minimum(s, SLIP_MAX_DEG, out=s)
+            f = np.minimum(fz, FZ_MAX_N)
+        elif policy == "extrapolate":
+            f = fz
+        else:
+            _check_policy(policy)
+            bad = (s > SLIP_MAX_DEG) | (fz > FZ_MAX_N)
+            if bad.any():
+                j, i = np.argwhere(bad)[0]
+                what = (f"slip angle {float(slip_deg[j, i])!r} deg", f"[-{SLIP_MAX_DEG:g}, {SLIP_MAX_DEG:g}] deg") \
+                    if s[j, i] > SLIP_MAX_DEG else (f"normal force {float(fz[j, i])!r} N", f"[0, {FZ_MAX_N:g}] N")
+                raise ValueError(f"{what[0]} is outside the fitted range {what[1]} (tire {self.names[j]})")
+            f = fz
+        c = _segment_force(self._table, s, f, self._offset)
+        if self._scale is not None:
+            c *= self._scale
+        return np.where(slip_deg > 0.0, -c, c) + 0.0
 
 
 def names() -> tuple[str, ...]:
