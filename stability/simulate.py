@@ -530,6 +530,12 @@ class _Options:
     atol: float
     reverse: bool
 
+    def step_constants(self) -> tuple:
+        """What the WCHAIR loops read every step, as locals:
+        ``(dt, dt^2/2, locked, thesis, yaw_moment, stop_on_warnings, stride, impulse_force)``."""
+        return (self.dt, 0.5 * self.dt * self.dt, self.casters == "locked", self.model == "thesis",
+                self.yaw_moment, self.stop_on_warnings, self.stride, self.impulse_force)
+
     def settings(self) -> dict[str, Any]:
         d = {
             "scheme": self.scheme, "model": self.model, "duration": self.duration, "casters": self.casters,
@@ -945,17 +951,10 @@ def _initial(opts: _Options, speed: float):
 def _wchair_single(chair: Chair, speed: float, opts: _Options) -> SimulationResult:
     K = _Kernel([chair], opts, vector=False)
     p = K.p
-    dt = opts.dt
-    half_dt2 = 0.5 * dt * dt
-    locked = opts.casters == "locked"
-    thesis = opts.model == "thesis"
-    yaw_fn = opts.yaw_moment
-    stop = opts.stop_on_warnings
-    stride = opts.stride
+    dt, half_dt2, locked, thesis, yaw_fn, stop, stride, fcimp = opts.step_constants()
     cos, sin = math.cos, math.sin
     loads_fn = _loads.normal_loads
     maf, mbf = K.maf, K.mbf
-    fcimp = opts.impulse_force
     check_all, chk = K.check_all, K.chk
 
     UD, VD = _initial(opts, speed)
@@ -1044,14 +1043,7 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
                   bar: ProgressBar | None = None) -> list[SimulationResult]:
     nrun = len(chairs)
     K = _Kernel(chairs, opts, vector=True)
-    dt = opts.dt
-    half_dt2 = 0.5 * dt * dt
-    locked = opts.casters == "locked"
-    thesis = opts.model == "thesis"
-    yaw_fn = opts.yaw_moment
-    stop = opts.stop_on_warnings
-    stride = opts.stride
-    fcimp = opts.impulse_force
+    dt, half_dt2, locked, thesis, yaw_fn, stop, stride, fcimp = opts.step_constants()
     n = _n_steps(opts)
     nrec = (n - 1) // stride + 1
     buf = np.empty((nrun, nrec, _NC))   # rows beyond a run's length are never read
