@@ -509,8 +509,51 @@ def _segment_force(segments: tuple, s: NDArray[np.float64], fz: NDArray[np.float
     return c
 
 
+class _CamberForce:
+    """Eq (4-2), shared by :class:`Tire` and :class:`LinearTire` (which supply
+    ``lateral_force`` and ``camber_coefficient``)."""
+
+    def camber_force(
+        self,
+        camber_deg: ArrayLike,
+        fz: ArrayLike,
+        camber_coefficient: float | None = None,
+        *,
+        policy: Policy = "clamp",
+        warn: bool = True,
+    ) -> Any:
+        """Camber force (N), eq (4-2): ``f_c * F_y(alpha = gamma, fz)``.
+
+        ``F_y`` is the cornering force of :meth:`lateral_force` at a slip
+        angle equal to the camber angle (``f_c * C * gamma`` for a
+        :class:`LinearTire`). The force has the sign of
+        ``camber_deg`` (it acts toward the side to which the wheel leans);
+        the caller maps it onto the vehicle axes. Differences from WCHAIR,
+        which uses ``POLYFT(TIRY, INT(CAMANG), FZ)`` unscaled: here the
+        camber angle is interpolated and ``lateral_scale`` applies.
+
+        Parameters
+        ----------
+        camber_deg : float or array_like
+            Camber angle(s), deg.
+        fz : float or array_like
+            Normal force(s), N.
+        camber_coefficient : float, optional
+            ``f_c``; defaults to :attr:`camber_coefficient`.
+        policy, warn
+            As for :meth:`lateral_force`.
+
+        Returns
+        -------
+        float or ndarray
+            N.
+        """
+        fc = self.camber_coefficient if camber_coefficient is None else float(camber_coefficient)
+        return -fc * self.lateral_force(camber_deg, fz, policy=policy, warn=warn)
+
+
 @dataclass(frozen=True)
-class Tire:
+class Tire(_CamberForce):
     """A tested tire: cubic fits (4-1) per integer slip angle.
 
     Use :func:`get` to build one. Instances are immutable; :meth:`scaled`
@@ -759,43 +802,6 @@ class Tire:
             )
         return camber_coefficient_fit(self.name)
 
-    def camber_force(
-        self,
-        camber_deg: ArrayLike,
-        fz: ArrayLike,
-        camber_coefficient: float | None = None,
-        *,
-        policy: Policy = "clamp",
-        warn: bool = True,
-    ) -> Any:
-        """Camber force (N), eq (4-2): ``f_c * F_y(alpha = gamma, fz)``.
-
-        ``F_y`` is the interpolated cornering force of :meth:`lateral_force`
-        at a slip angle equal to the camber angle. The force has the sign of
-        ``camber_deg`` (it acts toward the side to which the wheel leans);
-        the caller maps it onto the vehicle axes. Differences from WCHAIR,
-        which uses ``POLYFT(TIRY, INT(CAMANG), FZ)`` unscaled: here the
-        camber angle is interpolated and ``lateral_scale`` applies.
-
-        Parameters
-        ----------
-        camber_deg : float or array_like
-            Camber angle(s), deg.
-        fz : float or array_like
-            Normal force(s), N.
-        camber_coefficient : float, optional
-            ``f_c``; defaults to :attr:`camber_coefficient`.
-        policy, warn
-            As for :meth:`lateral_force`.
-
-        Returns
-        -------
-        float or ndarray
-            N.
-        """
-        fc = self.camber_coefficient if camber_coefficient is None else float(camber_coefficient)
-        return -fc * self.lateral_force(camber_deg, fz, policy=policy, warn=warn)
-
     # -- rolling resistance -----------------------------------------------------
     def rolling_resistance(self, fz: ArrayLike) -> Any:
         """Magnitude of the rolling-resistance force (N), Appendix B cubic.
@@ -854,7 +860,7 @@ class Tire:
 
 
 @dataclass(frozen=True)
-class LinearTire:
+class LinearTire(_CamberForce):
     """A hypothetical linear tire: ``F_y = -C * slip`` independent of load.
 
     For chairs whose tires were never tested (``get("linear:<C>")``). Same
@@ -942,19 +948,6 @@ class LinearTire:
         if self.camber_coef is None:
             raise ValueError(f"{self.name} has no camber coefficient; pass camber_coefficient= explicitly")
         return self.camber_coef
-
-    def camber_force(
-        self,
-        camber_deg: ArrayLike,
-        fz: ArrayLike,
-        camber_coefficient: float | None = None,
-        *,
-        policy: Policy = "clamp",
-        warn: bool = True,
-    ) -> Any:
-        """Camber force ``f_c * C * gamma`` (N), eq (4-2)."""
-        fc = self.camber_coefficient if camber_coefficient is None else float(camber_coefficient)
-        return -fc * self.lateral_force(camber_deg, fz, policy=policy, warn=warn)
 
     def rolling_resistance(self, fz: ArrayLike) -> Any:
         """``f_r * fz * rolling_scale`` (N), eq (3-2); 0 where ``fz <= 0``."""
