@@ -122,6 +122,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
+from ._validate import check_choice, check_nonnegative, check_positive, check_speed
 from .chair import Chair
 from .power_chair import DriveTrain
 
@@ -188,10 +189,10 @@ class Weights:
     torque_budget_nm: float | None = None
 
     def __post_init__(self) -> None:
-        _positive("max_heading_error_deg", self.max_heading_error_deg)
+        check_positive("max_heading_error_deg", self.max_heading_error_deg)
         for name in ("max_yaw_rate_deg_s", "max_lateral_velocity_m_s", "torque_budget_nm"):
             if getattr(self, name) is not None:
-                _positive(name, getattr(self, name))
+                check_positive(name, getattr(self, name))
 
     def matrices(self, chair: Chair, drive: DriveTrain) -> tuple[np.ndarray, np.ndarray]:
         """``(Q, R)`` for the seven states of :data:`STATES` and the input ``Mz``."""
@@ -236,10 +237,8 @@ class GyroSensor:
 
     def __post_init__(self) -> None:
         for name in ("noise_density_deg_s", "bias_deg_s"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
-                raise ValueError(f"{name}={v!r} is invalid; valid range: >= 0 (finite)")
-        _positive("sample_rate_hz", self.sample_rate_hz)
+            check_nonnegative(name, getattr(self, name))
+        check_positive("sample_rate_hz", self.sample_rate_hz)
 
     @property
     def noise_psd(self) -> float:
@@ -274,28 +273,13 @@ class EstimatorWeights:
     recovery: float = 1.0
 
     def __post_init__(self) -> None:
-        _positive("lateral_force", self.lateral_force)
-        _positive("recovery", self.recovery)
+        check_positive("lateral_force", self.lateral_force)
+        check_positive("recovery", self.recovery)
 
     @property
     def yaw_moment(self) -> float:
         """Yaw-moment spectral density ``W_Mz`` (N^2 m^2 s)."""
         return (self.recovery * 0.5) ** 2 * self.lateral_force
-
-
-def _positive(name: str, value: Any) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-        raise ValueError(f"{name}={value!r} is invalid; valid range: > 0 (finite)")
-
-
-def _check_speed(speed: Any) -> float:
-    try:
-        s = float(speed)
-    except (TypeError, ValueError):
-        raise ValueError(f"speed={speed!r} is invalid; valid range: speed > 0 m/s") from None
-    if not (math.isfinite(s) and s > 0):
-        raise ValueError(f"speed={speed!r} is invalid; valid range: speed > 0 m/s")
-    return s
 
 
 # ---------------------------------------------------------------------------
@@ -379,7 +363,7 @@ def plant(chair: Chair, speed: float, model: str = "exact") -> Plant:
     """Linear plant of ``chair`` at ``speed`` (m/s), augmented with the heading."""
     from .linear import input_matrices, state_matrices
 
-    speed = _check_speed(speed)
+    speed = check_speed(speed)
     A6 = state_matrices(chair, speed, model)[0]
     B6 = input_matrices(chair, speed, model)[0]
     A = np.zeros((7, 7))
@@ -480,19 +464,13 @@ def _measurement_matrix(kind: str) -> np.ndarray:
     return C
 
 
-def _check_design(kind: str) -> str:
-    if kind not in DESIGNS:
-        raise ValueError(f"design={kind!r} is invalid; valid choices: {list(DESIGNS)}")
-    return kind
-
-
 def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights = Weights(),
            drive: DriveTrain | None = None, gyro: GyroSensor = GyroSensor(),
            estimator: EstimatorWeights = EstimatorWeights(), model: str = "exact") -> Design:
     """LQR design (and, for ``kind="gyro"``, its Kalman estimator) at one speed."""
     import control
 
-    _check_design(kind)
+    check_choice("design", kind, DESIGNS)
     drive = drive or DriveTrain()
     p = plant(chair, speed, model)
     Q, R = weights.matrices(chair, drive)
@@ -621,7 +599,7 @@ class Schedule:
 
     def gains_at(self, speed: float) -> np.ndarray:
         """LQR gain (1, 7) at ``speed``: linear interpolation in speed, held at the ends of the grid."""
-        return self._interp(_check_speed(speed), lambda d: d.K)
+        return self._interp(check_speed(speed), lambda d: d.K)
 
     def at(self, speed: float) -> Design:
         """The scheduled controller at ``speed``.
@@ -632,7 +610,7 @@ class Schedule:
         that stores tables does.  The ``plant`` of the returned design is
         the true linear plant at ``speed``.
         """
-        speed = _check_speed(speed)
+        speed = check_speed(speed)
         hit = np.flatnonzero(np.isclose(self.speeds, speed, rtol=0, atol=1e-12))
         if hit.size:
             return self.designs[int(hit[0])]
@@ -652,12 +630,12 @@ def schedule(chair: Chair, speeds: Sequence[float], kind: str = "gyro", *, weigh
              drive: DriveTrain | None = None, gyro: GyroSensor = GyroSensor(),
              estimator: EstimatorWeights = EstimatorWeights(), model: str = "exact") -> Schedule:
     """Design at every speed of an increasing grid (see :class:`Schedule`)."""
-    _check_design(kind)
+    check_choice("design", kind, DESIGNS)
     U = np.asarray(speeds, dtype=float).reshape(-1)
     if U.size == 0:
         raise ValueError("speeds: expected at least one speed")
     for s in U:
-        _check_speed(s)
+        check_speed(s)
     if np.any(np.diff(U) <= 0):
         raise ValueError("speeds must be strictly increasing")
     drive = drive or DriveTrain()
@@ -968,7 +946,7 @@ def recovery(chair: Chair, speed: float, controller: DigitalController | None, *
     a noisy gyro a twin run without the impulse gives the disturbance
     response (see :class:`RecoveryRun`).
     """
-    speed = _check_speed(speed)
+    speed = check_speed(speed)
     res = _simulate(chair, speed, controller, impulse_force, impulse_duration, duration, dt, model, scheme)
     t = np.asarray(res.t)
     head = np.degrees(np.asarray(res.heading))
@@ -1046,7 +1024,7 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = 4
     N m between 0 and the drive train's limit.  Returns ``inf`` if even the
     full limit does not recover.
     """
-    speed = _check_speed(speed)
+    speed = check_speed(speed)
     d = sched.at(speed)
 
     def ok(limit: float) -> bool:
@@ -1084,7 +1062,7 @@ def decay_agreement(sched: Schedule, speed: float, *, impulse_force: float = 4.0
     its decay.  Returns ``{"speed_m_s", "predicted_1_s", "fitted_1_s",
     "relative_error", "window_s", "frequency_rad_s"}``.
     """
-    speed = _check_speed(speed)
+    speed = check_speed(speed)
     d = sched.at(speed)
     lam = closed_loop_poles(d)
     slow = lam[0]
@@ -1575,14 +1553,12 @@ def format_recovery(table: list[dict]) -> str:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from .critical_speed import OneLineErrorParser
+    from .cli import OneLineErrorParser, add_chair_options
 
     p = OneLineErrorParser(prog="python -m stability.assist",
                            description="LQR motor assist (differential drive torque) for a power chair: "
                                        "gain schedule, margins, robustness and a nonlinear check.")
-    p.add_argument("--chair", default="power-fwd", help="preset name or TOML file (default power-fwd)")
-    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a chair field (repeatable)")
+    add_chair_options(p, default="power-fwd")
     p.add_argument("--speeds", default="0.5:3.0:0.25", help="design speeds START:STOP:STEP or a list (m/s)")
     p.add_argument("--design", default="gyro", choices=list(DESIGNS), help="feedback structure (default gyro)")
     p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
@@ -1638,28 +1614,22 @@ def _options(args) -> tuple[Weights, DriveTrain, GyroSensor]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of ``python -m stability.assist``; returns the exit status."""
-    from .critical_speed import load_chair, parse_speeds
+    """Entry point of ``python -m stability.assist``; returns the exit status (2 on bad input)."""
+    from .cli import run
+
+    return run(build_parser(), argv, _run)
+
+
+def _run(args: argparse.Namespace) -> int:
+    from .cli import check_directory, load_chair, parse_speeds
     from .output import atomic_write_text, write_pdf
 
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        c = load_chair(args.chair, args.set)
-        speeds = parse_speeds(args.speeds)
-        if len(speeds) > 1 and np.any(np.diff(speeds) <= 0):
-            raise ValueError(f"--speeds {args.speeds!r} is invalid; speeds must be strictly increasing")
-        weights, drive, gyro = _options(args)
-        for path, opt in ((args.json, "--json"), (args.pdf, "--pdf")):
-            if path:
-                import os
-                d = os.path.dirname(os.path.abspath(path))
-                if not os.path.isdir(d):
-                    raise ValueError(f"{opt} {path!r}: directory {d!r} does not exist")
-        sched = schedule(c, speeds, args.design, weights=weights, drive=drive, gyro=gyro, model=args.model)
-    except ValueError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
+    c = load_chair(args.chair, args.set)
+    speeds = parse_speeds(args.speeds, increasing=True)
+    weights, drive, gyro = _options(args)
+    check_directory(args.json, "--json")
+    check_directory(args.pdf, "--pdf")
+    sched = schedule(c, speeds, args.design, weights=weights, drive=drive, gyro=gyro, model=args.model)
     rows = gain_table(sched, check=not args.no_check, seed=args.seed)
     print(format_table(sched, rows))
     rob = robustness(sched)

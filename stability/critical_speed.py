@@ -20,38 +20,14 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from typing import Sequence
 
-import numpy as np
-
-from . import chair as chair_mod
+from .cli import OneLineErrorParser, add_chair_options, load_chair, parse_speeds, run
 from .linear import StabilitySummary, analyse
 
-__all__ = ["main", "summary_dict", "parse_speeds", "format_summary"]
-
-
-def parse_speeds(text: str) -> np.ndarray:
-    """Parse ``START:STOP:STEP`` (inclusive of STOP) or a comma list into speeds (m/s)."""
-    try:
-        if ":" in text:
-            parts = [float(x) for x in text.split(":")]
-            if len(parts) != 3:
-                raise ValueError
-            start, stop, step = parts
-            if step <= 0 or stop < start:
-                raise ValueError
-            n = int(math.floor((stop - start) / step + 1e-9)) + 1
-            speeds = start + step * np.arange(n)
-        else:
-            speeds = np.array([float(x) for x in text.split(",")])
-    except ValueError:
-        raise ValueError(f"--speeds {text!r} is invalid; expected START:STOP:STEP with STEP > 0 "
-                         "and STOP >= START, or a comma-separated list") from None
-    if np.any(speeds <= 0) or not np.all(np.isfinite(speeds)):
-        raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed > 0 m/s")
-    return speeds
+# OneLineErrorParser, load_chair and parse_speeds live in stability.cli and are re-exported here.
+__all__ = ["main", "summary_dict", "parse_speeds", "format_summary", "load_chair", "OneLineErrorParser"]
 
 
 def _first(crossings, direction: str | None = None):
@@ -151,18 +127,9 @@ def format_summary(s: StabilitySummary) -> str:
     return "\n".join(lines)
 
 
-class OneLineErrorParser(argparse.ArgumentParser):
-    """An argument parser whose errors are one line on stderr and exit status 2."""
-
-    def error(self, message: str):  # noqa: D102
-        print(f"error: {message}", file=sys.stderr)
-        raise SystemExit(2)
-
-
 def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.critical_speed", description=__doc__.split("\n\n")[0])
-    p.add_argument("--chair", default="ej-premier", help="preset name or TOML file (default ej-premier)")
-    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="override a chair field (repeatable)")
+    add_chair_options(p)
     p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
     p.add_argument("--speeds", default="0.25,0.5,0.75,1,1.5,2,3", help="speeds for the divergence table, START:STOP:STEP or a list (m/s)")
     p.add_argument("--max-speed", type=float, default=30.0, help="upper end of the critical-speed search (m/s, default 30)")
@@ -170,28 +137,17 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def load_chair(spec: str, assignments: Sequence[str]):
-    """Chair from ``--chair`` and ``--set`` options (raises ValueError with one-line messages)."""
-    c = chair_mod.resolve(spec)
-    changes = dict(chair_mod.parse_assignment(a) for a in assignments)
-    return c.replace(**changes) if changes else c
+def _run(args: argparse.Namespace) -> int:
+    c = load_chair(args.chair, args.set)
+    speeds = parse_speeds(args.speeds)
+    summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
+    print(json.dumps(summary_dict(summary), indent=2) if args.json else format_summary(summary))
+    return 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        c = load_chair(args.chair, args.set)
-        speeds = parse_speeds(args.speeds)
-        summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
-    except ValueError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    if args.json:
-        print(json.dumps(summary_dict(summary), indent=2))
-    else:
-        print(format_summary(summary))
-    return 0
+    """Entry point of ``python -m stability.critical_speed``; returns the exit status (2 on bad input)."""
+    return run(build_parser(), argv, _run)
 
 
 if __name__ == "__main__":  # pragma: no cover

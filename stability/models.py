@@ -24,6 +24,7 @@ from typing import Any, NamedTuple, Sequence
 
 import numpy as np
 
+from ._validate import VARIANTS, check_casters, check_model, check_speeds
 from .chair import Chair
 
 __all__ = [
@@ -35,8 +36,6 @@ __all__ = [
     "static_stiffness",
     "linear_matrices",
 ]
-
-VARIANTS = ("exact", "thesis")
 
 
 class Params(NamedTuple):
@@ -96,11 +95,6 @@ def parameters(chairs: Chair | Sequence[Chair]) -> Params:
     return Params(*(np.array(col, dtype=float) for col in zip(*rows)))
 
 
-def _check_variant(variant: str) -> None:
-    if variant not in VARIANTS:
-        raise ValueError(f"model={variant!r} is invalid; valid choices: {list(VARIANTS)}")
-
-
 def _gen():
     from ._generated import full_width
 
@@ -113,7 +107,7 @@ def contact_velocities(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d, varian
     Returns ``(vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy)`` (eqs 6-17a-d for the
     thesis variant).  ``ce, se, cb, sb`` are cos/sin of the caster angles.
     """
-    _check_variant(variant)
+    check_model(variant)
     fn = getattr(_gen(), f"contact_velocities_{variant}")
     return fn(u, v, r, ce, se, cb, sb, eta_d, beta_d, *p.geometry)
 
@@ -129,7 +123,7 @@ def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d,
     ``r_dot_casters`` optionally replaces the yaw acceleration used in the
     caster equations (program WCHAIR uses the previous step's value).
     """
-    _check_variant(variant)
+    check_model(variant)
     g = _gen()
     args = (u, v, r, ce, se, cb, sb, eta_d, beta_d, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy,
             M_A, M_B, Fy_ext, Mz_ext, *p.inertia)
@@ -170,13 +164,9 @@ def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str =
     Returns numpy arrays broadcast over ``speeds``: ``M`` (N, k, k), ``K``
     (N, k, n) and ``Bm`` (N, k).
     """
-    _check_variant(variant)
-    if casters not in ("free", "locked"):
-        raise ValueError(f"casters={casters!r} is invalid; valid choices: ['free', 'locked']")
-    U = np.atleast_1d(np.asarray(speeds, dtype=float))
-    if np.any(~np.isfinite(U)) or np.any(U <= 0):
-        bad = U[~(np.isfinite(U) & (U > 0))][0]
-        raise ValueError(f"speed={bad!r} is invalid; valid range: speed > 0 m/s (forward motion)")
+    check_model(variant)
+    check_casters(casters)
+    U = check_speeds(speeds)
     g = _gen()
     name = f"linear_{variant}" if casters == "free" else f"linear_locked_{variant}"
     fn = getattr(g, name)

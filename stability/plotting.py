@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import textwrap
 from dataclasses import fields
-from typing import Iterable, Sequence
+from typing import Any, Callable, Iterable, Sequence
 
 import numpy as np
 from matplotlib.collections import LineCollection
@@ -28,6 +28,7 @@ from matplotlib.patches import FancyArrow, Rectangle
 __all__ = [
     "PAGE_SIZE",
     "page",
+    "panels_page",
     "text_page",
     "table_page",
     "chair_geometry",
@@ -462,17 +463,22 @@ def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 1
     return ax
 
 
-def speed_loci_figure(loci: Sequence, title: str, subtitle: str = "") -> Figure:
-    """Several speed loci on one page (e.g. free/locked x exact/thesis)."""
-    n = len(loci)
-    ncols = 2 if n > 1 else 1
+def panels_page(items: Sequence, draw: Callable[[Any, Any], Any], title: str, subtitle: str = "",
+                ncols: int = 2) -> Figure:
+    """A page with one panel per item, ``ncols`` to a row: ``draw(item, ax)`` fills each, spare panels blank."""
+    n = len(items)
     nrows = int(math.ceil(n / ncols))
     fig, axes = page(title, subtitle, nrows=nrows, ncols=ncols)
-    for ax, loc in zip(axes.flat, loci):
-        speed_locus(loc, ax)
+    for ax, item in zip(axes.flat, items):
+        draw(item, ax)
     for ax in list(axes.flat)[n:]:
         ax.axis("off")
     return finish(fig)
+
+
+def speed_loci_figure(loci: Sequence, title: str, subtitle: str = "") -> Figure:
+    """Several speed loci on one page (e.g. free/locked x exact/thesis)."""
+    return panels_page(loci, speed_locus, title, subtitle, ncols=2 if len(loci) > 1 else 1)
 
 
 def eigenvalues_vs_speed(locus, axes=None, *, title: str | None = None, log_speed: bool = True,
@@ -558,41 +564,31 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
 
 def parameter_loci_figure(loci: Sequence, title: str, subtitle: str = "", ncols: int = 2) -> Figure:
     """Several parameter loci on one page."""
-    n = len(loci)
-    nrows = int(math.ceil(n / ncols))
-    fig, axes = page(title, subtitle, nrows=nrows, ncols=ncols)
-    for ax, loc in zip(axes.flat, loci):
-        parameter_locus(loc, ax)
-    for ax in list(axes.flat)[n:]:
-        ax.axis("off")
-    return finish(fig)
+    return panels_page(loci, parameter_locus, title, subtitle, ncols)
+
+
+def _growth_rate_panel(loc, ax) -> None:
+    a = loc.max_real
+    if loc.categorical:
+        ax.bar(range(len(loc.labels)), a, color=[f"C{i % 10}" for i in range(len(loc.labels))])
+        ax.set_xticks(range(len(loc.labels)), loc.labels, fontsize=8)
+    else:
+        ax.plot(loc.values, a, color="C0")
+        if np.isfinite(loc.nominal):
+            ax.axvline(loc.nominal, color="k", ls=":", lw=0.8, label="chair")
+        for b in loc.stability_boundaries():
+            ax.axvline(b, color="C3", ls="--", lw=0.8)
+        ax.fill_between(loc.values, 0, np.maximum(a, 0), color="C3", alpha=0.15, lw=0)
+    ax.axhline(0, color="k", lw=0.8)
+    ax.set_xlabel(loc.axis_label(), fontsize=8)
+    ax.set_ylabel("largest real part (1/s)", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.grid(True, alpha=0.3)
 
 
 def growth_rate_vs_parameter(loci: Sequence, title: str, subtitle: str = "", ncols: int = 4) -> Figure:
     """Largest real part (growth rate of the least stable mode) against each parameter."""
-    n = len(loci)
-    nrows = int(math.ceil(n / ncols))
-    fig, axes = page(title, subtitle, nrows=nrows, ncols=ncols)
-    for ax, loc in zip(axes.flat, loci):
-        a = loc.max_real
-        if loc.categorical:
-            ax.bar(range(len(loc.labels)), a, color=[f"C{i % 10}" for i in range(len(loc.labels))])
-            ax.set_xticks(range(len(loc.labels)), loc.labels, fontsize=8)
-        else:
-            ax.plot(loc.values, a, color="C0")
-            if np.isfinite(loc.nominal):
-                ax.axvline(loc.nominal, color="k", ls=":", lw=0.8, label="chair")
-            for b in loc.stability_boundaries():
-                ax.axvline(b, color="C3", ls="--", lw=0.8)
-            ax.fill_between(loc.values, 0, np.maximum(a, 0), color="C3", alpha=0.15, lw=0)
-        ax.axhline(0, color="k", lw=0.8)
-        ax.set_xlabel(loc.axis_label(), fontsize=8)
-        ax.set_ylabel("largest real part (1/s)", fontsize=8)
-        ax.tick_params(labelsize=7)
-        ax.grid(True, alpha=0.3)
-    for ax in list(axes.flat)[n:]:
-        ax.axis("off")
-    return finish(fig)
+    return panels_page(loci, _growth_rate_panel, title, subtitle, ncols)
 
 
 def gain_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlog", linthresh: float = 1.0,

@@ -131,9 +131,9 @@ the longitudinal force is 390 N against ~710 N of normal load.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
+from ._validate import check_positive
 from .chair import Chair
 
 __all__ = ["DriveTrain", "power_fwd", "drive_train", "PARAMETERS", "COMPONENTS", "lumped_estimate"]
@@ -207,10 +207,7 @@ class DriveTrain:
 
     def __post_init__(self) -> None:
         for name in ("wheel_radius", "torque_limit"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-                    or value <= 0:
-                raise ValueError(f"drive-train parameter {name}={value!r} is invalid; valid range: > 0 (finite)")
+            check_positive(name, getattr(self, name), prefix="drive-train parameter ")
         if self.wheel_radius > 0.5:
             raise ValueError(f"drive-train parameter wheel_radius={self.wheel_radius!r} is invalid; "
                              "valid range: 0 < wheel_radius <= 0.5 m")

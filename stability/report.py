@@ -35,6 +35,7 @@ from typing import Any, Callable, Iterator, Sequence
 import numpy as np
 
 from . import chair as chair_mod
+from ._validate import check_model
 from .chair import Chair, preset
 
 __all__ = ["Settings", "ReportData", "Page", "ReportResult", "compute", "pages", "build", "findings",
@@ -561,8 +562,7 @@ def build(c: Chair, path, *, model: str = "exact", quick: bool = False, progress
     from .progress import ProgressBar
 
     t0 = time.perf_counter()
-    if model not in ("exact", "thesis"):
-        raise ValueError(f"model={model!r} is invalid; valid choices: ['exact', 'thesis']")
+    check_model(model)
     path = Path(path)
     directory = path.parent if str(path.parent) else Path(".")
     if not directory.is_dir():
@@ -580,11 +580,10 @@ def build(c: Chair, path, *, model: str = "exact", quick: bool = False, progress
 # command line
 # ---------------------------------------------------------------------------
 def build_parser() -> argparse.ArgumentParser:
-    from .critical_speed import OneLineErrorParser
+    from .cli import OneLineErrorParser, add_chair_options
 
     p = OneLineErrorParser(prog="python -m stability.report", description=__doc__.split("\n\n")[0])
-    p.add_argument("--chair", default="ej-premier", help="preset name or TOML file (default ej-premier)")
-    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="override a chair field (repeatable)")
+    add_chair_options(p)
     p.add_argument("--model", default="exact", choices=["exact", "thesis"],
                    help="equation variant for the linear analysis and the simulations (default exact)")
     p.add_argument("--quick", action="store_true", help="coarse version in seconds")
@@ -595,23 +594,22 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    from .critical_speed import load_chair
+    """Entry point of ``python -m stability.report``; returns the exit status (2 on bad input)."""
+    from .cli import run
 
-    try:
-        c = load_chair(args.chair, args.set)
-        if not args.output.lower().endswith(".pdf"):
-            raise ValueError(f"output {args.output!r} must end in .pdf")
-        res = build(c, args.output, model=args.model, quick=args.quick, progress=not args.no_progress)
-        if args.text:
-            from .output import atomic_write_text
+    return run(build_parser(), argv, _run, errors=(ValueError, OSError))
 
-            atomic_write_text(args.text, res.text() + "\n")
-    except (ValueError, OSError) as exc:
-        msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        print(f"error: {msg}", file=sys.stderr)
-        return 2
+
+def _run(args: argparse.Namespace) -> int:
+    from .cli import load_chair
+    from .output import atomic_write_text
+
+    c = load_chair(args.chair, args.set)
+    if not args.output.lower().endswith(".pdf"):
+        raise ValueError(f"output {args.output!r} must end in .pdf")
+    res = build(c, args.output, model=args.model, quick=args.quick, progress=not args.no_progress)
+    if args.text:
+        atomic_write_text(args.text, res.text() + "\n")
     print(f"wrote {res.path} ({len(res.pages)} pages, {res.seconds:.1f} s)")
     return 0
 

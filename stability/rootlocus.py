@@ -40,6 +40,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+from ._validate import check_casters, check_model, check_speed
 from .chair import Chair
 from .linear import (
     STATES_FREE,
@@ -70,23 +71,6 @@ def _readonly(a) -> np.ndarray:
     a = np.array(a)
     a.setflags(write=False)
     return a
-
-
-def _check_model(model: str, casters: str) -> None:
-    if model not in ("exact", "thesis"):
-        raise ValueError(f"model={model!r} is invalid; valid choices: ['exact', 'thesis']")
-    if casters not in ("free", "locked"):
-        raise ValueError(f"casters={casters!r} is invalid; valid choices: ['free', 'locked']")
-
-
-def _check_speed(speed) -> float:
-    try:
-        s = float(speed)
-    except (TypeError, ValueError):
-        raise ValueError(f"speed={speed!r} is invalid; valid range: speed > 0 m/s") from None
-    if not (math.isfinite(s) and s > 0):
-        raise ValueError(f"speed={speed!r} is invalid; valid range: speed > 0 m/s")
-    return s
 
 
 # ---------------------------------------------------------------------------
@@ -163,7 +147,8 @@ def speed_locus(chair: Chair, speeds=None, *, model: str = "exact", casters: str
     model, casters : str
         Model variant and caster state.
     """
-    _check_model(model, casters)
+    check_model(model)
+    check_casters(casters)
     if speeds is None:
         if not (math.isfinite(max_speed) and max_speed > 0.05):
             raise ValueError(f"max_speed={max_speed!r} is invalid; valid range: > 0.05 m/s")
@@ -427,8 +412,9 @@ def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float =
     speed : float
         Forward speed (m/s), default the thesis's reference 0.75 m/s.
     """
-    _check_model(model, casters)
-    speed = _check_speed(speed)
+    check_model(model)
+    check_casters(casters)
+    speed = check_speed(speed)
     p = get_parameter(parameter)
     if p.name == "pin_friction":
         raise ValueError("pin_friction (Coulomb) has no linearisation; use pin_damping for a root locus")
@@ -536,8 +522,9 @@ def gain_locus(chair: Chair, speed: float = 0.75, gains=None, *, model: str = "e
     """
     import control
 
-    _check_model(model, casters)
-    speed = _check_speed(speed)
+    check_model(model)
+    check_casters(casters)
+    speed = check_speed(speed)
     if gains is None:
         gains = np.concatenate([[0.0], np.geomspace(0.1, max_gain, int(n))])
     K = np.asarray(gains, dtype=float)
