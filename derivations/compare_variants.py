@@ -19,7 +19,6 @@ its end points are the exact and thesis linearisations (tested).
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 from typing import Dict, List, Sequence, Tuple
@@ -180,7 +179,6 @@ def locked_critical_speeds() -> str:
     """Critical speed with the casters locked: exact, thesis, zero-width (5-15)."""
     from scipy.optimize import brentq
 
-    C = chair_stiffness()
     out = []
 
     def det_locked(U, variant):

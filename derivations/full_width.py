@@ -468,11 +468,10 @@ def compare() -> List[Dict[str, object]]:
         row = 3 + k
         d = _trig_simplify(resid_exact[row] - resid_thesis[row])
         if k == 0:
-            a2_aC, a2_Ft, c_a2 = aC_a2, F_t_a2, ce
+            a2_aC, a2_Ft = aC_a2, F_t_a2
         else:
             a2_aC = -sb * aC[0] + cb * aC[1]
             a2_Ft = -sb * Fx_t + cb * Fy_t
-            c_a2 = cb
         # exact - thesis = i_zp r_dot - m_c l1 (a_C . a2 - F_tires . a2 / m)
         claim = S.i_zp * S.r_dot - S.m_c * S.l1 * (a2_aC - a2_Ft / S.m)
         out.append(dict(

@@ -451,9 +451,6 @@ def render_full_width() -> str:
         for locked in (False, True):
             M_, K_, B_ = g["linear"][(variant, locked)]
             n = M_.shape[0]
-            out = (tuple(tuple(M_[i, j] for j in range(M_.shape[1])) for i in range(n)),
-                   tuple(tuple(K_[i, j] for j in range(K_.shape[1])) for i in range(n)),
-                   tuple(B_[i, 0] for i in range(n)))
             named_o = [(f"M{i}{j}", M_[i, j]) for i in range(n) for j in range(M_.shape[1])]
             named_o += [(f"K{i}{j}", K_[i, j]) for i in range(n) for j in range(K_.shape[1])]
             named_o += [(f"B{i}", B_[i, 0]) for i in range(n)]

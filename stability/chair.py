@@ -26,7 +26,6 @@ import math
 import os
 import sys
 from dataclasses import dataclass, field, fields
-from pathlib import Path
 from typing import Any, Mapping
 
 if sys.version_info >= (3, 11):

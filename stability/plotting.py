@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import textwrap
 from dataclasses import fields
-from typing import Any, Callable, Iterable, Sequence
+from typing import Any, Callable, Sequence
 
 import numpy as np
 from matplotlib.collections import LineCollection
@@ -540,7 +540,6 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
     if locus.categorical:
         for i, lab in enumerate(locus.labels):
             ax.plot(eig[i].real, eig[i].imag, "o", ms=5, color=f"C{i % 10}", label=lab)
-            z = eig[i][np.argmax(eig[i].real)]
         ax.legend(fontsize=7, loc="lower left", title="main tire", title_fontsize=7)
     else:
         norm = Normalize(v.min(), v.max())

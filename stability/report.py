@@ -34,7 +34,6 @@ from typing import Any, Callable, Iterator, Sequence
 
 import numpy as np
 
-from . import chair as chair_mod
 from ._validate import check_model
 from .chair import Chair, preset
 
@@ -196,7 +195,6 @@ def findings(d: ReportData) -> list[str]:
     c, m = d.chair, d.model
     s = d.summary
     out = []
-    free = _first(s.free_crossings)
     locked = _first(s.locked_crossings)
     r075 = next((r for r in s.divergence if abs(r["speed_m_s"] - 0.75) < 1e-9), None)
     if s.free_unstable_at_all_speeds:

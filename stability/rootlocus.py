@@ -45,7 +45,6 @@ from .chair import Chair
 from .linear import (
     STATES_FREE,
     STATES_LOCKED,
-    Crossing,
     critical_speeds,
     state_matrices,
     state_space,

@@ -1741,19 +1741,12 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
 # ---------------------------------------------------------------------------
 # command line
 # ---------------------------------------------------------------------------
-class _UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line, status 2, no usage dump
-        raise _UsageError(message)
-
-
 def _parser() -> argparse.ArgumentParser:
-    ap = _Parser(prog="python -m stability.simulate",
+    from .cli import OneLineErrorParser, add_chair_options
+
+    ap = OneLineErrorParser(prog="python -m stability.simulate",
                  description="Simulate a wheelchair disturbed from straight motion (thesis chapter 7).")
-    ap.add_argument("--chair", default="ej-premier", help="preset name or TOML file (default ej-premier)")
+    add_chair_options(ap)
     ap.add_argument("--speed", type=float, default=0.75, help="initial forward speed, m/s (default 0.75)")
     ap.add_argument("--impulse", type=float, nargs=2, metavar=("FORCE", "DURATION"), default=(40.0, 0.1),
                     help="lateral force at the c.g. (N) and its duration (s); default 40 0.1")
@@ -1762,7 +1755,6 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--lateral-velocity", type=float, default=0.0, metavar="V", help="initial lateral velocity, m/s")
     ap.add_argument("--eta0", type=float, default=0.0, metavar="DEG", help="initial left caster angle, deg")
     ap.add_argument("--beta0", type=float, default=0.0, metavar="DEG", help="initial right caster angle, deg")
-    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", help="override a chair parameter")
     ap.add_argument("--scheme", default="wchair", help="wchair (default) or adaptive")
     ap.add_argument("--model", default="thesis", help="thesis (default) or exact")
     ap.add_argument("--casters", default="free", help="free (default) or locked")
@@ -1779,20 +1771,12 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
-def _run_cli(argv) -> int:
-    from . import chair as chair_mod
+def _run_cli(args: argparse.Namespace) -> int:
+    from .cli import check_directory, load_chair
 
-    args = _parser().parse_args(argv)
-    c = chair_mod.resolve(args.chair)
-    changes = dict(chair_mod.parse_assignment(s) for s in args.set)
-    if changes:
-        c = c.replace(**changes)
-    for name in ("csv", "plot"):
-        path = getattr(args, name)
-        if path:
-            d = Path(path).parent
-            if str(d) and not d.exists():
-                raise ValueError(f"--{name} {path!r}: directory {str(d)!r} does not exist")
+    c = load_chair(args.chair, args.set)
+    check_directory(args.csv, "--csv")
+    check_directory(args.plot, "--plot")
     res = simulate(c, args.speed, duration=args.duration, scheme=args.scheme, model=args.model, dt=args.dt,
                    impulse_force=args.impulse[0], impulse_duration=args.impulse[1],
                    tire_impulse=args.tire_impulse, lateral_velocity=args.lateral_velocity,
@@ -1820,20 +1804,9 @@ def _run_cli(argv) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Command-line entry point; returns the exit status (2 on bad input)."""
-    argv = list(sys.argv[1:] if argv is None else argv)
-    try:
-        return _run_cli(argv)
-    except _UsageError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # output piped into e.g. head: stop quietly
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        return 1
-    except (ValueError, OSError) as exc:
-        msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        print(f"error: {msg}", file=sys.stderr)
-        return 2
+    from .cli import run
+
+    return run(_parser(), argv, _run_cli, errors=(ValueError, OSError))
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -45,8 +45,8 @@ candidate speeds for every chair at once; a stability map is one batch.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace as dc_replace
-from typing import Any, Callable, Sequence
+from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 

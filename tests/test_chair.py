@@ -131,7 +131,7 @@ def test_front_caster_loads():
     """Front-caster chair: same load split with s1 and s2 exchanged in roles."""
     c = chair_mod.preset("ej-premier-front-caster")
     loads = static_loads(c)
-    W, s = c.m * c.g, c.s1 + c.s2 + c.trail
+    W = c.m * c.g
     assert loads["main"] == pytest.approx(W * (c.s2 - c.trail) / (2 * (c.s1 + c.s2 - c.trail)))
     assert loads["main"] + loads["caster"] == pytest.approx(W / 2)
 

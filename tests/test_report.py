@@ -4,7 +4,6 @@ The quick report of the E&J Premier is built once per module (``--quick``:
 coarse grids, a few batches of simulations); the other tests reuse its data.
 """
 
-import math
 import os
 import re
 

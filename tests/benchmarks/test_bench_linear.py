@@ -23,7 +23,6 @@ import sys
 import time
 
 import numpy as np
-import pytest
 
 from stability import linear
 from stability.chair import preset
