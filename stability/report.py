@@ -507,8 +507,8 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
         P.stability_map(d.friction_map, axes[0, 0], nominal=c.pin_friction_left)
         P.stability_map(d.disturbance_map, axes[0, 1], nominal=d.thesis.impulse[0] * d.thesis.impulse[1])
         fig.text(0.5, 0.012, "Heavy line: the reference case's time. Slower than the line (left): more time to react than "
-                 "in the reference case; faster (right): less.\nLeft map: one simulate_batch call; right map: one call "
-                 "per disturbance size (a batch shares its disturbance). Dots: simulated grid points.",
+                 "in the reference case; faster (right): less.\nEach map is one simulate_batch call (the right one with "
+                 "an impulse force per run). Dots: simulated grid points.",
                  ha="center", fontsize=8, color="0.3")
         return P.finish(fig, bottom=0.12)
 

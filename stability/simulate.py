@@ -94,6 +94,7 @@ import json
 import math
 import os
 import sys
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Mapping, NamedTuple, Sequence
@@ -713,7 +714,6 @@ class _Kernel:
         self.any_rolling = any(g.main_rolling or g.caster_rolling for g, _ in self.groups)
         self._range_masks()
         self.ftimp = opts.tire_impulse
-        self.fcimp = opts.impulse_force
         self.duimp = opts.impulse_duration
         self.stack = None
         if self.single_group:  # bind the tire calls once (hot path)
@@ -1040,10 +1040,13 @@ def _wchair_single(chair: Chair, speed: float, opts: _Options) -> SimulationResu
 # scheme "wchair": a batch, numpy arrays over runs
 # ---------------------------------------------------------------------------
 def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progress: bool,
-                  bar: ProgressBar | None = None) -> list[SimulationResult]:
+                  bar: ProgressBar | None = None, forces: np.ndarray | None = None) -> list[SimulationResult]:
+    """All runs stepped together; ``forces``: per-run impulse force (N) instead of ``opts.impulse_force``."""
     nrun = len(chairs)
     K = _Kernel(chairs, opts, vector=True)
     dt, half_dt2, locked, thesis, yaw_fn, stop, stride, fcimp = opts.step_constants()
+    if forces is not None:
+        fcimp = np.array(forces, dtype=float)
     n = _n_steps(opts)
     nrec = (n - 1) // stride + 1
     buf = np.empty((nrun, nrec, _NC))   # rows beyond a run's length are never read
@@ -1126,6 +1129,8 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
                 K.compact(keep)
                 run = run[keep]
                 (X, Y, THEDD, FC1, FC2) = (a[keep] for a in (X, Y, THEDD, FC1, FC2))
+                if forces is not None:
+                    fcimp = fcimp[keep]
                 Sv, Sp, V, S4, N4 = Sv[:, keep], Sp[:, keep], V[:, keep], S4[:, keep], N4[:, keep]
                 Cp, Sn = Cp[:, keep], Sn[:, keep]
                 ce, se, cb, sb = Cp[1], Sn[1], Cp[2], Sn[2]
@@ -1139,7 +1144,7 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
             imp = _impulse_on(opts, t)
             F = _tire_forces(K, imp, vel, slips, NA, NB, ND, NE, S4=S4, N4=N4)
             fc1, fc2 = _resultant(F, ce, se, cb, sb)
-            fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
+            fy_ext = fcimp if (imp and (forces is not None or fcimp != 0.0)) else 0.0
             if yaw_fn is None:
                 mz = 0.0
             else:
@@ -1190,6 +1195,8 @@ def _wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: _Options, progr
     out = []
     settings = opts.settings()
     for i in range(nrun):
+        if forces is not None:
+            settings = dict(settings, impulse_force=float(forces[i]))
         w = {}
         for kind in cnt:
             c = int(cnt[kind][i])
@@ -1245,9 +1252,9 @@ class _CounterBar:
         self.counter.value += n
 
 
-def _batch_worker(conn, chairs, speeds, opts, counter) -> None:  # pragma: no cover - runs in a child
+def _batch_worker(conn, chairs, speeds, opts, counter, forces) -> None:  # pragma: no cover - runs in a child
     try:
-        res = _wchair_batch(chairs, speeds, opts, False, bar=_CounterBar(counter))
+        res = _wchair_batch(chairs, speeds, opts, False, bar=_CounterBar(counter), forces=forces)
         conn.send(("ok", res))
     except BaseException as exc:
         try:
@@ -1258,7 +1265,7 @@ def _batch_worker(conn, chairs, speeds, opts, counter) -> None:  # pragma: no co
         conn.close()
 
 
-def _wchair_batch_processes(chairs, speeds, opts, progress, workers) -> list[SimulationResult]:
+def _wchair_batch_processes(chairs, speeds, opts, progress, workers, forces=None) -> list[SimulationResult]:
     from multiprocessing.connection import wait
 
     ctx = _fork_context()
@@ -1270,7 +1277,8 @@ def _wchair_batch_processes(chairs, speeds, opts, progress, workers) -> list[Sim
         parent, child = ctx.Pipe(duplex=False)
         counter = ctx.Value("q", 0, lock=False)
         pr = ctx.Process(target=_batch_worker, daemon=True,
-                         args=(child, [chairs[i] for i in idx], speeds[idx], opts, counter))
+                         args=(child, [chairs[i] for i in idx], speeds[idx], opts, counter,
+                               None if forces is None else forces[idx]))
         pr.start()
         child.close()
         procs.append(pr)
@@ -1671,7 +1679,10 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
     ``chairs`` (one chair or a sequence) is broadcast against ``speeds`` (a
     number or a 1-D array) with numpy rules; every other keyword is as in
     :func:`simulate` and applies to all runs (``yaw_moment`` receives arrays
-    over the active runs, with ``state.run`` their indices).
+    over the active runs, with ``state.run`` their indices), except
+    ``impulse_force``, which may also be a 1-D array broadcast with the
+    chairs and speeds: one disturbance per run (a speed x disturbance-size
+    map in one call; each result's ``settings`` holds its own force).
 
     The wchair scheme steps all runs together on numpy arrays (runs grouped
     by tire type where they differ); a run stopped by the warning rule is
@@ -1705,11 +1716,24 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
         raise ValueError("speeds=[] is invalid; expected at least one speed > 0 m/s")
     for s in np.atleast_1d(sp).tolist():
         _check_speed(s)
+    fa = None
+    if np.ndim(options.get("impulse_force", 0.0)) > 0:   # one force per run
+        try:
+            fa = np.asarray(options["impulse_force"], dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"impulse_force={options['impulse_force']!r} is invalid; expected a number or a 1-D "
+                             "array of finite forces (N)") from None
+        if fa.ndim != 1 or fa.size == 0 or not np.all(np.isfinite(fa)):
+            raise ValueError(f"impulse_force={options['impulse_force']!r} is invalid; expected a number or a "
+                             "non-empty 1-D array of finite forces (N)")
+        options = dict(options, impulse_force=float(fa[0]))
     try:
-        shape = np.broadcast_shapes((len(chair_list),) if not isinstance(chairs, Chair) else (), sp.shape)
+        shape = np.broadcast_shapes((len(chair_list),) if not isinstance(chairs, Chair) else (), sp.shape,
+                                    () if fa is None else fa.shape)
     except ValueError:
-        raise ValueError(f"cannot broadcast {len(chair_list)} chairs against {sp.size} speeds; give one chair, "
-                         "one speed, or equally many of each") from None
+        raise ValueError(f"cannot broadcast {len(chair_list)} chairs against {sp.size} speeds"
+                         + ("" if fa is None else f" and {fa.size} impulse forces")
+                         + "; give one of each or equally many") from None
     n = int(np.prod(shape)) if shape else 1
     chair_idx = np.broadcast_to(np.arange(len(chair_list)) if not isinstance(chairs, Chair) else 0, shape).reshape(-1)
     speed_arr = np.broadcast_to(sp, shape).reshape(-1).astype(float)
@@ -1725,15 +1749,17 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
     opts = _make_options(batch=True, **defaults)
     if n == 0:
         return []
+    forces = None if fa is None else np.broadcast_to(fa, shape).reshape(-1).astype(float)
     if opts.scheme == "wchair":
         nw = _auto_workers(n, opts) if workers is None else _check_workers(workers)
         if nw > 1 and _fork_context() is not None:
-            return _wchair_batch_processes(run_chairs, speed_arr, opts, progress, min(nw, n))
-        return _wchair_batch(run_chairs, speed_arr, opts, progress)
+            return _wchair_batch_processes(run_chairs, speed_arr, opts, progress, min(nw, n), forces)
+        return _wchair_batch(run_chairs, speed_arr, opts, progress, forces=forces)
     out = []
     with ProgressBar(n, "simulate (adaptive)", enabled=progress, unit="run") as bar:
-        for c, s in zip(run_chairs, speed_arr):
-            out.append(_adaptive_single(c, float(s), opts))
+        for i, (c, s) in enumerate(zip(run_chairs, speed_arr)):
+            o = opts if forces is None else dataclasses.replace(opts, impulse_force=float(forces[i]))
+            out.append(_adaptive_single(c, float(s), o))
             bar.update()
     return out
 

@@ -163,7 +163,8 @@ def _simulate_batch(chairs, speeds, *, progress=False, desc="simulating", **opti
     options = dict(options)
     options.setdefault("sample", 0.01)
     if len(chairs) <= SCALAR_RUNS and options.get("scheme", "wchair") == "wchair":
-        return [sim.simulate(c, s, **options) for c, s in zip(chairs, speeds)]
+        forces = np.broadcast_to(np.asarray(options.pop("impulse_force", 40.0), dtype=float), (len(chairs),))
+        return [sim.simulate(c, s, impulse_force=float(f), **options) for c, s, f in zip(chairs, speeds, forces)]
     return list(sim.simulate_batch(chairs, speeds, progress=progress, **options))
 
 
@@ -616,17 +617,11 @@ def _map(chair, speeds, y_name, y_label, y_unit, y_values, make_chair, impulses,
             run_force.append(f)
     forces = np.array([f[0] for f in run_force])
     length = run_force[0][1]
-    # simulate_batch applies its options (the disturbance among them) to every run of a call: one
-    # call per map when only the chair changes, one per row when the disturbance does
-    results: list = [None] * len(run_chairs)
-    rows = sorted(set(forces.tolist()))
-    for f in rows:
-        idx = [i for i in range(len(run_chairs)) if forces[i] == f]
-        opts = _sim_options(model, scheme, (f, length), dt, criterion.duration, sim_options)
-        out = _simulate_batch([run_chairs[i] for i in idx], [run_speeds[i] for i in idx],
-                              progress=progress and len(rows) == 1, desc=f"map speed x {y_name}", **opts)
-        for i, r in zip(idx, out):
-            results[i] = r
+    # one batch for the whole map: the chair and the impulse force may differ from run to run
+    opts = _sim_options(model, scheme, (forces[0], length), dt, criterion.duration, sim_options)
+    if np.any(forces != forces[0]):
+        opts["impulse_force"] = forces
+    results = _simulate_batch(run_chairs, run_speeds, progress=progress, desc=f"map speed x {y_name}", **opts)
     times = np.array([criterion.time(r) for r in results]).reshape(len(yv), len(speeds))
     return StabilityMap(chair, speeds, y_name, y_label, y_unit, yv, times, float(reference), criterion,
                         model, scheme, (float(forces[0]), float(length)))

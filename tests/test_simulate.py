@@ -528,3 +528,28 @@ def test_progress_bar_silent_unless_tty_or_forced(monkeypatch):
     out = buf.getvalue()
     assert "runs: [" in out and "4/4 run" in out and out.endswith("\n")
     assert list(track(range(3), enabled=False)) == [0, 1, 2]
+
+
+def test_batch_per_run_impulse_force_equals_separate_batches():
+    """impulse_force as an array: one disturbance per run, same results as one batch per force."""
+    speeds = np.array([0.6, 0.75, 0.9, 0.6, 0.75, 0.9])
+    forces = np.array([20.0, 20.0, 20.0, 80.0, 80.0, 80.0])
+    for workers in (1, 2):
+        mixed = simulate_batch(EJ, speeds, impulse_force=forces, duration=3.0, sample=0.01, progress=False,
+                               workers=workers)
+        for f in (20.0, 80.0):
+            sel = np.flatnonzero(forces == f)
+            same = simulate_batch(EJ, speeds[sel], impulse_force=f, duration=3.0, sample=0.01, progress=False,
+                                  workers=1)
+            for i, r in zip(sel, same):
+                assert mixed[i].settings["impulse_force"] == f
+                np.testing.assert_array_equal(mixed[i].yaw_rate, r.yaw_rate)
+    # a bigger push turns the chair faster (Figure 8-2's disturbance scaling)
+    assert np.max(np.abs(mixed[4].yaw_rate)) > np.max(np.abs(mixed[1].yaw_rate))
+
+
+def test_batch_per_run_impulse_force_bad_input():
+    with pytest.raises(ValueError, match=r"3 impulse forces"):
+        simulate_batch(EJ, [0.5, 0.6], impulse_force=[1.0, 2.0, 3.0], progress=False)
+    with pytest.raises(ValueError, match=r"impulse_force=.*finite forces \(N\)"):
+        simulate_batch(EJ, [0.5, 0.6], impulse_force=[1.0, float("nan")], progress=False)

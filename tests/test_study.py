@@ -103,6 +103,33 @@ def test_maps_use_one_batch(fake):
     assert 1.0 < b[2] < 1.6                    # 0.2 N m: between the grid speeds (never reached at 1.0 m/s)
 
 
+def test_disturbance_map_is_one_batch_with_a_force_per_run(fake, monkeypatch):
+    seen = {}
+
+    def spy(chairs, speeds, **options):
+        seen["forces"] = np.asarray(options["impulse_force"])
+        return fake(chairs, speeds, **options)
+
+    monkeypatch.setattr(study, "_simulate_batch", spy)
+    m = study.disturbance_map(preset("ej-premier"), [0.5, 1.0], [2.0, 4.0, 8.0], reference=3.2, progress=False)
+    assert fake.calls == [6] and m.times.shape == (3, 2)
+    np.testing.assert_array_equal(seen["forces"], [20.0, 20.0, 40.0, 40.0, 80.0, 80.0])   # impulse / 0.1 s
+
+
+def test_disturbance_map_matches_separate_runs():
+    """The one-batch map gives the times of separate simulations (real simulator, short runs)."""
+    from stability.simulate import simulate
+
+    ej = preset("ej-premier")
+    crit = study.Criterion(duration=4.0)
+    m = study.disturbance_map(ej, [0.8, 1.2], [2.0, 6.0], reference=3.2, criterion=crit, progress=False)
+    for i, imp in enumerate((2.0, 6.0)):
+        for j, u in enumerate((0.8, 1.2)):
+            r = simulate(ej, u, impulse_force=imp / 0.1, duration=4.0, stop_on_warnings=False, sample=0.01)
+            assert m.times[i, j] == pytest.approx(crit.time(r), abs=1e-9)
+    assert m.times[1, 1] < m.times[0, 1]          # a bigger push reaches the level sooner
+
+
 def test_parameter_sweeps_table(fake):
     ej = preset("ej-premier")
     table, extra = study.parameter_sweeps(ej, {"pin_friction": (0.05, 0.1, 0.15), "trail": (0.06, 0.08)},
