@@ -27,7 +27,8 @@ from .cli import OneLineErrorParser, add_chair_options, load_chair, parse_speeds
 from .linear import StabilitySummary, analyse
 
 # OneLineErrorParser, load_chair and parse_speeds live in stability.cli and are re-exported here.
-__all__ = ["main", "summary_dict", "parse_speeds", "format_summary", "load_chair", "OneLineErrorParser"]
+__all__ = ["main", "summary_dict", "simulator_checks", "parse_speeds", "format_summary", "load_chair",
+           "OneLineErrorParser"]
 
 
 def _first(crossings, direction: str | None = None):
@@ -37,8 +38,30 @@ def _first(crossings, direction: str | None = None):
     return None
 
 
-def summary_dict(s: StabilitySummary) -> dict:
-    """The JSON structure printed by ``--json``."""
+def simulator_checks(s: StabilitySummary) -> list:
+    """The simulator's own linearisation at the divergence-table speeds, when it matters.
+
+    Empty unless the chair has effects the linear model leaves out
+    (:func:`stability.validation.omitted_effects`: rolling resistance, camber,
+    toe); then one row per speed with the dominant rate of both models.
+    """
+    from .validation import linearisation_check, omitted_effects
+
+    if not omitted_effects(s.chair):
+        return []
+    rows = []
+    for r in s.divergence:
+        chk = linearisation_check(s.chair, r["speed_m_s"], model=s.model)
+        rows.append({"speed_m_s": r["speed_m_s"], "rate_linear_1_s": chk.eigenvalue_linear.real,
+                     "rate_simulator_1_s": chk.eigenvalue_simulator.real,
+                     "relative_difference": chk.rate_difference})
+    return rows
+
+
+def summary_dict(s: StabilitySummary, checks: list | None = None) -> dict:
+    """The JSON structure printed by ``--json`` (``checks``: :func:`simulator_checks`)."""
+    from .validation import omitted_effects
+
     zw = s.zero_width
 
     def cross(lst):
@@ -65,6 +88,8 @@ def summary_dict(s: StabilitySummary) -> dict:
             "divergence": [{k: r[k] for k in ("speed_m_s", "rate_1_s", "time_to_double_s")} for r in s.divergence],
         },
         "search_range_m_s": list(s.search_range),
+        "omitted_effects": list(omitted_effects(s.chair)),
+        "simulator_linearisation": list(checks or []),
     }
 
 
@@ -96,9 +121,9 @@ def interpretation(s: StabilitySummary) -> str:
     return msg + "."
 
 
-def format_summary(s: StabilitySummary) -> str:
-    """Readable table."""
-    d = summary_dict(s)
+def format_summary(s: StabilitySummary, checks: list | None = None) -> str:
+    """Readable table (``checks``: :func:`simulator_checks`)."""
+    d = summary_dict(s, checks)
     lines = [
         f"Chair: {s.chair.name} ({s.chair.caster_position} casters; main tire {s.chair.main_tire}, "
         f"caster tire {s.chair.caster_tire})   model: {s.model}",
@@ -123,6 +148,13 @@ def format_summary(s: StabilitySummary) -> str:
     for r in s.divergence:
         t2 = "-" if r["time_to_double_s"] is None else f"{r['time_to_double_s']:.3g}"
         lines.append(f"  {r['speed_m_s']:12.3g}{r['rate_1_s']:12.4f}{t2:>14s}{r['frequency_rad_s']:14.3g}")
+    if checks:
+        lines += ["", f"The linear model leaves out {', '.join(d['omitted_effects'])}. With them, the simulator's "
+                  "own linearisation (stability.simulate.linearise) gives:",
+                  f"  {'speed (m/s)':>12s}{'linear (1/s)':>14s}{'simulator (1/s)':>17s}{'difference':>12s}"]
+        for r in checks:
+            lines.append(f"  {r['speed_m_s']:12.3g}{r['rate_linear_1_s']:14.4f}{r['rate_simulator_1_s']:17.4f}"
+                         f"{100 * r['relative_difference']:+11.1f}%")
     lines += ["", interpretation(s)]
     return "\n".join(lines)
 
@@ -141,7 +173,8 @@ def _run(args: argparse.Namespace) -> int:
     c = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
-    print(json.dumps(summary_dict(summary), indent=2) if args.json else format_summary(summary))
+    checks = simulator_checks(summary)
+    print(json.dumps(summary_dict(summary, checks), indent=2) if args.json else format_summary(summary, checks))
     return 0
 
 

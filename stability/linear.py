@@ -415,7 +415,7 @@ def divergence(chair: Chair, speeds, model: str = "exact", casters: str = "free"
     return rows
 
 
-def massless_caster_rate(chair: Chair, speed):
+def massless_caster_rate(chair: Chair, speed, caster_drag: float = 0.0):
     """Closed-form growth rate of the free-caster chair in the massless-caster limit (1/s).
 
     With massless, frictionless casters the caster tires can carry no lateral
@@ -433,24 +433,46 @@ def massless_caster_rate(chair: Chair, speed):
     trailer pushed backwards would.  For a front-caster chair (``x_m < 0``)
     both roots are stable.
 
+    A caster's rolling drag ``D`` acts along its heading, which in this limit
+    follows the contact velocity: its side component is ``-D`` times the
+    contact's slip angle, so the caster pair is a second axle of cornering
+    stiffness ``2 D`` (N/rad) at the caster contacts ``x_c = x_p - trail``
+    (the feathers of an arrow).  The two-axle equation (5-9) then has
+
+    ``p = (C_f + C_r)/(m U) + (C_f x_m^2 + C_r x_c^2)/(I_z U)``,
+    ``q = C_f C_r (x_m - x_c)^2/(m I_z U^2) - (C_f x_m + C_r x_c)/I_z``
+
+    with ``C_f = 2C``, ``C_r = 2D``: below ``U^2 = C_r (x_m - x_c)^2/(m x_m)``
+    (``q > 0``) the rear-caster chair is stable.
+
     Parameters
     ----------
     chair : Chair
     speed : float or array_like
         Forward speed (m/s).
+    caster_drag : float
+        Rolling drag of one caster, N (default 0: the linear model's tires
+        have no rolling resistance).
 
     Returns
     -------
     float or ndarray
         The larger real part of the two roots (1/s).
     """
-    from .models import static_stiffness
+    from .models import parameters, static_stiffness
 
     U = np.asarray(speed, dtype=float)
+    drag = float(caster_drag)
+    if not (math.isfinite(drag) and drag >= 0.0):
+        raise ValueError(f"caster_drag={caster_drag!r} is invalid; valid range: >= 0 N")
     st = static_stiffness(chair)
-    C = 0.5 * (st["D"] + st["E"])
-    b = (2 * C / U) * (1 / chair.m + chair.x_main**2 / chair.i_z)
-    c = -2 * C * chair.x_main / chair.i_z
+    cf = st["D"] + st["E"]
+    cr = 2.0 * drag
+    prm = parameters(chair)
+    xm, xc = float(prm.x_m), float(prm.x_p - prm.trail)
+    m, iz = chair.m, chair.i_z
+    b = (cf + cr) / (m * U) + (cf * xm**2 + cr * xc**2) / (iz * U)
+    c = cf * cr * (xm - xc) ** 2 / (m * iz * U**2) - (cf * xm + cr * xc) / iz
     disc = b**2 - 4 * c
     root = np.where(disc >= 0, (-b + np.sqrt(np.abs(disc))) / 2, -b / 2)
     return float(root) if np.ndim(root) == 0 else root

@@ -121,6 +121,7 @@ __all__ = [
     "SimulationResult",
     "simulate",
     "simulate_batch",
+    "linearise",
     "main",
 ]
 
@@ -1431,6 +1432,76 @@ class _AdaptiveModel:
 
     def limit(self, side):
         return self.K.maf if side == 0 else self.K.mbf
+
+
+def linearise(chair: Chair, speed: float, *, model: str = "thesis", casters: str = "free",
+              step: float = 1e-6):
+    """The simulator's own linearisation about straight running, by central differences.
+
+    Differentiates the right-hand side the simulator integrates (the adaptive
+    scheme's, whose normal loads are solved consistently with the tire
+    forces) with respect to ``[v, r, eta, eta_dot, beta, beta_dot]`` (free
+    casters) or ``[v, r]`` (locked) and the yaw-moment input, at forward
+    speed ``speed`` held fixed, casters trailing, no disturbance.  Unlike
+    :func:`stability.linear.state_space` it keeps everything the simulator
+    has: rolling resistance (drag on the casters, pitch load transfer),
+    camber and toe with the lateral load transfer they couple to, and each
+    tire's force law at its actual (not static) load.  Pins are taken as
+    frictionless (Coulomb friction has no linearisation) and without the
+    linear models' viscous ``pin_damping``, which the simulator does not have.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        Forward speed, m/s (> 0).
+    model : {"thesis", "exact"}
+        Equation variant.
+    casters : {"free", "locked"}
+    step : float
+        Central-difference step in the state units (m/s, rad/s, rad); the
+        slip angles stay far inside the first degree, where the tire model
+        is linear in slip.
+
+    Returns
+    -------
+    control.StateSpace
+        Same states, input ``Mz`` (N m) and outputs ``v``, ``r`` as
+        :func:`stability.linear.state_space`.
+    """
+    import control
+
+    from . import _validate
+
+    speed = _validate.check_speed(speed)
+    step = _positive("step", step)
+    chair = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    opts = _make_options(duration=1.0, scheme="adaptive", model=model, dt=0.001, impulse_force=0.0,
+                         impulse_duration=0.0, tire_impulse=0.0, lateral_velocity=0.0, eta0_deg=0.0,
+                         beta0_deg=0.0, casters=casters, yaw_moment=None, stop_on_warnings=False,
+                         out_of_range="raise", sample=None, rtol=1e-6, atol=1e-9, reverse=False)
+    modes = (_LOCKED, _LOCKED) if opts.casters == "locked" else (_FREE_POS, _FREE_POS)
+    u0, _ = _initial(opts, speed)
+
+    def derivative(dx, mz=0.0):
+        o = opts if mz == 0.0 else dataclasses.replace(opts, yaw_moment=lambda t, st: mz)
+        m = _AdaptiveModel(chair, speed, o)
+        y = [0.0, 0.0, 0.0, u0, *dx] + [0.0] * (6 - len(dx))
+        dy, _ = m.evaluate(0.0, y, modes, False)
+        return np.array(dy[4:4 + len(dx)], dtype=float)
+
+    n = 2 if opts.casters == "locked" else 6
+    eye = np.eye(n) * step
+    A = np.column_stack([(derivative(eye[j]) - derivative(-eye[j])) / (2.0 * step) for j in range(n)])
+    B = ((derivative(np.zeros(n), 1.0) - derivative(np.zeros(n), -1.0)) / 2.0)[:, None]
+    if n == 6:   # the angle rows are exact identities: eta' = eta_dot, beta' = beta_dot
+        A[2], A[4] = np.eye(6)[3], np.eye(6)[5]
+        B[2] = B[4] = 0.0
+    states = ["v", "r", "eta", "eta_dot", "beta", "beta_dot"][:n]
+    C = np.zeros((2, n))
+    C[0, 0] = C[1, 1] = 1.0
+    name = f"{chair.name} (simulator {opts.model}, {opts.casters} casters, U={speed:g} m per s)".replace(".", "p")
+    return control.ss(A, B, C, np.zeros((2, 1)), states=states, inputs=["Mz"], outputs=["v", "r"], name=name)
 
 
 def _adaptive_single(chair: Chair, speed: float, opts: _Options) -> SimulationResult:

@@ -9,6 +9,14 @@ variant.  :func:`linear_vs_nonlinear` measures both and reports the relative
 difference; where they disagree the returned record says by how much, and
 the simulator's own range warnings say why (large slip, load transfer).
 
+:func:`linearisation_check` compares the two at the level of the matrices:
+the symbolic linear model against the simulator's own linearisation
+(:func:`stability.simulate.linearise`, central differences of the right-hand
+side it integrates).  For a chair without rolling resistance, camber or toe
+they agree to about 1e-9 (the same physics, derived once); where the chair
+has those effects, which the linear model leaves out, the difference is
+their first-order size.
+
 The rate is measured from the simulated yaw rate after the faster modes
 have died out (their decay relative to the dominant mode, from the same
 eigenvalues, sets the start of the fitting window):
@@ -28,7 +36,8 @@ import numpy as np
 
 from .chair import Chair
 
-__all__ = ["RateComparison", "measured_rate", "linear_vs_nonlinear"]
+__all__ = ["RateComparison", "measured_rate", "linear_vs_nonlinear", "LinearisationCheck", "omitted_effects",
+           "linearisation_check"]
 
 
 @dataclass(frozen=True)
@@ -154,4 +163,84 @@ def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", ca
         rate_linear=float(lam.real), rate_nonlinear=rate,
         relative_error=abs(rate - lam.real) / max(abs(lam.real), 1e-12),
         window=window, max_slip_deg=max_slip,
+    )
+
+
+# ---------------------------------------------------------------------------
+# symbolic linear model vs the simulator's own linearisation
+# ---------------------------------------------------------------------------
+def omitted_effects(chair: Chair) -> tuple[str, ...]:
+    """What the simulator has and the linear model leaves out, for this chair.
+
+    The linear model (lateral tire forces linear in slip
+    at the static loads) has no rolling resistance, camber or toe; a chair
+    with none of them is linearised exactly (see :func:`linearisation_check`).
+    """
+    out = []
+    if chair.main_rolling_scale != 0.0 or chair.caster_rolling_scale != 0.0:
+        out.append("rolling resistance")
+    if chair.camber_deg != 0.0:
+        out.append(f"camber {chair.camber_deg:g} deg")
+    if chair.toe_deg != 0.0:
+        out.append(f"toe {chair.toe_deg:g} deg")
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class LinearisationCheck:
+    """Result of :func:`linearisation_check`.
+
+    Attributes
+    ----------
+    speed : float
+        Forward speed (m/s).
+    model, casters : str
+    omitted : tuple of str
+        :func:`omitted_effects` of the chair.
+    eigenvalue_linear, eigenvalue_simulator : complex
+        Dominant eigenvalue (largest real part, 1/s) of the symbolic linear
+        model and of the simulator's linearisation.
+    rate_difference : float
+        ``(Re eigenvalue_simulator - Re eigenvalue_linear) / |Re eigenvalue_linear|``.
+    matrix_difference : float
+        ``max |A_simulator - A_linear| / max |A_linear|``.
+    """
+
+    speed: float
+    model: str
+    casters: str
+    omitted: tuple
+    eigenvalue_linear: complex
+    eigenvalue_simulator: complex
+    rate_difference: float
+    matrix_difference: float
+
+
+def linearisation_check(chair: Chair, speed: float = 0.75, *, model: str = "exact",
+                        casters: str = "free") -> LinearisationCheck:
+    """Compare :func:`stability.linear.state_space` with :func:`stability.simulate.linearise`.
+
+    Both are taken without pin damping (the simulator has none; Coulomb pin
+    friction has no linearisation).  With no :func:`omitted_effects` the two
+    must agree to rounding (tested); otherwise the difference measures what
+    the linear model leaves out, e.g. rolling resistance, whose drag pitches
+    load from the casters to the main wheels of a rear-caster chair.
+    """
+    from . import linear
+    from .simulate import linearise
+
+    c = chair.replace(pin_damping=0.0)
+    A_lin = linear.state_matrices(c, speed, model, casters)[0]
+    A_sim = np.asarray(linearise(c, speed, model=model, casters=casters).A)
+
+    def dominant(A):
+        e = np.linalg.eigvals(A)
+        return complex(e[np.argmax(e.real)])
+
+    lam_l, lam_s = dominant(A_lin), dominant(A_sim)
+    return LinearisationCheck(
+        speed=float(speed), model=model, casters=casters, omitted=omitted_effects(chair),
+        eigenvalue_linear=lam_l, eigenvalue_simulator=lam_s,
+        rate_difference=(lam_s.real - lam_l.real) / max(abs(lam_l.real), 1e-12),
+        matrix_difference=float(np.max(np.abs(A_sim - A_lin)) / np.max(np.abs(A_lin))),
     )

@@ -81,3 +81,24 @@ def test_module_entry_point_runs():
     assert res.returncode == 2 and "Traceback" not in res.stderr
     res = subprocess.run([sys.executable, "-m", "stability.critical_speed"], capture_output=True, text=True, timeout=120)
     assert res.returncode == 0 and "unstable" in res.stdout
+
+
+def test_omitted_effects_reported_with_the_simulator_linearisation(capsys):
+    """A chair with rolling resistance: the linear model leaves it out, and the CLI says so
+    with the simulator's own linearisation at each table speed."""
+    from stability.validation import linearisation_check
+
+    code, out, err = run(capsys, "--set", "caster_rolling_scale=1", "--speeds", "0.5,1", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["omitted_effects"] == ["rolling resistance"]
+    rows = d["simulator_linearisation"]
+    assert [r["speed_m_s"] for r in rows] == [0.5, 1.0]
+    c = chair_mod.preset("ej-premier").replace(caster_rolling_scale=1.0)
+    assert rows[0]["rate_simulator_1_s"] == pytest.approx(linearisation_check(c, 0.5).eigenvalue_simulator.real)
+    assert rows[0]["rate_linear_1_s"] == pytest.approx(d["free_casters"]["divergence"][0]["rate_1_s"])
+    code, out, err = run(capsys, "--set", "caster_rolling_scale=1", "--speeds", "0.5,1")
+    assert "leaves out rolling resistance" in out and "simulator" in out
+    code, out, err = run(capsys, "--json")
+    d = json.loads(out)
+    assert d["omitted_effects"] == [] and d["simulator_linearisation"] == []
