@@ -100,6 +100,7 @@ class ReportData:
     disturbance_map: Any
     conclusions: list
     scheme: str = "wchair"
+    rolling: Any = None          # validation.LinearisationCheck at 0.75 m/s with rolling resistance on
 
 
 def counterpart(c: Chair) -> Chair:
@@ -122,6 +123,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     from . import rootlocus, study
     from .linear import analyse
     from .progress import ProgressBar
+    from .validation import linearisation_check
 
     s = settings or Settings.for_mode(quick)
     other = "thesis" if model == "exact" else "exact"
@@ -136,6 +138,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
 
         summary = analyse(c, model=model, speeds=(0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0))
         summary_other = analyse(c, model=other, speeds=(0.75,))
+        rolling = linearisation_check(rolling_resistance_on(c), 0.75, model=model)
         stage("linear summary")
         loci = {}
         for m in (model, other):
@@ -180,7 +183,15 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         conclusions = study.check_conclusions(thesis)
         stage("conclusions")
     return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
-                      list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme)
+                      list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,
+                      rolling=rolling)
+
+
+def rolling_resistance_on(c: Chair) -> Chair:
+    """``c`` itself if it has rolling resistance, else ``c`` with the tire fits' rolling resistance on."""
+    if c.main_rolling_scale != 0.0 or c.caster_rolling_scale != 0.0:
+        return c
+    return c.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0)
 
 
 # ---------------------------------------------------------------------------
@@ -223,6 +234,17 @@ def findings(d: ReportData) -> list[str]:
                   f"first critical speed {fo:.3g} m/s")
                + (f"; locked casters critical speed {_first(so.locked_crossings):.3g} m/s."
                   if _first(so.locked_crossings) is not None else "; locked casters stable in the range."))
+    rl = d.rolling
+    if rl is not None:
+        own = c.main_rolling_scale != 0.0 or c.caster_rolling_scale != 0.0
+        out.append(("This chair's rolling resistance is" if own else
+                    "Rolling resistance (off for this chair, as in WCHAIR's defaults) is")
+                   + " left out of the linear model. "
+                   + ("With it" if own else "With the tire fits' rolling resistance on all four wheels")
+                   + f", the simulator's own linearisation puts the least stable mode at {rl.speed:g} m/s at "
+                   f"{rl.eigenvalue_simulator.real:.3g} 1/s instead of {rl.eigenvalue_linear.real:.3g} 1/s "
+                   f"({100 * rl.rate_difference:+.0f} %): a caster's drag follows its contact velocity, so the "
+                   "casters act as an axle of small cornering stiffness (twice the drag, N/rad).")
     th = d.thesis
     out.append(f"Nonlinear simulation ({m} model, {d.scheme} scheme, Coulomb pin friction "
                f"{c.pin_friction_left:g}/{c.pin_friction_right:g} N m): the reference case (E&J Premier at 0.75 m/s, "

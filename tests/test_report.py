@@ -124,6 +124,12 @@ def test_findings_numbers_match_the_analysis(quick):
     # feedback gain
     g = rootlocus.gain_locus(c, 0.75, model="exact", n=st.gain_points)
     assert f"K > {g.stabilising_gain:.3g} N m s/rad" in text
+    # rolling resistance, left out of the linear model: the simulator's own linearisation
+    from stability.validation import linearisation_check
+
+    rl = linearisation_check(c.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0), 0.75, model="exact")
+    assert f"at {rl.eigenvalue_simulator.real:.3g} 1/s instead of {rl.eigenvalue_linear.real:.3g} 1/s" in text
+    assert f"({100 * rl.rate_difference:+.0f} %)" in text and rl.rate_difference < -0.1
     # pin friction +/- 50 %: the numbers on the findings page are the study's
     lo, hi = d.chair_friction
     assert f"half the friction the equal-instability speed is {lo.describe()}" in text
