@@ -123,7 +123,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     from . import rootlocus, study
     from .linear import analyse
     from .progress import ProgressBar
-    from .validation import linearisation_check
+    from .validation import linearisation_check, with_rolling_resistance
 
     s = settings or Settings.for_mode(quick)
     other = "thesis" if model == "exact" else "exact"
@@ -138,7 +138,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
 
         summary = analyse(c, model=model, speeds=(0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0))
         summary_other = analyse(c, model=other, speeds=(0.75,))
-        rolling = linearisation_check(rolling_resistance_on(c), 0.75, model=model)
+        rolling = linearisation_check(with_rolling_resistance(c), 0.75, model=model)
         stage("linear summary")
         loci = {}
         for m in (model, other):
@@ -187,13 +187,6 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                       rolling=rolling)
 
 
-def rolling_resistance_on(c: Chair) -> Chair:
-    """``c`` itself if it has rolling resistance, else ``c`` with the tire fits' rolling resistance on."""
-    if c.main_rolling_scale != 0.0 or c.caster_rolling_scale != 0.0:
-        return c
-    return c.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0)
-
-
 # ---------------------------------------------------------------------------
 # findings (plain words, computed numbers)
 # ---------------------------------------------------------------------------
@@ -236,7 +229,9 @@ def findings(d: ReportData) -> list[str]:
                   if _first(so.locked_crossings) is not None else "; locked casters stable in the range."))
     rl = d.rolling
     if rl is not None:
-        own = c.main_rolling_scale != 0.0 or c.caster_rolling_scale != 0.0
+        from .validation import has_rolling_resistance
+
+        own = has_rolling_resistance(c)
         out.append(("This chair's rolling resistance is" if own else
                     "Rolling resistance (off for this chair, as in WCHAIR's defaults) is")
                    + " left out of the linear model. "

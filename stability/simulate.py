@@ -1482,21 +1482,20 @@ def linearise(chair: Chair, speed: float, *, model: str = "thesis", casters: str
                          out_of_range="raise", sample=None, rtol=1e-6, atol=1e-9, reverse=False)
     modes = (_LOCKED, _LOCKED) if opts.casters == "locked" else (_FREE_POS, _FREE_POS)
     u0, _ = _initial(opts, speed)
+    mz_in = [0.0]                       # the yaw-moment input of the evaluation below (N m)
+    model_ = _AdaptiveModel(chair, speed, dataclasses.replace(opts, yaw_moment=lambda t, st: mz_in[0]))
 
     def derivative(dx, mz=0.0):
-        o = opts if mz == 0.0 else dataclasses.replace(opts, yaw_moment=lambda t, st: mz)
-        m = _AdaptiveModel(chair, speed, o)
+        mz_in[0] = mz
+        model_.guess = (0.0, 0.0)       # every evaluation solves the load-transfer loop from scratch
         y = [0.0, 0.0, 0.0, u0, *dx] + [0.0] * (6 - len(dx))
-        dy, _ = m.evaluate(0.0, y, modes, False)
+        dy, _ = model_.evaluate(0.0, y, modes, False)
         return np.array(dy[4:4 + len(dx)], dtype=float)
 
     n = 2 if opts.casters == "locked" else 6
     eye = np.eye(n) * step
     A = np.column_stack([(derivative(eye[j]) - derivative(-eye[j])) / (2.0 * step) for j in range(n)])
     B = ((derivative(np.zeros(n), 1.0) - derivative(np.zeros(n), -1.0)) / 2.0)[:, None]
-    if n == 6:   # the angle rows are exact identities: eta' = eta_dot, beta' = beta_dot
-        A[2], A[4] = np.eye(6)[3], np.eye(6)[5]
-        B[2] = B[4] = 0.0
     states = ["v", "r", "eta", "eta_dot", "beta", "beta_dot"][:n]
     C = np.zeros((2, n))
     C[0, 0] = C[1, 1] = 1.0

@@ -166,7 +166,9 @@ def _simulate_batch(chairs, speeds, *, progress=False, desc="simulating", **opti
     options = dict(options)
     options.setdefault("sample", 0.01)
     if len(chairs) <= SCALAR_RUNS and options.get("scheme", "wchair") == "wchair":
-        forces = np.broadcast_to(np.asarray(options.pop("impulse_force", 40.0), dtype=float), (len(chairs),))
+        if np.ndim(options.get("impulse_force")) == 0:
+            return [sim.simulate(c, s, **options) for c, s in zip(chairs, speeds)]
+        forces = options.pop("impulse_force")           # one per run (a disturbance map)
         return [sim.simulate(c, s, impulse_force=float(f), **options) for c, s, f in zip(chairs, speeds, forces)]
     return list(sim.simulate_batch(chairs, speeds, progress=progress, **options))
 

@@ -1004,6 +1004,7 @@ class TireStack:
         self._offset = (8 * np.arange(k, dtype=np.intp))[:, None]
         scale = np.array([t.lateral_scale for t in tires], dtype=float)[:, None]
         self._scale = None if np.all(scale == 1.0) else scale
+        self.tires = tires
         self.names = tuple(t.name for t in tires)
 
     def lateral_force(self, slip_deg: NDArray[np.float64], fz: NDArray[np.float64], *,
@@ -1022,11 +1023,9 @@ class TireStack:
         else:
             _check_policy(policy)
             bad = (s > SLIP_MAX_DEG) | (fz > FZ_MAX_N)
-            if bad.any():
-                j, i = np.argwhere(bad)[0]
-                what = (f"slip angle {float(slip_deg[j, i])!r} deg", f"[-{SLIP_MAX_DEG:g}, {SLIP_MAX_DEG:g}] deg") \
-                    if s[j, i] > SLIP_MAX_DEG else (f"normal force {float(fz[j, i])!r} N", f"[0, {FZ_MAX_N:g}] N")
-                raise ValueError(f"{what[0]} is outside the fitted range {what[1]} (tire {self.names[j]})")
+            if bad.any():   # the offending row's tire raises its own error
+                j = int(np.argwhere(bad)[0][0])
+                self.tires[j].lateral_force(slip_deg[j], fz[j], policy="raise")
             f = fz
         c = _segment_force(self._table, s, f, self._offset)
         if self._scale is not None:

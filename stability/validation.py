@@ -37,7 +37,7 @@ import numpy as np
 from .chair import Chair
 
 __all__ = ["RateComparison", "measured_rate", "linear_vs_nonlinear", "LinearisationCheck", "omitted_effects",
-           "linearisation_check"]
+           "has_rolling_resistance", "with_rolling_resistance", "linearisation_check"]
 
 
 @dataclass(frozen=True)
@@ -169,6 +169,16 @@ def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", ca
 # ---------------------------------------------------------------------------
 # symbolic linear model vs the simulator's own linearisation
 # ---------------------------------------------------------------------------
+def has_rolling_resistance(chair: Chair) -> bool:
+    """Whether the simulator applies rolling resistance to any of the chair's tires."""
+    return chair.main_rolling_scale != 0.0 or chair.caster_rolling_scale != 0.0
+
+
+def with_rolling_resistance(chair: Chair) -> Chair:
+    """``chair`` itself if it has rolling resistance, else with the tire fits' rolling resistance on."""
+    return chair if has_rolling_resistance(chair) else chair.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0)
+
+
 def omitted_effects(chair: Chair) -> tuple[str, ...]:
     """What the simulator has and the linear model leaves out, for this chair.
 
@@ -177,7 +187,7 @@ def omitted_effects(chair: Chair) -> tuple[str, ...]:
     with none of them is linearised exactly (see :func:`linearisation_check`).
     """
     out = []
-    if chair.main_rolling_scale != 0.0 or chair.caster_rolling_scale != 0.0:
+    if has_rolling_resistance(chair):
         out.append("rolling resistance")
     if chair.camber_deg != 0.0:
         out.append(f"camber {chair.camber_deg:g} deg")
