@@ -75,7 +75,7 @@ def _cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str) -> List[str]:
 
 # the chair's parameters: in a batch they are shared Python floats, so that
 # products of them cost nothing next to operations on arrays of runs
-PARAMETERS = frozenset(("x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "l1", "m", "m_c", "i_z", "i_zp"))
+CHAIR_SYMBOLS = frozenset(("x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "l1", "m", "m_c", "i_z", "i_zp"))
 
 
 def _split_by_parameters(named: Sequence[Tuple[str, sp.Expr]], tmp: str
@@ -88,7 +88,7 @@ def _split_by_parameters(named: Sequence[Tuple[str, sp.Expr]], tmp: str
     one array operation per state factor, not one per factor.  Returns the
     temporaries and the rewritten expressions.
     """
-    params = {sp.Symbol(n, real=True) for n in PARAMETERS} | {sp.Symbol(n) for n in PARAMETERS}
+    params = {sp.Symbol(n, real=True) for n in CHAIR_SYMBOLS} | {sp.Symbol(n) for n in CHAIR_SYMBOLS}
     coef_sym: Dict[sp.Expr, sp.Symbol] = {}
     defs: List[Tuple[sp.Symbol, sp.Expr]] = []
     out = []

@@ -125,6 +125,8 @@ import numpy as np
 from ._validate import check_choice, check_nonnegative, check_positive, check_speed
 from .chair import Chair
 from .power_chair import DriveTrain
+from .signals import envelope_rate
+from .signals import settle_time as _settle_time
 
 __all__ = [
     "DESIGNS",
@@ -345,7 +347,8 @@ def _sysname(prefix: str, speed: float) -> str:
 
 def _lateral_force_column(chair: Chair, speed: float, model: str) -> np.ndarray:
     """Response ``d(x_dot)/d(Fy)`` of the six chair states to a lateral force at the c.g."""
-    from .models import accelerations, parameters
+    from .models import accelerations
+    from .params import parameters
 
     p = parameters(chair)
     z = 0.0
@@ -912,16 +915,7 @@ class RecoveryRun:
 
 def settle_time(t: np.ndarray, response_deg: np.ndarray) -> float | None:
     """First time after which ``|response|`` stays within max(5 % of its peak, 0.01 deg); None if never."""
-    t = np.asarray(t, dtype=float)
-    a = np.abs(np.asarray(response_deg, dtype=float))
-    if a.size == 0:
-        return None
-    band = max(SETTLE_FRACTION * float(a.max()), SETTLE_FLOOR_DEG)
-    out = np.flatnonzero(a > band)
-    if out.size == 0:
-        return 0.0
-    i = int(out[-1]) + 1
-    return float(t[i]) if i < t.size else None
+    return _settle_time(t, response_deg, SETTLE_FRACTION, SETTLE_FLOOR_DEG)
 
 
 def _simulate(chair, speed, controller, impulse_force, impulse_duration, duration, dt, model, scheme):
@@ -1103,34 +1097,8 @@ def destabilising_moment(chair: Chair | str = "ej-premier", speed: float = 0.75,
 
 
 def fit_decay_rate(t: np.ndarray, y: np.ndarray, t_start: float, t_end: float) -> float:
-    """Exponential rate (1/s, negative for decay) of the envelope of ``y`` on ``[t_start, t_end]``.
-
-    If ``|y|`` has at least three local maxima in the window (an oscillating
-    response) the log of those peaks, refined by a parabola through the
-    three samples around each, is fitted with a straight line; otherwise
-    ``log|y|`` at every sample is.  (The extrema of a damped sinusoid
-    ``A e^(st) cos(wt + p)`` are spaced ``pi/w`` apart and shrink by
-    ``e^(s pi/w)`` each, so their logs lie on a line of slope ``s``.)
-    """
-    t = np.asarray(t, dtype=float)
-    a = np.abs(np.asarray(y, dtype=float))
-    w = (t >= t_start) & (t <= t_end) & (a > 0)
-    tw, aw = t[w], a[w]
-    if tw.size < 3:
-        raise ValueError("fit_decay_rate: fewer than 3 samples in the window")
-    peaks = np.flatnonzero((aw[1:-1] > aw[:-2]) & (aw[1:-1] >= aw[2:])) + 1
-    if peaks.size >= 3:
-        la = np.log(aw)
-        pt, pv = [], []
-        for i in peaks:
-            y0, y1, y2 = la[i - 1], la[i], la[i + 1]
-            den = y0 - 2 * y1 + y2
-            off = 0.5 * (y0 - y2) / den if den != 0 else 0.0
-            h = tw[i + 1] - tw[i]
-            pt.append(tw[i] + off * h)
-            pv.append(y1 - 0.25 * (y0 - y2) * off)
-        return float(np.polyfit(pt, pv, 1)[0])
-    return float(np.polyfit(tw, np.log(aw), 1)[0])
+    """Exponential rate of the envelope of ``y`` (1/s); see :func:`stability.signals.envelope_rate`."""
+    return envelope_rate(t, y, t_start, t_end)
 
 
 # ---------------------------------------------------------------------------

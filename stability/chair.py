@@ -295,7 +295,33 @@ def _presets() -> dict[str, dict[str, Any]]:
     # back so s1 = .345 -> .245 m, pins extended 5 cm behind the chair so
     # s1 + s2 drops by only 5 cm: s2 = .175 + .05 = .225 m.
     revised = dict(name="revised", s1=0.245, s2=0.225, trail=0.06)
-    return {"ej-premier": ej, "ej-premier-front-caster": front, "revised": revised}
+    return {"ej-premier": ej, "ej-premier-front-caster": front, "revised": revised,
+            "power-fwd": dict(POWER_FWD_FIELDS)}
+
+
+#: Field values of the ``power-fwd`` preset: a front-wheel-drive power chair
+#: with rear casters and a 100 kg user; each value is argued in
+#: ``docs/power-chair.md`` (lumped estimate in :mod:`stability.power_chair`).
+POWER_FWD_FIELDS: dict[str, Any] = dict(
+    name="power-fwd",
+    caster_position="rear",
+    d1=0.275, d2=0.275,
+    s1=0.18, s2=0.32,
+    trail=0.05, l1=0.035,
+    t1=0.22, t2=0.22,
+    h=0.49,
+    m=215.0, m_c=1.6,
+    i_z=13.0, i_zp=0.006,
+    pin_friction_left=0.15, pin_friction_right=0.15,
+    pin_damping=0.0,
+    roll_k=1.0,
+    camber_deg=0.0, toe_deg=0.0,
+    main_tire="linear:110",
+    caster_tire="ER",
+    main_lateral_scale=1.0, main_rolling_scale=0.0,
+    caster_lateral_scale=1.0, caster_rolling_scale=0.0,
+    g=9.81,
+)
 
 
 def preset_names() -> tuple[str, ...]:
@@ -314,28 +340,14 @@ def preset(name: str) -> Chair:
         (its front-caster equivalent, chapter 8) or ``"revised"`` (chapter 9).
     """
     table = _presets()
-    extra = _extra_presets()
     if name in table:
         return Chair(**table[name])
-    if name in extra:
-        return extra[name]()
-    raise ValueError(f"unknown chair preset {name!r}; valid presets: {list(table) + list(extra)}")
-
-
-def _extra_presets() -> dict[str, Any]:
-    """Presets defined by other modules (e.g. the power chair of :mod:`stability.assist`)."""
-    out: dict[str, Any] = {}
-    try:
-        from .power_chair import power_fwd  # noqa: WPS433
-    except ImportError:
-        return out
-    out["power-fwd"] = power_fwd
-    return out
+    raise ValueError(f"unknown chair preset {name!r}; valid presets: {list(table)}")
 
 
 def all_preset_names() -> tuple[str, ...]:
-    """Built-in and add-on preset names."""
-    return tuple(_presets()) + tuple(_extra_presets())
+    """Names of all presets (kept for compatibility; same as :func:`preset_names`)."""
+    return preset_names()
 
 
 # ---------------------------------------------------------------------------

@@ -24,7 +24,10 @@ from typing import Callable, Sequence
 import numpy as np
 
 from .chair import Chair
-from .models import linear_matrices, parameters, static_stiffness
+from .models import linear_matrices
+from .models import zero_width as zw
+from .params import parameters
+from .statics import static_loads, static_stiffness
 
 __all__ = [
     "STATES_FREE",
@@ -373,8 +376,6 @@ def zero_width(chair: Chair) -> ZeroWidthResult:
     The front axle of the bicycle is the main axle for a rear-caster chair
     and the caster contacts for a front-caster chair.
     """
-    from ._generated import zero_width as zw
-
     s = chair.wheelbase
     d_main = chair.s1
     d_caster = chair.caster_contact_distance
@@ -459,8 +460,6 @@ def massless_caster_rate(chair: Chair, speed, caster_drag: float = 0.0):
     float or ndarray
         The larger real part of the two roots (1/s).
     """
-    from .models import parameters, static_stiffness
-
     U = np.asarray(speed, dtype=float)
     drag = float(caster_drag)
     if not (math.isfinite(drag) and drag >= 0.0):
@@ -498,8 +497,6 @@ class StabilitySummary:
 def analyse(chair: Chair, model: str = "exact", speeds=(0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0),
             max_speed: float = 30.0, n_grid: int = 600) -> StabilitySummary:
     """Full linear stability summary of a chair (see :class:`StabilitySummary`)."""
-    from .loads import static_loads
-
     if not (isinstance(max_speed, (int, float)) and max_speed > 0.01 and math.isfinite(max_speed)):
         raise ValueError(f"max_speed={max_speed!r} is invalid; valid range: 0.01 < max_speed < inf m/s")
     loads = static_loads(chair)

@@ -134,32 +134,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ._validate import check_positive
-from .chair import Chair
+from .chair import Chair, preset
 
-__all__ = ["DriveTrain", "power_fwd", "drive_train", "PARAMETERS", "COMPONENTS", "lumped_estimate"]
-
-#: Field values of the ``power-fwd`` preset (see the module docstring for the reasoning).
-PARAMETERS: dict = dict(
-    name="power-fwd",
-    caster_position="rear",
-    d1=0.275, d2=0.275,
-    s1=0.18, s2=0.32,
-    trail=0.05, l1=0.035,
-    t1=0.22, t2=0.22,
-    h=0.49,
-    m=215.0, m_c=1.6,
-    i_z=13.0, i_zp=0.006,
-    pin_friction_left=0.15, pin_friction_right=0.15,
-    pin_damping=0.0,
-    roll_k=1.0,
-    camber_deg=0.0, toe_deg=0.0,
-    main_tire="linear:110",
-    caster_tire="ER",
-    main_lateral_scale=1.0, main_rolling_scale=0.0,
-    caster_lateral_scale=1.0, caster_rolling_scale=0.0,
-    g=9.81,
-)
-
+__all__ = ["DriveTrain", "power_fwd", "drive_train", "COMPONENTS", "lumped_estimate"]
 
 #: Lumped masses behind the estimates of ``m``, ``s1``, ``h`` and ``i_z``:
 #: (name, mass kg, x from the drive axle m (forward +), |y| of a symmetric pair m,
@@ -240,7 +217,7 @@ class DriveTrain:
 
 def power_fwd() -> Chair:
     """The ``power-fwd`` preset: a front-wheel-drive power chair with rear casters and a 100 kg user."""
-    return Chair(**PARAMETERS)
+    return preset("power-fwd")
 
 
 def drive_train(name: str = "power-fwd") -> DriveTrain:

@@ -360,7 +360,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Any]]]:
     """``(title, build)`` for every page, in order; ``build()`` returns a Figure."""
     from . import plotting as P
     from .critical_speed import format_summary
-    from .loads import static_loads
+    from .statics import static_loads
     from .study import THESIS
 
     sub = _subtitle(d)

@@ -53,7 +53,7 @@ from .linear import (
 
 __all__ = [
     "Parameter",
-    "PARAMETERS",
+    "DESIGN_PARAMETERS",
     "parameter_names",
     "SpeedLocus",
     "speed_locus",
@@ -251,7 +251,7 @@ def _width_factor(c: Chair, f: float) -> Chair:
     return c.replace(d1=c.d1 * f, d2=c.d2 * f, t1=c.t1 * f, t2=c.t2 * f)
 
 
-PARAMETERS: dict[str, Parameter] = {
+DESIGN_PARAMETERS: dict[str, Parameter] = {
     p.name: p
     for p in (
         Parameter("cg_ratio", "c.g. ratio s1/(s1+s2)", "-", _cg_ratio, lambda c: c.cg_ratio,
@@ -296,14 +296,14 @@ LOCUS_PARAMETERS = ("cg_ratio", "s1_plus_s2", "trail", "caster_mass_factor", "pi
 
 def parameter_names() -> tuple[str, ...]:
     """Names accepted by :func:`parameter_locus` and :mod:`stability.study`."""
-    return tuple(PARAMETERS)
+    return tuple(DESIGN_PARAMETERS)
 
 
 def get_parameter(name: str) -> Parameter:
     try:
-        return PARAMETERS[name]
+        return DESIGN_PARAMETERS[name]
     except KeyError:
-        raise ValueError(f"unknown parameter {name!r}; valid names: {list(PARAMETERS)}") from None
+        raise ValueError(f"unknown parameter {name!r}; valid names: {list(DESIGN_PARAMETERS)}") from None
 
 
 @dataclass(frozen=True, eq=False)
@@ -313,7 +313,7 @@ class ParameterLocus:
     Attributes
     ----------
     parameter : str
-        Parameter name (a key of :data:`PARAMETERS`).
+        Parameter name (a key of :data:`DESIGN_PARAMETERS`).
     label, unit : str
         Axis label and unit of the parameter.
     values : ndarray, shape (N,)
@@ -404,7 +404,7 @@ def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float =
     ----------
     chair : Chair
     parameter : str
-        A key of :data:`PARAMETERS` (see :func:`parameter_names`).
+        A key of :data:`DESIGN_PARAMETERS` (see :func:`parameter_names`).
     values : array_like, optional
         Values to evaluate, in the order to track; default: ``n`` values
         over the parameter's span plus the chair's own value.

@@ -101,8 +101,9 @@ from typing import Any, Callable, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
-from . import loads as _loads
 from . import models as _models
+from . import statics as _loads
+from .params import parameters as _parameters
 from .chair import Chair
 from .progress import ProgressBar
 from . import tires as _tires
@@ -680,8 +681,7 @@ class _Kernel:
     """
 
     def __init__(self, chairs: Sequence[Chair], opts: _Options, vector: bool):
-        from ._generated import full_width as fw
-
+        fw = _models.full_width.generated
         self.vector = vector
         self.variant = opts.model
         self.policy = opts.out_of_range
@@ -690,7 +690,7 @@ class _Kernel:
         self.acc_fn = getattr(fw, f"accelerations_{opts.model}")
         self.thesis = opts.model == "thesis"
         if vector:
-            self.p = _shared_scalars(_models.parameters(list(chairs)))
+            self.p = _shared_scalars(_parameters(list(chairs)))
             keys = [_TireGroup.key(c) for c in chairs]
             uniq: dict = {}
             for i, k in enumerate(keys):
@@ -701,7 +701,7 @@ class _Kernel:
             self.ct, self.st = np.cos(toe), np.sin(toe)
         else:
             c = chairs[0]
-            self.p = _models.parameters(c)
+            self.p = _parameters(c)
             self.groups = [(_TireGroup(c, opts), None)]
             toe = math.radians(c.toe_deg)
             self.toe = toe != 0

@@ -51,7 +51,8 @@ from typing import Sequence
 import numpy as np
 
 from .chair import Chair, preset
-from .rootlocus import PARAMETERS, get_parameter
+from .signals import time_to_level
+from .rootlocus import DESIGN_PARAMETERS, get_parameter
 
 __all__ = [
     "Criterion",
@@ -129,15 +130,9 @@ def time_to_yaw_rate(result, level: float = 1.0, duration: float | None = None) 
     early (``stopped_by_warnings``) before reaching it.
     """
     t = np.asarray(result.t, dtype=float)
-    r = np.abs(np.asarray(result.yaw_rate, dtype=float))
-    finite = np.isfinite(r)
-    hit = np.flatnonzero((r >= level) | ~finite)
-    if len(hit):
-        k = int(hit[0])
-        if k == 0 or not finite[k]:
-            return float(t[k])
-        r0, r1 = r[k - 1], r[k]
-        return float(t[k - 1] + (level - r0) / (r1 - r0) * (t[k] - t[k - 1]))
+    hit = time_to_level(t, result.yaw_rate, level)
+    if math.isfinite(hit):
+        return hit
     stopped = bool(getattr(result, "stopped_by_warnings", False))
     if duration is not None and len(t) and t[-1] < duration - 1e-9 and stopped:
         return float(t[-1])
@@ -208,7 +203,8 @@ def lateral_force_input(chair: Chair, speed: float, model: str = "exact", caster
     force): the accelerations produced by a unit lateral force at the c.g.
     with the chair in straight-line motion and no tire forces.
     """
-    from .models import accelerations, parameters
+    from .models import accelerations
+    from .params import parameters
 
     p = parameters(chair)
     z = 0.0
@@ -880,7 +876,7 @@ def parameter_sweeps(chair: Chair, plan: dict | None = None, *, extra_chairs: Se
     k = 1
     sweeps = []
     for name, vals, labels, chairs in groups:
-        p = PARAMETERS[name]
+        p = DESIGN_PARAMETERS[name]
         r = tuple(res[k:k + len(chairs)])
         k += len(chairs)
         sweeps.append(Sweep(name, p.label, p.unit, vals, r, float(p.current(chair)), nominal, labels, p.how))
@@ -956,7 +952,7 @@ def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | 
     k = len(named)
     sweeps = []
     for name, vals, labels, chairs in groups:
-        p = PARAMETERS[name]
+        p = DESIGN_PARAMETERS[name]
         sweeps.append(Sweep(name, p.label, p.unit, vals, tuple(res[k:k + len(chairs)]), float(p.current(ej)),
                             speeds["ej-premier"], labels, p.how))
         k += len(chairs)
@@ -969,7 +965,7 @@ def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | 
         k += 1
         osweeps = []
         for name, vals, labels, chairs in other_groups:
-            p = PARAMETERS[name]
+            p = DESIGN_PARAMETERS[name]
             osweeps.append(Sweep(name, p.label, p.unit, vals, tuple(res[k:k + len(chairs)]),
                                  float(p.current(extra_plan_chair)), nominal, labels, p.how))
             k += len(chairs)
@@ -1147,7 +1143,7 @@ def check_conclusions(study: ThesisStudy) -> list[ConclusionCheck]:
 
         stiff = {}
         for lab, c in zip(s.labels, (r.chair for r in s.results)):
-            from .loads import static_loads
+            from .statics import static_loads
 
             stiff[lab] = float(tires.get(lab).cornering_stiffness(static_loads(c)["main"]))
         softest = min(stiff, key=stiff.get)

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .chair import Chair
+from .signals import growth_rate
 
 __all__ = ["RateComparison", "measured_rate", "linear_vs_nonlinear", "LinearisationCheck", "omitted_effects",
            "has_rolling_resistance", "with_rolling_resistance", "linearisation_check"]
@@ -78,32 +79,8 @@ class RateComparison:
 
 
 def measured_rate(t: np.ndarray, y: np.ndarray, oscillatory: bool, window: tuple[float, float]) -> float:
-    """Exponential growth/decay rate (1/s) of ``y(t)`` inside ``window``.
-
-    Parameters
-    ----------
-    t, y : ndarray
-        Uniformly sampled time (s) and signal.
-    oscillatory : bool
-        Use Prony's method of order 2 (complex pair) instead of a log-linear fit.
-    window : (float, float)
-        Start and end of the fit (s).
-    """
-    t = np.asarray(t, dtype=float)
-    y = np.asarray(y, dtype=float)
-    sel = (t >= window[0]) & (t <= window[1]) & np.isfinite(y)
-    ts, ys = t[sel], y[sel]
-    if len(ts) < 8:
-        raise ValueError(f"window={window} holds only {len(ts)} samples; need at least 8")
-    if not oscillatory:
-        if np.any(ys == 0) or np.any(np.sign(ys) != np.sign(ys[0])):
-            raise ValueError("signal changes sign inside the window: not a single real mode")
-        return float(np.polyfit(ts, np.log(np.abs(ys)), 1)[0])
-    dt = float(np.median(np.diff(ts)))
-    A = np.column_stack([ys[1:-1], ys[:-2]])
-    c1, c0 = np.linalg.lstsq(A, ys[2:], rcond=None)[0]
-    z = np.roots([1.0, -c1, -c0])
-    return float(np.log(np.max(np.abs(z))) / dt)
+    """Exponential rate of ``y(t)`` inside ``window`` (1/s); see :func:`stability.signals.growth_rate`."""
+    return growth_rate(t, y, oscillatory, window)
 
 
 def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", casters: str = "free",

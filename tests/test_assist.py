@@ -11,9 +11,10 @@ import math
 import numpy as np
 import pytest
 
-from stability import assist, chair as chair_mod, models
+from stability import assist, chair as chair_mod, models, params
 from stability.linear import input_matrices, state_matrices
-from stability.power_chair import PARAMETERS, DriveTrain, drive_train, lumped_estimate, power_fwd
+from stability.chair import POWER_FWD_FIELDS
+from stability.power_chair import DriveTrain, drive_train, lumped_estimate, power_fwd
 
 SPEEDS = np.arange(0.5, 3.0001, 0.25)
 
@@ -38,14 +39,14 @@ def test_preset_validates_and_matches_its_documentation(chair):
     assert chair == power_fwd()
     assert "power-fwd" in chair_mod.all_preset_names()
     assert chair_mod.resolve("power-fwd") == chair
-    assert {f: getattr(chair, f) for f in PARAMETERS} == PARAMETERS
+    assert {f: getattr(chair, f) for f in POWER_FWD_FIELDS} == POWER_FWD_FIELDS
     assert chair.caster_position == "rear"            # front-wheel drive = drive wheels ahead of the c.g.
     est = lumped_estimate()
     assert est["m"] == pytest.approx(chair.m)
     assert est["s1"] == pytest.approx(chair.s1, abs=0.01)
     assert est["h"] == pytest.approx(chair.h, abs=0.01)
     assert est["i_z"] == pytest.approx(chair.i_z, rel=0.02)
-    from stability.loads import static_loads
+    from stability.statics import static_loads
 
     loads = static_loads(chair)
     drive_share = 2 * loads["main"] / (chair.m * chair.g)
@@ -66,7 +67,7 @@ def test_drive_train_yaw_moment_is_the_couple_of_eq_6_3():
     assert dt.max_yaw_moment(c) == pytest.approx(dt.torque_limit * 0.55 / 0.178)
     fdx, fex = dt.wheel_forces(c, 20.0)
     assert (fdx, fex) == pytest.approx((20.0 / dt.wheel_radius, -20.0 / dt.wheel_radius))
-    p = models.parameters(c)
+    p = params.parameters(c)
     eta, beta = 0.3, -0.2
     state = dict(u=1.5, v=0.05, r=0.2, ce=math.cos(eta), se=math.sin(eta), cb=math.cos(beta), sb=math.sin(beta),
                  eta_d=0.4, beta_d=-0.3)

@@ -7,8 +7,8 @@ import pytest
 
 from stability import chair as chair_mod
 from stability.chair import Chair
-from stability.loads import normal_loads, static_loads
-from stability.models import parameters
+from stability.statics import normal_loads, static_loads
+from stability.params import parameters
 
 
 def wchair_statics(c: Chair, FC1, FC2, E, B):

@@ -60,8 +60,7 @@ def test_locked_full_width_equals_bicycle_closed_form(speed):
     """
     c = chair_mod.preset("ej-premier")
     zw = linear.zero_width(c)
-    st = linear.static_stiffness(c) if hasattr(linear, "static_stiffness") else None
-    from stability.models import static_stiffness
+    from stability.statics import static_stiffness
 
     st = static_stiffness(c)
     Cf, Cr = st["D"], st["A"]                 # per tire, N/rad

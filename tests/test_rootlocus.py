@@ -25,7 +25,7 @@ def ej():
 def test_parameter_locus_equals_per_chair_eigenvalues(ej, name):
     """At each value the locus holds exactly the eigenvalues of state_matrices(chair.replace(...), speed)."""
     loc = rootlocus.parameter_locus(ej, name, speed=0.75, n=25)
-    p = rootlocus.PARAMETERS[name]
+    p = rootlocus.DESIGN_PARAMETERS[name]
     assert loc.eigenvalues.shape == (len(loc.values), 6)
     for k in range(0, len(loc.values), 4):
         c = p.apply(ej, float(loc.values[k]))

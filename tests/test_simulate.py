@@ -11,7 +11,8 @@ import sys
 import numpy as np
 import pytest
 
-from stability import loads, models, tires
+from stability import models, params, tires
+from stability import statics as loads
 from stability import simulate as sim
 from stability.chair import preset
 from stability.simulate import ChairState, SimulationResult, simulate, simulate_batch
@@ -100,7 +101,7 @@ def test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update()
 def test_statics_uses_previous_steps_total_force_including_fcimp():
     """STATICS is called before MECHAN/DYNAM with FC1, FC2 of the previous step (FCIMP included)."""
     r = simulate(SLICK, 0.75, duration=0.01)
-    p = models.parameters(SLICK)
+    p = params.parameters(SLICK)
     np.testing.assert_allclose(r.normal_load[0], loads.normal_loads(p), rtol=1e-12)      # FC = 0 at t = 0
     np.testing.assert_allclose(r.normal_load[1], loads.normal_loads(p, 0.0, 40.0), rtol=1e-12)
 
@@ -384,7 +385,7 @@ def test_adaptive_locked_and_samples():
 def test_adaptive_loads_are_consistent_with_the_forces():
     """Instantaneous (not lagged) load transfer, without the c.g. force."""
     r = simulate(EJ, 0.75, duration=2.0, scheme="adaptive", sample=0.25)
-    p = models.parameters(EJ)
+    p = params.parameters(EJ)
     for k in range(len(r.t)):
         ce, se, cb, sb = math.cos(r.eta[k]), math.sin(r.eta[k]), math.cos(r.beta[k]), math.sin(r.beta[k])
         fx, fy = r.fx[k], r.fy[k]

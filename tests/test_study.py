@@ -162,7 +162,8 @@ def test_check_conclusions_verdicts(fake):
 # ---------------------------------------------------------------------------
 def test_lateral_force_input_and_yaw_moment_input_agree_with_linear():
     """The Mz column built the same way as the lateral-force column equals linear.input_matrices."""
-    from stability.models import accelerations, parameters
+    from stability.models import accelerations
+    from stability.params import parameters
 
     for model in ("exact", "thesis"):
         c = preset("ej-premier")

@@ -75,7 +75,7 @@ def test_caster_drag_acts_as_rear_cornering_stiffness():
     that closed form (linear.massless_caster_rate with caster_drag) as it agrees without
     drag; measured 0.5/0.75/1/2 m/s: 0.596/1.202/1.730/3.562 vs 0.584/1.186/1.716/3.553 1/s."""
     from stability import linear, tires
-    from stability.loads import static_loads
+    from stability.statics import static_loads
     from stability.validation import linearisation_check
 
     c = chair_mod.preset("ej-premier").replace(caster_rolling_scale=1.0)
