@@ -1,0 +1,75 @@
+"""Towed-wheel shimmy equations: the one door to :mod:`stability._generated.shimmy`.
+
+The derivation is ``derivations/shimmy.py`` (Lagrange's equations with a
+multiplier for the no-side-slip tire, linearised).  Four configurations
+(``"<pivot>_<tire>"``, each ``rigid`` or ``compliant``) are available; every
+function broadcasts over an array of speeds.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .._generated import shimmy as _gen
+
+__all__ = ["CASES", "STATES", "case_name", "state_matrices", "characteristic_coefficients"]
+
+STATES: dict[str, tuple[str, ...]] = dict(_gen.STATES)
+CASES: tuple[str, ...] = tuple(STATES)
+ARGUMENTS = ("mass", "inertia", "a", "b", "k", "C", "sigma", "c")
+
+
+def case_name(rigid_pivot: bool, rigid_tire: bool) -> str:
+    """Configuration key, e.g. ``"compliant_rigid"`` (compliant pivot, rigid tire)."""
+    return f"{'rigid' if rigid_pivot else 'compliant'}_{'rigid' if rigid_tire else 'compliant'}"
+
+
+def _function(prefix: str, case: str) -> Callable[..., Any]:
+    if case not in STATES:
+        raise ValueError(f"case={case!r} is invalid; valid choices: {list(CASES)}")
+    return getattr(_gen, f"{prefix}_{case}")
+
+
+def _stack(entries, shape: tuple[int, ...]) -> np.ndarray:
+    return np.stack([np.broadcast_to(np.asarray(e, dtype=float), shape) for e in entries], axis=-1)
+
+
+def state_matrices(case: str, params: dict[str, float], speeds: Any) -> tuple[np.ndarray, np.ndarray]:
+    """State matrix and pin-torque input column, ``x_dot = A x + B T``.
+
+    Parameters
+    ----------
+    case : str
+        One of :data:`CASES`.
+    params : dict
+        ``mass`` (kg), ``inertia`` (about the c.g., kg m^2), ``a`` (c.g. to
+        contact, m), ``b`` (pivot to c.g., m), ``k`` (pivot lateral
+        stiffness, N/m), ``C`` (cornering stiffness, N/rad), ``sigma``
+        (relaxation length, m), ``c`` (viscous pin damping, N m s/rad);
+        entries a case does not use may hold any finite placeholder.
+    speeds : float or array_like
+        Forward speeds (m/s).
+
+    Returns
+    -------
+    A : ndarray, shape (..., n, n)
+    B : ndarray, shape (..., n)
+    """
+    U = np.asarray(speeds, dtype=float)
+    rows, col = _function("state_space", case)(*(params[k] for k in ARGUMENTS), U)
+    A = np.stack([_stack(r, U.shape) for r in rows], axis=-2)
+    return A, _stack(col, U.shape)
+
+
+def characteristic_coefficients(case: str, params: dict[str, float], speeds: Any) -> np.ndarray:
+    """Characteristic polynomial coefficients, highest power first, shape (..., n + 1).
+
+    The leading coefficient is a positive product of parameters (the
+    polynomial is ``det(s I - A)`` cleared of denominators).
+    """
+    U = np.asarray(speeds, dtype=float)
+    coeffs = _function("characteristic", case)(*(params[k] for k in ARGUMENTS), U)
+    return _stack(coeffs, U.shape)
