@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Dict, List, Sequence, Tuple
 
 import numpy as np
 
@@ -32,7 +32,6 @@ if str(ROOT) not in sys.path:
 import sympy as sp  # noqa: E402
 
 from derivations import full_width as fw  # noqa: E402
-
 from stability import chair as chair_mod  # noqa: E402
 from stability.params import parameters
 from stability.statics import static_stiffness  # noqa: E402
@@ -52,7 +51,7 @@ SWITCH_TEXT = {
 }
 
 
-def chair_stiffness(chair=THESIS_CHAIR) -> Dict[str, object]:
+def chair_stiffness(chair=THESIS_CHAIR) -> dict[str, object]:
     """Per-tire stiffness (N/rad) at the static loads of :mod:`stability.loads` (eq 6-25,
     trail included as WCHAIR's STATICS does), from :func:`stability.statics.static_stiffness`."""
     from stability.statics import static_loads
@@ -78,7 +77,7 @@ def _hybrid_numeric():
     return _HYB
 
 
-def matrices(U: float, switches: Dict[str, float], c_pin: float = 0.0, k_fext: float = 0.0):
+def matrices(U: float, switches: dict[str, float], c_pin: float = 0.0, k_fext: float = 0.0):
     """Numeric (M, K, Bm, Bf) of the hybrid model at speed ``U``."""
     C = chair_stiffness()
     ks = tuple(float(switches[k]) for k in SWITCHES) + (float(k_fext),)
@@ -97,7 +96,7 @@ def state_matrix(M: np.ndarray, K: np.ndarray) -> np.ndarray:
     return A
 
 
-def modes(A: np.ndarray, U: float) -> List[Tuple[complex, str]]:
+def modes(A: np.ndarray, U: float) -> list[tuple[complex, str]]:
     """Eigenvalues with a label from the eigenvector (which coordinates move).
 
     The eigenvector is made dimensionless as angles: chair sideslip ``v/U``,

@@ -37,8 +37,8 @@ to replace them with ``ce, se, cb, sb``).
 from __future__ import annotations
 
 import functools
+from collections.abc import Sequence
 from types import SimpleNamespace
-from typing import Dict, List, Sequence, Tuple
 
 import sympy as sp
 import sympy.physics.mechanics as me
@@ -107,7 +107,7 @@ def _trig_simplify(expr: sp.Expr) -> sp.Expr:
 # Exact model (Kane's method)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def derive_exact() -> SimpleNamespace:
     """Derive the exact five-degree-of-freedom model with Kane's method.
 
@@ -242,7 +242,7 @@ def derive_exact() -> SimpleNamespace:
 # ---------------------------------------------------------------------------
 # Thesis model (Table 6-1, eqs 6-17a-d), as printed
 
-OCR_CORRECTIONS: Tuple[str, ...] = (
+OCR_CORRECTIONS: tuple[str, ...] = (
     "Eq 6-19 (yaw, Table 6-1) is printed with the prefactor 1/m_c; it is 1/I_z "
     "(eq 6-6 and DYNAM: THEDD = (...)/IZ).",
     "The left-hand sides of Table 6-1 lines 6-18..6-21 are garbled (v-vector, "
@@ -280,7 +280,7 @@ _THESIS_TO_GENERIC = {
 }
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def thesis_model() -> SimpleNamespace:
     """Table 6-1 and eqs 6-17a-d as printed (OCR-corrected), in generic symbols.
 
@@ -364,8 +364,8 @@ def _a_C():
     return (S.u_dot - S.r * S.v, S.v_dot + S.r * S.u)
 
 
-@functools.lru_cache(maxsize=None)
-def _cg_shift_acceleration() -> Tuple[sp.Expr, sp.Expr, sp.Expr]:
+@functools.cache
+def _cg_shift_acceleration() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """``m (a_G - a_C)`` in (c1, c2) and in a2, G = system c.g., C = chair point.
 
     ``G - C = (m_c l1/m) ((c1 - a1) + (c1 - b1))``; differentiated twice in
@@ -387,8 +387,8 @@ def _cg_shift_acceleration() -> Tuple[sp.Expr, sp.Expr, sp.Expr]:
     return tuple(comps)
 
 
-@functools.lru_cache(maxsize=None)
-def compare() -> List[Dict[str, object]]:
+@functools.cache
+def compare() -> list[dict[str, object]]:
     """Term-by-term comparison of the exact and thesis variants.
 
     Every entry is verified symbolically: ``check`` must simplify to zero.
@@ -402,7 +402,7 @@ def compare() -> List[Dict[str, object]]:
     """
     ex = derive_exact()
     th = thesis_model()
-    out: List[Dict[str, object]] = []
+    out: list[dict[str, object]] = []
     names = ("vAx", "vAy", "vBx", "vBy", "vDx", "vDy", "vEx", "vEy")
     claimed_vel = {"vAy": -S.trail * S.r, "vBy": -S.trail * S.r}
     for i, n in enumerate(names):
@@ -519,7 +519,7 @@ def compare() -> List[Dict[str, object]]:
 # Linearisation
 
 
-def _tire_substitution(vel: Sequence[sp.Expr]) -> Dict[sp.Symbol, sp.Expr]:
+def _tire_substitution(vel: Sequence[sp.Expr]) -> dict[sp.Symbol, sp.Expr]:
     """Linear tires Fy = -C atan(vy/vx), no longitudinal forces, viscous pins."""
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
     return {
@@ -533,7 +533,7 @@ def _tire_substitution(vel: Sequence[sp.Expr]) -> Dict[sp.Symbol, sp.Expr]:
 EQUILIBRIUM = {S.v: 0, S.r: 0, S.eta: 0, S.beta: 0, S.eta_d: 0, S.beta_d: 0, S.u: S.U}
 
 
-def _residuals(variant: str) -> List[sp.Expr]:
+def _residuals(variant: str) -> list[sp.Expr]:
     """Residual form R(acc, state, forces) = 0 of the five equations."""
     acc = sp.Matrix(ACC5)
     if variant == "exact":
@@ -546,8 +546,8 @@ def _residuals(variant: str) -> List[sp.Expr]:
     raise ValueError(f"variant={variant!r} is invalid; valid choices: ['exact', 'thesis']")
 
 
-@functools.lru_cache(maxsize=None)
-def linearise(variant: str, locked: bool = False) -> Tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
+@functools.cache
+def linearise(variant: str, locked: bool = False) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
     """Linearise about straight running at speed ``U`` (all tire forces zero).
 
     Tires: ``Fy_i = -C_i atan(vy_i/vx_i)`` (N/rad at the static load), no
@@ -600,7 +600,7 @@ def linearise(variant: str, locked: bool = False) -> Tuple[sp.Matrix, sp.Matrix,
 
 def hybrid_linear(k_slip: sp.Expr | int = 1, k_abs: sp.Expr | int = 1, k_pin: sp.Expr | int = 1,
                   k_lat: sp.Expr | int = 1, k_yaw: sp.Expr | int = 1,
-                  k_fext: sp.Expr | int = 0) -> Tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
+                  k_fext: sp.Expr | int = 0) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
     """Linear model with each thesis-vs-exact difference switched separately.
 
     All switches 1: the exact linear model; all 0: the thesis's (both
@@ -649,7 +649,7 @@ def hybrid_linear(k_slip: sp.Expr | int = 1, k_abs: sp.Expr | int = 1, k_pin: sp
     return M, K, Bm, Bf
 
 
-def hybrid_checks() -> Dict[str, sp.Matrix]:
+def hybrid_checks() -> dict[str, sp.Matrix]:
     """``hybrid_linear`` end points minus :func:`linearise` (all zero matrices)."""
     out = {}
     for name, k in (("exact", 1), ("thesis", 0)):
@@ -663,7 +663,7 @@ def hybrid_checks() -> Dict[str, sp.Matrix]:
 # Lateral load transfer
 
 
-def load_transfer_first_order() -> Dict[str, sp.Expr]:
+def load_transfer_first_order() -> dict[str, sp.Expr]:
     """Show that lateral load transfer has no first-order effect without camber.
 
     Any smooth tire law with ``Fy(0, Fz) = 0`` for every load can be written
@@ -734,7 +734,7 @@ KE_ARGS = ("u", "v", "r", "ce", "se", "cb", "sb", "eta_d", "beta_d",
            "x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "l1", "m", "m_c", "i_z", "i_zp")
 
 
-def generated_functions() -> Dict[str, object]:
+def generated_functions() -> dict[str, object]:
     """Everything :mod:`derivations.generate` needs, in trig-symbol form.
 
     Returns

@@ -23,8 +23,8 @@ import argparse
 import os
 import sys
 import time
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Dict, Iterable, List, Sequence, Tuple
 
 if __name__ == "__main__" and os.environ.get("PYTHONHASHSEED") != "0":  # pragma: no cover
     env = dict(os.environ, PYTHONHASHSEED="0")
@@ -64,7 +64,7 @@ def _pr(expr) -> str:
     return sp.sstr(expr, order="lex")
 
 
-def _cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str) -> List[str]:
+def _cse_lines(named: Sequence[tuple[str, sp.Expr]], tmp: str) -> list[str]:
     """Assignments computing ``named`` with common subexpressions eliminated."""
     exprs = [sp.sympify(e) for _, e in named]
     reps, reduced = sp.cse(exprs, symbols=sp.numbered_symbols(tmp), order="canonical")
@@ -78,8 +78,8 @@ def _cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str) -> List[str]:
 CHAIR_SYMBOLS = frozenset(("x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "l1", "m", "m_c", "i_z", "i_zp"))
 
 
-def _split_by_parameters(named: Sequence[Tuple[str, sp.Expr]], tmp: str
-                         ) -> Tuple[List[Tuple[sp.Symbol, sp.Expr]], List[Tuple[str, sp.Expr]]]:
+def _split_by_parameters(named: Sequence[tuple[str, sp.Expr]], tmp: str
+                         ) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[tuple[str, sp.Expr]]]:
     """Write each expression as ``sum(c_k * s_k)``: ``c_k`` parameters only, ``s_k`` the rest.
 
     Every coefficient other than +-1 becomes one temporary (``_p0, _p1, ...``,
@@ -89,12 +89,12 @@ def _split_by_parameters(named: Sequence[Tuple[str, sp.Expr]], tmp: str
     temporaries and the rewritten expressions.
     """
     params = {sp.Symbol(n, real=True) for n in CHAIR_SYMBOLS} | {sp.Symbol(n) for n in CHAIR_SYMBOLS}
-    coef_sym: Dict[sp.Expr, sp.Symbol] = {}
-    defs: List[Tuple[sp.Symbol, sp.Expr]] = []
+    coef_sym: dict[sp.Expr, sp.Symbol] = {}
+    defs: list[tuple[sp.Symbol, sp.Expr]] = []
     out = []
     for name, e in named:
-        groups: Dict[sp.Expr, sp.Expr] = {}
-        order: List[sp.Expr] = []
+        groups: dict[sp.Expr, sp.Expr] = {}
+        order: list[sp.Expr] = []
         for term in sp.Add.make_args(sp.expand(sp.sympify(e))):
             c, s = [], []
             for f in sp.Mul.make_args(term):
@@ -104,7 +104,7 @@ def _split_by_parameters(named: Sequence[Tuple[str, sp.Expr]], tmp: str
                 order.append(mono)
                 groups[mono] = sp.Integer(0)
             groups[mono] += sp.Mul(*c)
-        by_coef: Dict[sp.Expr, List[sp.Expr]] = {}
+        by_coef: dict[sp.Expr, list[sp.Expr]] = {}
         for mono in order:
             coef = sp.factor_terms(groups[mono])
             if coef == 0:
@@ -129,7 +129,7 @@ def _factor_greedily(monos: Sequence[sp.Expr]) -> sp.Expr:
     """
     if len(monos) < 2:
         return sp.Add(*monos)
-    counts: Dict[sp.Symbol, int] = {}
+    counts: dict[sp.Symbol, int] = {}
     for mono in monos:
         for sym in mono.free_symbols:
             counts[sym] = counts.get(sym, 0) + 1
@@ -142,7 +142,7 @@ def _factor_greedily(monos: Sequence[sp.Expr]) -> sp.Expr:
     return sp.Add(factored, _factor_greedily(rest), evaluate=False) if rest else factored
 
 
-def _hoisted_cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str, ptmp: str) -> List[str]:
+def _hoisted_cse_lines(named: Sequence[tuple[str, sp.Expr]], tmp: str, ptmp: str) -> list[str]:
     """Like :func:`_cse_lines`, parameter-only coefficients first (see :func:`_split_by_parameters`)."""
     defs, rewritten = _split_by_parameters(named, ptmp)
     lines = _cse_lines([(str(s), e) for s, e in defs], "_q" + ptmp.lstrip("_")) if defs else []
@@ -150,7 +150,7 @@ def _hoisted_cse_lines(named: Sequence[Tuple[str, sp.Expr]], tmp: str, ptmp: str
 
 
 def _function(name: str, args: Sequence[str], doc: str, body: Iterable[str], ret: str,
-              defaults: Dict[str, str] | None = None) -> str:
+              defaults: dict[str, str] | None = None) -> str:
     defaults = defaults or {}
     sig = ", ".join(f"{a}={defaults[a]}" if a in defaults else a for a in args)
     doc_lines = doc.strip("\n").splitlines()
@@ -374,8 +374,8 @@ Returns
 
 def render_full_width() -> str:
     g = fw.generated_functions()
-    parts: List[str] = []
-    names: List[str] = []
+    parts: list[str] = []
+    names: list[str] = []
 
     # contact velocities
     vel_names = ("vAx", "vAy", "vBx", "vBy", "vDx", "vDy", "vEx", "vEy")
@@ -477,7 +477,7 @@ def render_full_width() -> str:
     return _header("Full-width wheelchair model (generated).", FW_BODY, names) + "\n\n" + "\n\n".join(parts)
 
 
-def generate(out: Path) -> Dict[str, float]:
+def generate(out: Path) -> dict[str, float]:
     """Write both modules into ``out``; return the time spent on each (s)."""
     out.mkdir(parents=True, exist_ok=True)
     times = {}

@@ -33,7 +33,6 @@ here ``U`` (or ``u``) is the forward velocity and ``v`` the lateral velocity.
 from __future__ import annotations
 
 import functools
-from typing import Dict
 
 import sympy as sp
 import sympy.physics.vector as spv
@@ -50,13 +49,13 @@ U, m, i_z, s1, s2, C_f, C_r, g = sp.symbols("U m i_z s1 s2 C_f C_r g", positive=
 v, r, lam = sp.symbols("v r lambda")
 W_f, W_r, W, s = sp.symbols("W_f W_r W s", positive=True)
 
-SYMBOLS: Dict[str, sp.Symbol] = {
+SYMBOLS: dict[str, sp.Symbol] = {
     str(x): x for x in (U, m, i_z, s1, s2, C_f, C_r, g, v, r, lam, W_f, W_r, W, s)
 }
 
 
-@functools.lru_cache(maxsize=None)
-def derive() -> Dict[str, object]:
+@functools.cache
+def derive() -> dict[str, object]:
     """Derive the zero-width model (eqs 5-1..5-17) from body-frame Newton-Euler.
 
     Returns
@@ -136,7 +135,7 @@ def derive() -> Dict[str, object]:
     }
 
 
-def thesis_forms() -> Dict[str, sp.Expr]:
+def thesis_forms() -> dict[str, sp.Expr]:
     """The thesis's printed chapter-5 results, transcribed (eqs 5-9..5-17).
 
     ``U`` stands for the thesis's forward velocity ``u_dot``.
@@ -173,8 +172,8 @@ def thesis_forms() -> Dict[str, sp.Expr]:
     }
 
 
-@functools.lru_cache(maxsize=None)
-def checks() -> Dict[str, sp.Expr]:
+@functools.cache
+def checks() -> dict[str, sp.Expr]:
     """Derived minus printed, for every chapter-5 result (each simplifies to 0).
 
     Keys name the thesis equation.  ``"5-14"`` compares the derived constant
@@ -187,7 +186,7 @@ def checks() -> Dict[str, sp.Expr]:
     d = derive()
     th = thesis_forms()
     v_dot, r_dot = d["v_dot"], d["r_dot"]
-    out: Dict[str, sp.Expr] = {}
+    out: dict[str, sp.Expr] = {}
     for i, name in enumerate(("5-12a", "5-12b", "5-12c", "5-12d")):
         out[name] = sp.simplify(d["a"][i] - th["a"][i])
     out["5-9a"] = sp.simplify(d["eq_v"] - th["eq_5_9a"].subs({sp.Symbol("v_dot"): v_dot}))

@@ -8,7 +8,8 @@ parameter, its value and the valid range or choices, e.g.
 from __future__ import annotations
 
 import math
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 

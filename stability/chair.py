@@ -25,8 +25,9 @@ import dataclasses
 import math
 import os
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
-from typing import Any, Mapping
+from typing import Any
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -181,7 +182,7 @@ class Chair:
         """Centre-of-gravity ratio s1/(s1 + s2) of eq 8-6."""
         return self.s1 / (self.s1 + self.s2)
 
-    def replace(self, **changes: Any) -> "Chair":
+    def replace(self, **changes: Any) -> Chair:
         """Return a copy with ``changes`` applied (validated)."""
         unknown = set(changes) - {f.name for f in fields(self)}
         if unknown:

@@ -21,7 +21,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from typing import Sequence
+from collections.abc import Sequence
 
 from .cli import OneLineErrorParser, add_chair_options, load_chair, parse_speeds, run
 from .linear import StabilitySummary, analyse

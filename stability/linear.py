@@ -18,8 +18,8 @@ left and right caster angles (rad) and rates (rad/s).  Locked casters:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
 
 import numpy as np
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 import contextlib
 import os
 import tempfile
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
-from typing import Callable, Iterable, Iterator
 
 __all__ = ["atomic_path", "write_pdf", "save_figure", "atomic_write_text", "PDF_METADATA"]
 

@@ -6,7 +6,8 @@ gives floats, a sequence of chairs gives arrays of shape (N,).
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
 

@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import math
 import textwrap
+from collections.abc import Callable, Sequence
 from dataclasses import fields
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import numpy as np
 from matplotlib.collections import LineCollection

@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import sys
 import time
-from typing import IO, Iterable, Iterator, TypeVar
+from collections.abc import Iterable, Iterator
+from typing import IO, TypeVar
 
 __all__ = ["ProgressBar", "track", "should_show"]
 
@@ -78,7 +79,7 @@ class ProgressBar:
                                   leave=False, dynamic_ncols=True)
 
     # -- context manager ---------------------------------------------------
-    def __enter__(self) -> "ProgressBar":
+    def __enter__(self) -> ProgressBar:
         return self
 
     def __exit__(self, *exc) -> None:

@@ -28,9 +28,10 @@ import argparse
 import math
 import sys
 import time
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -63,7 +64,7 @@ class Settings:
     map_impulses: tuple = tuple(np.round(np.linspace(1.0, 10.0, 10), 3))
 
     @classmethod
-    def for_mode(cls, quick: bool) -> "Settings":
+    def for_mode(cls, quick: bool) -> Settings:
         if not quick:
             return cls()
         from .study import QUICK_PLAN

@@ -90,23 +90,24 @@ Examples
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import os
 import sys
-import dataclasses
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Mapping, NamedTuple, Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from . import models as _models
 from . import statics as _loads
-from .params import parameters as _parameters
-from .chair import Chair
-from .progress import ProgressBar
 from . import tires as _tires
+from .chair import Chair
+from .params import parameters as _parameters
+from .progress import ProgressBar
 
 __all__ = [
     "SCHEMES",
@@ -335,7 +336,7 @@ class SimulationResult:
                              f"{self.t[-1] if len(self.t) else 0}] s")
         return {name: float(np.interp(time, self.t, rec[:, i])) for i, name in enumerate(_COLS)}
 
-    def resample(self, dt: float) -> "SimulationResult":
+    def resample(self, dt: float) -> SimulationResult:
         """The result linearly interpolated on ``t0, t0 + dt, ...`` (s)."""
         dt = _positive("dt", dt)
         if len(self.t) < 2:
@@ -629,7 +630,7 @@ class _NumpyOps:
     degrees = staticmethod(np.degrees)
 
 
-_NO_FORCE = float(0.0)  # the longitudinal forces when rolling resistance is off (identity-tested)
+_NO_FORCE = 0.0  # the longitudinal forces when rolling resistance is off (identity-tested)
 
 
 def _shared_scalars(p):
@@ -645,7 +646,7 @@ def _ops(x):
 class _TireGroup:
     """The tires of one group of runs (same tire models, scales, camber)."""
 
-    def __init__(self, chair: Chair, opts: "_Options"):
+    def __init__(self, chair: Chair, opts: _Options):
         from . import tires
 
         self.main = chair.main_tire_model()

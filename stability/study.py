@@ -45,14 +45,14 @@ candidate speeds for every chair at once; a stability map is one batch.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
 from .chair import Chair, preset
-from .signals import time_to_level
 from .rootlocus import DESIGN_PARAMETERS, get_parameter
+from .signals import time_to_level
 
 __all__ = [
     "Criterion",

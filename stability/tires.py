@@ -121,7 +121,7 @@ class TireRangeWarning(UserWarning):
 # ---------------------------------------------------------------------------
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _read_csv(filename: str) -> tuple[dict[str, str], ...]:
     """Rows of ``stability/data/tires/<filename>`` as a tuple of dicts."""
     path = resources.files("stability").joinpath("data", "tires", filename)
@@ -133,7 +133,7 @@ def _float(text: str) -> float:
     return float(text) if text.strip() else math.nan
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _cornering_coefficients() -> dict[str, tuple[tuple[Coef3, ...], tuple[float, ...], tuple[float, ...]]]:
     """``{tire: (rows 0..8 of (a, b, c), d 0..8, R 1..8)}``; row 0 is zero."""
     out: dict[str, Any] = {}
@@ -153,7 +153,7 @@ def _cornering_coefficients() -> dict[str, tuple[tuple[Coef3, ...], tuple[float,
     return out
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _rolling_coefficients() -> dict[str, Coef3]:
     return {
         r["tire"]: (float(r["a"]), float(r["b"]), float(r["c"]))
@@ -161,7 +161,7 @@ def _rolling_coefficients() -> dict[str, Coef3]:
     }
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _table_3_2() -> dict[str, float]:
     return {r["tire"]: float(r["f_r"]) for r in _read_csv("table_3_2.csv")}
 
@@ -380,7 +380,7 @@ def refit(
     )
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def camber_coefficient_fit(name: str, *, include_outliers: bool = False) -> float:
     """Camber coefficient ``f_c = 1/m`` by the method of Figure 4-3.
 
@@ -842,7 +842,7 @@ class Tire(_CamberForce):
         return self.f_r
 
     # -- scaling ----------------------------------------------------------------
-    def scaled(self, lateral: float = 1.0, rolling: float = 1.0) -> "Tire":
+    def scaled(self, lateral: float = 1.0, rolling: float = 1.0) -> Tire:
         """A copy with lateral and rolling forces multiplied by the factors.
 
         Chapter 7's TYMOD/CYMOD (lateral) and TXMOD/CXMOD (rolling); factors
@@ -962,7 +962,7 @@ class LinearTire(_CamberForce):
         """``f_r``."""
         return self.f_r
 
-    def scaled(self, lateral: float = 1.0, rolling: float = 1.0) -> "LinearTire":
+    def scaled(self, lateral: float = 1.0, rolling: float = 1.0) -> LinearTire:
         """A copy with the force multipliers compounded (TYMOD/TXMOD)."""
         return LinearTire(
             stiffness_N_per_deg=self.stiffness_N_per_deg,
@@ -993,7 +993,7 @@ class TireStack:
         One tested tire per row (:class:`LinearTire` has no table to stack).
     """
 
-    def __init__(self, tires: "tuple[Tire, ...] | list[Tire]"):
+    def __init__(self, tires: tuple[Tire, ...] | list[Tire]):
         tires = tuple(tires)
         if not tires or not all(isinstance(t, Tire) for t in tires):
             raise ValueError(f"tires={tires!r} is not valid; valid: a non-empty sequence of tested Tire objects")
@@ -1038,7 +1038,7 @@ def names() -> tuple[str, ...]:
     return _ALL
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _tested(name: str) -> Tire:
     rows, d, _ = _cornering_coefficients()[name]
     return Tire(

@@ -11,9 +11,10 @@ import math
 import numpy as np
 import pytest
 
-from stability import assist, chair as chair_mod, models, params
-from stability.linear import input_matrices, state_matrices
+from stability import assist, models, params
+from stability import chair as chair_mod
 from stability.chair import POWER_FWD_FIELDS
+from stability.linear import input_matrices, state_matrices
 from stability.power_chair import DriveTrain, drive_train, lumped_estimate, power_fwd
 
 SPEEDS = np.arange(0.5, 3.0001, 0.25)

@@ -6,8 +6,8 @@ import sys
 
 import pytest
 
-from stability import critical_speed, linear
 from stability import chair as chair_mod
+from stability import critical_speed, linear
 
 
 def run(capsys, *argv):

@@ -11,9 +11,9 @@ import sys
 import numpy as np
 import pytest
 
-from stability import models, params, tires
-from stability import statics as loads
+from stability import params, tires
 from stability import simulate as sim
+from stability import statics as loads
 from stability.chair import preset
 from stability.simulate import ChairState, SimulationResult, simulate, simulate_batch
 
