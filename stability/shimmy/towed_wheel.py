@@ -310,6 +310,6 @@ def _speeds(speed: Any) -> np.ndarray:
     U = np.asarray(speed, dtype=float)
     if U.size == 0 or not np.all(np.isfinite(U) & (U > 0)):
         bad = U[~(np.isfinite(U) & (U > 0))] if U.size else U
-        raise ValueError(f"speed={bad.ravel()[0] if bad.size else speed!r} is invalid; "
+        raise ValueError(f"speed={float(bad.ravel()[0]) if bad.size else speed!r} is invalid; "
                          "valid range: speed > 0 m/s (forward motion)")
     return U

@@ -1,0 +1,263 @@
+"""Tests of stability.shimmy: the towed wheel against an independent Newton-Euler derivation,
+closed-form stability conditions, the describing function against stick-slip simulation, and
+the wheelchair caster chart."""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import pytest
+import scipy.linalg
+import sympy as sp
+
+from stability.shimmy import TowedWheel, hurwitz_determinants
+from stability.shimmy import describing as df
+
+# ---------------------------------------------------------------------------
+# independent derivation: Newton-Euler, linearised by the Jacobian of the
+# first-order equations (the package's derivation uses Lagrange's equations,
+# a multiplier and a series expansion)
+
+m, Iz, a, b, k, C, sig, c, U = sp.symbols("m I a b k C sigma c U", positive=True)
+PARAM_SYMBOLS = (m, Iz, a, b, k, C, sig, c, U)
+
+
+@functools.cache
+def newton_euler_polynomial(rigid_pivot: bool, rigid_tire: bool):
+    """Monic characteristic polynomial coefficients (functions of the parameters) by Newton-Euler."""
+    y, yd, p, pd, al = sp.symbols("y yd p pd al")
+    ydd, pdd, Rx, F = sp.symbols("ydd pdd Rx F")
+    L = a + b
+    if rigid_pivot:
+        y_, yd_, ydd_ = 0, 0, 0
+    else:
+        y_, yd_, ydd_ = y, yd, ydd
+    # c.g. G = (U t - b cos p, y - b sin p); its acceleration with p_dot = pd, p_ddot = pdd
+    aGx = b * (sp.cos(p) * pd**2 + sp.sin(p) * pdd)
+    aGy = ydd_ + b * (sp.sin(p) * pd**2 - sp.cos(p) * pdd)
+    n = (-sp.sin(p), sp.cos(p))
+    # contact velocity: v_C = (U + L sin p pd, yd - L cos p pd); slip velocity across the wheel
+    vCn = n[0] * (U + L * sp.sin(p) * pd) + n[1] * (yd_ - L * sp.cos(p) * pd)
+    Fpiv_y = -k * y_ if not rigid_pivot else sp.Symbol("Ry")  # rigid pivot: unknown reaction
+    Fx = Rx + F * n[0]
+    Fy = Fpiv_y + F * n[1]
+    # moments about G (z up): r x F with r_P = b e, r_C = -a e
+    e = (sp.cos(p), sp.sin(p))
+    Mz = (b * e[0] * Fpiv_y - b * e[1] * Rx) + (-a) * (e[0] * F * n[1] - e[1] * F * n[0]) - c * pd
+    eqs = [m * aGx - Fx, m * aGy - Fy, Iz * pdd - Mz]
+    unknowns = [Rx, pdd] + ([sp.Symbol("Ry")] if rigid_pivot else [ydd])
+    if rigid_tire:
+        if rigid_pivot:  # first-order: L pd = -U sin p from vCn = 0
+            return [sp.Integer(1), sp.diff(sp.solve(vCn, pd)[0], p).subs(p, 0) * -1]
+        ydot = sp.solve(vCn, yd)[0]                      # constraint gives y_dot
+        vdot = (sp.diff(vCn, p) * pd + sp.diff(vCn, yd) * ydd + sp.diff(vCn, pd) * pdd).subs(yd, ydot)
+        sol = solve_linear(eqs + [vdot], unknowns + [F])
+        x, f = [y, p, pd], [ydot, pd, sol[pdd]]
+    else:
+        eqs = [eq.subs(F, C * al) for eq in eqs]
+        sol = solve_linear(eqs, unknowns)
+        aldot = (-vCn - U * al) / sig
+        if rigid_pivot:
+            x, f = [p, pd, al], [pd, sol[pdd], aldot]
+        else:
+            x, f = [y, p, yd, pd, al], [yd, pd, sol[ydd], sol[pdd], aldot]
+    zero = {v: 0 for v in x}
+    J = sp.Matrix([[sp.diff(fi, xj).subs(zero) for xj in x] for fi in f])
+    s = sp.Symbol("s")
+    poly = sp.Poly(sp.expand((s * sp.eye(len(x)) - J).det(method="berkowitz")), s)
+    return poly.all_coeffs()
+
+
+def solve_linear(eqs, unknowns):
+    """Solve equations linear in ``unknowns`` (Cramer's rule through sympy's LU)."""
+    M, rhs = sp.linear_eq_to_matrix(eqs, unknowns)
+    return dict(zip(unknowns, M.LUsolve(rhs), strict=True))
+
+
+def wheel_from(vals, rigid_pivot, rigid_tire):
+    mass, inertia, a_, b_, k_, C_, s_, c_ = vals
+    return TowedWheel(mass=mass, inertia=inertia, contact_behind_cm=a_, pivot_ahead_of_cm=b_,
+                      lateral_stiffness=math.inf if rigid_pivot else k_,
+                      cornering_stiffness=None if rigid_tire else C_,
+                      relaxation_length=None if rigid_tire else s_, pin_damping=c_)
+
+
+PARAMETER_SETS = [
+    (1.2, 0.016, 0.022, 0.058, 5e4, 1500.0, 0.02, 0.0),
+    (1.2, 0.016, -0.02, 0.058, 2e4, 1500.0, 0.05, 0.03),
+    (30.0, 1.5, 0.05, 0.30, 2e5, 8e4, 0.4, 20.0),     # an aircraft-nose-gear-like wheel
+    (0.5, 0.002, 0.01, 0.02, 1e4, 400.0, 0.015, 0.001),
+]
+CASES = [(rp, rt) for rp in (False, True) for rt in (False, True)]
+
+
+@pytest.mark.parametrize("rigid_pivot,rigid_tire", CASES)
+def test_characteristic_polynomial_matches_newton_euler(rigid_pivot, rigid_tire):
+    expected = newton_euler_polynomial(rigid_pivot, rigid_tire)
+    f = sp.lambdify(PARAM_SYMBOLS, expected)
+    for vals in PARAMETER_SETS:
+        w = wheel_from(vals, rigid_pivot, rigid_tire)
+        for speed in (0.3, 1.7):
+            got = w.characteristic_polynomial(speed)
+            ref = np.array(f(*vals, speed), dtype=float)
+            np.testing.assert_allclose(got / got[0], ref / ref[0], rtol=1e-10, atol=0)
+            # and the state matrix has those roots: compare the monic polynomial of A
+            A, _ = w.state_matrix(speed)
+            np.testing.assert_allclose(np.poly(A), ref / ref[0], rtol=1e-8,
+                                       atol=1e-10 * np.abs(ref / ref[0]).max())
+
+
+def test_rigid_caster_first_order_eigenvalue():
+    # rigid pivot, rigid tire: L psi_dot = -U psi, eigenvalue -U/L for any mass and damping
+    w = TowedWheel(mass=2.0, inertia=0.1, contact_behind_cm=0.03, pivot_ahead_of_cm=0.05, pin_damping=3.0)
+    speeds = np.array([0.2, 1.0, 4.0])
+    np.testing.assert_allclose(w.eigenvalues(speeds)[:, 0], -speeds / 0.08, rtol=1e-14)
+    assert w.routh_hurwitz(1.0).stable
+    # a negative trail is refused (it is not a caster)
+    with pytest.raises(ValueError, match="pivot_ahead_of_cm"):
+        TowedWheel(mass=2.0, inertia=0.1, contact_behind_cm=0.03, pivot_ahead_of_cm=-0.05)
+
+
+def test_relaxation_wheel_rigid_pivot_hurwitz_condition():
+    # characteristic J sigma s^3 + (J U + c sigma) s^2 + (c U + C L^2) s + C L U, J = I + m b^2:
+    # stable iff (J U + c sigma)(c U + C L^2) > J sigma C L U; with c = 0 iff L > sigma (any speed)
+    mass, inertia, a_, b_, C_ = 1.2, 0.016, 0.022, 0.058, 1500.0
+    L, J = a_ + b_, inertia + mass * b_**2
+    w = TowedWheel(mass=mass, inertia=inertia, contact_behind_cm=a_, pivot_ahead_of_cm=b_,
+                   cornering_stiffness=C_, relaxation_length=0.05)
+    for speed in (0.5, 2.0):
+        hb = w.hopf_boundary("relaxation_length", np.linspace(0.01, 0.3, 30), speed)
+        np.testing.assert_allclose(hb.crossings[0], [L], rtol=1e-9)
+        assert hb.destabilising[0].tolist() == [True]
+    # with damping: the two roots of J c U^2 + (J C L^2 + c^2 sigma - J sigma C L) U + c sigma C L^2 = 0
+    c_, s_ = 0.01, 0.12
+    wd = w.replace(pin_damping=c_, relaxation_length=s_)
+    roots = np.sort(np.roots([J * c_, J * C_ * L**2 + c_**2 * s_ - J * s_ * C_ * L, c_ * s_ * C_ * L**2]).real)
+    hb = wd.hopf_boundary("speed", np.geomspace(0.01, 1e4, 400))
+    np.testing.assert_allclose(hb.crossings[0], roots, rtol=1e-9)
+    assert hb.destabilising[0].tolist() == [True, False]
+    mid = roots.mean()
+    assert not wd.routh_hurwitz(mid).stable and wd.oscillatory_abscissa(mid) > 0
+    assert wd.routh_hurwitz(roots[0] / 2).stable and wd.routh_hurwitz(2 * roots[1]).stable
+
+
+def test_rigid_tire_compliant_pivot_closed_form():
+    # (I + m a^2) s^3 + (m a U + c) s^2 + k L^2 s + k L U: stable iff c L > U (I - m a b);
+    # at the boundary w^2 = k L^2 / (I + m a^2)
+    mass, inertia, a_, b_, k_ = 1.2, 0.016, 0.022, 0.058, 5e4
+    L = a_ + b_
+    w = TowedWheel(mass=mass, inertia=inertia, contact_behind_cm=a_, pivot_ahead_of_cm=b_, lateral_stiffness=k_)
+    speeds = [0.5, 1.0, 3.0]
+    hb = w.hopf_boundary("pin_damping", np.linspace(0.0, 1.0, 50), speeds)
+    for u, crit, freq in zip(speeds, hb.crossings, hb.frequencies, strict=True):
+        np.testing.assert_allclose(crit, [u * (inertia - mass * a_ * b_) / L], rtol=1e-9)
+        np.testing.assert_allclose(freq, [math.sqrt(k_ * L**2 / (inertia + mass * a_**2))], rtol=1e-9)
+    # the centre-of-percussion condition: without damping stable iff I < m a b
+    inertia_crit = mass * a_ * b_
+    hb = w.hopf_boundary("inertia", np.linspace(0.2, 2.0, 20) * inertia_crit, [1.0])
+    np.testing.assert_allclose(hb.crossings[0], [inertia_crit], rtol=1e-9)
+
+
+def test_time_scaling_invariant():
+    # U -> lam U, k -> lam^2 k, C -> lam^2 C, c -> lam c multiplies every eigenvalue by lam
+    lam = 2.5
+    for rigid_pivot, rigid_tire in CASES:
+        w = wheel_from(PARAMETER_SETS[1], rigid_pivot, rigid_tire)
+        kw = {"pin_damping": lam * w.pin_damping}
+        if not rigid_pivot:
+            kw["lateral_stiffness"] = lam**2 * w.lateral_stiffness
+        if not rigid_tire:
+            kw["cornering_stiffness"] = lam**2 * w.cornering_stiffness
+        e1 = np.sort_complex(w.eigenvalues(0.8))
+        e2 = np.sort_complex(w.replace(**kw).eigenvalues(lam * 0.8))
+        np.testing.assert_allclose(e2, lam * e1, rtol=1e-9, atol=1e-9 * np.abs(e1).max())
+
+
+def test_routh_hurwitz_agrees_with_eigenvalues():
+    rng = np.random.default_rng(13)
+    for _ in range(40):
+        vals = (rng.uniform(0.3, 3), rng.uniform(0.002, 0.05), rng.uniform(-0.02, 0.05), rng.uniform(0.03, 0.08),
+                10 ** rng.uniform(3.5, 5.5), rng.uniform(300, 3000), rng.uniform(0.005, 0.15),
+                rng.uniform(0, 0.05))
+        w = wheel_from(vals, False, False)
+        speed = rng.uniform(0.2, 4)
+        ev = w.eigenvalues(speed)
+        rh = w.routh_hurwitz(speed)
+        margin = ev.real.max() / np.abs(ev).max()
+        if abs(margin) > 1e-6:  # well away from the boundary
+            assert rh.stable == (margin < 0)
+    # Orlando: Delta_(n-1) of (s^2 + 4)(s + 1) is zero, of (s^2 + s + 4)(s + 1) positive
+    assert abs(hurwitz_determinants(np.poly([2j, -2j, -1]).real)[-2]) < 1e-12
+    assert hurwitz_determinants(np.polymul([1, 1, 4], [1, 1]))[-2] > 0
+
+
+def test_state_space_and_vectorised_eigenvalues():
+    w = wheel_from(PARAMETER_SETS[0], False, False)
+    sys_ = w.state_space(1.2)
+    assert list(sys_.state_labels) == ["y", "psi", "y_dot", "psi_dot", "alpha"]
+    assert list(sys_.input_labels) == ["pin_torque"]
+    np.testing.assert_allclose(np.sort_complex(np.linalg.eigvals(sys_.A)), np.sort_complex(w.eigenvalues(1.2)),
+                               rtol=1e-12)
+    many = w.eigenvalues([0.5, 1.2])
+    assert many.shape == (2, 5)
+    np.testing.assert_allclose(np.sort_complex(many[1]), np.sort_complex(w.eigenvalues(1.2)), rtol=1e-12)
+
+
+@pytest.mark.parametrize("kwargs,name", [
+    ({"mass": 0.0}, "mass"), ({"inertia": -1.0}, "inertia"), ({"lateral_stiffness": 0.0}, "lateral_stiffness"),
+    ({"cornering_stiffness": 100.0}, "relaxation_length"), ({"pin_damping": -0.1}, "pin_damping"),
+    ({"pin_friction": float("nan")}, "pin_friction"), ({"mass": True}, "mass"),
+])
+def test_validation_names_parameter(kwargs, name):
+    base = dict(mass=1.0, inertia=0.01, contact_behind_cm=0.02, pivot_ahead_of_cm=0.05)
+    with pytest.raises(ValueError, match=rf"{name}=.*valid range"):
+        TowedWheel(**{**base, **kwargs})
+    w = TowedWheel(**base)
+    with pytest.raises(ValueError, match="speed=-1.0 is invalid"):
+        w.eigenvalues([1.0, -1.0])
+    with pytest.raises(ValueError, match="no oscillatory mode"):
+        w.hopf_boundary("speed", [0.1, 1.0])
+
+
+# ---------------------------------------------------------------------------
+# Coulomb friction: describing function vs stick-slip simulation
+
+def test_simulation_without_friction_is_the_matrix_exponential():
+    w = wheel_from(PARAMETER_SETS[1], False, False)
+    x0 = df.shimmy_mode_state(w, 1.0, 0.05)
+    sim = df.simulate(w, 1.0, x0, 0.3)
+    A, _ = w.state_matrix(1.0)
+    np.testing.assert_allclose(sim.x[-1], scipy.linalg.expm(A * sim.t[-1]) @ x0, rtol=1e-6,
+                               atol=1e-8 * np.abs(x0).max())
+
+
+def test_equivalent_damping_closed_form():
+    assert df.equivalent_damping(0.1, 0.05, 80.0) == pytest.approx(4 * 0.1 / (math.pi * 0.05 * 80.0), rel=1e-15)
+
+
+@pytest.mark.parametrize("rigid_pivot", [True, False])
+def test_describing_function_threshold_matches_simulation(rigid_pivot):
+    # unstable without friction: rigid pivot with sigma > trail, or a short-trail caster on a compliant pivot
+    vals = (1.2, 0.016, 0.022 if rigid_pivot else -0.02, 0.058, 5e4, 1500.0, 0.1 if rigid_pivot else 0.02, 0.0)
+    w = wheel_from(vals, rigid_pivot, False).replace(pin_friction=0.1)
+    for speed in (0.5, 2.0):
+        c_crit, omega = df.critical_damping(w, speed)
+        assert c_crit > 0 and omega > 0
+        a_star = 4 * w.pin_friction / (math.pi * omega * c_crit)      # DF amplitude of the limit cycle
+        lo, hi = df.simulated_threshold(w, speed, a_star / 2, a_star * 2, iterations=9)
+        assert hi / lo < 1.01
+        # the stated tolerance: the simulated threshold lies within 3 % of the describing function
+        assert abs(math.sqrt(lo * hi) / a_star - 1) < 0.03
+        # consistency: the friction that suppresses shimmy at a_star is the wheel's own friction
+        est = df.suppressing_friction(w, speed, a_star)
+        assert est.friction == pytest.approx(w.pin_friction, rel=1e-9)
+
+
+def test_friction_sticks_a_stable_wheel_and_no_friction_needed():
+    w = wheel_from(PARAMETER_SETS[0], True, False).replace(pin_friction=0.5)   # trail 0.08 > sigma 0.02
+    assert df.suppressing_friction(w, 1.0, math.radians(5)).friction == 0.0
+    sim = df.simulate(w, 1.0, df.shimmy_mode_state(w, 1.0, 0.01), 0.5)
+    assert sim.stuck.any()
+    assert np.abs(sim.psi[-1]) <= 0.01
