@@ -1,34 +1,16 @@
-"""``python -m stability.critical_speed``: how stable is this chair, and at which speeds?
+"""The linear stability summary of one chair as JSON-ready data and as readable text.
 
-Prints, for one chair and one model variant, the static loads and tire
-stiffnesses, the zero-width (bicycle, locked casters) understeer coefficient
-and critical speed (eqs 5-15, 5-16), the full-width locked-caster critical
-speed, the free-caster verdict (stable at all speeds, unstable at all speeds,
-or critical speeds) and the divergence rate and time-to-double of the least
-stable mode at a list of speeds.
-
-Examples
---------
-::
-
-    python -m stability.critical_speed
-    python -m stability.critical_speed --chair revised --model thesis --json
-    python -m stability.critical_speed --set trail=0.05 --set pin_damping=0.02 --speeds 0.5:2:0.25
+What ``python -m stability.critical_speed`` prints and the report quotes: loads,
+stiffnesses, critical speeds, the divergence table, and (when the chair has
+effects the linear model leaves out) the simulator's own linearisation.
 """
 
 from __future__ import annotations
 
-import argparse
-import json
-import sys
-from collections.abc import Sequence
+from .linear import StabilitySummary
+from .validation import linearisation_check, omitted_effects
 
-from .cli import OneLineErrorParser, add_chair_options, load_chair, parse_speeds, run
-from .linear import StabilitySummary, analyse
-
-# OneLineErrorParser, load_chair and parse_speeds live in stability.cli and are re-exported here.
-__all__ = ["main", "summary_dict", "simulator_checks", "parse_speeds", "format_summary", "load_chair",
-           "OneLineErrorParser"]
+__all__ = ["simulator_checks", "summary_dict", "interpretation", "format_summary"]
 
 
 def _first(crossings, direction: str | None = None):
@@ -45,14 +27,12 @@ def simulator_checks(s: StabilitySummary) -> list:
     (:func:`stability.validation.omitted_effects`: rolling resistance, camber,
     toe); then one row per speed with the dominant rate of both models.
     """
-    from .validation import linearisation_check, omitted_effects
-
     if not omitted_effects(s.chair):
         return []
     rows = []
     for r in s.divergence:
-        chk = linearisation_check(s.chair, r["speed_m_s"], model=s.model)
-        rows.append({"speed_m_s": r["speed_m_s"], "rate_linear_1_s": chk.eigenvalue_linear.real,
+        chk = linearisation_check(s.chair, r.speed, model=s.model)
+        rows.append({"speed_m_s": r.speed, "rate_linear_1_s": chk.eigenvalue_linear.real,
                      "rate_simulator_1_s": chk.eigenvalue_simulator.real,
                      "relative_difference": chk.rate_difference})
     return rows
@@ -60,8 +40,6 @@ def simulator_checks(s: StabilitySummary) -> list:
 
 def summary_dict(s: StabilitySummary, checks: list | None = None) -> dict:
     """The JSON structure printed by ``--json`` (``checks``: :func:`simulator_checks`)."""
-    from .validation import omitted_effects
-
     zw = s.zero_width
 
     def cross(lst):
@@ -85,7 +63,8 @@ def summary_dict(s: StabilitySummary, checks: list | None = None) -> dict:
             "stable_at_all_speeds": s.free_stable_at_all_speeds,
             "unstable_at_all_speeds": s.free_unstable_at_all_speeds,
             "crossings": cross(s.free_crossings),
-            "divergence": [{k: r[k] for k in ("speed_m_s", "rate_1_s", "time_to_double_s")} for r in s.divergence],
+            "divergence": [{k: r.to_dict()[k] for k in ("speed_m_s", "rate_1_s", "time_to_double_s")}
+                           for r in s.divergence],
         },
         "search_range_m_s": list(s.search_range),
         "omitted_effects": list(omitted_effects(s.chair)),
@@ -103,18 +82,19 @@ def interpretation(s: StabilitySummary) -> str:
     """One sentence a wheelchair engineer can act on."""
     lo, hi = s.search_range
     c = s.chair.name
-    slow = next((r for r in s.divergence if r["rate_1_s"] > 0), None)
+    slow = next((r for r in s.divergence if r.rate > 0), None)
     if s.free_unstable_at_all_speeds:
         first = slow or s.divergence[0]
         msg = (f"With free casters {c} is directionally unstable at every speed from {lo:g} to {hi:g} m/s "
-               f"(at {first['speed_m_s']:g} m/s a heading error doubles every "
-               f"{_fmt(first['time_to_double_s'], 's')}), so the user must steer continually")
+               f"(at {first.speed:g} m/s a heading error doubles every "
+               f"{_fmt(first.time_to_double, 's')}), so the user must steer continually")
     elif s.free_stable_at_all_speeds:
         msg = f"With free casters {c} is directionally stable at every speed from {lo:g} to {hi:g} m/s"
     else:
         v = _first(s.free_crossings, "destabilising")
+        where = [round(x.speed, 3) for x in s.free_crossings]
         msg = (f"With free casters {c} is stable below {_fmt(v, 'm/s')} and unstable above it"
-               if v is not None else f"With free casters {c} changes stability at {[round(x.speed, 3) for x in s.free_crossings]} m/s")
+               if v is not None else f"With free casters {c} changes stability at {where} m/s")
     locked = _first(s.locked_crossings, "destabilising")
     msg += (f"; with the casters locked it would be stable up to {_fmt(locked, 'm/s')}"
             if locked is not None else "; with the casters locked it would be stable in the whole range")
@@ -146,8 +126,8 @@ def format_summary(s: StabilitySummary, checks: list | None = None) -> str:
         f"  {'speed (m/s)':>12s}{'rate (1/s)':>12s}{'doubling (s)':>14s}{'freq (rad/s)':>14s}",
     ]
     for r in s.divergence:
-        t2 = "-" if r["time_to_double_s"] is None else f"{r['time_to_double_s']:.3g}"
-        lines.append(f"  {r['speed_m_s']:12.3g}{r['rate_1_s']:12.4f}{t2:>14s}{r['frequency_rad_s']:14.3g}")
+        t2 = "-" if r.time_to_double is None else f"{r.time_to_double:.3g}"
+        lines.append(f"  {r.speed:12.3g}{r.rate:12.4f}{t2:>14s}{r.frequency:14.3g}")
     if checks:
         lines += ["", f"The linear model leaves out {', '.join(d['omitted_effects'])}. With them, the simulator's "
                   "own linearisation (stability.simulate.linearise) gives:",
@@ -157,31 +137,3 @@ def format_summary(s: StabilitySummary, checks: list | None = None) -> str:
                          f"{100 * r['relative_difference']:+11.1f}%")
     lines += ["", interpretation(s)]
     return "\n".join(lines)
-
-
-def build_parser() -> argparse.ArgumentParser:
-    p = OneLineErrorParser(prog="python -m stability.critical_speed", description=__doc__.split("\n\n")[0])
-    add_chair_options(p)
-    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
-    p.add_argument("--speeds", default="0.25,0.5,0.75,1,1.5,2,3", help="speeds for the divergence table, START:STOP:STEP or a list (m/s)")
-    p.add_argument("--max-speed", type=float, default=30.0, help="upper end of the critical-speed search (m/s, default 30)")
-    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
-    return p
-
-
-def _run(args: argparse.Namespace) -> int:
-    c = load_chair(args.chair, args.set)
-    speeds = parse_speeds(args.speeds)
-    summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
-    checks = simulator_checks(summary)
-    print(json.dumps(summary_dict(summary, checks), indent=2) if args.json else format_summary(summary, checks))
-    return 0
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of ``python -m stability.critical_speed``; returns the exit status (2 on bad input)."""
-    return run(build_parser(), argv, _run)
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())

@@ -1,0 +1,53 @@
+"""``python -m stability.critical_speed``: how stable is this chair, and at which speeds?
+
+Prints, for one chair and one model variant, the static loads and tire
+stiffnesses, the zero-width (locked casters) understeer coefficient and
+critical speed (eqs 5-15, 5-16), the full-width critical speeds and the
+divergence rate and time-to-double of the least stable mode at a list of speeds.
+
+Examples
+--------
+::
+
+    python -m stability.critical_speed
+    python -m stability.critical_speed --chair revised --model thesis --json
+    python -m stability.critical_speed --set trail=0.05 --set pin_damping=0.02 --speeds 0.5:2:0.25
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Sequence
+
+from ..cli import OneLineErrorParser, add_chair_options, load_chair, parse_speeds, run
+from ..linear import analyse
+from ..summary import format_summary, simulator_checks, summary_dict
+
+__all__ = ["main", "build_parser"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = OneLineErrorParser(prog="python -m stability.critical_speed", description=(__doc__ or "").split("\n\n")[0])
+    add_chair_options(p)
+    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
+    p.add_argument("--speeds", default="0.25,0.5,0.75,1,1.5,2,3",
+                   help="speeds for the divergence table, START:STOP:STEP or a list (m/s)")
+    p.add_argument("--max-speed", type=float, default=30.0,
+                   help="upper end of the critical-speed search (m/s, default 30)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    return p
+
+
+def _run(args: argparse.Namespace) -> int:
+    c = load_chair(args.chair, args.set)
+    speeds = parse_speeds(args.speeds)
+    summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
+    checks = simulator_checks(summary)
+    print(json.dumps(summary_dict(summary, checks), indent=2) if args.json else format_summary(summary, checks))
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``python -m stability.critical_speed``; returns the exit status (2 on bad input)."""
+    return run(build_parser(), argv, _run)
