@@ -37,6 +37,10 @@ def _stack(entries, shape: tuple[int, ...]) -> np.ndarray:
     return np.stack([np.broadcast_to(np.asarray(e, dtype=float), shape) for e in entries], axis=-1)
 
 
+def _shape(params: dict[str, Any], U: np.ndarray) -> tuple[int, ...]:
+    return np.broadcast_shapes(U.shape, *(np.shape(params[k]) for k in ARGUMENTS))
+
+
 def state_matrices(case: str, params: dict[str, float], speeds: Any) -> tuple[np.ndarray, np.ndarray]:
     """State matrix and pin-torque input column, ``x_dot = A x + B T``.
 
@@ -49,7 +53,8 @@ def state_matrices(case: str, params: dict[str, float], speeds: Any) -> tuple[np
         contact, m), ``b`` (pivot to c.g., m), ``k`` (pivot lateral
         stiffness, N/m), ``C`` (cornering stiffness, N/rad), ``sigma``
         (relaxation length, m), ``c`` (viscous pin damping, N m s/rad);
-        entries a case does not use may hold any finite placeholder.
+        entries a case does not use may hold any finite placeholder.  Every
+        entry may be an array; all broadcast together with ``speeds``.
     speeds : float or array_like
         Forward speeds (m/s).
 
@@ -60,8 +65,9 @@ def state_matrices(case: str, params: dict[str, float], speeds: Any) -> tuple[np
     """
     U = np.asarray(speeds, dtype=float)
     rows, col = _function("state_space", case)(*(params[k] for k in ARGUMENTS), U)
-    A = np.stack([_stack(r, U.shape) for r in rows], axis=-2)
-    return A, _stack(col, U.shape)
+    shape = _shape(params, U)
+    A = np.stack([_stack(r, shape) for r in rows], axis=-2)
+    return A, _stack(col, shape)
 
 
 def characteristic_coefficients(case: str, params: dict[str, float], speeds: Any) -> np.ndarray:
@@ -72,4 +78,4 @@ def characteristic_coefficients(case: str, params: dict[str, float], speeds: Any
     """
     U = np.asarray(speeds, dtype=float)
     coeffs = _function("characteristic", case)(*(params[k] for k in ARGUMENTS), U)
-    return _stack(coeffs, U.shape)
+    return _stack(coeffs, _shape(params, U))

@@ -22,6 +22,10 @@ PARAMETERS = ("mass", "inertia", "contact_behind_cm", "pivot_ahead_of_cm", "late
               "cornering_stiffness", "relaxation_length", "pin_damping")
 
 
+_ARG = dict(mass="mass", inertia="inertia", contact_behind_cm="a", pivot_ahead_of_cm="b", lateral_stiffness="k",
+            cornering_stiffness="C", relaxation_length="sigma", pin_damping="c")
+
+
 def _bad(name: str, value: Any, valid: str) -> ValueError:
     return ValueError(f"towed wheel parameter {name}={value!r} is invalid; valid range: {valid}")
 
@@ -266,7 +270,14 @@ class TowedWheel:
         if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
             raise ValueError("grid is invalid; valid: at least two strictly increasing values")
         U = None if parameter == "speed" else float(_speeds(speed))
-        f = np.array([self._margin(g, parameter, U) for g in grid])
+        if parameter == "speed":
+            p = self.characteristic_polynomial(grid)
+        else:
+            self._check_sweep(parameter, grid)
+            params = self._params()
+            params[_ARG[parameter]] = grid
+            p = _model.characteristic_coefficients(self.case, params, U)
+        f = hurwitz_determinants(p / p[..., :1])[:, -2]
         vals, freqs, dest = [], [], []
         for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]:
             x = brentq(self._margin, grid[i], grid[i + 1], args=(parameter, U), xtol=1e-14, rtol=1e-12)
@@ -279,6 +290,22 @@ class TowedWheel:
             freqs.append(abs(ev[j].imag))
             dest.append(bool(f[i + 1] < 0))  # Delta_(n-1) < 0 after the crossing: unstable
         return np.array(vals), np.array(freqs), np.array(dest, dtype=bool)
+
+    def _check_sweep(self, parameter: str, grid: np.ndarray) -> None:
+        if (parameter == "lateral_stiffness" and self.rigid_pivot) or (
+                parameter in ("cornering_stiffness", "relaxation_length") and self.rigid_tire):
+            raise ValueError(f"parameter={parameter!r} is invalid for a {self.case} towed wheel; "
+                             "valid: a parameter the configuration has")
+        if parameter in ("contact_behind_cm", "pivot_ahead_of_cm"):
+            other = self.trail - getattr(self, parameter)
+            if np.any(grid + other <= 0):
+                raise ValueError(f"grid is invalid for {parameter}; valid range: every value > {-other:g} m "
+                                 "(positive trail)")
+        elif parameter == "pin_damping":
+            if np.any(grid < 0):
+                raise ValueError("grid is invalid for pin_damping; valid range: every value >= 0")
+        elif np.any(grid <= 0):
+            raise ValueError(f"grid is invalid for {parameter}; valid range: every value > 0")
 
     def hopf_boundary(self, parameter: str, grid: Any, speeds: Any = None) -> HopfBoundary:
         """The Hopf boundary against ``parameter`` (or against ``"speed"`` when ``parameter="speed"``).

@@ -1,0 +1,316 @@
+"""The wheelchair's caster as a towed wheel, and the trail x speed design chart.
+
+Each caster is modelled as a towed wheel whose pivot is its caster pin,
+held laterally by an equivalent frame/fork stiffness and moving straight
+ahead at the chair's speed; the chair's own yaw and sideslip are not coupled
+in (docs/shimmy.md says what that leaves out).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..chair import Chair
+from . import describing
+from .towed_wheel import TowedWheel, hurwitz_determinants
+
+__all__ = ["CasterCompliance", "caster_wheel", "critical_trail", "friction_trail", "TrailChart", "trail_chart",
+           "CasterSummary", "caster_summary",
+           "ESTIMATE_NOTE"]
+
+ESTIMATE_NOTE = ("caster tire relaxation length and frame lateral stiffness at the pin are not in Collins (1987): "
+                 "the values used are literature-based estimates (docs/shimmy.md)")
+
+
+def _static_stiffness(chair: Chair) -> dict[str, float]:
+    try:
+        from ..statics import static_stiffness
+    except ImportError:  # pragma: no cover - older layout
+        from ..models import static_stiffness  # type: ignore[attr-defined,no-redef]
+    return static_stiffness(chair)
+
+
+@dataclass(frozen=True)
+class CasterCompliance:
+    """Caster properties the thesis does not give: typical values, estimates.
+
+    Attributes
+    ----------
+    relaxation_length : float
+        Caster tire relaxation length sigma (m).  Default 0.02 m for the
+        thesis's solid 7 3/4 x 1 1/8 in rubber casters (Table 3-1), from
+        Pacejka's estimate ``sigma ~ C_alpha / C_y`` (cornering over lateral
+        tire stiffness; Pacejka, *Tyre and Vehicle Dynamics*, 2006, sec. 5.3
+        and ch. 7) with C_alpha ~ 1.5 kN/rad (Table 4-1) and C_y ~ 50-150
+        kN/m for a solid 29 mm rubber tread, and from the brush model's lower
+        bound ``sigma >= a`` (half contact length ~ 1 cm).  Range
+        ``relaxation_length_range``: 0.01-0.04 m solid, 0.03-0.08 m for small
+        pneumatic casters (carcass compliance raises C_y^-1).
+    lateral_stiffness : float
+        Lateral stiffness of frame, caster housing and fork at the pin (N/m).
+        Default 5e4 N/m, range 2e4-2e5 N/m: a 22 x 1.5 mm steel tube
+        cantilevered 0.3 m gives 3EI/l^3 ~ 1e5 N/m, fork and bearing play
+        lower it.  Kauzlarich, Bruning and Thacker (J Rehabil Res Dev 37(3),
+        2000, "Wheelchair caster shimmy II: Damping") stress that frame and
+        fork compliance and tire flexibility govern caster shimmy; they give
+        no value for this chair.
+    """
+
+    relaxation_length: float = 0.02
+    lateral_stiffness: float = 5e4
+    relaxation_length_range: tuple[float, float] = (0.01, 0.04)
+    lateral_stiffness_range: tuple[float, float] = (2e4, 2e5)
+
+    def __post_init__(self) -> None:
+        for name in ("relaxation_length", "lateral_stiffness"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (v > 0):
+                raise ValueError(f"caster compliance {name}={v!r} is invalid; valid range: > 0")
+            lo, hi = getattr(self, name + "_range")
+            if not 0 < lo <= hi:
+                raise ValueError(f"caster compliance {name}_range=({lo!r}, {hi!r}) is invalid; valid: 0 < low <= high")
+
+    def corners(self) -> list[CasterCompliance]:
+        """The four combinations of the range limits (for stating a range, not a point)."""
+        return [dataclasses.replace(self, relaxation_length=s, lateral_stiffness=k)
+                for s in self.relaxation_length_range for k in self.lateral_stiffness_range]
+
+
+def caster_wheel(chair: Chair, compliance: CasterCompliance | None = None, side: str = "A") -> TowedWheel:
+    """One caster of ``chair`` as a :class:`TowedWheel` (side ``"A"`` left, ``"B"`` right).
+
+    mass ``m_c``; inertia about its own c.g. ``i_zp - m_c l1^2``; c.g. ``l1``
+    behind the pin, contact ``trail - l1`` behind the c.g.; cornering
+    stiffness of the caster tire at its static load; the chair's viscous
+    ``pin_damping`` and the side's Coulomb pin friction.
+    """
+    comp = compliance or CasterCompliance()
+    if side not in ("A", "B"):
+        raise ValueError(f"side={side!r} is invalid; valid choices: ['A', 'B']")
+    if chair.trail <= 0:
+        raise ValueError(f"chair parameter trail={chair.trail!r} is invalid for shimmy; valid range: > 0 m")
+    inertia = chair.i_zp - chair.m_c * chair.l1**2
+    if chair.m_c <= 0 or inertia <= 0:
+        raise ValueError(f"chair parameter i_zp={chair.i_zp!r} is invalid for shimmy; valid range: "
+                         f"> m_c*l1^2 = {chair.m_c * chair.l1**2:.6g} kg m^2 with m_c > 0")
+    return TowedWheel(mass=chair.m_c, inertia=inertia, contact_behind_cm=chair.trail - chair.l1,
+                      pivot_ahead_of_cm=chair.l1, lateral_stiffness=comp.lateral_stiffness,
+                      cornering_stiffness=_static_stiffness(chair)[side], relaxation_length=comp.relaxation_length,
+                      pin_damping=chair.pin_damping,
+                      pin_friction=chair.pin_friction_left if side == "A" else chair.pin_friction_right)
+
+
+def _roots(f, grid: np.ndarray) -> list[float]:
+    vals = np.array([f(x) for x in grid])
+    out = []
+    for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+        out.append(float(brentq(f, grid[i], grid[i + 1], xtol=1e-7)))
+    return out
+
+
+def _trail_grid(chair: Chair) -> np.ndarray:
+    return np.linspace(max(1e-3, chair.l1 * 0.05), 0.2, 60)
+
+
+def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | None = None) -> float:
+    """Largest trail (m) at which the caster's shimmy pair crosses (linear model, viscous damping only).
+
+    Below it the caster shimmies; ``0`` if the caster is stable at every
+    trail on 1 mm-0.2 m, ``inf`` if it is unstable at 0.2 m (soft pivots:
+    the shimmy mode of the pivot spring, unstable whenever I > m a b, see
+    docs/shimmy.md).  With zero pin damping the result does not depend on
+    speed.
+    """
+    def margin(trail: float) -> float:
+        w = caster_wheel(chair.replace(trail=trail), compliance)
+        p = w.characteristic_polynomial(speed)
+        return float(hurwitz_determinants(p / p[0])[-2])
+
+    grid = _trail_grid(chair)
+    if not caster_wheel(chair.replace(trail=float(grid[-1])), compliance).routh_hurwitz(speed).stable:
+        return math.inf
+    roots = _roots(margin, grid)
+    return max(roots) if roots else 0.0
+
+
+def friction_trail(chair: Chair, speed: float, amplitude: float, compliance: CasterCompliance | None = None
+                   ) -> float:
+    """Largest trail (m) below which the chair's pin friction cannot hold shimmy of ``amplitude`` (rad).
+
+    The describing-function estimate: the trail where the friction needed
+    (:func:`stability.shimmy.describing.suppressing_friction`) equals the
+    pin's own Coulomb friction.  ``0`` if the friction suffices at every
+    trail on 1 mm-0.2 m, ``inf`` if it suffices at none.
+    """
+    def excess(trail: float) -> float:
+        w = caster_wheel(chair.replace(trail=trail), compliance)
+        need = describing.suppressing_friction(w, speed, amplitude).friction
+        return min(need, 1e3) - w.pin_friction
+
+    grid = _trail_grid(chair)
+    if excess(float(grid[-1])) > 0:
+        return math.inf
+    roots = _roots(excess, grid)
+    return max(roots) if roots else 0.0
+
+
+@dataclass(frozen=True)
+class TrailChart:
+    """Trail x speed design chart for one chair.
+
+    Attributes
+    ----------
+    chair_name : str
+    trails, speeds : ndarray
+        Grid (m; m/s).
+    divergence_rate : ndarray, shape (len(trails), len(speeds))
+        Largest real part of the chair's eigenvalues (free casters, exact
+        model; 1/s); > 0 means directional (yaw) divergence.
+    friction_needed : ndarray, shape (len(trails), len(speeds))
+        Coulomb pin friction (N m) that suppresses caster shimmy up to
+        ``amplitude`` (describing function; 0 where the caster is stable).
+    pin_friction : float
+        The chair's left pin friction (N m).
+    amplitude : float
+        Shimmy amplitude of the friction estimate (rad).
+    critical_trail : ndarray
+        Linear shimmy boundary (m) per speed, nominal compliance.
+    critical_trail_range : ndarray, shape (2, len(speeds))
+        Its lowest and highest value over the compliance range corners.
+    friction_trail : ndarray
+        Trail (m) below which the chair's pin friction does not hold shimmy of ``amplitude``.
+    chair_trail : float
+        The chair's own trail (m).
+    note : str
+        That the compliance values are estimates.
+    """
+
+    chair_name: str
+    trails: np.ndarray
+    speeds: np.ndarray
+    divergence_rate: np.ndarray
+    friction_needed: np.ndarray
+    pin_friction: float
+    amplitude: float
+    critical_trail: np.ndarray
+    critical_trail_range: np.ndarray
+    friction_trail: np.ndarray
+    chair_trail: float
+    note: str = ESTIMATE_NOTE
+
+
+def trail_chart(chair: Chair, trails, speeds, compliance: CasterCompliance | None = None,
+                amplitude: float = math.radians(5.0)) -> TrailChart:
+    """Yaw divergence rate and caster shimmy over trail x speed (see :class:`TrailChart`)."""
+    from ..linear import eigenvalues_vs_speed
+
+    comp = compliance or CasterCompliance()
+    trails = np.asarray(trails, dtype=float)
+    speeds = np.asarray(speeds, dtype=float)
+    div = np.empty((trails.size, speeds.size))
+    need = np.empty_like(div)
+    for i, t in enumerate(trails):
+        c = chair.replace(trail=float(t))
+        div[i] = eigenvalues_vs_speed(c, speeds, track=False).real.max(axis=-1)
+        w = caster_wheel(c, comp)
+        need[i] = [describing.suppressing_friction(w, u, amplitude).friction for u in speeds]
+    crit = np.array([critical_trail(chair, u, comp) for u in speeds])
+    corners = np.array([[critical_trail(chair, u, cc) for u in speeds] for cc in comp.corners()])
+    rng = np.array([corners.min(axis=0), corners.max(axis=0)])
+    ftrail = np.array([friction_trail(chair, u, amplitude, comp) for u in speeds])
+    return TrailChart(chair.name, trails, speeds, div, need, chair.pin_friction_left, amplitude, crit, rng, ftrail,
+                      chair.trail)
+
+
+@dataclass(frozen=True)
+class CasterSummary:
+    """Shimmy of one chair's (left) caster against speed.
+
+    Attributes
+    ----------
+    chair_name : str
+    compliance : CasterCompliance
+        The estimated caster compliance used.
+    speeds : ndarray
+        m/s.
+    stable : ndarray of bool
+        Linear caster model stable (viscous pin damping only, no Coulomb friction).
+    shimmy_frequency_hz : ndarray
+        Frequency of the least-damped oscillatory caster mode (Hz).
+    shimmy_growth_rate : ndarray
+        Its real part (1/s; > 0: shimmy grows).
+    critical_trail, critical_trail_low, critical_trail_high : ndarray
+        Linear shimmy boundary (m; below it shimmy), nominal and over the compliance range.
+    friction_needed : ndarray
+        Coulomb pin friction (N m) that suppresses shimmy up to ``amplitude``.
+    pin_friction : float
+        The chair's left pin friction (N m).
+    friction_trail : ndarray
+        Trail (m) below which the chair's pin friction does not hold shimmy of ``amplitude``.
+    amplitude : float
+        rad.
+    trail : float
+        The chair's trail (m).
+    note : str
+    """
+
+    chair_name: str
+    compliance: CasterCompliance
+    speeds: np.ndarray
+    stable: np.ndarray
+    shimmy_frequency_hz: np.ndarray
+    shimmy_growth_rate: np.ndarray
+    critical_trail: np.ndarray
+    critical_trail_low: np.ndarray
+    critical_trail_high: np.ndarray
+    friction_needed: np.ndarray
+    pin_friction: float
+    friction_trail: np.ndarray
+    amplitude: float
+    trail: float
+    note: str = ESTIMATE_NOTE
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict (snake_case keys with units; inf written as null)."""
+        def num(x):
+            return [None if not math.isfinite(v) else float(v) for v in np.ravel(x)]
+
+        return {
+            "chair": self.chair_name, "note": self.note,
+            "relaxation_length_m": self.compliance.relaxation_length,
+            "relaxation_length_range_m": list(self.compliance.relaxation_length_range),
+            "lateral_stiffness_n_per_m": self.compliance.lateral_stiffness,
+            "lateral_stiffness_range_n_per_m": list(self.compliance.lateral_stiffness_range),
+            "trail_m": self.trail, "pin_friction_n_m": self.pin_friction,
+            "amplitude_deg": math.degrees(self.amplitude),
+            "speeds_m_per_s": num(self.speeds), "stable_without_friction": [bool(s) for s in self.stable],
+            "shimmy_frequency_hz": num(self.shimmy_frequency_hz),
+            "shimmy_growth_rate_per_s": num(self.shimmy_growth_rate),
+            "critical_trail_m": num(self.critical_trail), "critical_trail_low_m": num(self.critical_trail_low),
+            "critical_trail_high_m": num(self.critical_trail_high),
+            "friction_needed_n_m": num(self.friction_needed), "friction_trail_m": num(self.friction_trail),
+            "null_means": "critical/friction trail above 0.2 m (unstable at every trail checked)",
+        }
+
+
+def caster_summary(chair: Chair, speeds, compliance: CasterCompliance | None = None,
+                   amplitude: float = math.radians(5.0)) -> CasterSummary:
+    """Shimmy summary of ``chair``'s left caster at ``speeds`` (see :class:`CasterSummary`)."""
+    comp = compliance or CasterCompliance()
+    U = np.asarray(speeds, dtype=float)
+    w = caster_wheel(chair, comp)
+    ev = np.atleast_2d(w.eigenvalues(U))
+    osc = np.abs(ev.imag) > 1e-9 * np.abs(ev).max(axis=-1, keepdims=True)
+    j = np.argmax(np.where(osc, ev.real, -np.inf), axis=-1)
+    lead = ev[np.arange(U.size), j]
+    corners = np.array([[critical_trail(chair, u, cc) for u in U] for cc in comp.corners()])
+    return CasterSummary(
+        chair.name, comp, U, np.array([w.routh_hurwitz(u).stable for u in U]), np.abs(lead.imag) / (2 * math.pi),
+        lead.real, np.array([critical_trail(chair, u, comp) for u in U]), corners.min(axis=0), corners.max(axis=0),
+        np.array([describing.suppressing_friction(w, u, amplitude).friction for u in U]), w.pin_friction,
+        np.array([friction_trail(chair, u, amplitude, comp) for u in U]), amplitude, chair.trail)
