@@ -23,7 +23,7 @@ import math
 import os
 import sys
 import zlib
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -330,10 +330,6 @@ class PropagationResult:
     dominant_parameters: tuple[tuple[str, float], ...] = ()
     rejected: int = 0
 
-    def interval(self) -> tuple[Any, Any]:
-        """(low, high)."""
-        return self.low, self.high
-
 
 def _regression_shares(x: dict[str, np.ndarray], y: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """First-order variance shares from standardised regression coefficients (SRC^2, normalised)."""
@@ -344,7 +340,7 @@ def _regression_shares(x: dict[str, np.ndarray], y: np.ndarray) -> tuple[dict[st
     for j in range(k):
         ok = np.isfinite(y[:, j])
         yj = y[ok, j]
-        if not names or ok.sum() < len(names) + 2 or np.std(yj) == 0:
+        if not names or ok.sum() < len(names) + 2 or np.ptp(yj) == 0:
             continue
         cols = [(x[n][ok] - x[n][ok].mean()) / (x[n][ok].std() or 1.0) for n in names]
         a = np.column_stack(cols + [np.ones(ok.sum())])
@@ -401,8 +397,14 @@ def propagate(chair: Chair, uncertainty: Uncertainty, fn: Callable[[list[Chair]]
         yj = y[finite[:, j], j]
         if yj.size:
             stats[:3, j] = np.percentile(yj, q)
-            stats[3, j], stats[4, j] = yj.mean(), yj.std(ddof=1) if yj.size > 1 else 0.0
-    shares, r2 = _regression_shares(unit, y)
+            if np.ptp(yj) == 0:  # identical outputs (e.g. zero uncertainty): exactly that value, zero spread
+                stats[3, j], stats[4, j] = yj[0], 0.0
+            else:
+                stats[3, j], stats[4, j] = yj.mean(), yj.std(ddof=1)
+    spread = {d.name: unit[d.name] for d in uncertainty.distributions
+              if any(d.std_value(float(getattr(chair, f))) > 0 for f in d.fields)}
+    shares, r2 = _regression_shares(spread, y)
+    shares = {d.name: shares.get(d.name, np.zeros(y.shape[1])) for d in uncertainty.distributions}
     return PropagationResult(
         samples=int(samples), seed=int(seed), level=float(level),
         low=_shape(stats[0], scalar), high=_shape(stats[2], scalar), median=_shape(stats[1], scalar),
@@ -464,8 +466,3 @@ def delta_method(chair: Chair, uncertainty: Uncertainty, fn: Callable[[list[Chai
                        low=_shape(y[0] - z * sd, scalar), high=_shape(y[0] + z * sd, scalar),
                        contributions={n: _shape(c, scalar) for n, c in contrib.items()},
                        dominant_parameters=_rank(shares))
-
-
-def chairs_to_arrays(chairs: Sequence[Chair], names: Sequence[str]) -> dict[str, np.ndarray]:
-    """Field arrays of a list of chairs (for vectorised ``fn``)."""
-    return {n: np.array([getattr(c, n) for c in chairs], dtype=float) for n in names}

@@ -1,0 +1,319 @@
+"""stability.measure: each measurement formula against a closed form, an independent derivation or a published value."""
+
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import sympy as sp
+from scipy.integrate import solve_ivp
+
+from stability import chair as chair_mod
+from stability.measure import anthropometry, bodies, pendulum, scales, sheet, units
+from stability.measure.__main__ import main as measure_main
+from stability.measure.uncertainty import load_uncertainty
+
+G0 = 9.80665
+EXAMPLE = os.path.join(os.path.dirname(__file__), "..", "docs", "examples", "measured_chair_sheet.toml")
+
+
+# ---------------------------------------------------------------- units
+def test_exact_conversion_factors():
+    # NIST SP 811 / 1959 international yard and pound: exact definitions
+    assert units.quantity(1, "lbf") == pytest.approx(4.4482216152605, rel=1e-15)
+    assert units.quantity(1, "ft") == 0.3048 and units.quantity(1, "in") == 0.0254
+    assert units.quantity(1, "lb") == 0.45359237
+    assert units.quantity(1, "slug") == pytest.approx(14.593902937206365, rel=1e-15)
+    assert units.quantity(1, "slug ft^2") == pytest.approx(4.4482216152605 * 0.3048, rel=1e-15)
+    assert units.quantity(1, "lb in^2") == pytest.approx(0.45359237 * 0.0254**2, rel=1e-15)
+    assert units.quantity(1, "in lbf") == pytest.approx(0.0254 * 4.4482216152605, rel=1e-15)
+    assert units.quantity(180, "deg") == pytest.approx(math.pi, rel=1e-15)
+    assert units.quantity(1, "N m/deg") == pytest.approx(180 / math.pi, rel=1e-15)
+
+
+def test_thesis_rod_rigidity():
+    # Collins (1987) Appendix D: K_t = 0.66 ft lbf/rad
+    assert units.quantity(0.66, "ft lbf/rad", expect="torsional rigidity") == pytest.approx(0.8948, abs=5e-5)
+
+
+def test_unit_errors():
+    with pytest.raises(ValueError, match="not a length"):
+        units.quantity(1, "kg", expect="length")
+    with pytest.raises(ValueError, match="unknown unit"):
+        units.quantity(1, "furlong")
+    assert units.dimension_name(units.parse_unit("ft lbf")[1]) == "moment"
+
+
+# ---------------------------------------------------------------- pendulums
+def test_torsional_pendulum_with_calibration_cylinder():
+    # calibration cylinder 10 kg, r = 0.2 m: I = m r^2 / 2 = 0.2 kg m^2 (closed form)
+    i_cal = pendulum.solid_cylinder_inertia(10.0, 0.2)
+    assert i_cal == pytest.approx(0.2, rel=1e-15)
+    # eq D-1 solved independently with sympy for K_t and for I
+    T, Isym, K = sp.symbols("T I K", positive=True)
+    eq = sp.Eq(T, 2 * sp.pi * sp.sqrt(Isym / K))
+    k_expr = sp.solve(eq, K)[0]
+    i_expr = sp.solve(eq, Isym)[0]
+    t_cal = 2.9
+    k_t = pendulum.torsional_rigidity(t_cal, i_cal)
+    assert k_t == pytest.approx(float(k_expr.subs({T: t_cal, Isym: 0.2})), rel=1e-13)
+    assert pendulum.torsional_pendulum_inertia(10.07, k_t) == pytest.approx(
+        float(i_expr.subs({T: 10.07, K: k_t})), rel=1e-13)
+    # thesis: rod 0.66 ft lbf/rad and the 2.3 kg m^2 chair -> a period of about 10.07 s
+    k_thesis = units.quantity(0.66, "ft lbf/rad")
+    period = 2 * math.pi * math.sqrt(2.3 / k_thesis)
+    assert period == pytest.approx(10.07, abs=0.01)
+    assert pendulum.torsional_pendulum_inertia(period, k_thesis) == pytest.approx(2.3, rel=1e-13)
+    # fixture inertia is subtracted
+    assert pendulum.torsional_pendulum_inertia(period, k_thesis, 0.1) == pytest.approx(2.2, rel=1e-13)
+    with pytest.raises(ValueError, match="period"):
+        pendulum.torsional_pendulum_inertia(-1.0, k_thesis)
+
+
+def _multifilar_stiffness():
+    """Twist stiffness d^2 V / d theta^2 at 0 from the exact geometry of equal strings on radius R (sympy).
+
+    Every string's lower end moves on the same circle, so the platform's rise, and the stiffness,
+    do not depend on the number of strings."""
+    th, R, L, m, g = sp.symbols("theta R L m g", positive=True)
+    # each string bottom rotates by theta about the axis: horizontal chord 2 R sin(theta/2);
+    # the platform rises by L - sqrt(L^2 - chord^2); potential energy m g rise (all strings equal)
+    rise = L - sp.sqrt(L**2 - (2 * R * sp.sin(th / 2)) ** 2)
+    k = sp.simplify(sp.diff(m * g * rise, th, 2).subs(th, 0))
+    return k, (R, L, m, g)
+
+
+def test_bifilar_formula_matches_exact_geometry_and_point_masses():
+    k, (R, L, m, g) = _multifilar_stiffness()
+    assert sp.simplify(k - m * g * R**2 / L) == 0
+    vals = {R: 0.25, L: 1.2, m: 8.0, g: G0}
+    i_true = 0.7
+    period = 2 * math.pi * math.sqrt(i_true / float(k.subs(vals)))
+    assert pendulum.bifilar_pendulum_inertia(8.0, 0.5, 1.2, period) == pytest.approx(i_true, rel=1e-12)
+    # two point masses m/2 hanging on the strings, d apart: I = m d^2/4 and the period is that
+    # of a simple pendulum of length L, independent of d
+    d, length, mass = 0.6, 1.5, 4.0
+    t_simple = 2 * math.pi * math.sqrt(length / G0)
+    assert pendulum.bifilar_pendulum_inertia(mass, d, length, t_simple) == pytest.approx(mass * d**2 / 4, rel=1e-13)
+
+
+def test_trifilar_formula_matches_exact_geometry():
+    k, (R, L, m, g) = _multifilar_stiffness()
+    vals = {R: 0.3, L: 2.0, m: 20.0, g: G0}
+    i_true = 2.3
+    period = 2 * math.pi * math.sqrt(i_true / float(k.subs(vals)))
+    assert pendulum.trifilar_pendulum_inertia(20.0, 0.3, 2.0, period) == pytest.approx(i_true, rel=1e-12)
+
+
+def _simple_pendulum_period(length, amplitude):
+    """Period of a point-mass pendulum released at ``amplitude`` (numerical integration, independent of K(m))."""
+    def rhs(t, y):
+        return [y[1], -G0 / length * math.sin(y[0])]
+
+    def crossing(t, y):
+        return y[0]
+    crossing.direction = -1
+    sol = solve_ivp(rhs, (0, 10), [amplitude, 0.0], events=crossing, rtol=1e-12, atol=1e-12)
+    return 4 * sol.t_events[0][0]
+
+
+def test_compound_pendulum_point_mass_and_amplitude_correction():
+    m, l1 = 1.2, 0.058
+    t0 = 2 * math.pi * math.sqrt(l1 / G0)
+    assert pendulum.compound_pendulum_inertia(m, l1, t0) == pytest.approx(m * l1**2, rel=1e-12)
+    amp = math.radians(30)
+    t_big = _simple_pendulum_period(l1, amp)
+    assert t_big / t0 == pytest.approx(1 + amp**2 / 16 + 11 * amp**4 / 3072, rel=1e-4)  # series check
+    assert pendulum.compound_pendulum_inertia(m, l1, t_big, amplitude=amp) == pytest.approx(m * l1**2, rel=1e-8)
+    with pytest.raises(ValueError, match="period"):
+        pendulum.compound_pendulum_inertia(m, l1, 0.9 * t0)
+
+
+# ---------------------------------------------------------------- bodies
+def _points_body(points):
+    """Body of point masses [(m, x, y)], its own inertia computed directly about its own c.g."""
+    mt = sum(p[0] for p in points)
+    xg = sum(p[0] * p[1] for p in points) / mt
+    yg = sum(p[0] * p[2] for p in points) / mt
+    return bodies.Body(mt, xg, yg, sum(p[0] * ((p[1] - xg) ** 2 + (p[2] - yg) ** 2) for p in points))
+
+
+def test_combine_equals_direct_sum_over_point_masses():
+    rng = np.random.default_rng(7)
+    groups = [[(float(rng.uniform(1, 10)), *map(float, rng.normal(size=2))) for _ in range(5)] for _ in range(3)]
+    combined = bodies.combine([_points_body(g) for g in groups])
+    allp = [p for g in groups for p in g]
+    direct = _points_body(allp)
+    assert combined.mass == pytest.approx(direct.mass, rel=1e-14)
+    assert (combined.x, combined.y) == pytest.approx((direct.x, direct.y), rel=1e-12, abs=1e-14)
+    assert combined.i_z == pytest.approx(direct.i_z, rel=1e-12)
+
+
+def test_appendix_d_dummy_and_chair():
+    # Collins (1987) Appendix D: dummy 75 kg, 3.1 kg m^2 (Duffey); chair 20 kg, 2.3 kg m^2; total 5.6,
+    # "0.2 kg m^2 higher" than 3.1 + 2.3.  Two bodies: correction = mu D^2, mu = 75*20/95 kg.
+    mu = 75 * 20 / 95
+    d = bodies.separation_for_total_inertia(75, 20, 3.1, 2.3, 5.6)
+    assert d == pytest.approx(math.sqrt(0.2 / mu), rel=1e-12)
+    assert d == pytest.approx(0.1125, abs=5e-4)
+    # that separation, split by the lever rule: dummy 2.4 cm, chair 8.9 cm from the combined c.g.
+    both = bodies.combine([bodies.Body(75, 0.0, 0.0, 3.1), bodies.Body(20, -d, 0.0, 2.3)])
+    assert both.i_z == pytest.approx(5.6, rel=1e-12)
+    assert -both.x == pytest.approx(20 / 95 * d, rel=1e-12)
+    # the published totals are rounded to 0.1: any separation 9.7 to 12.6 cm gives "5.6"
+    assert bodies.separation_for_total_inertia(75, 20, 3.1, 2.3, 5.55) == pytest.approx(0.0975, abs=5e-4)
+    assert bodies.separation_for_total_inertia(75, 20, 3.1, 2.3, 5.65) == pytest.approx(0.1258, abs=5e-4)
+    assert bodies.parallel_axis_correction([bodies.Body(75, 0, 0, 3.1), bodies.Body(20, -d, 0, 2.3)]) == \
+        pytest.approx(0.2, rel=1e-12)
+
+
+# ---------------------------------------------------------------- scales
+def test_four_scale_cg_of_a_known_load_distribution():
+    wheelbase, bm, bc = 0.6, 0.54, 0.46
+    masses = [(70.0, 0.36, 0.02), (18.0, 0.2, -0.01), (5.0, 0.5, 0.1)]  # (kg, x from main axle, y right)
+    loads = dict(left_main=0.0, right_main=0.0, left_caster=0.0, right_caster=0.0)
+    for m, x, y in masses:  # each mass carried by the four wheels in static equilibrium (bilinear split)
+        u = x / wheelbase
+        for axle, share, track in (("main", 1 - u, bm), ("caster", u, bc)):
+            right = (y + track / 2) / track
+            loads[f"right_{axle}"] += m * share * right
+            loads[f"left_{axle}"] += m * share * (1 - right)
+    cg = scales.cg_from_scales(scales.WheelLoads(**loads), wheelbase, bm, bc, expected_total=93.0)
+    mt = sum(m for m, _, _ in masses)
+    assert cg.total == pytest.approx(mt, rel=1e-14)
+    assert cg.x == pytest.approx(sum(m * x for m, x, _ in masses) / mt, rel=1e-13)
+    assert cg.y == pytest.approx(sum(m * y for m, _, y in masses) / mt, rel=1e-12)
+    with pytest.raises(ValueError, match="sum to 93"):
+        scales.cg_from_scales(scales.WheelLoads(**loads), wheelbase, bm, bc, expected_total=100.0)
+    with pytest.raises(ValueError, match="left_main"):
+        scales.WheelLoads(-1.0, 1.0, 1.0, 1.0)
+    with pytest.raises(ValueError, match="outside the wheelbase"):
+        scales.cg_from_scales(scales.WheelLoads(10, 10, 0, 0), wheelbase, bm, bc)
+
+
+@pytest.mark.parametrize("r_pivot, r_lifted", [(0.3, 0.3), (0.305, 0.1), (0.1, 0.305)])
+def test_tilt_height_from_rotated_geometry(r_pivot, r_lifted):
+    wheelbase, w, x_g, h = 0.6, 950.0, 0.33, 0.61
+    theta = math.radians(9.0)
+    rot = np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
+    # chair frame: pivot axle at the origin, raised axle at (L, r_l - r_p), c.g. at (x_g, h - r_p)
+    axle = rot @ np.array([wheelbase, r_lifted - r_pivot])
+    cg = rot @ np.array([x_g, h - r_pivot])
+    lift = axle[1] - (r_lifted - r_pivot)  # how far the raised contact rose
+    tilted = w * cg[0] / axle[0]  # moments about the pivot axle; reactions act through the wheel centres
+    level = w * x_g / wheelbase
+    got = scales.cg_height_from_tilt(w, level, tilted, lift, wheelbase, r_pivot, r_lifted)
+    assert got == pytest.approx(h, rel=1e-12)
+    if r_pivot == r_lifted:  # the textbook formula h = r + L dW / (W tan theta)
+        assert got == pytest.approx(r_pivot + wheelbase * (level - tilted) / (w * math.tan(theta)), rel=1e-12)
+
+
+def test_pin_friction_moment():
+    # spring scale 1.0 N at 0.1 m, perpendicular: 0.1 N m (the thesis's value, Appendix D)
+    assert scales.pin_friction_moment(1.0, 0.1) == pytest.approx(0.1, rel=1e-15)
+    assert scales.pin_friction_moment(1.0, 0.1, angle_deg=30) == pytest.approx(0.05, rel=1e-14)
+    with pytest.raises(ValueError, match="lever_arm"):
+        scales.pin_friction_moment(1.0, 0.0)
+
+
+# ---------------------------------------------------------------- anthropometry
+def test_seated_inertia_scaling_and_iso_dummy():
+    base = anthropometry.seated_body(75.0, 1.741)
+    assert base.mass == pytest.approx(75.0, rel=1e-12)  # de Leva's mass fractions sum to 1
+    assert anthropometry.seated_body(150.0, 1.741).i_z == pytest.approx(2 * base.i_z, rel=1e-12)
+    assert anthropometry.seated_body(75.0, 1.2 * 1.741).i_z == pytest.approx(1.44 * base.i_z, rel=1e-12)
+    # Duffey's ISO 75 kg dummy, 3.1 kg m^2 (Collins 1987 Appendix D), lies inside the posture range
+    est = anthropometry.user_yaw_inertia(75.0, 1.75)
+    assert est.low < 3.1 < est.high
+    assert abs(est.value - 3.1) < 1.0 * est.std
+    with pytest.raises(ValueError, match="stature"):
+        anthropometry.seated_body(75.0, 17.5)
+
+
+# ---------------------------------------------------------------- sheet
+def test_example_sheet_values_and_uncertainties():
+    res = sheet.load_sheet(EXAMPLE)
+    c = res.chair
+    loaded = dict(lm=20.3, rm=22.0, lc=26.3, rc=28.4)
+    w = sum(loaded.values())
+    L = 0.585
+    assert c.m == pytest.approx(w, rel=1e-12)
+    assert c.s1 == pytest.approx(L * (loaded["lc"] + loaded["rc"]) / w, rel=1e-12)
+    assert c.s2 == pytest.approx(L - c.s1 - 0.075, rel=1e-12)
+    assert c.pin_friction_left == pytest.approx(0.100 * G0 * 0.10, rel=1e-12)
+    assert c.h == pytest.approx(0.60, abs=0.01)  # the sheet was made from a c.g. 0.60 m high
+    # first-order std of s1 = L C / W, by hand
+    ds_dl, ds_dc, ds_dm = (loaded["lc"] + loaded["rc"]) / w, L / w - L * (loaded["lc"] + loaded["rc"]) / w**2, \
+        -L * (loaded["lc"] + loaded["rc"]) / w**2
+    sd = math.sqrt((ds_dl * 0.003) ** 2 + 2 * (ds_dc * 0.1) ** 2 + 2 * (ds_dm * 0.1) ** 2)
+    row = {r.field: r for r in res.provenance}
+    assert row["s1"].std == pytest.approx(sd, rel=1e-5)
+    assert set(row["s1"].readings) == {"geometry.wheelbase"} | {f"scales.loaded.{k}" for k in
+                                                                ("left_main", "right_main", "left_caster",
+                                                                 "right_caster")}
+    # i_z by hand: chair (eq D-1 minus fixture) + user estimate + reduced-mass correction
+    i_cal = 0.5 * 50 * 0.45359237 * (5.9 * 0.0254) ** 2
+    k_t = 4 * math.pi**2 * i_cal / 3.34**2
+    i_chair = k_t * (10.18**2 - 1.49**2) / (4 * math.pi**2)
+    empty = dict(lm=6.3, rm=6.2, lc=3.2, rc=3.3)
+    we = sum(empty.values())
+    xe, xl = L * (empty["lc"] + empty["rc"]) / we, c.s1
+    ye = (0.54 * (empty["rm"] - empty["lm"]) + 0.47 * (empty["rc"] - empty["lc"])) / (2 * we)
+    yl = (0.54 * (loaded["rm"] - loaded["lm"]) + 0.47 * (loaded["rc"] - loaded["lc"])) / (2 * w)
+    mu = we * (w - we) / w
+    # separation chair c.g. to user c.g. = (combined - chair) * W / (W - We)
+    dx, dy = (xl - xe) * w / (w - we), (yl - ye) * w / (w - we)
+    i_user = anthropometry.user_yaw_inertia(w - we, 1.78).value
+    assert c.i_z == pytest.approx(i_chair + i_user + mu * (dx**2 + dy**2), rel=1e-10)
+    assert res.uncertainty["i_z"].std > 0.5  # the user estimate dominates: said, not hidden
+    assert any("de Leva" in n for n in res.notes)
+
+
+def _sheet_text(**changes):
+    with open(EXAMPLE) as fh:
+        text = fh.read()
+    for old, new in changes.items():
+        assert old in text
+        text = text.replace(old, new)
+    return text
+
+
+def test_cli_writes_chair_that_loads_back(tmp_path, capsys):
+    out = tmp_path / "c.toml"
+    code = measure_main([EXAMPLE, "-o", str(out)])
+    assert code == 0
+    back = chair_mod.load(out)
+    assert back == sheet.load_sheet(EXAMPLE).chair
+    unc = load_uncertainty(tmp_path / "c.uncertainty.toml")
+    assert unc["s1"].std == pytest.approx(sheet.load_sheet(EXAMPLE).uncertainty["s1"].std)
+    text = out.read_text()
+    assert "# derived by python -m stability.measure" in text and "scales.loaded.left_caster" in text
+    assert "wrote" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("old, new, word", [
+    ("weight = { value = 97.0", "weight = { value = 90.0", "scales.loaded"),
+    ('trail = { value = 7.5, unit = "cm"', 'trail = { value = 7.5, unit = "kg"', "geometry.trail"),
+    ("lift = { value = 10.0", "lift = { value = -10.0", "tilt.lift"),
+])
+def test_cli_refuses_bad_sheet_and_leaves_no_files(tmp_path, old, new, word):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(_sheet_text(**{old: new}))
+    out = tmp_path / "out" / "c.toml"
+    out.parent.mkdir()
+    proc = subprocess.run([sys.executable, "-m", "stability.measure", str(bad), "-o", str(out)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and word in lines[0] and "valid" in lines[0]
+    assert list(out.parent.iterdir()) == []
+
+
+def test_cli_checks_output_paths_before_work(tmp_path, capsys):
+    code = measure_main([EXAMPLE, "-o", str(tmp_path / "nowhere" / "c.toml")])
+    assert code == 2 and "does not exist" in capsys.readouterr().err
+    code = measure_main([EXAMPLE, "-o", str(tmp_path / "c.toml"), "--uncertainty-file", str(tmp_path / "c.toml")])
+    assert code == 2
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,164 @@
+"""stability.measure.uncertainty: parsing, seeded sampling, Monte Carlo vs delta method, zero uncertainty."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.stats import norm
+
+from stability import chair as chair_mod
+from stability import linear
+from stability.measure.uncertainty import delta_method, load_uncertainty, loads_uncertainty, propagate
+
+C = chair_mod.preset("ej-premier")
+
+LINEAR_U = """
+[s1]
+distribution = "normal"
+std = 0.01
+
+[i_z]
+distribution = "normal"
+std = 0.1
+relative = true
+
+[pin_friction_left]
+distribution = "uniform"
+low = 0.09
+high = 0.11
+"""
+COEF = {"s1": 2.0, "i_z": 0.1, "pin_friction_left": 3.0}
+
+
+def linear_fn(chairs):
+    return np.array([sum(k * getattr(c, n) for n, k in COEF.items()) for c in chairs])
+
+
+def analytic_sigma():
+    sds = {"s1": 0.01, "i_z": 0.1 * C.i_z, "pin_friction_left": 0.02 / math.sqrt(12)}
+    return math.sqrt(sum((COEF[n] * sds[n]) ** 2 for n in COEF)), sds
+
+
+def rate_075(chairs):
+    return np.array([linear.divergence(c, [0.75])[0]["rate_1_s"] for c in chairs])
+
+
+def test_parse_and_round_trip(tmp_path):
+    u = loads_uncertainty(LINEAR_U + '\n[pin]\nfields = ["pin_friction_right"]\ndistribution = "normal"\nstd = 0.5\n'
+                          "relative = true\n")
+    assert u.names == ("s1", "i_z", "pin_friction_left", "pin")
+    assert u["i_z"].std_value(C.i_z) == pytest.approx(0.56)
+    assert u["pin_friction_left"].std_value(0.1) == pytest.approx(0.02 / math.sqrt(12))
+    path = tmp_path / "u.toml"
+    path.write_text(u.dumps())
+    assert load_uncertainty(path) == u
+
+
+@pytest.mark.parametrize("text, word", [
+    ('[s9]\ndistribution = "normal"\nstd = 1\n', "s9"),
+    ('[s1]\ndistribution = "normal"\nstd = -1\n', "std"),
+    ('[s1]\ndistribution = "uniform"\nlow = 2\nhigh = 1\n', "high"),
+    ('[s1]\ndistribution = "cauchy"\nstd = 1\n', "distribution"),
+    ('[s1]\ndistribution = "normal"\nsigma = 1\n', "unknown key"),
+    ('[s1]\ndistribution = "normal"\nstd = 1\n[x]\nfields = ["s1"]\ndistribution = "normal"\nstd = 1\n', "both"),
+    ('[name]\ndistribution = "normal"\nstd = 1\n', "name"),
+])
+def test_parse_errors(text, word):
+    with pytest.raises(ValueError, match=word):
+        loads_uncertainty(text)
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(ValueError, match="does not exist"):
+        load_uncertainty(tmp_path / "nope.toml")
+
+
+def test_seeded_reproducibility_and_independent_streams():
+    u = loads_uncertainty(LINEAR_U)
+    a = u.sample(C, 50, seed=4)
+    b = u.sample(C, 50, seed=4)
+    assert a == b
+    assert u.sample(C, 50, seed=5) != a
+    # adding a table leaves the other tables' draws unchanged
+    u2 = loads_uncertainty(LINEAR_U + '[h]\ndistribution = "normal"\nstd = 0.02\n')
+    assert [c.s1 for c in u2.sample(C, 50, seed=4)] == [c.s1 for c in a]
+    r1 = propagate(C, u, linear_fn, samples=200, seed=9)
+    r2 = propagate(C, u, linear_fn, samples=200, seed=9)
+    assert (r1.low, r1.high, r1.median) == (r2.low, r2.high, r2.median)
+
+
+def test_zero_uncertainty_gives_exactly_the_nominal_value():
+    u = loads_uncertainty('[s1]\ndistribution = "normal"\nstd = 0.0\n[trail]\ndistribution = "uniform"\n'
+                          'low = 0.08\nhigh = 0.08\n[i_z]\ndistribution = "normal"\nstd = 0\nrelative = true\n')
+    nominal = rate_075([C])[0]
+    r = propagate(C, u, rate_075, samples=20, seed=1)
+    assert r.low == r.high == r.median == r.nominal == nominal
+    assert r.std == 0.0 and r.dominant_parameters[0][1] == 0.0
+    d = delta_method(C, u, rate_075)
+    assert d.value == nominal and d.std == 0.0 and d.low == d.high == nominal
+
+
+def test_monte_carlo_interval_matches_delta_method_on_linear_function():
+    u = loads_uncertainty(LINEAR_U)
+    sigma, sds = analytic_sigma()
+    mean = linear_fn([C])[0] + COEF["pin_friction_left"] * (0.1 - C.pin_friction_left)  # uniform centre 0.1
+    d = delta_method(C, u, linear_fn)
+    assert d.std == pytest.approx(sigma, rel=1e-7)
+    assert d.value == pytest.approx(mean, rel=1e-12)
+    assert (d.low, d.high) == pytest.approx((mean - norm.ppf(0.975) * sigma, mean + norm.ppf(0.975) * sigma),
+                                            rel=1e-7)
+    n = 20000
+    r = propagate(C, u, linear_fn, samples=n, seed=2)
+    # output is nearly normal (two normal terms dominate the variance); the 2.5 % quantile's standard
+    # error is sqrt(p (1 - p) / n) / pdf(z) sigma = 0.019 sigma: allow 4 standard errors
+    se = math.sqrt(0.025 * 0.975 / n) / norm.pdf(norm.ppf(0.025)) * sigma
+    assert r.low == pytest.approx(mean - 1.96 * sigma, abs=4 * se)
+    assert r.high == pytest.approx(mean + 1.96 * sigma, abs=4 * se)
+    assert r.std == pytest.approx(sigma, rel=0.03)
+    shares = {k: (COEF[k] * sds[k]) ** 2 / sigma**2 for k in COEF}
+    for k, v in shares.items():
+        assert r.shares[k] == pytest.approx(v, abs=0.02)
+        assert dict(d.dominant_parameters)[k] == pytest.approx(v, rel=1e-6)
+    assert r.dominant_parameters[0][0] == max(shares, key=shares.get) == "i_z"
+    assert r.r_squared == pytest.approx(1.0, abs=1e-12)
+
+
+def test_monte_carlo_vs_delta_on_the_chair_model():
+    # small parameter spread: the divergence rate is nearly linear in s1 and trail
+    u = loads_uncertainty('[s1]\ndistribution = "normal"\nstd = 0.005\n[trail]\ndistribution = "normal"\n'
+                          'std = 0.003\n')
+    d = delta_method(C, u, rate_075)
+    r = propagate(C, u, rate_075, samples=800, seed=3)
+    assert r.std == pytest.approx(d.std, rel=0.1)  # MC std within ~2.5 of its 5 % standard error
+    assert r.median == pytest.approx(d.value, abs=0.1 * d.std)
+    assert r.dominant_parameters[0][0] == d.dominant_parameters[0][0]
+
+
+def test_shared_draw_and_truncation():
+    u = loads_uncertainty('[pin]\nfields = ["pin_friction_left", "pin_friction_right"]\ndistribution = "normal"\n'
+                          "std = 0.6\nrelative = true\n")
+    c = C.replace(pin_friction_right=0.2)
+    chairs = u.sample(c, 400, seed=0)
+    ratio = np.array([ch.pin_friction_right / ch.pin_friction_left for ch in chairs])
+    assert np.allclose(ratio, 2.0, rtol=1e-12)  # one draw shared, relative to each field's own value
+    r = propagate(c, u, lambda cs: np.array([ch.pin_friction_left for ch in cs]), samples=400, seed=0)
+    assert r.rejected > 0  # N(0.1, 0.06) is negative 5 % of the time: redrawn (truncated)
+    assert r.low >= 0
+    wide = loads_uncertainty('[pin_friction_left]\ndistribution = "normal"\nmean = -0.1\nstd = 0.01\n')
+    with pytest.raises(ValueError, match="invalid chair"):
+        wide.sample(C, 50, seed=0)
+
+
+def test_vector_outputs_and_nan_rows():
+    u = loads_uncertainty(LINEAR_U)
+
+    def fn(chairs):
+        out = np.array([[c.s1, c.i_z if c.s1 > 0.345 else np.nan] for c in chairs])
+        return out
+
+    r = propagate(C, u, fn, samples=2000, seed=1, level=0.9)
+    assert r.low.shape == (2,) and r.level == 0.9
+    assert r.finite_fraction[0] == 1.0 and 0.4 < r.finite_fraction[1] < 0.6
+    assert r.low[0] == pytest.approx(C.s1 - norm.ppf(0.95) * 0.01, abs=0.001)
+    with pytest.raises(ValueError, match="level"):
+        propagate(C, u, fn, level=95)
