@@ -261,3 +261,52 @@ def test_friction_sticks_a_stable_wheel_and_no_friction_needed():
     sim = df.simulate(w, 1.0, df.shimmy_mode_state(w, 1.0, 0.01), 0.5)
     assert sim.stuck.any()
     assert np.abs(sim.psi[-1]) <= 0.01
+
+
+# ---------------------------------------------------------------------------
+# the wheelchair caster
+
+def test_caster_wheel_from_chair():
+    from stability.chair import preset
+    from stability.shimmy.chair import CasterCompliance, caster_wheel
+
+    c = preset("ej-premier")
+    w = caster_wheel(c, CasterCompliance(relaxation_length=0.03, lateral_stiffness=7e4))
+    assert w.inertia == pytest.approx(0.02 - 1.2 * 0.058**2, rel=1e-12)
+    assert w.trail == pytest.approx(0.08, rel=1e-12) and w.pivot_ahead_of_cm == 0.058
+    assert (w.relaxation_length, w.lateral_stiffness, w.pin_friction) == (0.03, 7e4, 0.1)
+    # thesis eq 8-3: about 25 N/deg = 1432 N/rad for an ER caster near 215 N
+    assert 1200 < w.cornering_stiffness < 1800
+    with pytest.raises(ValueError, match="trail=0.0 is invalid"):
+        caster_wheel(c.replace(trail=0.0))
+    with pytest.raises(ValueError, match="relaxation_length=-0.01 is invalid"):
+        CasterCompliance(relaxation_length=-0.01)
+
+
+def test_critical_trail_tends_to_relaxation_length_for_a_stiff_pin():
+    # rigid pivot, no damping: shimmy iff trail < sigma (test_relaxation_wheel_rigid_pivot_hurwitz_condition)
+    from stability.chair import preset
+    from stability.shimmy.chair import CasterCompliance, critical_trail, friction_trail
+
+    c = preset("ej-premier")
+    stiff = CasterCompliance(relaxation_length=0.03, lateral_stiffness=1e9)
+    assert critical_trail(c, 1.0, stiff) == pytest.approx(0.03, rel=0.02)
+    nominal = CasterCompliance()
+    crit = [critical_trail(c, u, nominal) for u in (0.5, 2.0)]
+    assert crit[0] == pytest.approx(crit[1], rel=1e-6)           # no viscous damping: speed-independent
+    held = [friction_trail(c, u, math.radians(5), nominal) for u in (0.5, 2.0)]
+    assert held[0] < held[1] < crit[0]                            # friction helps, less so at speed
+
+
+def test_cli_json_and_errors(capsys):
+    import json
+
+    from stability.shimmy.__main__ import main
+
+    assert main(["--chair", "revised", "--speeds", "1,2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["trail_m"] == 0.06 and len(data["critical_trail_m"]) == 2
+    assert "estimates" in data["note"]
+    assert main(["--relaxation-length", "-1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--relaxation-length=-1.0 is invalid" in err[0]
