@@ -51,18 +51,44 @@ def test_caster_mass_scales_mass_and_inertia_together(ej):
         assert c.m == ej.m and c.i_z == ej.i_z
 
 
-def test_one_batched_state_matrix_call(ej, monkeypatch):
-    """The whole locus comes from ONE call of state_matrices over the list of chairs."""
-    calls = []
-    real = rootlocus.state_matrices
+def test_batched_locus_equals_chair_by_chair_poles(ej):
+    """Each row of the batched locus equals the poles python-control finds for that chair alone."""
+    loc = rootlocus.parameter_locus(ej, "trail", speed=1.0, n=12)
+    p = rootlocus.get_parameter("trail")
+    for value, row in zip(loc.values, loc.eigenvalues, strict=True):
+        poles = np.sort_complex(linear.state_space(p.apply(ej, value), 1.0).poles())
+        np.testing.assert_allclose(np.sort_complex(row), poles, rtol=1e-9, atol=1e-9 * np.abs(poles).max())
 
-    def counting(chairs, speeds, model="exact", casters="free"):
-        calls.append(len(chairs) if isinstance(chairs, (list, tuple)) else 1)
-        return real(chairs, speeds, model, casters)
 
-    monkeypatch.setattr(rootlocus, "state_matrices", counting)
-    loc = rootlocus.parameter_locus(ej, "trail", speed=1.0, n=50)
-    assert calls == [len(loc.values)]
+@pytest.mark.parametrize("name", ["cg_ratio", "s1_plus_s2", "trail", "caster_mass_factor", "pin_damping",
+                                  "mass_factor", "main_lateral_scale", "main_tire"])
+def test_parameter_locus_equals_per_chair_eigenvalues(ej, name):
+    """At each value the locus holds exactly the eigenvalues of state_matrices(chair.replace(...), speed)."""
+    loc = rootlocus.parameter_locus(ej, name, speed=0.75, n=25)
+    p = rootlocus.DESIGN_PARAMETERS[name]
+    assert loc.eigenvalues.shape == (len(loc.values), 6)
+    for k in range(0, len(loc.values), 4):
+        c = p.apply(ej, float(loc.values[k]))
+        assert c == loc.chairs[k]
+        ref = np.linalg.eigvals(linear.state_matrices(c, 0.75)[0])
+        _same_sets(loc.eigenvalues[k], ref)
+
+
+def test_cg_ratio_keeps_s1_plus_s2(ej):
+    """Eq 8-6: the c.g. ratio is varied at constant s1 + s2."""
+    loc = rootlocus.parameter_locus(ej, "cg_ratio", [0.5, 0.6, 0.66, 0.75], speed=0.75)
+    for r, c in zip(loc.values, loc.chairs):
+        assert c.s1 + c.s2 == pytest.approx(ej.s1 + ej.s2)
+        assert c.cg_ratio == pytest.approx(r)
+    assert loc.nominal == pytest.approx(ej.cg_ratio)
+
+
+def test_caster_mass_scales_mass_and_inertia_together(ej):
+    """Figure 8-12: m_c and I_zp multiplied by the same factor."""
+    loc = rootlocus.parameter_locus(ej, "caster_mass_factor", [1.0, 2.0, 3.0])
+    for f, c in zip(loc.values, loc.chairs):
+        assert c.m_c == pytest.approx(ej.m_c * f) and c.i_zp == pytest.approx(ej.i_zp * f)
+        assert c.m == ej.m and c.i_z == ej.i_z
 
 
 @pytest.mark.parametrize("name", ["cg_ratio", "s1_plus_s2", "trail", "pin_damping", "mass_factor"])

@@ -1,0 +1,108 @@
+"""Eigenvalues of the linear model as the forward speed varies (the parametric root locus)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validate import check_casters, check_model
+from ..chair import Chair
+from ..linear import STATES_FREE, STATES_LOCKED, critical_speeds, state_matrices, track_modes
+
+__all__ = ["SpeedLocus", "speed_locus", "readonly"]
+
+
+def readonly(a) -> np.ndarray:
+    """A read-only copy of ``a`` (result arrays are immutable)."""
+    a = np.array(a)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class SpeedLocus:
+    """Eigenvalues of a linear model as the forward speed varies.
+
+    Attributes
+    ----------
+    chair : Chair
+    model : {"exact", "thesis"}
+    casters : {"free", "locked"}
+    speeds : ndarray, shape (N,)
+        Increasing forward speeds (m/s).
+    eigenvalues : ndarray, shape (N, n)
+        Column ``j`` is one tracked branch (mode), 1/s.
+    crossings : list of Crossing
+        Critical speeds: where the largest real part crosses zero.
+    states : tuple of str
+        State names of the model.
+    """
+
+    chair: Chair
+    model: str
+    casters: str
+    speeds: np.ndarray
+    eigenvalues: np.ndarray
+    crossings: list = field(default_factory=list)
+    states: tuple = ()
+
+    @property
+    def max_real(self) -> np.ndarray:
+        """Largest real part at each speed (1/s)."""
+        return self.eigenvalues.real.max(axis=1)
+
+    @property
+    def unstable(self) -> np.ndarray:
+        """Boolean mask of the speeds at which some eigenvalue has a positive real part."""
+        return self.max_real > 0
+
+    def unstable_intervals(self) -> list[tuple[float, float]]:
+        """Speed intervals (m/s) in which the model is unstable, ends refined to the crossings."""
+        out: list[tuple[float, float]] = []
+        U = self.speeds
+        crit = sorted(c.speed for c in self.crossings)
+        inside = bool(self.unstable[0])
+        start = float(U[0]) if inside else None
+        for s in crit:
+            if inside:
+                out.append((start, s))
+                inside = False
+            else:
+                start, inside = s, True
+        if inside:
+            out.append((start, float(U[-1])))
+        return out
+
+    @property
+    def title(self) -> str:
+        return f"{self.chair.name}, {self.model} model, {self.casters} casters"
+
+
+def speed_locus(chair: Chair, speeds=None, *, model: str = "exact", casters: str = "free",
+                max_speed: float = 15.0, n: int = 600) -> SpeedLocus:
+    """Eigenvalues against forward speed, tracked, and the critical speeds.
+
+    Parameters
+    ----------
+    chair : Chair
+    speeds : array_like, optional
+        Increasing speeds (m/s); default ``geomspace(0.05, max_speed, n)``.
+    model, casters : str
+        Model variant and caster state.
+    """
+    check_model(model)
+    check_casters(casters)
+    if speeds is None:
+        if not (math.isfinite(max_speed) and max_speed > 0.05):
+            raise ValueError(f"max_speed={max_speed!r} is invalid; valid range: > 0.05 m/s")
+        speeds = np.geomspace(0.05, max_speed, int(n))
+    U = np.asarray(speeds, dtype=float)
+    if U.ndim != 1 or len(U) < 2 or np.any(np.diff(U) <= 0) or U[0] <= 0:
+        raise ValueError("speeds must be an increasing 1-D array of at least 2 positive speeds (m/s)")
+    A = state_matrices(chair, U, model, casters)
+    eig = track_modes(np.linalg.eigvals(A))
+    crossings = critical_speeds(lambda s: state_matrices(chair, s, model, casters), U)
+    states = STATES_FREE if casters == "free" else STATES_LOCKED
+    return SpeedLocus(chair, model, casters, readonly(U), readonly(eig), list(crossings), tuple(states))
