@@ -159,25 +159,7 @@ def simulate(wheel: TowedWheel, speed: float, x0: np.ndarray, t_end: float, *,
     for _ in range(max_events):
         if t0 >= t_end:
             break
-        if mode == 0:
-            def rhs(_t, xx):
-                d = A @ xx + B * hold(xx)
-                d[i] = 0.0
-                return d
-
-            def ev(_t, xx):
-                return abs(hold(xx)) - Mf
-            ev.direction = 1
-        else:
-            s = mode
-
-            def rhs(_t, xx, s=s):
-                return A @ xx - B * (Mf * s)
-
-            def ev(_t, xx, s=s):
-                return s * xx[i]
-            ev.direction = -1
-        ev.terminal = True
+        rhs, ev = _segment(A, B, i, Mf, mode)
         sol = solve_ivp(rhs, (t0, t_end), x, method="DOP853", events=ev, rtol=rtol, atol=atol,
                         dense_output=False, max_step=t_end / 50)
         ts.append(sol.t[1:])
@@ -190,6 +172,26 @@ def simulate(wheel: TowedWheel, speed: float, x0: np.ndarray, t_end: float, *,
         T = hold(x)
         mode = 0 if abs(T) <= Mf * (1 + 1e-12) and mode != 0 else int(np.sign(A[i] @ x)) or 1
     return Simulation(np.concatenate(ts), np.concatenate(xs), wheel.states, np.concatenate(stuck))
+
+
+def _segment(A: np.ndarray, B: np.ndarray, i: int, Mf: float, mode: int):
+    """Right-hand side and terminal event of one stick (mode 0) or slip (mode +-1) segment."""
+    def hold(xx):
+        return -(A[i] @ xx) / B[i]
+
+    def rhs(_t, xx):
+        if mode == 0:
+            d = A @ xx + B * hold(xx)
+            d[i] = 0.0
+            return d
+        return A @ xx - B * (Mf * mode)
+
+    def ev(_t, xx):
+        return abs(hold(xx)) - Mf if mode == 0 else mode * xx[i]
+
+    ev.direction = 1 if mode == 0 else -1  # type: ignore[attr-defined]
+    ev.terminal = True  # type: ignore[attr-defined]
+    return rhs, ev
 
 
 def _grows(wheel: TowedWheel, speed: float, amplitude: float, cycles: float) -> bool:
