@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["VARIANTS", "CASTERS", "check_choice", "check_model", "check_casters", "check_speed",
-           "check_speeds", "check_positive", "check_nonnegative"]
+           "check_speeds", "check_positive", "check_nonnegative", "check_finite"]
 
 VARIANTS = ("exact", "thesis")
 CASTERS = ("free", "locked")
@@ -79,3 +79,8 @@ def check_nonnegative(name: str, value: Any, *, prefix: str = "") -> float:
     if v < 0:
         raise ValueError(f"{prefix}{name}={value!r} is invalid; valid range: >= 0 (finite)")
     return v
+
+
+def check_finite(name: str, value: Any, *, unit: str = "", prefix: str = "") -> float:
+    """A finite real number of any sign (booleans and strings are refused); ``unit`` names its unit."""
+    return _number(name, value, "a finite number" + (f" ({unit})" if unit else ""), prefix)

@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from stability import params, tires
-from stability import simulate as sim
 from stability import statics as loads
 from stability.chair import preset
 from stability.simulate import ChairState, SimulationResult, simulate, simulate_batch
+from stability.simulate.results import COLUMNS, new_warnings
 
 EJ = preset("ej-premier")
 FRONT = preset("ej-premier-front-caster")
@@ -398,10 +398,10 @@ def test_adaptive_loads_are_consistent_with_the_forces():
 # results
 # ---------------------------------------------------------------------------
 def _synthetic(t, r):
-    rec = np.zeros((len(t), len(sim._COLS)))
+    rec = np.zeros((len(t), len(COLUMNS)))
     rec[:, 0] = t
-    rec[:, sim._COLS.index("yaw_rate")] = r
-    return SimulationResult._from_records(rec, warnings=sim._new_warnings(), stopped=False, stop_time=None,
+    rec[:, COLUMNS.index("yaw_rate")] = r
+    return SimulationResult._from_records(rec, warnings=new_warnings(), stopped=False, stop_time=None,
                                           chair=EJ, speed=0.75, settings={"scheme": "wchair", "model": "thesis"})
 
 

@@ -1,0 +1,54 @@
+"""Nonlinear simulation of a freely rolling wheelchair (Collins 1987, chapter 7, program WCHAIR).
+
+Two schemes share one physics (:mod:`.physics`): program WCHAIR's fixed-step
+scheme (:mod:`.wchair`) and an error-controlled adaptive scheme with
+stick-slip pin friction (:mod:`.adaptive`).  Defaults come from one table
+(:data:`.options.DEFAULTS`).  Schemes, conventions and performance are
+described in ``docs/simulator.md``.
+
+Examples
+--------
+>>> from stability.chair import preset
+>>> from stability.simulate import simulate
+>>> res = simulate(preset("ej-premier"), 0.75, duration=4.0)   # doctest: +SKIP
+>>> round(res.first_time_abs_yaw_rate(1.0), 2)                   # doctest: +SKIP
+3.2
+"""
+
+from .api import simulate, simulate_batch
+from .linearise import linearise
+from .options import (
+    ADAPTIVE_METHOD,
+    CASTERS,
+    DEFAULTS,
+    LOAD_LIMIT_N,
+    MODELS,
+    OUT_OF_RANGE_POLICIES,
+    SCHEMES,
+    SLIP_LIMIT_DEG,
+    WARNING_LIMIT,
+    WHEEL_LABELS,
+    WHEELS,
+    SimulationDefaults,
+)
+from .results import ChairState, SimulationResult
+
+__all__ = [
+    "SCHEMES",
+    "MODELS",
+    "CASTERS",
+    "OUT_OF_RANGE_POLICIES",
+    "WHEELS",
+    "WHEEL_LABELS",
+    "SLIP_LIMIT_DEG",
+    "LOAD_LIMIT_N",
+    "WARNING_LIMIT",
+    "ADAPTIVE_METHOD",
+    "DEFAULTS",
+    "SimulationDefaults",
+    "ChairState",
+    "SimulationResult",
+    "simulate",
+    "simulate_batch",
+    "linearise",
+]

@@ -1,0 +1,84 @@
+"""The simulator's own linearisation about straight running (central differences of its right-hand side)."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+
+from .._validate import check_positive, check_speed
+from ..chair import Chair
+from .adaptive import FREE_POS, LOCKED, AdaptiveModel
+from .options import DEFAULTS, initial_velocities, make_options
+
+__all__ = ["linearise"]
+
+
+def linearise(chair: Chair, speed: float, *, model: str = DEFAULTS.model, casters: str = DEFAULTS.casters,
+              step: float = 1e-6) -> Any:
+    """The simulator's own linearisation about straight running, by central differences.
+
+    Differentiates the right-hand side the simulator integrates (the adaptive
+    scheme's, whose normal loads are solved consistently with the tire
+    forces) with respect to ``[v, r, eta, eta_dot, beta, beta_dot]`` (free
+    casters) or ``[v, r]`` (locked) and the yaw-moment input, at forward
+    speed ``speed`` held fixed, casters trailing, no disturbance.  Unlike
+    :func:`stability.linear.state_space` it keeps everything the simulator
+    has: rolling resistance (drag on the casters, pitch load transfer),
+    camber and toe with the lateral load transfer they couple to, and each
+    tire's force law at its actual (not static) load.  Pins are taken as
+    frictionless (Coulomb friction has no linearisation) and without the
+    linear models' viscous ``pin_damping``, which the simulator does not have.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair (pin friction is set to zero).
+    speed : float
+        Forward speed, m/s (> 0).
+    model : {"thesis", "exact"}
+        Equation variant.
+    casters : {"free", "locked"}
+        Free or locked casters.
+    step : float
+        Central-difference step in the state units (m/s, rad/s, rad); the
+        slip angles stay far inside the first degree, where the tire model
+        is linear in slip.
+
+    Returns
+    -------
+    control.StateSpace
+        Same states, input ``Mz`` (N m) and outputs ``v``, ``r`` as
+        :func:`stability.linear.state_space`.
+    """
+    import control  # python-control is only needed here
+
+    speed = check_speed(speed)
+    step = check_positive("step", step)
+    chair = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    # the defaults, except: the adaptive scheme's right-hand side, no disturbance, tires strictly in range
+    settings = dict(DEFAULTS.as_dict(), duration=1.0, scheme="adaptive", model=model, casters=casters,
+                    impulse_force=0.0, impulse_duration=0.0, stop_on_warnings=False, out_of_range="raise")
+    opts = make_options(**settings)
+    modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)
+    u0, _ = initial_velocities(opts, speed)
+    mz_in = [0.0]                       # the yaw-moment input of the evaluation below (N m)
+    model_ = AdaptiveModel(chair, speed, dataclasses.replace(opts, yaw_moment=lambda t, st: mz_in[0]))
+
+    def derivative(dx, mz=0.0):
+        mz_in[0] = mz
+        model_.guess = (0.0, 0.0)       # every evaluation solves the load-transfer loop from scratch
+        y = [0.0, 0.0, 0.0, u0, *dx] + [0.0] * (6 - len(dx))
+        dy, _ = model_.evaluate(0.0, y, modes, False)
+        return np.array(dy[4:4 + len(dx)], dtype=float)
+
+    n = 2 if opts.casters == "locked" else 6
+    eye = np.eye(n) * step
+    A = np.column_stack([(derivative(eye[j]) - derivative(-eye[j])) / (2.0 * step) for j in range(n)])
+    B = ((derivative(np.zeros(n), 1.0) - derivative(np.zeros(n), -1.0)) / 2.0)[:, None]
+    states = ["v", "r", "eta", "eta_dot", "beta", "beta_dot"][:n]
+    C = np.zeros((2, n))
+    C[0, 0] = C[1, 1] = 1.0
+    name = f"{chair.name} (simulator {opts.model}, {opts.casters} casters, U={speed:g} m per s)".replace(".", "p")
+    return control.ss(A, B, C, np.zeros((2, 1)), states=states, inputs=["Mz"], outputs=["v", "r"], name=name)

@@ -1,0 +1,321 @@
+"""Result of a simulated run: :class:`SimulationResult` (time histories, CSV, JSON) and :class:`ChairState`."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .._validate import check_positive
+from ..chair import Chair
+from ..output import atomic_write_text
+from .options import WHEELS
+
+__all__ = ["COLUMNS", "NCOLS", "ChairState", "SimulationResult", "new_warnings", "note_warning"]
+
+COLUMNS = ("t", "x", "y", "heading", "yaw_rate", "u", "v", "eta", "eta_dot", "beta", "beta_dot",
+         "fx_A", "fy_A", "fx_B", "fy_B", "fx_D", "fy_D", "fx_E", "fy_E",
+         "fz_A", "fz_B", "fz_D", "fz_E", "slip_A", "slip_B", "slip_D", "slip_E",
+         "tire_yaw_moment", "yaw_moment_input", "yaw_acceleration", "pin_moment_A", "pin_moment_B")
+NCOLS = len(COLUMNS)
+
+
+# ---------------------------------------------------------------------------
+# state passed to a yaw-moment input
+# ---------------------------------------------------------------------------
+class ChairState(NamedTuple):
+    """State handed to a ``yaw_moment(t, state)`` input.
+
+    Floats for a single run; arrays of shape ``(n_active,)`` in a batch, where
+    ``run`` holds the index (into the batch) of each active run (runs that
+    stopped by warnings drop out).
+    """
+
+    x: Any          #: global X of the c.g. (m)
+    y: Any          #: global Y of the c.g. (m)
+    heading: Any    #: yaw angle (rad, clockwise from above)
+    u: Any          #: forward velocity (m/s, body axes)
+    v: Any          #: lateral velocity (m/s, body axes, to the right)
+    yaw_rate: Any   #: yaw rate (rad/s)
+    eta: Any        #: left caster angle (rad)
+    eta_dot: Any    #: left caster rate (rad/s)
+    beta: Any       #: right caster angle (rad)
+    beta_dot: Any   #: right caster rate (rad/s)
+    run: Any = 0    #: run index (batch) or 0
+
+
+# ---------------------------------------------------------------------------
+# results
+# ---------------------------------------------------------------------------
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.ascontiguousarray(a, dtype=float)
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationResult:
+    """Time histories of one simulated run.
+
+    Per-sample arrays have shape ``(n,)``; per-wheel arrays ``(n, 4)`` with
+    columns in :data:`WHEELS` order (A left caster, B right caster, D left
+    main wheel, E right main wheel); pin moments ``(n, 2)`` (A, B).
+
+    Attributes
+    ----------
+    t : s.  x, y : global position of the c.g., m.  heading : rad.
+    yaw_rate : rad/s (positive clockwise from above).  u, v : body
+    velocities, m/s.  eta, beta : caster angles, rad; eta_dot, beta_dot :
+    rad/s.
+    fx, fy : tire forces, N; casters in their own wheel frames, main wheels in
+        body axes (the wheel frame when toe is zero).
+    normal_load : N (positive pressing on the ground).
+    slip_deg : signed slip angle ``atan2(vy, |vx|)`` of each contact, deg
+        (WCHAIR's SLIPA..SLIPE are the absolute values).
+    tire_yaw_moment : yaw moment of all tire forces about the c.g., N m (the
+        "total destabilizing torque" of Figure 9-4 when no input acts).
+    yaw_moment_input : the ``yaw_moment`` input, N m.
+    yaw_acceleration : rad/s^2.
+    pin_moment : moment of each pin on its caster, N m: Coulomb friction when
+        the caster turns, the holding reaction when it is stuck or locked.
+    warnings : ``{"slip": {...}, "load": {...}, "lift_off": {...}}``, each
+        ``{"count": int, "first_time": float | None, "max": float | None}``:
+        steps (wchair) or samples (adaptive) with a slip angle above
+        :data:`SLIP_LIMIT_DEG`, a normal load above :data:`LOAD_LIMIT_N`, or
+        a negative normal load (a wheel lifting; information only).
+    stopped_by_warnings : whether the run was stopped by the warning rule.
+    stop_time : time of the step that stopped it (s) or None.
+    chair, speed, settings : the inputs.
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    heading: np.ndarray
+    yaw_rate: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    eta: np.ndarray
+    eta_dot: np.ndarray
+    beta: np.ndarray
+    beta_dot: np.ndarray
+    fx: np.ndarray
+    fy: np.ndarray
+    normal_load: np.ndarray
+    slip_deg: np.ndarray
+    tire_yaw_moment: np.ndarray
+    yaw_moment_input: np.ndarray
+    yaw_acceleration: np.ndarray
+    pin_moment: np.ndarray
+    warnings: Mapping[str, Mapping[str, Any]]
+    stopped_by_warnings: bool
+    stop_time: float | None
+    chair: Chair
+    speed: float
+    settings: Mapping[str, Any] = field(default_factory=dict)
+
+    # -- construction ----------------------------------------------------
+    @classmethod
+    def _from_records(cls, rec: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings):
+        cols = np.ascontiguousarray(rec.T, dtype=float)  # one copy; every column below is a view of it
+        c = {name: cols[i] for i, name in enumerate(COLUMNS)}
+
+        def wheels(prefix):
+            return _frozen(np.stack([c[f"{prefix}_{w}"] for w in WHEELS], axis=1).reshape(-1, 4))
+
+        return cls(
+            t=_frozen(c["t"]), x=_frozen(c["x"]), y=_frozen(c["y"]), heading=_frozen(c["heading"]),
+            yaw_rate=_frozen(c["yaw_rate"]), u=_frozen(c["u"]), v=_frozen(c["v"]),
+            eta=_frozen(c["eta"]), eta_dot=_frozen(c["eta_dot"]), beta=_frozen(c["beta"]),
+            beta_dot=_frozen(c["beta_dot"]), fx=wheels("fx"), fy=wheels("fy"),
+            normal_load=wheels("fz"), slip_deg=wheels("slip"),
+            tire_yaw_moment=_frozen(c["tire_yaw_moment"]),
+            yaw_moment_input=_frozen(c["yaw_moment_input"]),
+            yaw_acceleration=_frozen(c["yaw_acceleration"]),
+            pin_moment=_frozen(np.stack([c["pin_moment_A"], c["pin_moment_B"]], axis=1).reshape(-1, 2)),
+            warnings=_freeze_warnings(warnings), stopped_by_warnings=bool(stopped),
+            stop_time=None if stop_time is None else float(stop_time), chair=chair,
+            speed=float(speed), settings=dict(settings),
+        )
+
+    def _records(self) -> np.ndarray:
+        """All columns of :data:`COLUMNS` as one ``(n, 32)`` array."""
+        per_wheel = {"fx": self.fx, "fy": self.fy, "fz": self.normal_load, "slip": self.slip_deg}
+        cols = []
+        for name in COLUMNS:
+            prefix, _, last = name.rpartition("_")
+            if prefix in per_wheel and last in WHEELS:
+                cols.append(per_wheel[prefix][:, WHEELS.index(last)])
+            elif prefix == "pin_moment":
+                cols.append(self.pin_moment[:, "AB".index(last)])
+            else:
+                cols.append(getattr(self, name))
+        return np.column_stack(cols) if len(self.t) else np.zeros((0, NCOLS))
+
+    # -- queries -----------------------------------------------------------
+    def __len__(self) -> int:
+        return len(self.t)
+
+    @property
+    def duration(self) -> float:
+        """Time span covered by the samples (s)."""
+        return float(self.t[-1] - self.t[0]) if len(self.t) else 0.0
+
+    @property
+    def warning_counts(self) -> dict[str, int]:
+        """``{kind: count}``."""
+        return {k: int(v["count"]) for k, v in self.warnings.items()}
+
+    def first_time_abs_yaw_rate(self, value: float) -> float | None:
+        """First time at which ``|yaw_rate|`` reaches ``value`` (rad/s).
+
+        Linear interpolation between the two samples that bracket the
+        crossing; ``0.0`` if it already holds at the first sample; ``None``
+        if it never does.
+        """
+        value = float(value)
+        if not math.isfinite(value) or value < 0:
+            raise ValueError(f"value={value!r} is invalid; valid range: a finite yaw rate >= 0 rad/s")
+        a = np.abs(self.yaw_rate)
+        hit = np.flatnonzero(a >= value)
+        if hit.size == 0:
+            return None
+        i = int(hit[0])
+        if i == 0:
+            return float(self.t[0])
+        a0, a1 = a[i - 1], a[i]
+        t0, t1 = self.t[i - 1], self.t[i]
+        return float(t0 + (value - a0) / (a1 - a0) * (t1 - t0))
+
+    def at(self, time: float) -> dict[str, float]:
+        """All scalar quantities linearly interpolated at ``time`` (s)."""
+        rec = self._records()
+        if not len(self.t) or not self.t[0] <= time <= self.t[-1]:
+            raise ValueError(f"time={time!r} is outside the simulated span [{self.t[0] if len(self.t) else 0}, "
+                             f"{self.t[-1] if len(self.t) else 0}] s")
+        return {name: float(np.interp(time, self.t, rec[:, i])) for i, name in enumerate(COLUMNS)}
+
+    def resample(self, dt: float) -> SimulationResult:
+        """The result linearly interpolated on ``t0, t0 + dt, ...`` (s)."""
+        dt = check_positive("dt", dt)
+        if len(self.t) < 2:
+            return self
+        n = int(math.floor((self.t[-1] - self.t[0]) / dt * (1 + 1e-12) + 1e-9)) + 1
+        tt = self.t[0] + dt * np.arange(n)
+        tt[-1] = min(tt[-1], self.t[-1])
+        rec = self._records()
+        out = np.empty((n, NCOLS))
+        out[:, 0] = tt
+        for i in range(1, NCOLS):
+            out[:, i] = np.interp(tt, self.t, rec[:, i])
+        settings = dict(self.settings, resampled=dt)
+        return SimulationResult._from_records(out, warnings=self.warnings, stopped=self.stopped_by_warnings,
+                                              stop_time=self.stop_time, chair=self.chair, speed=self.speed,
+                                              settings=settings)
+
+    def summary(self) -> str:
+        """A short readable summary."""
+        s = self.settings
+        lines = [
+            f"chair {self.chair.name} ({self.chair.caster_position} casters), speed {self.speed:g} m/s, "
+            f"model {s.get('model')}, scheme {s.get('scheme')}, casters {s.get('casters')}",
+            f"simulated {self.t[0]:.3f} .. {self.t[-1]:.3f} s ({len(self.t)} samples)"
+            + (f"; STOPPED by warnings at t = {self.stop_time:.3f} s" if self.stopped_by_warnings else ""),
+        ]
+        for v in (0.5, 1.0):
+            tv = self.first_time_abs_yaw_rate(v)
+            lines.append(f"|yaw rate| never reaches {v:g} rad/s" if tv is None
+                         else f"|yaw rate| reaches {v:g} rad/s at {tv:.3f} s")
+        if len(self.t):
+            lines.append(f"final: yaw rate {self.yaw_rate[-1]:+.4f} rad/s, heading "
+                         f"{math.degrees(self.heading[-1]):+.2f} deg, position ({self.x[-1]:.3f}, {self.y[-1]:.3f}) m, "
+                         f"max |yaw rate| {np.max(np.abs(self.yaw_rate)):.4f} rad/s")
+        w = ", ".join(f"{k}: {v['count']}"
+                      + (f" (first at {v['first_time']:.3f} s)" if v["first_time"] is not None else "")
+                      for k, v in self.warnings.items())
+        lines.append(f"warnings: {w}")
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (non-finite numbers become ``None``)."""
+        rec = self._records()
+        out: dict[str, Any] = {name: _json_list(rec[:, i]) for i, name in enumerate(COLUMNS)}
+        out.update(
+            stopped_by_warnings=self.stopped_by_warnings, stop_time=self.stop_time,
+            warnings=_json_warnings(self.warnings), speed=self.speed, chair=self.chair.name,
+            settings={k: _json_scalar(v) for k, v in self.settings.items()},
+        )
+        return out
+
+    # -- output ------------------------------------------------------------
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
+        """Write all time histories to a CSV file atomically.
+
+        A few ``#`` comment lines (chair, speed, settings, warnings) precede
+        the header row; columns are in SI units and named like ``fy_A``
+        (lateral force on the left caster, N).
+        """
+        rec = self._records()
+        meta = [f"# stability.simulate: chair={self.chair.name} speed={self.speed!r} m/s",
+                "# settings: " + json.dumps({k: _json_scalar(v) for k, v in self.settings.items()}, sort_keys=True),
+                "# warnings: " + json.dumps(_json_warnings(self.warnings), sort_keys=True)
+                + f" stopped_by_warnings={self.stopped_by_warnings}",
+                "# units: s, m, rad, m/s, rad/s, N, deg, N m, rad/s^2; wheels A/B = left/right caster, "
+                "D/E = left/right main wheel"]
+        lines = meta + [",".join(COLUMNS)]
+        lines += [",".join(repr(float(x)) for x in row) for row in rec]
+        return atomic_write_text(path, "\n".join(lines) + "\n")
+
+    def plot(self, path_or_ax=None, *, title: str | None = None):
+        """Plot the yaw rate against time: see :func:`stability.simulate.plot.plot_result`.
+
+        ``path_or_ax`` is a matplotlib Axes (drawn on, returned) or a file
+        path (a figure with yaw rate and trajectory is written atomically);
+        ``None`` returns a new figure.  matplotlib is imported only here.
+        """
+        from .plot import plot_result  # matplotlib is a heavy optional import
+
+        return plot_result(self, path_or_ax, title=title)
+
+
+def _json_scalar(v):
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, (np.floating, np.integer)):
+        return _json_scalar(v.item())
+    if isinstance(v, (str, int, float, bool)) or v is None:
+        return v
+    return str(v)
+
+
+def _json_list(a):
+    a = np.asarray(a, dtype=float)
+    return [float(x) if math.isfinite(x) else None for x in a.tolist()]
+
+
+def _json_warnings(w):
+    return {k: {kk: _json_scalar(vv) for kk, vv in v.items()} for k, v in w.items()}
+
+
+def _freeze_warnings(w):
+    return {k: dict(v) for k, v in w.items()}
+
+
+def new_warnings() -> dict[str, dict[str, Any]]:
+    """Empty warning counters ``{kind: {"count", "first_time", "max"}}`` for slip, load, lift_off."""
+    return {k: {"count": 0, "first_time": None, "max": None} for k in ("slip", "load", "lift_off")}
+
+
+def note_warning(w: dict, kind: str, t: float, value: float) -> None:
+    """Count one warning of ``kind`` at time ``t`` (s) with the offending ``value``."""
+    d = w[kind]
+    d["count"] += 1
+    if d["first_time"] is None:
+        d["first_time"] = float(t)
+    d["max"] = float(value) if d["max"] is None else max(d["max"], float(value), key=abs)
