@@ -65,7 +65,7 @@ class FakeSim:
 @pytest.fixture
 def fake(monkeypatch):
     f = FakeSim()
-    monkeypatch.setattr(study, "_simulate_batch", f)
+    monkeypatch.setattr(study.runs, "simulate_runs", f)
     return f
 
 
@@ -110,7 +110,7 @@ def test_disturbance_map_is_one_batch_with_a_force_per_run(fake, monkeypatch):
         seen["forces"] = np.asarray(options["impulse_force"])
         return fake(chairs, speeds, **options)
 
-    monkeypatch.setattr(study, "_simulate_batch", spy)
+    monkeypatch.setattr(study.runs, "simulate_runs", spy)
     m = study.disturbance_map(preset("ej-premier"), [0.5, 1.0], [2.0, 4.0, 8.0], reference=3.2, progress=False)
     assert fake.calls == [6] and m.times.shape == (3, 2)
     np.testing.assert_array_equal(seen["forces"], [20.0, 20.0, 40.0, 40.0, 80.0, 80.0])   # impulse / 0.1 s

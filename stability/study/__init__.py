@@ -1,0 +1,62 @@
+"""Parametric studies with the nonlinear simulator (Collins 1987, chapters 8 and 9).
+
+The thesis rates a design by the time its |yaw rate| takes to reach 1 rad/s
+after a 40 N, 0.1 s lateral push at the c.g., against the E&J Premier at
+0.75 m/s (:mod:`stability.reference`).  Modules: :mod:`.criteria` (the
+criterion), :mod:`.runs` (simulator access), :mod:`.responses` (nonlinear
+and linear responses), :mod:`.equal_instability`, :mod:`.maps`,
+:mod:`.sweeps`, :mod:`.thesis` and :mod:`.conclusions`.  Rationale:
+docs/studies.md.
+"""
+
+from __future__ import annotations
+
+from ..linear import lateral_force_input
+from ..reference import THESIS_PUBLISHED
+from .conclusions import CONCLUSIONS, ConclusionCheck, check_conclusions
+from .criteria import Criterion, check_impulse, time_to_yaw_rate
+from .equal_instability import EqualInstability, equal_instability_speed, equal_instability_speeds, reference_time
+from .maps import StabilityMap, disturbance_map, stability_map
+from .responses import LinearResponse, Response, ResponseSet, linear_impulse_response, trajectories, yaw_rate_responses
+from .runs import SCALAR_RUNS
+from .sweeps import DEFAULT_PLAN, QUICK_PLAN, Sweep, SweepRow, SweepTable, parameter_sweeps, plan_for
+from .thesis import LinearFacts, ThesisStudy, friction_variants, thesis_study
+
+#: Former name of :data:`stability.reference.THESIS_PUBLISHED` (kept for callers not yet moved).
+THESIS = THESIS_PUBLISHED
+
+__all__ = [
+    "Criterion",
+    "time_to_yaw_rate",
+    "check_impulse",
+    "SCALAR_RUNS",
+    "LinearResponse",
+    "Response",
+    "ResponseSet",
+    "linear_impulse_response",
+    "lateral_force_input",
+    "yaw_rate_responses",
+    "trajectories",
+    "reference_time",
+    "EqualInstability",
+    "equal_instability_speed",
+    "equal_instability_speeds",
+    "StabilityMap",
+    "stability_map",
+    "disturbance_map",
+    "Sweep",
+    "SweepRow",
+    "SweepTable",
+    "DEFAULT_PLAN",
+    "QUICK_PLAN",
+    "parameter_sweeps",
+    "plan_for",
+    "LinearFacts",
+    "ThesisStudy",
+    "thesis_study",
+    "friction_variants",
+    "ConclusionCheck",
+    "CONCLUSIONS",
+    "check_conclusions",
+    "THESIS",
+]

@@ -1,0 +1,207 @@
+"""The thesis's conclusions 1-9 (Collins 1987, chapter 9) against computed numbers, with explicit verdict rules."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..statics import static_stiffness
+from .equal_instability import EqualInstability
+from .thesis import ThesisStudy
+
+__all__ = ["ConclusionCheck", "CONCLUSIONS", "check_conclusions"]
+
+
+@dataclass(frozen=True)
+class ConclusionCheck:
+    """One of the thesis's conclusions 1-9 against our numbers.
+
+    Attributes
+    ----------
+    number : int
+    statement : str
+        The thesis's conclusion, paraphrased.
+    evidence : str
+        Our numbers and the verdict rule.
+    verdict : {"agree", "partly", "disagree", "not tested"}
+    """
+
+    number: int
+    statement: str
+    evidence: str
+    verdict: str
+
+
+CONCLUSIONS = {
+    1: "Instability is linked to free-swivelling casters; rear-caster chairs are unstable even at low speed",
+    2: "Moving the front (main) wheels toward the user improves stability significantly",
+    3: "A large main-axle to caster-pin distance (s1 + s2) improves stability",
+    4: "Caster trail should be no more than 5-6 cm",
+    5: "The geometric changes raise the controllable speed by as much as 50 %",
+    6: "Pin friction improves stability significantly (speed roughly proportional to friction)",
+    7: "Rear-caster chairs are extremely unstable even at slow speeds; not for speeds over ~2 m/s",
+    8: "Camber, width and c.g. height have no significant effect",
+    9: "Tire selection has a moderate influence; a tire with low cornering stiffness is best",
+}
+
+
+def _pct(a: float, b: float) -> float:
+    return 100.0 * (a / b - 1.0)
+
+
+def _fmt(r: EqualInstability) -> str:
+    return r.describe()
+
+
+def _check(n: int, evidence: str, verdict: str) -> ConclusionCheck:
+    return ConclusionCheck(n, CONCLUSIONS[n], evidence, verdict)
+
+
+def _c1(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    lin = st.linear
+    free_txt = ("unstable at every speed searched" if lin.free_unstable_all else
+                (f"unstable above {lin.free:.3g} m/s" if lin.free is not None else "stable in the range searched"))
+    locked_txt = f"{lin.locked:.3g} m/s" if lin.locked is not None else "none found"
+    free_low = lin.free_unstable_all or (lin.free is not None and lin.free < 1.0)
+    locked_high = lin.locked is None or lin.locked > 5.0
+    v = "agree" if free_low and locked_high and base.status != "above" else (
+        "partly" if free_low or locked_high else "disagree")
+    return _check(1, f"Linear ({st.model}) model of the E&J Premier: with free frictionless casters {free_txt}; "
+                  f"with locked casters the critical speed is {locked_txt}. With 0.1 N m pin friction the reference "
+                  f"instability is reached at {_fmt(base)}. (Agree if free < 1 m/s and locked > 5 m/s.)", v)
+
+
+def _c2(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    if "s1" not in st.sweeps:
+        return _check(2, "s1 not swept", "not tested")
+    s = st.sweeps.get("s1")
+    i_lo = int(np.argmin(s.values))
+    r = s.results[i_lo]
+    d = _pct(r.value_or_bound, base.value_or_bound)
+    v = "agree" if d >= 10 else ("partly" if d > 2 else "disagree")
+    return _check(2, f"s1 {s.nominal_value:.3g} -> {s.values[i_lo]:.3g} m (s2 fixed): equal-instability speed "
+                  f"{_fmt(base)} -> {_fmt(r)} ({d:+.0f} %). (Agree if >= +10 %.)", v)
+
+
+def _c3(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    if "s1_plus_s2" not in st.sweeps:
+        return _check(3, "s1+s2 not swept", "not tested")
+    s = st.sweeps.get("s1_plus_s2")
+    order = np.argsort(s.values)
+    sp = s.speeds[order]
+    mono = bool(np.all(np.diff(sp) >= -0.01))
+    d = _pct(sp[-1], base.value_or_bound)
+    v = "agree" if mono and d >= 10 else ("partly" if d > 2 else "disagree")
+    return _check(3, f"s1+s2 {min(s.values):.2f} -> {max(s.values):.2f} m (s1 fixed): speeds "
+                  + ", ".join(s.results[i].describe() for i in order)
+                  + f"; {'increasing' if mono else 'not monotone'}, {d:+.0f} % at the largest. "
+                    "(Agree if increasing and >= +10 %.)", v)
+
+
+def _c4(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    if "trail" not in st.sweeps:
+        return _check(4, "trail not swept", "not tested")
+    s = st.sweeps.get("trail")
+    order = np.argsort(s.values)
+    dec = bool(np.all(np.diff(s.speeds[order]) <= 0.01))
+    pairs = ", ".join(f"{s.values[i] * 100:.0f} cm: {s.results[i].describe()}" for i in order)
+    try:
+        d6 = _pct(s.speed_at(0.06).value_or_bound, s.speed_at(0.08).value_or_bound)
+        d_txt = f"; 6 cm vs 8 cm: {d6:+.0f} %"
+    except KeyError:
+        d6, d_txt = float("nan"), ""
+    v = "agree" if dec and (not math.isfinite(d6) or d6 >= 5) else ("partly" if dec else "disagree")
+    return _check(4, f"Equal-instability speed by trail: {pairs}{d_txt}. (Agree if shorter trail is never worse "
+                  "and 6 cm gains >= 5 % over 8 cm.)", v)
+
+
+def _c5(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    rev = st.speeds["revised"]
+    d = _pct(rev.value_or_bound, base.value_or_bound)
+    v = "agree" if 30 <= d <= 80 and rev.status == "found" else ("partly" if d > 10 else "disagree")
+    return _check(5, f"Revised design {_fmt(rev)} vs E&J Premier {_fmt(base)}: {d:+.0f} % "
+                  f"(thesis: 1.10-1.15 m/s, +46 %). (Agree if +30..+80 %.)", v)
+
+
+def _c6(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    sp = st.speeds
+    U0, rev = base.value_or_bound, sp["revised"]
+    lo_e, hi_e = sp["ej-premier x0.5 friction"], sp["ej-premier x1.5 friction"]
+    lo_r, hi_r = sp["revised x0.5 friction"], sp["revised x1.5 friction"]
+    inc = (hi_e.value_or_bound > U0 > lo_e.value_or_bound and
+           hi_r.value_or_bound > rev.value_or_bound > lo_r.value_or_bound)
+    d = _pct(hi_r.value_or_bound, rev.value_or_bound)
+    v = "agree" if inc and d >= 20 else ("partly" if inc else "disagree")
+    return _check(6, f"x0.5 / x1 / x1.5 pin friction: E&J Premier {_fmt(lo_e)} / {_fmt(base)} / {_fmt(hi_e)}; "
+                  f"revised {_fmt(lo_r)} / {_fmt(rev)} / {_fmt(hi_r)} (thesis, revised: 0.65 / 1.1 / 1.65). "
+                  f"(Agree if speed rises with friction and x1.5 gains >= 20 %.)", v)
+
+
+def _c7(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    t2 = st.time_at_2
+    fast = math.isfinite(t2) and t2 < 2.0
+    slow_ok = base.status != "above" and base.value_or_bound < 2.0
+    v = "agree" if fast and slow_ok else ("partly" if fast or slow_ok else "disagree")
+    t2_txt = f"{t2:.2g} s" if math.isfinite(t2) else "never"
+    dbl = st.linear.doubling_0_75
+    return _check(7, f"E&J Premier at 2 m/s reaches {st.criterion.yaw_rate:g} rad/s after {t2_txt} "
+                  f"(reference: {st.reference_time:.2f} s at 0.75 m/s); linear doubling time at 0.75 m/s "
+                  + (f"{dbl:.2g} s" if dbl else "none (stable)")
+                  + ". (Agree if < 2 s at 2 m/s and the reference speed < 2 m/s.)", v)
+
+
+def _c8(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    t = st.sweeps
+    sec = [n for n in ("camber_deg", "width_factor", "h", "roll_k") if n in t]
+    if not sec:
+        return _check(8, "secondary variables not swept", "not tested")
+    effects = {n: t.get(n).effect_percent for n in sec}
+    worst = max(effects.values())
+    v = "agree" if worst < 5 else ("partly" if worst < 15 else "disagree")
+    return _check(8, "Spread of the equal-instability speed: " + ", ".join(
+        f"{t.get(n).label} {effects[n]:.1f} %" for n in sec) + ". (Agree if all < 5 %.)", v)
+
+
+def _c9(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
+    if "main_tire" not in st.sweeps:
+        return _check(9, "tires not swept", "not tested")
+    s = st.sweeps.get("main_tire")
+    labels = tuple(s.labels or ())
+    best = labels[int(np.argmax(s.speeds))]
+    # stiffness at the static load, with the chair's lateral scale (statics.static_stiffness; mean of D and E)
+    stiff = {}
+    for lab, r in zip(labels, s.results, strict=True):
+        k = static_stiffness(r.chair)
+        stiff[lab] = 0.5 * (k["D"] + k["E"])
+    softest = min(stiff, key=lambda name: stiff[name])
+    eff = s.effect_percent
+    moderate = 3 <= eff <= 40
+    v = "agree" if moderate and best == softest else ("partly" if moderate or best == softest else "disagree")
+    return _check(9, "Equal-instability speed by main tire: " + ", ".join(
+        f"{lab} {r.describe()}" for lab, r in zip(labels, s.results, strict=True))
+        + f"; spread {eff:.0f} %; best {best}, lowest cornering stiffness at the static load {softest}. "
+          "(Agree if the spread is 3-40 % and the softest tire is best.)", v)
+
+
+_CHECKS: tuple[Callable[[ThesisStudy, EqualInstability], ConclusionCheck], ...] = (
+    _c1, _c2, _c3, _c4, _c5, _c6, _c7, _c8, _c9)
+
+
+def check_conclusions(study: ThesisStudy) -> list[ConclusionCheck]:
+    """Test the thesis's conclusions 1-9 (chapter 9) against the numbers of ``study``.
+
+    Parameters
+    ----------
+    study : ThesisStudy
+
+    Returns
+    -------
+    list of ConclusionCheck
+        Nine checks; each states the evidence with computed numbers and a
+        verdict from explicit thresholds written in the evidence text.
+    """
+    base = study.speeds["ej-premier"]
+    return [check(study, base) for check in _CHECKS]

@@ -1,0 +1,297 @@
+"""Equal-instability speed: the speed at which a chair is as unstable as the reference case (Figures 9-2, 9-3)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..chair import Chair, preset
+from ..progress import ProgressBar
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from . import runs
+from .criteria import DEFAULT_CRITERION, Criterion, check_impulse
+
+__all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds",
+           "equal_instability_speed"]
+
+
+@dataclass(frozen=True, eq=False)
+class EqualInstability:
+    """The speed at which a chair is as unstable as the reference case.
+
+    Attributes
+    ----------
+    chair : Chair
+    speed : float or None
+        Equal-instability speed (m/s); None when outside the bracket.
+    status : {"found", "above", "below"}
+        "above": even at the top of the bracket the chair is more stable than
+        the reference (``speed`` > ``bracket[1]``); "below": at the bottom of
+        the bracket it is already less stable (``speed`` < ``bracket[0]``).
+    low, high : float
+        Final bracket (m/s): at ``low`` the chair is more stable than the
+        reference, at ``high`` at least as unstable.
+    reference_time : float
+        The reference case's time to the yaw-rate level (s).
+    evaluations : tuple of (speed, time)
+        Every simulation run (m/s, s), sorted by speed.
+    bracket : (float, float)
+        The search range, m/s.
+    criterion : Criterion
+    model, scheme : str
+    impulse : (float, float)
+        Push force (N) and duration (s).
+    reference : str
+        The reference case in words.
+    """
+
+    chair: Chair
+    speed: float | None
+    status: str
+    low: float
+    high: float
+    reference_time: float
+    evaluations: tuple
+    bracket: tuple
+    criterion: Criterion
+    model: str
+    scheme: str
+    impulse: tuple
+    reference: str = ""
+
+    def describe(self, digits: int = 3, unit: bool = True) -> str:
+        """The speed to ``digits`` figures, or the bracket end it lies beyond (``"> 3 m/s"``)."""
+        u = " m/s" if unit else ""
+        if self.status == "found":
+            return f"{self.speed:.{digits}g}{u}"
+        if self.status == "above":
+            return f"> {self.bracket[1]:g}{u}"
+        return f"< {self.bracket[0]:g}{u}"
+
+    @property
+    def value_or_bound(self) -> float:
+        """The speed, or the bracket end it lies beyond (for tables and plots), m/s."""
+        if self.speed is not None:
+            return self.speed
+        return self.bracket[1] if self.status == "above" else self.bracket[0]
+
+
+def reference_time(reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED, *,
+                   impulse: Any = THESIS_PUSH.as_tuple, criterion: Criterion = DEFAULT_CRITERION, model: str = "thesis",
+                   scheme: str = "wchair", dt: float | None = 0.001, **sim_options: Any) -> float:
+    """Time the reference case takes to reach the criterion's yaw rate (thesis: slightly over 3 s).
+
+    Parameters
+    ----------
+    reference_chair : Chair, optional
+        Default the E&J Premier.
+    reference_speed : float
+        m/s.
+    impulse : (float, float) or Push
+        Force (N) and duration (s).
+    criterion : Criterion
+    model, scheme : str
+    dt : float or None
+        Fixed step, s.
+    **sim_options
+        More simulator options.
+
+    Returns
+    -------
+    float
+        Seconds.  Raises ValueError when the level is never reached.
+    """
+    ref = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
+    opts = runs.sim_options(model, scheme, check_impulse(impulse), dt, criterion.duration, sim_options)
+    res = runs.simulate_runs([ref], [reference_speed], progress=False, **opts)[0]
+    t = criterion.time(res)
+    if not math.isfinite(t):
+        raise ValueError(f"the reference case ({ref.name} at {reference_speed:g} m/s) never reaches "
+                         f"{criterion.yaw_rate:g} rad/s within {criterion.duration:g} s; choose another reference")
+    return t
+
+
+def interp_speed(s0: float, t0: float, s1: float, t1: float, target: float) -> float:
+    """Speed between ``s0`` (time ``t0`` > target, maybe inf) and ``s1`` (time ``t1`` <= target), m/s.
+
+    Interpolates ``log(time)`` linearly in speed (times fall roughly like ``exp(-a U)``).
+    """
+    if not math.isfinite(t0) or t0 == t1:
+        return 0.5 * (s0 + s1)
+    l0, l1, lt = math.log(t0), math.log(max(t1, 1e-9)), math.log(target)
+    f = (l0 - lt) / (l0 - l1)
+    return s0 + min(max(f, 0.0), 1.0) * (s1 - s0)
+
+
+def _round_runs(chairs: list[Chair], active: list[int], lo: np.ndarray, hi: np.ndarray, candidates: int,
+                first: bool) -> tuple[list[Chair], list[float], list[int]]:
+    run_chairs, run_speeds, owner = [], [], []
+    for i in active:
+        grid = np.linspace(lo[i], hi[i], candidates + 2)
+        for s in (grid if first else grid[1:-1]):
+            run_chairs.append(chairs[i])
+            run_speeds.append(float(s))
+            owner.append(i)
+    return run_chairs, run_speeds, owner
+
+
+def _narrow(pts: list[tuple[float, float]], lo: float, hi: float, target: float,
+            first: bool) -> tuple[str, float, float]:
+    """New status and bracket from the evaluations inside ``[lo, hi]``."""
+    inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s <= hi + 1e-12]
+    if first:
+        if inside[-1][1] > target:
+            return "above", lo, hi
+        if inside[0][1] <= target:
+            return "below", lo, hi
+    k = next(j for j, (_, t) in enumerate(inside) if t <= target)   # first speed at least as unstable
+    return "open", inside[k - 1][0], inside[k][0]
+
+
+def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair | None = None,
+                             reference_speed: float = REFERENCE_SPEED, impulse: Any = THESIS_PUSH.as_tuple,
+                             criterion: Criterion = DEFAULT_CRITERION, model: str = "thesis",
+                             scheme: str = "wchair", bracket: tuple = (0.2, 3.0), tol: float = 0.005,
+                             candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
+                             reference: float | None = None, progress: bool = True,
+                             **sim_options: Any) -> list[EqualInstability]:
+    """:func:`equal_instability_speed` for many chairs at once.
+
+    Each bisection round simulates ``candidates`` equally spaced speeds
+    inside every unresolved chair's bracket, all chairs in one
+    :func:`stability.simulate.simulate_batch` call; the bracket shrinks by
+    ``candidates + 1`` per round.  The first round tests the bracket's ends
+    too.  When the bracket is narrower than ``tol`` the speed is
+    interpolated inside it (in log time).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    reference_chair, reference_speed, impulse, criterion, model, scheme
+        As in :func:`equal_instability_speed`.
+    bracket : (float, float)
+        Speed range searched, m/s.
+    tol : float
+        Final bracket width, m/s.
+    candidates : int
+        Speeds per chair and round.
+    max_rounds : int
+    dt : float or None
+        Fixed step, s.
+    reference : float, optional
+        The reference case's time, s (computed when None).
+    progress : bool
+    **sim_options
+        More simulator options.
+
+    Returns
+    -------
+    list of EqualInstability
+        One per chair, in order.
+    """
+    chairs = list(chairs)
+    # identical chairs (a sweep's nominal value is the base chair) are simulated once
+    unique: dict = {}
+    for c in chairs:
+        unique.setdefault(c, len(unique))
+    if len(unique) < len(chairs):
+        res = equal_instability_speeds(list(unique), reference_chair=reference_chair,
+                                       reference_speed=reference_speed, impulse=impulse, criterion=criterion,
+                                       model=model, scheme=scheme, bracket=bracket, tol=tol,
+                                       candidates=candidates, max_rounds=max_rounds, dt=dt, reference=reference,
+                                       progress=progress, **sim_options)
+        return [res[unique[c]] for c in chairs]
+    impulse = check_impulse(impulse)
+    lo0, hi0 = (float(x) for x in bracket)
+    if not (0 < lo0 < hi0 and math.isfinite(hi0)):
+        raise ValueError(f"bracket={bracket!r} is invalid; expected 0 < low < high (m/s)")
+    if not tol > 0:
+        raise ValueError(f"tol={tol!r} is invalid; valid range: > 0 m/s")
+    candidates = max(1, int(candidates))
+    ref_chair = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
+    if reference is None:
+        reference = reference_time(ref_chair, reference_speed, impulse=impulse, criterion=criterion,
+                                   model=model, scheme=scheme, dt=dt, **sim_options)
+    target = float(reference)
+    # a run still below the level at 1.5 x the reference time (+ 0.5 s) is certainly more stable than
+    # the reference: no need to simulate it to the end of the criterion's duration
+    horizon = min(criterion.duration, 1.5 * target + 0.5)
+    opts = runs.sim_options(model, scheme, impulse, dt, horizon, sim_options)
+    crit_h = Criterion(criterion.yaw_rate, horizon)
+    n = len(chairs)
+    evals: list[list[tuple[float, float]]] = [[] for _ in range(n)]
+    lo = np.full(n, lo0)
+    hi = np.full(n, hi0)
+    status = ["open"] * n
+    rounds = 1 + max(0, int(math.ceil(math.log((hi0 - lo0) / tol) / math.log(candidates + 1))))
+    with ProgressBar(min(rounds, max_rounds), "equal-instability bisection", enabled=progress, unit="round") as bar:
+        for rnd in range(max_rounds):
+            active = [i for i in range(n) if status[i] == "open" and (rnd == 0 or hi[i] - lo[i] > tol)]
+            if not active:
+                break
+            run_chairs, run_speeds, owner = _round_runs(chairs, active, lo, hi, candidates, rnd == 0)
+            results = runs.simulate_runs(run_chairs, run_speeds, progress=False, **opts)
+            for i, s, r in zip(owner, run_speeds, results, strict=True):
+                evals[i].append((s, crit_h.time(r)))
+            for i in active:
+                status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], target, rnd == 0)
+            bar.update()
+    out = []
+    for i, c in enumerate(chairs):
+        pts = tuple(sorted(evals[i]))
+        speed = None
+        st = status[i]
+        if st == "open":
+            st = "found"
+            t_lo = next(t for s, t in pts if s == lo[i])
+            t_hi = next(t for s, t in pts if s == hi[i])
+            speed = interp_speed(lo[i], t_lo, hi[i], t_hi, target)
+        out.append(EqualInstability(c, speed, st, float(lo[i]), float(hi[i]), target, pts, (lo0, hi0),
+                                    criterion, model, scheme, impulse,
+                                    f"{ref_chair.name} at {reference_speed:g} m/s"))
+    return out
+
+
+def equal_instability_speed(chair: Chair, *, reference_chair: Chair | None = None,
+                            reference_speed: float = REFERENCE_SPEED, impulse: Any = THESIS_PUSH.as_tuple,
+                            criterion: Criterion = DEFAULT_CRITERION, model: str = "thesis",
+                            scheme: str = "wchair", **options: Any) -> EqualInstability:
+    """Forward speed at which ``chair`` is as unstable as the reference case (Figures 9-2, 9-3).
+
+    The reference case is ``reference_chair`` (default the E&J Premier) at
+    ``reference_speed`` (0.75 m/s) under the push ``impulse`` (default the
+    thesis's 40 N for 0.1 s at the c.g., :data:`stability.reference.THESIS_PUSH`).
+    ``criterion`` (default: time to reach ``|yaw rate| = 1 rad/s``; see
+    docs/studies.md) is evaluated for the reference and for ``chair`` at
+    candidate speeds; the speed at which the chair's time equals the
+    reference's is found by bisection on speed.
+
+    Parameters
+    ----------
+    chair : Chair
+    reference_chair : Chair, optional
+    reference_speed : float
+        m/s.
+    impulse : (float, float) or Push
+        Force (N), duration (s).
+    criterion : Criterion
+    model : {"thesis", "exact"}
+    scheme : {"wchair", "adaptive"}
+    **options
+        See :func:`equal_instability_speeds` (``bracket``, ``tol``,
+        ``candidates``, ``dt``, ``reference``, ``progress``, simulator options).
+
+    Returns
+    -------
+    EqualInstability
+        The thesis: the revised design reaches the reference instability at
+        about 1.10-1.15 m/s (Figure 9-2), and with half or 1.5 times the pin
+        friction at about 0.65 and 1.65 m/s (Figure 9-3).
+    """
+    return equal_instability_speeds([chair], reference_chair=reference_chair, reference_speed=reference_speed,
+                                    impulse=impulse, criterion=criterion, model=model, scheme=scheme,
+                                    **options)[0]

@@ -1,0 +1,261 @@
+"""Yaw-rate responses to a push: the nonlinear runs and the linear model's exact prediction (Figures 8-3a, 8-4)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.linalg import expm
+
+from ..chair import Chair, preset
+from ..linear import lateral_force_input, state_matrices
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from . import runs
+from .criteria import DEFAULT_CRITERION, PATHS_CRITERION, Criterion, check_impulse
+
+__all__ = ["LinearResponse", "linear_impulse_response", "Response", "ResponseSet",
+           "yaw_rate_responses", "trajectories"]
+
+
+@dataclass(frozen=True, eq=False)
+class LinearResponse:
+    """The linear model's response to a push (arrays over time).
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        Time, s.
+    v : numpy.ndarray
+        Lateral velocity of the c.g., m/s.
+    yaw_rate : numpy.ndarray
+        rad/s.
+    heading : numpy.ndarray
+        rad.
+    x, y : numpy.ndarray
+        Global position, m (``x = U t``).
+
+    ``response["yaw_rate"]`` works too (the former dict form).
+    """
+
+    t: np.ndarray
+    v: np.ndarray
+    yaw_rate: np.ndarray
+    heading: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        """Field by name (compatibility with the former dict result)."""
+        if key not in ("t", "v", "yaw_rate", "heading", "x", "y"):
+            raise KeyError(key)
+        return getattr(self, key)
+
+
+def linear_impulse_response(chair: Chair, speed: float, t_end: float = 10.0, *,
+                            impulse: Any = THESIS_PUSH.as_tuple, model: str = "exact", casters: str = "free",
+                            step: float = 0.01) -> LinearResponse:
+    """Response of the linear model to a push, exact for its piecewise-constant force.
+
+    The state is augmented with the heading ``psi`` (``psi' = r``) and the
+    lateral displacement ``Y`` (``Y' = U psi + v``) and stepped with the
+    matrix exponential of the augmented system (zero-order hold: exact at the
+    samples for a force constant over each step).  The force acts for
+    ``ceil(duration/step)`` steps of ``duration/that`` s, so the impulse is
+    exactly ``force * duration``.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        Forward speed, m/s.
+    t_end : float
+        Last time, s.
+    impulse : (float, float) or Push
+        Force at the c.g. (N) and duration (s); default the thesis's push.
+    model : {"exact", "thesis"}
+    casters : {"free", "locked"}
+    step : float
+        Sample interval, s.
+
+    Returns
+    -------
+    LinearResponse
+    """
+    force, length = check_impulse(impulse)
+    U = float(speed)
+    A = state_matrices(chair, U, model, casters)[0]
+    b = lateral_force_input(chair, U, model, casters)
+    n = A.shape[0]
+    Aa = np.zeros((n + 2, n + 2))
+    Aa[:n, :n] = A
+    Aa[n, 1] = 1.0          # psi' = r
+    Aa[n + 1, 0] = 1.0      # Y' = v + U psi
+    Aa[n + 1, n] = U
+    Ba = np.zeros(n + 2)
+    Ba[:n] = b
+    n_imp = max(1, int(math.ceil(length / step - 1e-9))) if length > 0 else 0
+    h = length / n_imp if n_imp else step
+    n_steps = int(math.ceil(t_end / h - 1e-9))
+    M = np.zeros((n + 3, n + 3))
+    M[: n + 2, : n + 2] = Aa * h
+    M[: n + 2, n + 2] = Ba * h
+    E = expm(M)
+    Phi, Gam = E[: n + 2, : n + 2], E[: n + 2, n + 2]
+    z = np.zeros((n_steps + 1, n + 2))
+    for k in range(n_steps):
+        u = force if k < n_imp else 0.0
+        z[k + 1] = Phi @ z[k] + Gam * u
+    t = h * np.arange(n_steps + 1)
+    return LinearResponse(t=t, v=z[:, 0], yaw_rate=z[:, 1], heading=z[:, n], x=U * t, y=z[:, n + 1])
+
+
+@dataclass(frozen=True, eq=False)
+class Response:
+    """One nonlinear run and, optionally, the linear prediction for it.
+
+    Attributes
+    ----------
+    chair : Chair
+    speed : float
+        m/s.
+    t, yaw_rate, heading, x, y : numpy.ndarray
+        The simulator's arrays: s, rad/s, rad, m, m (global).
+    time_to_level : float
+        The criterion's time, s (+inf: never).
+    stopped_by_warnings : bool
+    linear : LinearResponse or None
+    """
+
+    chair: Chair
+    speed: float
+    t: np.ndarray
+    yaw_rate: np.ndarray
+    heading: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    time_to_level: float
+    stopped_by_warnings: bool = False
+    linear: LinearResponse | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class ResponseSet:
+    """Several runs under one disturbance (Figures 8-3a, 8-4 analogues).
+
+    Attributes
+    ----------
+    responses : tuple of Response
+    model, scheme : str
+    impulse : (float, float)
+        Force (N), duration (s).
+    criterion : Criterion
+    linear_model : str
+        The linear overlay's model ("" when none).
+    linear_note : str
+        What the linear overlay assumes.
+    """
+
+    responses: tuple
+    model: str
+    scheme: str
+    impulse: tuple
+    criterion: Criterion
+    linear_model: str = ""
+    linear_note: str = ""
+
+    @property
+    def speeds(self) -> list[float]:
+        """The runs' speeds, m/s."""
+        return [r.speed for r in self.responses]
+
+
+def _responses(chairs: Sequence[Chair], speeds: Sequence[float], *, impulse: Any, model: str, scheme: str,
+               criterion: Criterion, dt: float | None, linear: bool, linear_casters: str, progress: bool,
+               extra: dict) -> ResponseSet:
+    impulse = check_impulse(impulse)
+    opts = runs.sim_options(model, scheme, impulse, dt, criterion.duration, extra)
+    results = runs.simulate_runs(chairs, speeds, progress=progress, desc="responses", **opts)
+    out = []
+    for c, s, res in zip(chairs, speeds, results, strict=True):
+        lin = None
+        if linear:
+            lin = linear_impulse_response(c, s, criterion.duration, impulse=impulse, model=model,
+                                          casters=linear_casters)
+        heading = getattr(res, "heading", None)
+        out.append(Response(
+            chair=c, speed=float(s), t=np.asarray(res.t), yaw_rate=np.asarray(res.yaw_rate),
+            heading=np.asarray(heading) if heading is not None else np.zeros_like(np.asarray(res.yaw_rate)),
+            x=np.asarray(getattr(res, "x", np.zeros_like(res.t))),
+            y=np.asarray(getattr(res, "y", np.zeros_like(res.t))),
+            time_to_level=criterion.time(res), stopped_by_warnings=bool(getattr(res, "stopped_by_warnings", False)),
+            linear=lin))
+    note = ("linear model: free frictionless casters (pin damping as set), small-angle kinematics; "
+            "the nonlinear model has Coulomb pin friction, so the two agree only when the casters "
+            "swing freely" if linear_casters == "free" else "linear model: casters locked")
+    return ResponseSet(tuple(out), model, scheme, impulse, criterion, model if linear else "", note if linear else "")
+
+
+def yaw_rate_responses(chair: Chair, speeds: Sequence[float] = (0.55, 0.65, 0.75, 0.85, 0.95), *,
+                       impulse: Any = THESIS_PUSH.as_tuple, model: str = "thesis", scheme: str = "wchair",
+                       criterion: Criterion = DEFAULT_CRITERION, dt: float | None = 0.001, linear: bool = True,
+                       linear_casters: str = "free", progress: bool = True, **sim_options: Any) -> ResponseSet:
+    """Yaw-rate responses to a push at several speeds (Figure 8-3a analogue).
+
+    Parameters
+    ----------
+    chair : Chair
+    speeds : sequence of float
+        m/s.
+    impulse : (float, float) or Push
+        Force (N) and duration (s) at the c.g.; default the thesis's 40 N for 0.1 s.
+    model : {"thesis", "exact"}
+    scheme : {"wchair", "adaptive"}
+    criterion : Criterion
+        Level and simulated time.
+    dt : float or None
+        Fixed step, s.
+    linear : bool
+        Attach the linear model's response to each run.
+    linear_casters : {"free", "locked"}
+    progress : bool
+    **sim_options
+        More :func:`stability.simulate.simulate` options.
+
+    Returns
+    -------
+    ResponseSet
+    """
+    speeds = [float(s) for s in speeds]
+    return _responses([chair] * len(speeds), speeds, impulse=impulse, model=model, scheme=scheme,
+                      criterion=criterion, dt=dt, linear=linear, linear_casters=linear_casters,
+                      progress=progress, extra=sim_options)
+
+
+def trajectories(chairs: Sequence[Chair] | None = None, speed: float = REFERENCE_SPEED, *,
+                 impulse: Any = THESIS_PUSH.as_tuple, model: str = "thesis", scheme: str = "wchair",
+                 criterion: Criterion = PATHS_CRITERION, dt: float | None = 0.001, linear: bool = True,
+                 progress: bool = True, **sim_options: Any) -> ResponseSet:
+    """Paths of several chairs after a push (Figure 8-4 analogue: rear vs front casters).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair, optional
+        Default the E&J Premier and its front-caster counterpart.
+    speed : float
+        m/s.
+    impulse, model, scheme, criterion, dt, linear, progress, **sim_options
+        As in :func:`yaw_rate_responses` (``criterion.duration`` default 6 s).
+
+    Returns
+    -------
+    ResponseSet
+    """
+    if chairs is None:
+        chairs = [preset(REFERENCE_CHAIR), preset(f"{REFERENCE_CHAIR}-front-caster")]
+    chairs = list(chairs)
+    return _responses(chairs, [float(speed)] * len(chairs), impulse=impulse, model=model, scheme=scheme,
+                      criterion=criterion, dt=dt, linear=linear, linear_casters="free",
+                      progress=progress, extra=sim_options)
