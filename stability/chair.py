@@ -138,7 +138,8 @@ class Chair:
     pin_damping: float = field(default=0.0, metadata=_doc("viscous pin damping (linear models)", "N m s/rad"))
     roll_k: float = field(default=1.0, metadata=_doc("roll coefficient k_f/k_r", "-", "k"))
     camber_deg: float = field(default=0.0, metadata=_doc("main-wheel camber", "deg", "gamma"))
-    camber_coefficient: float | None = field(default=None, metadata=_doc("camber coefficient (None: tire's)", "-", "f_c"))
+    camber_coefficient: float | None = field(default=None,
+                                             metadata=_doc("camber coefficient (None: tire's)", "-", "f_c"))
     toe_deg: float = field(default=0.0, metadata=_doc("main-wheel toe", "deg"))
     main_tire: str = field(default="EJA", metadata=_doc("main tire", "-"))
     caster_tire: str = field(default="ER", metadata=_doc("caster tire", "-"))
@@ -211,13 +212,38 @@ class Chair:
 # ---------------------------------------------------------------------------
 # validation
 # ---------------------------------------------------------------------------
-_POSITIVE = ("s1", "s2", "m", "i_z", "g", "roll_k", "d1", "d2", "t1", "t2")
-_NONNEGATIVE = (
-    "trail", "l1", "h", "m_c", "i_zp", "pin_friction_left", "pin_friction_right",
-    "pin_damping", "main_lateral_scale", "main_rolling_scale", "caster_lateral_scale",
-    "caster_rolling_scale",
-)
-_ANGLES = ("camber_deg", "toe_deg")
+#: Plausible range of every numeric field, ``(low, high, low_inclusive)`` in the field's unit.
+#: Physical bounds, wide enough for any real wheelchair and user (a child's manual chair to a
+#: bariatric power chair; g from the Moon's 1.62 to Jupiter's 24.8 m/s^2) and narrow enough that
+#: a typo (1e6 m, 1e-300 kg) is refused with a sentence instead of producing nonsense.
+LIMITS: dict[str, tuple[float, float, bool]] = {
+    "d1": (0.05, 1.0, True), "d2": (0.05, 1.0, True),
+    "s1": (0.0, 1.5, False), "s2": (0.0, 1.5, False),
+    "trail": (0.0, 0.5, True), "l1": (0.0, 0.5, True),
+    "t1": (0.05, 1.0, True), "t2": (0.05, 1.0, True),
+    "h": (0.0, 2.0, True),
+    "m": (5.0, 1000.0, True), "m_c": (0.0, 50.0, True),
+    "i_z": (0.01, 500.0, True), "i_zp": (0.0, 5.0, True),
+    "pin_friction_left": (0.0, 50.0, True), "pin_friction_right": (0.0, 50.0, True),
+    "pin_damping": (0.0, 100.0, True),
+    "roll_k": (0.001, 1000.0, True),
+    "camber_deg": (-45.0, 45.0, False), "toe_deg": (-45.0, 45.0, False),
+    "camber_coefficient": (0.0, 1.0, True),
+    "main_lateral_scale": (0.01, 10.0, True), "caster_lateral_scale": (0.01, 10.0, True),
+    "main_rolling_scale": (0.0, 10.0, True), "caster_rolling_scale": (0.0, 10.0, True),
+    "g": (1.0, 30.0, True),
+}
+
+
+def valid_range(name: str) -> str:
+    """The valid range of a numeric chair field in words, with its unit (e.g. ``"5 to 1000 kg"``)."""
+    lo, hi, inclusive = LIMITS[name]
+    unit = _FIELDS[name].metadata["unit"]
+    unit = "" if unit == "-" else f" {unit}"
+    return f"{lo:g} to {hi:g}{unit}" if inclusive else f"{lo:g} < value < {hi:g}{unit}"
+
+
+_FIELDS = {f.name: f for f in fields(Chair)}
 
 
 def field_names() -> list[str]:
@@ -225,10 +251,12 @@ def field_names() -> list[str]:
     return [f.name for f in fields(Chair)]
 
 
-def _validate(c: Chair) -> None:
-    def bad(name: str, value: Any, valid: str) -> ValueError:
-        return ValueError(f"chair parameter {name}={value!r} is invalid; valid range: {valid}")
+def _bad(name: str, value: Any, valid: str) -> ValueError:
+    return ValueError(f"chair parameter {name}={value!r} is invalid; valid range: {valid}")
 
+
+def _check_types(c: Chair) -> None:
+    bad = _bad
     for f in fields(c):
         value = getattr(c, f.name)
         if f.name in ("name", "caster_position", "main_tire", "caster_tire"):
@@ -241,19 +269,26 @@ def _validate(c: Chair) -> None:
             raise bad(f.name, value, "a real number")
         if not math.isfinite(value):
             raise bad(f.name, value, "a finite number")
+
+
+def _check_limits(c: Chair) -> None:
+    bad = _bad
     if c.caster_position not in ("rear", "front"):
         raise bad("caster_position", c.caster_position, "'rear' or 'front'")
-    for name in _POSITIVE:
-        if getattr(c, name) <= 0:
-            raise bad(name, getattr(c, name), "> 0")
-    for name in _NONNEGATIVE:
-        if getattr(c, name) < 0:
-            raise bad(name, getattr(c, name), ">= 0")
-    for name in _ANGLES:
-        if abs(getattr(c, name)) >= 45:
-            raise bad(name, getattr(c, name), "-45 < value < 45 deg")
-    if c.camber_coefficient is not None and not 0 <= c.camber_coefficient <= 1:
-        raise bad("camber_coefficient", c.camber_coefficient, "0 to 1, or None for the tire's own")
+    for name, (lo, hi, inclusive) in LIMITS.items():
+        value = getattr(c, name)
+        if value is None:
+            continue
+        ok = (lo <= value <= hi) if inclusive else (lo < value < hi)
+        if not ok:
+            extra = ", or None for the tire's own" if name == "camber_coefficient" else ""
+            raise bad(name, value, valid_range(name) + extra)
+
+
+def _validate(c: Chair) -> None:
+    bad = _bad
+    _check_types(c)
+    _check_limits(c)
     if c.m_c * 2 >= c.m:
         raise bad("m_c", c.m_c, f"0 <= m_c < m/2 = {c.m / 2:g} kg")
     if c.l1 > c.trail + 0.5:
@@ -402,6 +437,10 @@ def load(path: str | os.PathLike[str]) -> Chair:
     with open(path, "rb") as fh:
         data = tomllib.load(fh)
     if "chair" in data and isinstance(data["chair"], dict):
+        others = sorted(k for k in data if k != "chair")
+        if others:
+            raise ValueError(f"chair file {str(path)!r} has keys at the top level ({others}) and a [chair] table; "
+                             "put every field in one place")
         data = data["chair"]
     return from_mapping(data)
 

@@ -1,108 +1,311 @@
-"""Helpers shared by the command-line entry points.
+"""Helpers shared by the command-line entry points: one way to read a chair, speeds and outputs, one error contract.
 
-``python -m stability.critical_speed``, ``python -m stability.assist`` and
-``python -m stability.report`` read a chair the same way (``--chair`` preset
-or TOML file, repeatable ``--set NAME=VALUE``), parse ``--speeds`` the same way
-and treat bad input the same way: one line ``error: ...`` on stderr and exit
-status 2, no traceback.
+Every ``python -m stability.X`` reads a chair the same way (``--chair`` preset
+or TOML file, repeatable ``--set NAME=VALUE``), checks every output path before
+any work, and answers bad input with one line ``error: ...`` on stderr and exit
+status 2 (a computation that fails for a valid chair: status 2 too, one line
+saying what could not be computed; Ctrl-C: status 130; ``--debug`` shows the
+traceback instead).  See README.md, "Errors".
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import os
+import re
 import sys
-from collections.abc import Callable, Sequence
+import traceback
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, NoReturn
 
 import numpy as np
 
+from . import __version__
 from . import chair as chair_mod
+from .statics import check_static_loads
 
-__all__ = ["OneLineErrorParser", "add_chair_options", "load_chair", "parse_speeds", "check_directory",
-           "error", "run"]
+__all__ = ["OneLineErrorParser", "add_chair_options", "add_json_options", "load_chair", "parse_speeds",
+           "check_directory", "check_outputs", "json_header", "emit_json", "error", "run", "MAX_SPEEDS"]
+
+#: Largest number of speeds a ``--speeds`` option may ask for (each costs an eigenvalue solve or a run).
+MAX_SPEEDS = 10_001
+
+_NEGATIVE = re.compile(r"^-(\d|\.\d)")
 
 
 class OneLineErrorParser(argparse.ArgumentParser):
-    """An argument parser whose errors are one line on stderr and exit status 2."""
+    """An argument parser whose errors are one line on stderr (exit status 2).
 
-    def error(self, message: str):  # noqa: D102
+    It also accepts negative numbers as option values (``--speeds -1:1:0.5``,
+    ``--cross-slope -2``) and shows plain text in ``--help`` (no reST markup).
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
+        super().__init__(*args, **kwargs)
+
+    def error(self, message: str) -> NoReturn:  # noqa: D102
         print(f"error: {message}", file=sys.stderr)
         raise SystemExit(2)
 
+    def format_help(self) -> str:  # noqa: D102
+        return super().format_help().replace("``", "")
+
+    def parse_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
+        """Parse ``args``, joining an option and a following negative number (``--x -1`` -> ``--x=-1``)."""
+        argv = list(sys.argv[1:] if args is None else args)
+        takes_value = {s for a in self._actions if a.option_strings and a.nargs is None and a.const is None
+                       for s in a.option_strings}
+        out: list[str] = []
+        i = 0
+        while i < len(argv):
+            tok = argv[i]
+            if tok in takes_value and i + 1 < len(argv) and _NEGATIVE.match(argv[i + 1]):
+                out.append(f"{tok}={argv[i + 1]}")
+                i += 2
+                continue
+            out.append(tok)
+            i += 1
+        return super().parse_args(out, namespace)
+
+
+def _fields_epilog() -> str:
+    rows = []
+    for f in chair_mod.fields(chair_mod.Chair):
+        unit = f.metadata["unit"]
+        rng = chair_mod.valid_range(f.name) if f.name in chair_mod.LIMITS else ""
+        rows.append(f"  {f.name:22s} {unit:10s} {f.metadata['doc']}" + (f" [{rng}]" if rng else ""))
+    return ("chair presets: " + ", ".join(chair_mod.preset_names()) + "\n"
+            "settable chair fields (--set NAME=VALUE; unit; meaning [valid range]):\n" + "\n".join(rows))
+
 
 def add_chair_options(parser: argparse.ArgumentParser, default: str = "ej-premier") -> None:
-    """Add ``--chair`` (preset name or TOML file) and repeatable ``--set NAME=VALUE``."""
-    parser.add_argument("--chair", default=default, help=f"preset name or TOML file (default {default})")
+    """Add ``--chair`` (preset name or TOML file) and repeatable ``--set NAME=VALUE``; list both in ``--help``."""
+    parser.add_argument("--chair", default=default,
+                        help=f"preset name ({', '.join(chair_mod.preset_names())}) or TOML file (default {default})")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                        help="override a chair field (repeatable)")
+                        help="override a chair field (repeatable; fields listed below)")
+    parser.epilog = ((parser.epilog + "\n\n") if parser.epilog else "") + _fields_epilog()
 
 
-def load_chair(spec: str, assignments: Sequence[str]):
-    """Chair from ``--chair`` and ``--set`` options (raises ValueError with one-line messages)."""
-    c = chair_mod.resolve(spec)
+def add_json_options(parser: argparse.ArgumentParser) -> None:
+    """Add ``--json`` (print JSON to standard output) and ``--json-file FILE`` (write it to a file)."""
+    parser.add_argument("--json", action="store_true", help="print the results as JSON on standard output")
+    parser.add_argument("--json-file", metavar="FILE", help="write the results as JSON to FILE")
+
+
+def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
+    """Chair from ``--chair`` and ``--set`` options, with its static loads checked.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file, field or value at fault.
+    """
+    if os.path.isdir(spec):
+        raise ValueError(f"--chair {spec!r} is a directory; expected a preset name or a TOML file")
+    try:
+        c = chair_mod.resolve(spec)
+    except OSError as exc:
+        raise ValueError(f"--chair {spec!r}: cannot read the file ({exc.strerror or exc})") from None
     changes = dict(chair_mod.parse_assignment(a) for a in assignments)
-    return c.replace(**changes) if changes else c
+    c = c.replace(**changes) if changes else c
+    check_static_loads(c)
+    return c
 
 
-def parse_speeds(text: str, *, increasing: bool = False) -> np.ndarray:
+def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SPEEDS) -> np.ndarray:
     """Parse ``START:STOP:STEP`` (inclusive of STOP) or a comma list into speeds (m/s).
 
-    With ``increasing=True`` a list must also be strictly increasing.
+    Parameters
+    ----------
+    text : str
+        The option's value.
+    increasing : bool
+        Require a list to be strictly increasing.
+    max_count : int
+        Largest number of speeds allowed (bounded work).
+
+    Returns
+    -------
+    ndarray
+        The speeds, m/s, each finite and > 0.
     """
+    bad = (f"--speeds {text!r} is invalid; expected START:STOP:STEP with 0 < START <= STOP and STEP > 0 "
+           "(finite, m/s), or a comma-separated list")
     try:
         if ":" in text:
             parts = [float(x) for x in text.split(":")]
-            if len(parts) != 3:
+            if len(parts) != 3 or not all(math.isfinite(x) for x in parts):
                 raise ValueError
             start, stop, step = parts
             if step <= 0 or stop < start:
                 raise ValueError
-            n = int(math.floor((stop - start) / step + 1e-9)) + 1
-            speeds = start + step * np.arange(n)
+            count = math.floor((stop - start) / step + 1e-9) + 1
+            if count > max_count:
+                raise ValueError(f"--speeds {text!r} asks for {count} speeds; at most {max_count} are allowed "
+                                 f"(use a STEP of at least {(stop - start) / (max_count - 1):.3g} m/s)")
+            speeds = start + step * np.arange(count)
         else:
             speeds = np.array([float(x) for x in text.split(",")])
-    except ValueError:
-        raise ValueError(f"--speeds {text!r} is invalid; expected START:STOP:STEP with STEP > 0 "
-                         "and STOP >= START, or a comma-separated list") from None
+            if len(speeds) > max_count:
+                raise ValueError(f"--speeds lists {len(speeds)} speeds; at most {max_count} are allowed")
+    except ValueError as exc:
+        raise ValueError(str(exc) if str(exc) else bad) from None
+    except OverflowError:
+        raise ValueError(bad) from None
     if np.any(speeds <= 0) or not np.all(np.isfinite(speeds)):
-        raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed > 0 m/s")
+        raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed finite and > 0 m/s")
     if increasing and np.any(np.diff(speeds) <= 0):
         raise ValueError(f"--speeds {text!r} is invalid; speeds must be strictly increasing")
     return speeds
 
 
+_FORBIDDEN_ROOTS = ("/proc", "/sys", "/dev")
+
+
 def check_directory(path: str | None, option: str) -> None:
-    """Refuse an output ``path`` (given as ``option``) whose directory does not exist."""
+    """Refuse an output ``path`` (given as ``option``) that cannot be written as a new file.
+
+    The directory must exist and be writable; the path must not be a directory
+    nor lie under ``/proc``, ``/sys`` or ``/dev``.
+    """
+    if not path:
+        return
+    full = os.path.realpath(os.path.abspath(path))
+    if os.path.isdir(full):
+        raise ValueError(f"{option} {path!r} is a directory; expected a file name")
+    if any(full == r or full.startswith(r + "/") for r in _FORBIDDEN_ROOTS):
+        raise ValueError(f"{option} {path!r} is not a place for output files (under /proc, /sys or /dev)")
+    d = os.path.dirname(full)
+    if not os.path.isdir(d):
+        raise ValueError(f"{option} {path!r}: directory {os.path.dirname(os.path.abspath(path))!r} does not exist")
+    if not os.access(d, os.W_OK):
+        raise ValueError(f"{option} {path!r}: directory {d!r} is not writable")
+
+
+def check_outputs(outputs: Mapping[str, str | None], inputs: Mapping[str, str | None] | None = None) -> None:
+    """Check every output path of a command before any work (see :func:`check_directory`).
+
+    Parameters
+    ----------
+    outputs : mapping
+        Option name -> path (None for an option not given).
+    inputs : mapping, optional
+        Option name -> input path; no output may overwrite an input.
+
+    Raises
+    ------
+    ValueError
+        One line naming the options at fault.
+    """
+    seen: dict[str, str] = {}
+    for option, path in outputs.items():
+        if not path:
+            continue
+        check_directory(path, option)
+        key = os.path.realpath(os.path.abspath(path))
+        if key in seen:
+            raise ValueError(f"{option} and {seen[key]} name the same file {path!r}; give each output its own file")
+        seen[key] = option
+    for option, path in (inputs or {}).items():
+        if path and os.path.exists(path):
+            key = os.path.realpath(os.path.abspath(path))
+            if key in seen:
+                raise ValueError(f"{seen[key]} {path!r} would overwrite the input {option}")
+
+
+def json_header(chair: chair_mod.Chair, model: str | None, options: Mapping[str, Any]) -> dict[str, Any]:
+    """What every JSON output starts with: toolkit version, chair (name and all parameters), model, options.
+
+    Parameters
+    ----------
+    chair : Chair
+    model : str or None
+        ``"exact"`` or ``"thesis"`` (None when the command has no model).
+    options : mapping
+        The options used (JSON-serialisable values).
+
+    Returns
+    -------
+    dict
+    """
+    return {"stability_version": __version__, "chair": chair.name,
+            "chair_parameters": chair_mod.to_mapping(chair), "model": model, "options": dict(options)}
+
+
+def emit_json(data: Any, args: argparse.Namespace) -> None:
+    """Print ``data`` as JSON when ``--json`` was given; write it atomically to ``--json-file`` when given."""
+    from .output import atomic_write_text
+
+    text = json.dumps(data, indent=2, allow_nan=False, default=_json_default)
+    if getattr(args, "json", False):
+        print(text)
+    path = getattr(args, "json_file", None)
     if path:
-        d = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(d):
-            raise ValueError(f"{option} {path!r}: directory {d!r} does not exist")
+        atomic_write_text(path, text + "\n")
+        print(f"wrote {path}", file=sys.stderr)
 
 
-def error(exc: BaseException) -> int:
+def _json_default(x: Any) -> Any:
+    if isinstance(x, np.generic):
+        return x.item()
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    raise TypeError(f"{type(x).__name__} is not JSON serialisable")
+
+
+def error(exc: BaseException, prefix: str = "") -> int:
     """Print ``exc`` as one line ``error: ...`` on stderr; return exit status 2."""
     msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-    print(f"error: {msg}", file=sys.stderr)
+    print(f"error: {prefix}{msg}", file=sys.stderr)
     return 2
+
+
+#: Failures inside a computation for valid input (reported in one line, exit status 2).
+COMPUTATION_ERRORS: tuple[type[BaseException], ...] = (ArithmeticError, np.linalg.LinAlgError, RuntimeError)
 
 
 def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
         body: Callable[[argparse.Namespace], int | None], *,
         errors: tuple[type[BaseException], ...] = (ValueError,)) -> int:
-    """Parse ``argv`` and return ``body(args)``'s exit status (``None`` counts as 0).
+    """Parse ``argv`` and return ``body(args)``'s exit status (``None`` counts as 0), under the error contract.
 
-    Usage errors exit with status 2 through :class:`OneLineErrorParser`; an
-    exception of a type in ``errors`` raised by ``body`` is bad input: one
-    line on stderr, status 2.  Output piped into a reader that stops early
-    (``| head``) ends quietly with status 1.
+    * usage errors and an exception of a type in ``errors`` (bad input): one line, status 2;
+    * a computation that fails (singular matrix, no convergence, overflow): one line
+      ``error: could not compute ...``, status 2;
+    * a file that cannot be read or written: one line naming it, status 2;
+    * Ctrl-C: ``interrupted``, status 130 (outputs are atomic: nothing half-written is left);
+    * output piped into a reader that stops early (``| head``): quiet, status 1;
+    * ``--debug`` (added to every parser): the traceback instead of the one line.
     """
+    if not any("--debug" in a.option_strings for a in parser._actions):
+        parser.add_argument("--debug", action="store_true", help="show the full traceback on errors")
     args = parser.parse_args(argv)
+    debug = bool(getattr(args, "debug", False))
     try:
         return body(args) or 0
     except BrokenPipeError:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 1
+    except KeyboardInterrupt:
+        if debug:
+            traceback.print_exc()
+        print("error: interrupted", file=sys.stderr)
+        return 130
     except errors as exc:
+        if debug:
+            traceback.print_exc()
         return error(exc)
+    except OSError as exc:
+        if debug:
+            traceback.print_exc()
+        where = f" {exc.filename!r}" if exc.filename else ""
+        return error(exc, f"file{where}: ") if not where else error(ValueError(f"{exc.strerror}"), f"file{where}: ")
+    except COMPUTATION_ERRORS as exc:
+        if debug:
+            traceback.print_exc()
+        return error(exc, "could not compute the result for this chair and these options: ")

@@ -12,7 +12,7 @@ from typing import Any
 from .chair import Chair
 from .params import Params, parameters
 
-__all__ = ["caster_contact_points", "normal_loads", "static_loads", "static_stiffness"]
+__all__ = ["caster_contact_points", "normal_loads", "static_loads", "static_stiffness", "check_static_loads"]
 
 
 def caster_contact_points(p: Params, ce: Any = 1.0, se: Any = 0.0, cb: Any = 1.0, sb: Any = 0.0):
@@ -119,6 +119,7 @@ def static_stiffness(chair: Chair) -> dict[str, float]:
         Keys ``"A"``, ``"B"`` (left, right caster), ``"D"``, ``"E"`` (left,
         right main wheel), N/rad.
     """
+    check_static_loads(chair)
     n_a, n_b, n_d, n_e = normal_loads(parameters(chair))
     main = chair.main_tire_model()
     caster = chair.caster_tire_model()
@@ -128,3 +129,23 @@ def static_stiffness(chair: Chair) -> dict[str, float]:
         "D": float(main.cornering_stiffness_per_rad(n_d)),
         "E": float(main.cornering_stiffness_per_rad(n_e)),
     }
+
+
+def check_static_loads(chair: Chair) -> None:
+    """Refuse a chair whose c.g. lies outside its wheel contacts (a static load <= 0).
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Raises
+    ------
+    ValueError
+        One sentence naming the wheel, its load and why.
+    """
+    names = ("left caster", "right caster", "left main wheel", "right main wheel")
+    for name, load in zip(names, normal_loads(parameters(chair)), strict=True):
+        if not load > 0:
+            raise ValueError(
+                f"chair {chair.name!r}: static load on the {name} is {float(load):.4g} N: the centre of gravity "
+                "lies outside the wheel contacts (valid: every static load > 0; check s1, s2, trail, d1, d2, t1, t2)")

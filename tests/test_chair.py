@@ -68,7 +68,7 @@ def test_toml_round_trip_is_exact(tmp_path):
 @pytest.mark.parametrize("name,value,fragment", [
     ("m", 0.0, "m=0.0"), ("i_z", -1.0, "i_z=-1.0"), ("s1", 0.0, "s1=0.0"), ("trail", -0.01, "trail=-0.01"),
     ("pin_friction_left", -0.1, "pin_friction_left"), ("m", float("nan"), "finite"), ("main_tire", "XYZ", "main_tire"),
-    ("caster_position", "middle", "caster_position"), ("i_zp", 0.001, "i_zp"), ("trail", 0.6, "wheelbase"),
+    ("caster_position", "middle", "caster_position"), ("i_zp", 0.001, "i_zp"), ("trail", 0.6, "trail=0.6"),
 ])
 def test_validation_names_parameter_value_and_range(name, value, fragment):
     with pytest.raises(ValueError) as info:

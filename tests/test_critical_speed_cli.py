@@ -67,7 +67,7 @@ def test_toml_chair(tmp_path, capsys):
     (["--set", "m=-5"], "m=-5.0"),
     (["--speeds", "1:0:0.1"], "--speeds"),
     (["--model", "bicycle"], "invalid choice"),
-    (["--max-speed", "-3"], "max_speed"),
+    (["--max-speed", "-3"], "--max-speed"),
 ])
 def test_bad_input_one_line_exit_2(capsys, argv, fragment):
     code, out, err = run(capsys, *argv)

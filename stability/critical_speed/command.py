@@ -17,10 +17,19 @@ Examples
 from __future__ import annotations
 
 import argparse
-import json
 from collections.abc import Sequence
 
-from ..cli import OneLineErrorParser, add_chair_options, load_chair, parse_speeds, run
+from ..cli import (
+    OneLineErrorParser,
+    add_chair_options,
+    add_json_options,
+    check_outputs,
+    emit_json,
+    json_header,
+    load_chair,
+    parse_speeds,
+    run,
+)
 from ..linear import analyse
 from ..summary import format_summary, simulator_checks, summary_dict
 
@@ -35,16 +44,23 @@ def build_parser() -> argparse.ArgumentParser:
                    help="speeds for the divergence table, START:STOP:STEP or a list (m/s)")
     p.add_argument("--max-speed", type=float, default=30.0,
                    help="upper end of the critical-speed search (m/s, default 30)")
-    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    add_json_options(p)
     return p
 
 
 def _run(args: argparse.Namespace) -> int:
+    check_outputs({"--json-file": args.json_file}, {"--chair": args.chair})
     c = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
+    if not (0.01 < args.max_speed <= 100.0):
+        raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
     checks = simulator_checks(summary)
-    print(json.dumps(summary_dict(summary, checks), indent=2) if args.json else format_summary(summary, checks))
+    if args.json or args.json_file:
+        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed}
+        emit_json({**json_header(c, args.model, options), **summary_dict(summary, checks)}, args)
+    if not args.json:
+        print(format_summary(summary, checks))
     return 0
 
 
