@@ -217,12 +217,12 @@ def accelerations_exact(u, v, r, ce, se, cb, sb, eta_d, beta_d, FAx, FAy, FBx, F
     _a3 = FBx*cb
     _a4 = FAy*se
     _a5 = FBy*sb
-    _a6 = r**2
+    _a6 = (r*r)
     _a7 = beta_d*cb
     _a8 = ce*eta_d
     _a9 = _p10*r
-    _a10 = beta_d**2
-    _a11 = eta_d**2
+    _a10 = (beta_d*beta_d)
+    _a11 = (eta_d*eta_d)
     _a12 = _a10*sb + _a11*se
     _a13 = beta_d*sb + eta_d*se
     _a14 = FDy + FEy
@@ -358,7 +358,7 @@ def accelerations_thesis(u, v, r, ce, se, cb, sb, eta_d, beta_d, FAx, FAy, FBx, 
     _pb6 = -_qpb5
     _pb7 = _qpb6
     _pb8 = -_qpb6
-    _b0 = r**2
+    _b0 = (r*r)
     _b1 = FDx + FEx
     _b2 = sb*se
     _b3 = FDy + FEy
@@ -375,7 +375,7 @@ def kinetic_energy_exact(u, v, r, ce, se, cb, sb, eta_d, beta_d, x_m, x_p, d1, d
     """
     _a0 = i_zp*r
     _a1 = i_zp/2
-    _a2 = r**2
+    _a2 = (r*r)
     _a3 = m/2
     _a4 = l1*m_c
     _a5 = 2*_a4
@@ -393,7 +393,7 @@ def kinetic_energy_exact(u, v, r, ce, se, cb, sb, eta_d, beta_d, x_m, x_p, d1, d
     _a17 = _a2*_a4
     _a18 = r*x_p
     _a19 = sb*t2
-    ke = _a0*beta_d + _a0*eta_d + _a1*beta_d**2 + _a1*eta_d**2 - _a10*_a16 - _a10*_a6 - _a11*_a18 - _a11*v - _a12*_a16 - _a12*_a6 - _a13*_a18 - _a13*v + _a14*_a15*eta_d + _a14*_a17 - _a15*_a19*beta_d + _a16*_a5 - _a17*_a19 + _a2*i_z/2 + _a3*u**2 + _a3*v**2 + _a5*_a6 + _a8*beta_d + _a8*r + _a9*eta_d + _a9*r
+    ke = _a0*beta_d + _a0*eta_d + _a1*(beta_d*beta_d) + _a1*(eta_d*eta_d) - _a10*_a16 - _a10*_a6 - _a11*_a18 - _a11*v - _a12*_a16 - _a12*_a6 - _a13*_a18 - _a13*v + _a14*_a15*eta_d + _a14*_a17 - _a15*_a19*beta_d + _a16*_a5 - _a17*_a19 + _a2*i_z/2 + _a3*(u*u) + _a3*(v*v) + _a5*_a6 + _a8*beta_d + _a8*r + _a9*eta_d + _a9*r
     return ke
 
 
@@ -415,7 +415,7 @@ def linear_exact(U, C_A, C_B, C_D, C_E, c_pin, x_m, x_p, d1, d2, t1, t2, trail, 
     _a1 = -_a0
     _a2 = -_a0*x_p + i_zp
     _a3 = 1/U
-    _a4 = U**2
+    _a4 = (U*U)
     _a5 = trail - x_p
     _a6 = C_D*x_m + C_E*x_m
     _a7 = C_A*trail
@@ -424,12 +424,12 @@ def linear_exact(U, C_A, C_B, C_D, C_E, c_pin, x_m, x_p, d1, d2, t1, t2, trail, 
     _a10 = _a3*_a9
     _a11 = -_a7
     _a12 = -_a9
-    _a13 = x_m**2
+    _a13 = (x_m*x_m)
     _a14 = C_A*_a5*trail
     _a15 = C_B*_a5*trail
     _a16 = -_a5
     _a17 = -_a4*l1*m_c
-    _a18 = _a3*trail**2
+    _a18 = _a3*(trail*trail)
     M00 = m
     M01 = 0
     M02 = _a1
@@ -493,13 +493,13 @@ def linear_locked_exact(U, C_A, C_B, C_D, C_E, x_m, x_p, d1, d2, t1, t2, trail, 
     _a0 = 1/U
     _a1 = trail - x_p
     _a2 = C_D*x_m + C_E*x_m
-    _a3 = x_m**2
+    _a3 = (x_m*x_m)
     M00 = m
     M01 = 0
     M10 = 0
     M11 = i_z
     K00 = _a0*(-C_A - C_B - C_D - C_E)
-    K01 = _a0*(C_A*_a1 + C_B*_a1 - U**2*m - _a2)
+    K01 = _a0*(C_A*_a1 + C_B*_a1 - (U*U)*m - _a2)
     K10 = _a0*(C_A*trail - C_A*x_p + C_B*trail - C_B*x_p - _a2)
     K11 = _a0*(-C_A*_a1*trail + C_A*_a1*x_p - C_B*_a1*trail + C_B*_a1*x_p - C_D*_a3 - C_E*_a3)
     B0 = 0
@@ -536,8 +536,8 @@ def linear_thesis(U, C_A, C_B, C_D, C_E, c_pin, x_m, x_p, d1, d2, t1, t2, trail,
     _a8 = _a2*_a7
     _a9 = C_B*trail
     _a10 = _a2*_a9
-    _a11 = x_p**2
-    _a12 = x_m**2
+    _a11 = (x_p*x_p)
+    _a12 = (x_m*x_m)
     _a13 = -trail + x_p
     _a14 = -_a0*_a3
     _a15 = 1/m
@@ -545,7 +545,7 @@ def linear_thesis(U, C_A, C_B, C_D, C_E, c_pin, x_m, x_p, d1, d2, t1, t2, trail,
     _a17 = m*trail
     _a18 = -_a0*_a6
     _a19 = _a15*(_a0 - _a17)
-    _a20 = _a2*trail**2
+    _a20 = _a2*(trail*trail)
     _a21 = _a0*_a15
     M00 = m
     M01 = 0
@@ -564,7 +564,7 @@ def linear_thesis(U, C_A, C_B, C_D, C_E, c_pin, x_m, x_p, d1, d2, t1, t2, trail,
     M32 = 0
     M33 = i_zp
     K00 = -_a2*_a3
-    K01 = _a2*(-U**2*m - _a6)
+    K01 = _a2*(-(U*U)*m - _a6)
     K02 = C_A
     K03 = _a8
     K04 = C_B
@@ -613,14 +613,14 @@ def linear_locked_thesis(U, C_A, C_B, C_D, C_E, x_m, x_p, d1, d2, t1, t2, trail,
     """
     _a0 = 1/U
     _a1 = C_A*x_p + C_B*x_p + C_D*x_m + C_E*x_m
-    _a2 = x_p**2
-    _a3 = x_m**2
+    _a2 = (x_p*x_p)
+    _a3 = (x_m*x_m)
     M00 = m
     M01 = 0
     M10 = 0
     M11 = i_z
     K00 = _a0*(-C_A - C_B - C_D - C_E)
-    K01 = _a0*(-U**2*m - _a1)
+    K01 = _a0*(-(U*U)*m - _a1)
     K10 = _a0*(C_A*trail + C_B*trail - _a1)
     K11 = _a0*(-C_A*_a2 + C_A*trail*x_p - C_B*_a2 + C_B*trail*x_p - C_D*_a3 - C_E*_a3)
     B0 = 0

@@ -80,7 +80,7 @@ def routh_hurwitz_margin(U, W_f, W_r, C_f, C_r, s, g):
     U^2/g (W_f/C_f - W_r/C_r) + s; it has the sign of the constant
     coefficient a1 a4 - a2 a3 of eq 5-11 (W_f, W_r static per-tire loads).
     """
-    margin = U**2*(-W_r/C_r + W_f/C_f)/g + s
+    margin = (U*U)*(-W_r/C_r + W_f/C_f)/g + s
     return margin
 
 
@@ -98,7 +98,7 @@ def a_coefficients(U, m, s1, s2, C_f, C_r):
     a1 = _a0*(_a1 + _a2)
     a2 = U*m + _a3
     a3 = _a3
-    a4 = _a0*(_a1*s1**2 + _a2*s2**2)
+    a4 = _a0*(_a1*(s1*s1) + _a2*(s2*s2))
     return (a1, a2, a3, a4)
 
 
@@ -127,9 +127,9 @@ def state_matrix(U, m, i_z, s1, s2, C_f, C_r):
     _a2 = C_f*s1
     _a3 = 2*_a0/i_z
     S00 = 2*_a1*(-C_f - C_r)
-    S01 = _a1*(2*C_r*s2 - U**2*m - 2*_a2)
+    S01 = _a1*(2*C_r*s2 - (U*U)*m - 2*_a2)
     S10 = _a3*(C_r*s2 - _a2)
-    S11 = _a3*(-C_f*s1**2 - C_r*s2**2)
+    S11 = _a3*(-C_f*(s1*s1) - C_r*(s2*s2))
     return ((S00, S01), (S10, S11))
 
 
@@ -138,10 +138,10 @@ def characteristic_coefficients(U, m, i_z, s1, s2, C_f, C_r):
     lambda^2 + c1 lambda + c0 = 0, c1 = (a1 I_z + a4 m)/(I_z m),
     c0 = (a1 a4 - a2 a3)/(I_z m).  Stable iff c1 > 0 and c0 > 0 (eq 5-14).
     """
-    _a0 = C_f*s1**2
-    _a1 = C_r*s2**2
+    _a0 = C_f*(s1*s1)
+    _a1 = C_r*(s2*s2)
     _a2 = 2/(i_z*m)
-    _a3 = U**2
+    _a3 = (U*U)
     _a4 = C_r*s2
     _a5 = C_f*s1
     _a6 = _a3*m
