@@ -4,14 +4,17 @@ The quick report of the E&J Premier is built once per module (``--quick``:
 coarse grids, a few batches of simulations); the other tests reuse its data.
 """
 
+import dataclasses
+import json
 import os
 import re
 
 import numpy as np
 import pytest
 
-from stability import linear, report, rootlocus, study
+from stability import critical_speed, linear, report, rootlocus, study
 from stability.chair import preset
+from stability.report.tire_data import force_curves, stiffness_curves
 
 EXPECTED_PAGES = [
     "chair parameters and geometry", "tires", "linear stability: critical speeds", "eigenvalues as speed varies",
@@ -101,6 +104,31 @@ def test_every_axis_is_labelled_with_units(quick):
                 assert ax.get_ylabel() or ax.get_xlabel(), title
 
 
+@pytest.mark.parametrize("scale", [1.0, 0.5])
+def test_tire_page_stiffness_equals_critical_speed(quick, scale, capsys):
+    """The tire page marks the stiffness at static load that ``critical_speed`` prints, for any lateral scale.
+
+    (Issue 9: with ``main_lateral_scale=0.5`` the page used to show the unscaled 32.1 N/deg at 198 N while
+    critical_speed printed 16.1 N/deg.)
+    """
+    c = preset("ej-premier").replace(main_lateral_scale=scale)
+    assert critical_speed.main(["--chair", "ej-premier", "--set", f"main_lateral_scale={scale}", "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)["cornering_stiffness_N_per_deg"]
+    curves = stiffness_curves(c)
+    main, caster = curves.highlight[c.main_tire], curves.highlight[c.caster_tire]
+    assert main.stiffness == pytest.approx(printed["main"], rel=1e-12)
+    assert caster.stiffness == pytest.approx(printed["caster"], rel=1e-12)
+    # the scale halves the marked stiffness: the unscaled curve at the same load is twice the marked value
+    k = int(np.argmin(np.abs(curves.fz - main.load)))
+    assert main.stiffness / scale == pytest.approx(
+        np.interp(main.load, curves.fz, curves.stiffness[curves.names.index(c.main_tire)]), rel=2e-3), k
+    d = dataclasses.replace(quick.data, chair=c, tire_force=(force_curves(c, "main"), force_curves(c, "caster")),
+                            tire_stiffness=curves)
+    build = dict(report.page_builders(d))["tires"]
+    text = "\n".join(report.figure_texts(build()))
+    assert f"{printed['main']:.1f} N/deg at {main.load:.0f} N" in text
+
+
 # ---------------------------------------------------------------------------
 # findings: every number computed, and equal to the analysis functions'
 # ---------------------------------------------------------------------------
@@ -171,7 +199,7 @@ def test_cli_quick_is_byte_identical(quick, tmp_path, monkeypatch, capsys):
         return quick_data
 
     quick_data = quick.data
-    monkeypatch.setattr(report, "compute", fake_compute)
+    monkeypatch.setattr(report.document, "compute", fake_compute)
     a = tmp_path / "a.pdf"
     txt = tmp_path / "a.txt"
     assert report.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(a), "--text", str(txt)]) == 0
@@ -211,7 +239,7 @@ def test_no_partial_file_when_a_page_fails(quick, tmp_path, monkeypatch):
         pages[2] = ("broken", boom)
         return pages
 
-    monkeypatch.setattr(report, "page_builders", failing)
+    monkeypatch.setattr(report.builders, "page_builders", failing)
     out = tmp_path / "r.pdf"
     with pytest.raises(RuntimeError, match="page 3 failed"):
         report.build(preset("ej-premier"), out, data=quick.data, progress=False)

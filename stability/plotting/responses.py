@@ -1,0 +1,95 @@
+"""Nonlinear time histories: yaw-rate responses and paths after a push (Figures 8-3a, 8-4)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.figure import Figure
+
+__all__ = ["yaw_rate_responses", "trajectories"]
+
+def _response_sign(rs) -> float:
+    """+1 or -1: the sign that makes the first run's largest yaw rate positive."""
+    for r in rs.responses:
+        a = np.asarray(r.yaw_rate)
+        if len(a) and np.any(a != 0):
+            return float(np.sign(a[int(np.argmax(np.abs(a)))]))
+    return 1.0
+
+
+def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim=(-0.25, 2.0),
+                       title: str | None = None, label_chair: bool = False, flip: bool | None = None):
+    """Yaw rate against time for several runs (Figure 8-3a analogue), linear predictions dashed.
+
+    A horizontal line marks the criterion's level and, if given, a vertical
+    line the reference case's time to reach it.  Like the thesis's figures
+    the curves rise: with ``flip=None`` the sign is chosen so that the first
+    run's largest yaw rate is positive (the axis label says which sign is
+    shown; yaw is positive clockwise seen from above).
+    """
+    if ax is None:
+        fig = Figure(figsize=(7, 5))
+        ax = fig.subplots()
+    sgn = (_response_sign(rs) if flip is None else (-1.0 if flip else 1.0))
+    for i, r in enumerate(rs.responses):
+        col = f"C{i % 10}"
+        lab = (f"{r.chair.name}, " if label_chair else "") + f"{r.speed:.3g} m/s"
+        if math.isfinite(r.time_to_level):
+            lab += f" ({r.time_to_level:.2f} s)"
+        ax.plot(r.t, sgn * np.asarray(r.yaw_rate), color=col, lw=1.5, label=lab)
+        if r.stopped_by_warnings:
+            ax.plot([r.t[-1]], [sgn * r.yaw_rate[-1]], "x", color=col, ms=7)
+        if r.linear is not None:
+            ax.plot(r.linear["t"], sgn * np.asarray(r.linear["yaw_rate"]), color=col, lw=1.0, ls="--")
+    ax.axhline(rs.criterion.yaw_rate, color="k", lw=0.8, ls=":")
+    ax.axhline(-rs.criterion.yaw_rate, color="k", lw=0.8, ls=":")
+    if reference_time is not None and math.isfinite(reference_time):
+        ax.axvline(reference_time, color="k", lw=0.8, ls="-.", label=f"reference: {reference_time:.2f} s")
+    if rs.linear_model:
+        ax.plot([], [], color="0.3", ls="--", lw=1.0, label=f"linear ({rs.linear_model})")
+    ax.set_ylim(*ylim)
+    ax.set_xlim(0, rs.criterion.duration)
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("yaw rate r (rad/s, clockwise positive)" if sgn > 0 else
+                  "yaw rate -r (rad/s, counter-clockwise positive)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", ncol=2)
+    f, d = rs.impulse
+    ax.set_title(title or f"yaw-rate responses to {f:g} N for {d:g} s at the c.g. ({f * d:g} N s): "
+                 f"{rs.model} model, {rs.scheme} scheme", fontsize=9)
+    return ax
+
+
+def trajectories(rs, ax=None, *, title: str | None = None, max_lateral: float | None = 1.5):
+    """Paths of the c.g. after the disturbance (Figure 8-4 analogue), linear predictions dashed."""
+    if ax is None:
+        fig = Figure(figsize=(7, 5))
+        ax = fig.subplots()
+    for i, r in enumerate(rs.responses):
+        col = f"C{i % 10}"
+        ax.plot(r.x, r.y, color=col, lw=1.6, label=f"{r.chair.name} ({r.chair.caster_position} casters)")
+        if r.linear is not None:
+            ax.plot(r.linear["x"], r.linear["y"], color=col, lw=1.0, ls="--")
+        # heading ticks every second
+        for tt in np.arange(1.0, r.t[-1] + 1e-9, 1.0):
+            k = int(np.argmin(np.abs(r.t - tt)))
+            ax.plot(r.x[k], r.y[k], "o", color=col, ms=3)
+    if rs.linear_model:
+        ax.plot([], [], color="0.3", ls="--", lw=1.0, label=f"linear ({rs.linear_model})")
+    ax.plot([], [], "o", color="0.3", ms=3, label="every 1 s")
+    ax.set_xlabel("distance travelled X (m)")
+    ax.set_ylabel("lateral displacement Y (m, to the right)")
+    if max_lateral is not None:
+        ylo, yhi = ax.get_ylim()
+        ax.set_ylim(max(ylo, -max_lateral), min(yhi, max_lateral))
+    ax.invert_yaxis()
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
+    sp = rs.responses[0].speed if rs.responses else float("nan")
+    f, d = rs.impulse
+    ax.set_title(title or f"paths after {f * d:g} N s at the c.g., {sp:g} m/s: {rs.model} model, {rs.scheme} scheme",
+                 fontsize=9)
+    return ax
+
+

@@ -1,0 +1,145 @@
+"""Study figures: equal-instability chart (chapter 9), parameter sweeps (chapter 8), stability maps."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .pages import PAGE_SIZE
+from .style import colormap
+
+__all__ = ["equal_instability_chart", "sweep_chart", "stability_map"]
+
+
+def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None = None, title: str | None = None):
+    """Horizontal bars: equal-instability speed of several chairs (censored ones hatched), thesis values as markers.
+
+    ``thesis`` maps a chair name to a (low, high) speed range of the thesis (m/s).
+    """
+    if ax is None:
+        fig = Figure(figsize=(7, 4))
+        ax = fig.subplots()
+    names = [r.chair.name for r in results]
+    vals = [r.value_or_bound for r in results]
+    y = np.arange(len(results))[::-1]
+    thesis = thesis or {}
+    first = True
+    for yi, r, v, n in zip(y, results, vals, names, strict=True):
+        ax.barh(yi, v, height=0.6, color="C0" if r.status == "found" else "0.8",
+                hatch="" if r.status == "found" else "//", ec="k", lw=0.5)
+        right = v
+        if n in thesis:
+            lo, hi = thesis[n]
+            ax.plot([lo, hi], [yi + 0.38, yi + 0.38], color="C3", lw=3, solid_capstyle="butt")
+            ax.plot([0.5 * (lo + hi)], [yi + 0.38], "v", color="C3", ms=6,
+                    label="thesis (Figures 9-2, 9-3)" if first else None)
+            first = False
+            right = max(right, hi)
+        ax.text(right + 0.03, yi, r.describe(), va="center", fontsize=8)
+    if not first:
+        ax.legend(fontsize=7, loc="lower right")
+    ax.set_yticks(y, names, fontsize=8)
+    ax.set_ylabel("chair")
+    ax.set_xlabel("equal-instability speed (m/s)")
+    ax.set_xlim(0, max(vals + [1.0]) * 1.25)
+    ax.grid(True, axis="x", alpha=0.3)
+    if results:
+        r0 = results[0]
+        ax.set_title(title or f"speed with the same instability as {r0.reference}: {r0.model} model, "
+                     f"{r0.scheme} scheme", fontsize=9)
+    return ax
+
+
+def sweep_chart(table, axes=None, *, title: str | None = None):
+    """The parametric study: equal-instability speed against each parameter (small multiples).
+
+    ``table`` is a :class:`stability.study.SweepTable`.  Returns the axes array.
+    """
+    sweeps = table.ranked()
+    n = len(sweeps)
+    if axes is None:
+        ncols = 4
+        nrows = int(math.ceil(n / ncols))
+        fig = Figure(figsize=PAGE_SIZE)
+        axes = fig.subplots(nrows, ncols, squeeze=False)
+    flat = list(np.asarray(axes).flat)
+    allv = np.concatenate([sw.speeds for sw in sweeps] + [[table.nominal.value_or_bound]])
+    ylo, yhi = float(allv.min()), float(allv.max())
+    pad = max(0.08 * (yhi - ylo), 0.05)
+    for ax, s in zip(flat, sweeps, strict=False):
+        sp = s.speeds
+        cens = np.array([r.status != "found" for r in s.results])
+        if s.labels is not None:
+            x = np.arange(len(s.values))
+            ax.bar(x, sp, color=["0.8" if c else "C0" for c in cens], ec="k", lw=0.5)
+            ax.set_xticks(x, s.labels, fontsize=7)
+            cur = table.chair.main_tire
+            if cur in s.labels:
+                ax.get_xticklabels()[s.labels.index(cur)].set_fontweight("bold")
+        else:
+            x = np.asarray(s.values)
+            ax.plot(x, sp, "-o", ms=3.5, color="C0")
+            if cens.any():
+                ax.plot(x[cens], sp[cens], "o", ms=6, mfc="w", mec="C3", label="outside bracket")
+                ax.legend(fontsize=6)
+            if math.isfinite(s.nominal_value):
+                ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
+        ax.axhline(table.nominal.value_or_bound, color="k", lw=0.6, ls="--")
+        ax.set_ylim(max(0.0, ylo - pad) if s.labels is None else 0.0, yhi + pad)
+        if cens.all():
+            ax.text(0.5, 0.5, "all " + s.results[0].describe() if len({r.describe() for r in s.results}) == 1
+                    else "all outside the bracket", transform=ax.transAxes, ha="center", va="center", fontsize=8,
+                    bbox=dict(fc="w", ec="0.7"))
+        ax.set_xlabel(f"{s.label} ({s.unit})" if s.labels is None else s.label, fontsize=7.5)
+        ax.set_ylabel("equal-instability speed (m/s)", fontsize=7.5)
+        ax.tick_params(labelsize=7)
+        ax.set_title(f"{s.parameter}: spread {s.effect_percent:.0f} %{' (censored)' if s.censored else ''}",
+                     fontsize=8)
+        ax.grid(True, alpha=0.3)
+    for ax in flat[n:]:
+        ax.axis("off")
+    return axes
+
+
+def stability_map(smap, ax=None, *, title: str | None = None, nominal: float | None = None,
+                  thesis_points: Sequence | None = None):
+    """Contour plot of the time to the yaw-rate level over speed x (friction or disturbance size).
+
+    The heavy contour is the reference case's time: left of it (slower)
+    the chair is more stable than the reference, right of it less.  Runs
+    that never reach the level are shown at the simulated duration.
+    """
+    if ax is None:
+        fig = Figure(figsize=(7, 5))
+        ax = fig.subplots()
+    T = np.where(np.isfinite(smap.times), smap.times, smap.criterion.duration)
+    T = np.minimum(T, smap.criterion.duration)
+    X, Y = np.meshgrid(smap.speeds, smap.y_values)
+    levels = np.linspace(0, smap.criterion.duration, 21)
+    cs = ax.contourf(X, Y, T, levels=levels, cmap=colormap("RdYlGn"))
+    cb = ax.figure.colorbar(cs, ax=ax, pad=0.01)
+    cb.set_label(f"time to |r| = {smap.criterion.yaw_rate:g} rad/s (s; {smap.criterion.duration:g} = never)")
+    ref = smap.reference_time
+    if T.min() < ref < T.max():
+        c = ax.contour(X, Y, T, levels=[ref], colors="k", linewidths=2.0)
+        ax.clabel(c, fmt={ref: f"reference {ref:.2f} s"}, fontsize=7)
+    if nominal is not None:
+        ax.axhline(nominal, color="k", ls=":", lw=0.8, label=f"chair: {nominal:g} {smap.y_unit}")
+    if thesis_points:
+        for i, (x, y, lab) in enumerate(thesis_points):
+            ax.plot([x], [y], "D", ms=6, mfc="w", mec="k", label=lab if i == 0 else None)
+    ax.plot(X.reshape(-1), Y.reshape(-1), ".", color="k", ms=1.2, alpha=0.5)
+    ax.set_xlabel("forward speed U (m/s)")
+    ax.set_ylabel(f"{smap.y_label} ({smap.y_unit})")
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(fontsize=7, loc="upper left")
+    f, d = smap.impulse
+    dist = f"{f * d:g} N s at the c.g." if smap.y_name != "impulse" else f"force held {d:g} s"
+    ax.set_title(title or f"{smap.chair.name}: speed x {smap.y_name.replace('_', ' ')} ({dist}), "
+                 f"{smap.model} model", fontsize=9)
+    return ax
+

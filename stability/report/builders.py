@@ -1,0 +1,266 @@
+"""The report's pages: ``(title, build)`` pairs that draw :class:`~stability.report.compute.ReportData`."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from functools import partial
+
+from matplotlib.figure import Figure
+
+from .. import plotting as P
+from ..chair import preset
+from ..reference import REFERENCE_CHAIR
+from ..study import THESIS
+from ..summary import format_summary
+from .compute import ReportData
+from .findings import _first, findings
+
+__all__ = ["page_builders"]
+
+
+def _subtitle(d: ReportData) -> str:
+    c = d.chair
+    return (f"{c.caster_position} casters; s1 = {c.s1:g} m, s2 = {c.s2:g} m, trail = {c.trail:g} m, m = {c.m:g} kg, "
+            f"pin friction {c.pin_friction_left:g}/{c.pin_friction_right:g} N m, main tire {c.main_tire}, "
+            f"caster tire {c.caster_tire}" + ("   [QUICK: coarse resolution]" if d.settings.quick else ""))
+
+
+def _title(d: ReportData, what: str) -> str:
+    return f"{d.chair.name} | {d.model} model | {what}"
+
+
+def _p_chair(d: ReportData) -> Figure:
+    sub, c = _subtitle(d), d.chair
+    fig, axes = P.page(_title(d, "chair parameters and geometry"), sub, nrows=1, ncols=2,
+                       gridspec_kw={"width_ratios": [1.35, 1]})
+    P.parameter_table(c, axes[0, 0])
+    P.chair_geometry(c, axes[0, 1])
+    return P.finish(fig)
+
+
+def _p_tires(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    fig, axes = P.page(_title(d, "tires (Figures 4-1 and 4-2 analogues)"), sub, nrows=1, ncols=3)
+    P.tire_curves(d.tire_force[0], axes[0, 0])
+    P.tire_curves(d.tire_force[1], axes[0, 1])
+    P.cornering_stiffness_curves(d.tire_stiffness, axes[0, 2])
+    return P.finish(fig)
+
+
+def _p_summary(d: ReportData) -> Figure:
+    sub, c = _subtitle(d), d.chair
+    txt = format_summary(d.summary)
+    so = d.summary_other
+    txt += ("\n\nOther model variant (" + so.model + "): free casters "
+            + ("unstable at all speeds searched" if so.free_unstable_at_all_speeds else
+               "stable at all speeds searched" if so.free_stable_at_all_speeds else
+               "critical speeds " + ", ".join(f"{x.speed:.4g} m/s ({x.direction})" for x in so.free_crossings))
+            + "; locked casters critical speed "
+            + (f"{_first(so.locked_crossings):.4g} m/s" if _first(so.locked_crossings) is not None else "none in range")
+            + ".\n\nLinear models: straight-line motion, tire forces linear in slip with the cornering stiffness "
+              "at the static load (Table 4-1 method), viscous pin damping "
+              f"{c.pin_damping:g} N m s/rad; Coulomb pin friction has no linearisation (it appears only in the "
+              "nonlinear simulations of the later pages).")
+    return P.text_page(_title(d, "linear stability: critical speeds"), txt, sub, monospace=True, width=125,
+                       fontsize=9)
+
+
+def _p_speed_loci(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    order = [(d.model, "free"), (d.model, "locked"),
+             ("thesis" if d.model == "exact" else "exact", "free"),
+             ("thesis" if d.model == "exact" else "exact", "locked")]
+    return P.speed_loci_figure([d.speed_loci[k] for k in order],
+                               _title(d, "eigenvalues as speed varies (parametric root locus)"), sub)
+
+
+def _p_re_im(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    fig, axes = P.page(_title(d, "eigenvalues against speed (shaded: unstable)"), sub, nrows=2, ncols=2)
+    for j, cs in enumerate(("free", "locked")):
+        P.eigenvalues_vs_speed(d.speed_loci[(d.model, cs)], [axes[0, j], axes[1, j]])
+    return P.finish(fig)
+
+
+def _p_ploci(d: ReportData, part) -> Figure:
+    sub = _subtitle(d)
+    loci = d.parameter_loci[:4] if part == 1 else d.parameter_loci[4:]
+    return P.parameter_loci_figure(loci, _title(d, f"root loci against design parameters at 0.75 m/s ({part}/2)"),
+                                   sub + "  |  free casters; black squares: this chair; x: first value")
+
+
+def _p_growth(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    return P.growth_rate_vs_parameter(d.parameter_loci, _title(d, "growth rate of the least stable mode "
+                                      "against design parameters, 0.75 m/s"), sub)
+
+
+def _p_gain(d: ReportData) -> Figure:
+    sub, c = _subtitle(d), d.chair
+    fig, axes = P.page(_title(d, "root locus against a yaw-rate feedback gain (control.root_locus_map)"), sub,
+                       nrows=1, ncols=2)
+    for ax, g, poles in zip(axes[0], d.gain_loci, d.gain_poles, strict=True):
+        P.gain_locus(g, ax, stabilising_poles=poles,
+                     title=f"{c.name}: Mz = -K r, {g.model} model, {g.casters} casters, U = {g.speed:g} m/s")
+    return P.finish(fig)
+
+
+def _p_responses(d: ReportData) -> Figure:
+    sub, c = _subtitle(d), d.chair
+    fig, axes = P.page(_title(d, "nonlinear yaw-rate responses (Figure 8-3a analogue), linear overlay"), sub,
+                       nrows=1, ncols=2)
+    P.yaw_rate_responses(d.responses, axes[0, 0], reference_time=d.thesis.reference_time,
+                         title=f"{c.name}: pin friction {c.pin_friction_left:g} N m ({d.model} model, "
+                               f"{d.scheme} scheme); dashed: linear, frictionless")
+    P.yaw_rate_responses(d.responses_frictionless, axes[0, 1], reference_time=d.thesis.reference_time,
+                         title=f"{c.name} without pin friction: where the linear model applies")
+    fig.text(0.5, 0.015, d.responses.linear_note, ha="center", fontsize=7.5, color="0.3")
+    return P.finish(fig)
+
+
+def _p_paths(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    fig, axes = P.page(_title(d, "paths after the disturbance (Figure 8-4 analogue)"), sub, nrows=1, ncols=2)
+    P.trajectories(d.paths, axes[0, 0])
+    P.yaw_rate_responses(d.paths, axes[0, 1], label_chair=True, ylim=(-1.0, 1.5),
+                         title=f"yaw rates of the same runs, 0.75 m/s ({d.model} model); dashed: linear")
+    return P.finish(fig)
+
+
+def _p_equal(d: ReportData) -> Figure:
+    sub, c, st = _subtitle(d), d.chair, d.settings
+    th = d.thesis
+    res = [th.speeds["ej-premier"], th.speeds["ej-premier x0.5 friction"], th.speeds["ej-premier x1.5 friction"],
+           th.speeds["revised"], th.speeds["revised x0.5 friction"], th.speeds["revised x1.5 friction"],
+           th.speeds["ej-premier-front-caster"]]
+    if c != preset(REFERENCE_CHAIR):
+        res = [d.chair_speed] + list(d.chair_friction) + res
+    seen, uniq = set(), []
+    for r in res:                      # a preset chair appears once
+        if r.chair.name not in seen:
+            seen.add(r.chair.name)
+            uniq.append(r)
+    res = uniq
+    thesis_ranges = {"ej-premier": (0.75, 0.75), "revised": (1.10, 1.15), "revised x0.5 friction": (0.63, 0.67),
+                     "revised x1.5 friction": (1.63, 1.67)}
+    fig, axes = P.page(_title(d, "equal-instability speeds (chapter 9, Figures 9-2 and 9-3)"), sub, nrows=1,
+                       ncols=2, gridspec_kw={"width_ratios": [1.5, 1]})
+    P.equal_instability_chart(res, axes[0, 0], thesis=thesis_ranges)
+    ax = axes[0, 1]
+    ax.axis("off")
+    crit = th.criterion
+    txt = [
+        "Criterion: " + crit.describe() + ".",
+        f"Reference: E&J Premier at 0.75 m/s, {th.impulse[0]:g} N for {th.impulse[1]:g} s at the c.g.: "
+        f"{th.reference_time:.3f} s (thesis: {THESIS['reference_time_to_1_rad_s']}).",
+        "Equal-instability speed: the speed at which the chair takes exactly as long; found by bisection on "
+        f"speed ({st.candidates} candidate speeds per round, one batch of simulations per round, to "
+        f"{st.tol:g} m/s, bracket {st.bracket[0]:g}-{st.bracket[1]:g} m/s).",
+        "Why: the thesis itself quotes this number for its reference case; for exponentially growing "
+        "responses matching the time to a level matches the curve's position, which is how the thesis "
+        "compares curves by eye (Figures 9-2, 9-3); it is monotone in speed.",
+        "Thesis: revised " + THESIS["revised"] + "; half friction " + THESIS["revised_half_friction"]
+        + "; 1.5x friction " + THESIS["revised_1.5x_friction"] + ".",
+        "Grey hatched bars: outside the bracket (value is a bound).",
+    ]
+    y = 0.98
+    for para in txt:
+        for line in P.wrap_text(para, 56):
+            ax.text(0.0, y, line, fontsize=8, va="top", transform=ax.transAxes)
+            y -= 0.033
+        y -= 0.02
+    return P.finish(fig, left=0.22)
+
+
+def _p_sweeps(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    table = d.chair_sweeps
+    n = len(table.sweeps)
+    ncols = 4
+    nrows = int(math.ceil(n / ncols))
+    fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
+                       sub, nrows=nrows, ncols=ncols)
+    P.sweep_chart(table, axes)
+    fig.text(0.5, 0.012, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
+             "parameter; other parameters at the chair's values. Same speed scale in every panel.",
+             ha="center", fontsize=8, color="0.3")
+    return P.finish(fig, bottom=0.09)
+
+
+def _p_sweep_table(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    table = d.chair_sweeps
+    rows = []
+    for i, s in enumerate(table.ranked(), start=1):
+        rows.append([str(i), s.label + ("" if s.unit == "-" else f" ({s.unit})"),
+                     ", ".join(s.value_text(k) for k in range(len(s.values))),
+                     ", ".join(r.describe(unit=False) for r in s.results),
+                     f"{s.effect_percent:.1f}" + (" (bound)" if s.censored else ""), s.how])
+    return P.table_page(_title(d, "which parameters matter, by how much"),
+                        ["rank", "parameter", "values tried", "equal-instability speed (m/s)", "spread (%)",
+                         "how varied"], rows, sub,
+                        col_widths=[0.04, 0.17, 0.17, 0.27, 0.08, 0.27], wrap=[4, 26, 26, 44, 12, 42],
+                        notes=(f"This chair: {table.nominal.describe()} (reference {d.thesis.reference_time:.2f} s "
+                               f"to {d.thesis.criterion.yaw_rate:g} rad/s). Spread: (max - min) / this chair's "
+                               "speed over the values tried. '(bound)': some speed lies outside the bracket, so "
+                               "the spread is a lower bound."))
+
+
+def _p_maps(d: ReportData) -> Figure:
+    sub, c = _subtitle(d), d.chair
+    fig, axes = P.page(_title(d, "stability maps: time to |yaw rate| = 1 rad/s"), sub, nrows=1, ncols=2)
+    P.stability_map(d.friction_map, axes[0, 0], nominal=c.pin_friction_left)
+    P.stability_map(d.disturbance_map, axes[0, 1], nominal=d.thesis.impulse[0] * d.thesis.impulse[1])
+    fig.text(0.5, 0.012, "Heavy line: the reference case's time. Slower than the line (left): more time to react than "
+             "in the reference case; faster (right): less.\nEach map is one simulate_batch call (the right one with "
+             "an impulse force per run). Dots: simulated grid points.",
+             ha="center", fontsize=8, color="0.3")
+    return P.finish(fig, bottom=0.12)
+
+
+def _p_conclusions(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    rows = [[str(x.number), x.statement, x.verdict.upper(), x.evidence] for x in d.conclusions]
+    return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers (E&J Premier, revised)"),
+                        ["#", "conclusion (chapter 9)", "verdict", "our evidence"], rows, sub,
+                        col_widths=[0.03, 0.25, 0.08, 0.64], wrap=[3, 40, 10, 100], fontsize=8,
+                        notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
+                              f"{d.thesis.criterion.describe()}.")
+
+
+def _p_findings(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    return P.text_page(_title(d, "findings"), "\n\n".join(findings(d)), sub, fontsize=10.5, width=140)
+
+
+def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
+    """``(title, build)`` for every page, in order; ``build()`` returns a Figure.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    list of (str, callable)
+    """
+    return [
+        ("chair parameters and geometry", partial(_p_chair, d)),
+        ("tires", partial(_p_tires, d)),
+        ("linear stability: critical speeds", partial(_p_summary, d)),
+        ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
+        ("eigenvalues against speed", partial(_p_re_im, d)),
+        ("root loci against design parameters 1", partial(_p_ploci, d, 1)),
+        ("root loci against design parameters 2", partial(_p_ploci, d, 2)),
+        ("growth rate against design parameters", partial(_p_growth, d)),
+        ("yaw-rate feedback root locus", partial(_p_gain, d)),
+        ("nonlinear yaw-rate responses", partial(_p_responses, d)),
+        ("paths", partial(_p_paths, d)),
+        ("equal-instability speeds", partial(_p_equal, d)),
+        ("parametric study", partial(_p_sweeps, d)),
+        ("parametric study table", partial(_p_sweep_table, d)),
+        ("stability maps", partial(_p_maps, d)),
+        ("thesis conclusions", partial(_p_conclusions, d)),
+        ("findings", partial(_p_findings, d)),
+    ]

@@ -1,0 +1,59 @@
+"""The ``python -m stability.report`` command line: parse, build, print (see :mod:`stability.report`)."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+
+from ..cli import OneLineErrorParser, add_chair_options, load_chair, run
+from ..output import atomic_write_text
+from . import document
+
+__all__ = ["build_parser", "main"]
+
+_DESCRIPTION = "``python -m stability.report``: a multi-page PDF report on one chair."
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``python -m stability.report``.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
+    p = OneLineErrorParser(prog="python -m stability.report", description=_DESCRIPTION)
+    add_chair_options(p)
+    p.add_argument("--model", default="exact", choices=["exact", "thesis"],
+                   help="equation variant for the linear analysis and the simulations (default exact)")
+    p.add_argument("--quick", action="store_true", help="coarse version in seconds")
+    p.add_argument("--no-progress", action="store_true", help="no progress bars")
+    p.add_argument("--text", metavar="FILE", help="also write the text of every page to FILE")
+    p.add_argument("-o", "--output", required=True, metavar="FILE.pdf", help="output PDF")
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``python -m stability.report``.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status (2 on bad input, with one line on stderr).
+    """
+    return run(build_parser(), argv, _run, errors=(ValueError, OSError))
+
+
+def _run(args: argparse.Namespace) -> int:
+    c = load_chair(args.chair, args.set)
+    if not args.output.lower().endswith(".pdf"):
+        raise ValueError(f"output {args.output!r} must end in .pdf")
+    res = document.build(c, args.output, model=args.model, quick=args.quick, progress=not args.no_progress)
+    if args.text:
+        atomic_write_text(args.text, res.text() + "\n")
+    print(f"wrote {res.path} ({len(res.pages)} pages, {res.seconds:.1f} s)")
+    return 0

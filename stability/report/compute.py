@@ -1,0 +1,249 @@
+"""Every number the report shows, computed once: :func:`compute` -> :class:`ReportData`."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .. import rootlocus, study
+from ..chair import Chair, preset
+from ..linear import analyse
+from ..progress import ProgressBar
+from ..reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED
+from ..validation import linearisation_check, with_rolling_resistance
+from .tire_data import ForceCurves, StiffnessCurves, force_curves, stiffness_curves
+
+__all__ = ["Settings", "ReportData", "compute", "counterpart", "response_speeds", "stabilising_poles"]
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Resolution of every computation in the report (``full`` or ``quick``).
+
+    Attributes
+    ----------
+    quick : bool
+        Coarse grids (marked QUICK on every page).
+    speed_points, locus_points, gain_points : int
+        Points of the speed, parameter and feedback-gain loci.
+    duration, dt : float
+        Simulated time and step of the nonlinear runs (s).
+    tol : float
+        Bisection tolerance of equal-instability speeds (m/s).
+    candidates : int
+        Candidate speeds per bisection round (one batch each).
+    bracket : tuple of float
+        Speed bracket of the bisection (m/s).
+    plan : dict or None
+        Parametric-study plan (None: ``study.DEFAULT_PLAN``).
+    map_speeds, map_frictions, map_impulses : tuple of float
+        Grids of the stability maps (m/s, N m, N s).
+    """
+
+    quick: bool = False
+    speed_points: int = 700
+    locus_points: int = 121
+    gain_points: int = 300
+    duration: float = HORIZON
+    dt: float = 0.001
+    tol: float = 0.005
+    candidates: int = 7
+    bracket: tuple = (0.2, 3.0)
+    plan: dict | None = None           # None: study.DEFAULT_PLAN
+    map_speeds: tuple = tuple(np.round(np.linspace(0.3, 2.0, 18), 3))
+    map_frictions: tuple = tuple(np.round(np.linspace(0.0, 0.3, 13), 3))
+    map_impulses: tuple = tuple(np.round(np.linspace(1.0, 10.0, 10), 3))
+
+    @classmethod
+    def for_mode(cls, quick: bool) -> Settings:
+        """The full settings, or the coarse ``--quick`` ones.
+
+        Parameters
+        ----------
+        quick : bool
+
+        Returns
+        -------
+        Settings
+        """
+        if not quick:
+            return cls()
+        return cls(quick=True, speed_points=150, locus_points=41, gain_points=80, duration=6.0, dt=0.001,
+                   tol=0.05, candidates=9, bracket=(0.3, 2.5), plan=study.QUICK_PLAN,
+                   map_speeds=(0.4, 0.8, 1.2, 1.6, 2.0), map_frictions=(0.0, 0.1, 0.2, 0.3),
+                   map_impulses=(2.0, 4.0, 8.0))
+
+
+@dataclass(frozen=True, eq=False)
+class ReportData:
+    """Everything the report shows, computed once (see :func:`compute`)."""
+
+    chair: Chair
+    model: str
+    settings: Settings
+    summary: Any                 # linear.StabilitySummary
+    summary_other: Any           # the other model variant's summary
+    speed_loci: dict             # (model, casters) -> SpeedLocus
+    parameter_loci: list
+    gain_loci: list
+    thesis: Any                  # study.ThesisStudy
+    chair_sweeps: Any            # study.SweepTable for this chair
+    chair_speed: Any             # EqualInstability of this chair
+    chair_friction: list         # EqualInstability at x0.5, x1.5 friction
+    responses: Any               # ResponseSet (speeds)
+    responses_frictionless: Any  # ResponseSet (no pin friction: where the linear model applies)
+    paths: Any                   # ResponseSet (chair and caster-swapped counterpart)
+    friction_map: Any
+    disturbance_map: Any
+    conclusions: list
+    scheme: str = "wchair"
+    rolling: Any = None          # validation.LinearisationCheck at 0.75 m/s with rolling resistance on
+    tire_force: tuple[ForceCurves, ...] = ()     # main, caster (Figure 4-1)
+    tire_stiffness: StiffnessCurves | None = None  # Figure 4-2 with the chair's static points
+    gain_poles: tuple = ()       # closed-loop eigenvalues at each gain locus's stabilising gain (or None)
+
+
+def counterpart(c: Chair) -> Chair:
+    """The same chair with its casters at the other end (s1 and s2 exchanged, as chapter 8's 'Method One').
+
+    Parameters
+    ----------
+    c : Chair
+
+    Returns
+    -------
+    Chair
+    """
+    pos = "front" if c.caster_position == "rear" else "rear"
+    return c.replace(name=f"{c.name}, casters swapped", caster_position=pos, s1=c.s2, s2=c.s1)
+
+
+def response_speeds(u_star: float) -> list[float]:
+    """Five speeds around the equal-instability speed (the thesis: .55 ... .95 around .75).
+
+    Parameters
+    ----------
+    u_star : float
+        The chair's equal-instability speed (m/s).
+
+    Returns
+    -------
+    list of float
+        Speeds (m/s), rounded to 0.05 m/s when scaled.
+    """
+    base = [0.55, 0.65, 0.75, 0.85, 0.95]
+    f = u_star / REFERENCE_SPEED
+    return [round(s * f / 0.05) * 0.05 if f != 1 else s for s in base]
+
+
+def stabilising_poles(locus: Any) -> np.ndarray | None:
+    """Closed-loop eigenvalues (1/s) of a gain locus at its smallest stabilising gain.
+
+    Parameters
+    ----------
+    locus : stability.rootlocus.GainLocus
+
+    Returns
+    -------
+    ndarray of complex or None
+        None when no positive gain stabilises the model.
+    """
+    k = locus.stabilising_gain
+    if k is None or k <= 0:
+        return None
+    a = rootlocus.closed_loop_matrices(locus.chair, locus.speed, [k], model=locus.model, casters=locus.casters)[0]
+    return np.linalg.eigvals(a)
+
+
+def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bool = True,
+            scheme: str = "wchair", settings: Settings | None = None,
+            log: Callable[[str], None] | None = None) -> ReportData:
+    """Run every analysis of the report for chair ``c``.
+
+    Parameters
+    ----------
+    c : Chair
+    model : {"exact", "thesis"}
+        Equation variant of the linear analysis and the simulations.
+    quick : bool
+        Coarse settings (ignored when ``settings`` is given).
+    progress : bool
+        Show progress bars (on a terminal).
+    scheme : str
+        Integration scheme of the simulations (``"wchair"``: the thesis's).
+    settings : Settings, optional
+    log : callable, optional
+        Called with the name of each finished stage.
+
+    Returns
+    -------
+    ReportData
+    """
+    s = settings or Settings.for_mode(quick)
+    other = "thesis" if model == "exact" else "exact"
+    sim: dict[str, Any] = dict(dt=s.dt, scheme=scheme)
+    crit = study.Criterion(duration=s.duration)
+    stages = 9
+    with ProgressBar(stages, f"report {c.name}", enabled=progress, unit="stage") as bar:
+        def stage(msg: str) -> None:
+            if log:
+                log(msg)
+            bar.update()
+
+        summary = analyse(c, model=model, speeds=(0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0))
+        summary_other = analyse(c, model=other, speeds=(REFERENCE_SPEED,))
+        rolling = linearisation_check(with_rolling_resistance(c), REFERENCE_SPEED, model=model)
+        tire_force = (force_curves(c, "main"), force_curves(c, "caster"))
+        tire_stiffness = stiffness_curves(c)
+        stage("linear summary")
+        loci = {}
+        for m in (model, other):
+            for cs in ("free", "locked"):
+                loci[(m, cs)] = rootlocus.speed_locus(c, model=m, casters=cs, n=s.speed_points)
+        stage("speed loci")
+        plocs = rootlocus.parameter_loci(c, speed=REFERENCE_SPEED, model=model, n=s.locus_points)
+        glocs = [rootlocus.gain_locus(c, u, model=model, n=s.gain_points) for u in (REFERENCE_SPEED, 1.5)]
+        gain_poles = tuple(stabilising_poles(g) for g in glocs)
+        stage("parameter and gain loci")
+        is_ej = c == preset(REFERENCE_CHAIR)
+        extra = [c] + study.friction_variants(c) if not is_ej else []
+        thesis, extra_res, other_table = study.thesis_study(
+            model=model, criterion=crit, plan=s.plan, extra_chairs=extra,
+            extra_plan_chair=None if is_ej else c, extra_plan=study.plan_for(c, s.plan), progress=progress,
+            bracket=s.bracket, tol=s.tol, candidates=s.candidates, **sim)
+        chair_sweeps: Any
+        if is_ej:
+            chair_sweeps = thesis.sweeps
+            chair_speed = thesis.speeds[REFERENCE_CHAIR]
+            chair_friction = [thesis.speeds[f"{REFERENCE_CHAIR} x0.5 friction"],
+                              thesis.speeds[f"{REFERENCE_CHAIR} x1.5 friction"]]
+        else:
+            chair_sweeps = other_table
+            chair_speed = extra_res[0]
+            chair_friction = list(extra_res[1:3])
+        stage("equal-instability speeds and parametric study")
+        u_star = chair_speed.speed if chair_speed.status == "found" else REFERENCE_SPEED
+        responses = study.yaw_rate_responses(c, response_speeds(u_star), model=model, criterion=crit,
+                                             progress=False, **sim)
+        free = c.replace(pin_friction_left=0.0, pin_friction_right=0.0, name=f"{c.name}, no pin friction")
+        frictionless = study.yaw_rate_responses(free, [round(0.5 * u_star, 2), u_star], model=model,
+                                                criterion=crit, progress=False, **sim)
+        stage("yaw-rate responses")
+        paths = study.trajectories([c, counterpart(c)], REFERENCE_SPEED, model=model,
+                                   criterion=study.Criterion(duration=min(6.0, s.duration)), progress=False, **sim)
+        stage("trajectories")
+        fmap = study.stability_map(c, s.map_speeds, s.map_frictions, model=model, criterion=crit,
+                                   reference=thesis.reference_time, progress=progress, **sim)
+        stage("stability map: speed x friction")
+        dmap = study.disturbance_map(c, s.map_speeds, s.map_impulses, model=model, criterion=crit,
+                                     reference=thesis.reference_time, progress=progress, **sim)
+        stage("stability map: speed x disturbance")
+        conclusions = study.check_conclusions(thesis)
+        stage("conclusions")
+    return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
+                      list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,
+                      rolling=rolling, tire_force=tire_force, tire_stiffness=tire_stiffness,
+                      gain_poles=gain_poles)

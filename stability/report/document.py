@@ -1,0 +1,125 @@
+"""Writing the report: pages in order, their texts, one atomic and byte-reproducible PDF."""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from matplotlib.figure import Figure
+from matplotlib.text import Text
+
+from .._validate import check_model
+from ..chair import Chair
+from ..output import write_pdf
+from ..progress import ProgressBar
+from . import builders
+from .compute import ReportData, Settings, compute
+
+__all__ = ["Page", "ReportResult", "figure_texts", "pages", "build"]
+
+
+@dataclass
+class Page:
+    """One page: its title, the figure (until written) and all its text (for tests and the text dump)."""
+
+    title: str
+    texts: list = field(default_factory=list)
+
+
+@dataclass
+class ReportResult:
+    """A written report: its path, its pages (titles and texts), the data drawn, the time taken (s)."""
+
+    path: Path | None
+    pages: list
+    data: ReportData
+    seconds: float = 0.0
+
+    def text(self) -> str:
+        """All page texts, page by page."""
+        out = []
+        for i, p in enumerate(self.pages, start=1):
+            out.append(f"=== page {i}: {p.title}")
+            out.extend(t for t in p.texts)
+        return "\n".join(out)
+
+
+def figure_texts(fig: Figure) -> list[str]:
+    """Every non-empty text string drawn on a figure (titles, labels, tick labels, legends, annotations).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+
+    Returns
+    -------
+    list of str
+    """
+    if getattr(fig, "canvas", None) is not None and hasattr(fig.canvas, "draw"):
+        fig.canvas.draw()
+    out = []
+    for t in fig.findobj(Text):
+        s = t.get_text()
+        if s and t.get_visible():
+            out.append(s)
+    return out
+
+
+def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
+    """Build the figures one at a time; append a :class:`Page` (title, texts) to ``record`` for each.
+
+    Parameters
+    ----------
+    d : ReportData
+    record : list, optional
+        Receives one :class:`Page` per figure built.
+
+    Yields
+    ------
+    matplotlib.figure.Figure
+    """
+    for title, build_fig in builders.page_builders(d):
+        fig = build_fig()
+        if record is not None:
+            record.append(Page(title, figure_texts(fig)))
+        yield fig
+
+
+def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick: bool = False, progress: bool = True,
+          settings: Settings | None = None, data: ReportData | None = None) -> ReportResult:
+    """Compute and write the report for chair ``c`` to ``path`` (atomically, reproducibly).
+
+    Parameters
+    ----------
+    c : Chair
+    path : path-like
+        Output PDF; its directory must exist.  Nothing is written if a page fails.
+    model : {"exact", "thesis"}
+    quick : bool
+        Coarse settings.
+    progress : bool
+        Progress bars on a terminal.
+    settings : Settings, optional
+    data : ReportData, optional
+        Already computed data (skips :func:`~stability.report.compute.compute`).
+
+    Returns
+    -------
+    ReportResult
+    """
+    t0 = time.perf_counter()
+    check_model(model)
+    path = Path(path)
+    directory = path.parent if str(path.parent) else Path(".")
+    if not directory.is_dir():
+        raise ValueError(f"output directory {str(directory)!r} does not exist")
+    d = data or compute(c, model, quick=quick, progress=progress, settings=settings)
+    record: list[Page] = []
+    n_pages = len(builders.page_builders(d))
+    with ProgressBar(n_pages, "pages", enabled=progress, unit="page") as bar:
+        write_pdf(pages(d, record), path, title=f"stability report: {c.name} ({model} model)",
+                  on_page=lambda i: bar.update())
+    return ReportResult(path, record, d, time.perf_counter() - t0)

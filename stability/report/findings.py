@@ -1,0 +1,140 @@
+"""The report's findings in plain words: every number taken from :class:`~stability.report.compute.ReportData`."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..chair import preset
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from ..validation import has_rolling_resistance
+from .compute import ReportData
+
+__all__ = ["findings"]
+
+
+def _first(crossings, direction: str = "destabilising") -> float | None:
+    return next((x.speed for x in crossings if x.direction == direction), None)
+
+
+def findings(d: ReportData) -> list[str]:
+    """The findings page: paragraphs in plain words; every number comes from ``d``.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    list of str
+        One paragraph per finding.
+    """
+    c, m = d.chair, d.model
+    s = d.summary
+    out = []
+    locked = _first(s.locked_crossings)
+    r075 = next((r for r in s.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
+    if s.free_unstable_at_all_speeds:
+        txt = (f"Linear model ({m}): with free, frictionless casters {c.name} is directionally unstable at "
+               f"every speed searched ({s.search_range[0]:g}-{s.search_range[1]:g} m/s).")
+    elif s.free_stable_at_all_speeds:
+        txt = (f"Linear model ({m}): with free, frictionless casters {c.name} is directionally stable at "
+               f"every speed searched ({s.search_range[0]:g}-{s.search_range[1]:g} m/s).")
+    else:
+        txt = (f"Linear model ({m}): with free, frictionless casters {c.name} changes stability at "
+               + ", ".join(f"{x.speed:.3g} m/s ({x.direction})" for x in s.free_crossings) + ".")
+    if r075 is not None and r075["time_to_double_s"] is not None:
+        txt += (f" At {REFERENCE_SPEED:g} m/s its least stable mode grows at {r075['rate_1_s']:.3g} 1/s: "
+                f"a heading error doubles every {r075['time_to_double_s']:.3g} s.")
+    txt += (f" With the casters locked it is stable up to {locked:.3g} m/s." if locked is not None
+            else " With the casters locked it is stable in the whole range searched.")
+    zw = s.zero_width
+    txt += (f" The zero-width model (eq 5-15) puts the locked-caster critical speed at {zw.critical_speed:.3g} m/s."
+            if zw.critical_speed is not None
+            else " The zero-width model (eq 5-16) says: understeer, stable with locked casters.")
+    out.append(txt)
+    so = d.summary_other
+    fo = _first(so.free_crossings)
+    out.append(f"The other model variant ({so.model}) gives: free casters "
+               + ("unstable at every speed searched" if so.free_unstable_at_all_speeds else
+                  "stable at every speed searched" if so.free_stable_at_all_speeds else
+                  f"first critical speed {fo:.3g} m/s")
+               + (f"; locked casters critical speed {_first(so.locked_crossings):.3g} m/s."
+                  if _first(so.locked_crossings) is not None else "; locked casters stable in the range."))
+    rl = d.rolling
+    if rl is not None:
+        own = has_rolling_resistance(c)
+        out.append(("This chair's rolling resistance is" if own else
+                    "Rolling resistance (off for this chair, as in WCHAIR's defaults) is")
+                   + " left out of the linear model. "
+                   + ("With it" if own else "With the tire fits' rolling resistance on all four wheels")
+                   + f", the simulator's own linearisation puts the least stable mode at {rl.speed:g} m/s at "
+                   f"{rl.eigenvalue_simulator.real:.3g} 1/s instead of {rl.eigenvalue_linear.real:.3g} 1/s "
+                   f"({100 * rl.rate_difference:+.0f} %): a caster's drag follows its contact velocity, so the "
+                   "casters act as an axle of small cornering stiffness (twice the drag, N/rad).")
+    th = d.thesis
+    out.append(f"Nonlinear simulation ({m} model, {d.scheme} scheme, Coulomb pin friction "
+               f"{c.pin_friction_left:g}/{c.pin_friction_right:g} N m): the reference case "
+               f"(E&J Premier at {REFERENCE_SPEED:g} m/s, "
+               f"{th.impulse[0]:g} N for {th.impulse[1]:g} s at the c.g.) reaches |yaw rate| = "
+               f"{th.criterion.yaw_rate:g} rad/s after {th.reference_time:.2f} s (thesis: slightly over 3 s).")
+    cs = d.chair_speed
+    ref = th.speeds[REFERENCE_CHAIR]
+    if c == preset(REFERENCE_CHAIR):
+        rev = th.speeds["revised"]
+        out.append(f"{c.name} is the reference chair: bisection on speed finds its own equal-instability speed at "
+                   f"{cs.describe()} (the reference speed is {REFERENCE_SPEED:g} m/s). "
+                   "The chapter-9 revised design reaches the "
+                   f"same instability at {rev.describe()} (thesis: 1.10-1.15 m/s), "
+                   + (f"{100 * (rev.speed / cs.speed - 1):+.0f} %." if rev.status == cs.status == "found" else "."))
+    elif cs.status == "found":
+        rel = 100 * (cs.speed / ref.value_or_bound - 1) if ref.status == "found" else float("nan")
+        out.append(f"{c.name} shows the same instability at {cs.speed:.3g} m/s"
+                   + (f", {rel:+.0f} % against the E&J Premier's {ref.speed:.3g} m/s." if math.isfinite(rel) else ".")
+                   + " Above that speed a user has less time to correct a disturbance than in the thesis's "
+                     "reference case.")
+    elif cs.status == "above":
+        out.append(f"{c.name} never reaches the reference instability below {cs.bracket[1]:g} m/s: "
+                   "it is more stable than the reference case at every speed tested.")
+    else:
+        out.append(f"{c.name} is already less stable than the reference case at {cs.bracket[0]:g} m/s.")
+    fm = d.friction_map
+    j = int(np.argmin(np.abs(fm.y_values - c.pin_friction_left)))
+    finite = np.flatnonzero(np.isfinite(fm.times[j]))
+    if len(finite) and finite[0] > 0:
+        out.append(f"Pin friction holds the casters at low speed: with {fm.y_values[j]:g} N m the simulated chair "
+                   f"does not reach {th.criterion.yaw_rate:g} rad/s within {fm.criterion.duration:g} s at "
+                   f"{fm.speeds[finite[0] - 1]:g} m/s and below, but does at {fm.speeds[finite[0]]:g} m/s "
+                   f"(after {fm.times[j, finite[0]]:.2f} s), although the frictionless linear model is "
+                   + ("unstable at every speed." if s.free_unstable_at_all_speeds else "as described above."))
+    f_lo, f_hi = d.chair_friction
+    out.append(f"Pin friction: at half the friction the equal-instability speed is {f_lo.describe()}, at 1.5 times "
+               f"it is {f_hi.describe()} (own friction: {cs.describe()}).")
+    ranked = d.chair_sweeps.ranked()
+    top = ", ".join(f"{sw.label} ({sw.effect_percent:.0f} %)" for sw in ranked[:4])
+    low = ", ".join(f"{sw.label} ({sw.effect_percent:.1f} %)" for sw in ranked[-3:])
+    if all(r.status != "found" for sw in ranked for r in sw.results) and cs.status != "found":
+        out.append(f"The parametric study cannot rank the parameters for {c.name}: every variant tried stays "
+                   f"outside the speed bracket ({cs.bracket[0]:g}-{cs.bracket[1]:g} m/s) of the reference instability.")
+    else:
+        out.append(f"What matters most (spread of the equal-instability speed over the values tried, in % of the "
+                   f"chair's own{'; some values are bounds' if any(sw.censored for sw in ranked) else ''}): {top}. "
+                   f"What matters least: {low}.")
+    g = d.gain_loci[0]
+    if g.stabilising_gain is None:
+        out.append(f"Yaw-rate feedback Mz = -K r does not stabilise the linear model at {g.speed:g} m/s "
+                   f"for K up to {g.gains[-1]:g} N m s/rad.")
+    elif g.stabilising_gain == 0:
+        out.append(f"The linear model is stable at {g.speed:g} m/s without feedback.")
+    else:
+        out.append(f"Yaw-rate feedback Mz = -K r stabilises the linear model at {g.speed:g} m/s for "
+                   f"K > {g.stabilising_gain:.3g} N m s/rad; at {d.gain_loci[1].speed:g} m/s for K > "
+                   + (f"{d.gain_loci[1].stabilising_gain:.3g} N m s/rad." if d.gain_loci[1].stabilising_gain is not None
+                      else "(none in range)."))
+    n_agree = sum(1 for x in d.conclusions if x.verdict == "agree")
+    n_part = sum(1 for x in d.conclusions if x.verdict == "partly")
+    n_dis = sum(1 for x in d.conclusions if x.verdict == "disagree")
+    out.append(f"Thesis conclusions 1-9 against our numbers: {n_agree} agree, {n_part} partly, {n_dis} disagree "
+               "(details on the previous page).")
+    return out
