@@ -13,9 +13,11 @@ import pytest
 
 from stability import assist, models, params
 from stability import chair as chair_mod
+from stability.assist.__main__ import main as assist_main
 from stability.chair import POWER_FWD_FIELDS
 from stability.linear import input_matrices, state_matrices
 from stability.power_chair import DriveTrain, drive_train, lumped_estimate, power_fwd
+from stability.statics import static_loads
 
 SPEEDS = np.arange(0.5, 3.0001, 0.25)
 
@@ -43,12 +45,10 @@ def test_preset_validates_and_matches_its_documentation(chair):
     assert {f: getattr(chair, f) for f in POWER_FWD_FIELDS} == POWER_FWD_FIELDS
     assert chair.caster_position == "rear"            # front-wheel drive = drive wheels ahead of the c.g.
     est = lumped_estimate()
-    assert est["m"] == pytest.approx(chair.m)
-    assert est["s1"] == pytest.approx(chair.s1, abs=0.01)
-    assert est["h"] == pytest.approx(chair.h, abs=0.01)
-    assert est["i_z"] == pytest.approx(chair.i_z, rel=0.02)
-    from stability.statics import static_loads
-
+    assert est.m == pytest.approx(chair.m)
+    assert est.s1 == pytest.approx(chair.s1, abs=0.01)
+    assert est.h == pytest.approx(chair.h, abs=0.01)
+    assert est.i_z == pytest.approx(chair.i_z, rel=0.02)
     loads = static_loads(chair)
     drive_share = 2 * loads["main"] / (chair.m * chair.g)
     assert drive_share == pytest.approx((chair.s2 + chair.trail) / chair.wheelbase)
@@ -137,7 +137,7 @@ def test_lqr_and_separation(schedules):
     import control
 
     fs, gy = schedules["full-state"], schedules["gyro"]
-    for dfs, dgy in zip(fs.designs, gy.designs):
+    for dfs, dgy in zip(fs.designs, gy.designs, strict=True):
         Q, R = fs.weights.matrices(fs.chair, fs.drive)
         _, _, E = control.lqr(dfs.plant.A, dfs.plant.B, Q, R)
         assert np.allclose(np.sort_complex(assist.closed_loop_poles(dfs)), np.sort_complex(E), rtol=1e-8)
@@ -157,16 +157,16 @@ def test_margins_at_the_plant_input(schedules):
     its 200 Hz implementation."""
     for d in schedules["full-state"].designs:
         m = assist.loop_margins(d)
-        assert m["disk_margin"] >= 1 - 1e-6
-        assert m["phase_margin_deg"] >= 60.0
-        assert m["gain_margin_upper"] == math.inf
-        assert m["gain_margin_lower"] < 0.5
+        assert m.disk_margin >= 1 - 1e-6
+        assert m.phase_margin_deg >= 60.0
+        assert m.gain_margin_upper == math.inf
+        assert m.gain_margin_lower < 0.5
     for d in schedules["gyro"].designs:
         m = assist.loop_margins(d)
-        assert m["phase_margin_deg"] > 45.0
-        assert m["disk_margin"] > 0.8
-        assert m["gain_margin_lower"] < 0.5
-        assert m["delay_margin_s"] > 0.03
+        assert m.phase_margin_deg > 45.0
+        assert m.disk_margin > 0.8
+        assert m.gain_margin_lower < 0.5
+        assert m.delay_margin_s > 0.03
 
 
 @pytest.mark.parametrize("kind", assist.DESIGNS)
@@ -177,9 +177,9 @@ def test_robustness_box_stable(schedules, kind):
     rob = assist.robustness(schedules[kind], box=0.3)
     assert len(rob.corners) == 17 and rob.max_real.shape == (17, len(SPEEDS))
     assert rob.stable
-    assert rob.worst["max_real_1_s"] == pytest.approx(rob.max_real.max())
-    assert rob.worst["max_real_1_s"] < -1.0
-    assert set(rob.worst["corner"].values()) <= {0.7, 1.3}
+    assert rob.worst.max_real_1_s == pytest.approx(rob.max_real.max())
+    assert rob.worst.max_real_1_s < -1.0
+    assert set(rob.worst.corner.values()) <= {0.7, 1.3}
 
 
 # ---------------------------------------------------------------------------
@@ -236,7 +236,7 @@ def test_linear_eigenvalues_predict_nonlinear_decay(schedules, kind):
     simulated yaw rate matches the real part of the slowest closed-loop eigenvalue within 5 %."""
     for s in (1.0, 2.0):
         a = assist.decay_agreement(schedules[kind], s)
-        assert a["relative_error"] < 0.05, a
+        assert a.relative_error < 0.05, a
 
 
 def test_fit_decay_rate_on_known_signals():
@@ -267,7 +267,7 @@ def test_destabilising_moment_reference_case():
 def test_cli_json_rows(tmp_path, capsys):
     """python -m stability.assist writes a JSON list with one row per speed and the documented keys."""
     out = tmp_path / "gains.json"
-    assert assist.main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json", str(out)]) == 0
+    assert assist_main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json", str(out)]) == 0
     text = capsys.readouterr().out
     assert "k_psi" in text and "Robustness" in text
     rows = json.loads(out.read_text())
@@ -291,7 +291,7 @@ def test_cli_json_rows(tmp_path, capsys):
 def test_cli_bad_input(argv, word, capsys):
     """Bad input: one line on stderr naming the problem, exit status 2, no output file."""
     try:
-        status = assist.main(argv)
+        status = assist_main(argv)
     except SystemExit as exc:
         status = exc.code
     err = capsys.readouterr().err.strip()

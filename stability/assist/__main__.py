@@ -1,0 +1,169 @@
+"""``python -m stability.assist``: gain schedule, margins, robustness and nonlinear checks of the motor assist."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections.abc import Sequence
+
+from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, parse_speeds, run
+from ..output import atomic_write_text, write_pdf
+from ..power_chair import DriveTrain
+from ..reference import THESIS_PUSH
+from ._format import fmt
+from .destabilising import destabilising_moment, destabilising_summary, valid_until
+from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
+from .robustness import robustness
+from .schedule import schedule
+from .tables import format_recovery, format_table, gain_table, pole_curves
+from .weights import DESIGNS, GyroSensor, Weights
+
+__all__ = ["build_parser", "main"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The command-line parser.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
+    p = OneLineErrorParser(prog="python -m stability.assist",
+                           description="LQR motor assist (differential drive torque) for a power chair: "
+                                       "gain schedule, margins, robustness and a nonlinear check.")
+    add_chair_options(p, default="power-fwd")
+    p.add_argument("--speeds", default="0.5:3.0:0.25", help="design speeds START:STOP:STEP or a list (m/s)")
+    p.add_argument("--design", default="gyro", choices=list(DESIGNS), help="feedback structure (default gyro)")
+    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
+    p.add_argument("--max-heading-error", type=float, default=Weights.max_heading_error_deg, metavar="DEG",
+                   help="Bryson weight: acceptable heading error (deg, default 2)")
+    p.add_argument("--max-yaw-rate", type=float, default=0.0, metavar="DEG_S",
+                   help="Bryson weight: acceptable yaw rate (deg/s; default 0 = unweighted)")
+    p.add_argument("--torque-limit", type=float, default=DriveTrain.torque_limit, metavar="NM",
+                   help="motor torque limit per drive wheel (N m, default 70)")
+    p.add_argument("--torque-budget", type=float, default=None, metavar="NM",
+                   help="Bryson weight: torque budget per wheel (N m, default half the limit)")
+    p.add_argument("--wheel-radius", type=float, default=DriveTrain.wheel_radius, metavar="M",
+                   help="drive-wheel radius (m, default 0.178)")
+    p.add_argument("--gyro-noise", type=float, default=GyroSensor.noise_density_deg_s, metavar="DEG_S_RTHZ",
+                   help="gyro noise density incl. vibration (deg/s/sqrt(Hz), default 0.05)")
+    p.add_argument("--gyro-bias", type=float, default=GyroSensor.bias_deg_s, metavar="DEG_S",
+                   help="gyro bias after calibration (deg/s, default 0.1)")
+    p.add_argument("--sample-rate", type=float, default=GyroSensor.sample_rate_hz, metavar="HZ",
+                   help="controller sample rate (Hz, default 200)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the gyro noise (default 0)")
+    p.add_argument("--no-check", action="store_true", help="skip the nonlinear simulations")
+    p.add_argument("--min-torque", action="store_true",
+                   help="also find the smallest torque limit that recovers from the 400 N disturbance "
+                        "at 1, 2, 3 m/s (bisection, ~1 min)")
+    p.add_argument("--json", metavar="FILE", help="write the gain table as JSON (a list of rows, one per speed)")
+    p.add_argument("--pdf", metavar="FILE", help="write the figures as a PDF")
+    return p
+
+
+def _options(args: argparse.Namespace) -> tuple[Weights, DriveTrain, GyroSensor]:
+    if not (math.isfinite(args.max_heading_error) and args.max_heading_error > 0):
+        raise ValueError(f"--max-heading-error {args.max_heading_error!r} is invalid; valid range: > 0 deg")
+    if not (math.isfinite(args.max_yaw_rate) and args.max_yaw_rate >= 0):
+        raise ValueError(f"--max-yaw-rate {args.max_yaw_rate!r} is invalid; valid range: >= 0 deg/s (0: unweighted)")
+    if not (math.isfinite(args.torque_limit) and args.torque_limit > 0):
+        raise ValueError(f"--torque-limit {args.torque_limit!r} is invalid; valid range: > 0 N m")
+    if args.torque_budget is not None and not (math.isfinite(args.torque_budget) and args.torque_budget > 0):
+        raise ValueError(f"--torque-budget {args.torque_budget!r} is invalid; valid range: > 0 N m")
+    if not (math.isfinite(args.wheel_radius) and 0 < args.wheel_radius <= 0.5):
+        raise ValueError(f"--wheel-radius {args.wheel_radius!r} is invalid; valid range: 0 < r <= 0.5 m")
+    if not (math.isfinite(args.sample_rate) and args.sample_rate >= 10):
+        raise ValueError(f"--sample-rate {args.sample_rate!r} is invalid; valid range: >= 10 Hz")
+    for name in ("gyro_noise", "gyro_bias"):
+        v = getattr(args, name)
+        if not (math.isfinite(v) and v >= 0):
+            raise ValueError(f"--{name.replace('_', '-')} {v!r} is invalid; valid range: >= 0 deg/s")
+    w = Weights(max_heading_error_deg=args.max_heading_error,
+                max_yaw_rate_deg_s=args.max_yaw_rate or None, torque_budget_nm=args.torque_budget)
+    drive = DriveTrain(wheel_radius=args.wheel_radius, torque_limit=args.torque_limit)
+    gyro = GyroSensor(noise_density_deg_s=args.gyro_noise, bias_deg_s=args.gyro_bias,
+                      sample_rate_hz=args.sample_rate)
+    return w, drive, gyro
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``python -m stability.assist``.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status (2 on bad input).
+    """
+    return run(build_parser(), argv, _run)
+
+
+def _run(args: argparse.Namespace) -> int:
+    c = load_chair(args.chair, args.set)
+    speeds = parse_speeds(args.speeds, increasing=True)
+    weights, drive, gyro = _options(args)
+    check_directory(args.json, "--json")
+    check_directory(args.pdf, "--pdf")
+    sched = schedule(c, speeds, args.design, weights=weights, drive=drive, gyro=gyro, model=args.model)
+    rows = gain_table(sched, check=not args.no_check, seed=args.seed)
+    print(format_table(sched, rows))
+    rob = robustness(sched)
+    w = rob.worst
+    print(f"\nRobustness, +/-{rob.box:.0%} in mass, yaw inertia, main and caster cornering stiffness (16 corners x "
+          f"{len(sched.speeds)} speeds): {'all stable' if rob.stable else 'UNSTABLE corners'}; worst largest real part "
+          f"{w.max_real_1_s:.4f} 1/s at {w.speed_m_s:g} m/s, corner " + w.describe())
+    runs = None
+    if not args.no_check:
+        runs = recovery_runs(sched, seed=args.seed)
+        print("\nNonlinear recovery (10 s, WCHAIR scheme, exact model, pin friction, torque limit"
+              + (", gyro noise and bias" if sched.kind == "gyro" else "") + "): closed loop vs open loop")
+        print(format_recovery(runs))
+        print("\nFigure 9-4 criterion, open loop (destabilising moment of the tire forces vs the motors' "
+              f"{sched.drive.max_yaw_moment(sched.chair):.0f} N m):")
+        for closed, opened in runs:
+            if opened is not None:
+                d_ = destabilising_summary(opened.result, sched.drive, sched.chair)
+                print(f"  {closed.speed:g} m/s, {closed.impulse_force:g} N: peak {d_.peak_moment_Nm:.0f} N m "
+                      f"({d_.fraction_of_capacity:.0%}) up to {d_.valid_until_s:.2f} s (heading "
+                      f"{d_.heading_at_end_deg:.0f} deg; a slip angle reaches 8 deg or the heading 90 deg)"
+                      + ("" if d_.exceeds_capacity_at_s is None else
+                         f"; exceeds the motors at {d_.exceeds_capacity_at_s:.2f} s"))
+        agree = [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)]
+        print("\nLinear vs nonlinear decay (4 N x 0.1 s, pin friction off, 1 kHz): "
+              + "; ".join(f"{a.speed_m_s:g} m/s: predicted {a.predicted_1_s:.3f}, fitted "
+                          f"{a.fitted_1_s:.3f} 1/s ({a.relative_error:.2%})" for a in agree))
+    if args.min_torque:
+        for s_ in (1.0, 2.0, 3.0):
+            mt = minimum_torque_limit(sched, s_)
+            print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
+                  f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
+    if args.json:
+        atomic_write_text(args.json, json.dumps([r.to_dict() for r in rows], indent=2) + "\n")
+    if args.pdf:
+        # matplotlib is imported only when a PDF is asked for
+        from . import figures
+
+        figs = [figures.figure_gains(sched, rows), figures.figure_poles(sched, rows, pole_curves(sched), rob),
+                figures.figure_margins(sched, rows), figures.figure_robustness(rob, sched)]
+        ref = destabilising_moment()
+        ol = [r.open for r in runs if r.open is not None and r.open.impulse_force == THESIS_PUSH.force] if runs \
+            else [recovery(sched.chair, s, None, model=sched.model) for s in (1.0, 2.0, 3.0)]
+        summ = [destabilising_summary(o.result, sched.drive, sched.chair) for o in ol]
+        figs.append(figures.figure_destabilising(
+            ref, valid_until(ref, max_heading_deg=math.inf), ol, summ, [valid_until(o.result) for o in ol],
+            sched.drive.max_yaw_moment(sched.chair), sched.chair.name))
+        if runs is not None:
+            figs.append(figures.figure_recovery(runs, sched))
+            figs.append(figures.figure_recovery_table(runs, sched))
+        write_pdf(figs, args.pdf, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,26 @@
+"""Number formatting shared by the assist's tables and JSON rows."""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["json_float", "fmt"]
+
+
+def json_float(x: float | None) -> float | str | None:
+    """A float for JSON: finite as is, ``inf`` as ``"inf"``/``"-inf"``, NaN and None as None."""
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else (None if math.isnan(x) else ("inf" if x > 0 else "-inf"))
+
+
+def fmt(x: float | str | None, spec: str = ".3g", none: str = "-") -> str:
+    """``format(x, spec)``, with ``none`` for None and ``inf``/``-inf``/``nan`` spelt out."""
+    if x is None:
+        return none
+    if isinstance(x, str):
+        return x
+    if not math.isfinite(x):
+        return "inf" if x > 0 else ("-inf" if x < 0 else "nan")
+    return format(x, spec)

@@ -1,0 +1,424 @@
+"""Nonlinear checks of the assist in the simulator: recovery after a lateral push, decay rate, torque need."""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .._validate import check_speed
+from ..chair import Chair
+from ..reference import HORIZON, THESIS_PUSH
+from ..signals import envelope_rate
+from ..signals import settle_time as _settle_time
+from ..simulate import simulate
+from ._format import json_float
+from .controller import DigitalController
+from .design import closed_loop_poles
+from .schedule import Schedule
+
+__all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
+           "recovery_runs", "recovery_table", "minimum_torque_limit", "DecayAgreement", "decay_agreement",
+           "fit_decay_rate"]
+
+#: The ten-times push of the strong-disturbance check (N): 400 N for 0.1 s.
+STRONG_FORCE = 10.0 * THESIS_PUSH.force
+
+#: Settling: the disturbance's effect on the heading stays within this fraction of its peak ...
+SETTLE_FRACTION = 0.05
+#: ... or within this many degrees, whichever is larger.
+SETTLE_FLOOR_DEG = 0.01
+
+
+@dataclass(frozen=True, eq=False)
+class RecoveryRun:
+    """One nonlinear run after a lateral impulse at the c.g.
+
+    The *disturbance response* is the heading of this run minus the heading
+    of a twin run without the impulse but with the same gyro noise and bias
+    (same seed; for the noise-free full-state design and the open loop the
+    twin runs straight and the response is the heading itself).
+
+    Attributes
+    ----------
+    speed : float
+        m/s.
+    impulse_force, impulse_duration : float
+        N, s (the thesis's reference: :data:`stability.reference.THESIS_PUSH`).
+    controlled : bool
+        Closed loop (True) or the open-loop chair.
+    peak_heading_error_deg : float
+        Largest ``|heading|`` over the run (deg): what the user sees,
+        including the drift and wander the gyro's bias and noise cause.
+    peak_response_deg : float
+        Largest ``|disturbance response|`` (deg).
+    peak_torque_Nm : float
+        Largest applied ``|tau|`` per wheel (N m); 0 open loop.
+    saturated_fraction : float
+        Share of the controller samples at the torque limit.
+    settle_time_s : float or None
+        Time after which the disturbance response stays within the larger of
+        5 % of its peak and 0.01 deg; None if it never does before the end
+        of the run (a diverging open-loop chair).
+    final_drift_deg_s : float
+        Slope of the heading over the last 20 % of the run (deg/s): in
+        closed loop the drift a gyro bias imposes (minus the bias).
+    max_yaw_rate_deg_s : float
+        Largest ``|r|`` (deg/s).
+    time_to_10deg_s : float or None
+        First time ``|heading|`` reaches 10 deg.
+    caster_out_of_range : int
+        Steps with a caster slip angle above 8 deg or a caster load above
+        450 N (outside the caster tire's data; the drive tire is linear).
+    stopped_by_warnings : bool
+        The simulator stopped the run.
+    result : SimulationResult
+        The run.
+    response : ndarray
+        The disturbance response (deg) on ``result.t``.
+    """
+
+    speed: float
+    impulse_force: float
+    impulse_duration: float
+    controlled: bool
+    peak_heading_error_deg: float
+    peak_response_deg: float
+    peak_torque_Nm: float
+    saturated_fraction: float
+    settle_time_s: float | None
+    final_drift_deg_s: float
+    max_yaw_rate_deg_s: float
+    time_to_10deg_s: float | None
+    caster_out_of_range: int
+    stopped_by_warnings: bool
+    result: Any = field(repr=False)
+    response: Any = field(repr=False, default=None)
+
+    def row(self) -> dict[str, Any]:
+        """JSON-ready summary (the fields without ``result`` and ``response``)."""
+        return {
+            "speed_m_s": self.speed, "impulse_N": self.impulse_force, "impulse_s": self.impulse_duration,
+            "controlled": self.controlled, "peak_heading_error_deg": self.peak_heading_error_deg,
+            "peak_response_deg": self.peak_response_deg,
+            "peak_torque_Nm": self.peak_torque_Nm, "saturated_fraction": self.saturated_fraction,
+            "settle_time_s": self.settle_time_s, "final_drift_deg_s": json_float(self.final_drift_deg_s),
+            "max_yaw_rate_deg_s": self.max_yaw_rate_deg_s, "time_to_10deg_s": self.time_to_10deg_s,
+            "caster_out_of_range_steps": self.caster_out_of_range, "stopped_by_warnings": self.stopped_by_warnings,
+        }
+
+
+
+
+class RecoveryPair(NamedTuple):
+    """A closed-loop run and its open-loop twin (same speed and push).
+
+    Attributes
+    ----------
+    closed : RecoveryRun
+    open : RecoveryRun or None
+        None when the open loop was not run.
+    """
+
+    closed: RecoveryRun
+    open: RecoveryRun | None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready ``{"speed_m_s", "impulse_N", "closed", "open"}`` (``open`` only if run)."""
+        row: dict[str, Any] = {"speed_m_s": self.closed.speed, "impulse_N": self.closed.impulse_force,
+                               "closed": self.closed.row()}
+        if self.open is not None:
+            row["open"] = self.open.row()
+        return row
+
+
+def settle_time(t: np.ndarray, response_deg: np.ndarray) -> float | None:
+    """First time after which ``|response|`` stays within max(5 % of its peak, 0.01 deg).
+
+    Parameters
+    ----------
+    t : ndarray
+        Time (s).
+    response_deg : ndarray
+        Disturbance response (deg).
+
+    Returns
+    -------
+    float or None
+        Seconds; None if it never settles.
+    """
+    return _settle_time(t, response_deg, SETTLE_FRACTION, SETTLE_FLOOR_DEG)
+
+
+def _simulate(chair: Chair, speed: float, controller: DigitalController | None, impulse_force: float,
+              impulse_duration: float, duration: float, dt: float, model: str, scheme: str) -> Any:
+    if controller is not None:
+        controller.reset()
+    return simulate(chair, speed, duration=duration, scheme=scheme, model=model, dt=dt,
+                    impulse_force=impulse_force, impulse_duration=impulse_duration,
+                    yaw_moment=controller, stop_on_warnings=False)
+
+
+def recovery(chair: Chair, speed: float, controller: DigitalController | None, *,
+             impulse_force: float = THESIS_PUSH.force, impulse_duration: float = THESIS_PUSH.duration,
+             duration: float = HORIZON, dt: float = 0.001, model: str = "exact",
+             scheme: str = "wchair") -> RecoveryRun:
+    """Simulate the nonlinear chair after a lateral impulse at the c.g., with or without the controller.
+
+    Default: the WCHAIR fixed-step scheme (1 ms) on the exact model with the
+    chair's Coulomb pin friction; the thesis's range rules are counted but do
+    not stop the run (the power chair's drive wheels carry more than the
+    450 N of the treadmill data by design; its drive tire is linear).  With
+    a noisy gyro a twin run without the impulse gives the disturbance
+    response (see :class:`RecoveryRun`).
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        m/s.
+    controller : DigitalController or None
+        None: the open-loop chair.
+    impulse_force, impulse_duration : float
+        Lateral push at the c.g. (N, s).
+    duration, dt : float
+        Run length and step (s).
+    model : {"exact", "thesis"}
+    scheme : {"wchair", "adaptive"}
+
+    Returns
+    -------
+    RecoveryRun
+    """
+    speed = check_speed(speed)
+    res = _simulate(chair, speed, controller, impulse_force, impulse_duration, duration, dt, model, scheme)
+    t = np.asarray(res.t)
+    head = np.degrees(np.asarray(res.heading))
+    taus = np.array([s[1] for s in controller.samples if s[0] <= t[-1] + 1e-9]) if controller is not None else None
+    noisy = controller is not None and controller.design.kind == "gyro" and controller.noise
+    if noisy:
+        twin = _simulate(chair, speed, controller, 0.0, impulse_duration, duration, dt, model, scheme)
+        n = min(len(twin.t), len(t))
+        resp = head[:n] - np.degrees(np.asarray(twin.heading))[:n]
+    else:
+        resp = head
+    if controller is not None and taus is not None and taus.size:
+        peak_tau = float(np.max(np.abs(taus)))
+        sat = float(np.mean(np.abs(taus) >= controller.drive.torque_limit * (1 - 1e-9)))
+    else:
+        peak_tau, sat = 0.0, 0.0
+    tail = t >= t[-1] - 0.2 * (t[-1] - t[0])
+    drift = float(np.polyfit(t[tail], head[tail], 1)[0]) if tail.sum() >= 2 else float("nan")
+    big = np.flatnonzero(np.abs(head) >= 10.0)
+    slip = np.abs(np.asarray(res.slip_deg)[:, :2])
+    load = np.asarray(res.normal_load)[:, :2]
+    oor = int(np.sum(np.any((slip > 8.0) | (load > 450.0), axis=1)))
+    return RecoveryRun(
+        speed=speed, impulse_force=float(impulse_force), impulse_duration=float(impulse_duration),
+        controlled=controller is not None, peak_heading_error_deg=float(np.max(np.abs(head))),
+        peak_response_deg=float(np.max(np.abs(resp))), peak_torque_Nm=peak_tau, saturated_fraction=sat,
+        settle_time_s=settle_time(t[:len(resp)], resp), final_drift_deg_s=drift,
+        max_yaw_rate_deg_s=float(np.degrees(np.max(np.abs(res.yaw_rate)))),
+        time_to_10deg_s=float(t[big[0]]) if big.size else None, caster_out_of_range=oor,
+        stopped_by_warnings=bool(res.stopped_by_warnings), result=res, response=resp,
+    )
+
+
+def recovery_runs(sched: Schedule, speeds: Sequence[float] = (1.0, 2.0, 3.0),
+                  impulses: Sequence[float] = (THESIS_PUSH.force, STRONG_FORCE), *, seed: int = 0,
+                  duration: float = HORIZON, noise: bool = True, open_loop: bool = True) -> list[RecoveryPair]:
+    """Closed- and open-loop :class:`RecoveryRun` for every speed and impulse.
+
+    Closed loop: the scheduled controller at that speed, torque-limited,
+    with (gyro design, ``noise``) gyro noise and bias seeded with ``seed``
+    plus the run's index, so the runs are deterministic.
+
+    Parameters
+    ----------
+    sched : Schedule
+    speeds : sequence of float
+        m/s.
+    impulses : sequence of float
+        Push forces at the c.g. (N, for :data:`~stability.reference.THESIS_PUSH`'s duration).
+    seed : int
+    duration : float
+        s.
+    noise : bool
+        Gyro noise and bias.
+    open_loop : bool
+        Also run the chair without the controller.
+
+    Returns
+    -------
+    list of RecoveryPair
+    """
+    out = []
+    for i, (s, f) in enumerate(itertools.product(speeds, impulses)):
+        ctl = DigitalController(sched.at(s), sched.chair, sched.drive, gyro=sched.gyro, seed=seed + i, noise=noise)
+        closed = recovery(sched.chair, s, ctl, impulse_force=f, duration=duration, model=sched.model)
+        opened = recovery(sched.chair, s, None, impulse_force=f, duration=duration, model=sched.model) \
+            if open_loop else None
+        out.append(RecoveryPair(closed, opened))
+    return out
+
+
+def recovery_table(runs: Sequence[RecoveryPair]) -> list[dict[str, Any]]:
+    """JSON-ready rows ``{"speed_m_s", "impulse_N", "closed", "open"}`` from :func:`recovery_runs`.
+
+    Parameters
+    ----------
+    runs : sequence of RecoveryPair
+
+    Returns
+    -------
+    list of dict
+    """
+    return [RecoveryPair(*r).to_dict() for r in runs]
+
+
+def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = STRONG_FORCE, *,
+                         max_heading_deg: float = 10.0, tol: float = 0.25, duration: float = HORIZON) -> float:
+    """Smallest per-wheel torque limit with which the scheduled controller still recovers (N m).
+
+    The thesis's question (chapter 9, "Future work"): what motor torque is
+    needed to stabilise the chair against a disturbance.  The design (its
+    gains) is kept; only the saturation of the digital controller changes.
+    "Recovers": the disturbance response settles (:func:`settle_time`)
+    and the heading stays within ``max_heading_deg``.  Noise-free sensors
+    (the bias and noise would blur the threshold); bisection to ``tol``
+    N m between 0 and the drive train's limit.
+
+    Parameters
+    ----------
+    sched : Schedule
+    speed : float
+        m/s.
+    impulse_force : float
+        N for :data:`~stability.reference.THESIS_PUSH`'s duration.
+    max_heading_deg, tol, duration : float
+        deg, N m, s.
+
+    Returns
+    -------
+    float
+        N m per wheel; ``inf`` if even the full limit does not recover.
+    """
+    speed = check_speed(speed)
+    d = sched.at(speed)
+
+    def ok(limit: float) -> bool:
+        drive = replace(sched.drive, torque_limit=limit)
+        ctl = DigitalController(d, sched.chair, drive, gyro=sched.gyro, noise=False)
+        run = recovery(sched.chair, speed, ctl, impulse_force=impulse_force, duration=duration, model=sched.model)
+        return run.settle_time_s is not None and run.peak_heading_error_deg <= max_heading_deg
+
+    hi = float(sched.drive.torque_limit)
+    if not ok(hi):
+        return math.inf
+    lo = 0.0
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        if ok(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
+@dataclass(frozen=True)
+class DecayAgreement:
+    """Linear prediction vs nonlinear fit of the slowest closed-loop decay rate.
+
+    Attributes
+    ----------
+    speed_m_s : float
+    predicted_1_s : float
+        Real part of the slowest closed-loop eigenvalue (1/s).
+    fitted_1_s : float
+        Envelope rate fitted to the simulated yaw rate (1/s).
+    relative_error : float
+        ``|fitted - predicted| / |predicted|``.
+    window_s : tuple of float
+        Fit window (s).
+    frequency_rad_s : float
+        Imaginary part of the slowest eigenvalue (rad/s).
+    """
+
+    speed_m_s: float
+    predicted_1_s: float
+    fitted_1_s: float
+    relative_error: float
+    window_s: tuple[float, float]
+    frequency_rad_s: float
+
+
+def decay_agreement(sched: Schedule, speed: float, *, impulse_force: float = THESIS_PUSH.force / 10.0,
+                    impulse_duration: float = THESIS_PUSH.duration, decades: float = 3.0) -> DecayAgreement:
+    """Does the linear closed loop predict the nonlinear decay rate?
+
+    Simulates the scheduled controller (noise-free, sampled every step of
+    the 1 ms WCHAIR scheme, no saturation reached) on the chair with its
+    Coulomb pin friction removed (the linear model's pins are frictionless;
+    friction would make small disturbances stick the casters), after a small
+    lateral impulse (default a tenth of the reference push).  The
+    envelope of the yaw rate is fitted (:func:`fit_decay_rate`) in a window
+    that starts when the next-slowest closed-loop mode has decayed
+    ``decades`` decades relative to the slowest and spans at least three
+    half-periods of the slowest (if oscillatory) or ``decades`` decades of
+    its decay.
+
+    Parameters
+    ----------
+    sched : Schedule
+    speed : float
+        m/s.
+    impulse_force, impulse_duration : float
+        N, s.
+    decades : float
+        Decades of separation and of fit span.
+
+    Returns
+    -------
+    DecayAgreement
+    """
+    speed = check_speed(speed)
+    d = sched.at(speed)
+    lam = closed_loop_poles(d)
+    slow = lam[0]
+    others = lam[np.abs(lam - np.conj(slow)) > 1e-9 * max(1.0, abs(slow))]
+    others = others[np.abs(others - slow) > 1e-9 * max(1.0, abs(slow))]
+    s2 = others.real.max() if others.size else 10 * slow.real
+    gap = max(slow.real - s2, 1e-6)
+    t0 = impulse_duration + decades * math.log(10) / gap
+    w = abs(slow.imag)
+    span = max(decades * math.log(10) / abs(slow.real), 3.5 * math.pi / w if w > 1e-6 else 0.0)
+    t1 = t0 + span
+    c = sched.chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    gyro = replace(sched.gyro, sample_rate_hz=1000.0)
+    ctl = DigitalController(d, c, sched.drive, gyro=gyro, noise=False, saturate=False)
+    res = _simulate(c, speed, ctl, impulse_force, impulse_duration, t1 + 0.1, 0.001, sched.model, "wchair")
+    fitted = fit_decay_rate(res.t, res.yaw_rate, t0, t1)
+    return DecayAgreement(speed, float(slow.real), fitted, abs(fitted - slow.real) / abs(slow.real),
+                          (t0, t1), float(w))
+
+
+def fit_decay_rate(t: np.ndarray, y: np.ndarray, t_start: float, t_end: float) -> float:
+    """Exponential rate of the envelope of ``y`` (1/s); see :func:`stability.signals.envelope_rate`.
+
+    Parameters
+    ----------
+    t, y : ndarray
+        Time (s) and signal.
+    t_start, t_end : float
+        Fit window (s).
+
+    Returns
+    -------
+    float
+        1/s (negative for a decaying signal).
+    """
+    return envelope_rate(t, y, t_start, t_end)

@@ -1,0 +1,251 @@
+"""The gain table (one frozen row per scheduled speed) and the assist's text tables."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..reference import HORIZON, THESIS_PUSH
+from ._format import fmt, json_float
+from .controller import DigitalController
+from .design import LoopMargins, closed_loop_poles, loop_margins
+from .plant import STATES
+from .recovery import RecoveryPair, recovery
+from .schedule import Schedule
+
+__all__ = ["GainRow", "gain_table", "format_table", "format_recovery", "PoleCurves", "pole_curves"]
+
+
+@dataclass(frozen=True)
+class GainRow:
+    """One scheduled speed: gains, poles, margins and (optionally) the nonlinear check.
+
+    Attributes
+    ----------
+    speed_m_s : float
+        Design speed (m/s).
+    design : str
+        ``"full-state"`` or ``"gyro"``.
+    gains : tuple of float
+        LQR gain on :data:`~stability.assist.plant.STATES` (N m of yaw moment
+        per SI unit of each state, ``Mz = -gains . x``).
+    wheel_torque_gains : tuple of float
+        The same as differential torque per wheel (N m per unit state).
+    estimator_gain : tuple of float or None
+        Gyro design: Kalman gain on ``v, r, eta, eta_dot, beta, beta_dot``
+        per rad/s of gyro innovation.
+    closed_loop_poles : tuple of complex
+        1/s, slowest first.
+    open_loop_max_real_1_s : float
+        Largest real part of the chair alone (1/s).
+    margins : LoopMargins
+        At the plant input.
+    peak_torque_Nm, peak_heading_error_deg, settle_time_s, peak_response_deg, saturated_fraction,
+    final_drift_deg_s : float or None
+        Nonlinear closed loop after the push (None when not checked).
+    checked : bool
+        The nonlinear check was run.
+    """
+
+    speed_m_s: float
+    design: str
+    gains: tuple[float, ...]
+    wheel_torque_gains: tuple[float, ...]
+    estimator_gain: tuple[float, ...] | None
+    closed_loop_poles: tuple[complex, ...]
+    open_loop_max_real_1_s: float
+    margins: LoopMargins
+    peak_torque_Nm: float | None = None
+    peak_heading_error_deg: float | None = None
+    settle_time_s: float | None = None
+    peak_response_deg: float | None = None
+    saturated_fraction: float | None = None
+    final_drift_deg_s: float | None = None
+    checked: bool = False
+
+    @property
+    def closed_loop_max_real_1_s(self) -> float:
+        """Largest closed-loop real part (1/s)."""
+        return float(max(p.real for p in self.closed_loop_poles))
+
+    @property
+    def stable(self) -> bool:
+        """All closed-loop poles in the open left half-plane."""
+        return self.closed_loop_max_real_1_s < 0
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON row (keys as documented in ``docs/assist.md``)."""
+        row: dict[str, Any] = {
+            "speed_m_s": self.speed_m_s,
+            "design": self.design,
+            "gains": list(self.gains),
+            "gain_states": list(STATES),
+            "wheel_torque_gains": list(self.wheel_torque_gains),
+            "estimator_gain": None if self.estimator_gain is None else list(self.estimator_gain),
+            "closed_loop_poles": [[float(p.real), float(p.imag)] for p in self.closed_loop_poles],
+            "stable": self.stable,
+            "closed_loop_max_real_1_s": self.closed_loop_max_real_1_s,
+            "open_loop_max_real_1_s": self.open_loop_max_real_1_s,
+            "margins": self.margins.to_dict(),
+            "peak_torque_Nm": self.peak_torque_Nm,
+            "peak_heading_error_deg": self.peak_heading_error_deg,
+            "settle_time_s": self.settle_time_s,
+        }
+        if self.checked:
+            row.update(peak_response_deg=self.peak_response_deg, saturated_fraction=self.saturated_fraction,
+                       final_drift_deg_s=json_float(self.final_drift_deg_s))
+        return row
+
+
+def gain_table(sched: Schedule, *, check: bool = True, impulse_force: float = THESIS_PUSH.force, seed: int = 0,
+               duration: float = HORIZON) -> list[GainRow]:
+    """One :class:`GainRow` per scheduled speed.
+
+    Parameters
+    ----------
+    sched : Schedule
+    check : bool
+        Run the nonlinear closed loop after the lateral push ``impulse_force``
+        for :data:`~stability.reference.THESIS_PUSH`'s duration (with
+        saturation, and for the gyro design noise and bias).
+    impulse_force : float
+        N.
+    seed : int
+        Gyro noise seed (plus the row index).
+    duration : float
+        s.
+
+    Returns
+    -------
+    list of GainRow
+    """
+    rows = []
+    for i, (s, d) in enumerate(zip(sched.speeds, sched.designs, strict=True)):
+        poles = closed_loop_poles(d)
+        kw: dict[str, Any] = {}
+        if check:
+            ctl = DigitalController(d, sched.chair, sched.drive, gyro=sched.gyro, seed=seed + i)
+            run = recovery(sched.chair, s, ctl, impulse_force=impulse_force, duration=duration, model=sched.model)
+            kw = dict(peak_torque_Nm=run.peak_torque_Nm, peak_heading_error_deg=run.peak_heading_error_deg,
+                      peak_response_deg=run.peak_response_deg, settle_time_s=run.settle_time_s,
+                      saturated_fraction=run.saturated_fraction, final_drift_deg_s=run.final_drift_deg_s,
+                      checked=True)
+        rows.append(GainRow(
+            speed_m_s=float(s), design=sched.kind, gains=tuple(float(k) for k in d.K[0]),
+            wheel_torque_gains=tuple(float(sched.drive.wheel_torque(sched.chair, k)) for k in d.K[0]),
+            estimator_gain=None if d.L is None else tuple(float(x) for x in d.L[:, 0]),
+            closed_loop_poles=tuple(complex(p) for p in poles),
+            open_loop_max_real_1_s=float(np.linalg.eigvals(d.plant.A6).real.max()),
+            margins=loop_margins(d), **kw))
+    return rows
+
+
+@dataclass(frozen=True, eq=False)
+class PoleCurves:
+    """What the eigenvalue figure draws besides the gain table.
+
+    Attributes
+    ----------
+    open_loop : tuple of ndarray
+        Eigenvalues of the chair alone at each design speed (1/s).
+    fine_speeds : ndarray
+        Speeds between the design speeds (m/s).
+    fine_max_real : ndarray
+        Largest closed-loop real part with the interpolated controller there (1/s).
+    """
+
+    open_loop: tuple[np.ndarray, ...]
+    fine_speeds: np.ndarray
+    fine_max_real: np.ndarray
+
+
+def pole_curves(sched: Schedule) -> PoleCurves:
+    """Open-loop eigenvalues at the design speeds and the interpolated closed loop between them.
+
+    Parameters
+    ----------
+    sched : Schedule
+
+    Returns
+    -------
+    PoleCurves
+    """
+    ol = tuple(np.linalg.eigvals(d.plant.A6) for d in sched.designs)
+    fine = np.linspace(sched.speeds[0], sched.speeds[-1], 4 * len(sched.speeds) - 3)
+    return PoleCurves(ol, fine, np.array([closed_loop_poles(sched.at(s)).real.max() for s in fine]))
+
+
+def format_table(sched: Schedule, rows: Sequence[GainRow]) -> str:
+    """The gain table as text.
+
+    Parameters
+    ----------
+    sched : Schedule
+    rows : sequence of GainRow
+
+    Returns
+    -------
+    str
+    """
+    c = sched.chair
+    w = sched.weights
+    head = [
+        f"Motor assist ({sched.kind} LQR) for {c.name}: model {sched.model}, "
+        f"wheel radius {sched.drive.wheel_radius:g} m, torque limit {sched.drive.torque_limit:g} N m per wheel",
+        f"Bryson weights: heading {w.max_heading_error_deg:g} deg, yaw rate "
+        f"{fmt(w.max_yaw_rate_deg_s)} deg/s, lateral velocity {fmt(w.max_lateral_velocity_m_s)} m/s, "
+        f"torque budget {w.budget(sched.drive):g} N m per wheel"
+        + (f"; gyro {sched.gyro.noise_density_deg_s:g} deg/s/rtHz, bias {sched.gyro.bias_deg_s:g} deg/s, "
+           f"{sched.gyro.sample_rate_hz:g} Hz" if sched.kind == "gyro" else f"; {sched.gyro.sample_rate_hz:g} Hz"),
+        "Gains: differential torque per wheel, tau = -(k . x), x = [v m/s, r rad/s, eta rad, eta_dot rad/s, "
+        "beta rad, beta_dot rad/s, psi rad]",
+        "",
+        f"{'U':>5s} {'k_v':>8s} {'k_r':>8s} {'k_eta':>8s} {'k_etad':>8s} {'k_beta':>8s} {'k_betad':>8s} "
+        f"{'k_psi':>8s} | {'OL max':>7s} {'CL max':>7s} {'GM up':>6s} {'GM low':>6s} {'PM':>5s} {'|1+L|':>5s} "
+        f"| {'tau pk':>6s} {'psi pk':>6s} {'settle':>6s}",
+        f"{'m/s':>5s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} | {'1/s':>7s} {'1/s':>7s} "
+        f"{'':>6s} {'':>6s} {'deg':>5s} {'':>5s} | {'N m':>6s} {'deg':>6s} {'s':>6s}",
+    ]
+    lines = list(head)
+    for r in rows:
+        m = r.margins
+        lines.append(
+            f"{r.speed_m_s:5.2f} " + " ".join(f"{x:8.4g}" for x in r.wheel_torque_gains)
+            + f" | {r.open_loop_max_real_1_s:7.3f} {r.closed_loop_max_real_1_s:7.3f} "
+            f"{fmt(m.gain_margin_upper, '.3g'):>6s} {fmt(m.gain_margin_lower, '.2g'):>6s} "
+            f"{fmt(m.phase_margin_deg, '.0f'):>5s} {fmt(m.disk_margin, '.2f'):>5s} | "
+            f"{fmt(r.peak_torque_Nm, '.1f'):>6s} {fmt(r.peak_heading_error_deg, '.2f'):>6s} "
+            f"{fmt(r.settle_time_s, '.2f'):>6s}"
+        )
+    stable = all(r.stable for r in rows)
+    lines += ["", "All scheduled closed loops stable." if stable else
+              "UNSTABLE closed loop at " + ", ".join(f"{r.speed_m_s:g}" for r in rows if not r.stable) + " m/s."]
+    return "\n".join(lines)
+
+
+def format_recovery(runs: Sequence[RecoveryPair]) -> str:
+    """The recovery table as text.
+
+    Parameters
+    ----------
+    runs : sequence of RecoveryPair
+
+    Returns
+    -------
+    str
+    """
+    lines = [f"{'U m/s':>6s} {'impulse':>8s} {'psi pk CL':>10s} {'resp pk':>8s} {'psi pk OL':>10s} {'tau pk':>7s} "
+             f"{'sat':>6s} {'settle s':>9s} {'drift':>7s} {'OL 10deg s':>10s}",
+             f"{'':>6s} {'':>8s} {'deg':>10s} {'deg':>8s} {'deg':>10s} {'N m':>7s} {'':>6s} {'':>9s} "
+             f"{'deg/s':>7s} {'':>10s}"]
+    for cl, ol in runs:
+        lines.append(
+            f"{cl.speed:6.2f} {cl.impulse_force:7.0f}N {cl.peak_heading_error_deg:10.2f} "
+            f"{cl.peak_response_deg:8.3f} {fmt(ol.peak_heading_error_deg if ol else None, '.1f'):>10s} "
+            f"{cl.peak_torque_Nm:7.1f} {cl.saturated_fraction:6.1%} "
+            f"{fmt(cl.settle_time_s, '.2f', 'no'):>9s} {fmt(json_float(cl.final_drift_deg_s), '.3f'):>7s} "
+            f"{fmt(ol.time_to_10deg_s if ol else None, '.2f', 'never'):>10s}")
+    return "\n".join(lines)
