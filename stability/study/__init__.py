@@ -16,6 +16,14 @@ from ..reference import THESIS_PUBLISHED
 from .conclusions import CONCLUSIONS, ConclusionCheck, check_conclusions
 from .criteria import Criterion, check_impulse, time_to_yaw_rate
 from .equal_instability import EqualInstability, equal_instability_speed, equal_instability_speeds, reference_time
+from .impulse import (
+    CriticalImpulse,
+    CriticalImpulseCurve,
+    critical_impulse,
+    critical_impulse_curve,
+    critical_impulses,
+    push_impulse,
+)
 from .maps import StabilityMap, disturbance_map, stability_map
 from .responses import LinearResponse, Response, ResponseSet, linear_impulse_response, trajectories, yaw_rate_responses
 from .runs import SCALAR_RUNS
@@ -59,4 +67,10 @@ __all__ = [
     "CONCLUSIONS",
     "check_conclusions",
     "THESIS",
+    "CriticalImpulse",
+    "CriticalImpulseCurve",
+    "critical_impulse",
+    "critical_impulses",
+    "critical_impulse_curve",
+    "push_impulse",
 ]

@@ -1,0 +1,327 @@
+"""Critical impulse: the smallest lateral push at the c.g. after which |yaw rate| reaches a level (issue 11).
+
+A disturbance-robust measure of directional stability: instead of timing the
+response to one push (Collins 1987, Figure 8-3a), ask how large a push must
+be for the chair to reach the level at all within the horizon.  Rationale:
+docs/studies.md.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .._validate import check_choice, check_model, check_positive
+from ..chair import Chair
+from ..reference import HORIZON, LEVEL, THESIS_PUSH, Push
+from . import runs
+from .criteria import Criterion
+
+__all__ = ["CriticalImpulse", "CriticalImpulseCurve", "critical_impulses", "critical_impulse",
+           "critical_impulse_curve", "push_impulse"]
+
+SCHEMES = ("wchair", "adaptive")
+
+
+def push_impulse(force: float, duration: float, scheme: str = "wchair", dt: float = 0.001) -> float:
+    """Impulse a push delivers in the simulator, N s.
+
+    Parameters
+    ----------
+    force : float
+        N.
+    duration : float
+        s.
+    scheme : {"wchair", "adaptive"}
+        The WCHAIR scheme applies the force while ``t <= duration``:
+        ``floor(duration/dt) + 1`` steps of ``dt`` (0.1 s is 101 steps of
+        1 ms, 1.01 x force x duration); the adaptive scheme for exactly ``duration``.
+    dt : float
+        Fixed step of the WCHAIR scheme, s.
+
+    Returns
+    -------
+    float
+        N s.
+    """
+    return Push(force, duration).impulse(dt if scheme == "wchair" else None)
+
+
+@dataclass(frozen=True)
+class CriticalImpulse:
+    """The smallest push after which ``|yaw rate|`` reaches ``level`` within ``horizon``.
+
+    Attributes
+    ----------
+    chair_name : str
+    mass : float
+        Chair mass, kg.
+    speed : float
+        m/s.
+    impulse_Ns : float or None
+        Critical impulse, N s (geometric middle of the final bracket); None
+        when even the largest push tried does not reach the level
+        (``status == "never"``), or when even the smallest does (``"below"``).
+    status : {"found", "never", "below"}
+    low_Ns, high_Ns : float
+        Final bracket, N s: the push ``low_Ns`` does not reach the level,
+        ``high_Ns`` does (for "never": the largest tried twice; for "below": 0 and the smallest).
+    largest_tried_Ns, smallest_tried_Ns : float
+        N s.
+    push : str
+        The push convention, e.g. ``"force for 0.1 s (101 steps of 1 ms), impulse = force x 0.101 s"``.
+    model, scheme : str
+    level : float
+        rad/s.
+    horizon : float
+        s.
+    runs : int
+        Simulations used for this speed.
+    """
+
+    chair_name: str
+    mass: float
+    speed: float
+    impulse_Ns: float | None
+    status: str
+    low_Ns: float
+    high_Ns: float
+    largest_tried_Ns: float
+    smallest_tried_Ns: float
+    push: str
+    model: str
+    scheme: str
+    level: float
+    horizon: float
+    runs: int
+
+    @property
+    def kick_m_s(self) -> float | None:
+        """The critical impulse per unit mass: the lateral velocity kick it gives the chair, m/s."""
+        return None if self.impulse_Ns is None else self.impulse_Ns / self.mass
+
+    @property
+    def bound_Ns(self) -> float:
+        """The impulse, or the end of the range it lies beyond (for tables and plots), N s."""
+        if self.impulse_Ns is not None:
+            return self.impulse_Ns
+        return self.largest_tried_Ns if self.status == "never" else self.smallest_tried_Ns
+
+    def describe(self, digits: int = 3) -> str:
+        """``"0.29 N s"``, ``"> 40 N s"`` or ``"< 1e-06 N s"``."""
+        if self.status == "found":
+            return f"{self.impulse_Ns:.{digits}g} N s"
+        if self.status == "never":
+            return f"> {self.largest_tried_Ns:.{digits}g} N s"
+        return f"< {self.smallest_tried_Ns:.{digits}g} N s"
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict (units in the keys), with ``kick_m_s``."""
+        return {"chair": self.chair_name, "mass_kg": self.mass, "speed_m_s": self.speed,
+                "impulse_Ns": self.impulse_Ns, "kick_m_s": self.kick_m_s, "status": self.status,
+                "low_Ns": self.low_Ns, "high_Ns": self.high_Ns, "largest_tried_Ns": self.largest_tried_Ns,
+                "smallest_tried_Ns": self.smallest_tried_Ns, "push": self.push, "model": self.model,
+                "scheme": self.scheme, "level_rad_s": self.level, "horizon_s": self.horizon, "runs": self.runs}
+
+
+@dataclass(frozen=True)
+class CriticalImpulseCurve:
+    """Critical impulse over speed (the boundary between pushes a chair survives and those it does not).
+
+    Attributes
+    ----------
+    points : tuple of CriticalImpulse
+        One per speed, in order.
+    """
+
+    points: tuple
+
+    @property
+    def speeds(self) -> np.ndarray:
+        """m/s."""
+        return np.array([p.speed for p in self.points])
+
+    @property
+    def impulses(self) -> np.ndarray:
+        """Critical impulse per speed, N s (nan where not found)."""
+        return np.array([np.nan if p.impulse_Ns is None else p.impulse_Ns for p in self.points])
+
+    @property
+    def kicks(self) -> np.ndarray:
+        """Critical lateral velocity kick per speed, m/s (nan where not found)."""
+        return np.array([np.nan if p.kick_m_s is None else p.kick_m_s for p in self.points])
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict: ``{"points": [...]}``."""
+        return {"points": [p.to_dict() for p in self.points]}
+
+
+def _initial_grid(lo: float, hi: float, factor: float) -> np.ndarray:
+    n = int(math.ceil(math.log(hi / lo) / math.log(factor) - 1e-9))
+    return hi / factor ** np.arange(n, -1, -1.0)
+
+
+def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: str = "exact",
+                      scheme: str = "wchair", duration: float = THESIS_PUSH.duration, level: float = LEVEL,
+                      horizon: float = HORIZON, dt: float = 0.001, max_impulse: float = 40.0,
+                      min_impulse: float = 1e-6, rel_tol: float = 0.005, candidates: int = 7,
+                      max_rounds: int = 8, **sim_options: Any) -> list[CriticalImpulse]:
+    """:func:`critical_impulse` for many runs: chair i at speed i (broadcast), one batch per round.
+
+    Round 0 simulates a geometric grid of pushes (factor 4) from
+    ``min_impulse`` to ``max_impulse`` for every (chair, speed); each later
+    round ``candidates`` pushes geometrically spaced inside every unresolved
+    bracket, all in one :func:`stability.simulate.simulate_batch` call, until
+    ``high/low - 1 <= rel_tol``.  The bracket is the lowest push that reaches
+    the level and the largest tried below it (assumes that reaching the level
+    is monotone in the push, as it is for the linear model).
+
+    Parameters
+    ----------
+    chairs : Chair or sequence of Chair
+    speeds : float or array_like
+        m/s; broadcast against ``chairs``.
+    model : {"exact", "thesis"}
+    scheme : {"wchair", "adaptive"}
+    duration : float
+        How long the constant force acts, s.
+    level : float
+        |yaw rate| level, rad/s.
+    horizon : float
+        Simulated time, s.
+    dt : float
+        Fixed step of the WCHAIR scheme, s.
+    max_impulse, min_impulse : float
+        Range of pushes tried, N s.
+    rel_tol : float
+        Relative width of the final bracket (0.005 = 0.5 %).
+    candidates : int
+        Pushes per bracket and round.
+    max_rounds : int
+    **sim_options
+        More :func:`stability.simulate.simulate` options (``stop_on_warnings`` is False unless given).
+
+    Returns
+    -------
+    list of CriticalImpulse
+    """
+    check_model(model)
+    check_choice("scheme", scheme, SCHEMES)
+    for name, value in (("duration", duration), ("level", level), ("horizon", horizon), ("dt", dt),
+                        ("max_impulse", max_impulse), ("min_impulse", min_impulse), ("rel_tol", rel_tol)):
+        check_positive(name, value)
+    if not min_impulse < max_impulse:
+        raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
+    chair_arr = np.atleast_1d(np.asarray(chairs, dtype=object)) if not isinstance(chairs, Chair) else np.array([chairs],
+                                                                                                              dtype=object)
+    chair_b, speed_b = np.broadcast_arrays(chair_arr, np.atleast_1d(np.asarray(speeds, dtype=float)))
+    run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
+    unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
+    crit = Criterion(level, horizon)
+    opts = runs.sim_options(model, scheme, (0.0, duration), dt if scheme == "wchair" else None, horizon, sim_options)
+    n = len(run_list)
+    tried: list[dict[float, bool]] = [{} for _ in range(n)]
+    lo = np.zeros(n)
+    hi = np.zeros(n)
+    open_ = np.ones(n, dtype=bool)
+    grid0 = _initial_grid(min_impulse, max_impulse, 4.0)
+    for rnd in range(max_rounds):
+        active = [i for i in range(n) if open_[i]]
+        if not active:
+            break
+        jobs = []
+        for i in active:
+            pushes = grid0 if rnd == 0 else np.geomspace(lo[i], hi[i], candidates + 2)[1:-1]
+            jobs += [(i, float(j)) for j in pushes]
+        opts["impulse_force"] = np.array([j / unit for _, j in jobs])
+        results = runs.simulate_runs([run_list[i][0] for i, _ in jobs], [run_list[i][1] for i, _ in jobs],
+                                     progress=False, **opts)
+        for (i, j), r in zip(jobs, results, strict=True):
+            tried[i][j] = crit.time(r) <= horizon
+        for i in active:
+            reach = sorted(j for j, ok in tried[i].items() if ok)
+            if not reach:
+                open_[i] = False
+                continue
+            first = reach[0]
+            below = [j for j, ok in tried[i].items() if not ok and j < first]
+            if not below:
+                open_[i] = False
+                lo[i], hi[i] = 0.0, first
+                continue
+            lo[i], hi[i] = max(below), first
+            open_[i] = hi[i] / lo[i] - 1.0 > rel_tol
+    steps = Push(1.0, duration).steps(dt)
+    convention = (f"constant force at the c.g. for {duration:g} s ({steps} steps of {dt * 1e3:g} ms: "
+                  f"impulse = force x {unit:.4g} s)" if scheme == "wchair" else
+                  f"constant force at the c.g. for {duration:g} s (impulse = force x {duration:g} s)")
+    out = []
+    for i, (c, s) in enumerate(run_list):
+        tr = tried[i]
+        if not any(tr.values()):
+            status, value, low, high = "never", None, max(tr), max(tr)
+        elif lo[i] == 0.0:
+            status, value, low, high = "below", None, 0.0, float(hi[i])
+        else:
+            status, value, low, high = "found", float(math.sqrt(lo[i] * hi[i])), float(lo[i]), float(hi[i])
+        out.append(CriticalImpulse(c.name, float(c.m), s, value, status, low, high, max(tr), min(tr), convention,
+                                   model, scheme, float(level), float(horizon), len(tr)))
+    return out
+
+
+def critical_impulse(chair: Chair, speed: float, *, model: str = "exact", scheme: str = "wchair",
+                     duration: float = THESIS_PUSH.duration, level: float = LEVEL, horizon: float = HORIZON,
+                     **options: Any) -> CriticalImpulse:
+    """Smallest lateral impulse at the c.g. after which ``|yaw rate|`` reaches ``level`` within ``horizon``.
+
+    The push is a constant force for ``duration`` s; its impulse is stated
+    in the result's ``push`` (the WCHAIR scheme applies the force for
+    ``floor(duration/dt) + 1`` steps).  Refined by bisection on the force to
+    ``rel_tol`` (0.5 %).
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        m/s.
+    model : {"exact", "thesis"}
+    scheme : {"wchair", "adaptive"}
+    duration : float
+        s.
+    level : float
+        rad/s.
+    horizon : float
+        s.
+    **options
+        See :func:`critical_impulses` (``dt``, ``max_impulse``, ``min_impulse``, ``rel_tol``, simulator options).
+
+    Returns
+    -------
+    CriticalImpulse
+        ``impulse_Ns`` (None when even ``max_impulse`` does not do it) and
+        ``kick_m_s`` (impulse / mass, m/s).
+    """
+    return critical_impulses(chair, speed, model=model, scheme=scheme, duration=duration, level=level,
+                             horizon=horizon, **options)[0]
+
+
+def critical_impulse_curve(chair: Chair, speeds: Any, **options: Any) -> CriticalImpulseCurve:
+    """:func:`critical_impulse` over speeds, every bisection round one batch for all speeds.
+
+    Parameters
+    ----------
+    chair : Chair
+    speeds : array_like
+        m/s.
+    **options
+        As in :func:`critical_impulses`.
+
+    Returns
+    -------
+    CriticalImpulseCurve
+    """
+    return CriticalImpulseCurve(tuple(critical_impulses(chair, speeds, **options)))
