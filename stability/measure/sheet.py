@@ -21,7 +21,7 @@ from ..chair import Chair
 from .anthropometry import user_yaw_inertia
 from .bodies import Body, combine
 from .pendulum import compound_pendulum_inertia, solid_cylinder_inertia
-from .scales import WheelLoads, cg_from_scales, cg_height_from_tilt
+from .scales import WheelLoads, cg_from_scales, cg_height_from_tilt, tilt_reading
 from .uncertainty import Distribution, Uncertainty
 from .units import STANDARD_GRAVITY, dimension_name, parse_unit
 
@@ -151,7 +151,8 @@ def _parse_reading(key: str, raw: Any) -> Reading:
     si, si_std = value * factor, std * factor
     if not lo < si <= hi:
         lo_txt = ">= 0" if lo < 0 else f"> {lo:g}"
-        raise _bad(key, shown, f"{lo_txt} and <= {hi:g} in SI units ({', '.join(dims)})")
+        hi_txt = f"{hi / STANDARD_GRAVITY:.4g} kg ({hi:g} N)" if "force" in dims else f"{hi:g} (SI: {dims[0]})"
+        raise _bad(key, shown, f"{lo_txt} and <= {hi_txt}")
     return Reading(key, si, si_std, shown + (f" +- {std:g}" if std else ""))
 
 
@@ -175,15 +176,18 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
     """Chair fields from SI readings ``r`` (pure; used for values and finite differences)."""
     g0 = STANDARD_GRAVITY
     geo = {k: r[f"geometry.{k}"] for k in ("wheelbase", "main_track", "caster_track", "trail")}
-    loaded = WheelLoads(*(r[f"scales.loaded.{w}"] for w in _WHEELS))
-    weight = r.get("scales.loaded.weight")
+    loaded = WheelLoads(*(r[f"scales.loaded.{w}"] / g0 for w in _WHEELS))  # kg
+    weight = r["scales.loaded.weight"] / g0 if "scales.loaded.weight" in r else None
     tol = float(opts.get("scales.loaded.tolerance", 0.02))
+    if weight is not None and not weight * (1 - tol) <= loaded.total <= weight * (1 + tol):
+        raise ValueError(f"sheet readings scales.loaded.* sum to {loaded.total:.4g} kg but scales.loaded.weight = "
+                         f"{weight:.4g} kg; valid range: {weight * (1 - tol):.4g} to {weight * (1 + tol):.4g} kg "
+                         f"(within scales.loaded.tolerance = {tol:.1%})")
     try:
-        cg = cg_from_scales(loaded, geo["wheelbase"], geo["main_track"], geo["caster_track"],
-                            expected_total=weight, tolerance=tol)
+        cg = cg_from_scales(loaded, geo["wheelbase"], geo["main_track"], geo["caster_track"])
     except ValueError as exc:
         raise ValueError(f"sheet readings scales.loaded.*: {exc}") from None
-    out: dict[str, float] = {"m": cg.total / g0, "s1": cg.x, "trail": geo["trail"]}
+    out: dict[str, float] = {"m": cg.total, "s1": cg.x, "trail": geo["trail"]}
     rear = opts.get("caster_position", "rear") == "rear"
     out["s2"] = geo["wheelbase"] - cg.x + (-geo["trail"] if rear else geo["trail"])
     if out["s2"] <= 0:
@@ -195,13 +199,16 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
         end = opts.get("tilt.end", "caster")
         rm, rc = r["geometry.main_wheel_radius"], r["geometry.caster_wheel_radius"]
         level = loaded.caster if end == "caster" else cg.total - loaded.caster
-        tilted = r["tilt.raised_left"] + r["tilt.raised_right"]
+        tilted = (r["tilt.raised_left"] + r["tilt.raised_right"]) / g0
         h = cg_height_from_tilt(cg.total, level, tilted, r["tilt.lift"], geo["wheelbase"],
                                 rm if end == "caster" else rc, rc if end == "caster" else rm)
-        if not 0 < h < 2:
-            raise _bad("tilt.raised_left + tilt.raised_right", f"{tilted / g0:.4g} kg",
-                       f"readings giving a c.g. height 0 < h < 2 m (got h = {h:.3g} m; "
-                       "did the load under the raised end fall?)")
+        if not max(rm, rc) < h < 2:
+            pivot, raised = (rm, rc) if end == "caster" else (rc, rm)
+            x_level = level * geo["wheelbase"] / cg.total
+            fall = level - tilt_reading(cg.total, x_level, 0.6, r["tilt.lift"], geo["wheelbase"], pivot, raised)
+            raise _bad("tilt.raised_left + tilt.raised_right", f"{tilted:.4g} kg",
+                       f"readings giving a c.g. height above the wheel axles ({max(rm, rc):.3g} m) and below "
+                       f"2 m (got h = {h:.3g} m; for h = 0.6 m the raised end's load would fall by {fall:.3g} kg)")
         out["h"] = h
     out.update(m_c=r["caster.mass"], l1=r["caster.l1"])
     try:
@@ -222,12 +229,12 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
     i_chair = k_t * r["inertia.chair_period"] ** 2 / (4 * math.pi**2) - i_fix
     if i_chair <= 0:
         raise _bad("inertia.chair_period", f"{r['inertia.chair_period']:g} s", "longer than inertia.fixture_period")
-    empty = WheelLoads(*(r[f"scales.empty.{w}"] for w in _WHEELS))
+    empty = WheelLoads(*(r[f"scales.empty.{w}"] / g0 for w in _WHEELS))
     cg_e = cg_from_scales(empty, geo["wheelbase"], geo["main_track"], geo["caster_track"])
-    m_user = (cg.total - cg_e.total) / g0
+    m_user = cg.total - cg_e.total
     if m_user <= 0:
-        raise _bad("scales.empty (sum)", f"{cg_e.total / g0:.4g} kg", f"< the loaded sum {cg.total / g0:.4g} kg")
-    m_chair = cg_e.total / g0
+        raise _bad("scales.empty (sum)", f"{cg_e.total:.4g} kg", f"< the loaded sum {cg.total:.4g} kg")
+    m_chair = cg_e.total
     x_user = (cg.total * cg.x - cg_e.total * cg_e.x) / (cg.total - cg_e.total)
     y_user = (cg.total * cg.y - cg_e.total * cg_e.y) / (cg.total - cg_e.total)
     both = combine([Body(m_chair, cg_e.x, cg_e.y, float(i_chair), "chair"),
@@ -335,7 +342,7 @@ def read_sheet(data: Mapping[str, Any]) -> SheetResult:
     try:
         chair = chair_mod.from_mapping({**fixed, **derived})
     except ValueError as exc:
-        raise ValueError(f"derived {exc}") from None
+        raise ValueError(f"sheet [chair] or derived {exc}") from None
     return SheetResult(chair, Uncertainty(tuple(dists)), tuple(rows), readings, tuple(notes))
 
 
