@@ -148,7 +148,7 @@ def _parse_reading(key: str, raw: Any) -> Reading:
         shown = f"{value:g} {unit}"
     if dim == "mass" and "force" in dims:  # scale readings in kg or lb: the weight of that mass
         factor *= STANDARD_GRAVITY
-    si, si_std = value * factor, std * factor
+    si, si_std = float(value) * factor, float(std) * factor  # type: ignore[arg-type]
     if not lo < si <= hi:
         lo_txt = ">= 0" if lo < 0 else f"> {lo:g}"
         hi_txt = f"{hi / STANDARD_GRAVITY:.4g} kg ({hi:g} N)" if "force" in dims else f"{hi:g} (SI: {dims[0]})"
