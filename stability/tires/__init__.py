@@ -1,11 +1,14 @@
-"""Treadmill tire data and the empirical tire-force model of Collins (1987), chapters 3-4 and Appendix B.
+"""Treadmill tire data and the empirical tire-force model of Collins (1987), chapters 3-4 and Appendices A-B.
 
 Cornering force eq (4-1) per whole degree of slip, interpolated as WCHAIR's
 MECHAN (Appendix C); cornering stiffness (Table 4-1); camber force eq (4-2);
-rolling resistance (Appendix B, eq 3-2). Forces in N, angles in deg. Modules:
-``data`` (tables and raw tests), ``fit`` (the cubic fits), ``ranges`` (the
-tested range and policies), ``model`` (:class:`Tire`), ``linear_tire``,
-``stack`` (:class:`TireStack`), ``registry`` (:func:`get`). See ``docs/tires.md``.
+rolling resistance (Appendix B, eq 3-2); a user's own tire data fitted the same
+way; one policy for loads and slips outside the fitted data. Forces in N,
+angles in deg. Modules: ``data`` (tables, raw tests), ``fit`` (the cubic fits),
+``ranges`` (fitted range, policies, notes), ``base``/``model`` (:class:`Tire`),
+``linear_tire``, ``stack`` (:class:`TireStack`), ``cart`` (Appendix A statics),
+``user`` (your own data), ``registry`` (:func:`get`, :func:`register`),
+``checks`` (chair checks). See ``docs/tires.md``.
 
 Examples
 --------
@@ -21,6 +24,9 @@ True
 
 from __future__ import annotations
 
+from .base import TireCapabilities
+from .cart import CartForces, CartGeometry, cart_forces
+from .checks import WHEELS, check_chair_tires, range_check
 from .data import (
     CASTER_TIRES,
     FZ_MAX_N,
@@ -36,35 +42,72 @@ from .data import (
 )
 from .fit import RefitResult, camber_coefficient_fit, fit_per_angle, refit
 from .linear_tire import AnyTire, LinearTire
-from .model import Tire
-from .ranges import POLICIES, Policy, TireRangeWarning, out_of_range
-from .registry import get, names
+from .model import THESIS_SOURCE, Tire
+from .ranges import (
+    POLICIES,
+    RANGE_POLICIES,
+    Policy,
+    RangeNote,
+    RangePolicy,
+    TireRangeWarning,
+    collect_notes,
+    get_policy,
+    out_of_range,
+    range_policy,
+    set_policy,
+)
+from .registry import get, names, register, registered, resolve_spec, unregister
 from .stack import TireStack
+from .user import FitQuality, TireData, load_tire_data, read_tire_csv, tire_from_data
 
 __all__ = [
     "AnyTire",
     "CASTER_TIRES",
+    "CartForces",
+    "CartGeometry",
     "FZ_MAX_N",
     "FZ_TESTED_MAX_1DEG_N",
+    "FitQuality",
     "LBF_TO_N",
     "LinearTire",
     "MAIN_TIRES",
     "POLICIES",
     "Policy",
+    "RANGE_POLICIES",
+    "RangeNote",
+    "RangePolicy",
     "RefitResult",
     "SLIP_MAX_DEG",
     "TABLE_4_1_FZ_N",
+    "THESIS_SOURCE",
     "Tire",
+    "TireCapabilities",
+    "TireData",
     "TireRangeWarning",
     "TireStack",
+    "WHEELS",
     "camber_coefficient_fit",
+    "cart_forces",
+    "check_chair_tires",
+    "collect_notes",
     "fit_per_angle",
     "get",
+    "get_policy",
+    "load_tire_data",
     "names",
     "out_of_range",
+    "range_check",
+    "range_policy",
     "raw_camber",
     "raw_cornering",
+    "read_tire_csv",
     "refit",
+    "register",
+    "registered",
+    "resolve_spec",
+    "set_policy",
     "table_3_2",
     "table_4_1",
+    "tire_from_data",
+    "unregister",
 ]

@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .model import _DEG_PER_RAD, Tire, _CamberForce
-from .ranges import POLICIES, Policy, _check_policy
+from .base import TireCapabilities, _CamberForce
+from .model import _DEG_PER_RAD, Tire
+from .ranges import POLICIES, Policy, _check_policy, resolve
 
 __all__ = ["AnyTire", "LinearTire"]
 
@@ -46,6 +48,17 @@ class LinearTire(_CamberForce):
         """``"linear:<C>"``."""
         return f"linear:{self.stiffness_N_per_deg:g}"
 
+    #: Nothing is out of range for a linear tire.
+    slip_max_deg = math.inf
+    fz_max_N = math.inf
+    source = "hypothetical linear tire"
+    is_thesis_tire = False
+
+    @property
+    def capabilities(self) -> TireCapabilities:
+        """Cornering and rolling (``f_r``, default 0) always; camber only when ``camber_coef`` is given."""
+        return TireCapabilities(name=self.name, camber=self.camber_coef is not None, rolling=True)
+
     @property
     def is_caster(self) -> bool:
         """Always False (a linear tire is not one of the tested casters)."""
@@ -81,16 +94,19 @@ class LinearTire(_CamberForce):
         s, f = np.broadcast_arrays(np.asarray(slip_deg, dtype=float), np.asarray(fz, dtype=float))
         return np.where(f > 0.0, -k * s, 0.0) + 0.0
 
-    def cornering_stiffness(self, fz: ArrayLike, *, include_intercept: bool = False) -> Any:
-        """``C * lateral_scale`` (N/deg) wherever ``fz > 0``."""
+    def cornering_stiffness(self, fz: ArrayLike, *, include_intercept: bool = False,
+                            policy: str | None = None, wheel: str | None = None) -> Any:
+        """``C * lateral_scale`` (N/deg) wherever ``fz > 0``; ``policy`` is only validated (no range)."""
+        resolve(policy)
         k = self.stiffness_N_per_deg * self.lateral_scale
         if isinstance(fz, (int, float)):
             return k if fz > 0.0 else 0.0
         return np.where(np.asarray(fz, dtype=float) > 0.0, k, 0.0)
 
-    def cornering_stiffness_per_rad(self, fz: ArrayLike, *, include_intercept: bool = False) -> Any:
+    def cornering_stiffness_per_rad(self, fz: ArrayLike, *, include_intercept: bool = False,
+                                    policy: str | None = None, wheel: str | None = None) -> Any:
         """Cornering stiffness in N/rad."""
-        return self.cornering_stiffness(fz) * _DEG_PER_RAD
+        return self.cornering_stiffness(fz, policy=policy) * _DEG_PER_RAD
 
     @property
     def has_camber_data(self) -> bool:
@@ -101,7 +117,8 @@ class LinearTire(_CamberForce):
     def camber_coefficient(self) -> float:
         """The given camber coefficient; ValueError when none was given."""
         if self.camber_coef is None:
-            raise ValueError(f"{self.name} has no camber coefficient; pass camber_coefficient= explicitly")
+            raise ValueError(f"tire {self.name!r} (a linear tire) has no camber coefficient; "
+                             "pass camber_coefficient= explicitly")
         return self.camber_coef
 
     def rolling_resistance(self, fz: ArrayLike) -> Any:

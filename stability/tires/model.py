@@ -7,19 +7,24 @@ camber (eq 4-2) and rolling resistance (Appendix B, eq 3-2).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .base import TireCapabilities, _CamberForce
 from .data import CASTER_TIRES, FZ_MAX_N, MAIN_TIRES, SLIP_MAX_DEG, Coef3
 from .fit import camber_coefficient_fit
-from .ranges import POLICIES, Policy, TireRangeWarning, _check_policy, _range_message
+from .ranges import POLICIES, Policy, TireRangeWarning, _check_policy, _range_message, limit_load
 
-__all__ = ["Tire"]
+__all__ = ["THESIS_SOURCE", "Tire"]
+
+#: :attr:`Tire.source` of the seven tires tested in the thesis.
+THESIS_SOURCE = "Collins (1987), Appendix B"
 
 _DEG_PER_RAD = 180.0 / math.pi
 
@@ -58,56 +63,6 @@ def _segment_force(segments: tuple, s: NDArray[np.float64], fz: NDArray[np.float
     return c
 
 
-class _CamberForce:
-    """Eq (4-2), shared by :class:`Tire` and :class:`LinearTire` (which supply
-    ``lateral_force`` and ``camber_coefficient``)."""
-
-    if TYPE_CHECKING:
-        @property
-        def camber_coefficient(self) -> float: ...
-
-        def lateral_force(self, slip_deg: ArrayLike, fz: ArrayLike, *, policy: Policy = "clamp",
-                          warn: bool = True) -> Any: ...
-
-    def camber_force(
-        self,
-        camber_deg: ArrayLike,
-        fz: ArrayLike,
-        camber_coefficient: float | None = None,
-        *,
-        policy: Policy = "clamp",
-        warn: bool = True,
-    ) -> Any:
-        """Camber force (N), eq (4-2): ``f_c * F_y(alpha = gamma, fz)``.
-
-        ``F_y`` is the cornering force of :meth:`lateral_force` at a slip
-        angle equal to the camber angle (``f_c * C * gamma`` for a
-        :class:`LinearTire`). The force has the sign of
-        ``camber_deg`` (it acts toward the side to which the wheel leans);
-        the caller maps it onto the vehicle axes. Differences from WCHAIR,
-        which uses ``POLYFT(TIRY, INT(CAMANG), FZ)`` unscaled: here the
-        camber angle is interpolated and ``lateral_scale`` applies.
-
-        Parameters
-        ----------
-        camber_deg : float or array_like
-            Camber angle(s), deg.
-        fz : float or array_like
-            Normal force(s), N.
-        camber_coefficient : float, optional
-            ``f_c``; defaults to :attr:`camber_coefficient`.
-        policy, warn
-            As for :meth:`lateral_force`.
-
-        Returns
-        -------
-        float or ndarray
-            N.
-        """
-        fc = self.camber_coefficient if camber_coefficient is None else float(camber_coefficient)
-        return -fc * self.lateral_force(camber_deg, fz, policy=policy, warn=warn)
-
-
 @dataclass(frozen=True)
 class Tire(_CamberForce):
     """A tested tire: cubic fits (4-1) per integer slip angle.
@@ -130,6 +85,17 @@ class Tire(_CamberForce):
     lateral_scale, rolling_scale : float
         Multipliers of the lateral and rolling forces (WCHAIR's TYMOD/CYMOD
         and TXMOD/CXMOD, chapter 7).
+    slip_max_deg, fz_max_N : float
+        The fitted range: largest slip angle (deg) and normal load (N) with
+        data (8 deg and WCHAIR's 450 N for the thesis tires; a user tire's own,
+        :func:`stability.tires.load_tire_data`). Outside it the policies apply.
+    source : str
+        Where the data come from (the thesis, or a user's file).
+    camber_coef : float or None
+        A given camber coefficient ``f_c`` (user tires); the thesis main tires
+        use :func:`camber_coefficient_fit`.
+    fit_quality : FitQuality or None
+        Fit statistics per slip angle of a user tire (None for the thesis tires).
     """
 
     name: str
@@ -139,6 +105,11 @@ class Tire(_CamberForce):
     f_r: float | None
     lateral_scale: float = 1.0
     rolling_scale: float = 1.0
+    slip_max_deg: float = SLIP_MAX_DEG
+    fz_max_N: float = FZ_MAX_N
+    source: str = THESIS_SOURCE
+    camber_coef: float | None = None
+    fit_quality: Any = field(default=None, repr=False, compare=False)
     _array: NDArray[np.float64] = field(init=False, repr=False, compare=False)
     _segments: tuple = field(init=False, repr=False, compare=False)
 
@@ -159,9 +130,33 @@ class Tire(_CamberForce):
 
     # -- identity ---------------------------------------------------------
     @property
+    def is_thesis_tire(self) -> bool:
+        """True for the seven tires tested in the thesis (Table 3-1)."""
+        return self.source == THESIS_SOURCE
+
+    @property
     def is_caster(self) -> bool:
         """True for the caster tires ER and PU."""
-        return self.name in CASTER_TIRES
+        return self.is_thesis_tire and self.name in CASTER_TIRES
+
+    @property
+    def capabilities(self) -> TireCapabilities:
+        """Which data this tire has (cornering always; camber and rolling resistance maybe)."""
+        return TireCapabilities(name=self.name, camber=self.has_camber_data, rolling=self.rolling is not None)
+
+    def segment_arrays(self) -> tuple[NDArray[np.float64], ...]:
+        """The force law as plain arrays, for compiled kernels.
+
+        Returns
+        -------
+        tuple of 6 ndarray
+            ``a0, b0, c0, da, db, dc``, each of length 8 (read-only): segment
+            ``k`` (slip ``k..k+1`` deg) has coefficients ``a0[k] + t da[k]`` etc.
+            with ``t = s - k``, and the force magnitude (before ``lateral_scale``)
+            is ``F = ((c fz + b) fz + a) fz`` with ``fz = max(F_z, 0)``, ``k =
+            min(floor(s), 7)`` -- exactly :func:`_segment_force`.
+        """
+        return self._segments
 
     @property
     def coefficients(self) -> NDArray[np.float64]:
@@ -228,31 +223,19 @@ class Tire(_CamberForce):
         s = slip if slip >= 0.0 else -slip
         if fz <= 0.0 or s == 0.0:
             return 0.0
-        bad_s = s > SLIP_MAX_DEG
-        bad_f = fz > FZ_MAX_N
+        smax, fmax = self.slip_max_deg, self.fz_max_N
+        bad_s = s > smax
+        bad_f = fz > fmax
         if bad_s or bad_f:
             if policy == "raise":
-                if bad_s:
-                    raise ValueError(
-                        f"slip angle {slip!r} deg is outside the fitted range "
-                        f"[-{SLIP_MAX_DEG:g}, {SLIP_MAX_DEG:g}] deg (tire {self.name})"
-                    )
-                raise ValueError(
-                    f"normal force {fz!r} N is outside the fitted range "
-                    f"[0, {FZ_MAX_N:g}] N (tire {self.name})"
-                )
+                self._refuse(slip if bad_s else fz, bad_s, 1)
             if policy == "clamp":
                 if bad_s:
-                    s = SLIP_MAX_DEG
+                    s = smax
                 if bad_f:
-                    fz = FZ_MAX_N
+                    fz = fmax
             if warn:
-                warnings.warn(
-                    f"Tire {self.name} lateral_force: "
-                    + _range_message(int(bad_s), int(bad_f), 1, policy),
-                    TireRangeWarning,
-                    stacklevel=3,
-                )
+                self._warn(int(bad_s), int(bad_f), 1, policy)
         i = int(s)
         if i > 7:
             i = 7
@@ -267,40 +250,39 @@ class Tire(_CamberForce):
         _check_policy(policy)
         slip, f = np.broadcast_arrays(np.asarray(slip_deg, dtype=float), np.asarray(fz, dtype=float))
         s = np.abs(slip)
-        bad_s = s > SLIP_MAX_DEG
-        bad_f = f > FZ_MAX_N
+        bad_s = s > self.slip_max_deg
+        bad_f = f > self.fz_max_N
         n_s, n_f = int(bad_s.sum()), int(bad_f.sum())
         if n_s or n_f:
             if policy == "raise":
-                if n_s:
-                    v = float(slip[bad_s].flat[0])
-                    raise ValueError(
-                        f"slip angle {v!r} deg is outside the fitted range "
-                        f"[-{SLIP_MAX_DEG:g}, {SLIP_MAX_DEG:g}] deg (tire {self.name}; "
-                        f"{n_s} such point(s))"
-                    )
-                v = float(f[bad_f].flat[0])
-                raise ValueError(
-                    f"normal force {v!r} N is outside the fitted range [0, {FZ_MAX_N:g}] N "
-                    f"(tire {self.name}; {n_f} such point(s))"
-                )
+                self._refuse(float((slip[bad_s] if n_s else f[bad_f]).flat[0]), bool(n_s), n_s or n_f)
             if policy == "clamp":
-                s = np.minimum(s, SLIP_MAX_DEG)
-                f = np.minimum(f, FZ_MAX_N)
+                s = np.minimum(s, self.slip_max_deg)
+                f = np.minimum(f, self.fz_max_N)
             if warn:
-                warnings.warn(
-                    f"Tire {self.name} lateral_force: "
-                    + _range_message(n_s, n_f, int(s.size), policy),
-                    TireRangeWarning,
-                    stacklevel=3,
-                )
+                self._warn(n_s, n_f, int(s.size), policy)
         force = _segment_force(self._segments, s, f)
         if self.lateral_scale != 1.0:
             force = force * self.lateral_scale
         return np.where(slip > 0.0, -force, force) + 0.0
 
+    def _refuse(self, value: float, is_slip: bool, n: int) -> None:
+        """Raise the one-line ValueError of ``policy="raise"`` (slip or load ``value``)."""
+        more = f"; {n} such point(s)" if n > 1 or not isinstance(value, float) else ""
+        if is_slip:
+            smax = self.slip_max_deg
+            raise ValueError(f"slip angle {value!r} deg is outside the fitted range "
+                             f"[-{smax:g}, {smax:g}] deg (tire {self.name}{more})")
+        raise ValueError(f"normal force {value!r} N is outside the fitted range "
+                         f"[0, {self.fz_max_N:g}] N (tire {self.name}{more})")
+
+    def _warn(self, n_s: int, n_f: int, n: int, policy: str) -> None:
+        msg = _range_message(n_s, n_f, n, policy, self.slip_max_deg, self.fz_max_N)
+        warnings.warn(f"Tire {self.name} lateral_force: {msg}", TireRangeWarning, stacklevel=4)
+
     # -- stiffness ------------------------------------------------------------
-    def cornering_stiffness(self, fz: ArrayLike, *, include_intercept: bool = False) -> Any:
+    def cornering_stiffness(self, fz: ArrayLike, *, include_intercept: bool = False,
+                            policy: str | None = None, wheel: str | None = None) -> Any:
         """Cornering stiffness ``C_alpha`` (N/deg) at normal force ``fz``.
 
         The slope of the interpolated force curve between 0 and 1 deg, i.e.
@@ -309,7 +291,14 @@ class Tire(_CamberForce):
         Parameters
         ----------
         fz : float or array_like
-            Normal force, N (not range-limited; ``fz <= 0`` gives 0).
+            Normal force, N (``fz <= 0`` gives 0). Above :attr:`fz_max_N` the
+            tire-range policy applies (:mod:`stability.tires.ranges`).
+        policy : {"warn", "raise", "clamp"}, optional
+            Tire-range policy; default the one in force
+            (:func:`stability.tires.get_policy`, ``"warn"``: the cubic as is,
+            with a warning and a :class:`RangeNote`).
+        wheel : str, optional
+            Named in the range note (e.g. ``"caster_left"``).
         include_intercept : bool
             Add the discarded constant ``d`` of the 1 deg fit. Table 4-1 was
             evidently computed with it: with ``True`` all 42 published values
@@ -324,6 +313,7 @@ class Tire(_CamberForce):
         """
         a, b, c = self.rows[1]
         d = self.intercepts[1] if include_intercept else 0.0
+        fz = limit_load(self, fz, policy, wheel)
         if isinstance(fz, (int, float)):
             fz = float(fz)
             if fz <= 0.0:
@@ -333,29 +323,32 @@ class Tire(_CamberForce):
         out = (f * (a + f * (b + f * c)) + d) * self.lateral_scale
         return np.where(f > 0.0, out, 0.0)
 
-    def cornering_stiffness_per_rad(self, fz: ArrayLike, *, include_intercept: bool = False) -> Any:
-        """Cornering stiffness in N/rad (:meth:`cornering_stiffness` * 180/pi)."""
-        c = self.cornering_stiffness(fz, include_intercept=include_intercept)
+    def cornering_stiffness_per_rad(self, fz: ArrayLike, *, include_intercept: bool = False,
+                                    policy: str | None = None, wheel: str | None = None) -> Any:
+        """Cornering stiffness in N/rad (:meth:`cornering_stiffness` * 180/pi; same arguments)."""
+        c = self.cornering_stiffness(fz, include_intercept=include_intercept, policy=policy, wheel=wheel)
         return c * _DEG_PER_RAD
 
     # -- camber -----------------------------------------------------------------
     @property
     def has_camber_data(self) -> bool:
-        """True for the five main tires (camber tested, Figures 3-7a..e)."""
-        return self.name in MAIN_TIRES
+        """True for the five thesis main tires (Figures 3-7a..e) or when ``camber_coef`` is given."""
+        return self.camber_coef is not None or (self.is_thesis_tire and self.name in MAIN_TIRES)
 
     @property
     def camber_coefficient(self) -> float:
         """Camber coefficient ``f_c`` of eq (4-2), from Figure 4-3's method.
 
-        See :func:`camber_coefficient_fit`. Raises ValueError for the casters,
-        which were not tested for camber.
+        See :func:`camber_coefficient_fit`; ``camber_coef`` when given. Raises
+        ValueError for the casters, which were not tested for camber, and for
+        user tires loaded without one.
         """
+        if self.camber_coef is not None:
+            return self.camber_coef
         if not self.has_camber_data:
-            raise ValueError(
-                f"tire {self.name!r} is a caster and has no camber data (Appendix B tests "
-                f"camber only for {MAIN_TIRES}); pass camber_coefficient= explicitly"
-            )
+            what = ("is a caster and has no camber data (Appendix B tests camber only for "
+                    f"{MAIN_TIRES})" if self.is_thesis_tire else f"({self.source}) has no camber coefficient")
+            raise ValueError(f"tire {self.name!r} {what}; pass camber_coefficient= explicitly")
         return camber_coefficient_fit(self.name)
 
     # -- rolling resistance -----------------------------------------------------
@@ -373,10 +366,7 @@ class Tire(_CamberForce):
             coefficients for every caster).
         """
         if self.rolling is None:
-            raise ValueError(
-                f"tire {self.name!r} has no rolling-resistance data (chapter 3: only one PU "
-                "caster was available); WCHAIR uses the ER caster coefficients"
-            )
+            raise ValueError(self._no_rolling())
         a, b, c = self.rolling
         if isinstance(fz, (int, float)):
             fz = float(fz)
@@ -394,8 +384,14 @@ class Tire(_CamberForce):
         Not scaled by ``rolling_scale``. Raises ValueError for PU.
         """
         if self.f_r is None:
-            raise ValueError(f"tire {self.name!r} has no rolling-resistance data (Table 3-2)")
+            raise ValueError(self._no_rolling())
         return self.f_r
+
+    def _no_rolling(self) -> str:
+        if self.is_thesis_tire:
+            return (f"tire {self.name!r} has no rolling-resistance data (chapter 3, Table 3-2: only one PU "
+                    "caster was available); WCHAIR uses the ER caster coefficients")
+        return f"tire {self.name!r} ({self.source}) has no rolling-resistance data; pass rolling_coefficient="
 
     # -- scaling ----------------------------------------------------------------
     def scaled(self, lateral: float = 1.0, rolling: float = 1.0) -> Tire:
@@ -404,12 +400,5 @@ class Tire(_CamberForce):
         Chapter 7's TYMOD/CYMOD (lateral) and TXMOD/CXMOD (rolling); factors
         compound with any existing scaling.
         """
-        return Tire(
-            name=self.name,
-            rows=self.rows,
-            intercepts=self.intercepts,
-            rolling=self.rolling,
-            f_r=self.f_r,
-            lateral_scale=self.lateral_scale * float(lateral),
-            rolling_scale=self.rolling_scale * float(rolling),
-        )
+        return dataclasses.replace(self, lateral_scale=self.lateral_scale * float(lateral),
+                                   rolling_scale=self.rolling_scale * float(rolling))

@@ -40,6 +40,12 @@ class TireStack:
         self._offset = (8 * np.arange(k, dtype=np.intp))[:, None]
         scale = np.array([t.lateral_scale for t in tires], dtype=float)[:, None]
         self._scale = None if np.all(scale == 1.0) else scale
+        # each row's fitted range (scalars when all tires share the thesis range)
+        smax = np.array([t.slip_max_deg for t in tires], dtype=float)[:, None]
+        fmax = np.array([t.fz_max_N for t in tires], dtype=float)[:, None]
+        uniform = bool(np.all(smax == SLIP_MAX_DEG) and np.all(fmax == FZ_MAX_N))
+        self._smax: float | NDArray[np.float64] = SLIP_MAX_DEG if uniform else smax
+        self._fmax: float | NDArray[np.float64] = FZ_MAX_N if uniform else fmax
         self.tires = tires
         self.names = tuple(t.name for t in tires)
 
@@ -52,13 +58,13 @@ class TireStack:
         """
         s = np.abs(slip_deg)
         if policy == "clamp":
-            np.minimum(s, SLIP_MAX_DEG, out=s)
-            f = np.minimum(fz, FZ_MAX_N)
+            np.minimum(s, self._smax, out=s)
+            f = np.minimum(fz, self._fmax)
         elif policy == "extrapolate":
             f = fz
         else:
             _check_policy(policy)
-            bad = (s > SLIP_MAX_DEG) | (fz > FZ_MAX_N)
+            bad = (s > self._smax) | (fz > self._fmax)
             if bad.any():   # the offending row's tire raises its own error
                 j = int(np.argwhere(bad)[0][0])
                 self.tires[j].lateral_force(slip_deg[j], fz[j], policy="raise")
