@@ -7,10 +7,13 @@ effects the linear model leaves out) the simulator's own linearisation.
 
 from __future__ import annotations
 
+import math
+
 from .linear import StabilitySummary
+from .linear.intervals import LinearIntervals
 from .validation import linearisation_check, omitted_effects
 
-__all__ = ["simulator_checks", "summary_dict", "interpretation", "format_summary"]
+__all__ = ["simulator_checks", "summary_dict", "interpretation", "format_summary", "intervals_dict"]
 
 
 def _first(crossings, direction: str | None = None):
@@ -38,15 +41,53 @@ def simulator_checks(s: StabilitySummary) -> list:
     return rows
 
 
-def summary_dict(s: StabilitySummary, checks: list | None = None) -> dict:
-    """The JSON structure printed by ``--json`` (``checks``: :func:`simulator_checks`)."""
+def _pair(lo: float, hi: float) -> list[float | None]:
+    return [None if math.isnan(lo) else lo, None if math.isnan(hi) else hi]
+
+
+def intervals_dict(iv: LinearIntervals) -> dict:
+    """The ``uncertainty`` block of the JSON summary.
+
+    Parameters
+    ----------
+    iv : LinearIntervals
+
+    Returns
+    -------
+    dict
+        ``samples``, ``seed``, ``level``, ``method``, ``dominant_parameters``
+        (name, variance share) and the delta-method rate intervals as a check.
+    """
+    return {"samples": iv.samples, "seed": iv.seed, "level": iv.level,
+            "method": "Monte Carlo (seeded); central percentile intervals",
+            "dominant_parameters": [[n, s] for n, s in iv.dominant_parameters],
+            "delta_method_rate_1_s_intervals": [list(p) for p in iv.rate_delta],
+            "note": "Coulomb pin friction has no linearisation: it does not move the linear results"}
+
+
+def summary_dict(s: StabilitySummary, checks: list | None = None, intervals: LinearIntervals | None = None) -> dict:
+    """The JSON structure printed by ``--json``.
+
+    Parameters
+    ----------
+    s : StabilitySummary
+    checks : list, optional
+        Rows of :func:`simulator_checks`.
+    intervals : LinearIntervals, optional
+        With it, each divergence row gains ``rate_1_s_interval``, each critical
+        speed a ``critical_speed_m_s_interval``, and the top level ``uncertainty``.
+
+    Returns
+    -------
+    dict
+    """
     zw = s.zero_width
 
     def cross(lst):
         return [{"speed_m_s": c.speed, "kind": c.kind, "direction": c.direction,
                  "eigenvalue": [c.eigenvalue.real, c.eigenvalue.imag]} for c in lst]
 
-    return {
+    d = {
         "chair": s.chair.name,
         "model": s.model,
         "caster_position": s.chair.caster_position,
@@ -70,6 +111,16 @@ def summary_dict(s: StabilitySummary, checks: list | None = None) -> dict:
         "omitted_effects": list(omitted_effects(s.chair)),
         "simulator_linearisation": list(checks or []),
     }
+    if intervals is not None:
+        out = d
+        for row, (lo, hi) in zip(out["free_casters"]["divergence"], intervals.rate, strict=True):
+            row["rate_1_s_interval"] = [lo, hi]
+        for key, trip in (("zero_width", intervals.zero_width_critical), ("locked_casters", intervals.locked_critical),
+                          ("free_casters", intervals.free_critical)):
+            out[key]["critical_speed_m_s_interval"] = _pair(trip[0], trip[1])
+            out[key]["critical_speed_exists_fraction"] = trip[2]
+        out["uncertainty"] = intervals_dict(intervals)
+    return d
 
 
 def _fmt(x, unit: str = "", digits: int = 3) -> str:
@@ -101,8 +152,21 @@ def interpretation(s: StabilitySummary) -> str:
     return msg + "."
 
 
-def format_summary(s: StabilitySummary, checks: list | None = None) -> str:
-    """Readable table (``checks``: :func:`simulator_checks`)."""
+def format_summary(s: StabilitySummary, checks: list | None = None, intervals: LinearIntervals | None = None) -> str:
+    """The summary as readable text.
+
+    Parameters
+    ----------
+    s : StabilitySummary
+    checks : list, optional
+        Rows of :func:`simulator_checks`.
+    intervals : LinearIntervals, optional
+        Intervals over the parameter uncertainty, printed after the point values.
+
+    Returns
+    -------
+    str
+    """
     d = summary_dict(s, checks)
     lines = [
         f"Chair: {s.chair.name} ({s.chair.caster_position} casters; main tire {s.chair.main_tire}, "
@@ -135,5 +199,30 @@ def format_summary(s: StabilitySummary, checks: list | None = None) -> str:
         for r in checks:
             lines.append(f"  {r['speed_m_s']:12.3g}{r['rate_linear_1_s']:14.4f}{r['rate_simulator_1_s']:17.4f}"
                          f"{100 * r['relative_difference']:+11.1f}%")
+    if intervals is not None:
+        lines += _interval_lines(intervals)
     lines += ["", interpretation(s)]
     return "\n".join(lines)
+
+
+def _interval_lines(iv: LinearIntervals) -> list[str]:
+    pct = f"{100 * iv.level:g} %"
+
+    def crit(name: str, trip: tuple[float, float, float]) -> str:
+        lo, hi, frac = trip
+        if frac == 0:
+            return f"  {name:42s} none in range in every draw"
+        rng = f"{lo:.4g} to {hi:.4g} m/s"
+        return f"  {name:42s} {rng}" + ("" if frac == 1 else f"   (exists in {100 * frac:.0f} % of draws)")
+
+    out = ["", f"With the parameter uncertainty ({pct} intervals, {iv.samples} Monte Carlo draws, seed {iv.seed}):",
+           crit("zero-width critical speed, locked casters", iv.zero_width_critical),
+           crit("full-width critical speed, locked casters", iv.locked_critical),
+           crit("full-width critical speed, free casters", iv.free_critical),
+           f"  {'speed (m/s)':>12s}{'rate interval (1/s)':>24s}{'delta method (1/s)':>24s}"]
+    for u, (lo, hi), (dlo, dhi) in zip(iv.speeds, iv.rate, iv.rate_delta, strict=True):
+        out.append(f"  {u:12.3g}{f'{lo:.4f} to {hi:.4f}':>24s}{f'{dlo:.4f} to {dhi:.4f}':>24s}")
+    top = [f"{n} ({100 * sh:.0f} %)" for n, sh in iv.dominant_parameters[:3] if sh > 0.005]
+    out.append("  the variance comes mostly from: " + (", ".join(top) if top else "no parameter (no spread)")
+               + "; Coulomb pin friction has no linearisation and moves none of these")
+    return out

@@ -31,6 +31,8 @@ from ..cli import (
     run,
 )
 from ..linear import analyse
+from ..linear.intervals import MAX_SAMPLES, linear_intervals
+from ..measure.uncertainty import load_uncertainty
 from ..summary import format_summary, simulator_checks, summary_dict
 
 __all__ = ["main", "build_parser"]
@@ -44,23 +46,37 @@ def build_parser() -> argparse.ArgumentParser:
                    help="speeds for the divergence table, START:STOP:STEP or a list (m/s)")
     p.add_argument("--max-speed", type=float, default=30.0,
                    help="upper end of the critical-speed search (m/s, default 30)")
+    p.add_argument("--uncertainty", metavar="FILE",
+                   help="TOML file of parameter distributions: print 95 %% intervals (Monte Carlo) next to the values")
+    p.add_argument("--samples", type=int, default=1000, help="Monte Carlo draws with --uncertainty (default 1000)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
+    p.add_argument("--level", type=float, default=0.95, help="interval coverage (default 0.95)")
     add_json_options(p)
     return p
 
 
 def _run(args: argparse.Namespace) -> int:
-    check_outputs({"--json-file": args.json_file}, {"--chair": args.chair})
+    check_outputs({"--json-file": args.json_file}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
+    if args.uncertainty and not 1 <= args.samples <= MAX_SAMPLES:
+        raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES}")
+    if not 0 < args.level < 1:
+        raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
     c = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
     if not (0.01 < args.max_speed <= 100.0):
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
     checks = simulator_checks(summary)
+    intervals = None
+    if args.uncertainty:
+        intervals = linear_intervals(c, load_uncertainty(args.uncertainty), model=args.model, speeds=speeds,
+                                     max_speed=args.max_speed, samples=args.samples, seed=args.seed, level=args.level)
     if args.json or args.json_file:
-        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed}
-        emit_json({**json_header(c, args.model, options), **summary_dict(summary, checks)}, args)
+        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed,
+                   "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed, "level": args.level}
+        emit_json({**json_header(c, args.model, options), **summary_dict(summary, checks, intervals)}, args)
     if not args.json:
-        print(format_summary(summary, checks))
+        print(format_summary(summary, checks, intervals))
     return 0
 
 

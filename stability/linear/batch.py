@@ -1,0 +1,142 @@
+"""Linear results for many chairs at once: growth rates and first critical speeds, vectorised over chairs.
+
+Parameters and tire stiffnesses are packed once per chair; the state matrices of
+every (speed, chair) pair then come from one broadcast call of the generated
+equations, and critical speeds are refined by bisection on all chairs together.
+Used by Monte Carlo uncertainty propagation and parameter studies.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from .._validate import check_casters, check_model
+from ..chair import Chair
+from ..models import linear_matrices
+from ..params import parameters
+from .model import _assemble, _stiffness_for
+
+__all__ = ["ChairBatch"]
+
+
+class ChairBatch:
+    """N chairs packed for the linear model (parameters and static stiffnesses computed once).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        The chairs (N >= 1).
+    model : {"exact", "thesis"}
+        Equation variant.
+    """
+
+    def __init__(self, chairs: Sequence[Chair], model: str = "exact") -> None:
+        if not len(chairs):
+            raise ValueError("chairs: expected at least one chair")
+        self.model = check_model(model)
+        self.n = len(chairs)
+        self._p = parameters(list(chairs))
+        self._stiffness = _stiffness_for(list(chairs))
+
+    def state_matrices(self, speeds, casters: str = "free") -> np.ndarray:
+        """State matrices at speeds of shape (..., N) or broadcastable to it.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Forward speeds, m/s, broadcast against the N chairs (last axis).
+        casters : {"free", "locked"}
+
+        Returns
+        -------
+        ndarray
+            Shape ``broadcast(speeds, (N,)) + (n, n)``.
+        """
+        check_casters(casters)
+        U = np.asarray(speeds, dtype=float)
+        M, K, Bm = linear_matrices(self._p, U, self._stiffness, variant=self.model, casters=casters)
+        return _assemble(M, K, Bm, casters)[0]
+
+    def max_real_part(self, speeds, casters: str = "free") -> np.ndarray:
+        """Largest real part of the eigenvalues (1/s) at ``speeds`` (broadcast against the chairs).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Speeds, m/s, shape (..., N) or broadcastable.
+        casters : {"free", "locked"}
+
+        Returns
+        -------
+        ndarray
+            Shape ``broadcast(speeds, (N,))``.
+        """
+        return np.linalg.eigvals(self.state_matrices(speeds, casters)).real.max(axis=-1)
+
+    def growth_rates(self, speeds: Sequence[float], casters: str = "free") -> np.ndarray:
+        """Growth rate of the least stable mode of every chair at every speed (1/s).
+
+        Parameters
+        ----------
+        speeds : sequence of float
+            K speeds, m/s.
+        casters : {"free", "locked"}
+
+        Returns
+        -------
+        ndarray
+            Shape (N, K).
+        """
+        U = np.asarray(speeds, dtype=float)[:, None]
+        return self.max_real_part(np.broadcast_to(U, (len(U), self.n)), casters).T
+
+    def first_critical_speed(self, grid: Sequence[float], casters: str = "free", xtol: float = 1e-6) -> np.ndarray:
+        """Lowest speed on ``grid`` where each chair turns unstable (largest real part crosses zero upwards).
+
+        Parameters
+        ----------
+        grid : sequence of float
+            Increasing search speeds, m/s.
+        casters : {"free", "locked"}
+        xtol : float
+            Bisection tolerance, m/s.
+
+        Returns
+        -------
+        ndarray
+            Shape (N,), m/s; NaN where no destabilising crossing lies in the grid's range
+            (stable throughout, or unstable from the first grid speed).
+        """
+        U = np.asarray(grid, dtype=float)
+        a = self.max_real_part(np.broadcast_to(U[:, None], (len(U), self.n)), casters)  # (G, N)
+        up = (a[:-1] < 0) & (a[1:] >= 0)
+        has = up.any(axis=0)
+        k = np.argmax(up, axis=0)
+        lo = np.where(has, U[k], np.nan)
+        hi = np.where(has, U[np.minimum(k + 1, len(U) - 1)], np.nan)
+        idx = np.flatnonzero(has)
+        if idx.size == 0:
+            return np.full(self.n, np.nan)
+        lo_i, hi_i = lo[idx], hi[idx]
+        sub = _SubBatch(self, idx)
+        while np.max(hi_i - lo_i) > xtol:
+            mid = 0.5 * (lo_i + hi_i)
+            am = sub.max_real_part(mid, casters)
+            neg = am < 0
+            lo_i = np.where(neg, mid, lo_i)
+            hi_i = np.where(neg, hi_i, mid)
+        out = np.full(self.n, np.nan)
+        out[idx] = 0.5 * (lo_i + hi_i)
+        return out
+
+
+class _SubBatch(ChairBatch):
+    """The chairs of ``parent`` at positions ``idx`` (no repacking)."""
+
+    def __init__(self, parent: ChairBatch, idx: np.ndarray) -> None:  # noqa: D107
+        self.model = parent.model
+        self.n = len(idx)
+        self._p = type(parent._p)(*(np.asarray(f)[idx] for f in parent._p))
+        self._stiffness = {k: np.asarray(v)[idx] for k, v in parent._stiffness.items()}

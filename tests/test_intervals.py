@@ -1,0 +1,86 @@
+"""Linear results over many chairs and with parameter uncertainty (issue 14)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from stability import linear
+from stability.chair import preset
+from stability.critical_speed import main
+from stability.linear.batch import ChairBatch
+from stability.linear.intervals import linear_intervals
+from stability.measure.uncertainty import loads_uncertainty
+
+EJ = preset("ej-premier")
+
+
+def test_batch_rates_equal_one_chair_at_a_time():
+    chairs = [EJ.replace(m=m, s1=s1) for m, s1 in [(80.0, 0.30), (95.0, 0.345), (120.0, 0.40)]]
+    rates = ChairBatch(chairs).growth_rates([0.5, 0.75, 2.0])
+    for c, row in zip(chairs, rates, strict=True):
+        np.testing.assert_allclose(row, [d.rate for d in linear.divergence(c, [0.5, 0.75, 2.0])], rtol=1e-12)
+
+
+def test_batch_locked_critical_speed_equals_zero_width_closed_form():
+    """The full-width locked-caster model of a symmetric chair has the zero-width critical speed (eq 5-15),
+    sqrt(-g s / k_us), which the bisection over the batch must find to its tolerance."""
+    chairs = [EJ.replace(m=m) for m in (80.0, 95.0, 110.0)]
+    crit = ChairBatch(chairs).first_critical_speed(np.geomspace(0.01, 30, 300), "locked", xtol=1e-7)
+    closed = [linear.zero_width(c).critical_speed for c in chairs]
+    np.testing.assert_allclose(crit, closed, rtol=1e-6)
+
+
+UNC = """
+[s1]
+distribution = "normal"
+std = {s1}
+[i_z]
+distribution = "normal"
+std = {iz}
+"""
+
+
+def test_zero_uncertainty_gives_exactly_the_point_values():
+    iv = linear_intervals(EJ, loads_uncertainty(UNC.format(s1=0.0, iz=0.0)), speeds=(0.5, 0.75), samples=20)
+    rates = [d.rate for d in linear.divergence(EJ, [0.5, 0.75])]
+    for (lo, hi), r in zip(iv.rate, rates, strict=True):
+        assert lo == hi == pytest.approx(r, rel=1e-13)
+    zw = linear.zero_width(EJ).critical_speed
+    assert iv.zero_width_critical[0] == iv.zero_width_critical[1] == pytest.approx(zw, rel=1e-13)
+
+
+def test_monte_carlo_matches_delta_method_on_a_nearly_linear_case():
+    """Small normal spreads: the rate is nearly linear in s1 and I_z, so the MC 95 % interval equals
+    value +- 1.96 sigma of the delta method within sampling error (about 5 % of the width for 4000 draws)."""
+    iv = linear_intervals(EJ, loads_uncertainty(UNC.format(s1=0.002, iz=0.05)), speeds=(0.75,), samples=4000)
+    (lo, hi), (dlo, dhi) = iv.rate[0], iv.rate_delta[0]
+    width = dhi - dlo
+    assert abs(lo - dlo) < 0.05 * width and abs(hi - dhi) < 0.05 * width
+    assert {n for n, _ in iv.dominant_parameters} == {"s1", "i_z"}
+
+
+def test_cli_intervals_and_keys(tmp_path, capsys):
+    f = tmp_path / "u.toml"
+    f.write_text(UNC.format(s1=0.01, iz=0.3))
+    assert main(["--uncertainty", str(f), "--samples", "200", "--speeds", "0.5,0.75", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    row = d["free_casters"]["divergence"][1]
+    lo, hi = row["rate_1_s_interval"]
+    assert lo < row["rate_1_s"] < hi
+    assert d["uncertainty"]["samples"] == 200 and d["uncertainty"]["level"] == 0.95
+    lo, hi = d["locked_casters"]["critical_speed_m_s_interval"]
+    assert lo < d["locked_casters"]["critical_speed_m_s"] < hi
+    assert d["free_casters"]["critical_speed_m_s_interval"] == [None, None]
+    assert not math.isnan(d["uncertainty"]["dominant_parameters"][0][1])
+
+
+def test_cli_refuses_too_many_samples(tmp_path, capsys):
+    f = tmp_path / "u.toml"
+    f.write_text(UNC.format(s1=0.01, iz=0.3))
+    assert main(["--uncertainty", str(f), "--samples", "10000000"]) == 2
+    err = capsys.readouterr().err
+    assert "--samples" in err and len(err.strip().splitlines()) == 1
