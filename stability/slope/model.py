@@ -156,7 +156,7 @@ class SlopeModel:
         g1, g2, gn = g
         fixed = loads is not None
         N = loads if fixed else sl.normal_loads(p, 0.0, 0.0, g1, g2, gn, ce, se, cb, sb)
-        for _ in range(100):
+        for it in range(400):
             FAy, FBy, FDy, FEy = self.lateral(slips, N)
             RA, RB, RD, RE = self.rolling_forces(N, (vAx, vBx, vDx, vEx))
             F = (RA, FAy, RB, FBy, RD + drive[0], FDy, RE + drive[1], FEy)
@@ -165,7 +165,9 @@ class SlopeModel:
             fx, fy = fw.tire_resultant(F, ce, se, cb, sb)
             new = sl.normal_loads(p, fx / p.m + g1, fy / p.m + g2, g1, g2, gn, ce, se, cb, sb)
             done = max(abs(a - b) for a, b in zip(new, N, strict=True)) < tol
-            N = new
+            # under-relax when plain iteration does not contract (large slips, high c.g.)
+            w = 1.0 if it < 20 else 0.25
+            N = tuple(b + w * (a - b) for a, b in zip(new, N, strict=True))
             if done:
                 break
         else:  # pragma: no cover - the load transfer is a strong contraction
