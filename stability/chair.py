@@ -332,7 +332,16 @@ def _presets() -> dict[str, dict[str, Any]]:
     # s1 + s2 drops by only 5 cm: s2 = .175 + .05 = .225 m.
     revised = dict(name="revised", s1=0.245, s2=0.225, trail=0.06)
     return {"ej-premier": ej, "ej-premier-front-caster": front, "revised": revised,
-            "power-fwd": dict(POWER_FWD_FIELDS)}
+            "power-fwd": dict(POWER_FWD_FIELDS),
+            # Typical manual front-caster chair of the cross-slope treadmill study (Richter et
+            # al. 2007): 75 kg user + 13 kg lightweight chair, 24-inch pneumatic rear wheels,
+            # 5-inch polyurethane casters, c.g. 7 cm ahead of the rear axle (~80 % rear load).
+            # Every value and its source: docs/slopes.md.
+            "manual-front-caster": dict(
+                name="manual-front-caster", caster_position="front", d1=0.28, d2=0.28, s1=0.07,
+                s2=0.36, trail=0.045, l1=0.03, t1=0.21, t2=0.21, h=0.65, m=88.0, m_c=0.5, i_z=5.2,
+                i_zp=0.002, pin_friction_left=0.03, pin_friction_right=0.03, main_tire="EJP",
+                caster_tire="PU")}
 
 
 #: Field values of the ``power-fwd`` preset: a front-wheel-drive power chair
