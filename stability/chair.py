@@ -29,6 +29,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from typing import Any
 
+from . import tires
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
@@ -194,16 +196,12 @@ class Chair:
 
     def main_tire_model(self):
         """The main tire, scaled by TYMOD/TXMOD (:class:`stability.tires.Tire`)."""
-        from . import tires
-
         return tires.get(self.main_tire).scaled(
             lateral=self.main_lateral_scale, rolling=self.main_rolling_scale
         )
 
     def caster_tire_model(self):
         """The caster tire, scaled by CYMOD/CXMOD (:class:`stability.tires.Tire`)."""
-        from . import tires
-
         return tires.get(self.caster_tire).scaled(
             lateral=self.caster_lateral_scale, rolling=self.caster_rolling_scale
         )
@@ -304,13 +302,13 @@ def _validate(c: Chair) -> None:
         raise bad("trail", c.trail, f"< s1 + s2 = {c.s1 + c.s2:g} m (zero or negative wheelbase)")
     if c.trail > 0.5:
         raise bad("trail", c.trail, "0 to 0.5 m (a longer trail leaves no wheelbase to speak of)")
-    from . import tires
-
     for name in ("main_tire", "caster_tire"):
         try:
             tires.get(getattr(c, name))
         except (KeyError, ValueError) as exc:
-            raise bad(name, getattr(c, name), f"one of {list(tires.names())} or 'linear:<N/deg>'") from exc
+            raise bad(name, getattr(c, name),
+                      f"one of {list(tires.names())}, a registered name, 'linear:<N/deg>' or 'file:<csv>'") from exc
+    tires.check_chair_tires(c)
 
 
 # ---------------------------------------------------------------------------
@@ -451,6 +449,8 @@ def load(path: str | os.PathLike[str]) -> Chair:
             raise ValueError(f"chair file {str(path)!r} has keys at the top level ({others}) and a [chair] table; "
                              "put every field in one place")
         data = data["chair"]
+    base = os.path.dirname(os.path.abspath(path))
+    data = {k: (tires.resolve_spec(v, base) if k in ("main_tire", "caster_tire") else v) for k, v in data.items()}
     return from_mapping(data)
 
 

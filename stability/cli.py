@@ -22,9 +22,9 @@ from typing import Any, NoReturn
 
 import numpy as np
 
-from . import __version__
+from . import __version__, tires
 from . import chair as chair_mod
-from .statics import check_static_loads
+from .statics import check_static_loads, static_loads
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_json_options", "load_chair", "parse_speeds",
            "check_directory", "check_outputs", "json_header", "emit_json", "error", "run", "MAX_SPEEDS"]
@@ -87,6 +87,10 @@ def add_chair_options(parser: argparse.ArgumentParser, default: str = "ej-premie
                         help=f"preset name ({', '.join(chair_mod.preset_names())}) or TOML file (default {default})")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="override a chair field (repeatable; fields listed below)")
+    parser.add_argument("--tire-range", choices=tires.RANGE_POLICIES, default="warn",
+                        help="tire data outside the fitted slip and load range: warn (compute by extrapolation "
+                             "and note it in the output; default), clamp (hold the force at the range's edge) "
+                             "or raise (refuse)")
     parser.epilog = ((parser.epilog + "\n\n") if parser.epilog else "") + _fields_epilog()
 
 
@@ -113,6 +117,7 @@ def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
     changes = dict(chair_mod.parse_assignment(a) for a in assignments)
     c = c.replace(**changes) if changes else c
     check_static_loads(c)
+    tires.range_check(c, static_loads(c))
     return c
 
 
@@ -240,6 +245,10 @@ def emit_json(data: Any, args: argparse.Namespace) -> None:
     """Print ``data`` as JSON when ``--json`` was given; write it atomically to ``--json-file`` when given."""
     from .output import atomic_write_text
 
+    notes = getattr(args, "tire_notes", None)
+    if isinstance(data, dict) and notes is not None:
+        data = {**data, "tire_range": {"policy": getattr(args, "tire_range", None),
+                                       "notes": [n.to_dict() for n in _distinct(notes)]}}
     text = json.dumps(data, indent=2, allow_nan=False, default=_json_default)
     if getattr(args, "json", False):
         print(text)
@@ -268,6 +277,26 @@ def error(exc: BaseException, prefix: str = "") -> int:
 COMPUTATION_ERRORS: tuple[type[BaseException], ...] = (ArithmeticError, np.linalg.LinAlgError, RuntimeError)
 
 
+def _with_tire_policy(body: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
+    """Run ``body`` under the ``--tire-range`` policy; print each tire-range note once, as one line."""
+    import warnings
+
+    with tires.range_policy(getattr(args, "tire_range", None) or "warn"), tires.collect_notes() as notes, \
+            warnings.catch_warnings():
+        warnings.simplefilter("ignore", tires.TireRangeWarning)
+        args.tire_notes = notes
+        status = body(args) or 0
+    for note in _distinct(notes):
+        print(f"note: {note}", file=sys.stderr)
+    return status
+
+
+def _distinct(notes: list) -> list:
+    """Notes without the wheel-less repeats of a note already given per wheel."""
+    placed = {(n.tire, n.quantity, round(n.value, 6)) for n in notes if n.wheel}
+    return [n for n in notes if n.wheel or (n.tire, n.quantity, round(n.value, 6)) not in placed]
+
+
 def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
         body: Callable[[argparse.Namespace], int | None], *,
         errors: tuple[type[BaseException], ...] = (ValueError,)) -> int:
@@ -286,7 +315,7 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     args = parser.parse_args(argv)
     debug = bool(getattr(args, "debug", False))
     try:
-        return body(args) or 0
+        return _with_tire_policy(body, args)
     except BrokenPipeError:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
