@@ -1,0 +1,104 @@
+"""``python -m stability.slope``: holding moment, equilibrium and uncorrected turn on a cross slope."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections.abc import Sequence
+
+from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, run
+from ..output import atomic_write_text
+from .equilibrium import HandRim, drive_report, solve
+from .uncorrected import uncorrected_path
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = OneLineErrorParser(prog="python -m stability.slope", description=__doc__)
+    add_chair_options(p)
+    p.add_argument("--cross-slope", type=float, required=True, metavar="DEG",
+                   help="cross slope (deg), positive falling to the right")
+    p.add_argument("--grade", type=float, default=0.0, metavar="DEG", help="grade (deg), uphill + (default 0)")
+    p.add_argument("--speed", type=float, required=True, metavar="U", help="speed along the path (m/s)")
+    p.add_argument("--drive", choices=("auto", "handrim", "motor"), default="auto",
+                   help="report hand-rim forces or motor torques (auto: motor for power-* chairs)")
+    p.add_argument("--wheel-radius", type=float, default=HandRim.wheel_radius, help="hand-rim drive: wheel radius (m)")
+    p.add_argument("--handrim-radius", type=float, default=HandRim.handrim_radius, help="hand-rim radius (m)")
+    out = p.add_mutually_exclusive_group()
+    out.add_argument("--json", action="store_true", help="print JSON to stdout")
+    out.add_argument("--json-file", metavar="F", help="write JSON to F (atomically)")
+    return p
+
+
+def _finite(x):
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, (list, tuple)):
+        return [_finite(v) for v in x]
+    if isinstance(x, dict):
+        return {k: _finite(v) for k, v in x.items()}
+    return x
+
+
+def _body(a: argparse.Namespace) -> int:
+    check_directory(a.json_file, "--json-file")
+    chair = load_chair(a.chair, a.set)
+    eq = solve(chair, a.cross_slope, a.speed, a.grade)
+    per_deg_eq = eq if a.cross_slope != 0 else solve(chair, 1.0, a.speed, a.grade)
+    per_deg = abs(per_deg_eq.holding_moment) / abs(per_deg_eq.cross_slope_deg)
+    kind = a.drive if a.drive != "auto" else ("motor" if chair.name.startswith("power") else "handrim")
+    drive = drive_report(chair, eq, kind, HandRim(a.wheel_radius, a.handrim_radius) if kind == "handrim" else None)
+    path = uncorrected_path(chair, eq) if a.cross_slope != 0 else None
+    data = {
+        "chair": chair.name, "cross_slope_deg": eq.cross_slope_deg, "grade_deg": eq.grade_deg, "speed_m_s": eq.speed,
+        "holding_yaw_moment_N_m": abs(eq.holding_moment),
+        "holding_yaw_moment_signed_N_m": eq.holding_moment,
+        "holding_yaw_moment_N_m_per_deg": per_deg,
+        "holding_yaw_moment_closed_form_N_m": abs(eq.closed_form),
+        "holding_yaw_moment_pin_friction_range_N_m": list(eq.friction_range),
+        "uncorrected_turn": path.turn if path else "none",
+        "uncorrected_turn_statics": eq.uncorrected_turn,
+        "uncorrected_path": path.to_dict() if path else None,
+        "heading_deg": eq.heading_deg, "caster_angle_left_deg": eq.eta_deg, "caster_angle_right_deg": eq.beta_deg,
+        "slip_angles_deg": dict(zip(("caster_left", "caster_right", "main_left", "main_right"), eq.slips_deg,
+                                    strict=True)),
+        "lateral_forces_N": dict(zip(("caster_left", "caster_right", "main_left", "main_right"),
+                                     eq.lateral_forces, strict=True)),
+        "normal_loads_N": dict(zip(("caster_left", "caster_right", "main_left", "main_right"), eq.loads, strict=True)),
+        "drive_forces": drive,
+        "problems": list(eq.problems),
+    }
+    data = _finite(data)
+    if a.json or a.json_file:
+        text = json.dumps(data, indent=2) + "\n"
+        if a.json_file:
+            atomic_write_text(a.json_file, text)
+        else:
+            sys.stdout.write(text)
+        return 0
+    turn = data["uncorrected_turn"]
+    print(f"{chair.name}: cross slope {eq.cross_slope_deg:g} deg, grade {eq.grade_deg:g} deg, {eq.speed:g} m/s")
+    print(f"  holding yaw moment {abs(eq.holding_moment):.3f} N m ({per_deg:.3f} N m/deg); with Coulomb pin "
+          f"friction any of {eq.friction_range[0]:.3f} .. {eq.friction_range[1]:.3f} N m (signed, clockwise +)")
+    extra = (f", heading {path.heading_change_deg:+.1f} deg (downhill +) after {path.report_time:.2f} s"
+             if path else "")
+    print(f"  uncorrected: turns {turn}{extra}")
+    print(f"  crab {eq.heading_deg:+.3f} deg, casters {eq.eta_deg:+.3f} / {eq.beta_deg:+.3f} deg; loads "
+          + ", ".join(f"{x:.1f}" for x in eq.loads) + " N (A, B, D, E)")
+    if kind == "handrim":
+        print(f"  hand-rim forces left {drive['handrim_force_left_N']:.2f} N, "
+              f"right {drive['handrim_force_right_N']:.2f} N (difference {drive['handrim_force_difference_N']:+.2f} N)")
+    else:
+        print(f"  motor torques left {drive['motor_torque_left_N_m']:.2f}, right {drive['motor_torque_right_N_m']:.2f}"
+              f" N m (differential {drive['differential_torque_N_m']:+.2f} N m)")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point; returns the exit status."""
+    return run(_parser(), argv, _body)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
