@@ -141,10 +141,16 @@ def _root(model: SlopeModel, speed: float, pins=(0.0, 0.0), guess=None):
         c_main = model.chair.main_tire_model().cornering_stiffness_per_rad(p.m * p.g / 4)
         a = p.m * g2 / (2 * max(float(c_main), 1.0))
         guess = (-a, a, a)
-    sol = root(lambda z: _state(model, speed, z, pins)[0], np.asarray(guess, dtype=float), method="hybr",
-               options={"xtol": 1e-13})
-    ok = sol.success and float(np.max(np.abs(sol.fun))) < 1e-8 and float(np.max(np.abs(sol.x))) < 0.5
-    return sol.x, ok
+    def fun(z):
+        return _state(model, speed, z, pins)[0]
+
+    x = np.asarray(guess, dtype=float)
+    for start in (x, 0.5 * x, np.zeros(3), 2.0 * x):  # hybr can stall on the kinks of the tire fits
+        sol = root(fun, start, method="hybr", options={"xtol": 1e-13})
+        ok = float(np.max(np.abs(sol.fun))) < 1e-8 and float(np.max(np.abs(sol.x))) < 0.5
+        if ok:
+            return sol.x, True
+    return sol.x, False
 
 
 def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:

@@ -1,0 +1,184 @@
+"""Slope model: zero slope recovers the level equations, mirror symmetry, frictionless statics,
+turn directions, grades, command line (issue 12)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from stability import chair as chair_mod
+from stability import linear, statics
+from stability.models import full_width as fw
+from stability.models import slope as msl
+from stability.params import parameters
+from stability.slope import equilibrium as eqm
+from stability.slope.__main__ import main
+from stability.slope.grade import forward_gravity, grade_run
+from stability.slope.linear import state_matrix
+from stability.slope.model import Plane
+from stability.slope.uncorrected import uncorrected_path
+
+RNG = np.random.default_rng(12)
+PRESETS = ("ej-premier", "ej-premier-front-caster", "revised", "power-fwd", "manual-front-caster")
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_zero_slope_accelerations_equal_level_model(name):
+    p = parameters(chair_mod.preset(name))
+    for _ in range(5):
+        x = RNG.normal(size=23)
+        eta, beta = x[3], x[4]
+        args = (1 + abs(x[0]), x[1], x[2], math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta), x[5], x[6])
+        F = tuple(50 * x[7:15])
+        ref = fw.accelerations(p, *args, *F, x[15], x[16], x[17], x[18], "exact")
+        got = msl.accelerations(p, *args, F, x[15], x[16], 0.0, 0.0, Fy_ext=x[17], Mz_ext=x[18])
+        np.testing.assert_allclose(got, ref, rtol=1e-11, atol=1e-11)
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_zero_slope_loads_are_eq_6_25(name):
+    p = parameters(chair_mod.preset(name))
+    for _ in range(5):
+        fx, fy, eta, beta = 100 * RNG.normal(), 100 * RNG.normal(), 0.5 * RNG.normal(), 0.5 * RNG.normal()
+        trig = (math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta))
+        ref = statics.normal_loads(p, fx, fy, *trig)
+        got = msl.normal_loads(p, fx / p.m, fy / p.m, 0.0, 0.0, p.g, *trig)
+        np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-9)
+
+
+def test_slope_loads_use_in_plane_weight():
+    # standing still (a = 0) on a cross slope: tire forces -m g_in, loads = eq 6-25 with those forces and m gn
+    c = chair_mod.preset("ej-premier")
+    p = parameters(c)
+    g1, g2, gn = Plane(4.0, 3.0).gravity(p.g)
+    got = msl.normal_loads(p, 0.0, 0.0, g1, g2, gn)
+    ref = statics.normal_loads(p._replace(g=gn), -p.m * g1, -p.m * g2)
+    np.testing.assert_allclose(got, ref, rtol=1e-12)
+    assert sum(got) == pytest.approx(p.m * p.g * math.cos(math.radians(4)) * math.cos(math.radians(3)))
+    assert got[3] > got[2] and got[1] > got[0]  # the downhill (right) wheels carry more
+
+
+def test_caster_weight_generalized_forces():
+    p = parameters(chair_mod.preset("ej-premier"))
+    eta, beta, g1, g2 = 0.3, -0.2, 0.4, 0.9
+    Q = msl.gravity_generalized_forces(p, math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta), g1, g2)
+    assert Q[0] == pytest.approx(p.m * g1) and Q[1] == pytest.approx(p.m * g2)
+    # moment of the caster weight about its pin: (-l1 a1) x m_c g . c3
+    assert Q[3] == pytest.approx(-p.m_c * p.l1 * (g2 * math.cos(eta) - g1 * math.sin(eta)))
+    assert Q[4] == pytest.approx(-p.m_c * p.l1 * (g2 * math.cos(beta) - g1 * math.sin(beta)))
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_zero_slope_equilibrium_is_straight_running(name):
+    c = chair_mod.preset(name)
+    e = eqm.solve(c, 0.0, 0.75)
+    assert abs(e.holding_moment) < 1e-9 and abs(e.heading_deg) < 1e-9 and abs(e.eta_deg) < 1e-9
+    s = statics.static_loads(c)
+    np.testing.assert_allclose(e.loads, (s["caster_left"], s["caster_right"], s["main_left"], s["main_right"]),
+                               rtol=1e-12)
+
+
+@pytest.mark.parametrize("name", ("ej-premier", "ej-premier-front-caster"))
+def test_zero_slope_linearisation_equals_linear_model(name):
+    c = chair_mod.preset(name)
+    A = state_matrix(c, Plane(0.0), 0.75)
+    ref = linear.state_matrices(c, [0.75])[0]
+    np.testing.assert_allclose(A, ref, rtol=1e-6, atol=1e-6 * np.abs(ref).max())
+
+
+@pytest.mark.parametrize("name", ("ej-premier", "manual-front-caster", "power-fwd"))
+def test_mirror_symmetry(name):
+    c = chair_mod.preset(name)
+    a, b = eqm.solve(c, 3.0, 0.8), eqm.solve(c, -3.0, 0.8)
+    assert a.holding_moment == pytest.approx(-b.holding_moment, rel=1e-9)
+    assert a.heading_deg == pytest.approx(-b.heading_deg, rel=1e-7)
+    assert a.eta_deg == pytest.approx(-b.beta_deg, rel=1e-7) and a.beta_deg == pytest.approx(-b.eta_deg, rel=1e-7)
+    np.testing.assert_allclose(a.loads, (b.loads[1], b.loads[0], b.loads[3], b.loads[2]), rtol=1e-9)
+    np.testing.assert_allclose(a.drive_forces, b.drive_forces[::-1], rtol=1e-7, atol=1e-9)
+    np.testing.assert_allclose(a.friction_range, [-x for x in b.friction_range[::-1]], rtol=1e-7)
+
+
+@pytest.mark.parametrize("name", PRESETS)
+@pytest.mark.parametrize("phi", (1.0, 4.0))
+def test_frictionless_statics(name, phi):
+    c = chair_mod.preset(name)
+    e = eqm.solve(c, phi, 0.75)
+    # the solution satisfies the full equations of motion
+    assert np.max(np.abs(eqm.residual_accelerations(c, e))) < 1e-9
+    # closed form with straight casters (neglects O(eta^2) and O(psi) terms of the small caster correction)
+    assert e.holding_moment == pytest.approx(e.closed_form, rel=2e-3)
+    # leading order: the fixed wheels carry the slope's weight, M = m g sin(phi) x_m
+    lead = c.m * c.g * math.sin(math.radians(phi)) * c.x_main
+    bound = 2 * c.m_c * c.g * math.sin(math.radians(phi)) * c.l1 / c.trail * abs(c.x_main - (c.x_pin - c.trail))
+    assert abs(e.holding_moment - lead) <= 1.01 * bound + 2e-3 * abs(lead)
+    # frictionless casters carry only l1/trail of their own lateral weight
+    assert abs(e.lateral_forces[0]) == pytest.approx(c.m_c * c.g * math.sin(math.radians(phi)) * c.l1 / c.trail,
+                                                     rel=1e-2)
+    # Coulomb pins: the range contains the frictionless value; width from the pin-moment lever (x_m - x_c)/trail
+    lo, hi = e.friction_range
+    assert lo < e.holding_moment < hi
+    width = 2 * (c.pin_friction_left + c.pin_friction_right) * abs(c.x_main - (c.x_pin - c.trail)) / c.trail
+    assert hi - lo == pytest.approx(width, rel=2e-2)
+
+
+@pytest.mark.parametrize("name,turn", [("ej-premier", "uphill"), ("revised", "uphill"), ("power-fwd", "uphill"),
+                                       ("ej-premier-front-caster", "downhill"), ("manual-front-caster", "downhill")])
+def test_turn_direction(name, turn):
+    c = chair_mod.preset(name)
+    for phi in (2.0, -2.0):
+        e = eqm.solve(c, phi, 0.75)
+        assert e.uncorrected_turn == turn
+        path = uncorrected_path(c, e, duration=1.0)
+        assert path.turn == turn
+        assert abs(path.heading_change_deg) > 1.0
+
+
+def test_front_caster_turn_rate_near_free_caster_closed_form():
+    # zero-width model with a free castered axle: quasi-steady yaw rate g2/U (generated closed form)
+    c = chair_mod.preset("ej-premier-front-caster")
+    U, phi = 1.5, 0.5
+    g2 = c.g * math.sin(math.radians(phi))
+    r = msl.zero_width_turn(U, c.m, g2, c.s1, c.s2, 0.0, 5000.0)[1]
+    assert r == pytest.approx(g2 / U, rel=1e-12)
+    path = uncorrected_path(c, eqm.solve(c, phi, U), duration=4.0)
+    # after the transient (~1/1.5 s) the yaw rate is within 10 % of g2/U (heading change < 10 deg)
+    assert math.radians(path.yaw_rate_deg_s) == pytest.approx(g2 / U, rel=0.1)
+
+
+def test_zero_width_hold_closed_form():
+    m, g2, s1, s2 = 90.0, 0.5, 0.3, 0.2
+    a, Ff, Fr, M = msl.zero_width_straight(1.0, m, g2, s1, s2, 1500.0, 0.0)
+    assert M == pytest.approx(m * g2 * s1) and Ff + Fr == pytest.approx(-m * g2)
+    a, Ff, Fr, M = msl.zero_width_straight(1.0, m, g2, s1, s2, 1500.0, 1000.0)
+    assert M == pytest.approx(-(s1 * Ff - s2 * Fr)) and Ff + Fr == pytest.approx(-m * g2)
+    assert Ff / 1500.0 == pytest.approx(Fr / 1000.0)  # one body slip angle for both axles
+
+
+@pytest.mark.parametrize("theta", (-4.0, 2.5))
+def test_grade_forward_component(theta):
+    c = chair_mod.preset("ej-premier")
+    assert forward_gravity(c, theta) == pytest.approx(-c.m * c.g * math.sin(math.radians(theta)), rel=1e-12)
+    run = grade_run(c, theta, 0.75, duration=1.0, n=3)
+    assert run.acceleration == pytest.approx(-c.g * math.sin(math.radians(theta)), rel=1e-9)  # rolling off
+    if theta < 0:  # downhill the rear-caster chair gets faster and diverges faster
+        assert np.all(np.diff(run.max_real) > 0)
+
+
+def test_cli_json_and_errors(tmp_path, capsys):
+    assert main(["--chair", "manual-front-caster", "--cross-slope", "2", "--speed", "0.9", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    for key in ("holding_yaw_moment_N_m", "holding_yaw_moment_N_m_per_deg", "uncorrected_turn", "heading_deg",
+                "caster_angle_left_deg", "normal_loads_N", "drive_forces"):
+        assert key in d
+    assert d["uncorrected_turn"] == "downhill"
+    assert d["holding_yaw_moment_N_m"] == pytest.approx(2 * d["holding_yaw_moment_N_m_per_deg"])
+    assert d["drive_forces"]["handrim_force_difference_N"] > 0  # push the downhill (right) rim harder
+    for argv, word in ((["--cross-slope", "25", "--speed", "1"], "cross_slope"),
+                       (["--cross-slope", "2", "--speed", "-1"], "speed"),
+                       (["--cross-slope", "15", "--speed", "0.75"], "cross_slope=15.0")):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and word in err and "valid" in err
