@@ -55,8 +55,10 @@ def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d, F, M_A, M_B
     forces in wheel frames, N) plus the in-plane gravity ``g1, g2`` (m/s^2)
     acting on the chair and on each caster at its own c.g.
     """
-    return _sl.accelerations_slope_exact(u, v, r, ce, se, cb, sb, eta_d, beta_d, *F, M_A, M_B,
-                                         Fy_ext, Mz_ext, g1, g2, *p.inertia)
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    return _sl.accelerations_slope_exact(u, v, r, ce, se, cb, sb, eta_d, beta_d, FAx, FAy, FBx, FBy, FDx, FDy,
+                                         FEx, FEy, M_A, M_B, Fy_ext, Mz_ext, g1, g2, p.x_m, p.x_p, p.d1, p.d2,
+                                         p.t1, p.t2, p.trail, p.l1, p.m, p.m_c, p.i_z, p.i_zp)
 
 
 def normal_loads(p: Params, a1, a2, g1, g2, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
@@ -65,7 +67,8 @@ def normal_loads(p: Params, a1, a2, g1, g2, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
     ``a1, a2``: in-plane c.g. acceleration (m/s^2), ``g1, g2, gn`` gravity in
     body axes; the load-transfer moments are ``h m (a - g_in)``.
     """
-    return _sl.normal_loads_slope(a1, a2, g1, g2, gn, ce, se, cb, sb, *p.geometry, p.h, p.m, p.roll_k)
+    return _sl.normal_loads_slope(a1, a2, g1, g2, gn, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2,
+                                  p.trail, p.h, p.m, p.roll_k)
 
 
 def hold_statics(p: Params, ce, se, cb, sb, g1, g2, M_A=0.0, M_B=0.0, FAx=0.0, FBx=0.0):

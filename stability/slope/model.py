@@ -131,7 +131,7 @@ class SlopeModel:
                 mtire.lateral_force(slips_deg[2], loads[2], policy="extrapolate", warn=False),
                 mtire.lateral_force(slips_deg[3], loads[3], policy="extrapolate", warn=False))
 
-    def rolling_forces(self, loads, vx) -> tuple[float, float, float, float]:
+    def rolling_forces(self, loads, vx) -> tuple[float, ...]:
         """Rolling-resistance forces along each wheel's heading (N), opposing its rolling velocity."""
         out = []
         for k in range(4):
@@ -155,7 +155,7 @@ class SlopeModel:
                       for vx, vy in ((vAx, vAy), (vBx, vBy), (vDx, vDy), (vEx, vEy)))
         g1, g2, gn = g
         fixed = loads is not None
-        N = loads if fixed else sl.normal_loads(p, 0.0, 0.0, g1, g2, gn, ce, se, cb, sb)
+        N: tuple = loads if loads is not None else sl.normal_loads(p, 0.0, 0.0, g1, g2, gn, ce, se, cb, sb)
         for it in range(400):
             FAy, FBy, FDy, FEy = self.lateral(slips, N)
             RA, RB, RD, RE = self.rolling_forces(N, (vAx, vBx, vDx, vEx))
