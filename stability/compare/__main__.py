@@ -1,0 +1,143 @@
+"""``python -m stability.compare A B [C ...]``: which chair is more stable, by how much on each measure, and why.
+
+A, B, ... are presets or chair TOML files; the first is the reference.
+Prints growth rates (and times to double) at a list of speeds, the
+locked-caster and zero-width critical speeds, the understeer coefficient,
+the verdict against the reference on each measure, and the effect of each
+differing parameter applied alone to the reference.
+
+Examples
+--------
+::
+
+    python -m stability.compare ej-premier revised ej-premier-front-caster
+    python -m stability.compare ej-premier ej-premier --set 2:trail=0.06 --json
+    python -m stability.compare mine.toml revised --uncertainty mine.unc.toml --uncertainty - --pdf cmp.pdf
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from ..chair import Chair
+from ..cli import (
+    OneLineErrorParser,
+    add_json_options,
+    check_outputs,
+    emit_json,
+    json_header,
+    load_chair,
+    parse_speeds,
+    run,
+)
+from ..linear.intervals import MAX_SAMPLES
+from ..measure.uncertainty import Uncertainty, load_uncertainty
+from .compute import DEFAULT_SPEEDS, compare, unique_labels
+from .text import comparison_dict, format_comparison
+
+__all__ = ["main", "build_parser"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``python -m stability.compare``."""
+    p = OneLineErrorParser(prog="python -m stability.compare", description=(__doc__ or "").split("\n\n")[0])
+    p.add_argument("chairs", nargs="+", metavar="CHAIR",
+                   help="preset name or TOML file (two or more; the first is the reference)")
+    p.add_argument("--set", action="append", default=[], metavar="K:NAME=VALUE",
+                   help="override a field of the K-th chair (1-based; repeatable), e.g. 2:trail=0.06")
+    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
+    p.add_argument("--speeds", default=",".join(f"{s:g}" for s in DEFAULT_SPEEDS),
+                   help="speeds of the growth-rate table, START:STOP:STEP or a list (m/s)")
+    p.add_argument("--max-speed", type=float, default=30.0,
+                   help="upper end of the critical-speed search (m/s, default 30)")
+    p.add_argument("--uncertainty", action="append", default=[], metavar="FILE",
+                   help="uncertainty TOML file, one per chair in order ('-' for none): intervals and "
+                        "whether each difference exceeds the uncertainty")
+    p.add_argument("--samples", type=int, default=1000, help="Monte Carlo draws per chair (default 1000)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
+    p.add_argument("--level", type=float, default=0.95, help="interval coverage (default 0.95)")
+    p.add_argument("--pairing", default="shared", choices=["shared", "independent"],
+                   help="shared: tables of the same name get the same draw in every chair (the same unknown); "
+                        "independent: separate seeds (default shared)")
+    p.add_argument("--nonlinear", action="store_true",
+                   help="also the critical impulse by simulation (slower; states the push convention)")
+    add_json_options(p)
+    p.add_argument("--pdf", metavar="FILE", help="write the figures to a PDF")
+    return p
+
+
+def _chairs(specs: Sequence[str], assignments: Sequence[str]) -> tuple[list[Chair], list[str]]:
+    per: list[list[str]] = [[] for _ in specs]
+    for a in assignments:
+        k, sep, rest = a.partition(":")
+        if not sep or not k.strip().isdigit() or not 1 <= int(k) <= len(specs):
+            raise ValueError(f"--set {a!r} is invalid; expected K:NAME=VALUE with K from 1 to {len(specs)} "
+                             "(the chair's position)")
+        per[int(k) - 1].append(rest)
+    chairs, names = [], []
+    for i, (spec, sets) in enumerate(zip(specs, per, strict=True)):
+        try:
+            c = load_chair(spec, sets)
+        except ValueError as exc:
+            raise ValueError(f"chair {i + 1} ({spec!r}): {str(exc).splitlines()[0]}") from None
+        chairs.append(c)
+        names.append(c.name + (f" ({', '.join(sets)})" if sets else ""))
+    return chairs, names
+
+
+def _uncertainties(files: Sequence[str], n: int) -> list[Uncertainty | None] | None:
+    if not files:
+        return None
+    if len(files) != n:
+        raise ValueError(f"--uncertainty given {len(files)} times for {n} chairs; valid: once per chair "
+                         "in order ('-' for a chair without one)")
+    return [None if f == "-" else load_uncertainty(f) for f in files]
+
+
+def _run(args: argparse.Namespace) -> int:
+    if len(args.chairs) < 2:
+        raise ValueError(f"CHAIR: {len(args.chairs)} given ({args.chairs[0]!r}); valid: at least two chairs")
+    inputs = {f"CHAIR {i + 1}": s for i, s in enumerate(args.chairs)}
+    inputs.update({f"--uncertainty {i + 1}": f for i, f in enumerate(args.uncertainty) if f != "-"})
+    check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, inputs)
+    if args.uncertainty and len(args.uncertainty) != len(args.chairs):
+        raise ValueError(f"--uncertainty given {len(args.uncertainty)} times for {len(args.chairs)} chairs; "
+                         "valid: once per chair in order ('-' for a chair without one)")
+    if not 1 <= args.samples <= MAX_SAMPLES:
+        raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES}")
+    if not 0 < args.level < 1:
+        raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
+    if not (0.01 < args.max_speed <= 100.0):
+        raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
+    speeds = parse_speeds(args.speeds, max_count=200)
+    chairs, names = _chairs(args.chairs, args.set)
+    uncs = _uncertainties(args.uncertainty, len(chairs))
+    result = compare(chairs, labels=unique_labels(names), model=args.model, speeds=speeds.tolist(),
+                     max_speed=args.max_speed, uncertainties=uncs, samples=args.samples, seed=args.seed,
+                     level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)
+    if args.pdf:
+        from ..output import write_pdf  # matplotlib is imported only when a PDF is asked for
+        from .plots import comparison_figures
+
+        write_pdf(comparison_figures(result), args.pdf, title=f"stability compare: {' vs '.join(result.labels)}",
+                  close=False)
+        print(f"wrote {args.pdf}", file=sys.stderr)
+    if args.json or args.json_file:
+        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed, "set": args.set,
+                   "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,
+                   "level": args.level, "pairing": args.pairing, "nonlinear": args.nonlinear}
+        emit_json(comparison_dict(result, json_header(chairs[0], args.model, options)), args)
+    if not args.json:
+        print(format_comparison(result))
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``python -m stability.compare``; returns the exit status (2 on bad input)."""
+    return run(build_parser(), argv, _run)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,180 @@
+"""Text and JSON of a :class:`~stability.compare.compute.Comparison` (formatting only, no computation)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..chair import to_mapping
+from ..reference import REFERENCE_SPEED
+from .compute import Comparison, Difference, Quantity
+
+__all__ = ["format_comparison", "comparison_dict"]
+
+
+def _num(x: float | None, unit: str = "", digits: int = 4) -> str:
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "n/a"
+    if math.isinf(x):
+        return "none" if x > 0 else "-inf"
+    return f"{x:.{digits}g}" + (f" {unit}" if unit else "")
+
+
+def _value(q: Quantity, v: float, max_speed: float) -> str:
+    if math.isinf(v) and v > 0:
+        if q.key.startswith("critical_impulse"):
+            return "> largest push"
+        if q.key.startswith("zero_width"):
+            return "none (understeer)"
+        return f"none < {max_speed:g} m/s"
+    return _num(v, q.unit)
+
+
+def _time_to_double(rate: float) -> str:
+    return f"{math.log(2) / rate:.3g} s" if rate > 0 else "never"
+
+
+def _verdict(d: Difference, q: Quantity) -> str:
+    if d.more_stable == "equal":
+        text = "equal"
+    elif d.more_stable == "undetermined":
+        text = "undetermined"
+    else:
+        text = f"{d.more_stable} more stable"
+    if d.absolute is not None:
+        text += f" (difference {d.absolute:+.3g} {q.unit}" + (f", {d.percent:+.3g} %" if d.percent is not None
+                                                               else "") + ")"
+    if d.interval is not None:
+        lo, hi = d.interval
+        text += f"; difference interval [{lo:+.3g}, {hi:+.3g}] {q.unit}: "
+        text += "distinguishable" if d.distinguishable else "NOT distinguishable with these uncertainties"
+    return text
+
+
+def format_comparison(c: Comparison) -> str:
+    """The comparison as plain text: per-measure table, verdicts against the reference, single-parameter effects.
+
+    Parameters
+    ----------
+    c : Comparison
+
+    Returns
+    -------
+    str
+    """
+    ref = c.labels[0]
+    lines = [f"Comparison of {', '.join(c.labels)} ({c.model} linear model; reference: {ref})", ""]
+    for i, (label, ch) in enumerate(zip(c.labels, c.chairs, strict=True)):
+        lines.append(f"  [{i + 1}] {label}: casters {ch.caster_position}, s1 = {ch.s1:g} m, s2 = {ch.s2:g} m, "
+                     f"trail = {ch.trail:g} m, m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
+    width = max(len(q.label) for q in c.quantities) + 2
+    lines += ["", "Measures" + (f" (intervals: central {c.uncertainty['level']:.0%} over the uncertain parameters)"
+                              if c.uncertainty else "") + ":"]
+    for q in c.quantities:
+        cells = []
+        for v, iv in zip(q.values, q.intervals, strict=True):
+            cell = _value(q, v, c.max_speed)
+            if q.key.startswith("growth_rate"):
+                cell += f" (doubles {_time_to_double(v)})"
+            if iv is not None:
+                cell += f" [{_num(iv[0])}, {_num(iv[1])}]"
+            cells.append(cell)
+        lines.append(f"  {q.label:<{width}}" + " | ".join(cells))
+    lines += ["", f"Against the reference {ref} (lower growth rate, higher critical speed, "
+              "understeer coefficient and critical impulse = more stable):"]
+    qmap = {q.key: q for q in c.quantities}
+    for label in c.labels[1:]:
+        lines.append(f"  {label}:")
+        for d in c.differences:
+            if d.chair == label:
+                lines.append(f"    {qmap[d.key].label:<{width}}{_verdict(d, qmap[d.key])}")
+    if c.uncertainty:
+        lines.append(f"  (differences drawn with {c.uncertainty['pairing']} draws, {c.uncertainty['samples']} "
+                     f"samples, seed {c.uncertainty['seed']}; overlapping chair intervals alone do not decide)")
+    lines += ["", f"Why: each differing parameter applied alone to {ref} (change of the growth rate at "
+              f"{REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s):"]
+    for e in c.effects:
+        lines.append(f"  {e.chair}:")
+        if not e.effects:
+            lines.append("    no parameter differs")
+            continue
+        for s in e.effects:
+            if s.error:
+                lines.append(f"    {s.field:<22} {s.reference_value!r} -> {s.value!r}: "
+                             f"not a valid chair alone ({s.error})")
+                continue
+            lines.append(f"    {s.field:<22} {s.reference_value!r} -> {s.value!r}: growth rate "
+                         f"{_signed(s.growth_rate)}, locked critical speed {_signed(s.locked_critical_speed)}")
+        lines.append(f"    {'total':<22} growth rate {_signed(e.total_growth_rate)}, locked critical speed "
+                     f"{_signed(e.total_locked_critical_speed)}")
+        lines.append(f"    {'interaction remainder':<22} growth rate {_signed(e.remainder_growth_rate)}, "
+                     f"locked critical speed {_signed(e.remainder_locked_critical_speed)}")
+    if c.push:
+        lines += ["", f"Critical impulse: push convention {c.push}."]
+    lines += ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
+              "thesis's ranking by time to 1 rad/s after a push (--nonlinear) can differ: see docs/compare.md."]
+    return "\n".join(lines)
+
+
+def _signed(x: float | None) -> str:
+    return "n/a" if x is None else f"{x:+.4g}"
+
+
+def _finite(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def comparison_dict(c: Comparison, header: dict[str, Any]) -> dict[str, Any]:
+    """JSON-ready dict of a comparison.
+
+    Parameters
+    ----------
+    c : Comparison
+    header : dict
+        What :func:`stability.cli.json_header` gives for the reference chair (version, model, options);
+        its ``chair``/``chair_parameters`` are replaced by the list ``chairs``.
+
+    Returns
+    -------
+    dict
+        Keys: ``stability_version``, ``model``, ``options``, ``chairs`` (label, name, parameters),
+        ``reference``, ``measures`` (per quantity: unit, direction, per-chair values and intervals;
+        infinite values as null with ``"none_in_range": true``), ``verdicts``, ``single_effects``,
+        ``uncertainty``, ``push``.
+    """
+    out = {k: v for k, v in header.items() if k not in ("chair", "chair_parameters")}
+    out["chairs"] = [{"label": lab, "name": ch.name, "parameters": to_mapping(ch)}
+                     for lab, ch in zip(c.labels, c.chairs, strict=True)]
+    out["reference"] = c.labels[0]
+    out["speeds_m_s"] = list(c.speeds)
+    measures = {}
+    for q in c.quantities:
+        per = {}
+        for lab, v, iv in zip(c.labels, q.values, q.intervals, strict=True):
+            row: dict[str, Any] = {"value": _finite(v), "none_in_range": bool(math.isinf(v) and v > 0)}
+            if q.key.startswith("growth_rate"):
+                row["time_to_double_s"] = math.log(2) / v if v > 0 else None
+            if iv is not None:
+                row["interval"] = [_finite(iv[0]), _finite(iv[1])]
+            per[lab] = row
+        measures[q.key] = {"label": q.label, "unit": q.unit, "higher_is_more_stable": q.higher_is_more_stable,
+                           "chairs": per}
+    out["measures"] = measures
+    out["verdicts"] = [{"measure": d.key, "chair": d.chair, "reference": c.labels[0], "more_stable": d.more_stable,
+                        "difference": d.absolute, "difference_percent": d.percent,
+                        "difference_interval": list(d.interval) if d.interval else None,
+                        "distinguishable": d.distinguishable} for d in c.differences]
+    out["single_effects"] = [
+        {"chair": e.chair, "reference": c.labels[0], "speed_m_s": REFERENCE_SPEED,
+         "effects": [{"field": s.field, "reference_value": s.reference_value, "value": s.value,
+                      "growth_rate_change_1_s": s.growth_rate,
+                      "locked_critical_speed_change_m_s": s.locked_critical_speed, "error": s.error}
+                     for s in e.effects],
+         "total_growth_rate_change_1_s": e.total_growth_rate,
+         "total_locked_critical_speed_change_m_s": e.total_locked_critical_speed,
+         "interaction_growth_rate_1_s": e.remainder_growth_rate,
+         "interaction_locked_critical_speed_m_s": e.remainder_locked_critical_speed}
+        for e in c.effects]
+    out["uncertainty"] = c.uncertainty
+    out["push"] = c.push
+    return out
