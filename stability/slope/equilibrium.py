@@ -238,6 +238,9 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
     why = eq.problems[0] if eq is not None else "the tires cannot hold the chair (no equilibrium)"
     lim = max_cross_slope(chair, grade_deg, speed, 1.0 if cross_slope_deg >= 0 else -1.0,
                           hi=abs(cross_slope_deg))
+    if lim < 0 and grade_deg == 0:
+        raise ValueError(f"chair={chair.name!r} is invalid for the slope model: {why} on level ground; "
+                         "valid range: chairs whose static loads are inside the tire data (<= 450 N)")
     if lim < 0:
         raise ValueError(f"grade={grade_deg!r} deg is invalid for chair {chair.name}: {why} even without "
                          "cross slope; valid range: a smaller grade")
