@@ -135,16 +135,26 @@ def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
             return out
         return f
 
+    def zero(t, state):      # a Python input: the Python-float path, which calls the generated code
+        return 0.0
+
     for name in ("accelerations_thesis", "accelerations_exact"):
         monkeypatch.setattr(full_width, name, spy(name))
-    simulate(EJ, 0.75, duration=0.02)
+    py = simulate(EJ, 0.75, duration=0.02, yaw_moment=zero)
+    assert py.settings["engine"] == "python"
     assert len(calls) == 22 and calls[0][0] == 0.0            # THEDD = 0 in BLOCK DATA
     for k in range(1, len(calls)):
         assert calls[k][0] == calls[k - 1][1]
         assert calls[k][2] == "accelerations_thesis"
     calls.clear()
-    simulate(EJ, 0.75, duration=0.02, model="exact")
+    simulate(EJ, 0.75, duration=0.02, model="exact", yaw_moment=zero)
     assert len(calls) == 22 and all(c[0] == "absent" and c[2] == "accelerations_exact" for c in calls)
+    # the compiled kernel has the same lag: it reproduces the Python path (tire fits evaluated as
+    # interpolated coefficients there, interpolated forces here: equal to rounding)
+    compiled = simulate(EJ, 0.75, duration=0.02)
+    assert compiled.settings["engine"] == "compiled"
+    np.testing.assert_allclose(compiled.yaw_acceleration, py.yaw_acceleration, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(compiled.eta_dot, py.eta_dot, rtol=1e-12, atol=1e-14)
 
 
 def test_pin_friction_opposes_caster_rate_and_is_zero_at_rest():

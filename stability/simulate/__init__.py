@@ -16,6 +16,8 @@ Examples
 """
 
 from .api import simulate, simulate_batch
+from .controller import SampledController
+from .engine import RECORDS, STATS_LEVELS
 from .linearise import linearise
 from .options import (
     ADAPTIVE_METHOD,
@@ -31,7 +33,8 @@ from .options import (
     WHEELS,
     SimulationDefaults,
 )
-from .results import ChairState, SimulationResult
+from .results import ChairState, RunStats, SimulationResult
+from .stepcheck import StepStabilityWarning
 
 __all__ = [
     "SCHEMES",
@@ -51,4 +54,9 @@ __all__ = [
     "simulate",
     "simulate_batch",
     "linearise",
+    "SampledController",
+    "RunStats",
+    "RECORDS",
+    "STATS_LEVELS",
+    "StepStabilityWarning",
 ]

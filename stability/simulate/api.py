@@ -3,19 +3,23 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
 
-from .._validate import check_speed
+from .._validate import check_choice, check_speed
 from ..chair import Chair
 from ..progress import ProgressBar
 from .adaptive import adaptive_single
-from .options import DEFAULTS, make_options
-from .processes import auto_workers, check_workers, fork_context, wchair_batch_processes
+from .controller import SampledController
+from .engine import RECORDS, run_compiled
+from .options import DEFAULTS, WCHAIR_DT, make_options
+from .reference import wchair_batch
+from .stepcheck import StepStabilityWarning, auto_step, stable_steps
 from .results import ChairState, SimulationResult
-from .wchair import wchair_batch, wchair_single
+from .wchair import wchair_single
 
 __all__ = ["simulate", "simulate_batch"]
 
@@ -35,7 +39,8 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
              yaw_moment: Callable[[float, ChairState], float] | None = DEFAULTS.yaw_moment,
              stop_on_warnings: bool | None = DEFAULTS.stop_on_warnings, out_of_range: str = DEFAULTS.out_of_range,
              sample: float | None = DEFAULTS.sample, rtol: float = DEFAULTS.rtol, atol: float = DEFAULTS.atol,
-             reverse: bool = DEFAULTS.reverse) -> SimulationResult:
+             reverse: bool = DEFAULTS.reverse, controller: SampledController | None = DEFAULTS.controller,
+             record: str = DEFAULTS.record) -> SimulationResult:
     """Simulate one run of a freely rolling chair disturbed from straight motion.
 
     Parameters
@@ -52,8 +57,9 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
         with stick-slip pin friction (see ``docs/simulator.md``).
     model : {"thesis", "exact"}
         Equations of motion (:mod:`stability.models`).
-    dt : float
-        Step of the wchair scheme, s (TSTEP).
+    dt : float or "auto"
+        Step of the wchair scheme, s (TSTEP).  ``"auto"``: WCHAIR's 1 ms, or
+        1 ms / k when the stability limit at this speed needs a smaller step.
     impulse_force, impulse_duration : float
         Lateral force at the c.g., N (FCIMP, positive to the right), and how
         long it acts, s (DUIMP; ``t <= DUIMP``).  Default: the thesis's
@@ -70,8 +76,17 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
         Free casters with Coulomb pin friction, or casters locked at their
         initial angles.
     yaw_moment : callable, optional
-        ``yaw_moment(t, state) -> N m``: a yaw moment on the chair (e.g. a
-        motor-assist controller); ``state`` is a :class:`ChairState`.
+        ``yaw_moment(t, state) -> N m``: a yaw moment on the chair; ``state``
+        is a :class:`ChairState`.  A Python callable runs the WCHAIR scheme
+        in Python floats (the slow path, recorded as ``settings["engine"] =
+        "python"``); a linear controller runs compiled as ``controller``.
+    controller : SampledController, optional
+        A sampled linear yaw-moment controller run inside the compiled kernel
+        (:class:`stability.simulate.controller.SampledController`).
+    record : {"all", "states", "final"}
+        What the compiled WCHAIR scheme keeps: every column, the ten states
+        (the rest read as NaN), or only the last step; ``result.stats`` always
+        holds the peak |yaw rate| and the first times of 0.5 and 1 rad/s.
     stop_on_warnings : bool, optional
         Stop at the eleventh warning of a kind (WCHAIR's rule).  Default:
         True for the wchair scheme, False for the adaptive one.
@@ -100,18 +115,13 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
     """
     chair = _check_chair(chair)
     speed = check_speed(speed)
-    opts = make_options(duration=duration, scheme=scheme, model=model, dt=dt, impulse_force=impulse_force,
-                         impulse_duration=impulse_duration, tire_impulse=tire_impulse,
-                         lateral_velocity=lateral_velocity, eta0_deg=eta0_deg, beta0_deg=beta0_deg,
-                         casters=casters, yaw_moment=yaw_moment, stop_on_warnings=stop_on_warnings,
-                         out_of_range=out_of_range, sample=sample, rtol=rtol, atol=atol, reverse=reverse)
-    if opts.scheme == "wchair":
-        return wchair_single(chair, speed, opts)
-    return adaptive_single(chair, speed, opts)
+    given = dict(locals())
+    options = {k: given[k] for k in DEFAULTS.as_dict()}
+    return _run([chair], np.array([speed]), options, None, progress=False, threads=None, batch=False)[0]
 
 
 def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = True,
-                   workers: int | None = None, **options) -> list[SimulationResult]:
+                   workers: int | None = None, **options: Any) -> list[SimulationResult]:
     """Simulate many runs at once.
 
     ``chairs`` (one chair or a sequence) is broadcast against ``speeds`` (a
@@ -122,18 +132,16 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
     chairs and speeds: one disturbance per run (a speed x disturbance-size
     map in one call; each result's ``settings`` holds its own force).
 
-    The wchair scheme steps all runs together on numpy arrays (runs grouped
-    by tire type where they differ); a run stopped by the warning rule is
-    frozen and drops out.  The adaptive scheme integrates the runs one after
-    another.  Batches record every 0.01 s by default (``sample``) to bound
-    memory (about ``runs * samples * 32 * 8`` bytes).  ``progress`` shows a
-    bar on a terminal.
+    The wchair scheme runs compiled, one run per thread (a Python
+    ``yaw_moment`` steps all runs together on numpy arrays instead).  The
+    adaptive scheme integrates the runs one after another.  Batches record
+    every 0.01 s by default (``sample``): about ``runs * samples * 31 * 8``
+    bytes, or ``* 10 * 8`` with ``record="states"``; ``record="final"``
+    keeps one row per run.  ``progress`` shows a bar on a terminal.
 
-    ``workers`` (wchair scheme): processes sharing the runs (forked, POSIX
-    only).  ``None`` picks one per 250 runs up to the usable CPUs, and one
-    when a ``yaw_moment`` input is given (a stateful controller must see all
-    its calls in this process); ``1`` keeps everything in this process.  The
-    results do not depend on it beyond floating-point rounding.
+    ``workers``: threads of the compiled kernel (``None``: numba's default,
+    the usable CPUs).  The results do not depend on it: one run is the same
+    arithmetic alone or in any batch, and equals :func:`simulate`.
 
     Returns
     -------
@@ -181,18 +189,70 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
     if unknown:
         raise ValueError(f"unknown option(s) {sorted(unknown)}; valid options: {sorted(defaults)}")
     defaults.update(options)
-    opts = make_options(batch=True, **defaults)
     if n == 0:
         return []
     forces = None if fa is None else np.broadcast_to(fa, shape).reshape(-1).astype(float)
-    if opts.scheme == "wchair":
-        nw = auto_workers(n, opts) if workers is None else check_workers(workers)
-        if nw > 1 and fork_context() is not None:
-            return wchair_batch_processes(run_chairs, speed_arr, opts, progress, min(nw, n), forces)
-        return wchair_batch(run_chairs, speed_arr, opts, progress, forces=forces)
+    threads = None if workers is None else _check_workers(workers)
+    return _run(run_chairs, speed_arr, defaults, forces, progress=progress, threads=threads, batch=True)
+
+
+def _check_workers(workers: Any) -> int:
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"workers={workers!r} is invalid; valid range: an integer >= 1, or None (automatic)")
+    return int(workers)
+
+
+def _run(chairs: list[Chair], speeds: np.ndarray, options: dict[str, Any], forces: np.ndarray | None, *,
+         progress: bool, threads: int | None, batch: bool) -> list[SimulationResult]:
+    """Check the options, pick the step and the engine, run, flag runs outside the step's stability limit."""
+    options = dict(options)
+    controller, record = options.pop("controller"), options.pop("record")
+    check_choice("record", record, RECORDS)
+    if controller is not None and not isinstance(controller, SampledController):
+        raise ValueError(f"controller={controller!r} is invalid; expected a SampledController (or use yaw_moment=)")
+    auto = isinstance(options["dt"], str) and options["dt"] == "auto"
+    if auto:
+        options["dt"] = WCHAIR_DT
+    opts = make_options(batch=batch, **options)
+    python_input = opts.yaw_moment is not None
+    if python_input and controller is not None:
+        raise ValueError("yaw_moment and controller are both given; choose one")
+    if (opts.scheme == "adaptive" or python_input) and (controller is not None or record != "all"):
+        raise ValueError(f"controller= and record={record!r} need the compiled WCHAIR scheme (scheme='wchair' "
+                         "without a Python yaw_moment)")
+    if opts.scheme == "adaptive":
+        return _adaptive_runs(chairs, speeds, opts, forces, progress)
+    limits = stable_steps(chairs, speeds, opts.model, opts.casters)
+    if auto:
+        options["dt"] = auto_step(float(limits.min()))
+        opts = make_options(batch=batch, **options)
+    if not python_input:
+        out = run_compiled(chairs, speeds, opts, forces=forces, controller=controller, record=record,
+                           threads=threads)
+    elif batch:
+        out = wchair_batch(chairs, speeds, opts, progress, forces=forces)
+    else:
+        out = [wchair_single(chairs[0], float(speeds[0]), opts)]
+    return _flag_steps(out, opts.dt, limits, auto, speeds)
+
+
+def _flag_steps(out: list[SimulationResult], dt: float, limits: np.ndarray, auto: bool,
+                speeds: np.ndarray) -> list[SimulationResult]:
+    bad = dt > limits * (1.0 + 1e-12)
+    if bad.any():
+        i = int(np.argmin(limits))
+        warnings.warn(f"dt={dt:g} s exceeds the WCHAIR scheme's stability limit in {int(bad.sum())} of {len(out)} "
+                      f"run(s) (largest safe step {limits[i]:.3g} s at {speeds[i]:g} m/s): flagged step_unstable; "
+                      "use dt='auto', a smaller dt or scheme='adaptive'", StepStabilityWarning, stacklevel=4)
+    return [dataclasses.replace(r, step_unstable=bool(b), settings=dict(r.settings, stable_dt=float(lim), dt_auto=auto,
+                                                                       engine=r.settings.get("engine", "python")))
+            for r, b, lim in zip(out, bad, limits, strict=True)]
+
+
+def _adaptive_runs(chairs, speeds, opts, forces, progress) -> list[SimulationResult]:
     out = []
-    with ProgressBar(n, "simulate (adaptive)", enabled=progress, unit="run") as bar:
-        for i, (c, s) in enumerate(zip(run_chairs, speed_arr, strict=False)):
+    with ProgressBar(len(chairs), "simulate (adaptive)", enabled=progress and len(chairs) > 1, unit="run") as bar:
+        for i, (c, s) in enumerate(zip(chairs, speeds, strict=True)):
             o = opts if forces is None else dataclasses.replace(opts, impulse_force=float(forces[i]))
             out.append(adaptive_single(c, float(s), o))
             bar.update()

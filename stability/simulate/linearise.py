@@ -60,6 +60,7 @@ def linearise(chair: Chair, speed: float, *, model: str = DEFAULTS.model, caster
     # the defaults, except: the adaptive scheme's right-hand side, no disturbance, tires strictly in range
     settings = dict(DEFAULTS.as_dict(), duration=1.0, scheme="adaptive", model=model, casters=casters,
                     impulse_force=0.0, impulse_duration=0.0, stop_on_warnings=False, out_of_range="raise")
+    del settings["controller"], settings["record"]     # options of the compiled WCHAIR kernel only
     opts = make_options(**settings)
     modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)
     u0, _ = initial_velocities(opts, speed)

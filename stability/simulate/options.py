@@ -67,6 +67,8 @@ class SimulationDefaults:
     rtol: float = 1e-6
     atol: float = 1e-9
     reverse: bool = False
+    controller: Any = None
+    record: str = "all"
 
     def as_dict(self) -> dict[str, Any]:
         """The defaults as a dict (keyword -> value)."""

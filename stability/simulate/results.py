@@ -17,7 +17,7 @@ from ..chair import Chair
 from ..output import atomic_write_text
 from .options import WHEELS
 
-__all__ = ["COLUMNS", "NCOLS", "ChairState", "SimulationResult", "new_warnings", "note_warning"]
+__all__ = ["COLUMNS", "NCOLS", "ChairState", "RunStats", "SimulationResult", "new_warnings", "note_warning"]
 
 COLUMNS = ("t", "x", "y", "heading", "yaw_rate", "u", "v", "eta", "eta_dot", "beta", "beta_dot",
          "fx_A", "fy_A", "fx_B", "fy_B", "fx_D", "fy_D", "fx_E", "fy_E",
@@ -53,6 +53,41 @@ class ChairState(NamedTuple):
 # ---------------------------------------------------------------------------
 # results
 # ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class RunStats:
+    """Summaries of a run taken at every step (not only the recorded ones).
+
+    Attributes
+    ----------
+    levels : tuple of float
+        |yaw rate| levels, rad/s.
+    time_to_level : tuple of (float or None)
+        First time |yaw rate| reaches each level, s (linear interpolation
+        between the two steps that bracket it); None if never.
+    peak_abs_yaw_rate : float
+        Largest |yaw rate|, rad/s.
+    peak_time : float
+        When it occurred, s.
+    """
+
+    levels: tuple[float, ...]
+    time_to_level: tuple[float | None, ...]
+    peak_abs_yaw_rate: float
+    peak_time: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict."""
+        return {"levels": list(self.levels), "time_to_level": list(self.time_to_level),
+                "peak_abs_yaw_rate": _json_scalar(self.peak_abs_yaw_rate), "peak_time": _json_scalar(self.peak_time)}
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    """A read-only view (no copy)."""
+    a = a.view()
+    a.flags.writeable = False
+    return a
+
+
 def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.ascontiguousarray(a, dtype=float)
     a.flags.writeable = False
@@ -92,6 +127,13 @@ class SimulationResult:
     stopped_by_warnings : whether the run was stopped by the warning rule.
     stop_time : time of the step that stopped it (s) or None.
     chair, speed, settings : the inputs.
+    stats : RunStats or None
+        Summaries over every step of a compiled run (also when only some
+        steps are recorded): peak |yaw rate|, first times of given levels.
+    step_unstable : bool
+        The fixed step lies outside the scheme's stability limit at this
+        speed (``settings["stable_dt"]`` holds the largest safe step): the
+        traces may be numerical artefacts.
     """
 
     t: np.ndarray
@@ -119,8 +161,40 @@ class SimulationResult:
     chair: Chair
     speed: float
     settings: Mapping[str, Any] = field(default_factory=dict)
+    stats: RunStats | None = None
+    step_unstable: bool = False
 
     # -- construction ----------------------------------------------------
+    @classmethod
+    def from_columns(cls, t: np.ndarray, cols: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings,
+                     stats: RunStats | None = None, step_unstable: bool = False) -> SimulationResult:
+        """A result from ``t`` (n,) and ``cols`` (k, n): the columns after ``t`` of :data:`COLUMNS`.
+
+        ``k = 31`` (all) or ``10`` (the states; the other quantities read as NaN,
+        broadcast views that take no memory).  Rows of ``cols`` are used as views
+        (no copy) when contiguous.
+        """
+        n = len(t)
+        full = cols.shape[0] == NCOLS - 1
+        c = {name: cols[i] for i, name in enumerate(COLUMNS[1:cols.shape[0] + 1])}
+
+        def col(name):
+            return _readonly(c[name]) if name in c else np.broadcast_to(np.nan, (n,))
+
+        def wheels(rows):   # (n, 4) views of rows of cols (no copy)
+            return _readonly(cols[rows].T) if full else np.broadcast_to(np.nan, (n, 4))
+
+        pins = _readonly(cols[29:31].T) if full else np.broadcast_to(np.nan, (n, 2))
+        return cls(
+            t=_readonly(t), x=col("x"), y=col("y"), heading=col("heading"), yaw_rate=col("yaw_rate"), u=col("u"),
+            v=col("v"), eta=col("eta"), eta_dot=col("eta_dot"), beta=col("beta"), beta_dot=col("beta_dot"),
+            fx=wheels(slice(10, 18, 2)), fy=wheels(slice(11, 18, 2)), normal_load=wheels(slice(18, 22)),
+            slip_deg=wheels(slice(22, 26)), tire_yaw_moment=col("tire_yaw_moment"), yaw_moment_input=col("yaw_moment_input"),
+            yaw_acceleration=col("yaw_acceleration"), pin_moment=pins,
+            warnings=_freeze_warnings(warnings), stopped_by_warnings=bool(stopped),
+            stop_time=None if stop_time is None else float(stop_time), chair=chair, speed=float(speed),
+            settings=dict(settings), stats=stats, step_unstable=bool(step_unstable))
+
     @classmethod
     def _from_records(cls, rec: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings):
         cols = np.ascontiguousarray(rec.T, dtype=float)  # one copy; every column below is a view of it
@@ -248,6 +322,7 @@ class SimulationResult:
         out: dict[str, Any] = {name: _json_list(rec[:, i]) for i, name in enumerate(COLUMNS)}
         out.update(
             stopped_by_warnings=self.stopped_by_warnings, stop_time=self.stop_time,
+            step_unstable=self.step_unstable, stats=None if self.stats is None else self.stats.to_dict(),
             warnings=_json_warnings(self.warnings), speed=self.speed, chair=self.chair.name,
             settings={k: _json_scalar(v) for k, v in self.settings.items()},
         )

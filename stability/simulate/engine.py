@@ -1,0 +1,179 @@
+"""Driver of the compiled WCHAIR kernel: pack chairs and options into arrays, run, build the results.
+
+:func:`run_compiled` serves :func:`~stability.simulate.simulate` (one run)
+and :func:`~stability.simulate.simulate_batch` (many, threads over runs)
+with the same kernel, so the same run gives the same numbers either way.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from .. import tires as _tires
+from ..chair import Chair
+from ..params import parameters
+from ..reference import LEVEL
+from .controller import SampledController
+from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
+from .results import COLUMNS, RunStats, SimulationResult
+
+__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled"]
+
+#: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
+RECORDS = ("all", "states", "final")
+#: |yaw rate| levels (rad/s) whose first crossing every compiled run reports in ``result.stats``.
+STATS_LEVELS = (0.5, LEVEL)
+_POLICY = {"clamp": 0, "extrapolate": 1, "raise": 2}
+_WARN_KINDS = ("slip", "load", "lift_off")
+
+
+def _segments(tire: Any) -> np.ndarray:
+    segs = tire.segment_arrays() if hasattr(tire, "segment_arrays") else tire._segments
+    return np.array(segs, dtype=float)
+
+
+def _tire_slot(tire: Any) -> tuple[int, np.ndarray, float, tuple[float, float]]:
+    """(kind, (6, 8) segments, scale or N/deg, (slip limit deg, load limit N)) of one tire."""
+    if isinstance(tire, _tires.LinearTire):
+        return 1, np.zeros((6, 8)), tire.stiffness_N_per_deg * tire.lateral_scale, (math.inf, math.inf)
+    lim = (float(getattr(tire, "slip_max_deg", SLIP_LIMIT_DEG)), float(getattr(tire, "fz_max_N", LOAD_LIMIT_N)))
+    return 0, _segments(tire), float(tire.lateral_scale), lim
+
+
+def _rolling_slot(tire: Any, on: bool) -> tuple[int, tuple[float, float, float], float]:
+    if not on:
+        return 0, (0.0, 0.0, 0.0), 0.0
+    tire.rolling_resistance(1.0)          # a tire without rolling data raises its own error here
+    if isinstance(tire, _tires.LinearTire):
+        return 2, (float(tire.f_r), 0.0, 0.0), float(tire.rolling_scale)
+    a, b, c = tire.rolling
+    return 1, (float(a), float(b), float(c)), float(tire.rolling_scale)
+
+
+class _Packed:
+    """The per-run arrays of the kernel (run = first axis)."""
+
+    def __init__(self, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None):
+        n = len(chairs)
+        self.P = np.empty((n, 18))
+        self.S = np.zeros((n, 8))
+        self.TK = np.zeros((n, 3), dtype=np.int64)
+        self.TS = np.zeros((n, 3, 6, 8))
+        self.TL = np.ones((n, 3))
+        self.LIM = np.full((n, 3, 2), math.inf)
+        self.RK = np.zeros((n, 2), dtype=np.int64)
+        self.RC = np.zeros((n, 2, 3))
+        self.RS = np.zeros((n, 2))
+        self.CAM = np.zeros((n, 2))
+        self.CHK = np.zeros((n, 4), dtype=np.bool_)
+        cache: dict = {}
+        u0, v0 = initial_velocities(opts, 1.0)
+        for i, c in enumerate(chairs):
+            self.P[i] = np.array(parameters(c), dtype=float)
+            toe = math.radians(c.toe_deg)
+            force = opts.impulse_force if forces is None else float(forces[i])
+            self.S[i] = (float(speeds[i]) * u0, v0, opts.eta0, opts.beta0, force, math.cos(toe), math.sin(toe),
+                         1.0 if toe != 0 else 0.0)
+            key = (c.main_tire, c.main_lateral_scale, c.main_rolling_scale, c.caster_tire, c.caster_lateral_scale,
+                   c.caster_rolling_scale, c.camber_deg, c.camber_coefficient)
+            if key not in cache:
+                cache[key] = self._tire_arrays(c, opts)
+            (self.TK[i], self.TS[i], self.TL[i], self.LIM[i], self.RK[i], self.RC[i], self.RS[i], self.CAM[i],
+             self.CHK[i]) = cache[key]
+
+    @staticmethod
+    def _tire_arrays(c: Chair, opts: Options) -> tuple:
+        main, caster = c.main_tire_model(), c.caster_tire_model()
+        if opts.scheme == "wchair":   # MECHAN: CAMCOF*POLYFT(TIRY, INT(CAMANG), FZ), the unscaled tire
+            cam_tire, cam_deg = _tires.get(c.main_tire), float(math.trunc(c.camber_deg))
+        else:
+            cam_tire, cam_deg = main, float(c.camber_deg)
+        slots = [_tire_slot(t) for t in (caster, main, cam_tire)]
+        fc = 0.0
+        if cam_deg != 0:
+            fc = cam_tire.camber_coefficient if c.camber_coefficient is None else float(c.camber_coefficient)
+        rolls = [_rolling_slot(caster, c.caster_rolling_scale != 0), _rolling_slot(main, c.main_rolling_scale != 0)]
+        chk_c, chk_m = isinstance(caster, _tires.Tire), isinstance(main, _tires.Tire)
+        return ([s[0] for s in slots], [s[1] for s in slots], [s[2] for s in slots], [s[3] for s in slots],
+                [r[0] for r in rolls], [r[1] for r in rolls], [r[2] for r in rolls], (cam_deg, fc),
+                (chk_c, chk_c, chk_m, chk_m))
+
+
+def _kernel():
+    from . import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
+
+    return kernel
+
+
+def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
+                 controller: SampledController | None = None, record: str = "all",
+                 threads: int | None = None) -> list[SimulationResult]:
+    """Run the WCHAIR scheme compiled for every (chair, speed) pair; one result per run."""
+    k = _kernel()
+    pk = _Packed(chairs, speeds, opts, forces)
+    n_runs = len(chairs)
+    steps = n_steps(opts)
+    mode = RECORDS.index(record)
+    ncol = (k.NREC_ALL, k.NREC_STATES, k.NREC_ALL)[mode]
+    nrec = 1 if mode == 2 else (steps - 1) // opts.stride + 1
+    levels = np.array(STATS_LEVELS, dtype=float)
+    cfg = np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, steps, opts.stride,
+                    0 if opts.model == "thesis" else 1, opts.casters == "locked", opts.stop_on_warnings,
+                    _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT], dtype=float)
+    ctl = (controller or SampledController.none()).arrays()
+    rec = np.empty((n_runs, ncol, nrec))
+    stats = np.full((n_runs, 3 + len(levels)), np.nan)
+    warn = np.zeros((n_runs, 3, 3))
+    status = np.zeros((n_runs, 6))
+    counts = np.zeros(n_runs, dtype=np.int64)
+    if threads is not None:
+        import numba
+
+        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+    k.run_batch(pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK, cfg, levels, *ctl,
+                rec, stats, warn, status, counts)
+    _raise_refused(chairs, opts, status)
+    times = np.arange(nrec) * float(opts.stride) * opts.dt
+    settings = opts.settings()
+    settings.update(engine="compiled", record=record)
+    if controller is not None:
+        settings["controller"] = controller.name
+    out = []
+    for i in range(n_runs):
+        s = settings if forces is None else dict(settings, impulse_force=float(forces[i]))
+        w = {kind: {"count": int(warn[i, j, 0]), "first_time": None if warn[i, j, 0] == 0 else float(warn[i, j, 1]),
+                    "max": None if warn[i, j, 0] == 0 else float(warn[i, j, 2])} for j, kind in enumerate(_WARN_KINDS)}
+        m = int(counts[i])
+        t = times[:m] if mode != 2 else np.array([_last_time(opts, status[i], steps)])
+        run_stats = RunStats(levels=STATS_LEVELS, time_to_level=tuple(None if math.isnan(x) else float(x)
+                                                                        for x in stats[i, 2:2 + len(levels)]),
+                             peak_abs_yaw_rate=float(stats[i, 0]), peak_time=float(stats[i, 1]))
+        out.append(SimulationResult.from_columns(
+            t, rec[i, :, :m], warnings=w, stopped=bool(status[i, 0]), stop_time=float(status[i, 1]) if status[i, 0]
+            else None, chair=chairs[i], speed=float(speeds[i]), settings=s, stats=run_stats))
+    return out
+
+
+def _last_time(opts: Options, status: np.ndarray, steps: int) -> float:
+    """Time of the last executed step (the one before a stop, else the last of the loop), s."""
+    last = steps - 1 if not status[0] else int(round(status[1] / opts.dt)) - 1
+    return max(last, 0) * opts.dt
+
+
+def _raise_refused(chairs: Sequence[Chair], opts: Options, status: np.ndarray) -> None:
+    """Policy "raise": the first refused tire input raises the tire's own error, as the Python path does."""
+    bad = np.flatnonzero(status[:, 2] != 0)
+    if bad.size == 0:
+        return
+    i = int(bad[0])
+    c = chairs[i]
+    wheel = int(status[i, 3])
+    if status[i, 2] == 2.0:
+        _tires.get(c.main_tire).lateral_force(float(status[i, 4]), float(status[i, 5]), policy="raise")
+    tire = c.caster_tire_model() if wheel < 2 else c.main_tire_model()
+    tire.lateral_force(float(status[i, 4]), float(status[i, 5]), policy="raise")
+    raise ValueError(f"tire input out of range (slip {status[i, 4]!r} deg, load {status[i, 5]!r} N)")  # unreachable

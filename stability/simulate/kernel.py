@@ -1,0 +1,368 @@
+"""The compiled WCHAIR-scheme kernel (numba): one run per thread, the same code for one run and for a batch.
+
+Imported only when a simulation runs (numba costs about 0.5 s to import; the
+compiled code is cached on disk, see ``docs/simulator.md``).  Every array
+layout is written by :mod:`stability.simulate.pack`.  The equations are the
+generated functions behind :mod:`stability.models.full_width`, compiled as
+they are; loads (:func:`stability.statics.normal_loads`), the tire resultant
+and yaw moment (:mod:`stability.models.full_width`) and the tire force law
+(``_segment_force`` of :mod:`stability.tires`) are transcribed with the same
+operations in the same order (tested bit for bit against them).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from ..models.full_width import generated as _fw
+
+_jit = njit(cache=True, nogil=True)
+cv_exact = _jit(_fw.contact_velocities_exact)
+cv_thesis = _jit(_fw.contact_velocities_thesis)
+acc_exact = _jit(_fw.accelerations_exact)
+acc_thesis = _jit(_fw.accelerations_thesis)
+
+# Params vector layout (stability.params.Params order)
+X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
+# per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
+U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
+#: recorded columns after t (COLUMNS[1:]); the first 10 are the states
+NREC_ALL, NREC_STATES = 31, 10
+
+
+@_jit
+def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
+    """:func:`stability.statics.normal_loads`, same operations."""
+    c1 = 1.0 / (P[ROLL_K] + 1.0)
+    xa, ya = P[X_P] - P[TRAIL] * ce, -P[T1] - P[TRAIL] * se
+    xb, yb = P[X_P] - P[TRAIL] * cb, P[T2] - P[TRAIL] * sb
+    weight = P[M] * P[G]
+    r_c = -P[H] * sum_fy * c1
+    r_m = -P[H] * sum_fy * (P[ROLL_K] * c1)
+    dy = yb - ya
+    x_c = (xa * yb - xb * ya) / dy
+    s_m = (-P[H] * sum_fx - r_c * (xb - xa) / dy - weight * x_c) / (P[X_M] - x_c)
+    s_c = weight - s_m
+    n_a = (yb * s_c - r_c) / dy
+    n_b = (r_c - ya * s_c) / dy
+    n_e = (r_m + P[D1] * s_m) / (P[D1] + P[D2])
+    n_d = s_m - n_e
+    return n_a, n_b, n_d, n_e
+
+
+@_jit
+def tire_yaw_moment(P, F, ce, se, cb, sb):
+    """:func:`stability.models.full_width.tire_yaw_moment`, same operations."""
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    xa, ya = P[X_P] - P[TRAIL] * ce, -P[T1] - P[TRAIL] * se
+    xb, yb = P[X_P] - P[TRAIL] * cb, P[T2] - P[TRAIL] * sb
+    fax, fay = FAx * ce - FAy * se, FAx * se + FAy * ce
+    fbx, fby = FBx * cb - FBy * sb, FBx * sb + FBy * cb
+    return xa * fay - ya * fax + xb * fby - yb * fbx + P[X_M] * (FDy + FEy) + P[D1] * FDx - P[D2] * FEx
+
+
+@_jit
+def lateral_force(kind, seg, scale, lim, slip, fz, policy):
+    """Cornering force (N) of one tire: ``(force, refused)``; ``refused`` under policy 2 ("raise").
+
+    kind 0: tested tire, ``seg`` = (6, 8) segment table (``_segment_force``);
+    kind 1: linear tire, ``scale`` = N/deg.  policy 0 clamp, 1 extrapolate, 2 raise.
+    """
+    if kind == 1:
+        if fz > 0.0:
+            return -scale * slip + 0.0, False
+        return 0.0, False
+    s = abs(slip)
+    f = fz
+    if s > lim[0] or f > lim[1]:
+        if policy == 2:
+            return math.nan, True
+        if policy == 0:
+            if s > lim[0]:
+                s = lim[0]
+            if f > lim[1]:
+                f = lim[1]
+    fzp = max(f, 0.0) if f == f else f
+    i = math.floor(s)
+    if not i <= 7.0:
+        i = 7.0
+    t = s - i
+    ii = int(i) if i == i else 7
+    c = seg[2, ii] + t * seg[5, ii]
+    b = seg[1, ii] + t * seg[4, ii]
+    a = seg[0, ii] + t * seg[3, ii]
+    c = ((c * fzp + b) * fzp + a) * fzp
+    if scale != 1.0:
+        c = c * scale
+    if slip > 0.0:
+        return -c + 0.0, False
+    return c + 0.0, False
+
+
+@_jit
+def rolling_force(kind, coef, scale, fz, vx):
+    """Rolling resistance (N) opposing ``vx``: kind 0 off, 1 Appendix B cubic, 2 linear ``f_r fz``."""
+    if kind == 0:
+        return 0.0 * fz
+    if kind == 1:
+        mag = abs(fz * (coef[0] + fz * (coef[1] + fz * coef[2]))) * scale if fz > 0.0 else 0.0
+    else:
+        mag = coef[0] * scale * fz if fz > 0.0 else 0.0
+    return math.copysign(mag, -vx)
+
+
+@_jit
+def held_both(model, s, F, fy_ext, mz, rdc, P):
+    """Accelerations with both casters held (locked): pin moments solved from three evaluations."""
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P)
+    a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P)
+    a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P)
+    k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
+    k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
+    det = k11 * k22 - k12 * k21
+    ma = (-a0[3] * k22 + a0[4] * k12) / det
+    mb = (-a0[4] * k11 + a0[3] * k21) / det
+    ud = a0[0] + ma * (a1[0] - a0[0]) + mb * (a2[0] - a0[0])
+    vd = a0[1] + ma * (a1[1] - a0[1]) + mb * (a2[1] - a0[1])
+    rd = a0[2] + ma * (a1[2] - a0[2]) + mb * (a2[2] - a0[2])
+    return (ud, vd, rd, 0.0, 0.0), ma, mb
+
+
+@_jit
+def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P):
+    """The generated accelerations of the model (0 thesis, with the lagged yaw acceleration; 1 exact)."""
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    if model == 0:
+        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                          P[M_C], P[I_Z], P[I_ZP], rdc)
+    return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                     fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                     P[M_C], P[I_Z], P[I_ZP])
+
+
+@_jit
+def kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd):
+    """Contact velocities (SLIP), main wheels in their toed frames."""
+    if model == 0:
+        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P],
+                                                           P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+    else:
+        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P],
+                                                          P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+    if S[TOE] != 0.0:
+        ct, st = S[CT], S[ST]
+        vEx, vEy = vEx * ct + vEy * st, -vEx * st + vEy * ct
+        vDx, vDy = vDx * ct - vDy * st, vDx * st + vDy * ct
+    return vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy
+
+
+@_jit
+def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """Sample ``k`` of the linear sampled controller: measure, output, advance ``z`` (see controller.py)."""
+    ny = Cy.shape[0]
+    nz = Az.shape[0]
+    for i in range(ny):
+        acc = ctl_f[2 + i] if 2 + i < ctl_f.shape[0] else 0.0
+        for j in range(10):
+            acc += Cy[i, j] * s[j]
+        if k < noise.shape[0]:
+            acc += noise[k, i]
+        y[i] = acc
+    out = 0.0
+    for i in range(nz):
+        out += Cz[i] * z[i]
+    for i in range(ny):
+        out += Dy[i] * y[i]
+    lim = ctl_f[1]
+    if out > lim:
+        out = lim
+    elif out < -lim:
+        out = -lim
+    for i in range(nz):
+        acc = Bu[i] * out
+        for j in range(nz):
+            acc += Az[i, j] * z[j]
+        for j in range(ny):
+            acc += By[i, j] * y[j]
+        znew[i] = acc
+    for i in range(nz):
+        z[i] = znew[i]
+    return out
+
+
+@_jit
+def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
+            rec, stats, warn, status):
+    """One run of the WCHAIR scheme; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``."""
+    dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
+        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] != 0.0, cfg[7] != 0.0,
+        int(cfg[8]), int(cfg[9]))
+    use_ctl = ctl_f[0] > 0.0
+    half_dt2 = 0.5 * dt * dt
+    maxslip, maxload, nwarn_limit = cfg[10], cfg[11], cfg[12]
+    nz = Az.shape[0]
+    z = np.zeros(nz)
+    znew = np.zeros(nz)
+    y = np.zeros(Cy.shape[0])
+    sv = np.zeros(10)
+    next_k = 0
+    mz_held = 0.0
+    UD, VD = S[U0], S[V0]
+    X = Y = THE = THED = THEDD = 0.0
+    E, B = S[ETA0], S[BETA0]
+    ED = BD = 0.0
+    FC1 = FC2 = 0.0
+    fcimp = S[FCIMP]
+    rad2deg = 180.0 / math.pi
+    nl = levels.shape[0]
+    prev_abs = 0.0
+    t_prev = 0.0
+    nrec = 0
+    for k in range(n):
+        t = k * dt
+        ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
+        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
+        sA = math.atan2(vAy, abs(vAx)) * rad2deg
+        sB = math.atan2(vBy, abs(vBx)) * rad2deg
+        sD = math.atan2(vDy, abs(vDx)) * rad2deg
+        sE = math.atan2(vEy, abs(vEx)) * rad2deg
+        NA, NB, ND, NE = normal_loads(P, FC1, FC2, ce, se, cb, sb)
+        # STATICS / MECHAN range rules (tested tires only)
+        nmax = -math.inf
+        smax = 0.0
+        nmin = min(min(NA, NB), min(ND, NE))
+        loads = (NA, NB, ND, NE)
+        slips = (sA, sB, sD, sE)
+        for w in range(4):
+            if CHK[w]:
+                nmax = max(nmax, loads[w])
+                smax = max(smax, abs(slips[w]))
+        if nmax > maxload:
+            _note(warn, 1, t, nmax)
+            if stop and warn[1, 0] > nwarn_limit:
+                status[0], status[1] = 1.0, t
+                break
+        if nmin < 0.0:
+            _note(warn, 2, t, nmin)
+        if smax > maxslip:
+            _note(warn, 0, t, smax)
+            if stop and warn[0, 0] > nwarn_limit:
+                status[0], status[1] = 1.0, t
+                break
+        imp = t <= duimp * (1.0 + 1e-12) + 1e-15
+        # MECHAN: lateral forces (FTIMP replaces the main wheels'), rolling, camber, toe back to body axes
+        FAy, bad0 = lateral_force(TK[0], TS[0], TL[0], LIM[0], sA, NA, policy)
+        FBy, bad1 = lateral_force(TK[0], TS[0], TL[0], LIM[0], sB, NB, policy)
+        if ftimp != 0.0 and imp:
+            FDy, bad2 = ftimp + 0.0 * ND, False
+            FEy, bad3 = ftimp + 0.0 * NE, False
+        else:
+            FDy, bad2 = lateral_force(TK[1], TS[1], TL[1], LIM[1], sD, ND, policy)
+            FEy, bad3 = lateral_force(TK[1], TS[1], TL[1], LIM[1], sE, NE, policy)
+        if bad0 or bad1 or bad2 or bad3:
+            w = 0 if bad0 else (1 if bad1 else (2 if bad2 else 3))
+            status[2], status[3], status[4], status[5] = 1.0, w, slips[w], loads[w]
+            break
+        FAx = rolling_force(RK[0], RC[0], RS[0], NA, vAx)
+        FBx = rolling_force(RK[0], RC[0], RS[0], NB, vBx)
+        FDx = rolling_force(RK[1], RC[1], RS[1], ND, vDx)
+        FEx = rolling_force(RK[1], RC[1], RS[1], NE, vEx)
+        if CAM[0] != 0.0:
+            cD, badc = lateral_force(TK[2], TS[2], TL[2], LIM[2], CAM[0], ND, policy)
+            cE, badd = lateral_force(TK[2], TS[2], TL[2], LIM[2], CAM[0], NE, policy)
+            if badc or badd:
+                status[2], status[3], status[4], status[5] = 2.0, 2.0 if badc else 3.0, CAM[0], ND if badc else NE
+                break
+            FDy = FDy + -CAM[1] * cD
+            FEy = FEy - -CAM[1] * cE
+        if S[TOE] != 0.0:
+            ct, st = S[CT], S[ST]
+            FEx, FEy = FEx * ct - FEy * st, FEx * st + FEy * ct
+            FDx, FDy = FDx * ct + FDy * st, -FDx * st + FDy * ct
+        F = (FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)
+        # DYNAM
+        fc1 = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
+        fc2 = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
+        fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
+        mz = 0.0
+        if use_ctl:
+            ks = int(math.floor(t / ctl_f[0] + 1e-9))
+            while next_k <= ks:
+                sv[0], sv[1], sv[2], sv[3], sv[4] = X, Y, THE, UD, VD
+                sv[5], sv[6], sv[7], sv[8], sv[9] = THED, E, ED, B, BD
+                mz_held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+                next_k += 1
+            mz = mz_held
+        st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
+        if locked:
+            acc, MA, MB = held_both(model, st_, F, fy_ext, mz, THEDD, P)
+        else:
+            MA = math.copysign(P[MAF], -ED) if ED != 0.0 else 0.0
+            MB = math.copysign(P[MBF], -BD) if BD != 0.0 else 0.0
+            acc = accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P)
+        UDD, VDD, THEDD, EDD, BDD = acc
+        if locked:
+            EDD = BDD = 0.0
+        # summaries: peak |yaw rate|, first times |yaw rate| >= each level (interpolated between steps)
+        a = abs(THED)
+        if a > stats[0] or k == 0:
+            stats[0], stats[1] = a, t
+        for j in range(nl):
+            if stats[2 + j] != stats[2 + j] and a >= levels[j]:
+                stats[2 + j] = t if k == 0 else t_prev + (levels[j] - prev_abs) / (a - prev_abs) * (t - t_prev)
+        prev_abs, t_prev = a, t
+        if mode == 2 or k % stride == 0:
+            row = 0 if mode == 2 else k // stride
+            vals = (X, Y, THE, THED, UD, VD, E, ED, B, BD)
+            for c in range(min(rec.shape[0], 10)):
+                rec[c, row] = vals[c]
+            if rec.shape[0] > 10:
+                for c in range(8):
+                    rec[10 + c, row] = F[c]
+                for c in range(4):
+                    rec[18 + c, row] = loads[c]
+                    rec[22 + c, row] = slips[c]
+                rec[26, row] = tire_yaw_moment(P, F, ce, se, cb, sb)
+                rec[27, row], rec[28, row], rec[29, row], rec[30, row] = mz, THEDD, MA, MB
+            nrec = row + 1
+            stats[2 + nl] = t
+        # UPDATE / ITRATE
+        FC1, FC2 = fc1, fc2 + fy_ext
+        du = UD * dt + UDD * half_dt2
+        dv = VD * dt + VDD * half_dt2
+        cost, sint = math.cos(THE), math.sin(THE)
+        X += du * cost - dv * sint
+        Y += du * sint + dv * cost
+        UD += UDD * dt
+        VD += VDD * dt
+        B += BD * dt + BDD * half_dt2
+        BD += BDD * dt
+        E += ED * dt + EDD * half_dt2
+        ED += EDD * dt
+        THE += THED * dt + THEDD * half_dt2
+        THED += THEDD * dt
+    return nrec
+
+
+@_jit
+def _note(warn, kind, t, value):
+    if warn[kind, 0] == 0.0 or abs(value) > abs(warn[kind, 2]):
+        warn[kind, 2] = value
+    if warn[kind, 0] == 0.0:
+        warn[kind, 1] = t
+    warn[kind, 0] += 1.0
+
+
+@njit(cache=True, parallel=True)
+def run_batch(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
+              rec, stats, warn, status, nrec):
+    """All runs, one per thread (``prange``); every array has the run as its first axis."""
+    for i in prange(P.shape[0]):
+        nrec[i] = run_one(P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, rec[i], stats[i], warn[i], status[i])

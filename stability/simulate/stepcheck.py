@@ -1,0 +1,66 @@
+"""Stability limit of WCHAIR's fixed step, from the linear model's eigenvalues at the run's speed.
+
+WCHAIR's update (``v += a dt``, ``x += v dt + a dt^2/2`` with ``a`` from the
+start of the step) advances the velocities by forward Euler.  A decaying
+mode ``lambda`` (Re < 0) is reproduced only if ``|1 + dt lambda| <= 1``,
+i.e. ``dt <= -2 Re(lambda) / |lambda|^2`` (``2/|lambda|`` for a real one);
+the stiff caster modes (``~ -C l^2 / (U I_zp)``, thousands of 1/s at walking
+speed) set the limit.  Derivation and checks in ``docs/simulator.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..chair import Chair
+from ..linear import state_matrices
+from .options import WCHAIR_DT
+
+__all__ = ["SAFETY", "stable_steps", "auto_step", "StepStabilityWarning"]
+
+#: Fraction of the limit that ``dt="auto"`` uses.
+SAFETY = 0.8
+
+
+class StepStabilityWarning(UserWarning):
+    """A fixed step outside the scheme's stability limit: the run may be a numerical artefact."""
+
+
+def stable_steps(chairs: Sequence[Chair], speeds: np.ndarray, model: str, casters: str) -> np.ndarray:
+    """Largest stable fixed step (s) of each (chair, speed) pair: ``min -2 Re(lambda)/|lambda|^2`` over Re < 0.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One per run.
+    speeds : ndarray
+        Forward speeds, m/s (> 0), one per run.
+    model, casters : str
+        Equation variant and caster state of the runs.
+
+    Returns
+    -------
+    ndarray
+        Seconds; ``inf`` where no mode decays.
+    """
+    speeds = np.abs(np.asarray(speeds, dtype=float))
+    keys: dict = {}
+    for c, u in zip(chairs, speeds.tolist(), strict=True):
+        keys.setdefault((c, u), len(keys))
+    uniq = list(keys)
+    A = state_matrices([c for c, _ in uniq], np.array([u for _, u in uniq]), model=model, casters=casters)
+    lam = np.linalg.eigvals(A)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lim = np.where(lam.real < 0, -2.0 * lam.real / np.abs(lam) ** 2, np.inf)
+    per_pair = lim.min(axis=-1)
+    return np.array([per_pair[keys[(c, u)]] for c, u in zip(chairs, speeds.tolist(), strict=True)])
+
+
+def auto_step(limit: float) -> float:
+    """The step ``dt="auto"`` picks: WCHAIR's 1 ms, or ``1 ms / k`` (whole k) within ``SAFETY`` of ``limit`` (s)."""
+    if not math.isfinite(limit) or limit * SAFETY >= WCHAIR_DT:
+        return WCHAIR_DT
+    return WCHAIR_DT / math.ceil(WCHAIR_DT / (SAFETY * limit))
