@@ -6,6 +6,7 @@ import pytest
 from stability import linear, study
 from stability.chair import preset
 from stability.reference import Push
+from stability.rootlocus import get_parameter
 
 
 # ---------------------------------------------------------------------------
@@ -88,3 +89,73 @@ def test_critical_impulse_reference_case_below_the_thesis_push():
     r = study.critical_impulses([ej, rev], 0.75)
     assert r[0].status == "found" and r[0].impulse_Ns < 4.04
     assert r[1].impulse_Ns > r[0].impulse_Ns
+
+
+# ---------------------------------------------------------------------------
+# equal-instability interval, facts, elasticities
+# ---------------------------------------------------------------------------
+def test_elasticity_of_a_power_law_is_its_exponent():
+    """The central difference in log space is exact for v = p^k: (ln(1.1^k) - ln(0.9^k)) / (ln 1.1 - ln 0.9) = k."""
+    from stability.study.sensitivity import _elasticity
+
+    for k in (-0.5, 1.0, 2.3):
+        assert _elasticity(0.9 ** k * 3.0, 1.1 ** k * 3.0, 0.1) == pytest.approx(k, rel=1e-12)
+    assert _elasticity(None, 1.0, 0.1) is None
+
+
+def test_fit_exponent_recovers_a_power_law():
+    f = np.array([0.05, 0.1, 0.15])
+    assert study.fit_exponent(f, 2.0 * f ** 0.47) == pytest.approx(0.47, rel=1e-12)
+
+
+def test_growth_rate_elasticities_closed_form_free_caster_mode():
+    """At 0.75 m/s the E&J Premier's fastest mode is the free-caster one, whose rate has the closed
+    form U m x_m / (I_z + m x_m^2) in the massless-caster limit (linear.massless_caster_rate): the
+    growth-rate elasticity for s1 equals the closed form's (-0.32) within 0.02.  Pin friction has
+    no linear effect (the linear model has no Coulomb friction), but raises the critical impulse."""
+    c = preset("ej-premier")
+    s = study.elasticities(c, 0.75, parameters=(study.FRICTION_OVER_TRAIL, "s1"))
+    e = {x.parameter: x for x in s.elasticities}
+    assert e[study.FRICTION_OVER_TRAIL].growth_rate == pytest.approx(0.0, abs=1e-9)
+    s1 = get_parameter("s1")           # main axle moved, caster pins fixed relative to the c.g.
+    rates = [linear.massless_caster_rate(s1.apply(c, c.s1 * f), 0.75) for f in (0.9, 1.1)]
+    expected = (np.log(rates[1]) - np.log(rates[0])) / (np.log(1.1) - np.log(0.9))
+    assert expected < -0.2
+    assert e["s1"].growth_rate == pytest.approx(expected, abs=0.02)
+    assert e[study.FRICTION_OVER_TRAIL].critical_impulse > 0.3
+
+
+@pytest.mark.slow
+def test_equal_instability_interval_revised_design():
+    """Issue 11's numbers (exact model): 1.02 m/s at 40 N; 0.79 m/s at 80 N; the reference never
+    reaches 1 rad/s at 20 N, so that variant is undefined; the thesis model gives more."""
+    r = study.equal_instability_interval(preset("revised"), force_factors=(0.5, 2.0), friction_factors=(0.5,))
+    assert r.point.speed == pytest.approx(1.02, abs=0.01)
+    v = {x.label: x for x in r.variants}
+    assert v["80 N (2x)"].speed == pytest.approx(0.79, abs=0.01)
+    assert v["20 N (0.5x)"].speed is None and not np.isfinite(v["20 N (0.5x)"].reference_time)
+    assert v["thesis model"].speed > r.point.speed
+    assert r.low <= r.point.speed <= r.high
+    assert r.dominant in ("disturbance", "pin friction", "model")
+
+
+@pytest.mark.slow
+def test_equal_friction_comparison_revised_gain_rests_on_friction():
+    """Issue 11: at equal pin friction 0 / 0.1 N m the revised design reaches the E&J chair's
+    instability at about 0.68 / 1.02 m/s; frictionless, its linear growth rate is higher, with s1
+    next to sqrt(I_z/m)."""
+    r = study.equal_friction_comparison(frictions=(0.0, 0.1))
+    assert r.rows[0].result.speed == pytest.approx(0.68, abs=0.01)
+    assert r.rows[1].result.speed == pytest.approx(1.02, abs=0.01)
+    assert r.growth_chair > r.growth_reference
+    assert r.s1 == pytest.approx(r.radius_of_gyration, abs=0.005)
+
+
+def test_steady_turn_under_friction():
+    """Below its equal-instability speed the revised design does not reach 1 rad/s but settles
+    into a slow turn: a steady yaw rate, and a heading that keeps growing (issue 11: 0.06-0.09
+    rad/s, about 45 deg in 10 s)."""
+    (t,) = study.steady_turn(preset("revised"), (0.5,))
+    assert not np.isfinite(t.time_to_level)
+    assert 0.03 < abs(t.final_yaw_rate) < 0.15
+    assert 20 < abs(t.heading_change_deg) < 80

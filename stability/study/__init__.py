@@ -5,7 +5,8 @@ after a 40 N, 0.1 s lateral push at the c.g., against the E&J Premier at
 0.75 m/s (:mod:`stability.reference`).  Modules: :mod:`.criteria` (the
 criterion), :mod:`.runs` (simulator access), :mod:`.responses` (nonlinear
 and linear responses), :mod:`.equal_instability`, :mod:`.maps`,
-:mod:`.sweeps`, :mod:`.thesis` and :mod:`.conclusions`.  Rationale:
+:mod:`.sweeps`, :mod:`.thesis`, :mod:`.conclusions`; issue 11's robust
+measures :mod:`.impulse`, :mod:`.intervals`, :mod:`.sensitivity`, :mod:`.facts`.  Rationale:
 docs/studies.md.
 """
 
@@ -16,6 +17,18 @@ from ..reference import THESIS_PUBLISHED
 from .conclusions import CONCLUSIONS, ConclusionCheck, check_conclusions
 from .criteria import Criterion, check_impulse, time_to_yaw_rate
 from .equal_instability import EqualInstability, equal_instability_speed, equal_instability_speeds, reference_time
+from .facts import (
+    PROPORTIONAL_RANGE,
+    EqualFrictionComparison,
+    EqualFrictionRow,
+    FrictionExponent,
+    SteadyTurn,
+    equal_friction_comparison,
+    fit_exponent,
+    friction_exponent,
+    growth_rate,
+    steady_turn,
+)
 from .impulse import (
     CriticalImpulse,
     CriticalImpulseCurve,
@@ -24,9 +37,18 @@ from .impulse import (
     critical_impulses,
     push_impulse,
 )
+from .intervals import EqualInstabilityInterval, FactorRange, Variant, equal_instability_interval
 from .maps import StabilityMap, disturbance_map, stability_map
 from .responses import LinearResponse, Response, ResponseSet, linear_impulse_response, trajectories, yaw_rate_responses
 from .runs import SCALAR_RUNS
+from .sensitivity import (
+    ELASTICITY_PARAMETERS,
+    FRICTION_OVER_TRAIL,
+    TRAIL_AT_FIXED_GROUP,
+    Elasticity,
+    Sensitivity,
+    elasticities,
+)
 from .sweeps import DEFAULT_PLAN, QUICK_PLAN, Sweep, SweepRow, SweepTable, parameter_sweeps, plan_for
 from .thesis import LinearFacts, ThesisStudy, friction_variants, thesis_study
 
@@ -73,4 +95,24 @@ __all__ = [
     "critical_impulses",
     "critical_impulse_curve",
     "push_impulse",
+    "EqualInstabilityInterval",
+    "FactorRange",
+    "Variant",
+    "equal_instability_interval",
+    "EqualFrictionComparison",
+    "EqualFrictionRow",
+    "equal_friction_comparison",
+    "FrictionExponent",
+    "friction_exponent",
+    "fit_exponent",
+    "PROPORTIONAL_RANGE",
+    "SteadyTurn",
+    "steady_turn",
+    "growth_rate",
+    "Elasticity",
+    "Sensitivity",
+    "elasticities",
+    "ELASTICITY_PARAMETERS",
+    "FRICTION_OVER_TRAIL",
+    "TRAIL_AT_FIXED_GROUP",
 ]

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..statics import static_stiffness
 from .equal_instability import EqualInstability
+from .facts import PROPORTIONAL_RANGE, fit_exponent
 from .thesis import ThesisStudy
 
 __all__ = ["ConclusionCheck", "CONCLUSIONS", "check_conclusions"]
@@ -46,6 +47,10 @@ CONCLUSIONS = {
     8: "Camber, width and c.g. height have no significant effect",
     9: "Tire selection has a moderate influence; a tire with low cornering stiffness is best",
 }
+
+
+#: The thesis's revised design at x0.5 / x1 / x1.5 pin friction (Figure 9-3, read off the plot), m/s.
+_THESIS_FIG_9_3 = (0.65, 1.1, 1.65)
 
 
 def _pct(a: float, b: float) -> float:
@@ -133,11 +138,16 @@ def _c6(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
     lo_r, hi_r = sp["revised x0.5 friction"], sp["revised x1.5 friction"]
     inc = (hi_e.value_or_bound > U0 > lo_e.value_or_bound and
            hi_r.value_or_bound > rev.value_or_bound > lo_r.value_or_bound)
-    d = _pct(hi_r.value_or_bound, rev.value_or_bound)
-    v = "agree" if inc and d >= 20 else ("partly" if inc else "disagree")
-    return _check(6, f"x0.5 / x1 / x1.5 pin friction: E&J Premier {_fmt(lo_e)} / {_fmt(base)} / {_fmt(hi_e)}; "
-                  f"revised {_fmt(lo_r)} / {_fmt(rev)} / {_fmt(hi_r)} (thesis, revised: 0.65 / 1.1 / 1.65). "
-                  f"(Agree if speed rises with friction and x1.5 gains >= 20 %.)", v)
+    k_e = fit_exponent((0.5, 1.0, 1.5), (lo_e.value_or_bound, U0, hi_e.value_or_bound))
+    k_r = fit_exponent((0.5, 1.0, 1.5), (lo_r.value_or_bound, rev.value_or_bound, hi_r.value_or_bound))
+    k_thesis = fit_exponent((0.5, 1.0, 1.5), _THESIS_FIG_9_3)
+    a, b = PROPORTIONAL_RANGE
+    v = "agree" if inc and a <= k_r <= b else ("partly" if inc else "disagree")
+    return _check(6, f"x0.5 / x1 / x1.5 pin friction: E&J Premier {_fmt(lo_e)} / {_fmt(base)} / {_fmt(hi_e)} "
+                  f"(speed ~ M_f^{k_e:.2f}); revised {_fmt(lo_r)} / {_fmt(rev)} / {_fmt(hi_r)} "
+                  f"(speed ~ M_f^{k_r:.2f}; thesis, revised: 0.65 / 1.1 / 1.65, M_f^{k_thesis:.2f}). "
+                  f"(Agree if speed rises with friction and the revised design's exponent is {a:g}-{b:g}, "
+                  "i.e. roughly proportional; partly if it only rises.)", v)
 
 
 def _c7(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:

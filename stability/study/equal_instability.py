@@ -15,7 +15,7 @@ from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from . import runs
 from .criteria import DEFAULT_CRITERION, Criterion, check_impulse
 
-__all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds",
+__all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds", "bisect_speeds",
            "equal_instability_speed"]
 
 
@@ -216,13 +216,49 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
     if reference is None:
         reference = reference_time(ref_chair, reference_speed, impulse=impulse, criterion=criterion,
                                    model=model, scheme=scheme, dt=dt, **sim_options)
-    target = float(reference)
+    return bisect_speeds(chairs, [float(reference)] * len(chairs), [impulse[0]] * len(chairs), impulse[1],
+                         model=model, scheme=scheme, criterion=criterion, bracket=(lo0, hi0), tol=tol,
+                         candidates=candidates, max_rounds=max_rounds, dt=dt, progress=progress,
+                         reference_text=f"{ref_chair.name} at {reference_speed:g} m/s", sim_options=sim_options)
+
+
+def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Sequence[float], length: float, *,
+                  model: str, scheme: str, criterion: Criterion, bracket: tuple[float, float], tol: float,
+                  candidates: int, max_rounds: int, dt: float | None, progress: bool, reference_text: str,
+                  sim_options: dict) -> list[EqualInstability]:
+    """The vectorised bisection behind :func:`equal_instability_speeds`, with a target time and a push per chair.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    targets : sequence of float
+        Each chair's reference time, s.
+    forces : sequence of float
+        Each chair's push force, N.
+    length : float
+        Push duration, s (common).
+    model, scheme, criterion, bracket, tol, candidates, max_rounds, dt, progress
+        As in :func:`equal_instability_speeds`.
+    reference_text : str
+        The reference case in words.
+    sim_options : dict
+        More simulator options.
+
+    Returns
+    -------
+    list of EqualInstability
+    """
+    lo0, hi0 = bracket
+    n = len(chairs)
+    target = np.asarray(targets, dtype=float)
+    force = np.asarray(forces, dtype=float)
     # a run still below the level at 1.5 x the reference time (+ 0.5 s) is certainly more stable than
     # the reference: no need to simulate it to the end of the criterion's duration
-    horizon = min(criterion.duration, 1.5 * target + 0.5)
-    opts = runs.sim_options(model, scheme, impulse, dt, horizon, sim_options)
-    crit_h = Criterion(criterion.yaw_rate, horizon)
-    n = len(chairs)
+    horizons = np.minimum(criterion.duration, 1.5 * target + 0.5)
+    horizon = float(horizons.max())
+    opts = runs.sim_options(model, scheme, (float(force[0]), length), dt, horizon, sim_options)
+    end = horizons + (dt or 0.0) + 1e-12         # a run of a longer batch counts only up to its own horizon
+    crit = [Criterion(criterion.yaw_rate, float(h)) for h in horizons]
     evals: list[list[tuple[float, float]]] = [[] for _ in range(n)]
     lo = np.full(n, lo0)
     hi = np.full(n, hi0)
@@ -233,12 +269,15 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
             active = [i for i in range(n) if status[i] == "open" and (rnd == 0 or hi[i] - lo[i] > tol)]
             if not active:
                 break
-            run_chairs, run_speeds, owner = _round_runs(chairs, active, lo, hi, candidates, rnd == 0)
+            run_chairs, run_speeds, owner = _round_runs(list(chairs), active, lo, hi, candidates, rnd == 0)
+            if np.any(force != force[0]):
+                opts["impulse_force"] = force[owner]
             results = runs.simulate_runs(run_chairs, run_speeds, progress=False, **opts)
             for i, s, r in zip(owner, run_speeds, results, strict=True):
-                evals[i].append((s, crit_h.time(r)))
+                t = crit[i].time(r)
+                evals[i].append((s, t if t <= end[i] else math.inf))
             for i in active:
-                status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], target, rnd == 0)
+                status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), rnd == 0)
             bar.update()
     out = []
     for i, c in enumerate(chairs):
@@ -249,10 +288,9 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
             st = "found"
             t_lo = next(t for s, t in pts if s == lo[i])
             t_hi = next(t for s, t in pts if s == hi[i])
-            speed = interp_speed(lo[i], t_lo, hi[i], t_hi, target)
-        out.append(EqualInstability(c, speed, st, float(lo[i]), float(hi[i]), target, pts, (lo0, hi0),
-                                    criterion, model, scheme, impulse,
-                                    f"{ref_chair.name} at {reference_speed:g} m/s"))
+            speed = interp_speed(lo[i], t_lo, hi[i], t_hi, float(target[i]))
+        out.append(EqualInstability(c, speed, st, float(lo[i]), float(hi[i]), float(target[i]), pts, (lo0, hi0),
+                                    criterion, model, scheme, (float(force[i]), float(length)), reference_text))
     return out
 
 

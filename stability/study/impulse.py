@@ -211,9 +211,9 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
     """
     check_model(model)
     check_choice("scheme", scheme, SCHEMES)
-    for name, value in (("duration", duration), ("level", level), ("horizon", horizon), ("dt", dt),
+    for name, arg in (("duration", duration), ("level", level), ("horizon", horizon), ("dt", dt),
                         ("max_impulse", max_impulse), ("min_impulse", min_impulse), ("rel_tol", rel_tol)):
-        check_positive(name, value)
+        check_positive(name, arg)
     if not min_impulse < max_impulse:
         raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
     chair_arr = np.atleast_1d(np.asarray(chairs, dtype=object)) if not isinstance(chairs, Chair) else np.array([chairs],
@@ -260,6 +260,7 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
                   f"impulse = force x {unit:.4g} s)" if scheme == "wchair" else
                   f"constant force at the c.g. for {duration:g} s (impulse = force x {duration:g} s)")
     out = []
+    value: float | None
     for i, (c, s) in enumerate(run_list):
         tr = tried[i]
         if not any(tr.values()):

@@ -1,0 +1,264 @@
+"""Equal-instability speed with an honest interval: over the push size, the pin-friction uncertainty and both models."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .._validate import VARIANTS, check_model
+from ..chair import Chair, preset
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH, Push
+from . import runs
+from .criteria import DEFAULT_CRITERION, Criterion
+from .equal_instability import EqualInstability, bisect_speeds
+
+__all__ = ["Variant", "FactorRange", "EqualInstabilityInterval", "scale_friction", "reference_times",
+           "equal_instability_interval"]
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One assumption set: the model, the push force and a pin-friction factor (applied to both chairs).
+
+    Attributes
+    ----------
+    factor : {"nominal", "disturbance", "pin friction", "model"}
+        Which input this variant moves.
+    label : str
+        E.g. ``"20 N (0.5x)"``.
+    model : str
+    force : float
+        Push force, N (for the push's duration).
+    friction_factor : float
+        Multiplies both pins' friction of the chair and of the reference chair.
+    reference_time : float
+        The reference case's time to the level, s (+inf: never, the variant is undefined).
+    result : EqualInstability or None
+        None when undefined.
+    """
+
+    factor: str
+    label: str
+    model: str
+    force: float
+    friction_factor: float
+    reference_time: float
+    result: EqualInstability | None
+
+    @property
+    def speed(self) -> float | None:
+        """The equal-instability speed, m/s (None if undefined or outside the bracket)."""
+        return None if self.result is None else self.result.speed
+
+
+@dataclass(frozen=True)
+class FactorRange:
+    """How far one input moves the equal-instability speed.
+
+    Attributes
+    ----------
+    factor : str
+    low, high : float or None
+        Smallest and largest speed over the nominal case and this factor's variants, m/s.
+    undefined : tuple of str
+        Variants where the measure is undefined (the reference never reaches the level) or
+        the speed lies outside the bracket.
+    """
+
+    factor: str
+    low: float | None
+    high: float | None
+    undefined: tuple
+
+    @property
+    def width(self) -> float:
+        """``high - low``, m/s (0 when undefined)."""
+        return 0.0 if self.low is None or self.high is None else self.high - self.low
+
+
+@dataclass(frozen=True)
+class EqualInstabilityInterval:
+    """The equal-instability speed, its interval over the inputs it rests on, and what moves it most.
+
+    Attributes
+    ----------
+    chair_name : str
+    point : EqualInstability
+        The nominal case (the thesis's push, nominal friction, ``model``).
+    low, high : float or None
+        Smallest and largest speed over every defined variant, m/s.
+    factors : tuple of FactorRange
+    dominant : str
+        The factor with the widest range.
+    variants : tuple of Variant
+    push : str
+        The nominal push convention.
+    friction_scope : str
+        To which chairs the friction factors apply.
+    """
+
+    chair_name: str
+    point: EqualInstability
+    low: float | None
+    high: float | None
+    factors: tuple
+    dominant: str
+    variants: tuple
+    push: str
+    friction_scope: str = "both the chair and the reference chair"
+
+    def describe(self) -> str:
+        """One line: the point value, the interval and what drives it."""
+        if self.low is None or self.high is None:
+            return f"{self.point.describe()} (no interval: no variant defined)"
+        return (f"{self.point.describe()} (range {self.low:.2f}-{self.high:.2f} m/s over "
+                + ", ".join(f.factor for f in self.factors) + f"; moved most by {self.dominant})")
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict."""
+        return {"chair": self.chair_name, "speed_m_s": self.point.speed, "status": self.point.status,
+                "low_m_s": self.low, "high_m_s": self.high, "dominant": self.dominant, "push": self.push,
+                "friction_scope": self.friction_scope,
+                "factors": [{"factor": f.factor, "low_m_s": f.low, "high_m_s": f.high, "undefined": list(f.undefined)}
+                            for f in self.factors],
+                "variants": [{"factor": v.factor, "label": v.label, "model": v.model, "force_N": v.force,
+                              "friction_factor": v.friction_factor,
+                              "reference_time_s": v.reference_time if math.isfinite(v.reference_time) else None,
+                              "speed_m_s": v.speed, "status": None if v.result is None else v.result.status}
+                             for v in self.variants]}
+
+
+def scale_friction(c: Chair, factor: float) -> Chair:
+    """``c`` with both pins' Coulomb friction times ``factor``."""
+    if factor == 1.0:
+        return c
+    return c.replace(pin_friction_left=c.pin_friction_left * factor, pin_friction_right=c.pin_friction_right * factor)
+
+
+def reference_times(reference: Chair | Sequence[Chair], speed: float, forces: Sequence[float], *, model: str,
+                    scheme: str, length: float, criterion: Criterion, dt: float | None,
+                    sim_options: dict) -> np.ndarray:
+    """The reference case's time to the level for several pushes (and reference chairs), one batch.
+
+    Parameters
+    ----------
+    reference : Chair or sequence of Chair
+        One per force, or one for all.
+    speed : float
+        m/s.
+    forces : sequence of float
+        N.
+    model, scheme : str
+    length : float
+        Push duration, s.
+    criterion : Criterion
+    dt : float or None
+    sim_options : dict
+
+    Returns
+    -------
+    numpy.ndarray
+        Seconds, +inf where the level is never reached.
+    """
+    forces = [float(f) for f in forces]
+    chairs = [reference] * len(forces) if isinstance(reference, Chair) else list(reference)
+    opts = runs.sim_options(model, scheme, (forces[0], length), dt, criterion.duration, sim_options)
+    opts["impulse_force"] = np.asarray(forces)
+    res = runs.simulate_runs(chairs, [speed] * len(forces), progress=False, **opts)
+    return np.array([criterion.time(r) for r in res])
+
+
+def _variants(model: str, force: float, force_factors: Sequence[float], friction_factors: Sequence[float],
+              models: Sequence[str]) -> list[tuple[str, str, str, float, float]]:
+    out = [("nominal", f"{force:g} N, x1 friction, {model}", model, force, 1.0)]
+    out += [("disturbance", f"{force * f:g} N ({f:g}x)", model, force * f, 1.0) for f in force_factors]
+    out += [("pin friction", f"x{g:g} pin friction", model, force, g) for g in friction_factors]
+    out += [("model", f"{m} model", m, force, 1.0) for m in models if m != model]
+    return out
+
+
+def equal_instability_interval(chair: Chair, *, model: str = "exact",
+                               force_factors: Sequence[float] = (0.5, 0.75, 1.5, 2.0),
+                               friction_factors: Sequence[float] = (0.5, 1.5), models: Sequence[str] = VARIANTS,
+                               reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
+                               push: Push = THESIS_PUSH, criterion: Criterion = DEFAULT_CRITERION,
+                               scheme: str = "wchair", bracket: tuple = (0.2, 3.0), tol: float = 0.01,
+                               candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
+                               friction_on_reference: bool = True, progress: bool = False,
+                               **sim_options: Any) -> EqualInstabilityInterval:
+    """Equal-instability speed of ``chair`` over the inputs it depends on, one factor at a time.
+
+    The nominal case is the thesis's: the reference chair at the reference
+    speed under ``push``, nominal pin friction, ``model``.  Each variant moves
+    one input: the push force (``force_factors`` x), the pin friction of
+    both chairs (``friction_factors`` x: the uncertainty of the measured
+    friction applies to the reference's pins too), or the model.  A variant
+    in which the reference never reaches the level is undefined (listed).
+    Per model, the reference runs are one batch and the bisection of every
+    variant shares its rounds.
+
+    Parameters
+    ----------
+    chair : Chair
+    model : {"exact", "thesis"}
+    force_factors, friction_factors : sequence of float
+    models : sequence of str
+        Models compared (the nominal one plus the others).
+    reference_chair : Chair, optional
+        Default the E&J Premier.
+    reference_speed : float
+        m/s.
+    push : Push
+        The nominal push (force N, duration s).
+    friction_on_reference : bool
+        Apply the friction factors to the reference chair too (default), or
+        to ``chair`` only (the thesis's Figure 9-3 convention).
+    criterion, scheme, bracket, tol, candidates, max_rounds, dt, progress, **sim_options
+        As in :func:`stability.study.equal_instability_speeds`.
+
+    Returns
+    -------
+    EqualInstabilityInterval
+    """
+    check_model(model)
+    for m in models:
+        check_model(m)
+    ref0 = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
+    specs = _variants(model, push.force, force_factors, friction_factors, models)
+    variants: list[Variant | None] = [None] * len(specs)
+    for m in dict.fromkeys(s[2] for s in specs):
+        idx = [k for k, s in enumerate(specs) if s[2] == m]
+        refs = [scale_friction(ref0, specs[k][4] if friction_on_reference else 1.0) for k in idx]
+        t_ref = reference_times(refs, reference_speed,
+                                [specs[k][3] for k in idx], model=m, scheme=scheme, length=push.duration,
+                                criterion=criterion, dt=dt, sim_options=sim_options)
+        ok = [k for k, t in zip(idx, t_ref, strict=True) if math.isfinite(t)]
+        res = bisect_speeds([scale_friction(chair, specs[k][4]) for k in ok],
+                            [float(t_ref[idx.index(k)]) for k in ok], [specs[k][3] for k in ok], push.duration,
+                            model=m, scheme=scheme, criterion=criterion, bracket=(float(bracket[0]), float(bracket[1])),
+                            tol=tol, candidates=candidates, max_rounds=max_rounds, dt=dt, progress=progress,
+                            reference_text=f"{ref0.name} at {reference_speed:g} m/s", sim_options=sim_options)
+        found = dict(zip(ok, res, strict=True))
+        for k, t in zip(idx, t_ref, strict=True):
+            variants[k] = Variant(*specs[k][:2], m, specs[k][3], specs[k][4], float(t), found.get(k))
+    vs = tuple(v for v in variants if v is not None)
+    nominal = vs[0]
+    if nominal.result is None:
+        raise ValueError(f"the reference case ({ref0.name} at {reference_speed:g} m/s) never reaches "
+                         f"{criterion.yaw_rate:g} rad/s within {criterion.duration:g} s under {push.describe(dt)}")
+    factors = []
+    for name in dict.fromkeys(v.factor for v in vs[1:]):
+        group = [nominal] + [v for v in vs if v.factor == name]
+        sp = [v.speed for v in group if v.speed is not None]
+        factors.append(FactorRange(name, float(min(sp)) if sp else None, float(max(sp)) if sp else None,
+                                   tuple(v.label for v in group if v.speed is None)))
+    all_sp = [v.speed for v in vs if v.speed is not None]
+    dominant = max(factors, key=lambda f: f.width).factor if factors else "nominal"
+    scope = "both the chair and the reference chair" if friction_on_reference else "the chair only"
+    return EqualInstabilityInterval(chair.name, nominal.result, float(min(all_sp)) if all_sp else None,
+                                    float(max(all_sp)) if all_sp else None, tuple(factors), dominant, vs,
+                                    push.describe(dt if scheme == "wchair" else None), scope)
