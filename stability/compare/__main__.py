@@ -83,7 +83,8 @@ def _chairs(specs: Sequence[str], assignments: Sequence[str]) -> tuple[list[Chai
         except ValueError as exc:
             raise ValueError(f"chair {i + 1} ({spec!r}): {str(exc).splitlines()[0]}") from None
         chairs.append(c)
-        names.append(c.name + (f" ({', '.join(sets)})" if sets else ""))
+        modified = bool(sets) and c.name == load_chair(spec, []).name  # replace() may already rename it
+        names.append(c.name + (f" ({', '.join(sets)})" if modified else ""))
     return chairs, names
 
 

@@ -65,9 +65,8 @@ def plot_effects(axes: Any, e: EffectSet, reference: str, model: str) -> Any:
 
     def values(single: list[float | None], total: float | None, rem: float | None) -> np.ndarray:
         parts = [np.nan if v is None else v for v in single]
-        known = [v for v in parts if np.isfinite(v)]
-        return np.array(parts + [sum(known) if known else np.nan, np.nan if rem is None else rem,
-                                 np.nan if total is None else total])
+        whole = sum(parts) if all(np.isfinite(parts)) else np.nan  # n/a when any single effect is n/a
+        return np.array(parts + [whole, np.nan if rem is None else rem, np.nan if total is None else total])
 
     data = ((values([s.growth_rate for s in e.effects], e.total_growth_rate, e.remainder_growth_rate),
              f"change of growth rate at {REFERENCE_SPEED:g} m/s (1/s)"),
@@ -78,7 +77,7 @@ def plot_effects(axes: Any, e: EffectSet, reference: str, model: str) -> Any:
     for ax, (v, xlabel) in zip(axes, data, strict=True):
         ax.barh(y, np.nan_to_num(v), color=colours)
         for k in np.flatnonzero(~np.isfinite(v)):
-            ax.text(0, y[k], " n/a", va="center", fontsize="small")
+            ax.text(0, y[k], " n/a (invalid chair or no finite value)", va="center", fontsize="small")
         ax.set_yticks(y, names)
         ax.invert_yaxis()
         ax.axvline(0.0, color="black", lw=0.8)

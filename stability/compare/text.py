@@ -100,10 +100,10 @@ def format_comparison(c: Comparison) -> str:
             continue
         for s in e.effects:
             if s.error:
-                lines.append(f"    {s.field:<22} {s.reference_value!r} -> {s.value!r}: "
+                lines.append(f"    {s.field:<22} {_field(s.reference_value)} -> {_field(s.value)}: "
                              f"not a valid chair alone ({s.error})")
                 continue
-            lines.append(f"    {s.field:<22} {s.reference_value!r} -> {s.value!r}: growth rate "
+            lines.append(f"    {s.field:<22} {_field(s.reference_value)} -> {_field(s.value)}: growth rate "
                          f"{_signed(s.growth_rate)}, locked critical speed {_signed(s.locked_critical_speed)}")
         lines.append(f"    {'total':<22} growth rate {_signed(e.total_growth_rate)}, locked critical speed "
                      f"{_signed(e.total_locked_critical_speed)}")
@@ -114,6 +114,10 @@ def format_comparison(c: Comparison) -> str:
     lines += ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
               "thesis's ranking by time to 1 rad/s after a push (--nonlinear) can differ: see docs/compare.md."]
     return "\n".join(lines)
+
+
+def _field(v: object) -> str:
+    return f"{v:.4g}" if isinstance(v, float) else repr(v)
 
 
 def _signed(x: float | None) -> str:

@@ -1,0 +1,182 @@
+"""Tests of stability.compare: wiring against stability.linear, closed forms, invariants, the command line."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+
+import numpy as np
+import pytest
+
+from stability import chair
+from stability.compare import compare, format_comparison, single_effects
+from stability.compare.__main__ import main
+from stability.linear import analyse, divergence, zero_width
+from stability.reference import REFERENCE_SPEED
+
+SPEEDS = (0.25, 0.75, 1.5, 3.0)
+
+
+@pytest.fixture(scope="module")
+def premier_revised():
+    return compare([chair.preset("ej-premier"), chair.preset("revised")], speeds=SPEEDS)
+
+
+def _diffs(c):
+    return {(d.key, d.chair): d for d in c.differences}
+
+
+def test_chair_against_itself_has_no_difference():
+    a = chair.preset("ej-premier")
+    c = compare([a, a], speeds=SPEEDS)
+    assert len(set(c.labels)) == 2
+    for d in c.differences:
+        assert d.more_stable == "equal", d
+        assert d.absolute in (0.0, None)  # None only for a critical speed that exists for neither
+    assert c.effects[0].effects == ()
+    assert c.effects[0].total_growth_rate == 0.0
+
+
+def test_numbers_equal_stability_linear(premier_revised):
+    c = premier_revised
+    for i, ch in enumerate(c.chairs):
+        rates = [r.rate for r in divergence(ch, SPEEDS)]
+        got = [c.quantity(f"growth_rate_1_s@{s:g}").values[i] for s in SPEEDS]
+        np.testing.assert_allclose(got, rates, rtol=1e-9, atol=1e-12)
+        locked = [x.speed for x in analyse(ch, speeds=SPEEDS).locked_crossings if x.direction == "destabilising"]
+        assert c.quantity("locked_critical_speed_m_s").values[i] == pytest.approx(locked[0], abs=2e-6)
+        z = zero_width(ch)
+        assert c.quantity("understeer_coefficient_rad").values[i] == z.understeer_coefficient
+        assert c.quantity("zero_width_critical_speed_m_s").values[i] == z.critical_speed
+
+
+def test_locked_critical_speed_matches_eq_5_15_by_hand(premier_revised):
+    # Independent route: for a left-right symmetric chair the full-width locked-caster model
+    # reduces to the bicycle model, whose critical speed is sqrt(-g s / k_us) (eqs 5-13..5-16).
+    for i, ch in enumerate(premier_revised.chairs):
+        s = ch.s1 + ch.s2 + ch.trail
+        w_main = ch.m * ch.g * (ch.s2 + ch.trail) / (2 * s)     # one main wheel, N
+        w_cast = ch.m * ch.g * ch.s1 / (2 * s)                 # one caster, N
+        c_main = ch.main_tire_model().cornering_stiffness_per_rad(w_main)
+        c_cast = ch.caster_tire_model().cornering_stiffness_per_rad(w_cast)
+        k_us = w_main / c_main - w_cast / c_cast                # main axle is the front axle (rear casters)
+        assert k_us < 0
+        expected = math.sqrt(-ch.g * s / k_us)
+        assert premier_revised.quantity("locked_critical_speed_m_s").values[i] == pytest.approx(expected, rel=1e-5)
+
+
+def test_verdict_premier_vs_revised(premier_revised):
+    d = _diffs(premier_revised)
+    crit = d[("locked_critical_speed_m_s", "revised")]
+    q = premier_revised.quantity("locked_critical_speed_m_s").values
+    assert crit.more_stable == "revised" and crit.absolute == q[1] - q[0]
+    assert crit.percent == pytest.approx(100 * (q[1] - q[0]) / q[0], rel=1e-12)
+    # the linear free-caster model (no pin friction) ranks the revised design slightly less stable
+    g = d[("growth_rate_1_s@0.75", "revised")]
+    assert g.absolute > 0 and g.more_stable == "ej-premier"
+
+
+def test_single_parameter_difference_is_the_whole_effect():
+    a = chair.preset("ej-premier")
+    b = a.replace(trail=0.06)
+    e = single_effects(a, b, "short trail")
+    assert [s.field for s in e.effects] == ["trail"]
+    assert e.effects[0].growth_rate == e.total_growth_rate
+    assert e.effects[0].locked_critical_speed == e.total_locked_critical_speed
+    assert e.remainder_growth_rate == 0.0 and e.remainder_locked_critical_speed == 0.0
+    # and the total is the difference the comparison reports
+    c = compare([a, b], speeds=(REFERENCE_SPEED,))
+    assert _diffs(c)[(f"growth_rate_1_s@{REFERENCE_SPEED:g}", c.labels[1])].absolute == e.total_growth_rate
+
+
+def test_effects_of_revised_sum_with_remainder(premier_revised):
+    e = premier_revised.effects[0]
+    assert [s.field for s in e.effects] == ["s1", "s2", "trail"]
+    total = sum(s.growth_rate for s in e.effects) + e.remainder_growth_rate
+    assert total == pytest.approx(e.total_growth_rate, rel=1e-12)
+
+
+def test_mirror_invariant():
+    a, b = chair.preset("ej-premier"), chair.preset("revised")
+    ab, ba = compare([a, b], speeds=SPEEDS), compare([b, a], speeds=SPEEDS)
+    for d1 in ab.differences:
+        d2 = _diffs(ba)[(d1.key, "ej-premier")]
+        assert d2.absolute == -d1.absolute
+        assert d2.more_stable == d1.more_stable
+
+
+def test_front_caster_stable_and_ranked_more_stable():
+    c = compare([chair.preset("ej-premier"), chair.preset("ej-premier-front-caster")])
+    front = c.labels[1]
+    assert max(c.curves[1]) < 0
+    for s in c.speeds:
+        assert c.quantity(f"growth_rate_1_s@{s:g}").values[1] < 0
+        assert _diffs(c)[(f"growth_rate_1_s@{s:g}", front)].more_stable == front
+    assert c.quantity("locked_critical_speed_m_s").values[1] == math.inf
+    assert _diffs(c)[("locked_critical_speed_m_s", front)].more_stable == front
+    assert "none < 30 m/s" in format_comparison(c)
+
+
+def test_uncertainty_shared_draws_cancel_for_the_same_chair(tmp_path):
+    u = tmp_path / "u.toml"
+    u.write_text('[i_z]\ndistribution = "normal"\nstd = 0.5\n[s1]\ndistribution = "normal"\nstd = 0.01\n')
+    from stability.measure.uncertainty import load_uncertainty
+
+    a = chair.preset("ej-premier")
+    unc = load_uncertainty(u)
+    shared = compare([a, a], speeds=(REFERENCE_SPEED,), uncertainties=[unc, unc], samples=60)
+    d = _diffs(shared)[(f"growth_rate_1_s@{REFERENCE_SPEED:g}", shared.labels[1])]
+    assert d.interval == (0.0, 0.0) and d.distinguishable is False
+    iv = shared.quantity(f"growth_rate_1_s@{REFERENCE_SPEED:g}").intervals[0]
+    assert iv[0] < shared.quantity(f"growth_rate_1_s@{REFERENCE_SPEED:g}").values[0] < iv[1]
+    indep = compare([a, a], speeds=(REFERENCE_SPEED,), uncertainties=[unc, unc], samples=60, pairing="independent")
+    d = _diffs(indep)[(f"growth_rate_1_s@{REFERENCE_SPEED:g}", indep.labels[1])]
+    assert d.interval[0] < 0 < d.interval[1] and d.distinguishable is False
+
+
+def test_cli_json_keys(capsys, tmp_path):
+    out_file = tmp_path / "c.json"
+    code = main(["ej-premier", "revised", "--speeds", "0.75", "--json", "--json-file", str(out_file)])
+    out, err = capsys.readouterr()
+    assert code == 0
+    data = json.loads(out)
+    assert data == json.loads(out_file.read_text())
+    for key in ("stability_version", "model", "options", "chairs", "reference", "measures", "verdicts",
+                "single_effects", "uncertainty", "push"):
+        assert key in data
+    assert [c["label"] for c in data["chairs"]] == ["ej-premier", "revised"]
+    assert data["chairs"][1]["parameters"]["s1"] == 0.245
+    assert data["measures"]["locked_critical_speed_m_s"]["chairs"]["revised"]["value"] > 13
+    assert {v["measure"] for v in data["verdicts"]} >= {"growth_rate_1_s@0.75", "locked_critical_speed_m_s"}
+    assert [e["field"] for e in data["single_effects"][0]["effects"]] == ["s1", "s2", "trail"]
+
+
+def test_cli_set_and_pdf(capsys, tmp_path):
+    pdf = tmp_path / "c.pdf"
+    code = main(["ej-premier", "ej-premier", "--set", "2:trail=0.06", "--speeds", "0.75", "--pdf", str(pdf)])
+    out, _ = capsys.readouterr()
+    assert code == 0 and pdf.read_bytes()[:4] == b"%PDF"
+    assert "trail=0.06" in out.splitlines()[0]  # the modified chair's label says so
+    assert "trail                  0.08 -> 0.06" in out
+
+
+@pytest.mark.parametrize("argv, fragment", [
+    (["ej-premier"], "at least two chairs"),
+    (["ej-premier", "no-such-chair"], "no-such-chair"),
+    (["ej-premier", "revised", "--uncertainty", "-"], "--uncertainty"),
+    (["ej-premier", "revised", "--set", "3:trail=0.06"], "--set"),
+    (["ej-premier", "revised", "--set", "2:trail=7"], "trail"),
+    (["ej-premier", "revised", "--samples", "0"], "--samples"),
+    (["ej-premier", "revised", "--speeds", "0:1:0"], "--speeds"),
+    (["ej-premier", "revised", "--json-file", "NODIR/x.json"], "--json-file"),
+    (["ej-premier", "revised", "--pdf", "OUT", "--json-file", "OUT"], "same file"),
+])
+def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, fragment):
+    argv = [a.replace("NODIR", str(tmp_path / "missing")).replace("OUT", str(tmp_path / "out")) for a in argv]
+    code = main(argv)
+    out, err = capsys.readouterr()
+    assert code == 2
+    assert err.count("\n") == 1 and err.startswith("error: ") and fragment in err, err
+    assert "Traceback" not in err
+    assert os.listdir(tmp_path) == []
