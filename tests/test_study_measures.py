@@ -159,3 +159,39 @@ def test_steady_turn_under_friction():
     assert not np.isfinite(t.time_to_level)
     assert 0.03 < abs(t.final_yaw_rate) < 0.15
     assert 20 < abs(t.heading_change_deg) < 80
+
+
+# ---------------------------------------------------------------------------
+# command line
+# ---------------------------------------------------------------------------
+def test_cli_critical_impulse_json_matches_the_function(capsys):
+    import json
+
+    from stability.study.__main__ import main
+
+    args = ["critical-impulse", "--chair", "ej-premier", "--set", "pin_friction_left=0", "--set",
+            "pin_friction_right=0", "--speeds", "0.75", "--level", "0.02", "--horizon", "2", "--json"]
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    direct = study.critical_impulse(c, 0.75, level=0.02, horizon=2.0)
+    assert data["points"][0]["impulse_Ns"] == pytest.approx(direct.impulse_Ns, rel=1e-12)
+    assert "101 steps of 1 ms" in data["points"][0]["push"]
+
+
+@pytest.mark.parametrize("args, word", [
+    (["critical-impulse", "--speeds", "0:1:0.1"], "--speeds"),
+    (["critical-impulse", "--level", "-1"], "level"),
+    (["critical-impulse", "--chair", "nope"], "nope"),
+    (["equal-instability", "--model", "wchair"], "--model"),
+    (["critical-impulse", "--json-file", "/no/such/dir/x.json"], "--json-file"),
+])
+def test_cli_bad_input_one_line_exit_2(capsys, args, word):
+    from stability.study.__main__ import main
+
+    try:
+        rc = main(args)
+    except SystemExit as exc:          # argparse usage errors
+        rc = exc.code
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and word in err

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_choice, check_model, check_positive
+from .._validate import check_choice, check_model, check_positive, check_speeds
 from ..chair import Chair
 from ..reference import HORIZON, LEVEL, THESIS_PUSH, Push
 from . import runs
@@ -218,7 +218,7 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
         raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
     chair_arr = np.atleast_1d(np.asarray(chairs, dtype=object)) if not isinstance(chairs, Chair) else np.array([chairs],
                                                                                                               dtype=object)
-    chair_b, speed_b = np.broadcast_arrays(chair_arr, np.atleast_1d(np.asarray(speeds, dtype=float)))
+    chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
     unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
     crit = Criterion(level, horizon)

@@ -1,0 +1,84 @@
+"""Command line: ``python -m stability.study critical-impulse|equal-instability --chair X ...``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+
+from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, parse_speeds, run
+from ..output import atomic_write_text
+from ..reference import THESIS_PUSH, Push
+from .impulse import critical_impulse_curve
+from .intervals import equal_instability_interval
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = OneLineErrorParser(prog="python -m stability.study", description="Robust stability measures (issue 11).")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineErrorParser)
+    ci = sub.add_parser("critical-impulse", help="smallest push (N s) after which |yaw rate| reaches the level")
+    ei = sub.add_parser("equal-instability", help="equal-instability speed with its interval")
+    for s in (ci, ei):
+        add_chair_options(s)
+        s.add_argument("--model", choices=("exact", "thesis"), default="exact")
+        s.add_argument("--json", action="store_true", help="print JSON to stdout")
+        s.add_argument("--json-file", metavar="FILE", help="write JSON to FILE (atomically)")
+    ci.add_argument("--speeds", default="0.5:1.0:0.25", help="START:STOP:STEP or a list, m/s")
+    ci.add_argument("--duration", type=float, default=THESIS_PUSH.duration, help="push duration, s")
+    ci.add_argument("--level", type=float, default=1.0, help="|yaw rate| level, rad/s")
+    ci.add_argument("--horizon", type=float, default=10.0, help="simulated time, s")
+    ci.add_argument("--max-impulse", type=float, default=40.0, help="largest push tried, N s")
+    ei.add_argument("--force", type=float, default=THESIS_PUSH.force, help="nominal push force, N")
+    ei.add_argument("--chair-friction-only", action="store_true",
+                    help="apply the pin-friction factors to the chair only (default: to the reference chair too)")
+    return p
+
+
+def _emit(args: argparse.Namespace, data: dict, text: str) -> None:
+    if args.json_file:
+        atomic_write_text(args.json_file, json.dumps(data, indent=2) + "\n")
+    if args.json:
+        print(json.dumps(data, indent=2))
+    elif not args.json_file:
+        print(text)
+
+
+def _critical(args: argparse.Namespace) -> None:
+    chair = load_chair(args.chair, args.set)
+    speeds = parse_speeds(args.speeds)
+    curve = critical_impulse_curve(chair, speeds, model=args.model, duration=args.duration, level=args.level,
+                                   horizon=args.horizon, max_impulse=args.max_impulse)
+    lines = [f"{chair.name}, {args.model} model: critical impulse for |yaw rate| >= {args.level:g} rad/s "
+             f"within {args.horizon:g} s", f"push: {curve.points[0].push}"]
+    for p in curve.points:
+        kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
+        lines.append(f"  {p.speed:6.3g} m/s  {p.describe():>12s}  (kick {kick})")
+    _emit(args, {"chair": chair.name, **curve.to_dict()}, "\n".join(lines))
+
+
+def _interval(args: argparse.Namespace) -> None:
+    chair = load_chair(args.chair, args.set)
+    r = equal_instability_interval(chair, model=args.model, push=Push(args.force, THESIS_PUSH.duration),
+                                   friction_on_reference=not args.chair_friction_only)
+    lines = [f"{chair.name}: equal-instability speed {r.describe()}", f"push: {r.push}; pin friction factors "
+             f"applied to {r.friction_scope}"]
+    for v in r.variants:
+        sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
+        lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")
+    _emit(args, r.to_dict(), "\n".join(lines))
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point; returns the exit status (2 on bad input, with one line on stderr)."""
+    parser = _parser()
+
+    def body(args: argparse.Namespace) -> None:
+        check_directory(args.json_file, "--json-file")
+        (_critical if args.command == "critical-impulse" else _interval)(args)
+
+    return run(parser, argv, body)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
