@@ -15,7 +15,7 @@ import pytest
 from stability import params, tires
 from stability import statics as loads
 from stability.chair import preset
-from stability.simulate import ChairState, SimulationResult, simulate, simulate_batch
+from stability.simulate import DEFAULTS, ChairState, SimulationResult, StepStabilityWarning, simulate, simulate_batch
 from stability.simulate.results import COLUMNS, new_warnings
 
 EJ = preset("ej-premier")
@@ -578,3 +578,157 @@ def test_batch_per_run_impulse_force_bad_input():
         simulate_batch(EJ, [0.5, 0.6], impulse_force=[1.0, 2.0, 3.0], progress=False)
     with pytest.raises(ValueError, match=r"impulse_force=.*finite forces \(N\)"):
         simulate_batch(EJ, [0.5, 0.6], impulse_force=[1.0, float("nan")], progress=False)
+
+
+# ---------------------------------------------------------------------------
+# the compiled kernel (issue 10)
+# ---------------------------------------------------------------------------
+def _kernel_cases():
+    return [
+        (EJ, dict()),
+        (EJ, dict(model="exact")),
+        (EJ, dict(casters="locked")),
+        (EJ.replace(toe_deg=0.5, camber_deg=2.0), dict(lateral_velocity=0.01, impulse_force=0.0)),
+        (EJ.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0), dict()),
+        (EJ.replace(main_tire="linear:25", caster_tire="linear:25"), dict(lateral_velocity=0.3, impulse_force=0.0)),
+        (FRONT, dict(tire_impulse=20.0, impulse_duration=0.05)),
+        (EJ, dict(out_of_range="extrapolate", lateral_velocity=0.2, stop_on_warnings=False)),
+    ]
+
+
+@pytest.mark.parametrize("case", range(8))
+def test_kernel_equals_numpy_reference(case):
+    """The compiled kernel against the pure-numpy reference path, step for step.
+
+    Same operations in the same order (slips by atan2, the segment form of the
+    tire fits, the generated equations with x*x); they agree to rounding: the
+    kernel's libm calls (cos, sin, atan2) and numpy's SIMD versions may differ
+    in the last bit, and 1 s of the unstable chair amplifies that at most ~1e3.
+    """
+    from stability.simulate.options import make_options
+    from stability.simulate.reference import wchair_batch
+
+    chair, kw = _kernel_cases()[case]
+    opts = dict(DEFAULTS.as_dict(), duration=1.0, sample=0.001, **kw)
+    del opts["controller"], opts["record"]
+    ref = wchair_batch([chair], np.array([0.75]), make_options(batch=True, **opts), False)[0]
+    got = simulate(chair, 0.75, **{k: v for k, v in opts.items() if k != "yaw_moment"})
+    assert got.settings["engine"] == "compiled" and len(got.t) == len(ref.t)
+    for name in ("x", "y", "heading", "yaw_rate", "v", "eta", "eta_dot", "beta_dot", "fx", "fy", "normal_load",
+                 "slip_deg", "tire_yaw_moment", "pin_moment"):
+        np.testing.assert_allclose(getattr(got, name), getattr(ref, name), rtol=1e-9, atol=1e-11, err_msg=name)
+    assert got.warnings == ref.warnings and got.stopped_by_warnings == ref.stopped_by_warnings
+
+
+def test_single_run_is_bit_identical_to_its_batch_run():
+    """One kernel: a run alone and the same run inside a batch (any threads) are the same arithmetic."""
+    speeds = np.array([0.55, 0.75, 0.95])
+    batch = simulate_batch(EJ, speeds, sample=0.001, progress=False, workers=2, impulse_force=[20.0, 40.0, 60.0])
+    for s, f, rb in zip(speeds, (20.0, 40.0, 60.0), batch):
+        r1 = simulate(EJ, float(s), impulse_force=f)
+        for name in ("t", "yaw_rate", "heading", "x", "y", "fy", "normal_load", "pin_moment"):
+            np.testing.assert_array_equal(getattr(rb, name), getattr(r1, name), err_msg=name)
+        assert rb.stop_time == r1.stop_time and rb.stats == r1.stats
+
+
+def test_compiled_transcriptions_equal_statics_and_models():
+    """The kernel's loads and tire yaw moment are statics.normal_loads / models.full_width's, bit for bit."""
+    from stability.models import full_width
+    from stability.simulate import kernel
+
+    rng = np.random.default_rng(3)
+    for chair in (EJ, FRONT):
+        p = params.parameters(chair)
+        P = np.array(p, dtype=float)
+        for _ in range(200):
+            fx, fy = rng.uniform(-300, 300, 2)
+            e, b = rng.uniform(-np.pi, np.pi, 2)
+            trig = (math.cos(e), math.sin(e), math.cos(b), math.sin(b))
+            assert kernel.normal_loads(P, fx, fy, *trig) == loads.normal_loads(p, fx, fy, *trig)
+            F = tuple(rng.uniform(-100, 100, 8))
+            assert kernel.tire_yaw_moment(P, F, *trig) == full_width.tire_yaw_moment(p, F, *trig)
+
+
+def test_kernel_tire_law_equals_the_tires_module():
+    """Compiled lateral force = Tire.lateral_force (segment form) for every policy, bit for bit."""
+    from stability.simulate import engine, kernel
+
+    rng = np.random.default_rng(5)
+    for tire in (tires.get("EJA"), tires.get("ER").scaled(0.7), tires.get("linear:30")):
+        kind, seg, scale, lim = engine._tire_slot(tire)
+        slip = rng.uniform(-11, 11, 300)
+        fz = rng.uniform(-20, 520, 300)
+        for pol, name in enumerate(("clamp", "extrapolate")):
+            want = tire.lateral_force(slip, fz, policy=name, warn=False)
+            got = [kernel.lateral_force(kind, seg, scale, np.array(lim), s, f, pol)[0] for s, f in zip(slip, fz)]
+            np.testing.assert_array_equal(got, want)
+
+
+def test_record_modes_and_stats():
+    full = simulate(EJ, 0.75, stop_on_warnings=False, duration=4.0)
+    states = simulate(EJ, 0.75, stop_on_warnings=False, duration=4.0, record="states", sample=0.01)
+    final = simulate(EJ, 0.75, stop_on_warnings=False, duration=4.0, record="final")
+    np.testing.assert_array_equal(states.yaw_rate, full.yaw_rate[::10])
+    assert np.all(np.isnan(states.fy)) and states.fy.shape == (len(states.t), 4)
+    assert len(final.t) == 1 and final.t[0] == full.t[-1] and final.yaw_rate[0] == full.yaw_rate[-1]
+    for r in (states, final):      # summaries over every step, whatever is recorded
+        assert r.stats == full.stats
+    assert full.stats.time_to_level[1] == pytest.approx(full.first_time_abs_yaw_rate(1.0), abs=1e-12)
+    assert full.stats.peak_abs_yaw_rate == np.max(np.abs(full.yaw_rate))
+    json.dumps(final.to_dict(), allow_nan=False)
+
+
+def test_batch_memory_scales_with_the_record():
+    """2,000 runs x 10 s recorded every 10 ms, states only: under 200 MB (10 columns x 1,002 rows x 8 B)."""
+    from stability.simulate import engine
+
+    n, rows = 2000, 1002
+    assert n * rows * engine.__dict__.get("NREC_STATES", 10) * 8 < 200e6
+    res = simulate_batch(EJ, np.linspace(0.5, 1.0, 20), record="states", progress=False, stop_on_warnings=False)
+    base = res[0].yaw_rate.base
+    while base is not None and base.base is not None:
+        base = base.base
+    assert base is not None and base.nbytes <= 20 * 10 * rows * 8      # one buffer, no per-result copies
+
+
+def test_sampled_controller_equals_the_python_callable():
+    """A compiled state-feedback controller = the same law as a Python yaw_moment hook (Ts = dt)."""
+    from stability.simulate import SampledController
+
+    K = np.array([0.0, 20.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    ctl = SampledController.state_feedback(K, 0.001, limit=15.0)
+
+    def hook(t, s):
+        return min(max(-20.0 * s.yaw_rate, -15.0), 15.0)
+
+    a = simulate(EJ, 0.75, duration=3.0, controller=ctl)
+    b = simulate(EJ, 0.75, duration=3.0, yaw_moment=hook)
+    assert a.settings["engine"] == "compiled" and b.settings["engine"] == "python"
+    np.testing.assert_allclose(a.yaw_rate, b.yaw_rate, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(a.yaw_moment_input, -20.0 * a.yaw_rate.clip(-0.75, 0.75), rtol=1e-12, atol=1e-15)
+    free = simulate(EJ, 0.75, duration=3.0)
+    assert np.max(np.abs(a.yaw_rate)) < 0.5 * np.max(np.abs(free.yaw_rate))
+    with pytest.raises(ValueError, match="choose one"):
+        simulate(EJ, 0.75, duration=0.1, controller=ctl, yaw_moment=hook)
+
+
+@pytest.mark.parametrize("speed", [0.1, 0.2, 0.25, 0.3])
+def test_step_stability_limit_against_the_adaptive_scheme(speed):
+    """At low speed the caster modes are stiff (~ -2000 1/s at 0.25 m/s): 1 ms is outside the limit below ~0.28 m/s.
+
+    Such runs are flagged and warned about; dt="auto" picks a stable step and
+    then agrees with the adaptive scheme (issue 10: 0.072 rad/s peak at 0.25 m/s).
+    """
+    kw = dict(duration=3.0, stop_on_warnings=False)
+    ada = simulate(EJ, speed, scheme="adaptive", **kw)
+    auto = simulate(EJ, speed, dt="auto", **kw)
+    assert not auto.step_unstable and auto.settings["dt"] <= auto.settings["stable_dt"]
+    peak_ada = np.max(np.abs(ada.yaw_rate))
+    assert np.max(np.abs(auto.yaw_rate)) == pytest.approx(peak_ada, rel=0.08)
+    if speed < 0.27:
+        with pytest.warns(StepStabilityWarning, match=r"dt=0\.001 s exceeds .*largest safe step"):
+            fixed = simulate(EJ, speed, **kw)
+        assert fixed.step_unstable and fixed.to_dict()["step_unstable"] is True
+    else:
+        fixed = simulate(EJ, speed, **kw)
+        assert not fixed.step_unstable
