@@ -180,3 +180,14 @@ def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, fragment):
     assert err.count("\n") == 1 and err.startswith("error: ") and fragment in err, err
     assert "Traceback" not in err
     assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.slow
+def test_nonlinear_critical_impulse_states_the_push():
+    c = compare([chair.preset("ej-premier"), chair.preset("ej-premier-front-caster")], speeds=(REFERENCE_SPEED,),
+                nonlinear=True)
+    q = c.quantity(f"critical_impulse_Ns@{REFERENCE_SPEED:g}")
+    assert 0 < q.values[0] < math.inf          # the rear-caster chair is tipped over by a finite push
+    assert q.values[1] == math.inf and "N s" in q.none_means
+    assert "101 steps of 1 ms" in c.push       # WCHAIR applies the force while t <= 0.1 s
+    assert _diffs(c)[(q.key, c.labels[1])].more_stable == c.labels[1]

@@ -50,6 +50,8 @@ class Quantity:
         searched speed), ``nan`` where undefined.
     intervals : tuple
         One per chair: ``(low, high)`` central interval, or None without an uncertainty file.
+    none_means : str
+        What an infinite value means, in words (e.g. ``"no crossing below 30 m/s"``).
     """
 
     key: str
@@ -58,6 +60,7 @@ class Quantity:
     higher_is_more_stable: bool
     values: tuple[float, ...]
     intervals: tuple[tuple[float, float] | None, ...]
+    none_means: str = ""
 
 
 @dataclass(frozen=True)
@@ -347,8 +350,9 @@ def _nonlinear(chairs: Sequence[Chair], model: str, nonlinear_speeds: Sequence[f
         row = res[j * n:(j + 1) * n]
         vals = tuple(np.inf if r.status == "never" else 0.0 if r.status == "below" else float(r.impulse_Ns or np.nan)
                      for r in row)
+        largest = max(r.largest_tried_Ns for r in row)
         qs.append(Quantity(f"critical_impulse_Ns@{s:g}", f"critical impulse at {s:g} m/s", "N s", True, vals,
-                           tuple(None for _ in chairs)))
+                           tuple(None for _ in chairs), f"level not reached with pushes up to {largest:.3g} N s"))
     push = f"{res[0].push}; reference push {THESIS_PUSH.describe(0.001)}" if res else THESIS_PUSH.describe(0.001)
     return qs, push
 

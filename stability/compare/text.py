@@ -22,8 +22,8 @@ def _num(x: float | None, unit: str = "", digits: int = 4) -> str:
 
 def _value(q: Quantity, v: float, max_speed: float) -> str:
     if math.isinf(v) and v > 0:
-        if q.key.startswith("critical_impulse"):
-            return "> largest push"
+        if q.none_means:
+            return f"none ({q.none_means})"
         if q.key.startswith("zero_width"):
             return "none (understeer)"
         return f"none < {max_speed:g} m/s"
@@ -156,6 +156,8 @@ def comparison_dict(c: Comparison, header: dict[str, Any]) -> dict[str, Any]:
         per = {}
         for lab, v, iv in zip(c.labels, q.values, q.intervals, strict=True):
             row: dict[str, Any] = {"value": _finite(v), "none_in_range": bool(math.isinf(v) and v > 0)}
+            if row["none_in_range"] and q.none_means:
+                row["none_means"] = q.none_means
             if q.key.startswith("growth_rate"):
                 row["time_to_double_s"] = math.log(2) / v if v > 0 else None
             if iv is not None:
