@@ -186,12 +186,31 @@ class Chair:
         return self.s1 / (self.s1 + self.s2)
 
     def replace(self, **changes: Any) -> Chair:
-        """Return a copy with ``changes`` applied (validated)."""
+        """A copy with ``changes`` applied (validated).
+
+        Unless ``name`` is among the changes, a copy that differs from this
+        chair is named after it with the changed fields, e.g.
+        ``"ej-premier (modified: trail=0.05)"``, so that plots and JSON of a
+        modified chair never carry the original's name alone.
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values.
+
+        Returns
+        -------
+        Chair
+        """
         unknown = set(changes) - {f.name for f in fields(self)}
         if unknown:
             raise ValueError(
                 f"unknown chair parameter(s) {sorted(unknown)}; valid names: {field_names()}"
             )
+        if "name" not in changes:
+            changed = {k: v for k, v in changes.items() if getattr(self, k) != v}
+            if changed:
+                changes = {**changes, "name": _modified_name(self.name, changed)}
         return dataclasses.replace(self, **changes)
 
     def main_tire_model(self):
@@ -242,6 +261,23 @@ def valid_range(name: str) -> str:
 
 
 _FIELDS = {f.name: f for f in fields(Chair)}
+_MODIFIED = " (modified: "
+
+
+def _modified_name(name: str, changed: Mapping[str, Any]) -> str:
+    """``name`` with the changed fields listed (merged with an earlier list; at most three shown)."""
+    root, _, rest = name.partition(_MODIFIED)
+    items: dict[str, str] = {}
+    if rest.endswith(")"):
+        for part in rest[:-1].split(", "):
+            key, eq, value = part.partition("=")
+            if eq:
+                items[key] = value
+    for key, value in changed.items():
+        items[key] = f"{value:.4g}" if isinstance(value, float) else str(value)
+    shown = [f"{k}={v}" for k, v in items.items()]
+    text = ", ".join(shown[:3]) + (f", +{len(shown) - 3} more" if len(shown) > 3 else "")
+    return f"{root}{_MODIFIED}{text})"
 
 
 def field_names() -> list[str]:
