@@ -142,11 +142,11 @@ def _c6(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
     k_r = fit_exponent((0.5, 1.0, 1.5), (lo_r.value_or_bound, rev.value_or_bound, hi_r.value_or_bound))
     k_thesis = fit_exponent((0.5, 1.0, 1.5), _THESIS_FIG_9_3)
     a, b = PROPORTIONAL_RANGE
-    v = "agree" if inc and a <= k_r <= b else ("partly" if inc else "disagree")
+    v = "agree" if inc and a <= k_r <= b and a <= k_e <= b else ("partly" if inc else "disagree")
     return _check(6, f"x0.5 / x1 / x1.5 pin friction: E&J Premier {_fmt(lo_e)} / {_fmt(base)} / {_fmt(hi_e)} "
                   f"(speed ~ M_f^{k_e:.2f}); revised {_fmt(lo_r)} / {_fmt(rev)} / {_fmt(hi_r)} "
                   f"(speed ~ M_f^{k_r:.2f}; thesis, revised: 0.65 / 1.1 / 1.65, M_f^{k_thesis:.2f}). "
-                  f"(Agree if speed rises with friction and the revised design's exponent is {a:g}-{b:g}, "
+                  f"(Agree if speed rises with friction and both exponents are {a:g}-{b:g}, "
                   "i.e. roughly proportional; partly if it only rises.)", v)
 
 
