@@ -302,7 +302,20 @@ def single_effects(reference: Chair, other: Chair, label: str, *, model: str = "
 
 def growth_curves(chairs: Sequence[Chair], model: str = "exact",
                   speeds: Sequence[float] = CURVE_SPEEDS) -> np.ndarray:
-    """Growth rate of the least stable free-caster mode of each chair at ``speeds`` (1/s), shape (chairs, speeds)."""
+    """Growth rate of the least stable free-caster mode of each chair at each speed.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    model : {"exact", "thesis"}
+    speeds : sequence of float
+        m/s.
+
+    Returns
+    -------
+    ndarray
+        Shape (chairs, speeds), 1/s.
+    """
     return ChairBatch(list(chairs), model).growth_rates(speeds)
 
 
