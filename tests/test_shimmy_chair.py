@@ -264,3 +264,20 @@ def _flat(x):
     if isinstance(x, (tuple, list)):
         return [y for e in x for y in _flat(e)]
     return [float(x)]
+
+
+def test_cli_chair_model_option(capsys):
+    """--chair-model adds the chair-model results; with compliant pins its critical trail agrees with the
+    towed-wheel estimate in the same output within 0.1 mm (the chair is ~80x heavier than a caster)."""
+    import json
+
+    from stability.shimmy.__main__ import main
+
+    assert main(["--chair", "revised", "--speeds", "0.5,2", "--chair-model", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    cm = out["chair_model"]
+    assert set(cm) == {"rigid_pin", "compliant_pin"}
+    np.testing.assert_allclose(cm["compliant_pin"]["critical_trail_m"], out["critical_trail_m"], atol=1e-4)
+    np.testing.assert_allclose(cm["compliant_pin"]["shimmy_frequency_hz"], out["shimmy_frequency_hz"], rtol=1e-2)
+    assert main(["--chair", "revised", "--speeds", "1", "--json"]) == 0
+    assert "chair_model" not in json.loads(capsys.readouterr().out)

@@ -11,6 +11,7 @@ import numpy as np
 
 from .. import cli
 from .chair import CasterCompliance, caster_summary, trail_chart
+from .chair_modes import chair_shimmy
 
 
 def _parser() -> cli.OneLineErrorParser:
@@ -24,6 +25,9 @@ def _parser() -> cli.OneLineErrorParser:
     out.add_argument("--json", action="store_true", help="print JSON to stdout")
     out.add_argument("--json-file", metavar="FILE", help="write JSON to FILE (atomically)")
     p.add_argument("--pdf", metavar="FILE", help="write the trail x speed design chart to FILE")
+    p.add_argument("--chair-model", action="store_true",
+                   help="also give the shimmy mode of the full chair model with relaxation-length caster tires "
+                        "(rigid and compliant pins)")
     return p
 
 
@@ -47,8 +51,13 @@ def _body(args) -> int:
     cli.check_directory(args.json_file, "--json-file")
     cli.check_directory(args.pdf, "--pdf")
     s = caster_summary(chair, speeds, comp, math.radians(args.amplitude_deg))
+    modes = {pin: chair_shimmy(chair, speeds, comp, pin=pin) for pin in ("rigid", "compliant")} \
+        if args.chair_model else {}
     if args.json or args.json_file:
-        text = json.dumps(s.to_mapping(), indent=2) + "\n"
+        mapping = s.to_mapping()
+        if modes:
+            mapping["chair_model"] = {f"{pin}_pin": m.to_mapping() for pin, m in modes.items()}
+        text = json.dumps(mapping, indent=2) + "\n"
         if args.json_file:
             from ..output import atomic_write_text
 
@@ -75,6 +84,8 @@ def _body(args) -> int:
         print("crit trail: below it the caster shimmies without pin friction ('>20': at every trail up to 20 cm, "
               "'none': at no trail); friction: Coulomb pin friction that holds shimmy of that amplitude "
               "(describing function); held below: trail under which the chair's own pin friction no longer does.")
+        for pin, m in modes.items():
+            _print_chair_model(pin, m)
     if args.pdf:
         from ..output import _pyplot, write_pdf
         from .plots import plot_friction_needed, plot_trail_chart
@@ -87,6 +98,16 @@ def _body(args) -> int:
         plot_friction_needed(chart, ax2, trails_cm=[3, 4, 5, 6, 8])
         write_pdf([fig1, fig2], args.pdf, title=f"caster shimmy: {chair.name}")
     return 0
+
+
+def _print_chair_model(pin: str, m) -> None:
+    print(f"chair model with relaxation-length caster tires, {pin} pins (shimmy mode = least damped oscillation "
+          f"above 2 Hz; divergence = chair's own modes, rigid-tire rate from stability.linear):")
+    print(f"{'speed':>6} {'freq Hz':>8} {'damping':>8} {'Re 1/s':>8} {'diverg 1/s':>11} {'rigid-tire':>11} "
+          f"{'crit trail cm':>14}")
+    for i, u in enumerate(m.speeds):
+        print(f"{u:6.2f} {m.frequency_hz[i]:8.2f} {m.damping_ratio[i]:8.4f} {m.real_part[i]:8.2f} "
+              f"{m.divergence_rate[i]:11.3f} {m.rigid_tire_rate[i]:11.3f} {_fmt(m.critical_trail[i], 100, '.2f'):>14}")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
