@@ -8,10 +8,13 @@ effects the linear model leaves out) the simulator's own linearisation.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from .linear import StabilitySummary
-from .linear.intervals import LinearIntervals
 from .validation import linearisation_check, omitted_effects
+
+if TYPE_CHECKING:
+    from .linear.intervals import LinearIntervals
 
 __all__ = ["simulator_checks", "summary_dict", "interpretation", "format_summary", "intervals_dict"]
 

@@ -31,11 +31,12 @@ from ..cli import (
     run,
 )
 from ..linear import analyse
-from ..linear.intervals import MAX_SAMPLES, linear_intervals
-from ..measure.uncertainty import load_uncertainty
 from ..summary import format_summary, simulator_checks, summary_dict
 
 __all__ = ["main", "build_parser"]
+
+#: Largest --samples (bounded work: about 1 ms per drawn chair); equals stability.linear.intervals.MAX_SAMPLES.
+MAX_SAMPLES = 20_000
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -58,7 +59,7 @@ def build_parser() -> argparse.ArgumentParser:
 def _run(args: argparse.Namespace) -> int:
     check_outputs({"--json-file": args.json_file}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
     if args.uncertainty and not 1 <= args.samples <= MAX_SAMPLES:
-        raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES}")
+        raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES} with --uncertainty")
     if not 0 < args.level < 1:
         raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
     c = load_chair(args.chair, args.set)
@@ -69,6 +70,10 @@ def _run(args: argparse.Namespace) -> int:
     checks = simulator_checks(summary)
     intervals = None
     if args.uncertainty:
+        # deferred: the uncertainty machinery costs start-up time the plain summary does not need
+        from ..linear.intervals import linear_intervals
+        from ..measure.uncertainty import load_uncertainty
+
         intervals = linear_intervals(c, load_uncertainty(args.uncertainty), model=args.model, speeds=speeds,
                                      max_speed=args.max_speed, samples=args.samples, seed=args.seed, level=args.level)
     if args.json or args.json_file:

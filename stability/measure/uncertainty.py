@@ -25,10 +25,10 @@ import sys
 import zlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from statistics import NormalDist
 from typing import Any
 
 import numpy as np
-from scipy.stats import norm
 
 from .. import chair as chair_mod
 from ..chair import Chair
@@ -460,7 +460,7 @@ def delta_method(chair: Chair, uncertainty: Uncertainty, fn: Callable[[list[Chai
         contrib[d.name] = (y[1 + 2 * i] - y[2 + 2 * i]) / (2 * step)  # df/dz for z in standard deviations
     var = sum((c**2 for c in contrib.values()), np.zeros(y.shape[1]))
     sd = np.sqrt(var)
-    z = norm.ppf((1 + level) / 2)
+    z = NormalDist().inv_cdf((1 + level) / 2)
     shares = {n: np.where(var > 0, c**2 / np.where(var > 0, var, 1), 0.0) for n, c in contrib.items()}
     return DeltaResult(level=float(level), value=_shape(y[0], scalar), std=_shape(sd, scalar),
                        low=_shape(y[0] - z * sd, scalar), high=_shape(y[0] + z * sd, scalar),
