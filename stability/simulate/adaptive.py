@@ -8,7 +8,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..chair import Chair
 from ..models.full_width import tire_resultant, tire_yaw_moment
@@ -145,6 +144,9 @@ class AdaptiveModel:
         return self.K.maf if side == 0 else self.K.mbf
 
 def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResult:
+    """One run of the adaptive scheme (see ``docs/simulator.md``)."""
+    from scipy.integrate import solve_ivp  # heavy (imports scipy.optimize): only when the adaptive scheme runs
+
     model = AdaptiveModel(chair, speed, opts)
     u0, v0 = initial_velocities(opts, speed)
     y = np.array([0.0, 0.0, 0.0, u0, v0, 0.0, opts.eta0, 0.0, opts.beta0, 0.0])
