@@ -8,10 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import tires
 from ..chair import Chair, preset
+from ..design import DESIGN_PARAMETERS, get_parameter, main_tires
 from ..reference import REFERENCE_CHAIR
-from ..rootlocus import DESIGN_PARAMETERS, get_parameter
 from .equal_instability import EqualInstability, equal_instability_speeds
 
 __all__ = ["DEFAULT_PLAN", "QUICK_PLAN", "Sweep", "SweepRow", "SweepTable", "plan_for", "sweep_chairs",
@@ -233,11 +232,6 @@ def plan_for(chair: Chair, plan: dict | None = None, base: Chair | None = None) 
     return out
 
 
-def _main_tires() -> tuple[str, ...]:
-    names = getattr(tires, "MAIN_TIRES", None)
-    return tuple(names) if names else tuple(tires.names())
-
-
 def sweep_chairs(chair: Chair, plan: dict) -> list[tuple[str, tuple, tuple | None, list[Chair]]]:
     """The chairs of a plan: ``(parameter, values, labels, chairs)`` per parameter.
 
@@ -255,7 +249,7 @@ def sweep_chairs(chair: Chair, plan: dict) -> list[tuple[str, tuple, tuple | Non
     for name, values in plan.items():
         p = get_parameter(name)
         if p.categorical:
-            labels: tuple | None = _main_tires()
+            labels: tuple | None = main_tires()
             vals = tuple(float(i) for i in range(len(labels or ())))
         else:
             vals, labels = tuple(float(v) for v in values), None
