@@ -4,6 +4,7 @@ Thesis-reproduction checks (chapter 8) are in ``test_thesis_chapter8.py``.
 """
 
 import copy
+import dataclasses
 import json
 import math
 import subprocess
@@ -171,7 +172,7 @@ def test_forces_oppose_contact_velocity_and_follow_the_tire_fits():
     r = simulate(EJ, 0.75, duration=1.0)
     main, caster = EJ.main_tire_model(), EJ.caster_tire_model()
     k = 500
-    for w, tire in zip(range(4), (caster, caster, main, main)):
+    for w, tire in zip(range(4), (caster, caster, main, main), strict=False):
         expect = tire.lateral_force(float(r.slip_deg[k, w]), float(r.normal_load[k, w]), warn=False)
         assert r.fy[k, w] == pytest.approx(expect, rel=1e-12, abs=1e-12)
     assert np.all(r.fy[1:] * r.slip_deg[1:] <= 0.0)
@@ -295,7 +296,7 @@ def test_batch_equals_single_runs():
     """The vectorised path reproduces the float path (to rounding: the chair is unstable)."""
     speeds = [0.55, 0.75, 0.95]
     res = simulate_batch(EJ, speeds, duration=3.0, sample=0.01, progress=False, workers=1)
-    for s, rb in zip(speeds, res):
+    for s, rb in zip(speeds, res, strict=False):
         r1 = simulate(EJ, s, duration=3.0, sample=0.01)
         assert rb.speed == s and rb.chair is EJ
         _close(rb, r1, 2.5, rtol=1e-6, atol=1e-9)
@@ -308,7 +309,7 @@ def test_batch_mixed_chairs_groups_tires_and_stops_runs_individually():
     chairs = [EJ, EJ.replace(main_tire="AG"), FRONT, EJ.replace(camber_deg=2.0, toe_deg=0.5)]
     res = simulate_batch(chairs, 0.75, duration=1.0, sample=0.001, progress=False, lateral_velocity=0.03,
                          impulse_force=0.0, workers=1)
-    for c, rb in zip(chairs, res):
+    for c, rb in zip(chairs, res, strict=False):
         r1 = simulate(c, 0.75, duration=1.0, lateral_velocity=0.03, impulse_force=0.0)
         _close(rb, r1, 1.0)
 
@@ -332,7 +333,7 @@ def test_batch_processes_equal_in_process():
     speeds = np.linspace(0.6, 0.9, 7)
     a = simulate_batch(EJ, speeds, duration=1.0, progress=False, workers=1)
     b = simulate_batch(EJ, speeds, duration=1.0, progress=False, workers=3)
-    for ra, rb in zip(a, b):
+    for ra, rb in zip(a, b, strict=False):
         assert ra.speed == rb.speed
         np.testing.assert_allclose(ra.yaw_rate, rb.yaw_rate, rtol=1e-12, atol=1e-15)
 
@@ -441,7 +442,7 @@ def test_first_time_abs_yaw_rate_interpolates():
 
 def test_result_is_frozen_and_resamples():
     r = simulate(EJ, 0.75, duration=0.5)
-    with pytest.raises(Exception):
+    with pytest.raises(dataclasses.FrozenInstanceError):
         r.speed = 1.0
     with pytest.raises(ValueError):
         r.yaw_rate[0] = 1.0
@@ -566,7 +567,7 @@ def test_batch_per_run_impulse_force_equals_separate_batches():
             sel = np.flatnonzero(forces == f)
             same = simulate_batch(EJ, speeds[sel], impulse_force=f, duration=3.0, sample=0.01, progress=False,
                                   workers=1)
-            for i, r in zip(sel, same):
+            for i, r in zip(sel, same, strict=False):
                 assert mixed[i].settings["impulse_force"] == f
                 np.testing.assert_array_equal(mixed[i].yaw_rate, r.yaw_rate)
     # a bigger push turns the chair faster (Figure 8-2's disturbance scaling)
@@ -624,7 +625,7 @@ def test_single_run_is_bit_identical_to_its_batch_run():
     """One kernel: a run alone and the same run inside a batch (any threads) are the same arithmetic."""
     speeds = np.array([0.55, 0.75, 0.95])
     batch = simulate_batch(EJ, speeds, sample=0.001, progress=False, workers=2, impulse_force=[20.0, 40.0, 60.0])
-    for s, f, rb in zip(speeds, (20.0, 40.0, 60.0), batch):
+    for s, f, rb in zip(speeds, (20.0, 40.0, 60.0), batch, strict=False):
         r1 = simulate(EJ, float(s), impulse_force=f)
         for name in ("t", "yaw_rate", "heading", "x", "y", "fy", "normal_load", "pin_moment"):
             np.testing.assert_array_equal(getattr(rb, name), getattr(r1, name), err_msg=name)
@@ -660,7 +661,7 @@ def test_kernel_tire_law_equals_the_tires_module():
         fz = rng.uniform(-20, 520, 300)
         for pol, name in enumerate(("clamp", "extrapolate")):
             want = tire.lateral_force(slip, fz, policy=name, warn=False)
-            got = [kernel.lateral_force(kind, seg, scale, np.array(lim), s, f, pol)[0] for s, f in zip(slip, fz)]
+            got = [kernel.lateral_force(kind, seg, scale, np.array(lim), s, f, pol)[0] for s, f in zip(slip, fz, strict=False)]
             np.testing.assert_array_equal(got, want)
 
 

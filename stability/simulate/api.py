@@ -17,8 +17,8 @@ from .controller import SampledController
 from .engine import RECORDS, run_compiled
 from .options import DEFAULTS, WCHAIR_DT, make_options
 from .reference import wchair_batch
-from .stepcheck import StepStabilityWarning, auto_step, stable_steps
 from .results import ChairState, SimulationResult
+from .stepcheck import StepStabilityWarning, auto_step, stable_steps
 from .wchair import wchair_single
 
 __all__ = ["simulate", "simulate_batch"]

@@ -19,7 +19,7 @@ from ..params import parameters
 from ..reference import LEVEL
 from .controller import SampledController
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
-from .results import COLUMNS, RunStats, SimulationResult
+from .results import RunStats, SimulationResult
 
 __all__ = ["RECORDS", "STATS_LEVELS", "run_compiled"]
 
