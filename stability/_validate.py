@@ -23,24 +23,95 @@ _SPEED_RANGE = "speed > 0 m/s (forward motion)"
 
 
 def check_choice(name: str, value: Any, choices: Sequence) -> Any:
-    """``value`` if it is one of ``choices``."""
+    """Return ``value`` unchanged if it is one of ``choices``, else raise.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : Any
+        Value to check.
+    choices : Sequence
+        Allowed values.
+
+    Returns
+    -------
+    Any
+        ``value`` itself.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is not in ``choices``; the message lists the valid choices.
+    """
     if value not in choices:
         raise ValueError(f"{name}={value!r} is invalid; valid choices: {list(choices)}")
     return value
 
 
 def check_model(model: str) -> str:
-    """Model variant, one of :data:`VARIANTS`."""
+    """Check a model variant name, one of :data:`VARIANTS` (``"exact"`` or ``"thesis"``).
+
+    Parameters
+    ----------
+    model : str
+        Model variant: ``"exact"`` (first-principles Kane derivation) or ``"thesis"``
+        (Collins 1987 Table 6-1, eqs 6-17/6-18, as program WCHAIR integrates).
+
+    Returns
+    -------
+    str
+        ``model`` itself.
+
+    Raises
+    ------
+    ValueError
+        If ``model`` is not one of :data:`VARIANTS`.
+    """
     return check_choice("model", model, VARIANTS)
 
 
 def check_casters(casters: str) -> str:
-    """Caster state, one of :data:`CASTERS`."""
+    """Check a caster state, one of :data:`CASTERS` (``"free"`` or ``"locked"``).
+
+    Parameters
+    ----------
+    casters : str
+        Caster state: ``"free"`` (casters swivel) or ``"locked"`` (caster swivel angle held at zero).
+
+    Returns
+    -------
+    str
+        ``casters`` itself.
+
+    Raises
+    ------
+    ValueError
+        If ``casters`` is not one of :data:`CASTERS`.
+    """
     return check_choice("casters", casters, CASTERS)
 
 
 def check_speed(speed: Any, name: str = "speed") -> float:
-    """One forward speed (m/s) as a float: finite and > 0."""
+    """Check one forward speed and return it as a float: finite and > 0.
+
+    Parameters
+    ----------
+    speed : Any
+        Forward speed U, m/s; anything ``float()`` accepts. Valid range: finite, > 0.
+    name : str, optional
+        Parameter name used in the error message (default ``"speed"``).
+
+    Returns
+    -------
+    float
+        The speed, m/s.
+
+    Raises
+    ------
+    ValueError
+        If ``speed`` is not a number, not finite or not > 0.
+    """
     try:
         s = float(speed)
     except (TypeError, ValueError):
@@ -51,7 +122,25 @@ def check_speed(speed: Any, name: str = "speed") -> float:
 
 
 def check_speeds(speeds: Any, name: str = "speed") -> np.ndarray:
-    """Forward speeds (m/s) as a float array of at least one dimension: every one finite and > 0."""
+    """Check forward speeds and return them as a float array of at least one dimension.
+
+    Parameters
+    ----------
+    speeds : Any
+        Forward speed(s) U, m/s: a scalar or array-like. Valid range: every one finite and > 0.
+    name : str, optional
+        Parameter name used in the error message (default ``"speed"``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Speeds, m/s, as a float array with ``ndim >= 1``.
+
+    Raises
+    ------
+    ValueError
+        If any speed is not finite or not > 0; the message names the first offending value.
+    """
     U = np.atleast_1d(np.asarray(speeds, dtype=float))
     ok = np.isfinite(U) & (U > 0)
     if not np.all(ok):
@@ -66,7 +155,27 @@ def _number(name: str, value: Any, valid: str, prefix: str) -> float:
 
 
 def check_positive(name: str, value: Any, *, prefix: str = "") -> float:
-    """A finite real number > 0 (booleans and strings are refused); ``prefix`` starts the message."""
+    """Check a finite real number > 0 (booleans and strings are refused).
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : Any
+        Value to check; must be an ``int`` or ``float`` (not ``bool``), finite and > 0.
+    prefix : str, optional
+        Text that starts the error message (e.g. a table name), default empty.
+
+    Returns
+    -------
+    float
+        ``value`` as a float, in the caller's unit.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is not a finite real number > 0.
+    """
     v = _number(name, value, "> 0 (finite)", prefix)
     if v <= 0:
         raise ValueError(f"{prefix}{name}={value!r} is invalid; valid range: > 0 (finite)")
@@ -74,7 +183,27 @@ def check_positive(name: str, value: Any, *, prefix: str = "") -> float:
 
 
 def check_nonnegative(name: str, value: Any, *, prefix: str = "") -> float:
-    """A finite real number >= 0 (booleans and strings are refused)."""
+    """Check a finite real number >= 0 (booleans and strings are refused).
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : Any
+        Value to check; must be an ``int`` or ``float`` (not ``bool``), finite and >= 0.
+    prefix : str, optional
+        Text that starts the error message, default empty.
+
+    Returns
+    -------
+    float
+        ``value`` as a float, in the caller's unit.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is not a finite real number >= 0.
+    """
     v = _number(name, value, ">= 0 (finite)", prefix)
     if v < 0:
         raise ValueError(f"{prefix}{name}={value!r} is invalid; valid range: >= 0 (finite)")
@@ -82,5 +211,27 @@ def check_nonnegative(name: str, value: Any, *, prefix: str = "") -> float:
 
 
 def check_finite(name: str, value: Any, *, unit: str = "", prefix: str = "") -> float:
-    """A finite real number of any sign (booleans and strings are refused); ``unit`` names its unit."""
+    """Check a finite real number of any sign (booleans and strings are refused).
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : Any
+        Value to check; must be an ``int`` or ``float`` (not ``bool``) and finite.
+    unit : str, optional
+        Unit shown in the error message's valid range (e.g. ``"deg"``), default none.
+    prefix : str, optional
+        Text that starts the error message, default empty.
+
+    Returns
+    -------
+    float
+        ``value`` as a float, in ``unit``.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is not a finite real number.
+    """
     return _number(name, value, "a finite number" + (f" ({unit})" if unit else ""), prefix)
