@@ -8,7 +8,7 @@ effects the linear model leaves out) the simulator's own linearisation.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .linear import StabilitySummary
 from .validation import linearisation_check, omitted_effects
@@ -90,7 +90,7 @@ def summary_dict(s: StabilitySummary, checks: list | None = None, intervals: Lin
         return [{"speed_m_s": c.speed, "kind": c.kind, "direction": c.direction,
                  "eigenvalue": [c.eigenvalue.real, c.eigenvalue.imag]} for c in lst]
 
-    d = {
+    d: dict[str, Any] = {
         "chair": s.chair.name,
         "model": s.model,
         "caster_position": s.chair.caster_position,

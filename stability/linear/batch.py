@@ -75,7 +75,7 @@ class ChairBatch:
         """
         return np.linalg.eigvals(self.state_matrices(speeds, casters)).real.max(axis=-1)
 
-    def growth_rates(self, speeds: Sequence[float], casters: str = "free") -> np.ndarray:
+    def growth_rates(self, speeds: Sequence[float] | np.ndarray, casters: str = "free") -> np.ndarray:
         """Growth rate of the least stable mode of every chair at every speed (1/s).
 
         Parameters
@@ -92,7 +92,8 @@ class ChairBatch:
         U = np.asarray(speeds, dtype=float)[:, None]
         return self.max_real_part(np.broadcast_to(U, (len(U), self.n)), casters).T
 
-    def first_critical_speed(self, grid: Sequence[float], casters: str = "free", xtol: float = 1e-6) -> np.ndarray:
+    def first_critical_speed(self, grid: Sequence[float] | np.ndarray, casters: str = "free",
+                             xtol: float = 1e-6) -> np.ndarray:
         """Lowest speed on ``grid`` where each chair turns unstable (largest real part crosses zero upwards).
 
         Parameters

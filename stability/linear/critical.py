@@ -118,7 +118,8 @@ def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
         if np.sign(a[k]) != np.sign(a[k + 1]) and a[k + 1] != 0.0:
             brackets.append((U[k], U[k + 1]))
     # exact zeros on grid points: bracket around them
-    for k in np.flatnonzero(a == 0.0):
+    for kz in np.flatnonzero(a == 0.0):
+        k = int(kz)
         lo = U[k - 1] if k > 0 else U[k]
         hi = U[k + 1] if k < len(U) - 1 else U[k]
         if lo < hi and np.sign(alpha(lo)) != np.sign(alpha(hi)):

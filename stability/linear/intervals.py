@@ -62,7 +62,8 @@ def _outputs(chairs: list[Chair], model: str, speeds: np.ndarray, grid: np.ndarr
 
 
 def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "exact",
-                     speeds: Sequence[float] = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0), max_speed: float = 30.0,
+                     speeds: Sequence[float] | np.ndarray = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0),
+                     max_speed: float = 30.0,
                      samples: int = 1000, seed: int = 0, level: float = 0.95) -> LinearIntervals:
     """Intervals of the growth rates and critical speeds over the parameter uncertainty.
 

@@ -44,8 +44,8 @@ def track_modes(eigs: np.ndarray) -> np.ndarray:
     # compose: column c of output follows index order[k, c] in row k
     order = np.empty((N, n), dtype=int)
     order[0] = np.argsort(-eigs[0].real, kind="stable")
-    for k in range(N - 1):
-        order[k + 1] = match[k][order[k]]
+    for j in range(N - 1):
+        order[j + 1] = match[j][order[j]]
     return np.take_along_axis(eigs, order, axis=1)
 
 

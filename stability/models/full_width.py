@@ -59,7 +59,7 @@ def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d,
     args = (u, v, r, ce, se, cb, sb, eta_d, beta_d, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy,
             M_A, M_B, Fy_ext, Mz_ext, *p.inertia)
     if variant == "thesis":
-        return _fw.accelerations_thesis(*args, r_dot_casters=r_dot_casters)
+        return _fw.accelerations_thesis(*args, r_dot_casters=r_dot_casters)  # type: ignore[misc]
     return _fw.accelerations_exact(*args)
 
 

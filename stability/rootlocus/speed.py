@@ -62,9 +62,9 @@ class SpeedLocus:
         """Speed intervals (m/s) in which the model is unstable, ends refined to the crossings."""
         out: list[tuple[float, float]] = []
         U = self.speeds
+        start: float = float(U[0])
         crit = sorted(c.speed for c in self.crossings)
         inside = bool(self.unstable[0])
-        start = float(U[0]) if inside else None
         for s in crit:
             if inside:
                 out.append((start, s))
