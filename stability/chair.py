@@ -404,7 +404,13 @@ POWER_FWD_FIELDS: dict[str, Any] = dict(
 
 
 def preset_names() -> tuple[str, ...]:
-    """Names of the built-in chairs."""
+    """Names of the built-in chairs.
+
+    Returns
+    -------
+    tuple of str
+        Preset names accepted by :func:`preset` and ``--chair``, in table order.
+    """
     return tuple(_presets())
 
 
@@ -417,6 +423,16 @@ def preset(name: str) -> Chair:
         One of :func:`preset_names`: ``"ej-premier"`` (the thesis's Everest &
         Jennings rear-caster chair, chapter 8 defaults), ``"ej-premier-front-caster"``
         (its front-caster equivalent, chapter 8) or ``"revised"`` (chapter 9).
+
+    Returns
+    -------
+    Chair
+        The preset's parameters (SI units, see :class:`Chair`).
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a preset; the message lists the valid names.
     """
     table = _presets()
     if name in table:
@@ -433,12 +449,43 @@ def all_preset_names() -> tuple[str, ...]:
 # TOML I/O
 # ---------------------------------------------------------------------------
 def to_mapping(c: Chair) -> dict[str, Any]:
-    """Chair as a plain dict (``None`` values omitted)."""
+    """Chair as a plain dict of field values (``None`` values omitted).
+
+    Parameters
+    ----------
+    c : Chair
+        The chair.
+
+    Returns
+    -------
+    dict of str to Any
+        Field name -> value, in the chair's SI units; the inverse of :func:`from_mapping`.
+    """
     return {f.name: getattr(c, f.name) for f in fields(c) if getattr(c, f.name) is not None}
 
 
 def from_mapping(data: Mapping[str, Any], base: Chair | None = None) -> Chair:
-    """Build a chair from a mapping of field values over ``base`` (default chair)."""
+    """Build a chair from a mapping of field values over ``base``.
+
+    Parameters
+    ----------
+    data : Mapping of str to Any
+        Field name -> value (SI units, as the :class:`Chair` fields); fields not
+        given keep ``base``'s values.
+    base : Chair or None, optional
+        Chair whose values fill the fields missing from ``data``; default the
+        default ``Chair()``.
+
+    Returns
+    -------
+    Chair
+        The new chair (its fields validated by :meth:`Chair.replace`).
+
+    Raises
+    ------
+    ValueError
+        If ``data`` names an unknown field or a value is out of range.
+    """
     valid = set(field_names())
     unknown = set(data) - valid
     if unknown:
@@ -469,14 +516,43 @@ def dumps(c: Chair) -> str:
 
 
 def save(c: Chair, path: str | os.PathLike[str]) -> None:
-    """Write ``c`` to a TOML file atomically (temporary file + rename)."""
+    """Write ``c`` to a TOML file atomically (temporary file + rename).
+
+    Parameters
+    ----------
+    c : Chair
+        The chair to write (as :func:`dumps` formats it).
+    path : str or os.PathLike
+        Destination file; replaced if it exists.
+    """
     from .output import atomic_write_text
 
     atomic_write_text(path, dumps(c))
 
 
 def load(path: str | os.PathLike[str]) -> Chair:
-    """Read a chair from a TOML file (missing fields take the default chair's values)."""
+    """Read a chair from a TOML file (missing fields take the default chair's values).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        TOML file with the chair's fields either at the top level or in one
+        ``[chair]`` table (not both). Tire data files named by ``main_tire`` or
+        ``caster_tire`` are resolved relative to this file's directory.
+
+    Returns
+    -------
+    Chair
+        The chair read from the file.
+
+    Raises
+    ------
+    ValueError
+        If the file mixes top-level keys with a ``[chair]`` table, names an
+        unknown field or holds a value out of range.
+    OSError
+        If the file cannot be read.
+    """
     with open(path, "rb") as fh:
         data = tomllib.load(fh)
     if "chair" in data and isinstance(data["chair"], dict):
@@ -502,7 +578,26 @@ def resolve(spec: str) -> Chair:
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:
-    """Parse ``NAME=VALUE`` (a ``--set`` option) into a field name and typed value."""
+    """Parse ``NAME=VALUE`` (a ``--set`` option) into a field name and typed value.
+
+    Parameters
+    ----------
+    text : str
+        ``NAME=VALUE``; NAME a :class:`Chair` field. VALUE is kept as text for
+        ``name``, ``caster_position``, ``main_tire`` and ``caster_tire``;
+        ``camber_coefficient`` also accepts ``none``, ``tire`` or empty (-> ``None``);
+        every other field needs a number in the field's SI unit.
+
+    Returns
+    -------
+    tuple of (str, Any)
+        The field name and its value (``str``, ``float`` or ``None``).
+
+    Raises
+    ------
+    ValueError
+        If ``text`` has no ``=``, names an unknown field or a numeric field gets a non-number.
+    """
     if "=" not in text:
         raise ValueError(f"--set expects NAME=VALUE, got {text!r}")
     name, raw = (s.strip() for s in text.split("=", 1))

@@ -82,7 +82,16 @@ def _fields_epilog() -> str:
 
 
 def add_chair_options(parser: argparse.ArgumentParser, default: str = "ej-premier") -> None:
-    """Add ``--chair`` (preset name or TOML file) and repeatable ``--set NAME=VALUE``; list both in ``--help``."""
+    """Add ``--chair``, repeatable ``--set NAME=VALUE`` and ``--tire-range`` to ``parser``; list the fields in ``--help``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser; its epilog gains the list of chair fields.
+    default : str, optional
+        Value of ``--chair`` when it is not given: a preset name or TOML file
+        (default ``"ej-premier"``).
+    """
     parser.add_argument("--chair", default=default,
                         help=f"preset name ({', '.join(chair_mod.preset_names())}) or TOML file (default {default})")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
@@ -95,13 +104,33 @@ def add_chair_options(parser: argparse.ArgumentParser, default: str = "ej-premie
 
 
 def add_json_options(parser: argparse.ArgumentParser) -> None:
-    """Add ``--json`` (print JSON to standard output) and ``--json-file FILE`` (write it to a file)."""
+    """Add ``--json`` (print JSON to standard output) and ``--json-file FILE`` (write it to a file).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    """
     parser.add_argument("--json", action="store_true", help="print the results as JSON on standard output")
     parser.add_argument("--json-file", metavar="FILE", help="write the results as JSON to FILE")
 
 
 def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
     """Chair from ``--chair`` and ``--set`` options, with its static loads checked.
+
+    Parameters
+    ----------
+    spec : str
+        ``--chair`` value: a preset name (:func:`stability.chair.preset_names`) or a TOML file.
+    assignments : sequence of str
+        ``--set`` values, each ``NAME=VALUE`` (:func:`stability.chair.parse_assignment`),
+        applied in order over the chair read from ``spec``.
+
+    Returns
+    -------
+    Chair
+        The chair, its static wheel loads checked and its tire data checked
+        against the fitted load range.
 
     Raises
     ------
@@ -176,6 +205,18 @@ def check_directory(path: str | None, option: str) -> None:
 
     The directory must exist and be writable; the path must not be a directory
     nor lie under ``/proc``, ``/sys`` or ``/dev``.
+
+    Parameters
+    ----------
+    path : str or None
+        Output file name; ``None`` or empty means no output file (nothing checked).
+    option : str
+        Option that gave the path (e.g. ``"--json-file"``), used in the error message.
+
+    Raises
+    ------
+    ValueError
+        One line naming the option, the path and the fault.
     """
     if not path:
         return
@@ -242,7 +283,16 @@ def json_header(chair: chair_mod.Chair, model: str | None, options: Mapping[str,
 
 
 def emit_json(data: Any, args: argparse.Namespace) -> None:
-    """Print ``data`` as JSON when ``--json`` was given; write it atomically to ``--json-file`` when given."""
+    """Print ``data`` as JSON when ``--json`` was given; write it atomically to ``--json-file`` when given.
+
+    Parameters
+    ----------
+    data : Any
+        JSON-serialisable result (NaN and infinity refused); a dict gains a
+        ``tire_range`` entry when ``args`` carries tire-range notes.
+    args : argparse.Namespace
+        Parsed options; read are ``json``, ``json_file``, ``tire_range`` and ``tire_notes``.
+    """
     from .output import atomic_write_text
 
     notes = getattr(args, "tire_notes", None)
@@ -267,7 +317,20 @@ def _json_default(x: Any) -> Any:
 
 
 def error(exc: BaseException, prefix: str = "") -> int:
-    """Print ``exc`` as one line ``error: ...`` on stderr; return exit status 2."""
+    """Print ``exc`` as one line ``error: ...`` on stderr; return exit status 2.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception; only the first line of its message is printed (its type name if empty).
+    prefix : str, optional
+        Text placed between ``error: `` and the message, default empty.
+
+    Returns
+    -------
+    int
+        Exit status 2.
+    """
     msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
     print(f"error: {prefix}{msg}", file=sys.stderr)
     return 2
@@ -309,6 +372,22 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     * Ctrl-C: ``interrupted``, status 130 (outputs are atomic: nothing half-written is left);
     * output piped into a reader that stops early (``| head``): quiet, status 1;
     * ``--debug`` (added to every parser): the traceback instead of the one line.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser; ``--debug`` is added if missing.
+    argv : sequence of str or None
+        Arguments without the program name; ``None`` reads ``sys.argv[1:]``.
+    body : callable
+        ``body(args) -> int or None``: the command's work on the parsed options.
+    errors : tuple of exception types, optional
+        Exceptions treated as bad input (default ``(ValueError,)``).
+
+    Returns
+    -------
+    int
+        Exit status: ``body``'s (0 for ``None``), 1, 2 or 130 as listed above.
     """
     if not any("--debug" in a.option_strings for a in parser._actions):
         parser.add_argument("--debug", action="store_true", help="show the full traceback on errors")
