@@ -82,7 +82,7 @@ def _fields_epilog() -> str:
 
 
 def add_chair_options(parser: argparse.ArgumentParser, default: str = "ej-premier") -> None:
-    """Add ``--chair``, repeatable ``--set NAME=VALUE`` and ``--tire-range`` to ``parser``; list the fields in ``--help``.
+    """Add ``--chair``, repeatable ``--set NAME=VALUE`` and ``--tire-range``; list the chair fields in ``--help``.
 
     Parameters
     ----------
