@@ -554,7 +554,10 @@ def load(path: str | os.PathLike[str]) -> Chair:
         If the file cannot be read.
     """
     with open(path, "rb") as fh:
-        data = tomllib.load(fh)
+        try:
+            data = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"chair file {str(path)!r} is not valid TOML: {exc}") from None
     if "chair" in data and isinstance(data["chair"], dict):
         others = sorted(k for k in data if k != "chair")
         if others:
