@@ -4,18 +4,21 @@ Every file the toolkit writes goes through this module: it appears only when
 it is complete (written to a temporary file in the same directory, then
 renamed), and PDFs are byte-reproducible (no creation or modification dates
 in the metadata, fixed producer string; matplotlib honours
-``SOURCE_DATE_EPOCH``).
+``SOURCE_DATE_EPOCH``).  A multi-page PDF may carry an outline (bookmarks),
+appended as a PDF incremental update (ISO 32000-1, 7.5.6 and 12.3.3).
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
+import re
 import tempfile
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from pathlib import Path
 
-__all__ = ["atomic_path", "write_pdf", "save_figure", "atomic_write_text", "PDF_METADATA"]
+__all__ = ["atomic_path", "write_pdf", "save_figure", "atomic_write_text", "PDF_METADATA", "add_outline",
+           "read_outline"]
 
 #: metadata of every PDF written (no dates: byte-identical output for identical input)
 PDF_METADATA = {"Author": "stability", "Creator": "stability", "Producer": "stability",
@@ -56,7 +59,8 @@ def _pyplot():
 
 
 def write_pdf(figures: Iterable, path: str | os.PathLike[str], *, title: str = "stability report",
-              close: bool = True, on_page: Callable[[int], None] | None = None) -> Path:
+              close: bool = True, on_page: Callable[[int], None] | None = None,
+              outline: Sequence[tuple[str, int]] | Callable[[], Sequence[tuple[str, int]]] | None = None) -> Path:
     """Write matplotlib figures as pages of one PDF, atomically and reproducibly.
 
     Parameters
@@ -71,6 +75,14 @@ def write_pdf(figures: Iterable, path: str | os.PathLike[str], *, title: str = "
         Close each figure after it is saved.
     on_page : callable, optional
         Called with the page number after each page (progress reporting).
+    outline : sequence of (str, int), or a callable returning one, optional
+        Bookmarks: title and 0-based page index, in order (see
+        :func:`add_outline`).  A callable is called after the last page.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
     """
     plt = _pyplot()
     from matplotlib.backends.backend_pdf import PdfPages
@@ -83,7 +95,99 @@ def write_pdf(figures: Iterable, path: str | os.PathLike[str], *, title: str = "
                     plt.close(fig)
                 if on_page is not None:
                     on_page(i)
+        entries = outline() if callable(outline) else outline
+        if entries:
+            add_outline(tmp, entries)
     return Path(path)
+
+
+def _pdf_text(s: str) -> bytes:
+    """A PDF text string: literal when printable ASCII, else UTF-16BE with a byte-order mark (hex)."""
+    if all(32 <= ord(ch) < 127 for ch in s):
+        return b"(" + s.replace("\\", "\\\\").replace("(", "\\(").replace(")", "\\)").encode("ascii") + b")"
+    return b"<FEFF" + s.encode("utf-16-be").hex().upper().encode("ascii") + b">"
+
+
+def add_outline(path: str | os.PathLike[str], entries: Sequence[tuple[str, int]]) -> None:
+    """Append a flat outline (bookmarks) to a PDF written by matplotlib, as an incremental update.
+
+    The original bytes are kept; new objects (the outline and its items),
+    the catalog redefined with ``/Outlines`` and ``/PageMode /UseOutlines``,
+    a cross-reference section and a trailer pointing back (``/Prev``) are
+    appended.  Deterministic: the same input gives the same bytes.
+
+    Parameters
+    ----------
+    path : path-like
+        A PDF with a classic cross-reference table (as matplotlib writes).
+    entries : sequence of (str, int)
+        Title and 0-based page index of each bookmark, in order.
+    """
+    data = Path(path).read_bytes()
+    tail = data[data.rindex(b"trailer"):]
+    size = int(re.search(rb"/Size (\d+)", tail).group(1))          # type: ignore[union-attr]
+    root = int(re.search(rb"/Root (\d+) 0 R", tail).group(1))      # type: ignore[union-attr]
+    info = re.search(rb"/Info (\d+) 0 R", tail)
+    prev = int(re.search(rb"startxref\s+(\d+)", tail).group(1))   # type: ignore[union-attr]
+    cat = re.search(rb"(?<![0-9])%d 0 obj\s*<<(.*?)>>\s*endobj" % root, data, re.S)
+    if cat is None or b"/Outlines" in cat.group(1):
+        raise ValueError(f"{str(path)!r}: no plain catalog to add an outline to")
+    pages_ref = int(re.search(rb"/Pages (\d+) 0 R", cat.group(1)).group(1))  # type: ignore[union-attr]
+    pages = re.search(rb"(?<![0-9])%d 0 obj\s*<<.*?/Kids \[(.*?)\]" % pages_ref, data, re.S)
+    kids = [int(k) for k in re.findall(rb"(\d+) 0 R", pages.group(1))]  # type: ignore[union-attr]
+    n = len(entries)
+    first = size + 1
+    body = bytearray(data if data.endswith(b"\n") else data + b"\n")
+    offsets: dict[int, int] = {}
+
+    def obj(num: int, content: bytes) -> None:
+        offsets[num] = len(body)
+        body.extend(b"%d 0 obj\n<< " % num + content + b" >>\nendobj\n")
+
+    obj(size, b"/Type /Outlines /First %d 0 R /Last %d 0 R /Count %d" % (first, size + n, n))
+    for i, (title, page_index) in enumerate(entries):
+        if not 0 <= page_index < len(kids):
+            raise ValueError(f"outline entry {title!r}: page index {page_index} not in 0..{len(kids) - 1}")
+        links = (b" /Prev %d 0 R" % (first + i - 1) if i else b"") + \
+            (b" /Next %d 0 R" % (first + i + 1) if i < n - 1 else b"")
+        obj(first + i, b"/Title " + _pdf_text(title) + b" /Parent %d 0 R" % size + links
+            + b" /Dest [ %d 0 R /Fit ]" % kids[page_index])
+    obj(root, cat.group(1).strip() + b" /Outlines %d 0 R /PageMode /UseOutlines" % size)
+    xref = len(body)
+    body.extend(b"xref\n0 1\n0000000000 65535 f \n%d 1\n%010d 00000 n \n" % (root, offsets[root]))
+    body.extend(b"%d %d\n" % (size, n + 1))
+    for num in range(size, size + n + 1):
+        body.extend(b"%010d 00000 n \n" % offsets[num])
+    body.extend(b"trailer\n<< /Size %d /Root %d 0 R" % (size + n + 1, root)
+                + (b" /Info %d 0 R" % int(info.group(1)) if info else b"")
+                + b" /Prev %d >>\nstartxref\n%d\n%%%%EOF\n" % (prev, xref))
+    Path(path).write_bytes(bytes(body))
+
+
+def read_outline(path: str | os.PathLike[str]) -> list[tuple[str, int]]:
+    """The flat outline written by :func:`add_outline`: (title, 0-based page index) in order.
+
+    Parameters
+    ----------
+    path : path-like
+
+    Returns
+    -------
+    list of (str, int)
+        Empty when the PDF has no such outline.
+    """
+    data = Path(path).read_bytes()
+    pages = re.search(rb"/Type /Pages\s*/Kids \[(.*?)\]", data, re.S)
+    kids = [int(k) for k in re.findall(rb"(\d+) 0 R", pages.group(1))] if pages else []
+    out = []
+    for m in re.finditer(rb"/Title (\((?:\\.|[^\\)])*\)|<FEFF[0-9A-F]*>) /Parent \d+ 0 R.*?/Dest \[ (\d+) 0 R", data):
+        raw = m.group(1)
+        if raw.startswith(b"<"):
+            title = bytes.fromhex(raw[5:-1].decode()).decode("utf-16-be")
+        else:
+            title = re.sub(rb"\\(.)", rb"\1", raw[1:-1]).decode("ascii")
+        out.append((title, kids.index(int(m.group(2)))))
+    return out
 
 
 def save_figure(fig, path: str | os.PathLike[str], *, title: str = "stability figure",

@@ -12,12 +12,18 @@ import re
 import numpy as np
 import pytest
 
-from stability import critical_speed, linear, report, rootlocus, study
+from stability import critical_speed, linear, report, rootlocus, simulate, study
 from stability.chair import preset
+from stability.output import read_outline
+from stability.reference import THESIS_PUSH
+from stability.report.findings import conclusion_rows, friction_exponent
+from stability.report.modes import mode_names
+from stability.report.summary import dropped_pages, summary_text
 from stability.report.tire_data import force_curves, stiffness_curves
+from stability.report.validity import run_validity
 
 EXPECTED_PAGES = [
-    "chair parameters and geometry", "tires", "linear stability: critical speeds", "eigenvalues as speed varies",
+    "summary", "chair parameters and geometry", "tires", "linear stability: critical speeds", "eigenvalues as speed varies",
     "eigenvalues against speed", "root loci against design parameters 1", "root loci against design parameters 2",
     "growth rate against design parameters", "yaw-rate feedback root locus", "nonlinear yaw-rate responses",
     "paths", "equal-instability speeds", "parametric study", "parametric study table", "stability maps",
@@ -66,19 +72,24 @@ def test_page_texts(quick):
         "linear stability: critical speeds": ["Critical speeds (m/s)", "zero-width model", "Least stable mode"],
         "eigenvalues as speed varies": ["forward speed U (m/s)", "ej-premier: exact model, free casters",
                                         "ej-premier: thesis model, locked casters"],
-        "eigenvalues against speed": ["forward speed U (m/s)", "real part σ (1/s, symlog)"],
+        "eigenvalues against speed": ["forward speed U (m/s)", "real part σ (1/s)", "casters in phase + yaw",
+                                      "casters opposed (slow)", "Modes named from their eigenvectors"],
+        "summary": ["Verdict: ej-premier", "Key numbers", "Critical impulse at 0.75 m/s", "What helps most", "Caveats",
+                    "40 N for 0.1 s (101 steps of 1 ms, 4.04 N s)", "Model variant:"],
         "root loci against design parameters 1": ["vs c.g. ratio s1/(s1+s2)", "vs caster trail l"],
         "root loci against design parameters 2": ["vs viscous pin damping", "vs main tire"],
         "growth rate against design parameters": ["largest real part (1/s)"],
         "yaw-rate feedback root locus": ["feedback gain K (N m s/rad)", "open-loop poles (K = 0)"],
-        "nonlinear yaw-rate responses": ["time t (s)", "linear (exact)"],
+        "nonlinear yaw-rate responses": ["time t (s)", "linear (exact)", "end of validity (nothing drawn after)",
+                                         "101 steps of 1 ms, 4.04 N s"],
         "paths": ["distance travelled X (m)", "lateral displacement Y (m, to the right)"],
         "equal-instability speeds": ["equal-instability speed (m/s)", "revised x1.5 friction", "Criterion:"],
         "parametric study": ["equal-instability speed (m/s)", "caster trail l (m)"],
         "parametric study table": ["which parameters matter, by how much", "Coulomb pin friction M_f"],
         "stability maps": ["forward speed U (m/s)", "pin friction M_f (both pins) (N m)", "lateral impulse at the c.g. (N s)"],
         "thesis conclusions": ["AGREE", "Revised design"],
-        "findings": ["Linear model (exact)", "reference case"],
+        "findings": ["Linear model (exact)", "reference case", "Figure 8-14", "massless-caster mode",
+                     "five small terms"],
     }
     for title, needles in expect.items():
         text = _text(quick, title)
@@ -208,7 +219,7 @@ def test_cli_quick_is_byte_identical(quick, tmp_path, monkeypatch, capsys):
     dump = txt.read_text()
     assert dump.count("=== page ") == len(EXPECTED_PAGES)
     out = capsys.readouterr().out
-    assert "17 pages" in out
+    assert f"{len(EXPECTED_PAGES)} pages" in out
 
 
 def test_compute_is_deterministic():
@@ -271,3 +282,119 @@ def test_bad_input_is_one_line_and_status_2(argv, needle, capsys, tmp_path):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("error:") and needle in err
     assert not (tmp_path / "r.pdf").exists()
+
+
+# ---------------------------------------------------------------------------
+# issue 11: summary, page numbers, outline, colours, mode names, validity, dropped pages, verdicts
+# ---------------------------------------------------------------------------
+def test_page_numbers_and_outline(quick):
+    n = len(EXPECTED_PAGES)
+    for i, p in enumerate(quick.pages, start=1):
+        assert f"page {i} of {n}" in p.texts, p.title
+    assert read_outline(quick.path) == [(f"{i + 1}. {t}", i) for i, t in enumerate(EXPECTED_PAGES)]
+
+
+def test_outline_read_by_an_independent_pdf_reader(quick):
+    pypdf = pytest.importorskip("pypdf")
+    r = pypdf.PdfReader(str(quick.path), strict=True)
+    assert len(r.pages) == len(EXPECTED_PAGES)
+    assert [(o.title, r.get_destination_page_number(o)) for o in r.outline] == \
+        [(f"{i + 1}. {t}", i) for i, t in enumerate(EXPECTED_PAGES)]
+
+
+def test_colour_maps_are_colour_blind_safe(quick):
+    """No red-green map on any page: every colour-mapped artist uses a perceptually uniform, CVD-safe map."""
+    from matplotlib.cm import ScalarMappable
+
+    allowed = {"viridis", "cividis", "plasma", "plasma_r"}
+    used = set()
+    for _title, build in report.page_builders(quick.data):
+        for obj in build().findobj(lambda a: isinstance(a, ScalarMappable)):
+            cmap = obj.get_cmap()
+            rgb = cmap(np.linspace(0, 1, 7))[:, :3]
+            if cmap.name == "unnamed" and np.ptp(rgb, axis=1).max() == 0:
+                continue        # one grey/black line colour (a contour drawn with colors="k")
+            used.add(cmap.name)
+    assert used and used <= allowed, used
+
+
+def test_mode_names_from_eigenvectors():
+    """The anti-phase caster mode does not move the chair: its rate is close to -U/trail (derivations/README);
+    the unstable branch is the in-phase caster swing with yaw; locked casters have no caster modes."""
+    c = preset("ej-premier")
+    free = rootlocus.speed_locus(c, model="exact", casters="free", n=60)
+    names = mode_names(free, 0.75)
+    k = int(np.argmin(np.abs(free.speeds - 0.75)))
+    u = free.speeds[k]
+    opposed = free.eigenvalues[k][names.index("casters opposed (slow)")]
+    assert opposed.real == pytest.approx(-u / c.trail, rel=0.03)
+    unstable = int(np.argmax(free.eigenvalues[k].real))
+    assert free.eigenvalues[k][unstable].real > 0 and "casters in phase" in names[unstable] and "yaw" in names[unstable]
+    assert len(set(names)) == len(names)
+    locked = mode_names(rootlocus.speed_locus(c, model="exact", casters="locked", n=30), 0.75)
+    assert all("caster" not in n for n in locked)
+
+
+def test_validity_ends_at_the_first_slip_beyond_the_tire_data():
+    """Independent of the warning counters: the first sample whose |slip| exceeds 8 deg, from the slip arrays."""
+    c = preset("ej-premier")
+    res = simulate.simulate(c, 0.95, impulse_force=THESIS_PUSH.force, impulse_duration=THESIS_PUSH.duration,
+                            duration=4.0, model="exact", stop_on_warnings=False, sample=0.01)
+    v = run_validity(res)
+    over = np.flatnonzero(np.abs(np.asarray(res.slip_deg)).max(axis=1) > 8.0)
+    assert len(over) and v.reason == "slip > 8 deg"
+    assert res.t[over[0]] - 0.01 - 1e-9 <= v.until <= res.t[over[0]] + 1e-9
+
+
+def test_nothing_drawn_after_validity(quick):
+    d = quick.data
+    fig = dict(report.page_builders(d))["nonlinear yaw-rate responses"]()
+    ax = fig.axes[0]
+    valid = d.validity["responses"]
+    assert any(v.until is not None for v in valid)
+    solid = [ln for ln in ax.lines if ln.get_linestyle() == "-" and len(ln.get_xdata()) > 2]
+    assert len(solid) == len(valid)
+    for ln, v in zip(solid, valid, strict=True):
+        if v.until is not None:
+            assert max(ln.get_xdata()) <= v.until + 1e-12
+
+
+def test_conclusion_6_verdict_is_about_proportionality(quick):
+    """'Roughly proportional' means speed ~ friction^p with p near 1; the exponent is a least-squares slope."""
+    sp = quick.data.thesis.speeds
+    rows = {int(r[0]): r for r in conclusion_rows(quick.data)}
+    exps = []
+    for name in ("ej-premier", "revised"):
+        pts = [(f, sp[k]) for f, k in ((0.5, f"{name} x0.5 friction"), (1.0, name), (1.5, f"{name} x1.5 friction"))]
+        x = np.log([f for f, r in pts if r.status == "found"])
+        y = np.log([r.speed for f, r in pts if r.status == "found"])
+        slope = ((x - x.mean()) * (y - y.mean())).sum() / ((x - x.mean()) ** 2).sum()
+        assert friction_exponent(pts) == pytest.approx(slope, rel=1e-9)
+        exps.append(slope)
+        assert f"{slope:.2f} ({name})" in rows[6][3]
+    expect = "AGREE" if all(0.75 <= p <= 1.25 for p in exps) else ("PARTLY" if all(p > 0 for p in exps) else "DISAGREE")
+    assert rows[6][2] == expect
+
+
+def test_pages_without_information_are_dropped_with_a_reason(quick):
+    d = quick.data
+    assert dropped_pages(d) == {}
+    above = lambda r: dataclasses.replace(r, status="above", speed=None)  # noqa: E731
+    table = dataclasses.replace(d.chair_sweeps, sweeps=[dataclasses.replace(sw, results=tuple(above(r) for r in sw.results))
+                                                        for sw in d.chair_sweeps.sweeps])
+    d2 = dataclasses.replace(d, chair_sweeps=table, chair_speed=above(d.chair_speed))
+    titles = [t for t, _ in report.page_builders(d2)]
+    assert "parametric study" not in titles and "parametric study table" not in titles
+    assert "no parameter can be ranked" in summary_text(d2) and "Pages left out" in summary_text(d2)
+
+
+def test_summary_numbers_come_from_the_data(quick):
+    d = quick.data
+    text = summary_text(d)
+    iv = d.intervals
+    assert iv.chair.name == "revised" and iv.push[0].impulse[0] == pytest.approx(0.9 * THESIS_PUSH.force)
+    for r in iv.all():
+        assert r.describe() in text
+    for x in d.impulses:
+        assert x.describe() in text
+    assert f"after {d.thesis.reference_time:.2f} s" in text

@@ -9,6 +9,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrow, Rectangle
 
 from .pages import table_axes
+from .style import MARK, colour
 
 __all__ = ["chair_geometry", "parameter_table"]
 
@@ -38,7 +39,7 @@ def chair_geometry(chair, ax=None, *, title: str | None = None):
         ax.plot([y, y], [xp, xc], color="k", lw=1.5, zorder=3)
         ax.add_patch(Rectangle((y - 0.012, xc - r_cast), 0.024, 2 * r_cast, fc="0.55", ec="k", zorder=2))
         ax.plot([y], [xp], "o", ms=6, mfc="w", mec="k", zorder=4)
-        ax.plot([y], [xc], ".", color="C3", zorder=5)
+        ax.plot([y], [xc], ".", color=MARK, zorder=5)
         ax.text(y + (0.03 if y > 0 else -0.03), xp, lab, ha="left" if y > 0 else "right", va="center",
                 fontsize=8)
     ax.plot([0], [0], marker="o", ms=10, mfc="w", mec="k", zorder=6)
@@ -62,8 +63,8 @@ def chair_geometry(chair, ax=None, *, title: str | None = None):
     top = max(xm + r_main, xp + r_cast) + 0.05
     xa = -off - 0.02
     ax.add_patch(FancyArrow(xa, top - 0.25, 0, 0.17, width=0.01, head_width=0.05, head_length=0.04,
-                            color="C0"))
-    ax.text(xa - 0.03, top - 0.17, "travel", color="C0", fontsize=8, rotation=90, ha="right", va="center")
+                            color=colour(0)))
+    ax.text(xa - 0.03, top - 0.17, "travel", color=colour(0), fontsize=8, rotation=90, ha="right", va="center")
     ax.set_aspect("equal")
     ax.set_xlim(xa - 0.12, off + 0.45)
     ax.set_ylim(min(xm - r_main, xp - c.trail - r_cast) - 0.08, top + 0.02)

@@ -15,7 +15,7 @@ from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
 
 from .pages import panels_page
-from .style import colormap
+from .style import UNSTABLE, colormap, colour
 
 __all__ = ["speed_locus", "speed_loci_figure", "eigenvalues_vs_speed", "parameter_locus", "parameter_loci_figure",
            "growth_rate_vs_parameter", "gain_locus"]
@@ -61,7 +61,7 @@ def _axes_decor(ax, xlim, ylim, scale: str = "linear", linthresh: float = 1.0):
         ax.set_yscale("symlog", linthresh=linthresh, linscale=0.6)
     ax.axvline(0, color="k", lw=0.8)
     ax.axhline(0, color="0.6", lw=0.5)
-    ax.axvspan(0, max(xlim[1], 0), color="C3", alpha=0.06, lw=0)
+    ax.axvspan(0, max(xlim[1], 0), color=UNSTABLE, alpha=0.06, lw=0)
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
     note = f", symlog: linear within ±{linthresh:g}" if scale == "symlog" else ""
@@ -111,10 +111,10 @@ def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 1
     norm = LogNorm(U[0], U[-1])
     lc = _colored_branches(ax, eig, U, norm, colormap("plasma_r"))
     for c in locus.crossings:
-        ax.plot([c.eigenvalue.real], [c.eigenvalue.imag], "*", ms=11, color="C3", mec="k", zorder=6,
+        ax.plot([c.eigenvalue.real], [c.eigenvalue.imag], "*", ms=11, color=UNSTABLE, mec="k", zorder=6,
                 label=f"critical {c.speed:.3g} m/s ({c.kind}, {c.direction})")
         if abs(c.eigenvalue.imag) > 0:
-            ax.plot([c.eigenvalue.real], [-c.eigenvalue.imag], "*", ms=11, color="C3", mec="k", zorder=6)
+            ax.plot([c.eigenvalue.real], [-c.eigenvalue.imag], "*", ms=11, color=UNSTABLE, mec="k", zorder=6)
     ax.plot(eig[0].real, eig[0].imag, "x", color="k", ms=5, label=f"U = {U[0]:g} m/s (start)")
     _axes_decor(ax, xlim, ylim, scale, linthresh)
     pts, labs = [], []
@@ -145,31 +145,67 @@ def speed_loci_figure(loci: Sequence, title: str, subtitle: str = "") -> Figure:
     return panels_page(loci, speed_locus, title, subtitle, ncols=2 if len(loci) > 1 else 1)
 
 
-def eigenvalues_vs_speed(locus, axes=None, *, title: str | None = None, log_speed: bool = True,
+def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None = None, log_speed: bool = True,
                          xlim=None):
-    """Real and imaginary parts of the eigenvalues against speed, unstable regions shaded, critical speeds marked."""
+    """Real and imaginary parts of the eigenvalues against speed, unstable regions shaded, critical speeds marked.
+
+    The real parts are on a linear axis that holds the slow modes (down to
+    three times the largest growth rate, at least 10 1/s): branches that stay
+    below it at every speed are listed in the legend as off scale.
+
+    Parameters
+    ----------
+    locus : stability.rootlocus.SpeedLocus
+    axes : pair of matplotlib.axes.Axes, optional
+        Axes for the real and the imaginary parts (a new figure if omitted).
+    mode_names : sequence of str, optional
+        A name per branch (column of ``locus.eigenvalues``), e.g. from
+        :func:`stability.report.modes.mode_names`; branches with the same
+        name share one legend entry.  Default "branch 1", "branch 2", ...
+    title : str, optional
+    log_speed : bool
+        Logarithmic speed axis.
+    xlim : tuple of float, optional
+        Speed range, m/s.
+
+    Returns
+    -------
+    pair of matplotlib.axes.Axes
+    """
     if axes is None:
         fig = Figure(figsize=(7, 6))
         axes = fig.subplots(2, 1)
     ax1, ax2 = axes
     U, eig = locus.speeds, locus.eigenvalues
-    re_all = eig.real
-    lim = max(float(np.abs(re_all).max()) * 2.0, 2.0)
+    names = list(mode_names) if mode_names is not None else [f"branch {j + 1}" for j in range(eig.shape[1])]
+    hi = max(1.15 * float(eig.real.max()), 0.5)
+    lo = -max(3.0 * hi, 10.0)
+    seen: dict[str, int] = {}
+    off: list[str] = []
+    labelled: set[str] = set()
     for j in range(eig.shape[1]):
-        ax1.plot(U, eig[:, j].real, lw=1.2, color=f"C{j % 10}", label=f"branch {j + 1}")
-        ax2.plot(U, np.abs(eig[:, j].imag), lw=1.2, color=f"C{j % 10}")
-    for lo, hi in locus.unstable_intervals():
+        k = seen.setdefault(names[j], len(seen))
+        below = bool(np.all(eig[:, j].real < lo))
+        if below and names[j] not in off:
+            off.append(names[j])
+        label = None if (below or names[j] in labelled) else names[j]
+        if label:
+            labelled.add(label)
+        ax1.plot(U, eig[:, j].real, lw=1.4, color=colour(k), label=label)
+        ax2.plot(U, np.abs(eig[:, j].imag), lw=1.4, color=colour(k))
+    for lo_u, hi_u in locus.unstable_intervals():
         for ax in (ax1, ax2):
-            ax.axvspan(lo, hi, color="C3", alpha=0.12, lw=0)
+            ax.axvspan(lo_u, hi_u, color=UNSTABLE, alpha=0.12, lw=0)
     for c in locus.crossings:
         for ax in (ax1, ax2):
-            ax.axvline(c.speed, color="C3", lw=1.0, ls="--")
+            ax.axvline(c.speed, color=UNSTABLE, lw=1.0, ls="--")
         ax1.annotate(f"{c.speed:.3g} m/s", (c.speed, 0), xytext=(4, 6), textcoords="offset points",
-                     fontsize=8, color="C3")
+                     fontsize=8, color=UNSTABLE)
+    if off:
+        ax1.plot([], [], " ", label=f"below {lo:.3g} 1/s at every speed (off scale): " + ", ".join(off))
     ax1.axhline(0, color="k", lw=0.8)
-    ax1.set_yscale("symlog", linthresh=1.0, linscale=0.6)
-    ax1.set_ylim(-lim, max(float(re_all.max()) * 2.0, 2.0))
-    ax1.set_ylabel("real part σ (1/s, symlog)", fontsize=8.5)
+    ax1.set_ylim(lo, hi)
+    ax1.set_ylabel("real part σ (1/s)", fontsize=8.5)
     ax2.set_ylabel("|imaginary part| ω (rad/s)", fontsize=8.5)
     ax1.set_xlabel("forward speed U (m/s)", fontsize=8.5)
     ax2.set_xlabel("forward speed U (m/s)", fontsize=8.5)
@@ -181,7 +217,7 @@ def eigenvalues_vs_speed(locus, axes=None, *, title: str | None = None, log_spee
         ax.set_xlim(*(xlim or (U[0], U[-1])))
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3, which="both")
-    ax1.legend(fontsize=7, ncol=3, loc="lower left")
+    ax1.legend(fontsize=6.5, ncol=2, loc="lower left")
     ax1.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters (shaded: unstable)",
                   fontsize=9)
     ax2.set_title("imaginary parts (oscillation frequencies)", fontsize=8)
@@ -203,7 +239,7 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
     _axes_decor(ax, xlim, ylim, scale, linthresh)
     if locus.categorical:
         for i, lab in enumerate(locus.labels):
-            ax.plot(eig[i].real, eig[i].imag, "o", ms=5, color=f"C{i % 10}", label=lab)
+            ax.plot(eig[i].real, eig[i].imag, "o", ms=5, color=colour(i), label=lab)
         ax.legend(fontsize=7, loc="lower left", title="main tire", title_fontsize=7)
     else:
         norm = Normalize(v.min(), v.max())
@@ -233,15 +269,15 @@ def parameter_loci_figure(loci: Sequence, title: str, subtitle: str = "", ncols:
 def _growth_rate_panel(loc, ax) -> None:
     a = loc.max_real
     if loc.categorical:
-        ax.bar(range(len(loc.labels)), a, color=[f"C{i % 10}" for i in range(len(loc.labels))])
+        ax.bar(range(len(loc.labels)), a, color=[colour(i) for i in range(len(loc.labels))])
         ax.set_xticks(range(len(loc.labels)), loc.labels, fontsize=8)
     else:
-        ax.plot(loc.values, a, color="C0")
+        ax.plot(loc.values, a, color=colour(0))
         if np.isfinite(loc.nominal):
             ax.axvline(loc.nominal, color="k", ls=":", lw=0.8, label="chair")
         for b in loc.stability_boundaries():
-            ax.axvline(b, color="C3", ls="--", lw=0.8)
-        ax.fill_between(loc.values, 0, np.maximum(a, 0), color="C3", alpha=0.15, lw=0)
+            ax.axvline(b, color=UNSTABLE, ls="--", lw=0.8)
+        ax.fill_between(loc.values, 0, np.maximum(a, 0), color=UNSTABLE, alpha=0.15, lw=0)
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xlabel(loc.axis_label(), fontsize=8)
     ax.set_ylabel("largest real part (1/s)", fontsize=8)
@@ -295,7 +331,7 @@ def gain_locus(locus, ax=None, *, stabilising_poles=None, xlim=None, ylim=None, 
                 label="open-loop zeros")
     if stabilising_poles is not None and locus.stabilising_gain is not None and locus.stabilising_gain > 0:
         lam = np.asarray(stabilising_poles)
-        ax.plot(lam.real, lam.imag, "D", ms=5, color="C2", mec="k",
+        ax.plot(lam.real, lam.imag, "D", ms=5, color=colour(2), mec="k",
                 label=f"K = {locus.stabilising_gain:.3g} N m s/rad (stable above)")
     pts, labs = [], []
     for kk in (1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0):

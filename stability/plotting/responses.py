@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
+
+from .style import colour
 
 __all__ = ["yaw_rate_responses", "trajectories"]
 
@@ -18,8 +22,16 @@ def _response_sign(rs) -> float:
     return 1.0
 
 
+def _cut(t: np.ndarray, v: Any) -> int:
+    """Number of samples within the valid part (all when ``v`` is None or valid throughout)."""
+    if v is None or v.until is None:
+        return len(t)
+    return int(np.searchsorted(t, v.until, side="right"))
+
+
 def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim=(-0.25, 2.0),
-                       title: str | None = None, label_chair: bool = False, flip: bool | None = None):
+                       title: str | None = None, label_chair: bool = False, flip: bool | None = None,
+                       validity: Sequence | None = None):
     """Yaw rate against time for several runs (Figure 8-3a analogue), linear predictions dashed.
 
     A horizontal line marks the criterion's level and, if given, a vertical
@@ -27,17 +39,34 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
     the curves rise: with ``flip=None`` the sign is chosen so that the first
     run's largest yaw rate is positive (the axis label says which sign is
     shown; yaw is positive clockwise seen from above).
+
+    ``validity`` (one :class:`stability.report.validity.Validity` per run)
+    ends each curve where the run leaves the model's range (a bar marks the
+    end; the legend says why); nothing is drawn after it.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
     """
     if ax is None:
         fig = Figure(figsize=(7, 5))
         ax = fig.subplots()
     sgn = (_response_sign(rs) if flip is None else (-1.0 if flip else 1.0))
+    cut_any = False
     for i, r in enumerate(rs.responses):
-        col = f"C{i % 10}"
+        col = colour(i)
+        v = validity[i] if validity is not None else None
+        n = _cut(np.asarray(r.t), v)
         lab = (f"{r.chair.name}, " if label_chair else "") + f"{r.speed:.3g} m/s"
         if math.isfinite(r.time_to_level):
-            lab += f" ({r.time_to_level:.2f} s)"
-        ax.plot(r.t, sgn * np.asarray(r.yaw_rate), color=col, lw=1.5, label=lab)
+            lab += f" ({r.time_to_level:.2f} s)" if v is None or v.covers(r.time_to_level) else \
+                f" (level at {r.time_to_level:.2f} s, beyond validity)"
+        if v is not None and v.until is not None:
+            lab += f"; ends {v.until:.2f} s: {v.reason}"
+        ax.plot(r.t[:n], sgn * np.asarray(r.yaw_rate)[:n], color=col, lw=1.5, label=lab)
+        if n < len(r.t) and n > 0:
+            cut_any = True
+            ax.plot([r.t[n - 1]], [sgn * r.yaw_rate[n - 1]], "|", color=col, ms=12, mew=2)
         if r.stopped_by_warnings:
             ax.plot([r.t[-1]], [sgn * r.yaw_rate[-1]], "x", color=col, ms=7)
         if r.linear is not None:
@@ -48,6 +77,8 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
         ax.axvline(reference_time, color="k", lw=0.8, ls="-.", label=f"reference: {reference_time:.2f} s")
     if rs.linear_model:
         ax.plot([], [], color="0.3", ls="--", lw=1.0, label=f"linear ({rs.linear_model})")
+    if cut_any:
+        ax.plot([], [], "|", color="0.3", ms=10, mew=2, label="end of validity (nothing drawn after)")
     ax.set_ylim(*ylim)
     ax.set_xlim(0, rs.criterion.duration)
     ax.set_xlabel("time t (s)")
@@ -56,23 +87,39 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", ncol=2)
     f, d = rs.impulse
-    ax.set_title(title or f"yaw-rate responses to {f:g} N for {d:g} s at the c.g. ({f * d:g} N s): "
+    ax.set_title(title or f"yaw-rate responses to {f:g} N for {d:g} s at the c.g.: "
                  f"{rs.model} model, {rs.scheme} scheme", fontsize=9)
     return ax
 
 
-def trajectories(rs, ax=None, *, title: str | None = None, max_lateral: float | None = 1.5):
-    """Paths of the c.g. after the disturbance (Figure 8-4 analogue), linear predictions dashed."""
+def trajectories(rs, ax=None, *, title: str | None = None, max_lateral: float | None = 1.5,
+                 validity: Sequence | None = None):
+    """Paths of the c.g. after the disturbance (Figure 8-4 analogue), linear predictions dashed.
+
+    ``validity`` (one per run) ends each path where the run leaves the
+    model's range, as in :func:`yaw_rate_responses`.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
     if ax is None:
         fig = Figure(figsize=(7, 5))
         ax = fig.subplots()
     for i, r in enumerate(rs.responses):
-        col = f"C{i % 10}"
-        ax.plot(r.x, r.y, color=col, lw=1.6, label=f"{r.chair.name} ({r.chair.caster_position} casters)")
+        col = colour(i)
+        v = validity[i] if validity is not None else None
+        n = _cut(np.asarray(r.t), v)
+        lab = f"{r.chair.name} ({r.chair.caster_position} casters)"
+        if v is not None and v.until is not None:
+            lab += f"; ends {v.until:.2f} s: {v.reason}"
+        ax.plot(r.x[:n], r.y[:n], color=col, lw=1.6, label=lab)
+        if 0 < n < len(r.t):
+            ax.plot([r.x[n - 1]], [r.y[n - 1]], "|", color=col, ms=12, mew=2)
         if r.linear is not None:
             ax.plot(r.linear["x"], r.linear["y"], color=col, lw=1.0, ls="--")
-        # heading ticks every second
-        for tt in np.arange(1.0, r.t[-1] + 1e-9, 1.0):
+        # position marks every second (valid part only)
+        for tt in np.arange(1.0, r.t[n - 1] + 1e-9 if n else 0.0, 1.0):
             k = int(np.argmin(np.abs(r.t - tt)))
             ax.plot(r.x[k], r.y[k], "o", color=col, ms=3)
     if rs.linear_model:
@@ -88,8 +135,8 @@ def trajectories(rs, ax=None, *, title: str | None = None, max_lateral: float | 
     ax.legend(fontsize=7, loc="best")
     sp = rs.responses[0].speed if rs.responses else float("nan")
     f, d = rs.impulse
-    ax.set_title(title or f"paths after {f * d:g} N s at the c.g., {sp:g} m/s: {rs.model} model, {rs.scheme} scheme",
-                 fontsize=9)
+    ax.set_title(title or f"paths after {f:g} N for {d:g} s at the c.g., {sp:g} m/s: {rs.model} model, "
+                 f"{rs.scheme} scheme", fontsize=9)
     return ax
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .pages import PAGE_SIZE
-from .style import colormap
+from .style import UNSTABLE, colormap, colour
 
 __all__ = ["equal_instability_chart", "sweep_chart", "stability_map"]
 
@@ -28,13 +28,13 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
     thesis = thesis or {}
     first = True
     for yi, r, v, n in zip(y, results, vals, names, strict=True):
-        ax.barh(yi, v, height=0.6, color="C0" if r.status == "found" else "0.8",
+        ax.barh(yi, v, height=0.6, color=colour(0) if r.status == "found" else "0.8",
                 hatch="" if r.status == "found" else "//", ec="k", lw=0.5)
         right = v
         if n in thesis:
             lo, hi = thesis[n]
-            ax.plot([lo, hi], [yi + 0.38, yi + 0.38], color="C3", lw=3, solid_capstyle="butt")
-            ax.plot([0.5 * (lo + hi)], [yi + 0.38], "v", color="C3", ms=6,
+            ax.plot([lo, hi], [yi + 0.38, yi + 0.38], color=UNSTABLE, lw=3, solid_capstyle="butt")
+            ax.plot([0.5 * (lo + hi)], [yi + 0.38], "v", color=UNSTABLE, ms=6,
                     label="thesis (Figures 9-2, 9-3)" if first else None)
             first = False
             right = max(right, hi)
@@ -74,16 +74,16 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
         cens = np.array([r.status != "found" for r in s.results])
         if s.labels is not None:
             x = np.arange(len(s.values))
-            ax.bar(x, sp, color=["0.8" if c else "C0" for c in cens], ec="k", lw=0.5)
+            ax.bar(x, sp, color=["0.8" if c else colour(0) for c in cens], ec="k", lw=0.5)
             ax.set_xticks(x, s.labels, fontsize=7)
             cur = table.chair.main_tire
             if cur in s.labels:
                 ax.get_xticklabels()[s.labels.index(cur)].set_fontweight("bold")
         else:
             x = np.asarray(s.values)
-            ax.plot(x, sp, "-o", ms=3.5, color="C0")
+            ax.plot(x, sp, "-o", ms=3.5, color=colour(0))
             if cens.any():
-                ax.plot(x[cens], sp[cens], "o", ms=6, mfc="w", mec="C3", label="outside bracket")
+                ax.plot(x[cens], sp[cens], "o", ms=6, mfc="w", mec=UNSTABLE, label="outside bracket")
                 ax.legend(fontsize=6)
             if math.isfinite(s.nominal_value):
                 ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
@@ -119,7 +119,7 @@ def stability_map(smap, ax=None, *, title: str | None = None, nominal: float | N
     T = np.minimum(T, smap.criterion.duration)
     X, Y = np.meshgrid(smap.speeds, smap.y_values)
     levels = np.linspace(0, smap.criterion.duration, 21)
-    cs = ax.contourf(X, Y, T, levels=levels, cmap=colormap("RdYlGn"))
+    cs = ax.contourf(X, Y, T, levels=levels, cmap=colormap("cividis"))
     cb = ax.figure.colorbar(cs, ax=ax, pad=0.01)
     cb.set_label(f"time to |r| = {smap.criterion.yaw_rate:g} rad/s (s; {smap.criterion.duration:g} = never)")
     ref = smap.reference_time
@@ -138,7 +138,7 @@ def stability_map(smap, ax=None, *, title: str | None = None, nominal: float | N
     if handles:
         ax.legend(fontsize=7, loc="upper left")
     f, d = smap.impulse
-    dist = f"{f * d:g} N s at the c.g." if smap.y_name != "impulse" else f"force held {d:g} s"
+    dist = f"{f:g} N for {d:g} s at the c.g." if smap.y_name != "impulse" else f"force held {d:g} s"
     ax.set_title(title or f"{smap.chair.name}: speed x {smap.y_name.replace('_', ' ')} ({dist}), "
                  f"{smap.model} model", fontsize=9)
     return ax

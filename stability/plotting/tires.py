@@ -11,7 +11,7 @@ from typing import Any
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from .style import colormap
+from .style import colormap, colour
 
 __all__ = ["tire_curves", "cornering_stiffness_curves"]
 
@@ -84,7 +84,7 @@ def cornering_stiffness_curves(curves: Any, ax: Axes | None = None) -> Axes:
     """
     ax = _axes(ax, (6, 4.5))
     for i, n in enumerate(curves.names):
-        col = f"C{i % 10}"
+        col = colour(i)
         hp = curves.highlight.get(n)
         ax.plot(curves.fz, curves.stiffness[i], color=col, lw=2.4 if hp else 1.0,
                 ls="-" if n in curves.main_names else "--", label=f"{n}{' (' + hp.role + ')' if hp else ''}")

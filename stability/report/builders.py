@@ -10,13 +10,18 @@ from matplotlib.figure import Figure
 
 from .. import plotting as P
 from ..chair import preset
-from ..reference import REFERENCE_CHAIR
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from ..study import THESIS
 from ..summary import format_summary
-from .compute import ReportData
-from .findings import _first, findings
+from .compute import PUSH_RANGE, ReportData
+from .findings import _first, conclusion_rows, findings
+from .summary import dropped_pages, model_gap, push_text, summary_text
 
-__all__ = ["page_builders"]
+__all__ = ["page_builders", "VALIDITY_NOTE"]
+
+#: What the end of a curve on a time-history plot means.
+VALIDITY_NOTE = ("Curves end where the run leaves the model's range: first slip > 8 deg, load outside the tire data, "
+                 "heading past 90 deg, or speed reversal (tire forces beyond are clamped, not results).")
 
 
 def _subtitle(d: ReportData) -> str:
@@ -28,6 +33,14 @@ def _subtitle(d: ReportData) -> str:
 
 def _title(d: ReportData, what: str) -> str:
     return f"{d.chair.name} | {d.model} model | {what}"
+
+
+def _footer(fig: Figure, text: str, width: int = 190) -> float:
+    """Write a wrapped note at the bottom of a page; return the bottom margin that leaves room for it."""
+    lines = P.wrap_text(text, width)
+    for i, line in enumerate(reversed(lines)):
+        fig.text(0.5, 0.022 + 0.016 * i, line, ha="center", fontsize=7.5, color="0.3")
+    return 0.08 + 0.016 * len(lines)
 
 
 def _p_chair(d: ReportData) -> Figure:
@@ -79,8 +92,12 @@ def _p_re_im(d: ReportData) -> Figure:
     sub = _subtitle(d)
     fig, axes = P.page(_title(d, "eigenvalues against speed (shaded: unstable)"), sub, nrows=2, ncols=2)
     for j, cs in enumerate(("free", "locked")):
-        P.eigenvalues_vs_speed(d.speed_loci[(d.model, cs)], [axes[0, j], axes[1, j]])
-    return P.finish(fig)
+        P.eigenvalues_vs_speed(d.speed_loci[(d.model, cs)], [axes[0, j], axes[1, j]],
+                               mode_names=d.mode_names.get((d.model, cs)))
+    bottom = _footer(fig, f"Modes named from their eigenvectors at {REFERENCE_SPEED:g} m/s (largest share of "
+                     "sideslip v/U, yaw r s/U, casters in phase, casters opposed; a second share named when above "
+                     "20 %). Linear axis; fast modes off scale are listed in the legend.")
+    return P.finish(fig, bottom=bottom)
 
 
 def _p_ploci(d: ReportData, part) -> Figure:
@@ -111,21 +128,28 @@ def _p_responses(d: ReportData) -> Figure:
     fig, axes = P.page(_title(d, "nonlinear yaw-rate responses (Figure 8-3a analogue), linear overlay"), sub,
                        nrows=1, ncols=2)
     P.yaw_rate_responses(d.responses, axes[0, 0], reference_time=d.thesis.reference_time,
+                         validity=d.validity.get("responses"),
                          title=f"{c.name}: pin friction {c.pin_friction_left:g} N m ({d.model} model, "
                                f"{d.scheme} scheme); dashed: linear, frictionless")
     P.yaw_rate_responses(d.responses_frictionless, axes[0, 1], reference_time=d.thesis.reference_time,
+                         validity=d.validity.get("frictionless"),
                          title=f"{c.name} without pin friction: where the linear model applies")
-    fig.text(0.5, 0.015, d.responses.linear_note, ha="center", fontsize=7.5, color="0.3")
-    return P.finish(fig)
+    bottom = _footer(fig, f"Push: {push_text(d)} at the c.g. (WCHAIR applies the force while t <= 0.1 s). "
+                     + VALIDITY_NOTE + "\n" + d.responses.linear_note + ".")
+    return P.finish(fig, bottom=bottom)
 
 
 def _p_paths(d: ReportData) -> Figure:
     sub = _subtitle(d)
     fig, axes = P.page(_title(d, "paths after the disturbance (Figure 8-4 analogue)"), sub, nrows=1, ncols=2)
-    P.trajectories(d.paths, axes[0, 0])
-    P.yaw_rate_responses(d.paths, axes[0, 1], label_chair=True, ylim=(-1.0, 1.5),
-                         title=f"yaw rates of the same runs, 0.75 m/s ({d.model} model); dashed: linear")
-    return P.finish(fig)
+    P.trajectories(d.paths, axes[0, 0], validity=d.validity.get("paths"),
+                   title=f"paths after {push_text(d)} at the c.g., {REFERENCE_SPEED:g} m/s: {d.model} model, "
+                         f"{d.scheme} scheme")
+    P.yaw_rate_responses(d.paths, axes[0, 1], label_chair=True, ylim=(-1.0, 1.5), validity=d.validity.get("paths"),
+                         title=f"yaw rates of the same runs, {REFERENCE_SPEED:g} m/s ({d.model} model); "
+                               "dashed: linear")
+    bottom = _footer(fig, VALIDITY_NOTE)
+    return P.finish(fig, bottom=bottom)
 
 
 def _p_equal(d: ReportData) -> Figure:
@@ -141,9 +165,13 @@ def _p_equal(d: ReportData) -> Figure:
         if r.chair.name not in seen:
             seen.add(r.chair.name)
             uniq.append(r)
+    if d.figure_8_14 is not None:
+        uniq.append(d.figure_8_14.speed)
     res = uniq
     thesis_ranges = {"ej-premier": (0.75, 0.75), "revised": (1.10, 1.15), "revised x0.5 friction": (0.63, 0.67),
                      "revised x1.5 friction": (1.63, 1.67)}
+    if d.figure_8_14 is not None:
+        thesis_ranges[d.figure_8_14.chair.name] = (0.85, 0.85)
     fig, axes = P.page(_title(d, "equal-instability speeds (chapter 9, Figures 9-2 and 9-3)"), sub, nrows=1,
                        ncols=2, gridspec_kw={"width_ratios": [1.5, 1]})
     P.equal_instability_chart(res, axes[0, 0], thesis=thesis_ranges)
@@ -152,7 +180,7 @@ def _p_equal(d: ReportData) -> Figure:
     crit = th.criterion
     txt = [
         "Criterion: " + crit.describe() + ".",
-        f"Reference: E&J Premier at 0.75 m/s, {th.impulse[0]:g} N for {th.impulse[1]:g} s at the c.g.: "
+        f"Reference: E&J Premier at {REFERENCE_SPEED:g} m/s, {push_text(d)} at the c.g.: "
         f"{th.reference_time:.3f} s (thesis: {THESIS['reference_time_to_1_rad_s']}).",
         "Equal-instability speed: the speed at which the chair takes exactly as long; found by bisection on "
         f"speed ({st.candidates} candidate speeds per round, one batch of simulations per round, to "
@@ -162,14 +190,22 @@ def _p_equal(d: ReportData) -> Figure:
         "compares curves by eye (Figures 9-2, 9-3); it is monotone in speed.",
         "Thesis: revised " + THESIS["revised"] + "; half friction " + THESIS["revised_half_friction"]
         + "; 1.5x friction " + THESIS["revised_1.5x_friction"] + ".",
+        "Figure 8-14 (lighter chair): thesis about 0.85 m/s; not reproduced, see the findings page.",
         "Grey hatched bars: outside the bracket (value is a bound).",
+        "Thesis vs ours: " + model_gap(d),
     ]
-    y = 0.98
+    if d.intervals is not None:
+        iv = d.intervals
+        lo, hi = iv.span()
+        txt.insert(3, f"How firm: {iv.chair.name} {iv.nominal.describe()}, range {lo:.3g}-{hi:.3g} m/s over push "
+                   f"x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, pin friction x0.5-x1.5 and the other model variant; "
+                   f"{iv.widest()} moves it most.")
+    y = 0.99
     for para in txt:
-        for line in P.wrap_text(para, 56):
-            ax.text(0.0, y, line, fontsize=8, va="top", transform=ax.transAxes)
-            y -= 0.033
-        y -= 0.02
+        for line in P.wrap_text(para, 60):
+            ax.text(0.0, y, line, fontsize=7.5, va="top", transform=ax.transAxes)
+            y -= 0.029
+        y -= 0.015
     return P.finish(fig, left=0.22)
 
 
@@ -182,10 +218,9 @@ def _p_sweeps(d: ReportData) -> Figure:
     fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
                        sub, nrows=nrows, ncols=ncols)
     P.sweep_chart(table, axes)
-    fig.text(0.5, 0.012, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
-             "parameter; other parameters at the chair's values. Same speed scale in every panel.",
-             ha="center", fontsize=8, color="0.3")
-    return P.finish(fig, bottom=0.09)
+    bottom = _footer(fig, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
+             "parameter; other parameters at the chair's values. Same speed scale in every panel.")
+    return P.finish(fig, bottom=bottom)
 
 
 def _p_sweep_table(d: ReportData) -> Figure:
@@ -212,21 +247,27 @@ def _p_maps(d: ReportData) -> Figure:
     fig, axes = P.page(_title(d, "stability maps: time to |yaw rate| = 1 rad/s"), sub, nrows=1, ncols=2)
     P.stability_map(d.friction_map, axes[0, 0], nominal=c.pin_friction_left)
     P.stability_map(d.disturbance_map, axes[0, 1], nominal=d.thesis.impulse[0] * d.thesis.impulse[1])
-    fig.text(0.5, 0.012, "Heavy line: the reference case's time. Slower than the line (left): more time to react than "
+    bottom = _footer(fig, "Heavy line: the reference case's time. Slower than the line (left): more time to react than "
              "in the reference case; faster (right): less.\nEach map is one simulate_batch call (the right one with "
-             "an impulse force per run). Dots: simulated grid points.",
-             ha="center", fontsize=8, color="0.3")
-    return P.finish(fig, bottom=0.12)
+             "an impulse force per run). Dots: simulated grid points. Left map: push "
+             f"{push_text(d)}. Right map: impulse axis = force x 0.1 s; the WCHAIR scheme holds the force for "
+             "101 steps of 1 ms, so the impulse applied is 1 % larger.")
+    return P.finish(fig, bottom=bottom)
 
 
 def _p_conclusions(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    rows = [[str(x.number), x.statement, x.verdict.upper(), x.evidence] for x in d.conclusions]
+    rows = conclusion_rows(d)
     return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers (E&J Premier, revised)"),
                         ["#", "conclusion (chapter 9)", "verdict", "our evidence"], rows, sub,
                         col_widths=[0.03, 0.25, 0.08, 0.64], wrap=[3, 40, 10, 100], fontsize=8,
                         notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
-                              f"{d.thesis.criterion.describe()}.")
+                              f"{d.thesis.criterion.describe()}; push {push_text(d)}. " + model_gap(d))
+
+
+def _p_summary_page(d: ReportData) -> Figure:
+    sub = _subtitle(d)
+    return P.text_page(_title(d, "summary"), summary_text(d), sub, fontsize=9.5, width=150)
 
 
 def _p_findings(d: ReportData) -> Figure:
@@ -245,7 +286,9 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
     -------
     list of (str, callable)
     """
-    return [
+    drop = dropped_pages(d)
+    pages = [
+        ("summary", partial(_p_summary_page, d)),
         ("chair parameters and geometry", partial(_p_chair, d)),
         ("tires", partial(_p_tires, d)),
         ("linear stability: critical speeds", partial(_p_summary, d)),
@@ -264,3 +307,4 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("thesis conclusions", partial(_p_conclusions, d)),
         ("findings", partial(_p_findings, d)),
     ]
+    return [(t, b) for t, b in pages if t not in drop]

@@ -3,20 +3,97 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from .. import rootlocus, study
 from ..chair import Chair, preset
-from ..linear import analyse
+from ..linear import analyse, divergence, massless_caster_rate
 from ..progress import ProgressBar
-from ..reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED
+from ..reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from ..study.impulse import critical_impulses
 from ..validation import linearisation_check, with_rolling_resistance
+from .modes import mode_names
 from .tire_data import ForceCurves, StiffnessCurves, force_curves, stiffness_curves
+from .validity import responses_validity
 
-__all__ = ["Settings", "ReportData", "compute", "counterpart", "response_speeds", "stabilising_poles"]
+__all__ = ["Settings", "ReportData", "Intervals", "Figure814", "compute", "counterpart", "response_speeds",
+           "stabilising_poles", "FIGURE_8_14", "PUSH_RANGE", "COMPARISON_CHAIR"]
+
+#: Figure 8-14 of the thesis: the E&J Premier with less mass and yaw inertia (kg, kg m^2).
+FIGURE_8_14 = {"m": 75.0, "i_z": 4.7}
+#: Relative push forces of the disturbance interval (x the thesis's 40 N).
+PUSH_RANGE = (0.9, 1.1)
+#: The chair whose intervals the reference chair's report shows (the thesis's revised design).
+COMPARISON_CHAIR = "revised"
+
+
+@dataclass(frozen=True, eq=False)
+class Intervals:
+    """How far an equal-instability speed moves with the disturbance, the pin friction and the model variant.
+
+    Attributes
+    ----------
+    chair : Chair
+        The chair rated (the report's chair, or the revised design in the reference chair's report).
+    nominal : EqualInstability
+        With the thesis's push, the chair's friction, the report's model.
+    push : tuple of EqualInstability
+        With ``PUSH_RANGE`` times the push force (same duration).
+    friction : tuple of EqualInstability
+        With 0.5 and 1.5 times the pin friction.
+    other_model : EqualInstability
+        With the other model variant (its own reference time).
+    """
+
+    chair: Chair
+    nominal: Any
+    push: tuple
+    friction: tuple
+    other_model: Any
+
+    def all(self) -> list:
+        """Every rating, nominal first."""
+        return [self.nominal, *self.push, *self.friction, self.other_model]
+
+    def span(self) -> tuple[float, float]:
+        """Lowest and highest speed (or bound) over every rating, m/s."""
+        v = [r.value_or_bound for r in self.all()]
+        return min(v), max(v)
+
+    def widest(self) -> str:
+        """Which of "disturbance", "pin friction", "model variant" moves the speed most."""
+        u0 = self.nominal.value_or_bound
+        moves = {"disturbance": max(abs(r.value_or_bound - u0) for r in self.push),
+                 "pin friction": max(abs(r.value_or_bound - u0) for r in self.friction),
+                 "model variant": abs(self.other_model.value_or_bound - u0)}
+        return max(moves, key=lambda k: moves[k])
+
+
+@dataclass(frozen=True, eq=False)
+class Figure814:
+    """The thesis's Figure 8-14 (a lighter E&J Premier) recomputed, and why it is not reproduced.
+
+    Attributes
+    ----------
+    chair : Chair
+        The reference chair with ``FIGURE_8_14`` mass and yaw inertia.
+    speed : EqualInstability
+        Its equal-instability speed (the thesis reads about 0.85 m/s).
+    rate_reference, rate_light : float
+        Linear growth rates at the reference speed (free casters), 1/s.
+    massless_reference, massless_light : float
+        The massless-caster closed form ``U m x_m / (I_z + m x_m^2)`` for both, 1/s.
+    """
+
+    chair: Chair
+    speed: Any
+    rate_reference: float
+    rate_light: float
+    massless_reference: float
+    massless_light: float
 
 
 @dataclass(frozen=True)
@@ -104,6 +181,11 @@ class ReportData:
     tire_force: tuple[ForceCurves, ...] = ()     # main, caster (Figure 4-1)
     tire_stiffness: StiffnessCurves | None = None  # Figure 4-2 with the chair's static points
     gain_poles: tuple = ()       # closed-loop eigenvalues at each gain locus's stabilising gain (or None)
+    mode_names: dict = field(default_factory=dict)   # (model, casters) -> names of the speed locus's branches
+    validity: dict = field(default_factory=dict)     # "responses", "frictionless", "paths" -> tuple of Validity
+    intervals: Intervals | None = None
+    impulses: tuple = ()         # CriticalImpulse of the chair and the reference chair at the reference speed
+    figure_8_14: Figure814 | None = None
 
 
 def counterpart(c: Chair) -> Chair:
@@ -185,8 +267,14 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     s = settings or Settings.for_mode(quick)
     other = "thesis" if model == "exact" else "exact"
     sim: dict[str, Any] = dict(dt=s.dt, scheme=scheme)
+    rating: dict[str, Any] = dict(bracket=s.bracket, tol=s.tol, candidates=s.candidates, progress=False, **sim)
     crit = study.Criterion(duration=s.duration)
-    stages = 9
+    push = THESIS_PUSH.as_tuple
+    ref_chair = preset(REFERENCE_CHAIR)
+    is_ej = c == ref_chair
+    light = ref_chair.replace(name=f"{REFERENCE_CHAIR}, m {FIGURE_8_14['m']:g} kg, I_z {FIGURE_8_14['i_z']:g} kg m^2",
+                              **FIGURE_8_14)
+    stages = 10
     with ProgressBar(stages, f"report {c.name}", enabled=progress, unit="stage") as bar:
         def stage(msg: str) -> None:
             if log:
@@ -203,13 +291,13 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         for m in (model, other):
             for cs in ("free", "locked"):
                 loci[(m, cs)] = rootlocus.speed_locus(c, model=m, casters=cs, n=s.speed_points)
+        names = {k: mode_names(v) for k, v in loci.items()}
         stage("speed loci")
         plocs = rootlocus.parameter_loci(c, speed=REFERENCE_SPEED, model=model, n=s.locus_points)
         glocs = [rootlocus.gain_locus(c, u, model=model, n=s.gain_points) for u in (REFERENCE_SPEED, 1.5)]
         gain_poles = tuple(stabilising_poles(g) for g in glocs)
         stage("parameter and gain loci")
-        is_ej = c == preset(REFERENCE_CHAIR)
-        extra = [c] + study.friction_variants(c) if not is_ej else []
+        extra = ([c] + study.friction_variants(c) if not is_ej else []) + [light]
         thesis, extra_res, other_table = study.thesis_study(
             model=model, criterion=crit, plan=s.plan, extra_chairs=extra,
             extra_plan_chair=None if is_ej else c, extra_plan=study.plan_for(c, s.plan), progress=progress,
@@ -224,17 +312,45 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
             chair_sweeps = other_table
             chair_speed = extra_res[0]
             chair_friction = list(extra_res[1:3])
+        rates = [divergence(x, [REFERENCE_SPEED], model, "free")[0]["rate_1_s"] for x in (ref_chair, light)]
+        fig814 = Figure814(light, extra_res[-1], *rates,
+                           *(float(massless_caster_rate(x, REFERENCE_SPEED)) for x in (ref_chair, light)))
         stage("equal-instability speeds and parametric study")
+        subject = preset(COMPARISON_CHAIR) if is_ej else c
+        if is_ej:
+            sub_nominal = thesis.speeds[COMPARISON_CHAIR]
+            sub_friction = (thesis.speeds[f"{COMPARISON_CHAIR} x0.5 friction"],
+                            thesis.speeds[f"{COMPARISON_CHAIR} x1.5 friction"])
+        else:
+            sub_nominal, sub_friction = chair_speed, tuple(chair_friction)
+        pushed = tuple(study.equal_instability_speeds([subject], model=model, criterion=crit,
+                                                      impulse=(f * push[0], push[1]), **rating)[0]
+                       for f in PUSH_RANGE)
+        other_rated = study.equal_instability_speeds([subject], model=other, criterion=crit, impulse=push,
+                                                     **rating)[0]
+        intervals = Intervals(subject, sub_nominal, pushed, sub_friction, other_rated)
+        impulses = tuple(critical_impulses([c, ref_chair] if not is_ej else [c, subject], REFERENCE_SPEED,
+                                           model=model, scheme=scheme, duration=push[1], horizon=s.duration,
+                                           dt=s.dt, rel_tol=0.005 if not s.quick else 0.05))
+        stage("intervals and critical impulses")
         u_star = chair_speed.speed if chair_speed.status == "found" else REFERENCE_SPEED
-        responses = study.yaw_rate_responses(c, response_speeds(u_star), model=model, criterion=crit,
-                                             progress=False, **sim)
+        r_speeds = response_speeds(u_star)
+        responses = study.yaw_rate_responses(c, r_speeds, model=model, criterion=crit, progress=False, **sim)
         free = c.replace(pin_friction_left=0.0, pin_friction_right=0.0, name=f"{c.name}, no pin friction")
-        frictionless = study.yaw_rate_responses(free, [round(0.5 * u_star, 2), u_star], model=model,
-                                                criterion=crit, progress=False, **sim)
+        f_speeds = [round(0.5 * u_star, 2), u_star]
+        frictionless = study.yaw_rate_responses(free, f_speeds, model=model, criterion=crit, progress=False, **sim)
         stage("yaw-rate responses")
-        paths = study.trajectories([c, counterpart(c)], REFERENCE_SPEED, model=model,
-                                   criterion=study.Criterion(duration=min(6.0, s.duration)), progress=False, **sim)
-        stage("trajectories")
+        path_crit = study.Criterion(duration=min(6.0, s.duration))
+        pair = [c, counterpart(c)]
+        paths = study.trajectories(pair, REFERENCE_SPEED, model=model, criterion=path_crit, progress=False, **sim)
+        valid = dict(
+            responses=responses_validity([c] * len(r_speeds), r_speeds, model=model, scheme=scheme, impulse=push,
+                                         duration=crit.duration, dt=s.dt),
+            frictionless=responses_validity([free] * 2, f_speeds, model=model, scheme=scheme, impulse=push,
+                                            duration=crit.duration, dt=s.dt),
+            paths=responses_validity(pair, [REFERENCE_SPEED] * 2, model=model, scheme=scheme, impulse=push,
+                                     duration=path_crit.duration, dt=s.dt))
+        stage("trajectories and validity")
         fmap = study.stability_map(c, s.map_speeds, s.map_frictions, model=model, criterion=crit,
                                    reference=thesis.reference_time, progress=progress, **sim)
         stage("stability map: speed x friction")
@@ -246,4 +362,5 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
                       list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,
                       rolling=rolling, tire_force=tire_force, tire_stiffness=tire_stiffness,
-                      gain_poles=gain_poles)
+                      gain_poles=gain_poles, mode_names=names, validity=valid, intervals=intervals,
+                      impulses=impulses, figure_8_14=fig814)

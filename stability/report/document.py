@@ -80,9 +80,12 @@ def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
     Yields
     ------
     matplotlib.figure.Figure
+        Each page, numbered ("page i of n", bottom right).
     """
-    for title, build_fig in builders.page_builders(d):
+    plan = builders.page_builders(d)
+    for i, (title, build_fig) in enumerate(plan, start=1):
         fig = build_fig()
+        fig.text(0.985, 0.006, f"page {i} of {len(plan)}", ha="right", va="bottom", fontsize=7.5, color="0.35")
         if record is not None:
             record.append(Page(title, figure_texts(fig)))
         yield fig
@@ -96,7 +99,8 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     ----------
     c : Chair
     path : path-like
-        Output PDF; its directory must exist.  Nothing is written if a page fails.
+        Output PDF; its directory must exist.  Nothing is written if a page fails.  The PDF
+        has an outline (one bookmark per page, :func:`stability.output.add_outline`).
     model : {"exact", "thesis"}
     quick : bool
         Coarse settings.
@@ -121,5 +125,6 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     n_pages = len(builders.page_builders(d))
     with ProgressBar(n_pages, "pages", enabled=progress, unit="page") as bar:
         write_pdf(pages(d, record), path, title=f"stability report: {c.name} ({model} model)",
-                  on_page=lambda i: bar.update())
+                  on_page=lambda i: bar.update(),
+                  outline=lambda: [(f"{i + 1}. {p.title}", i) for i, p in enumerate(record)])
     return ReportResult(path, record, d, time.perf_counter() - t0)

@@ -10,8 +10,12 @@ from ..chair import preset
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from ..validation import has_rolling_resistance
 from .compute import ReportData
+from .summary import model_gap, push_text, steady_turns
 
-__all__ = ["findings"]
+__all__ = ["findings", "friction_exponent", "conclusion_rows", "PROPORTIONAL"]
+
+#: Exponent range of "roughly proportional" (speed ~ friction^p) for conclusion 6.
+PROPORTIONAL = (0.75, 1.25)
 
 
 def _first(crossings, direction: str = "destabilising") -> float | None:
@@ -76,9 +80,9 @@ def findings(d: ReportData) -> list[str]:
     th = d.thesis
     out.append(f"Nonlinear simulation ({m} model, {d.scheme} scheme, Coulomb pin friction "
                f"{c.pin_friction_left:g}/{c.pin_friction_right:g} N m): the reference case "
-               f"(E&J Premier at {REFERENCE_SPEED:g} m/s, "
-               f"{th.impulse[0]:g} N for {th.impulse[1]:g} s at the c.g.) reaches |yaw rate| = "
-               f"{th.criterion.yaw_rate:g} rad/s after {th.reference_time:.2f} s (thesis: slightly over 3 s).")
+               f"(E&J Premier at {REFERENCE_SPEED:g} m/s, {push_text(d)} at the c.g.) reaches |yaw rate| = "
+               f"{th.criterion.yaw_rate:g} rad/s after {th.reference_time:.2f} s (thesis: slightly over 3 s). "
+               + model_gap(d))
     cs = d.chair_speed
     ref = th.speeds[REFERENCE_CHAIR]
     if c == preset(REFERENCE_CHAIR):
@@ -103,14 +107,16 @@ def findings(d: ReportData) -> list[str]:
     j = int(np.argmin(np.abs(fm.y_values - c.pin_friction_left)))
     finite = np.flatnonzero(np.isfinite(fm.times[j]))
     if len(finite) and finite[0] > 0:
-        out.append(f"Pin friction holds the casters at low speed: with {fm.y_values[j]:g} N m the simulated chair "
-                   f"does not reach {th.criterion.yaw_rate:g} rad/s within {fm.criterion.duration:g} s at "
+        out.append(f"Slow speeds: with {fm.y_values[j]:g} N m of pin friction the simulated chair does not reach "
+                   f"{th.criterion.yaw_rate:g} rad/s within {fm.criterion.duration:g} s at "
                    f"{fm.speeds[finite[0] - 1]:g} m/s and below, but does at {fm.speeds[finite[0]]:g} m/s "
                    f"(after {fm.times[j, finite[0]]:.2f} s), although the frictionless linear model is "
-                   + ("unstable at every speed." if s.free_unstable_at_all_speeds else "as described above."))
+                   + ("unstable at every speed." if s.free_unstable_at_all_speeds else "as described above.")
+                   + _steady_turn_text(d))
     f_lo, f_hi = d.chair_friction
     out.append(f"Pin friction: at half the friction the equal-instability speed is {f_lo.describe()}, at 1.5 times "
-               f"it is {f_hi.describe()} (own friction: {cs.describe()}).")
+               f"it is {f_hi.describe()} (own friction: {cs.describe()})." + _friction_gain_text(d))
+    out.append(_figure_8_14_text(d))
     ranked = d.chair_sweeps.ranked()
     top = ", ".join(f"{sw.label} ({sw.effect_percent:.0f} %)" for sw in ranked[:4])
     low = ", ".join(f"{sw.label} ({sw.effect_percent:.1f} %)" for sw in ranked[-3:])
@@ -119,7 +125,8 @@ def findings(d: ReportData) -> list[str]:
                    f"outside the speed bracket ({cs.bracket[0]:g}-{cs.bracket[1]:g} m/s) of the reference instability.")
     else:
         out.append(f"What matters most (spread of the equal-instability speed over the values tried, in % of the "
-                   f"chair's own{'; some values are bounds' if any(sw.censored for sw in ranked) else ''}): {top}. "
+                   "chair's own; the ranges tried differ per parameter, so this is not a sensitivity"
+                   f"{'; some values are bounds' if any(sw.censored for sw in ranked) else ''}): {top}. "
                    f"What matters least: {low}.")
     g = d.gain_loci[0]
     if g.stabilising_gain is None:
@@ -132,9 +139,101 @@ def findings(d: ReportData) -> list[str]:
                    f"K > {g.stabilising_gain:.3g} N m s/rad; at {d.gain_loci[1].speed:g} m/s for K > "
                    + (f"{d.gain_loci[1].stabilising_gain:.3g} N m s/rad." if d.gain_loci[1].stabilising_gain is not None
                       else "(none in range)."))
-    n_agree = sum(1 for x in d.conclusions if x.verdict == "agree")
-    n_part = sum(1 for x in d.conclusions if x.verdict == "partly")
-    n_dis = sum(1 for x in d.conclusions if x.verdict == "disagree")
+    verdicts = [row[2].lower() for row in conclusion_rows(d)]
+    n_agree, n_part, n_dis = (verdicts.count(v) for v in ("agree", "partly", "disagree"))
     out.append(f"Thesis conclusions 1-9 against our numbers: {n_agree} agree, {n_part} partly, {n_dis} disagree "
                "(details on the previous page).")
     return out
+
+
+def _steady_turn_text(d: ReportData) -> str:
+    turns = steady_turns(d)
+    if not turns:
+        return ""
+    lo = min(t[1] for t in turns)
+    hi = max(t[1] for t in turns)
+    deg = max(t[2] for t in turns)
+    speeds = ", ".join(f"{t[0]:.3g}" for t in turns)
+    rate = f"{lo:.2g} rad/s" if abs(hi - lo) < 0.005 else f"{lo:.2g}-{hi:.2g} rad/s"
+    return (f" This is not straight running: at {speeds} m/s the friction-held casters leave the chair in a steady "
+            f"slow turn of {rate} (heading changed by up to {deg:.0f} deg in {d.responses.criterion.duration:g} s), "
+            "which the thesis would call unstable: the user must keep correcting it. The time-to-level measure "
+            "does not see it.")
+
+
+def _friction_gain_text(d: ReportData) -> str:
+    iv = d.intervals
+    ref = d.thesis.speeds[REFERENCE_CHAIR]
+    if iv is None or iv.chair == preset(REFERENCE_CHAIR) or ref.status != "found":
+        return ""
+    lo = iv.friction[0]
+    if lo.value_or_bound < ref.value_or_bound < iv.nominal.value_or_bound:
+        return (f" {iv.chair.name} beats the {REFERENCE_CHAIR} ({ref.describe()}) with its own pin friction, but at "
+                f"half of it ({lo.describe()}) it is worse: its gain rests on pin friction.")
+    return ""
+
+
+def _figure_8_14_text(d: ReportData) -> str:
+    f = d.figure_8_14
+    if f is None:
+        return ""
+    return (f"Figure 8-14 (the {REFERENCE_CHAIR} with m = {f.chair.m:g} kg and I_z = {f.chair.i_z:g} kg m^2) is not "
+            f"reproduced: the thesis reads equal instability at about 0.85 m/s (the lighter chair less stable); we "
+            f"find {f.speed.describe()} ({d.model} model). Why: with free casters the unstable mode is the "
+            f"massless-caster mode, whose rate at low speed is U m x_m / (I_z + m x_m^2) ({f.massless_reference:.3g} "
+            f"vs {f.massless_light:.3g} 1/s at {REFERENCE_SPEED:g} m/s; full linear model {f.rate_reference:.3g} vs "
+            f"{f.rate_light:.3g} 1/s): nearly unchanged when m and I_z shrink together. The thesis's argument (less "
+            "load, less cornering stiffness, eq 5-18) is about the locked-caster zero-width model, not this mode.")
+
+
+def friction_exponent(results) -> float | None:
+    """Least-squares exponent p of speed ~ friction^p over ratings at several friction factors.
+
+    Parameters
+    ----------
+    results : sequence of (float, EqualInstability)
+        Friction factor (relative to the chair's) and the rating there.
+
+    Returns
+    -------
+    float or None
+        None when fewer than two ratings were found (not bounds).
+    """
+    pts = [(math.log(f), math.log(r.speed)) for f, r in results if r.status == "found"]
+    if len(pts) < 2:
+        return None
+    x, y = np.array(pts).T
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def conclusion_rows(d: ReportData) -> list[list[str]]:
+    """The conclusions table: number, statement, verdict, evidence.
+
+    Conclusion 6 ("speed roughly proportional to friction") is judged here by
+    the exponent of speed ~ friction^p over x0.5 / x1 / x1.5 friction:
+    agree when p is within ``PROPORTIONAL``, partly when the speed rises but p
+    is outside it, disagree otherwise.
+    """
+    rows = []
+    sp = d.thesis.speeds
+    for x in d.conclusions:
+        verdict, evidence = x.verdict, x.evidence
+        if x.number == 6:
+            exps = {}
+            for name in (REFERENCE_CHAIR, "revised"):
+                exps[name] = friction_exponent([(0.5, sp[f"{name} x0.5 friction"]), (1.0, sp[name]),
+                                                (1.5, sp[f"{name} x1.5 friction"])])
+            found = [p for p in exps.values() if p is not None]
+            lo, hi = PROPORTIONAL
+            if found and all(lo <= p <= hi for p in found):
+                verdict = "agree"
+            elif found and all(p > 0 for p in found):
+                verdict = "partly"
+            else:
+                verdict = "disagree"
+            evidence = (evidence.split(" (Agree if")[0] + ". Speed ~ M_f^p with p = "
+                        + ", ".join(f"{p:.2f} ({n})" for n, p in exps.items() if p is not None)
+                        + f" (least squares over x0.5/x1/x1.5). Roughly proportional means p near 1: agree if "
+                        f"{lo:g} <= p <= {hi:g}; partly if speed rises with friction otherwise.")
+        rows.append([str(x.number), x.statement, verdict.upper(), evidence])
+    return rows
