@@ -74,7 +74,14 @@ def _mass_factor(c: Chair, f: float) -> Chair:
 
 
 def main_tires() -> tuple[str, ...]:
-    """Names of the main tires a categorical tire locus steps through (thesis order)."""
+    """Names of the main tires a categorical tire locus steps through (thesis order).
+
+    Returns
+    -------
+    tuple of str
+        ``stability.tires.MAIN_TIRES`` if defined (Table 3-1 main wheels, Figure 8-15),
+        else every tire in :func:`stability.tires.names`.
+    """
     names = getattr(tires, "MAIN_TIRES", None)
     return tuple(names) if names else tuple(tires.names())
 
@@ -144,11 +151,35 @@ LOCUS_PARAMETERS = ("cg_ratio", "s1_plus_s2", "trail", "caster_mass_factor", "pi
 
 
 def parameter_names() -> tuple[str, ...]:
-    """Names accepted by :func:`parameter_locus` and :mod:`stability.study`."""
+    """Names accepted by :func:`stability.rootlocus.parameter_locus` and :mod:`stability.study`.
+
+    Returns
+    -------
+    tuple of str
+        Keys of :data:`DESIGN_PARAMETERS`, in table order.
+    """
     return tuple(DESIGN_PARAMETERS)
 
 
 def get_parameter(name: str) -> Parameter:
+    """Look up a design parameter by name.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`parameter_names` (e.g. ``"cg_ratio"``, ``"trail"``, ``"main_tire"``).
+
+    Returns
+    -------
+    Parameter
+        Its entry in :data:`DESIGN_PARAMETERS` (label, unit, how to apply it to a
+        chair, current value, default range and thesis figure).
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is unknown; the message lists the valid names.
+    """
     try:
         return DESIGN_PARAMETERS[name]
     except KeyError:

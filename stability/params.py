@@ -64,10 +64,27 @@ def _one(c: Chair) -> Params:
 
 
 def parameters(chairs: Chair | Sequence[Chair]) -> Params:
-    """Pack one chair (floats) or a sequence of chairs (arrays of shape (N,))."""
+    """Pack one chair (floats) or a sequence of chairs (arrays of shape (N,)) for the equations.
+
+    Parameters
+    ----------
+    chairs : Chair or sequence of Chair
+        One chair, or N >= 1 chairs to evaluate as a batch.
+
+    Returns
+    -------
+    Params
+        Signed body coordinates (m), masses (kg), inertias (kg m^2) and gravity
+        (m/s^2): floats for one chair, arrays of shape (N,) for a sequence.
+
+    Raises
+    ------
+    ValueError
+        If ``chairs`` is an empty sequence.
+    """
     if isinstance(chairs, Chair):
         return _one(chairs)
     rows = [_one(c) for c in chairs]
     if not rows:
         raise ValueError("chairs: expected a Chair or a non-empty sequence of Chair")
-    return Params(*(np.array(col, dtype=float) for col in zip(*rows)))
+    return Params(*(np.array(col, dtype=float) for col in zip(*rows, strict=True)))

@@ -40,6 +40,18 @@ MAX_SAMPLES = 20_000
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """Command-line parser of ``python -m stability.critical_speed``.
+
+    Options: the chair options (:func:`stability.cli.add_chair_options`), ``--model``,
+    ``--speeds`` (divergence table, m/s), ``--max-speed`` (upper end of the
+    critical-speed search, m/s), ``--uncertainty FILE`` with ``--samples``,
+    ``--seed`` and ``--level``, and the JSON options.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser (one-line errors, exit status 2).
+    """
     p = OneLineErrorParser(prog="python -m stability.critical_speed", description=(__doc__ or "").split("\n\n")[0])
     add_chair_options(p)
     p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
@@ -86,5 +98,16 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of ``python -m stability.critical_speed``; returns the exit status (2 on bad input)."""
+    """Entry point of ``python -m stability.critical_speed``; returns the exit status (2 on bad input).
+
+    Parameters
+    ----------
+    argv : sequence of str or None, optional
+        Command-line arguments without the program name; ``None`` reads ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success, 2 on bad input or a failed computation (see :func:`stability.cli.run`).
+    """
     return run(build_parser(), argv, _run)

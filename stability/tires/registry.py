@@ -18,12 +18,24 @@ _REGISTRY: dict[str, AnyTire] = {}
 
 
 def names() -> tuple[str, ...]:
-    """Names of the tested tires, main wheels first (Table 3-1)."""
+    """Names of the tested tires, main wheels first (Table 3-1).
+
+    Returns
+    -------
+    tuple of str
+        The built-in tire names (registered tires not included).
+    """
     return _ALL
 
 
 def registered() -> tuple[str, ...]:
-    """Names added with :func:`register` (upper case), in order of registration."""
+    """Names added with :func:`register` (upper case), in order of registration.
+
+    Returns
+    -------
+    tuple of str
+        The registered tire names; empty if none.
+    """
     return tuple(_REGISTRY)
 
 
@@ -59,7 +71,13 @@ def register(name: str, tire: AnyTire, *, replace: bool = False) -> None:
 
 
 def unregister(name: str) -> None:
-    """Remove a registered tire (no error if absent)."""
+    """Remove a registered tire (no error if absent).
+
+    Parameters
+    ----------
+    name : str
+        Tire name as given to :func:`register` (case and surrounding spaces ignored).
+    """
     _REGISTRY.pop(str(name).strip().upper(), None)
 
 
