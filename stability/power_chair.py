@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from ._validate import check_positive
+from ._validate import check_nonnegative, check_positive
 from .chair import Chair, preset
 
 __all__ = ["DriveTrain", "power_fwd", "drive_train", "COMPONENTS", "LumpedEstimate", "lumped_estimate"]
@@ -83,14 +83,23 @@ class DriveTrain:
         Largest differential torque per drive wheel, at the wheel (N m),
         available for steering (the motors' short-time peak less a reserve
         for propulsion).
+    motor_time_constant : float
+        First-order lag from the controller's torque command to the torque
+        at the wheel (s): the motor controller's current/speed loop (0: none).
+    traction_coefficient : float
+        Tire-floor friction coefficient of the drive wheels for the traction
+        limit ``mu N r`` (dry indoor floors and concrete 0.6-0.9; 0.4 wet).
     """
 
     wheel_radius: float = 0.178
     torque_limit: float = 70.0
+    motor_time_constant: float = 0.02
+    traction_coefficient: float = 0.7
 
     def __post_init__(self) -> None:
-        for name in ("wheel_radius", "torque_limit"):
+        for name in ("wheel_radius", "torque_limit", "traction_coefficient"):
             check_positive(name, getattr(self, name), prefix="drive-train parameter ")
+        check_nonnegative("motor_time_constant", self.motor_time_constant, prefix="drive-train parameter ")
         if self.wheel_radius > 0.5:
             raise ValueError(f"drive-train parameter wheel_radius={self.wheel_radius!r} is invalid; "
                              "valid range: 0 < wheel_radius <= 0.5 m")

@@ -13,6 +13,7 @@ import pytest
 
 from stability import assist, models, params
 from stability import chair as chair_mod
+from stability.assist import digital, driving, tables, tracking
 from stability.assist.__main__ import main as assist_main
 from stability.chair import POWER_FWD_FIELDS
 from stability.linear import input_matrices, state_matrices
@@ -132,20 +133,22 @@ def test_closed_loop_stable_over_the_schedule(schedules, kind):
 
 def test_lqr_and_separation(schedules):
     """Full state: the closed-loop eigenvalues are those control.lqr returns; gyro: they are the
-    LQR eigenvalues plus the Kalman estimator's (the separation principle), and both designs
-    share the same LQR gain."""
+    LQR eigenvalues plus the Kalman estimator's and the motor model's -1/tau (the separation
+    principle), and both designs share the same LQR gain."""
     import control
 
     fs, gy = schedules["full-state"], schedules["gyro"]
     for dfs, dgy in zip(fs.designs, gy.designs, strict=True):
-        Q, R = fs.weights.matrices(fs.chair, fs.drive)
+        Q, R = fs.weights.matrices(fs.chair, fs.drive, dfs.plant.n)
         _, _, E = control.lqr(dfs.plant.A, dfs.plant.B, Q, R)
         assert np.allclose(np.sort_complex(assist.closed_loop_poles(dfs)), np.sort_complex(E), rtol=1e-8)
         assert np.allclose(dfs.K, dgy.K)
         C = np.zeros((1, 6))
         C[0, 1] = 1.0
         est = np.linalg.eigvals(dgy.plant.A6 - dgy.L @ C)
-        both = np.sort_complex(np.concatenate([E, est]))
+        # the controller's motor model: its error decays at -1/tau, like the motor itself
+        motor = [-1.0 / fs.drive.motor_time_constant] if dfs.plant.n == 8 else []
+        both = np.sort_complex(np.concatenate([E, est, motor]))
         assert np.allclose(np.sort_complex(assist.closed_loop_poles(dgy)), both, rtol=1e-6, atol=1e-6)
 
 
@@ -154,7 +157,10 @@ def test_margins_at_the_plant_input(schedules):
     its guarantees (|1 + L| >= 1, phase margin >= 60 deg, no upper gain limit); the gyro design,
     with loop-transfer recovery, keeps a phase margin above 45 deg, |1 + L| above 0.8, a lower
     gain margin below 0.5 (the torque may halve) and a delay margin well above the 7.5 ms of
-    its 200 Hz implementation."""
+    its 200 Hz implementation.  (With the drive's 20 ms motor lag in the loop the gyro design's
+    recovery is partial: phase margin 42-46 deg and min |1 + L| 0.69-0.73, against 57-58 deg and 0.9
+    without the lag; the full-state LQR keeps its guarantees because the motor state is in its
+    model.)"""
     for d in schedules["full-state"].designs:
         m = assist.loop_margins(d)
         assert m.disk_margin >= 1 - 1e-6
@@ -163,8 +169,8 @@ def test_margins_at_the_plant_input(schedules):
         assert m.gain_margin_lower < 0.5
     for d in schedules["gyro"].designs:
         m = assist.loop_margins(d)
-        assert m.phase_margin_deg > 45.0
-        assert m.disk_margin > 0.8
+        assert m.phase_margin_deg > 40.0
+        assert m.disk_margin > 0.65
         assert m.gain_margin_lower < 0.5
         assert m.delay_margin_s > 0.03
 
@@ -267,15 +273,18 @@ def test_destabilising_moment_reference_case():
 def test_cli_json_rows(tmp_path, capsys):
     """python -m stability.assist writes a JSON list with one row per speed and the documented keys."""
     out = tmp_path / "gains.json"
-    assert assist_main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json", str(out)]) == 0
+    assert assist_main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json-file", str(out)]) == 0
     text = capsys.readouterr().out
     assert "k_psi" in text and "Robustness" in text
     rows = json.loads(out.read_text())
+    assert assist_main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == rows          # --json: the same JSON on stdout, nothing else
     assert [r["speed_m_s"] for r in rows] == [1.0, 2.0, 3.0]
     for r in rows:
         assert {"speed_m_s", "gains", "closed_loop_poles", "stable", "peak_torque_Nm",
                 "peak_heading_error_deg"} <= set(r)
-        assert r["stable"] is True and len(r["gains"]) == 7
+        assert r["stable"] is True and len(r["gains"]) == len(r["gain_states"]) == 8
+        assert r["gain_states"][-1] == "mz"        # the motor lag is in the design model
         assert all(len(p) == 2 and p[0] < 0 for p in r["closed_loop_poles"])
 
 
@@ -286,7 +295,8 @@ def test_cli_json_rows(tmp_path, capsys):
     (["--torque-limit", "-5"], "--torque-limit"),
     (["--max-heading-error", "0"], "--max-heading-error"),
     (["--design", "psychic"], "--design"),
-    (["--json", "/no/such/dir/x.json"], "--json"),
+    (["--json-file", "/no/such/dir/x.json"], "--json-file"),
+    (["--motor-lag", "-1"], "--motor-lag"),
 ])
 def test_cli_bad_input(argv, word, capsys):
     """Bad input: one line on stderr naming the problem, exit status 2, no output file."""
@@ -297,3 +307,116 @@ def test_cli_bad_input(argv, word, capsys):
     err = capsys.readouterr().err.strip()
     assert status == 2
     assert len(err.splitlines()) == 1 and word in err
+
+
+# ---------------------------------------------------------------------------
+# issue 15: commands, sampled loop, gyro bias, reverse, nonlinear tracking
+# ---------------------------------------------------------------------------
+@pytest.mark.parametrize("kind", assist.DESIGNS)
+def test_yaw_rate_command_has_unit_dc_gain(chair, kind):
+    """Integral action: at any equilibrium of the closed loop e_dot = r - r_cmd = 0, so the DC gain
+    from the yaw-rate command to the yaw rate is exactly 1 (final-value theorem), with or without
+    feedforward, and also when the chair differs from the design model (+30 % mass, -30 % main
+    stiffness); the steady turn's torque is the one the design model's feedforward predicts."""
+    d = assist.design(chair, 1.5, kind)
+    wrong = assist.plant(chair.replace(m=1.3 * chair.m, main_lateral_scale=0.7), 1.5,
+                         motor_time_constant=DriveTrain().motor_time_constant)
+    for true_plant in (None, wrong):
+        for ff in (True, False):
+            sys = tracking.closed_loop(d, true_plant, use_feedforward=ff, heading=False)
+            assert np.linalg.eigvals(sys.A).real.max() < 0
+            G = np.real(sys(0.0))
+            assert G[0, 0] == pytest.approx(1.0, abs=1e-9)
+    G = np.real(tracking.closed_loop(d, heading=False)(0.0))
+    assert G[1, 0] == pytest.approx(tracking.feedforward(d.plant).Nu, rel=1e-9)
+
+
+@pytest.mark.parametrize("kind", assist.DESIGNS)
+def test_gyro_bias_handling_closed_forms(chair, kind):
+    """Without handling the loop holds the biased heading: DC gain bias -> r is exactly -1 (the chair
+    turns at minus the bias: 20 deg in 20 s at 1 deg/s).  With the bias estimate (time constant
+    T_b) the DC gain is 0 and the heading settles at exactly -b T_b (final-value theorem on
+    R(s)/s), i.e. -1 deg for 1 deg/s and T_b = 1 s, and -0.1 deg for 0.1 deg/s."""
+    d = assist.design(chair, 1.0, kind)
+    assert np.real(tracking.closed_loop(d, heading=False)(0.0))[0, 1] == pytest.approx(-1.0, abs=1e-9)
+    for tb in (0.5, 1.0):
+        sys = tracking.closed_loop(d, bias_time_constant=tb, heading=False)
+        assert np.real(sys(0.0))[0, 1] == pytest.approx(0.0, abs=1e-9)
+        assert tracking.final_heading(sys, 1) == pytest.approx(-tb, rel=1e-6)
+    for b in (0.1, 1.0):
+        assert tracking.heading_drift(d, b, 20.0) == pytest.approx(-20.0 * b, rel=0.01)
+        assert tracking.heading_drift(d, b, 20.0, bias_time_constant=1.0) == pytest.approx(-b, rel=0.01)
+
+
+@pytest.mark.slow
+def test_discrete_delay_margin_is_the_continuous_one_less_the_sampling_delays(chair):
+    """Full-state design run on states sampled one period earlier, output held: the sampled loop's
+    delay margin is the continuous one less T/2 (hold) and T (computation), within 0.15 T (the
+    remainder is the sampled plant's aliasing, constant in units of T: -0.07 to -0.10 T here).
+    The gyro design's Kalman predictor propagates its estimate over the computation interval with
+    the model, which recovers about half a sample: there the loss is T within 0.2 T."""
+    for s in (0.5, 3.0):
+        dfs, dgy = assist.design(chair, s, "full-state"), assist.design(chair, s, "gyro")
+        for rate in (100.0, 200.0, 400.0):
+            T = 1.0 / rate
+            m = digital.margin_pair(dfs, T)
+            assert m.discrete.delay_margin_s == pytest.approx(m.continuous.delay_margin_s - 1.5 * T, abs=0.15 * T)
+            g = digital.margin_pair(dgy, T)
+            assert g.discrete.delay_margin_s == pytest.approx(g.continuous.delay_margin_s - T, abs=0.2 * T)
+            assert g.discrete.phase_margin_deg < g.continuous.phase_margin_deg
+
+
+def test_reversing_front_wheel_drive_chair_is_stable(chair):
+    """Driving backwards the power chair's casters lead: its linear model as seen in the direction of
+    travel (reversed_chair: caster_position swapped, left/right swapped) is stable at every speed,
+    and its slowest eigenvalue is the decay rate of the simulator driving the original chair
+    backwards with the casters swung round (reverse=True, casters at 180 deg; pins frictionless),
+    within 3 %.  A front-caster chair reversed has trailing casters and is unstable at 1.5 m/s
+    (the thesis's rear-caster result)."""
+    from stability.signals import envelope_rate
+    from stability.simulate import simulate
+
+    rev = assist.reversed_chair(chair)
+    assert rev.caster_position == "front" and assist.reversed_chair(rev).replace(name=chair.name) == chair
+    sched = assist.schedule(chair, [0.5, 1.0, 2.0, 3.0], "full-state")
+    rows = tables.reverse_table(sched)
+    assert all(r.stable for r in rows)
+    free = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    for s in (0.5, 2.0):
+        lam = np.linalg.eigvals(state_matrices(assist.reversed_chair(free), s)[0]).real.max()
+        res = simulate(free, s, reverse=True, eta0_deg=180.0, beta0_deg=180.0, impulse_force=4.0, duration=5.0,
+                       model="exact", stop_on_warnings=False)
+        assert envelope_rate(np.asarray(res.t), np.asarray(res.yaw_rate), 1.0, 4.0) == pytest.approx(lam, rel=0.03)
+    fc = chair_mod.preset("ej-premier-front-caster")
+    assert np.linalg.eigvals(state_matrices(assist.reversed_chair(fc), 1.5)[0]).real.max() > 0
+
+
+def test_nonlinear_tracking_step_and_slalom(schedules):
+    """Nonlinear loop (WCHAIR scheme, exact model, pin friction, saturation): a 0.8 rad/s step at
+    1 m/s through the 0.2 s reference model is followed without overshoot, settles within 1 s and
+    ends within 1 % of the command, using less than half the motor limit; a 0.5 rad/s, 3 s slalom
+    is followed within 0.05 rad/s after the first second."""
+    sched = schedules["gyro"]
+    m = driving.tracking_step(sched, 1.0)
+    assert m.command_rad_s == pytest.approx(0.8)
+    assert abs(m.steady_state_error_pct) < 1.0 and m.overshoot_pct < 1.0
+    assert m.settling_time_s is not None and m.settling_time_s < 1.0
+    assert m.peak_torque_N_m < 0.5 * sched.drive.torque_limit
+    run = driving.command_run(sched, 1.0, driving.slalom_command(0.5, 3.0), duration=6.0)
+    assert np.abs(run.yaw_rate - run.command)[run.t > 1.0].max() < 0.05
+
+
+@pytest.mark.slow
+def test_nonlinear_bias_handling(schedules, chair):
+    """Nonlinear loop, noise-free gyro with a 1 deg/s bias, straight command, 10 s at 1 m/s: without
+    handling the chair turns at minus the bias (-10 deg); with the 1 s bias estimate the heading
+    settles near -b T_b = -1 deg (linear closed form), within 0.2 deg."""
+    d = schedules["gyro"].at(1.0)
+    out = {}
+    for tb in (0.0, 1.0):
+        g = assist.GyroSensor(noise_density_deg_s=0.0, bias_deg_s=1.0, bias_time_constant_s=tb)
+        ctl = assist.DigitalController(d, chair, DriveTrain(), gyro=g)
+        run = assist.recovery(chair, 1.0, ctl, impulse_force=0.0)
+        out[tb] = float(np.degrees(run.result.heading[-1]))
+    assert out[0.0] == pytest.approx(-10.0, abs=0.3)
+    assert out[1.0] == pytest.approx(-1.0, abs=0.2)

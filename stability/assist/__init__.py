@@ -3,7 +3,9 @@
 Plant (:mod:`.plant`), design options (:mod:`.weights`), LQR and Kalman
 design and margins (:mod:`.design`), gain schedule (:mod:`.schedule`),
 robustness box (:mod:`.robustness`), sampled controller (:mod:`.controller`),
-nonlinear checks (:mod:`.recovery`), thesis Figure 9-4 (:mod:`.destabilising`),
+command tracking and gyro-bias handling (:mod:`.tracking`), the sampled
+loop and its margins (:mod:`.digital`), commanded driving and the torque
+requirement (:mod:`.driving`), nonlinear checks (:mod:`.recovery`), thesis Figure 9-4 (:mod:`.destabilising`),
 gain table (:mod:`.tables`), figures (:mod:`.figures`, imported on demand:
 matplotlib) and the command line (``python -m stability.assist``).
 Rationale and results: ``docs/assist.md``.
@@ -14,7 +16,19 @@ from __future__ import annotations
 from .controller import DigitalController
 from .design import Design, LoopMargins, closed_loop_poles, design, loop_margins, realise
 from .destabilising import DestabilisingSummary, destabilising_moment, destabilising_summary, valid_until
-from .plant import STATES, Plant, lateral_force_column, plant
+from .digital import MarginPair, discrete_loop, discrete_margins, margin_pair
+from .driving import (
+    CommandRun,
+    TorqueRow,
+    command_run,
+    ramp_command,
+    slalom_command,
+    step_command,
+    torque_requirement,
+    tracking_step,
+    traction_limit,
+)
+from .plant import MOTOR_STATE, STATES, Plant, lateral_force_column, plant, reversed_chair
 from .recovery import (
     SETTLE_FLOOR_DEG,
     SETTLE_FRACTION,
@@ -31,12 +45,27 @@ from .recovery import (
 )
 from .robustness import ROBUST_PARAMETERS, Robustness, WorstCorner, robustness
 from .schedule import Schedule, schedule
-from .tables import GainRow, PoleCurves, format_recovery, format_table, gain_table, pole_curves
+from .tables import (
+    GainRow,
+    PoleCurves,
+    ReverseRow,
+    format_margins,
+    format_recovery,
+    format_table,
+    gain_table,
+    pole_curves,
+    reverse_table,
+)
+from .tracking import Feedforward, TrackingMetrics, closed_loop, feedforward, final_heading, heading_drift, step_metrics
 from .weights import DESIGNS, EstimatorWeights, GyroSensor, Weights
 
 __all__ = [
     "DESIGNS", "STATES", "Weights", "GyroSensor", "EstimatorWeights",
-    "Plant", "plant", "lateral_force_column",
+    "MOTOR_STATE", "Plant", "plant", "lateral_force_column", "reversed_chair",
+    "Feedforward", "feedforward", "closed_loop", "final_heading", "heading_drift", "TrackingMetrics", "step_metrics",
+    "MarginPair", "margin_pair", "discrete_loop", "discrete_margins",
+    "CommandRun", "command_run", "tracking_step", "step_command", "ramp_command", "slalom_command",
+    "TorqueRow", "torque_requirement", "traction_limit", "ReverseRow", "reverse_table", "format_margins",
     "Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins",
     "Schedule", "schedule",
     "ROBUST_PARAMETERS", "WorstCorner", "Robustness", "robustness",

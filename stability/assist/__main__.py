@@ -14,10 +14,11 @@ from ..power_chair import DriveTrain
 from ..reference import THESIS_PUSH
 from ._format import fmt
 from .destabilising import destabilising_moment, destabilising_summary, valid_until
+from .driving import COMMAND_FILTER, torque_requirement, traction_limit
 from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from .robustness import robustness
 from .schedule import schedule
-from .tables import format_recovery, format_table, gain_table, pole_curves
+from .tables import format_margins, format_recovery, format_table, gain_table, pole_curves, reverse_table
 from .weights import DESIGNS, GyroSensor, Weights
 
 __all__ = ["build_parser", "main"]
@@ -58,7 +59,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--min-torque", action="store_true",
                    help="also find the smallest torque limit that recovers from the 400 N disturbance "
                         "at 1, 2, 3 m/s (bisection, ~1 min)")
-    p.add_argument("--json", metavar="FILE", help="write the gain table as JSON (a list of rows, one per speed)")
+    p.add_argument("--bias-time-constant", type=float, default=GyroSensor.bias_time_constant_s, metavar="S",
+                   help="time constant of the gyro-bias estimate from the wheel speeds (s, default 1; 0: off)")
+    p.add_argument("--motor-lag", type=float, default=DriveTrain.motor_time_constant, metavar="S",
+                   help="first-order motor/speed-loop lag (s, default 0.02; 0: none)")
+    p.add_argument("--reverse", action="store_true", help="also give the reverse-driving rows (open-loop stability)")
+    p.add_argument("--json", action="store_true",
+                   help="print the rows as JSON on stdout (a list, one row per speed and direction) instead of text")
+    p.add_argument("--json-file", metavar="FILE", help="write the same JSON to FILE")
     p.add_argument("--pdf", metavar="FILE", help="write the figures as a PDF")
     return p
 
@@ -76,15 +84,20 @@ def _options(args: argparse.Namespace) -> tuple[Weights, DriveTrain, GyroSensor]
         raise ValueError(f"--wheel-radius {args.wheel_radius!r} is invalid; valid range: 0 < r <= 0.5 m")
     if not (math.isfinite(args.sample_rate) and args.sample_rate >= 10):
         raise ValueError(f"--sample-rate {args.sample_rate!r} is invalid; valid range: >= 10 Hz")
+    if not (math.isfinite(args.bias_time_constant) and args.bias_time_constant >= 0):
+        raise ValueError(f"--bias-time-constant {args.bias_time_constant!r} is invalid; valid range: >= 0 s")
+    if not (math.isfinite(args.motor_lag) and 0 <= args.motor_lag <= 0.5):
+        raise ValueError(f"--motor-lag {args.motor_lag!r} is invalid; valid range: 0 <= lag <= 0.5 s")
     for name in ("gyro_noise", "gyro_bias"):
         v = getattr(args, name)
         if not (math.isfinite(v) and v >= 0):
             raise ValueError(f"--{name.replace('_', '-')} {v!r} is invalid; valid range: >= 0 deg/s")
     w = Weights(max_heading_error_deg=args.max_heading_error,
                 max_yaw_rate_deg_s=args.max_yaw_rate or None, torque_budget_nm=args.torque_budget)
-    drive = DriveTrain(wheel_radius=args.wheel_radius, torque_limit=args.torque_limit)
+    drive = DriveTrain(wheel_radius=args.wheel_radius, torque_limit=args.torque_limit,
+                       motor_time_constant=args.motor_lag)
     gyro = GyroSensor(noise_density_deg_s=args.gyro_noise, bias_deg_s=args.gyro_bias,
-                      sample_rate_hz=args.sample_rate)
+                      sample_rate_hz=args.sample_rate, bias_time_constant_s=args.bias_time_constant)
     return w, drive, gyro
 
 
@@ -108,11 +121,27 @@ def _run(args: argparse.Namespace) -> int:
     c = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds, increasing=True)
     weights, drive, gyro = _options(args)
-    check_directory(args.json, "--json")
+    check_directory(args.json_file, "--json-file")
     check_directory(args.pdf, "--pdf")
     sched = schedule(c, speeds, args.design, weights=weights, drive=drive, gyro=gyro, model=args.model)
     rows = gain_table(sched, check=not args.no_check, seed=args.seed)
+    rev = reverse_table(sched) if args.reverse else []
+    if args.json or args.json_file:
+        text = json.dumps([r.to_dict() for r in rows] + [r.to_dict() for r in rev], indent=2) + "\n"
+        if args.json_file:
+            atomic_write_text(args.json_file, text)
+        if args.json:
+            sys.stdout.write(text)
+            return 0
     print(format_table(sched, rows))
+    print(f"\nMargins at the plant input, continuous / sampled at {sched.gyro.sample_rate_hz:g} Hz (ZOH, one-sample "
+          f"computation delay, {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both); yaw-rate step "
+          f"(nonlinear loop, {1e3 * COMMAND_FILTER:g} ms reference model):")
+    print(format_margins(rows))
+    if rev:
+        print("\nReversing (the chair as seen in the direction of travel), open loop: "
+              + "; ".join(f"{r.speed_m_s:g} m/s {'stable' if r.stable else 'UNSTABLE'} ({r.max_real_1_s:.3f} 1/s)"
+                          for r in rev))
     rob = robustness(sched)
     w = rob.worst
     print(f"\nRobustness, +/-{rob.box:.0%} in mass, yaw inertia, main and caster cornering stiffness (16 corners x "
@@ -134,6 +163,13 @@ def _run(args: argparse.Namespace) -> int:
                       f"{d_.heading_at_end_deg:.0f} deg; a slip angle reaches 8 deg or the heading 90 deg)"
                       + ("" if d_.exceeds_capacity_at_s is None else
                          f"; exceeds the motors at {d_.exceeds_capacity_at_s:.2f} s"))
+        print("\nTorque requirement (differential torque per wheel, nonlinear loop, noise-free): reference push "
+              f"recovery (2 s) and yaw-rate step (3 s); motor limit {sched.drive.torque_limit:g} N m, traction limit "
+              f"mu N r = {traction_limit(sched):.0f} N m (mu = {sched.drive.traction_coefficient:g}, static load)")
+        for t_ in torque_requirement(sched):
+            print(f"  {t_.speed_m_s:g} m/s: push peak {t_.push_peak_N_m:.1f} / RMS {t_.push_rms_N_m:.1f} N m; "
+                  f"turn peak {t_.turn_peak_N_m:.1f} / RMS {t_.turn_rms_N_m:.1f} N m, steady turn "
+                  f"{t_.steady_turn_N_m:.1f} N m")
         agree = [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)]
         print("\nLinear vs nonlinear decay (4 N x 0.1 s, pin friction off, 1 kHz): "
               + "; ".join(f"{a.speed_m_s:g} m/s: predicted {a.predicted_1_s:.3f}, fitted "
@@ -143,8 +179,6 @@ def _run(args: argparse.Namespace) -> int:
             mt = minimum_torque_limit(sched, s_)
             print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
                   f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
-    if args.json:
-        atomic_write_text(args.json, json.dumps([r.to_dict() for r in rows], indent=2) + "\n")
     if args.pdf:
         # matplotlib is imported only when a PDF is asked for
         from . import figures

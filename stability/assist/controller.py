@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -11,6 +12,7 @@ from scipy.linalg import expm
 from ..chair import Chair
 from ..power_chair import DriveTrain
 from .design import Design
+from .tracking import feedforward
 from .weights import DEFAULT_GYRO, GyroSensor
 
 __all__ = ["DigitalController"]
@@ -21,19 +23,26 @@ _DEG = math.pi / 180.0
 class DigitalController:
     """A design run as a sampled controller: the ``yaw_moment(t, state)`` hook of the simulator.
 
-    At every sample ``t_k = k / sample_rate`` the controller reads the
-    simulator's :class:`~stability.simulate.ChairState`, computes the yaw
-    moment, converts it to a differential wheel torque, saturates that at
-    the drive train's torque limit and holds the resulting yaw moment until
-    the next sample.
+    At every sample ``t_k = k T`` (``T = 1/sample_rate``) the controller
+    reads the simulator's :class:`~stability.simulate.ChairState` and
+    computes a yaw-moment command from the samples before ``k`` (one sample
+    of computation delay: the command applied from ``t_k`` was computed
+    during the previous interval); the command is converted to a
+    differential wheel torque, saturated at the drive train's limit and
+    held (zero-order hold).  The wheels apply it through the drive train's
+    first-order motor lag (``motor_time_constant``), evaluated exactly
+    between samples.
 
-    Full-state design: ``Mz = -K x(t_k)`` from the true states (ideal
-    sensors: caster encoders, and the lateral velocity and heading taken
-    as known).  Gyro design: the gyro reads ``r + bias + noise_k`` (white,
-    seeded); the heading is its running sum ``psi_m``; the Kalman estimator
-    is discretised exactly for inputs held over a sample and is driven by the
-    torque actually applied.  The output at ``t_k`` uses the estimate
-    predicted from samples before ``k`` (one sample of computation delay).
+    Full-state design: ``x`` from the true states (caster encoders, lateral
+    velocity known), with the gyro's yaw rate.  Gyro design: the gyro reads
+    ``r + bias + noise_k`` (white, seeded); the Kalman estimator (with the
+    motor model) is discretised exactly for inputs held over a sample and
+    is driven by the torque actually commanded after saturation (no
+    wind-up).  Both: the heading error is the running sum of the corrected
+    gyro minus the yaw-rate command, the command's steady turn is fed
+    forward (:func:`~stability.assist.tracking.feedforward`), and, with
+    ``gyro.bias_time_constant_s > 0``, the bias estimate from the gyro minus
+    the drive wheels' yaw rate is subtracted.
 
     Calls may come in any order (an adaptive integrator revisits times):
     the controller keeps its history per sample and rolls back.
@@ -44,55 +53,73 @@ class DigitalController:
         The controller (e.g. ``Schedule.at(speed)``).
     chair : Chair
     drive : DriveTrain
-        Wheel radius and torque limit.
+        Wheel radius, torque limit, motor lag.
     gyro : GyroSensor
-        Sample rate, noise and bias.
+        Sample rate, noise, bias and bias handling.
     seed : int
         Seed of the gyro noise.
     noise : bool
-        Gyro noise and bias on (gyro design).
+        Gyro noise and bias on.
     saturate : bool
         Limit the torque at ``drive.torque_limit``.
+    command : callable, optional
+        Yaw-rate command ``r_cmd(t)`` (rad/s); None: straight (0).
+    command_filter_s : float
+        Time constant of the first-order reference model the command passes
+        through before the controller uses it (s; 0: none), like the
+        turn-acceleration setting of a power-chair controller.
 
     Attributes after a run: ``samples`` (list of ``(t_k, tau_k)``, the
-    applied differential torque per wheel, N m).
+    commanded differential torque per wheel, N m).
     """
 
     def __init__(self, d: Design, chair: Chair, drive: DriveTrain, *, gyro: GyroSensor = DEFAULT_GYRO,
-                 seed: int = 0, noise: bool = True, saturate: bool = True) -> None:
+                 seed: int = 0, noise: bool = True, saturate: bool = True,
+                 command: Callable[[float], float] | None = None, command_filter_s: float = 0.0) -> None:
         self.design = d
         self.chair = chair
         self.drive = drive
         self.gyro = gyro
         self.noise = bool(noise)
         self.saturate = bool(saturate)
+        self.command = command
+        self._cmd_gain = 1.0 - math.exp(-1.0 / (gyro.sample_rate_hz * command_filter_s)) if command_filter_s > 0 \
+            else 1.0
         self.Ts = 1.0 / gyro.sample_rate_hz
         self._rng = np.random.default_rng(seed)
         self._noise = np.zeros(0)
         self._bias = gyro.bias_deg_s * _DEG if noise else 0.0
         self.__name__ = f"{d.kind} LQR"
+        p = d.plant
+        self._idx = p.internal
+        self._motor = p.n == 8
+        self._tau = p.motor_time_constant
+        self._decay = math.exp(-self.Ts / self._tau) if self._tau > 0 else 0.0
+        tb = gyro.bias_time_constant_s
+        self._bias_gain = 1.0 - math.exp(-self.Ts / tb) if tb > 0 else 0.0
+        ff = feedforward(d.plant)
+        Kint = d.K[0, self._idx]
+        self._Kint = Kint
+        self._Kpsi = float(d.K[0, 6])
+        self._F = ff.Nu + float(Kint @ ff.Nx)
         if d.kind == "gyro":
-            assert d.model_A6 is not None and d.model_B6 is not None and d.L is not None
-            C = np.zeros((1, 6))
+            assert d.model_A is not None and d.model_B is not None and d.L is not None
+            n = len(self._idx)
+            C = np.zeros((1, n))
             C[0, 1] = 1.0
-            n = 6
+            Le = np.vstack([d.L, np.zeros((n - 6, 1))])
             M = np.zeros((n + 2, n + 2))
-            M[:n, :n] = d.model_A6 - d.L @ C       # the estimator's own model (interpolated if scheduled)
-            M[:n, n:n + 1] = d.model_B6
-            M[:n, n + 1:n + 2] = d.L
+            M[:n, :n] = d.model_A - Le @ C       # the estimator's own model (interpolated if scheduled)
+            M[:n, n:n + 1] = d.model_B
+            M[:n, n + 1:n + 2] = Le
             E = expm(M * self.Ts)
             self._Phi = E[:n, :n]
             self._Gam = E[:n, n:n + 2]
-        self._Kx: np.ndarray = d.Cc     # gyro design: the gain on the estimate
-        self._Kpsi = float(d.Dc[0, 1]) if d.kind == "gyro" else 0.0
         self.reset()
 
     def reset(self) -> None:
-        """Forget the run: estimate, heading and history back to zero."""
-        self._k = -1
-        self._hist: list[tuple[Any, ...]] = []        # per sample: (xhat_k, psi_k, mz_k, tau_k)
-        self._xhat = np.zeros(6)
-        self._psi = 0.0
+        """Forget the run: estimate, heading, bias estimate, motor and history back to zero."""
+        self._hist: list[tuple[Any, ...]] = []
 
     def _noise_at(self, k: int) -> float:
         if not self.noise:
@@ -108,23 +135,37 @@ class DigitalController:
             tau = min(max(tau, -lim), lim)
         return float(self.drive.yaw_moment(self.chair, tau)), tau
 
+    def _cmd(self, k: int) -> float:
+        """The reference-model output at sample ``k`` (rad/s)."""
+        raw = float(self.command(k * self.Ts)) if self.command is not None else 0.0
+        prev = self._hist[k - 1][8] if k > 0 else 0.0
+        return prev + self._cmd_gain * (raw - prev)
+
     def _step(self, k: int, state: Any) -> None:
-        d = self.design
-        if d.kind == "full-state":
-            x = np.array([state.v, state.yaw_rate, state.eta, state.eta_dot, state.beta, state.beta_dot,
-                          state.heading], dtype=float)
-            mz, tau = self._limit(-float(d.K[0] @ x))
-            self._hist.append((None, None, mz, tau))
-            return
+        # history entry: (xhat_k, e_k, u_k, tau_k, r_k corrected, m_k, x_k, bhat_k, rcmd_k)
+        r_gyro = float(state.yaw_rate) + self._bias + self._noise_at(k)
         if k == 0:
-            xhat, psi = np.zeros(6), 0.0
+            xhat, e, m, bhat, u_prev, r_prev, x_prev, rc_prev = np.zeros(len(self._idx)), 0.0, 0.0, 0.0, 0.0, \
+                0.0, None, 0.0
         else:
-            xprev, psiprev, mzprev, _, rprev = self._hist[k - 1]
-            xhat = self._Phi @ xprev + self._Gam @ np.array([mzprev, rprev])
-            psi = psiprev + self.Ts * rprev
-        r_m = float(state.yaw_rate) + self._bias + self._noise_at(k)
-        mz, tau = self._limit(-(float(self._Kx[0] @ xhat) + self._Kpsi * psi))
-        self._hist.append((xhat, psi, mz, tau, r_m))
+            xh, e0, u_prev, _, r_prev, m0, x_prev, bhat, rc_prev = self._hist[k - 1]
+            e = e0 + self.Ts * (r_prev - rc_prev)
+            m = u_prev + (m0 - u_prev) * self._decay if self._motor else u_prev
+            xhat = self._Phi @ xh + self._Gam @ np.array([u_prev, r_prev]) if self.design.kind == "gyro" else xh
+        # the bias estimate: gyro minus the drive wheels' yaw rate (the true yaw rate: no wheel slip)
+        bhat = bhat + self._bias_gain * ((r_gyro - float(state.yaw_rate)) - bhat)
+        r_corr = r_gyro - bhat
+        x = np.array([state.v, r_corr, state.eta, state.eta_dot, state.beta, state.beta_dot]
+                     + ([m] if self._motor else []), dtype=float)
+        rc_prev_cmd = self._hist[k - 1][8] if k > 0 else 0.0
+        if k == 0:
+            u, tau = 0.0, 0.0
+        else:
+            est = xhat if self.design.kind == "gyro" else x_prev
+            # Mz = -K_int (est - Nx r_cmd) - K_psi e + Nu r_cmd = -K_int est - K_psi e + F r_cmd
+            mz = -float(self._Kint @ est) - self._Kpsi * e + self._F * rc_prev_cmd
+            u, tau = self._limit(mz)
+        self._hist.append((xhat, e, u, tau, r_corr, m, x, bhat, self._cmd(k)))
 
     def __call__(self, t: float, state: Any) -> float:
         k = int(math.floor(t / self.Ts + 1e-9))
@@ -134,10 +175,13 @@ class DigitalController:
             del self._hist[k + 1:]          # an integrator went back in time
         while len(self._hist) <= k:
             self._step(len(self._hist), state)
-        return self._hist[k][2]
+        h = self._hist[k]
+        u, m = h[2], h[5]
+        if not self._motor:
+            return u
+        return u + (m - u) * math.exp(-(t - k * self.Ts) / self._tau)
 
     @property
     def samples(self) -> list[tuple[float, float]]:
-        """``[(t_k, tau_k)]``: applied differential torque per wheel (N m) at each sample."""
+        """``[(t_k, tau_k)]``: commanded differential torque per wheel (N m) at each sample."""
         return [(i * self.Ts, h[3]) for i, h in enumerate(self._hist)]
-

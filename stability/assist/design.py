@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import control
 import numpy as np
@@ -16,7 +17,7 @@ from .._validate import check_choice
 from ..chair import Chair
 from ..power_chair import DriveTrain
 from ._format import json_float
-from .plant import STATES, Plant, measurement_matrix, plant, system_name
+from .plant import Plant, measurement_matrix, plant, system_name
 from .weights import DEFAULT_ESTIMATOR, DEFAULT_GYRO, DEFAULT_WEIGHTS, DESIGNS, EstimatorWeights, GyroSensor, Weights
 
 __all__ = ["Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins"]
@@ -40,16 +41,17 @@ class Design:
         Design speed (m/s).
     plant : Plant
         Nominal plant the controller was designed on.
-    K : ndarray (1, 7)
-        LQR gain (N m per unit state) on :data:`STATES`.
+    K : ndarray (1, n)
+        LQR gain (N m per unit state) on ``plant.states``.
     L : ndarray (6, 1) or None
         Kalman gain of the gyro design.
     Ac, Bc, Cc, Dc : ndarray
         Controller realisation.
-    model_A6, model_B6 : ndarray or None
-        The chair model inside the estimator (gyro design): the nominal
-        plant's, or interpolated ones for a scheduled speed between grid
-        points.
+    model_A, model_B : ndarray or None
+        The model inside the estimator (gyro design; the plant without the
+        heading: six chair states and, with a motor lag, the applied
+        moment): the nominal plant's, or interpolated ones for a scheduled
+        speed between grid points.
     """
 
     kind: str
@@ -61,13 +63,13 @@ class Design:
     Bc: np.ndarray
     Cc: np.ndarray
     Dc: np.ndarray
-    model_A6: np.ndarray | None = None
-    model_B6: np.ndarray | None = None
+    model_A: np.ndarray | None = None
+    model_B: np.ndarray | None = None
 
     @property
     def measured(self) -> tuple[str, ...]:
         """Names of the controller's inputs."""
-        return STATES if self.kind == "full-state" else ("r", "psi")
+        return self.plant.states if self.kind == "full-state" else ("r", "psi")
 
     def controller_ss(self) -> control.StateSpace:
         """Controller as a :class:`control.StateSpace` (output ``u`` = ``-Mz``).
@@ -79,7 +81,8 @@ class Design:
         name = system_name(self.kind, self.speed)
         if self.Ac.shape[0] == 0:
             return control.ss([], [], [], self.Dc, inputs=list(self.measured), outputs=["u"], name=name)
-        return control.ss(self.Ac, self.Bc, self.Cc, self.Dc, states=[f"xhat_{s}" for s in STATES[:6]],
+        states = [f"xhat_{self.plant.states[i]}" for i in self.plant.internal]
+        return control.ss(self.Ac, self.Bc, self.Cc, self.Dc, states=states,
                           inputs=list(self.measured), outputs=["u"], name=name)
 
     def loop(self, true_plant: Plant | None = None) -> control.StateSpace:
@@ -108,10 +111,10 @@ class Design:
 
         Returns
         -------
-        ndarray (7 + n_c, 7 + n_c)
+        ndarray (n + n_c, n + n_c)
         """
         p = true_plant or self.plant
-        Cy = measurement_matrix(self.kind)
+        Cy = measurement_matrix(self.kind, p.n)
         n = self.Ac.shape[0]
         top = np.hstack([p.A - p.B @ self.Dc @ Cy, -p.B @ self.Cc]) if n else p.A - p.B @ self.Dc @ Cy
         if not n:
@@ -121,7 +124,7 @@ class Design:
 
     def gains_dict(self) -> dict[str, float]:
         """LQR gains by state name (N m per SI unit of the state)."""
-        return {s: float(k) for s, k in zip(STATES, self.K[0], strict=True)}
+        return {s: float(k) for s, k in zip(self.plant.states, self.K[0], strict=True)}
 
 
 def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights = DEFAULT_WEIGHTS,
@@ -139,7 +142,8 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     weights : Weights
         LQR weights (Bryson's rule).
     drive : DriveTrain, optional
-        Default :class:`~stability.power_chair.DriveTrain`.
+        Default :class:`~stability.power_chair.DriveTrain`; its
+        ``motor_time_constant`` puts the motor lag into the design model.
     gyro : GyroSensor
         Gyro noise (Kalman measurement noise).
     estimator : EstimatorWeights
@@ -152,10 +156,10 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     """
     check_choice("design", kind, DESIGNS)
     drive = drive or DriveTrain()
-    p = plant(chair, speed, model)
-    Q, R = weights.matrices(chair, drive)
+    p = plant(chair, speed, model, drive.motor_time_constant)
+    Q, R = weights.matrices(chair, drive, p.n)
     K, _, _ = control.lqr(p.A, p.B, Q, R)
-    K = np.asarray(K, dtype=float).reshape(1, 7)
+    K = np.asarray(K, dtype=float).reshape(1, p.n)
     return realise(kind, p, K, _kalman(p, gyro, estimator) if kind == "gyro" else None)
 
 
@@ -177,7 +181,7 @@ def realise(kind: str, p: Plant, K: np.ndarray, L: np.ndarray | None) -> Design:
     kind : {"full-state", "gyro"}
     p : Plant
         The model inside the controller.
-    K : ndarray (1, 7)
+    K : ndarray (1, n)
         LQR gain.
     L : ndarray (6, 1) or None
         Kalman gain (gyro design).
@@ -187,15 +191,18 @@ def realise(kind: str, p: Plant, K: np.ndarray, L: np.ndarray | None) -> Design:
     Design
     """
     if kind == "full-state":
-        return Design(kind, p.speed, p, K, None, np.zeros((0, 0)), np.zeros((0, 7)), np.zeros((1, 0)), K.copy())
+        return Design(kind, p.speed, p, K, None, np.zeros((0, 0)), np.zeros((0, p.n)), np.zeros((1, 0)), K.copy())
     assert L is not None
-    Kx, Kpsi = K[:, :6], K[:, 6:7]
-    C = np.zeros((1, 6))
+    idx = p.internal
+    Am, Bm = p.A[np.ix_(idx, idx)], p.B[idx]
+    Le = np.vstack([L, np.zeros((len(idx) - 6, 1))])
+    Kx, Kpsi = K[:, idx], K[:, 6:7]
+    C = np.zeros((1, len(idx)))
     C[0, 1] = 1.0
-    Ac = p.A6 - p.B6 @ Kx - L @ C
-    Bc = np.hstack([L, -p.B6 @ Kpsi])
+    Ac = Am - Bm @ Kx - Le @ C
+    Bc = np.hstack([Le, -Bm @ Kpsi])
     Dc = np.hstack([np.zeros((1, 1)), Kpsi])
-    return Design(kind, p.speed, p, K, L, Ac, Bc, Kx.copy(), Dc, p.A6.copy(), p.B6.copy())
+    return Design(kind, p.speed, p, K, L, Ac, Bc, Kx.copy(), Dc, Am.copy(), Bm.copy())
 
 
 def closed_loop_poles(d: Design, true_plant: Plant | None = None) -> np.ndarray:
@@ -270,7 +277,8 @@ def loop_margins(d: Design, true_plant: Plant | None = None) -> LoopMargins:
     return _margins(L, gm, pm, sm, wgc, continuous=True)
 
 
-def _margins(L, gm, pm, sm, wgc, *, continuous: bool, dt: float = 0.0) -> LoopMargins:
+def _margins(L: Any, gm: Any, pm: Any, sm: Any, wgc: Any, *, continuous: bool, dt: float = 0.0,
+             disk: float | None = None) -> LoopMargins:
     gm = np.atleast_1d(np.asarray(gm, dtype=float))
     pm = np.atleast_1d(np.asarray(pm, dtype=float))
     wgc = np.atleast_1d(np.asarray(wgc, dtype=float))
@@ -281,13 +289,10 @@ def _margins(L, gm, pm, sm, wgc, *, continuous: bool, dt: float = 0.0) -> LoopMa
     ok = np.isfinite(pm) & (wgc > 0)
     pm_abs = np.abs(pm[ok])
     delay = (np.where(pm[ok] > 0, pm[ok], np.inf) * _DEG / wgc[ok]) if ok.any() else np.array([np.inf])
-    if continuous:
-        w = np.geomspace(1e-3, 1e4, 6000)
-        resp = np.asarray(L(1j * w)).reshape(-1)
-    else:
-        w = np.geomspace(1e-3, math.pi / dt, 6000)
-        resp = np.asarray(L(np.exp(1j * w * dt))).reshape(-1)
-    disk = float(np.min(np.abs(1.0 + resp)))
+    if disk is None:
+        w = np.geomspace(1e-3, 1e4, 6000) if continuous else np.geomspace(1e-3, math.pi / dt, 6000)
+        resp = np.asarray(L(1j * w if continuous else np.exp(1j * w * dt))).reshape(-1)
+        disk = float(np.min(np.abs(1.0 + resp)))
     sm_c = np.atleast_1d(np.asarray(sm, dtype=float))
     return LoopMargins(
         gain_margin_upper=float(upper.min()) if upper.size else math.inf,

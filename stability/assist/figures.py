@@ -45,7 +45,7 @@ def figure_gains(sched: Schedule, rows: Sequence[GainRow]) -> Figure:
     fig, ax = page(f"Gain schedule: {sched.kind} LQR, {sched.chair.name}",
                    "tau = -(k . x) per wheel; linear interpolation between design speeds", nrows=2, ncols=4)
     U = sched.speeds
-    K = np.array([r.wheel_torque_gains for r in rows])
+    K = np.array([r.wheel_torque_gains[:len(STATES)] for r in rows])
     units = ["N m/(m/s)", "N m/(rad/s)", "N m/rad", "N m/(rad/s)", "N m/rad", "N m/(rad/s)", "N m/rad"]
     for j, (s, u) in enumerate(zip(STATES, units, strict=True)):
         a = ax.flat[j]

@@ -12,48 +12,70 @@ from dataclasses import dataclass
 import control
 import numpy as np
 
-from .._validate import check_model, check_speed
+from .._validate import check_model, check_nonnegative, check_speed
 from ..chair import Chair
 from ..linear import input_matrices, state_matrices
 from ..models import accelerations
 from ..params import parameters
 
-__all__ = ["STATES", "Plant", "plant", "lateral_force_column", "measurement_matrix", "system_name"]
+__all__ = ["STATES", "MOTOR_STATE", "Plant", "plant", "reversed_chair", "lateral_force_column", "measurement_matrix",
+           "system_name"]
 
 #: States of the design plant (SI units: m/s, rad/s, rad, rad/s, rad, rad/s, rad).
 STATES = ("v", "r", "eta", "eta_dot", "beta", "beta_dot", "psi")
+#: The eighth state when the drive has a motor lag: the yaw moment the wheels apply (N m).
+MOTOR_STATE = "mz"
 
 
 @dataclass(frozen=True, eq=False)
 class Plant:
-    """Linear plant at one speed, augmented with the heading.
+    """Linear plant at one speed, augmented with the heading (and the motor lag).
 
     Attributes
     ----------
     speed : float
         Forward speed (m/s).
-    A : ndarray (7, 7)
-        State matrix for :data:`STATES` (1/s).
-    B : ndarray (7, 1)
-        Yaw-moment input ``Mz`` (per N m).
-    Bf : ndarray (7, 1)
+    A : ndarray (n, n)
+        State matrix for :attr:`states` (1/s); n = 7, or 8 with a motor lag.
+    B : ndarray (n, 1)
+        Yaw-moment command ``Mz`` (per N m).
+    Bf : ndarray (n, 1)
         Lateral force at the c.g. ``Fy`` (per N).
+    motor_time_constant : float
+        First-order lag between the yaw-moment command and the moment the
+        wheels apply (s); 0: none (seven states).
     """
 
     speed: float
     A: np.ndarray
     B: np.ndarray
     Bf: np.ndarray
+    motor_time_constant: float = 0.0
+
+    @property
+    def n(self) -> int:
+        """Number of states."""
+        return int(self.A.shape[0])
+
+    @property
+    def states(self) -> tuple[str, ...]:
+        """State names: :data:`STATES`, plus :data:`MOTOR_STATE` with a motor lag."""
+        return STATES + ((MOTOR_STATE,) if self.n == 8 else ())
+
+    @property
+    def internal(self) -> list[int]:
+        """Indices of the states a controller models internally: all but the heading."""
+        return [i for i in range(self.n) if i != 6]
 
     @property
     def A6(self) -> np.ndarray:
-        """State matrix of the six chair states (without the heading)."""
+        """State matrix of the six chair states (without the heading and the motor)."""
         return self.A[:6, :6]
 
     @property
     def B6(self) -> np.ndarray:
-        """Yaw-moment column of the six chair states."""
-        return self.B[:6]
+        """Column of the applied yaw moment in the six chair states (per N m)."""
+        return self.A[:6, 7:8] if self.n == 8 else self.B[:6]
 
     @property
     def Bf6(self) -> np.ndarray:
@@ -74,12 +96,12 @@ class Plant:
         """
         Bu = np.hstack([self.B, self.Bf])
         if outputs == "states":
-            C, names = np.eye(7), list(STATES)
+            C, names = np.eye(self.n), list(self.states)
         elif outputs == "gyro":
-            C, names = measurement_matrix("gyro"), ["r", "psi"]
+            C, names = measurement_matrix("gyro", self.n), ["r", "psi"]
         else:
             raise ValueError(f"outputs={outputs!r} is invalid; valid choices: ['states', 'gyro']")
-        return control.ss(self.A, Bu, C, np.zeros((C.shape[0], 2)), states=list(STATES),
+        return control.ss(self.A, Bu, C, np.zeros((C.shape[0], 2)), states=list(self.states),
                           inputs=["Mz", "Fy"], outputs=names, name=system_name("chair", self.speed))
 
 
@@ -88,11 +110,22 @@ def system_name(prefix: str, speed: float) -> str:
     return f"{prefix}_U{speed:g}".replace(".", "p").replace("-", "_")
 
 
-def measurement_matrix(kind: str) -> np.ndarray:
-    """What the controller measures of :data:`STATES`: all (``"full-state"``) or ``[r, psi]`` (``"gyro"``)."""
+def measurement_matrix(kind: str, n: int = 7) -> np.ndarray:
+    """What the controller measures of the ``n`` plant states: all (``"full-state"``) or ``[r, psi]`` (``"gyro"``).
+
+    Parameters
+    ----------
+    kind : {"full-state", "gyro"}
+    n : int
+        Number of plant states (7, or 8 with a motor lag).
+
+    Returns
+    -------
+    ndarray (n, n) or (2, n)
+    """
     if kind == "full-state":
-        return np.eye(7)
-    C = np.zeros((2, 7))
+        return np.eye(n)
+    C = np.zeros((2, n))
     C[0, 1] = C[1, 6] = 1.0
     return C
 
@@ -129,8 +162,12 @@ def lateral_force_column(chair: Chair, speed: float, model: str = "exact") -> np
     return np.array([d[1], d[2], 0.0, d[3], 0.0, d[4]])
 
 
-def plant(chair: Chair, speed: float, model: str = "exact") -> Plant:
-    """Linear plant of ``chair`` at ``speed``, augmented with the heading.
+def plant(chair: Chair, speed: float, model: str = "exact", motor_time_constant: float = 0.0) -> Plant:
+    """Linear plant of ``chair`` at ``speed``, augmented with the heading and, optionally, a motor lag.
+
+    With ``motor_time_constant = tau > 0`` the eighth state is the applied
+    yaw moment ``mz``, ``mz_dot = (Mz - mz) / tau`` (the motors' speed or
+    current loop as a first-order lag), and the chair is driven by ``mz``.
 
     Parameters
     ----------
@@ -139,6 +176,8 @@ def plant(chair: Chair, speed: float, model: str = "exact") -> Plant:
         Forward speed (m/s, > 0).
     model : {"exact", "thesis"}
         Equations of motion (:func:`stability.linear.state_matrices`).
+    motor_time_constant : float
+        s, >= 0.
 
     Returns
     -------
@@ -146,13 +185,44 @@ def plant(chair: Chair, speed: float, model: str = "exact") -> Plant:
     """
     speed = check_speed(speed)
     check_model(model)
+    tau = check_nonnegative("motor_time_constant", motor_time_constant)
     A6 = state_matrices(chair, speed, model)[0]
     B6 = input_matrices(chair, speed, model)[0]
-    A = np.zeros((7, 7))
+    n = 8 if tau > 0 else 7
+    A = np.zeros((n, n))
     A[:6, :6] = A6
     A[6, 1] = 1.0
-    B = np.zeros((7, 1))
-    B[:6] = B6
-    Bf = np.zeros((7, 1))
+    B = np.zeros((n, 1))
+    if tau > 0:
+        A[:6, 7:8] = B6
+        A[7, 7] = -1.0 / tau
+        B[7, 0] = 1.0 / tau
+    else:
+        B[:6] = B6
+    Bf = np.zeros((n, 1))
     Bf[:6, 0] = lateral_force_column(chair, speed, model)
-    return Plant(speed, A, B, Bf)
+    return Plant(speed, A, B, Bf, tau)
+
+
+def reversed_chair(chair: Chair) -> Chair:
+    """The chair as seen when it drives backwards: casters and main wheels swap ends.
+
+    Body axes turned by 180 deg about z (x and y flip, z stays down): the
+    main axle is ``s1`` on the other side of the c.g., the caster pins
+    ``s2`` on the other side, so ``caster_position`` swaps; left and right
+    swap (``d1 <-> d2``, ``t1 <-> t2``, the pin frictions); the free casters
+    swing round to trail in the new direction of travel, so ``trail`` and
+    the caster properties are unchanged.  Mass, inertia and tires stay.
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Returns
+    -------
+    Chair
+    """
+    return chair.replace(caster_position="front" if chair.caster_position == "rear" else "rear",
+                         d1=chair.d2, d2=chair.d1, t1=chair.t2, t2=chair.t1,
+                         pin_friction_left=chair.pin_friction_right, pin_friction_right=chair.pin_friction_left,
+                         name=f"{chair.name} (reversing)")

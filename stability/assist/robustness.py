@@ -109,7 +109,7 @@ def robustness(sched: Schedule, box: float = 0.3) -> Robustness:
     for i, f in enumerate(corners):
         c = _perturbed(sched.chair, f)
         for j, (s, d) in enumerate(zip(sched.speeds, sched.designs, strict=True)):
-            mr[i, j] = closed_loop_poles(d, plant(c, s, sched.model)).real.max()
+            mr[i, j] = closed_loop_poles(d, plant(c, s, sched.model, sched.drive.motor_time_constant)).real.max()
     iw, jw = np.unravel_index(int(np.argmax(mr)), mr.shape)
     worst = WorstCorner(float(mr[iw, jw]), float(sched.speeds[jw]), dict(corners[iw]))
     return Robustness(float(box), sched.speeds.copy(), corners, mr, worst, bool(np.all(mr < 0)))

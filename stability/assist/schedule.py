@@ -49,7 +49,7 @@ class Schedule:
 
     @property
     def gains(self) -> np.ndarray:
-        """LQR gains (N, 7)."""
+        """LQR gains (N, n)."""
         return np.array([d.K[0] for d in self.designs])
 
     def _interp(self, speed: float, attr: Callable[[Design], np.ndarray | None]) -> np.ndarray:
@@ -62,7 +62,7 @@ class Schedule:
         return out.reshape(stack.shape[1:])
 
     def gains_at(self, speed: float) -> np.ndarray:
-        """LQR gain (1, 7) at ``speed`` (m/s): linear interpolation in speed, held at the ends of the grid."""
+        """LQR gain (1, n) at ``speed`` (m/s): linear interpolation in speed, held at the ends of the grid."""
         return self._interp(check_speed(speed), lambda d: d.K)
 
     def at(self, speed: float) -> Design:
@@ -88,13 +88,13 @@ class Schedule:
         if hit.size:
             return self.designs[int(hit[0])]
         K = self._interp(speed, lambda d: d.K)
-        true_p = plant(self.chair, speed, self.model)
+        true_p = plant(self.chair, speed, self.model, self.drive.motor_time_constant)
         if self.kind == "full-state":
             return realise(self.kind, true_p, K, None)
         L = self._interp(speed, lambda d: d.L)
         A = self._interp(speed, lambda d: d.plant.A)
         B = self._interp(speed, lambda d: d.plant.B)
-        p_model = Plant(speed, A, B, true_p.Bf)
+        p_model = Plant(speed, A, B, true_p.Bf, true_p.motor_time_constant)
         d = realise(self.kind, p_model, K, L)
         return replace(d, plant=true_p)
 

@@ -12,11 +12,15 @@ from ..reference import HORIZON, THESIS_PUSH
 from ._format import fmt, json_float
 from .controller import DigitalController
 from .design import LoopMargins, closed_loop_poles, loop_margins
-from .plant import STATES
+from .digital import MarginPair, margin_pair
+from .driving import tracking_step
+from .plant import plant, reversed_chair
 from .recovery import RecoveryPair, recovery
 from .schedule import Schedule
+from .tracking import TrackingMetrics
 
-__all__ = ["GainRow", "gain_table", "format_table", "format_recovery", "PoleCurves", "pole_curves"]
+__all__ = ["ReverseRow", "reverse_table", "GainRow", "gain_table", "format_table", "format_margins",
+           "format_recovery", "PoleCurves", "pole_curves"]
 
 
 @dataclass(frozen=True)
@@ -29,6 +33,8 @@ class GainRow:
         Design speed (m/s).
     design : str
         ``"full-state"`` or ``"gyro"``.
+    gain_states : tuple of str
+        Names of the plant states the gains act on.
     gains : tuple of float
         LQR gain on :data:`~stability.assist.plant.STATES` (N m of yaw moment
         per SI unit of each state, ``Mz = -gains . x``).
@@ -42,7 +48,11 @@ class GainRow:
     open_loop_max_real_1_s : float
         Largest real part of the chair alone (1/s).
     margins : LoopMargins
-        At the plant input.
+        At the plant input, continuous loop.
+    margin_pair : MarginPair
+        Continuous and sampled loop (ZOH, one-sample delay, motor lag).
+    tracking : TrackingMetrics or None
+        Yaw-rate step in the nonlinear loop (None when not checked).
     peak_torque_Nm, peak_heading_error_deg, settle_time_s, peak_response_deg, saturated_fraction,
     final_drift_deg_s : float or None
         Nonlinear closed loop after the push (None when not checked).
@@ -52,12 +62,15 @@ class GainRow:
 
     speed_m_s: float
     design: str
+    gain_states: tuple[str, ...]
     gains: tuple[float, ...]
     wheel_torque_gains: tuple[float, ...]
     estimator_gain: tuple[float, ...] | None
     closed_loop_poles: tuple[complex, ...]
     open_loop_max_real_1_s: float
     margins: LoopMargins
+    margin_pair: MarginPair
+    tracking: TrackingMetrics | None = None
     peak_torque_Nm: float | None = None
     peak_heading_error_deg: float | None = None
     settle_time_s: float | None = None
@@ -80,16 +93,19 @@ class GainRow:
         """The JSON row (keys as documented in ``docs/assist.md``)."""
         row: dict[str, Any] = {
             "speed_m_s": self.speed_m_s,
+            "direction": "forward",
             "design": self.design,
             "gains": list(self.gains),
-            "gain_states": list(STATES),
+            "gain_states": list(self.gain_states),
             "wheel_torque_gains": list(self.wheel_torque_gains),
             "estimator_gain": None if self.estimator_gain is None else list(self.estimator_gain),
             "closed_loop_poles": [[float(p.real), float(p.imag)] for p in self.closed_loop_poles],
             "stable": self.stable,
             "closed_loop_max_real_1_s": self.closed_loop_max_real_1_s,
             "open_loop_max_real_1_s": self.open_loop_max_real_1_s,
-            "margins": self.margins.to_dict(),
+            "loop_margins": self.margins.to_dict(),
+            "margins": self.margin_pair.to_dict(),
+            "tracking": None if self.tracking is None else self.tracking.to_dict(),
             "peak_torque_Nm": self.peak_torque_Nm,
             "peak_heading_error_deg": self.peak_heading_error_deg,
             "settle_time_s": self.settle_time_s,
@@ -132,14 +148,14 @@ def gain_table(sched: Schedule, *, check: bool = True, impulse_force: float = TH
             kw = dict(peak_torque_Nm=run.peak_torque_Nm, peak_heading_error_deg=run.peak_heading_error_deg,
                       peak_response_deg=run.peak_response_deg, settle_time_s=run.settle_time_s,
                       saturated_fraction=run.saturated_fraction, final_drift_deg_s=run.final_drift_deg_s,
-                      checked=True)
+                      checked=True, tracking=tracking_step(sched, s))
         rows.append(GainRow(
-            speed_m_s=float(s), design=sched.kind, gains=tuple(float(k) for k in d.K[0]),
+            speed_m_s=float(s), design=sched.kind, gain_states=d.plant.states, gains=tuple(float(k) for k in d.K[0]),
             wheel_torque_gains=tuple(float(sched.drive.wheel_torque(sched.chair, k)) for k in d.K[0]),
             estimator_gain=None if d.L is None else tuple(float(x) for x in d.L[:, 0]),
             closed_loop_poles=tuple(complex(p) for p in poles),
             open_loop_max_real_1_s=float(np.linalg.eigvals(d.plant.A6).real.max()),
-            margins=loop_margins(d), **kw))
+            margins=loop_margins(d), margin_pair=margin_pair(d, 1.0 / sched.gyro.sample_rate_hz), **kw))
     return rows
 
 
@@ -192,21 +208,26 @@ def format_table(sched: Schedule, rows: Sequence[GainRow]) -> str:
     """
     c = sched.chair
     w = sched.weights
+    motor = sched.designs[0].plant.n == 8
     head = [
         f"Motor assist ({sched.kind} LQR) for {c.name}: model {sched.model}, "
-        f"wheel radius {sched.drive.wheel_radius:g} m, torque limit {sched.drive.torque_limit:g} N m per wheel",
+        f"wheel radius {sched.drive.wheel_radius:g} m, torque limit {sched.drive.torque_limit:g} N m per wheel, "
+        f"motor lag {1e3 * sched.drive.motor_time_constant:g} ms",
         f"Bryson weights: heading {w.max_heading_error_deg:g} deg, yaw rate "
         f"{fmt(w.max_yaw_rate_deg_s)} deg/s, lateral velocity {fmt(w.max_lateral_velocity_m_s)} m/s, "
         f"torque budget {w.budget(sched.drive):g} N m per wheel"
         + (f"; gyro {sched.gyro.noise_density_deg_s:g} deg/s/rtHz, bias {sched.gyro.bias_deg_s:g} deg/s, "
-           f"{sched.gyro.sample_rate_hz:g} Hz" if sched.kind == "gyro" else f"; {sched.gyro.sample_rate_hz:g} Hz"),
+           f"{sched.gyro.sample_rate_hz:g} Hz, bias estimate {sched.gyro.bias_time_constant_s:g} s"
+           if sched.kind == "gyro" else f"; {sched.gyro.sample_rate_hz:g} Hz"),
         "Gains: differential torque per wheel, tau = -(k . x), x = [v m/s, r rad/s, eta rad, eta_dot rad/s, "
-        "beta rad, beta_dot rad/s, psi rad]",
+        "beta rad, beta_dot rad/s, psi rad" + (", mz N m]" if motor else "]"),
         "",
         f"{'U':>5s} {'k_v':>8s} {'k_r':>8s} {'k_eta':>8s} {'k_etad':>8s} {'k_beta':>8s} {'k_betad':>8s} "
-        f"{'k_psi':>8s} | {'OL max':>7s} {'CL max':>7s} {'GM up':>6s} {'GM low':>6s} {'PM':>5s} {'|1+L|':>5s} "
+        f"{'k_psi':>8s}" + (f" {'k_mz':>8s}" if motor else "")
+        + f" | {'OL max':>7s} {'CL max':>7s} {'GM up':>6s} {'GM low':>6s} {'PM':>5s} {'|1+L|':>5s} "
         f"| {'tau pk':>6s} {'psi pk':>6s} {'settle':>6s}",
-        f"{'m/s':>5s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} | {'1/s':>7s} {'1/s':>7s} "
+        f"{'m/s':>5s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s}"
+        + (f" {'':>8s}" if motor else "") + f" | {'1/s':>7s} {'1/s':>7s} "
         f"{'':>6s} {'':>6s} {'deg':>5s} {'':>5s} | {'N m':>6s} {'deg':>6s} {'s':>6s}",
     ]
     lines = list(head)
@@ -249,3 +270,72 @@ def format_recovery(runs: Sequence[RecoveryPair]) -> str:
             f"{fmt(cl.settle_time_s, '.2f', 'no'):>9s} {fmt(json_float(cl.final_drift_deg_s), '.3f'):>7s} "
             f"{fmt(ol.time_to_10deg_s if ol else None, '.2f', 'never'):>10s}")
     return "\n".join(lines)
+
+
+def format_margins(rows: Sequence[GainRow]) -> str:
+    """Continuous vs sampled-loop margins and the yaw-rate step, one line per speed.
+
+    Parameters
+    ----------
+    rows : sequence of GainRow
+
+    Returns
+    -------
+    str
+    """
+    lines = [f"{'U':>5s} | {'GM dB c/d':>11s} {'PM deg c/d':>11s} {'DM ms c/d':>11s} | {'r_cmd':>6s} "
+             f"{'sse %':>6s} {'os %':>5s} {'settle':>6s} {'tau pk':>6s}",
+             f"{'m/s':>5s} | {'':>11s} {'':>11s} {'':>11s} | {'rad/s':>6s} {'':>6s} {'':>5s} {'s':>6s} {'N m':>6s}"]
+    for r in rows:
+        m = r.margin_pair.to_dict()
+        c, d = m["continuous"], m["discrete"]
+        tr = r.tracking
+        track = (f"{tr.command_rad_s:6.3f} {tr.steady_state_error_pct:6.2f} {tr.overshoot_pct:5.1f} "
+                 f"{fmt(tr.settling_time_s, '.2f'):>6s} {tr.peak_torque_N_m:6.1f}") if tr else "     -"
+        lines.append(f"{r.speed_m_s:5.2f} | {fmt(c['gain_db'], '.1f'):>5s}/{fmt(d['gain_db'], '.1f'):<5s} "
+                     f"{fmt(c['phase_deg'], '.1f'):>5s}/{fmt(d['phase_deg'], '.1f'):<5s} "
+                     f"{fmt(c['delay_ms'], '.1f'):>5s}/{fmt(d['delay_ms'], '.1f'):<5s} | {track}")
+    return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class ReverseRow:
+    """Driving backwards at one speed: the open-loop chair as seen in the direction of travel.
+
+    Attributes
+    ----------
+    speed_m_s : float
+        Backward speed (m/s).
+    max_real_1_s : float
+        Largest real part of the reversed chair's linear model (1/s).
+    stable : bool
+        ``max_real_1_s < 0``: no assist needed.
+    """
+
+    speed_m_s: float
+    max_real_1_s: float
+    stable: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON row (``direction: "reverse"``)."""
+        return {"speed_m_s": self.speed_m_s, "direction": "reverse", "open_loop_max_real_1_s": self.max_real_1_s,
+                "stable": self.stable}
+
+
+def reverse_table(sched: Schedule) -> list[ReverseRow]:
+    """Reverse-driving rows at the schedule's speeds (:func:`~stability.assist.plant.reversed_chair`).
+
+    Parameters
+    ----------
+    sched : Schedule
+
+    Returns
+    -------
+    list of ReverseRow
+    """
+    rev = reversed_chair(sched.chair)
+    out = []
+    for s in sched.speeds:
+        m = float(np.linalg.eigvals(plant(rev, s, sched.model).A6).real.max())
+        out.append(ReverseRow(float(s), m, m < 0))
+    return out

@@ -52,22 +52,24 @@ class Weights:
             if getattr(self, name) is not None:
                 check_positive(name, getattr(self, name))
 
-    def matrices(self, chair: Chair, drive: DriveTrain) -> tuple[np.ndarray, np.ndarray]:
-        """``(Q, R)`` for the seven states of :data:`STATES` and the input ``Mz``.
+    def matrices(self, chair: Chair, drive: DriveTrain, n: int = 7) -> tuple[np.ndarray, np.ndarray]:
+        """``(Q, R)`` for the states of :data:`STATES` (and the unweighted motor state) and the input ``Mz``.
 
         Parameters
         ----------
         chair : Chair
         drive : DriveTrain
+        n : int
+            Number of plant states (7, or 8 with a motor lag).
 
         Returns
         -------
-        Q : ndarray (7, 7)
+        Q : ndarray (n, n)
             State weight (per SI unit squared).
         R : ndarray (1, 1)
             Input weight (1/(N m)^2).
         """
-        q = np.zeros(len(STATES))
+        q = np.zeros(n)
         q[STATES.index("psi")] = 1.0 / (self.max_heading_error_deg * _DEG) ** 2
         if self.max_yaw_rate_deg_s is not None:
             q[STATES.index("r")] = 1.0 / (self.max_yaw_rate_deg_s * _DEG) ** 2
@@ -109,14 +111,19 @@ class GyroSensor:
         calibrated and temperature-drifted, ~0.05-0.1 deg/s.
     sample_rate_hz : float
         Controller and sensor sample rate (Hz).
+    bias_time_constant_s : float
+        Time constant of the bias estimate from the gyro minus the yaw rate
+        of the drive-wheel speeds (s); 0: no bias handling (the controller
+        then holds the biased heading and the chair turns at minus the bias).
     """
 
     noise_density_deg_s: float = 0.05
     bias_deg_s: float = 0.1
     sample_rate_hz: float = 200.0
+    bias_time_constant_s: float = 1.0
 
     def __post_init__(self) -> None:
-        for name in ("noise_density_deg_s", "bias_deg_s"):
+        for name in ("noise_density_deg_s", "bias_deg_s", "bias_time_constant_s"):
             check_nonnegative(name, getattr(self, name))
         check_positive("sample_rate_hz", self.sample_rate_hz)
 

@@ -1,0 +1,182 @@
+"""The sampled loop: zero-order hold, one sample of computation delay, motor lag; discrete margins.
+
+The discrete controller is exactly the one :class:`~stability.assist.controller.DigitalController`
+runs; the plant (with the drive's motor lag) is discretised with a
+zero-order hold (:func:`control.c2d`).  Margins of the loop broken at the
+plant input, continuous and discrete side by side.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import control
+import numpy as np
+from scipy.linalg import expm
+
+from .design import Design, LoopMargins, _margins, loop_margins
+
+__all__ = ["discrete_controller", "discrete_loop", "discrete_margins", "MarginPair", "margin_pair"]
+
+
+def discrete_controller(d: Design, sample_time: float) -> control.StateSpace:
+    """The sampled controller from the measurements to ``-Mz`` (no feedthrough: one sample of delay).
+
+    Gyro design: states ``[x_hat, e]``, ``x_hat`` propagated with the
+    exact discretisation of the estimator for held inputs, ``e`` the running
+    sum of the gyro; full-state design: states ``[x_(k-1), e]``.
+
+    Parameters
+    ----------
+    d : Design
+    sample_time : float
+        s.
+
+    Returns
+    -------
+    control.StateSpace
+        Discrete, ``dt = sample_time``; inputs ``r`` (gyro) or the internal states (full-state).
+    """
+    T = float(sample_time)
+    p = d.plant
+    idx = p.internal
+    ni = len(idx)
+    Kint, Kpsi = d.K[:, idx], d.K[:, 6:7]
+    if d.kind == "gyro":
+        assert d.model_A is not None and d.model_B is not None and d.L is not None
+        Le = np.vstack([d.L, np.zeros((ni - 6, 1))])
+        M = np.zeros((ni + 2, ni + 2))
+        M[:ni, :ni] = d.model_A - Le @ np.eye(ni)[1:2]
+        M[:ni, ni:ni + 1] = d.model_B
+        M[:ni, ni + 1:] = Le
+        E = expm(M * T)
+        Phi, Gu, Gr = E[:ni, :ni], E[:ni, ni:ni + 1], E[:ni, ni + 1:]
+        A = np.block([[Phi - Gu @ Kint, -Gu @ Kpsi], [np.zeros((1, ni)), np.ones((1, 1))]])
+        B = np.vstack([Gr, [[T]]])
+    else:
+        A = np.zeros((ni + 1, ni + 1))
+        A[ni, ni] = 1.0
+        B = np.zeros((ni + 1, ni))
+        B[:ni] = np.eye(ni)
+        B[ni, 1] = T
+    C = np.hstack([Kint, Kpsi])
+    return control.ss(A, B, C, np.zeros((1, B.shape[1])), T)
+
+
+def discrete_loop(d: Design, sample_time: float) -> control.StateSpace:
+    """Loop transfer ``L(z)`` broken at the plant input of the sampled controller.
+
+    Parameters
+    ----------
+    d : Design
+    sample_time : float
+        s.
+
+    Returns
+    -------
+    control.StateSpace
+        Discrete, SISO (negative feedback).
+    """
+    p = d.plant
+    idx = p.internal
+    A, B = p.A[np.ix_(idx, idx)], p.B[idx]
+    C = np.eye(len(idx))[1:2] if d.kind == "gyro" else np.eye(len(idx))
+    Pd = control.c2d(control.ss(A, B, C, np.zeros((C.shape[0], 1))), sample_time, method="zoh")
+    return control.series(Pd, discrete_controller(d, sample_time))
+
+
+def discrete_margins(d: Design, sample_time: float) -> LoopMargins:
+    """Margins of :func:`discrete_loop` (:func:`control.stability_margins`; delay margin ``pm / w_gc``).
+
+    Parameters
+    ----------
+    d : Design
+    sample_time : float
+        s.
+
+    Returns
+    -------
+    LoopMargins
+    """
+    L = discrete_loop(d, sample_time)
+    T = float(sample_time)
+    A, B, C = np.asarray(L.A), np.asarray(L.B)[:, 0], np.asarray(L.C)[0]
+    n = A.shape[0]
+
+    def resp(w: Any) -> np.ndarray:
+        z = np.exp(1j * np.atleast_1d(np.asarray(w, dtype=float)) * T)
+        M = z[:, None, None] * np.eye(n) - A
+        return np.linalg.solve(M, np.broadcast_to(B, (z.size, n))[..., None])[..., 0] @ C
+
+    w = np.geomspace(1e-3, math.pi / T * (1 - 1e-9), 2000)
+    Lw = resp(w)
+    wgc = _crossings(w, np.abs(Lw) - 1.0, lambda x: float(np.abs(resp(x))[0]) - 1.0)
+    wpc = _crossings(w, Lw.imag, lambda x: float(resp(x)[0].imag))
+    Lg = resp(np.array(wgc)) if wgc else np.zeros(0)
+    pm = np.degrees(np.angle(-Lg)) if wgc else np.zeros(0)      # angle of L from -180 deg
+    gm = [1.0 / abs(float(resp(x)[0].real)) for x in wpc if float(resp(x)[0].real) < 0]
+    disk = float(np.min(np.abs(1.0 + Lw)))
+    return _margins(L, gm or [np.inf], pm if len(pm) else [np.inf],
+                    [disk], wgc or [np.nan], continuous=False, dt=T, disk=disk)
+
+
+def _crossings(w: np.ndarray, f: np.ndarray, fn: Any) -> list[float]:
+    """Roots of ``fn`` bracketed by sign changes of ``f`` on the grid ``w`` (refined by Brent's method)."""
+    from scipy.optimize import brentq  # scipy.optimize only here
+
+    out = []
+    for i in np.flatnonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0):
+        out.append(float(brentq(fn, w[i], w[i + 1], xtol=1e-12 * w[i + 1])))
+    return out
+
+
+def _summary(m: LoopMargins) -> dict[str, Any]:
+    lower = -20 * math.log10(m.gain_margin_lower) if m.gain_margin_lower > 0 else math.inf
+    upper = 20 * math.log10(m.gain_margin_upper) if math.isfinite(m.gain_margin_upper) else math.inf
+    return {"gain_db": min(lower, upper), "gain_up_db": upper, "gain_down_db": lower,
+            "phase_deg": m.phase_margin_deg, "delay_ms": 1e3 * m.delay_margin_s}
+
+
+@dataclass(frozen=True)
+class MarginPair:
+    """Margins of the continuous loop and of the sampled loop (ZOH, one-sample delay, motor lag in both).
+
+    Attributes
+    ----------
+    continuous, discrete : LoopMargins
+    sample_time : float
+        s.
+    """
+
+    continuous: LoopMargins
+    discrete: LoopMargins
+    sample_time: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """``{continuous: {gain_db, phase_deg, delay_ms, ...}, discrete: {...}}``.
+
+        ``gain_db`` is the smaller of the gain increase and decrease (dB) that
+        destabilises (the open-loop chair is unstable, so a decrease can).
+        """
+        from ._format import json_float
+
+        return {k: {kk: json_float(vv) for kk, vv in _summary(getattr(self, k)).items()}
+                for k in ("continuous", "discrete")}
+
+
+def margin_pair(d: Design, sample_time: float) -> MarginPair:
+    """Continuous and discrete margins of one design.
+
+    Parameters
+    ----------
+    d : Design
+    sample_time : float
+        s.
+
+    Returns
+    -------
+    MarginPair
+    """
+    return MarginPair(loop_margins(d), discrete_margins(d, sample_time), float(sample_time))
