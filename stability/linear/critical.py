@@ -35,7 +35,20 @@ class Crossing:
 
 
 def max_real_part(state_matrix: Callable[[np.ndarray], np.ndarray], speeds) -> np.ndarray:
-    """Largest real part of the eigenvalues of ``state_matrix(speeds)`` (1/s)."""
+    """Largest real part of the eigenvalues of ``state_matrix(speeds)`` (1/s).
+
+    Parameters
+    ----------
+    state_matrix : callable
+        Maps a 1-D array of N speeds (m/s) to an (N, n, n) array of state matrices.
+    speeds : float or array_like
+        Forward speeds U (m/s).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (N,): ``max Re(lambda)`` at each speed, 1/s (> 0: unstable).
+    """
     A = np.asarray(state_matrix(np.atleast_1d(np.asarray(speeds, dtype=float))))
     return np.linalg.eigvals(A).real.max(axis=-1)
 

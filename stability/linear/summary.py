@@ -52,6 +52,19 @@ def zero_width(chair: Chair) -> ZeroWidthResult:
 
     The front axle of the bicycle is the main axle for a rear-caster chair
     and the caster contacts for a front-caster chair.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair; its total weight m g is split between the axles by the
+        distances s1 (c.g. to main axle) and ``caster_contact_distance`` (c.g. to
+        caster contacts), m.
+
+    Returns
+    -------
+    ZeroWidthResult
+        Per-wheel loads (N), cornering stiffnesses at those loads (N/rad), k_us
+        (rad) and the critical speed sqrt(-g s / k_us) (m/s, None when k_us >= 0).
     """
     s = chair.wheelbase
     d_main = chair.s1
@@ -191,7 +204,35 @@ def massless_caster_rate(chair: Chair, speed, caster_drag: float = 0.0):
 
 @dataclass(frozen=True)
 class StabilitySummary:
-    """Everything ``python -m stability.critical_speed`` reports for one chair."""
+    """Everything ``python -m stability.critical_speed`` reports for one chair.
+
+    Attributes
+    ----------
+    chair : Chair
+        The chair analysed.
+    model : str
+        Equation variant, ``"exact"`` or ``"thesis"``.
+    static_loads : dict
+        Static normal loads per wheel and per pair mean, N (:func:`stability.statics.static_loads`).
+    stiffness_n_per_deg : dict
+        Cornering stiffness of one tire at its static load, N/deg: ``"main"``
+        (mean of D and E) and ``"caster"`` (mean of A and B).
+    zero_width : ZeroWidthResult
+        Zero-width locked-caster closed form (chapter 5, eqs 5-13..5-16).
+    locked_crossings : list of Crossing
+        Speeds (m/s) where the locked-caster model's largest real part crosses zero.
+    free_crossings : list of Crossing
+        The same for free casters.
+    free_stable_at_all_speeds : bool
+        True if the free-caster largest real part is < 0 at every grid speed.
+    free_unstable_at_all_speeds : bool
+        True if it is > 0 at every grid speed.
+    divergence : list of Divergence
+        Growth rate (1/s), time to double (s) and frequency (rad/s) of the least
+        stable free-caster mode at each table speed.
+    search_range : tuple of float
+        ``(lowest, highest)`` speed of the critical-speed search grid, m/s.
+    """
 
     chair: Chair
     model: str
@@ -208,7 +249,33 @@ class StabilitySummary:
 
 def analyse(chair: Chair, model: str = "exact", speeds=(0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0),
             max_speed: float = 30.0, n_grid: int = 600) -> StabilitySummary:
-    """Full linear stability summary of a chair (see :class:`StabilitySummary`)."""
+    """Full linear stability summary of a chair (see :class:`StabilitySummary`).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    model : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    speeds : sequence of float, optional
+        Speeds of the divergence table, m/s (> 0).
+    max_speed : float, optional
+        Upper end of the critical-speed search, m/s; valid range > 0.01 (default 30).
+    n_grid : int, optional
+        Number of geometrically spaced grid speeds from 0.01 m/s to ``max_speed``
+        (default 600); crossings are refined between grid points.
+
+    Returns
+    -------
+    StabilitySummary
+        Static loads, stiffnesses, zero-width closed form, locked and free
+        critical speeds and the divergence table.
+
+    Raises
+    ------
+    ValueError
+        If ``max_speed`` is not a finite number > 0.01.
+    """
     if not (isinstance(max_speed, (int, float)) and max_speed > 0.01 and math.isfinite(max_speed)):
         raise ValueError(f"max_speed={max_speed!r} is invalid; valid range: 0.01 < max_speed < inf m/s")
     loads = static_loads(chair)
