@@ -49,7 +49,18 @@ INDIVIDUAL_RELATIVE_STD = 0.10
 
 @dataclass(frozen=True)
 class SeatedBody:
-    """A seated user: mass (kg), c.g. ``x`` ahead of the hip joints (m) and yaw inertia about the c.g. (kg m^2)."""
+    """A seated user: mass, c.g. position ahead of the hip joints and yaw inertia about the c.g.
+
+    Attributes
+    ----------
+    mass : float
+        Total mass of the 14 segments, kg (equals the body mass up to rounding of
+        de Leva's mass fractions).
+    x : float
+        c.g. ahead of the hip joint centres, m (positive forward).
+    i_z : float
+        Yaw inertia about a vertical axis through the c.g., kg m^2.
+    """
 
     mass: float
     x: float
@@ -126,12 +137,24 @@ def seated_body(mass: float, stature: float, *, recline_deg: float = 5.0, shank_
 
 @dataclass(frozen=True)
 class UserInertiaEstimate:
-    """Estimated seated yaw inertia (kg m^2): ``value`` (nominal posture) and its standard uncertainty ``std``.
+    """Estimated seated yaw inertia: nominal value, standard uncertainty and posture extremes.
 
     ``low`` and ``high`` are the extremes over the posture ranges of
     :data:`POSTURE_RANGES`; ``std`` combines that spread (as a uniform
-    distribution) with :data:`INDIVIDUAL_RELATIVE_STD`.  ``x`` is the c.g.
-    ahead of the hip joints (m) in the nominal posture.
+    distribution) with :data:`INDIVIDUAL_RELATIVE_STD`.
+
+    Attributes
+    ----------
+    value : float
+        Yaw inertia about the user's c.g. in the nominal posture, kg m^2.
+    std : float
+        Standard uncertainty of ``value``, kg m^2:
+        ``hypot((high - low)/sqrt(12), INDIVIDUAL_RELATIVE_STD * value)``.
+    low, high : float
+        Smallest and largest yaw inertia over the nominal posture and the corners
+        of :data:`POSTURE_RANGES`, kg m^2.
+    x : float
+        c.g. ahead of the hip joint centres in the nominal posture, m.
     """
 
     value: float
@@ -142,10 +165,29 @@ class UserInertiaEstimate:
 
 
 def user_yaw_inertia(mass: float, stature: float) -> UserInertiaEstimate:
-    """Estimate a seated wheelchair user's yaw inertia from mass (kg) and stature (m).
+    """Estimate a seated wheelchair user's yaw inertia from mass and stature.
 
     Evaluates :func:`seated_body` at the nominal posture and at every corner
-    of :data:`POSTURE_RANGES`.
+    of :data:`POSTURE_RANGES` (8 postures).  For comparison, Collins (1987)
+    Appendix D uses 3.1 kg m^2 for the 75 kg ISO dummy.
+
+    Parameters
+    ----------
+    mass : float
+        Body mass, kg (> 0).
+    stature : float
+        Standing height, m (0.5 to 2.5).
+
+    Returns
+    -------
+    UserInertiaEstimate
+        Nominal yaw inertia about the user's c.g. (kg m^2), its standard
+        uncertainty, the posture extremes and the c.g. position (m).
+
+    Raises
+    ------
+    ValueError
+        If ``mass`` <= 0 or ``stature`` is outside 0.5 to 2.5 m.
     """
     nominal = seated_body(mass, stature, **{k: v[0] for k, v in POSTURE_RANGES.items()})
     corners = [seated_body(mass, stature, **dict(zip(POSTURE_RANGES, c, strict=True))).i_z

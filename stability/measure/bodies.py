@@ -15,7 +15,21 @@ __all__ = ["Body", "combine", "parallel_axis_correction", "separation_for_total_
 
 @dataclass(frozen=True)
 class Body:
-    """A body of mass ``mass`` (kg) with c.g. at (``x``, ``y``) (m) and yaw inertia ``i_z`` (kg m^2) about it."""
+    """A rigid body in the plane: mass, c.g. position and yaw inertia about its own c.g.
+
+    Attributes
+    ----------
+    mass : float
+        Mass, kg (> 0).
+    x : float
+        c.g. x coordinate (forward), m; default 0.
+    y : float
+        c.g. y coordinate (to the right), m; default 0.
+    i_z : float
+        Yaw inertia about a vertical axis through the body's own c.g., kg m^2 (>= 0); default 0.
+    name : str
+        Label used in error messages and reports; default empty.
+    """
 
     mass: float
     x: float = 0.0
@@ -71,7 +85,20 @@ def combine(bodies: Iterable[Body], name: str = "combined") -> Body:
 
 
 def parallel_axis_correction(bodies: Iterable[Body]) -> float:
-    """How much the combined inertia exceeds the plain sum of the bodies' own (kg m^2)."""
+    """How much the combined yaw inertia exceeds the plain sum of the bodies' own (Appendix D).
+
+    ``sum_i m_i ((x_i - x_G)^2 + (y_i - y_G)^2)``: the parallel-axis terms of :func:`combine`.
+
+    Parameters
+    ----------
+    bodies : iterable of Body
+        At least one body.
+
+    Returns
+    -------
+    float
+        The correction, kg m^2 (>= 0; 0 for one body).
+    """
     bodies = list(bodies)
     return combine(bodies).i_z - sum(b.i_z for b in bodies)
 

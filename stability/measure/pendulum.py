@@ -81,7 +81,20 @@ def torsional_rigidity(period, calibration_inertia):
 
 
 def solid_cylinder_inertia(mass, radius):
-    """Inertia of a uniform solid cylinder about its axis, ``m r^2 / 2`` (kg m^2)."""
+    """Inertia of a uniform solid cylinder about its axis, ``m r^2 / 2`` (Appendix D calibration body).
+
+    Parameters
+    ----------
+    mass : float or array
+        Cylinder mass (kg, > 0).
+    radius : float or array
+        Cylinder radius (m, > 0).
+
+    Returns
+    -------
+    float or ndarray
+        Inertia about the cylinder axis (kg m^2).
+    """
     _positive("mass", mass, "kg")
     _positive("radius", radius, "m")
     return 0.5 * np.asarray(mass) * np.asarray(radius) ** 2
@@ -122,10 +135,28 @@ def multifilar_pendulum_inertia(mass, radius, length, period, g: float = STANDAR
 
 
 def bifilar_pendulum_inertia(mass, spacing, length, period, g: float = STANDARD_GRAVITY):
-    """Bifilar pendulum: ``I = m g d^2 T^2 / (16 pi^2 L)`` with string spacing d (m).
+    """Bifilar pendulum: ``I = m g d^2 T^2 / (16 pi^2 L)`` with string spacing d.
 
     The two-string case of :func:`multifilar_pendulum_inertia` (R = d/2); the
-    c.g. must lie midway between the strings.  Units as there.
+    c.g. must lie midway between the strings.
+
+    Parameters
+    ----------
+    mass : float or array
+        Total suspended mass, body plus platform (kg, > 0).
+    spacing : float or array
+        Distance between the two strings d (m, > 0).
+    length : float or array
+        String length L (m, > 0).
+    period : float or array
+        Period of the twisting oscillation T (s, > 0).
+    g : float
+        Gravitational acceleration (m/s^2).
+
+    Returns
+    -------
+    float or ndarray
+        Inertia of everything on the strings about the vertical axis (kg m^2).
     """
     _positive("spacing", spacing, "m")
     return multifilar_pendulum_inertia(mass, np.asarray(spacing) / 2, length, period, g)
@@ -134,7 +165,25 @@ def bifilar_pendulum_inertia(mass, spacing, length, period, g: float = STANDARD_
 def trifilar_pendulum_inertia(mass, radius, length, period, g: float = STANDARD_GRAVITY):
     """Trifilar pendulum: ``I = m g R^2 T^2 / (4 pi^2 L)``, strings 120 deg apart on radius R.
 
-    The three-string case of :func:`multifilar_pendulum_inertia`; units as there.
+    The three-string case of :func:`multifilar_pendulum_inertia`.
+
+    Parameters
+    ----------
+    mass : float or array
+        Total suspended mass, body plus platform (kg, > 0).
+    radius : float or array
+        Distance R of each string from the vertical axis through the c.g. (m, > 0).
+    length : float or array
+        String length L (m, > 0).
+    period : float or array
+        Period of the twisting oscillation T (s, > 0).
+    g : float
+        Gravitational acceleration (m/s^2).
+
+    Returns
+    -------
+    float or ndarray
+        Inertia of everything on the strings about the vertical axis (kg m^2).
     """
     return multifilar_pendulum_inertia(mass, radius, length, period, g)
 
@@ -152,6 +201,11 @@ def small_amplitude_period(period, amplitude):
         Measured period (s).
     amplitude : float or array
         Release amplitude (rad), 0 <= amplitude < pi.
+
+    Returns
+    -------
+    float or ndarray
+        T_0, the period at vanishing amplitude (s); equal to ``period`` at amplitude 0.
     """
     a = np.asarray(amplitude, dtype=float)
     if np.any(a < 0) or np.any(a >= math.pi):

@@ -18,7 +18,17 @@ __all__ = ["WheelLoads", "ScaleCG", "cg_from_scales", "cg_height_from_tilt", "ti
 
 @dataclass(frozen=True)
 class WheelLoads:
-    """Four scale readings (any one unit, each >= 0): left/right main wheel, left/right caster."""
+    """Four wheel-scale readings, chair level and casters trailing.
+
+    Readings may be in any one unit (kg or N); only their ratios and sum matter.
+
+    Attributes
+    ----------
+    left_main, right_main : float
+        Readings under the left and right main wheels (>= 0).
+    left_caster, right_caster : float
+        Readings under the left and right casters (>= 0); the four must not all be zero.
+    """
 
     left_main: float
     right_main: float
@@ -167,6 +177,28 @@ def tilt_reading(total: float, x_g: float, h: float, lift: float, wheelbase: flo
     """Load under the raised end for a c.g. at (``x_g``, ``h``): the inverse of :func:`cg_height_from_tilt`.
 
     For planning a measurement (how big a lift gives a readable change).
+
+    Parameters
+    ----------
+    total : float
+        Total weight W (any unit; the result has the same unit).
+    x_g : float
+        Level c.g. distance from the pivot axle towards the raised end (m).
+    h : float
+        C.g. height above the ground when level (m).
+    lift : float
+        Height the raised end's contacts are lifted (m).
+    wheelbase : float
+        Level wheelbase between the contacts (m).
+    pivot_radius : float
+        Wheel radius at the end on the ground (m).
+    lifted_radius : float, optional
+        Wheel radius at the raised end (m); default ``pivot_radius``.
+
+    Returns
+    -------
+    float
+        Sum of the readings under the raised end when tilted, in the unit of ``total``.
     """
     r_p = pivot_radius
     r_l = pivot_radius if lifted_radius is None else lifted_radius
@@ -180,9 +212,23 @@ def tilt_reading(total: float, x_g: float, h: float, lift: float, wheelbase: flo
 def pin_friction_moment(force: float, lever_arm: float, angle_deg: float = 90.0) -> float:
     """Coulomb friction moment at a caster pin from a spring-scale pull (Collins 1987, Appendix D).
 
-    ``M = F a sin(angle)``: the force F (N) that just keeps the caster turning
-    slowly, applied at distance a (m) from the pin, at ``angle_deg`` to the
-    lever arm (90: perpendicular).  Returns N m.
+    ``M = F a sin(angle)``: the force that just keeps the caster turning slowly,
+    applied at a distance from the pin, at an angle to the lever arm.
+
+    Parameters
+    ----------
+    force : float
+        Spring-scale force F (N, >= 0).
+    lever_arm : float
+        Distance a from the pin axis to where the force is applied (m, > 0).
+    angle_deg : float, optional
+        Angle between the force and the lever arm (deg, 0 < angle <= 180);
+        default 90 (perpendicular).
+
+    Returns
+    -------
+    float
+        Pin friction moment M_f (N m).
     """
     if not force >= 0:
         raise ValueError(f"force={force!r} is invalid; valid range: >= 0 N")

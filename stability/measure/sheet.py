@@ -88,7 +88,20 @@ FORMULAS = {
 
 @dataclass(frozen=True)
 class Reading:
-    """One reading in SI (``value``, ``std``) with its sheet text (``shown``)."""
+    """One sheet reading converted to SI units, with its sheet text.
+
+    Attributes
+    ----------
+    key : str
+        Dotted reading name, a key of :data:`READINGS` (e.g. ``"caster.period"``).
+    value : float
+        Value in SI units (m, kg, s, rad, N, N m/rad, kg m^2; scale readings given
+        as a mass are converted to a weight in N with standard gravity).
+    std : float
+        Standard uncertainty in the same SI unit (0 when not given).
+    shown : str
+        The reading as written on the sheet (value, unit, ``+- std``), for reports.
+    """
 
     key: str
     value: float
@@ -98,7 +111,22 @@ class Reading:
 
 @dataclass(frozen=True)
 class ProvenanceRow:
-    """A derived chair field: value, standard uncertainty, readings it depends on, formula."""
+    """A chair field from the sheet: value, standard uncertainty, readings it depends on, formula.
+
+    Attributes
+    ----------
+    field : str
+        Chair field name (e.g. ``"s1"``, ``"i_z"``).
+    value : float
+        Its value, in the chair field's SI unit.
+    std : float
+        First-order standard uncertainty (finite differences over the readings,
+        treated as independent), same unit; 0 when exact or not given.
+    readings : tuple of str
+        Readings the value depends on (empty for fields given in ``[chair]``).
+    formula : str
+        How the value is computed (:data:`FORMULAS`), or ``"given in [chair]"``.
+    """
 
     field: str
     value: float
@@ -109,7 +137,22 @@ class ProvenanceRow:
 
 @dataclass(frozen=True)
 class SheetResult:
-    """Chair, uncertainty and provenance of a measurement sheet; ``notes`` are plain-text remarks."""
+    """Chair, uncertainty and provenance of a measurement sheet.
+
+    Attributes
+    ----------
+    chair : Chair
+        The chair built from the derived fields and the ``[chair]`` table.
+    uncertainty : Uncertainty
+        Normal distributions of every field with a non-zero standard uncertainty.
+    provenance : tuple of ProvenanceRow
+        One row per field given in ``[chair]`` or derived from the readings.
+    readings : dict of str to Reading
+        Every reading in SI units (with the de Leva estimate of ``user.inertia``
+        when only ``user.stature`` was given).
+    notes : tuple of str
+        Plain-text remarks (e.g. how the user's inertia was estimated).
+    """
 
     chair: Chair
     uncertainty: Uncertainty
@@ -309,7 +352,30 @@ def _direct(direct: Mapping[str, Any]) -> tuple[dict[str, Any], list[Distributio
 
 
 def read_sheet(data: Mapping[str, Any]) -> SheetResult:
-    """Turn a parsed measurement sheet into a :class:`SheetResult` (ValueError on bad or inconsistent input)."""
+    """Turn a parsed measurement sheet into a :class:`SheetResult`.
+
+    Parameters
+    ----------
+    data : Mapping of str to Any
+        The parsed TOML: reading tables (``geometry``, ``scales``, ``tilt``,
+        ``caster``, ``pin_friction``, ``inertia``, ``user``; every key in
+        :data:`READINGS`), the options ``scales.loaded.tolerance`` and
+        ``tilt.end`` (``"caster"`` or ``"main"``), and an optional ``[chair]``
+        table of fields given directly (a value or ``{value, std}``).
+
+    Returns
+    -------
+    SheetResult
+        The chair (c.g. from the wheel scales, h by axle lift, I_zp by compound
+        pendulum, pin friction from spring-scale pulls, I_z by eq D-1 and the
+        parallel-axis theorem), its uncertainty and the provenance table.
+
+    Raises
+    ------
+    ValueError
+        One line naming the reading at fault: unknown, missing, out of range,
+        in the wrong unit, or inconsistent with the others.
+    """
     data = dict(data)
     direct = data.pop("chair", {})
     if not isinstance(direct, Mapping):
@@ -347,7 +413,23 @@ def read_sheet(data: Mapping[str, Any]) -> SheetResult:
 
 
 def load_sheet(path: str | os.PathLike[str]) -> SheetResult:
-    """Read and evaluate a measurement-sheet TOML file."""
+    """Read and evaluate a measurement-sheet TOML file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The sheet file (docs/measure.md shows a complete one).
+
+    Returns
+    -------
+    SheetResult
+        As :func:`read_sheet`.
+
+    Raises
+    ------
+    ValueError
+        If the file does not exist, is not valid TOML, or :func:`read_sheet` refuses it.
+    """
     if not os.path.exists(path):
         raise ValueError(f"sheet {str(path)!r} does not exist")
     with open(path, "rb") as fh:
@@ -359,7 +441,21 @@ def load_sheet(path: str | os.PathLike[str]) -> SheetResult:
 
 
 def provenance_comment(result: SheetResult, source: str = "") -> str:
-    """The provenance table as TOML comment lines (field = value +- std <- readings: formula)."""
+    """The provenance table as TOML comment lines (field = value +- std <- readings: formula).
+
+    Parameters
+    ----------
+    result : SheetResult
+        An evaluated sheet.
+    source : str, optional
+        Name of the sheet file, shown in the first line; default none.
+
+    Returns
+    -------
+    str
+        Comment lines starting with ``#``, ending with a newline, then one
+        ``# note:`` line per note.
+    """
     lines = [f"# derived by python -m stability.measure{' from ' + source if source else ''}",
              "# field = value +- standard uncertainty (first order); readings used; formula"]
     for row in result.provenance:

@@ -140,7 +140,14 @@ class Distribution:
 
 @dataclass(frozen=True)
 class Uncertainty:
-    """A set of independent :class:`Distribution` s (each field in at most one)."""
+    """A set of independent :class:`Distribution` s (each chair field in at most one).
+
+    Attributes
+    ----------
+    distributions : tuple of Distribution
+        The uncertain parameters, in file order; draws of different tables are
+        independent (each table seeded from the seed and its name).
+    """
 
     distributions: tuple[Distribution, ...] = ()
 
@@ -228,7 +235,25 @@ class Uncertainty:
 
 
 def from_mapping(data: Mapping[str, Any]) -> Uncertainty:
-    """Build an :class:`Uncertainty` from a parsed TOML mapping (table name -> table)."""
+    """Build an :class:`Uncertainty` from a parsed TOML mapping (table name -> table).
+
+    Parameters
+    ----------
+    data : Mapping of str to Mapping
+        Table name -> table with keys ``distribution`` (``"normal"`` or
+        ``"uniform"``), ``std``, ``mean``, ``low``, ``high``, ``relative`` and
+        ``fields`` (default ``[name]``); values in the chair file's units.
+
+    Returns
+    -------
+    Uncertainty
+        One :class:`Distribution` per table.
+
+    Raises
+    ------
+    ValueError
+        One line naming the table and key at fault.
+    """
     dists = []
     for name, table in data.items():
         if not isinstance(table, Mapping):
@@ -257,12 +282,39 @@ def from_mapping(data: Mapping[str, Any]) -> Uncertainty:
 
 
 def loads_uncertainty(text: str) -> Uncertainty:
-    """Parse uncertainty TOML text."""
+    """Parse uncertainty TOML text.
+
+    Parameters
+    ----------
+    text : str
+        TOML text as written by :meth:`Uncertainty.dumps` (one table per uncertain parameter).
+
+    Returns
+    -------
+    Uncertainty
+        As :func:`from_mapping`.
+    """
     return from_mapping(tomllib.loads(text))
 
 
 def load_uncertainty(path: str | os.PathLike[str]) -> Uncertainty:
-    """Read an uncertainty TOML file."""
+    """Read an uncertainty TOML file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file (one table per uncertain parameter, see :func:`from_mapping`).
+
+    Returns
+    -------
+    Uncertainty
+        As :func:`from_mapping`.
+
+    Raises
+    ------
+    ValueError
+        If the file does not exist, is not valid TOML, or a table is invalid.
+    """
     if not os.path.exists(path):
         raise ValueError(f"uncertainty file {str(path)!r} does not exist")
     with open(path, "rb") as fh:
@@ -418,8 +470,24 @@ def propagate(chair: Chair, uncertainty: Uncertainty, fn: Callable[[list[Chair]]
 class DeltaResult:
     """First-order (delta-method) propagation: ``value +- z std`` with ``std^2 = sum (df/dp_i sigma_i)^2``.
 
-    ``contributions`` maps each parameter to ``df/dp_i sigma_i`` (output units);
-    ``dominant_parameters`` ranks them by squared share, largest first.
+    Output quantities are in ``fn``'s units; each is a float when ``fn``
+    returns one number per chair, else an array over ``fn``'s outputs.
+
+    Attributes
+    ----------
+    level : float
+        Interval coverage, 0 < level < 1 (e.g. 0.95).
+    value : float or ndarray
+        ``fn`` at the parameters' means.
+    std : float or ndarray
+        First-order standard deviation of ``fn``.
+    low, high : float or ndarray
+        ``value -+ z std`` with z the normal quantile at ``(1 + level)/2``.
+    contributions : dict of str to float or ndarray
+        Table name -> ``df/dp_i sigma_i``, signed, in output units.
+    dominant_parameters : tuple of (str, float)
+        Table names with their share of the variance (mean over outputs,
+        0 to 1), largest first.
     """
 
     level: float
@@ -439,6 +507,29 @@ def delta_method(chair: Chair, uncertainty: Uncertainty, fn: Callable[[list[Chai
     ``step`` standard deviations (``2 p + 1`` chairs in one call of ``fn``).
     Exact for ``fn`` linear in the parameters; it misses curvature and
     truncation, which the Monte Carlo result shows.
+
+    Parameters
+    ----------
+    chair : Chair
+        Nominal chair; the uncertain fields are moved to their distributions' means.
+    uncertainty : Uncertainty
+        The uncertain parameters (p tables).
+    fn : callable
+        ``fn(chairs) -> array`` with one row (a number or a vector) per chair.
+    level : float, optional
+        Interval coverage, 0 < level < 1 (default 0.95).
+    step : float, optional
+        Finite-difference step in standard deviations (default 0.01).
+
+    Returns
+    -------
+    DeltaResult
+        Value, standard deviation, interval and per-parameter contributions.
+
+    Raises
+    ------
+    ValueError
+        If ``level`` is outside (0, 1) or ``fn`` does not return one row per chair.
     """
     if not 0 < level < 1:
         raise ValueError(f"level={level!r} is invalid; valid range: 0 < level < 1")

@@ -92,7 +92,19 @@ def parse_unit(unit: str) -> tuple[float, tuple[int, int, int, int]]:
 
 
 def dimension_name(dims: tuple[int, int, int, int]) -> str:
-    """Readable name of a dimension vector (e.g. ``"moment"``) or its exponents."""
+    """Readable name of a dimension vector (e.g. ``"moment"``) or its exponents.
+
+    Parameters
+    ----------
+    dims : tuple of int
+        Exponents of (mass, length, time, angle), as :func:`parse_unit` returns them.
+
+    Returns
+    -------
+    str
+        The name from :data:`DIMENSIONS` (``"length"``, ``"moment"``, ...), else
+        ``"M^a L^b T^c angle^d"``.
+    """
     return DIMENSIONS.get((dims[0], dims[1], dims[2], dims[3]), f"M^{dims[0]} L^{dims[1]} T^{dims[2]} angle^{dims[3]}")
 
 
@@ -107,6 +119,16 @@ def quantity(value: float, unit: str, expect: str | None = None) -> float:
         Its unit (see :func:`parse_unit`).
     expect : str, optional
         Required dimension name from :data:`DIMENSIONS` (``"length"``, ``"moment"``, ...).
+
+    Returns
+    -------
+    float
+        The value in SI units (kg, m, s, rad and their products).
+
+    Raises
+    ------
+    ValueError
+        If the unit cannot be parsed or its dimension is not ``expect``.
 
     Examples
     --------
