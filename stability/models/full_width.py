@@ -34,10 +34,28 @@ generated = _fw
 
 
 def contact_velocities(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d, variant: str = "exact"):
-    """Velocity of each tire contact point in its own wheel frame (m/s).
+    """Velocity of each tire contact point in its own wheel frame (m/s), eqs 6-17a-d.
 
-    Returns ``(vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy)`` (eqs 6-17a-d for the
-    thesis variant).  ``ce, se, cb, sb`` are cos/sin of the caster angles.
+    Parameters
+    ----------
+    p : Params
+        Chair parameters (:func:`stability.params.parameters`).
+    u, v : float or ndarray
+        Forward and lateral velocity of the c.g. in body axes, m/s.
+    r : float or ndarray
+        Yaw rate, rad/s (clockwise seen from above).
+    ce, se, cb, sb : float or ndarray
+        cos and sin of the left (eta) and right (beta) caster angles.
+    eta_d, beta_d : float or ndarray
+        Caster swivel rates, rad/s.
+    variant : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``); ``"thesis"`` is eqs 6-17a-d as printed (OCR-corrected).
+
+    Returns
+    -------
+    tuple of 8 float or ndarray
+        ``(vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy)``, m/s: casters A (left), B
+        (right) in their wheel frames, main wheels D (left), E (right) in body axes.
     """
     check_model(variant)
     fn = getattr(_fw, f"contact_velocities_{variant}")
@@ -47,13 +65,41 @@ def contact_velocities(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d, varian
 def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d,
                   FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, M_A, M_B,
                   Fy_ext=0.0, Mz_ext=0.0, variant: str = "exact", r_dot_casters=None):
-    """Accelerations ``(u_dot, v_dot, r_dot, eta_ddot, beta_ddot)``.
+    """Accelerations ``(u_dot, v_dot, r_dot, eta_ddot, beta_ddot)`` of the full-width model (Table 6-1, eqs 6-17..6-21).
 
-    Tire forces are in each wheel's frame (N), pin moments ``M_A``, ``M_B``
-    act on the casters (N m), ``Fy_ext`` is a lateral force at the c.g. (N)
-    and ``Mz_ext`` a yaw moment on the chair (N m).  For the thesis variant
-    ``r_dot_casters`` optionally replaces the yaw acceleration used in the
-    caster equations (program WCHAIR uses the previous step's value).
+    Parameters
+    ----------
+    p : Params
+        Chair parameters (:func:`stability.params.parameters`).
+    u, v : float or ndarray
+        Forward and lateral velocity of the c.g. in body axes, m/s.
+    r : float or ndarray
+        Yaw rate, rad/s.
+    ce, se, cb, sb : float or ndarray
+        cos and sin of the caster angles eta (left) and beta (right).
+    eta_d, beta_d : float or ndarray
+        Caster swivel rates, rad/s.
+    FAx, FAy, FBx, FBy : float or ndarray
+        Caster tire forces in each caster wheel's frame (x rolling, y lateral), N.
+    FDx, FDy, FEx, FEy : float or ndarray
+        Main tire forces (left D, right E) in body axes, N.
+    M_A, M_B : float or ndarray
+        Moments on the left and right casters about their pins (pin friction), N m.
+    Fy_ext : float or ndarray, optional
+        Lateral force at the c.g. (a push), N; default 0.
+    Mz_ext : float or ndarray, optional
+        Yaw moment on the chair (e.g. a motor assist), N m; default 0.
+    variant : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    r_dot_casters : float or ndarray or None, optional
+        Thesis variant only: yaw acceleration (rad/s^2) used in the caster
+        equations 6-20/6-21 in place of the current one (program WCHAIR uses
+        the previous step's value); ``None`` uses the current one.
+
+    Returns
+    -------
+    tuple of 5 float or ndarray
+        ``u_dot``, ``v_dot`` (m/s^2), ``r_dot``, ``eta_ddot``, ``beta_ddot`` (rad/s^2).
     """
     check_model(variant)
     args = (u, v, r, ce, se, cb, sb, eta_d, beta_d, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy,
@@ -65,14 +111,36 @@ def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d,
 
 def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str = "exact",
                     casters: str = "free"):
-    """Mass, stiffness and input matrices of the linearised model.
+    """Mass, stiffness and input matrices of the model linearised about straight running at speed U.
 
     ``M @ acc = K @ x + Bm * Mz`` with ``acc = [v_dot, r_dot, eta_dd, beta_dd]``
     and ``x = [v, r, eta, eta_dot, beta, beta_dot]`` (free casters) or
     ``acc = [v_dot, r_dot]``, ``x = [v, r]`` (locked casters).
 
-    Returns numpy arrays broadcast over ``speeds``: ``M`` (N, k, k), ``K``
-    (N, k, n) and ``Bm`` (N, k).
+    Parameters
+    ----------
+    p : Params
+        Chair parameters (floats or arrays of shape (N,)).
+    speeds : float or array_like
+        Forward speeds U, m/s (finite, > 0).
+    stiffness : dict of str to float or ndarray
+        Cornering stiffness of each tire at its static load, N/rad: keys
+        ``"A"``, ``"B"`` (left, right caster), ``"D"``, ``"E"`` (left, right main
+        wheel), as :func:`stability.statics.static_stiffness` returns them.
+    variant : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    casters : {"free", "locked"}, optional
+        Free casters (k = 4, n = 6, with the viscous pin damping ``p.pin_damping``,
+        N m s/rad) or locked casters (k = n = 2); default ``"free"``.
+
+    Returns
+    -------
+    M : numpy.ndarray
+        Shape (N, k, k), mass matrix (kg, kg m, kg m^2 entries).
+    K : numpy.ndarray
+        Shape (N, k, n), stiffness and damping matrix.
+    Bm : numpy.ndarray
+        Shape (N, k), input column of a yaw moment Mz on the chair (N m).
     """
     check_model(variant)
     check_casters(casters)
@@ -95,7 +163,18 @@ def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str =
 
 
 def trig(angle):
-    """``(cos, sin)`` of an angle: ``math`` for floats, numpy for arrays."""
+    """``(cos, sin)`` of an angle: ``math`` for floats, numpy for arrays.
+
+    Parameters
+    ----------
+    angle : float or ndarray
+        Angle, rad.
+
+    Returns
+    -------
+    tuple of (float, float) or (ndarray, ndarray)
+        ``(cos(angle), sin(angle))``.
+    """
     if isinstance(angle, float):
         return math.cos(angle), math.sin(angle)
     return np.cos(angle), np.sin(angle)

@@ -23,7 +23,20 @@ ARGUMENTS = ("mass", "inertia", "a", "b", "k", "C", "sigma", "c")
 
 
 def case_name(rigid_pivot: bool, rigid_tire: bool) -> str:
-    """Configuration key, e.g. ``"compliant_rigid"`` (compliant pivot, rigid tire)."""
+    """Configuration key, e.g. ``"compliant_rigid"`` (compliant pivot, rigid tire).
+
+    Parameters
+    ----------
+    rigid_pivot : bool
+        True for a pivot fixed laterally, False for a pivot on a lateral spring k (N/m).
+    rigid_tire : bool
+        True for a tire without side slip, False for a tire with relaxation length sigma (m).
+
+    Returns
+    -------
+    str
+        ``"<pivot>_<tire>"``, each ``rigid`` or ``compliant``: one of :data:`CASES`.
+    """
     return f"{'rigid' if rigid_pivot else 'compliant'}_{'rigid' if rigid_tire else 'compliant'}"
 
 
@@ -75,6 +88,22 @@ def characteristic_coefficients(case: str, params: dict[str, float], speeds: Any
 
     The leading coefficient is a positive product of parameters (the
     polynomial is ``det(s I - A)`` cleared of denominators).
+
+    Parameters
+    ----------
+    case : str
+        One of :data:`CASES` (see :func:`case_name`).
+    params : dict of str to float or ndarray
+        ``mass`` (kg), ``inertia`` (kg m^2), ``a``, ``b`` (m), ``k`` (N/m), ``C``
+        (N/rad), ``sigma`` (m), ``c`` (N m s/rad), as for :func:`state_matrices`.
+    speeds : float or array_like
+        Forward speeds (m/s), broadcast with the parameters.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (..., n + 1) with n the case's number of states; the roots (1/s)
+        are the eigenvalues of :func:`state_matrices`' A.
     """
     U = np.asarray(speeds, dtype=float)
     coeffs = _function("characteristic", case)(*(params[k] for k in ARGUMENTS), U)

@@ -51,9 +51,36 @@ def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d, F, M_A, M_B
                   Fy_ext=0.0, Mz_ext=0.0):
     """Accelerations ``(u_dot, v_dot, r_dot, eta_dd, beta_dd)`` of the exact model on the plane.
 
-    As :func:`stability.models.full_width.accelerations` (``F`` the eight tire
-    forces in wheel frames, N) plus the in-plane gravity ``g1, g2`` (m/s^2)
-    acting on the chair and on each caster at its own c.g.
+    As :func:`stability.models.full_width.accelerations` plus the in-plane
+    gravity acting on the chair and on each caster at its own c.g.
+
+    Parameters
+    ----------
+    p : Params
+        Chair parameters.
+    u, v : float or ndarray
+        Forward and lateral velocity of the c.g. in body axes, m/s.
+    r : float or ndarray
+        Yaw rate, rad/s.
+    ce, se, cb, sb : float or ndarray
+        cos and sin of the caster angles eta (left) and beta (right).
+    eta_d, beta_d : float or ndarray
+        Caster swivel rates, rad/s.
+    F : tuple of 8 float or ndarray
+        ``(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)``: tire forces in wheel frames, N.
+    M_A, M_B : float or ndarray
+        Moments on the left and right casters about their pins, N m.
+    g1, g2 : float or ndarray
+        In-plane gravity components in body axes (forward, right), m/s^2 (:func:`gravity`).
+    Fy_ext : float or ndarray, optional
+        Lateral force at the c.g., N; default 0.
+    Mz_ext : float or ndarray, optional
+        Yaw moment on the chair, N m; default 0.
+
+    Returns
+    -------
+    tuple of 5 float or ndarray
+        ``u_dot``, ``v_dot`` (m/s^2), ``r_dot``, ``eta_dd``, ``beta_dd`` (rad/s^2).
     """
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
     return _sl.accelerations_slope_exact(u, v, r, ce, se, cb, sb, eta_d, beta_d, FAx, FAy, FBx, FBy, FDx, FDy,
@@ -62,25 +89,72 @@ def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d, F, M_A, M_B
 
 
 def normal_loads(p: Params, a1, a2, g1, g2, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
-    """Normal loads ``(N_A, N_B, N_D, N_E)`` (N) on the plane, eq 6-25 extended.
+    """Normal loads ``(N_A, N_B, N_D, N_E)`` on the plane, eq 6-25 extended to a slope.
 
-    ``a1, a2``: in-plane c.g. acceleration (m/s^2), ``g1, g2, gn`` gravity in
-    body axes; the load-transfer moments are ``h m (a - g_in)``.
+    The load-transfer moments are ``h m (a - g_in)``, split between the caster
+    and main axles by the roll coefficient k = k_f/k_r (eqs 6-25a,b).
+
+    Parameters
+    ----------
+    p : Params
+        Chair parameters (``h``, ``m``, ``roll_k`` and the geometry used).
+    a1, a2 : float or ndarray
+        In-plane c.g. acceleration in body axes (forward, right), m/s^2.
+    g1, g2, gn : float or ndarray
+        Gravity in body axes: forward and right in the plane, normal to it, m/s^2 (:func:`gravity`).
+    ce, se, cb, sb : float or ndarray, optional
+        cos and sin of the caster angles (default trailing straight: 1, 0, 1, 0).
+
+    Returns
+    -------
+    tuple of 4 float or ndarray
+        Normal loads on the left and right casters and left and right main wheels, N.
     """
     return _sl.normal_loads_slope(a1, a2, g1, g2, gn, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2,
                                   p.trail, p.h, p.m, p.roll_k)
 
 
 def hold_statics(p: Params, ce, se, cb, sb, g1, g2, M_A=0.0, M_B=0.0, FAx=0.0, FBx=0.0):
-    """Steady straight running: ``(FAy, FBy, Sx, Sy, Mh)``.
+    """Steady straight running on the plane: ``(FAy, FBy, Sx, Sy, Mh)``.
 
-    Caster side forces (N), main-wheel force sums ``FDx + FEx``,
-    ``FDy + FEy`` (N) and the yaw moment ``d1 FDx - d2 FEx`` (N m) that holds
-    the line, for given caster angles, gravity, pin moments and caster rolling forces.
+    Parameters
+    ----------
+    p : Params
+        Chair parameters.
+    ce, se, cb, sb : float or ndarray
+        cos and sin of the caster angles eta (left) and beta (right).
+    g1, g2 : float or ndarray
+        In-plane gravity components in body axes (forward, right), m/s^2.
+    M_A, M_B : float or ndarray, optional
+        Pin moments on the left and right casters, N m; default 0.
+    FAx, FBx : float or ndarray, optional
+        Caster rolling forces in the caster wheel frames, N; default 0.
+
+    Returns
+    -------
+    tuple of 5 float or ndarray
+        Caster side forces ``FAy``, ``FBy`` (N), main-wheel force sums
+        ``Sx = FDx + FEx`` and ``Sy = FDy + FEy`` (N), and the yaw moment
+        ``Mh = d1 FDx - d2 FEx`` (N m) the main wheels must supply to hold the line.
     """
     return _sl.hold_statics(ce, se, cb, sb, g1, g2, M_A, M_B, FAx, FBx, *p.inertia[:10])
 
 
 def gravity_generalized_forces(p: Params, ce, se, cb, sb, g1, g2):
-    """Generalized forces of the in-plane weight on ``(u, v, r, eta_d, beta_d)`` (N, N, N m, N m, N m)."""
+    """Generalized forces of the in-plane weight on ``(u, v, r, eta_d, beta_d)``.
+
+    Parameters
+    ----------
+    p : Params
+        Chair parameters (masses m, m_c and the caster geometry used).
+    ce, se, cb, sb : float or ndarray
+        cos and sin of the caster angles eta (left) and beta (right).
+    g1, g2 : float or ndarray
+        In-plane gravity components in body axes (forward, right), m/s^2.
+
+    Returns
+    -------
+    tuple of 5 float or ndarray
+        Generalized forces on u, v (N) and on r, eta_d, beta_d (N m).
+    """
     return _sl.gravity_generalized_forces(ce, se, cb, sb, g1, g2, p.x_p, p.t1, p.t2, p.l1, p.m, p.m_c)
