@@ -30,6 +30,16 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[str]:
     """Yield a temporary file name next to ``path``; rename it to ``path`` on success.
 
     On any exception the temporary file is removed and ``path`` is untouched.
+
+    Parameters
+    ----------
+    path : path-like
+        Output file.
+
+    Yields
+    ------
+    str
+        The temporary file name to write.
     """
     path = Path(path)
     directory = path.parent if str(path.parent) else Path(".")
@@ -192,7 +202,24 @@ def read_outline(path: str | os.PathLike[str]) -> list[tuple[str, int]]:
 
 def save_figure(fig, path: str | os.PathLike[str], *, title: str = "stability figure",
                 close: bool = False) -> Path:
-    """Save one figure atomically in the format named by the file suffix (PDF reproducible)."""
+    """Save one figure atomically in the format named by the file suffix (PDF reproducible).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : path-like
+        Output file; the suffix names the format.
+    title : str
+        PDF title metadata.
+    close : bool
+        Close the figure after saving.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     path = Path(path)
     fmt = path.suffix.lstrip(".").lower() or "png"
     kwargs = {"metadata": {"Title": title, **PDF_METADATA}} if fmt == "pdf" else {}
@@ -204,7 +231,20 @@ def save_figure(fig, path: str | os.PathLike[str], *, title: str = "stability fi
 
 
 def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
-    """Write text to ``path`` atomically (temporary file in the same directory + rename)."""
+    """Write text to ``path`` atomically (temporary file in the same directory + rename).
+
+    Parameters
+    ----------
+    path : path-like
+        Output file.
+    text : str
+        Text to write.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     with atomic_path(path) as tmp:
         with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)

@@ -25,7 +25,21 @@ T = TypeVar("T")
 
 
 def should_show(enabled: bool = True, force: bool = False, file: IO[str] | None = None) -> bool:
-    """Whether a bar should be drawn: ``force``, or ``enabled`` and ``file`` (stderr) is a TTY."""
+    """Whether a bar should be drawn: ``force``, or ``enabled`` and ``file`` (stderr) is a TTY.
+
+    Parameters
+    ----------
+    enabled : bool
+        False disables the bar.
+    force : bool
+        Draw even when stderr is not a terminal.
+    file : text stream, optional
+        Where to draw (default ``sys.stderr``).
+
+    Returns
+    -------
+    bool
+    """
     if force:
         return True
     if not enabled:
@@ -71,7 +85,7 @@ class ProgressBar:
         self._closed = False
         if self._show:
             try:
-                from tqdm import tqdm  # type: ignore
+                from tqdm import tqdm
             except ImportError:  # pragma: no cover - depends on the environment
                 tqdm = None
             if tqdm is not None:
@@ -130,7 +144,30 @@ class ProgressBar:
 
 def track(iterable: Iterable[T], total: int | None = None, desc: str = "", *, enabled: bool = True,
           force: bool = False, file: IO[str] | None = None, unit: str = "it") -> Iterator[T]:
-    """Iterate over ``iterable`` with a :class:`ProgressBar`."""
+    """Iterate over ``iterable`` with a :class:`ProgressBar`.
+
+    Parameters
+    ----------
+    iterable : iterable
+        Items to iterate over.
+    total : int, optional
+        Number of items (``len(iterable)`` if omitted).
+    desc : str
+        Label before the bar.
+    enabled : bool
+        False disables the bar.
+    force : bool
+        Draw even when stderr is not a terminal.
+    file : text stream, optional
+        Where to draw (default ``sys.stderr``).
+    unit : str
+        Name of one unit of work.
+
+    Yields
+    ------
+    object
+        The items of ``iterable``.
+    """
     if total is None:
         try:
             total = len(iterable)  # type: ignore[arg-type]

@@ -17,6 +17,20 @@ def chair_geometry(chair, ax=None, *, title: str | None = None):
     """Top view of the chair: main wheels, caster pins and casters (trailing), c.g., dimensions.
 
     x (forward) points up the page, y (to the right) to the right.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     if ax is None:
         fig = Figure(figsize=(6, 7))
@@ -76,7 +90,22 @@ def chair_geometry(chair, ax=None, *, title: str | None = None):
 
 
 def parameter_table(chair, ax=None, *, fontsize: float = 7.5):
-    """The chair's parameters (name, symbol, value, unit, meaning) as a table in ``ax``."""
+    """The chair's parameters (name, symbol, value, unit, meaning) as a table in ``ax``.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    fontsize : float
+        Font size, points.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
     if ax is None:
         fig = Figure(figsize=(6, 8))
         ax = fig.subplots()

@@ -102,6 +102,34 @@ def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 1
     axis).  Both axes are symmetric-log by default (linear within
     ``±linthresh``): the caster modes lie two to three decades further from
     the origin than the yaw modes.
+
+    Parameters
+    ----------
+    locus : stability.rootlocus.SpeedLocus or ParameterLocus
+        The computed locus.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    marks : sequence of float
+        Speeds marked (and labelled where there is room) on every branch, m/s.
+    xlim : tuple of float, optional
+        Real-axis limits, 1/s (automatic if omitted).
+    ylim : tuple of float, optional
+        Imaginary-axis (or y-axis) limits (automatic if omitted).
+    scale : {"symlog", "linear"}
+        Axis scale.
+    linthresh : float
+        Linear range of a symlog axis, 1/s.
+    keep : float
+        Quantile of the eigenvalue magnitudes kept in view on linear axes.
+    colorbar : bool
+        Draw a colour bar.
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     if ax is None:
         fig = Figure(figsize=(7, 5.5))
@@ -141,7 +169,22 @@ def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 1
 
 
 def speed_loci_figure(loci: Sequence, title: str, subtitle: str = "") -> Figure:
-    """Several speed loci on one page (e.g. free/locked x exact/thesis)."""
+    """Several speed loci on one page (e.g. free/locked x exact/thesis).
+
+    Parameters
+    ----------
+    loci : sequence of loci
+        One panel each.
+    title : str
+        Page title.
+    subtitle : str
+        Line(s) under the title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The page.
+    """
     return panels_page(loci, speed_locus, title, subtitle, ncols=2 if len(loci) > 1 else 1)
 
 
@@ -230,6 +273,32 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
 
     The chair's own value is marked with black squares; a categorical
     parameter (the main tire) is drawn as labelled points.
+
+    Parameters
+    ----------
+    locus : stability.rootlocus.SpeedLocus or ParameterLocus
+        The computed locus.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    xlim : tuple of float, optional
+        Real-axis limits, 1/s (automatic if omitted).
+    ylim : tuple of float, optional
+        Imaginary-axis (or y-axis) limits (automatic if omitted).
+    scale : {"symlog", "linear"}
+        Axis scale.
+    linthresh : float
+        Linear range of a symlog axis, 1/s.
+    keep : float
+        Quantile of the eigenvalue magnitudes kept in view on linear axes.
+    colorbar : bool
+        Draw a colour bar.
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     if ax is None:
         fig = Figure(figsize=(6, 5))
@@ -262,7 +331,24 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
 
 
 def parameter_loci_figure(loci: Sequence, title: str, subtitle: str = "", ncols: int = 2) -> Figure:
-    """Several parameter loci on one page."""
+    """Several parameter loci on one page.
+
+    Parameters
+    ----------
+    loci : sequence of loci
+        One panel each.
+    title : str
+        Page title.
+    subtitle : str
+        Line(s) under the title.
+    ncols : int
+        Panels per row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The page.
+    """
     return panels_page(loci, parameter_locus, title, subtitle, ncols)
 
 
@@ -286,7 +372,24 @@ def _growth_rate_panel(loc, ax) -> None:
 
 
 def growth_rate_vs_parameter(loci: Sequence, title: str, subtitle: str = "", ncols: int = 4) -> Figure:
-    """Largest real part (growth rate of the least stable mode) against each parameter."""
+    """Largest real part (growth rate of the least stable mode) against each parameter.
+
+    Parameters
+    ----------
+    loci : sequence of loci
+        One panel each.
+    title : str
+        Page title.
+    subtitle : str
+        Line(s) under the title.
+    ncols : int
+        Panels per row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The page.
+    """
     return panels_page(loci, _growth_rate_panel, title, subtitle, ncols)
 
 
@@ -307,7 +410,9 @@ def gain_locus(locus, ax=None, *, stabilising_poles=None, xlim=None, ylim=None, 
     xlim, ylim : tuple of float, optional
         Axis limits (1/s, rad/s); automatic if omitted.
     scale : {"symlog", "linear"}
-        Axis scale; ``linthresh`` is the linear range of a symlog axis.
+        Axis scale.
+    linthresh : float
+        Linear range of a symlog axis, 1/s.
     keep : float
         Quantile of eigenvalue magnitudes kept in view on linear axes.
     title : str, optional

@@ -28,6 +28,26 @@ def page(title: str, subtitle: str = "", *, nrows: int = 1, ncols: int = 1, size
 
     ``axes`` is a 2-D array (``squeeze=False``).  Leaves room at the top for
     the titles; call ``fig.tight_layout(rect=...)`` via :func:`finish`.
+
+    Parameters
+    ----------
+    title : str
+        Page title (bold, shrunk when long).
+    subtitle : str
+        Line(s) under the title.
+    nrows : int
+        Rows of axes (0 with ``ncols=0``: no axes).
+    ncols : int
+        Panels per row.
+    size : tuple of float
+        Page size, inches.
+    **subplot_kw
+        Passed to :meth:`matplotlib.figure.Figure.subplots`.
+
+    Returns
+    -------
+    tuple
+        (fig, axes): the page and a 2-D array of axes (None without axes).
     """
     fig = Figure(figsize=size)
     fig.suptitle(title, fontsize=13 if len(title) <= 90 else max(9.0, 13 * 90 / len(title)), fontweight="bold",
@@ -45,6 +65,22 @@ def finish(fig: Figure, top: float = 0.90, *, left: float = 0.065, right: float 
 
     Fixed margins by default (``tight_layout`` measures every tick label
     and costs more than drawing the page); ``tight=True`` uses it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The page.
+    top, left, right, bottom : float
+        Figure-fraction margins.
+    wspace, hspace : float, optional
+        Spacing between panels.
+    tight : bool
+        Use ``tight_layout`` instead of fixed margins.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The page.
     """
     if tight:
         fig.tight_layout(rect=(0.0, 0.0, 1.0, top + 0.03))
@@ -87,7 +123,30 @@ def wrap_text(text: str, width: int) -> list[str]:
 
 def text_page(title: str, body: str | Sequence[str], subtitle: str = "", *, size=PAGE_SIZE,
               fontsize: float = 9.5, width: int = 120, monospace: bool = False) -> Figure:
-    """A page of text (paragraphs wrapped to ``width`` characters)."""
+    """A page of text (paragraphs wrapped to ``width`` characters).
+
+    Parameters
+    ----------
+    title : str
+        Page title (bold, shrunk when long).
+    body : str or sequence of str
+        Paragraphs (newline-separated).
+    subtitle : str
+        Line(s) under the title.
+    size : tuple of float
+        Page size, inches.
+    fontsize : float
+        Font size, points.
+    width : int
+        Characters per line.
+    monospace : bool
+        Monospaced font.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The page.
+    """
     fig, _ = page(title, subtitle, nrows=0, ncols=0, size=size)
     if not isinstance(body, str):
         body = "\n".join(body)
@@ -105,7 +164,34 @@ def text_page(title: str, body: str | Sequence[str], subtitle: str = "", *, size
 def table_page(title: str, header: Sequence[str], rows: Sequence[Sequence[str]], subtitle: str = "", *,
                col_widths: Sequence[float] | None = None, notes: str = "", size=PAGE_SIZE,
                fontsize: float = 8.5, wrap: Sequence[int] | None = None) -> Figure:
-    """A page holding one table (cells wrapped to ``wrap[i]`` characters per column) and notes below it."""
+    """A page holding one table (cells wrapped to ``wrap[i]`` characters per column) and notes below it.
+
+    Parameters
+    ----------
+    title : str
+        Page title (bold, shrunk when long).
+    header : sequence of str
+        Column headings.
+    rows : sequence of sequence of str
+        Table cells.
+    subtitle : str
+        Line(s) under the title.
+    col_widths : sequence of float, optional
+        Relative column widths.
+    notes : str
+        Text below the table.
+    size : tuple of float
+        Page size, inches.
+    fontsize : float
+        Font size, points.
+    wrap : sequence of int, optional
+        Characters per line in each column.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The page.
+    """
     fig, axes = page(title, subtitle, size=size)
     ax = axes[0, 0]
     ax.axis("off")
@@ -119,7 +205,30 @@ def table_page(title: str, header: Sequence[str], rows: Sequence[Sequence[str]],
 
 def table_axes(ax, header, rows, *, col_widths=None, fontsize: float = 8.5, wrap=None, top: float = 1.0,
                bottom: float = 0.08):
-    """Draw a table into ``ax`` (axes coordinates), wrapping long cells; returns ``ax``."""
+    """Draw a table into ``ax`` (axes coordinates), wrapping long cells; returns ``ax``.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Where to draw (axis switched off by the caller).
+    header : sequence of str
+        Column headings.
+    rows : sequence of sequence of str
+        Table cells.
+    col_widths : sequence of float, optional
+        Relative column widths.
+    fontsize : float
+        Font size, points.
+    wrap : sequence of int, optional
+        Characters per line in each column.
+    top, bottom : float
+        Vertical extent of the table, axes fraction.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
     ncol = len(header)
     if col_widths is None:
         col_widths = [1.0 / ncol] * ncol
@@ -150,7 +259,26 @@ def table_axes(ax, header, rows, *, col_widths=None, fontsize: float = 8.5, wrap
 
 def panels_page(items: Sequence, draw: Callable[[Any, Any], Any], title: str, subtitle: str = "",
                 ncols: int = 2) -> Figure:
-    """A page with one panel per item, ``ncols`` to a row: ``draw(item, ax)`` fills each, spare panels blank."""
+    """A page with one panel per item, ``ncols`` to a row: ``draw(item, ax)`` fills each, spare panels blank.
+
+    Parameters
+    ----------
+    items : sequence
+        One panel each.
+    draw : callable
+        ``draw(item, ax)`` fills a panel.
+    title : str
+        Page title (bold, shrunk when long).
+    subtitle : str
+        Line(s) under the title.
+    ncols : int
+        Panels per row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The page.
+    """
     n = len(items)
     nrows = int(math.ceil(n / ncols))
     fig, axes = page(title, subtitle, nrows=nrows, ncols=ncols)

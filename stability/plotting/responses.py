@@ -47,6 +47,30 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
     Returns
     -------
     matplotlib.axes.Axes
+
+    Parameters
+    ----------
+    rs : stability.study.ResponseSet
+        The runs.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    reference_time : float, optional
+        The reference case's time to the level (s), drawn as a vertical line.
+    ylim : tuple of float, optional
+        Imaginary-axis (or y-axis) limits (automatic if omitted).
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+    label_chair : bool
+        Put the chair's name in each legend entry.
+    flip : bool, optional
+        Draw -r instead of r (None: chosen so that the first run rises).
+    validity : sequence of Validity, optional
+        One per run (:mod:`stability.report.validity`); curves end there.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     if ax is None:
         fig = Figure(figsize=(7, 5))
@@ -102,6 +126,24 @@ def trajectories(rs, ax=None, *, title: str | None = None, max_lateral: float | 
     Returns
     -------
     matplotlib.axes.Axes
+
+    Parameters
+    ----------
+    rs : stability.study.ResponseSet
+        The runs.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+    max_lateral : float, optional
+        Clip the lateral axis to +-this, m.
+    validity : sequence of Validity, optional
+        One per run (:mod:`stability.report.validity`); curves end there.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     if ax is None:
         fig = Figure(figsize=(7, 5))

@@ -18,6 +18,22 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
     """Horizontal bars: equal-instability speed of several chairs (censored ones hatched), thesis values as markers.
 
     ``thesis`` maps a chair name to a (low, high) speed range of the thesis (m/s).
+
+    Parameters
+    ----------
+    results : sequence of EqualInstability
+        One bar each.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    thesis : dict, optional
+        Chair name -> (low, high) speed range read from the thesis, m/s.
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     if ax is None:
         fig = Figure(figsize=(7, 4))
@@ -57,6 +73,20 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
     """The parametric study: equal-instability speed against each parameter (small multiples).
 
     ``table`` is a :class:`stability.study.SweepTable`.  Returns the axes array.
+
+    Parameters
+    ----------
+    table : stability.study.SweepTable
+        The parametric study.
+    axes : array of matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+
+    Returns
+    -------
+    array of matplotlib.axes.Axes
+        ``axes``.
     """
     sweeps = table.ranked()
     n = len(sweeps)
@@ -111,6 +141,24 @@ def stability_map(smap, ax=None, *, title: str | None = None, nominal: float | N
     The heavy contour is the reference case's time: left of it (slower)
     the chair is more stable than the reference, right of it less.  Runs
     that never reach the level are shown at the simulated duration.
+
+    Parameters
+    ----------
+    smap : stability.study.StabilityMap
+        The map.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (a new figure if omitted).
+    title : str, optional
+        Title (a default naming the chair and the model if omitted).
+    nominal : float, optional
+        The chair's own value of the map's y quantity, drawn as a dotted line.
+    thesis_points : sequence of (float, float, str), optional
+        Points (x, y, label) from the thesis.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     if ax is None:
         fig = Figure(figsize=(7, 5))

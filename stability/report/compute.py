@@ -156,7 +156,49 @@ class Settings:
 
 @dataclass(frozen=True, eq=False)
 class ReportData:
-    """Everything the report shows, computed once (see :func:`compute`)."""
+    """Everything the report shows, computed once (see :func:`compute`).
+
+    Attributes
+    ----------
+    chair : Chair
+    model : {"exact", "thesis"}
+    settings : Settings
+    summary, summary_other : stability.linear.StabilitySummary
+        Linear summaries in the report's model and the other variant.
+    speed_loci : dict
+        (model, casters) -> SpeedLocus.
+    parameter_loci, gain_loci : list
+        Root loci against the design parameters and a yaw-rate feedback gain (0.75 and 1.5 m/s).
+    thesis : stability.study.ThesisStudy
+    chair_sweeps : stability.study.SweepTable
+        The parametric study around this chair.
+    chair_speed : EqualInstability
+        This chair's equal-instability speed.
+    chair_friction : list of EqualInstability
+        At 0.5 and 1.5 times its pin friction.
+    responses, responses_frictionless, paths : stability.study.ResponseSet
+        Yaw-rate responses around the equal-instability speed, without pin friction, and the paths of
+        the chair and its caster-swapped counterpart.
+    friction_map, disturbance_map : stability.study.StabilityMap
+    conclusions : list of ConclusionCheck
+    scheme : str
+    rolling : LinearisationCheck or None
+        The simulator's linearisation with rolling resistance on, at the reference speed.
+    tire_force : tuple of ForceCurves
+        Main and caster tire (Figure 4-1).
+    tire_stiffness : StiffnessCurves or None
+        Figure 4-2 with the chair's static points.
+    gain_poles : tuple
+        Closed-loop eigenvalues at each gain locus's stabilising gain (or None).
+    mode_names : dict
+        (model, casters) -> names of the speed locus's branches.
+    validity : dict
+        "responses", "frictionless", "paths" -> tuple of Validity, one per run.
+    intervals : Intervals or None
+    impulses : tuple of CriticalImpulse
+        The chair and the reference (or revised) chair at the reference speed.
+    figure_8_14 : Figure814 or None
+    """
 
     chair: Chair
     model: str

@@ -23,7 +23,14 @@ __all__ = ["Page", "ReportResult", "figure_texts", "pages", "build"]
 
 @dataclass
 class Page:
-    """One page: its title, the figure (until written) and all its text (for tests and the text dump)."""
+    """One page: its title and all its text (for tests and the text dump).
+
+    Attributes
+    ----------
+    title : str
+    texts : list of str
+        Every text drawn on the page.
+    """
 
     title: str
     texts: list = field(default_factory=list)
@@ -31,7 +38,16 @@ class Page:
 
 @dataclass
 class ReportResult:
-    """A written report: its path, its pages (titles and texts), the data drawn, the time taken (s)."""
+    """A written report.
+
+    Attributes
+    ----------
+    path : pathlib.Path or None
+    pages : list of Page
+    data : ReportData
+    seconds : float
+        Time taken, s.
+    """
 
     path: Path | None
     pages: list

@@ -213,6 +213,16 @@ def conclusion_rows(d: ReportData) -> list[list[str]]:
     the exponent of speed ~ friction^p over x0.5 / x1 / x1.5 friction:
     agree when p is within ``PROPORTIONAL``, partly when the speed rises but p
     is outside it, disagree otherwise.
+
+    Parameters
+    ----------
+    d : ReportData
+        The report's data.
+
+    Returns
+    -------
+    list of list of str
+        One row per conclusion.
     """
     rows = []
     sp = d.thesis.speeds

@@ -20,7 +20,19 @@ __all__ = ["Change", "best_changes", "dropped_pages", "model_gap", "push_text", 
 
 @dataclass(frozen=True)
 class Change:
-    """One parameter change from the parametric study and its effect on the equal-instability speed."""
+    """One parameter change from the parametric study and its effect on the equal-instability speed.
+
+    Attributes
+    ----------
+    label : str
+        The parameter.
+    value, current : str
+        The value tried and the chair's own, with units.
+    speed : str
+        The equal-instability speed with that value.
+    percent : float
+        Change against the chair's own speed, %.
+    """
 
     label: str
     value: str
@@ -30,12 +42,32 @@ class Change:
 
 
 def push_text(d: ReportData) -> str:
-    """The push convention in words, e.g. ``"40 N for 0.1 s (101 steps of 1 ms, 4.04 N s)"``."""
+    """The push convention in words, e.g. ``"40 N for 0.1 s (101 steps of 1 ms, 4.04 N s)"``.
+
+    Parameters
+    ----------
+    d : ReportData
+        The report's data.
+
+    Returns
+    -------
+    str
+    """
     return THESIS_PUSH.describe(d.settings.dt if d.scheme == "wchair" else None)
 
 
 def model_gap(d: ReportData) -> str:
-    """The thesis-versus-exact gap at the reference speed for this chair, with its cause, in one sentence."""
+    """The thesis-versus-exact gap at the reference speed for this chair, with its cause, in one sentence.
+
+    Parameters
+    ----------
+    d : ReportData
+        The report's data.
+
+    Returns
+    -------
+    str
+    """
     rates = {}
     for s in (d.summary, d.summary_other):
         row = next((r for r in s.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
@@ -84,7 +116,18 @@ def best_changes(d: ReportData, n: int = 3) -> list[Change]:
 
 
 def dropped_pages(d: ReportData) -> dict[str, str]:
-    """Pages that carry no information for this chair: page title -> the sentence saying why."""
+    """Pages that carry no information for this chair: page title -> the sentence saying why.
+
+    Parameters
+    ----------
+    d : ReportData
+        The report's data.
+
+    Returns
+    -------
+    dict
+        Page title -> the sentence saying why it is left out.
+    """
     out = {}
     sweeps = d.chair_sweeps
     if d.chair_speed.status != "found" and all(r.status != "found" for sw in sweeps.sweeps for r in sw.results):
@@ -103,6 +146,15 @@ def steady_turns(d: ReportData) -> list[tuple[float, float, float]]:
     """Runs that never reach the level but keep turning: (speed m/s, final |yaw rate| rad/s, heading change deg).
 
     The final yaw rate is the mean of the last second; only runs valid to the end are used.
+
+    Parameters
+    ----------
+    d : ReportData
+        The report's data.
+
+    Returns
+    -------
+    list of (float, float, float)
     """
     out = []
     valid = d.validity.get("responses", ())
@@ -158,7 +210,17 @@ def _verdict(d: ReportData) -> str:
 
 
 def summary_text(d: ReportData) -> str:
-    """The text of the summary page (paragraphs separated by blank lines)."""
+    """The text of the summary page (paragraphs separated by blank lines).
+
+    Parameters
+    ----------
+    d : ReportData
+        The report's data.
+
+    Returns
+    -------
+    str
+    """
     c, s = d.chair, d.summary
     out = [f"Chair: {c.name}, {c.caster_position} casters; s1 = {c.s1:g} m, s2 = {c.s2:g} m, trail {c.trail:g} m, "
            f"mass {c.m:g} kg, yaw inertia {c.i_z:g} kg m^2, pin friction {c.pin_friction_left:g}/"

@@ -24,7 +24,25 @@ TIRE_LOADS = (75.0, 150.0, 225.0, 300.0, 375.0, 450.0)
 
 @dataclass(frozen=True, eq=False)
 class ForceCurves:
-    """Cornering force against slip angle of one tire at several constant loads (Figure 4-1)."""
+    """Cornering force against slip angle of one tire at several constant loads (Figure 4-1).
+
+    Attributes
+    ----------
+    tire, role : str
+    slip_deg : ndarray
+        Slip angles, deg.
+    loads : tuple of float
+        N.
+    force : ndarray
+        N, one row per load (positive).
+    slip_points, force_points : ndarray
+        The integer slip angles (deg) where the fits are defined and the forces there (N).
+    mark_load : float or None
+        The chair's static load on this tire, N.
+    mark_force : ndarray or None
+        The chair's tire (with its lateral scale) at that load, N.
+    lateral_scale : float
+    """
 
     tire: str
     role: str
@@ -40,7 +58,17 @@ class ForceCurves:
 
 @dataclass(frozen=True)
 class StaticPoint:
-    """One tire of the chair at its static load: role, load (N), stiffness (N/deg, scaled), lateral scale."""
+    """One tire of the chair at its static load.
+
+    Attributes
+    ----------
+    role : str
+    load : float
+        N.
+    stiffness : float
+        N/deg, with the chair's lateral scale.
+    lateral_scale : float
+    """
 
     role: str
     load: float
@@ -50,7 +78,23 @@ class StaticPoint:
 
 @dataclass(frozen=True, eq=False)
 class StiffnessCurves:
-    """Cornering stiffness against normal force of every tire (Figure 4-2), the chair's tires marked."""
+    """Cornering stiffness against normal force of every tire (Figure 4-2), the chair's tires marked.
+
+    Attributes
+    ----------
+    names, main_names : tuple of str
+        Every tire; the main-wheel tires.
+    fz : ndarray
+        N.
+    stiffness : ndarray
+        N/deg, one row per tire (unscaled fits).
+    table_fz : tuple of float
+        Table 4-1 loads, N.
+    table : dict
+        Name -> Table 4-1 stiffnesses, N/deg.
+    highlight : dict
+        Name -> StaticPoint.
+    """
 
     names: tuple
     main_names: tuple
