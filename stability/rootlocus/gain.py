@@ -51,7 +51,27 @@ class GainLocus:
 
 def closed_loop_matrices(chair: Chair, speed: float, gains, *, model: str = "exact",
                          casters: str = "free") -> np.ndarray:
-    """Closed-loop state matrices ``A - K B C_r`` for many gains (N, n, n)."""
+    """Closed-loop state matrices ``A - K B C_r`` of yaw-rate feedback ``Mz = -K r``, one per gain.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    speed : float
+        Forward speed U, m/s (> 0).
+    gains : float or array_like
+        Feedback gains K, N m s/rad.
+    model : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    casters : {"free", "locked"}, optional
+        Caster state (default ``"free"``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (N, n, n) for N gains: ``A - K B C_r`` with B the yaw-moment input
+        column and C_r the row selecting the yaw rate r (state 1).
+    """
     A = state_matrices(chair, speed, model, casters)[0]
     B = input_matrices(chair, speed, model, casters)[0]
     C = np.zeros((1, A.shape[0]))
@@ -87,9 +107,33 @@ def gain_locus(chair: Chair, speed: float = 0.75, gains=None, *, model: str = "e
 
     Parameters
     ----------
+    chair : Chair
+        The chair (open-loop plant).
+    speed : float, optional
+        Forward speed U, m/s (> 0); default 0.75 m/s.
     gains : array_like, optional
         Gains K >= 0 (N m s/rad), increasing; default 0 and ``n`` values
         geometrically spaced from 0.1 to ``max_gain``.
+    model : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    casters : {"free", "locked"}, optional
+        Caster state (default ``"free"``).
+    max_gain : float, optional
+        Largest default gain, N m s/rad (default 300); ignored when ``gains`` is given.
+    n : int, optional
+        Number of geometrically spaced default gains (default 400); ignored when ``gains`` is given.
+
+    Returns
+    -------
+    GainLocus
+        Gains, tracked closed-loop poles (1/s), open-loop poles and zeros, and
+        the smallest stabilising gain (N m s/rad) when there is one.
+
+    Raises
+    ------
+    ValueError
+        If ``gains`` is not an increasing 1-D array of values >= 0, or the
+        speed, model or caster state is invalid.
     """
     import control
 

@@ -114,13 +114,33 @@ def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float =
     Parameters
     ----------
     chair : Chair
+        The base chair.
     parameter : str
-        A key of :data:`DESIGN_PARAMETERS` (see :func:`parameter_names`).
+        A key of :data:`DESIGN_PARAMETERS` (see :func:`parameter_names`);
+        not ``"pin_friction"`` (Coulomb friction has no linearisation).
     values : array_like, optional
-        Values to evaluate, in the order to track; default: ``n`` values
-        over the parameter's span plus the chair's own value.
+        Values to evaluate, in the parameter's unit and in the order to track;
+        default: ``n`` values over the parameter's span plus the chair's own value.
     speed : float
-        Forward speed (m/s), default the thesis's reference 0.75 m/s.
+        Forward speed (m/s, > 0), default the thesis's reference 0.75 m/s.
+    model : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    casters : {"free", "locked"}, optional
+        Caster state (default ``"free"``).
+    n : int, optional
+        Number of default values over the span (default 121); ignored when ``values`` is given.
+
+    Returns
+    -------
+    ParameterLocus
+        The values, the eigenvalues at each (1/s), the chairs built and, for the
+        main tire, the tire names.
+
+    Raises
+    ------
+    ValueError
+        If the parameter is unknown or ``"pin_friction"``, a value makes an
+        invalid chair, or the speed, model or caster state is invalid.
     """
     check_model(model)
     check_casters(casters)
@@ -144,5 +164,27 @@ def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float =
 
 def parameter_loci(chair: Chair, parameters: Sequence[str] = LOCUS_PARAMETERS, *, speed: float = 0.75,
                    model: str = "exact", casters: str = "free", n: int = 121) -> list[ParameterLocus]:
-    """:func:`parameter_locus` for several parameters."""
+    """:func:`parameter_locus` for several parameters.
+
+    Parameters
+    ----------
+    chair : Chair
+        The base chair.
+    parameters : sequence of str, optional
+        Keys of :data:`DESIGN_PARAMETERS`; default :data:`LOCUS_PARAMETERS`
+        (those of Figures 8-9 to 8-15 with a linear effect).
+    speed : float, optional
+        Forward speed (m/s, > 0), default 0.75 m/s.
+    model : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    casters : {"free", "locked"}, optional
+        Caster state (default ``"free"``).
+    n : int, optional
+        Number of values over each parameter's span (default 121).
+
+    Returns
+    -------
+    list of ParameterLocus
+        One locus per parameter, in the order given.
+    """
     return [parameter_locus(chair, p, speed=speed, model=model, casters=casters, n=n) for p in parameters]

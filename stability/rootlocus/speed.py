@@ -15,7 +15,18 @@ __all__ = ["SpeedLocus", "speed_locus", "readonly"]
 
 
 def readonly(a) -> np.ndarray:
-    """A read-only copy of ``a`` (result arrays are immutable)."""
+    """A read-only copy of ``a`` (result arrays are immutable).
+
+    Parameters
+    ----------
+    a : array_like
+        Values to copy.
+
+    Returns
+    -------
+    numpy.ndarray
+        A new array with ``writeable`` False.
+    """
     a = np.array(a)
     a.setflags(write=False)
     return a
@@ -87,10 +98,29 @@ def speed_locus(chair: Chair, speeds=None, *, model: str = "exact", casters: str
     Parameters
     ----------
     chair : Chair
+        The chair.
     speeds : array_like, optional
-        Increasing speeds (m/s); default ``geomspace(0.05, max_speed, n)``.
-    model, casters : str
-        Model variant and caster state.
+        Increasing speeds (m/s, > 0, at least 2); default ``geomspace(0.05, max_speed, n)``.
+    model : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+    casters : {"free", "locked"}, optional
+        Caster state (default ``"free"``).
+    max_speed : float, optional
+        Upper end of the default speeds, m/s (> 0.05, default 15); ignored when ``speeds`` is given.
+    n : int, optional
+        Number of default speeds (default 600); ignored when ``speeds`` is given.
+
+    Returns
+    -------
+    SpeedLocus
+        Speeds (m/s), tracked eigenvalues at each (1/s), the speeds where the
+        largest real part crosses zero, and the state names.
+
+    Raises
+    ------
+    ValueError
+        If ``speeds`` is not increasing and positive, ``max_speed`` <= 0.05, or
+        the model or caster state is invalid.
     """
     check_model(model)
     check_casters(casters)
