@@ -59,6 +59,12 @@ class CasterCompliance:
         2000, "Wheelchair caster shimmy II: Damping") stress that frame and
         fork compliance and tire flexibility govern caster shimmy; they give
         no value for this chair.
+    relaxation_length_range : tuple of float
+        ``(low, high)`` plausible relaxation lengths (m), default (0.01, 0.04):
+        the range a design conclusion must be stated over.
+    lateral_stiffness_range : tuple of float
+        ``(low, high)`` plausible lateral stiffnesses at the pin (N/m),
+        default (2e4, 2e5).
     """
 
     relaxation_length: float = 0.02
@@ -88,6 +94,27 @@ def caster_wheel(chair: Chair, compliance: CasterCompliance | None = None, side:
     behind the pin, contact ``trail - l1`` behind the c.g.; cornering
     stiffness of the caster tire at its static load; the chair's viscous
     ``pin_damping`` and the side's Coulomb pin friction.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair (trail > 0 m, m_c > 0 kg, i_zp > m_c l1^2 kg m^2).
+    compliance : CasterCompliance or None, optional
+        Relaxation length (m) and pin lateral stiffness (N/m); default the
+        estimates of :class:`CasterCompliance`.
+    side : {"A", "B"}, optional
+        Left (``"A"``, default) or right (``"B"``) caster: selects the static
+        cornering stiffness and the pin friction.
+
+    Returns
+    -------
+    TowedWheel
+        The caster as a towed wheel pivoting at its pin.
+
+    Raises
+    ------
+    ValueError
+        If ``side`` is invalid, trail <= 0 or i_zp <= m_c l1^2.
     """
     comp = compliance or CasterCompliance()
     if side not in ("A", "B"):
@@ -118,13 +145,28 @@ def _trail_grid(chair: Chair) -> np.ndarray:
 
 
 def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | None = None) -> float:
-    """Largest trail (m) at which the caster's shimmy pair crosses (linear model, viscous damping only).
+    """Largest trail at which the caster's shimmy pair crosses (linear model, viscous damping only).
 
     Below it the caster shimmies; ``0`` if the caster is stable at every
     trail on 1 mm-0.2 m, ``inf`` if it is unstable at 0.2 m (soft pivots:
     the shimmy mode of the pivot spring, unstable whenever I > m a b, see
     docs/shimmy.md).  With zero pin damping the result does not depend on
     speed.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair; its trail is varied, everything else kept.
+    speed : float
+        Forward speed, m/s (> 0).
+    compliance : CasterCompliance or None, optional
+        Caster compliance; default :class:`CasterCompliance` estimates.
+
+    Returns
+    -------
+    float
+        Critical trail, m (0 or ``inf`` as above), from the sign change of the
+        second-last Hurwitz determinant.
     """
     def margin(trail: float) -> float:
         w = caster_wheel(chair.replace(trail=trail), compliance)
@@ -140,12 +182,28 @@ def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | No
 
 def friction_trail(chair: Chair, speed: float, amplitude: float, compliance: CasterCompliance | None = None
                    ) -> float:
-    """Largest trail (m) below which the chair's pin friction cannot hold shimmy of ``amplitude`` (rad).
+    """Largest trail below which the chair's pin friction cannot hold shimmy of ``amplitude``.
 
     The describing-function estimate: the trail where the friction needed
     (:func:`stability.shimmy.describing.suppressing_friction`) equals the
     pin's own Coulomb friction.  ``0`` if the friction suffices at every
     trail on 1 mm-0.2 m, ``inf`` if it suffices at none.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair; its trail is varied, the left pin friction (N m) used.
+    speed : float
+        Forward speed, m/s (> 0).
+    amplitude : float
+        Shimmy amplitude of the caster angle, rad (> 0).
+    compliance : CasterCompliance or None, optional
+        Caster compliance; default :class:`CasterCompliance` estimates.
+
+    Returns
+    -------
+    float
+        Friction trail, m (0 or ``inf`` as above).
     """
     def excess(trail: float) -> float:
         w = caster_wheel(chair.replace(trail=trail), compliance)
@@ -206,7 +264,28 @@ class TrailChart:
 
 def trail_chart(chair: Chair, trails, speeds, compliance: CasterCompliance | None = None,
                 amplitude: float = math.radians(5.0)) -> TrailChart:
-    """Yaw divergence rate and caster shimmy over trail x speed (see :class:`TrailChart`)."""
+    """Yaw divergence rate and caster shimmy over trail x speed (see :class:`TrailChart`).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair; its trail is replaced by each grid value.
+    trails : array_like
+        Trails, m (> 0).
+    speeds : array_like
+        Forward speeds, m/s (> 0).
+    compliance : CasterCompliance or None, optional
+        Caster compliance; default :class:`CasterCompliance` estimates.
+    amplitude : float, optional
+        Shimmy amplitude of the friction estimate, rad (default 5 deg).
+
+    Returns
+    -------
+    TrailChart
+        Divergence rate (1/s) and friction needed (N m) on the grid, critical
+        and friction trails per speed (m), with the critical trail's range over
+        the compliance range corners.
+    """
     from ..linear import eigenvalues_vs_speed
 
     comp = compliance or CasterCompliance()
@@ -300,7 +379,26 @@ class CasterSummary:
 
 def caster_summary(chair: Chair, speeds, compliance: CasterCompliance | None = None,
                    amplitude: float = math.radians(5.0)) -> CasterSummary:
-    """Shimmy summary of ``chair``'s left caster at ``speeds`` (see :class:`CasterSummary`)."""
+    """Shimmy summary of ``chair``'s left caster at ``speeds`` (see :class:`CasterSummary`).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    speeds : array_like
+        Forward speeds, m/s (> 0).
+    compliance : CasterCompliance or None, optional
+        Caster compliance; default :class:`CasterCompliance` estimates.
+    amplitude : float, optional
+        Shimmy amplitude of the friction estimate, rad (default 5 deg).
+
+    Returns
+    -------
+    CasterSummary
+        Stability, shimmy frequency (Hz) and growth rate (1/s), critical trail
+        (m) with its range over the compliance corners, friction needed (N m)
+        and friction trail (m) at each speed.
+    """
     comp = compliance or CasterCompliance()
     U = np.asarray(speeds, dtype=float)
     w = caster_wheel(chair, comp)
