@@ -24,22 +24,54 @@ __all__ = ["equivalent_damping", "critical_damping", "FrictionEstimate", "suppre
 
 
 def equivalent_damping(friction: float, amplitude: float, frequency: float) -> float:
-    """Viscous damping (N m s/rad) equivalent to Coulomb ``friction`` (N m).
+    """Viscous pin damping equivalent to Coulomb pin friction (describing function).
 
-    At caster-angle ``amplitude`` (rad) and ``frequency`` (rad/s):
+    At caster-angle amplitude A and frequency w, the first harmonic of
+    ``M_f sign(psi_dot)`` dissipates as much energy per cycle as a viscous
+    damper ``c_eq = 4 M_f / (pi A w)``.
 
-    ``c_eq = 4 M_f / (pi A w)``.
+    Parameters
+    ----------
+    friction : float
+        Coulomb pin friction moment M_f, N m (>= 0).
+    amplitude : float
+        Caster-angle amplitude A, rad (> 0).
+    frequency : float
+        Shimmy angular frequency w, rad/s (> 0).
+
+    Returns
+    -------
+    float
+        Equivalent viscous damping c_eq, N m s/rad.
     """
     return 4.0 * friction / (math.pi * amplitude * frequency)
 
 
 def critical_damping(wheel: TowedWheel, speed: float, c_max: float = 100.0, n_grid: int = 200
                      ) -> tuple[float, float]:
-    """Pin damping (N m s/rad) above which the wheel is stable at ``speed``, and the shimmy frequency there.
+    """Pin damping above which the wheel is stable at ``speed``, and the shimmy frequency there.
 
     ``(0, nan)`` if the wheel is stable without pin damping; ``(inf, nan)``
     if no damping up to ``c_max`` stabilises it (e.g. a real divergence).
     Only ``pin_damping`` is swept; the wheel's own ``pin_damping`` is ignored.
+
+    Parameters
+    ----------
+    wheel : TowedWheel
+        The towed wheel (caster).
+    speed : float
+        Forward speed, m/s (> 0).
+    c_max : float, optional
+        Largest pin damping searched, N m s/rad (default 100).
+    n_grid : int, optional
+        Number of geometrically spaced damping values from 1e-6 to ``c_max``
+        (default 200); Hopf crossings between them are refined.
+
+    Returns
+    -------
+    tuple of (float, float)
+        Critical pin damping (N m s/rad) and the frequency of the crossing pair
+        there (rad/s).
     """
     w0 = wheel.replace(pin_damping=0.0)
     if w0.routh_hurwitz(speed).stable:
@@ -80,7 +112,33 @@ class FrictionEstimate:
 
 
 def suppressing_friction(wheel: TowedWheel, speed: float, amplitude: float) -> FrictionEstimate:
-    """Coulomb pin friction that suppresses shimmy up to ``amplitude`` (rad) at ``speed`` (m/s)."""
+    """Coulomb pin friction that suppresses shimmy up to ``amplitude`` at ``speed`` (describing function).
+
+    The friction whose equivalent damping (:func:`equivalent_damping`) makes
+    up the gap between the critical damping and the wheel's own viscous pin
+    damping: ``M_f = pi A w (c_crit - c) / 4``.
+
+    Parameters
+    ----------
+    wheel : TowedWheel
+        The towed wheel (caster), with its viscous ``pin_damping`` (N m s/rad).
+    speed : float
+        Forward speed, m/s (> 0).
+    amplitude : float
+        Caster-angle amplitude A, rad (finite, > 0).
+
+    Returns
+    -------
+    FrictionEstimate
+        Speed (m/s), amplitude (rad), critical damping (N m s/rad), shimmy
+        frequency (rad/s) and the friction needed (N m; 0 if already stable,
+        ``inf`` if no damping stabilises).
+
+    Raises
+    ------
+    ValueError
+        If ``amplitude`` is not finite and > 0.
+    """
     if not (amplitude > 0 and math.isfinite(amplitude)):
         raise ValueError(f"amplitude={amplitude!r} is invalid; valid range: > 0 rad (finite)")
     c_crit, w = critical_damping(wheel, speed)
@@ -141,6 +199,32 @@ def simulate(wheel: TowedWheel, speed: float, x0: np.ndarray, t_end: float, *,
     (``T = T_s``) until ``|T_s| = M_f`` (event); otherwise it slips on in
     the direction of ``(A x)_i``.  Each segment is linear; solve_ivp (DOP853)
     integrates it with located events.
+
+    Parameters
+    ----------
+    wheel : TowedWheel
+        The towed wheel; its ``pin_friction`` is M_f (N m). Needs a compliant
+        pivot or a compliant tire (a ``psi_dot`` state).
+    speed : float
+        Forward speed, m/s (> 0).
+    x0 : numpy.ndarray
+        Initial state, ordered as ``wheel.states`` (SI units, angles in rad).
+    t_end : float
+        End time, s (> 0).
+    rtol, atol : float, optional
+        solve_ivp tolerances (default 1e-9, 1e-12).
+    max_events : int, optional
+        Largest number of stick/slip segments integrated (default 100000).
+
+    Returns
+    -------
+    Simulation
+        Times (s), states and where the pin is stuck.
+
+    Raises
+    ------
+    ValueError
+        If the wheel has no ``psi_dot`` state on which pin friction acts.
     """
     A, B = wheel.state_matrix(speed)
     i = wheel.states.index("psi_dot") if "psi_dot" in wheel.states else None
@@ -206,10 +290,35 @@ def _grows(wheel: TowedWheel, speed: float, amplitude: float, cycles: float) -> 
 
 def simulated_threshold(wheel: TowedWheel, speed: float, low: float, high: float, *,
                         cycles: float = 12.0, iterations: int = 8) -> tuple[float, float]:
-    """Bracket ``(lo, hi)`` (rad) of the initial shimmy amplitude above which simulated shimmy grows.
+    """Bracket ``(lo, hi)`` of the initial shimmy amplitude above which simulated shimmy grows.
 
-    Bisection between ``low`` (must decay) and ``high`` (must grow) on the
-    caster-angle peak of the last of ``cycles`` cycles.
+    Bisection (geometric) between ``low`` (must decay) and ``high`` (must
+    grow) on the caster-angle peak of the last of ``cycles`` cycles, each run
+    started in the shimmy mode with :func:`simulate`.  Checks the describing-
+    function estimate of :func:`suppressing_friction`.
+
+    Parameters
+    ----------
+    wheel : TowedWheel
+        The towed wheel with its Coulomb ``pin_friction`` (N m).
+    speed : float
+        Forward speed, m/s (> 0).
+    low, high : float
+        Initial caster-angle amplitudes, rad, that bracket the threshold.
+    cycles : float, optional
+        Simulated shimmy cycles per run (default 12).
+    iterations : int, optional
+        Bisection steps (default 8).
+
+    Returns
+    -------
+    tuple of (float, float)
+        ``(lo, hi)``, rad: shimmy started at ``lo`` decays, at ``hi`` grows.
+
+    Raises
+    ------
+    ValueError
+        If ``low`` and ``high`` do not bracket the threshold.
     """
     if _grows(wheel, speed, low, cycles) or not _grows(wheel, speed, high, cycles):
         raise ValueError(f"amplitudes low={low!r}, high={high!r} rad do not bracket the threshold")

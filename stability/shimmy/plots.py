@@ -15,7 +15,20 @@ _BLACK, _ORANGE, _BLUE, _VERMILION = "#000000", "#E69F00", "#0072B2", "#D55E00"
 
 
 def plot_trail_chart(chart: TrailChart, ax):
-    """Yaw divergence rate (filled contours) with the caster shimmy boundaries over speed x trail."""
+    """Yaw divergence rate (filled contours) with the caster shimmy boundaries over speed x trail.
+
+    Parameters
+    ----------
+    chart : TrailChart
+        The computed chart (:func:`stability.shimmy.chair.trail_chart`).
+    ax : matplotlib.axes.Axes
+        Axes to draw on (speed in m/s across, trail in cm up); a colour bar is added to its figure.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
     U, T = chart.speeds, chart.trails * 100
     cs = ax.contourf(U, T, chart.divergence_rate, levels=12, cmap="cividis")
     ax.figure.colorbar(cs, ax=ax, label="yaw divergence rate, max Re(eigenvalue) (1/s)")
@@ -41,7 +54,22 @@ def plot_trail_chart(chart: TrailChart, ax):
 
 
 def plot_friction_needed(chart: TrailChart, ax, trails_cm=None):
-    """Pin friction (N m) that suppresses shimmy of the chart's amplitude, against speed, for a few trails."""
+    """Pin friction that suppresses shimmy of the chart's amplitude, against speed, for a few trails.
+
+    Parameters
+    ----------
+    chart : TrailChart
+        The computed chart (:func:`stability.shimmy.chair.trail_chart`).
+    ax : matplotlib.axes.Axes
+        Axes to draw on (speed in m/s across, friction in N m up).
+    trails_cm : sequence of float or None, optional
+        Trails to draw, cm (the nearest grid trail each); default every trail of the chart.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
     idx = range(chart.trails.size) if trails_cm is None else [int(np.argmin(np.abs(chart.trails * 100 - t)))
                                                                for t in trails_cm]
     colours = [_BLUE, _ORANGE, _VERMILION, _BLACK, "#009E73", "#CC79A7", "#56B4E9"]
