@@ -40,11 +40,21 @@ def _real(name: str, value: Any, *, allow_inf: bool = False) -> float:
 def hurwitz_determinants(coeffs: Any) -> np.ndarray:
     """Leading principal minors Delta_1..Delta_n of the Hurwitz matrix.
 
-    ``coeffs`` holds ``a_0 s^n + a_1 s^(n-1) + ... + a_n`` (highest first,
-    ``a_0 > 0``), shape (..., n + 1).  The polynomial is Hurwitz (every root
-    in the open left half-plane) iff every ``Delta_i > 0`` (Routh-Hurwitz).
-    ``Delta_(n-1)`` vanishes exactly where a pair of roots sums to zero
-    (Orlando's formula), i.e. at a Hopf crossing ``+-i w``.
+    The polynomial is Hurwitz (every root in the open left half-plane) iff
+    every ``Delta_i > 0`` (Routh-Hurwitz).  ``Delta_(n-1)`` vanishes exactly
+    where a pair of roots sums to zero (Orlando's formula), i.e. at a Hopf
+    crossing ``+-i w``.
+
+    Parameters
+    ----------
+    coeffs : array_like
+        Coefficients of ``a_0 s^n + a_1 s^(n-1) + ... + a_n``, highest power
+        first, ``a_0 > 0``; shape (..., n + 1) for a batch of polynomials.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (..., n): ``Delta_1 .. Delta_n`` (in the units of the coefficient products).
     """
     a = np.asarray(coeffs, dtype=float)
     n = a.shape[-1] - 1
@@ -111,8 +121,10 @@ class HopfBoundary:
 class TowedWheel:
     """A wheel and fork towed at constant speed by a pivot on a lateral spring.
 
-    Parameters (keywords, SI units)
-    -------------------------------
+    Constructed with keywords, SI units.
+
+    Attributes
+    ----------
     mass : float
         Wheel-and-fork mass m (kg), > 0.
     inertia : float
@@ -125,6 +137,7 @@ class TowedWheel:
     lateral_stiffness : float
         Pivot's lateral spring k (N/m), > 0; ``math.inf`` for a rigid pivot.
     cornering_stiffness, relaxation_length : float or None
+        Cornering stiffness C_alpha (N/rad) and relaxation length sigma (m).
         Both None (default): rigid tire, no side slip (non-holonomic).  Both
         > 0: first-order relaxation ``sigma/U alpha_dot + alpha = slip``,
         lateral force ``C_alpha alpha`` (Pacejka 2006, sec. 5.3 and ch. 7).
