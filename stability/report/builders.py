@@ -199,7 +199,7 @@ def _p_equal(d: ReportData) -> Figure:
         lo, hi = iv.span()
         txt.insert(3, f"How firm: {iv.chair.name} {iv.nominal.describe()}, range {lo:.3g}-{hi:.3g} m/s over push "
                    f"x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, pin friction x0.5-x1.5 and the other model variant; "
-                   f"{iv.widest()} moves it most.")
+                   f"moves it most: {iv.widest()}.")
     y = 0.99
     for para in txt:
         for line in P.wrap_text(para, 60):

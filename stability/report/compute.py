@@ -13,14 +13,15 @@ from ..chair import Chair, preset
 from ..linear import analyse, divergence, massless_caster_rate
 from ..progress import ProgressBar
 from ..reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from ..statics import static_stiffness
 from ..study.impulse import critical_impulses
 from ..validation import linearisation_check, with_rolling_resistance
 from .modes import mode_names
 from .tire_data import ForceCurves, StiffnessCurves, force_curves, stiffness_curves
 from .validity import responses_validity
 
-__all__ = ["Settings", "ReportData", "Intervals", "Figure814", "compute", "counterpart", "response_speeds",
-           "stabilising_poles", "FIGURE_8_14", "PUSH_RANGE", "COMPARISON_CHAIR"]
+__all__ = ["Settings", "ReportData", "Intervals", "Figure814", "compute", "parameter_loci", "counterpart",
+           "response_speeds", "stabilising_poles", "FIGURE_8_14", "PUSH_RANGE", "COMPARISON_CHAIR"]
 
 #: Figure 8-14 of the thesis: the E&J Premier with less mass and yaw inertia (kg, kg m^2).
 FIGURE_8_14 = {"m": 75.0, "i_z": 4.7}
@@ -64,7 +65,9 @@ class Intervals:
         return min(v), max(v)
 
     def widest(self) -> str:
-        """Which of "disturbance", "pin friction", "model variant" moves the speed most."""
+        """Which of "disturbance", "pin friction", "model variant" moves the speed most ("none" if all are bounds)."""
+        if all(r.status != "found" for r in self.all()):
+            return "none (every rating is a bound)"
         u0 = self.nominal.value_or_bound
         moves = {"disturbance": max(abs(r.value_or_bound - u0) for r in self.push),
                  "pin friction": max(abs(r.value_or_bound - u0) for r in self.friction),
@@ -282,6 +285,43 @@ def stabilising_poles(locus: Any) -> np.ndarray | None:
     return np.linalg.eigvals(a)
 
 
+def _valid_chair(p: Any, c: Chair, v: float) -> bool:
+    try:
+        static_stiffness(p.apply(c, float(v)))
+    except ValueError:
+        return False
+    return True
+
+
+def parameter_loci(c: Chair, model: str, n: int) -> list:
+    """Root loci against the design parameters at the reference speed, over each parameter's default span.
+
+    Where the default span reaches chairs that cannot stand (a static load <= 0, e.g. the c.g. ratio of a
+    front-caster chair), the locus is drawn over the values that give valid chairs only.
+
+    Parameters
+    ----------
+    c : Chair
+    model : {"exact", "thesis"}
+    n : int
+        Points per locus.
+
+    Returns
+    -------
+    list of stability.rootlocus.ParameterLocus
+    """
+    out = []
+    for name in rootlocus.LOCUS_PARAMETERS:
+        try:
+            out.append(rootlocus.parameter_locus(c, name, speed=REFERENCE_SPEED, model=model, n=n))
+        except ValueError:
+            p = rootlocus.get_parameter(name)
+            lo, hi = p.span(c)
+            vals = [v for v in np.linspace(lo, hi, n) if _valid_chair(p, c, v)]
+            out.append(rootlocus.parameter_locus(c, name, vals, speed=REFERENCE_SPEED, model=model, n=n))
+    return out
+
+
 def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bool = True,
             scheme: str = "wchair", settings: Settings | None = None,
             log: Callable[[str], None] | None = None) -> ReportData:
@@ -335,7 +375,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                 loci[(m, cs)] = rootlocus.speed_locus(c, model=m, casters=cs, n=s.speed_points)
         names = {k: mode_names(v) for k, v in loci.items()}
         stage("speed loci")
-        plocs = rootlocus.parameter_loci(c, speed=REFERENCE_SPEED, model=model, n=s.locus_points)
+        plocs = parameter_loci(c, model, s.locus_points)
         glocs = [rootlocus.gain_locus(c, u, model=model, n=s.gain_points) for u in (REFERENCE_SPEED, 1.5)]
         gain_poles = tuple(stabilising_poles(g) for g in glocs)
         stage("parameter and gain loci")

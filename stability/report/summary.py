@@ -75,7 +75,7 @@ def model_gap(d: ReportData) -> str:
             rates[s.model] = row["rate_1_s"]
     gap = ""
     if len(rates) == 2 and rates["thesis"] != 0:
-        gap = (f" For this chair at {REFERENCE_SPEED:g} m/s the least stable mode grows at {rates['exact']:.3g} 1/s "
+        gap = (f" For this chair at {REFERENCE_SPEED:g} m/s the largest real part is {rates['exact']:.3g} 1/s "
                f"(exact) against {rates['thesis']:.3g} 1/s (thesis), "
                f"{100 * (rates['exact'] / rates['thesis'] - 1):+.1f} %.")
     return ("Thesis numbers come from its own equations (our 'thesis' variant) integrated by WCHAIR; the 'exact' "
@@ -183,7 +183,7 @@ def _interval_lines(d: ReportData) -> list[str]:
         f"- Equal-instability speed of {who}: {iv.nominal.describe()} ({d.model} model, thesis push), range "
         f"{lo:.3g}-{hi:.3g} m/s over: push {p_lo.impulse[0]:g} N -> {p_lo.describe()}, {p_hi.impulse[0]:g} N -> "
         f"{p_hi.describe()} (thesis {f0:g} N); pin friction x0.5 -> {f_lo.describe()}, x1.5 -> {f_hi.describe()}; "
-        f"{iv.other_model.model} model -> {iv.other_model.describe()}. {iv.widest().capitalize()} moves it most.",
+        f"{iv.other_model.model} model -> {iv.other_model.describe()}. Moves it most: {iv.widest()}.",
     ]
 
 
@@ -228,8 +228,8 @@ def summary_text(d: ReportData) -> str:
            _verdict(d), "Key numbers"]
     row = next((r for r in s.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
     if row is not None:
-        out.append(f"- Linear growth rate of the least stable mode at {REFERENCE_SPEED:g} m/s, free casters: "
-                   f"{row['rate_1_s']:.3g} 1/s ({d.model} model)" + _other_rate(d) + ".")
+        out.append(f"- Linear growth rate (largest real part; negative: decay) at {REFERENCE_SPEED:g} m/s, free "
+                   f"casters: {row['rate_1_s']:.3g} 1/s ({d.model} model)" + _other_rate(d) + ".")
     imp = [x for x in d.impulses if x is not None]
     if imp:
         parts = [f"{x.chair_name} {x.describe()}" + (f" ({x.kick_m_s:.3g} m/s per unit mass)"
