@@ -159,6 +159,19 @@ def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:
     ``g2 (m x_m - 2 m_c (l1/trail)(x_m - x_c))`` with ``g2 = g cos(theta) sin(phi)`` and
     ``x_c = x_p - trail``: the main wheels carry the slope's lateral weight except the fraction
     ``l1/trail`` of each caster's own weight that its tire carries (the rest reaches the chair at the pin).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair (trail > 0 m).
+    plane : Plane
+        Cross slope phi and grade theta, deg.
+
+    Returns
+    -------
+    float
+        Yaw moment the main wheels must supply to hold a straight line, N m (clockwise seen from above +);
+        a check on :func:`solve` at zero pin friction.
     """
     p = SlopeModel(chair, plane).p
     g2 = plane.gravity(p.g)[1]
@@ -189,7 +202,28 @@ def _solve_once(chair: Chair, plane: Plane, speed: float) -> Equilibrium | None:
 
 
 def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 1.0, hi: float = 20.0) -> float:
-    """Largest cross slope (deg, magnitude) with an equilibrium inside the tire data, by bisection."""
+    """Largest cross slope with an equilibrium inside the tire data, by bisection.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    grade_deg : float
+        Grade theta, deg (positive uphill).
+    speed : float
+        Speed along the path, m/s (> 0).
+    sign : float, optional
+        +1 (default) for cross slopes falling to the right, -1 for falling to the left.
+    hi : float, optional
+        Largest cross slope tried, deg (default 20).
+
+    Returns
+    -------
+    float
+        Cross-slope magnitude, deg, resolved to ``hi / 2**14``; ``hi`` if every
+        slope up to it has an equilibrium, -1.0 if even zero cross slope
+        has none.
+    """
     def good(phi: float) -> bool:
         e = _solve_once(chair, Plane(sign * phi, grade_deg), speed)
         return e is not None and not e.problems
@@ -264,7 +298,13 @@ def drive_report(chair: Chair, eq: Equilibrium, drive: str = "handrim", handrim:
 
     Parameters
     ----------
+    chair : Chair
+        The chair ``eq`` was solved for.
+    eq : Equilibrium
+        Steady straight-running equilibrium (:func:`solve`), with the forward
+        contact forces of the left and right main wheels (N).
     drive : {"handrim", "motor"}
+        Manual chair pushed on the hand rims, or power chair with wheel motors.
     handrim : HandRim, optional
         Radii for a manual chair (default :class:`HandRim`).
     drive_train : DriveTrain, optional
@@ -276,6 +316,11 @@ def drive_report(chair: Chair, eq: Equilibrium, drive: str = "handrim", handrim:
         Contact forces (N) and, for ``"handrim"``, the tangential hand-rim forces and their
         difference (right minus left, N); for ``"motor"``, the wheel torques, the
         differential torque per wheel ``(tau_D - tau_E)/2`` (N m) and whether it is within the limit.
+
+    Raises
+    ------
+    ValueError
+        If ``drive`` is not ``"handrim"`` or ``"motor"``.
     """
     fd, fe = eq.drive_forces
     out: dict = {"drive": drive, "contact_force_left_N": fd, "contact_force_right_N": fe}

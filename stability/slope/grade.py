@@ -25,7 +25,20 @@ __all__ = ["GradeRun", "grade_run", "forward_gravity"]
 
 
 def forward_gravity(chair: Chair, grade_deg: float) -> float:
-    """Forward component of the weight on a grade, ``-m g sin(theta)`` (N; uphill grade +)."""
+    """Forward component of the weight on a grade, ``-m g sin(theta)`` (N; uphill grade +).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair (mass m, kg; gravity g, m/s^2).
+    grade_deg : float
+        Grade theta, deg (positive uphill).
+
+    Returns
+    -------
+    float
+        Forward component of the weight in the plane, N (negative uphill).
+    """
     return float(SlopeModel(chair, Plane(0.0, grade_deg)).plane.gravity(chair.g)[0] * chair.m)
 
 

@@ -106,7 +106,22 @@ def _matrices(chair: Chair, plane: Plane):
 
 
 def slope_critical_speeds(chair: Chair, plane: Plane, speeds) -> tuple:
-    """Speeds (m/s) in the range of ``speeds`` where the largest real part crosses zero."""
+    """Speeds in the range of ``speeds`` where the largest real part crosses zero, on a plane.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    plane : Plane
+        Cross slope and grade, deg.
+    speeds : array_like
+        Search grid, m/s (increasing, > 0); crossings are refined to 1e-4 m/s.
+
+    Returns
+    -------
+    tuple of float
+        Critical speeds, m/s, in increasing order; empty if none in the range.
+    """
     U = check_speeds(speeds)
     return tuple(float(c.speed) for c in critical_speeds(_matrices(chair, plane), U, xtol=1e-4))
 

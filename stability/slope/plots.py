@@ -36,7 +36,25 @@ class HoldingCurve:
 
 def holding_curve(chair, cross_slopes_deg: Sequence[float] = (0.5, 1, 2, 3, 4, 5, 6), speed: float = 0.9,
                   handrim=None) -> HoldingCurve:
-    """Compute a :class:`HoldingCurve` (equilibria of :func:`stability.slope.equilibrium.solve`)."""
+    """Compute a :class:`HoldingCurve` (equilibria of :func:`stability.slope.equilibrium.solve`).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    cross_slopes_deg : sequence of float, optional
+        Cross slopes, deg (default 0.5 to 6).
+    speed : float, optional
+        Speed along the path, m/s (default 0.9).
+    handrim : HandRim or None, optional
+        Wheel and hand-rim radii for the hand-rim force difference (default :class:`HandRim`).
+
+    Returns
+    -------
+    HoldingCurve
+        Holding-moment magnitude (N m) with its range under Coulomb pin friction
+        and the hand-rim force difference (N) at each cross slope.
+    """
     from .equilibrium import drive_report, solve
 
     eqs = [solve(chair, float(p), speed) for p in cross_slopes_deg]
@@ -51,8 +69,22 @@ def holding_curve(chair, cross_slopes_deg: Sequence[float] = (0.5, 1, 2, 3, 4, 5
 def plot_holding(curves: Sequence[HoldingCurve], ax=None, ax_force=None, published=(0.87, 0.25, 1.80)):
     """Holding moment (and hand-rim force difference on ``ax_force``) against cross slope.
 
-    ``published``: mean, low, high of the treadmill study (N m/deg, Richter et al. 2007),
-    drawn as lines through the origin; None to omit.  Returns ``ax``.
+    Parameters
+    ----------
+    curves : sequence of HoldingCurve
+        One curve per chair (:func:`holding_curve`).
+    ax : matplotlib.axes.Axes or None, optional
+        Axes for the holding moment (N m); a new figure if None.
+    ax_force : matplotlib.axes.Axes or None, optional
+        Axes for the hand-rim force difference (N); omitted if None.
+    published : tuple of 3 float or None, optional
+        Mean, low, high of the treadmill study (N m/deg, Richter et al. 2007),
+        drawn as lines through the origin; None to omit.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
     """
     import matplotlib.pyplot as plt
 

@@ -86,14 +86,22 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
     chair : Chair
         The chair ``eq`` was solved for.
     eq : Equilibrium
+        The held equilibrium (:func:`stability.slope.equilibrium.solve`): the
+        run starts from it with both main wheels driven by the mean of its
+        drive forces (N), i.e. without the holding moment.
     duration : float
-        Length of the run (s); it stops early when the heading change exceeds ``max_heading_deg``.
+        Length of the run (s); it stops early when the heading change exceeds ``max_heading_deg``
+        or a caster swings more than 30 deg from its held angle.
+    max_heading_deg : float
+        Heading change that ends the run (deg, default 45).
     n_out : int
         Output samples.
 
     Returns
     -------
     UncorrectedPath
+        Time history (s, m, rad, rad/s, m/s), turn direction and the summary
+        at 1 s or the run's end if earlier (heading change, deg; yaw rate, deg/s; lateral offset, m).
     """
     from scipy.integrate import solve_ivp  # heavy optional import kept local
 
