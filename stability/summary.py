@@ -32,6 +32,17 @@ def simulator_checks(s: StabilitySummary) -> list:
     Empty unless the chair has effects the linear model leaves out
     (:func:`stability.validation.omitted_effects`: rolling resistance, camber,
     toe); then one row per speed with the dominant rate of both models.
+
+    Parameters
+    ----------
+    s : StabilitySummary
+        The linear summary (:func:`stability.linear.analyse`).
+
+    Returns
+    -------
+    list of dict
+        Per speed: ``speed_m_s``, ``rate_linear_1_s``, ``rate_simulator_1_s``
+        and their ``relative_difference``; empty when nothing is left out.
     """
     if not omitted_effects(s.chair):
         return []
@@ -133,7 +144,22 @@ def _fmt(x, unit: str = "", digits: int = 3) -> str:
 
 
 def interpretation(s: StabilitySummary) -> str:
-    """One sentence a wheelchair engineer can act on."""
+    """One sentence a wheelchair engineer can act on.
+
+    States the speed range over which free casters are stable or unstable
+    (with the time for a heading error to double when unstable) and what
+    locking the casters would give, within the searched speed range.
+
+    Parameters
+    ----------
+    s : StabilitySummary
+        The linear summary (:func:`stability.linear.analyse`).
+
+    Returns
+    -------
+    str
+        The sentence, ending with a full stop.
+    """
     lo, hi = s.search_range
     c = s.chair.name
     slow = next((r for r in s.divergence if r.rate > 0), None)

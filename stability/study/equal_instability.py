@@ -116,9 +116,29 @@ def reference_time(reference_chair: Chair | None = None, reference_speed: float 
 
 
 def interp_speed(s0: float, t0: float, s1: float, t1: float, target: float) -> float:
-    """Speed between ``s0`` (time ``t0`` > target, maybe inf) and ``s1`` (time ``t1`` <= target), m/s.
+    """Speed between ``s0`` (time ``t0`` > target, maybe inf) and ``s1`` (time ``t1`` <= target).
 
-    Interpolates ``log(time)`` linearly in speed (times fall roughly like ``exp(-a U)``).
+    Interpolates ``log(time)`` linearly in speed (times fall roughly like
+    ``exp(-a U)``); the midpoint when ``t0`` is infinite or equals ``t1``.
+
+    Parameters
+    ----------
+    s0 : float
+        Lower bracketing speed, m/s.
+    t0 : float
+        Time at ``s0`` for the instability criterion to be met (Figures 9-2, 9-3), s;
+    > ``target``, may be ``inf``.
+    s1 : float
+        Upper bracketing speed, m/s.
+    t1 : float
+        Time at ``s1``, s; <= ``target``.
+    target : float
+        Time to reach, s (> 0).
+
+    Returns
+    -------
+    float
+        Interpolated speed, m/s, between ``s0`` and ``s1``.
     """
     if not math.isfinite(t0) or t0 == t1:
         return 0.5 * (s0 + s1)

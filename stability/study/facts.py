@@ -27,7 +27,22 @@ PROPORTIONAL_RANGE = (0.8, 1.2)
 
 
 def growth_rate(chair: Chair, speed: float, model: str = "exact") -> float:
-    """Largest real part of the linear model's eigenvalues (free frictionless casters), 1/s."""
+    """Largest real part of the linear model's eigenvalues (free frictionless casters), 1/s.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    speed : float
+        Forward speed, m/s (> 0).
+    model : {"exact", "thesis"}, optional
+        Equation variant (default ``"exact"``).
+
+    Returns
+    -------
+    float
+        ``max Re(lambda)``, 1/s (> 0: directionally unstable).
+    """
     return float(np.linalg.eigvals(state_matrices(chair, speed, model)[0]).real.max())
 
 
@@ -123,7 +138,21 @@ def equal_friction_comparison(chair: Chair | None = None, *, reference_chair: Ch
 
 
 def fit_exponent(frictions: Sequence[float], speeds: Sequence[float]) -> float:
-    """Least-squares slope ``k`` of ``ln speed = k ln friction + c`` (needs two or more positive points)."""
+    """Least-squares slope ``k`` of ``ln speed = k ln friction + c`` (needs two or more positive points).
+
+    Parameters
+    ----------
+    frictions : sequence of float
+        Pin friction moments, N m (> 0).
+    speeds : sequence of float
+        The matching speeds, m/s (> 0), e.g. the speed at which a heading
+        error reaches a set size.
+
+    Returns
+    -------
+    float
+        Exponent k of the power law ``speed ~ friction**k`` (dimensionless).
+    """
     x, y = np.log(np.asarray(frictions, dtype=float)), np.log(np.asarray(speeds, dtype=float))
     return float(np.polyfit(x, y, 1)[0])
 

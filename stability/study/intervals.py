@@ -133,7 +133,21 @@ class EqualInstabilityInterval:
 
 
 def scale_friction(c: Chair, factor: float) -> Chair:
-    """``c`` with both pins' Coulomb friction times ``factor``."""
+    """``c`` with both pins' Coulomb friction times ``factor``.
+
+    Parameters
+    ----------
+    c : Chair
+        The chair.
+    factor : float
+        Multiplier of ``pin_friction_left`` and ``pin_friction_right`` (>= 0;
+        1 returns ``c`` itself).
+
+    Returns
+    -------
+    Chair
+        The chair with scaled pin friction, N m.
+    """
     if factor == 1.0:
         return c
     return c.replace(pin_friction_left=c.pin_friction_left * factor, pin_friction_right=c.pin_friction_right * factor)

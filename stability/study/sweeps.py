@@ -259,7 +259,28 @@ def sweep_chairs(chair: Chair, plan: dict) -> list[tuple[str, tuple, tuple | Non
 
 def collect_sweeps(chair: Chair, groups: list, results: Sequence[EqualInstability], start: int,
                    nominal: EqualInstability) -> tuple[SweepTable, int]:
-    """Build a :class:`SweepTable` from ``results[start:]`` laid out as ``groups``; returns it and the next index."""
+    """Build a :class:`SweepTable` from ``results[start:]`` laid out as ``groups``; returns it and the next index.
+
+    Parameters
+    ----------
+    chair : Chair
+        The nominal chair (its own parameter values are recorded).
+    groups : list of tuple
+        One ``(name, values, labels, chairs)`` per swept parameter: a key of
+        :data:`stability.design.DESIGN_PARAMETERS`, the values (parameter
+        unit), their labels (or None) and the chairs built from them.
+    results : sequence of EqualInstability
+        Results for all chairs of all groups, in order, from index ``start``.
+    start : int
+        Index in ``results`` of the first group's first chair.
+    nominal : EqualInstability
+        Result for the nominal chair.
+
+    Returns
+    -------
+    tuple of (SweepTable, int)
+        The table and the index in ``results`` after its last chair.
+    """
     k = start
     sweeps = []
     for name, vals, labels, chairs in groups:
