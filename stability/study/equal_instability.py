@@ -127,7 +127,7 @@ def interp_speed(s0: float, t0: float, s1: float, t1: float, target: float) -> f
         Lower bracketing speed, m/s.
     t0 : float
         Time at ``s0`` for the instability criterion to be met (Figures 9-2, 9-3), s;
-    > ``target``, may be ``inf``.
+        > ``target``, may be ``inf``.
     s1 : float
         Upper bracketing speed, m/s.
     t1 : float
