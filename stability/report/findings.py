@@ -12,10 +12,7 @@ from ..validation import has_rolling_resistance
 from .compute import ReportData
 from .summary import model_gap, push_text, steady_turns
 
-__all__ = ["findings", "friction_exponent", "conclusion_rows", "PROPORTIONAL"]
-
-#: Exponent range of "roughly proportional" (speed ~ friction^p) for conclusion 6.
-PROPORTIONAL = (0.75, 1.25)
+__all__ = ["findings", "conclusion_rows"]
 
 
 def _first(crossings, direction: str = "destabilising") -> float | None:
@@ -186,64 +183,16 @@ def _figure_8_14_text(d: ReportData) -> str:
             "load, less cornering stiffness, eq 5-18) is about the locked-caster zero-width model, not this mode.")
 
 
-def friction_exponent(results) -> float | None:
-    """Least-squares exponent p of speed ~ friction^p over ratings at several friction factors.
-
-    Parameters
-    ----------
-    results : sequence of (float, EqualInstability)
-        Friction factor (relative to the chair's) and the rating there.
-
-    Returns
-    -------
-    float or None
-        None when fewer than two ratings were found (not bounds).
-    """
-    pts = [(math.log(f), math.log(r.speed)) for f, r in results if r.status == "found"]
-    if len(pts) < 2:
-        return None
-    x, y = np.array(pts).T
-    return float(np.polyfit(x, y, 1)[0])
-
-
 def conclusion_rows(d: ReportData) -> list[list[str]]:
-    """The conclusions table: number, statement, verdict, evidence.
-
-    Conclusion 6 ("speed roughly proportional to friction") is judged here by
-    the exponent of speed ~ friction^p over x0.5 / x1 / x1.5 friction:
-    agree when p is within ``PROPORTIONAL``, partly when the speed rises but p
-    is outside it, disagree otherwise.
+    """The conclusions table: number, statement, verdict, evidence (verdict rules: :mod:`stability.study.conclusions`).
 
     Parameters
     ----------
     d : ReportData
-        The report's data.
 
     Returns
     -------
     list of list of str
         One row per conclusion.
     """
-    rows = []
-    sp = d.thesis.speeds
-    for x in d.conclusions:
-        verdict, evidence = x.verdict, x.evidence
-        if x.number == 6:
-            exps = {}
-            for name in (REFERENCE_CHAIR, "revised"):
-                exps[name] = friction_exponent([(0.5, sp[f"{name} x0.5 friction"]), (1.0, sp[name]),
-                                                (1.5, sp[f"{name} x1.5 friction"])])
-            found = [p for p in exps.values() if p is not None]
-            lo, hi = PROPORTIONAL
-            if found and all(lo <= p <= hi for p in found):
-                verdict = "agree"
-            elif found and all(p > 0 for p in found):
-                verdict = "partly"
-            else:
-                verdict = "disagree"
-            evidence = (evidence.split(" (Agree if")[0] + ". Speed ~ M_f^p with p = "
-                        + ", ".join(f"{p:.2f} ({n})" for n, p in exps.items() if p is not None)
-                        + f" (least squares over x0.5/x1/x1.5). Roughly proportional means p near 1: agree if "
-                        f"{lo:g} <= p <= {hi:g}; partly if speed rises with friction otherwise.")
-        rows.append([str(x.number), x.statement, verdict.upper(), evidence])
-    return rows
+    return [[str(x.number), x.statement, x.verdict.upper(), x.evidence] for x in d.conclusions]
