@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 from numba import njit, prange
 
@@ -224,6 +225,9 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     prev_abs = 0.0
     t_prev = 0.0
     nrec = 0
+    seg_c, seg_m, seg_k = TS[0], TS[1], TS[2]      # per-run views made once (no per-step array views)
+    lim_c, lim_m, lim_k = LIM[0], LIM[1], LIM[2]
+    rc_c, rc_m = RC[0], RC[1]
     for k in range(n):
         t = k * dt
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
@@ -257,25 +261,25 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
                 break
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
         # MECHAN: lateral forces (FTIMP replaces the main wheels'), rolling, camber, toe back to body axes
-        FAy, bad0 = lateral_force(TK[0], TS[0], TL[0], LIM[0], sA, NA, policy)
-        FBy, bad1 = lateral_force(TK[0], TS[0], TL[0], LIM[0], sB, NB, policy)
+        FAy, bad0 = lateral_force(TK[0], seg_c, TL[0], lim_c, sA, NA, policy)
+        FBy, bad1 = lateral_force(TK[0], seg_c, TL[0], lim_c, sB, NB, policy)
         if ftimp != 0.0 and imp:
             FDy, bad2 = ftimp + 0.0 * ND, False
             FEy, bad3 = ftimp + 0.0 * NE, False
         else:
-            FDy, bad2 = lateral_force(TK[1], TS[1], TL[1], LIM[1], sD, ND, policy)
-            FEy, bad3 = lateral_force(TK[1], TS[1], TL[1], LIM[1], sE, NE, policy)
+            FDy, bad2 = lateral_force(TK[1], seg_m, TL[1], lim_m, sD, ND, policy)
+            FEy, bad3 = lateral_force(TK[1], seg_m, TL[1], lim_m, sE, NE, policy)
         if bad0 or bad1 or bad2 or bad3:
             w = 0 if bad0 else (1 if bad1 else (2 if bad2 else 3))
             status[2], status[3], status[4], status[5] = 1.0, w, slips[w], loads[w]
             break
-        FAx = rolling_force(RK[0], RC[0], RS[0], NA, vAx)
-        FBx = rolling_force(RK[0], RC[0], RS[0], NB, vBx)
-        FDx = rolling_force(RK[1], RC[1], RS[1], ND, vDx)
-        FEx = rolling_force(RK[1], RC[1], RS[1], NE, vEx)
+        FAx = rolling_force(RK[0], rc_c, RS[0], NA, vAx)
+        FBx = rolling_force(RK[0], rc_c, RS[0], NB, vBx)
+        FDx = rolling_force(RK[1], rc_m, RS[1], ND, vDx)
+        FEx = rolling_force(RK[1], rc_m, RS[1], NE, vEx)
         if CAM[0] != 0.0:
-            cD, badc = lateral_force(TK[2], TS[2], TL[2], LIM[2], CAM[0], ND, policy)
-            cE, badd = lateral_force(TK[2], TS[2], TL[2], LIM[2], CAM[0], NE, policy)
+            cD, badc = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], ND, policy)
+            cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy)
             if badc or badd:
                 status[2], status[3], status[4], status[5] = 2.0, 2.0 if badc else 3.0, CAM[0], ND if badc else NE
                 break

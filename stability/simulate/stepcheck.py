@@ -47,16 +47,17 @@ def stable_steps(chairs: Sequence[Chair], speeds: np.ndarray, model: str, caster
         Seconds; ``inf`` where no mode decays.
     """
     speeds = np.abs(np.asarray(speeds, dtype=float))
-    keys: dict = {}
-    for c, u in zip(chairs, speeds.tolist(), strict=True):
-        keys.setdefault((c, u), len(keys))
-    uniq = list(keys)
-    A = state_matrices([c for c, _ in uniq], np.array([u for _, u in uniq]), model=model, casters=casters)
-    lam = np.linalg.eigvals(A)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lim = np.where(lam.real < 0, -2.0 * lam.real / np.abs(lam) ** 2, np.inf)
-    per_pair = lim.min(axis=-1)
-    return np.array([per_pair[keys[(c, u)]] for c, u in zip(chairs, speeds.tolist(), strict=True)])
+    out = np.empty(len(speeds))
+    groups: dict[Chair, list[int]] = {}
+    for i, c in enumerate(chairs):
+        groups.setdefault(c, []).append(i)
+    for c, idx in groups.items():     # one chair's parameters built once, all its speeds in one batched call
+        u, inverse = np.unique(speeds[idx], return_inverse=True)
+        lam = np.linalg.eigvals(state_matrices(c, u, model=model, casters=casters))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lim = np.where(lam.real < 0, -2.0 * lam.real / np.abs(lam) ** 2, np.inf)
+        out[idx] = lim.min(axis=-1)[inverse.reshape(-1)]
+    return out
 
 
 def auto_step(limit: float) -> float:
