@@ -162,18 +162,17 @@ def _launch(k: Any, threads: int | None, n_runs: int, args: tuple) -> None:
     runs out in chunks of about 1/16 of a thread's share (dynamic scheduling)
     instead of one contiguous block per thread.  Neither changes any number.
     """
-    numba = k.numba
     if threads is not None:
-        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
-    nthreads = numba.get_num_threads()
+        k.set_num_threads(max(1, min(int(threads), k.NUMBA_NUM_THREADS)))
+    nthreads = k.get_num_threads()
     if n_runs == 1 and nthreads > 1:
-        numba.set_num_threads(1)
+        k.set_num_threads(1)
         try:
             k.run_batch(*args)
         finally:
-            numba.set_num_threads(nthreads)
+            k.set_num_threads(nthreads)
         return
-    with numba.parallel_chunksize(max(1, n_runs // (16 * nthreads))):
+    with k.parallel_chunksize(max(1, n_runs // (16 * nthreads))):
         k.run_batch(*args)
 
 

@@ -14,13 +14,19 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
-from numba import njit, prange
+from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
+from numba.core.config import NUMBA_NUM_THREADS
 
 from ..models.full_width import generated as _fw
 
+#: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
+           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both", "tire_yaw_moment"]
+
 _jit = njit(cache=True, nogil=True)
+#: small helpers inlined into the step loop at numba-IR level (a call per helper doubles the step's cost)
+_inl = njit(cache=True, nogil=True, inline="always")
 cv_exact = _jit(_fw.contact_velocities_exact)
 cv_thesis = _jit(_fw.contact_velocities_thesis)
 acc_exact = _jit(_fw.accelerations_exact)
@@ -34,7 +40,7 @@ U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
 NREC_ALL, NREC_STATES = 31, 10
 
 
-@_jit
+@_inl
 def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
     """:func:`stability.statics.normal_loads`, same operations."""
     c1 = 1.0 / (P[ROLL_K] + 1.0)
@@ -54,7 +60,7 @@ def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
     return n_a, n_b, n_d, n_e
 
 
-@_jit
+@_inl
 def tire_yaw_moment(P, F, ce, se, cb, sb):
     """:func:`stability.models.full_width.tire_yaw_moment`, same operations."""
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
@@ -65,7 +71,7 @@ def tire_yaw_moment(P, F, ce, se, cb, sb):
     return xa * fay - ya * fax + xb * fby - yb * fbx + P[X_M] * (FDy + FEy) + P[D1] * FDx - P[D2] * FEx
 
 
-@_jit
+@_inl
 def lateral_force(kind, seg, scale, lim, slip, fz, policy):
     """Cornering force (N) of one tire: ``(force, refused)``; ``refused`` under policy 2 ("raise").
 
@@ -103,7 +109,7 @@ def lateral_force(kind, seg, scale, lim, slip, fz, policy):
     return c + 0.0, False
 
 
-@_jit
+@_inl
 def rolling_force(kind, coef, scale, fz, vx):
     """Rolling resistance (N) opposing ``vx``: kind 0 off, 1 Appendix B cubic, 2 linear ``f_r fz``."""
     if kind == 0:
@@ -147,7 +153,7 @@ def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P):
                      P[M_C], P[I_Z], P[I_ZP])
 
 
-@_jit
+@_inl
 def kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd):
     """Contact velocities (SLIP), main wheels in their toed frames."""
     if model == 0:
@@ -197,6 +203,104 @@ def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     return out
 
 
+@_inl
+def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, TL, lim_c, lim_m, lim_k, RK, rc_c,
+           rc_m, RS, CAM, S):
+    """MECHAN: tire forces ``F`` (casters in their frames, main wheels in body axes) and ``(refused, wheel)``.
+
+    ``refused``: 0 none, 1 a lateral force refused (policy "raise") at ``wheel``, 2 a camber force refused.
+    ``tire_imp``: FTIMP acts (it then replaces the main wheels' lateral forces).
+    """
+    vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
+    sA, sB, sD, sE = slips
+    NA, NB, ND, NE = loads
+    FAy, bad0 = lateral_force(TK[0], seg_c, TL[0], lim_c, sA, NA, policy)
+    FBy, bad1 = lateral_force(TK[0], seg_c, TL[0], lim_c, sB, NB, policy)
+    if tire_imp:
+        FDy, bad2 = ftimp + 0.0 * ND, False
+        FEy, bad3 = ftimp + 0.0 * NE, False
+    else:
+        FDy, bad2 = lateral_force(TK[1], seg_m, TL[1], lim_m, sD, ND, policy)
+        FEy, bad3 = lateral_force(TK[1], seg_m, TL[1], lim_m, sE, NE, policy)
+    refused, wheel = 0, 0
+    if bad0 or bad1 or bad2 or bad3:
+        refused, wheel = 1, (0 if bad0 else (1 if bad1 else (2 if bad2 else 3)))
+    FAx = rolling_force(RK[0], rc_c, RS[0], NA, vAx)
+    FBx = rolling_force(RK[0], rc_c, RS[0], NB, vBx)
+    FDx = rolling_force(RK[1], rc_m, RS[1], ND, vDx)
+    FEx = rolling_force(RK[1], rc_m, RS[1], NE, vEx)
+    if CAM[0] != 0.0 and refused == 0:
+        cD, badc = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], ND, policy)
+        cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy)
+        if badc or badd:
+            refused, wheel = 2, (2 if badc else 3)
+        FDy = FDy + -CAM[1] * cD
+        FEy = FEy - -CAM[1] * cE
+    if S[TOE] != 0.0:
+        ct, st = S[CT], S[ST]
+        FEx, FEy = FEx * ct - FEy * st, FEx * st + FEy * ct
+        FDx, FDy = FDx * ct + FDy * st, -FDx * st + FDy * ct
+    return (FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy), refused, wheel
+
+
+@_inl
+def slip_angles(vel):
+    """Signed slip angles ``atan2(vy, |vx|)`` in degrees (SLIP)."""
+    rad2deg = 180.0 / math.pi
+    vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
+    return (math.atan2(vAy, abs(vAx)) * rad2deg, math.atan2(vBy, abs(vBx)) * rad2deg,
+            math.atan2(vDy, abs(vDx)) * rad2deg, math.atan2(vEy, abs(vEx)) * rad2deg)
+
+
+@_inl
+def range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
+    """STATICS / MECHAN range rules (tested tires only): count warnings; True when the run stops here."""
+    nmax = -math.inf
+    smax = 0.0
+    nmin = min(min(loads[0], loads[1]), min(loads[2], loads[3]))
+    for w in range(4):
+        if CHK[w]:
+            nmax = max(nmax, loads[w])
+            smax = max(smax, abs(slips[w]))
+    if nmax > maxload:
+        _note(warn, 1, t, nmax)
+        if stop and warn[1, 0] > nwarn_limit:
+            return True
+    if nmin < 0.0:
+        _note(warn, 2, t, nmin)
+    if smax > maxslip:
+        _note(warn, 0, t, smax)
+        if stop and warn[0, 0] > nwarn_limit:
+            return True
+    return False
+
+
+@_inl
+def summaries(stats, levels, k, t, a, prev_abs, t_prev):
+    """Peak |yaw rate| and first times |yaw rate| >= each level (interpolated between steps)."""
+    if a > stats[0] or k == 0:
+        stats[0], stats[1] = a, t
+    for j in range(levels.shape[0]):
+        if stats[2 + j] != stats[2 + j] and a >= levels[j]:
+            stats[2 + j] = t if k == 0 else t_prev + (levels[j] - prev_abs) / (a - prev_abs) * (t - t_prev)
+
+
+@_inl
+def record_row(rec, row, states, F, loads, slips, P, trig, extra):
+    """One recorded step: the ten states, then (``record="all"``) forces, loads, slips, moments."""
+    for c in range(min(rec.shape[0], 10)):
+        rec[c, row] = states[c]
+    if rec.shape[0] > 10:
+        for c in range(8):
+            rec[10 + c, row] = F[c]
+        for c in range(4):
+            rec[18 + c, row] = loads[c]
+            rec[22 + c, row] = slips[c]
+        ce, se, cb, sb = trig
+        rec[26, row] = tire_yaw_moment(P, F, ce, se, cb, sb)
+        rec[27, row], rec[28, row], rec[29, row], rec[30, row] = extra
+
+
 @_jit
 def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
             rec, stats, warn, status):
@@ -207,9 +311,8 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     use_ctl = ctl_f[0] > 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit = cfg[10], cfg[11], cfg[12]
-    nz = Az.shape[0]
-    z = np.zeros(nz)
-    znew = np.zeros(nz)
+    z = np.zeros(Az.shape[0])
+    znew = np.zeros(Az.shape[0])
     y = np.zeros(Cy.shape[0])
     sv = np.zeros(10)
     next_k = 0
@@ -220,8 +323,6 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     ED = BD = 0.0
     FC1 = FC2 = 0.0
     fcimp = S[FCIMP]
-    rad2deg = 180.0 / math.pi
-    nl = levels.shape[0]
     prev_abs = 0.0
     t_prev = 0.0
     nrec = 0
@@ -231,65 +332,20 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     for k in range(n):
         t = k * dt
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
-        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
-        sA = math.atan2(vAy, abs(vAx)) * rad2deg
-        sB = math.atan2(vBy, abs(vBx)) * rad2deg
-        sD = math.atan2(vDy, abs(vDx)) * rad2deg
-        sE = math.atan2(vEy, abs(vEx)) * rad2deg
-        NA, NB, ND, NE = normal_loads(P, FC1, FC2, ce, se, cb, sb)
-        # STATICS / MECHAN range rules (tested tires only)
-        nmax = -math.inf
-        smax = 0.0
-        nmin = min(min(NA, NB), min(ND, NE))
-        loads = (NA, NB, ND, NE)
-        slips = (sA, sB, sD, sE)
-        for w in range(4):
-            if CHK[w]:
-                nmax = max(nmax, loads[w])
-                smax = max(smax, abs(slips[w]))
-        if nmax > maxload:
-            _note(warn, 1, t, nmax)
-            if stop and warn[1, 0] > nwarn_limit:
-                status[0], status[1] = 1.0, t
-                break
-        if nmin < 0.0:
-            _note(warn, 2, t, nmin)
-        if smax > maxslip:
-            _note(warn, 0, t, smax)
-            if stop and warn[0, 0] > nwarn_limit:
-                status[0], status[1] = 1.0, t
-                break
-        imp = t <= duimp * (1.0 + 1e-12) + 1e-15
-        # MECHAN: lateral forces (FTIMP replaces the main wheels'), rolling, camber, toe back to body axes
-        FAy, bad0 = lateral_force(TK[0], seg_c, TL[0], lim_c, sA, NA, policy)
-        FBy, bad1 = lateral_force(TK[0], seg_c, TL[0], lim_c, sB, NB, policy)
-        if ftimp != 0.0 and imp:
-            FDy, bad2 = ftimp + 0.0 * ND, False
-            FEy, bad3 = ftimp + 0.0 * NE, False
-        else:
-            FDy, bad2 = lateral_force(TK[1], seg_m, TL[1], lim_m, sD, ND, policy)
-            FEy, bad3 = lateral_force(TK[1], seg_m, TL[1], lim_m, sE, NE, policy)
-        if bad0 or bad1 or bad2 or bad3:
-            w = 0 if bad0 else (1 if bad1 else (2 if bad2 else 3))
-            status[2], status[3], status[4], status[5] = 1.0, w, slips[w], loads[w]
+        vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
+        slips = slip_angles(vel)
+        loads = normal_loads(P, FC1, FC2, ce, se, cb, sb)
+        if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
+            status[0], status[1] = 1.0, t
             break
-        FAx = rolling_force(RK[0], rc_c, RS[0], NA, vAx)
-        FBx = rolling_force(RK[0], rc_c, RS[0], NB, vBx)
-        FDx = rolling_force(RK[1], rc_m, RS[1], ND, vDx)
-        FEx = rolling_force(RK[1], rc_m, RS[1], NE, vEx)
-        if CAM[0] != 0.0:
-            cD, badc = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], ND, policy)
-            cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy)
-            if badc or badd:
-                status[2], status[3], status[4], status[5] = 2.0, 2.0 if badc else 3.0, CAM[0], ND if badc else NE
-                break
-            FDy = FDy + -CAM[1] * cD
-            FEy = FEy - -CAM[1] * cE
-        if S[TOE] != 0.0:
-            ct, st = S[CT], S[ST]
-            FEx, FEy = FEx * ct - FEy * st, FEx * st + FEy * ct
-            FDx, FDy = FDx * ct + FDy * st, -FDx * st + FDy * ct
-        F = (FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)
+        imp = t <= duimp * (1.0 + 1e-12) + 1e-15
+        F, refused, w = mechan(vel, slips, loads, ftimp != 0.0 and imp, ftimp, policy, TK, seg_c, seg_m, seg_k, TL,
+                               lim_c, lim_m, lim_k, RK, rc_c, rc_m, RS, CAM, S)
+        if refused != 0:
+            status[2], status[3] = refused, w
+            status[4], status[5] = (slips[w], loads[w]) if refused == 1 else (CAM[0], loads[w])
+            break
+        FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
         # DYNAM
         fc1 = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
         fc2 = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
@@ -313,29 +369,15 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         UDD, VDD, THEDD, EDD, BDD = acc
         if locked:
             EDD = BDD = 0.0
-        # summaries: peak |yaw rate|, first times |yaw rate| >= each level (interpolated between steps)
         a = abs(THED)
-        if a > stats[0] or k == 0:
-            stats[0], stats[1] = a, t
-        for j in range(nl):
-            if stats[2 + j] != stats[2 + j] and a >= levels[j]:
-                stats[2 + j] = t if k == 0 else t_prev + (levels[j] - prev_abs) / (a - prev_abs) * (t - t_prev)
+        summaries(stats, levels, k, t, a, prev_abs, t_prev)
         prev_abs, t_prev = a, t
         if mode == 2 or k % stride == 0:
             row = 0 if mode == 2 else k // stride
-            vals = (X, Y, THE, THED, UD, VD, E, ED, B, BD)
-            for c in range(min(rec.shape[0], 10)):
-                rec[c, row] = vals[c]
-            if rec.shape[0] > 10:
-                for c in range(8):
-                    rec[10 + c, row] = F[c]
-                for c in range(4):
-                    rec[18 + c, row] = loads[c]
-                    rec[22 + c, row] = slips[c]
-                rec[26, row] = tire_yaw_moment(P, F, ce, se, cb, sb)
-                rec[27, row], rec[28, row], rec[29, row], rec[30, row] = mz, THEDD, MA, MB
+            record_row(rec, row, (X, Y, THE, THED, UD, VD, E, ED, B, BD), F, loads, slips, P, (ce, se, cb, sb),
+                       (mz, THEDD, MA, MB))
             nrec = row + 1
-            stats[2 + nl] = t
+            stats[2 + levels.shape[0]] = t
         # UPDATE / ITRATE
         FC1, FC2 = fc1, fc2 + fy_ext
         du = UD * dt + UDD * half_dt2
@@ -354,7 +396,7 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     return nrec
 
 
-@_jit
+@_inl
 def _note(warn, kind, t, value):
     if warn[kind, 0] == 0.0 or abs(value) > abs(warn[kind, 2]):
         warn[kind, 2] = value
