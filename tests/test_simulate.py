@@ -419,6 +419,43 @@ def test_adaptive_loads_are_consistent_with_the_forces():
         np.testing.assert_allclose(r.normal_load[k], loads.normal_loads(p, sfx, sfy, ce, se, cb, sb), rtol=1e-9)
 
 
+def _zero_moment(t, state):
+    return 0.0
+
+
+@pytest.mark.parametrize("chair, speed, kw", [
+    (EJ, 0.3, {}),                                                   # stable, stick-slip switches
+    (EJ, 0.75, dict(casters="locked")),
+    (EJ, 0.5, dict(model="exact", lateral_velocity=0.02)),
+    (EJ.replace(toe_deg=0.5, camber_deg=1.5, main_rolling_scale=1.0, caster_rolling_scale=1.0), 0.5, {}),
+])
+def test_adaptive_compiled_right_hand_side_equals_the_python_one(chair, speed, kw):
+    """The compiled right-hand side (engine "compiled") is the Python one's arithmetic: in stable runs the two
+    integrations agree to 1e-9 of the signal (LSODA takes the same steps; rounding-level differences only)."""
+    c = simulate(chair, speed, duration=2.0, scheme="adaptive", **kw)
+    p = simulate(chair, speed, duration=2.0, scheme="adaptive", yaw_moment=_zero_moment, **kw)
+    assert c.settings["engine"] == "compiled" and p.settings["engine"] == "python"
+    assert c.settings["switches"] == p.settings["switches"]
+    for name in ("yaw_rate", "v", "eta", "beta_dot", "fy", "normal_load", "pin_moment", "yaw_acceleration"):
+        a, b = getattr(c, name), getattr(p, name)
+        assert np.max(np.abs(a - b)) <= 1e-9 * (1.0 + np.max(np.abs(b))), name
+
+
+def test_adaptive_compiled_diverging_run_within_the_integration_error(adaptive_pair):
+    """In the diverging reference run LSODA's step choices part at rounding level; the compiled and Python
+    paths then differ by less than the integration error itself (rtol vs rtol/2 of the same path)."""
+    a, b = adaptive_pair                                            # compiled, rtol 1e-6 and 0.5e-6
+    p = simulate(EJ, 0.75, duration=4.0, scheme="adaptive", yaw_moment=_zero_moment)
+    assert a.settings["engine"] == "compiled"
+    assert np.max(np.abs(a.yaw_rate - p.yaw_rate)) <= np.max(np.abs(a.yaw_rate - b.yaw_rate))
+
+
+def test_adaptive_compiled_raise_policy_raises_the_tire_error():
+    """A refused tire input inside the compiled right-hand side raises the tire's own error, as the Python path."""
+    with pytest.raises(ValueError, match=r"outside the fitted range \[-8, 8\] deg \(tire EJA\)"):
+        simulate(EJ, 0.75, scheme="adaptive", out_of_range="raise")
+
+
 # ---------------------------------------------------------------------------
 # results
 # ---------------------------------------------------------------------------

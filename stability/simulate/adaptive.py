@@ -12,6 +12,7 @@ import numpy as np
 from ..chair import Chair
 from ..models.full_width import tire_resultant, tire_yaw_moment
 from ..statics import normal_loads
+from .engine import _POLICY, _Packed, _raise_refused
 from .options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,
@@ -40,9 +41,12 @@ class AdaptiveModel:
         self.chair = chair
         self.speed = speed
         self.guess = (0.0, 0.0)
-        self._cache_key = None
-        self._cache_val = None
+        self._cache_key: tuple | None = None
+        self._cache_val: tuple | None = None
         self.nfev = 0
+        #: the compiled right-hand side (:mod:`.adaptive_kernel`) unless a Python yaw_moment input acts
+        self.compiled = opts.yaw_moment is None
+        self._ck: _Compiled | None = _Compiled(chair, speed, opts) if self.compiled else None
 
     # loads consistent with forces: N = loads(sum F(N))
     def _consistent(self, t, imp, vel, slips, ce, se, cb, sb, guess):
@@ -110,26 +114,28 @@ class AdaptiveModel:
         dy = (u * cpsi - v * spsi, u * spsi + v * cpsi, r, ud, vd, rd, ed, edd, bd, bdd)
         return dy, dict(N=N, F=F, slips=slips, MA=MA, MB=MB, mz=mz, ce=ce, se=se, cb=cb, sb=sb)
 
+    def _point(self, t, y, modes, imp):
+        """(dy array, aux dict) at one point, compiled or Python, cached for the event functions."""
+        y = np.ascontiguousarray(y, dtype=float)
+        key = (t, y.tobytes())
+        if key == self._cache_key and self._cache_val is not None:
+            return self._cache_val
+        self.nfev += 1
+        if self._ck is not None:
+            val = self._ck.point(t, y, modes, imp)
+        else:
+            dy, aux = self.evaluate(t, [float(a) for a in y], modes, imp)
+            val = (np.array(dy), aux)
+        self._cache_key, self._cache_val = key, val
+        return val
+
     def rhs(self, modes, imp):
         def f(t, y):
-            key = (t, y.tobytes())
-            if key == self._cache_key:
-                return self._cache_val[0]
-            self.nfev += 1
-            dy, aux = self.evaluate(t, [float(a) for a in y], modes, imp)
-            out = np.array(dy)
-            self._cache_key, self._cache_val = key, (out, aux)
-            return out
+            return self._point(t, y, modes, imp)[0]
         return f
 
     def aux(self, t, y, modes, imp):
-        key = (t, np.asarray(y).tobytes())
-        if key == self._cache_key:
-            return self._cache_val[1]
-        self.nfev += 1
-        dy, aux = self.evaluate(t, [float(a) for a in y], modes, imp)
-        self._cache_key, self._cache_val = key, (np.array(dy), aux)
-        return aux
+        return self._point(t, y, modes, imp)[1]
 
     def holding(self, t, y, modes, side, imp):
         """Pin moment needed to hold caster ``side`` (0 = A, 1 = B) at rest."""
@@ -143,11 +149,102 @@ class AdaptiveModel:
     def limit(self, side):
         return self.K.maf if side == 0 else self.K.mbf
 
-def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResult:
-    """One run of the adaptive scheme (see ``docs/simulator.md``)."""
+class _Compiled:
+    """The packed arrays of one run for :mod:`.adaptive_kernel` (imported here: numba loads on first use)."""
+
+    def __init__(self, chair: Chair, speed: float, opts: Options):
+        from . import adaptive_kernel  # numba and the compiled code load only when the scheme runs
+
+        self.k = adaptive_kernel
+        self.chair, self.opts = chair, opts
+        pk = _Packed([chair], np.array([speed]), opts, None)
+        self.head = (0 if opts.model == "thesis" else 1, float(opts.tire_impulse), _POLICY[opts.out_of_range])
+        self.arrays = (pk.P[0], pk.S[0], pk.TK[0], pk.TS[0], pk.TL[0], pk.LIM[0], pk.RK[0], pk.RC[0], pk.RS[0],
+                       pk.CAM[0])
+        self.guess = np.zeros(2)
+
+    def _check(self, code: int, aux: np.ndarray, t) -> None:
+        if code == 3:
+            raise RuntimeError(f"normal loads and tire forces did not converge (t = {t!r} s)")
+        if code:
+            _raise_refused([self.chair], self.opts, np.array([[0.0, 0.0, *aux[20:24]]]))
+
+    def point(self, t: float, y: np.ndarray, modes, imp: bool) -> tuple[np.ndarray, dict]:
+        dy, aux = np.empty(10), np.zeros(self.k.NAUX)
+        code = self.k.evaluate(float(t), y, int(modes[0]), int(modes[1]), bool(imp), *self.head, *self.arrays,
+                               self.guess, dy, aux)
+        self._check(code, aux, t)
+        return dy, {"MA": float(aux[16]), "MB": float(aux[17])}
+
+    def samples(self, tt: np.ndarray, yy: np.ndarray, modes, imp: bool) -> np.ndarray:
+        """Columns ``COLUMNS[1:]`` at the samples, shape (31, m)."""
+        out, dy, aux = np.empty((NCOLS - 1, tt.size)), np.empty(10), np.zeros(self.k.NAUX)
+        code = self.k.samples(np.ascontiguousarray(tt, dtype=float), np.ascontiguousarray(yy, dtype=float),
+                              int(modes[0]), int(modes[1]), bool(imp), *self.head, *self.arrays, out, np.zeros(2),
+                              dy, aux)
+        self._check(code, aux, tt)
+        return out
+
+
+def _events(model: AdaptiveModel, modes: tuple, imp: bool) -> tuple[list, list]:
+    """solve_ivp events of the current pin modes: a slipping caster comes to rest, a stuck one breaks away."""
+    events, kinds = [], []
+    for side in (0, 1):
+        mode = modes[side]
+        ri = 7 if side == 0 else 9
+        if mode in (FREE_POS, FREE_NEG):
+            def ev(tt, yy, ri=ri, s=float(mode)):
+                return s * yy[ri] + DEADBAND
+            ev.terminal, ev.direction = True, -1  # type: ignore[attr-defined]
+            events.append(ev)
+            kinds.append(("rest", side))
+        elif mode == STUCK:
+            lim = model.limit(side)
+
+            def ev(tt, yy, side=side, lim=lim, m=modes, i=imp):
+                aux = model.aux(tt, yy, m, i)
+                return abs(aux["MA"] if side == 0 else aux["MB"]) - lim
+            ev.terminal, ev.direction = True, 1  # type: ignore[attr-defined]
+            events.append(ev)
+            kinds.append(("break", side))
+    return events, kinds
+
+
+def _switch(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, kinds: list, t_events: list,
+            imp: bool) -> tuple:
+    """New pin modes after a stick-slip event (``y`` is updated in place for a caster that came to rest)."""
+    new = list(modes)
+    for (kind, side), te in zip(kinds, t_events, strict=False):
+        if len(te) == 0:
+            continue
+        if kind == "rest":
+            y[7 if side == 0 else 9] = 0.0
+            h = model.holding(t, y, tuple(new), side, imp)
+            if abs(h) <= model.limit(side):
+                new[side] = STUCK
+            else:
+                new[side] = FREE_NEG if h > 0 else FREE_POS
+        else:
+            h = model.holding(t, y, tuple(new), side, imp)
+            new[side] = FREE_NEG if h > 0 else FREE_POS
+    return tuple(new)
+
+
+def _settle(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, imp: bool) -> tuple:
+    """Stuck/free decision for resting casters (t = 0, after a breakpoint)."""
+    new = list(modes)
+    for side in (0, 1):
+        if new[side] == STUCK:
+            h = model.holding(t, y, tuple(new), side, imp)
+            if abs(h) > model.limit(side):
+                new[side] = FREE_NEG if h > 0 else FREE_POS
+    return tuple(new)
+
+
+def _integrate(model: AdaptiveModel, speed: float, opts: Options) -> tuple[list, int]:
+    """Integrate segment by segment between breakpoints and stick-slip events: ``(segments, switches)``."""
     from scipy.integrate import solve_ivp  # heavy (imports scipy.optimize): only when the adaptive scheme runs
 
-    model = AdaptiveModel(chair, speed, opts)
     u0, v0 = initial_velocities(opts, speed)
     y = np.array([0.0, 0.0, 0.0, u0, v0, 0.0, opts.eta0, 0.0, opts.beta0, 0.0])
     T = opts.duration
@@ -157,47 +254,12 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
         breaks.insert(0, opts.impulse_duration)
     t = 0.0
     imp = impulse and opts.impulse_duration > 0.0   # a zero-length force has no effect on an ODE
-
-    def settle(t, y, modes):
-        """Stuck/free decision for resting casters (t = 0, after a breakpoint)."""
-        modes = list(modes)
-        for side in (0, 1):
-            if modes[side] == STUCK:
-                h = model.holding(t, y, modes, side, imp)
-                if abs(h) > model.limit(side):
-                    modes[side] = FREE_NEG if h > 0 else FREE_POS
-        return tuple(modes)
-
-    if opts.casters == "locked":
-        modes = (LOCKED, LOCKED)
-    else:
-        modes = settle(t, y, (STUCK, STUCK))
+    modes: tuple = (LOCKED, LOCKED) if opts.casters == "locked" else _settle(model, t, y, (STUCK, STUCK), imp)
     segments = []
     switches = 0
     while t < T:
         t_end = next(b for b in breaks if b > t)
-        events = []
-        kinds = []
-        for side in (0, 1):
-            mode = modes[side]
-            ri = 7 if side == 0 else 9
-            if mode in (FREE_POS, FREE_NEG):
-                s = float(mode)
-
-                def ev(tt, yy, ri=ri, s=s):
-                    return s * yy[ri] + DEADBAND
-                ev.terminal, ev.direction = True, -1
-                events.append(ev)
-                kinds.append(("rest", side))
-            elif mode == STUCK:
-                lim = model.limit(side)
-
-                def ev(tt, yy, side=side, lim=lim, m=modes, i=imp):
-                    aux = model.aux(tt, yy, m, i)
-                    return abs(aux["MA"] if side == 0 else aux["MB"]) - lim
-                ev.terminal, ev.direction = True, 1
-                events.append(ev)
-                kinds.append(("break", side))
+        events, kinds = _events(model, modes, imp)
         sol = solve_ivp(model.rhs(modes, imp), (t, t_end), y, method=ADAPTIVE_METHOD, rtol=opts.rtol,
                         atol=opts.atol, events=events or None, dense_output=True)
         if sol.status < 0:
@@ -210,30 +272,18 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
             if switches > MAX_SWITCHES:
                 raise RuntimeError(f"more than {MAX_SWITCHES} stick-slip switches by t = {t:.6g} s "
                                    "(chattering); loosen rtol/atol or use scheme='wchair'")
-            new = list(modes)
-            for (kind, side), te in zip(kinds, sol.t_events, strict=False):
-                if len(te) == 0:
-                    continue
-                ri = 7 if side == 0 else 9
-                if kind == "rest":
-                    y[ri] = 0.0
-                    h = model.holding(t, y, tuple(new), side, imp)
-                    if abs(h) <= model.limit(side):
-                        new[side] = STUCK
-                    else:
-                        new[side] = FREE_NEG if h > 0 else FREE_POS
-                else:
-                    h = model.holding(t, y, tuple(new), side, imp)
-                    new[side] = FREE_NEG if h > 0 else FREE_POS
-            modes = tuple(new)
+            modes = _switch(model, t, y, modes, kinds, sol.t_events, imp)
         else:
             if t < T and impulse and not impulse_on(opts, t + 1e-12):
                 imp = False
             if t < T and opts.casters != "locked":
-                modes = settle(t, y, modes)
+                modes = _settle(model, t, y, modes, imp)
+    return segments, switches
 
-    # samples
-    step = opts.sample
+
+def _sample(model: AdaptiveModel, segments: list, opts: Options) -> tuple[np.ndarray, np.ndarray]:
+    """``(ts, rec)``: every column of :data:`COLUMNS` at the output samples, from the dense output."""
+    T, step = opts.duration, opts.sample
     ns = int(math.floor(T / step * (1 + 1e-12) + 1e-9)) + 1
     ts = step * np.arange(ns)
     ts[-1] = min(ts[-1], T)
@@ -250,6 +300,10 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
             yy[7] = 0.0
         if modes[1] in (STUCK, LOCKED):
             yy[9] = 0.0
+        rec[sel, 0] = tt
+        if model._ck is not None:
+            rec[sel, 1:] = model._ck.samples(tt, yy, modes, imp_seg).T
+            continue
         dy, aux = model.evaluate(tt, list(yy), modes, imp_seg)
         F = aux["F"]
         block = (tt, yy[0], yy[1], yy[2], yy[5], yy[3], yy[4], yy[6], yy[7], yy[8], yy[9], *F, *aux["N"],
@@ -257,14 +311,17 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
                  aux["mz"], dy[5], aux["MA"], aux["MB"])
         for j, c in enumerate(block):
             rec[sel, j] = c
+    return ts, rec
+
+
+def _sample_warnings(ts: np.ndarray, rec: np.ndarray, opts: Options) -> tuple[dict, bool, float | None, int]:
+    """Range warnings counted per sample: ``(warnings, stopped, stop_time, samples kept)``."""
     warn = new_warnings()
-    stopped, stop_time = False, None
     slip_abs = np.max(np.abs(rec[:, 23:27]), axis=1)
     nmax = np.max(rec[:, 19:23], axis=1)
     nmin = np.min(rec[:, 19:23], axis=1)
-    end = ns
     counts = {"slip": 0, "load": 0}
-    for i in range(ns):
+    for i in range(len(ts)):
         if nmax[i] > LOAD_LIMIT_N:
             note_warning(warn, "load", ts[i], nmax[i])
             counts["load"] += 1
@@ -274,9 +331,21 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
             note_warning(warn, "slip", ts[i], slip_abs[i])
             counts["slip"] += 1
         if opts.stop_on_warnings and max(counts.values()) > WARNING_LIMIT:
-            stopped, stop_time, end = True, float(ts[i]), i
-            break
+            return warn, True, float(ts[i]), i
+    return warn, False, None, len(ts)
+
+
+def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResult:
+    """One run of the adaptive scheme (see ``docs/simulator.md``).
+
+    The right-hand side runs compiled (:mod:`.adaptive_kernel`) unless a
+    Python ``yaw_moment`` input acts (``settings["engine"]`` says which).
+    """
+    model = AdaptiveModel(chair, speed, opts)
+    segments, switches = _integrate(model, speed, opts)
+    ts, rec = _sample(model, segments, opts)
+    warn, stopped, stop_time, end = _sample_warnings(ts, rec, opts)
     settings = opts.settings()
-    settings.update(switches=switches, nfev=model.nfev)
+    settings.update(switches=switches, nfev=model.nfev, engine="compiled" if model.compiled else "python")
     return SimulationResult._from_records(rec[:end], warnings=warn, stopped=stopped, stop_time=stop_time,
                                           chair=chair, speed=speed, settings=settings)

@@ -1,0 +1,194 @@
+"""The adaptive scheme's right-hand side compiled (numba): loads consistent with the forces, stick-slip pin modes.
+
+The same physics as :meth:`stability.simulate.adaptive.AdaptiveModel.evaluate`
+(the Python path, kept for a Python ``yaw_moment`` input and as the test
+reference), built from the WCHAIR kernel's transcriptions
+(:mod:`stability.simulate.kernel`).  scipy's ``solve_ivp`` still drives the
+integration and the event location; see ``docs/simulator.md``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from ..models.full_width import generated as _fw
+from .kernel import (
+    D1,
+    D2,
+    FCIMP,
+    I_Z,
+    I_ZP,
+    L1,
+    M_C,
+    MAF,
+    MBF,
+    T1,
+    T2,
+    TRAIL,
+    X_M,
+    X_P,
+    M,
+    kinematics,
+    mechan,
+    normal_loads,
+    slip_angles,
+    tire_yaw_moment,
+)
+
+__all__ = ["NAUX", "evaluate", "samples"]
+
+_jit = njit(cache=True, nogil=True)
+_inl = njit(cache=True, nogil=True, inline="always")
+acc_exact = _jit(_fw.accelerations_exact)
+acc_thesis = _jit(_fw.accelerations_thesis)
+
+#: aux layout: loads (4), forces (8), slips (4), pin moments A, B, yaw-moment input, tire yaw moment,
+#: refused tire input (kind, wheel, slip or camber deg, load)
+NAUX = 24
+#: pin modes (as :mod:`stability.simulate.adaptive`)
+FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
+
+
+@_jit
+def acc_now(model, s, F, ma, mb, fy_ext, mz, P):
+    """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact)."""
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    if model == 0:
+        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                          P[M_C], P[I_Z], P[I_ZP])
+    return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                     fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                     P[M_C], P[I_Z], P[I_ZP])
+
+
+@_jit
+def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P):
+    """:func:`stability.simulate.physics.held_accelerations`, same operations: ``(acc, M_A, M_B)``."""
+    if not (hold_a or hold_b):
+        return acc_now(model, s, F, ma, mb, fy_ext, mz, P), ma, mb
+    base_a = 0.0 * ma if hold_a else ma
+    base_b = 0.0 * mb if hold_b else mb
+    a0 = acc_now(model, s, F, base_a, base_b, fy_ext, mz, P)
+    if hold_a and hold_b:
+        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P)
+        a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P)
+        k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
+        k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
+        det = k11 * k22 - k12 * k21
+        ra = (-a0[3] * k22 + a0[4] * k12) / det
+        rb = (-a0[4] * k11 + a0[3] * k21) / det
+        return ((a0[0] + ra * (a1[0] - a0[0]) + rb * (a2[0] - a0[0]),
+                 a0[1] + ra * (a1[1] - a0[1]) + rb * (a2[1] - a0[1]),
+                 a0[2] + ra * (a1[2] - a0[2]) + rb * (a2[2] - a0[2]), 0.0 * ra, 0.0 * rb), ra, rb)
+    if hold_a:
+        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P)
+        ra = -a0[3] / (a1[3] - a0[3])
+        return ((a0[0] + ra * (a1[0] - a0[0]), a0[1] + ra * (a1[1] - a0[1]), a0[2] + ra * (a1[2] - a0[2]),
+                 0.0 * ra, a0[4] + ra * (a1[4] - a0[4])), ra, mb)
+    a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P)
+    rb = -a0[4] / (a2[4] - a0[4])
+    return ((a0[0] + rb * (a2[0] - a0[0]), a0[1] + rb * (a2[1] - a0[1]), a0[2] + rb * (a2[2] - a0[2]),
+             a0[3] + rb * (a2[3] - a0[3]), 0.0 * rb), ma, rb)
+
+
+@_inl
+def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess):
+    """Loads consistent with the tire forces (fixed-point iteration as ``AdaptiveModel._consistent``).
+
+    Returns ``(loads, F, refused, wheel, converged)``; ``guess`` (sum fx, sum fy) is updated in place.
+    """
+    ce, se, cb, sb = trig
+    sfx, sfy = guess[0], guess[1]
+    it = 0
+    while True:
+        loads = normal_loads(P, sfx, sfy, ce, se, cb, sb)
+        F, refused, wheel = mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
+                                   LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
+        if refused != 0:
+            return loads, F, refused, wheel, True
+        FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+        nfx = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
+        nfy = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
+        err = abs(nfx - sfx) + abs(nfy - sfy)
+        scale = 1.0 + abs(nfx) + abs(nfy)
+        sfx, sfy = nfx, nfy
+        it += 1
+        if err <= 1e-9 * scale:
+            guess[0], guess[1] = sfx, sfy
+            return loads, F, 0, 0, True
+        if it == 100:
+            return loads, F, 0, 0, False
+
+
+@_jit
+def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess,
+             dy, aux):
+    """Derivatives ``dy`` (10) and ``aux`` (:data:`NAUX`) at ``(t, y)``; returns 0, or 1/2 refused, 3 no convergence.
+
+    ``y`` = (X, Y, psi, u, v, r, eta, eta_dot, beta, beta_dot); pin modes as
+    :mod:`stability.simulate.adaptive`; ``imp``: the push acts.
+    """
+    psi, u, v, r, eta, ed, beta, bd = y[2], y[3], y[4], y[5], y[6], y[7], y[8], y[9]
+    if ma_mode == STUCK or ma_mode == LOCKED:
+        ed = 0.0 * ed
+    if mb_mode == STUCK or mb_mode == LOCKED:
+        bd = 0.0 * bd
+    ce, se, cb, sb = math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta)
+    vel = kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd)
+    slips = slip_angles(vel)
+    loads, F, refused, wheel, ok = _consistent(vel, slips, (ce, se, cb, sb), ftimp != 0.0 and imp, ftimp, policy,
+                                               P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess)
+    if refused != 0:
+        aux[20], aux[21] = refused, wheel
+        aux[22], aux[23] = (slips[wheel], loads[wheel]) if refused == 1 else (CAM[0], loads[wheel])
+        return refused
+    if not ok:
+        return 3
+    fy_ext = S[FCIMP] if (S[FCIMP] != 0.0 and imp) else 0.0
+    ma = -P[MAF] * ma_mode if (ma_mode == FREE_POS or ma_mode == FREE_NEG) else 0.0
+    mb = -P[MBF] * mb_mode if (mb_mode == FREE_POS or mb_mode == FREE_NEG) else 0.0
+    hold_a = ma_mode == STUCK or ma_mode == LOCKED
+    hold_b = mb_mode == STUCK or mb_mode == LOCKED
+    acc, ma, mb = held(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, fy_ext, 0.0, hold_a, hold_b, P)
+    cpsi, spsi = math.cos(psi), math.sin(psi)
+    dy[0], dy[1], dy[2] = u * cpsi - v * spsi, u * spsi + v * cpsi, r
+    dy[3], dy[4], dy[5], dy[6], dy[7], dy[8], dy[9] = acc[0], acc[1], acc[2], ed, acc[3], bd, acc[4]
+    for i in range(4):
+        aux[i] = loads[i]
+        aux[12 + i] = slips[i]
+    for i in range(8):
+        aux[4 + i] = F[i]
+    aux[16], aux[17], aux[18] = ma, mb, 0.0
+    aux[19] = tire_yaw_moment(P, F, ce, se, cb, sb)
+    return 0
+
+
+@_jit
+def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, out, guess,
+            dy, aux):
+    """Recorded columns (``COLUMNS[1:]``, ``out`` of shape (31, m)) at the dense-output samples ``yy`` (10, m).
+
+    Each sample's load iteration starts from zero forces (as the Python path's
+    vector evaluation).  Returns the first nonzero status of :func:`evaluate`, else 0.
+    """
+    for j in range(ts.shape[0]):
+        guess[0], guess[1] = 0.0, 0.0
+        code = evaluate(ts[j], yy[:, j], ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC,
+                        RS, CAM, guess, dy, aux)
+        if code != 0:
+            return code
+        y = yy[:, j]
+        states = (y[0], y[1], y[2], y[5], y[3], y[4], y[6], dy[6], y[8], dy[8])
+        for c in range(10):
+            out[c, j] = states[c]
+        for c in range(8):
+            out[10 + c, j] = aux[4 + c]
+        for c in range(4):
+            out[18 + c, j] = aux[c]
+            out[22 + c, j] = aux[12 + c]
+        out[26, j], out[27, j], out[28, j], out[29, j], out[30, j] = aux[19], aux[18], dy[5], aux[16], aux[17]
+    return 0
