@@ -35,7 +35,7 @@ def test_stack_equals_each_tire(policy):
     # and the scalar path (the single-run simulator; separate code, from the coefficient rows) to rounding
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", tires.TireRangeWarning)
-        scalar = np.array([[t.lateral_force(float(a), float(b), policy=policy) for a, b in zip(slip[j], fz[j])]
+        scalar = np.array([[t.lateral_force(float(a), float(b), policy=policy) for a, b in zip(slip[j], fz[j], strict=True)]
                            for j, t in enumerate(row_tires)])
     np.testing.assert_allclose(got, scalar, rtol=1e-12, atol=1e-9)
 

@@ -193,19 +193,19 @@ def _events(model: AdaptiveModel, modes: tuple, imp: bool) -> tuple[list, list]:
         mode = modes[side]
         ri = 7 if side == 0 else 9
         if mode in (FREE_POS, FREE_NEG):
-            def ev(tt, yy, ri=ri, s=float(mode)):
+            def ev_rest(tt, yy, ri=ri, s=float(mode)):
                 return s * yy[ri] + DEADBAND
-            ev.terminal, ev.direction = True, -1  # type: ignore[attr-defined]
-            events.append(ev)
+            ev_rest.terminal, ev_rest.direction = True, -1  # type: ignore[attr-defined]
+            events.append(ev_rest)
             kinds.append(("rest", side))
         elif mode == STUCK:
             lim = model.limit(side)
 
-            def ev(tt, yy, side=side, lim=lim, m=modes, i=imp):
+            def ev_break(tt, yy, side=side, lim=lim, m=modes, i=imp):
                 aux = model.aux(tt, yy, m, i)
                 return abs(aux["MA"] if side == 0 else aux["MB"]) - lim
-            ev.terminal, ev.direction = True, 1  # type: ignore[attr-defined]
-            events.append(ev)
+            ev_break.terminal, ev_break.direction = True, 1  # type: ignore[attr-defined]
+            events.append(ev_break)
             kinds.append(("break", side))
     return events, kinds
 
@@ -284,6 +284,7 @@ def _integrate(model: AdaptiveModel, speed: float, opts: Options) -> tuple[list,
 def _sample(model: AdaptiveModel, segments: list, opts: Options) -> tuple[np.ndarray, np.ndarray]:
     """``(ts, rec)``: every column of :data:`COLUMNS` at the output samples, from the dense output."""
     T, step = opts.duration, opts.sample
+    assert step is not None          # make_options sets it for the adaptive scheme
     ns = int(math.floor(T / step * (1 + 1e-12) + 1e-9)) + 1
     ts = step * np.arange(ns)
     ts[-1] = min(ts[-1], T)

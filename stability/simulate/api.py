@@ -32,7 +32,7 @@ def _check_chair(chair: Any) -> Chair:
 
 
 def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration, scheme: str = DEFAULTS.scheme,
-             model: str = DEFAULTS.model, dt: float = DEFAULTS.dt, impulse_force: float = DEFAULTS.impulse_force,
+             model: str = DEFAULTS.model, dt: float | str = DEFAULTS.dt, impulse_force: float = DEFAULTS.impulse_force,
              impulse_duration: float = DEFAULTS.impulse_duration, tire_impulse: float = DEFAULTS.tire_impulse,
              lateral_velocity: float = DEFAULTS.lateral_velocity, eta0_deg: float = DEFAULTS.eta0_deg,
              beta0_deg: float = DEFAULTS.beta0_deg, casters: str = DEFAULTS.casters,

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -26,7 +27,7 @@ __all__ = ["STATE_ORDER", "SampledController"]
 STATE_ORDER = ("x", "y", "heading", "u", "v", "yaw_rate", "eta", "eta_dot", "beta", "beta_dot")
 
 
-def _matrix(a, shape: tuple[int, int], name: str) -> np.ndarray:
+def _matrix(a, shape: tuple[int, ...], name: str) -> np.ndarray:
     m = np.ascontiguousarray(np.asarray(a, dtype=float).reshape(shape))
     if not np.all(np.isfinite(m)):
         raise ValueError(f"{name} is invalid; expected finite numbers, shape {shape}")
@@ -129,7 +130,7 @@ class SampledController:
         object.__setattr__(c, "sample_time", 0.0)
         return c
 
-    def arrays(self) -> tuple[np.ndarray, ...]:
+    def arrays(self) -> tuple[Any, ...]:
         """``(ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)`` for the kernel; ``ctl_f = [T, limit, *offset]``."""
         ctl_f = np.concatenate([[self.sample_time, self.limit], self.offset])
         return (ctl_f, self.Cy, self.Dy, self.Az, self.Bu, self.By, self.Cz, self.noise)

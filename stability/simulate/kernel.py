@@ -16,9 +16,12 @@ import math
 
 import numpy as np
 from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
-from numba.core.config import NUMBA_NUM_THREADS
+from numba.core import config as _config
 
 from ..models.full_width import generated as _fw
+
+#: numba's largest thread count (set when numba is imported)
+NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
 __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",

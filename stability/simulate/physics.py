@@ -8,7 +8,8 @@ points from :mod:`stability.statics`.  See ``docs/simulator.md``.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -90,7 +91,7 @@ class Physics:
         fw = full_width.generated
         self.vector = vector
         self.variant = opts.model
-        self.policy = opts.out_of_range
+        self.policy: Any = opts.out_of_range          # one of OUT_OF_RANGE_POLICIES (checked)
         self.opts = opts
         self.cv_fn = getattr(fw, f"contact_velocities_{opts.model}")
         self.acc_fn = getattr(fw, f"accelerations_{opts.model}")
@@ -101,16 +102,18 @@ class Physics:
             uniq: dict = {}
             for i, k in enumerate(keys):
                 uniq.setdefault(k, []).append(i)
-            self.groups = [(TireGroup(chairs[idx[0]], opts), np.array(idx)) for idx in uniq.values()]
-            toe = np.array([math.radians(c.toe_deg) for c in chairs])
+            self.groups: list[tuple[TireGroup, Any]] = [(TireGroup(chairs[idx[0]], opts), np.array(idx))
+                                                        for idx in uniq.values()]
+            toe: Any = np.array([math.radians(c.toe_deg) for c in chairs])
             self.toe = bool(np.any(toe != 0))
-            self.ct, self.st = np.cos(toe), np.sin(toe)
+            self.ct: Any = np.cos(toe)
+            self.st: Any = np.sin(toe)
         else:
             c = chairs[0]
             self.p = _parameters(c)
             self.groups = [(TireGroup(c, opts), None)]
             toe = math.radians(c.toe_deg)
-            self.toe = toe != 0
+            self.toe = bool(toe != 0)
             self.ct, self.st = math.cos(toe), math.sin(toe)
         self.maf = self.p.pin_friction_left
         self.mbf = self.p.pin_friction_right
@@ -122,7 +125,9 @@ class Physics:
         self._range_masks()
         self.ftimp = opts.tire_impulse
         self.duimp = opts.impulse_duration
-        self.stack = None
+        self.stack: _tires.TireStack | None = None
+        self.caster_lateral: Callable = self._caster_lateral_groups
+        self.main_lateral: Callable = self._main_lateral_groups
         if self.single_group:  # bind the tire calls once (hot path)
             g0 = self.groups[0][0]
             pol = self.policy
@@ -137,9 +142,9 @@ class Physics:
         """Which wheels the thesis's range rules apply to (tested tires only)."""
         g0 = self.groups[0][0]
         if self.single_group:
-            self.chk = (g0.check_caster, g0.check_caster, g0.check_main, g0.check_main)
+            self.chk: tuple[bool, ...] | None = (g0.check_caster, g0.check_caster, g0.check_main, g0.check_main)
             self.check_all = all(self.chk)
-            self.chk_mask = None
+            self.chk_mask: np.ndarray | None = None
             return
         n = sum(int(i.size) for _, i in self.groups)
         m = np.zeros((4, n), dtype=bool)
@@ -176,11 +181,11 @@ class Physics:
                 out[idx] = fn(g, *(a[idx] for a in arrays))
         return out
 
-    def caster_lateral(self, slip, fz):
+    def _caster_lateral_groups(self, slip, fz):
         pol = self.policy
         return self._per_group(lambda g, s, f: g.caster.lateral_force(s, f, policy=pol, warn=False), slip, fz)
 
-    def main_lateral(self, slip, fz):
+    def _main_lateral_groups(self, slip, fz):
         pol = self.policy
         return self._per_group(lambda g, s, f: g.main.lateral_force(s, f, policy=pol, warn=False), slip, fz)
 
