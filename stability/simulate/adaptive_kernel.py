@@ -30,6 +30,7 @@ from .kernel import (
     X_M,
     X_P,
     M,
+    invalidate_stale_cache,
     kinematics,
     mechan,
     normal_loads,
@@ -192,3 +193,6 @@ def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, T
             out[22 + c, j] = aux[12 + c]
         out[26, j], out[27, j], out[28, j], out[29, j], out[30, j] = aux[19], aux[18], dy[5], aux[16], aux[17]
     return 0
+
+
+invalidate_stale_cache(globals(), "adaptive_kernel.equations.sha256")

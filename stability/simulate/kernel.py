@@ -12,7 +12,9 @@ operations in the same order (tested bit for bit against them).
 
 from __future__ import annotations
 
+import hashlib
 import math
+from pathlib import Path
 
 import numpy as np
 from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
@@ -415,3 +417,28 @@ def run_batch(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, C
     for i in prange(P.shape[0]):
         nrec[i] = run_one(P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
                           levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, rec[i], stats[i], warn[i], status[i])
+
+
+def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
+    """Drop the on-disk compiled code of ``namespace``'s kernels when the generated equations changed.
+
+    numba keys a cached function on its own source file only, and a cached
+    kernel carries a copy of the generated functions it calls; so a stamp (the
+    SHA-256 of ``stability/_generated/full_width.py``) is kept next to the
+    cache and, when it differs, every kernel of the module is recompiled.
+    Nothing happens when the cache directory is not writable.
+    """
+    digest = hashlib.sha256(Path(_fw.__file__).read_bytes()).hexdigest()
+    kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
+    try:
+        stamp = Path(getattr(run_batch, "_cache").cache_path) / stamp_name  # noqa: B009  (numba internal)
+        if stamp.exists() and stamp.read_text() == digest:
+            return
+        for d in kernels:
+            d._cache.flush()
+        stamp.write_text(digest)
+    except (AttributeError, OSError):   # a numba without these internals, or a read-only cache: nothing to do
+        return
+
+
+invalidate_stale_cache(globals(), "kernel.equations.sha256")
