@@ -11,13 +11,15 @@ traceback instead).  See README.md, "Errors".
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import os
 import re
 import sys
+import tempfile
 import traceback
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any, NoReturn
 
 import numpy as np
@@ -27,7 +29,8 @@ from . import chair as chair_mod
 from .statics import check_static_loads, static_loads
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_json_options", "load_chair", "parse_speeds",
-           "check_directory", "check_outputs", "json_header", "emit_json", "error", "run", "MAX_SPEEDS"]
+           "check_directory", "check_outputs", "output_files", "json_header", "emit_json", "error", "run",
+           "MAX_SPEEDS", "check_work"]
 
 #: Largest number of speeds a ``--speeds`` option may ask for (each costs an eigenvalue solve or a run).
 MAX_SPEEDS = 10_001
@@ -169,6 +172,7 @@ def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SP
     """
     bad = (f"--speeds {text!r} is invalid; expected START:STOP:STEP with 0 < START <= STOP and STEP > 0 "
            "(finite, m/s), or a comma-separated list")
+    count = 0
     try:
         if ":" in text:
             parts = [float(x) for x in text.split(":")]
@@ -178,18 +182,16 @@ def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SP
             if step <= 0 or stop < start:
                 raise ValueError
             count = math.floor((stop - start) / step + 1e-9) + 1
-            if count > max_count:
-                raise ValueError(f"--speeds {text!r} asks for {count} speeds; at most {max_count} are allowed "
-                                 f"(use a STEP of at least {(stop - start) / (max_count - 1):.3g} m/s)")
-            speeds = start + step * np.arange(count)
+            if count <= max_count:
+                speeds = start + step * np.arange(count)
         else:
             speeds = np.array([float(x) for x in text.split(",")])
-            if len(speeds) > max_count:
-                raise ValueError(f"--speeds lists {len(speeds)} speeds; at most {max_count} are allowed")
-    except ValueError as exc:
-        raise ValueError(str(exc) if str(exc) else bad) from None
-    except OverflowError:
+            count = len(speeds)
+    except (ValueError, OverflowError):
         raise ValueError(bad) from None
+    if count > max_count:
+        raise ValueError(f"--speeds {text!r} asks for {count} speeds; at most {max_count} are allowed "
+                         "(use a larger STEP)")
     if np.any(speeds <= 0) or not np.all(np.isfinite(speeds)):
         raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed finite and > 0 m/s")
     if increasing and np.any(np.diff(speeds) <= 0):
@@ -198,6 +200,27 @@ def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SP
 
 
 _FORBIDDEN_ROOTS = ("/proc", "/sys", "/dev")
+
+
+def check_work(what: str, amount: float, limit: float, advice: str) -> None:
+    """Refuse work whose size ``amount`` exceeds ``limit`` before it starts (bounded time and memory).
+
+    Parameters
+    ----------
+    what : str
+        What is counted, e.g. ``"--duration 1e9 with --dt 0.001 (time steps)"``.
+    amount, limit : float
+        The size asked for and the largest allowed.
+    advice : str
+        How to stay within the limit, e.g. ``"use --duration <= 3600 s"``.
+
+    Raises
+    ------
+    ValueError
+        One line with the size, the limit and the advice.
+    """
+    if not amount <= limit:
+        raise ValueError(f"{what} asks for {amount:.3g}; at most {limit:.3g} are allowed: {advice}")
 
 
 def check_directory(path: str | None, option: str) -> None:
@@ -261,6 +284,45 @@ def check_outputs(outputs: Mapping[str, str | None], inputs: Mapping[str, str | 
             key = os.path.realpath(os.path.abspath(path))
             if key in seen:
                 raise ValueError(f"{seen[key]} {path!r} would overwrite the input {option}")
+
+
+@contextlib.contextmanager
+def output_files(outputs: Mapping[str, str | None]) -> Iterator[dict[str, str]]:
+    """Write several outputs all or none: yield temporary paths, rename them all at the end.
+
+    Parameters
+    ----------
+    outputs : mapping
+        Option name -> final path (None: not asked for).
+
+    Yields
+    ------
+    dict
+        Option name -> temporary path in the same directory, with the same
+        extension (so writers that infer a format from it still work).  On
+        success every temporary file replaces its final path; on any error
+        (or Ctrl-C) every temporary file is removed and no output appears.
+    """
+    temps: dict[str, str] = {}
+    try:
+        for option, path in outputs.items():
+            if not path:
+                continue
+            d = os.path.dirname(os.path.abspath(path))
+            base = os.path.basename(path)
+            fd, tmp = tempfile.mkstemp(dir=d, prefix=f".{base}.", suffix=os.path.splitext(base)[1] or ".tmp")
+            os.close(fd)
+            temps[option] = tmp
+        yield dict(temps)
+        umask = os.umask(0)
+        os.umask(umask)
+        for option, tmp in temps.items():
+            os.chmod(tmp, 0o666 & ~umask)
+            os.replace(tmp, str(outputs[option]))
+    finally:
+        for tmp in temps.values():
+            if os.path.exists(tmp):
+                os.unlink(tmp)
 
 
 def json_header(chair: chair_mod.Chair, model: str | None, options: Mapping[str, Any]) -> dict[str, Any]:

@@ -276,9 +276,11 @@ def test_cli_json_rows(tmp_path, capsys):
     assert assist_main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json-file", str(out)]) == 0
     text = capsys.readouterr().out
     assert "k_psi" in text and "Robustness" in text
-    rows = json.loads(out.read_text())
+    data = json.loads(out.read_text())
     assert assist_main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out) == rows          # --json: the same JSON on stdout, nothing else
+    assert json.loads(capsys.readouterr().out) == data          # --json: the same JSON on stdout, nothing else
+    assert data["chair_parameters"]["name"] == "power-fwd" and data["model"] == "exact" and data["stability_version"]
+    rows = data["rows"]
     assert [r["speed_m_s"] for r in rows] == [1.0, 2.0, 3.0]
     for r in rows:
         assert {"speed_m_s", "gains", "closed_loop_poles", "stable", "peak_torque_Nm",

@@ -8,16 +8,28 @@ import math
 import sys
 from collections.abc import Sequence
 
-from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, parse_speeds, run
-from ..output import atomic_write_text, write_pdf
+import numpy as np
+
+from ..chair import Chair
+from ..cli import (
+    OneLineErrorParser,
+    add_chair_options,
+    check_outputs,
+    json_header,
+    load_chair,
+    output_files,
+    parse_speeds,
+    run,
+)
+from ..output import write_pdf
 from ..power_chair import DriveTrain
 from ..reference import THESIS_PUSH
 from ._format import fmt
 from .destabilising import destabilising_moment, destabilising_summary, valid_until
 from .driving import COMMAND_FILTER, torque_requirement, traction_limit
 from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
-from .robustness import robustness
-from .schedule import schedule
+from .robustness import Robustness, robustness
+from .schedule import Schedule, schedule
 from .tables import format_margins, format_recovery, format_table, gain_table, pole_curves, reverse_table
 from .weights import DESIGNS, GyroSensor, Weights
 
@@ -76,10 +88,13 @@ def _options(args: argparse.Namespace) -> tuple[Weights, DriveTrain, GyroSensor]
         raise ValueError(f"--max-heading-error {args.max_heading_error!r} is invalid; valid range: > 0 deg")
     if not (math.isfinite(args.max_yaw_rate) and args.max_yaw_rate >= 0):
         raise ValueError(f"--max-yaw-rate {args.max_yaw_rate!r} is invalid; valid range: >= 0 deg/s (0: unweighted)")
-    if not (math.isfinite(args.torque_limit) and args.torque_limit > 0):
-        raise ValueError(f"--torque-limit {args.torque_limit!r} is invalid; valid range: > 0 N m")
-    if args.torque_budget is not None and not (math.isfinite(args.torque_budget) and args.torque_budget > 0):
-        raise ValueError(f"--torque-budget {args.torque_budget!r} is invalid; valid range: > 0 N m")
+    # a wheelchair drive delivers somewhere between 1 and 1000 N m at the wheel; outside that range the
+    # design (and its saturated nonlinear checks) would be meaningless and could run without bound
+    if not (math.isfinite(args.torque_limit) and 1.0 <= args.torque_limit <= 1000.0):
+        raise ValueError(f"--torque-limit {args.torque_limit!r} is invalid; valid range: 1 to 1000 N m per wheel")
+    if args.torque_budget is not None and not (math.isfinite(args.torque_budget)
+                                               and 0.1 <= args.torque_budget <= 1000.0):
+        raise ValueError(f"--torque-budget {args.torque_budget!r} is invalid; valid range: 0.1 to 1000 N m per wheel")
     if not (math.isfinite(args.wheel_radius) and 0 < args.wheel_radius <= 0.5):
         raise ValueError(f"--wheel-radius {args.wheel_radius!r} is invalid; valid range: 0 < r <= 0.5 m")
     if not (math.isfinite(args.sample_rate) and args.sample_rate >= 10):
@@ -118,21 +133,34 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    c = load_chair(args.chair, args.set)
-    speeds = parse_speeds(args.speeds, increasing=True)
+    check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, {"--chair": args.chair})
+    speeds = parse_speeds(args.speeds, increasing=True, max_count=50)
     weights, drive, gyro = _options(args)
-    check_directory(args.json_file, "--json-file")
-    check_directory(args.pdf, "--pdf")
+    c = load_chair(args.chair, args.set)
+    with output_files({"--json-file": args.json_file, "--pdf": args.pdf}) as tmp:
+        return _work(args, c, speeds, weights, drive, gyro, tmp)
+
+
+def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
+          tmp: dict[str, str]) -> int:
     sched = schedule(c, speeds, args.design, weights=weights, drive=drive, gyro=gyro, model=args.model)
     rows = gain_table(sched, check=not args.no_check, seed=args.seed)
     rev = reverse_table(sched) if args.reverse else []
     if args.json or args.json_file:
-        text = json.dumps([r.to_dict() for r in rows] + [r.to_dict() for r in rev], indent=2) + "\n"
+        options = {k: getattr(args, k) for k in ("speeds", "design", "max_heading_error", "max_yaw_rate",
+                                                 "torque_limit", "torque_budget", "wheel_radius", "gyro_noise",
+                                                 "gyro_bias", "sample_rate", "seed", "no_check", "reverse",
+                                                 "motor_lag", "bias_time_constant")}
+        data = {**json_header(c, args.model, options), "rows": [r.to_dict() for r in rows],
+                "reverse": [r.to_dict() for r in rev]}
+        text = json.dumps(data, indent=2) + "\n"
         if args.json_file:
-            atomic_write_text(args.json_file, text)
+            with open(tmp["--json-file"], "w", encoding="utf-8") as fh:
+                fh.write(text)
         if args.json:
             sys.stdout.write(text)
-            return 0
+            if not args.pdf:
+                return 0
     print(format_table(sched, rows))
     print(f"\nMargins at the plant input, continuous / sampled at {sched.gyro.sample_rate_hz:g} Hz (ZOH, one-sample "
           f"computation delay, {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both); yaw-rate step "
@@ -180,23 +208,31 @@ def _run(args: argparse.Namespace) -> int:
             print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
                   f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
     if args.pdf:
-        # matplotlib is imported only when a PDF is asked for
-        from . import figures
-
-        figs = [figures.figure_gains(sched, rows), figures.figure_poles(sched, rows, pole_curves(sched), rob),
-                figures.figure_margins(sched, rows), figures.figure_robustness(rob, sched)]
-        ref = destabilising_moment()
-        ol = [r.open for r in runs if r.open is not None and r.open.impulse_force == THESIS_PUSH.force] if runs \
-            else [recovery(sched.chair, s, None, model=sched.model) for s in (1.0, 2.0, 3.0)]
-        summ = [destabilising_summary(o.result, sched.drive, sched.chair) for o in ol]
-        figs.append(figures.figure_destabilising(
-            ref, valid_until(ref, max_heading_deg=math.inf), ol, summ, [valid_until(o.result) for o in ol],
-            sched.drive.max_yaw_moment(sched.chair), sched.chair.name))
-        if runs is not None:
-            figs.append(figures.figure_recovery(runs, sched))
-            figs.append(figures.figure_recovery_table(runs, sched))
-        write_pdf(figs, args.pdf, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")
+        _write_pdf(sched, rows, rob, runs, tmp["--pdf"])
+    for option in ("--json-file", "--pdf"):
+        if option in tmp:
+            print(f"wrote {getattr(args, option[2:].replace('-', '_'))}", file=sys.stderr if args.json else sys.stdout)
     return 0
+
+
+def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, path: str) -> None:
+    """The assist figures as a PDF at ``path`` (matplotlib is imported only here)."""
+    # matplotlib is imported only when a PDF is asked for
+    from . import figures
+
+    figs = [figures.figure_gains(sched, rows), figures.figure_poles(sched, rows, pole_curves(sched), rob),
+            figures.figure_margins(sched, rows), figures.figure_robustness(rob, sched)]
+    ref = destabilising_moment()
+    ol = [r.open for r in runs if r.open is not None and r.open.impulse_force == THESIS_PUSH.force] if runs \
+        else [recovery(sched.chair, s, None, model=sched.model) for s in (1.0, 2.0, 3.0)]
+    summ = [destabilising_summary(o.result, sched.drive, sched.chair) for o in ol]
+    figs.append(figures.figure_destabilising(
+        ref, valid_until(ref, max_heading_deg=math.inf), ol, summ, [valid_until(o.result) for o in ol],
+        sched.drive.max_yaw_moment(sched.chair), sched.chair.name))
+    if runs is not None:
+        figs.append(figures.figure_recovery(runs, sched))
+        figs.append(figures.figure_recovery_table(runs, sched))
+    write_pdf(figs, path, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")
 
 
 if __name__ == "__main__":  # pragma: no cover

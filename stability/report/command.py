@@ -5,8 +5,7 @@ from __future__ import annotations
 import argparse
 from collections.abc import Sequence
 
-from ..cli import OneLineErrorParser, add_chair_options, load_chair, run
-from ..output import atomic_write_text
+from ..cli import OneLineErrorParser, add_chair_options, check_outputs, load_chair, output_files, run
 from . import document
 
 __all__ = ["build_parser", "main"]
@@ -49,11 +48,15 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    c = load_chair(args.chair, args.set)
+    check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair})
     if not args.output.lower().endswith(".pdf"):
-        raise ValueError(f"output {args.output!r} must end in .pdf")
-    res = document.build(c, args.output, model=args.model, quick=args.quick, progress=not args.no_progress)
-    if args.text:
-        atomic_write_text(args.text, res.text() + "\n")
-    print(f"wrote {res.path} ({len(res.pages)} pages, {res.seconds:.1f} s)")
+        raise ValueError(f"-o {args.output!r} must end in .pdf")
+    c = load_chair(args.chair, args.set)
+    with output_files({"-o": args.output, "--text": args.text}) as tmp:
+        res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress)
+        if args.text:
+            with open(tmp["--text"], "w", encoding="utf-8") as fh:
+                fh.write(res.text() + "\n")
+    print(f"wrote {args.output} ({len(res.pages)} pages, {res.seconds:.1f} s)" +
+          (f" and {args.text}" if args.text else ""))
     return 0

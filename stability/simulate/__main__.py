@@ -3,11 +3,21 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from collections.abc import Sequence
 
-from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, run
+from ..cli import (
+    OneLineErrorParser,
+    add_chair_options,
+    add_json_options,
+    check_outputs,
+    check_work,
+    emit_json,
+    json_header,
+    load_chair,
+    output_files,
+    run,
+)
 from ..reference import REFERENCE_SPEED, THESIS_PUSH
 from .api import simulate
 from .options import DEFAULTS as D
@@ -31,7 +41,8 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--eta0", type=float, default=0.0, metavar="DEG", help="initial left caster angle, deg")
     ap.add_argument("--beta0", type=float, default=0.0, metavar="DEG", help="initial right caster angle, deg")
     ap.add_argument("--scheme", default=D.scheme, help=f"wchair or adaptive (default {D.scheme})")
-    ap.add_argument("--model", default=D.model, help=f"thesis or exact (default {D.model})")
+    ap.add_argument("--model", default="exact", choices=("exact", "thesis"),
+                    help="equation variant: exact (default, as every command) or thesis (program WCHAIR's)")
     ap.add_argument("--casters", default=D.casters, help=f"free or locked (default {D.casters})")
     ap.add_argument("--duration", type=float, default=D.duration, help=f"simulated time, s (default {D.duration:g})")
     ap.add_argument("--dt", type=float, default=D.dt, help=f"wchair time step, s (default {D.dt:g})")
@@ -43,14 +54,39 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--atol", type=float, default=D.atol, help="adaptive scheme absolute tolerance")
     ap.add_argument("--csv", metavar="FILE", help="write the time histories to a CSV file")
     ap.add_argument("--plot", metavar="FILE", help="write a plot (pdf, png, svg)")
-    ap.add_argument("--json", action="store_true", help="print results as JSON")
+    add_json_options(ap)
     return ap
 
 
+#: Bounds of the simulate command (bounded time and memory).
+MAX_STEPS = 20_000_000          # fixed steps of one run (10 s at 0.5 us)
+MAX_DURATION_S = 3600.0         # simulated time of one run
+MAX_PUSH_N = 10_000.0           # |lateral push|, N (a person pushes with a few hundred N at most)
+MAX_SPEED_M_S = 20.0            # a wheelchair does not go faster
+
+
+def _check_options(args: argparse.Namespace) -> None:
+    if not 0 < args.speed <= MAX_SPEED_M_S:
+        raise ValueError(f"--speed {args.speed!r} is invalid; valid range: 0 < speed <= {MAX_SPEED_M_S:g} m/s")
+    if not 0 < args.duration <= MAX_DURATION_S:
+        raise ValueError(f"--duration {args.duration!r} is invalid; valid range: 0 < duration <= "
+                         f"{MAX_DURATION_S:g} s")
+    if args.scheme == "wchair":
+        if not 0 < args.dt <= 0.1:
+            raise ValueError(f"--dt {args.dt!r} is invalid; valid range: 0 < dt <= 0.1 s")
+        check_work(f"--duration {args.duration:g} s with --dt {args.dt:g} s (time steps)", args.duration / args.dt,
+                   MAX_STEPS, f"use --dt >= {args.duration / MAX_STEPS:.2g} s or a shorter --duration")
+    force, length = args.impulse
+    if not (abs(force) <= MAX_PUSH_N and 0 <= length <= args.duration):
+        raise ValueError(f"--impulse {force!r} {length!r} is invalid; valid range: |FORCE| <= {MAX_PUSH_N:g} N and "
+                         f"0 <= DURATION <= --duration ({args.duration:g} s)")
+
+
 def _run_cli(args: argparse.Namespace) -> int:
+    outputs = {"--csv": args.csv, "--plot": args.plot, "--json-file": args.json_file}
+    check_outputs(outputs, {"--chair": args.chair})
+    _check_options(args)
     c = load_chair(args.chair, args.set)
-    check_directory(args.csv, "--csv")
-    check_directory(args.plot, "--plot")
     res = simulate(c, args.speed, duration=args.duration, scheme=args.scheme, model=args.model, dt=args.dt,
                    impulse_force=args.impulse[0], impulse_duration=args.impulse[1],
                    tire_impulse=args.tire_impulse, lateral_velocity=args.lateral_velocity,
@@ -59,20 +95,23 @@ def _run_cli(args: argparse.Namespace) -> int:
                    rtol=args.rtol, atol=args.atol)
     times = {str(v): res.first_time_abs_yaw_rate(v) for v in (0.5, 1.0)}
     out = res.resample(args.sample) if args.sample is not None else res
-    if args.csv:
-        out.to_csv(args.csv)
-    if args.plot:
-        plot_result(res, args.plot)
-    if args.json:
-        d = out.to_dict()
-        d["first_time_abs_yaw_rate_s"] = times
-        print(json.dumps(d, allow_nan=False))
-    else:
-        print(res.summary())
+    options = {k: getattr(args, k) for k in ("speed", "impulse", "tire_impulse", "lateral_velocity", "eta0",
+                                             "beta0", "scheme", "casters", "duration", "dt", "sample",
+                                             "no_stop", "out_of_range", "rtol", "atol")}
+    with output_files({"--csv": args.csv, "--plot": args.plot}) as tmp:
         if args.csv:
-            print(f"wrote {args.csv}")
+            out.to_csv(tmp["--csv"])
         if args.plot:
-            print(f"wrote {args.plot}")
+            plot_result(res, tmp["--plot"])
+    if args.json or args.json_file:
+        d = {**json_header(c, args.model, options), **out.to_dict()}
+        d["first_time_abs_yaw_rate_s"] = times
+        emit_json(d, args)
+    if not args.json:
+        print(res.summary())
+        for path in (args.csv, args.plot):
+            if path:
+                print(f"wrote {path}")
     return 0
 
 

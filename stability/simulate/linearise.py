@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import tires
 from .._validate import check_positive, check_speed
 from ..chair import Chair
 from .adaptive import FREE_POS, LOCKED, AdaptiveModel
@@ -57,9 +58,10 @@ def linearise(chair: Chair, speed: float, *, model: str = DEFAULTS.model, caster
     speed = check_speed(speed)
     step = check_positive("step", step)
     chair = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
-    # the defaults, except: the adaptive scheme's right-hand side, no disturbance, tires strictly in range
+    # the defaults, except: the adaptive scheme's right-hand side, no disturbance, the tire-range policy in force
     settings = dict(DEFAULTS.as_dict(), duration=1.0, scheme="adaptive", model=model, casters=casters,
-                    impulse_force=0.0, impulse_duration=0.0, stop_on_warnings=False, out_of_range="raise")
+                    impulse_force=0.0, impulse_duration=0.0, stop_on_warnings=False,
+                    out_of_range=tires.get_policy().evaluation)
     del settings["controller"], settings["record"]     # options of the compiled WCHAIR kernel only
     opts = make_options(**settings)
     modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)

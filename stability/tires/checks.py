@@ -85,6 +85,12 @@ def range_check(chair: Chair, loads: Mapping[str, float], *, policy: str | None 
         if load > tire.fz_max_N:
             notes.append(RangeNote(tire=tire.name, quantity="load", value=load, low=0.0,
                                    high=float(tire.fz_max_N), policy=pol.name, wheel=wheel))
+    # eq 4-2 evaluates the main tire's cornering fit at a slip angle equal to the camber angle
+    main = tires["main"]
+    camber = abs(float(chair.camber_deg))
+    if camber > float(main.slip_max_deg):
+        notes.append(RangeNote(tire=main.name, quantity="slip", value=camber, low=0.0,
+                               high=float(main.slip_max_deg), policy=pol.name, wheel="main (camber force, eq 4-2)"))
     if notes and pol.name == "raise":
         raise ValueError(str(notes[0]) + "; use the 'warn' or 'clamp' tire-range policy to compute anyway")
     for note in notes:

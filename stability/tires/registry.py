@@ -161,9 +161,10 @@ def get(spec: str) -> AnyTire:
                 c = float(text)
             except ValueError:
                 c = math.nan
-            if not math.isfinite(c) or c < 0.0:
+            if not (math.isfinite(c) and 0.0 < c <= 1000.0):
                 raise ValueError(
-                    f"spec={spec!r} is not valid: 'linear:<C>' needs a finite C >= 0 in N/deg"
+                    f"spec={spec!r} is not valid: 'linear:<C>' needs 0 < C <= 1000 N/deg (a tire without "
+                    "cornering stiffness carries no side force)"
                 )
             return LinearTire(stiffness_N_per_deg=c)
         if key.lower().startswith("file:"):
