@@ -5,10 +5,12 @@ Thesis-reproduction checks (chapter 8) are in ``test_thesis_chapter8.py``.
 
 import copy
 import dataclasses
+import hashlib
 import json
 import math
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,7 +18,18 @@ import pytest
 from stability import params, tires
 from stability import statics as loads
 from stability.chair import preset
-from stability.simulate import DEFAULTS, ChairState, SimulationResult, StepStabilityWarning, simulate, simulate_batch
+from stability.models.full_width import generated
+from stability.simulate import (
+    DEFAULTS,
+    ChairState,
+    SimulationResult,
+    StepStabilityWarning,
+    kernel,
+    simulate,
+    simulate_batch,
+)
+from stability.simulate.options import make_options
+from stability.simulate.reference import wchair_batch
 from stability.simulate.results import COLUMNS, new_warnings
 
 EJ = preset("ej-premier")
@@ -533,7 +546,7 @@ def _cli(*args):
 
 def test_cli_json(tmp_path):
     p = _cli("--chair", "ej-premier", "--speed", "0.75", "--impulse", "40", "0.1", "--duration", "4",
-             "--sample", "0.1", "--json", "--csv", str(tmp_path / "a.csv"), "--plot", str(tmp_path / "a.pdf"))
+             "--model", "thesis", "--sample", "0.1", "--json", "--csv", str(tmp_path / "a.csv"), "--plot", str(tmp_path / "a.pdf"))
     assert p.returncode == 0, p.stderr
     d = json.loads(p.stdout)
     for key in ("t", "yaw_rate", "heading", "x", "y", "stopped_by_warnings", "warnings", "first_time_abs_yaw_rate_s"):
@@ -555,7 +568,7 @@ def test_cli_summary_and_set(tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (("--speed", "-1"), "speed=-1.0 is invalid"),
+    (("--speed", "-1"), "--speed -1.0 is invalid"),
     (("--chair", "nope"), "unknown chair 'nope'"),
     (("--set", "s9=1"), "unknown chair parameter 's9'"),
     (("--scheme", "rk4"), "scheme='rk4' is invalid"),
@@ -643,9 +656,6 @@ def test_kernel_equals_numpy_reference(case):
     kernel's libm calls (cos, sin, atan2) and numpy's SIMD versions may differ
     in the last bit, and 1 s of the unstable chair amplifies that at most ~1e3.
     """
-    from stability.simulate.options import make_options
-    from stability.simulate.reference import wchair_batch
-
     chair, kw = _kernel_cases()[case]
     opts = dict(DEFAULTS.as_dict(), duration=1.0, sample=0.001, **kw)
     del opts["controller"], opts["record"]
@@ -672,8 +682,6 @@ def test_single_run_is_bit_identical_to_its_batch_run():
 def test_compiled_transcriptions_equal_statics_and_models():
     """The kernel's loads and tire yaw moment are statics.normal_loads / models.full_width's, bit for bit."""
     from stability.models import full_width
-    from stability.simulate import kernel
-
     rng = np.random.default_rng(3)
     for chair in (EJ, FRONT):
         p = params.parameters(chair)
@@ -770,3 +778,25 @@ def test_step_stability_limit_against_the_adaptive_scheme(speed):
     else:
         fixed = simulate(EJ, speed, **kw)
         assert not fixed.step_unstable
+
+
+def test_reference_range_rules_check_only_the_tested_wheels():
+    """Linear casters, tested main wheels, one tire group: the numpy reference counts the main wheels' slip
+    warnings and stops as the kernel does (it used to skip the rules on every wheel of such a batch)."""
+    chair = EJ.replace(caster_tire="linear:25")
+    speeds = np.array([0.5, 1.2])
+    base = {k: v for k, v in DEFAULTS.as_dict().items() if k not in ("controller", "record")}
+    ref = wchair_batch([chair] * 2, speeds, make_options(batch=True, **dict(base, impulse_force=150.0)), False)
+    com = simulate_batch(chair, speeds, progress=False, impulse_force=150.0, record="final")
+    assert [r.warning_counts for r in ref] == [r.warning_counts for r in com]
+    assert [r.warning_counts["slip"] for r in com] == [11, 4]
+    assert ref[0].stop_time == pytest.approx(com[0].stop_time, abs=1.5e-3)
+
+
+def test_compile_cache_stamp_is_the_generated_equations_hash():
+    """The stale-cache stamp next to the numba cache is the SHA-256 of the generated equations."""
+    digest = hashlib.sha256(Path(generated.__file__).read_bytes()).hexdigest()
+    stamp = Path(kernel.run_batch._cache.cache_path) / "kernel.equations.sha256"
+    if not stamp.exists():
+        pytest.skip("no writable cache directory")
+    assert stamp.read_text() == digest
