@@ -59,6 +59,49 @@ def _cg_ratio(c: Chair, r: float) -> Chair:
     return c.replace(s1=r * total, s2=total - r * total)
 
 
+#: Default span of the c.g. ratio (Figure 8-9), narrowed per chair by :func:`_cg_ratio_span`.
+CG_RATIO_SPAN = (0.30, 0.90)
+#: Smallest share of the weight each axle keeps at the ends of the c.g.-ratio span.
+CG_RATIO_MIN_AXLE_SHARE = 0.02
+
+
+def _cg_ratio_span(c: Chair) -> tuple[float, float]:
+    """The c.g.-ratio span of a locus, kept within chairs whose static loads are positive.
+
+    With the casters trailing, the caster contacts lie ``trail`` behind the pins, so
+    the contact line is ``s2 + trail`` behind the c.g. for rear casters and
+    ``s2 - trail`` ahead of it for front casters (eq 6-24); the main axle is
+    ``s1`` away on the other side.  Moment balance about the c.g. gives the
+    castered axle's share of the weight ``s1 / (s1 + s2 +- trail)`` (eq 6-25 with
+    no tire forces), positive only while the c.g. lies between the axles:
+    ``s1 > 0`` and ``s2 -+ trail > 0``.  With ``T = s1 + s2`` and ``r = s1/T`` the
+    span :data:`CG_RATIO_SPAN` is cut where either axle's share falls to
+    :data:`CG_RATIO_MIN_AXLE_SHARE` (a front-caster chair with a long trail: the
+    casters would leave the ground before ``r = 1 - trail/T``).
+
+    Parameters
+    ----------
+    c : Chair
+        The chair (its ``s1 + s2``, ``trail`` and caster position are used).
+
+    Returns
+    -------
+    tuple of float
+        ``(low, high)`` c.g. ratios (-), inside :data:`CG_RATIO_SPAN`.
+    """
+    total = c.s1 + c.s2
+    sign = 1.0 if c.caster_position == "rear" else -1.0
+    q = CG_RATIO_MIN_AXLE_SHARE
+    # castered-axle share r T / B >= q and main-axle share ((1 - r) T + sign trail) / B >= q, B = T + sign trail
+    base = total + sign * c.trail
+    lo = max(CG_RATIO_SPAN[0], q * base / total)
+    hi = min(CG_RATIO_SPAN[1], (1.0 - q) * base / total)
+    if not lo < hi:
+        raise ValueError(f"chair {c.name!r}: no c.g. ratio gives positive static loads with trail = {c.trail:g} m "
+                         f"and s1 + s2 = {total:g} m (valid: trail < s1 + s2 for front casters)")
+    return lo, hi
+
+
 def _wheelbase(c: Chair, total: float) -> Chair:
     if total <= c.s1:
         raise ValueError(f"s1_plus_s2={total!r} is invalid; valid range: > s1 = {c.s1:g} m")
@@ -111,7 +154,7 @@ DESIGN_PARAMETERS: dict[str, Parameter] = {
     p.name: p
     for p in (
         Parameter("cg_ratio", "c.g. ratio s1/(s1+s2)", "-", _cg_ratio, lambda c: c.cg_ratio,
-                  lambda c: (0.30, 0.90), "s1 and s2 varied at constant s1 + s2 (eq 8-6, Figure 8-9)"),
+                  _cg_ratio_span, "s1 and s2 varied at constant s1 + s2 (eq 8-6, Figure 8-9)"),
         Parameter("s1_plus_s2", "main axle to caster pins s1+s2", "m", _wheelbase, lambda c: c.s1 + c.s2,
                   lambda c: (max(c.s1 + 0.02, 0.25), 0.85), "s2 varied at constant s1 (Figure 8-10)"),
         Parameter("s1", "c.g. to main axle s1", "m", lambda c, v: c.replace(s1=v), lambda c: c.s1,
