@@ -35,16 +35,17 @@ def _stiffness_for(chairs: Chair | Sequence[Chair]) -> dict:
 
 
 def _solve(M: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """``M^-1 rhs`` batched; one factorisation when the mass matrix is the same for every row.
+    """``M^-1 rhs`` batched over the leading axes of ``rhs``.
 
-    The mass matrix of the linear model does not depend on speed, so for one
-    chair at N speeds the N right-hand sides share one LU factorisation.
+    The mass matrix of the linear model does not depend on speed: when it is a
+    single (k, k) matrix (one chair) it is inverted once and every speed's
+    right-hand side is multiplied by that inverse.  The mass matrix is symmetric
+    positive definite and well conditioned (about 1e4 for the presets), so the
+    explicit inverse costs no accuracy that matters next to the eigenvalue
+    problem, and is several times faster than a batched solve.
     """
-    if M.ndim == 3 and M.shape[0] > 1 and np.all(M == M[:1]):
-        n, k = rhs.shape[0], rhs.shape[-1]
-        stacked = np.moveaxis(rhs, 0, -2).reshape(M.shape[-1], n * k)
-        sol = np.linalg.solve(M[0], stacked).reshape(M.shape[-1], n, k)
-        return np.moveaxis(sol, -2, 0)
+    if M.ndim == 2:
+        return np.linalg.inv(M) @ rhs
     return np.linalg.solve(M, rhs)
 
 
@@ -52,7 +53,7 @@ def _assemble(M: np.ndarray, K: np.ndarray, Bm: np.ndarray, casters: str):
     """State and input matrices from ``M acc = K x + Bm u``."""
     sol = _solve(M, np.concatenate([K, Bm[..., None]], axis=-1))
     F, G = sol[..., :-1], sol[..., -1]
-    shape = M.shape[:-2]
+    shape = K.shape[:-2]
     if casters == "locked":
         return F, G[..., None]
     n = 6

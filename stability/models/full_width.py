@@ -136,7 +136,8 @@ def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str =
     Returns
     -------
     M : numpy.ndarray
-        Shape (N, k, k), mass matrix (kg, kg m, kg m^2 entries).
+        Mass matrix (kg, kg m, kg m^2 entries): shape (k, k) when it is the
+        same for every speed and chair (it never depends on speed), else (N, k, k).
     K : numpy.ndarray
         Shape (N, k, n), stiffness and damping matrix.
     Bm : numpy.ndarray
@@ -154,12 +155,14 @@ def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str =
     entries = [e for row in (*M, *K) for e in row] + list(Bm)
     shape = np.broadcast_shapes(U.shape, *(np.shape(e) for e in entries),
                                 *(np.shape(x) for x in p.inertia))
+    m_shape = np.broadcast_shapes(*(np.shape(e) for row in M for e in row))
 
-    def stack(rows):
-        return np.stack([np.stack([np.broadcast_to(np.asarray(e, dtype=float), shape) for e in row], -1)
+    def stack(rows, to):
+        return np.stack([np.stack([np.broadcast_to(np.asarray(e, dtype=float), to) for e in row], -1)
                          for row in rows], -2)
 
-    return stack(M), stack(K), np.stack([np.broadcast_to(np.asarray(e, dtype=float), shape) for e in Bm], -1)
+    return (stack(M, m_shape), stack(K, shape),
+            np.stack([np.broadcast_to(np.asarray(e, dtype=float), shape) for e in Bm], -1))
 
 
 def trig(angle):

@@ -95,3 +95,24 @@ def test_bench_critical_speed_cli(benchmark):
     benchmark.extra_info.update(cli_s=t)
     print(f"\npython -m stability.critical_speed end to end: {t:.2f} s")
     assert t < 3.0
+
+
+def test_bench_eigen_sweep_close_to_lapack_alone(benchmark):
+    """Building the 10,001 state matrices costs little next to LAPACK's batched eigvals on them (issue 10).
+
+    The mass matrix does not depend on speed, so one factorisation serves every speed; the whole sweep
+    (parameters, stiffness at load, generated matrices, one solve, eigvals) must stay within 1.2x of
+    ``numpy.linalg.eigvals`` alone on the same matrices, both timed interleaved in this run (best of 15).
+    """
+    A = linear.state_matrices(EJ, SPEEDS, "exact", "free")
+    benchmark(lambda: linear.eigenvalues_vs_speed(EJ, SPEEDS, "exact", "free", track=False))
+    t_eig, t_sweep = float("inf"), float("inf")
+    for _ in range(15):
+        t_eig = min(t_eig, _best(lambda: np.linalg.eigvals(A), repeat=1)[0])
+        t_sweep = min(t_sweep, _best(lambda: linear.eigenvalues_vs_speed(EJ, SPEEDS, "exact", "free",
+                                                                          track=False), repeat=1)[0])
+    ratio = t_sweep / t_eig
+    benchmark.extra_info.update(eigvals_s=t_eig, sweep_s=t_sweep, ratio=ratio)
+    print(f"\neigen sweep of {len(SPEEDS)} speeds: {t_sweep * 1e3:.1f} ms; LAPACK eigvals alone {t_eig * 1e3:.1f} ms "
+          f"(x{ratio:.2f})")
+    assert ratio <= 1.2
