@@ -89,17 +89,24 @@ class DriveTrain:
     traction_coefficient : float
         Tire-floor friction coefficient of the drive wheels for the traction
         limit ``mu N r`` (dry indoor floors and concrete 0.6-0.9; 0.4 wet).
+    yaw_damping : float
+        Yaw damping of a pivot turn at standstill (N m s/rad): tire scrub of
+        the drive wheels' contact patches and the casters' pin friction,
+        linearised.  The standstill design assumes none (0, conservative: the
+        chair is then a pure inertia about the drive-axle midpoint).
     """
 
     wheel_radius: float = 0.178
     torque_limit: float = 70.0
     motor_time_constant: float = 0.02
     traction_coefficient: float = 0.7
+    yaw_damping: float = 0.0
 
     def __post_init__(self) -> None:
         for name in ("wheel_radius", "torque_limit", "traction_coefficient"):
             check_positive(name, getattr(self, name), prefix="drive-train parameter ")
         check_nonnegative("motor_time_constant", self.motor_time_constant, prefix="drive-train parameter ")
+        check_nonnegative("yaw_damping", self.yaw_damping, prefix="drive-train parameter ")
         if self.wheel_radius > 0.5:
             raise ValueError(f"drive-train parameter wheel_radius={self.wheel_radius!r} is invalid; "
                              "valid range: 0 < wheel_radius <= 0.5 m")

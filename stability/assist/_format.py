@@ -8,7 +8,16 @@ __all__ = ["json_float", "fmt"]
 
 
 def json_float(x: float | None) -> float | str | None:
-    """A float for JSON: finite as is, ``inf`` as ``"inf"``/``"-inf"``, NaN and None as None."""
+    """A float for JSON: finite as is, ``inf`` as ``"inf"``/``"-inf"``, NaN and None as None.
+
+    Parameters
+    ----------
+    x : float or None
+
+    Returns
+    -------
+    float, str or None
+    """
     if x is None:
         return None
     x = float(x)
@@ -16,7 +25,21 @@ def json_float(x: float | None) -> float | str | None:
 
 
 def fmt(x: float | str | None, spec: str = ".3g", none: str = "-") -> str:
-    """``format(x, spec)``, with ``none`` for None and ``inf``/``-inf``/``nan`` spelt out."""
+    """``format(x, spec)``, with ``none`` for None and ``inf``/``-inf``/``nan`` spelt out.
+
+    Parameters
+    ----------
+    x : float, str or None
+        The value (a str is returned as is).
+    spec : str
+        Format specification.
+    none : str
+        Text for None.
+
+    Returns
+    -------
+    str
+    """
     if x is None:
         return none
     if isinstance(x, str):

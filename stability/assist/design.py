@@ -17,7 +17,7 @@ from .._validate import check_choice
 from ..chair import Chair
 from ..power_chair import DriveTrain
 from ._format import json_float
-from .plant import Plant, measurement_matrix, plant, system_name
+from .plant import Plant, measurement_matrix, plant, standstill_plant, system_name
 from .weights import DEFAULT_ESTIMATOR, DEFAULT_GYRO, DEFAULT_WEIGHTS, DESIGNS, EstimatorWeights, GyroSensor, Weights
 
 __all__ = ["Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins"]
@@ -136,7 +136,10 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     ----------
     chair : Chair
     speed : float
-        Design speed (m/s).
+        Design speed (m/s, > 0; or exactly 0: the standstill design on
+        :func:`~stability.assist.plant.standstill_plant`, LQR and Kalman on
+        its yaw loop, zero gains on the slaved lateral velocity and the
+        casters).
     kind : {"full-state", "gyro"}
         Feedback structure.
     weights : Weights
@@ -156,11 +159,20 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     """
     check_choice("design", kind, DESIGNS)
     drive = drive or DriveTrain()
-    p = plant(chair, speed, model, drive.motor_time_constant)
+    if speed == 0:
+        p = standstill_plant(chair, drive.motor_time_constant, drive.yaw_damping)
+        keep = [1, 6] + ([7] if p.n == 8 else [])        # the yaw loop: r, psi (, mz)
+    else:
+        p = plant(chair, speed, model, drive.motor_time_constant)
+        keep = list(range(p.n))
     Q, R = weights.matrices(chair, drive, p.n)
-    K, _, _ = control.lqr(p.A, p.B, Q, R)
-    K = np.asarray(K, dtype=float).reshape(1, p.n)
-    return realise(kind, p, K, _kalman(p, gyro, estimator) if kind == "gyro" else None)
+    ix = np.ix_(keep, keep)
+    Kr, _, _ = control.lqr(p.A[ix], p.B[keep], Q[ix], R)
+    K = np.zeros((1, p.n))
+    K[0, keep] = np.asarray(Kr, dtype=float).reshape(-1)
+    if kind == "full-state":
+        return realise(kind, p, K, None)
+    return realise(kind, p, K, _kalman(p, gyro, estimator) if speed != 0 else _kalman_standstill(p, gyro, estimator))
 
 
 def _kalman(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:
@@ -171,6 +183,16 @@ def _kalman(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:
     RN = np.array([[gyro.noise_psd]])
     L, _, _ = control.lqe(p.A6, G, C, QN, RN)
     return np.asarray(L, dtype=float).reshape(6, 1)
+
+
+def _kalman_standstill(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:
+    """Kalman gain of the standstill plant: the yaw rate alone is estimated (the other gains are zero)."""
+    G = np.hstack([p.Bf6[1:2], p.B6[1:2]])
+    L, _, _ = control.lqe(p.A6[1:2, 1:2], G, np.ones((1, 1)), np.diag([est.lateral_force, est.yaw_moment]),
+                          np.array([[gyro.noise_psd]]))
+    out = np.zeros((6, 1))
+    out[1, 0] = float(np.asarray(L).reshape(-1)[0])
+    return out
 
 
 def realise(kind: str, p: Plant, K: np.ndarray, L: np.ndarray | None) -> Design:

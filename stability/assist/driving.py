@@ -131,7 +131,7 @@ class CommandRun:
 
 def command_run(sched: Schedule, speed: float, command: Callable[[float], float], *, duration: float = 4.0,
                 impulse_force: float = 0.0, noise: bool = False, seed: int = 0, saturate: bool = True,
-                dt: float = 0.001, command_filter_s: float = 0.0) -> CommandRun:
+                dt: float | str = "auto", command_filter_s: float = 0.0) -> CommandRun:
     """Simulate the scheduled controller following ``command`` (WCHAIR scheme, exact model by default).
 
     Parameters
@@ -148,9 +148,13 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
     noise : bool
         Gyro noise and bias.
     seed : int
+        Seed of the gyro noise.
     saturate : bool
-    dt : float
-        s.
+        Limit the torque at the drive train's limit.
+    dt : float or "auto"
+        Step of the WCHAIR scheme (s); ``"auto"``: 1 ms, or 1 ms / k below
+        the speed where the tire modes (``-C/(m U)``) need a smaller step
+        (about 0.3 m/s for the preset).
     command_filter_s : float
         Reference-model time constant (s).
 

@@ -18,13 +18,15 @@ from ..linear import input_matrices, state_matrices
 from ..models import accelerations
 from ..params import parameters
 
-__all__ = ["STATES", "MOTOR_STATE", "Plant", "plant", "reversed_chair", "lateral_force_column", "measurement_matrix",
-           "system_name"]
+__all__ = ["STATES", "MOTOR_STATE", "YAW_LOOP", "Plant", "plant", "standstill_plant", "pivot_inertia", "reversed_chair",
+           "lateral_force_column", "measurement_matrix", "system_name"]
 
 #: States of the design plant (SI units: m/s, rad/s, rad, rad/s, rad, rad/s, rad).
 STATES = ("v", "r", "eta", "eta_dot", "beta", "beta_dot", "psi")
 #: The eighth state when the drive has a motor lag: the yaw moment the wheels apply (N m).
 MOTOR_STATE = "mz"
+#: States of the standstill (kinematic) plant's yaw loop: ``r``, ``psi`` and, with a motor lag, ``mz``.
+YAW_LOOP = ("r", "psi", "mz")
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,7 +108,19 @@ class Plant:
 
 
 def system_name(prefix: str, speed: float) -> str:
-    """A python-control system name (no dots allowed), e.g. ``chair_U0p75``."""
+    """A python-control system name (no dots allowed), e.g. ``chair_U0p75``.
+
+    Parameters
+    ----------
+    prefix : str
+        Start of the name.
+    speed : float
+        Forward speed (m/s).
+
+    Returns
+    -------
+    str
+    """
     return f"{prefix}_U{speed:g}".replace(".", "p").replace("-", "_")
 
 
@@ -202,6 +216,70 @@ def plant(chair: Chair, speed: float, model: str = "exact", motor_time_constant:
     Bf = np.zeros((n, 1))
     Bf[:6, 0] = lateral_force_column(chair, speed, model)
     return Plant(speed, A, B, Bf, tau)
+
+
+def pivot_inertia(chair: Chair) -> float:
+    """Yaw inertia about the midpoint of the drive axle, ``J = I_z + m s1^2`` (kg m^2; parallel axes).
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Returns
+    -------
+    float
+    """
+    return float(chair.i_z + chair.m * chair.x_main ** 2)
+
+
+def standstill_plant(chair: Chair, motor_time_constant: float = 0.0, yaw_damping: float = 0.0) -> Plant:
+    """The kinematic differential-drive plant, valid at standstill and in the low-speed limit.
+
+    The tire terms of the linear model go like ``C/U``: as ``U -> 0`` the
+    drive tires' lateral slip modes become infinitely fast (``-C/(m U)``),
+    so the drive axle rolls without side slip (``v + x_main r = 0``), and
+    every other mode scales with the distance travelled (``lambda = kappa
+    U``: the casters' swivel at ``-U/trail``, the chair's divergence).  What
+    is left at ``U = 0`` is the pivot about the drive-axle midpoint,
+    ``J r_dot = mz - c_r r`` (:func:`pivot_inertia`; ``c_r`` the yaw
+    damping of tire scrub and caster pin friction, 0 by default: no help
+    assumed).  ``docs/assist.md`` has the argument and the check against
+    the linear model at 0.02-0.25 m/s.
+
+    States as :func:`plant` (speed 0): ``v = -x_main r`` is slaved to the
+    yaw rate (its row is ``-x_main`` times the ``r`` row), and the caster
+    rows are zero: at standstill a swivelled caster stays where it is (its
+    modes ``-U/trail`` are at 0) and, rolling freely, puts no lateral force
+    on the chair.  Only the yaw loop :data:`YAW_LOOP` is controllable.
+    A lateral force at the c.g. acts with the lever ``x_main`` about the axle.
+
+    Parameters
+    ----------
+    chair : Chair
+    motor_time_constant : float
+        s, >= 0 (as :func:`plant`).
+    yaw_damping : float
+        ``c_r`` (N m s/rad, >= 0).
+
+    Returns
+    -------
+    Plant
+    """
+    tau = check_nonnegative("motor_time_constant", motor_time_constant)
+    c_r = check_nonnegative("yaw_damping", yaw_damping)
+    J, x = pivot_inertia(chair), chair.x_main
+    n = 8 if tau > 0 else 7
+    A, B, Bf = np.zeros((n, n)), np.zeros((n, 1)), np.zeros((n, 1))
+    A[1, 1] = -c_r / J
+    Bf[1, 0] = -x / J
+    if tau > 0:
+        A[1, 7] = 1.0 / J
+        A[7, 7], B[7, 0] = -1.0 / tau, 1.0 / tau
+    else:
+        B[1, 0] = 1.0 / J
+    A[0], B[0], Bf[0] = -x * A[1], -x * B[1], -x * Bf[1]
+    A[6, 1] = 1.0
+    return Plant(0.0, A, B, Bf, tau)
 
 
 def reversed_chair(chair: Chair) -> Chair:

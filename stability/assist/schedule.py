@@ -7,7 +7,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._validate import check_choice, check_speed, check_speeds
+from .._validate import check_choice, check_nonnegative, check_speeds
 from ..chair import Chair
 from ..power_chair import DriveTrain
 from .design import Design, design, realise
@@ -35,6 +35,11 @@ class Schedule:
         Drive wheels and motors.
     weights, gyro, estimator, model
         The design options.
+    standstill : Design or None
+        The design at 0 m/s on the kinematic plant
+        (:func:`~stability.assist.plant.standstill_plant`); below the first
+        grid speed the controller is interpolated between it and the first
+        design.  None: the first design's gains are held below it.
     """
 
     chair: Chair
@@ -46,24 +51,43 @@ class Schedule:
     gyro: GyroSensor
     estimator: EstimatorWeights
     model: str
+    standstill: Design | None = None
 
     @property
     def gains(self) -> np.ndarray:
         """LQR gains (N, n)."""
         return np.array([d.K[0] for d in self.designs])
 
+    @property
+    def grid(self) -> tuple[np.ndarray, tuple[Design, ...]]:
+        """Speeds (m/s) and designs the interpolation uses: the standstill design (if any) and the grid."""
+        if self.standstill is None:
+            return self.speeds, self.designs
+        return np.concatenate([[0.0], self.speeds]), (self.standstill, *self.designs)
+
     def _interp(self, speed: float, attr: Callable[[Design], np.ndarray | None]) -> np.ndarray:
-        stack = np.array([attr(d) for d in self.designs], dtype=float)
-        s = float(np.clip(speed, self.speeds[0], self.speeds[-1]))
-        if len(self.speeds) == 1:
+        speeds, designs = self.grid
+        stack = np.array([attr(d) for d in designs], dtype=float)
+        s = float(np.clip(speed, speeds[0], speeds[-1]))
+        if len(speeds) == 1:
             return stack[0]
-        flat = stack.reshape(len(self.speeds), -1)
-        out = np.array([np.interp(s, self.speeds, flat[:, j]) for j in range(flat.shape[1])])
+        flat = stack.reshape(len(speeds), -1)
+        out = np.array([np.interp(s, speeds, flat[:, j]) for j in range(flat.shape[1])])
         return out.reshape(stack.shape[1:])
 
     def gains_at(self, speed: float) -> np.ndarray:
-        """LQR gain (1, n) at ``speed`` (m/s): linear interpolation in speed, held at the ends of the grid."""
-        return self._interp(check_speed(speed), lambda d: d.K)
+        """LQR gain (1, n) at ``speed``: linear interpolation in speed, held at the ends of the grid.
+
+        Parameters
+        ----------
+        speed : float
+            m/s, >= 0.
+
+        Returns
+        -------
+        ndarray (1, n)
+        """
+        return self._interp(check_nonnegative("speed", speed), lambda d: d.K)
 
     def at(self, speed: float) -> Design:
         """The scheduled controller at ``speed`` (m/s).
@@ -77,16 +101,19 @@ class Schedule:
         Parameters
         ----------
         speed : float
-            m/s.
+            m/s (0: the standstill design, when there is one).
 
         Returns
         -------
         Design
         """
-        speed = check_speed(speed)
-        hit = np.flatnonzero(np.isclose(self.speeds, speed, rtol=0, atol=1e-12))
+        speed = check_nonnegative("speed", speed)
+        speeds, designs = self.grid
+        hit = np.flatnonzero(np.isclose(speeds, speed, rtol=0, atol=1e-12))
         if hit.size:
-            return self.designs[int(hit[0])]
+            return designs[int(hit[0])]
+        if speed == 0:
+            raise ValueError("speed=0 is invalid without a standstill design; valid range: > 0 m/s")
         K = self._interp(speed, lambda d: d.K)
         true_p = plant(self.chair, speed, self.model, self.drive.motor_time_constant)
         if self.kind == "full-state":
@@ -101,7 +128,8 @@ class Schedule:
 
 def schedule(chair: Chair, speeds: Sequence[float] | np.ndarray, kind: str = "gyro", *,
              weights: Weights = DEFAULT_WEIGHTS, drive: DriveTrain | None = None, gyro: GyroSensor = DEFAULT_GYRO,
-             estimator: EstimatorWeights = DEFAULT_ESTIMATOR, model: str = "exact") -> Schedule:
+             estimator: EstimatorWeights = DEFAULT_ESTIMATOR, model: str = "exact",
+             standstill: bool = True) -> Schedule:
     """Design at every speed of an increasing grid (see :class:`Schedule`).
 
     Parameters
@@ -111,6 +139,10 @@ def schedule(chair: Chair, speeds: Sequence[float] | np.ndarray, kind: str = "gy
         Strictly increasing design speeds (m/s, > 0).
     kind, weights, drive, gyro, estimator, model
         As :func:`~stability.assist.design.design`.
+    standstill : bool
+        Add the standstill design at 0 m/s (:attr:`Schedule.standstill`) so
+        the schedule covers 0 up; False holds the first design's gains below
+        the first grid speed.
 
     Returns
     -------
@@ -126,4 +158,6 @@ def schedule(chair: Chair, speeds: Sequence[float] | np.ndarray, kind: str = "gy
     drive = drive or DriveTrain()
     ds = tuple(design(chair, s, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator, model=model)
                for s in U)
-    return Schedule(chair, kind, U, ds, drive, weights, gyro, estimator, model)
+    still = design(chair, 0.0, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator, model=model) \
+        if standstill else None
+    return Schedule(chair, kind, U, ds, drive, weights, gyro, estimator, model, still)

@@ -43,6 +43,11 @@ class Feedforward:
 def feedforward(p: Plant) -> Feedforward:
     """The steady turn ``A_int x + B_int u = 0`` with ``r = 1 rad/s`` of the plant ``p``.
 
+    At standstill (:func:`~stability.assist.plant.standstill_plant`) the
+    casters' angles and the slaved lateral velocity are left free by the
+    equations; the minimum-norm solution sets them to zero (their gains are
+    zero anyway).
+
     Parameters
     ----------
     p : Plant
@@ -59,7 +64,10 @@ def feedforward(p: Plant) -> Feedforward:
     M[m, 1] = 1.0
     rhs = np.zeros(m + 1)
     rhs[m] = 1.0
-    sol = np.linalg.solve(M, rhs)
+    try:
+        sol = np.linalg.solve(M, rhs)
+    except np.linalg.LinAlgError:      # the standstill plant: states it leaves free are set to 0
+        sol = np.linalg.lstsq(M, rhs, rcond=None)[0]
     return Feedforward(sol[:m], float(sol[m]))
 
 
