@@ -15,7 +15,7 @@ Examples
 3.2
 """
 
-from .api import simulate, simulate_batch
+from .api import reference_engine, simulate, simulate_batch
 from .controller import SampledController
 from .engine import RECORDS, STATS_LEVELS
 from .linearise import linearise
@@ -53,6 +53,7 @@ __all__ = [
     "SimulationResult",
     "simulate",
     "simulate_batch",
+    "reference_engine",
     "linearise",
     "SampledController",
     "RunStats",

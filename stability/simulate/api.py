@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextvars import ContextVar
 from typing import Any
 
 import numpy as np
@@ -21,7 +23,31 @@ from .results import ChairState, SimulationResult
 from .stepcheck import StepStabilityWarning, auto_step, stable_steps
 from .wchair import wchair_single
 
-__all__ = ["simulate", "simulate_batch"]
+__all__ = ["simulate", "simulate_batch", "reference_engine"]
+
+_REFERENCE: ContextVar[bool] = ContextVar("stability_simulate_reference_engine", default=False)
+
+
+@contextlib.contextmanager
+def reference_engine() -> Iterator[None]:
+    """Context manager: inside it, WCHAIR runs use the pure-Python/numpy reference paths, not the kernel.
+
+    The reference paths (:func:`~stability.simulate.wchair.wchair_single` for one
+    run, :func:`~stability.simulate.reference.wchair_batch` for a batch) are what
+    the compiled kernel is tested against; benchmarks time a whole study or
+    report inside this block to measure the kernel's gain in the same run.
+    Options only the kernel offers (``controller=``, ``record=`` other than
+    ``"all"``) are refused inside it.
+
+    Yields
+    ------
+    None
+    """
+    token = _REFERENCE.set(True)
+    try:
+        yield
+    finally:
+        _REFERENCE.reset(token)
 
 
 def _check_chair(chair: Any) -> Chair:
@@ -214,7 +240,7 @@ def _run(chairs: list[Chair], speeds: np.ndarray, options: dict[str, Any], force
     if auto:
         options["dt"] = WCHAIR_DT
     opts = make_options(batch=batch, **options)
-    python_input = opts.yaw_moment is not None
+    python_input = opts.yaw_moment is not None or _REFERENCE.get()
     if python_input and controller is not None:
         raise ValueError("yaw_moment and controller are both given; choose one")
     if (opts.scheme == "adaptive" or python_input) and (controller is not None or record != "all"):
