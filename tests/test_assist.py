@@ -422,3 +422,86 @@ def test_nonlinear_bias_handling(schedules, chair):
         out[tb] = float(np.degrees(run.result.heading[-1]))
     assert out[0.0] == pytest.approx(-10.0, abs=0.3)
     assert out[1.0] == pytest.approx(-1.0, abs=0.2)
+
+
+# ---------------------------------------------------------------------------
+# issue 15: standstill and low speed
+# ---------------------------------------------------------------------------
+def test_standstill_plant_is_the_low_speed_limit_of_the_linear_model(chair):
+    """As U -> 0 the drive tires' slip modes go to -C/(m U) and the others scale with U, so near the
+    loop's crossover the linear model's yaw-moment -> yaw-rate response tends to the pivot about the
+    drive-axle midpoint, 1/(J s) with J = I_z + m s1^2 (parallel axes): within 1.5 % in magnitude
+    and 3 deg in phase at 5-20 rad/s for 0.02-0.1 m/s; and the slow eigenvalues are proportional to U."""
+    J = chair.i_z + chair.m * chair.s1 ** 2
+    assert assist.pivot_inertia(chair) == pytest.approx(J)
+    for U in (0.02, 0.05, 0.1):
+        A, B = state_matrices(chair, U)[0], input_matrices(chair, U)[0]
+        for w in (5.0, 20.0):
+            g = (np.eye(6)[1] @ np.linalg.solve(1j * w * np.eye(6) - A, B))[0] * J * 1j * w
+            assert abs(g) == pytest.approx(1.0, abs=0.015) and abs(np.degrees(np.angle(g))) < 3.0, (U, w)
+    slow = [np.sort(np.linalg.eigvals(state_matrices(chair, U)[0]).real)[-3:] for U in (0.02, 0.04)]
+    assert slow[1] == pytest.approx(2 * slow[0], rel=0.01)
+    p0 = assist.standstill_plant(chair, 0.02)
+    assert p0.A[1, 7] == pytest.approx(1 / J) and p0.A[7, 7] == pytest.approx(-50.0)
+    assert np.allclose(p0.A[0], -chair.s1 * p0.A[1])          # v = -s1 r: the drive axle does not slip
+
+
+def test_standstill_lqr_closed_forms(chair):
+    """Without a motor lag the standstill plant is J psi'' = Mz, whose LQR with Q = diag(1/psi_max^2) on
+    the heading and R = 1/Mz_max^2 is k_psi = Mz_max/psi_max, k_r = sqrt(2 J k_psi) (Butterworth poles).
+    With the 20 ms lag the yaw-loop poles are the roots of tau J s^3 + J (1 + k_mz) s^2 + k_r s + k_psi."""
+    J = chair.i_z + chair.m * chair.s1 ** 2
+    d = assist.design(chair, 0.0, "full-state", drive=DriveTrain(motor_time_constant=0.0))
+    mz_max = DriveTrain().yaw_moment(chair, 35.0)
+    k_psi = mz_max / math.radians(2.0)
+    assert d.K[0, 6] == pytest.approx(k_psi, rel=1e-6)
+    assert d.K[0, 1] == pytest.approx(math.sqrt(2 * J * k_psi), rel=1e-6)
+    assert np.count_nonzero(d.K[0, [0, 2, 3, 4, 5]]) == 0
+    tau = DriveTrain().motor_time_constant
+    d = assist.design(chair, 0.0, "full-state")
+    k_r, k_psi, k_m = d.K[0, 1], d.K[0, 6], d.K[0, 7]
+    roots = np.sort_complex(np.roots([tau * J, J * (1 + k_m), k_r, k_psi]))
+    lam = assist.closed_loop_poles(d)
+    lam = np.sort_complex(lam[np.abs(lam) > 1e-9])
+    assert lam == pytest.approx(roots, rel=1e-8)
+
+
+@pytest.mark.parametrize("kind", assist.DESIGNS)
+def test_schedule_from_standstill(chair, kind):
+    """The schedule starts at 0 m/s (standstill design) and interpolates to the first grid speed: on the
+    true linear plant at 0.02, 0.1 and 0.25 m/s the loop is stable, its slowest poles are the casters'
+    swivel -U/trail (uncontrollable by a yaw moment, the chair's own) within 3 %.  At standstill a pivot-turn command (0.8 rad/s through the linear loop)
+    is followed: within 0.5 % after 2 s."""
+    sched = assist.schedule(chair, [0.5, 1.0], kind)
+    assert sched.standstill is not None and sched.at(0.0) is sched.standstill
+    for U in (0.02, 0.1, 0.25):
+        lam = assist.closed_loop_poles(sched.at(U))
+        assert lam.real.max() == pytest.approx(-U / chair.trail, rel=0.03), (U, lam[:3])
+    sys = tracking.closed_loop(sched.at(0.0))
+    t = np.linspace(0.0, 2.0, 2001)
+    u = np.zeros((3, t.size))
+    u[0] = 0.8
+    r = np.asarray(control_forced(sys, t, u))[0]
+    assert r[-1] == pytest.approx(0.8, rel=0.005)
+
+
+def control_forced(sys, t, u):
+    import control
+
+    return control.forced_response(sys, t, u).outputs
+
+
+@pytest.mark.parametrize("speed", [0.1, 0.25])
+def test_nonlinear_low_speed_turn(schedules, speed):
+    """Nonlinear loop at 0.1 and 0.25 m/s (WCHAIR scheme with the step the tire modes need, pin friction,
+    saturation): a 0.8 rad/s turn command (radius 0.13-0.31 m, nearly a pivot) through the 0.2 s
+    reference model settles within 1.2 s to within 1 % of the command using less than half the motor
+    limit; the chair has turned more than 120 deg after 3 s (0.8 rad/s x ~2.8 s)."""
+    sched = schedules["gyro"]
+    run = driving.command_run(sched, speed, driving.step_command(0.8), duration=3.0,
+                              command_filter_s=driving.COMMAND_FILTER)
+    m = tracking.step_metrics(run.t, run.yaw_rate, run.torque, 0.8)
+    assert abs(m.steady_state_error_pct) < 1.0
+    assert m.settling_time_s is not None and m.settling_time_s < 1.2
+    assert m.peak_torque_N_m < 0.5 * sched.drive.torque_limit
+    assert np.degrees(run.heading[-1]) > 120.0

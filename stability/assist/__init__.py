@@ -28,7 +28,17 @@ from .driving import (
     tracking_step,
     traction_limit,
 )
-from .plant import MOTOR_STATE, STATES, Plant, lateral_force_column, plant, reversed_chair
+from .plant import (
+    MOTOR_STATE,
+    STATES,
+    YAW_LOOP,
+    Plant,
+    lateral_force_column,
+    pivot_inertia,
+    plant,
+    reversed_chair,
+    standstill_plant,
+)
 from .recovery import (
     SETTLE_FLOOR_DEG,
     SETTLE_FRACTION,
@@ -61,7 +71,8 @@ from .weights import DESIGNS, EstimatorWeights, GyroSensor, Weights
 
 __all__ = [
     "DESIGNS", "STATES", "Weights", "GyroSensor", "EstimatorWeights",
-    "MOTOR_STATE", "Plant", "plant", "lateral_force_column", "reversed_chair",
+    "MOTOR_STATE", "YAW_LOOP", "Plant", "plant", "standstill_plant", "pivot_inertia", "lateral_force_column",
+    "reversed_chair",
     "Feedforward", "feedforward", "closed_loop", "final_heading", "heading_drift", "TrackingMetrics", "step_metrics",
     "MarginPair", "margin_pair", "discrete_loop", "discrete_margins",
     "CommandRun", "command_run", "tracking_step", "step_command", "ramp_command", "slalom_command",
