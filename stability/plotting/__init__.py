@@ -6,7 +6,8 @@ and draws on the ``ax`` it is given (returning it) or on a new
 :class:`matplotlib.figure.Figure` (never through ``pyplot``).  Nothing is
 computed here beyond what drawing needs; every axis is labelled with its
 unit.  Modules: :mod:`.pages` (report pages), :mod:`.chair`, :mod:`.tires`,
-:mod:`.loci`, :mod:`.responses`, :mod:`.studies`, :mod:`.style` (colours).
+:mod:`.loci`, :mod:`.responses`, :mod:`.studies`, :mod:`.sections` (slope and uncertainty
+sections of the report), :mod:`.style` (colours).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from .loci import (
 )
 from .pages import PAGE_SIZE, finish, page, panels_page, table_axes, table_page, text_page, wrap_text
 from .responses import trajectories, yaw_rate_responses
+from .sections import drive_difference, growth_rate_band, uncorrected_heading, variance_shares
 from .studies import equal_instability_chart, stability_map, sweep_chart
 from .tires import cornering_stiffness_curves, tire_curves
 
@@ -34,4 +36,5 @@ __all__ = [
     "growth_rate_vs_parameter", "gain_locus",
     "yaw_rate_responses", "trajectories",
     "equal_instability_chart", "sweep_chart", "stability_map",
+    "drive_difference", "uncorrected_heading", "growth_rate_band", "variance_shares",
 ]

@@ -15,7 +15,9 @@ from ..study import THESIS
 from ..summary import format_summary
 from .compute import PUSH_RANGE, ReportData
 from .findings import _first, conclusion_rows, findings
-from .summary import dropped_pages, model_gap, push_text, summary_text
+from .sections import footer as _footer
+from .sections import shimmy_page, slope_page, uncertainty_page
+from .summary import dropped_pages, interval_text, model_gap, push_text, summary_text
 
 __all__ = ["page_builders", "VALIDITY_NOTE"]
 
@@ -33,14 +35,6 @@ def _subtitle(d: ReportData) -> str:
 
 def _title(d: ReportData, what: str) -> str:
     return f"{d.chair.name} | {d.model} model | {what}"
-
-
-def _footer(fig: Figure, text: str, width: int = 190) -> float:
-    """Write a wrapped note at the bottom of a page; return the bottom margin that leaves room for it."""
-    lines = P.wrap_text(text, width)
-    for i, line in enumerate(reversed(lines)):
-        fig.text(0.5, 0.022 + 0.016 * i, line, ha="center", fontsize=7.5, color="0.3")
-    return 0.08 + 0.016 * len(lines)
 
 
 def _p_chair(d: ReportData) -> Figure:
@@ -195,11 +189,8 @@ def _p_equal(d: ReportData) -> Figure:
         "Thesis vs ours: " + model_gap(d),
     ]
     if d.intervals is not None:
-        iv = d.intervals
-        lo, hi = iv.span()
-        txt.insert(3, f"How firm: {iv.chair.name} {iv.nominal.describe()}, range {lo:.3g}-{hi:.3g} m/s over push "
-                   f"x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, pin friction x0.5-x1.5 and the other model variant; "
-                   f"moves it most: {iv.widest()}.")
+        txt.insert(3, "How firm: " + interval_text(d.intervals) + f" (push x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, "
+                   "this chair's pin friction x0.5-x1.5, the other model variant).")
     y = 0.99
     for para in txt:
         for line in P.wrap_text(para, 60):
@@ -275,6 +266,21 @@ def _p_findings(d: ReportData) -> Figure:
     return P.text_page(_title(d, "findings"), "\n\n".join(findings(d)), sub, fontsize=10.5, width=140)
 
 
+def _p_slope(d: ReportData) -> Figure:
+    return slope_page(d, _title(d, "cross slope: holding a straight line, the uncorrected turn (issue 12)"),
+                      _subtitle(d))
+
+
+def _p_shimmy(d: ReportData) -> Figure:
+    return shimmy_page(d, _title(d, "caster trail trade-off: yaw divergence and caster shimmy (issue 13)"),
+                       _subtitle(d))
+
+
+def _p_uncertainty(d: ReportData) -> Figure:
+    return uncertainty_page(d, _title(d, "parameter uncertainty: linear results with intervals (issue 14)"),
+                            _subtitle(d))
+
+
 def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
     """``(title, build)`` for every page, in order; ``build()`` returns a Figure.
 
@@ -292,6 +298,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("chair parameters and geometry", partial(_p_chair, d)),
         ("tires", partial(_p_tires, d)),
         ("linear stability: critical speeds", partial(_p_summary, d)),
+        ("parameter uncertainty", partial(_p_uncertainty, d)),
         ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
         ("eigenvalues against speed", partial(_p_re_im, d)),
         ("root loci against design parameters 1", partial(_p_ploci, d, 1)),
@@ -304,6 +311,8 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("parametric study", partial(_p_sweeps, d)),
         ("parametric study table", partial(_p_sweep_table, d)),
         ("stability maps", partial(_p_maps, d)),
+        ("cross slope", partial(_p_slope, d)),
+        ("caster shimmy", partial(_p_shimmy, d)),
         ("thesis conclusions", partial(_p_conclusions, d)),
         ("findings", partial(_p_findings, d)),
     ]

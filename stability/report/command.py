@@ -6,7 +6,10 @@ import argparse
 from collections.abc import Sequence
 
 from ..cli import OneLineErrorParser, add_chair_options, check_outputs, load_chair, output_files, run
+from ..linear.intervals import MAX_SAMPLES
+from ..measure.uncertainty import load_uncertainty
 from . import document
+from .uncertainty_data import UncertaintySpec
 
 __all__ = ["build_parser", "main"]
 
@@ -27,6 +30,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quick", action="store_true", help="coarse version in seconds")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.add_argument("--text", metavar="FILE", help="also write the text of every page to FILE")
+    p.add_argument("--uncertainty", metavar="FILE",
+                   help="TOML file of parameter distributions: a page of linear results with 95 %% intervals "
+                        "and intervals next to the key numbers")
+    p.add_argument("--samples", type=int, default=1000,
+                   help=f"Monte Carlo draws with --uncertainty (1 to {MAX_SAMPLES}, default 1000)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the draws with --uncertainty (>= 0, default 0)")
     p.add_argument("-o", "--output", required=True, metavar="FILE.pdf", help="output PDF")
     return p
 
@@ -48,12 +57,18 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair})
+    check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
     if not args.output.lower().endswith(".pdf"):
         raise ValueError(f"-o {args.output!r} must end in .pdf")
+    if args.uncertainty is None and (args.samples != 1000 or args.seed != 0):
+        raise ValueError("--samples and --seed need --uncertainty FILE")
+    spec = None
+    if args.uncertainty is not None:
+        spec = UncertaintySpec(args.uncertainty, load_uncertainty(args.uncertainty), args.samples, args.seed)
     c = load_chair(args.chair, args.set)
     with output_files({"-o": args.output, "--text": args.text}) as tmp:
-        res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress)
+        res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress,
+                             uncertainty=spec)
         if args.text:
             with open(tmp["--text"], "w", encoding="utf-8") as fh:
                 fh.write(res.text() + "\n")

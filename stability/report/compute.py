@@ -12,67 +12,28 @@ from .. import rootlocus, study
 from ..chair import Chair, preset
 from ..linear import analyse, divergence, massless_caster_rate
 from ..progress import ProgressBar
-from ..reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from ..statics import static_stiffness
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from ..study.impulse import critical_impulses
 from ..validation import linearisation_check, with_rolling_resistance
 from .modes import mode_names
+from .settings import Settings
+from .shimmy_data import ShimmySection, shimmy_section, shimmy_unavailable
+from .slope_data import SlopeSection, slope_section
 from .tire_data import ForceCurves, StiffnessCurves, force_curves, stiffness_curves
+from .uncertainty_data import UncertaintySection, UncertaintySpec, uncertainty_section
 from .validity import responses_validity
 
-__all__ = ["Settings", "ReportData", "Intervals", "Figure814", "compute", "parameter_loci", "counterpart",
-           "response_speeds", "stabilising_poles", "FIGURE_8_14", "PUSH_RANGE", "COMPARISON_CHAIR"]
+__all__ = ["Settings", "ReportData", "Figure814", "compute", "parameter_loci", "counterpart",
+           "response_speeds", "stabilising_poles", "FIGURE_8_14", "PUSH_RANGE", "FRICTION_RANGE", "COMPARISON_CHAIR"]
 
 #: Figure 8-14 of the thesis: the E&J Premier with less mass and yaw inertia (kg, kg m^2).
 FIGURE_8_14 = {"m": 75.0, "i_z": 4.7}
 #: Relative push forces of the disturbance interval (x the thesis's 40 N).
 PUSH_RANGE = (0.9, 1.1)
+#: Relative pin friction of the friction interval (the chair's pins only, the thesis's Figure 9-3 convention).
+FRICTION_RANGE = (0.5, 1.5)
 #: The chair whose intervals the reference chair's report shows (the thesis's revised design).
 COMPARISON_CHAIR = "revised"
-
-
-@dataclass(frozen=True, eq=False)
-class Intervals:
-    """How far an equal-instability speed moves with the disturbance, the pin friction and the model variant.
-
-    Attributes
-    ----------
-    chair : Chair
-        The chair rated (the report's chair, or the revised design in the reference chair's report).
-    nominal : EqualInstability
-        With the thesis's push, the chair's friction, the report's model.
-    push : tuple of EqualInstability
-        With ``PUSH_RANGE`` times the push force (same duration).
-    friction : tuple of EqualInstability
-        With 0.5 and 1.5 times the pin friction.
-    other_model : EqualInstability
-        With the other model variant (its own reference time).
-    """
-
-    chair: Chair
-    nominal: Any
-    push: tuple
-    friction: tuple
-    other_model: Any
-
-    def all(self) -> list:
-        """Every rating, nominal first."""
-        return [self.nominal, *self.push, *self.friction, self.other_model]
-
-    def span(self) -> tuple[float, float]:
-        """Lowest and highest speed (or bound) over every rating, m/s."""
-        v = [r.value_or_bound for r in self.all()]
-        return min(v), max(v)
-
-    def widest(self) -> str:
-        """Which of "disturbance", "pin friction", "model variant" moves the speed most ("none" if all are bounds)."""
-        if all(r.status != "found" for r in self.all()):
-            return "none (every rating is a bound)"
-        u0 = self.nominal.value_or_bound
-        moves = {"disturbance": max(abs(r.value_or_bound - u0) for r in self.push),
-                 "pin friction": max(abs(r.value_or_bound - u0) for r in self.friction),
-                 "model variant": abs(self.other_model.value_or_bound - u0)}
-        return max(moves, key=lambda k: moves[k])
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,64 +58,6 @@ class Figure814:
     rate_light: float
     massless_reference: float
     massless_light: float
-
-
-@dataclass(frozen=True)
-class Settings:
-    """Resolution of every computation in the report (``full`` or ``quick``).
-
-    Attributes
-    ----------
-    quick : bool
-        Coarse grids (marked QUICK on every page).
-    speed_points, locus_points, gain_points : int
-        Points of the speed, parameter and feedback-gain loci.
-    duration, dt : float
-        Simulated time and step of the nonlinear runs (s).
-    tol : float
-        Bisection tolerance of equal-instability speeds (m/s).
-    candidates : int
-        Candidate speeds per bisection round (one batch each).
-    bracket : tuple of float
-        Speed bracket of the bisection (m/s).
-    plan : dict or None
-        Parametric-study plan (None: ``study.DEFAULT_PLAN``).
-    map_speeds, map_frictions, map_impulses : tuple of float
-        Grids of the stability maps (m/s, N m, N s).
-    """
-
-    quick: bool = False
-    speed_points: int = 700
-    locus_points: int = 121
-    gain_points: int = 300
-    duration: float = HORIZON
-    dt: float = 0.001
-    tol: float = 0.005
-    candidates: int = 7
-    bracket: tuple = (0.2, 3.0)
-    plan: dict | None = None           # None: study.DEFAULT_PLAN
-    map_speeds: tuple = tuple(np.round(np.linspace(0.3, 2.0, 18), 3))
-    map_frictions: tuple = tuple(np.round(np.linspace(0.0, 0.3, 13), 3))
-    map_impulses: tuple = tuple(np.round(np.linspace(1.0, 10.0, 10), 3))
-
-    @classmethod
-    def for_mode(cls, quick: bool) -> Settings:
-        """The full settings, or the coarse ``--quick`` ones.
-
-        Parameters
-        ----------
-        quick : bool
-
-        Returns
-        -------
-        Settings
-        """
-        if not quick:
-            return cls()
-        return cls(quick=True, speed_points=150, locus_points=41, gain_points=80, duration=6.0, dt=0.001,
-                   tol=0.05, candidates=9, bracket=(0.3, 2.5), plan=study.QUICK_PLAN,
-                   map_speeds=(0.4, 0.8, 1.2, 1.6, 2.0), map_frictions=(0.0, 0.1, 0.2, 0.3),
-                   map_impulses=(2.0, 4.0, 8.0))
 
 
 @dataclass(frozen=True, eq=False)
@@ -197,7 +100,18 @@ class ReportData:
         (model, casters) -> names of the speed locus's branches.
     validity : dict
         "responses", "frictionless", "paths" -> tuple of Validity, one per run.
-    intervals : Intervals or None
+    intervals : stability.study.EqualInstabilityInterval or None
+        The equal-instability speed of the chair (the revised design in the reference chair's report) over
+        the push x0.9/x1.1, the chair's pin friction x0.5/x1.5 and the other model variant.
+    sensitivity : stability.study.Sensitivity or None
+        Elasticities of the critical impulse and growth rate at the reference speed (M_f/l as one group).
+    slope : SlopeSection or None
+        Cross-slope holding moment, drive difference and uncorrected path.
+    shimmy : ShimmySection or None
+        Trail trade-off (None when the casters cannot shimmy in the model; ``shimmy_note`` says why).
+    shimmy_note : str or None
+    uncertainty : UncertaintySection or None
+        Linear intervals over ``--uncertainty FILE`` (None without it).
     impulses : tuple of CriticalImpulse
         The chair and the reference (or revised) chair at the reference speed.
     figure_8_14 : Figure814 or None
@@ -228,7 +142,12 @@ class ReportData:
     gain_poles: tuple = ()       # closed-loop eigenvalues at each gain locus's stabilising gain (or None)
     mode_names: dict = field(default_factory=dict)   # (model, casters) -> names of the speed locus's branches
     validity: dict = field(default_factory=dict)     # "responses", "frictionless", "paths" -> tuple of Validity
-    intervals: Intervals | None = None
+    intervals: Any = None        # study.EqualInstabilityInterval
+    sensitivity: Any = None      # study.Sensitivity
+    slope: SlopeSection | None = None
+    shimmy: ShimmySection | None = None
+    shimmy_note: str | None = None
+    uncertainty: UncertaintySection | None = None
     impulses: tuple = ()         # CriticalImpulse of the chair and the reference chair at the reference speed
     figure_8_14: Figure814 | None = None
 
@@ -285,19 +204,11 @@ def stabilising_poles(locus: Any) -> np.ndarray | None:
     return np.linalg.eigvals(a)
 
 
-def _valid_chair(p: Any, c: Chair, v: float) -> bool:
-    try:
-        static_stiffness(p.apply(c, float(v)))
-    except ValueError:
-        return False
-    return True
-
-
 def parameter_loci(c: Chair, model: str, n: int) -> list:
     """Root loci against the design parameters at the reference speed, over each parameter's default span.
 
-    Where the default span reaches chairs that cannot stand (a static load <= 0, e.g. the c.g. ratio of a
-    front-caster chair), the locus is drawn over the values that give valid chairs only.
+    The spans stay within chairs that can stand (:meth:`stability.design.Parameter.span`; e.g. the
+    c.g.-ratio span of a front-caster chair ends before its main wheels unload).
 
     Parameters
     ----------
@@ -310,21 +221,13 @@ def parameter_loci(c: Chair, model: str, n: int) -> list:
     -------
     list of stability.rootlocus.ParameterLocus
     """
-    out = []
-    for name in rootlocus.LOCUS_PARAMETERS:
-        try:
-            out.append(rootlocus.parameter_locus(c, name, speed=REFERENCE_SPEED, model=model, n=n))
-        except ValueError:
-            p = rootlocus.get_parameter(name)
-            lo, hi = p.span(c)
-            vals = [v for v in np.linspace(lo, hi, n) if _valid_chair(p, c, v)]
-            out.append(rootlocus.parameter_locus(c, name, vals, speed=REFERENCE_SPEED, model=model, n=n))
-    return out
+    return [rootlocus.parameter_locus(c, name, speed=REFERENCE_SPEED, model=model, n=n)
+            for name in rootlocus.LOCUS_PARAMETERS]
 
 
 def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bool = True,
             scheme: str = "wchair", settings: Settings | None = None,
-            log: Callable[[str], None] | None = None) -> ReportData:
+            log: Callable[[str], None] | None = None, uncertainty: UncertaintySpec | None = None) -> ReportData:
     """Run every analysis of the report for chair ``c``.
 
     Parameters
@@ -341,6 +244,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     settings : Settings, optional
     log : callable, optional
         Called with the name of each finished stage.
+    uncertainty : UncertaintySpec, optional
+        Parameter distributions for the linear intervals (``--uncertainty FILE``).
 
     Returns
     -------
@@ -349,14 +254,13 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     s = settings or Settings.for_mode(quick)
     other = "thesis" if model == "exact" else "exact"
     sim: dict[str, Any] = dict(dt=s.dt, scheme=scheme)
-    rating: dict[str, Any] = dict(bracket=s.bracket, tol=s.tol, candidates=s.candidates, progress=False, **sim)
     crit = study.Criterion(duration=s.duration)
     push = THESIS_PUSH.as_tuple
     ref_chair = preset(REFERENCE_CHAIR)
     is_ej = c == ref_chair
     light = ref_chair.replace(name=f"{REFERENCE_CHAIR}, m {FIGURE_8_14['m']:g} kg, I_z {FIGURE_8_14['i_z']:g} kg m^2",
                               **FIGURE_8_14)
-    stages = 10
+    stages = 11
     with ProgressBar(stages, f"report {c.name}", enabled=progress, unit="stage") as bar:
         def stage(msg: str) -> None:
             if log:
@@ -399,22 +303,16 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                            *(float(massless_caster_rate(x, REFERENCE_SPEED)) for x in (ref_chair, light)))
         stage("equal-instability speeds and parametric study")
         subject = preset(COMPARISON_CHAIR) if is_ej else c
-        if is_ej:
-            sub_nominal = thesis.speeds[COMPARISON_CHAIR]
-            sub_friction = (thesis.speeds[f"{COMPARISON_CHAIR} x0.5 friction"],
-                            thesis.speeds[f"{COMPARISON_CHAIR} x1.5 friction"])
-        else:
-            sub_nominal, sub_friction = chair_speed, tuple(chair_friction)
-        pushed = tuple(study.equal_instability_speeds([subject], model=model, criterion=crit,
-                                                      impulse=(f * push[0], push[1]), **rating)[0]
-                       for f in PUSH_RANGE)
-        other_rated = study.equal_instability_speeds([subject], model=other, criterion=crit, impulse=push,
-                                                     **rating)[0]
-        intervals = Intervals(subject, sub_nominal, pushed, sub_friction, other_rated)
+        intervals = study.equal_instability_interval(
+            subject, model=model, force_factors=PUSH_RANGE, friction_factors=FRICTION_RANGE,
+            friction_on_reference=False, push=THESIS_PUSH, criterion=crit, scheme=scheme, bracket=s.bracket,
+            tol=s.tol, candidates=s.candidates, dt=s.dt)
         impulses = tuple(critical_impulses([c, ref_chair] if not is_ej else [c, subject], REFERENCE_SPEED,
                                            model=model, scheme=scheme, duration=push[1], horizon=s.duration,
                                            dt=s.dt, rel_tol=0.005 if not s.quick else 0.05))
-        stage("intervals and critical impulses")
+        sensitivity = study.elasticities(c, REFERENCE_SPEED, model=model, rel_tol=s.impulse_tol, scheme=scheme,
+                                         duration=push[1], horizon=s.duration, dt=s.dt)
+        stage("intervals, critical impulses and elasticities")
         u_star = chair_speed.speed if chair_speed.status == "found" else REFERENCE_SPEED
         r_speeds = response_speeds(u_star)
         responses = study.yaw_rate_responses(c, r_speeds, model=model, criterion=crit, progress=False, **sim)
@@ -441,8 +339,14 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         stage("stability map: speed x disturbance")
         conclusions = study.check_conclusions(thesis)
         stage("conclusions")
+        slope = slope_section(c)
+        shimmy_note = shimmy_unavailable(c)
+        shimmy = None if shimmy_note else shimmy_section(c, s.shimmy_trails, s.shimmy_speeds)
+        unc = None if uncertainty is None else uncertainty_section(c, uncertainty, model=model, quick=s.quick)
+        stage("slope, shimmy and uncertainty")
     return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
                       list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,
                       rolling=rolling, tire_force=tire_force, tire_stiffness=tire_stiffness,
                       gain_poles=gain_poles, mode_names=names, validity=valid, intervals=intervals,
-                      impulses=impulses, figure_8_14=fig814)
+                      impulses=impulses, figure_8_14=fig814, sensitivity=sensitivity, slope=slope, shimmy=shimmy,
+                      shimmy_note=shimmy_note, uncertainty=unc)

@@ -17,6 +17,7 @@ from ..output import write_pdf
 from ..progress import ProgressBar
 from . import builders
 from .compute import ReportData, Settings, compute
+from .uncertainty_data import UncertaintySpec
 
 __all__ = ["Page", "ReportResult", "figure_texts", "pages", "build"]
 
@@ -108,7 +109,8 @@ def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
 
 
 def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick: bool = False, progress: bool = True,
-          settings: Settings | None = None, data: ReportData | None = None) -> ReportResult:
+          settings: Settings | None = None, data: ReportData | None = None,
+          uncertainty: UncertaintySpec | None = None) -> ReportResult:
     """Compute and write the report for chair ``c`` to ``path`` (atomically, reproducibly).
 
     Parameters
@@ -125,6 +127,8 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     settings : Settings, optional
     data : ReportData, optional
         Already computed data (skips :func:`~stability.report.compute.compute`).
+    uncertainty : UncertaintySpec, optional
+        Parameter distributions for the uncertainty page and the intervals on the summary.
 
     Returns
     -------
@@ -136,7 +140,7 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     directory = path.parent if str(path.parent) else Path(".")
     if not directory.is_dir():
         raise ValueError(f"output directory {str(directory)!r} does not exist")
-    d = data or compute(c, model, quick=quick, progress=progress, settings=settings)
+    d = data or compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty)
     record: list[Page] = []
     n_pages = len(builders.page_builders(d))
     with ProgressBar(n_pages, "pages", enabled=progress, unit="page") as bar:

@@ -10,7 +10,7 @@ from ..chair import preset
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from ..validation import has_rolling_resistance
 from .compute import ReportData
-from .summary import model_gap, push_text, steady_turns
+from .summary import elasticity_floor, model_gap, push_text, steady_turns
 
 __all__ = ["findings", "conclusion_rows"]
 
@@ -114,17 +114,7 @@ def findings(d: ReportData) -> list[str]:
     out.append(f"Pin friction: at half the friction the equal-instability speed is {f_lo.describe()}, at 1.5 times "
                f"it is {f_hi.describe()} (own friction: {cs.describe()})." + _friction_gain_text(d))
     out.append(_figure_8_14_text(d))
-    ranked = d.chair_sweeps.ranked()
-    top = ", ".join(f"{sw.label} ({sw.effect_percent:.0f} %)" for sw in ranked[:4])
-    low = ", ".join(f"{sw.label} ({sw.effect_percent:.1f} %)" for sw in ranked[-3:])
-    if all(r.status != "found" for sw in ranked for r in sw.results) and cs.status != "found":
-        out.append(f"The parametric study cannot rank the parameters for {c.name}: every variant tried stays "
-                   f"outside the speed bracket ({cs.bracket[0]:g}-{cs.bracket[1]:g} m/s) of the reference instability.")
-    else:
-        out.append(f"What matters most (spread of the equal-instability speed over the values tried, in % of the "
-                   "chair's own; the ranges tried differ per parameter, so this is not a sensitivity"
-                   f"{'; some values are bounds' if any(sw.censored for sw in ranked) else ''}): {top}. "
-                   f"What matters least: {low}.")
+    out.append(_elasticity_text(d))
     g = d.gain_loci[0]
     if g.stabilising_gain is None:
         out.append(f"Yaw-rate feedback Mz = -K r does not stabilise the linear model at {g.speed:g} m/s "
@@ -141,6 +131,28 @@ def findings(d: ReportData) -> list[str]:
     out.append(f"Thesis conclusions 1-9 against our numbers: {n_agree} agree, {n_part} partly, {n_dis} disagree "
                "(details on the previous page).")
     return out
+
+
+def _elasticity_text(d: ReportData) -> str:
+    sens = d.sensitivity
+    if sens is None:
+        return ""
+    floor = elasticity_floor(d)
+
+    def listing(measure: str) -> str:
+        items = [(e.label, getattr(e, measure)) for e in sens.ranked(measure)]
+        shown = [f"{lab} {v:+.2f}" for lab, v in items if v is not None and abs(v) > floor]
+        return ", ".join(shown) if shown else "none above the resolution"
+
+    imp = (f"critical impulse ({sens.nominal.describe()}): " + listing("critical_impulse")
+           if sens.nominal.impulse_Ns is not None else "critical impulse: not found at this speed")
+    grow = (f"linear growth rate ({sens.nominal_growth_rate:.3g} 1/s): " + listing("growth_rate")
+            if sens.nominal_growth_rate > 0 else "linear growth rate: negative (stable), no elasticity")
+    return (f"What matters most, as elasticities d ln v / d ln p at {sens.speed:g} m/s ({sens.model} model; every "
+            f"parameter x{1 - sens.step:g} and x{1 + sens.step:g}; shown when above the resolution {floor:.2g}): "
+            f"{imp}; {grow}. Pin friction and trail enter as the group M_f/l (the friction-limited caster side "
+            "force) and trail at fixed M_f/l. The parametric-study pages show spreads over unequal ranges, which "
+            "are not sensitivities.")
 
 
 def _steady_turn_text(d: ReportData) -> str:
@@ -161,12 +173,12 @@ def _steady_turn_text(d: ReportData) -> str:
 def _friction_gain_text(d: ReportData) -> str:
     iv = d.intervals
     ref = d.thesis.speeds[REFERENCE_CHAIR]
-    if iv is None or iv.chair == preset(REFERENCE_CHAIR) or ref.status != "found":
+    if iv is None or iv.chair_name == REFERENCE_CHAIR or ref.status != "found":
         return ""
-    lo = iv.friction[0]
-    if lo.value_or_bound < ref.value_or_bound < iv.nominal.value_or_bound:
-        return (f" {iv.chair.name} beats the {REFERENCE_CHAIR} ({ref.describe()}) with its own pin friction, but at "
-                f"half of it ({lo.describe()}) it is worse: its gain rests on pin friction.")
+    half = next((v.result for v in iv.variants if v.factor == "pin friction" and v.friction_factor < 1), None)
+    if half is not None and half.value_or_bound < ref.value_or_bound < iv.point.value_or_bound:
+        return (f" {iv.chair_name} beats the {REFERENCE_CHAIR} ({ref.describe()}) with its own pin friction, but at "
+                f"half of it ({half.describe()}) it is worse: its gain rests on pin friction.")
     return ""
 
 

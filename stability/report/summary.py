@@ -12,32 +12,41 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..chair import preset
+from ..design import get_parameter
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from ..study import FRICTION_OVER_TRAIL, TRAIL_AT_FIXED_GROUP
 from .compute import ReportData
+from .sections import section_drops
 
-__all__ = ["Change", "best_changes", "dropped_pages", "model_gap", "push_text", "steady_turns", "summary_text"]
+__all__ = ["Change", "best_changes", "elasticity_floor", "interval_text", "dropped_pages",
+           "model_gap", "push_text", "steady_turns", "summary_text"]
 
 
 @dataclass(frozen=True)
 class Change:
-    """One parameter change from the parametric study and its effect on the equal-instability speed.
+    """One parameter change ranked by its elasticity (:func:`stability.study.elasticities`).
 
     Attributes
     ----------
     label : str
-        The parameter.
-    value, current : str
-        The value tried and the chair's own, with units.
-    speed : str
-        The equal-instability speed with that value.
+        The parameter (M_f/l is one group).
+    value : str
+        The chair's own value, with its unit.
+    direction : str
+        ``"raise"`` or ``"lower"``: the way that raises the critical impulse.
+    elasticity : float
+        ``d ln J / d ln p`` of the critical impulse J.
+    growth : float or None
+        ``d ln sigma / d ln p`` of the linear growth rate (None when the rate is not positive).
     percent : float
-        Change against the chair's own speed, %.
+        Change of the critical impulse for a 10 % change of the parameter in ``direction``, %.
     """
 
     label: str
     value: str
-    current: str
-    speed: str
+    direction: str
+    elasticity: float
+    growth: float | None
     percent: float
 
 
@@ -84,8 +93,23 @@ def model_gap(d: ReportData) -> str:
             "equations), and readings from the thesis's figures carry a few per cent." + gap)
 
 
+def elasticity_floor(d: ReportData) -> float:
+    """Smallest elasticity the critical-impulse bisection resolves: ``2 rel_tol / ln((1+step)/(1-step))``.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    float
+    """
+    step = d.sensitivity.step if d.sensitivity is not None else 0.1
+    return 2.0 * d.settings.impulse_tol / (math.log1p(step) - math.log1p(-step))
+
+
 def best_changes(d: ReportData, n: int = 3) -> list[Change]:
-    """The ``n`` single-parameter changes of the parametric study that raise the equal-instability speed most.
+    """The ``n`` parameters whose change raises the critical impulse most (largest |elasticity| first).
 
     Parameters
     ----------
@@ -95,24 +119,25 @@ def best_changes(d: ReportData, n: int = 3) -> list[Change]:
     Returns
     -------
     list of Change
-        Largest gain first; only changes whose speed was found (not a bound) and is higher than the chair's.
+        Only elasticities above :func:`elasticity_floor` (the bisection's resolution); empty when the
+        chair's critical impulse at the reference speed was not found.
     """
-    u0 = d.chair_speed
-    if u0.status != "found":
+    sens = d.sensitivity
+    if sens is None or sens.nominal.impulse_Ns is None:
         return []
+    floor = elasticity_floor(d)
     out = []
-    for sw in d.chair_sweeps.sweeps:
-        best, k_best = 0.0, -1
-        for k, r in enumerate(sw.results):
-            if r.status == "found" and r.speed / u0.speed - 1 > best:
-                best, k_best = r.speed / u0.speed - 1, k
-        if k_best >= 0:
-            cur = (d.chair.main_tire if sw.labels is not None else
-                   (f"{sw.nominal_value:g}" + ("" if sw.unit == "-" else f" {sw.unit}")))
-            out.append(Change(sw.label, sw.value_text(k_best) + ("" if sw.unit in ("-", "") or sw.labels is not None
-                                                                  else f" {sw.unit}"),
-                              cur, sw.results[k_best].describe(), 100 * best))
-    return sorted(out, key=lambda ch: -ch.percent)[:n]
+    for e in sens.ranked("critical_impulse"):
+        if e.critical_impulse is None or abs(e.critical_impulse) <= floor:
+            continue
+        up = e.critical_impulse > 0
+        factor = 1.1 if up else 0.9
+        unit = "N" if e.parameter == FRICTION_OVER_TRAIL else get_parameter(
+            "trail" if e.parameter == TRAIL_AT_FIXED_GROUP else e.parameter).unit
+        value = f"{e.value:.4g}" + ("" if unit == "-" else f" {unit}")
+        out.append(Change(e.label, value, "raise" if up else "lower", e.critical_impulse, e.growth_rate,
+                          100.0 * (factor ** e.critical_impulse - 1.0)))
+    return out[:n]
 
 
 def dropped_pages(d: ReportData) -> dict[str, str]:
@@ -139,6 +164,7 @@ def dropped_pages(d: ReportData) -> dict[str, str]:
     if all(not np.isfinite(m.times).any() for m in (d.friction_map, d.disturbance_map)):
         out["stability maps"] = (f"no run of either map reaches |yaw rate| = {d.friction_map.criterion.yaw_rate:g} "
                                  f"rad/s within {d.friction_map.criterion.duration:g} s, so both maps are blank")
+    out.update(section_drops(d))
     return out
 
 
@@ -170,21 +196,72 @@ def steady_turns(d: ReportData) -> list[tuple[float, float, float]]:
     return out
 
 
+def _describe(v) -> str:
+    return v.result.describe() if v.result is not None else "undefined (the reference case never reaches the level)"
+
+
+def interval_text(iv) -> str:
+    """One sentence: the equal-instability speed, its range and what moves it most.
+
+    Parameters
+    ----------
+    iv : stability.study.EqualInstabilityInterval
+
+    Returns
+    -------
+    str
+    """
+    rng = (f"range {iv.low:.3g}-{iv.high:.3g} m/s; moves it most: {iv.dominant}" if iv.low is not None
+           and iv.high is not None else "no range: every variant is a bound or undefined")
+    return f"{iv.chair_name} {iv.point.describe()}, {rng}"
+
+
 def _interval_lines(d: ReportData) -> list[str]:
     iv = d.intervals
     if iv is None:
         return []
-    lo, hi = iv.span()
     f0 = THESIS_PUSH.force
-    p_lo, p_hi = iv.push
-    f_lo, f_hi = iv.friction
-    who = iv.chair.name + (" (the thesis's revised design)" if d.chair == preset(REFERENCE_CHAIR) else "")
+    who = iv.chair_name + (" (the thesis's revised design)" if d.chair == preset(REFERENCE_CHAIR) else "")
+    by = {f: [v for v in iv.variants if v.factor == f] for f in ("disturbance", "pin friction", "model")}
     return [
-        f"- Equal-instability speed of {who}: {iv.nominal.describe()} ({d.model} model, thesis push), range "
-        f"{lo:.3g}-{hi:.3g} m/s over: push {p_lo.impulse[0]:g} N -> {p_lo.describe()}, {p_hi.impulse[0]:g} N -> "
-        f"{p_hi.describe()} (thesis {f0:g} N); pin friction x0.5 -> {f_lo.describe()}, x1.5 -> {f_hi.describe()}; "
-        f"{iv.other_model.model} model -> {iv.other_model.describe()}. Moves it most: {iv.widest()}.",
+        f"- Equal-instability speed of {who}: {iv.point.describe()} ({d.model} model, thesis push)"
+        + (f", range {iv.low:.3g}-{iv.high:.3g} m/s" if iv.low is not None and iv.high is not None else "")
+        + " over: push " + ", ".join(f"{v.force:g} N -> {_describe(v)}" for v in by["disturbance"])
+        + f" (thesis {f0:g} N); this chair's pin friction "
+        + ", ".join(f"x{v.friction_factor:g} -> {_describe(v)}" for v in by["pin friction"]) + "; "
+        + ", ".join(f"{v.model} model -> {_describe(v)}" for v in by["model"])
+        + f". Moves it most: {iv.dominant}.",
     ]
+
+
+def _section_lines(d: ReportData) -> list[str]:
+    out = []
+    sl = d.slope
+    if sl is not None and sl.per_degree is not None:
+        out.append(f"- Cross slope at {sl.speed:g} m/s: holding moment {sl.per_degree:.3g} N m/deg (treadmill study of "
+                   f"manual chairs: 0.87, 0.25-1.80 N m/deg; set by m x_m = {sl.m_x:.3g} kg m)"
+                   + (f"; uncorrected it turns {sl.path.turn}" if sl.path is not None else "")
+                   + (f"; refused at {', '.join(f'{p:g}' for p, _ in sl.refused)} deg (tire data)" if sl.refused
+                      else "") + ".")
+    sh = d.shimmy
+    if sh is not None:
+        crit = [x[2] for x in sh.corners]
+        hi = max(crit)
+        out.append(f"- Caster shimmy: linear boundary at trail {100 * sh.critical:.2f} cm with the estimated caster "
+                   f"compliance (estimates: {100 * min(crit):.2f} cm to "
+                   + (f"{100 * hi:.2f} cm" if math.isfinite(hi) else "> 20 cm") + " over their range); this chair's "
+                   f"trail {100 * sh.chart.chair_trail:g} cm.")
+    return out
+
+
+def _rate_interval(d: ReportData) -> str:
+    u = d.uncertainty
+    if u is None:
+        return ""
+    lo, hi = u.rate_at(REFERENCE_SPEED)
+    dom = u.dominant
+    return (f" [{100 * u.intervals.level:g} %: {lo:.3g}-{hi:.3g} 1/s over {u.spec.source}"
+            + (f", dominated by {dom[0]}" if dom is not None else ", zero spread") + "]")
 
 
 def _verdict(d: ReportData) -> str:
@@ -229,7 +306,7 @@ def summary_text(d: ReportData) -> str:
     row = next((r for r in s.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
     if row is not None:
         out.append(f"- Linear growth rate (largest real part; negative: decay) at {REFERENCE_SPEED:g} m/s, free "
-                   f"casters: {row['rate_1_s']:.3g} 1/s ({d.model} model)" + _other_rate(d) + ".")
+                   f"casters: {row['rate_1_s']:.3g} 1/s ({d.model} model)" + _rate_interval(d) + _other_rate(d) + ".")
     imp = [x for x in d.impulses if x is not None]
     if imp:
         parts = [f"{x.chair_name} {x.describe()}" + (f" ({x.kick_m_s:.3g} m/s per unit mass)"
@@ -239,25 +316,35 @@ def summary_text(d: ReportData) -> str:
                    f"within {d.thesis.criterion.duration:g} s): " + "; ".join(parts)
                    + f". The thesis's push is {push_text(d)}.")
     out.extend(_interval_lines(d))
+    out.extend(_section_lines(d))
     out.append(f"- Reference case ({REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s, {push_text(d)}): |yaw rate| reaches "
                f"{d.thesis.criterion.yaw_rate:g} rad/s after {d.thesis.reference_time:.2f} s "
                "(thesis: slightly over 3 s).")
     changes = best_changes(d)
-    out.append("What helps most (single changes of the parametric study, other parameters at this chair's values)")
+    out.append(f"What helps most (elasticities of the critical impulse at {REFERENCE_SPEED:g} m/s: every parameter "
+               "x0.9 and x1.1, the others at this chair's values)")
     if changes:
-        out.extend(f"- {ch.label}: {ch.value} instead of {ch.current} -> equal-instability speed {ch.speed} "
-                   f"({ch.percent:+.0f} %)" for ch in changes)
-        out.append("  Pin friction and trail act together through the friction-limited caster side force M_f/l: "
-                   "their effects are not independent.")
+        out.extend(f"- {ch.label} (now {ch.value}): {ch.direction} it -> critical impulse {ch.percent:+.1f} % per 10 % "
+                   f"(elasticity {ch.elasticity:+.2f}"
+                   + (f"; growth rate {ch.growth:+.2f})" if ch.growth is not None else ")") for ch in changes)
+        out.append("  Pin friction and trail act through one quantity, the friction-limited caster side force M_f/l: "
+                   "it is ranked as one group, and trail separately at fixed M_f/l.")
     else:
-        out.append("- No single change of the study raises a found equal-instability speed "
-                   f"({d.chair_speed.describe()}).")
+        sens = d.sensitivity
+        why = ("its critical impulse at this speed was not found (no push up to the largest tried brings |yaw rate| "
+               "to the level)" if sens is None or sens.nominal.impulse_Ns is None
+               else "no elasticity exceeds the bisection's resolution")
+        out.append(f"- Nothing to rank: {why}.")
     out.append("Caveats")
     out.append(f"- Disturbance: the thesis's measure depends on the push chosen ({push_text(d)}); the ranges above "
                "show how much. The critical impulse does not depend on it.")
     out.append(f"- Pin friction: Coulomb pin friction ({c.pin_friction_left:g} N m here) has no linearisation; "
                "the nonlinear results rest on it (see the friction ranges above and the stability map).")
     out.append("- Model variant: " + model_gap(d))
+    if d.uncertainty is None:
+        out.append("- Parameters: point values at the chair's parameters (give --uncertainty FILE for intervals).")
+    if d.shimmy is not None:
+        out.append("- Shimmy: the caster tire relaxation length and the pin's lateral stiffness are estimates.")
     cut = [v for v in d.validity.get("responses", ()) if v.until is not None]
     if cut:
         out.append(f"- Validity: {len(cut)} of {len(d.validity['responses'])} response runs leave the tire data "

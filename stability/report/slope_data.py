@@ -1,0 +1,162 @@
+"""The report's cross-slope section (issue 12): holding moment, drive difference, uncorrected path, treadmill study.
+
+Every number comes from :mod:`stability.slope` (``solve``, ``drive_report``, ``uncorrected_path``); rules and
+sources in docs/report.md and docs/slopes.md.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..chair import Chair
+from ..reference import REFERENCE_SPEED
+from ..slope import HandRim, Plane, drive_report, holding_moment_closed_form, solve
+from ..slope.plots import HoldingCurve
+from ..slope.uncorrected import UncorrectedPath, uncorrected_path
+
+__all__ = ["TREADMILL", "SLOPES", "PATH_SLOPE", "SlopeSection", "drive_kind", "slope_section"]
+
+#: Richter et al., Arch Phys Med Rehabil 2007, 88:76-80: growth of the downhill turning moment with
+#: cross slope over 26 manual wheelchair users, N m/deg: (mean, lowest, highest).
+TREADMILL = (0.87, 0.25, 1.80)
+#: Cross slopes of the section, deg (0-6 deg: the treadmill study's level, 3 and 6 deg and between).
+SLOPES = (0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
+#: Cross slope of the uncorrected path, deg (a steep sidewalk drainage slope; typical is about 2 %).
+PATH_SLOPE = 2.0
+
+
+@dataclass(frozen=True, eq=False)
+class SlopeSection:
+    """Steady straight running across a slope, for one chair at one speed.
+
+    Attributes
+    ----------
+    chair_name : str
+    speed : float
+        Speed along the path, m/s.
+    curve : HoldingCurve
+        Holding-moment magnitude (N m) with its Coulomb pin-friction range over the accepted slopes.
+    drive : {"handrim", "motor"}
+        Manual chair (hand-rim forces) or power chair (motor torques).
+    drive_difference : ndarray
+        Per accepted slope: |right - left| hand-rim force (N) or |left - right| motor torque (N m).
+    within_torque_limit : tuple of bool
+        Power chairs: whether the differential torque is within the motors' limit (empty for manual chairs).
+    refused : tuple of (float, str)
+        Slopes the analysis refuses (deg) and its one-line reason.
+    per_degree : float or None
+        Holding moment at 1 deg, N m/deg (None if 1 deg is refused).
+    closed_form_per_degree : float
+        ``g sin(1 deg) (m x_m - 2 m_c (l1/trail)(x_m - x_c))``, N m/deg (frictionless pins, casters straight).
+    m_x : float
+        ``m |x_m|``, kg m: mass times the c.g.-to-main-axle distance, the quantity that sets the moment.
+    path : UncorrectedPath or None
+        Released from the held equilibrium at ``path_slope`` (None if every slope > 0 is refused).
+    path_slope : float
+        deg.
+    g : float
+        Gravitational acceleration of the chair, m/s^2.
+    """
+
+    chair_name: str
+    speed: float
+    curve: HoldingCurve
+    drive: str
+    drive_difference: np.ndarray
+    within_torque_limit: tuple
+    refused: tuple
+    per_degree: float | None
+    closed_form_per_degree: float
+    m_x: float
+    path: UncorrectedPath | None
+    path_slope: float
+    g: float = 9.81
+
+    @property
+    def treadmill_m_x(self) -> tuple[float, float, float]:
+        """The treadmill study's mean, low and high as ``m x_m`` (kg m): ``M / (g sin 1 deg)``."""
+        k = self.g * math.sin(math.radians(1.0))
+        return tuple(v / k for v in TREADMILL)  # type: ignore[return-value]
+
+    @property
+    def path_heading_deg(self) -> np.ndarray:
+        """Heading change of the uncorrected path from its start, deg (downhill +); empty without a path."""
+        if self.path is None:
+            return np.empty(0)
+        side = math.copysign(1.0, self.path_slope)
+        return np.degrees((self.path.heading - self.path.heading[0]) * side)
+
+    @property
+    def drive_label(self) -> str:
+        """Axis label of the drive difference, with its unit."""
+        return ("hand-rim force difference, right - left (N)" if self.drive == "handrim"
+                else "motor torque difference, left - right (N m)")
+
+
+def drive_kind(chair: Chair) -> str:
+    """``"motor"`` for power chairs (preset names ``power-*``), else ``"handrim"`` (as ``python -m stability.slope``).
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Returns
+    -------
+    str
+    """
+    return "motor" if chair.name.startswith("power") else "handrim"
+
+
+def _difference(chair: Chair, eq, kind: str) -> tuple[float, bool | None]:
+    d = drive_report(chair, eq, kind, HandRim() if kind == "handrim" else None)
+    if kind == "handrim":
+        return abs(d["handrim_force_difference_N"]), None
+    return abs(d["motor_torque_left_N_m"] - d["motor_torque_right_N_m"]), bool(d["within_torque_limit"])
+
+
+def slope_section(chair: Chair, speed: float = REFERENCE_SPEED, slopes=SLOPES,
+                  path_slope: float = PATH_SLOPE) -> SlopeSection:
+    """Solve the section's equilibria; slopes the analysis refuses are listed with the reason, not extrapolated.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        Speed along the path, m/s (default the reference speed).
+    slopes : sequence of float
+        Cross slopes, deg (>= 0, falling to the right).
+    path_slope : float
+        Cross slope of the uncorrected path, deg; the largest accepted slope below it if refused.
+
+    Returns
+    -------
+    SlopeSection
+    """
+    kind = drive_kind(chair)
+    ok, eqs, refused = [], [], []
+    for phi in slopes:
+        try:
+            e = solve(chair, float(phi), speed)
+        except ValueError as exc:
+            refused.append((float(phi), str(exc)))
+            continue
+        ok.append(float(phi))
+        eqs.append(e)
+    fr = np.array([sorted(abs(x) for x in e.friction_range) for e in eqs]).reshape(-1, 2)
+    curve = HoldingCurve(chair.name, np.array(ok), np.array([abs(e.holding_moment) for e in eqs]),
+                         fr[:, 0], fr[:, 1], np.array([_difference(chair, e, "handrim")[0] for e in eqs]))
+    diffs = [_difference(chair, e, kind) for e in eqs]
+    one = next((e for p, e in zip(ok, eqs, strict=True) if p == 1.0), None)
+    p_path = max((p for p in ok if 0 < p <= path_slope), default=None)
+    path = None
+    if p_path is not None:
+        path = uncorrected_path(chair, eqs[ok.index(p_path)])
+    return SlopeSection(
+        chair.name, float(speed), curve, kind, np.array([d[0] for d in diffs]),
+        tuple(d[1] for d in diffs) if kind == "motor" else (), tuple(refused),
+        None if one is None else abs(one.holding_moment),
+        abs(holding_moment_closed_form(chair, Plane(1.0, 0.0))),
+        chair.m * abs(chair.x_main), path, float(p_path) if p_path is not None else math.nan, float(chair.g))

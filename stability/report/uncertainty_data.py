@@ -1,0 +1,102 @@
+"""The report's parameter-uncertainty section (issue 14): linear intervals over an uncertainty file.
+
+:func:`stability.linear.intervals.linear_intervals` (Monte Carlo, seeded; delta method as a check) gives the
+growth-rate band against speed, the critical-speed intervals and the dominant parameters.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..chair import Chair
+from ..linear.batch import ChairBatch
+from ..linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
+from ..measure.uncertainty import Uncertainty
+from ..reference import REFERENCE_SPEED
+
+__all__ = ["UncertaintySpec", "UncertaintySection", "uncertainty_section", "BAND_SPEEDS", "QUICK_BAND_SPEEDS"]
+
+#: Speeds of the growth-rate band, m/s (the reference speed among them).
+BAND_SPEEDS = tuple(float(x) for x in np.round(np.linspace(0.25, 3.0, 12), 4))
+#: The same for ``--quick``.
+QUICK_BAND_SPEEDS = (0.25, 0.75, 1.5, 2.25, 3.0)
+
+
+@dataclass(frozen=True)
+class UncertaintySpec:
+    """What ``--uncertainty FILE --samples N --seed S`` asks for.
+
+    Attributes
+    ----------
+    source : str
+        The file (for the page's text).
+    uncertainty : Uncertainty
+        Its distributions.
+    samples : int
+        Monte Carlo draws, 1 to :data:`stability.linear.intervals.MAX_SAMPLES`.
+    seed : int
+        Seed of the draws (>= 0).
+    """
+
+    source: str
+    uncertainty: Uncertainty
+    samples: int = 1000
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        if not 1 <= int(self.samples) <= MAX_SAMPLES:
+            raise ValueError(f"--samples {self.samples!r} is invalid; valid range: 1 to {MAX_SAMPLES}")
+        if int(self.seed) < 0:
+            raise ValueError(f"--seed {self.seed!r} is invalid; valid range: >= 0")
+
+
+@dataclass(frozen=True, eq=False)
+class UncertaintySection:
+    """Intervals of the linear results over the uncertain parameters.
+
+    Attributes
+    ----------
+    spec : UncertaintySpec
+    intervals : LinearIntervals
+        At the band speeds (``intervals.speeds``), with the critical speeds and dominant parameters.
+    nominal_rates : ndarray
+        Growth rate at the band speeds for the nominal chair, 1/s (free casters).
+    """
+
+    spec: UncertaintySpec
+    intervals: LinearIntervals
+    nominal_rates: np.ndarray
+
+    def rate_at(self, speed: float = REFERENCE_SPEED) -> tuple[float, float]:
+        """The growth-rate interval at ``speed`` (one of the band speeds), 1/s."""
+        k = int(np.argmin(np.abs(np.asarray(self.intervals.speeds) - speed)))
+        return self.intervals.rate[k]
+
+    @property
+    def dominant(self) -> tuple[str, float] | None:
+        """The parameter with the largest share of the variance and its share (None if nothing varies)."""
+        top = self.intervals.dominant_parameters
+        return top[0] if top and top[0][1] > 0 else None
+
+
+def uncertainty_section(chair: Chair, spec: UncertaintySpec, *, model: str, quick: bool) -> UncertaintySection:
+    """Compute the section (see :class:`UncertaintySection`).
+
+    Parameters
+    ----------
+    chair : Chair
+    spec : UncertaintySpec
+    model : {"exact", "thesis"}
+    quick : bool
+        Fewer band speeds.
+
+    Returns
+    -------
+    UncertaintySection
+    """
+    speeds = QUICK_BAND_SPEEDS if quick else BAND_SPEEDS
+    iv = linear_intervals(chair, spec.uncertainty, model=model, speeds=speeds, samples=spec.samples, seed=spec.seed)
+    nominal = ChairBatch([chair], model).growth_rates(np.asarray(speeds))[0]
+    return UncertaintySection(spec, iv, np.asarray(nominal, dtype=float))
