@@ -60,37 +60,6 @@ def test_batched_locus_equals_chair_by_chair_poles(ej):
         np.testing.assert_allclose(np.sort_complex(row), poles, rtol=1e-9, atol=1e-9 * np.abs(poles).max())
 
 
-@pytest.mark.parametrize("name", ["cg_ratio", "s1_plus_s2", "trail", "caster_mass_factor", "pin_damping",
-                                  "mass_factor", "main_lateral_scale", "main_tire"])
-def test_parameter_locus_equals_per_chair_eigenvalues(ej, name):
-    """At each value the locus holds exactly the eigenvalues of state_matrices(chair.replace(...), speed)."""
-    loc = rootlocus.parameter_locus(ej, name, speed=0.75, n=25)
-    p = rootlocus.DESIGN_PARAMETERS[name]
-    assert loc.eigenvalues.shape == (len(loc.values), 6)
-    for k in range(0, len(loc.values), 4):
-        c = p.apply(ej, float(loc.values[k]))
-        assert c == loc.chairs[k]
-        ref = np.linalg.eigvals(linear.state_matrices(c, 0.75)[0])
-        _same_sets(loc.eigenvalues[k], ref)
-
-
-def test_cg_ratio_keeps_s1_plus_s2(ej):
-    """Eq 8-6: the c.g. ratio is varied at constant s1 + s2."""
-    loc = rootlocus.parameter_locus(ej, "cg_ratio", [0.5, 0.6, 0.66, 0.75], speed=0.75)
-    for r, c in zip(loc.values, loc.chairs):
-        assert c.s1 + c.s2 == pytest.approx(ej.s1 + ej.s2)
-        assert c.cg_ratio == pytest.approx(r)
-    assert loc.nominal == pytest.approx(ej.cg_ratio)
-
-
-def test_caster_mass_scales_mass_and_inertia_together(ej):
-    """Figure 8-12: m_c and I_zp multiplied by the same factor."""
-    loc = rootlocus.parameter_locus(ej, "caster_mass_factor", [1.0, 2.0, 3.0])
-    for f, c in zip(loc.values, loc.chairs):
-        assert c.m_c == pytest.approx(ej.m_c * f) and c.i_zp == pytest.approx(ej.i_zp * f)
-        assert c.m == ej.m and c.i_z == ej.i_z
-
-
 @pytest.mark.parametrize("name", ["cg_ratio", "s1_plus_s2", "trail", "pin_damping", "mass_factor"])
 def test_branches_are_continuous(ej, name):
     """Tracked branches: the largest jump between neighbouring values is small against the locus's spread."""
