@@ -6,6 +6,7 @@ coarse grids, a few batches of simulations); the other tests reuse its data.
 
 import dataclasses
 import json
+import math
 import os
 import re
 
@@ -23,18 +24,44 @@ from stability.report.tire_data import force_curves, stiffness_curves
 from stability.report.validity import run_validity
 
 EXPECTED_PAGES = [
-    "summary", "chair parameters and geometry", "tires", "linear stability: critical speeds", "eigenvalues as speed varies",
+    "summary", "chair parameters and geometry", "tires", "linear stability: critical speeds", "parameter uncertainty",
+    "eigenvalues as speed varies",
     "eigenvalues against speed", "root loci against design parameters 1", "root loci against design parameters 2",
     "growth rate against design parameters", "yaw-rate feedback root locus", "nonlinear yaw-rate responses",
     "paths", "equal-instability speeds", "parametric study", "parametric study table", "stability maps",
-    "thesis conclusions", "findings",
+    "cross slope", "caster shimmy", "thesis conclusions", "findings",
 ]
+
+UNCERTAINTY = """
+[s1]
+distribution = "normal"
+std = 0.01
+[i_z]
+distribution = "normal"
+std = 0.3
+[pin_damping]
+distribution = "uniform"
+low = 0.0
+high = 0.05
+"""
+SAMPLES = 200
 
 
 @pytest.fixture(scope="module")
-def quick(tmp_path_factory):
+def unc_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("unc") / "unc.toml"
+    path.write_text(UNCERTAINTY)
+    return path
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory, unc_file):
+    from stability.measure.uncertainty import load_uncertainty
+    from stability.report.uncertainty_data import UncertaintySpec
+
     path = tmp_path_factory.mktemp("report") / "ej-premier-quick.pdf"
-    res = report.build(preset("ej-premier"), path, model="exact", quick=True, progress=False)
+    spec = UncertaintySpec(str(unc_file), load_uncertainty(unc_file), SAMPLES, 0)
+    res = report.build(preset("ej-premier"), path, model="exact", quick=True, progress=False, uncertainty=spec)
     return res
 
 
@@ -89,7 +116,13 @@ def test_page_texts(quick):
         "stability maps": ["forward speed U (m/s)", "pin friction M_f (both pins) (N m)", "lateral impulse at the c.g. (N s)"],
         "thesis conclusions": ["AGREE", "Revised design"],
         "findings": ["Linear model (exact)", "reference case", "Figure 8-14", "massless-caster mode",
-                     "five small terms"],
+                     "five small terms", "elasticities d ln v / d ln p", "M_f/l"],
+        "cross slope": ["cross slope (deg)", "holding yaw moment (N m)", "hand-rim force difference, right - left (N)",
+                        "heading change, downhill + (deg)", "Richter et al.", "turns uphill", "treadmill mean 0.87"],
+        "caster shimmy": ["caster trail (cm)", "speed (m/s)", "literature-based estimates", "Over the estimate range",
+                          "yaw divergence rate, max Re(eigenvalue) (1/s)"],
+        "parameter uncertainty": ["forward speed U (m/s)", "growth rate, largest real part (1/s)",
+                                  "share of the variance (%)", "95 % interval (Monte Carlo)", "Dominant parameter"],
     }
     for title, needles in expect.items():
         text = _text(quick, title)
@@ -312,8 +345,8 @@ def test_colour_maps_are_colour_blind_safe(quick):
         for obj in build().findobj(lambda a: isinstance(a, ScalarMappable)):
             cmap = obj.get_cmap()
             rgb = cmap(np.linspace(0, 1, 7))[:, :3]
-            if cmap.name == "unnamed" and np.ptp(rgb, axis=1).max() == 0:
-                continue        # one grey/black line colour (a contour drawn with colors="k")
+            if cmap.name == "unnamed" and np.ptp(rgb, axis=0).max() == 0:
+                continue        # one line colour, not a map (a contour drawn with colors="k" or one Okabe-Ito colour)
             used.add(cmap.name)
     assert used and used <= allowed, used
 
@@ -395,9 +428,207 @@ def test_summary_numbers_come_from_the_data(quick):
     d = quick.data
     text = summary_text(d)
     iv = d.intervals
-    assert iv.chair.name == "revised" and iv.push[0].impulse[0] == pytest.approx(0.9 * THESIS_PUSH.force)
-    for r in iv.all():
-        assert r.describe() in text
+    pushes = [v.force for v in iv.variants if v.factor == "disturbance"]
+    assert iv.chair_name == "revised" and pushes == pytest.approx([0.9 * THESIS_PUSH.force, 1.1 * THESIS_PUSH.force])
+    assert iv.point.describe() in text
+    for v in iv.variants:
+        assert v.result.describe() in text
     for x in d.impulses:
         assert x.describe() in text
     assert f"after {d.thesis.reference_time:.2f} s" in text
+
+
+# ---------------------------------------------------------------------------
+# issues 12-14 and the issue-11 leftovers: slope, shimmy, uncertainty, one home of intervals, elasticities
+# ---------------------------------------------------------------------------
+def test_slope_numbers_equal_the_analysis(quick):
+    """The cross-slope page quotes stability.slope's own results; the moment is m g sin(phi) x_m to leading order."""
+    from stability.slope import drive_report, solve
+    from stability.slope.uncorrected import uncorrected_path
+
+    c, d = preset("ej-premier"), quick.data
+    text = _text(quick, "cross slope")
+    one = solve(c, 1.0, 0.75)
+    assert f"{abs(one.holding_moment):.3g} N m per deg (at 1 deg)" in text
+    # statics of the frictionless case: the casters carry l1/trail of their own lateral weight, the main wheels
+    # the rest, so M = g sin(phi) (m s1 - 2 m_c (l1/trail)(s1 + s2 + trail)) for rear casters (docs/slopes.md)
+    statics = c.g * math.sin(math.radians(1.0)) * (c.m * c.s1 - 2 * c.m_c * (c.l1 / c.trail) * (c.s1 + c.s2 + c.trail))
+    assert abs(one.holding_moment) == pytest.approx(statics, rel=0.002)
+    six = solve(c, 6.0, 0.75)
+    rim = drive_report(c, six, "handrim")["handrim_force_difference_N"]
+    assert f"hand-rim force difference {abs(rim):.3g} N at 6 deg" in text
+    lo, hi = sorted(abs(x) for x in six.friction_range)
+    assert f"any moment in {lo:.3g}-{hi:.3g} N m" in text
+    path = uncorrected_path(c, solve(c, 2.0, 0.75))
+    assert path.turn == "uphill" and f"heading {path.heading_change_deg:+.1f} deg" in text
+    assert d.slope.refused == ()
+    assert "Cross slope at 0.75 m/s" in summary_text(d)
+
+
+def test_slope_refusals_are_named_on_the_page(quick):
+    """power-fwd: the slope analysis refuses 6 deg (a caster load beyond the tire data); the page says so and the
+    drive is a motor torque difference equal to drive_report's."""
+    from stability.report.sections import slope_text
+    from stability.report.slope_data import slope_section
+    from stability.slope import drive_report, solve
+
+    c = preset("power-fwd")
+    sec = slope_section(c)
+    assert [p for p, _ in sec.refused] == [6.0] and 6.0 not in sec.curve.cross_slopes_deg
+    with pytest.raises(ValueError) as exc:
+        solve(c, 6.0, 0.75)
+    d2 = dataclasses.replace(quick.data, chair=c, slope=sec)
+    text = " ".join(slope_text(d2))
+    assert f"Refused at 6 deg (not extrapolated): {exc.value}" in text
+    r = drive_report(c, solve(c, 5.0, 0.75), "motor")
+    assert sec.drive == "motor" and "N m" in sec.drive_label
+    assert f"motor torque difference {abs(r['motor_torque_left_N_m'] - r['motor_torque_right_N_m']):.3g} N m" in text
+    assert "refused at 6 deg" in summary_text(d2)
+
+
+def test_shimmy_numbers_equal_the_analysis(quick):
+    from stability.shimmy.chair import CasterCompliance, critical_trail
+
+    c, d = preset("ej-premier"), quick.data
+    text = " ".join(_text(quick, "caster shimmy").split())
+    nominal = critical_trail(c, 1.0, CasterCompliance())
+    assert f"trail {100 * nominal:.2f} cm with the nominal estimates" in text
+    assert f"{100 * (c.trail - nominal):.2f} cm above it" in text
+    corners = [critical_trail(c, 1.0, cc) for cc in CasterCompliance().corners()]
+    assert [x[2] for x in d.shimmy.corners] == corners
+    finite = [x for x in corners if math.isfinite(x)]
+    assert f"{100 * min(finite):.2f} cm" in text and "> 20 cm" in text     # the softest pin: shimmy at every trail
+    # rigid-pin limit of the towed wheel: critical trail = relaxation length (docs/shimmy.md table), independent
+    rigid = CasterCompliance(lateral_stiffness=1e12, lateral_stiffness_range=(1e12, 1e12))
+    assert critical_trail(c, 1.0, rigid) == pytest.approx(rigid.relaxation_length, rel=1e-3)
+
+
+def test_shimmy_page_dropped_with_a_reason(quick):
+    from stability.report.shimmy_data import shimmy_unavailable
+
+    c = preset("ej-premier")
+    bad = c.replace(i_zp=c.m_c * c.l1 ** 2)       # no inertia about the caster's own c.g.: no towed wheel
+    why = shimmy_unavailable(bad)
+    assert why and "i_zp" in why and shimmy_unavailable(c) is None
+    d2 = dataclasses.replace(quick.data, shimmy=None, shimmy_note=why)
+    assert "caster shimmy" not in [t for t, _ in report.page_builders(d2)]
+    assert f"caster shimmy: {why}" in summary_text(d2)
+
+
+def test_uncertainty_intervals_equal_linear_intervals(quick, unc_file):
+    from stability.linear.intervals import linear_intervals
+    from stability.measure.uncertainty import load_uncertainty
+    from stability.report.uncertainty_data import QUICK_BAND_SPEEDS
+
+    d = quick.data
+    iv = linear_intervals(preset("ej-premier"), load_uncertainty(unc_file), model="exact", speeds=QUICK_BAND_SPEEDS,
+                          samples=SAMPLES, seed=0)
+    np.testing.assert_equal(dataclasses.astuple(d.uncertainty.intervals), dataclasses.astuple(iv))
+    lo, hi = iv.rate[QUICK_BAND_SPEEDS.index(0.75)]
+    assert lo < hi
+    assert f"[95 %: {lo:.3g}-{hi:.3g} 1/s" in summary_text(d)
+    top = iv.dominant_parameters[0]
+    page = " ".join(_text(quick, "parameter uncertainty").split())
+    assert f"Dominant parameter: {top[0]} ({100 * top[1]:.0f} % of the variance" in page
+    a, b, frac = iv.locked_critical
+    assert f"locked-caster {a:.3g}-{b:.3g} m/s" in page and frac == 1.0
+
+
+def test_zero_spread_gives_exactly_the_point_values(quick):
+    from stability.measure.uncertainty import loads_uncertainty
+    from stability.report.uncertainty_data import UncertaintySpec, uncertainty_section
+
+    c = preset("ej-premier")
+    spec = UncertaintySpec("zero.toml", loads_uncertainty('[s1]\ndistribution = "normal"\nstd = 0.0\n'), 20, 3)
+    sec = uncertainty_section(c, spec, model="exact", quick=True)
+    # every interval collapses onto the nominal chair's value, bit for bit
+    np.testing.assert_array_equal([r[0] for r in sec.intervals.rate], sec.nominal_rates)
+    np.testing.assert_array_equal([r[1] for r in sec.intervals.rate], sec.nominal_rates)
+    assert sec.intervals.zero_width_critical[:2] == (linear.zero_width(c).critical_speed,) * 2
+    # ... which is the summary's point value (analyse; eigenvalues of the same matrices, batched differently)
+    point = next(r["rate_1_s"] for r in quick.data.summary.divergence if r["speed_m_s"] == 0.75)
+    assert sec.rate_at(0.75)[0] == pytest.approx(point, rel=1e-12)
+    assert sec.dominant is None
+    d2 = dataclasses.replace(quick.data, uncertainty=sec)
+    assert f"[95 %: {point:.3g}-{point:.3g} 1/s over zero.toml, zero spread]" in summary_text(d2)
+
+
+@pytest.mark.parametrize("extra, content, needle", [
+    (["--uncertainty", "{missing}"], None, "does not exist"),
+    (["--uncertainty", "{file}"], "[s1\n", "not valid TOML"),
+    (["--uncertainty", "{file}"], '[wheels]\ndistribution = "normal"\nstd = 1\n', "wheels"),
+    (["--uncertainty", "{file}", "--samples", "0"], UNCERTAINTY, "--samples 0 is invalid; valid range: 1 to 20000"),
+    (["--uncertainty", "{file}", "--samples", "1000000"], UNCERTAINTY, "valid range: 1 to 20000"),
+    (["--uncertainty", "{file}", "--seed", "-1"], UNCERTAINTY, "--seed -1 is invalid"),
+    (["--samples", "50"], None, "--samples and --seed need --uncertainty FILE"),
+    (["--uncertainty", "{out}"], UNCERTAINTY, "would overwrite the input --uncertainty"),
+])
+def test_bad_uncertainty_input_is_one_line(extra, content, needle, tmp_path, capsys, monkeypatch):
+    """Refused before any work (compute is never called) with one line naming the option."""
+    monkeypatch.setattr(report.document, "compute", lambda *a, **k: pytest.fail("work started"))
+    f, out = tmp_path / "u.toml", tmp_path / "r.pdf"
+    if content is not None:
+        (out if "{out}" in extra else f).write_text(content)
+    argv = [a.format(missing=tmp_path / "none.toml", file=f, out=out) for a in extra]
+    with pytest.raises(SystemExit) as exc:
+        raise SystemExit(report.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(out)] + argv))
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and needle in err, err
+
+
+def test_intervals_come_from_the_study(quick):
+    """One home: the report's interval is study.equal_instability_interval with the report's settings."""
+    d, st = quick.data, quick.data.settings
+    iv = study.equal_instability_interval(
+        preset("revised"), model="exact", force_factors=(0.9, 1.1), friction_factors=(0.5, 1.5),
+        friction_on_reference=False, criterion=study.Criterion(duration=st.duration), bracket=st.bracket, tol=st.tol,
+        candidates=st.candidates, dt=st.dt)
+    assert iv.to_dict() == d.intervals.to_dict()
+    # the friction variants scale the chair only: they equal the thesis study's x0.5 / x1.5 ratings
+    fr = [v.result for v in iv.variants if v.factor == "pin friction"]
+    assert [r.speed for r in fr] == [d.thesis.speeds[f"revised x{k} friction"].speed for k in ("0.5", "1.5")]
+
+
+def test_what_helps_most_is_ranked_by_elasticities(quick):
+    from stability.report.summary import best_changes, elasticity_floor
+
+    d = quick.data
+    sens = d.sensitivity
+    assert sens.elasticities[0].parameter == study.FRICTION_OVER_TRAIL
+    ranked = [e for e in sens.ranked() if e.critical_impulse is not None
+              and abs(e.critical_impulse) > elasticity_floor(d)][:3]
+    changes = best_changes(d)
+    assert [ch.label for ch in changes] == [e.label for e in ranked]
+    text = summary_text(d)
+    for ch, e in zip(changes, ranked, strict=True):
+        assert ch.percent == pytest.approx(100 * ((1.1 if e.critical_impulse > 0 else 0.9) ** e.critical_impulse - 1))
+        assert f"(elasticity {e.critical_impulse:+.2f}" in text
+    # M_f/l: the friction-limited side force; at fixed trail its elasticity is the friction's
+    assert changes[0].label.startswith("pin friction / trail M_f/l") and "N" in changes[0].value
+    page = " ".join(_page(quick, "findings").texts).replace("\n", " ")
+    assert f"{ranked[0].label} {ranked[0].critical_impulse:+.2f}" in page
+
+
+def test_cg_ratio_span_keeps_static_loads_positive():
+    """Front casters: the contact line lies s2 - trail ahead of the c.g.; the span ends where the main axle keeps
+    2 % of the weight (loads from stability.statics, independent of design.py's closed form)."""
+    from stability.design import get_parameter
+    from stability.statics import check_static_loads, static_loads
+
+    p = get_parameter("cg_ratio")
+    for name in ("ej-premier", "revised", "ej-premier-front-caster", "manual-front-caster"):
+        c = preset(name)
+        lo, hi = p.span(c)
+        for r in np.linspace(lo, hi, 25):
+            check_static_loads(p.apply(c, float(r)))
+        loads = static_loads(p.apply(c, hi))
+        share = (loads["main_left"] + loads["main_right"]) / (c.m * c.g)
+        if c.caster_position == "front":
+            assert share == pytest.approx(0.02, abs=1e-9)
+            assert hi < 1 - c.trail / (c.s1 + c.s2)         # the c.g. stays behind the caster contacts
+        else:
+            assert (lo, hi) == (0.30, 0.90) and share > 0.02
+    fc = preset("ej-premier-front-caster")
+    locus = rootlocus.parameter_locus(fc, "cg_ratio", speed=0.75, model="exact", n=9)
+    assert locus.values[-1] == pytest.approx(p.span(fc)[1])
