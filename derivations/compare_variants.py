@@ -33,7 +33,7 @@ import sympy as sp  # noqa: E402
 
 from derivations import full_width as fw  # noqa: E402
 from stability import chair as chair_mod  # noqa: E402
-from stability.params import parameters
+from stability.params import parameters  # noqa: E402
 from stability.statics import static_stiffness  # noqa: E402
 
 #: the thesis chair (WCHAIR BLOCK DATA, chapter 8), from the package's one definition
@@ -161,7 +161,8 @@ def table_switches(U: float, c_pin: float) -> str:
 
 
 def table_speeds(speeds: Sequence[float], c_pin: float) -> str:
-    out = ["| U (m/s) | thesis: largest Re | exact: largest Re | thesis caster-dominated modes | exact caster-dominated modes |",
+    out = ["| U (m/s) | thesis: largest Re | exact: largest Re | thesis caster-dominated modes "
+           "| exact caster-dominated modes |",
            "|---|---|---|---|---|"]
     for U in speeds:
         cells = []
@@ -186,7 +187,7 @@ def locked_critical_speeds() -> str:
         return np.linalg.det(np.linalg.solve(M[:2, :2], K[:2, :2]))
 
     for variant in ("exact", "thesis"):
-        Uc = brentq(lambda U: det_locked(U, variant), 1.0, 200.0)
+        Uc = brentq(lambda U, v=variant: det_locked(U, v), 1.0, 200.0)
         out.append((variant, Uc))
     from stability.linear import zero_width
 

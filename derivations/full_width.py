@@ -464,7 +464,7 @@ def compare() -> list[dict[str, object]]:
                  "+(i_zp - m_c l1 x_p)(eta_dd + beta_dd)."),
     ))
     # caster equations: split into the named parts
-    for k, (rid, ang_dd, claim_extra) in enumerate((("D-eta", S.eta_dd, None), ("D-beta", S.beta_dd, None))):
+    for k, (rid, _ang_dd, _claim_extra) in enumerate((("D-eta", S.eta_dd, None), ("D-beta", S.beta_dd, None))):
         row = 3 + k
         d = _trig_simplify(resid_exact[row] - resid_thesis[row])
         if k == 0:

@@ -91,7 +91,7 @@ def _cse_lines(named: Sequence[tuple[str, sp.Expr]], tmp: str) -> list[str]:
     exprs = [sp.sympify(e) for _, e in named]
     reps, reduced = sp.cse(exprs, symbols=sp.numbered_symbols(tmp), order="canonical")
     lines = [f"{s} = {_pr(e)}" for s, e in reps]
-    lines += [f"{n} = {_pr(e)}" for (n, _), e in zip(named, reduced)]
+    lines += [f"{n} = {_pr(e)}" for (n, _), e in zip(named, reduced, strict=False)]
     return lines
 
 
@@ -238,7 +238,7 @@ def render_zero_width() -> str:
             named = [(f"S{i}{j}", outputs[i][j]) for i in range(2) for j in range(2)]
             ret = "((S00, S01), (S10, S11))"
         else:
-            named = list(zip(names_o, outputs))
+            named = list(zip(names_o, outputs, strict=False))
             ret = "(" + ", ".join(names_o) + ")"
         body = _cse_lines(named, "_a")
         defaults = {"g": "9.81"} if name in ("critical_speed_squared",) else None
@@ -402,7 +402,7 @@ def render_full_width() -> str:
     # contact velocities
     vel_names = ("vAx", "vAy", "vBx", "vBy", "vDx", "vDy", "vEx", "vEy")
     for variant, note in (("exact", _VEL_NOTE_EXACT), ("thesis", _VEL_NOTE_THESIS)):
-        named = list(zip(vel_names, g[f"vel_{variant}"]))
+        named = list(zip(vel_names, g[f"vel_{variant}"], strict=False))
         body = _hoisted_cse_lines(named, "_a", "_p")
         doc = _VEL_DOC.format(which={"exact": "exact kinematics",
                                      "thesis": "eqs 6-17a-d, SLIP"}[variant], note=note)
@@ -451,9 +451,9 @@ def render_full_width() -> str:
     rdc = fw.S.r_dot_casters
     for e in acc[:3]:
         assert not e.has(rdc)
-    body = _hoisted_cse_lines(list(zip(("u_dot", "v_dot", "r_dot"), acc[:3])), "_a", "_p")
+    body = _hoisted_cse_lines(list(zip(("u_dot", "v_dot", "r_dot"), acc[:3], strict=False)), "_a", "_p")
     body += ["if r_dot_casters is None:", "    r_dot_casters = r_dot"]
-    body += _hoisted_cse_lines(list(zip(("eta_dd", "beta_dd"), acc[3:])), "_b", "_pb")
+    body += _hoisted_cse_lines(list(zip(("eta_dd", "beta_dd"), acc[3:], strict=False)), "_b", "_pb")
     parts.append(_function("accelerations_thesis", fw.ACCEL_ARGS + ("r_dot_casters",),
                            _ACC_THESIS_DOC, body, "(u_dot, v_dot, r_dot, eta_dd, beta_dd)",
                            {"r_dot_casters": "None"}))

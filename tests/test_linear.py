@@ -97,7 +97,7 @@ def test_figure_8_6_locked_casters_transition():
     grid = np.linspace(5, 20, 61)
     speeds = {}
     for model in ("thesis", "exact"):
-        cross = linear.critical_speeds(lambda U: linear.state_matrices(c, U, model, "locked"), grid)
+        cross = linear.critical_speeds(lambda U, m=model: linear.state_matrices(c, U, m, "locked"), grid)
         assert len(cross) == 1 and cross[0].direction == "destabilising"
         speeds[model] = cross[0].speed
     assert 11.25 < speeds["thesis"] < 12.5

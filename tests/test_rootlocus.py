@@ -37,7 +37,7 @@ def test_parameter_locus_equals_per_chair_eigenvalues(ej, name):
 def test_cg_ratio_keeps_s1_plus_s2(ej):
     """Eq 8-6: the c.g. ratio is varied at constant s1 + s2."""
     loc = rootlocus.parameter_locus(ej, "cg_ratio", [0.5, 0.6, 0.66, 0.75], speed=0.75)
-    for r, c in zip(loc.values, loc.chairs):
+    for r, c in zip(loc.values, loc.chairs, strict=False):
         assert c.s1 + c.s2 == pytest.approx(ej.s1 + ej.s2)
         assert c.cg_ratio == pytest.approx(r)
     assert loc.nominal == pytest.approx(ej.cg_ratio)
@@ -46,7 +46,7 @@ def test_cg_ratio_keeps_s1_plus_s2(ej):
 def test_caster_mass_scales_mass_and_inertia_together(ej):
     """Figure 8-12: m_c and I_zp multiplied by the same factor."""
     loc = rootlocus.parameter_locus(ej, "caster_mass_factor", [1.0, 2.0, 3.0])
-    for f, c in zip(loc.values, loc.chairs):
+    for f, c in zip(loc.values, loc.chairs, strict=False):
         assert c.m_c == pytest.approx(ej.m_c * f) and c.i_zp == pytest.approx(ej.i_zp * f)
         assert c.m == ej.m and c.i_z == ej.i_z
 

@@ -54,7 +54,7 @@ class FakeSim:
     def __call__(self, chairs, speeds, *, progress=False, desc="", **options):
         self.calls.append(len(chairs))
         out = []
-        for c, s in zip(chairs, speeds):
+        for c, s in zip(chairs, speeds, strict=False):
             t1 = 3.2 * math.exp(-4.0 * (s - self.u_star(c)))
             t = np.arange(0, options["duration"] + 1e-9, 0.01)
             r = np.exp((t - t1) * 2.0)         # |r| = 1 exactly at t1
@@ -225,7 +225,7 @@ def test_reference_case_and_revised_design():
                                        reference=ref, progress=False)
     assert r[0].status == "found" and r[0].speed == pytest.approx(0.75, abs=0.01)
     assert 1.05 < r[1].speed < 1.20
-    assert all(t2 <= t1 for (s1, t1), (s2, t2) in zip(r[1].evaluations, r[1].evaluations[1:]))  # monotone
+    assert all(t2 <= t1 for (s1, t1), (s2, t2) in zip(r[1].evaluations, r[1].evaluations[1:], strict=False))  # monotone
 
 
 def test_plan_for_moves_the_thesis_steps_to_the_chair():

@@ -88,15 +88,15 @@ def test_speed_study_ordering_and_response_times(speed_study):
         assert t_knee[s] == pytest.approx(t, abs=0.3), s
     knees = [t_knee[s] for s in (0.65, 0.75, 0.85, 0.95)]
     ones = [t_one[s] for s in (0.65, 0.75, 0.85, 0.95)]
-    assert all(a > b for a, b in zip(knees, knees[1:]))
-    assert all(a > b for a, b in zip(ones, ones[1:]))
+    assert all(a > b for a, b in zip(knees, knees[1:], strict=False))
+    assert all(a > b for a, b in zip(ones, ones[1:], strict=False))
 
 
 def test_heading_grows_faster_at_higher_speed(speed_study):
     """Figure 8-3b: the yaw angle increases faster for the faster chairs; at
     .55 m/s it grows at an approximately constant rate."""
     at3 = [abs(speed_study[s].at(3.0)["heading"]) for s in (0.55, 0.65, 0.75, 0.85, 0.95)]
-    assert all(a < b for a, b in zip(at3, at3[1:]))
+    assert all(a < b for a, b in zip(at3, at3[1:], strict=False))
     slow = speed_study[0.55]
     rates = [abs(slow.at(t)["yaw_rate"]) for t in (2.0, 4.0, 6.0)]
     assert max(rates) < 1.5 * min(rates)
