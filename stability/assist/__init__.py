@@ -13,7 +13,7 @@ Rationale and results: ``docs/assist.md``.
 
 from __future__ import annotations
 
-from .controller import DigitalController
+from .controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
 from .design import Design, LoopMargins, closed_loop_poles, design, loop_margins, realise
 from .destabilising import DestabilisingSummary, destabilising_moment, destabilising_summary, valid_until
 from .digital import MarginPair, discrete_loop, discrete_margins, margin_pair
@@ -80,7 +80,7 @@ __all__ = [
     "Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins",
     "Schedule", "schedule",
     "ROBUST_PARAMETERS", "WorstCorner", "Robustness", "robustness",
-    "DigitalController",
+    "ANTI_WINDUP", "TRACKING_TIME", "DigitalController",
     "SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "recovery", "recovery_runs",
     "recovery_table", "minimum_torque_limit", "DecayAgreement", "decay_agreement", "settle_time", "fit_decay_rate",
     "DestabilisingSummary", "destabilising_moment", "destabilising_summary", "valid_until",

@@ -9,15 +9,20 @@ from typing import Any
 import numpy as np
 from scipy.linalg import expm
 
+from .._validate import check_choice, check_positive
 from ..chair import Chair
 from ..power_chair import DriveTrain
 from .design import Design
 from .tracking import feedforward
 from .weights import DEFAULT_GYRO, GyroSensor
 
-__all__ = ["DigitalController"]
+__all__ = ["ANTI_WINDUP", "TRACKING_TIME", "DigitalController"]
 
 _DEG = math.pi / 180.0
+#: Anti-windup schemes of the heading-error integrator (the first is the default).
+ANTI_WINDUP = ("back-calculation", "conditional", "none")
+#: Tracking time constant ``T_t`` of the back-calculation (s); see docs/assist.md.
+TRACKING_TIME = 0.005
 
 
 class DigitalController:
@@ -68,6 +73,21 @@ class DigitalController:
         Time constant of the first-order reference model the command passes
         through before the controller uses it (s; 0: none), like the
         turn-acceleration setting of a power-chair controller.
+    anti_windup : {"back-calculation", "conditional", "none"}
+        Protection of the heading-error integrator while the torque
+        saturates (:data:`ANTI_WINDUP`; docs/assist.md):
+        ``"back-calculation"`` adds ``(Mz_k - sat(Mz_k)) / (K_psi T_t)`` to
+        the integrator's rate (Astrom & Hagglund 1995, sec. 3.5; with
+        ``Mz = ... - K_psi e`` this drives the unsaturated command back
+        towards the limit); ``"conditional"`` freezes the integrator at the
+        samples where the command is saturated and the error would drive it
+        further into saturation; ``"none"``: the plain integrator.  Both act
+        only while the joystick's (raw) command is a turn: with a straight
+        command the integrator is the heading to hold, which must survive a
+        saturating push.  Without saturation all three are the same
+        controller.
+    tracking_time_s : float
+        ``T_t`` of the back-calculation (s; at least one sample).
 
     Attributes after a run: ``samples`` (list of ``(t_k, tau_k)``, the
     commanded differential torque per wheel, N m).
@@ -75,7 +95,8 @@ class DigitalController:
 
     def __init__(self, d: Design, chair: Chair, drive: DriveTrain, *, gyro: GyroSensor = DEFAULT_GYRO,
                  seed: int = 0, noise: bool = True, saturate: bool = True,
-                 command: Callable[[float], float] | None = None, command_filter_s: float = 0.0) -> None:
+                 command: Callable[[float], float] | None = None, command_filter_s: float = 0.0,
+                 anti_windup: str = "back-calculation", tracking_time_s: float = TRACKING_TIME) -> None:
         self.design = d
         self.chair = chair
         self.drive = drive
@@ -86,6 +107,8 @@ class DigitalController:
         self._cmd_gain = 1.0 - math.exp(-1.0 / (gyro.sample_rate_hz * command_filter_s)) if command_filter_s > 0 \
             else 1.0
         self.Ts = 1.0 / gyro.sample_rate_hz
+        self.anti_windup = check_choice("anti_windup", anti_windup, ANTI_WINDUP)
+        self._aw_gain = self.Ts / max(float(check_positive("tracking_time_s", tracking_time_s)), self.Ts)
         self._rng = np.random.default_rng(seed)
         self._noise = np.zeros(0)
         self._bias = gyro.bias_deg_s * _DEG if noise else 0.0
@@ -142,14 +165,15 @@ class DigitalController:
         return prev + self._cmd_gain * (raw - prev)
 
     def _step(self, k: int, state: Any) -> None:
-        # history entry: (xhat_k, e_k, u_k, tau_k, r_k corrected, m_k, x_k, bhat_k, rcmd_k)
+        # history entry: (xhat_k, e_k, u_k, tau_k, r_k corrected, m_k, x_k, bhat_k, rcmd_k, unsaturated Mz_k)
         r_gyro = float(state.yaw_rate) + self._bias + self._noise_at(k)
         if k == 0:
             xhat, e, m, bhat, u_prev, r_prev, x_prev, rc_prev = np.zeros(len(self._idx)), 0.0, 0.0, 0.0, 0.0, \
                 0.0, None, 0.0
         else:
-            xh, e0, u_prev, _, r_prev, m0, x_prev, bhat, rc_prev = self._hist[k - 1]
-            e = e0 + self.Ts * (r_prev - rc_prev)
+            xh, e0, u_prev, _, r_prev, m0, x_prev, bhat, rc_prev, mz_prev = self._hist[k - 1]
+            turning = self.command is not None and float(self.command((k - 1) * self.Ts)) != 0.0
+            e = e0 + self._integrate(r_prev - rc_prev, mz_prev - u_prev if turning else 0.0)
             m = u_prev + (m0 - u_prev) * self._decay if self._motor else u_prev
             xhat = self._Phi @ xh + self._Gam @ np.array([u_prev, r_prev]) if self.design.kind == "gyro" else xh
         # the bias estimate: gyro minus the drive wheels' yaw rate (the true yaw rate: no wheel slip)
@@ -159,13 +183,30 @@ class DigitalController:
                      + ([m] if self._motor else []), dtype=float)
         rc_prev_cmd = self._hist[k - 1][8] if k > 0 else 0.0
         if k == 0:
-            u, tau = 0.0, 0.0
+            mz, u, tau = 0.0, 0.0, 0.0
         else:
             est = xhat if self.design.kind == "gyro" else x_prev
             # Mz = -K_int (est - Nx r_cmd) - K_psi e + Nu r_cmd = -K_int est - K_psi e + F r_cmd
             mz = -float(self._Kint @ est) - self._Kpsi * e + self._F * rc_prev_cmd
             u, tau = self._limit(mz)
-        self._hist.append((xhat, e, u, tau, r_corr, m, x, bhat, self._cmd(k)))
+            # the excess is exactly 0 unless the torque is at its limit (no round-off from the unit conversion)
+            mz = mz if self.saturate and abs(tau) >= self.drive.torque_limit else u
+        self._hist.append((xhat, e, u, tau, r_corr, m, x, bhat, self._cmd(k), mz))
+
+    def _integrate(self, err: float, excess: float) -> float:
+        """Increment of the heading-error integrator over one sample (rad).
+
+        ``err`` is the corrected yaw rate minus the command (rad/s), ``excess``
+        the unsaturated minus the applied yaw moment (N m) of that sample
+        while the joystick commands a turn (0 otherwise: with a straight
+        command the integrator is the heading to hold and keeps its memory).
+        """
+        if excess == 0.0 or self.anti_windup == "none":
+            return self.Ts * err
+        if self.anti_windup == "conditional":
+            # Mz = ... - K_psi e: a positive excess grows with -K_psi err, so freeze when that has its sign
+            return 0.0 if -self._Kpsi * err * excess > 0 else self.Ts * err
+        return self.Ts * err + self._aw_gain * excess / self._Kpsi
 
     def __call__(self, t: float, state: Any) -> float:
         k = int(math.floor(t / self.Ts + 1e-9))

@@ -21,7 +21,7 @@ from .._validate import check_speed
 from ..reference import THESIS_PUSH
 from ..simulate import simulate
 from ..statics import static_loads
-from .controller import DigitalController
+from .controller import TRACKING_TIME, DigitalController
 from .schedule import Schedule
 from .tracking import TrackingMetrics, step_metrics
 
@@ -131,7 +131,8 @@ class CommandRun:
 
 def command_run(sched: Schedule, speed: float, command: Callable[[float], float], *, duration: float = 4.0,
                 impulse_force: float = 0.0, noise: bool = False, seed: int = 0, saturate: bool = True,
-                dt: float | str = "auto", command_filter_s: float = 0.0) -> CommandRun:
+                dt: float | str = "auto", command_filter_s: float = 0.0,
+                anti_windup: str = "back-calculation", tracking_time_s: float = TRACKING_TIME) -> CommandRun:
     """Simulate the scheduled controller following ``command`` (WCHAIR scheme, exact model by default).
 
     Parameters
@@ -157,6 +158,10 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
         (about 0.3 m/s for the preset).
     command_filter_s : float
         Reference-model time constant (s).
+    anti_windup : str
+        Integrator protection (:data:`~stability.assist.controller.ANTI_WINDUP`).
+    tracking_time_s : float
+        Back-calculation time constant (s).
 
     Returns
     -------
@@ -164,7 +169,8 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
     """
     speed = check_speed(speed)
     ctl = DigitalController(sched.at(speed), sched.chair, sched.drive, gyro=sched.gyro, seed=seed, noise=noise,
-                            saturate=saturate, command=command, command_filter_s=command_filter_s)
+                            saturate=saturate, command=command, command_filter_s=command_filter_s,
+                            anti_windup=anti_windup, tracking_time_s=tracking_time_s)
     res = simulate(sched.chair, speed, duration=duration, model=sched.model, dt=dt, impulse_force=impulse_force,
                    impulse_duration=THESIS_PUSH.duration, yaw_moment=ctl, stop_on_warnings=False)
     t = np.asarray(res.t)
