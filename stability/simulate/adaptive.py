@@ -341,6 +341,29 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
 
     The right-hand side runs compiled (:mod:`.adaptive_kernel`) unless a
     Python ``yaw_moment`` input acts (``settings["engine"]`` says which).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    speed : float
+        Initial forward speed, m/s (> 0; checked by the caller).
+    opts : Options
+        Checked options with ``scheme="adaptive"`` (``rtol``, ``atol``,
+        ``sample`` in s).
+
+    Returns
+    -------
+    SimulationResult
+        Rows every ``opts.sample`` s; ``settings`` also holds the number of
+        stick-slip switches (``switches``) and right-hand-side evaluations
+        (``nfev``).
+
+    Raises
+    ------
+    RuntimeError
+        The integrator failed, or more than ``MAX_SWITCHES`` stick-slip
+        switches occurred (chattering).
     """
     model = AdaptiveModel(chair, speed, opts)
     segments, switches = _integrate(model, speed, opts)

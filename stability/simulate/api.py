@@ -169,9 +169,34 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds, *, progress: bool = 
     the usable CPUs).  The results do not depend on it: one run is the same
     arithmetic alone or in any batch, and equals :func:`simulate`.
 
+    Parameters
+    ----------
+    chairs : Chair or sequence of Chair
+        One chair for all runs, or a non-empty sequence broadcast against
+        ``speeds``.
+    speeds : float or array_like
+        Initial forward speeds, m/s (each > 0): a number or a 1-D array.
+    progress : bool
+        Show a progress bar on a terminal (default True).
+    workers : int, optional
+        Threads of the compiled kernel (>= 1); None: numba's default.
+    **options
+        Any keyword of :func:`simulate` (defaults in
+        :data:`stability.simulate.DEFAULTS`); ``impulse_force`` (N) may be a
+        non-empty 1-D array of finite forces, broadcast with ``chairs`` and
+        ``speeds``.  ``sample`` defaults to the multiple of ``dt`` nearest
+        0.01 s.
+
     Returns
     -------
-    list of SimulationResult, one per run in broadcast order.
+    list of SimulationResult
+        One per run, in broadcast order.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, an unknown option, or shapes that do not broadcast
+        (the message names the parameter, its value and the valid range).
     """
     if isinstance(chairs, Chair):
         chair_list = [chairs]

@@ -112,7 +112,42 @@ def _kernel():
 def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
                  controller: SampledController | None = None, record: str = "all",
                  threads: int | None = None) -> list[SimulationResult]:
-    """Run the WCHAIR scheme compiled for every (chair, speed) pair; one result per run."""
+    """Run the WCHAIR scheme compiled for every (chair, speed) pair; one result per run.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One chair per run.
+    speeds : ndarray
+        Initial forward speeds, m/s (> 0), shape ``(len(chairs),)``.
+    opts : Options
+        Checked options (:func:`~stability.simulate.options.make_options`),
+        ``scheme="wchair"``, no Python ``yaw_moment``.
+    forces : ndarray, optional
+        Per-run lateral push at the c.g., N (FCIMP), shape ``(len(chairs),)``,
+        instead of ``opts.impulse_force``.
+    controller : SampledController, optional
+        Sampled linear yaw-moment controller run inside the kernel.
+    record : {"all", "states", "final"}
+        Every column, the ten states (the other columns NaN), or only the
+        last executed step (:data:`RECORDS`).
+    threads : int, optional
+        Threads of the kernel (>= 1); None: numba's default.  The numbers do
+        not depend on it.
+
+    Returns
+    -------
+    list of SimulationResult
+        One per run, in input order, each with ``stats``
+        (:class:`~stability.simulate.results.RunStats` at the
+        :data:`STATS_LEVELS`) and ``settings["engine"] == "compiled"``.
+
+    Raises
+    ------
+    ValueError
+        With ``out_of_range="raise"``, the first tire input outside the data
+        (the tire's own error).
+    """
     k = _kernel()
     pk = _Packed(chairs, speeds, opts, forces)
     n_runs = len(chairs)

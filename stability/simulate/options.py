@@ -46,7 +46,54 @@ class SimulationDefaults:
     """The defaults of a simulation (units as in :func:`stability.simulate.simulate`).
 
     The thesis's reference push (:data:`stability.reference.THESIS_PUSH`) and
-    horizon (:data:`stability.reference.HORIZON`), WCHAIR's step and scheme.
+    horizon (:data:`stability.reference.HORIZON`), WCHAIR's step and scheme
+    (program WCHAIR, Appendix C; the defaults of Table 8-1).  Each field is the
+    default of the keyword of the same name of :func:`stability.simulate.simulate`,
+    which documents it in full.
+
+    Attributes
+    ----------
+    duration : float
+        Simulated time, s (WCHAIR's TTOTAL; 10 s).  > 0.
+    scheme : {"wchair", "adaptive"}
+        Integration scheme: WCHAIR's fixed step or error-controlled.
+    model : {"thesis", "exact"}
+        Variant of the equations of motion.
+    dt : float or "auto"
+        Fixed step of the wchair scheme, s (WCHAIR's TSTEP; 0.001 s).  > 0 and
+        <= ``duration``.
+    impulse_force : float
+        Lateral push at the c.g., N (FCIMP; 40 N, positive to the right).
+    impulse_duration : float
+        How long the push (and ``tire_impulse``) acts, s (DUIMP; 0.1 s).  >= 0;
+        ``inf`` for a constant force.
+    tire_impulse : float
+        Lateral force on each main tire while the push acts, N (FTIMP; 0).
+    lateral_velocity : float
+        Initial lateral velocity, m/s (VD; 0).
+    eta0_deg, beta0_deg : float
+        Initial left and right caster angles, deg (E, B; 0).
+    casters : {"free", "locked"}
+        Free casters with Coulomb pin friction, or casters held at their
+        initial angles.
+    yaw_moment : callable or None
+        ``yaw_moment(t, state) -> N m`` applied to the chair; None: none.
+    stop_on_warnings : bool or None
+        Stop at the eleventh slip or load warning of a kind; None: True for
+        the wchair scheme, False for the adaptive one.
+    out_of_range : {"clamp", "extrapolate", "raise"}
+        Tire fits outside their data (slip > 8 deg, load > 450 N).
+    sample : float or None
+        Output interval, s; None: every step (wchair, single run) or 0.01 s.
+    rtol, atol : float
+        Relative and absolute tolerances of the adaptive scheme (> 0;
+        ``rtol >= 1e-13``).
+    reverse : bool
+        Drive backwards (initial forward velocity ``-speed``).
+    controller : SampledController or None
+        Sampled linear yaw-moment controller run in the compiled kernel.
+    record : {"all", "states", "final"}
+        What the compiled wchair scheme keeps of the time histories.
     """
 
     duration: float = HORIZON
@@ -81,7 +128,51 @@ DEFAULTS = SimulationDefaults()
 
 @dataclass(frozen=True)
 class Options:
-    """Checked options of one simulation (angles in rad; see :func:`make_options`)."""
+    """Checked options of one simulation (angles in rad; see :func:`make_options`).
+
+    Built only by :func:`make_options`; the fields mean what the keywords of
+    :func:`stability.simulate.simulate` of the same name mean, except where
+    noted.
+
+    Attributes
+    ----------
+    duration : float
+        Simulated time, s (TTOTAL).  > 0.
+    scheme : {"wchair", "adaptive"}
+        Integration scheme.
+    model : {"thesis", "exact"}
+        Variant of the equations of motion.
+    dt : float
+        Fixed step of the wchair scheme, s (TSTEP), already resolved from
+        ``"auto"``.  0 < dt <= duration for the wchair scheme.
+    impulse_force : float
+        Lateral push at the c.g., N (FCIMP).
+    impulse_duration : float
+        How long the pushes act, s (DUIMP).  >= 0, may be ``inf``.
+    tire_impulse : float
+        Lateral force on each main tire while the push acts, N (FTIMP).
+    lateral_velocity : float
+        Initial lateral velocity, m/s (VD).
+    eta0, beta0 : float
+        Initial left and right caster angles, rad (E, B).
+    casters : {"free", "locked"}
+        Caster condition.
+    yaw_moment : callable or None
+        ``yaw_moment(t, state) -> N m`` input, or None.
+    stop_on_warnings : bool
+        Stop at the eleventh warning of a kind (resolved from None).
+    out_of_range : {"clamp", "extrapolate", "raise"}
+        Policy of the tire fits outside their data.
+    sample : float or None
+        Output interval, s (0 < sample <= duration); None: every step.
+    stride : int
+        Steps between recorded rows of the wchair scheme (``sample / dt``;
+        >= 1).
+    rtol, atol : float
+        Tolerances of the adaptive scheme.
+    reverse : bool
+        Drive backwards (initial forward velocity ``-speed``).
+    """
 
     duration: float
     scheme: str
@@ -136,7 +227,62 @@ def _float(value: Any) -> Any:
 def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration, tire_impulse,
                  lateral_velocity, eta0_deg, beta0_deg, casters, yaw_moment, stop_on_warnings, out_of_range,
                  sample, rtol, atol, reverse, batch: bool = False) -> Options:
-    """Check every option (ValueError naming the parameter, its value and the valid range) -> :class:`Options`."""
+    """Check every option (ValueError naming the parameter, its value and the valid range) -> :class:`Options`.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time, s (TTOTAL).  > 0.
+    scheme : {"wchair", "adaptive"}
+        Integration scheme.
+    model : {"thesis", "exact"}
+        Variant of the equations of motion.
+    dt : float
+        Fixed step, s (TSTEP); > 0 and, for the wchair scheme, <= ``duration``.
+        (``"auto"`` is resolved by the caller before this check.)
+    impulse_force : float
+        Lateral push at the c.g., N (FCIMP); finite.
+    impulse_duration : float
+        How long the pushes act, s (DUIMP); >= 0 (``inf``: constant force).
+    tire_impulse : float
+        Lateral force on each main tire while the push acts, N (FTIMP); finite.
+    lateral_velocity : float
+        Initial lateral velocity, m/s (VD); finite.
+    eta0_deg, beta0_deg : float
+        Initial left and right caster angles, deg (E, B); finite.
+    casters : {"free", "locked"}
+        Caster condition.
+    yaw_moment : callable or None
+        ``yaw_moment(t, state) -> N m`` input, or None.
+    stop_on_warnings : bool or None
+        Stop at the eleventh warning of a kind; None: True for the wchair
+        scheme, False for the adaptive one.
+    out_of_range : {"clamp", "extrapolate", "raise"}
+        Policy of the tire fits outside their data (8 deg, 450 N).
+    sample : float or None
+        Output interval, s; 0 < sample <= duration and, for the wchair
+        scheme, a whole multiple of ``dt``.  None: every step for one wchair
+        run; 0.01 s for the adaptive scheme; the multiple of ``dt`` nearest
+        0.01 s for a wchair batch.
+    rtol, atol : float
+        Tolerances of the adaptive scheme; > 0, ``rtol >= 1e-13``.
+    reverse : bool
+        Drive backwards.
+    batch : bool
+        Options of a :func:`~stability.simulate.simulate_batch` call (sets
+        the default ``sample`` of the wchair scheme).
+
+    Returns
+    -------
+    Options
+        The checked options, angles in rad.
+
+    Raises
+    ------
+    ValueError
+        An option outside its valid range (the message names it, its value
+        and the range).
+    """
     scheme = check_choice("scheme", scheme, SCHEMES)
     model = check_choice("model", model, MODELS)
     casters = check_choice("casters", casters, CASTERS)
@@ -188,7 +334,20 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
 
 
 def n_steps(opts: Options) -> int:
-    """Iterations of ``DO 99 T = 0, TTOTAL+TSTEP, TSTEP`` (F77 trip count)."""
+    """Iterations of ``DO 99 T = 0, TTOTAL+TSTEP, TSTEP`` (F77 trip count; program WCHAIR, Appendix C).
+
+    Parameters
+    ----------
+    opts : Options
+        Checked options; uses ``duration`` (TTOTAL, s) and ``dt`` (TSTEP, s).
+
+    Returns
+    -------
+    int
+        Number of steps, ``floor((duration + 2 dt) / dt)`` (a tolerance of
+        1e-9 absorbs rounding of the quotient): the run covers
+        ``t = 0, dt, ..., duration + dt``.
+    """
     return int(math.floor((opts.duration + 2.0 * opts.dt) / opts.dt + 1e-9))
 
 
@@ -197,11 +356,37 @@ def impulse_on(opts: Options, t: float) -> bool:
 
     WCHAIR accumulates T in REAL; here ``t = k dt`` and a relative tolerance
     keeps the inclusive test exact at ``t = DUIMP``.
+
+    Parameters
+    ----------
+    opts : Options
+        Checked options; uses ``impulse_duration`` (DUIMP, s).
+    t : float
+        Time, s (>= 0).
+
+    Returns
+    -------
+    bool
+        True while ``t <= impulse_duration`` (within a relative 1e-12).
     """
     return t <= opts.impulse_duration * (1.0 + 1e-12) + 1e-15
 
 
 def initial_velocities(opts: Options, speed: float) -> tuple[float, float]:
-    """``(u0, v0)``, m/s: forward (negative when reversing) and lateral."""
+    """``(u0, v0)``, m/s: forward (negative when reversing) and lateral.
+
+    Parameters
+    ----------
+    opts : Options
+        Checked options; uses ``reverse`` and ``lateral_velocity`` (VD, m/s).
+    speed : float
+        Initial forward speed, m/s (> 0; WCHAIR's UD).
+
+    Returns
+    -------
+    tuple of float
+        ``(u0, v0)``: body-axis forward velocity (``-speed`` when
+        ``opts.reverse``) and lateral velocity, m/s.
+    """
     u0 = -speed if opts.reverse else speed
     return u0, opts.lateral_velocity

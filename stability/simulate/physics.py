@@ -20,7 +20,7 @@ from ..params import parameters as _parameters
 from .options import Options
 
 __all__ = ["Physics", "TireGroup", "NO_FORCE", "kinematics", "slip_angles", "tire_forces", "accelerations",
-           "held_accelerations", "ops", "shared_scalars"]
+           "held_accelerations"]
 
 class _MathOps:
     cos = staticmethod(math.cos)
@@ -206,7 +206,31 @@ class Physics:
 
 
 def kinematics(K: Physics, u, v, r, ce, se, cb, sb, ed, bd):
-    """Contact velocities (SLIP), main wheels in their toed wheel frames."""
+    """Contact velocities (program WCHAIR's SLIP, Appendix C), main wheels in their toed wheel frames.
+
+    Floats for one run, or arrays of shape ``(n,)`` over the runs of a batch.
+
+    Parameters
+    ----------
+    K : Physics
+        Parameters, variant and toe of the run(s).
+    u, v : float or ndarray
+        Forward and lateral velocity of the c.g. in body axes, m/s (UD, VD).
+    r : float or ndarray
+        Yaw rate, rad/s (THED, positive clockwise from above).
+    ce, se, cb, sb : float or ndarray
+        cos and sin of the left (eta, E) and right (beta, B) caster angles.
+    ed, bd : float or ndarray
+        Caster swivel rates relative to the chair, rad/s (ED, BD).
+
+    Returns
+    -------
+    tuple of 8 (float or ndarray)
+        ``(vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy)``, m/s: casters A, B in
+        their own frames, main wheels D (left), E (right) in their wheel
+        frames, turned by the toe angle when the chair has toe (SLIP lines
+        0564-0573).
+    """
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = K.cv_fn(u, v, r, ce, se, cb, sb, ed, bd, *K.geom)
     if K.toe:  # SLIP lines 0564-0573: right wheel turned by +toe, left by -toe
         ct, st = K.ct, K.st
@@ -216,7 +240,21 @@ def kinematics(K: Physics, u, v, r, ce, se, cb, sb, ed, bd):
 
 
 def slip_angles(K: Physics, vel):
-    """Signed slip angles (deg): atan2(vy, |vx|); WCHAIR's SLIPx = abs of these."""
+    """Signed slip angles (deg): atan2(vy, |vx|); WCHAIR's SLIPx = abs of these.
+
+    Parameters
+    ----------
+    K : Physics
+        Unused; kept for the uniform call signature of the physics glue.
+    vel : tuple of 8 (float or ndarray)
+        Contact velocities from :func:`kinematics`, m/s.
+
+    Returns
+    -------
+    tuple of 4 (float or ndarray)
+        Slip angles of A, B, D, E, deg, in ``[-90, 90]``; the sign is that of
+        the lateral contact velocity.
+    """
     xp = ops(vel[1])
     a2, dg = xp.atan2, xp.degrees
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
@@ -228,6 +266,35 @@ def tire_forces(K: Physics, impulse_on: bool, vel, slips, NA, NB, ND, NE, S4=Non
 
     ``S4``, ``N4`` (batch path): the slips and loads stacked as ``(4, n)``
     arrays, so that both wheels of a pair go through one tire call.
+
+    Lateral forces come from the tire fits (the policy ``K.policy`` outside
+    8 deg and 450 N); ``tire_impulse`` (FTIMP) replaces the main wheels'
+    lateral forces while the push acts (MECHAN lines 0704-0706); rolling
+    resistance opposes each wheel's longitudinal contact velocity; camber
+    adds a lateral force on each main wheel (tops inward push the left wheel
+    right and the right wheel left; MECHAN lines 0729-0733).
+
+    Parameters
+    ----------
+    K : Physics
+        Tires, options and toe of the run(s).
+    impulse_on : bool
+        Whether the push acts now (:func:`~stability.simulate.options.impulse_on`).
+    vel : tuple of 8 (float or ndarray)
+        Contact velocities from :func:`kinematics`, m/s.
+    slips : tuple of 4 (float or ndarray)
+        Signed slip angles of A, B, D, E from :func:`slip_angles`, deg.
+    NA, NB, ND, NE : float or ndarray
+        Normal loads on A, B, D, E, N (>= 0 while every wheel touches).
+    S4, N4 : ndarray, optional
+        ``(4, n)`` stacks of ``slips`` (deg) and loads (N), rows A, B, D, E
+        (batch path); None for a single run.
+
+    Returns
+    -------
+    tuple of 8 (float or ndarray)
+        ``(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)``, N: casters in their own
+        frames, main wheels in body axes.
     """
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
     sA, sB, sD, sE = slips
@@ -268,7 +335,36 @@ def tire_forces(K: Physics, impulse_on: bool, vel, slips, NA, NB, ND, NE, S4=Non
 
 
 def accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, rdc=None):
-    """(u_dot, v_dot, r_dot, eta_dd, beta_dd) from the model (DYNAM)."""
+    """(u_dot, v_dot, r_dot, eta_dd, beta_dd) from the model (DYNAM; equations of motion of Table 6-1).
+
+    Parameters
+    ----------
+    K : Physics
+        Parameters and variant (``"thesis"`` or ``"exact"``) of the run(s).
+    state : tuple of 9 (float or ndarray)
+        ``(u, v, r, ce, se, cb, sb, eta_dot, beta_dot)``: velocities of the
+        c.g., m/s; yaw rate, rad/s; cos/sin of the caster angles; caster
+        swivel rates, rad/s.
+    F : tuple of 8 (float or ndarray)
+        Tire forces from :func:`tire_forces`, N.
+    M_A, M_B : float or ndarray
+        Pin moments on casters A and B, N m (Coulomb friction opposing the
+        swivel rate, or the holding moments).
+    fy_ext : float or ndarray
+        External lateral force at the c.g., N (FCIMP while the push acts).
+    mz : float or ndarray
+        External yaw moment on the chair, N m.
+    rdc : float or ndarray, optional
+        Thesis variant only: the yaw acceleration the caster equations use,
+        rad/s^2 (WCHAIR's DYNAM uses the previous step's THEDD); None: the
+        current one.  Ignored by the exact variant.
+
+    Returns
+    -------
+    tuple of 5 (float or ndarray)
+        ``(u_dot, v_dot, r_dot, eta_dd, beta_dd)``: m/s^2, m/s^2, rad/s^2,
+        rad/s^2, rad/s^2.
+    """
     u, v, r, ce, se, cb, sb, ed, bd = state
     if K.thesis:
         return K.acc_fn(u, v, r, ce, se, cb, sb, ed, bd, *F, M_A, M_B, fy_ext, mz, *K.inertia, r_dot_casters=rdc)
@@ -281,6 +377,26 @@ def held_accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, hold_a, hold_
     The equations are affine in the pin moments, so the holding moments are
     solved from two or three evaluations.  Returns ``(acc, M_A, M_B)`` with
     the held sides' moments replaced by the reactions.
+
+    Parameters
+    ----------
+    K, state, F, M_A, M_B, fy_ext, mz, rdc
+        As in :func:`accelerations` (``M_A``, ``M_B`` in N m are used only
+        for a side that is not held).
+    hold_a, hold_b : bool
+        Hold caster A (left) and/or B (right) against swivelling: locked
+        casters, or a pin stuck by its Coulomb friction (stick phase of the
+        adaptive scheme).
+
+    Returns
+    -------
+    acc : tuple of 5 (float or ndarray)
+        ``(u_dot, v_dot, r_dot, eta_dd, beta_dd)`` as in
+        :func:`accelerations`, with ``eta_dd`` and/or ``beta_dd`` zero on the
+        held side(s).
+    M_A, M_B : float or ndarray
+        Pin moments, N m: the holding reaction on a held side, the input
+        moment otherwise.
     """
     if not (hold_a or hold_b):
         return accelerations(K, state, F, M_A, M_B, fy_ext, mz, rdc), M_A, M_B

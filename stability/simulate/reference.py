@@ -173,7 +173,34 @@ def _update(s: _State, acc: tuple, fc: tuple, heading_trig: tuple, dt: float, ha
 
 def wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: Options, progress: bool,
                  bar: ProgressBar | None = None, forces: np.ndarray | None = None) -> list[SimulationResult]:
-    """All runs stepped together; ``forces``: per-run impulse force (N) instead of ``opts.impulse_force``."""
+    """All runs stepped together; ``forces``: per-run impulse force (N) instead of ``opts.impulse_force``.
+
+    The pure-numpy reference of program WCHAIR's scheme (Appendix C) for a
+    batch: every step operates on arrays over the runs still active (a run
+    stopped by the warning rule drops out).  Used for a Python
+    ``yaw_moment`` input in a batch and inside
+    :func:`~stability.simulate.reference_engine`.
+
+    Parameters
+    ----------
+    chairs : list of Chair
+        One chair per run.
+    speeds : ndarray
+        Initial forward speeds, m/s (> 0), shape ``(len(chairs),)``.
+    opts : Options
+        Checked options with ``scheme="wchair"``.
+    progress : bool
+        Show a progress bar over the steps (when ``bar`` is None).
+    bar : ProgressBar, optional
+        A bar owned by the caller, advanced once per step instead.
+    forces : ndarray, optional
+        Per-run lateral push at the c.g., N (FCIMP), shape ``(len(chairs),)``.
+
+    Returns
+    -------
+    list of SimulationResult
+        One per run, in input order.
+    """
     nrun = len(chairs)
     K = Physics(chairs, opts, vector=True)
     dt, half_dt2, stride = opts.dt, 0.5 * opts.dt * opts.dt, opts.stride

@@ -384,12 +384,37 @@ def _freeze_warnings(w):
 
 
 def new_warnings() -> dict[str, dict[str, Any]]:
-    """Empty warning counters ``{kind: {"count", "first_time", "max"}}`` for slip, load, lift_off."""
+    """Empty warning counters ``{kind: {"count", "first_time", "max"}}`` for slip, load, lift_off.
+
+    Returns
+    -------
+    dict
+        ``{"slip": ..., "load": ..., "lift_off": ...}``, each
+        ``{"count": 0, "first_time": None, "max": None}``; filled by
+        :func:`note_warning`.  The kinds are WCHAIR's two range warnings
+        (slip angle > 8 deg in MECHAN, normal force > 450 N in STATICS;
+        program WCHAIR, Appendix C) and a negative normal force (a wheel
+        lifting off), which is counted but never stops a run.
+    """
     return {k: {"count": 0, "first_time": None, "max": None} for k in ("slip", "load", "lift_off")}
 
 
 def note_warning(w: dict, kind: str, t: float, value: float) -> None:
-    """Count one warning of ``kind`` at time ``t`` (s) with the offending ``value``."""
+    """Count one warning of ``kind`` at time ``t`` (s) with the offending ``value``.
+
+    Parameters
+    ----------
+    w : dict
+        Counters from :func:`new_warnings`; updated in place.
+    kind : {"slip", "load", "lift_off"}
+        Which check failed.
+    t : float
+        Time of the step, s.
+    value : float
+        The offending value: largest |slip angle|, deg ("slip"); largest
+        normal load, N ("load"); smallest (negative) normal load, N
+        ("lift_off").  ``max`` keeps the value of largest magnitude.
+    """
     d = w[kind]
     d["count"] += 1
     if d["first_time"] is None:

@@ -61,7 +61,22 @@ def stable_steps(chairs: Sequence[Chair], speeds: np.ndarray, model: str, caster
 
 
 def auto_step(limit: float) -> float:
-    """The step ``dt="auto"`` picks: WCHAIR's 1 ms, or ``1 ms / k`` (whole k) within ``SAFETY`` of ``limit`` (s)."""
+    """The step ``dt="auto"`` picks: WCHAIR's 1 ms, or ``1 ms / k`` (whole k) within ``SAFETY`` of ``limit`` (s).
+
+    Parameters
+    ----------
+    limit : float
+        Largest stable fixed step, s (> 0; ``inf`` when no mode decays), e.g.
+        the smallest of :func:`stable_steps` over a batch.
+
+    Returns
+    -------
+    float
+        ``WCHAIR_DT`` (0.001 s, WCHAIR's TSTEP) if ``SAFETY * limit`` (0.8 of
+        the limit) is at least that or ``limit`` is not finite; otherwise
+        ``0.001 / k`` s with the smallest whole ``k`` for which
+        ``dt <= SAFETY * limit``.
+    """
     if not math.isfinite(limit) or limit * SAFETY >= WCHAIR_DT:
         return WCHAIR_DT
     return WCHAIR_DT / math.ceil(WCHAIR_DT / (SAFETY * limit))

@@ -25,6 +25,32 @@ __all__ = ["wchair_single"]
 # scheme "wchair": one run, Python floats
 # ---------------------------------------------------------------------------
 def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult:
+    """One run of program WCHAIR's fixed-step scheme (Appendix C) in Python floats.
+
+    Each step: SLIP (contact velocities, slip angles), STATICS (normal loads
+    from the previous step's resultant forces; warning above 450 N), MECHAN
+    (tire forces; warning above 8 deg of slip), DYNAM (accelerations), then
+    UPDATE/ITRATE (constant acceleration over the step).  Used for a Python
+    ``yaw_moment`` input and inside :func:`~stability.simulate.reference_engine`;
+    the compiled kernel is tested against it.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    speed : float
+        Initial forward speed, m/s (> 0; checked by the caller).
+    opts : Options
+        Checked options (:func:`~stability.simulate.options.make_options`)
+        with ``scheme="wchair"``.
+
+    Returns
+    -------
+    SimulationResult
+        Rows every ``opts.stride`` steps from ``t = 0`` to ``duration + dt``,
+        or, when ``opts.stop_on_warnings``, up to the step before the one
+        whose eleventh warning of a kind stopped the run.
+    """
     K = Physics([chair], opts, vector=False)
     p = K.p
     dt, half_dt2, locked, thesis, yaw_fn, stop, stride, fcimp = opts.step_constants()
