@@ -44,7 +44,7 @@ distribution = "uniform"
 low = 0.0
 high = 0.05
 """
-SAMPLES = 200
+SAMPLES = 100
 
 
 @pytest.fixture(scope="module")
@@ -259,7 +259,8 @@ def test_compute_is_deterministic():
     """The same input gives the same numbers (tiny settings: a few batches)."""
     s = report.Settings(quick=True, speed_points=40, locus_points=9, gain_points=20, duration=4.5, dt=0.001,
                         tol=0.1, candidates=9, bracket=(0.5, 1.5), plan={"trail": (0.06, 0.08)},
-                        map_speeds=(0.6, 1.0), map_frictions=(0.1,), map_impulses=(4.0,))
+                        map_speeds=(0.6, 1.0), map_frictions=(0.1,), map_impulses=(4.0,), impulse_tol=0.05,
+                        shimmy_trails=(0.04, 0.08), shimmy_speeds=(1.0,))
     c = preset("revised")
     d1 = report.compute(c, "thesis", settings=s, progress=False)
     d2 = report.compute(c, "thesis", settings=s, progress=False)
@@ -269,6 +270,9 @@ def test_compute_is_deterministic():
         [r.evaluations for r in d2.chair_sweeps.sweeps[0].results]
     for k in d1.speed_loci:
         np.testing.assert_array_equal(d1.speed_loci[k].eigenvalues, d2.speed_loci[k].eigenvalues)
+    assert d1.sensitivity == d2.sensitivity and d1.intervals.to_dict() == d2.intervals.to_dict()
+    np.testing.assert_array_equal(d1.slope.curve.holding_moment, d2.slope.curve.holding_moment)
+    np.testing.assert_array_equal(d1.shimmy.chart.divergence_rate, d2.shimmy.chart.divergence_rate)
 
 
 def test_no_partial_file_when_a_page_fails(quick, tmp_path, monkeypatch):
