@@ -79,7 +79,34 @@ class RateComparison:
 
 
 def measured_rate(t: np.ndarray, y: np.ndarray, oscillatory: bool, window: tuple[float, float]) -> float:
-    """Exponential rate of ``y(t)`` inside ``window`` (1/s); see :func:`stability.signals.growth_rate`."""
+    """Exponential rate of ``y(t)`` inside ``window`` (1/s); see :func:`stability.signals.growth_rate`.
+
+    Parameters
+    ----------
+    t : ndarray
+        Uniformly sampled time, s.
+    y : ndarray
+        The signal at ``t`` (here the yaw rate, rad/s); non-finite samples
+        are ignored.
+    oscillatory : bool
+        True: fit a complex pair by Prony's method of order 2
+        (``sigma = ln|z| / dt``); False: least-squares slope of ``log|y|``
+        (a single real mode; ``y`` must keep one sign in the window).
+    window : tuple of float
+        ``(start, end)`` of the fit, s; must hold at least 8 samples.
+
+    Returns
+    -------
+    float
+        Growth (> 0) or decay (< 0) rate, 1/s: the real part of the
+        dominant mode's eigenvalue.
+
+    Raises
+    ------
+    ValueError
+        Fewer than 8 samples in the window, or a sign change of ``y`` in it
+        for a real mode.
+    """
     return growth_rate(t, y, oscillatory, window)
 
 
@@ -96,19 +123,30 @@ def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", ca
     Parameters
     ----------
     chair : Chair
+        The chair; its pin friction and damping are set to zero here.
     speed : float
-        Forward speed (m/s).
+        Forward speed (m/s, > 0).
     model : {"thesis", "exact"}
         Variant, the same for both the linear model and the simulator.
     casters : {"free", "locked"}
+        Caster condition, the same for both.
     scheme : {"wchair", "adaptive"}
+        Integration scheme of the simulator.
     impulse_force, impulse_duration : float
-        Lateral force at the c.g. (N) and its duration (s).
+        Lateral force at the c.g. (N) and its duration (s).  Keep the push
+        small enough that the slip angles stay below 1 deg (check
+        ``max_slip_deg`` of the result).
     dt : float
         Time step of the wchair scheme (s); also the sampling interval.
     duration : float, optional
         Simulated time (s); by default long enough for the dominant mode to
         separate from the others and change by a factor e^3.
+
+    Returns
+    -------
+    RateComparison
+        The dominant eigenvalue, both rates, their relative difference, the
+        fitting window and the largest slip angle in it.
     """
     from . import linear
     from .simulate import simulate
@@ -147,12 +185,37 @@ def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", ca
 # symbolic linear model vs the simulator's own linearisation
 # ---------------------------------------------------------------------------
 def has_rolling_resistance(chair: Chair) -> bool:
-    """Whether the simulator applies rolling resistance to any of the chair's tires."""
+    """Whether the simulator applies rolling resistance to any of the chair's tires.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+
+    Returns
+    -------
+    bool
+        True if ``main_rolling_scale`` (TXMOD) or ``caster_rolling_scale``
+        (CXMOD) is non-zero.  The thesis's studies have both zero.
+    """
     return chair.main_rolling_scale != 0.0 or chair.caster_rolling_scale != 0.0
 
 
 def with_rolling_resistance(chair: Chair) -> Chair:
-    """``chair`` itself if it has rolling resistance, else with the tire fits' rolling resistance on."""
+    """``chair`` itself if it has rolling resistance, else with the tire fits' rolling resistance on.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+
+    Returns
+    -------
+    Chair
+        ``chair`` unchanged if :func:`has_rolling_resistance`; otherwise a
+        copy with ``main_rolling_scale = caster_rolling_scale = 1`` (the
+        rolling resistance of the tire fits as measured).
+    """
     return chair if has_rolling_resistance(chair) else chair.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0)
 
 
@@ -162,6 +225,17 @@ def omitted_effects(chair: Chair) -> tuple[str, ...]:
     The linear model (lateral tire forces linear in slip
     at the static loads) has no rolling resistance, camber or toe; a chair
     with none of them is linearised exactly (see :func:`linearisation_check`).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+
+    Returns
+    -------
+    tuple of str
+        Labels such as ``"rolling resistance"``, ``"camber 2 deg"``,
+        ``"toe 1 deg"``, in that order; empty when the chair has none.
     """
     out = []
     if has_rolling_resistance(chair):
@@ -212,6 +286,24 @@ def linearisation_check(chair: Chair, speed: float = 0.75, *, model: str = "exac
     must agree to rounding (tested); otherwise the difference measures what
     the linear model leaves out, e.g. rolling resistance, whose drag pitches
     load from the casters to the main wheels of a rear-caster chair.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair (its ``pin_damping`` is set to zero for both).
+    speed : float
+        Forward speed, m/s (> 0); default 0.75 m/s, the thesis's reference
+        speed.
+    model : {"thesis", "exact"}
+        Variant, the same for both.
+    casters : {"free", "locked"}
+        Caster condition, the same for both.
+
+    Returns
+    -------
+    LinearisationCheck
+        Both dominant eigenvalues, their relative rate difference and the
+        relative largest difference of the state matrices.
     """
     from . import linear
     from .simulate import linearise
