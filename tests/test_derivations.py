@@ -566,6 +566,7 @@ def regenerated(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fname", ["zero_width.py", "full_width.py"])
 def test_generation_reproduces_committed_files(regenerated, fname):
     """Re-running the generation reproduces the committed file byte for byte when

@@ -55,11 +55,13 @@ def test_zero_uncertainty_gives_exactly_the_point_values():
 
 def test_monte_carlo_matches_delta_method_on_a_nearly_linear_case():
     """Small normal spreads: the rate is nearly linear in s1 and I_z, so the MC 95 % interval equals
-    value +- 1.96 sigma of the delta method within sampling error (about 5 % of the width for 4000 draws)."""
-    iv = linear_intervals(EJ, loads_uncertainty(UNC.format(s1=0.002, iz=0.05)), speeds=(0.75,), samples=4000)
+    value +- 1.96 sigma of the delta method within sampling error: the 2.5 % quantile of 1000 draws has a
+    standard error of sqrt(0.025 * 0.975 / 1000) / phi(1.96) = 0.085 sigma, 2.2 % of the 3.92 sigma width;
+    the test allows 8 % (3.6 standard errors)."""
+    iv = linear_intervals(EJ, loads_uncertainty(UNC.format(s1=0.002, iz=0.05)), speeds=(0.75,), samples=1000)
     (lo, hi), (dlo, dhi) = iv.rate[0], iv.rate_delta[0]
     width = dhi - dlo
-    assert abs(lo - dlo) < 0.05 * width and abs(hi - dhi) < 0.05 * width
+    assert abs(lo - dlo) < 0.08 * width and abs(hi - dhi) < 0.08 * width
     assert {n for n, _ in iv.dominant_parameters} == {"s1", "i_z"}
 
 
