@@ -102,6 +102,29 @@ def _cg_ratio_span(c: Chair) -> tuple[float, float]:
     return lo, hi
 
 
+def _wheelbase_span(c: Chair) -> tuple[float, float]:
+    """The ``s1 + s2`` span of a locus (s2 varied), kept within chairs whose static loads are positive.
+
+    Front casters: the contact line lies ``s2 - trail`` ahead of the c.g., and the main axle's share of
+    the weight ``(s2 - trail) / (s1 + s2 - trail)`` must stay >= :data:`CG_RATIO_MIN_AXLE_SHARE` = q,
+    i.e. ``s2 >= trail + q s1 / (1 - q)``.  Rear casters are not limited (the contacts trail away).
+
+    Parameters
+    ----------
+    c : Chair
+
+    Returns
+    -------
+    tuple of float
+        ``(low, high)``, m.
+    """
+    lo = max(c.s1 + 0.02, 0.25)
+    if c.caster_position == "front":
+        q = CG_RATIO_MIN_AXLE_SHARE
+        lo = max(lo, c.s1 + c.trail + q * c.s1 / (1.0 - q))
+    return lo, max(lo, 0.85)
+
+
 def _wheelbase(c: Chair, total: float) -> Chair:
     if total <= c.s1:
         raise ValueError(f"s1_plus_s2={total!r} is invalid; valid range: > s1 = {c.s1:g} m")
@@ -156,7 +179,7 @@ DESIGN_PARAMETERS: dict[str, Parameter] = {
         Parameter("cg_ratio", "c.g. ratio s1/(s1+s2)", "-", _cg_ratio, lambda c: c.cg_ratio,
                   _cg_ratio_span, "s1 and s2 varied at constant s1 + s2 (eq 8-6, Figure 8-9)"),
         Parameter("s1_plus_s2", "main axle to caster pins s1+s2", "m", _wheelbase, lambda c: c.s1 + c.s2,
-                  lambda c: (max(c.s1 + 0.02, 0.25), 0.85), "s2 varied at constant s1 (Figure 8-10)"),
+                  _wheelbase_span, "s2 varied at constant s1 (Figure 8-10)"),
         Parameter("s1", "c.g. to main axle s1", "m", lambda c, v: c.replace(s1=v), lambda c: c.s1,
                   lambda c: (0.10, 0.45), "main axle moved, caster pins fixed relative to the c.g. (chapter 9)"),
         Parameter("trail", "caster trail l", "m", lambda c, v: c.replace(trail=v), lambda c: c.trail,
