@@ -636,3 +636,10 @@ def test_cg_ratio_span_keeps_static_loads_positive():
     fc = preset("ej-premier-front-caster")
     locus = rootlocus.parameter_locus(fc, "cg_ratio", speed=0.75, model="exact", n=9)
     assert locus.values[-1] == pytest.approx(p.span(fc)[1])
+    # the wheelbase span (s2 varied at fixed s1): the main axle keeps 2 % at its short end
+    w = get_parameter("s1_plus_s2")
+    lo, hi = w.span(fc)
+    for v in np.linspace(lo, hi, 25):
+        check_static_loads(w.apply(fc, float(v)))
+    loads = static_loads(w.apply(fc, lo))
+    assert (loads["main_left"] + loads["main_right"]) / (fc.m * fc.g) == pytest.approx(0.02, abs=1e-9)
