@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import json
 import math
 import os
@@ -76,7 +77,7 @@ class OneLineErrorParser(argparse.ArgumentParser):
 
 def _fields_epilog() -> str:
     rows = []
-    for f in chair_mod.fields(chair_mod.Chair):
+    for f in dataclasses.fields(chair_mod.Chair):
         unit = f.metadata["unit"]
         rng = chair_mod.valid_range(f.name) if f.name in chair_mod.LIMITS else ""
         rows.append(f"  {f.name:22s} {unit:10s} {f.metadata['doc']}" + (f" [{rng}]" if rng else ""))

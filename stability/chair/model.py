@@ -1,51 +1,23 @@
-"""Chair-plus-user parameters: a frozen dataclass, presets and TOML I/O.
+"""The :class:`Chair` dataclass: chair-plus-user parameters with units, plausibility limits and validation.
 
-The symbols follow Figure 6-1 of Collins (1987) and the variables of program
-WCHAIR (Appendix C, BLOCK DATA).  Distances are in metres, masses in kg,
-inertias in kg m^2, moments in N m and angles in degrees.
-
-Both rear-caster chairs (the thesis's) and front-caster chairs are first
-class: ``caster_position`` says where the casters are and every model moves
-the chair forward at positive speed.  ``s1`` and ``s2`` are always positive
-distances from the centre of gravity to the main axle and to the caster pins;
-:attr:`Chair.x_main` and :attr:`Chair.x_pin` give their signed body
-coordinates (x forward, y to the right, SAE axes).
-
-Examples
---------
->>> from stability import chair
->>> c = chair.preset("ej-premier")
->>> c.replace(trail=0.06).trail
-0.06
+Symbols follow Figure 6-1 of Collins (1987) and program WCHAIR's variables
+(Appendix C, BLOCK DATA).  Distances in m, masses in kg, inertias in kg m^2,
+moments in N m, angles in degrees.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-import os
-import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from typing import Any
 
-from . import tires
+from .. import tires
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
+__all__ = ["Chair", "LIMITS", "valid_range", "field_names"]
 
-__all__ = [
-    "Chair",
-    "preset",
-    "preset_names",
-    "load",
-    "save",
-    "from_mapping",
-    "to_mapping",
-    "parse_assignment",
-]
+
 
 
 def _doc(text: str, unit: str, symbol: str = "") -> dict[str, str]:
@@ -253,7 +225,18 @@ LIMITS: dict[str, tuple[float, float, bool]] = {
 
 
 def valid_range(name: str) -> str:
-    """The valid range of a numeric chair field in words, with its unit (e.g. ``"5 to 1000 kg"``)."""
+    """The valid range of a numeric chair field in words, with its unit.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`LIMITS`.
+
+    Returns
+    -------
+    str
+        E.g. ``"5 to 1000 kg"`` or ``"0 < value < 1.5 m"``.
+    """
     lo, hi, inclusive = LIMITS[name]
     unit = _FIELDS[name].metadata["unit"]
     unit = "" if unit == "-" else f" {unit}"
@@ -281,7 +264,13 @@ def _modified_name(name: str, changed: Mapping[str, Any]) -> str:
 
 
 def field_names() -> list[str]:
-    """Names of all :class:`Chair` fields."""
+    """Names of all :class:`Chair` fields.
+
+    Returns
+    -------
+    list of str
+        In declaration order.
+    """
     return [f.name for f in fields(Chair)]
 
 
@@ -345,274 +334,3 @@ def _validate(c: Chair) -> None:
             raise bad(name, getattr(c, name),
                       f"one of {list(tires.names())}, a registered name, 'linear:<N/deg>' or 'file:<csv>'") from exc
     tires.check_chair_tires(c)
-
-
-# ---------------------------------------------------------------------------
-# presets
-# ---------------------------------------------------------------------------
-def _presets() -> dict[str, dict[str, Any]]:
-    # Everest & Jennings Premier, chapter 8 defaults and WCHAIR BLOCK DATA:
-    # D1=D2=.265, S1=.345, S2=.175, L1=.058, L=.08, T1=T2=.24, H=.61,
-    # IZ=5.6, IZP=.02, M=95, MC=1.2, GR=9.81, MAF=MBF=.1, ROLLK=1,
-    # TXMOD=CXMOD=0, TYMOD=CYMOD=1; EJA main tires (chapter 8), ER casters
-    # (CASY holds the ER coefficients).
-    ej = dict(name="ej-premier")
-    # Front-caster equivalent of chapter 8 ("Method one"): s1 and s2
-    # exchanged, s1 = .175 m (c.g. to the main axle, now behind the c.g.),
-    # s2 = .345 m (c.g. to the caster pins, now ahead of it).
-    front = dict(name="ej-premier-front-caster", caster_position="front", s1=0.175, s2=0.345)
-    # Chapter 9 revised design (Figure 9-1): trail 8 -> 6 cm, main axle moved
-    # back so s1 = .345 -> .245 m, pins extended 5 cm behind the chair so
-    # s1 + s2 drops by only 5 cm: s2 = .175 + .05 = .225 m.
-    revised = dict(name="revised", s1=0.245, s2=0.225, trail=0.06)
-    return {"ej-premier": ej, "ej-premier-front-caster": front, "revised": revised,
-            "power-fwd": dict(POWER_FWD_FIELDS),
-            # Typical manual front-caster chair of the cross-slope treadmill study (Richter et
-            # al. 2007): 75 kg user + 13 kg lightweight chair, 24-inch pneumatic rear wheels,
-            # 5-inch polyurethane casters, c.g. 7 cm ahead of the rear axle (~80 % rear load).
-            # Every value and its source: docs/slopes.md.
-            "manual-front-caster": dict(
-                name="manual-front-caster", caster_position="front", d1=0.28, d2=0.28, s1=0.07,
-                s2=0.36, trail=0.045, l1=0.03, t1=0.21, t2=0.21, h=0.65, m=88.0, m_c=0.5, i_z=5.2,
-                i_zp=0.002, pin_friction_left=0.03, pin_friction_right=0.03, main_tire="EJP",
-                caster_tire="PU")}
-
-
-#: Field values of the ``power-fwd`` preset: a front-wheel-drive power chair
-#: with rear casters and a 100 kg user; each value is argued in
-#: ``docs/power-chair.md`` (lumped estimate in :mod:`stability.power_chair`).
-POWER_FWD_FIELDS: dict[str, Any] = dict(
-    name="power-fwd",
-    caster_position="rear",
-    d1=0.275, d2=0.275,
-    s1=0.18, s2=0.32,
-    trail=0.05, l1=0.035,
-    t1=0.22, t2=0.22,
-    h=0.49,
-    m=215.0, m_c=1.6,
-    i_z=13.0, i_zp=0.006,
-    pin_friction_left=0.15, pin_friction_right=0.15,
-    pin_damping=0.0,
-    roll_k=1.0,
-    camber_deg=0.0, toe_deg=0.0,
-    main_tire="linear:110",
-    caster_tire="ER",
-    main_lateral_scale=1.0, main_rolling_scale=0.0,
-    caster_lateral_scale=1.0, caster_rolling_scale=0.0,
-    g=9.81,
-)
-
-
-def preset_names() -> tuple[str, ...]:
-    """Names of the built-in chairs.
-
-    Returns
-    -------
-    tuple of str
-        Preset names accepted by :func:`preset` and ``--chair``, in table order.
-    """
-    return tuple(_presets())
-
-
-def preset(name: str) -> Chair:
-    """Return a built-in chair.
-
-    Parameters
-    ----------
-    name : str
-        One of :func:`preset_names`: ``"ej-premier"`` (the thesis's Everest &
-        Jennings rear-caster chair, chapter 8 defaults), ``"ej-premier-front-caster"``
-        (its front-caster equivalent, chapter 8) or ``"revised"`` (chapter 9).
-
-    Returns
-    -------
-    Chair
-        The preset's parameters (SI units, see :class:`Chair`).
-
-    Raises
-    ------
-    ValueError
-        If ``name`` is not a preset; the message lists the valid names.
-    """
-    table = _presets()
-    if name in table:
-        return Chair(**table[name])
-    raise ValueError(f"unknown chair preset {name!r}; valid presets: {list(table)}")
-
-
-def all_preset_names() -> tuple[str, ...]:
-    """Names of all presets (kept for compatibility; same as :func:`preset_names`)."""
-    return preset_names()
-
-
-# ---------------------------------------------------------------------------
-# TOML I/O
-# ---------------------------------------------------------------------------
-def to_mapping(c: Chair) -> dict[str, Any]:
-    """Chair as a plain dict of field values (``None`` values omitted).
-
-    Parameters
-    ----------
-    c : Chair
-        The chair.
-
-    Returns
-    -------
-    dict of str to Any
-        Field name -> value, in the chair's SI units; the inverse of :func:`from_mapping`.
-    """
-    return {f.name: getattr(c, f.name) for f in fields(c) if getattr(c, f.name) is not None}
-
-
-def from_mapping(data: Mapping[str, Any], base: Chair | None = None) -> Chair:
-    """Build a chair from a mapping of field values over ``base``.
-
-    Parameters
-    ----------
-    data : Mapping of str to Any
-        Field name -> value (SI units, as the :class:`Chair` fields); fields not
-        given keep ``base``'s values.
-    base : Chair or None, optional
-        Chair whose values fill the fields missing from ``data``; default the
-        default ``Chair()``.
-
-    Returns
-    -------
-    Chair
-        The new chair (its fields validated by :meth:`Chair.replace`).
-
-    Raises
-    ------
-    ValueError
-        If ``data`` names an unknown field or a value is out of range.
-    """
-    valid = set(field_names())
-    unknown = set(data) - valid
-    if unknown:
-        raise ValueError(f"unknown chair parameter(s) {sorted(unknown)}; valid names: {sorted(valid)}")
-    base = base or Chair()
-    return base.replace(**dict(data))
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return repr(value)
-    return repr(float(value))  # repr round-trips exactly
-
-
-def dumps(c: Chair) -> str:
-    """Chair as TOML text (a flat table; floats written with ``repr``: exact round trip)."""
-    lines = ["# stability chair parameters (units: m, kg, kg m^2, N m, deg)"]
-    for f in fields(c):
-        value = getattr(c, f.name)
-        if value is None:
-            continue
-        lines.append(f"{f.name} = {_toml_value(value)}  # {f.metadata['unit']}: {f.metadata['doc']}")
-    return "\n".join(lines) + "\n"
-
-
-def save(c: Chair, path: str | os.PathLike[str]) -> None:
-    """Write ``c`` to a TOML file atomically (temporary file + rename).
-
-    Parameters
-    ----------
-    c : Chair
-        The chair to write (as :func:`dumps` formats it).
-    path : str or os.PathLike
-        Destination file; replaced if it exists.
-    """
-    from .output import atomic_write_text
-
-    atomic_write_text(path, dumps(c))
-
-
-def load(path: str | os.PathLike[str]) -> Chair:
-    """Read a chair from a TOML file (missing fields take the default chair's values).
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        TOML file with the chair's fields either at the top level or in one
-        ``[chair]`` table (not both). Tire data files named by ``main_tire`` or
-        ``caster_tire`` are resolved relative to this file's directory.
-
-    Returns
-    -------
-    Chair
-        The chair read from the file.
-
-    Raises
-    ------
-    ValueError
-        If the file mixes top-level keys with a ``[chair]`` table, names an
-        unknown field or holds a value out of range.
-    OSError
-        If the file cannot be read.
-    """
-    with open(path, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"chair file {str(path)!r} is not valid TOML: {exc}") from None
-    if "chair" in data and isinstance(data["chair"], dict):
-        others = sorted(k for k in data if k != "chair")
-        if others:
-            raise ValueError(f"chair file {str(path)!r} has keys at the top level ({others}) and a [chair] table; "
-                             "put every field in one place")
-        data = data["chair"]
-    base = os.path.dirname(os.path.abspath(path))
-    data = {k: (tires.resolve_spec(v, base) if k in ("main_tire", "caster_tire") else v) for k, v in data.items()}
-    return from_mapping(data)
-
-
-def resolve(spec: str) -> Chair:
-    """A preset name or a path to a TOML file."""
-    if spec in all_preset_names():
-        return preset(spec)
-    if spec.endswith(".toml") or os.path.exists(spec):
-        if not os.path.exists(spec):
-            raise ValueError(f"chair file {spec!r} does not exist")
-        return load(spec)
-    raise ValueError(f"unknown chair {spec!r}: not a preset {list(all_preset_names())} nor a TOML file")
-
-
-def parse_assignment(text: str) -> tuple[str, Any]:
-    """Parse ``NAME=VALUE`` (a ``--set`` option) into a field name and typed value.
-
-    Parameters
-    ----------
-    text : str
-        ``NAME=VALUE``; NAME a :class:`Chair` field. VALUE is kept as text for
-        ``name``, ``caster_position``, ``main_tire`` and ``caster_tire``;
-        ``camber_coefficient`` also accepts ``none``, ``tire`` or empty (-> ``None``);
-        every other field needs a number in the field's SI unit.
-
-    Returns
-    -------
-    tuple of (str, Any)
-        The field name and its value (``str``, ``float`` or ``None``).
-
-    Raises
-    ------
-    ValueError
-        If ``text`` has no ``=``, names an unknown field or a numeric field gets a non-number.
-    """
-    if "=" not in text:
-        raise ValueError(f"--set expects NAME=VALUE, got {text!r}")
-    name, raw = (s.strip() for s in text.split("=", 1))
-    kinds = {f.name: f for f in fields(Chair)}
-    if name not in kinds:
-        raise ValueError(f"unknown chair parameter {name!r}; valid names: {field_names()}")
-    if name in ("name", "caster_position", "main_tire", "caster_tire"):
-        return name, raw
-    if name == "camber_coefficient" and raw.lower() in ("none", "tire", ""):
-        return name, None
-    try:
-        value = float(raw)
-    except ValueError:
-        raise ValueError(f"chair parameter {name} needs a number, got {raw!r}") from None
-    return name, value

@@ -1,0 +1,214 @@
+"""Chairs as TOML files and plain mappings; ``--chair``/``--set`` parsing helpers."""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Mapping
+from dataclasses import fields
+from typing import Any
+
+from .. import tires
+from ..output import atomic_write_text
+from .model import Chair, field_names
+from .presets import all_preset_names, preset
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["to_mapping", "from_mapping", "dumps", "save", "load", "resolve", "parse_assignment"]
+
+
+def to_mapping(c: Chair) -> dict[str, Any]:
+    """Chair as a plain dict of field values (``None`` values omitted).
+
+    Parameters
+    ----------
+    c : Chair
+        The chair.
+
+    Returns
+    -------
+    dict of str to Any
+        Field name -> value, in the chair's SI units; the inverse of :func:`from_mapping`.
+    """
+    return {f.name: getattr(c, f.name) for f in fields(c) if getattr(c, f.name) is not None}
+
+
+def from_mapping(data: Mapping[str, Any], base: Chair | None = None) -> Chair:
+    """Build a chair from a mapping of field values over ``base``.
+
+    Parameters
+    ----------
+    data : Mapping of str to Any
+        Field name -> value (SI units, as the :class:`Chair` fields); fields not
+        given keep ``base``'s values.
+    base : Chair or None, optional
+        Chair whose values fill the fields missing from ``data``; default the
+        default ``Chair()``.
+
+    Returns
+    -------
+    Chair
+        The new chair (its fields validated by :meth:`Chair.replace`).
+
+    Raises
+    ------
+    ValueError
+        If ``data`` names an unknown field or a value is out of range.
+    """
+    valid = set(field_names())
+    unknown = set(data) - valid
+    if unknown:
+        raise ValueError(f"unknown chair parameter(s) {sorted(unknown)}; valid names: {sorted(valid)}")
+    base = base or Chair()
+    return base.replace(**dict(data))
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return repr(value)
+    return repr(float(value))  # repr round-trips exactly
+
+
+def dumps(c: Chair) -> str:
+    """Chair as TOML text (a flat table; floats written with ``repr``: exact round trip).
+
+    Parameters
+    ----------
+    c : Chair
+
+    Returns
+    -------
+    str
+        One ``name = value  # unit: meaning`` line per field.
+    """
+    lines = ["# stability chair parameters (units: m, kg, kg m^2, N m, deg)"]
+    for f in fields(c):
+        value = getattr(c, f.name)
+        if value is None:
+            continue
+        lines.append(f"{f.name} = {_toml_value(value)}  # {f.metadata['unit']}: {f.metadata['doc']}")
+    return "\n".join(lines) + "\n"
+
+
+def save(c: Chair, path: str | os.PathLike[str]) -> None:
+    """Write ``c`` to a TOML file atomically (temporary file + rename).
+
+    Parameters
+    ----------
+    c : Chair
+        The chair to write (as :func:`dumps` formats it).
+    path : str or os.PathLike
+        Destination file; replaced if it exists.
+    """
+    atomic_write_text(path, dumps(c))
+
+
+def load(path: str | os.PathLike[str]) -> Chair:
+    """Read a chair from a TOML file (missing fields take the default chair's values).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        TOML file with the chair's fields either at the top level or in one
+        ``[chair]`` table (not both). Tire data files named by ``main_tire`` or
+        ``caster_tire`` are resolved relative to this file's directory.
+
+    Returns
+    -------
+    Chair
+        The chair read from the file.
+
+    Raises
+    ------
+    ValueError
+        If the file mixes top-level keys with a ``[chair]`` table, names an
+        unknown field or holds a value out of range.
+    OSError
+        If the file cannot be read.
+    """
+    with open(path, "rb") as fh:
+        try:
+            data = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"chair file {str(path)!r} is not valid TOML: {exc}") from None
+    if "chair" in data and isinstance(data["chair"], dict):
+        others = sorted(k for k in data if k != "chair")
+        if others:
+            raise ValueError(f"chair file {str(path)!r} has keys at the top level ({others}) and a [chair] table; "
+                             "put every field in one place")
+        data = data["chair"]
+    base = os.path.dirname(os.path.abspath(path))
+    data = {k: (tires.resolve_spec(v, base) if k in ("main_tire", "caster_tire") else v) for k, v in data.items()}
+    return from_mapping(data)
+
+
+def resolve(spec: str) -> Chair:
+    """The chair a ``--chair`` value names: a preset or a TOML file.
+
+    Parameters
+    ----------
+    spec : str
+        A name from :func:`~stability.chair.preset_names` or a path to a chair file.
+
+    Returns
+    -------
+    Chair
+
+    Raises
+    ------
+    ValueError
+        Naming ``spec`` when it is neither (one line).
+    """
+    if spec in all_preset_names():
+        return preset(spec)
+    if spec.endswith(".toml") or os.path.exists(spec):
+        if not os.path.exists(spec):
+            raise ValueError(f"chair file {spec!r} does not exist")
+        return load(spec)
+    raise ValueError(f"unknown chair {spec!r}: not a preset {list(all_preset_names())} nor a TOML file")
+
+
+def parse_assignment(text: str) -> tuple[str, Any]:
+    """Parse ``NAME=VALUE`` (a ``--set`` option) into a field name and typed value.
+
+    Parameters
+    ----------
+    text : str
+        ``NAME=VALUE``; NAME a :class:`Chair` field. VALUE is kept as text for
+        ``name``, ``caster_position``, ``main_tire`` and ``caster_tire``;
+        ``camber_coefficient`` also accepts ``none``, ``tire`` or empty (-> ``None``);
+        every other field needs a number in the field's SI unit.
+
+    Returns
+    -------
+    tuple of (str, Any)
+        The field name and its value (``str``, ``float`` or ``None``).
+
+    Raises
+    ------
+    ValueError
+        If ``text`` has no ``=``, names an unknown field or a numeric field gets a non-number.
+    """
+    if "=" not in text:
+        raise ValueError(f"--set expects NAME=VALUE, got {text!r}")
+    name, raw = (s.strip() for s in text.split("=", 1))
+    kinds = {f.name: f for f in fields(Chair)}
+    if name not in kinds:
+        raise ValueError(f"unknown chair parameter {name!r}; valid names: {field_names()}")
+    if name in ("name", "caster_position", "main_tire", "caster_tire"):
+        return name, raw
+    if name == "camber_coefficient" and raw.lower() in ("none", "tire", ""):
+        return name, None
+    try:
+        value = float(raw)
+    except ValueError:
+        raise ValueError(f"chair parameter {name} needs a number, got {raw!r}") from None
+    return name, value
