@@ -8,7 +8,8 @@ from scipy.stats import norm
 
 from stability import chair as chair_mod
 from stability import linear
-from stability.measure.uncertainty import delta_method, load_uncertainty, loads_uncertainty, propagate
+from stability.measure.propagation import delta_method, propagate
+from stability.measure.uncertainty import load_uncertainty, loads_uncertainty
 
 C = chair_mod.preset("ej-premier")
 

@@ -6,7 +6,8 @@ Run from the repository root: ``python docs/examples/propagate_measured_chair.py
 import numpy as np
 
 from stability import chair, linear
-from stability.measure.uncertainty import delta_method, load_uncertainty, propagate
+from stability.measure.propagation import delta_method, propagate
+from stability.measure.uncertainty import load_uncertainty
 
 c = chair.load("docs/examples/measured_chair.toml")
 u = load_uncertainty("docs/examples/measured_chair.uncertainty.toml")

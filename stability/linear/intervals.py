@@ -8,7 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..chair import Chair
-from ..measure.uncertainty import Uncertainty, delta_method, propagate
+from ..measure.propagation import delta_method, propagate
+from ..measure.uncertainty import Uncertainty
 from .batch import ChairBatch
 from .summary import zero_width
 

@@ -13,7 +13,8 @@ from .pendulum import (
     torsional_rigidity,
     trifilar_pendulum_inertia,
 )
-from .uncertainty import PropagationResult, Uncertainty, delta_method, load_uncertainty, propagate
+from .propagation import PropagationResult, delta_method, propagate
+from .uncertainty import Uncertainty, load_uncertainty
 from .units import quantity
 
 __all__ = ["Body", "combine", "bifilar_pendulum_inertia", "compound_pendulum_inertia", "solid_cylinder_inertia",
