@@ -582,3 +582,49 @@ def test_anti_windup_leaves_the_unsaturated_loop_unchanged(schedules):
     assert all(np.array_equal(h, heads[0]) for h in heads[1:]) and abs(np.degrees(heads[0][-1])) < 0.05
     with pytest.raises(ValueError, match="anti_windup"):
         assist.DigitalController(sched.at(1.0), sched.chair, sched.drive, anti_windup="clamp")
+
+
+# ---------------------------------------------------------------------------
+# issue 15: the driving pages of the PDF
+# ---------------------------------------------------------------------------
+_UNIT = r"\((m/s|s|rad/s|N m|deg|dB|ms)\)"
+
+
+def test_driving_figures_have_units_legends_and_titles(chair):
+    """The four driving pages draw the results they are given: every axis has an x and a y label with a
+    unit in parentheses, every panel has a legend naming its curves, the page title names the chair,
+    the design and the model; and the plotted data are the results (the drift curves end at -b and
+    -b T_b from the closed forms, per bias)."""
+    import re
+
+    from stability.assist import figures
+
+    sched = assist.schedule(chair, [0.5, 1.0], "gyro")
+    pairs = [digital.margin_pair(d, 1.0 / sched.gyro.sample_rate_hz) for d in sched.designs]
+    curves = tracking.drift_curves(sched.at(1.0))
+    assert curves.without[:, -1] == pytest.approx([-0.1 * 20, -1.0 * 20], rel=0.01)
+    assert curves.handled[:, -1] == pytest.approx([-0.1, -1.0], rel=0.01)
+    figs = [figures.figure_tracking(sched, driving.tracking_runs(sched, duration=2.0)),
+            figures.figure_drift(sched, curves),
+            figures.figure_margin_pair(sched, digital.margin_curves(sched.speeds, pairs)),
+            figures.figure_torque(sched, driving.torque_requirement(sched, (1.0,)))]
+    for fig in figs:
+        assert "power-fwd" in fig._suptitle.get_text() and "exact model" in fig._suptitle.get_text()
+        for a in fig.axes:
+            assert re.search(_UNIT, a.get_xlabel()) and re.search(_UNIT, a.get_ylabel()), (a.get_xlabel(),
+                                                                                          a.get_ylabel())
+            leg = a.get_legend()
+            assert leg is not None and all(t.get_text() for t in leg.get_texts())
+    line = figs[1].axes[0].get_lines()[1]
+    assert line.get_ydata()[-1] == pytest.approx(curves.handled[0, -1])
+
+
+@pytest.mark.slow
+def test_cli_pdf_has_the_driving_pages(tmp_path):
+    """``--no-check --pdf`` at two speeds writes 9 pages: gains, poles, margins, robustness, Figure 9-4
+    and the four driving pages (tracking, bias drift, continuous vs sampled margins, torque)."""
+    import re
+
+    out = tmp_path / "assist.pdf"
+    assert assist_main(["--speeds", "0.5,1.0", "--no-check", "--pdf", str(out)]) == 0
+    assert len(re.findall(rb"/Type\s*/Page\b(?!s)", out.read_bytes())) == 9

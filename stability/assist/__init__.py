@@ -16,15 +16,17 @@ from __future__ import annotations
 from .controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
 from .design import Design, LoopMargins, closed_loop_poles, design, loop_margins, realise
 from .destabilising import DestabilisingSummary, destabilising_moment, destabilising_summary, valid_until
-from .digital import MarginPair, discrete_loop, discrete_margins, margin_pair
+from .digital import MarginCurves, MarginPair, discrete_loop, discrete_margins, margin_curves, margin_pair
 from .driving import (
     CommandRun,
     TorqueRow,
+    TrackingRuns,
     command_run,
     ramp_command,
     slalom_command,
     step_command,
     torque_requirement,
+    tracking_runs,
     tracking_step,
     traction_limit,
 )
@@ -66,7 +68,17 @@ from .tables import (
     pole_curves,
     reverse_table,
 )
-from .tracking import Feedforward, TrackingMetrics, closed_loop, feedforward, final_heading, heading_drift, step_metrics
+from .tracking import (
+    DriftCurves,
+    Feedforward,
+    TrackingMetrics,
+    closed_loop,
+    drift_curves,
+    feedforward,
+    final_heading,
+    heading_drift,
+    step_metrics,
+)
 from .weights import DESIGNS, EstimatorWeights, GyroSensor, Weights
 
 __all__ = [
@@ -74,7 +86,8 @@ __all__ = [
     "MOTOR_STATE", "YAW_LOOP", "Plant", "plant", "standstill_plant", "pivot_inertia", "lateral_force_column",
     "reversed_chair",
     "Feedforward", "feedforward", "closed_loop", "final_heading", "heading_drift", "TrackingMetrics", "step_metrics",
-    "MarginPair", "margin_pair", "discrete_loop", "discrete_margins",
+    "MarginPair", "margin_pair", "discrete_loop", "discrete_margins", "MarginCurves", "margin_curves",
+    "DriftCurves", "drift_curves", "TrackingRuns", "tracking_runs",
     "CommandRun", "command_run", "tracking_step", "step_command", "ramp_command", "slalom_command",
     "TorqueRow", "torque_requirement", "traction_limit", "ReverseRow", "reverse_table", "format_margins",
     "Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins",

@@ -26,11 +26,13 @@ from ..power_chair import DriveTrain
 from ..reference import THESIS_PUSH
 from ._format import fmt
 from .destabilising import destabilising_moment, destabilising_summary, valid_until
-from .driving import COMMAND_FILTER, torque_requirement, traction_limit
+from .digital import margin_curves
+from .driving import COMMAND_FILTER, TRACKING_SPEED, torque_requirement, tracking_runs, traction_limit
 from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from .robustness import Robustness, robustness
 from .schedule import Schedule, schedule
 from .tables import format_margins, format_recovery, format_table, gain_table, pole_curves, reverse_table
+from .tracking import drift_curves
 from .weights import DESIGNS, GyroSensor, Weights
 
 __all__ = ["build_parser", "main"]
@@ -232,6 +234,12 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
     if runs is not None:
         figs.append(figures.figure_recovery(runs, sched))
         figs.append(figures.figure_recovery_table(runs, sched))
+    # the driving pages (issue 15) are in every PDF, like the Figure 9-4 page: a few short simulations
+    tb = sched.gyro.bias_time_constant_s or GyroSensor.bias_time_constant_s
+    figs += [figures.figure_tracking(sched, tracking_runs(sched)),
+             figures.figure_drift(sched, drift_curves(sched.at(TRACKING_SPEED), bias_time_constant=tb)),
+             figures.figure_margin_pair(sched, margin_curves(sched.speeds, [r.margin_pair for r in rows])),
+             figures.figure_torque(sched, torque_requirement(sched, tuple(float(s) for s in sched.speeds)))]
     write_pdf(figs, path, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")
 
 

@@ -9,6 +9,7 @@ plant input, continuous and discrete side by side.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -18,7 +19,8 @@ from scipy.linalg import expm
 
 from .design import Design, LoopMargins, _margins, loop_margins
 
-__all__ = ["discrete_controller", "discrete_loop", "discrete_margins", "MarginPair", "margin_pair"]
+__all__ = ["discrete_controller", "discrete_loop", "discrete_margins", "MarginPair", "margin_pair", "MarginCurves",
+           "margin_curves"]
 
 
 def discrete_controller(d: Design, sample_time: float) -> control.StateSpace:
@@ -180,3 +182,51 @@ def margin_pair(d: Design, sample_time: float) -> MarginPair:
     MarginPair
     """
     return MarginPair(loop_margins(d), discrete_margins(d, sample_time), float(sample_time))
+
+
+@dataclass(frozen=True, eq=False)
+class MarginCurves:
+    """Continuous and sampled margins against speed (arrays, one entry per speed; ``nan`` where none).
+
+    Attributes
+    ----------
+    speeds : ndarray
+        m/s.
+    gain_db : ndarray (2, n)
+        Smaller of the gain increase and decrease that destabilises (dB); rows continuous, sampled.
+    phase_deg : ndarray (2, n)
+        deg.
+    delay_ms : ndarray (2, n)
+        ms.
+    sample_time : float
+        s.
+    """
+
+    speeds: np.ndarray
+    gain_db: np.ndarray
+    phase_deg: np.ndarray
+    delay_ms: np.ndarray
+    sample_time: float
+
+
+def margin_curves(speeds: Sequence[float] | np.ndarray, pairs: Sequence[MarginPair]) -> MarginCurves:
+    """Collect :class:`MarginPair` results (one per speed) as arrays for plotting.
+
+    Parameters
+    ----------
+    speeds : sequence of float
+        m/s.
+    pairs : sequence of MarginPair
+
+    Returns
+    -------
+    MarginCurves
+    """
+    def arr(key: str) -> np.ndarray:
+        out = np.array([[_summary(getattr(p, k))[key] for p in pairs] for k in ("continuous", "discrete")],
+                       dtype=float)
+        out[~np.isfinite(out)] = np.nan
+        return out
+
+    return MarginCurves(np.asarray(speeds, dtype=float), arr("gain_db"), arr("phase_deg"), arr("delay_ms"),
+                        float(pairs[0].sample_time) if pairs else math.nan)

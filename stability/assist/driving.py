@@ -27,7 +27,7 @@ from .tracking import TrackingMetrics, step_metrics
 
 __all__ = ["MAX_YAW_RATE", "LATERAL_ACCELERATION", "step_command", "ramp_command", "slalom_command",
            "reference_command", "COMMAND_FILTER", "CommandRun", "command_run", "tracking_step", "traction_limit",
-           "TorqueRow", "torque_requirement"]
+           "TorqueRow", "torque_requirement", "TRACKING_SPEED", "TrackingRuns", "tracking_runs"]
 
 #: Largest yaw-rate command of the joystick (rad/s; ~46 deg/s, a common power-chair setting).
 MAX_YAW_RATE = 0.8
@@ -110,6 +110,8 @@ class CommandRun:
         s, rad/s, rad/s, rad.
     torque : ndarray
         Commanded differential torque per wheel at the samples (N m).
+    torque_t : ndarray
+        Times of those samples (s; each value is held until the next).
     peak_torque_N_m, rms_torque_N_m : float
         Of ``torque``.
     saturated_fraction : float
@@ -123,6 +125,7 @@ class CommandRun:
     command: np.ndarray
     heading: np.ndarray
     torque: np.ndarray
+    torque_t: np.ndarray
     peak_torque_N_m: float
     rms_torque_N_m: float
     saturated_fraction: float
@@ -174,10 +177,12 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
     res = simulate(sched.chair, speed, duration=duration, model=sched.model, dt=dt, impulse_force=impulse_force,
                    impulse_duration=THESIS_PUSH.duration, yaw_moment=ctl, stop_on_warnings=False)
     t = np.asarray(res.t)
-    tau = np.array([s[1] for s in ctl.samples if s[0] <= t[-1] + 1e-9])
+    samples = [s for s in ctl.samples if s[0] <= t[-1] + 1e-9]
+    tau = np.array([s[1] for s in samples])
     lim = sched.drive.torque_limit
     return CommandRun(speed, t, np.asarray(res.yaw_rate), np.array([command(x) for x in t]),
-                      np.asarray(res.heading), tau, float(np.max(np.abs(tau))) if tau.size else 0.0,
+                      np.asarray(res.heading), tau, np.array([s[0] for s in samples]),
+                      float(np.max(np.abs(tau))) if tau.size else 0.0,
                       float(np.sqrt(np.mean(tau ** 2))) if tau.size else 0.0,
                       float(np.mean(np.abs(tau) >= lim * (1 - 1e-9))) if tau.size else 0.0, res)
 
@@ -279,3 +284,55 @@ def torque_requirement(sched: Schedule, speeds: tuple[float, ...] = (0.5, 1.0, 2
         rows.append(TorqueRow(float(s), push.peak_torque_N_m, push.rms_torque_N_m, turn.peak_torque_N_m,
                               turn.rms_torque_N_m, float(turn.torque[-1]), sched.drive.torque_limit, trac))
     return rows
+
+
+#: Speed of the tracking figure (m/s).
+TRACKING_SPEED = 1.0
+
+
+@dataclass(frozen=True, eq=False)
+class TrackingRuns:
+    """A yaw-rate step (through the reference model) and a ramp in the nonlinear loop at one speed.
+
+    Attributes
+    ----------
+    speed_m_s : float
+    step, ramp : CommandRun
+    step_label, ramp_label : str
+        What each command was (for legends).
+    torque_limit_N_m : float
+        Motor limit per wheel.
+    """
+
+    speed_m_s: float
+    step: CommandRun
+    ramp: CommandRun
+    step_label: str
+    ramp_label: str
+    torque_limit_N_m: float
+
+
+def tracking_runs(sched: Schedule, speed: float = TRACKING_SPEED, *, ramp_rate: float = 0.4,
+                  duration: float = 4.0) -> TrackingRuns:
+    """Step :func:`reference_command` (through :data:`COMMAND_FILTER`) and a ramp to it, noise-free.
+
+    Parameters
+    ----------
+    sched : Schedule
+    speed : float
+        m/s.
+    ramp_rate : float
+        rad/s^2.
+    duration : float
+        s.
+
+    Returns
+    -------
+    TrackingRuns
+    """
+    c = reference_command(speed)
+    step = command_run(sched, speed, step_command(c), duration=duration, command_filter_s=COMMAND_FILTER)
+    ramp = command_run(sched, speed, ramp_command(ramp_rate, c), duration=duration)
+    return TrackingRuns(float(speed), step, ramp,
+                        f"step {c:g} rad/s, {1e3 * COMMAND_FILTER:g} ms reference model",
+                        f"ramp {ramp_rate:g} rad/s^2 to {c:g} rad/s", sched.drive.torque_limit)

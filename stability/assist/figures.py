@@ -11,18 +11,23 @@ from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
 from ..plotting import page, table_page
+from ..plotting.style import colour
 from ..power_chair import DriveTrain
 from ..reference import THESIS_PUSH
 from ._format import fmt, json_float
 from .destabilising import DestabilisingSummary
+from .digital import MarginCurves
+from .driving import TorqueRow, TrackingRuns
 from .plant import STATES
 from .recovery import RecoveryPair, RecoveryRun
 from .robustness import Robustness
 from .schedule import Schedule
 from .tables import GainRow, PoleCurves
+from .tracking import DriftCurves
 
 __all__ = ["figure_gains", "figure_poles", "figure_margins", "figure_robustness", "figure_destabilising",
-           "figure_recovery", "figure_recovery_table"]
+           "figure_recovery", "figure_recovery_table", "figure_tracking", "figure_drift", "figure_margin_pair",
+           "figure_torque"]
 
 
 def _finish(fig: Figure) -> Figure:
@@ -324,3 +329,128 @@ def figure_recovery_table(runs: Sequence[RecoveryPair], sched: Schedule) -> Figu
                             "disturbance response (heading minus that of a twin run with the same gyro noise "
                             "and no impulse) stays within 5 % of its peak; drift: heading slope over the last "
                             "2 s.")
+
+
+def _labels(a: Any, xlabel: str, ylabel: str, legend: bool = True) -> None:
+    a.set_xlabel(xlabel)
+    a.set_ylabel(ylabel)
+    a.grid(alpha=0.3)
+    if legend:
+        a.legend(fontsize=8)
+
+
+def figure_tracking(sched: Schedule, runs: TrackingRuns) -> Figure:
+    """Yaw-rate step and ramp commands followed in the nonlinear loop: yaw rate and wheel torque.
+
+    Parameters
+    ----------
+    sched : Schedule
+    runs : TrackingRuns
+
+    Returns
+    -------
+    Figure
+    """
+    fig, ax = page(f"Yaw-rate command tracking: {sched.kind} LQR on {sched.chair.name}, {sched.model} model, "
+                   f"{runs.speed_m_s:g} m/s", "nonlinear simulator (WCHAIR scheme, pin friction), sampled controller "
+                   "with feedforward, integral action and anti-windup; noise-free gyro", nrows=1, ncols=2)
+    a, b = ax[0, 0], ax[0, 1]
+    for i, (run, lab) in enumerate(((runs.step, runs.step_label), (runs.ramp, runs.ramp_label))):
+        a.plot(run.t, run.command, color=colour(i), ls="--", lw=1.0, label=f"{lab}: joystick command")
+        a.plot(run.t, run.yaw_rate, color=colour(i), lw=1.6, label=f"{lab}: chair yaw rate")
+        b.step(run.torque_t, run.torque, where="post", color=colour(i), lw=1.0, label=lab)
+    for sign in (1, -1):
+        b.axhline(sign * runs.torque_limit_N_m, color="k", ls=":", lw=0.8,
+                  label=f"motor limit +/-{runs.torque_limit_N_m:g} N m" if sign > 0 else None)
+    a.set_title("yaw rate")
+    b.set_title("differential torque per wheel (commanded, held)")
+    _labels(a, "time (s)", "yaw rate (rad/s)")
+    _labels(b, "time (s)", "torque per wheel (N m)")
+    return _finish(fig)
+
+
+def figure_drift(sched: Schedule, curves: DriftCurves) -> Figure:
+    """Heading drift with a constant gyro bias, straight command, with and without the bias handling.
+
+    Parameters
+    ----------
+    sched : Schedule
+    curves : DriftCurves
+
+    Returns
+    -------
+    Figure
+    """
+    fig, ax = page(f"Heading drift from gyro bias: {sched.kind} LQR on {sched.chair.name}, {sched.model} model, "
+                   f"{curves.speed_m_s:g} m/s", "linear closed loop, straight command; without handling the chair "
+                   "turns at minus the bias, with the wheel-speed bias estimate the heading settles at -b T_b")
+    a = ax[0, 0]
+    for i, b in enumerate(curves.bias_deg_s):
+        a.plot(curves.t, curves.without[i], color=colour(i), ls="--", label=f"{b:g} deg/s bias, no bias handling")
+        a.plot(curves.t, curves.handled[i], color=colour(i), lw=1.8,
+               label=f"{b:g} deg/s bias, estimated from the wheel speeds (T_b = {curves.bias_time_constant_s:g} s)")
+    a.axhline(0, color="k", lw=0.8)
+    _labels(a, "time (s)", "true heading (deg)")
+    return _finish(fig)
+
+
+def figure_margin_pair(sched: Schedule, curves: MarginCurves) -> Figure:
+    """Gain, phase and delay margins of the continuous and the sampled loop against speed.
+
+    Parameters
+    ----------
+    sched : Schedule
+    curves : MarginCurves
+
+    Returns
+    -------
+    Figure
+    """
+    rate = 1.0 / curves.sample_time
+    fig, ax = page(f"Continuous vs sampled loop margins: {sched.kind} LQR on {sched.chair.name}, {sched.model} model",
+                   f"loop broken at the plant input; sampled at {rate:g} Hz with zero-order hold and one sample of "
+                   f"computation delay; {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both",
+                   nrows=1, ncols=3)
+    names = ("continuous design loop", f"sampled loop, {rate:g} Hz")
+    for a, data, what, unit in ((ax[0, 0], curves.gain_db, "gain margin (smaller of up/down)", "dB"),
+                                (ax[0, 1], curves.phase_deg, "phase margin", "deg"),
+                                (ax[0, 2], curves.delay_ms, "delay margin", "ms")):
+        for i, name in enumerate(names):
+            a.plot(curves.speeds, data[i], color=colour(i), marker="os"[i], ms=4, ls="-" if i == 0 else "--",
+                   label=name)
+        a.set_title(what)
+        _labels(a, "speed (m/s)", f"{what.split(' (')[0]} ({unit})")
+    return _finish(fig)
+
+
+def figure_torque(sched: Schedule, rows: Sequence[TorqueRow]) -> Figure:
+    """Peak and RMS differential torque needed against speed, with the motor and traction limits.
+
+    Parameters
+    ----------
+    sched : Schedule
+    rows : sequence of TorqueRow
+
+    Returns
+    -------
+    Figure
+    """
+    fig, ax = page(f"Torque requirement: {sched.kind} LQR on {sched.chair.name}, {sched.model} model",
+                   f"nonlinear loop, noise-free: recovery from the reference push ({THESIS_PUSH.describe(None)}, 2 s) "
+                   "and the yaw-rate step through the reference model (3 s)")
+    a = ax[0, 0]
+    U = [r.speed_m_s for r in rows]
+    series = (("push_peak_N_m", "push recovery, peak", "-", "o"), ("push_rms_N_m", "push recovery, RMS", "--", "o"),
+              ("turn_peak_N_m", "commanded turn, peak", "-", "s"), ("turn_rms_N_m", "commanded turn, RMS", "--", "s"),
+              ("steady_turn_N_m", "holding the steady turn (against the turn)", ":", "^"))
+    for i, (key, lab, ls, mk) in enumerate(series):
+        a.plot(U, [getattr(r, key) for r in rows], color=colour(i), ls=ls, marker=mk, ms=4, label=lab)
+    if rows:
+        a.axhline(rows[0].motor_limit_N_m, color="k", ls="-.", lw=1.0,
+                  label=f"motor limit {rows[0].motor_limit_N_m:g} N m")
+        a.axhline(rows[0].traction_limit_N_m, color=colour(5), ls="-.", lw=1.0,
+                  label=f"traction limit mu N r = {rows[0].traction_limit_N_m:.0f} N m "
+                        f"(mu = {sched.drive.traction_coefficient:g})")
+    a.axhline(0, color="k", lw=0.6)
+    _labels(a, "speed (m/s)", "differential torque per wheel (N m)")
+    return _finish(fig)

@@ -21,7 +21,7 @@ from .design import Design
 from .plant import Plant
 
 __all__ = ["Feedforward", "feedforward", "closed_loop", "final_heading", "heading_drift", "TrackingMetrics",
-           "step_metrics"]
+           "step_metrics", "DriftCurves", "drift_curves"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -258,9 +258,64 @@ def heading_drift(d: Design, bias_deg_s: float, duration: float, *, bias_time_co
     float
         deg.
     """
+    return float(_drift(d, bias_deg_s, duration, bias_time_constant)[1][-1])
+
+
+def _drift(d: Design, bias_deg_s: float, duration: float, bias_time_constant: float) -> tuple[np.ndarray, np.ndarray]:
+    """Time (s) and true heading (deg) of the linear loop, straight command, constant gyro bias."""
     sys = closed_loop(d, bias_time_constant=bias_time_constant)
     t = np.linspace(0.0, duration, int(duration * 200) + 1)
     u = np.zeros((3, t.size))
     u[1] = np.radians(bias_deg_s)
     resp = control.forced_response(sys, t, u)
-    return float(np.degrees(np.asarray(resp.outputs)[1, -1]))
+    return t, np.degrees(np.asarray(resp.outputs)[1])
+
+
+@dataclass(frozen=True, eq=False)
+class DriftCurves:
+    """Heading drift of the linear loop under a constant gyro bias, with and without the bias handling.
+
+    Attributes
+    ----------
+    speed_m_s : float
+        Design speed of the controller (m/s).
+    t : ndarray
+        s.
+    bias_deg_s : tuple of float
+        The biases (deg/s), one row of ``without`` and ``handled`` each.
+    without, handled : ndarray (n_bias, n_t)
+        True heading (deg): no bias handling / bias estimate from the wheel speeds.
+    bias_time_constant_s : float
+        ``T_b`` of the handling (s); the heading settles at ``-b T_b``.
+    """
+
+    speed_m_s: float
+    t: np.ndarray
+    bias_deg_s: tuple[float, ...]
+    without: np.ndarray
+    handled: np.ndarray
+    bias_time_constant_s: float
+
+
+def drift_curves(d: Design, bias_deg_s: tuple[float, ...] = (0.1, 1.0), duration: float = 20.0, *,
+                 bias_time_constant: float = 1.0) -> DriftCurves:
+    """Heading against time with each gyro bias, straight command, without and with the handling.
+
+    Parameters
+    ----------
+    d : Design
+    bias_deg_s : tuple of float
+        deg/s.
+    duration : float
+        s.
+    bias_time_constant : float
+        ``T_b`` of the handled case (s, > 0).
+
+    Returns
+    -------
+    DriftCurves
+    """
+    rows = [(_drift(d, b, duration, 0.0), _drift(d, b, duration, bias_time_constant)) for b in bias_deg_s]
+    t = rows[0][0][0]
+    return DriftCurves(float(d.speed), t, tuple(float(b) for b in bias_deg_s), np.array([w[1] for w, _ in rows]),
+                       np.array([h[1] for _, h in rows]), float(bias_time_constant))
