@@ -37,7 +37,7 @@ def test_json_structure_and_values(capsys):
     # numbers trace to the analysis functions
     c = chair_mod.preset("ej-premier")
     assert d["zero_width"]["critical_speed_m_s"] == pytest.approx(linear.zero_width(c).critical_speed)
-    rate = linear.divergence(c, [row["speed_m_s"]])[0]["rate_1_s"]
+    rate = linear.divergence(c, [row["speed_m_s"]])[0].rate
     assert row["rate_1_s"] == pytest.approx(rate)
     assert row["time_to_double_s"] == pytest.approx(0.6931471805599453 / rate)
 

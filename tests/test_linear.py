@@ -73,7 +73,7 @@ def test_locked_full_width_equals_bicycle_closed_form(speed):
     roots = np.roots([1, (a1 * I + a4 * m) / (I * m), (a1 * a4 - a2 * a3) / (I * m)])
     ours = np.linalg.eigvals(linear.state_matrices(c, speed, "exact", "locked")[0])
     np.testing.assert_allclose(np.sort_complex(ours), np.sort_complex(roots), rtol=1e-9, atol=1e-9)
-    rate = linear.divergence(c, [speed], "exact", "locked")[0]["rate_1_s"]
+    rate = linear.divergence(c, [speed], "exact", "locked")[0].rate
     assert rate == pytest.approx(max(roots.real), rel=1e-9, abs=1e-12)
     assert zw.critical_speed is not None
 
@@ -115,7 +115,7 @@ def test_rear_caster_free_frictionless_is_unstable(model):
     a = linear.max_real_part(lambda U: linear.state_matrices(c, U, model, "free"), speeds)
     assert np.all(a > 0)
     rows = linear.divergence(c, speeds, model)
-    rates = [r["rate_1_s"] for r in rows]
+    rates = [r.rate for r in rows]
     assert all(np.diff(rates) > 0), "instability grows with speed (Figure 8-3a)"
 
 
@@ -249,7 +249,7 @@ def test_real_casters_close_to_massless_limit():
     massless-caster closed form over walking speeds: caster inertia is secondary (Figure 8-12)."""
     c = chair_mod.preset("ej-premier").replace(pin_damping=0.0)
     speeds = np.array([0.5, 0.75, 1.0, 1.5])
-    rates = np.array([r["rate_1_s"] for r in linear.divergence(c, speeds, "exact")])
+    rates = np.array([r.rate for r in linear.divergence(c, speeds, "exact")])
     np.testing.assert_allclose(rates, linear.massless_caster_rate(c, speeds), rtol=0.05)
 
 

@@ -550,7 +550,7 @@ def test_zero_spread_gives_exactly_the_point_values(quick):
     np.testing.assert_array_equal([r[1] for r in sec.intervals.rate], sec.nominal_rates)
     assert sec.intervals.zero_width_critical[:2] == (linear.zero_width(c).critical_speed,) * 2
     # ... which is the summary's point value (analyse; eigenvalues of the same matrices, batched differently)
-    point = next(r["rate_1_s"] for r in quick.data.summary.divergence if r["speed_m_s"] == 0.75)
+    point = next(r.rate for r in quick.data.summary.divergence if r.speed == 0.75)
     assert sec.rate_at(0.75)[0] == pytest.approx(point, rel=1e-12)
     assert sec.dominant is None
     d2 = dataclasses.replace(quick.data, uncertainty=sec)

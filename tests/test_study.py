@@ -252,7 +252,7 @@ def test_reduced_mass_figure_8_14_is_not_reproduced_and_why():
 
     ej = preset("ej-premier")
     light = ej.replace(m=75.0, i_z=4.7)
-    r_ref, r_light = (linear.divergence(c, [0.75], "thesis")[0]["rate_1_s"] for c in (ej, light))
+    r_ref, r_light = (linear.divergence(c, [0.75], "thesis")[0].rate for c in (ej, light))
     assert r_light == pytest.approx(r_ref, rel=0.03)          # 1.384 vs 1.419 1/s
     c_ref, c_light = (linear.massless_caster_rate(c, 0.75) for c in (ej, light))
     assert (c_light / c_ref) == pytest.approx(r_light / r_ref, abs=0.005)

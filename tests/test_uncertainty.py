@@ -41,7 +41,7 @@ def analytic_sigma():
 
 
 def rate_075(chairs):
-    return np.array([linear.divergence(c, [0.75])[0]["rate_1_s"] for c in chairs])
+    return np.array([linear.divergence(c, [0.75])[0].rate for c in chairs])
 
 
 def test_parse_and_round_trip(tmp_path):

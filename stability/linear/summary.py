@@ -109,10 +109,6 @@ class Divergence:
         return {"speed_m_s": self.speed, "rate_1_s": self.rate, "time_to_double_s": self.time_to_double,
                 "frequency_rad_s": self.frequency}
 
-    def __getitem__(self, key: str):
-        """Access by JSON key (``row["rate_1_s"]``), as in :meth:`to_dict`."""
-        return self.to_dict()[key]
-
 
 def divergence(chair: Chair, speeds, model: str = "exact", casters: str = "free") -> list[Divergence]:
     """Growth rate of the least stable mode and its time to double, at each speed.

@@ -94,7 +94,7 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
         if r.stopped_by_warnings:
             ax.plot([r.t[-1]], [sgn * r.yaw_rate[-1]], "x", color=col, ms=7)
         if r.linear is not None:
-            ax.plot(r.linear["t"], sgn * np.asarray(r.linear["yaw_rate"]), color=col, lw=1.0, ls="--")
+            ax.plot(r.linear.t, sgn * np.asarray(r.linear.yaw_rate), color=col, lw=1.0, ls="--")
     ax.axhline(rs.criterion.yaw_rate, color="k", lw=0.8, ls=":")
     ax.axhline(-rs.criterion.yaw_rate, color="k", lw=0.8, ls=":")
     if reference_time is not None and math.isfinite(reference_time):
@@ -159,7 +159,7 @@ def trajectories(rs, ax=None, *, title: str | None = None, max_lateral: float | 
         if 0 < n < len(r.t):
             ax.plot([r.x[n - 1]], [r.y[n - 1]], "|", color=col, ms=12, mew=2)
         if r.linear is not None:
-            ax.plot(r.linear["x"], r.linear["y"], color=col, lw=1.0, ls="--")
+            ax.plot(r.linear.x, r.linear.y, color=col, lw=1.0, ls="--")
         # position marks every second (valid part only)
         for tt in np.arange(1.0, r.t[n - 1] + 1e-9 if n else 0.0, 1.0):
             k = int(np.argmin(np.abs(r.t - tt)))

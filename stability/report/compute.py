@@ -298,7 +298,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
             chair_sweeps = other_table
             chair_speed = extra_res[0]
             chair_friction = list(extra_res[1:3])
-        rates = [divergence(x, [REFERENCE_SPEED], model, "free")[0]["rate_1_s"] for x in (ref_chair, light)]
+        rates = [divergence(x, [REFERENCE_SPEED], model, "free")[0].rate for x in (ref_chair, light)]
         fig814 = Figure814(light, extra_res[-1], *rates,
                            *(float(massless_caster_rate(x, REFERENCE_SPEED)) for x in (ref_chair, light)))
         stage("equal-instability speeds and parametric study")

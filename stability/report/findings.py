@@ -35,7 +35,7 @@ def findings(d: ReportData) -> list[str]:
     s = d.summary
     out = []
     locked = _first(s.locked_crossings)
-    r075 = next((r for r in s.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
+    r075 = next((r for r in s.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
     if s.free_unstable_at_all_speeds:
         txt = (f"Linear model ({m}): with free, frictionless casters {c.name} is directionally unstable at "
                f"every speed searched ({s.search_range[0]:g}-{s.search_range[1]:g} m/s).")
@@ -45,7 +45,7 @@ def findings(d: ReportData) -> list[str]:
     else:
         txt = (f"Linear model ({m}): with free, frictionless casters {c.name} changes stability at "
                + ", ".join(f"{x.speed:.3g} m/s ({x.direction})" for x in s.free_crossings) + ".")
-    if r075 is not None and r075["time_to_double_s"] is not None:
+    if r075 is not None and r075.time_to_double is not None:
         txt += (f" At {REFERENCE_SPEED:g} m/s its least stable mode grows at {r075['rate_1_s']:.3g} 1/s: "
                 f"a heading error doubles every {r075['time_to_double_s']:.3g} s.")
     txt += (f" With the casters locked it is stable up to {locked:.3g} m/s." if locked is not None

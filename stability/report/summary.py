@@ -79,9 +79,9 @@ def model_gap(d: ReportData) -> str:
     """
     rates = {}
     for s in (d.summary, d.summary_other):
-        row = next((r for r in s.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
+        row = next((r for r in s.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
         if row is not None:
-            rates[s.model] = row["rate_1_s"]
+            rates[s.model] = row.rate
     gap = ""
     if len(rates) == 2 and rates["thesis"] != 0:
         gap = (f" For this chair at {REFERENCE_SPEED:g} m/s the largest real part is {rates['exact']:.3g} 1/s "
@@ -303,7 +303,7 @@ def summary_text(d: ReportData) -> str:
            f"mass {c.m:g} kg, yaw inertia {c.i_z:g} kg m^2, pin friction {c.pin_friction_left:g}/"
            f"{c.pin_friction_right:g} N m, tires {c.main_tire} (main) and {c.caster_tire} (casters).",
            _verdict(d), "Key numbers"]
-    row = next((r for r in s.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
+    row = next((r for r in s.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
     if row is not None:
         out.append(f"- Linear growth rate (largest real part; negative: decay) at {REFERENCE_SPEED:g} m/s, free "
                    f"casters: {row['rate_1_s']:.3g} 1/s ({d.model} model)" + _rate_interval(d) + _other_rate(d) + ".")
@@ -363,5 +363,5 @@ def summary_text(d: ReportData) -> str:
 
 
 def _other_rate(d: ReportData) -> str:
-    row = next((r for r in d.summary_other.divergence if abs(r["speed_m_s"] - REFERENCE_SPEED) < 1e-9), None)
+    row = next((r for r in d.summary_other.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
     return "" if row is None else f", {row['rate_1_s']:.3g} 1/s ({d.summary_other.model} model)"

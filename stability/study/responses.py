@@ -37,7 +37,6 @@ class LinearResponse:
     x, y : numpy.ndarray
         Global position, m (``x = U t``).
 
-    ``response["yaw_rate"]`` works too (the former dict form).
     """
 
     t: np.ndarray
@@ -46,12 +45,6 @@ class LinearResponse:
     heading: np.ndarray
     x: np.ndarray
     y: np.ndarray
-
-    def __getitem__(self, key: str) -> np.ndarray:
-        """Field by name (compatibility with the former dict result)."""
-        if key not in ("t", "v", "yaw_rate", "heading", "x", "y"):
-            raise KeyError(key)
-        return getattr(self, key)
 
 
 def linear_impulse_response(chair: Chair, speed: float, t_end: float = 10.0, *,

@@ -139,10 +139,6 @@ class SweepRow:
         """A JSON-ready dict."""
         return asdict(self)
 
-    def __getitem__(self, key: str) -> Any:
-        """Field by name (compatibility with the former dict rows)."""
-        return getattr(self, key)
-
 
 @dataclass(frozen=True, eq=False)
 class SweepTable:

@@ -41,14 +41,6 @@ class LinearFacts:
     locked: float | None
     doubling_0_75: float | None
 
-    def __getitem__(self, key: str) -> Any:
-        """Field by name (compatibility with the former dict)."""
-        return getattr(self, key)
-
-    def get(self, key: str, default: Any = None) -> Any:
-        """Field by name, or ``default``."""
-        return getattr(self, key, default)
-
 
 @dataclass(frozen=True, eq=False)
 class ThesisStudy:
@@ -106,7 +98,7 @@ def linear_facts(chair: Chair, model: str) -> LinearFacts:
     lin = analyse(chair, model=model, speeds=(REFERENCE_SPEED,))
     free = next((c.speed for c in lin.free_crossings if c.direction == "destabilising"), None)
     locked = next((c.speed for c in lin.locked_crossings if c.direction == "destabilising"), None)
-    return LinearFacts(free, bool(lin.free_unstable_at_all_speeds), locked, lin.divergence[0]["time_to_double_s"])
+    return LinearFacts(free, bool(lin.free_unstable_at_all_speeds), locked, lin.divergence[0].time_to_double)
 
 
 def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | None = None,
