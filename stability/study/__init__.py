@@ -6,7 +6,8 @@ after a 40 N, 0.1 s lateral push at the c.g., against the E&J Premier at
 criterion), :mod:`.runs` (simulator access), :mod:`.responses` (nonlinear
 and linear responses), :mod:`.equal_instability`, :mod:`.maps`,
 :mod:`.sweeps`, :mod:`.thesis`, :mod:`.conclusions`; issue 11's robust
-measures :mod:`.impulse`, :mod:`.intervals`, :mod:`.sensitivity`, :mod:`.facts`.  Rationale:
+measures :mod:`.impulse`, :mod:`.intervals`, :mod:`.sensitivity`, :mod:`.facts`; issue 14's
+:mod:`.uncertain` (nonlinear measures with Monte Carlo intervals).  Rationale:
 docs/studies.md.
 """
 
@@ -51,6 +52,7 @@ from .sensitivity import (
 )
 from .sweeps import DEFAULT_PLAN, QUICK_PLAN, Sweep, SweepRow, SweepTable, parameter_sweeps, plan_for
 from .thesis import LinearFacts, ThesisStudy, friction_variants, thesis_study
+from .uncertain import MAX_NONLINEAR_SAMPLES, MeasureInterval, NonlinearIntervals, nonlinear_intervals
 
 #: Former name of :data:`stability.reference.THESIS_PUBLISHED` (kept for callers not yet moved).
 THESIS = THESIS_PUBLISHED
@@ -115,4 +117,8 @@ __all__ = [
     "ELASTICITY_PARAMETERS",
     "FRICTION_OVER_TRAIL",
     "TRAIL_AT_FIXED_GROUP",
+    "MeasureInterval",
+    "NonlinearIntervals",
+    "nonlinear_intervals",
+    "MAX_NONLINEAR_SAMPLES",
 ]
