@@ -50,7 +50,7 @@ import sympy.physics.mechanics as me  # noqa: E402
 from derivations import full_width as fw  # noqa: E402
 from derivations import generate as gen  # noqa: E402
 
-__all__ = ["G", "derive_gravity", "normal_loads", "hold_statics", "zero_width_slope", "checks",
+__all__ = ["G", "derive_gravity", "normal_loads", "normal_loads_plane", "hold_statics", "zero_width_slope", "checks",
            "render", "generate"]
 
 S = fw.S
@@ -135,6 +135,24 @@ def normal_loads() -> tuple[sp.Expr, ...]:
     ]
     sol = sp.solve(eqs, n, dict=True)[0]
     return tuple(sp.simplify(sol[k]) for k in n)
+
+
+@functools.cache
+def normal_loads_plane() -> tuple[sp.Expr, ...]:
+    """:func:`normal_loads` in terms of the tire-force sums ``sum_fx, sum_fy`` (body axes, N) and ``gn``.
+
+    ``m a = sum F + m g_in``: the in-plane weight drops out (the load-transfer
+    moments are ``h sum F``), so the loads depend on the slope only through
+    the normal weight ``m gn``.  The form the simulator calls with its
+    previous step's (WCHAIR) or consistent (adaptive) force sums.
+    """
+    sfx, sfy = sp.symbols("sum_fx sum_fy", real=True)
+    out = []
+    for e in normal_loads():
+        f = sp.factor(sp.cancel(e.subs({G.a1: sfx / S.m + G.g1, G.a2: sfy / S.m + G.g2})))
+        assert not f.free_symbols & {G.g1, G.g2, G.a1, G.a2}, f
+        out.append(f)
+    return tuple(out)
 
 
 @functools.cache
@@ -231,6 +249,10 @@ def checks() -> dict[str, sp.Expr]:
     ref = ((yb * s_c - r_c) / dy, (r_c - ya * s_c) / dy, s_m - n_e, n_e)
     for k, (a, b) in enumerate(zip(lvl, ref, strict=True)):
         out[f"loads_6_25_{'ABDE'[k]}"] = sp.simplify(a - b)
+    plane = normal_loads_plane()
+    sums = {sp.Symbol("sum_fx", real=True): sfx, sp.Symbol("sum_fy", real=True): sfy, G.gn: gg}
+    for k, (a, b) in enumerate(zip(plane, ref, strict=True)):
+        out[f"plane_loads_6_25_{'ABDE'[k]}"] = sp.simplify(a.xreplace(sums) - b)
     zw = zero_width_slope()
     z = zw["symbols"]
     out["zw_free_rear_hold"] = sp.simplify(zw["M_hold"].subs(z.C_r, 0) - z.m * G.g2 * z.s1)
@@ -256,6 +278,8 @@ broadcast numpy arrays.  See derivations/slope.py and docs/slopes.md.
 
 GRAV_ARGS = ("g", "c_phi", "s_phi", "c_theta", "s_theta", "c_psi", "s_psi")
 ACC_ARGS = fw.ACCEL_ARGS[:21] + ("g1", "g2") + fw.ACCEL_ARGS[21:]
+PLANE_LOAD_ARGS = ("sum_fx", "sum_fy", "gn", "ce", "se", "cb", "sb",
+                   "x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "h", "m", "roll_k")
 LOAD_ARGS = ("a1", "a2", "g1", "g2", "gn", "ce", "se", "cb", "sb",
              "x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "h", "m", "roll_k")
 HOLD_ARGS = ("ce", "se", "cb", "sb", "g1", "g2", "M_A", "M_B", "FAx", "FBx",
@@ -325,6 +349,16 @@ def render() -> str:
         "the normal weight m gn.  a = sum F/m, g1 = g2 = 0, gn = g is eq 6-25.\n",
         gen._cse_lines(list(zip(("N_A", "N_B", "N_D", "N_E"), loads, strict=True)), "_a"), "(N_A, N_B, N_D, N_E)"))
     names.append("normal_loads_slope")
+
+    parts.append(gen._function(
+        "normal_loads_plane", PLANE_LOAD_ARGS,
+        "Normal loads (N_A, N_B, N_D, N_E) in N on the plane from the tire-force sums.\n\n"
+        "sum_fx, sum_fy: sum of the tire forces in body axes (N); gn: normal gravity (m/s^2).\n"
+        "normal_loads_slope with m a = sum F + m g_in: the in-plane weight drops out of the\n"
+        "load transfer; gn = g is eq 6-25 (statics.normal_loads).  The simulator's form.\n",
+        gen._cse_lines(list(zip(("N_A", "N_B", "N_D", "N_E"), normal_loads_plane(), strict=True)), "_a"),
+        "(N_A, N_B, N_D, N_E)"))
+    names.append("normal_loads_plane")
 
     hs = hold_statics()
     keys = ("FAy", "FBy", "Sx", "Sy", "Mh")

@@ -19,6 +19,7 @@ from stability import params, tires
 from stability import statics as loads
 from stability.chair import preset
 from stability.models.full_width import generated
+from stability.models.slope import generated as slope_generated
 from stability.simulate import (
     DEFAULTS,
     ChairState,
@@ -795,8 +796,9 @@ def test_reference_range_rules_check_only_the_tested_wheels():
 
 
 def test_compile_cache_stamp_is_the_generated_equations_hash():
-    """The stale-cache stamp next to the numba cache is the SHA-256 of the generated equations."""
-    digest = hashlib.sha256(Path(generated.__file__).read_bytes()).hexdigest()
+    """The stale-cache stamp next to the numba cache is the SHA-256 of the generated equations (level and slope)."""
+    digest = hashlib.sha256(Path(generated.__file__).read_bytes()
+                            + Path(slope_generated.__file__).read_bytes()).hexdigest()
     stamp = Path(kernel.run_batch._cache.cache_path) / "kernel.equations.sha256"
     if not stamp.exists():
         pytest.skip("no writable cache directory")

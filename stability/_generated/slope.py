@@ -21,6 +21,7 @@ __all__ = [
     "gravity_body",
     "gravity_generalized_forces",
     "hold_statics",
+    "normal_loads_plane",
     "normal_loads_slope",
     "zero_width_straight",
     "zero_width_turn",
@@ -288,6 +289,89 @@ def normal_loads_slope(a1, a2, g1, g2, gn, ce, se, cb, sb, x_m, x_p, d1, d2, t1,
     N_B = _a39*(_a13 + _a14*gn + _a21*gn + _a25*gn + _a32*gn + _a41 - _a42 + _a43 + _a45 + _a46 - _a47 - _a48 - _a49 + _a50 - _a51)
     N_D = _a113*(_a1*d2 + _a10*d2 + _a4*d2 - _a41*d2 + _a42*d2 - _a43*d2 - _a45*d2 - _a46*d2 + _a47*d2 + _a48*d2 + _a49*d2 - _a50*d2 + _a51*d2 - _a52*d2 - _a53*gn - _a54*gn + _a55 + _a56 + _a57*gn + _a58*gn + _a59*gn + _a60 + _a61 - _a62*d2 - _a63*d2 - _a64 - _a65 - _a66*d2 - _a67*gn - _a68*gn - _a69*gn + _a7*d2 - _a70 - _a71 + _a72 + _a73 + _a74 + _a75 + _a76*gn + _a77*gn + _a78*gn + _a79 + _a8*d2 + _a80 + _a81*gn - _a82 - _a83 - _a84 - _a85 - _a86*d2 - _a87*gn - _a88 - _a89 - _a90*gn + _a91 + _a92*gn + _a93 - _a94 - _a95 - _a96*gn)
     N_E = _a113*(_a1*d1 + _a10*d1 + _a100*gn + _a101*gn - _a102*gn - _a103*gn - _a104*gn + _a105*gn + _a106*gn + _a107*gn + _a108*gn - _a109*gn - _a110*gn + _a111*gn - _a112*gn + _a4*d1 - _a41*d1 + _a42*d1 - _a43*d1 - _a45*d1 - _a46*d1 + _a47*d1 + _a48*d1 + _a49*d1 - _a50*d1 + _a51*d1 - _a52*d1 - _a55 - _a56 - _a60 - _a61 - _a62*d1 - _a63*d1 + _a64 + _a65 - _a66*d1 + _a7*d1 + _a70 + _a71 - _a72 - _a73 - _a74 - _a75 - _a79 + _a8*d1 - _a80 + _a82 + _a83 + _a84 + _a85 - _a86*d1 + _a88 + _a89 - _a91 - _a93 + _a94 + _a95 - _a97*gn - _a98*gn + _a99*gn)
+    return (N_A, N_B, N_D, N_E)
+
+
+def normal_loads_plane(sum_fx, sum_fy, gn, ce, se, cb, sb, x_m, x_p, d1, d2, t1, t2, trail, h, m, roll_k):
+    """Normal loads (N_A, N_B, N_D, N_E) in N on the plane from the tire-force sums.
+
+    sum_fx, sum_fy: sum of the tire forces in body axes (N); gn: normal gravity (m/s^2).
+    normal_loads_slope with m a = sum F + m g_in: the in-plane weight drops out of the
+    load transfer; gn = g is eq 6-25 (statics.normal_loads).  The simulator's form.
+    """
+    _a0 = h*sum_fx
+    _a1 = _a0*t2
+    _a2 = h*sum_fy
+    _a3 = _a2*x_m
+    _a4 = _a2*x_p
+    _a5 = cb*trail
+    _a6 = _a2*_a5
+    _a7 = t2*x_m
+    _a8 = gn*m
+    _a9 = _a7*_a8
+    _a10 = _a1*roll_k
+    _a11 = sb*trail
+    _a12 = _a0*_a11
+    _a13 = _a11*x_m
+    _a14 = _a13*_a8
+    _a15 = _a12*roll_k
+    _a16 = t1*x_m
+    _a17 = t1*x_p
+    _a18 = t2*x_p
+    _a19 = _a5*t1
+    _a20 = ce*trail
+    _a21 = _a20*t2
+    _a22 = _a11*x_p
+    _a23 = se*trail
+    _a24 = _a23*x_m
+    _a25 = _a23*x_p
+    _a26 = (trail*trail)
+    _a27 = _a26*cb*se
+    _a28 = _a26*ce*sb
+    _a29 = 1/((roll_k + 1)*(-_a13 + _a16 - _a17 - _a18 + _a19 + _a21 + _a22 + _a24 - _a25 + _a27 - _a28 + _a7))
+    _a30 = _a0*t1
+    _a31 = _a16*_a8
+    _a32 = _a30*roll_k
+    _a33 = _a0*_a23
+    _a34 = _a2*_a20
+    _a35 = _a24*_a8
+    _a36 = _a33*roll_k
+    _a37 = _a8*d2
+    _a38 = _a17*_a37
+    _a39 = _a18*_a37
+    _a40 = _a2*roll_k
+    _a41 = _a17*_a40
+    _a42 = _a18*_a40
+    _a43 = _a16*_a40
+    _a44 = _a40*_a7
+    _a45 = _a25*_a37
+    _a46 = _a13*_a40
+    _a47 = _a25*_a40
+    _a48 = _a19*_a37
+    _a49 = _a19*_a40
+    _a50 = _a21*_a37
+    _a51 = _a21*_a40
+    _a52 = _a22*_a37
+    _a53 = _a22*_a40
+    _a54 = _a24*_a40
+    _a55 = _a28*_a37
+    _a56 = _a28*_a40
+    _a57 = _a27*_a37
+    _a58 = _a27*_a40
+    _a59 = _a29/(d1 + d2)
+    _a60 = _a8*d1
+    _a61 = _a17*_a60
+    _a62 = _a18*_a60
+    _a63 = _a25*_a60
+    _a64 = _a19*_a60
+    _a65 = _a21*_a60
+    _a66 = _a22*_a60
+    _a67 = _a28*_a60
+    _a68 = _a27*_a60
+    N_A = _a29*(_a1 + _a10 - _a12 - _a14*roll_k - _a14 - _a15 + _a3 - _a4 + _a6 + _a9*roll_k + _a9)
+    N_B = _a29*(-_a3 + _a30 + _a31*roll_k + _a31 + _a32 + _a33 - _a34 + _a35*roll_k + _a35 + _a36 + _a4)
+    N_D = -_a59*(_a1*d2 + _a10*d2 - _a12*d2 - _a15*d2 + _a30*d2 + _a32*d2 + _a33*d2 - _a34*d2 + _a36*d2 + _a38*roll_k + _a38 + _a39*roll_k + _a39 + _a41 + _a42 - _a43 - _a44 + _a45*roll_k + _a45 + _a46 + _a47 - _a48*roll_k - _a48 - _a49 - _a50*roll_k - _a50 - _a51 - _a52*roll_k - _a52 - _a53 - _a54 + _a55*roll_k + _a55 + _a56 - _a57*roll_k - _a57 - _a58 + _a6*d2)
+    N_E = -_a59*(_a1*d1 + _a10*d1 - _a12*d1 - _a15*d1 + _a30*d1 + _a32*d1 + _a33*d1 - _a34*d1 + _a36*d1 - _a41 - _a42 + _a43 + _a44 - _a46 - _a47 + _a49 + _a51 + _a53 + _a54 - _a56 + _a58 + _a6*d1 + _a61*roll_k + _a61 + _a62*roll_k + _a62 + _a63*roll_k + _a63 - _a64*roll_k - _a64 - _a65*roll_k - _a65 - _a66*roll_k - _a66 + _a67*roll_k + _a67 - _a68*roll_k - _a68)
     return (N_A, N_B, N_D, N_E)
 
 

@@ -14,7 +14,7 @@ import math
 from .._generated import slope as _sl
 from ..params import Params
 
-__all__ = ["generated", "gravity", "accelerations", "normal_loads", "hold_statics",
+__all__ = ["generated", "gravity", "accelerations", "normal_loads", "normal_loads_plane", "hold_statics",
            "gravity_generalized_forces", "zero_width_straight", "zero_width_turn"]
 
 #: The generated module itself.
@@ -111,6 +111,34 @@ def normal_loads(p: Params, a1, a2, g1, g2, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
         Normal loads on the left and right casters and left and right main wheels, N.
     """
     return _sl.normal_loads_slope(a1, a2, g1, g2, gn, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2,
+                                  p.trail, p.h, p.m, p.roll_k)
+
+
+def normal_loads_plane(p: Params, sum_fx, sum_fy, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
+    """Normal loads ``(N_A, N_B, N_D, N_E)`` on the plane from the tire-force sums (the simulator's form).
+
+    :func:`normal_loads` with ``m a = sum F + m g_in``: the in-plane weight
+    drops out of the load transfer (moments ``h sum F``) and only the normal
+    weight ``m gn`` remains; ``gn = g`` is eq 6-25
+    (:func:`stability.statics.normal_loads`, to rounding).
+
+    Parameters
+    ----------
+    p : Params
+        Chair parameters (``h``, ``m``, ``roll_k`` and the geometry used).
+    sum_fx, sum_fy : float or ndarray
+        Sums of the tire forces (and any force at the c.g.) in body axes, N.
+    gn : float or ndarray
+        Gravity normal to the plane, m/s^2 (``g cos(phi) cos(theta)``).
+    ce, se, cb, sb : float or ndarray, optional
+        cos and sin of the caster angles (default trailing straight: 1, 0, 1, 0).
+
+    Returns
+    -------
+    tuple of 4 float or ndarray
+        Normal loads on the left and right casters and left and right main wheels, N.
+    """
+    return _sl.normal_loads_plane(sum_fx, sum_fy, gn, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2,
                                   p.trail, p.h, p.m, p.roll_k)
 
 

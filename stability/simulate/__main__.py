@@ -43,6 +43,10 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--scheme", default=D.scheme, help=f"wchair or adaptive (default {D.scheme})")
     ap.add_argument("--model", default="exact", choices=("exact", "thesis"),
                     help="equation variant: exact (default, as every command) or thesis (program WCHAIR's)")
+    ap.add_argument("--cross-slope", type=float, default=D.slope[0], metavar="DEG",
+                    help="cross slope, deg: the plane falls to the right of the initial heading (+); |.| <= 15")
+    ap.add_argument("--grade", type=float, default=D.slope[1], metavar="DEG",
+                    help="grade, deg: the plane rises ahead (+); |.| <= 15")
     ap.add_argument("--casters", default=D.casters, help=f"free or locked (default {D.casters})")
     ap.add_argument("--duration", type=float, default=D.duration, help=f"simulated time, s (default {D.duration:g})")
     ap.add_argument("--dt", type=float, default=D.dt, help=f"wchair time step, s (default {D.dt:g})")
@@ -92,12 +96,14 @@ def _run_cli(args: argparse.Namespace) -> int:
                    tire_impulse=args.tire_impulse, lateral_velocity=args.lateral_velocity,
                    eta0_deg=args.eta0, beta0_deg=args.beta0, casters=args.casters,
                    stop_on_warnings=False if args.no_stop else None, out_of_range=args.out_of_range,
-                   rtol=args.rtol, atol=args.atol)
+                   rtol=args.rtol, atol=args.atol, slope=(args.cross_slope, args.grade))
     times = {str(v): res.first_time_abs_yaw_rate(v) for v in (0.5, 1.0)}
     out = res.resample(args.sample) if args.sample is not None else res
     options = {k: getattr(args, k) for k in ("speed", "impulse", "tire_impulse", "lateral_velocity", "eta0",
                                              "beta0", "scheme", "casters", "duration", "dt", "sample",
                                              "no_stop", "out_of_range", "rtol", "atol")}
+    if (args.cross_slope, args.grade) != (0.0, 0.0):   # level runs keep today's JSON
+        options.update(cross_slope=args.cross_slope, grade=args.grade)
     with output_files({"--csv": args.csv, "--plot": args.plot}) as tmp:
         if args.csv:
             out.to_csv(tmp["--csv"])

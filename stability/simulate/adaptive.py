@@ -11,8 +11,7 @@ import numpy as np
 
 from ..chair import Chair
 from ..models.full_width import tire_resultant, tire_yaw_moment
-from ..statics import normal_loads
-from .engine import _POLICY, _Packed, _raise_refused
+from .engine import _POLICY, _Packed, _raise_refused, slope_slots
 from .options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,
@@ -22,7 +21,7 @@ from .options import (
     impulse_on,
     initial_velocities,
 )
-from .physics import Physics, held_accelerations, kinematics, ops, slip_angles, tire_forces
+from .physics import Physics, held_accelerations, kinematics, loads, ops, plane, slip_angles, tire_forces
 from .results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
 
 __all__ = ["AdaptiveModel", "adaptive_single", "FREE_POS", "FREE_NEG", "STUCK", "LOCKED"]
@@ -49,18 +48,18 @@ class AdaptiveModel:
         self._ck: _Compiled | None = _Compiled(chair, speed, opts) if self.compiled else None
 
     # loads consistent with forces: N = loads(sum F(N))
-    def _consistent(self, t, imp, vel, slips, ce, se, cb, sb, guess):
+    def _consistent(self, t, imp, vel, slips, ce, se, cb, sb, guess, gn=None):
         """Fixed-point iteration of the load-transfer loop (a strong contraction).
 
         Stops when the total tire force changes by less than 1e-9 of its size
         between iterations; starts from the previous evaluation's solution.
+        ``gn``: normal gravity on a slope (m/s^2), None when level.
         """
         K = self.K
-        p = K.p
         sfx, sfy = guess
         vector = not isinstance(ce, float)
         for _ in range(100):
-            N = normal_loads(p, sfx, sfy, ce, se, cb, sb)
+            N = loads(K, sfx, sfy, ce, se, cb, sb, gn)
             F = tire_forces(K, imp, vel, slips, *N)
             nfx, nfy = tire_resultant(F, ce, se, cb, sb)
             if vector:
@@ -89,7 +88,11 @@ class AdaptiveModel:
         slips = slip_angles(K, vel)
         vector = not isinstance(ce, float)
         guess = (0.0, 0.0) if vector else self.guess
-        N, F, sums = self._consistent(t, imp, vel, slips, ce, se, cb, sb, guess)
+        gn = grav = None
+        if K.slope_trig is not None:   # gravity in body axes at the heading psi
+            g1, g2, gn = plane(K, psi)
+            grav = (g1, g2)
+        N, F, sums = self._consistent(t, imp, vel, slips, ce, se, cb, sb, guess, gn)
         if not vector:
             self.guess = sums
         opts = self.opts
@@ -108,7 +111,7 @@ class AdaptiveModel:
         hold_a = ma_mode in (STUCK, LOCKED)
         hold_b = mb_mode in (STUCK, LOCKED)
         state = (u, v, r, ce, se, cb, sb, ed, bd)
-        acc, MA, MB = held_accelerations(K, state, F, MA, MB, fy_ext, mz, hold_a, hold_b)
+        acc, MA, MB = held_accelerations(K, state, F, MA, MB, fy_ext, mz, hold_a, hold_b, None, grav)
         ud, vd, rd, edd, bdd = acc
         cpsi, spsi = xp.cos(psi), xp.sin(psi)
         dy = (u * cpsi - v * spsi, u * spsi + v * cpsi, r, ud, vd, rd, ed, edd, bd, bdd)
@@ -160,7 +163,7 @@ class _Compiled:
         pk = _Packed([chair], np.array([speed]), opts, None)
         self.head = (0 if opts.model == "thesis" else 1, float(opts.tire_impulse), _POLICY[opts.out_of_range])
         self.arrays = (pk.P[0], pk.S[0], pk.TK[0], pk.TS[0], pk.TL[0], pk.LIM[0], pk.RK[0], pk.RC[0], pk.RS[0],
-                       pk.CAM[0])
+                       pk.CAM[0], np.array(slope_slots(opts)))
         self.guess = np.zeros(2)
 
     def _check(self, code: int, aux: np.ndarray, t) -> None:

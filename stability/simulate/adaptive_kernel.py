@@ -24,19 +24,24 @@ from .kernel import (
     M_C,
     MAF,
     MBF,
+    SLOPE_MODEL,
     T1,
     T2,
     TRAIL,
     X_M,
     X_P,
+    G,
     M,
+    acc_slope,
     invalidate_stale_cache,
     kinematics,
     mechan,
     normal_loads,
+    plane_loads,
     slip_angles,
     tire_yaw_moment,
 )
+from .kernel import gravity_body as _gravity_body
 
 __all__ = ["NAUX", "evaluate", "samples"]
 
@@ -53,10 +58,14 @@ FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
 
 
 @_jit
-def acc_now(model, s, F, ma, mb, fy_ext, mz, P):
-    """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact)."""
+def acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2):
+    """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact, 2 exact on a plane)."""
     u, v, r, ce, se, cb, sb, ed, bd = s
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    if model == SLOPE_MODEL:
+        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                         P[M_C], P[I_Z], P[I_ZP])
     if model == 0:
         return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
                           fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
@@ -67,16 +76,16 @@ def acc_now(model, s, F, ma, mb, fy_ext, mz, P):
 
 
 @_jit
-def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P):
+def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P, g1, g2):
     """:func:`stability.simulate.physics.held_accelerations`, same operations: ``(acc, M_A, M_B)``."""
     if not (hold_a or hold_b):
-        return acc_now(model, s, F, ma, mb, fy_ext, mz, P), ma, mb
+        return acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2), ma, mb
     base_a = 0.0 * ma if hold_a else ma
     base_b = 0.0 * mb if hold_b else mb
-    a0 = acc_now(model, s, F, base_a, base_b, fy_ext, mz, P)
+    a0 = acc_now(model, s, F, base_a, base_b, fy_ext, mz, P, g1, g2)
     if hold_a and hold_b:
-        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P)
-        a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P)
+        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P, g1, g2)
+        a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P, g1, g2)
         k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
         k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
         det = k11 * k22 - k12 * k21
@@ -86,27 +95,31 @@ def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P):
                  a0[1] + ra * (a1[1] - a0[1]) + rb * (a2[1] - a0[1]),
                  a0[2] + ra * (a1[2] - a0[2]) + rb * (a2[2] - a0[2]), 0.0 * ra, 0.0 * rb), ra, rb)
     if hold_a:
-        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P)
+        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P, g1, g2)
         ra = -a0[3] / (a1[3] - a0[3])
         return ((a0[0] + ra * (a1[0] - a0[0]), a0[1] + ra * (a1[1] - a0[1]), a0[2] + ra * (a1[2] - a0[2]),
                  0.0 * ra, a0[4] + ra * (a1[4] - a0[4])), ra, mb)
-    a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P)
+    a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P, g1, g2)
     rb = -a0[4] / (a2[4] - a0[4])
     return ((a0[0] + rb * (a2[0] - a0[0]), a0[1] + rb * (a2[1] - a0[1]), a0[2] + rb * (a2[2] - a0[2]),
              a0[3] + rb * (a2[3] - a0[3]), 0.0 * rb), ma, rb)
 
 
 @_inl
-def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess):
+def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess, gn):
     """Loads consistent with the tire forces (fixed-point iteration as ``AdaptiveModel._consistent``).
 
+    ``gn``: normal gravity on a plane (m/s^2), NaN when level (eq 6-25 as ``statics.normal_loads``).
     Returns ``(loads, F, refused, wheel, converged)``; ``guess`` (sum fx, sum fy) is updated in place.
     """
     ce, se, cb, sb = trig
     sfx, sfy = guess[0], guess[1]
     it = 0
     while True:
-        loads = normal_loads(P, sfx, sfy, ce, se, cb, sb)
+        if gn == gn:
+            loads = plane_loads(P, sfx, sfy, gn, ce, se, cb, sb)
+        else:
+            loads = normal_loads(P, sfx, sfy, ce, se, cb, sb)
         F, refused, wheel = mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
                                    LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
         if refused != 0:
@@ -126,13 +139,19 @@ def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM
 
 
 @_jit
-def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess,
+def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL, guess,
              dy, aux):
     """Derivatives ``dy`` (10) and ``aux`` (:data:`NAUX`) at ``(t, y)``; returns 0, or 1/2 refused, 3 no convergence.
 
     ``y`` = (X, Y, psi, u, v, r, eta, eta_dot, beta, beta_dot); pin modes as
-    :mod:`stability.simulate.adaptive`; ``imp``: the push acts.
+    :mod:`stability.simulate.adaptive`; ``imp``: the push acts; ``SL`` the
+    plane slots (:func:`stability.simulate.engine.slope_slots`).
     """
+    g1 = g2 = 0.0
+    gn = math.nan
+    if SL[0] != 0.0:   # on a slope: gravity in body axes at the heading psi, the exact model with gravity
+        model = SLOPE_MODEL
+        g1, g2, gn = _gravity_body(P[G], SL[1], SL[2], SL[3], SL[4], math.cos(y[2]), math.sin(y[2]))
     psi, u, v, r, eta, ed, beta, bd = y[2], y[3], y[4], y[5], y[6], y[7], y[8], y[9]
     if ma_mode == STUCK or ma_mode == LOCKED:
         ed = 0.0 * ed
@@ -142,7 +161,7 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
     vel = kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd)
     slips = slip_angles(vel)
     loads, F, refused, wheel, ok = _consistent(vel, slips, (ce, se, cb, sb), ftimp != 0.0 and imp, ftimp, policy,
-                                               P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess)
+                                               P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess, gn)
     if refused != 0:
         aux[20], aux[21] = refused, wheel
         aux[22], aux[23] = (slips[wheel], loads[wheel]) if refused == 1 else (CAM[0], loads[wheel])
@@ -154,7 +173,7 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
     mb = -P[MBF] * mb_mode if (mb_mode == FREE_POS or mb_mode == FREE_NEG) else 0.0
     hold_a = ma_mode == STUCK or ma_mode == LOCKED
     hold_b = mb_mode == STUCK or mb_mode == LOCKED
-    acc, ma, mb = held(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, fy_ext, 0.0, hold_a, hold_b, P)
+    acc, ma, mb = held(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, fy_ext, 0.0, hold_a, hold_b, P, g1, g2)
     cpsi, spsi = math.cos(psi), math.sin(psi)
     dy[0], dy[1], dy[2] = u * cpsi - v * spsi, u * spsi + v * cpsi, r
     dy[3], dy[4], dy[5], dy[6], dy[7], dy[8], dy[9] = acc[0], acc[1], acc[2], ed, acc[3], bd, acc[4]
@@ -169,8 +188,8 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
 
 
 @_jit
-def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, out, guess,
-            dy, aux):
+def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL, out,
+            guess, dy, aux):
     """Recorded columns (``COLUMNS[1:]``, ``out`` of shape (31, m)) at the dense-output samples ``yy`` (10, m).
 
     Each sample's load iteration starts from zero forces (as the Python path's
@@ -179,7 +198,7 @@ def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, T
     for j in range(ts.shape[0]):
         guess[0], guess[1] = 0.0, 0.0
         code = evaluate(ts[j], yy[:, j], ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC,
-                        RS, CAM, guess, dy, aux)
+                        RS, CAM, SL, guess, dy, aux)
         if code != 0:
             return code
         y = yy[:, j]

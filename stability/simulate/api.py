@@ -66,7 +66,7 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
              stop_on_warnings: bool | None = DEFAULTS.stop_on_warnings, out_of_range: str = DEFAULTS.out_of_range,
              sample: float | None = DEFAULTS.sample, rtol: float = DEFAULTS.rtol, atol: float = DEFAULTS.atol,
              reverse: bool = DEFAULTS.reverse, controller: SampledController | None = DEFAULTS.controller,
-             record: str = DEFAULTS.record) -> SimulationResult:
+             record: str = DEFAULTS.record, slope: tuple[float, float] = DEFAULTS.slope) -> SimulationResult:
     """Simulate one run of a freely rolling chair disturbed from straight motion.
 
     Parameters
@@ -129,6 +129,14 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
         for reproducing the thesis's front-caster trick of section "Method
         One" (a rear-caster model driven backwards with its casters at
         180 deg); a front-caster chair is normally simulated directly.
+    slope : tuple of float
+        ``(cross_slope_deg, grade_deg)``: the plane falls to the right of the
+        chair's initial heading by the cross slope and rises ahead by the
+        grade, deg (each within +-15 deg; default level).  The in-plane weight
+        acts on the chair and on each caster at its own c.g. and turns with
+        the heading; the normal loads carry the normal weight (generated
+        slope equations, :mod:`stability.models.slope`).  A nonzero slope
+        needs ``model="exact"``.  No drive force: the chair coasts.
 
     Returns
     -------

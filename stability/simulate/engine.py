@@ -21,7 +21,7 @@ from .controller import SampledController
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
 from .results import RunStats, SimulationResult
 
-__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled"]
+__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled", "slope_slots"]
 
 #: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
 RECORDS = ("all", "states", "final")
@@ -103,6 +103,22 @@ class _Packed:
                 (chk_c, chk_c, chk_m, chk_m))
 
 
+def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:
+    """The kernels' plane slots: ``(on, cos(phi), sin(phi), cos(theta), sin(theta))`` (``on`` 1.0 on a slope).
+
+    Parameters
+    ----------
+    opts : Options
+        Checked options (``slope`` = cross slope phi, grade theta, deg).
+
+    Returns
+    -------
+    tuple of 5 float
+        The flag and the cosines and sines of the cross slope and the grade.
+    """
+    return (1.0 if opts.on_slope else 0.0, *opts.slope_trig())
+
+
 def _kernel():
     from . import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
 
@@ -158,7 +174,8 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
     levels = np.array(STATS_LEVELS, dtype=float)
     cfg = np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, steps, opts.stride,
                     0 if opts.model == "thesis" else 1, opts.casters == "locked", opts.stop_on_warnings,
-                    _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT], dtype=float)
+                    _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
+                    *slope_slots(opts)], dtype=float)
     ctl = (controller or SampledController.none()).arrays()
     rec = np.empty((n_runs, ncol, nrec))
     stats = np.full((n_runs, 3 + len(levels)), np.nan)

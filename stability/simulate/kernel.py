@@ -21,13 +21,15 @@ from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_thr
 from numba.core import config as _config
 
 from ..models.full_width import generated as _fw
+from ..models.slope import generated as _sl
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
 __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
-           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both", "tire_yaw_moment"]
+           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both", "tire_yaw_moment",
+           "plane", "plane_loads"]
 
 _jit = njit(cache=True, nogil=True)
 #: small helpers inlined into the step loop at numba-IR level (a call per helper doubles the step's cost)
@@ -36,11 +38,19 @@ cv_exact = _jit(_fw.contact_velocities_exact)
 cv_thesis = _jit(_fw.contact_velocities_thesis)
 acc_exact = _jit(_fw.accelerations_exact)
 acc_thesis = _jit(_fw.accelerations_thesis)
+# the chair on a plane (stability.models.slope): in-plane gravity on every body, loads with the normal weight
+acc_slope = _jit(_sl.accelerations_slope_exact)
+gravity_body = _jit(_sl.gravity_body)
+loads_plane = _jit(_sl.normal_loads_plane)
 
 # Params vector layout (stability.params.Params order)
 X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
 # per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
 U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
+# cfg slots of the plane: flag, cos/sin of the cross slope, cos/sin of the grade
+SLOPE, C_PHI, S_PHI, C_THETA, S_THETA = range(13, 18)
+#: model codes: 0 thesis, 1 exact, 2 exact on a slope (accelerations with in-plane gravity)
+SLOPE_MODEL = 2
 #: recorded columns after t (COLUMNS[1:]); the first 10 are the states
 NREC_ALL, NREC_STATES = 31, 10
 
@@ -63,6 +73,19 @@ def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
     n_e = (r_m + P[D1] * s_m) / (P[D1] + P[D2])
     n_d = s_m - n_e
     return n_a, n_b, n_d, n_e
+
+
+@_inl
+def plane(P, cfg, psi):
+    """Gravity ``(g1, g2, gn)`` (m/s^2) in body axes at heading ``psi`` (generated ``gravity_body``)."""
+    return gravity_body(P[G], cfg[C_PHI], cfg[S_PHI], cfg[C_THETA], cfg[S_THETA], math.cos(psi), math.sin(psi))
+
+
+@_inl
+def plane_loads(P, sum_fx, sum_fy, gn, ce, se, cb, sb):
+    """Normal loads on the plane from the tire-force sums (generated ``normal_loads_plane``)."""
+    return loads_plane(sum_fx, sum_fy, gn, ce, se, cb, sb, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL],
+                       P[H], P[M], P[ROLL_K])
 
 
 @_inl
@@ -127,12 +150,12 @@ def rolling_force(kind, coef, scale, fz, vx):
 
 
 @_jit
-def held_both(model, s, F, fy_ext, mz, rdc, P):
+def held_both(model, s, F, fy_ext, mz, rdc, P, g1, g2):
     """Accelerations with both casters held (locked): pin moments solved from three evaluations."""
     u, v, r, ce, se, cb, sb, ed, bd = s
-    a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P)
-    a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P)
-    a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P)
+    a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+    a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+    a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P, g1, g2)
     k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
     k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
     det = k11 * k22 - k12 * k21
@@ -145,10 +168,18 @@ def held_both(model, s, F, fy_ext, mz, rdc, P):
 
 
 @_jit
-def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P):
-    """The generated accelerations of the model (0 thesis, with the lagged yaw acceleration; 1 exact)."""
+def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    """The generated accelerations of the model.
+
+    0 thesis (with the lagged yaw acceleration ``rdc``), 1 exact, 2 exact on a
+    plane with the in-plane gravity ``g1, g2`` (m/s^2) on every body.
+    """
     u, v, r, ce, se, cb, sb, ed, bd = s
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    if model == SLOPE_MODEL:
+        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                         P[M_C], P[I_Z], P[I_ZP])
     if model == 0:
         return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
                           fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
@@ -316,6 +347,10 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     use_ctl = ctl_f[0] > 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit = cfg[10], cfg[11], cfg[12]
+    slope = cfg[SLOPE] != 0.0
+    if slope:
+        model = SLOPE_MODEL
+    g1 = g2 = 0.0
     z = np.zeros(Az.shape[0])
     znew = np.zeros(Az.shape[0])
     y = np.zeros(Cy.shape[0])
@@ -339,7 +374,11 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
         slips = slip_angles(vel)
-        loads = normal_loads(P, FC1, FC2, ce, se, cb, sb)
+        if slope:   # gravity in body axes at the heading of the step; loads with the normal weight
+            g1, g2, gn = plane(P, cfg, THE)
+            loads = plane_loads(P, FC1, FC2, gn, ce, se, cb, sb)
+        else:
+            loads = normal_loads(P, FC1, FC2, ce, se, cb, sb)
         if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
             status[0], status[1] = 1.0, t
             break
@@ -366,11 +405,11 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
             mz = mz_held
         st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
         if locked:
-            acc, MA, MB = held_both(model, st_, F, fy_ext, mz, THEDD, P)
+            acc, MA, MB = held_both(model, st_, F, fy_ext, mz, THEDD, P, g1, g2)
         else:
             MA = math.copysign(P[MAF], -ED) if ED != 0.0 else 0.0
             MB = math.copysign(P[MBF], -BD) if BD != 0.0 else 0.0
-            acc = accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P)
+            acc = accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
         UDD, VDD, THEDD, EDD, BDD = acc
         if locked:
             EDD = BDD = 0.0
@@ -424,11 +463,11 @@ def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
 
     numba keys a cached function on its own source file only, and a cached
     kernel carries a copy of the generated functions it calls; so a stamp (the
-    SHA-256 of ``stability/_generated/full_width.py``) is kept next to the
+    SHA-256 of ``stability/_generated/full_width.py`` and ``slope.py``) is kept next to the
     cache and, when it differs, every kernel of the module is recompiled.
     Nothing happens when the cache directory is not writable.
     """
-    digest = hashlib.sha256(Path(_fw.__file__).read_bytes()).hexdigest()
+    digest = hashlib.sha256(Path(_fw.__file__).read_bytes() + Path(_sl.__file__).read_bytes()).hexdigest()
     kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
     try:
         stamp = Path(getattr(run_batch, "_cache").cache_path) / stamp_name  # noqa: B009  (numba internal)

@@ -18,7 +18,7 @@ from ..reference import HORIZON, THESIS_PUSH
 
 __all__ = ["SCHEMES", "MODELS", "CASTERS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG",
            "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT", "SimulationDefaults", "DEFAULTS",
-           "Options", "make_options", "n_steps", "impulse_on", "initial_velocities"]
+           "Options", "make_options", "n_steps", "impulse_on", "initial_velocities", "MAX_SLOPE_DEG", "check_slope"]
 
 SCHEMES = ("wchair", "adaptive")
 MODELS = ("thesis", "exact")
@@ -37,6 +37,8 @@ WARNING_LIMIT = 10
 ADAPTIVE_METHOD = "LSODA"
 #: WCHAIR's time step TSTEP, s (the thesis's runs).
 WCHAIR_DT = 0.001
+#: Largest |cross slope| and |grade| of a simulation, deg (tire data: slips stay within 8 deg up to ~15 deg).
+MAX_SLOPE_DEG = 15.0
 ADAPTIVE_SAMPLE = 0.01
 BATCH_SAMPLE = 0.01
 
@@ -94,6 +96,10 @@ class SimulationDefaults:
         Sampled linear yaw-moment controller run in the compiled kernel.
     record : {"all", "states", "final"}
         What the compiled wchair scheme keeps of the time histories.
+    slope : tuple of float
+        ``(cross_slope_deg, grade_deg)``: the plane falls to the right of the
+        initial heading by the cross slope and rises ahead by the grade, deg
+        (``(0, 0)``: level; each within +-15 deg; exact model only).
     """
 
     duration: float = HORIZON
@@ -116,6 +122,7 @@ class SimulationDefaults:
     reverse: bool = False
     controller: Any = None
     record: str = "all"
+    slope: tuple[float, float] = (0.0, 0.0)
 
     def as_dict(self) -> dict[str, Any]:
         """The defaults as a dict (keyword -> value)."""
@@ -172,6 +179,8 @@ class Options:
         Tolerances of the adaptive scheme.
     reverse : bool
         Drive backwards (initial forward velocity ``-speed``).
+    slope : tuple of float
+        ``(cross_slope_deg, grade_deg)``, deg (checked by :func:`check_slope`).
     """
 
     duration: float
@@ -193,6 +202,17 @@ class Options:
     rtol: float
     atol: float
     reverse: bool
+    slope: tuple[float, float] = (0.0, 0.0)
+
+    @property
+    def on_slope(self) -> bool:
+        """True when the plane is inclined (``slope != (0, 0)``)."""
+        return self.slope != (0.0, 0.0)
+
+    def slope_trig(self) -> tuple[float, float, float, float]:
+        """``(cos(phi), sin(phi), cos(theta), sin(theta))`` of the cross slope phi and the grade theta."""
+        phi, theta = math.radians(self.slope[0]), math.radians(self.slope[1])
+        return math.cos(phi), math.sin(phi), math.cos(theta), math.sin(theta)
 
     def step_constants(self) -> tuple:
         """What the WCHAIR loops read every step, as locals:
@@ -212,6 +232,8 @@ class Options:
                 self.yaw_moment, "__name__", type(self.yaw_moment).__name__),
             "reverse": self.reverse,
         }
+        if self.on_slope:   # level runs keep today's settings (and JSON) unchanged
+            d.update(cross_slope_deg=self.slope[0], grade_deg=self.slope[1])
         if self.scheme == "wchair":
             d["dt"] = self.dt
         else:
@@ -226,7 +248,7 @@ def _float(value: Any) -> Any:
 
 def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration, tire_impulse,
                  lateral_velocity, eta0_deg, beta0_deg, casters, yaw_moment, stop_on_warnings, out_of_range,
-                 sample, rtol, atol, reverse, batch: bool = False) -> Options:
+                 sample, rtol, atol, reverse, slope=(0.0, 0.0), batch: bool = False) -> Options:
     """Check every option (ValueError naming the parameter, its value and the valid range) -> :class:`Options`.
 
     Parameters
@@ -268,6 +290,9 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
         Tolerances of the adaptive scheme; > 0, ``rtol >= 1e-13``.
     reverse : bool
         Drive backwards.
+    slope : tuple of float
+        ``(cross_slope_deg, grade_deg)``, each within +-15 deg
+        (:func:`check_slope`); nonzero needs ``model="exact"``.
     batch : bool
         Options of a :func:`~stability.simulate.simulate_batch` call (sets
         the default ``sample`` of the wchair scheme).
@@ -328,9 +353,43 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
     atol = check_positive("atol", _float(atol))
     if rtol < 1e-13:
         raise ValueError(f"rtol={rtol!r} is invalid; valid range: rtol >= 1e-13")
+    slope = check_slope(slope)
+    if slope != (0.0, 0.0) and model != "exact":
+        raise ValueError(f"model={model!r} is invalid on a slope (slope={slope!r} deg); valid values: 'exact' "
+                         "(the slope equations are derived for the exact model only)")
     return Options(duration, scheme, model, dt, impulse_force, impulse_duration, tire_impulse,
                    lateral_velocity, eta0, beta0, casters, yaw_moment, stop_on_warnings, out_of_range,
-                   sample, stride, rtol, atol, bool(reverse))
+                   sample, stride, rtol, atol, bool(reverse), slope)
+
+
+def check_slope(slope: Any) -> tuple[float, float]:
+    """Check ``slope = (cross_slope_deg, grade_deg)``.
+
+    Parameters
+    ----------
+    slope : pair of float
+        Cross slope (plane falls to the right, +) and grade (uphill ahead, +), deg.
+
+    Returns
+    -------
+    tuple of float
+        The pair as floats (``-0.0`` becomes ``0.0``).
+
+    Raises
+    ------
+    ValueError
+        Not a pair of finite numbers, or a component beyond +-:data:`MAX_SLOPE_DEG`.
+    """
+    msg = (f"slope={slope!r} is invalid; valid range: (cross_slope_deg, grade_deg) with |cross_slope_deg| <= "
+           f"{MAX_SLOPE_DEG:g} and |grade_deg| <= {MAX_SLOPE_DEG:g} deg")
+    try:
+        cross, grade = (float(_float(x)) for x in slope)
+    except (TypeError, ValueError):
+        raise ValueError(msg) from None
+    if not (math.isfinite(cross) and math.isfinite(grade) and abs(cross) <= MAX_SLOPE_DEG
+            and abs(grade) <= MAX_SLOPE_DEG):
+        raise ValueError(msg)
+    return cross + 0.0, grade + 0.0
 
 
 def n_steps(opts: Options) -> int:

@@ -16,11 +16,13 @@ import numpy as np
 from .. import tires as _tires
 from ..chair import Chair
 from ..models import full_width
+from ..models import slope as slope_model
 from ..params import parameters as _parameters
+from ..statics import normal_loads as _level_loads
 from .options import Options
 
 __all__ = ["Physics", "TireGroup", "NO_FORCE", "kinematics", "slip_angles", "tire_forces", "accelerations",
-           "held_accelerations"]
+           "held_accelerations", "plane", "loads"]
 
 class _MathOps:
     cos = staticmethod(math.cos)
@@ -96,6 +98,8 @@ class Physics:
         self.cv_fn = getattr(fw, f"contact_velocities_{opts.model}")
         self.acc_fn = getattr(fw, f"accelerations_{opts.model}")
         self.thesis = opts.model == "thesis"
+        #: on a slope: (cos, sin) of the cross slope and of the grade; None when level
+        self.slope_trig: tuple[float, float, float, float] | None = opts.slope_trig() if opts.on_slope else None
         if vector:
             self.p = shared_scalars(_parameters(list(chairs)))
             keys = [TireGroup.key(c) for c in chairs]
@@ -165,7 +169,8 @@ class Physics:
         if self.toe:
             self.ct, self.st = self.ct[keep], self.st[keep]
         if not self.single_group:
-            pos = np.full(int(max(np.max(i) for _, i in self.groups)) + 1, -1)
+            # a group whose runs have all stopped is empty (it stays in the list, with no runs)
+            pos = np.full(max((int(np.max(i)) for _, i in self.groups if i.size), default=-1) + 1, -1)
             pos[keep] = np.arange(len(keep))
             self.groups = [(g, pos[i][pos[i] >= 0]) for g, i in self.groups]
             if self.chk_mask is not None:
@@ -334,7 +339,53 @@ def tire_forces(K: Physics, impulse_on: bool, vel, slips, NA, NB, ND, NE, S4=Non
     return FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy
 
 
-def accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, rdc=None):
+def plane(K: Physics, psi):
+    """Gravity in body axes at heading ``psi`` on the run's plane (generated ``gravity_body``).
+
+    Parameters
+    ----------
+    K : Physics
+        Parameters and the plane (``K.slope_trig``, not None) of the run(s).
+    psi : float or ndarray
+        Heading from the initial direction, rad (THE, clockwise from above).
+
+    Returns
+    -------
+    tuple of 3 (float or ndarray)
+        ``(g1, g2, gn)``, m/s^2: forward and to the right in the plane, normal to it.
+    """
+    xp = ops(psi)
+    assert K.slope_trig is not None
+    cph, sph, cth, sth = K.slope_trig
+    return slope_model.generated.gravity_body(K.p.g, cph, sph, cth, sth, xp.cos(psi), xp.sin(psi))
+
+
+def loads(K: Physics, sum_fx, sum_fy, ce, se, cb, sb, gn=None):
+    """STATICS: normal loads (N) from the tire-force sums; eq 6-25, or on a plane with normal gravity ``gn``.
+
+    Parameters
+    ----------
+    K : Physics
+        Parameters of the run(s).
+    sum_fx, sum_fy : float or ndarray
+        Sums of the forces on the chair in body axes, N (FC1, FC2).
+    ce, se, cb, sb : float or ndarray
+        cos and sin of the caster angles.
+    gn : float or ndarray, optional
+        Gravity normal to the plane, m/s^2 (:func:`plane`); None: level
+        (:func:`stability.statics.normal_loads`, today's arithmetic).
+
+    Returns
+    -------
+    tuple of 4 (float or ndarray)
+        ``(N_A, N_B, N_D, N_E)``, N.
+    """
+    if gn is None:
+        return _level_loads(K.p, sum_fx, sum_fy, ce, se, cb, sb)
+    return slope_model.normal_loads_plane(K.p, sum_fx, sum_fy, gn, ce, se, cb, sb)
+
+
+def accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, rdc=None, grav=None):
     """(u_dot, v_dot, r_dot, eta_dd, beta_dd) from the model (DYNAM; equations of motion of Table 6-1).
 
     Parameters
@@ -358,6 +409,10 @@ def accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, rdc=None):
         Thesis variant only: the yaw acceleration the caster equations use,
         rad/s^2 (WCHAIR's DYNAM uses the previous step's THEDD); None: the
         current one.  Ignored by the exact variant.
+    grav : tuple of 2 (float or ndarray), optional
+        ``(g1, g2)``: in-plane gravity in body axes, m/s^2 (:func:`plane`);
+        the exact model on a slope (gravity on the chair and on each caster
+        at its own c.g., generated ``accelerations_slope_exact``).  None: level.
 
     Returns
     -------
@@ -366,12 +421,18 @@ def accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, rdc=None):
         rad/s^2, rad/s^2.
     """
     u, v, r, ce, se, cb, sb, ed, bd = state
+    if grav is not None:
+        FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+        x_m, x_p, d1, d2, t1, t2, trail, l1, m, m_c, i_z, i_zp = K.inertia
+        return slope_model.generated.accelerations_slope_exact(
+            u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, M_A, M_B, fy_ext, mz,
+            grav[0], grav[1], x_m, x_p, d1, d2, t1, t2, trail, l1, m, m_c, i_z, i_zp)
     if K.thesis:
         return K.acc_fn(u, v, r, ce, se, cb, sb, ed, bd, *F, M_A, M_B, fy_ext, mz, *K.inertia, r_dot_casters=rdc)
     return K.acc_fn(u, v, r, ce, se, cb, sb, ed, bd, *F, M_A, M_B, fy_ext, mz, *K.inertia)
 
 
-def held_accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, hold_a, hold_b, rdc=None):
+def held_accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, hold_a, hold_b, rdc=None, grav=None):
     """Accelerations with caster A and/or B held (eta_dd = 0 and/or beta_dd = 0).
 
     The equations are affine in the pin moments, so the holding moments are
@@ -380,7 +441,7 @@ def held_accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, hold_a, hold_
 
     Parameters
     ----------
-    K, state, F, M_A, M_B, fy_ext, mz, rdc
+    K, state, F, M_A, M_B, fy_ext, mz, rdc, grav
         As in :func:`accelerations` (``M_A``, ``M_B`` in N m are used only
         for a side that is not held).
     hold_a, hold_b : bool
@@ -399,13 +460,13 @@ def held_accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, hold_a, hold_
         moment otherwise.
     """
     if not (hold_a or hold_b):
-        return accelerations(K, state, F, M_A, M_B, fy_ext, mz, rdc), M_A, M_B
+        return accelerations(K, state, F, M_A, M_B, fy_ext, mz, rdc, grav), M_A, M_B
     base_a = 0.0 * M_A if hold_a else M_A
     base_b = 0.0 * M_B if hold_b else M_B
-    a0 = accelerations(K, state, F, base_a, base_b, fy_ext, mz, rdc)
+    a0 = accelerations(K, state, F, base_a, base_b, fy_ext, mz, rdc, grav)
     if hold_a and hold_b:
-        a1 = accelerations(K, state, F, base_a + 1.0, base_b, fy_ext, mz, rdc)
-        a2 = accelerations(K, state, F, base_a, base_b + 1.0, fy_ext, mz, rdc)
+        a1 = accelerations(K, state, F, base_a + 1.0, base_b, fy_ext, mz, rdc, grav)
+        a2 = accelerations(K, state, F, base_a, base_b + 1.0, fy_ext, mz, rdc, grav)
         k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
         k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
         det = k11 * k22 - k12 * k21
@@ -414,11 +475,11 @@ def held_accelerations(K: Physics, state, F, M_A, M_B, fy_ext, mz, hold_a, hold_
         acc = tuple(a0[i] + ma * (a1[i] - a0[i]) + mb * (a2[i] - a0[i]) for i in range(3)) + (0.0 * ma, 0.0 * mb)
         return acc, ma, mb
     if hold_a:
-        a1 = accelerations(K, state, F, base_a + 1.0, base_b, fy_ext, mz, rdc)
+        a1 = accelerations(K, state, F, base_a + 1.0, base_b, fy_ext, mz, rdc, grav)
         ma = -a0[3] / (a1[3] - a0[3])
         acc = tuple(a0[i] + ma * (a1[i] - a0[i]) for i in range(5))
         return acc[:3] + (0.0 * ma, acc[4]), ma, M_B
-    a2 = accelerations(K, state, F, base_a, base_b + 1.0, fy_ext, mz, rdc)
+    a2 = accelerations(K, state, F, base_a, base_b + 1.0, fy_ext, mz, rdc, grav)
     mb = -a0[4] / (a2[4] - a0[4])
     acc = tuple(a0[i] + mb * (a2[i] - a0[i]) for i in range(5))
     return acc[:4] + (0.0 * mb,), M_A, mb

@@ -17,7 +17,7 @@ from ..models.full_width import tire_resultant, tire_yaw_moment
 from ..progress import ProgressBar
 from ..statics import normal_loads
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, impulse_on, initial_velocities, n_steps
-from .physics import Physics, accelerations, held_accelerations, kinematics, tire_forces
+from .physics import Physics, accelerations, held_accelerations, kinematics, loads, plane, tire_forces
 from .results import NCOLS, ChairState, SimulationResult
 
 __all__ = ["wchair_batch"]
@@ -114,7 +114,11 @@ def _step(K: Physics, s: _State, opts: Options, k: int, warns: _Warnings, stoppe
     V = np.array(kinematics(K, UD, VD, THED, Cp[1], Sn[1], Cp[2], Sn[2], ED, BD))   # (8, m): vx, vy per wheel
     S4 = np.arctan2(V[1::2], np.abs(V[0::2]))                                         # as the kernel and SLIP
     S4 *= 180.0 / math.pi
-    N4 = np.array(normal_loads(K.p, s.FC1, s.FC2, Cp[1], Sn[1], Cp[2], Sn[2]))        # (4, m)
+    if K.slope_trig is None:
+        N4 = np.array(normal_loads(K.p, s.FC1, s.FC2, Cp[1], Sn[1], Cp[2], Sn[2]))    # (4, m)
+    else:   # on a slope: gravity at each run's heading, loads with the normal weight
+        G3 = np.array(np.broadcast_arrays(*plane(K, s.Sp[0])))
+        N4 = np.array(loads(K, s.FC1, s.FC2, Cp[1], Sn[1], Cp[2], Sn[2], G3[2]))
     halt = _range_rules(K, S4, N4, s.run, warns, stop, t)
     if halt is not None and halt.any():
         gone = s.run[halt]
@@ -124,6 +128,8 @@ def _step(K: Physics, s: _State, opts: Options, k: int, warns: _Warnings, stoppe
         K.compact(keep)
         s.compact(keep, per_run_force)
         V, S4, N4, Cp, Sn = V[:, keep], S4[:, keep], N4[:, keep], Cp[:, keep], Sn[:, keep]
+        if K.slope_trig is not None:
+            G3 = G3[:, keep]
         if s.run.size == 0:
             return None
     UD, VD, THED, ED, BD = s.Sv
@@ -141,13 +147,14 @@ def _step(K: Physics, s: _State, opts: Options, k: int, warns: _Warnings, stoppe
         mz = np.broadcast_to(np.asarray(yaw_fn(t, st_), dtype=float), s.run.shape)
     state = (UD, VD, THED, ce, se, cb, sb, ED, BD)
     rdc = s.THEDD if thesis else None
+    grav = None if K.slope_trig is None else (G3[0], G3[1])
     if locked:
         zero = np.zeros(s.run.size)
-        acc, MA, MB = held_accelerations(K, state, F, zero, zero, fy_ext, mz, True, True, rdc)
+        acc, MA, MB = held_accelerations(K, state, F, zero, zero, fy_ext, mz, True, True, rdc, grav)
     else:
         MA = np.where(ED != 0.0, np.copysign(K.maf, -ED), 0.0)
         MB = np.where(BD != 0.0, np.copysign(K.mbf, -BD), 0.0)
-        acc = accelerations(K, state, F, MA, MB, fy_ext, mz, rdc)
+        acc = accelerations(K, state, F, MA, MB, fy_ext, mz, rdc, grav)
     UDD, VDD, THEDD_new, EDD, BDD = acc
     if locked:
         EDD = BDD = np.zeros(s.run.size)

@@ -16,7 +16,7 @@ from ..chair import Chair
 from ..models.full_width import tire_resultant, tire_yaw_moment
 from ..statics import normal_loads
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, impulse_on, initial_velocities, n_steps
-from .physics import Physics, accelerations, held_accelerations, kinematics, slip_angles, tire_forces
+from .physics import Physics, accelerations, held_accelerations, kinematics, loads, plane, slip_angles, tire_forces
 from .results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
 
 __all__ = ["wchair_single"]
@@ -57,6 +57,8 @@ def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult
     cos, sin = math.cos, math.sin
     loads_fn = normal_loads
     maf, mbf = K.maf, K.mbf
+    slope = K.slope_trig is not None
+    grav = None
     check_all, chk = K.check_all, K.chk or (True, True, True, True)   # single run: one tire group, chk set
 
     UD, VD = initial_velocities(opts, speed)
@@ -76,8 +78,13 @@ def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult
         # SLIP
         vel = kinematics(K, UD, VD, THED, ce, se, cb, sb, ED, BD)
         slips = slip_angles(K, vel)
-        # STATICS (previous step's FC1, FC2)
-        NA, NB, ND, NE = loads_fn(p, FC1, FC2, ce, se, cb, sb)
+        # STATICS (previous step's FC1, FC2); on a slope gravity at this step's heading
+        if slope:
+            g1, g2, gn = plane(K, THE)
+            grav = (g1, g2)
+            NA, NB, ND, NE = loads(K, FC1, FC2, ce, se, cb, sb, gn)
+        else:
+            NA, NB, ND, NE = loads_fn(p, FC1, FC2, ce, se, cb, sb)
         nmax = max(NA, NB, ND, NE) if check_all else max(
             (n_ for n_, c_ in zip((NA, NB, ND, NE), chk, strict=False) if c_), default=0.0)
         if nmax > LOAD_LIMIT_N:
@@ -107,11 +114,11 @@ def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult
         state = (UD, VD, THED, ce, se, cb, sb, ED, BD)
         rdc = THEDD if thesis else None
         if locked:
-            acc, MA, MB = held_accelerations(K, state, F, 0.0, 0.0, fy_ext, mz, True, True, rdc)
+            acc, MA, MB = held_accelerations(K, state, F, 0.0, 0.0, fy_ext, mz, True, True, rdc, grav)
         else:
             MA = math.copysign(maf, -ED) if ED != 0.0 else 0.0
             MB = math.copysign(mbf, -BD) if BD != 0.0 else 0.0
-            acc = accelerations(K, state, F, MA, MB, fy_ext, mz, rdc)
+            acc = accelerations(K, state, F, MA, MB, fy_ext, mz, rdc, grav)
         UDD, VDD, THEDD, EDD, BDD = acc
         if locked:
             EDD = BDD = 0.0

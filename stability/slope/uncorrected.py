@@ -1,11 +1,12 @@
 """The uncorrected path: which way and how fast the chair turns when nobody holds it straight.
 
 Starts from the held equilibrium (:func:`stability.slope.equilibrium.solve`)
-and removes the differential drive (both wheels keep the mean drive force),
-then integrates the exact equations with gravity (:class:`~stability.slope.model.SlopeModel`)
-with :func:`scipy.integrate.solve_ivp`.  Viscous pin damping only (no
-Coulomb pin friction).  The simulator (:mod:`stability.simulate`) does not
-know slopes yet; see ``docs/slopes.md``.
+and removes the differential drive.  Two integrations: :func:`uncorrected_path`
+(the exact equations with gravity of :class:`~stability.slope.model.SlopeModel`
+under :func:`scipy.integrate.solve_ivp`, both wheels keeping the mean drive
+force or coasting, viscous pin damping only) and :func:`simulator_path`
+(:func:`stability.simulate.simulate` on the slope, either scheme, coasting,
+with or without Coulomb pin friction).  See ``docs/slopes.md``.
 """
 
 from __future__ import annotations
@@ -16,10 +17,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..chair import Chair
+from ..simulate import simulate
 from .equilibrium import Equilibrium
 from .model import Plane, SlopeModel
 
-__all__ = ["UncorrectedPath", "uncorrected_path"]
+__all__ = ["UncorrectedPath", "uncorrected_path", "simulator_path", "simulator_slope"]
+
+#: a caster swung this far from its held angle ends a run (beyond the tire data), deg
+MAX_CASTER_SWING_DEG = 30.0
 
 
 @dataclass(frozen=True)
@@ -78,7 +83,7 @@ class UncorrectedPath:
 
 
 def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_heading_deg: float = 45.0,
-                     n_out: int = 201) -> UncorrectedPath:
+                     n_out: int = 201, coast: bool = False) -> UncorrectedPath:
     """Integrate the chair released from the held equilibrium ``eq``.
 
     Parameters
@@ -96,6 +101,8 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
         Heading change that ends the run (deg, default 45).
     n_out : int
         Output samples.
+    coast : bool
+        No drive force at all (as :func:`simulator_path`, whose simulator has none); default False.
 
     Returns
     -------
@@ -107,7 +114,7 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
 
     plane = Plane(eq.cross_slope_deg, eq.grade_deg)
     model = SlopeModel(chair, plane)
-    mean = 0.5 * (eq.drive_forces[0] + eq.drive_forces[1])
+    mean = 0.0 if coast else 0.5 * (eq.drive_forces[0] + eq.drive_forces[1])
     f = model.rhs((mean, mean))
     psi0 = math.radians(eq.heading_deg)
     y0 = [0.0, 0.0, psi0, eq.speed * math.cos(psi0), -eq.speed * math.sin(psi0), 0.0,
@@ -118,17 +125,23 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
     turned.terminal = True  # type: ignore[attr-defined]
 
     def swung(t, y):  # a caster swung far round: beyond the tire data, stop
-        return max(abs(y[6] - y0[6]), abs(y[8] - y0[8])) - math.radians(30.0)
+        return max(abs(y[6] - y0[6]), abs(y[8] - y0[8])) - math.radians(MAX_CASTER_SWING_DEG)
     swung.terminal = True  # type: ignore[attr-defined]
 
     t_eval = np.linspace(0.0, duration, n_out)
     sol = solve_ivp(f, (0.0, duration), y0, method="LSODA", t_eval=t_eval, events=(turned, swung),
                     rtol=1e-8, atol=1e-10)
     t, y = sol.t, sol.y
-    side = math.copysign(1.0, eq.cross_slope_deg) if eq.cross_slope_deg != 0 else 1.0
-    dpsi = (y[2] - psi0) * side
-    turn = "downhill" if dpsi[-1] > 0 else ("uphill" if dpsi[-1] < 0 else "none")
+    g2 = plane.gravity(model.p.g)[1]
+    return _summarise(eq, t, y[0], y[1], y[2], y[5], y[3], g2)
 
+
+def _summarise(eq: Equilibrium, t, x, y, heading, yaw_rate, speed, g2: float) -> UncorrectedPath:
+    """The :class:`UncorrectedPath` of a time history (path frame, heading from the path direction)."""
+    psi0 = math.radians(eq.heading_deg)
+    side = math.copysign(1.0, eq.cross_slope_deg) if eq.cross_slope_deg != 0 else 1.0
+    dpsi = (heading - psi0) * side
+    turn = "downhill" if dpsi[-1] > 0 else ("uphill" if dpsi[-1] < 0 else "none")
     t_rep = min(1.0, float(t[-1]))
 
     def at1(a: np.ndarray) -> float:
@@ -136,10 +149,91 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
 
     big = np.flatnonzero(np.abs(dpsi) >= math.radians(10.0))
     t10 = float(np.interp(math.radians(10.0), np.abs(dpsi[:big[0] + 1]), t[:big[0] + 1])) if big.size else None
-
-    g2 = plane.gravity(model.p.g)[1]
     return UncorrectedPath(
-        t=t, x=y[0], y=y[1], heading=y[2], yaw_rate=y[5], speed=y[3], turn=turn,
+        t=t, x=x, y=y, heading=heading, yaw_rate=yaw_rate, speed=speed, turn=turn,
         report_time=t_rep, heading_change_deg=math.degrees(at1(dpsi)),
-        yaw_rate_deg_s=math.degrees(at1(y[5] * side)), lateral_offset=at1(y[1] * side), time_to_10deg=t10,
+        yaw_rate_deg_s=math.degrees(at1(yaw_rate * side)), lateral_offset=at1(y * side), time_to_10deg=t10,
         quasi_steady_rate_deg_s=math.degrees(g2 / eq.speed))
+
+
+def simulator_slope(chair: Chair, eq: Equilibrium) -> tuple[float, float]:
+    """The plane of ``eq`` seen from the chair's held heading: ``(cross_slope_deg, grade_deg)`` for the simulator.
+
+    The simulator measures heading and position from the chair's initial
+    heading, the held crab angle ``psi0`` here.  The same plane in that frame
+    has the in-plane gravity of the held chair, ``(g1, g2) = gravity(psi0)``
+    (:func:`stability.models.slope.gravity`): grade ``asin(-g1/g)``, cross
+    slope ``atan2(g2, gn)`` (``gn`` is unchanged).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair (its ``g``).
+    eq : Equilibrium
+        The held equilibrium (cross slope, grade, crab angle in deg).
+
+    Returns
+    -------
+    tuple of float
+        Cross slope and grade in the chair's initial frame, deg.
+    """
+    g1, g2, gn = Plane(eq.cross_slope_deg, eq.grade_deg).gravity(chair.g, math.radians(eq.heading_deg))
+    return math.degrees(math.atan2(g2, gn)), math.degrees(math.asin(-g1 / chair.g))
+
+
+def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", duration: float = 2.0,
+                   pin_friction: bool = True, max_heading_deg: float = 45.0, **options) -> UncorrectedPath:
+    """The uncorrected path from the simulator (:func:`stability.simulate.simulate`) on the slope.
+
+    Released from the held equilibrium ``eq`` (crab angle, caster angles,
+    speed along the path) with no drive force (the simulator has none: the
+    chair coasts), no push, the exact model.  The run is cut where
+    :func:`uncorrected_path` stops (heading change beyond ``max_heading_deg``,
+    a caster swung more than 30 deg).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair ``eq`` was solved for; viscous ``pin_damping`` must be 0
+        (the simulator has only Coulomb pin friction).
+    eq : Equilibrium
+        The held equilibrium (:func:`stability.slope.equilibrium.solve`).
+    scheme : {"adaptive", "wchair"}
+        Simulator scheme (``"wchair"``: WCHAIR's fixed 1 ms step, lagged loads,
+        ``stop_on_warnings`` as the simulator's default).
+    duration : float
+        Length of the run, s.
+    pin_friction : bool
+        Keep the chair's Coulomb pin friction (N m); False: frictionless pins.
+    max_heading_deg : float
+        Heading change that ends the path (deg).
+    **options
+        Further keywords of :func:`stability.simulate.simulate` (e.g. ``dt``, ``rtol``).
+
+    Returns
+    -------
+    UncorrectedPath
+        As :func:`uncorrected_path` (path frame: x along the path, y to its right).
+
+    Raises
+    ------
+    ValueError
+        ``chair.pin_damping`` nonzero, or a bad simulator option.
+    """
+    if chair.pin_damping != 0.0:
+        raise ValueError(f"pin_damping={chair.pin_damping!r} is invalid for the simulator path; valid range: 0 "
+                         "(the simulator has Coulomb pin friction only)")
+    run_chair = chair if pin_friction else chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    psi0 = math.radians(eq.heading_deg)
+    u0, v0 = eq.speed * math.cos(psi0), -eq.speed * math.sin(psi0)
+    res = simulate(run_chair, u0, duration=duration, scheme=scheme, model="exact", impulse_force=0.0,
+                   lateral_velocity=v0, eta0_deg=eq.eta_deg, beta0_deg=eq.beta_deg,
+                   slope=simulator_slope(chair, eq), **options)
+    t, dpsi = res.t, res.heading
+    swing = np.maximum(np.abs(res.eta - math.radians(eq.eta_deg)), np.abs(res.beta - math.radians(eq.beta_deg)))
+    out = np.flatnonzero((np.abs(dpsi) > math.radians(max_heading_deg)) | (swing > math.radians(MAX_CASTER_SWING_DEG)))
+    n = int(out[0]) + 1 if out.size else t.size
+    c, s = math.cos(psi0), math.sin(psi0)
+    X, Y = res.x[:n], res.y[:n]
+    g2 = Plane(eq.cross_slope_deg, eq.grade_deg).gravity(chair.g)[1]
+    return _summarise(eq, t[:n], X * c - Y * s, X * s + Y * c, psi0 + dpsi[:n], res.yaw_rate[:n], res.u[:n], g2)

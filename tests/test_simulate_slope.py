@@ -1,0 +1,226 @@
+"""The simulator on a slope (issue 12): zero slope unchanged, mirror symmetry, agreement with the slope
+package's own integration, turn directions, the grade's closed form, compiled vs reference paths, input checks."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from stability import chair as chair_mod
+from stability.models import slope as msl
+from stability.params import parameters
+from stability.simulate import reference_engine, simulate, simulate_batch
+from stability.simulate.__main__ import main as simulate_main
+from stability.slope import solve
+from stability.slope.uncorrected import simulator_path, simulator_slope, uncorrected_path
+from stability.statics import normal_loads
+
+EJ = chair_mod.preset("ej-premier")                 # rear casters
+FRONT = chair_mod.preset("manual-front-caster")     # front casters
+FRICTIONLESS = {"pin_friction_left": 0.0, "pin_friction_right": 0.0}
+STATES = ("x", "y", "heading", "yaw_rate", "u", "v", "eta", "eta_dot", "beta", "beta_dot")
+
+
+def _same(a, b) -> None:
+    """Bit-identical results (every recorded column, settings, warnings)."""
+    assert json.dumps(a.to_dict(), sort_keys=True) == json.dumps(b.to_dict(), sort_keys=True)
+
+
+def _same_states(a, b) -> None:
+    """Bit-identical time histories of the ten states."""
+    for name in ("t", *STATES):
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+
+
+def _close(a, b, rtol: float) -> None:
+    """Every state agrees to ``rtol`` of the signal's size."""
+    assert a.t.shape == b.t.shape
+    for name in STATES:
+        x, y = getattr(a, name), getattr(b, name)
+        scale = max(float(np.max(np.abs(x))), 1e-12)
+        np.testing.assert_allclose(x, y, rtol=0, atol=rtol * scale, err_msg=name)
+
+
+# -- zero slope --------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("kw", [dict(), dict(model="exact"), dict(model="exact", casters="locked"),
+                                dict(model="exact", scheme="adaptive", duration=1.0)])
+def test_zero_slope_is_todays_run(kw):
+    base = dict(duration=2.0, **{k: v for k, v in kw.items() if k != "duration"}) | {"duration": kw.get("duration",
+                                                                                                       2.0)}
+    ref = simulate(EJ, 0.75, **base)
+    _same(simulate(EJ, 0.75, slope=(0.0, 0.0), **base), ref)
+    _same(simulate(EJ, 0.75, slope=(-0.0, 0.0), **base), ref)
+    assert "cross_slope_deg" not in ref.settings          # level runs record what they recorded before
+
+
+def test_zero_slope_reference_paths_and_batch():
+    ref = simulate_batch([EJ, FRONT], [0.6, 0.9], duration=0.5, model="exact", progress=False)
+    got = simulate_batch([EJ, FRONT], [0.6, 0.9], duration=0.5, model="exact", progress=False, slope=(0, 0))
+    for a, b in zip(got, ref, strict=True):
+        _same(a, b)
+    with reference_engine():
+        r1 = simulate(FRONT, 0.9, duration=0.3, model="exact")
+        _same(simulate(FRONT, 0.9, duration=0.3, model="exact", slope=(0.0, 0.0)), r1)
+
+
+def test_plane_loads_at_zero_slope_are_eq_6_25():
+    """The generated loads from the force sums at gn = g equal statics.normal_loads (eq 6-25)."""
+    rng = np.random.default_rng(1)
+    for c in (EJ, FRONT):
+        p = parameters(c)
+        for _ in range(5):
+            fx, fy, eta, beta = rng.normal(size=4) * (30.0, 60.0, 0.5, 0.5)
+            trig = (math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta))
+            np.testing.assert_allclose(msl.normal_loads_plane(p, fx, fy, p.g, *trig),
+                                       normal_loads(p, fx, fy, *trig), rtol=1e-12, atol=1e-9)
+            # and equal the acceleration form with m a = sum F + m g_in on a slope
+            g1, g2, gn = msl.gravity(p.g, 0.05, -0.03, eta)
+            np.testing.assert_allclose(msl.normal_loads_plane(p, fx, fy, gn, *trig),
+                                       msl.normal_loads(p, fx / p.m + g1, fy / p.m + g2, g1, g2, gn, *trig),
+                                       rtol=1e-11, atol=1e-9)
+
+
+# -- mirror symmetry -------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("scheme", ["wchair", "adaptive"])
+@pytest.mark.parametrize("chair", [EJ, FRONT], ids=["rear-caster", "front-caster"])
+def test_mirror_symmetry(scheme, chair):
+    """Cross slope +phi and -phi on a symmetric chair: y, heading, yaw rate, v mirrored, casters swapped.
+
+    Frictionless pins: Coulomb friction switches on the sign of a swivel rate that passes through zero, where
+    a rounding-level difference between the mirrored runs would act for a step (and grow in a diverging run).
+    The adaptive runs mirror to their integration error only (LSODA's step decisions see rounding-level
+    differences): tolerance 100 rtol with rtol = 1e-9; the fixed-step runs to 1e-9 of the signal.
+    """
+    chair = chair.replace(**FRICTIONLESS)
+    kw = dict(model="exact", scheme=scheme, duration=1.0, impulse_force=0.0)
+    tol = 1e-9
+    if scheme == "adaptive":
+        kw.update(rtol=1e-9, atol=1e-12)
+        tol = 1e-7
+    a = simulate(chair, 0.75, slope=(3.0, 1.0), **kw)
+    b = simulate(chair, 0.75, slope=(-3.0, 1.0), **kw)
+    assert a.t.shape == b.t.shape
+    for name, sign in (("x", 1), ("u", 1), ("y", -1), ("heading", -1), ("yaw_rate", -1), ("v", -1)):
+        x, y = getattr(a, name), sign * getattr(b, name)
+        np.testing.assert_allclose(x, y, rtol=0, atol=tol * max(float(np.max(np.abs(x))), 1e-12), err_msg=name)
+    np.testing.assert_allclose(a.eta, -b.beta, rtol=0, atol=tol * float(np.max(np.abs(a.eta))))
+    assert np.max(np.abs(a.heading)) > math.radians(1.0)       # a real turn, not a trivially symmetric zero
+
+
+# -- turn directions --------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("scheme", ["wchair", "adaptive"])
+def test_front_casters_turn_downhill_rear_casters_uphill(scheme):
+    """The plane falls to the right (+): downhill is a clockwise (+) heading change (issue 12, 'what is known')."""
+    kw = dict(model="exact", scheme=scheme, duration=0.5, impulse_force=0.0, slope=(2.0, 0.0))
+    assert simulate(FRONT, 0.75, **kw).heading[-1] > math.radians(1.0)
+    assert simulate(EJ, 0.75, **kw).heading[-1] < -math.radians(1.0)
+    eq = solve(FRONT, -2.0, 0.75)
+    assert simulator_path(FRONT, eq, scheme=scheme, duration=0.5).turn == "downhill"
+    eq = solve(EJ, -2.0, 0.75)
+    assert simulator_path(EJ, eq, scheme=scheme, duration=0.5).turn == "uphill"
+
+
+# -- agreement with stability.slope.uncorrected ----------------------------------------------------------------------
+
+@pytest.mark.parametrize("chair, t_end", [(FRONT, 1.0), (EJ, 0.6)], ids=["front-caster", "ej-premier"])
+def test_simulator_agrees_with_slope_integration(chair, t_end):
+    """2 deg cross slope, frictionless pins, no viscous damping, coasting from the held equilibrium.
+
+    Same equations, two integrations: the adaptive scheme (loads consistent with the forces, as the slope
+    model) agrees with solve_ivp to 1e-4 rad in heading; WCHAIR's scheme (1 ms Euler step, loads of the
+    previous step) within 2 % of the heading change.  Over the first second (the E&J Premier's casters
+    swing 30 deg at 0.65 s, where the slope integration stops).
+    """
+    c = chair.replace(**FRICTIONLESS)
+    eq = solve(c, 2.0, 0.75)
+    ref = uncorrected_path(c, eq, duration=t_end, coast=True)
+    tt = np.linspace(0.0, t_end, 41)
+    href = np.interp(tt, ref.t, ref.heading)
+    swing = float(np.max(np.abs(href - href[0])))
+    assert swing > math.radians(3.0)
+    for scheme, tol in (("adaptive", 1e-4), ("wchair", 0.02 * swing)):
+        sim = simulator_path(c, eq, scheme=scheme, duration=t_end + 0.02, rtol=1e-9, atol=1e-11) \
+            if scheme == "adaptive" else simulator_path(c, eq, scheme=scheme, duration=t_end + 0.02)
+        assert sim.t[-1] >= t_end
+        np.testing.assert_allclose(np.interp(tt, sim.t, sim.heading), href, rtol=0, atol=tol, err_msg=scheme)
+        np.testing.assert_allclose(np.interp(tt, sim.t, sim.y), np.interp(tt, ref.t, ref.y), rtol=0,
+                                   atol=max(tol, 1e-4), err_msg=scheme)
+
+
+def test_simulator_slope_is_the_same_plane():
+    """The plane seen from the held heading has the same gravity: |g_in| and gn unchanged."""
+    eq = solve(FRONT, 4.0, 0.75, 2.0)
+    cross, grade = simulator_slope(FRONT, eq)
+    a = msl.gravity(FRONT.g, math.radians(cross), math.radians(grade), 0.0)
+    b = msl.gravity(FRONT.g, math.radians(eq.cross_slope_deg), math.radians(eq.grade_deg),
+                    math.radians(eq.heading_deg))
+    np.testing.assert_allclose(a, b, rtol=1e-13, atol=1e-13)
+
+
+# -- grade ------------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("scheme", ["wchair", "adaptive"])
+@pytest.mark.parametrize("grade", [5.0, -3.0])
+def test_grade_speed_closed_form(scheme, grade):
+    """Rolling resistance off, no side forces: u = U - g sin(theta) t, x = U t - g sin(theta) t^2/2."""
+    res = simulate(EJ, 0.75, model="exact", scheme=scheme, duration=1.0, impulse_force=0.0, slope=(0.0, grade))
+    a = -EJ.g * math.sin(math.radians(grade))
+    np.testing.assert_allclose(res.u, 0.75 + a * res.t, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(res.x, 0.75 * res.t + 0.5 * a * res.t ** 2, rtol=1e-9, atol=1e-12)
+    assert np.max(np.abs(res.heading)) < 1e-12
+
+
+# -- compiled vs reference -----------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("casters", ["free", "locked"])
+def test_compiled_matches_reference_paths(casters):
+    kw = dict(model="exact", duration=1.0, slope=(2.0, 3.0), casters=casters)
+    comp = simulate(EJ, 0.75, **kw)
+    batch = simulate_batch([EJ, FRONT], [0.75, 0.6], progress=False, sample=0.001, **kw)
+    _same_states(batch[0], comp)                                            # one arithmetic, alone or batched
+    with reference_engine():
+        ref1 = simulate(EJ, 0.75, **kw)
+        refb = simulate_batch([EJ, FRONT], [0.75, 0.6], progress=False, sample=0.001, **kw)
+    assert comp.settings["engine"] == "compiled" and ref1.settings["engine"] == "python"
+    _close(comp, ref1, 1e-9)
+    _close(batch[1], refb[1], 1e-9)
+
+
+def test_adaptive_compiled_matches_python_rhs():
+    """Same right-hand side compiled and in Python; LSODA may take a different step on a rounding-level
+    difference, so the two agree to the integration error (rtol = 1e-9 here), tested at 1e-8 of the signal."""
+    kw = dict(model="exact", scheme="adaptive", duration=1.0, slope=(2.0, -2.0), impulse_force=0.0, rtol=1e-9,
+              atol=1e-12)
+    comp = simulate(FRONT, 0.75, **kw)
+    py = simulate(FRONT, 0.75, yaw_moment=lambda t, s: 0.0, **kw)
+    assert comp.settings["engine"] == "compiled" and py.settings["engine"] == "python"
+    _close(comp, py, 1e-8)
+
+
+# -- inputs ------------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("slope", [(15.5, 0.0), (0.0, -16.0), (math.nan, 0.0), (1.0,), "flat"])
+def test_bad_slope_refused(slope):
+    with pytest.raises(ValueError, match="slope=.*valid range"):
+        simulate(EJ, 0.75, model="exact", slope=slope)
+
+
+def test_thesis_model_refused_on_slope():
+    with pytest.raises(ValueError, match="model='thesis' is invalid on a slope"):
+        simulate(EJ, 0.75, slope=(2.0, 0.0))
+
+
+def test_cli_slope(capsys):
+    assert simulate_main(["--chair", "manual-front-caster", "--cross-slope", "2", "--duration", "0.5",
+                          "--impulse", "0", "0", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert (d["settings"]["cross_slope_deg"], d["settings"]["grade_deg"]) == (2.0, 0.0)
+    assert simulate_main(["--cross-slope", "20"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "slope" in err[0] and "15" in err[0]
