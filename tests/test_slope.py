@@ -176,6 +176,19 @@ def test_cli_json_and_errors(tmp_path, capsys):
     assert d["uncorrected_turn"] == "downhill"
     assert d["holding_yaw_moment_N_m"] == pytest.approx(2 * d["holding_yaw_moment_N_m_per_deg"])
     assert d["drive_forces"]["handrim_force_difference_N"] > 0  # push the downhill (right) rim harder
+    sim = d["uncorrected_simulator"]
+    assert set(sim) == {f"{s}_{f}" for s in ("adaptive", "wchair") for f in ("pin_friction", "frictionless")}
+    for run in sim.values():
+        assert run["uncorrected_turn"] == "downhill" and run["report_time_s"] == pytest.approx(1.0)
+    # Coulomb pin friction holds the casters back: a slower turn than frictionless pins
+    for s in ("adaptive", "wchair"):
+        assert 0 < sim[f"{s}_pin_friction"]["heading_change_deg"] < sim[f"{s}_frictionless"]["heading_change_deg"]
+    # frictionless: the same equations as the slope package's own integration (which keeps the mean drive,
+    # here only the crab angle's small forward weight component): within 2 %
+    assert sim["adaptive_frictionless"]["heading_change_deg"] == pytest.approx(
+        d["uncorrected_path"]["heading_change_deg"], rel=0.02)
+    assert main(["--chair", "manual-front-caster", "--cross-slope", "2", "--speed", "0.9", "--sim-time", "0"]) == 2
+    assert "--sim-time" in capsys.readouterr().err
     for argv, word in ((["--cross-slope", "25", "--speed", "1"], "cross_slope"),
                        (["--cross-slope", "2", "--speed", "-1"], "speed"),
                        (["--cross-slope", "15", "--speed", "0.75"], "cross_slope=15.0")):

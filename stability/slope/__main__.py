@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, run
 from ..output import atomic_write_text
 from .equilibrium import HandRim, drive_report, solve
-from .uncorrected import uncorrected_path
+from .uncorrected import simulator_path, uncorrected_path
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -21,6 +21,8 @@ def _parser() -> argparse.ArgumentParser:
                    help="cross slope (deg), positive falling to the right")
     p.add_argument("--grade", type=float, default=0.0, metavar="DEG", help="grade (deg), uphill + (default 0)")
     p.add_argument("--speed", type=float, required=True, metavar="U", help="speed along the path (m/s)")
+    p.add_argument("--sim-time", type=float, default=1.0, metavar="T",
+                   help="simulator runs of the uncorrected turn: report time (s, 0 < T <= 10; default 1)")
     p.add_argument("--drive", choices=("auto", "handrim", "motor"), default="auto",
                    help="report hand-rim forces or motor torques (auto: motor for power-* chairs)")
     p.add_argument("--wheel-radius", type=float, default=HandRim.wheel_radius, help="hand-rim drive: wheel radius (m)")
@@ -41,8 +43,27 @@ def _finite(x):
     return x
 
 
+def _simulated(chair, eq, t_end: float) -> dict:
+    """The simulator's uncorrected turn, both schemes, with the chair's Coulomb pin friction and without."""
+    out: dict = {}
+    for scheme in ("adaptive", "wchair"):
+        for friction in (True, False):
+            key = f"{scheme}_{'pin_friction' if friction else 'frictionless'}"
+            try:
+                path = simulator_path(chair, eq, scheme=scheme, duration=t_end, pin_friction=friction)
+            except ValueError as exc:   # e.g. viscous pin damping, a slope beyond the simulator's 15 deg
+                out[key] = {"error": str(exc)}
+                continue
+            d = path.to_dict()
+            d.pop("quasi_steady_yaw_rate_deg_s")
+            out[key] = d
+    return out
+
+
 def _body(a: argparse.Namespace) -> int:
     check_directory(a.json_file, "--json-file")
+    if not 0 < a.sim_time <= 10.0:
+        raise ValueError(f"--sim-time {a.sim_time!r} is invalid; valid range: 0 < T <= 10 s")
     chair = load_chair(a.chair, a.set)
     eq = solve(chair, a.cross_slope, a.speed, a.grade)
     per_deg_eq = eq if a.cross_slope != 0 else solve(chair, 1.0, a.speed, a.grade)
@@ -50,6 +71,7 @@ def _body(a: argparse.Namespace) -> int:
     kind = a.drive if a.drive != "auto" else ("motor" if chair.name.startswith("power") else "handrim")
     drive = drive_report(chair, eq, kind, HandRim(a.wheel_radius, a.handrim_radius) if kind == "handrim" else None)
     path = uncorrected_path(chair, eq) if a.cross_slope != 0 else None
+    sim = _simulated(chair, eq, a.sim_time) if a.cross_slope != 0 else None
     data = {
         "chair": chair.name, "cross_slope_deg": eq.cross_slope_deg, "grade_deg": eq.grade_deg, "speed_m_s": eq.speed,
         "holding_yaw_moment_N_m": abs(eq.holding_moment),
@@ -60,6 +82,7 @@ def _body(a: argparse.Namespace) -> int:
         "uncorrected_turn": path.turn if path else "none",
         "uncorrected_turn_statics": eq.uncorrected_turn,
         "uncorrected_path": path.to_dict() if path else None,
+        "uncorrected_simulator": sim,
         "heading_deg": eq.heading_deg, "caster_angle_left_deg": eq.eta_deg, "caster_angle_right_deg": eq.beta_deg,
         "slip_angles_deg": dict(zip(("caster_left", "caster_right", "main_left", "main_right"), eq.slips_deg,
                                     strict=True)),
@@ -84,6 +107,13 @@ def _body(a: argparse.Namespace) -> int:
     extra = (f", heading {path.heading_change_deg:+.1f} deg (downhill +) after {path.report_time:.2f} s"
              if path else "")
     print(f"  uncorrected: turns {turn}{extra}")
+    for key, d in (sim or {}).items():
+        if "error" in d:
+            print(f"  simulator {key.replace('_', ' ')}: not run ({d['error']})")
+            continue
+        print(f"  simulator {key.replace('_', ' ')}: turns {d['uncorrected_turn']}, heading "
+              f"{d['heading_change_deg']:+.2f} deg, yaw rate {d['yaw_rate_deg_s']:+.1f} deg/s "
+              f"at {d['report_time_s']:.2f} s")
     print(f"  crab {eq.heading_deg:+.3f} deg, casters {eq.eta_deg:+.3f} / {eq.beta_deg:+.3f} deg; loads "
           + ", ".join(f"{x:.1f}" for x in eq.loads) + " N (A, B, D, E)")
     if kind == "handrim":
