@@ -134,8 +134,8 @@ def test_simulator_agrees_with_slope_integration(chair, t_end):
 
     Same equations, two integrations: the adaptive scheme (loads consistent with the forces, as the slope
     model) agrees with solve_ivp to 1e-4 rad in heading; WCHAIR's scheme (1 ms Euler step, loads of the
-    previous step) within 2 % of the heading change.  Over the first second (the E&J Premier's casters
-    swing 30 deg at 0.65 s, where the slope integration stops).
+    previous step) within 0.5 % of the heading change (measured 0.03 % and 0.09 %).  Over the first second
+    (the E&J Premier's casters swing 30 deg at 0.65 s, where the slope integration stops).
     """
     c = chair.replace(**FRICTIONLESS)
     eq = solve(c, 2.0, 0.75)
@@ -144,7 +144,7 @@ def test_simulator_agrees_with_slope_integration(chair, t_end):
     href = np.interp(tt, ref.t, ref.heading)
     swing = float(np.max(np.abs(href - href[0])))
     assert swing > math.radians(3.0)
-    for scheme, tol in (("adaptive", 1e-4), ("wchair", 0.02 * swing)):
+    for scheme, tol in (("adaptive", 1e-4), ("wchair", 0.005 * swing)):
         sim = simulator_path(c, eq, scheme=scheme, duration=t_end + 0.02, rtol=1e-9, atol=1e-11) \
             if scheme == "adaptive" else simulator_path(c, eq, scheme=scheme, duration=t_end + 0.02)
         assert sim.t[-1] >= t_end
