@@ -643,3 +643,44 @@ def test_cg_ratio_span_keeps_static_loads_positive():
         check_static_loads(w.apply(fc, float(v)))
     loads = static_loads(w.apply(fc, lo))
     assert (loads["main_left"] + loads["main_right"]) / (fc.m * fc.g) == pytest.approx(0.02, abs=1e-9)
+
+
+# issue 14: nonlinear measures with Monte Carlo intervals on the uncertainty page and the summary
+def test_nonlinear_intervals_are_centred_on_the_reports_own_numbers(quick):
+    from stability.report.sections import nonlinear_uncertainty_text
+    from stability.report.uncertainty_data import QUICK_NONLINEAR_SAMPLES
+
+    d = quick.data
+    nl = d.uncertainty.nonlinear
+    assert nl is not None and nl.samples == min(SAMPLES, QUICK_NONLINEAR_SAMPLES) and nl.seed == 0
+    # same settings as the report's critical impulse and equal-instability speed: the same nominal numbers
+    k, e = nl.critical_impulse, nl.equal_instability
+    assert k.nominal == d.impulses[0].impulse_Ns and e is not None and e.nominal == d.chair_speed.speed
+    assert k.low < k.nominal < k.high and e.low < e.nominal < e.high
+    from stability.plotting import wrap_text
+
+    paras = nonlinear_uncertainty_text(d)
+    assert f"{k.low:.3g}-{k.high:.3g} N s" in paras[0] and f"{e.low:.3g}-{e.high:.3g} m/s" in paras[1]
+    lines = _page(quick, "parameter uncertainty").texts
+    for line in wrap_text("\n".join(paras), 190):                 # the page's footer, line by line
+        assert line.strip() in lines or line in lines
+    text = summary_text(d)
+    assert f"ej-premier {d.impulses[0].describe()}" in text
+    assert f"[95 %: {k.low:.3g}-{k.high:.3g} N s ({100 * k.finite_fraction:.0f} % of draws) over" in text
+    assert f"[95 %: {e.low:.3g}-{e.high:.3g} m/s" in text
+
+
+def test_nonlinear_zero_spread_collapses_onto_the_reports_numbers(quick):
+    from stability.measure.uncertainty import loads_uncertainty
+    from stability.report.uncertainty_data import UncertaintySpec, uncertainty_section
+
+    d = quick.data
+    spec = UncertaintySpec("zero.toml", loads_uncertainty('[s1]\ndistribution = "normal"\nstd = 0.0\n'), 5, 2)
+    sec = uncertainty_section(d.chair, spec, model="exact", quick=True, settings=d.settings, scheme=d.scheme)
+    nl = sec.nonlinear
+    assert nl is not None and nl.equal_instability is not None
+    imp, speed = d.impulses[0].impulse_Ns, d.chair_speed.speed
+    assert (nl.critical_impulse.low, nl.critical_impulse.high) == (imp, imp)
+    assert (nl.equal_instability.low, nl.equal_instability.high) == (speed, speed)
+    text = summary_text(dataclasses.replace(d, uncertainty=sec))
+    assert f"[95 %: {imp:.3g}-{imp:.3g} N s (100 % of draws) over zero.toml, zero spread]" in text

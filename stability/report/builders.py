@@ -277,8 +277,8 @@ def _p_shimmy(d: ReportData) -> Figure:
 
 
 def _p_uncertainty(d: ReportData) -> Figure:
-    return uncertainty_page(d, _title(d, "parameter uncertainty: linear results with intervals (issue 14)"),
-                            _subtitle(d))
+    return uncertainty_page(d, _title(d, "parameter uncertainty: linear and nonlinear results with intervals "
+                                         "(issue 14)"), _subtitle(d))
 
 
 def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:

@@ -245,7 +245,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     log : callable, optional
         Called with the name of each finished stage.
     uncertainty : UncertaintySpec, optional
-        Parameter distributions for the linear intervals (``--uncertainty FILE``).
+        Parameter distributions for the linear and nonlinear intervals (``--uncertainty FILE``).
 
     Returns
     -------
@@ -342,7 +342,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         slope = slope_section(c)
         shimmy_note = shimmy_unavailable(c)
         shimmy = None if shimmy_note else shimmy_section(c, s.shimmy_trails, s.shimmy_speeds)
-        unc = None if uncertainty is None else uncertainty_section(c, uncertainty, model=model, quick=s.quick)
+        unc = None if uncertainty is None else uncertainty_section(c, uncertainty, model=model, quick=s.quick,
+                                                                   settings=s, scheme=scheme)
         stage("slope, shimmy and uncertainty")
     return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
                       list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,

@@ -7,13 +7,15 @@ import math
 from matplotlib.figure import Figure
 
 from .. import plotting as P
+from ..reference import LEVEL, THESIS_PUSH
 from ..shimmy.plots import plot_trail_chart
 from ..slope.plots import plot_holding
+from ..study.uncertain import MeasureInterval
 from .compute import ReportData
 from .slope_data import TREADMILL
 
-__all__ = ["footer", "slope_text", "shimmy_text", "uncertainty_text", "slope_page", "shimmy_page", "uncertainty_page",
-           "section_drops"]
+__all__ = ["footer", "slope_text", "shimmy_text", "uncertainty_text", "nonlinear_uncertainty_text", "slope_page",
+           "shimmy_page", "uncertainty_page", "section_drops"]
 
 
 def _cm(x: float) -> str:
@@ -148,8 +150,48 @@ def uncertainty_text(d: ReportData) -> list[str]:
     else:
         out.append(f"Dominant parameter: {dom[0]} ({100 * dom[1]:.0f} % of the variance, first order); then "
                    + ", ".join(f"{n} {100 * x:.0f} %" for n, x in iv.dominant_parameters[1:]) + ".")
-    out.append("Only the linear results carry these intervals; the nonlinear numbers (critical impulse, "
-               "equal-instability speed) are shown over the push, pin-friction and model ranges instead.")
+    out.extend(nonlinear_uncertainty_text(d))
+    return out
+
+
+def _shares(m: MeasureInterval) -> str:
+    dom = m.dominant
+    if dom is None:
+        return "no parameter moves it (zero spread)"
+    rest = ", ".join(f"{n} {100 * x:.0f} %" for n, x in m.shares[1:] if x >= 0.005)
+    return f"dominated by {dom[0]} ({100 * dom[1]:.0f} %" + (f"; then {rest})" if rest else ")")
+
+
+def nonlinear_uncertainty_text(d: ReportData) -> list[str]:
+    """Paragraphs on the nonlinear measures' intervals (critical impulse, equal-instability speed).
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    list of str
+    """
+    u = d.uncertainty
+    if u is None or u.nonlinear is None:
+        return []
+    nl = u.nonlinear
+    lvl = f"{100 * nl.level:g} %"
+    k = nl.critical_impulse
+    out = [f"Nonlinear measures ({nl.samples} draws of the same file, seed {nl.seed}, {nl.model} model; pin "
+           f"friction acts here, not in the linear results): critical impulse at {nl.speed:g} m/s (force held "
+           f"{THESIS_PUSH.duration:g} s at the c.g.) {lvl}: {k.describe()}, nominal {k.nominal:.3g} N s, "
+           f"{_shares(k)}." + (f" No push up to the largest tried spins the chair in {100 * k.outside[0][1]:.0f} % "
+                               "of draws." if k.outside and k.outside[0][1] > 0 else "")]
+    e = nl.equal_instability
+    if e is not None:
+        beyond = "; ".join(f"{100 * f:.0f} % of draws {k_} the searched speeds" for k_, f in e.outside if f > 0)
+        out.append(f"Equal-instability speed ({lvl}, against {nl.reference}: {nl.reference_time:.2f} s to "
+                   f"{LEVEL:g} rad/s under {nl.push}): {e.describe()}, nominal "
+                   + (f"{e.nominal:.3g} m/s" if math.isfinite(e.nominal) else "outside the searched speeds")
+                   + f", {_shares(e)}" + (f"; {beyond}" if beyond else "") + ". No delta-method check: the "
+                   "bisections' resolution is coarser than a finite-difference step.")
     return out
 
 
@@ -259,7 +301,7 @@ def shimmy_page(d: ReportData, title: str, sub: str) -> Figure:
 
 
 def uncertainty_page(d: ReportData, title: str, sub: str) -> Figure:
-    """The uncertainty page: growth-rate band against speed, variance shares, intervals in words.
+    """The uncertainty page: growth-rate band against speed, variance shares (linear and nonlinear), text.
 
     Parameters
     ----------
@@ -273,12 +315,20 @@ def uncertainty_page(d: ReportData, title: str, sub: str) -> Figure:
     u = d.uncertainty
     assert u is not None
     iv = u.intervals
-    fig, axes = P.page(title, sub, nrows=1, ncols=2, gridspec_kw={"width_ratios": [1.4, 1]})
+    nl = u.nonlinear
+    ratios = [1.4, 1] + ([1] if nl is not None else [])
+    fig, axes = P.page(title, sub, nrows=1, ncols=len(ratios), gridspec_kw={"width_ratios": ratios})
     P.growth_rate_band(iv.speeds, u.nominal_rates, [r[0] for r in iv.rate], [r[1] for r in iv.rate], axes[0, 0],
                        level=iv.level, delta=([r[0] for r in iv.rate_delta], [r[1] for r in iv.rate_delta]),
                        title=f"{d.chair.name}: growth rate of the least stable mode, free casters ({d.model} model)")
     names = [n for n, _ in iv.dominant_parameters]
     P.variance_shares(names, [x for _, x in iv.dominant_parameters], axes[0, 1],
-                      title="which parameter dominates\n(first-order variance share, mean over outputs)")
+                      title="linear results: which parameter dominates\n(first-order variance share, mean over "
+                            "outputs)")
+    if nl is not None:
+        k = dict(nl.critical_impulse.shares)
+        P.variance_shares(names, [k.get(n, 0.0) for n in names], axes[0, 2],
+                          title=f"critical impulse at {nl.speed:g} m/s: which parameter\ndominates (first-order "
+                                "variance share)")
     bottom = footer(fig, "\n".join(uncertainty_text(d)))
     return P.finish(fig, top=0.86, bottom=bottom)

@@ -264,6 +264,27 @@ def _rate_interval(d: ReportData) -> str:
             + (f", dominated by {dom[0]}" if dom is not None else ", zero spread") + "]")
 
 
+def _impulse_interval(d: ReportData) -> str:
+    u = d.uncertainty
+    if u is None or u.nonlinear is None:
+        return ""
+    k = u.nonlinear.critical_impulse
+    dom = k.dominant
+    return (f" [{100 * u.nonlinear.level:g} %: {k.describe()} over {u.spec.source}"
+            + (f", dominated by {dom[0]}" if dom is not None else ", zero spread") + "]")
+
+
+def _nonlinear_lines(d: ReportData) -> list[str]:
+    u = d.uncertainty
+    e = None if u is None or u.nonlinear is None else u.nonlinear.equal_instability
+    if u is None or u.nonlinear is None or e is None:
+        return []
+    dom = e.dominant
+    return [f"- Equal-instability speed of {d.chair.name} over {u.spec.source} ({u.nonlinear.samples} draws, "
+            f"reference case fixed): [{100 * u.nonlinear.level:g} %: {e.describe()}"
+            + (f", dominated by {dom[0]}" if dom is not None else ", zero spread") + "]."]
+
+
 def _verdict(d: ReportData) -> str:
     c, s, cs = d.chair, d.summary, d.chair_speed
     ref = d.thesis.speeds[REFERENCE_CHAIR]
@@ -306,15 +327,17 @@ def summary_text(d: ReportData) -> str:
     row = next((r for r in s.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
     if row is not None:
         out.append(f"- Linear growth rate (largest real part; negative: decay) at {REFERENCE_SPEED:g} m/s, free "
-                   f"casters: {row['rate_1_s']:.3g} 1/s ({d.model} model)" + _rate_interval(d) + _other_rate(d) + ".")
+                   f"casters: {row.rate:.3g} 1/s ({d.model} model)" + _rate_interval(d) + _other_rate(d) + ".")
     imp = [x for x in d.impulses if x is not None]
     if imp:
         parts = [f"{x.chair_name} {x.describe()}" + (f" ({x.kick_m_s:.3g} m/s per unit mass)"
-                                                      if x.kick_m_s is not None else "") for x in imp]
+                                                      if x.kick_m_s is not None else "")
+                 + (_impulse_interval(d) if i == 0 else "") for i, x in enumerate(imp)]
         out.append(f"- Critical impulse at {REFERENCE_SPEED:g} m/s (smallest push at the c.g., force held "
                    f"{THESIS_PUSH.duration:g} s, that brings |yaw rate| to {d.thesis.criterion.yaw_rate:g} rad/s "
                    f"within {d.thesis.criterion.duration:g} s): " + "; ".join(parts)
                    + f". The thesis's push is {push_text(d)}.")
+    out.extend(_nonlinear_lines(d))
     out.extend(_interval_lines(d))
     out.extend(_section_lines(d))
     out.append(f"- Reference case ({REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s, {push_text(d)}): |yaw rate| reaches "
@@ -364,4 +387,4 @@ def summary_text(d: ReportData) -> str:
 
 def _other_rate(d: ReportData) -> str:
     row = next((r for r in d.summary_other.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
-    return "" if row is None else f", {row['rate_1_s']:.3g} 1/s ({d.summary_other.model} model)"
+    return "" if row is None else f", {row.rate:.3g} 1/s ({d.summary_other.model} model)"

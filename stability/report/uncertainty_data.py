@@ -1,7 +1,8 @@
-"""The report's parameter-uncertainty section (issue 14): linear intervals over an uncertainty file.
+"""The report's parameter-uncertainty section (issue 14): linear and nonlinear intervals over an uncertainty file.
 
 :func:`stability.linear.intervals.linear_intervals` (Monte Carlo, seeded; delta method as a check) gives the
-growth-rate band against speed, the critical-speed intervals and the dominant parameters.
+growth-rate band against speed, the critical-speed intervals and the dominant parameters;
+:func:`stability.study.uncertain.nonlinear_intervals` the critical impulse and equal-instability speed intervals.
 """
 
 from __future__ import annotations
@@ -15,13 +16,20 @@ from ..linear.batch import ChairBatch
 from ..linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
 from ..measure.uncertainty import Uncertainty
 from ..reference import REFERENCE_SPEED
+from ..study.uncertain import NonlinearIntervals, nonlinear_intervals
+from .settings import Settings
 
-__all__ = ["UncertaintySpec", "UncertaintySection", "uncertainty_section", "BAND_SPEEDS", "QUICK_BAND_SPEEDS"]
+__all__ = ["UncertaintySpec", "UncertaintySection", "uncertainty_section", "BAND_SPEEDS", "QUICK_BAND_SPEEDS",
+           "NONLINEAR_SAMPLES", "QUICK_NONLINEAR_SAMPLES"]
 
 #: Speeds of the growth-rate band, m/s (the reference speed among them).
 BAND_SPEEDS = tuple(float(x) for x in np.round(np.linspace(0.25, 3.0, 12), 4))
 #: The same for ``--quick``.
 QUICK_BAND_SPEEDS = (0.25, 0.75, 1.5, 2.25, 3.0)
+#: Most Monte Carlo draws of the nonlinear measures (``--samples`` caps it; each draw is a few hundred simulations).
+NONLINEAR_SAMPLES = 200
+#: The same for ``--quick``.
+QUICK_NONLINEAR_SAMPLES = 40
 
 
 @dataclass(frozen=True)
@@ -54,7 +62,7 @@ class UncertaintySpec:
 
 @dataclass(frozen=True, eq=False)
 class UncertaintySection:
-    """Intervals of the linear results over the uncertain parameters.
+    """Intervals of the linear and nonlinear results over the uncertain parameters.
 
     Attributes
     ----------
@@ -63,11 +71,16 @@ class UncertaintySection:
         At the band speeds (``intervals.speeds``), with the critical speeds and dominant parameters.
     nominal_rates : ndarray
         Growth rate at the band speeds for the nominal chair, 1/s (free casters).
+    nonlinear : NonlinearIntervals or None
+        Critical impulse at the reference speed and equal-instability speed, with the
+        report's simulation settings (at most :data:`NONLINEAR_SAMPLES` draws,
+        :data:`QUICK_NONLINEAR_SAMPLES` with ``--quick``); None when not computed.
     """
 
     spec: UncertaintySpec
     intervals: LinearIntervals
     nominal_rates: np.ndarray
+    nonlinear: NonlinearIntervals | None = None
 
     def rate_at(self, speed: float = REFERENCE_SPEED) -> tuple[float, float]:
         """The growth-rate interval at ``speed`` (one of the band speeds), 1/s."""
@@ -81,7 +94,9 @@ class UncertaintySection:
         return top[0] if top and top[0][1] > 0 else None
 
 
-def uncertainty_section(chair: Chair, spec: UncertaintySpec, *, model: str, quick: bool) -> UncertaintySection:
+def uncertainty_section(chair: Chair, spec: UncertaintySpec, *, model: str, quick: bool,
+                        settings: Settings | None = None, scheme: str = "wchair",
+                        nonlinear: bool = True) -> UncertaintySection:
     """Compute the section (see :class:`UncertaintySection`).
 
     Parameters
@@ -90,13 +105,29 @@ def uncertainty_section(chair: Chair, spec: UncertaintySpec, *, model: str, quic
     spec : UncertaintySpec
     model : {"exact", "thesis"}
     quick : bool
-        Fewer band speeds.
+        Fewer band speeds and nonlinear draws.
+    settings : Settings, optional
+        The report's simulation settings (default ``Settings.for_mode(quick)``): the nonlinear
+        nominal values then equal the report's own critical impulse and equal-instability speed.
+    scheme : {"wchair", "adaptive"}
+        Integration scheme of the simulations.
+    nonlinear : bool
+        Also the nonlinear intervals.
 
     Returns
     -------
     UncertaintySection
     """
+    s = settings or Settings.for_mode(quick)
     speeds = QUICK_BAND_SPEEDS if quick else BAND_SPEEDS
     iv = linear_intervals(chair, spec.uncertainty, model=model, speeds=speeds, samples=spec.samples, seed=spec.seed)
     nominal = ChairBatch([chair], model).growth_rates(np.asarray(speeds))[0]
-    return UncertaintySection(spec, iv, np.asarray(nominal, dtype=float))
+    nl = None
+    if nonlinear:
+        n = min(int(spec.samples), QUICK_NONLINEAR_SAMPLES if quick else NONLINEAR_SAMPLES)
+        # the tolerances of the report's own critical impulses and equal-instability speeds (compute.compute)
+        nl = nonlinear_intervals(chair, spec.uncertainty, speed=REFERENCE_SPEED, model=model, samples=n,
+                                 seed=spec.seed, scheme=scheme, horizon=s.duration, dt=s.dt,
+                                 rel_tol=0.05 if s.quick else 0.005, bracket=s.bracket, tol=s.tol,
+                                 candidates=s.candidates)
+    return UncertaintySection(spec, iv, np.asarray(nominal, dtype=float), nl)
