@@ -320,15 +320,13 @@ def uncertainty_page(d: ReportData, title: str, sub: str) -> Figure:
     fig, axes = P.page(title, sub, nrows=1, ncols=len(ratios), gridspec_kw={"width_ratios": ratios})
     P.growth_rate_band(iv.speeds, u.nominal_rates, [r[0] for r in iv.rate], [r[1] for r in iv.rate], axes[0, 0],
                        level=iv.level, delta=([r[0] for r in iv.rate_delta], [r[1] for r in iv.rate_delta]),
-                       title=f"{d.chair.name}: growth rate of the least stable mode, free casters ({d.model} model)")
+                       title=f"{d.chair.name}: growth rate of the least stable mode,\nfree casters ({d.model} model)")
     names = [n for n, _ in iv.dominant_parameters]
     P.variance_shares(names, [x for _, x in iv.dominant_parameters], axes[0, 1],
-                      title="linear results: which parameter dominates\n(first-order variance share, mean over "
-                            "outputs)")
+                      title="linear results: which parameter dominates\n(first-order share, mean over outputs)")
     if nl is not None:
         k = dict(nl.critical_impulse.shares)
         P.variance_shares(names, [k.get(n, 0.0) for n in names], axes[0, 2],
-                          title=f"critical impulse at {nl.speed:g} m/s: which parameter\ndominates (first-order "
-                                "variance share)")
+                          title=f"critical impulse at {nl.speed:g} m/s:\nwhich parameter dominates (first order)")
     bottom = footer(fig, "\n".join(uncertainty_text(d)))
     return P.finish(fig, top=0.86, bottom=bottom)
