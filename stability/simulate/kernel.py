@@ -13,6 +13,7 @@ operations in the same order (tested bit for bit against them).
 from __future__ import annotations
 
 import hashlib
+import os
 import math
 from pathlib import Path
 
@@ -475,7 +476,9 @@ def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
             return
         for d in kernels:
             d._cache.flush()
-        stamp.write_text(digest)
+        tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")   # atomic: a concurrent reader sees old or new
+        tmp.write_text(digest)
+        os.replace(tmp, stamp)
     except (AttributeError, OSError):   # a numba without these internals, or a read-only cache: nothing to do
         return
 
