@@ -13,8 +13,8 @@ operations in the same order (tested bit for bit against them).
 from __future__ import annotations
 
 import hashlib
-import os
 import math
+import os
 from pathlib import Path
 
 import numpy as np
