@@ -15,8 +15,10 @@ from .validation import linearisation_check, omitted_effects
 
 if TYPE_CHECKING:
     from .linear.intervals import LinearIntervals
+    from .study.uncertain import NonlinearIntervals
 
-__all__ = ["simulator_checks", "summary_dict", "interpretation", "format_summary", "intervals_dict"]
+__all__ = ["simulator_checks", "summary_dict", "interpretation", "format_summary", "intervals_dict",
+           "nonlinear_intervals_dict"]
 
 
 def _first(crossings, direction: str | None = None):
@@ -79,7 +81,28 @@ def intervals_dict(iv: LinearIntervals) -> dict:
             "note": "Coulomb pin friction has no linearisation: it does not move the linear results"}
 
 
-def summary_dict(s: StabilitySummary, checks: list | None = None, intervals: LinearIntervals | None = None) -> dict:
+def nonlinear_intervals_dict(nl: NonlinearIntervals) -> dict:
+    """The nonlinear keys of the ``uncertainty`` block of the JSON summary.
+
+    Parameters
+    ----------
+    nl : NonlinearIntervals
+
+    Returns
+    -------
+    dict
+        ``critical_impulse_Ns_interval`` and ``equal_instability_speed_m_s_interval``
+        (``[low, high]``, None where no draw has a value) and ``nonlinear`` (the full result).
+    """
+    eq = nl.equal_instability
+    k = nl.critical_impulse
+    return {"critical_impulse_Ns_interval": _pair(k.low, k.high),
+            "equal_instability_speed_m_s_interval": None if eq is None else _pair(eq.low, eq.high),
+            "nonlinear": nl.to_dict()}
+
+
+def summary_dict(s: StabilitySummary, checks: list | None = None, intervals: LinearIntervals | None = None,
+                 nonlinear: NonlinearIntervals | None = None) -> dict:
     """The JSON structure printed by ``--json``.
 
     Parameters
@@ -90,6 +113,8 @@ def summary_dict(s: StabilitySummary, checks: list | None = None, intervals: Lin
     intervals : LinearIntervals, optional
         With it, each divergence row gains ``rate_1_s_interval``, each critical
         speed a ``critical_speed_m_s_interval``, and the top level ``uncertainty``.
+    nonlinear : NonlinearIntervals, optional
+        With ``intervals``: ``uncertainty`` gains :func:`nonlinear_intervals_dict`.
 
     Returns
     -------
@@ -134,6 +159,8 @@ def summary_dict(s: StabilitySummary, checks: list | None = None, intervals: Lin
             out[key]["critical_speed_m_s_interval"] = _pair(trip[0], trip[1])
             out[key]["critical_speed_exists_fraction"] = trip[2]
         out["uncertainty"] = intervals_dict(intervals)
+        if nonlinear is not None:
+            out["uncertainty"].update(nonlinear_intervals_dict(nonlinear))
     return d
 
 
@@ -181,7 +208,8 @@ def interpretation(s: StabilitySummary) -> str:
     return msg + "."
 
 
-def format_summary(s: StabilitySummary, checks: list | None = None, intervals: LinearIntervals | None = None) -> str:
+def format_summary(s: StabilitySummary, checks: list | None = None, intervals: LinearIntervals | None = None,
+                   nonlinear: NonlinearIntervals | None = None) -> str:
     """The summary as readable text.
 
     Parameters
@@ -191,6 +219,8 @@ def format_summary(s: StabilitySummary, checks: list | None = None, intervals: L
         Rows of :func:`simulator_checks`.
     intervals : LinearIntervals, optional
         Intervals over the parameter uncertainty, printed after the point values.
+    nonlinear : NonlinearIntervals, optional
+        Intervals of the critical impulse and the equal-instability speed, printed after them.
 
     Returns
     -------
@@ -230,6 +260,8 @@ def format_summary(s: StabilitySummary, checks: list | None = None, intervals: L
                          f"{100 * r['relative_difference']:+11.1f}%")
     if intervals is not None:
         lines += _interval_lines(intervals)
+    if nonlinear is not None:
+        lines += _nonlinear_lines(nonlinear)
     lines += ["", interpretation(s)]
     return "\n".join(lines)
 
@@ -254,4 +286,23 @@ def _interval_lines(iv: LinearIntervals) -> list[str]:
     top = [f"{n} ({100 * sh:.0f} %)" for n, sh in iv.dominant_parameters[:3] if sh > 0.005]
     out.append("  the variance comes mostly from: " + (", ".join(top) if top else "no parameter (no spread)")
                + "; Coulomb pin friction has no linearisation and moves none of these")
+    return out
+
+
+def _nonlinear_lines(nl: NonlinearIntervals) -> list[str]:
+    def one(name: str, m: Any) -> str:
+        nominal = _fmt(m.nominal if math.isfinite(m.nominal) else None, m.unit)
+        top = [f"{n} ({100 * sh:.0f} %)" for n, sh in m.shares[:3] if sh > 0.005]
+        out = "none in any draw" if not m.finite_fraction > 0 else f"{m.low:.4g} to {m.high:.4g} {m.unit}"
+        beyond = ", ".join(f"{k} {100 * f:.0f} %" for k, f in m.outside if f > 0)
+        return (f"  {name:42s} {out}   (nominal {nominal}; from {', '.join(top) if top else 'no parameter'}"
+                + (f"; no value: {beyond}" if beyond else "") + ")")
+
+    k, e = nl.critical_impulse, nl.equal_instability
+    out = ["", f"Nonlinear, with the same uncertainty ({100 * nl.level:g} %, {nl.samples} draws, seed {nl.seed}, "
+               f"{nl.model} model; pin friction acts here):",
+           one(f"critical impulse at {nl.speed:g} m/s", k)]
+    if e is not None:
+        out.append(one("equal-instability speed", e))
+        out.append(f"  reference case {nl.reference}, push {nl.push}")
     return out

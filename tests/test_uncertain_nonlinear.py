@@ -108,3 +108,25 @@ def test_to_dict_is_json_ready():
     assert d["critical_impulse_Ns"]["interval"] == [iv.critical_impulse.low, iv.critical_impulse.high]
     assert np.isnan(iv.reference_time)
     assert dataclasses.replace(iv, samples=3) == iv
+
+
+def test_critical_speed_command_prints_the_nonlinear_intervals(tmp_path, capsys):
+    import json
+
+    from stability.critical_speed.command import main
+
+    unc = tmp_path / "unc.toml"
+    unc.write_text(friction(0.3))
+    out = tmp_path / "out.json"
+    args = ["--chair", "ej-premier", "--uncertainty", str(unc), "--samples", "20", "--seed", "3"]
+    assert main(args + ["--nonlinear", "--nonlinear-samples", "4", "--json-file", str(out)]) == 0
+    u = json.loads(out.read_text())["uncertainty"]
+    nl = nonlinear_intervals(EJ, loads_uncertainty(friction(0.3)), samples=4, seed=3)   # the command's defaults
+    assert u["critical_impulse_Ns_interval"] == [nl.critical_impulse.low, nl.critical_impulse.high]
+    assert nl.equal_instability is not None
+    assert u["equal_instability_speed_m_s_interval"] == [nl.equal_instability.low, nl.equal_instability.high]
+    assert u["nonlinear"]["critical_impulse_Ns"]["shares"]["pin_friction"] == pytest.approx(1.0)
+    text = capsys.readouterr().out
+    assert f"{nl.critical_impulse.low:.4g} to {nl.critical_impulse.high:.4g} N s" in text
+    assert main(["--nonlinear"]) == 2
+    assert "--nonlinear needs --uncertainty FILE" in capsys.readouterr().err

@@ -37,6 +37,8 @@ __all__ = ["main", "build_parser"]
 
 #: Largest --samples (bounded work: about 1 ms per drawn chair); equals stability.linear.intervals.MAX_SAMPLES.
 MAX_SAMPLES = 20_000
+#: Largest --nonlinear-samples; equals stability.study.uncertain.MAX_NONLINEAR_SAMPLES.
+MAX_NONLINEAR_SAMPLES = 2000
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -45,7 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
     Options: the chair options (:func:`stability.cli.add_chair_options`), ``--model``,
     ``--speeds`` (divergence table, m/s), ``--max-speed`` (upper end of the
     critical-speed search, m/s), ``--uncertainty FILE`` with ``--samples``,
-    ``--seed`` and ``--level``, and the JSON options.
+    ``--seed`` and ``--level`` (and ``--nonlinear`` with ``--nonlinear-samples``), and the JSON options.
 
     Returns
     -------
@@ -64,6 +66,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--samples", type=int, default=1000, help="Monte Carlo draws with --uncertainty (default 1000)")
     p.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
     p.add_argument("--level", type=float, default=0.95, help="interval coverage (default 0.95)")
+    p.add_argument("--nonlinear", action="store_true",
+                   help="with --uncertainty: also the intervals of the critical impulse at 0.75 m/s and the "
+                        "equal-instability speed (simulations; about 0.05-0.1 s per draw)")
+    p.add_argument("--nonlinear-samples", type=int, default=200,
+                   help="Monte Carlo draws of the nonlinear measures (1 to 2000, default 200)")
     add_json_options(p)
     return p
 
@@ -72,6 +79,11 @@ def _run(args: argparse.Namespace) -> int:
     check_outputs({"--json-file": args.json_file}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
     if args.uncertainty and not 1 <= args.samples <= MAX_SAMPLES:
         raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES} with --uncertainty")
+    if args.nonlinear and not args.uncertainty:
+        raise ValueError("--nonlinear needs --uncertainty FILE")
+    if args.nonlinear and not 1 <= args.nonlinear_samples <= MAX_NONLINEAR_SAMPLES:
+        raise ValueError(f"--nonlinear-samples {args.nonlinear_samples} is invalid; valid range: 1 to "
+                         f"{MAX_NONLINEAR_SAMPLES}")
     if not 0 < args.level < 1:
         raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
     c = load_chair(args.chair, args.set)
@@ -80,20 +92,27 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
     checks = simulator_checks(summary)
-    intervals = None
+    intervals = nonlinear = None
     if args.uncertainty:
-        # deferred: the uncertainty machinery costs start-up time the plain summary does not need
+        # deferred: the uncertainty machinery (and the simulator) cost start-up time the plain summary does not need
         from ..linear.intervals import linear_intervals
         from ..measure.uncertainty import load_uncertainty
+        from ..study.uncertain import nonlinear_intervals
 
-        intervals = linear_intervals(c, load_uncertainty(args.uncertainty), model=args.model, speeds=speeds,
-                                     max_speed=args.max_speed, samples=args.samples, seed=args.seed, level=args.level)
+        unc = load_uncertainty(args.uncertainty)
+        intervals = linear_intervals(c, unc, model=args.model, speeds=speeds, max_speed=args.max_speed,
+                                     samples=args.samples, seed=args.seed, level=args.level)
+        if args.nonlinear:
+            nonlinear = nonlinear_intervals(c, unc, model=args.model, samples=args.nonlinear_samples, seed=args.seed,
+                                            level=args.level)
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed,
-                   "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed, "level": args.level}
-        emit_json({**json_header(c, args.model, options), **summary_dict(summary, checks, intervals)}, args)
+                   "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed, "level": args.level,
+                   "nonlinear": args.nonlinear, "nonlinear_samples": args.nonlinear_samples if args.nonlinear else None}
+        emit_json({**json_header(c, args.model, options), **summary_dict(summary, checks, intervals, nonlinear)},
+                  args)
     if not args.json:
-        print(format_summary(summary, checks, intervals))
+        print(format_summary(summary, checks, intervals, nonlinear))
     return 0
 
 
