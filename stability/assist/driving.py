@@ -1,17 +1,16 @@
-"""Commanded driving in the nonlinear simulator: yaw-rate steps, ramps, a slalom; torque requirement.
+"""Commanded driving in the nonlinear simulator: yaw-rate steps, ramps, torque requirement, cross slope.
 
-The scheduled controller (:class:`~stability.assist.controller.DigitalController`)
-follows a yaw-rate command ``r_cmd(t)`` from the joystick at a constant
-forward speed (held by the drive's common-mode torque).  The torque
-requirement is the peak and RMS differential wheel torque of these runs and
-of the recovery from the reference push, against the traction limit
-``mu N r`` of a drive wheel.
+The commands and one commanded run are in :mod:`.commands` (re-exported here).
+The torque requirement is the peak and RMS differential wheel torque of these
+runs and of the recovery from the reference push, against the traction limit
+``mu N r`` of a drive wheel; :func:`slope_hold` checks the assist holding a
+straight line along a cross slope against the statics of
+:mod:`stability.slope.equilibrium`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -20,175 +19,27 @@ import numpy as np
 from .._validate import check_speed
 from ..reference import THESIS_PUSH
 from ..simulate import simulate
+from ..slope import equilibrium
+from ..slope.uncorrected import MAX_CASTER_SWING_DEG
 from ..statics import static_loads
-from .controller import TRACKING_TIME, DigitalController
+from .commands import (
+    COMMAND_FILTER,
+    LATERAL_ACCELERATION,
+    MAX_YAW_RATE,
+    CommandRun,
+    command_run,
+    ramp_command,
+    reference_command,
+    slalom_command,
+    step_command,
+)
 from .schedule import Schedule
 from .tracking import TrackingMetrics, step_metrics
 
 __all__ = ["MAX_YAW_RATE", "LATERAL_ACCELERATION", "step_command", "ramp_command", "slalom_command",
            "reference_command", "COMMAND_FILTER", "CommandRun", "command_run", "tracking_step", "traction_limit",
-           "TorqueRow", "torque_requirement", "TRACKING_SPEED", "TrackingRuns", "tracking_runs"]
-
-#: Largest yaw-rate command of the joystick (rad/s; ~46 deg/s, a common power-chair setting).
-MAX_YAW_RATE = 0.8
-#: Lateral acceleration of the reference turn (m/s^2): the command is min(MAX_YAW_RATE, a / U).
-LATERAL_ACCELERATION = 1.0
-
-
-def reference_command(speed: float) -> float:
-    """Yaw-rate step of the tracking check at ``speed``: ``min(MAX_YAW_RATE, LATERAL_ACCELERATION / U)`` (rad/s).
-
-    Parameters
-    ----------
-    speed : float
-        m/s.
-
-    Returns
-    -------
-    float
-    """
-    return min(MAX_YAW_RATE, LATERAL_ACCELERATION / check_speed(speed))
-
-
-def step_command(size: float, t0: float = 0.0) -> Callable[[float], float]:
-    """``r_cmd(t) = size`` from ``t0`` (rad/s).
-
-    Parameters
-    ----------
-    size : float
-        rad/s.
-    t0 : float
-        s.
-
-    Returns
-    -------
-    callable
-    """
-    return lambda t: size if t >= t0 else 0.0
-
-
-def ramp_command(rate: float, top: float) -> Callable[[float], float]:
-    """``r_cmd(t) = min(rate t, top)`` (rad/s; ``rate`` in rad/s^2).
-
-    Parameters
-    ----------
-    rate, top : float
-
-    Returns
-    -------
-    callable
-    """
-    return lambda t: math.copysign(min(abs(rate) * t, abs(top)), top)
-
-
-def slalom_command(amplitude: float, period: float) -> Callable[[float], float]:
-    """``r_cmd(t) = amplitude sin(2 pi t / period)`` (rad/s).
-
-    Parameters
-    ----------
-    amplitude : float
-        rad/s.
-    period : float
-        s.
-
-    Returns
-    -------
-    callable
-    """
-    return lambda t: amplitude * math.sin(2.0 * math.pi * t / period)
-
-
-@dataclass(frozen=True, eq=False)
-class CommandRun:
-    """One commanded run in the nonlinear simulator.
-
-    Attributes
-    ----------
-    speed : float
-        m/s.
-    t, yaw_rate, command, heading : ndarray
-        s, rad/s, rad/s, rad.
-    torque : ndarray
-        Commanded differential torque per wheel at the samples (N m).
-    torque_t : ndarray
-        Times of those samples (s; each value is held until the next).
-    peak_torque_N_m, rms_torque_N_m : float
-        Of ``torque``.
-    saturated_fraction : float
-        Share of samples at the torque limit.
-    result : SimulationResult
-    """
-
-    speed: float
-    t: np.ndarray
-    yaw_rate: np.ndarray
-    command: np.ndarray
-    heading: np.ndarray
-    torque: np.ndarray
-    torque_t: np.ndarray
-    peak_torque_N_m: float
-    rms_torque_N_m: float
-    saturated_fraction: float
-    result: Any
-
-
-def command_run(sched: Schedule, speed: float, command: Callable[[float], float], *, duration: float = 4.0,
-                impulse_force: float = 0.0, noise: bool = False, seed: int = 0, saturate: bool = True,
-                dt: float | str = "auto", command_filter_s: float = 0.0,
-                anti_windup: str = "back-calculation", tracking_time_s: float = TRACKING_TIME) -> CommandRun:
-    """Simulate the scheduled controller following ``command`` (WCHAIR scheme, exact model by default).
-
-    Parameters
-    ----------
-    sched : Schedule
-    speed : float
-        m/s.
-    command : callable
-        ``r_cmd(t)`` (rad/s).
-    duration : float
-        s.
-    impulse_force : float
-        Lateral push at the c.g. (N, for :data:`~stability.reference.THESIS_PUSH`'s duration).
-    noise : bool
-        Gyro noise and bias.
-    seed : int
-        Seed of the gyro noise.
-    saturate : bool
-        Limit the torque at the drive train's limit.
-    dt : float or "auto"
-        Step of the WCHAIR scheme (s); ``"auto"``: 1 ms, or 1 ms / k below
-        the speed where the tire modes (``-C/(m U)``) need a smaller step
-        (about 0.3 m/s for the preset).
-    command_filter_s : float
-        Reference-model time constant (s).
-    anti_windup : str
-        Integrator protection (:data:`~stability.assist.controller.ANTI_WINDUP`).
-    tracking_time_s : float
-        Back-calculation time constant (s).
-
-    Returns
-    -------
-    CommandRun
-    """
-    speed = check_speed(speed)
-    ctl = DigitalController(sched.at(speed), sched.chair, sched.drive, gyro=sched.gyro, seed=seed, noise=noise,
-                            saturate=saturate, command=command, command_filter_s=command_filter_s,
-                            anti_windup=anti_windup, tracking_time_s=tracking_time_s)
-    res = simulate(sched.chair, speed, duration=duration, model=sched.model, dt=dt, impulse_force=impulse_force,
-                   impulse_duration=THESIS_PUSH.duration, yaw_moment=ctl, stop_on_warnings=False)
-    t = np.asarray(res.t)
-    samples = [s for s in ctl.samples if s[0] <= t[-1] + 1e-9]
-    tau = np.array([s[1] for s in samples])
-    lim = sched.drive.torque_limit
-    return CommandRun(speed, t, np.asarray(res.yaw_rate), np.array([command(x) for x in t]),
-                      np.asarray(res.heading), tau, np.array([s[0] for s in samples]),
-                      float(np.max(np.abs(tau))) if tau.size else 0.0,
-                      float(np.sqrt(np.mean(tau ** 2))) if tau.size else 0.0,
-                      float(np.mean(np.abs(tau) >= lim * (1 - 1e-9))) if tau.size else 0.0, res)
-
-
-#: Reference-model time constant of the tracking check (s): no overshoot, ~0.7 s settling (docs/assist.md).
-COMMAND_FILTER = 0.2
+           "TorqueRow", "torque_requirement", "TRACKING_SPEED", "TrackingRuns", "tracking_runs",
+           "CROSS_SLOPES", "HOLD_TOLERANCE", "SlopeHold", "slope_hold"]
 
 
 def tracking_step(sched: Schedule, speed: float, command: float | None = None, *,
@@ -336,3 +187,132 @@ def tracking_runs(sched: Schedule, speed: float = TRACKING_SPEED, *, ramp_rate: 
     return TrackingRuns(float(speed), step, ramp,
                         f"step {c:g} rad/s, {1e3 * COMMAND_FILTER:g} ms reference model",
                         f"ramp {ramp_rate:g} rad/s^2 to {c:g} rad/s", sched.drive.torque_limit)
+
+
+#: Cross slopes of the closed-loop check (deg, falling to the right).
+CROSS_SLOPES = (2.0, 4.0)
+#: Stated agreement of the closed loop's steady torque with the statics' holding torque (relative; docs/assist.md).
+HOLD_TOLERANCE = 0.01
+
+
+@dataclass(frozen=True, eq=False)
+class SlopeHold:
+    """Straight command along a cross slope, with and without the assist (nonlinear, exact model).
+
+    Attributes
+    ----------
+    speed_m_s, cross_slope_deg, duration_s : float
+        Initial speed (the chair coasts), cross slope (falling to the right +) and run length.
+    closed, open_t, open_heading : CommandRun, ndarray, ndarray
+        The closed-loop run; the open-loop time (s) and heading (rad) up to its end.
+    closed_heading_deg, closed_offset_m : float
+        Closed loop at the end: heading (deg, clockwise = to the right +) and lateral offset of the c.g. (m).
+    open_heading_deg, open_end_s : float
+        Open loop: heading at the end of its run (deg) and that time (s): ``duration_s``, or where the
+        heading passes 45 deg or a caster swings 30 deg (beyond the tire data).
+    open_turn : str
+        ``"uphill"`` or ``"downhill"``.
+    crab_deg : float
+        Heading from the path of the statics' equilibrium (deg).
+    steady_torque_N_m, peak_torque_N_m : float
+        Commanded differential torque per wheel: mean over the last second, and peak (N m).
+    holding_torque_N_m : float
+        The statics' frictionless holding moment as wheel torque, ``DriveTrain.wheel_torque`` (N m).
+    holding_band_N_m : tuple of float
+        The same over the equilibria allowed by the chair's Coulomb pin friction (N m).
+    relative_error : float
+        ``steady / holding - 1``.
+    motor_limit_N_m, traction_limit_N_m : float
+        Motor limit; ``mu N r`` at the lighter drive wheel on the slope.
+    friction_use : float
+        Largest ``|(F_x, F_y)| / (mu N)`` of the drive wheels at the equilibrium.
+    """
+
+    speed_m_s: float
+    cross_slope_deg: float
+    duration_s: float
+    closed: CommandRun
+    open_t: np.ndarray
+    open_heading: np.ndarray
+    closed_heading_deg: float
+    closed_offset_m: float
+    open_heading_deg: float
+    open_end_s: float
+    open_turn: str
+    crab_deg: float
+    steady_torque_N_m: float
+    peak_torque_N_m: float
+    holding_torque_N_m: float
+    holding_band_N_m: tuple[float, float]
+    relative_error: float
+    motor_limit_N_m: float
+    traction_limit_N_m: float
+    friction_use: float
+
+    @property
+    def within_limits(self) -> bool:
+        """Peak torque within the motor and traction limits and the drive tires below full friction."""
+        return self.peak_torque_N_m <= min(self.motor_limit_N_m, self.traction_limit_N_m) and self.friction_use < 1
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (no time histories)."""
+        skip = {"closed", "open_t", "open_heading"}
+        d: dict[str, Any] = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
+        d["holding_band_N_m"] = list(self.holding_band_N_m)
+        d["within_limits"] = self.within_limits
+        return d
+
+
+def slope_hold(sched: Schedule, speed: float, cross_slope_deg: float, *, duration: float = 10.0,
+               window: float = 1.0) -> SlopeHold:
+    """Straight joystick command along a cross slope: the assist against the open loop and the statics.
+
+    Both runs start straight (no crab, casters trailing) on the slope, noise-free, with the chair's pin
+    friction, exact model (the simulator's only model on a slope), WCHAIR scheme.  In steady state the
+    closed loop is the statics of :func:`stability.slope.equilibrium.solve` (no yaw rate, casters still),
+    so its torque is the holding moment's (within :data:`HOLD_TOLERANCE`).
+
+    Parameters
+    ----------
+    sched : Schedule
+    speed : float
+        m/s.
+    cross_slope_deg : float
+        Falling to the right + (deg).
+    duration : float
+        s.
+    window : float
+        Averaging window at the end for the steady torque (s).
+
+    Returns
+    -------
+    SlopeHold
+
+    Raises
+    ------
+    ValueError
+        No equilibrium inside the tire data on this slope (the message names the slope and the valid range).
+    """
+    speed = check_speed(speed)
+    slope = (float(cross_slope_deg), 0.0)
+    eq = equilibrium.solve(sched.chair, slope[0], speed)
+    run = command_run(sched, speed, step_command(0.0), duration=duration, slope=slope, model="exact")
+    ol = simulate(sched.chair, speed, duration=duration, model="exact", impulse_force=0.0, slope=slope,
+                  stop_on_warnings=False)
+    cut = np.flatnonzero((np.abs(ol.heading) > math.radians(45.0)) | (np.maximum(np.abs(ol.eta), np.abs(ol.beta))
+                                                                      > math.radians(MAX_CASTER_SWING_DEG)))
+    n = int(cut[0]) + 1 if cut.size else len(ol.t)
+    side = math.copysign(1.0, slope[0])
+    tail = run.torque[run.torque_t >= run.torque_t[-1] - window]
+    steady = float(np.mean(tail))
+    wt = sched.drive.wheel_torque
+    hold = float(wt(sched.chair, eq.holding_moment))
+    mu, r = sched.drive.traction_coefficient, sched.drive.wheel_radius
+    use = max(math.hypot(fx, fy) / (mu * nz) for fx, fy, nz in zip(eq.drive_forces, eq.lateral_forces[2:],
+                                                                    eq.loads[2:], strict=True))
+    return SlopeHold(speed, slope[0], float(duration), run, np.asarray(ol.t[:n]), np.asarray(ol.heading[:n]),
+                     math.degrees(run.heading[-1]), float(run.result.y[-1]), math.degrees(ol.heading[n - 1]),
+                     float(ol.t[n - 1]), "downhill" if ol.heading[n - 1] * side > 0 else "uphill", eq.heading_deg,
+                     steady, run.peak_torque_N_m, hold,
+                     (float(wt(sched.chair, eq.friction_range[0])), float(wt(sched.chair, eq.friction_range[1]))),
+                     steady / hold - 1.0, sched.drive.torque_limit, mu * min(eq.loads[2:]) * r, use)
