@@ -4,9 +4,10 @@ Plant (:mod:`.plant`), design options (:mod:`.weights`), LQR and Kalman
 design and margins (:mod:`.design`), gain schedule (:mod:`.schedule`),
 robustness box (:mod:`.robustness`), sampled controller (:mod:`.controller`),
 command tracking and gyro-bias handling (:mod:`.tracking`), the sampled
-loop and its margins (:mod:`.digital`), commanded driving and the torque
-requirement (:mod:`.driving`), nonlinear checks (:mod:`.recovery`), thesis Figure 9-4 (:mod:`.destabilising`),
-gain table (:mod:`.tables`), figures (:mod:`.figures`, imported on demand:
+loop and its margins (:mod:`.digital`), joystick commands (:mod:`.commands`), commanded driving, the torque
+requirement and the cross-slope check (:mod:`.driving`), nonlinear checks (:mod:`.recovery`),
+thesis Figure 9-4 (:mod:`.destabilising`),
+gain table (:mod:`.tables`), figures (:mod:`.figures`, :mod:`.figures_slope`, imported on demand:
 matplotlib) and the command line (``python -m stability.assist``).
 Rationale and results: ``docs/assist.md``.
 """
@@ -18,12 +19,16 @@ from .design import Design, LoopMargins, closed_loop_poles, design, loop_margins
 from .destabilising import DestabilisingSummary, destabilising_moment, destabilising_summary, valid_until
 from .digital import MarginCurves, MarginPair, discrete_loop, discrete_margins, margin_curves, margin_pair
 from .driving import (
+    CROSS_SLOPES,
+    HOLD_TOLERANCE,
     CommandRun,
+    SlopeHold,
     TorqueRow,
     TrackingRuns,
     command_run,
     ramp_command,
     slalom_command,
+    slope_hold,
     step_command,
     torque_requirement,
     tracking_runs,
@@ -89,7 +94,8 @@ __all__ = [
     "MarginPair", "margin_pair", "discrete_loop", "discrete_margins", "MarginCurves", "margin_curves",
     "DriftCurves", "drift_curves", "TrackingRuns", "tracking_runs",
     "CommandRun", "command_run", "tracking_step", "step_command", "ramp_command", "slalom_command",
-    "TorqueRow", "torque_requirement", "traction_limit", "ReverseRow", "reverse_table", "format_margins",
+    "TorqueRow", "torque_requirement", "traction_limit", "CROSS_SLOPES", "HOLD_TOLERANCE", "SlopeHold", "slope_hold",
+    "ReverseRow", "reverse_table", "format_margins",
     "Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins",
     "Schedule", "schedule",
     "ROBUST_PARAMETERS", "WorstCorner", "Robustness", "robustness",

@@ -27,11 +27,28 @@ from ..reference import THESIS_PUSH
 from ._format import fmt
 from .destabilising import destabilising_moment, destabilising_summary, valid_until
 from .digital import margin_curves
-from .driving import COMMAND_FILTER, TRACKING_SPEED, torque_requirement, tracking_runs, traction_limit
+from .driving import (
+    COMMAND_FILTER,
+    CROSS_SLOPES,
+    TRACKING_SPEED,
+    SlopeHold,
+    slope_hold,
+    torque_requirement,
+    tracking_runs,
+    traction_limit,
+)
 from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from .robustness import Robustness, robustness
 from .schedule import Schedule, schedule
-from .tables import format_margins, format_recovery, format_table, gain_table, pole_curves, reverse_table
+from .tables import (
+    format_margins,
+    format_recovery,
+    format_slope_holds,
+    format_table,
+    gain_table,
+    pole_curves,
+    reverse_table,
+)
 from .tracking import drift_curves
 from .weights import DESIGNS, GyroSensor, Weights
 
@@ -148,13 +165,15 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     sched = schedule(c, speeds, args.design, weights=weights, drive=drive, gyro=gyro, model=args.model)
     rows = gain_table(sched, check=not args.no_check, seed=args.seed)
     rev = reverse_table(sched) if args.reverse else []
+    holds = [] if args.no_check else _slope_holds(sched)
     if args.json or args.json_file:
         options = {k: getattr(args, k) for k in ("speeds", "design", "max_heading_error", "max_yaw_rate",
                                                  "torque_limit", "torque_budget", "wheel_radius", "gyro_noise",
                                                  "gyro_bias", "sample_rate", "seed", "no_check", "reverse",
                                                  "motor_lag", "bias_time_constant")}
         data = {**json_header(c, args.model, options), "rows": [r.to_dict() for r in rows],
-                "reverse": [r.to_dict() for r in rev]}
+                "reverse": [r.to_dict() for r in rev],
+                "cross_slope": [h.to_dict() if isinstance(h, SlopeHold) else h for h in holds]}
         text = json.dumps(data, indent=2) + "\n"
         if args.json_file:
             with open(tmp["--json-file"], "w", encoding="utf-8") as fh:
@@ -204,23 +223,37 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
         print("\nLinear vs nonlinear decay (4 N x 0.1 s, pin friction off, 1 kHz): "
               + "; ".join(f"{a.speed_m_s:g} m/s: predicted {a.predicted_1_s:.3f}, fitted "
                           f"{a.fitted_1_s:.3f} 1/s ({a.relative_error:.2%})" for a in agree))
+        print(format_slope_holds(holds))
     if args.min_torque:
         for s_ in (1.0, 2.0, 3.0):
             mt = minimum_torque_limit(sched, s_)
             print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
                   f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
     if args.pdf:
-        _write_pdf(sched, rows, rob, runs, tmp["--pdf"])
+        _write_pdf(sched, rows, rob, runs, tmp["--pdf"], [h for h in holds if isinstance(h, SlopeHold)])
     for option in ("--json-file", "--pdf"):
         if option in tmp:
             print(f"wrote {getattr(args, option[2:].replace('-', '_'))}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 
-def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, path: str) -> None:
+def _slope_holds(sched: Schedule) -> list[SlopeHold | dict]:
+    """:func:`slope_hold` at :data:`TRACKING_SPEED` on each of :data:`CROSS_SLOPES`; a slope the chair's tires
+    cannot hold (no equilibrium inside the tire data) gives ``{"cross_slope_deg", "skipped"}`` instead."""
+    out: list[SlopeHold | dict] = []
+    for phi in CROSS_SLOPES:
+        try:
+            out.append(slope_hold(sched, TRACKING_SPEED, phi))
+        except ValueError as exc:
+            out.append({"cross_slope_deg": phi, "skipped": str(exc)})
+    return out
+
+
+def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, path: str,
+               holds: list[SlopeHold]) -> None:
     """The assist figures as a PDF at ``path`` (matplotlib is imported only here)."""
     # matplotlib is imported only when a PDF is asked for
-    from . import figures
+    from . import figures, figures_slope
 
     figs = [figures.figure_gains(sched, rows), figures.figure_poles(sched, rows, pole_curves(sched), rob),
             figures.figure_margins(sched, rows), figures.figure_robustness(rob, sched)]
@@ -240,6 +273,8 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
              figures.figure_drift(sched, drift_curves(sched.at(TRACKING_SPEED), bias_time_constant=tb)),
              figures.figure_margin_pair(sched, margin_curves(sched.speeds, [r.margin_pair for r in rows])),
              figures.figure_torque(sched, torque_requirement(sched, tuple(float(s) for s in sched.speeds)))]
+    if holds:
+        figs.append(figures_slope.figure_slope_hold(sched, holds))
     write_pdf(figs, path, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")
 
 

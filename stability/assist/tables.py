@@ -13,13 +13,14 @@ from ._format import fmt, json_float
 from .controller import DigitalController
 from .design import LoopMargins, closed_loop_poles, loop_margins
 from .digital import MarginPair, margin_pair
-from .driving import tracking_step
+from .driving import HOLD_TOLERANCE, SlopeHold, tracking_step
 from .plant import plant, reversed_chair
 from .recovery import RecoveryPair, recovery
 from .schedule import Schedule
 from .tracking import TrackingMetrics
 
 __all__ = ["ReverseRow", "reverse_table", "GainRow", "gain_table", "format_table", "format_margins",
+           "format_slope_holds",
            "format_recovery", "PoleCurves", "pole_curves"]
 
 
@@ -339,3 +340,34 @@ def reverse_table(sched: Schedule) -> list[ReverseRow]:
         m = float(np.linalg.eigvals(plant(rev, s, sched.model).A6).real.max())
         out.append(ReverseRow(float(s), m, m < 0))
     return out
+
+
+def format_slope_holds(holds: Sequence[SlopeHold | dict[str, Any]]) -> str:
+    """The cross-slope section of the text output (one line per slope; a skipped slope says why).
+
+    Parameters
+    ----------
+    holds : sequence of SlopeHold or dict
+        :func:`~stability.assist.driving.slope_hold` results, or ``{"cross_slope_deg", "skipped"}``.
+
+    Returns
+    -------
+    str
+    """
+    speed = next((h.speed_m_s for h in holds if isinstance(h, SlopeHold)), float("nan"))
+    lines = [f"\nCross slope, straight command ({speed:g} m/s, exact model, pin friction, noise-free, heading to the "
+             "right +): steady torque vs the statics' holding torque (frictionless, tolerance "
+             f"{HOLD_TOLERANCE:.0%}; pin-friction band in brackets)"]
+    for h in holds:
+        if not isinstance(h, SlopeHold):
+            lines.append(f"  {h['cross_slope_deg']:g} deg: skipped ({h['skipped']})")
+            continue
+        lines.append(
+            f"  {h.cross_slope_deg:g} deg: open loop {h.open_heading_deg:+.1f} deg ({h.open_turn}) at "
+            f"{h.open_end_s:.2f} s; assist {h.closed_heading_deg:+.2f} deg at {h.duration_s:g} s (crab "
+            f"{h.crab_deg:+.2f} deg, offset {1e3 * h.closed_offset_m:+.1f} mm); torque {h.steady_torque_N_m:.2f} vs "
+            f"{h.holding_torque_N_m:.2f} N m ({h.relative_error:+.3%}) [{h.holding_band_N_m[0]:.2f}, "
+            f"{h.holding_band_N_m[1]:.2f}], peak {h.peak_torque_N_m:.1f} N m, "
+            f"{'within' if h.within_limits else 'BEYOND'} the motor ({h.motor_limit_N_m:g} N m) and traction "
+            f"({h.traction_limit_N_m:.0f} N m, friction use {h.friction_use:.0%}) limits")
+    return "\n".join(lines)
