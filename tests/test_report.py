@@ -183,8 +183,8 @@ def test_findings_numbers_match_the_analysis(quick):
     c = preset("ej-premier")
     s = linear.analyse(c, "exact", speeds=(0.75,))
     r = s.divergence[0]
-    assert f"grows at {r['rate_1_s']:.3g} 1/s" in text
-    assert f"doubles every {r['time_to_double_s']:.3g} s" in text
+    assert f"grows at {r.rate:.3g} 1/s" in text
+    assert f"doubles every {r.time_to_double:.3g} s" in text
     locked = [x.speed for x in s.locked_crossings if x.direction == "destabilising"][0]
     assert f"stable up to {locked:.3g} m/s" in text
     assert f"{linear.zero_width(c).critical_speed:.3g} m/s" in text

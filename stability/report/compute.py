@@ -309,7 +309,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
             tol=s.tol, candidates=s.candidates, dt=s.dt)
         impulses = tuple(critical_impulses([c, ref_chair] if not is_ej else [c, subject], REFERENCE_SPEED,
                                            model=model, scheme=scheme, duration=push[1], horizon=s.duration,
-                                           dt=s.dt, rel_tol=0.005 if not s.quick else 0.05))
+                                           dt=s.dt, rel_tol=s.impulse_rel_tol))
         sensitivity = study.elasticities(c, REFERENCE_SPEED, model=model, rel_tol=s.impulse_tol, scheme=scheme,
                                          duration=push[1], horizon=s.duration, dt=s.dt)
         stage("intervals, critical impulses and elasticities")

@@ -46,8 +46,8 @@ def findings(d: ReportData) -> list[str]:
         txt = (f"Linear model ({m}): with free, frictionless casters {c.name} changes stability at "
                + ", ".join(f"{x.speed:.3g} m/s ({x.direction})" for x in s.free_crossings) + ".")
     if r075 is not None and r075.time_to_double is not None:
-        txt += (f" At {REFERENCE_SPEED:g} m/s its least stable mode grows at {r075['rate_1_s']:.3g} 1/s: "
-                f"a heading error doubles every {r075['time_to_double_s']:.3g} s.")
+        txt += (f" At {REFERENCE_SPEED:g} m/s its least stable mode grows at {r075.rate:.3g} 1/s: "
+                f"a heading error doubles every {r075.time_to_double:.3g} s.")
     txt += (f" With the casters locked it is stable up to {locked:.3g} m/s." if locked is not None
             else " With the casters locked it is stable in the whole range searched.")
     zw = s.zero_width

@@ -36,6 +36,8 @@ class Settings:
         Grids of the stability maps (m/s, N m, N s).
     impulse_tol : float
         Relative tolerance of the critical impulses and of the elasticities' impulses.
+    impulse_rel_tol : float
+        Relative bisection tolerance of the critical impulse on the summary and uncertainty pages.
     shimmy_trails, shimmy_speeds : tuple of float
         Grid of the trail trade-off chart (m, m/s).
     """
@@ -54,6 +56,7 @@ class Settings:
     map_frictions: tuple = tuple(np.round(np.linspace(0.0, 0.3, 13), 3))
     map_impulses: tuple = tuple(np.round(np.linspace(1.0, 10.0, 10), 3))
     impulse_tol: float = 0.001
+    impulse_rel_tol: float = 0.005
     shimmy_trails: tuple = tuple(np.round(np.linspace(0.02, 0.12, 21), 4))
     shimmy_speeds: tuple = tuple(np.round(np.linspace(0.25, 3.0, 12), 4))
 
@@ -74,5 +77,5 @@ class Settings:
         return cls(quick=True, speed_points=150, locus_points=41, gain_points=80, duration=6.0, dt=0.001,
                    tol=0.05, candidates=9, bracket=(0.3, 2.5), plan=study.QUICK_PLAN,
                    map_speeds=(0.4, 0.8, 1.2, 1.6, 2.0), map_frictions=(0.0, 0.1, 0.2, 0.3),
-                   map_impulses=(2.0, 4.0, 8.0), impulse_tol=0.01,
+                   map_impulses=(2.0, 4.0, 8.0), impulse_tol=0.01, impulse_rel_tol=0.05,
                    shimmy_trails=(0.02, 0.04, 0.06, 0.08, 0.1, 0.12), shimmy_speeds=(0.5, 1.5, 3.0))

@@ -128,6 +128,6 @@ def uncertainty_section(chair: Chair, spec: UncertaintySpec, *, model: str, quic
         # the tolerances of the report's own critical impulses and equal-instability speeds (compute.compute)
         nl = nonlinear_intervals(chair, spec.uncertainty, speed=REFERENCE_SPEED, model=model, samples=n,
                                  seed=spec.seed, scheme=scheme, horizon=s.duration, dt=s.dt,
-                                 rel_tol=0.05 if s.quick else 0.005, bracket=s.bracket, tol=s.tol,
+                                 rel_tol=s.impulse_rel_tol, bracket=s.bracket, tol=s.tol,
                                  candidates=s.candidates)
     return UncertaintySection(spec, iv, np.asarray(nominal, dtype=float), nl)
