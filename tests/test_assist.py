@@ -279,6 +279,7 @@ def test_cli_json_rows(tmp_path, capsys):
     data = json.loads(out.read_text())
     assert assist_main(["--speeds", "1:3:1", "--design", "full-state", "--no-check", "--json"]) == 0
     assert json.loads(capsys.readouterr().out) == data          # --json: the same JSON on stdout, nothing else
+    assert data["cross_slope"] == []                            # --no-check: no nonlinear runs
     assert data["chair_parameters"]["name"] == "power-fwd" and data["model"] == "exact" and data["stability_version"]
     rows = data["rows"]
     assert [r["speed_m_s"] for r in rows] == [1.0, 2.0, 3.0]
@@ -628,3 +629,83 @@ def test_cli_pdf_has_the_driving_pages(tmp_path):
     out = tmp_path / "assist.pdf"
     assert assist_main(["--speeds", "0.5,1.0", "--no-check", "--pdf", str(out)]) == 0
     assert len(re.findall(rb"/Type\s*/Page\b(?!s)", out.read_bytes())) == 9
+
+
+# ---------------------------------------------------------------------------
+# cross slope (issue 15, last item): the assist holding a straight line along a cross slope
+# ---------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def slope_holds(schedules):
+    sched = schedules["gyro"]
+    return {phi: driving.slope_hold(sched, 1.0, phi) for phi in (2.0, -2.0, 4.0)}
+
+
+def test_slope_hold_steady_torque_is_the_statics_holding_moment(schedules, slope_holds):
+    """Straight command along a 2 and 4 deg cross slope (nonlinear loop, exact model, pin friction): the loop
+    settles (yaw rate ~0 over the last second) and its steady differential torque is the statics' holding moment
+    of stability.slope.equilibrium.solve converted to wheel torque, tau = M r / (d1 + d2), within HOLD_TOLERANCE:
+    in steady state (r = 0, casters still) the closed loop IS the statics.  Independently of the numerical
+    equilibrium, it is within 0.5 % of the closed form g2 (m x_m - 2 m_c (l1/trail)(x_m - x_c)) (the statics agree
+    with it within 0.2 %, docs/slopes.md), inside the pin-friction band, and it scales with sin(phi) (4 vs 2 deg)."""
+    from stability.slope import Plane, holding_moment_closed_form
+
+    sched = schedules["gyro"]
+    c = sched.chair
+    for phi in (2.0, 4.0):
+        h = slope_holds[phi]
+        closed = h.closed
+        last = closed.t >= closed.t[-1] - 1.0
+        assert np.max(np.abs(closed.yaw_rate[last])) < math.radians(0.01)
+        assert abs(h.steady_torque_N_m / h.holding_torque_N_m - 1) < driving.HOLD_TOLERANCE
+        cf = holding_moment_closed_form(c, Plane(phi, 0.0)) * sched.drive.wheel_radius / (c.d1 + c.d2)
+        assert h.steady_torque_N_m == pytest.approx(cf, rel=0.005)
+        assert h.holding_band_N_m[0] < h.steady_torque_N_m < h.holding_band_N_m[1]
+        assert h.within_limits and h.peak_torque_N_m < h.motor_limit_N_m
+    ratio = slope_holds[4.0].steady_torque_N_m / slope_holds[2.0].steady_torque_N_m
+    assert ratio == pytest.approx(math.sin(math.radians(4.0)) / math.sin(math.radians(2.0)), rel=0.005)
+
+
+def test_slope_hold_mirror_symmetry(slope_holds):
+    """+phi and -phi are mirror images: opposite steady torque, closed-loop heading and lateral offset, open-loop
+    heading (same time of leaving the tire data), same peak torque and friction use."""
+    a, b = slope_holds[2.0], slope_holds[-2.0]
+    for key in ("steady_torque_N_m", "holding_torque_N_m", "closed_heading_deg", "closed_offset_m",
+                "open_heading_deg", "crab_deg"):
+        x, y = getattr(a, key), getattr(b, key)
+        assert abs(x) > 0 and y == pytest.approx(-x, rel=1e-9), key
+    assert a.peak_torque_N_m == pytest.approx(b.peak_torque_N_m, rel=1e-9)
+    assert a.friction_use == pytest.approx(b.friction_use, rel=1e-9) and a.open_end_s == b.open_end_s
+
+
+def test_slope_hold_open_loop_veers_uphill_closed_loop_holds(slope_holds):
+    """Without the assist the rear-caster power chair veers uphill (heading to the left on a slope falling to the
+    right, as the statics predict: Equilibrium.uncorrected_turn, docs/slopes.md) by more than 10 deg within a
+    second, until a caster swings out of the tire data; with it the heading stays within 1 deg (at the statics'
+    crab angle within 0.1 deg) and the c.g. within 1 cm of the line after 10 s."""
+    for phi in (2.0, -2.0, 4.0):
+        h = slope_holds[phi]
+        assert h.open_turn == "uphill" and h.open_heading_deg * math.copysign(1, phi) < -10.0
+        assert h.open_end_s < 1.0
+        assert abs(h.closed_heading_deg) < 1.0 and h.closed_heading_deg * math.copysign(1, phi) < 0
+        assert h.closed_heading_deg == pytest.approx(h.crab_deg, abs=0.1)
+        assert abs(h.closed_offset_m) < 0.01
+
+
+def test_slope_hold_figure_and_text(schedules, slope_holds):
+    """The cross-slope page draws what it is given (axis labels with units, legends; the dashed line is the
+    holding torque) and the text section has one line per slope with the numbers of the result."""
+    import re
+
+    from stability.assist import figures_slope
+
+    sched = schedules["gyro"]
+    holds = [slope_holds[2.0], slope_holds[4.0]]
+    fig = figures_slope.figure_slope_hold(sched, holds)
+    assert "power-fwd" in fig._suptitle.get_text() and "exact model" in fig._suptitle.get_text()
+    for a in fig.axes:
+        assert re.search(_UNIT, a.get_xlabel()) and re.search(_UNIT, a.get_ylabel())
+        assert a.get_legend() is not None
+    assert fig.axes[2].get_lines()[1].get_ydata()[0] == pytest.approx(holds[0].holding_torque_N_m)
+    text = tables.format_slope_holds(holds + [{"cross_slope_deg": 9.0, "skipped": "no equilibrium"}])
+    assert "Cross slope" in text and f"{holds[1].steady_torque_N_m:.2f} vs {holds[1].holding_torque_N_m:.2f}" in text
+    assert "9 deg: skipped (no equilibrium)" in text

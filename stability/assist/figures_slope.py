@@ -47,8 +47,8 @@ def figure_slope_hold(sched: Schedule, holds: Sequence[SlopeHold]) -> Figure:
         c.axhline(h.holding_torque_N_m, color=colour(i), ls="--", lw=0.9,
                   label=f"{lab}: statics' holding torque {h.holding_torque_N_m:.2f} N m")
         c.axhspan(*h.holding_band_N_m, color=colour(i), alpha=0.12, label=f"{lab}: pin-friction band")
-    for axis, title, ylabel in ((a, "heading, with the assist", "heading (deg, to the right +)"),
-                                (b, "heading, without the assist", "heading (deg, to the right +)"),
+    for axis, title, ylabel in ((a, "heading, with the assist", "heading, to the right + (deg)"),
+                                (b, "heading, without the assist", "heading, to the right + (deg)"),
                                 (c, "differential torque per wheel", "torque per wheel (N m)")):
         axis.set_title(title)
         axis.set_xlabel("time (s)")
