@@ -138,7 +138,7 @@ def test_parameter_sweeps_table(fake):
     np.testing.assert_allclose(pf.speeds, [0.375, 0.75, 1.125], atol=0.003)
     assert pf.effect_percent == pytest.approx(100, abs=1)
     assert table.get("trail").effect_percent == pytest.approx(0, abs=0.5)
-    assert [r["parameter"] for r in table.rows()] == ["pin_friction", "trail"]
+    assert [r.parameter for r in table.rows()] == ["pin_friction", "trail"]
     assert len(extra) == 1
 
 
@@ -189,11 +189,11 @@ def test_linear_impulse_response_is_the_matrix_exponential_solution():
     for tt in (0.05, 0.1, 1.0, 2.5):
         k = int(round(tt / 0.01))
         x = np.linalg.solve(A, (expm(A * tt) - np.eye(6)) @ b * 40.0) if tt <= 0.1 else expm(A * (tt - 0.1)) @ xT
-        assert lin["t"][k] == pytest.approx(tt)
-        assert lin["yaw_rate"][k] == pytest.approx(x[1], rel=1e-7, abs=1e-12)
-        assert lin["v"][k] == pytest.approx(x[0], rel=1e-7, abs=1e-12)
+        assert lin.t[k] == pytest.approx(tt)
+        assert lin.yaw_rate[k] == pytest.approx(x[1], rel=1e-7, abs=1e-12)
+        assert lin.v[k] == pytest.approx(x[0], rel=1e-7, abs=1e-12)
     # heading is the integral of the yaw rate
-    np.testing.assert_allclose(lin["heading"][-1], np.trapezoid(lin["yaw_rate"], lin["t"]), rtol=1e-3)
+    np.testing.assert_allclose(lin.heading[-1], np.trapezoid(lin.yaw_rate, lin.t), rtol=1e-3)
 
 
 # ---------------------------------------------------------------------------
@@ -209,10 +209,10 @@ def test_linear_overlay_matches_frictionless_simulation(model):
     lin = study.linear_impulse_response(c, 0.75, 1.5, impulse=(40.0, 0.1), model=model, step=0.01)
     for tt in (0.3, 0.8, 1.5):
         r_sim = float(np.interp(tt, res.t, res.yaw_rate))
-        r_lin = float(np.interp(tt, lin["t"], lin["yaw_rate"]))
+        r_lin = float(np.interp(tt, lin.t, lin.yaw_rate))
         assert r_lin == pytest.approx(r_sim, rel=0.08)
     y_sim = float(np.interp(1.5, res.t, res.y))
-    assert lin["y"][-1] == pytest.approx(y_sim, rel=0.15, abs=0.005)
+    assert lin.y[-1] == pytest.approx(y_sim, rel=0.15, abs=0.005)
 
 
 def test_reference_case_and_revised_design():
@@ -258,3 +258,26 @@ def test_reduced_mass_figure_8_14_is_not_reproduced_and_why():
     assert (c_light / c_ref) == pytest.approx(r_light / r_ref, abs=0.005)
     res = study.equal_instability_speed(light, model="thesis", progress=False)
     assert res.status == "found" and 0.74 < res.speed < 0.78     # 0.756 m/s, not 0.85
+
+
+def test_studies_never_integrate_with_an_unstable_step():
+    """Issue 10: at 0.25 m/s WCHAIR's 1 ms step is outside the scheme's stability limit (the issue's peak yaw
+    rate 0.117 rad/s instead of 0.072).  A study keeps 1 ms where it is stable and takes 1 ms / k for the
+    slow run by itself, without a warning, and then agrees with the adaptive scheme (an independent
+    integrator) on the peak yaw rate."""
+    import warnings
+
+    from stability.study.runs import simulate_runs
+
+    ej = preset("ej-premier")
+    opts = dict(model="exact", impulse_force=40.0, impulse_duration=0.1, duration=4.0, dt=0.001,
+                stop_on_warnings=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        slow, fast = simulate_runs([ej, ej], [0.25, 0.75], **opts)
+    assert slow.settings["dt"] < 0.001 and not slow.step_unstable
+    assert fast.settings["dt"] == 0.001
+    ref = simulate_runs([ej], [0.25], **dict(opts, scheme="adaptive"))[0]
+    peak = np.max(np.abs(slow.yaw_rate))
+    assert peak == pytest.approx(np.max(np.abs(ref.yaw_rate)), rel=0.03)
+    assert peak < 0.09

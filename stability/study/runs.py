@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -9,6 +10,7 @@ import numpy as np
 
 from .. import simulate as sim
 from ..chair import Chair
+from ..simulate.stepcheck import SAFETY, stable_steps
 
 __all__ = ["SCALAR_RUNS", "simulate_runs", "sim_options"]
 
@@ -35,7 +37,12 @@ def simulate_runs(chairs: Sequence[Chair], speeds: Sequence[float], *, progress:
         Progress-bar label (unused by the simulator; kept for callers).
     **options
         :func:`stability.simulate.simulate` options; ``impulse_force`` may be
-        one force per run (N).  ``sample`` defaults to 0.01 s.
+        one force per run (N).  ``sample`` defaults to 0.01 s.  A fixed ``dt``
+        (WCHAIR scheme) is kept for every run it integrates stably; a run for
+        which it exceeds the scheme's stability limit (slow speeds, where the
+        caster modes are stiff) gets the largest ``dt / k`` (whole k) within
+        0.8 of its limit instead, so no study result comes from an unstable
+        integration (the result's ``settings["dt"]`` records the step used).
 
     Returns
     -------
@@ -47,6 +54,33 @@ def simulate_runs(chairs: Sequence[Chair], speeds: Sequence[float], *, progress:
         return []
     options = dict(options)
     options.setdefault("sample", 0.01)
+    dt = options.get("dt", sim.DEFAULTS.dt)
+    if options.get("scheme", sim.DEFAULTS.scheme) == "wchair" and isinstance(dt, float):
+        limits = stable_steps(chairs, np.asarray(speeds), options.get("model", sim.DEFAULTS.model),
+                              options.get("casters", sim.DEFAULTS.casters))
+        steps = [dt if dt <= lim else dt / math.ceil(dt / (SAFETY * lim)) for lim in limits]
+        if any(h != dt for h in steps):
+            return _by_step(chairs, speeds, steps, progress, options)
+    return _runs(chairs, speeds, progress, options)
+
+
+def _by_step(chairs: list[Chair], speeds: list[float], steps: list[float], progress: bool,
+             options: dict[str, Any]) -> list:
+    """Runs grouped by their time step (one batch per step), returned in the callers' order."""
+    forces = options.get("impulse_force", 0.0)
+    out: list = [None] * len(chairs)
+    for h in sorted(set(steps)):
+        idx = [i for i, s in enumerate(steps) if s == h]
+        opts = dict(options, dt=h)
+        if np.ndim(forces) != 0:
+            opts["impulse_force"] = np.asarray(forces)[idx]
+        for i, r in zip(idx, _runs([chairs[i] for i in idx], [speeds[i] for i in idx], progress, opts),
+                        strict=True):
+            out[i] = r
+    return out
+
+
+def _runs(chairs: list[Chair], speeds: list[float], progress: bool, options: dict[str, Any]) -> list:
     if len(chairs) <= SCALAR_RUNS and options.get("scheme", "wchair") == "wchair":
         if np.ndim(options.get("impulse_force", 0.0)) == 0:
             return [sim.simulate(c, s, **options) for c, s in zip(chairs, speeds, strict=True)]
