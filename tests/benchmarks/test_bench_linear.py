@@ -9,13 +9,13 @@
   and timing all 10,001 would add ~10 s for no information.  Targets: the
   batched call under 0.2 s and at least 10x faster than the loop.
 * ``python -m stability.critical_speed`` end to end (a fresh interpreter:
-  imports, analysis, printing) under 3 s.
+  imports, analysis, printing) against a fresh interpreter that only imports
+  numpy: at most 10x its start-up.
+* The eigen sweep against LAPACK's batched ``eigvals`` on the same matrices.
 
-Run with ``pytest tests/benchmarks --benchmark-enable`` for statistics.  In
-the normal run (``--benchmark-disable`` in pyproject's addopts) they still run,
-once each, and still check the targets; the timings used for the checks are
-measured here (best of a few repeats), independently of pytest-benchmark,
-and recorded in ``extra_info`` when benchmarking is enabled.
+Every target is a ratio against a baseline measured in the same run.  Skipped
+in the default test run; CI runs them as their own step
+(``pytest tests/benchmarks --benchmark-enable``).
 """
 
 import subprocess
@@ -23,6 +23,7 @@ import sys
 import time
 
 import numpy as np
+import pytest
 
 from stability import linear
 from stability.chair import preset
@@ -30,6 +31,14 @@ from stability.chair import preset
 EJ = preset("ej-premier")
 SPEEDS = np.linspace(0.05, 30.0, 10001)
 LOOP_STRIDE = 10
+
+
+@pytest.fixture
+def bench(request):
+    cfg = request.config
+    if cfg.getoption("benchmark_disable", False) and not cfg.getoption("benchmark_enable", False):
+        pytest.skip("benchmarks are disabled (run with --benchmark-enable)")
+    return request.getfixturevalue("benchmark")
 
 
 def _best(fn, repeat=3):
@@ -60,9 +69,9 @@ def _loop(speeds):
     return out
 
 
-def test_bench_eigenvalues_vs_speed(benchmark):
+def test_bench_eigenvalues_vs_speed(bench):
     _batched()  # warm-up (imports, first call)
-    eig = benchmark(_batched)
+    eig = bench(_batched)
     assert eig.shape == (10001, 6)
     t_batch, _ = _best(_batched, repeat=5)
     sub = SPEEDS[::LOOP_STRIDE]
@@ -73,31 +82,33 @@ def test_bench_eigenvalues_vs_speed(benchmark):
     for k in range(0, len(sub), 100):
         np.testing.assert_allclose(np.sort_complex(loop_eig[k]), np.sort_complex(eig[k * LOOP_STRIDE]),
                                    rtol=1e-8, atol=1e-8)
-    benchmark.extra_info.update(batched_s=t_batch, loop_s_scaled=t_loop, loop_speeds_timed=len(sub),
+    bench.extra_info.update(batched_s=t_batch, loop_s_scaled=t_loop, loop_speeds_timed=len(sub),
                                 speedup=ratio)
     print(f"\neigenvalues at {len(SPEEDS)} speeds: batched {t_batch:.3f} s; loop over control.ss().poles() "
           f"{t_loop:.2f} s (timed on {len(sub)} speeds, scaled); batched is {ratio:.0f}x faster")
-    assert t_batch < 0.2
     assert ratio >= 10
 
 
-def test_bench_critical_speed_cli(benchmark):
+def test_bench_critical_speed_cli(bench):
     cmd = [sys.executable, "-m", "stability.critical_speed"]
 
     def run():
         return subprocess.run(cmd, capture_output=True, text=True, timeout=60)
 
-    proc = benchmark.pedantic(run, rounds=1, iterations=1)
+    proc = bench.pedantic(run, rounds=1, iterations=1)
     assert proc.returncode == 0, proc.stderr
     assert "Critical speeds" in proc.stdout
-    t, proc = _best(run, repeat=2)
+    t, proc = _best(run, repeat=3)
     assert proc.returncode == 0
-    benchmark.extra_info.update(cli_s=t)
-    print(f"\npython -m stability.critical_speed end to end: {t:.2f} s")
-    assert t < 3.0
+    t0, _ = _best(lambda: subprocess.run([sys.executable, "-c", "import numpy"], capture_output=True, timeout=60),
+                  repeat=3)
+    bench.extra_info.update(cli_s=t, numpy_startup_s=t0, ratio=t / t0)
+    print(f"\npython -m stability.critical_speed end to end: {t:.2f} s; python -c 'import numpy': {t0:.2f} s "
+          f"(x{t / t0:.1f})")
+    assert t / t0 <= 10.0
 
 
-def test_bench_eigen_sweep_close_to_lapack_alone(benchmark):
+def test_bench_eigen_sweep_close_to_lapack_alone(bench):
     """Building the 10,001 state matrices costs little next to LAPACK's batched eigvals on them (issue 10).
 
     The mass matrix does not depend on speed, so one factorisation serves every speed; the whole sweep
@@ -105,14 +116,14 @@ def test_bench_eigen_sweep_close_to_lapack_alone(benchmark):
     ``numpy.linalg.eigvals`` alone on the same matrices, both timed interleaved in this run (best of 15).
     """
     A = linear.state_matrices(EJ, SPEEDS, "exact", "free")
-    benchmark(lambda: linear.eigenvalues_vs_speed(EJ, SPEEDS, "exact", "free", track=False))
+    bench(lambda: linear.eigenvalues_vs_speed(EJ, SPEEDS, "exact", "free", track=False))
     t_eig, t_sweep = float("inf"), float("inf")
     for _ in range(15):
         t_eig = min(t_eig, _best(lambda: np.linalg.eigvals(A), repeat=1)[0])
         t_sweep = min(t_sweep, _best(lambda: linear.eigenvalues_vs_speed(EJ, SPEEDS, "exact", "free",
                                                                           track=False), repeat=1)[0])
     ratio = t_sweep / t_eig
-    benchmark.extra_info.update(eigvals_s=t_eig, sweep_s=t_sweep, ratio=ratio)
+    bench.extra_info.update(eigvals_s=t_eig, sweep_s=t_sweep, ratio=ratio)
     print(f"\neigen sweep of {len(SPEEDS)} speeds: {t_sweep * 1e3:.1f} ms; LAPACK eigvals alone {t_eig * 1e3:.1f} ms "
           f"(x{ratio:.2f})")
     assert ratio <= 1.2
