@@ -1,30 +1,7 @@
-"""Linear versus nonlinear: does the simulator agree with the eigenvalues?
+"""Linear versus nonlinear: the simulated growth rate against the dominant eigenvalue, and the
+simulator's own linearisation against the symbolic model (what the linear model leaves out).
 
-With frictionless pins and a disturbance small enough that every slip angle
-stays below 1 deg (where the thesis's tire model, linear interpolation from
-0 N at 0 deg to the 1-deg fit, is exactly linear in slip), the growth or
-decay rate of the simulated yaw rate must equal the real part of the linear
-model's dominant eigenvalue (the one of largest real part) of the same
-variant.  :func:`linear_vs_nonlinear` measures both and reports the relative
-difference; where they disagree the returned record says by how much, and
-the simulator's own range warnings say why (large slip, load transfer).
-
-:func:`linearisation_check` compares the two at the level of the matrices:
-the symbolic linear model against the simulator's own linearisation
-(:func:`stability.simulate.linearise`, central differences of the right-hand
-side it integrates).  For a chair without rolling resistance, camber or toe
-they agree to about 1e-9 (the same physics, derived once); where the chair
-has those effects, which the linear model leaves out, the difference is
-their first-order size.
-
-The rate is measured from the simulated yaw rate after the faster modes
-have died out (their decay relative to the dominant mode, from the same
-eigenvalues, sets the start of the fitting window):
-
-* a real dominant eigenvalue: least-squares slope of ``log|r(t)|``;
-* a complex dominant pair: Prony's method of order 2 on uniformly sampled
-  ``r(t)`` (``r[k+2] = c1 r[k+1] + c0 r[k]``), whose roots ``z`` give
-  ``sigma = ln|z| / dt``.
+See ``docs/validation.md`` for the method (fitting windows, Prony's method for complex pairs).
 """
 
 from __future__ import annotations
