@@ -13,6 +13,17 @@ generate
     Writes the plain-Python numeric modules ``stability/_generated/*.py``.
 compare_variants
     Eigenvalue effect of each thesis-vs-exact difference for the thesis chair.
+slope
+    The exact model on a plane with cross slope and grade (gravity on the chair
+    and on each caster, slope normal loads), steady straight running, and the
+    zero-width model on a slope; generates ``_generated/slope.py``.
+shimmy
+    The towed wheel (rigid or spring pivot, rigid or relaxation-length tire);
+    generates ``_generated/shimmy.py``.
+full_width_relaxed
+    The exact full-width linear model with caster-tire relaxation and pin
+    lateral compliance (the chair's shimmy mode); generates
+    ``_generated/full_width_relaxed.py``.
 
 Nothing in the :mod:`stability` package imports this package at run time.
 """
