@@ -8,7 +8,10 @@ import subprocess
 import sys
 import time
 
+import pytest
 
+
+@pytest.mark.slow
 def test_ctrl_c_exits_130_with_one_line_and_no_file(tmp_path):
     env = dict(os.environ, PYTHONUNBUFFERED="1")
     proc = subprocess.Popen([sys.executable, "-m", "stability.report", "-o", "out.pdf", "--text", "out.txt",

@@ -230,6 +230,7 @@ def test_reference_chair_rates_itself_at_the_reference_speed(quick):
 # ---------------------------------------------------------------------------
 # reproducibility, atomicity, command line
 # ---------------------------------------------------------------------------
+@pytest.mark.slow
 def test_cli_quick_is_byte_identical(quick, tmp_path, monkeypatch, capsys):
     """The CLI build gives a file byte-identical to the fixture's build of the same data.
 
