@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from collections.abc import Sequence
@@ -37,6 +36,7 @@ def _fmt(x: float, scale: float = 1.0, spec: str = ".1f") -> str:
 
 def _body(args) -> int:
     chair = cli.load_chair(args.chair, args.set)
+    cli.check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, {"--chair": args.chair})
     speeds = cli.parse_speeds(args.speeds)
     comp = CasterCompliance()
     for name in ("relaxation_length", "lateral_stiffness"):
@@ -48,8 +48,6 @@ def _body(args) -> int:
             comp = comp.__class__(**{**comp.__dict__, name: v, name + "_range": (min(lo, v), max(hi, v))})
     if not (0 < args.amplitude_deg < 45):
         raise ValueError(f"--amplitude-deg={args.amplitude_deg!r} is invalid; valid range: 0 < value < 45 deg")
-    cli.check_directory(args.json_file, "--json-file")
-    cli.check_directory(args.pdf, "--pdf")
     s = caster_summary(chair, speeds, comp, math.radians(args.amplitude_deg))
     modes = {pin: chair_shimmy(chair, speeds, comp, pin=pin) for pin in ("rigid", "compliant")} \
         if args.chair_model else {}
@@ -57,13 +55,10 @@ def _body(args) -> int:
         mapping = s.to_mapping()
         if modes:
             mapping["chair_model"] = {f"{pin}_pin": m.to_mapping() for pin, m in modes.items()}
-        text = json.dumps(mapping, indent=2) + "\n"
-        if args.json_file:
-            from ..output import atomic_write_text
-
-            atomic_write_text(args.json_file, text)
-        else:
-            sys.stdout.write(text)
+        options = {"speeds_m_s": [float(u) for u in speeds], "relaxation_length_m": comp.relaxation_length,
+                   "lateral_stiffness_N_m": comp.lateral_stiffness, "amplitude_deg": args.amplitude_deg,
+                   "chair_model": bool(args.chair_model)}
+        cli.emit_json({**cli.json_header(chair, "exact", options), **mapping}, args)
     if not args.json:
         print(f"caster shimmy, chair {s.chair_name!r} (left caster as a towed wheel on its pin; trail "
               f"{s.trail * 100:g} cm, pin friction {s.pin_friction:g} N m)")
@@ -97,6 +92,7 @@ def _body(args) -> int:
         fig2, ax2 = plt.subplots(figsize=(8, 5))
         plot_friction_needed(chart, ax2, trails_cm=[3, 4, 5, 6, 8])
         write_pdf([fig1, fig2], args.pdf, title=f"caster shimmy: {chair.name}")
+        print(f"wrote {args.pdf}", file=sys.stderr)
     return 0
 
 

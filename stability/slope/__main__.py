@@ -3,13 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
-import sys
 from collections.abc import Sequence
 
-from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, run
-from ..output import atomic_write_text
+from ..cli import OneLineErrorParser, add_chair_options, check_outputs, emit_json, json_header, load_chair, run
 from .equilibrium import HandRim, drive_report, solve
 from .uncorrected import simulator_path, uncorrected_path
 
@@ -61,7 +58,7 @@ def _simulated(chair, eq, t_end: float) -> dict:
 
 
 def _body(a: argparse.Namespace) -> int:
-    check_directory(a.json_file, "--json-file")
+    check_outputs({"--json-file": a.json_file}, {"--chair": a.chair})
     if not 0 < a.sim_time <= 10.0:
         raise ValueError(f"--sim-time {a.sim_time!r} is invalid; valid range: 0 < T <= 10 s")
     chair = load_chair(a.chair, a.set)
@@ -94,12 +91,11 @@ def _body(a: argparse.Namespace) -> int:
     }
     data = _finite(data)
     if a.json or a.json_file:
-        text = json.dumps(data, indent=2) + "\n"
-        if a.json_file:
-            atomic_write_text(a.json_file, text)
-        else:
-            sys.stdout.write(text)
-        return 0
+        options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade, "speed_m_s": a.speed, "drive": kind,
+                   "wheel_radius_m": a.wheel_radius, "handrim_radius_m": a.handrim_radius, "sim_time_s": a.sim_time}
+        emit_json({**json_header(chair, "exact", options), **data}, a)
+        if a.json:
+            return 0
     turn = data["uncorrected_turn"]
     print(f"{chair.name}: cross slope {eq.cross_slope_deg:g} deg, grade {eq.grade_deg:g} deg, {eq.speed:g} m/s")
     print(f"  holding yaw moment {abs(eq.holding_moment):.3f} N m ({per_deg:.3f} N m/deg); with Coulomb pin "

@@ -3,12 +3,20 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from collections.abc import Sequence
 
-from ..cli import OneLineErrorParser, add_chair_options, check_directory, load_chair, parse_speeds, run
-from ..output import atomic_write_text
+from ..chair import Chair
+from ..cli import (
+    OneLineErrorParser,
+    add_chair_options,
+    check_outputs,
+    emit_json,
+    json_header,
+    load_chair,
+    parse_speeds,
+    run,
+)
 from ..reference import THESIS_PUSH, Push
 from .impulse import critical_impulse_curve
 from .intervals import equal_instability_interval
@@ -35,12 +43,12 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-def _emit(args: argparse.Namespace, data: dict, text: str) -> None:
-    if args.json_file:
-        atomic_write_text(args.json_file, json.dumps(data, indent=2) + "\n")
-    if args.json:
-        print(json.dumps(data, indent=2))
-    elif not args.json_file:
+def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair) -> None:
+    if args.json or args.json_file:
+        options = {k: v for k, v in vars(args).items() if k not in ("chair", "set", "json", "json_file", "debug",
+                                                                    "tire_notes")}
+        emit_json({**json_header(chair, getattr(args, "model", None), options), **data}, args)
+    if not args.json:
         print(text)
 
 
@@ -54,7 +62,7 @@ def _critical(args: argparse.Namespace) -> None:
     for p in curve.points:
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
         lines.append(f"  {p.speed:6.3g} m/s  {p.describe():>12s}  (kick {kick})")
-    _emit(args, {"chair": chair.name, **curve.to_dict()}, "\n".join(lines))
+    _emit(args, curve.to_dict(), "\n".join(lines), chair)
 
 
 def _interval(args: argparse.Namespace) -> None:
@@ -66,7 +74,7 @@ def _interval(args: argparse.Namespace) -> None:
     for v in r.variants:
         sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
         lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")
-    _emit(args, r.to_dict(), "\n".join(lines))
+    _emit(args, r.to_dict(), "\n".join(lines), chair)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -74,7 +82,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _parser()
 
     def body(args: argparse.Namespace) -> None:
-        check_directory(args.json_file, "--json-file")
+        check_outputs({"--json-file": args.json_file}, {"--chair": getattr(args, "chair", None)})
         (_critical if args.command == "critical-impulse" else _interval)(args)
 
     return run(parser, argv, body)
