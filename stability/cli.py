@@ -345,7 +345,7 @@ def json_header(chair: chair_mod.Chair, model: str | None, options: Mapping[str,
             "chair_parameters": chair_mod.to_mapping(chair), "model": model, "options": dict(options)}
 
 
-def emit_json(data: Any, args: argparse.Namespace) -> None:
+def emit_json(data: Any, args: argparse.Namespace, write_to: str | None = None) -> None:
     """Print ``data`` as JSON when ``--json`` was given; write it atomically to ``--json-file`` when given.
 
     Parameters
@@ -355,6 +355,10 @@ def emit_json(data: Any, args: argparse.Namespace) -> None:
         ``tire_range`` entry when ``args`` carries tire-range notes.
     args : argparse.Namespace
         Parsed options; read are ``json``, ``json_file``, ``tire_range`` and ``tire_notes``.
+    write_to : str, optional
+        Where to write instead of ``--json-file`` (a temporary path of
+        :func:`output_files`, renamed with the command's other outputs; the
+        caller then says what it wrote).
     """
     from .output import atomic_write_text
 
@@ -367,8 +371,9 @@ def emit_json(data: Any, args: argparse.Namespace) -> None:
         print(text)
     path = getattr(args, "json_file", None)
     if path:
-        atomic_write_text(path, text + "\n")
-        print(f"wrote {path}", file=sys.stderr)
+        atomic_write_text(write_to or path, text + "\n")
+        if write_to is None:                 # with write_to the caller renames and announces its outputs
+            print(f"wrote {path}", file=sys.stderr)
 
 
 def _json_default(x: Any) -> Any:
