@@ -40,7 +40,6 @@ from .plant import (
     STATES,
     YAW_LOOP,
     Plant,
-    lateral_force_column,
     pivot_inertia,
     plant,
     reversed_chair,
@@ -88,7 +87,7 @@ from .weights import DESIGNS, EstimatorWeights, GyroSensor, Weights
 
 __all__ = [
     "DESIGNS", "STATES", "Weights", "GyroSensor", "EstimatorWeights",
-    "MOTOR_STATE", "YAW_LOOP", "Plant", "plant", "standstill_plant", "pivot_inertia", "lateral_force_column",
+    "MOTOR_STATE", "YAW_LOOP", "Plant", "plant", "standstill_plant", "pivot_inertia",
     "reversed_chair",
     "Feedforward", "feedforward", "closed_loop", "final_heading", "heading_drift", "TrackingMetrics", "step_metrics",
     "MarginPair", "margin_pair", "discrete_loop", "discrete_margins", "MarginCurves", "margin_curves",

@@ -14,12 +14,10 @@ import numpy as np
 
 from .._validate import check_model, check_nonnegative, check_speed
 from ..chair import Chair
-from ..linear import input_matrices, state_matrices
-from ..models import accelerations
-from ..params import parameters
+from ..linear import input_matrices, lateral_force_input, state_matrices
 
 __all__ = ["STATES", "MOTOR_STATE", "YAW_LOOP", "Plant", "plant", "standstill_plant", "pivot_inertia", "reversed_chair",
-           "lateral_force_column", "measurement_matrix", "system_name"]
+           "measurement_matrix", "system_name"]
 
 #: States of the design plant (SI units: m/s, rad/s, rad, rad/s, rad, rad/s, rad).
 STATES = ("v", "r", "eta", "eta_dot", "beta", "beta_dot", "psi")
@@ -144,38 +142,6 @@ def measurement_matrix(kind: str, n: int = 7) -> np.ndarray:
     return C
 
 
-def lateral_force_column(chair: Chair, speed: float, model: str = "exact") -> np.ndarray:
-    """Response ``d(x_dot)/d(Fy)`` (6,) of the six chair states to a lateral force at the c.g.
-
-    The equations of motion (:func:`stability.models.accelerations`) are
-    linear in the external loads at a fixed state, so the difference of the
-    accelerations with ``Fy = 1 N`` and ``Fy = 0`` in straight running is
-    the exact input column.
-
-    Parameters
-    ----------
-    chair : Chair
-    speed : float
-        Forward speed (m/s).
-    model : {"exact", "thesis"}
-
-    Returns
-    -------
-    ndarray (6,)
-        Per N, on ``[v, r, eta, eta_dot, beta, beta_dot]``.
-    """
-    p = parameters(chair)
-    z = 0.0
-
-    def acc(fy: float) -> np.ndarray:
-        return np.array(accelerations(p, speed, z, z, 1.0, z, 1.0, z, z, z,
-                                      z, z, z, z, z, z, z, z, z, z,
-                                      Fy_ext=fy, Mz_ext=0.0, variant=model), dtype=float)
-
-    d = acc(1.0) - acc(0.0)   # (u_dot, v_dot, r_dot, eta_dd, beta_dd)
-    return np.array([d[1], d[2], 0.0, d[3], 0.0, d[4]])
-
-
 def plant(chair: Chair, speed: float, model: str = "exact", motor_time_constant: float = 0.0) -> Plant:
     """Linear plant of ``chair`` at ``speed``, augmented with the heading and, optionally, a motor lag.
 
@@ -214,7 +180,7 @@ def plant(chair: Chair, speed: float, model: str = "exact", motor_time_constant:
     else:
         B[:6] = B6
     Bf = np.zeros((n, 1))
-    Bf[:6, 0] = lateral_force_column(chair, speed, model)
+    Bf[:6, 0] = lateral_force_input(chair, speed, model)
     return Plant(speed, A, B, Bf, tau)
 
 
