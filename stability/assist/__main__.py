@@ -267,7 +267,7 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
     if runs is not None:
         figs.append(figures.figure_recovery(runs, sched))
         figs.append(figures.figure_recovery_table(runs, sched))
-    # the driving pages (issue 15) are in every PDF, like the Figure 9-4 page: a few short simulations
+    # the driving pages are in every PDF, like the Figure 9-4 page: a few short simulations
     tb = sched.gyro.bias_time_constant_s or GyroSensor.bias_time_constant_s
     figs += [figures.figure_tracking(sched, tracking_runs(sched)),
              figures.figure_drift(sched, drift_curves(sched.at(TRACKING_SPEED), bias_time_constant=tb)),

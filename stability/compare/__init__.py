@@ -1,4 +1,4 @@
-"""Side-by-side comparison of chairs: which is more stable, by how much, and why (issue 14).
+"""Side-by-side comparison of chairs: which is more stable, by how much, and why.
 
 ``compute`` (measures, differences, single-parameter effects) -> ``text``
 (text and JSON) -> ``plots`` (figures); ``python -m stability.compare``.

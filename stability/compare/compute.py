@@ -3,7 +3,7 @@
 Measures: the growth rate of the least stable free-caster mode (and its time
 to double) at a list of speeds, the full-width locked-caster critical speed,
 the zero-width understeer coefficient and critical speed (Collins 1987,
-eqs 5-15, 5-16) and, optionally, the nonlinear critical impulse (issue 11).
+eqs 5-15, 5-16) and, optionally, the nonlinear critical impulse.
 Rationale and conventions: docs/compare.md.
 """
 

@@ -267,18 +267,18 @@ def _p_findings(d: ReportData) -> Figure:
 
 
 def _p_slope(d: ReportData) -> Figure:
-    return slope_page(d, _title(d, "cross slope: holding a straight line, the uncorrected turn (issue 12)"),
+    return slope_page(d, _title(d, "cross slope: holding a straight line, the uncorrected turn"),
                       _subtitle(d))
 
 
 def _p_shimmy(d: ReportData) -> Figure:
-    return shimmy_page(d, _title(d, "caster trail trade-off: yaw divergence and caster shimmy (issue 13)"),
+    return shimmy_page(d, _title(d, "caster trail trade-off: yaw divergence and caster shimmy"),
                        _subtitle(d))
 
 
 def _p_uncertainty(d: ReportData) -> Figure:
-    return uncertainty_page(d, _title(d, "parameter uncertainty: linear and nonlinear results with intervals "
-                                         "(issue 14)"), _subtitle(d))
+    return uncertainty_page(d, _title(d, "parameter uncertainty: linear and nonlinear results with intervals"),
+                            _subtitle(d))
 
 
 def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:

@@ -1,4 +1,4 @@
-"""The report's caster-shimmy section (issue 13): the trail trade-off chart and the estimates' effect on it.
+"""The report's caster-shimmy section: the trail trade-off chart and the estimates' effect on it.
 
 Every number comes from :mod:`stability.shimmy` (``shimmy.chair.trail_chart``, ``critical_trail``,
 ``chair_critical_trail``); the caster compliance values are estimates (docs/shimmy.md).

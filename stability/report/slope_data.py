@@ -1,4 +1,4 @@
-"""The report's cross-slope section (issue 12): holding moment, drive difference, uncorrected path, treadmill study.
+"""The report's cross-slope section: holding moment, drive difference, uncorrected path, treadmill study.
 
 Every number comes from :mod:`stability.slope` (``solve``, ``drive_report``, ``uncorrected_path``); rules and
 sources in docs/report.md and docs/slopes.md.

@@ -1,4 +1,4 @@
-"""The report's parameter-uncertainty section (issue 14): linear and nonlinear intervals over an uncertainty file.
+"""The report's parameter-uncertainty section: linear and nonlinear intervals over an uncertainty file.
 
 :func:`stability.linear.intervals.linear_intervals` (Monte Carlo, seeded; delta method as a check) gives the
 growth-rate band against speed, the critical-speed intervals and the dominant parameters;

@@ -5,8 +5,8 @@ after a 40 N, 0.1 s lateral push at the c.g., against the E&J Premier at
 0.75 m/s (:mod:`stability.reference`).  Modules: :mod:`.criteria` (the
 criterion), :mod:`.runs` (simulator access), :mod:`.responses` (nonlinear
 and linear responses), :mod:`.equal_instability`, :mod:`.maps`,
-:mod:`.sweeps`, :mod:`.thesis`, :mod:`.conclusions`; issue 11's robust
-measures :mod:`.impulse`, :mod:`.intervals`, :mod:`.sensitivity`, :mod:`.facts`; issue 14's
+:mod:`.sweeps`, :mod:`.thesis`, :mod:`.conclusions`; the robust
+measures :mod:`.impulse`, :mod:`.intervals`, :mod:`.sensitivity`, :mod:`.facts`;
 :mod:`.uncertain` (nonlinear measures with Monte Carlo intervals).  Rationale:
 docs/studies.md.
 """

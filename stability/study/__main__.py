@@ -23,7 +23,7 @@ from .intervals import equal_instability_interval
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = OneLineErrorParser(prog="python -m stability.study", description="Robust stability measures (issue 11).")
+    p = OneLineErrorParser(prog="python -m stability.study", description="Robust stability measures.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineErrorParser)
     ci = sub.add_parser("critical-impulse", help="smallest push (N s) after which |yaw rate| reaches the level")
     ei = sub.add_parser("equal-instability", help="equal-instability speed with its interval")

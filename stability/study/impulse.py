@@ -1,4 +1,4 @@
-"""Critical impulse: the smallest lateral push at the c.g. after which |yaw rate| reaches a level (issue 11).
+"""Critical impulse: the smallest lateral push at the c.g. after which |yaw rate| reaches a level.
 
 A disturbance-robust measure of directional stability: instead of timing the
 response to one push (Collins 1987, Figure 8-3a), ask how large a push must

@@ -1,4 +1,4 @@
-"""Elasticities d ln v / d ln p of the critical impulse and the linear growth rate at a design point (issue 11)."""
+"""Elasticities d ln v / d ln p of the critical impulse and the linear growth rate at a design point."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Nonlinear measures with intervals: Monte Carlo of the critical impulse and the equal-instability speed (issue 14).
+"""Nonlinear measures with intervals: Monte Carlo of the critical impulse and the equal-instability speed.
 
 The linear analogue is :func:`stability.linear.intervals.linear_intervals`;
 the propagation is :func:`stability.measure.propagation.propagate`.  Why the

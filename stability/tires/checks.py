@@ -1,6 +1,6 @@
 """Checks of a chair's tires before any analysis: data it needs, static loads inside the fits.
 
-Called by chair validation and the command lines (issue 16); see ``docs/tires.md``.
+Called by chair validation and the command lines; see ``docs/tires.md``.
 """
 
 from __future__ import annotations

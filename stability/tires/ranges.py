@@ -1,4 +1,4 @@
-"""The fitted range of a tire and the one policy for data outside it (issue 16).
+"""The fitted range of a tire and the one policy for data outside it.
 
 Two levels: the *evaluation* policies of :meth:`Tire.lateral_force`
 (:data:`POLICIES`: clamp, extrapolate, raise) and the toolkit's *range policy*
