@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from ..models.full_width import generated as _fw
@@ -195,13 +196,15 @@ def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, T
     Each sample's load iteration starts from zero forces (as the Python path's
     vector evaluation).  Returns the first nonzero status of :func:`evaluate`, else 0.
     """
+    y = np.empty(10)   # a contiguous copy of each sample: evaluate compiles for the solver's contiguous y only
     for j in range(ts.shape[0]):
+        for c in range(10):
+            y[c] = yy[c, j]
         guess[0], guess[1] = 0.0, 0.0
-        code = evaluate(ts[j], yy[:, j], ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC,
+        code = evaluate(ts[j], y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC,
                         RS, CAM, SL, guess, dy, aux)
         if code != 0:
             return code
-        y = yy[:, j]
         states = (y[0], y[1], y[2], y[5], y[3], y[4], y[6], dy[6], y[8], dy[8])
         for c in range(10):
             out[c, j] = states[c]
