@@ -14,7 +14,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..models.full_width import generated as _fw
 from .kernel import (
     D1,
     D2,
@@ -33,10 +32,12 @@ from .kernel import (
     X_P,
     G,
     M,
+    acc_exact,
     acc_slope,
+    acc_thesis,
     invalidate_stale_cache,
     kinematics,
-    mechan,
+    mechan_call,
     normal_loads,
     plane_loads,
     slip_angles,
@@ -48,8 +49,6 @@ __all__ = ["NAUX", "evaluate", "samples"]
 
 _jit = njit(cache=True, nogil=True)
 _inl = njit(cache=True, nogil=True, inline="always")
-acc_exact = _jit(_fw.accelerations_exact)
-acc_thesis = _jit(_fw.accelerations_thesis)
 
 #: aux layout: loads (4), forces (8), slips (4), pin moments A, B, yaw-moment input, tire yaw moment,
 #: refused tire input (kind, wheel, slip or camber deg, load)
@@ -121,8 +120,8 @@ def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM
             loads = plane_loads(P, sfx, sfy, gn, ce, se, cb, sb)
         else:
             loads = normal_loads(P, sfx, sfy, ce, se, cb, sb)
-        F, refused, wheel = mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
-                                   LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
+        F, refused, wheel = mechan_call(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
+                                        LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
         if refused != 0:
             return loads, F, refused, wheel, True
         FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F

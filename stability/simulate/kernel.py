@@ -29,8 +29,8 @@ NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
 __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
-           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both", "tire_yaw_moment",
-           "plane", "plane_loads"]
+           "mechan", "mechan_call", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both",
+           "tire_yaw_moment", "plane", "plane_loads"]
 
 _jit = njit(cache=True, nogil=True)
 #: small helpers inlined into the step loop at numba-IR level (a call per helper doubles the step's cost)
@@ -206,7 +206,12 @@ def kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd):
     return vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy
 
 
-@_jit
+_F1, _F2 = "float64[::1]", "float64[:, ::1]"
+
+
+# an explicit signature: type inference would also compile it for the literal first sample index 0
+@njit(f"float64(int64, {_F1}, {_F1}, {_F1}, {_F1}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2})", cache=True,
+      nogil=True)
 def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """Sample ``k`` of the linear sampled controller: measure, output, advance ``z`` (see controller.py)."""
     ny = Cy.shape[0]
@@ -278,6 +283,11 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
         FEx, FEy = FEx * ct - FEy * st, FEx * st + FEy * ct
         FDx, FDy = FDx * ct + FDy * st, -FDx * st + FDy * ct
     return (FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy), refused, wheel
+
+
+#: :func:`mechan` as a called function for the adaptive kernel: compiled once there instead of inlined (with its
+#: six inlined tire-force calls) into each caller; the WCHAIR step keeps it inlined (a call costs ~10 % per step)
+mechan_call = _jit(mechan.py_func)
 
 
 @_inl
