@@ -32,12 +32,14 @@ from .kernel import (
     X_P,
     G,
     M,
+    _inl,
+    _int,
     acc_exact,
     acc_slope,
     acc_thesis,
     invalidate_stale_cache,
     kinematics,
-    mechan_call,
+    mechan,
     normal_loads,
     plane_loads,
     slip_angles,
@@ -47,8 +49,7 @@ from .kernel import gravity_body as _gravity_body
 
 __all__ = ["NAUX", "evaluate", "samples"]
 
-_jit = njit(cache=True, nogil=True)
-_inl = njit(cache=True, nogil=True, inline="always")
+_jit = njit(cache=True, nogil=True)   # the entries called from Python; helpers as the WCHAIR kernel's (_int, _inl)
 
 #: aux layout: loads (4), forces (8), slips (4), pin moments A, B, yaw-moment input, tire yaw moment,
 #: refused tire input (kind, wheel, slip or camber deg, load)
@@ -57,7 +58,7 @@ NAUX = 24
 FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
 
 
-@_jit
+@_int
 def acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2):
     """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact, 2 exact on a plane)."""
     u, v, r, ce, se, cb, sb, ed, bd = s
@@ -75,7 +76,7 @@ def acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2):
                      P[M_C], P[I_Z], P[I_ZP])
 
 
-@_jit
+@_int
 def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P, g1, g2):
     """:func:`stability.simulate.physics.held_accelerations`, same operations: ``(acc, M_A, M_B)``."""
     if not (hold_a or hold_b):
@@ -120,8 +121,8 @@ def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM
             loads = plane_loads(P, sfx, sfy, gn, ce, se, cb, sb)
         else:
             loads = normal_loads(P, sfx, sfy, ce, se, cb, sb)
-        F, refused, wheel = mechan_call(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
-                                        LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
+        F, refused, wheel = mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
+                                   LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
         if refused != 0:
             return loads, F, refused, wheel, True
         FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F

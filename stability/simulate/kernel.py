@@ -16,6 +16,7 @@ import hashlib
 import math
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
@@ -29,20 +30,24 @@ NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
 __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
-           "mechan", "mechan_call", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both",
+           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both",
            "tire_yaw_moment", "plane", "plane_loads"]
 
-_jit = njit(cache=True, nogil=True)
-#: small helpers inlined into the step loop at numba-IR level (a call per helper doubles the step's cost)
-_inl = njit(cache=True, nogil=True, inline="always")
-cv_exact = _jit(_fw.contact_velocities_exact)
-cv_thesis = _jit(_fw.contact_velocities_thesis)
-acc_exact = _jit(_fw.accelerations_exact)
-acc_thesis = _jit(_fw.accelerations_thesis)
+# Every helper is its own numba function, compiled once and shared by both kernels.  The step's helpers are
+# inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
+# which made inline="always" cost about 3x the compile time); no Python wrapper unless Python calls it.
+_NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
+_int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
+_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
+_inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
+cv_exact = _int(_fw.contact_velocities_exact)
+cv_thesis = _int(_fw.contact_velocities_thesis)
+acc_exact = _int(_fw.accelerations_exact)
+acc_thesis = _int(_fw.accelerations_thesis)
 # the chair on a plane (stability.models.slope): in-plane gravity on every body, loads with the normal weight
-acc_slope = _jit(_sl.accelerations_slope_exact)
-gravity_body = _jit(_sl.gravity_body)
-loads_plane = _jit(_sl.normal_loads_plane)
+acc_slope = _int(_sl.accelerations_slope_exact)
+gravity_body = _int(_sl.gravity_body)
+loads_plane = _int(_sl.normal_loads_plane)
 
 # Params vector layout (stability.params.Params order)
 X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
@@ -56,7 +61,7 @@ SLOPE_MODEL = 2
 NREC_ALL, NREC_STATES = 31, 10
 
 
-@_inl
+@_inl_py
 def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
     """:func:`stability.statics.normal_loads`, same operations."""
     c1 = 1.0 / (P[ROLL_K] + 1.0)
@@ -89,7 +94,7 @@ def plane_loads(P, sum_fx, sum_fy, gn, ce, se, cb, sb):
                        P[H], P[M], P[ROLL_K])
 
 
-@_inl
+@_inl_py
 def tire_yaw_moment(P, F, ce, se, cb, sb):
     """:func:`stability.models.full_width.tire_yaw_moment`, same operations."""
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
@@ -100,7 +105,7 @@ def tire_yaw_moment(P, F, ce, se, cb, sb):
     return xa * fay - ya * fax + xb * fby - yb * fbx + P[X_M] * (FDy + FEy) + P[D1] * FDx - P[D2] * FEx
 
 
-@_inl
+@_inl_py
 def lateral_force(kind, seg, scale, lim, slip, fz, policy):
     """Cornering force (N) of one tire: ``(force, refused)``; ``refused`` under policy 2 ("raise").
 
@@ -150,7 +155,7 @@ def rolling_force(kind, coef, scale, fz, vx):
     return math.copysign(mag, -vx)
 
 
-@_jit
+@_int
 def held_both(model, s, F, fy_ext, mz, rdc, P, g1, g2):
     """Accelerations with both casters held (locked): pin moments solved from three evaluations."""
     u, v, r, ce, se, cb, sb, ed, bd = s
@@ -168,7 +173,7 @@ def held_both(model, s, F, fy_ext, mz, rdc, P, g1, g2):
     return (ud, vd, rd, 0.0, 0.0), ma, mb
 
 
-@_jit
+@_int
 def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     """The generated accelerations of the model.
 
@@ -211,7 +216,7 @@ _F1, _F2 = "float64[::1]", "float64[:, ::1]"
 
 # an explicit signature: type inference would also compile it for the literal first sample index 0
 @njit(f"float64(int64, {_F1}, {_F1}, {_F1}, {_F1}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2})", cache=True,
-      nogil=True)
+      nogil=True, **_NOWRAP)
 def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """Sample ``k`` of the linear sampled controller: measure, output, advance ``z`` (see controller.py)."""
     ny = Cy.shape[0]
@@ -285,11 +290,6 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
     return (FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy), refused, wheel
 
 
-#: :func:`mechan` as a called function for the adaptive kernel: compiled once there instead of inlined (with its
-#: six inlined tire-force calls) into each caller; the WCHAIR step keeps it inlined (a call costs ~10 % per step)
-mechan_call = _jit(mechan.py_func)
-
-
 @_inl
 def slip_angles(vel):
     """Signed slip angles ``atan2(vy, |vx|)`` in degrees (SLIP)."""
@@ -348,7 +348,7 @@ def record_row(rec, row, states, F, loads, slips, P, trig, extra):
         rec[27, row], rec[28, row], rec[29, row], rec[30, row] = extra
 
 
-@_jit
+@_int
 def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
             rec, stats, warn, status):
     """One run of the WCHAIR scheme; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``."""
