@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Push", "THESIS_PUSH", "REFERENCE_CHAIR", "REFERENCE_SPEED", "LEVEL", "HORIZON", "THESIS_PUBLISHED"]
+__all__ = ["Push", "THESIS_PUSH", "REFERENCE_CHAIR", "REFERENCE_SPEED", "LEVEL", "HORIZON", "THESIS_PUBLISHED",
+           "CROSS_SLOPE_STUDY"]
 
 
 @dataclass(frozen=True)
@@ -69,3 +70,7 @@ THESIS_PUBLISHED = {
     "revised_1.5x_friction": "about 1.65 m/s (Figure 9-3)",
     "reduced_mass": "about 0.85 m/s (Figure 8-14, m = 75 kg, I_z = 4.7 kg m^2)",
 }
+
+#: Treadmill study of 26 manual wheelchair users on a cross slope (Richter et al., Arch Phys Med Rehabil
+#: 2007, 88:76-80): downhill turning moment per degree of cross slope, N m/deg, as (mean, lowest, highest).
+CROSS_SLOPE_STUDY = (0.87, 0.25, 1.80)

@@ -16,6 +16,7 @@ from ..reference import HORIZON, THESIS_PUSH
 from ..signals import envelope_rate
 from ..signals import settle_time as _settle_time
 from ..simulate import simulate
+from ..tires.data import FZ_MAX_N, SLIP_MAX_DEG
 from ._format import json_float
 from .controller import DigitalController
 from .design import closed_loop_poles
@@ -216,7 +217,7 @@ def recovery(chair: Chair, speed: float, controller: DigitalController | None, *
     big = np.flatnonzero(np.abs(head) >= 10.0)
     slip = np.abs(np.asarray(res.slip_deg)[:, :2])
     load = np.asarray(res.normal_load)[:, :2]
-    oor = int(np.sum(np.any((slip > 8.0) | (load > 450.0), axis=1)))
+    oor = int(np.sum(np.any((slip > SLIP_MAX_DEG) | (load > FZ_MAX_N), axis=1)))
     return RecoveryRun(
         speed=speed, impulse_force=float(impulse_force), impulse_duration=float(impulse_duration),
         controlled=controller is not None, peak_heading_error_deg=float(np.max(np.abs(head))),

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..chair import Chair
-from ..reference import REFERENCE_SPEED
+from ..reference import CROSS_SLOPE_STUDY, REFERENCE_SPEED
 from ..slope import HandRim, Plane, drive_report, holding_moment_closed_form, solve
 from ..slope.plots import HoldingCurve
 from ..slope.uncorrected import UncorrectedPath, uncorrected_path
@@ -21,7 +21,7 @@ __all__ = ["TREADMILL", "SLOPES", "PATH_SLOPE", "SlopeSection", "drive_kind", "s
 
 #: Richter et al., Arch Phys Med Rehabil 2007, 88:76-80: growth of the downhill turning moment with
 #: cross slope over 26 manual wheelchair users, N m/deg: (mean, lowest, highest).
-TREADMILL = (0.87, 0.25, 1.80)
+TREADMILL = CROSS_SLOPE_STUDY
 #: Cross slopes of the section, deg (0-6 deg: the treadmill study's level, 3 and 6 deg and between).
 SLOPES = (0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
 #: Cross slope of the uncorrected path, deg (a steep sidewalk drainage slope; typical is about 2 %).

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..chair import preset
 from ..design import get_parameter
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from ..reference import CROSS_SLOPE_STUDY, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from ..study import FRICTION_OVER_TRAIL, TRAIL_AT_FIXED_GROUP
 from .compute import ReportData
 from .sections import section_drops
@@ -239,7 +239,8 @@ def _section_lines(d: ReportData) -> list[str]:
     sl = d.slope
     if sl is not None and sl.per_degree is not None:
         out.append(f"- Cross slope at {sl.speed:g} m/s: holding moment {sl.per_degree:.3g} N m/deg (treadmill study of "
-                   f"manual chairs: 0.87, 0.25-1.80 N m/deg; set by m x_m = {sl.m_x:.3g} kg m)"
+                   f"manual chairs: {CROSS_SLOPE_STUDY[0]:g}, {CROSS_SLOPE_STUDY[1]:g}-{CROSS_SLOPE_STUDY[2]:.2f} "
+                   f"N m/deg; set by m x_m = {sl.m_x:.3g} kg m)"
                    + (f"; uncorrected it turns {sl.path.turn}" if sl.path is not None else "")
                    + (f"; refused at {', '.join(f'{p:g}' for p, _ in sl.refused)} deg (tire data)" if sl.refused
                       else "") + ".")

@@ -15,11 +15,12 @@ import numpy as np
 from .. import tires
 from ..chair import Chair
 from ..statics import static_loads, static_stiffness
+from ..tires.data import TABLE_4_1_FZ_N
 
 __all__ = ["ForceCurves", "StaticPoint", "StiffnessCurves", "force_curves", "stiffness_curves", "TIRE_LOADS"]
 
 #: Normal forces of the constant-load curves of Figure 4-1 (N).
-TIRE_LOADS = (75.0, 150.0, 225.0, 300.0, 375.0, 450.0)
+TIRE_LOADS = TABLE_4_1_FZ_N
 
 
 @dataclass(frozen=True, eq=False)

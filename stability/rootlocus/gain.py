@@ -9,6 +9,7 @@ import numpy as np
 from .._validate import check_casters, check_model, check_speed
 from ..chair import Chair
 from ..linear import input_matrices, state_matrices, state_space, track_modes
+from ..reference import REFERENCE_SPEED
 from .speed import readonly
 
 __all__ = ["GainLocus", "gain_locus", "closed_loop_matrices"]
@@ -97,7 +98,7 @@ def _stabilising_gain(chair, speed, model, casters, gains) -> float | None:
     return float(brentq(alpha, gains[k - 1], gains[k], xtol=1e-10 * max(1.0, gains[k])))
 
 
-def gain_locus(chair: Chair, speed: float = 0.75, gains=None, *, model: str = "exact",
+def gain_locus(chair: Chair, speed: float = REFERENCE_SPEED, gains=None, *, model: str = "exact",
                casters: str = "free", max_gain: float = 300.0, n: int = 400) -> GainLocus:
     """Root locus of yaw-rate feedback through the yaw-moment input, with :func:`control.root_locus_map`.
 

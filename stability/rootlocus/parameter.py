@@ -12,6 +12,7 @@ from .._validate import check_casters, check_model, check_speed
 from ..chair import Chair
 from ..design import LOCUS_PARAMETERS, Parameter, get_parameter, main_tires
 from ..linear import state_matrices, track_modes
+from ..reference import REFERENCE_SPEED
 from .speed import readonly
 
 __all__ = ["ParameterLocus", "parameter_locus", "parameter_loci"]
@@ -101,7 +102,7 @@ def _locus_values(chair: Chair, p: Parameter, values, n: int) -> np.ndarray:
     return vals
 
 
-def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float = 0.75,
+def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float = REFERENCE_SPEED,
                     model: str = "exact", casters: str = "free", n: int = 121) -> ParameterLocus:
     """Root locus against a design parameter at fixed speed.
 
@@ -162,7 +163,7 @@ def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float =
                           casters, float(p.current(chair)), labels, chairs)
 
 
-def parameter_loci(chair: Chair, parameters: Sequence[str] = LOCUS_PARAMETERS, *, speed: float = 0.75,
+def parameter_loci(chair: Chair, parameters: Sequence[str] = LOCUS_PARAMETERS, *, speed: float = REFERENCE_SPEED,
                    model: str = "exact", casters: str = "free", n: int = 121) -> list[ParameterLocus]:
     """:func:`parameter_locus` for several parameters.
 

@@ -15,6 +15,7 @@ from typing import Any
 
 from .._validate import check_choice, check_finite, check_positive
 from ..reference import HORIZON, THESIS_PUSH
+from ..tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SCHEMES", "MODELS", "CASTERS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG",
            "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT", "SimulationDefaults", "DEFAULTS",
@@ -28,9 +29,9 @@ OUT_OF_RANGE_POLICIES = ("clamp", "extrapolate", "raise")
 WHEELS = ("A", "B", "D", "E")
 WHEEL_LABELS = {"A": "left caster", "B": "right caster", "D": "left main wheel", "E": "right main wheel"}
 #: Largest slip angle of the treadmill data (MECHAN's check), deg.
-SLIP_LIMIT_DEG = 8.0
+SLIP_LIMIT_DEG = SLIP_MAX_DEG
 #: Largest normal load of the treadmill data (STATICS's check), N.
-LOAD_LIMIT_N = 450.0
+LOAD_LIMIT_N = FZ_MAX_N
 #: WCHAIR stops at the eleventh warning of a kind (``IF (NWARN.GT.10) STOP``).
 WARNING_LIMIT = 10
 #: solve_ivp method of the adaptive scheme (stiff-aware, low order; see docs/simulator.md).

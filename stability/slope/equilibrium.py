@@ -20,6 +20,7 @@ from .._validate import check_positive, check_speed
 from ..chair import Chair
 from ..models import slope as sl
 from ..power_chair import DriveTrain
+from ..tires.data import FZ_MAX_N
 from .model import Plane, SlopeModel
 
 __all__ = ["HandRim", "Equilibrium", "solve", "holding_moment_closed_form", "max_cross_slope",
@@ -274,7 +275,7 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
                           hi=abs(cross_slope_deg))
     if lim < 0 and grade_deg == 0:
         raise ValueError(f"chair={chair.name!r} is invalid for the slope model: {why} on level ground; "
-                         "valid range: chairs whose static loads are inside the tire data (<= 450 N)")
+                         f"valid range: chairs whose static loads are inside the tire data (<= {FZ_MAX_N:g} N)")
     if lim < 0:
         raise ValueError(f"grade={grade_deg!r} deg is invalid for chair {chair.name}: {why} even without "
                          "cross slope; valid range: a smaller grade")

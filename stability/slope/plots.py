@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..reference import CROSS_SLOPE_STUDY
+
 __all__ = ["HoldingCurve", "holding_curve", "plot_holding"]
 
 
@@ -66,7 +68,7 @@ def holding_curve(chair, cross_slopes_deg: Sequence[float] = (0.5, 1, 2, 3, 4, 5
                                      for e in eqs]))
 
 
-def plot_holding(curves: Sequence[HoldingCurve], ax=None, ax_force=None, published=(0.87, 0.25, 1.80)):
+def plot_holding(curves: Sequence[HoldingCurve], ax=None, ax_force=None, published=CROSS_SLOPE_STUDY):
     """Holding moment (and hand-rim force difference on ``ax_force``) against cross slope.
 
     Parameters
