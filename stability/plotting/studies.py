@@ -51,7 +51,7 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
             lo, hi = thesis[n]
             ax.plot([lo, hi], [yi + 0.38, yi + 0.38], color=UNSTABLE, lw=3, solid_capstyle="butt")
             ax.plot([0.5 * (lo + hi)], [yi + 0.38], "v", color=UNSTABLE, ms=6,
-                    label="thesis (Figures 9-2, 9-3)" if first else None)
+                    label="thesis (Figures 8-3a, 8-14, 9-2, 9-3)" if first else None)
             first = False
             right = max(right, hi)
         ax.text(right + 0.03, yi, r.describe(), va="center", fontsize=8)

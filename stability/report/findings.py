@@ -171,28 +171,43 @@ def _steady_turn_text(d: ReportData) -> str:
 
 
 def _friction_gain_text(d: ReportData) -> str:
-    iv = d.intervals
-    ref = d.thesis.speeds[REFERENCE_CHAIR]
-    if iv is None or iv.chair_name == REFERENCE_CHAIR or ref.status != "found":
+    """The revised design against the reference chair at EQUAL pin friction (x0.5, x1, x1.5 of both).
+
+    Comparing one chair at half friction with the other at full friction mixes the friction effect with
+    the geometry effect; only equal friction levels separate them.
+    """
+    sp = d.thesis.speeds
+    ref, rev = preset(REFERENCE_CHAIR), preset("revised")
+    if d.chair not in (ref, rev) or rev.pin_friction_left != ref.pin_friction_left:
         return ""
-    half = next((v.result for v in iv.variants if v.factor == "pin friction" and v.friction_factor < 1), None)
-    if half is not None and half.value_or_bound < ref.value_or_bound < iv.point.value_or_bound:
-        return (f" {iv.chair_name} beats the {REFERENCE_CHAIR} ({ref.describe()}) with its own pin friction, but at "
-                f"half of it ({half.describe()}) it is worse: its gain rests on pin friction.")
-    return ""
+    pairs = [(f, sp[f"{REFERENCE_CHAIR} x{f:g} friction" if f != 1 else REFERENCE_CHAIR],
+              sp[f"revised x{f:g} friction" if f != 1 else "revised"]) for f in (0.5, 1.0, 1.5)]
+    if any(a.status != "found" or b.status != "found" for _, a, b in pairs):
+        return ""
+    better = all(b.speed > a.speed for _, a, b in pairs)
+    txt = "; ".join(f"{f * ref.pin_friction_left:g} N m: {b.speed:.3g} vs {a.speed:.3g} m/s" for f, a, b in pairs)
+    return (f" At equal pin friction (both chairs) the revised design against the {REFERENCE_CHAIR}: {txt}"
+            + (" - better at every level, so its gain is geometry, and pin friction adds to it." if better
+               else " - not better at every level."))
 
 
 def _figure_8_14_text(d: ReportData) -> str:
     f = d.figure_8_14
     if f is None:
         return ""
-    return (f"Figure 8-14 (the {REFERENCE_CHAIR} with m = {f.chair.m:g} kg and I_z = {f.chair.i_z:g} kg m^2) is not "
-            f"reproduced: the thesis reads equal instability at about 0.85 m/s (the lighter chair less stable); we "
-            f"find {f.speed.describe()} ({d.model} model). Why: with free casters the unstable mode is the "
-            f"massless-caster mode, whose rate at low speed is U m x_m / (I_z + m x_m^2) ({f.massless_reference:.3g} "
-            f"vs {f.massless_light:.3g} 1/s at {REFERENCE_SPEED:g} m/s; full linear model {f.rate_reference:.3g} vs "
-            f"{f.rate_light:.3g} 1/s): nearly unchanged when m and I_z shrink together. The thesis's argument (less "
-            "load, less cornering stiffness, eq 5-18) is about the locked-caster zero-width model, not this mode.")
+    ref = d.thesis.speeds[REFERENCE_CHAIR]
+    ours = ""
+    if f.speed.status == "found" and ref.status == "found":
+        ours = (" - more stable than the reference chair, as the thesis found" if f.speed.speed > ref.speed
+                else " - less stable than the reference chair, the opposite of the thesis")
+    return (f"Figure 8-14 (the {REFERENCE_CHAIR} with m = {f.chair.m:g} kg and I_z = {f.chair.i_z:g} kg m^2): the "
+            "thesis finds that the lighter chair reaches the reference instability only at about 0.85 m/s, so "
+            f"reducing mass and inertia improved stability; we find {f.speed.describe()} ({d.model} model){ours}. "
+            f"Why they can differ: with free casters the unstable mode is the massless-caster mode, whose rate at "
+            f"low speed is U m x_m / (I_z + m x_m^2) ({f.massless_reference:.3g} vs {f.massless_light:.3g} 1/s at "
+            f"{REFERENCE_SPEED:g} m/s; full linear model {f.rate_reference:.3g} vs {f.rate_light:.3g} 1/s): nearly "
+            "unchanged when m and I_z shrink together. The thesis's argument (less load, less cornering stiffness, "
+            "eq 5-18) is about the locked-caster zero-width model, not this mode.")
 
 
 def conclusion_rows(d: ReportData) -> list[list[str]]:

@@ -111,11 +111,19 @@ def shimmy_text(d: ReportData) -> list[str]:
            ]
     out += [f"  relaxation {1000 * sg:g} mm, pin stiffness {k / 1000:g} kN/m: {_cm(t)}" for sg, k, t in s.corners]
     ft = ch.friction_trail[-1]
+    gain = ""
+    if "trail" in d.chair_sweeps:
+        sw = d.chair_sweeps.get("trail")
+        i = int(sw.values.index(min(sw.values)))
+        gain = (f" With pin friction the gain is real: at {100 * sw.values[i]:g} cm trail the equal-instability speed "
+                f"is {sw.results[i].describe()} against {sw.nominal.describe()} at this chair's "
+                f"{100 * sw.nominal_value:g} cm (parametric study), because the friction-limited caster side force "
+                "M_f/l grows as the trail shrinks.")
     out.append(f"Pin friction {ch.pin_friction:g} N m holds {math.degrees(ch.amplitude):g} deg shimmy down to a trail "
-               f"of {_cm(ft)} at {ch.speeds[-1]:g} m/s (describing function). The yaw divergence rate at "
-               f"{ch.speeds[-1]:g} m/s moves only {dlo:.3g}-{dhi:.3g} 1/s over trails {100 * ch.trails[0]:g}-"
-               f"{100 * ch.trails[-1]:g} cm: shortening the trail buys little directional stability and spends "
-               "shimmy margin. Whether a trail is safe depends on the two estimates, which must be measured.")
+               f"of {_cm(ft)} at {ch.speeds[-1]:g} m/s (describing function). Without pin friction the linear yaw "
+               f"divergence rate at {ch.speeds[-1]:g} m/s moves only {dlo:.3g}-{dhi:.3g} 1/s over trails "
+               f"{100 * ch.trails[0]:g}-{100 * ch.trails[-1]:g} cm." + gain + " A shorter trail spends shimmy "
+               "margin: whether a trail is safe depends on the two estimates, which must be measured.")
     return out
 
 

@@ -295,11 +295,16 @@ def _verdict(d: ReportData) -> str:
         lin = "with free, frictionless casters it is directionally stable at every speed searched (linear model)"
     else:
         lin = "its linear stability changes with speed (see the eigenvalue pages)"
-    if cs.status == "found":
+    if cs.status == "found" and c == preset(REFERENCE_CHAIR):
+        non = (f"this is the thesis's reference chair: with its pin friction, after the thesis's push at "
+               f"{REFERENCE_SPEED:g} m/s ({3.6 * REFERENCE_SPEED:.2g} km/h, a slow walk) the user has "
+               f"{d.thesis.reference_time:.2g} s before it turns at {d.thesis.criterion.yaw_rate:g} rad/s; faster "
+               "than that it gets worse")
+    elif cs.status == "found":
         rel = (f", {100 * (cs.speed / ref.speed - 1):+.0f} % against the {REFERENCE_CHAIR}"
-               if ref.status == "found" and c != preset(REFERENCE_CHAIR) else "")
-        non = (f"in simulation with its pin friction it is as unstable as the thesis's reference case at "
-               f"{cs.describe()}{rel}")
+               if ref.status == "found" else "")
+        non = (f"in simulation with its pin friction it is as unstable as the thesis's reference case (the "
+               f"{REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s) at {cs.describe()} ({3.6 * cs.speed:.2g} km/h){rel}")
     elif cs.status == "above":
         non = (f"in simulation it stays more stable than the thesis's reference case up to {cs.bracket[1]:g} m/s "
                "(the top of the range searched)")
@@ -331,7 +336,7 @@ def summary_text(d: ReportData) -> str:
                    f"casters: {row.rate:.3g} 1/s ({d.model} model)" + _rate_interval(d) + _other_rate(d) + ".")
     imp = [x for x in d.impulses if x is not None]
     if imp:
-        parts = [f"{x.chair_name} {x.describe()}" + (f" ({x.kick_m_s:.3g} m/s per unit mass)"
+        parts = [f"{x.chair_name} {x.describe()}" + (f" ({x.kick_m_s:.3g} m/s: impulse per unit mass)"
                                                       if x.kick_m_s is not None else "")
                  + (_impulse_interval(d) if i == 0 else "") for i, x in enumerate(imp)]
         out.append(f"- Critical impulse at {REFERENCE_SPEED:g} m/s (smallest push at the c.g., force held "

@@ -23,7 +23,7 @@ DEFAULT_PLAN: dict[str, tuple | None] = {
     "s1": (0.245, 0.295, 0.345),                              # chapter 9, conclusion 2
     "trail": (0.05, 0.06, 0.07, 0.08, 0.10),                  # Figure 8-11
     "caster_mass_factor": (1.0, 2.0, 3.0),                    # Figure 8-12
-    "pin_friction": (0.05, 0.075, 0.10, 0.115, 0.12, 0.15),   # Figure 8-13, 9-3
+    "pin_friction": (0.05, 0.075, 0.10, 0.115, 0.12, 0.15, 0.30),  # Figure 8-13, 9-3; 0.3: conclusion 6
     "mass_factor": (0.8, 1.0, 1.2),                           # Figure 8-14
     "main_tire": None,                                        # Figure 8-15: all main tires
     "camber_deg": (0.0, 2.0, 5.0, 8.0),                       # chapter 8
@@ -41,7 +41,7 @@ QUICK_PLAN: dict[str, tuple | None] = {
     "s1_plus_s2": (0.52, 0.62),
     "s1": (0.245, 0.345),
     "trail": (0.06, 0.08),
-    "pin_friction": (0.05, 0.10, 0.15),
+    "pin_friction": (0.05, 0.10, 0.15, 0.30),
     "width_factor": (1.0, 1.2),
 }
 

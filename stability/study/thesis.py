@@ -6,8 +6,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from ..chair import Chair, preset
+from ..design import get_parameter, main_tires
 from ..linear import analyse
+from ..linear.summary import ZeroWidthResult, zero_width
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from . import runs
 from .criteria import DEFAULT_CRITERION, Criterion, check_impulse
@@ -15,6 +19,11 @@ from .equal_instability import EqualInstability, equal_instability_speeds, refer
 from .sweeps import DEFAULT_PLAN, SweepTable, collect_sweeps, sweep_chairs
 
 __all__ = ["LinearFacts", "ThesisStudy", "friction_variants", "thesis_study"]
+
+#: Speed of the thesis's tire comparison (Figure 8-15; at 0.75 m/s it found "virtually no effect"), m/s.
+TIRE_SPEED = 0.62
+#: The chair of the thesis's locked-caster check (eq 8-1): the E&J Premier at 75 kg.
+LOCKED_CHECK_MASS = 75.0
 
 #: Options of the bisection that the single runs of :func:`thesis_study` do not take.
 _BISECTION_ONLY = ("dt", "bracket", "tol", "candidates", "max_rounds")
@@ -64,6 +73,17 @@ class ThesisStudy:
     criterion : Criterion
     impulse : (float, float)
         Force (N), duration (s).
+    tire_speed : float
+        Speed of the thesis's tire comparison (Figure 8-15), m/s.
+    tire_times : dict of str to float
+        Time to the yaw-rate level of the E&J Premier with each main tire at ``tire_speed``, s
+        (+inf: never; conclusion 9, under the thesis's own conditions).
+    tire_peaks : dict of str to float
+        Largest |yaw rate| of the same runs within the criterion's duration, rad/s (the slow divergence
+        the thesis compares when the level is not reached).
+    locked_check : ZeroWidthResult or None
+        The zero-width locked-caster critical speed of the thesis's eq 8-1 chair (m = 75 kg), which
+        the thesis puts at about 12 m/s (eq 8-5).
     """
 
     sweeps: SweepTable
@@ -75,6 +95,10 @@ class ThesisStudy:
     scheme: str
     criterion: Criterion
     impulse: tuple
+    tire_speed: float = float("nan")
+    tire_times: dict | None = None
+    tire_peaks: dict | None = None
+    locked_check: ZeroWidthResult | None = None
 
 
 def friction_variants(c: Chair, factors: Sequence[float] = (0.5, 1.5)) -> list[Chair]:
@@ -154,7 +178,16 @@ def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | 
     # conclusion 7: time to the level at 2 m/s
     opts = runs.sim_options(model, scheme, check_impulse(impulse), options.get("dt", 0.001), criterion.duration,
                             sim_extra)
-    r2 = runs.simulate_runs([ej], [2.0], progress=False, **opts)[0]
-    study = ThesisStudy(table, speeds, ref, criterion.time(r2), linear_facts(ej, model), model, scheme, criterion,
-                        check_impulse(impulse))
+    # conclusion 9 under the thesis's conditions: every main tire at 0.62 m/s (Figure 8-15)
+    tire = get_parameter("main_tire")
+    tire_chairs = [tire.apply(ej, float(i)) for i in range(len(main_tires()))]
+    extra_runs = runs.simulate_runs([ej] + tire_chairs, [2.0] + [TIRE_SPEED] * len(tire_chairs), progress=False,
+                                    **opts)
+    tire_times = {c.main_tire: criterion.time(r) for c, r in zip(tire_chairs, extra_runs[1:], strict=True)}
+    tire_peaks = {c.main_tire: float(np.max(np.abs(np.asarray(r.yaw_rate)[np.asarray(r.t) <= criterion.duration])))
+                  for c, r in zip(tire_chairs, extra_runs[1:], strict=True)}
+    # the thesis's own check of WCHAIR (eqs 8-1..8-5): the zero-width locked-caster critical speed at 75 kg
+    locked = zero_width(ej.replace(m=LOCKED_CHECK_MASS))
+    study = ThesisStudy(table, speeds, ref, criterion.time(extra_runs[0]), linear_facts(ej, model), model, scheme,
+                        criterion, check_impulse(impulse), TIRE_SPEED, tire_times, tire_peaks, locked)
     return study, extra, other_table
