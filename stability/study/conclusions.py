@@ -79,7 +79,7 @@ def _c1(st: ThesisStudy, base: EqualInstability) -> ConclusionCheck:
         "partly" if free_low or locked_high else "disagree")
     zw = st.locked_check
     check = ("" if zw is None else
-             f" The thesis's own check (eqs 8-1..8-5, the E&J Premier at 75 kg, zero-width model, casters locked): "
+             " The thesis's own check (eqs 8-1..8-5, the E&J Premier at 75 kg, zero-width model, casters locked): "
              + (f"{zw.critical_speed:.3g} m/s (thesis: 12 m/s, with 25 N/deg read off Figure 4-2 for both tires; "
                 f"k_us {zw.understeer_coefficient:+.3f} against the thesis's -0.04)." if zw.critical_speed is not None
                 else "stable at every speed (thesis: 12 m/s)."))
@@ -268,8 +268,9 @@ def _c9_thesis_speed(st: ThesisStudy) -> ConclusionCheck:
                   f"response first: {txt}; spread {spread:.0f} %; most stable {most_stable}, lowest cornering "
                   f"stiffness at the static load {softest}; order "
                   + ("the same as" if same_order else "differs from") + " the thesis's ("
-                  + ", ".join(THESIS_TIRE_ORDER) + "). (Agree if the softest tire is the most stable and the spread is at most 60 %: the thesis saw a small "
-                  "effect near the limit and ranked the tires by stiffness.)", v)
+                  + ", ".join(THESIS_TIRE_ORDER) + "). (Agree if the softest tire is the most stable and the "
+                  "spread is at most 60 %: the thesis saw a small effect near the limit and ranked the tires by "
+                  "stiffness.)", v)
 
 
 _CHECKS: tuple[Callable[[ThesisStudy, EqualInstability], ConclusionCheck], ...] = (
