@@ -25,13 +25,13 @@ from typing import Any, NoReturn
 
 import numpy as np
 
-from . import __version__, tires
+from . import __version__, defaults, progress, tires
 from . import chair as chair_mod
 from .statics import check_static_loads, static_loads
 
-__all__ = ["OneLineErrorParser", "add_chair_options", "add_json_options", "load_chair", "parse_speeds",
-           "check_directory", "check_outputs", "output_files", "json_header", "emit_json", "error", "run",
-           "MAX_SPEEDS", "check_work"]
+__all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
+           "load_chair", "parse_speeds", "check_directory", "check_outputs", "output_files", "json_header",
+           "emit_json", "error", "run", "MAX_SPEEDS", "check_work"]
 
 #: Largest number of speeds a ``--speeds`` option may ask for (each costs an eigenvalue solve or a run).
 MAX_SPEEDS = 10_001
@@ -85,7 +85,7 @@ def _fields_epilog() -> str:
             "settable chair fields (--set NAME=VALUE; unit; meaning [valid range]):\n" + "\n".join(rows))
 
 
-def add_chair_options(parser: argparse.ArgumentParser, default: str = "ej-premier") -> None:
+def add_chair_options(parser: argparse.ArgumentParser, default: str = defaults.CHAIR) -> None:
     """Add ``--chair``, repeatable ``--set NAME=VALUE`` and ``--tire-range``; list the chair fields in ``--help``.
 
     Parameters
@@ -100,11 +100,52 @@ def add_chair_options(parser: argparse.ArgumentParser, default: str = "ej-premie
                         help=f"preset name ({', '.join(chair_mod.preset_names())}) or TOML file (default {default})")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="override a chair field (repeatable; fields listed below)")
-    parser.add_argument("--tire-range", choices=tires.RANGE_POLICIES, default="warn",
+    parser.add_argument("--tire-range", choices=tires.RANGE_POLICIES, default=defaults.TIRE_RANGE,
                         help="tire data outside the fitted slip and load range: warn (compute by extrapolation "
                              "and note it in the output; default), clamp (hold the force at the range's edge) "
                              "or raise (refuse)")
     parser.epilog = ((parser.epilog + "\n\n") if parser.epilog else "") + _fields_epilog()
+
+
+def add_common_options(parser: argparse.ArgumentParser) -> None:
+    """Add ``--debug`` (traceback on errors) and ``--quiet`` (no notes, no progress) unless present.
+
+    :func:`run` calls it on a command's parser and on each of its
+    subcommands' parsers, so both are accepted before and after a subcommand.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's (or a subcommand's) parser.
+    """
+    have = {s for a in parser._actions for s in a.option_strings}
+    if "--debug" not in have:
+        parser.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                            help="show the full traceback on errors")
+    if "--quiet" not in have:
+        parser.add_argument("--quiet", "-q", action="store_true", default=argparse.SUPPRESS,
+                            help="print no notes and no progress on stderr (results and errors only)")
+
+
+def _subparsers(parser: argparse.ArgumentParser) -> list[argparse.ArgumentParser]:
+    out: list[argparse.ArgumentParser] = []
+    for a in parser._actions:
+        if isinstance(a, argparse._SubParsersAction):
+            out.extend(dict.fromkeys(a.choices.values()))
+    return out
+
+
+def add_model_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--model {exact,thesis}`` with the toolkit's default (:data:`stability.defaults.MODEL`).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    """
+    parser.add_argument("--model", default=defaults.MODEL, choices=["exact", "thesis"],
+                        help=f"equation variant: exact (the thesis's linearisation corrected) or thesis (program "
+                             f"WCHAIR's equations); default {defaults.MODEL}")
 
 
 def add_json_options(parser: argparse.ArgumentParser) -> None:
@@ -417,8 +458,9 @@ def _with_tire_policy(body: Callable[[argparse.Namespace], int | None], args: ar
         warnings.simplefilter("ignore", tires.TireRangeWarning)
         args.tire_notes = notes
         status = body(args) or 0
-    for note in _distinct(notes):
-        print(f"note: {note}", file=sys.stderr)
+    if not getattr(args, "quiet", False):
+        for note in _distinct(notes):
+            print(f"note: {note}", file=sys.stderr)
     return status
 
 
@@ -457,12 +499,15 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     int
         Exit status: ``body``'s (0 for ``None``), 1, 2 or 130 as listed above.
     """
-    if not any("--debug" in a.option_strings for a in parser._actions):
-        parser.add_argument("--debug", action="store_true", help="show the full traceback on errors")
+    for p in (parser, *_subparsers(parser)):
+        add_common_options(p)
     args = parser.parse_args(argv)
-    debug = bool(getattr(args, "debug", False))
+    args.debug = bool(getattr(args, "debug", False))
+    args.quiet = bool(getattr(args, "quiet", False))
+    debug = args.debug
     try:
-        return _with_tire_policy(body, args)
+        with progress.quiet(args.quiet):
+            return _with_tire_policy(body, args)
     except BrokenPipeError:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())

@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from . import defaults as D
 from ._validate import check_nonnegative, check_positive
 from .chair import Chair, preset
 
@@ -96,10 +97,10 @@ class DriveTrain:
         chair is then a pure inertia about the drive-axle midpoint).
     """
 
-    wheel_radius: float = 0.178
-    torque_limit: float = 70.0
-    motor_time_constant: float = 0.02
-    traction_coefficient: float = 0.7
+    wheel_radius: float = D.DRIVE_WHEEL_RADIUS
+    torque_limit: float = D.TORQUE_LIMIT
+    motor_time_constant: float = D.MOTOR_LAG
+    traction_coefficient: float = D.TRACTION_COEFFICIENT
     yaw_damping: float = 0.0
 
     def __post_init__(self) -> None:

@@ -14,12 +14,45 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import time
 from collections.abc import Iterable, Iterator
 from typing import IO, TypeVar
 
-__all__ = ["ProgressBar", "track", "should_show"]
+__all__ = ["ProgressBar", "track", "should_show", "quiet", "is_quiet"]
+
+_QUIET = [False]
+
+
+@contextlib.contextmanager
+def quiet(on: bool = True) -> Iterator[None]:
+    """Within the block, no progress is drawn (``--quiet`` of the command lines); nests.
+
+    Parameters
+    ----------
+    on : bool
+        Silence progress (True) or leave it as it is (False).
+
+    Yields
+    ------
+    None
+    """
+    _QUIET.append(bool(on) or _QUIET[-1])
+    try:
+        yield
+    finally:
+        _QUIET.pop()
+
+
+def is_quiet() -> bool:
+    """Whether progress is silenced by :func:`quiet`.
+
+    Returns
+    -------
+    bool
+    """
+    return _QUIET[-1]
 
 T = TypeVar("T")
 
@@ -40,6 +73,8 @@ def should_show(enabled: bool = True, force: bool = False, file: IO[str] | None 
     -------
     bool
     """
+    if is_quiet():
+        return False
     if force:
         return True
     if not enabled:

@@ -341,7 +341,7 @@ def test_gyro_bias_handling_closed_forms(chair, kind):
     T_b) the DC gain is 0 and the heading settles at exactly -b T_b (final-value theorem on
     R(s)/s), i.e. -1 deg for 1 deg/s and T_b = 1 s, and -0.1 deg for 0.1 deg/s."""
     d = assist.design(chair, 1.0, kind)
-    assert np.real(tracking.closed_loop(d, heading=False)(0.0))[0, 1] == pytest.approx(-1.0, abs=1e-9)
+    assert np.real(tracking.closed_loop(d, bias_time_constant=0.0)(0.0))[0, 1] == pytest.approx(-1.0, abs=1e-9)
     for tb in (0.5, 1.0):
         sys = tracking.closed_loop(d, bias_time_constant=tb, heading=False)
         assert np.real(sys(0.0))[0, 1] == pytest.approx(0.0, abs=1e-9)

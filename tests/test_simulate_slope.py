@@ -213,7 +213,7 @@ def test_bad_slope_refused(slope):
 
 def test_thesis_model_refused_on_slope():
     with pytest.raises(ValueError, match="model='thesis' is invalid on a slope"):
-        simulate(EJ, 0.75, slope=(2.0, 0.0))
+        simulate(EJ, 0.75, model="thesis", slope=(2.0, 0.0))
 
 
 def test_cli_slope(capsys):

@@ -21,7 +21,13 @@ import numpy as np
 import pytest
 
 from stability.chair import preset
-from stability.simulate import simulate
+from stability.simulate import simulate as _simulate
+
+
+def simulate(*args, **kwargs):
+    """The simulator with the thesis's equations (program WCHAIR's) unless a test names another model: this
+    file reproduces the thesis's runs, while the toolkit's default model is "exact" (stability.defaults)."""
+    return _simulate(*args, **{"model": "thesis", **kwargs})
 
 EJ = preset("ej-premier")
 FRONT = preset("ej-premier-front-caster")

@@ -10,10 +10,12 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from .. import defaults as D
 from ..chair import Chair
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
+    add_model_option,
     check_outputs,
     json_header,
     load_chair,
@@ -65,10 +67,12 @@ def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.assist",
                            description="LQR motor assist (differential drive torque) for a power chair: "
                                        "gain schedule, margins, robustness and a nonlinear check.")
-    add_chair_options(p, default="power-fwd")
-    p.add_argument("--speeds", default="0.5:3.0:0.25", help="design speeds START:STOP:STEP or a list (m/s)")
-    p.add_argument("--design", default="gyro", choices=list(DESIGNS), help="feedback structure (default gyro)")
-    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
+    add_chair_options(p, default=D.POWER_CHAIR)
+    p.add_argument("--speeds", default=D.ASSIST_SPEEDS,
+                   help=f"design speeds START:STOP:STEP or a list (m/s; default {D.ASSIST_SPEEDS})")
+    p.add_argument("--design", default=D.ASSIST_DESIGN, choices=list(DESIGNS),
+                   help=f"feedback structure (default {D.ASSIST_DESIGN})")
+    add_model_option(p)
     p.add_argument("--max-heading-error", type=float, default=Weights.max_heading_error_deg, metavar="DEG",
                    help="Bryson weight: acceptable heading error (deg, default 2)")
     p.add_argument("--max-yaw-rate", type=float, default=0.0, metavar="DEG_S",

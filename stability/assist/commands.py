@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import defaults as D
 from .._validate import check_speed
 from ..reference import THESIS_PUSH
 from ..simulate import simulate
@@ -188,4 +189,4 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
 
 
 #: Reference-model time constant of the tracking check (s): no overshoot, ~0.7 s settling (docs/assist.md).
-COMMAND_FILTER = 0.2
+COMMAND_FILTER = D.COMMAND_FILTER

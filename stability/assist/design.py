@@ -7,7 +7,7 @@ Doyle and Stein (1981) for loop-transfer recovery.  Rationale in ``docs/assist.m
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import control
@@ -15,6 +15,7 @@ import numpy as np
 
 from .._validate import check_choice
 from ..chair import Chair
+from ..defaults import SAMPLE_RATE_HZ
 from ..power_chair import DriveTrain
 from ._format import json_float
 from .plant import Plant, measurement_matrix, plant, standstill_plant, system_name
@@ -52,6 +53,10 @@ class Design:
         heading: six chair states and, with a motor lag, the applied
         moment): the nominal plant's, or interpolated ones for a scheduled
         speed between grid points.
+    sample_time : float
+        Sample time of the sampled controller (s): ``1 / gyro.sample_rate_hz``
+        of the design's :class:`~stability.assist.weights.GyroSensor`, so the
+        discrete loop and its margins take it from here (given once).
     """
 
     kind: str
@@ -65,6 +70,7 @@ class Design:
     Dc: np.ndarray
     model_A: np.ndarray | None = None
     model_B: np.ndarray | None = None
+    sample_time: float = 1.0 / SAMPLE_RATE_HZ
 
     @property
     def measured(self) -> tuple[str, ...]:
@@ -171,8 +177,9 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     K = np.zeros((1, p.n))
     K[0, keep] = np.asarray(Kr, dtype=float).reshape(-1)
     if kind == "full-state":
-        return realise(kind, p, K, None)
-    return realise(kind, p, K, _kalman(p, gyro, estimator) if speed != 0 else _kalman_standstill(p, gyro, estimator))
+        return replace(realise(kind, p, K, None), sample_time=1.0 / gyro.sample_rate_hz)
+    d = realise(kind, p, K, _kalman(p, gyro, estimator) if speed != 0 else _kalman_standstill(p, gyro, estimator))
+    return replace(d, sample_time=1.0 / gyro.sample_rate_hz)
 
 
 def _kalman(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:

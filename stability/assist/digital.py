@@ -18,6 +18,7 @@ import numpy as np
 from scipy.linalg import expm
 
 from .design import Design, LoopMargins, _margins, loop_margins
+from .plant import system_name
 
 __all__ = ["discrete_controller", "discrete_loop", "discrete_margins", "MarginPair", "margin_pair", "MarginCurves",
            "margin_curves"]
@@ -67,29 +68,35 @@ def discrete_controller(d: Design, sample_time: float) -> control.StateSpace:
     return control.ss(A, B, C, np.zeros((1, B.shape[1])), T)
 
 
-def discrete_loop(d: Design, sample_time: float) -> control.StateSpace:
+def discrete_loop(d: Design, sample_time: float | None = None) -> control.StateSpace:
     """Loop transfer ``L(z)`` broken at the plant input of the sampled controller.
 
     Parameters
     ----------
     d : Design
-    sample_time : float
-        s.
+    sample_time : float, optional
+        s; default the design's own (:attr:`Design.sample_time`, from its
+        gyro's sample rate), so it is given once.
 
     Returns
     -------
     control.StateSpace
-        Discrete, SISO (negative feedback).
+        Discrete (``dt`` = the sample time), SISO, negative feedback: input
+        ``Mz`` (the yaw moment applied at the plant input, N m), output ``u``
+        (the controller's ``-Mz``); named ``<design>_loop_U<speed>``.
     """
+    sample_time = d.sample_time if sample_time is None else sample_time
     p = d.plant
     idx = p.internal
     A, B = p.A[np.ix_(idx, idx)], p.B[idx]
     C = np.eye(len(idx))[1:2] if d.kind == "gyro" else np.eye(len(idx))
     Pd = control.c2d(control.ss(A, B, C, np.zeros((C.shape[0], 1))), sample_time, method="zoh")
-    return control.series(Pd, discrete_controller(d, sample_time))
+    L = control.series(Pd, discrete_controller(d, sample_time))
+    return control.ss(L.A, L.B, L.C, L.D, L.dt, inputs=["Mz"], outputs=["u"],
+                      name=system_name(f"{d.kind.replace('-', '_')}_loop", d.speed))
 
 
-def discrete_margins(d: Design, sample_time: float) -> LoopMargins:
+def discrete_margins(d: Design, sample_time: float | None = None) -> LoopMargins:
     """Margins of :func:`discrete_loop` (:func:`control.stability_margins`; delay margin ``pm / w_gc``).
 
     Parameters
@@ -103,7 +110,7 @@ def discrete_margins(d: Design, sample_time: float) -> LoopMargins:
     LoopMargins
     """
     L = discrete_loop(d, sample_time)
-    T = float(sample_time)
+    T = float(L.dt)
     A, B, C = np.asarray(L.A), np.asarray(L.B)[:, 0], np.asarray(L.C)[0]
     n = A.shape[0]
 

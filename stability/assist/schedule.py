@@ -111,19 +111,19 @@ class Schedule:
         speeds, designs = self.grid
         hit = np.flatnonzero(np.isclose(speeds, speed, rtol=0, atol=1e-12))
         if hit.size:
-            return designs[int(hit[0])]
+            return designs[int(hit[0])]           # designed with self.gyro: its sample time already
         if speed == 0:
             raise ValueError("speed=0 is invalid without a standstill design; valid range: > 0 m/s")
         K = self._interp(speed, lambda d: d.K)
         true_p = plant(self.chair, speed, self.model, self.drive.motor_time_constant)
         if self.kind == "full-state":
-            return realise(self.kind, true_p, K, None)
+            return replace(realise(self.kind, true_p, K, None), sample_time=1.0 / self.gyro.sample_rate_hz)
         L = self._interp(speed, lambda d: d.L)
         A = self._interp(speed, lambda d: d.plant.A)
         B = self._interp(speed, lambda d: d.plant.B)
         p_model = Plant(speed, A, B, true_p.Bf, true_p.motor_time_constant)
         d = realise(self.kind, p_model, K, L)
-        return replace(d, plant=true_p)
+        return replace(d, plant=true_p, sample_time=1.0 / self.gyro.sample_rate_hz)
 
 
 def schedule(chair: Chair, speeds: Sequence[float] | np.ndarray, kind: str = "gyro", *,

@@ -17,8 +17,9 @@ from dataclasses import dataclass
 import control
 import numpy as np
 
+from ..defaults import BIAS_TIME_CONSTANT, COMMAND_FILTER
 from .design import Design
-from .plant import Plant
+from .plant import Plant, system_name
 
 __all__ = ["Feedforward", "feedforward", "closed_loop", "final_heading", "heading_drift", "TrackingMetrics",
            "step_metrics", "DriftCurves", "drift_curves"]
@@ -72,8 +73,18 @@ def feedforward(p: Plant) -> Feedforward:
 
 
 def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: bool = True,
-                bias_time_constant: float = 0.0, heading: bool = True) -> control.StateSpace:
+                bias_time_constant: float = BIAS_TIME_CONSTANT, heading: bool = False,
+                command_filter: float = COMMAND_FILTER) -> control.StateSpace:
     """The linear closed loop with a yaw-rate command, a gyro bias and a lateral force as inputs.
+
+    The defaults are the command line's (:mod:`stability.defaults`): the
+    gyro-bias estimate with a 1 s time constant and the 200 ms reference
+    model on the command, so a step of ``r_cmd`` does not overshoot, as
+    ``python -m stability.assist`` reports.  Inputs, outputs and states are
+    named; without the heading (the default) the state matrix is regular, so
+    :func:`control.dcgain` is finite (1 from ``r_cmd`` to ``r``) and the
+    system goes straight into :func:`control.bode_plot`,
+    :func:`control.step_response` and :func:`control.margin`.
 
     Plant ``x_dot = A x + B Mz + Bf Fy``; gyro ``r_m = r + b``; bias
     estimate ``b_hat`` (first order, time constant ``bias_time_constant``
@@ -91,17 +102,26 @@ def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: 
     use_feedforward : bool
         Include ``Nx``, ``Nu`` (integral action alone otherwise).
     bias_time_constant : float
-        ``T_b`` of the bias estimate (s); 0 turns the handling off.
+        ``T_b`` of the bias estimate (s); 0 turns the handling off (default
+        :data:`stability.defaults.BIAS_TIME_CONSTANT`, 1 s).
     heading : bool
         Keep the true heading (a pure integrator of ``r`` that nothing
-        depends on: the state matrix is then singular).
+        depends on: the state matrix is then singular and DC gains are NaN).
+        Default False.
+    command_filter : float
+        Time constant of the first-order reference model on ``r_cmd`` (s);
+        0: the raw command (default :data:`stability.defaults.COMMAND_FILTER`, 0.2 s).
 
     Returns
     -------
     control.StateSpace
         Inputs ``r_cmd`` (rad/s), ``bias`` (rad/s), ``Fy`` (N); outputs
         ``r`` (rad/s), ``psi`` (true heading, rad; only with ``heading``),
-        ``Mz`` (N m), ``e`` (measured heading error, rad).
+        ``Mz`` (yaw moment of the drive, N m), ``e`` (measured heading
+        error, rad); states named after the plant's, the heading-error
+        integrator ``e``, the estimate ``*_hat``, the bias estimate ``b_hat``
+        and the reference model ``r_ref``.  Named ``<design>_closed_loop_U<speed>``
+        (python-control allows no dots in names: ``gyro_closed_loop_U1p5``).
     """
     p = true_plant or d.plant
     n = p.n
@@ -149,11 +169,23 @@ def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: 
     D = np.zeros((4, 3))
     C[0, 1] = C[1, 6] = C[3, E] = 1.0
     C[2], D[2] = mz_z, mz_u
+    names = list(p.states) + ["e"] + ([f"{p.states[i]}_hat" for i in idx] if gyro else []) \
+        + (["b_hat"] if handle else [])
+    outputs = ["r", "psi", "Mz", "e"]
     if not heading:      # nothing depends on the true heading: drop its integrator (for DC gains)
         keep = [i for i in range(N) if i != 6]
-        return control.ss(A[np.ix_(keep, keep)], Bu[keep], C[np.ix_([0, 2, 3], keep)], D[[0, 2, 3]],
-                          inputs=["r_cmd", "bias", "Fy"], outputs=["r", "Mz", "e"])
-    return control.ss(A, Bu, C, D, inputs=["r_cmd", "bias", "Fy"], outputs=["r", "psi", "Mz", "e"])
+        A, Bu, C, D = A[np.ix_(keep, keep)], Bu[keep], C[np.ix_([0, 2, 3], keep)], D[[0, 2, 3]]
+        names = [names[i] for i in keep]
+        outputs = ["r", "Mz", "e"]
+    if command_filter > 0:   # r_ref' = (r_cmd - r_ref)/T: the loop sees r_ref where it saw r_cmd
+        A = np.block([[A, Bu[:, :1]], [np.zeros((1, A.shape[0])), np.array([[-1.0 / command_filter]])]])
+        C = np.hstack([C, D[:, :1]])
+        Bu = np.vstack([np.hstack([np.zeros((Bu.shape[0], 1)), Bu[:, 1:]]),
+                        np.array([[1.0 / command_filter, 0.0, 0.0]])])
+        D = np.hstack([np.zeros((D.shape[0], 1)), D[:, 1:]])
+        names.append("r_ref")
+    return control.ss(A, Bu, C, D, inputs=["r_cmd", "bias", "Fy"], outputs=outputs, states=names,
+                      name=system_name(f"{d.kind.replace('-', '_')}_closed_loop", d.speed))
 
 
 def final_heading(sys: control.StateSpace, inp: int) -> float:
@@ -263,7 +295,7 @@ def heading_drift(d: Design, bias_deg_s: float, duration: float, *, bias_time_co
 
 def _drift(d: Design, bias_deg_s: float, duration: float, bias_time_constant: float) -> tuple[np.ndarray, np.ndarray]:
     """Time (s) and true heading (deg) of the linear loop, straight command, constant gyro bias."""
-    sys = closed_loop(d, bias_time_constant=bias_time_constant)
+    sys = closed_loop(d, bias_time_constant=bias_time_constant, heading=True, command_filter=0.0)
     t = np.linspace(0.0, duration, int(duration * 200) + 1)
     u = np.zeros((3, t.size))
     u[1] = np.radians(bias_deg_s)

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import defaults as D
 from .._validate import check_nonnegative, check_positive
 from ..chair import Chair
 from ..power_chair import DriveTrain
@@ -41,7 +42,7 @@ class Weights:
         the drive train's torque limit.
     """
 
-    max_heading_error_deg: float = 2.0
+    max_heading_error_deg: float = D.MAX_HEADING_ERROR
     max_yaw_rate_deg_s: float | None = None
     max_lateral_velocity_m_s: float | None = None
     torque_budget_nm: float | None = None
@@ -117,10 +118,10 @@ class GyroSensor:
         then holds the biased heading and the chair turns at minus the bias).
     """
 
-    noise_density_deg_s: float = 0.05
-    bias_deg_s: float = 0.1
-    sample_rate_hz: float = 200.0
-    bias_time_constant_s: float = 1.0
+    noise_density_deg_s: float = D.GYRO_NOISE
+    bias_deg_s: float = D.GYRO_BIAS
+    sample_rate_hz: float = D.SAMPLE_RATE_HZ
+    bias_time_constant_s: float = D.BIAS_TIME_CONSTANT
 
     def __post_init__(self) -> None:
         for name in ("noise_density_deg_s", "bias_deg_s", "bias_time_constant_s"):

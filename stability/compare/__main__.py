@@ -21,10 +21,12 @@ import argparse
 import sys
 from collections.abc import Sequence
 
+from .. import defaults as D
 from ..chair import Chair
 from ..cli import (
     OneLineErrorParser,
     add_json_options,
+    add_model_option,
     check_outputs,
     emit_json,
     json_header,
@@ -47,17 +49,18 @@ def build_parser() -> argparse.ArgumentParser:
                    help="preset name or TOML file (two or more; the first is the reference)")
     p.add_argument("--set", action="append", default=[], metavar="K:NAME=VALUE",
                    help="override a field of the K-th chair (1-based; repeatable), e.g. 2:trail=0.06")
-    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
-    p.add_argument("--speeds", default=",".join(f"{s:g}" for s in DEFAULT_SPEEDS),
-                   help="speeds of the growth-rate table, START:STOP:STEP or a list (m/s)")
-    p.add_argument("--max-speed", type=float, default=30.0,
-                   help="upper end of the critical-speed search (m/s, default 30)")
+    add_model_option(p)
+    p.add_argument("--speeds", default=D.speeds_text(DEFAULT_SPEEDS),
+                   help=f"speeds of the growth-rate table, START:STOP:STEP or a list (m/s; default "
+                        f"{D.speeds_text(DEFAULT_SPEEDS)})")
+    p.add_argument("--max-speed", type=float, default=D.MAX_SPEED,
+                   help=f"upper end of the critical-speed search (m/s, default {D.MAX_SPEED:g})")
     p.add_argument("--uncertainty", action="append", default=[], metavar="FILE",
                    help="uncertainty TOML file, one per chair in order ('-' for none): intervals and "
                         "whether each difference exceeds the uncertainty")
-    p.add_argument("--samples", type=int, default=1000, help="Monte Carlo draws per chair (default 1000)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
-    p.add_argument("--level", type=float, default=0.95, help="interval coverage (default 0.95)")
+    p.add_argument("--samples", type=int, default=D.SAMPLES, help=f"Monte Carlo draws per chair (default {D.SAMPLES})")
+    p.add_argument("--seed", type=int, default=D.SEED, help=f"seed of the draws (default {D.SEED})")
+    p.add_argument("--level", type=float, default=D.COVERAGE, help=f"interval coverage (default {D.COVERAGE:g})")
     p.add_argument("--pairing", default="shared", choices=["shared", "independent"],
                    help="shared: tables of the same name get the same draw in every chair (the same unknown); "
                         "independent: separate seeds (default shared)")

@@ -18,6 +18,7 @@ import numpy as np
 
 from .._validate import check_model
 from ..chair import Chair, to_mapping
+from ..defaults import SUMMARY_SPEEDS
 from ..linear import zero_width
 from ..linear.batch import ChairBatch
 from ..linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
@@ -27,7 +28,7 @@ from ..reference import REFERENCE_SPEED, THESIS_PUSH
 __all__ = ["Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
            "single_effects", "growth_curves"]
 
-DEFAULT_SPEEDS = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
+DEFAULT_SPEEDS = SUMMARY_SPEEDS
 #: Speeds of the growth-rate curves in the figure, m/s.
 CURVE_SPEEDS = tuple(float(x) for x in np.linspace(0.05, 3.0, 60))
 

@@ -19,10 +19,12 @@ from __future__ import annotations
 import argparse
 from collections.abc import Sequence
 
+from .. import defaults as D
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
     add_json_options,
+    add_model_option,
     check_outputs,
     emit_json,
     json_header,
@@ -56,21 +58,23 @@ def build_parser() -> argparse.ArgumentParser:
     """
     p = OneLineErrorParser(prog="python -m stability.critical_speed", description=(__doc__ or "").split("\n\n")[0])
     add_chair_options(p)
-    p.add_argument("--model", default="exact", choices=["exact", "thesis"], help="equation variant (default exact)")
-    p.add_argument("--speeds", default="0.25,0.5,0.75,1,1.5,2,3",
-                   help="speeds for the divergence table, START:STOP:STEP or a list (m/s)")
-    p.add_argument("--max-speed", type=float, default=30.0,
-                   help="upper end of the critical-speed search (m/s, default 30)")
+    add_model_option(p)
+    p.add_argument("--speeds", default=D.speeds_text(D.SUMMARY_SPEEDS),
+                   help=f"speeds for the divergence table, START:STOP:STEP or a list (m/s; default "
+                        f"{D.speeds_text(D.SUMMARY_SPEEDS)})")
+    p.add_argument("--max-speed", type=float, default=D.MAX_SPEED,
+                   help=f"upper end of the critical-speed search (m/s, default {D.MAX_SPEED:g})")
     p.add_argument("--uncertainty", metavar="FILE",
                    help="TOML file of parameter distributions: print 95 %% intervals (Monte Carlo) next to the values")
-    p.add_argument("--samples", type=int, default=1000, help="Monte Carlo draws with --uncertainty (default 1000)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the draws (default 0)")
-    p.add_argument("--level", type=float, default=0.95, help="interval coverage (default 0.95)")
+    p.add_argument("--samples", type=int, default=D.SAMPLES,
+                   help=f"Monte Carlo draws with --uncertainty (default {D.SAMPLES})")
+    p.add_argument("--seed", type=int, default=D.SEED, help=f"seed of the draws (default {D.SEED})")
+    p.add_argument("--level", type=float, default=D.COVERAGE, help=f"interval coverage (default {D.COVERAGE:g})")
     p.add_argument("--nonlinear", action="store_true",
                    help="with --uncertainty: also the intervals of the critical impulse at 0.75 m/s and the "
                         "equal-instability speed (simulations; about 0.05-0.1 s per draw)")
-    p.add_argument("--nonlinear-samples", type=int, default=200,
-                   help="Monte Carlo draws of the nonlinear measures (1 to 2000, default 200)")
+    p.add_argument("--nonlinear-samples", type=int, default=D.NONLINEAR_SAMPLES,
+                   help=f"Monte Carlo draws of the nonlinear measures (1 to 2000, default {D.NONLINEAR_SAMPLES})")
     add_json_options(p)
     return p
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 from collections.abc import Sequence
 
-from ..cli import OneLineErrorParser, add_chair_options, check_outputs, load_chair, output_files, run
+from .. import defaults as D
+from ..cli import OneLineErrorParser, add_chair_options, add_model_option, check_outputs, load_chair, output_files, run
 from ..linear.intervals import MAX_SAMPLES
 from ..measure.uncertainty import load_uncertainty
 from . import document
@@ -25,17 +26,17 @@ def build_parser() -> argparse.ArgumentParser:
     """
     p = OneLineErrorParser(prog="python -m stability.report", description=_DESCRIPTION)
     add_chair_options(p)
-    p.add_argument("--model", default="exact", choices=["exact", "thesis"],
-                   help="equation variant for the linear analysis and the simulations (default exact)")
+    add_model_option(p)
     p.add_argument("--quick", action="store_true", help="coarse version in seconds")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.add_argument("--text", metavar="FILE", help="also write the text of every page to FILE")
     p.add_argument("--uncertainty", metavar="FILE",
                    help="TOML file of parameter distributions: a page of linear results with 95 %% intervals "
                         "and intervals next to the key numbers")
-    p.add_argument("--samples", type=int, default=1000,
-                   help=f"Monte Carlo draws with --uncertainty (1 to {MAX_SAMPLES}, default 1000)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the draws with --uncertainty (>= 0, default 0)")
+    p.add_argument("--samples", type=int, default=D.SAMPLES,
+                   help=f"Monte Carlo draws with --uncertainty (1 to {MAX_SAMPLES}, default {D.SAMPLES})")
+    p.add_argument("--seed", type=int, default=D.SEED,
+                   help=f"seed of the draws with --uncertainty (>= 0, default {D.SEED})")
     p.add_argument("-o", "--output", required=True, metavar="FILE.pdf", help="output PDF")
     return p
 
@@ -60,7 +61,7 @@ def _run(args: argparse.Namespace) -> int:
     check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
     if not args.output.lower().endswith(".pdf"):
         raise ValueError(f"-o {args.output!r} must end in .pdf")
-    if args.uncertainty is None and (args.samples != 1000 or args.seed != 0):
+    if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
         raise ValueError("--samples and --seed need --uncertainty FILE")
     spec = None
     if args.uncertainty is not None:

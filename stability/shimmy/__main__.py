@@ -9,17 +9,20 @@ from collections.abc import Sequence
 import numpy as np
 
 from .. import cli
+from .. import defaults as D
 from .chair import CasterCompliance, caster_summary, trail_chart
 from .chair_modes import chair_shimmy
 
 
-def _parser() -> cli.OneLineErrorParser:
+def build_parser() -> cli.OneLineErrorParser:
     p = cli.OneLineErrorParser(prog="python -m stability.shimmy", description=__doc__)
     cli.add_chair_options(p)
-    p.add_argument("--speeds", default="0.25:3:0.25", help="START:STOP:STEP or a list (m/s)")
+    p.add_argument("--speeds", default=D.SHIMMY_SPEEDS,
+                   help=f"START:STOP:STEP or a list (m/s; default {D.SHIMMY_SPEEDS})")
     p.add_argument("--relaxation-length", type=float, default=None, help="caster tire relaxation length (m)")
     p.add_argument("--lateral-stiffness", type=float, default=None, help="frame lateral stiffness at the pin (N/m)")
-    p.add_argument("--amplitude-deg", type=float, default=5.0, help="shimmy amplitude for the friction estimate")
+    p.add_argument("--amplitude-deg", type=float, default=D.SHIMMY_AMPLITUDE_DEG,
+                   help=f"shimmy amplitude for the friction estimate, deg (default {D.SHIMMY_AMPLITUDE_DEG:g})")
     out = p.add_mutually_exclusive_group()
     out.add_argument("--json", action="store_true", help="print JSON to stdout")
     out.add_argument("--json-file", metavar="FILE", help="write JSON to FILE (atomically)")
@@ -112,7 +115,7 @@ def _print_chair_model(pin: str, m) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    return cli.run(_parser(), argv, _body)
+    return cli.run(build_parser(), argv, _body)
 
 
 if __name__ == "__main__":

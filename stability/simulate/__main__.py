@@ -6,10 +6,12 @@ import argparse
 import sys
 from collections.abc import Sequence
 
+from .. import defaults as DF
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
     add_json_options,
+    add_model_option,
     check_outputs,
     check_work,
     emit_json,
@@ -18,20 +20,20 @@ from ..cli import (
     output_files,
     run,
 )
-from ..reference import REFERENCE_SPEED, THESIS_PUSH
+from ..reference import THESIS_PUSH
 from .api import simulate
 from .options import DEFAULTS as D
 from .plot import plot_result
 
-__all__ = ["main"]
+__all__ = ["main", "build_parser"]
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
     ap = OneLineErrorParser(prog="python -m stability.simulate",
                  description="Simulate a wheelchair disturbed from straight motion (thesis chapter 7).")
     add_chair_options(ap)
-    ap.add_argument("--speed", type=float, default=REFERENCE_SPEED,
-                    help=f"initial forward speed, m/s (default {REFERENCE_SPEED:g})")
+    ap.add_argument("--speed", type=float, default=DF.SPEED,
+                    help=f"initial forward speed, m/s (default {DF.SPEED:g})")
     ap.add_argument("--impulse", type=float, nargs=2, metavar=("FORCE", "DURATION"), default=THESIS_PUSH.as_tuple,
                     help=f"lateral force at the c.g. (N) and its duration (s); default {THESIS_PUSH.force:g} "
                          f"{THESIS_PUSH.duration:g}")
@@ -41,8 +43,7 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--eta0", type=float, default=0.0, metavar="DEG", help="initial left caster angle, deg")
     ap.add_argument("--beta0", type=float, default=0.0, metavar="DEG", help="initial right caster angle, deg")
     ap.add_argument("--scheme", default=D.scheme, help=f"wchair or adaptive (default {D.scheme})")
-    ap.add_argument("--model", default="exact", choices=("exact", "thesis"),
-                    help="equation variant: exact (default, as every command) or thesis (program WCHAIR's)")
+    add_model_option(ap)
     ap.add_argument("--cross-slope", type=float, default=D.slope[0], metavar="DEG",
                     help="cross slope, deg: the plane falls to the right of the initial heading (+); |.| <= 15")
     ap.add_argument("--grade", type=float, default=D.slope[1], metavar="DEG",
@@ -123,7 +124,7 @@ def _run_cli(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Command-line entry point; returns the exit status (2 on bad input)."""
-    return run(_parser(), argv, _run_cli, errors=(ValueError, OSError))
+    return run(build_parser(), argv, _run_cli, errors=(ValueError, OSError))
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from .. import defaults as D
 from .._validate import check_choice, check_finite, check_positive
 from ..reference import HORIZON, THESIS_PUSH
 from ..tires.data import FZ_MAX_N, SLIP_MAX_DEG
@@ -37,7 +38,7 @@ WARNING_LIMIT = 10
 #: solve_ivp method of the adaptive scheme (stiff-aware, low order; see docs/simulator.md).
 ADAPTIVE_METHOD = "LSODA"
 #: WCHAIR's time step TSTEP, s (the thesis's runs).
-WCHAIR_DT = 0.001
+WCHAIR_DT = D.DT
 #: Largest |cross slope| and |grade| of a simulation, deg (tire data: slips stay within 8 deg up to ~15 deg).
 MAX_SLOPE_DEG = 15.0
 ADAPTIVE_SAMPLE = 0.01
@@ -61,7 +62,8 @@ class SimulationDefaults:
     scheme : {"wchair", "adaptive"}
         Integration scheme: WCHAIR's fixed step or error-controlled.
     model : {"thesis", "exact"}
-        Variant of the equations of motion.
+        Variant of the equations of motion (default "exact", as every
+        command line: :data:`stability.defaults.MODEL`).
     dt : float or "auto"
         Fixed step of the wchair scheme, s (WCHAIR's TSTEP; 0.001 s).  > 0 and
         <= ``duration``.
@@ -104,8 +106,8 @@ class SimulationDefaults:
     """
 
     duration: float = HORIZON
-    scheme: str = "wchair"
-    model: str = "thesis"
+    scheme: str = D.SCHEME
+    model: str = D.MODEL
     dt: float | str = WCHAIR_DT
     impulse_force: float = THESIS_PUSH.force
     impulse_duration: float = THESIS_PUSH.duration
@@ -113,10 +115,10 @@ class SimulationDefaults:
     lateral_velocity: float = 0.0
     eta0_deg: float = 0.0
     beta0_deg: float = 0.0
-    casters: str = "free"
+    casters: str = D.CASTERS
     yaw_moment: Callable | None = None
     stop_on_warnings: bool | None = None
-    out_of_range: str = "clamp"
+    out_of_range: str = D.SIM_OUT_OF_RANGE
     sample: float | None = None
     rtol: float = 1e-6
     atol: float = 1e-9

@@ -6,24 +6,28 @@ import argparse
 import math
 from collections.abc import Sequence
 
+from .. import defaults as D
 from ..cli import OneLineErrorParser, add_chair_options, check_outputs, emit_json, json_header, load_chair, run
 from .equilibrium import HandRim, drive_report, solve
 from .uncorrected import simulator_path, uncorrected_path
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.slope", description=__doc__)
     add_chair_options(p)
     p.add_argument("--cross-slope", type=float, required=True, metavar="DEG",
                    help="cross slope (deg), positive falling to the right")
     p.add_argument("--grade", type=float, default=0.0, metavar="DEG", help="grade (deg), uphill + (default 0)")
     p.add_argument("--speed", type=float, required=True, metavar="U", help="speed along the path (m/s)")
-    p.add_argument("--sim-time", type=float, default=1.0, metavar="T",
-                   help="simulator runs of the uncorrected turn: report time (s, 0 < T <= 10; default 1)")
+    p.add_argument("--sim-time", type=float, default=D.SLOPE_SIM_TIME, metavar="T",
+                   help=f"simulator runs of the uncorrected turn: report time (s, 0 < T <= 10; "
+                        f"default {D.SLOPE_SIM_TIME:g})")
     p.add_argument("--drive", choices=("auto", "handrim", "motor"), default="auto",
                    help="report hand-rim forces or motor torques (auto: motor for power-* chairs)")
-    p.add_argument("--wheel-radius", type=float, default=HandRim.wheel_radius, help="hand-rim drive: wheel radius (m)")
-    p.add_argument("--handrim-radius", type=float, default=HandRim.handrim_radius, help="hand-rim radius (m)")
+    p.add_argument("--wheel-radius", type=float, default=D.HANDRIM_WHEEL_RADIUS,
+                   help=f"hand-rim drive: wheel radius (m, default {D.HANDRIM_WHEEL_RADIUS:g})")
+    p.add_argument("--handrim-radius", type=float, default=D.HANDRIM_RADIUS,
+                   help=f"hand-rim radius (m, default {D.HANDRIM_RADIUS:g})")
     out = p.add_mutually_exclusive_group()
     out.add_argument("--json", action="store_true", help="print JSON to stdout")
     out.add_argument("--json-file", metavar="F", help="write JSON to F (atomically)")
@@ -123,7 +127,7 @@ def _body(a: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
-    return run(_parser(), argv, _body)
+    return run(build_parser(), argv, _body)
 
 
 if __name__ == "__main__":

@@ -16,6 +16,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .. import defaults as D
 from .._validate import check_positive, check_speed
 from ..chair import Chair
 from ..models import slope as sl
@@ -39,8 +40,8 @@ class HandRim:
         Hand-rim radius (m); 0.265 m is typical for 24-inch wheels.
     """
 
-    wheel_radius: float = 0.305
-    handrim_radius: float = 0.265
+    wheel_radius: float = D.HANDRIM_WHEEL_RADIUS
+    handrim_radius: float = D.HANDRIM_RADIUS
 
     def __post_init__(self) -> None:
         check_positive("wheel_radius", self.wheel_radius, prefix="hand-rim parameter ")

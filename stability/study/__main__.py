@@ -6,10 +6,12 @@ import argparse
 import sys
 from collections.abc import Sequence
 
+from .. import defaults as D
 from ..chair import Chair
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
+    add_model_option,
     check_outputs,
     emit_json,
     json_header,
@@ -22,22 +24,28 @@ from .impulse import critical_impulse_curve
 from .intervals import equal_instability_interval
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.study", description="Robust stability measures.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineErrorParser)
     ci = sub.add_parser("critical-impulse", help="smallest push (N s) after which |yaw rate| reaches the level")
     ei = sub.add_parser("equal-instability", help="equal-instability speed with its interval")
     for s in (ci, ei):
         add_chair_options(s)
-        s.add_argument("--model", choices=("exact", "thesis"), default="exact")
+        add_model_option(s)
         s.add_argument("--json", action="store_true", help="print JSON to stdout")
         s.add_argument("--json-file", metavar="FILE", help="write JSON to FILE (atomically)")
-    ci.add_argument("--speeds", default="0.5:1.0:0.25", help="START:STOP:STEP or a list, m/s")
-    ci.add_argument("--duration", type=float, default=THESIS_PUSH.duration, help="push duration, s")
-    ci.add_argument("--level", type=float, default=1.0, help="|yaw rate| level, rad/s")
-    ci.add_argument("--horizon", type=float, default=10.0, help="simulated time, s")
-    ci.add_argument("--max-impulse", type=float, default=40.0, help="largest push tried, N s")
-    ei.add_argument("--force", type=float, default=THESIS_PUSH.force, help="nominal push force, N")
+    ci.add_argument("--speeds", default=D.STUDY_SPEEDS,
+                    help=f"START:STOP:STEP or a list, m/s (default {D.STUDY_SPEEDS})")
+    ci.add_argument("--duration", type=float, default=D.PUSH_DURATION,
+                    help=f"push duration, s (default {D.PUSH_DURATION:g})")
+    ci.add_argument("--level", type=float, default=D.YAW_RATE_LEVEL,
+                    help=f"|yaw rate| level of the instability criterion, rad/s (default {D.YAW_RATE_LEVEL:g})")
+    ci.add_argument("--horizon", type=float, default=D.HORIZON_S,
+                    help=f"simulated time within which the level must be reached, s (default {D.HORIZON_S:g})")
+    ci.add_argument("--max-impulse", type=float, default=D.MAX_IMPULSE,
+                    help=f"largest push tried, N s (default {D.MAX_IMPULSE:g})")
+    ei.add_argument("--force", type=float, default=D.PUSH_FORCE,
+                    help=f"nominal push force, N (default {D.PUSH_FORCE:g}, for {D.PUSH_DURATION:g} s)")
     ei.add_argument("--chair-friction-only", action="store_true",
                     help="apply the pin-friction factors to the chair only (default: to the reference chair too)")
     return p
@@ -79,7 +87,7 @@ def _interval(args: argparse.Namespace) -> None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status (2 on bad input, with one line on stderr)."""
-    parser = _parser()
+    parser = build_parser()
 
     def body(args: argparse.Namespace) -> None:
         check_outputs({"--json-file": args.json_file}, {"--chair": getattr(args, "chair", None)})

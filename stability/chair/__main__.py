@@ -1,0 +1,83 @@
+"""``python -m stability.chair``: chair files: export a preset (or a chair file with changes) to start from.
+
+Examples
+--------
+::
+
+    python -m stability.chair export ej-premier -o my_chair.toml
+    python -m stability.chair export power-fwd --set trail=6cm -o my_power.toml
+    python -m stability.chair list
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from .. import chair as chair_mod
+from ..cli import OneLineErrorParser, add_common_options, check_outputs, load_chair, run
+from ..output import atomic_write_text
+
+__all__ = ["build_parser", "main"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``python -m stability.chair``.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
+    p = OneLineErrorParser(prog="python -m stability.chair", description=(__doc__ or "").split("\n\n")[0])
+    sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineErrorParser)
+    ex = sub.add_parser("export", help="write a preset or chair file, with --set changes, as a chair TOML file")
+    ex.add_argument("chair", metavar="CHAIR", help=f"preset name ({', '.join(chair_mod.preset_names())}) or TOML file")
+    ex.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                    help="override a chair field (repeatable; units allowed, e.g. trail=5cm)")
+    ex.add_argument("-o", "--output", metavar="FILE.toml",
+                    help="chair file to write (default: print the TOML on standard output)")
+    ls = sub.add_parser("list", help="the presets, one a line")
+    for s in (ex, ls):
+        add_common_options(s)
+    return p
+
+
+def _run(args: argparse.Namespace) -> int:
+    if args.command == "list":
+        for name in chair_mod.preset_names():
+            print(name)
+        return 0
+    output = args.output
+    if output is not None and not output.lower().endswith(".toml"):
+        raise ValueError(f"-o {output!r} is invalid; a chair file ends in .toml")
+    check_outputs({"-o": output}, {"CHAIR": args.chair})
+    c = load_chair(args.chair, args.set)
+    text = chair_mod.dumps(c)
+    if output is None:
+        sys.stdout.write(text)
+    else:
+        atomic_write_text(output, text)
+        if not args.quiet:
+            print(f"wrote {output}: chair {c.name!r}", file=sys.stderr)
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``python -m stability.chair``.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status (2 on bad input).
+    """
+    return run(build_parser(), argv, _run)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,189 @@
+"""The one table of defaults shared by the Python API and every command line.
+
+Each entry names a default once: its value, its unit and what it means.
+The API functions take their keyword defaults from here (directly, or
+through the small frozen option classes that are built on this table:
+:class:`stability.simulate.options.SimulationDefaults`,
+:class:`stability.power_chair.DriveTrain`,
+:class:`stability.assist.weights.GyroSensor`,
+:class:`stability.slope.equilibrium.HandRim`), and every command line takes
+its option defaults from the same names, so ``stability.run_simulation(chair,
+0.75)`` and ``python -m stability.simulate --speed 0.75`` run the same thing.
+``tests/test_defaults.py`` walks every parser and the public API functions
+and checks that both equal this table.
+
+A new command or API function that needs a default already named here takes
+it from here (``from stability import defaults as D``; ``default=D.MODEL``);
+a new default goes into :data:`TABLE` with its unit and meaning.
+
+Examples
+--------
+>>> from stability import defaults
+>>> defaults.MODEL, defaults.TIRE_RANGE
+('exact', 'warn')
+>>> defaults.TABLE["sample_rate_hz"].unit
+'Hz'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from .reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+
+__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "SCHEME", "DT", "SPEED", "PUSH_FORCE",
+           "PUSH_DURATION", "YAW_RATE_LEVEL", "HORIZON_S", "MAX_IMPULSE", "TIRE_RANGE", "SIM_OUT_OF_RANGE", "MAX_SPEED",
+           "SAMPLES", "SEED", "COVERAGE", "NONLINEAR_SAMPLES", "SUMMARY_SPEEDS", "SHIMMY_SPEEDS", "STUDY_SPEEDS",
+           "ASSIST_SPEEDS", "HANDRIM_WHEEL_RADIUS", "HANDRIM_RADIUS", "DRIVE_WHEEL_RADIUS", "TORQUE_LIMIT",
+           "MOTOR_LAG", "TRACTION_COEFFICIENT", "SAMPLE_RATE_HZ", "BIAS_TIME_CONSTANT", "GYRO_NOISE", "GYRO_BIAS",
+           "COMMAND_FILTER", "ASSIST_DESIGN", "MAX_HEADING_ERROR", "SHIMMY_AMPLITUDE_DEG", "SLOPE_SIM_TIME",
+           "speeds_text"]
+
+
+@dataclass(frozen=True)
+class Default:
+    """One default: its value, unit and meaning.
+
+    Attributes
+    ----------
+    value : Any
+        The default value (in the unit below).
+    unit : str
+        Unit of the value ("" for a choice or a count).
+    doc : str
+        What it is, in a few words.
+    """
+
+    value: Any
+    unit: str
+    doc: str
+
+
+def speeds_text(speeds: tuple[float, ...]) -> str:
+    """A speed tuple as the ``--speeds`` option writes it (comma list), e.g. ``"0.25,0.5,0.75"``."""
+    return ",".join(f"{s:g}" for s in speeds)
+
+
+# --- chairs ---------------------------------------------------------------------------------------------
+#: Chair of every command that takes ``--chair`` (the thesis's reference chair), and of the power-chair commands.
+CHAIR = REFERENCE_CHAIR
+POWER_CHAIR = "power-fwd"
+
+# --- models and integration ------------------------------------------------------------------------------
+#: Equation variant of every analysis and simulation: "exact" (the thesis's linearisation mistakes
+#: corrected) or "thesis" (program WCHAIR's equations); see docs/models.md.
+MODEL = "exact"
+#: Caster condition: "free" (swivelling, Coulomb pin friction) or "locked".
+CASTERS = "free"
+#: Integration scheme of the simulator: program WCHAIR's fixed step ("wchair") or error-controlled ("adaptive").
+SCHEME = "wchair"
+#: Fixed time step of the wchair scheme, s (WCHAIR's TSTEP).
+DT = 0.001
+#: Speed of a single run or check, m/s (the thesis's reference speed, Figure 8-3a).
+SPEED = REFERENCE_SPEED
+#: The reference push at the c.g.: force (N, to the right) and duration (s), thesis chapter 8.
+PUSH_FORCE = THESIS_PUSH.force
+PUSH_DURATION = THESIS_PUSH.duration
+#: The instability criterion: |yaw rate| level (rad/s) reached within a horizon (s).
+YAW_RATE_LEVEL = LEVEL
+HORIZON_S = HORIZON
+#: Largest push a critical-impulse search tries, N s.
+MAX_IMPULSE = 40.0
+#: Tire data outside its fitted slip and load range: "warn" (extrapolate and note), "clamp" or "raise".
+TIRE_RANGE = "warn"
+#: The simulator's own handling of the tire fits outside the data (MECHAN clamps the slip angle at 8 deg).
+SIM_OUT_OF_RANGE = "clamp"
+
+# --- linear analysis and uncertainty ---------------------------------------------------------------------
+#: Upper end of the critical-speed search, m/s.
+MAX_SPEED = 30.0
+#: Monte Carlo draws of the linear intervals, their seed and their coverage.
+SAMPLES = 1000
+SEED = 0
+COVERAGE = 0.95
+#: Monte Carlo draws of the nonlinear measures (critical impulse, equal-instability speed).
+NONLINEAR_SAMPLES = 200
+
+# --- speed lists of the commands (m/s) -------------------------------------------------------------------
+#: Speeds of the growth-rate tables (critical_speed, compare, the linear intervals).
+SUMMARY_SPEEDS = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
+#: Speeds of the shimmy table (START:STOP:STEP).
+SHIMMY_SPEEDS = "0.25:3:0.25"
+#: Speeds of the critical-impulse study (START:STOP:STEP).
+STUDY_SPEEDS = "0.5:1.0:0.25"
+#: Design speeds of the motor assist's gain schedule (START:STOP:STEP).
+ASSIST_SPEEDS = "0.5:3.0:0.25"
+
+# --- manual drive (hand rims) ----------------------------------------------------------------------------
+#: Rolling radius of a 24-inch drive wheel and its typical hand-rim radius, m.
+HANDRIM_WHEEL_RADIUS = 0.305
+HANDRIM_RADIUS = 0.265
+
+# --- power drive and motor assist ------------------------------------------------------------------------
+#: Drive-wheel rolling radius of a power chair, m; motor torque limit per wheel, N m;
+#: first-order motor/speed-loop lag, s; tire-ground traction coefficient.
+DRIVE_WHEEL_RADIUS = 0.178
+TORQUE_LIMIT = 70.0
+MOTOR_LAG = 0.02
+TRACTION_COEFFICIENT = 0.7
+#: Controller sample rate, Hz; time constant of the gyro-bias estimate from the wheel speeds, s (0: off);
+#: gyro noise density (deg/s/sqrt(Hz)) and bias after calibration (deg/s).
+SAMPLE_RATE_HZ = 200.0
+BIAS_TIME_CONSTANT = 1.0
+GYRO_NOISE = 0.05
+GYRO_BIAS = 0.1
+#: Reference-model time constant of a yaw-rate command, s (no overshoot, ~0.7 s settling; docs/assist.md).
+COMMAND_FILTER = 0.2
+#: Feedback structure of the assist and its Bryson weight on the heading error, deg.
+ASSIST_DESIGN = "gyro"
+MAX_HEADING_ERROR = 2.0
+
+# --- other commands --------------------------------------------------------------------------------------
+#: Shimmy amplitude of the pin-friction (describing-function) estimate, deg.
+SHIMMY_AMPLITUDE_DEG = 5.0
+#: Report time of the simulated uncorrected turn on a cross slope, s.
+SLOPE_SIM_TIME = 1.0
+
+#: The table: name -> :class:`Default`.  The names are the API keywords and the command lines' option
+#: names (``--sample-rate`` -> ``sample_rate_hz`` where the API keyword carries the unit).
+TABLE: dict[str, Default] = {
+    "chair": Default(CHAIR, "", "chair (preset name or TOML file) of the commands that take --chair"),
+    "power_chair": Default(POWER_CHAIR, "", "chair of the power-chair commands (assist)"),
+    "model": Default(MODEL, "", "equation variant: exact or thesis"),
+    "casters": Default(CASTERS, "", "caster condition: free or locked"),
+    "scheme": Default(SCHEME, "", "simulator integration scheme: wchair or adaptive"),
+    "dt": Default(DT, "s", "fixed step of the wchair scheme"),
+    "speed": Default(SPEED, "m/s", "speed of a single run"),
+    "push_force": Default(PUSH_FORCE, "N", "reference push at the c.g."),
+    "push_duration": Default(PUSH_DURATION, "s", "duration of the reference push"),
+    "yaw_rate_level": Default(YAW_RATE_LEVEL, "rad/s", "|yaw rate| level of the instability criterion"),
+    "horizon": Default(HORIZON_S, "s", "simulated time within which the level must be reached"),
+    "max_impulse": Default(MAX_IMPULSE, "N s", "largest push a critical-impulse search tries"),
+    "tire_range": Default(TIRE_RANGE, "", "tire data outside the fitted range: warn, clamp or raise"),
+    "sim_out_of_range": Default(SIM_OUT_OF_RANGE, "", "the simulator's tire fits outside the data"),
+    "max_speed": Default(MAX_SPEED, "m/s", "upper end of the critical-speed search"),
+    "samples": Default(SAMPLES, "", "Monte Carlo draws of the linear intervals"),
+    "seed": Default(SEED, "", "seed of the draws"),
+    "coverage": Default(COVERAGE, "", "coverage of the intervals"),
+    "nonlinear_samples": Default(NONLINEAR_SAMPLES, "", "Monte Carlo draws of the nonlinear measures"),
+    "summary_speeds": Default(SUMMARY_SPEEDS, "m/s", "speeds of the growth-rate tables"),
+    "shimmy_speeds": Default(SHIMMY_SPEEDS, "m/s", "speeds of the shimmy table"),
+    "study_speeds": Default(STUDY_SPEEDS, "m/s", "speeds of the critical-impulse study"),
+    "assist_speeds": Default(ASSIST_SPEEDS, "m/s", "design speeds of the assist's gain schedule"),
+    "handrim_wheel_radius": Default(HANDRIM_WHEEL_RADIUS, "m", "rolling radius of a manual chair's drive wheel"),
+    "handrim_radius": Default(HANDRIM_RADIUS, "m", "hand-rim radius"),
+    "drive_wheel_radius": Default(DRIVE_WHEEL_RADIUS, "m", "rolling radius of a power chair's drive wheel"),
+    "torque_limit": Default(TORQUE_LIMIT, "N m", "motor torque limit per drive wheel"),
+    "motor_lag": Default(MOTOR_LAG, "s", "first-order motor/speed-loop lag"),
+    "traction_coefficient": Default(TRACTION_COEFFICIENT, "", "tire-ground traction coefficient"),
+    "sample_rate_hz": Default(SAMPLE_RATE_HZ, "Hz", "assist controller sample rate"),
+    "bias_time_constant": Default(BIAS_TIME_CONSTANT, "s", "time constant of the gyro-bias estimate (0: off)"),
+    "gyro_noise": Default(GYRO_NOISE, "deg/s/sqrt(Hz)", "gyro noise density"),
+    "gyro_bias": Default(GYRO_BIAS, "deg/s", "gyro bias after calibration"),
+    "command_filter": Default(COMMAND_FILTER, "s", "reference-model time constant of a yaw-rate command"),
+    "design": Default(ASSIST_DESIGN, "", "assist feedback structure"),
+    "max_heading_error": Default(MAX_HEADING_ERROR, "deg", "Bryson weight: acceptable heading error"),
+    "amplitude_deg": Default(SHIMMY_AMPLITUDE_DEG, "deg", "shimmy amplitude of the pin-friction estimate"),
+    "sim_time": Default(SLOPE_SIM_TIME, "s", "report time of the simulated uncorrected turn"),
+}

@@ -1,0 +1,181 @@
+"""One table of defaults (stability.defaults): every command's parsed defaults and the API's keyword defaults equal it.
+
+The parsers are walked through the command registry (stability.commands.COMMANDS), so a new command is checked
+as soon as it is registered; an option with a default that the table does not name fails here with the advice to
+add it to stability.defaults.TABLE (or to COMMAND_ONLY below when it is truly the command's own).
+"""
+
+from __future__ import annotations
+
+import argparse
+import inspect
+
+import numpy as np
+import pytest
+
+from stability import commands
+from stability import defaults as D
+
+#: Required arguments that let a parser produce its defaults.
+REQUIRED = {"slope": ["--cross-slope", "2", "--speed", "1"], "measure": ["sheet.toml", "-o", "c.toml"],
+            "report": ["-o", "r.pdf"], "compare": ["a", "b"], "chair": ["list"]}
+SUBCOMMANDS = {"study": ["critical-impulse", "equal-instability"], "chair": ["export", "list"]}
+
+#: Options whose dest differs from the table's name, per command: dest -> table name.
+RENAMED = {
+    "critical_speed": {"speeds": "summary_speeds", "level": "coverage"},
+    "compare": {"speeds": "summary_speeds", "level": "coverage"},
+    "simulate": {"impulse": ("push_force", "push_duration"), "out_of_range": "sim_out_of_range"},
+    "study critical-impulse": {"speeds": "study_speeds", "duration": "push_duration", "level": "yaw_rate_level"},
+    "study equal-instability": {"force": "push_force"},
+    "shimmy": {"speeds": "shimmy_speeds"},
+    "slope": {"wheel_radius": "handrim_wheel_radius"},
+    "assist": {"chair": "power_chair", "speeds": "assist_speeds", "wheel_radius": "drive_wheel_radius", "sample_rate": "sample_rate_hz"},
+}
+#: Options with a default that belongs to one command alone (no API function shares it).
+COMMAND_ONLY = {
+    "simulate": {"tire_impulse", "lateral_velocity", "eta0", "beta0", "duration", "rtol", "atol", "cross_slope",
+                 "grade"},
+    "slope": {"grade", "drive"},
+    "compare": {"pairing"},
+    "assist": {"max_yaw_rate"},
+}
+#: Defaults that are not values (empty lists, False flags, None) are not compared.
+IGNORED_DESTS = {"help", "set", "debug", "quiet", "command"}
+
+
+def _cases():
+    for name in commands.COMMANDS:
+        for sub in SUBCOMMANDS.get(name, [None]):
+            yield name, sub
+
+
+def _namespace(name: str, sub: str | None) -> tuple[str, argparse.Namespace, argparse.ArgumentParser]:
+    parser = commands.build_parser(name)
+    argv = ([sub] if sub else []) + [a for a in REQUIRED.get(name, []) if not (sub and a == sub)]
+    if name == "chair" and sub == "export":
+        argv = ["export", "ej-premier"]
+    key = f"{name} {sub}" if sub else name
+    return key, parser.parse_args(argv), parser
+
+
+@pytest.mark.parametrize("name,sub", list(_cases()), ids=[f"{n}-{s}" if s else n for n, s in _cases()])
+def test_parsed_defaults_equal_the_table(name, sub):
+    key, ns, parser = _namespace(name, sub)
+    parsers = [parser] + [p for a in parser._actions if isinstance(a, argparse._SubParsersAction)
+                          for p in a.choices.values()]
+    positional = {a.dest for p in parsers for a in p._actions if not a.option_strings or a.required}
+    renamed = RENAMED.get(key, {})
+    own = COMMAND_ONLY.get(key, set())
+    checked = 0
+    for dest, value in vars(ns).items():
+        if dest in IGNORED_DESTS or dest in positional or value is None or value is False or value == [] or dest in own:
+            continue
+        table = renamed.get(dest, dest)
+        if isinstance(table, tuple):
+            assert tuple(value) == tuple(D.TABLE[t].value for t in table), (key, dest)
+            checked += 1
+            continue
+        assert table in D.TABLE, (f"{key}: option {dest!r} (default {value!r}) is not in stability.defaults.TABLE; "
+                                  "add it there and take the parser's default from it")
+        expected = D.TABLE[table].value
+        if table.endswith("speeds") and isinstance(value, str):
+            from stability.cli import parse_speeds
+
+            got = parse_speeds(value)
+            want = parse_speeds(expected if isinstance(expected, str) else D.speeds_text(expected))
+            np.testing.assert_array_equal(got, want)   # both parsed by the same code from the same text
+        else:
+            assert value == expected, (key, dest, value, expected)
+        checked += 1
+    assert checked or name == "chair" or name == "measure"
+
+
+def _api():
+    """(function or class, keyword, table name) of the public API functions the commands call."""
+    from stability import linear, simulate
+    from stability.assist import design, schedule, tracking
+    from stability.assist.weights import GyroSensor, Weights
+    from stability.compare.compute import compare
+    from stability.linear.intervals import linear_intervals
+    from stability.power_chair import DriveTrain
+    from stability.report.document import build
+    from stability.shimmy.chair_modes import chair_shimmy
+    from stability.slope.equilibrium import HandRim
+    from stability.study.impulse import critical_impulse, critical_impulses
+    from stability.study.intervals import equal_instability_interval
+    from stability.study.uncertain import nonlinear_intervals
+
+    rows = [(simulate.simulate, k, t) for k, t in [
+        ("model", "model"), ("scheme", "scheme"), ("dt", "dt"), ("casters", "casters"),
+        ("impulse_force", "push_force"), ("impulse_duration", "push_duration"), ("duration", "horizon"),
+        ("out_of_range", "sim_out_of_range")]]
+    rows += [(simulate.linearise, "model", "model"), (linear.state_space, "model", "model"),
+             (linear.state_space, "casters", "casters"), (linear.analyse, "model", "model"),
+             (linear.analyse, "speeds", "summary_speeds"), (linear.analyse, "max_speed", "max_speed"),
+             (linear.eigenvalues_vs_speed, "model", "model")]
+    for f in (linear_intervals, compare):
+        rows += [(f, k, t) for k, t in [("model", "model"), ("speeds", "summary_speeds"), ("max_speed", "max_speed"),
+                                        ("samples", "samples"), ("seed", "seed"), ("level", "coverage")]]
+    rows += [(nonlinear_intervals, k, t) for k, t in [
+        ("speed", "speed"), ("model", "model"), ("samples", "nonlinear_samples"), ("seed", "seed"),
+        ("level", "coverage"), ("scheme", "scheme"), ("horizon", "horizon"), ("dt", "dt")]]
+    for f in (critical_impulse, critical_impulses):
+        rows += [(f, k, t) for k, t in [("model", "model"), ("scheme", "scheme"), ("duration", "push_duration"),
+                                        ("level", "yaw_rate_level"), ("horizon", "horizon")]]
+    rows += [(critical_impulses, "max_impulse", "max_impulse"), (critical_impulses, "dt", "dt"),
+             (equal_instability_interval, "model", "model"), (equal_instability_interval, "scheme", "scheme"),
+             (equal_instability_interval, "dt", "dt"), (equal_instability_interval, "reference_speed", "speed"),
+             (design, "model", "model"), (design, "kind", "design"), (schedule, "model", "model"),
+             (schedule, "kind", "design"), (tracking.closed_loop, "bias_time_constant", "bias_time_constant"),
+             (tracking.closed_loop, "command_filter", "command_filter"), (build, "model", "model"),
+             (chair_shimmy, "model", "model"),
+             (GyroSensor, "sample_rate_hz", "sample_rate_hz"), (GyroSensor, "bias_time_constant_s", "bias_time_constant"),
+             (GyroSensor, "noise_density_deg_s", "gyro_noise"), (GyroSensor, "bias_deg_s", "gyro_bias"),
+             (Weights, "max_heading_error_deg", "max_heading_error"),
+             (DriveTrain, "wheel_radius", "drive_wheel_radius"), (DriveTrain, "torque_limit", "torque_limit"),
+             (DriveTrain, "motor_time_constant", "motor_lag"),
+             (DriveTrain, "traction_coefficient", "traction_coefficient"),
+             (HandRim, "wheel_radius", "handrim_wheel_radius"), (HandRim, "handrim_radius", "handrim_radius")]
+    return rows
+
+
+API = _api()
+
+
+@pytest.mark.parametrize("func,keyword,table", API, ids=[f"{f.__name__}.{k}" for f, k, _ in API])
+def test_api_defaults_equal_the_table(func, keyword, table):
+    default = inspect.signature(func).parameters[keyword].default
+    assert default is not inspect.Parameter.empty, (func, keyword)
+    expected = D.TABLE[table].value
+    if isinstance(expected, tuple):
+        assert tuple(default) == expected
+    else:
+        assert default == expected, (func.__name__, keyword, default, expected)
+
+
+def test_equal_instability_push_and_criterion_are_the_tables():
+    from stability.study.intervals import equal_instability_interval
+
+    params = inspect.signature(equal_instability_interval).parameters
+    push, crit = params["push"].default, params["criterion"].default
+    assert (push.force, push.duration) == (D.PUSH_FORCE, D.PUSH_DURATION)
+    assert (crit.yaw_rate, crit.duration) == (D.YAW_RATE_LEVEL, D.HORIZON_S)
+
+
+def test_readme_snippet_runs_the_command_lines_model():
+    """stability.run_simulation(chair, 0.75) is the same run as python -m stability.simulate --speed 0.75 (the
+    README's snippet ran the thesis model while the command ran the exact one: 3.21 s vs 2.92 s to 1 rad/s)."""
+    import stability
+    from stability.simulate.__main__ import build_parser
+
+    args = build_parser().parse_args(["--speed", "0.75"])
+    run = stability.run_simulation(stability.preset("ej-premier"), 0.75, duration=0.01)
+    assert run.settings["model"] == args.model == "exact"
+    assert run.settings["scheme"] == args.scheme and run.settings["dt"] == args.dt
+
+
+def test_every_table_entry_has_a_unit_and_meaning():
+    for name, entry in D.TABLE.items():
+        assert name.isidentifier() and entry.doc, name
+        assert isinstance(entry.unit, str)
