@@ -61,7 +61,17 @@ class Default:
 
 
 def speeds_text(speeds: tuple[float, ...]) -> str:
-    """A speed tuple as the ``--speeds`` option writes it (comma list), e.g. ``"0.25,0.5,0.75"``."""
+    """A speed tuple as the ``--speeds`` option writes it (comma list), e.g. ``"0.25,0.5,0.75"``.
+
+    Parameters
+    ----------
+    speeds : tuple of float
+        Speeds, m/s.
+
+    Returns
+    -------
+    str
+    """
     return ",".join(f"{s:g}" for s in speeds)
 
 

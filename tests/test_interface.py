@@ -38,10 +38,9 @@ def test_debug_and_quiet_accepted_after_every_subcommand(name):
     parser = commands.build_parser(name)
     for p in (parser, *cli._subparsers(parser)):
         cli.add_common_options(p)
-    for _, parser, subs in [(name, parser, cli._subparsers(parser))]:
-        for p in [parser, *subs]:
-            opts = {s for a in p._actions for s in a.option_strings}
-            assert {"--debug", "--quiet"} <= opts, (name, p.prog)
+    for p in [parser, *cli._subparsers(parser)]:
+        opts = {s for a in p._actions for s in a.option_strings}
+        assert {"--debug", "--quiet"} <= opts, (name, p.prog)
 
 
 def test_study_debug_after_subcommand_parses(capsys):

@@ -125,7 +125,7 @@ def test_disturbance_map_matches_separate_runs():
     m = study.disturbance_map(ej, [0.8, 1.2], [2.0, 6.0], reference=3.2, criterion=crit, progress=False)
     for i, imp in enumerate((2.0, 6.0)):
         for j, u in enumerate((0.8, 1.2)):
-            r = simulate(ej, u, impulse_force=imp / 0.1, duration=4.0, stop_on_warnings=False, sample=0.01)
+            r = simulate(ej, u, model="thesis", impulse_force=imp / 0.1, duration=4.0, stop_on_warnings=False, sample=0.01)
             assert m.times[i, j] == pytest.approx(crit.time(r), abs=1e-9)
     assert m.times[1, 1] < m.times[0, 1]          # a bigger push reaches the level sooner
 

@@ -1,0 +1,154 @@
+"""The options every command line shares: one parser class, the chair, model, JSON and common options.
+
+:mod:`stability.cli` re-exports these; a command builds its parser from
+:class:`OneLineErrorParser` and the ``add_*`` helpers (see docs/architecture.md, "A new command line"), takes
+every default from :mod:`stability.defaults`, and :func:`stability.cli.run` adds ``--debug`` and ``--quiet``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import re
+import sys
+from collections.abc import Sequence
+from typing import Any, NoReturn
+
+from . import chair as chair_mod
+from . import defaults, tires
+
+__all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
+           "subparsers"]
+
+_NEGATIVE = re.compile(r"^-(\d|\.\d)")
+
+
+class OneLineErrorParser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line on stderr (exit status 2).
+
+    It also accepts negative numbers as option values (``--speeds -1:1:0.5``,
+    ``--cross-slope -2``) and shows plain text in ``--help`` (no reST markup).
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
+        super().__init__(*args, **kwargs)
+
+    def error(self, message: str) -> NoReturn:  # noqa: D102
+        print(f"error: {message}", file=sys.stderr)
+        raise SystemExit(2)
+
+    def format_help(self) -> str:  # noqa: D102
+        return super().format_help().replace("``", "")
+
+    def parse_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
+        """Parse ``args``, joining an option and a following negative number (``--x -1`` -> ``--x=-1``)."""
+        argv = list(sys.argv[1:] if args is None else args)
+        takes_value = {s for a in self._actions if a.option_strings and a.nargs is None and a.const is None
+                       for s in a.option_strings}
+        out: list[str] = []
+        i = 0
+        while i < len(argv):
+            tok = argv[i]
+            if tok in takes_value and i + 1 < len(argv) and _NEGATIVE.match(argv[i + 1]):
+                out.append(f"{tok}={argv[i + 1]}")
+                i += 2
+                continue
+            out.append(tok)
+            i += 1
+        return super().parse_args(out, namespace)
+
+
+def _fields_epilog() -> str:
+    rows = []
+    for f in dataclasses.fields(chair_mod.Chair):
+        unit = f.metadata["unit"]
+        rng = chair_mod.valid_range(f.name) if f.name in chair_mod.LIMITS else ""
+        rows.append(f"  {f.name:22s} {unit:10s} {f.metadata['doc']}" + (f" [{rng}]" if rng else ""))
+    return ("chair presets: " + ", ".join(chair_mod.preset_names()) + "\n"
+            "settable chair fields (--set NAME=VALUE; unit; meaning [valid range]):\n" + "\n".join(rows))
+
+
+def add_chair_options(parser: argparse.ArgumentParser, default: str = defaults.CHAIR) -> None:
+    """Add ``--chair``, repeatable ``--set NAME=VALUE`` and ``--tire-range``; list the chair fields in ``--help``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser; its epilog gains the list of chair fields.
+    default : str, optional
+        Value of ``--chair`` when it is not given: a preset name or TOML file
+        (default ``"ej-premier"``).
+    """
+    parser.add_argument("--chair", default=default,
+                        help=f"preset name ({', '.join(chair_mod.preset_names())}) or TOML file (default {default})")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="override a chair field (repeatable; fields listed below)")
+    parser.add_argument("--tire-range", choices=tires.RANGE_POLICIES, default=defaults.TIRE_RANGE,
+                        help="tire data outside the fitted slip and load range: warn (compute by extrapolation "
+                             "and note it in the output; default), clamp (hold the force at the range's edge) "
+                             "or raise (refuse)")
+    parser.epilog = ((parser.epilog + "\n\n") if parser.epilog else "") + _fields_epilog()
+
+
+def add_common_options(parser: argparse.ArgumentParser) -> None:
+    """Add ``--debug`` (traceback on errors) and ``--quiet`` (no notes, no progress) unless present.
+
+    :func:`run` calls it on a command's parser and on each of its
+    subcommands' parsers, so both are accepted before and after a subcommand.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's (or a subcommand's) parser.
+    """
+    have = {s for a in parser._actions for s in a.option_strings}
+    if "--debug" not in have:
+        parser.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                            help="show the full traceback on errors")
+    if "--quiet" not in have:
+        parser.add_argument("--quiet", "-q", action="store_true", default=argparse.SUPPRESS,
+                            help="print no notes and no progress on stderr (results and errors only)")
+
+
+def subparsers(parser: argparse.ArgumentParser) -> list[argparse.ArgumentParser]:
+    """The subcommands' parsers of ``parser`` (empty when it has none).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+
+    Returns
+    -------
+    list of argparse.ArgumentParser
+    """
+    out: list[argparse.ArgumentParser] = []
+    for a in parser._actions:
+        if isinstance(a, argparse._SubParsersAction):
+            out.extend(dict.fromkeys(a.choices.values()))
+    return out
+
+
+def add_model_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--model {exact,thesis}`` with the toolkit's default (:data:`stability.defaults.MODEL`).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    """
+    parser.add_argument("--model", default=defaults.MODEL, choices=["exact", "thesis"],
+                        help=f"equation variant: exact (the thesis's linearisation corrected) or thesis (program "
+                             f"WCHAIR's equations); default {defaults.MODEL}")
+
+
+def add_json_options(parser: argparse.ArgumentParser) -> None:
+    """Add ``--json`` (print JSON to standard output) and ``--json-file FILE`` (write it to a file).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    """
+    parser.add_argument("--json", action="store_true", help="print the results as JSON on standard output")
+    parser.add_argument("--json-file", metavar="FILE", help="write the results as JSON to FILE")
