@@ -39,6 +39,8 @@ from .driving import (
     tracking_runs,
     traction_limit,
 )
+from .export_run import check_export, run_export
+from .firmware import Q_FORMATS
 from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from .robustness import Robustness, robustness
 from .schedule import Schedule, schedule
@@ -103,6 +105,11 @@ def build_parser() -> argparse.ArgumentParser:
                    help="print the rows as JSON on stdout (a list, one row per speed and direction) instead of text")
     p.add_argument("--json-file", metavar="FILE", help="write the same JSON to FILE")
     p.add_argument("--pdf", metavar="FILE", help="write the figures as a PDF")
+    p.add_argument("--export-c", metavar="DIR", default=None,
+                   help="write the gyro design as C99 firmware into DIR (assist.h, assist.c, assist_vectors.json, "
+                        "README.txt; created if missing) at --sample-rate, and report the number format's margins")
+    p.add_argument("--q-format", default="float", choices=list(Q_FORMATS),
+                   help="number format of the exported tables (default float)")
     return p
 
 
@@ -157,6 +164,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, {"--chair": args.chair})
+    check_export(args.export_c, args.design)
     speeds = parse_speeds(args.speeds, increasing=True, max_count=50)
     weights, drive, gyro = _options(args)
     c = load_chair(args.chair, args.set)
@@ -170,14 +178,16 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     rows = gain_table(sched, check=not args.no_check, seed=args.seed)
     rev = reverse_table(sched) if args.reverse else []
     holds = [] if args.no_check else _slope_holds(sched)
+    fw_json, fw_text = _firmware(args, sched)
     if args.json or args.json_file:
         options = {k: getattr(args, k) for k in ("speeds", "design", "max_heading_error", "max_yaw_rate",
                                                  "torque_limit", "torque_budget", "wheel_radius", "gyro_noise",
                                                  "gyro_bias", "sample_rate", "seed", "no_check", "reverse",
-                                                 "motor_lag", "bias_time_constant")}
+                                                 "motor_lag", "bias_time_constant", "export_c", "q_format")}
         data = {**json_header(c, args.model, options), "rows": [r.to_dict() for r in rows],
                 "reverse": [r.to_dict() for r in rev],
-                "cross_slope": [h.to_dict() if isinstance(h, SlopeHold) else h for h in holds]}
+                "cross_slope": [h.to_dict() if isinstance(h, SlopeHold) else h for h in holds],
+                **fw_json}
         text = json.dumps(data, indent=2) + "\n"
         if args.json_file:
             with open(tmp["--json-file"], "w", encoding="utf-8") as fh:
@@ -228,6 +238,7 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
               + "; ".join(f"{a.speed_m_s:g} m/s: predicted {a.predicted_1_s:.3f}, fitted "
                           f"{a.fitted_1_s:.3f} 1/s ({a.relative_error:.2%})" for a in agree))
         print(format_slope_holds(holds))
+    sys.stdout.write(fw_text)
     if args.min_torque:
         for s_ in (1.0, 2.0, 3.0):
             mt = minimum_torque_limit(sched, s_)
@@ -239,6 +250,14 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
         if option in tmp:
             print(f"wrote {getattr(args, option[2:].replace('-', '_'))}", file=sys.stderr if args.json else sys.stdout)
     return 0
+
+
+def _firmware(args: argparse.Namespace, sched: Schedule) -> tuple[dict, str]:
+    """``--export-c``: write the firmware; its JSON entry (``{"firmware": ...}`` or empty) and its text block."""
+    if not args.export_c:
+        return {}, ""
+    report = run_export(sched, args.export_c, args.q_format, seed=args.seed)
+    return {"firmware": report.to_dict()}, "\n" + report.format() + "\n"
 
 
 def _slope_holds(sched: Schedule) -> list[SlopeHold | dict]:

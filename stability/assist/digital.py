@@ -68,7 +68,8 @@ def discrete_controller(d: Design, sample_time: float) -> control.StateSpace:
     return control.ss(A, B, C, np.zeros((1, B.shape[1])), T)
 
 
-def discrete_loop(d: Design, sample_time: float | None = None) -> control.StateSpace:
+def discrete_loop(d: Design, sample_time: float | None = None,
+                  controller: control.StateSpace | None = None) -> control.StateSpace:
     """Loop transfer ``L(z)`` broken at the plant input of the sampled controller.
 
     Parameters
@@ -77,6 +78,9 @@ def discrete_loop(d: Design, sample_time: float | None = None) -> control.StateS
     sample_time : float, optional
         s; default the design's own (:attr:`Design.sample_time`, from its
         gyro's sample rate), so it is given once.
+    controller : control.StateSpace, optional
+        A discrete controller of the form :func:`discrete_controller` returns (e.g. from firmware tables);
+        default: that of ``d``.
 
     Returns
     -------
@@ -91,12 +95,13 @@ def discrete_loop(d: Design, sample_time: float | None = None) -> control.StateS
     A, B = p.A[np.ix_(idx, idx)], p.B[idx]
     C = np.eye(len(idx))[1:2] if d.kind == "gyro" else np.eye(len(idx))
     Pd = control.c2d(control.ss(A, B, C, np.zeros((C.shape[0], 1))), sample_time, method="zoh")
-    L = control.series(Pd, discrete_controller(d, sample_time))
+    L = control.series(Pd, discrete_controller(d, sample_time) if controller is None else controller)
     return control.ss(L.A, L.B, L.C, L.D, L.dt, inputs=["Mz"], outputs=["u"],
                       name=system_name(f"{d.kind.replace('-', '_')}_loop", d.speed))
 
 
-def discrete_margins(d: Design, sample_time: float | None = None) -> LoopMargins:
+def discrete_margins(d: Design, sample_time: float | None = None,
+                     controller: control.StateSpace | None = None) -> LoopMargins:
     """Margins of :func:`discrete_loop` (:func:`control.stability_margins`; delay margin ``pm / w_gc``).
 
     Parameters
@@ -104,12 +109,14 @@ def discrete_margins(d: Design, sample_time: float | None = None) -> LoopMargins
     d : Design
     sample_time : float
         s.
+    controller : control.StateSpace, optional
+        As :func:`discrete_loop`.
 
     Returns
     -------
     LoopMargins
     """
-    L = discrete_loop(d, sample_time)
+    L = discrete_loop(d, sample_time, controller)
     T = float(L.dt)
     A, B, C = np.asarray(L.A), np.asarray(L.B)[:, 0], np.asarray(L.C)[0]
     n = A.shape[0]
