@@ -148,6 +148,8 @@ COMMAND_FILTER = 0.2
 #: Feedback structure of the assist and its Bryson weight on the heading error, deg.
 ASSIST_DESIGN = "gyro"
 MAX_HEADING_ERROR = 2.0
+#: Number format of the assist's exported firmware tables (float, Q15 or Q31).
+Q_FORMAT = "float"
 
 # --- other commands --------------------------------------------------------------------------------------
 #: Shimmy amplitude of the pin-friction (describing-function) estimate, deg.
@@ -194,6 +196,7 @@ TABLE: dict[str, Default] = {
     "command_filter": Default(COMMAND_FILTER, "s", "reference-model time constant of a yaw-rate command"),
     "design": Default(ASSIST_DESIGN, "", "assist feedback structure"),
     "max_heading_error": Default(MAX_HEADING_ERROR, "deg", "Bryson weight: acceptable heading error"),
+    "q_format": Default(Q_FORMAT, "", "number format of the exported firmware tables: float, Q15 or Q31"),
     "amplitude_deg": Default(SHIMMY_AMPLITUDE_DEG, "deg", "shimmy amplitude of the pin-friction estimate"),
     "sim_time": Default(SLOPE_SIM_TIME, "s", "report time of the simulated uncorrected turn"),
 }

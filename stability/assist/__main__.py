@@ -108,8 +108,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--export-c", metavar="DIR", default=None,
                    help="write the gyro design as C99 firmware into DIR (assist.h, assist.c, assist_vectors.json, "
                         "README.txt; created if missing) at --sample-rate, and report the number format's margins")
-    p.add_argument("--q-format", default="float", choices=list(Q_FORMATS),
-                   help="number format of the exported tables (default float)")
+    p.add_argument("--q-format", default=D.Q_FORMAT, choices=list(Q_FORMATS),
+                   help=f"number format of the exported tables (default {D.Q_FORMAT})")
     return p
 
 

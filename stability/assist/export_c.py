@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import defaults as D
 from ..reference import THESIS_PUSH
 from ..simulate import simulate
 from .commands import COMMAND_FILTER, MAX_YAW_RATE, ramp_command, reference_command, step_command
@@ -379,7 +380,7 @@ def readme(t: FirmwareTables, bounds: dict[str, float] | None = None) -> str:
     return "\n".join(lines) + "\n"
 
 
-def export_c(sched: Schedule, directory: str, q_format: str = "float", *, seed: int = 0,
+def export_c(sched: Schedule, directory: str, q_format: str = D.Q_FORMAT, *, seed: int = 0,
              vectors: list[VectorCase] | None = None) -> dict[str, Any]:
     """Write assist.h, assist.c, assist_vectors.json and README.txt into ``directory`` (all or none).
 
