@@ -163,3 +163,45 @@ def test_cli_export_end_to_end(tmp_path, capsys):
     for case in doc["cases"]:
         assert np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))) \
             <= case["tolerance_N_m"]
+
+
+@pytest.mark.slow
+@needs_cc
+def test_documented_export_numbers(tmp_path):
+    """docs/assist.md, "Firmware export": the 2 s vectors at 1, 2, 3 m/s and the margins over 0.5:3.0:0.25."""
+    from stability.assist.quantisation import worst_change
+
+    s3 = assist.schedule(chair_mod.preset("power-fwd"), [1.0, 2.0, 3.0], "gyro")
+    vecs = vector_cases(s3)
+    errs = {}
+    for q in ("float", "Q15"):
+        d = tmp_path / q
+        info = export_c(s3, str(d), q, vectors=vecs)
+        exe = c_harness.compile_replay(str(d), str(tmp_path / f"r_{q}"))
+        errs[q] = [float(np.max(np.abs(c_harness.replay(exe, v.inputs) - v.outputs))) for v in vecs]
+        tol = list(info["tolerance_N_m"].values())
+        if q == "Q15":
+            assert 0.003 < min(tol) and max(tol) < 0.051           # "0.004 to 0.050 N m per case"
+            assert 1e-4 < min(errs[q]) and max(errs[q]) < 5.3e-3  # "1.2e-4 to 5.2e-3 N m"
+    assert max(errs["float"]) < 1e-4                              # "at most 8.1e-5 N m"
+    full = assist.schedule(chair_mod.preset("power-fwd"), np.arange(0.5, 3.01, 0.25), "gyro")
+    rows = margin_rows(full, firmware_tables(full, command_filter_s=COMMAND_FILTER))
+    assert len(rows) == 21
+    f, q15, q31 = (worst_change(rows, v) for v in ("float", "Q15", "Q31"))
+    assert f["phase_deg"] < 0.015 and f["delay_ms"] < 0.011 and abs(f["gain_db"]) < 1e-12
+    assert q15["gain_db"] < 3.5e-4 and all(abs(q15[k] - f[k]) < 5e-4 for k in ("phase_deg", "delay_ms"))
+    assert all(abs(q31[k] - f[k]) < 1e-8 for k in q31)
+
+
+@pytest.mark.slow
+@needs_cc
+def test_docs_example_runs_the_c_in_the_loop():
+    import subprocess
+    import sys
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=root)
+    p = subprocess.run([sys.executable, os.path.join(root, "docs", "examples", "assist_c_loop.py")],
+                       capture_output=True, text=True, env=env, timeout=600, check=True)
+    diff = float(p.stdout.strip().split()[-2])
+    assert diff < 1e-3        # docs: 3.4e-5 deg/s (single precision against float64)
