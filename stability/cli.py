@@ -315,7 +315,7 @@ def error(exc: BaseException, prefix: str = "") -> int:
     exc : BaseException
         The exception; only the first line of its message is printed (its type name if empty).
     prefix : str, optional
-        Text placed between ``error: `` and the message, default empty.
+        Text placed between ``"error: "`` and the message, default empty.
 
     Returns
     -------

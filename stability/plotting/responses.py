@@ -44,10 +44,6 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
     ends each curve where the run leaves the model's range (a bar marks the
     end; the legend says why); nothing is drawn after it.
 
-    Returns
-    -------
-    matplotlib.axes.Axes
-
     Parameters
     ----------
     rs : stability.study.ResponseSet
@@ -122,10 +118,6 @@ def trajectories(rs, ax=None, *, title: str | None = None, max_lateral: float | 
 
     ``validity`` (one per run) ends each path where the run leaves the
     model's range, as in :func:`yaw_rate_responses`.
-
-    Returns
-    -------
-    matplotlib.axes.Axes
 
     Parameters
     ----------
