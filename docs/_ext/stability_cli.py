@@ -1,10 +1,10 @@
 """Command-line reference generated from the argparse parsers at build time.
 
-``.. stability-cli:: stability.simulate`` imports the command's parser
-builder (``build_parser`` or ``_parser`` in ``<module>.__main__`` or
-``<module>.command``) and renders its ``--help`` text, and that of every
-sub-command, as literal blocks: the page cannot fall behind the options the
-command really accepts.
+``.. stability-commands::`` writes one section per command of the registry
+:data:`stability.commands.COMMANDS` (a new command appears by itself), each
+with the ``--help`` text of its parser and of every sub-command, as literal
+blocks: the page cannot fall behind the options the commands really accept.
+``.. stability-cli:: stability.simulate`` renders one command.
 """
 
 from __future__ import annotations
@@ -23,7 +23,15 @@ BUILDERS = ("build_parser", "_parser")
 
 
 def parser_for(command: str) -> argparse.ArgumentParser:
-    """The argparse parser of ``python -m <command>``."""
+    """The argparse parser of ``python -m <command>`` (``stability.simulate``)."""
+    try:
+        from stability import commands
+    except ImportError:          # before the command registry existed
+        commands = None
+    if commands is not None and command.startswith("stability."):
+        name = command.split(".", 1)[1]
+        if name in commands.COMMANDS:
+            return commands.build_parser(name)
     for suffix in ("__main__", "command"):
         try:
             mod = importlib.import_module(f"{command}.{suffix}")
@@ -70,6 +78,34 @@ class StabilityCli(SphinxDirective):
         return out
 
 
+class StabilityCommands(SphinxDirective):
+    has_content = False
+
+    def run(self) -> list[nodes.Node]:
+        from stability import commands
+
+        out: list[nodes.Node] = []
+        for name in commands.COMMANDS:
+            command = f"stability.{name}"
+            title = f"python -m {command}"
+            section = nodes.section(ids=[nodes.make_id(f"cli-{name}")], names=[nodes.fully_normalize_name(title)])
+            section += nodes.title("", "", nodes.literal(text=title))
+            mod = commands.command_module(name)
+            doc = (mod.__doc__ or "").strip().splitlines()
+            if doc:
+                section += nodes.paragraph(text=doc[0])
+            for i, (prog, text) in enumerate(_help_texts(parser_for(command))):
+                if i:
+                    section += nodes.paragraph("", "", nodes.literal(text=prog))
+                block = nodes.literal_block(text, text)
+                block["language"] = "text"
+                section += block
+            self.state.document.note_implicit_target(section, section)
+            out.append(section)
+        return out
+
+
 def setup(app: Any) -> dict[str, Any]:
     app.add_directive("stability-cli", StabilityCli)
+    app.add_directive("stability-commands", StabilityCommands)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
