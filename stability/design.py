@@ -195,7 +195,7 @@ DESIGN_PARAMETERS: dict[str, Parameter] = {
                   "both pins (M_af = M_bf, Figure 8-13); nonlinear simulation only"),
         Parameter("mass_factor", "total mass and inertia factor", "-", _mass_factor, lambda c: 1.0,
                   lambda c: (0.6, 1.4), "m and I_z multiplied by the same factor (Figure 8-14)"),
-        Parameter("main_lateral_scale", "main-tire lateral force scale (TYMOD)", "-",
+        Parameter("main_lateral_scale", "main-tire cornering stiffness scale", "-",
                   lambda c, v: c.replace(main_lateral_scale=v), lambda c: c.main_lateral_scale,
                   lambda c: (0.5, 1.6), "main-tire cornering stiffness scaled (a continuous tire change)"),
         Parameter("main_tire", "main tire", "-", _apply_tire, _tire_index,

@@ -24,12 +24,15 @@ from stability.report.tire_data import force_curves, stiffness_curves
 from stability.report.validity import run_validity
 
 EXPECTED_PAGES = [
-    "summary", "chair parameters and geometry", "tires", "linear stability: critical speeds", "parameter uncertainty",
-    "eigenvalues as speed varies",
-    "eigenvalues against speed", "root loci against design parameters 1", "root loci against design parameters 2",
-    "growth rate against design parameters", "yaw-rate feedback root locus", "nonlinear yaw-rate responses",
-    "paths", "equal-instability speeds", "parametric study", "parametric study table", "stability maps",
-    "cross slope", "caster shimmy", "thesis conclusions", "findings",
+    # main body
+    "summary", "chair parameters and geometry", "eigenvalues against speed", "nonlinear yaw-rate responses", "paths",
+    "equal-instability speeds", "parametric study", "stability maps", "caster shimmy", "cross slope",
+    "parameter uncertainty", "thesis conclusions", "findings",
+    # appendix
+    "method", "linear stability: critical speeds", "tires", "eigenvalues as speed varies",
+    "root loci against design parameters 1", "root loci against design parameters 2",
+    "growth rate against design parameters", "yaw-rate feedback root locus", "parametric study table",
+    "glossary and references",
 ]
 
 UNCERTAINTY = """
@@ -93,7 +96,7 @@ def test_every_page_is_titled_with_chair_and_model(quick):
 def test_page_texts(quick):
     """Key text of each page, as drawn (the text dump is taken from the figures before they are saved)."""
     expect = {
-        "chair parameters and geometry": ["pin_friction_left", "M_af", "s1 = 0.345 m", "lateral position y (m, to the right)"],
+        "chair parameters and geometry": ["Coulomb pin friction, left caster", "M_af", "s1 = 0.345 m", "lateral position y (m, to the right)"],
         "tires": ["EJA (main wheels)", "ER (casters)", "slip angle α (deg)", "normal force F_z (N)",
                   "cornering stiffness C_α (N/deg)"],
         "linear stability: critical speeds": ["Critical speeds (m/s)", "zero-width model", "Least stable mode"],
@@ -102,13 +105,15 @@ def test_page_texts(quick):
         "eigenvalues against speed": ["forward speed U (m/s)", "real part σ (1/s)", "casters in phase + yaw",
                                       "casters opposed (slow)", "Modes named from their eigenvectors"],
         "summary": ["Verdict: ej-premier", "Key numbers", "Critical impulse at 0.75 m/s", "What helps most", "Caveats",
-                    "40 N for 0.1 s (101 steps of 1 ms, 4.04 N s)", "Model variant:"],
+                    "40 N for 0.1 s", "Model variant:"],
         "root loci against design parameters 1": ["vs c.g. ratio s1/(s1+s2)", "vs caster trail l"],
         "root loci against design parameters 2": ["vs viscous pin damping", "vs main tire"],
         "growth rate against design parameters": ["largest real part (1/s)"],
         "yaw-rate feedback root locus": ["feedback gain K (N m s/rad)", "open-loop poles (K = 0)"],
         "nonlinear yaw-rate responses": ["time t (s)", "linear (exact)", "end of validity (nothing drawn after)",
-                                         "101 steps of 1 ms, 4.04 N s"],
+                                         "40 N for 0.1 s"],
+        "method": ["4.04 N s", "five small terms", "Verdict thresholds"],
+        "glossary and references": ["critical impulse (N s)", "Collins, T. J. (1987)"],
         "paths": ["distance travelled X (m)", "lateral displacement Y (m, to the right)"],
         "equal-instability speeds": ["equal-instability speed (m/s)", "revised x1.5 friction", "Criterion:"],
         "parametric study": ["equal-instability speed (m/s)", "caster trail l (m)"],
@@ -116,7 +121,7 @@ def test_page_texts(quick):
         "stability maps": ["forward speed U (m/s)", "pin friction M_f (both pins) (N m)", "lateral impulse at the c.g. (N s)"],
         "thesis conclusions": ["AGREE", "Revised design"],
         "findings": ["Linear model (exact)", "reference case", "Figure 8-14", "massless-caster mode",
-                     "five small terms", "elasticities d ln v / d ln p", "M_f/l"],
+                     "elasticities d ln v / d ln p", "M_f/l"],
         "cross slope": ["cross slope (deg)", "holding yaw moment (N m)", "hand-rim force difference, right - left (N)",
                         "heading change, downhill + (deg)", "Richter et al.", "turns uphill", "treadmill mean 0.87"],
         "caster shimmy": ["caster trail (cm)", "speed (m/s)", "literature-based estimates", "Over the estimate range",
@@ -711,3 +716,41 @@ def test_nonlinear_zero_spread_collapses_onto_the_reports_numbers(quick):
     assert (nl.equal_instability.low, nl.equal_instability.high) == (speed, speed)
     text = summary_text(dataclasses.replace(d, uncertainty=sec))
     assert f"[95 %: {imp:.3g}-{imp:.3g} N s (100 % of draws) over zero.toml, zero spread]" in text
+
+
+#: What a reader of the PDF must never see: code and file names, command-line options, issue numbers.
+_LEAKS = [
+    (r"\b[a-z]+(?:_[a-z0-9]+){2,}\b", "a code identifier (two or more underscores)"),
+    (r"\b(?:pin_friction|caster_position|caster_tire|main_tire|camber_deg|toe_deg|roll_k|i_zp|s1_plus_s2|"
+     r"cg_ratio|width_factor|mass_factor|simulate_batch|root_locus_map)\b", "a field or function name"),
+    (r"(?<![\w-])--[a-z]", "a command-line option"),
+    (r"\bdocs/|\.md\b|\.py\b", "a file name"),
+    (r"\(issue \d+\)|\bissue \d+\b", "an issue number"),
+    (r"\bcontrol\.\w+|\bstability\.\w+", "an API name"),
+    (r"\bTYMOD\b|\bTXMOD\b|\bCYMOD\b|\bCXMOD\b", "a Fortran variable"),
+]
+
+
+def test_no_code_names_file_paths_or_issue_numbers_in_the_pdf(quick):
+    """Every text on every page reads as prose for a designer or clinician: no code (issue 21)."""
+    bad = []
+    for p in quick.pages:
+        for t in p.texts:
+            for pattern, what in _LEAKS:
+                m = re.search(pattern, t)
+                if m:
+                    bad.append(f"page {p.title!r}: {what} {m.group(0)!r} in {t[:80]!r}")
+    assert not bad, "\n".join(bad[:20])
+
+
+def test_every_figure_page_has_a_concluding_caption(quick):
+    from stability.report.captions import CAPTIONS
+    for p in quick.pages:
+        if p.title in CAPTIONS:
+            assert any(t.startswith("What to conclude: ") for t in p.texts), p.title
+
+
+def test_push_convention_stated_once(quick):
+    """The step-by-step push convention appears on the method page only."""
+    pages_with = [p.title for p in quick.pages if any("steps of" in t for t in p.texts)]
+    assert pages_with == ["method"]

@@ -119,9 +119,14 @@ def parameter_table(chair, ax=None, *, fontsize: float = 7.5):
             vs = f"{v:.6g}"
         else:
             vs = str(v)
-        rows.append([f.name, f.metadata.get("symbol", ""), vs, f.metadata.get("unit", ""), f.metadata.get("doc", "")])
-    table_axes(ax, ["field", "symbol", "value", "unit", "meaning"], rows, col_widths=[0.2, 0.1, 0.17, 0.1, 0.43],
-               fontsize=fontsize, wrap=[24, 10, 18, 10, 44], top=0.97, bottom=0.0)
+        if vs == "tire's":
+            vs = "from the tire data"
+        sym = f.metadata.get("symbol", "")
+        if sym.isupper() and len(sym) > 3:       # WCHAIR's Fortran names (TYMOD, ...): not a reader's symbol
+            sym = ""
+        rows.append([f.metadata.get("doc", f.name), sym, vs, f.metadata.get("unit", "")])
+    table_axes(ax, ["parameter", "symbol", "value", "unit"], rows, col_widths=[0.55, 0.12, 0.2, 0.13],
+               fontsize=fontsize, wrap=[60, 10, 20, 10], top=0.97, bottom=0.0)
     ax.set_title(f"{chair.name}: parameters", fontsize=10)
     return ax
 

@@ -126,7 +126,7 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
         ax.set_xlabel(f"{s.label} ({s.unit})" if s.labels is None else s.label, fontsize=7.5)
         ax.set_ylabel("equal-instability speed (m/s)", fontsize=7.5)
         ax.tick_params(labelsize=7)
-        ax.set_title(f"{s.parameter}: spread {s.effect_percent:.0f} %{' (censored)' if s.censored else ''}",
+        ax.set_title(f"{s.label}: spread {s.effect_percent:.0f} %{' (censored)' if s.censored else ''}",
                      fontsize=8)
         ax.grid(True, alpha=0.3)
     for ax in flat[n:]:

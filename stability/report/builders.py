@@ -17,7 +17,8 @@ from .compute import PUSH_RANGE, ReportData
 from .findings import _first, conclusion_rows, findings
 from .sections import footer as _footer
 from .sections import shimmy_page, slope_page, uncertainty_page
-from .summary import dropped_pages, interval_text, model_gap, push_text, summary_text
+from .appendix import glossary_text, method_text
+from .summary import dropped_pages, interval_text, push_text, summary_text
 
 __all__ = ["page_builders", "VALIDITY_NOTE"]
 
@@ -109,7 +110,7 @@ def _p_growth(d: ReportData) -> Figure:
 
 def _p_gain(d: ReportData) -> Figure:
     sub, c = _subtitle(d), d.chair
-    fig, axes = P.page(_title(d, "root locus against a yaw-rate feedback gain (control.root_locus_map)"), sub,
+    fig, axes = P.page(_title(d, "root locus against a yaw-rate feedback gain (for power chairs)"), sub,
                        nrows=1, ncols=2)
     for ax, g, poles in zip(axes[0], d.gain_loci, d.gain_poles, strict=True):
         P.gain_locus(g, ax, stabilising_poles=poles,
@@ -186,7 +187,7 @@ def _p_equal(d: ReportData) -> Figure:
         + "; 1.5x friction " + THESIS["revised_1.5x_friction"] + ".",
         "Figure 8-14 (lighter chair): thesis about 0.85 m/s; not reproduced, see the findings page.",
         "Grey hatched bars: outside the bracket (value is a bound).",
-        "Thesis vs ours: " + model_gap(d),
+        "Thesis vs ours: the two model variants are compared in the method appendix.",
     ]
     if d.intervals is not None:
         txt.insert(3, "How firm: " + interval_text(d.intervals) + f" (push x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, "
@@ -239,10 +240,8 @@ def _p_maps(d: ReportData) -> Figure:
     P.stability_map(d.friction_map, axes[0, 0], nominal=c.pin_friction_left)
     P.stability_map(d.disturbance_map, axes[0, 1], nominal=d.thesis.impulse[0] * d.thesis.impulse[1])
     bottom = _footer(fig, "Heavy line: the reference case's time. Slower than the line (left): more time to react than "
-             "in the reference case; faster (right): less.\nEach map is one simulate_batch call (the right one with "
-             "an impulse force per run). Dots: simulated grid points. Left map: push "
-             f"{push_text(d)}. Right map: impulse axis = force x 0.1 s; the WCHAIR scheme holds the force for "
-             "101 steps of 1 ms, so the impulse applied is 1 % larger.")
+             "in the reference case; faster (right): less. Dots: simulated grid points. Left map: push "
+             f"{push_text(d)}. Right map: impulse = force x 0.1 s (the push convention of the method appendix).")
     return P.finish(fig, bottom=bottom)
 
 
@@ -253,12 +252,23 @@ def _p_conclusions(d: ReportData) -> Figure:
                         ["#", "conclusion (chapter 9)", "verdict", "our evidence"], rows, sub,
                         col_widths=[0.03, 0.25, 0.08, 0.64], wrap=[3, 40, 10, 100], fontsize=8,
                         notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
-                              f"{d.thesis.criterion.describe()}; push {push_text(d)}. " + model_gap(d))
+                              f"{d.thesis.criterion.describe()}; push {push_text(d)}. The 'agree if' thresholds "
+                              "are justified in the method appendix.")
 
 
 def _p_summary_page(d: ReportData) -> Figure:
     sub = _subtitle(d)
     return P.text_page(_title(d, "summary"), summary_text(d), sub, fontsize=9.5, width=150)
+
+
+def _p_method(d: ReportData) -> Figure:
+    return P.text_page(_title(d, "appendix: method"), "\n\n".join(method_text(d)), _subtitle(d), fontsize=10,
+                       width=140)
+
+
+def _p_glossary(d: ReportData) -> Figure:
+    return P.text_page(_title(d, "appendix: glossary and references"), "\n".join(glossary_text()), _subtitle(d),
+                       fontsize=10, width=140)
 
 
 def _p_findings(d: ReportData) -> Figure:
@@ -294,26 +304,30 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
     """
     drop = dropped_pages(d)
     pages = [
+        # main body: the decision and the evidence
         ("summary", partial(_p_summary_page, d)),
         ("chair parameters and geometry", partial(_p_chair, d)),
-        ("tires", partial(_p_tires, d)),
-        ("linear stability: critical speeds", partial(_p_summary, d)),
-        ("parameter uncertainty", partial(_p_uncertainty, d)),
-        ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
         ("eigenvalues against speed", partial(_p_re_im, d)),
-        ("root loci against design parameters 1", partial(_p_ploci, d, 1)),
-        ("root loci against design parameters 2", partial(_p_ploci, d, 2)),
-        ("growth rate against design parameters", partial(_p_growth, d)),
-        ("yaw-rate feedback root locus", partial(_p_gain, d)),
         ("nonlinear yaw-rate responses", partial(_p_responses, d)),
         ("paths", partial(_p_paths, d)),
         ("equal-instability speeds", partial(_p_equal, d)),
         ("parametric study", partial(_p_sweeps, d)),
-        ("parametric study table", partial(_p_sweep_table, d)),
         ("stability maps", partial(_p_maps, d)),
-        ("cross slope", partial(_p_slope, d)),
         ("caster shimmy", partial(_p_shimmy, d)),
+        ("cross slope", partial(_p_slope, d)),
+        ("parameter uncertainty", partial(_p_uncertainty, d)),
         ("thesis conclusions", partial(_p_conclusions, d)),
         ("findings", partial(_p_findings, d)),
+        # appendix: method, validation and the linear analysis in full
+        ("method", partial(_p_method, d)),
+        ("linear stability: critical speeds", partial(_p_summary, d)),
+        ("tires", partial(_p_tires, d)),
+        ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
+        ("root loci against design parameters 1", partial(_p_ploci, d, 1)),
+        ("root loci against design parameters 2", partial(_p_ploci, d, 2)),
+        ("growth rate against design parameters", partial(_p_growth, d)),
+        ("yaw-rate feedback root locus", partial(_p_gain, d)),
+        ("parametric study table", partial(_p_sweep_table, d)),
+        ("glossary and references", partial(_p_glossary, d)),
     ]
     return [(t, b) for t, b in pages if t not in drop]

@@ -15,7 +15,9 @@ from .._validate import check_model
 from ..chair import Chair
 from ..output import write_pdf
 from ..progress import ProgressBar
+from .. import plotting as P
 from . import builders
+from .captions import caption
 from .compute import ReportData, Settings, compute
 from .uncertainty_data import UncertaintySpec
 
@@ -85,6 +87,34 @@ def figure_texts(fig: Figure) -> list[str]:
     return out
 
 
+#: Caption font size (pt) and characters per caption line.
+CAPTION_FONTSIZE, CAPTION_WIDTH = 9.0, 150
+
+
+def add_caption(fig: Figure, text: str) -> None:
+    """Draw a concluding caption at the foot of a page, moving the page's content up to make room.
+
+    Every axes and every figure-level text is mapped ``y -> h + y (1 - h)``, where ``h`` is the caption's
+    height, so nothing the page drew is covered or clipped.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    text : str
+    """
+    lines = P.wrap_text(text, CAPTION_WIDTH)
+    h = 0.012 + 0.021 * len(lines)
+    for ax in fig.axes:
+        p = ax.get_position()
+        ax.set_position((p.x0, h + p.y0 * (1 - h), p.width, p.height * (1 - h)))
+    texts = list(fig.texts) + ([fig._suptitle] if getattr(fig, "_suptitle", None) is not None else [])
+    for t in texts:
+        x, y = t.get_position()
+        t.set_position((x, h + y * (1 - h)))
+    fig.text(0.015, 0.008, "\n".join(lines), ha="left", va="bottom", fontsize=CAPTION_FONTSIZE,
+             fontweight="bold", color="0.1", linespacing=1.35)
+
+
 def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
     """Build the figures one at a time; append a :class:`Page` (title, texts) to ``record`` for each.
 
@@ -102,6 +132,9 @@ def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
     plan = builders.page_builders(d)
     for i, (title, build_fig) in enumerate(plan, start=1):
         fig = build_fig()
+        cap = caption(d, title)
+        if cap is not None:
+            add_caption(fig, cap)
         fig.text(0.985, 0.006, f"page {i} of {len(plan)}", ha="right", va="bottom", fontsize=7.5, color="0.35")
         if record is not None:
             record.append(Page(title, figure_texts(fig)))

@@ -196,7 +196,8 @@ def nonlinear_uncertainty_text(d: ReportData) -> list[str]:
     if e is not None:
         beyond = "; ".join(f"{100 * f:.0f} % of draws {k_} the searched speeds" for k_, f in e.outside if f > 0)
         out.append(f"Equal-instability speed ({lvl}, against {nl.reference}: {nl.reference_time:.2f} s to "
-                   f"{LEVEL:g} rad/s under {nl.push}): {e.describe()}, nominal "
+                   f"{LEVEL:g} rad/s under the thesis's push, {THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s): "
+                   f"{e.describe()}, nominal "
                    + (f"{e.nominal:.3g} m/s" if math.isfinite(e.nominal) else "outside the searched speeds")
                    + f", {_shares(e)}" + (f"; {beyond}" if beyond else "") + ". No delta-method check: the "
                    "bisections' resolution is coarser than a finite-difference step.")
@@ -220,7 +221,7 @@ def section_drops(d: ReportData) -> dict[str, str]:
     if d.shimmy is None and d.shimmy_note:
         out["caster shimmy"] = d.shimmy_note
     if d.uncertainty is None:
-        out["parameter uncertainty"] = ("no uncertainty file was given (--uncertainty FILE), so the linear numbers "
+        out["parameter uncertainty"] = ("no uncertainty file was given, so the linear numbers "
                                         "are point values at the chair's parameters")
     return out
 

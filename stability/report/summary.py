@@ -62,7 +62,7 @@ def push_text(d: ReportData) -> str:
     -------
     str
     """
-    return THESIS_PUSH.describe(d.settings.dt if d.scheme == "wchair" else None)
+    return f"{THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s"
 
 
 def model_gap(d: ReportData) -> str:
@@ -369,9 +369,9 @@ def summary_text(d: ReportData) -> str:
                "show how much. The critical impulse does not depend on it.")
     out.append(f"- Pin friction: Coulomb pin friction ({c.pin_friction_left:g} N m here) has no linearisation; "
                "the nonlinear results rest on it (see the friction ranges above and the stability map).")
-    out.append("- Model variant: " + model_gap(d))
+    out.append("- Model variant: the thesis's equations and the exact ones are compared in the method appendix.")
     if d.uncertainty is None:
-        out.append("- Parameters: point values at the chair's parameters (give --uncertainty FILE for intervals).")
+        out.append("- Parameters: point values at the chair's parameters (an uncertainty file gives intervals).")
     if d.shimmy is not None:
         out.append("- Shimmy: the caster tire relaxation length and the pin's lateral stiffness are estimates.")
     cut = [v for v in d.validity.get("responses", ()) if v.until is not None]

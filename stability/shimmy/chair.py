@@ -24,7 +24,8 @@ __all__ = ["CasterCompliance", "caster_wheel", "critical_trail", "friction_trail
            "ESTIMATE_NOTE"]
 
 ESTIMATE_NOTE = ("caster tire relaxation length and frame lateral stiffness at the pin are not in Collins (1987): "
-                 "the values used are literature-based estimates (docs/shimmy.md)")
+                 "the values used are literature-based estimates (relaxation length after Pacejka, Tyre and Vehicle "
+                 "Dynamics, 2006; the shimmy documentation gives the sources)")
 
 
 def _static_stiffness(chair: Chair) -> dict[str, float]:

@@ -1,0 +1,103 @@
+"""The report's appendix texts: the method (push convention, model variants, verdict thresholds), a glossary
+and the references.  Stated here once; the other pages refer to them."""
+
+from __future__ import annotations
+
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from ..study.facts import PROPORTIONAL_RANGE
+from .compute import ReportData
+from .summary import model_gap
+
+__all__ = ["method_text", "GLOSSARY", "REFERENCES", "glossary_text"]
+
+
+def method_text(d: ReportData) -> list[str]:
+    """Paragraphs of the method appendix; every number from ``d`` or from :mod:`stability.reference`.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    list of str
+    """
+    dt = d.settings.dt if d.scheme == "wchair" else None
+    crit = d.thesis.criterion
+    a, b = PROPORTIONAL_RANGE
+    quick = ("This is a QUICK report: coarser speed grids, fewer parameter values and shorter bisections than the "
+             "full report; its numbers can move by a few per cent and its rankings of close parameters can swap. "
+             if d.settings.quick else "")
+    return [
+        quick + "Models. Linear: straight-line motion, tire forces linear in slip with the cornering stiffness at "
+        "the static load (the thesis's Table 4-1 method), free casters without pin friction (Coulomb friction has "
+        "no linearisation). Nonlinear: the thesis's simulator WCHAIR, re-implemented and compiled, with the "
+        "treadmill tire data and Coulomb pin friction. " + model_gap(d),
+        "The push (used throughout). The thesis disturbs the chair with a lateral force at the centre of gravity: "
+        + THESIS_PUSH.describe(dt) + ". The force acts while t <= "
+        f"{THESIS_PUSH.duration:g} s, so on WCHAIR's fixed step it is applied on one step more than the duration "
+        "divided by the step, which is why the impulse is slightly above force x duration.",
+        f"Instability measures. Reference case: the {REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s after the push; "
+        f"{crit.describe()}. Equal-instability speed: the speed at which a chair takes exactly as long as the "
+        "reference case (bisection on speed, one batch of simulations per round). Critical impulse: the smallest "
+        "push (same 0.1 s duration) that brings |yaw rate| to the level within the same time; unlike the "
+        "equal-instability speed it does not depend on the size of the thesis's push.",
+        "Verdict thresholds for the thesis's conclusions (chapter 9). The thesis compares response curves by eye; "
+        "our measures are speeds, which move less than the times the thesis read. 'Agree' needs an effect the "
+        "thesis would call significant, chosen well above the bisection's resolution and the few per cent that the "
+        "push's size alone moves the speed (the equal-instability page shows that range): at least +10 % in speed "
+        "for a geometric change (conclusions 2, 3), at least +5 % for the 2 cm trail step (conclusion 4), +30..+80 % "
+        "for the "
+        "combined revision (the thesis reports +46 %, conclusion 5), a speed exponent "
+        f"{a:g}-{b:g} for 'roughly proportional' (conclusion 6), less than 2 s to the level at 2 m/s (conclusion "
+        "7), under 5 % for 'no significant effect' (conclusion 8), and the softest tire the most stable at the "
+        "thesis's own 0.62 m/s (conclusion 9). 'Partly' means the direction agrees but not the size.",
+        "Validity. Curves on the time-history pages end where a run leaves the model's range: slip above 8 deg, "
+        "a load outside the tire data, heading past 90 deg or the speed reversing. Caster shimmy uses two "
+        "estimated inputs (the caster tire's relaxation length and the frame's lateral stiffness at the pin), "
+        "which the thesis does not give.",
+    ]
+
+
+#: Terms a reader meets in the report, in plain words.
+GLOSSARY: tuple[tuple[str, str], ...] = (
+    ("growth rate (1/s)", "how fast a heading error grows when the chair runs straight; positive: it grows "
+     "(unstable), negative: it dies out."),
+    ("doubling time (s)", "the time for a heading error to double, ln 2 / growth rate: the time a user has to "
+     "notice and correct it."),
+    ("equal-instability speed (m/s)", "the speed at which the chair is as unstable as the thesis's reference case "
+     f"(the {REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s after the thesis's push); higher is better."),
+    ("critical impulse (N s)", "the smallest sideways push (force x time) that spins the chair up to 1 rad/s "
+     "within 10 s; higher is better."),
+    ("trail (cm)", "how far behind its swivel pin a caster wheel touches the ground."),
+    ("pin friction (N m)", "the friction torque that resists swivelling a caster about its pin; it holds the "
+     "casters straight against small side forces."),
+    ("c.g. ratio", "where the centre of gravity lies between the main axle (0) and the caster pins (1)."),
+    ("caster shimmy", "a fast side-to-side oscillation of a caster about its pin, worse with a short trail."),
+    ("holding moment (N m)", "the yaw moment a user or a motor must supply to keep the chair straight on a cross "
+     "slope."),
+    ("static stability angle (deg)", "the slope at which the braked chair tips over (ISO 7176-1)."),
+)
+
+#: Sources the report uses.
+REFERENCES: tuple[str, ...] = (
+    "Collins, T. J. (1987). An analysis of parameters related to the directional stability of rear caster "
+    "wheelchairs. M.S. thesis, University of Virginia, Charlottesville. (Tire data, models, WCHAIR, chapters 8-9.)",
+    "Kauzlarich, J. J., Bruning, T. and Thacker, J. G.: caster shimmy and the dual-tread caster (cited by Collins "
+    "1987 as ref. 8.2).",
+    "Pacejka, H. B. (2006). Tyre and Vehicle Dynamics, 2nd ed. Butterworth-Heinemann. (Tire relaxation length.)",
+    "Richter, W. M., Rodriguez, R., Woods, K. R. and Axelson, P. W. (2007). Consequences of a cross slope on "
+    "wheelchair handrim biomechanics. Arch Phys Med Rehabil 88:76-80. (Cross-slope holding moments.)",
+    "Okabe, M. and Ito, K. (2008). Color Universal Design. (The colour-blind-safe palette.)",
+)
+
+
+def glossary_text() -> list[str]:
+    """The glossary and the references as paragraphs.
+
+    Returns
+    -------
+    list of str
+    """
+    return (["Glossary"] + [f"- {term}: {meaning}" for term, meaning in GLOSSARY]
+            + ["", "References"] + [f"- {r}" for r in REFERENCES])

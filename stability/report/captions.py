@@ -1,0 +1,233 @@
+"""One concluding caption per report page: what the reader should take from it, every number from the data.
+
+A caption is one or two sentences in plain words, drawn at the foot of its page
+(:func:`stability.report.document.pages`).  The functions here only read
+:class:`~stability.report.compute.ReportData`; they compute nothing new.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from .compute import ReportData
+
+__all__ = ["CAPTIONS", "caption"]
+
+
+def kmh(speed: float) -> str:
+    """A speed in m/s with its km/h, e.g. ``"0.75 m/s (2.7 km/h)"``.
+
+    Parameters
+    ----------
+    speed : float
+        m/s.
+
+    Returns
+    -------
+    str
+    """
+    return f"{speed:.3g} m/s ({3.6 * speed:.2g} km/h)"
+
+
+def _first(crossings, direction: str = "destabilising") -> float | None:
+    return next((x.speed for x in crossings if x.direction == direction), None)
+
+
+def _at_reference(d: ReportData):
+    return next((r for r in d.summary.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
+
+
+def _chair(d: ReportData) -> str:
+    c = d.chair
+    x = c.s1 / (c.s1 + c.s2)
+    return (f"The c.g. lies {100 * c.s1:.3g} cm from the main axle, {100 * x:.0f} % of the way from the main axle to "
+            f"the caster pins; the casters trail {100 * c.trail:.3g} cm behind their pins. The closer the c.g. to the "
+            "main axle and the longer the axle-to-pin distance, the more directionally stable (thesis conclusions "
+            "2 and 3).")
+
+
+def _tires(d: ReportData) -> str:
+    zw = d.summary.zero_width
+    return (f"At this chair's static loads ({zw.load_main:.0f} N per main wheel, {zw.load_caster:.0f} N per caster) "
+            f"the main tires give {math.radians(zw.stiffness_main):.3g} N/deg and the casters "
+            f"{math.radians(zw.stiffness_caster):.3g} N/deg of cornering stiffness; a softer main tire slows the "
+            "divergence a little (conclusion 9).")
+
+
+def _linear(d: ReportData) -> str:
+    s = d.summary
+    locked = _first(s.locked_crossings)
+    row = _at_reference(d)
+    if s.free_unstable_at_all_speeds:
+        txt = "With free casters and no pin friction the chair is unstable at every speed: the user must steer."
+    elif s.free_stable_at_all_speeds:
+        txt = "With free casters and no pin friction the chair is stable at every speed searched."
+    else:
+        txt = "With free casters the chair's linear stability changes with speed (see the crossings)."
+    if row is not None and row.time_to_double is not None:
+        txt += f" At {kmh(REFERENCE_SPEED)} a heading error doubles every {row.time_to_double:.2g} s."
+    txt += (f" Locked casters would keep it stable up to {kmh(locked)}." if locked is not None
+            else " Locked casters would keep it stable at every speed searched.")
+    return txt
+
+
+def _loci(d: ReportData) -> str:
+    rates = [float(np.max(np.real(lc.poles[..., :]))) for lc in d.parameter_loci if hasattr(lc, "poles")]
+    span = (f" (largest growth rate {min(rates):.3g}-{max(rates):.3g} 1/s over the parameters tried)"
+            if rates else "")
+    return ("How each design parameter moves the eigenvalues at the reference speed" + span + "; the growth-rate "
+            "page ranks them. These frictionless linear loci are the method's check, not the design answer: pin "
+            "friction, which they leave out, decides the practical stability.")
+
+
+def _growth(d: ReportData) -> str:
+    return ("The frictionless linear growth rate responds most to the c.g. position and the mass distribution; it "
+            "peaks where s1 equals the yaw radius of gyration sqrt(I_z/m), so moving the axle toward the c.g. can "
+            "raise it while the nonlinear, friction-held measures improve (see the findings).")
+
+
+def _gain(d: ReportData) -> str:
+    g = d.gain_loci[0]
+    if g.stabilising_gain is None:
+        return (f"For a power chair: yaw-rate feedback up to {g.gains[-1]:g} N m s/rad does not stabilise the linear "
+                f"model at {kmh(g.speed)}.")
+    if g.stabilising_gain == 0:
+        return f"For a power chair: the linear model is stable at {kmh(g.speed)} without feedback."
+    return (f"For a power chair: a yaw moment of more than {g.stabilising_gain:.3g} N m per rad/s of yaw rate "
+            f"(feedback gain K) makes the chair directionally stable at {kmh(g.speed)}; the assist design builds on "
+            "this.")
+
+
+def _responses(d: ReportData) -> str:
+    rs = [r for r in d.responses.responses if math.isfinite(r.time_to_level)]
+    ref = d.thesis.reference_time
+    if not rs:
+        return (f"No speed shown reaches {d.thesis.criterion.yaw_rate:g} rad/s within "
+                f"{d.thesis.criterion.duration:g} s after the push: the pin friction holds the chair.")
+    fast = min(rs, key=lambda r: r.time_to_level)
+    return (f"After the thesis's push the chair spins up to {d.thesis.criterion.yaw_rate:g} rad/s within "
+            f"{fast.time_to_level:.2g} s at {kmh(fast.speed)} (reference case {ref:.3g} s): the faster it goes, "
+            "the less time the user has to correct it.")
+
+
+def _paths(d: ReportData) -> str:
+    r = d.paths.responses[0]
+    y = np.asarray(r.y)
+    x = np.asarray(r.x)
+    head = float(np.degrees(r.heading[-1] - r.heading[0]))
+    return (f"After the push the chair leaves its line: {abs(y[-1] - y[0]):.2g} m sideways after "
+            f"{abs(x[-1] - x[0]):.2g} m of travel, heading changed by {abs(head):.0f} deg at {kmh(r.speed)}; the "
+            "counterpart with its casters at the other end keeps its line.")
+
+
+def _equal(d: ReportData) -> str:
+    cs = d.chair_speed
+    if cs.status != "found":
+        return (f"This chair never matches the reference instability within {cs.bracket[0]:g}-{cs.bracket[1]:g} m/s "
+                f"({cs.describe()}).")
+    iv = d.intervals
+    rng = (f" (range {iv.low:.3g}-{iv.high:.3g} m/s, moved most by {iv.dominant})" if iv is not None
+           and iv.low is not None and iv.high is not None else "")
+    return (f"This chair is as unstable at {kmh(cs.speed)}{rng} as the {REFERENCE_CHAIR} is at {kmh(REFERENCE_SPEED)}: "
+            "the higher this speed, the more stable the chair.")
+
+
+def _sweeps(d: ReportData) -> str:
+    ranked = [s for s in d.chair_sweeps.ranked() if s.effect_percent > 1.0][:3]
+    if not ranked:
+        return "No parameter tried moves the equal-instability speed by more than 1 %."
+    return ("The parameters that move the equal-instability speed most: "
+            + "; ".join(f"{s.label} ({s.effect_percent:.0f} % over {s.value_text(0)}-{s.value_text(len(s.values) - 1)}"
+                        + ("" if s.unit == "-" else f" {s.unit}") + ")" for s in ranked)
+            + ". The rest matter less.")
+
+
+def _maps(d: ReportData) -> str:
+    fm = d.friction_map
+    j = int(np.argmax(fm.y_values))
+    ok = fm.speeds[~(fm.times[j] < fm.reference_time)]
+    top = (f"with {fm.y_values[j]:g} N m of pin friction the chair stays below the reference instability up to "
+           f"{kmh(float(ok.max()))}" if len(ok) else
+           f"even {fm.y_values[j]:g} N m of pin friction does not keep it below the reference instability")
+    return f"More pin friction or a smaller push moves the line to higher speeds: {top}."
+
+
+def _slope(d: ReportData) -> str:
+    s = d.slope
+    if s is None or s.per_degree is None:
+        return "No cross-slope result for this chair."
+    return (f"On a cross slope the user must hold {s.per_degree:.3g} N m per degree of slope to go straight at "
+            f"{kmh(s.speed)}; uncorrected, the chair turns " + (s.path.turn if s.path is not None else "off its line")
+            + ".")
+
+
+def _shimmy(d: ReportData) -> str:
+    s = d.shimmy
+    if s is None:
+        return "No shimmy result for this chair."
+    crit = [x[2] for x in s.corners]
+    return (f"A shorter trail gives more directional stability but less shimmy margin; with the estimated caster "
+            f"compliance the boundary lies at {100 * s.critical:.3g} cm, and anywhere from {100 * min(crit):.3g} cm "
+            + ("to beyond 20 cm" if not math.isfinite(max(crit)) else f"to {100 * max(crit):.3g} cm")
+            + " over the estimates' range: measure the caster's compliance before shortening the trail.")
+
+
+def _uncertainty(d: ReportData) -> str:
+    u = d.uncertainty
+    if u is None:
+        return "Point values only: no uncertainty file was given."
+    lo, hi = u.rate_at(REFERENCE_SPEED)
+    dom = u.dominant
+    return (f"With the stated parameter uncertainty the growth rate at {REFERENCE_SPEED:g} m/s lies in {lo:.3g}-"
+            f"{hi:.3g} 1/s" + (f", most of the spread from {dom[0]}" if dom is not None else "") + ".")
+
+
+def _conclusions(d: ReportData) -> str:
+    v = [c.verdict for c in d.conclusions]
+    return (f"Of the thesis's nine conclusions our numbers agree with {v.count('agree')}, partly with "
+            f"{v.count('partly')} and disagree with {v.count('disagree')}; the evidence column says why.")
+
+
+#: Page title -> caption function (pages without one are text pages).
+CAPTIONS: dict[str, Callable[[ReportData], str]] = {
+    "chair parameters and geometry": _chair,
+    "tires": _tires,
+    "linear stability: critical speeds": _linear,
+    "eigenvalues as speed varies": _linear,
+    "eigenvalues against speed": _linear,
+    "root loci against design parameters 1": _loci,
+    "root loci against design parameters 2": _loci,
+    "growth rate against design parameters": _growth,
+    "yaw-rate feedback root locus": _gain,
+    "nonlinear yaw-rate responses": _responses,
+    "paths": _paths,
+    "equal-instability speeds": _equal,
+    "parametric study": _sweeps,
+    "parametric study table": _sweeps,
+    "stability maps": _maps,
+    "cross slope": _slope,
+    "caster shimmy": _shimmy,
+    "parameter uncertainty": _uncertainty,
+    "thesis conclusions": _conclusions,
+}
+
+
+def caption(d: ReportData, title: str) -> str | None:
+    """The concluding caption of the page ``title`` (None for text-only pages).
+
+    Parameters
+    ----------
+    d : ReportData
+    title : str
+        A page title of :func:`stability.report.builders.page_builders`.
+
+    Returns
+    -------
+    str or None
+    """
+    f = CAPTIONS.get(title)
+    return None if f is None else "What to conclude: " + f(d)
