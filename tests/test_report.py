@@ -754,3 +754,39 @@ def test_push_convention_stated_once(quick):
     """The step-by-step push convention appears on the method page only."""
     pages_with = [p.title for p in quick.pages if any("steps of" in t for t in p.texts)]
     assert pages_with == ["method"]
+
+
+def test_comparison_with_itself_changes_nothing(quick):
+    """``--compare``: a chair compared with itself shows every key number equal (an invariant of the table),
+    and the page overlays the baseline geometry and names both chairs."""
+    from stability.report.builders import page_builders
+    from stability.report.comparison import Baseline, comparison_rows, key_numbers
+    from stability.report.document import figure_texts
+
+    d = quick.data
+    assert "comparison" in dropped_pages(d)                      # no baseline: the page is left out
+    same = Baseline(d.chair.replace(name="baseline copy"), d.summary, d.chair_speed, d.impulses[0], d.slope,
+                    d.shimmy)
+    d2 = dataclasses.replace(d, baseline=same)
+    rows = comparison_rows(key_numbers(d.summary, d.chair_speed, d.impulses[0], d.slope, d.shimmy),
+                           key_numbers(same.summary, same.speed, same.impulse, same.slope, same.shimmy))
+    defined = [r for r in rows if r[1] != "-"]
+    assert len(defined) >= 5
+    assert all(r[1] == r[2] and r[4] == "equal" and r[3] in ("+0 %", "-0 %", "+0 1/s") for r in defined), rows
+    build = dict(page_builders(d2))["comparison"]
+    texts = figure_texts(build())
+    assert "baseline copy (dashed)" in texts and any("compared with baseline copy" in t for t in texts)
+
+
+def test_comparison_rows_direction():
+    """Which chair is better follows each measure's direction (higher critical impulse and speeds are better,
+    a higher growth rate and holding moment are worse); changes are relative to the baseline."""
+    from stability.report.comparison import KeyNumbers, comparison_rows
+
+    a = KeyNumbers(1.0, 0.7, 10.0, 1.1, 5.0, 3.0, 0.04)
+    b = KeyNumbers(1.5, 0.5, 9.0, 0.75, 3.0, 5.0, 0.05)
+    rows = {r[0].split(" (")[0]: r for r in comparison_rows(a, b)}
+    assert rows["equal-instability speed"][3] == "+47 %" and rows["equal-instability speed"][4] == "this chair"
+    assert rows["linear growth rate at 0.75 m/s"][4] == "this chair"
+    assert rows["holding moment on a cross slope"][4] == "this chair"
+    assert comparison_rows(b, a)[3][4] == "baseline"

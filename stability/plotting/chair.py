@@ -13,7 +13,7 @@ from .style import MARK, colour
 
 __all__ = ["chair_geometry", "parameter_table"]
 
-def chair_geometry(chair, ax=None, *, title: str | None = None):
+def chair_geometry(chair, ax=None, *, title: str | None = None, overlay=None):
     """Top view of the chair: main wheels, caster pins and casters (trailing), c.g., dimensions.
 
     x (forward) points up the page, y (to the right) to the right.
@@ -26,6 +26,8 @@ def chair_geometry(chair, ax=None, *, title: str | None = None):
         Where to draw (a new figure if omitted).
     title : str, optional
         Title (a default naming the chair and the model if omitted).
+    overlay : Chair, optional
+        A second chair drawn in dashed outline, c.g. on c.g. (the thesis's Figure 9-1 style).
 
     Returns
     -------
@@ -79,6 +81,21 @@ def chair_geometry(chair, ax=None, *, title: str | None = None):
     ax.add_patch(FancyArrow(xa, top - 0.25, 0, 0.17, width=0.01, head_width=0.05, head_length=0.04,
                             color=colour(0)))
     ax.text(xa - 0.03, top - 0.17, "travel", color=colour(0), fontsize=8, rotation=90, ha="right", va="center")
+    if overlay is not None:
+        o = overlay
+        col = colour(1)
+        for y in (-o.d1, o.d2):
+            ax.add_patch(Rectangle((y - 0.015, o.x_main - r_main), 0.03, 2 * r_main, fill=False, ec=col, ls="--",
+                                   lw=1.2, zorder=8))
+        for y in (-o.t1, o.t2):
+            xc = o.x_pin - o.trail
+            ax.plot([y, y], [o.x_pin, xc], color=col, lw=1.2, ls="--", zorder=8)
+            ax.add_patch(Rectangle((y - 0.012, xc - r_cast), 0.024, 2 * r_cast, fill=False, ec=col, ls="--",
+                                   lw=1.2, zorder=8))
+            ax.plot([y], [o.x_pin], "o", ms=6, mfc="none", mec=col, zorder=8)
+        ax.plot([], [], color="k", lw=1.5, label=chair.name)
+        ax.plot([], [], color=col, lw=1.2, ls="--", label=f"{o.name} (dashed)")
+        ax.legend(fontsize=8, loc="lower right")
     ax.set_aspect("equal")
     ax.set_xlim(xa - 0.12, off + 0.45)
     ax.set_ylim(min(xm - r_main, xp - c.trail - r_cast) - 0.08, top + 0.02)

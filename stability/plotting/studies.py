@@ -14,7 +14,8 @@ from .style import UNSTABLE, colormap, colour
 __all__ = ["equal_instability_chart", "sweep_chart", "stability_map"]
 
 
-def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None = None, title: str | None = None):
+def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None = None, title: str | None = None,
+                            errors: dict | None = None, error_label: str = "range"):
     """Horizontal bars: equal-instability speed of several chairs (censored ones hatched), thesis values as markers.
 
     ``thesis`` maps a chair name to a (low, high) speed range of the thesis (m/s).
@@ -29,6 +30,10 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
         Chair name -> (low, high) speed range read from the thesis, m/s.
     title : str, optional
         Title (a default naming the chair and the model if omitted).
+    errors : dict, optional
+        Chair name -> (low, high) range of its speed, m/s, drawn as an error bar.
+    error_label : str
+        Legend entry of the error bars (what the range spans).
 
     Returns
     -------
@@ -43,10 +48,17 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
     y = np.arange(len(results))[::-1]
     thesis = thesis or {}
     first = True
+    first_err = True
     for yi, r, v, n in zip(y, results, vals, names, strict=True):
         ax.barh(yi, v, height=0.6, color=colour(0) if r.status == "found" else "0.8",
                 hatch="" if r.status == "found" else "//", ec="k", lw=0.5)
         right = v
+        if errors and n in errors:
+            lo, hi = errors[n]
+            ax.errorbar([v], [yi], xerr=[[max(v - lo, 0.0)], [max(hi - v, 0.0)]], fmt="none", ecolor="k",
+                        elinewidth=1.2, capsize=4, label=error_label if first_err else None)
+            first_err = False
+            right = max(right, hi)
         if n in thesis:
             lo, hi = thesis[n]
             ax.plot([lo, hi], [yi + 0.38, yi + 0.38], color=UNSTABLE, lw=3, solid_capstyle="butt")
@@ -55,8 +67,8 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
             first = False
             right = max(right, hi)
         ax.text(right + 0.03, yi, r.describe(), va="center", fontsize=8)
-    if not first:
-        ax.legend(fontsize=7, loc="lower right")
+    if not first or not first_err:
+        ax.legend(fontsize=8, loc="lower right")
     ax.set_yticks(y, names, fontsize=8)
     ax.set_ylabel("chair")
     ax.set_xlabel("equal-instability speed (m/s)")

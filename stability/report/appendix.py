@@ -6,7 +6,7 @@ from __future__ import annotations
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from ..study.facts import PROPORTIONAL_RANGE
 from .compute import ReportData
-from .summary import model_gap
+from .summary import dropped_text, model_gap
 
 __all__ = ["method_text", "GLOSSARY", "REFERENCES", "glossary_text"]
 
@@ -56,7 +56,7 @@ def method_text(d: ReportData) -> list[str]:
         "a load outside the tire data, heading past 90 deg or the speed reversing. Caster shimmy uses two "
         "estimated inputs (the caster tire's relaxation length and the frame's lateral stiffness at the pin), "
         "which the thesis does not give.",
-    ]
+    ] + (["Pages left out of this report:\n" + "\n".join(dropped_text(d))] if dropped_text(d) else [])
 
 
 #: Terms a reader meets in the report, in plain words.

@@ -13,11 +13,12 @@ from ..chair import preset
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from ..study import THESIS
 from ..summary import format_summary
+from .appendix import glossary_text, method_text
+from .comparison import comparison_rows, key_numbers
 from .compute import PUSH_RANGE, ReportData
 from .findings import _first, conclusion_rows, findings
 from .sections import footer as _footer
 from .sections import shimmy_page, slope_page, uncertainty_page
-from .appendix import glossary_text, method_text
 from .summary import dropped_pages, interval_text, push_text, summary_text
 
 __all__ = ["page_builders", "VALIDITY_NOTE"]
@@ -44,6 +45,29 @@ def _p_chair(d: ReportData) -> Figure:
                        gridspec_kw={"width_ratios": [1.35, 1]})
     P.parameter_table(c, axes[0, 0])
     P.chair_geometry(c, axes[0, 1])
+    return P.finish(fig)
+
+
+def _p_comparison(d: ReportData) -> Figure:
+    b = d.baseline
+    assert b is not None
+    sub = _subtitle(d)
+    fig, axes = P.page(_title(d, f"compared with {b.chair.name}"), sub, nrows=1, ncols=2,
+                       gridspec_kw={"width_ratios": [1, 1.6]})
+    P.chair_geometry(d.chair, axes[0, 0], overlay=b.chair,
+                     title=f"{d.chair.name} (solid) on {b.chair.name} (dashed), c.g. on c.g.")
+    this = key_numbers(d.summary, d.chair_speed, d.impulses[0] if d.impulses else None, d.slope, d.shimmy)
+    base = key_numbers(b.summary, b.speed, b.impulse, b.slope, b.shimmy)
+    geometry = [["c.g. to main axle s1 (m)", f"{d.chair.s1:.3g}", f"{b.chair.s1:.3g}", "", ""],
+                ["c.g. to caster pins s2 (m)", f"{d.chair.s2:.3g}", f"{b.chair.s2:.3g}", "", ""],
+                ["caster trail (m)", f"{d.chair.trail:.3g}", f"{b.chair.trail:.3g}", "", ""],
+                ["pin friction (N m)", f"{d.chair.pin_friction_left:.3g}", f"{b.chair.pin_friction_left:.3g}", "", ""],
+                ["mass (kg)", f"{d.chair.m:.3g}", f"{b.chair.m:.3g}", "", ""]]
+    axes[0, 1].axis("off")
+    P.table_axes(axes[0, 1], ["", d.chair.name, b.chair.name, "change", "better"],
+                 geometry + comparison_rows(this, base), col_widths=[0.5, 0.13, 0.13, 0.12, 0.12], fontsize=8.5,
+                 wrap=[52, 14, 14, 12, 12], top=0.97, bottom=0.05)
+    axes[0, 1].set_title(f"key numbers, {d.model} model, same settings for both chairs", fontsize=10)
     return P.finish(fig)
 
 
@@ -169,7 +193,12 @@ def _p_equal(d: ReportData) -> Figure:
         thesis_ranges[d.figure_8_14.chair.name] = (0.85, 0.85)
     fig, axes = P.page(_title(d, "equal-instability speeds (chapter 9, Figures 9-2 and 9-3)"), sub, nrows=1,
                        ncols=2, gridspec_kw={"width_ratios": [1.5, 1]})
-    P.equal_instability_chart(res, axes[0, 0], thesis=thesis_ranges)
+    iv = d.intervals
+    errors = ({iv.point.chair.name: (iv.low, iv.high)} if iv is not None and iv.low is not None
+              and iv.high is not None else None)
+    P.equal_instability_chart(res, axes[0, 0], thesis=thesis_ranges, errors=errors,
+                              error_label=f"range: push x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, pin friction "
+                                          "x0.5-x1.5, model variant")
     ax = axes[0, 1]
     ax.axis("off")
     crit = th.criterion
@@ -248,7 +277,9 @@ def _p_maps(d: ReportData) -> Figure:
 def _p_conclusions(d: ReportData) -> Figure:
     sub = _subtitle(d)
     rows = conclusion_rows(d)
-    return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers (E&J Premier, revised)"),
+    own = "" if d.chair == preset(REFERENCE_CHAIR) else f"; design changes (2, 3, 4, 6, 8) tested on {d.chair.name}"
+    return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers (E&J Premier, revised" + own
+                               + ")"),
                         ["#", "conclusion (chapter 9)", "verdict", "our evidence"], rows, sub,
                         col_widths=[0.03, 0.25, 0.08, 0.64], wrap=[3, 40, 10, 100], fontsize=8,
                         notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
@@ -306,6 +337,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
     pages = [
         # main body: the decision and the evidence
         ("summary", partial(_p_summary_page, d)),
+        ("comparison", partial(_p_comparison, d)),
         ("chair parameters and geometry", partial(_p_chair, d)),
         ("eigenvalues against speed", partial(_p_re_im, d)),
         ("nonlinear yaw-rate responses", partial(_p_responses, d)),

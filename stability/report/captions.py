@@ -13,6 +13,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from .comparison import comparison_rows, key_numbers
 from .compute import ReportData
 
 __all__ = ["CAPTIONS", "caption"]
@@ -186,6 +187,21 @@ def _uncertainty(d: ReportData) -> str:
             f"{hi:.3g} 1/s" + (f", most of the spread from {dom[0]}" if dom is not None else "") + ".")
 
 
+def _comparison(d: ReportData) -> str:
+    b = d.baseline
+    if b is None:
+        return ""
+    rows = comparison_rows(key_numbers(d.summary, d.chair_speed, d.impulses[0] if d.impulses else None, d.slope,
+                                       d.shimmy),
+                           key_numbers(b.summary, b.speed, b.impulse, b.slope, b.shimmy))
+    wins = [r for r in rows if r[4] == "this chair"]
+    losses = [r for r in rows if r[4] == "baseline"]
+    txt = f"{d.chair.name} is better than {b.chair.name} on {len(wins)} of {len(rows)} measures"
+    if losses:
+        txt += "; worse on " + ", ".join(f"{r[0].split(' (')[0]} ({r[3]})" for r in losses)
+    return txt + "."
+
+
 def _conclusions(d: ReportData) -> str:
     v = [c.verdict for c in d.conclusions]
     return (f"Of the thesis's nine conclusions our numbers agree with {v.count('agree')}, partly with "
@@ -194,6 +210,7 @@ def _conclusions(d: ReportData) -> str:
 
 #: Page title -> caption function (pages without one are text pages).
 CAPTIONS: dict[str, Callable[[ReportData], str]] = {
+    "comparison": _comparison,
     "chair parameters and geometry": _chair,
     "tires": _tires,
     "linear stability: critical speeds": _linear,

@@ -37,6 +37,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help=f"Monte Carlo draws with --uncertainty (1 to {MAX_SAMPLES}, default {D.SAMPLES})")
     p.add_argument("--seed", type=int, default=D.SEED,
                    help=f"seed of the draws with --uncertainty (>= 0, default {D.SEED})")
+    p.add_argument("--compare", metavar="BASELINE",
+                   help="compare with a baseline chair (a preset or a TOML chair file): its geometry overlaid and "
+                        "a side-by-side table of the key numbers, computed the same way")
     p.add_argument("-o", "--output", required=True, metavar="FILE.pdf", help="output PDF")
     return p
 
@@ -58,7 +61,8 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
+    check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair, "--uncertainty": args.uncertainty,
+                                                           "--compare": args.compare})
     if not args.output.lower().endswith(".pdf"):
         raise ValueError(f"-o {args.output!r} must end in .pdf")
     if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
@@ -67,9 +71,10 @@ def _run(args: argparse.Namespace) -> int:
     if args.uncertainty is not None:
         spec = UncertaintySpec(args.uncertainty, load_uncertainty(args.uncertainty), args.samples, args.seed)
     c = load_chair(args.chair, args.set)
+    baseline = None if args.compare is None else load_chair(args.compare, [])
     with output_files({"-o": args.output, "--text": args.text}) as tmp:
         res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress,
-                             uncertainty=spec)
+                             uncertainty=spec, baseline=baseline)
         if args.text:
             with open(tmp["--text"], "w", encoding="utf-8") as fh:
                 fh.write(res.text() + "\n")

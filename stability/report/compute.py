@@ -15,6 +15,7 @@ from ..progress import ProgressBar
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from ..study.impulse import critical_impulses
 from ..validation import linearisation_check, with_rolling_resistance
+from .comparison import Baseline, baseline_summary
 from .modes import mode_names
 from .settings import Settings
 from .shimmy_data import ShimmySection, shimmy_section, shimmy_unavailable
@@ -115,6 +116,8 @@ class ReportData:
     impulses : tuple of CriticalImpulse
         The chair and the reference (or revised) chair at the reference speed.
     figure_8_14 : Figure814 or None
+    baseline : Baseline or None
+        The chair the report compares with (``report --compare``), computed the same way.
     """
 
     chair: Chair
@@ -150,6 +153,7 @@ class ReportData:
     uncertainty: UncertaintySection | None = None
     impulses: tuple = ()         # CriticalImpulse of the chair and the reference chair at the reference speed
     figure_8_14: Figure814 | None = None
+    baseline: Baseline | None = None
 
 
 def counterpart(c: Chair) -> Chair:
@@ -227,7 +231,8 @@ def parameter_loci(c: Chair, model: str, n: int) -> list:
 
 def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bool = True,
             scheme: str = "wchair", settings: Settings | None = None,
-            log: Callable[[str], None] | None = None, uncertainty: UncertaintySpec | None = None) -> ReportData:
+            log: Callable[[str], None] | None = None, uncertainty: UncertaintySpec | None = None,
+            baseline: Chair | None = None) -> ReportData:
     """Run every analysis of the report for chair ``c``.
 
     Parameters
@@ -246,6 +251,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         Called with the name of each finished stage.
     uncertainty : UncertaintySpec, optional
         Parameter distributions for the linear and nonlinear intervals (``--uncertainty FILE``).
+    baseline : Chair, optional
+        A chair to compare with: its key numbers are computed with the same settings, model and reference.
 
     Returns
     -------
@@ -283,7 +290,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         glocs = [rootlocus.gain_locus(c, u, model=model, n=s.gain_points) for u in (REFERENCE_SPEED, 1.5)]
         gain_poles = tuple(stabilising_poles(g) for g in glocs)
         stage("parameter and gain loci")
-        extra = ([c] + study.friction_variants(c) if not is_ej else []) + [light]
+        extra = ([c] + study.friction_variants(c) if not is_ej else []) + [light] + (
+            [baseline] if baseline is not None else [])
         thesis, extra_res, other_table = study.thesis_study(
             model=model, criterion=crit, plan=s.plan, extra_chairs=extra,
             extra_plan_chair=None if is_ej else c, extra_plan=study.plan_for(c, s.plan), progress=progress,
@@ -299,6 +307,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
             chair_speed = extra_res[0]
             chair_friction = list(extra_res[1:3])
         rates = [divergence(x, [REFERENCE_SPEED], model, "free")[0].rate for x in (ref_chair, light)]
+        base_speed = extra_res.pop() if baseline is not None else None
         fig814 = Figure814(light, extra_res[-1], *rates,
                            *(float(massless_caster_rate(x, REFERENCE_SPEED)) for x in (ref_chair, light)))
         stage("equal-instability speeds and parametric study")
@@ -307,9 +316,12 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
             subject, model=model, force_factors=PUSH_RANGE, friction_factors=FRICTION_RANGE,
             friction_on_reference=False, push=THESIS_PUSH, criterion=crit, scheme=scheme, bracket=s.bracket,
             tol=s.tol, candidates=s.candidates, dt=s.dt)
-        impulses = tuple(critical_impulses([c, ref_chair] if not is_ej else [c, subject], REFERENCE_SPEED,
-                                           model=model, scheme=scheme, duration=push[1], horizon=s.duration,
-                                           dt=s.dt, rel_tol=s.impulse_rel_tol))
+        rated = ([c, ref_chair] if not is_ej else [c, subject]) + ([baseline] if baseline is not None else [])
+        impulses = tuple(critical_impulses(rated, REFERENCE_SPEED, model=model, scheme=scheme, duration=push[1],
+                                           horizon=s.duration, dt=s.dt, rel_tol=s.impulse_rel_tol))
+        base_impulse = None
+        if baseline is not None:
+            base_impulse, impulses = impulses[-1], impulses[:-1]
         sensitivity = study.elasticities(c, REFERENCE_SPEED, model=model, rel_tol=s.impulse_tol, scheme=scheme,
                                          duration=push[1], horizon=s.duration, dt=s.dt)
         stage("intervals, critical impulses and elasticities")
@@ -337,17 +349,24 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         dmap = study.disturbance_map(c, s.map_speeds, s.map_impulses, model=model, criterion=crit,
                                      reference=thesis.reference_time, progress=progress, **sim)
         stage("stability map: speed x disturbance")
-        conclusions = study.check_conclusions(thesis)
+        conclusions = study.check_conclusions(thesis, own=None if is_ej else chair_sweeps,
+                                              own_friction=() if is_ej else chair_friction)
         stage("conclusions")
         slope = slope_section(c)
         shimmy_note = shimmy_unavailable(c)
         shimmy = None if shimmy_note else shimmy_section(c, s.shimmy_trails, s.shimmy_speeds)
         unc = None if uncertainty is None else uncertainty_section(c, uncertainty, model=model, quick=s.quick,
                                                                    settings=s, scheme=scheme)
+        base = None
+        if baseline is not None:
+            b_note = shimmy_unavailable(baseline)
+            base = Baseline(baseline, baseline_summary(baseline, model), base_speed, base_impulse,
+                            slope_section(baseline),
+                            None if b_note else shimmy_section(baseline, s.shimmy_trails, s.shimmy_speeds))
         stage("slope, shimmy and uncertainty")
     return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
                       list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,
                       rolling=rolling, tire_force=tire_force, tire_stiffness=tire_stiffness,
                       gain_poles=gain_poles, mode_names=names, validity=valid, intervals=intervals,
                       impulses=impulses, figure_8_14=fig814, sensitivity=sensitivity, slope=slope, shimmy=shimmy,
-                      shimmy_note=shimmy_note, uncertainty=unc)
+                      shimmy_note=shimmy_note, uncertainty=unc, baseline=base)

@@ -11,11 +11,11 @@ from pathlib import Path
 from matplotlib.figure import Figure
 from matplotlib.text import Text
 
+from .. import plotting as P
 from .._validate import check_model
 from ..chair import Chair
 from ..output import write_pdf
 from ..progress import ProgressBar
-from .. import plotting as P
 from . import builders
 from .captions import caption
 from .compute import ReportData, Settings, compute
@@ -107,7 +107,8 @@ def add_caption(fig: Figure, text: str) -> None:
     for ax in fig.axes:
         p = ax.get_position()
         ax.set_position((p.x0, h + p.y0 * (1 - h), p.width, p.height * (1 - h)))
-    texts = list(fig.texts) + ([fig._suptitle] if getattr(fig, "_suptitle", None) is not None else [])
+    sup = getattr(fig, "_suptitle", None)      # matplotlib keeps the suptitle outside fig.texts
+    texts = list(fig.texts) + ([sup] if sup is not None else [])
     for t in texts:
         x, y = t.get_position()
         t.set_position((x, h + y * (1 - h)))
@@ -143,7 +144,7 @@ def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
 
 def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick: bool = False, progress: bool = True,
           settings: Settings | None = None, data: ReportData | None = None,
-          uncertainty: UncertaintySpec | None = None) -> ReportResult:
+          uncertainty: UncertaintySpec | None = None, baseline: Chair | None = None) -> ReportResult:
     """Compute and write the report for chair ``c`` to ``path`` (atomically, reproducibly).
 
     Parameters
@@ -162,6 +163,8 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         Already computed data (skips :func:`~stability.report.compute.compute`).
     uncertainty : UncertaintySpec, optional
         Parameter distributions for the uncertainty page and the intervals on the summary.
+    baseline : Chair, optional
+        Compare with this chair: an overlaid geometry and a side-by-side table of the key numbers.
 
     Returns
     -------
@@ -173,7 +176,8 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     directory = path.parent if str(path.parent) else Path(".")
     if not directory.is_dir():
         raise ValueError(f"output directory {str(directory)!r} does not exist")
-    d = data or compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty)
+    d = data or compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty,
+                        baseline=baseline)
     record: list[Page] = []
     n_pages = len(builders.page_builders(d))
     with ProgressBar(n_pages, "pages", enabled=progress, unit="page") as bar:

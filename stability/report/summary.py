@@ -18,7 +18,7 @@ from ..study import FRICTION_OVER_TRAIL, TRAIL_AT_FIXED_GROUP
 from .compute import ReportData
 from .sections import section_drops
 
-__all__ = ["Change", "best_changes", "elasticity_floor", "interval_text", "dropped_pages",
+__all__ = ["Change", "best_changes", "elasticity_floor", "interval_text", "dropped_pages", "dropped_text",
            "model_gap", "push_text", "steady_turns", "summary_text"]
 
 
@@ -165,6 +165,29 @@ def dropped_pages(d: ReportData) -> dict[str, str]:
         out["stability maps"] = (f"no run of either map reaches |yaw rate| = {d.friction_map.criterion.yaw_rate:g} "
                                  f"rad/s within {d.friction_map.criterion.duration:g} s, so both maps are blank")
     out.update(section_drops(d))
+    if d.baseline is None:
+        out["comparison"] = "no baseline chair was given"
+    return out
+
+
+def dropped_text(d: ReportData) -> list[str]:
+    """The pages left out of this report and why, one line per reason.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    list of str
+    """
+    drop = dropped_pages(d)
+    out, seen = [], set()
+    for why in drop.values():
+        if why not in seen:
+            seen.add(why)
+            same = [t for t, w in drop.items() if w == why]
+            out.append(f"- {', '.join(same)}: {why}.")
     return out
 
 
@@ -379,15 +402,6 @@ def summary_text(d: ReportData) -> str:
         out.append(f"- Validity: {len(cut)} of {len(d.validity['responses'])} response runs leave the tire data "
                    f"(first at {min(v.until for v in cut):.2f} s: {min(cut, key=lambda v: v.until).reason}); "
                    "curves stop there.")
-    drop = dropped_pages(d)
-    if drop:
-        out.append("Pages left out")
-        seen = set()
-        for why in drop.values():
-            if why not in seen:
-                seen.add(why)
-                same = [t for t, w in drop.items() if w == why]
-                out.append(f"- {', '.join(same)}: {why}.")
     return "\n".join(out)
 
 

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..statics import static_stiffness
 from .equal_instability import EqualInstability
 from .facts import PROPORTIONAL_RANGE, fit_exponent
+from .sweeps import SweepTable
 from .thesis import ThesisStudy
 
 __all__ = ["ConclusionCheck", "CONCLUSIONS", "check_conclusions"]
@@ -277,12 +278,23 @@ _CHECKS: tuple[Callable[[ThesisStudy, EqualInstability], ConclusionCheck], ...] 
     _c1, _c2, _c3, _c4, _c5, _c6, _c7, _c8, _c9)
 
 
-def check_conclusions(study: ThesisStudy) -> list[ConclusionCheck]:
+#: The conclusions about changes of one chair's design (tested on the report's own chair when it has sweeps).
+_DESIGN_CONCLUSIONS = (2, 3, 4, 8)
+
+
+def check_conclusions(study: ThesisStudy, own: SweepTable | None = None,
+                      own_friction: Sequence[EqualInstability] = ()) -> list[ConclusionCheck]:
     """Test the thesis's conclusions 1-9 (chapter 9) against the numbers of ``study``.
 
     Parameters
     ----------
     study : ThesisStudy
+        The thesis's study (the E&J Premier, the revised design).
+    own : SweepTable, optional
+        Another chair's own parametric study: conclusions 2, 3, 4 and 8 (what a design change does) are then
+        tested on that chair, and their evidence names it.
+    own_friction : sequence of EqualInstability, optional
+        That chair at x0.5 and x1.5 pin friction: conclusion 6 then quotes it as well.
 
     Returns
     -------
@@ -291,4 +303,17 @@ def check_conclusions(study: ThesisStudy) -> list[ConclusionCheck]:
         verdict from explicit thresholds written in the evidence text.
     """
     base = study.speeds["ej-premier"]
-    return [check(study, base) for check in _CHECKS]
+    out = [check(study, base) for check in _CHECKS]
+    if own is None or own.chair.name == study.sweeps.chair.name:
+        return out
+    sub = replace(study, sweeps=own)
+    for n in _DESIGN_CONCLUSIONS:
+        r = _CHECKS[n - 1](sub, own.nominal)
+        out[n - 1] = ConclusionCheck(n, r.statement, f"{own.chair.name}: " + r.evidence, r.verdict)
+    if len(own_friction) == 2:
+        lo, hi = own_friction
+        c6 = out[5]
+        k = fit_exponent((0.5, 1.0, 1.5), (lo.value_or_bound, own.nominal.value_or_bound, hi.value_or_bound))
+        out[5] = ConclusionCheck(6, c6.statement, f"{own.chair.name}: x0.5 / x1 / x1.5 pin friction {_fmt(lo)} / "
+                                 f"{_fmt(own.nominal)} / {_fmt(hi)} (speed ~ M_f^{k:.2f}). " + c6.evidence, c6.verdict)
+    return out
