@@ -24,6 +24,9 @@ full_width_relaxed
     The exact full-width linear model with caster-tire relaxation and pin
     lateral compliance (the chair's shimmy mode); generates
     ``_generated/full_width_relaxed.py``.
+tipping
+    Static tipping of the rigid chair on a tilted plane (checks only; the
+    run-time geometry is ``stability/tipping/angles.py``).
 
 Nothing in the :mod:`stability` package imports this package at run time.
 """

@@ -27,6 +27,7 @@ COMMANDS = {
     "slope": "stability.slope.__main__",
     "measure": "stability.measure.__main__",
     "compare": "stability.compare.__main__",
+    "tipping": "stability.tipping.__main__",
 }
 
 #: Seconds a refusal may take (bad input must be caught before the work starts).
@@ -55,6 +56,9 @@ CASES = [
     ("critical_speed", ["--set", "main_tire=linear:30", "--set", "camber_deg=2"], "camber"),
     ("critical_speed", ["--set", "m=200", "--tire-range", "raise"], "fitted range"),
     ("critical_speed", ["--tire-range", "sometimes"], "--tire-range"),
+    ("tipping", ["--cross-slope", "50"], "--cross-slope"),
+    ("tipping", ["--grade", "nan"], "--grade"),
+    ("tipping", ["--set", "anti_tip_reach=-0.1"], "anti_tip_reach"),
     # chair sources
     ("critical_speed", ["--chair", "nosuch"], "nosuch"),
     ("critical_speed", ["--chair", "missing.toml"], "missing.toml"),

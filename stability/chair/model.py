@@ -90,6 +90,12 @@ class Chair:
         The thesis's studies switch rolling resistance off (TXMOD = CXMOD = 0).
     g : float
         Gravitational acceleration (m/s^2).
+    anti_tip_reach : float
+        Anti-tip devices (tipping toward the main wheels): longitudinal distance of their ground
+        contact beyond the main-wheel contacts, away from the c.g. (m); 0 means none.  Used only by
+        :mod:`stability.tipping`.
+    anti_tip_clearance : float
+        Ground clearance of the anti-tip devices with the chair level (m).
     """
 
     name: str = field(default="chair", metadata=_doc("label", "-"))
@@ -122,6 +128,9 @@ class Chair:
     caster_lateral_scale: float = field(default=1.0, metadata=_doc("caster lateral force scale", "-", "CYMOD"))
     caster_rolling_scale: float = field(default=0.0, metadata=_doc("caster rolling force scale", "-", "CXMOD"))
     g: float = field(default=9.81, metadata=_doc("gravitational acceleration", "m/s^2", "g"))
+    anti_tip_reach: float = field(default=0.0, metadata=_doc(
+        "anti-tip contact beyond the main wheels (0: none)", "m"))
+    anti_tip_clearance: float = field(default=0.0, metadata=_doc("anti-tip ground clearance", "m"))
 
     def __post_init__(self) -> None:
         _validate(self)
@@ -221,6 +230,7 @@ LIMITS: dict[str, tuple[float, float, bool]] = {
     "main_lateral_scale": (0.01, 10.0, True), "caster_lateral_scale": (0.01, 10.0, True),
     "main_rolling_scale": (0.0, 10.0, True), "caster_rolling_scale": (0.0, 10.0, True),
     "g": (1.0, 30.0, True),
+    "anti_tip_reach": (0.0, 1.0, True), "anti_tip_clearance": (0.0, 0.5, True),
 }
 
 

@@ -1,0 +1,67 @@
+"""``python -m stability.tipping``: ISO 7176-1 static stability angles (rigid chair, brakes locked)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Sequence
+
+from .. import cli
+from .angles import DIRECTIONS, LOANE_KIRBY_REAR_DEG, slope_tip, tip_angles
+
+_WORDS = {"toward_main_wheels": "toward the main wheels", "toward_casters": "toward the casters",
+          "lateral_left": "over the left side", "lateral_right": "over the right side"}
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = cli.OneLineErrorParser(prog="python -m stability.tipping", description=__doc__)
+    cli.add_chair_options(p)
+    p.add_argument("--cross-slope", type=float, default=0.0, metavar="DEG",
+                   help="cross slope (deg), positive falling to the right; with --grade: tipping on that slope "
+                        "(default 0)")
+    p.add_argument("--grade", type=float, default=0.0, metavar="DEG", help="grade (deg), uphill + (default 0)")
+    cli.add_json_options(p)
+    return p
+
+
+def _body(a: argparse.Namespace) -> int:
+    cli.check_outputs({"--json-file": a.json_file}, {"--chair": a.chair})
+    for name, v in (("--cross-slope", a.cross_slope), ("--grade", a.grade)):
+        if not (math.isfinite(v) and -45.0 < v < 45.0):
+            raise ValueError(f"{name} {v!r} is invalid; valid range: -45 < DEG < 45")
+    chair = cli.load_chair(a.chair, a.set)
+    t = tip_angles(chair)
+    s = slope_tip(chair, a.cross_slope, a.grade)
+    data = {**t.to_mapping(), "slope": s.to_mapping(), "reference_rear_stability_deg": LOANE_KIRBY_REAR_DEG}
+    if a.json or a.json_file:
+        options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade}
+        cli.emit_json({**cli.json_header(chair, None, options), **data}, a)
+        if a.json:
+            return 0
+    print(f"{chair.name}: static stability angles (ISO 7176-1 directions; rigid chair, brakes locked, casters "
+          "in their least stable swivel orientation)")
+    for k in DIRECTIONS:
+        ln = t.lines[k]
+        casters = [f"{side} caster at {ang:+.0f} deg" for side, ang in zip(("left", "right"), ln.caster_angles_deg,
+                                                                          strict=True) if ang is not None]
+        extra = f" ({', '.join(casters)} from trailing)" if casters else ""
+        print(f"  {_WORDS[k]:<24} {getattr(t, k + '_deg'):6.1f} deg   tipping line {ln.distance_m * 100:.1f} cm "
+              f"from the c.g.{extra}")
+    if t.anti_tip_deg is not None:
+        print(f"  over the anti-tip devices {t.anti_tip_deg:6.1f} deg")
+    print(f"  smallest: {t.smallest_deg:.1f} deg ({_WORDS[t.smallest_direction]})")
+    if a.cross_slope or a.grade:
+        print(f"  on cross slope {s.cross_slope_deg:g} deg + grade {s.grade_deg:g} deg (tilt {s.tilt_deg:.2f} deg): "
+              f"tips at a tilt of {s.tip_deg:.1f} deg along the same fall line, margin {s.margin_deg:+.1f} deg")
+    print(f"  for scale: Loane & Kirby (1985) measured {LOANE_KIRBY_REAR_DEG} deg mean rear stability of an occupied "
+          "conventional manual chair (brakes unlocked); no numeric minimum of EN 12183/12184 was found to cite")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point; returns the exit status."""
+    return cli.run(_parser(), argv, _body)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

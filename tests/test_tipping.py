@@ -1,0 +1,242 @@
+"""Static tip stability (stability.tipping): closed forms, mirror symmetry, slope statics, command line."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+from stability import chair as chair_mod
+from stability.models import slope as slope_model
+from stability.params import parameters
+from stability.tipping import DIRECTIONS, anti_tip_angle, fall_distance, slope_tip, tip_angles
+
+PRESETS = chair_mod.preset_names()
+# Distances are sums of a few products of O(1 m) lengths: rounding ~10 eps m; asserted at 1e-12 m (x >= 100).
+TOL_M = 1e-12
+
+
+def _deg(rho: float, h: float) -> float:
+    return math.degrees(math.atan2(rho, h))
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_fore_aft_closed_forms(name):
+    """Toward the main wheels: tan a = s1/h; toward the casters, casters turned toward the c.g.: (s2 - l)/h."""
+    c = chair_mod.preset(name)
+    t = tip_angles(c)
+    assert t.toward_main_wheels_deg == pytest.approx(_deg(c.s1, c.h), abs=1e-10)
+    assert t.toward_casters_deg == pytest.approx(_deg(c.s2 - c.trail, c.h), abs=1e-10)
+    assert t.lines["toward_casters"].distance_m == pytest.approx(c.s2 - c.trail, abs=TOL_M)
+
+
+def test_ej_premier_tips_backwards_near_nine_degrees():
+    """The issue's rigid E&J Premier, casters swivelled toward the c.g.: about 9 deg (atan(0.095/0.61) = 8.85)."""
+    t = tip_angles(chair_mod.preset("ej-premier"))
+    assert t.smallest_direction == "toward_casters"
+    assert t.toward_casters_deg == pytest.approx(math.degrees(math.atan(0.095 / 0.61)), abs=1e-10)
+    assert t.lines["toward_casters"].caster_angles_deg == (pytest.approx(180.0), pytest.approx(180.0))
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "revised"])
+def test_lateral_zero_trail_closed_form(name):
+    """Zero trail (contacts at the pins): the left tipping line joins (s1, -d1) and (-s2, -t1):
+    rho = (d1 s2 + t1 s1) / (s1 + s2) for a rear-caster chair."""
+    c = chair_mod.preset(name).replace(trail=0.0, l1=0.0)
+    t = tip_angles(c)
+    rho_l = (c.d1 * c.s2 + c.t1 * c.s1) / (c.s1 + c.s2)
+    rho_r = (c.d2 * c.s2 + c.t2 * c.s1) / (c.s1 + c.s2)
+    assert t.lines["lateral_left"].distance_m == pytest.approx(rho_l, abs=TOL_M)
+    assert t.lines["lateral_right"].distance_m == pytest.approx(rho_r, abs=TOL_M)
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_lateral_matches_brute_force_over_the_swivel_angle(name):
+    """The left tipping line joins the left main-wheel contact D and the left caster contact A(eta); the
+    distance along -y is minus the line's y at x = 0.  Minimised over eta by Brent's method (independent of
+    the closed-form crossings in fall_distance)."""
+    c = chair_mod.preset(name)
+    xm, xp, l = c.x_main, c.x_pin, c.trail
+
+    def rho(eta: float) -> float:
+        xa, ya = xp - l * math.cos(eta), -c.t1 - l * math.sin(eta)
+        return -(-c.d1 + (ya + c.d1) * (0.0 - xm) / (xa - xm))
+
+    grid = np.linspace(-math.pi, math.pi, 721)
+    k = int(np.argmin([rho(e) for e in grid]))
+    best = minimize_scalar(rho, bounds=(grid[max(k - 1, 0)], grid[min(k + 1, 720)]), method="bounded",
+                           options={"xatol": 1e-12})
+    line = tip_angles(c).lines["lateral_left"]
+    # Brent's value at a smooth minimum is within ~eps of it; 1e-9 m is >= 1e4 x that
+    assert line.distance_m == pytest.approx(best.fun, abs=1e-9)
+    assert math.radians(line.caster_angles_deg[0]) == pytest.approx(
+        math.remainder(best.x, 2 * math.pi), abs=1e-4)
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_mirror_symmetry(name):
+    """Swapping the chair left for right swaps the lateral angles and mirrors the worst caster angles."""
+    c = chair_mod.preset(name).replace(d1=0.25, d2=0.29, t1=0.22, t2=0.26)
+    m = c.replace(d1=c.d2, d2=c.d1, t1=c.t2, t2=c.t1)
+    a, b = tip_angles(c), tip_angles(m)
+    assert a.lateral_left_deg == pytest.approx(b.lateral_right_deg, abs=1e-10)
+    assert a.lateral_right_deg == pytest.approx(b.lateral_left_deg, abs=1e-10)
+    assert a.toward_casters_deg == pytest.approx(b.toward_casters_deg, abs=1e-10)
+    assert a.lines["lateral_left"].caster_angles_deg[0] == pytest.approx(
+        -b.lines["lateral_right"].caster_angles_deg[1], abs=1e-8)
+    assert a.lateral_left_deg != pytest.approx(a.lateral_right_deg, abs=0.1)   # the asymmetry is seen
+
+
+def _uphill_moment(c, key, alpha_deg: float) -> float:
+    """Moment (N m) about the tipping line of the normal loads on the contacts off it, from the slope statics.
+
+    ``key``: one of DIRECTIONS, or a fall line ``(ex, ey)`` (unit vector, body axes)."""
+    p = parameters(c)
+    if isinstance(key, str):
+        line = tip_angles(c).lines[key]
+        e = {"toward_main_wheels": (np.sign(c.x_main), 0.0), "toward_casters": (-np.sign(c.x_main), 0.0),
+             "lateral_left": (0.0, -1.0), "lateral_right": (0.0, 1.0)}[key]
+    else:
+        e = key
+        line = fall_distance(p, *e)
+    a = math.radians(alpha_deg)
+    g1, g2, gn = c.g * math.sin(a) * e[0], c.g * math.sin(a) * e[1], c.g * math.cos(a)
+    ori = [(math.cos(math.radians(x)), math.sin(math.radians(x))) if x is not None else (1.0, 0.0)
+           for x in line.caster_angles_deg]
+    loads = slope_model.normal_loads(p, 0.0, 0.0, g1, g2, gn, ori[0][0], ori[0][1], ori[1][0], ori[1][1])
+    pts = [(p.x_p - p.trail * ori[0][0], -p.t1 - p.trail * ori[0][1]),
+           (p.x_p - p.trail * ori[1][0], p.t2 - p.trail * ori[1][1]), (p.x_m, -p.d1), (p.x_m, p.d2)]
+    nx, ny = line.normal
+    # distance inside the tipping line n.x = rho': positive for contacts uphill of it
+    return sum(float(n) * (line.distance_m * (nx * e[0] + ny * e[1]) - (nx * x + ny * y))
+               for n, (x, y) in zip(loads, pts, strict=True))
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "manual-front-caster", "power-fwd"])
+@pytest.mark.parametrize("key", DIRECTIONS)
+def test_slope_statics_unload_the_uphill_contacts_at_the_tip_angle(name, key):
+    """The slope statics' normal loads (models.slope.normal_loads, eq 6-25 on a plane) put zero moment about the
+    tipping line on the uphill contacts exactly at the tip angle, positive below it, negative above: the
+    uphill contacts' load reaches zero there (fore-aft: their load sum itself, they share one distance)."""
+    c = chair_mod.preset(name).replace(d1=0.25, d2=0.28)
+    alpha = getattr(tip_angles(c), key + "_deg")
+    w = c.m * c.g * 0.5                                   # a moment scale: weight x 0.5 m
+    # loads are O(m g) sums of O(1) products: rounding ~100 eps m g; asserted at 1e-10 m g (x >= 1e4)
+    assert abs(_uphill_moment(c, key, alpha)) < 1e-10 * w
+    assert _uphill_moment(c, key, alpha - 0.1) > 1e-4 * w
+    assert _uphill_moment(c, key, alpha + 0.1) < -1e-4 * w
+
+
+def test_fore_aft_uphill_load_sum_is_zero_at_the_tip():
+    """Toward the main wheels the two casters are the uphill contacts; their load sum is zero at atan(s1/h)."""
+    c = chair_mod.preset("ej-premier")
+    a = math.atan2(c.s1, c.h)
+    loads = slope_model.normal_loads(parameters(c), 0.0, 0.0, c.g * math.sin(a), 0.0, c.g * math.cos(a))
+    assert abs(float(loads[0] + loads[1])) < 1e-10 * c.m * c.g
+
+
+def test_slope_tip_reduces_to_the_iso_directions():
+    c = chair_mod.preset("ej-premier")
+    t = tip_angles(c)
+    assert slope_tip(c, 5.0).tip_deg == pytest.approx(t.lateral_right_deg, abs=1e-10)
+    assert slope_tip(c, -5.0).tip_deg == pytest.approx(t.lateral_left_deg, abs=1e-10)
+    assert slope_tip(c, 0.0, 4.0).tip_deg == pytest.approx(t.toward_casters_deg, abs=1e-10)   # uphill ahead
+    assert slope_tip(c, 0.0, -4.0).tip_deg == pytest.approx(t.toward_main_wheels_deg, abs=1e-10)
+    level = slope_tip(c, 0.0, 0.0)
+    assert level.tilt_deg == 0.0 and level.tip_deg == t.smallest_deg
+    s = slope_tip(c, 6.0, 3.0)
+    # tilt of a plane with cross slope phi and grade theta: cos(tilt) = cos(phi) cos(theta)
+    assert s.tilt_deg == pytest.approx(math.degrees(math.acos(math.cos(math.radians(6)) * math.cos(math.radians(3)))),
+                                       abs=1e-10)
+    g1, g2, _ = slope_model.gravity(c.g, math.radians(6.0), math.radians(3.0))
+    e = (g1 / math.hypot(g1, g2), g2 / math.hypot(g1, g2))
+    assert s.fall_direction_deg == pytest.approx(math.degrees(math.atan2(e[1], e[0])))
+    w = c.m * c.g * 0.5          # the slope statics unload the uphill contacts at this tilt (as below)
+    assert abs(_uphill_moment(c, e, s.tip_deg)) < 1e-10 * w
+    assert _uphill_moment(c, e, s.tip_deg - 0.1) > 1e-4 * w
+    assert _uphill_moment(c, e, s.tip_deg + 0.1) < -1e-4 * w
+    assert s.margin_deg == pytest.approx(s.tip_deg - s.tilt_deg)
+
+
+def test_anti_tip():
+    c = chair_mod.preset("manual-front-caster")
+    assert anti_tip_angle(c) is None and tip_angles(c).anti_tip_deg is None
+    flat = c.replace(anti_tip_reach=0.2)
+    assert anti_tip_angle(flat) == pytest.approx(_deg(c.s1 + 0.2, c.h), abs=1e-10)   # touching: a longer base
+    raised = c.replace(anti_tip_reach=0.2, anti_tip_clearance=0.05)
+    assert tip_angles(c).toward_main_wheels_deg < anti_tip_angle(raised) < anti_tip_angle(flat)
+    high = c.replace(anti_tip_reach=0.05, anti_tip_clearance=0.4)   # catches it only past its balance point
+    assert anti_tip_angle(high) == pytest.approx(tip_angles(c).toward_main_wheels_deg, abs=1e-10)
+
+
+def test_fall_distance_sign_when_the_casters_can_swing_past_the_cg():
+    """Front casters with trail longer than s2 reach behind the c.g.: a negative distance, tips on level ground."""
+    c = chair_mod.preset("manual-front-caster")
+    short = c.replace(s2=c.trail * 0.5 + 0.001, trail=c.trail)
+    p = parameters(short)
+    ln = fall_distance(p, 1.0, 0.0)
+    assert ln.distance_m == pytest.approx(short.s2 - short.trail, abs=TOL_M)
+    assert ln.angle_deg < 0
+
+
+def _run(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "stability.tipping", *args], capture_output=True, text=True,
+                          timeout=120)
+
+
+def test_cli_json_and_errors():
+    r = _run("--chair", "revised", "--cross-slope", "6", "--grade", "2", "--json")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    for k in ("stability_version", "chair_parameters", "model", "options"):
+        assert k in d
+    t = tip_angles(chair_mod.preset("revised"))
+    for k in DIRECTIONS:
+        assert d[k + "_deg"] == pytest.approx(getattr(t, k + "_deg"), rel=1e-12)
+    assert d["static_stability_deg"] == pytest.approx(t.smallest_deg)
+    assert d["slope"]["tip_deg"] == pytest.approx(slope_tip(chair_mod.preset("revised"), 6, 2).tip_deg)
+    bad = _run("--cross-slope", "60")
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "--cross-slope" in bad.stderr
+    text = _run("--chair", "ej-premier")
+    assert text.returncode == 0 and "toward the casters" in text.stdout and "8.9 deg" in text.stdout
+
+
+def test_derivation_statements_and_the_anti_tip_closed_form():
+    """derivations/tipping.py checks its four statements symbolically; its anti-tip closed form, evaluated,
+    is what anti_tip_angle gives."""
+    from pathlib import Path
+
+    import sympy as sp
+    root = Path(__file__).resolve().parents[1]
+    if str(root) not in sys.path:
+        sys.path.insert(0, str(root))
+    from derivations import tipping as dt
+
+    dt.gravity_line_foot()
+    dt.moment_about_tipping_line()
+    dt.least_stable_swivel()
+    closed = dt.anti_tip()
+    c = chair_mod.preset("manual-front-caster").replace(anti_tip_reach=0.15, anti_tip_clearance=0.01)
+    sym = {str(s): s for s in closed.free_symbols}
+    val = float(closed.subs({sym["s1"]: c.s1, sym["h"]: c.h, sym["reach"]: 0.15, sym["clearance"]: 0.01}))
+    assert math.atan(val) > math.atan2(c.s1, c.h)                 # caught before it goes over
+    assert anti_tip_angle(c) == pytest.approx(math.degrees(math.atan(val)), abs=1e-10)
+    assert isinstance(closed, sp.Expr)
+
+
+def test_docs_table():
+    """docs/tipping.md's preset table is what tip_angles gives (to its one decimal)."""
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[1] / "docs" / "tipping.md").read_text()
+    rows = [ln.split("|")[1:-1] for ln in text.splitlines() if ln.startswith("| ") and "deg" not in ln
+            and "---" not in ln]
+    assert {r[0].strip() for r in rows} == set(PRESETS)
+    for r in rows:
+        t = tip_angles(chair_mod.preset(r[0].strip()))
+        got = [t.toward_main_wheels_deg, t.toward_casters_deg, t.lateral_left_deg, t.lateral_right_deg, t.smallest_deg]
+        assert [float(x) for x in r[1:]] == [round(v, 1) for v in got]
