@@ -536,7 +536,7 @@ def test_shimmy_numbers_equal_the_analysis(quick):
     corners = [critical_trail(c, 1.0, cc) for cc in CasterCompliance().corners()]
     assert [x[2] for x in d.shimmy.corners] == corners
     finite = [x for x in corners if math.isfinite(x)]
-    assert f"{100 * min(finite):.2f} cm" in text and "> 20 cm" in text     # the softest pin: shimmy at every trail
+    assert f"{100 * min(finite):.2f} cm" in text and "> 25 cm" in text     # the softest pin: shimmy at every trail
     # rigid-pin limit of the towed wheel: critical trail = relaxation length (docs/shimmy.md table), independent
     rigid = CasterCompliance(lateral_stiffness=1e12, lateral_stiffness_range=(1e12, 1e12))
     assert critical_trail(c, 1.0, rigid) == pytest.approx(rigid.relaxation_length, rel=1e-3)

@@ -19,7 +19,7 @@ __all__ = ["footer", "slope_text", "shimmy_text", "uncertainty_text", "nonlinear
 
 
 def _cm(x: float) -> str:
-    return "> 20 cm (shimmy at every trail checked)" if not math.isfinite(x) else f"{100 * x:.2f} cm"
+    return "> 25 cm (shimmy at every trail checked)" if not math.isfinite(x) else f"{100 * x:.2f} cm"
 
 
 def slope_text(d: ReportData) -> list[str]:

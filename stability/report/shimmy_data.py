@@ -37,7 +37,7 @@ class ShimmySection:
         Linear shimmy boundary (m) with the nominal estimates: below this trail the caster shimmies.
     corners : tuple of (float, float, float)
         ``(relaxation length m, lateral stiffness N/m, critical trail m)`` at the four range corners
-        (``inf``: shimmy at every trail up to 0.2 m).
+        (``inf``: shimmy at every trail up to 0.25 m).
     chair_model_critical : float
         The same boundary from the chair model with relaxed caster tires and compliant pins
         (:func:`stability.shimmy.chair_critical_trail`), m.

@@ -273,7 +273,7 @@ def _section_lines(d: ReportData) -> list[str]:
         hi = max(crit)
         out.append(f"- Caster shimmy: linear boundary at trail {100 * sh.critical:.2f} cm with the estimated caster "
                    f"compliance (estimates: {100 * min(crit):.2f} cm to "
-                   + (f"{100 * hi:.2f} cm" if math.isfinite(hi) else "> 20 cm") + " over their range); this chair's "
+                   + (f"{100 * hi:.2f} cm" if math.isfinite(hi) else "> 25 cm") + " over their range); this chair's "
                    f"trail {100 * sh.chart.chair_trail:g} cm.")
     return out
 

@@ -10,6 +10,7 @@ import numpy as np
 
 from .. import cli
 from .. import defaults as D
+from .band import ShimmyBand, shimmy_band
 from .chair import CasterCompliance, caster_summary, trail_chart
 from .chair_modes import chair_shimmy
 
@@ -52,12 +53,14 @@ def _body(args) -> int:
     if not (0 < args.amplitude_deg < 45):
         raise ValueError(f"--amplitude-deg={args.amplitude_deg!r} is invalid; valid range: 0 < value < 45 deg")
     s = caster_summary(chair, speeds, comp, math.radians(args.amplitude_deg))
+    band = shimmy_band(chair, speeds, comp)
     modes = {pin: chair_shimmy(chair, speeds, comp, pin=pin) for pin in ("rigid", "compliant")} \
         if args.chair_model else {}
     outputs = {"--json-file": args.json_file, "--pdf": args.pdf}
     with cli.output_files(outputs) as tmp:
         if args.json or args.json_file:
             mapping = s.to_mapping()
+            mapping["shimmy_band"] = band.to_mapping()
             if modes:
                 mapping["chair_model"] = {f"{pin}_pin": m.to_mapping() for pin, m in modes.items()}
             options = {"speeds_m_s": [float(u) for u in speeds], "relaxation_length_m": comp.relaxation_length,
@@ -72,19 +75,19 @@ def _body(args) -> int:
                   f"(range {comp.relaxation_length_range[0] * 1000:g}-{comp.relaxation_length_range[1] * 1000:g}), "
                   f"lateral stiffness {comp.lateral_stiffness / 1000:g} kN/m "
                   f"(range {comp.lateral_stiffness_range[0] / 1000:g}-{comp.lateral_stiffness_range[1] / 1000:g}).")
-            print(f"{'speed':>6} {'linear':>9} {'freq':>6} {'growth':>7} {'crit trail cm':>20} "
+            print(f"{'speed':>6} {'linear':>9} {'freq':>6} {'growth':>7} {'damping':>8} {'shimmy-free trail cm':>22} "
                   f"{'friction N m':>13} {'held below cm':>14}")
-            print(f"{'m/s':>6} {'':>9} {'Hz':>6} {'1/s':>7} {'nominal [range]':>20} "
+            print(f"{'m/s':>6} {'':>9} {'Hz':>6} {'1/s':>7} {'ratio':>8} {'(nominal estimates)':>22} "
                   f"{f'@{args.amplitude_deg:g} deg':>13} {'(pin friction)':>14}")
             for i, u in enumerate(s.speeds):
-                rng = f"{_fmt(s.critical_trail[i], 100)} [{_fmt(s.critical_trail_low[i], 100)}-" \
-                      f"{_fmt(s.critical_trail_high[i], 100)}]"
                 print(f"{u:6.2f} {'stable' if s.stable[i] else 'SHIMMY':>9} {s.shimmy_frequency_hz[i]:6.1f} "
-                      f"{s.shimmy_growth_rate[i]:7.2f} {rng:>20} {s.friction_needed[i]:13.3f} "
-                      f"{_fmt(s.friction_trail[i], 100):>14}")
-            print("crit trail: below it the caster shimmies without pin friction ('>20': at every trail up to 20 cm, "
-                  "'none': at no trail); friction: Coulomb pin friction that holds shimmy of that amplitude "
-                  "(describing function); held below: trail under which the chair's own pin friction no longer does.")
+                      f"{s.shimmy_growth_rate[i]:7.2f} {band.damping_ratio[i]:8.4f} {band.describe(i):>22} "
+                      f"{s.friction_needed[i]:13.3f} {_fmt(s.friction_trail[i], 100):>14}")
+            print("linear/growth/damping: the caster at this chair's trail without Coulomb pin friction; shimmy-free "
+                  "trail: every band of trail (searched 0.1-25 cm, '+': goes on beyond 25 cm) where it does not "
+                  "shimmy; friction: Coulomb pin friction that holds shimmy of that amplitude (describing function); "
+                  "held below: trail under which the chair's own pin friction no longer does.")
+            _print_band(band)
             for pin, m in modes.items():
                 _print_chair_model(pin, m)
         if args.pdf:
@@ -102,6 +105,31 @@ def _body(args) -> int:
         if path:
             print(f"wrote {path}", file=sys.stderr)
     return 0
+
+
+def _print_band(band: ShimmyBand) -> None:
+    m, (lo, hi) = band.shimmy_margin_m, band.shimmy_margin_interval_m
+    near = band.nearest_boundary_m
+    k = int(np.argmin(band.margin_m))
+    if near is None:
+        where = "no shimmy boundary between 0.1 and 25 cm" if m > 0 else "it shimmies at every trail up to 25 cm"
+    else:
+        side = "inside the shimmy-free band" if m > 0 else "inside a shimmy zone"
+        where = (f"{abs(m) * 100:.2f} cm {side}, nearest boundary {near * 100:.2f} cm "
+                 f"(at {band.speeds_m_s[k]:g} m/s; damping ratio there {band.damping_ratio[k]:.4f})")
+    print(f"this chair's trail {band.trail_m * 100:g} cm: {where}")
+
+    def cm(x: float) -> str:
+        return "unbounded" if math.isinf(x) and x > 0 else ("shimmies at every trail" if math.isinf(x)
+                                                             else f"{x * 100:+.2f} cm")
+
+    print(f"  margin over the estimate ranges (4 corners): {cm(lo)} to {cm(hi)}"
+          + ("; the range straddles a boundary: measure pin lateral stiffness and caster relaxation length first"
+             if band.straddles else ""))
+    for c, iv in zip(band.compliance.corners(), band.corner_intervals_m, strict=True):
+        text = ", ".join(f"{a * 100:.1f}-{b * 100:.1f}" for a, b in iv[0]) or "none"
+        print(f"  relaxation {c.relaxation_length * 1000:g} mm, pin stiffness {c.lateral_stiffness / 1000:g} kN/m: "
+              f"shimmy-free {text} cm at {band.speeds_m_s[0]:g} m/s")
 
 
 def _print_chair_model(pin: str, m) -> None:

@@ -8,7 +8,6 @@ in (docs/shimmy.md says what that leaves out).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -17,15 +16,12 @@ from scipy.optimize import brentq
 
 from ..chair import Chair
 from . import describing
-from .towed_wheel import TowedWheel, hurwitz_determinants
+from .compliance import ESTIMATE_NOTE, CasterCompliance
+from .towed_wheel import TowedWheel
 
 __all__ = ["CasterCompliance", "caster_wheel", "critical_trail", "friction_trail", "TrailChart", "trail_chart",
            "CasterSummary", "caster_summary",
            "ESTIMATE_NOTE"]
-
-ESTIMATE_NOTE = ("caster tire relaxation length and frame lateral stiffness at the pin are not in Collins (1987): "
-                 "the values used are literature-based estimates (relaxation length after Pacejka, Tyre and Vehicle "
-                 "Dynamics, 2006; the shimmy documentation gives the sources)")
 
 
 def _static_stiffness(chair: Chair) -> dict[str, float]:
@@ -34,58 +30,6 @@ def _static_stiffness(chair: Chair) -> dict[str, float]:
     except ImportError:  # pragma: no cover - older layout
         from ..models import static_stiffness  # type: ignore[attr-defined,no-redef]
     return static_stiffness(chair)
-
-
-@dataclass(frozen=True)
-class CasterCompliance:
-    """Caster properties the thesis does not give: typical values, estimates.
-
-    Attributes
-    ----------
-    relaxation_length : float
-        Caster tire relaxation length sigma (m).  Default 0.02 m for the
-        thesis's solid 7 3/4 x 1 1/8 in rubber casters (Table 3-1), from
-        Pacejka's estimate ``sigma ~ C_alpha / C_y`` (cornering over lateral
-        tire stiffness; Pacejka, *Tyre and Vehicle Dynamics*, 2006, sec. 5.3
-        and ch. 7) with C_alpha ~ 1.5 kN/rad (Table 4-1) and C_y ~ 50-150
-        kN/m for a solid 29 mm rubber tread, and from the brush model's lower
-        bound ``sigma >= a`` (half contact length ~ 1 cm).  Range
-        ``relaxation_length_range``: 0.01-0.04 m solid, 0.03-0.08 m for small
-        pneumatic casters (carcass compliance raises C_y^-1).
-    lateral_stiffness : float
-        Lateral stiffness of frame, caster housing and fork at the pin (N/m).
-        Default 5e4 N/m, range 2e4-2e5 N/m: a 22 x 1.5 mm steel tube
-        cantilevered 0.3 m gives 3EI/l^3 ~ 1e5 N/m, fork and bearing play
-        lower it.  Kauzlarich, Bruning and Thacker (J Rehabil Res Dev 37(3),
-        2000, "Wheelchair caster shimmy II: Damping") stress that frame and
-        fork compliance and tire flexibility govern caster shimmy; they give
-        no value for this chair.
-    relaxation_length_range : tuple of float
-        ``(low, high)`` plausible relaxation lengths (m), default (0.01, 0.04):
-        the range a design conclusion must be stated over.
-    lateral_stiffness_range : tuple of float
-        ``(low, high)`` plausible lateral stiffnesses at the pin (N/m),
-        default (2e4, 2e5).
-    """
-
-    relaxation_length: float = 0.02
-    lateral_stiffness: float = 5e4
-    relaxation_length_range: tuple[float, float] = (0.01, 0.04)
-    lateral_stiffness_range: tuple[float, float] = (2e4, 2e5)
-
-    def __post_init__(self) -> None:
-        for name in ("relaxation_length", "lateral_stiffness"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (v > 0):
-                raise ValueError(f"caster compliance {name}={v!r} is invalid; valid range: > 0")
-            lo, hi = getattr(self, name + "_range")
-            if not 0 < lo <= hi:
-                raise ValueError(f"caster compliance {name}_range=({lo!r}, {hi!r}) is invalid; valid: 0 < low <= high")
-
-    def corners(self) -> list[CasterCompliance]:
-        """The four combinations of the range limits (for stating a range, not a point)."""
-        return [dataclasses.replace(self, relaxation_length=s, lateral_stiffness=k)
-                for s in self.relaxation_length_range for k in self.lateral_stiffness_range]
 
 
 def caster_wheel(chair: Chair, compliance: CasterCompliance | None = None, side: str = "A") -> TowedWheel:
@@ -146,13 +90,14 @@ def _trail_grid(chair: Chair) -> np.ndarray:
 
 
 def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | None = None) -> float:
-    """Largest trail at which the caster's shimmy pair crosses (linear model, viscous damping only).
+    """Lower boundary of the shimmy-free trail set (linear model, viscous damping only).
 
-    Below it the caster shimmies; ``0`` if the caster is stable at every
-    trail on 1 mm-0.2 m, ``inf`` if it is unstable at 0.2 m (soft pivots:
-    the shimmy mode of the pivot spring, unstable whenever I > m a b, see
-    docs/shimmy.md).  With zero pin damping the result does not depend on
-    speed.
+    The smallest trail at which the caster stops shimmying (the lower end of the
+    first shimmy-free band of :func:`stability.shimmy.band.shimmy_band`); ``0``
+    if the caster is stable from 1 mm, ``inf`` if it shimmies at every trail up
+    to 25 cm (soft pivots: the shimmy mode of the pivot spring, docs/shimmy.md).
+    The shimmy-free set can also end above (a band such as 5-17 cm) or be split
+    in two: :func:`stability.shimmy.band.shimmy_band` gives every boundary.
 
     Parameters
     ----------
@@ -166,19 +111,15 @@ def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | No
     Returns
     -------
     float
-        Critical trail, m (0 or ``inf`` as above), from the sign change of the
-        second-last Hurwitz determinant.
+        Critical trail, m (0 or ``inf`` as above).
     """
-    def margin(trail: float) -> float:
-        w = caster_wheel(chair.replace(trail=trail), compliance)
-        p = w.characteristic_polynomial(speed)
-        return float(hurwitz_determinants(p / p[0])[-2])
+    from .band import TRAIL_SEARCH_M, shimmy_intervals
 
-    grid = _trail_grid(chair)
-    if not caster_wheel(chair.replace(trail=float(grid[-1])), compliance).routh_hurwitz(speed).stable:
+    iv = shimmy_intervals(chair, [speed], compliance or CasterCompliance())[0]
+    if not iv:
         return math.inf
-    roots = _roots(margin, grid)
-    return max(roots) if roots else 0.0
+    lo = iv[0][0]
+    return 0.0 if lo <= TRAIL_SEARCH_M[0] else lo
 
 
 def friction_trail(chair: Chair, speed: float, amplitude: float, compliance: CasterCompliance | None = None

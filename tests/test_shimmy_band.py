@@ -1,0 +1,135 @@
+"""The shimmy-free trail band(s): every boundary, against a trail scan and the towed-wheel closed forms."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stability import chair as chair_mod
+from stability.shimmy.band import TRAIL_SEARCH_M, margin_to_boundaries, shimmy_band
+from stability.shimmy.chair import CasterCompliance, caster_wheel, critical_trail
+from stability.statics import static_stiffness
+
+ROOT = Path(__file__).resolve().parents[1]
+MEASURED = chair_mod.load(ROOT / "docs" / "examples" / "measured_chair.toml")
+# bisection to 2.5 mm / 2^24 = 1.5e-10 m; boundaries asserted to 1e-8 m (x 60)
+TOL_M = 1e-8
+
+
+@pytest.mark.parametrize("c", [MEASURED, chair_mod.preset("power-fwd"), chair_mod.preset("manual-front-caster")],
+                         ids=["measured", "power-fwd", "manual-front-caster"])
+def test_band_agrees_with_a_trail_scan(c):
+    """Each trail of an independent scan (caster_wheel on the changed chair, Routh-Hurwitz on the closed-form
+    characteristic polynomial) is stable exactly when it lies in a reported band."""
+    speed = 1.0
+    band = shimmy_band(c, [speed])
+    scan = np.arange(0.004, 0.249, 0.0035)
+    for t in scan:
+        stable = caster_wheel(c.replace(trail=float(t))).routh_hurwitz(speed).stable
+        inside = any(a < t < b for a, b in band.intervals_m[0])
+        near = min((abs(t - x) for x in band.boundaries_m[0]), default=1.0) < 1e-6
+        assert near or stable == inside, (t, stable, band.intervals_m)
+
+
+def test_measured_example_is_a_band_with_two_boundaries():
+    """The measured example chair: stable only between ~4.9 and ~21.6 cm (a lower and an upper boundary); the
+    old single critical trail reported inf here (user journey, User 1 step 8)."""
+    band = shimmy_band(MEASURED, [0.5, 1.0, 2.0])
+    for iv, b in zip(band.intervals_m, band.boundaries_m, strict=True):
+        assert len(iv) == 1 and len(b) == 2
+        assert 0.045 < iv[0][0] < 0.055 and 0.19 < iv[0][1] < 0.24
+    assert critical_trail(MEASURED, 1.0) == pytest.approx(band.boundaries_m[1][0], abs=TOL_M)
+    assert band.shimmy_margin_m == pytest.approx(MEASURED.trail - band.boundaries_m[0][0], abs=TOL_M)
+    # just outside each boundary the caster shimmies, just inside it does not
+    for x, sign in ((band.boundaries_m[1][0], 1), (band.boundaries_m[1][1], -1)):
+        w_in = caster_wheel(MEASURED.replace(trail=x + sign * 1e-5))
+        w_out = caster_wheel(MEASURED.replace(trail=x - sign * 1e-5))
+        assert w_in.routh_hurwitz(1.0).stable and not w_out.routh_hurwitz(1.0).stable
+
+
+def test_rigid_pivot_closed_form_trail_above_relaxation_length():
+    """Rigid pivot, relaxation tire, no pin damping (docs/shimmy.md table): stable iff L > sigma, at every speed."""
+    c = chair_mod.preset("ej-premier")
+    rigid = CasterCompliance(lateral_stiffness=math.inf, lateral_stiffness_range=(math.inf, math.inf),
+                             relaxation_length=0.02, relaxation_length_range=(0.02, 0.02))
+    band = shimmy_band(c, [0.5, 1.0, 2.0], rigid)
+    for iv, b in zip(band.intervals_m, band.boundaries_m, strict=True):
+        assert b == pytest.approx((0.02,), abs=TOL_M)
+        assert iv[0][1] == pytest.approx(TRAIL_SEARCH_M[1])
+
+
+@pytest.mark.parametrize("speed", [0.5, 1.0, 2.0])
+def test_rigid_pivot_with_pin_damping_has_a_shimmy_zone_between_two_closed_form_roots(speed):
+    """Rigid pivot, relaxation tire, viscous pin damping c (docs/shimmy.md): stable iff
+    (J U + c sigma)(c U + C L^2) > J sigma C L U, J = I_zp: a quadratic in L whose two roots bound a shimmy zone,
+    with a stable band below it and one above.  A linear caster tire keeps C independent of the trail's load."""
+    c = chair_mod.preset("ej-premier").replace(caster_tire="linear:20", pin_damping=0.05)
+    sigma = 0.02
+    rigid = CasterCompliance(lateral_stiffness=math.inf, lateral_stiffness_range=(math.inf, math.inf),
+                             relaxation_length=sigma, relaxation_length_range=(sigma, sigma))
+    J, cd, C, U = c.i_zp, c.pin_damping, static_stiffness(c)["A"], speed
+    qa, qb, qc = (J * U + cd * sigma) * C, -J * sigma * C * U, (J * U + cd * sigma) * cd * U
+    disc = math.sqrt(qb * qb - 4 * qa * qc)
+    roots = sorted(((-qb - disc) / (2 * qa), (-qb + disc) / (2 * qa)))
+    band = shimmy_band(c, [speed], rigid)
+    assert band.boundaries_m[0] == pytest.approx(tuple(roots), abs=TOL_M)
+    (a0, b0), (a1, b1) = band.intervals_m[0]
+    assert b0 == pytest.approx(roots[0], abs=TOL_M) and a1 == pytest.approx(roots[1], abs=TOL_M)
+
+
+def test_margin_sign_and_corners():
+    assert margin_to_boundaries(0.07, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(0.02)
+    assert margin_to_boundaries(0.04, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(-0.01)
+    assert margin_to_boundaries(0.04, [(0.001, 0.25)], []) == math.inf
+    assert margin_to_boundaries(0.04, [], []) == -math.inf
+    band = shimmy_band(MEASURED.replace(trail=0.05), [1.0])
+    lo, hi = band.shimmy_margin_interval_m
+    assert lo == -math.inf and hi > 0 and band.straddles     # the softest pin shimmies at every trail
+    assert band.shimmy_margin_m == pytest.approx(0.05 - band.boundaries_m[0][0], abs=TOL_M)
+    assert 0 < band.damping_ratio[0] < 0.01                  # half a millimetre inside: barely damped
+
+
+def _shimmy(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "stability.shimmy", *args], capture_output=True, text=True,
+                          timeout=300, cwd=ROOT)
+
+
+def test_cli_prints_the_band_and_the_margin():
+    chair = str(ROOT / "docs" / "examples" / "measured_chair.toml")
+    r = _shimmy("--chair", chair, "--set", "trail=0.05", "--speeds", "1")
+    assert r.returncode == 0, r.stderr
+    band = shimmy_band(MEASURED.replace(trail=0.05), [1.0])
+    assert band.describe(0) in r.stdout and ">20" not in r.stdout and "inf" not in r.stdout
+    assert f"{band.shimmy_margin_m * 100:.2f} cm inside the shimmy-free band" in r.stdout
+    assert "measure pin lateral stiffness and caster relaxation length first" in r.stdout
+    j = _shimmy("--chair", chair, "--speeds", "0.5,1", "--json")
+    d = json.loads(j.stdout)["shimmy_band"]
+    ref = shimmy_band(MEASURED, [0.5, 1.0])
+    assert d["shimmy_margin_m"] == pytest.approx(ref.shimmy_margin_m, abs=1e-15)
+    assert d["shimmy_free_intervals_m"][0] == [list(iv) for iv in ref.intervals_m[0]]
+    assert d["shimmy_margin_interval_m"][0] is None        # -inf: a corner shimmies at every trail
+
+
+def test_docs_band_table():
+    """docs/shimmy.md's band table is what shimmy_band gives at 1 m/s (to its printed digits)."""
+    text = (ROOT / "docs" / "shimmy.md").read_text()
+    start = text.index("| chair | trail (cm) | shimmy-free trail (cm)")
+    lines = text[start:].splitlines()[2:]
+    rows = [ln.split("|")[1:-1] for ln in lines[:next(i for i, ln in enumerate(lines) if not ln.startswith("|"))]]
+    chairs = {c.name: c for c in [chair_mod.preset(n) for n in chair_mod.preset_names()] + [MEASURED]}
+    assert {r[0].strip() for r in rows} == set(chairs)
+
+    def fmt(x: float) -> str:
+        return "every trail shimmies" if x == -math.inf else f"{x * 100:+.2f}"
+
+    for r in rows:
+        b = shimmy_band(chairs[r[0].strip()], [1.0])
+        lo, hi = b.shimmy_margin_interval_m
+        assert [x.strip() for x in r[2:]] == [b.describe(0), f"{b.shimmy_margin_m * 100:+.2f}",
+                                              f"{b.damping_ratio[0]:.4f}", f"{fmt(lo)} to {fmt(hi)}"]
