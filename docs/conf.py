@@ -103,3 +103,21 @@ rst_epilog = """
 .. |yaw rate| replace:: \\|yaw rate\\|
 .. |y| replace:: \\|y\\|
 """
+
+
+def _list_new_notes(app, docname, source):
+    """Append to the index's "Topics" toctree every Markdown note in docs/ that no toctree of the
+    index names yet, so a note another change adds is on the site (and -W does not fail on it)."""
+    if docname != root_doc:
+        return
+    text = source[0]
+    notes = sorted(p.stem for p in HERE.glob("*.md") if p.stem != root_doc)
+    missing = [n for n in notes if not any(line.strip() == n for line in text.splitlines())]
+    if missing:
+        marker = ":caption: Topics\n\n"
+        i = text.index(marker) + len(marker)
+        source[0] = text[:i] + "".join(f"{n}\n" for n in missing) + text[i:]
+
+
+def setup(app):
+    app.connect("source-read", _list_new_notes)
