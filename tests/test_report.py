@@ -26,7 +26,8 @@ from stability.report.validity import run_validity
 EXPECTED_PAGES = [
     # main body
     "summary", "chair parameters and geometry", "eigenvalues against speed", "nonlinear yaw-rate responses", "paths",
-    "equal-instability speeds", "parametric study", "stability maps", "caster shimmy", "cross slope",
+    "equal-instability speeds", "parametric study", "stability maps", "trail design chart", "caster shimmy",
+    "cross slope",
     "parameter uncertainty", "thesis conclusions", "findings",
     # appendix
     "method", "linear stability: critical speeds", "tires", "eigenvalues as speed varies",
@@ -795,3 +796,26 @@ def test_comparison_rows_direction():
     assert rows["linear growth rate at 0.75 m/s"][4] == "this chair"
     assert rows["holding moment on a cross slope"][4] == "this chair"
     assert comparison_rows(b, a)[3][4] == "baseline"
+
+
+def test_trail_window_and_tip_limits(quick):
+    """The trail design chart intersects the shimmy band over the use speeds (and over the estimate corners);
+    the tip-angle constraint line on the axle-position study is where the closed-form angle
+    atan(s1 / h) toward the main wheels (c.g. above the ground at height h, tipping about the main axle's
+    contact line) reaches the cited minimum."""
+    import math
+
+    from stability.shimmy.band import shimmy_band
+    from stability.tipping import LOANE_KIRBY_REAR_DEG
+
+    d = quick.data
+    w = d.trail_window
+    band = shimmy_band(d.chair, w.use_speeds_m_s)
+    for lo, hi in w.nominal_m:                       # every nominal window point is shimmy-free at every speed
+        for t in (lo + 1e-4, 0.5 * (lo + hi), min(hi, 0.2) - 1e-4):
+            assert all(any(a <= t <= b for a, b in iv) for iv in band.intervals_m)
+    for lo, hi in w.robust_m:
+        assert any(a <= lo and hi <= b for a, b in w.nominal_m)
+    s1 = d.tip_limits["s1"]
+    assert math.degrees(math.atan2(s1, d.chair.h)) == pytest.approx(LOANE_KIRBY_REAR_DEG, abs=1e-3)
+    assert "trail design chart" in [p.title for p in quick.pages]

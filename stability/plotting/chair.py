@@ -106,7 +106,7 @@ def chair_geometry(chair, ax=None, *, title: str | None = None, overlay=None):
     return ax
 
 
-def parameter_table(chair, ax=None, *, fontsize: float = 7.5):
+def parameter_table(chair, ax=None, *, fontsize: float = 8.0):
     """The chair's parameters (name, symbol, value, unit, meaning) as a table in ``ax``.
 
     Parameters

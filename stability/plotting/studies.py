@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 from .pages import PAGE_SIZE
 from .style import UNSTABLE, colormap, colour
 
-__all__ = ["equal_instability_chart", "sweep_chart", "stability_map"]
+__all__ = ["equal_instability_chart", "sweep_chart", "stability_map", "trail_window_chart"]
 
 
 def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None = None, title: str | None = None,
@@ -81,7 +81,7 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
     return ax
 
 
-def sweep_chart(table, axes=None, *, title: str | None = None):
+def sweep_chart(table, axes=None, *, title: str | None = None, limits: dict | None = None):
     """The parametric study: equal-instability speed against each parameter (small multiples).
 
     ``table`` is a :class:`stability.study.SweepTable`.  Returns the axes array.
@@ -94,6 +94,9 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
         Where to draw (a new figure if omitted).
     title : str, optional
         Title (a default naming the chair and the model if omitted).
+    limits : dict, optional
+        Parameter name -> ``(value, label)``: a constraint drawn as a vertical line (e.g. where the chair
+        tips over at the minimum stability angle).
 
     Returns
     -------
@@ -101,6 +104,7 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
         ``axes``.
     """
     sweeps = table.ranked()
+    limits = limits or {}
     n = len(sweeps)
     if axes is None:
         ncols = 4
@@ -129,15 +133,19 @@ def sweep_chart(table, axes=None, *, title: str | None = None):
                 ax.legend(fontsize=6)
             if math.isfinite(s.nominal_value):
                 ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
+            if s.parameter in limits:
+                v, lab = limits[s.parameter]
+                ax.axvline(v, color=UNSTABLE, lw=1.5, ls="-.", label=lab)
+                ax.legend(fontsize=7, loc="best")
         ax.axhline(table.nominal.value_or_bound, color="k", lw=0.6, ls="--")
         ax.set_ylim(max(0.0, ylo - pad) if s.labels is None else 0.0, yhi + pad)
         if cens.all():
             ax.text(0.5, 0.5, "all " + s.results[0].describe() if len({r.describe() for r in s.results}) == 1
                     else "all outside the bracket", transform=ax.transAxes, ha="center", va="center", fontsize=8,
                     bbox=dict(fc="w", ec="0.7"))
-        ax.set_xlabel(f"{s.label} ({s.unit})" if s.labels is None else s.label, fontsize=7.5)
-        ax.set_ylabel("equal-instability speed (m/s)", fontsize=7.5)
-        ax.tick_params(labelsize=7)
+        ax.set_xlabel(f"{s.label} ({s.unit})" if s.labels is None else s.label, fontsize=8)
+        ax.set_ylabel("equal-instability speed (m/s)", fontsize=8)
+        ax.tick_params(labelsize=8)
         ax.set_title(f"{s.label}: spread {s.effect_percent:.0f} %{' (censored)' if s.censored else ''}",
                      fontsize=8)
         ax.grid(True, alpha=0.3)
@@ -203,3 +211,68 @@ def stability_map(smap, ax=None, *, title: str | None = None, nominal: float | N
                  f"{smap.model} model", fontsize=9)
     return ax
 
+
+
+def trail_window_chart(w, ax=None, *, title: str | None = None, model: str = "exact"):
+    """Equal-instability speed against caster trail over the shimmy-free window (the trail design chart).
+
+    Parameters
+    ----------
+    w : stability.report.trail_window.TrailWindow
+        What to draw.
+    ax : matplotlib.axes.Axes, optional
+    title : str, optional
+    model : str
+        Equation variant, for the default title.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:
+        fig = Figure(figsize=(8, 5))
+        ax = fig.subplots()
+    x = 100 * w.trails_m
+    lo_x, hi_x = 0.0, max(15.0, float(x.max()) + 3.0)
+    # shimmy zones: everything outside the nominal window; hatched where only some estimates shimmy
+    edges = [0.0] + [v for iv in w.nominal_m for v in iv] + [np.inf]
+    for a, b in zip(edges[0::2], edges[1::2], strict=False):
+        if b > a:
+            ax.axvspan(100 * a, min(100 * b, hi_x), color=UNSTABLE, alpha=0.18, lw=0,
+                       label="caster shimmies (nominal estimates)" if a == 0.0 else None)
+    first = True
+    for lo, hi in w.nominal_m:
+        for a, b in _gaps((lo, hi), w.robust_m):
+            ax.axvspan(100 * a, min(100 * b, hi_x), facecolor="none", edgecolor=UNSTABLE, hatch="///", lw=0,
+                       label="shimmies for some estimates" if first else None)
+            first = False
+    for lo, hi in w.robust_m:
+        ax.axvspan(100 * lo, min(100 * hi, hi_x), color=colour(2), alpha=0.15, lw=0,
+                   label="window: shimmy-free for every estimate" if lo == w.robust_m[0][0] else None)
+    ax.plot(x[w.found], w.speeds_m_s[w.found], "o-", color=colour(0), lw=2, label="equal-instability speed")
+    if (~w.found).any():
+        ax.plot(x[~w.found], w.speeds_m_s[~w.found], "o", mfc="w", mec=colour(0), label="bound (outside the bracket)")
+    ax.axvline(100 * w.chair_trail_m, color="k", ls=":", lw=1.2, label=f"{w.chair}: {100 * w.chair_trail_m:.3g} cm")
+    ax.set_xlim(lo_x, hi_x)
+    ax.set_ylim(0, max(1.0, float(np.nanmax(w.speeds_m_s)) * 1.25))
+    ax.set_xlabel("caster trail (cm)")
+    ax.set_ylabel("equal-instability speed (m/s; higher: more stable)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="upper right")
+    ax.set_title(title or f"{w.chair}: directional stability and caster shimmy against trail ({model} model)",
+                 fontsize=10)
+    return ax
+
+
+def _gaps(span: tuple[float, float], inside) -> list[tuple[float, float]]:
+    """Parts of ``span`` not covered by the intervals ``inside``."""
+    out, lo = [], span[0]
+    for a, b in sorted(inside):
+        if b <= lo or a >= span[1]:
+            continue
+        if a > lo:
+            out.append((lo, a))
+        lo = max(lo, b)
+    if lo < span[1]:
+        out.append((lo, span[1]))
+    return out

@@ -45,6 +45,12 @@ def _p_chair(d: ReportData) -> Figure:
                        gridspec_kw={"width_ratios": [1.35, 1]})
     P.parameter_table(c, axes[0, 0])
     P.chair_geometry(c, axes[0, 1])
+    t = d.tipping
+    if t is not None:
+        fig.text(0.60, 0.13, "Static stability angles (ISO 7176-1; brakes locked, casters in their least stable "
+                 f"orientation):\ntoward the main wheels {t.toward_main_wheels_deg:.1f} deg, toward the casters "
+                 f"{t.toward_casters_deg:.1f} deg, sideways {t.lateral_left_deg:.1f} / {t.lateral_right_deg:.1f} "
+                 "deg (left / right)", fontsize=8.5, va="top", ha="left")
     return P.finish(fig)
 
 
@@ -69,6 +75,20 @@ def _p_comparison(d: ReportData) -> Figure:
                  wrap=[52, 14, 14, 12, 12], top=0.97, bottom=0.05)
     axes[0, 1].set_title(f"key numbers, {d.model} model, same settings for both chairs", fontsize=10)
     return P.finish(fig)
+
+
+def _p_trail_window(d: ReportData) -> Figure:
+    w = d.trail_window
+    assert w is not None
+    fig, axes = P.page(_title(d, "trail design chart: directional stability against caster shimmy"), _subtitle(d),
+                       nrows=1, ncols=1)
+    P.trail_window_chart(w, axes[0, 0], model=d.model)
+    speeds = ", ".join(f"{u:g}" for u in w.use_speeds_m_s)
+    bottom = _footer(fig, f"Shimmy zones: linear towed-wheel model of the caster at {speeds} m/s with the estimated "
+                     "caster compliance (tire relaxation length, frame stiffness at the pin), nominal and over the "
+                     "estimates' range. Equal-instability speeds: the parametric study (trail varied at constant "
+                     "pin-to-c.g. distance of the caster, with pin friction).")
+    return P.finish(fig, bottom=bottom)
 
 
 def _p_tires(d: ReportData) -> Figure:
@@ -238,9 +258,13 @@ def _p_sweeps(d: ReportData) -> Figure:
     nrows = int(math.ceil(n / ncols))
     fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
                        sub, nrows=nrows, ncols=ncols)
-    P.sweep_chart(table, axes)
+    limits = {p: (v, f"tips at {d.tip_limits_deg:g} deg") for p, v in d.tip_limits.items()}
+    P.sweep_chart(table, axes, limits=limits)
+    note = (f" Dash-dot line: where the braked chair's static stability angle toward its main wheels falls to "
+            f"{d.tip_limits_deg:g} deg (Loane and Kirby's measured mean for a conventional chair): moving the axle "
+            "past it trades tipping for directional stability." if limits else "")
     bottom = _footer(fig, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
-             "parameter; other parameters at the chair's values. Same speed scale in every panel.")
+             "parameter; other parameters at the chair's values. Same speed scale in every panel." + note)
     return P.finish(fig, bottom=bottom)
 
 
@@ -345,6 +369,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("equal-instability speeds", partial(_p_equal, d)),
         ("parametric study", partial(_p_sweeps, d)),
         ("stability maps", partial(_p_maps, d)),
+        ("trail design chart", partial(_p_trail_window, d)),
         ("caster shimmy", partial(_p_shimmy, d)),
         ("cross slope", partial(_p_slope, d)),
         ("parameter uncertainty", partial(_p_uncertainty, d)),

@@ -45,10 +45,14 @@ def _at_reference(d: ReportData):
 def _chair(d: ReportData) -> str:
     c = d.chair
     x = c.s1 / (c.s1 + c.s2)
-    return (f"The c.g. lies {100 * c.s1:.3g} cm from the main axle, {100 * x:.0f} % of the way from the main axle to "
-            f"the caster pins; the casters trail {100 * c.trail:.3g} cm behind their pins. The closer the c.g. to the "
-            "main axle and the longer the axle-to-pin distance, the more directionally stable (thesis conclusions "
-            "2 and 3).")
+    t = d.tipping
+    tip = ("" if t is None else
+           f" Braked, it tips toward its casters on a {t.toward_casters_deg:.0f} deg slope and toward its main wheels "
+           f"on {t.toward_main_wheels_deg:.0f} deg: moving the c.g. toward the main axle lowers the latter.")
+    return (f"The c.g. lies {100 * c.s1:.3g} cm from the main axle, {100 * x:.0f} % of the way from the main axle "
+            f"to the caster pins; the casters trail {100 * c.trail:.3g} cm behind their pins. The closer the c.g. to "
+            "the main axle and the longer the axle-to-pin distance, the more directionally stable (thesis "
+            "conclusions 2 and 3)." + tip)
 
 
 def _tires(d: ReportData) -> str:
@@ -202,6 +206,22 @@ def _comparison(d: ReportData) -> str:
     return txt + "."
 
 
+def _trail_window(d: ReportData) -> str:
+    w = d.trail_window
+    if w is None:
+        return ""
+    short = w.shortest_safe_m
+    where = {"robust": "inside the window for every estimate of the caster's compliance",
+             "nominal": "shimmy-free with the nominal estimates only: measure the caster's compliance first",
+             "outside": "inside a shimmy zone"}[w.chair_in_window]
+    txt = f"This chair's {100 * w.chair_trail_m:.3g} cm trail is {where}."
+    if short is not None:
+        txt += (f" A shorter trail raises the equal-instability speed; with the nominal estimates the caster "
+                f"stays shimmy-free down to {100 * short:.3g} cm")
+        txt += ("." if w.robust_m else ", but no trail is shimmy-free over the whole estimate range.")
+    return txt
+
+
 def _conclusions(d: ReportData) -> str:
     v = [c.verdict for c in d.conclusions]
     return (f"Of the thesis's nine conclusions our numbers agree with {v.count('agree')}, partly with "
@@ -227,6 +247,7 @@ CAPTIONS: dict[str, Callable[[ReportData], str]] = {
     "parametric study table": _sweeps,
     "stability maps": _maps,
     "cross slope": _slope,
+    "trail design chart": _trail_window,
     "caster shimmy": _shimmy,
     "parameter uncertainty": _uncertainty,
     "thesis conclusions": _conclusions,

@@ -7,13 +7,17 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from scipy.optimize import brentq
 
 from .. import rootlocus, study
 from ..chair import Chair, preset
+from ..design import get_parameter
 from ..linear import analyse, divergence, massless_caster_rate
 from ..progress import ProgressBar
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from ..shimmy.band import shimmy_band
 from ..study.impulse import critical_impulses
+from ..tipping import LOANE_KIRBY_REAR_DEG, TipAngles, tip_angles
 from ..validation import linearisation_check, with_rolling_resistance
 from .comparison import Baseline, baseline_summary
 from .modes import mode_names
@@ -21,6 +25,7 @@ from .settings import Settings
 from .shimmy_data import ShimmySection, shimmy_section, shimmy_unavailable
 from .slope_data import SlopeSection, slope_section
 from .tire_data import ForceCurves, StiffnessCurves, force_curves, stiffness_curves
+from .trail_window import TrailWindow, trail_window
 from .uncertainty_data import UncertaintySection, UncertaintySpec, uncertainty_section
 from .validity import responses_validity
 
@@ -33,6 +38,8 @@ FIGURE_8_14 = {"m": 75.0, "i_z": 4.7}
 PUSH_RANGE = (0.9, 1.1)
 #: Relative pin friction of the friction interval (the chair's pins only, the thesis's Figure 9-3 convention).
 FRICTION_RANGE = (0.5, 1.5)
+#: Speeds a manual chair is used at (m/s: a slow walk to a brisk one), for the shimmy-free trail window.
+USE_SPEEDS = (0.5, 0.75, 1.0, 1.5, 2.0)
 #: The chair whose intervals the reference chair's report shows (the thesis's revised design).
 COMPARISON_CHAIR = "revised"
 
@@ -118,6 +125,16 @@ class ReportData:
     figure_8_14 : Figure814 or None
     baseline : Baseline or None
         The chair the report compares with (``report --compare``), computed the same way.
+    tipping : TipAngles or None
+        Static stability angles (ISO 7176-1) of the chair.
+    trail_window : TrailWindow or None
+        Directional stability against trail with the shimmy-free window (None without a trail sweep or
+        a shimmy model).
+    tip_limits : dict
+        Axle-position parameter (``s1``, ``cg_ratio``) -> the value at which the static stability angle toward
+        the main wheels falls to ``tip_limits_deg`` (the parametric study's constraint line).
+    tip_limits_deg : float
+        That angle, deg.
     """
 
     chair: Chair
@@ -154,6 +171,41 @@ class ReportData:
     impulses: tuple = ()         # CriticalImpulse of the chair and the reference chair at the reference speed
     figure_8_14: Figure814 | None = None
     baseline: Baseline | None = None
+    tipping: TipAngles | None = None
+    trail_window: TrailWindow | None = None
+    tip_limits: dict = field(default_factory=dict)
+    tip_limits_deg: float = LOANE_KIRBY_REAR_DEG
+
+
+def tip_limits(c: Chair, sweeps: Any, angle_deg: float = LOANE_KIRBY_REAR_DEG) -> dict:
+    """Where moving the main axle toward the c.g. makes the braked chair tip toward its main wheels at
+    ``angle_deg``: parameter -> value, for the axle-position sweeps present (``s1``, ``cg_ratio``).
+
+    Parameters
+    ----------
+    c : Chair
+    sweeps : SweepTable
+    angle_deg : float
+
+    Returns
+    -------
+    dict
+        Parameter name -> value (absent when the angle is not crossed inside the parameter's span).
+    """
+    out = {}
+    for name in ("s1", "cg_ratio"):
+        if name not in sweeps:
+            continue
+        p = get_parameter(name)
+        lo, hi = p.span(c)
+        f = lambda v, p=p: tip_angles(p.apply(c, v)).toward_main_wheels_deg - angle_deg  # noqa: E731
+        try:
+            fa, fb = f(lo), f(hi)
+        except ValueError:            # a value of the span the chair cannot take
+            continue
+        if fa * fb < 0:
+            out[name] = float(brentq(f, lo, hi, xtol=1e-5))
+    return out
 
 
 def counterpart(c: Chair) -> Chair:
@@ -357,6 +409,11 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         shimmy = None if shimmy_note else shimmy_section(c, s.shimmy_trails, s.shimmy_speeds)
         unc = None if uncertainty is None else uncertainty_section(c, uncertainty, model=model, quick=s.quick,
                                                                    settings=s, scheme=scheme)
+        tipping = tip_angles(c)
+        limits = tip_limits(c, chair_sweeps)
+        window = None
+        if shimmy_note is None and "trail" in chair_sweeps:
+            window = trail_window(c.name, c.trail, chair_sweeps.get("trail"), shimmy_band(c, USE_SPEEDS))
         base = None
         if baseline is not None:
             b_note = shimmy_unavailable(baseline)
@@ -369,4 +426,5 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                       rolling=rolling, tire_force=tire_force, tire_stiffness=tire_stiffness,
                       gain_poles=gain_poles, mode_names=names, validity=valid, intervals=intervals,
                       impulses=impulses, figure_8_14=fig814, sensitivity=sensitivity, slope=slope, shimmy=shimmy,
-                      shimmy_note=shimmy_note, uncertainty=unc, baseline=base)
+                      shimmy_note=shimmy_note, uncertainty=unc, baseline=base, tipping=tipping,
+                      trail_window=window, tip_limits=limits)

@@ -167,6 +167,9 @@ def dropped_pages(d: ReportData) -> dict[str, str]:
     out.update(section_drops(d))
     if d.baseline is None:
         out["comparison"] = "no baseline chair was given"
+    if d.trail_window is None:
+        out["trail design chart"] = ("no trail sweep or no shimmy model for this chair" if d.shimmy_note is None
+                                     else d.shimmy_note)
     return out
 
 
