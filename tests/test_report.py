@@ -819,3 +819,21 @@ def test_trail_window_and_tip_limits(quick):
     s1 = d.tip_limits["s1"]
     assert math.degrees(math.atan2(s1, d.chair.h)) == pytest.approx(LOANE_KIRBY_REAR_DEG, abs=1e-3)
     assert "trail design chart" in [p.title for p in quick.pages]
+
+
+def test_clinician_paragraph(quick):
+    """The clinician's paragraph quotes the simulated times to 1 rad/s at each response speed, the thesis's
+    Table 8-2 (0.65 m/s: 3.5 s; 0.95 m/s: 1 s) and conclusion 7's advice, and the cross-slope hand-rim
+    difference at 2 deg against the cited typical push of 63 N."""
+    from stability.report.clinician import TYPICAL_PUSH_N, clinician_text
+
+    d = quick.data
+    text = clinician_text(d)
+    for r in d.responses.responses:
+        if math.isfinite(r.time_to_level):
+            assert f"at {3.6 * r.speed:.1f} km/h {r.time_to_level:.1f} s" in text
+    assert "2.3 km/h: 3.5 s" in text and "3.4 km/h: 1 s" in text and "indoor" in text
+    k = list(d.slope.curve.cross_slopes_deg).index(2.0)
+    f = abs(float(d.slope.drive_difference[k]))
+    assert f"push {f:.0f} N harder" in text and f"{100 * f / TYPICAL_PUSH_N[0]:.0f} % of a typical" in text
+    assert text in summary_text(d)

@@ -1,0 +1,65 @@
+"""The report's paragraph for a clinician: time to correct a heading error, the thesis's usage advice, and the
+hand-rim effort on a cross slope against a typical push.  Every number from the report's data or a cited source.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..reference import THESIS_PUSH
+from .compute import ReportData
+
+__all__ = ["TABLE_8_2", "TYPICAL_PUSH_N", "clinician_text"]
+
+#: Collins (1987) Table 8-2: the thesis's by-eye "maximum response time" (s) before the yaw-rate curve of
+#: Figure 8-3a rises sharply, per speed (m/s); ``inf`` stands for "> 6 s".
+TABLE_8_2 = {0.55: math.inf, 0.65: 3.5, 0.75: 2.0, 0.85: 1.5, 0.95: 1.0}
+
+#: Peak hand-rim force of level hand-rim propulsion at low intensity on a treadmill, mean and SD (N):
+#: 63 +/- 21 N (J NeuroEngineering Rehabil 2022, doi:10.1186/s12984-022-01007-5, hand-rim group).
+TYPICAL_PUSH_N = (63.0, 21.0)
+
+#: The cross slope the paragraph quotes (deg): a common pavement camber.
+CLINIC_SLOPE_DEG = 2.0
+
+
+def _kmh(u: float) -> str:
+    return f"{3.6 * u:.1f} km/h"
+
+
+def clinician_text(d: ReportData) -> str:
+    """One paragraph for a clinician.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    str
+    """
+    c = d.chair
+    rs = sorted(d.responses.responses, key=lambda r: r.speed)
+    times = "; ".join(f"at {_kmh(r.speed)} {r.time_to_level:.1f} s" if math.isfinite(r.time_to_level)
+                      else f"at {_kmh(r.speed)} it does not within {d.responses.criterion.duration:g} s"
+                      for r in rs)
+    thesis = ", ".join(f"{_kmh(u)}: " + ("> 6 s" if math.isinf(t) else f"{t:g} s") for u, t in TABLE_8_2.items())
+    out = [f"For the clinician. After a firm sideways shove ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) "
+           f"{c.name} spins up to {d.thesis.criterion.yaw_rate:g} rad/s (about 60 deg/s): {times}. The user must "
+           "correct well before that: for the thesis's chair the thesis estimated the time before the turn speeds "
+           f"up sharply at {thesis} (Table 8-2). The thesis advises rear-caster chairs primarily for indoor use, "
+           "inclines only with another person's help, and not above about 2 m/s (7 km/h)."]
+    s = d.slope
+    if s is not None and s.drive == "handrim":
+        slopes = np.asarray(s.curve.cross_slopes_deg, float)
+        k = int(np.argmin(np.abs(slopes - CLINIC_SLOPE_DEG)))
+        if abs(slopes[k] - CLINIC_SLOPE_DEG) < 1e-9:
+            f = float(abs(s.drive_difference[k]))
+            mean, sd = TYPICAL_PUSH_N
+            out.append(f"On a {CLINIC_SLOPE_DEG:g} deg cross slope at {_kmh(s.speed)} one hand rim must push "
+                       f"{f:.0f} N harder than the other to go straight: {100 * f / mean:.0f} % of a typical peak "
+                       f"push of {mean:g} +/- {sd:g} N on the level (hand-rim propulsion study, J NeuroEng Rehabil "
+                       "2022).")
+    return " ".join(out)
