@@ -137,7 +137,7 @@ def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 1
     U, eig = locus.speeds, locus.eigenvalues
     xlim, ylim = _limits(eig, xlim, ylim, scale, keep, linthresh)
     norm = LogNorm(U[0], U[-1])
-    lc = _colored_branches(ax, eig, U, norm, colormap("plasma_r"))
+    lc = _colored_branches(ax, eig, U, norm, colormap("plasma_r", on_white=True))
     for c in locus.crossings:
         ax.plot([c.eigenvalue.real], [c.eigenvalue.imag], "*", ms=11, color=UNSTABLE, mec="k", zorder=6,
                 label=f"critical {c.speed:.3g} m/s ({c.kind}, {c.direction})")
@@ -312,7 +312,7 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
         ax.legend(fontsize=7, loc="lower left", title="main tire", title_fontsize=7)
     else:
         norm = Normalize(v.min(), v.max())
-        lc = _colored_branches(ax, eig, v, norm, colormap("viridis"))
+        lc = _colored_branches(ax, eig, v, norm, colormap("viridis", on_white=True))
         ax.plot(eig[0].real, eig[0].imag, "x", color="k", ms=4)
         if colorbar and lc is not None:
             cb = ax.figure.colorbar(lc, ax=ax, pad=0.01)
@@ -429,7 +429,7 @@ def gain_locus(locus, ax=None, *, stabilising_poles=None, xlim=None, ylim=None, 
     _axes_decor(ax, xlim, ylim, scale, linthresh)
     pos = K > 0
     norm = LogNorm(K[pos].min(), K.max())
-    lc = _colored_branches(ax, L[pos], K[pos], norm, colormap("cividis"))
+    lc = _colored_branches(ax, L[pos], K[pos], norm, colormap("cividis", on_white=True))
     ax.plot(locus.poles.real, locus.poles.imag, "x", ms=8, mew=2, color="k", label="open-loop poles (K = 0)")
     if len(locus.zeros):
         ax.plot(locus.zeros.real, locus.zeros.imag, "o", ms=7, mfc="none", mec="k", mew=1.5,

@@ -7,8 +7,9 @@ the common colour-vision deficiencies.  No red-green colour map is used.
 
 from __future__ import annotations
 
+import numpy as np
 from matplotlib import colormaps
-from matplotlib.colors import Colormap
+from matplotlib.colors import Colormap, ListedColormap
 
 __all__ = ["OKABE_ITO", "colour", "colormap", "UNSTABLE", "MARK"]
 
@@ -36,16 +37,25 @@ def colour(i: int) -> str:
     return OKABE_ITO[i % len(OKABE_ITO)]
 
 
-def colormap(name: str) -> Colormap:
+def colormap(name: str, on_white: bool = False) -> Colormap:
     """A registered matplotlib colour map by name.
 
     Parameters
     ----------
     name : str
         Colour map name (``"viridis"``, ``"cividis"``, ...).
+    on_white : bool
+        Cut the lightest 20 % off the light end (the yellow of viridis, plasma and cividis vanishes
+        on a white page); used for lines.
 
     Returns
     -------
     matplotlib.colors.Colormap
     """
-    return colormaps[name]
+    cmap = colormaps[name]
+    if not on_white:
+        return cmap
+    rgb = cmap(np.linspace(0.0, 1.0, 256))[:, :3]
+    lum = rgb @ np.array([0.2126, 0.7152, 0.0722])
+    keep = slice(0, 205) if lum[-1] > lum[0] else slice(51, 256)
+    return ListedColormap(cmap(np.linspace(0.0, 1.0, 256))[keep], name=f"{name}_on_white")

@@ -120,11 +120,14 @@ def _p_summary(d: ReportData) -> Figure:
 
 def _p_speed_loci(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    order = [(d.model, "free"), (d.model, "locked"),
-             ("thesis" if d.model == "exact" else "exact", "free"),
-             ("thesis" if d.model == "exact" else "exact", "locked")]
-    return P.speed_loci_figure([d.speed_loci[k] for k in order],
-                               _title(d, "eigenvalues as speed varies (parametric root locus)"), sub)
+    fig, axes = P.page(_title(d, "eigenvalues as speed varies (parametric root locus)"), sub, nrows=1, ncols=2)
+    for ax, cs in zip(axes[0], ("free", "locked"), strict=True):
+        P.speed_locus(d.speed_loci[(d.model, cs)], ax, scale="linear", keep=0.6,
+                      marks=(0.25, 0.75, 2.0, 5.0, 10.0))
+    bottom = _footer(fig, "Linear axes around the slow modes, which decide directional stability; the fast caster "
+                     "modes (large negative real parts) leave the frame. The other model variant is compared in the "
+                     "method appendix.")
+    return P.finish(fig, bottom=bottom)
 
 
 def _p_re_im(d: ReportData) -> Figure:
@@ -137,13 +140,6 @@ def _p_re_im(d: ReportData) -> Figure:
                      "sideslip v/U, yaw r s/U, casters in phase, casters opposed; a second share named when above "
                      "20 %). Linear axis; fast modes off scale are listed in the legend.")
     return P.finish(fig, bottom=bottom)
-
-
-def _p_ploci(d: ReportData, part) -> Figure:
-    sub = _subtitle(d)
-    loci = d.parameter_loci[:4] if part == 1 else d.parameter_loci[4:]
-    return P.parameter_loci_figure(loci, _title(d, f"root loci against design parameters at 0.75 m/s ({part}/2)"),
-                                   sub + "  |  free casters; black squares: this chair; x: first value")
 
 
 def _p_growth(d: ReportData) -> Figure:
@@ -380,8 +376,6 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("linear stability: critical speeds", partial(_p_summary, d)),
         ("tires", partial(_p_tires, d)),
         ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
-        ("root loci against design parameters 1", partial(_p_ploci, d, 1)),
-        ("root loci against design parameters 2", partial(_p_ploci, d, 2)),
         ("growth rate against design parameters", partial(_p_growth, d)),
         ("yaw-rate feedback root locus", partial(_p_gain, d)),
         ("parametric study table", partial(_p_sweep_table, d)),

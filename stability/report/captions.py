@@ -80,15 +80,6 @@ def _linear(d: ReportData) -> str:
     return txt
 
 
-def _loci(d: ReportData) -> str:
-    rates = [float(np.max(np.real(lc.poles[..., :]))) for lc in d.parameter_loci if hasattr(lc, "poles")]
-    span = (f" (largest growth rate {min(rates):.3g}-{max(rates):.3g} 1/s over the parameters tried)"
-            if rates else "")
-    return ("How each design parameter moves the eigenvalues at the reference speed" + span + "; the growth-rate "
-            "page ranks them. These frictionless linear loci are the method's check, not the design answer: pin "
-            "friction, which they leave out, decides the practical stability.")
-
-
 def _growth(d: ReportData) -> str:
     return ("The frictionless linear growth rate responds most to the c.g. position and the mass distribution; it "
             "peaks where s1 equals the yaw radius of gyration sqrt(I_z/m), so moving the axle toward the c.g. can "
@@ -236,8 +227,6 @@ CAPTIONS: dict[str, Callable[[ReportData], str]] = {
     "linear stability: critical speeds": _linear,
     "eigenvalues as speed varies": _linear,
     "eigenvalues against speed": _linear,
-    "root loci against design parameters 1": _loci,
-    "root loci against design parameters 2": _loci,
     "growth rate against design parameters": _growth,
     "yaw-rate feedback root locus": _gain,
     "nonlinear yaw-rate responses": _responses,
