@@ -43,6 +43,7 @@ from .export_run import check_export, run_export
 from .firmware import Q_FORMATS
 from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from .robustness import Robustness, robustness
+from .safety import Safety, run_safety
 from .schedule import Schedule, schedule
 from .tables import (
     format_margins,
@@ -108,6 +109,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--export-c", metavar="DIR", default=None,
                    help="write the gyro design as C99 firmware into DIR (assist.h, assist.c, assist_vectors.json, "
                         "README.txt; created if missing) at --sample-rate, and report the number format's margins")
+    p.add_argument("--faults", action="store_true",
+                   help="simulate every single sensor fault at every design speed on level ground and a 2 deg cross "
+                        "slope (monitor, detection, degraded mode) and find the safe top speed (gyro design; "
+                        "a few minutes)")
     p.add_argument("--q-format", default=D.Q_FORMAT, choices=list(Q_FORMATS),
                    help=f"number format of the exported tables (default {D.Q_FORMAT})")
     return p
@@ -165,6 +170,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _run(args: argparse.Namespace) -> int:
     check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, {"--chair": args.chair})
     check_export(args.export_c, args.design)
+    if args.faults and args.design != "gyro":
+        raise ValueError(f"--faults needs --design gyro (got {args.design!r}): the faults are those of the gyro "
+                         "and wheel-speed sensors")
     speeds = parse_speeds(args.speeds, increasing=True, max_count=50)
     weights, drive, gyro = _options(args)
     c = load_chair(args.chair, args.set)
@@ -179,11 +187,15 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     rev = reverse_table(sched) if args.reverse else []
     holds = [] if args.no_check else _slope_holds(sched)
     fw_json, fw_text = _firmware(args, sched)
+    safety = run_safety(sched, rows, seed=args.seed) if args.faults else None
+    fw_json.update(safety.to_dict() if safety else {})
+    fw_text += safety.format() if safety else ""
     if args.json or args.json_file:
         options = {k: getattr(args, k) for k in ("speeds", "design", "max_heading_error", "max_yaw_rate",
                                                  "torque_limit", "torque_budget", "wheel_radius", "gyro_noise",
                                                  "gyro_bias", "sample_rate", "seed", "no_check", "reverse",
-                                                 "motor_lag", "bias_time_constant", "export_c", "q_format")}
+                                                 "motor_lag", "bias_time_constant", "export_c", "q_format",
+                                                 "faults")}
         data = {**json_header(c, args.model, options), "rows": [r.to_dict() for r in rows],
                 "reverse": [r.to_dict() for r in rev],
                 "cross_slope": [h.to_dict() if isinstance(h, SlopeHold) else h for h in holds],
@@ -245,7 +257,7 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
             print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
                   f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
     if args.pdf:
-        _write_pdf(sched, rows, rob, runs, tmp["--pdf"], [h for h in holds if isinstance(h, SlopeHold)])
+        _write_pdf(sched, rows, rob, runs, tmp["--pdf"], [h for h in holds if isinstance(h, SlopeHold)], safety)
     for option in ("--json-file", "--pdf"):
         if option in tmp:
             print(f"wrote {getattr(args, option[2:].replace('-', '_'))}", file=sys.stderr if args.json else sys.stdout)
@@ -273,7 +285,7 @@ def _slope_holds(sched: Schedule) -> list[SlopeHold | dict]:
 
 
 def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, path: str,
-               holds: list[SlopeHold]) -> None:
+               holds: list[SlopeHold], safety: Safety | None = None) -> None:
     """The assist figures as a PDF at ``path`` (matplotlib is imported only here)."""
     # matplotlib is imported only when a PDF is asked for
     from . import figures, figures_slope
@@ -298,6 +310,10 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
              figures.figure_torque(sched, torque_requirement(sched, tuple(float(s) for s in sched.speeds)))]
     if holds:
         figs.append(figures_slope.figure_slope_hold(sched, holds))
+    if safety is not None:
+        from .figures_safety import figure_top_speed
+
+        figs.append(figure_top_speed(sched, safety.top, safety.faults))
     write_pdf(figs, path, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")
 
 

@@ -1,0 +1,71 @@
+"""The assist's safe-top-speed page: each constraint's slack against speed, and the single-fault outcomes."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..plotting import page
+from ..plotting.style import colour
+from .faults import DRIFT_BOUND_M, HEADING_BOUND_DEG, FaultRow
+from .schedule import Schedule
+from .top_speed import CONSTRAINTS, TopSpeed
+
+__all__ = ["figure_top_speed"]
+
+
+def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow]) -> Figure:
+    """Constraint ratios against speed with the safe top speed, and the worst fault response per speed.
+
+    Parameters
+    ----------
+    sched : Schedule
+    ts : TopSpeed
+    faults : sequence of FaultRow
+
+    Returns
+    -------
+    Figure
+        Left: each constraint's value over its limit (margins: value / minimum, torque: limit / peak; above 1
+        holds), the safe top speed marked.  Right: the largest peak heading error and drift over all faults per
+        speed and slope, against the stated bounds.
+    """
+    top = "none" if ts.safe_top_speed_m_s is None else f"{ts.safe_top_speed_m_s:g} m/s"
+    fig, ax = page(f"Safe top speed of the {sched.kind} LQR on {sched.chair.name} (exact model): {top}, "
+                   f"limited by {ts.limited_by}",
+                   "a constraint holds above ratio 1; the top speed is the highest design speed where all hold "
+                   "there and below. Right: worst single sensor fault (injected at 1 s, straight command) per "
+                   "speed, against the stated bounds", nrows=1, ncols=2)
+    a, b = ax[0, 0], ax[0, 1]
+    s = np.array([c.speed_m_s for c in ts.checks])
+    for i, k in enumerate(c for c in CONSTRAINTS if c != "faults"):
+        vals = [c.values.get(k) for c in ts.checks]
+        if all(v is None for v in vals):
+            continue
+        ratio = [np.nan if v is None else (v[1] / v[0] if k == "torque" else v[0] / v[1]) for v in vals]
+        a.plot(s, ratio, "o-", color=colour(i), label=k.replace("_", " "))
+    a.axhline(1.0, color="k", lw=0.9, ls="--", label="limit")
+    if ts.safe_top_speed_m_s is not None:
+        a.axvline(ts.safe_top_speed_m_s, color="0.4", lw=1.2, ls=":", label=f"safe top speed {top}")
+    a.set_xlabel("speed (m/s)")
+    a.set_ylabel("value / limit (torque: limit / peak) (-)")
+    a.set_title("constraints")
+    a.grid(alpha=0.3)
+    a.legend(fontsize=7)
+    slopes = sorted({f.slope_deg for f in faults})
+    for j, phi in enumerate(slopes):
+        sp = sorted({f.speed_m_s for f in faults if f.slope_deg == phi})
+        he = [max(f.peak_heading_error_deg for f in faults if f.slope_deg == phi and f.speed_m_s == x) for x in sp]
+        dr = [max(f.drift_m for f in faults if f.slope_deg == phi and f.speed_m_s == x) for x in sp]
+        b.plot(sp, np.array(he) / HEADING_BOUND_DEG, "o-", color=colour(j), label=f"heading error, {phi:g} deg slope")
+        b.plot(sp, np.array(dr) / DRIFT_BOUND_M, "s--", color=colour(j), label=f"drift, {phi:g} deg slope")
+    b.axhline(1.0, color="k", lw=0.9, ls="--", label=f"bounds {HEADING_BOUND_DEG:g} deg / {DRIFT_BOUND_M:g} m")
+    b.set_xlabel("speed (m/s)")
+    b.set_ylabel("worst fault response / bound (-)")
+    b.set_title("single sensor faults (worst over all faults)")
+    b.grid(alpha=0.3)
+    b.legend(fontsize=7)
+    fig.tight_layout(rect=(0.0, 0.0, 1.0, 0.93))
+    return fig
