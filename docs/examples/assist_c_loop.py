@@ -50,7 +50,8 @@ class State(ctypes.Structure):
 
     _fields_ = [("xhat", ctypes.c_float * 7), ("e", ctypes.c_float), ("bhat", ctypes.c_float),
                 ("r", ctypes.c_float), ("rc", ctypes.c_float), ("u", ctypes.c_float), ("mz", ctypes.c_float),
-                ("raw", ctypes.c_float), ("first", ctypes.c_int)]
+                ("raw", ctypes.c_float), ("monitor", ctypes.c_float), ("frozen", ctypes.c_float),
+                ("mode", ctypes.c_int), ("first", ctypes.c_int)]
 
 
 f = ctypes.c_float

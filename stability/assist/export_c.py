@@ -26,7 +26,17 @@ from ..reference import THESIS_PUSH
 from ..simulate import simulate
 from .commands import COMMAND_FILTER, MAX_YAW_RATE, ramp_command, reference_command, step_command
 from .controller import DigitalController
-from .firmware import FirmwareController, FirmwareTables, firmware_tables, q_bits, quantise
+from .firmware import (
+    DEGRADED_SPEED,
+    MONITOR_THRESHOLD_DEG_S,
+    PLAUSIBLE_MIN_SPEED,
+    WHEEL_PLAUSIBLE,
+    FirmwareController,
+    FirmwareTables,
+    firmware_tables,
+    q_bits,
+    quantise,
+)
 from .schedule import Schedule
 
 __all__ = ["VectorCase", "vector_speeds", "vector_cases", "c_sources", "readme", "export_c", "VECTOR_DURATION"]
@@ -35,6 +45,8 @@ __all__ = ["VectorCase", "vector_speeds", "vector_cases", "c_sources", "readme",
 VECTOR_DURATION = 2.0
 #: Yaw-rate command of the saturating case (rad/s): the joystick's largest command doubled, reversed at half time.
 SATURATING = 2.0 * MAX_YAW_RATE
+#: Gyro-bias step of the monitor's test vector (deg/s).
+FAULT_VECTOR_BIAS_DEG_S = 20.0
 #: Gyro bias of the test vectors (deg/s): large enough that the bias estimate visibly acts.
 VECTOR_BIAS_DEG_S = 2.0
 
@@ -54,7 +66,8 @@ class VectorCase:
         The inputs before rounding to single precision.
     controller_tau : ndarray (N,)
         What :class:`DigitalController` commanded for them (N m): ``outputs`` replays the rounded inputs through
-        :class:`~stability.assist.firmware.FirmwareController`, the same arithmetic.
+        :class:`~stability.assist.firmware.FirmwareController`, the same arithmetic (NaN for the fault case:
+        the Python sampled controller has no monitor).
     """
 
     name: str
@@ -112,7 +125,9 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
     plus :data:`VECTOR_BIAS_DEG_S` and the sensor's seeded noise, the wheel
     speeds the true yaw rate.  The controller runs with the reference model
     of :data:`~stability.assist.commands.COMMAND_FILTER` and back-calculation
-    anti-windup, the schedule's torque limit.  The inputs are stored rounded to
+    anti-windup, the schedule's torque limit.  A last case replays the middle
+    speed's push with a :data:`FAULT_VECTOR_BIAS_DEG_S` gyro-bias step at half
+    time, so the monitor trips.  The inputs are stored rounded to
     single precision (the C API's type) and the outputs are those of
     :class:`~stability.assist.firmware.FirmwareController` for them (equal to
     the controller's own, kept in ``controller_tau``, to round-off).
@@ -152,6 +167,15 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
             inputs32 = inputs.astype(np.float32).astype(float)
             mirror = mirror_outputs(tables, inputs32)
             out.append(VectorCase(f"{name}_{s:g}_m_s", inputs32, np.column_stack([mirror, -mirror]), inputs, tau))
+    # the monitor: the middle speed's push case replayed with a 20 deg/s gyro-bias step at half time (an open-loop
+    # replay; the Python sampled controller has no monitor, so the outputs are the firmware mirror's)
+    push = next(c for c in out if c.name == f"push_{vector_speeds(sched)[len(vector_speeds(sched)) // 2]:g}_m_s")
+    faulty = push.inputs.copy()
+    faulty[len(faulty) // 2:, 2] += math.radians(FAULT_VECTOR_BIAS_DEG_S)
+    faulty = faulty.astype(np.float32).astype(float)
+    mirror = mirror_outputs(tables, faulty)
+    out.append(VectorCase(f"fault_gyro_bias_{FAULT_VECTOR_BIAS_DEG_S:g}_deg_s_{faulty[0, 0]:g}_m_s", faulty,
+                          np.column_stack([mirror, -mirror]), faulty, np.full(len(faulty), np.nan)))
     return out
 
 
@@ -209,6 +233,9 @@ struct assist_state {{
     float u;                  /* applied yaw moment of the last sample, N m */
     float mz;                 /* unsaturated yaw moment of the last sample, N m */
     float raw;                /* raw command of the last sample, rad/s */
+    float monitor;            /* low-passed gyro minus wheel-speed yaw rate, rad/s */
+    float frozen;             /* bias estimate at the monitor's alarm, rad/s */
+    int mode;                 /* 0 normal, 1 gyro at fault (wheel-speed yaw rate steers), 2 wheel-speed at fault */
     int first;                /* 1 until the first step */
 }};
 typedef struct assist_state assist_state;
@@ -218,6 +245,10 @@ void assist_init(assist_state *s);
 void assist_step(assist_state *s, float speed_m_s, float yaw_rate_cmd_rad_s,
                  float gyro_rad_s, float wheel_yaw_rate_rad_s,
                  float *torque_left_Nm, float *torque_right_Nm);
+/* The sensor monitor's mode (latched until assist_init): 0 normal, 1 gyro fault, 2 wheel-speed sensor fault. */
+int assist_mode(const assist_state *s);
+/* The speed limit the controller asks for, m/s ({_c_float(DEGRADED_SPEED)} after a fault; 1e30f otherwise). */
+float assist_speed_limit_m_s(const assist_state *s);
 
 #endif
 """
@@ -259,14 +290,31 @@ static const float TORQUE_LIMIT = {lim};  /* N m per wheel */
 static const float BIAS_GAIN = {_c_float(t.bias_gain)};
 static const float COMMAND_GAIN = {_c_float(t.command_gain)};
 static const float WINDUP_GAIN = {_c_float(t.windup_gain)};
+static const float MONITOR_GAIN = {_c_float(t.monitor_gain)};
+static const float MONITOR_THRESHOLD = {_c_float(MONITOR_THRESHOLD_DEG_S * math.pi / 180.0)};  /* rad/s */
+static const float TRACK = {_c_float(t.track)};  /* m, d1 + d2 */
+static const float WHEEL_PLAUSIBLE_RATIO = {_c_float(WHEEL_PLAUSIBLE)};
+static const float PLAUSIBLE_SPEED = {_c_float(PLAUSIBLE_MIN_SPEED)};  /* m/s */
+static const float DEGRADED_SPEED_M_S = {_c_float(DEGRADED_SPEED)};
 #define ANTI_WINDUP {aw} /* 2 back-calculation, 1 conditional, 0 none */
 
 void assist_init(assist_state *s)
 {{
     int i;
     for (i = 0; i < N; ++i) s->xhat[i] = 0.0f;
-    s->e = s->bhat = s->r = s->rc = s->u = s->mz = s->raw = 0.0f;
+    s->e = s->bhat = s->r = s->rc = s->u = s->mz = s->raw = s->monitor = s->frozen = 0.0f;
+    s->mode = 0;
     s->first = 1;
+}}
+
+int assist_mode(const assist_state *s)
+{{
+    return s->mode;
+}}
+
+float assist_speed_limit_m_s(const assist_state *s)
+{{
+    return s->mode ? DEGRADED_SPEED_M_S : 1e30f;
 }}
 
 {lerp}
@@ -295,6 +343,18 @@ void assist_step(assist_state *s, float speed_m_s, float yaw_rate_cmd_rad_s,
     }}
     kpsi = LERP(K_PSI, i, w, );
     ff = LERP(FEEDFORWARD, i, w, );
+    /* sensor monitor and degraded mode (latched) */
+    s->monitor += MONITOR_GAIN * ((gyro_rad_s - wheel_yaw_rate_rad_s) - s->monitor);
+    if (s->mode == 0 && fabsf(s->monitor - s->bhat) > MONITOR_THRESHOLD) {{
+        float v = fabsf(speed_m_s) > PLAUSIBLE_SPEED ? fabsf(speed_m_s) : PLAUSIBLE_SPEED;
+        s->mode = (fabsf(wheel_yaw_rate_rad_s) * TRACK >= WHEEL_PLAUSIBLE_RATIO * v) ? 2 : 1;
+        s->frozen = s->bhat;
+    }}
+    if (s->mode == 1) {{
+        gyro_rad_s = wheel_yaw_rate_rad_s;
+    }} else if (s->mode == 2) {{
+        wheel_yaw_rate_rad_s = gyro_rad_s - s->frozen;
+    }}
     if (!s->first) {{
         float err = s->r - s->rc, excess = (s->raw != 0.0f) ? s->mz - s->u : 0.0f, inc = T_S * err;
         float x[N];

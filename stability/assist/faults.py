@@ -7,7 +7,8 @@ arithmetic, stepping all runs of a batch together on numpy arrays) as the
 simulator's ``yaw_moment`` hook, seeded gyro noise and the sensor's bias.
 One fault from :data:`FAULTS` starts at :data:`FAULT_TIME`.
 
-Monitor: the gyro minus the wheel-speed yaw rate, low-passed with
+Monitor (part of the firmware, :class:`~stability.assist.firmware.FirmwareController`
+and the exported C): the gyro minus the wheel-speed yaw rate, low-passed with
 :data:`MONITOR_TIME` and less the slow bias estimate, compared with
 :data:`MONITOR_THRESHOLD_DEG_S` (the residual the bias estimator already
 forms; a healthy gyro keeps it at the noise level, ~0.1 deg/s).  Degraded
@@ -42,7 +43,15 @@ import numpy as np
 from ..simulate import simulate_batch
 from .commands import COMMAND_FILTER
 from .driving import traction_limit
-from .firmware import FirmwareController, FirmwareTables, firmware_tables
+from .firmware import (
+    DEGRADED_SPEED,
+    MONITOR_THRESHOLD_DEG_S,
+    MONITOR_TIME,
+    WHEEL_PLAUSIBLE,
+    FirmwareController,
+    FirmwareTables,
+    firmware_tables,
+)
 from .schedule import Schedule
 
 __all__ = ["FAULTS", "FAULT_TIME", "WINDOW", "MONITOR_TIME", "MONITOR_THRESHOLD_DEG_S", "WHEEL_PLAUSIBLE",
@@ -66,13 +75,6 @@ FAULTS: dict[str, tuple[str, float]] = {
 #: Time of the fault (s) and the window after it that is judged (s).
 FAULT_TIME = 1.0
 WINDOW = 5.0
-#: Monitor: low-pass time constant of gyro minus wheel-speed yaw rate (s) and its threshold (deg/s).
-MONITOR_TIME = 0.05
-MONITOR_THRESHOLD_DEG_S = 3.0
-#: Degraded mode: the speed limit it commands (m/s); a wheel-speed yaw rate is implausible when it implies a
-#: wheel-speed difference of at least WHEEL_PLAUSIBLE times the forward speed (one wheel at most half the other).
-DEGRADED_SPEED = 1.0
-WHEEL_PLAUSIBLE = 0.5
 #: Stated bounds of a safe response within WINDOW of the fault: heading error (deg) and lateral drift (m).
 #: 10 deg is about the heading a driver corrects without a swerve; 0.3 m is the clearance each side of a
 #: 0.6 m wide chair in a 1.2 m corridor (design choices of this check, not numbers from a standard).
@@ -149,7 +151,7 @@ class FaultHook:
                                for u, kd, v in zip(self.speeds, kinds, self.values, strict=True)])
         self.sigma = sched.gyro.sample_std
         self.bias = sched.gyro.bias_deg_s * _DEG
-        self.track = sched.chair.d1 + sched.chair.d2
+        self.track = tables.track
         self.d1 = sched.chair.d1
         self.mz_per_tau = float(sched.drive.yaw_moment(sched.chair, 1.0))
         self.slip_cap = traction_limit(sched) * 0.5
@@ -159,11 +161,7 @@ class FaultHook:
         self.m = np.zeros(R)          # motor state at the sample
         self.last_gyro = np.zeros(R)
         self.held = np.zeros(R)
-        self.monitor = np.zeros(R)
-        self.g_mon = 1.0 - math.exp(-self.T / MONITOR_TIME)
         self.detect_k = np.full(R, -1)
-        self.mode = np.zeros(R, dtype=int)      # 0 normal, 1 wheel-speed yaw rate, 2 gyro only
-        self.frozen = np.zeros(R)
         self.r = np.zeros(R)
 
     def _sensors(self, k: int, r: np.ndarray, u_fwd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -194,19 +192,8 @@ class FaultHook:
             r[idx] = np.asarray(state.yaw_rate, dtype=float)
             u_fwd[idx] = np.asarray(state.u, dtype=float)
             g, w = self._sensors(self.k, r, u_fwd)
-            bhat = self.fc.bhat.copy()
-            self.monitor += self.g_mon * ((g - w) - self.monitor)
-            alarm = (np.abs(self.monitor - bhat) > MONITOR_THRESHOLD_DEG_S * _DEG) & (self.detect_k < 0)
-            # which sensor: a wheel-speed yaw rate implying one wheel at most half the other's speed while driving
-            wheel_bad = np.abs(w) * self.track >= WHEEL_PLAUSIBLE * np.maximum(self.speeds, 0.3)
-            self.mode = np.where(alarm, np.where(wheel_bad, 2, 1), self.mode)
-            self.frozen = np.where(alarm, bhat, self.frozen)
-            self.detect_k = np.where(alarm, self.k, self.detect_k)
-            # degraded mode: a gyro fault feeds the wheel-speed yaw rate as the yaw sensor; a wheel-speed fault
-            # keeps the gyro with its bias estimate frozen
-            g_in = np.where(self.mode == 1, w, g)
-            w_in = np.where(self.mode == 1, w, np.where(self.mode == 2, g - self.frozen, w))
-            tau = self.fc.step(self.speeds, 0.0, g_in, w_in)
+            tau = self.fc.step(self.speeds, 0.0, g, w)
+            self.detect_k = np.where((self.fc.mode != 0) & (self.detect_k < 0), self.k, self.detect_k)
             tau = np.where(self.kinds == "slip", np.clip(tau, -self.slip_cap, self.slip_cap), tau)
             tau = np.where(self.kinds == "open", 0.0, tau)
             self.m = self.u + (self.m - self.u) * self.decay if self.k > 0 else self.m

@@ -25,7 +25,12 @@ before ``k``: one sample of computation delay)::
     c~_k   = c~_(k-1) + g_c (c_k - c~_(k-1))
 
 with ``tau_k`` the differential torque per drive wheel (left ``+tau``, right
-``-tau``, N m).  See docs/assist.md.
+``-tau``, N m).  Before that, the sensor monitor low-passes ``g_k - w_k``
+(:data:`MONITOR_TIME`); when it departs from ``b_(k-1)`` by more than
+:data:`MONITOR_THRESHOLD_DEG_S` the controller latches a degraded mode
+(:data:`MODES`): if ``w_k`` is implausible (:data:`WHEEL_PLAUSIBLE`) the gyro
+is used alone with the bias estimate frozen, else ``w_k`` replaces the gyro;
+it then asks for :data:`DEGRADED_SPEED`.  See docs/assist.md.
 """
 
 from __future__ import annotations
@@ -40,10 +45,26 @@ from .._validate import check_choice
 from .controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
 from .schedule import Schedule
 
-__all__ = ["Q_FORMATS", "FirmwareTables", "firmware_tables", "quantise", "q_bits", "half_steps", "FirmwareController"]
+__all__ = ["Q_FORMATS", "MONITOR_TIME", "MONITOR_THRESHOLD_DEG_S", "WHEEL_PLAUSIBLE", "PLAUSIBLE_MIN_SPEED",
+           "DEGRADED_SPEED", "MODES", "FirmwareTables", "firmware_tables", "quantise", "q_bits", "half_steps",
+           "FirmwareController"]
 
 #: Number formats of the exported tables: 16- and 32-bit fixed point, or float.
 Q_FORMATS = ("float", "Q15", "Q31")
+#: Sensor monitor: low-pass time constant of gyro minus wheel-speed yaw rate (s) and the threshold of that
+#: residual less the bias estimate (deg/s; a healthy gyro keeps it at the noise level, ~0.1 deg/s).
+MONITOR_TIME = 0.05
+MONITOR_THRESHOLD_DEG_S = 3.0
+#: A wheel-speed yaw rate is implausible when it implies a wheel-speed difference of at least WHEEL_PLAUSIBLE
+#: times the forward speed (one wheel at most half the other's speed), the speed taken as at least
+#: PLAUSIBLE_MIN_SPEED (m/s).
+WHEEL_PLAUSIBLE = 0.5
+PLAUSIBLE_MIN_SPEED = 0.3
+#: The speed limit the degraded mode commands (m/s).
+DEGRADED_SPEED = 1.0
+#: Monitor modes: 0 normal, 1 gyro at fault (the wheel-speed yaw rate steers), 2 wheel-speed sensor at fault (the
+#: gyro alone, bias estimate frozen).
+MODES = ("normal", "wheel_speed_yaw_rate", "gyro_only")
 
 
 @dataclass(frozen=True, eq=False)
@@ -74,6 +95,8 @@ class FirmwareTables:
         ``g_b = 1 - exp(-T / T_b)``, ``g_c = 1 - exp(-T / T_ref)`` and ``T / T_t``.
     anti_windup : str
         One of :data:`~stability.assist.controller.ANTI_WINDUP`.
+    track : float
+        ``d1 + d2``, the drive wheels' track (m), for the wheel-speed plausibility check.
     q_format : str
         One of :data:`Q_FORMATS`.
     exponents : dict
@@ -94,11 +117,17 @@ class FirmwareTables:
     command_gain: float
     windup_gain: float
     anti_windup: str
+    track: float
     q_format: str = "float"
     exponents: Any = None
 
     #: names of the tables over speed (quantised by :func:`quantise`)
     TABLES = ("phi_minus_i", "gamma", "k_int", "k_psi", "feedforward")
+
+    @property
+    def monitor_gain(self) -> float:
+        """Per-sample gain of the monitor's low-pass, ``1 - exp(-T / MONITOR_TIME)``."""
+        return 1.0 - math.exp(-self.sample_time / MONITOR_TIME)
 
     @property
     def n(self) -> int:
@@ -143,7 +172,7 @@ def firmware_tables(sched: Schedule, *, command_filter_s: float, anti_windup: st
         np.array([c._Kpsi for c in ctls]), np.array([c._F for c in ctls]), c0.Ts,
         float(sched.drive.wheel_torque(sched.chair, 1.0)),
         float(sched.drive.torque_limit) if saturate else math.inf, c0._bias_gain, c0._cmd_gain, c0._aw_gain,
-        anti_windup)
+        anti_windup, float(sched.chair.d1 + sched.chair.d2))
 
 
 def _exponents(values: np.ndarray, bits: int) -> np.ndarray:
@@ -250,6 +279,9 @@ class FirmwareController:
         self.u = np.zeros(R)        # applied yaw moment of the last sample
         self.mz = np.zeros(R)       # unsaturated yaw moment of the last sample (u when not saturated)
         self.raw = np.zeros(R)      # raw command of the last sample
+        self.monitor = np.zeros(R)  # low-passed gyro minus wheel-speed yaw rate
+        self.mode = np.zeros(R, dtype=int)
+        self.frozen = np.zeros(R)   # bias estimate at the alarm
 
     def tables_at(self, speed: Any) -> tuple[np.ndarray, ...]:
         """Tables interpolated linearly at each run's speed (held outside the grid).
@@ -280,6 +312,18 @@ class FirmwareController:
             out.append(a + ww * (b - a))
         return tuple(out)
 
+    def _monitor(self, speed: np.ndarray, g: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The sensor monitor and the degraded mode: the yaw-rate readings the controller then uses."""
+        t = self.t
+        self.monitor = self.monitor + t.monitor_gain * ((g - w) - self.monitor)
+        alarm = (self.mode == 0) & (np.abs(self.monitor - self.bhat) > MONITOR_THRESHOLD_DEG_S * math.pi / 180)
+        wheel_bad = np.abs(w) * t.track >= WHEEL_PLAUSIBLE * np.maximum(np.abs(speed), PLAUSIBLE_MIN_SPEED)
+        self.mode = np.where(alarm, np.where(wheel_bad, 2, 1), self.mode)
+        self.frozen = np.where(alarm, self.bhat, self.frozen)
+        g_in = np.where(self.mode == 1, w, g)
+        w_in = np.where(self.mode == 1, w, np.where(self.mode == 2, g - self.frozen, w))
+        return g_in, w_in
+
     def step(self, speed: Any, command: Any, gyro: Any, wheel: Any) -> np.ndarray:
         """``assist_step`` for every run: the differential torque per wheel for this sample (N m).
 
@@ -304,6 +348,7 @@ class FirmwareController:
         g = np.broadcast_to(np.asarray(gyro, dtype=float), (self.runs,))
         w = np.broadcast_to(np.asarray(wheel, dtype=float), (self.runs,))
         c = np.broadcast_to(np.asarray(command, dtype=float), (self.runs,))
+        g, w = self._monitor(np.broadcast_to(np.asarray(speed, dtype=float), (self.runs,)), g, w)
         if not self.first:
             err = self.r - self.rc
             excess = np.where(self.raw != 0.0, self.mz - self.u, 0.0)
