@@ -13,8 +13,8 @@ from stability import chair as chair_mod
 from stability.assist import c_harness, digital
 from stability.assist.__main__ import main as assist_main
 from stability.assist.commands import COMMAND_FILTER
-from stability.assist.export_c import export_c, mirror_outputs, vector_cases
-from stability.assist.firmware import FirmwareController, firmware_tables, half_steps, quantise
+from stability.assist.export_c import export_c, vector_cases
+from stability.assist.firmware import FirmwareController, firmware_tables, half_steps, mirror_outputs, quantise
 from stability.assist.quantisation import FLOAT_RELATIVE, margin_rows, output_bound, table_controller
 
 CC = c_harness.find_cc()

@@ -31,9 +31,9 @@ from .firmware import (
     MONITOR_THRESHOLD_DEG_S,
     PLAUSIBLE_MIN_SPEED,
     WHEEL_PLAUSIBLE,
-    FirmwareController,
     FirmwareTables,
     firmware_tables,
+    mirror_outputs,
     q_bits,
     quantise,
 )
@@ -487,19 +487,3 @@ def export_c(sched: Schedule, directory: str, q_format: str = D.Q_FORMAT, *, see
             os.remove(os.path.join(tmp, name))
         os.rmdir(tmp)
     return {"directory": directory, "q_format": q_format, "files": sorted(files), "tolerance_N_m": tol}
-
-
-def mirror_outputs(t: FirmwareTables, inputs: np.ndarray) -> np.ndarray:
-    """Run rows ``speed, command, gyro, wheel`` through :class:`FirmwareController` (float64): ``tau`` (N m).
-
-    Parameters
-    ----------
-    t : FirmwareTables
-    inputs : ndarray (N, 4)
-
-    Returns
-    -------
-    ndarray (N,)
-    """
-    fc = FirmwareController(t)
-    return np.array([fc.step(*row)[0] for row in inputs])

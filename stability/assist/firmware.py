@@ -47,7 +47,7 @@ from .schedule import Schedule
 
 __all__ = ["Q_FORMATS", "MONITOR_TIME", "MONITOR_THRESHOLD_DEG_S", "WHEEL_PLAUSIBLE", "PLAUSIBLE_MIN_SPEED",
            "DEGRADED_SPEED", "MODES", "FirmwareTables", "firmware_tables", "quantise", "q_bits", "half_steps",
-           "FirmwareController"]
+           "FirmwareController", "mirror_outputs"]
 
 #: Number formats of the exported tables: 16- and 32-bit fixed point, or float.
 Q_FORMATS = ("float", "Q15", "Q31")
@@ -376,3 +376,19 @@ class FirmwareController:
         self.raw = c.copy()
         self.first = False
         return tau
+
+
+def mirror_outputs(t: FirmwareTables, inputs: np.ndarray) -> np.ndarray:
+    """Run rows ``speed, command, gyro, wheel`` through :class:`FirmwareController` (float64): ``tau`` (N m).
+
+    Parameters
+    ----------
+    t : FirmwareTables
+    inputs : ndarray (N, 4)
+
+    Returns
+    -------
+    ndarray (N,)
+    """
+    fc = FirmwareController(t)
+    return np.array([fc.step(*row)[0] for row in inputs])
