@@ -77,7 +77,7 @@ def test_quantisation_bound_holds_sample_by_sample_and_is_not_vacuous(vectors, t
             assert np.all(np.abs(arr) <= 2 ** bits - 1), (q, name)
         for name, h in half_steps(tq).items():   # the rounding is within half a step
             assert np.all(np.abs(getattr(tq, name) - getattr(tables, name)) <= h * (1 + 1e-12)), (q, name)
-        for v in (vectors if q == "Q15" else vectors[3::4]):    # Q31: the saturating cases
+        for v in (vectors[1::2] if q == "Q15" else vectors[3::4]):    # Q31: the saturating cases
             bound = output_bound(tables, tq, v.inputs)
             err = np.abs(mirror_outputs(tq, v.inputs) - v.outputs[:, 0])
             # the bound is exact arithmetic on the same sums the runs make: 1e-12 of full scale for round-off

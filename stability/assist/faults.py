@@ -202,10 +202,10 @@ class FaultHook:
         return out[idx]
 
 
-def _measures(res: Any) -> tuple[float, float, float]:
+def _measures(res: Any, window: float = WINDOW) -> tuple[float, float, float]:
     """Peak heading error (deg), peak yaw rate (deg/s) and lateral drift (m) over the window after the fault."""
     t = np.asarray(res.t)
-    sel = (t >= FAULT_TIME - 1e-9) & (t <= FAULT_TIME + WINDOW + 1e-9)
+    sel = (t >= FAULT_TIME - 1e-9) & (t <= FAULT_TIME + window + 1e-9)
     psi0 = float(res.heading[0])
     x0, y0 = float(res.x[0]), float(res.y[0])
     lat = -(np.asarray(res.x) - x0) * math.sin(psi0) + (np.asarray(res.y) - y0) * math.cos(psi0)
@@ -215,14 +215,14 @@ def _measures(res: Any) -> tuple[float, float, float]:
     he = float(np.max(np.abs(np.asarray(res.heading)[sel] - psi0))) / _DEG
     pr = float(np.max(np.abs(np.asarray(res.yaw_rate)[sel]))) / _DEG
     drift = float(abs(lat[sel][-1] - lat[i0]))
-    if res.stopped_by_warnings or t[-1] < FAULT_TIME + WINDOW - 1e-6:
+    if res.stopped_by_warnings or t[-1] < FAULT_TIME + window - 1e-6:
         return max(he, HEADING_BOUND_DEG * 10), pr, max(drift, DRIFT_BOUND_M * 10)    # left the model: unbounded
     return he, pr, drift
 
 
 def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes: Sequence[float] = (0.0, 2.0),
                faults: Sequence[str] | None = None, seed: int = 0, dt: float = 0.001,
-               progress: bool = False) -> list[FaultRow]:
+               progress: bool = False, window: float = WINDOW) -> list[FaultRow]:
     """Each fault at each speed and slope, with the unassisted chair as reference (one batch per slope).
 
     Parameters
@@ -239,6 +239,9 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
     dt : float
         Simulator step, s.
     progress : bool
+    window : float
+        Judged time after the fault, s (default :data:`WINDOW`; shorter only for quick checks: the bounds are
+        stated for :data:`WINDOW`).
 
     Returns
     -------
@@ -257,13 +260,13 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
         kinds = [c[1] for _ in U for c in cases]
         vals = np.array([c[2] for _ in U for c in cases])
         hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed)
-        res = simulate_batch(sched.chair, run_speeds, duration=FAULT_TIME + WINDOW, dt=dt, yaw_moment=hook,
+        res = simulate_batch(sched.chair, run_speeds, duration=FAULT_TIME + window, dt=dt, yaw_moment=hook,
                              stop_on_warnings=False, slope=(float(phi), 0.0), model="exact", progress=progress)
         for i, s in enumerate(U):
             base = i * len(cases)
-            he0, _, dr0 = _measures(res[base])
+            he0, _, dr0 = _measures(res[base], window)
             for j, (name, _kind, _v) in enumerate(cases[1:], start=1):
-                he, pr, dr = _measures(res[base + j])
+                he, pr, dr = _measures(res[base + j], window)
                 dk = int(hook.detect_k[base + j])
                 det = dk >= 0
                 ok = he <= HEADING_BOUND_DEG and dr <= DRIFT_BOUND_M
