@@ -26,18 +26,23 @@ import numpy as np
 from . import __version__, progress, tires
 from . import chair as chair_mod
 from .cli_options import (
+    FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
     add_common_options,
     add_json_options,
     add_model_option,
+    add_output_option,
+    add_uncertainty_option,
+    check_format,
 )
 from .cli_options import subparsers as _subparsers
 from .statics import check_static_loads, static_loads
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
            "load_chair", "parse_speeds", "check_directory", "check_outputs", "output_files", "json_header",
-           "emit_json", "error", "run", "MAX_SPEEDS", "check_work"]
+           "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
+           "add_uncertainty_option", "FIGURE_FORMATS"]
 
 #: Largest number of speeds a ``--speeds`` option may ask for (each costs an eigenvalue solve or a run).
 MAX_SPEEDS = 10_001
@@ -50,7 +55,8 @@ def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
     spec : str
         ``--chair`` value: a preset name (:func:`stability.chair.preset_names`) or a TOML file.
     assignments : sequence of str
-        ``--set`` values, each ``NAME=VALUE`` (:func:`stability.chair.parse_assignment`),
+        ``--set`` values, each ``NAME=VALUE`` (:func:`stability.chair.parse_assignments`: units allowed,
+        ``pin_friction``, ``d`` and ``t`` set a left/right pair),
         applied in order over the chair read from ``spec``.
 
     Returns
@@ -70,7 +76,7 @@ def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
         c = chair_mod.resolve(spec)
     except OSError as exc:
         raise ValueError(f"--chair {spec!r}: cannot read the file ({exc.strerror or exc})") from None
-    changes = dict(chair_mod.parse_assignment(a) for a in assignments)
+    changes = chair_mod.parse_assignments(assignments)
     c = c.replace(**changes) if changes else c
     check_static_loads(c)
     tires.range_check(c, static_loads(c))
@@ -388,6 +394,8 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     args.quiet = bool(getattr(args, "quiet", False))
     debug = args.debug
     try:
+        check_format(getattr(args, "output", None), getattr(args, "output_formats", None) or (), "-o") \
+            if hasattr(args, "output_formats") else None
         with progress.quiet(args.quiet):
             return _with_tire_policy(body, args)
     except BrokenPipeError:

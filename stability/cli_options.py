@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import os
 import re
 import sys
 from collections.abc import Sequence
@@ -18,7 +19,7 @@ from . import chair as chair_mod
 from . import defaults, tires
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
-           "subparsers"]
+           "subparsers", "add_output_option", "check_format", "add_uncertainty_option", "FIGURE_FORMATS"]
 
 _NEGATIVE = re.compile(r"^-(\d|\.\d)")
 
@@ -152,3 +153,85 @@ def add_json_options(parser: argparse.ArgumentParser) -> None:
     """
     parser.add_argument("--json", action="store_true", help="print the results as JSON on standard output")
     parser.add_argument("--json-file", metavar="FILE", help="write the results as JSON to FILE")
+
+
+#: Figure formats matplotlib writes from a file suffix; multi-page outputs are PDF only.
+FIGURE_FORMATS = ("pdf", "png", "svg")
+
+
+def add_output_option(parser: argparse.ArgumentParser, formats: Sequence[str], *, what: str,
+                      aliases: Sequence[str] = (), required: bool = False, metavar: str = "FILE") -> None:
+    """Add ``-o/--output FILE``: the main file a command writes, its format named by the suffix.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    formats : sequence of str
+        Suffixes accepted (without the dot), e.g. ``("pdf",)`` for a
+        multi-page document or :data:`FIGURE_FORMATS` for one figure; any
+        other suffix is refused by :func:`check_format` before any work.
+    what : str
+        What the file holds, for ``--help`` (e.g. ``"the figures"``).
+    aliases : sequence of str, optional
+        Former spellings (``--pdf``, ``--plot``) kept as hidden deprecated aliases.
+    required : bool, optional
+        Whether the command needs it.
+    metavar : str, optional
+        Name of the value in ``--help``.
+    """
+    kinds = ", ".join(f".{f}" for f in formats)
+    parser.add_argument("-o", "--output", metavar=metavar, required=required, dest="output",
+                        help=f"write {what} to FILE; the suffix names the format ({kinds})")
+    for alias in aliases:
+        parser.add_argument(alias, dest="output", metavar=metavar, help=argparse.SUPPRESS)
+    parser.set_defaults(output_formats=tuple(formats))
+
+
+def check_format(path: str | None, formats: Sequence[str], option: str = "-o") -> str | None:
+    """The format of an output ``path`` from its suffix; refuse a suffix not in ``formats``.
+
+    Parameters
+    ----------
+    path : str or None
+        Output file (None: not asked for).
+    formats : sequence of str
+        Accepted suffixes without the dot.
+    option : str, optional
+        The option that gave it, for the message.
+
+    Returns
+    -------
+    str or None
+        The format (lower-case suffix), None when ``path`` is None.
+
+    Raises
+    ------
+    ValueError
+        One line naming the option, the file and the accepted suffixes.
+    """
+    if not path or os.path.isdir(path):       # a directory: check_outputs says so
+        return None
+    suffix = path.rsplit(".", 1)[-1].lower() if "." in path.rsplit("/", 1)[-1] else ""
+    if suffix not in formats:
+        raise ValueError(f"{option} {path!r} is invalid; the suffix names the format, valid: "
+                         + ", ".join(f".{f}" for f in formats))
+    return suffix
+
+
+def add_uncertainty_option(parser: argparse.ArgumentParser, help: str, *, repeat: bool = False) -> None:
+    """Add ``--uncertainty FILE`` (an uncertainty TOML file; repeatable with ``repeat``).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    help : str
+        What the command does with it.
+    repeat : bool, optional
+        One per chair (``action="append"``).
+    """
+    if repeat:
+        parser.add_argument("--uncertainty", action="append", default=[], metavar="FILE", help=help)
+    else:
+        parser.add_argument("--uncertainty", metavar="FILE", help=help)

@@ -61,3 +61,65 @@ def test_chair_export_round_trips(tmp_path, capsys):
     assert main(["export", "revised", "-o", str(tmp_path / "x.pdf")]) == 2
     assert "ends in .toml" in capsys.readouterr().err
     assert not (tmp_path / "x.pdf").exists()
+
+
+def test_set_groups_and_units():
+    """--set pin_friction=0.2 sets both casters (and d=, t= both sides); a value may carry a unit of the field's
+    kind (the measurement sheet's parser): trail=5cm is 0.05 m, m=210 lb is 95.254 kg (1 lb = 0.45359237 kg
+    exactly), 0.1 ft lbf = 0.13558 N m; a unit of another kind is refused naming the field."""
+    from stability.cli import load_chair
+
+    c = load_chair("ej-premier", ["pin_friction=0.2", "trail=5cm", "m=210 lb", "d=27cm"])
+    assert (c.pin_friction_left, c.pin_friction_right) == (0.2, 0.2)
+    assert c.trail == pytest.approx(0.05, rel=1e-15) and c.m == pytest.approx(210 * 0.45359237, rel=1e-15)
+    assert c.d1 == c.d2 == pytest.approx(0.27, rel=1e-15)
+    assert chair_mod.parse_assignments(["pin_friction_left=0.1 ft lbf"])["pin_friction_left"] == \
+        pytest.approx(0.1 * 0.3048 * 0.45359237 * 9.80665, rel=1e-15)
+    with pytest.raises(ValueError, match="trail is in m; 'kg' is not a unit of that kind"):
+        load_chair("ej-premier", ["trail=5kg"])
+    with pytest.raises(ValueError, match="pin_friction \\(pin_friction_left and pin_friction_right\\)"):
+        load_chair("ej-premier", ["pin_frict=0.2"])
+
+
+def test_output_suffix_names_the_format_and_unknown_is_refused(tmp_path, capsys):
+    """compare --pdf x.png wrote a PDF named x.png; now -o (and the hidden --pdf) refuse a suffix the command
+    cannot write, in one line, before any work, and write nothing."""
+    from stability.compare.__main__ import main
+
+    out = tmp_path / "x.png"
+    assert main(["ej-premier", "revised", "--pdf", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == f"error: -o {str(out)!r} is invalid; the suffix names the format, valid: .pdf"
+    assert not out.exists()
+    from stability.simulate.__main__ import main as sim
+
+    assert sim(["--speed", "0.75", "-o", str(tmp_path / "run.jpg")]) == 2
+    assert "valid: .pdf, .png, .svg" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", list(commands.COMMANDS))
+def test_json_and_json_file_together_are_accepted(name):
+    parser = commands.build_parser(name)
+    from stability import cli
+
+    for p in [parser, *cli._subparsers(parser)]:
+        opts = {s for a in p._actions for s in a.option_strings}
+        if "--json" in opts:
+            groups = [g for g in p._mutually_exclusive_groups
+                      if {s for a in g._group_actions for s in a.option_strings} & {"--json", "--json-file"}]
+            assert not groups, (name, p.prog)
+            assert "--json-file" in opts
+
+
+def test_measure_takes_uncertainty_and_json(tmp_path, capsys):
+    import json
+    from pathlib import Path
+
+    from stability.measure.__main__ import main
+
+    sheet = Path(__file__).resolve().parents[1] / "docs" / "examples" / "measured_chair_sheet.toml"
+    out, unc = tmp_path / "c.toml", tmp_path / "u.toml"
+    assert main([str(sheet), "-o", str(out), "--uncertainty", str(unc), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["chair_file"] == str(out) and data["uncertainty_file"] == str(unc) and out.exists() and unc.exists()
+    assert {r["field"] for r in data["fields"]} >= {"m", "i_z"}

@@ -15,7 +15,9 @@ from ..chair import Chair
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
+    add_json_options,
     add_model_option,
+    add_output_option,
     check_outputs,
     json_header,
     load_chair,
@@ -102,10 +104,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--motor-lag", type=float, default=DriveTrain.motor_time_constant, metavar="S",
                    help="first-order motor/speed-loop lag (s, default 0.02; 0: none)")
     p.add_argument("--reverse", action="store_true", help="also give the reverse-driving rows (open-loop stability)")
-    p.add_argument("--json", action="store_true",
-                   help="print the rows as JSON on stdout (a list, one row per speed and direction) instead of text")
-    p.add_argument("--json-file", metavar="FILE", help="write the same JSON to FILE")
-    p.add_argument("--pdf", metavar="FILE", help="write the figures as a PDF")
+    add_json_options(p)
+    add_output_option(p, ("pdf",), what="the figures (a PDF, one figure a page)", aliases=("--pdf",))
     p.add_argument("--export-c", metavar="DIR", default=None,
                    help="write the gyro design as C99 firmware into DIR (assist.h, assist.c, assist_vectors.json, "
                         "README.txt; created if missing) at --sample-rate, and report the number format's margins")
@@ -168,7 +168,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, {"--chair": args.chair})
+    check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
     check_export(args.export_c, args.design)
     if args.faults and args.design != "gyro":
         raise ValueError(f"--faults needs --design gyro (got {args.design!r}): the faults are those of the gyro "
@@ -176,7 +176,7 @@ def _run(args: argparse.Namespace) -> int:
     speeds = parse_speeds(args.speeds, increasing=True, max_count=50)
     weights, drive, gyro = _options(args)
     c = load_chair(args.chair, args.set)
-    with output_files({"--json-file": args.json_file, "--pdf": args.pdf}) as tmp:
+    with output_files({"--json-file": args.json_file, "-o": args.output}) as tmp:
         return _work(args, c, speeds, weights, drive, gyro, tmp)
 
 
@@ -206,7 +206,7 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
                 fh.write(text)
         if args.json:
             sys.stdout.write(text)
-            if not args.pdf:
+            if not args.output:
                 return 0
     print(format_table(sched, rows))
     print(f"\nMargins at the plant input, continuous / sampled at {sched.gyro.sample_rate_hz:g} Hz (ZOH, one-sample "
@@ -256,11 +256,11 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
             mt = minimum_torque_limit(sched, s_)
             print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
                   f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
-    if args.pdf:
-        _write_pdf(sched, rows, rob, runs, tmp["--pdf"], [h for h in holds if isinstance(h, SlopeHold)], safety)
-    for option in ("--json-file", "--pdf"):
+    if args.output:
+        _write_pdf(sched, rows, rob, runs, tmp["-o"], [h for h in holds if isinstance(h, SlopeHold)], safety)
+    for option, path in (("--json-file", args.json_file), ("-o", args.output)):
         if option in tmp:
-            print(f"wrote {getattr(args, option[2:].replace('-', '_'))}", file=sys.stderr if args.json else sys.stdout)
+            print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 

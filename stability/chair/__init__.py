@@ -21,7 +21,7 @@ Examples
 
 from __future__ import annotations
 
-from .io import dumps, from_mapping, load, parse_assignment, resolve, save, to_mapping
+from .io import GROUPS, dumps, from_mapping, load, parse_assignment, parse_assignments, resolve, save, to_mapping
 from .model import LIMITS, Chair, field_names, valid_range
 from .presets import POWER_FWD_FIELDS, all_preset_names, preset, preset_names
 
@@ -41,4 +41,6 @@ __all__ = [
     "to_mapping",
     "resolve",
     "parse_assignment",
+    "parse_assignments",
+    "GROUPS",
 ]

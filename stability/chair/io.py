@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import os
+import re
 import sys
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import fields
 from typing import Any
 
@@ -18,7 +19,8 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["to_mapping", "from_mapping", "dumps", "save", "load", "resolve", "parse_assignment"]
+__all__ = ["to_mapping", "from_mapping", "dumps", "save", "load", "resolve", "parse_assignment", "parse_assignments",
+           "GROUPS"]
 
 
 def to_mapping(c: Chair) -> dict[str, Any]:
@@ -176,6 +178,44 @@ def resolve(spec: str) -> Chair:
     raise ValueError(f"unknown chair {spec!r}: not a preset {list(all_preset_names())} nor a TOML file")
 
 
+#: ``--set`` names that set a left/right pair at once (a symmetric chair): group -> fields.
+GROUPS: dict[str, tuple[str, ...]] = {"pin_friction": ("pin_friction_left", "pin_friction_right"),
+                                      "d": ("d1", "d2"), "t": ("t1", "t2")}
+
+
+def parse_assignments(texts: Sequence[str]) -> dict[str, Any]:
+    """Parse ``--set`` options, in order, into field -> value; a group name sets both of its fields.
+
+    Parameters
+    ----------
+    texts : sequence of str
+        Each ``NAME=VALUE`` (:func:`parse_assignment`) or ``GROUP=VALUE`` with
+        GROUP a key of :data:`GROUPS` (``pin_friction=0.2`` sets
+        ``pin_friction_left`` and ``pin_friction_right``; ``d=0.27`` sets
+        ``d1`` and ``d2``; ``t=0.2`` sets ``t1`` and ``t2``).  Later ones win.
+
+    Returns
+    -------
+    dict
+        Field name -> typed value.
+
+    Examples
+    --------
+    >>> parse_assignments(["pin_friction=0.2", "trail=5cm"])
+    {'pin_friction_left': 0.2, 'pin_friction_right': 0.2, 'trail': 0.05}
+    """
+    out: dict[str, Any] = {}
+    for text in texts:
+        name = text.split("=", 1)[0].strip()
+        if name in GROUPS:
+            _, value = parse_assignment(text.replace(name, GROUPS[name][0], 1))
+            out.update(dict.fromkeys(GROUPS[name], value))
+        else:
+            key, value = parse_assignment(text)
+            out[key] = value
+    return out
+
+
 def parse_assignment(text: str) -> tuple[str, Any]:
     """Parse ``NAME=VALUE`` (a ``--set`` option) into a field name and typed value.
 
@@ -185,7 +225,10 @@ def parse_assignment(text: str) -> tuple[str, Any]:
         ``NAME=VALUE``; NAME a :class:`Chair` field. VALUE is kept as text for
         ``name``, ``caster_position``, ``main_tire`` and ``caster_tire``;
         ``camber_coefficient`` also accepts ``none``, ``tire`` or empty (-> ``None``);
-        every other field needs a number in the field's SI unit.
+        every other field needs a number, in the field's SI unit or with a unit
+        the measurement sheet knows (``trail=5cm``, ``m=95kg``, ``m=210 lb``,
+        ``pin_friction_left=0.1 ft lbf``; :func:`stability.measure.units.quantity`),
+        converted to the field's unit.
 
     Returns
     -------
@@ -202,7 +245,8 @@ def parse_assignment(text: str) -> tuple[str, Any]:
     name, raw = (s.strip() for s in text.split("=", 1))
     kinds = {f.name: f for f in fields(Chair)}
     if name not in kinds:
-        raise ValueError(f"unknown chair parameter {name!r}; valid names: {field_names()}")
+        raise ValueError(f"unknown chair parameter {name!r}; valid names: {field_names()} and the pairs "
+                         + ", ".join(f"{g} ({' and '.join(f)})" for g, f in GROUPS.items()))
     if name in ("name", "caster_position", "main_tire", "caster_tire"):
         return name, raw
     if name == "camber_coefficient" and raw.lower() in ("none", "tire", ""):
@@ -210,5 +254,28 @@ def parse_assignment(text: str) -> tuple[str, Any]:
     try:
         value = float(raw)
     except ValueError:
-        raise ValueError(f"chair parameter {name} needs a number, got {raw!r}") from None
+        value = _with_unit(name, raw, kinds[name].metadata["unit"])
     return name, value
+
+
+_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.+?)\s*$")
+
+
+def _with_unit(name: str, raw: str, field_unit: str) -> float:
+    """``raw`` = number and unit (``5cm``), converted to ``field_unit``; one-line ValueError otherwise."""
+    from ..measure.units import parse_unit  # deferred: measure imports chair
+
+    m = _NUMBER_UNIT.match(raw)
+    bad = (f"chair parameter {name} needs a number in {field_unit} or a number with a unit of the same kind "
+           f"(e.g. {name}=5cm), got {raw!r}")
+    if not m:
+        raise ValueError(bad)
+    try:
+        factor, dims = parse_unit(m.group(2))
+        field_factor, field_dims = parse_unit("1" if field_unit == "-" else field_unit)
+    except ValueError as exc:
+        raise ValueError(f"{bad}: {exc}") from None
+    if dims != field_dims:
+        raise ValueError(f"chair parameter {name} is in {field_unit}; {m.group(2)!r} is not a unit of that kind "
+                         f"(got {raw!r})")
+    return float(m.group(1)) * factor / field_factor

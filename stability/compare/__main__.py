@@ -12,7 +12,7 @@ Examples
 
     python -m stability.compare ej-premier revised ej-premier-front-caster
     python -m stability.compare ej-premier ej-premier --set 2:trail=0.06 --json
-    python -m stability.compare mine.toml revised --uncertainty mine.unc.toml --uncertainty - --pdf cmp.pdf
+    python -m stability.compare mine.toml revised --uncertainty mine.unc.toml --uncertainty - -o cmp.pdf
 """
 
 from __future__ import annotations
@@ -27,6 +27,7 @@ from ..cli import (
     OneLineErrorParser,
     add_json_options,
     add_model_option,
+    add_output_option,
     check_outputs,
     emit_json,
     json_header,
@@ -67,7 +68,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--nonlinear", action="store_true",
                    help="also the critical impulse by simulation (slower; states the push convention)")
     add_json_options(p)
-    p.add_argument("--pdf", metavar="FILE", help="write the figures to a PDF")
+    add_output_option(p, ("pdf",), what="the figures (a PDF, one figure a page)", aliases=("--pdf",))
     return p
 
 
@@ -105,7 +106,7 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError(f"CHAIR: {len(args.chairs)} given ({args.chairs[0]!r}); valid: at least two chairs")
     inputs = {f"CHAIR {i + 1}": s for i, s in enumerate(args.chairs)}
     inputs.update({f"--uncertainty {i + 1}": f for i, f in enumerate(args.uncertainty) if f != "-"})
-    check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, inputs)
+    check_outputs({"--json-file": args.json_file, "-o": args.output}, inputs)
     if args.uncertainty and len(args.uncertainty) != len(args.chairs):
         raise ValueError(f"--uncertainty given {len(args.uncertainty)} times for {len(args.chairs)} chairs; "
                          "valid: once per chair in order ('-' for a chair without one)")
@@ -121,13 +122,13 @@ def _run(args: argparse.Namespace) -> int:
     result = compare(chairs, labels=unique_labels(names), model=args.model, speeds=speeds.tolist(),
                      max_speed=args.max_speed, uncertainties=uncs, samples=args.samples, seed=args.seed,
                      level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)
-    if args.pdf:
+    if args.output:
         from ..output import write_pdf  # matplotlib is imported only when a PDF is asked for
         from .plots import comparison_figures
 
-        write_pdf(comparison_figures(result), args.pdf, title=f"stability compare: {' vs '.join(result.labels)}",
+        write_pdf(comparison_figures(result), args.output, title=f"stability compare: {' vs '.join(result.labels)}",
                   close=False)
-        print(f"wrote {args.pdf}", file=sys.stderr)
+        print(f"wrote {args.output}", file=sys.stderr)
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed, "set": args.set,
                    "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,

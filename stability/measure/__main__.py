@@ -21,8 +21,9 @@ import os
 import sys
 from collections.abc import Sequence
 
+from .. import __version__
 from .. import chair as chair_mod
-from ..cli import OneLineErrorParser, check_directory, run
+from ..cli import OneLineErrorParser, add_json_options, check_directory, check_outputs, emit_json, run
 from ..output import atomic_path
 from .sheet import load_sheet, provenance_comment
 
@@ -34,8 +35,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.measure", description=__doc__.splitlines()[0])
     p.add_argument("sheet", help="measurement sheet (TOML; see docs/measure.md)")
     p.add_argument("-o", "--output", required=True, metavar="CHAIR.toml", help="chair file to write")
-    p.add_argument("--uncertainty-file", metavar="U.toml",
+    p.add_argument("--uncertainty", metavar="U.toml", dest="uncertainty_file",
                    help="uncertainty file to write (default: CHAIR.uncertainty.toml beside the chair file)")
+    p.add_argument("--uncertainty-file", dest="uncertainty_file", help=argparse.SUPPRESS)   # deprecated spelling
+    add_json_options(p)
     return p
 
 
@@ -48,10 +51,11 @@ def default_uncertainty_path(chair_path: str) -> str:
 def _run(args: argparse.Namespace) -> int:
     unc_path = args.uncertainty_file or default_uncertainty_path(args.output)
     check_directory(args.output, "-o")
-    check_directory(unc_path, "--uncertainty-file")
+    check_directory(unc_path, "--uncertainty")
+    check_outputs({"--json-file": args.json_file}, {"sheet": args.sheet, "-o": args.output, "--uncertainty": unc_path})
     paths = [os.path.abspath(p) for p in (args.sheet, args.output, unc_path)]
     if len(set(paths)) < 3:
-        raise ValueError(f"-o {args.output!r} and --uncertainty-file {unc_path!r} must differ from each other "
+        raise ValueError(f"-o {args.output!r} and --uncertainty {unc_path!r} must differ from each other "
                          f"and from the sheet {args.sheet!r}")
     result = load_sheet(args.sheet)
     source = os.path.basename(args.sheet)
@@ -65,12 +69,24 @@ def _run(args: argparse.Namespace) -> int:
         for tmp, text in ((tmp_chair, chair_text), (tmp_unc, unc_text)):
             with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
                 fh.write(text)
-    print(f"wrote {args.output}: chair {result.chair.name!r} from {source}")
+    if args.json or args.json_file:
+        emit_json({"stability_version": __version__, "sheet": args.sheet, "chair_file": args.output,
+                   "uncertainty_file": unc_path, "chair": result.chair.name,
+                   "chair_parameters": chair_mod.to_mapping(result.chair),
+                   "fields": [{"field": r.field, "value": float(r.value), "std": float(r.std),
+                               "readings": len(r.readings)} for r in result.provenance],
+                   "notes": [str(n) for n in result.notes],
+                   "uncertain_parameters": len(result.uncertainty.distributions)}, args)
+        if args.json:
+            return 0
+    out = sys.stderr if args.json else sys.stdout
+    print(f"wrote {args.output}: chair {result.chair.name!r} from {source}", file=out)
     for row in result.provenance:
-        print(f"  {row.field:<20s} {row.value:10.4g} +- {row.std:<8.2g} ({len(row.readings)} readings)")
+        n = len(row.readings)
+        print(f"  {row.field:<20s} {row.value:10.4g} +- {row.std:<8.2g} ({n} reading{'' if n == 1 else 's'})", file=out)
     for note in result.notes:
-        print(f"  note: {note}")
-    print(f"wrote {unc_path}: {len(result.uncertainty.distributions)} uncertain parameters")
+        print(f"  note: {note}", file=out)
+    print(f"wrote {unc_path}: {len(result.uncertainty.distributions)} uncertain parameters", file=out)
     return 0
 
 

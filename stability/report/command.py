@@ -6,7 +6,16 @@ import argparse
 from collections.abc import Sequence
 
 from .. import defaults as D
-from ..cli import OneLineErrorParser, add_chair_options, add_model_option, check_outputs, load_chair, output_files, run
+from ..cli import (
+    OneLineErrorParser,
+    add_chair_options,
+    add_model_option,
+    add_output_option,
+    check_outputs,
+    load_chair,
+    output_files,
+    run,
+)
 from ..linear.intervals import MAX_SAMPLES
 from ..measure.uncertainty import load_uncertainty
 from . import document
@@ -40,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--compare", metavar="BASELINE",
                    help="compare with a baseline chair (a preset or a TOML chair file): its geometry overlaid and "
                         "a side-by-side table of the key numbers, computed the same way")
-    p.add_argument("-o", "--output", required=True, metavar="FILE.pdf", help="output PDF")
+    add_output_option(p, ("pdf",), what="the report (a PDF)", required=True, metavar="FILE.pdf")
     return p
 
 
@@ -63,8 +72,6 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _run(args: argparse.Namespace) -> int:
     check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair, "--uncertainty": args.uncertainty,
                                                            "--compare": args.compare})
-    if not args.output.lower().endswith(".pdf"):
-        raise ValueError(f"-o {args.output!r} must end in .pdf")
     if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
         raise ValueError("--samples and --seed need --uncertainty FILE")
     spec = None

@@ -24,10 +24,9 @@ def build_parser() -> cli.OneLineErrorParser:
     p.add_argument("--lateral-stiffness", type=float, default=None, help="frame lateral stiffness at the pin (N/m)")
     p.add_argument("--amplitude-deg", type=float, default=D.SHIMMY_AMPLITUDE_DEG,
                    help=f"shimmy amplitude for the friction estimate, deg (default {D.SHIMMY_AMPLITUDE_DEG:g})")
-    out = p.add_mutually_exclusive_group()
-    out.add_argument("--json", action="store_true", help="print JSON to stdout")
-    out.add_argument("--json-file", metavar="FILE", help="write JSON to FILE (atomically)")
-    p.add_argument("--pdf", metavar="FILE", help="write the trail x speed design chart to FILE")
+    cli.add_json_options(p)
+    cli.add_output_option(p, ("pdf",), what="the trail x speed design chart and the friction needed (a PDF, "
+                          "one figure a page)", aliases=("--pdf",))
     p.add_argument("--chair-model", action="store_true",
                    help="also give the shimmy mode of the full chair model with relaxation-length caster tires "
                         "(rigid and compliant pins)")
@@ -40,7 +39,7 @@ def _fmt(x: float, scale: float = 1.0, spec: str = ".1f") -> str:
 
 def _body(args) -> int:
     chair = cli.load_chair(args.chair, args.set)
-    cli.check_outputs({"--json-file": args.json_file, "--pdf": args.pdf}, {"--chair": args.chair})
+    cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
     speeds = cli.parse_speeds(args.speeds)
     comp = CasterCompliance()
     for name in ("relaxation_length", "lateral_stiffness"):
@@ -56,7 +55,7 @@ def _body(args) -> int:
     band = shimmy_band(chair, speeds, comp)
     modes = {pin: chair_shimmy(chair, speeds, comp, pin=pin) for pin in ("rigid", "compliant")} \
         if args.chair_model else {}
-    outputs = {"--json-file": args.json_file, "--pdf": args.pdf}
+    outputs = {"--json-file": args.json_file, "-o": args.output}
     with cli.output_files(outputs) as tmp:
         if args.json or args.json_file:
             mapping = s.to_mapping()
@@ -90,7 +89,7 @@ def _body(args) -> int:
             _print_band(band)
             for pin, m in modes.items():
                 _print_chair_model(pin, m)
-        if args.pdf:
+        if args.output:
             from ..output import _pyplot, write_pdf
             from .plots import plot_friction_needed, plot_trail_chart
 
@@ -100,7 +99,7 @@ def _body(args) -> int:
             plot_trail_chart(chart, ax1)
             fig2, ax2 = plt.subplots(figsize=(8, 5))
             plot_friction_needed(chart, ax2, trails_cm=[3, 4, 5, 6, 8])
-            write_pdf([fig1, fig2], tmp["--pdf"], title=f"caster shimmy: {chair.name}")
+            write_pdf([fig1, fig2], tmp["-o"], title=f"caster shimmy: {chair.name}")
     for path in outputs.values():
         if path:
             print(f"wrote {path}", file=sys.stderr)

@@ -8,10 +8,12 @@ from collections.abc import Sequence
 
 from .. import defaults as DF
 from ..cli import (
+    FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
     add_json_options,
     add_model_option,
+    add_output_option,
     check_outputs,
     check_work,
     emit_json,
@@ -23,6 +25,7 @@ from ..cli import (
 from ..reference import THESIS_PUSH
 from .api import simulate
 from .options import DEFAULTS as D
+from .options import OUT_OF_RANGE_POLICIES
 from .plot import plot_result
 
 __all__ = ["main", "build_parser"]
@@ -53,12 +56,13 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--dt", type=float, default=D.dt, help=f"wchair time step, s (default {D.dt:g})")
     ap.add_argument("--sample", type=float, default=None, help="output interval of --json/--csv, s")
     ap.add_argument("--no-stop", action="store_true", help="do not stop at the eleventh warning")
-    ap.add_argument("--out-of-range", default=D.out_of_range,
-                    help=f"clamp, extrapolate or raise (default {D.out_of_range})")
+    # deprecated: the simulator's tire policy now follows --tire-range (warn and clamp: clamp the fits at the data's
+    # edge and count the warnings, as program WCHAIR; raise: stop at the first tire input outside the data)
+    ap.add_argument("--out-of-range", default=None, choices=OUT_OF_RANGE_POLICIES, help=argparse.SUPPRESS)
     ap.add_argument("--rtol", type=float, default=D.rtol, help="adaptive scheme relative tolerance")
     ap.add_argument("--atol", type=float, default=D.atol, help="adaptive scheme absolute tolerance")
     ap.add_argument("--csv", metavar="FILE", help="write the time histories to a CSV file")
-    ap.add_argument("--plot", metavar="FILE", help="write a plot (pdf, png, svg)")
+    add_output_option(ap, FIGURE_FORMATS, what="a plot of the run", aliases=("--plot",))
     add_json_options(ap)
     return ap
 
@@ -87,8 +91,15 @@ def _check_options(args: argparse.Namespace) -> None:
                          f"0 <= DURATION <= --duration ({args.duration:g} s)")
 
 
+def _sim_policy(args: argparse.Namespace) -> str:
+    """The simulator's tire policy from ``--tire-range`` (or the deprecated ``--out-of-range``)."""
+    if args.out_of_range is not None:
+        return str(args.out_of_range)
+    return "raise" if args.tire_range == "raise" else D.out_of_range
+
+
 def _run_cli(args: argparse.Namespace) -> int:
-    outputs = {"--csv": args.csv, "--plot": args.plot, "--json-file": args.json_file}
+    outputs = {"--csv": args.csv, "-o": args.output, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair})
     _check_options(args)
     c = load_chair(args.chair, args.set)
@@ -96,27 +107,28 @@ def _run_cli(args: argparse.Namespace) -> int:
                    impulse_force=args.impulse[0], impulse_duration=args.impulse[1],
                    tire_impulse=args.tire_impulse, lateral_velocity=args.lateral_velocity,
                    eta0_deg=args.eta0, beta0_deg=args.beta0, casters=args.casters,
-                   stop_on_warnings=False if args.no_stop else None, out_of_range=args.out_of_range,
+                   stop_on_warnings=False if args.no_stop else None, out_of_range=_sim_policy(args),
                    rtol=args.rtol, atol=args.atol, slope=(args.cross_slope, args.grade))
     times = {str(v): res.first_time_abs_yaw_rate(v) for v in (0.5, 1.0)}
     out = res.resample(args.sample) if args.sample is not None else res
     options = {k: getattr(args, k) for k in ("speed", "impulse", "tire_impulse", "lateral_velocity", "eta0",
                                              "beta0", "scheme", "casters", "duration", "dt", "sample",
-                                             "no_stop", "out_of_range", "rtol", "atol")}
+                                             "no_stop", "rtol", "atol")}
+    options["out_of_range"] = _sim_policy(args)
     if (args.cross_slope, args.grade) != (0.0, 0.0):   # level runs keep today's JSON
         options.update(cross_slope=args.cross_slope, grade=args.grade)
-    with output_files({"--csv": args.csv, "--plot": args.plot}) as tmp:
+    with output_files({"--csv": args.csv, "-o": args.output}) as tmp:
         if args.csv:
             out.to_csv(tmp["--csv"])
-        if args.plot:
-            plot_result(res, tmp["--plot"])
+        if args.output:
+            plot_result(res, tmp["-o"])
     if args.json or args.json_file:
         d = {**json_header(c, args.model, options), **out.to_dict()}
         d["first_time_abs_yaw_rate_s"] = times
         emit_json(d, args)
     if not args.json:
         print(res.summary())
-        for path in (args.csv, args.plot):
+        for path in (args.csv, args.output):
             if path:
                 print(f"wrote {path}")
     return 0

@@ -7,7 +7,16 @@ import math
 from collections.abc import Sequence
 
 from .. import defaults as D
-from ..cli import OneLineErrorParser, add_chair_options, check_outputs, emit_json, json_header, load_chair, run
+from ..cli import (
+    OneLineErrorParser,
+    add_chair_options,
+    add_json_options,
+    check_outputs,
+    emit_json,
+    json_header,
+    load_chair,
+    run,
+)
 from .equilibrium import HandRim, drive_report, solve
 from .uncorrected import simulator_path, uncorrected_path
 
@@ -28,9 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help=f"hand-rim drive: wheel radius (m, default {D.HANDRIM_WHEEL_RADIUS:g})")
     p.add_argument("--handrim-radius", type=float, default=D.HANDRIM_RADIUS,
                    help=f"hand-rim radius (m, default {D.HANDRIM_RADIUS:g})")
-    out = p.add_mutually_exclusive_group()
-    out.add_argument("--json", action="store_true", help="print JSON to stdout")
-    out.add_argument("--json-file", metavar="F", help="write JSON to F (atomically)")
+    add_json_options(p)
     return p
 
 
