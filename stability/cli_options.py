@@ -19,7 +19,7 @@ from . import chair as chair_mod
 from . import defaults, tires
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
-           "subparsers", "add_output_option", "check_format", "add_uncertainty_option", "FIGURE_FORMATS"]
+           "subparsers", "schema_name", "add_output_option", "check_format", "add_uncertainty_option", "FIGURE_FORMATS"]
 
 _NEGATIVE = re.compile(r"^-(\d|\.\d)")
 
@@ -151,8 +151,31 @@ def add_json_options(parser: argparse.ArgumentParser) -> None:
     parser : argparse.ArgumentParser
         The command's parser.
     """
-    parser.add_argument("--json", action="store_true", help="print the results as JSON on standard output")
-    parser.add_argument("--json-file", metavar="FILE", help="write the results as JSON to FILE")
+    name = schema_name(parser.prog)
+    where = f"; its JSON Schema: stability/schemas/{name}.json (stability.schemas.schema({name!r}))"
+    parser.add_argument("--json", action="store_true",
+                        help="print the results as JSON on standard output (an object: keys snake_case with the "
+                             f"unit last, arrays over speeds next to speeds_m_s{where})")
+    parser.add_argument("--json-file", metavar="FILE",
+                        help="write the same JSON to FILE (atomically; with --json too if both are given)")
+
+
+def schema_name(prog: str) -> str:
+    """The JSON Schema name of a command from its parser's ``prog`` (``python -m stability.study critical-impulse``
+    -> ``study_critical_impulse``).
+
+    Parameters
+    ----------
+    prog : str
+        The parser's ``prog``.
+
+    Returns
+    -------
+    str
+    """
+    words = prog.split()
+    tail = words[words.index("-m") + 1:] if "-m" in words else words[1:]
+    return "_".join(w.replace("stability.", "").replace("-", "_") for w in tail)
 
 
 #: Figure formats matplotlib writes from a file suffix; multi-page outputs are PDF only.

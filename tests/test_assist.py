@@ -284,7 +284,7 @@ def test_cli_json_rows(tmp_path, capsys):
     rows = data["rows"]
     assert [r["speed_m_s"] for r in rows] == [1.0, 2.0, 3.0]
     for r in rows:
-        assert {"speed_m_s", "gains", "closed_loop_poles", "stable", "peak_torque_Nm",
+        assert {"speed_m_s", "gains", "closed_loop_poles", "stable", "peak_torque_N_m",
                 "peak_heading_error_deg"} <= set(r)
         assert r["stable"] is True and len(r["gains"]) == len(r["gain_states"]) == 8
         assert r["gain_states"][-1] == "mz"        # the motor lag is in the design model

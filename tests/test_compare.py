@@ -147,8 +147,10 @@ def test_cli_json_keys(capsys, tmp_path):
         assert key in data
     assert [c["label"] for c in data["chairs"]] == ["ej-premier", "revised"]
     assert data["chairs"][1]["parameters"]["s1"] == 0.245
-    assert data["measures"]["locked_critical_speed_m_s"]["chairs"]["revised"]["value"] > 13
-    assert {v["measure"] for v in data["verdicts"]} >= {"growth_rate_1_s@0.75", "locked_critical_speed_m_s"}
+    locked = next(m for m in data["measures"] if m["measure"] == "locked_critical_speed_m_s")
+    assert locked["speed_m_s"] is None and locked["chairs"][1]["chair"] == "revised" and locked["chairs"][1]["value"] > 13
+    assert {(v["measure"], v["speed_m_s"]) for v in data["verdicts"]} >= {("growth_rate_1_s", 0.75),
+                                                                            ("locked_critical_speed_m_s", None)}
     assert [e["field"] for e in data["single_effects"][0]["effects"]] == ["s1", "s2", "trail"]
 
 

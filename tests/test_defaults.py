@@ -41,7 +41,7 @@ COMMAND_ONLY = {
     "assist": {"max_yaw_rate"},
 }
 #: Defaults that are not values (empty lists, False flags, None) are not compared.
-IGNORED_DESTS = {"help", "set", "debug", "quiet", "command"}
+IGNORED_DESTS = {"help", "set", "debug", "quiet", "command", "output_formats"}
 
 
 def _cases():

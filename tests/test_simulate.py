@@ -518,7 +518,7 @@ def test_result_is_frozen_and_resamples():
     assert q.fy.shape == (11, 4) and q.pin_moment.shape == (11, 2)
     d = r.to_dict()
     json.dumps(d, allow_nan=False)
-    assert d["t"][-1] == pytest.approx(0.501)
+    assert d["t_s"][-1] == pytest.approx(0.501)
 
 
 def test_to_csv_and_plot(tmp_path):
@@ -565,14 +565,14 @@ def test_cli_json(tmp_path):
              "--model", "thesis", "--sample", "0.1", "--json", "--csv", str(tmp_path / "a.csv"), "--plot", str(tmp_path / "a.pdf"))
     assert p.returncode == 0, p.stderr
     d = json.loads(p.stdout)
-    for key in ("t", "yaw_rate", "heading", "x", "y", "stopped_by_warnings", "warnings", "first_time_abs_yaw_rate_s"):
+    for key in ("t_s", "yaw_rate_rad_s", "heading_rad", "x_m", "y_m", "fy_caster_left_N", "slip_main_right_deg",
+                "stopped_by_warnings", "warnings", "yaw_rate_levels_rad_s", "first_time_at_level_s"):
         assert key in d
     assert d["stopped_by_warnings"] is True and d["warnings"]["slip"]["count"] == 11   # at about 3.64 s
-    np.testing.assert_allclose(d["t"], np.arange(len(d["t"])) * 0.1, atol=1e-12)
-    assert 3.5 <= d["t"][-1] < 3.7 and len(d["yaw_rate"]) == len(d["t"])
-    assert set(d["first_time_abs_yaw_rate_s"]) == {"0.5", "1.0"}
-    assert d["first_time_abs_yaw_rate_s"]["1.0"] == pytest.approx(
-        simulate(EJ, 0.75, duration=4).first_time_abs_yaw_rate(1.0))
+    np.testing.assert_allclose(d["t_s"], np.arange(len(d["t_s"])) * 0.1, atol=1e-12)
+    assert 3.5 <= d["t_s"][-1] < 3.7 and len(d["yaw_rate_rad_s"]) == len(d["t_s"])
+    assert d["yaw_rate_levels_rad_s"] == [0.5, 1.0]
+    assert d["first_time_at_level_s"][1] == pytest.approx(simulate(EJ, 0.75, duration=4).first_time_abs_yaw_rate(1.0))
     assert (tmp_path / "a.csv").exists() and (tmp_path / "a.pdf").exists()
 
 

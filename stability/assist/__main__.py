@@ -7,6 +7,7 @@ import json
 import math
 import sys
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -190,15 +191,26 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     safety = run_safety(sched, rows, seed=args.seed) if args.faults else None
     fw_json.update(safety.to_dict() if safety else {})
     fw_text += safety.format() if safety else ""
+    rob = robustness(sched)
+    checks = None if args.no_check else _nonlinear_checks(sched, args.seed)
     if args.json or args.json_file:
-        options = {k: getattr(args, k) for k in ("speeds", "design", "max_heading_error", "max_yaw_rate",
-                                                 "torque_limit", "torque_budget", "wheel_radius", "gyro_noise",
-                                                 "gyro_bias", "sample_rate", "seed", "no_check", "reverse",
-                                                 "motor_lag", "bias_time_constant", "export_c", "q_format",
-                                                 "faults")}
+        options = {"speeds_m_s": [float(s) for s in speeds], "design": args.design,
+                   "max_heading_error_deg": args.max_heading_error, "max_yaw_rate_deg_s": args.max_yaw_rate,
+                   "torque_limit_N_m": args.torque_limit, "torque_budget_N_m": args.torque_budget,
+                   "wheel_radius_m": args.wheel_radius, "gyro_noise_deg_s_rthz": args.gyro_noise,
+                   "gyro_bias_deg_s": args.gyro_bias, "sample_rate_hz": args.sample_rate, "seed": args.seed,
+                   "no_check": args.no_check, "reverse": args.reverse, "motor_lag_s": args.motor_lag,
+                   "bias_time_constant_s": args.bias_time_constant, "export_c": args.export_c,
+                   "q_format": args.q_format, "faults": args.faults}
+        w = rob.worst
         data = {**json_header(c, args.model, options), "rows": [r.to_dict() for r in rows],
                 "reverse": [r.to_dict() for r in rev],
+                "robustness": {"box_fraction": rob.box, "stable": bool(rob.stable),
+                               "worst_max_real_1_s": float(w.max_real_1_s), "worst_speed_m_s": float(w.speed_m_s),
+                               "worst_corner": w.describe()},
                 "cross_slope": [h.to_dict() if isinstance(h, SlopeHold) else h for h in holds],
+                **(checks.to_dict() if checks else {"recovery": [], "figure_9_4": [], "torque_requirement": None,
+                                                    "decay": []}),
                 **fw_json}
         text = json.dumps(data, indent=2) + "\n"
         if args.json_file:
@@ -217,35 +229,32 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
         print("\nReversing (the chair as seen in the direction of travel), open loop: "
               + "; ".join(f"{r.speed_m_s:g} m/s {'stable' if r.stable else 'UNSTABLE'} ({r.max_real_1_s:.3f} 1/s)"
                           for r in rev))
-    rob = robustness(sched)
     w = rob.worst
     print(f"\nRobustness, +/-{rob.box:.0%} in mass, yaw inertia, main and caster cornering stiffness (16 corners x "
           f"{len(sched.speeds)} speeds): {'all stable' if rob.stable else 'UNSTABLE corners'}; worst largest real part "
           f"{w.max_real_1_s:.4f} 1/s at {w.speed_m_s:g} m/s, corner " + w.describe())
     runs = None
-    if not args.no_check:
-        runs = recovery_runs(sched, seed=args.seed)
+    if checks is not None:
+        runs = checks.runs
         print("\nNonlinear recovery (10 s, WCHAIR scheme, exact model, pin friction, torque limit"
               + (", gyro noise and bias" if sched.kind == "gyro" else "") + "): closed loop vs open loop")
         print(format_recovery(runs))
         print("\nFigure 9-4 criterion, open loop (destabilising moment of the tire forces vs the motors' "
               f"{sched.drive.max_yaw_moment(sched.chair):.0f} N m):")
-        for closed, opened in runs:
-            if opened is not None:
-                d_ = destabilising_summary(opened.result, sched.drive, sched.chair)
-                print(f"  {closed.speed:g} m/s, {closed.impulse_force:g} N: peak {d_.peak_moment_Nm:.0f} N m "
-                      f"({d_.fraction_of_capacity:.0%}) up to {d_.valid_until_s:.2f} s (heading "
-                      f"{d_.heading_at_end_deg:.0f} deg; a slip angle reaches 8 deg or the heading 90 deg)"
-                      + ("" if d_.exceeds_capacity_at_s is None else
-                         f"; exceeds the motors at {d_.exceeds_capacity_at_s:.2f} s"))
+        for closed, d_ in checks.figure_9_4:
+            print(f"  {closed.speed:g} m/s, {closed.impulse_force:g} N: peak {d_.peak_moment_Nm:.0f} N m "
+                  f"({d_.fraction_of_capacity:.0%}) up to {d_.valid_until_s:.2f} s (heading "
+                  f"{d_.heading_at_end_deg:.0f} deg; a slip angle reaches 8 deg or the heading 90 deg)"
+                  + ("" if d_.exceeds_capacity_at_s is None else
+                     f"; exceeds the motors at {d_.exceeds_capacity_at_s:.2f} s"))
         print("\nTorque requirement (differential torque per wheel, nonlinear loop, noise-free): reference push "
               f"recovery (2 s) and yaw-rate step (3 s); motor limit {sched.drive.torque_limit:g} N m, traction limit "
-              f"mu N r = {traction_limit(sched):.0f} N m (mu = {sched.drive.traction_coefficient:g}, static load)")
-        for t_ in torque_requirement(sched):
+              f"mu N r = {checks.traction_limit_N_m:.0f} N m (mu = {sched.drive.traction_coefficient:g}, static load)")
+        for t_ in checks.torque:
             print(f"  {t_.speed_m_s:g} m/s: push peak {t_.push_peak_N_m:.1f} / RMS {t_.push_rms_N_m:.1f} N m; "
                   f"turn peak {t_.turn_peak_N_m:.1f} / RMS {t_.turn_rms_N_m:.1f} N m, steady turn "
                   f"{t_.steady_turn_N_m:.1f} N m")
-        agree = [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)]
+        agree = checks.decay
         print("\nLinear vs nonlinear decay (4 N x 0.1 s, pin friction off, 1 kHz): "
               + "; ".join(f"{a.speed_m_s:g} m/s: predicted {a.predicted_1_s:.3f}, fitted "
                           f"{a.fitted_1_s:.3f} 1/s ({a.relative_error:.2%})" for a in agree))
@@ -270,6 +279,36 @@ def _firmware(args: argparse.Namespace, sched: Schedule) -> tuple[dict, str]:
         return {}, ""
     report = run_export(sched, args.export_c, args.q_format, seed=args.seed)
     return {"firmware": report.to_dict()}, "\n" + report.format() + "\n"
+
+
+@dataclass(frozen=True)
+class _Checks:
+    """The nonlinear checks the text prints, computed once for the text and the JSON."""
+
+    runs: list
+    figure_9_4: list
+    torque: list
+    traction_limit_N_m: float
+    decay: list
+
+    def to_dict(self) -> dict:
+        return {
+            "recovery": [pair.to_dict() for pair in self.runs],
+            "figure_9_4": [{"speed_m_s": closed.speed, "impulse_N": closed.impulse_force, **d.to_dict()}
+                           for closed, d in self.figure_9_4],
+            "torque_requirement": {"traction_limit_N_m": self.traction_limit_N_m,
+                                   "rows": [t.to_dict() for t in self.torque]},
+            "decay": [{"speed_m_s": a.speed_m_s, "predicted_1_s": a.predicted_1_s, "fitted_1_s": a.fitted_1_s,
+                       "relative_error": a.relative_error} for a in self.decay],
+        }
+
+
+def _nonlinear_checks(sched: Schedule, seed: int) -> _Checks:
+    runs = recovery_runs(sched, seed=seed)
+    fig = [(closed, destabilising_summary(opened.result, sched.drive, sched.chair))
+           for closed, opened in runs if opened is not None]
+    return _Checks(runs, fig, torque_requirement(sched), traction_limit(sched),
+                   [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)])
 
 
 def _slope_holds(sched: Schedule) -> list[SlopeHold | dict]:

@@ -116,8 +116,8 @@ class DestabilisingSummary:
     exceeds_capacity_at_s: float | None
 
     def to_dict(self) -> dict[str, float | None]:
-        """JSON-ready dict."""
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+        """JSON-ready dict (keys with their units: ``peak_moment_N_m``, ``motor_capacity_N_m``)."""
+        return {k.replace("_Nm", "_N_m"): getattr(self, k) for k in self.__dataclass_fields__}
 
 
 def destabilising_summary(res: Any, drive: DriveTrain, chair: Chair) -> DestabilisingSummary:

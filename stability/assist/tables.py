@@ -107,7 +107,7 @@ class GainRow:
             "loop_margins": self.margins.to_dict(),
             "margins": self.margin_pair.to_dict(),
             "tracking": None if self.tracking is None else self.tracking.to_dict(),
-            "peak_torque_Nm": self.peak_torque_Nm,
+            "peak_torque_N_m": self.peak_torque_Nm,
             "peak_heading_error_deg": self.peak_heading_error_deg,
             "settle_time_s": self.settle_time_s,
         }

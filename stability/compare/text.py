@@ -128,6 +128,12 @@ def _finite(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
+def _measure(key: str) -> dict[str, Any]:
+    """``"growth_rate_1_s@0.25"`` -> ``{"measure": "growth_rate_1_s", "speed_m_s": 0.25}`` (null speed without @)."""
+    name, sep, speed = key.partition("@")
+    return {"measure": name, "speed_m_s": float(speed) if sep else None}
+
+
 def comparison_dict(c: Comparison, header: dict[str, Any]) -> dict[str, Any]:
     """JSON-ready dict of a comparison.
 
@@ -142,32 +148,35 @@ def comparison_dict(c: Comparison, header: dict[str, Any]) -> dict[str, Any]:
     -------
     dict
         Keys: ``stability_version``, ``model``, ``options``, ``chairs`` (label, name, parameters),
-        ``reference``, ``measures`` (per quantity: unit, direction, per-chair values and intervals;
-        infinite values as null with ``"none_in_range": true``), ``verdicts``, ``single_effects``,
-        ``uncertainty``, ``push``.
+        ``reference``, ``measures`` (a list, one entry per quantity and speed: ``measure`` (e.g.
+        ``growth_rate_1_s``), ``speed_m_s`` (null for a measure that is not per speed), unit, direction,
+        and ``chairs``, a list in the order of ``chairs`` with each chair's value and interval;
+        infinite values as null with ``"none_in_range": true``), ``verdicts`` (``measure``, ``speed_m_s``),
+        ``single_effects``, ``uncertainty``, ``push``.  No value is ever part of a key.
     """
     out = {k: v for k, v in header.items() if k not in ("chair", "chair_parameters")}
     out["chairs"] = [{"label": lab, "name": ch.name, "parameters": to_mapping(ch)}
                      for lab, ch in zip(c.labels, c.chairs, strict=True)]
     out["reference"] = c.labels[0]
     out["speeds_m_s"] = list(c.speeds)
-    measures = {}
+    measures = []
     for q in c.quantities:
-        per = {}
+        per = []
         for lab, v, iv in zip(c.labels, q.values, q.intervals, strict=True):
-            row: dict[str, Any] = {"value": _finite(v), "none_in_range": bool(math.isinf(v) and v > 0)}
+            row: dict[str, Any] = {"chair": lab, "value": _finite(v), "none_in_range": bool(math.isinf(v) and v > 0)}
             if row["none_in_range"] and q.none_means:
                 row["none_means"] = q.none_means
             if q.key.startswith("growth_rate"):
                 row["time_to_double_s"] = math.log(2) / v if v > 0 else None
             if iv is not None:
                 row["interval"] = [_finite(iv[0]), _finite(iv[1])]
-            per[lab] = row
-        measures[q.key] = {"label": q.label, "unit": q.unit, "higher_is_more_stable": q.higher_is_more_stable,
-                           "chairs": per}
+            per.append(row)
+        measures.append({**_measure(q.key), "label": q.label, "unit": q.unit,
+                         "higher_is_more_stable": q.higher_is_more_stable, "chairs": per})
     out["measures"] = measures
-    out["verdicts"] = [{"measure": d.key, "chair": d.chair, "reference": c.labels[0], "more_stable": d.more_stable,
-                        "difference": d.absolute, "difference_percent": d.percent,
+    units = {q.key: q.unit for q in c.quantities}
+    out["verdicts"] = [{**_measure(d.key), "chair": d.chair, "reference": c.labels[0], "more_stable": d.more_stable,
+                        "difference": d.absolute, "unit": units.get(d.key), "difference_percent": d.percent,
                         "difference_interval": list(d.interval) if d.interval else None,
                         "distinguishable": d.distinguishable} for d in c.differences]
     out["single_effects"] = [

@@ -63,7 +63,7 @@ def _body(args) -> int:
             if modes:
                 mapping["chair_model"] = {f"{pin}_pin": m.to_mapping() for pin, m in modes.items()}
             options = {"speeds_m_s": [float(u) for u in speeds], "relaxation_length_m": comp.relaxation_length,
-                       "lateral_stiffness_N_m": comp.lateral_stiffness, "amplitude_deg": args.amplitude_deg,
+                       "lateral_stiffness_N_per_m": comp.lateral_stiffness, "amplitude_deg": args.amplitude_deg,
                        "chair_model": bool(args.chair_model)}
             cli.emit_json({**cli.json_header(chair, "exact", options), **mapping}, args,
                           write_to=tmp.get("--json-file"))

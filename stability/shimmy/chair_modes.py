@@ -275,11 +275,11 @@ class ChairShimmy:
         return {
             "chair": self.chair_name, "model": self.model, "pin": self.pin, "note": self.note,
             "relaxation_length_m": self.compliance.relaxation_length,
-            "lateral_stiffness_n_per_m": self.compliance.lateral_stiffness if self.pin == "compliant" else None,
-            "trail_m": self.trail, "speeds_m_per_s": num(self.speeds),
+            "lateral_stiffness_N_per_m": self.compliance.lateral_stiffness if self.pin == "compliant" else None,
+            "trail_m": self.trail, "speeds_m_s": num(self.speeds),
             "shimmy_frequency_hz": num(self.frequency_hz), "shimmy_damping_ratio": num(self.damping_ratio),
-            "shimmy_real_part_per_s": num(self.real_part), "divergence_rate_per_s": num(self.divergence_rate),
-            "rigid_tire_rate_per_s": num(self.rigid_tire_rate), "critical_trail_m": num(self.critical_trail),
+            "shimmy_real_part_1_s": num(self.real_part), "divergence_rate_1_s": num(self.divergence_rate),
+            "rigid_tire_rate_1_s": num(self.rigid_tire_rate), "critical_trail_m": num(self.critical_trail),
             "null_means": "critical trail above 0.2 m (unstable at every trail checked)",
         }
 

@@ -109,14 +109,15 @@ def _run_cli(args: argparse.Namespace) -> int:
                    eta0_deg=args.eta0, beta0_deg=args.beta0, casters=args.casters,
                    stop_on_warnings=False if args.no_stop else None, out_of_range=_sim_policy(args),
                    rtol=args.rtol, atol=args.atol, slope=(args.cross_slope, args.grade))
-    times = {str(v): res.first_time_abs_yaw_rate(v) for v in (0.5, 1.0)}
+    levels = (0.5, 1.0)
+    times = [res.first_time_abs_yaw_rate(v) for v in levels]
     out = res.resample(args.sample) if args.sample is not None else res
-    options = {k: getattr(args, k) for k in ("speed", "impulse", "tire_impulse", "lateral_velocity", "eta0",
-                                             "beta0", "scheme", "casters", "duration", "dt", "sample",
-                                             "no_stop", "rtol", "atol")}
-    options["out_of_range"] = _sim_policy(args)
-    if (args.cross_slope, args.grade) != (0.0, 0.0):   # level runs keep today's JSON
-        options.update(cross_slope=args.cross_slope, grade=args.grade)
+    options = {"speed_m_s": args.speed, "push_force_N": args.impulse[0], "push_duration_s": args.impulse[1],
+               "tire_impulse_N": args.tire_impulse, "lateral_velocity_m_s": args.lateral_velocity,
+               "eta0_deg": args.eta0, "beta0_deg": args.beta0, "scheme": args.scheme, "casters": args.casters,
+               "duration_s": args.duration, "dt_s": args.dt, "sample_s": args.sample, "no_stop": args.no_stop,
+               "rtol": args.rtol, "atol": args.atol, "out_of_range": _sim_policy(args),
+               "cross_slope_deg": args.cross_slope, "grade_deg": args.grade}
     with output_files({"--csv": args.csv, "-o": args.output}) as tmp:
         if args.csv:
             out.to_csv(tmp["--csv"])
@@ -124,7 +125,8 @@ def _run_cli(args: argparse.Namespace) -> int:
             plot_result(res, tmp["-o"])
     if args.json or args.json_file:
         d = {**json_header(c, args.model, options), **out.to_dict()}
-        d["first_time_abs_yaw_rate_s"] = times
+        d["yaw_rate_levels_rad_s"] = list(levels)
+        d["first_time_at_level_s"] = times
         emit_json(d, args)
     if not args.json:
         print(res.summary())

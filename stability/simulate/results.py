@@ -17,13 +17,42 @@ from ..chair import Chair
 from ..output import atomic_write_text
 from .options import WHEELS
 
-__all__ = ["COLUMNS", "NCOLS", "ChairState", "RunStats", "SimulationResult", "new_warnings", "note_warning"]
+__all__ = ["JSON_COLUMNS", "json_key", "COLUMNS", "NCOLS", "ChairState", "RunStats", "SimulationResult", "new_warnings",
+           "note_warning"]
 
 COLUMNS = ("t", "x", "y", "heading", "yaw_rate", "u", "v", "eta", "eta_dot", "beta", "beta_dot",
          "fx_A", "fy_A", "fx_B", "fy_B", "fx_D", "fy_D", "fx_E", "fy_E",
          "fz_A", "fz_B", "fz_D", "fz_E", "slip_A", "slip_B", "slip_D", "slip_E",
          "tire_yaw_moment", "yaw_moment_input", "yaw_acceleration", "pin_moment_A", "pin_moment_B")
 NCOLS = len(COLUMNS)
+_WHEEL_KEYS = {"A": "caster_left", "B": "caster_right", "D": "main_left", "E": "main_right"}
+_COLUMN_UNITS = {"t": "s", "x": "m", "y": "m", "heading": "rad", "yaw_rate": "rad_s", "u": "m_s", "v": "m_s",
+                 "eta": "rad", "eta_dot": "rad_s", "beta": "rad", "beta_dot": "rad_s", "fx": "N", "fy": "N", "fz": "N",
+                 "slip": "deg", "tire_yaw_moment": "N_m", "yaw_moment_input": "N_m", "yaw_acceleration": "rad_s2",
+                 "pin_moment": "N_m"}
+
+
+def json_key(column: str) -> str:
+    """The JSON key of a CSV column: the wheel spelled out and the unit last (``fy_A`` -> ``fy_caster_left_N``).
+
+    Parameters
+    ----------
+    column : str
+        One of :data:`COLUMNS`.
+
+    Returns
+    -------
+    str
+    """
+    base, _, wheel = column.rpartition("_")
+    if wheel in _WHEEL_KEYS and base:
+        return f"{base}_{_WHEEL_KEYS[wheel]}_{_COLUMN_UNITS[base]}"
+    return f"{column}_{_COLUMN_UNITS[column]}"
+
+
+#: JSON keys of the time histories, in :data:`COLUMNS` order.
+JSON_COLUMNS = tuple(json_key(c) for c in COLUMNS)
+_WARNING_UNITS = {"slip": "deg", "load": "N", "lift_off": "N"}
 
 
 # ---------------------------------------------------------------------------
@@ -76,9 +105,10 @@ class RunStats:
     peak_time: float
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict."""
-        return {"levels": list(self.levels), "time_to_level": list(self.time_to_level),
-                "peak_abs_yaw_rate": _json_scalar(self.peak_abs_yaw_rate), "peak_time": _json_scalar(self.peak_time)}
+        """JSON-ready dict (keys with their units)."""
+        return {"levels_rad_s": list(self.levels), "time_to_level_s": list(self.time_to_level),
+                "peak_abs_yaw_rate_rad_s": _json_scalar(self.peak_abs_yaw_rate),
+                "peak_time_s": _json_scalar(self.peak_time)}
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -318,13 +348,21 @@ class SimulationResult:
         return "\n".join(lines)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict (non-finite numbers become ``None``)."""
+        """JSON-ready dict (non-finite numbers become ``None``).
+
+        The time histories are keyed with their units and the wheels spelled
+        out (:data:`JSON_COLUMNS`, e.g. ``yaw_rate_rad_s``, ``fy_caster_left_N``,
+        ``slip_main_right_deg``); the CSV keeps the short names of :data:`COLUMNS`.
+        """
         rec = self._records()
-        out: dict[str, Any] = {name: _json_list(rec[:, i]) for i, name in enumerate(COLUMNS)}
+        out: dict[str, Any] = {name: _json_list(rec[:, i]) for i, name in enumerate(JSON_COLUMNS)}
         out.update(
-            stopped_by_warnings=self.stopped_by_warnings, stop_time=self.stop_time,
+            stopped_by_warnings=self.stopped_by_warnings, stop_time_s=self.stop_time,
             step_unstable=self.step_unstable, stats=None if self.stats is None else self.stats.to_dict(),
-            warnings=_json_warnings(self.warnings), speed=self.speed, chair=self.chair.name,
+            warnings={k: {"count": v["count"], "first_time_s": _json_scalar(v["first_time"]),
+                          f"max_{_WARNING_UNITS.get(k, 'value')}": _json_scalar(v["max"])}
+                      for k, v in self.warnings.items()},
+            speed_m_s=self.speed, chair=self.chair.name,
             settings={k: _json_scalar(v) for k, v in self.settings.items()},
         )
         return out

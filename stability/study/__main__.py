@@ -11,6 +11,7 @@ from ..chair import Chair
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
+    add_json_options,
     add_model_option,
     check_outputs,
     emit_json,
@@ -32,8 +33,7 @@ def build_parser() -> argparse.ArgumentParser:
     for s in (ci, ei):
         add_chair_options(s)
         add_model_option(s)
-        s.add_argument("--json", action="store_true", help="print JSON to stdout")
-        s.add_argument("--json-file", metavar="FILE", help="write JSON to FILE (atomically)")
+        add_json_options(s)
     ci.add_argument("--speeds", default=D.STUDY_SPEEDS,
                     help=f"START:STOP:STEP or a list, m/s (default {D.STUDY_SPEEDS})")
     ci.add_argument("--duration", type=float, default=D.PUSH_DURATION,
@@ -53,8 +53,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair) -> None:
     if args.json or args.json_file:
-        options = {k: v for k, v in vars(args).items() if k not in ("chair", "set", "json", "json_file", "debug",
-                                                                    "tire_notes")}
+        units = {"duration": "push_duration_s", "level": "yaw_rate_level_rad_s", "horizon": "horizon_s",
+                 "max_impulse": "max_impulse_Ns", "force": "push_force_N"}
+        options = {units.get(k, k): v for k, v in vars(args).items()
+                   if k not in ("chair", "set", "json", "json_file", "debug", "quiet", "tire_notes", "speeds",
+                                "model")}
+        if getattr(args, "speeds", None) is not None:
+            options["speeds_m_s"] = [float(s) for s in parse_speeds(args.speeds)]
         emit_json({**json_header(chair, getattr(args, "model", None), options), **data}, args)
     if not args.json:
         print(text)

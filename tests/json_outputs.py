@@ -1,0 +1,86 @@
+"""Real JSON outputs of every command, produced in-process with cheap options (shared by the schema tests).
+
+``python tests/json_outputs.py --write-schemas`` regenerates stability/schemas/*.json from these outputs (the
+structure: required keys, types; a human then tightens where needed).  The tests validate fresh outputs against
+the committed schemas, so a renamed, dropped or retyped key fails until the schema is updated on purpose.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SHEET = ROOT / "docs" / "examples" / "measured_chair_sheet.toml"
+
+#: schema name -> (command, argv) with cheap options (each well under a few seconds warm).
+CASES = {
+    "critical_speed": ("critical_speed", ["--speeds", "0.5,1"]),
+    "compare": ("compare", ["ej-premier", "revised", "--speeds", "0.75"]),
+    "simulate": ("simulate", ["--duration", "0.5", "--sample", "0.1"]),
+    "study_critical_impulse": ("study", ["critical-impulse", "--speeds", "0.75", "--horizon", "4"]),
+    "study_equal_instability": ("study", ["equal-instability"]),
+    "shimmy": ("shimmy", ["--speeds", "1,2", "--chair-model"]),
+    "slope": ("slope", ["--cross-slope", "2", "--speed", "1"]),
+    "assist": ("assist", ["--speeds", "1,2", "--no-check"]),
+    "measure": ("measure", [str(SHEET), "-o", "{tmp}/c.toml"]),
+}
+#: The cases too slow for the default test run (simulations of a study).
+SLOW = {"study_equal_instability"}
+
+
+def output(name: str, tmp: str) -> dict:
+    """Run case ``name`` in-process with ``--json`` and return the decoded JSON."""
+    from stability.commands import command_module
+
+    command, argv = CASES[name]
+    argv = [a.replace("{tmp}", tmp) for a in argv] + ["--json", "--quiet"]
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        status = command_module(command).main(argv)
+    assert status == 0, (name, status)
+    return json.loads(buf.getvalue())
+
+
+def infer(value, path: str = ""):
+    """A JSON Schema describing ``value``'s structure (keys required, types; numbers may be null)."""
+    if isinstance(value, dict):
+        if path.endswith("chair_parameters") or path.endswith("parameters") or path.endswith("settings"):
+            return {"type": "object"}
+        return {"type": "object", "required": sorted(value),
+                "properties": {k: infer(v, f"{path}.{k}") for k, v in value.items()}}
+    if isinstance(value, list):
+        items = [infer(v, path + "[]") for v in value]
+        merged = items[0] if items and all(i == items[0] for i in items) else {}
+        return {"type": "array", "items": merged} if merged else {"type": "array"}
+    if isinstance(value, bool):
+        return {"type": "boolean"}
+    if isinstance(value, (int, float)):
+        return {"type": ["number", "null"]}
+    if isinstance(value, str):
+        return {"type": ["string", "null"]}
+    return {}
+
+
+def write_schemas() -> None:
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, (command, _) in CASES.items():
+            data = output(name, tmp)
+            doc = {"$schema": "https://json-schema.org/draft/2020-12/schema",
+                   "$id": f"stability/schemas/{name}.json",
+                   "title": f"python -m stability.{command} --json" + (f" ({name[6:]})" if command == "study" else ""),
+                   "description": "JSON output: keys snake_case with the unit last (stability.schemas); "
+                                  "arrays over speeds sit next to a speeds_m_s list.",
+                   **infer(data)}
+            (ROOT / "stability" / "schemas" / f"{name}.json").write_text(json.dumps(doc, indent=1) + "\n")
+            print(f"wrote {name}.json", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    if "--write-schemas" in sys.argv:
+        write_schemas()
