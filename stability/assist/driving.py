@@ -250,6 +250,16 @@ class SlopeHold:
     friction_use: float
 
     @property
+    def harder_side(self) -> str:
+        """Which drive wheel the assist loads more to hold the line, ``"uphill"`` or ``"downhill"``.
+
+        The steady torque is the differential ``(left - right)/2`` per wheel, so right minus left is
+        ``-2 x steady``; :func:`stability.slope.equilibrium.harder_side` names the side (the statics give
+        the same side through ``holding_torque_N_m``; the tests check that all three paths agree).
+        """
+        return equilibrium.harder_side(-2.0 * self.steady_torque_N_m, self.cross_slope_deg)
+
+    @property
     def within_limits(self) -> bool:
         """Peak torque within the motor and traction limits and the drive tires below full friction."""
         return self.peak_torque_N_m <= min(self.motor_limit_N_m, self.traction_limit_N_m) and self.friction_use < 1
@@ -260,6 +270,7 @@ class SlopeHold:
         d: dict[str, Any] = {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}
         d["holding_band_N_m"] = list(self.holding_band_N_m)
         d["within_limits"] = self.within_limits
+        d["harder_side"] = self.harder_side
         return d
 
 

@@ -45,12 +45,17 @@ def slope_text(d: ReportData) -> list[str]:
                f"closed form (frictionless pins, casters straight) {s.closed_form_per_degree:.3g} N m/deg. At "
                f"{top:g} deg: {cv.holding_moment[k]:.3g} N m, and with Coulomb pin friction any moment in "
                f"{cv.friction_low[k]:.3g}-{cv.friction_high[k]:.3g} N m holds (the band).")
+    sides = sorted(set(s.harder_side[1:] if len(s.harder_side) > 1 else s.harder_side) - {"neither"})
+    side = (f"the {sides[0]} wheel works harder at every slope shown" if len(sides) == 1 else
+            "the harder-working side changes with the slope: " + ", ".join(
+                f"{x:g} deg {h}" for x, h in zip(cv.cross_slopes_deg, s.harder_side, strict=True)))
     if s.drive == "handrim":
         out.append(f"Manual chair (24-inch wheels 0.305 m, hand rims 0.265 m): hand-rim force difference "
-                   f"{s.drive_difference[k]:.3g} N at {top:g} deg, pushed harder on the downhill side all the way.")
+                   f"{s.drive_difference[k]:.3g} N at {top:g} deg; {side}"
+                   + (f" (against the chair's uncorrected turn {sides[0]})." if len(sides) == 1 else "."))
     else:
         ok = all(s.within_torque_limit)
-        out.append(f"Power chair: motor torque difference {s.drive_difference[k]:.3g} N m at {top:g} deg "
+        out.append(f"Power chair: motor torque difference {s.drive_difference[k]:.3g} N m at {top:g} deg; {side} "
                    + ("(within the motors' limit at every slope shown)." if ok else
                       "(beyond the motors' limit at some slopes shown)."))
     p = s.path

@@ -45,6 +45,9 @@ class SlopeSection:
         Per accepted slope: |right - left| hand-rim force (N) or |left - right| motor torque (N m).
     within_torque_limit : tuple of bool
         Power chairs: whether the differential torque is within the motors' limit (empty for manual chairs).
+    harder_side : tuple of str
+        Per accepted slope: which drive wheel works harder, ``"uphill"`` or ``"downhill"``
+        (:func:`stability.slope.equilibrium.harder_side`, from the statics).
     refused : tuple of (float, str)
         Slopes the analysis refuses (deg) and its one-line reason.
     per_degree : float or None
@@ -67,6 +70,7 @@ class SlopeSection:
     drive: str
     drive_difference: np.ndarray
     within_torque_limit: tuple
+    harder_side: tuple
     refused: tuple
     per_degree: float | None
     closed_form_per_degree: float
@@ -92,8 +96,8 @@ class SlopeSection:
     @property
     def drive_label(self) -> str:
         """Axis label of the drive difference, with its unit."""
-        return ("hand-rim force difference, right - left (N)" if self.drive == "handrim"
-                else "motor torque difference, left - right (N m)")
+        return ("hand-rim force difference |right - left| (N)" if self.drive == "handrim"
+                else "motor torque difference |left - right| (N m)")
 
 
 def drive_kind(chair: Chair) -> str:
@@ -145,6 +149,7 @@ def slope_section(chair: Chair, speed: float = REFERENCE_SPEED, slopes=SLOPES,
             continue
         ok.append(float(phi))
         eqs.append(e)
+    sides = tuple(drive_report(chair, e, kind)["harder_side"] for e in eqs)
     fr = np.array([sorted(abs(x) for x in e.friction_range) for e in eqs]).reshape(-1, 2)
     curve = HoldingCurve(chair.name, np.array(ok), np.array([abs(e.holding_moment) for e in eqs]),
                          fr[:, 0], fr[:, 1], np.array([_difference(chair, e, "handrim")[0] for e in eqs]))
@@ -156,7 +161,7 @@ def slope_section(chair: Chair, speed: float = REFERENCE_SPEED, slopes=SLOPES,
         path = uncorrected_path(chair, eqs[ok.index(p_path)])
     return SlopeSection(
         chair.name, float(speed), curve, kind, np.array([d[0] for d in diffs]),
-        tuple(d[1] for d in diffs) if kind == "motor" else (), tuple(refused),
+        tuple(d[1] for d in diffs) if kind == "motor" else (), sides, tuple(refused),
         None if one is None else abs(one.holding_moment),
         abs(holding_moment_closed_form(chair, Plane(1.0, 0.0))),
         chair.m * abs(chair.x_main), path, float(p_path) if p_path is not None else math.nan, float(chair.g))

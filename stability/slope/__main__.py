@@ -58,7 +58,8 @@ def _simulated(chair, eq, t_end: float) -> dict:
         for friction in (True, False):
             key = f"{scheme}_{'pin_friction' if friction else 'frictionless'}"
             try:
-                path = simulator_path(chair, eq, scheme=scheme, duration=t_end, pin_friction=friction)
+                path = simulator_path(chair, eq, scheme=scheme, duration=t_end, pin_friction=friction,
+                                      report_time=t_end)
             except ValueError as exc:   # e.g. viscous pin damping, a slope beyond the simulator's 15 deg
                 out[key] = {"error": str(exc)}
                 continue
@@ -78,7 +79,7 @@ def _body(a: argparse.Namespace) -> int:
     per_deg = abs(per_deg_eq.holding_moment) / abs(per_deg_eq.cross_slope_deg)
     kind = a.drive if a.drive != "auto" else ("motor" if chair.name.startswith("power") else "handrim")
     drive = drive_report(chair, eq, kind, HandRim(a.wheel_radius, a.handrim_radius) if kind == "handrim" else None)
-    path = uncorrected_path(chair, eq) if a.cross_slope != 0 else None
+    path = uncorrected_path(chair, eq, report_time=a.sim_time) if a.cross_slope != 0 else None
     sim = _simulated(chair, eq, a.sim_time) if a.cross_slope != 0 else None
     data = {
         "chair": chair.name, "cross_slope_deg": eq.cross_slope_deg, "grade_deg": eq.grade_deg, "speed_m_s": eq.speed,
@@ -125,10 +126,12 @@ def _body(a: argparse.Namespace) -> int:
           + ", ".join(f"{x:.1f}" for x in eq.loads) + " N (A, B, D, E)")
     if kind == "handrim":
         print(f"  hand-rim forces left {drive['handrim_force_left_N']:.2f} N, "
-              f"right {drive['handrim_force_right_N']:.2f} N (difference {drive['handrim_force_difference_N']:+.2f} N)")
+              f"right {drive['handrim_force_right_N']:.2f} N (right - left "
+              f"{drive['handrim_force_difference_N']:+.2f} N: the {drive['harder_side']} rim works harder)")
     else:
         print(f"  motor torques left {drive['motor_torque_left_N_m']:.2f}, right {drive['motor_torque_right_N_m']:.2f}"
-              f" N m (differential {drive['differential_torque_N_m']:+.2f} N m)")
+              f" N m (differential (left - right)/2 {drive['differential_torque_N_m']:+.2f} N m: the "
+              f"{drive['harder_side']} wheel works harder)")
     return 0
 
 

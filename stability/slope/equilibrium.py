@@ -24,7 +24,7 @@ from ..power_chair import DriveTrain
 from ..tires.data import FZ_MAX_N
 from .model import Plane, SlopeModel
 
-__all__ = ["HandRim", "Equilibrium", "solve", "holding_moment_closed_form", "max_cross_slope",
+__all__ = ["HandRim", "Equilibrium", "solve", "harder_side", "holding_moment_closed_form", "max_cross_slope",
            "drive_report"]
 
 
@@ -294,6 +294,39 @@ def residual_accelerations(chair: Chair, eq: Equilibrium) -> tuple:
     return acc
 
 
+def harder_side(right_minus_left: float, cross_slope_deg: float) -> str:
+    """Which drive wheel works harder on a cross slope: ``"uphill"``, ``"downhill"`` or ``"neither"``.
+
+    The one sign convention of the toolkit: a positive cross slope falls to
+    the right of the heading, so the right wheels are the downhill ones; a
+    drive difference is right minus left (hand-rim force or wheel torque).
+    The side follows from the statics (:func:`solve`): the drive must supply
+    the holding moment against the chair's uncorrected turn, so the wheel on
+    the side the chair turns away from works harder (a rear-caster chair
+    turns uphill, its uphill wheel works harder; a front-caster chair turns
+    downhill, its downhill wheel works harder).
+
+    Parameters
+    ----------
+    right_minus_left : float
+        Right minus left drive force or torque (any unit).
+    cross_slope_deg : float
+        Cross slope, deg (falling to the right +).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> harder_side(-47.2, 2.0), harder_side(8.3, 2.0), harder_side(0.0, 0.0)
+    ('uphill', 'downhill', 'neither')
+    """
+    if right_minus_left == 0 or cross_slope_deg == 0:
+        return "neither"
+    return "downhill" if right_minus_left * cross_slope_deg > 0 else "uphill"
+
+
 def drive_report(chair: Chair, eq: Equilibrium, drive: str = "handrim", handrim: HandRim | None = None,
                  drive_train: DriveTrain | None = None) -> dict:
     """Per-wheel drive quantities for the equilibrium: hand-rim forces or motor torques.
@@ -317,7 +350,8 @@ def drive_report(chair: Chair, eq: Equilibrium, drive: str = "handrim", handrim:
     dict
         Contact forces (N) and, for ``"handrim"``, the tangential hand-rim forces and their
         difference (right minus left, N); for ``"motor"``, the wheel torques, the
-        differential torque per wheel ``(tau_D - tau_E)/2`` (N m) and whether it is within the limit.
+        differential torque per wheel ``(tau_D - tau_E)/2`` (N m) and whether it is within the limit;
+        both: ``harder_side`` (:func:`harder_side`).
 
     Raises
     ------
@@ -331,14 +365,16 @@ def drive_report(chair: Chair, eq: Equilibrium, drive: str = "handrim", handrim:
         left, right = hr.rim_force(fd), hr.rim_force(fe)
         out.update(wheel_radius_m=hr.wheel_radius, handrim_radius_m=hr.handrim_radius,
                    handrim_force_left_N=left, handrim_force_right_N=right,
-                   handrim_force_difference_N=right - left)
+                   handrim_force_difference_N=right - left,
+                   harder_side=harder_side(right - left, eq.cross_slope_deg))
     elif drive == "motor":
         dt = drive_train or DriveTrain()
         td, te = fd * dt.wheel_radius, fe * dt.wheel_radius
         tau = 0.5 * (td - te)
         out.update(wheel_radius_m=dt.wheel_radius, motor_torque_left_N_m=td, motor_torque_right_N_m=te,
                    differential_torque_N_m=tau, torque_limit_N_m=dt.torque_limit,
-                   within_torque_limit=bool(abs(tau) <= dt.torque_limit))
+                   within_torque_limit=bool(abs(tau) <= dt.torque_limit),
+                   harder_side=harder_side(te - td, eq.cross_slope_deg))
     else:
         raise ValueError(f"drive={drive!r} is invalid; valid choices: ['handrim', 'motor']")
     return out

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..chair import Chair
+from ..defaults import SLOPE_SIM_TIME
 from ..simulate import simulate
 from .equilibrium import Equilibrium
 from .model import Plane, SlopeModel
@@ -25,6 +26,9 @@ __all__ = ["UncorrectedPath", "uncorrected_path", "simulator_path", "simulator_s
 
 #: a caster swung this far from its held angle ends a run (beyond the tire data), deg
 MAX_CASTER_SWING_DEG = 30.0
+
+#: Default time of the uncorrected path's summary, s (the slope command's --sim-time default).
+REPORT_TIME = SLOPE_SIM_TIME
 
 
 @dataclass(frozen=True)
@@ -83,7 +87,7 @@ class UncorrectedPath:
 
 
 def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_heading_deg: float = 45.0,
-                     n_out: int = 201, coast: bool = False) -> UncorrectedPath:
+                     n_out: int = 201, coast: bool = False, report_time: float = REPORT_TIME) -> UncorrectedPath:
     """Integrate the chair released from the held equilibrium ``eq``.
 
     Parameters
@@ -103,13 +107,16 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
         Output samples.
     coast : bool
         No drive force at all (as :func:`simulator_path`, whose simulator has none); default False.
+    report_time : float
+        When the summary is taken (s, default 1; ``duration`` is raised to it if shorter).
 
     Returns
     -------
     UncorrectedPath
         Time history (s, m, rad, rad/s, m/s), turn direction and the summary
-        at 1 s or the run's end if earlier (heading change, deg; yaw rate, deg/s; lateral offset, m).
+        at ``report_time`` or the run's end if earlier (heading change, deg; yaw rate, deg/s; lateral offset, m).
     """
+    duration = max(duration, report_time)
     from scipy.integrate import solve_ivp  # heavy optional import kept local
 
     plane = Plane(eq.cross_slope_deg, eq.grade_deg)
@@ -133,16 +140,17 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
                     rtol=1e-8, atol=1e-10)
     t, y = sol.t, sol.y
     g2 = plane.gravity(model.p.g)[1]
-    return _summarise(eq, t, y[0], y[1], y[2], y[5], y[3], g2)
+    return _summarise(eq, t, y[0], y[1], y[2], y[5], y[3], g2, report_time)
 
 
-def _summarise(eq: Equilibrium, t, x, y, heading, yaw_rate, speed, g2: float) -> UncorrectedPath:
+def _summarise(eq: Equilibrium, t, x, y, heading, yaw_rate, speed, g2: float,
+               report_time: float = 1.0) -> UncorrectedPath:
     """The :class:`UncorrectedPath` of a time history (path frame, heading from the path direction)."""
     psi0 = math.radians(eq.heading_deg)
     side = math.copysign(1.0, eq.cross_slope_deg) if eq.cross_slope_deg != 0 else 1.0
     dpsi = (heading - psi0) * side
     turn = "downhill" if dpsi[-1] > 0 else ("uphill" if dpsi[-1] < 0 else "none")
-    t_rep = min(1.0, float(t[-1]))
+    t_rep = min(report_time, float(t[-1]))
 
     def at1(a: np.ndarray) -> float:
         return float(np.interp(t_rep, t, a))
@@ -182,7 +190,8 @@ def simulator_slope(chair: Chair, eq: Equilibrium) -> tuple[float, float]:
 
 
 def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", duration: float = 2.0,
-                   pin_friction: bool = True, max_heading_deg: float = 45.0, **options) -> UncorrectedPath:
+                   pin_friction: bool = True, max_heading_deg: float = 45.0, report_time: float = REPORT_TIME,
+                   **options) -> UncorrectedPath:
     """The uncorrected path from the simulator (:func:`stability.simulate.simulate`) on the slope.
 
     Released from the held equilibrium ``eq`` (crab angle, caster angles,
@@ -207,6 +216,8 @@ def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", dura
         Keep the chair's Coulomb pin friction (N m); False: frictionless pins.
     max_heading_deg : float
         Heading change that ends the path (deg).
+    report_time : float
+        When the summary is taken (s, default 1; ``duration`` is raised to it if shorter).
     **options
         Further keywords of :func:`stability.simulate.simulate` (e.g. ``dt``, ``rtol``).
 
@@ -223,6 +234,7 @@ def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", dura
     if chair.pin_damping != 0.0:
         raise ValueError(f"pin_damping={chair.pin_damping!r} is invalid for the simulator path; valid range: 0 "
                          "(the simulator has Coulomb pin friction only)")
+    duration = max(duration, report_time)
     run_chair = chair if pin_friction else chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
     psi0 = math.radians(eq.heading_deg)
     u0, v0 = eq.speed * math.cos(psi0), -eq.speed * math.sin(psi0)
@@ -236,4 +248,5 @@ def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", dura
     c, s = math.cos(psi0), math.sin(psi0)
     X, Y = res.x[:n], res.y[:n]
     g2 = Plane(eq.cross_slope_deg, eq.grade_deg).gravity(chair.g)[1]
-    return _summarise(eq, t[:n], X * c - Y * s, X * s + Y * c, psi0 + dpsi[:n], res.yaw_rate[:n], res.u[:n], g2)
+    return _summarise(eq, t[:n], X * c - Y * s, X * s + Y * c, psi0 + dpsi[:n], res.yaw_rate[:n], res.u[:n], g2,
+                      report_time)
