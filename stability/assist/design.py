@@ -317,7 +317,9 @@ def _margins(L: Any, gm: Any, pm: Any, sm: Any, wgc: Any, *, continuous: bool, d
     lower = gm[gm < 1.0]
     ok = np.isfinite(pm) & (wgc > 0)
     pm_abs = np.abs(pm[ok])
-    delay = (np.where(pm[ok] > 0, pm[ok], np.inf) * _DEG / wgc[ok]) if ok.any() else np.array([np.inf])
+    # the smallest delay tau > 0 that rotates L(jw_gc) onto -1: w tau = pm (mod 360 deg); a negative pm at a
+    # crossing of a stable loop needs 360 + pm of lag there (it read inf before)
+    delay = (np.mod(pm[ok], 360.0) * _DEG / wgc[ok]) if ok.any() else np.array([np.inf])
     if disk is None:
         w = np.geomspace(1e-3, 1e4, 6000) if continuous else np.geomspace(1e-3, math.pi / dt, 6000)
         resp = np.asarray(L(1j * w if continuous else np.exp(1j * w * dt))).reshape(-1)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import control
@@ -134,8 +134,14 @@ def discrete_margins(d: Design, sample_time: float | None = None,
     pm = np.degrees(np.angle(-Lg)) if wgc else np.zeros(0)      # angle of L from -180 deg
     gm = [1.0 / abs(float(resp(x)[0].real)) for x in wpc if float(resp(x)[0].real) < 0]
     disk = float(np.min(np.abs(1.0 + Lw)))
-    return _margins(L, gm or [np.inf], pm if len(pm) else [np.inf],
-                    [disk], wgc or [np.nan], continuous=False, dt=T, disk=disk)
+    m = _margins(L, gm or [np.inf], pm if len(pm) else [np.inf], [disk], wgc or [np.nan], continuous=False,
+                 dt=T, disk=disk)
+    # L is strictly proper (one sample of computation delay): the closed loop u = -y has state matrix A - B C
+    if np.max(np.abs(np.linalg.eigvals(A - np.outer(B, C)))) >= 1.0:
+        # the sampled loop is unstable at this rate: no margin is left (phase margin reported negative, no
+        # delay is tolerated); the text and the JSON say so instead of a margin read off an unstable loop
+        return replace(m, phase_margin_deg=-abs(m.phase_margin_deg), delay_margin_s=0.0, disk_margin=0.0)
+    return m
 
 
 def _crossings(w: np.ndarray, f: np.ndarray, fn: Any) -> list[float]:

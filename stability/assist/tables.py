@@ -296,6 +296,11 @@ def format_margins(rows: Sequence[GainRow]) -> str:
         lines.append(f"{r.speed_m_s:5.2f} | {fmt(c['gain_db'], '.1f'):>5s}/{fmt(d['gain_db'], '.1f'):<5s} "
                      f"{fmt(c['phase_deg'], '.1f'):>5s}/{fmt(d['phase_deg'], '.1f'):<5s} "
                      f"{fmt(c['delay_ms'], '.1f'):>5s}/{fmt(d['delay_ms'], '.1f'):<5s} | {track}")
+    unstable = [r.speed_m_s for r in rows if r.margin_pair.discrete.delay_margin_s == 0.0]
+    if unstable:
+        lines.append("SAMPLED LOOP UNSTABLE at " + ", ".join(f"{u:g}" for u in unstable) + " m/s at "
+                     f"{1 / rows[0].margin_pair.sample_time:g} Hz (closed-loop pole outside the unit circle): no "
+                     "margin is left there (phase shown negative, delay 0); raise --sample-rate")
     return "\n".join(lines)
 
 
