@@ -120,7 +120,7 @@ def test_page_texts(quick):
         "thesis conclusions": ["AGREE", "Revised design"],
         "findings": ["Linear model (exact)", "reference case", "Figure 8-14", "massless-caster mode",
                      "elasticities d ln v / d ln p", "M_f/l"],
-        "cross slope": ["cross slope (deg)", "holding yaw moment (N m)", "hand-rim force difference, right - left (N)",
+        "cross slope": ["cross slope (deg)", "holding yaw moment (N m)", "hand-rim force difference |right - left| (N)",
                         "heading change, downhill + (deg)", "Richter et al.", "turns uphill", "treadmill mean 0.87"],
         "caster shimmy": ["caster trail (cm)", "speed (m/s)", "literature-based estimates", "Over the estimate range",
                           "yaw divergence rate, max Re(eigenvalue) (1/s)"],
