@@ -707,5 +707,6 @@ def test_slope_hold_figure_and_text(schedules, slope_holds):
         assert a.get_legend() is not None
     assert fig.axes[2].get_lines()[1].get_ydata()[0] == pytest.approx(holds[0].holding_torque_N_m)
     text = tables.format_slope_holds(holds + [{"cross_slope_deg": 9.0, "skipped": "no equilibrium"}])
-    assert "Cross slope" in text and f"{holds[1].steady_torque_N_m:.2f} vs {holds[1].holding_torque_N_m:.2f}" in text
+    assert "Cross slope" in text and (f"{holds[1].steady_torque_N_m:.2f} ({holds[1].harder_side} wheel harder) vs "
+                                      f"{holds[1].holding_torque_N_m:.2f}") in text
     assert "9 deg: skipped (no equilibrium)" in text
