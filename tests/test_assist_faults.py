@@ -142,5 +142,8 @@ def test_documented_fault_table_and_top_speed():
     assert 20 < lvl[1.0].unassisted_heading_error_deg < 30 and lvl[3.0].unassisted_heading_error_deg > 180
     torques = assist.torque_requirement(full, tuple(float(s) for s in full.speeds))
     gain = assist.tables.gain_table(full, check=False)
-    ts = TS.top_speed(full, gain, torques, rows)
+    turn = TS.full_turn_peaks(full, [3.0, 5.0])
+    assert 25.5 < turn[3.0] < 27.5 and 45.5 < turn[5.0] < 47.5     # "26.5 N m", "46.4 N m at 5 m/s"
+    ts = TS.top_speed(full, gain, torques, rows, turn)
     assert ts.safe_top_speed_m_s == 3.5 and ts.limited_by == "faults"
+    assert ts.checks[-1].values["torque"][0] == pytest.approx(turn[5.0])

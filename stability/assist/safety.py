@@ -9,7 +9,7 @@ from typing import Any
 from .driving import torque_requirement
 from .faults import FaultRow, fault_runs, format_faults
 from .schedule import Schedule
-from .top_speed import TopSpeed, format_top_speed, top_speed
+from .top_speed import TopSpeed, format_top_speed, full_turn_peaks, top_speed
 
 __all__ = ["Safety", "run_safety"]
 
@@ -57,5 +57,6 @@ def run_safety(sched: Schedule, rows: Sequence[Any], *, seed: int = 0, progress:
     Safety
     """
     faults = fault_runs(sched, seed=seed, progress=progress)
-    torques = torque_requirement(sched, tuple(float(s) for s in sched.speeds))
-    return Safety(faults, top_speed(sched, rows, torques, faults))
+    speeds = tuple(float(s) for s in sched.speeds)
+    torques = torque_requirement(sched, speeds)
+    return Safety(faults, top_speed(sched, rows, torques, faults, full_turn_peaks(sched, speeds)))

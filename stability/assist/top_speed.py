@@ -8,9 +8,11 @@ Constraints at each design speed:
 - ``delay_margin``: its delay margin above the loop's own delay
   (:func:`loop_delay`: one sample of computation, half a sample of zero-order
   hold and the motor lag), so the loop tolerates twice its delay;
-- ``torque``: the peak differential torque for the reference push and the
-  reference turn (:func:`~stability.assist.driving.torque_requirement`)
-  within the motor limit and the traction limit ``mu N r``;
+- ``torque``: the peak differential torque for the reference push, the
+  reference turn (:func:`~stability.assist.driving.torque_requirement`) and a
+  full joystick turn (:func:`full_turn_peaks`: a
+  :data:`~stability.assist.commands.MAX_YAW_RATE` step through the reference
+  model) within the motor limit and the traction limit ``mu N r``;
 - ``faults``: every single sensor fault (:mod:`.faults`) "safe" on level
   ground and on the cross slope.
 
@@ -25,9 +27,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from .commands import COMMAND_FILTER, MAX_YAW_RATE, command_run, step_command
 from .schedule import Schedule
 
-__all__ = ["MIN_GAIN_MARGIN_DB", "MIN_PHASE_MARGIN_DEG", "CONSTRAINTS", "loop_delay", "SpeedCheck", "TopSpeed",
+__all__ = ["MIN_GAIN_MARGIN_DB", "MIN_PHASE_MARGIN_DEG", "CONSTRAINTS", "loop_delay", "full_turn_peaks", "SpeedCheck",
+           "TopSpeed",
            "top_speed", "format_top_speed"]
 
 #: Minimum sampled gain margin (dB) and phase margin (deg).
@@ -105,8 +109,30 @@ class TopSpeed:
                                for k, v in c.values.items()}} for c in self.checks]}
 
 
+def full_turn_peaks(sched: Schedule, speeds: Sequence[float]) -> dict[float, float]:
+    """Peak differential torque per wheel (N m) of a full joystick turn at each speed.
+
+    A :data:`~stability.assist.commands.MAX_YAW_RATE` step through the
+    reference model (:data:`~stability.assist.commands.COMMAND_FILTER`), 3 s,
+    noise-free, in the nonlinear loop (:func:`~stability.assist.commands.command_run`).
+
+    Parameters
+    ----------
+    sched : Schedule
+    speeds : sequence of float
+        m/s.
+
+    Returns
+    -------
+    dict
+        Speed (m/s) -> N m.
+    """
+    return {float(s): command_run(sched, float(s), step_command(MAX_YAW_RATE), duration=3.0,
+                                  command_filter_s=COMMAND_FILTER).peak_torque_N_m for s in speeds}
+
+
 def top_speed(sched: Schedule, rows: Sequence[Any], torque_rows: Sequence[Any],
-              fault_rows: Sequence[Any] | None) -> TopSpeed:
+              fault_rows: Sequence[Any] | None, full_turn: dict[float, float] | None = None) -> TopSpeed:
     """Check every constraint at every design speed and find the safe top speed.
 
     Parameters
@@ -118,6 +144,8 @@ def top_speed(sched: Schedule, rows: Sequence[Any], torque_rows: Sequence[Any],
         :func:`~stability.assist.driving.torque_requirement` at the design speeds.
     fault_rows : sequence of FaultRow, optional
         :func:`~stability.assist.faults.fault_runs` (None: the fault constraint is not checked).
+    full_turn : dict, optional
+        :func:`full_turn_peaks` (speed -> N m), counted in the torque constraint.
 
     Returns
     -------
@@ -136,7 +164,7 @@ def top_speed(sched: Schedule, rows: Sequence[Any], torque_rows: Sequence[Any],
             "delay_margin": (dm, delay_ms, dm > delay_ms)}
         t = torques.get(round(s, 9))
         if t is not None:
-            peak = max(t.push_peak_N_m, t.turn_peak_N_m)
+            peak = max(t.push_peak_N_m, t.turn_peak_N_m, (full_turn or {}).get(s, 0.0))
             lim = min(t.motor_limit_N_m, t.traction_limit_N_m)
             vals["torque"] = (peak, lim, peak <= lim * (1 - 1e-9))
         if fault_rows is not None:
@@ -166,7 +194,8 @@ def format_top_speed(ts: TopSpeed) -> str:
     """
     lines = ["Safe top speed: every constraint at the design speed and below (sampled gain >= "
              f"{MIN_GAIN_MARGIN_DB:g} dB, phase >= {MIN_PHASE_MARGIN_DEG:g} deg, delay margin > the loop's own "
-             "delay, peak torque for the reference push and turn within the motor and traction limits, every "
+             "delay, peak torque for the reference push, the reference turn and a full joystick turn within the motor "
+             "and traction limits, every "
              "single fault safe)",
              f"{'m/s':>5s}  " + "  ".join(f"{k:>20s}" for k in CONSTRAINTS)]
     for c in ts.checks:
