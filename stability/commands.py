@@ -39,6 +39,8 @@ COMMANDS: dict[str, str] = {
     "measure": "stability.measure.__main__",
     "report": "stability.report.command",
     "chair": "stability.chair.__main__",
+    "tipping": "stability.tipping.__main__",
+    "advise": "stability.advise.__main__",
 }
 
 

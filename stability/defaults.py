@@ -38,6 +38,7 @@ __all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "SCHE
            "ASSIST_SPEEDS", "HANDRIM_WHEEL_RADIUS", "HANDRIM_RADIUS", "DRIVE_WHEEL_RADIUS", "TORQUE_LIMIT",
            "MOTOR_LAG", "TRACTION_COEFFICIENT", "SAMPLE_RATE_HZ", "BIAS_TIME_CONSTANT", "GYRO_NOISE", "GYRO_BIAS",
            "COMMAND_FILTER", "ASSIST_DESIGN", "MAX_HEADING_ERROR", "SHIMMY_AMPLITUDE_DEG", "SLOPE_SIM_TIME",
+           "ADVISE_SPEEDS", "ADVISE_CROSS_SLOPE_DEG",
            "speeds_text"]
 
 
@@ -156,6 +157,10 @@ Q_FORMAT = "float"
 SHIMMY_AMPLITUDE_DEG = 5.0
 #: Report time of the simulated uncorrected turn on a cross slope, s.
 SLOPE_SIM_TIME = 1.0
+#: The advisor's use speeds (START:STOP:STEP, m/s): the thesis's indoor range around its 0.75 m/s reference.
+ADVISE_SPEEDS = "0.5:1:0.25"
+#: Cross slope of the advisor's hand-rim force constraint, deg (a typical sidewalk cross slope).
+ADVISE_CROSS_SLOPE_DEG = 2.0
 
 #: The table: name -> :class:`Default`.  The names are the API keywords and the command lines' option
 #: names (``--sample-rate`` -> ``sample_rate_hz`` where the API keyword carries the unit).
@@ -199,4 +204,6 @@ TABLE: dict[str, Default] = {
     "q_format": Default(Q_FORMAT, "", "number format of the exported firmware tables: float, Q15 or Q31"),
     "amplitude_deg": Default(SHIMMY_AMPLITUDE_DEG, "deg", "shimmy amplitude of the pin-friction estimate"),
     "sim_time": Default(SLOPE_SIM_TIME, "s", "report time of the simulated uncorrected turn"),
+    "advise_speeds": Default(ADVISE_SPEEDS, "m/s", "the advisor's use speeds"),
+    "advise_cross_slope_deg": Default(ADVISE_CROSS_SLOPE_DEG, "deg", "cross slope of the advisor's hand-rim force"),
 }

@@ -28,6 +28,7 @@ COMMANDS = {
     "measure": "stability.measure.__main__",
     "compare": "stability.compare.__main__",
     "tipping": "stability.tipping.__main__",
+    "advise": "stability.advise.__main__",
 }
 
 #: Seconds a refusal may take (bad input must be caught before the work starts).
@@ -59,6 +60,9 @@ CASES = [
     ("tipping", ["--cross-slope", "50"], "--cross-slope"),
     ("tipping", ["--grade", "nan"], "--grade"),
     ("tipping", ["--set", "anti_tip_reach=-0.1"], "anti_tip_reach"),
+    ("advise", ["--speeds", "0:1"], "--speeds"),
+    ("advise", ["--min-tip-deg", "nan"], "--min-tip-deg"),
+    ("advise", ["--set", "trail=2"], "trail"),
     # chair sources
     ("critical_speed", ["--chair", "nosuch"], "nosuch"),
     ("critical_speed", ["--chair", "missing.toml"], "missing.toml"),

@@ -29,6 +29,7 @@ RENAMED = {
     "study critical-impulse": {"speeds": "study_speeds", "duration": "push_duration", "level": "yaw_rate_level"},
     "study equal-instability": {"force": "push_force"},
     "shimmy": {"speeds": "shimmy_speeds"},
+    "advise": {"speeds": "advise_speeds", "cross_slope": "advise_cross_slope_deg"},
     "slope": {"wheel_radius": "handrim_wheel_radius"},
     "assist": {"chair": "power_chair", "speeds": "assist_speeds", "wheel_radius": "drive_wheel_radius", "sample_rate": "sample_rate_hz"},
 }
@@ -39,6 +40,7 @@ COMMAND_ONLY = {
     "slope": {"grade", "drive"},
     "compare": {"pairing"},
     "assist": {"max_yaw_rate"},
+    "tipping": {"cross_slope", "grade"},
 }
 #: Defaults that are not values (empty lists, False flags, None) are not compared.
 IGNORED_DESTS = {"help", "set", "debug", "quiet", "command", "output_formats"}

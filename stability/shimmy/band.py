@@ -26,7 +26,7 @@ from ..params import parameters
 from ..statics import normal_loads
 from .compliance import CasterCompliance
 
-__all__ = ["TRAIL_SEARCH_M", "GRID_POINTS", "ShimmyBand", "shimmy_band", "shimmy_intervals", "abscissa",
+__all__ = ["TRAIL_SEARCH_M", "GRID_POINTS", "ShimmyBand", "shimmy_band", "band_core", "shimmy_intervals", "abscissa",
            "margin_to_boundaries"]
 
 #: Trails searched for boundaries (m): 1 mm to 25 cm.
@@ -94,32 +94,54 @@ def _damping_ratio(chair: Chair, speeds: np.ndarray, comp: CasterCompliance) -> 
 
 def _boundaries(chair: Chair, speeds: np.ndarray, comp: CasterCompliance) -> tuple[list, list]:
     """Per speed: stable intervals [(lo, hi), ...] and the true boundaries (sorted), m."""
+    return _boundaries_many(chair, speeds, [comp])[0]
+
+
+def _boundaries_many(chair: Chair, speeds: np.ndarray, comps: list) -> list[tuple[list, list]]:
+    """:func:`_boundaries` for several compliances, every bisection step one vectorised call per pivot case."""
     grid = np.linspace(*TRAIL_SEARCH_M, GRID_POINTS)
-    s = abscissa(chair, grid, speeds, comp)
-    stable = s < 0
-    # brackets of every sign change (valid neighbours only), bisected together
-    i, j = np.nonzero((stable[:-1] != stable[1:]) & np.isfinite(s[:-1]) & np.isfinite(s[1:]))
+    scans = [abscissa(chair, grid, speeds, comp) for comp in comps]
+    # brackets of every sign change (valid neighbours only) of every compliance, bisected together
+    owner, ii, jj = [], [], []
+    for n, s in enumerate(scans):
+        stable = s < 0
+        i, j = np.nonzero((stable[:-1] != stable[1:]) & np.isfinite(s[:-1]) & np.isfinite(s[1:]))
+        owner += [n] * i.size
+        ii += i.tolist()
+        jj += j.tolist()
+    own, i, j = np.array(owner, int), np.array(ii, int), np.array(jj, int)
     lo, hi = grid[i].copy(), grid[i + 1].copy()
-    lo_stable = stable[i, j]
+    lo_stable = np.array([scans[n][a, b] < 0 for n, a, b in zip(own, i, j, strict=True)], bool)
+    ks = np.array([comps[n].lateral_stiffness for n in own], float)
+    sig = np.array([comps[n].relaxation_length for n in own], float)
+    rigid = np.isinf(ks)
     for _ in range(_BISECTIONS if i.size else 0):
         mid = 0.5 * (lo + hi)
-        mid_stable = _abscissa_pairs(chair, mid, speeds[j], comp) < 0
+        mid_stable = np.empty(mid.size, bool)
+        for flag in (False, True):
+            sel = rigid == flag
+            if sel.any():
+                mid_stable[sel] = _abscissa_pairs(chair, mid[sel], speeds[j[sel]], ks[sel], sig[sel], flag) < 0
         same = mid_stable == lo_stable
         lo = np.where(same, mid, lo)
         hi = np.where(same, hi, mid)
     edges = 0.5 * (lo + hi)
-    intervals, bounds = [], []
-    valid = np.isfinite(s)
-    for k in range(speeds.size):
-        e = np.sort(edges[j == k])
-        bounds.append(tuple(float(x) for x in e))
-        first = grid[valid[:, k]][0] if valid[:, k].any() else TRAIL_SEARCH_M[0]
-        last = grid[valid[:, k]][-1] if valid[:, k].any() else TRAIL_SEARCH_M[0]
-        pts = [float(first), *e.tolist(), float(last)]
-        start_stable = bool(stable[valid[:, k], k][0]) if valid[:, k].any() else False
-        iv = [(pts[n], pts[n + 1]) for n in range(len(pts) - 1) if (n % 2 == 0) == start_stable]
-        intervals.append(tuple(iv))
-    return intervals, bounds
+    out = []
+    for n, s in enumerate(scans):
+        stable = s < 0
+        valid = np.isfinite(s)
+        intervals, bounds = [], []
+        for k in range(speeds.size):
+            e = np.sort(edges[(own == n) & (j == k)])
+            bounds.append(tuple(float(x) for x in e))
+            first = grid[valid[:, k]][0] if valid[:, k].any() else TRAIL_SEARCH_M[0]
+            last = grid[valid[:, k]][-1] if valid[:, k].any() else TRAIL_SEARCH_M[0]
+            pts = [float(first), *e.tolist(), float(last)]
+            start_stable = bool(stable[valid[:, k], k][0]) if valid[:, k].any() else False
+            iv = [(pts[m], pts[m + 1]) for m in range(len(pts) - 1) if (m % 2 == 0) == start_stable]
+            intervals.append(tuple(iv))
+        out.append((intervals, bounds))
+    return out
 
 
 def shimmy_intervals(chair: Chair, speeds, compliance: CasterCompliance) -> list:
@@ -140,10 +162,16 @@ def shimmy_intervals(chair: Chair, speeds, compliance: CasterCompliance) -> list
     return _boundaries(chair, np.atleast_1d(np.asarray(speeds, float)), compliance)[0]
 
 
-def _abscissa_pairs(chair: Chair, trails: np.ndarray, speeds: np.ndarray, comp: CasterCompliance) -> np.ndarray:
-    """Abscissa at paired (trail, speed) points (1/s)."""
+def _abscissa_pairs(chair: Chair, trails: np.ndarray, speeds: np.ndarray, ks: np.ndarray, sigmas: np.ndarray,
+                    rigid: bool) -> np.ndarray:
+    """Abscissa (1/s) at paired (trail, speed, pin stiffness, relaxation length) points of one pivot case."""
+    comp = CasterCompliance(lateral_stiffness=math.inf if rigid else 1.0, relaxation_length=1.0,
+                            lateral_stiffness_range=(1.0, math.inf), relaxation_length_range=(1.0, 1.0))
     case, params = _wheel_params(chair, trails, comp)
     params["C"] = np.where(np.isfinite(params["C"]), params["C"], 1.0)
+    params["sigma"] = sigmas
+    if not rigid:
+        params["k"] = ks
     A, _ = shimmy_model.state_matrices(case, params, speeds)
     return np.linalg.eigvals(A).real.max(axis=-1)
 
@@ -265,7 +293,35 @@ class ShimmyBand:
         }
 
 
-def shimmy_band(chair: Chair, speeds, compliance: CasterCompliance | None = None) -> ShimmyBand:
+def band_core(chair: Chair, speeds, compliance: CasterCompliance | None = None) -> tuple:
+    """The trail-independent part of :func:`shimmy_band`: intervals and boundaries, nominal and per corner.
+
+    Everything here depends on the chair except its own trail, so chairs differing only in trail can
+    share it (``shimmy_band(chair, speeds, core=...)``).
+
+    Parameters
+    ----------
+    chair : Chair
+    speeds : array_like
+        m/s.
+    compliance : CasterCompliance, optional
+
+    Returns
+    -------
+    tuple
+        ``(speeds, compliance, (intervals, boundaries), [(intervals, boundaries) per corner])``.
+    """
+    comp = compliance or CasterCompliance()
+    U = np.atleast_1d(np.asarray(speeds, float))
+    if chair.m_c <= 0 or chair.i_zp - chair.m_c * chair.l1**2 <= 0:
+        raise ValueError(f"chair parameter i_zp={chair.i_zp!r} is invalid for shimmy; valid range: "
+                         f"> m_c*l1^2 = {chair.m_c * chair.l1**2:.6g} kg m^2 with m_c > 0")
+    allb = _boundaries_many(chair, U, [comp, *comp.corners()])
+    return U, comp, allb[0], allb[1:]
+
+
+def shimmy_band(chair: Chair, speeds, compliance: CasterCompliance | None = None, *,
+                core: tuple | None = None) -> ShimmyBand:
     """Every boundary of the shimmy-free trail set of ``chair``'s caster, and the chair's margin.
 
     Parameters
@@ -276,18 +332,14 @@ def shimmy_band(chair: Chair, speeds, compliance: CasterCompliance | None = None
         Speeds (m/s, > 0).
     compliance : CasterCompliance, optional
         Nominal estimates and ranges; default :class:`CasterCompliance`.
+    core : tuple, optional
+        :func:`band_core` of a chair that differs from ``chair`` at most in its trail (saves the search).
 
     Returns
     -------
     ShimmyBand
     """
-    comp = compliance or CasterCompliance()
-    U = np.atleast_1d(np.asarray(speeds, float))
-    if chair.m_c <= 0 or chair.i_zp - chair.m_c * chair.l1**2 <= 0:
-        raise ValueError(f"chair parameter i_zp={chair.i_zp!r} is invalid for shimmy; valid range: "
-                         f"> m_c*l1^2 = {chair.m_c * chair.l1**2:.6g} kg m^2 with m_c > 0")
-    nominal, bounds = _boundaries(chair, U, comp)
-    corners = [_boundaries(chair, U, cc) for cc in comp.corners()]
+    U, comp, (nominal, bounds), corners = core if core is not None else band_core(chair, speeds, compliance)
     margin = [margin_to_boundaries(chair.trail, nominal[k], bounds[k]) for k in range(U.size)]
     rng = []
     for k in range(U.size):

@@ -38,7 +38,14 @@ from .impulse import (
     critical_impulses,
     push_impulse,
 )
-from .intervals import EqualInstabilityInterval, FactorRange, Variant, equal_instability_interval
+from .impulse_intervals import CriticalImpulseInterval, critical_impulse_intervals
+from .intervals import (
+    EqualInstabilityInterval,
+    FactorRange,
+    Variant,
+    equal_instability_interval,
+    equal_instability_intervals,
+)
 from .maps import StabilityMap, disturbance_map, stability_map
 from .responses import LinearResponse, Response, ResponseSet, linear_impulse_response, trajectories, yaw_rate_responses
 from .runs import SCALAR_RUNS
@@ -101,6 +108,9 @@ __all__ = [
     "FactorRange",
     "Variant",
     "equal_instability_interval",
+    "equal_instability_intervals",
+    "CriticalImpulseInterval",
+    "critical_impulse_intervals",
     "EqualFrictionComparison",
     "EqualFrictionRow",
     "equal_friction_comparison",

@@ -22,6 +22,7 @@ from ..cli import (
 )
 from ..reference import THESIS_PUSH, Push
 from .impulse import critical_impulse_curve
+from .impulse_intervals import critical_impulse_intervals
 from .intervals import equal_instability_interval
 
 
@@ -46,6 +47,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help=f"largest push tried, N s (default {D.MAX_IMPULSE:g})")
     ei.add_argument("--force", type=float, default=D.PUSH_FORCE,
                     help=f"nominal push force, N (default {D.PUSH_FORCE:g}, for {D.PUSH_DURATION:g} s)")
+    ci.add_argument("--interval", action="store_true",
+                    help="also the range over pin friction x0.5 and x1.5 and the other model")
     ei.add_argument("--chair-friction-only", action="store_true",
                     help="apply the pin-friction factors to the chair only (default: to the reference chair too)")
     return p
@@ -72,10 +75,18 @@ def _critical(args: argparse.Namespace) -> None:
                                    horizon=args.horizon, max_impulse=args.max_impulse)
     lines = [f"{chair.name}, {args.model} model: critical impulse for |yaw rate| >= {args.level:g} rad/s "
              f"within {args.horizon:g} s", f"push: {curve.points[0].push}"]
-    for p in curve.points:
+    opts = dict(duration=args.duration, level=args.level, horizon=args.horizon, max_impulse=args.max_impulse)
+    ivs = [critical_impulse_intervals([chair], float(u), model=args.model, **opts)[0] for u in speeds] \
+        if args.interval else []
+    for k, p in enumerate(curve.points):
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
-        lines.append(f"  {p.speed:6.3g} m/s  {p.describe():>12s}  (kick {kick})")
-    _emit(args, curve.to_dict(), "\n".join(lines), chair)
+        rng = (f"  range {ivs[k].low_Ns:.3g}-{ivs[k].high_Ns:.3g} N s over "
+               + ", ".join(label for label, _ in ivs[k].variants)) if ivs else ""
+        lines.append(f"  {p.speed:6.3g} m/s  {p.describe():>12s}  (kick {kick}){rng}")
+    data = curve.to_dict()
+    if ivs:
+        data["intervals"] = [iv.to_dict() for iv in ivs]
+    _emit(args, data, "\n".join(lines), chair)
 
 
 def _interval(args: argparse.Namespace) -> None:

@@ -17,7 +17,7 @@ from .criteria import DEFAULT_CRITERION, Criterion
 from .equal_instability import EqualInstability, bisect_speeds
 
 __all__ = ["Variant", "FactorRange", "EqualInstabilityInterval", "scale_friction", "reference_times",
-           "equal_instability_interval"]
+           "equal_instability_interval", "equal_instability_intervals"]
 
 
 @dataclass(frozen=True)
@@ -238,12 +238,46 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
     -------
     EqualInstabilityInterval
     """
+    return equal_instability_intervals(
+        [chair], model=model, force_factors=force_factors, friction_factors=friction_factors, models=models,
+        reference_chair=reference_chair, reference_speed=reference_speed, push=push, criterion=criterion,
+        scheme=scheme, bracket=bracket, tol=tol, candidates=candidates, max_rounds=max_rounds, dt=dt,
+        friction_on_reference=friction_on_reference, progress=progress, **sim_options)[0]
+
+
+def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact",
+                                force_factors: Sequence[float] = (0.5, 0.75, 1.5, 2.0),
+                                friction_factors: Sequence[float] = (0.5, 1.5), models: Sequence[str] = VARIANTS,
+                                reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
+                                push: Push = THESIS_PUSH, criterion: Criterion = DEFAULT_CRITERION,
+                                scheme: str = "wchair", bracket: tuple = (0.2, 3.0), tol: float = 0.01,
+                                candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
+                                friction_on_reference: bool = True, progress: bool = False,
+                                **sim_options: Any) -> list[EqualInstabilityInterval]:
+    """:func:`equal_instability_interval` for many chairs: per model one reference batch and one bisection.
+
+    Every chair's result equals what :func:`equal_instability_interval` gives for it alone (each run of
+    the shared bisection counts only up to its own horizon).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    model, force_factors, friction_factors, models, reference_chair, reference_speed, push, criterion, scheme,
+    bracket, tol, candidates, max_rounds, dt, friction_on_reference, progress, **sim_options
+        As in :func:`equal_instability_interval`.
+
+    Returns
+    -------
+    list of EqualInstabilityInterval
+        One per chair, in order.
+    """
     check_model(model)
     for m in models:
         check_model(m)
+    chairs = list(chairs)
     ref0 = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
     specs = _variants(model, push.force, force_factors, friction_factors, models)
-    variants: list[Variant | None] = [None] * len(specs)
+    variants: list[list[Variant | None]] = [[None] * len(specs) for _ in chairs]
     for m in dict.fromkeys(s[2] for s in specs):
         idx = [k for k, s in enumerate(specs) if s[2] == m]
         refs = [scale_friction(ref0, specs[k][4] if friction_on_reference else 1.0) for k in idx]
@@ -251,15 +285,24 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
                                 [specs[k][3] for k in idx], model=m, scheme=scheme, length=push.duration,
                                 criterion=criterion, dt=dt, sim_options=sim_options)
         ok = [k for k, t in zip(idx, t_ref, strict=True) if math.isfinite(t)]
-        res = bisect_speeds([scale_friction(chair, specs[k][4]) for k in ok],
-                            [float(t_ref[idx.index(k)]) for k in ok], [specs[k][3] for k in ok], push.duration,
-                            model=m, scheme=scheme, criterion=criterion, bracket=(float(bracket[0]), float(bracket[1])),
-                            tol=tol, candidates=candidates, max_rounds=max_rounds, dt=dt, progress=progress,
+        jobs = [(n, k) for n in range(len(chairs)) for k in ok]
+        res = bisect_speeds([scale_friction(chairs[n], specs[k][4]) for n, k in jobs],
+                            [float(t_ref[idx.index(k)]) for _, k in jobs], [specs[k][3] for _, k in jobs],
+                            push.duration, model=m, scheme=scheme, criterion=criterion,
+                            bracket=(float(bracket[0]), float(bracket[1])), tol=tol, candidates=candidates,
+                            max_rounds=max_rounds, dt=dt, progress=progress,
                             reference_text=f"{ref0.name} at {reference_speed:g} m/s", sim_options=sim_options)
-        found = dict(zip(ok, res, strict=True))
-        for k, t in zip(idx, t_ref, strict=True):
-            variants[k] = Variant(*specs[k][:2], m, specs[k][3], specs[k][4], float(t), found.get(k))
-    vs = tuple(v for v in variants if v is not None)
+        found = dict(zip(jobs, res, strict=True))
+        for n in range(len(chairs)):
+            for k, t in zip(idx, t_ref, strict=True):
+                variants[n][k] = Variant(*specs[k][:2], m, specs[k][3], specs[k][4], float(t), found.get((n, k)))
+    scope = "both the chair and the reference chair" if friction_on_reference else "the chair only"
+    return [_assemble(chair, tuple(v for v in vlist if v is not None), ref0, reference_speed, criterion, push, dt,
+                      scheme, scope) for chair, vlist in zip(chairs, variants, strict=True)]
+
+
+def _assemble(chair: Chair, vs: tuple, ref0: Chair, reference_speed: float, criterion: Criterion, push: Push,
+              dt: float | None, scheme: str, scope: str) -> EqualInstabilityInterval:
     nominal = vs[0]
     if nominal.result is None:
         raise ValueError(f"the reference case ({ref0.name} at {reference_speed:g} m/s) never reaches "
@@ -272,7 +315,6 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
                                    tuple(v.label for v in group if v.speed is None)))
     all_sp = [v.speed for v in vs if v.speed is not None]
     dominant = max(factors, key=lambda f: f.width).factor if factors else "nominal"
-    scope = "both the chair and the reference chair" if friction_on_reference else "the chair only"
     return EqualInstabilityInterval(chair.name, nominal.result, float(min(all_sp)) if all_sp else None,
                                     float(max(all_sp)) if all_sp else None, tuple(factors), dominant, vs,
                                     push.describe(dt if scheme == "wchair" else None), scope)

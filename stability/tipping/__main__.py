@@ -13,7 +13,7 @@ _WORDS = {"toward_main_wheels": "toward the main wheels", "toward_casters": "tow
           "lateral_left": "over the left side", "lateral_right": "over the right side"}
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
     p = cli.OneLineErrorParser(prog="python -m stability.tipping", description=__doc__)
     cli.add_chair_options(p)
     p.add_argument("--cross-slope", type=float, default=0.0, metavar="DEG",
@@ -60,7 +60,7 @@ def _body(a: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
-    return cli.run(_parser(), argv, _body)
+    return cli.run(build_parser(), argv, _body)
 
 
 if __name__ == "__main__":

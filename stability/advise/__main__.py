@@ -1,0 +1,93 @@
+"""``python -m stability.advise``: verdict, design levers and the recommended change for a chair."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Sequence
+
+from .. import cli
+from .. import defaults as D
+from .advisor import advise
+from .text import advice_mapping, advice_text
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = cli.OneLineErrorParser(prog="python -m stability.advise", description=__doc__)
+    cli.add_chair_options(p)
+    p.add_argument("--speeds", default=D.ADVISE_SPEEDS, metavar="SPEEDS",
+                   help=f"use speeds, m/s: START:STOP:STEP, a list, or a range A:B (its ends and middle); "
+                        f"default {D.ADVISE_SPEEDS}")
+    p.add_argument("--uncertainty", metavar="FILE",
+                   help="uncertainty file (measure's): adds the interval of the chair's static stability angle")
+    p.add_argument("--min-tip-deg", type=float, default=None, metavar="D",
+                   help="smallest acceptable static stability angle, deg (default: the chair's own; no citable "
+                        "standard minimum was found, docs/tipping.md)")
+    p.add_argument("--cross-slope", type=float, default=D.ADVISE_CROSS_SLOPE_DEG, metavar="DEG",
+                   help=f"cross slope of the hand-rim force constraint, deg (default {D.ADVISE_CROSS_SLOPE_DEG:g})")
+    p.add_argument("--no-progress", action="store_true", help="no progress bars on stderr")
+    cli.add_json_options(p)
+    return p
+
+
+def _speeds(text: str) -> tuple[float, ...]:
+    parts = text.split(":")
+    if len(parts) == 2:                                    # a range A:B: its ends and middle
+        try:
+            lo, hi = (float(x) for x in parts)
+        except ValueError:
+            lo = hi = math.nan
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
+            raise ValueError(f"--speeds {text!r} is invalid; valid: A:B with 0 < A <= B (m/s), START:STOP:STEP "
+                             "or a list")
+        speeds = (lo, 0.5 * (lo + hi), hi) if hi > lo else (lo,)
+    else:
+        speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=12))
+    if max(speeds) > 3.0 or min(speeds) < 0.1:
+        raise ValueError(f"--speeds {text!r} is invalid; valid range: 0.1 to 3 m/s")
+    return speeds
+
+
+def _body(a: argparse.Namespace) -> int:
+    cli.check_outputs({"--json-file": a.json_file}, {"--chair": a.chair, "--uncertainty": a.uncertainty})
+    speeds = _speeds(a.speeds)
+    if a.min_tip_deg is not None and not (math.isfinite(a.min_tip_deg) and 0 <= a.min_tip_deg < 60):
+        raise ValueError(f"--min-tip-deg {a.min_tip_deg!r} is invalid; valid range: 0 <= D < 60 deg")
+    if not (math.isfinite(a.cross_slope) and 0 <= a.cross_slope <= 8):
+        raise ValueError(f"--cross-slope {a.cross_slope!r} is invalid; valid range: 0 to 8 deg")
+    chair = cli.load_chair(a.chair, a.set)
+    unc = None
+    if a.uncertainty:
+        from ..measure.uncertainty import load_uncertainty
+        unc = load_uncertainty(a.uncertainty)
+    advice = advise(chair, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=a.cross_slope,
+                    progress=not a.no_progress)
+    data = advice_mapping(advice)
+    if unc is not None:
+        from .uncertain import tip_interval
+        lo, hi = tip_interval(chair, unc)
+        data["verdict"]["static_stability_deg"]["interval"] = [lo, hi]
+        data["verdict"]["static_stability_interval_source"] = f"{a.uncertainty} (2.5-97.5 % of 200 draws)"
+    if a.json or a.json_file:
+        options = {"speeds_m_s": list(speeds), "uncertainty": a.uncertainty, "min_tip_deg": a.min_tip_deg,
+                   "cross_slope_deg": a.cross_slope}
+        cli.emit_json({**cli.json_header(chair, "exact", options), **data}, a)
+        if a.json:
+            return 0
+    print(data["text"])
+    if unc is not None:
+        lo, hi = data["verdict"]["static_stability_deg"]["interval"]
+        print(f"Static stability over {a.uncertainty}: {lo:.1f}-{hi:.1f} deg (2.5-97.5 % of 200 draws).")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point; returns the exit status."""
+    return cli.run(build_parser(), argv, _body)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
+
+
+__all__ = ["main", "advice_text"]

@@ -1,0 +1,215 @@
+"""Every measure the advisor weighs, for many chairs at once: the one place it calls the studies.
+
+A chair's measures are exactly what the commands print for it:
+
+- ``critical_impulse_Ns``: ``python -m stability.study critical-impulse --speeds 0.75 --interval``
+  (:func:`stability.study.critical_impulse_intervals`; interval over pin friction x0.5/x1.5 and model);
+- ``equal_instability_speed_m_s``: ``python -m stability.study equal-instability``
+  (:func:`stability.study.equal_instability_intervals`; interval over push, pin friction and model);
+- ``static_stability_deg``: the smallest of ``python -m stability.tipping``'s four angles;
+- ``shimmy_margin_m``: ``python -m stability.shimmy --speeds S --json``'s ``shimmy_band.shimmy_margin_m``
+  (interval over the estimate ranges);
+- ``turning_effort_N_m``: the larger pin friction (the moment to swivel a caster at its pin);
+- ``handrim_force_difference_N``: ``python -m stability.slope --cross-slope D --speed 0.75``'s hand-rim
+  force difference (right minus left).
+
+All chairs go through each study in one batch (:func:`measure_chairs`), so a faster study
+(batched, started from the linear prediction) speeds the advisor up with no change here.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..chair import Chair
+from ..linear import eigenvalues_vs_speed
+from ..progress import ProgressBar
+from ..reference import REFERENCE_SPEED
+from ..shimmy.band import band_core, shimmy_band
+from ..slope import drive_report, solve
+from ..study import critical_impulse_intervals, equal_instability_intervals
+from ..tipping import tip_angles
+
+__all__ = ["Interval", "Measures", "measure_chairs", "nonlinear_measures", "IMPULSE_SPEED"]
+
+#: Speed of the critical impulse the advisor weighs (the thesis's reference speed), m/s.
+IMPULSE_SPEED = REFERENCE_SPEED
+
+
+@dataclass(frozen=True)
+class Interval:
+    """A value with its interval.
+
+    Attributes
+    ----------
+    value : float or None
+        Nominal value (None: undefined).
+    low, high : float or None
+        Interval ends (None: unbounded or undefined on that side).
+    """
+
+    value: float | None
+    low: float | None
+    high: float | None
+
+    @property
+    def robust(self) -> float | None:
+        """The low end of the interval (what the advisor judges on), else the value."""
+        return self.low if self.low is not None else self.value
+
+    def to_mapping(self) -> dict:
+        """``{"value": v, "interval": [low, high]}`` (non-finite numbers as null)."""
+        def f(x: float | None) -> float | None:
+            return None if x is None or not math.isfinite(x) else float(x)
+
+        return {"value": f(self.value), "interval": [f(self.low), f(self.high)]}
+
+
+@dataclass(frozen=True)
+class Measures:
+    """What the advisor knows about one chair.
+
+    Attributes
+    ----------
+    chair : str
+        Chair name.
+    critical_impulse_Ns : Interval
+        Critical impulse at :data:`IMPULSE_SPEED` (N s), interval over pin friction and model.
+    equal_instability_speed_m_s : Interval
+        Equal-instability speed (m/s; a bracket end when beyond it), interval over push, friction, model.
+    static_stability_deg : Interval
+        Smallest static stability angle (deg); geometric, so the interval is the value.
+    shimmy_margin_m : Interval
+        Signed distance of the trail from the nearest shimmy boundary at the use speeds (m), nominal
+        estimates; interval over the estimate ranges (None: unbounded).
+    shimmy_straddles : bool
+        The estimate range straddles a boundary (measure pin stiffness and relaxation length first).
+    turning_effort_N_m : float
+        Larger of the two pins' Coulomb friction (N m): the moment to swivel a caster at its pin.
+    handrim_force_difference_N : float or None
+        Hand-rim force difference right minus left on the cross slope at :data:`IMPULSE_SPEED` (N);
+        None where the slope statics refuse the chair (tire data).
+    growth_rate_1_s : float
+        Linear growth rate, free frictionless casters, at :data:`IMPULSE_SPEED` (1/s).
+    tip_angles_deg : dict
+        The four ISO 7176-1 angles (deg) by direction.
+    equal_instability_status : str
+        ``"found"``, ``"above"`` (beyond 3 m/s) or ``"below"`` (below 0.2 m/s).
+    """
+
+    chair: str
+    critical_impulse_Ns: Interval
+    equal_instability_speed_m_s: Interval
+    static_stability_deg: Interval
+    shimmy_margin_m: Interval
+    shimmy_straddles: bool
+    turning_effort_N_m: float
+    handrim_force_difference_N: float | None
+    growth_rate_1_s: float
+    tip_angles_deg: dict
+    equal_instability_status: str
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict: the issue's ``predicted`` keys plus the costs."""
+        return {
+            "critical_impulse_Ns": self.critical_impulse_Ns.to_mapping(),
+            "critical_impulse_speed_m_s": IMPULSE_SPEED,
+            "equal_instability_speed_m_s": self.equal_instability_speed_m_s.to_mapping(),
+            "equal_instability_status": self.equal_instability_status,
+            "static_stability_deg": self.static_stability_deg.to_mapping(),
+            "shimmy_margin_m": self.shimmy_margin_m.to_mapping(),
+            "shimmy_estimate_range_straddles_boundary": self.shimmy_straddles,
+            "turning_effort_N_m": self.turning_effort_N_m,
+            "handrim_force_difference_N": self.handrim_force_difference_N,
+            "growth_rate_1_s": self.growth_rate_1_s,
+            "tip_angles_deg": dict(self.tip_angles_deg),
+        }
+
+
+def _handrim(chair: Chair, cross_slope_deg: float) -> float | None:
+    if cross_slope_deg == 0:
+        return 0.0
+    try:
+        eq = solve(chair, cross_slope_deg, IMPULSE_SPEED)
+    except ValueError:
+        return None
+    return float(drive_report(chair, eq, "handrim")["handrim_force_difference_N"])
+
+
+def _finite_or_none(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str]]:
+    """Critical impulse and equal-instability speed (with intervals) of every chair, one batch per study.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+
+    Returns
+    -------
+    list of tuple
+        ``(critical_impulse_Ns, equal_instability_speed_m_s, equal_instability_status)`` per chair.
+    """
+    ci = critical_impulse_intervals(chairs, IMPULSE_SPEED)
+    ei = equal_instability_intervals(chairs)
+    return [(Interval(float(imp.point.bound_Ns), imp.low_Ns, imp.high_Ns),
+             Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status)
+            for imp, eq in zip(ci, ei, strict=True)]
+
+
+def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_slope_deg: float,
+                   progress: bool = False, nonlinear: Callable | None = None) -> list[Measures]:
+    """The advisor's measures of every chair, each study in one batch for all of them.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    speeds : sequence of float
+        Use speeds (m/s) at which the shimmy margin is taken (the smallest over them).
+    cross_slope_deg : float
+        Cross slope of the hand-rim force (deg).
+    progress : bool
+        Show a progress bar on stderr.
+    nonlinear : callable, optional
+        Replaces :func:`nonlinear_measures` (same signature); for tests of everything else.
+
+    Returns
+    -------
+    list of Measures
+        One per chair, in order.
+    """
+    chairs = list(chairs)
+    with ProgressBar(2, f"measuring {len(chairs)} chair(s)", enabled=progress, unit="step") as bar:
+        nl = (nonlinear or nonlinear_measures)(chairs)
+        bar.update()
+        out = []
+        cores: dict = {}
+        for c, (imp, eq, status) in zip(chairs, nl, strict=True):
+            # the band search ignores the trail and the Coulomb pin friction (not in the linear caster)
+            key = c.replace(trail=0.05, pin_friction_left=0.0, pin_friction_right=0.0, name="-")
+            if key not in cores:
+                cores[key] = band_core(c, speeds)
+            band = shimmy_band(c, speeds, core=cores[key])
+            tips = tip_angles(c)
+            low, high = band.shimmy_margin_interval_m
+            out.append(Measures(
+                chair=c.name, critical_impulse_Ns=imp, equal_instability_speed_m_s=eq,
+                static_stability_deg=Interval(tips.smallest_deg, tips.smallest_deg, tips.smallest_deg),
+                shimmy_margin_m=Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low),
+                                         _finite_or_none(high)),
+                shimmy_straddles=band.straddles,
+                turning_effort_N_m=max(c.pin_friction_left, c.pin_friction_right),
+                handrim_force_difference_N=_handrim(c, cross_slope_deg),
+                growth_rate_1_s=float(np.max(eigenvalues_vs_speed(c, [IMPULSE_SPEED], track=False).real)),
+                tip_angles_deg={k: getattr(tips, k + "_deg") for k in ("toward_main_wheels", "toward_casters",
+                                                                      "lateral_left", "lateral_right")},
+                equal_instability_status=status,
+            ))
+        bar.update()
+    return out

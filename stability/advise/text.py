@@ -1,0 +1,183 @@
+"""The advice in plain language (designer and clinician) and as JSON."""
+
+from __future__ import annotations
+
+import math
+
+from ..reference import REFERENCE_SPEED, THESIS_PUSH
+from .advisor import Advice, Candidate
+from .levers import LEVERS
+from .measures import Measures
+
+__all__ = ["advice_text", "advice_mapping", "kmh"]
+
+_DIRECTION_WORDS = {"toward_main_wheels": "toward its main wheels", "toward_casters": "toward its casters",
+                    "lateral_left": "over its left side", "lateral_right": "over its right side"}
+
+
+def kmh(speed: float) -> str:
+    """``"0.75 m/s (2.7 km/h)"``."""
+    return f"{speed:.3g} m/s ({speed * 3.6:.2g} km/h)"
+
+
+def _iv(x, unit: str, digits: int = 3, status: str = "found") -> str:
+    lo = "?" if x.low is None else f"{x.low:.{digits}g}"
+    hi = "?" if x.high is None else f"{x.high:.{digits}g}"
+    value = {"above": "> ", "below": "< "}.get(status, "") + f"{x.value:.{digits}g}"
+    return f"{value} {unit} (range {lo}-{hi})"
+
+
+def _shimmy_words(m: Measures, trail: float) -> str:
+    s = m.shimmy_margin_m.value
+    if s is None:
+        return "no shimmy boundary found" if m.shimmy_margin_m.low is None else "it shimmies at every trail checked"
+    where = "inside its shimmy-free band" if s > 0 else "INSIDE a shimmy zone"
+    flag = ("; over the estimated range of pin stiffness and tire relaxation length it could shimmy: measure "
+            "them first" if m.shimmy_straddles else "")
+    return f"the {trail * 100:g} cm trail lies {abs(s) * 100:.2f} cm {where} (estimated caster compliance){flag}"
+
+
+def _verdict(a: Advice) -> list[str]:
+    m = a.verdict
+    ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
+    force = (ci.value or 0.0) / 0.1
+    lines = [f"{a.chair.name}: advice for use at {kmh(a.speeds_m_s[0])} to {kmh(a.speeds_m_s[-1])}", "",
+             "VERDICT"]
+    lines.append(f"  At {kmh(REFERENCE_SPEED)} a sideways nudge of {ci.value:.2g} N s at the seat (about {force:.0f} N "
+                 f"for a tenth of a second; range {ci.low:.2g}-{ci.high:.2g} N s over pin friction and model) turns "
+                 f"the chair until it spins at 1 rad/s (57 deg/s) within 10 s unless the user steers.")
+    times = [f"{t:.2g} s at {u:g} m/s" if t is not None else f"more than 10 s at {u:g} m/s"
+             for u, t in zip(a.speeds_m_s, a.time_to_correct_s, strict=False)]
+    if times:
+        lines.append(f"  After the thesis's reference push ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) "
+                     f"the user has {', '.join(times)} to correct before it turns at 1 rad/s.")
+    where = {"found": f"at {kmh(ei.value or 0.0)}", "above": "only above 3 m/s", "below": "already below 0.2 m/s"}[
+        m.equal_instability_status]
+    lo = "?" if ei.low is None else f"{ei.low:.3g}"
+    hi = "?" if ei.high is None else f"{ei.high:.3g}"
+    lines.append(f"  It is as unstable as the thesis's reference case (E&J Premier at 0.75 m/s) {where} "
+                 f"(range {lo}-{hi} m/s over push size, pin friction and model); faster than that it gives the "
+                 "user less time than the reference case.")
+    lines.append(f"  Caster shimmy: {_shimmy_words(m, a.chair.trail)}.")
+    worst = min(m.tip_angles_deg, key=lambda k: m.tip_angles_deg[k])
+    lines.append(f"  Static stability: it tips {_DIRECTION_WORDS[worst]} on a {m.static_stability_deg.value:.1f} deg "
+                 "slope (rigid chair, brakes locked, casters in their worst swivel position); "
+                 + ", ".join(f"{_DIRECTION_WORDS[k].split(' ', 1)[1]} {v:.1f}" for k, v in m.tip_angles_deg.items())
+                 + " deg.")
+    lines.append(f"  Linear model (free, frictionless casters): the heading error grows at {m.growth_rate_1_s:.3g} 1/s "
+                 f"at "
+                 f"{REFERENCE_SPEED:g} m/s. It has no pin friction, so where it disagrees with the push and speed "
+                 "measures above (which include the pins' Coulomb friction) those decide; the advice says where.")
+    if m.handrim_force_difference_N is not None and a.cross_slope_deg:
+        lines.append(f"  On a {a.cross_slope_deg:g} deg cross slope at {REFERENCE_SPEED:g} m/s one hand-rim must push "
+                     f"{abs(m.handrim_force_difference_N):.0f} N harder than the other to hold the line.")
+    return lines
+
+
+def _row(c: Candidate) -> str:
+    m = c.measures
+    sm = m.shimmy_margin_m.value
+    hr = m.handrim_force_difference_N
+    return (f"  {c.changes[0].label:<72} {m.critical_impulse_Ns.low:6.2f}-{m.critical_impulse_Ns.high:<6.2f} "
+            f"{m.equal_instability_speed_m_s.value:6.3f} {m.static_stability_deg.value:6.1f} "
+            f"{'none' if sm is None else format(sm * 100, '+.2f'):>7} {m.turning_effort_N_m:6.3f} "
+            f"{'-' if hr is None else format(abs(hr), '.0f'):>5} {m.growth_rate_1_s:5.2f} {c.gain * 100:+6.1f} %"
+            + ("" if c.feasible else "  breaks " + ", ".join(k.name for k in c.constraints if not k.met))
+            + ("  (impulse and speed disagree)" if min(c.gains.values()) < 0 < max(c.gains.values()) else ""))
+
+
+def _recommendation(a: Advice) -> list[str]:
+    if not a.recommendations:
+        return ["", "RECOMMENDATION", f"  None: {a.reason}."]
+    out = []
+    base = a.verdict
+    for r in a.recommendations:
+        c = r.candidate
+        m = c.measures
+        out += ["", "RECOMMENDATION" if r.rank == 1 else "RUNNER-UP",
+                f"  {c.label}", f"  (--set {' --set '.join(x for ch in c.changes for x in ch.assignments)})",
+                f"  critical impulse at {REFERENCE_SPEED:g} m/s: {_iv(base.critical_impulse_Ns, 'N s')} -> "
+                f"{_iv(m.critical_impulse_Ns, 'N s')}",
+                f"  equal-instability speed: "
+                f"{_iv(base.equal_instability_speed_m_s, 'm/s', status=base.equal_instability_status)} -> "
+                f"{_iv(m.equal_instability_speed_m_s, 'm/s', status=m.equal_instability_status)} "
+                f"({m.equal_instability_speed_m_s.value * 3.6:.2g} km/h)",
+                f"  judged on the low ends: +{c.gains['critical_impulse'] * 100:.0f} % critical impulse, "
+                f"+{c.gains['equal_instability_speed'] * 100:.0f} % equal-instability speed"]
+        for b in r.built_from:
+            out.append(f"    alone, {b.label}: +{b.gain * 100:.0f} % (robust)")
+        out.append("  what it costs:")
+        for k in c.constraints:
+            v = "refused by the slope statics" if k.value is None else f"{k.value:.4g}"
+            out.append(f"    {k.name} = {v} (limit {k.kind} {k.limit:.4g}; {'met' if k.met else 'NOT met'}; {k.note})")
+        out += [f"  note: {n}" for n in r.notes]
+    return out
+
+
+def advice_text(a: Advice) -> str:
+    """The advice as text: verdict, levers table, recommendation and what it costs.
+
+    Parameters
+    ----------
+    a : Advice
+
+    Returns
+    -------
+    str
+    """
+    lines = _verdict(a)
+    lines += ["", "LEVERS (what each change buys and costs; robust gain = the smaller gain of the low ends of the "
+              "critical-impulse and equal-instability intervals)",
+              f"  {'change':<72} {'impulse N s':>13} {'EI m/s':>6} {'tip':>6} {'shimmy':>7} {'pin':>6} {'rim':>5} "
+              f"{'lin':>5} {'gain':>8}",
+              f"  {'':<72} {'(low-high)':>13} {'':>6} {'deg':>6} {'cm':>7} {'N m':>6} {'N':>5} {'1/s':>5}"]
+    for name in LEVERS:
+        lines += [_row(c) for c in a.candidates if c.changes[0].lever == name]
+    for ch, why in a.refused:
+        lines.append(f"  {ch.label:<72} refused: {why}")
+    lines += _recommendation(a)
+    lines += ["", f"Limits: static stability >= {a.min_tip_deg:.1f} deg ({a.min_tip_source}); the others as listed. "
+              "Speeds are also in km/h; a push in N s is force x time."]
+    return "\n".join(lines)
+
+
+def advice_mapping(a: Advice) -> dict:
+    """JSON-ready advice: ``verdict``, ``levers``, ``recommendations`` (docs/advise.md).
+
+    Parameters
+    ----------
+    a : Advice
+
+    Returns
+    -------
+    dict
+    """
+    def finite(x):
+        return None if x is None or (isinstance(x, float) and not math.isfinite(x)) else x
+
+    levers = []
+    for name, (desc, _) in LEVERS.items():
+        cs = [c for c in a.candidates if c.changes[0].lever == name]
+        levers.append({
+            "name": name, "description": desc,
+            "values": [{"label": c.label, "change": c.fields} for c in cs],
+            "critical_impulse_Ns": [c.measures.critical_impulse_Ns.to_mapping() for c in cs],
+            "equal_instability_speed_m_s": [c.measures.equal_instability_speed_m_s.to_mapping() for c in cs],
+            "shimmy_margin_m": [c.measures.shimmy_margin_m.to_mapping() for c in cs],
+            "static_stability_deg": [c.measures.static_stability_deg.to_mapping() for c in cs],
+            "turning_effort_N_m": [c.measures.turning_effort_N_m for c in cs],
+            "handrim_force_difference_N": [c.measures.handrim_force_difference_N for c in cs],
+            "robust_gain": [finite(c.gain) for c in cs],
+            "constraints_met": [c.feasible for c in cs],
+            "refused": [{"label": ch.label, "change": ch.to_mapping(), "reason": why}
+                        for ch, why in a.refused if ch.lever == name],
+        })
+    verdict = a.verdict.to_mapping()
+    verdict["time_to_correct_s"] = [finite(t) for t in a.time_to_correct_s]
+    verdict["time_to_correct_speeds_m_s"] = list(a.speeds_m_s)
+    verdict["text"] = "\n".join(_verdict(a)[3:])
+    return {"verdict": verdict, "levers": levers,
+            "recommendations": [r.to_mapping() for r in a.recommendations],
+            "no_recommendation_reason": a.reason or None,
+            "limits": {"min_tip_deg": a.min_tip_deg, "min_tip_source": a.min_tip_source},
+            "text": advice_text(a)}

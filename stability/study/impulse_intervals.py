@@ -1,0 +1,109 @@
+"""The critical impulse with its interval over the inputs it rests on: pin friction and model.
+
+The critical impulse *is* a push size, so unlike the equal-instability speed it has no push
+variant; it depends on the pin's Coulomb friction (measured only roughly; x0.5 and x1.5, as the
+equal-instability interval) and on the model (exact or thesis).  One batch of
+:func:`stability.study.critical_impulses` per model covers every chair and variant; a chair's
+result does not depend on the batch it runs in.  ``python -m stability.study critical-impulse
+--interval`` prints it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from .._validate import VARIANTS, check_model
+from ..chair import Chair
+from .impulse import CriticalImpulse, critical_impulses
+from .intervals import scale_friction
+
+__all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS"]
+
+#: Pin-friction factors of the interval (as :func:`stability.study.equal_instability_interval`'s).
+FRICTION_FACTORS = (0.5, 1.5)
+
+
+@dataclass(frozen=True)
+class CriticalImpulseInterval:
+    """Critical impulse at one speed with its range over pin friction and model.
+
+    Attributes
+    ----------
+    chair_name : str
+    speed : float
+        m/s.
+    point : CriticalImpulse
+        Nominal: the chair's pin friction, the nominal model.
+    variants : tuple of (str, CriticalImpulse)
+        Label (``"x0.5 pin friction"``, ``"thesis model"``) and result.
+    low_Ns, high_Ns : float
+        Smallest and largest impulse (or bound, see :attr:`CriticalImpulse.bound_Ns`) over the nominal
+        case and every variant, N s.
+    """
+
+    chair_name: str
+    speed: float
+    point: CriticalImpulse
+    variants: tuple
+    low_Ns: float
+    high_Ns: float
+
+    def describe(self) -> str:
+        """``"3.22 N s (range 2.3-4.2 N s over pin friction x0.5-x1.5 and the thesis model)"``."""
+        labels = ", ".join(label for label, _ in self.variants)
+        return f"{self.point.describe()} (range {self.low_Ns:.3g}-{self.high_Ns:.3g} N s over {labels})"
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict (N s, m/s)."""
+        return {"chair": self.chair_name, "speed_m_s": self.speed, "impulse_Ns": self.point.impulse_Ns,
+                "status": self.point.status, "low_Ns": self.low_Ns, "high_Ns": self.high_Ns,
+                "variants": [{"label": label, "impulse_Ns": r.impulse_Ns, "status": r.status, "bound_Ns": r.bound_Ns}
+                             for label, r in self.variants]}
+
+
+def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, *, model: str = "exact",
+                               friction_factors: Sequence[float] = FRICTION_FACTORS,
+                               models: Sequence[str] = VARIANTS, **options: Any) -> list[CriticalImpulseInterval]:
+    """Critical impulse of each chair at ``speed``, with its range over pin friction and model.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    speed : float
+        m/s.
+    model : {"exact", "thesis"}
+        The nominal model.
+    friction_factors : sequence of float
+        Multipliers of both pins' Coulomb friction (nominal model).
+    models : sequence of str
+        Models compared (the other ones at nominal friction).
+    **options
+        As :func:`stability.study.critical_impulses` (duration, level, horizon, max_impulse, ...).
+
+    Returns
+    -------
+    list of CriticalImpulseInterval
+        One per chair, in order.
+    """
+    check_model(model)
+    chairs = list(chairs)
+    specs: list[tuple[str, str, float]] = [("nominal", model, 1.0)]
+    specs += [(f"x{f:g} pin friction", model, float(f)) for f in friction_factors]
+    specs += [(f"{m} model", m, 1.0) for m in models if m != model]
+    results: dict[tuple[int, int], CriticalImpulse] = {}
+    for m in dict.fromkeys(s[1] for s in specs):
+        idx = [k for k, s in enumerate(specs) if s[1] == m]
+        jobs = [(n, k) for n in range(len(chairs)) for k in idx]
+        res = critical_impulses([scale_friction(chairs[n], specs[k][2]) for n, k in jobs], speed, model=m,
+                                **options)
+        results.update(zip(jobs, res, strict=True))
+    out = []
+    for n, c in enumerate(chairs):
+        point = results[(n, 0)]
+        variants = tuple((specs[k][0], results[(n, k)]) for k in range(1, len(specs)))
+        bounds = [point.bound_Ns] + [r.bound_Ns for _, r in variants]
+        out.append(CriticalImpulseInterval(c.name, float(speed), point, variants, float(min(bounds)),
+                                           float(max(bounds))))
+    return out
