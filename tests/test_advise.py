@@ -134,8 +134,8 @@ def _robust(n: int, seed: int) -> None:
         d = advice_mapping(a)
         json.dumps(d, allow_nan=False)
         assert advice_text(a)
-        for r in a.recommendations:
-            assert all(k.met for k in r.candidate.constraints)
+        for r in a.recommendations:       # a change meets every constraint; "no change" may carry a broken one
+            assert all(k.met for k in r.candidate.constraints) or not r.candidate.changes
         done += 1
 
 
@@ -162,7 +162,8 @@ def test_every_preset_and_the_measured_chair_get_a_recommendation(name):
     c = chair_mod.load(name) if name.endswith(".toml") else chair_mod.preset(name)
     a = advise(c)
     assert a.recommendations, a.reason
-    assert all(k.met for k in a.recommendations[0].candidate.constraints)
+    top = a.recommendations[0].candidate
+    assert all(k.met for k in top.constraints) or not top.changes
 
 
 @pytest.mark.slow
@@ -198,3 +199,15 @@ def test_cli_refuses_bad_input_before_any_work(capsys):
         assert main(args) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and err.startswith("error:") and frag in err, err
+
+
+def test_docs_linear_reconciliation_numbers():
+    """docs/advise.md: the revised design's frictionless growth rate is worse than the E&J's (1.54 vs 1.45 1/s at
+    0.75 m/s) and sits at the peak s1 = sqrt(I_z/m) = 0.243 m."""
+    from stability.linear import eigenvalues_vs_speed
+
+    text = (ROOT / "docs" / "advise.md").read_text()
+    ej, rev = chair_mod.preset("ej-premier"), chair_mod.preset("revised")
+    r_ej, r_rev = (float(np.max(eigenvalues_vs_speed(c, [0.75], track=False).real)) for c in (ej, rev))
+    assert f"{r_rev:.2f} vs {r_ej:.2f} 1/s at 0.75 m/s" in text and r_rev > r_ej
+    assert f"({math.sqrt(ej.i_z / ej.m):.3f} m for the E&J Premier)" in text

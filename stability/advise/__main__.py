@@ -31,6 +31,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _speeds(text: str) -> tuple[float, ...]:
+    speeds: tuple[float, ...]
     parts = text.split(":")
     if len(parts) == 2:                                    # a range A:B: its ends and middle
         try:

@@ -21,7 +21,7 @@ from ..study import reference_time
 from .levers import LEVERS, apply, lever_changes
 from .measures import Measures, measure_chairs
 
-__all__ = ["Constraint", "Candidate", "Recommendation", "Advice", "advise", "MAX_PIN_FRICTION_N_M",
+__all__ = ["Constraint", "Candidate", "Recommendation", "Advice", "advise", "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST",
            "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS", "DEFAULT_CROSS_SLOPE_DEG"]
 
 #: Tolerable pin friction (N m): Collins (1987) conclusion 6 (L1853), "a reasonable estimate is 0.3 N-m".
@@ -29,6 +29,9 @@ MAX_PIN_FRICTION_N_M = 0.3
 #: Smallest distance (m) of the trail from the nearest shimmy boundary at the nominal estimates (a
 #: design choice: 5 mm, ten times the 0.5 mm at which the user journey's chair sat; docs/advise.md).
 MIN_SHIMMY_MARGIN_M = 0.005
+#: A change that only fixes a constraint the chair breaks is recommended if it costs at most this fraction of
+#: the robust measures; a dearer fix is the runner-up behind "no change, measure first".
+MAX_FIX_COST = 0.25
 #: A change may raise the hand-rim force difference on the cross slope by at most this factor.
 HANDRIM_FACTOR = 1.1
 #: Default use speeds (m/s): :data:`stability.defaults.ADVISE_SPEEDS` (0.5:1:0.25).
@@ -109,8 +112,8 @@ class Candidate:
 
     @property
     def label(self) -> str:
-        """The change in words."""
-        return " + ".join(ch.label for ch in self.changes)
+        """The change in words (``"no change"`` for the chair as it is)."""
+        return " + ".join(ch.label for ch in self.changes) or "no change"
 
 
 @dataclass(frozen=True)
@@ -294,29 +297,62 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
         return Candidate(changes, m, g, gs, _constraints(m, base, min_tip, source, cross_slope_deg))
 
     cands = [candidate((ch,), m) for (ch, _), m in zip(singles, measured[1:], strict=True)]
+    own = _constraints(base, base, min_tip, source, cross_slope_deg)
+    broken = {k.name for k in own if not k.met}            # what the chair as it is already breaks
+
+    def acceptable(c: Candidate) -> bool:                  # breaks nothing the chair itself meets
+        return all(k.met or k.name in broken for k in c.constraints)
+
     best_per_lever: dict[str, Candidate] = {}
     for c in cands:
         lever = c.changes[0].lever
-        if c.feasible and c.gain > 0 and (lever not in best_per_lever or c.gain > best_per_lever[lever].gain):
+        if acceptable(c) and c.gain > 0 and (lever not in best_per_lever or c.gain > best_per_lever[lever].gain):
             best_per_lever[lever] = c
-    top = sorted(best_per_lever.values(), key=lambda c: -c.gain)[:3]
-    combos = _combos(top)
+    pool = sorted(best_per_lever.values(), key=lambda c: -c.gain)[:3]
+    fixes = sorted((c for c in cands if c.feasible), key=lambda c: -c.gain) if broken else []
+    pool += [c for c in fixes[:2] if c.changes[0].lever not in {p.changes[0].lever for p in pool}]
+    combos = _combos(pool)
     combo_chairs = [apply(chair, [f for x in combo for f in x.changes[0].fields]) for combo in combos]
     cm = measure_chairs(combo_chairs, speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
                         nonlinear=nonlinear) if combo_chairs else []
     combined = [candidate(tuple(x.changes[0] for x in combo), m) for combo, m in zip(combos, cm, strict=True)]
-    ranked = sorted((c for c in cands + combined if c.feasible and c.gain > 0), key=lambda c: -c.gain)
+    feasible = [c for c in cands + combined if c.feasible]
+    ranked = sorted((c for c in feasible if c.gain > 0 or broken), key=lambda c: -c.gain)
+    keep = Candidate((), base, 0.0, {"critical_impulse": 0.0, "equal_instability_speed": 0.0}, own)
+    if not broken and not ranked:
+        # nothing helps and nothing needs fixing: keep the chair as it is; the runner-up is the best other change
+        ranked = [keep] + sorted(feasible, key=lambda c: -c.gain)[:1]
+    elif broken and not (ranked and ranked[0].gain >= -MAX_FIX_COST):
+        # the fixes (if any) cost too much: measure first, the cheapest fix as the runner-up
+        ranked = [keep] + ranked[:1]
     recs = []
     for rank, c in enumerate(ranked[:2], start=1):
         parts = tuple(next(s for s in cands if s.changes == (ch,)) for ch in c.changes) if len(c.changes) > 1 else ()
-        recs.append(Recommendation(rank, c, parts, _notes(c, base, chair)))
+        notes = _notes(c, base, chair)
+        if broken and c.changes:
+            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}; this change meets every constraint "
+                      f"({'and gains' if c.gain > 0 else 'at a cost of'} {abs(c.gain) * 100:.0f} % on the robust "
+                      "measures).",)
+        elif broken:
+            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}, and no change fixes it for less than "
+                      f"{MAX_FIX_COST * 100:.0f} % of the robust measures"
+                      + (": measure the pin's lateral stiffness and the caster tire's relaxation length first; "
+                         "if the estimates are confirmed, the runner-up fixes it" if "shimmy_margin_m" in broken
+                         else "") + ".",)
+        if not c.changes and not broken:
+            notes += ("No change of any lever raises both the critical impulse and the equal-instability speed at the "
+                      "low ends of their intervals while meeting every constraint: keep the chair as it is"
+                      + (" (it is directionally stable beyond what the studies measure: critical impulse above "
+                         f"{base.critical_impulse_Ns.value:g} N s, equal-instability speed above "
+                         f"{base.equal_instability_speed_m_s.value:g} m/s)"
+                         if base.equal_instability_status == "above" else "") + ".",)
+        recs.append(Recommendation(rank, c, parts, notes))
     reason = ""
     if not recs:
         helping = [c for c in cands if c.gain > 0]
-        reason = ("no single change of any lever raises both the critical impulse and the equal-instability speed "
-                  "at the low ends of their intervals" if not helping else
-                  "every change that helps breaks a constraint: " + "; ".join(
-                      f"{c.label} ({', '.join(k.name for k in c.constraints if not k.met)})" for c in helping[:3]))
+        reason = ("the chair breaks " + ", ".join(sorted(broken)) + " and no change of any lever meets every "
+                  "constraint: " + "; ".join(f"{c.label} ({', '.join(k.name for k in c.constraints if not k.met)})"
+                                             for c in (helping or cands)[:3]))
     times: list[float | None] = []
     for u in use if time_to_correct else ():
         try:

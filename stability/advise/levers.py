@@ -77,19 +77,19 @@ def _trail(c: Chair) -> list[Change]:
 
 def _s1_fixed_sum(c: Chair) -> list[Change]:
     return [Change("s1_fixed_wheelbase", f"axle {abs(d) * 100:g} cm {'toward' if d < 0 else 'away from'} the c.g. "
-                   f"at fixed s1+s2 (s1 {c.s1 * 100:g} -> {(c.s1 + d) * 100:g} cm)",
+                   f"at fixed s1+s2 (s1 {c.s1 * 100:.1f} -> {(c.s1 + d) * 100:.1f} cm)",
                    (("s1", _r(c.s1 + d)), ("s2", _r(c.s2 - d)))) for d in (-0.10, -0.05, 0.05)]
 
 
 def _s1_fixed_s2(c: Chair) -> list[Change]:
     return [Change("s1_fixed_s2", f"axle {abs(d) * 100:g} cm {'toward' if d < 0 else 'away from'} the c.g. at fixed s2 "
-                   f"(s1 {c.s1 * 100:g} -> {(c.s1 + d) * 100:g} cm)", (("s1", _r(c.s1 + d)),))
+                   f"(s1 {c.s1 * 100:.1f} -> {(c.s1 + d) * 100:.1f} cm)", (("s1", _r(c.s1 + d)),))
             for d in (-0.05, 0.05)]
 
 
 def _wheelbase(c: Chair) -> list[Change]:
-    return [Change("wheelbase", f"wheelbase x{k:g} at a fixed c.g. ratio (s1 {c.s1 * 100:g} -> {c.s1 * k * 100:.1f}, "
-                   f"s2 {c.s2 * 100:g} -> {c.s2 * k * 100:.1f} cm)", (("s1", _r(c.s1 * k)), ("s2", _r(c.s2 * k))))
+    return [Change("wheelbase", f"wheelbase x{k:g} at a fixed c.g. ratio (s1 {c.s1 * 100:.1f} -> {c.s1 * k * 100:.1f}, "
+                   f"s2 {c.s2 * 100:.1f} -> {c.s2 * k * 100:.1f} cm)", (("s1", _r(c.s1 * k)), ("s2", _r(c.s2 * k))))
             for k in (0.9, 1.1)]
 
 

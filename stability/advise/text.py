@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..reference import REFERENCE_SPEED, THESIS_PUSH
 from .advisor import Advice, Candidate
 from .levers import LEVERS
@@ -16,7 +18,18 @@ _DIRECTION_WORDS = {"toward_main_wheels": "toward its main wheels", "toward_cast
 
 
 def kmh(speed: float) -> str:
-    """``"0.75 m/s (2.7 km/h)"``."""
+    """A speed in m/s and km/h.
+
+    Parameters
+    ----------
+    speed : float
+        m/s.
+
+    Returns
+    -------
+    str
+        ``"0.75 m/s (2.7 km/h)"``.
+    """
     return f"{speed:.3g} m/s ({speed * 3.6:.2g} km/h)"
 
 
@@ -95,15 +108,17 @@ def _recommendation(a: Advice) -> list[str]:
         c = r.candidate
         m = c.measures
         out += ["", "RECOMMENDATION" if r.rank == 1 else "RUNNER-UP",
-                f"  {c.label}", f"  (--set {' --set '.join(x for ch in c.changes for x in ch.assignments)})",
+                f"  {c.label}",
+                f"  (--set {' --set '.join(x for ch in c.changes for x in ch.assignments)})" if c.changes else
+                "  (the chair as it is)",
                 f"  critical impulse at {REFERENCE_SPEED:g} m/s: {_iv(base.critical_impulse_Ns, 'N s')} -> "
                 f"{_iv(m.critical_impulse_Ns, 'N s')}",
                 f"  equal-instability speed: "
                 f"{_iv(base.equal_instability_speed_m_s, 'm/s', status=base.equal_instability_status)} -> "
                 f"{_iv(m.equal_instability_speed_m_s, 'm/s', status=m.equal_instability_status)} "
                 f"({m.equal_instability_speed_m_s.value * 3.6:.2g} km/h)",
-                f"  judged on the low ends: +{c.gains['critical_impulse'] * 100:.0f} % critical impulse, "
-                f"+{c.gains['equal_instability_speed'] * 100:.0f} % equal-instability speed"]
+                f"  judged on the low ends: {c.gains['critical_impulse'] * 100:+.0f} % critical impulse, "
+                f"{c.gains['equal_instability_speed'] * 100:+.0f} % equal-instability speed"]
         for b in r.built_from:
             out.append(f"    alone, {b.label}: +{b.gain * 100:.0f} % (robust)")
         out.append("  what it costs:")
@@ -176,8 +191,22 @@ def advice_mapping(a: Advice) -> dict:
     verdict["time_to_correct_s"] = [finite(t) for t in a.time_to_correct_s]
     verdict["time_to_correct_speeds_m_s"] = list(a.speeds_m_s)
     verdict["text"] = "\n".join(_verdict(a)[3:])
-    return {"verdict": verdict, "levers": levers,
-            "recommendations": [r.to_mapping() for r in a.recommendations],
-            "no_recommendation_reason": a.reason or None,
-            "limits": {"min_tip_deg": a.min_tip_deg, "min_tip_source": a.min_tip_source},
-            "text": advice_text(a)}
+    return _json_safe({"verdict": verdict, "levers": levers,
+                       "recommendations": [r.to_mapping() for r in a.recommendations],
+                       "no_recommendation_reason": a.reason or None,
+                       "limits": {"min_tip_deg": a.min_tip_deg, "min_tip_source": a.min_tip_source},
+                       "non_finite_as": "null (an unbounded interval end, an undefined gain or an absent limit)",
+                       "text": advice_text(a)})
+
+
+def _json_safe(x):
+    """``x`` with every non-finite float (and numpy scalar) made JSON-safe: inf and NaN become None."""
+    if isinstance(x, dict):
+        return {k: _json_safe(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_json_safe(v) for v in x]
+    if isinstance(x, (float, np.floating)):
+        return float(x) if math.isfinite(x) else None
+    if isinstance(x, np.bool_):
+        return bool(x)
+    return x
