@@ -419,7 +419,13 @@ def readme(t: FirmwareTables, bounds: dict[str, float] | None = None) -> str:
              f"Gain schedule: {len(t.speeds)} speeds {', '.join(f'{s:g}' for s in t.speeds)} m/s; every table "
              "entry interpolated linearly in speed, held outside.",
              f"Reference model: 1 - exp(-T/T_ref) = {t.command_gain:.6g}; bias estimate gain "
-             f"{t.bias_gain:.6g} per sample; anti-windup: {t.anti_windup}.", ""]
+             f"{t.bias_gain:.6g} per sample; anti-windup: {t.anti_windup}.",
+             f"Sensor monitor: gyro minus wheel-speed yaw rate, low-passed (gain {t.monitor_gain:.6g} per sample), "
+             f"less the bias estimate; beyond {MONITOR_THRESHOLD_DEG_S:g} deg/s the controller latches a degraded "
+             "mode until assist_init: the wheel-speed yaw rate replaces the gyro (assist_mode 1), or, when the "
+             f"wheel-speed yaw rate implies one wheel below {1 - WHEEL_PLAUSIBLE:g} of the other's speed, the gyro "
+             "steers alone with its bias estimate frozen (assist_mode 2); assist_speed_limit_m_s then returns "
+             f"{DEGRADED_SPEED:g} m/s for the speed controller to obey.", ""]
     if t.q_format == "float":
         lines.append("Quantisation: tables stored as float (single precision); arithmetic single precision.")
     else:
