@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import math
 import os
 import sys
@@ -37,10 +36,11 @@ from .cli_options import (
     check_format,
 )
 from .cli_options import subparsers as _subparsers
+from .output import distinct_notes, json_text, with_tire_range
 from .statics import check_static_loads, static_loads
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
-           "load_chair", "parse_speeds", "check_directory", "check_outputs", "output_files", "json_header",
+           "load_chair", "apply_assignments", "parse_speeds", "check_directory", "check_outputs", "output_files", "json_header",
            "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
            "add_uncertainty_option", "FIGURE_FORMATS"]
 
@@ -76,6 +76,26 @@ def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
         c = chair_mod.resolve(spec)
     except OSError as exc:
         raise ValueError(f"--chair {spec!r}: cannot read the file ({exc.strerror or exc})") from None
+    return apply_assignments(c, assignments)
+
+
+def apply_assignments(c: chair_mod.Chair, assignments: Sequence[str]) -> chair_mod.Chair:
+    """``c`` with ``--set`` assignments applied, its static loads and tire data checked (as :func:`load_chair`).
+
+    The explorer (:mod:`stability.app`) checks its edits with it, so a bad value gives the same one line there.
+
+    Parameters
+    ----------
+    c : Chair
+        The chair the assignments start from.
+    assignments : sequence of str
+        ``NAME=VALUE`` texts (:func:`stability.chair.parse_assignment`), applied in order.
+
+    Returns
+    -------
+    Chair
+        Raises ValueError naming the field or value at fault.
+    """
     changes = chair_mod.parse_assignments(assignments)
     c = c.replace(**changes) if changes else c
     check_static_loads(c)
@@ -291,11 +311,8 @@ def emit_json(data: Any, args: argparse.Namespace, write_to: str | None = None) 
     """
     from .output import atomic_write_text
 
-    notes = getattr(args, "tire_notes", None)
-    if isinstance(data, dict) and notes is not None:
-        data = {**data, "tire_range": {"policy": getattr(args, "tire_range", None),
-                                       "notes": [n.to_dict() for n in _distinct(notes)]}}
-    text = json.dumps(data, indent=2, allow_nan=False, default=_json_default)
+    data = with_tire_range(data, getattr(args, "tire_notes", None), getattr(args, "tire_range", None))
+    text = json_text(data)
     if getattr(args, "json", False):
         print(text)
     path = getattr(args, "json_file", None)
@@ -303,14 +320,6 @@ def emit_json(data: Any, args: argparse.Namespace, write_to: str | None = None) 
         atomic_write_text(write_to or path, text + "\n")
         if write_to is None:                 # with write_to the caller renames and announces its outputs
             print(f"wrote {path}", file=sys.stderr)
-
-
-def _json_default(x: Any) -> Any:
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"{type(x).__name__} is not JSON serialisable")
 
 
 def error(exc: BaseException, prefix: str = "") -> int:
@@ -347,15 +356,9 @@ def _with_tire_policy(body: Callable[[argparse.Namespace], int | None], args: ar
         args.tire_notes = notes
         status = body(args) or 0
     if not getattr(args, "quiet", False):
-        for note in _distinct(notes):
+        for note in distinct_notes(notes):
             print(f"note: {note}", file=sys.stderr)
     return status
-
-
-def _distinct(notes: list) -> list:
-    """Notes without the wheel-less repeats of a note already given per wheel."""
-    placed = {(n.tire, n.quantity, round(n.value, 6)) for n in notes if n.wheel}
-    return [n for n in notes if n.wheel or (n.tire, n.quantity, round(n.value, 6)) not in placed]
 
 
 def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,

@@ -11,14 +11,16 @@ appended as a PDF incremental update (ISO 32000-1, 7.5.6 and 12.3.3).
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import re
 import tempfile
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from pathlib import Path
+from typing import Any
 
-__all__ = ["atomic_path", "write_pdf", "save_figure", "atomic_write_text", "PDF_METADATA", "add_outline",
-           "read_outline"]
+__all__ = ["json_text", "with_tire_range", "distinct_notes", "atomic_path", "write_pdf", "save_figure",
+           "atomic_write_text", "PDF_METADATA", "add_outline", "read_outline"]
 
 #: metadata of every PDF written (no dates: byte-identical output for identical input)
 PDF_METADATA = {"Author": "stability", "Creator": "stability", "Producer": "stability",
@@ -249,3 +251,66 @@ def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
         with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
             fh.write(text)
     return Path(path)
+
+
+def json_text(data: Any) -> str:
+    """``data`` as the JSON text the commands print (indent 2; NaN and infinity refused; numpy values as numbers).
+
+    Parameters
+    ----------
+    data : Any
+        JSON-serialisable result.
+
+    Returns
+    -------
+    str
+    """
+    return json.dumps(data, indent=2, allow_nan=False, default=_json_default)
+
+
+def _json_default(x: Any) -> Any:
+    import numpy as np
+
+    if isinstance(x, np.generic):
+        return x.item()
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    raise TypeError(f"{type(x).__name__} is not JSON serialisable")
+
+
+def distinct_notes(notes: list) -> list:
+    """Tire-range notes without the wheel-less repeats of a note already given per wheel.
+
+    Parameters
+    ----------
+    notes : list of RangeNote
+        As collected by :func:`stability.tires.collect_notes`.
+
+    Returns
+    -------
+    list of RangeNote
+    """
+    placed = {(n.tire, n.quantity, round(n.value, 6)) for n in notes if n.wheel}
+    return [n for n in notes if n.wheel or (n.tire, n.quantity, round(n.value, 6)) not in placed]
+
+
+def with_tire_range(data: Any, notes: list | None, policy: str | None) -> Any:
+    """``data`` with the ``tire_range`` entry every JSON output carries: the policy and the distinct notes.
+
+    Parameters
+    ----------
+    data : Any
+        The result; only a dict gains the entry.
+    notes : list of RangeNote or None
+        Notes collected while computing (:func:`stability.tires.collect_notes`); None: no entry.
+    policy : str or None
+        The tire-range policy used (``"warn"``, ``"clamp"`` or ``"raise"``).
+
+    Returns
+    -------
+    Any
+        A new dict with ``tire_range``, or ``data`` unchanged.
+    """
+    if isinstance(data, dict) and notes is not None:
+        return {**data, "tire_range": {"policy": policy, "notes": [n.to_dict() for n in distinct_notes(notes)]}}
+    return data

@@ -18,6 +18,9 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from .. import defaults as D
 from ..cli import (
@@ -32,10 +35,14 @@ from ..cli import (
     parse_speeds,
     run,
 )
-from ..linear import analyse
+from ..linear import StabilitySummary, analyse
 from ..summary import format_summary, simulator_checks, summary_dict
 
-__all__ = ["main", "build_parser"]
+if TYPE_CHECKING:
+    from ..linear.intervals import LinearIntervals
+    from ..study.uncertain import NonlinearIntervals
+
+__all__ = ["main", "build_parser", "document"]
 
 #: Largest --samples (bounded work: about 1 ms per drawn chair); equals stability.linear.intervals.MAX_SAMPLES.
 MAX_SAMPLES = 20_000
@@ -79,6 +86,37 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, speeds: np.ndarray,
+             intervals: LinearIntervals | None = None, nonlinear: NonlinearIntervals | None = None) -> dict[str, Any]:
+    """The JSON document of ``--json`` (without its ``tire_range`` entry, which :func:`stability.cli.emit_json` adds).
+
+    The interactive explorer's results download is this document too.
+
+    Parameters
+    ----------
+    summary : StabilitySummary
+        :func:`stability.linear.analyse` of the chair.
+    checks : list
+        :func:`stability.summary.simulator_checks` of ``summary``.
+    args : argparse.Namespace
+        The parsed options (``build_parser().parse_args([])`` gives the defaults).
+    speeds : ndarray
+        The divergence-table speeds parsed from ``args.speeds``, m/s.
+    intervals, nonlinear : optional
+        The uncertainty results, when ``--uncertainty`` (and ``--nonlinear``) were given.
+
+    Returns
+    -------
+    dict
+        Common header (:func:`stability.cli.json_header`) plus :func:`stability.summary.summary_dict`.
+    """
+    options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed,
+               "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed, "level": args.level,
+               "nonlinear": args.nonlinear, "nonlinear_samples": args.nonlinear_samples if args.nonlinear else None}
+    return {**json_header(summary.chair, summary.model, options),
+            **summary_dict(summary, checks, intervals, nonlinear)}
+
+
 def _run(args: argparse.Namespace) -> int:
     check_outputs({"--json-file": args.json_file}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
     if args.uncertainty and not 1 <= args.samples <= MAX_SAMPLES:
@@ -110,11 +148,7 @@ def _run(args: argparse.Namespace) -> int:
             nonlinear = nonlinear_intervals(c, unc, model=args.model, samples=args.nonlinear_samples, seed=args.seed,
                                             level=args.level)
     if args.json or args.json_file:
-        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed,
-                   "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed, "level": args.level,
-                   "nonlinear": args.nonlinear, "nonlinear_samples": args.nonlinear_samples if args.nonlinear else None}
-        emit_json({**json_header(c, args.model, options), **summary_dict(summary, checks, intervals, nonlinear)},
-                  args)
+        emit_json(document(summary, checks, args, speeds, intervals, nonlinear), args)
     if not args.json:
         print(format_summary(summary, checks, intervals, nonlinear))
     return 0

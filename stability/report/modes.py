@@ -18,7 +18,7 @@ import numpy as np
 from ..linear import state_matrices
 from ..reference import REFERENCE_SPEED
 
-__all__ = ["mode_names", "mode_shares", "SECOND_SHARE"]
+__all__ = ["mode_names", "mode_shares", "shape_arm", "SECOND_SHARE"]
 
 #: A second component is named when its share exceeds this fraction.
 SECOND_SHARE = 0.2
@@ -49,6 +49,22 @@ def mode_shares(vector: np.ndarray, speed: float, arm: float) -> dict[str, float
         parts["casters opposed"] = abs((vector[2] - vector[4]) / 2) ** 2
     tot = sum(parts.values()) or 1.0
     return {k: float(v / tot) for k, v in parts.items()}
+
+
+def shape_arm(chair: Any) -> float:
+    """The length that makes the yaw rate an angle in :func:`mode_shares` (``r s/U``), m.
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Returns
+    -------
+    float
+        ``|s1 + s2 - trail|`` for rear casters, ``|s1 + s2 + trail|`` for front casters.
+    """
+    c = chair
+    return abs(c.s1 + c.s2 - c.trail) if c.caster_position == "rear" else abs(c.s1 + c.s2 + c.trail)
 
 
 def _label(shares: dict[str, float]) -> str:
@@ -82,8 +98,7 @@ def mode_names(locus: Any, speed: float = REFERENCE_SPEED) -> tuple[str, ...]:
     n = eig.shape[0]
     a = np.asarray(state_matrices(locus.chair, u, locus.model, locus.casters), dtype=float).reshape(n, n)
     w, v = np.linalg.eig(a)
-    c = locus.chair
-    arm = abs(c.s1 + c.s2 - c.trail) if c.caster_position == "rear" else abs(c.s1 + c.s2 + c.trail)
+    arm = shape_arm(locus.chair)
     base = []
     for lam in eig:
         i = int(np.argmin(np.abs(w - lam)))

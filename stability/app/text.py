@@ -1,0 +1,97 @@
+"""Text and files the explorer shows or offers, made from the views' results (no computing)."""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+from .. import chair as chair_mod
+from ..chair import Chair
+from .views import LinearView
+
+__all__ = ["summary_text", "figure_file", "field_rows", "FIELD_KINDS"]
+
+#: Fields edited as text choices rather than numbers.
+TEXT_FIELDS = ("name", "caster_position", "main_tire", "caster_tire")
+#: Editor kind of every chair field: ``"number"``, ``"choice"`` or ``"text"``.
+FIELD_KINDS: dict[str, str] = {
+    f: ("choice" if f in ("caster_position", "main_tire", "caster_tire") else "text" if f == "name" else "number")
+    for f in chair_mod.field_names()
+}
+
+
+def field_rows() -> list[dict[str, str]]:
+    """One row per chair field for the editor: name, unit, meaning, valid range (from ``chair.LIMITS``).
+
+    Returns
+    -------
+    list of dict
+        Keys ``name``, ``unit``, ``doc``, ``symbol``, ``range`` (empty for text fields) and ``kind``.
+    """
+    import dataclasses
+
+    rows = []
+    for f in dataclasses.fields(Chair):
+        rng = chair_mod.valid_range(f.name) if f.name in chair_mod.LIMITS else ""
+        rows.append({"name": f.name, "unit": f.metadata["unit"], "doc": f.metadata["doc"],
+                     "symbol": f.metadata.get("symbol", ""), "range": rng, "kind": FIELD_KINDS[f.name]})
+    return rows
+
+
+def _fmt(x: float | None, unit: str, digits: int = 4) -> str:
+    return "none in range" if x is None else f"{x:.{digits}g} {unit}"
+
+
+def summary_text(v: LinearView) -> str:
+    """The linear summary over the plots: verdict, critical speeds, the divergence table as ``critical_speed`` prints.
+
+    Parameters
+    ----------
+    v : LinearView
+
+    Returns
+    -------
+    str
+        Markdown.
+    """
+    first_free = v.free_crossings[0].speed if v.free_crossings else None
+    first_locked = v.locked_crossings[0].speed if v.locked_crossings else None
+    lines = ["| speed (m/s) | growth rate (1/s) | doubling time (s) | frequency (rad/s) |",
+             "|---:|---:|---:|---:|"]
+    for r in v.table:
+        t2 = "-" if r.time_to_double is None else f"{r.time_to_double:.3g}"
+        lines.append(f"| {r.speed:.3g} | {r.rate:.4f} | {t2} | {r.frequency:.3g} |")
+    g = v.growth_rate
+    verdict = ("unstable at every speed from 0.01 to 30 m/s" if np.all(g > 0) else
+               "stable at every speed from 0.01 to 30 m/s" if np.all(g < 0) else "stable in the shaded green "
+               "ranges, unstable in the vermillion ones")
+    return (f"**Free casters: {verdict}.** Critical speeds: free casters {_fmt(first_free, 'm/s')}, locked casters "
+            f"{_fmt(first_locked, 'm/s')}, zero-width model (eq 5-15) {_fmt(v.zero_width.critical_speed, 'm/s')}."
+            "\n\nLeast stable mode (what `python -m stability.critical_speed` prints):\n\n" + "\n".join(lines))
+
+
+def figure_file(v: LinearView, fmt: str) -> io.BytesIO:
+    """The toolkit's eigenvalues-against-speed figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as a file.
+
+    Parameters
+    ----------
+    v : LinearView
+    fmt : {"png", "svg"}
+
+    Returns
+    -------
+    io.BytesIO
+    """
+    from matplotlib.figure import Figure
+
+    from ..plotting.loci import eigenvalues_vs_speed
+
+    fig = Figure(figsize=(7.5, 6.5))
+    axes = fig.subplots(2, 1)
+    eigenvalues_vs_speed(v.locus, axes, mode_names=v.names,
+                         title=f"{v.chair.name}, {v.model} model: eigenvalues against speed")
+    buf = io.BytesIO()
+    fig.savefig(buf, format=fmt, dpi=150)
+    buf.seek(0)
+    return buf

@@ -1,0 +1,246 @@
+"""The explorer's session state (no browser, no Panel): edits, bad values, undo, URL, pins, downloads."""
+
+from __future__ import annotations
+
+import ast
+import csv
+import io
+import json
+import pathlib
+
+import numpy as np
+import pytest
+
+from stability import chair as chair_mod
+from stability.app import MAX_PINNED, AppState
+from stability.app.views import GRID, eigenvalues_csv, linear_view, mode_shape
+from stability.critical_speed import main as critical_speed_main
+from stability.linear import divergence, state_matrices
+
+
+def cli_error(capsys, *args: str) -> str:
+    """The one line ``python -m stability.critical_speed ARGS`` prints on stderr (run in-process)."""
+    assert critical_speed_main(list(args)) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    return err[0]
+
+
+@pytest.mark.parametrize("name, text", [("trail", "0.7"), ("trail", "abc"), ("m", "-3"), ("i_zp", "0.0001"),
+                                        ("caster_position", "middle"), ("main_tire", "XYZ"), ("camber_deg", "nan")])
+def test_bad_value_gives_the_command_line_message_and_keeps_the_last_valid_chair(capsys, name, text):
+    s = AppState("revised")
+    assert s.set_field("trail", "0.06") is None
+    before = s.chair
+    msg = s.set_field(name, text)
+    assert msg == cli_error(capsys, "--chair", "revised", "--set", "trail=0.06", "--set", f"{name}={text}")
+    assert msg.startswith("error: ") and name in msg
+    assert s.errors[name] == msg
+    assert s.chair == before
+    # the next accepted edit of that field clears its message
+    assert s.set_field(name, s.value_text(name)) is None and name not in s.errors
+
+
+def test_edit_applies_like_set_and_names_the_chair():
+    s = AppState("revised")
+    assert s.set_field("trail", "0.055") is None
+    assert s.set_field("s1", "0.25") is None
+    assert s.chair == chair_mod.preset("revised").replace(trail=0.055).replace(s1=0.25)
+    assert s.chair.name == "revised (modified: trail=0.055, s1=0.25)"
+
+
+def test_url_query_round_trip():
+    s = AppState("revised")
+    s.set_field("trail", "0.055")
+    s.set_field("s1", "0.25")
+    assert s.url_query() == "chair=revised&trail=0.055&s1=0.25"
+    t = AppState.from_query("?" + s.url_query())
+    assert t.chair == s.chair and t.url_query() == s.url_query()
+    # the issue's example URL opens that chair
+    u = AppState.from_query({"chair": ["revised"], "trail": ["0.06"], "s1": ["0.25"]})
+    assert u.chair == chair_mod.preset("revised").replace(trail=0.06, s1=0.25)
+    # a value set back to the preset's leaves the query
+    s.set_field("trail", repr(chair_mod.preset("revised").trail))
+    assert s.url_query() == "chair=revised&s1=0.25"
+    # the model travels too
+    assert AppState.from_query("chair=revised&model=thesis").model == "thesis"
+
+
+def test_float_values_survive_the_url_exactly():
+    s = AppState()
+    assert s.set_field("h", str(0.1 + 0.2)) is None          # 0.30000000000000004
+    assert AppState.from_query(s.url_query()).chair.h == 0.1 + 0.2
+
+
+@pytest.mark.parametrize("query, fragment", [("chair=nope", "nope"), ("chair=revised&trail=9", "trail=9.0"),
+                                             ("chair=revised&wheels=5", "wheels"),
+                                             ("chair=revised&model=fancy", "fancy")])
+def test_bad_url_leaves_the_default_chair_and_says_why(query, fragment):
+    s = AppState.from_query(query)
+    assert s.chair == chair_mod.preset("ej-premier")
+    assert s.errors["url"].startswith("error: ") and fragment in s.errors["url"]
+
+
+def test_undo_walks_back_every_accepted_change():
+    s = AppState()
+    start = s.chair
+    assert not s.can_undo and s.undo() is False
+    s.set_field("trail", "0.05")
+    after_trail = s.chair
+    s.set_field("trail", "9")                                   # refused: not a change
+    s.select_preset("revised")
+    s.set_field("m", "80")
+    assert s.undo() and s.chair == chair_mod.preset("revised")
+    assert s.undo() and s.chair == after_trail
+    assert s.undo() and s.chair == start
+    assert s.undo() is False
+
+
+def test_apply_several_fields_all_or_none():
+    s = AppState()
+    before = s.chair
+    msg = s.set_fields({"trail": "0.05", "s1": "7"})
+    assert msg is not None and "s1=7.0" in msg and s.chair == before
+    assert s.set_fields({"trail": "0.05", "s1": "0.3"}) is None
+    assert (s.chair.trail, s.chair.s1) == (0.05, 0.3)
+
+
+def test_toml_download_reloads_to_the_same_chair(tmp_path):
+    s = AppState("revised")
+    s.set_field("trail", "0.0612345678901")
+    s.set_field("camber_coefficient", "0.07")
+    text = s.chair_toml()
+    path = tmp_path / "mine.toml"
+    path.write_text(text)
+    assert chair_mod.load(path) == s.chair                      # as --chair FILE reads it
+    t = AppState()
+    assert t.load_toml(text.encode(), "mine.toml") is None
+    assert t.chair == s.chair and t.current.base == "file:mine.toml"
+    # an uploaded chair's URL rebuilds it from the default preset
+    assert AppState.from_query(t.url_query()).chair == s.chair
+    assert t.undo() and t.chair == chair_mod.preset("ej-premier")
+
+
+def test_bad_upload_is_one_line_and_changes_nothing():
+    s = AppState()
+    assert s.load_toml(b"trail = 'x", "bad.toml").startswith("error: chair file ")
+    assert s.load_toml(b"trail = 3.0\n", "far.toml") == ("error: chair parameter trail=3.0 is invalid; "
+                                                          "valid range: 0 to 0.5 m")
+    assert s.load_toml(b"\xff\xfe", "binary.toml").startswith("error: ")
+    assert s.chair == chair_mod.preset("ej-premier")
+    assert s.load_uncertainty(b"[trail]\nkind = 'banana'\n", "u.toml").startswith("error: ")
+    assert s.uncertainty is None
+
+
+def test_uncertainty_upload(tmp_path):
+    example = pathlib.Path(__file__).parents[1] / "docs" / "examples" / "measured_chair.uncertainty.toml"
+    s = AppState()
+    assert s.load_uncertainty(example.read_bytes(), example.name) is None
+    assert s.uncertainty is not None and s.uncertainty_name == example.name and s.uncertainty.names
+
+
+@pytest.mark.parametrize("model", ["exact", "thesis"])
+def test_results_json_equals_the_command_lines(tmp_path, capsys, model):
+    s = AppState.from_query(f"chair=revised&trail=0.06&model={model}")
+    path = tmp_path / "c.toml"
+    path.write_text(s.chair_toml())
+    out = tmp_path / "r.json"
+    assert critical_speed_main(["--chair", str(path), "--model", model, "--json-file", str(out)]) == 0
+    capsys.readouterr()
+    assert json.loads(s.results_json()) == json.loads(out.read_text())
+
+
+def test_eigenvalues_csv_holds_the_linear_models_eigenvalues():
+    s = AppState()
+    view = linear_view(s.chair, s.model)
+    rows = [r for r in csv.reader(io.StringIO(eigenvalues_csv(view))) if not r[0].startswith("#")]
+    header, body = rows[0], np.array(rows[1:], dtype=float)
+    assert header[0] == "speed_m_s" and len(header) == 1 + 2 * 6
+    assert np.array_equal(body[:, 0], GRID)
+    k = int(np.argmin(np.abs(GRID - 0.75)))
+    got = body[k, 1::2] + 1j * body[k, 2::2]
+    A = state_matrices(s.chair, GRID[k])[0]
+    want = np.linalg.eigvals(A)
+    # the same matrix through the same LAPACK routine, batched or not: equal to rounding; match as sets.
+    # Error model: eps * ||A|| * (eigenvector condition number, below 1e3 for these well-separated modes).
+    tol = 1e3 * np.finfo(float).eps * np.linalg.norm(A) * 100
+    from scipy.optimize import linear_sum_assignment
+    cost = np.abs(got[:, None] - want[None, :])
+    r, c = linear_sum_assignment(cost)
+    assert cost[r, c].max() <= tol
+
+
+def test_growth_rate_shown_is_the_command_lines():
+    s = AppState.from_query("chair=ej-premier&trail=0.05")
+    view = linear_view(s.chair, s.model)
+    doc = json.loads(s.results_json())
+    printed = {r["speed_m_s"]: r["rate_1_s"] for r in doc["free_casters"]["divergence"]}
+    assert {r.speed: r.rate for r in view.table} == printed
+    assert [c.speed for c in view.locked_crossings] == pytest.approx(
+        [c["speed_m_s"] for c in doc["locked_casters"]["crossings"]], abs=1e-8)  # both refined to xtol 1e-10 m/s
+    assert divergence(s.chair, [0.75])[0].rate == printed[0.75]
+
+
+def test_mode_shape_is_an_eigenvector():
+    view = linear_view(chair_mod.preset("ej-premier"))
+    shape = mode_shape(view, 0.75)
+    assert shape.eigenvalue.real == pytest.approx(view.growth_rate[np.argmin(np.abs(GRID - 0.75))], rel=1e-12)
+    assert max(shape.magnitude) == 1.0 and sum(shape.shares.values()) == pytest.approx(1.0, abs=1e-12)
+    # the ej-premier's least stable mode: both casters swing together (mirror symmetry), no opposed part
+    assert shape.shares["casters opposed"] < 1e-20
+    assert shape.magnitude[2] == pytest.approx(shape.magnitude[3], rel=1e-9)
+
+
+def test_pins_at_most_three_no_duplicates():
+    s = AppState()
+    assert s.pin() is None
+    assert s.pin().startswith("error: ") and "already pinned" in s.errors["pin"]
+    for trail in ("0.05", "0.06"):
+        s.set_field("trail", trail)
+        assert s.pin() is None
+    s.set_field("trail", "0.07")
+    assert "at most 3" in s.pin() and len(s.pinned) == MAX_PINNED
+    s.unpin(0)
+    assert s.pin() is None and s.pinned[-1] == s.chair
+
+
+def test_sessions_share_nothing():
+    a, b = AppState(), AppState()
+    a.set_field("trail", "0.05")
+    a.pin()
+    a.set_field("m", "bad")
+    assert b.chair == chair_mod.preset("ej-premier") and not b.pinned and not b.errors and not b.can_undo
+
+
+APP = pathlib.Path(__file__).parents[1] / "stability" / "app"
+
+
+def test_the_app_adds_no_physics():
+    """The app imports no equations (models/, _generated/, sympy) and defines no physical constants."""
+    for path in APP.glob("*.py"):
+        tree = ast.parse(path.read_text())
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                mod = "." * node.level + (node.module or "")
+                if not mod.startswith("."):
+                    continue                                    # third-party (bokeh.models is not ours)
+                assert not any(p in mod.split(".") for p in ("models", "_generated", "derivations", "params")), \
+                    (path.name, mod)
+                assert "sympy" not in mod
+            if isinstance(node, ast.Import):
+                assert not any("sympy" in a.name or "_generated" in a.name for a in node.names), path.name
+            if isinstance(node, ast.Constant) and isinstance(node.value, float):
+                assert node.value not in (9.81, 9.80665), (path.name, node.value)
+
+
+@pytest.mark.parametrize("name", chair_mod.preset_names())
+def test_critical_speeds_shown_are_the_command_lines(name):
+    """The explorer searches a coarser grid than ``critical_speed`` (100 vs 600 speeds); same crossings."""
+    from stability.linear import analyse
+
+    c = chair_mod.preset(name)
+    view, summary = linear_view(c), analyse(c)
+    for got, want in ((view.free_crossings, summary.free_crossings), (view.locked_crossings, summary.locked_crossings)):
+        assert [x.direction for x in got] == [x.direction for x in want]
+        # both refined by Brent's method to xtol 1e-10 m/s from different brackets
+        assert [x.speed for x in got] == pytest.approx([x.speed for x in want], abs=1e-8)
