@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 from functools import partial
 from typing import Any
 
+from .. import defaults as D
+
 __all__ = ["Jobs", "warm_up", "executor", "warm_up_done"]
 
 _EXECUTOR: ThreadPoolExecutor | None = None
@@ -53,7 +55,7 @@ def warm_up() -> Future:
         from ..simulate import simulate
 
         try:
-            simulate(preset("ej-premier"), 0.75, duration=0.05, model="exact")
+            simulate(preset(D.CHAIR), D.SPEED, duration=0.05, model=D.MODEL)
         finally:
             _WARM.set()
 

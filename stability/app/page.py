@@ -21,6 +21,7 @@ from bokeh.models import ColumnDataSource
 from bokeh.models.annotations import LegendItem
 
 from .. import chair as chair_mod
+from .. import defaults as D
 from .. import tires
 from ..plotting.style import OKABE_ITO, UNSTABLE
 from . import plots
@@ -110,16 +111,17 @@ class Explorer:
             self.field_errors[name] = pn.pane.HTML("", visible=False, styles=_ERROR_STYLE, width=220,
                                                    css_classes=[f"error-{name}"])
         self.speed = pn.widgets.FloatSlider(name="speed U (m/s) for the mode shape", start=0.05, end=3.0, step=0.01,
-                                            value=0.75, css_classes=["speed"], sizing_mode="stretch_width")
+                                            value=D.SPEED, css_classes=["speed"], sizing_mode="stretch_width")
         self.speed.param.watch(self._on(lambda e: self._show_shape()), "value_throttled")
         self.summary = pn.pane.Markdown("", css_classes=["summary"], sizing_mode="stretch_width")
         self.shape_text = pn.pane.Markdown("", css_classes=["shape-text"], sizing_mode="stretch_width")
         self.loads = pn.pane.Markdown("", sizing_mode="stretch_width")
         # nonlinear
-        self.push_force = pn.widgets.FloatInput(name="push force (N)", value=40.0, start=0.0, end=1000.0, width=140)
-        self.push_duration = pn.widgets.FloatInput(name="push duration (s)", value=0.1, start=0.001, end=2.0,
-                                                   width=140)
-        self.push_speed = pn.widgets.FloatInput(name="speed (m/s)", value=0.75, start=0.05, end=3.0, width=120)
+        self.push_force = pn.widgets.FloatInput(name="push force (N)", value=D.PUSH_FORCE, start=0.0, end=1000.0,
+                                                width=140)
+        self.push_duration = pn.widgets.FloatInput(name="push duration (s)", value=D.PUSH_DURATION, start=0.001,
+                                                   end=2.0, width=140)
+        self.push_speed = pn.widgets.FloatInput(name="speed (m/s)", value=D.SPEED, start=0.05, end=3.0, width=120)
         self.run_button = pn.widgets.Button(name="compute", button_type="primary", width=100,
                                             css_classes=["run-nonlinear"])
         self.run_button.on_click(self._on(lambda e: self.start_nonlinear()))
@@ -367,7 +369,7 @@ class Explorer:
         v = self.view
         if v is None:
             return
-        sh = mode_shape(v, float(self.speed.value or 0.75))
+        sh = mode_shape(v, float(self.speed.value or D.SPEED))
         for span in self.speed_figs["cursor"]:
             span.location = sh.speed
         self.shape_src.data = {"component": list(sh.components), "magnitude": list(sh.magnitude),
@@ -411,7 +413,7 @@ class Explorer:
         """Queue the yaw-rate response, the critical impulse and the equal-instability speed for this chair."""
         chair, model = self.state.chair, self.state.model
         push = (float(self.push_force.value or 0.0), float(self.push_duration.value or 0.1))
-        speed = float(self.push_speed.value or 0.75)
+        speed = float(self.push_speed.value or D.SPEED)
         self.progress.visible, self.progress.active = True, True
         self.nl_text.object = ("computing (compiling the simulator first, once per start)..." if not warm_up_done()
                                else "computing the response, the critical impulse and the equal-instability speed...")
@@ -441,7 +443,7 @@ class Explorer:
         from ..linear.intervals import linear_intervals
 
         chair, model, unc = self.state.chair, self.state.model, self.state.uncertainty
-        speeds = np.geomspace(0.05, 30.0, 40)
+        speeds = np.geomspace(0.05, D.MAX_SPEED, 40)
 
         def work():
             return speeds, linear_intervals(chair, unc, model=model, speeds=speeds, samples=300, seed=0)

@@ -28,6 +28,7 @@ from typing import Any
 from urllib.parse import parse_qsl, urlencode
 
 from .. import chair as chair_mod
+from .. import defaults as D
 from .. import tires
 from ..chair import Chair
 from ..cli import apply_assignments
@@ -38,7 +39,7 @@ __all__ = ["AppState", "Edit", "MAX_PINNED", "DEFAULT_PRESET", "error_line"]
 #: Largest number of chairs pinned for comparison.
 MAX_PINNED = 3
 #: The chair a new session starts with (the command lines' default ``--chair``).
-DEFAULT_PRESET = "ej-premier"
+DEFAULT_PRESET = D.CHAIR
 def error_line(exc: BaseException) -> str:
     """The one line the command lines print for ``exc`` (:func:`stability.cli.error`'s text).
 
@@ -126,7 +127,7 @@ class AppState:
     """
 
     preset: str = DEFAULT_PRESET
-    model: str = "exact"
+    model: str = D.MODEL
     current: Edit = field(init=False)
     errors: dict[str, str] = field(default_factory=dict)
     pinned: list[Chair] = field(default_factory=list)

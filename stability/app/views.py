@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import defaults as D
 from ..chair import Chair
 from ..linear import (
     STATES_FREE,
@@ -41,14 +42,14 @@ __all__ = ["LinearView", "linear_view", "ModeShape", "mode_shape", "eigenvalues_
            "geometry_points", "SHAPE_COMPONENTS", "NonlinearView", "nonlinear_view", "response"]
 
 #: Speeds of the eigenvalue curves, m/s: 160 geometrically spaced over the range ``critical_speed`` searches.
-GRID = np.geomspace(0.01, 30.0, 160)
+GRID = np.geomspace(0.01, D.MAX_SPEED, 160)
 #: Grid of the critical-speed search, m/s: 100 geometrically spaced from 0.01 to 30 m/s (``critical_speed``
 #: uses 600 over the same range).  Either grid's crossings are refined to 1e-10 m/s, so both give the same
 #: critical speeds unless two crossings lie closer together than this grid's spacing (8.4 % of the speed) and
 #: escape the double-crossing guard of :func:`stability.linear.critical_speeds`; a test compares them.
-SEARCH = np.geomspace(0.01, 30.0, 100)
+SEARCH = np.geomspace(0.01, D.MAX_SPEED, 100)
 #: Speeds of the divergence table: ``critical_speed``'s default ``--speeds``, m/s.
-TABLE_SPEEDS = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0)
+TABLE_SPEEDS = D.SUMMARY_SPEEDS
 
 
 @dataclass(frozen=True)
@@ -104,7 +105,7 @@ class LinearView:
         return out
 
 
-def linear_view(chair: Chair, model: str = "exact", name_speed: float = 0.75) -> LinearView:
+def linear_view(chair: Chair, model: str = D.MODEL, name_speed: float = D.SPEED) -> LinearView:
     """The linear views' data for ``chair`` (see the module docstring).
 
     Parameters
