@@ -28,9 +28,10 @@ from . import plots
 from .jobs import Jobs, warm_up_done
 from .state import AppState
 from .text import field_rows, figure_file, summary_text
+from .trail_tab import TrailTab
 from .views import LinearView, eigenvalues_csv, geometry_points, linear_view, mode_shape, nonlinear_view
 
-__all__ = ["Explorer", "create_page"]
+__all__ = ["Explorer"]
 
 _NOTHING_PINNED = "Nothing pinned yet: pin the current chair, change it, and compare."
 _ERROR_STYLE = {"color": UNSTABLE, "font-size": "12px"}
@@ -49,7 +50,7 @@ class Explorer:
     location : panel.io.location.Location, optional
         The session's URL, updated after each accepted change.
     auto_nonlinear : bool
-        Queue the nonlinear measures after each change (default True).
+        Queue the nonlinear measures and the trail window after each change (default True).
     """
 
     def __init__(self, query: Any = None, deliver: Callable[[Callable[[], None]], Any] | None = None,
@@ -128,6 +129,7 @@ class Explorer:
         self.progress = pn.indicators.Progress(active=False, value=0, max=100, width=300, bar_color="primary",
                                                visible=False, css_classes=["progress"])
         self.nl_text = pn.pane.Markdown("", css_classes=["nonlinear-text"], sizing_mode="stretch_width")
+        self.trail = TrailTab(self.jobs.submit, self._on)
         self.compare_text = pn.pane.Markdown("", css_classes=["compare-text"], sizing_mode="stretch_width")
         self.unpin = pn.widgets.Select(name="unpin", options=[], width=260)
         self.unpin_button = pn.widgets.Button(name="unpin", width=80)
@@ -200,7 +202,8 @@ class Explorer:
             pn.Row(self.unpin, self.unpin_button), pn.pane.Bokeh(self.cmp_fig, sizing_mode="stretch_width"),
             self.compare_text, sizing_mode="stretch_width")
         self.tabs = pn.Tabs(("Stability vs speed", stability_tab), ("Geometry", geometry_tab),
-                            ("Nonlinear response", nonlinear_tab), ("Compare", compare_tab),
+                            ("Nonlinear response", nonlinear_tab), ("Trail window", self.trail.panel),
+                            ("Compare", compare_tab),
                             ("Downloads", pn.Column(self.downloads)), dynamic=False, sizing_mode="stretch_width")
         header = pn.Column(pn.pane.Markdown("## stability explorer: directional stability of a wheelchair"),
                            self.title, self.message, sizing_mode="stretch_width")
@@ -287,6 +290,7 @@ class Explorer:
             self._start_bands()
         if self.auto_nonlinear:
             self.start_nonlinear()
+            self.trail.start(self.state.chair, self.state.model)
 
     def _sync_inputs(self) -> None:
         self._syncing = True
@@ -483,16 +487,3 @@ class Explorer:
                              self._failed)
         elif self.compare_text.object != _NOTHING_PINNED:
             self.compare_text.object = _NOTHING_PINNED
-
-
-def create_page() -> Any:
-    """The page of a new browser session (called by the server once per session).
-
-    Returns
-    -------
-    panel layout
-    """
-    doc = pn.state.curdoc
-    deliver = doc.add_next_tick_callback if doc is not None else None
-    ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location)
-    return ex.layout

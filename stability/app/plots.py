@@ -16,7 +16,7 @@ from bokeh.plotting import figure
 from ..plotting.style import MARK, OKABE_ITO, UNSTABLE
 
 __all__ = ["STABLE", "speed_figures", "shape_figure", "top_view", "side_view", "response_figure",
-           "compare_figure", "MAX_BRANCHES", "MAX_CROSSINGS"]
+           "compare_figure", "trail_figure", "MAX_BRANCHES", "MAX_CROSSINGS"]
 
 #: Shading of stable speed ranges (Okabe-Ito bluish green).
 STABLE = "#009E73"
@@ -230,3 +230,41 @@ def compare_figure(sources: list[ColumnDataSource]):
     p.add_layout(Legend(items=items, location="top_left", label_text_font_size="9pt"), "below")
     p.add_layout(Span(location=0, dimension="width", line_color="black", line_width=1))
     return p
+
+
+def trail_figure(sources: list[ColumnDataSource]):
+    """Growth rate of the yaw mode and real part of the caster-shimmy mode against trail, one colour per speed.
+
+    Parameters
+    ----------
+    sources : list of ColumnDataSource
+        One per speed: columns ``trail`` (m), ``yaw`` and ``shimmy`` (1/s) and ``name``.
+
+    Returns
+    -------
+    dict
+        ``"figure"``, ``"chair"`` (the chair's trail, a Span) and ``"critical"`` (a Span per speed: the shimmy
+        boundary).
+    """
+    p = _fig("The trail trade-off: directional stability (solid) and caster shimmy (dashed)",
+             "caster trail (m)", "growth rate (1/s; > 0: unstable / shimmies)", height=360)
+    items = []
+    critical = []
+    for j, src in enumerate(sources):
+        c = OKABE_ITO[j]
+        r1 = p.line("trail", "yaw", source=src, color=c, line_width=2)
+        r2 = p.line("trail", "shimmy", source=src, color=c, line_width=2, line_dash="dashed")
+        items.append(LegendItem(label={"field": "name"}, renderers=[r1, r2], index=0))
+        s = Span(location=0.0, dimension="height", line_color=c, line_dash="dotted", line_width=1.5, visible=False)
+        p.add_layout(s)
+        critical.append(s)
+    chair = Span(location=0.0, dimension="height", line_color="black", line_width=2)
+    p.add_layout(chair)
+    p.add_layout(Span(location=0, dimension="width", line_color="black", line_width=1))
+    p.line([], [], color="black", line_width=2, legend_label="this chair's trail")
+    p.line([], [], color="grey", line_dash="dotted", legend_label="shimmy boundary (critical trail) per speed")
+    legend = p.legend[0]
+    legend.items = items + list(legend.items)
+    legend.label_text_font_size = "8pt"
+    p.add_layout(legend, "right")
+    return {"figure": p, "chair": chair, "critical": critical}

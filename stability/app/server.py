@@ -17,7 +17,7 @@ from typing import Any
 
 from ..cli import OneLineErrorParser, run
 
-__all__ = ["build_parser", "main", "make_server", "free_port"]
+__all__ = ["build_parser", "main", "make_server", "free_port", "create_page"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -80,8 +80,6 @@ def make_server(host: str = "127.0.0.1", port: int = 0, show: bool = False) -> t
     """
     import panel as pn
 
-    from .page import create_page
-
     port = port or free_port(host)
     origins = [f"{host}:{port}", f"localhost:{port}", f"127.0.0.1:{port}"]
     if not _is_loopback(host):
@@ -91,6 +89,23 @@ def make_server(host: str = "127.0.0.1", port: int = 0, show: bool = False) -> t
                       title="stability explorer", websocket_origin=origins, verbose=False)
     shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
     return server, f"http://{shown}:{port}/"
+
+
+def create_page() -> Any:
+    """The page of a new browser session (called by the server once per session).
+
+    Returns
+    -------
+    panel layout
+    """
+    import panel as pn
+
+    doc = pn.state.curdoc
+    deliver = doc.add_next_tick_callback if doc is not None else None
+    from .page import Explorer
+
+    ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location)
+    return ex.layout
 
 
 def _run(args: argparse.Namespace) -> int:

@@ -39,7 +39,8 @@ from ..rootlocus.speed import SpeedLocus, readonly
 from ..statics import static_loads
 
 __all__ = ["LinearView", "linear_view", "ModeShape", "mode_shape", "eigenvalues_csv", "GRID", "TABLE_SPEEDS",
-           "geometry_points", "SHAPE_COMPONENTS", "NonlinearView", "nonlinear_view", "response"]
+           "geometry_points", "SHAPE_COMPONENTS", "NonlinearView", "nonlinear_view", "response",
+           "TrailWindow", "trail_window", "TRAILS", "TRAIL_SPEEDS"]
 
 #: Speeds of the eigenvalue curves, m/s: 160 geometrically spaced over the range ``critical_speed`` searches.
 GRID = np.geomspace(0.01, D.MAX_SPEED, 160)
@@ -330,3 +331,57 @@ def nonlinear_view(chair: Chair, model: str, speed: float, push: tuple[float, fl
     ci = critical_impulse(chair, speed, model=model, duration=push[1])
     eq = equal_instability_speed(chair, model=model) if equal_instability else None
     return NonlinearView(chair, model, speed, push, t, r, tl, rl, ci, eq)
+
+
+#: Trails of the trail window, m.
+TRAILS = np.linspace(0.005, 0.2, 40)
+#: Speeds of the trail window, m/s.
+TRAIL_SPEEDS = (0.5, 1.0, 1.5)
+
+
+@dataclass(frozen=True)
+class TrailWindow:
+    """The trail trade-off for one chair: directional stability and caster shimmy against trail, and a cross slope.
+
+    Attributes
+    ----------
+    chart : ChairTrailChart
+        :func:`stability.shimmy.chair_trail_chart` over :data:`TRAILS` x :data:`TRAIL_SPEEDS`: growth rate of
+        the yaw mode and real part of the shimmy mode (1/s), the critical (shimmy) trail per speed (m).
+    slope : Equilibrium
+        :func:`stability.slope.solve` on the cross slope at the speed: the holding moment (N m).
+    handrim : dict
+        :func:`stability.slope.drive_report` (hand-rim forces and their difference, N).
+    cross_slope_deg, speed : float
+        The cross slope (deg) and speed (m/s) of ``slope``.
+    """
+
+    chart: Any
+    slope: Any
+    handrim: dict
+    cross_slope_deg: float
+    speed: float
+
+
+def trail_window(chair: Chair, model: str = D.MODEL, cross_slope_deg: float = 2.0, speed: float = 1.0) -> TrailWindow:
+    """Compute the trail window (see :class:`TrailWindow`).
+
+    Parameters
+    ----------
+    chair : Chair
+    model : {"exact", "thesis"}
+    cross_slope_deg : float
+        deg, positive falling to the right.
+    speed : float
+        m/s.
+
+    Returns
+    -------
+    TrailWindow
+    """
+    from ..shimmy import chair_trail_chart
+    from ..slope import drive_report, solve
+
+    chart = chair_trail_chart(chair, TRAILS, TRAIL_SPEEDS, model=model)
+    eq = solve(chair, cross_slope_deg, speed)
+    return TrailWindow(chart, eq, drive_report(chair, eq), cross_slope_deg, speed)
