@@ -27,7 +27,7 @@ from ..plotting.style import OKABE_ITO, UNSTABLE
 from . import plots
 from .jobs import Jobs, warm_up_done
 from .state import AppState
-from .text import field_rows, figure_file, summary_text
+from .text import field_rows, figure_file, geometry_text, summary_text
 from .trail_tab import TrailTab
 from .views import LinearView, eigenvalues_csv, geometry_points, linear_view, mode_shape, nonlinear_view
 
@@ -160,10 +160,10 @@ class Explorer:
         self.geo_src = {k: ColumnDataSource({"x": [], "y": []}) for k in ("cg", "main", "pins", "casters", "outline")}
         for k in ("trail", "push"):
             self.geo_src[k] = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": []})
+        self.geo_src["tip"] = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "label": []})
         self.side_src = {"cg": ColumnDataSource({"x": [], "y": []}), "contacts": ColumnDataSource({"x": [], "y": []}),
                          "pins": ColumnDataSource({"x": [], "y": []}),
-                         "tip": ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "x": [], "y": [],
-                                                  "label": []})}
+                         "tip": ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "label": []})}
         self.top_fig = plots.top_view(self.geo_src)
         self.side_fig = plots.side_view(self.side_src)
         self.resp_src = ColumnDataSource({"t": [], "r": []})
@@ -405,12 +405,16 @@ class Explorer:
         self.side_src["cg"].data = {"x": [0.0], "y": [c.h]}
         self.side_src["contacts"].data = {"x": [mx[0], cx[0]], "y": [0.0, 0.0]}
         self.side_src["pins"].data = {"x": [px[0]], "y": [0.0]}
-        self.side_src["tip"].data = {"x0": [], "y0": [], "x1": [], "y1": [], "x": [], "y": [], "label": []}
-        v = self._view()
-        L = v.static_loads
-        self.loads.object = (f"Static loads: main wheel {L['main']:.1f} N, caster {L['caster']:.1f} N (per wheel); "
-                             f"wheelbase {c.wheelbase:.3f} m; c.g. ratio s1/(s1+s2) {c.cg_ratio:.3f}. Dimensions from "
-                             "the chair's fields (c.g. at the origin).")
+        tip = self._view().tip
+        rays = {k: (ln.distance_m * ln.normal[0], ln.distance_m * ln.normal[1], ln.angle_deg)
+                for k, ln in tip.lines.items()}
+        self.geo_src["tip"].data = {"x0": [0.0] * 4, "y0": [0.0] * 4, "x1": [r[0] for r in rays.values()],
+                                    "y1": [-r[1] for r in rays.values()],
+                                    "label": [f"{r[2]:.1f}°" for r in rays.values()]}
+        fwd = [rays["toward_main_wheels"], rays["toward_casters"]]
+        self.side_src["tip"].data = {"x0": [0.0, 0.0], "y0": [c.h, c.h], "x1": [r[0] for r in fwd], "y1": [0.0, 0.0],
+                                     "label": [f"{r[2]:.1f}°" for r in fwd]}
+        self.loads.object = geometry_text(c, self._view())
 
     # ------------------------------------------------------------------ background work
     def start_nonlinear(self) -> None:

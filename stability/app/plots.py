@@ -125,7 +125,8 @@ def top_view(sources: dict[str, ColumnDataSource]):
     ----------
     sources : dict
         ``"cg"``, ``"main"``, ``"pins"``, ``"casters"`` (columns ``x``, ``y``), ``"trail"`` (segments
-        ``x0, y0, x1, y1``), ``"push"`` (``x0, y0, x1, y1``), ``"outline"`` (``x``, ``y``).
+        ``x0, y0, x1, y1``), ``"push"`` (``x0, y0, x1, y1``), ``"outline"`` (``x``, ``y``), ``"tip"`` (``x0, y0,
+        x1, y1, label``: c.g. to each tipping line).
 
     Returns
     -------
@@ -147,6 +148,9 @@ def top_view(sources: dict[str, ColumnDataSource]):
               legend_label="centre of gravity")
     p.segment("x0", "y0", "x1", "y1", source=sources["push"], line_width=3, color=UNSTABLE,
               legend_label="push (lateral force at the c.g., to the right)")
+    p.segment("x0", "y0", "x1", "y1", source=sources["tip"], line_dash="dotted", color=MARK, line_width=2,
+              legend_label="to the tipping lines (ISO 7176-1 angle)")
+    p.text("x1", "y1", text="label", source=sources["tip"], text_font_size="9pt", x_offset=3, y_offset=-3)
     _legend_outside(p)
     return p
 
@@ -173,13 +177,14 @@ def side_view(sources: dict[str, ColumnDataSource]):
     p = _fig("Side view (forward to the right)", "x, forward from the c.g. (m)", "height (m)", match_aspect=True,
              height=260)
     p.add_layout(Span(location=0, dimension="width", line_color="black", line_width=1.5))
-    p.segment("x0", "y0", "x1", "y1", source=sources["tip"], line_dash="dotted", color=MARK, line_width=2)
+    p.segment("x0", "y0", "x1", "y1", source=sources["tip"], line_dash="dotted", color=MARK, line_width=2,
+              legend_label="c.g. to the tipping contacts (ISO 7176-1 angle)")
     p.scatter("x", "y", source=sources["contacts"], size=12, marker="triangle", color=OKABE_ITO[0],
               legend_label="wheel contacts")
     p.scatter("x", "y", source=sources["pins"], size=9, color=OKABE_ITO[1], legend_label="caster pins (at ground)")
     p.scatter("x", "y", source=sources["cg"], size=16, marker="circle_cross", color="black", fill_alpha=0,
               legend_label="centre of gravity")
-    p.text("x", "y", text="label", source=sources["tip"], text_font_size="8pt", x_offset=4)
+    p.text("x1", "y1", text="label", source=sources["tip"], text_font_size="9pt", x_offset=4, y_offset=-4)
     _legend_outside(p)
     return p
 
@@ -243,26 +248,29 @@ def trail_figure(sources: list[ColumnDataSource]):
     Returns
     -------
     dict
-        ``"figure"``, ``"chair"`` (the chair's trail, a Span) and ``"critical"`` (a Span per speed: the shimmy
-        boundary).
+        ``"figure"``, ``"chair"`` (the chair's trail, a Span) and ``"critical"`` (Spans for the boundaries of the
+        shimmy-free trail band).
     """
     p = _fig("The trail trade-off: directional stability (solid) and caster shimmy (dashed)",
              "caster trail (m)", "growth rate (1/s; > 0: unstable / shimmies)", height=360)
     items = []
-    critical = []
     for j, src in enumerate(sources):
         c = OKABE_ITO[j]
         r1 = p.line("trail", "yaw", source=src, color=c, line_width=2)
         r2 = p.line("trail", "shimmy", source=src, color=c, line_width=2, line_dash="dashed")
         items.append(LegendItem(label={"field": "name"}, renderers=[r1, r2], index=0))
-        s = Span(location=0.0, dimension="height", line_color=c, line_dash="dotted", line_width=1.5, visible=False)
+    critical = []
+    for _ in range(MAX_CROSSINGS):
+        s = Span(location=0.0, dimension="height", line_color=UNSTABLE, line_dash="dotted", line_width=2,
+                 visible=False)
         p.add_layout(s)
         critical.append(s)
     chair = Span(location=0.0, dimension="height", line_color="black", line_width=2)
     p.add_layout(chair)
     p.add_layout(Span(location=0, dimension="width", line_color="black", line_width=1))
     p.line([], [], color="black", line_width=2, legend_label="this chair's trail")
-    p.line([], [], color="grey", line_dash="dotted", legend_label="shimmy boundary (critical trail) per speed")
+    p.line([], [], color=UNSTABLE, line_dash="dotted", line_width=2,
+           legend_label="shimmy boundaries (towed-wheel caster, any speed)")
     legend = p.legend[0]
     legend.items = items + list(legend.items)
     legend.label_text_font_size = "8pt"

@@ -10,7 +10,7 @@ from .. import chair as chair_mod
 from ..chair import Chair
 from .views import LinearView
 
-__all__ = ["summary_text", "figure_file", "field_rows", "FIELD_KINDS"]
+__all__ = ["summary_text", "geometry_text", "figure_file", "field_rows", "FIELD_KINDS"]
 
 #: Fields edited as text choices rather than numbers.
 TEXT_FIELDS = ("name", "caster_position", "main_tire", "caster_tire")
@@ -95,3 +95,28 @@ def figure_file(v: LinearView, fmt: str) -> io.BytesIO:
     fig.savefig(buf, format=fmt, dpi=150)
     buf.seek(0)
     return buf
+
+
+def geometry_text(c: Chair, v: LinearView) -> str:
+    """The text under the geometry views: the static stability angles, the static loads, the wheelbase.
+
+    Parameters
+    ----------
+    c : Chair
+    v : LinearView
+        Its linear view (tip angles and static loads).
+
+    Returns
+    -------
+    str
+        Markdown.
+    """
+    tip, L = v.tip, v.static_loads
+    least = tip.smallest_direction.replace("_", " ")
+    return (f"**Static stability** (ISO 7176-1, rigid chair, brakes locked, casters in their least stable "
+            f"orientation; `python -m stability.tipping`): toward the main wheels {tip.toward_main_wheels_deg:.1f}°, "
+            f"toward the casters {tip.toward_casters_deg:.1f}°, left {tip.lateral_left_deg:.1f}°, right "
+            f"{tip.lateral_right_deg:.1f}°; smallest {tip.smallest_deg:.1f}° ({least})."
+            f"\n\nStatic loads: main wheel {L['main']:.1f} N, caster {L['caster']:.1f} N (per wheel); wheelbase "
+            f"{c.wheelbase:.3f} m; c.g. ratio s1/(s1+s2) {c.cg_ratio:.3f}. Drawn from the chair's fields, c.g. at "
+            "the origin; dotted: from the c.g. to each tipping line, with its angle.")

@@ -82,17 +82,27 @@ class TrailTab:
             src.data = {"trail": ch.trails, "yaw": ch.divergence_rate[:, j], "shimmy": ch.shimmy_real_part[:, j],
                         "name": [f"{ch.speeds[j]:g} m/s"] * len(ch.trails)}
         self.fig["chair"].location = ch.chair_trail
-        crit = []
-        for span, value in zip(self.fig["critical"], ch.critical_trail, strict=True):
-            ok = bool(np.isfinite(value))
-            span.visible = ok
-            if ok:
-                span.location = float(value)
-            crit.append(f"{100 * value:.3g} cm" if ok else "none found")
+        b = tw.band
+        spans = self.fig["critical"]
+        bounds = sorted({round(x, 12) for bs in b.boundaries_m for x in bs})
+        for k, span in enumerate(spans):
+            span.visible = k < len(bounds)
+            if k < len(bounds):
+                span.location = bounds[k]
+        bands = "; ".join(f"{u:g} m/s: {b.describe(k)} cm" for k, u in enumerate(b.speeds_m_s))
+        margin = b.shimmy_margin_m
+        lo, hi = b.shimmy_margin_interval_m
+        verdict = (f"{100 * margin:+.2g} cm from the nearest boundary ({100 * lo:+.2g} to {100 * hi:+.2g} cm over "
+                   "the estimate ranges of relaxation length and pin stiffness)" if np.isfinite(margin)
+                   else "no boundary on the searched trails")
+        warn = (" The estimate range straddles a boundary: **measure pin stiffness and relaxation length first.**"
+                if b.straddles else "")
+        zetas = ", ".join(f"{z:.3g}" for z in b.damping_ratio)
         eq, hr = tw.slope, tw.handrim
         self.text.object = (
-            f"**Shimmy boundary (critical trail)** at {', '.join(f'{u:g}' for u in ch.speeds)} m/s: "
-            f"{', '.join(crit)}; this chair's trail {100 * ch.chair_trail:.3g} cm.\n\n"
+            f"**Shimmy-free trail** (`python -m stability.shimmy`): {bands}. This chair's trail "
+            f"{100 * ch.chair_trail:.3g} cm is {verdict}; damping ratio of the least damped caster mode there "
+            f"{zetas} at {', '.join(f'{u:g}' for u in b.speeds_m_s)} m/s.{warn}\n\n"
             f"**On a {tw.cross_slope_deg:g} deg cross slope at {tw.speed:g} m/s** the chair needs a holding moment "
             f"of {eq.holding_moment:.3g} N m (clockwise positive) to run straight: hand-rim forces "
             f"{hr['handrim_force_left_N']:.3g} N left and {hr['handrim_force_right_N']:.3g} N right "

@@ -37,6 +37,7 @@ from ..linear import (
 from ..report.modes import mode_names, mode_shares, shape_arm
 from ..rootlocus.speed import SpeedLocus, readonly
 from ..statics import static_loads
+from ..tipping import TipAngles, tip_angles
 
 __all__ = ["LinearView", "linear_view", "ModeShape", "mode_shape", "eigenvalues_csv", "GRID", "TABLE_SPEEDS",
            "geometry_points", "SHAPE_COMPONENTS", "NonlinearView", "nonlinear_view", "response",
@@ -72,6 +73,8 @@ class LinearView:
         Growth rate of the least stable mode at :data:`TABLE_SPEEDS` (what ``critical_speed`` prints).
     static_loads : dict
         Static normal loads, N (per wheel and per pair mean).
+    tip : TipAngles
+        ISO 7176-1 static stability angles (deg) with their tipping lines (:func:`stability.tipping.tip_angles`).
     """
 
     chair: Chair
@@ -82,6 +85,7 @@ class LinearView:
     zero_width: ZeroWidthResult
     table: list[Divergence]
     static_loads: dict
+    tip: TipAngles
 
     @property
     def free_crossings(self) -> list[Crossing]:
@@ -126,7 +130,8 @@ def linear_view(chair: Chair, model: str = D.MODEL, name_speed: float = D.SPEED)
     locus = SpeedLocus(chair, model, "free", readonly(GRID), readonly(eig), list(free), tuple(STATES_FREE))
     return LinearView(chair=chair, model=model, locus=locus, names=mode_names(locus, name_speed),
                       locked_crossings=locked, zero_width=zero_width(chair),
-                      table=divergence(chair, TABLE_SPEEDS, model, "free"), static_loads=static_loads(chair))
+                      table=divergence(chair, TABLE_SPEEDS, model, "free"), static_loads=static_loads(chair),
+                      tip=tip_angles(chair))
 
 
 #: The mode-shape components, dimensionless (angles, rad): the report's scaling (stability.report.modes).
@@ -347,7 +352,10 @@ class TrailWindow:
     ----------
     chart : ChairTrailChart
         :func:`stability.shimmy.chair_trail_chart` over :data:`TRAILS` x :data:`TRAIL_SPEEDS`: growth rate of
-        the yaw mode and real part of the shimmy mode (1/s), the critical (shimmy) trail per speed (m).
+        the yaw mode and real part of the shimmy mode (1/s).
+    band : ShimmyBand
+        :func:`stability.shimmy.band.shimmy_band` at :data:`TRAIL_SPEEDS`: the shimmy-free trail band(s), every
+        boundary, the chair's margin (m) and damping ratio, and whether the estimate range straddles a boundary.
     slope : Equilibrium
         :func:`stability.slope.solve` on the cross slope at the speed: the holding moment (N m).
     handrim : dict
@@ -357,6 +365,7 @@ class TrailWindow:
     """
 
     chart: Any
+    band: Any
     slope: Any
     handrim: dict
     cross_slope_deg: float
@@ -380,8 +389,10 @@ def trail_window(chair: Chair, model: str = D.MODEL, cross_slope_deg: float = 2.
     TrailWindow
     """
     from ..shimmy import chair_trail_chart
+    from ..shimmy.band import shimmy_band
     from ..slope import drive_report, solve
 
     chart = chair_trail_chart(chair, TRAILS, TRAIL_SPEEDS, model=model)
+    band = shimmy_band(chair, TRAIL_SPEEDS)
     eq = solve(chair, cross_slope_deg, speed)
-    return TrailWindow(chart, eq, drive_report(chair, eq), cross_slope_deg, speed)
+    return TrailWindow(chart, band, eq, drive_report(chair, eq), cross_slope_deg, speed)
