@@ -25,6 +25,7 @@ from .. import defaults as D
 from .. import tires
 from ..plotting.style import OKABE_ITO, UNSTABLE
 from . import plots
+from .assist_tab import AssistTab
 from .jobs import Jobs, warm_up_done
 from .state import AppState
 from .text import field_rows, figure_file, geometry_text, summary_text
@@ -130,6 +131,7 @@ class Explorer:
                                                visible=False, css_classes=["progress"])
         self.nl_text = pn.pane.Markdown("", css_classes=["nonlinear-text"], sizing_mode="stretch_width")
         self.trail = TrailTab(self.jobs.submit, self._on)
+        self.assist = AssistTab(self.jobs.submit, self._on, lambda: (self.state.chair, self.state.model))
         self.compare_text = pn.pane.Markdown("", css_classes=["compare-text"], sizing_mode="stretch_width")
         self.unpin = pn.widgets.Select(name="unpin", options=[], width=260)
         self.unpin_button = pn.widgets.Button(name="unpin", width=80)
@@ -203,7 +205,7 @@ class Explorer:
             self.compare_text, sizing_mode="stretch_width")
         self.tabs = pn.Tabs(("Stability vs speed", stability_tab), ("Geometry", geometry_tab),
                             ("Nonlinear response", nonlinear_tab), ("Trail window", self.trail.panel),
-                            ("Compare", compare_tab),
+                            ("Compare", compare_tab), ("Power-chair assist", self.assist.panel),
                             ("Downloads", pn.Column(self.downloads)), dynamic=False, sizing_mode="stretch_width")
         header = pn.Column(pn.pane.Markdown("## stability explorer: directional stability of a wheelchair"),
                            self.title, self.message, sizing_mode="stretch_width")

@@ -1,0 +1,111 @@
+"""The explorer's power-chair tab: the motor assist's gain schedule and margins for the current chair.
+
+On request (a button: the design takes a few seconds), on the background
+worker: :func:`stability.assist.schedule` at ``python -m stability.assist``'s
+default design speeds (gyro design, the command line's defaults) and
+:func:`stability.assist.tables.gain_table` without the nonlinear check; the
+tab shows the gains against speed and the command line's own tables (gains,
+continuous and sampled margins).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import panel as pn
+from bokeh.models import ColumnDataSource
+from bokeh.models.annotations import Legend, LegendItem
+from bokeh.plotting import figure
+
+from .. import defaults as D
+from ..chair import Chair
+from ..plotting.style import OKABE_ITO
+
+__all__ = ["AssistTab", "assist_schedule"]
+
+
+def assist_schedule(chair: Chair, model: str = D.MODEL) -> tuple[Any, list, str]:
+    """The gain schedule, its rows and the command line's text tables for ``chair``.
+
+    Parameters
+    ----------
+    chair : Chair
+    model : {"exact", "thesis"}
+
+    Returns
+    -------
+    (Schedule, list of GainRow, str)
+    """
+    from ..assist import schedule
+    from ..assist.tables import format_margins, format_table, gain_table
+    from ..cli import parse_speeds
+
+    sched = schedule(chair, parse_speeds(D.ASSIST_SPEEDS, increasing=True), "gyro", model=model)
+    rows = gain_table(sched, check=False)
+    return sched, rows, format_table(sched, rows) + "\n\n" + format_margins(rows)
+
+
+class AssistTab:
+    """The power-chair tab of one session.
+
+    Parameters
+    ----------
+    submit : callable
+        ``submit(work, show, failed)`` of the session's :class:`~stability.app.jobs.Jobs`.
+    on_change : callable
+        Wraps a widget callback as the page does.
+    current : callable
+        ``current() -> (chair, model)``: the session's chair now.
+    """
+
+    def __init__(self, submit: Any, on_change: Any, current: Any) -> None:
+        self.submit, self.current = submit, current
+        self.button = pn.widgets.Button(name="design the motor assist", button_type="primary", width=220,
+                                        css_classes=["run-assist"])
+        self.button.on_click(on_change(lambda e: self.start()))
+        self.text = pn.pane.Markdown("Press the button: an LQR yaw-rate assist with a gyro (the thesis's chapter 9, "
+                                     "`python -m stability.assist`) is designed at every speed from 0.5 to 3 m/s.",
+                                     css_classes=["assist-text"], sizing_mode="stretch_width")
+        self.sources: list[ColumnDataSource] = []
+        self.fig = figure(title="Assist gains against speed (yaw moment per unit state)", height=300,
+                          sizing_mode="stretch_width", tools="pan,wheel_zoom,box_zoom,reset,save")
+        self.fig.xaxis.axis_label = "design speed U (m/s)"
+        self.fig.yaxis.axis_label = "gain (N m per SI unit of the state)"
+        self.fig.toolbar.logo = None
+        self.legend = Legend(items=[], location="top_left", label_text_font_size="8pt", click_policy="hide")
+        self.fig.add_layout(self.legend, "right")
+        self.panel = pn.Column(self.button, pn.pane.Bokeh(self.fig, sizing_mode="stretch_width"), self.text,
+                               sizing_mode="stretch_width")
+
+    def start(self) -> None:
+        """Queue the design for the session's current chair."""
+        chair, model = self.current()
+        self.text.object = f"designing the assist for {chair.name} (about ten seconds on a quiet machine)..."
+        self.submit(lambda: assist_schedule(chair, model), self.show, self.failed)
+
+    def failed(self, exc: BaseException) -> None:
+        """Show why no assist could be designed (one line)."""
+        self.text.object = f"error: could not design the assist for this chair: {exc}"
+
+    def show(self, result: tuple[Any, list, str]) -> None:
+        """Draw a computed schedule.
+
+        Parameters
+        ----------
+        result : tuple
+            :func:`assist_schedule`'s.
+        """
+        _, rows, text = result
+        speeds = [r.speed_m_s for r in rows]
+        names = rows[0].gain_states
+        while len(self.sources) < len(names):
+            j = len(self.sources)
+            src = ColumnDataSource({"speed": [], "gain": []})
+            r: Any = self.fig.line("speed", "gain", source=src, line_width=2, color=OKABE_ITO[j % len(OKABE_ITO)],
+                              line_dash=["solid", "dashed", "dotdash", "dotted"][(j // len(OKABE_ITO)) % 4])
+            self.sources.append(src)
+            self.legend.items = [*self.legend.items, LegendItem(label=f"gain on {names[j]}", renderers=[r])]
+        for j, src in enumerate(self.sources):
+            src.data = {"speed": speeds, "gain": [r.gains[j] for r in rows]} if j < len(names) else \
+                {"speed": [], "gain": []}
+        self.text.object = "```\n" + text + "\n```"
