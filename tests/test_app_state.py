@@ -244,3 +244,15 @@ def test_critical_speeds_shown_are_the_command_lines(name):
         assert [x.direction for x in got] == [x.direction for x in want]
         # both refined by Brent's method to xtol 1e-10 m/s from different brackets
         assert [x.speed for x in got] == pytest.approx([x.speed for x in want], abs=1e-8)
+
+
+def test_tip_angles_quoted_in_docs_app_md():
+    """docs/app.md quotes the E&J Premier's static stability angles as the geometry tab shows them."""
+    from stability.tipping import tip_angles
+
+    text = (pathlib.Path(__file__).parents[1] / "docs" / "app.md").read_text()
+    t = tip_angles(chair_mod.preset("ej-premier"))
+    quoted = (f"{t.toward_main_wheels_deg:.1f}° toward the main wheels, {t.toward_casters_deg:.1f}°\n"
+              f"toward the casters, {t.lateral_left_deg:.1f}° to each side")
+    assert t.lateral_left_deg == pytest.approx(t.lateral_right_deg, abs=1e-12)   # mirror symmetry
+    assert quoted in text
