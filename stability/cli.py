@@ -40,8 +40,8 @@ from .output import distinct_notes, json_text, with_tire_range
 from .statics import check_static_loads, static_loads
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
-           "load_chair", "apply_assignments", "parse_speeds", "check_directory", "check_outputs", "output_files", "json_header",
-           "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
+           "load_chair", "apply_assignments", "parse_speeds", "check_directory", "check_outputs", "output_files",
+           "json_header", "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
            "add_uncertainty_option", "FIGURE_FORMATS"]
 
 #: Largest number of speeds a ``--speeds`` option may ask for (each costs an eigenvalue solve or a run).
