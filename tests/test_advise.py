@@ -211,3 +211,30 @@ def test_docs_linear_reconciliation_numbers():
     r_ej, r_rev = (float(np.max(eigenvalues_vs_speed(c, [0.75], track=False).real)) for c in (ej, rev))
     assert f"{r_rev:.2f} vs {r_ej:.2f} 1/s at 0.75 m/s" in text and r_rev > r_ej
     assert f"({math.sqrt(ej.i_z / ej.m):.3f} m for the E&J Premier)" in text
+
+
+def _docs_row(name: str, a) -> str:
+    """The row of docs/advise.md's results table for ``a`` (the same formatting as the table)."""
+    def g(v):
+        return "?" if v is None else f"{v:.3g}"
+
+    def fm(x, status):
+        pre = {"above": "> ", "never": "> ", "below": "< "}.get(status, "")
+        return f"{pre}{x.value:.3g} ({g(x.low)}-{g(x.high)})"
+
+    v, r = a.verdict, a.recommendations[0]
+    p = r.candidate.measures
+    return (f"| {name} | {fm(v.critical_impulse_Ns, v.critical_impulse_status)} | "
+            f"{fm(v.equal_instability_speed_m_s, v.equal_instability_status)} | {v.static_stability_deg.value:.1f} | "
+            f"{v.shimmy_margin_m.value * 100:+.2f} | {r.candidate.label} | "
+            f"{fm(p.critical_impulse_Ns, p.critical_impulse_status)} | "
+            f"{fm(p.equal_instability_speed_m_s, p.equal_instability_status)} |")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["ej-premier", "revised", "ej-premier-front-caster", "power-fwd",
+                                  "manual-front-caster", "measured-example"])
+def test_docs_results_table(name):
+    """docs/advise.md's results table is what advise gives for each preset and the measured example chair."""
+    c = chair_mod.load(MEASURED) if name == "measured-example" else chair_mod.preset(name)
+    assert _docs_row(name, advise(c)) in (ROOT / "docs" / "advise.md").read_text()

@@ -99,6 +99,9 @@ class Measures:
         The four ISO 7176-1 angles (deg) by direction.
     equal_instability_status : str
         ``"found"``, ``"above"`` (beyond 3 m/s) or ``"below"`` (below 0.2 m/s).
+    critical_impulse_status : str
+        ``"found"``, ``"never"`` (not even the largest push tried, 40 N s, spins it: the value is that
+        bound) or ``"below"``.
     """
 
     chair: str
@@ -112,12 +115,14 @@ class Measures:
     growth_rate_1_s: float
     tip_angles_deg: dict
     equal_instability_status: str
+    critical_impulse_status: str = "found"
 
     def to_mapping(self) -> dict:
         """JSON-ready dict: the issue's ``predicted`` keys plus the costs."""
         return {
             "critical_impulse_Ns": self.critical_impulse_Ns.to_mapping(),
             "critical_impulse_speed_m_s": IMPULSE_SPEED,
+            "critical_impulse_status": self.critical_impulse_status,
             "equal_instability_speed_m_s": self.equal_instability_speed_m_s.to_mapping(),
             "equal_instability_status": self.equal_instability_status,
             "static_stability_deg": self.static_stability_deg.to_mapping(),
@@ -144,7 +149,7 @@ def _finite_or_none(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str]]:
+def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str, str]]:
     """Critical impulse and equal-instability speed (with intervals) of every chair, one batch per study.
 
     Parameters
@@ -154,12 +159,13 @@ def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval
     Returns
     -------
     list of tuple
-        ``(critical_impulse_Ns, equal_instability_speed_m_s, equal_instability_status)`` per chair.
+        ``(critical_impulse_Ns, equal_instability_speed_m_s, equal_instability_status, critical_impulse_status)``
+        per chair.
     """
     ci = critical_impulse_intervals(chairs, IMPULSE_SPEED)
     ei = equal_instability_intervals(chairs)
     return [(Interval(float(imp.point.bound_Ns), imp.low_Ns, imp.high_Ns),
-             Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status)
+             Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status, imp.point.status)
             for imp, eq in zip(ci, ei, strict=True)]
 
 
@@ -190,7 +196,7 @@ def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_sl
         bar.update()
         out = []
         cores: dict = {}
-        for c, (imp, eq, status) in zip(chairs, nl, strict=True):
+        for c, (imp, eq, status, *more) in zip(chairs, nl, strict=True):
             # the band search ignores the trail and the Coulomb pin friction (not in the linear caster)
             key = c.replace(trail=0.05, pin_friction_left=0.0, pin_friction_right=0.0, name="-")
             if key not in cores:
@@ -209,7 +215,7 @@ def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_sl
                 growth_rate_1_s=float(np.max(eigenvalues_vs_speed(c, [IMPULSE_SPEED], track=False).real)),
                 tip_angles_deg={k: getattr(tips, k + "_deg") for k in ("toward_main_wheels", "toward_casters",
                                                                       "lateral_left", "lateral_right")},
-                equal_instability_status=status,
+                equal_instability_status=status, critical_impulse_status=more[0] if more else "found",
             ))
         bar.update()
     return out

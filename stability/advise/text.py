@@ -36,7 +36,7 @@ def kmh(speed: float) -> str:
 def _iv(x, unit: str, digits: int = 3, status: str = "found") -> str:
     lo = "?" if x.low is None else f"{x.low:.{digits}g}"
     hi = "?" if x.high is None else f"{x.high:.{digits}g}"
-    value = {"above": "> ", "below": "< "}.get(status, "") + f"{x.value:.{digits}g}"
+    value = {"above": "> ", "never": "> ", "below": "< "}.get(status, "") + f"{x.value:.{digits}g}"
     return f"{value} {unit} (range {lo}-{hi})"
 
 
@@ -56,9 +56,14 @@ def _verdict(a: Advice) -> list[str]:
     force = (ci.value or 0.0) / 0.1
     lines = [f"{a.chair.name}: advice for use at {kmh(a.speeds_m_s[0])} to {kmh(a.speeds_m_s[-1])}", "",
              "VERDICT"]
-    lines.append(f"  At {kmh(REFERENCE_SPEED)} a sideways nudge of {ci.value:.2g} N s at the seat (about {force:.0f} N "
-                 f"for a tenth of a second; range {ci.low:.2g}-{ci.high:.2g} N s over pin friction and model) turns "
-                 f"the chair until it spins at 1 rad/s (57 deg/s) within 10 s unless the user steers.")
+    if m.critical_impulse_status == "never":
+        lines.append(f"  At {kmh(REFERENCE_SPEED)} not even a sideways push of {ci.value:.2g} N s at the seat (the "
+                     "largest tried) turns the chair to 1 rad/s within 10 s: it keeps its heading by itself.")
+    else:
+        lines.append(f"  At {kmh(REFERENCE_SPEED)} a sideways nudge of {ci.value:.2g} N s at the seat "
+                     f"(about {force:.0f} N for a tenth of a second; range {ci.low:.2g}-{ci.high:.2g} N s over pin "
+                     "friction and model) turns the chair until it spins at 1 rad/s (57 deg/s) within 10 s unless "
+                     "the user steers.")
     times = [f"{t:.2g} s at {u:g} m/s" if t is not None else f"more than 10 s at {u:g} m/s"
              for u, t in zip(a.speeds_m_s, a.time_to_correct_s, strict=False)]
     if times:
@@ -111,8 +116,9 @@ def _recommendation(a: Advice) -> list[str]:
                 f"  {c.label}",
                 f"  (--set {' --set '.join(x for ch in c.changes for x in ch.assignments)})" if c.changes else
                 "  (the chair as it is)",
-                f"  critical impulse at {REFERENCE_SPEED:g} m/s: {_iv(base.critical_impulse_Ns, 'N s')} -> "
-                f"{_iv(m.critical_impulse_Ns, 'N s')}",
+                f"  critical impulse at {REFERENCE_SPEED:g} m/s: "
+                f"{_iv(base.critical_impulse_Ns, 'N s', status=base.critical_impulse_status)} -> "
+                f"{_iv(m.critical_impulse_Ns, 'N s', status=m.critical_impulse_status)}",
                 f"  equal-instability speed: "
                 f"{_iv(base.equal_instability_speed_m_s, 'm/s', status=base.equal_instability_status)} -> "
                 f"{_iv(m.equal_instability_speed_m_s, 'm/s', status=m.equal_instability_status)} "
