@@ -74,3 +74,17 @@ def test_architecture_md_lists_the_real_layout():
         f"docs/architecture.md's layer diagram is out of date: listed but absent {sorted(set(listed) - on_disk)}, "
         f"present but not listed {sorted(on_disk - set(listed))} (add a new module to its layer there)")
     assert not re.search(r"(?<![\w])chair\.py", text)
+
+
+import validation_checks  # noqa: E402  (docs/_ext: the checks the validation page runs at build time)
+
+_CHECKS = [(f, cheap) for f, cheap in validation_checks.CHECKS]
+
+
+@pytest.mark.parametrize("check", [pytest.param(f, marks=() if cheap else pytest.mark.docs, id=f.__name__)
+                                   for f, cheap in _CHECKS])
+def test_validation_page_checks_pass(check):
+    """Each check of the validation page (docs/validation-checks.md) agrees with its reference; the cheap
+    ones run in the default suite, the simulation-based ones with the docs tests."""
+    result = check()
+    assert result.passed, result

@@ -15,7 +15,7 @@ u = load_uncertainty("docs/examples/measured_chair.uncertainty.toml")
 
 def outputs(chairs):
     """Free-caster divergence rate at 0.75 m/s (1/s) and locked-caster critical speed (m/s), one row per chair."""
-    return np.array([[linear.divergence(ch, [0.75])[0]["rate_1_s"], linear.zero_width(ch).critical_speed]
+    return np.array([[linear.divergence(ch, [0.75])[0].rate, linear.zero_width(ch).critical_speed]
                      for ch in chairs])
 
 

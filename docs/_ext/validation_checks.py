@@ -1,0 +1,207 @@
+"""The independent checks behind the validation page, run when the site is built.
+
+Each check computes a toolkit result and an independent reference (a number
+printed in Collins 1987, a closed form, a transcription of program WCHAIR,
+the Routh-Hurwitz criterion) and returns a :class:`Check` row. The page
+``docs/validation-checks.md`` renders them with the ``stability-validation``
+directive (``stability_validation.py``); a check that fails is shown as
+failing and makes the build warn (so ``-W`` stops it). ``tests/test_docs_site.py``
+runs the cheap ones in the default test suite too.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Check:
+    """One row of the validation table."""
+
+    name: str
+    source: str
+    reference: str
+    computed: str
+    criterion: str
+    passed: bool
+
+
+def _ej(**kw):
+    import stability
+
+    return stability.preset("ej-premier").replace(**kw)
+
+
+def eq_8_2_to_8_5() -> Check:
+    """Zero-width model with the thesis's 25 N/deg tires (chapter 8, 'Method Two')."""
+    from stability import linear
+
+    c = _ej(m=76.2, main_tire="linear:25", caster_tire="linear:25")
+    zw = linear.zero_width(c)
+    got = (zw.load_main, zw.load_caster, zw.understeer_coefficient, zw.critical_speed)
+    ok = (abs(got[0] - 159) <= 1 and abs(got[1] - 215) <= 1 and abs(got[2] + 0.04) <= 0.002
+          and abs(got[3] - 12) <= 0.5)
+    return Check("Loads, understeer coefficient and locked-caster critical speed", "Collins 1987, eqs 8-2 to 8-5",
+                 "W_f 159 N, W_r 215 N, k_us -0.04 rad, 12 m/s",
+                 f"{got[0]:.1f} N, {got[1]:.1f} N, {got[2]:.4f} rad, {got[3]:.2f} m/s",
+                 "printed digits (1 N, 0.002 rad, 0.5 m/s)", ok)
+
+
+def figure_8_6() -> Check:
+    """Locked casters: WCHAIR's stable-to-unstable transition between 11.25 and 12.5 m/s."""
+    from stability import linear
+
+    c = _ej(m=75.0)
+    grid = np.linspace(5, 20, 61)
+    cross = linear.critical_speeds(lambda U: linear.state_matrices(c, U, "thesis", "locked"), grid)
+    u = cross[0].speed if len(cross) == 1 else float("nan")
+    return Check("Locked-caster transition (thesis equations)", "Collins 1987, Figure 8-6",
+                 "between 11.25 and 12.5 m/s", f"{u:.2f} m/s", "inside the bracket", 11.25 < u < 12.5)
+
+
+def bicycle_closed_form() -> Check:
+    """Locked casters, exact model = the zero-width characteristic equation 5-11 (coefficients eq 5-12)."""
+    from stability import linear
+    from stability.statics import static_stiffness
+
+    c = _ej()
+    st = static_stiffness(c)
+    cf, cr = st["D"], st["A"]
+    s1, s2, m, inertia = c.s1, c.caster_contact_distance, c.m, c.i_z
+    worst = 0.0
+    for u in (5.0, 12.0, 20.0, 40.0):
+        a1 = (2 * cf + 2 * cr) / u
+        a2 = m * u + (2 * cf * s1 - 2 * cr * s2) / u
+        a3 = (2 * cf * s1 - 2 * cr * s2) / u
+        a4 = (2 * cf * s1**2 + 2 * cr * s2**2) / u
+        roots = np.roots([1, (a1 * inertia + a4 * m) / (inertia * m), (a1 * a4 - a2 * a3) / (inertia * m)])
+        ours = np.linalg.eigvals(linear.state_matrices(c, u, "exact", "locked")[0])
+        # each closed-form root against the nearest eigenvalue of the full-width model (a matching)
+        worst = max(worst, max(float(np.min(np.abs(ours - r)) / max(abs(r), 1.0)) for r in roots))
+    return Check("Full-width model with locked casters = two-degree-of-freedom bicycle",
+                 "closed form, eqs 5-11 and 5-12", "eigenvalues of eq 5-11 at 5, 12, 20, 40 m/s",
+                 f"largest relative difference {worst:.1e}", "< 1e-9 (rounding)", worst < 1e-9)
+
+
+def locked_critical_speed() -> Check:
+    """Full-width locked-caster critical speed = eq 5-15 of the zero-width model."""
+    from stability import linear
+
+    c = _ej()
+    grid = np.linspace(1, 40, 200)
+    cross = linear.critical_speeds(lambda U: linear.state_matrices(c, U, "exact", "locked"), grid)
+    zw = linear.zero_width(c).critical_speed
+    rel = abs(cross[0].speed - zw) / zw
+    return Check("Locked-caster critical speed, full-width vs zero-width", "closed form, eq 5-15",
+                 f"{zw:.4f} m/s (eq 5-15)", f"{cross[0].speed:.4f} m/s", "relative 1e-8", rel < 1e-8)
+
+
+def reference_time() -> Check:
+    """The reference case reaches 1 rad/s 'in slightly over 3 seconds' (WCHAIR's equations)."""
+    import stability
+
+    run = stability.run_simulation(_ej(), 0.75, model="thesis")
+    t1 = run.first_time_abs_yaw_rate(1.0)
+    return Check("Reference case: E&J Premier, 0.75 m/s, 40 N for 0.1 s", "Collins 1987, Figure 8-3a",
+                 "1 rad/s in slightly over 3 s", f"{t1:.3f} s", "3.0-3.6 s", 3.0 < t1 < 3.6)
+
+
+def linear_vs_nonlinear() -> Check:
+    """The simulated growth rate equals the dominant eigenvalue while slips stay below 1 deg."""
+    from stability.validation import linear_vs_nonlinear as lvn
+
+    rows = [lvn(_ej(), u, model=m, casters="free") for m in ("thesis", "exact") for u in (0.3, 0.75, 2.0)]
+    worst = max(r.relative_error for r in rows)
+    slip = max(r.max_slip_deg for r in rows)
+    return Check("Nonlinear simulation vs linear eigenvalue (free casters)", "independent: two models",
+                 "real part of the dominant eigenvalue, 0.3/0.75/2 m/s, both variants",
+                 f"largest relative difference {100 * worst:.2f} % (slips <= {slip:.2f} deg)", "< 2 %",
+                 worst < 0.02 and slip < 1.0)
+
+
+def simulator_linearisation() -> Check:
+    """Central differences of the simulator's right-hand side = the symbolic linear model."""
+    import stability
+    from stability.validation import linearisation_check
+
+    rows = [linearisation_check(stability.preset(n), 0.75, model=m) for n in ("ej-premier", "power-fwd")
+            for m in ("thesis", "exact")]
+    worst = max(r.matrix_difference for r in rows)
+    return Check("Simulator's own linearisation vs the symbolic state matrix", "independent: two derivations",
+                 "linear.state_space, two chairs, both variants", f"largest difference {worst:.1e}",
+                 "< 1e-6 (central differences)", worst < 1e-6)
+
+
+def wchair_run_for_run() -> Check:
+    """The compiled kernel against the pure-numpy transcription of the WCHAIR scheme, step for step."""
+    from stability.simulate import DEFAULTS, simulate
+    from stability.simulate.options import make_options
+    from stability.simulate.reference import wchair_batch
+
+    chair = _ej()
+    opts = dict(DEFAULTS.as_dict(), duration=1.0, sample=0.001)
+    del opts["controller"], opts["record"]
+    ref = wchair_batch([chair], np.array([0.75]), make_options(batch=True, **opts), False)[0]
+    got = simulate(chair, 0.75, **{k: v for k, v in opts.items() if k != "yaw_moment"})
+    diff = float(np.max(np.abs(np.asarray(got.yaw_rate) - np.asarray(ref.yaw_rate))))
+    scale = float(np.max(np.abs(np.asarray(ref.yaw_rate))))
+    return Check("Compiled simulator vs the WCHAIR scheme transcribed in numpy", "Collins 1987, Appendix C",
+                 "the same 1001 steps of 1 ms", f"largest yaw-rate difference {diff:.1e} rad/s (of {scale:.2f})",
+                 "< 1e-9 relative", diff <= 1e-9 * max(scale, 1.0))
+
+
+def towed_wheel() -> Check:
+    """Towed-wheel shimmy (the E&J Premier's caster): Routh-Hurwitz agrees with the eigenvalues."""
+    from stability.shimmy.chair import caster_wheel
+
+    wheel = caster_wheel(_ej())
+    agree = total = unstable = 0
+    trail = wheel.contact_behind_cm + wheel.pivot_ahead_of_cm
+    for u in np.linspace(0.2, 4.0, 20):
+        for new_trail in np.linspace(0.005, 0.08, 16):       # m; shorter trails shimmy
+            w = dataclasses.replace(wheel, contact_behind_cm=wheel.contact_behind_cm + float(new_trail) - trail)
+            ev = w.eigenvalues(float(u))
+            margin = ev.real.max() / np.abs(ev).max()
+            if abs(margin) > 1e-6:            # well away from the boundary, where both are decisive
+                total += 1
+                unstable += bool(margin > 0)
+                agree += w.routh_hurwitz(float(u)).stable == bool(margin < 0)
+    return Check("Towed-wheel shimmy of the E&J caster: stability by Routh-Hurwitz vs by eigenvalues",
+                 "Pacejka 2006 sec. 5.3; Schwab & Meijaard 2003", "the same verdict (speed x trail grid)",
+                 f"{agree} of {total} grid points agree ({unstable} shimmy)", "all",
+                 agree == total and 0 < unstable < total)
+
+
+def holding_moment() -> Check:
+    """Cross slope: the equilibrium solver's holding moment = the frictionless closed form."""
+    from stability import slope
+
+    c = _ej(pin_friction_left=0.0, pin_friction_right=0.0)
+    worst = 0.0
+    for phi in (1.0, 2.0, 4.0):
+        eq = slope.solve(c, phi, 0.9)
+        worst = max(worst, abs(eq.holding_moment - eq.closed_form) / abs(eq.closed_form))
+    return Check("Cross-slope holding moment, solver vs closed form", "closed form (statics on the plane)",
+                 "g cos(theta) sin(phi) (m x_m - 2 m_c (l1/trail)(x_m - x_c))",
+                 f"largest relative difference {100 * worst:.2f} %", "< 1 % (caster steer and crab angle)",
+                 worst < 0.01)
+
+
+#: Every check, in the page's order: (function, cheap enough for the default test run).
+CHECKS: tuple[tuple[Callable[[], Check], bool], ...] = (
+    (eq_8_2_to_8_5, True),
+    (figure_8_6, True),
+    (reference_time, False),
+    (bicycle_closed_form, True),
+    (locked_critical_speed, True),
+    (holding_moment, True),
+    (towed_wheel, True),
+    (linear_vs_nonlinear, False),
+    (simulator_linearisation, False),
+    (wchair_run_for_run, False),
+)
+
