@@ -92,7 +92,7 @@ def _verdict(a: Advice) -> list[str]:
     return lines
 
 
-def _row(c: Candidate) -> str:
+def _row(c: Candidate, base: Measures) -> str:
     m = c.measures
     sm = m.shimmy_margin_m.value
     hr = m.handrim_force_difference_N
@@ -101,7 +101,9 @@ def _row(c: Candidate) -> str:
             f"{'none' if sm is None else format(sm * 100, '+.2f'):>7} {m.turning_effort_N_m:6.3f} "
             f"{'-' if hr is None else format(abs(hr), '.0f'):>5} {m.growth_rate_1_s:5.2f} {c.gain * 100:+6.1f} %"
             + ("" if c.feasible else "  breaks " + ", ".join(k.name for k in c.constraints if not k.met))
-            + ("  (impulse and speed disagree)" if min(c.gains.values()) < 0 < max(c.gains.values()) else ""))
+            + ("  (impulse and speed disagree)" if min(c.gains.values()) < 0 < max(c.gains.values()) else "")
+            + ("  (linear rate worse, nonlinear better: see the note on linear vs nonlinear)"
+               if c.gain > 0 and m.growth_rate_1_s > base.growth_rate_1_s + 1e-9 else ""))
 
 
 def _recommendation(a: Advice) -> list[str]:
@@ -153,7 +155,7 @@ def advice_text(a: Advice) -> str:
               f"{'lin':>5} {'gain':>8}",
               f"  {'':<72} {'(low-high)':>13} {'':>6} {'deg':>6} {'cm':>7} {'N m':>6} {'N':>5} {'1/s':>5}"]
     for name in LEVERS:
-        lines += [_row(c) for c in a.candidates if c.changes[0].lever == name]
+        lines += [_row(c, a.verdict) for c in a.candidates if c.changes[0].lever == name]
     for ch, why in a.refused:
         lines.append(f"  {ch.label:<72} refused: {why}")
     lines += _recommendation(a)
