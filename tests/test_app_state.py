@@ -256,3 +256,19 @@ def test_tip_angles_quoted_in_docs_app_md():
               f"toward the casters, {t.lateral_left_deg:.1f}° to each side")
     assert t.lateral_left_deg == pytest.approx(t.lateral_right_deg, abs=1e-12)   # mirror symmetry
     assert quoted in text
+
+
+def test_applying_a_recommendation_is_its_set_assignments():
+    """The advice tab applies a recommendation's fields as one edit; the chair is the one ``--set`` gives."""
+    from stability.advise import Change
+    from stability.app.advice_tab import assignments
+    from stability.cli import load_chair
+
+    changes = (Change("pin_friction", "pin friction 0.1 -> 0.3 N m", (("pin_friction_left", 0.3),
+                                                                     ("pin_friction_right", 0.3))),
+               Change("trail", "trail 8 -> 6 cm", (("trail", 0.06),)))
+    fields = {k: v for ch in changes for k, v in ch.fields}
+    s = AppState()
+    assert s.set_fields(assignments(fields)) is None
+    assert s.chair == load_chair("ej-premier", [a for ch in changes for a in ch.assignments])
+    assert s.undo() and s.chair == chair_mod.preset("ej-premier")       # one edit, one undo

@@ -10,7 +10,6 @@ chair.  The URL follows the chair.
 
 from __future__ import annotations
 
-import io
 from collections.abc import Callable
 from functools import partial
 from typing import Any
@@ -25,12 +24,13 @@ from .. import defaults as D
 from .. import tires
 from ..plotting.style import OKABE_ITO, UNSTABLE
 from . import plots
+from .advice_tab import AdviceTab
 from .assist_tab import AssistTab
 from .jobs import Jobs, warm_up_done
 from .state import AppState
-from .text import field_rows, figure_file, geometry_text, summary_text
+from .text import downloads, field_rows, geometry_text, summary_text
 from .trail_tab import TrailTab
-from .views import LinearView, eigenvalues_csv, geometry_points, linear_view, mode_shape, nonlinear_view
+from .views import LinearView, geometry_points, linear_view, mode_shape, nonlinear_view
 
 __all__ = ["Explorer"]
 
@@ -132,23 +132,12 @@ class Explorer:
         self.nl_text = pn.pane.Markdown("", css_classes=["nonlinear-text"], sizing_mode="stretch_width")
         self.trail = TrailTab(self.jobs.submit, self._on)
         self.assist = AssistTab(self.jobs.submit, self._on, lambda: (self.state.chair, self.state.model))
+        self.advice = AdviceTab(self.jobs.submit, self._on, lambda: self.state.chair, self.apply_fields)
         self.compare_text = pn.pane.Markdown("", css_classes=["compare-text"], sizing_mode="stretch_width")
         self.unpin = pn.widgets.Select(name="unpin", options=[], width=260)
         self.unpin_button = pn.widgets.Button(name="unpin", width=80)
         self.unpin_button.on_click(self._on(lambda e: self._unpin()))
-        self.downloads = pn.Row(
-            pn.widgets.FileDownload(callback=lambda: io.StringIO(self.state.chair_toml()), filename="chair.toml",
-                                    label="chair (TOML)", css_classes=["download-toml"], width=160),
-            pn.widgets.FileDownload(callback=lambda: io.StringIO(self.state.results_json()), filename="results.json",
-                                    label="results (JSON)", css_classes=["download-json"], width=160),
-            pn.widgets.FileDownload(callback=lambda: io.StringIO(eigenvalues_csv(self._view())),
-                                    filename="eigenvalues.csv", label="eigenvalues (CSV)",
-                                    css_classes=["download-csv"], width=170),
-            pn.widgets.FileDownload(callback=lambda: figure_file(self._view(), "png"), filename="eigenvalues.png",
-                                    label="figure (PNG)", css_classes=["download-png"], width=150),
-            pn.widgets.FileDownload(callback=lambda: figure_file(self._view(), "svg"), filename="eigenvalues.svg",
-                                    label="figure (SVG)", css_classes=["download-svg"], width=150),
-        )
+        self.downloads = downloads(self.state, self._view)
 
     # ------------------------------------------------------------------ figures
     def _figures(self) -> None:
@@ -205,6 +194,7 @@ class Explorer:
             self.compare_text, sizing_mode="stretch_width")
         self.tabs = pn.Tabs(("Stability vs speed", stability_tab), ("Geometry", geometry_tab),
                             ("Nonlinear response", nonlinear_tab), ("Trail window", self.trail.panel),
+                            ("Advice", self.advice.panel),
                             ("Compare", compare_tab), ("Power-chair assist", self.assist.panel),
                             ("Downloads", pn.Column(self.downloads)), dynamic=False, sizing_mode="stretch_width")
         header = pn.Column(pn.pane.Markdown("## stability explorer: directional stability of a wheelchair"),
@@ -238,6 +228,12 @@ class Explorer:
         str or None
         """
         msg = self.state.set_field(name, text)
+        self._after(msg, refresh=msg is None)
+        return msg
+
+    def apply_fields(self, texts: dict[str, str]) -> str | None:
+        """Set several fields as one edit (a recommendation); returns the message or None."""
+        msg = self.state.set_fields(texts)
         self._after(msg, refresh=msg is None)
         return msg
 
@@ -285,6 +281,7 @@ class Explorer:
         self._show_geometry()
         self._show_shape()
         self._show_compare()
+        self.advice.chair_changed(self.state.chair)
         self.unc_src.data = {"speed": [], "low": [], "high": []}
         if self.location is not None:
             self.location.search = "?" + self.state.url_query()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+from typing import Any
 
 import numpy as np
 
@@ -10,7 +11,7 @@ from .. import chair as chair_mod
 from ..chair import Chair
 from .views import LinearView
 
-__all__ = ["summary_text", "geometry_text", "figure_file", "field_rows", "FIELD_KINDS"]
+__all__ = ["summary_text", "geometry_text", "figure_file", "downloads", "field_rows", "FIELD_KINDS"]
 
 #: Fields edited as text choices rather than numbers.
 TEXT_FIELDS = ("name", "caster_position", "main_tire", "caster_tire")
@@ -120,3 +121,36 @@ def geometry_text(c: Chair, v: LinearView) -> str:
             f"\n\nStatic loads: main wheel {L['main']:.1f} N, caster {L['caster']:.1f} N (per wheel); wheelbase "
             f"{c.wheelbase:.3f} m; c.g. ratio s1/(s1+s2) {c.cg_ratio:.3f}. Drawn from the chair's fields, c.g. at "
             "the origin; dotted: from the c.g. to each tipping line, with its angle.")
+
+
+def downloads(state: Any, view: Any) -> Any:
+    """The download buttons: chair TOML, results JSON, eigenvalues CSV, the figure as PNG and SVG.
+
+    Parameters
+    ----------
+    state : AppState
+        The session's state (read when a button is pressed).
+    view : callable
+        ``view() -> LinearView`` of the current chair.
+
+    Returns
+    -------
+    panel.Row
+    """
+    import panel as pn
+
+    from .views import eigenvalues_csv
+
+    return pn.Row(
+        pn.widgets.FileDownload(callback=lambda: io.StringIO(state.chair_toml()), filename="chair.toml",
+                                label="chair (TOML)", css_classes=["download-toml"], width=160),
+        pn.widgets.FileDownload(callback=lambda: io.StringIO(state.results_json()), filename="results.json",
+                                label="results (JSON)", css_classes=["download-json"], width=160),
+        pn.widgets.FileDownload(callback=lambda: io.StringIO(eigenvalues_csv(view())),
+                                filename="eigenvalues.csv", label="eigenvalues (CSV)",
+                                css_classes=["download-csv"], width=170),
+        pn.widgets.FileDownload(callback=lambda: figure_file(view(), "png"), filename="eigenvalues.png",
+                                label="figure (PNG)", css_classes=["download-png"], width=150),
+        pn.widgets.FileDownload(callback=lambda: figure_file(view(), "svg"), filename="eigenvalues.svg",
+                                label="figure (SVG)", css_classes=["download-svg"], width=150),
+    )

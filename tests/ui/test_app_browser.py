@@ -134,3 +134,21 @@ def test_power_chair_assist_tab(page, explorer, artifacts):
     page.locator(".run-assist button").click()
     page.locator(".assist-text", has_text="Motor assist (gyro LQR) for power-fwd").wait_for(timeout=300_000)
     page.screenshot(path=artifacts / "assist.png")
+
+
+def test_apply_the_advisors_recommendation(page, explorer, artifacts):
+    explorer()
+    page.get_by_text("Advice", exact=True).click()
+    page.locator(".run-advice button").click()
+    page.locator(".advice-text", has_text="VERDICT").wait_for(timeout=600_000)
+    button = page.locator(".apply-1 button")
+    label = button.inner_text()
+    page.screenshot(path=artifacts / "advice.png")
+    button.click()
+    page.locator(".chair-title", has_text="modified").wait_for()
+    from stability.advise import advise
+
+    rec = advise(chair_mod.preset("ej-premier")).recommendations[0].candidate
+    assert rec.label[:60] in label
+    for name, value in rec.fields.items():
+        assert page.locator(f".field-{name} input").input_value() == repr(value)
