@@ -13,8 +13,10 @@ each fenced block is classified by its info string and its content:
   the pages' relative paths work and nothing is written into the repository) and
   must exit 0 -- marked ``docs`` (they take minutes together);
 * set-up lines (``python3 -m venv``, ``pip install``, ``python -m pytest``,
-  ``python -m sphinx``) are what CI's own steps run, and synopses with
-  ``[optional]`` parts are not runnable; both are left out, by rule.
+  ``python -m sphinx``) are what CI's own steps run, synopses with
+  ``[optional]`` parts are not runnable, and ``python -m stability.app``
+  serves a page until stopped (its own tests drive it in a browser); all
+  three are left out, by rule.
 
 A block that cannot run stand-alone is preceded by
 ``<!-- docs-test: skip REASON -->``; a block that is a file the next blocks
@@ -51,6 +53,8 @@ DOCS = ROOT / "docs"
 FENCE = re.compile(r"^(?P<fence>```+)(?P<info>[^\n`]*)\n(?P<body>.*?)^(?P=fence)[ \t]*$", re.S | re.M)
 MARK = re.compile(r"<!--\s*docs-test:\s*(?P<what>skip|file)\s*(?P<arg>.*?)\s*-->\s*$")
 COMMAND = re.compile(r"^(\$\s+)?python3?\s+(-m\s+stability\b|docs/examples/)")
+#: Commands that serve a web page until stopped (not one-shot): tests/test_app*.py start them in a browser.
+SERVERS = re.compile(r"^python3?\s+-m\s+stability\.app\b(?!.*--help)")
 SETUP = re.compile(r"^(\$\s+)?(python3?\s+-m\s+(venv|pip|pytest|sphinx)\b|pip\s|\.\s|source\s)")
 DOCTEST_FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 
@@ -97,7 +101,8 @@ def commands(block: Block) -> list[tuple[str, list[str]]]:
         if line.startswith("$ ") or not line.startswith(" ") and any(COMMAND.match(p) for p in parts):
             expected = None
             for part in parts:
-                if SETUP.match(part) or not COMMAND.match(part) or re.search(r"\[-", part):
+                part = part.split(" #", 1)[0].strip()          # an inline shell comment
+                if SETUP.match(part) or not COMMAND.match(part) or re.search(r"\[-", part) or SERVERS.match(part):
                     continue
                 expected = [] if stripped.startswith("$") else None
                 command = " ".join(re.sub(r"^\$\s+", "", part).split())
