@@ -33,8 +33,8 @@ ax.fill_between(speeds, table[0], table[2], color=OKABE_ITO[4], alpha=0.35, labe
 ax.errorbar(speeds, table[1], yerr=[[r.impulse_Ns - r.low_Ns for r in mid], [r.high_Ns - r.impulse_Ns for r in mid]],
             color=OKABE_ITO[0], marker="o", lw=2, capsize=3, label="pin friction 0.1 N m (preset)")
 ax.set_xlabel("forward speed (m/s)")
-ax.set_ylabel("critical impulse (N s)")
-ax.set_title("Critical impulse vs speed: ej-premier (exact model, WCHAIR, 1 rad/s within 10 s)")
+ax.set_ylabel("critical impulse (N s; 1 rad/s within 10 s)")
+ax.set_title("Critical impulse vs speed: ej-premier (exact model, WCHAIR scheme)")
 ax.legend()
 
 # %%
