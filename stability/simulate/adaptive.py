@@ -15,6 +15,7 @@ from .engine import _POLICY, _Packed, _raise_refused, slope_slots
 from .options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,
+    LOAD_TOLERANCE,
     SLIP_LIMIT_DEG,
     WARNING_LIMIT,
     Options,
@@ -51,7 +52,7 @@ class AdaptiveModel:
     def _consistent(self, t, imp, vel, slips, ce, se, cb, sb, guess, gn=None):
         """Fixed-point iteration of the load-transfer loop (a strong contraction).
 
-        Stops when the total tire force changes by less than 1e-9 of its size
+        Stops when the total tire force changes by less than LOAD_TOLERANCE (1e-9) of its size
         between iterations; starts from the previous evaluation's solution.
         ``gn``: normal gravity on a slope (m/s^2), None when level.
         """
@@ -69,7 +70,7 @@ class AdaptiveModel:
                 err = abs(nfx - sfx) + abs(nfy - sfy)
                 scale = 1.0 + abs(nfx) + abs(nfy)
             sfx, sfy = nfx, nfy
-            if err <= 1e-9 * scale:
+            if err <= LOAD_TOLERANCE * scale:
                 return N, F, (sfx, sfy)
         raise RuntimeError(f"normal loads and tire forces did not converge (t = {t!r} s)")  # pragma: no cover
 

@@ -46,6 +46,7 @@ from .kernel import (
     tire_yaw_moment,
 )
 from .kernel import gravity_body as _gravity_body
+from .options import LOAD_TOLERANCE
 
 __all__ = ["NAUX", "evaluate", "samples"]
 
@@ -132,7 +133,7 @@ def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM
         scale = 1.0 + abs(nfx) + abs(nfy)
         sfx, sfy = nfx, nfy
         it += 1
-        if err <= 1e-9 * scale:
+        if err <= LOAD_TOLERANCE * scale:
             guess[0], guess[1] = sfx, sfy
             return loads, F, 0, 0, True
         if it == 100:

@@ -37,6 +37,9 @@ LOAD_LIMIT_N = FZ_MAX_N
 WARNING_LIMIT = 10
 #: solve_ivp method of the adaptive scheme (stiff-aware, low order; see docs/simulator.md).
 ADAPTIVE_METHOD = "LSODA"
+#: the adaptive scheme's load-transfer loop stops when the total tire force changes by less than this
+#: fraction of its size (1 + |sum F_x| + |sum F_y|, N) between iterations
+LOAD_TOLERANCE = 1e-9
 #: WCHAIR's time step TSTEP, s (the thesis's runs).
 WCHAIR_DT = D.DT
 #: Largest |cross slope| and |grade| of a simulation, deg (tire data: slips stay within 8 deg up to ~15 deg).
