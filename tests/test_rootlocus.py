@@ -2,14 +2,20 @@
 
 import numpy as np
 import pytest
+from numerics import assert_eigenvalues_match, eig_bounds, match_eigenvalues, poly_root_tolerance
 
 from stability import linear, rootlocus
 from stability.chair import preset
 
 
-def _same_sets(a, b, rtol=1e-8, atol=1e-9):
-    """Two eigenvalue sets equal up to order."""
-    np.testing.assert_allclose(np.sort_complex(np.asarray(a)), np.sort_complex(np.asarray(b)), rtol=rtol, atol=atol)
+def _polynomial_roots_bound(roots, A):
+    """Error bound of roots that python-control finds through a transfer function of the state matrix ``A``.
+
+    The polynomial's coefficients inherit the eigenvalue errors of ``A`` and are rounded when formed
+    (n eps relative to the sum of their terms' magnitudes); its roots then move by the root condition
+    (tests/numerics.py: eig_bounds, poly_root_tolerance)."""
+    roots = np.asarray(roots)
+    return eig_bounds(roots, A) + poly_root_tolerance(np.poly(roots), roots)
 
 
 @pytest.fixture(scope="module")
@@ -30,8 +36,9 @@ def test_parameter_locus_equals_per_chair_eigenvalues(ej, name):
     for k in range(0, len(loc.values), 4):
         c = p.apply(ej, float(loc.values[k]))
         assert c == loc.chairs[k]
-        ref = np.linalg.eigvals(linear.state_matrices(c, 0.75)[0])
-        _same_sets(loc.eigenvalues[k], ref)
+        A = linear.state_matrices(c, 0.75)[0]
+        # the same matrix's eigenvalues, batched and alone: each within n eps ||A|| kappa_i
+        assert_eigenvalues_match(loc.eigenvalues[k], np.linalg.eigvals(A), A, A, what=f"{name}={loc.values[k]}")
 
 
 def test_cg_ratio_keeps_s1_plus_s2(ej):
@@ -56,8 +63,8 @@ def test_batched_locus_equals_chair_by_chair_poles(ej):
     loc = rootlocus.parameter_locus(ej, "trail", speed=1.0, n=12)
     p = rootlocus.get_parameter("trail")
     for value, row in zip(loc.values, loc.eigenvalues, strict=True):
-        poles = np.sort_complex(linear.state_space(p.apply(ej, value), 1.0).poles())
-        np.testing.assert_allclose(np.sort_complex(row), poles, rtol=1e-9, atol=1e-9 * np.abs(poles).max())
+        sys = linear.state_space(p.apply(ej, value), 1.0)
+        assert_eigenvalues_match(row, sys.poles(), sys.A, sys.A, what=f"trail={value}")
 
 
 @pytest.mark.parametrize("name", ["cg_ratio", "s1_plus_s2", "trail", "pin_damping", "mass_factor"])
@@ -87,14 +94,20 @@ def test_mirror_invariance(ej, name, model):
     a = rootlocus.parameter_locus(asym, name, speed=0.9, model=model, n=15)
     b = rootlocus.parameter_locus(mirror(asym), name, speed=0.9, model=model, n=15)
     for k in range(len(a.values)):
-        _same_sets(a.eigenvalues[k], b.eigenvalues[k], rtol=1e-7, atol=1e-8)
+        # the two state matrices are similar in exact arithmetic (a sign change of the lateral states) and
+        # differ by the rounding of their entries: each side within n eps ||A|| kappa_i of the exact spectrum
+        A = linear.state_matrices(a.chairs[k], 0.9, model)[0]
+        B = linear.state_matrices(b.chairs[k], 0.9, model)[0]
+        assert_eigenvalues_match(a.eigenvalues[k], b.eigenvalues[k], A, B, what=f"{name}={a.values[k]}")
 
 
 def test_symmetric_chair_cg_ratio_locus_is_real_symmetric(ej):
     """Real state matrices: each row of the locus is closed under complex conjugation."""
     loc = rootlocus.parameter_locus(ej, "cg_ratio", speed=0.75, n=31)
     for row in loc.eigenvalues:
-        _same_sets(row, np.conj(row), rtol=1e-7, atol=1e-8)
+        # LAPACK returns complex eigenvalues of a real matrix as exact conjugate pairs: no tolerance
+        r, c = match_eigenvalues(row, np.conj(row))
+        np.testing.assert_array_equal(row[r], np.conj(row)[c])
 
 
 def test_main_tire_locus_is_categorical(ej):
@@ -149,8 +162,10 @@ def test_gain_locus_at_zero_gain_is_open_loop(ej, speed):
     g = rootlocus.gain_locus(ej, speed, n=60)
     assert g.gains[0] == 0.0
     A = linear.state_matrices(ej, speed)[0]
-    _same_sets(g.loci[0], np.linalg.eigvals(A), rtol=1e-6, atol=1e-6)
-    _same_sets(g.poles, np.linalg.eigvals(A), rtol=1e-6, atol=1e-6)
+    lam = np.linalg.eigvals(A)
+    # roots of the transfer function's denominator vs the state matrix's eigenvalues
+    assert_eigenvalues_match(g.loci[0], lam, B=A, tol_a=_polynomial_roots_bound(g.loci[0], A), what="K = 0")
+    assert_eigenvalues_match(g.poles, lam, B=A, tol_a=_polynomial_roots_bound(g.poles, A), what="poles")
 
 
 def test_gain_locus_equals_closed_loop_eigenvalues(ej):
@@ -159,7 +174,8 @@ def test_gain_locus_equals_closed_loop_eigenvalues(ej):
     Acl = rootlocus.closed_loop_matrices(ej, 0.75, g.gains)
     for k in range(len(g.gains)):
         lam = np.linalg.eigvals(Acl[k])
-        _same_sets(g.loci[k], lam, rtol=1e-5, atol=1e-5 * max(1.0, np.abs(lam).max()))
+        assert_eigenvalues_match(g.loci[k], lam, B=Acl[k], tol_a=_polynomial_roots_bound(g.loci[k], Acl[k]),
+                                 what=f"K = {g.gains[k]}")
 
 
 def test_stabilising_gain(ej):

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import scipy.linalg
 import sympy as sp
+from numerics import assert_eigenvalues_match, eig_bounds
 
 from stability.shimmy import TowedWheel, hurwitz_determinants
 from stability.shimmy import describing as df
@@ -170,9 +171,12 @@ def test_time_scaling_invariant():
             kw["lateral_stiffness"] = lam**2 * w.lateral_stiffness
         if not rigid_tire:
             kw["cornering_stiffness"] = lam**2 * w.cornering_stiffness
-        e1 = np.sort_complex(w.eigenvalues(0.8))
-        e2 = np.sort_complex(w.replace(**kw).eigenvalues(lam * 0.8))
-        np.testing.assert_allclose(e2, lam * e1, rtol=1e-9, atol=1e-9 * np.abs(e1).max())
+        w2 = w.replace(**kw)
+        A1, A2 = w.state_matrix(0.8)[0], w2.state_matrix(lam * 0.8)[0]
+        # two matrices similar to A2 = lam A1 up to the rounding of the scaled parameters (a few eps
+        # relative, inside n eps ||A|| kappa_i): each side's eigenvalue bound, the first scaled by lam
+        assert_eigenvalues_match(w2.eigenvalues(lam * 0.8), lam * w.eigenvalues(0.8), A2,
+                                 tol_b=lam * eig_bounds(w.eigenvalues(0.8), A1), what=str(kw))
 
 
 def test_routh_hurwitz_agrees_with_eigenvalues():
@@ -198,11 +202,13 @@ def test_state_space_and_vectorised_eigenvalues():
     sys_ = w.state_space(1.2)
     assert list(sys_.state_labels) == ["y", "psi", "y_dot", "psi_dot", "alpha"]
     assert list(sys_.input_labels) == ["pin_torque"]
-    np.testing.assert_allclose(np.sort_complex(np.linalg.eigvals(sys_.A)), np.sort_complex(w.eigenvalues(1.2)),
-                               rtol=1e-12)
+    A = w.state_matrix(1.2)[0]
+    np.testing.assert_array_equal(sys_.A, A)
+    # eigenvalues of the same matrix from two calls (one batched): within n eps ||A|| kappa_i each
+    assert_eigenvalues_match(np.linalg.eigvals(sys_.A), w.eigenvalues(1.2), A, A)
     many = w.eigenvalues([0.5, 1.2])
     assert many.shape == (2, 5)
-    np.testing.assert_allclose(np.sort_complex(many[1]), np.sort_complex(w.eigenvalues(1.2)), rtol=1e-12)
+    assert_eigenvalues_match(many[1], w.eigenvalues(1.2), A, A)
 
 
 @pytest.mark.parametrize("kwargs,name", [

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from numerics import trajectory_tolerance, transient_bound
+from numerics import assert_signals_close, run_tolerance, trajectory_tolerance, transient_bound
 
 from stability import params, tires
 from stability import statics as loads
@@ -186,8 +186,9 @@ def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
     # interpolated coefficients there, interpolated forces here: equal to rounding)
     compiled = simulate(EJ, 0.75, duration=0.02)
     assert compiled.settings["engine"] == "compiled"
-    np.testing.assert_allclose(compiled.yaw_acceleration, py.yaw_acceleration, rtol=1e-12, atol=1e-14)
-    np.testing.assert_allclose(compiled.eta_dot, py.eta_dot, rtol=1e-12, atol=1e-14)
+    # error model: fixed-step rounding, steps x eps (1 + dt ||A||) x growth (tests/numerics.py)
+    assert_signals_close(compiled, py, ("yaw_acceleration", "eta_dot"), run_tolerance(EJ, 0.75, 0.02),
+                         what="compiled vs Python, 20 steps")
 
 
 def test_pin_friction_opposes_caster_rate_and_is_zero_at_rest():
@@ -316,12 +317,23 @@ def test_tire_yaw_moment_is_the_yaw_equation_of_the_thesis_variant():
 # ---------------------------------------------------------------------------
 # batches
 # ---------------------------------------------------------------------------
-def _close(a: SimulationResult, b: SimulationResult, t_end: float, rtol=1e-8, atol=1e-10):
+_SIGNALS = ("x", "y", "heading", "yaw_rate", "u", "v", "eta", "beta", "eta_dot", "beta_dot", "fy", "normal_load",
+            "slip_deg")
+
+
+def _close(a: SimulationResult, b: SimulationResult, t_end: float, tol: float, what: str = "") -> None:
+    """The runs agree up to ``t_end`` to ``tol`` of each signal's size (``tol`` from an error model)."""
     sel = a.t <= t_end + 1e-12
-    for name in ("x", "y", "heading", "yaw_rate", "u", "v", "eta", "beta", "eta_dot", "beta_dot",
-                 "fy", "normal_load", "slip_deg"):
-        np.testing.assert_allclose(getattr(a, name)[sel], getattr(b, name)[: sel.sum()], rtol=rtol, atol=atol,
-                                   err_msg=name)
+    n = int(sel.sum())
+
+    class _Cut:
+        def __init__(self, r):
+            self.r = r
+
+        def __getattr__(self, name):
+            return getattr(self.r, name)[:n]
+
+    assert_signals_close(_Cut(a), _Cut(b), _SIGNALS, tol, what=what)
 
 
 def test_batch_equals_single_runs():
@@ -331,10 +343,17 @@ def test_batch_equals_single_runs():
     for s, rb in zip(speeds, res, strict=False):
         r1 = simulate(EJ, s, duration=3.0, sample=0.01)
         assert rb.speed == s and rb.chair is EJ
-        _close(rb, r1, 2.5, rtol=1e-6, atol=1e-9)
+        # error model: fixed-step rounding grown over 2.5 s of the unstable chair (tests/numerics.py)
+        tol = run_tolerance(EJ, s, 2.5)
+        _close(rb, r1, 2.5, tol, what=f"batch vs single {s} m/s")
         t1 = r1.first_time_abs_yaw_rate(0.5)
         tb = rb.first_time_abs_yaw_rate(0.5)
-        assert (t1 is None and tb is None) or tb == pytest.approx(t1, rel=1e-6)
+        assert (t1 is None) == (tb is None)
+        if t1 is not None:
+            # a yaw-rate difference dr moves the level crossing by dr / |dr/dt| there
+            k = int(np.searchsorted(r1.t, t1))
+            slope = abs(r1.yaw_rate[k] - r1.yaw_rate[k - 1]) / (r1.t[k] - r1.t[k - 1])
+            assert abs(tb - t1) <= tol * np.max(np.abs(r1.yaw_rate)) / slope
 
 
 def test_batch_mixed_chairs_groups_tires_and_stops_runs_individually():
@@ -343,7 +362,7 @@ def test_batch_mixed_chairs_groups_tires_and_stops_runs_individually():
                          impulse_force=0.0, workers=1)
     for c, rb in zip(chairs, res, strict=False):
         r1 = simulate(c, 0.75, duration=1.0, lateral_velocity=0.03, impulse_force=0.0)
-        _close(rb, r1, 1.0)
+        _close(rb, r1, 1.0, run_tolerance(c, 0.75, 1.0), what=c.main_tire)
 
 
 def test_batch_stops_runs_individually():
@@ -358,7 +377,7 @@ def test_batch_stops_runs_individually():
     assert not mixed[1].stopped_by_warnings and len(mixed[1].t) == 502
     r1 = simulate(EJ.replace(main_tire="linear:25", caster_tire="linear:25"), 0.75, duration=0.5,
                   impulse_force=0.0, lateral_velocity=0.3)
-    _close(mixed[1], r1, 0.5)
+    _close(mixed[1], r1, 0.5, run_tolerance(r1.chair, 0.75, 0.5), what="linear tires")
 
 
 def test_batch_processes_equal_in_process():
@@ -367,7 +386,8 @@ def test_batch_processes_equal_in_process():
     b = simulate_batch(EJ, speeds, duration=1.0, progress=False, workers=3)
     for ra, rb in zip(a, b, strict=False):
         assert ra.speed == rb.speed
-        np.testing.assert_allclose(ra.yaw_rate, rb.yaw_rate, rtol=1e-12, atol=1e-15)
+        # the same compiled code in another process: rounding-level at most (fixed-step model)
+        assert_signals_close(ra, rb, ("yaw_rate",), run_tolerance(EJ, ra.speed, 1.0), what="processes")
 
 
 def test_batch_yaw_moment_gets_arrays_with_run_indices():
@@ -380,7 +400,8 @@ def test_batch_yaw_moment_gets_arrays_with_run_indices():
     res = simulate_batch(EJ, [0.7, 0.8], duration=0.2, progress=False, yaw_moment=mz)
     np.testing.assert_array_equal(runs[0], [0, 1])
     one = simulate(EJ, 0.8, duration=0.2, yaw_moment=lambda t, s: -2.0 * s.yaw_rate, sample=0.01)
-    np.testing.assert_allclose(res[1].yaw_rate, one.yaw_rate, rtol=1e-9, atol=1e-12)
+    # fixed-step rounding model, with the open-loop linearisation (the -2 r feedback only damps it)
+    assert_signals_close(res[1], one, ("yaw_rate",), run_tolerance(EJ, 0.8, 0.2), what="batch hook")
 
 
 # ---------------------------------------------------------------------------
@@ -694,9 +715,10 @@ def test_kernel_equals_numpy_reference(case):
     ref = wchair_batch([chair], np.array([0.75]), make_options(batch=True, **opts), False)[0]
     got = simulate(chair, 0.75, **{k: v for k, v in opts.items() if k != "yaw_moment"})
     assert got.settings["engine"] == "compiled" and len(got.t) == len(ref.t)
-    for name in ("x", "y", "heading", "yaw_rate", "v", "eta", "eta_dot", "beta_dot", "fx", "fy", "normal_load",
-                 "slip_deg", "tire_yaw_moment", "pin_moment"):
-        np.testing.assert_allclose(getattr(got, name), getattr(ref, name), rtol=1e-9, atol=1e-11, err_msg=name)
+    # error model: fixed-step rounding (steps x eps (1 + dt ||A||)) grown by the linearisation (tests/numerics.py)
+    tol = run_tolerance(chair, 0.75, 1.0, model=kw.get("model", "thesis"), casters=kw.get("casters", "free"))
+    assert_signals_close(got, ref, ("x", "y", "heading", "yaw_rate", "v", "eta", "eta_dot", "beta_dot", "fx", "fy",
+                                    "normal_load", "slip_deg", "tire_yaw_moment", "pin_moment"), tol, what=f"kernel {case}")
     assert got.warnings == ref.warnings and got.stopped_by_warnings == ref.stopped_by_warnings
 
 
@@ -782,7 +804,8 @@ def test_sampled_controller_equals_the_python_callable():
     a = simulate(EJ, 0.75, duration=3.0, controller=ctl)
     b = simulate(EJ, 0.75, duration=3.0, yaw_moment=hook)
     assert a.settings["engine"] == "compiled" and b.settings["engine"] == "python"
-    np.testing.assert_allclose(a.yaw_rate, b.yaw_rate, rtol=1e-9, atol=1e-12)
+    # fixed-step rounding model with the open-loop linearisation (the feedback only damps)
+    assert_signals_close(a, b, ("yaw_rate",), run_tolerance(EJ, 0.75, 3.0), what="sampled controller")
     np.testing.assert_allclose(a.yaw_moment_input, -20.0 * a.yaw_rate.clip(-0.75, 0.75), rtol=1e-12, atol=1e-15)
     free = simulate(EJ, 0.75, duration=3.0)
     assert np.max(np.abs(a.yaw_rate)) < 0.5 * np.max(np.abs(free.yaw_rate))
