@@ -242,3 +242,12 @@ def adaptive_run_tolerance(chair, speed: float, duration: float, rtol: float, st
 
     a, kappa = transient_bound(state_matrices(chair, speed, model=model, casters=casters)[0])
     return float(2 * steps * rtol * kappa * math.exp(max(a, 0.0) * duration))
+
+
+def growth_rate_tolerance(A: np.ndarray) -> float:
+    """Bound on the difference of two computations of ``max Re lambda(A)`` (the growth rate, 1/s).
+
+    The largest real part moves by at most the largest move of a matched eigenvalue, each within
+    ``n eps ||A|| kappa_i`` (:func:`eig_tolerance`) per computation: ``2 SAFETY max_i bound_i``.
+    """
+    return float(2 * SAFETY * np.max(eig_tolerance(A)[1]))

@@ -8,11 +8,12 @@ import os
 
 import numpy as np
 import pytest
+from numerics import growth_rate_tolerance
 
 from stability import chair
 from stability.compare import compare, format_comparison, single_effects
 from stability.compare.__main__ import main
-from stability.linear import analyse, divergence, zero_width
+from stability.linear import analyse, divergence, state_matrices, zero_width
 from stability.reference import REFERENCE_SPEED
 
 SPEEDS = (0.25, 0.75, 1.5, 3.0)
@@ -43,7 +44,9 @@ def test_numbers_equal_stability_linear(premier_revised):
     for i, ch in enumerate(c.chairs):
         rates = [r.rate for r in divergence(ch, SPEEDS)]
         got = [c.quantity(f"growth_rate_1_s@{s:g}").values[i] for s in SPEEDS]
-        np.testing.assert_allclose(got, rates, rtol=1e-9, atol=1e-12)
+        # growth rates from two eigenvalue computations of the same matrices (tests/numerics.py)
+        tol = [growth_rate_tolerance(A) for A in state_matrices(ch, SPEEDS)]
+        assert np.all(np.abs(np.asarray(got) - rates) <= tol), (got, rates, tol)
         locked = [x.speed for x in analyse(ch, speeds=SPEEDS).locked_crossings if x.direction == "destabilising"]
         assert c.quantity("locked_critical_speed_m_s").values[i] == pytest.approx(locked[0], abs=2e-6)
         z = zero_width(ch)
