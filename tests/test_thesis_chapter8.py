@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 import pytest
+from numerics import run_tolerance
 
 from stability.chair import preset
 from stability.simulate import simulate as _simulate
@@ -179,12 +180,13 @@ def test_front_caster_chair_equals_the_thesis_trick(friction):
     err = np.max(np.abs(a.yaw_rate + b.yaw_rate))
     _report(f"trick vs front-caster chair (friction {friction}), max |r_front + r_trick| / peak", f"{err / peak:.2e}", "0")
     if friction == 0.0:
-        assert err < 1e-9 * peak
+        # error model (tests/numerics.py): two fixed-step runs equal in exact arithmetic, differing by
+        # rounding (sin 180 deg = 1.2e-16, reversed signs) grown over 5 s of the unstable chair
+        tol = run_tolerance(front, 0.75, 5.0)
+        assert err <= tol * peak
         # mirror (v, r, heading change sign), then a half turn (u, v change sign)
-        np.testing.assert_allclose(b.u, -a.u, rtol=1e-12)
-        np.testing.assert_allclose(b.v, a.v, atol=1e-12)
-        np.testing.assert_allclose(b.heading, -a.heading, atol=1e-12)
-        np.testing.assert_allclose(b.eta - math.pi, -a.eta, atol=1e-12)
+        for x, y in ((b.u, -a.u), (b.v, a.v), (b.heading, -a.heading), (b.eta - math.pi, -a.eta)):
+            assert np.max(np.abs(x - y)) <= tol * np.max(np.abs(y))
     else:
         assert err < 0.02 * peak
         a = simulate(front, 0.75, scheme="adaptive", **kw)

@@ -63,6 +63,8 @@ def test_simulator_linearisation_equals_symbolic_model(name, model, casters):
         sim = linearise(c, speed, model=model, casters=casters)
         lin = linear.state_space(c, speed, model=model, casters=casters)
         scale = np.abs(lin.A).max()
+        # error model (central differences, step h = 1e-6 about straight running, f(0) = 0): rounding
+        # eps |f(h)| / h ~ eps |A| and truncation h^2 |f'''| / 6 ~ 1e-12 |A|; 1e-8 |A| is > 1e3 times both
         np.testing.assert_allclose(sim.A, lin.A, rtol=1e-7, atol=1e-8 * scale)
         np.testing.assert_allclose(sim.B, lin.B, rtol=1e-9, atol=1e-12)
         assert list(sim.state_labels) == list(lin.state_labels)

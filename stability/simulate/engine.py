@@ -8,7 +8,9 @@ with the same kernel, so the same run gives the same numbers either way.
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Sequence
+from contextlib import AbstractContextManager, nullcontext
 from typing import Any
 
 import numpy as np
@@ -206,6 +208,28 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
     return out
 
 
+#: serialises entry into the parallel kernel where numba's threading layer is not thread-safe
+KERNEL_LOCK = threading.Lock()
+#: numba threading layers that allow parallel=True functions to be entered from several threads at once
+#: (numba's documentation: "tbb" and "omp" are thread-safe; the fallback "workqueue" aborts the process)
+THREAD_SAFE_LAYERS = ("tbb", "omp")
+
+
+def kernel_entry_guard() -> AbstractContextManager:
+    """The lock to hold while calling the parallel kernel, or a no-op where that is safe.
+
+    The threading layer is chosen at the first parallel launch; until then (and under
+    ``workqueue``) entry is serialised by :data:`KERNEL_LOCK`.
+    """
+    from numba import threading_layer
+
+    try:
+        layer = threading_layer()
+    except ValueError:          # no parallel launch yet: the layer is not chosen
+        return KERNEL_LOCK
+    return nullcontext() if layer in THREAD_SAFE_LAYERS else KERNEL_LOCK
+
+
 def _launch(k: Any, threads: int | None, n_runs: int, args: tuple) -> None:
     """Run the kernel: one thread for one run, else ``prange`` over runs in small chunks.
 
@@ -213,7 +237,15 @@ def _launch(k: Any, threads: int | None, n_runs: int, args: tuple) -> None:
     loaded machine).  Runs differ in cost (early stops), so a batch hands its
     runs out in chunks of about 1/16 of a thread's share (dynamic scheduling)
     instead of one contiguous block per thread.  Neither changes any number.
+    Calls from several Python threads are safe: under a threading layer that
+    is not thread-safe they enter the kernel one at a time (:func:`kernel_entry_guard`).
     """
+    with kernel_entry_guard():
+        _launch_unguarded(k, threads, n_runs, args)
+
+
+def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> None:
+    """:func:`_launch` without the entry guard."""
     if threads is not None:
         k.set_num_threads(max(1, min(int(threads), k.NUMBA_NUM_THREADS)))
     nthreads = k.get_num_threads()
