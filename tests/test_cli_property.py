@@ -54,7 +54,7 @@ def common(n: int) -> settings:
                     database=None, max_examples=n)
 
 
-@common(40)
+@common(20)              # 300 more in the slow step (test_many_random_chairs_through_critical_speed)
 @given(chair_sets())
 def test_critical_speed_answers_random_chairs(capsys, sets):
     _run("stability.critical_speed.command", sets + ["--speeds", "0.5,1"], capsys)
@@ -66,11 +66,22 @@ def test_simulate_answers_random_chairs(capsys, sets):
     _run("stability.simulate.__main__", sets + ["--duration", "2", "--json"], capsys)
 
 
-@common(10)
-@given(chair_sets())
-def test_slope_and_shimmy_answer_random_chairs(capsys, sets):
+def _slope_and_shimmy(capsys, sets):
     _run("stability.slope.__main__", sets + ["--cross-slope", "2", "--speed", "0.8"], capsys)
     _run("stability.shimmy.__main__", sets + ["--speeds", "0.5,1"], capsys)
+
+
+@common(4)               # ~0.7 s a chair; 40 more in the slow step
+@given(chair_sets())
+def test_slope_and_shimmy_answer_random_chairs(capsys, sets):
+    _slope_and_shimmy(capsys, sets)
+
+
+@pytest.mark.slow
+@common(40)
+@given(chair_sets())
+def test_many_random_chairs_through_slope_and_shimmy(capsys, sets):
+    _slope_and_shimmy(capsys, sets)
 
 
 @pytest.mark.slow

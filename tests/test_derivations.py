@@ -228,6 +228,7 @@ def test_comparison_claims_verified():
     assert len(fw.OCR_CORRECTIONS) >= 5
 
 
+@pytest.mark.slow       # symbolic simplification of every entry (~4 s); the generated code is checked numerically
 def test_hybrid_linear_endpoints():
     """The switchable linear model used for the eigenvalue table reproduces the exact
     linearisation with every switch on and the thesis's with every switch off."""

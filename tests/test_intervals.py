@@ -58,7 +58,8 @@ def test_zero_uncertainty_gives_exactly_the_point_values():
     assert iv.zero_width_critical[0] == iv.zero_width_critical[1] == pytest.approx(zw, rel=1e-13)
 
 
-def test_monte_carlo_matches_delta_method_on_a_nearly_linear_case():
+@pytest.mark.slow       # 1000 draws x 600 critical-speed grid speeds: ~6 s; the statistics are also checked by
+def test_monte_carlo_matches_delta_method_on_a_nearly_linear_case():   # test_uncertainty's linear-function case
     """Small normal spreads: the rate is nearly linear in s1 and I_z, so the MC 95 % interval equals
     value +- 1.96 sigma of the delta method within sampling error: the 2.5 % quantile of 1000 draws has a
     standard error of sqrt(0.025 * 0.975 / 1000) / phi(1.96) = 0.085 sigma, 2.2 % of the 3.92 sigma width;

@@ -68,6 +68,17 @@ def quick(tmp_path_factory, unc_file):
     return res
 
 
+@pytest.fixture(scope="module")
+def quick_figures(quick):
+    """Every page's figure of the quick report, built once for the tests that inspect figures."""
+    import matplotlib.pyplot as plt
+
+    figs = [(title, build()) for title, build in report.page_builders(quick.data)]
+    yield figs
+    for _, fig in figs:
+        plt.close(fig)
+
+
 def _page(res, title):
     return next(p for p in res.pages if p.title == title)
 
@@ -133,11 +144,10 @@ def test_page_texts(quick):
             assert n in text, (title, n)
 
 
-def test_every_axis_is_labelled_with_units(quick):
-    """Rebuild each page's figure and check every plotting axes: x and y labels with a unit in parentheses."""
+def test_every_axis_is_labelled_with_units(quick_figures):
+    """Each page's figure, every plotting axes: x and y labels with a unit in parentheses."""
     unitless = {"main tire", "chair"}      # categorical axes
-    for title, build in report.page_builders(quick.data):
-        fig = build()
+    for title, fig in quick_figures:
         for ax in fig.axes:
             if not ax.axison or ax.get_label() == "<colorbar>":
                 continue
@@ -285,6 +295,7 @@ def test_cli_quick_is_byte_identical(quick, tmp_path, monkeypatch, capsys):
     assert f"{len(EXPECTED_PAGES)} pages" in out
 
 
+@pytest.mark.slow       # a second report computation (~4 s); the byte-identical CLI build below uses the fixture's
 def test_compute_is_deterministic():
     """The same input gives the same numbers (tiny settings: a few batches)."""
     s = report.Settings(quick=True, speed_points=40, locus_points=9, gain_points=20, duration=4.5, dt=0.001,
@@ -369,15 +380,15 @@ def test_outline_read_by_an_independent_pdf_reader(quick):
         [(f"{i + 1}. {t}", i) for i, t in enumerate(EXPECTED_PAGES)]
 
 
-def test_colour_maps_are_colour_blind_safe(quick):
+def test_colour_maps_are_colour_blind_safe(quick_figures):
     """No red-green map on any page: every colour-mapped artist uses a perceptually uniform, CVD-safe map."""
     from matplotlib.cm import ScalarMappable
 
     allowed = {"viridis", "cividis", "plasma", "plasma_r"}
     allowed |= {f"{n}_on_white" for n in allowed}          # the same maps with the light end cut (lines)
     used = set()
-    for _title, build in report.page_builders(quick.data):
-        for obj in build().findobj(lambda a: isinstance(a, ScalarMappable)):
+    for _title, fig in quick_figures:
+        for obj in fig.findobj(lambda a: isinstance(a, ScalarMappable)):
             cmap = obj.get_cmap()
             rgb = cmap(np.linspace(0, 1, 7))[:, :3]
             if cmap.name == "unnamed" and np.ptp(rgb, axis=0).max() == 0:
