@@ -14,6 +14,7 @@ from typing import Any
 import panel as pn
 
 from ..chair import Chair
+from .text import preformatted
 
 __all__ = ["AdviceTab", "assignments"]
 
@@ -106,7 +107,7 @@ class AdviceTab:
             b.disabled = k >= len(recs)
             if k < len(recs):
                 b.name = f"apply: {recs[k].candidate.label}"[:80]
-        self.text.object = "```\n" + text + "\n```"
+        self.text.object = preformatted(text)
 
     def chair_changed(self, chair: Chair) -> None:
         """Disable applying advice given for another chair.

@@ -20,6 +20,7 @@ from bokeh.plotting import figure
 from .. import defaults as D
 from ..chair import Chair
 from ..plotting.style import OKABE_ITO
+from .text import preformatted
 
 __all__ = ["AssistTab", "assist_schedule"]
 
@@ -108,4 +109,4 @@ class AssistTab:
         for j, src in enumerate(self.sources):
             src.data = {"speed": speeds, "gain": [r.gains[j] for r in rows]} if j < len(names) else \
                 {"speed": [], "gain": []}
-        self.text.object = "```\n" + text + "\n```"
+        self.text.object = preformatted(text)

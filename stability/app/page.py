@@ -28,7 +28,7 @@ from .advice_tab import AdviceTab
 from .assist_tab import AssistTab
 from .jobs import Jobs, warm_up_done
 from .state import AppState
-from .text import downloads, field_rows, geometry_text, summary_text
+from .text import downloads, field_rows, geometry_text, preformatted, summary_text
 from .trail_tab import TrailTab
 from .views import LinearView, geometry_points, linear_view, mode_shape, nonlinear_view
 
@@ -486,7 +486,7 @@ class Explorer:
             model = self.state.model
             self.compare_text.object = "comparing..."
             self.jobs.submit(lambda: format_comparison(compare(chairs, labels=labels, model=model)),
-                             lambda text: setattr(self.compare_text, "object", "```\n" + text + "\n```"),
+                             lambda text: setattr(self.compare_text, "object", preformatted(text)),
                              self._failed)
         elif self.compare_text.object != _NOTHING_PINNED:
             self.compare_text.object = _NOTHING_PINNED

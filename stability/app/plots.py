@@ -201,13 +201,13 @@ def response_figure(source: ColumnDataSource, linear: ColumnDataSource):
     -------
     bokeh.plotting.figure
     """
-    p = _fig("Yaw rate after the push", "time t (s)", "yaw rate r (rad/s)", height=300)
+    p = _fig("Yaw rate after the push (dotted: |r| = 1 rad/s, the thesis's criterion)", "time t (s)",
+             "yaw rate r (rad/s)", height=300)
     p.line("t", "r", source=source, line_width=2, color=OKABE_ITO[0], legend_label="nonlinear (simulator)")
     p.line("t", "r", source=linear, line_width=2, color=OKABE_ITO[1], line_dash="dashed",
            legend_label="linear model")
     for y in (-1.0, 1.0):
         p.add_layout(Span(location=y, dimension="width", line_color=UNSTABLE, line_dash="dotted"))
-    p.line([], [], color=UNSTABLE, line_dash="dotted", legend_label="|yaw rate| 1 rad/s (the thesis's criterion)")
     p.y_range = Range1d(start=-1.5, end=1.5)
     _legend_outside(p)
     return p
@@ -251,7 +251,8 @@ def trail_figure(sources: list[ColumnDataSource]):
         ``"figure"``, ``"chair"`` (the chair's trail, a Span) and ``"critical"`` (Spans for the boundaries of the
         shimmy-free trail band).
     """
-    p = _fig("The trail trade-off: directional stability (solid) and caster shimmy (dashed)",
+    p = _fig("Trail trade-off: yaw growth (solid), caster shimmy (dashed); black: this chair's trail; "
+             "dotted: shimmy-free band's boundaries",
              "caster trail (m)", "growth rate (1/s; > 0: unstable / shimmies)", height=360)
     items = []
     for j, src in enumerate(sources):
@@ -268,11 +269,5 @@ def trail_figure(sources: list[ColumnDataSource]):
     chair = Span(location=0.0, dimension="height", line_color="black", line_width=2)
     p.add_layout(chair)
     p.add_layout(Span(location=0, dimension="width", line_color="black", line_width=1))
-    p.line([], [], color="black", line_width=2, legend_label="this chair's trail")
-    p.line([], [], color=UNSTABLE, line_dash="dotted", line_width=2,
-           legend_label="shimmy boundaries (towed-wheel caster, any speed)")
-    legend = p.legend[0]
-    legend.items = items + list(legend.items)
-    legend.label_text_font_size = "8pt"
-    p.add_layout(legend, "right")
+    p.add_layout(Legend(items=items, location="top_left", label_text_font_size="8pt"), "right")
     return {"figure": p, "chair": chair, "critical": critical}

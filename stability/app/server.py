@@ -105,6 +105,8 @@ def create_page() -> Any:
     from .page import Explorer
 
     ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location)
+    if doc is not None:                      # a closed page's queued work is dropped
+        doc.on_session_destroyed(lambda _context: ex.jobs.cancel())
     return ex.layout
 
 

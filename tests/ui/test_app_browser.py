@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import re
 
 import pytest
 
@@ -35,8 +36,9 @@ def cli_message(*sets: str) -> str:
 
 
 def row(page, speed: str = "0.75"):
-    """The summary table's row at ``speed`` (m/s)."""
-    return page.locator(".summary tr").filter(has=page.locator("td", has_text=speed)).first
+    """The summary table's row whose first cell is ``speed`` (m/s) exactly (a doubling time may contain it)."""
+    return page.locator(".summary tr").filter(
+        has=page.locator("td:first-child", has_text=re.compile("^" + re.escape(speed) + "$"))).first
 
 
 def set_field(page, name: str, value: str) -> None:
@@ -95,18 +97,21 @@ def test_shared_url_opens_that_chair(page, explorer, artifacts):
     page.screenshot(path=artifacts / "shared-url.png")
 
 
-def test_two_tabs_are_independent(page, explorer, context):
+def test_two_tabs_are_independent(page, explorer, browser, browser_context_args):
     explorer()
-    other = explorer(target=context.new_page())
-    page.bring_to_front()                                       # a background tab's rendering may be throttled
-    set_field(page, "trail", "0.05")
-    row(page).locator("td", has_text=printed_rate("ej-premier", "trail=0.05")).wait_for()
-    other.bring_to_front()
-    set_field(other, "m", "80")
-    row(other).locator("td", has_text=printed_rate("ej-premier", "m=80")).wait_for()
-    assert other.locator(".field-trail input").input_value() == "0.08"
-    assert page.locator(".field-m input").input_value() == "95.0"
-    assert row(page).locator("td").nth(1).inner_text() == printed_rate("ej-premier", "trail=0.05")
+    second = browser.new_context(**browser_context_args)      # another window: a session of its own
+    second.set_default_timeout(180_000)
+    try:
+        other = explorer(target=second.new_page())
+        set_field(page, "trail", "0.05")
+        row(page).locator("td", has_text=printed_rate("ej-premier", "trail=0.05")).wait_for()
+        set_field(other, "m", "80")
+        row(other).locator("td", has_text=printed_rate("ej-premier", "m=80")).wait_for()
+        assert other.locator(".field-trail input").input_value() == "0.08"
+        assert page.locator(".field-m input").input_value() == "95.0"
+        assert row(page).locator("td").nth(1).inner_text() == printed_rate("ej-premier", "trail=0.05")
+    finally:
+        second.close()
 
 
 def test_tabs_geometry_nonlinear_compare(page, explorer, artifacts):
