@@ -83,7 +83,8 @@ def build_parser(name: str) -> argparse.ArgumentParser:
     -------
     argparse.ArgumentParser
     """
-    return command_module(name).build_parser()
+    module = command_module(name)
+    return (getattr(module, "build_parser", None) or module._parser)()
 
 
 _USAGE = """usage: stability COMMAND [options]   (the same as python -m stability.COMMAND [options])
@@ -99,6 +100,7 @@ commands:
   measure         measurement sheet -> chair file and uncertainty file
   report          a multi-page PDF report on one chair
   chair           chair files: export a preset to start from (chair export PRESET -o chair.toml)
+  tipping         static tip angles (ISO 7176-1) of the rigid chair
 
 stability COMMAND --help shows a command's options."""
 

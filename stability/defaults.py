@@ -39,6 +39,7 @@ __all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "SCHE
            "MOTOR_LAG", "TRACTION_COEFFICIENT", "SAMPLE_RATE_HZ", "BIAS_TIME_CONSTANT", "GYRO_NOISE", "GYRO_BIAS",
            "COMMAND_FILTER", "ASSIST_DESIGN", "MAX_HEADING_ERROR", "SHIMMY_AMPLITUDE_DEG", "SLOPE_SIM_TIME",
            "ADVISE_SPEEDS", "ADVISE_CROSS_SLOPE_DEG",
+           "CROSS_SLOPE", "GRADE",
            "speeds_text"]
 
 
@@ -155,6 +156,9 @@ Q_FORMAT = "float"
 # --- other commands --------------------------------------------------------------------------------------
 #: Shimmy amplitude of the pin-friction (describing-function) estimate, deg.
 SHIMMY_AMPLITUDE_DEG = 5.0
+#: Cross slope and grade, deg: level ground unless asked for.
+CROSS_SLOPE = 0.0
+GRADE = 0.0
 #: Report time of the simulated uncorrected turn on a cross slope, s.
 SLOPE_SIM_TIME = 1.0
 #: The advisor's use speeds (START:STOP:STEP, m/s): the thesis's indoor range around its 0.75 m/s reference.
@@ -206,4 +210,6 @@ TABLE: dict[str, Default] = {
     "sim_time": Default(SLOPE_SIM_TIME, "s", "report time of the simulated uncorrected turn"),
     "advise_speeds": Default(ADVISE_SPEEDS, "m/s", "the advisor's use speeds"),
     "advise_cross_slope_deg": Default(ADVISE_CROSS_SLOPE_DEG, "deg", "cross slope of the advisor's hand-rim force"),
+    "cross_slope": Default(CROSS_SLOPE, "deg", "cross slope, falling to the right + (level ground)"),
+    "grade": Default(GRADE, "deg", "grade, uphill + (level ground)"),
 }

@@ -27,6 +27,7 @@ CASES = {
     "slope": ("slope", ["--cross-slope", "2", "--speed", "1"]),
     "assist": ("assist", ["--speeds", "1,2", "--no-check"]),
     "measure": ("measure", [str(SHEET), "-o", "{tmp}/c.toml"]),
+    "tipping": ("tipping", ["--chair", "ej-premier"]),
 }
 #: The cases too slow for the default test run (simulations of a study).
 SLOW = {"study_equal_instability"}

@@ -35,9 +35,8 @@ RENAMED = {
 }
 #: Options with a default that belongs to one command alone (no API function shares it).
 COMMAND_ONLY = {
-    "simulate": {"tire_impulse", "lateral_velocity", "eta0", "beta0", "duration", "rtol", "atol", "cross_slope",
-                 "grade"},
-    "slope": {"grade", "drive"},
+    "simulate": {"tire_impulse", "lateral_velocity", "eta0", "beta0", "duration", "rtol", "atol"},
+    "slope": {"drive"},
     "compare": {"pairing"},
     "assist": {"max_yaw_rate"},
     "tipping": {"cross_slope", "grade"},
