@@ -20,7 +20,10 @@ import time
 from collections.abc import Iterable, Iterator
 from typing import IO, TypeVar
 
-__all__ = ["ProgressBar", "track", "should_show", "quiet", "is_quiet"]
+__all__ = ["ProgressBar", "track", "should_show", "quiet", "is_quiet", "notice_if_slow", "NOTICE_AFTER_S"]
+
+#: Work that takes longer than this says so on stderr (s).
+NOTICE_AFTER_S = 2.0
 
 _QUIET = [False]
 
@@ -43,6 +46,51 @@ def quiet(on: bool = True) -> Iterator[None]:
         yield
     finally:
         _QUIET.pop()
+
+
+@contextlib.contextmanager
+def notice_if_slow(message: str, after: float = NOTICE_AFTER_S, file: IO[str] | None = None) -> Iterator[None]:
+    """Print ``message`` once on stderr if the block is still running after ``after`` seconds.
+
+    For work whose length cannot be known in advance and that has no steps
+    to count, such as numba compiling the simulator on first use: a cache hit
+    returns at once and prints nothing; a compile says what is happening.
+    Silent under :func:`quiet`.
+
+    Parameters
+    ----------
+    message : str
+        What is happening, e.g. ``"compiling the simulator (first use, ...)"``.
+    after : float, optional
+        Seconds before the message appears (default :data:`NOTICE_AFTER_S`).
+    file : text stream, optional
+        Where to print (default ``sys.stderr``).
+
+    Yields
+    ------
+    None
+    """
+    import threading
+
+    if is_quiet():
+        yield
+        return
+    stream = sys.stderr if file is None else file
+
+    def say() -> None:
+        try:
+            stream.write(message + "\n")
+            stream.flush()
+        except (OSError, ValueError):  # pragma: no cover - stream closed
+            pass
+
+    timer = threading.Timer(after, say)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
 
 
 def is_quiet() -> bool:

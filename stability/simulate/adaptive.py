@@ -11,7 +11,7 @@ import numpy as np
 
 from ..chair import Chair
 from ..models.full_width import tire_resultant, tire_yaw_moment
-from .engine import _POLICY, _Packed, _raise_refused, slope_slots
+from .engine import _POLICY, _Packed, _raise_refused, first_use, slope_slots
 from .options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,
@@ -157,7 +157,8 @@ class _Compiled:
     """The packed arrays of one run for :mod:`.adaptive_kernel` (imported here: numba loads on first use)."""
 
     def __init__(self, chair: Chair, speed: float, opts: Options):
-        from . import adaptive_kernel  # numba and the compiled code load only when the scheme runs
+        with first_use("adaptive_load"):
+            from . import adaptive_kernel  # numba and the compiled code load only when the scheme runs
 
         self.k = adaptive_kernel
         self.chair, self.opts = chair, opts

@@ -7,9 +7,11 @@ with the same kernel, so the same run gives the same numbers either way.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import threading
-from collections.abc import Sequence
+import time
+from collections.abc import Iterator, Sequence
 from contextlib import AbstractContextManager, nullcontext
 from typing import Any
 
@@ -18,6 +20,7 @@ import numpy as np
 from .. import tires as _tires
 from ..chair import Chair
 from ..params import parameters
+from ..progress import NOTICE_AFTER_S, notice_if_slow
 from ..reference import LEVEL
 from .controller import SampledController
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
@@ -121,8 +124,40 @@ def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:
     return (1.0 if opts.on_slope else 0.0, *opts.slope_trig())
 
 
+_FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True}
+#: What the first call in a process says when it takes longer than progress.NOTICE_AFTER_S (numba compiles the
+#: kernels once per machine and caches them; docs/simulator.md gives the measured times).
+COMPILE_NOTICE = ("compiling the simulator (first use on this machine, about 10-20 s; later runs load it from "
+                  "numba's cache)")
+
+
+@contextlib.contextmanager
+def first_use(scheme: str) -> Iterator[None]:
+    """Around the first compiled call of ``scheme`` in a process: say so if it takes over 2 s (a compile).
+
+    Parameters
+    ----------
+    scheme : str
+        A key of the first-use table (the kernel's load or its first call).
+
+    Yields
+    ------
+    None
+    """
+    if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False):
+        yield
+        return
+    start = time.perf_counter()
+    with notice_if_slow(COMPILE_NOTICE, after=NOTICE_AFTER_S):
+        yield
+    _FIRST_USE[scheme] = False
+    if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
+        _FIRST_USE["noticed"] = True
+
+
 def _kernel():
-    from . import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
+    with first_use("wchair_load"):
+        from . import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
 
     return kernel
 
@@ -249,6 +284,11 @@ def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> 
     if threads is not None:
         k.set_num_threads(max(1, min(int(threads), k.NUMBA_NUM_THREADS)))
     nthreads = k.get_num_threads()
+    with first_use("wchair"):
+        _launch_inner(k, threads, n_runs, args, nthreads)
+
+
+def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthreads: int) -> None:
     if n_runs == 1 and nthreads > 1:
         k.set_num_threads(1)
         try:
