@@ -356,8 +356,8 @@ def _with_tire_policy(body: Callable[[argparse.Namespace], int | None], args: ar
         args.tire_notes = notes
         status = body(args) or 0
     if not getattr(args, "quiet", False):
-        for note in distinct_notes(notes):
-            print(f"note: {note}", file=sys.stderr)
+        for line in tires.summarise_notes(distinct_notes(notes)):      # one line per tire and range
+            print(f"note: {line}", file=sys.stderr)
     return status
 
 

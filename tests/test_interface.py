@@ -123,3 +123,17 @@ def test_measure_takes_uncertainty_and_json(tmp_path, capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["chair_file"] == str(out) and data["uncertainty_file"] == str(unc) and out.exists() and unc.exists()
     assert {r["field"] for r in data["fields"]} >= {"m", "i_z"}
+
+
+def test_tire_range_notes_are_one_line_per_tire_and_range():
+    """The report printed one note per load (19-51 lines); now one line per tire, quantity and fitted range, with
+    how often, how far and on which wheels."""
+    from stability.tires import RangeNote, summarise_notes
+
+    notes = [RangeNote("ER", "load", 450.0 + i, 0.0, 450.0, "warn", w)
+             for i, w in zip(range(1, 20), ["caster_left", "caster_right"] * 10, strict=False)]
+    notes.append(RangeNote("EJA", "slip", 9.0, -8.0, 8.0, "warn", "main_left"))
+    lines = summarise_notes(notes)
+    assert len(lines) == 2
+    assert lines[0].startswith("tire ER: load up to 469 N (19 uses, 451-469 N; wheels caster_left, caster_right)")
+    assert lines[1] == str(notes[-1])

@@ -55,6 +55,7 @@ from .ranges import (
     out_of_range,
     range_policy,
     set_policy,
+    summarise_notes,
 )
 from .registry import get, names, register, registered, resolve_spec, unregister
 from .stack import TireStack
@@ -90,6 +91,7 @@ __all__ = [
     "cart_forces",
     "check_chair_tires",
     "collect_notes",
+    "summarise_notes",
     "fit_per_angle",
     "get",
     "get_policy",

@@ -10,7 +10,7 @@ outside the fits are gathered with :func:`collect_notes`. See ``docs/tires.md``.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import asdict, dataclass
@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike
 from .data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = [
+    "summarise_notes",
     "POLICIES",
     "RANGE_POLICIES",
     "Policy",
@@ -122,6 +123,51 @@ class RangeNote:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict, with the sentence under ``"message"``."""
         return {**asdict(self), "unit": self.unit, "message": str(self)}
+
+
+def summarise_notes(notes: Sequence[RangeNote]) -> list[str]:
+    """One line per tire, quantity and fitted range: how far outside, how often, on which wheels.
+
+    The report and the studies evaluate a tire at many loads; one line per
+    load (19-51 lines for a report) said the same thing again and again.
+
+    Parameters
+    ----------
+    notes : sequence of RangeNote
+
+    Returns
+    -------
+    list of str
+        In the order the groups first appeared.
+
+    Examples
+    --------
+    >>> n = [RangeNote("ER", "load", v, 0.0, 450.0, "warn", w) for v, w in
+    ...      [(451.0, "caster_left"), (459.2, "caster_right"), (455.0, "caster_left")]]
+    >>> print(summarise_notes(n)[0])  # doctest: +NORMALIZE_WHITESPACE
+    tire ER: load up to 459.2 N (3 uses, 451-459.2 N; wheels caster_left, caster_right) is outside the
+    fitted range 0 to 450 N; extrapolated (tire-range policy 'warn')
+    """
+    groups: dict[tuple, list[RangeNote]] = {}
+    for n in notes:
+        groups.setdefault((n.tire, n.quantity, n.low, n.high, n.policy), []).append(n)
+    out = []
+    for (tire, quantity, low, high, policy), ns in groups.items():
+        if len(ns) == 1:
+            out.append(str(ns[0]))
+            continue
+        vals = [n.value for n in ns]
+        outside = [v for v in vals if v > high] or vals
+        worst = max(outside) if any(v > high for v in vals) else min(vals)
+        unit = ns[0].unit
+        wheels = sorted({n.wheel for n in ns if n.wheel})
+        where = f"; wheels {', '.join(wheels)}" if wheels else ""
+        action = {"warn": "extrapolated", "clamp": f"clamped to {high:g} {unit}",
+                  "raise": "refused"}.get(policy, policy)
+        out.append(f"tire {tire}: {quantity} up to {worst:.4g} {unit} ({len(ns)} uses, {min(vals):.4g}-{max(vals):.4g} "
+                   f"{unit}{where}) is outside the fitted range {low:g} to {high:g} {unit}; {action} "
+                   f"(tire-range policy {policy!r})")
+    return out
 
 
 _DEFAULT_POLICY = RangePolicy()
