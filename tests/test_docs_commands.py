@@ -76,6 +76,8 @@ def test_documented_command_runs(page, line, tmp_path):
     for i, a in enumerate(argv):        # repository files named relative to the root stay readable from tmp
         if (ROOT / a).exists() and not os.path.isabs(a):
             argv[i] = str(ROOT / a)
+        elif a.endswith(".toml") and name != "measure" and (i == 0 or argv[i - 1] not in ("-o", "--output")):
+            pytest.skip(f"{page}: `{line}` reads the reader's own file {a!r} (a placeholder)")
     out = io.StringIO()
     cwd = os.getcwd()
     os.chdir(tmp_path)
