@@ -41,6 +41,7 @@ COMMANDS: dict[str, str] = {
     "chair": "stability.chair.__main__",
     "tipping": "stability.tipping.__main__",
     "advise": "stability.advise.__main__",
+    "app": "stability.app.server",
 }
 
 
@@ -101,6 +102,8 @@ commands:
   report          a multi-page PDF report on one chair
   chair           chair files: export a preset to start from (chair export PRESET -o chair.toml)
   tipping         static tip angles (ISO 7176-1) of the rigid chair
+  advise          what to change on this chair, and what it costs
+  app             the interactive explorer: a local web page (127.0.0.1)
 
 stability COMMAND --help shows a command's options."""
 

@@ -28,9 +28,10 @@ CASES = {
     "assist": ("assist", ["--speeds", "1,2", "--no-check"]),
     "measure": ("measure", [str(SHEET), "-o", "{tmp}/c.toml"]),
     "tipping": ("tipping", ["--chair", "ej-premier"]),
+    "advise": ("advise", []),
 }
 #: The cases too slow for the default test run (simulations of a study).
-SLOW = {"study_equal_instability"}
+SLOW = {"study_equal_instability", "advise"}
 
 
 def output(name: str, tmp: str) -> dict:
