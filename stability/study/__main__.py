@@ -74,7 +74,8 @@ def _critical(args: argparse.Namespace) -> None:
     curve = critical_impulse_curve(chair, speeds, model=args.model, duration=args.duration, level=args.level,
                                    horizon=args.horizon, max_impulse=args.max_impulse)
     lines = [f"{chair.name}, {args.model} model: critical impulse for |yaw rate| >= {args.level:g} rad/s "
-             f"within {args.horizon:g} s", f"push: {curve.points[0].push}"]
+             f"within {args.horizon:g} s", f"push: {curve.points[0].push}",
+             "kick: the sideways speed the push gives the chair (impulse / mass)"]
     opts = dict(duration=args.duration, level=args.level, horizon=args.horizon, max_impulse=args.max_impulse)
     ivs = [critical_impulse_intervals([chair], float(u), model=args.model, **opts)[0] for u in speeds] \
         if args.interval else []
@@ -94,11 +95,19 @@ def _interval(args: argparse.Namespace) -> None:
     r = equal_instability_interval(chair, model=args.model, push=Push(args.force, THESIS_PUSH.duration),
                                    friction_on_reference=not args.chair_friction_only)
     lines = [f"{chair.name}: equal-instability speed {r.describe()}", f"push: {r.push}; pin friction factors "
-             f"applied to {r.friction_scope}"]
+             f"applied to {r.friction_scope}", _EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED)]
     for v in r.variants:
         sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
         lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")
-    _emit(args, r.to_dict(), "\n".join(lines), chair)
+    _emit(args, {**r.to_dict(), "definition": lines[2]}, "\n".join(lines), chair)
+
+
+#: What the equal-instability speed and its range mean (printed with them; the report's range rests on its own
+#: variations, so its numbers differ: the definition says which).
+_EQUAL_INSTABILITY = ("equal-instability speed: the speed at which this chair, after the push, reaches |yaw rate| "
+                      "{level:g} rad/s as soon as the reference chair does at {speed:g} m/s (thesis chapter 9); the "
+                      "range is over the variations listed below (push force, pin friction, model), not a "
+                      "statistical interval, and other variations (the report's) give another range")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
