@@ -91,14 +91,16 @@ def format_comparison(c: Comparison) -> str:
     if c.uncertainty:
         lines.append(f"  (differences drawn with {c.uncertainty['pairing']} draws, {c.uncertainty['samples']} "
                      f"samples, seed {c.uncertainty['seed']}; overlapping chair intervals alone do not decide)")
-    lines += ["", f"Why: each differing parameter applied alone to {ref} (change of the growth rate at "
-              f"{REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s):"]
+    lines += ["", f"Why: each differing parameter applied alone to {ref}, largest effect first (change of the "
+              f"growth rate at {REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s; 0: below "
+              "the eigenvalue solver's resolution):"]
     for e in c.effects:
         lines.append(f"  {e.chair}:")
         if not e.effects:
             lines.append("    no parameter differs")
             continue
-        for s in e.effects:
+        for s in sorted(e.effects, key=lambda s: (s.error is not None, -abs(s.growth_rate or 0.0),
+                                                  -abs(s.locked_critical_speed or 0.0))):
             if s.error:
                 lines.append(f"    {s.field:<22} {_field(s.reference_value)} -> {_field(s.value)}: "
                              f"not a valid chair alone ({s.error})")
@@ -120,8 +122,15 @@ def _field(v: object) -> str:
     return f"{v:.4g}" if isinstance(v, float) else repr(v)
 
 
+#: Changes smaller than this are eigenvalue round-off, shown as 0 (1/s or m/s): the solver's error is about
+#: eps * ||A|| * cond ~ 1e-12 here (t1 alone changes the growth rate by 4e-12); a margin of 1000 over that.
+RESOLUTION = 1e-9
+
+
 def _signed(x: float | None) -> str:
-    return "n/a" if x is None else f"{x:+.4g}"
+    if x is None:
+        return "n/a"
+    return "0" if abs(x) < RESOLUTION else f"{x:+.3g}"
 
 
 def _finite(x: float) -> float | None:
