@@ -25,7 +25,7 @@ from stability.report.validity import run_validity
 
 EXPECTED_PAGES = [
     # main body
-    "summary", "chair parameters and geometry", "eigenvalues against speed", "nonlinear yaw-rate responses", "paths",
+    "decision", "summary", "chair parameters and geometry", "eigenvalues against speed", "nonlinear yaw-rate responses", "paths",
     "equal-instability speeds", "parametric study", "stability maps", "trail design chart", "caster shimmy",
     "cross slope",
     "parameter uncertainty", "thesis conclusions", "findings",
@@ -845,4 +845,27 @@ def test_clinician_paragraph(quick):
     k = list(d.slope.curve.cross_slopes_deg).index(2.0)
     f = abs(float(d.slope.drive_difference[k]))
     assert f"push {f:.0f} N harder" in text and f"{100 * f / TYPICAL_PUSH_N[0]:.0f} % of a typical" in text
-    assert text in summary_text(d)
+    assert text.split(". ", 1)[1][:40] in _text(quick, "decision").replace("\n", " ")
+
+
+def test_decision_page_is_the_advisor(quick):
+    """Page 1 says what the advisor says: the recommended change, its predicted values and its costs are the
+    advisor's for this chair (same function, same chair), and the reference chair is named as such (no
+    circular verdict)."""
+    from stability.report.decision import decision_bars, decision_paragraphs, decision_rows
+
+    d = quick.data
+    a = d.advice
+    assert quick.pages[0].title == "decision"
+    text = " ".join(decision_paragraphs(d))
+    assert "It is the thesis's reference chair" in text
+    r = a.recommendations[0].candidate
+    assert r.label[1:] in text
+    assert f"{r.measures.critical_impulse_Ns.value:.3g} N s" in text
+    header, rows = decision_rows(d)
+    assert header[1:] == [d.chair.name, "recommended"]
+    assert rows[0][1].startswith(f"{a.verdict.critical_impulse_Ns.value:.3g}")
+    names, vals, lo, hi = decision_bars(d)
+    assert all(low <= v <= high for v, low, high in zip(vals, lo, hi, strict=True))
+    page = _text(quick, "decision")
+    assert "VERDICT." in page and "RECOMMENDATION." in page and "FOR THE CLINICIAN." in page

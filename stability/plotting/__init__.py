@@ -25,7 +25,7 @@ from .loci import (
 from .pages import PAGE_SIZE, finish, page, panels_page, table_axes, table_page, text_page, wrap_text
 from .responses import trajectories, yaw_rate_responses
 from .sections import drive_difference, growth_rate_band, uncorrected_heading, variance_shares
-from .studies import equal_instability_chart, stability_map, sweep_chart, trail_window_chart
+from .studies import decision_chart, equal_instability_chart, stability_map, sweep_chart, trail_window_chart
 from .tires import cornering_stiffness_curves, tire_curves
 
 __all__ = [
@@ -35,6 +35,6 @@ __all__ = [
     "speed_locus", "speed_loci_figure", "eigenvalues_vs_speed", "parameter_locus", "parameter_loci_figure",
     "growth_rate_vs_parameter", "gain_locus",
     "yaw_rate_responses", "trajectories",
-    "equal_instability_chart", "sweep_chart", "stability_map", "trail_window_chart",
+    "equal_instability_chart", "sweep_chart", "stability_map", "trail_window_chart", "decision_chart",
     "drive_difference", "uncorrected_heading", "growth_rate_band", "variance_shares",
 ]

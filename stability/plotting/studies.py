@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 from .pages import PAGE_SIZE
 from .style import UNSTABLE, colormap, colour
 
-__all__ = ["equal_instability_chart", "sweep_chart", "stability_map", "trail_window_chart"]
+__all__ = ["equal_instability_chart", "sweep_chart", "stability_map", "trail_window_chart", "decision_chart"]
 
 
 def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None = None, title: str | None = None,
@@ -276,3 +276,45 @@ def _gaps(span: tuple[float, float], inside) -> list[tuple[float, float]]:
     if lo < span[1]:
         out.append((lo, span[1]))
     return out
+
+
+def decision_chart(names: Sequence[str], values: Sequence[float], lows: Sequence[float], highs: Sequence[float],
+                   ax=None, *, reference_speed: float | None = None, title: str | None = None):
+    """Equal-instability speed of a few chairs with their ranges (page 1 of the report).
+
+    Parameters
+    ----------
+    names : sequence of str
+    values, lows, highs : sequence of float
+        Speeds and range ends, m/s.
+    ax : matplotlib.axes.Axes, optional
+    reference_speed : float, optional
+        The thesis's reference speed (m/s), drawn as a line.
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:
+        fig = Figure(figsize=(6, 3))
+        ax = fig.subplots()
+    y = np.arange(len(names))[::-1]
+    v = np.asarray(values, float)
+    lo, hi = np.asarray(lows, float), np.asarray(highs, float)
+    ax.barh(y, v, height=0.55, color=[colour(i) for i in range(len(names))], ec="k", lw=0.5)
+    ax.errorbar(v, y, xerr=[np.maximum(v - lo, 0), np.maximum(hi - v, 0)], fmt="none", ecolor="k", capsize=4,
+                elinewidth=1.2, label="range: push, pin friction, model")
+    for yi, vi in zip(y, v, strict=True):
+        ax.text(vi + 0.02, yi + 0.3, f"{vi:.2f} m/s ({3.6 * vi:.1f} km/h)", fontsize=8.5, va="bottom")
+    if reference_speed is not None:
+        ax.axvline(reference_speed, color="0.3", ls="--", lw=1, label=f"thesis reference {reference_speed:g} m/s")
+    ax.set_yticks(y, names, fontsize=9)
+    ax.set_ylabel("chair", fontsize=9)
+    ax.set_xlabel("equal-instability speed (m/s; higher: more stable)", fontsize=9)
+    ax.set_xlim(0, max(1.0, float(np.nanmax(hi)) * 1.3))
+    ax.grid(True, axis="x", alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_ylim(-0.6, len(names) - 0.2)
+    ax.set_title(title or "how fast it can go before it is as unstable as the thesis's reference case", fontsize=9.5)
+    return ax

@@ -14,8 +14,10 @@ from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from ..study import THESIS
 from ..summary import format_summary
 from .appendix import glossary_text, method_text
+from .clinician import clinician_text
 from .comparison import comparison_rows, key_numbers
 from .compute import PUSH_RANGE, ReportData
+from .decision import decision_bars, decision_paragraphs, decision_rows
 from .findings import _first, conclusion_rows, findings
 from .sections import footer as _footer
 from .sections import shimmy_page, slope_page, uncertainty_page
@@ -37,6 +39,31 @@ def _subtitle(d: ReportData) -> str:
 
 def _title(d: ReportData, what: str) -> str:
     return f"{d.chair.name} | {d.model} model | {what}"
+
+
+def _p_decision(d: ReportData) -> Figure:
+    fig, _ = P.page(_title(d, "the decision"), _subtitle(d), nrows=0, ncols=0)
+    gs = fig.add_gridspec(2, 2, width_ratios=[1.15, 1], height_ratios=[1, 1], left=0.03, right=0.98, top=0.89,
+                          bottom=0.08, wspace=0.12, hspace=0.3)
+    ax_text, ax_table, ax_bar = fig.add_subplot(gs[:, 0]), fig.add_subplot(gs[0, 1]), fig.add_subplot(gs[1, 1])
+    ax_text.axis("off")
+    y = 1.0
+    for para in decision_paragraphs(d) + [clinician_text(d)]:
+        head = para.split(" ", 1)[0].rstrip(".").isupper()       # VERDICT., RECOMMENDATION., ...
+        for i, line in enumerate(P.wrap_text(para, 80)):
+            ax_text.text(0.0, y, line, fontsize=9.3, va="top", transform=ax_text.transAxes,
+                         fontweight="bold" if i == 0 and head else "normal")
+            y -= 0.034
+        y -= 0.02
+    header, rows = decision_rows(d)
+    ax_table.axis("off")
+    n = len(header)
+    P.table_axes(ax_table, header, rows, col_widths=[0.34] + [0.66 / (n - 1)] * (n - 1), fontsize=8,
+                 wrap=[30] + [16] * (n - 1), top=1.0, bottom=0.0)
+    ax_table.set_title("key numbers (ranges over push, pin friction and model)", fontsize=9)
+    names, vals, lows, highs = decision_bars(d)
+    P.decision_chart(names, vals, lows, highs, ax_bar, reference_speed=REFERENCE_SPEED)
+    return fig
 
 
 def _p_chair(d: ReportData) -> Figure:
@@ -309,7 +336,8 @@ def _p_conclusions(d: ReportData) -> Figure:
 
 def _p_summary_page(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    return P.text_page(_title(d, "summary"), summary_text(d), sub, fontsize=9.5, width=150)
+    return P.text_page(_title(d, "key numbers, their ranges and caveats"), summary_text(d), sub, fontsize=9.5,
+                       width=150)
 
 
 def _p_method(d: ReportData) -> Figure:
@@ -356,6 +384,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
     drop = dropped_pages(d)
     pages = [
         # main body: the decision and the evidence
+        ("decision", partial(_p_decision, d)),
         ("summary", partial(_p_summary_page, d)),
         ("comparison", partial(_p_comparison, d)),
         ("chair parameters and geometry", partial(_p_chair, d)),

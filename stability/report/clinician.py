@@ -46,7 +46,7 @@ def clinician_text(d: ReportData) -> str:
                       else f"at {_kmh(r.speed)} it does not within {d.responses.criterion.duration:g} s"
                       for r in rs)
     thesis = ", ".join(f"{_kmh(u)}: " + ("> 6 s" if math.isinf(t) else f"{t:g} s") for u, t in TABLE_8_2.items())
-    out = [f"For the clinician. After a firm sideways shove ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) "
+    out = [f"FOR THE CLINICIAN. After a firm sideways shove ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) "
            f"{c.name} spins up to {d.thesis.criterion.yaw_rate:g} rad/s (about 60 deg/s): {times}. The user must "
            "correct well before that: for the thesis's chair the thesis estimated the time before the turn speeds "
            f"up sharply at {thesis} (Table 8-2). The thesis advises rear-caster chairs primarily for indoor use, "

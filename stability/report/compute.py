@@ -10,6 +10,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .. import rootlocus, study
+from ..advise import advise
+from ..advise.measures import measure_chairs
 from ..chair import Chair, preset
 from ..design import get_parameter
 from ..linear import analyse, divergence, massless_caster_rate
@@ -135,6 +137,12 @@ class ReportData:
         the main wheels falls to ``tip_limits_deg`` (the parametric study's constraint line).
     tip_limits_deg : float
         That angle, deg.
+    advice : stability.advise.Advice or None
+        The advisor's verdict and recommendation (page 1).
+    reference_measures : stability.advise.Measures or None
+        The thesis's reference chair measured as the advisor measures (None when the chair is that chair).
+    reference_trail : float
+        Its trail, m.
     """
 
     chair: Chair
@@ -174,6 +182,9 @@ class ReportData:
     tipping: TipAngles | None = None
     trail_window: TrailWindow | None = None
     tip_limits: dict = field(default_factory=dict)
+    advice: Any = None
+    reference_measures: Any = None
+    reference_trail: float = float("nan")
     tip_limits_deg: float = LOANE_KIRBY_REAR_DEG
 
 
@@ -319,7 +330,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     is_ej = c == ref_chair
     light = ref_chair.replace(name=f"{REFERENCE_CHAIR}, m {FIGURE_8_14['m']:g} kg, I_z {FIGURE_8_14['i_z']:g} kg m^2",
                               **FIGURE_8_14)
-    stages = 11
+    stages = 12
     with ProgressBar(stages, f"report {c.name}", enabled=progress, unit="stage") as bar:
         def stage(msg: str) -> None:
             if log:
@@ -421,10 +432,15 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                             slope_section(baseline),
                             None if b_note else shimmy_section(baseline, s.shimmy_trails, s.shimmy_speeds))
         stage("slope, shimmy and uncertainty")
+        advice = advise(c, progress=progress)
+        ref_m = None if is_ej else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
+                                                  cross_slope_deg=advice.cross_slope_deg)[0]
+        stage("advice")
     return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
                       list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,
                       rolling=rolling, tire_force=tire_force, tire_stiffness=tire_stiffness,
                       gain_poles=gain_poles, mode_names=names, validity=valid, intervals=intervals,
                       impulses=impulses, figure_8_14=fig814, sensitivity=sensitivity, slope=slope, shimmy=shimmy,
                       shimmy_note=shimmy_note, uncertainty=unc, baseline=base, tipping=tipping,
-                      trail_window=window, tip_limits=limits)
+                      trail_window=window, tip_limits=limits, advice=advice, reference_measures=ref_m,
+                      reference_trail=ref_chair.trail)

@@ -15,7 +15,6 @@ from ..chair import preset
 from ..design import get_parameter
 from ..reference import CROSS_SLOPE_STUDY, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from ..study import FRICTION_OVER_TRAIL, TRAIL_AT_FIXED_GROUP
-from .clinician import clinician_text
 from .compute import ReportData
 from .sections import section_drops
 
@@ -356,7 +355,7 @@ def summary_text(d: ReportData) -> str:
     out = [f"Chair: {c.name}, {c.caster_position} casters; s1 = {c.s1:g} m, s2 = {c.s2:g} m, trail {c.trail:g} m, "
            f"mass {c.m:g} kg, yaw inertia {c.i_z:g} kg m^2, pin friction {c.pin_friction_left:g}/"
            f"{c.pin_friction_right:g} N m, tires {c.main_tire} (main) and {c.caster_tire} (casters).",
-           _verdict(d), clinician_text(d), "Key numbers"]
+           _verdict(d), "Key numbers"]
     row = next((r for r in s.divergence if abs(r.speed - REFERENCE_SPEED) < 1e-9), None)
     if row is not None:
         out.append(f"- Linear growth rate (largest real part; negative: decay) at {REFERENCE_SPEED:g} m/s, free "
