@@ -102,7 +102,14 @@ def test_committed_report_is_current(name, tmp_path):
         "\n".join(diff[:20])
 
 
-if __name__ == "__main__":       # regenerate every committed report
-    for n in sorted(COMMITTED):
-        build(n, REPORTS)
+if __name__ == "__main__":       # regenerate every committed report and its page-1 picture (docs/report.md)
+    import shutil
+
+    for n in sys.argv[1:] or sorted(COMMITTED):
+        pdf, _ = build(n, REPORTS)
         print(f"reports/{n}.pdf")
+        if shutil.which("pdftoppm"):
+            stem = ROOT / "docs" / "images" / f"report-{n}-page1"
+            subprocess.run(["pdftoppm", "-r", "80", "-png", "-singlefile", "-f", "1", "-l", "1", str(pdf),
+                            str(stem)], check=True)
+            print(f"{stem}.png")

@@ -25,12 +25,11 @@ from stability.report.validity import run_validity
 
 EXPECTED_PAGES = [
     # main body
-    "decision", "summary", "chair parameters and geometry", "eigenvalues against speed", "nonlinear yaw-rate responses", "paths",
-    "equal-instability speeds", "parametric study", "stability maps", "trail design chart", "caster shimmy",
-    "cross slope",
-    "parameter uncertainty", "thesis conclusions", "findings",
+    "decision", "summary", "chair parameters and geometry", "eigenvalues against speed",
+    "nonlinear yaw-rate responses", "paths", "equal-instability speeds", "parametric study", "stability maps",
+    "trail design chart", "caster shimmy", "cross slope", "parameter uncertainty", "thesis conclusions",
     # appendix
-    "method", "linear stability: critical speeds", "tires", "eigenvalues as speed varies",
+    "method", "findings", "linear stability: critical speeds", "tires", "eigenvalues as speed varies",
     "growth rate against design parameters", "yaw-rate feedback root locus", "parametric study table",
     "glossary and references",
 ]

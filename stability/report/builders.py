@@ -352,7 +352,8 @@ def _p_glossary(d: ReportData) -> Figure:
 
 def _p_findings(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    return P.text_page(_title(d, "findings"), "\n\n".join(findings(d)), sub, fontsize=10.5, width=140)
+    return P.text_page(_title(d, "appendix: findings in detail"), "\n\n".join(findings(d)), sub, fontsize=10.5,
+                       width=140)
 
 
 def _p_slope(d: ReportData) -> Figure:
@@ -399,9 +400,9 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("cross slope", partial(_p_slope, d)),
         ("parameter uncertainty", partial(_p_uncertainty, d)),
         ("thesis conclusions", partial(_p_conclusions, d)),
-        ("findings", partial(_p_findings, d)),
         # appendix: method, validation and the linear analysis in full
         ("method", partial(_p_method, d)),
+        ("findings", partial(_p_findings, d)),
         ("linear stability: critical speeds", partial(_p_summary, d)),
         ("tires", partial(_p_tires, d)),
         ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
