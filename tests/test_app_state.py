@@ -272,3 +272,13 @@ def test_applying_a_recommendation_is_its_set_assignments():
     assert s.set_fields(assignments(fields)) is None
     assert s.chair == load_chair("ej-premier", [a for ch in changes for a in ch.assignments])
     assert s.undo() and s.chair == chair_mod.preset("ej-premier")       # one edit, one undo
+
+
+def test_shimmy_band_quoted_in_docs_app_md():
+    """docs/app.md's trail-window caption quotes the E&J Premier's shimmy-free band as the tab shows it."""
+    from stability.app.views import TRAIL_SPEEDS
+    from stability.shimmy.band import shimmy_band
+
+    text = (pathlib.Path(__file__).parents[1] / "docs" / "app.md").read_text()
+    band = shimmy_band(chair_mod.preset("ej-premier"), TRAIL_SPEEDS)
+    assert f"shimmy-free band {band.describe(1)} cm" in text

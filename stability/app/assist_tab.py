@@ -68,10 +68,11 @@ class AssistTab:
                                      "`python -m stability.assist`) is designed at every speed from 0.5 to 3 m/s.",
                                      css_classes=["assist-text"], sizing_mode="stretch_width")
         self.sources: list[ColumnDataSource] = []
-        self.fig = figure(title="Assist gains against speed (yaw moment per unit state)", height=300,
+        self.fig = figure(title="Assist gains against speed: differential torque per wheel per unit state (as the "
+                                "table's k)", height=300,
                           sizing_mode="stretch_width", tools="pan,wheel_zoom,box_zoom,reset,save")
         self.fig.xaxis.axis_label = "design speed U (m/s)"
-        self.fig.yaxis.axis_label = "gain (N m per SI unit of the state)"
+        self.fig.yaxis.axis_label = "gain k (N m per wheel per SI unit of the state)"
         self.fig.toolbar.logo = None
         self.legend = Legend(items=[], location="top_left", label_text_font_size="8pt", click_policy="hide")
         self.fig.add_layout(self.legend, "right")
@@ -107,6 +108,6 @@ class AssistTab:
             self.sources.append(src)
             self.legend.items = [*self.legend.items, LegendItem(label=f"gain on {names[j]}", renderers=[r])]
         for j, src in enumerate(self.sources):
-            src.data = {"speed": speeds, "gain": [r.gains[j] for r in rows]} if j < len(names) else \
+            src.data = {"speed": speeds, "gain": [r.wheel_torque_gains[j] for r in rows]} if j < len(names) else \
                 {"speed": [], "gain": []}
         self.text.object = preformatted(text)
