@@ -15,8 +15,18 @@ Importing :mod:`stability` loads neither sympy, scipy.optimize nor numba.
 
 from __future__ import annotations
 
-from importlib import import_module
-from typing import Any
+import sys
+
+# python -m stability.X (argv[0] is "-m" while the package is imported) or the console script ``stability``:
+# Ctrl-C, SIGTERM and SIGHUP are handled from the first line (stability.interrupts)
+_argv0 = (sys.argv or [""])[0]
+if _argv0 == "-m" or _argv0.replace("\\", "/").rsplit("/", 1)[-1] in ("stability", "stability.exe"):
+    from . import interrupts
+
+    interrupts.install_early()
+
+from importlib import import_module  # noqa: E402
+from typing import Any  # noqa: E402
 
 __version__ = "0.1.0"
 

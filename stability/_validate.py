@@ -14,12 +14,22 @@ from typing import Any
 import numpy as np
 
 __all__ = ["VARIANTS", "CASTERS", "check_choice", "check_model", "check_casters", "check_speed",
-           "check_speeds", "check_positive", "check_nonnegative", "check_finite"]
+           "check_speeds", "check_positive", "check_nonnegative", "check_finite", "is_real", "MIN_SPEED",
+           "MAX_SPEED"]
 
 VARIANTS = ("exact", "thesis")
 CASTERS = ("free", "locked")
 
-_SPEED_RANGE = "speed > 0 m/s (forward motion)"
+#: Slowest speed, m/s.  The linear model's tire terms grow as 1/speed and its kinematic terms shrink with it,
+#: so the rates of the slow modes (proportional to speed there) are found next to modes of order 1/speed: the
+#: eigenvalue solver's relative error grows as 1/speed^2 (measured for ej-premier: 4e-3 at 1e-4 m/s, 1e7 times
+#: the true rate below 1e-6 m/s).  At 0.01 m/s it is 4e-7, 250 times below the 1e-4 the tables print; and the
+#: simulator's stable step shrinks with speed alike.  1 cm/s is no question of directional stability.
+MIN_SPEED = 0.01
+#: Fastest speed, m/s: the critical-speed search's upper end (no wheelchair reaches it).
+MAX_SPEED = 100.0
+_SPEED_RANGE = (f"{MIN_SPEED:g} <= speed <= {MAX_SPEED:g} m/s (forward motion; below {MIN_SPEED:g} m/s the rates, "
+                "proportional to speed there, are lost in round-off)")
 
 
 def check_choice(name: str, value: Any, choices: Sequence) -> Any:
@@ -92,7 +102,7 @@ def check_casters(casters: str) -> str:
     return check_choice("casters", casters, CASTERS)
 
 
-def check_speed(speed: Any, name: str = "speed") -> float:
+def check_speed(speed: Any, name: str = "speed", floor: float = MIN_SPEED) -> float:
     """Check one forward speed and return it as a float: finite and > 0.
 
     Parameters
@@ -101,6 +111,9 @@ def check_speed(speed: Any, name: str = "speed") -> float:
         Forward speed U, m/s; anything ``float()`` accepts. Valid range: finite, > 0.
     name : str, optional
         Parameter name used in the error message (default ``"speed"``).
+    floor : float, optional
+        Slowest speed allowed, m/s (default :data:`MIN_SPEED`); 0: any speed > 0
+        (internal searches and finite differences near the floor).
 
     Returns
     -------
@@ -116,12 +129,12 @@ def check_speed(speed: Any, name: str = "speed") -> float:
         s = float(speed)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={speed!r} is invalid; valid range: {_SPEED_RANGE}") from None
-    if not (math.isfinite(s) and s > 0):
+    if not (math.isfinite(s) and (floor <= s if floor > 0 else s > 0) and s <= MAX_SPEED):
         raise ValueError(f"{name}={speed!r} is invalid; valid range: {_SPEED_RANGE}")
     return s
 
 
-def check_speeds(speeds: Any, name: str = "speed") -> np.ndarray:
+def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED) -> np.ndarray:
     """Check forward speeds and return them as a float array of at least one dimension.
 
     Parameters
@@ -130,6 +143,8 @@ def check_speeds(speeds: Any, name: str = "speed") -> np.ndarray:
         Forward speed(s) U, m/s: a scalar or array-like. Valid range: every one finite and > 0.
     name : str, optional
         Parameter name used in the error message (default ``"speed"``).
+    floor : float, optional
+        Slowest speed allowed, m/s (default :data:`MIN_SPEED`); 0: any speed > 0.
 
     Returns
     -------
@@ -142,14 +157,28 @@ def check_speeds(speeds: Any, name: str = "speed") -> np.ndarray:
         If any speed is not finite or not > 0; the message names the first offending value.
     """
     U = np.atleast_1d(np.asarray(speeds, dtype=float))
-    ok = np.isfinite(U) & (U > 0)
+    ok = np.isfinite(U) & ((U >= floor) if floor > 0 else (U > 0)) & (U <= MAX_SPEED)
     if not np.all(ok):
         raise ValueError(f"{name}={float(U[~ok][0])!r} is invalid; valid range: {_SPEED_RANGE}")
     return U
 
 
+def is_real(value: Any) -> bool:
+    """True for a real number: ``int``, ``float`` and numpy's integer and floating scalars, not booleans.
+
+    Parameters
+    ----------
+    value : Any
+
+    Returns
+    -------
+    bool
+    """
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+
+
 def _number(name: str, value: Any, valid: str, prefix: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+    if not is_real(value) or not math.isfinite(value):
         raise ValueError(f"{prefix}{name}={value!r} is invalid; valid range: {valid}")
     return float(value)
 

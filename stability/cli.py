@@ -12,18 +12,22 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import io
 import math
 import os
 import sys
-import tempfile
 import traceback
-from collections.abc import Callable, Iterator, Mapping, Sequence
+import warnings
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
-from . import __version__, progress, tires
+from . import __version__, interrupts, progress, readfiles, tires
 from . import chair as chair_mod
+from ._validate import MAX_SPEED, MIN_SPEED
+from .cli_files import check_directory, check_outputs, output_files
+from .cli_numbers import OPTION_BOUNDS, Bound, NonFiniteResult, bound_for, check_finite_text, first_non_finite, number
 from .cli_options import (
     FIGURE_FORMATS,
     OneLineErrorParser,
@@ -42,7 +46,8 @@ from .statics import check_static_loads, static_loads
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
            "load_chair", "apply_assignments", "parse_speeds", "check_directory", "check_outputs", "output_files",
            "json_header", "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
-           "add_uncertainty_option", "FIGURE_FORMATS"]
+           "add_uncertainty_option", "FIGURE_FORMATS", "Bound", "OPTION_BOUNDS", "number", "bound_for",
+           "check_finite_text", "NonFiniteResult"]
 
 #: Largest number of speeds a ``--speeds`` option may ask for (each costs an eigenvalue solve or a run).
 MAX_SPEEDS = 10_001
@@ -142,14 +147,12 @@ def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SP
     if count > max_count:
         raise ValueError(f"--speeds {text!r} asks for {count} speeds; at most {max_count} are allowed "
                          "(use a larger STEP)")
-    if np.any(speeds <= 0) or not np.all(np.isfinite(speeds)):
-        raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed finite and > 0 m/s")
+    if not np.all(np.isfinite(speeds) & (speeds >= MIN_SPEED) & (speeds <= MAX_SPEED)):
+        raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed {MIN_SPEED:g} to {MAX_SPEED:g} m/s "
+                         f"(below {MIN_SPEED:g} m/s the rates, proportional to speed there, are lost in round-off)")
     if increasing and np.any(np.diff(speeds) <= 0):
         raise ValueError(f"--speeds {text!r} is invalid; speeds must be strictly increasing")
     return speeds
-
-
-_FORBIDDEN_ROOTS = ("/proc", "/sys", "/dev")
 
 
 def check_work(what: str, amount: float, limit: float, advice: str) -> None:
@@ -171,108 +174,6 @@ def check_work(what: str, amount: float, limit: float, advice: str) -> None:
     """
     if not amount <= limit:
         raise ValueError(f"{what} asks for {amount:.3g}; at most {limit:.3g} are allowed: {advice}")
-
-
-def check_directory(path: str | None, option: str) -> None:
-    """Refuse an output ``path`` (given as ``option``) that cannot be written as a new file.
-
-    The directory must exist and be writable; the path must not be a directory
-    nor lie under ``/proc``, ``/sys`` or ``/dev``.
-
-    Parameters
-    ----------
-    path : str or None
-        Output file name; ``None`` or empty means no output file (nothing checked).
-    option : str
-        Option that gave the path (e.g. ``"--json-file"``), used in the error message.
-
-    Raises
-    ------
-    ValueError
-        One line naming the option, the path and the fault.
-    """
-    if not path:
-        return
-    full = os.path.realpath(os.path.abspath(path))
-    if os.path.isdir(full):
-        raise ValueError(f"{option} {path!r} is a directory; expected a file name")
-    if any(full == r or full.startswith(r + "/") for r in _FORBIDDEN_ROOTS):
-        raise ValueError(f"{option} {path!r} is not a place for output files (under /proc, /sys or /dev)")
-    d = os.path.dirname(full)
-    if not os.path.isdir(d):
-        raise ValueError(f"{option} {path!r}: directory {os.path.dirname(os.path.abspath(path))!r} does not exist")
-    if not os.access(d, os.W_OK):
-        raise ValueError(f"{option} {path!r}: directory {d!r} is not writable")
-
-
-def check_outputs(outputs: Mapping[str, str | None], inputs: Mapping[str, str | None] | None = None) -> None:
-    """Check every output path of a command before any work (see :func:`check_directory`).
-
-    Parameters
-    ----------
-    outputs : mapping
-        Option name -> path (None for an option not given).
-    inputs : mapping, optional
-        Option name -> input path; no output may overwrite an input.
-
-    Raises
-    ------
-    ValueError
-        One line naming the options at fault.
-    """
-    seen: dict[str, str] = {}
-    for option, path in outputs.items():
-        if not path:
-            continue
-        check_directory(path, option)
-        key = os.path.realpath(os.path.abspath(path))
-        if key in seen:
-            raise ValueError(f"{option} and {seen[key]} name the same file {path!r}; give each output its own file")
-        seen[key] = option
-    for option, path in (inputs or {}).items():
-        if path and os.path.exists(path):
-            key = os.path.realpath(os.path.abspath(path))
-            if key in seen:
-                raise ValueError(f"{seen[key]} {path!r} would overwrite the input {option}")
-
-
-@contextlib.contextmanager
-def output_files(outputs: Mapping[str, str | None]) -> Iterator[dict[str, str]]:
-    """Write several outputs all or none: yield temporary paths, rename them all at the end.
-
-    Parameters
-    ----------
-    outputs : mapping
-        Option name -> final path (None: not asked for).
-
-    Yields
-    ------
-    dict
-        Option name -> temporary path in the same directory, with the same
-        extension (so writers that infer a format from it still work).  On
-        success every temporary file replaces its final path; on any error
-        (or Ctrl-C) every temporary file is removed and no output appears.
-    """
-    temps: dict[str, str] = {}
-    try:
-        for option, path in outputs.items():
-            if not path:
-                continue
-            d = os.path.dirname(os.path.abspath(path))
-            base = os.path.basename(path)
-            fd, tmp = tempfile.mkstemp(dir=d, prefix=f".{base}.", suffix=os.path.splitext(base)[1] or ".tmp")
-            os.close(fd)
-            temps[option] = tmp
-        yield dict(temps)
-        umask = os.umask(0)
-        os.umask(umask)
-        for option, tmp in temps.items():
-            os.chmod(tmp, 0o666 & ~umask)
-            os.replace(tmp, str(outputs[option]))
-    finally:
-        for tmp in temps.values():
-            if os.path.exists(tmp):
-                os.unlink(tmp)
 
 
 def json_header(chair: chair_mod.Chair, model: str | None, options: Mapping[str, Any]) -> dict[str, Any]:
@@ -312,7 +213,10 @@ def emit_json(data: Any, args: argparse.Namespace, write_to: str | None = None) 
     from .output import atomic_write_text
 
     data = with_tire_range(data, getattr(args, "tire_notes", None), getattr(args, "tire_range", None))
-    text = json_text(data)
+    try:
+        text = json_text(data)
+    except ValueError:
+        raise NonFiniteResult(f"a result is not finite ({first_non_finite(data)})") from None
     if getattr(args, "json", False):
         print(text)
     path = getattr(args, "json_file", None)
@@ -343,7 +247,8 @@ def error(exc: BaseException, prefix: str = "") -> int:
 
 
 #: Failures inside a computation for valid input (reported in one line, exit status 2).
-COMPUTATION_ERRORS: tuple[type[BaseException], ...] = (ArithmeticError, np.linalg.LinAlgError, RuntimeError)
+COMPUTATION_ERRORS: tuple[type[BaseException], ...] = (ArithmeticError, np.linalg.LinAlgError, RuntimeError,
+                                                      MemoryError)
 
 
 def _with_tire_policy(body: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
@@ -367,17 +272,23 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     """Parse ``argv`` and return ``body(args)``'s exit status (``None`` counts as 0), under the error contract.
 
     * usage errors and an exception of a type in ``errors`` (bad input): one line, status 2;
-    * a computation that fails (singular matrix, no convergence, overflow): one line
-      ``error: could not compute ...``, status 2;
-    * a file that cannot be read or written: one line naming it, status 2;
-    * Ctrl-C: ``interrupted``, status 130 (outputs are atomic: nothing half-written is left);
+    * a computation that fails (singular matrix, no convergence, overflow, a result that is NaN
+      or infinite, out of memory): one line ``error: could not compute ...``, status 2; standard
+      output is held until the work has ended and refused if it prints a NaN or an infinity,
+      and numpy's floating-point warnings are not printed;
+    * a file that cannot be read or written (disk full, read-only, no permission): one line
+      naming it, status 2, no temporary file left;
+    * SIGINT (Ctrl-C), SIGTERM or SIGHUP: ``error: interrupted``, status 130 (outputs are atomic:
+      nothing half-written is left, and none is renamed into place after a signal);
+    * an output that is a file the run reads (directly, or named by a chair file or sheet):
+      refused as bad input;
     * output piped into a reader that stops early (``| head``): quiet, status 1;
     * ``--debug`` (added to every parser): the traceback instead of the one line.
 
     Parameters
     ----------
     parser : argparse.ArgumentParser
-        The command's parser; ``--debug`` is added if missing.
+        The command's parser; ``--debug`` and ``--quiet`` are added if missing.
     argv : sequence of str or None
         Arguments without the program name; ``None`` reads ``sys.argv[1:]``.
     body : callable
@@ -390,17 +301,40 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     int
         Exit status: ``body``'s (0 for ``None``), 1, 2 or 130 as listed above.
     """
+    with interrupts.interruptible(), readfiles.session():
+        return _run(parser, argv, body, errors)
+
+
+#: numpy's floating-point warnings: never printed (a non-finite result is refused by the finiteness checks).
+_FLOAT_WARNINGS = r"(invalid value|divide by zero|overflow|underflow) encountered"
+
+
+def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
+         body: Callable[[argparse.Namespace], int | None], errors: tuple[type[BaseException], ...]) -> int:
+    """:func:`run` inside the signal handlers and the input/output session."""
     for p in (parser, *_subparsers(parser)):
         add_common_options(p)
-    args = parser.parse_args(argv)
-    args.debug = bool(getattr(args, "debug", False))
-    args.quiet = bool(getattr(args, "quiet", False))
-    debug = args.debug
+    debug = "--debug" in (sys.argv[1:] if argv is None else argv)
     try:
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as exc:           # --help (0) or a usage error (2, its one line printed)
+            return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+        args.debug = bool(getattr(args, "debug", False))
+        args.quiet = bool(getattr(args, "quiet", False))
+        debug = args.debug
         check_format(getattr(args, "output", None), getattr(args, "output_formats", None) or (), "-o") \
             if hasattr(args, "output_formats") else None
-        with progress.quiet(args.quiet):
-            return _with_tire_policy(body, args)
+        with progress.quiet(args.quiet), contextlib.redirect_stdout(io.StringIO()) as out, \
+                warnings.catch_warnings():
+            warnings.filterwarnings("ignore", message=_FLOAT_WARNINGS, category=RuntimeWarning)
+            status = _with_tire_policy(body, args)
+        interrupts.check()                  # a signal swallowed by a library still interrupts
+        text = out.getvalue()
+        check_finite_text(text)             # no NaN or infinity is printed as a result
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return status
     except BrokenPipeError:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
@@ -408,8 +342,12 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     except KeyboardInterrupt:
         if debug:
             traceback.print_exc()
-        print("error: interrupted", file=sys.stderr)
-        return 130
+        print(interrupts.MESSAGE, file=sys.stderr)
+        return interrupts.EXIT_STATUS
+    except COMPUTATION_ERRORS as exc:       # before ``errors``: LinAlgError is a ValueError
+        if debug:
+            traceback.print_exc()
+        return error(exc, "could not compute the result for this chair and these options: ")
     except errors as exc:
         if debug:
             traceback.print_exc()
@@ -419,7 +357,3 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
             traceback.print_exc()
         where = f" {exc.filename!r}" if exc.filename else ""
         return error(exc, f"file{where}: ") if not where else error(ValueError(f"{exc.strerror}"), f"file{where}: ")
-    except COMPUTATION_ERRORS as exc:
-        if debug:
-            traceback.print_exc()
-        return error(exc, "could not compute the result for this chair and these options: ")

@@ -17,6 +17,7 @@ from typing import Any, NoReturn
 
 from . import chair as chair_mod
 from . import defaults, tires
+from .cli_numbers import bound_for, number
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
            "subparsers", "schema_name", "add_output_option", "check_format", "add_uncertainty_option", "FIGURE_FORMATS"]
@@ -34,8 +35,20 @@ class OneLineErrorParser(argparse.ArgumentParser):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
         super().__init__(*args, **kwargs)
+        # "-1e308", "-2.5e-3" are numbers, not options (argparse's own pattern misses the exponent)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+    def add_argument(self, *args: Any, **kwargs: Any) -> argparse.Action:  # noqa: D102
+        # every number is parsed knowing its option's name and plausible range (cli_numbers.OPTION_BOUNDS)
+        kind = kwargs.get("type")
+        options = [a for a in args if isinstance(a, str) and a.startswith("--")]
+        if kind in (float, int) and options:
+            kwargs["type"] = number(options[0], kind, bound_for(self.prog, options[0]))
+        return super().add_argument(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:  # noqa: D102
+        # "argument --seed: --seed '-1' is invalid ..." -> "--seed '-1' is invalid ..."
+        message = re.sub(r"^argument (--[\w-]+)(?:/-\w)?: (?=\1 )", "", message)
         print(f"error: {message}", file=sys.stderr)
         raise SystemExit(2)
 
@@ -45,7 +58,11 @@ class OneLineErrorParser(argparse.ArgumentParser):
     def parse_args(self, args: Sequence[str] | None = None, namespace: Any = None) -> Any:  # type: ignore[override]
         """Parse ``args``, joining an option and a following negative number (``--x -1`` -> ``--x=-1``)."""
         argv = list(sys.argv[1:] if args is None else args)
-        takes_value = {s for a in self._actions if a.option_strings and a.nargs is None and a.const is None
+        actions = list(self._actions)
+        for a in self._actions:                     # and the options of subcommands
+            if isinstance(a, argparse._SubParsersAction):
+                actions += [b for sub in a.choices.values() for b in sub._actions]
+        takes_value = {s for a in actions if a.option_strings and a.nargs is None and a.const is None
                        for s in a.option_strings}
         out: list[str] = []
         i = 0

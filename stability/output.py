@@ -11,6 +11,7 @@ appended as a PDF incremental update (ISO 32000-1, 7.5.6 and 12.3.3).
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import os
 import re
@@ -19,19 +20,77 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["json_text", "with_tire_range", "distinct_notes", "atomic_path", "write_pdf", "save_figure",
-           "atomic_write_text", "PDF_METADATA", "add_outline", "read_outline"]
+from . import interrupts, readfiles
+
+__all__ = ["json_text", "with_tire_range", "distinct_notes", "atomic_path", "write_error", "failed_write",
+           "WRITE_ERRNOS", "write_pdf", "save_figure", "atomic_write_text", "PDF_METADATA", "add_outline",
+           "read_outline"]
 
 #: metadata of every PDF written (no dates: byte-identical output for identical input)
 PDF_METADATA = {"Author": "stability", "Creator": "stability", "Producer": "stability",
                 "CreationDate": None, "ModDate": None}
 
 
+#: Write failures reported as one line naming the output file (disk full, read-only, no permission, quota,
+#: file too large, I/O error).
+WRITE_ERRNOS = frozenset(getattr(errno, n) for n in ("ENOSPC", "EROFS", "EACCES", "EPERM", "EDQUOT", "EFBIG", "EIO")
+                         if hasattr(errno, n))
+
+
+def failed_write(exc: BaseException) -> OSError | None:
+    """The write failure behind ``exc``, if any: ``exc`` itself or an OSError in its chain of causes.
+
+    A writer may fail a second time while it cleans up after a full disk
+    (matplotlib's PDF backend raises ``AttributeError`` from ``close``);
+    the first failure is the one to report.
+
+    Parameters
+    ----------
+    exc : BaseException
+
+    Returns
+    -------
+    OSError or None
+        An OSError with an errno of :data:`WRITE_ERRNOS`, else None.
+    """
+    seen = set()
+    e: BaseException | None = exc
+    while e is not None and id(e) not in seen:
+        seen.add(id(e))
+        if isinstance(e, OSError) and e.errno in WRITE_ERRNOS:
+            return e
+        e = e.__cause__ or e.__context__
+    return None
+
+
+def write_error(exc: OSError, path: str | os.PathLike[str]) -> OSError:
+    """``exc`` (raised while writing a temporary file for ``path``) as an error naming ``path`` itself.
+
+    Parameters
+    ----------
+    exc : OSError
+        The failure; its errno is kept.
+    path : path-like
+        The output file the user asked for.
+
+    Returns
+    -------
+    OSError
+        ``OSError(errno, "cannot write: <reason>", path)``.
+    """
+    reason = exc.strerror or str(exc) or type(exc).__name__
+    return OSError(exc.errno, f"cannot write: {reason}", os.fspath(path))
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike[str]) -> Iterator[str]:
     """Yield a temporary file name next to ``path``; rename it to ``path`` on success.
 
-    On any exception the temporary file is removed and ``path`` is untouched.
+    On any exception (a signal included, see :mod:`stability.interrupts`) the
+    temporary file is removed and ``path`` is untouched; a write failure
+    (:data:`WRITE_ERRNOS`) is raised as an :class:`OSError` naming ``path``.
+    A file the process has read as an input (:func:`stability.readfiles.was_read`)
+    is never replaced.
 
     Parameters
     ----------
@@ -42,22 +101,38 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[str]:
     ------
     str
         The temporary file name to write.
+
+    Raises
+    ------
+    ValueError
+        ``path`` is a file this run has read (an input is never overwritten).
+    OSError
+        The file cannot be written; ``filename`` is ``path``.
     """
     path = Path(path)
     directory = path.parent if str(path.parent) else Path(".")
     if not directory.exists():
         raise ValueError(f"output directory {str(directory)!r} does not exist")
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.", suffix=".tmp")
+    if readfiles.was_read(path):
+        raise ValueError(f"output {str(path)!r} is a file this run reads; an input is never overwritten")
+    try:
+        fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{path.name}.", suffix=".tmp")
+    except OSError as exc:
+        raise write_error(exc, path) from exc
     os.close(fd)
     umask = os.umask(0)
     os.umask(umask)
     os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual permissions
     try:
         yield tmp
+        interrupts.check()
         os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
+    except BaseException as exc:
+        with contextlib.suppress(OSError):
             os.unlink(tmp)
+        failed = failed_write(exc) if not isinstance(exc, KeyboardInterrupt) else None
+        if failed is not None and failed.filename in (None, tmp):
+            raise write_error(failed, path) from exc
         raise
 
 

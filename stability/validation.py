@@ -191,9 +191,16 @@ def with_rolling_resistance(chair: Chair) -> Chair:
     Chair
         ``chair`` unchanged if :func:`has_rolling_resistance`; otherwise a
         copy with ``main_rolling_scale = caster_rolling_scale = 1`` (the
-        rolling resistance of the tire fits as measured).
+        rolling resistance of the tire fits as measured) for each tire that
+        has rolling-resistance data (a tire without, e.g. PU or a user's CSV
+        of lateral forces, keeps scale 0: no rolling resistance is invented).
     """
-    return chair if has_rolling_resistance(chair) else chair.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0)
+    if has_rolling_resistance(chair):
+        return chair
+    changes = {f"{role}_rolling_scale": 1.0 for role, model in (("main", chair.main_tire_model()),
+                                                                  ("caster", chair.caster_tire_model()))
+               if model.capabilities.rolling}
+    return chair.replace(**changes) if changes else chair
 
 
 def omitted_effects(chair: Chair) -> tuple[str, ...]:

@@ -147,6 +147,49 @@ CASES = [
     ("compare", ["ej-premier", "revised", "--uncertainty", "{inputs}/u.toml"], "uncertainty"),
     ("compare", ["ej-premier", "revised", "--set", "3:m=90"], "3"),
     ("compare", ["ej-premier", "revised", "--json-file", "/proc/c.json"], "--json-file"),
+    # issue 19: a chair whose casters have no swivel inertia (singular mass matrix) names the parameter
+    ("critical_speed", ["--set", "m_c=0", "--set", "i_zp=0"], "i_zp=0"),
+    ("simulate", ["--set", "i_zp=1e-300"], "i_zp=1e-300"),
+    ("assist", ["--set", "m_c=0", "--set", "l1=0", "--set", "i_zp=0"], "i_zp=0"),
+    # issue 19: speeds below 0.01 m/s, where the linear rates are lost in round-off (and a study's step with them)
+    ("critical_speed", ["--speeds", "1e-6,1e-5"], "--speeds"),
+    ("study", ["critical-impulse", "--speeds", "1e-6"], "--speeds"),
+    ("simulate", ["--speed", "1e-6"], "--speed"),
+    ("slope", ["--cross-slope", "2", "--speed", "1e-6"], "--speed"),
+    # issue 19: work bounded by an estimate of its time (count x cost), naming the option and the largest value
+    ("shimmy", ["--speeds", "0.1:50:0.01"], "--speeds"),
+    ("study", ["critical-impulse", "--speeds", "0.01", "--horizon", "3600"], "--horizon"),
+    ("critical_speed", ["--uncertainty", "{inputs}/u.toml", "--samples", "20000"], "--samples"),
+    ("compare", ["ej-premier", "revised", "--uncertainty", "{inputs}/u.toml", "--uncertainty", "{inputs}/u.toml",
+                 "--samples", "20000"], "--samples"),
+    ("simulate", ["--duration", "3600"], "--duration"),
+    ("simulate", ["--duration", "4", "--sample", "1e-5"], "--sample"),
+    ("slope", ["--cross-slope", "2", "--speed", "0.75", "--sim-time", "1e9"], "--sim-time"),
+    # issue 19: every number is parsed knowing its option (the three named inputs and their class)
+    ("assist", ["--seed", "-1"], "--seed"),
+    ("critical_speed", ["--uncertainty", "{inputs}/u.toml", "--seed", "-1"], "--seed"),
+    ("simulate", ["--tire-impulse", "1e308"], "--tire-impulse"),
+    ("simulate", ["--lateral-velocity", "1e308"], "--lateral-velocity"),
+    ("simulate", ["--sample", "1e-9"], "--sample"),
+    ("simulate", ["--scheme", "adaptive", "--atol", "1e-300"], "--atol"),
+    ("simulate", ["--scheme", "adaptive", "--rtol", "1e-300"], "--rtol"),
+    ("slope", ["--cross-slope", "2", "--speed", "0.75", "--wheel-radius", "1e308"], "--wheel-radius"),
+    ("assist", ["--sample-rate", "1e308"], "--sample-rate"),
+    ("assist", ["--sample-rate", "1e9"], "--sample-rate"),
+    ("study", ["critical-impulse", "--horizon", "1e9"], "--horizon"),
+    ("study", ["critical-impulse", "--max-impulse", "inf"], "--max-impulse"),
+    # inputs destroyed: no output is a file the run reads, directly or named by a chair file
+    ("critical_speed", ["--chair", "{inputs}/tire_chair.toml", "--json-file", "{inputs}/good.csv"], "input"),
+    ("simulate", ["--chair", "{inputs}/tire_chair.toml", "--csv", "{inputs}/good.csv"], "input"),
+    ("simulate", ["--chair", "{inputs}/tire_chair.toml", "--json-file", "{inputs}/good.csv"], "input"),
+    ("slope", ["--chair", "{inputs}/tire_chair.toml", "--cross-slope", "2", "--speed", "0.75",
+               "--json-file", "{inputs}/good.csv"], "input"),
+    ("shimmy", ["--chair", "{inputs}/tire_chair.toml", "--json-file", "{inputs}/good.csv"], "input"),
+    ("assist", ["--chair", "{inputs}/tire_chair.toml", "--json-file", "{inputs}/good.csv"], "input"),
+    ("study", ["critical-impulse", "--chair", "{inputs}/tire_chair.toml", "--json-file", "{inputs}/good.csv"],
+     "input"),
+    ("compare", ["{inputs}/tire_chair.toml", "revised", "--json-file", "{inputs}/good.csv"], "input"),
+    ("critical_speed", ["--set", "caster_tire=file:{inputs}/good.csv", "--json-file", "{inputs}/good.csv"], "input"),
 ]
 
 
@@ -157,12 +200,32 @@ def _inputs(folder: Path) -> None:
     (folder / "broken.toml").write_text("trail = = 0.06\n")
     (folder / "u.toml").write_text('[s1]\ndistribution = "normal"\nstd = 0.01\n')
     (folder / "bad_sheet.toml").write_text("this is not a sheet = 1\n")
+    _tire_csv(folder / "good.csv")
+    (folder / "tire_chair.toml").write_text('name = "mine"\ncaster_tire = "file:good.csv"\n')
+
+
+INPUT_FILES = ["chair.toml", "mixed.toml", "broken.toml", "u.toml", "bad_sheet.toml", "good.csv", "tire_chair.toml"]
+
+
+def _tire_csv(path: Path, bom: bool = False) -> None:
+    """The thesis's ER caster tire (the preset's) as a user's CSV of measured forces (Appendix B raw data)."""
+    import numpy as np
+
+    from stability import tires
+
+    raw = tires.raw_cornering("ER")
+    ok = np.isfinite(raw["Fz_N"]) & np.isfinite(raw["Fy_N"])
+    rows = [f"{int(s)},{float(z)!r},{float(y)!r}" for s, z, y in zip(raw["slip_deg"][ok], raw["Fz_N"][ok], raw["Fy_N"][ok],
+                                                      strict=True)]
+    path.write_text(("\ufeff" if bom else "") + "# name = my ER\nslip_deg,Fz_N,Fy_N\n" + "\n".join(rows) + "\n",
+                    encoding="utf-8")
 
 
 @pytest.mark.parametrize("command,argv,fragment", CASES, ids=[f"{c}:{' '.join(a)}" for c, a, _ in CASES])
 def test_bad_input_is_refused_in_one_line(command, argv, fragment, tmp_path, monkeypatch, capsys):
     inputs = tmp_path / "inputs"
     _inputs(inputs)
+    good = (inputs / "good.csv").read_text(encoding="utf-8")
     work = tmp_path / "work"
     work.mkdir()
     monkeypatch.chdir(work)
@@ -191,8 +254,8 @@ def test_bad_input_is_refused_in_one_line(command, argv, fragment, tmp_path, mon
     assert "Traceback" not in err
     assert fragment in lines[0], f"{fragment!r} not in {lines[0]!r}"
     assert sorted(os.listdir(work)) == [], "files left behind"
-    assert sorted(os.listdir(inputs)) == sorted(["chair.toml", "mixed.toml", "broken.toml", "u.toml",
-                                                 "bad_sheet.toml"]), "an input was changed or an output written"
+    assert sorted(os.listdir(inputs)) == sorted(INPUT_FILES), "an output was written next to the inputs"
+    assert (inputs / "good.csv").read_text(encoding="utf-8") == good, "an input was changed"
     assert elapsed < TIME_LIMIT, f"took {elapsed:.1f} s"
 
 
@@ -210,3 +273,327 @@ def test_valid_unusual_input_is_answered(command, argv, capsys):
     main = importlib.import_module(COMMANDS[command]).main
     assert main(argv) == 0
     assert "error" not in capsys.readouterr().err
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# issue 19: each class of the attack, for every command (not only the example that found it)
+# ---------------------------------------------------------------------------------------------------------------
+def _parser_of(command: str):
+    module = importlib.import_module(COMMANDS[command])
+    build = getattr(module, "build_parser", None) or module._parser
+    return module.main, build()
+
+
+def _numeric_options():
+    """(command, subcommand prefix, option, nargs) of every option of every parser that takes a number."""
+    import argparse
+
+    from stability.cli import OPTION_BOUNDS  # noqa: F401  (the table every number is checked against)
+
+    out = []
+    for command in COMMANDS:
+        _, parser = _parser_of(command)
+        parsers = [([], parser)]
+        for action in parser._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                parsers += [([name], sub) for name, sub in action.choices.items()]
+        for prefix, p in parsers:
+            for action in p._actions:
+                if action.option_strings and getattr(action.type, "__name__", "") in ("float", "int"):
+                    out.append((command, prefix, action.option_strings[-1], action.nargs))
+    return out
+
+
+NUMERIC = _numeric_options()
+
+
+def test_every_numeric_option_is_parsed_by_name_with_a_plausibility_bound():
+    """Every number of every command is parsed by cli.number (knows its option) with a bound from OPTION_BOUNDS."""
+    from stability.cli_numbers import bound_for as _bound_for
+
+    assert len(NUMERIC) >= 40
+    for command, prefix, option, _ in NUMERIC:
+        _, parser = _parser_of(command)
+        prog = f"python -m stability.{command}" + (f" {prefix[0]}" if prefix else "")
+        assert _bound_for(prog, option) is not None, f"{command} {option}: no plausibility bound"
+
+
+@pytest.mark.parametrize("value", ["nan", "-1e308", "1e308"])
+@pytest.mark.parametrize("command,prefix,option,nargs", NUMERIC,
+                         ids=[f"{c}:{' '.join(p)}{o}" for c, p, o, _ in NUMERIC])
+def test_every_numeric_option_refuses_extremes_naming_itself(command, prefix, option, nargs, value, capsys):
+    main, _ = _parser_of(command)
+    argv = [*prefix, option, *([value] * (nargs if isinstance(nargs, int) else 1))]
+    try:
+        code = main(argv)
+    except SystemExit as exc:
+        code = exc.code
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1, err
+    assert err[0].startswith(f"error: {option} "), err[0]
+
+
+def _run_body(body, argv=()):
+    """cli.run with a trivial parser around ``body`` (the shared error contract, in-process)."""
+    from stability.cli import OneLineErrorParser, run
+
+    return run(OneLineErrorParser(prog="python -m stability.test"), list(argv), body)
+
+
+@pytest.mark.parametrize("signum", ["SIGINT", "SIGTERM", "SIGHUP"])
+def test_signals_during_the_work_exit_130_and_leave_no_file(signum, tmp_path, capsys):
+    """A signal while an output is being written: one line, status 130, neither the file nor a temporary one."""
+    from stability.cli import output_files
+
+    out = tmp_path / "out.json"
+
+    def body(args):
+        with output_files({"--json-file": str(out)}) as tmp:
+            with open(tmp["--json-file"], "w") as fh:
+                fh.write("{partial")
+            os.kill(os.getpid(), getattr(signal, signum))
+            time.sleep(1.0)                       # the handler raises before this ends
+        return 0
+
+    start = time.perf_counter()
+    assert _run_body(body) == 130
+    assert time.perf_counter() - start < 0.9
+    assert capsys.readouterr().err.strip().splitlines() == ["error: interrupted"]
+    assert os.listdir(tmp_path) == []
+
+
+def test_a_signal_swallowed_by_a_library_still_interrupts_and_keeps_no_output(tmp_path, capsys):
+    from stability.output import atomic_write_text
+
+    def body(args):
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(1.0)
+        except KeyboardInterrupt:
+            pass                                   # e.g. a library that catches it
+        atomic_write_text(tmp_path / "out.txt", "finished")
+        print("done")
+        return 0
+
+    assert _run_body(body) == 130
+    out, err = capsys.readouterr()
+    assert out == "" and err.strip().splitlines() == ["error: interrupted"]
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("text", ["growth rate nan 1/s", "hand-rim forces left inf N", "margin: -inf deg",
+                                  "rate=NaN", "[1.0, inf]"])
+def test_a_non_finite_result_is_never_printed(text, capsys):
+    def body(args):
+        print("a finite line 1.5 s")
+        print(text)
+        return 0
+
+    assert _run_body(body) == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert err.startswith("error: could not compute") and len(err.strip().splitlines()) == 1, err
+
+
+@pytest.mark.parametrize("text", ["info: infinite speed range", "nanometre", "/tmp/inf/x.json", "Infeasible"])
+def test_words_that_contain_nan_or_inf_are_printed(text, capsys):
+    assert _run_body(lambda args: print(text)) == 0
+    assert capsys.readouterr().out.strip() == text
+
+
+def test_non_finite_json_is_could_not_compute(capsys, tmp_path):
+    import argparse
+
+    from stability.cli import emit_json
+
+    def body(args):
+        emit_json({"rows": [{"growth_rate_1_s": float("nan")}]},
+                  argparse.Namespace(json=True, json_file=str(tmp_path / "r.json")))
+        return 0
+
+    assert _run_body(body) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and "could not compute" in err and "growth_rate_1_s" in err
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("exc", ["LinAlgError", "FloatingPointError", "MemoryError"])
+def test_a_failed_computation_is_could_not_compute_not_bad_input(exc, capsys):
+    import numpy as np
+
+    kinds = {"LinAlgError": np.linalg.LinAlgError, "FloatingPointError": FloatingPointError,
+             "MemoryError": MemoryError}
+
+    def body(args):
+        raise kinds[exc]("Singular matrix")
+
+    assert _run_body(body) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: could not compute"), err
+
+
+def test_numpy_floating_point_warnings_are_not_printed(capsys):
+    import numpy as np
+
+    def body(args):
+        np.log(np.zeros(2))          # divide by zero encountered
+        print(float(np.sqrt(4.0)))
+        return 0
+
+    assert _run_body(body) == 0
+    out, err = capsys.readouterr()
+    assert out.strip() == "2.0" and err == ""
+
+
+@pytest.mark.parametrize("command,argv,option", [
+    ("simulate", ["--duration", "0.5", "--csv", "out.csv"], "out.csv"),
+    ("simulate", ["--duration", "0.5", "--plot", "out.pdf"], "out.pdf"),
+    ("critical_speed", ["--speeds", "0.5,1", "--json-file", "out.json"], "out.json"),
+])
+def test_a_full_disk_is_one_line_naming_the_file_and_nothing_is_left(command, argv, option, tmp_path, monkeypatch,
+                                                                     capsys):
+    """A real write failure: the process may write at most 64 bytes per file (RLIMIT_FSIZE -> EFBIG, as ENOSPC)."""
+    resource = pytest.importorskip("resource")
+    monkeypatch.chdir(tmp_path)
+    main = importlib.import_module(COMMANDS[command]).main
+    soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
+    previous = signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (64, hard))
+    try:
+        code = main(argv)
+    finally:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (soft, hard))
+        signal.signal(signal.SIGXFSZ, previous)
+    err = capsys.readouterr().err.strip().splitlines()
+    errors = [line for line in err if line.startswith("error:")]
+    assert code == 2 and len(errors) == 1 and "Traceback" not in "\n".join(err), err
+    assert repr(option) in errors[0] and "cannot write" in errors[0], errors[0]
+    assert os.listdir(tmp_path) == [], "a partial or temporary file was left behind"
+
+
+def test_utf8_byte_order_mark_is_accepted_in_tire_csv_and_chair_files(tmp_path):
+    """What spreadsheet programs write: the same tire and chair as without the mark."""
+    from stability import chair as chair_mod
+    from stability import tires
+
+    _tire_csv(tmp_path / "plain.csv")
+    _tire_csv(tmp_path / "bom.csv", bom=True)
+    plain, bom = tires.load_tire_data(tmp_path / "plain.csv"), tires.load_tire_data(tmp_path / "bom.csv")
+    assert bom.name == plain.name == "my ER"
+    assert (bom.coefficients == plain.coefficients).all()
+    (tmp_path / "c.toml").write_text('\ufeffname = "mine"\ntrail = 0.06\ncaster_tire = "file:bom.csv"\n',
+                                     encoding="utf-8")
+    c = chair_mod.load(tmp_path / "c.toml")
+    assert c.trail == 0.06 and c.caster_tire.endswith("bom.csv")
+
+
+def test_numpy_scalars_are_real_numbers_in_a_chair():
+    import numpy as np
+
+    from stability import chair as chair_mod
+
+    ref = chair_mod.preset("ej-premier").replace(m=95.0, trail=0.05, h=1.0)
+    c = chair_mod.preset("ej-premier").replace(m=np.float32(95), trail=np.float64(0.05), h=np.int64(1))
+    assert (c.m, c.trail, c.h) == (ref.m, ref.trail, ref.h)
+    assert all(type(v) is float for v in (c.m, c.trail, c.h))
+    with pytest.raises(ValueError, match="parameter m="):
+        chair_mod.preset("ej-premier").replace(m=np.bool_(True))
+
+
+def test_the_smallest_caster_swivel_inertia_answers_the_massless_caster_limit():
+    """i_zp -> 0 is a regular limit (the swivel mode runs off to -infinity, the caster trails its contact point):
+    the rates are linear in i_zp near 0, so at the bound 1e-5 kg m^2 they equal the limit extrapolated from
+    1e-5 and 2e-5 within 1e-4 relative (observed 2e-6: the O(i_zp) term is 1e-6 of the rate per 1e-5)."""
+    import numpy as np
+
+    import stability
+    from stability import chair as chair_mod
+
+    def rates(i_zp):
+        c = chair_mod.preset("ej-premier").replace(m_c=0.0, i_zp=i_zp)
+        return np.array([d.rate for d in stability.analyse(c).divergence])
+
+    r1, r2 = rates(1e-5), rates(2e-5)
+    limit = 2 * r1 - r2                                 # linear extrapolation to i_zp = 0
+    np.testing.assert_allclose(r1, limit, rtol=1e-4)
+    assert chair_mod.LIMITS["i_zp"][0] == 1e-5
+
+
+def test_small_speed_limit_rates_are_proportional_to_speed_and_below_it_refused():
+    """At low speed the slow modes' rates are proportional to speed (rate = mu U + O(U^2)): at the bound,
+    0.01 m/s, rate/U agrees with 0.02 m/s within 1e-3 (the O(U) term, observed 2e-5); the API refuses below."""
+    import numpy as np
+
+    import stability
+    from stability import chair as chair_mod
+    from stability._validate import MIN_SPEED
+
+    c = chair_mod.preset("ej-premier")
+    r = np.array([d.rate for d in stability.analyse(c, speeds=(MIN_SPEED, 2 * MIN_SPEED)).divergence])
+    mu = r / np.array([MIN_SPEED, 2 * MIN_SPEED])
+    assert mu[0] > 0 and abs(mu[0] - mu[1]) < 1e-3 * abs(mu[0])
+    with pytest.raises(ValueError, match=r"speeds=1e-06 is invalid; valid range: 0\.01 <= speed"):
+        stability.analyse(c, speeds=(1e-6,))
+
+
+@pytest.mark.parametrize("call,argument", [
+    ("simulate_duration", "duration"), ("simulate_dt", "dt"), ("simulate_push", "tire_impulse"),
+    ("simulate_atol", "atol"), ("intervals", "samples"), ("shimmy", "speeds"), ("study", "horizon"),
+])
+def test_the_python_api_bounds_work_naming_the_argument_and_the_largest_value(call, argument):
+    """The API refuses what the command lines refuse, by estimate (count x cost), before any work."""
+    import numpy as np
+
+    from stability import chair as chair_mod
+    from stability.linear.intervals import linear_intervals
+    from stability.measure.uncertainty import from_mapping
+    from stability.shimmy.chair import caster_summary
+    from stability.simulate import simulate
+    from stability.study.impulse import critical_impulses
+
+    c = chair_mod.preset("ej-premier")
+    calls = {
+        "simulate_duration": lambda: simulate(c, 0.75, duration=3600.0),
+        "simulate_dt": lambda: simulate(c, 0.75, dt=1e-7),
+        "simulate_push": lambda: simulate(c, 0.75, tire_impulse=1e308),
+        "simulate_atol": lambda: simulate(c, 0.75, scheme="adaptive", atol=1e-300),
+        "intervals": lambda: linear_intervals(c, from_mapping({"s1": {"distribution": "normal", "std": 0.01}}),
+                                              samples=20_000),
+        "shimmy": lambda: caster_summary(c, np.linspace(0.1, 50, 5000)),
+        "study": lambda: critical_impulses(c, [0.01], horizon=3600.0),
+    }
+    start = time.perf_counter()
+    with pytest.raises(ValueError, match=rf"\b{argument}\b"):
+        calls[call]()
+    assert time.perf_counter() - start < 2.0
+
+
+def test_report_keeps_a_caster_tire_without_rolling_data_valid():
+    """The report switches rolling resistance on only for tires that have rolling data (PU has none)."""
+    from stability import chair as chair_mod
+    from stability.validation import with_rolling_resistance
+
+    c = with_rolling_resistance(chair_mod.preset("ej-premier").replace(caster_tire="PU"))
+    assert (c.main_rolling_scale, c.caster_rolling_scale) == (1.0, 0.0)
+
+
+def test_slope_answers_a_heavy_chair_under_the_clamp_policy(capsys):
+    """200 kg loads the casters beyond the 450 N of the tire data: refused by default, answered with clamp."""
+    from stability.slope.__main__ import main
+
+    argv = ["--cross-slope", "2", "--speed", "0.75", "--set", "m=200", "--json"]
+    assert main(argv + ["--tire-range", "raise"]) == 2
+    capsys.readouterr()
+    assert main(argv + ["--tire-range", "clamp"]) == 0
+    out, err = capsys.readouterr()
+    assert '"cross_slope' in out and "error" not in err
+
+
+def test_a_tire_loaders_precise_error_reaches_the_user(tmp_path, capsys):
+    """A broken tire CSV named by --set: the line and column of the fault, not a generic list of tire names."""
+    from stability.critical_speed.command import main
+
+    (tmp_path / "bad.csv").write_text("slip_deg,Fz_N,Fy_N\n1,200,x\n", encoding="utf-8")
+    assert main(["--set", f"caster_tire=file:{tmp_path / 'bad.csv'}"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "caster_tire" in err[0] and "line 2, column 'Fy_N'" in err[0], err

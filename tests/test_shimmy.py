@@ -315,4 +315,4 @@ def test_cli_json_and_errors(capsys):
     assert "estimates" in data["note"]
     assert main(["--relaxation-length", "-1"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "--relaxation-length=-1.0 is invalid" in err[0]
+    assert len(err) == 1 and "--relaxation-length -1 is invalid" in err[0]

@@ -25,7 +25,11 @@ def json_float(x: float | None) -> float | str | None:
 
 
 def fmt(x: float | str | None, spec: str = ".3g", none: str = "-") -> str:
-    """``format(x, spec)``, with ``none`` for None and ``inf``/``-inf``/``nan`` spelt out.
+    """``format(x, spec)``, with ``none`` for None, an infinite margin as ``unlim`` and ``nan`` spelt out.
+
+    A margin without a crossover is unlimited (``unlim``, ``-unlim``), a result and
+    not a failure; ``nan`` is a failure, which the command line refuses to print
+    (:func:`stability.cli.check_finite_text`).
 
     Parameters
     ----------
@@ -45,5 +49,5 @@ def fmt(x: float | str | None, spec: str = ".3g", none: str = "-") -> str:
     if isinstance(x, str):
         return x
     if not math.isfinite(x):
-        return "inf" if x > 0 else ("-inf" if x < 0 else "nan")
+        return "unlim" if x > 0 else ("-unlim" if x < 0 else "nan")
     return format(x, spec)

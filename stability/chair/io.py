@@ -9,7 +9,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import fields
 from typing import Any
 
-from .. import tires
+from .. import readfiles, tires
 from ..output import atomic_write_text
 from .model import Chair, field_names
 from .presets import all_preset_names, preset
@@ -136,11 +136,10 @@ def load(path: str | os.PathLike[str]) -> Chair:
     OSError
         If the file cannot be read.
     """
-    with open(path, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"chair file {str(path)!r} is not valid TOML: {exc}") from None
+    try:
+        data = readfiles.load_toml(path)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"chair file {str(path)!r} is not valid TOML: {exc}") from None
     if "chair" in data and isinstance(data["chair"], dict):
         others = sorted(k for k in data if k != "chair")
         if others:

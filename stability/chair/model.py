@@ -14,6 +14,7 @@ from dataclasses import dataclass, field, fields
 from typing import Any
 
 from .. import tires
+from .._validate import is_real
 
 __all__ = ["Chair", "LIMITS", "valid_range", "field_names"]
 
@@ -221,7 +222,11 @@ LIMITS: dict[str, tuple[float, float, bool]] = {
     "t1": (0.05, 1.0, True), "t2": (0.05, 1.0, True),
     "h": (0.0, 2.0, True),
     "m": (5.0, 1000.0, True), "m_c": (0.0, 50.0, True),
-    "i_z": (0.01, 500.0, True), "i_zp": (0.0, 5.0, True),
+    # i_zp >= 1e-5: with no swivel inertia the caster's swivel equation has none and the mass matrix is
+    # singular.  The limit is regular (the swivel mode runs off to -infinity, the caster trails its contact
+    # point): rates at 1e-5 equal the limit within 1e-4 relative (tests/test_cli_catalogue.py), so the bound
+    # answers the massless-caster question; the smallest real caster (a 50 mm wheel) has about 1e-4.
+    "i_z": (0.01, 500.0, True), "i_zp": (1e-5, 5.0, True),
     "pin_friction_left": (0.0, 50.0, True), "pin_friction_right": (0.0, 50.0, True),
     "pin_damping": (0.0, 100.0, True),
     "roll_k": (0.001, 1000.0, True),
@@ -298,10 +303,12 @@ def _check_types(c: Chair) -> None:
             continue
         if f.name == "camber_coefficient" and value is None:
             continue
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
+        if not is_real(value):
             raise bad(f.name, value, "a real number")
         if not math.isfinite(value):
             raise bad(f.name, value, "a finite number")
+        if type(value) not in (int, float):        # numpy scalars (np.float32(95), np.int64(2)) as Python floats
+            object.__setattr__(c, f.name, float(value))
 
 
 def _check_limits(c: Chair) -> None:
@@ -315,6 +322,9 @@ def _check_limits(c: Chair) -> None:
         ok = (lo <= value <= hi) if inclusive else (lo < value < hi)
         if not ok:
             extra = ", or None for the tire's own" if name == "camber_coefficient" else ""
+            if name == "i_zp" and value < lo:
+                extra = (" (a caster with no swivel inertia about its pin makes the model singular; its "
+                         f"massless-caster limit is reached at i_zp = {lo:g}, whatever m_c)")
             raise bad(name, value, valid_range(name) + extra)
 
 
@@ -341,6 +351,9 @@ def _validate(c: Chair) -> None:
         try:
             tires.get(getattr(c, name))
         except (KeyError, ValueError) as exc:
+            spec = getattr(c, name)
+            if spec.strip().lower().startswith(("file:", "linear:")):   # the loader's own, precise message
+                raise ValueError(f"chair parameter {name}={spec!r}: {str(exc).strip(chr(39))}") from None
             raise bad(name, getattr(c, name),
                       f"one of {list(tires.names())}, a registered name, 'linear:<N/deg>' or 'file:<csv>'") from exc
     tires.check_chair_tires(c)

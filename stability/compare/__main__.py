@@ -35,9 +35,10 @@ from ..cli import (
     parse_speeds,
     run,
 )
+from ..linear.batch import check_eigen_work
 from ..linear.intervals import MAX_SAMPLES
 from ..measure.uncertainty import Uncertainty, load_uncertainty
-from .compute import DEFAULT_SPEEDS, compare, unique_labels
+from .compute import DEFAULT_SPEEDS, compare, solves_per_sample, unique_labels
 from .text import comparison_dict, format_comparison
 
 __all__ = ["main", "build_parser"]
@@ -119,6 +120,8 @@ def _run(args: argparse.Namespace) -> int:
     speeds = parse_speeds(args.speeds, max_count=200)
     chairs, names = _chairs(args.chairs, args.set)
     uncs = _uncertainties(args.uncertainty, len(chairs))
+    n_uncertain = sum(u is not None for u in uncs) if uncs else 0
+    check_eigen_work("--samples", args.samples, solves_per_sample(n_uncertain, len(speeds)))
     result = compare(chairs, labels=unique_labels(names), model=args.model, speeds=speeds.tolist(),
                      max_speed=args.max_speed, uncertainties=uncs, samples=args.samples, seed=args.seed,
                      level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)

@@ -20,8 +20,15 @@ from .._validate import check_model
 from ..chair import Chair, to_mapping
 from ..defaults import SUMMARY_SPEEDS
 from ..linear import zero_width
-from ..linear.batch import ChairBatch
-from ..linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
+from ..linear.batch import ChairBatch, check_eigen_work
+from ..linear.intervals import (
+    BISECTION_STEPS,
+    GRID_POINTS,
+    MAX_SAMPLES,
+    LinearIntervals,
+    linear_intervals,
+    solves_per_draw,
+)
 from ..measure.uncertainty import Uncertainty
 from ..reference import REFERENCE_SPEED, THESIS_PUSH
 
@@ -197,7 +204,24 @@ class Comparison:
 
 
 def _grid(max_speed: float) -> np.ndarray:
-    return np.geomspace(0.01, max_speed, 600)
+    return np.geomspace(0.01, max_speed, GRID_POINTS)
+
+
+def solves_per_sample(n_uncertain: int, n_speeds: int) -> int:
+    """Eigenvalue problems per Monte Carlo sample of a comparison with ``n_uncertain`` uncertain chairs.
+
+    Each uncertain chair: its intervals (:func:`~stability.linear.intervals.solves_per_draw`) and its paired
+    draws (the table's speeds and the locked-caster search).
+
+    Parameters
+    ----------
+    n_uncertain, n_speeds : int
+
+    Returns
+    -------
+    int
+    """
+    return n_uncertain * (solves_per_draw(n_speeds, GRID_POINTS) + n_speeds + GRID_POINTS + BISECTION_STEPS)
 
 
 def _locked(batch: ChairBatch, grid: np.ndarray) -> np.ndarray:
@@ -424,6 +448,7 @@ def compare(chairs: Sequence[Chair], *, labels: Sequence[str] | None = None, mod
     if len(uncs) != len(chairs):
         raise ValueError(f"uncertainties: {len(uncs)} given for {len(chairs)} chairs; valid: one per chair")
     U = np.asarray(speeds, dtype=float)
+    check_eigen_work("samples", int(samples), solves_per_sample(sum(u is not None for u in uncs), len(U)))
     grid = _grid(max_speed)
     vals = _measures(chairs, model, U, grid)
     ivs = tuple(None if u is None else linear_intervals(c, u, model=model, speeds=U.tolist(), max_speed=max_speed,

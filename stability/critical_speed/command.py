@@ -36,6 +36,8 @@ from ..cli import (
     run,
 )
 from ..linear import StabilitySummary, analyse
+from ..linear.batch import check_eigen_work
+from ..linear.intervals import GRID_POINTS, solves_per_draw
 from ..summary import format_summary, simulator_checks, summary_dict
 
 if TYPE_CHECKING:
@@ -130,6 +132,8 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
     c = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
+    if args.uncertainty:
+        check_eigen_work("--samples", args.samples, solves_per_draw(len(speeds), GRID_POINTS))
     if not (0.01 < args.max_speed <= 100.0):
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)

@@ -18,7 +18,41 @@ from ..models import linear_matrices
 from ..params import parameters
 from .model import _assemble, _stiffness_for
 
-__all__ = ["ChairBatch"]
+__all__ = ["ChairBatch", "MAX_MATRICES", "EIGEN_SECONDS", "MAX_EIGEN_SOLVES", "check_eigen_work"]
+
+#: Largest number of state matrices assembled and solved in one call (memory bounded whatever the number of
+#: chairs and speeds): about 1 kB each with numpy's intermediates (order 6 to 8), so some 50 MB at most;
+#: more are solved in chunks of chairs.
+MAX_MATRICES = 50_000
+#: Cost of one eigenvalue problem of the linear model (order 6 to 8) in a batch, s: 25 us measured on one
+#: core of the 2-core CI machine with nothing else running, 76 us with both cores shared by other work.
+EIGEN_SECONDS = 25e-6
+#: Largest number of eigenvalue problems one call may ask for: 2.4e7 x 25 us = 10 minutes.
+MAX_EIGEN_SOLVES = 24_000_000
+
+
+def check_eigen_work(name: str, value: int, solves_per_unit: float) -> None:
+    """Refuse ``value`` units of work (samples, chairs) costing ``solves_per_unit`` eigenvalue problems each.
+
+    Parameters
+    ----------
+    name : str
+        The argument or option that asked for it (``"samples"``, ``"--samples"``).
+    value : int
+        Units asked for.
+    solves_per_unit : float
+        Eigenvalue problems per unit.
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``, the estimated time and the largest allowed value.
+    """
+    if value * solves_per_unit > MAX_EIGEN_SOLVES:
+        largest = int(MAX_EIGEN_SOLVES // solves_per_unit)
+        raise ValueError(f"{name}={value} is invalid: it asks for {value * solves_per_unit:.3g} eigenvalue problems "
+                         f"(about {value * solves_per_unit * EIGEN_SECONDS / 60:.0f} min); the largest allowed "
+                         f"here is {name}={largest}")
 
 
 class ChairBatch:
@@ -73,7 +107,17 @@ class ChairBatch:
         ndarray
             Shape ``broadcast(speeds, (N,))``.
         """
-        return np.linalg.eigvals(self.state_matrices(speeds, casters)).real.max(axis=-1)
+        U = np.asarray(speeds, dtype=float)
+        U = np.broadcast_to(U, np.broadcast_shapes(U.shape, (self.n,)))
+        per_chair = max(1, U.size // self.n)
+        step = max(1, MAX_MATRICES // per_chair)
+        if step >= self.n:
+            return np.linalg.eigvals(self.state_matrices(U, casters)).real.max(axis=-1)
+        out = np.empty(U.shape)
+        for i in range(0, self.n, step):           # bounded memory: chunks of chairs
+            idx = np.arange(i, min(i + step, self.n))
+            out[..., idx] = _SubBatch(self, idx).max_real_part(U[..., idx], casters)
+        return out
 
     def growth_rates(self, speeds: Sequence[float] | np.ndarray, casters: str = "free") -> np.ndarray:
         """Growth rate of the least stable mode of every chair at every speed (1/s).

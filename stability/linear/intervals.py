@@ -10,13 +10,35 @@ import numpy as np
 from ..chair import Chair
 from ..measure.propagation import delta_method, propagate
 from ..measure.uncertainty import Uncertainty
-from .batch import ChairBatch
+from .batch import ChairBatch, check_eigen_work
 from .summary import zero_width
 
-__all__ = ["LinearIntervals", "linear_intervals", "MAX_SAMPLES"]
+__all__ = ["LinearIntervals", "linear_intervals", "MAX_SAMPLES", "solves_per_draw", "GRID_POINTS",
+           "BISECTION_STEPS"]
 
 #: Largest Monte Carlo sample a command line accepts (bounded work: ~1 ms per chair).
 MAX_SAMPLES = 20_000
+
+
+#: Speeds of the critical-speed search grid (geometric from 0.01 m/s to ``max_speed``).
+GRID_POINTS = 600
+#: Bisection steps of a critical speed (grid spacing 1.3 % of at most 100 m/s down to 1e-6 m/s: 2^21 > 1.3e6).
+BISECTION_STEPS = 21
+
+
+def solves_per_draw(n_speeds: int, n_grid: int) -> int:
+    """Eigenvalue problems of one Monte Carlo draw: the table's speeds, then both caster states on the grid.
+
+    Parameters
+    ----------
+    n_speeds, n_grid : int
+        Speeds of the divergence table and of the critical-speed search grid.
+
+    Returns
+    -------
+    int
+    """
+    return n_speeds + 2 * (n_grid + BISECTION_STEPS)
 
 
 @dataclass(frozen=True)
@@ -94,8 +116,9 @@ def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "ex
     if not 1 <= int(samples) <= MAX_SAMPLES:
         raise ValueError(f"samples={samples!r} is invalid; valid range: 1 to {MAX_SAMPLES}")
     U = np.asarray(speeds, dtype=float)
-    grid = np.geomspace(0.01, max_speed, 600)
+    grid = np.geomspace(0.01, max_speed, GRID_POINTS)
     k = len(U)
+    check_eigen_work("samples", int(samples), solves_per_draw(k, len(grid)))
 
     def fn(chairs: list[Chair]) -> np.ndarray:
         return _outputs(chairs, model, U, grid)

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._validate import check_speeds
 from ..chair import Chair
 from ..models import zero_width as zw
 from ..params import parameters
@@ -274,6 +275,7 @@ def analyse(chair: Chair, model: str = "exact", speeds=(0.25, 0.5, 0.75, 1.0, 1.
     """
     if not (isinstance(max_speed, (int, float)) and max_speed > 0.01 and math.isfinite(max_speed)):
         raise ValueError(f"max_speed={max_speed!r} is invalid; valid range: 0.01 < max_speed < inf m/s")
+    speeds = check_speeds(speeds, "speeds")        # >= MIN_SPEED: the rates are lost in round-off below
     loads = static_loads(chair)
     st = static_stiffness(chair)
     per_deg = math.pi / 180.0

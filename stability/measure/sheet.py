@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from .. import chair as chair_mod
+from .. import readfiles
 from ..chair import Chair
 from .anthropometry import user_yaw_inertia
 from .bodies import Body, combine
@@ -432,11 +433,10 @@ def load_sheet(path: str | os.PathLike[str]) -> SheetResult:
     """
     if not os.path.exists(path):
         raise ValueError(f"sheet {str(path)!r} does not exist")
-    with open(path, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"sheet {str(path)!r} is not valid TOML: {exc}") from None
+    try:
+        data = readfiles.load_toml(path)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"sheet {str(path)!r} is not valid TOML: {exc}") from None
     return read_sheet(data)
 
 

@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from .. import chair as chair_mod
+from .. import readfiles
 from ..chair import Chair
 
 if sys.version_info >= (3, 11):
@@ -315,8 +316,8 @@ def load_uncertainty(path: str | os.PathLike[str]) -> Uncertainty:
     """
     if not os.path.exists(path):
         raise ValueError(f"uncertainty file {str(path)!r} does not exist")
-    with open(path, "rb") as fh:
-        try:
-            return from_mapping(tomllib.load(fh))
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"uncertainty file {str(path)!r} is not valid TOML: {exc}") from None
+    try:
+        data = readfiles.load_toml(path)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"uncertainty file {str(path)!r} is not valid TOML: {exc}") from None
+    return from_mapping(data)

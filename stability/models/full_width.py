@@ -145,7 +145,7 @@ def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str =
     """
     check_model(variant)
     check_casters(casters)
-    U = check_speeds(speeds)
+    U = check_speeds(speeds, floor=0.0)         # the public functions bound user speeds (MIN_SPEED)
     name = f"linear_{variant}" if casters == "free" else f"linear_locked_{variant}"
     fn = getattr(_fw, name)
     args = [U, stiffness["A"], stiffness["B"], stiffness["D"], stiffness["E"]]

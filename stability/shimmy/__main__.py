@@ -11,7 +11,7 @@ import numpy as np
 from .. import cli
 from .. import defaults as D
 from .band import ShimmyBand, shimmy_band
-from .chair import CasterCompliance, caster_summary, trail_chart
+from .chair import SECONDS_PER_SPEED, CasterCompliance, caster_summary, check_speed_count, trail_chart
 from .chair_modes import chair_shimmy
 
 
@@ -41,6 +41,8 @@ def _body(args) -> int:
     chair = cli.load_chair(args.chair, args.set)
     cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
     speeds = cli.parse_speeds(args.speeds)
+    check_speed_count("--speeds", len(speeds), SECONDS_PER_SPEED["summary"]
+                      + (SECONDS_PER_SPEED["chart"] if args.pdf else 0.0))
     comp = CasterCompliance()
     for name in ("relaxation_length", "lateral_stiffness"):
         v = getattr(args, name)

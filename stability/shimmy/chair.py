@@ -19,9 +19,38 @@ from . import describing
 from .compliance import ESTIMATE_NOTE, CasterCompliance
 from .towed_wheel import TowedWheel
 
-__all__ = ["CasterCompliance", "caster_wheel", "critical_trail", "friction_trail", "TrailChart", "trail_chart",
+__all__ = ["SECONDS_PER_SPEED", "WORK_BUDGET_S", "check_speed_count", "CasterCompliance", "caster_wheel",
+           "critical_trail", "friction_trail", "TrailChart", "trail_chart",
            "CasterSummary", "caster_summary",
            "ESTIMATE_NOTE"]
+
+#: Cost of one speed, s, measured on the 2-core CI machine under load (both cores shared with other work, load
+#: average 20; a quiet machine is several times faster): the summary (critical and friction trails by root
+#: finding on the towed-wheel model) and the PDF's trail chart (26 trails).
+SECONDS_PER_SPEED = {"summary": 1.7, "chart": 2.5}
+#: Work one call may ask for, s (ten minutes at the costs above).
+WORK_BUDGET_S = 600.0
+
+
+def check_speed_count(name: str, n_speeds: int, seconds_per_speed: float) -> None:
+    """Refuse ``n_speeds`` speeds costing ``seconds_per_speed`` each beyond :data:`WORK_BUDGET_S`.
+
+    Parameters
+    ----------
+    name : str
+        The argument or option of the speeds (``"speeds"``, ``"--speeds"``).
+    n_speeds : int
+    seconds_per_speed : float
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``, the estimated time and the largest allowed number of speeds.
+    """
+    if n_speeds * seconds_per_speed > WORK_BUDGET_S:
+        raise ValueError(f"{name}: {n_speeds} speeds would take about {n_speeds * seconds_per_speed / 60:.0f} min "
+                         f"({seconds_per_speed:g} s each); the largest allowed number is "
+                         f"{int(WORK_BUDGET_S // seconds_per_speed)}")
 
 
 def _static_stiffness(chair: Chair) -> dict[str, float]:
@@ -233,6 +262,7 @@ def trail_chart(chair: Chair, trails, speeds, compliance: CasterCompliance | Non
     comp = compliance or CasterCompliance()
     trails = np.asarray(trails, dtype=float)
     speeds = np.asarray(speeds, dtype=float)
+    check_speed_count("speeds", speeds.size, SECONDS_PER_SPEED["chart"] * trails.size / 26)
     div = np.empty((trails.size, speeds.size))
     need = np.empty_like(div)
     for i, t in enumerate(trails):
@@ -343,6 +373,7 @@ def caster_summary(chair: Chair, speeds, compliance: CasterCompliance | None = N
     """
     comp = compliance or CasterCompliance()
     U = np.asarray(speeds, dtype=float)
+    check_speed_count("speeds", U.size, SECONDS_PER_SPEED["summary"])
     w = caster_wheel(chair, comp)
     ev = np.atleast_2d(w.eigenvalues(U))
     osc = np.abs(ev.imag) > 1e-9 * np.abs(ev).max(axis=-1, keepdims=True)

@@ -24,8 +24,9 @@ from ..cli import (
 )
 from ..reference import THESIS_PUSH
 from .api import simulate
+from .bounds import MAX_DURATION_S, MAX_PUSH_N, MAX_ROWS, MAX_STEPS, ROW_BYTES
+from .options import ADAPTIVE_SAMPLE, OUT_OF_RANGE_POLICIES
 from .options import DEFAULTS as D
-from .options import OUT_OF_RANGE_POLICIES
 from .plot import plot_result
 
 __all__ = ["main", "build_parser"]
@@ -67,11 +68,10 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
-#: Bounds of the simulate command (bounded time and memory).
-MAX_STEPS = 20_000_000          # fixed steps of one run (10 s at 0.5 us)
-MAX_DURATION_S = 3600.0         # simulated time of one run
-MAX_PUSH_N = 10_000.0           # |lateral push|, N (a person pushes with a few hundred N at most)
+#: Bounds of the simulate command (bounded time and memory); the run's own are the API's (simulate.options).
 MAX_SPEED_M_S = 20.0            # a wheelchair does not go faster
+#: Rows of --csv/--json output: a CSV row of 32 columns is about 0.7 kB, so 1e5 rows = some 70 MB.
+MAX_OUTPUT_ROWS = 100_000
 
 
 def _check_options(args: argparse.Namespace) -> None:
@@ -84,7 +84,22 @@ def _check_options(args: argparse.Namespace) -> None:
         if not 0 < args.dt <= 0.1:
             raise ValueError(f"--dt {args.dt!r} is invalid; valid range: 0 < dt <= 0.1 s")
         check_work(f"--duration {args.duration:g} s with --dt {args.dt:g} s (time steps)", args.duration / args.dt,
-                   MAX_STEPS, f"use --dt >= {args.duration / MAX_STEPS:.2g} s or a shorter --duration")
+                   MAX_STEPS,
+                   f"use --dt >= {args.duration / MAX_STEPS:.2g} s or --duration <= {MAX_STEPS * args.dt:.4g} s")
+        check_work(f"--duration {args.duration:g} s with --dt {args.dt:g} s (rows of the stored history, "
+                   f"{ROW_BYTES} bytes each)", args.duration / args.dt, MAX_ROWS,
+                   f"use --dt >= {args.duration / MAX_ROWS:.2g} s or --duration <= {MAX_ROWS * args.dt:.4g} s")
+    if args.sample is None and (args.csv or args.json or args.json_file):     # every step is written
+        check_work(f"--duration {args.duration:g} s with --dt {args.dt:g} s (output rows, one a step)",
+                   args.duration / (args.dt if args.scheme == "wchair" else ADAPTIVE_SAMPLE), MAX_OUTPUT_ROWS,
+                   f"give --sample >= {args.duration / MAX_OUTPUT_ROWS:.2g} s")
+    if args.sample is not None:
+        if args.scheme == "wchair" and args.sample < args.dt:
+            raise ValueError(f"--sample {args.sample!r} is invalid; valid range: --dt ({args.dt:g} s) <= sample <= "
+                             f"--duration (a finer interval only interpolates between steps)")
+        check_work(f"--duration {args.duration:g} s with --sample {args.sample:g} s (output rows)",
+                   args.duration / args.sample, MAX_OUTPUT_ROWS,
+                   f"use --sample >= {args.duration / MAX_OUTPUT_ROWS:.2g} s")
     force, length = args.impulse
     if not (abs(force) <= MAX_PUSH_N and 0 <= length <= args.duration):
         raise ValueError(f"--impulse {force!r} {length!r} is invalid; valid range: |FORCE| <= {MAX_PUSH_N:g} N and "

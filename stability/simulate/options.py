@@ -17,6 +17,7 @@ from .. import defaults as D
 from .._validate import check_choice, check_finite, check_positive
 from ..reference import HORIZON, THESIS_PUSH
 from ..tires.data import FZ_MAX_N, SLIP_MAX_DEG
+from .bounds import check_pushes, check_rows, check_steps, check_tolerances
 
 __all__ = ["SCHEMES", "MODELS", "CASTERS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG",
            "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT", "SimulationDefaults", "DEFAULTS",
@@ -322,6 +323,7 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
     dt = check_positive("dt", _float(dt))
     if scheme == "wchair" and dt > duration:
         raise ValueError(f"dt={dt!r} is invalid; valid range: 0 < dt <= duration = {duration!r} s")
+    check_steps(scheme, duration, dt)
     impulse_force = check_finite("impulse_force", _float(impulse_force), unit="N")
     try:
         impulse_duration = float(impulse_duration)
@@ -331,6 +333,7 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
         raise ValueError(f"impulse_duration={impulse_duration!r} is invalid; valid range: >= 0 s (inf: constant force)")
     tire_impulse = check_finite("tire_impulse", _float(tire_impulse), unit="N")
     lateral_velocity = check_finite("lateral_velocity", _float(lateral_velocity), unit="m/s")
+    check_pushes(impulse_force, tire_impulse, lateral_velocity)
     eta0 = math.radians(check_finite("eta0_deg", _float(eta0_deg), unit="deg"))
     beta0 = math.radians(check_finite("beta0_deg", _float(beta0_deg), unit="deg"))
     if yaw_moment is not None and not callable(yaw_moment):
@@ -355,10 +358,8 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
             if stride < 1 or abs(ratio - stride) > 1e-6 * ratio:
                 raise ValueError(f"sample={sample!r} is invalid for scheme 'wchair'; valid values: a whole "
                                  f"multiple of dt = {dt!r} s")
-    rtol = check_positive("rtol", _float(rtol))
-    atol = check_positive("atol", _float(atol))
-    if rtol < 1e-13:
-        raise ValueError(f"rtol={rtol!r} is invalid; valid range: rtol >= 1e-13")
+    check_rows(duration, dt * stride if scheme == "wchair" else (sample or ADAPTIVE_SAMPLE))
+    rtol, atol = check_tolerances(rtol, atol)
     slope = check_slope(slope)
     if slope != (0.0, 0.0) and model != "exact":
         raise ValueError(f"model={model!r} is invalid on a slope (slope={slope!r} deg); valid values: 'exact' "

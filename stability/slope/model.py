@@ -19,7 +19,7 @@ from ..chair import Chair
 from ..models import full_width as fw
 from ..models import slope as sl
 from ..params import parameters
-from ..tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire
+from ..tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire, get_policy
 
 __all__ = ["Plane", "SlopeModel", "Forces", "MAX_ANGLE_DEG"]
 
@@ -103,6 +103,9 @@ class SlopeModel:
         self.main = chair.main_tire_model()
         self.caster = chair.caster_tire_model()
         self.rolling = (chair.caster_rolling_scale > 0, chair.main_rolling_scale > 0)
+        # --tire-range clamp: forces held at the data's edge, a load or slip beyond it noted, not refused
+        self.clamp = get_policy().name == "clamp"
+        self._policy = "clamp" if self.clamp else "extrapolate"
 
     # -- tire data range -----------------------------------------------------
     def range_problems(self, f: Forces) -> list[str]:
@@ -116,6 +119,10 @@ class SlopeModel:
                 continue
             if isinstance(tire, LinearTire):
                 continue
+            if self.clamp:
+                if abs(s) > SLIP_MAX_DEG or n > FZ_MAX_N:   # a note under the clamp policy (tires.collect_notes)
+                    tire.lateral_force(s, n, policy="clamp")
+                continue
             if abs(s) > SLIP_MAX_DEG:
                 out.append(f"{wheel} slip {abs(s):.2f} deg beyond the tire data (|slip| <= {SLIP_MAX_DEG:g} deg)")
             if n > FZ_MAX_N:
@@ -126,10 +133,11 @@ class SlopeModel:
     def lateral(self, slips_deg, loads) -> tuple[float, float, float, float]:
         """Lateral tire forces of A, B, D, E (N) from the fits (WCHAIR's law, extrapolated in slip)."""
         c, mtire = self.caster, self.main
-        return (c.lateral_force(slips_deg[0], loads[0], policy="extrapolate", warn=False),
-                c.lateral_force(slips_deg[1], loads[1], policy="extrapolate", warn=False),
-                mtire.lateral_force(slips_deg[2], loads[2], policy="extrapolate", warn=False),
-                mtire.lateral_force(slips_deg[3], loads[3], policy="extrapolate", warn=False))
+        pol = self._policy
+        return (c.lateral_force(slips_deg[0], loads[0], policy=pol, warn=False),
+                c.lateral_force(slips_deg[1], loads[1], policy=pol, warn=False),
+                mtire.lateral_force(slips_deg[2], loads[2], policy=pol, warn=False),
+                mtire.lateral_force(slips_deg[3], loads[3], policy=pol, warn=False))
 
     def rolling_forces(self, loads, vx) -> tuple[float, ...]:
         """Rolling-resistance forces along each wheel's heading (N), opposing its rolling velocity."""

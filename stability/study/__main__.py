@@ -21,7 +21,7 @@ from ..cli import (
     run,
 )
 from ..reference import THESIS_PUSH, Push
-from .impulse import critical_impulse_curve
+from .impulse import check_study_work, critical_impulse_curve, runs_per_speed
 from .impulse_intervals import critical_impulse_intervals
 from .intervals import equal_instability_interval
 
@@ -71,6 +71,8 @@ def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair) -> None
 def _critical(args: argparse.Namespace) -> None:
     chair = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
+    check_study_work([chair] * len(speeds), speeds, args.model, args.horizon, 0.001,
+                     runs_per_speed(max_impulse=args.max_impulse), "--horizon")
     curve = critical_impulse_curve(chair, speeds, model=args.model, duration=args.duration, level=args.level,
                                    horizon=args.horizon, max_impulse=args.max_impulse)
     lines = [f"{chair.name}, {args.model} model: critical impulse for |yaw rate| >= {args.level:g} rad/s "

@@ -21,7 +21,8 @@ from ..reference import HORIZON, LEVEL, THESIS_PUSH, Push
 from . import runs
 from .criteria import Criterion
 
-__all__ = ["CriticalImpulse", "CriticalImpulseCurve", "critical_impulses", "critical_impulse",
+__all__ = ["runs_per_speed", "check_study_work", "STEP_SECONDS", "WORK_BUDGET_S", "CriticalImpulse",
+           "CriticalImpulseCurve", "critical_impulses", "critical_impulse",
            "critical_impulse_curve", "push_impulse"]
 
 SCHEMES = ("wchair", "adaptive")
@@ -165,6 +166,67 @@ def _initial_grid(lo: float, hi: float, factor: float) -> np.ndarray:
     return hi / factor ** np.arange(n, -1, -1.0)
 
 
+#: Cost of one compiled WCHAIR step in a batch, s: 0.2 us measured on a quiet machine (a 10 s run in 2 ms),
+#: taken five times over for a loaded one (both cores shared).
+STEP_SECONDS = 1e-6
+#: Simulation one call may ask for, s (ten minutes at :data:`STEP_SECONDS`).
+WORK_BUDGET_S = 600.0
+
+
+def runs_per_speed(min_impulse: float = 1e-6, max_impulse: float = 40.0, candidates: int = 7,
+                   max_rounds: int = 8) -> int:
+    """Most runs :func:`critical_impulses` makes at one speed: the first grid, then ``candidates`` a round.
+
+    Parameters
+    ----------
+    min_impulse, max_impulse : float
+        N s.
+    candidates, max_rounds : int
+
+    Returns
+    -------
+    int
+    """
+    return len(_initial_grid(min_impulse, max_impulse, 4.0)) + (max_rounds - 1) * candidates
+
+
+def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, horizon: float, dt: float,
+                     runs_per_speed: int, name: str = "horizon") -> None:
+    """Refuse a study whose simulation (count x cost) exceeds :data:`WORK_BUDGET_S`.
+
+    Each of ``runs_per_speed`` runs at a speed takes ``horizon / step`` steps, the step being ``dt`` or the
+    smaller stable step the studies pick at slow speeds (:func:`stability.simulate.stepcheck.stable_steps`).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One per speed (broadcast).
+    speeds : ndarray
+        m/s.
+    model : str
+    horizon, dt : float
+        s.
+    runs_per_speed : int
+    name : str
+        The argument or option to name (``"horizon"``, ``"--horizon"``).
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``, the estimate and the largest allowed value.
+    """
+    from ..simulate.stepcheck import auto_step, stable_steps
+
+    limits = np.ravel(stable_steps(list(chairs), np.asarray(speeds, dtype=float), model, "free"))
+    steps = [min(dt, auto_step(float(x))) for x in limits]
+    seconds = runs_per_speed * sum(horizon / h for h in steps) * STEP_SECONDS
+    if seconds > WORK_BUDGET_S:
+        raise ValueError(f"{name}={horizon:g} s is invalid here: {len(steps)} speed(s) x {runs_per_speed} runs of up "
+                         f"to {horizon:g} s at steps down to {min(steps):.2g} s would take about {seconds / 60:.0f} "
+                         f"min; the largest allowed {name} is {horizon * WORK_BUDGET_S / seconds:.3g} s "
+                         "(or fewer or faster speeds)")
+
+
 def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: str = "exact",
                       scheme: str = "wchair", duration: float = THESIS_PUSH.duration, level: float = LEVEL,
                       horizon: float = HORIZON, dt: float = 0.001, max_impulse: float = 40.0,
@@ -220,6 +282,9 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
                                                                                                               dtype=object)
     chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
+    if scheme == "wchair":
+        check_study_work(list(chair_b.ravel()), speed_b.ravel(), model, horizon, dt,
+                         runs_per_speed(min_impulse, max_impulse, candidates, max_rounds))
     unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
     crit = Criterion(level, horizon)
     opts = runs.sim_options(model, scheme, (0.0, duration), dt if scheme == "wchair" else None, horizon, sim_options)

@@ -7,6 +7,7 @@ import math
 import os
 from pathlib import Path
 
+from .. import readfiles
 from .data import _ALL, _cornering_coefficients, _rolling_coefficients, _table_3_2
 from .linear_tire import AnyTire, LinearTire
 from .model import Tire
@@ -129,6 +130,7 @@ def _from_file(spec: str) -> Tire:
         raise ValueError(f"tire data {str(path)!r} cannot be read: {exc.__class__.__name__}: {exc.strerror}") from None
     if not path.is_file():
         raise ValueError(f"tire data {str(path)!r} is not a file (spec={spec!r})")
+    readfiles.note(path)                      # an input of the command, even when the parse is cached
     return _file_tire(str(path), st.st_mtime_ns, st.st_size)
 
 

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import readfiles
 from .cart import CartGeometry, cart_forces
 from .data import _ALL, SLIP_MAX_DEG
 from .fit import fit_per_angle
@@ -268,7 +269,7 @@ def read_tire_csv(path: str | os.PathLike[str], cart: CartGeometry | None = None
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        text = readfiles.read_text(p)
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"tire data {str(p)!r} cannot be read: {exc.__class__.__name__}: {exc}") from None
     meta, rows, header = _parse(p, text)

@@ -1,0 +1,242 @@
+"""Numbers at the command lines: every numeric option parsed by name within a plausibility bound, and no
+non-finite result printed.
+
+:func:`number` is the argparse ``type`` that :class:`stability.cli.OneLineErrorParser`
+installs for every ``type=float`` and ``type=int`` option, so that a refusal always
+names the option, the value and the valid range (:data:`OPTION_BOUNDS`).
+:func:`check_finite_text` and :func:`first_non_finite` find a NaN or an infinity in
+what a command is about to print or write (:class:`NonFiniteResult`, reported as
+``error: could not compute ...``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+from collections.abc import Callable
+from typing import Any, NamedTuple
+
+import numpy as np
+
+__all__ = ["Bound", "OPTION_BOUNDS", "bound_for", "number", "NonFiniteResult", "first_non_finite",
+           "check_finite_text"]
+
+
+def _num(x: float) -> str:
+    """A bound as written: integers in full (4294967295), others in ``%g``."""
+    return str(int(x)) if float(x).is_integer() and abs(x) < 1e15 else f"{x:g}"
+
+
+class Bound(NamedTuple):
+    """Plausible range of a numeric option, ``lo <= value <= hi`` in ``unit`` (``<`` at an open end)."""
+
+    lo: float
+    hi: float
+    unit: str
+    open_lo: bool = False
+    open_hi: bool = False
+
+    def text(self) -> str:
+        """The range in words, e.g. ``"0 < value <= 20 m/s"``.
+
+        Returns
+        -------
+        str
+        """
+        unit = f" {self.unit}" if self.unit else ""
+        return (f"{_num(self.lo)} {'<' if self.open_lo else '<='} value {'<' if self.open_hi else '<='} "
+                f"{_num(self.hi)}{unit}")
+
+    def holds(self, value: float) -> bool:
+        """True when ``value`` lies in the range (NaN never does).
+
+        Parameters
+        ----------
+        value : float
+
+        Returns
+        -------
+        bool
+        """
+        return ((self.lo < value if self.open_lo else self.lo <= value)
+                and (value < self.hi if self.open_hi else value <= self.hi))
+
+
+#: Plausibility bound of every numeric option of every command, by option name; ``"command:--option"``
+#: overrides where one name means another quantity in one command.  Each is wide enough for any real
+#: wheelchair, user, sensor and road, and narrow enough that a typo or an attack (1e308, 1e-300) is refused
+#: by name before any work.  The work an option costs (time steps, samples, speeds) is bounded separately by
+#: each command's estimate of time and memory (count x cost).
+OPTION_BOUNDS: dict[str, Bound] = {
+    # speeds: a wheelchair, powered or pushed, does not exceed 20 m/s (72 km/h)
+    "--speed": Bound(0.01, 20.0, "m/s"),       # 0.01: stability._validate.MIN_SPEED (round-off below)
+    "--max-speed": Bound(0.01, 100.0, "m/s", open_lo=True),
+    # counts and seeds
+    "--samples": Bound(1, 20_000, ""),
+    "--nonlinear-samples": Bound(1, 20_000, ""),
+    "--seed": Bound(0, 2**32 - 1, ""),
+    "--level": Bound(0.0, 1.0, "", open_lo=True, open_hi=True),          # a probability (confidence level)
+    "study:--level": Bound(0.0, 50.0, "rad/s", open_lo=True),   # a yaw-rate level
+    # pushes: a person pushes with a few hundred N; 10 kN is a collision
+    "--impulse": Bound(-10_000.0, 10_000.0, "N or s"),
+    "--tire-impulse": Bound(-10_000.0, 10_000.0, "N"),
+    "--max-impulse": Bound(0.0, 1_000.0, "N s", open_lo=True),
+    "--force": Bound(0.0, 10_000.0, "N", open_lo=True),
+    "--lateral-velocity": Bound(-5.0, 5.0, "m/s"),
+    "--eta0": Bound(-180.0, 180.0, "deg"),
+    "--beta0": Bound(-180.0, 180.0, "deg"),
+    # roads: no wheelchair ramp or road is steeper than 45 deg (commands bound it further)
+    "--cross-slope": Bound(-45.0, 45.0, "deg"),
+    "--grade": Bound(-45.0, 45.0, "deg"),
+    # times: an hour of simulated motion; a push of at most 10 s; sample intervals from 1 us
+    "--duration": Bound(0.0, 3600.0, "s", open_lo=True),
+    "study:--duration": Bound(0.0, 10.0, "s", open_lo=True),
+    "--horizon": Bound(0.0, 3600.0, "s", open_lo=True),
+    "--sim-time": Bound(0.0, 3600.0, "s", open_lo=True),
+    "--dt": Bound(1e-6, 0.1, "s"),
+    "--sample": Bound(1e-6, 3600.0, "s"),
+    # integrator tolerances: below 1e-12 (relative) or 1e-14 (absolute, states of order 1) double precision
+    # (eps 2.2e-16) cannot meet them and the step size collapses
+    "--rtol": Bound(1e-12, 0.1, ""),
+    "--atol": Bound(1e-14, 1.0, ""),
+    # assist: drive train, gyro and controller
+    "--max-heading-error": Bound(0.0, 90.0, "deg", open_lo=True),
+    "--max-yaw-rate": Bound(0.0, 1000.0, "deg/s"),
+    "--torque-limit": Bound(1.0, 1000.0, "N m"),
+    "--torque-budget": Bound(0.1, 1000.0, "N m"),
+    "--wheel-radius": Bound(0.05, 1.0, "m"),                # a caster's radius to a 2 m (78 in) wheel
+    "--handrim-radius": Bound(0.05, 1.0, "m"),
+    "--gyro-noise": Bound(0.0, 100.0, "deg/s/sqrt(Hz)"),
+    "--gyro-bias": Bound(-100.0, 100.0, "deg/s"),
+    "--sample-rate": Bound(10.0, 2_000.0, "Hz"),            # controller rates in use: 50 Hz to 1 kHz
+    "--bias-time-constant": Bound(0.0, 1000.0, "s"),
+    "--motor-lag": Bound(0.0, 0.5, "s"),
+    # shimmy: caster tire and frame
+    "--relaxation-length": Bound(0.0, 1.0, "m", open_lo=True),
+    "--lateral-stiffness": Bound(0.0, 1e8, "N/m", open_lo=True),
+    "--amplitude-deg": Bound(0.0, 45.0, "deg", open_lo=True, open_hi=True),
+}
+
+
+def bound_for(prog: str | None, option: str) -> Bound | None:
+    """The bound of ``option`` in the command whose parser is called ``prog``.
+
+    Parameters
+    ----------
+    prog : str or None
+        The parser's ``prog``, e.g. ``"python -m stability.study critical-impulse"``.
+    option : str
+        The option, e.g. ``"--level"``; ``"command:--option"`` entries win.
+
+    Returns
+    -------
+    Bound or None
+        None when :data:`OPTION_BOUNDS` has no entry.
+    """
+    words = [w for w in (prog or "").split() if w.startswith("stability.")]
+    command = words[0].rsplit(".", 1)[-1] if words else ""
+    for key in (f"{command}:{option}", option):
+        if key in OPTION_BOUNDS:
+            return OPTION_BOUNDS[key]
+    return None
+
+
+def number(option: str, kind: type = float, bound: Bound | None = None) -> Callable[[str], float]:
+    """An argparse ``type`` that parses one number of option ``option``, finite and inside ``bound``.
+
+    Every numeric option of every command is parsed by one of these (the
+    parser installs it for ``type=float`` and ``type=int``), so a refusal
+    always names the option, the value and the valid range.
+
+    Parameters
+    ----------
+    option : str
+        The option's name, e.g. ``"--seed"``.
+    kind : type
+        ``float`` or ``int``.
+    bound : Bound, optional
+        The plausible range (default: any finite number).
+
+    Returns
+    -------
+    callable
+        ``parse(text) -> float or int``, raising :class:`argparse.ArgumentTypeError`.
+    """
+    expected = "an integer" if kind is int else "a finite number"
+
+    def parse(text: str) -> Any:
+        rng = f"; valid range: {bound.text()}" if bound else ""
+        try:
+            value = kind(text)
+        except (TypeError, ValueError, OverflowError):
+            raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; expected {expected}{rng}") from None
+        if kind is float and not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; expected {expected}{rng}")
+        if bound is not None and not bound.holds(value):
+            raise argparse.ArgumentTypeError(f"{option} {text} is invalid; valid range: {bound.text()}")
+        return value
+
+    parse.__name__ = kind.__name__        # argparse names the type in its own messages
+    return parse
+
+
+class NonFiniteResult(ArithmeticError):
+    """A result that is NaN or infinite: never printed, reported as ``error: could not compute ...``."""
+
+
+def first_non_finite(data: Any, where: str = "") -> str:
+    """The key path of the first NaN or infinity in JSON-like ``data``.
+
+    Parameters
+    ----------
+    data : Any
+        Dicts, lists, tuples, arrays and numbers.
+    where : str
+        Path of ``data`` itself.
+
+    Returns
+    -------
+    str
+        E.g. ``"rows[0]['growth_rate_1_s']"``; empty when every number is finite.
+    """
+    if isinstance(data, dict):
+        items: Any = data.items()
+    elif isinstance(data, (list, tuple, np.ndarray)):
+        items = enumerate(data)
+    else:
+        try:
+            return "" if math.isfinite(float(data)) else (where or "value")
+        except (TypeError, ValueError):
+            return ""
+    for key, value in items:
+        found = first_non_finite(value, f"{where}[{key!r}]" if where else str(key))
+        if found:
+            return found
+    return ""
+
+
+#: A NaN or an infinity printed as a number (a word such as "info" or "infinite" is not one).
+_NON_FINITE_TEXT = re.compile(r"(?:^|(?<=[\s(\[=:,]))[-+]?(?:nan|inf|infinity)(?=$|[\s)\],;])",
+                              re.IGNORECASE | re.MULTILINE)
+
+
+def check_finite_text(text: str) -> None:
+    """Refuse text output that prints a NaN or an infinity as a result.
+
+    Parameters
+    ----------
+    text : str
+        What a command is about to print.
+
+    Raises
+    ------
+    NonFiniteResult
+        Quoting the line that holds the non-finite number.
+    """
+    m = _NON_FINITE_TEXT.search(text)
+    if m:
+        start = text.rfind("\n", 0, m.start()) + 1
+        end = text.find("\n", m.end())
+        line = text[start:end if end >= 0 else len(text)].strip()
+        raise NonFiniteResult(f"a result is not finite ({line[:120]!r})")
