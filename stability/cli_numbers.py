@@ -112,6 +112,8 @@ OPTION_BOUNDS: dict[str, Bound] = {
     "--sample-rate": Bound(10.0, 2_000.0, "Hz"),            # controller rates in use: 50 Hz to 1 kHz
     "--bias-time-constant": Bound(0.0, 1000.0, "s"),
     "--motor-lag": Bound(0.0, 0.5, "s"),
+    # advise: a static stability (tip) angle; a chair tips over at 0 deg and none is stable beyond 60 deg
+    "--min-tip-deg": Bound(0.0, 60.0, "deg", open_lo=True),
     # shimmy: caster tire and frame
     "--relaxation-length": Bound(0.0, 1.0, "m", open_lo=True),
     "--lateral-stiffness": Bound(0.0, 1e8, "N/m", open_lo=True),

@@ -447,7 +447,7 @@ def test_numpy_floating_point_warnings_are_not_printed(capsys):
 
 @pytest.mark.parametrize("command,argv,option", [
     ("simulate", ["--duration", "0.5", "--csv", "out.csv"], "out.csv"),
-    ("simulate", ["--duration", "0.5", "--plot", "out.pdf"], "out.pdf"),
+    ("simulate", ["--duration", "0.5", "-o", "out.pdf"], "out.pdf"),
     ("critical_speed", ["--speeds", "0.5,1", "--json-file", "out.json"], "out.json"),
 ])
 def test_a_full_disk_is_one_line_naming_the_file_and_nothing_is_left(command, argv, option, tmp_path, monkeypatch,

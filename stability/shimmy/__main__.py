@@ -42,7 +42,7 @@ def _body(args) -> int:
     cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
     speeds = cli.parse_speeds(args.speeds)
     check_speed_count("--speeds", len(speeds), SECONDS_PER_SPEED["summary"]
-                      + (SECONDS_PER_SPEED["chart"] if args.pdf else 0.0))
+                      + (SECONDS_PER_SPEED["chart"] if args.output else 0.0))
     comp = CasterCompliance()
     for name in ("relaxation_length", "lateral_stiffness"):
         v = getattr(args, name)
