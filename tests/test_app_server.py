@@ -15,7 +15,7 @@ from stability.app.server import _is_loopback, main
 
 
 @pytest.mark.parametrize("argv, fragment", [(["--port", "70000"], "--port 70000 is invalid; valid range: 0 to 65535"),
-                                            (["--port", "x"], "argument --port: invalid int value: 'x'"),
+                                            (["--port", "x"], "--port 'x' is invalid; expected an integer"),
                                             (["--host", "no.such.host.invalid"], "--host 'no.such.host.invalid'")])
 def test_bad_options_are_one_line(capsys, argv, fragment):
     try:

@@ -502,8 +502,9 @@ def test_numpy_scalars_are_real_numbers_in_a_chair():
 
 def test_the_smallest_caster_swivel_inertia_answers_the_massless_caster_limit():
     """i_zp -> 0 is a regular limit (the swivel mode runs off to -infinity, the caster trails its contact point):
-    the rates are linear in i_zp near 0, so at the bound 1e-5 kg m^2 they equal the limit extrapolated from
-    1e-5 and 2e-5 within 1e-4 relative (observed 2e-6: the O(i_zp) term is 1e-6 of the rate per 1e-5)."""
+    the rates are linear in i_zp near 0, so at the bound 1e-6 kg m^2 they equal the limit extrapolated from
+    1e-6 and 2e-6 within 1e-4 relative (the O(i_zp) term is 2e-7 of the rate per 1e-6; the eigenvalue's
+    rounding, eps ||A|| kappa, about 1e-6 relative at this inertia)."""
     import numpy as np
 
     import stability
@@ -513,10 +514,10 @@ def test_the_smallest_caster_swivel_inertia_answers_the_massless_caster_limit():
         c = chair_mod.preset("ej-premier").replace(m_c=0.0, i_zp=i_zp)
         return np.array([d.rate for d in stability.analyse(c).divergence])
 
-    r1, r2 = rates(1e-5), rates(2e-5)
+    r1, r2 = rates(1e-6), rates(2e-6)
     limit = 2 * r1 - r2                                 # linear extrapolation to i_zp = 0
     np.testing.assert_allclose(r1, limit, rtol=1e-4)
-    assert chair_mod.LIMITS["i_zp"][0] == 1e-5
+    assert chair_mod.LIMITS["i_zp"][0] == 1e-6
 
 
 def test_small_speed_limit_rates_are_proportional_to_speed_and_below_it_refused():

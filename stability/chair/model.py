@@ -222,11 +222,12 @@ LIMITS: dict[str, tuple[float, float, bool]] = {
     "t1": (0.05, 1.0, True), "t2": (0.05, 1.0, True),
     "h": (0.0, 2.0, True),
     "m": (5.0, 1000.0, True), "m_c": (0.0, 50.0, True),
-    # i_zp >= 1e-5: with no swivel inertia the caster's swivel equation has none and the mass matrix is
+    # i_zp >= 1e-6: with no swivel inertia the caster's swivel equation has none and the mass matrix is
     # singular.  The limit is regular (the swivel mode runs off to -infinity, the caster trails its contact
-    # point): rates at 1e-5 equal the limit within 1e-4 relative (tests/test_cli_catalogue.py), so the bound
-    # answers the massless-caster question; the smallest real caster (a 50 mm wheel) has about 1e-4.
-    "i_z": (0.01, 500.0, True), "i_zp": (1e-5, 5.0, True),
+    # point): rates at 1e-6 equal the limit within 1e-4 relative (tests/test_cli_catalogue.py; closed form
+    # stability.linear.massless_caster_rate), so the bound answers the massless-caster question; the
+    # smallest real caster (a 50 mm wheel) has about 1e-4.
+    "i_z": (0.01, 500.0, True), "i_zp": (1e-6, 5.0, True),
     "pin_friction_left": (0.0, 50.0, True), "pin_friction_right": (0.0, 50.0, True),
     "pin_damping": (0.0, 100.0, True),
     "roll_k": (0.001, 1000.0, True),
@@ -324,7 +325,8 @@ def _check_limits(c: Chair) -> None:
             extra = ", or None for the tire's own" if name == "camber_coefficient" else ""
             if name == "i_zp" and value < lo:
                 extra = (" (a caster with no swivel inertia about its pin makes the model singular; its "
-                         f"massless-caster limit is reached at i_zp = {lo:g}, whatever m_c)")
+                         f"massless-caster limit is reached at i_zp = {lo:g}, whatever m_c; closed form: "
+                         "stability.linear.massless_caster_rate)")
             raise bad(name, value, valid_range(name) + extra)
 
 
