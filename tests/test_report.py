@@ -862,7 +862,7 @@ def test_decision_page_is_the_advisor(quick):
     assert r.label[1:] in text
     assert f"{r.measures.critical_impulse_Ns.value:.3g} N s" in text
     header, rows = decision_rows(d)
-    assert header[1:] == [d.chair.name, "recommended"]
+    assert header[1:] == ["this chair", "recommended"]
     assert rows[0][1].startswith(f"{a.verdict.critical_impulse_Ns.value:.3g}")
     names, vals, lo, hi = decision_bars(d)
     assert all(low <= v <= high for v, low, high in zip(vals, lo, hi, strict=True))

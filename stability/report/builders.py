@@ -50,7 +50,7 @@ def _p_decision(d: ReportData) -> Figure:
     y = 1.0
     for para in decision_paragraphs(d) + [clinician_text(d)]:
         head = para.split(" ", 1)[0].rstrip(".").isupper()       # VERDICT., RECOMMENDATION., ...
-        for i, line in enumerate(P.wrap_text(para, 80)):
+        for i, line in enumerate(P.wrap_text(para, 76)):
             ax_text.text(0.0, y, line, fontsize=9.3, va="top", transform=ax_text.transAxes,
                          fontweight="bold" if i == 0 and head else "normal")
             y -= 0.034
@@ -62,7 +62,8 @@ def _p_decision(d: ReportData) -> Figure:
                  wrap=[30] + [16] * (n - 1), top=1.0, bottom=0.0)
     ax_table.set_title("key numbers (ranges over push, pin friction and model)", fontsize=9)
     names, vals, lows, highs = decision_bars(d)
-    P.decision_chart(names, vals, lows, highs, ax_bar, reference_speed=REFERENCE_SPEED)
+    P.decision_chart(names, vals, lows, highs, ax_bar, reference_speed=REFERENCE_SPEED,
+                     title=f"{d.chair.name}: how fast before it is as unstable as the thesis's reference case")
     return fig
 
 

@@ -49,8 +49,10 @@ def clinician_text(d: ReportData) -> str:
     out = [f"FOR THE CLINICIAN. After a firm sideways shove ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) "
            f"{c.name} spins up to {d.thesis.criterion.yaw_rate:g} rad/s (about 60 deg/s): {times}. The user must "
            "correct well before that: for the thesis's chair the thesis estimated the time before the turn speeds "
-           f"up sharply at {thesis} (Table 8-2). The thesis advises rear-caster chairs primarily for indoor use, "
-           "inclines only with another person's help, and not above about 2 m/s (7 km/h)."]
+           f"up sharply at {thesis} (Table 8-2)."]
+    if c.caster_position == "rear":
+        out.append("The thesis advises rear-caster chairs primarily for indoor use, inclines only with another "
+                   "person's help, and not above about 2 m/s (7 km/h).")
     s = d.slope
     if s is not None and s.drive == "handrim":
         slopes = np.asarray(s.curve.cross_slopes_deg, float)

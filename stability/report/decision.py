@@ -82,11 +82,19 @@ def decision_paragraphs(d: ReportData) -> list[str]:
     r = a.recommendations[0]
     c = r.candidate
     rm = c.measures
+    if not c.changes:
+        out.append("RECOMMENDATION. No change: none of the levers tried raises the low ends of both the critical "
+                   "impulse and the equal-instability speed while meeting every constraint"
+                   + (" (the chair already resists the largest push tried)." if m.critical_impulse_status == "never"
+                      else "."))
+        return out
     out.append(f"RECOMMENDATION. {c.label[0].upper() + c.label[1:]}. Judged on the low ends of the ranges it "
                f"raises the critical impulse by {100 * c.gains['critical_impulse']:+.0f} % and the "
                f"equal-instability speed by {100 * c.gains['equal_instability_speed']:+.0f} %: predicted "
-               f"{rm.critical_impulse_Ns.value:.3g} N s{_range(rm.critical_impulse_Ns, 'N s')} and "
-               f"{_kmh(rm.equal_instability_speed_m_s.value or 0.0)}.")
+               + (">" if rm.critical_impulse_status == "never" else "")
+               + f"{rm.critical_impulse_Ns.value:.3g} N s{_range(rm.critical_impulse_Ns, 'N s')} and "
+               + {"above": "> ", "below": "< "}.get(rm.equal_instability_status, "")
+               + f"{_kmh(rm.equal_instability_speed_m_s.value or 0.0)}.")
     costs = "; ".join(_cost(k.name, k.value) + ("" if k.met else " (limit NOT met)") for k in c.constraints)
     out.append("WHAT IT COSTS. " + costs[:1].upper() + costs[1:] + "."
                + (" The trail is shimmy-free only with the estimated pin stiffness and tire relaxation length: "
@@ -124,7 +132,7 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
     (list of str, list of list of str)
     """
     a = d.advice
-    cols = [(a.chair.name, a.verdict, a.chair.trail)]
+    cols = [("this chair", a.verdict, a.chair.trail)]
     if a.recommendations:
         c = a.recommendations[0].candidate
         cols.append(("recommended", c.measures, c.fields.get("trail", a.chair.trail)))
@@ -150,7 +158,7 @@ def decision_bars(d: ReportData) -> tuple[list[str], list[float], list[float], l
     (names, values, lows, highs)
     """
     a = d.advice
-    items = [(a.chair.name, a.verdict)]
+    items = [("this chair", a.verdict)]
     if a.recommendations:
         items.append(("recommended", a.recommendations[0].candidate.measures))
     if d.reference_measures is not None and a.chair.name != REFERENCE_CHAIR:
