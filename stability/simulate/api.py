@@ -50,6 +50,11 @@ def reference_engine() -> Iterator[None]:
         _REFERENCE.reset(token)
 
 
+def using_reference_engine() -> bool:
+    """True inside :func:`reference_engine` (WCHAIR runs take the pure-Python/numpy reference paths)."""
+    return bool(_REFERENCE.get())
+
+
 def _check_chair(chair: Any) -> Chair:
     if not isinstance(chair, Chair):
         raise ValueError(f"chair={chair!r} is invalid; expected a stability.chair.Chair "

@@ -26,7 +26,7 @@ from .controller import SampledController
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
 from .results import RunStats, SimulationResult
 
-__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled", "slope_slots"]
+__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled", "run_summaries", "slope_slots"]
 
 #: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
 RECORDS = ("all", "states", "final")
@@ -202,25 +202,13 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
         (the tire's own error).
     """
     k = _kernel()
-    pk = _Packed(chairs, speeds, opts, forces)
     n_runs = len(chairs)
     steps = n_steps(opts)
     mode = RECORDS.index(record)
-    ncol = (k.NREC_ALL, k.NREC_STATES, k.NREC_ALL)[mode]
     nrec = 1 if mode == 2 else (steps - 1) // opts.stride + 1
     levels = np.array(STATS_LEVELS, dtype=float)
-    cfg = np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, steps, opts.stride,
-                    0 if opts.model == "thesis" else 1, opts.casters == "locked", opts.stop_on_warnings,
-                    _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
-                    *slope_slots(opts)], dtype=float)
-    ctl = (controller or SampledController.none()).arrays()
-    rec = np.empty((n_runs, ncol, nrec))
-    stats = np.full((n_runs, 3 + len(levels)), np.nan)
-    warn = np.zeros((n_runs, 3, 3))
-    status = np.zeros((n_runs, 6))
-    counts = np.zeros(n_runs, dtype=np.int64)
-    _launch(k, threads, n_runs, (pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK, cfg,
-                                 levels, *ctl, rec, stats, warn, status, counts))
+    rec, stats, warn, status, counts = _launch_runs(k, chairs, speeds, opts, forces, controller, mode, nrec, levels,
+                                                    -1, threads)
     _raise_refused(chairs, opts, status)
     times = np.arange(nrec) * float(opts.stride) * opts.dt
     settings = opts.settings()
@@ -263,6 +251,76 @@ def kernel_entry_guard() -> AbstractContextManager:
     except ValueError:          # no parallel launch yet: the layer is not chosen
         return KERNEL_LOCK
     return nullcontext() if layer in THREAD_SAFE_LAYERS else KERNEL_LOCK
+
+
+def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None,
+                 controller: SampledController | None, mode: int, nrec: int, levels: np.ndarray, stop_level: int,
+                 threads: int | None) -> tuple[np.ndarray, ...]:
+    """Pack, allocate and run the kernel once: ``(rec, stats, warn, status, counts)``."""
+    pk = _Packed(chairs, speeds, opts, forces)
+    n_runs = len(chairs)
+    ncol = (k.NREC_ALL, k.NREC_STATES, k.NREC_ALL)[mode]
+    cfg = np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, n_steps(opts), opts.stride,
+                    0 if opts.model == "thesis" else 1, opts.casters == "locked", opts.stop_on_warnings,
+                    _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
+                    *slope_slots(opts), stop_level], dtype=float)
+    ctl = (controller or SampledController.none()).arrays()
+    rec = np.empty((n_runs, ncol, nrec))
+    stats = np.full((n_runs, 3 + len(levels)), np.nan)
+    warn = np.zeros((n_runs, 3, 3))
+    status = np.zeros((n_runs, 6))
+    counts = np.zeros(n_runs, dtype=np.int64)
+    _launch(k, threads, n_runs, (pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK, cfg,
+                                 levels, *ctl, rec, stats, warn, status, counts))
+    return rec, stats, warn, status, counts
+
+
+def run_summaries(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
+                  levels: Sequence[float] = STATS_LEVELS, stop_level: int | None = None,
+                  threads: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Run the compiled WCHAIR scheme keeping only each run's summaries; optionally stop every run at a level.
+
+    The same kernel and arithmetic as :func:`run_compiled` (one final row
+    recorded, nothing built per run): what a search over pushes or speeds
+    needs, at the cost of the kernel alone.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One chair per run.
+    speeds : ndarray
+        Initial forward speeds, m/s, shape ``(len(chairs),)``.
+    opts : Options
+        Checked options, ``scheme="wchair"``, no Python ``yaw_moment``.
+    forces : ndarray, optional
+        Per-run push at the c.g., N.
+    levels : sequence of float
+        |yaw rate| levels whose first crossing is reported, rad/s.
+    stop_level : int, optional
+        Index into ``levels``: every run stops at the step at which
+        ``|yaw rate|`` first reaches that level (its summaries are final then:
+        the first crossing is found, and the peak up to it is the level).
+        None: every run goes to the end.
+    threads : int, optional
+        Kernel threads (None: numba's default).
+
+    Returns
+    -------
+    stats : ndarray, shape (n, 3 + len(levels))
+        Peak |yaw rate| (rad/s), its time (s), the first time at each level
+        (s, NaN: never), the time of the last step (s).
+    status : ndarray, shape (n, 6)
+        ``status[:, 0]``: 0 ran to the end, 1 stopped by the warning rule, 2
+        stopped at the level; ``status[:, 1]``: when, s.
+    """
+    k = _kernel()
+    lv = np.array(levels, dtype=float)
+    stop = -1 if stop_level is None else int(stop_level)
+    if not -1 <= stop < len(lv):
+        raise ValueError(f"stop_level={stop_level!r} is invalid; valid range: None or 0..{len(lv) - 1}")
+    _, stats, _, status, _ = _launch_runs(k, chairs, speeds, opts, forces, None, 2, 1, lv, stop, threads)
+    _raise_refused(chairs, opts, status)
+    return stats, status
 
 
 def _launch(k: Any, threads: int | None, n_runs: int, args: tuple) -> None:

@@ -2,7 +2,7 @@
 
 Imported only when a simulation runs (numba costs about 0.5 s to import; the
 compiled code is cached on disk, see ``docs/simulator.md``).  Every array
-layout is written by :mod:`stability.simulate.pack`.  The equations are the
+layout is written by :mod:`stability.simulate.engine`.  The equations are the
 generated functions behind :mod:`stability.models.full_width`, compiled as
 they are; loads (:func:`stability.statics.normal_loads`), the tire resultant
 and yaw moment (:mod:`stability.models.full_width`) and the tire force law
@@ -33,7 +33,7 @@ __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_nu
            "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both",
            "tire_yaw_moment", "plane", "plane_loads"]
 
-# Every helper is its own numba function, compiled once and shared by both kernels.  The step's helpers are
+# Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
 # which made inline="always" cost about 3x the compile time); no Python wrapper unless Python calls it.
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
@@ -55,6 +55,8 @@ X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, 
 U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
 # cfg slots of the plane: flag, cos/sin of the cross slope, cos/sin of the grade
 SLOPE, C_PHI, S_PHI, C_THETA, S_THETA = range(13, 18)
+#: cfg slot: every run stops at ``levels[cfg[18]]`` (-1: never); ``status[0]``: 1 warning rule, 2 that level
+STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL = 18, 1.0, 2.0
 #: model codes: 0 thesis, 1 exact, 2 exact on a slope (accelerations with in-plane gravity)
 SLOPE_MODEL = 2
 #: recorded columns after t (COLUMNS[1:]); the first 10 are the states
@@ -357,7 +359,7 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         int(cfg[8]), int(cfg[9]))
     use_ctl = ctl_f[0] > 0.0
     half_dt2 = 0.5 * dt * dt
-    maxslip, maxload, nwarn_limit = cfg[10], cfg[11], cfg[12]
+    maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
     slope = cfg[SLOPE] != 0.0
     if slope:
         model = SLOPE_MODEL
@@ -374,8 +376,7 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     ED = BD = 0.0
     FC1 = FC2 = 0.0
     fcimp = S[FCIMP]
-    prev_abs = 0.0
-    t_prev = 0.0
+    prev_abs = t_prev = 0.0
     nrec = 0
     seg_c, seg_m, seg_k = TS[0], TS[1], TS[2]      # per-run views made once (no per-step array views)
     lim_c, lim_m, lim_k = LIM[0], LIM[1], LIM[2]
@@ -391,7 +392,7 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         else:
             loads = normal_loads(P, FC1, FC2, ce, se, cb, sb)
         if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
-            status[0], status[1] = 1.0, t
+            status[0], status[1] = STOPPED_WARNINGS, t
             break
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
         F, refused, w = mechan(vel, slips, loads, ftimp != 0.0 and imp, ftimp, policy, TK, seg_c, seg_m, seg_k, TL,
@@ -433,6 +434,9 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
                        (mz, THEDD, MA, MB))
             nrec = row + 1
             stats[2 + levels.shape[0]] = t
+        if stop_lvl >= 0 and stats[2 + stop_lvl] == stats[2 + stop_lvl]:   # the level is reached: stop here
+            status[0], status[1] = STOPPED_LEVEL, t
+            break
         # UPDATE / ITRATE
         FC1, FC2 = fc1, fc2 + fy_ext
         du = UD * dt + UDD * half_dt2

@@ -14,6 +14,7 @@ from ..progress import ProgressBar
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from . import runs
 from .criteria import DEFAULT_CRITERION, Criterion, check_impulse
+from .summaries import run_summaries
 
 __all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds", "bisect_speeds",
            "equal_instability_speed"]
@@ -276,9 +277,7 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
     # the reference: no need to simulate it to the end of the criterion's duration
     horizons = np.minimum(criterion.duration, 1.5 * target + 0.5)
     horizon = float(horizons.max())
-    opts = runs.sim_options(model, scheme, (float(force[0]), length), dt, horizon, sim_options)
     end = horizons + (dt or 0.0) + 1e-12         # a run of a longer batch counts only up to its own horizon
-    crit = [Criterion(criterion.yaw_rate, float(h)) for h in horizons]
     evals: list[list[tuple[float, float]]] = [[] for _ in range(n)]
     lo = np.full(n, lo0)
     hi = np.full(n, hi0)
@@ -290,11 +289,10 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
             if not active:
                 break
             run_chairs, run_speeds, owner = _round_runs(list(chairs), active, lo, hi, candidates, rnd == 0)
-            if np.any(force != force[0]):
-                opts["impulse_force"] = force[owner]
-            results = runs.simulate_runs(run_chairs, run_speeds, progress=False, **opts)
-            for i, s, r in zip(owner, run_speeds, results, strict=True):
-                t = crit[i].time(r)
+            # every run stops when it reaches the level (its time is known then); one kernel call per round
+            summ = run_summaries(run_chairs, run_speeds, force[owner], model=model, scheme=scheme, duration=length,
+                                 dt=dt, horizon=horizon, level=criterion.yaw_rate, sim_options=sim_options)
+            for i, s, t in zip(owner, run_speeds, summ.t_level.tolist(), strict=True):
                 evals[i].append((s, t if t <= end[i] else math.inf))
             for i in active:
                 status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), rnd == 0)

@@ -18,12 +18,12 @@ import numpy as np
 from .._validate import check_choice, check_model, check_positive, check_speeds
 from ..chair import Chair
 from ..reference import HORIZON, LEVEL, THESIS_PUSH, Push
-from . import runs
-from .criteria import Criterion
+from .search import bracket_search
+from .summaries import run_steps, run_summaries
 
 __all__ = ["runs_per_speed", "check_study_work", "STEP_SECONDS", "WORK_BUDGET_S", "CriticalImpulse",
            "CriticalImpulseCurve", "critical_impulses", "critical_impulse",
-           "critical_impulse_curve", "push_impulse"]
+           "critical_impulse_curve", "linear_critical_impulse", "push_impulse"]
 
 SCHEMES = ("wchair", "adaptive")
 
@@ -161,9 +161,48 @@ class CriticalImpulseCurve:
         return {"points": [p.to_dict() for p in self.points]}
 
 
-def _initial_grid(lo: float, hi: float, factor: float) -> np.ndarray:
-    n = int(math.ceil(math.log(hi / lo) / math.log(factor) - 1e-9))
-    return hi / factor ** np.arange(n, -1, -1.0)
+def linear_critical_impulse(chair: Chair, speed: float, *, model: str = "exact", duration: float = THESIS_PUSH.duration,
+                            level: float = LEVEL, horizon: float = HORIZON) -> float:
+    """The linear model's critical impulse: ``level / max |r(t)|`` per N s of push over the horizon, N s.
+
+    The linear model's yaw rate is linear in the push, so this is exact for
+    it; the nonlinear critical impulse is close to it only for a chair
+    without pin friction (Coulomb friction has no linearisation: with it the
+    casters hold until the push overcomes it, and this is far too small).
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        m/s.
+    model : {"exact", "thesis"}
+    duration : float
+        How long the force acts, s.
+    level : float
+        rad/s.
+    horizon : float
+        s.
+
+    Returns
+    -------
+    float
+        N s (inf when the linear response never moves the yaw rate).
+    """
+    from .responses import linear_impulse_response
+
+    r = linear_impulse_response(chair, speed, horizon, impulse=(1.0 / duration, duration), model=model, step=0.001)
+    peak = float(np.max(np.abs(r.yaw_rate)))
+    return level / peak if peak > 0 else math.inf
+
+
+def _start(chair: Chair, speed: float, model: str, duration: float, level: float, horizon: float,
+           lo: float, hi: float) -> float:
+    """First push of the search (log N s): the linear prediction for a frictionless chair, else the largest push."""
+    if chair.pin_friction_left == 0 and chair.pin_friction_right == 0:
+        j = linear_critical_impulse(chair, speed, model=model, duration=duration, level=level, horizon=horizon)
+        if math.isfinite(j):
+            return math.log(min(max(j, lo), hi))
+    return math.log(hi)
 
 
 #: Cost of one compiled WCHAIR step in a batch, s: 0.2 us measured on a quiet machine (a 10 s run in 2 ms),
@@ -173,21 +212,20 @@ STEP_SECONDS = 1e-6
 WORK_BUDGET_S = 600.0
 
 
-def runs_per_speed(min_impulse: float = 1e-6, max_impulse: float = 40.0, candidates: int = 7,
-                   max_rounds: int = 8) -> int:
-    """Most runs :func:`critical_impulses` makes at one speed: the first grid, then ``candidates`` a round.
+def runs_per_speed(min_impulse: float = 1e-6, max_impulse: float = 40.0, max_rounds: int = 40) -> int:
+    """Most runs :func:`critical_impulses` makes at one speed: at most two a round of the batched search.
 
     Parameters
     ----------
     min_impulse, max_impulse : float
-        N s.
-    candidates, max_rounds : int
+        N s (the search's range; the bound does not depend on it).
+    max_rounds : int
 
     Returns
     -------
     int
     """
-    return len(_initial_grid(min_impulse, max_impulse, 4.0)) + (max_rounds - 1) * candidates
+    return 2 * max_rounds
 
 
 def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, horizon: float, dt: float,
@@ -230,17 +268,20 @@ def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, ho
 def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: str = "exact",
                       scheme: str = "wchair", duration: float = THESIS_PUSH.duration, level: float = LEVEL,
                       horizon: float = HORIZON, dt: float = 0.001, max_impulse: float = 40.0,
-                      min_impulse: float = 1e-6, rel_tol: float = 0.005, candidates: int = 7,
-                      max_rounds: int = 8, **sim_options: Any) -> list[CriticalImpulse]:
-    """:func:`critical_impulse` for many runs: chair i at speed i (broadcast), one batch per round.
+                      min_impulse: float = 1e-6, rel_tol: float = 0.005, max_rounds: int = 40,
+                      **sim_options: Any) -> list[CriticalImpulse]:
+    """:func:`critical_impulse` for many runs: chair i at speed i (broadcast), one kernel call per round.
 
-    Round 0 simulates a geometric grid of pushes (factor 4) from
-    ``min_impulse`` to ``max_impulse`` for every (chair, speed); each later
-    round ``candidates`` pushes geometrically spaced inside every unresolved
-    bracket, all in one :func:`stability.simulate.simulate_batch` call, until
-    ``high/low - 1 <= rel_tol``.  The bracket is the lowest push that reaches
-    the level and the largest tried below it (assumes that reaching the level
-    is monotone in the push, as it is for the linear model).
+    A bracketing search on the log push (:func:`stability.study.search.bracket_search`)
+    for all (chair, speed) pairs together: it starts from the linear
+    prediction (:func:`linear_critical_impulse`) for a chair without pin
+    friction and from ``max_impulse`` otherwise, steps towards the push the
+    margin (:meth:`~stability.study.summaries.Summaries.margin`) predicts,
+    then closes the bracket by secant on the reaching side or Illinois
+    regula falsi, until ``high/low - 1 <= rel_tol``.  Every run stops when
+    ``|yaw rate|`` reaches the level.  The bracket is the lowest push that
+    reaches the level and the largest tried below it (assumes that reaching
+    the level is monotone in the push, as it is for the linear model).
 
     Parameters
     ----------
@@ -261,15 +302,15 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
         Range of pushes tried, N s.
     rel_tol : float
         Relative width of the final bracket (0.005 = 0.5 %).
-    candidates : int
-        Pushes per bracket and round.
     max_rounds : int
+        Search rounds at most (each one simulation batch).
     **sim_options
         More :func:`stability.simulate.simulate` options (``stop_on_warnings`` is False unless given).
 
     Returns
     -------
     list of CriticalImpulse
+        ``runs`` counts the simulations of each pair.
     """
     check_model(model)
     check_choice("scheme", scheme, SCHEMES)
@@ -284,58 +325,41 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
     if scheme == "wchair":
         check_study_work(list(chair_b.ravel()), speed_b.ravel(), model, horizon, dt,
-                         runs_per_speed(min_impulse, max_impulse, candidates, max_rounds))
+                         runs_per_speed(min_impulse, max_impulse, max_rounds))
     unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
-    crit = Criterion(level, horizon)
-    opts = runs.sim_options(model, scheme, (0.0, duration), dt if scheme == "wchair" else None, horizon, sim_options)
-    n = len(run_list)
-    tried: list[dict[float, bool]] = [{} for _ in range(n)]
-    lo = np.zeros(n)
-    hi = np.zeros(n)
-    open_ = np.ones(n, dtype=bool)
-    grid0 = _initial_grid(min_impulse, max_impulse, 4.0)
-    for rnd in range(max_rounds):
-        active = [i for i in range(n) if open_[i]]
-        if not active:
-            break
-        jobs = []
-        for i in active:
-            pushes = grid0 if rnd == 0 else np.geomspace(lo[i], hi[i], candidates + 2)[1:-1]
-            jobs += [(i, float(j)) for j in pushes]
-        opts["impulse_force"] = np.array([j / unit for _, j in jobs])
-        results = runs.simulate_runs([run_list[i][0] for i, _ in jobs], [run_list[i][1] for i, _ in jobs],
-                                     progress=False, **opts)
-        for (i, j), r in zip(jobs, results, strict=True):
-            tried[i][j] = crit.time(r) <= horizon
-        for i in active:
-            reach = sorted(j for j, ok in tried[i].items() if ok)
-            if not reach:
-                open_[i] = False
-                continue
-            first = reach[0]
-            below = [j for j, ok in tried[i].items() if not ok and j < first]
-            if not below:
-                open_[i] = False
-                lo[i], hi[i] = 0.0, first
-                continue
-            lo[i], hi[i] = max(below), first
-            open_[i] = hi[i] / lo[i] - 1.0 > rel_tol
+
+    pair_steps = (run_steps([c for c, _ in run_list], [s for _, s in run_list], dt, model,
+                            sim_options.get("casters", "free")) if scheme == "wchair" else None)
+
+    def evaluate(jobs: list[tuple[int, float]]) -> tuple[np.ndarray, ...]:
+        s = run_summaries([run_list[i][0] for i, _ in jobs], [run_list[i][1] for i, _ in jobs],
+                          [math.exp(x) / unit for _, x in jobs], model=model, scheme=scheme, duration=duration,
+                          dt=dt, horizon=horizon, level=level, sim_options=sim_options,
+                          steps=None if pair_steps is None else pair_steps[[i for i, _ in jobs]])
+        return s.t_level <= horizon, s.margin(level, horizon), s.sim_time, s.t_level
+
+    starts = [_start(c, s, model, duration, level, horizon, min_impulse, max_impulse) for c, s in run_list]
+    probs = bracket_search(len(run_list), starts, evaluate, x_min=math.log(min_impulse), x_max=math.log(max_impulse),
+                           width=math.log1p(rel_tol), max_step=math.log(2.0), max_rounds=max_rounds,
+                           horizon=horizon)
     steps = Push(1.0, duration).steps(dt)
     convention = (f"constant force at the c.g. for {duration:g} s ({steps} steps of {dt * 1e3:g} ms: "
                   f"impulse = force x {unit:.4g} s)" if scheme == "wchair" else
                   f"constant force at the c.g. for {duration:g} s (impulse = force x {duration:g} s)")
     out = []
     value: float | None
-    for i, (c, s) in enumerate(run_list):
-        tr = tried[i]
-        if not any(tr.values()):
-            status, value, low, high = "never", None, max(tr), max(tr)
-        elif lo[i] == 0.0:
-            status, value, low, high = "below", None, 0.0, float(hi[i])
+    for (c, s), p in zip(run_list, probs, strict=True):
+        tried = [math.exp(x) for x in p.x]
+        lo_x, hi_x = p.bracket()
+        if hi_x is None:
+            status, value, low, high = "never", None, max(tried), max(tried)
+        elif lo_x is None:
+            status, value, low, high = "below", None, 0.0, math.exp(hi_x)
         else:
-            status, value, low, high = "found", float(math.sqrt(lo[i] * hi[i])), float(lo[i]), float(hi[i])
-        out.append(CriticalImpulse(c.name, float(c.m), s, value, status, low, high, max(tr), min(tr), convention,
-                                   model, scheme, float(level), float(horizon), len(tr)))
+            low, high = math.exp(lo_x), math.exp(hi_x)
+            status, value = "found", math.sqrt(low * high)
+        out.append(CriticalImpulse(c.name, float(c.m), s, value, status, low, high, max(tried), min(tried), convention,
+                                   model, scheme, float(level), float(horizon), len(tried)))
     return out
 
 
@@ -346,8 +370,8 @@ def critical_impulse(chair: Chair, speed: float, *, model: str = "exact", scheme
 
     The push is a constant force for ``duration`` s; its impulse is stated
     in the result's ``push`` (the WCHAIR scheme applies the force for
-    ``floor(duration/dt) + 1`` steps).  Refined by bisection on the force to
-    ``rel_tol`` (0.5 %).
+    ``floor(duration/dt) + 1`` steps).  Refined on the force to
+    ``rel_tol`` (0.5 %) by the batched bracketing search of :func:`critical_impulses`.
 
     Parameters
     ----------

@@ -1,0 +1,200 @@
+"""Run summaries for the searches (critical impulse, equal-instability speed): the kernel alone, stopped at a level.
+
+A search only needs, per run, whether and when ``|yaw rate|`` reaches a
+level, how fast it was growing there and, if it never does, its peak.  The
+compiled WCHAIR kernel reports these at every step; with a stop level every
+run ends at the step at which it reaches the level (nothing after it can
+change the answer), and no per-run result is built.  Runs whose speed needs
+a smaller step than the requested one (the stiff caster modes at slow
+speeds) get the same step :func:`stability.study.runs.simulate_runs` gives
+them, one kernel call per step.  The adaptive scheme (and any Python input)
+runs through :func:`~stability.study.runs.simulate_runs` with the same summaries, and so does
+everything inside :func:`stability.simulate.reference_engine` (the benchmarks' baseline engine).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .. import simulate as sim
+from ..chair import Chair
+from ..signals import time_to_level
+from ..simulate.api import using_reference_engine
+from ..simulate.options import make_options
+from ..simulate.stepcheck import SAFETY, stable_steps
+from . import runs
+
+__all__ = ["Summaries", "run_summaries", "run_steps"]
+
+
+@dataclass(frozen=True)
+class Summaries:
+    """Per-run summaries of a search round (arrays over runs).
+
+    Attributes
+    ----------
+    peak : ndarray
+        Largest ``|yaw rate|`` up to the horizon or the stop, rad/s.
+    t_half : ndarray
+        First time ``|yaw rate|`` reaches half the level, s (inf: never).
+    t_level : ndarray
+        First time it reaches the level, s (inf: never within the horizon).
+    sim_time : ndarray
+        Simulated time of each run, s (a run stopped at the level is shorter).
+    """
+
+    peak: np.ndarray
+    t_half: np.ndarray
+    t_level: np.ndarray
+    sim_time: np.ndarray
+
+    def margin(self, level: float, horizon: float) -> np.ndarray:
+        """The search's margin, in natural-log units of the yaw rate (0 at the critical case).
+
+        ``ln(peak / level)`` (< 0) for a run that does not reach the level;
+        ``ln 2 (horizon - t_level) / (t_level - t_half)`` (>= 0) for one that
+        does: how much more the response would grow by the horizon at the
+        growth rate it had on its way from half the level to the level.  Both
+        go to 0 at the critical case, and for a response that grows
+        exponentially and linearly in the push both equal ``ln(push / critical push)``.
+
+        Parameters
+        ----------
+        level : float
+            rad/s.
+        horizon : float
+            s.
+
+        Returns
+        -------
+        ndarray
+        """
+        reached = self.t_level <= horizon
+        with np.errstate(divide="ignore", invalid="ignore"):
+            below = np.log(np.maximum(self.peak, 1e-300) / level)
+            rise = np.maximum(self.t_level - np.minimum(self.t_half, self.t_level), 1e-9)
+            above = math.log(2.0) * (horizon - self.t_level) / rise
+        return np.where(reached, np.maximum(above, 0.0), np.minimum(below, 0.0))
+
+
+def _options(model: str, scheme: str, duration: float, dt: float | None, horizon: float,
+             extra: dict[str, Any]) -> dict[str, Any]:
+    return runs.sim_options(model, scheme, (0.0, duration), dt if scheme == "wchair" else None, horizon, extra)
+
+
+def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
+                  forces: Sequence[float] | np.ndarray, *, model: str,
+                  scheme: str, duration: float, dt: float | None, horizon: float, level: float,
+                  stop: bool = True, sim_options: dict[str, Any] | None = None,
+                  steps: Sequence[float] | np.ndarray | None = None) -> Summaries:
+    """Simulate runs (chair i at speed i under a push of force i for ``duration``) and summarise them.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    speeds : sequence of float
+        m/s.
+    forces : sequence of float
+        Push force at the c.g., N.
+    model, scheme : str
+    duration : float
+        How long the push acts, s.
+    dt : float or None
+        Fixed step of the WCHAIR scheme, s (kept where it is stable, else
+        ``dt / k`` as in :func:`stability.study.runs.simulate_runs`).
+    horizon : float
+        Simulated time, s.
+    level : float
+        |yaw rate| level, rad/s.
+    stop : bool
+        Stop each compiled run when it reaches the level.
+    sim_options : dict, optional
+        More simulator options.
+    steps : sequence of float, optional
+        Each run's step, s, from :func:`run_steps` (computed when None).
+
+    Returns
+    -------
+    Summaries
+    """
+    n = len(chairs)
+    extra = dict(sim_options or {})
+    opts = _options(model, scheme, duration, dt, horizon, extra)
+    if n == 0:
+        e = np.empty(0)
+        return Summaries(e, e, e, e)
+    if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
+            or using_reference_engine()):
+        return _from_results(chairs, speeds, forces, opts, level, horizon)
+    from ..simulate import engine  # numba and the compiled kernel load on first use
+
+    params = sim.DEFAULTS.as_dict()
+    for key in ("controller", "record"):
+        params.pop(key)
+    params.update({k: v for k, v in opts.items() if k in params})
+    step = float(params["dt"])
+    params["sample"] = None
+    run_h = np.asarray(run_steps(chairs, speeds, step, params["model"], params["casters"]) if steps is None else steps)
+    peak, t_half, t_level, sim_time = (np.empty(n) for _ in range(4))
+    sp = np.asarray(speeds, dtype=float)
+    fo = np.asarray(forces, dtype=float)
+    for h in np.unique(run_h):
+        idx = np.flatnonzero(run_h == h)
+        o = make_options(batch=True, **dict(params, dt=float(h), impulse_force=0.0))
+        stats, status = engine.run_summaries([chairs[int(i)] for i in idx], sp[idx], o, forces=fo[idx],
+                                             levels=(0.5 * level, level), stop_level=1 if stop else None)
+        peak[idx] = stats[:, 0]
+        t_half[idx] = np.where(np.isnan(stats[:, 2]), np.inf, stats[:, 2])
+        t_level[idx] = np.where(np.isnan(stats[:, 3]), np.inf, stats[:, 3])
+        sim_time[idx] = stats[:, 4]
+        warned = status[:, 0] == 1.0          # stopped by the warning rule: counts as reaching it then
+        if warned.any():
+            j = idx[warned]
+            t_level[j] = np.minimum(t_level[j], status[warned, 1])
+    return Summaries(peak, t_half, t_level, sim_time)
+
+
+def run_steps(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, dt: float, model: str,
+              casters: str) -> np.ndarray:
+    """Each run's step: ``dt`` where stable, else ``dt / k`` as :func:`~stability.study.runs.simulate_runs` picks.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    speeds : sequence of float
+        m/s.
+    dt : float
+        Requested fixed step, s.
+    model, casters : str
+
+    Returns
+    -------
+    ndarray
+        s.
+    """
+    limits = stable_steps(list(chairs), np.asarray(speeds, dtype=float), model, casters)
+    return np.array([dt if dt <= lim else dt / math.ceil(dt / (SAFETY * lim)) for lim in limits])
+
+
+def _from_results(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, forces: Sequence[float] | np.ndarray,
+                  opts: dict[str, Any], level: float, horizon: float) -> Summaries:
+    """The same summaries from full simulation results (adaptive scheme, Python inputs)."""
+    opts = dict(opts, impulse_force=np.asarray(forces, dtype=float))
+    if opts.get("scheme") == "wchair":      # every step, so that the crossing is interpolated as the kernel does
+        opts["sample"] = opts.get("dt", sim.DEFAULTS.dt)
+    res = runs.simulate_runs(list(chairs), [float(s) for s in speeds], progress=False, **opts)
+    peak, t_half, t_level, sim_time = (np.empty(len(res)) for _ in range(4))
+    for i, r in enumerate(res):
+        t, y = np.asarray(r.t), np.abs(np.asarray(r.yaw_rate))
+        peak[i] = float(y.max()) if y.size else 0.0
+        t_half[i] = time_to_level(t, y, 0.5 * level)
+        t_level[i] = time_to_level(t, y, level)
+        if bool(getattr(r, "stopped_by_warnings", False)) and len(t) and t[-1] < horizon - 1e-9:
+            t_level[i] = min(t_level[i], float(t[-1]))
+        sim_time[i] = float(t[-1]) if len(t) else 0.0
+    return Summaries(peak, t_half, t_level, sim_time)

@@ -1,0 +1,94 @@
+"""Critical-impulse and equal-instability searches (issue 25) against the earlier searches, timed in the same run.
+
+The baseline (``baseline_search.py``) is the code as it was: a factor-4 grid of
+pushes from 1e-6 to 40 N s, then 7 geometric candidates per bracket and round,
+every run a full 10 s with full records; and the speed bisection with 7
+candidates per round, every run to its horizon.  Both sides are timed
+alternately (best of three each), so a passing load slows both alike.  The
+answers agree to the flip band of the threshold (tests/test_search.py).
+Skipped unless ``--benchmark-enable``.
+"""
+
+import math
+import time
+
+import numpy as np
+import pytest
+from baseline_search import bisect_speeds_baseline, critical_impulses_bisection
+
+from stability.chair import preset
+from stability.study import critical_impulse, critical_impulses
+from stability.study.criteria import DEFAULT_CRITERION
+from stability.study.equal_instability import bisect_speeds, reference_time
+
+EJ = preset("ej-premier")
+SPEEDS = [0.5, 0.6, 0.75, 0.9, 1.0, 1.2]
+
+
+@pytest.fixture
+def bench(request):
+    cfg = request.config
+    if cfg.getoption("benchmark_disable", False) and not cfg.getoption("benchmark_enable", False):
+        pytest.skip("benchmarks are disabled (run with --benchmark-enable)")
+    return request.getfixturevalue("benchmark")
+
+
+def _alternate(old, new, repeat=3):
+    t_old = t_new = math.inf
+    out_old = out_new = None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out_old = old()
+        t_old = min(t_old, time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        out_new = new()
+        t_new = min(t_new, time.perf_counter() - t0)
+    return t_old, out_old, t_new, out_new
+
+
+def test_bench_critical_impulse_single(bench):
+    new = lambda: [critical_impulse(EJ, 0.75)]                      # noqa: E731
+    old = lambda: critical_impulses_bisection(EJ, 0.75)           # noqa: E731
+    new()
+    t_old, a, t_new, b = _alternate(old, new)
+    bench.pedantic(new, rounds=1, iterations=1)
+    ratio = t_old / t_new
+    bench.extra_info.update(old_s=t_old, new_s=t_new, speedup=ratio, runs_old=a[0].runs, runs_new=b[0].runs)
+    print(f"\ncritical impulse, E&J Premier 0.75 m/s: old {t_old:.3f} s ({a[0].runs} runs, {a[0].describe()}), "
+          f"new {t_new:.3f} s ({b[0].runs} runs, {b[0].describe()}), x{ratio:.1f}")
+    assert abs(math.log(b[0].impulse_Ns / a[0].impulse_Ns)) < 0.02    # inside the flip band (test_search.py)
+    assert ratio >= 3.0
+
+
+def test_bench_critical_impulse_curve(bench):
+    new = lambda: critical_impulses(EJ, SPEEDS)                     # noqa: E731
+    old = lambda: critical_impulses_bisection(EJ, SPEEDS)          # noqa: E731
+    new()
+    t_old, a, t_new, b = _alternate(old, new)
+    bench.pedantic(new, rounds=1, iterations=1)
+    ratio = t_old / t_new
+    runs_old, runs_new = sum(p.runs for p in a), sum(p.runs for p in b)
+    bench.extra_info.update(old_s=t_old, new_s=t_new, speedup=ratio, runs_old=runs_old, runs_new=runs_new)
+    dev = [abs(math.log(y.impulse_Ns / x.impulse_Ns)) for x, y in zip(a, b, strict=True)]
+    print(f"\ncritical impulse curve, E&J Premier, {len(SPEEDS)} speeds: old {t_old:.3f} s ({runs_old} runs), "
+          f"new {t_new:.3f} s ({runs_new} runs), x{ratio:.1f}; largest difference {100 * max(dev):.1f} %")
+    assert ratio >= 1.5
+
+
+def test_bench_equal_instability_bisection(bench):
+    chairs = [preset("revised"), EJ.replace(pin_friction_left=0.15, pin_friction_right=0.15)]
+    t_ref = reference_time(model="exact")
+    kw = dict(model="exact", scheme="wchair", criterion=DEFAULT_CRITERION, bracket=(0.2, 3.0), tol=0.005,
+              candidates=7, max_rounds=8, dt=0.001, progress=False, reference_text="", sim_options={})
+    args = (chairs, [t_ref] * 2, [40.0] * 2, 0.1)
+    new = lambda: bisect_speeds(*args, **kw)                        # noqa: E731
+    old = lambda: bisect_speeds_baseline(*args, **kw)              # noqa: E731
+    new()
+    t_old, a, t_new, b = _alternate(old, new)
+    bench.pedantic(new, rounds=1, iterations=1)
+    ratio = t_old / t_new
+    bench.extra_info.update(old_s=t_old, new_s=t_new, speedup=ratio)
+    print(f"\nequal-instability bisection, 2 chairs: old {t_old:.3f} s, new {t_new:.3f} s, x{ratio:.1f}")
+    # the same candidates; crossing times interpolated per 1 ms step instead of per 10 ms sample
+    np.testing.assert_allclose([x.speed for x in b], [x.speed for x in a], atol=0.005)
+    assert ratio >= 1.2
