@@ -124,7 +124,7 @@ def test_front_caster_stable_and_ranked_more_stable():
 def test_uncertainty_shared_draws_cancel_for_the_same_chair(tmp_path):
     u = tmp_path / "u.toml"
     u.write_text('[i_z]\ndistribution = "normal"\nstd = 0.5\n[s1]\ndistribution = "normal"\nstd = 0.01\n')
-    from stability.measure.uncertainty import load_uncertainty
+    from stability.uncertainty import load_uncertainty
 
     a = chair.preset("ej-premier")
     unc = load_uncertainty(u)

@@ -14,7 +14,7 @@ from stability.chair import preset
 from stability.critical_speed import main
 from stability.linear.batch import ChairBatch
 from stability.linear.intervals import linear_intervals
-from stability.measure.uncertainty import loads_uncertainty
+from stability.uncertainty import loads_uncertainty
 
 EJ = preset("ej-premier")
 

@@ -13,7 +13,7 @@ from scipy.integrate import solve_ivp
 from stability import chair as chair_mod
 from stability.measure import anthropometry, bodies, pendulum, scales, sheet, units
 from stability.measure.__main__ import main as measure_main
-from stability.measure.uncertainty import load_uncertainty
+from stability.uncertainty import load_uncertainty
 
 G0 = 9.80665
 EXAMPLE = os.path.join(os.path.dirname(__file__), "..", "docs", "examples", "measured_chair_sheet.toml")

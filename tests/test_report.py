@@ -58,8 +58,8 @@ def unc_file(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory, unc_file):
-    from stability.measure.uncertainty import load_uncertainty
     from stability.report.uncertainty_data import UncertaintySpec
+    from stability.uncertainty import load_uncertainty
 
     path = tmp_path_factory.mktemp("report") / "ej-premier-quick.pdf"
     spec = UncertaintySpec(str(unc_file), load_uncertainty(unc_file), SAMPLES, 0)
@@ -567,8 +567,8 @@ def test_shimmy_page_dropped_with_a_reason(quick):
 
 def test_uncertainty_intervals_equal_linear_intervals(quick, unc_file):
     from stability.linear.intervals import linear_intervals
-    from stability.measure.uncertainty import load_uncertainty
     from stability.report.uncertainty_data import QUICK_BAND_SPEEDS
+    from stability.uncertainty import load_uncertainty
 
     d = quick.data
     iv = linear_intervals(preset("ej-premier"), load_uncertainty(unc_file), model="exact", speeds=QUICK_BAND_SPEEDS,
@@ -585,8 +585,8 @@ def test_uncertainty_intervals_equal_linear_intervals(quick, unc_file):
 
 
 def test_zero_spread_gives_exactly_the_point_values(quick):
-    from stability.measure.uncertainty import loads_uncertainty
     from stability.report.uncertainty_data import UncertaintySpec, uncertainty_section
+    from stability.uncertainty import loads_uncertainty
 
     c = preset("ej-premier")
     spec = UncertaintySpec("zero.toml", loads_uncertainty('[s1]\ndistribution = "normal"\nstd = 0.0\n'), 20, 3)
@@ -717,8 +717,8 @@ def test_nonlinear_intervals_are_centred_on_the_reports_own_numbers(quick):
 
 
 def test_nonlinear_zero_spread_collapses_onto_the_reports_numbers(quick):
-    from stability.measure.uncertainty import loads_uncertainty
     from stability.report.uncertainty_data import UncertaintySpec, uncertainty_section
+    from stability.uncertainty import loads_uncertainty
 
     d = quick.data
     spec = UncertaintySpec("zero.toml", loads_uncertainty('[s1]\ndistribution = "normal"\nstd = 0.0\n'), 5, 2)

@@ -9,10 +9,10 @@ import pytest
 
 from stability.chair import preset
 from stability.linear.intervals import linear_intervals
-from stability.measure.uncertainty import loads_uncertainty
 from stability.reference import LEVEL, REFERENCE_SPEED, THESIS_PUSH
 from stability.study import Criterion, critical_impulse, equal_instability_speed
 from stability.study.uncertain import MAX_NONLINEAR_SAMPLES, nonlinear_intervals
+from stability.uncertainty import loads_uncertainty
 
 # coarse but honest settings so that the file runs in a few seconds (the level is reached after ~3 s)
 HORIZON = 6.0

@@ -6,8 +6,7 @@ Run from the repository root: ``python docs/examples/propagate_measured_chair.py
 import numpy as np
 
 from stability import chair, linear
-from stability.measure.propagation import delta_method, propagate
-from stability.measure.uncertainty import load_uncertainty
+from stability.uncertainty import delta_method, load_uncertainty, propagate
 
 c = chair.load("docs/examples/measured_chair.toml")
 u = load_uncertainty("docs/examples/measured_chair.uncertainty.toml")

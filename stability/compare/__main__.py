@@ -37,7 +37,7 @@ from ..cli import (
 )
 from ..linear.batch import check_eigen_work
 from ..linear.intervals import MAX_SAMPLES
-from ..measure.uncertainty import Uncertainty, load_uncertainty
+from ..uncertainty import Uncertainty, load_uncertainty
 from .compute import DEFAULT_SPEEDS, compare, solves_per_sample, unique_labels
 from .text import comparison_dict, format_comparison
 

@@ -29,8 +29,8 @@ from ..linear.intervals import (
     linear_intervals,
     solves_per_draw,
 )
-from ..measure.uncertainty import Uncertainty
 from ..reference import REFERENCE_SPEED, THESIS_PUSH
+from ..uncertainty import Uncertainty
 
 __all__ = ["Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
            "single_effects", "growth_curves"]

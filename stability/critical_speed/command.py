@@ -142,8 +142,8 @@ def _run(args: argparse.Namespace) -> int:
     if args.uncertainty:
         # deferred: the uncertainty machinery (and the simulator) cost start-up time the plain summary does not need
         from ..linear.intervals import linear_intervals
-        from ..measure.uncertainty import load_uncertainty
         from ..study.uncertain import nonlinear_intervals
+        from ..uncertainty import load_uncertainty
 
         unc = load_uncertainty(args.uncertainty)
         intervals = linear_intervals(c, unc, model=args.model, speeds=speeds, max_speed=args.max_speed,

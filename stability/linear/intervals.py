@@ -8,8 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..chair import Chair
-from ..measure.propagation import delta_method, propagate
-from ..measure.uncertainty import Uncertainty
+from ..uncertainty import Uncertainty, delta_method, propagate
 from .batch import ChairBatch, check_eigen_work
 from .summary import zero_width
 
@@ -95,7 +94,7 @@ def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "ex
     chair : Chair
         The nominal chair.
     uncertainty : Uncertainty
-        Distributions of its uncertain fields (:func:`stability.measure.uncertainty.load_uncertainty`).
+        Distributions of its uncertain fields (:func:`stability.uncertainty.load_uncertainty`).
     model : {"exact", "thesis"}
         Equation variant.
     speeds : sequence of float

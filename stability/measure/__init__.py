@@ -4,6 +4,7 @@
 sheet into a chair file and an uncertainty file (docs/measure.md).
 """
 
+from ..uncertainty import PropagationResult, Uncertainty, delta_method, load_uncertainty, propagate
 from .bodies import Body, combine
 from .pendulum import (
     bifilar_pendulum_inertia,
@@ -13,8 +14,6 @@ from .pendulum import (
     torsional_rigidity,
     trifilar_pendulum_inertia,
 )
-from .propagation import PropagationResult, delta_method, propagate
-from .uncertainty import Uncertainty, load_uncertainty
 from .units import quantity
 
 __all__ = ["Body", "combine", "bifilar_pendulum_inertia", "compound_pendulum_inertia", "solid_cylinder_inertia",

@@ -19,11 +19,11 @@ from typing import Any
 from .. import chair as chair_mod
 from .. import readfiles
 from ..chair import Chair
+from ..uncertainty import Distribution, Uncertainty
 from .anthropometry import user_yaw_inertia
 from .bodies import Body, combine
 from .pendulum import compound_pendulum_inertia, solid_cylinder_inertia
 from .scales import WheelLoads, cg_from_scales, cg_height_from_tilt, tilt_reading
-from .uncertainty import Distribution, Uncertainty
 from .units import STANDARD_GRAVITY, dimension_name, parse_unit
 
 if sys.version_info >= (3, 11):

@@ -17,7 +17,7 @@ from ..cli import (
     run,
 )
 from ..linear.intervals import MAX_SAMPLES
-from ..measure.uncertainty import load_uncertainty
+from ..uncertainty import load_uncertainty
 from . import document
 from .uncertainty_data import UncertaintySpec
 

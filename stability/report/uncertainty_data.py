@@ -14,9 +14,9 @@ import numpy as np
 from ..chair import Chair
 from ..linear.batch import ChairBatch
 from ..linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
-from ..measure.uncertainty import Uncertainty
 from ..reference import REFERENCE_SPEED
 from ..study.uncertain import NonlinearIntervals, nonlinear_intervals
+from ..uncertainty import Uncertainty
 from .settings import Settings
 
 __all__ = ["UncertaintySpec", "UncertaintySection", "uncertainty_section", "BAND_SPEEDS", "QUICK_BAND_SPEEDS",

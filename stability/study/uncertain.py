@@ -1,7 +1,7 @@
 """Nonlinear measures with intervals: Monte Carlo of the critical impulse and the equal-instability speed.
 
 The linear analogue is :func:`stability.linear.intervals.linear_intervals`;
-the propagation is :func:`stability.measure.propagation.propagate`.  Why the
+the propagation is :func:`stability.uncertainty.propagate`.  Why the
 reference case stays fixed and why there is no delta-method check:
 docs/studies.md ("Nonlinear intervals").
 """
@@ -17,9 +17,8 @@ import numpy as np
 
 from .._validate import check_model, check_positive, check_speed
 from ..chair import Chair, preset
-from ..measure.propagation import propagate
-from ..measure.uncertainty import Uncertainty
 from ..reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from ..uncertainty import Uncertainty, propagate
 from .criteria import Criterion
 from .equal_instability import equal_instability_speeds, reference_time
 from .impulse import critical_impulses
@@ -181,7 +180,7 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, *, speed: float 
     chair : Chair
         The nominal chair.
     uncertainty : Uncertainty
-        Distributions of its uncertain fields (:func:`stability.measure.uncertainty.load_uncertainty`).
+        Distributions of its uncertain fields (:func:`stability.uncertainty.load_uncertainty`).
     speed : float
         Speed of the critical impulse, m/s.
     model : {"exact", "thesis"}
