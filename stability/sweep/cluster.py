@@ -1,0 +1,107 @@
+"""Running a sweep's chunks on a Dask distributed cluster (optional extra ``[scale]``).
+
+``--dask local:N`` starts a ``LocalCluster`` of N process workers bound to
+127.0.0.1, one thread each (and one numba thread each: ``NUMBA_NUM_THREADS=1``
+in the workers' environment), and closes it at the end; ``--dask ADDRESS``
+connects to a running scheduler (docs/scale.md: dask-jobqueue on SLURM, a
+Kubernetes Dask cluster).  The spec (with its uncertainty distributions) is
+sent to every worker once; a warm-up task on every worker loads the compiled
+kernels (from the on-disk numba cache, compiling them there if needed)
+before any chunk runs; chunks are submitted most expensive first (longest
+processing time first: the estimated cost per row of each measure times the
+chunk's rows), so the last chunks to finish are short ones.  A chunk computes
+the same numbers on any worker: the results equal an in-process run's.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from typing import Any
+
+from .measures import chunk_pairs
+from .spec import SweepSpec
+
+__all__ = ["COST_PER_ROW_S", "chunk_cost", "dask_mapper", "parse_dask"]
+
+#: Measured cost per row of each measure on one core, s (docs/scale.md); used only to order the chunks.
+COST_PER_ROW_S = {"growth_rate": 2e-4, "critical_speeds": 2e-3, "critical_impulse": 0.05,
+                  "equal_instability_speed": 0.03}
+
+
+def chunk_cost(spec: SweepSpec, index: int) -> float:
+    """Estimated cost of chunk ``index``, s: its rows times the measures' cost per row."""
+    rows = len(chunk_pairs(spec, index)) * len(spec.speeds)
+    return rows * sum(COST_PER_ROW_S[m] for m in spec.measures)
+
+
+def parse_dask(value: str) -> tuple[str, int | None]:
+    """``"local:N"`` -> ("local", N); an address -> (address, None); ValueError naming ``--dask`` otherwise."""
+    if value.startswith("local:"):
+        n = value[len("local:"):]
+        if not n.isdigit() or not 1 <= int(n) <= 1024:
+            raise ValueError(f"--dask {value!r} is invalid; valid: local:N with 1 <= N <= 1024, or a scheduler "
+                             "address such as tcp://host:8786")
+        return "local", int(n)
+    if "://" not in value and ":" not in value:
+        raise ValueError(f"--dask {value!r} is invalid; valid: local:N or a scheduler address (tcp://host:8786)")
+    return value, None
+
+
+def _warm_up() -> str:
+    """Load (or compile) the kernels on this worker with one short run; its numba thread count."""
+    from ..chair import preset
+    from ..simulate import simulate
+    from ..simulate.kernel import get_num_threads
+
+    simulate(preset("ej-premier"), 0.75, duration=0.01, record="final")
+    return f"numba threads {get_num_threads()}"
+
+
+def _chunk_text(spec: SweepSpec, index: int) -> str:
+    from .measures import compute_chunk
+    from .run import _chunk_text as text
+
+    return text(compute_chunk(spec, index))
+
+
+@contextlib.contextmanager
+def dask_mapper(spec: SweepSpec, address: str) -> Iterator[Callable[[Callable[[int], str], Sequence[int]],
+                                                                    Iterable[tuple[int, str]]]]:
+    """A ``mapper`` for :func:`stability.sweep.run.run_sweep` that runs the chunks on a Dask cluster.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    address : str
+        ``"local:N"`` or a scheduler address.
+
+    Yields
+    ------
+    callable
+        ``mapper(fn, indices)`` yielding ``(index, chunk text)`` as chunks finish (``fn`` is not
+        shipped: the workers compute :func:`stability.sweep.measures.compute_chunk` themselves).
+    """
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise ValueError("--dask needs dask[distributed] (pip install 'stability[scale]')") from None
+    where, n = parse_dask(address)
+    with contextlib.ExitStack() as stack:
+        if n is not None:
+            cluster = stack.enter_context(LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                                       host="127.0.0.1", dashboard_address=None,
+                                                       env={"NUMBA_NUM_THREADS": "1"}))
+            client = stack.enter_context(Client(cluster))
+        else:
+            client = stack.enter_context(Client(where))
+        client.run(_warm_up)                                    # every worker, before any chunk
+        shared = client.scatter(spec, broadcast=True)           # the spec and its distributions, sent once
+
+        def mapper(fn: Callable[[int], str], indices: Sequence[int]) -> Iterable[tuple[int, str]]:
+            order = sorted(indices, key=lambda i: -chunk_cost(spec, i))
+            futures: dict[Any, int] = {client.submit(_chunk_text, shared, i, pure=False): i for i in order}
+            for fut in as_completed(futures):
+                yield futures[fut], fut.result()
+
+        yield mapper

@@ -1,0 +1,143 @@
+"""One chunk of a sweep: its designs and draws as chairs, every measure vectorised over the whole chunk.
+
+Rows are ordered by (design, draw, speed); a chunk holds whole (design, draw)
+pairs.  Designs are the grid's points in row-major order (the first axis
+varies slowest).  Draws use common random numbers: draw ``k`` is the same
+standardised draw for every design (``Uncertainty.unit_draws(n, seed)``), so
+designs are compared under the same users.  The linear measures come from
+one :class:`stability.linear.batch.ChairBatch` for the chunk, the critical
+impulse from one batched search over every (chair, speed) pair of the chunk,
+the equal-instability speed from one batched bisection over its chairs.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from typing import Any
+
+import numpy as np
+
+from ..chair import Chair
+from ..defaults import MAX_SPEED
+from ..linear.batch import ChairBatch
+from ..statics import check_static_loads
+from ..study import critical_impulses, equal_instability_speeds
+from .spec import _NUMERIC, MEASURES, SweepSpec, apply_axis
+
+__all__ = ["CRITICAL_SPEED_GRID", "columns", "design_values", "chunk_pairs", "n_chunks", "compute_chunk"]
+
+#: Speeds searched for the first critical speed, m/s (as the linear intervals search them).
+CRITICAL_SPEED_GRID = np.geomspace(0.01, MAX_SPEED, 600)
+
+
+def columns(spec: SweepSpec) -> list[str]:
+    """Column names of the results, in order."""
+    cols = ["design", "draw", "speed_m_s"] + [f"grid_{a}" for a, _ in spec.grid] + list(_NUMERIC)
+    for m in spec.measures:
+        cols += list(MEASURES[m][0])
+    return cols + ["error"]
+
+
+def design_values(spec: SweepSpec) -> list[tuple[float, ...]]:
+    """Every design's grid values, row-major (first axis slowest)."""
+    return list(itertools.product(*[v for _, v in spec.grid])) if spec.grid else [()]
+
+
+def n_chunks(spec: SweepSpec) -> int:
+    """Number of chunks."""
+    per = max(1, spec.chunk_rows // len(spec.speeds))
+    return math.ceil(spec.designs * spec.draws / per)
+
+
+def chunk_pairs(spec: SweepSpec, index: int) -> range:
+    """The (design, draw) pair numbers of chunk ``index`` (pair = design * draws + draw)."""
+    per = max(1, spec.chunk_rows // len(spec.speeds))
+    return range(index * per, min((index + 1) * per, spec.designs * spec.draws))
+
+
+def _chair(spec: SweepSpec, values: tuple[float, ...], draw: int, unit: dict[str, np.ndarray] | None) -> Chair:
+    c = spec.chair
+    for (axis, _), v in zip(spec.grid, values, strict=True):
+        c = apply_axis(c, axis, v)
+    if spec.uncertainty is not None and unit is not None:
+        vals = spec.uncertainty.field_values(c, {k: v[draw:draw + 1] for k, v in unit.items()})
+        c = c.replace(**{f: float(v[0]) for f, v in vals.items()})
+    check_static_loads(c)
+    return c.replace(name=f"{spec.chair.name} design {values}" if values else spec.chair.name)
+
+
+def compute_chunk(spec: SweepSpec, index: int) -> list[list[Any]]:
+    """The rows of chunk ``index`` (lists in :func:`columns` order).
+
+    A pair whose chair is invalid (a grid value outside a field's range, the
+    c.g. outside the wheel contacts) gives rows with every measure NaN and the
+    one-line reason in ``error``.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    index : int
+
+    Returns
+    -------
+    list of list
+    """
+    designs = design_values(spec)
+    unit = spec.uncertainty.unit_draws(spec.draws, spec.seed) if spec.uncertainty is not None else None
+    pairs = list(chunk_pairs(spec, index))
+    chairs: list[Chair | None] = []
+    errors: list[str] = []
+    for p in pairs:
+        d, k = divmod(p, spec.draws)
+        try:
+            chairs.append(_chair(spec, designs[d], k, unit))
+            errors.append("")
+        except ValueError as exc:
+            chairs.append(None)
+            errors.append(str(exc).splitlines()[0])
+    ok = [i for i, c in enumerate(chairs) if c is not None]
+    good = [c for c in chairs if c is not None]
+    speeds = np.array(spec.speeds)
+    values = _measures(spec, good, speeds)            # column -> (len(ok), K) array
+    rows = []
+    for i, p in enumerate(pairs):
+        d, k = divmod(p, spec.draws)
+        c = chairs[i]
+        j = ok.index(i) if c is not None else -1
+        for s_i, s in enumerate(spec.speeds):
+            row: list[Any] = [d, k, s, *designs[d]]
+            row += [float(getattr(c, f)) if c is not None else math.nan for f in _NUMERIC]
+            for m in spec.measures:
+                for col in MEASURES[m][0]:
+                    row.append(values[col][j, s_i] if j >= 0 else (math.nan if not col.endswith("status")
+                                                                      else "invalid"))
+            row.append(errors[i])
+            rows.append(row)
+    return rows
+
+
+def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[str, np.ndarray]:
+    n, k = len(chairs), len(speeds)
+    out: dict[str, np.ndarray] = {}
+    if n == 0:
+        return out
+    batch = ChairBatch(chairs, spec.model) if {"growth_rate", "critical_speeds"} & set(spec.measures) else None
+    if "growth_rate" in spec.measures and batch is not None:
+        out["growth_rate_1_s"] = batch.growth_rates(speeds)
+    if "critical_speeds" in spec.measures and batch is not None:
+        out["critical_speed_m_s"] = np.repeat(batch.first_critical_speed(CRITICAL_SPEED_GRID)[:, None], k, axis=1)
+        out["locked_critical_speed_m_s"] = np.repeat(
+            batch.first_critical_speed(CRITICAL_SPEED_GRID, "locked")[:, None], k, axis=1)
+    if "critical_impulse" in spec.measures:
+        res = critical_impulses([c for c in chairs for _ in speeds], np.tile(speeds, n), model=spec.model)
+        out["critical_impulse_Ns"] = np.array([math.nan if r.impulse_Ns is None else r.impulse_Ns
+                                               for r in res]).reshape(n, k)
+        out["critical_impulse_status"] = np.array([r.status for r in res], dtype=object).reshape(n, k)
+    if "equal_instability_speed" in spec.measures:
+        res2 = equal_instability_speeds(chairs, model=spec.model, progress=False)
+        v = np.array([math.nan if r.speed is None else r.speed for r in res2])
+        out["equal_instability_speed_m_s"] = np.repeat(v[:, None], k, axis=1)
+        out["equal_instability_status"] = np.repeat(np.array([r.status for r in res2], dtype=object)[:, None], k,
+                                                    axis=1)
+    return out

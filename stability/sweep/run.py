@@ -1,0 +1,218 @@
+"""Running a sweep: chunks written atomically, resumable, merged into one CSV or Parquet file, with a summary.
+
+Chunk ``i`` goes to ``RESULTS.chunks/chunk-iiiiii.csv`` (written to a
+temporary name and renamed, so a chunk file is complete or absent); the spec
+it was made from is kept there as ``spec.json``.  ``resume=True`` computes
+only the missing chunks of the same spec.  The final file is built from the
+chunk files alone (floats written with ``repr``, which reads back exactly), so
+an interrupted and resumed sweep gives the same bytes as an uninterrupted one.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import shutil
+import time
+from collections.abc import Callable, Iterable, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..output import atomic_path, atomic_write_text
+from .measures import columns, compute_chunk, n_chunks
+from .spec import MEASURES, SweepSpec
+
+__all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TEXT_COLUMNS", "HIGHER_IS_BETTER"]
+
+#: Columns holding text (everything else is a number).
+TEXT_COLUMNS = ("critical_impulse_status", "equal_instability_status", "error")
+#: Measures where a larger value is better (a chair that needs more to go wrong); growth rate: smaller is better.
+HIGHER_IS_BETTER = {"critical_speed_m_s": True, "locked_critical_speed_m_s": True, "critical_impulse_Ns": True,
+                    "equal_instability_speed_m_s": True, "growth_rate_1_s": False}
+
+
+def chunk_dir(out: str | os.PathLike[str]) -> Path:
+    """Where the chunks of ``out`` are kept while the sweep runs."""
+    p = Path(out)
+    return p.with_name(p.name + ".chunks")
+
+
+def _cell(x: Any) -> str:
+    if isinstance(x, str):
+        return x
+    if isinstance(x, (int, np.integer)) and not isinstance(x, bool):
+        return str(int(x))
+    return repr(float(x))
+
+
+def _chunk_text(rows: Sequence[Sequence[Any]]) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    for r in rows:
+        w.writerow([_cell(x) for x in r])
+    return buf.getvalue()
+
+
+def run_sweep(spec: SweepSpec, out: str | os.PathLike[str], *, resume: bool = False,
+              mapper: Callable[[Callable[[int], str], Sequence[int]], Iterable[tuple[int, str]]] | None = None,
+              progress: Callable[[int, int, int, float], None] | None = None) -> Path:
+    """Run every chunk not yet done, then write ``out`` (CSV, or Parquet for a ``.parquet`` suffix).
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    out : path
+        The results file.
+    resume : bool
+        Keep the finished chunks of an interrupted run of the same spec.
+    mapper : callable, optional
+        ``mapper(fn, indices)`` yields ``(index, fn(index))`` for every chunk
+        index, in any order (a cluster); default: in this process, in order.
+    progress : callable, optional
+        ``progress(chunks_done, chunks_total, rows_done, seconds)`` after each chunk.
+
+    Returns
+    -------
+    Path
+        ``out``.
+    """
+    d = chunk_dir(out)
+    manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)
+    if d.exists():
+        if not resume:
+            raise ValueError(f"output {str(out)!r} has unfinished chunks in {str(d)!r}; valid: --resume to finish "
+                             "them, or remove that directory")
+        old = (d / "spec.json").read_text() if (d / "spec.json").exists() else ""
+        if old != manifest:
+            raise ValueError(f"--resume: the chunks in {str(d)!r} come from another spec; valid: the same spec, "
+                             "or remove that directory")
+    else:
+        d.mkdir(parents=True)
+        atomic_write_text(d / "spec.json", manifest)
+    total = n_chunks(spec)
+    todo = [i for i in range(total) if not (d / f"chunk-{i:06d}.csv").exists()]
+    done = total - len(todo)
+    start = time.perf_counter()
+    rows_done = 0
+    run = mapper if mapper is not None else _in_process
+    for i, text in run(lambda i: _chunk_text(compute_chunk(spec, i)), todo):
+        atomic_write_text(d / f"chunk-{i:06d}.csv", text)
+        done += 1
+        rows_done += text.count("\n")
+        if progress is not None:
+            progress(done, total, rows_done, time.perf_counter() - start)
+    _merge(spec, d, total, Path(out))
+    shutil.rmtree(d)
+    return Path(out)
+
+
+def _in_process(fn: Callable[[int], str], indices: Sequence[int]) -> Iterable[tuple[int, str]]:
+    for i in indices:
+        yield i, fn(i)
+
+
+def _merge(spec: SweepSpec, d: Path, total: int, out: Path) -> None:
+    header = _chunk_text([columns(spec)])
+    parts = [(d / f"chunk-{i:06d}.csv").read_text() for i in range(total)]
+    if out.suffix.lower() == ".parquet":
+        _write_parquet(spec, header + "".join(parts), out)
+    else:
+        atomic_write_text(out, header + "".join(parts))
+
+
+def _write_parquet(spec: SweepSpec, text: str, out: Path) -> None:
+    try:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+    except ImportError:
+        raise ValueError("-o: a .parquet file needs pyarrow (pip install 'stability[scale]'); valid: a .csv file "
+                         "without it") from None
+    cols = columns(spec)
+    data = read_rows(text)
+    table = pa.table({c: pa.array(data[c], type=pa.string() if c in TEXT_COLUMNS else pa.float64()) for c in cols})
+    with atomic_path(out) as tmp:
+        pq.write_table(table, tmp)
+
+
+def read_rows(text: str) -> dict[str, list]:
+    """Columns of results CSV text (numbers as float, text columns as str)."""
+    reader = csv.reader(io.StringIO(text))
+    head = next(reader)
+    cols: dict[str, list] = {h: [] for h in head}
+    for r in reader:
+        for h, x in zip(head, r, strict=True):
+            cols[h].append(x if h in TEXT_COLUMNS else float(x))
+    return cols
+
+
+def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float = 0.95) -> dict[str, Any]:
+    """The best designs for each measure and speed by the conservative end of its interval over the draws.
+
+    For a measure where more is better (critical impulse, critical speeds,
+    equal-instability speed) designs are ranked by the low end of the
+    central ``level`` interval over the draws; for the growth rate (less is
+    better) by the high end.  Draws without a value (invalid chair, not found)
+    count as the worst case; a design with such a draw says how many.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    data : dict
+        Columns (:func:`read_rows`).
+    top : int
+    level : float
+
+    Returns
+    -------
+    dict
+        ``{"measures": {column: {speed: [{"design": d, "grid": {...}, "conservative": x, "median": m,
+        "missing": n}, ...]}}}``.
+    """
+    design = np.asarray(data["design"], dtype=int)
+    speed = np.asarray(data["speed_m_s"], dtype=float)
+    grid_cols = [f"grid_{a}" for a, _ in spec.grid]
+    q = (1.0 - level) / 2.0
+    result: dict[str, Any] = {}
+    for m in spec.measures:
+        for col in MEASURES[m][0]:
+            if col not in HIGHER_IS_BETTER:
+                continue
+            up = HIGHER_IS_BETTER[col]
+            vals = np.asarray(data[col], dtype=float)
+            per_speed = {}
+            for s in spec.speeds:
+                ranked: list[dict[str, Any]] = []
+                for dsg in np.unique(design):
+                    sel = (design == dsg) & (speed == s)
+                    v = vals[sel]
+                    fin = v[np.isfinite(v)]
+                    if fin.size == 0:
+                        continue
+                    cons = float(np.quantile(fin, q if up else 1.0 - q))
+                    first = int(np.flatnonzero(sel)[0])
+                    ranked.append({"design": int(dsg), "grid": {c[5:]: data[c][first] for c in grid_cols},
+                                   "conservative": cons, "median": float(np.median(fin)),
+                                   "missing": int(v.size - fin.size)})
+                ranked.sort(key=lambda e: (e["missing"], -e["conservative"] if up else e["conservative"]))
+                per_speed[f"{s:g}"] = ranked[:top]
+            result[col] = per_speed
+    return {"level": level, "measures": result}
+
+
+def summary_text(spec: SweepSpec, s: dict[str, Any]) -> str:
+    """The summary in lines of text."""
+    lines = [f"best designs by the conservative end of the {100 * s['level']:g} % interval over {spec.draws} draw(s)"]
+    for col, per in s["measures"].items():
+        end = "low end" if HIGHER_IS_BETTER[col] else "high end"
+        for sp, ranked in per.items():
+            best = "; ".join(f"{e['grid'] or 'base'}: {e['conservative']:.4g} ({end})"
+                             + (f", {e['missing']} draw(s) without a value" if e["missing"] else "")
+                             for e in ranked)
+            lines.append(f"{col} at {sp} m/s: {best or 'no design has a value'}")
+    return "\n".join(lines)
+
+

@@ -1,0 +1,266 @@
+"""The sweep spec: a TOML file naming a base chair, grid axes, random draws, speeds and measures.
+
+::
+
+    chair = "ej-premier"          # a preset or a chair TOML file (relative to the spec)
+    model = "exact"
+    speeds = [0.5, 0.75, 1.0]     # m/s
+    measures = ["growth_rate", "critical_speeds", "critical_impulse"]
+    chunk_rows = 300              # rows per chunk file (a chunk holds whole designs x draws)
+
+    [grid]                        # any chair field, or a design parameter (pin_friction sets both pins)
+    trail = [0.04, 0.05, 0.06]
+    pin_friction = [0.05, 0.1, 0.15]
+
+    [draws]                       # optional: random draws of the uncertain fields around each design
+    n = 100
+    seed = 0
+    uncertainty = "chair.uncertainty.toml"
+
+One row of the results per (design, draw, speed).  :data:`SCHEMA` is the
+JSON Schema of the file; every check here names the key, its value and the
+valid range in one line.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .. import chair as chair_mod
+from .. import design
+from ..chair import Chair
+from ..uncertainty import Uncertainty, load_uncertainty
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["MEASURES", "UNAVAILABLE", "SCHEMA", "SweepSpec", "load_spec", "loads_spec", "MAX_ROWS"]
+
+#: Measures a sweep can compute: name -> (columns it writes, cost class).  Per-speed measures fill
+#: every row; per-chair ones (critical speeds, equal-instability speed) repeat on a design-draw's rows.
+MEASURES: dict[str, tuple[tuple[str, ...], str]] = {
+    "growth_rate": (("growth_rate_1_s",), "linear"),
+    "critical_speeds": (("critical_speed_m_s", "locked_critical_speed_m_s"), "linear"),
+    "critical_impulse": (("critical_impulse_Ns", "critical_impulse_status"), "nonlinear"),
+    "equal_instability_speed": (("equal_instability_speed_m_s", "equal_instability_status"), "nonlinear"),
+}
+#: Measures the issue names whose physics is not on this branch yet: the reason given when asked for.
+UNAVAILABLE: dict[str, str] = {
+    "shimmy_margin": "needs the shimmy band of stability.shimmy (being built alongside, not on main yet)",
+    "tip_angles": "needs stability.tipping (being built alongside, not on main yet)",
+    "holding_moment": "needs stability.tipping's holding moment (being built alongside, not on main yet)",
+}
+#: Work bound: rows of one sweep.
+MAX_ROWS = 10_000_000
+_TOP = {"chair", "model", "speeds", "measures", "grid", "draws", "chunk_rows"}
+_NUMERIC = [f for f in chair_mod.field_names()
+            if f not in ("name", "caster_position", "main_tire", "caster_tire", "camber_coefficient")]
+_GROUPS = {name: p for name, p in design.DESIGN_PARAMETERS.items() if not p.categorical and name not in _NUMERIC}
+
+SCHEMA: dict[str, Any] = {
+    "$schema": "https://json-schema.org/draft/2020-12/schema",
+    "title": "stability sweep spec",
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["speeds", "measures"],
+    "properties": {
+        "chair": {"type": "string", "description": "preset name or chair TOML file (relative to the spec)"},
+        "model": {"enum": ["exact", "thesis"], "default": "exact"},
+        "speeds": {"type": "array", "items": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
+                   "minItems": 1, "description": "forward speeds, m/s"},
+        "measures": {"type": "array", "minItems": 1, "uniqueItems": True,
+                     "items": {"enum": sorted(MEASURES) + sorted(UNAVAILABLE)}},
+        "chunk_rows": {"type": "integer", "minimum": 1, "default": 300},
+        "grid": {"type": "object", "description": "axis -> values: a numeric chair field or a design parameter",
+                 "propertyNames": {"enum": sorted(_NUMERIC) + sorted(_GROUPS)},
+                 "additionalProperties": {"type": "array", "items": {"type": "number"}, "minItems": 1}},
+        "draws": {"type": "object", "additionalProperties": False, "required": ["n", "uncertainty"],
+                  "properties": {"n": {"type": "integer", "minimum": 1}, "seed": {"type": "integer", "minimum": 0},
+                                 "uncertainty": {"type": "string", "description": "uncertainty TOML file"}}},
+    },
+}
+
+
+@dataclass(frozen=True, eq=False)
+class SweepSpec:
+    """A checked sweep spec.
+
+    Attributes
+    ----------
+    chair : Chair
+        The base chair.
+    chair_source : str
+        Preset name or file as given.
+    model : str
+    speeds : tuple of float
+        m/s.
+    measures : tuple of str
+    grid : tuple of (str, tuple of float)
+        Axes in file order (the first two are the plot axes).
+    draws : int
+        Draws per design (1: the design itself, no uncertainty).
+    seed : int
+    uncertainty : Uncertainty or None
+    chunk_rows : int
+    """
+
+    chair: Chair
+    chair_source: str
+    model: str
+    speeds: tuple
+    measures: tuple
+    grid: tuple
+    draws: int
+    seed: int
+    uncertainty: Uncertainty | None
+    chunk_rows: int
+
+    @property
+    def designs(self) -> int:
+        """Number of grid points."""
+        return math.prod(len(v) for _, v in self.grid) if self.grid else 1
+
+    @property
+    def rows(self) -> int:
+        """Rows of the results: designs x draws x speeds."""
+        return self.designs * self.draws * len(self.speeds)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary of the spec (what a results file was made from)."""
+        return {"chair": self.chair_source, "model": self.model, "speeds_m_s": list(self.speeds),
+                "measures": list(self.measures), "grid": {k: list(v) for k, v in self.grid},
+                "draws": self.draws, "seed": self.seed, "uncertainty": None if self.uncertainty is None
+                else self.uncertainty.dumps(), "chunk_rows": self.chunk_rows}
+
+
+def _bad(key: str, value: Any, valid: str) -> ValueError:
+    return ValueError(f"spec {key}={value!r} is invalid; valid: {valid}")
+
+
+def _numbers(key: str, value: Any, positive: bool = False) -> tuple[float, ...]:
+    if not isinstance(value, list) or not value or any(isinstance(v, bool) or not isinstance(v, (int, float))
+                                                       or not math.isfinite(v) for v in value):
+        raise _bad(key, value, "a non-empty list of finite numbers")
+    if positive and any(v <= 0 for v in value):
+        raise _bad(key, value, "numbers > 0")
+    return tuple(float(v) for v in value)
+
+
+def _measures(value: Any) -> tuple[str, ...]:
+    if not isinstance(value, list) or not value or any(not isinstance(m, str) for m in value):
+        raise _bad("measures", value, f"a non-empty list of {sorted(MEASURES)}")
+    for m in value:
+        if m in UNAVAILABLE:
+            raise ValueError(f"spec measures: {m!r} is not available yet: it {UNAVAILABLE[m]}; "
+                             f"valid now: {sorted(MEASURES)}")
+        if m not in MEASURES:
+            raise _bad("measures", m, f"one of {sorted(MEASURES)}")
+    if len(set(value)) != len(value):
+        raise _bad("measures", value, "each measure once")
+    return tuple(value)
+
+
+def _draws(draws_t: Any, base: Path) -> tuple[int, int, Uncertainty | None]:
+    if draws_t is None:
+        return 1, 0, None
+    if not isinstance(draws_t, Mapping) or set(draws_t) - {"n", "seed", "uncertainty"}:
+        raise _bad("draws", draws_t, "a table [draws] with n, seed, uncertainty")
+    n, seed = draws_t.get("n"), draws_t.get("seed", 0)
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise _bad("draws.n", n, "an integer >= 1")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise _bad("draws.seed", seed, "an integer >= 0")
+    if not isinstance(draws_t.get("uncertainty"), str):
+        raise _bad("draws.uncertainty", draws_t.get("uncertainty"), "an uncertainty TOML file")
+    return n, seed, load_uncertainty(base / draws_t["uncertainty"])
+
+
+def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec:
+    """Check a parsed spec and build the :class:`SweepSpec` (ValueError in one line on bad input).
+
+    Parameters
+    ----------
+    data : Mapping
+        The TOML tables.
+    base : Path, optional
+        Directory that relative file names are read from.
+
+    Returns
+    -------
+    SweepSpec
+    """
+    base = base or Path.cwd()
+    unknown = set(data) - _TOP
+    if unknown:
+        raise ValueError(f"spec has unknown key(s) {sorted(unknown)}; valid keys: {sorted(_TOP)}")
+    source = data.get("chair", "ej-premier")
+    if not isinstance(source, str):
+        raise _bad("chair", source, "a preset name or a chair TOML file")
+    path = base / source
+    chair = chair_mod.resolve(str(path) if source.endswith(".toml") else source)
+    model = data.get("model", "exact")
+    if model not in ("exact", "thesis"):
+        raise _bad("model", model, "'exact' or 'thesis'")
+    if "speeds" not in data:
+        raise ValueError("spec has no speeds; valid: speeds = [m/s, ...], each > 0")
+    speeds = _numbers("speeds", data["speeds"], positive=True)
+    if "measures" not in data:
+        raise ValueError(f"spec has no measures; valid: measures = a list of {sorted(MEASURES)}")
+    measures = _measures(data["measures"])
+    grid_t = data.get("grid", {})
+    if not isinstance(grid_t, Mapping):
+        raise _bad("grid", grid_t, "a table [grid] of axis = [values]")
+    grid = []
+    for axis, values in grid_t.items():
+        if axis not in _NUMERIC and axis not in _GROUPS:
+            raise _bad("grid", axis, f"a numeric chair field {_NUMERIC} or a design parameter {sorted(_GROUPS)}")
+        grid.append((axis, _numbers(f"grid.{axis}", values)))
+    n, seed, unc = _draws(data.get("draws"), base)
+    chunk_rows = data.get("chunk_rows", 300)
+    if isinstance(chunk_rows, bool) or not isinstance(chunk_rows, int) or chunk_rows < 1:
+        raise _bad("chunk_rows", chunk_rows, "an integer >= 1")
+    spec = SweepSpec(chair, source, model, speeds, measures, tuple(grid), int(n), int(seed), unc, chunk_rows)
+    if spec.rows > MAX_ROWS:
+        raise ValueError(f"spec asks for {spec.rows} rows (designs x draws x speeds); valid: at most {MAX_ROWS}")
+    return spec
+
+
+def loads_spec(text: str, base: Path | None = None) -> SweepSpec:
+    """Parse spec TOML text (see :func:`from_mapping`)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"spec is not valid TOML: {exc}") from None
+    return from_mapping(data, base)
+
+
+def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
+    """Read a spec file (relative file names in it are read next to it).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    SweepSpec
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"spec file {str(path)!r} does not exist")
+    return loads_spec(p.read_text(), p.parent)
+
+
+def apply_axis(chair: Chair, axis: str, value: float) -> Chair:
+    """The chair with one grid axis set (a chair field, or a design parameter such as ``pin_friction``)."""
+    if axis in _GROUPS:
+        return _GROUPS[axis].apply(chair, value)
+    return chair.replace(**{axis: value})

@@ -1,0 +1,182 @@
+"""python -m stability.sweep (issue 25): spec checks, rows against the library, resume, bad chairs, summary."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stability.chair import preset
+from stability.linear.batch import ChairBatch
+from stability.study import critical_impulses
+from stability.sweep import columns, compute_chunk, loads_spec, n_chunks, read_rows, run_sweep, summary
+from stability.sweep.__main__ import main
+from stability.sweep.measures import design_values
+from stability.sweep.run import chunk_dir
+from stability.uncertainty import loads_uncertainty
+
+UNC = '''[pin_friction]
+fields = ["pin_friction_left", "pin_friction_right"]
+distribution = "uniform"
+low = -0.3
+high = 0.3
+relative = true
+
+[i_z]
+distribution = "normal"
+std = 0.3
+'''
+LINEAR = '''chair = "ej-premier"
+speeds = [0.5, 1.0]
+measures = ["growth_rate", "critical_speeds"]
+chunk_rows = 8
+[grid]
+trail = [0.04, 0.06, -1.0]
+pin_friction = [0.05, 0.15]
+[draws]
+n = 3
+seed = 4
+uncertainty = "u.toml"
+'''
+
+
+@pytest.fixture
+def spec_dir(tmp_path):
+    (tmp_path / "u.toml").write_text(UNC)
+    (tmp_path / "lin.toml").write_text(LINEAR)
+    return tmp_path
+
+
+def test_rows_equal_the_library_and_a_bad_chair_is_a_row(spec_dir):
+    """Every row's growth rate is ChairBatch's for that row's chair (same arithmetic: equal to 1e-12 relative,
+    one eigenvalue solve per chair either way); the design with trail -1 m is rows with their reason."""
+    spec = loads_spec(LINEAR, spec_dir)
+    assert spec.designs == 6 and spec.rows == 6 * 3 * 2 and n_chunks(spec) == math.ceil(18 / 4)
+    rows = [r for i in range(n_chunks(spec)) for r in compute_chunk(spec, i)]
+    cols = columns(spec)
+    assert len(rows) == spec.rows
+    data = {c: [r[j] for r in rows] for j, c in enumerate(cols)}
+    bad = [i for i, e in enumerate(data["error"]) if e]
+    assert len(bad) == 2 * 3 * 2 and all("trail" in data["error"][i] for i in bad)
+    assert all(math.isnan(data["growth_rate_1_s"][i]) for i in bad)
+    # rebuild one good row's chair independently: base -> grid values -> the same standardised draw
+    u = loads_uncertainty(UNC)
+    unit = u.unit_draws(3, 4)
+    i = next(i for i in range(len(rows)) if not data["error"][i] and data["draw"][i] == 2 and data["speed_m_s"][i] == 1.0)
+    d = data["design"][i]
+    trail, mf = design_values(spec)[d]
+    c = preset("ej-premier").replace(trail=trail, pin_friction_left=mf, pin_friction_right=mf)
+    vals = u.field_values(c, {k: v[2:3] for k, v in unit.items()})
+    c = c.replace(**{f: float(v[0]) for f, v in vals.items()})
+    assert data["pin_friction_left"][i] == c.pin_friction_left and data["i_z"][i] == c.i_z
+    expected = ChairBatch([c], "exact").growth_rates([1.0])[0, 0]
+    assert data["growth_rate_1_s"][i] == pytest.approx(expected, rel=1e-12)
+    # free casters: unstable at every speed searched (no critical speed); locked: 9.7 m/s class (README)
+    assert math.isnan(data["critical_speed_m_s"][i]) and 5.0 < data["locked_critical_speed_m_s"][i] < 20.0
+
+
+def test_resume_after_an_interruption_gives_the_same_file(spec_dir, monkeypatch):
+    spec = loads_spec(LINEAR, spec_dir)
+    whole = run_sweep(spec, spec_dir / "a.csv").read_bytes()
+    import stability.sweep.run as run_mod
+
+    real = run_mod.compute_chunk
+    calls = []
+
+    def dies_after_two(s, i):
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        calls.append(i)
+        return real(s, i)
+
+    monkeypatch.setattr(run_mod, "compute_chunk", dies_after_two)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(spec, spec_dir / "b.csv")
+    assert sorted(p.name for p in chunk_dir(spec_dir / "b.csv").glob("chunk-*.csv")) == ["chunk-000000.csv",
+                                                                                        "chunk-000001.csv"]
+    assert not (spec_dir / "b.csv").exists()
+    with pytest.raises(ValueError, match="--resume"):
+        run_sweep(spec, spec_dir / "b.csv")
+    monkeypatch.setattr(run_mod, "compute_chunk", real)
+    done = []
+    run_sweep(spec, spec_dir / "b.csv", resume=True, progress=lambda k, n, rows, t: done.append(k))
+    assert done == [3, 4, 5] and (spec_dir / "b.csv").read_bytes() == whole
+    assert not chunk_dir(spec_dir / "b.csv").exists()
+
+
+def test_parquet_equals_csv(spec_dir):
+    pq = pytest.importorskip("pyarrow.parquet")
+    spec = loads_spec(LINEAR, spec_dir)
+    a = read_rows(run_sweep(spec, spec_dir / "a.csv").read_text())
+    b = pq.read_table(run_sweep(spec, spec_dir / "a.parquet")).to_pydict()
+    assert list(b) == columns(spec)
+    for c in a:
+        np.testing.assert_array_equal(np.asarray(b[c], dtype=object if c == "error" else float),
+                                      np.asarray(a[c], dtype=object if c == "error" else float))
+
+
+def test_nonlinear_chunk_matches_the_batched_search(tmp_path):
+    """The critical-impulse column is critical_impulses over the chunk's (chair, speed) pairs."""
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["critical_impulse"]\n[grid]\npin_friction = [0.1, 0.2]\n',
+                      tmp_path)
+    rows = compute_chunk(spec, 0)
+    j = columns(spec).index("critical_impulse_Ns")
+    ej = preset("ej-premier")
+    direct = critical_impulses([ej.replace(pin_friction_left=f, pin_friction_right=f) for f in (0.1, 0.2)], 0.75)
+    assert [r[j] for r in rows] == [x.impulse_Ns for x in direct]
+    assert rows[1][j] > rows[0][j]            # more pin friction: a larger push needed (elasticity ~1)
+
+
+def test_summary_ranks_by_the_conservative_end(spec_dir):
+    spec = loads_spec(LINEAR, spec_dir)
+    data = read_rows(run_sweep(spec, spec_dir / "s.csv").read_text())
+    s = summary(spec, data, top=10)
+    ranked = s["measures"]["growth_rate_1_s"]["1"]
+    highs = [e["conservative"] for e in ranked]
+    assert highs == sorted(highs) and len(ranked) == 4          # 4 valid designs, lower growth rate is better
+    g = np.asarray(data["growth_rate_1_s"])
+    sel = (np.asarray(data["design"]) == ranked[0]["design"]) & (np.asarray(data["speed_m_s"]) == 1.0)
+    assert ranked[0]["conservative"] == pytest.approx(np.quantile(g[sel], 0.975), rel=1e-12)
+
+
+@pytest.mark.parametrize("text, word", [
+    ('speeds = [0.5]\nmeasures = ["tip_angles"]\n', "tip_angles"),
+    ('speeds = [0.5]\nmeasures = ["nope"]\n', "nope"),
+    ('speeds = [0]\nmeasures = ["growth_rate"]\n', "speeds"),
+    ('speeds = [0.5]\nmeasures = ["growth_rate"]\n[grid]\ncolour = [1]\n', "colour"),
+    ('speeds = [0.5]\nmeasures = ["growth_rate"]\nfoo = 1\n', "foo"),
+    ('speeds = [0.5]\nmeasures = ["growth_rate"]\n[draws]\nn = 0\nuncertainty = "u.toml"\n', "draws.n"),
+])
+def test_bad_specs_are_one_line_errors_before_any_work(tmp_path, capsys, text, word):
+    (tmp_path / "u.toml").write_text(UNC)
+    (tmp_path / "s.toml").write_text(text)
+    assert main([str(tmp_path / "s.toml"), "-o", str(tmp_path / "r.csv")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: ") and word in err[0]
+    assert not (tmp_path / "r.csv").exists() and not chunk_dir(tmp_path / "r.csv").exists()
+
+
+def test_command_writes_results_summary_and_figures(spec_dir, capsys):
+    assert main([str(spec_dir / "lin.toml"), "-o", str(spec_dir / "r.csv")]) == 0
+    out = capsys.readouterr()
+    assert "growth_rate_1_s at 1 m/s" in out.out and "chunks" in out.err
+    s = json.loads((spec_dir / "r.summary.json").read_text())
+    assert s["spec"]["draws"] == 3 and "growth_rate_1_s" in s["measures"]
+    assert (spec_dir / "r.pdf").stat().st_size > 1000
+    assert main(["--schema"]) == 0
+    schema = json.loads(capsys.readouterr().out)
+    assert "pin_friction" in schema["properties"]["grid"]["propertyNames"]["enum"]
+    assert set(schema["properties"]) == {"chair", "model", "speeds", "measures", "grid", "draws", "chunk_rows"}
+    assert Path(spec_dir / "r.csv").read_text().splitlines()[0].split(",")[:3] == ["design", "draw", "speed_m_s"]
+
+
+def test_example_spec_is_the_issue_sweep():
+    """docs/examples/sweep.toml: a 3 x 3 x 3 grid x 100 draws x 3 speeds of every available measure."""
+    from stability.sweep import MEASURES, load_spec
+
+    spec = load_spec(Path(__file__).parent.parent / "docs" / "examples" / "sweep.toml")
+    assert spec.designs == 27 and spec.draws == 100 and len(spec.speeds) == 3 and spec.rows == 8100
+    assert set(spec.measures) == set(MEASURES)
