@@ -143,7 +143,7 @@ def test_summary_ranks_by_the_conservative_end(spec_dir):
 
 
 @pytest.mark.parametrize("text, word", [
-    ('speeds = [0.5]\nmeasures = ["tip_angles"]\n', "tip_angles"),
+    ('speeds = [0.5]\nmeasures = ["growth_rate", "growth_rate"]\n', "measures"),
     ('speeds = [0.5]\nmeasures = ["nope"]\n', "nope"),
     ('speeds = [0]\nmeasures = ["growth_rate"]\n', "speeds"),
     ('speeds = [0.5]\nmeasures = ["growth_rate"]\n[grid]\ncolour = [1]\n', "colour"),
@@ -180,3 +180,30 @@ def test_example_spec_is_the_issue_sweep():
     spec = load_spec(Path(__file__).parent.parent / "docs" / "examples" / "sweep.toml")
     assert spec.designs == 27 and spec.draws == 100 and len(spec.speeds) == 3 and spec.rows == 8100
     assert set(spec.measures) == set(MEASURES)
+
+
+def test_statics_and_shimmy_measures_are_the_library_values(tmp_path):
+    """tip_angles, holding_moment and shimmy_margin columns: stability.tipping, stability.slope and
+    stability.shimmy.band on each row's chair (same calls, equal values)."""
+    from stability.shimmy.band import shimmy_band
+    from stability.slope import solve
+    from stability.tipping import tip_angles
+
+    spec = loads_spec('speeds = [0.5, 1.0]\nmeasures = ["tip_angles", "holding_moment", "shimmy_margin"]\n'
+                      '[grid]\ns1 = [0.2, 0.3]\n', tmp_path)
+    rows = compute_chunk(spec, 0)
+    cols = columns(spec)
+    for r in rows:
+        c = preset("ej-premier").replace(s1=r[cols.index("grid_s1")])
+        t = tip_angles(c)
+        assert r[cols.index("static_stability_deg")] == t.smallest_deg
+        assert r[cols.index("tip_toward_casters_deg")] == t.toward_casters_deg
+        u = r[cols.index("speed_m_s")]
+        assert r[cols.index("holding_moment_N_m_per_deg")] == abs(solve(c, 1.0, u).holding_moment)
+        k = spec.speeds.index(u)
+        assert r[cols.index("shimmy_margin_m")] == shimmy_band(c, np.array(spec.speeds)).margin_m[k]
+    # s1 is the c.g.-to-main-axle distance (s2, c.g. to the caster pins, fixed): a larger s1 makes the chair
+    # harder to tip over the main wheels and leaves the tip toward the casters unchanged
+    a, b = rows[0], rows[2]
+    assert b[cols.index("tip_toward_main_wheels_deg")] > a[cols.index("tip_toward_main_wheels_deg")]
+    assert b[cols.index("tip_toward_casters_deg")] == a[cols.index("tip_toward_casters_deg")]

@@ -21,8 +21,11 @@ import numpy as np
 from ..chair import Chair
 from ..defaults import MAX_SPEED
 from ..linear.batch import ChairBatch
+from ..shimmy.band import shimmy_band
+from ..slope import solve
 from ..statics import check_static_loads
 from ..study import critical_impulses, equal_instability_speeds
+from ..tipping import tip_angles
 from .spec import _NUMERIC, MEASURES, SweepSpec, apply_axis
 
 __all__ = ["CRITICAL_SPEED_GRID", "columns", "design_values", "chunk_pairs", "n_chunks", "compute_chunk"]
@@ -140,4 +143,31 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
         out["equal_instability_speed_m_s"] = np.repeat(v[:, None], k, axis=1)
         out["equal_instability_status"] = np.repeat(np.array([r.status for r in res2], dtype=object)[:, None], k,
                                                     axis=1)
+    if "shimmy_margin" in spec.measures:
+        out["shimmy_margin_m"] = np.array([_shimmy(c, speeds) for c in chairs])
+    if "tip_angles" in spec.measures:
+        tips = [tip_angles(c) for c in chairs]
+        for col, get in (("static_stability_deg", lambda t: t.smallest_deg),
+                         ("tip_toward_casters_deg", lambda t: t.toward_casters_deg),
+                         ("tip_toward_main_wheels_deg", lambda t: t.toward_main_wheels_deg),
+                         ("tip_lateral_deg", lambda t: min(t.lateral_left_deg, t.lateral_right_deg))):
+            out[col] = np.repeat(np.array([get(t) for t in tips], dtype=float)[:, None], k, axis=1)
+    if "holding_moment" in spec.measures:
+        out["holding_moment_N_m_per_deg"] = np.array([[_holding(c, float(u)) for u in speeds] for c in chairs])
     return out
+
+
+def _shimmy(chair: Chair, speeds: np.ndarray) -> np.ndarray:
+    """Signed distance of the trail to the nearest shimmy boundary at each speed, m (NaN: not computable)."""
+    try:
+        return np.asarray(shimmy_band(chair, speeds).margin_m, dtype=float)
+    except ValueError:
+        return np.full(len(speeds), math.nan)
+
+
+def _holding(chair: Chair, speed: float) -> float:
+    """Yaw moment that holds a straight line across a 1 deg cross slope, N m per deg (NaN: no equilibrium)."""
+    try:
+        return abs(solve(chair, 1.0, speed).holding_moment)
+    except ValueError:
+        return math.nan

@@ -14,12 +14,22 @@ __all__ = ["UNITS", "measure_figures"]
 UNITS = {"growth_rate_1_s": "growth rate (1/s)", "critical_speed_m_s": "first critical speed (m/s)",
          "locked_critical_speed_m_s": "locked-caster critical speed (m/s)",
          "critical_impulse_Ns": "critical impulse (N s)",
-         "equal_instability_speed_m_s": "equal-instability speed (m/s)"}
+         "equal_instability_speed_m_s": "equal-instability speed (m/s)",
+         "shimmy_margin_m": "shimmy margin of the trail (m)", "static_stability_deg": "static stability (deg)",
+         "tip_toward_casters_deg": "tip angle toward the casters (deg)",
+         "tip_toward_main_wheels_deg": "tip angle toward the main wheels (deg)",
+         "tip_lateral_deg": "lateral tip angle (deg)", "holding_moment_N_m_per_deg": "holding moment (N m/deg)"}
 _CAPTION = {"growth_rate_1_s": "lower is more stable (negative: disturbances decay)",
             "critical_speed_m_s": "higher is better: the chair is stable below it",
             "locked_critical_speed_m_s": "higher is better: with the casters locked the chair is stable below it",
             "critical_impulse_Ns": "higher is better: the smallest push that spins the chair",
-            "equal_instability_speed_m_s": "higher is better: the speed at which it is as unstable as the reference"}
+            "equal_instability_speed_m_s": "higher is better: the speed at which it is as unstable as the reference",
+            "shimmy_margin_m": "higher is better: distance of the trail to the nearest shimmy boundary (< 0: shimmies)",
+            "static_stability_deg": "higher is better: the smallest ISO 7176-1 static tip angle",
+            "tip_toward_casters_deg": "higher is better: the static tip angle toward the casters",
+            "tip_toward_main_wheels_deg": "higher is better: the static tip angle toward the main wheels",
+            "tip_lateral_deg": "higher is better: the smaller lateral static tip angle",
+            "holding_moment_N_m_per_deg": "lower is better: the yaw moment that holds a line across a cross slope"}
 _GRID_UNITS = {"pin_friction": "N m", "trail": "m", "s1": "m", "s2": "m", "l1": "m", "h": "m", "m": "kg",
                "i_z": "kg m^2", "d1": "m", "d2": "m", "t1": "m", "t2": "m", "pin_friction_left": "N m",
                "pin_friction_right": "N m", "toe_deg": "deg", "camber_deg": "deg", "m_c": "kg", "i_zp": "kg m^2"}

@@ -32,7 +32,9 @@ __all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TE
 TEXT_COLUMNS = ("critical_impulse_status", "equal_instability_status", "error")
 #: Measures where a larger value is better (a chair that needs more to go wrong); growth rate: smaller is better.
 HIGHER_IS_BETTER = {"critical_speed_m_s": True, "locked_critical_speed_m_s": True, "critical_impulse_Ns": True,
-                    "equal_instability_speed_m_s": True, "growth_rate_1_s": False}
+                    "equal_instability_speed_m_s": True, "growth_rate_1_s": False, "shimmy_margin_m": True,
+                    "static_stability_deg": True, "tip_toward_casters_deg": True, "tip_toward_main_wheels_deg": True,
+                    "tip_lateral_deg": True, "holding_moment_N_m_per_deg": False}
 
 
 def chunk_dir(out: str | os.PathLike[str]) -> Path:

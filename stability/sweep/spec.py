@@ -42,7 +42,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["MEASURES", "UNAVAILABLE", "SCHEMA", "SweepSpec", "load_spec", "loads_spec", "MAX_ROWS"]
+__all__ = ["MEASURES", "SCHEMA", "SweepSpec", "load_spec", "loads_spec", "MAX_ROWS"]
 
 #: Measures a sweep can compute: name -> (columns it writes, cost class).  Per-speed measures fill
 #: every row; per-chair ones (critical speeds, equal-instability speed) repeat on a design-draw's rows.
@@ -51,12 +51,10 @@ MEASURES: dict[str, tuple[tuple[str, ...], str]] = {
     "critical_speeds": (("critical_speed_m_s", "locked_critical_speed_m_s"), "linear"),
     "critical_impulse": (("critical_impulse_Ns", "critical_impulse_status"), "nonlinear"),
     "equal_instability_speed": (("equal_instability_speed_m_s", "equal_instability_status"), "nonlinear"),
-}
-#: Measures the issue names whose physics is not on this branch yet: the reason given when asked for.
-UNAVAILABLE: dict[str, str] = {
-    "shimmy_margin": "needs the shimmy band of stability.shimmy (being built alongside, not on main yet)",
-    "tip_angles": "needs stability.tipping (being built alongside, not on main yet)",
-    "holding_moment": "needs stability.tipping's holding moment (being built alongside, not on main yet)",
+    "shimmy_margin": (("shimmy_margin_m",), "linear"),
+    "tip_angles": (("static_stability_deg", "tip_toward_casters_deg", "tip_toward_main_wheels_deg",
+                    "tip_lateral_deg"), "statics"),
+    "holding_moment": (("holding_moment_N_m_per_deg",), "statics"),
 }
 #: Work bound: rows of one sweep.
 MAX_ROWS = 10_000_000
@@ -77,7 +75,7 @@ SCHEMA: dict[str, Any] = {
         "speeds": {"type": "array", "items": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
                    "minItems": 1, "description": "forward speeds, m/s"},
         "measures": {"type": "array", "minItems": 1, "uniqueItems": True,
-                     "items": {"enum": sorted(MEASURES) + sorted(UNAVAILABLE)}},
+                     "items": {"enum": sorted(MEASURES)}},
         "chunk_rows": {"type": "integer", "minimum": 1, "default": 300},
         "grid": {"type": "object", "description": "axis -> values: a numeric chair field or a design parameter",
                  "propertyNames": {"enum": sorted(_NUMERIC) + sorted(_GROUPS)},
@@ -158,9 +156,6 @@ def _measures(value: Any) -> tuple[str, ...]:
     if not isinstance(value, list) or not value or any(not isinstance(m, str) for m in value):
         raise _bad("measures", value, f"a non-empty list of {sorted(MEASURES)}")
     for m in value:
-        if m in UNAVAILABLE:
-            raise ValueError(f"spec measures: {m!r} is not available yet: it {UNAVAILABLE[m]}; "
-                             f"valid now: {sorted(MEASURES)}")
         if m not in MEASURES:
             raise _bad("measures", m, f"one of {sorted(MEASURES)}")
     if len(set(value)) != len(value):
