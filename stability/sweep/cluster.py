@@ -30,13 +30,36 @@ COST_PER_ROW_S = {"growth_rate": 2e-4, "critical_speeds": 2e-3, "critical_impuls
 
 
 def chunk_cost(spec: SweepSpec, index: int) -> float:
-    """Estimated cost of chunk ``index``, s: its rows times the measures' cost per row."""
+    """Estimated cost of chunk ``index``: its rows times the measures' cost per row.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    index : int
+        Chunk number.
+
+    Returns
+    -------
+    float
+        Seconds of one core (used only to order the chunks).
+    """
     rows = len(chunk_pairs(spec, index)) * len(spec.speeds)
     return rows * sum(COST_PER_ROW_S[m] for m in spec.measures)
 
 
 def parse_dask(value: str) -> tuple[str, int | None]:
-    """``"local:N"`` -> ("local", N); an address -> (address, None); ValueError naming ``--dask`` otherwise."""
+    """Read a ``--dask`` value.
+
+    Parameters
+    ----------
+    value : str
+        ``"local:N"`` or a scheduler address.
+
+    Returns
+    -------
+    (str, int or None)
+        ``("local", N)`` or ``(address, None)``; ValueError naming ``--dask`` otherwise.
+    """
     if value.startswith("local:"):
         n = value[len("local:"):]
         if not n.isdigit() or not 1 <= int(n) <= 1024:

@@ -35,7 +35,16 @@ CRITICAL_SPEED_GRID = np.geomspace(0.01, MAX_SPEED, 600)
 
 
 def columns(spec: SweepSpec) -> list[str]:
-    """Column names of the results, in order."""
+    """Column names of the results, in order.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+
+    Returns
+    -------
+    list of str
+    """
     cols = ["design", "draw", "speed_m_s"] + [f"grid_{a}" for a, _ in spec.grid] + list(_NUMERIC)
     for m in spec.measures:
         cols += list(MEASURES[m][0])
@@ -43,18 +52,47 @@ def columns(spec: SweepSpec) -> list[str]:
 
 
 def design_values(spec: SweepSpec) -> list[tuple[float, ...]]:
-    """Every design's grid values, row-major (first axis slowest)."""
+    """Every design's grid values, row-major (first axis slowest).
+
+    Parameters
+    ----------
+    spec : SweepSpec
+
+    Returns
+    -------
+    list of tuple of float
+    """
     return list(itertools.product(*[v for _, v in spec.grid])) if spec.grid else [()]
 
 
 def n_chunks(spec: SweepSpec) -> int:
-    """Number of chunks."""
+    """Number of chunks.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+
+    Returns
+    -------
+    int
+    """
     per = max(1, spec.chunk_rows // len(spec.speeds))
     return math.ceil(spec.designs * spec.draws / per)
 
 
 def chunk_pairs(spec: SweepSpec, index: int) -> range:
-    """The (design, draw) pair numbers of chunk ``index`` (pair = design * draws + draw)."""
+    """The (design, draw) pair numbers of chunk ``index`` (pair = design * draws + draw).
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    index : int
+        Chunk number.
+
+    Returns
+    -------
+    range
+    """
     per = max(1, spec.chunk_rows // len(spec.speeds))
     return range(index * per, min((index + 1) * per, spec.designs * spec.draws))
 

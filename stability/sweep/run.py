@@ -38,7 +38,18 @@ HIGHER_IS_BETTER = {"critical_speed_m_s": True, "locked_critical_speed_m_s": Tru
 
 
 def chunk_dir(out: str | os.PathLike[str]) -> Path:
-    """Where the chunks of ``out`` are kept while the sweep runs."""
+    """Where the chunks of ``out`` are kept while the sweep runs.
+
+    Parameters
+    ----------
+    out : path
+        The results file.
+
+    Returns
+    -------
+    Path
+        ``out`` with ``.chunks`` appended to its name.
+    """
     p = Path(out)
     return p.with_name(p.name + ".chunks")
 
@@ -141,7 +152,18 @@ def _write_parquet(spec: SweepSpec, text: str, out: Path) -> None:
 
 
 def read_rows(text: str) -> dict[str, list]:
-    """Columns of results CSV text (numbers as float, text columns as str)."""
+    """Columns of results CSV text.
+
+    Parameters
+    ----------
+    text : str
+        CSV with a header row.
+
+    Returns
+    -------
+    dict of str to list
+        Numbers as float, the :data:`TEXT_COLUMNS` as str.
+    """
     reader = csv.reader(io.StringIO(text))
     head = next(reader)
     cols: dict[str, list] = {h: [] for h in head}
@@ -206,7 +228,18 @@ def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float =
 
 
 def summary_text(spec: SweepSpec, s: dict[str, Any]) -> str:
-    """The summary in lines of text."""
+    """The summary in lines of text.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    s : dict
+        From :func:`summary`.
+
+    Returns
+    -------
+    str
+    """
     lines = [f"best designs by the conservative end of the {100 * s['level']:g} % interval over {spec.draws} draw(s)"]
     for col, per in s["measures"].items():
         end = "low end" if HIGHER_IS_BETTER[col] else "high end"

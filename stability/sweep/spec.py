@@ -229,7 +229,19 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
 
 
 def loads_spec(text: str, base: Path | None = None) -> SweepSpec:
-    """Parse spec TOML text (see :func:`from_mapping`)."""
+    """Parse spec TOML text.
+
+    Parameters
+    ----------
+    text : str
+        The spec (see :func:`from_mapping`).
+    base : Path, optional
+        Directory that relative file names are read from (default: the working directory).
+
+    Returns
+    -------
+    SweepSpec
+    """
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -255,7 +267,19 @@ def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
 
 
 def apply_axis(chair: Chair, axis: str, value: float) -> Chair:
-    """The chair with one grid axis set (a chair field, or a design parameter such as ``pin_friction``)."""
+    """The chair with one grid axis set.
+
+    Parameters
+    ----------
+    chair : Chair
+    axis : str
+        A numeric chair field, or a design parameter such as ``pin_friction`` (both pins).
+    value : float
+
+    Returns
+    -------
+    Chair
+    """
     if axis in _GROUPS:
         return _GROUPS[axis].apply(chair, value)
     return chair.replace(**{axis: value})
