@@ -39,6 +39,7 @@ COMMANDS: dict[str, str] = {
     "measure": "stability.measure.__main__",
     "report": "stability.report.command",
     "chair": "stability.chair.__main__",
+    "sweep": "stability.sweep.__main__",
     "tipping": "stability.tipping.__main__",
     "advise": "stability.advise.__main__",
     "app": "stability.app.server",
