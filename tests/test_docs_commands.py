@@ -73,6 +73,8 @@ def test_documented_command_parses(page, line):
 @pytest.mark.parametrize("page,line", COMMANDS, ids=[f"{p}:{line[:60]}" for p, line in COMMANDS])
 def test_documented_command_runs(page, line, tmp_path):
     name, argv = _split(line)
+    if name == "app":
+        pytest.skip("the explorer is a server that runs until stopped (tests/test_app*.py drive it)")
     for i, a in enumerate(argv):        # repository files named relative to the root stay readable from tmp
         if (ROOT / a).exists() and not os.path.isabs(a):
             argv[i] = str(ROOT / a)
