@@ -131,7 +131,8 @@ def _run(args: argparse.Namespace) -> int:
     except OSError as exc:
         raise ValueError(f"--port {args.port}: cannot listen on {args.host}:{args.port} ({exc.strerror})") from None
     warm_up()
-    print(f"stability explorer: {url}  (Ctrl-C stops it)", flush=True)
+    # the real stdout: the command-line wrapper holds stdout until a command ends, and a server never ends
+    print(f"stability explorer: {url}  (Ctrl-C stops it)", file=sys.__stdout__, flush=True)
     server.start()
     if not args.no_browser:
         server.io_loop.add_callback(server.show, "/")
