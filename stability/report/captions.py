@@ -12,26 +12,12 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..advise.text import kmh
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from .comparison import comparison_rows, key_numbers
 from .compute import ReportData
 
 __all__ = ["CAPTIONS", "caption"]
-
-
-def kmh(speed: float) -> str:
-    """A speed in m/s with its km/h, e.g. ``"0.75 m/s (2.7 km/h)"``.
-
-    Parameters
-    ----------
-    speed : float
-        m/s.
-
-    Returns
-    -------
-    str
-    """
-    return f"{speed:.3g} m/s ({3.6 * speed:.2g} km/h)"
 
 
 def _first(crossings, direction: str = "destabilising") -> float | None:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ..advise.measures import Measures
+from ..advise.text import kmh
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from .compute import ReportData
 
@@ -18,10 +19,6 @@ __all__ = ["decision_paragraphs", "decision_rows", "decision_bars"]
 _WORDS = {"static_stability_deg": "tips over on a slope of", "shimmy_margin_m": "shimmy margin",
           "turning_effort_N_m": "pin friction to overcome when turning", "handrim_force_difference_N":
           "hand-rim force difference on a cross slope"}
-
-
-def _kmh(u: float) -> str:
-    return f"{u:.3g} m/s ({3.6 * u:.2g} km/h)"
 
 
 def _range(x, unit: str, digits: int = 3) -> str:
@@ -59,18 +56,18 @@ def decision_paragraphs(d: ReportData) -> list[str]:
     ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
     out = []
     if m.critical_impulse_status == "never":
-        push = (f"At {_kmh(REFERENCE_SPEED)}, a slow walk, not even the largest sideways shove tried "
+        push = (f"At {kmh(REFERENCE_SPEED)}, a slow walk, not even the largest sideways shove tried "
                 f"({ci.value:.2g} N s) spins the chair: it keeps its heading by itself.")
     else:
-        push = (f"At {_kmh(REFERENCE_SPEED)}, a slow walk, a sideways shove of {ci.value:.2g} N s "
+        push = (f"At {kmh(REFERENCE_SPEED)}, a slow walk, a sideways shove of {ci.value:.2g} N s "
                 f"({ci.value / 0.1:.0f} N for a tenth of a second){_range(ci, 'N s', 2)} is enough to spin the chair "
                 "unless the user steers.")
-    where = {"found": f"at {_kmh(ei.value or 0.0)}", "above": "only above 3 m/s (11 km/h)",
+    where = {"found": f"at {kmh(ei.value or 0.0)}", "above": "only above 3 m/s (11 km/h)",
              "below": "already below 0.2 m/s"}[m.equal_instability_status]
     times = [f"{t:.2g} s at {3.6 * u:.2g} km/h" for u, t in zip(a.speeds_m_s, a.time_to_correct_s, strict=False)
              if t is not None]
     same = (f"It is the thesis's reference chair: the other chairs' equal-instability speeds are measured against "
-            f"it at {_kmh(REFERENCE_SPEED)}." if a.chair.name == REFERENCE_CHAIR else
+            f"it at {kmh(REFERENCE_SPEED)}." if a.chair.name == REFERENCE_CHAIR else
             f"It is as unstable as the thesis's reference chair at walking pace {where}{_range(ei, 'm/s')}.")
     out.append(f"VERDICT. {push} {same} After the thesis's push ({THESIS_PUSH.force:g} N for "
                f"{THESIS_PUSH.duration:g} s) "
@@ -94,7 +91,7 @@ def decision_paragraphs(d: ReportData) -> list[str]:
                + (">" if rm.critical_impulse_status == "never" else "")
                + f"{rm.critical_impulse_Ns.value:.3g} N s{_range(rm.critical_impulse_Ns, 'N s')} and "
                + {"above": "> ", "below": "< "}.get(rm.equal_instability_status, "")
-               + f"{_kmh(rm.equal_instability_speed_m_s.value or 0.0)}.")
+               + f"{kmh(rm.equal_instability_speed_m_s.value or 0.0)}.")
     costs = "; ".join(_cost(k.name, k.value) + ("" if k.met else " (limit NOT met)") for k in c.constraints)
     out.append("WHAT IT COSTS. " + costs[:1].upper() + costs[1:] + "."
                + (" The trail is shimmy-free only with the estimated pin stiffness and tire relaxation length: "
