@@ -60,7 +60,8 @@ def decision_paragraphs(d: ReportData) -> list[str]:
                 f"({ci.value:.2g} N s) spins the chair: it keeps its heading by itself.")
     else:
         push = (f"At {kmh(REFERENCE_SPEED)}, a slow walk, a sideways shove of {ci.value:.2g} N s "
-                f"({ci.value / 0.1:.0f} N for a tenth of a second){_range(ci, 'N s', 2)} is enough to spin the chair "
+                f"({ci.value / THESIS_PUSH.duration:.0f} N for a tenth of a second){_range(ci, 'N s', 2)} is enough "
+                "to spin the chair "
                 "unless the user steers.")
     where = {"found": f"at {kmh(ei.value or 0.0)}", "above": "only above 3 m/s (11 km/h)",
              "below": "already below 0.2 m/s"}[m.equal_instability_status]
