@@ -23,8 +23,6 @@ import pkgutil
 from pathlib import Path
 from typing import Any
 
-from sphinx.pycode import ModuleAnalyzer
-from sphinx.util.nodes import make_refnode
 
 PACKAGE = "stability"
 API_DIR = "api"
@@ -73,6 +71,8 @@ def _data_doc(mod: str, name: str) -> list[str]:
     places = [mod]
     if hasattr(m, "__path__"):
         places += [i.name for i in pkgutil.walk_packages(m.__path__, mod + ".")]
+    from sphinx.pycode import ModuleAnalyzer   # sphinx only when the site builds: tests import this module
+
     for place in places:
         try:
             docs = ModuleAnalyzer.for_module(place).find_attr_docs()
@@ -284,6 +284,8 @@ def _missing_reference(app: Any, env: Any, node: Any, contnode: Any) -> Any:
         # A real but unexported helper (a docstring naming the function it delegates to) stays
         # plain text; a name that does not exist at all (a typo, a rename) keeps its warning.
         return contnode if _exists(node.get("reftarget", ""), node.get("py:module")) else None
+    from sphinx.util.nodes import make_refnode
+
     fullname, entry = found
     return make_refnode(app.builder, node["refdoc"], entry.docname, entry.node_id, contnode, fullname)
 
