@@ -259,9 +259,9 @@ def test_tip_angles_quoted_in_docs_app_md():
 
 
 def test_applying_a_recommendation_is_its_set_assignments():
-    """The advice tab applies a recommendation's fields as one edit; the chair is the one ``--set`` gives."""
+    """The advice tab (via stability.app.state.assignments, which needs no panel) applies a recommendation's fields as one edit; the chair is the one ``--set`` gives."""
     from stability.advise import Change
-    from stability.app.advice_tab import assignments
+    from stability.app.state import assignments
     from stability.cli import load_chair
 
     changes = (Change("pin_friction", "pin friction 0.1 -> 0.3 N m", (("pin_friction_left", 0.3),

@@ -14,25 +14,10 @@ from typing import Any
 import panel as pn
 
 from ..chair import Chair
+from .state import assignments
 from .text import preformatted
 
-__all__ = ["AdviceTab", "assignments"]
-
-
-def assignments(fields: dict) -> dict[str, str]:
-    """A recommendation's chair fields as editor texts (floats with ``repr``: the exact values).
-
-    Parameters
-    ----------
-    fields : dict
-        Chair field -> new value (:attr:`stability.advise.Candidate.fields`).
-
-    Returns
-    -------
-    dict
-        Field -> text for :meth:`stability.app.state.AppState.set_fields`.
-    """
-    return {k: repr(v) if isinstance(v, float) else str(v) for k, v in fields.items()}
+__all__ = ["AdviceTab"]
 
 
 class AdviceTab:

@@ -34,7 +34,7 @@ from ..chair import Chair
 from ..cli import apply_assignments
 from ..output import json_text, with_tire_range
 
-__all__ = ["AppState", "Edit", "MAX_PINNED", "DEFAULT_PRESET", "error_line"]
+__all__ = ["AppState", "Edit", "MAX_PINNED", "DEFAULT_PRESET", "error_line", "assignments"]
 
 #: Largest number of chairs pinned for comparison.
 MAX_PINNED = 3
@@ -478,3 +478,19 @@ def _static_loads(c: Chair) -> Any:
     from ..statics import static_loads
 
     return static_loads(c)
+
+
+def assignments(fields: dict) -> dict[str, str]:
+    """A recommendation's chair fields as editor texts (floats with ``repr``: the exact values).
+
+    Parameters
+    ----------
+    fields : dict
+        Chair field -> new value (:attr:`stability.advise.Candidate.fields`).
+
+    Returns
+    -------
+    dict
+        Field -> text for :meth:`stability.app.state.AppState.set_fields`.
+    """
+    return {k: repr(v) if isinstance(v, float) else str(v) for k, v in fields.items()}
