@@ -26,7 +26,7 @@ from .controller import SampledController
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
 from .results import RunStats, SimulationResult
 
-__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled", "run_summaries", "slope_slots"]
+__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled", "run_summaries", "raise_non_finite", "slope_slots"]
 
 #: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
 RECORDS = ("all", "states", "final")
@@ -210,6 +210,7 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
     rec, stats, warn, status, counts = _launch_runs(k, chairs, speeds, opts, forces, controller, mode, nrec, levels,
                                                     -1, threads)
     _raise_refused(chairs, opts, status)
+    raise_non_finite(chairs, speeds, status)
     times = np.arange(nrec) * float(opts.stride) * opts.dt
     settings = opts.settings()
     settings.update(engine="compiled", record=record)
@@ -311,7 +312,8 @@ def run_summaries(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *,
         (s, NaN: never), the time of the last step (s).
     status : ndarray, shape (n, 6)
         ``status[:, 0]``: 0 ran to the end, 1 stopped by the warning rule, 2
-        stopped at the level; ``status[:, 1]``: when, s.
+        stopped at the level, 3 stopped because the yaw rate became NaN or
+        infinite (its peak is then NaN); ``status[:, 1]``: when, s.
     """
     k = _kernel()
     lv = np.array(levels, dtype=float)
@@ -362,6 +364,30 @@ def _last_time(opts: Options, status: np.ndarray, steps: int) -> float:
     """Time of the last executed step (the one before a stop, else the last of the loop), s."""
     last = steps - 1 if not status[0] else int(round(status[1] / opts.dt)) - 1
     return max(last, 0) * opts.dt
+
+
+def raise_non_finite(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, status: np.ndarray) -> None:
+    """A run whose state left the finite numbers is an error, never a result.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+    speeds : sequence of float
+        m/s.
+    status : ndarray, shape (n, >= 2)
+        Each run's stop code and stop time, s (:func:`run_summaries`).
+
+    Raises
+    ------
+    FloatingPointError
+        Naming the first such run's chair, speed and time.
+    """
+    bad = np.flatnonzero(status[:, 0] == _kernel().STOPPED_NONFINITE)
+    if bad.size:
+        i = int(bad[0])
+        raise FloatingPointError(
+            f"the simulation of chair {chairs[i].name!r} at {float(speeds[i]):g} m/s left the finite numbers at "
+            f"t = {float(status[i, 1]):g} s ({bad.size} of {len(chairs)} runs)")
 
 
 def _raise_refused(chairs: Sequence[Chair], opts: Options, status: np.ndarray) -> None:

@@ -55,8 +55,9 @@ X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, 
 U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
 # cfg slots of the plane: flag, cos/sin of the cross slope, cos/sin of the grade
 SLOPE, C_PHI, S_PHI, C_THETA, S_THETA = range(13, 18)
-#: cfg slot: every run stops at ``levels[cfg[18]]`` (-1: never); ``status[0]``: 1 warning rule, 2 that level
-STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL = 18, 1.0, 2.0
+#: cfg slot: every run stops at ``levels[cfg[18]]`` (-1: never); ``status[0]``: 1 warning rule, 2 that level,
+#: 3 the yaw rate left the finite numbers (NaN or infinite: the peak is then NaN, never a finite answer)
+STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL, STOPPED_NONFINITE = 18, 1.0, 2.0, 3.0
 #: model codes: 0 thesis, 1 exact, 2 exact on a slope (accelerations with in-plane gravity)
 SLOPE_MODEL = 2
 #: recorded columns after t (COLUMNS[1:]); the first 10 are the states
@@ -426,6 +427,10 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         if locked:
             EDD = BDD = 0.0
         a = abs(THED)
+        if not a < math.inf:        # NaN or infinite: stop, and leave no finite summary behind
+            stats[0] = math.nan
+            status[0], status[1] = STOPPED_NONFINITE, t
+            break
         summaries(stats, levels, k, t, a, prev_abs, t_prev)
         prev_abs, t_prev = a, t
         if mode == 2 or k % stride == 0:

@@ -146,8 +146,10 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     for h in np.unique(run_h):
         idx = np.flatnonzero(run_h == h)
         o = make_options(batch=True, **dict(params, dt=float(h), impulse_force=0.0))
-        stats, status = engine.run_summaries([chairs[int(i)] for i in idx], sp[idx], o, forces=fo[idx],
+        batch = [chairs[int(i)] for i in idx]
+        stats, status = engine.run_summaries(batch, sp[idx], o, forces=fo[idx],
                                              levels=(0.5 * level, level), stop_level=1 if stop else None)
+        engine.raise_non_finite(batch, sp[idx], status)   # a NaN run is an error, never "did not reach"
         peak[idx] = stats[:, 0]
         t_half[idx] = np.where(np.isnan(stats[:, 2]), np.inf, stats[:, 2])
         t_level[idx] = np.where(np.isnan(stats[:, 3]), np.inf, stats[:, 3])
