@@ -103,13 +103,21 @@ class SlopeModel:
         self.main = chair.main_tire_model()
         self.caster = chair.caster_tire_model()
         self.rolling = (chair.caster_rolling_scale > 0, chair.main_rolling_scale > 0)
-        # --tire-range clamp: forces held at the data's edge, a load or slip beyond it noted, not refused
-        self.clamp = get_policy().name == "clamp"
+        # --tire-range: clamp holds the forces at the data's edge, warn extrapolates the fits; both note a
+        # load or slip beyond the data and answer; only raise refuses it (a range problem)
+        self.policy = get_policy().name
+        self.clamp = self.policy == "clamp"
         self._policy = "clamp" if self.clamp else "extrapolate"
 
     # -- tire data range -----------------------------------------------------
     def range_problems(self, f: Forces) -> list[str]:
-        """Descriptions of slips beyond 8 deg, loads beyond 450 N (tested tires) and lifted wheels."""
+        """Lifted wheels, slips beyond 8 deg and loads beyond 450 N of tested tires that the policy refuses.
+
+        Under ``clamp`` a load or slip beyond the data is a tire-range note (the force held at the edge);
+        under ``warn`` a load beyond it is a note (the smooth load polynomial extrapolated) but a slip
+        beyond 8 deg stays a problem: the force saturates there, and whether the tires can hold the chair
+        at all would rest on the extrapolated fit.
+        """
         out = []
         for k, (tire, s, n) in enumerate(zip((self.caster, self.caster, self.main, self.main),
                                              f.slips_deg, f.loads, strict=True)):
@@ -122,6 +130,10 @@ class SlopeModel:
             if self.clamp:
                 if abs(s) > SLIP_MAX_DEG or n > FZ_MAX_N:   # a note under the clamp policy (tires.collect_notes)
                     tire.lateral_force(s, n, policy="clamp")
+                continue
+            if self.policy == "warn" and abs(s) <= SLIP_MAX_DEG:
+                if n > FZ_MAX_N:        # warn: the load polynomial extrapolated, with a note (tires.collect_notes)
+                    tire.lateral_force(s, n, policy="extrapolate")
                 continue
             if abs(s) > SLIP_MAX_DEG:
                 out.append(f"{wheel} slip {abs(s):.2f} deg beyond the tire data (|slip| <= {SLIP_MAX_DEG:g} deg)")
