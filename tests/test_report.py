@@ -514,17 +514,22 @@ def test_slope_numbers_equal_the_analysis(quick):
 
 
 def test_slope_refusals_are_named_on_the_page(quick):
-    """power-fwd: the slope analysis refuses 6 deg (a caster load beyond the tire data); the page says so and the
-    drive is a motor torque difference equal to drive_report's."""
+    """power-fwd: under the raise policy the slope analysis refuses 6 deg (a caster load of 469 N, beyond the
+    450 N of the tire data); the page says so and the drive is a motor torque difference equal to
+    drive_report's.  Under warn (the default) the load polynomial is extrapolated and 6 deg is answered."""
     from stability.report.sections import slope_text
     from stability.report.slope_data import slope_section
     from stability.slope import drive_report, solve
+    from stability.tires import range_policy
 
     c = preset("power-fwd")
-    sec = slope_section(c)
-    assert [p for p, _ in sec.refused] == [6.0] and 6.0 not in sec.curve.cross_slopes_deg
-    with pytest.raises(ValueError) as exc:
-        solve(c, 6.0, 0.75)
+    with pytest.warns(UserWarning, match="Fz > 450 N"):
+        assert 6.0 in slope_section(c).curve.cross_slopes_deg
+    with range_policy("raise"):
+        sec = slope_section(c)
+        assert [p for p, _ in sec.refused] == [6.0] and 6.0 not in sec.curve.cross_slopes_deg
+        with pytest.raises(ValueError) as exc:
+            solve(c, 6.0, 0.75)
     d2 = dataclasses.replace(quick.data, chair=c, slope=sec)
     text = " ".join(slope_text(d2))
     assert f"Refused at 6 deg (not extrapolated): {exc.value}" in text
