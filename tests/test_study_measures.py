@@ -55,16 +55,16 @@ def test_critical_impulse_casters_held_by_high_friction_is_none():
 def test_critical_impulse_curve_one_batch_per_round(monkeypatch):
     """Vectorised over speeds: every round is one summaries call (one kernel call) for all open speeds,
     and a frictionless chair, whose search starts from the linear prediction, needs few rounds."""
-    from stability.study import impulse
+    from stability.study.summaries import SummaryRunner
 
     calls = []
-    real = impulse.run_summaries
+    real = SummaryRunner.__call__
 
-    def spy(chairs, speeds, forces, **options):
-        calls.append(sorted(set(speeds)))
-        return real(chairs, speeds, forces, **options)
+    def spy(self, pairs, forces):
+        calls.append(sorted(set(self.speeds[np.asarray(pairs)].tolist())))
+        return real(self, pairs, forces)
 
-    monkeypatch.setattr(impulse, "run_summaries", spy)
+    monkeypatch.setattr(SummaryRunner, "__call__", spy)
     c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
     curve = study.critical_impulse_curve(c, [0.5, 0.75], level=0.02, horizon=2.0)
     assert calls[0] == [0.5, 0.75] and len(calls) <= 5

@@ -26,7 +26,8 @@ from .controller import SampledController
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
 from .results import RunStats, SimulationResult
 
-__all__ = ["RECORDS", "STATS_LEVELS", "run_compiled", "run_summaries", "raise_non_finite", "slope_slots"]
+__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
+           "slope_slots"]
 
 #: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
 RECORDS = ("all", "states", "final")
@@ -254,6 +255,96 @@ def kernel_entry_guard() -> AbstractContextManager:
     return nullcontext() if layer in THREAD_SAFE_LAYERS else KERNEL_LOCK
 
 
+def _config(opts: Options, mode: int, stop_level: int) -> np.ndarray:
+    """The kernel's configuration row (step, push, model, warning rule, slope, stop level)."""
+    return np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, n_steps(opts), opts.stride,
+                     0 if opts.model == "thesis" else 1, opts.casters == "locked", opts.stop_on_warnings,
+                     _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
+                     *slope_slots(opts), stop_level], dtype=float)
+
+
+class PackedRuns:
+    """Runs packed for the kernel once and launched many times, on any subset and with new push forces.
+
+    A search (critical impulse, equal-instability speed) simulates the same
+    (chair, speed) pairs round after round with other pushes: packing the
+    chairs' parameters and tire tables once, instead of every round, leaves
+    the kernel's own time.  Each launch gives the summaries of
+    :func:`run_summaries` (the same kernel and arithmetic).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One per pair.
+    speeds : ndarray
+        m/s, one per pair.
+    opts : dict of float to Options
+        Checked options per fixed step (s): the runs of a pair use ``opts[steps[i]]``.
+    steps : ndarray
+        Each pair's step, s (a key of ``opts``).
+    levels : sequence of float
+        |yaw rate| levels whose first crossing is reported, rad/s.
+    stop_level : int, optional
+        Index into ``levels`` at which every run stops (None: none).
+    """
+
+    def __init__(self, chairs: Sequence[Chair], speeds: np.ndarray, opts: dict[float, Options], steps: np.ndarray,
+                 levels: Sequence[float] = STATS_LEVELS, stop_level: int | None = None):
+        self.k = _kernel()
+        self.chairs = list(chairs)
+        self.speeds = np.asarray(speeds, dtype=float)
+        self.steps = np.asarray(steps, dtype=float)
+        first = opts[float(self.steps[0])] if len(self.steps) else next(iter(opts.values()))
+        self.pk = _Packed(self.chairs, np.asarray(speeds, dtype=float), first, np.zeros(len(self.chairs)))
+        stop = -1 if stop_level is None else int(stop_level)
+        self.levels = np.array(levels, dtype=float)
+        self.cfg = {float(h): _config(o, 2, stop) for h, o in opts.items()}
+        self.opts = opts
+        self.ctl = SampledController.none().arrays()
+
+    def launch(self, pairs: np.ndarray, forces: np.ndarray, threads: int | None = None) -> tuple[np.ndarray, ...]:
+        """Run pair ``pairs[j]`` under push force ``forces[j]`` (N) for every ``j``, as :func:`run_summaries`.
+
+        Parameters
+        ----------
+        pairs : ndarray of int
+            Indices into the packed pairs (repeats allowed).
+        forces : ndarray
+            N, one per run.
+        threads : int, optional
+            Kernel threads (None: numba's default).
+
+        Returns
+        -------
+        stats, status : ndarray
+        """
+        pairs = np.asarray(pairs, dtype=np.int64)
+        n = len(pairs)
+        stats = np.full((n, 3 + len(self.levels)), np.nan)
+        status = np.zeros((n, 6))
+        pk = self.pk
+        run_h = self.steps[pairs]
+        for h in np.unique(run_h):
+            sel = np.flatnonzero(run_h == h)
+            idx = pairs[sel]
+            S = pk.S[idx]
+            S[:, 4] = forces[sel]
+            m = len(idx)
+            rec = np.empty((m, self.k.NREC_STATES, 1))      # the states only: no per-step forces written
+            st = np.full((m, 3 + len(self.levels)), np.nan)
+            warn = np.zeros((m, 3, 3))
+            stat = np.zeros((m, 6))
+            counts = np.zeros(m, dtype=np.int64)
+            _launch(self.k, threads, m, (pk.P[idx], S, pk.TK[idx], pk.TS[idx], pk.TL[idx], pk.LIM[idx], pk.RK[idx],
+                                         pk.RC[idx], pk.RS[idx], pk.CAM[idx], pk.CHK[idx], self.cfg[float(h)],
+                                         self.levels, *self.ctl, rec, st, warn, stat, counts))
+            batch = [self.chairs[int(i)] for i in idx]
+            _raise_refused(batch, self.opts[float(h)], stat)
+            raise_non_finite(batch, self.speeds[idx], stat)     # a NaN run is an error, never "did not reach"
+            stats[sel], status[sel] = st, stat
+        return stats, status
+
+
 def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None,
                  controller: SampledController | None, mode: int, nrec: int, levels: np.ndarray, stop_level: int,
                  threads: int | None) -> tuple[np.ndarray, ...]:
@@ -261,10 +352,7 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
     pk = _Packed(chairs, speeds, opts, forces)
     n_runs = len(chairs)
     ncol = (k.NREC_ALL, k.NREC_STATES, k.NREC_ALL)[mode]
-    cfg = np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, n_steps(opts), opts.stride,
-                    0 if opts.model == "thesis" else 1, opts.casters == "locked", opts.stop_on_warnings,
-                    _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
-                    *slope_slots(opts), stop_level], dtype=float)
+    cfg = _config(opts, mode, stop_level)
     ctl = (controller or SampledController.none()).arrays()
     rec = np.empty((n_runs, ncol, nrec))
     stats = np.full((n_runs, 3 + len(levels)), np.nan)

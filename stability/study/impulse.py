@@ -19,7 +19,7 @@ from .._validate import check_choice, check_model, check_positive, check_speeds
 from ..chair import Chair
 from ..reference import HORIZON, LEVEL, THESIS_PUSH, Push
 from .search import bracket_search
-from .summaries import run_steps, run_summaries
+from .summaries import SummaryRunner, run_steps
 
 __all__ = ["runs_per_speed", "check_study_work", "STEP_SECONDS", "WORK_BUDGET_S", "CriticalImpulse",
            "CriticalImpulseCurve", "critical_impulses", "critical_impulse",
@@ -162,7 +162,7 @@ class CriticalImpulseCurve:
 
 
 def linear_critical_impulse(chair: Chair, speed: float, *, model: str = "exact", duration: float = THESIS_PUSH.duration,
-                            level: float = LEVEL, horizon: float = HORIZON) -> float:
+                            level: float = LEVEL, horizon: float = HORIZON, step: float = 0.001) -> float:
     """The linear model's critical impulse: ``level / max |r(t)|`` per N s of push over the horizon, N s.
 
     The linear model's yaw rate is linear in the push, so this is exact for
@@ -182,24 +182,31 @@ def linear_critical_impulse(chair: Chair, speed: float, *, model: str = "exact",
         rad/s.
     horizon : float
         s.
+    step : float
+        Sample interval of ``|r(t)|``, s.
 
     Returns
     -------
     float
         N s (inf when the linear response never moves the yaw rate).
     """
-    from .responses import linear_impulse_response
+    from .responses import linear_peak_yaw_rate
 
-    r = linear_impulse_response(chair, speed, horizon, impulse=(1.0 / duration, duration), model=model, step=0.001)
-    peak = float(np.max(np.abs(r.yaw_rate)))
+    peak = linear_peak_yaw_rate(chair, speed, horizon, impulse=(1.0 / duration, duration), model=model, step=step)
     return level / peak if peak > 0 else math.inf
 
 
 def _start(chair: Chair, speed: float, model: str, duration: float, level: float, horizon: float,
            lo: float, hi: float) -> float:
-    """First push of the search (log N s): the linear prediction for a frictionless chair, else the largest push."""
+    """First push of the search (log N s): the linear prediction for a frictionless chair, else the largest push.
+
+    The prediction samples ``|r|`` every 10 ms (1000 samples over 10 s, a fraction of a millisecond): it is only
+    where the search starts, and the peak it misses between samples is a fraction of a per cent of a response
+    that grows or decays at a few per second.
+    """
     if chair.pin_friction_left == 0 and chair.pin_friction_right == 0:
-        j = linear_critical_impulse(chair, speed, model=model, duration=duration, level=level, horizon=horizon)
+        j = linear_critical_impulse(chair, speed, model=model, duration=duration, level=level, horizon=horizon,
+                                    step=min(0.01, duration))
         if math.isfinite(j):
             return math.log(min(max(j, lo), hi))
     return math.log(hi)
@@ -229,7 +236,7 @@ def runs_per_speed(min_impulse: float = 1e-6, max_impulse: float = 40.0, max_rou
 
 
 def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, horizon: float, dt: float,
-                     runs_per_speed: int, name: str = "horizon") -> None:
+                     runs_per_speed: int, name: str = "horizon", limits: np.ndarray | None = None) -> None:
     """Refuse a study whose simulation (count x cost) exceeds :data:`WORK_BUDGET_S`.
 
     Each of ``runs_per_speed`` runs at a speed takes ``horizon / step`` steps, the step being ``dt`` or the
@@ -247,6 +254,8 @@ def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, ho
     runs_per_speed : int
     name : str
         The argument or option to name (``"horizon"``, ``"--horizon"``).
+    limits : ndarray, optional
+        The pairs' stable steps, s (:func:`stability.simulate.stepcheck.stable_steps`; computed when None).
 
     Raises
     ------
@@ -255,7 +264,9 @@ def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, ho
     """
     from ..simulate.stepcheck import auto_step, stable_steps
 
-    limits = np.ravel(stable_steps(list(chairs), np.asarray(speeds, dtype=float), model, "free"))
+    if limits is None:
+        limits = stable_steps(list(chairs), np.asarray(speeds, dtype=float), model, "free")
+    limits = np.ravel(limits)
     steps = [min(dt, auto_step(float(x))) for x in limits]
     seconds = runs_per_speed * sum(horizon / h for h in steps) * STEP_SECONDS
     if seconds > WORK_BUDGET_S:
@@ -323,19 +334,24 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
                                                                                                               dtype=object)
     chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
+    pair_steps = None
     if scheme == "wchair":
+        from ..simulate.stepcheck import stable_steps
+
+        casters = sim_options.get("casters", "free")
+        limits = stable_steps(list(chair_b.ravel()), speed_b.ravel(), model, casters)
+        free = limits if casters == "free" else None       # the work check is stated for free casters
         check_study_work(list(chair_b.ravel()), speed_b.ravel(), model, horizon, dt,
-                         runs_per_speed(min_impulse, max_impulse, max_rounds))
+                         runs_per_speed(min_impulse, max_impulse, max_rounds), limits=free)
+        pair_steps = run_steps([c for c, _ in run_list], [s for _, s in run_list], dt, model, casters, limits=limits)
     unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
 
-    pair_steps = (run_steps([c for c, _ in run_list], [s for _, s in run_list], dt, model,
-                            sim_options.get("casters", "free")) if scheme == "wchair" else None)
+    runner = SummaryRunner([c for c, _ in run_list], [s for _, s in run_list], model=model, scheme=scheme,
+                           duration=duration, dt=dt, horizon=horizon, level=level, sim_options=sim_options,
+                           steps=pair_steps)
 
     def evaluate(jobs: list[tuple[int, float]]) -> tuple[np.ndarray, ...]:
-        s = run_summaries([run_list[i][0] for i, _ in jobs], [run_list[i][1] for i, _ in jobs],
-                          [math.exp(x) / unit for _, x in jobs], model=model, scheme=scheme, duration=duration,
-                          dt=dt, horizon=horizon, level=level, sim_options=sim_options,
-                          steps=None if pair_steps is None else pair_steps[[i for i, _ in jobs]])
+        s = runner([i for i, _ in jobs], np.exp([x for _, x in jobs]) / unit)
         return s.t_level <= horizon, s.margin(level, horizon), s.sim_time, s.t_level
 
     starts = [_start(c, s, model, duration, level, horizon, min_impulse, max_impulse) for c, s in run_list]

@@ -16,7 +16,7 @@ from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from . import runs
 from .criteria import DEFAULT_CRITERION, PATHS_CRITERION, Criterion, check_impulse
 
-__all__ = ["LinearResponse", "linear_impulse_response", "Response", "ResponseSet",
+__all__ = ["linear_peak_yaw_rate", "LinearResponse", "linear_impulse_response", "Response", "ResponseSet",
            "yaw_rate_responses", "trajectories"]
 
 
@@ -103,6 +103,61 @@ def linear_impulse_response(chair: Chair, speed: float, t_end: float = 10.0, *,
         z[k + 1] = Phi @ z[k] + Gam * u
     t = h * np.arange(n_steps + 1)
     return LinearResponse(t=t, v=z[:, 0], yaw_rate=z[:, 1], heading=z[:, n], x=U * t, y=z[:, n + 1])
+
+
+def linear_peak_yaw_rate(chair: Chair, speed: float, t_end: float = 10.0, *,
+                         impulse: Any = THESIS_PUSH.as_tuple, model: str = "exact", step: float = 0.01) -> float:
+    """Largest ``|yaw rate|`` of :func:`linear_impulse_response` over its samples, without stepping them one by one.
+
+    The same samples ``t_k = k h``; with the eigen-decomposition ``A = V
+    diag(lambda) V^-1`` of the state matrix the response to a constant force
+    ``F`` from rest is ``r(t) = sum_j c_j d_j (exp(lambda_j t) - 1) / lambda_j``
+    during the push (``c = V[r, :]``, ``d = V^-1 b F``) and ``sum_j c_j d_j
+    (exp(lambda_j T) - 1) / lambda_j exp(lambda_j (t - T))`` after it (the
+    zero-order hold of :func:`linear_impulse_response` is exact for a force
+    constant over each step, so both give the same samples up to rounding),
+    evaluated for all samples at once: about 1 ms instead of a 10 000-step
+    Python loop.  Where the eigenvectors are ill-conditioned (``cond(V) >
+    1e8``: a nearly defective matrix) or an eigenvalue is zero, the samples are
+    stepped by :func:`linear_impulse_response`.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        Forward speed, m/s.
+    t_end : float
+        Last time, s.
+    impulse : (float, float) or Push
+        Force at the c.g. (N) and duration (s).
+    model : {"exact", "thesis"}
+    step : float
+        Sample interval, s.
+
+    Returns
+    -------
+    float
+        rad/s.
+    """
+    force, length = check_impulse(impulse)
+    A = state_matrices(chair, float(speed), model, "free")[0]
+    lam, V = np.linalg.eig(A)
+    if np.linalg.cond(V) > 1e8 or np.min(np.abs(lam)) < 1e-9 or length <= 0:
+        r = linear_impulse_response(chair, speed, t_end, impulse=(force, length), model=model, step=step)
+        return float(np.max(np.abs(r.yaw_rate)))
+    b = lateral_force_input(chair, float(speed), model, "free")
+    n_imp = max(1, int(math.ceil(length / step - 1e-9)))
+    h = length / n_imp
+    n_steps = int(math.ceil(t_end / h - 1e-9))
+    w = V[1, :] * np.linalg.solve(V, b.astype(complex) * force) / lam    # mode j's share of r per (exp - 1)
+    t = h * np.arange(n_steps + 1)
+    during = t[: n_imp + 1]
+    # sums over the modes, not matrix products: a product of this size wakes OpenBLAS's threads, which then
+    # spin for milliseconds on the cores the simulation kernel needs next
+    r_push = (np.expm1(np.outer(during, lam)) * w).sum(axis=1)
+    after = t[n_imp + 1:] - during[-1]
+    r_free = (np.exp(np.outer(after, lam)) * (w * np.expm1(lam * during[-1]))).sum(axis=1)
+    return float(max(np.max(np.abs(r_push.real)), np.max(np.abs(r_free.real), initial=0.0)))
 
 
 @dataclass(frozen=True, eq=False)

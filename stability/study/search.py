@@ -8,8 +8,9 @@ point it has evaluated; its bracket is the largest ``x`` that does not reach
 below the smallest that does.  Each round it proposes at most two points:
 
 * no bracket yet: a step from the nearest end towards the root the margin
-  predicts (a response linear in the push has ``g = ln(J / J*)`` exactly),
-  at least ``2 eps`` and at most ``max_step``;
+  predicts (a response linear in the push has ``g = ln(J / J*)`` exactly;
+  going up, the secant through the two largest points, since a peak near
+  the level grows more slowly than the push), at least ``2 eps`` and at most ``max_step``;
 * a bracket: the root predicted by the secant through the two points
   nearest the root on the reaching side (smooth there: the time to the level
   grows continuously as the push falls to the critical one), else by the
@@ -18,7 +19,9 @@ below the smallest that does.  Each round it proposes at most two points:
   did not halve, falls back to the bracket's midpoint;
 * once the prediction is trusted, the pair ``x* + eps`` and
   ``x* + eps - width`` around it: if they straddle the root the bracket is
-  closed in that round.
+  closed in that round; where ``x* + eps`` is within a width of the smallest
+  reaching point, that one point alone (the lower one could only confirm a
+  miss, at the cost of a full-horizon run).
 
 The final bracket is at most ``width`` wide and is verified by two runs, as
 the earlier plain bisection's was; so both report a point of the same
@@ -146,7 +149,14 @@ def _propose(p: Problem, x_start: float, x_min: float, x_max: float, width: floa
         if top >= x_max - 1e-12:
             p.status = "never"
             return []
-        step = min(max(-p._g(top), 2.0 * eps), max_step)
+        step = -p._g(top)                            # exact for a response linear in the push (slope 1)
+        below = sorted(x for x in p.x if x < top)
+        if below:               # secant through the two largest: the peak saturates near the level (slope < 1)
+            x1 = below[-1]
+            slope = (p._g(top) - p._g(x1)) / (top - x1)
+            if slope > 0.1:
+                step = -p._g(top) / slope
+        step = min(max(step, 2.0 * eps), max_step)
         return [min(x_max, top + step + eps)]
     near = p._t(hi) >= 0.8 * horizon                 # the smallest reaching push reaches late: the root is close
     if lo is None:                                   # everything reaches: go down
@@ -170,7 +180,10 @@ def _propose(p: Problem, x_start: float, x_min: float, x_max: float, width: floa
         pred = _linear_root(lo, p._g(lo), hi, p._g(hi))
     if pred is None or not lo < pred < hi:
         return [hi - 0.35 * w]                       # no guide: a step from the cheap (reaching) side
-    a = min(pred + eps, hi - 0.98 * width)           # at least one bracket width below the smallest reaching push
+    cap = hi - 0.98 * width
+    a = min(pred + eps, cap)                         # at least one bracket width below the smallest reaching push
+    if a >= cap:        # the root is predicted above a: a alone closes the bracket unless it reaches (then b,
+        return [a]      # below a, would have been a wasted full-horizon run)
     b = a - 0.98 * width
     return [a, b] if b > lo and (near or w <= 4.0 * width) else [a]
 

@@ -29,7 +29,7 @@ from ..simulate.options import make_options
 from ..simulate.stepcheck import SAFETY, stable_steps
 from . import runs
 
-__all__ = ["Summaries", "run_summaries", "run_steps"]
+__all__ = ["Summaries", "SummaryRunner", "run_summaries", "run_steps"]
 
 
 @dataclass(frozen=True)
@@ -161,8 +161,99 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     return Summaries(peak, t_half, t_level, sim_time)
 
 
+#: Rounds of fewer runs than this run on one thread.  Waking the kernel's thread team and waiting for a free
+#: core costs 0.1-10 ms per launch (10 ms measured on the shared 2-core machine under load), more than a
+#: small round's runs take on one thread (a 10 s run: 2.4 ms); a sweep's rounds (hundreds of runs) use all threads.
+SERIAL_BELOW = 16
+
+
+class SummaryRunner:
+    """:func:`run_summaries` for a fixed set of (chair, speed) pairs, called once per search round.
+
+    The pairs are packed for the compiled kernel once
+    (:class:`stability.simulate.engine.PackedRuns`); a round then costs the
+    kernel and a few array copies.  Where :func:`run_summaries` would not use
+    the compiled kernel (adaptive scheme, Python inputs, the reference
+    engine) every call goes through it unchanged.  Either way the numbers are
+    those of :func:`run_summaries`.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One per pair.
+    speeds : sequence of float
+        m/s, one per pair.
+    model, scheme, duration, dt, horizon, level, stop, sim_options
+        As in :func:`run_summaries`.
+    steps : ndarray, optional
+        Each pair's step, s (:func:`run_steps`; computed when None).
+    """
+
+    def __init__(self, chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, *, model: str, scheme: str,
+                 duration: float, dt: float | None, horizon: float, level: float, stop: bool = True,
+                 sim_options: dict[str, Any] | None = None, steps: Sequence[float] | np.ndarray | None = None):
+        self.chairs, self.speeds = list(chairs), np.asarray(speeds, dtype=float)
+        self.kw: dict[str, Any] = dict(model=model, scheme=scheme, duration=duration, dt=dt, horizon=horizon,
+                                       level=level, stop=stop, sim_options=dict(sim_options or {}))
+        self.steps = steps
+        opts = _options(model, scheme, duration, dt, horizon, self.kw["sim_options"])
+        self.packed = None
+        if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
+                or using_reference_engine() or not self.chairs):
+            return
+        from ..simulate import engine
+
+        params = sim.DEFAULTS.as_dict()
+        for key in ("controller", "record"):
+            params.pop(key)
+        params.update({k: v for k, v in opts.items() if k in params})
+        params["sample"] = None
+        step = float(params["dt"])
+        run_h = np.asarray(run_steps(self.chairs, self.speeds, step, params["model"], params["casters"])
+                           if steps is None else steps, dtype=float)
+        by_step = {float(h): make_options(batch=True, **dict(params, dt=float(h), impulse_force=0.0))
+                   for h in np.unique(run_h)}
+        self.packed = engine.PackedRuns(self.chairs, self.speeds, by_step, run_h, levels=(0.5 * level, level),
+                                        stop_level=1 if stop else None)
+
+    def __call__(self, pairs: Sequence[int] | np.ndarray, forces: Sequence[float] | np.ndarray) -> Summaries:
+        """Summaries of the runs of pair ``pairs[j]`` under push force ``forces[j]`` (N).
+
+        Parameters
+        ----------
+        pairs : sequence of int
+            Indices into the pairs (repeats allowed).
+        forces : sequence of float
+            N, one per run.
+
+        Returns
+        -------
+        Summaries
+        """
+        idx = np.asarray(pairs, dtype=np.int64)
+        fo = np.asarray(forces, dtype=float)
+        if self.packed is None:
+            steps = None if self.steps is None else np.asarray(self.steps)[idx]
+            return run_summaries([self.chairs[int(i)] for i in idx], self.speeds[idx], fo, steps=steps,
+                                 **self.kw)
+        if len(idx) == 0:
+            e = np.empty(0)
+            return Summaries(e, e, e, e)
+        stats, status = self.packed.launch(idx, fo, threads=1 if len(idx) < SERIAL_BELOW else None)
+        return _summaries(stats, status)
+
+
+def _summaries(stats: np.ndarray, status: np.ndarray) -> Summaries:
+    """:class:`Summaries` from the kernel's ``(stats, status)`` (a run stopped by the warning rule reaches then)."""
+    t_half = np.where(np.isnan(stats[:, 2]), np.inf, stats[:, 2])
+    t_level = np.where(np.isnan(stats[:, 3]), np.inf, stats[:, 3])
+    warned = status[:, 0] == 1.0
+    t_level = np.where(warned, np.minimum(t_level, status[:, 1]), t_level)
+    return Summaries(stats[:, 0].copy(), t_half, t_level, stats[:, 4].copy())
+
+
 def run_steps(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, dt: float, model: str,
-              casters: str) -> np.ndarray:
+              casters: str, limits: np.ndarray | None = None) -> np.ndarray:
     """Each run's step: ``dt`` where stable, else ``dt / k`` as :func:`~stability.study.runs.simulate_runs` picks.
 
     Parameters
@@ -173,13 +264,16 @@ def run_steps(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, dt:
     dt : float
         Requested fixed step, s.
     model, casters : str
+    limits : ndarray, optional
+        The pairs' stable steps, s (:func:`~stability.simulate.stepcheck.stable_steps`; computed when None).
 
     Returns
     -------
     ndarray
         s.
     """
-    limits = stable_steps(list(chairs), np.asarray(speeds, dtype=float), model, casters)
+    if limits is None:
+        limits = stable_steps(list(chairs), np.asarray(speeds, dtype=float), model, casters)
     return np.array([dt if dt <= lim else dt / math.ceil(dt / (SAFETY * lim)) for lim in limits])
 
 

@@ -5,8 +5,26 @@ pushes from 1e-6 to 40 N s, then 7 geometric candidates per bracket and round,
 every run a full 10 s with full records; and the speed bisection with 7
 candidates per round, every run to its horizon.  Both sides are timed
 alternately (best of three each), so a passing load slows both alike.  The
-answers agree to the flip band of the threshold (tests/test_search.py).
-Skipped unless ``--benchmark-enable``.
+answers agree to the flip band of the threshold (tests/test_search.py), and
+to the search's 0.5 % where reaching the level is monotone in the push (no
+pin friction; tests/test_impulse_fast.py).  Skipped unless ``--benchmark-enable``.
+
+Measured on the shared 2-core machine (load average 2-4), E&J Premier:
+
+* one speed (0.75 m/s, pin friction): 35 -> 10 runs, 124-204 ms -> 16-31 ms, x5.7-8.9;
+* six speeds: 210 -> 67 runs, 0.7-1.2 s -> 0.18 s, x6.4 (x2.7-3.9 before small rounds ran on one thread);
+* no pin friction, two speeds (the search starts from the linear prediction): 70 -> 9 runs, x8.8.
+
+Why not x20 with pin friction: the answer is certified by two runs, one
+that misses the level (it runs the full 10 s horizon) and one that reaches
+it (at the critical push it reaches at the horizon, 9.4 s here): about 20 s
+of simulation, 5 ms, whatever the search.  The baseline's 35 runs cost
+124-204 ms, so even a search that knew the answer in advance would stop at
+about x25-40; this one needs about 5 more runs (54 s of simulation at 0.75
+m/s) because the linear model says nothing about a chair held by pin
+friction (its prediction is 0: unstable from any push) and the margin of a
+run is not a guide to the threshold there (slope 400 in log push at the
+threshold: the time to the level follows the creep law ``a - b ln(J - J0)``).
 """
 
 import math
@@ -23,6 +41,8 @@ from stability.study.equal_instability import bisect_speeds, reference_time
 
 EJ = preset("ej-premier")
 SPEEDS = [0.5, 0.6, 0.75, 0.9, 1.0, 1.2]
+#: the ratios asserted: about 2/3 of the lowest measured (load on a shared machine moves them by x1.5)
+RATIO_SINGLE, RATIO_CURVE, RATIO_LINEAR_START = 4.0, 3.0, 4.0
 
 
 @pytest.fixture
@@ -57,7 +77,7 @@ def test_bench_critical_impulse_single(bench):
     print(f"\ncritical impulse, E&J Premier 0.75 m/s: old {t_old:.3f} s ({a[0].runs} runs, {a[0].describe()}), "
           f"new {t_new:.3f} s ({b[0].runs} runs, {b[0].describe()}), x{ratio:.1f}")
     assert abs(math.log(b[0].impulse_Ns / a[0].impulse_Ns)) < 0.02    # inside the flip band (test_search.py)
-    assert ratio >= 3.0
+    assert ratio >= RATIO_SINGLE
 
 
 def test_bench_critical_impulse_curve(bench):
@@ -72,7 +92,27 @@ def test_bench_critical_impulse_curve(bench):
     dev = [abs(math.log(y.impulse_Ns / x.impulse_Ns)) for x, y in zip(a, b, strict=True)]
     print(f"\ncritical impulse curve, E&J Premier, {len(SPEEDS)} speeds: old {t_old:.3f} s ({runs_old} runs), "
           f"new {t_new:.3f} s ({runs_new} runs), x{ratio:.1f}; largest difference {100 * max(dev):.1f} %")
-    assert ratio >= 1.5
+    assert ratio >= RATIO_CURVE
+
+
+def test_bench_critical_impulse_linear_start(bench):
+    """No pin friction: the search starts from the linear prediction (an eigen-decomposition, about 1 ms)."""
+    chair = EJ.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    speeds = [0.5, 0.75]
+    new = lambda: critical_impulses(chair, speeds)                  # noqa: E731
+    old = lambda: critical_impulses_bisection(chair, speeds)       # noqa: E731
+    new()
+    t_old, a, t_new, b = _alternate(old, new)
+    bench.pedantic(new, rounds=1, iterations=1)
+    ratio = t_old / t_new
+    runs_old, runs_new = sum(p.runs for p in a), sum(p.runs for p in b)
+    bench.extra_info.update(old_s=t_old, new_s=t_new, speedup=ratio, runs_old=runs_old, runs_new=runs_new)
+    dev = [abs(math.log(y.impulse_Ns / x.impulse_Ns)) for x, y in zip(a, b, strict=True)]
+    print(f"\ncritical impulse, E&J Premier without pin friction, {len(speeds)} speeds: old {t_old:.3f} s "
+          f"({runs_old} runs), new {t_new:.3f} s ({runs_new} runs), x{ratio:.1f}; largest difference "
+          f"{100 * max(dev):.2f} %")
+    assert max(dev) <= math.log1p(0.005) * (1 + 1e-9)      # monotone here: the same bracket (test_impulse_fast.py)
+    assert ratio >= RATIO_LINEAR_START
 
 
 def test_bench_equal_instability_bisection(bench):
