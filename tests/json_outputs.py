@@ -1,6 +1,6 @@
 """Real JSON outputs of every command, produced in-process with cheap options (shared by the schema tests).
 
-``python tests/json_outputs.py --write-schemas`` regenerates stability/schemas/*.json from these outputs (the
+``python tests/json_outputs.py --write-schemas [NAME ...]`` regenerates stability/schemas/*.json from these outputs (the
 structure: required keys, types; a human then tightens where needed).  The tests validate fresh outputs against
 the committed schemas, so a renamed, dropped or retyped key fails until the schema is updated on purpose.
 """
@@ -29,9 +29,10 @@ CASES = {
     "measure": ("measure", [str(SHEET), "-o", "{tmp}/c.toml"]),
     "tipping": ("tipping", ["--chair", "ej-premier"]),
     "advise": ("advise", []),
+    "report": ("report", ["--quick", "--no-progress"]),
 }
 #: The cases too slow for the default test run (simulations of a study).
-SLOW = {"study_equal_instability", "advise"}
+SLOW = {"study_equal_instability", "advise", "report"}
 
 
 def output(name: str, tmp: str) -> dict:
@@ -67,11 +68,14 @@ def infer(value, path: str = ""):
     return {}
 
 
-def write_schemas() -> None:
+def write_schemas(names: list[str] | None = None) -> None:
+    """Write the schemas of ``names`` (default: every case) from fresh outputs."""
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
         for name, (command, _) in CASES.items():
+            if names and name not in names:
+                continue
             data = output(name, tmp)
             doc = {"$schema": "https://json-schema.org/draft/2020-12/schema",
                    "$id": f"stability/schemas/{name}.json",
@@ -84,5 +88,5 @@ def write_schemas() -> None:
 
 
 if __name__ == "__main__":
-    if "--write-schemas" in sys.argv:
-        write_schemas()
+    if "--write-schemas" in sys.argv:      # [NAME ...]: only those schemas
+        write_schemas([a for a in sys.argv[1:] if not a.startswith("--")] or None)

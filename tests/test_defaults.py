@@ -18,7 +18,7 @@ from stability import defaults as D
 
 #: Required arguments that let a parser produce its defaults.
 REQUIRED = {"slope": ["--cross-slope", "2", "--speed", "1"], "measure": ["sheet.toml", "-o", "c.toml"],
-            "report": ["-o", "r.pdf"], "compare": ["a", "b"], "chair": ["list"]}
+            "compare": ["a", "b"], "chair": ["list"]}
 SUBCOMMANDS = {"study": ["critical-impulse", "equal-instability"], "chair": ["export", "list"]}
 
 #: Options whose dest differs from the table's name, per command: dest -> table name.

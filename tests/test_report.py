@@ -717,7 +717,7 @@ def test_nonlinear_intervals_are_centred_on_the_reports_own_numbers(quick):
         assert line.strip() in lines or line in lines
     text = summary_text(d)
     assert f"ej-premier {d.impulses[0].describe()}" in text
-    assert f"[95 %: {k.low:.3g}-{k.high:.3g} N s ({100 * k.finite_fraction:.0f} % of draws) over" in text
+    assert f"[95 %: {k.low:.3g}-{k.high:.3g} N s ({100 * k.finite_fraction:.0f} % of draws)\u2020 over" in text  # quick
     assert f"[95 %: {e.low:.3g}-{e.high:.3g} m/s" in text
 
 
@@ -734,7 +734,7 @@ def test_nonlinear_zero_spread_collapses_onto_the_reports_numbers(quick):
     assert (nl.critical_impulse.low, nl.critical_impulse.high) == (imp, imp)
     assert (nl.equal_instability.low, nl.equal_instability.high) == (speed, speed)
     text = summary_text(dataclasses.replace(d, uncertainty=sec))
-    assert f"[95 %: {imp:.3g}-{imp:.3g} N s (100 % of draws) over zero.toml, zero spread]" in text
+    assert f"[95 %: {imp:.3g}-{imp:.3g} N s (100 % of draws)\u2020 over zero.toml, zero spread]" in text
 
 
 #: What a reader of the PDF must never see: code and file names, command-line options, issue numbers.
@@ -873,3 +873,114 @@ def test_decision_page_is_the_advisor(quick):
     assert all(low <= v <= high for v, low, high in zip(vals, lo, hi, strict=True))
     page = _text(quick, "decision")
     assert "VERDICT." in page and "RECOMMENDATION." in page and "FOR THE CLINICIAN." in page
+
+
+# ---------------------------------------------------------------------------
+# issue 24: --json carries page 1's and the summary page's numbers; the quick report marks its coarse values
+# ---------------------------------------------------------------------------
+def _squash(text):
+    """Text without any whitespace (the pages wrap lines at spaces and hyphens)."""
+    return "".join(text.split())
+
+
+def test_json_numbers_are_the_numbers_the_pages_print(quick):
+    """Every number of the JSON is formatted as the page formats it and found on that page (page 1: the decision;
+    the summary page)."""
+    from stability.report.json_data import report_mapping
+
+    j = report_mapping(quick.data)
+    page1, summary = _squash(" ".join(_page(quick, "decision").texts)), _squash(" ".join(_page(quick, "summary").texts))
+    dec, v = j["decision"], j["decision"]["verdict"]
+    ci, ei = v["critical_impulse_Ns"], v["equal_instability_speed_m_s"]
+    lo, hi = ci["interval"]
+    expect1 = [f"shoveof{ci['value']:.2g}Ns", f"({dec['critical_push_force_N']:.0f}Nforatenth",
+               f"(range{lo:.2g}-{hi:.2g}Ns)",
+               # the table: this chair's column
+               f"{ci['value']:.3g}({lo:.3g}-{hi:.3g})", f"{v['static_stability_deg']['value']:.1f}",
+               f"{100 * v['shimmy_margin_m']['value']:+.1f}", f"{v['growth_rate_1_s']:.3g}", f"{100 * dec['trail_m']:.3g}",
+               f"{ei['value']:.3g}({ei['interval'][0]:.3g}-{ei['interval'][1]:.3g})"]
+    expect1 += [f"{t:.2g}sat{3.6 * u:.2g}km/h" for u, t in zip(v["time_to_correct_speeds_m_s"], v["time_to_correct_s"],
+                                                               strict=True) if t is not None]
+    rec = dec["recommendation"]
+    if rec is not None:
+        p = rec["predicted"]
+        plo, phi = p["critical_impulse_Ns"]["interval"]
+        expect1 += [f"{p['critical_impulse_Ns']['value']:.3g}Ns(range{plo:.3g}-{phi:.3g}Ns)",
+                    f"{100 * rec['gains']['critical_impulse']:+.0f}%", f"{100 * rec['trail_m']:.3g}"]
+        expect1 += [_squash(f"{k['value']:.2g} N m") for k in rec["constraints"] if k["name"] == "turning_effort_N_m"]
+    cl = dec["clinician"]
+    expect1 += [f"{t:.1f}s\u2020" for t in cl["time_to_level_s"] if t is not None]
+    if cl["handrim"] is not None:
+        expect1.append(f"push{cl['handrim']['force_difference_N']:.0f}Nharder")
+    for s in map(_squash, expect1):
+        assert s in page1, s
+    for para in dec["paragraphs"] + [j["coarsened_text"]]:
+        assert _squash(para) in page1
+    sm = j["summary"]
+    rates = {r["model"]: r["growth_rate_1_s"] for r in sm["growth_rate"]}
+    rng = sm["equal_instability_range"]
+    expect2 = [f"{rates['exact']:.3g}1/s(exactmodel)", f"{rates['thesis']:.3g}1/s(thesismodel)",
+               f"range{rng['low_m_s']:.3g}-{rng['high_m_s']:.3g}m/s\u2020", f"Movesitmost:{rng['dominant']}\u2020",
+               f"after{sm['reference_time_s']:.2f}s"]
+    expect2 += [f"{x['chair']}{x['impulse_Ns']:.3g}Ns\u2020" for x in sm["critical_impulses"]]
+    expect2 += [f"{c['impulse_change_pct']:+.1f}%\u2020per10%(elasticity{c['elasticity']:+.2f}\u2020"
+                for c in sm["best_changes"]]
+    u = sm["uncertainty"]
+    expect2 += [f"{u['growth_rate_1_s'][0]:.3g}-{u['growth_rate_1_s'][1]:.3g}1/s",
+                _squash(u["nonlinear"]["critical_impulse_Ns"]["text"]) + "\u2020"]
+    if sm["slope"] is not None and sm["slope"]["holding_moment_N_m_per_deg"] is not None:
+        expect2.append(f"holdingmoment{sm['slope']['holding_moment_N_m_per_deg']:.3g}Nm/deg")
+    if sm["shimmy"] is not None:
+        expect2.append(f"trail{100 * sm['shimmy']['critical_trail_m']:.2f}cm")
+    for s in map(_squash, expect2):
+        assert s in summary, s
+    assert _squash(sm["text"]) == _squash(summary_text(quick.data))
+    assert sm["best_changes"] and rng["variants"] and u["nonlinear"] is not None
+
+
+def test_quick_report_says_what_it_coarsens_and_full_marks_nothing(quick):
+    """Quick: page 1 lists the coarsened settings (their quick and full values from Settings) and the values
+    computed on them carry a dagger; the same data under full settings prints neither."""
+    from stability.report.json_data import report_mapping
+    from stability.report.quick import MARK, coarsened
+
+    d = quick.data
+    page1 = " ".join(" ".join(_page(quick, "decision").texts).split())
+    full, q = report.Settings.for_mode(False), report.Settings.for_mode(True)
+    assert f"bisected to {q.tol:g} m/s" in page1 and f"(full: {full.tol:g} m/s" in page1
+    assert "QUICK REPORT." in page1 and f"Values marked {MARK}" in page1
+    rows = {r["setting"]: r for r in coarsened(d.settings)}
+    assert (rows["tol"]["quick"], rows["tol"]["full"]) == (q.tol, full.tol)
+    assert rows["plan"]["quick"] < rows["plan"]["full"]
+    assert summary_text(d).count(MARK) >= 5
+    d_full = dataclasses.replace(d, settings=full)
+    assert MARK not in summary_text(d_full)
+    j = report_mapping(d_full)
+    assert j["quick"] is False and j["coarsened"] == [] and j["coarsened_text"] is None
+    assert MARK not in json.dumps(j, ensure_ascii=False)
+
+
+def test_report_json_command(quick, tmp_path, monkeypatch, capsys):
+    """--json prints the numbers (no PDF without -o), valid against stability/schemas/report.json; --json-file
+    writes the same; -o is needed otherwise, and --text needs -o.  The computation is the fixture's (compute
+    patched) to keep the test fast."""
+    pytest.importorskip("jsonschema")
+    from stability import schemas
+    from stability.report import command
+    from stability.report.json_data import report_mapping
+
+    monkeypatch.setattr(command, "compute", lambda c, model="exact", **kw: quick.data)
+    out = tmp_path / "r.json"
+    assert report.main(["--quick", "--no-progress", "--json", "--json-file", str(out)]) == 0
+    cap = capsys.readouterr()
+    printed = json.loads(cap.out)
+    assert json.loads(out.read_text()) == printed and f"wrote {out}" in cap.err
+    schemas.validate("report", printed)
+    assert {k: printed[k] for k in report_mapping(quick.data)} == json.loads(json.dumps(report_mapping(quick.data)))
+    assert printed["chair"] == "ej-premier" and printed["options"]["quick"] is True
+    assert printed["summary"]["reference_time_s"] == quick.data.thesis.reference_time
+    assert list(tmp_path.iterdir()) == [out]
+    assert report.main(["--quick"]) == 2
+    assert "-o FILE.pdf is required" in capsys.readouterr().err
+    assert report.main(["--quick", "--json", "--text", str(tmp_path / "t.txt")]) == 2
+    assert "--text" in capsys.readouterr().err and not (tmp_path / "t.txt").exists()

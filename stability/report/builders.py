@@ -19,6 +19,7 @@ from .comparison import comparison_rows, key_numbers
 from .compute import PUSH_RANGE, ReportData
 from .decision import decision_bars, decision_paragraphs, decision_rows
 from .findings import _first, conclusion_rows, findings
+from .quick import MARK, coarsened_text
 from .sections import footer as _footer
 from .sections import shimmy_page, slope_page, uncertainty_page
 from .summary import dropped_pages, interval_text, push_text, summary_text
@@ -34,7 +35,8 @@ def _subtitle(d: ReportData) -> str:
     c = d.chair
     return (f"{c.caster_position} casters; s1 = {c.s1:g} m, s2 = {c.s2:g} m, trail = {c.trail:g} m, m = {c.m:g} kg, "
             f"pin friction {c.pin_friction_left:g}/{c.pin_friction_right:g} N m, main tire {c.main_tire}, "
-            f"caster tire {c.caster_tire}" + ("   [QUICK: coarse resolution]" if d.settings.quick else ""))
+            f"caster tire {c.caster_tire}"
+            + (f"   [QUICK: values marked {MARK} may move]" if d.settings.quick else ""))
 
 
 def _title(d: ReportData, what: str) -> str:
@@ -48,13 +50,18 @@ def _p_decision(d: ReportData) -> Figure:
     ax_text, ax_table, ax_bar = fig.add_subplot(gs[:, 0]), fig.add_subplot(gs[0, 1]), fig.add_subplot(gs[1, 1])
     ax_text.axis("off")
     y = 1.0
-    for para in decision_paragraphs(d) + [clinician_text(d)]:
+    paras = decision_paragraphs(d) + [clinician_text(d)] + ([coarsened_text(d.settings)] if d.settings.quick else [])
+    for scale in (1.0, 0.95, 0.9, 0.85, 0.8, 0.75):     # shrink the text until it fits its column
+        width = int(76 / scale) if scale == 1.0 else int(72 / scale)     # clear of the chart's labels
+        if sum(0.034 * len(P.wrap_text(p, width)) + 0.02 for p in paras) * scale <= 1.0:
+            break
+    for para in paras:
         head = para.split(" ", 1)[0].rstrip(".").isupper()       # VERDICT., RECOMMENDATION., ...
-        for i, line in enumerate(P.wrap_text(para, 76)):
-            ax_text.text(0.0, y, line, fontsize=9.3, va="top", transform=ax_text.transAxes,
+        for i, line in enumerate(P.wrap_text(para, width)):
+            ax_text.text(0.0, y, line, fontsize=9.3 * scale, va="top", transform=ax_text.transAxes,
                          fontweight="bold" if i == 0 and head else "normal")
-            y -= 0.034
-        y -= 0.02
+            y -= 0.034 * scale
+        y -= 0.02 * scale
     header, rows = decision_rows(d)
     ax_table.axis("off")
     n = len(header)

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..reference import THESIS_PUSH
 from .compute import ReportData
+from .quick import mark
 
 __all__ = ["TABLE_8_2", "TYPICAL_PUSH_N", "clinician_text"]
 
@@ -42,7 +43,8 @@ def clinician_text(d: ReportData) -> str:
     """
     c = d.chair
     rs = sorted(d.responses.responses, key=lambda r: r.speed)
-    times = "; ".join(f"at {_kmh(r.speed)} {r.time_to_level:.1f} s" if math.isfinite(r.time_to_level)
+    q = mark(d.settings)           # the speeds sit around the (coarse, in a quick report) equal-instability speed
+    times = "; ".join(f"at {_kmh(r.speed)} {r.time_to_level:.1f} s{q}" if math.isfinite(r.time_to_level)
                       else f"at {_kmh(r.speed)} it does not within {d.responses.criterion.duration:g} s"
                       for r in rs)
     thesis = ", ".join(f"{_kmh(u)}: " + ("> 6 s" if math.isinf(t) else f"{t:g} s") for u, t in TABLE_8_2.items())

@@ -3,15 +3,19 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Sequence
 
 from .. import defaults as D
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
+    add_json_options,
     add_model_option,
     add_output_option,
     check_outputs,
+    emit_json,
+    json_header,
     load_chair,
     output_files,
     run,
@@ -19,6 +23,8 @@ from ..cli import (
 from ..linear.intervals import MAX_SAMPLES
 from ..uncertainty import load_uncertainty
 from . import document
+from .compute import compute
+from .json_data import report_mapping
 from .uncertainty_data import UncertaintySpec
 
 __all__ = ["build_parser", "main"]
@@ -49,7 +55,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--compare", metavar="BASELINE",
                    help="compare with a baseline chair (a preset or a TOML chair file): its geometry overlaid and "
                         "a side-by-side table of the key numbers, computed the same way")
-    add_output_option(p, ("pdf",), what="the report (a PDF)", required=True, metavar="FILE.pdf")
+    add_output_option(p, ("pdf",), what="the report (a PDF; needed unless --json or --json-file is given)",
+                      metavar="FILE.pdf")
+    add_json_options(p)
+    p.epilog = ("JSON (--json, --json-file): every number of page 1 (the decision: verdict, recommendation, predicted "
+                "numbers with their ranges, costs) and of the summary page, with the text of both; without -o no "
+                "PDF is drawn.\n\n" + (p.epilog or ""))
     return p
 
 
@@ -70,8 +81,12 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    check_outputs({"-o": args.output, "--text": args.text}, {"--chair": args.chair, "--uncertainty": args.uncertainty,
-                                                           "--compare": args.compare})
+    if not (args.output or args.json or args.json_file):
+        raise ValueError("-o FILE.pdf is required (or --json / --json-file for the numbers without the PDF)")
+    if args.text and not args.output:
+        raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
+    outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
+    check_outputs(outputs, {"--chair": args.chair, "--uncertainty": args.uncertainty, "--compare": args.compare})
     if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
         raise ValueError("--samples and --seed need --uncertainty FILE")
     spec = None
@@ -79,12 +94,28 @@ def _run(args: argparse.Namespace) -> int:
         spec = UncertaintySpec(args.uncertainty, load_uncertainty(args.uncertainty), args.samples, args.seed)
     c = load_chair(args.chair, args.set)
     baseline = None if args.compare is None else load_chair(args.compare, [])
-    with output_files({"-o": args.output, "--text": args.text}) as tmp:
-        res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress,
-                             uncertainty=spec, baseline=baseline)
+    with output_files(outputs) as tmp:
+        res = None
+        if args.output:
+            res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress,
+                                 uncertainty=spec, baseline=baseline)
+            data = res.data
+        else:
+            data = compute(c, args.model, quick=args.quick, progress=not args.no_progress, uncertainty=spec,
+                           baseline=baseline)
         if args.text:
             with open(tmp["--text"], "w", encoding="utf-8") as fh:
+                assert res is not None          # --text needs -o (checked above)
                 fh.write(res.text() + "\n")
-    print(f"wrote {args.output} ({len(res.pages)} pages, {res.seconds:.1f} s)" +
-          (f" and {args.text}" if args.text else ""))
+        if args.json or args.json_file:
+            options = {"quick": bool(args.quick), "uncertainty": args.uncertainty,
+                       "samples": args.samples if spec else None, "seed": args.seed if spec else None,
+                       "compare": args.compare, "output": args.output}
+            emit_json({**json_header(c, args.model, options), **report_mapping(data)}, args,
+                      write_to=tmp.get("--json-file"))
+    if res is not None:
+        print(f"wrote {args.output} ({len(res.pages)} pages, {res.seconds:.1f} s)" +
+              (f" and {args.text}" if args.text else ""), file=sys.stderr if args.json else sys.stdout)
+    if args.json_file:
+        print(f"wrote {args.json_file}", file=sys.stderr)
     return 0

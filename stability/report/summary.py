@@ -16,6 +16,7 @@ from ..design import get_parameter
 from ..reference import CROSS_SLOPE_STUDY, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from ..study import FRICTION_OVER_TRAIL, TRAIL_AT_FIXED_GROUP
 from .compute import ReportData
+from .quick import mark
 from .sections import section_drops
 
 __all__ = ["Change", "best_changes", "elasticity_floor", "interval_text", "dropped_pages", "dropped_text",
@@ -222,8 +223,8 @@ def steady_turns(d: ReportData) -> list[tuple[float, float, float]]:
     return out
 
 
-def _describe(v) -> str:
-    return v.result.describe() if v.result is not None else "undefined (the reference case never reaches the level)"
+def _describe(v, m: str = "") -> str:
+    return v.result.describe() + m if v.result is not None else "undefined (the reference case never reaches the level)"
 
 
 def interval_text(iv) -> str:
@@ -247,16 +248,17 @@ def _interval_lines(d: ReportData) -> list[str]:
     if iv is None:
         return []
     f0 = THESIS_PUSH.force
+    q = mark(d.settings)
     who = iv.chair_name + (" (the thesis's revised design)" if d.chair == preset(REFERENCE_CHAIR) else "")
     by = {f: [v for v in iv.variants if v.factor == f] for f in ("disturbance", "pin friction", "model")}
     return [
-        f"- Equal-instability speed of {who}: {iv.point.describe()} ({d.model} model, thesis push)"
-        + (f", range {iv.low:.3g}-{iv.high:.3g} m/s" if iv.low is not None and iv.high is not None else "")
-        + " over: push " + ", ".join(f"{v.force:g} N -> {_describe(v)}" for v in by["disturbance"])
+        f"- Equal-instability speed of {who}: {iv.point.describe()}{q} ({d.model} model, thesis push)"
+        + (f", range {iv.low:.3g}-{iv.high:.3g} m/s{q}" if iv.low is not None and iv.high is not None else "")
+        + " over: push " + ", ".join(f"{v.force:g} N -> {_describe(v, q)}" for v in by["disturbance"])
         + f" (thesis {f0:g} N); this chair's pin friction "
-        + ", ".join(f"x{v.friction_factor:g} -> {_describe(v)}" for v in by["pin friction"]) + "; "
-        + ", ".join(f"{v.model} model -> {_describe(v)}" for v in by["model"])
-        + f". Moves it most: {iv.dominant}.",
+        + ", ".join(f"x{v.friction_factor:g} -> {_describe(v, q)}" for v in by["pin friction"]) + "; "
+        + ", ".join(f"{v.model} model -> {_describe(v, q)}" for v in by["model"])
+        + f". Moves it most: {iv.dominant}{q}.",
     ]
 
 
@@ -297,7 +299,7 @@ def _impulse_interval(d: ReportData) -> str:
         return ""
     k = u.nonlinear.critical_impulse
     dom = k.dominant
-    return (f" [{100 * u.nonlinear.level:g} %: {k.describe()} over {u.spec.source}"
+    return (f" [{100 * u.nonlinear.level:g} %: {k.describe()}{mark(d.settings)} over {u.spec.source}"
             + (f", dominated by {dom[0]}" if dom is not None else ", zero spread") + "]")
 
 
@@ -308,7 +310,7 @@ def _nonlinear_lines(d: ReportData) -> list[str]:
         return []
     dom = e.dominant
     return [f"- Equal-instability speed of {d.chair.name} over {u.spec.source} ({u.nonlinear.samples} draws, "
-            f"reference case fixed): [{100 * u.nonlinear.level:g} %: {e.describe()}"
+            f"reference case fixed): [{100 * u.nonlinear.level:g} %: {e.describe()}{mark(d.settings)}"
             + (f", dominated by {dom[0]}" if dom is not None else ", zero spread") + "]."]
 
 
@@ -330,7 +332,8 @@ def _verdict(d: ReportData) -> str:
         rel = (f", {100 * (cs.speed / ref.speed - 1):+.0f} % against the {REFERENCE_CHAIR}"
                if ref.status == "found" else "")
         non = (f"in simulation with its pin friction it is as unstable as the thesis's reference case (the "
-               f"{REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s) at {cs.describe()} ({3.6 * cs.speed:.2g} km/h){rel}")
+               f"{REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s) at {cs.describe()}{mark(d.settings)} "
+               f"({3.6 * cs.speed:.2g} km/h){rel}")
     elif cs.status == "above":
         non = (f"in simulation it stays more stable than the thesis's reference case up to {cs.bracket[1]:g} m/s "
                "(the top of the range searched)")
@@ -362,7 +365,7 @@ def summary_text(d: ReportData) -> str:
                    f"casters: {row.rate:.3g} 1/s ({d.model} model)" + _rate_interval(d) + _other_rate(d) + ".")
     imp = [x for x in d.impulses if x is not None]
     if imp:
-        parts = [f"{x.chair_name} {x.describe()}" + (f" ({x.kick_m_s:.3g} m/s: impulse per unit mass)"
+        parts = [f"{x.chair_name} {x.describe()}{mark(d.settings)}" + (f" ({x.kick_m_s:.3g} m/s: impulse per unit mass)"
                                                       if x.kick_m_s is not None else "")
                  + (_impulse_interval(d) if i == 0 else "") for i, x in enumerate(imp)]
         out.append(f"- Critical impulse at {REFERENCE_SPEED:g} m/s (smallest push at the c.g., force held "
@@ -379,8 +382,9 @@ def summary_text(d: ReportData) -> str:
     out.append(f"What helps most (elasticities of the critical impulse at {REFERENCE_SPEED:g} m/s: every parameter "
                "x0.9 and x1.1, the others at this chair's values)")
     if changes:
-        out.extend(f"- {ch.label} (now {ch.value}): {ch.direction} it -> critical impulse {ch.percent:+.1f} % per 10 % "
-                   f"(elasticity {ch.elasticity:+.2f}"
+        q = mark(d.settings)
+        out.extend(f"- {ch.label} (now {ch.value}): {ch.direction} it -> critical impulse {ch.percent:+.1f} %{q} per "
+                   f"10 % (elasticity {ch.elasticity:+.2f}{q}"
                    + (f"; growth rate {ch.growth:+.2f})" if ch.growth is not None else ")") for ch in changes)
         out.append("  Pin friction and trail act through one quantity, the friction-limited caster side force M_f/l: "
                    "it is ranked as one group, and trail separately at fixed M_f/l.")
