@@ -112,7 +112,7 @@ def test_page_texts(quick):
         "linear stability: critical speeds": ["Critical speeds (m/s)", "zero-width model", "Least stable mode"],
         "eigenvalues as speed varies": ["forward speed U (m/s)", "ej-premier: exact model, free casters",
                                         "ej-premier: exact model, locked casters"],
-        "eigenvalues against speed": ["forward speed U (m/s)", "real part σ (1/s)", "casters in phase + yaw",
+        "eigenvalues against speed": ["forward speed U (m/s)", "real part σ (1/s)", "yaw + casters in phase",
                                       "casters opposed (slow)", "Modes named from their eigenvectors"],
         "summary": ["Verdict: ej-premier", "Key numbers", "Critical impulse at 0.75 m/s", "What helps most", "Caveats",
                     "40 N for 0.1 s", "Model variant:"],

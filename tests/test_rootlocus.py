@@ -205,3 +205,21 @@ def test_locus_plots_are_labelled(ej):
         assert "(1/s" in ax.get_xlabel() and "(rad/s" in ax.get_ylabel()
     assert "ej-premier" in axes[0, 0].get_title() and "exact" in axes[0, 0].get_title()
     assert "ej-premier" in axes[1, 0].get_title()
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd", "manual-front-caster"])
+def test_mode_shape_arm_is_the_axle_to_caster_contact_distance(name):
+    """The arm that turns a yaw rate into an angle for the mode names (r l / U) is the distance from the main
+    axle to the caster contacts with the casters trailing, taken here from eq 6-24's contact points
+    (stability.statics) and the axle's signed position, not from the chair's wheelbase property."""
+    from stability.params import parameters
+    from stability.report.modes import shape_arm
+    from stability.statics import caster_contact_points
+
+    c = preset(name)
+    (xa, _), (xb, _) = caster_contact_points(parameters(c))
+    assert xa == xb
+    # a difference of three stored lengths: exact to a few ulps of the 1 m scale
+    assert shape_arm(c) == pytest.approx(abs(c.x_main - xa), rel=0, abs=1e-14)
+    far = c.s1 + c.s2 + c.trail           # rear casters trail away from the axle, front ones towards it
+    assert shape_arm(c) == pytest.approx(far if c.caster_position == "rear" else far - 2 * c.trail, abs=1e-14)

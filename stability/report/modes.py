@@ -61,10 +61,12 @@ def shape_arm(chair: Any) -> float:
     Returns
     -------
     float
-        ``|s1 + s2 - trail|`` for rear casters, ``|s1 + s2 + trail|`` for front casters.
+        The wheelbase, main axle to caster contacts with the casters trailing
+        (:attr:`stability.chair.Chair.wheelbase`): ``s1 + s2 + trail`` for rear
+        casters (the contacts trail away from the axle), ``s1 + s2 - trail`` for
+        front casters (eq 6-24's contacts lie ``trail`` behind the pins).
     """
-    c = chair
-    return abs(c.s1 + c.s2 - c.trail) if c.caster_position == "rear" else abs(c.s1 + c.s2 + c.trail)
+    return float(chair.wheelbase)
 
 
 def _label(shares: dict[str, float]) -> str:
