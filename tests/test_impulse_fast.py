@@ -111,3 +111,31 @@ def test_search_equals_the_bisection_to_its_tolerance(name, speed):
     assert new.runs <= 8 < old.runs
     lin = linear_critical_impulse(c, speed)
     assert 1.05 < new.impulse_Ns / lin < 1.4
+
+
+def test_equal_instability_search_equals_the_bisection_to_its_tolerance():
+    """The regula-falsi pairs find the same crossing as the 7-candidate bisection (tests/benchmarks/baseline_search.py).
+
+    Both return a speed interpolated inside a verified bracket ``[lo, hi]`` (``hi - lo <= tol``; at ``lo`` the
+    chair is slower to reach the level than the reference, at ``hi`` not) around the same crossing, the time to
+    the level being monotone in speed here (docs/studies.md): they differ by at most ``tol`` = 0.005 m/s.  The
+    reference chair at the reference speed is its own equal-instability speed, 0.75 m/s.
+    """
+    from benchmarks.baseline_search import bisect_speeds_baseline
+
+    from stability.study.criteria import DEFAULT_CRITERION
+    from stability.study.equal_instability import bisect_speeds, reference_time
+
+    ej = preset("ej-premier")
+    chairs = [ej, preset("power-fwd"), ej.replace(pin_friction_left=0.15, pin_friction_right=0.15)]
+    t_ref = reference_time(model="exact")
+    kw = dict(model="exact", scheme="wchair", criterion=DEFAULT_CRITERION, bracket=(0.2, 3.0), tol=0.005,
+              candidates=7, max_rounds=8, dt=0.001, progress=False, reference_text="", sim_options={})
+    args = (chairs, [t_ref] * 3, [40.0] * 3, 0.1)
+    new, old = bisect_speeds(*args, **kw), bisect_speeds_baseline(*args, **kw)
+    for a, b in zip(new, old, strict=True):
+        assert a.status == b.status == "found"
+        assert a.high - a.low <= 0.005 + 1e-12 and a.low <= a.speed <= a.high
+        assert abs(a.speed - b.speed) <= 0.005
+        assert len(a.evaluations) < len(b.evaluations)
+    assert abs(new[0].speed - 0.75) <= 0.005

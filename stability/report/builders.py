@@ -257,8 +257,9 @@ def _p_equal(d: ReportData) -> Figure:
         "Criterion: " + crit.describe() + ".",
         f"Reference: E&J Premier at {REFERENCE_SPEED:g} m/s, {push_text(d)} at the c.g.: "
         f"{th.reference_time:.3f} s (thesis: {THESIS['reference_time_to_1_rad_s']}).",
-        "Equal-instability speed: the speed at which the chair takes exactly as long; found by bisection on "
-        f"speed ({st.candidates} candidate speeds per round, one batch of simulations per round, to "
+        "Equal-instability speed: the speed at which the chair takes exactly as long; found by a bracketing "
+        f"search on speed ({st.candidates} candidate speeds in the first round, then a regula-falsi pair per "
+        "round, one batch of simulations per round, to "
         f"{st.tol:g} m/s, bracket {st.bracket[0]:g}-{st.bracket[1]:g} m/s).",
         "Why: the thesis itself quotes this number for its reference case; for exponentially growing "
         "responses matching the time to a level matches the curve's position, which is how the thesis "

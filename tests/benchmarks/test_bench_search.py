@@ -13,7 +13,9 @@ Measured on the shared 2-core machine (load average 2-4), E&J Premier:
 
 * one speed (0.75 m/s, pin friction): 35 -> 10 runs, 124-204 ms -> 16-31 ms, x5.7-8.9;
 * six speeds: 210 -> 67 runs, 0.7-1.2 s -> 0.18 s, x6.4 (x2.7-3.9 before small rounds ran on one thread);
-* no pin friction, two speeds (the search starts from the linear prediction): 70 -> 9 runs, x8.8.
+* no pin friction, two speeds (the search starts from the linear prediction): 70 -> 9 runs, x8.8;
+* equal-instability speed, 2 chairs: 30 -> 15-17 runs per chair, x2.3 (6 chairs, both models: 30 -> 11-19
+  runs, x2.4-2.7; the same speeds to 0.003 m/s).
 
 Why not x20 with pin friction: the answer is certified by two runs, one
 that misses the level (it runs the full 10 s horizon) and one that reaches
@@ -42,7 +44,7 @@ from stability.study.equal_instability import bisect_speeds, reference_time
 EJ = preset("ej-premier")
 SPEEDS = [0.5, 0.6, 0.75, 0.9, 1.0, 1.2]
 #: the ratios asserted: about 2/3 of the lowest measured (load on a shared machine moves them by x1.5)
-RATIO_SINGLE, RATIO_CURVE, RATIO_LINEAR_START = 4.0, 3.0, 4.0
+RATIO_SINGLE, RATIO_CURVE, RATIO_LINEAR_START, RATIO_EQUAL_INSTABILITY = 4.0, 3.0, 4.0, 1.5
 
 
 @pytest.fixture
@@ -129,6 +131,6 @@ def test_bench_equal_instability_bisection(bench):
     ratio = t_old / t_new
     bench.extra_info.update(old_s=t_old, new_s=t_new, speedup=ratio)
     print(f"\nequal-instability bisection, 2 chairs: old {t_old:.3f} s, new {t_new:.3f} s, x{ratio:.1f}")
-    # the same candidates; crossing times interpolated per 1 ms step instead of per 10 ms sample
+    # the same bracket width (tol 0.005 m/s) around the same crossing, times interpolated per 1 ms step
     np.testing.assert_allclose([x.speed for x in b], [x.speed for x in a], atol=0.005)
-    assert ratio >= 1.2
+    assert ratio >= RATIO_EQUAL_INSTABILITY
