@@ -1,8 +1,13 @@
-"""The critical impulse with its interval over the inputs it rests on: pin friction and model.
+"""The critical impulse with its interval over the inputs it rests on: pin friction, model and step.
 
 The critical impulse *is* a push size, so unlike the equal-instability speed it has no push
 variant; it depends on the pin's Coulomb friction (measured only roughly; x0.5 and x1.5, as the
-equal-instability interval) and on the model (exact or thesis).  One batch of
+equal-instability interval), on the model (exact or thesis) and on the simulator's fixed step:
+program WCHAIR's 1 ms resolves the stiff caster modes (hundreds to thousands of 1/s at walking
+speed) coarsely, and the answer moves with it (E&J Premier at 1.0 m/s: 2.17 N s at 1 ms, 2.36 at
+0.5 ms, 2.52 at 0.125 ms and 2.53 from the adaptive scheme; power-fwd with a 6 cm trail at 0.75
+m/s: 2.10 at 1 ms but 11.6-11.7 at 0.5-0.25 ms), so the nominal case is run again at half the step
+(``STEP_FACTORS``) and that variant is part of the range.  One batch of
 :func:`stability.study.critical_impulses` per model covers every chair and variant; a chair's
 result does not depend on the batch it runs in.  ``python -m stability.study critical-impulse
 --interval`` prints it.
@@ -16,13 +21,16 @@ from typing import Any
 
 from .._validate import VARIANTS, check_model
 from ..chair import Chair
+from ..simulate.options import WCHAIR_DT as DT
 from .impulse import CriticalImpulse, critical_impulses
 from .intervals import scale_friction
 
-__all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS"]
+__all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS", "STEP_FACTORS"]
 
 #: Pin-friction factors of the interval (as :func:`stability.study.equal_instability_interval`'s).
 FRICTION_FACTORS = (0.5, 1.5)
+#: Factors of the fixed step (nominal model and friction) whose answers are part of the range.
+STEP_FACTORS = (0.5,)
 
 
 @dataclass(frozen=True)
@@ -65,7 +73,8 @@ class CriticalImpulseInterval:
 
 def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, *, model: str = "exact",
                                friction_factors: Sequence[float] = FRICTION_FACTORS,
-                               models: Sequence[str] = VARIANTS, **options: Any) -> list[CriticalImpulseInterval]:
+                               models: Sequence[str] = VARIANTS, step_factors: Sequence[float] = STEP_FACTORS,
+                               **options: Any) -> list[CriticalImpulseInterval]:
     """Critical impulse of each chair at ``speed``, with its range over pin friction and model.
 
     Parameters
@@ -79,6 +88,8 @@ def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, *, model: 
         Multipliers of both pins' Coulomb friction (nominal model).
     models : sequence of str
         Models compared (the other ones at nominal friction).
+    step_factors : sequence of float
+        Multipliers of the fixed step ``dt`` (nominal model and friction; labelled by the step in ms).
     **options
         As :func:`stability.study.critical_impulses` (duration, level, horizon, max_impulse, ...).
 
@@ -89,15 +100,18 @@ def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, *, model: 
     """
     check_model(model)
     chairs = list(chairs)
-    specs: list[tuple[str, str, float]] = [("nominal", model, 1.0)]
-    specs += [(f"x{f:g} pin friction", model, float(f)) for f in friction_factors]
-    specs += [(f"{m} model", m, 1.0) for m in models if m != model]
+    dt = float(options.pop("dt", DT))
+    # (label, model, friction factor, step): one batch per (model, step)
+    specs: list[tuple[str, str, float, float]] = [("nominal", model, 1.0, dt)]
+    specs += [(f"x{f:g} pin friction", model, float(f), dt) for f in friction_factors]
+    specs += [(f"{m} model", m, 1.0, dt) for m in models if m != model]
+    specs += [(f"{dt * f * 1e3:g} ms step", model, 1.0, dt * float(f)) for f in step_factors]
     results: dict[tuple[int, int], CriticalImpulse] = {}
-    for m in dict.fromkeys(s[1] for s in specs):
-        idx = [k for k, s in enumerate(specs) if s[1] == m]
+    for m, h in dict.fromkeys((s[1], s[3]) for s in specs):
+        idx = [k for k, s in enumerate(specs) if (s[1], s[3]) == (m, h)]
         jobs = [(n, k) for n in range(len(chairs)) for k in idx]
         res = critical_impulses([scale_friction(chairs[n], specs[k][2]) for n, k in jobs], speed, model=m,
-                                **options)
+                                dt=h, **options)
         results.update(zip(jobs, res, strict=True))
     out = []
     for n, c in enumerate(chairs):

@@ -1,0 +1,45 @@
+"""The critical impulse depends on the simulator's fixed step, and its interval says so.
+
+Program WCHAIR's 1 ms step resolves the stiff caster modes coarsely: the linear model's fastest
+decaying mode of the E&J Premier at 1.0 m/s is about -500 1/s (``|lambda| dt = 0.5`` at 1 ms), and of
+power-fwd with a 6 cm trail at 0.75 m/s about -1240 1/s (``|lambda| dt = 1.24``: the forward-Euler
+velocity update ``1 + lambda dt`` is negative, the caster rate flips sign every step and the Coulomb
+pin friction, whose sign follows it, chatters).  The independent reference is the adaptive scheme
+(scipy's LSODA with stick-slip events, no fixed step).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from stability.chair import preset
+from stability.linear import state_matrices
+from stability.study import critical_impulses
+from stability.study.impulse_intervals import critical_impulse_intervals
+
+
+def test_the_fixed_step_answer_converges_to_the_adaptive_one():
+    """E&J Premier at 1.0 m/s: 1 ms is 14 % low (2.17 vs 2.53 N s); 0.125 ms is within 1 % of the adaptive
+    scheme.  Each answer carries the search's 0.5 % bracket; the convergence is what is asserted."""
+    c = preset("ej-premier")
+    ref = critical_impulses(c, [1.0], scheme="adaptive")[0].impulse_Ns
+    coarse = critical_impulses(c, [1.0], dt=0.001)[0].impulse_Ns
+    fine = critical_impulses(c, [1.0], dt=0.000125)[0].impulse_Ns
+    assert abs(coarse - ref) / ref > 0.05                  # the step matters here ...
+    assert abs(fine - ref) / ref < 0.02                    # ... and the fixed-step answer converges to it
+    assert abs(fine - ref) < abs(coarse - ref) / 5
+
+
+def test_the_interval_includes_the_half_step_answer():
+    """power-fwd with a 6 cm trail: at 1 ms the critical impulse collapses to about 2.1 N s (a step
+    artefact: the caster mode's |lambda| dt = 1.24); at 0.5 ms it is about 11.6 N s, close to the 5 cm
+    chair's.  The interval carries the half-step variant, so its range shows the step's effect."""
+    c = preset("power-fwd").replace(trail=0.06)
+    lam = np.linalg.eigvals(state_matrices(c, np.array([0.75]))[0])
+    assert np.max(np.abs(lam.real)) * 1e-3 > 1.0           # forward Euler's factor 1 + lambda dt < 0 at 1 ms
+    iv = critical_impulse_intervals([c], 0.75)[0]
+    half = dict(iv.variants)["0.5 ms step"]
+    assert half.status == "found" and iv.point.status == "found"
+    assert half.impulse_Ns > 4 * iv.point.impulse_Ns       # 11.6 vs 2.1 N s
+    assert iv.high_Ns >= half.bound_Ns and iv.low_Ns <= iv.point.bound_Ns
+    assert "0.5 ms step" in iv.describe()
