@@ -225,10 +225,28 @@ def _constraints(m: Measures, base: Measures, min_tip: float, tip_source: str, c
     return tuple(out)
 
 
+#: Relative rise of the linear growth rate above which a change that helps gets the linear-vs-nonlinear note.
+RATE_NOTE_RISE = 0.005
+#: Relative difference between the critical impulse at 1 ms and at half the step above which the step is noted.
+STEP_NOTE_DIFFERENCE = 0.1
+
+
+def _step_note(m: Measures) -> str | None:
+    """A note when the critical impulse moves by more than :data:`STEP_NOTE_DIFFERENCE` at half the step."""
+    j, half = m.critical_impulse_Ns.value, m.critical_impulse_half_step_Ns
+    if j is None or half is None or m.critical_impulse_status != "found":
+        return None
+    if abs(half - j) <= STEP_NOTE_DIFFERENCE * max(abs(half), abs(j)):
+        return None
+    return (f"Simulator step: at half of program WCHAIR's 1 ms step the critical impulse is {half:.3g} N s, against "
+            f"{j:.3g} N s at 1 ms. The fixed step resolves this chair's stiff caster modes coarsely, so the 1 ms value "
+            "is uncertain; the range includes both, and the adaptive scheme (--scheme adaptive) has no fixed step.")
+
+
 def _notes(c: Candidate, base: Measures, chair: Chair) -> tuple:
     m = c.measures
     notes = []
-    if m.growth_rate_1_s > base.growth_rate_1_s + 1e-9:
+    if m.growth_rate_1_s > base.growth_rate_1_s * (1 + RATE_NOTE_RISE) and c.gain > 0:
         s_peak = math.sqrt(chair.i_z / chair.m)
         notes.append(
             f"The frictionless linear growth rate gets worse ({base.growth_rate_1_s:.3g} -> {m.growth_rate_1_s:.3g} "
@@ -237,6 +255,9 @@ def _notes(c: Candidate, base: Measures, chair: Chair) -> tuple:
             f"which peaks at s1 = sqrt(I_z/m) = {s_peak:.3g} m, so moving the axle toward that point raises it. "
             "The nonlinear measures include the pins' Coulomb friction, whose moment against the caster's side force "
             "(pin friction over trail) holds the casters straight after a small push; that is what they reward.")
+    step = _step_note(m)
+    if step:
+        notes.append(step)
     if m.shimmy_straddles:
         notes.append("Shimmy: the trail is shimmy-free at the estimated pin stiffness and relaxation length, but not "
                      "over their whole range; measure both before building it.")

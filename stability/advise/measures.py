@@ -3,7 +3,8 @@
 A chair's measures are exactly what the commands print for it:
 
 - ``critical_impulse_Ns``: ``python -m stability.study critical-impulse --speeds 0.75 --interval``
-  (:func:`stability.study.critical_impulse_intervals`; interval over pin friction x0.5/x1.5 and model);
+  (:func:`stability.study.critical_impulse_intervals`; interval over pin friction x0.5/x1.5, model and
+  half the simulator step);
 - ``equal_instability_speed_m_s``: ``python -m stability.study equal-instability``
   (:func:`stability.study.equal_instability_intervals`; interval over push, pin friction and model);
 - ``static_stability_deg``: the smallest of ``python -m stability.tipping``'s four angles;
@@ -32,6 +33,7 @@ from ..reference import REFERENCE_SPEED
 from ..shimmy.band import band_core, shimmy_band
 from ..slope import drive_report, solve
 from ..study import critical_impulse_intervals, equal_instability_intervals
+from ..study.impulse_intervals import CriticalImpulseInterval
 from ..tipping import tip_angles
 
 __all__ = ["Interval", "Measures", "measure_chairs", "nonlinear_measures", "IMPULSE_SPEED"]
@@ -78,7 +80,7 @@ class Measures:
     chair : str
         Chair name.
     critical_impulse_Ns : Interval
-        Critical impulse at :data:`IMPULSE_SPEED` (N s), interval over pin friction and model.
+        Critical impulse at :data:`IMPULSE_SPEED` (N s), interval over pin friction, model and step.
     equal_instability_speed_m_s : Interval
         Equal-instability speed (m/s; a bracket end when beyond it), interval over push, friction, model.
     static_stability_deg : Interval
@@ -102,6 +104,9 @@ class Measures:
     critical_impulse_status : str
         ``"found"``, ``"never"`` (not even the largest push tried, 40 N s, spins it: the value is that
         bound) or ``"below"``.
+    critical_impulse_half_step_Ns : float or None
+        The nominal critical impulse again at half the simulator's 1 ms step (N s; None: not computed):
+        where it differs much from the value, the 1 ms step resolves the caster modes too coarsely.
     """
 
     chair: str
@@ -116,6 +121,7 @@ class Measures:
     tip_angles_deg: dict
     equal_instability_status: str
     critical_impulse_status: str = "found"
+    critical_impulse_half_step_Ns: float | None = None
 
     def to_mapping(self) -> dict:
         """JSON-ready dict: the issue's ``predicted`` keys plus the costs."""
@@ -123,6 +129,7 @@ class Measures:
             "critical_impulse_Ns": self.critical_impulse_Ns.to_mapping(),
             "critical_impulse_speed_m_s": IMPULSE_SPEED,
             "critical_impulse_status": self.critical_impulse_status,
+            "critical_impulse_half_step_Ns": self.critical_impulse_half_step_Ns,
             "equal_instability_speed_m_s": self.equal_instability_speed_m_s.to_mapping(),
             "equal_instability_status": self.equal_instability_status,
             "static_stability_deg": self.static_stability_deg.to_mapping(),
@@ -159,14 +166,21 @@ def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval
     Returns
     -------
     list of tuple
-        ``(critical_impulse_Ns, equal_instability_speed_m_s, equal_instability_status, critical_impulse_status)``
-        per chair.
+        ``(critical_impulse_Ns, equal_instability_speed_m_s, equal_instability_status, critical_impulse_status,
+        critical_impulse_half_step_Ns)`` per chair.
     """
     ci = critical_impulse_intervals(chairs, IMPULSE_SPEED)
     ei = equal_instability_intervals(chairs)
     return [(Interval(float(imp.point.bound_Ns), imp.low_Ns, imp.high_Ns),
-             Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status, imp.point.status)
+             Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status, imp.point.status,
+             _half_step(imp))
             for imp, eq in zip(ci, ei, strict=True)]
+
+
+def _half_step(imp: CriticalImpulseInterval) -> float | None:
+    """The interval's half-step variant (:data:`stability.study.impulse_intervals.STEP_FACTORS`), N s."""
+    half = [r for label, r in imp.variants if label.endswith(" ms step")]
+    return float(half[0].bound_Ns) if half else None
 
 
 def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_slope_deg: float,
@@ -216,6 +230,7 @@ def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_sl
                 tip_angles_deg={k: getattr(tips, k + "_deg") for k in ("toward_main_wheels", "toward_casters",
                                                                       "lateral_left", "lateral_right")},
                 equal_instability_status=status, critical_impulse_status=more[0] if more else "found",
+                critical_impulse_half_step_Ns=more[1] if len(more) > 1 else None,
             ))
         bar.update()
     return out

@@ -62,8 +62,8 @@ def _verdict(a: Advice) -> list[str]:
     else:
         lines.append(f"  At {kmh(REFERENCE_SPEED)} a sideways nudge of {ci.value:.2g} N s at the seat "
                      f"(about {force:.0f} N for a tenth of a second; range {ci.low:.2g}-{ci.high:.2g} N s over pin "
-                     "friction and model) turns the chair until it spins at 1 rad/s (57 deg/s) within 10 s unless "
-                     "the user steers.")
+                     "friction, model and simulator step) turns the chair until it spins at 1 rad/s (57 deg/s) "
+                     "within 10 s unless the user steers.")
     times = [f"{t:.2g} s at {u:g} m/s" if t is not None else f"more than 10 s at {u:g} m/s"
              for u, t in zip(a.speeds_m_s, a.time_to_correct_s, strict=False)]
     if times:
