@@ -91,6 +91,22 @@ def test_note_reconciles_a_worse_linear_rate():
     assert abs(rev.s1 - math.sqrt(ej.i_z / ej.m)) < 0.01      # the revised chair sits at that peak
 
 
+def test_note_names_a_critical_impulse_that_moves_with_the_step():
+    """A critical impulse that differs by more than 10 % at half the 1 ms step gets the step note, quoting both
+    values (power-fwd's trail-6 cm runner-up: 2.1 N s at 1 ms, 11.6 N s at 0.5 ms; tests/test_impulse_step.py);
+    one within 10 % does not."""
+    import dataclasses
+
+    ej = chair_mod.preset("ej-premier")
+    base = _measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1))
+    moved = dataclasses.replace(_measures((2.1, 0.196, 11.6), (1.5, 1.36, 1.66)), critical_impulse_half_step_Ns=11.6)
+    notes = _notes(Candidate((), moved, -0.9, {}, ()), base, ej)
+    assert any("half of program WCHAIR's 1 ms step the critical impulse is 11.6 N s, against 2.1 N s" in n
+               for n in notes), notes
+    steady = dataclasses.replace(moved, critical_impulse_half_step_Ns=2.2)
+    assert not any("Simulator step" in n for n in _notes(Candidate((), steady, -0.9, {}, ()), base, ej))
+
+
 def _plausible(rng: np.random.Generator) -> chair_mod.Chair | None:
     base = chair_mod.preset(rng.choice(["ej-premier", "manual-front-caster", "power-fwd", "revised"]))
     trail = float(rng.uniform(0.02, 0.1))
