@@ -207,3 +207,14 @@ def test_statics_and_shimmy_measures_are_the_library_values(tmp_path):
     a, b = rows[0], rows[2]
     assert b[cols.index("tip_toward_main_wheels_deg")] > a[cols.index("tip_toward_main_wheels_deg")]
     assert b[cols.index("tip_toward_casters_deg")] == a[cols.index("tip_toward_casters_deg")]
+
+
+def test_each_dask_worker_gets_its_own_numba_cache_unless_the_environment_names_one():
+    """Two workers never write one cache index; a user's NUMBA_CACHE_DIR is kept (stability/sweep/cluster.py)."""
+    from stability.sweep.cluster import worker_cache_dir
+
+    a, b = worker_cache_dir({}, "0"), worker_cache_dir({}, "1")
+    assert a is not None and b is not None and a != b
+    assert worker_cache_dir({}, "0") == a                       # the same worker name: the same (warm) cache
+    assert "/" not in Path(worker_cache_dir({}, "tcp://10.0.0.1:4000") or "").name  # an address is made a name
+    assert worker_cache_dir({"NUMBA_CACHE_DIR": "/shared/numba"}, "0") is None

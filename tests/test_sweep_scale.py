@@ -66,3 +66,19 @@ def test_dask_option_checks_and_cost_order():
             parse_dask(bad)
     spec = loads_spec('speeds = [1.0]\nmeasures = ["critical_impulse"]\nchunk_rows = 2\n[grid]\ntrail = [0.04, 0.05, 0.06]\n')
     assert chunk_cost(spec, 0) == 2 * chunk_cost(spec, 1)      # the last chunk holds one design of three
+
+
+def test_local_workers_warm_up_on_their_own_numba_caches(monkeypatch):
+    """The warm-up task points every worker at its own numba cache before loading the kernels."""
+    pytest.importorskip("distributed")
+    from distributed import Client, LocalCluster
+
+    from stability.sweep.cluster import _warm_up
+
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None,
+                      env={"NUMBA_NUM_THREADS": "1"}) as cluster, Client(cluster) as client:
+        said = list(client.run(_warm_up).values())
+    caches = {s.split("cache ")[1] for s in said}
+    assert len(caches) == 2 and all("stability-numba-" in c for c in caches)
+    assert all(s.startswith("numba threads 1,") for s in said)
