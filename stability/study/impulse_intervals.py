@@ -4,7 +4,7 @@ The critical impulse *is* a push size, so unlike the equal-instability speed it 
 variant; it depends on the pin's Coulomb friction (measured only roughly; x0.5 and x1.5, as the
 equal-instability interval), on the model (exact or thesis) and on the simulator's fixed step:
 program WCHAIR's 1 ms resolves the stiff caster modes (hundreds to thousands of 1/s at walking
-speed) coarsely, and the answer moves with it (E&J Premier at 1.0 m/s: 2.17 N s at 1 ms, 2.36 at
+speed) coarsely, and the answer moves with it (E&J Premier at 1.0 m/s: 2.16 N s at 1 ms, 2.36 at
 0.5 ms, 2.52 at 0.125 ms and 2.53 from the adaptive scheme; power-fwd with a 6 cm trail at 0.75
 m/s: 2.10 at 1 ms but 11.6-11.7 at 0.5-0.25 ms), so the nominal case is run again at half the step
 (``STEP_FACTORS``) and that variant is part of the range.  One batch of
