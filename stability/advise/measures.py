@@ -156,7 +156,7 @@ def _finite_or_none(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str, str]]:
+def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str, str, float | None]]:
     """Critical impulse and equal-instability speed (with intervals) of every chair, one batch per study.
 
     Parameters

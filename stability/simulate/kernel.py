@@ -12,10 +12,7 @@ operations in the same order (tested bit for bit against them).
 
 from __future__ import annotations
 
-import hashlib
 import math
-import os
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -24,6 +21,7 @@ from numba.core import config as _config
 
 from ..models.full_width import generated as _fw
 from ..models.slope import generated as _sl
+from .cache_stamp import invalidate_stale_cache
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
@@ -476,30 +474,6 @@ def run_batch(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, C
     for i in prange(P.shape[0]):
         nrec[i] = run_one(P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
                           levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, rec[i], stats[i], warn[i], status[i])
-
-
-def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
-    """Drop the on-disk compiled code of ``namespace``'s kernels when the generated equations changed.
-
-    numba keys a cached function on its own source file only, and a cached
-    kernel carries a copy of the generated functions it calls; so a stamp (the
-    SHA-256 of ``stability/_generated/full_width.py`` and ``slope.py``) is kept next to the
-    cache and, when it differs, every kernel of the module is recompiled.
-    Nothing happens when the cache directory is not writable.
-    """
-    digest = hashlib.sha256(Path(_fw.__file__).read_bytes() + Path(_sl.__file__).read_bytes()).hexdigest()
-    kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
-    try:
-        stamp = Path(getattr(run_batch, "_cache").cache_path) / stamp_name  # noqa: B009  (numba internal)
-        if stamp.exists() and stamp.read_text() == digest:
-            return
-        for d in kernels:
-            d._cache.flush()
-        tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")   # atomic: a concurrent reader sees old or new
-        tmp.write_text(digest)
-        os.replace(tmp, stamp)
-    except (AttributeError, OSError):   # a numba without these internals, or a read-only cache: nothing to do
-        return
 
 
 invalidate_stale_cache(globals(), "kernel.equations.sha256")

@@ -1,0 +1,40 @@
+"""The cache stamp of the compiled kernels: recompile them when the generated equations change.
+
+Kept apart from the kernels (:mod:`stability.simulate.kernel`, :mod:`stability.simulate.adaptive_kernel`),
+which call :func:`invalidate_stale_cache` once at import.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+
+from ..models.full_width import generated as _fw
+from ..models.slope import generated as _sl
+
+__all__ = ["invalidate_stale_cache"]
+
+
+def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
+    """Drop the on-disk compiled code of ``namespace``'s kernels when the generated equations changed.
+
+    numba keys a cached function on its own source file only, and a cached
+    kernel carries a copy of the generated functions it calls; so a stamp (the
+    SHA-256 of ``stability/_generated/full_width.py`` and ``slope.py``) is kept next to the
+    cache and, when it differs, every kernel of the module is recompiled.
+    Nothing happens when the cache directory is not writable.
+    """
+    digest = hashlib.sha256(Path(_fw.__file__).read_bytes() + Path(_sl.__file__).read_bytes()).hexdigest()
+    kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
+    try:
+        stamp = Path(kernels[0]._cache.cache_path) / stamp_name    # numba internal: the module's cache folder
+        if stamp.exists() and stamp.read_text() == digest:
+            return
+        for d in kernels:
+            d._cache.flush()
+        tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")   # atomic: a concurrent reader sees old or new
+        tmp.write_text(digest)
+        os.replace(tmp, stamp)
+    except (AttributeError, IndexError, OSError):   # numba without these internals, no kernel, read-only cache
+        return
