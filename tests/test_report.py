@@ -477,10 +477,10 @@ def test_summary_numbers_come_from_the_data(quick):
     text = summary_text(d)
     iv = d.intervals
     pushes = [v.force for v in iv.variants if v.factor == "disturbance"]
-    assert iv.chair_name == "revised" and pushes == pytest.approx([0.9 * THESIS_PUSH.force, 1.1 * THESIS_PUSH.force])
-    assert iv.point.describe() in text
+    assert iv.chair_name == "revised" and pushes == pytest.approx([f * THESIS_PUSH.force for f in study.PUSH_FACTORS])
+    assert iv.point.describe() in text and iv.range_text() in text
     for v in iv.variants:
-        assert v.result.describe() in text
+        assert (v.result.describe() if v.result is not None else "undefined") in text
     for x in d.impulses:
         assert x.describe() in text
     assert f"after {d.thesis.reference_time:.2f} s" in text
@@ -633,16 +633,61 @@ def test_bad_uncertainty_input_is_one_line(extra, content, needle, tmp_path, cap
 
 
 def test_intervals_come_from_the_study(quick):
-    """One home: the report's interval is study.equal_instability_interval with the report's settings."""
+    """One home: the report's interval is study.equal_instability_interval's definition (push x0.5-x2, pin
+    friction x0.5/x1.5 on both chairs, both models) at the quick settings' resolution."""
     d, st = quick.data, quick.data.settings
-    iv = study.equal_instability_interval(
-        preset("revised"), model="exact", force_factors=(0.9, 1.1), friction_factors=(0.5, 1.5),
-        friction_on_reference=False, criterion=study.Criterion(duration=st.duration), bracket=st.bracket, tol=st.tol,
-        candidates=st.candidates, dt=st.dt)
+    iv = study.equal_instability_interval(preset("revised"), model="exact",
+                                          criterion=study.Criterion(duration=st.duration), bracket=st.bracket,
+                                          tol=st.tol, candidates=st.candidates, dt=st.dt)
     assert iv.to_dict() == d.intervals.to_dict()
-    # the friction variants scale the chair only: they equal the thesis study's x0.5 / x1.5 ratings
-    fr = [v.result for v in iv.variants if v.factor == "pin friction"]
-    assert [r.speed for r in fr] == [d.thesis.speeds[f"revised x{k} friction"].speed for k in ("0.5", "1.5")]
+    assert iv.friction_scope == "both the chair and the reference chair"
+    assert sorted({v.friction_factor for v in iv.variants} - {1.0}) == list(study.FRICTION_FACTORS)
+
+
+def _bound(fn, args, kwargs):
+    import inspect
+
+    b = inspect.signature(fn).bind(*args, **kwargs)
+    b.apply_defaults()
+    return dict(b.arguments)
+
+
+def test_study_command_and_report_use_one_range_definition(quick, monkeypatch, capsys):
+    """The study command and a full report call the same function with the same arguments (the definition and
+    the resolution), and print its range in the same words.  The function is spied on (returning the quick
+    report's interval) so the test costs nothing; the slow test below runs both for real."""
+    import stability.study.__main__ as study_cli
+    from stability.report.compute import equal_instability_range
+
+    calls = []
+
+    def spy(*args, **kwargs):
+        calls.append(_bound(real, args, kwargs))
+        return quick.data.intervals
+
+    real = study.equal_instability_interval
+    monkeypatch.setattr(study, "equal_instability_interval", spy)
+    monkeypatch.setattr(study_cli, "equal_instability_interval", spy)
+    iv = equal_instability_range(preset("revised"), "exact", report.Settings.for_mode(False))
+    assert study_cli.main(["equal-instability", "--chair", "revised"]) == 0
+    out = capsys.readouterr().out
+    assert calls[0] == calls[1] and calls[0]["friction_on_reference"] is True
+    assert calls[0]["force_factors"] == study.PUSH_FACTORS and calls[0]["tol"] == study.RANGE_TOL
+    full = dataclasses.replace(quick.data, settings=report.Settings.for_mode(False))
+    assert iv.range_text() in out and iv.range_text() in summary_text(full)
+    assert study.RANGE_DEFINITION in " ".join(out.split())
+
+
+@pytest.mark.slow
+def test_study_command_and_full_report_print_the_same_range(capsys):
+    """For real (about 5 s): the study command's range and the full report's range of the revised chair."""
+    import stability.study.__main__ as study_cli
+    from stability.report.compute import equal_instability_range
+
+    iv = equal_instability_range(preset("revised"), "exact", report.Settings.for_mode(False))
+    assert study_cli.main(["equal-instability", "--chair", "revised", "--json", "--quiet"]) == 0
+    j = json.loads(capsys.readouterr().out)
+    assert (j["low_m_s"], j["high_m_s"], j["speed_m_s"]) == (iv.low, iv.high, iv.point.speed)
 
 
 def test_what_helps_most_is_ranked_by_elasticities(quick):

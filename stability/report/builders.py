@@ -11,12 +11,12 @@ from matplotlib.figure import Figure
 from .. import plotting as P
 from ..chair import preset
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
-from ..study import THESIS
+from ..study import FRICTION_FACTORS, PUSH_FACTORS, RANGE_DEFINITION, THESIS
 from ..summary import format_summary
 from .appendix import glossary_text, method_text
 from .clinician import clinician_text
 from .comparison import comparison_rows, key_numbers
-from .compute import PUSH_RANGE, ReportData
+from .compute import ReportData
 from .decision import decision_bars, decision_paragraphs, decision_rows
 from .findings import _first, conclusion_rows, findings
 from .quick import MARK, coarsened_text
@@ -248,8 +248,8 @@ def _p_equal(d: ReportData) -> Figure:
     errors = ({iv.point.chair.name: (iv.low, iv.high)} if iv is not None and iv.low is not None
               and iv.high is not None else None)
     P.equal_instability_chart(res, axes[0, 0], thesis=thesis_ranges, errors=errors,
-                              error_label=f"range: push x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, pin friction "
-                                          "x0.5-x1.5, model variant")
+                              error_label=f"range: push x{PUSH_FACTORS[0]:g}-x{PUSH_FACTORS[-1]:g}, pin friction "
+                                          f"x{FRICTION_FACTORS[0]:g}-x{FRICTION_FACTORS[-1]:g}, model variant")
     ax = axes[0, 1]
     ax.axis("off")
     crit = th.criterion
@@ -271,8 +271,7 @@ def _p_equal(d: ReportData) -> Figure:
         "Thesis vs ours: the two model variants are compared in the method appendix.",
     ]
     if d.intervals is not None:
-        txt.insert(3, "How firm: " + interval_text(d.intervals) + f" (push x{PUSH_RANGE[0]:g}-x{PUSH_RANGE[1]:g}, "
-                   "this chair's pin friction x0.5-x1.5, the other model variant).")
+        txt.insert(3, "How firm: " + interval_text(d.intervals) + "; " + RANGE_DEFINITION + ".")
     y = 0.99
     for para in txt:
         for line in P.wrap_text(para, 60):

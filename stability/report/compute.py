@@ -32,14 +32,11 @@ from .uncertainty_data import UncertaintySection, UncertaintySpec, uncertainty_s
 from .validity import responses_validity
 
 __all__ = ["Settings", "ReportData", "Figure814", "compute", "parameter_loci", "counterpart",
-           "response_speeds", "stabilising_poles", "FIGURE_8_14", "PUSH_RANGE", "FRICTION_RANGE", "COMPARISON_CHAIR"]
+           "response_speeds", "stabilising_poles", "FIGURE_8_14", "COMPARISON_CHAIR",
+           "equal_instability_range"]
 
 #: Figure 8-14 of the thesis: the E&J Premier with less mass and yaw inertia (kg, kg m^2).
 FIGURE_8_14 = {"m": 75.0, "i_z": 4.7}
-#: Relative push forces of the disturbance interval (x the thesis's 40 N).
-PUSH_RANGE = (0.9, 1.1)
-#: Relative pin friction of the friction interval (the chair's pins only, the thesis's Figure 9-3 convention).
-FRICTION_RANGE = (0.5, 1.5)
 #: Speeds a manual chair is used at (m/s: a slow walk to a brisk one), for the shimmy-free trail window.
 USE_SPEEDS = (0.5, 0.75, 1.0, 1.5, 2.0)
 #: The chair whose intervals the reference chair's report shows (the thesis's revised design).
@@ -112,7 +109,9 @@ class ReportData:
         "responses", "frictionless", "paths" -> tuple of Validity, one per run.
     intervals : stability.study.EqualInstabilityInterval or None
         The equal-instability speed of the chair (the revised design in the reference chair's report) over
-        the push x0.9/x1.1, the chair's pin friction x0.5/x1.5 and the other model variant.
+        the variations of :func:`stability.study.equal_instability_interval` (the one definition the study
+        command and the advisor share: ``stability.study.RANGE_DEFINITION``), at its own resolution in a full
+        report (so the study command prints the same range) and at the quick settings' with ``--quick``.
     sensitivity : stability.study.Sensitivity or None
         Elasticities of the critical impulse and growth rate at the reference speed (M_f/l as one group).
     slope : SlopeSection or None
@@ -217,6 +216,28 @@ def tip_limits(c: Chair, sweeps: Any, angle_deg: float = LOANE_KIRBY_REAR_DEG) -
         if fa * fb < 0:
             out[name] = float(brentq(f, lo, hi, xtol=1e-5))
     return out
+
+
+def equal_instability_range(c: Chair, model: str, s: Settings, scheme: str = "wchair") -> Any:
+    """The report's equal-instability range: :func:`stability.study.equal_instability_interval`'s definition
+    (the one ``python -m stability.study equal-instability`` and the advisor use), at the study's resolution in
+    a full report and at the coarse settings' with ``--quick``.
+
+    Parameters
+    ----------
+    c : Chair
+    model : {"exact", "thesis"}
+    s : Settings
+    scheme : str
+
+    Returns
+    -------
+    stability.study.EqualInstabilityInterval
+    """
+    return study.equal_instability_interval(
+        c, model=model, push=THESIS_PUSH, criterion=study.Criterion(duration=s.duration), scheme=scheme, dt=s.dt,
+        bracket=s.bracket if s.quick else study.RANGE_BRACKET, tol=s.tol if s.quick else study.RANGE_TOL,
+        candidates=s.candidates)
 
 
 def counterpart(c: Chair) -> Chair:
@@ -375,10 +396,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                            *(float(massless_caster_rate(x, REFERENCE_SPEED)) for x in (ref_chair, light)))
         stage("equal-instability speeds and parametric study")
         subject = preset(COMPARISON_CHAIR) if is_ej else c
-        intervals = study.equal_instability_interval(
-            subject, model=model, force_factors=PUSH_RANGE, friction_factors=FRICTION_RANGE,
-            friction_on_reference=False, push=THESIS_PUSH, criterion=crit, scheme=scheme, bracket=s.bracket,
-            tol=s.tol, candidates=s.candidates, dt=s.dt)
+        intervals = equal_instability_range(subject, model, s, scheme)
         rated = ([c, ref_chair] if not is_ej else [c, subject]) + ([baseline] if baseline is not None else [])
         impulses = tuple(critical_impulses(rated, REFERENCE_SPEED, model=model, scheme=scheme, duration=push[1],
                                            horizon=s.duration, dt=s.dt, rel_tol=s.impulse_rel_tol))

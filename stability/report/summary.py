@@ -238,8 +238,8 @@ def interval_text(iv) -> str:
     -------
     str
     """
-    rng = (f"range {iv.low:.3g}-{iv.high:.3g} m/s; moves it most: {iv.dominant}" if iv.low is not None
-           and iv.high is not None else "no range: every variant is a bound or undefined")
+    rng = (f"{iv.range_text()}; moves it most: {iv.dominant}" if iv.low is not None and iv.high is not None
+           else iv.range_text())
     return f"{iv.chair_name} {iv.point.describe()}, {rng}"
 
 
@@ -253,9 +253,9 @@ def _interval_lines(d: ReportData) -> list[str]:
     by = {f: [v for v in iv.variants if v.factor == f] for f in ("disturbance", "pin friction", "model")}
     return [
         f"- Equal-instability speed of {who}: {iv.point.describe()}{q} ({d.model} model, thesis push)"
-        + (f", range {iv.low:.3g}-{iv.high:.3g} m/s{q}" if iv.low is not None and iv.high is not None else "")
+        + (f", {iv.range_text()}{q}" if iv.low is not None and iv.high is not None else "")
         + " over: push " + ", ".join(f"{v.force:g} N -> {_describe(v, q)}" for v in by["disturbance"])
-        + f" (thesis {f0:g} N); this chair's pin friction "
+        + f" (thesis {f0:g} N); pin friction of both chairs "
         + ", ".join(f"x{v.friction_factor:g} -> {_describe(v, q)}" for v in by["pin friction"]) + "; "
         + ", ".join(f"{v.model} model -> {_describe(v, q)}" for v in by["model"])
         + f". Moves it most: {iv.dominant}{q}.",

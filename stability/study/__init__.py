@@ -40,6 +40,11 @@ from .impulse import (
 )
 from .impulse_intervals import CriticalImpulseInterval, critical_impulse_intervals
 from .intervals import (
+    FRICTION_FACTORS,
+    PUSH_FACTORS,
+    RANGE_BRACKET,
+    RANGE_DEFINITION,
+    RANGE_TOL,
     EqualInstabilityInterval,
     FactorRange,
     Variant,
@@ -109,6 +114,11 @@ __all__ = [
     "Variant",
     "equal_instability_interval",
     "equal_instability_intervals",
+    "PUSH_FACTORS",
+    "FRICTION_FACTORS",
+    "RANGE_TOL",
+    "RANGE_BRACKET",
+    "RANGE_DEFINITION",
     "CriticalImpulseInterval",
     "critical_impulse_intervals",
     "EqualFrictionComparison",

@@ -23,7 +23,7 @@ from ..cli import (
 from ..reference import THESIS_PUSH, Push
 from .impulse import check_study_work, critical_impulse_curve, runs_per_speed
 from .impulse_intervals import critical_impulse_intervals
-from .intervals import equal_instability_interval
+from .intervals import RANGE_DEFINITION, equal_instability_interval
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -96,20 +96,22 @@ def _interval(args: argparse.Namespace) -> None:
     chair = load_chair(args.chair, args.set)
     r = equal_instability_interval(chair, model=args.model, push=Push(args.force, THESIS_PUSH.duration),
                                    friction_on_reference=not args.chair_friction_only)
+    definition = _EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED) + (
+        RANGE_DEFINITION if not args.chair_friction_only else
+        RANGE_DEFINITION.replace("(on both the chair and the reference chair)", "(on the chair only: "
+                                 "--chair-friction-only, not the report's and the advisor's range)"))
     lines = [f"{chair.name}: equal-instability speed {r.describe()}", f"push: {r.push}; pin friction factors "
-             f"applied to {r.friction_scope}", _EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED)]
+             f"applied to {r.friction_scope}", definition]
     for v in r.variants:
         sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
         lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")
     _emit(args, {**r.to_dict(), "definition": lines[2]}, "\n".join(lines), chair)
 
 
-#: What the equal-instability speed and its range mean (printed with them; the report's range rests on its own
-#: variations, so its numbers differ: the definition says which).
+#: What the equal-instability speed means (printed with it, followed by the range's one definition,
+#: stability.study.RANGE_DEFINITION, which the report and the advisor share).
 _EQUAL_INSTABILITY = ("equal-instability speed: the speed at which this chair, after the push, reaches |yaw rate| "
-                      "{level:g} rad/s as soon as the reference chair does at {speed:g} m/s (thesis chapter 9); the "
-                      "range is over the variations listed below (push force, pin friction, model), not a "
-                      "statistical interval, and other variations (the report's) give another range")
+                      "{level:g} rad/s as soon as the reference chair does at {speed:g} m/s (thesis chapter 9); ")
 
 
 def main(argv: Sequence[str] | None = None) -> int:

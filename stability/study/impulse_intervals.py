@@ -23,12 +23,12 @@ from .._validate import VARIANTS, check_model
 from ..chair import Chair
 from ..simulate.options import WCHAIR_DT as DT
 from .impulse import CriticalImpulse, critical_impulses
-from .intervals import scale_friction
+from .intervals import FRICTION_FACTORS, scale_friction
 
 __all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS", "STEP_FACTORS"]
 
-#: Pin-friction factors of the interval (as :func:`stability.study.equal_instability_interval`'s).
-FRICTION_FACTORS = (0.5, 1.5)
+#: Pin-friction factors of the interval: :data:`stability.study.intervals.FRICTION_FACTORS`, the equal-instability
+#: range's.
 #: Factors of the fixed step (nominal model and friction) whose answers are part of the range.
 STEP_FACTORS = (0.5,)
 

@@ -17,7 +17,22 @@ from .criteria import DEFAULT_CRITERION, Criterion
 from .equal_instability import EqualInstability, bisect_speeds
 
 __all__ = ["Variant", "FactorRange", "EqualInstabilityInterval", "scale_friction", "reference_times",
-           "equal_instability_interval", "equal_instability_intervals"]
+           "equal_instability_interval", "equal_instability_intervals", "PUSH_FACTORS", "FRICTION_FACTORS",
+           "RANGE_TOL", "RANGE_BRACKET", "RANGE_DEFINITION"]
+
+
+#: The equal-instability range's definition, one for the study command, the report and the advisor: the push
+#: force times these factors (the thesis's 40 N for 0.1 s: 20, 30, 60, 80 N) ...
+PUSH_FACTORS = (0.5, 0.75, 1.5, 2.0)
+#: ... the pin friction times these factors on both the chair and the reference chair (the friction estimate is
+#: uncertain for the reference's pins too) ...
+FRICTION_FACTORS = (0.5, 1.5)
+#: ... and the other model variant, each found by bisection to this tolerance (m/s) in this bracket (m/s).
+RANGE_TOL, RANGE_BRACKET = 0.01, (0.2, 3.0)
+#: The definition in words (printed with the range by the study command and the report).
+RANGE_DEFINITION = ("the range is over the push force x0.5, x0.75, x1.5 and x2, the pin friction x0.5 and x1.5 "
+                    "(on both the chair and the reference chair) and the other model variant, one at a time: "
+                    "not a statistical interval")
 
 
 @dataclass(frozen=True)
@@ -111,11 +126,18 @@ class EqualInstabilityInterval:
     push: str
     friction_scope: str = "both the chair and the reference chair"
 
+    def range_text(self) -> str:
+        """``"range 0.779-1.11 m/s"`` (3 significant figures), or ``"no range: ..."`` when no variant is defined:
+        the words the study command and the report print."""
+        if self.low is None or self.high is None:
+            return "no range: every variant is a bound or undefined"
+        return f"range {self.low:.3g}-{self.high:.3g} m/s"
+
     def describe(self) -> str:
         """One line: the point value, the interval and what drives it."""
         if self.low is None or self.high is None:
             return f"{self.point.describe()} (no interval: no variant defined)"
-        return (f"{self.point.describe()} (range {self.low:.2f}-{self.high:.2f} m/s over "
+        return (f"{self.point.describe()} ({self.range_text()} over "
                 + ", ".join(f.factor for f in self.factors) + f"; moved most by {self.dominant})")
 
     def to_dict(self) -> dict:
@@ -196,15 +218,19 @@ def _variants(model: str, force: float, force_factors: Sequence[float], friction
 
 
 def equal_instability_interval(chair: Chair, *, model: str = "exact",
-                               force_factors: Sequence[float] = (0.5, 0.75, 1.5, 2.0),
-                               friction_factors: Sequence[float] = (0.5, 1.5), models: Sequence[str] = VARIANTS,
+                               force_factors: Sequence[float] = PUSH_FACTORS,
+                               friction_factors: Sequence[float] = FRICTION_FACTORS, models: Sequence[str] = VARIANTS,
                                reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
                                push: Push = THESIS_PUSH, criterion: Criterion = DEFAULT_CRITERION,
-                               scheme: str = "wchair", bracket: tuple = (0.2, 3.0), tol: float = 0.01,
+                               scheme: str = "wchair", bracket: tuple = RANGE_BRACKET, tol: float = RANGE_TOL,
                                candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
                                friction_on_reference: bool = True, progress: bool = False,
                                **sim_options: Any) -> EqualInstabilityInterval:
     """Equal-instability speed of ``chair`` over the inputs it depends on, one factor at a time.
+
+    Its defaults are the toolkit's one definition of the equal-instability range (:data:`PUSH_FACTORS`,
+    :data:`FRICTION_FACTORS` on both chairs, both models, :data:`RANGE_TOL`; :data:`RANGE_DEFINITION`),
+    used by ``python -m stability.study equal-instability``, the report and the advisor.
 
     The nominal case is the thesis's: the reference chair at the reference
     speed under ``push``, nominal pin friction, ``model``.  Each variant moves
@@ -246,11 +272,11 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
 
 
 def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact",
-                                force_factors: Sequence[float] = (0.5, 0.75, 1.5, 2.0),
-                                friction_factors: Sequence[float] = (0.5, 1.5), models: Sequence[str] = VARIANTS,
+                                force_factors: Sequence[float] = PUSH_FACTORS,
+                                friction_factors: Sequence[float] = FRICTION_FACTORS, models: Sequence[str] = VARIANTS,
                                 reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
                                 push: Push = THESIS_PUSH, criterion: Criterion = DEFAULT_CRITERION,
-                                scheme: str = "wchair", bracket: tuple = (0.2, 3.0), tol: float = 0.01,
+                                scheme: str = "wchair", bracket: tuple = RANGE_BRACKET, tol: float = RANGE_TOL,
                                 candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
                                 friction_on_reference: bool = True, progress: bool = False,
                                 **sim_options: Any) -> list[EqualInstabilityInterval]:
