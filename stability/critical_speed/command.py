@@ -17,6 +17,7 @@ Examples
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -24,14 +25,17 @@ import numpy as np
 
 from .. import defaults as D
 from ..cli import (
+    FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
     add_json_options,
     add_model_option,
+    add_output_option,
     check_outputs,
     emit_json,
     json_header,
     load_chair,
+    output_files,
     parse_speeds,
     run,
 )
@@ -85,7 +89,54 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--nonlinear-samples", type=int, default=D.NONLINEAR_SAMPLES,
                    help=f"Monte Carlo draws of the nonlinear measures (1 to 2000, default {D.NONLINEAR_SAMPLES})")
     add_json_options(p)
+    add_output_option(p, FIGURE_FORMATS, what="a figure: eigenvalues against speed up to --max-speed, free and "
+                      "locked casters, unstable speeds shaded and critical speeds marked")
     return p
+
+
+def figure(summary: StabilitySummary, n: int = 400) -> Any:
+    """The figure of ``-o``: real and imaginary parts of the eigenvalues against speed, free and locked casters.
+
+    Drawn by :func:`stability.plotting.eigenvalues_vs_speed` from :func:`stability.rootlocus.speed_locus`
+    (``n`` speeds from 0.05 m/s to the top of the summary's ``search_range``), branches named from their eigenvectors at
+    0.75 m/s (:func:`stability.report.modes.mode_names`), with a caption from the summary's critical speeds.
+
+    Parameters
+    ----------
+    summary : StabilitySummary
+    n : int
+        Speeds per locus.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from .. import plotting as P
+    from ..report.modes import mode_names
+    from ..rootlocus import speed_locus
+
+    c, model = summary.chair, summary.model
+    fig, axes = P.page(f"{c.name} | {model} model | eigenvalues against speed (shaded: unstable)",
+                       f"linear model, straight running; critical speeds (dashed) where a real part crosses zero; "
+                       f"0.05 to {summary.search_range[1]:g} m/s", nrows=2, ncols=2, size=(12.0, 8.0))
+    for j, casters in enumerate(("free", "locked")):
+        locus = speed_locus(c, model=model, casters=casters, max_speed=summary.search_range[1], n=n)
+        P.eigenvalues_vs_speed(locus, [axes[0, j], axes[1, j]], mode_names=mode_names(locus))
+
+    def crossings(cs: list) -> str:
+        return ", ".join(f"{x.speed:.3g} m/s" for x in cs) or "none"
+
+    free = ("unstable at every speed" if summary.free_unstable_at_all_speeds else
+            "stable at every speed" if summary.free_stable_at_all_speeds else
+            f"stability changes at {crossings(summary.free_crossings)}")
+    text = (f"What to conclude: with free, frictionless casters the chair is {free}; with locked casters its "
+            f"critical speeds are {crossings(summary.locked_crossings)}. Where a real part is above zero (shaded) "
+            "a heading error grows by itself at that rate (1/s); Coulomb pin friction, which has no linearisation, "
+            "can hold the casters (python -m stability.study for the nonlinear measures).")
+    lines = P.wrap_text(text, 175)
+    fig.text(0.5, 0.015, "\n".join(lines), ha="center", va="bottom", fontsize=8.5, fontweight="bold", color="0.1",
+             linespacing=1.4)
+    return P.finish(fig, top=0.86, bottom=0.1 + 0.026 * (len(lines) - 1), hspace=0.35)
 
 
 def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, speeds: np.ndarray,
@@ -120,7 +171,8 @@ def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, 
 
 
 def _run(args: argparse.Namespace) -> int:
-    check_outputs({"--json-file": args.json_file}, {"--chair": args.chair, "--uncertainty": args.uncertainty})
+    check_outputs({"--json-file": args.json_file, "-o": args.output},
+                  {"--chair": args.chair, "--uncertainty": args.uncertainty})
     if args.uncertainty and not 1 <= args.samples <= MAX_SAMPLES:
         raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES} with --uncertainty")
     if args.nonlinear and not args.uncertainty:
@@ -151,6 +203,12 @@ def _run(args: argparse.Namespace) -> int:
         if args.nonlinear:
             nonlinear = nonlinear_intervals(c, unc, model=args.model, samples=args.nonlinear_samples, seed=args.seed,
                                             level=args.level)
+    if args.output:
+        from ..output import save_figure
+
+        with output_files({"-o": args.output}) as tmp:
+            save_figure(figure(summary), tmp["-o"], title=f"stability critical_speed: {c.name}, {args.model} model")
+        print(f"wrote {args.output}", file=sys.stderr)
     if args.json or args.json_file:
         emit_json(document(summary, checks, args, speeds, intervals, nonlinear), args)
     if not args.json:

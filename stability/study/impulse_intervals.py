@@ -27,8 +27,9 @@ from .intervals import FRICTION_FACTORS, scale_friction
 
 __all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS", "STEP_FACTORS"]
 
-#: Pin-friction factors of the interval: :data:`stability.study.intervals.FRICTION_FACTORS`, the equal-instability
-#: range's.
+# The pin-friction factors of the interval are stability.study.intervals.FRICTION_FACTORS, the equal-instability
+# range's (imported above).
+
 #: Factors of the fixed step (nominal model and friction) whose answers are part of the range.
 STEP_FACTORS = (0.5,)
 
