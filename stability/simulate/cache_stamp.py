@@ -24,6 +24,13 @@ def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
     SHA-256 of ``stability/_generated/full_width.py`` and ``slope.py``) is kept next to the
     cache and, when it differs, every kernel of the module is recompiled.
     Nothing happens when the cache directory is not writable.
+
+    Parameters
+    ----------
+    namespace : dict
+        The kernel module's globals (its numba dispatchers are found there).
+    stamp_name : str
+        File name of the stamp in the module's cache folder.
     """
     digest = hashlib.sha256(Path(_fw.__file__).read_bytes() + Path(_sl.__file__).read_bytes()).hexdigest()
     kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
