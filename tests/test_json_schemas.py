@@ -62,3 +62,44 @@ def test_schema_refuses_a_renamed_key(tmp_path):
     data["holding_moment"] = data.pop("holding_yaw_moment_N_m")
     with pytest.raises(ValueError, match="holding_yaw_moment_N_m"):
         schemas.validate("slope", data)
+
+
+ASSIST_OPTIONAL = ("firmware", "faults", "safe_top_speed_m_s", "limited_by", "top_speed_checks")
+
+
+def _assist_json(argv):
+    import contextlib
+    import io
+    import json
+
+    from stability.assist.__main__ import main
+
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        assert main(argv + ["--json", "--quiet"]) == 0
+    return json.loads(buf.getvalue())
+
+
+def test_assist_schema_declares_every_optional_key_and_refuses_others():
+    s = schemas.schema("assist")
+    assert set(ASSIST_OPTIONAL) <= set(s["properties"]) and not set(ASSIST_OPTIONAL) & set(s["required"])
+    assert s["additionalProperties"] is False
+
+
+def test_assist_firmware_output_matches_its_schema(tmp_path):
+    """--export-c adds ``firmware`` (margins per speed and number format as rows: no format or speed in a key)."""
+    data = _assist_json(["--speeds", "1,2", "--no-check", "--export-c", str(tmp_path / "fw")])
+    assert "firmware" in data and {t["format"] for t in data["firmware"]["margins"][0]["tables"]} == \
+        {"ideal", "float", "Q15", "Q31"}
+    schemas.validate("assist", data)
+    data["unexpected"] = 1
+    with pytest.raises(ValueError, match="unexpected"):
+        schemas.validate("assist", data)
+
+
+@pytest.mark.slow
+def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
+    """--faults and --export-c together (about 10 s): every optional key present and valid."""
+    data = _assist_json(["--speeds", "1,2", "--no-check", "--faults", "--export-c", str(tmp_path / "fw")])
+    assert set(ASSIST_OPTIONAL) <= set(data)
+    schemas.validate("assist", data)

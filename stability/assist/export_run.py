@@ -72,10 +72,15 @@ class FirmwareReport:
         """JSON-ready (key ``firmware`` of the command's JSON)."""
         from ._format import json_float
 
+        # the convention of stability.schemas: no value (a case's speed, a number format) inside a key
         return {"directory": self.directory, "q_format": self.q_format, "sample_rate_hz": self.sample_rate_hz,
-                "tolerance_N_m": self.tolerance_N_m, "margins": [r.to_dict() for r in self.margins],
-                "worst_margin_loss": {v: {k: json_float(x) for k, x in worst_change(self.margins, v).items()}
-                                      for v in ("float", "Q15", "Q31")}}
+                "tolerances": [{"case": k, "tolerance_N_m": v} for k, v in self.tolerance_N_m.items()],
+                "margins": [{"speed_m_s": r.speed_m_s,
+                             "tables": [{"format": f, **{k: json_float(x) for k, x in m.items()}}
+                                        for f, m in r.margins.items()]} for r in self.margins],
+                "worst_margin_loss": [{"format": v, **{k: json_float(x)
+                                                       for k, x in worst_change(self.margins, v).items()}}
+                                      for v in ("float", "Q15", "Q31")]}
 
     def format(self) -> str:
         """The text block of the command."""
