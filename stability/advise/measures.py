@@ -6,7 +6,7 @@ A chair's measures are exactly what the commands print for it:
   (:func:`stability.study.critical_impulse_intervals`; interval over pin friction x0.5/x1.5, model and
   half the simulator step);
 - ``equal_instability_speed_m_s``: ``python -m stability.study equal-instability``
-  (:func:`stability.study.equal_instability_intervals`; interval over push, pin friction and model);
+  (:func:`stability.study.equal_instability_intervals`; interval over push, pin friction, model and step);
 - ``static_stability_deg``: the smallest of ``python -m stability.tipping``'s four angles;
 - ``shimmy_margin_m``: ``python -m stability.shimmy --speeds S --json``'s ``shimmy_band.shimmy_margin_m``
   (interval over the estimate ranges);
@@ -82,7 +82,7 @@ class Measures:
     critical_impulse_Ns : Interval
         Critical impulse at :data:`IMPULSE_SPEED` (N s), interval over pin friction, model and step.
     equal_instability_speed_m_s : Interval
-        Equal-instability speed (m/s; a bracket end when beyond it), interval over push, friction, model.
+        Equal-instability speed (m/s; a bracket end when beyond it), interval over push, friction, model, step.
     static_stability_deg : Interval
         Smallest static stability angle (deg); geometric, so the interval is the value.
     shimmy_margin_m : Interval

@@ -74,8 +74,8 @@ def _verdict(a: Advice) -> list[str]:
     lo = "?" if ei.low is None else f"{ei.low:.3g}"
     hi = "?" if ei.high is None else f"{ei.high:.3g}"
     lines.append(f"  It is as unstable as the thesis's reference case (E&J Premier at 0.75 m/s) {where} "
-                 f"(range {lo}-{hi} m/s over push size, pin friction and model); faster than that it gives the "
-                 "user less time than the reference case.")
+                 f"(range {lo}-{hi} m/s over push size, pin friction, model and simulator step); faster than that it "
+                 "gives the user less time than the reference case.")
     lines.append(f"  Caster shimmy: {_shimmy_words(m, a.chair.trail)}.")
     worst = min(m.tip_angles_deg, key=lambda k: m.tip_angles_deg[k])
     lines.append(f"  Static stability: it tips {_DIRECTION_WORDS[worst]} on a {m.static_stability_deg.value:.1f} deg "

@@ -67,7 +67,7 @@ def _p_decision(d: ReportData) -> Figure:
     n = len(header)
     P.table_axes(ax_table, header, rows, col_widths=[0.34] + [0.66 / (n - 1)] * (n - 1), fontsize=8,
                  wrap=[30] + [16] * (n - 1), top=1.0, bottom=0.0)
-    ax_table.set_title("key numbers (ranges over push, pin friction and model)", fontsize=9)
+    ax_table.set_title("key numbers (ranges over push, pin friction, model and simulator step)", fontsize=9)
     names, vals, lows, highs = decision_bars(d)
     P.decision_chart(names, vals, lows, highs, ax_bar, reference_speed=REFERENCE_SPEED,
                      title=f"{d.chair.name}: how fast before it is as unstable as the thesis's reference case")

@@ -250,7 +250,7 @@ def _interval_lines(d: ReportData) -> list[str]:
     f0 = THESIS_PUSH.force
     q = mark(d.settings)
     who = iv.chair_name + (" (the thesis's revised design)" if d.chair == preset(REFERENCE_CHAIR) else "")
-    by = {f: [v for v in iv.variants if v.factor == f] for f in ("disturbance", "pin friction", "model")}
+    by = {f: [v for v in iv.variants if v.factor == f] for f in ("disturbance", "pin friction", "model", "step")}
     return [
         f"- Equal-instability speed of {who}: {iv.point.describe()}{q} ({d.model} model, thesis push)"
         + (f", {iv.range_text()}{q}" if iv.low is not None and iv.high is not None else "")
@@ -258,6 +258,7 @@ def _interval_lines(d: ReportData) -> list[str]:
         + f" (thesis {f0:g} N); pin friction of both chairs "
         + ", ".join(f"x{v.friction_factor:g} -> {_describe(v, q)}" for v in by["pin friction"]) + "; "
         + ", ".join(f"{v.model} model -> {_describe(v, q)}" for v in by["model"])
+        + "".join(f"; {v.label} -> {_describe(v, q)}" for v in by["step"])
         + f". Moves it most: {iv.dominant}{q}.",
     ]
 

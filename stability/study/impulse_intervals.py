@@ -23,15 +23,13 @@ from .._validate import VARIANTS, check_model
 from ..chair import Chair
 from ..simulate.options import WCHAIR_DT as DT
 from .impulse import CriticalImpulse, critical_impulses
-from .intervals import FRICTION_FACTORS, scale_friction
+from .intervals import FRICTION_FACTORS, STEP_FACTORS, scale_friction
 
 __all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS", "STEP_FACTORS"]
 
 # The pin-friction factors of the interval are stability.study.intervals.FRICTION_FACTORS, the equal-instability
 # range's (imported above).
 
-#: Factors of the fixed step (nominal model and friction) whose answers are part of the range.
-STEP_FACTORS = (0.5,)
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from .equal_instability import EqualInstability, bisect_speeds
 
 __all__ = ["Variant", "FactorRange", "EqualInstabilityInterval", "scale_friction", "reference_times",
            "equal_instability_interval", "equal_instability_intervals", "PUSH_FACTORS", "FRICTION_FACTORS",
-           "RANGE_TOL", "RANGE_BRACKET", "RANGE_DEFINITION"]
+           "RANGE_TOL", "RANGE_BRACKET", "RANGE_DEFINITION", "STEP_FACTORS"]
 
 
 #: The equal-instability range's definition, one for the study command, the report and the advisor: the push
@@ -27,12 +27,16 @@ PUSH_FACTORS = (0.5, 0.75, 1.5, 2.0)
 #: ... the pin friction times these factors on both the chair and the reference chair (the friction estimate is
 #: uncertain for the reference's pins too) ...
 FRICTION_FACTORS = (0.5, 1.5)
-#: ... and the other model variant, each found by bisection to this tolerance (m/s) in this bracket (m/s).
+#: ... the other model variant, and the simulator's fixed step times these factors (WCHAIR's 1 ms resolves fast
+#: caster modes coarsely and its Coulomb pin friction chatters there; docs/simulator.md, "Accuracy beyond
+#: stability"; the critical impulse's interval uses the same factors) ...
+STEP_FACTORS = (0.5,)
+#: ... each found by bisection to this tolerance (m/s) in this bracket (m/s).
 RANGE_TOL, RANGE_BRACKET = 0.01, (0.2, 3.0)
 #: The definition in words (printed with the range by the study command and the report).
 RANGE_DEFINITION = ("the range is over the push force x0.5, x0.75, x1.5 and x2, the pin friction x0.5 and x1.5 "
-                    "(on both the chair and the reference chair) and the other model variant, one at a time: "
-                    "not a statistical interval")
+                    "(on both the chair and the reference chair), the other model variant and half the "
+                    "simulator's step, one at a time: not a statistical interval")
 
 
 @dataclass(frozen=True)
@@ -41,7 +45,7 @@ class Variant:
 
     Attributes
     ----------
-    factor : {"nominal", "disturbance", "pin friction", "model"}
+    factor : {"nominal", "disturbance", "pin friction", "model", "step"}
         Which input this variant moves.
     label : str
         E.g. ``"20 N (0.5x)"``.
@@ -54,6 +58,8 @@ class Variant:
         The reference case's time to the level, s (+inf: never, the variant is undefined).
     result : EqualInstability or None
         None when undefined.
+    step_s : float or None
+        The simulator's fixed step of this variant, s (None: the adaptive scheme).
     """
 
     factor: str
@@ -63,6 +69,7 @@ class Variant:
     friction_factor: float
     reference_time: float
     result: EqualInstability | None
+    step_s: float | None = None
 
     @property
     def speed(self) -> float | None:
@@ -209,11 +216,15 @@ def reference_times(reference: Chair | Sequence[Chair], speed: float, forces: Se
 
 
 def _variants(model: str, force: float, force_factors: Sequence[float], friction_factors: Sequence[float],
-              models: Sequence[str]) -> list[tuple[str, str, str, float, float]]:
-    out = [("nominal", f"{force:g} N, x1 friction, {model}", model, force, 1.0)]
-    out += [("disturbance", f"{force * f:g} N ({f:g}x)", model, force * f, 1.0) for f in force_factors]
-    out += [("pin friction", f"x{g:g} pin friction", model, force, g) for g in friction_factors]
-    out += [("model", f"{m} model", m, force, 1.0) for m in models if m != model]
+              models: Sequence[str], dt: float | None,
+              step_factors: Sequence[float]) -> list[tuple[str, str, str, float, float, float | None]]:
+    out: list[tuple[str, str, str, float, float, float | None]] = [
+        ("nominal", f"{force:g} N, x1 friction, {model}", model, force, 1.0, dt)]
+    out += [("disturbance", f"{force * f:g} N ({f:g}x)", model, force * f, 1.0, dt) for f in force_factors]
+    out += [("pin friction", f"x{g:g} pin friction", model, force, g, dt) for g in friction_factors]
+    out += [("model", f"{m} model", m, force, 1.0, dt) for m in models if m != model]
+    if dt is not None:
+        out += [("step", f"{dt * f * 1e3:g} ms step", model, force, 1.0, dt * f) for f in step_factors]
     return out
 
 
@@ -225,6 +236,7 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
                                scheme: str = "wchair", bracket: tuple = RANGE_BRACKET, tol: float = RANGE_TOL,
                                candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
                                friction_on_reference: bool = True, progress: bool = False,
+                               step_factors: Sequence[float] = STEP_FACTORS,
                                **sim_options: Any) -> EqualInstabilityInterval:
     """Equal-instability speed of ``chair`` over the inputs it depends on, one factor at a time.
 
@@ -257,6 +269,9 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
     friction_on_reference : bool
         Apply the friction factors to the reference chair too (default), or
         to ``chair`` only (the thesis's Figure 9-3 convention).
+    step_factors : sequence of float
+        Multipliers of the fixed step ``dt`` (scheme ``"wchair"``): the nominal case again at each step,
+        reference runs included (:data:`STEP_FACTORS`).
     criterion, scheme, bracket, tol, candidates, max_rounds, dt, progress, **sim_options
         As in :func:`stability.study.equal_instability_speeds`.
 
@@ -268,7 +283,8 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
         [chair], model=model, force_factors=force_factors, friction_factors=friction_factors, models=models,
         reference_chair=reference_chair, reference_speed=reference_speed, push=push, criterion=criterion,
         scheme=scheme, bracket=bracket, tol=tol, candidates=candidates, max_rounds=max_rounds, dt=dt,
-        friction_on_reference=friction_on_reference, progress=progress, **sim_options)[0]
+        friction_on_reference=friction_on_reference, progress=progress, step_factors=step_factors,
+        **sim_options)[0]
 
 
 def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact",
@@ -279,6 +295,7 @@ def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact"
                                 scheme: str = "wchair", bracket: tuple = RANGE_BRACKET, tol: float = RANGE_TOL,
                                 candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
                                 friction_on_reference: bool = True, progress: bool = False,
+                                step_factors: Sequence[float] = STEP_FACTORS,
                                 **sim_options: Any) -> list[EqualInstabilityInterval]:
     """:func:`equal_instability_interval` for many chairs: per model one reference batch and one bisection.
 
@@ -289,7 +306,7 @@ def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact"
     ----------
     chairs : sequence of Chair
     model, force_factors, friction_factors, models, reference_chair, reference_speed, push, criterion, scheme,
-    bracket, tol, candidates, max_rounds, dt, friction_on_reference, progress, **sim_options
+    bracket, tol, candidates, max_rounds, dt, friction_on_reference, progress, step_factors, **sim_options
         As in :func:`equal_instability_interval`.
 
     Returns
@@ -302,26 +319,28 @@ def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact"
         check_model(m)
     chairs = list(chairs)
     ref0 = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
-    specs = _variants(model, push.force, force_factors, friction_factors, models)
+    specs = _variants(model, push.force, force_factors, friction_factors, models,
+                      dt if scheme == "wchair" else None, step_factors)
     variants: list[list[Variant | None]] = [[None] * len(specs) for _ in chairs]
-    for m in dict.fromkeys(s[2] for s in specs):
-        idx = [k for k, s in enumerate(specs) if s[2] == m]
+    for m, h in dict.fromkeys((s[2], s[5]) for s in specs):     # one reference batch and bisection per model, step
+        idx = [k for k, s in enumerate(specs) if (s[2], s[5]) == (m, h)]
         refs = [scale_friction(ref0, specs[k][4] if friction_on_reference else 1.0) for k in idx]
         t_ref = reference_times(refs, reference_speed,
                                 [specs[k][3] for k in idx], model=m, scheme=scheme, length=push.duration,
-                                criterion=criterion, dt=dt, sim_options=sim_options)
+                                criterion=criterion, dt=h if scheme == "wchair" else dt, sim_options=sim_options)
         ok = [k for k, t in zip(idx, t_ref, strict=True) if math.isfinite(t)]
         jobs = [(n, k) for n in range(len(chairs)) for k in ok]
         res = bisect_speeds([scale_friction(chairs[n], specs[k][4]) for n, k in jobs],
                             [float(t_ref[idx.index(k)]) for _, k in jobs], [specs[k][3] for _, k in jobs],
                             push.duration, model=m, scheme=scheme, criterion=criterion,
                             bracket=(float(bracket[0]), float(bracket[1])), tol=tol, candidates=candidates,
-                            max_rounds=max_rounds, dt=dt, progress=progress,
+                            max_rounds=max_rounds, dt=h if scheme == "wchair" else dt, progress=progress,
                             reference_text=f"{ref0.name} at {reference_speed:g} m/s", sim_options=sim_options)
         found = dict(zip(jobs, res, strict=True))
         for n in range(len(chairs)):
             for k, t in zip(idx, t_ref, strict=True):
-                variants[n][k] = Variant(*specs[k][:2], m, specs[k][3], specs[k][4], float(t), found.get((n, k)))
+                variants[n][k] = Variant(*specs[k][:2], m, specs[k][3], specs[k][4], float(t), found.get((n, k)),
+                                         h)
     scope = "both the chair and the reference chair" if friction_on_reference else "the chair only"
     return [_assemble(chair, tuple(v for v in vlist if v is not None), ref0, reference_speed, criterion, push, dt,
                       scheme, scope) for chair, vlist in zip(chairs, variants, strict=True)]
