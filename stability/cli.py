@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from . import __version__, interrupts, progress, readfiles, tires
+from . import __version__, interrupts, notes, progress, readfiles, tires
 from . import chair as chair_mod
 from ._validate import MAX_SPEED, MIN_SPEED
 from .cli_files import check_directory, check_outputs, output_files
@@ -255,13 +255,15 @@ def _with_tire_policy(body: Callable[[argparse.Namespace], int | None], args: ar
     """Run ``body`` under the ``--tire-range`` policy; print each tire-range note once, as one line."""
     import warnings
 
-    with tires.range_policy(getattr(args, "tire_range", None) or "warn"), tires.collect_notes() as notes, \
-            warnings.catch_warnings():
+    with tires.range_policy(getattr(args, "tire_range", None) or "warn"), tires.collect_notes() as tire_notes, \
+            notes.collect() as numerical, warnings.catch_warnings():
         warnings.simplefilter("ignore", tires.TireRangeWarning)
-        args.tire_notes = notes
+        args.tire_notes = tire_notes
         status = body(args) or 0
     if not getattr(args, "quiet", False):
-        for line in tires.summarise_notes(distinct_notes(notes)):      # one line per tire and range
+        for line in tires.summarise_notes(distinct_notes(tire_notes)):      # one line per tire and range
+            print(f"note: {line}", file=sys.stderr)
+        for line in numerical:                                         # library warnings, explained (stability.notes)
             print(f"note: {line}", file=sys.stderr)
     return status
 

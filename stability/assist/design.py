@@ -16,6 +16,7 @@ import numpy as np
 from .._validate import check_choice
 from ..chair import Chair
 from ..defaults import SAMPLE_RATE_HZ
+from ..notes import library_warnings
 from ..power_chair import DriveTrain
 from ._format import json_float
 from .plant import Plant, measurement_matrix, plant, standstill_plant, system_name
@@ -302,7 +303,14 @@ def loop_margins(d: Design, true_plant: Plant | None = None) -> LoopMargins:
     LoopMargins
     """
     L = d.loop(true_plant)
-    gm, pm, sm, wpc, wgc, wms = control.stability_margins(L, returnall=True)
+    # python-control's search for the stability-margin frequency (_poly_iw_wstab) evaluates a polynomial's
+    # derivative at each of its roots; at a root near the top of the floating-point range that overflows (a numpy
+    # RuntimeWarning).  There |1 + L(jw)| -> 1 (L strictly proper), never the minimum, and the margins reported
+    # here come from the crossings and the dense-grid return difference: a note, not a fault
+    with library_warnings("stability margins (python-control)",
+                          "a candidate frequency near the floating-point limit, where |1 + L| is 1, never the "
+                          "minimum: the margins are unaffected"):
+        gm, pm, sm, wpc, wgc, wms = control.stability_margins(L, returnall=True)
     return _margins(L, gm, pm, sm, wgc, continuous=True)
 
 
