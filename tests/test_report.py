@@ -985,6 +985,13 @@ def test_json_numbers_are_the_numbers_the_pages_print(quick):
         assert s in summary, s
     assert _squash(sm["text"]) == _squash(summary_text(quick.data))
     assert sm["best_changes"] and rng["variants"] and u["nonlinear"] is not None
+    # the critical speeds are the linear summary's (the critical-speeds page prints them from the same object)
+    cs, s = sm["critical_speeds"], quick.data.summary
+    assert [r["speed_m_s"] for r in cs["locked_casters"]] == [c.speed for c in s.locked_crossings]
+    assert [r["speed_m_s"] for r in cs["free_casters"]] == [c.speed for c in s.free_crossings]
+    assert cs["zero_width_locked_m_s"] == s.zero_width.critical_speed and cs["model"] == "exact"
+    crit_page = _text(quick, "linear stability: critical speeds")
+    assert all(f"{r['speed_m_s']:.4g}" in crit_page for r in cs["locked_casters"]), crit_page[:300]
 
 
 def test_quick_report_says_what_it_coarsens_and_full_marks_nothing(quick):

@@ -142,6 +142,19 @@ def _shimmy(d: ReportData) -> dict[str, Any] | None:
             "chair_model_critical_trail_m": sh.chair_model_critical}
 
 
+def _critical_speeds(d: ReportData) -> dict[str, Any]:
+    """The linear critical speeds of the report's model (the "linear stability: critical speeds" page)."""
+    s = d.summary
+
+    def rows(cs: list) -> list[dict[str, Any]]:
+        return [{"speed_m_s": c.speed, "kind": c.kind, "direction": c.direction} for c in cs]
+
+    return {"model": s.model, "search_range_m_s": list(s.search_range),
+            "zero_width_locked_m_s": s.zero_width.critical_speed,
+            "zero_width_understeer_coefficient_rad": s.zero_width.understeer_coefficient,
+            "locked_casters": rows(s.locked_crossings), "free_casters": rows(s.free_crossings)}
+
+
 def _summary(d: ReportData) -> dict[str, Any]:
     cs = d.chair_speed
     floor = elasticity_floor(d)
@@ -150,6 +163,7 @@ def _summary(d: ReportData) -> dict[str, Any]:
                         {"model": d.summary_other.model, "speed_m_s": REFERENCE_SPEED,
                          "growth_rate_1_s": _rate(d.summary_other)}],
         "free_casters_unstable_at_all_speeds": bool(d.summary.free_unstable_at_all_speeds),
+        "critical_speeds": _critical_speeds(d),
         "free_casters_stable_at_all_speeds": bool(d.summary.free_stable_at_all_speeds),
         "equal_instability": {"chair": d.chair.name, "speed_m_s": cs.speed, "status": cs.status,
                               "bracket_m_s": list(cs.bracket), "text": cs.describe()},
