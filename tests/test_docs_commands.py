@@ -45,6 +45,9 @@ def _commands():
 
 
 COMMANDS = _commands()
+#: Options whose value is a file the command writes: a documented command writes it under tmp_path, even
+#: where the page names a committed file (docs/measure.md rewrites docs/examples/measured_chair.toml).
+OUTPUT_OPTIONS = ("-o", "--output", "--json-file", "--csv", "--text", "--pdf", "--plot")
 
 
 def _split(line: str) -> tuple[str, list[str]]:
@@ -76,6 +79,9 @@ def test_documented_command_runs(page, line, tmp_path):
     if name == "app":
         pytest.skip("the explorer is a server that runs until stopped (tests/test_app*.py drive it)")
     for i, a in enumerate(argv):        # repository files named relative to the root stay readable from tmp
+        if i > 0 and argv[i - 1] in OUTPUT_OPTIONS and not os.path.isabs(a):
+            (tmp_path / a).parent.mkdir(parents=True, exist_ok=True)   # an output lands in tmp, never the repo
+            continue
         if (ROOT / a).exists() and not os.path.isabs(a):
             argv[i] = str(ROOT / a)
         elif a.endswith(".toml") and name != "measure" and (i == 0 or argv[i - 1] not in ("-o", "--output")):
