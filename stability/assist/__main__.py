@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from collections.abc import Sequence
@@ -20,6 +19,7 @@ from ..cli import (
     add_model_option,
     add_output_option,
     check_outputs,
+    emit_json,
     json_header,
     load_chair,
     output_files,
@@ -212,14 +212,10 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
                 **(checks.to_dict() if checks else {"recovery": [], "figure_9_4": [], "torque_requirement": None,
                                                     "decay": []}),
                 **fw_json}
-        text = json.dumps(data, indent=2) + "\n"
-        if args.json_file:
-            with open(tmp["--json-file"], "w", encoding="utf-8") as fh:
-                fh.write(text)
-        if args.json:
-            sys.stdout.write(text)
-            if not args.output:
-                return 0
+        # the shared writer: NaN or infinity refused (error: could not compute), tire-range notes, atomic file
+        emit_json(data, args, write_to=tmp["--json-file"] if args.json_file else None)
+        if args.json and not args.output:
+            return 0
     print(format_table(sched, rows))
     print(f"\nMargins at the plant input, continuous / sampled at {sched.gyro.sample_rate_hz:g} Hz (ZOH, one-sample "
           f"computation delay, {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both); yaw-rate step "
