@@ -39,6 +39,9 @@ MIN_GAIN_MARGIN_DB = 6.0
 MIN_PHASE_MARGIN_DEG = 30.0
 #: Names of the constraints, in the order they are reported.
 CONSTRAINTS = ("gain_margin", "phase_margin", "delay_margin", "torque", "faults")
+#: JSON key of each constraint's check (the key convention: the unit last; the faults are a count).
+JSON_KEYS = {"gain_margin": "gain_margin_db", "phase_margin": "phase_margin_deg", "delay_margin": "delay_margin_ms",
+             "torque": "torque_N_m", "faults": "unsafe_fault_count"}
 
 
 def loop_delay(sched: Schedule) -> float:
@@ -105,7 +108,7 @@ class TopSpeed:
 
         return {"safe_top_speed_m_s": self.safe_top_speed_m_s, "limited_by": self.limited_by,
                 "checks": [{"speed_m_s": c.speed_m_s,
-                            **{k: {"value": json_float(v[0]), "limit": json_float(v[1]), "ok": v[2]}
+                            **{JSON_KEYS[k]: {"value": json_float(v[0]), "limit": json_float(v[1]), "ok": v[2]}
                                for k, v in c.values.items()}} for c in self.checks]}
 
 
