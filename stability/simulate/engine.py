@@ -428,12 +428,17 @@ def _launch(k: Any, threads: int | None, n_runs: int, args: tuple) -> None:
 
 
 def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> None:
-    """:func:`_launch` without the entry guard."""
+    """:func:`_launch` without the entry guard; a ``threads`` request holds for this call only."""
+    before = k.get_num_threads()
     if threads is not None:
         k.set_num_threads(max(1, min(int(threads), k.NUMBA_NUM_THREADS)))
-    nthreads = k.get_num_threads()
-    with first_use("wchair"):
-        _launch_inner(k, threads, n_runs, args, nthreads)
+    try:
+        nthreads = k.get_num_threads()
+        with first_use("wchair"):
+            _launch_inner(k, threads, n_runs, args, nthreads)
+    finally:
+        if threads is not None:     # a search's one-thread round must not leave later batches on one thread
+            k.set_num_threads(before)
 
 
 def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthreads: int) -> None:
