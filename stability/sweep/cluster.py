@@ -106,14 +106,15 @@ def worker_cache_dir(environ: Mapping[str, str], worker: str) -> str | None:
     return str(Path(tempfile.gettempdir()) / f"stability-numba-{user}" / safe)
 
 
-def _warm_up() -> str:
-    """Point numba at this worker's cache, load (or compile) the kernels with one short run; what it did."""
-    try:
-        from distributed import get_worker
+def _warm_up(dask_worker: Any = None) -> str:
+    """Point numba at this worker's cache, load (or compile) the kernels with one short run; what it did.
 
-        name = str(get_worker().name)
-    except (ImportError, ValueError):
-        name = f"pid{os.getpid()}"
+    ``Client.run`` passes the worker as ``dask_worker``: its name (``0 .. N-1``
+    for ``local:N``) keys the cache, so the next cluster's worker of that name
+    loads the kernels instead of compiling them again.  (``get_worker()`` only
+    works inside a task; outside one the process id, new every run, would key it.)
+    """
+    name = str(dask_worker.name) if dask_worker is not None else f"pid{os.getpid()}"
     cache = worker_cache_dir(os.environ, name)
     if cache is not None:
         os.environ["NUMBA_CACHE_DIR"] = cache
