@@ -32,7 +32,8 @@ from typing import Any
 
 from .reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 
-__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "SCHEME", "DT", "SPEED", "PUSH_FORCE",
+__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW", "SCHEME", "DT", "SPEED",
+           "PUSH_FORCE",
            "PUSH_DURATION", "YAW_RATE_LEVEL", "HORIZON_S", "MAX_IMPULSE", "TIRE_RANGE", "SIM_OUT_OF_RANGE", "MAX_SPEED",
            "SAMPLES", "SEED", "COVERAGE", "NONLINEAR_SAMPLES", "SUMMARY_SPEEDS", "SHIMMY_SPEEDS", "STUDY_SPEEDS",
            "ASSIST_SPEEDS", "HANDRIM_WHEEL_RADIUS", "HANDRIM_RADIUS", "DRIVE_WHEEL_RADIUS", "TORQUE_LIMIT",
@@ -88,6 +89,10 @@ POWER_CHAIR = "power-fwd"
 MODEL = "exact"
 #: Caster condition: "free" (swivelling, Coulomb pin friction) or "locked".
 CASTERS = "free"
+#: Pin friction law of the fixed-step scheme: None picks "kinetic" for the wchair scheme (program WCHAIR's: the
+#: moment always opposes the swivel rate, switching with its sign) and "stick-slip" for the adaptive one (a caster at
+#: rest stays at rest while friction can hold it); "stick-slip" on the wchair scheme too (docs/simulator.md).
+FRICTION_LAW = None
 #: Integration scheme of the simulator: program WCHAIR's fixed step ("wchair") or error-controlled ("adaptive").
 SCHEME = "wchair"
 #: Fixed time step of the wchair scheme, s (WCHAIR's TSTEP).
@@ -173,6 +178,7 @@ TABLE: dict[str, Default] = {
     "power_chair": Default(POWER_CHAIR, "", "chair of the power-chair commands (assist)"),
     "model": Default(MODEL, "", "equation variant: exact or thesis"),
     "casters": Default(CASTERS, "", "caster condition: free or locked"),
+    "friction_law": Default(FRICTION_LAW, "", "pin friction law: kinetic or stick-slip (None: the scheme's own)"),
     "scheme": Default(SCHEME, "", "simulator integration scheme: wchair or adaptive"),
     "dt": Default(DT, "s", "fixed step of the wchair scheme"),
     "speed": Default(SPEED, "m/s", "speed of a single run"),

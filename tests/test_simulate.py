@@ -850,9 +850,14 @@ def test_reference_range_rules_check_only_the_tested_wheels():
 
 
 def test_compile_cache_stamp_is_the_generated_equations_hash():
-    """The stale-cache stamp next to the numba cache is the SHA-256 of the generated equations (level and slope)."""
-    digest = hashlib.sha256(Path(generated.__file__).read_bytes()
-                            + Path(slope_generated.__file__).read_bytes()).hexdigest()
+    """The stale-cache stamp next to the numba cache is the SHA-256 of the generated equations (level and slope)
+    and of the kernel modules whose functions other kernels call (numba keys a cache on its own file only)."""
+    from stability.simulate.cache_stamp import KERNEL_SOURCES
+
+    here = Path(kernel.__file__).parent
+    digest = hashlib.sha256(Path(generated.__file__).read_bytes() + Path(slope_generated.__file__).read_bytes()
+                            + b"".join((here / name).read_bytes() for name in KERNEL_SOURCES)).hexdigest()
+    assert {"kernel.py", "kernel_controller.py", "adaptive_kernel.py"} <= set(KERNEL_SOURCES)
     stamp = Path(kernel.run_batch._cache.cache_path) / "kernel.equations.sha256"
     if not stamp.exists():
         pytest.skip("no writable cache directory")

@@ -67,6 +67,7 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
              impulse_duration: float = DEFAULTS.impulse_duration, tire_impulse: float = DEFAULTS.tire_impulse,
              lateral_velocity: float = DEFAULTS.lateral_velocity, eta0_deg: float = DEFAULTS.eta0_deg,
              beta0_deg: float = DEFAULTS.beta0_deg, casters: str = DEFAULTS.casters,
+             friction_law: str | None = DEFAULTS.friction_law,
              yaw_moment: Callable[[float, ChairState], float] | None = DEFAULTS.yaw_moment,
              stop_on_warnings: bool | None = DEFAULTS.stop_on_warnings, out_of_range: str = DEFAULTS.out_of_range,
              sample: float | None = DEFAULTS.sample, rtol: float = DEFAULTS.rtol, atol: float = DEFAULTS.atol,
@@ -106,6 +107,15 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
     casters : {"free", "locked"}
         Free casters with Coulomb pin friction, or casters locked at their
         initial angles.
+    friction_law : {"kinetic", "stick-slip"} or None
+        Pin friction of free casters.  "kinetic": program WCHAIR's law (the
+        moment opposes the swivel rate and switches with its sign every
+        step; the default of the wchair scheme).  "stick-slip": a caster
+        whose rate would change sign within a step comes to rest, and stays
+        at rest while the moment that holds it is within the friction limit
+        (the adaptive scheme's law, resolved at the step; converged in the
+        step where the kinetic law is not, see ``docs/simulator.md``).
+        None: the scheme's default.
     yaw_moment : callable, optional
         ``yaw_moment(t, state) -> N m``: a yaw moment on the chair; ``state``
         is a :class:`ChairState`.  A Python callable runs the WCHAIR scheme
@@ -279,6 +289,10 @@ def _run(chairs: list[Chair], speeds: np.ndarray, options: dict[str, Any], force
         options["dt"] = WCHAIR_DT
     opts = make_options(batch=batch, **options)
     python_input = opts.yaw_moment is not None or _REFERENCE.get()
+    if python_input and opts.scheme == "wchair" and opts.friction_law == "stick-slip":
+        raise ValueError("friction_law='stick-slip' is invalid with a Python yaw_moment or the reference engine "
+                         "(they run WCHAIR's kinetic law); valid: the compiled scheme (a controller= instead of "
+                         "yaw_moment) or scheme='adaptive'")
     if python_input and controller is not None:
         raise ValueError("yaw_moment and controller are both given; choose one")
     if (opts.scheme == "adaptive" or python_input) and (controller is not None or record != "all"):

@@ -13,16 +13,22 @@ from pathlib import Path
 from ..models.full_width import generated as _fw
 from ..models.slope import generated as _sl
 
-__all__ = ["invalidate_stale_cache"]
+__all__ = ["KERNEL_SOURCES", "invalidate_stale_cache"]
+
+#: The compiled modules whose functions other compiled modules call (a change to one recompiles them all).
+KERNEL_SOURCES = ("kernel.py", "kernel_controller.py", "adaptive_kernel.py")
 
 
 def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
     """Drop the on-disk compiled code of ``namespace``'s kernels when the generated equations changed.
 
     numba keys a cached function on its own source file only, and a cached
-    kernel carries a copy of the generated functions it calls; so a stamp (the
-    SHA-256 of ``stability/_generated/full_width.py`` and ``slope.py``) is kept next to the
-    cache and, when it differs, every kernel of the module is recompiled.
+    kernel carries a copy of every function it calls from other modules (the
+    generated equations, the WCHAIR kernel's helpers that the adaptive kernel
+    uses, the controller); so a stamp (the SHA-256 of
+    ``stability/_generated/full_width.py`` and ``slope.py`` and of the kernel
+    modules :data:`KERNEL_SOURCES`) is kept next to the cache and, when it
+    differs, every kernel of the module is recompiled.
     Nothing happens when the cache directory is not writable.
 
     Parameters
@@ -32,7 +38,9 @@ def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
     stamp_name : str
         File name of the stamp in the module's cache folder.
     """
-    digest = hashlib.sha256(Path(_fw.__file__).read_bytes() + Path(_sl.__file__).read_bytes()).hexdigest()
+    here = Path(__file__).parent
+    sources = [Path(_fw.__file__), Path(_sl.__file__), *(here / name for name in KERNEL_SOURCES)]
+    digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources)).hexdigest()
     kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
     try:
         stamp = Path(kernels[0]._cache.cache_path) / stamp_name    # numba internal: the module's cache folder

@@ -258,7 +258,7 @@ def kernel_entry_guard() -> AbstractContextManager:
 def _config(opts: Options, mode: int, stop_level: int) -> np.ndarray:
     """The kernel's configuration row (step, push, model, warning rule, slope, stop level)."""
     return np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, n_steps(opts), opts.stride,
-                     0 if opts.model == "thesis" else 1, opts.casters == "locked", opts.stop_on_warnings,
+                     0 if opts.model == "thesis" else 1, opts.pin_mode, opts.stop_on_warnings,
                      _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
                      *slope_slots(opts), stop_level], dtype=float)
 

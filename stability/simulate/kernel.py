@@ -22,13 +22,14 @@ from numba.core import config as _config
 from ..models.full_width import generated as _fw
 from ..models.slope import generated as _sl
 from .cache_stamp import invalidate_stale_cache
+from .kernel_controller import controller_output
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
 __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
-           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_both",
+           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_pins", "stick_slip",
            "tire_yaw_moment", "plane", "plane_loads"]
 
 # Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
@@ -157,21 +158,67 @@ def rolling_force(kind, coef, scale, fz, vx):
 
 
 @_int
-def held_both(model, s, F, fy_ext, mz, rdc, P, g1, g2):
-    """Accelerations with both casters held (locked): pin moments solved from three evaluations."""
-    u, v, r, ce, se, cb, sb, ed, bd = s
-    a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
-    a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
-    a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P, g1, g2)
-    k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
-    k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
-    det = k11 * k22 - k12 * k21
-    ma = (-a0[3] * k22 + a0[4] * k12) / det
-    mb = (-a0[4] * k11 + a0[3] * k21) / det
-    ud = a0[0] + ma * (a1[0] - a0[0]) + mb * (a2[0] - a0[0])
-    vd = a0[1] + ma * (a1[1] - a0[1]) + mb * (a2[1] - a0[1])
-    rd = a0[2] + ma * (a1[2] - a0[2]) + mb * (a2[2] - a0[2])
-    return (ud, vd, rd, 0.0, 0.0), ma, mb
+def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
+    """Accelerations with the casters flagged ``hold_*`` held (locked or stuck): ``(acc, M_A, M_B)``.
+
+    A held caster's pin moment keeps its swivel acceleration zero (the
+    accelerations are affine in the pin moments: two or three evaluations);
+    the other keeps the moment given.
+    """
+    if hold_a and hold_b:
+        a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+        a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+        a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P, g1, g2)
+        k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
+        k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
+        det = k11 * k22 - k12 * k21
+        ma = (-a0[3] * k22 + a0[4] * k12) / det
+        mb = (-a0[4] * k11 + a0[3] * k21) / det
+        ud = a0[0] + ma * (a1[0] - a0[0]) + mb * (a2[0] - a0[0])
+        vd = a0[1] + ma * (a1[1] - a0[1]) + mb * (a2[1] - a0[1])
+        rd = a0[2] + ma * (a1[2] - a0[2]) + mb * (a2[2] - a0[2])
+        return (ud, vd, rd, 0.0, 0.0), ma, mb
+    if hold_a:
+        a0 = accelerations(model, s, F, 0.0, mb, fy_ext, mz, rdc, P, g1, g2)
+        a1 = accelerations(model, s, F, 1.0, mb, fy_ext, mz, rdc, P, g1, g2)
+        r = -a0[3] / (a1[3] - a0[3])
+        return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]), 0.0,
+                 a0[4] + r * (a1[4] - a0[4])), r, mb)
+    a0 = accelerations(model, s, F, ma, 0.0, fy_ext, mz, rdc, P, g1, g2)
+    a1 = accelerations(model, s, F, ma, 1.0, fy_ext, mz, rdc, P, g1, g2)
+    r = -a0[4] / (a1[4] - a0[4])
+    return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]),
+             a0[3] + r * (a1[3] - a0[3]), 0.0), ma, r)
+
+
+@_int
+def stick_slip(model, s, F, fy_ext, mz, rdc, P, g1, g2):
+    """Accelerations and pin moments under stick-slip Coulomb friction: ``(acc, M_A, M_B)``.
+
+    A swivelling caster (rate not zero) gets the kinetic moment against its
+    rate, as in WCHAIR.  A caster at rest stays at rest while the moment
+    that holds it is within its friction limit (Karnopp's stick phase);
+    otherwise it breaks away with the limit moment in the holding moment's
+    direction.  Holding one caster changes the other's holding moment, so a
+    break-away is decided again with the other's new moment.
+    """
+    ed, bd = s[7], s[8]
+    ma = math.copysign(P[MAF], -ed) if ed != 0.0 else 0.0
+    mb = math.copysign(P[MBF], -bd) if bd != 0.0 else 0.0
+    ha, hb = ed == 0.0, bd == 0.0
+    for _ in range(3):
+        if not (ha or hb):
+            break
+        acc, ra, rb = held_pins(model, s, F, ma, mb, ha, hb, fy_ext, mz, rdc, P, g1, g2)
+        free_a = ha and abs(ra) > P[MAF]
+        free_b = hb and abs(rb) > P[MBF]
+        if not (free_a or free_b):
+            return acc, ra, rb
+        if free_a:
+            ma, ha = math.copysign(P[MAF], ra), False
+        if free_b:
+            mb, hb = math.copysign(P[MBF], rb), False
+    return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
 
 
 @_int
@@ -210,45 +257,6 @@ def kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd):
         vEx, vEy = vEx * ct + vEy * st, -vEx * st + vEy * ct
         vDx, vDy = vDx * ct - vDy * st, vDx * st + vDy * ct
     return vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy
-
-
-_F1, _F2 = "float64[::1]", "float64[:, ::1]"
-
-
-# an explicit signature: type inference would also compile it for the literal first sample index 0
-@njit(f"float64(int64, {_F1}, {_F1}, {_F1}, {_F1}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2})", cache=True,
-      nogil=True, **_NOWRAP)
-def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    """Sample ``k`` of the linear sampled controller: measure, output, advance ``z`` (see controller.py)."""
-    ny = Cy.shape[0]
-    nz = Az.shape[0]
-    for i in range(ny):
-        acc = ctl_f[2 + i] if 2 + i < ctl_f.shape[0] else 0.0
-        for j in range(10):
-            acc += Cy[i, j] * s[j]
-        if k < noise.shape[0]:
-            acc += noise[k, i]
-        y[i] = acc
-    out = 0.0
-    for i in range(nz):
-        out += Cz[i] * z[i]
-    for i in range(ny):
-        out += Dy[i] * y[i]
-    lim = ctl_f[1]
-    if out > lim:
-        out = lim
-    elif out < -lim:
-        out = -lim
-    for i in range(nz):
-        acc = Bu[i] * out
-        for j in range(nz):
-            acc += Az[i, j] * z[j]
-        for j in range(ny):
-            acc += By[i, j] * y[j]
-        znew[i] = acc
-    for i in range(nz):
-        z[i] = znew[i]
-    return out
 
 
 @_inl
@@ -354,8 +362,9 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
             rec, stats, warn, status):
     """One run of the WCHAIR scheme; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``."""
     dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
-        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] != 0.0, cfg[7] != 0.0,
+        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
         int(cfg[8]), int(cfg[9]))
+    sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
     use_ctl = ctl_f[0] > 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
@@ -416,7 +425,9 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
             mz = mz_held
         st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
         if locked:
-            acc, MA, MB = held_both(model, st_, F, fy_ext, mz, THEDD, P, g1, g2)
+            acc, MA, MB = held_pins(model, st_, F, 0.0, 0.0, True, True, fy_ext, mz, THEDD, P, g1, g2)
+        elif sticks:
+            acc, MA, MB = stick_slip(model, st_, F, fy_ext, mz, THEDD, P, g1, g2)
         else:
             MA = math.copysign(P[MAF], -ED) if ED != 0.0 else 0.0
             MB = math.copysign(P[MBF], -BD) if BD != 0.0 else 0.0
@@ -450,9 +461,14 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         UD += UDD * dt
         VD += VDD * dt
         B += BD * dt + BDD * half_dt2
-        BD += BDD * dt
         E += ED * dt + EDD * half_dt2
-        ED += EDD * dt
+        if sticks:      # a swivel rate that would change sign within the step comes to rest (then stick or slip)
+            bd_new, ed_new = BD + BDD * dt, ED + EDD * dt
+            BD = 0.0 if BD != 0.0 and bd_new * BD <= 0.0 else bd_new
+            ED = 0.0 if ED != 0.0 and ed_new * ED <= 0.0 else ed_new
+        else:
+            BD += BDD * dt
+            ED += EDD * dt
         THE += THED * dt + THEDD * half_dt2
         THED += THEDD * dt
     return nrec

@@ -19,13 +19,15 @@ from ..reference import HORIZON, THESIS_PUSH
 from ..tires.data import FZ_MAX_N, SLIP_MAX_DEG
 from .bounds import check_pushes, check_rows, check_steps, check_tolerances
 
-__all__ = ["SCHEMES", "MODELS", "CASTERS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG",
+__all__ = ["SCHEMES", "MODELS", "CASTERS", "FRICTION_LAWS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS",
+           "SLIP_LIMIT_DEG",
            "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT", "SimulationDefaults", "DEFAULTS",
            "Options", "make_options", "n_steps", "impulse_on", "initial_velocities", "MAX_SLOPE_DEG", "check_slope"]
 
 SCHEMES = ("wchair", "adaptive")
 MODELS = ("thesis", "exact")
 CASTERS = ("free", "locked")
+FRICTION_LAWS = ("kinetic", "stick-slip")
 OUT_OF_RANGE_POLICIES = ("clamp", "extrapolate", "raise")
 #: Wheel order of the per-wheel arrays: left caster, right caster, left main, right main.
 WHEELS = ("A", "B", "D", "E")
@@ -85,6 +87,12 @@ class SimulationDefaults:
     casters : {"free", "locked"}
         Free casters with Coulomb pin friction, or casters held at their
         initial angles.
+    friction_law : {"kinetic", "stick-slip"} or None
+        Pin friction of free casters: "kinetic" (program WCHAIR's: the
+        moment opposes the swivel rate, switching with its sign every step)
+        or "stick-slip" (a caster at rest stays at rest while the friction
+        limit can hold it; step-converged).  None: "kinetic" for the wchair
+        scheme, "stick-slip" (its only law) for the adaptive one.
     yaw_moment : callable or None
         ``yaw_moment(t, state) -> N m`` applied to the chair; None: none.
     stop_on_warnings : bool or None
@@ -120,6 +128,7 @@ class SimulationDefaults:
     eta0_deg: float = 0.0
     beta0_deg: float = 0.0
     casters: str = D.CASTERS
+    friction_law: str | None = D.FRICTION_LAW
     yaw_moment: Callable | None = None
     stop_on_warnings: bool | None = None
     out_of_range: str = D.SIM_OUT_OF_RANGE
@@ -188,6 +197,8 @@ class Options:
         Drive backwards (initial forward velocity ``-speed``).
     slope : tuple of float
         ``(cross_slope_deg, grade_deg)``, deg (checked by :func:`check_slope`).
+    friction_law : {"kinetic", "stick-slip"}
+        Pin friction law (resolved from None).
     """
 
     duration: float
@@ -210,6 +221,14 @@ class Options:
     atol: float
     reverse: bool
     slope: tuple[float, float] = (0.0, 0.0)
+    friction_law: str = "kinetic"
+
+    @property
+    def pin_mode(self) -> float:
+        """The compiled kernel's pin mode: 0 free (kinetic friction), 1 locked, 2 free (stick-slip)."""
+        if self.casters == "locked":
+            return 1.0
+        return 2.0 if self.friction_law == "stick-slip" else 0.0
 
     @property
     def on_slope(self) -> bool:
@@ -239,6 +258,8 @@ class Options:
                 self.yaw_moment, "__name__", type(self.yaw_moment).__name__),
             "reverse": self.reverse,
         }
+        if self.friction_law != "kinetic" and self.scheme == "wchair":   # the adaptive scheme has only stick-slip
+            d["friction_law"] = self.friction_law
         if self.on_slope:   # level runs keep today's settings (and JSON) unchanged
             d.update(cross_slope_deg=self.slope[0], grade_deg=self.slope[1])
         if self.scheme == "wchair":
@@ -255,7 +276,7 @@ def _float(value: Any) -> Any:
 
 def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration, tire_impulse,
                  lateral_velocity, eta0_deg, beta0_deg, casters, yaw_moment, stop_on_warnings, out_of_range,
-                 sample, rtol, atol, reverse, slope=(0.0, 0.0), batch: bool = False) -> Options:
+                 sample, rtol, atol, reverse, slope=(0.0, 0.0), friction_law=None, batch: bool = False) -> Options:
     """Check every option (ValueError naming the parameter, its value and the valid range) -> :class:`Options`.
 
     Parameters
@@ -300,6 +321,9 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
     slope : tuple of float
         ``(cross_slope_deg, grade_deg)``, each within +-15 deg
         (:func:`check_slope`); nonzero needs ``model="exact"``.
+    friction_law : {"kinetic", "stick-slip"} or None
+        Pin friction law; None: "kinetic" (wchair), "stick-slip" (adaptive,
+        its only law).
     batch : bool
         Options of a :func:`~stability.simulate.simulate_batch` call (sets
         the default ``sample`` of the wchair scheme).
@@ -319,6 +343,12 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
     model = check_choice("model", model, MODELS)
     casters = check_choice("casters", casters, CASTERS)
     out_of_range = check_choice("out_of_range", out_of_range, OUT_OF_RANGE_POLICIES)
+    if friction_law is None:
+        friction_law = "kinetic" if scheme == "wchair" else "stick-slip"
+    friction_law = check_choice("friction_law", friction_law, FRICTION_LAWS)
+    if scheme == "adaptive" and friction_law != "stick-slip":
+        raise ValueError(f"friction_law={friction_law!r} is invalid for scheme 'adaptive'; valid values: "
+                         "'stick-slip' (its events resolve every stick and slip)")
     duration = check_positive("duration", _float(duration))
     dt = check_positive("dt", _float(dt))
     if scheme == "wchair" and dt > duration:
@@ -366,7 +396,7 @@ def make_options(*, duration, scheme, model, dt, impulse_force, impulse_duration
                          "(the slope equations are derived for the exact model only)")
     return Options(duration, scheme, model, dt, impulse_force, impulse_duration, tire_impulse,
                    lateral_velocity, eta0, beta0, casters, yaw_moment, stop_on_warnings, out_of_range,
-                   sample, stride, rtol, atol, bool(reverse), slope)
+                   sample, stride, rtol, atol, bool(reverse), slope, friction_law)
 
 
 def check_slope(slope: Any) -> tuple[float, float]:
