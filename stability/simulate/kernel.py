@@ -462,10 +462,10 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         VD += VDD * dt
         B += BD * dt + BDD * half_dt2
         E += ED * dt + EDD * half_dt2
-        if sticks:      # a swivel rate that would change sign within the step comes to rest (then stick or slip)
+        if sticks:      # a rate that would change sign within the step comes to rest where friction may hold it
             bd_new, ed_new = BD + BDD * dt, ED + EDD * dt
-            BD = 0.0 if BD != 0.0 and bd_new * BD <= 0.0 else bd_new
-            ED = 0.0 if ED != 0.0 and ed_new * ED <= 0.0 else ed_new
+            BD = 0.0 if P[MBF] > 0.0 and BD != 0.0 and bd_new * BD <= 0.0 else bd_new
+            ED = 0.0 if P[MAF] > 0.0 and ED != 0.0 and ed_new * ED <= 0.0 else ed_new
         else:
             BD += BDD * dt
             ED += EDD * dt
