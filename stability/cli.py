@@ -33,6 +33,7 @@ from .cli_options import (
     OneLineErrorParser,
     add_chair_options,
     add_common_options,
+    add_friction_law_option,
     add_json_options,
     add_model_option,
     add_output_option,
@@ -43,7 +44,8 @@ from .cli_options import subparsers as _subparsers
 from .output import distinct_notes, json_text, with_tire_range
 from .statics import check_static_loads, static_loads
 
-__all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
+__all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
+           "add_friction_law_option", "add_json_options",
            "load_chair", "apply_assignments", "parse_speeds", "check_directory", "check_outputs", "output_files",
            "json_header", "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
            "add_uncertainty_option", "FIGURE_FORMATS", "Bound", "OPTION_BOUNDS", "number", "bound_for",

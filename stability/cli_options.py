@@ -19,7 +19,8 @@ from . import chair as chair_mod
 from . import defaults, tires
 from .cli_numbers import bound_for, number
 
-__all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option", "add_json_options",
+__all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
+           "add_friction_law_option", "add_json_options",
            "subparsers", "schema_name", "add_output_option", "check_format", "add_uncertainty_option", "FIGURE_FORMATS"]
 
 _NEGATIVE = re.compile(r"^-(\d|\.\d)")
@@ -145,6 +146,21 @@ def subparsers(parser: argparse.ArgumentParser) -> list[argparse.ArgumentParser]
         if isinstance(a, argparse._SubParsersAction):
             out.extend(dict.fromkeys(a.choices.values()))
     return out
+
+
+def add_friction_law_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--friction-law {kinetic,stick-slip}`` (default: the scheme's own, :data:`stability.defaults.FRICTION_LAW`).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    """
+    parser.add_argument("--friction-law", default=defaults.FRICTION_LAW, choices=["kinetic", "stick-slip"],
+                        help="pin friction of free casters in the fixed-step scheme: kinetic (program WCHAIR's: "
+                             "against the swivel rate, switching with its sign; its default) or stick-slip (a "
+                             "caster at rest stays there while friction can hold it; converged in the step where "
+                             "kinetic is not, docs/simulator.md); the adaptive scheme is always stick-slip")
 
 
 def add_model_option(parser: argparse.ArgumentParser) -> None:

@@ -11,6 +11,7 @@ from ..cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
+    add_friction_law_option,
     add_json_options,
     add_model_option,
     add_output_option,
@@ -53,6 +54,7 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--grade", type=float, default=D.slope[1], metavar="DEG",
                     help="grade, deg: the plane rises ahead (+); |.| <= 15")
     ap.add_argument("--casters", default=D.casters, help=f"free or locked (default {D.casters})")
+    add_friction_law_option(ap)
     ap.add_argument("--duration", type=float, default=D.duration, help=f"simulated time, s (default {D.duration:g})")
     ap.add_argument("--dt", type=float, default=D.dt, help=f"wchair time step, s (default {D.dt:g})")
     ap.add_argument("--sample", type=float, default=None, help="output interval of --json/--csv, s")
@@ -122,7 +124,8 @@ def _run_cli(args: argparse.Namespace) -> int:
                    impulse_force=args.impulse[0], impulse_duration=args.impulse[1],
                    tire_impulse=args.tire_impulse, lateral_velocity=args.lateral_velocity,
                    eta0_deg=args.eta0, beta0_deg=args.beta0, casters=args.casters,
-                   stop_on_warnings=False if args.no_stop else None, out_of_range=_sim_policy(args),
+                   friction_law=args.friction_law, stop_on_warnings=False if args.no_stop else None,
+                   out_of_range=_sim_policy(args),
                    rtol=args.rtol, atol=args.atol, slope=(args.cross_slope, args.grade))
     levels = (0.5, 1.0)
     times = [res.first_time_abs_yaw_rate(v) for v in levels]
@@ -130,6 +133,7 @@ def _run_cli(args: argparse.Namespace) -> int:
     options = {"speed_m_s": args.speed, "push_force_N": args.impulse[0], "push_duration_s": args.impulse[1],
                "tire_impulse_N": args.tire_impulse, "lateral_velocity_m_s": args.lateral_velocity,
                "eta0_deg": args.eta0, "beta0_deg": args.beta0, "scheme": args.scheme, "casters": args.casters,
+               "friction_law": res.settings.get("friction_law", "kinetic" if args.scheme == "wchair" else "stick-slip"),
                "duration_s": args.duration, "dt_s": args.dt, "sample_s": args.sample, "no_stop": args.no_stop,
                "rtol": args.rtol, "atol": args.atol, "out_of_range": _sim_policy(args),
                "cross_slope_deg": args.cross_slope, "grade_deg": args.grade}

@@ -329,7 +329,8 @@ class SimulationResult:
         s = self.settings
         lines = [
             f"chair {self.chair.name} ({self.chair.caster_position} casters), speed {self.speed:g} m/s, "
-            f"model {s.get('model')}, scheme {s.get('scheme')}, casters {s.get('casters')}",
+            f"model {s.get('model')}, scheme {s.get('scheme')}, casters {s.get('casters')}"
+            + (f" ({s['friction_law']} pin friction)" if "friction_law" in s else ""),
             f"simulated {self.t[0]:.3f} .. {self.t[-1]:.3f} s ({len(self.t)} samples)"
             + (f"; STOPPED by warnings at t = {self.stop_time:.3f} s" if self.stopped_by_warnings else ""),
         ]

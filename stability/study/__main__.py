@@ -11,6 +11,7 @@ from ..chair import Chair
 from ..cli import (
     OneLineErrorParser,
     add_chair_options,
+    add_friction_law_option,
     add_json_options,
     add_model_option,
     check_outputs,
@@ -47,6 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help=f"largest push tried, N s (default {D.MAX_IMPULSE:g})")
     ei.add_argument("--force", type=float, default=D.PUSH_FORCE,
                     help=f"nominal push force, N (default {D.PUSH_FORCE:g}, for {D.PUSH_DURATION:g} s)")
+    add_friction_law_option(ci)
     ci.add_argument("--interval", action="store_true",
                     help="also the range over pin friction x0.5 and x1.5 and the other model")
     ei.add_argument("--chair-friction-only", action="store_true",
@@ -74,11 +76,13 @@ def _critical(args: argparse.Namespace) -> None:
     check_study_work([chair] * len(speeds), speeds, args.model, args.horizon, 0.001,
                      runs_per_speed(max_impulse=args.max_impulse), "--horizon")
     curve = critical_impulse_curve(chair, speeds, model=args.model, duration=args.duration, level=args.level,
-                                   horizon=args.horizon, max_impulse=args.max_impulse)
-    lines = [f"{chair.name}, {args.model} model: critical impulse for |yaw rate| >= {args.level:g} rad/s "
-             f"within {args.horizon:g} s", f"push: {curve.points[0].push}",
+                                   horizon=args.horizon, max_impulse=args.max_impulse, friction_law=args.friction_law)
+    law = args.friction_law or "kinetic"
+    lines = [f"{chair.name}, {args.model} model, {law} pin friction: critical impulse for |yaw rate| >= "
+             f"{args.level:g} rad/s within {args.horizon:g} s", f"push: {curve.points[0].push}",
              "kick: the sideways speed the push gives the chair (impulse / mass)"]
-    opts = dict(duration=args.duration, level=args.level, horizon=args.horizon, max_impulse=args.max_impulse)
+    opts = dict(duration=args.duration, level=args.level, horizon=args.horizon, max_impulse=args.max_impulse,
+                friction_law=args.friction_law)
     ivs = [critical_impulse_intervals([chair], float(u), model=args.model, **opts)[0] for u in speeds] \
         if args.interval else []
     for k, p in enumerate(curve.points):
