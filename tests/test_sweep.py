@@ -130,6 +130,22 @@ def test_nonlinear_chunk_matches_the_batched_search(tmp_path):
     assert rows[1][j] > rows[0][j]            # more pin friction: a larger push needed (elasticity ~1)
 
 
+def test_friction_law_reaches_the_nonlinear_measures(tmp_path):
+    """friction_law = "stick-slip" runs the critical impulse with the step-converged law: power-fwd at 1.5 m/s
+    needs a real push (7.8 N s; test_stick_slip.py checks it against the adaptive scheme), where WCHAIR's kinetic
+    law at 1 ms says any push does ("below")."""
+    text = 'chair = "power-fwd"\nspeeds = [1.5]\nmeasures = ["critical_impulse"]\n'
+    kinetic = loads_spec(text, tmp_path)
+    sticky = loads_spec('friction_law = "stick-slip"\n' + text, tmp_path)
+    assert kinetic.friction_law == "kinetic" and sticky.to_dict()["friction_law"] == "stick-slip"
+    j = columns(sticky).index("critical_impulse_Ns")
+    k = columns(sticky).index("critical_impulse_status")
+    row, = compute_chunk(sticky, 0)
+    assert row[k] == "found"
+    assert row[j] == critical_impulses(preset("power-fwd"), 1.5, friction_law="stick-slip")[0].impulse_Ns
+    assert compute_chunk(kinetic, 0)[0][k] == "below"
+
+
 def test_summary_ranks_by_the_conservative_end(spec_dir):
     spec = loads_spec(LINEAR, spec_dir)
     data = read_rows(run_sweep(spec, spec_dir / "s.csv").read_text())
@@ -148,6 +164,7 @@ def test_summary_ranks_by_the_conservative_end(spec_dir):
     ('speeds = [0]\nmeasures = ["growth_rate"]\n', "speeds"),
     ('speeds = [0.5]\nmeasures = ["growth_rate"]\n[grid]\ncolour = [1]\n', "colour"),
     ('speeds = [0.5]\nmeasures = ["growth_rate"]\nfoo = 1\n', "foo"),
+    ('friction_law = "sticky"\nspeeds = [0.5]\nmeasures = ["critical_impulse"]\n', "friction_law"),
     ('speeds = [0.5]\nmeasures = ["growth_rate"]\n[draws]\nn = 0\nuncertainty = "u.toml"\n', "draws.n"),
 ])
 def test_bad_specs_are_one_line_errors_before_any_work(tmp_path, capsys, text, word):
@@ -169,7 +186,8 @@ def test_command_writes_results_summary_and_figures(spec_dir, capsys):
     assert main(["--schema"]) == 0
     schema = json.loads(capsys.readouterr().out)
     assert "pin_friction" in schema["properties"]["grid"]["propertyNames"]["enum"]
-    assert set(schema["properties"]) == {"chair", "model", "speeds", "measures", "grid", "draws", "chunk_rows"}
+    assert set(schema["properties"]) == {"chair", "model", "friction_law", "speeds", "measures", "grid", "draws",
+                                          "chunk_rows"}
     assert Path(spec_dir / "r.csv").read_text().splitlines()[0].split(",")[:3] == ["design", "draw", "speed_m_s"]
 
 

@@ -171,12 +171,13 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
         out["locked_critical_speed_m_s"] = np.repeat(
             batch.first_critical_speed(CRITICAL_SPEED_GRID, "locked")[:, None], k, axis=1)
     if "critical_impulse" in spec.measures:
-        res = critical_impulses([c for c in chairs for _ in speeds], np.tile(speeds, n), model=spec.model)
+        res = critical_impulses([c for c in chairs for _ in speeds], np.tile(speeds, n), model=spec.model,
+                                friction_law=spec.friction_law)
         out["critical_impulse_Ns"] = np.array([math.nan if r.impulse_Ns is None else r.impulse_Ns
                                                for r in res]).reshape(n, k)
         out["critical_impulse_status"] = np.array([r.status for r in res], dtype=object).reshape(n, k)
     if "equal_instability_speed" in spec.measures:
-        res2 = equal_instability_speeds(chairs, model=spec.model, progress=False)
+        res2 = equal_instability_speeds(chairs, model=spec.model, progress=False, friction_law=spec.friction_law)
         v = np.array([math.nan if r.speed is None else r.speed for r in res2])
         out["equal_instability_speed_m_s"] = np.repeat(v[:, None], k, axis=1)
         out["equal_instability_status"] = np.repeat(np.array([r.status for r in res2], dtype=object)[:, None], k,

@@ -4,6 +4,7 @@
 
     chair = "ej-premier"          # a preset or a chair TOML file (relative to the spec)
     model = "exact"
+    friction_law = "kinetic"      # or "stick-slip" (the nonlinear measures' pin friction, docs/simulator.md)
     speeds = [0.5, 0.75, 1.0]     # m/s
     measures = ["growth_rate", "critical_speeds", "critical_impulse"]
     chunk_rows = 300              # rows per chunk file (a chunk holds whole designs x draws)
@@ -58,7 +59,7 @@ MEASURES: dict[str, tuple[tuple[str, ...], str]] = {
 }
 #: Work bound: rows of one sweep.
 MAX_ROWS = 10_000_000
-_TOP = {"chair", "model", "speeds", "measures", "grid", "draws", "chunk_rows"}
+_TOP = {"chair", "model", "friction_law", "speeds", "measures", "grid", "draws", "chunk_rows"}
 _NUMERIC = [f for f in chair_mod.field_names()
             if f not in ("name", "caster_position", "main_tire", "caster_tire", "camber_coefficient")]
 _GROUPS = {name: p for name, p in design.DESIGN_PARAMETERS.items() if not p.categorical and name not in _NUMERIC}
@@ -72,6 +73,8 @@ SCHEMA: dict[str, Any] = {
     "properties": {
         "chair": {"type": "string", "description": "preset name or chair TOML file (relative to the spec)"},
         "model": {"enum": ["exact", "thesis"], "default": "exact"},
+        "friction_law": {"enum": ["kinetic", "stick-slip"], "default": "kinetic",
+                         "description": "pin friction of the nonlinear measures' fixed-step runs"},
         "speeds": {"type": "array", "items": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
                    "minItems": 1, "description": "forward speeds, m/s"},
         "measures": {"type": "array", "minItems": 1, "uniqueItems": True,
@@ -108,6 +111,8 @@ class SweepSpec:
     seed : int
     uncertainty : Uncertainty or None
     chunk_rows : int
+    friction_law : {"kinetic", "stick-slip"}
+        Pin friction of the critical impulse's and equal-instability speed's runs.
     """
 
     chair: Chair
@@ -120,6 +125,7 @@ class SweepSpec:
     seed: int
     uncertainty: Uncertainty | None
     chunk_rows: int
+    friction_law: str = "kinetic"
 
     @property
     def designs(self) -> int:
@@ -133,7 +139,8 @@ class SweepSpec:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary of the spec (what a results file was made from)."""
-        return {"chair": self.chair_source, "model": self.model, "speeds_m_s": list(self.speeds),
+        return {"chair": self.chair_source, "model": self.model, "friction_law": self.friction_law,
+                "speeds_m_s": list(self.speeds),
                 "measures": list(self.measures), "grid": {k: list(v) for k, v in self.grid},
                 "draws": self.draws, "seed": self.seed, "uncertainty": None if self.uncertainty is None
                 else self.uncertainty.dumps(), "chunk_rows": self.chunk_rows}
@@ -204,6 +211,9 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     model = data.get("model", "exact")
     if model not in ("exact", "thesis"):
         raise _bad("model", model, "'exact' or 'thesis'")
+    friction_law = data.get("friction_law", "kinetic")
+    if friction_law not in ("kinetic", "stick-slip"):
+        raise _bad("friction_law", friction_law, "'kinetic' or 'stick-slip'")
     if "speeds" not in data:
         raise ValueError("spec has no speeds; valid: speeds = [m/s, ...], each > 0")
     speeds = _numbers("speeds", data["speeds"], positive=True)
@@ -222,7 +232,8 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     chunk_rows = data.get("chunk_rows", 300)
     if isinstance(chunk_rows, bool) or not isinstance(chunk_rows, int) or chunk_rows < 1:
         raise _bad("chunk_rows", chunk_rows, "an integer >= 1")
-    spec = SweepSpec(chair, source, model, speeds, measures, tuple(grid), int(n), int(seed), unc, chunk_rows)
+    spec = SweepSpec(chair, source, model, speeds, measures, tuple(grid), int(n), int(seed), unc, chunk_rows,
+                     friction_law)
     if spec.rows > MAX_ROWS:
         raise ValueError(f"spec asks for {spec.rows} rows (designs x draws x speeds); valid: at most {MAX_ROWS}")
     return spec
