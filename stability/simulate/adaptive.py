@@ -25,11 +25,34 @@ from .options import (
 from .physics import Physics, held_accelerations, kinematics, loads, ops, plane, slip_angles, tire_forces
 from .results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
 
-__all__ = ["AdaptiveModel", "adaptive_single", "FREE_POS", "FREE_NEG", "STUCK", "LOCKED"]
+__all__ = ["AdaptiveModel", "adaptive_single", "NoLoadSolution", "FREE_POS", "FREE_NEG", "STUCK", "LOCKED"]
 
 MAX_SWITCHES = 20000
+#: Re-integrations of the segment in which the loads lost their solution, each ending before the last failure.
+STOP_TRIES = 8
+#: The first re-integration ends this fraction of the segment's span before the failure (x4 each further try).
+STOP_GAP = 1e-3
 DEADBAND = 1e-10  # rad/s: a slipping caster "reverses" once its rate passes zero by this much
 FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
+
+
+class NoLoadSolution(RuntimeError):
+    """The fixed-point iteration of the normal loads and tire forces did not converge at ``t``.
+
+    Seen late in a spin-out: a wheel lifts off and the load transfer swings
+    it between lifted (negative load, no tire force) and loaded (period 2),
+    so no consistent loads are found.  :func:`adaptive_single` ends the run
+    at the last time it could integrate instead of raising.
+
+    Attributes
+    ----------
+    t : float
+        The (first) time of the failing evaluation, s.
+    """
+
+    def __init__(self, t):
+        self.t = float(np.min(t))
+        super().__init__(f"normal loads and tire forces did not converge (t = {t!r} s)")
 
 
 class AdaptiveModel:
@@ -72,7 +95,7 @@ class AdaptiveModel:
             sfx, sfy = nfx, nfy
             if err <= LOAD_TOLERANCE * scale:
                 return N, F, (sfx, sfy)
-        raise RuntimeError(f"normal loads and tire forces did not converge (t = {t!r} s)")  # pragma: no cover
+        raise NoLoadSolution(t)
 
     def evaluate(self, t, y, modes, imp):
         """Derivatives and auxiliary quantities at ``(t, y)`` (floats or arrays of samples)."""
@@ -170,7 +193,7 @@ class _Compiled:
 
     def _check(self, code: int, aux: np.ndarray, t) -> None:
         if code == 3:
-            raise RuntimeError(f"normal loads and tire forces did not converge (t = {t!r} s)")
+            raise NoLoadSolution(t)
         if code:
             _raise_refused([self.chair], self.opts, np.array([[0.0, 0.0, *aux[20:24]]]))
 
@@ -246,10 +269,44 @@ def _settle(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, imp: bo
     return tuple(new)
 
 
-def _integrate(model: AdaptiveModel, speed: float, opts: Options) -> tuple[list, int]:
-    """Integrate segment by segment between breakpoints and stick-slip events: ``(segments, switches)``."""
+def _solve(model: AdaptiveModel, t: float, t_end: float, y: np.ndarray, modes: tuple, imp: bool, opts: Options):
+    """One solve_ivp call between stick-slip events: ``(sol, kinds)``; raises on an integrator failure."""
     from scipy.integrate import solve_ivp  # heavy (imports scipy.optimize): only when the adaptive scheme runs
 
+    events, kinds = _events(model, modes, imp)
+    sol = solve_ivp(model.rhs(modes, imp), (t, t_end), y, method=ADAPTIVE_METHOD, rtol=opts.rtol,
+                    atol=opts.atol, events=events or None, dense_output=True)
+    if sol.status < 0:
+        raise RuntimeError(f"adaptive integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
+    return sol, kinds
+
+
+def _up_to(model: AdaptiveModel, t: float, t_fail: float, y: np.ndarray, modes: tuple, imp: bool, opts: Options):
+    """The segment from ``t`` re-integrated to just before ``t_fail`` (no load solution there).
+
+    Each try ends ``STOP_GAP`` of the span before the latest failure (the gap x4 per try,
+    :data:`STOP_TRIES` tries).  Returns ``((sol, kinds) or None, t_fail)``: None when no
+    try gets past ``t``; ``t_fail`` the latest failure, s.
+    """
+    gap = STOP_GAP * (t_fail - t)
+    for _ in range(STOP_TRIES):
+        end = t_fail - gap
+        if not end > t:
+            break
+        try:
+            return _solve(model, t, end, y, modes, imp, opts), t_fail
+        except NoLoadSolution as e:
+            t_fail = min(e.t, end)
+            gap *= 4.0
+    return None, t_fail
+
+
+def _integrate(model: AdaptiveModel, speed: float, opts: Options) -> tuple[list, int, float | None]:
+    """Integrate segment by segment between breakpoints and stick-slip events.
+
+    Returns ``(segments, switches, t_fail)``: ``t_fail`` is the time at which the
+    normal loads lost their solution (the run ends at the last segment's end), else None.
+    """
     u0, v0 = initial_velocities(opts, speed)
     y = np.array([0.0, 0.0, 0.0, u0, v0, 0.0, opts.eta0, 0.0, opts.beta0, 0.0])
     T = opts.duration
@@ -260,15 +317,18 @@ def _integrate(model: AdaptiveModel, speed: float, opts: Options) -> tuple[list,
     t = 0.0
     imp = impulse and opts.impulse_duration > 0.0   # a zero-length force has no effect on an ODE
     modes: tuple = (LOCKED, LOCKED) if opts.casters == "locked" else _settle(model, t, y, (STUCK, STUCK), imp)
-    segments = []
+    segments: list[tuple] = []
     switches = 0
     while t < T:
         t_end = next(b for b in breaks if b > t)
-        events, kinds = _events(model, modes, imp)
-        sol = solve_ivp(model.rhs(modes, imp), (t, t_end), y, method=ADAPTIVE_METHOD, rtol=opts.rtol,
-                        atol=opts.atol, events=events or None, dense_output=True)
-        if sol.status < 0:
-            raise RuntimeError(f"adaptive integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
+        t_fail = None
+        try:
+            sol, kinds = _solve(model, t, t_end, y, modes, imp, opts)
+        except NoLoadSolution as e:   # a wheel lifts off: keep what can be integrated up to there, then stop
+            part, t_fail = _up_to(model, t, e.t, y, modes, imp, opts)
+            if part is None:
+                return segments, switches, t_fail
+            sol, kinds = part
         segments.append((float(sol.t[0]), float(sol.t[-1]), sol.sol, modes, imp))
         t = float(sol.t[-1])
         y = sol.y[:, -1].copy()
@@ -277,24 +337,57 @@ def _integrate(model: AdaptiveModel, speed: float, opts: Options) -> tuple[list,
             if switches > MAX_SWITCHES:
                 raise RuntimeError(f"more than {MAX_SWITCHES} stick-slip switches by t = {t:.6g} s "
                                    "(chattering); loosen rtol/atol or use scheme='wchair'")
-            modes = _switch(model, t, y, modes, kinds, sol.t_events, imp)
+            try:
+                modes = _switch(model, t, y, modes, kinds, sol.t_events, imp)
+            except NoLoadSolution as e:   # no holding moment: the run ends at the event
+                return segments, switches, e.t
+        elif t_fail is not None:      # the re-integration reached its end, just before the failure
+            return segments, switches, t_fail
         else:
             if t < T and impulse and not impulse_on(opts, t + 1e-12):
                 imp = False
             if t < T and opts.casters != "locked":
-                modes = _settle(model, t, y, modes, imp)
-    return segments, switches
+                try:
+                    modes = _settle(model, t, y, modes, imp)
+                except NoLoadSolution as e:
+                    return segments, switches, e.t
+    return segments, switches, None
 
 
-def _sample(model: AdaptiveModel, segments: list, opts: Options) -> tuple[np.ndarray, np.ndarray]:
-    """``(ts, rec)``: every column of :data:`COLUMNS` at the output samples, from the dense output."""
+def _block(model: AdaptiveModel, tt: np.ndarray, yy: np.ndarray, modes: tuple, imp: bool) -> np.ndarray:
+    """Every column of :data:`COLUMNS` at the samples ``tt`` of one segment (states ``yy``), shape (NCOLS, m)."""
+    out = np.empty((NCOLS, tt.size))
+    out[0] = tt
+    if model._ck is not None:
+        out[1:] = model._ck.samples(tt, yy, modes, imp)
+        return out
+    dy, aux = model.evaluate(tt, list(yy), modes, imp)
+    F = aux["F"]
+    block = (yy[0], yy[1], yy[2], yy[5], yy[3], yy[4], yy[6], yy[7], yy[8], yy[9], *F, *aux["N"],
+             *aux["slips"], tire_yaw_moment(model.K.p, F, aux["ce"], aux["se"], aux["cb"], aux["sb"]),
+             aux["mz"], dy[5], aux["MA"], aux["MB"])
+    for j, c in enumerate(block, start=1):
+        out[j] = c
+    return out
+
+
+def _sample(model: AdaptiveModel, segments: list, opts: Options,
+            t_stop: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """``(ts, rec)``: every column of :data:`COLUMNS` at the output samples, from the dense output.
+
+    ``t_stop``: the run ended there (s; the last segment's end), a last sample is added at it;
+    samples of the last segment whose loads have no solution (each sample's iteration starts
+    from zero forces) end the record.
+    """
     T, step = opts.duration, opts.sample
     assert step is not None          # make_options sets it for the adaptive scheme
     ns = int(math.floor(T / step * (1 + 1e-12) + 1e-9)) + 1
     ts = step * np.arange(ns)
     ts[-1] = min(ts[-1], T)
-    rec = np.empty((ns, NCOLS))
-    K = model.K
+    if t_stop is not None:
+        ts = ts[ts < t_stop * (1 - 1e-12)]
+        ts = np.append(ts, t_stop)
+    rec = np.empty((ts.size, NCOLS))
     for i, (a, b, dense, modes, imp_seg) in enumerate(segments):
         last = i == len(segments) - 1
         sel = (ts >= a) & ((ts < b) | (last & (ts <= b)))
@@ -306,20 +399,18 @@ def _sample(model: AdaptiveModel, segments: list, opts: Options) -> tuple[np.nda
             yy[7] = 0.0
         if modes[1] in (STUCK, LOCKED):
             yy[9] = 0.0
-        rec[sel, 0] = tt
-        if model._ck is not None:
-            rec[sel, 1:] = model._ck.samples(tt, yy, modes, imp_seg).T
+        if not (last and t_stop is not None):
+            rec[sel] = _block(model, tt, yy, modes, imp_seg).T
             continue
-        dy, aux = model.evaluate(tt, list(yy), modes, imp_seg)
-        F = aux["F"]
-        block = (tt, yy[0], yy[1], yy[2], yy[5], yy[3], yy[4], yy[6], yy[7], yy[8], yy[9], *F, *aux["N"],
-                 *aux["slips"], tire_yaw_moment(K.p, F, aux["ce"], aux["se"], aux["cb"], aux["sb"]),
-                 aux["mz"], dy[5], aux["MA"], aux["MB"])
-        for j, c in enumerate(block):
-            rec[sel, j] = c
+        rows = np.flatnonzero(sel)
+        for j, row in enumerate(rows):      # sample by sample: the first without a load solution ends the record
+            try:
+                rec[row] = _block(model, tt[j:j + 1], yy[:, j:j + 1], modes, imp_seg)[:, 0]
+            except NoLoadSolution:
+                if row == 0:
+                    raise
+                return ts[:row], rec[:row]
     return ts, rec
-
-
 def _sample_warnings(ts: np.ndarray, rec: np.ndarray, opts: Options) -> tuple[dict, bool, float | None, int]:
     """Range warnings counted per sample: ``(warnings, stopped, stop_time, samples kept)``."""
     warn = new_warnings()
@@ -362,19 +453,39 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
     SimulationResult
         Rows every ``opts.sample`` s; ``settings`` also holds the number of
         stick-slip switches (``switches``) and right-hand-side evaluations
-        (``nfev``).
+        (``nfev``).  When the normal loads lose their solution (a wheel
+        lifts off) the run ends at the last time it could integrate (a last
+        sample there): ``stopped_by_warnings``, ``stop_time`` and
+        ``stop_reason`` (one line) say so.
 
     Raises
     ------
     RuntimeError
         The integrator failed, or more than ``MAX_SWITCHES`` stick-slip
         switches occurred (chattering).
+    NoLoadSolution
+        The loads have no solution in the first segment of the run.
     """
     model = AdaptiveModel(chair, speed, opts)
-    segments, switches = _integrate(model, speed, opts)
-    ts, rec = _sample(model, segments, opts)
+    segments, switches, t_fail = _integrate(model, speed, opts)
+    if t_fail is not None and not segments:
+        raise NoLoadSolution(t_fail)
+    ts, rec = _sample(model, segments, opts, None if t_fail is None else segments[-1][1])
     warn, stopped, stop_time, end = _sample_warnings(ts, rec, opts)
+    reason = None
+    if t_fail is not None and not stopped:
+        stopped, stop_time, reason = True, float(ts[-1]), _stop_reason(t_fail, rec[-1])
     settings = opts.settings()
     settings.update(switches=switches, nfev=model.nfev, engine="compiled" if model.compiled else "python")
     return SimulationResult._from_records(rec[:end], warnings=warn, stopped=stopped, stop_time=stop_time,
-                                          chair=chair, speed=speed, settings=settings)
+                                          chair=chair, speed=speed, settings=settings, stop_reason=reason)
+
+
+def _stop_reason(t_fail: float, row: np.ndarray) -> str:
+    """One line: why a run ended early (no load solution at ``t_fail``, s), with the state of its last sample."""
+    loads = row[19:23]
+    w = int(np.argmin(loads))
+    side = ("left caster", "right caster", "left main wheel", "right main wheel")[w]
+    what = "lifts off" if loads[w] < 0 else "is about to lift off"
+    return (f"normal loads and tire forces have no converging solution at t = {t_fail:.4f} s (the {side} {what}: "
+            f"load {loads[w]:.0f} N, yaw rate {row[4]:+.2f} rad/s at {row[0]:.4f} s, the last time integrated)")

@@ -56,7 +56,8 @@ def plot_result(result: SimulationResult, path_or_ax: Any = None, *, title: str 
     ax1, ax2 = fig.subplots(2, 1)
     ax1.plot(result.t, result.yaw_rate, label=label)
     if result.stopped_by_warnings and result.stop_time is not None:
-        ax1.axvline(result.stop_time, color="k", ls=":", lw=0.8, label="stopped by warnings")
+        ax1.axvline(result.stop_time, color="k", ls=":", lw=0.8,
+                    label="stopped by warnings" if result.stop_reason is None else "stopped: no load solution")
     ax1.set_xlabel("time (s)")
     ax1.set_ylabel("yaw rate (rad/s)")
     ax1.set_title(title)

@@ -154,8 +154,12 @@ class SimulationResult:
         steps (wchair) or samples (adaptive) with a slip angle above
         :data:`SLIP_LIMIT_DEG`, a normal load above :data:`LOAD_LIMIT_N`, or
         a negative normal load (a wheel lifting; information only).
-    stopped_by_warnings : whether the run was stopped by the warning rule.
+    stopped_by_warnings : whether the run was stopped early: by the warning
+        rule, or (adaptive scheme) because the normal loads lost their
+        solution (a wheel lifts off; ``stop_reason`` says so).
     stop_time : time of the step that stopped it (s) or None.
+    stop_reason : one line saying why the run stopped when not by the warning
+        rule, else None.
     chair, speed, settings : the inputs.
     stats : RunStats or None
         Summaries over every step of a compiled run (also when only some
@@ -193,6 +197,7 @@ class SimulationResult:
     settings: Mapping[str, Any] = field(default_factory=dict)
     stats: RunStats | None = None
     step_unstable: bool = False
+    stop_reason: str | None = None
 
     # -- construction ----------------------------------------------------
     @classmethod
@@ -227,7 +232,8 @@ class SimulationResult:
             settings=dict(settings), stats=stats, step_unstable=bool(step_unstable))
 
     @classmethod
-    def _from_records(cls, rec: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings):
+    def _from_records(cls, rec: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings,
+                      stop_reason: str | None = None):
         cols = np.ascontiguousarray(rec.T, dtype=float)  # one copy; every column below is a view of it
         c = {name: cols[i] for i, name in enumerate(COLUMNS)}
 
@@ -246,7 +252,7 @@ class SimulationResult:
             pin_moment=_frozen(np.stack([c["pin_moment_A"], c["pin_moment_B"]], axis=1).reshape(-1, 2)),
             warnings=_freeze_warnings(warnings), stopped_by_warnings=bool(stopped),
             stop_time=None if stop_time is None else float(stop_time), chair=chair,
-            speed=float(speed), settings=dict(settings),
+            speed=float(speed), settings=dict(settings), stop_reason=stop_reason,
         )
 
     def _records(self) -> np.ndarray:
@@ -322,7 +328,7 @@ class SimulationResult:
         settings = dict(self.settings, resampled=dt)
         return SimulationResult._from_records(out, warnings=self.warnings, stopped=self.stopped_by_warnings,
                                               stop_time=self.stop_time, chair=self.chair, speed=self.speed,
-                                              settings=settings)
+                                              settings=settings, stop_reason=self.stop_reason)
 
     def summary(self) -> str:
         """A short readable summary."""
@@ -332,8 +338,11 @@ class SimulationResult:
             f"model {s.get('model')}, scheme {s.get('scheme')}, casters {s.get('casters')}"
             + (f" ({s['friction_law']} pin friction)" if "friction_law" in s else ""),
             f"simulated {self.t[0]:.3f} .. {self.t[-1]:.3f} s ({len(self.t)} samples)"
-            + (f"; STOPPED by warnings at t = {self.stop_time:.3f} s" if self.stopped_by_warnings else ""),
+            + (f"; STOPPED by warnings at t = {self.stop_time:.3f} s"
+               if self.stopped_by_warnings and self.stop_reason is None else ""),
         ]
+        if self.stop_reason is not None:
+            lines.append(f"STOPPED at t = {self.stop_time:.3f} s: {self.stop_reason}")
         for v in (0.5, 1.0):
             tv = self.first_time_abs_yaw_rate(v)
             lines.append(f"|yaw rate| never reaches {v:g} rad/s" if tv is None
@@ -358,7 +367,7 @@ class SimulationResult:
         rec = self._records()
         out: dict[str, Any] = {name: _json_list(rec[:, i]) for i, name in enumerate(JSON_COLUMNS)}
         out.update(
-            stopped_by_warnings=self.stopped_by_warnings, stop_time_s=self.stop_time,
+            stopped_by_warnings=self.stopped_by_warnings, stop_time_s=self.stop_time, stop_reason=self.stop_reason,
             step_unstable=self.step_unstable, stats=None if self.stats is None else self.stats.to_dict(),
             warnings={k: {"count": v["count"], "first_time_s": _json_scalar(v["first_time"]),
                           f"max_{_WARNING_UNITS.get(k, 'value')}": _json_scalar(v["max"])}
@@ -380,7 +389,8 @@ class SimulationResult:
         meta = [f"# stability.simulate: chair={self.chair.name} speed={self.speed!r} m/s",
                 "# settings: " + json.dumps({k: _json_scalar(v) for k, v in self.settings.items()}, sort_keys=True),
                 "# warnings: " + json.dumps(_json_warnings(self.warnings), sort_keys=True)
-                + f" stopped_by_warnings={self.stopped_by_warnings}",
+                + f" stopped_by_warnings={self.stopped_by_warnings}"
+                + (f" stop_reason: {self.stop_reason}" if self.stop_reason is not None else ""),
                 "# units: s, m, rad, m/s, rad/s, N, deg, N m, rad/s^2; wheels A/B = left/right caster, "
                 "D/E = left/right main wheel"]
         lines = meta + [",".join(COLUMNS)]

@@ -290,7 +290,12 @@ def _from_results(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
         peak[i] = float(y.max()) if y.size else 0.0
         t_half[i] = time_to_level(t, y, 0.5 * level)
         t_level[i] = time_to_level(t, y, level)
-        if bool(getattr(r, "stopped_by_warnings", False)) and len(t) and t[-1] < horizon - 1e-9:
-            t_level[i] = min(t_level[i], float(t[-1]))
+        stop = getattr(r, "stop_time", None) if bool(getattr(r, "stopped_by_warnings", False)) else None
+        if stop is None and bool(getattr(r, "stopped_by_warnings", False)) and len(t):
+            stop = float(t[-1])
+        if stop is not None and stop < horizon - 1e-9:
+            # stopped early (the warning rule, or an adaptive run whose loads lost their solution): it reaches
+            # the level at its crossing, else at the stop, as the kernel's stop time in _summaries
+            t_level[i] = min(t_level[i], float(stop))
         sim_time[i] = float(t[-1]) if len(t) else 0.0
     return Summaries(peak, t_half, t_level, sim_time)
