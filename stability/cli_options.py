@@ -148,19 +148,26 @@ def subparsers(parser: argparse.ArgumentParser) -> list[argparse.ArgumentParser]
     return out
 
 
-def add_friction_law_option(parser: argparse.ArgumentParser) -> None:
-    """Add ``--friction-law {kinetic,stick-slip}`` (default: the scheme's own, :data:`stability.defaults.FRICTION_LAW`).
+def add_friction_law_option(parser: argparse.ArgumentParser, measures: bool = False) -> None:
+    """Add ``--friction-law {kinetic,stick-slip}``.
 
     Parameters
     ----------
     parser : argparse.ArgumentParser
         The command's parser.
+    measures : bool
+        The command computes nonlinear measures: default
+        :data:`stability.defaults.MEASURE_FRICTION_LAW` ("stick-slip"); else
+        :data:`stability.defaults.FRICTION_LAW` (the scheme's own: kinetic
+        for the wchair scheme, program WCHAIR's).
     """
-    parser.add_argument("--friction-law", default=defaults.FRICTION_LAW, choices=["kinetic", "stick-slip"],
+    default = defaults.MEASURE_FRICTION_LAW if measures else defaults.FRICTION_LAW
+    said = f"default {default}" if default else "default: kinetic for the wchair scheme, as program WCHAIR"
+    parser.add_argument("--friction-law", default=default, choices=["kinetic", "stick-slip"],
                         help="pin friction of free casters in the fixed-step scheme: kinetic (program WCHAIR's: "
-                             "against the swivel rate, switching with its sign; its default) or stick-slip (a "
-                             "caster at rest stays there while friction can hold it; converged in the step where "
-                             "kinetic is not, docs/simulator.md); the adaptive scheme is always stick-slip")
+                             "against the swivel rate, switching with its sign) or stick-slip (a caster at rest "
+                             "stays there while friction can hold it; converged in the step where kinetic is not, "
+                             f"docs/simulator.md); {said}; the adaptive scheme is always stick-slip")
 
 
 def add_model_option(parser: argparse.ArgumentParser) -> None:

@@ -32,7 +32,8 @@ from typing import Any
 
 from .reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 
-__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW", "SCHEME", "DT", "SPEED",
+__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW", "MEASURE_FRICTION_LAW",
+           "SCHEME", "DT", "SPEED",
            "PUSH_FORCE",
            "PUSH_DURATION", "YAW_RATE_LEVEL", "HORIZON_S", "MAX_IMPULSE", "TIRE_RANGE", "SIM_OUT_OF_RANGE", "MAX_SPEED",
            "SAMPLES", "SEED", "COVERAGE", "NONLINEAR_SAMPLES", "SUMMARY_SPEEDS", "SHIMMY_SPEEDS", "STUDY_SPEEDS",
@@ -93,6 +94,10 @@ CASTERS = "free"
 #: moment always opposes the swivel rate, switching with its sign) and "stick-slip" for the adaptive one (a caster at
 #: rest stays at rest while friction can hold it); "stick-slip" on the wchair scheme too (docs/simulator.md).
 FRICTION_LAW = None
+#: Pin friction law of the nonlinear measures' runs (critical impulse, equal-instability speed, the studies'
+#: time histories): "stick-slip", converged in the step where the kinetic law is not (power-fwd's critical impulse at
+#: 1.5 m/s: 7.82 N s at 1 ms and 7.81 N s at 0.25 ms and in the adaptive scheme; kinetic: < 1e-6 N s at 1 ms).
+MEASURE_FRICTION_LAW = "stick-slip"
 #: Integration scheme of the simulator: program WCHAIR's fixed step ("wchair") or error-controlled ("adaptive").
 SCHEME = "wchair"
 #: Fixed time step of the wchair scheme, s (WCHAIR's TSTEP).
@@ -179,6 +184,7 @@ TABLE: dict[str, Default] = {
     "model": Default(MODEL, "", "equation variant: exact or thesis"),
     "casters": Default(CASTERS, "", "caster condition: free or locked"),
     "friction_law": Default(FRICTION_LAW, "", "pin friction law: kinetic or stick-slip (None: the scheme's own)"),
+    "measure_friction_law": Default(MEASURE_FRICTION_LAW, "", "pin friction law of the nonlinear measures' runs"),
     "scheme": Default(SCHEME, "", "simulator integration scheme: wchair or adaptive"),
     "dt": Default(DT, "s", "fixed step of the wchair scheme"),
     "speed": Default(SPEED, "m/s", "speed of a single run"),

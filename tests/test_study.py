@@ -120,7 +120,9 @@ def test_disturbance_map_is_one_batch_with_a_force_per_run(fake, monkeypatch):
 
 
 def test_disturbance_map_matches_separate_runs():
-    """The one-batch map gives the times of separate simulations (real simulator, short runs)."""
+    """The one-batch map gives the times of separate simulations (real simulator, short runs, the studies' pin
+    friction law)."""
+    from stability.defaults import MEASURE_FRICTION_LAW
     from stability.simulate import simulate
 
     ej = preset("ej-premier")
@@ -128,7 +130,8 @@ def test_disturbance_map_matches_separate_runs():
     m = study.disturbance_map(ej, [0.8, 1.2], [2.0, 6.0], reference=3.2, criterion=crit, progress=False)
     for i, imp in enumerate((2.0, 6.0)):
         for j, u in enumerate((0.8, 1.2)):
-            r = simulate(ej, u, model="thesis", impulse_force=imp / 0.1, duration=4.0, stop_on_warnings=False, sample=0.01)
+            r = simulate(ej, u, model="thesis", impulse_force=imp / 0.1, duration=4.0, stop_on_warnings=False,
+                         sample=0.01, friction_law=MEASURE_FRICTION_LAW)
             assert m.times[i, j] == pytest.approx(crit.time(r), abs=1e-9)
     assert m.times[1, 1] < m.times[0, 1]          # a bigger push reaches the level sooner
 

@@ -131,12 +131,12 @@ def test_nonlinear_chunk_matches_the_batched_search(tmp_path):
 
 
 def test_friction_law_reaches_the_nonlinear_measures(tmp_path):
-    """friction_law = "stick-slip" runs the critical impulse with the step-converged law: power-fwd at 1.5 m/s
+    """The spec's friction_law (default "stick-slip", the step-converged law) reaches the critical impulse: power-fwd at 1.5 m/s
     needs a real push (7.8 N s; test_stick_slip.py checks it against the adaptive scheme), where WCHAIR's kinetic
     law at 1 ms says any push does ("below")."""
     text = 'chair = "power-fwd"\nspeeds = [1.5]\nmeasures = ["critical_impulse"]\n'
-    kinetic = loads_spec(text, tmp_path)
-    sticky = loads_spec('friction_law = "stick-slip"\n' + text, tmp_path)
+    kinetic = loads_spec('friction_law = "kinetic"\n' + text, tmp_path)
+    sticky = loads_spec(text, tmp_path)                       # the measures' default law
     assert kinetic.friction_law == "kinetic" and sticky.to_dict()["friction_law"] == "stick-slip"
     j = columns(sticky).index("critical_impulse_Ns")
     k = columns(sticky).index("critical_impulse_status")

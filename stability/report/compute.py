@@ -13,6 +13,7 @@ from .. import rootlocus, study
 from ..advise import advise
 from ..advise.measures import measure_chairs
 from ..chair import Chair, preset
+from ..defaults import MEASURE_FRICTION_LAW
 from ..design import get_parameter
 from ..linear import analyse, divergence, massless_caster_rate
 from ..progress import ProgressBar
@@ -237,7 +238,7 @@ def equal_instability_range(c: Chair, model: str, s: Settings, scheme: str = "wc
     return study.equal_instability_interval(
         c, model=model, push=THESIS_PUSH, criterion=study.Criterion(duration=s.duration), scheme=scheme, dt=s.dt,
         bracket=s.bracket if s.quick else study.RANGE_BRACKET, tol=s.tol if s.quick else study.RANGE_TOL,
-        candidates=s.candidates)
+        candidates=s.candidates, friction_law=MEASURE_FRICTION_LAW)
 
 
 def counterpart(c: Chair) -> Chair:

@@ -35,6 +35,7 @@ def build_parser() -> argparse.ArgumentParser:
     for s in (ci, ei):
         add_chair_options(s)
         add_model_option(s)
+        add_friction_law_option(s, measures=True)
         add_json_options(s)
     ci.add_argument("--speeds", default=D.STUDY_SPEEDS,
                     help=f"START:STOP:STEP or a list, m/s (default {D.STUDY_SPEEDS})")
@@ -48,7 +49,6 @@ def build_parser() -> argparse.ArgumentParser:
                     help=f"largest push tried, N s (default {D.MAX_IMPULSE:g})")
     ei.add_argument("--force", type=float, default=D.PUSH_FORCE,
                     help=f"nominal push force, N (default {D.PUSH_FORCE:g}, for {D.PUSH_DURATION:g} s)")
-    add_friction_law_option(ci)
     ci.add_argument("--interval", action="store_true",
                     help="also the range over pin friction x0.5 and x1.5 and the other model")
     ei.add_argument("--chair-friction-only", action="store_true",
@@ -77,7 +77,7 @@ def _critical(args: argparse.Namespace) -> None:
                      runs_per_speed(max_impulse=args.max_impulse), "--horizon")
     curve = critical_impulse_curve(chair, speeds, model=args.model, duration=args.duration, level=args.level,
                                    horizon=args.horizon, max_impulse=args.max_impulse, friction_law=args.friction_law)
-    law = args.friction_law or "kinetic"
+    law = args.friction_law
     lines = [f"{chair.name}, {args.model} model, {law} pin friction: critical impulse for |yaw rate| >= "
              f"{args.level:g} rad/s within {args.horizon:g} s", f"push: {curve.points[0].push}",
              "kick: the sideways speed the push gives the chair (impulse / mass)"]
@@ -99,13 +99,13 @@ def _critical(args: argparse.Namespace) -> None:
 def _interval(args: argparse.Namespace) -> None:
     chair = load_chair(args.chair, args.set)
     r = equal_instability_interval(chair, model=args.model, push=Push(args.force, THESIS_PUSH.duration),
-                                   friction_on_reference=not args.chair_friction_only)
+                                   friction_on_reference=not args.chair_friction_only, friction_law=args.friction_law)
     definition = _EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED) + (
         RANGE_DEFINITION if not args.chair_friction_only else
         RANGE_DEFINITION.replace("(on both the chair and the reference chair)", "(on the chair only: "
                                  "--chair-friction-only, not the report's and the advisor's range)"))
     lines = [f"{chair.name}: equal-instability speed {r.describe()}", f"push: {r.push}; pin friction factors "
-             f"applied to {r.friction_scope}", definition]
+             f"applied to {r.friction_scope}; {args.friction_law} pin friction", definition]
     for v in r.variants:
         sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
         lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")

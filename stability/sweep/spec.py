@@ -4,7 +4,7 @@
 
     chair = "ej-premier"          # a preset or a chair TOML file (relative to the spec)
     model = "exact"
-    friction_law = "kinetic"      # or "stick-slip" (the nonlinear measures' pin friction, docs/simulator.md)
+    friction_law = "stick-slip"   # the nonlinear measures' pin friction (or "kinetic", program WCHAIR's)
     speeds = [0.5, 0.75, 1.0]     # m/s
     measures = ["growth_rate", "critical_speeds", "critical_impulse"]
     chunk_rows = 300              # rows per chunk file (a chunk holds whole designs x draws)
@@ -36,6 +36,7 @@ from typing import Any
 from .. import chair as chair_mod
 from .. import design
 from ..chair import Chair
+from ..defaults import MEASURE_FRICTION_LAW
 from ..uncertainty import Uncertainty, load_uncertainty
 
 if sys.version_info >= (3, 11):
@@ -73,7 +74,7 @@ SCHEMA: dict[str, Any] = {
     "properties": {
         "chair": {"type": "string", "description": "preset name or chair TOML file (relative to the spec)"},
         "model": {"enum": ["exact", "thesis"], "default": "exact"},
-        "friction_law": {"enum": ["kinetic", "stick-slip"], "default": "kinetic",
+        "friction_law": {"enum": ["kinetic", "stick-slip"], "default": MEASURE_FRICTION_LAW,
                          "description": "pin friction of the nonlinear measures' fixed-step runs"},
         "speeds": {"type": "array", "items": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
                    "minItems": 1, "description": "forward speeds, m/s"},
@@ -125,7 +126,7 @@ class SweepSpec:
     seed: int
     uncertainty: Uncertainty | None
     chunk_rows: int
-    friction_law: str = "kinetic"
+    friction_law: str = MEASURE_FRICTION_LAW
 
     @property
     def designs(self) -> int:
@@ -211,7 +212,7 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     model = data.get("model", "exact")
     if model not in ("exact", "thesis"):
         raise _bad("model", model, "'exact' or 'thesis'")
-    friction_law = data.get("friction_law", "kinetic")
+    friction_law = data.get("friction_law", MEASURE_FRICTION_LAW)
     if friction_law not in ("kinetic", "stick-slip"):
         raise _bad("friction_law", friction_law, "'kinetic' or 'stick-slip'")
     if "speeds" not in data:
