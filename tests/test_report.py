@@ -920,6 +920,11 @@ def test_decision_page_is_the_advisor(quick):
     assert rows[0][1].startswith(f"{a.verdict.critical_impulse_Ns.value:.3g}")
     names, vals, lo, hi = decision_bars(d)
     assert all(low <= v <= high for v, low, high in zip(vals, lo, hi, strict=True))
+    from stability.report.decision import decision_beyond
+
+    beyond = decision_beyond(d)          # a value beyond the searched bracket is its end, labelled "> ..."
+    assert len(beyond) == len(vals)
+    assert beyond[1] == (r.measures.equal_instability_status == "above")
     page = _text(quick, "decision")
     assert "VERDICT." in page and "RECOMMENDATION." in page and "FOR THE CLINICIAN." in page
 

@@ -279,7 +279,8 @@ def _gaps(span: tuple[float, float], inside) -> list[tuple[float, float]]:
 
 
 def decision_chart(names: Sequence[str], values: Sequence[float], lows: Sequence[float], highs: Sequence[float],
-                   ax=None, *, reference_speed: float | None = None, title: str | None = None):
+                   ax=None, *, reference_speed: float | None = None, title: str | None = None,
+                   beyond: Sequence[bool] | None = None):
     """Equal-instability speed of a few chairs with their ranges (page 1 of the report).
 
     Parameters
@@ -287,6 +288,8 @@ def decision_chart(names: Sequence[str], values: Sequence[float], lows: Sequence
     names : sequence of str
     values, lows, highs : sequence of float
         Speeds and range ends, m/s.
+    beyond : sequence of bool, optional
+        Values that are the end of the searched bracket, the speed lying above it (labelled "> ...").
     ax : matplotlib.axes.Axes, optional
     reference_speed : float, optional
         The thesis's reference speed (m/s), drawn as a line.
@@ -305,8 +308,9 @@ def decision_chart(names: Sequence[str], values: Sequence[float], lows: Sequence
     ax.barh(y, v, height=0.55, color=[colour(i) for i in range(len(names))], ec="k", lw=0.5)
     ax.errorbar(v, y, xerr=[np.maximum(v - lo, 0), np.maximum(hi - v, 0)], fmt="none", ecolor="k", capsize=4,
                 elinewidth=1.2, label="range: push, pin friction, model")
-    for yi, vi in zip(y, v, strict=True):
-        ax.text(vi + 0.02, yi + 0.3, f"{vi:.2f} m/s ({3.6 * vi:.1f} km/h)", fontsize=8.5, va="bottom")
+    for yi, vi, above in zip(y, v, beyond if beyond is not None else [False] * len(v), strict=True):
+        ax.text(vi + 0.02, yi + 0.3, f"{'> ' if above else ''}{vi:.2f} m/s ({3.6 * vi:.1f} km/h)", fontsize=8.5,
+                va="bottom")
     if reference_speed is not None:
         ax.axvline(reference_speed, color="0.3", ls="--", lw=1, label=f"thesis reference {reference_speed:g} m/s")
     ax.set_yticks(y, names, fontsize=9)

@@ -17,7 +17,7 @@ from .appendix import glossary_text, method_text
 from .clinician import clinician_text
 from .comparison import comparison_rows, key_numbers
 from .compute import ReportData
-from .decision import decision_bars, decision_paragraphs, decision_rows
+from .decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
 from .findings import _first, conclusion_rows, findings
 from .quick import MARK, coarsened_text
 from .sections import footer as _footer
@@ -70,7 +70,8 @@ def _p_decision(d: ReportData) -> Figure:
     ax_table.set_title("key numbers (ranges over push, pin friction, model and simulator step)", fontsize=9)
     names, vals, lows, highs = decision_bars(d)
     P.decision_chart(names, vals, lows, highs, ax_bar, reference_speed=REFERENCE_SPEED,
-                     title=f"{d.chair.name}: how fast before it is as unstable as the thesis's reference case")
+                     title=f"{d.chair.name}: how fast before it is as unstable as the thesis's reference case",
+                     beyond=decision_beyond(d))
     return fig
 
 

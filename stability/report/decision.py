@@ -14,7 +14,7 @@ from ..advise.text import kmh
 from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from .compute import ReportData
 
-__all__ = ["decision_paragraphs", "decision_rows", "decision_bars"]
+__all__ = ["decision_paragraphs", "decision_rows", "decision_bars", "decision_beyond"]
 
 _WORDS = {"static_stability_deg": "tips over on a slope of", "shimmy_margin_m": "shimmy margin",
           "turning_effort_N_m": "pin friction to overcome when turning", "handrim_force_difference_N":
@@ -142,6 +142,17 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
     cells = [_cells(m, t) for _, m, t in cols]
     rows = [[lab] + [c[i] for c in cells] for i, lab in enumerate(labels)]
     return ["measure (range)"] + [n for n, _, _ in cols], rows
+
+
+def decision_beyond(d: ReportData) -> list[bool]:
+    """For each bar of :func:`decision_bars`: whether its value is the bracket's end, the speed lying above it."""
+    a = d.advice
+    st = [a.verdict.equal_instability_status]
+    if a.recommendations:
+        st.append(a.recommendations[0].candidate.measures.equal_instability_status)
+    if d.reference_measures is not None and a.chair.name != REFERENCE_CHAIR:
+        st.append(d.reference_measures.equal_instability_status)
+    return [s == "above" for s in st]
 
 
 def decision_bars(d: ReportData) -> tuple[list[str], list[float], list[float], list[float]]:
