@@ -289,10 +289,6 @@ def _run(chairs: list[Chair], speeds: np.ndarray, options: dict[str, Any], force
         options["dt"] = WCHAIR_DT
     opts = make_options(batch=batch, **options)
     python_input = opts.yaw_moment is not None or _REFERENCE.get()
-    if python_input and opts.scheme == "wchair" and opts.friction_law == "stick-slip":
-        raise ValueError("friction_law='stick-slip' is invalid with a Python yaw_moment or the reference engine "
-                         "(they run WCHAIR's kinetic law); valid: the compiled scheme (a controller= instead of "
-                         "yaw_moment) or scheme='adaptive'")
     if python_input and controller is not None:
         raise ValueError("yaw_moment and controller are both given; choose one")
     if (opts.scheme == "adaptive" or python_input) and (controller is not None or record != "all"):

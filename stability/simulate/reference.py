@@ -18,6 +18,7 @@ from ..progress import ProgressBar
 from ..statics import normal_loads
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, impulse_on, initial_velocities, n_steps
 from .physics import Physics, accelerations, held_accelerations, kinematics, loads, plane, tire_forces
+from .pin_friction import rest_rates, stick_slip_runs
 from .results import NCOLS, ChairState, SimulationResult
 
 __all__ = ["wchair_batch"]
@@ -151,6 +152,8 @@ def _step(K: Physics, s: _State, opts: Options, k: int, warns: _Warnings, stoppe
     if locked:
         zero = np.zeros(s.run.size)
         acc, MA, MB = held_accelerations(K, state, F, zero, zero, fy_ext, mz, True, True, rdc, grav)
+    elif opts.pin_mode == 2.0:      # stick-slip: each run holds or frees its own casters
+        acc, MA, MB = stick_slip_runs(K, state, F, fy_ext, mz, rdc, grav)
     else:
         MA = np.where(ED != 0.0, np.copysign(K.maf, -ED), 0.0)
         MB = np.where(BD != 0.0, np.copysign(K.mbf, -BD), 0.0)
@@ -163,8 +166,14 @@ def _step(K: Physics, s: _State, opts: Options, k: int, warns: _Warnings, stoppe
     return cols, (UDD, VDD, THEDD_new, EDD, BDD), (fc1, fc2 + fy_ext), (Cp[0], Sn[0])
 
 
-def _update(s: _State, acc: tuple, fc: tuple, heading_trig: tuple, dt: float, half_dt2: float) -> None:
-    """UPDATE / ITRATE: x += v dt + a dt^2/2 (global X, Y with the heading at the start of the step), v += a dt."""
+def _update(s: _State, acc: tuple, fc: tuple, heading_trig: tuple, dt: float, half_dt2: float,
+            limits: tuple | None = None) -> None:
+    """UPDATE / ITRATE: x += v dt + a dt^2/2 (global X, Y with the heading at the start of the step), v += a dt.
+
+    ``limits``: the casters' friction limits (M_A, M_B), N m, under the stick-slip law (a swivel rate that
+    would change sign within the step comes to rest: :func:`~stability.simulate.pin_friction.rest_rates`).
+    """
+    old = None if limits is None else s.Sv[3:5].copy()
     Acc = np.array(acc)
     s.THEDD = acc[2]          # (Acc is scaled in place below)
     s.FC1, s.FC2 = fc
@@ -176,6 +185,9 @@ def _update(s: _State, acc: tuple, fc: tuple, heading_trig: tuple, dt: float, ha
     s.Sp += D[2:5]
     Acc *= dt
     s.Sv += Acc
+    if old is not None and limits is not None:
+        rest_rates(old[0], s.Sv[3], limits[0])
+        rest_rates(old[1], s.Sv[4], limits[1])
 
 
 def wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: Options, progress: bool,
@@ -187,6 +199,12 @@ def wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: Options, progres
     stopped by the warning rule drops out).  Used for a Python
     ``yaw_moment`` input in a batch and inside
     :func:`~stability.simulate.reference_engine`.
+
+    Pin friction follows ``opts.friction_law``: "kinetic" is WCHAIR's moment
+    ``-M_f sign(swivel rate)``; "stick-slip" is the compiled kernel's law
+    (:func:`~stability.simulate.pin_friction.stick_slip_runs`: each run
+    holds a caster at rest while its holding moment is within the friction
+    limit, and a rate that would change sign within a step comes to rest).
 
     Parameters
     ----------
@@ -211,6 +229,7 @@ def wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: Options, progres
     nrun = len(chairs)
     K = Physics(chairs, opts, vector=True)
     dt, half_dt2, stride = opts.dt, 0.5 * opts.dt * opts.dt, opts.stride
+    sticks = opts.pin_mode == 2.0
     s = _State(speeds, opts, opts.impulse_force if forces is None else np.array(forces, dtype=float))
     n = n_steps(opts)
     nrec = (n - 1) // stride + 1
@@ -234,7 +253,7 @@ def wchair_batch(chairs: list[Chair], speeds: np.ndarray, opts: Options, progres
                     block[:, i] = c
                 buf[s.run, k // stride, :] = block
                 nrec_run[s.run] = k // stride + 1
-            _update(s, acc, fc, heading_trig, dt, half_dt2)
+            _update(s, acc, fc, heading_trig, dt, half_dt2, (K.maf, K.mbf) if sticks else None)
             if k % 64 == 63:
                 pbar.update(64)
                 done += 64

@@ -17,6 +17,7 @@ from ..models.full_width import tire_resultant, tire_yaw_moment
 from ..statics import normal_loads
 from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, impulse_on, initial_velocities, n_steps
 from .physics import Physics, accelerations, held_accelerations, kinematics, loads, plane, slip_angles, tire_forces
+from .pin_friction import rest_rate, stick_slip
 from .results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
 
 __all__ = ["wchair_single"]
@@ -33,6 +34,14 @@ def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult
     UPDATE/ITRATE (constant acceleration over the step).  Used for a Python
     ``yaw_moment`` input and inside :func:`~stability.simulate.reference_engine`;
     the compiled kernel is tested against it.
+
+    Pin friction follows ``opts.friction_law``: "kinetic" is WCHAIR's moment
+    ``-M_f sign(swivel rate)``; "stick-slip" holds a caster at rest while
+    its holding moment is within the friction limit and brings a rate that
+    would change sign within a step to rest
+    (:func:`~stability.simulate.pin_friction.stick_slip`,
+    :func:`~stability.simulate.pin_friction.rest_rate`), the compiled
+    kernel's law in the same operations.
 
     Parameters
     ----------
@@ -57,6 +66,7 @@ def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult
     cos, sin = math.cos, math.sin
     loads_fn = normal_loads
     maf, mbf = K.maf, K.mbf
+    sticks = opts.pin_mode == 2.0       # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
     slope = K.slope_trig is not None
     grav = None
     check_all, chk = K.check_all, K.chk or (True, True, True, True)   # single run: one tire group, chk set
@@ -115,6 +125,8 @@ def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult
         rdc = THEDD if thesis else None
         if locked:
             acc, MA, MB = held_accelerations(K, state, F, 0.0, 0.0, fy_ext, mz, True, True, rdc, grav)
+        elif sticks:
+            acc, MA, MB = stick_slip(K, state, F, fy_ext, mz, rdc, grav)
         else:
             MA = math.copysign(maf, -ED) if ED != 0.0 else 0.0
             MB = math.copysign(mbf, -BD) if BD != 0.0 else 0.0
@@ -135,9 +147,13 @@ def wchair_single(chair: Chair, speed: float, opts: Options) -> SimulationResult
         UD += UDD * dt
         VD += VDD * dt
         B += BD * dt + BDD * half_dt2
-        BD += BDD * dt
         E += ED * dt + EDD * half_dt2
-        ED += EDD * dt
+        if sticks:      # a rate that would change sign within the step comes to rest (pin_friction.rest_rate)
+            BD = rest_rate(BD, BDD, dt, mbf)
+            ED = rest_rate(ED, EDD, dt, maf)
+        else:
+            BD += BDD * dt
+            ED += EDD * dt
         THE += THED * dt + THEDD * half_dt2
         THED += THEDD * dt
     arr = np.array(rec, dtype=float).reshape(-1, NCOLS)
