@@ -857,7 +857,7 @@ def test_compile_cache_stamp_is_the_generated_equations_hash():
     here = Path(kernel.__file__).parent
     digest = hashlib.sha256(Path(generated.__file__).read_bytes() + Path(slope_generated.__file__).read_bytes()
                             + b"".join((here / name).read_bytes() for name in KERNEL_SOURCES)).hexdigest()
-    assert {"kernel.py", "kernel_controller.py", "adaptive_kernel.py"} <= set(KERNEL_SOURCES)
+    assert {"kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py"} <= set(KERNEL_SOURCES)
     stamp = Path(kernel.run_batch._cache.cache_path) / "kernel.equations.sha256"
     if not stamp.exists():
         pytest.skip("no writable cache directory")

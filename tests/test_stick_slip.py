@@ -268,3 +268,50 @@ def test_reference_engine_critical_impulse_with_stick_slip():
     assert compiled.status == ref.status == "found"
     assert round(compiled.impulse_Ns, 2) == 3.25          # the compiled answer (kinetic law: 2.16 N s at 1.0 m/s)
     assert abs(math.log(ref.impulse_Ns / compiled.impulse_Ns)) < 0.005
+
+
+def _problems():
+    """(chair, speed) pairs of the settle-stop check: the presets around the thesis's speeds and a few designs."""
+    ej = preset("ej-premier")
+    pairs = [(preset(n), v) for n in ("ej-premier", "revised", "power-fwd") for v in (0.5, 0.75, 1.0, 1.5)]
+    pairs += [(ej.replace(trail=tr, pin_friction_left=f, pin_friction_right=f), 0.9)
+              for tr in (0.04, 0.06) for f in (0.05, 0.2)]
+    return pairs
+
+
+def test_settled_runs_stop_early_and_change_no_answer(monkeypatch):
+    """A search run with both casters stuck for 0.5 s, after the push, with neither |yaw rate| nor a holding moment
+    growing, stops there (kernel.settled).  Every critical impulse is the same with and without that stop (the
+    runs below the threshold settle into a steady coast or turn; the equality is exact because the same runs are
+    made, only shorter: 249 sweep problems measured, 45.6 -> 22.1 s simulated per answer, docs/scale.md)."""
+    from stability.simulate import engine
+    from stability.study import critical_impulses
+
+    chairs, speeds = zip(*_problems(), strict=True)
+    monkeypatch.setattr(engine, "SETTLE_STOP", False)
+    full = critical_impulses(list(chairs), list(speeds))
+    monkeypatch.setattr(engine, "SETTLE_STOP", True)
+    short = critical_impulses(list(chairs), list(speeds))
+    assert [(r.status, r.low_Ns, r.high_Ns) for r in short] == [(r.status, r.low_Ns, r.high_Ns) for r in full]
+    assert sum(r.status == "found" for r in short) >= 12
+
+
+def test_a_settled_run_never_reaches_the_level():
+    """Independently of the stop: the E&J Premier at 0.75 m/s pushed just below its critical impulse (3.2 vs 3.25
+    N s) has both casters stuck from 0.64 s and turns steadily at 0.060 rad/s to the end of the 10 s horizon,
+    its holding moments (0.098 and 0.094 N m) inside the 0.1 N m limit; the search's run of that push stops
+    settled before 2 s."""
+    from stability.study.summaries import SummaryRunner
+
+    chair = preset("ej-premier")
+    r = simulate(chair, 0.75, friction_law="stick-slip", impulse_force=3.2 / 0.101, impulse_duration=0.1,
+                 duration=10.0, stop_on_warnings=False)
+    y = np.abs(np.asarray(r.yaw_rate))
+    assert y.max() < 0.1 and abs(y[-1] - y[len(y) // 2]) < 1e-3
+    stuck = (np.asarray(r.eta_dot) == 0.0) & (np.asarray(r.beta_dot) == 0.0)
+    assert stuck[np.asarray(r.t) > 1.0].all()
+    assert np.abs(np.asarray(r.pin_moment))[np.asarray(r.t) > 1.0].max() < chair.pin_friction_left
+    runner = SummaryRunner([chair], [0.75], model="exact", scheme="wchair", duration=0.1, dt=0.001, horizon=10.0,
+                           level=1.0, sim_options={"friction_law": "stick-slip", "stop_on_warnings": False})
+    s = runner([0], [3.2 / 0.101])
+    assert not np.isfinite(s.t_level[0]) and s.sim_time[0] < 2.0

@@ -16,7 +16,7 @@ from ..models.slope import generated as _sl
 __all__ = ["KERNEL_SOURCES", "invalidate_stale_cache"]
 
 #: The compiled modules whose functions other compiled modules call (a change to one recompiles them all).
-KERNEL_SOURCES = ("kernel.py", "kernel_controller.py", "adaptive_kernel.py")
+KERNEL_SOURCES = ("kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py")
 
 
 def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:

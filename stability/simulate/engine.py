@@ -34,6 +34,8 @@ RECORDS = ("all", "states", "final")
 #: |yaw rate| levels (rad/s) whose first crossing every compiled run reports in ``result.stats``.
 STATS_LEVELS = (0.5, LEVEL)
 _POLICY = {"clamp": 0, "extrapolate": 1, "raise": 2}
+#: Runs stopped at a level (the searches) and with stick-slip friction also stop once settled (kernel.SETTLE).
+SETTLE_STOP = True
 _WARN_KINDS = ("slip", "load", "lift_off")
 
 
@@ -256,11 +258,11 @@ def kernel_entry_guard() -> AbstractContextManager:
 
 
 def _config(opts: Options, mode: int, stop_level: int) -> np.ndarray:
-    """The kernel's configuration row (step, push, model, warning rule, slope, stop level)."""
+    """The kernel's configuration row (step, push, model, warning rule, slope, stop level, settle stop)."""
     return np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, n_steps(opts), opts.stride,
                      0 if opts.model == "thesis" else 1, opts.pin_mode, opts.stop_on_warnings,
                      _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
-                     *slope_slots(opts), stop_level], dtype=float)
+                     *slope_slots(opts), stop_level, float(SETTLE_STOP)], dtype=float)
 
 
 class PackedRuns:

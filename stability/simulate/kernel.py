@@ -13,16 +13,70 @@ operations in the same order (tested bit for bit against them).
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
 from numba.core import config as _config
 
-from ..models.full_width import generated as _fw
-from ..models.slope import generated as _sl
 from .cache_stamp import invalidate_stale_cache
 from .kernel_controller import controller_output
+from .kernel_equations import (  # noqa: F401  (re-exported: the engine, the adaptive kernel and tests use them)
+    _NOWRAP,
+    BETA0,
+    C_PHI,
+    C_THETA,
+    CT,
+    D1,
+    D2,
+    ETA0,
+    FCIMP,
+    I_Z,
+    I_ZP,
+    L1,
+    M_C,
+    MAF,
+    MBF,
+    NREC_ALL,
+    NREC_STATES,
+    PIN_DAMP,
+    ROLL_K,
+    S_PHI,
+    S_THETA,
+    SETTLE,
+    SETTLE_WINDOW,
+    SLOPE,
+    SLOPE_MODEL,
+    ST,
+    STOP_LEVEL,
+    STOPPED_LEVEL,
+    STOPPED_NONFINITE,
+    STOPPED_SETTLED,
+    STOPPED_WARNINGS,
+    T1,
+    T2,
+    TOE,
+    TRAIL,
+    U0,
+    V0,
+    X_M,
+    X_P,
+    G,
+    H,
+    M,
+    _inl,
+    _inl_py,
+    _int,
+    acc_exact,
+    acc_slope,
+    acc_thesis,
+    accelerations,
+    cv_exact,
+    cv_thesis,
+    gravity_body,
+    held_pins,
+    loads_plane,
+    stick_slip,
+)
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
@@ -31,37 +85,6 @@ NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
            "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_pins", "stick_slip",
            "tire_yaw_moment", "plane", "plane_loads"]
-
-# Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
-# inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
-# which made inline="always" cost about 3x the compile time); no Python wrapper unless Python calls it.
-_NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
-_int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
-_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
-_inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
-cv_exact = _int(_fw.contact_velocities_exact)
-cv_thesis = _int(_fw.contact_velocities_thesis)
-acc_exact = _int(_fw.accelerations_exact)
-acc_thesis = _int(_fw.accelerations_thesis)
-# the chair on a plane (stability.models.slope): in-plane gravity on every body, loads with the normal weight
-acc_slope = _int(_sl.accelerations_slope_exact)
-gravity_body = _int(_sl.gravity_body)
-loads_plane = _int(_sl.normal_loads_plane)
-
-# Params vector layout (stability.params.Params order)
-X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
-# per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
-U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
-# cfg slots of the plane: flag, cos/sin of the cross slope, cos/sin of the grade
-SLOPE, C_PHI, S_PHI, C_THETA, S_THETA = range(13, 18)
-#: cfg slot: every run stops at ``levels[cfg[18]]`` (-1: never); ``status[0]``: 1 warning rule, 2 that level,
-#: 3 the yaw rate left the finite numbers (NaN or infinite: the peak is then NaN, never a finite answer)
-STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL, STOPPED_NONFINITE = 18, 1.0, 2.0, 3.0
-#: model codes: 0 thesis, 1 exact, 2 exact on a slope (accelerations with in-plane gravity)
-SLOPE_MODEL = 2
-#: recorded columns after t (COLUMNS[1:]); the first 10 are the states
-NREC_ALL, NREC_STATES = 31, 10
-
 
 @_inl_py
 def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
@@ -155,92 +178,6 @@ def rolling_force(kind, coef, scale, fz, vx):
     else:
         mag = coef[0] * scale * fz if fz > 0.0 else 0.0
     return math.copysign(mag, -vx)
-
-
-@_int
-def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
-    """Accelerations with the casters flagged ``hold_*`` held (locked or stuck): ``(acc, M_A, M_B)``.
-
-    A held caster's pin moment keeps its swivel acceleration zero (the
-    accelerations are affine in the pin moments: two or three evaluations);
-    the other keeps the moment given.
-    """
-    if hold_a and hold_b:
-        a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
-        a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
-        a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P, g1, g2)
-        k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
-        k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
-        det = k11 * k22 - k12 * k21
-        ma = (-a0[3] * k22 + a0[4] * k12) / det
-        mb = (-a0[4] * k11 + a0[3] * k21) / det
-        ud = a0[0] + ma * (a1[0] - a0[0]) + mb * (a2[0] - a0[0])
-        vd = a0[1] + ma * (a1[1] - a0[1]) + mb * (a2[1] - a0[1])
-        rd = a0[2] + ma * (a1[2] - a0[2]) + mb * (a2[2] - a0[2])
-        return (ud, vd, rd, 0.0, 0.0), ma, mb
-    if hold_a:
-        a0 = accelerations(model, s, F, 0.0, mb, fy_ext, mz, rdc, P, g1, g2)
-        a1 = accelerations(model, s, F, 1.0, mb, fy_ext, mz, rdc, P, g1, g2)
-        r = -a0[3] / (a1[3] - a0[3])
-        return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]), 0.0,
-                 a0[4] + r * (a1[4] - a0[4])), r, mb)
-    a0 = accelerations(model, s, F, ma, 0.0, fy_ext, mz, rdc, P, g1, g2)
-    a1 = accelerations(model, s, F, ma, 1.0, fy_ext, mz, rdc, P, g1, g2)
-    r = -a0[4] / (a1[4] - a0[4])
-    return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]),
-             a0[3] + r * (a1[3] - a0[3]), 0.0), ma, r)
-
-
-@_int
-def stick_slip(model, s, F, fy_ext, mz, rdc, P, g1, g2):
-    """Accelerations and pin moments under stick-slip Coulomb friction: ``(acc, M_A, M_B)``.
-
-    A swivelling caster (rate not zero) gets the kinetic moment against its
-    rate, as in WCHAIR.  A caster at rest stays at rest while the moment
-    that holds it is within its friction limit (Karnopp's stick phase);
-    otherwise it breaks away with the limit moment in the holding moment's
-    direction.  Holding one caster changes the other's holding moment, so a
-    break-away is decided again with the other's new moment.
-    """
-    ed, bd = s[7], s[8]
-    ma = math.copysign(P[MAF], -ed) if ed != 0.0 else 0.0
-    mb = math.copysign(P[MBF], -bd) if bd != 0.0 else 0.0
-    ha, hb = ed == 0.0, bd == 0.0
-    for _ in range(3):
-        if not (ha or hb):
-            break
-        acc, ra, rb = held_pins(model, s, F, ma, mb, ha, hb, fy_ext, mz, rdc, P, g1, g2)
-        free_a = ha and abs(ra) > P[MAF]
-        free_b = hb and abs(rb) > P[MBF]
-        if not (free_a or free_b):
-            return acc, ra, rb
-        if free_a:
-            ma, ha = math.copysign(P[MAF], ra), False
-        if free_b:
-            mb, hb = math.copysign(P[MBF], rb), False
-    return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
-
-
-@_int
-def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
-    """The generated accelerations of the model.
-
-    0 thesis (with the lagged yaw acceleration ``rdc``), 1 exact, 2 exact on a
-    plane with the in-plane gravity ``g1, g2`` (m/s^2) on every body.
-    """
-    u, v, r, ce, se, cb, sb, ed, bd = s
-    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    if model == SLOPE_MODEL:
-        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                         P[M_C], P[I_Z], P[I_ZP])
-    if model == 0:
-        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                          P[M_C], P[I_Z], P[I_ZP], rdc)
-    return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                     fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                     P[M_C], P[I_Z], P[I_ZP])
 
 
 @_inl
@@ -357,6 +294,33 @@ def record_row(rec, row, states, F, loads, slips, P, trig, extra):
         rec[27, row], rec[28, row], rec[29, row], rec[30, row] = extra
 
 
+@_inl
+def rest_at_reversal(rate, new, limit):
+    """The swivel rate after a step: 0 where it would change sign within the step and friction (``limit`` > 0,
+    stick-slip law only) may hold the caster, else ``new`` (the kinetic law passes ``limit`` 0)."""
+    return 0.0 if limit > 0.0 and rate != 0.0 and new * rate <= 0.0 else new
+
+
+@_inl
+def settled(track, t, held, a, ma, mb):
+    """Whether a run has settled: both casters held (stuck) since ``track[0]`` for :data:`SETTLE_WINDOW` s, the
+    push over, and neither ``|yaw rate|`` ``a`` nor either holding moment ``ma``, ``mb`` larger than at the middle
+    of that window (``track[2:5]``, recorded when ``track[1]`` is set).  A held caster's moment is within its
+    friction limit; a chair with both casters held is the locked-caster chair, stable below its locked critical
+    speed, whose response settles into a steady coast or turn while its speed falls: it then stays held and never
+    reaches the level.  ``held`` is this step's state; ``track`` is updated in place."""
+    if not held:
+        track[0] = -1.0
+        return False
+    if track[0] < 0.0:
+        track[0], track[1] = t, 0.0
+    elif track[1] == 0.0 and t >= track[0] + 0.5 * SETTLE_WINDOW:
+        track[1], track[2], track[3], track[4] = 1.0, a, ma, mb
+    elif track[1] != 0.0 and t >= track[0] + SETTLE_WINDOW:
+        return a <= track[2] and ma <= track[3] and mb <= track[4]
+    return False
+
+
 @_int
 def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
             rec, stats, warn, status):
@@ -365,6 +329,9 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
         int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
+    settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
+    track = np.array([-1.0, 0.0, 0.0, 0.0, 0.0])      # settled(): since when both held, mid-window values
+    rest_a, rest_b = (P[MAF], P[MBF]) if sticks else (0.0, 0.0)   # stick-slip: a reversing rate comes to rest
     use_ctl = ctl_f[0] > 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
@@ -451,6 +418,10 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         if stop_lvl >= 0 and stats[2 + stop_lvl] == stats[2 + stop_lvl]:   # the level is reached: stop here
             status[0], status[1] = STOPPED_LEVEL, t
             break
+        if settle and settled(track, t, t > duimp and ED == 0.0 and BD == 0.0 and EDD == 0.0 and BDD == 0.0, a,
+                              abs(MA), abs(MB)):
+            status[0], status[1] = STOPPED_SETTLED, t
+            break
         # UPDATE / ITRATE
         FC1, FC2 = fc1, fc2 + fy_ext
         du = UD * dt + UDD * half_dt2
@@ -462,13 +433,8 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         VD += VDD * dt
         B += BD * dt + BDD * half_dt2
         E += ED * dt + EDD * half_dt2
-        if sticks:      # a rate that would change sign within the step comes to rest where friction may hold it
-            bd_new, ed_new = BD + BDD * dt, ED + EDD * dt
-            BD = 0.0 if P[MBF] > 0.0 and BD != 0.0 and bd_new * BD <= 0.0 else bd_new
-            ED = 0.0 if P[MAF] > 0.0 and ED != 0.0 and ed_new * ED <= 0.0 else ed_new
-        else:
-            BD += BDD * dt
-            ED += EDD * dt
+        BD = rest_at_reversal(BD, BD + BDD * dt, rest_b)
+        ED = rest_at_reversal(ED, ED + EDD * dt, rest_a)
         THE += THED * dt + THEDD * half_dt2
         THED += THEDD * dt
     return nrec

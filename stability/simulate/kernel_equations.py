@@ -1,0 +1,143 @@
+"""The equations step of the compiled kernels (numba): the generated equations, the pin moments, the layouts.
+
+The generated functions of :mod:`stability.models.full_width` and
+:mod:`stability.models.slope` compiled as they are, the accelerations of a
+step with given pin moments, with held (locked or stuck) casters, and under
+the stick-slip pin friction law; and the array layouts the engine writes.
+Shared by :mod:`stability.simulate.kernel` (which re-exports every name) and
+:mod:`stability.simulate.adaptive_kernel`; their cached code is flushed when
+this file changes (:data:`stability.simulate.cache_stamp.KERNEL_SOURCES`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from numba import njit
+
+from ..models.full_width import generated as _fw
+from ..models.slope import generated as _sl
+
+__all__ = ["accelerations", "held_pins", "stick_slip", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW",
+           "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
+
+# Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
+# inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
+# which made inline="always" cost about 3x the compile time); no Python wrapper unless Python calls it.
+_NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
+_int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
+_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
+_inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
+cv_exact = _int(_fw.contact_velocities_exact)
+cv_thesis = _int(_fw.contact_velocities_thesis)
+acc_exact = _int(_fw.accelerations_exact)
+acc_thesis = _int(_fw.accelerations_thesis)
+# the chair on a plane (stability.models.slope): in-plane gravity on every body, loads with the normal weight
+acc_slope = _int(_sl.accelerations_slope_exact)
+gravity_body = _int(_sl.gravity_body)
+loads_plane = _int(_sl.normal_loads_plane)
+
+# Params vector layout (stability.params.Params order)
+X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
+# per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
+U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
+# cfg slots of the plane: flag, cos/sin of the cross slope, cos/sin of the grade
+SLOPE, C_PHI, S_PHI, C_THETA, S_THETA = range(13, 18)
+#: cfg slot: every run stops at ``levels[cfg[18]]`` (-1: never); ``status[0]``: 1 warning rule, 2 that level,
+#: 3 the yaw rate left the finite numbers (NaN or infinite: the peak is then NaN, never a finite answer)
+STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL, STOPPED_NONFINITE = 18, 1.0, 2.0, 3.0
+#: cfg slot: a run with a stop level and stick-slip friction also stops when it has settled (``status[0]`` 4):
+#: after the push, both casters stuck for :data:`SETTLE_WINDOW` s and neither ``|yaw rate|`` nor either holding
+#: moment larger than at the middle of that window (docs/studies.md: it then never reaches the level)
+SETTLE, STOPPED_SETTLED, SETTLE_WINDOW = 19, 4.0, 0.5
+#: model codes: 0 thesis, 1 exact, 2 exact on a slope (accelerations with in-plane gravity)
+SLOPE_MODEL = 2
+#: recorded columns after t (COLUMNS[1:]); the first 10 are the states
+NREC_ALL, NREC_STATES = 31, 10
+
+
+@_int
+def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
+    """Accelerations with the casters flagged ``hold_*`` held (locked or stuck): ``(acc, M_A, M_B)``.
+
+    A held caster's pin moment keeps its swivel acceleration zero (the
+    accelerations are affine in the pin moments: two or three evaluations);
+    the other keeps the moment given.
+    """
+    if hold_a and hold_b:
+        a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+        a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+        a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P, g1, g2)
+        k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
+        k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
+        det = k11 * k22 - k12 * k21
+        ma = (-a0[3] * k22 + a0[4] * k12) / det
+        mb = (-a0[4] * k11 + a0[3] * k21) / det
+        ud = a0[0] + ma * (a1[0] - a0[0]) + mb * (a2[0] - a0[0])
+        vd = a0[1] + ma * (a1[1] - a0[1]) + mb * (a2[1] - a0[1])
+        rd = a0[2] + ma * (a1[2] - a0[2]) + mb * (a2[2] - a0[2])
+        return (ud, vd, rd, 0.0, 0.0), ma, mb
+    if hold_a:
+        a0 = accelerations(model, s, F, 0.0, mb, fy_ext, mz, rdc, P, g1, g2)
+        a1 = accelerations(model, s, F, 1.0, mb, fy_ext, mz, rdc, P, g1, g2)
+        r = -a0[3] / (a1[3] - a0[3])
+        return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]), 0.0,
+                 a0[4] + r * (a1[4] - a0[4])), r, mb)
+    a0 = accelerations(model, s, F, ma, 0.0, fy_ext, mz, rdc, P, g1, g2)
+    a1 = accelerations(model, s, F, ma, 1.0, fy_ext, mz, rdc, P, g1, g2)
+    r = -a0[4] / (a1[4] - a0[4])
+    return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]),
+             a0[3] + r * (a1[3] - a0[3]), 0.0), ma, r)
+
+
+@_int
+def stick_slip(model, s, F, fy_ext, mz, rdc, P, g1, g2):
+    """Accelerations and pin moments under stick-slip Coulomb friction: ``(acc, M_A, M_B)``.
+
+    A swivelling caster (rate not zero) gets the kinetic moment against its
+    rate, as in WCHAIR.  A caster at rest stays at rest while the moment
+    that holds it is within its friction limit (Karnopp's stick phase);
+    otherwise it breaks away with the limit moment in the holding moment's
+    direction.  Holding one caster changes the other's holding moment, so a
+    break-away is decided again with the other's new moment.
+    """
+    ed, bd = s[7], s[8]
+    ma = math.copysign(P[MAF], -ed) if ed != 0.0 else 0.0
+    mb = math.copysign(P[MBF], -bd) if bd != 0.0 else 0.0
+    ha, hb = ed == 0.0, bd == 0.0
+    for _ in range(3):
+        if not (ha or hb):
+            break
+        acc, ra, rb = held_pins(model, s, F, ma, mb, ha, hb, fy_ext, mz, rdc, P, g1, g2)
+        free_a = ha and abs(ra) > P[MAF]
+        free_b = hb and abs(rb) > P[MBF]
+        if not (free_a or free_b):
+            return acc, ra, rb
+        if free_a:
+            ma, ha = math.copysign(P[MAF], ra), False
+        if free_b:
+            mb, hb = math.copysign(P[MBF], rb), False
+    return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
+
+
+@_int
+def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    """The generated accelerations of the model.
+
+    0 thesis (with the lagged yaw acceleration ``rdc``), 1 exact, 2 exact on a
+    plane with the in-plane gravity ``g1, g2`` (m/s^2) on every body.
+    """
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    if model == SLOPE_MODEL:
+        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                         P[M_C], P[I_Z], P[I_ZP])
+    if model == 0:
+        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                          P[M_C], P[I_Z], P[I_ZP], rdc)
+    return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                     fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                     P[M_C], P[I_Z], P[I_ZP])
