@@ -145,7 +145,17 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
 
 
 def decision_beyond(d: ReportData) -> list[bool]:
-    """For each bar of :func:`decision_bars`: whether its value is the bracket's end, the speed lying above it."""
+    """For each bar of :func:`decision_bars`: whether its value is the bracket's end, the speed lying above it.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    list of bool
+        One per bar, in :func:`decision_bars`'s order.
+    """
     a = d.advice
     st = [a.verdict.equal_instability_status]
     if a.recommendations:
