@@ -200,6 +200,20 @@ def test_compiled_matches_reference_paths(casters):
     _close(batch[1], refb[1], run_tolerance(FRONT, 0.6, 1.0, model="exact", casters=casters), what="batch")
 
 
+def test_stick_slip_on_a_slope_compiled_matches_reference():
+    """The stick-slip law on a plane: the compiled kernel and the Python reference take the same steps (measured
+    6e-16 relative); tolerance as above, the larger of the free and locked bounds since a caster switches between
+    them (tests/test_stick_slip.py)."""
+    kw = dict(model="exact", duration=1.0, slope=(4.0, 2.0), friction_law="stick-slip")
+    comp = simulate(EJ, 1.0, **kw)
+    with reference_engine():
+        ref = simulate(EJ, 1.0, **kw)
+    assert comp.settings["friction_law"] == ref.settings["friction_law"] == "stick-slip"
+    tol = max(run_tolerance(EJ, 1.0, 1.0, model="exact", casters=c) for c in ("free", "locked"))
+    _close(comp, ref, tol, what="stick-slip on a slope")
+    assert (np.asarray(comp.eta_dot) == 0.0).any()          # a caster did stick (the law was exercised)
+
+
 def test_adaptive_compiled_matches_python_rhs():
     """Same right-hand side compiled and in Python; LSODA may take a different step on a rounding-level
     difference, so the two agree to the integration error (rtol = 1e-9 here), tested at 1e-8 of the signal."""
