@@ -145,11 +145,14 @@ def test_equal_instability_search_equals_the_bisection_to_its_tolerance():
 
 
 def test_run_counts_quoted_in_docs_studies_md():
-    """docs/studies.md, "Second pass": E&J Premier 10 runs at 0.75 m/s, 67 over six speeds, 9 without pin
-    friction at 0.5 and 0.75 m/s (the bisection: 35 a speed).  Deterministic on one CPU; with pin friction a
-    push near the threshold may flip on another CPU's rounding (the 1 % band, tests/test_search.py) and cost
-    a run or two more, so the counts are held to +10 %."""
+    """docs/studies.md, "Second pass": E&J Premier 10 runs at 0.75 m/s, 56 over six speeds (67 with program
+    WCHAIR's kinetic pin friction, the law of the measured ratios), 9 without pin friction at 0.5 and 0.75 m/s
+    (the bisection: 35 a speed).  Deterministic on one CPU; with pin friction a push near the threshold may flip
+    on another CPU's rounding (the kinetic law's 1 % band, tests/test_search.py) and cost a run or two more, so
+    the counts are held to +10 %."""
     ej = preset("ej-premier")
+    six = [0.5, 0.6, 0.75, 0.9, 1.0, 1.2]
     assert critical_impulses(ej, [0.75])[0].runs <= 11
-    assert sum(p.runs for p in critical_impulses(ej, [0.5, 0.6, 0.75, 0.9, 1.0, 1.2])) <= 74
+    assert sum(p.runs for p in critical_impulses(ej, six)) <= 62
+    assert sum(p.runs for p in critical_impulses(ej, six, friction_law="kinetic")) <= 74
     assert sum(p.runs for p in critical_impulses(_frictionless("ej-premier"), [0.5, 0.75])) <= 10

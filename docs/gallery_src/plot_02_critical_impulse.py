@@ -4,7 +4,9 @@ Critical impulse against speed, with its range over pin friction
 
 The critical impulse is the smallest lateral push at the centre of gravity
 after which the chair's yaw rate reaches 1 rad/s within 10 s (the thesis's
-criterion; nonlinear simulation, compiled WCHAIR scheme, exact model). The
+criterion; nonlinear simulation, compiled WCHAIR scheme with stick-slip pin
+friction, the step-converged law of the measures (program WCHAIR's kinetic
+law is the ``simulate`` command's default, :doc:`/simulator`), exact model). The
 push is a constant force for 0.1 s (101 steps of 1 ms, so impulse = force x
 0.101 s). The friction at the caster pins is an assumed input, so the answer
 is shown for the preset's 0.1 N m and as a band from 0.05 to 0.2 N m; the
