@@ -130,6 +130,18 @@ def test_nonlinear_chunk_matches_the_batched_search(tmp_path):
     assert rows[1][j] > rows[0][j]            # more pin friction: a larger push needed (elasticity ~1)
 
 
+def test_critical_impulse_in_slices_equals_one_call(tmp_path, monkeypatch):
+    """A chunk's critical impulses are searched SEARCH_SLICE pairs per call (so a large chunk passes the studies'
+    work check): the same numbers as one call, the searches of different pairs being independent."""
+    import stability.sweep.measures as measures
+
+    spec = loads_spec('speeds = [0.75, 1.0]\nmeasures = ["critical_impulse"]\n[grid]\npin_friction = [0.1, 0.2]\n',
+                      tmp_path)
+    whole = compute_chunk(spec, 0)
+    monkeypatch.setattr(measures, "SEARCH_SLICE", 3)          # 4 pairs: slices of 3 and 1
+    assert compute_chunk(spec, 0) == whole
+
+
 def test_friction_law_reaches_the_nonlinear_measures(tmp_path):
     """The spec's friction_law (default "stick-slip", the step-converged law) reaches the critical impulse: power-fwd at 1.5 m/s
     needs a real push (7.8 N s; test_stick_slip.py checks it against the adaptive scheme), where WCHAIR's kinetic
