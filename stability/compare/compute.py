@@ -18,7 +18,7 @@ import numpy as np
 
 from .._validate import check_model
 from ..chair import Chair, to_mapping
-from ..defaults import SUMMARY_SPEEDS
+from ..defaults import MEASURE_FRICTION_LAW, SUMMARY_SPEEDS
 from ..linear import zero_width
 from ..linear.batch import ChairBatch, check_eigen_work
 from ..linear.intervals import (
@@ -391,7 +391,8 @@ def _nonlinear(chairs: Sequence[Chair], model: str, nonlinear_speeds: Sequence[f
         largest = max(r.largest_tried_Ns for r in row)
         qs.append(Quantity(f"critical_impulse_Ns@{s:g}", f"critical impulse at {s:g} m/s", "N s", True, vals,
                            tuple(None for _ in chairs), f"level not reached with pushes up to {largest:.3g} N s"))
-    push = f"{res[0].push}; reference push {THESIS_PUSH.describe(0.001)}" if res else THESIS_PUSH.describe(0.001)
+    push = (f"{res[0].push}; reference push {THESIS_PUSH.describe(0.001)}" if res else THESIS_PUSH.describe(0.001)) \
+        + f"; {MEASURE_FRICTION_LAW} pin friction (docs/simulator.md)"
     return qs, push
 
 
