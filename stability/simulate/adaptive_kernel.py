@@ -15,28 +15,14 @@ import numpy as np
 from numba import njit
 
 from .kernel import (
-    D1,
-    D2,
     FCIMP,
-    I_Z,
-    I_ZP,
-    L1,
-    M_C,
     MAF,
     MBF,
     SLOPE_MODEL,
-    T1,
-    T2,
-    TRAIL,
-    X_M,
-    X_P,
     G,
-    M,
     _inl,
     _int,
-    acc_exact,
-    acc_slope,
-    acc_thesis,
+    accelerations,
     invalidate_stale_cache,
     kinematics,
     mechan,
@@ -61,20 +47,10 @@ FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
 
 @_int
 def acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2):
-    """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact, 2 exact on a plane)."""
-    u, v, r, ce, se, cb, sb, ed, bd = s
-    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    if model == SLOPE_MODEL:
-        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                         P[M_C], P[I_Z], P[I_ZP])
-    if model == 0:
-        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                          P[M_C], P[I_Z], P[I_ZP])
-    return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                     fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                     P[M_C], P[I_Z], P[I_ZP])
+    """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact, 2 exact on a plane):
+    the kernel's :func:`~stability.simulate.kernel_equations.accelerations` with no lag (``rdc`` None: the thesis
+    variant's caster equations then use the current yaw acceleration)."""
+    return accelerations(model, s, F, ma, mb, fy_ext, mz, None, P, g1, g2)
 
 
 @_int
