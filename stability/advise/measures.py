@@ -34,7 +34,6 @@ from ..shimmy.band import band_core, shimmy_band
 from ..slope import drive_report, solve
 from ..study import critical_impulse_intervals, equal_instability_intervals
 from ..study.impulse_intervals import CriticalImpulseInterval
-from ..study.intervals import EqualInstabilityInterval
 from ..tipping import tip_angles
 
 __all__ = ["Interval", "Measures", "measure_chairs", "nonlinear_measures", "IMPULSE_SPEED"]
@@ -172,18 +171,10 @@ def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval
     """
     ci = critical_impulse_intervals(chairs, IMPULSE_SPEED)
     ei = equal_instability_intervals(chairs)
-    return [(Interval(float(imp.point.bound_Ns), imp.low_Ns, imp.high_Ns), _with_bound(eq), eq.point.status,
+    return [(Interval(float(imp.point.bound_Ns), imp.low_Ns, imp.high_Ns),
+             Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status,
              imp.point.status, _half_step(imp))
             for imp, eq in zip(ci, ei, strict=True)]
-
-
-def _with_bound(eq: EqualInstabilityInterval) -> Interval:
-    """The equal-instability speed as an Interval whose ends include the value: a nominal case beyond the searched
-    bracket ("above 3 m/s") is its bracket end, and the interval's variants (defined ones only) may all lie below it."""
-    v = float(eq.point.value_or_bound)
-    lo = v if eq.low is None else min(eq.low, v)
-    hi = v if eq.high is None else max(eq.high, v)
-    return Interval(v, lo, hi)
 
 
 def _half_step(imp: CriticalImpulseInterval) -> float | None:

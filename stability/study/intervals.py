@@ -112,7 +112,8 @@ class EqualInstabilityInterval:
     point : EqualInstability
         The nominal case (the thesis's push, nominal friction, ``model``).
     low, high : float or None
-        Smallest and largest speed over every defined variant, m/s.
+        Smallest and largest speed over every defined variant, m/s (a variant beyond the searched bracket counts
+        as the bracket's end).
     factors : tuple of FactorRange
     dominant : str
         The factor with the widest range.
@@ -137,8 +138,17 @@ class EqualInstabilityInterval:
         """``"range 0.779-1.11 m/s"`` (3 significant figures), or ``"no range: ..."`` when no variant is defined:
         the words the study command and the report print."""
         if self.low is None or self.high is None:
-            return "no range: every variant is a bound or undefined"
-        return f"range {self.low:.3g}-{self.high:.3g} m/s"
+            return "no range: every variant is undefined"
+        bound = {v.result.status for v in self.variants if v.result is not None and v.speed is None}
+        above = "above" in bound and self.high == max(v.result.value_or_bound for v in self.variants
+                                                         if v.result is not None)
+        below = "below" in bound and self.low == min(v.result.value_or_bound for v in self.variants
+                                                        if v.result is not None)
+        if not (above or below):
+            return f"range {self.low:.3g}-{self.high:.3g} m/s"
+        lo = f"below {self.low:.3g}" if below else f"{self.low:.3g}"
+        hi = f"above {self.high:.3g}" if above else f"{self.high:.3g}"
+        return f"range {lo} to {hi} m/s" if self.low != self.high else f"range {hi} m/s"
 
     def describe(self) -> str:
         """One line: the point value, the interval and what drives it."""
@@ -358,7 +368,9 @@ def _assemble(chair: Chair, vs: tuple, ref0: Chair, reference_speed: float, crit
         sp = [v.speed for v in group if v.speed is not None]
         factors.append(FactorRange(name, float(min(sp)) if sp else None, float(max(sp)) if sp else None,
                                    tuple(v.label for v in group if v.speed is None)))
-    all_sp = [v.speed for v in vs if v.speed is not None]
+    # the range's ends include a variant beyond the searched bracket at the bracket's end ("above 3 m/s" counts as
+    # 3 m/s): a nominal case above the bracket is then inside its own range (the advisor's and page 1's intervals)
+    all_sp = [v.result.value_or_bound for v in vs if v.result is not None]
     dominant = max(factors, key=lambda f: f.width).factor if factors else "nominal"
     return EqualInstabilityInterval(chair.name, nominal.result, float(min(all_sp)) if all_sp else None,
                                     float(max(all_sp)) if all_sp else None, tuple(factors), dominant, vs,
