@@ -197,3 +197,16 @@ def test_cli_bad_input_one_line_exit_2(capsys, args, word):
         rc = exc.code
     err = capsys.readouterr().err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and word in err
+
+
+def test_equal_instability_range_counts_a_variant_beyond_the_bracket_as_its_end():
+    """The E&J Premier with the advisor's recommended change (pin friction 0.3 N m, trail 6 cm) reaches the
+    reference instability only above the 3 m/s bracket; some variants (a harder push) do below it.  The range then
+    runs from the lowest found speed to the bracket's end, so the nominal value (the bound) lies inside it, as the
+    advisor and page 1 show it (tests/test_advise.py checks they print the same interval)."""
+    c = preset("ej-premier").replace(pin_friction_left=0.3, pin_friction_right=0.3, trail=0.06)
+    iv = study.equal_instability_interval(c, model="exact")
+    assert iv.point.status == "above" and iv.point.value_or_bound == iv.point.bracket[1] == 3.0
+    found = [v.speed for v in iv.variants if v.speed is not None]
+    assert found and iv.low == min(found) < 3.0 and iv.high == 3.0
+    assert iv.range_text() == f"range {iv.low:.3g} to above 3 m/s"
