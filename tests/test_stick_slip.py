@@ -259,14 +259,15 @@ def test_python_yaw_moment_with_stick_slip_equals_the_compiled_controller():
 
 def test_reference_engine_critical_impulse_with_stick_slip():
     """Inside reference_engine() (the benchmarks' baseline) the search runs the numpy reference with the same law:
-    E&J Premier at 0.75 m/s, 3.25 N s as compiled, to the search's 0.5 % bracket."""
+    E&J Premier at 0.75 m/s, the compiled answer to the search's 0.5 % bracket, which holds the threshold."""
     from stability.simulate import reference_engine
 
     compiled = critical_impulse(EJ, 0.75, friction_law="stick-slip")
     with reference_engine():
         ref = critical_impulse(EJ, 0.75, friction_law="stick-slip")
     assert compiled.status == ref.status == "found"
-    assert round(compiled.impulse_Ns, 2) == 3.25          # the compiled answer (kinetic law: 2.16 N s at 1.0 m/s)
+    # the threshold measured on a 0.1 % grid (docs/studies.md): misses at 3.253 N s, reaches at 3.257 N s
+    assert compiled.low_Ns <= 3.257 and compiled.high_Ns >= 3.253
     assert abs(math.log(ref.impulse_Ns / compiled.impulse_Ns)) < 0.005
 
 

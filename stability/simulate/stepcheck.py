@@ -19,7 +19,7 @@ from ..chair import Chair
 from ..linear import state_matrices
 from .options import WCHAIR_DT
 
-__all__ = ["SAFETY", "stable_steps", "auto_step", "StepStabilityWarning"]
+__all__ = ["SAFETY", "stable_steps", "step_limits_and_growth", "auto_step", "StepStabilityWarning"]
 
 #: Fraction of the limit that ``dt="auto"`` uses.
 SAFETY = 0.8
@@ -46,8 +46,36 @@ def stable_steps(chairs: Sequence[Chair], speeds: np.ndarray, model: str, caster
     ndarray
         Seconds; ``inf`` where no mode decays.
     """
+    return step_limits_and_growth(chairs, speeds, model, casters)[0]
+
+
+def step_limits_and_growth(chairs: Sequence[Chair], speeds: np.ndarray, model: str,
+                           casters: str) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`stable_steps` and the largest growth rate ``max Re(lambda)`` (1/s), from one eigen-decomposition.
+
+    The growth rate is the linear model's (pins frictionless): the rate at
+    which a response large against the pin friction grows
+    (:func:`stability.study.search.bracket_search` starts its fit from it).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One per run.
+    speeds : ndarray
+        Forward speeds, m/s (> 0), one per run.
+    model, casters : str
+        Equation variant and caster state of the runs.
+
+    Returns
+    -------
+    limits : ndarray
+        s; ``inf`` where no mode decays.
+    growth : ndarray
+        1/s; negative where every mode decays.
+    """
     speeds = np.abs(np.asarray(speeds, dtype=float))
     out = np.empty(len(speeds))
+    growth = np.empty(len(speeds))
     groups: dict[Chair, list[int]] = {}
     for i, c in enumerate(chairs):
         groups.setdefault(c, []).append(i)
@@ -57,7 +85,8 @@ def stable_steps(chairs: Sequence[Chair], speeds: np.ndarray, model: str, caster
         with np.errstate(divide="ignore", invalid="ignore"):
             lim = np.where(lam.real < 0, -2.0 * lam.real / np.abs(lam) ** 2, np.inf)
         out[idx] = lim.min(axis=-1)[inverse.reshape(-1)]
-    return out
+        growth[idx] = lam.real.max(axis=-1)[inverse.reshape(-1)]
+    return out, growth
 
 
 def auto_step(limit: float) -> float:

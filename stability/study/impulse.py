@@ -18,6 +18,7 @@ import numpy as np
 from .._validate import check_choice, check_model, check_positive, check_speeds
 from ..chair import Chair
 from ..reference import HORIZON, LEVEL, THESIS_PUSH, Push
+from ..simulate.stepcheck import step_limits_and_growth
 from .search import bracket_search
 from .summaries import SummaryRunner, run_steps
 
@@ -335,11 +336,9 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
     chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
     pair_steps = None
+    casters = sim_options.get("casters", "free")
+    limits, rates = step_limits_and_growth(list(chair_b.ravel()), speed_b.ravel(), model, casters)
     if scheme == "wchair":
-        from ..simulate.stepcheck import stable_steps
-
-        casters = sim_options.get("casters", "free")
-        limits = stable_steps(list(chair_b.ravel()), speed_b.ravel(), model, casters)
         free = limits if casters == "free" else None       # the work check is stated for free casters
         check_study_work(list(chair_b.ravel()), speed_b.ravel(), model, horizon, dt,
                          runs_per_speed(min_impulse, max_impulse, max_rounds), limits=free)
@@ -357,7 +356,7 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
     starts = [_start(c, s, model, duration, level, horizon, min_impulse, max_impulse) for c, s in run_list]
     probs = bracket_search(len(run_list), starts, evaluate, x_min=math.log(min_impulse), x_max=math.log(max_impulse),
                            width=math.log1p(rel_tol), max_step=math.log(2.0), max_rounds=max_rounds,
-                           horizon=horizon)
+                           horizon=horizon, rates=rates)
     steps = Push(1.0, duration).steps(dt)
     convention = (f"constant force at the c.g. for {duration:g} s ({steps} steps of {dt * 1e3:g} ms: "
                   f"impulse = force x {unit:.4g} s)" if scheme == "wchair" else

@@ -1,27 +1,38 @@
 """Batched bracketing root search on a margin: every open problem proposes a push (or speed) per round.
 
-The critical-impulse and equal-instability searches share this machinery.
+The critical-impulse search (:func:`stability.study.impulse.critical_impulses`) runs on it.
 Each problem ``i`` looks for the root of a margin ``g_i(x)`` that is negative
 where the run does not reach the level and non-negative where it does
 (:meth:`stability.study.summaries.Summaries.margin`).  A problem keeps every
 point it has evaluated; its bracket is the largest ``x`` that does not reach
 below the smallest that does.  Each round it proposes at most two points:
 
-* no bracket yet: a step from the nearest end towards the root the margin
-  predicts (a response linear in the push has ``g = ln(J / J*)`` exactly;
-  going up, the secant through the two largest points, since a peak near
-  the level grows more slowly than the push), at least ``2 eps`` and at most ``max_step``;
-* a bracket: the root predicted by the secant through the two points
-  nearest the root on the reaching side (smooth there: the time to the level
-  grows continuously as the push falls to the critical one), else by the
-  Illinois-modified regula falsi through the bracket's ends; a prediction
-  outside the middle 90 % of a wide bracket, or a bracket that the last round
-  did not halve, falls back to the bracket's midpoint;
-* once the prediction is trusted, the pair ``x* + eps`` and
-  ``x* + eps - width`` around it: if they straddle the root the bracket is
-  closed in that round; where ``x* + eps`` is within a width of the smallest
-  reaching point, that one point alone (the lower one could only confirm a
-  miss, at the cost of a full-horizon run).
+* the first round, without a prediction to start from: the largest push and
+  half of it (both usually reach the level early, cheaply, and together
+  give the next prediction);
+* no bracket yet, going down: the root predicted from the times the two
+  smallest reaching pushes took to reach the level and the linear model's
+  growth rate at the speed (:func:`_rate_fit`), at most a factor 4 down;
+  else from three of those times (:func:`_log_fit`), else the step the
+  margin predicts (a response linear in the push has ``g = ln(J / J*)``
+  exactly), at least ``2 eps`` and at most ``max_step``;
+* going up: the secant through the two largest points (a peak near the
+  level grows more slowly than the push), at most ``max_step``;
+* a bracket: the root predicted by :func:`_rate_fit`, else
+  :func:`_log_fit` through the points nearest the root on the reaching side
+  (smooth there: the time to the level grows continuously as the push falls
+  to the critical one), else regula falsi through the bracket's ends where
+  the margins grow like a linear response; otherwise a step from the
+  reaching end;
+* once the prediction is trusted (a :func:`_rate_fit` within 10 % of the
+  smallest reaching push, or any prediction inside a bracket), the pair
+  ``x* + eps`` and ``x* + eps - width`` around it: if they straddle the
+  root the bracket is closed in that round; where ``x* + eps`` is within a
+  width of the smallest reaching point, that one point alone (the lower one
+  could only confirm a miss).  A trusted pair that both reach means the
+  responses do not leave a threshold the way :func:`_rate_fit` assumes (the
+  kinetic pin-friction law's creep, docs/studies.md): that problem
+  continues without it.
 
 The final bracket is at most ``width`` wide and is verified by two runs, as
 the earlier plain bisection's was; so both report a point of the same
@@ -59,7 +70,12 @@ class Problem:
     cost : float
         Simulated time spent, s.
     misses : int
-        Fitted predictions that still reached the level (each widens the next step by 1.5).
+        Fitted predictions that still reached the level (each widens the next step by 1.5; after the first,
+        :func:`_rate_fit` is no longer used).
+    rounds : int
+        Rounds in which the problem had runs.
+    fit_pair : bool
+        Whether the last proposal was a pair around a trusted :func:`_rate_fit` prediction.
     """
 
     x: list = field(default_factory=list)
@@ -69,6 +85,8 @@ class Problem:
     status: str = "open"
     cost: float = 0.0
     misses: int = 0
+    rounds: int = 0
+    fit_pair: bool = False
 
     def bracket(self) -> tuple[float | None, float | None]:
         """``(lo, hi)``: the largest non-reaching point below the smallest reaching one (None: none)."""
@@ -121,6 +139,50 @@ def _log_fit(p: Problem, horizon: float) -> float | None:
     return math.log(root) if root > 0 else None
 
 
+def _reaching(p: Problem) -> list[tuple[float, float]]:
+    """``(x, t_level)`` of the reaching runs with a finite time, smallest push first."""
+    return sorted((x, t) for x, t, r in zip(p.x, p.t, p.reached, strict=True) if r and math.isfinite(t))
+
+
+def _rate_fit(p: Problem, rate: float, horizon: float) -> float | None:
+    """The root predicted by ``t_level = a - ln(J - J0) / rate`` through the two smallest reaching points.
+
+    Past the threshold push ``J0`` the response leaves along the linear
+    model's unstable mode, ``|r| ~ c (J - J0) exp(rate t)``, so the time
+    to the level is ``a - ln(J - J0) / rate``: with ``rate`` known (the
+    frictionless linear model's largest growth rate at the speed, 1/s), two
+    reaching runs ``J1 < J2`` give ``J0 = (q J1 - J2) / (q - 1)``,
+    ``q = exp(rate (t1 - t2))``.  The critical push is where that time
+    equals the horizon, ``J0 + (J1 - J0) exp(-rate (horizon - t1))``.
+    E&J Premier at 0.75 m/s (rate 1.451/s): runs at 5.03, 4.27, 3.88 and
+    3.26 N s reach the level at 2.35, 2.74, 3.07 and 6.55 s, a slope of
+    0.69-0.74 s per unit of ``ln(J - J0)`` against ``1/rate`` = 0.69 s,
+    and the pair at 5.03 and 4.27 N s predicts 3.263 N s against 3.254.
+    Just above the threshold the escape is slower than ``rate`` (the
+    friction still acts), so the prediction approaches from above (the
+    next pair brackets it).  None without two such points, without a
+    growing mode, or when they do not fit the form.
+    """
+    if not rate > 0.0:
+        return None
+    pts = _reaching(p)
+    if not pts:
+        return None
+    x1, t1 = pts[0]
+    far = [(x, t) for x, t in pts[1:] if x - x1 >= FIT_SPREAD]
+    if not far:
+        return None
+    x2, t2 = far[0]
+    if not t1 > t2:
+        return None
+    j1, j2 = math.exp(x1), math.exp(x2)
+    q = math.exp(min(rate * (t1 - t2), 700.0))
+    j0 = (q * j1 - j2) / (q - 1.0)
+    if not 0.0 < j0 < j1:
+        return None
+    return math.log(j0 + (j1 - j0) * math.exp(-rate * max(horizon - t1, 0.0)))
+
+
 def _far_below(p: Problem, x_min: float, horizon: float) -> bool:
     """Whether the run reaches the level whatever the push: then try ``x_min`` next.
 
@@ -163,62 +225,104 @@ def _linear_root(x1: float, g1: float, x2: float, g2: float) -> float | None:
     return x1 - g1 / slope
 
 
+#: Largest step down to a :func:`_rate_fit` prediction (ln 4: a fit through pushes far above the threshold,
+#: where the response saturates, overshoots less often than it stops short)
+FIT_STEP = math.log(4.0)
+#: A :func:`_rate_fit` predicting the root within 10 % below the smallest reaching push is trusted to about
+#: 1 %: the round tries the pair around it
+FIT_NEAR = math.log(1.1)
+#: :func:`_rate_fit` takes its second run at least 2 % above the first: two runs closer together reach the level
+#: at nearly the same time, and the difference of those times no longer resolves the threshold
+FIT_SPREAD = math.log(1.02)
+
+
 def _propose(p: Problem, x_start: float, x_min: float, x_max: float, width: float, max_step: float,
-             horizon: float) -> list[float]:
+             horizon: float, rate: float = math.nan) -> list[float]:
     """The next points of one problem (empty when it is closed; sets ``p.status``)."""
-    eps = 0.45 * width
     if not p.x:
+        if x_start >= x_max - 1e-12:            # no prediction: the largest push and half of it, for _rate_fit
+            return [x_start, x_start - max_step]
         return [x_start]
     lo, hi = p.bracket()
-    if hi is None:                                   # nothing reaches yet: go up
-        top = max(p.x)
-        if top >= x_max - 1e-12:
-            p.status = "never"
-            return []
-        step = -p._g(top)                            # exact for a response linear in the push (slope 1)
-        below = sorted(x for x in p.x if x < top)
-        if below:               # secant through the two largest: the peak saturates near the level (slope < 1)
-            x1 = below[-1]
-            slope = (p._g(top) - p._g(x1)) / (top - x1)
-            if slope > 0.1:
-                step = -p._g(top) / slope
-        step = min(max(step, 2.0 * eps), max_step)
-        return [min(x_max, top + step + eps)]
-    near = p._t(hi) >= 0.8 * horizon                 # the smallest reaching push reaches late: the root is close
-    if lo is None:                                   # everything reaches: go down
-        if hi <= x_min + 1e-12:
-            p.status = "below"
-            return []
-        if _far_below(p, x_min, horizon):
-            return [x_min]
-        pred = _log_fit(p, horizon)
-        if pred is None:
-            pred = hi - p._g(hi)                     # exact for a response linear in the push
-        else:
-            p.misses += 1                            # a fit whose prediction still reached: step further
-        step = min(max(hi - pred, 2.0 * eps) * 1.5 ** max(p.misses - 1, 0), max_step)
+    if hi is None:
+        return _go_up(p, x_max, width, max_step)
+    if lo is None:
+        return _go_down(p, hi, x_min, width, max_step, horizon, rate)
+    return _close(p, lo, hi, width, horizon, rate)
+
+
+def _go_up(p: Problem, x_max: float, width: float, max_step: float) -> list[float]:
+    """Nothing reaches yet: the step up the margin predicts ("never" at ``x_max``)."""
+    top = max(p.x)
+    if top >= x_max - 1e-12:
+        p.status = "never"
+        return []
+    step = -p._g(top)                            # exact for a response linear in the push (slope 1)
+    below = sorted(x for x in p.x if x < top)
+    if below:               # secant through the two largest: the peak saturates near the level (slope < 1)
+        x1 = below[-1]
+        slope = (p._g(top) - p._g(x1)) / (top - x1)
+        if slope > 0.1:
+            step = -p._g(top) / slope
+    step = min(max(step, 0.9 * width), max_step)
+    return [min(x_max, top + step + 0.45 * width)]
+
+
+def _go_down(p: Problem, hi: float, x_min: float, width: float, max_step: float, horizon: float,
+             rate: float) -> list[float]:
+    """Everything reaches: a step down to the predicted root ("below" at ``x_min``)."""
+    eps = 0.45 * width
+    if hi <= x_min + 1e-12:
+        p.status = "below"
+        return []
+    if _far_below(p, x_min, horizon):
+        return [x_min]
+    if p.fit_pair:                               # the pair around a trusted prediction both reached:
+        p.misses, p.fit_pair = p.misses + 1, False  # no threshold of the form here (the kinetic law's creep)
+    pred = _rate_fit(p, rate, horizon) if not p.misses else None
+    if pred is not None:
+        step = min(max(hi - pred, 2.0 * eps), FIT_STEP)
         target = max(x_min, hi - step + eps)
-        return [target, target - 0.98 * width] if near and target - width > x_min else [target]
+        p.fit_pair = hi - pred <= FIT_NEAR and target - width > x_min
+        return [target, target - 0.98 * width] if p.fit_pair else [target]
+    pred = _log_fit(p, horizon)
+    if pred is None:
+        pred = hi - p._g(hi)                     # exact for a response linear in the push
+    else:
+        p.misses += 1                            # a fit whose prediction still reached: step further
+    step = min(max(hi - pred, 2.0 * eps) * 1.5 ** max(p.misses - 1, 0), max_step)
+    target = max(x_min, hi - step + eps)
+    near = p._t(hi) >= 0.8 * horizon             # the smallest reaching push reaches late: the root is close
+    return [target, target - 0.98 * width] if near and target - width > x_min else [target]
+
+
+def _close(p: Problem, lo: float, hi: float, width: float, horizon: float, rate: float) -> list[float]:
+    """A bracket: the point or pair that narrows it most ("found" once it is ``width`` wide)."""
     w = hi - lo
     if w <= width * (1.0 + 1e-9):
         p.status = "found"
         return []
-    pred = _log_fit(p, horizon)
+    pred = _rate_fit(p, rate, horizon) if not p.misses else None
+    trusted = pred is not None and lo < pred < hi
+    if not trusted:
+        pred = _log_fit(p, horizon)
     if pred is None or not lo < pred < hi:
         pred = _linear_root(lo, p._g(lo), hi, p._g(hi))
     if pred is None or not lo < pred < hi:
-        return [hi - 0.35 * w]                       # no guide: a step from the cheap (reaching) side
+        return [hi - 0.35 * w]                   # no guide: a step from the cheap (reaching) side
     cap = hi - 0.98 * width
-    a = min(pred + eps, cap)                         # at least one bracket width below the smallest reaching push
+    a = min(pred + 0.45 * width, cap)            # at least one bracket width below the smallest reaching push
     if a >= cap:        # the root is predicted above a: a alone closes the bracket unless it reaches (then b,
         return [a]      # below a, would have been a wasted full-horizon run)
     b = a - 0.98 * width
-    return [a, b] if b > lo and (near or w <= 4.0 * width) else [a]
+    near = p._t(hi) >= 0.8 * horizon
+    return [a, b] if b > lo and (trusted or near or w <= 4.0 * width) else [a]
 
 
 def bracket_search(n: int, x_start: Sequence[float],
                    evaluate: Callable[[list[tuple[int, float]]], tuple[np.ndarray, ...]], *, x_min: float,
-                   x_max: float, width: float, max_step: float, max_rounds: int, horizon: float) -> list[Problem]:
+                   x_max: float, width: float, max_step: float, max_rounds: int, horizon: float,
+                   rates: Sequence[float] | None = None) -> list[Problem]:
     """Run ``n`` root searches together, one ``evaluate`` call per round for every open one.
 
     Parameters
@@ -239,6 +343,10 @@ def bracket_search(n: int, x_start: Sequence[float],
         Rounds at most (a problem still open then keeps its bracket).
     horizon : float
         Simulated time, s (the reaching time the critical case has).
+    rates : sequence of float, optional
+        Each problem's growth rate for :func:`_rate_fit`, 1/s (the linear
+        model's largest real eigenvalue part at the speed; None or not
+        positive: not used).
 
     Returns
     -------
@@ -249,10 +357,13 @@ def bracket_search(n: int, x_start: Sequence[float],
         jobs = []
         for i, p in enumerate(probs):
             if p.status == "open":
-                jobs += [(i, float(x)) for x in _propose(p, float(x_start[i]), x_min, x_max, width, max_step, horizon)]
+                jobs += [(i, float(x)) for x in _propose(p, float(x_start[i]), x_min, x_max, width, max_step, horizon,
+                                                          math.nan if rates is None else float(rates[i]))]
         if not jobs:
             break
         reached, margin, cost, t_level = evaluate(jobs)
+        for i in {i for i, _ in jobs}:
+            probs[i].rounds += 1
         for (i, x), r, g, c, tl in zip(jobs, reached, margin, cost, t_level, strict=True):
             p = probs[i]
             p.x.append(x)
