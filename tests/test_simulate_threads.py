@@ -123,5 +123,5 @@ def test_a_one_thread_round_leaves_the_thread_count_as_it_was():
     if numba.config.NUMBA_NUM_THREADS < 2:
         pytest.skip("one thread only on this machine")
     before = numba.get_num_threads()
-    critical_impulses(EJ, [0.75])              # its rounds of fewer than 16 runs ask for one thread
+    critical_impulses(EJ, [0.75])              # its rounds (one or two runs, fewer than 4) ask for one thread
     assert numba.get_num_threads() == before

@@ -162,8 +162,10 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
 
 
 #: Rounds of fewer runs than this run on one thread.  Waking the kernel's thread team and waiting for a free
-#: core costs 0.1-10 ms per launch (10 ms measured on the shared 2-core machine under load), more than a
-#: small round's runs take on one thread (a 10 s run: 2.4 ms); a sweep's rounds (hundreds of runs) use all threads.
+#: core costs 0.1-10 ms per launch (10 ms measured on the shared 2-core machine under load), more than one
+#: search's pair takes on one thread (a 10 s run: 2.4 ms); from four runs up (the critical-impulse search over
+#: two or more speeds, a few ms a round) the threads win on an idle machine: six speeds x1.45 measured
+#: (61 -> 89 ms on one thread).  A sweep's rounds (hundreds of runs) use all threads.
 SERIAL_BELOW = 4
 
 
