@@ -34,12 +34,8 @@ def stable_steps(chairs: Sequence[Chair], speeds: np.ndarray, model: str, caster
 
     Parameters
     ----------
-    chairs : sequence of Chair
-        One per run.
-    speeds : ndarray
-        Forward speeds, m/s (> 0), one per run.
-    model, casters : str
-        Equation variant and caster state of the runs.
+    chairs, speeds, model, casters
+        As in :func:`step_limits_and_growth` (one chair and one speed, m/s, per run).
 
     Returns
     -------

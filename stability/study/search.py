@@ -322,7 +322,7 @@ def _close(p: Problem, lo: float, hi: float, width: float, horizon: float, rate:
 def bracket_search(n: int, x_start: Sequence[float],
                    evaluate: Callable[[list[tuple[int, float]]], tuple[np.ndarray, ...]], *, x_min: float,
                    x_max: float, width: float, max_step: float, max_rounds: int, horizon: float,
-                   rates: Sequence[float] | None = None) -> list[Problem]:
+                   rates: Sequence[float] | np.ndarray | None = None) -> list[Problem]:
     """Run ``n`` root searches together, one ``evaluate`` call per round for every open one.
 
     Parameters
