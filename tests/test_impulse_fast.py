@@ -145,14 +145,17 @@ def test_equal_instability_search_equals_the_bisection_to_its_tolerance():
 
 
 def test_run_counts_quoted_in_docs_studies_md():
-    """docs/studies.md, "Second pass": E&J Premier 10 runs at 0.75 m/s, 56 over six speeds (67 with program
-    WCHAIR's kinetic pin friction, the law of the measured ratios), 9 without pin friction at 0.5 and 0.75 m/s
-    (the bisection: 35 a speed).  Deterministic on one CPU; with pin friction a push near the threshold may flip
-    on another CPU's rounding (the kinetic law's 1 % band, tests/test_search.py) and cost a run or two more, so
-    the counts are held to +10 %."""
+    """docs/studies.md, "Third pass": E&J Premier 6 runs at 0.75 m/s, 36 over six speeds (62 with program WCHAIR's
+    kinetic pin friction), 9 without pin friction at 0.5 and 0.75 m/s (the bisection: 35 a speed).  Deterministic
+    on one CPU; with pin friction a push near the threshold may flip on another CPU's rounding (the kinetic law's
+    1 % band, tests/test_search.py) and cost a run or two more, so the counts are held to +10 % or two runs,
+    whichever is more."""
+    def bound(n):
+        return max(math.ceil(1.1 * n), n + 2)
+
     ej = preset("ej-premier")
     six = [0.5, 0.6, 0.75, 0.9, 1.0, 1.2]
-    assert critical_impulses(ej, [0.75])[0].runs <= 11
-    assert sum(p.runs for p in critical_impulses(ej, six)) <= 62
-    assert sum(p.runs for p in critical_impulses(ej, six, friction_law="kinetic")) <= 74
-    assert sum(p.runs for p in critical_impulses(_frictionless("ej-premier"), [0.5, 0.75])) <= 10
+    assert critical_impulses(ej, [0.75])[0].runs <= bound(6)
+    assert sum(p.runs for p in critical_impulses(ej, six)) <= bound(36)
+    assert sum(p.runs for p in critical_impulses(ej, six, friction_law="kinetic")) <= bound(62)
+    assert sum(p.runs for p in critical_impulses(_frictionless("ej-premier"), [0.5, 0.75])) <= bound(9)
