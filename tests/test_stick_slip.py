@@ -266,8 +266,9 @@ def test_reference_engine_critical_impulse_with_stick_slip():
     with reference_engine():
         ref = critical_impulse(EJ, 0.75, friction_law="stick-slip")
     assert compiled.status == ref.status == "found"
-    # the threshold measured on a 0.1 % grid (docs/studies.md): misses at 3.253 N s, reaches at 3.257 N s
-    assert compiled.low_Ns <= 3.257 and compiled.high_Ns >= 3.253
+    # the threshold measured on a 0.1 % grid (docs/studies.md): misses at 3.253 N s, reaches at 3.257 N s; another
+    # CPU's rounding may move a stick/slip decision near the threshold, so the band is widened by that grid's 0.1 %
+    assert compiled.low_Ns <= 3.257 * 1.001 and compiled.high_Ns >= 3.253 / 1.001
     assert abs(math.log(ref.impulse_Ns / compiled.impulse_Ns)) < 0.005
 
 
