@@ -102,6 +102,11 @@ class Problem:
         return self.t[self.x.index(x)]
 
 
+def _reaching(p: Problem) -> list[tuple[float, float]]:
+    """``(x, t_level)`` of the reaching runs with a finite time, smallest push first."""
+    return sorted((x, t) for x, t, r in zip(p.x, p.t, p.reached, strict=True) if r and math.isfinite(t))
+
+
 def _log_fit(p: Problem, horizon: float) -> float | None:
     """The root predicted by ``t_level = a - b ln(exp(x) - J0)`` through the three smallest reaching points.
 
@@ -110,7 +115,7 @@ def _log_fit(p: Problem, horizon: float) -> float | None:
     that time equals the horizon: ``J0 + exp((a - horizon) / b)``.  None
     without three reaching points or when they do not fit the form.
     """
-    pts = sorted((x, t) for x, t, r in zip(p.x, p.t, p.reached, strict=True) if r and math.isfinite(t))
+    pts = _reaching(p)
     if len(pts) < 3:
         return None
     (x1, t1), (x2, t2), (x3, t3) = pts[:3]
@@ -139,11 +144,6 @@ def _log_fit(p: Problem, horizon: float) -> float | None:
     return math.log(root) if root > 0 else None
 
 
-def _reaching(p: Problem) -> list[tuple[float, float]]:
-    """``(x, t_level)`` of the reaching runs with a finite time, smallest push first."""
-    return sorted((x, t) for x, t, r in zip(p.x, p.t, p.reached, strict=True) if r and math.isfinite(t))
-
-
 def _rate_fit(p: Problem, rate: float, horizon: float) -> float | None:
     """The root predicted by ``t_level = a - ln(J - J0) / rate`` through the two smallest reaching points.
 
@@ -157,7 +157,8 @@ def _rate_fit(p: Problem, rate: float, horizon: float) -> float | None:
     E&J Premier at 0.75 m/s (rate 1.451/s): runs at 5.03, 4.27, 3.88 and
     3.26 N s reach the level at 2.35, 2.74, 3.07 and 6.55 s, a slope of
     0.69-0.74 s per unit of ``ln(J - J0)`` against ``1/rate`` = 0.69 s,
-    and the pair at 5.03 and 4.27 N s predicts 3.263 N s against 3.254.
+    and the pair at 5.03 and 4.27 N s predicts 3.263 N s against the
+    threshold's 3.253-3.257 N s.
     Just above the threshold the escape is slower than ``rate`` (the
     friction still acts), so the prediction approaches from above (the
     next pair brackets it).  None without two such points, without a
@@ -197,7 +198,7 @@ def _far_below(p: Problem, x_min: float, horizon: float) -> bool:
     that floor a run pushed half as hard reaches 20-100 % later (E&J Premier
     and designs, 0.5-1.2 m/s), so the rule does not fire there.
     """
-    pts = sorted((x, t) for x, t, r in zip(p.x, p.t, p.reached, strict=True) if r and math.isfinite(t))
+    pts = _reaching(p)
     if len(pts) < 2:
         return False
     (x1, t1), (x2, t2) = pts[:2]
