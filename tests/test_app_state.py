@@ -72,13 +72,22 @@ def test_float_values_survive_the_url_exactly():
     assert AppState.from_query(s.url_query()).chair.h == 0.1 + 0.2
 
 
-@pytest.mark.parametrize("query, fragment", [("chair=nope", "nope"), ("chair=revised&trail=9", "trail=9.0"),
-                                             ("chair=revised&wheels=5", "wheels"),
-                                             ("chair=revised&model=fancy", "fancy")])
-def test_bad_url_leaves_the_default_chair_and_says_why(query, fragment):
+@pytest.mark.parametrize("query, fragment, want", [
+    ("chair=nope", "nope", ("ej-premier", {})),
+    ("chair=nope&trail=0.05", "nope", ("ej-premier", {"trail": 0.05})),
+    ("chair=revised&trail=9", "trail=9.0", ("revised", {})),
+    ("chair=revised&trail=abc&s1=0.25", "trail needs a number", ("revised", {"s1": 0.25})),
+    ("chair=revised&wheels=5", "wheels", ("revised", {})),
+    ("chair=revised&model=fancy", "fancy", ("revised", {}))])
+def test_bad_url_parts_are_dropped_with_a_message_and_the_rest_kept(query, fragment, want):
+    """A link with a typo opens the chair its valid part names (the explorer review's item 5: it showed
+    ej-premier under a URL that said revised), and the message names the dropped part."""
     s = AppState.from_query(query)
-    assert s.chair == chair_mod.preset("ej-premier")
+    preset, changes = want
+    assert s.chair == chair_mod.preset(preset).replace(**changes)
     assert s.errors["url"].startswith("error: ") and fragment in s.errors["url"]
+    assert s.model == "exact"
+    assert AppState.from_query(s.url_query()).chair == s.chair       # the rewritten URL is that chair's
 
 
 def test_undo_walks_back_every_accepted_change():

@@ -14,8 +14,8 @@ from typing import Any
 import panel as pn
 
 from ..chair import Chair
+from .markup import literal, pre
 from .state import assignments
-from .text import preformatted
 
 __all__ = ["AdviceTab"]
 
@@ -62,7 +62,7 @@ class AdviceTab:
         for b in self.apply_buttons:
             b.disabled = True
         self.progress.visible, self.progress.active = True, True
-        self.text.object = f"advising on {chair.name} (simulating every lever)..."
+        self.text.object = f"advising on {literal(chair.name)} (simulating every lever)..."
 
         def work() -> tuple[Any, str]:
             from ..advise import advise
@@ -76,7 +76,7 @@ class AdviceTab:
     def failed(self, exc: BaseException) -> None:
         """Show why there is no advice (one line)."""
         self.progress.visible, self.progress.active = False, False
-        self.text.object = f"error: could not advise on this chair: {exc}"
+        self.text.object = f"error: could not advise on this chair: {literal(exc)}"
 
     def show(self, result: tuple[Any, str]) -> None:
         """Show the advice and enable the buttons of the recommendations it makes.
@@ -92,7 +92,7 @@ class AdviceTab:
             b.disabled = k >= len(recs)
             if k < len(recs):
                 b.name = f"apply: {recs[k].candidate.label}"[:80]
-        self.text.object = preformatted(text)
+        self.text.object = pre(text)
 
     def chair_changed(self, chair: Chair) -> None:
         """Disable applying advice given for another chair.

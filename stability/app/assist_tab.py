@@ -20,7 +20,7 @@ from bokeh.plotting import figure
 from .. import defaults as D
 from ..chair import Chair
 from ..plotting.style import OKABE_ITO
-from .text import preformatted
+from .markup import literal, pre
 
 __all__ = ["AssistTab", "assist_schedule"]
 
@@ -82,12 +82,12 @@ class AssistTab:
     def start(self) -> None:
         """Queue the design for the session's current chair."""
         chair, model = self.current()
-        self.text.object = f"designing the assist for {chair.name} (about ten seconds on a quiet machine)..."
+        self.text.object = f"designing the assist for {literal(chair.name)} (about ten seconds on a quiet machine)..."
         self.submit(lambda: assist_schedule(chair, model), self.show, self.failed)
 
     def failed(self, exc: BaseException) -> None:
         """Show why no assist could be designed (one line)."""
-        self.text.object = f"error: could not design the assist for this chair: {exc}"
+        self.text.object = f"error: could not design the assist for this chair: {literal(exc)}"
 
     def show(self, result: tuple[Any, list, str]) -> None:
         """Draw a computed schedule.
@@ -110,4 +110,4 @@ class AssistTab:
         for j, src in enumerate(self.sources):
             src.data = {"speed": speeds, "gain": [r.wheel_torque_gains[j] for r in rows]} if j < len(names) else \
                 {"speed": [], "gain": []}
-        self.text.object = preformatted(text)
+        self.text.object = pre(text)

@@ -10,6 +10,7 @@ chair.  The URL follows the chair.
 
 from __future__ import annotations
 
+import traceback
 from collections.abc import Callable
 from functools import partial
 from typing import Any
@@ -27,8 +28,9 @@ from . import plots
 from .advice_tab import AdviceTab
 from .assist_tab import AssistTab
 from .jobs import Jobs, warm_up_done
-from .state import AppState
-from .text import downloads, field_rows, geometry_text, preformatted, summary_text
+from .markup import literal, pre
+from .state import AppState, error_line
+from .text import downloads, field_rows, geometry_text, summary_text
 from .trail_tab import TrailTab
 from .views import LinearView, geometry_points, linear_view, mode_shape, nonlinear_view
 
@@ -63,6 +65,7 @@ class Explorer:
         self.auto_nonlinear = auto_nonlinear
         self.view: LinearView | None = None
         self._pinned_curves: tuple[Any, list] = (None, [])
+        self._view_errors: dict[str, str] = {}
         self._building = True
         self._widgets()
         self._figures()
@@ -92,6 +95,10 @@ class Explorer:
         self.upload_unc.param.watch(self._on(self._load_uncertainty), "value")
         self.message = pn.pane.HTML("", css_classes=["app-message"], styles=_ERROR_STYLE, sizing_mode="stretch_width")
         self.title = pn.pane.Markdown("", css_classes=["chair-title"], sizing_mode="stretch_width")
+        # how many times the page has settled after a change (sent last, so a browser can tell the page is done)
+        self.settled = pn.pane.HTML("0", css_classes=["page-settled"], width=1, height=1, margin=0,
+                                    styles={"overflow": "hidden", "opacity": "0"})
+        self._settled = 0
         self.inputs: dict[str, Any] = {}
         self.field_errors: dict[str, Any] = {}
         tire_names = list(tires.names())
@@ -198,7 +205,7 @@ class Explorer:
                             ("Compare", compare_tab), ("Power-chair assist", self.assist.panel),
                             ("Downloads", pn.Column(self.downloads)), dynamic=False, sizing_mode="stretch_width")
         header = pn.Column(pn.pane.Markdown("## stability explorer: directional stability of a wheelchair"),
-                           self.title, self.message, sizing_mode="stretch_width")
+                           self.title, self.message, self.settled, sizing_mode="stretch_width")
         return pn.Column(header, pn.Row(editor, self.tabs, sizing_mode="stretch_width"), sizing_mode="stretch_width")
 
     # ------------------------------------------------------------------ events
@@ -272,24 +279,57 @@ class Explorer:
 
     # ------------------------------------------------------------------ drawing
     def refresh(self) -> None:
-        """Redraw every linear view for the current chair (and queue the background work)."""
+        """Redraw every linear view for the current chair (and queue the background work).
+
+        A chair whose linear analysis fails is not kept (the edit is undone and the message shown), so every
+        view always describes one chair; a view that fails to draw shows its one-line error in the page and
+        leaves the others and the next edit working.
+        """
         self.jobs.cancel()
-        v = self.view = linear_view(self.state.chair, self.state.model)
-        self._sync_inputs()
-        self._show_messages()
-        self._show_linear(v)
-        self._show_geometry()
-        self._show_shape()
-        self._show_compare()
-        self.advice.chair_changed(self.state.chair)
+        try:
+            v = linear_view(self.state.chair, self.state.model)
+        except Exception as exc:       # noqa: BLE001 - any failure of the analysis is the chair's, shown in the page
+            traceback.print_exc()
+            undone = self.view is not None and self.state.undo()
+            self.state.errors["chair"] = (f"{error_line(exc)} (linear analysis of this chair; "
+                                          + ("the edit was undone)" if undone else "no view can be drawn)"))
+            self._guarded("fields", self._sync_inputs)
+            self._show_messages()
+            return
+        self.view = v
+        self._view_errors.clear()
+        self.sync_location()
+        self._guarded("fields", self._sync_inputs)
+        self._guarded("stability", partial(self._show_linear, v))
+        self._guarded("geometry", self._show_geometry)
+        self._guarded("mode shape", self._show_shape)
+        self._guarded("compare", self._show_compare)
+        self._guarded("advice", partial(self.advice.chair_changed, self.state.chair))
         self.unc_src.data = {"speed": [], "low": [], "high": []}
-        if self.location is not None:
-            self.location.search = "?" + self.state.url_query()
         if self.state.uncertainty is not None:
             self._start_bands()
         if self.auto_nonlinear:
             self.start_nonlinear()
             self.trail.start(self.state.chair, self.state.model)
+        self._show_messages()
+
+    def sync_location(self) -> None:
+        """Set the address bar's query to the chair shown (the page calls it again once the browser is connected:
+        Panel's location takes the browser's own URL when it connects, which may still carry a dropped part)."""
+        if self.location is not None:
+            want = "?" + self.state.url_query()
+            if self.location.search != want:
+                self.location.search = want
+
+    def _guarded(self, name: str, step: Callable[[], Any]) -> None:
+        """Run one view's update; a failure becomes that view's one-line message (the traceback goes to the
+        server's log)."""
+        try:
+            step()
+        except Exception as exc:       # noqa: BLE001 - one view's failure must not stop the others
+            traceback.print_exc()
+            self._view_errors[name] = f"error: the {name} view could not be drawn for this chair: " + \
+                error_line(exc).removeprefix("error: ")
 
     def _sync_inputs(self) -> None:
         self._syncing = True
@@ -310,37 +350,39 @@ class Explorer:
     def _show_messages(self) -> None:
         errs = self.state.errors
         for name, pane in self.field_errors.items():
-            msg = errs.get(name, "")
+            msg = literal(errs.get(name, ""))
             if pane.object != msg:
                 pane.param.update(object=msg, visible=bool(msg))
-        other = "<br>".join(m for k, m in errs.items() if k not in self.field_errors)
+        other = "<br>".join(literal(m) for k, m in [*errs.items(), *self._view_errors.items()]
+                            if k not in self.field_errors)
         if self.message.object != other:
             self.message.object = other
         c = self.state.current
-        title = (f"**{c.chair.name}** ({c.chair.caster_position} casters; base {c.base}; {self.state.model} model)"
-                 + (f"; uncertainty file {self.state.uncertainty_name}" if self.state.uncertainty is not None else ""))
+        title = (f"**{literal(c.chair.name)}** ({c.chair.caster_position} casters; base {literal(c.base)}; "
+                 f"{self.state.model} model)" + (f"; uncertainty file {literal(self.state.uncertainty_name)}"
+                                                  if self.state.uncertainty is not None else ""))
         if self.title.object != title:
             self.title.object = title
         if self.undo_button.disabled == self.state.can_undo:
             self.undo_button.disabled = not self.state.can_undo
+        self._settled += 1
+        self.settled.object = str(self._settled)
 
     def _show_linear(self, v: LinearView) -> None:
         U, eig = v.locus.speeds, v.locus.eigenvalues
         f = self.speed_figs
-        renderers = [it.renderers[0] for it in f["legend"].items[:plots.MAX_BRANCHES]]
-        items, seen = [], set()
+        renderers = f["branch_renderers"]            # fixed at build time: never read back from the legend
+        groups: dict[str, list] = {}                 # one legend entry per mode name, hiding all its branches
         for j, src in enumerate(self.branch_src):
             if j < eig.shape[1]:
                 src.data = {"speed": U, "real": eig[:, j].real, "imag": np.abs(eig[:, j].imag),
                             "name": [v.names[j]] * len(U)}
-                if v.names[j] not in seen:
-                    seen.add(v.names[j])
-                    items.append(LegendItem(label=v.names[j], renderers=[renderers[j]]))
+                groups.setdefault(v.names[j], []).append(renderers[j])
             else:
                 src.data = {"speed": [], "real": [], "imag": [], "name": []}
-        self._band_item = getattr(self, "_band_item", f["legend"].items[-1])
+        items = [LegendItem(label=name, renderers=rs) for name, rs in groups.items()]
         if self.state.uncertainty is not None:
-            items.append(self._band_item)
+            items.append(f["band_item"])
         f["legend"].items = items
         hi = max(1.15 * float(eig.real.max()), 0.5)
         lo = -max(3.0 * hi, 10.0)
@@ -428,7 +470,7 @@ class Explorer:
 
     def _failed(self, exc: BaseException) -> None:
         self.progress.visible, self.progress.active = False, False
-        self.nl_text.object = f"error: could not compute the nonlinear measures for this chair: {exc}"
+        self.nl_text.object = f"error: could not compute the nonlinear measures for this chair: {literal(exc)}"
 
     def _show_nonlinear(self, nv: Any) -> None:
         self.progress.visible, self.progress.active = False, False
@@ -486,7 +528,7 @@ class Explorer:
             model = self.state.model
             self.compare_text.object = "comparing..."
             self.jobs.submit(lambda: format_comparison(compare(chairs, labels=labels, model=model)),
-                             lambda text: setattr(self.compare_text, "object", preformatted(text)),
+                             lambda text: setattr(self.compare_text, "object", pre(text)),
                              self._failed)
         elif self.compare_text.object != _NOTHING_PINNED:
             self.compare_text.object = _NOTHING_PINNED

@@ -50,7 +50,8 @@ def speed_figures(branches: list[ColumnDataSource], bands: ColumnDataSource, unc
     -------
     dict
         ``"real"`` and ``"imag"`` figures, ``"crossings"`` (Spans) and ``"crossing_labels"``
-        (Labels) the page moves, ``"cursor"`` (the speed slider's Spans), ``"legend"``.
+        (Labels) the page moves, ``"cursor"`` (the speed slider's Spans), ``"legend"``, ``"branch_renderers"``
+        (one line renderer per branch source, in order) and ``"band_item"`` (the interval's legend item).
     """
     real = _fig("Eigenvalues against speed: real parts (growth rate > 0: unstable)", "forward speed U (m/s)",
                 "real part σ (1/s)", x_axis_type="log", height=340)
@@ -60,14 +61,16 @@ def speed_figures(branches: list[ColumnDataSource], bands: ColumnDataSource, unc
         p.quad(left="left", right="right", bottom=-1e4, top=1e4, source=bands, fill_alpha=0.13, line_alpha=0,
                fill_color={"field": "colour"})
     band = real.varea(x="speed", y1="low", y2="high", source=uncertainty, fill_color=OKABE_ITO[0], fill_alpha=0.25)
-    items = []
+    items, renderers = [], []
     for j, src in enumerate(branches):
         c = OKABE_ITO[j % len(OKABE_ITO)]
         dash = "solid" if j < 4 else "dashed"
         r = real.line("speed", "real", source=src, line_width=2, color=c, line_dash=dash)
         imag.line("speed", "imag", source=src, line_width=2, color=c, line_dash=dash)
+        renderers.append(r)
         items.append(LegendItem(label={"field": "name"}, renderers=[r], index=0))
-    items.append(LegendItem(label="95 % interval of the growth rate", renderers=[band]))
+    band_item = LegendItem(label="95 % interval of the growth rate", renderers=[band])
+    items.append(band_item)
     legend = Legend(items=items, location="top_left", click_policy="hide", label_text_font_size="9pt")
     real.add_layout(legend, "right")
     real.add_layout(Span(location=0, dimension="width", line_color="black", line_width=1))
@@ -92,7 +95,7 @@ def speed_figures(branches: list[ColumnDataSource], bands: ColumnDataSource, unc
     real.y_range = Range1d(start=-10, end=2)
     imag.y_range = Range1d(start=0, end=10)
     return {"real": real, "imag": imag, "crossings": crossings, "crossing_labels": labels, "cursor": cursor,
-            "legend": legend}
+            "legend": legend, "branch_renderers": renderers, "band_item": band_item}
 
 
 def shape_figure(source: ColumnDataSource):

@@ -87,6 +87,9 @@ def make_server(host: str = "127.0.0.1", port: int = 0, show: bool = False) -> t
     pn.extension(notifications=False)
     server = pn.serve({"/": create_page}, port=port, address=host, show=show, start=False,
                       title="stability explorer", websocket_origin=origins, verbose=False)
+    from .security import install
+
+    install(server)
     shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
     return server, f"http://{shown}:{port}/"
 
@@ -107,6 +110,7 @@ def create_page() -> Any:
     ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location)
     if doc is not None:                      # a closed page's queued work is dropped
         doc.on_session_destroyed(lambda _context: ex.jobs.cancel())
+        pn.state.onload(ex.sync_location)    # once connected: the address bar names the chair shown
     return ex.layout
 
 

@@ -385,7 +385,12 @@ class AppState:
         return urlencode(self.query())
 
     def apply_query(self, query: str | Mapping[str, Any]) -> str | None:
-        """Restore the chair a URL query describes (see :meth:`query`); unknown or bad values are refused whole.
+        """Restore the chair a URL query describes (see :meth:`query`), keeping every valid part of it.
+
+        A bad part (an unknown preset or model, an unknown field, a bad value) is
+        dropped with the command line's one-line message, and the rest is applied:
+        ``?chair=revised&trail=abc`` opens the revised chair with a message about
+        ``trail``, never another chair.  The page then rewrites the URL to the chair shown.
 
         Parameters
         ----------
@@ -396,31 +401,43 @@ class AppState:
         Returns
         -------
         str or None
-            None, or the one-line message (``errors["url"]``); the chair is then unchanged.
+            None, or the messages of the dropped parts joined by ``"; "`` (``errors["url"]``).
         """
         if isinstance(query, str):
             items = parse_qsl(query.lstrip("?"), keep_blank_values=True)
         else:
             items = [(k, v[-1] if isinstance(v, (list, tuple)) else v) for k, v in query.items()]
-        params = {k: (v.decode() if isinstance(v, bytes) else str(v)) for k, v in items}
+        params = {k: (v.decode("utf-8", "replace") if isinstance(v, bytes) else str(v)) for k, v in items}
+        problems: list[str] = []
         base = params.pop("chair", DEFAULT_PRESET)
-        model = params.pop("model", self.model)
         try:
-            if model not in ("exact", "thesis"):
-                raise ValueError(f"model {model!r} is invalid; valid: 'exact' or 'thesis'")
             base_chair = _preset(base)
-            changes = dict(chair_mod.parse_assignment(f"{k}={v}") for k, v in params.items())
-            new = _build(base, base_chair, changes)
         except ValueError as exc:
-            self.errors["url"] = error_line(exc)
-            return self.errors["url"]
+            problems.append(error_line(exc).removeprefix("error: "))
+            base, base_chair = DEFAULT_PRESET, _preset(DEFAULT_PRESET)
+        model = params.pop("model", self.model)
+        if model not in ("exact", "thesis"):
+            problems.append(f"model {model!r} is invalid; valid: 'exact' or 'thesis'")
+            model = self.model
+        changes: dict[str, Any] = {}
+        for k, v in params.items():
+            try:
+                name, value = chair_mod.parse_assignment(f"{k}={v}")
+                _build(base, base_chair, {**changes, name: value})
+            except ValueError as exc:
+                problems.append(error_line(exc).removeprefix("error: "))
+                continue
+            changes[name] = value
         self.model = model
-        self._accept(new, ["url", *chair_mod.field_names()])
+        self._accept(_build(base, base_chair, changes), ["url", *chair_mod.field_names()])
+        if problems:
+            self.errors["url"] = "error: the link's " + "; ".join(problems) + " (dropped; the rest applied)"
+            return self.errors["url"]
         return None
 
     @classmethod
     def from_query(cls, query: str | Mapping[str, Any]) -> AppState:
-        """A new state restored from a URL query (a bad query leaves the default chair and a message).
+        """A new state restored from a URL query (its bad parts dropped with a message, the rest applied).
 
         Parameters
         ----------

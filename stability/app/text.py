@@ -11,7 +11,7 @@ from .. import chair as chair_mod
 from ..chair import Chair
 from .views import LinearView
 
-__all__ = ["preformatted", "summary_text", "geometry_text", "figure_file", "downloads", "field_rows", "FIELD_KINDS"]
+__all__ = ["summary_text", "geometry_text", "figure_file", "downloads", "field_rows", "FIELD_KINDS"]
 
 #: Fields edited as text choices rather than numbers.
 TEXT_FIELDS = ("name", "caster_position", "main_tire", "caster_tire")
@@ -155,18 +155,3 @@ def downloads(state: Any, view: Any) -> Any:
                                 label="figure (SVG)", css_classes=["download-svg"], width=150),
     )
 
-
-def preformatted(text: str) -> str:
-    """A command line's text output as Markdown: a plain (unhighlighted) fixed-width block.
-
-    Parameters
-    ----------
-    text : str
-
-    Returns
-    -------
-    str
-        A fenced ``text`` block (Markdown shows it verbatim, without syntax colours).
-    """
-    fence = "`" * 3
-    return fence + "text\n" + text.replace(fence, "'" * 3) + "\n" + fence

@@ -15,6 +15,7 @@ from bokeh.models import ColumnDataSource
 
 from ..chair import Chair
 from . import plots
+from .markup import literal
 from .views import TRAIL_SPEEDS, TrailWindow, trail_window
 
 __all__ = ["TrailTab"]
@@ -68,7 +69,7 @@ class TrailTab:
 
     def failed(self, exc: BaseException) -> None:
         """Show why the trail window could not be computed (one line)."""
-        self.text.object = f"error: could not compute the trail window for this chair: {exc}"
+        self.text.object = f"error: could not compute the trail window for this chair: {literal(exc)}"
 
     def show(self, tw: TrailWindow) -> None:
         """Draw a computed trail window.

@@ -53,3 +53,99 @@ def test_a_chair_change_drops_the_old_chairs_results():
         if not f.cancelled():
             f.result(timeout=600)
     assert shown == ["new chair's result"]
+
+
+HOSTILE_NAMES = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "[x](javascript:alert(3))",
+                 "```\n<svg onload=alert(4)>", "</pre><script>alert(5)</script>"]
+#: Elements the page's own Markdown and HTML may produce (tables of numbers, emphasis, the command output block).
+PAGE_TAGS = {"p", "strong", "em", "br", "table", "thead", "tbody", "tr", "th", "td", "pre", "code", "h2", "h3",
+             "ul", "li"}
+
+
+def _rendered(pane) -> str:
+    """What a Markdown or HTML pane sends to the browser (Panel's own transform)."""
+    return pane._transform_object(pane.object)["object"]
+
+
+def _elements(fragment: str) -> tuple[set, list]:
+    from html.parser import HTMLParser
+
+    tags: set = set()
+    attrs: list = []
+
+    class P(HTMLParser):
+        def handle_starttag(self, tag, a):
+            tags.add(tag)
+            attrs.extend(a)
+
+    P().feed(fragment)
+    return tags, attrs
+
+
+def _assert_no_user_markup(ex) -> None:
+    import panel as pn
+
+    panes = [*ex.layout.select(pn.pane.Markdown), *ex.layout.select(pn.pane.HTML)]
+    assert len(panes) > 10
+    for pane in panes:
+        tags, attrs = _elements(_rendered(pane))
+        assert tags <= PAGE_TAGS, (pane, tags - PAGE_TAGS)
+        assert all(not k.startswith("on") and "javascript:" not in (v or "") for k, v in attrs), attrs
+
+
+@pytest.mark.parametrize("name", HOSTILE_NAMES)
+def test_hostile_text_from_a_url_a_field_and_files_is_never_markup(name, tmp_path):
+    """The explorer review's item 2: a chair name from a shared URL ran script.  Every pane's HTML, as Panel
+    renders it for the browser, holds only the page's own elements whatever the user's text."""
+    from urllib.parse import urlencode
+
+    from stability.app.page import Explorer
+
+    ex = Explorer(query=urlencode({"chair": "ej-premier", "name": name}), auto_nonlinear=False)
+    assert ex.state.chair.name == name
+    assert "alert" in ex.title.object                         # the name is shown (as text)
+    _assert_no_user_markup(ex)
+    ex.edit("trail", name)                                    # refused: the message quotes the value
+    assert ex.state.errors["trail"]
+    ex.edit("name", name + " 2")
+    ex.state.pin()
+    ex._show_compare()
+    ex.jobs._futures[-1].result(timeout=300)
+    assert ex.compare_text.object.startswith("<pre")
+    bad_toml = f'name = "{name}"\nm = "{name}"\n'.replace("\n<", " <").encode()
+    ex.state.load_toml(bad_toml, filename=name + ".toml")
+    ex.state.load_uncertainty(name.encode(), filename=name)
+    ex.apply_fields({"m": name})
+    ex._failed(ValueError(name))
+    ex.trail.failed(ValueError(name))
+    ex.assist.failed(ValueError(name))
+    ex.advice.failed(ValueError(name))
+    ex._show_messages()
+    assert {"trail", "file", "uncertainty", "m"} <= set(ex.state.errors)
+    _assert_no_user_markup(ex)
+
+
+def test_a_chair_whose_modes_share_a_name_does_not_break_the_session():
+    """The explorer review's item 1: trail 0.03 m named two branches alike; the legend dropped one and every
+    later edit raised IndexError.  Every preset's short trails, then an edit, undo, a preset and the model."""
+    from stability.app.page import Explorer
+    from stability.app.views import linear_view
+
+    for preset in chair_mod.preset_names():
+        ex = Explorer(query=f"chair={preset}", auto_nonlinear=False)
+        shared = 0
+        for trail in ("0", "0.005", "0.01", "0.02", "0.03", "0.05"):
+            assert ex.edit("trail", trail) is None
+            names = linear_view(ex.state.chair, ex.state.model).names
+            shared += len(names) != len(set(names))
+            legend = ex.speed_figs["legend"].items
+            assert [it.label["value"] for it in legend] == list(dict.fromkeys(names))
+            assert sum(len(it.renderers) for it in legend) == len(names)     # every branch hides with its name
+            assert ex._view_errors == {} and ex.state.chair.trail == float(trail)
+        assert shared, preset                                  # the case of the review was met
+        assert ex.state.undo()
+        ex.refresh()
+        ex.state.select_preset("revised")
+        ex.refresh()
+        ex.model.value = "thesis"
+        assert ex._view_errors == {} and ex.state.url_query().startswith("chair=revised")
