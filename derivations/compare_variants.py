@@ -7,7 +7,7 @@ Chair: the Everest & Jennings Premier of WCHAIR's BLOCK DATA (x_m = 0.345,
 x_p = -0.175, d1 = d2 = 0.265, t1 = t2 = 0.24, trail = 0.08, l1 = 0.058,
 m = 95, m_c = 1.2, i_z = 5.6, i_zp = 0.02, g = 9.81), EJA main tires and ER
 casters (``stability.chair.preset("ej-premier")``).  Cornering stiffness of
-each tire at its static load from :func:`stability.statics.static_stiffness`
+each tire at its static load from :func:`stability.models.statics.static_stiffness`
 (loads of :mod:`stability.loads`, eq 6-25 with the trail, as WCHAIR's STATICS).  Pin
 damping: ``c_pin = 0`` by default (WCHAIR's pin friction is Coulomb, 0.1 N m,
 which has no linearisation); ``--c-pin`` changes it.
@@ -33,8 +33,8 @@ import sympy as sp  # noqa: E402
 
 from derivations import full_width as fw  # noqa: E402
 from stability import chair as chair_mod  # noqa: E402
-from stability.params import parameters  # noqa: E402
-from stability.statics import static_stiffness  # noqa: E402
+from stability.models.params import parameters  # noqa: E402
+from stability.models.statics import static_stiffness  # noqa: E402
 
 #: the thesis chair (WCHAIR BLOCK DATA, chapter 8), from the package's one definition
 THESIS_CHAIR = chair_mod.preset("ej-premier")
@@ -53,8 +53,8 @@ SWITCH_TEXT = {
 
 def chair_stiffness(chair=THESIS_CHAIR) -> dict[str, object]:
     """Per-tire stiffness (N/rad) at the static loads of :mod:`stability.loads` (eq 6-25,
-    trail included as WCHAIR's STATICS does), from :func:`stability.statics.static_stiffness`."""
-    from stability.statics import static_loads
+    trail included as WCHAIR's STATICS does), from :func:`stability.models.statics.static_stiffness`."""
+    from stability.models.statics import static_loads
 
     st = static_stiffness(chair)
     loads = static_loads(chair)

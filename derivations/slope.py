@@ -215,7 +215,7 @@ def checks() -> dict[str, sp.Expr]:
     * ``Q_u - m g1``, ``Q_v - m g2``: the whole weight acts on the translation;
     * ``F(g1 = g2 = 0) - F_exact``: zero slope recovers the level equations;
     * loads at ``g1 = g2 = 0, gn = g, m a = sum F`` minus eq 6-25 (the closed form
-      of :func:`stability.statics.normal_loads` re-derived here);
+      of :func:`stability.models.statics.normal_loads` re-derived here);
     * ``Q_eta + dV/deta`` with ``V = -m_c g . r_Ca`` (the caster's weight is conservative);
     * zero-width: free castered rear axle (``C_r = 0``) holds with ``M = m g2 s1``,
       and with one axle castered (zero stiffness) the uncorrected quasi-steady turn is

@@ -18,10 +18,10 @@ from __future__ import annotations
 import sys
 
 # python -m stability.X (argv[0] is "-m" while the package is imported) or the console script ``stability``:
-# Ctrl-C, SIGTERM and SIGHUP are handled from the first line (stability.interrupts)
+# Ctrl-C, SIGTERM and SIGHUP are handled from the first line (stability.runtime.interrupts)
 _argv0 = (sys.argv or [""])[0]
 if _argv0 == "-m" or _argv0.replace("\\", "/").rsplit("/", 1)[-1] in ("stability", "stability.exe"):
-    from . import interrupts
+    from stability.runtime import interrupts
 
     interrupts.install_early()
 

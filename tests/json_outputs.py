@@ -37,7 +37,7 @@ SLOW = {"study_equal_instability", "advise", "report"}
 
 def output(name: str, tmp: str) -> dict:
     """Run case ``name`` in-process with ``--json`` and return the decoded JSON."""
-    from stability.commands import command_module
+    from stability.cli.commands import command_module
 
     command, argv = CASES[name]
     argv = [a.replace("{tmp}", tmp) for a in argv] + ["--json", "--quiet"]

@@ -1,4 +1,4 @@
-"""Motor assist for the power-fwd chair (stability.assist, stability.power_chair).
+"""Motor assist for the power-fwd chair (stability.assist, stability.chair.power).
 
 What each test checks is in its docstring; the thesis references are to
 Collins (1987): chapter 9 "Future work" (motor torque to stabilise an electric
@@ -12,14 +12,15 @@ import numpy as np
 import pytest
 from numerics import assert_eigenvalues_match, eig_bounds, poly_root_tolerance
 
-from stability import assist, models, params
+from stability import assist, models
 from stability import chair as chair_mod
 from stability.assist import digital, driving, tables, tracking
 from stability.assist.__main__ import main as assist_main
 from stability.chair import POWER_FWD_FIELDS
+from stability.chair.power import DriveTrain, drive_train, lumped_estimate, power_fwd
 from stability.linear import input_matrices, state_matrices
-from stability.power_chair import DriveTrain, drive_train, lumped_estimate, power_fwd
-from stability.statics import static_loads
+from stability.models import params
+from stability.models.statics import static_loads
 
 SPEEDS = np.arange(0.5, 3.0001, 0.25)
 
@@ -387,8 +388,8 @@ def test_reversing_front_wheel_drive_chair_is_stable(chair):
     backwards with the casters swung round (reverse=True, casters at 180 deg; pins frictionless),
     within 3 %.  A front-caster chair reversed has trailing casters and is unstable at 1.5 m/s
     (the thesis's rear-caster result)."""
-    from stability.signals import envelope_rate
     from stability.simulate import simulate
+    from stability.simulate.signals import envelope_rate
 
     rev = assist.reversed_chair(chair)
     assert rev.caster_position == "front" and assist.reversed_chair(rev).replace(name=chair.name) == chair

@@ -7,8 +7,8 @@ import pytest
 
 from stability import chair as chair_mod
 from stability.chair import Chair
-from stability.params import parameters
-from stability.statics import normal_loads, static_loads
+from stability.models.params import parameters
+from stability.models.statics import normal_loads, static_loads
 
 
 def wchair_statics(c: Chair, FC1, FC2, E, B):

@@ -309,7 +309,7 @@ NUMERIC = _numeric_options()
 
 def test_every_numeric_option_is_parsed_by_name_with_a_plausibility_bound():
     """Every number of every command is parsed by cli.number (knows its option) with a bound from OPTION_BOUNDS."""
-    from stability.cli_numbers import bound_for as _bound_for
+    from stability.cli.numbers import bound_for as _bound_for
 
     assert len(NUMERIC) >= 40
     for command, prefix, option, _ in NUMERIC:
@@ -363,7 +363,7 @@ def test_signals_during_the_work_exit_130_and_leave_no_file(signum, tmp_path, ca
 
 
 def test_a_signal_swallowed_by_a_library_still_interrupts_and_keeps_no_output(tmp_path, capsys):
-    from stability.output import atomic_write_text
+    from stability.runtime.files import atomic_write_text
 
     def body(args):
         try:
@@ -527,7 +527,7 @@ def test_small_speed_limit_rates_are_proportional_to_speed_and_below_it_refused(
 
     import stability
     from stability import chair as chair_mod
-    from stability._validate import MIN_SPEED
+    from stability.runtime.checks import MIN_SPEED
 
     c = chair_mod.preset("ej-premier")
     r = np.array([d.rate for d in stability.analyse(c, speeds=(MIN_SPEED, 2 * MIN_SPEED)).divergence])
@@ -547,10 +547,10 @@ def test_the_python_api_bounds_work_naming_the_argument_and_the_largest_value(ca
 
     from stability import chair as chair_mod
     from stability.linear.intervals import linear_intervals
-    from stability.measure.uncertainty import from_mapping
     from stability.shimmy.chair import caster_summary
     from stability.simulate import simulate
     from stability.study.impulse import critical_impulses
+    from stability.uncertainty import from_mapping
 
     c = chair_mod.preset("ej-premier")
     calls = {
@@ -572,7 +572,7 @@ def test_the_python_api_bounds_work_naming_the_argument_and_the_largest_value(ca
 def test_report_keeps_a_caster_tire_without_rolling_data_valid():
     """The report switches rolling resistance on only for tires that have rolling data (PU has none)."""
     from stability import chair as chair_mod
-    from stability.validation import with_rolling_resistance
+    from stability.study.validation import with_rolling_resistance
 
     c = with_rolling_resistance(chair_mod.preset("ej-premier").replace(caster_tire="PU"))
     assert (c.main_rolling_scale, c.caster_rolling_scale) == (1.0, 0.0)

@@ -14,7 +14,7 @@ from stability.report.document import figure_texts
 @pytest.fixture
 def captured(monkeypatch):
     """Record the figures the commands save (the real save still runs)."""
-    from stability import output
+    from stability.runtime import files as output
 
     figs = []
     real = output.save_figure
@@ -70,7 +70,7 @@ def test_critical_speed_figure_is_written_with_the_commands_critical_speeds(tmp_
     ("critical_speed", []),
 ])
 def test_unknown_suffix_is_refused_before_any_work(command, argv, tmp_path, capsys):
-    from stability.commands import command_module
+    from stability.cli.commands import command_module
 
     out = tmp_path / "fig.jpg"
     assert command_module(command).main(argv + ["-o", str(out)]) == 2

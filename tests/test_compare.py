@@ -14,7 +14,7 @@ from stability import chair
 from stability.compare import compare, format_comparison, single_effects
 from stability.compare.__main__ import main
 from stability.linear import analyse, divergence, state_matrices, zero_width
-from stability.reference import REFERENCE_SPEED
+from stability.settings.reference import REFERENCE_SPEED
 
 SPEEDS = (0.25, 0.75, 1.5, 3.0)
 

@@ -10,7 +10,8 @@ import pytest
 
 control = pytest.importorskip("control")
 
-from stability import assist, defaults, preset  # noqa: E402
+from stability import assist, preset  # noqa: E402
+from stability.settings import defaults  # noqa: E402
 
 
 @pytest.fixture(scope="module")

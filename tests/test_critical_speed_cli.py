@@ -86,7 +86,7 @@ def test_module_entry_point_runs():
 def test_omitted_effects_reported_with_the_simulator_linearisation(capsys):
     """A chair with rolling resistance: the linear model leaves it out, and the CLI says so
     with the simulator's own linearisation at each table speed."""
-    from stability.validation import linearisation_check
+    from stability.study.validation import linearisation_check
 
     code, out, err = run(capsys, "--set", "caster_rolling_scale=1", "--speeds", "0.5,1", "--json")
     assert code == 0, err

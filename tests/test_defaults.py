@@ -1,8 +1,8 @@
-"""One table of defaults (stability.defaults): every command's parsed defaults and the API's keyword defaults equal it.
+"""One table of defaults (stability.settings.defaults): every command's parsed defaults and the API's keyword defaults equal it.
 
-The parsers are walked through the command registry (stability.commands.COMMANDS), so a new command is checked
+The parsers are walked through the command registry (stability.cli.commands.COMMANDS), so a new command is checked
 as soon as it is registered; an option with a default that the table does not name fails here with the advice to
-add it to stability.defaults.TABLE (or to COMMAND_ONLY below when it is truly the command's own).
+add it to stability.settings.defaults.TABLE (or to COMMAND_ONLY below when it is truly the command's own).
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ import inspect
 import numpy as np
 import pytest
 
-from stability import commands
-from stability import defaults as D
+from stability.cli import commands
+from stability.settings import defaults as D
 
 #: Required arguments that let a parser produce its defaults.
 REQUIRED = {"slope": ["--cross-slope", "2", "--speed", "1"], "measure": ["sheet.toml", "-o", "c.toml"],
@@ -79,7 +79,7 @@ def test_parsed_defaults_equal_the_table(name, sub):
             assert tuple(value) == tuple(D.TABLE[t].value for t in table), (key, dest)
             checked += 1
             continue
-        assert table in D.TABLE, (f"{key}: option {dest!r} (default {value!r}) is not in stability.defaults.TABLE; "
+        assert table in D.TABLE, (f"{key}: option {dest!r} (default {value!r}) is not in stability.settings.defaults.TABLE; "
                                   "add it there and take the parser's default from it")
         expected = D.TABLE[table].value
         if table.endswith("speeds") and isinstance(value, str):
@@ -100,9 +100,9 @@ def _api():
     from stability import linear, simulate
     from stability.assist import design, schedule, tracking
     from stability.assist.weights import GyroSensor, Weights
+    from stability.chair.power import DriveTrain
     from stability.compare.compute import compare
     from stability.linear.intervals import linear_intervals
-    from stability.power_chair import DriveTrain
     from stability.report.document import build
     from stability.shimmy.chair_modes import chair_shimmy
     from stability.slope.equilibrium import HandRim

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from stability import commands
+from stability.cli import commands
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
@@ -62,7 +62,7 @@ def test_documented_command_parses(page, line):
     name, argv = _split(line)
     assert name in commands.COMMANDS, f"{page}: {line}: no command {name!r}"
     parser = commands.build_parser(name)
-    from stability.cli_options import add_common_options, subparsers
+    from stability.cli.options import add_common_options, subparsers
 
     for p in (parser, *subparsers(parser)):
         add_common_options(p)

@@ -29,7 +29,7 @@ from numerics import EPS, SAFETY
 
 from stability.chair import preset
 from stability.linear import state_matrices
-from stability.reference import HORIZON, LEVEL
+from stability.settings.reference import HORIZON, LEVEL
 from stability.study import critical_impulses
 from stability.study.impulse import linear_critical_impulse
 from stability.study.responses import linear_impulse_response, linear_peak_yaw_rate

@@ -10,7 +10,7 @@ import argparse
 import pytest
 
 from stability import chair as chair_mod
-from stability import commands
+from stability.cli import commands
 
 
 def _all_parsers():
@@ -33,7 +33,7 @@ def test_console_script_dispatches_and_refuses_unknown(capsys):
 def test_debug_and_quiet_accepted_after_every_subcommand(name):
     """--debug and --quiet are added by cli.run to a command's parser and to each subcommand's parser (study
     critical-impulse --debug was refused)."""
-    from stability import cli
+    from stability.cli import contract as cli
 
     parser = commands.build_parser(name)
     for p in (parser, *cli._subparsers(parser)):
@@ -100,7 +100,7 @@ def test_output_suffix_names_the_format_and_unknown_is_refused(tmp_path, capsys)
 @pytest.mark.parametrize("name", list(commands.COMMANDS))
 def test_json_and_json_file_together_are_accepted(name):
     parser = commands.build_parser(name)
-    from stability import cli
+    from stability.cli import contract as cli
 
     for p in [parser, *cli._subparsers(parser)]:
         opts = {s for a in p._actions for s in a.option_strings}

@@ -8,8 +8,9 @@ import argparse
 import pytest
 from json_outputs import CASES, SLOW, output
 
-from stability import commands, schemas
-from stability.cli_options import schema_name
+from stability import schemas
+from stability.cli import commands
+from stability.cli.options import schema_name
 
 pytest.importorskip("jsonschema")
 

@@ -61,7 +61,7 @@ def test_locked_full_width_equals_bicycle_closed_form(speed):
     """
     c = chair_mod.preset("ej-premier")
     zw = linear.zero_width(c)
-    from stability.statics import static_stiffness
+    from stability.models.statics import static_stiffness
 
     st = static_stiffness(c)
     Cf, Cr = st["D"], st["A"]                 # per tire, N/rad

@@ -11,7 +11,8 @@ import sympy as sp
 from scipy.integrate import solve_ivp
 
 from stability import chair as chair_mod
-from stability.measure import anthropometry, bodies, pendulum, scales, sheet, units
+from stability.chair import units
+from stability.measure import anthropometry, bodies, pendulum, scales, sheet
 from stability.measure.__main__ import main as measure_main
 from stability.uncertainty import load_uncertainty
 

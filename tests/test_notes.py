@@ -1,4 +1,4 @@
-"""Library warnings become notes (stability.notes): one ``note:`` line per distinct message inside a command line,
+"""Library warnings become notes (stability.runtime.notes): one ``note:`` line per distinct message inside a command line,
 a NumericalNote (not a raw RuntimeWarning) from the API; the assist's margins no longer leak numpy's overflow."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import warnings
 
 import pytest
 
-from stability import notes
+from stability.runtime import notes
 
 
 def test_runtime_warnings_become_one_note_each_and_others_pass():

@@ -65,7 +65,7 @@ def test_assist_names_the_statics_side():
 
     c = preset("power-fwd")
     eq = solve(c, 2.0, 1.0)
-    from stability.power_chair import DriveTrain
+    from stability.chair.power import DriveTrain
 
     hold = DriveTrain().wheel_torque(c, eq.holding_moment)
     fake = SlopeHold.__new__(SlopeHold)
@@ -79,7 +79,7 @@ def test_slope_sim_time_is_the_report_time():
     simulator runs report at T, and the path's heading there is the time history's value at T."""
     import numpy as np
 
-    from stability.slope.uncorrected import uncorrected_path
+    from stability.study.veer import uncorrected_path
 
     data = _slope_json(["--chair", "manual-front-caster", "--cross-slope", "2", "--speed", "1", "--sim-time", "3"])
     assert data["uncorrected_path"]["report_time_s"] == 3.0

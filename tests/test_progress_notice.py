@@ -6,7 +6,7 @@ from __future__ import annotations
 import io
 import time
 
-from stability import progress
+from stability.runtime import progress
 
 
 def test_notice_only_when_slow_and_not_quiet():

@@ -15,13 +15,14 @@ import pytest
 
 from stability import critical_speed, linear, report, rootlocus, simulate, study
 from stability.chair import preset
-from stability.output import read_outline
-from stability.reference import THESIS_PUSH
+from stability.linear.names import mode_names
+from stability.report import command as report_command
 from stability.report.findings import conclusion_rows
-from stability.report.modes import mode_names
 from stability.report.summary import dropped_pages, summary_text
 from stability.report.tire_data import force_curves, stiffness_curves
 from stability.report.validity import run_validity
+from stability.runtime.files import read_outline
+from stability.settings.reference import THESIS_PUSH
 
 EXPECTED_PAGES = [
     # main body
@@ -209,7 +210,7 @@ def test_findings_numbers_match_the_analysis(quick):
     g = rootlocus.gain_locus(c, 0.75, model="exact", n=st.gain_points)
     assert f"K > {g.stabilising_gain:.3g} N m s/rad" in text
     # rolling resistance, left out of the linear model: the simulator's own linearisation
-    from stability.validation import linearisation_check
+    from stability.study.validation import linearisation_check
 
     rl = linearisation_check(c.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0), 0.75, model="exact")
     assert f"at {rl.eigenvalue_simulator.real:.3g} 1/s instead of {rl.eigenvalue_linear.real:.3g} 1/s" in text
@@ -285,7 +286,7 @@ def test_cli_quick_is_byte_identical(quick, tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(report.document, "compute", fake_compute)
     a = tmp_path / "a.pdf"
     txt = tmp_path / "a.txt"
-    assert report.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(a), "--text", str(txt)]) == 0
+    assert report_command.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(a), "--text", str(txt)]) == 0
     assert calls == [("ej-premier", "exact", True)]
     assert a.read_bytes() == quick.path.read_bytes()
     dump = txt.read_text()
@@ -354,7 +355,7 @@ def test_bad_input_is_one_line_and_status_2(argv, needle, capsys, tmp_path):
     if "-o" not in argv and argv != []:
         argv = argv + ["-o", str(tmp_path / "r.pdf")]
     with pytest.raises(SystemExit) as exc:
-        raise SystemExit(report.main(argv + ["--no-progress"]))
+        raise SystemExit(report_command.main(argv + ["--no-progress"]))
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("error:") and needle in err
@@ -492,7 +493,7 @@ def test_summary_numbers_come_from_the_data(quick):
 def test_slope_numbers_equal_the_analysis(quick):
     """The cross-slope page quotes stability.slope's own results; the moment is m g sin(phi) x_m to leading order."""
     from stability.slope import drive_report, solve
-    from stability.slope.uncorrected import uncorrected_path
+    from stability.study.veer import uncorrected_path
 
     c, d = preset("ej-premier"), quick.data
     text = _text(quick, "cross slope")
@@ -626,7 +627,7 @@ def test_bad_uncertainty_input_is_one_line(extra, content, needle, tmp_path, cap
         (out if "{out}" in extra else f).write_text(content)
     argv = [a.format(missing=tmp_path / "none.toml", file=f, out=out) for a in extra]
     with pytest.raises(SystemExit) as exc:
-        raise SystemExit(report.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(out)] + argv))
+        raise SystemExit(report_command.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(out)] + argv))
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and needle in err, err
@@ -716,9 +717,9 @@ def test_what_helps_most_is_ranked_by_elasticities(quick):
 
 def test_cg_ratio_span_keeps_static_loads_positive():
     """Front casters: the contact line lies s2 - trail ahead of the c.g.; the span ends where the main axle keeps
-    2 % of the weight (loads from stability.statics, independent of design.py's closed form)."""
-    from stability.design import get_parameter
-    from stability.statics import check_static_loads, static_loads
+    2 % of the weight (loads from stability.models.statics, independent of design.py's closed form)."""
+    from stability.chair.design import get_parameter
+    from stability.models.statics import check_static_loads, static_loads
 
     p = get_parameter("cg_ratio")
     for name in ("ej-premier", "revised", "ej-premier-front-caster", "manual-front-caster"):
@@ -1032,7 +1033,7 @@ def test_report_json_command(quick, tmp_path, monkeypatch, capsys):
 
     monkeypatch.setattr(command, "compute", lambda c, model="exact", **kw: quick.data)
     out = tmp_path / "r.json"
-    assert report.main(["--quick", "--no-progress", "--json", "--json-file", str(out)]) == 0
+    assert report_command.main(["--quick", "--no-progress", "--json", "--json-file", str(out)]) == 0
     cap = capsys.readouterr()
     printed = json.loads(cap.out)
     assert json.loads(out.read_text()) == printed and f"wrote {out}" in cap.err
@@ -1041,7 +1042,7 @@ def test_report_json_command(quick, tmp_path, monkeypatch, capsys):
     assert printed["chair"] == "ej-premier" and printed["options"]["quick"] is True
     assert printed["summary"]["reference_time_s"] == quick.data.thesis.reference_time
     assert list(tmp_path.iterdir()) == [out]
-    assert report.main(["--quick"]) == 2
+    assert report_command.main(["--quick"]) == 2
     assert "-o FILE.pdf is required" in capsys.readouterr().err
-    assert report.main(["--quick", "--json", "--text", str(tmp_path / "t.txt")]) == 2
+    assert report_command.main(["--quick", "--json", "--text", str(tmp_path / "t.txt")]) == 2
     assert "--text" in capsys.readouterr().err and not (tmp_path / "t.txt").exists()

@@ -211,10 +211,10 @@ def test_locus_plots_are_labelled(ej):
 def test_mode_shape_arm_is_the_axle_to_caster_contact_distance(name):
     """The arm that turns a yaw rate into an angle for the mode names (r l / U) is the distance from the main
     axle to the caster contacts with the casters trailing, taken here from eq 6-24's contact points
-    (stability.statics) and the axle's signed position, not from the chair's wheelbase property."""
-    from stability.params import parameters
-    from stability.report.modes import shape_arm
-    from stability.statics import caster_contact_points
+    (stability.models.statics) and the axle's signed position, not from the chair's wheelbase property."""
+    from stability.linear.names import shape_arm
+    from stability.models.params import parameters
+    from stability.models.statics import caster_contact_points
 
     c = preset(name)
     (xa, _), (xb, _) = caster_contact_points(parameters(c))

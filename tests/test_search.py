@@ -23,8 +23,8 @@ import pytest
 
 from stability import simulate as sim
 from stability.chair import preset
-from stability.defaults import MEASURE_FRICTION_LAW
-from stability.reference import HORIZON, LEVEL, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.defaults import MEASURE_FRICTION_LAW
+from stability.settings.reference import HORIZON, LEVEL, REFERENCE_SPEED, THESIS_PUSH
 from stability.simulate import engine
 from stability.simulate.options import make_options
 from stability.study import critical_impulse, critical_impulses

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from stability import chair as chair_mod
+from stability.models.statics import static_stiffness
 from stability.shimmy.band import TRAIL_SEARCH_M, margin_to_boundaries, shimmy_band
 from stability.shimmy.chair import CasterCompliance, caster_wheel, critical_trail
-from stability.statics import static_stiffness
 
 ROOT = Path(__file__).resolve().parents[1]
 MEASURED = chair_mod.load(ROOT / "docs" / "examples" / "measured_chair.toml")

@@ -26,12 +26,12 @@ from numerics import assert_eigenvalues_match, match_eigenvalues
 from stability.chair import preset
 from stability.linear import state_matrices
 from stability.models import linear_matrices
+from stability.models.params import parameters
 from stability.models.relaxed import relaxed_matrices
-from stability.params import parameters
+from stability.models.statics import static_stiffness
 from stability.shimmy import TowedWheel, chair_critical_trail, relaxed_state_matrices, relaxed_state_space
 from stability.shimmy.chair import CasterCompliance
 from stability.shimmy.chair_modes import shimmy_mode
-from stability.statics import static_stiffness
 
 ROOT = Path(__file__).resolve().parents[1]
 EJ = preset("ej-premier")

@@ -16,10 +16,11 @@ import numpy as np
 import pytest
 from numerics import assert_signals_close, run_tolerance, trajectory_tolerance, transient_bound
 
-from stability import params, tires
-from stability import statics as loads
+from stability import tires
 from stability.chair import preset
 from stability.linear import state_matrices
+from stability.models import params
+from stability.models import statics as loads
 from stability.models.full_width import generated
 from stability.models.slope import generated as slope_generated
 from stability.simulate import (
@@ -38,7 +39,7 @@ from stability.simulate.results import COLUMNS, new_warnings
 
 
 # These tests reproduce program WCHAIR, whose equations are the thesis variant; the toolkit's default model is
-# "exact" (stability.defaults.MODEL), so the thesis model is asked for here unless a test names its model.
+# "exact" (stability.settings.defaults.MODEL), so the thesis model is asked for here unless a test names its model.
 def simulate(*args, **kwargs):
     return _simulate(*args, **{"model": "thesis", **kwargs})
 
@@ -641,7 +642,7 @@ def test_cli_bad_input_one_line_status_2(args, words):
 def test_progress_bar_silent_unless_tty_or_forced(monkeypatch):
     import io
 
-    from stability.progress import ProgressBar, track
+    from stability.runtime.progress import ProgressBar, track
 
     buf = io.StringIO()                                   # not a TTY
     with ProgressBar(10, "x", file=buf) as bar:

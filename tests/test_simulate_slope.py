@@ -14,12 +14,12 @@ from numerics import adaptive_run_tolerance, assert_signals_close, run_tolerance
 
 from stability import chair as chair_mod
 from stability.models import slope as msl
-from stability.params import parameters
+from stability.models.params import parameters
+from stability.models.statics import normal_loads
 from stability.simulate import reference_engine, simulate, simulate_batch
 from stability.simulate.__main__ import main as simulate_main
 from stability.slope import solve
-from stability.slope.uncorrected import simulator_path, simulator_slope, uncorrected_path
-from stability.statics import normal_loads
+from stability.study.veer import simulator_path, simulator_slope, uncorrected_path
 
 EJ = chair_mod.preset("ej-premier")                 # rear casters
 FRONT = chair_mod.preset("manual-front-caster")     # front casters
@@ -133,7 +133,7 @@ def test_front_casters_turn_downhill_rear_casters_uphill(scheme):
     assert simulator_path(EJ, eq, scheme=scheme, duration=0.5).turn == "uphill"
 
 
-# -- agreement with stability.slope.uncorrected ----------------------------------------------------------------------
+# -- agreement with stability.study.veer ----------------------------------------------------------------------
 
 @pytest.mark.parametrize("chair, t_end", [(FRONT, 1.0), (EJ, 0.6)], ids=["front-caster", "ej-premier"])
 def test_simulator_agrees_with_slope_integration(chair, t_end):

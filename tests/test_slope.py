@@ -10,16 +10,17 @@ import numpy as np
 import pytest
 
 from stability import chair as chair_mod
-from stability import linear, statics
+from stability import linear
 from stability.models import full_width as fw
 from stability.models import slope as msl
-from stability.params import parameters
+from stability.models import statics
+from stability.models.params import parameters
 from stability.slope import equilibrium as eqm
 from stability.slope.__main__ import main
 from stability.slope.grade import forward_gravity, grade_run
 from stability.slope.linear import state_matrix
 from stability.slope.model import Plane
-from stability.slope.uncorrected import uncorrected_path
+from stability.study.veer import uncorrected_path
 
 RNG = np.random.default_rng(12)
 PRESETS = ("ej-premier", "ej-premier-front-caster", "revised", "power-fwd", "manual-front-caster")

@@ -122,7 +122,7 @@ def test_disturbance_map_is_one_batch_with_a_force_per_run(fake, monkeypatch):
 def test_disturbance_map_matches_separate_runs():
     """The one-batch map gives the times of separate simulations (real simulator, short runs, the studies' pin
     friction law)."""
-    from stability.defaults import MEASURE_FRICTION_LAW
+    from stability.settings.defaults import MEASURE_FRICTION_LAW
     from stability.simulate import simulate
 
     ej = preset("ej-premier")
@@ -169,7 +169,7 @@ def test_check_conclusions_verdicts(fake):
 def test_lateral_force_input_and_yaw_moment_input_agree_with_linear():
     """The Mz column built the same way as the lateral-force column equals linear.input_matrices."""
     from stability.models import accelerations
-    from stability.params import parameters
+    from stability.models.params import parameters
 
     for model in ("exact", "thesis"):
         c = preset("ej-premier")

@@ -5,8 +5,8 @@ import pytest
 
 from stability import linear, study
 from stability.chair import preset
-from stability.reference import Push
 from stability.rootlocus import get_parameter
+from stability.settings.reference import Push
 
 
 # ---------------------------------------------------------------------------

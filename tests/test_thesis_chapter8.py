@@ -27,7 +27,7 @@ from stability.simulate import simulate as _simulate
 
 def simulate(*args, **kwargs):
     """The simulator with the thesis's equations (program WCHAIR's) unless a test names another model: this
-    file reproduces the thesis's runs, while the toolkit's default model is "exact" (stability.defaults)."""
+    file reproduces the thesis's runs, while the toolkit's default model is "exact" (stability.settings.defaults)."""
     return _simulate(*args, **{"model": "thesis", **kwargs})
 
 EJ = preset("ej-premier")

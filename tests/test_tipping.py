@@ -13,7 +13,7 @@ from scipy.optimize import minimize_scalar
 
 from stability import chair as chair_mod
 from stability.models import slope as slope_model
-from stability.params import parameters
+from stability.models.params import parameters
 from stability.tipping import DIRECTIONS, anti_tip_angle, fall_distance, slope_tip, tip_angles
 
 PRESETS = chair_mod.preset_names()

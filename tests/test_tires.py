@@ -802,7 +802,7 @@ def test_range_policy_on_stiffness():
 def test_range_check_of_a_heavy_chair():
     """critical_speed --set m=200 puts 564 N on each ER caster (issue 16): two notes."""
     from stability import chair as chairs
-    from stability import statics
+    from stability.models import statics
 
     c = chairs.preset("ej-premier").replace(m=200)
     loads = statics.static_loads(c)

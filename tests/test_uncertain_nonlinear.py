@@ -9,7 +9,7 @@ import pytest
 
 from stability.chair import preset
 from stability.linear.intervals import linear_intervals
-from stability.reference import LEVEL, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.reference import LEVEL, REFERENCE_SPEED, THESIS_PUSH
 from stability.study import Criterion, critical_impulse, equal_instability_speed
 from stability.study.uncertain import MAX_NONLINEAR_SAMPLES, nonlinear_intervals
 from stability.uncertainty import loads_uncertainty

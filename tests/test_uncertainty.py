@@ -164,23 +164,3 @@ def test_vector_outputs_and_nan_rows():
         propagate(C, u, fn, level=95)
 
 
-def test_uncertainty_package_sits_at_the_data_layer_and_old_paths_still_work():
-    """stability.uncertainty imports nothing of stability but the chair and readfiles (read by linear/, study/, the sweep,
-    written by measure/), and the old import paths name the same objects."""
-    import ast
-    from pathlib import Path
-
-    import stability.measure.propagation as old_prop
-    import stability.measure.uncertainty as old_unc
-    import stability.uncertainty as unc
-
-    root = Path(unc.__file__).parent
-    for path in root.glob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.ImportFrom) and node.level >= 2:
-                names = [node.module] if node.module else [a.name for a in node.names]
-                assert names in (["chair"], ["readfiles"]), f"{path.name} imports {names}"
-            if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-                assert not node.module.startswith("stability"), f"{path.name} imports {node.module}"
-    assert old_unc.Uncertainty is unc.Uncertainty and old_unc.load_uncertainty is unc.load_uncertainty
-    assert old_prop.propagate is unc.propagate and old_prop.delta_method is unc.delta_method

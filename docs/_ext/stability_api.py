@@ -23,13 +23,13 @@ import pkgutil
 from pathlib import Path
 from typing import Any
 
-
 PACKAGE = "stability"
 API_DIR = "api"
 
 
 def public_modules() -> list[str]:
-    """The modules whose ``__all__`` the reference documents: the package itself and its direct children."""
+    """The modules whose ``__all__`` the reference documents: the package itself, its direct children, and the
+    topic modules of a child package that has no ``__all__`` of its own (``runtime``, ``settings``)."""
     pkg = importlib.import_module(PACKAGE)
     out = [PACKAGE]
     for info in pkgutil.iter_modules(pkg.__path__, PACKAGE + "."):
@@ -38,6 +38,11 @@ def public_modules() -> list[str]:
         mod = importlib.import_module(info.name)
         if getattr(mod, "__all__", None) is not None:
             out.append(info.name)
+        elif info.ispkg:
+            for sub in pkgutil.iter_modules(mod.__path__, info.name + "."):
+                if not sub.name.rsplit(".", 1)[-1].startswith("_") and \
+                        getattr(importlib.import_module(sub.name), "__all__", None) is not None:
+                    out.append(sub.name)
     return out
 
 
@@ -71,7 +76,7 @@ def _data_doc(mod: str, name: str) -> list[str]:
     places = [mod]
     if hasattr(m, "__path__"):
         places += [i.name for i in pkgutil.walk_packages(m.__path__, mod + ".")]
-    from sphinx.pycode import ModuleAnalyzer   # sphinx only when the site builds: tests import this module
+    from sphinx.pycode import ModuleAnalyzer  # sphinx only when the site builds: tests import this module
 
     for place in places:
         try:

@@ -1,7 +1,7 @@
 """Command-line reference generated from the argparse parsers at build time.
 
 ``.. stability-commands::`` writes one section per command of the registry
-:data:`stability.commands.COMMANDS` (a new command appears by itself), each
+:data:`stability.cli.commands.COMMANDS` (a new command appears by itself), each
 with the ``--help`` text of its parser and of every sub-command, as literal
 blocks: the page cannot fall behind the options the commands really accept.
 ``.. stability-cli:: stability.simulate`` renders one command.
@@ -25,7 +25,7 @@ BUILDERS = ("build_parser", "_parser")
 def parser_for(command: str) -> argparse.ArgumentParser:
     """The argparse parser of ``python -m <command>`` (``stability.simulate``)."""
     try:
-        from stability import commands
+        from stability.cli import commands
     except ImportError:          # before the command registry existed
         commands = None
     if commands is not None and command.startswith("stability."):
@@ -82,7 +82,7 @@ class StabilityCommands(SphinxDirective):
     has_content = False
 
     def run(self) -> list[nodes.Node]:
-        from stability import commands
+        from stability.cli import commands
 
         out: list[nodes.Node] = []
         for name in commands.COMMANDS:

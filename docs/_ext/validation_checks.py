@@ -66,7 +66,7 @@ def figure_8_6() -> Check:
 def bicycle_closed_form() -> Check:
     """Locked casters, exact model = the zero-width characteristic equation 5-11 (coefficients eq 5-12)."""
     from stability import linear
-    from stability.statics import static_stiffness
+    from stability.models.statics import static_stiffness
 
     c = _ej()
     st = static_stiffness(c)
@@ -112,7 +112,7 @@ def reference_time() -> Check:
 
 def linear_vs_nonlinear() -> Check:
     """The simulated growth rate equals the dominant eigenvalue while slips stay below 1 deg."""
-    from stability.validation import linear_vs_nonlinear as lvn
+    from stability.study.validation import linear_vs_nonlinear as lvn
 
     rows = [lvn(_ej(), u, model=m, casters="free") for m in ("thesis", "exact") for u in (0.3, 0.75, 2.0)]
     worst = max(r.relative_error for r in rows)
@@ -126,7 +126,7 @@ def linear_vs_nonlinear() -> Check:
 def simulator_linearisation() -> Check:
     """Central differences of the simulator's right-hand side = the symbolic linear model."""
     import stability
-    from stability.validation import linearisation_check
+    from stability.study.validation import linearisation_check
 
     rows = [linearisation_check(stability.preset(n), 0.75, model=m) for n in ("ej-premier", "power-fwd")
             for m in ("thesis", "exact")]

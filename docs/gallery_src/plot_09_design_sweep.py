@@ -4,7 +4,7 @@ A design sweep: growth rate over two design parameters
 
 A grid of chairs built from the E&J Premier by changing two chapter-8
 design parameters at once, the c.g. ratio and the wheelbase ``s1 + s2``
-(through :data:`stability.design.DESIGN_PARAMETERS`, which says how each is
+(through :data:`stability.chair.design.DESIGN_PARAMETERS`, which says how each is
 applied and keeps every other field), with the growth rate of the least
 stable mode at 0.75 m/s for each (linear, exact model, free casters).
 """
@@ -13,7 +13,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import stability
-from stability.design import get_parameter
+from stability.chair.design import get_parameter
 from stability.plotting.style import colormap
 
 chair = stability.preset("ej-premier")

@@ -8,19 +8,19 @@ stability.advise``.  See ``docs/advise.md``.
 
 from __future__ import annotations
 
-from .advisor import (
-                      DEFAULT_CROSS_SLOPE_DEG,
-                      DEFAULT_SPEEDS,
-                      MAX_PIN_FRICTION_N_M,
-                      MIN_SHIMMY_MARGIN_M,
-                      Advice,
-                      Candidate,
-                      Constraint,
-                      Recommendation,
-                      advise,
+from stability.advise.advisor import (
+           DEFAULT_CROSS_SLOPE_DEG,
+           DEFAULT_SPEEDS,
+           MAX_PIN_FRICTION_N_M,
+           MIN_SHIMMY_MARGIN_M,
+           Advice,
+           Candidate,
+           Constraint,
+           Recommendation,
+           advise,
 )
-from .levers import LEVERS, Change, lever_changes
-from .measures import IMPULSE_SPEED, Interval, Measures, measure_chairs
+from stability.advise.levers import LEVERS, Change, lever_changes
+from stability.advise.measures import IMPULSE_SPEED, Interval, Measures, measure_chairs
 
 __all__ = ["advise", "Advice", "Candidate", "Constraint", "Recommendation", "Measures", "Interval", "measure_chairs",
            "Change", "LEVERS", "lever_changes", "IMPULSE_SPEED", "DEFAULT_SPEEDS", "DEFAULT_CROSS_SLOPE_DEG",

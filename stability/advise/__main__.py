@@ -6,10 +6,10 @@ import argparse
 import math
 from collections.abc import Sequence
 
-from .. import cli
-from .. import defaults as D
-from .advisor import advise
-from .text import advice_mapping, advice_text
+from stability import cli
+from stability.advise.advisor import advise
+from stability.advise.text import advice_mapping, advice_text
+from stability.settings import defaults as D
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -59,13 +59,13 @@ def _body(a: argparse.Namespace) -> int:
     chair = cli.load_chair(a.chair, a.set)
     unc = None
     if a.uncertainty:
-        from ..measure.uncertainty import load_uncertainty
+        from stability.uncertainty import load_uncertainty
         unc = load_uncertainty(a.uncertainty)
     advice = advise(chair, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=a.cross_slope,
                     progress=not a.no_progress)
     data = advice_mapping(advice)
     if unc is not None:
-        from .uncertain import tip_interval
+        from stability.advise.uncertain import tip_interval
         lo, hi = tip_interval(chair, unc)
         data["verdict"]["static_stability_deg"]["interval"] = [lo, hi]
         data["verdict"]["static_stability_interval_source"] = f"{a.uncertainty} (2.5-97.5 % of 200 draws)"

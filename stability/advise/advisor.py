@@ -14,12 +14,12 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from .. import defaults as D
-from ..chair import Chair
-from ..reference import REFERENCE_SPEED
-from ..study import reference_time
-from .levers import LEVERS, apply, lever_changes
-from .measures import Measures, measure_chairs
+from stability.advise.levers import LEVERS, apply, lever_changes
+from stability.advise.measures import Measures, measure_chairs
+from stability.chair import Chair
+from stability.settings import defaults as D
+from stability.settings.reference import REFERENCE_SPEED
+from stability.study import reference_time
 
 __all__ = ["Constraint", "Candidate", "Recommendation", "Advice", "advise", "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST",
            "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS", "DEFAULT_CROSS_SLOPE_DEG"]
@@ -34,9 +34,9 @@ MIN_SHIMMY_MARGIN_M = 0.005
 MAX_FIX_COST = 0.25
 #: A change may raise the hand-rim force difference on the cross slope by at most this factor.
 HANDRIM_FACTOR = 1.1
-#: Default use speeds (m/s): :data:`stability.defaults.ADVISE_SPEEDS` (0.5:1:0.25).
+#: Default use speeds (m/s): :data:`stability.settings.defaults.ADVISE_SPEEDS` (0.5:1:0.25).
 DEFAULT_SPEEDS = (0.5, 0.75, 1.0)
-#: Default cross slope for the hand-rim force (deg): :data:`stability.defaults.ADVISE_CROSS_SLOPE_DEG`.
+#: Default cross slope for the hand-rim force (deg): :data:`stability.settings.defaults.ADVISE_CROSS_SLOPE_DEG`.
 DEFAULT_CROSS_SLOPE_DEG = D.ADVISE_CROSS_SLOPE_DEG
 
 

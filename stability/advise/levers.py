@@ -10,9 +10,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..chair import Chair
-from ..statics import check_static_loads
-from ..tires import CASTER_TIRES
+from stability.chair import Chair
+from stability.models.statics import check_static_loads
+from stability.tires import CASTER_TIRES
 
 __all__ = ["Change", "LEVERS", "lever_changes", "apply"]
 

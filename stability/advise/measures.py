@@ -26,15 +26,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from ..linear import eigenvalues_vs_speed
-from ..progress import ProgressBar
-from ..reference import REFERENCE_SPEED
-from ..shimmy.band import band_core, shimmy_band
-from ..slope import drive_report, solve
-from ..study import critical_impulse_intervals, equal_instability_intervals
-from ..study.impulse_intervals import CriticalImpulseInterval
-from ..tipping import tip_angles
+from stability.chair import Chair
+from stability.linear import eigenvalues_vs_speed
+from stability.runtime.progress import ProgressBar
+from stability.settings.reference import REFERENCE_SPEED
+from stability.shimmy.band import band_core, shimmy_band
+from stability.slope import drive_report, solve
+from stability.study import critical_impulse_intervals, equal_instability_intervals
+from stability.study.impulse_intervals import CriticalImpulseInterval
+from stability.tipping import tip_angles
 
 __all__ = ["Interval", "Measures", "measure_chairs", "nonlinear_measures", "IMPULSE_SPEED"]
 

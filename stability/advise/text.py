@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 
-from ..reference import REFERENCE_SPEED, THESIS_PUSH
-from .advisor import Advice, Candidate
-from .levers import LEVERS
-from .measures import Measures
+from stability.advise.advisor import Advice, Candidate
+from stability.advise.levers import LEVERS
+from stability.advise.measures import Measures
+from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
 
 __all__ = ["advice_text", "advice_mapping", "kmh"]
 

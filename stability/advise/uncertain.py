@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..chair import Chair
-from ..tipping import tip_angles
+from stability.chair import Chair
+from stability.tipping import tip_angles
 
 __all__ = ["tip_interval", "SAMPLES"]
 
@@ -19,7 +19,7 @@ def tip_interval(chair: Chair, uncertainty, samples: int = SAMPLES, seed: int = 
     Parameters
     ----------
     chair : Chair
-    uncertainty : stability.measure.uncertainty.Uncertainty
+    uncertainty : stability.uncertainty.Uncertainty
     samples : int
     seed : int
 

@@ -9,6 +9,6 @@ in the background), ``page`` (the Panel page; needs the ``app`` extra) and
 
 from __future__ import annotations
 
-from .state import MAX_PINNED, AppState, error_line
+from stability.app.state import MAX_PINNED, AppState, error_line
 
 __all__ = ["AppState", "MAX_PINNED", "error_line"]

@@ -2,7 +2,7 @@
 
 import sys
 
-from .server import main
+from stability.app.server import main
 
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())

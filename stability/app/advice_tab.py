@@ -13,9 +13,9 @@ from typing import Any
 
 import panel as pn
 
-from ..chair import Chair
-from .markup import literal, pre
-from .state import assignments
+from stability.app.markup import literal, pre
+from stability.app.state import assignments
+from stability.chair import Chair
 
 __all__ = ["AdviceTab"]
 
@@ -65,8 +65,8 @@ class AdviceTab:
         self.text.object = f"advising on {literal(chair.name)} (simulating every lever)..."
 
         def work() -> tuple[Any, str]:
-            from ..advise import advise
-            from ..advise.text import advice_text
+            from stability.advise import advise
+            from stability.advise.text import advice_text
 
             a = advise(chair)
             return a, advice_text(a)

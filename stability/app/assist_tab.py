@@ -17,10 +17,10 @@ from bokeh.models import ColumnDataSource
 from bokeh.models.annotations import Legend, LegendItem
 from bokeh.plotting import figure
 
-from .. import defaults as D
-from ..chair import Chair
-from ..plotting.style import OKABE_ITO
-from .markup import literal, pre
+from stability.app.markup import literal, pre
+from stability.chair import Chair
+from stability.plotting.style import OKABE_ITO
+from stability.settings import defaults as D
 
 __all__ = ["AssistTab", "assist_schedule"]
 
@@ -37,9 +37,9 @@ def assist_schedule(chair: Chair, model: str = D.MODEL) -> tuple[Any, list, str]
     -------
     (Schedule, list of GainRow, str)
     """
-    from ..assist import schedule
-    from ..assist.tables import format_margins, format_table, gain_table
-    from ..cli import parse_speeds
+    from stability.assist import schedule
+    from stability.assist.tables import format_margins, format_table, gain_table
+    from stability.cli import parse_speeds
 
     sched = schedule(chair, parse_speeds(D.ASSIST_SPEEDS, increasing=True), "gyro", model=model)
     rows = gain_table(sched, check=False)

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from functools import partial
 from typing import Any
 
-from .. import defaults as D
+from stability.settings import defaults as D
 
 __all__ = ["Jobs", "warm_up", "executor", "warm_up_done"]
 
@@ -51,8 +51,8 @@ def warm_up() -> Future:
         compile, several seconds; later starts load the cache).
     """
     def run() -> None:
-        from ..chair import preset
-        from ..simulate import simulate
+        from stability.chair import preset
+        from stability.simulate import simulate
 
         try:
             simulate(preset(D.CHAIR), D.SPEED, duration=0.05, model=D.MODEL)

@@ -20,19 +20,19 @@ import panel as pn
 from bokeh.models import ColumnDataSource
 from bokeh.models.annotations import LegendItem
 
-from .. import chair as chair_mod
-from .. import defaults as D
-from .. import tires
-from ..plotting.style import OKABE_ITO, UNSTABLE
-from . import plots
-from .advice_tab import AdviceTab
-from .assist_tab import AssistTab
-from .jobs import Jobs, warm_up_done
-from .markup import literal, pre
-from .state import AppState, error_line
-from .text import downloads, field_rows, geometry_text, summary_text
-from .trail_tab import TrailTab
-from .views import LinearView, geometry_points, linear_view, mode_shape, nonlinear_view
+from stability import chair as chair_mod
+from stability import tires
+from stability.app import plots
+from stability.app.advice_tab import AdviceTab
+from stability.app.assist_tab import AssistTab
+from stability.app.jobs import Jobs, warm_up_done
+from stability.app.markup import literal, pre
+from stability.app.state import AppState, error_line
+from stability.app.text import downloads, field_rows, geometry_text, summary_text
+from stability.app.trail_tab import TrailTab
+from stability.app.views import LinearView, geometry_points, linear_view, mode_shape, nonlinear_view
+from stability.plotting.style import OKABE_ITO, UNSTABLE
+from stability.settings import defaults as D
 
 __all__ = ["Explorer"]
 
@@ -489,7 +489,7 @@ class Explorer:
             f"thesis's 40 N / 0.1 s push): {eq_text}.\n\nPush shown: {nv.push[0]:g} N for {nv.push[1]:g} s at the c.g.")
 
     def _start_bands(self) -> None:
-        from ..linear.intervals import linear_intervals
+        from stability.linear.intervals import linear_intervals
 
         chair, model, unc = self.state.chair, self.state.model, self.state.uncertainty
         speeds = np.geomspace(0.05, D.MAX_SPEED, 40)
@@ -504,7 +504,7 @@ class Explorer:
         self.jobs.submit(work, show, self._failed)
 
     def _show_compare(self) -> None:
-        from ..compare import compare, format_comparison, growth_curves
+        from stability.compare import compare, format_comparison, growth_curves
 
         v = self._view()
         keep = v.locus.speeds <= 3.0

@@ -13,7 +13,7 @@ from bokeh.models import ColumnDataSource, HoverTool, Range1d
 from bokeh.models.annotations import Label, Legend, LegendItem, Span
 from bokeh.plotting import figure
 
-from ..plotting.style import MARK, OKABE_ITO, UNSTABLE
+from stability.plotting.style import MARK, OKABE_ITO, UNSTABLE
 
 __all__ = ["STABLE", "speed_figures", "shape_figure", "top_view", "side_view", "response_figure",
            "compare_figure", "trail_figure", "MAX_BRANCHES", "MAX_CROSSINGS"]
@@ -110,7 +110,7 @@ def shape_figure(source: ColumnDataSource):
     -------
     bokeh.plotting.figure
     """
-    from ..app.views import SHAPE_COMPONENTS
+    from stability.app.views import SHAPE_COMPONENTS
 
     p = _fig("Mode shape at the slider's speed", "component (angles: rad per unit of the largest)",
              "relative magnitude (-)", x_range=list(SHAPE_COMPONENTS), height=260)

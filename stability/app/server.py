@@ -15,7 +15,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from ..cli import OneLineErrorParser, run
+from stability.cli import OneLineErrorParser, run
 
 __all__ = ["build_parser", "main", "make_server", "free_port", "create_page"]
 
@@ -87,7 +87,7 @@ def make_server(host: str = "127.0.0.1", port: int = 0, show: bool = False) -> t
     pn.extension(notifications=False)
     server = pn.serve({"/": create_page}, port=port, address=host, show=show, start=False,
                       title="stability explorer", websocket_origin=origins, verbose=False)
-    from .security import install
+    from stability.app.security import install
 
     install(server)
     shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
@@ -105,7 +105,7 @@ def create_page() -> Any:
 
     doc = pn.state.curdoc
     deliver = doc.add_next_tick_callback if doc is not None else None
-    from .page import Explorer
+    from stability.app.page import Explorer
 
     ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location)
     if doc is not None:                      # a closed page's queued work is dropped
@@ -128,7 +128,7 @@ def _run(args: argparse.Namespace) -> int:
         import panel  # noqa: F401
     except ImportError:
         raise ValueError("the explorer needs Panel: pip install -e \".[app]\"") from None
-    from .jobs import warm_up
+    from stability.app.jobs import warm_up
 
     try:
         server, url = make_server(args.host, args.port, show=not args.no_browser)

@@ -27,12 +27,12 @@ from dataclasses import dataclass, field
 from typing import Any
 from urllib.parse import parse_qsl, urlencode
 
-from .. import chair as chair_mod
-from .. import defaults as D
-from .. import tires
-from ..chair import Chair
-from ..cli import apply_assignments
-from ..output import json_text, with_tire_range
+from stability import chair as chair_mod
+from stability import tires
+from stability.chair import Chair
+from stability.cli import apply_assignments
+from stability.runtime.files import json_text, with_tire_range
+from stability.settings import defaults as D
 
 __all__ = ["AppState", "Edit", "MAX_PINNED", "DEFAULT_PRESET", "error_line", "assignments"]
 
@@ -290,7 +290,7 @@ class AppState:
         str or None
             None, or the one-line message (``errors["uncertainty"]``).
         """
-        from ..measure.uncertainty import loads_uncertainty
+        from stability.uncertainty import loads_uncertainty
 
         try:
             text = data if isinstance(data, str) else bytes(data).decode()
@@ -472,10 +472,10 @@ class AppState:
         -------
         str
         """
-        from ..cli import parse_speeds
-        from ..critical_speed.command import build_parser, document
-        from ..linear import analyse
-        from ..summary import simulator_checks
+        from stability.cli import parse_speeds
+        from stability.critical_speed.command import build_parser, document
+        from stability.linear import analyse
+        from stability.study.summary_text import simulator_checks
 
         args = build_parser().parse_args(["--model", self.model])
         speeds = parse_speeds(args.speeds)
@@ -492,7 +492,7 @@ def _preset(name: str) -> Chair:
 
 
 def _static_loads(c: Chair) -> Any:
-    from ..statics import static_loads
+    from stability.models.statics import static_loads
 
     return static_loads(c)
 

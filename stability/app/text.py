@@ -7,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import chair as chair_mod
-from ..chair import Chair
-from .views import LinearView
+from stability import chair as chair_mod
+from stability.app.views import LinearView
+from stability.chair import Chair
 
 __all__ = ["summary_text", "geometry_text", "figure_file", "downloads", "field_rows", "FIELD_KINDS"]
 
@@ -86,7 +86,7 @@ def figure_file(v: LinearView, fmt: str) -> io.BytesIO:
     """
     from matplotlib.figure import Figure
 
-    from ..plotting.loci import eigenvalues_vs_speed
+    from stability.plotting.loci import eigenvalues_vs_speed
 
     fig = Figure(figsize=(7.5, 6.5))
     axes = fig.subplots(2, 1)
@@ -139,7 +139,7 @@ def downloads(state: Any, view: Any) -> Any:
     """
     import panel as pn
 
-    from .views import eigenvalues_csv
+    from stability.app.views import eigenvalues_csv
 
     return pn.Row(
         pn.widgets.FileDownload(callback=lambda: io.StringIO(state.chair_toml()), filename="chair.toml",

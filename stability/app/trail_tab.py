@@ -13,10 +13,10 @@ import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource
 
-from ..chair import Chair
-from . import plots
-from .markup import literal
-from .views import TRAIL_SPEEDS, TrailWindow, trail_window
+from stability.app import plots
+from stability.app.markup import literal
+from stability.app.views import TRAIL_SPEEDS, TrailWindow, trail_window
+from stability.chair import Chair
 
 __all__ = ["TrailTab"]
 

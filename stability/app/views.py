@@ -7,7 +7,7 @@ speed (:func:`stability.linear.eigenvalues_vs_speed`) as a
 speeds (:func:`stability.linear.critical_speeds`),
 the zero-width closed form, the divergence table (:func:`stability.linear.divergence`,
 the rows ``critical_speed`` prints), the static loads and the mode names of
-the report (:func:`stability.report.modes.mode_names`).  Nothing here is
+the report (:func:`stability.linear.names.mode_names`).  Nothing here is
 physics: every number comes from those functions.
 """
 
@@ -21,9 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from .. import defaults as D
-from ..chair import Chair
-from ..linear import (
+from stability.chair import Chair
+from stability.linear import (
     STATES_FREE,
     Crossing,
     Divergence,
@@ -34,10 +33,11 @@ from ..linear import (
     state_matrices,
     zero_width,
 )
-from ..report.modes import mode_names, mode_shares, shape_arm
-from ..rootlocus.speed import SpeedLocus, readonly
-from ..statics import static_loads
-from ..tipping import TipAngles, tip_angles
+from stability.linear.names import mode_names, mode_shares, shape_arm
+from stability.models.statics import static_loads
+from stability.rootlocus.speed import SpeedLocus, readonly
+from stability.settings import defaults as D
+from stability.tipping import TipAngles, tip_angles
 
 __all__ = ["LinearView", "linear_view", "ModeShape", "mode_shape", "eigenvalues_csv", "GRID", "TABLE_SPEEDS",
            "geometry_points", "SHAPE_COMPONENTS", "NonlinearView", "nonlinear_view", "response",
@@ -134,7 +134,7 @@ def linear_view(chair: Chair, model: str = D.MODEL, name_speed: float = D.SPEED)
                       tip=tip_angles(chair))
 
 
-#: The mode-shape components, dimensionless (angles, rad): the report's scaling (stability.report.modes).
+#: The mode-shape components, dimensionless (angles, rad): the report's scaling (stability.linear.names).
 SHAPE_COMPONENTS = ("sideslip v/U", "yaw r·s/U", "left caster η", "right caster β")
 
 
@@ -303,8 +303,8 @@ def response(chair: Chair, model: str, speed: float, push: tuple[float, float], 
     tuple of ndarray
         Times (s) and yaw rates (rad/s) of the nonlinear and of the linear response.
     """
-    from ..simulate import simulate
-    from ..study import linear_impulse_response
+    from stability.simulate import simulate
+    from stability.study import linear_impulse_response
 
     run = simulate(chair, speed, duration=duration, model=model, impulse_force=push[0], impulse_duration=push[1])
     lin = linear_impulse_response(chair, speed, duration, impulse=push, model=model)
@@ -330,7 +330,7 @@ def nonlinear_view(chair: Chair, model: str, speed: float, push: tuple[float, fl
     -------
     NonlinearView
     """
-    from ..study import critical_impulse, equal_instability_speed
+    from stability.study import critical_impulse, equal_instability_speed
 
     t, r, tl, rl = response(chair, model, speed, push)
     ci = critical_impulse(chair, speed, model=model, duration=push[1])
@@ -388,9 +388,9 @@ def trail_window(chair: Chair, model: str = D.MODEL, cross_slope_deg: float = 2.
     -------
     TrailWindow
     """
-    from ..shimmy import chair_trail_chart
-    from ..shimmy.band import shimmy_band
-    from ..slope import drive_report, solve
+    from stability.shimmy import chair_trail_chart
+    from stability.shimmy.band import shimmy_band
+    from stability.slope import drive_report, solve
 
     chart = chair_trail_chart(chair, TRAILS, TRAIL_SPEEDS, model=model)
     band = shimmy_band(chair, TRAIL_SPEEDS)

@@ -14,11 +14,23 @@ Rationale and results: ``docs/assist.md``.
 
 from __future__ import annotations
 
-from .controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
-from .design import Design, LoopMargins, closed_loop_poles, design, loop_margins, realise
-from .destabilising import DestabilisingSummary, destabilising_moment, destabilising_summary, valid_until
-from .digital import MarginCurves, MarginPair, discrete_loop, discrete_margins, margin_curves, margin_pair
-from .driving import (
+from stability.assist.controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
+from stability.assist.design import Design, LoopMargins, closed_loop_poles, design, loop_margins, realise
+from stability.assist.destabilising import (
+    DestabilisingSummary,
+    destabilising_moment,
+    destabilising_summary,
+    valid_until,
+)
+from stability.assist.digital import (
+    MarginCurves,
+    MarginPair,
+    discrete_loop,
+    discrete_margins,
+    margin_curves,
+    margin_pair,
+)
+from stability.assist.driving import (
     CROSS_SLOPES,
     HOLD_TOLERANCE,
     CommandRun,
@@ -35,7 +47,7 @@ from .driving import (
     tracking_step,
     traction_limit,
 )
-from .plant import (
+from stability.assist.plant import (
     MOTOR_STATE,
     STATES,
     YAW_LOOP,
@@ -45,7 +57,7 @@ from .plant import (
     reversed_chair,
     standstill_plant,
 )
-from .recovery import (
+from stability.assist.recovery import (
     SETTLE_FLOOR_DEG,
     SETTLE_FRACTION,
     DecayAgreement,
@@ -59,9 +71,9 @@ from .recovery import (
     recovery_table,
     settle_time,
 )
-from .robustness import ROBUST_PARAMETERS, Robustness, WorstCorner, robustness
-from .schedule import Schedule, schedule
-from .tables import (
+from stability.assist.robustness import ROBUST_PARAMETERS, Robustness, WorstCorner, robustness
+from stability.assist.schedule import Schedule, schedule
+from stability.assist.tables import (
     GainRow,
     PoleCurves,
     ReverseRow,
@@ -72,7 +84,7 @@ from .tables import (
     pole_curves,
     reverse_table,
 )
-from .tracking import (
+from stability.assist.tracking import (
     DriftCurves,
     Feedforward,
     TrackingMetrics,
@@ -83,7 +95,7 @@ from .tracking import (
     heading_drift,
     step_metrics,
 )
-from .weights import DESIGNS, EstimatorWeights, GyroSensor, Weights
+from stability.assist.weights import DESIGNS, EstimatorWeights, GyroSensor, Weights
 
 __all__ = [
     "DESIGNS", "STATES", "Weights", "GyroSensor", "EstimatorWeights",

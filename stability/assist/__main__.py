@@ -10,9 +10,39 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import defaults as D
-from ..chair import Chair
-from ..cli import (
+from stability.assist._format import fmt
+from stability.assist.destabilising import destabilising_moment, destabilising_summary, valid_until
+from stability.assist.digital import margin_curves
+from stability.assist.driving import (
+    COMMAND_FILTER,
+    CROSS_SLOPES,
+    TRACKING_SPEED,
+    SlopeHold,
+    slope_hold,
+    torque_requirement,
+    tracking_runs,
+    traction_limit,
+)
+from stability.assist.export_run import check_export, run_export
+from stability.assist.firmware import Q_FORMATS
+from stability.assist.recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
+from stability.assist.robustness import Robustness, robustness
+from stability.assist.safety import Safety, run_safety
+from stability.assist.schedule import Schedule, schedule
+from stability.assist.tables import (
+    format_margins,
+    format_recovery,
+    format_slope_holds,
+    format_table,
+    gain_table,
+    pole_curves,
+    reverse_table,
+)
+from stability.assist.tracking import drift_curves
+from stability.assist.weights import DESIGNS, GyroSensor, Weights
+from stability.chair import Chair
+from stability.chair.power import DriveTrain
+from stability.cli import (
     OneLineErrorParser,
     add_chair_options,
     add_json_options,
@@ -26,39 +56,9 @@ from ..cli import (
     parse_speeds,
     run,
 )
-from ..output import write_pdf
-from ..power_chair import DriveTrain
-from ..reference import THESIS_PUSH
-from ._format import fmt
-from .destabilising import destabilising_moment, destabilising_summary, valid_until
-from .digital import margin_curves
-from .driving import (
-    COMMAND_FILTER,
-    CROSS_SLOPES,
-    TRACKING_SPEED,
-    SlopeHold,
-    slope_hold,
-    torque_requirement,
-    tracking_runs,
-    traction_limit,
-)
-from .export_run import check_export, run_export
-from .firmware import Q_FORMATS
-from .recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
-from .robustness import Robustness, robustness
-from .safety import Safety, run_safety
-from .schedule import Schedule, schedule
-from .tables import (
-    format_margins,
-    format_recovery,
-    format_slope_holds,
-    format_table,
-    gain_table,
-    pole_curves,
-    reverse_table,
-)
-from .tracking import drift_curves
-from .weights import DESIGNS, GyroSensor, Weights
+from stability.runtime.files import write_pdf
+from stability.settings import defaults as D
+from stability.settings.reference import THESIS_PUSH
 
 __all__ = ["build_parser", "main"]
 
@@ -323,7 +323,7 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
                holds: list[SlopeHold], safety: Safety | None = None) -> None:
     """The assist figures as a PDF at ``path`` (matplotlib is imported only here)."""
     # matplotlib is imported only when a PDF is asked for
-    from . import figures, figures_slope
+    from stability.assist import figures, figures_slope
 
     figs = [figures.figure_gains(sched, rows), figures.figure_poles(sched, rows, pole_curves(sched), rob),
             figures.figure_margins(sched, rows), figures.figure_robustness(rob, sched)]
@@ -346,7 +346,7 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
     if holds:
         figs.append(figures_slope.figure_slope_hold(sched, holds))
     if safety is not None:
-        from .figures_safety import figure_top_speed
+        from stability.assist.figures_safety import figure_top_speed
 
         figs.append(figure_top_speed(sched, safety.top, safety.faults))
     write_pdf(figs, path, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")

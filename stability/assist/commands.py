@@ -14,12 +14,12 @@ from typing import Any
 
 import numpy as np
 
-from .. import defaults as D
-from .._validate import check_speed
-from ..reference import THESIS_PUSH
-from ..simulate import simulate
-from .controller import TRACKING_TIME, DigitalController
-from .schedule import Schedule
+from stability.assist.controller import TRACKING_TIME, DigitalController
+from stability.assist.schedule import Schedule
+from stability.runtime.checks import check_speed
+from stability.settings import defaults as D
+from stability.settings.reference import THESIS_PUSH
+from stability.simulate import simulate
 
 __all__ = ["MAX_YAW_RATE", "LATERAL_ACCELERATION", "step_command", "ramp_command", "slalom_command",
            "reference_command", "COMMAND_FILTER", "CommandRun", "command_run"]
@@ -144,7 +144,7 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
     duration : float
         s.
     impulse_force : float
-        Lateral push at the c.g. (N, for :data:`~stability.reference.THESIS_PUSH`'s duration).
+        Lateral push at the c.g. (N, for :data:`~stability.settings.reference.THESIS_PUSH`'s duration).
     noise : bool
         Gyro noise and bias.
     seed : int

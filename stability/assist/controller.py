@@ -9,12 +9,12 @@ from typing import Any
 import numpy as np
 from scipy.linalg import expm
 
-from .._validate import check_choice, check_positive
-from ..chair import Chair
-from ..power_chair import DriveTrain
-from .design import Design
-from .tracking import feedforward
-from .weights import DEFAULT_GYRO, GyroSensor
+from stability.assist.design import Design
+from stability.assist.tracking import feedforward
+from stability.assist.weights import DEFAULT_GYRO, GyroSensor
+from stability.chair import Chair
+from stability.chair.power import DriveTrain
+from stability.runtime.checks import check_choice, check_positive
 
 __all__ = ["ANTI_WINDUP", "TRACKING_TIME", "DigitalController"]
 

@@ -13,14 +13,22 @@ from typing import Any
 import control
 import numpy as np
 
-from .._validate import check_choice
-from ..chair import Chair
-from ..defaults import SAMPLE_RATE_HZ
-from ..notes import library_warnings
-from ..power_chair import DriveTrain
-from ._format import json_float
-from .plant import Plant, measurement_matrix, plant, standstill_plant, system_name
-from .weights import DEFAULT_ESTIMATOR, DEFAULT_GYRO, DEFAULT_WEIGHTS, DESIGNS, EstimatorWeights, GyroSensor, Weights
+from stability.assist._format import json_float
+from stability.assist.plant import Plant, measurement_matrix, plant, standstill_plant, system_name
+from stability.assist.weights import (
+    DEFAULT_ESTIMATOR,
+    DEFAULT_GYRO,
+    DEFAULT_WEIGHTS,
+    DESIGNS,
+    EstimatorWeights,
+    GyroSensor,
+    Weights,
+)
+from stability.chair import Chair
+from stability.chair.power import DriveTrain
+from stability.runtime.checks import check_choice
+from stability.runtime.notes import library_warnings
+from stability.settings.defaults import SAMPLE_RATE_HZ
 
 __all__ = ["Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins"]
 
@@ -152,7 +160,7 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     weights : Weights
         LQR weights (Bryson's rule).
     drive : DriveTrain, optional
-        Default :class:`~stability.power_chair.DriveTrain`; its
+        Default :class:`~stability.chair.power.DriveTrain`; its
         ``motor_time_constant`` puts the motor lag into the design model.
     gyro : GyroSensor
         Gyro noise (Kalman measurement noise).

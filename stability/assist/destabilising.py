@@ -13,11 +13,11 @@ from typing import Any
 
 import numpy as np
 
-from .. import chair as chair_mod
-from ..chair import Chair
-from ..power_chair import DriveTrain
-from ..reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from ..simulate import simulate
+from stability import chair as chair_mod
+from stability.chair import Chair
+from stability.chair.power import DriveTrain
+from stability.settings.reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.simulate import simulate
 
 __all__ = ["destabilising_moment", "valid_until", "DestabilisingSummary", "destabilising_summary"]
 
@@ -28,7 +28,7 @@ def destabilising_moment(chair: Chair | str = REFERENCE_CHAIR, speed: float = RE
                          impulse_duration: float = THESIS_PUSH.duration) -> Any:
     """Figure 9-4: total yaw moment of the tire forces about the c.g. over time (open loop).
 
-    Defaults are the thesis's reference case (:mod:`stability.reference`:
+    Defaults are the thesis's reference case (:mod:`stability.settings.reference`:
     E&J Premier, 0.75 m/s, 40 N for 0.1 s at the c.g., thesis model, WCHAIR
     scheme and its warning rule).
 

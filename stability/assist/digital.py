@@ -17,8 +17,8 @@ import control
 import numpy as np
 from scipy.linalg import expm
 
-from .design import Design, LoopMargins, _margins, loop_margins
-from .plant import system_name
+from stability.assist.design import Design, LoopMargins, _margins, loop_margins
+from stability.assist.plant import system_name
 
 __all__ = ["discrete_controller", "discrete_loop", "discrete_margins", "MarginPair", "margin_pair", "MarginCurves",
            "margin_curves"]
@@ -182,7 +182,7 @@ class MarginPair:
         ``gain_db`` is the smaller of the gain increase and decrease (dB) that
         destabilises (the open-loop chair is unstable, so a decrease can).
         """
-        from ._format import json_float
+        from stability.assist._format import json_float
 
         return {k: {kk: json_float(vv) for kk, vv in _summary(getattr(self, k)).items()}
                 for k in ("continuous", "discrete")}

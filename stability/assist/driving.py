@@ -16,13 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_speed
-from ..reference import THESIS_PUSH
-from ..simulate import simulate
-from ..slope import equilibrium
-from ..slope.uncorrected import MAX_CASTER_SWING_DEG
-from ..statics import static_loads
-from .commands import (
+from stability.assist.commands import (
     COMMAND_FILTER,
     LATERAL_ACCELERATION,
     MAX_YAW_RATE,
@@ -33,8 +27,14 @@ from .commands import (
     slalom_command,
     step_command,
 )
-from .schedule import Schedule
-from .tracking import TrackingMetrics, step_metrics
+from stability.assist.schedule import Schedule
+from stability.assist.tracking import TrackingMetrics, step_metrics
+from stability.models.statics import static_loads
+from stability.runtime.checks import check_speed
+from stability.settings.reference import THESIS_PUSH
+from stability.simulate import simulate
+from stability.slope import equilibrium
+from stability.study.veer import MAX_CASTER_SWING_DEG
 
 __all__ = ["MAX_YAW_RATE", "LATERAL_ACCELERATION", "step_command", "ramp_command", "slalom_command",
            "reference_command", "COMMAND_FILTER", "CommandRun", "command_run", "tracking_step", "traction_limit",
@@ -90,7 +90,7 @@ class TorqueRow:
     ----------
     speed_m_s : float
     push_peak_N_m, push_rms_N_m : float
-        Recovery from the reference push (:data:`~stability.reference.THESIS_PUSH`), 2 s, noise-free.
+        Recovery from the reference push (:data:`~stability.settings.reference.THESIS_PUSH`), 2 s, noise-free.
     turn_peak_N_m, turn_rms_N_m : float
         Yaw-rate step :func:`reference_command` through the reference model, 3 s.
     steady_turn_N_m : float

@@ -21,12 +21,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import defaults as D
-from ..reference import THESIS_PUSH
-from ..simulate import simulate
-from .commands import COMMAND_FILTER, MAX_YAW_RATE, ramp_command, reference_command, step_command
-from .controller import DigitalController
-from .firmware import (
+from stability.assist.commands import COMMAND_FILTER, MAX_YAW_RATE, ramp_command, reference_command, step_command
+from stability.assist.controller import DigitalController
+from stability.assist.firmware import (
     DEGRADED_SPEED,
     MONITOR_THRESHOLD_DEG_S,
     PLAUSIBLE_MIN_SPEED,
@@ -37,7 +34,10 @@ from .firmware import (
     q_bits,
     quantise,
 )
-from .schedule import Schedule
+from stability.assist.schedule import Schedule
+from stability.settings import defaults as D
+from stability.settings.reference import THESIS_PUSH
+from stability.simulate import simulate
 
 __all__ = ["VectorCase", "vector_speeds", "vector_cases", "c_sources", "readme", "export_c", "VECTOR_DURATION"]
 
@@ -119,7 +119,7 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
     """Inputs and outputs of the Python sampled controller in the nonlinear closed loop.
 
     At each of :func:`vector_speeds`: a yaw-rate step (the reference turn),
-    a ramp (to it in 1 s), a push recovery (:data:`~stability.reference.THESIS_PUSH`
+    a ramp (to it in 1 s), a push recovery (:data:`~stability.settings.reference.THESIS_PUSH`
     times 10 at the start, straight command) and a saturating command
     (:data:`SATURATING`, reversed at half time); the gyro reads the yaw rate
     plus :data:`VECTOR_BIAS_DEG_S` and the sensor's seeded noise, the wheel
@@ -468,7 +468,7 @@ def export_c(sched: Schedule, directory: str, q_format: str = D.Q_FORMAT, *, see
     dict
         ``{"directory", "q_format", "files", "tolerance_N_m"}`` (per-case derived tolerance).
     """
-    from .quantisation import vector_tolerances  # the bound needs the closed-loop trajectories
+    from stability.assist.quantisation import vector_tolerances  # the bound needs the closed-loop trajectories
 
     ideal = firmware_tables(sched, command_filter_s=COMMAND_FILTER)
     q, ints = quantise(ideal, q_format)

@@ -7,11 +7,11 @@ import os
 from dataclasses import dataclass
 from typing import Any
 
-from .commands import COMMAND_FILTER
-from .export_c import export_c, vector_cases
-from .firmware import firmware_tables
-from .quantisation import MarginRow, margin_rows, worst_change
-from .schedule import Schedule
+from stability.assist.commands import COMMAND_FILTER
+from stability.assist.export_c import export_c, vector_cases
+from stability.assist.firmware import firmware_tables
+from stability.assist.quantisation import MarginRow, margin_rows, worst_change
+from stability.assist.schedule import Schedule
 
 __all__ = ["check_export", "FirmwareReport", "run_export"]
 
@@ -70,7 +70,7 @@ class FirmwareReport:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (key ``firmware`` of the command's JSON)."""
-        from ._format import json_float
+        from stability.assist._format import json_float
 
         # the convention of stability.schemas: no value (a case's speed, a number format) inside a key
         return {"directory": self.directory, "q_format": self.q_format, "sample_rate_hz": self.sample_rate_hz,

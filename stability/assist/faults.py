@@ -40,10 +40,9 @@ from typing import Any
 
 import numpy as np
 
-from ..simulate import simulate_batch
-from .commands import COMMAND_FILTER
-from .driving import traction_limit
-from .firmware import (
+from stability.assist.commands import COMMAND_FILTER
+from stability.assist.driving import traction_limit
+from stability.assist.firmware import (
     DEGRADED_SPEED,
     MONITOR_THRESHOLD_DEG_S,
     MONITOR_TIME,
@@ -52,7 +51,8 @@ from .firmware import (
     FirmwareTables,
     firmware_tables,
 )
-from .schedule import Schedule
+from stability.assist.schedule import Schedule
+from stability.simulate import simulate_batch
 
 __all__ = ["FAULTS", "FAULT_TIME", "WINDOW", "MONITOR_TIME", "MONITOR_THRESHOLD_DEG_S", "WHEEL_PLAUSIBLE",
            "DEGRADED_SPEED", "HEADING_BOUND_DEG", "DRIFT_BOUND_M", "FaultRow", "fault_runs", "format_faults"]

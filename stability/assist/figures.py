@@ -10,20 +10,20 @@ from matplotlib import cm
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
-from ..plotting import page, table_page
-from ..plotting.style import colour
-from ..power_chair import DriveTrain
-from ..reference import THESIS_PUSH
-from ._format import fmt, json_float
-from .destabilising import DestabilisingSummary
-from .digital import MarginCurves
-from .driving import TorqueRow, TrackingRuns
-from .plant import STATES
-from .recovery import RecoveryPair, RecoveryRun
-from .robustness import Robustness
-from .schedule import Schedule
-from .tables import GainRow, PoleCurves
-from .tracking import DriftCurves
+from stability.assist._format import fmt, json_float
+from stability.assist.destabilising import DestabilisingSummary
+from stability.assist.digital import MarginCurves
+from stability.assist.driving import TorqueRow, TrackingRuns
+from stability.assist.plant import STATES
+from stability.assist.recovery import RecoveryPair, RecoveryRun
+from stability.assist.robustness import Robustness
+from stability.assist.schedule import Schedule
+from stability.assist.tables import GainRow, PoleCurves
+from stability.assist.tracking import DriftCurves
+from stability.chair.power import DriveTrain
+from stability.plotting import page, table_page
+from stability.plotting.style import colour
+from stability.settings.reference import THESIS_PUSH
 
 __all__ = ["figure_gains", "figure_poles", "figure_margins", "figure_robustness", "figure_destabilising",
            "figure_recovery", "figure_recovery_table", "figure_tracking", "figure_drift", "figure_margin_pair",

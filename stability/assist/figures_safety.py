@@ -7,11 +7,11 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..plotting import page
-from ..plotting.style import colour
-from .faults import DRIFT_BOUND_M, HEADING_BOUND_DEG, FaultRow
-from .schedule import Schedule
-from .top_speed import CONSTRAINTS, TopSpeed
+from stability.assist.faults import DRIFT_BOUND_M, HEADING_BOUND_DEG, FaultRow
+from stability.assist.schedule import Schedule
+from stability.assist.top_speed import CONSTRAINTS, TopSpeed
+from stability.plotting import page
+from stability.plotting.style import colour
 
 __all__ = ["figure_top_speed"]
 

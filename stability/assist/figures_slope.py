@@ -7,10 +7,10 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..plotting import page
-from ..plotting.style import colour
-from .driving import SlopeHold
-from .schedule import Schedule
+from stability.assist.driving import SlopeHold
+from stability.assist.schedule import Schedule
+from stability.plotting import page
+from stability.plotting.style import colour
 
 __all__ = ["figure_slope_hold"]
 

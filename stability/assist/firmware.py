@@ -41,9 +41,9 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_choice
-from .controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
-from .schedule import Schedule
+from stability.assist.controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
+from stability.assist.schedule import Schedule
+from stability.runtime.checks import check_choice
 
 __all__ = ["Q_FORMATS", "MONITOR_TIME", "MONITOR_THRESHOLD_DEG_S", "WHEEL_PLAUSIBLE", "PLAUSIBLE_MIN_SPEED",
            "DEGRADED_SPEED", "MODES", "FirmwareTables", "firmware_tables", "quantise", "q_bits", "half_steps",

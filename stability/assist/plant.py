@@ -12,9 +12,9 @@ from dataclasses import dataclass
 import control
 import numpy as np
 
-from .._validate import check_model, check_nonnegative, check_speed
-from ..chair import Chair
-from ..linear import input_matrices, lateral_force_input, state_matrices
+from stability.chair import Chair
+from stability.linear import input_matrices, lateral_force_input, state_matrices
+from stability.runtime.checks import check_model, check_nonnegative, check_speed
 
 __all__ = ["STATES", "MOTOR_STATE", "YAW_LOOP", "Plant", "plant", "standstill_plant", "pivot_inertia", "reversed_chair",
            "measurement_matrix", "system_name"]

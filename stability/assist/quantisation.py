@@ -39,9 +39,9 @@ from typing import Any
 import control
 import numpy as np
 
-from .digital import _summary, discrete_margins
-from .firmware import FirmwareController, FirmwareTables, half_steps, quantise
-from .schedule import Schedule
+from stability.assist.digital import _summary, discrete_margins
+from stability.assist.firmware import FirmwareController, FirmwareTables, half_steps, quantise
+from stability.assist.schedule import Schedule
 
 __all__ = ["FLOAT_RELATIVE", "output_bound", "vector_tolerances", "table_controller", "MarginRow", "margin_rows"]
 
@@ -190,7 +190,7 @@ class MarginRow:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready."""
-        from ._format import json_float
+        from stability.assist._format import json_float
 
         return {"speed_m_s": self.speed_m_s,
                 **{k: {kk: json_float(v[kk]) for kk in ("gain_db", "phase_deg", "delay_ms")}

@@ -10,17 +10,17 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .._validate import check_speed
-from ..chair import Chair
-from ..reference import HORIZON, THESIS_PUSH
-from ..signals import envelope_rate
-from ..signals import settle_time as _settle_time
-from ..simulate import simulate
-from ..tires.data import FZ_MAX_N, SLIP_MAX_DEG
-from ._format import json_float
-from .controller import DigitalController
-from .design import closed_loop_poles
-from .schedule import Schedule
+from stability.assist._format import json_float
+from stability.assist.controller import DigitalController
+from stability.assist.design import closed_loop_poles
+from stability.assist.schedule import Schedule
+from stability.chair import Chair
+from stability.runtime.checks import check_speed
+from stability.settings.reference import HORIZON, THESIS_PUSH
+from stability.simulate import simulate
+from stability.simulate.signals import envelope_rate
+from stability.simulate.signals import settle_time as _settle_time
+from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
            "recovery_runs", "recovery_table", "minimum_torque_limit", "DecayAgreement", "decay_agreement",
@@ -49,7 +49,7 @@ class RecoveryRun:
     speed : float
         m/s.
     impulse_force, impulse_duration : float
-        N, s (the thesis's reference: :data:`stability.reference.THESIS_PUSH`).
+        N, s (the thesis's reference: :data:`stability.settings.reference.THESIS_PUSH`).
     controlled : bool
         Closed loop (True) or the open-loop chair.
     peak_heading_error_deg : float
@@ -244,7 +244,7 @@ def recovery_runs(sched: Schedule, speeds: Sequence[float] = (1.0, 2.0, 3.0),
     speeds : sequence of float
         m/s.
     impulses : sequence of float
-        Push forces at the c.g. (N, for :data:`~stability.reference.THESIS_PUSH`'s duration).
+        Push forces at the c.g. (N, for :data:`~stability.settings.reference.THESIS_PUSH`'s duration).
     seed : int
     duration : float
         s.
@@ -299,7 +299,7 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
     speed : float
         m/s.
     impulse_force : float
-        N for :data:`~stability.reference.THESIS_PUSH`'s duration.
+        N for :data:`~stability.settings.reference.THESIS_PUSH`'s duration.
     max_heading_deg, tol, duration : float
         deg, N m, s.
 
@@ -408,7 +408,7 @@ def decay_agreement(sched: Schedule, speed: float, *, impulse_force: float = THE
 
 
 def fit_decay_rate(t: np.ndarray, y: np.ndarray, t_start: float, t_end: float) -> float:
-    """Exponential rate of the envelope of ``y`` (1/s); see :func:`stability.signals.envelope_rate`.
+    """Exponential rate of the envelope of ``y`` (1/s); see :func:`stability.simulate.signals.envelope_rate`.
 
     Parameters
     ----------

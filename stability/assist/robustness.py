@@ -7,10 +7,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from .design import closed_loop_poles
-from .plant import plant
-from .schedule import Schedule
+from stability.assist.design import closed_loop_poles
+from stability.assist.plant import plant
+from stability.assist.schedule import Schedule
+from stability.chair import Chair
 
 __all__ = ["ROBUST_PARAMETERS", "WorstCorner", "Robustness", "robustness"]
 

@@ -6,10 +6,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from .driving import torque_requirement
-from .faults import FaultRow, fault_runs, format_faults
-from .schedule import Schedule
-from .top_speed import TopSpeed, format_top_speed, full_turn_peaks, top_speed
+from stability.assist.driving import torque_requirement
+from stability.assist.faults import FaultRow, fault_runs, format_faults
+from stability.assist.schedule import Schedule
+from stability.assist.top_speed import TopSpeed, format_top_speed, full_turn_peaks, top_speed
 
 __all__ = ["Safety", "run_safety"]
 

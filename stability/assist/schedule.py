@@ -7,12 +7,20 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._validate import check_choice, check_nonnegative, check_speeds
-from ..chair import Chair
-from ..power_chair import DriveTrain
-from .design import Design, design, realise
-from .plant import Plant, plant
-from .weights import DEFAULT_ESTIMATOR, DEFAULT_GYRO, DEFAULT_WEIGHTS, DESIGNS, EstimatorWeights, GyroSensor, Weights
+from stability.assist.design import Design, design, realise
+from stability.assist.plant import Plant, plant
+from stability.assist.weights import (
+    DEFAULT_ESTIMATOR,
+    DEFAULT_GYRO,
+    DEFAULT_WEIGHTS,
+    DESIGNS,
+    EstimatorWeights,
+    GyroSensor,
+    Weights,
+)
+from stability.chair import Chair
+from stability.chair.power import DriveTrain
+from stability.runtime.checks import check_choice, check_nonnegative, check_speeds
 
 __all__ = ["Schedule", "schedule"]
 

@@ -8,16 +8,16 @@ from typing import Any
 
 import numpy as np
 
-from ..reference import HORIZON, THESIS_PUSH
-from ._format import fmt, json_float
-from .controller import DigitalController
-from .design import LoopMargins, closed_loop_poles, loop_margins
-from .digital import MarginPair, margin_pair
-from .driving import HOLD_TOLERANCE, SlopeHold, tracking_step
-from .plant import plant, reversed_chair
-from .recovery import RecoveryPair, recovery
-from .schedule import Schedule
-from .tracking import TrackingMetrics
+from stability.assist._format import fmt, json_float
+from stability.assist.controller import DigitalController
+from stability.assist.design import LoopMargins, closed_loop_poles, loop_margins
+from stability.assist.digital import MarginPair, margin_pair
+from stability.assist.driving import HOLD_TOLERANCE, SlopeHold, tracking_step
+from stability.assist.plant import plant, reversed_chair
+from stability.assist.recovery import RecoveryPair, recovery
+from stability.assist.schedule import Schedule
+from stability.assist.tracking import TrackingMetrics
+from stability.settings.reference import HORIZON, THESIS_PUSH
 
 __all__ = ["ReverseRow", "reverse_table", "GainRow", "gain_table", "format_table", "format_margins",
            "format_slope_holds",
@@ -126,7 +126,7 @@ def gain_table(sched: Schedule, *, check: bool = True, impulse_force: float = TH
     sched : Schedule
     check : bool
         Run the nonlinear closed loop after the lateral push ``impulse_force``
-        for :data:`~stability.reference.THESIS_PUSH`'s duration (with
+        for :data:`~stability.settings.reference.THESIS_PUSH`'s duration (with
         saturation, and for the gyro design noise and bias).
     impulse_force : float
         N.

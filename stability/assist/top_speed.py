@@ -27,8 +27,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from .commands import COMMAND_FILTER, MAX_YAW_RATE, command_run, step_command
-from .schedule import Schedule
+from stability.assist.commands import COMMAND_FILTER, MAX_YAW_RATE, command_run, step_command
+from stability.assist.schedule import Schedule
 
 __all__ = ["MIN_GAIN_MARGIN_DB", "MIN_PHASE_MARGIN_DEG", "CONSTRAINTS", "loop_delay", "full_turn_peaks", "SpeedCheck",
            "TopSpeed",
@@ -104,7 +104,7 @@ class TopSpeed:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON: ``safe_top_speed_m_s``, ``limited_by`` and the per-speed checks."""
-        from ._format import json_float
+        from stability.assist._format import json_float
 
         return {"safe_top_speed_m_s": self.safe_top_speed_m_s, "limited_by": self.limited_by,
                 "checks": [{"speed_m_s": c.speed_m_s,

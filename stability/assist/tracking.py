@@ -17,9 +17,9 @@ from dataclasses import dataclass
 import control
 import numpy as np
 
-from ..defaults import BIAS_TIME_CONSTANT, COMMAND_FILTER
-from .design import Design
-from .plant import Plant, system_name
+from stability.assist.design import Design
+from stability.assist.plant import Plant, system_name
+from stability.settings.defaults import BIAS_TIME_CONSTANT, COMMAND_FILTER
 
 __all__ = ["Feedforward", "feedforward", "closed_loop", "final_heading", "heading_drift", "TrackingMetrics",
            "step_metrics", "DriftCurves", "drift_curves"]
@@ -77,7 +77,7 @@ def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: 
                 command_filter: float = COMMAND_FILTER) -> control.StateSpace:
     """The linear closed loop with a yaw-rate command, a gyro bias and a lateral force as inputs.
 
-    The defaults are the command line's (:mod:`stability.defaults`): the
+    The defaults are the command line's (:mod:`stability.settings.defaults`): the
     gyro-bias estimate with a 1 s time constant and the 200 ms reference
     model on the command, so a step of ``r_cmd`` does not overshoot, as
     ``python -m stability.assist`` reports.  Inputs, outputs and states are
@@ -103,14 +103,14 @@ def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: 
         Include ``Nx``, ``Nu`` (integral action alone otherwise).
     bias_time_constant : float
         ``T_b`` of the bias estimate (s); 0 turns the handling off (default
-        :data:`stability.defaults.BIAS_TIME_CONSTANT`, 1 s).
+        :data:`stability.settings.defaults.BIAS_TIME_CONSTANT`, 1 s).
     heading : bool
         Keep the true heading (a pure integrator of ``r`` that nothing
         depends on: the state matrix is then singular and DC gains are NaN).
         Default False.
     command_filter : float
         Time constant of the first-order reference model on ``r_cmd`` (s);
-        0: the raw command (default :data:`stability.defaults.COMMAND_FILTER`, 0.2 s).
+        0: the raw command (default :data:`stability.settings.defaults.COMMAND_FILTER`, 0.2 s).
 
     Returns
     -------

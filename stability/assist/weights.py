@@ -10,11 +10,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import defaults as D
-from .._validate import check_nonnegative, check_positive
-from ..chair import Chair
-from ..power_chair import DriveTrain
-from .plant import STATES
+from stability.assist.plant import STATES
+from stability.chair import Chair
+from stability.chair.power import DriveTrain
+from stability.runtime.checks import check_nonnegative, check_positive
+from stability.settings import defaults as D
 
 __all__ = ["DESIGNS", "Weights", "GyroSensor", "EstimatorWeights", "DEFAULT_WEIGHTS", "DEFAULT_GYRO",
            "DEFAULT_ESTIMATOR"]

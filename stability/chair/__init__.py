@@ -21,9 +21,19 @@ Examples
 
 from __future__ import annotations
 
-from .io import GROUPS, dumps, from_mapping, load, parse_assignment, parse_assignments, resolve, save, to_mapping
-from .model import LIMITS, Chair, field_names, valid_range
-from .presets import POWER_FWD_FIELDS, all_preset_names, preset, preset_names
+from stability.chair.io import (
+    GROUPS,
+    dumps,
+    from_mapping,
+    load,
+    parse_assignment,
+    parse_assignments,
+    resolve,
+    save,
+    to_mapping,
+)
+from stability.chair.model import LIMITS, Chair, field_names, valid_range
+from stability.chair.presets import POWER_FWD_FIELDS, all_preset_names, preset, preset_names
 
 __all__ = [
     "Chair",

@@ -15,9 +15,9 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from .. import chair as chair_mod
-from ..cli import OneLineErrorParser, add_common_options, check_outputs, load_chair, run
-from ..output import atomic_write_text
+from stability import chair as chair_mod
+from stability.cli import OneLineErrorParser, add_common_options, check_outputs, load_chair, run
+from stability.runtime.files import atomic_write_text
 
 __all__ = ["build_parser", "main"]
 

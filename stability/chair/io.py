@@ -9,10 +9,12 @@ from collections.abc import Mapping, Sequence
 from dataclasses import fields
 from typing import Any
 
-from .. import readfiles, tires
-from ..output import atomic_write_text
-from .model import Chair, field_names
-from .presets import all_preset_names, preset
+from stability import tires
+from stability.chair.model import Chair, field_names
+from stability.chair.presets import all_preset_names, preset
+from stability.chair.units import parse_unit
+from stability.runtime import readfiles
+from stability.runtime.files import atomic_write_text
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -226,7 +228,7 @@ def parse_assignment(text: str) -> tuple[str, Any]:
         ``camber_coefficient`` also accepts ``none``, ``tire`` or empty (-> ``None``);
         every other field needs a number, in the field's SI unit or with a unit
         the measurement sheet knows (``trail=5cm``, ``m=95kg``, ``m=210 lb``,
-        ``pin_friction_left=0.1 ft lbf``; :func:`stability.measure.units.quantity`),
+        ``pin_friction_left=0.1 ft lbf``; :func:`stability.chair.units.quantity`),
         converted to the field's unit.
 
     Returns
@@ -262,7 +264,6 @@ _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.
 
 def _with_unit(name: str, raw: str, field_unit: str) -> float:
     """``raw`` = number and unit (``5cm``), converted to ``field_unit``; one-line ValueError otherwise."""
-    from ..measure.units import parse_unit  # deferred: measure imports chair
 
     m = _NUMBER_UNIT.match(raw)
     bad = (f"chair parameter {name} needs a number in {field_unit} or a number with a unit of the same kind "

@@ -13,8 +13,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from typing import Any
 
-from .. import tires
-from .._validate import is_real
+from stability import tires
+from stability.runtime.checks import is_real
 
 __all__ = ["Chair", "LIMITS", "valid_range", "field_names"]
 

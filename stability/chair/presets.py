@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .model import Chair
+from stability.chair.model import Chair
 
 __all__ = ["POWER_FWD_FIELDS", "preset_names", "preset", "all_preset_names"]
 
@@ -40,7 +40,7 @@ def _presets() -> dict[str, dict[str, Any]]:
 
 #: Field values of the ``power-fwd`` preset: a front-wheel-drive power chair
 #: with rear casters and a 100 kg user; each value is argued in
-#: ``docs/power-chair.md`` (lumped estimate in :mod:`stability.power_chair`).
+#: ``docs/power-chair.md`` (lumped estimate in :mod:`stability.chair.power`).
 POWER_FWD_FIELDS: dict[str, Any] = dict(
     name="power-fwd",
     caster_position="rear",

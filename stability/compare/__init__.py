@@ -7,19 +7,19 @@ Rationale: docs/compare.md.
 
 from __future__ import annotations
 
-from .compute import (
-    DEFAULT_SPEEDS,
-    Comparison,
-    Difference,
-    EffectSet,
-    Quantity,
-    SingleEffect,
-    compare,
-    growth_curves,
-    single_effects,
-    unique_labels,
+from stability.compare.compute import (
+           DEFAULT_SPEEDS,
+           Comparison,
+           Difference,
+           EffectSet,
+           Quantity,
+           SingleEffect,
+           compare,
+           growth_curves,
+           single_effects,
+           unique_labels,
 )
-from .text import comparison_dict, format_comparison
+from stability.compare.text import comparison_dict, format_comparison
 
 __all__ = ["DEFAULT_SPEEDS", "Comparison", "Difference", "EffectSet", "Quantity", "SingleEffect", "compare",
            "growth_curves", "single_effects", "unique_labels", "comparison_dict", "format_comparison"]

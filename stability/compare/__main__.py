@@ -21,9 +21,8 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from .. import defaults as D
-from ..chair import Chair
-from ..cli import (
+from stability.chair import Chair
+from stability.cli import (
     OneLineErrorParser,
     add_json_options,
     add_model_option,
@@ -35,11 +34,12 @@ from ..cli import (
     parse_speeds,
     run,
 )
-from ..linear.batch import check_eigen_work
-from ..linear.intervals import MAX_SAMPLES
-from ..uncertainty import Uncertainty, load_uncertainty
-from .compute import DEFAULT_SPEEDS, compare, solves_per_sample, unique_labels
-from .text import comparison_dict, format_comparison
+from stability.compare.compute import DEFAULT_SPEEDS, compare, solves_per_sample, unique_labels
+from stability.compare.text import comparison_dict, format_comparison
+from stability.linear.batch import check_eigen_work
+from stability.linear.intervals import MAX_SAMPLES
+from stability.settings import defaults as D
+from stability.uncertainty import Uncertainty, load_uncertainty
 
 __all__ = ["main", "build_parser"]
 
@@ -126,8 +126,8 @@ def _run(args: argparse.Namespace) -> int:
                      max_speed=args.max_speed, uncertainties=uncs, samples=args.samples, seed=args.seed,
                      level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)
     if args.output:
-        from ..output import write_pdf  # matplotlib is imported only when a PDF is asked for
-        from .plots import comparison_figures
+        from stability.compare.plots import comparison_figures
+        from stability.runtime.files import write_pdf  # matplotlib is imported only when a PDF is asked for
 
         write_pdf(comparison_figures(result), args.output, title=f"stability compare: {' vs '.join(result.labels)}",
                   close=False)

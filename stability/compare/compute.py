@@ -16,12 +16,10 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_model
-from ..chair import Chair, to_mapping
-from ..defaults import MEASURE_FRICTION_LAW, SUMMARY_SPEEDS
-from ..linear import zero_width
-from ..linear.batch import ChairBatch, check_eigen_work
-from ..linear.intervals import (
+from stability.chair import Chair, to_mapping
+from stability.linear import zero_width
+from stability.linear.batch import ChairBatch, check_eigen_work
+from stability.linear.intervals import (
     BISECTION_STEPS,
     GRID_POINTS,
     MAX_SAMPLES,
@@ -29,8 +27,10 @@ from ..linear.intervals import (
     linear_intervals,
     solves_per_draw,
 )
-from ..reference import REFERENCE_SPEED, THESIS_PUSH
-from ..uncertainty import Uncertainty
+from stability.runtime.checks import check_model
+from stability.settings.defaults import MEASURE_FRICTION_LAW, SUMMARY_SPEEDS
+from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
+from stability.uncertainty import Uncertainty
 
 __all__ = ["Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
            "single_effects", "growth_curves"]
@@ -113,7 +113,7 @@ class SingleEffect:
     reference_value, value : Any
         The field's value in the reference and in the compared chair.
     growth_rate : float or None
-        Change of the growth rate at :data:`stability.reference.REFERENCE_SPEED`, 1/s (None: not computable).
+        Change of the growth rate at :data:`stability.settings.reference.REFERENCE_SPEED`, 1/s (None: not computable).
     locked_critical_speed : float or None
         Change of the locked-caster critical speed, m/s (None: not computable or no finite critical speed).
     error : str or None
@@ -287,7 +287,7 @@ def single_effects(reference: Chair, other: Chair, label: str, *, model: str = "
     Returns
     -------
     EffectSet
-        Changes of the growth rate at :data:`stability.reference.REFERENCE_SPEED` (1/s) and of the
+        Changes of the growth rate at :data:`stability.settings.reference.REFERENCE_SPEED` (1/s) and of the
         locked-caster critical speed (m/s); ``name`` is never compared.
     """
     ra, rb = to_mapping(reference), to_mapping(other)
@@ -377,7 +377,7 @@ def _quantities(vals: np.ndarray, speeds: np.ndarray, ivs: Sequence[LinearInterv
 
 
 def _nonlinear(chairs: Sequence[Chair], model: str, nonlinear_speeds: Sequence[float]) -> tuple[list[Quantity], str]:
-    from ..study import critical_impulses  # the simulator (numba) is imported only when asked for
+    from stability.study import critical_impulses  # the simulator (numba) is imported only when asked for
 
     flat_chairs = [c for _ in nonlinear_speeds for c in chairs]
     flat_speeds = np.array([float(s) for s in nonlinear_speeds for _ in chairs])

@@ -6,9 +6,9 @@ from typing import Any
 
 import numpy as np
 
-from ..plotting.style import OKABE_ITO, UNSTABLE
-from ..reference import REFERENCE_SPEED
-from .compute import Comparison, EffectSet
+from stability.compare.compute import Comparison, EffectSet
+from stability.plotting.style import OKABE_ITO, UNSTABLE
+from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["plot_growth_rates", "plot_effects", "comparison_figures"]
 

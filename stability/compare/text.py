@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..chair import to_mapping
-from ..reference import REFERENCE_SPEED
-from .compute import Comparison, Difference, Quantity
+from stability.chair import to_mapping
+from stability.compare.compute import Comparison, Difference, Quantity
+from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["format_comparison", "comparison_dict"]
 

@@ -23,8 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import defaults as D
-from ..cli import (
+from stability.cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
@@ -39,14 +38,15 @@ from ..cli import (
     parse_speeds,
     run,
 )
-from ..linear import StabilitySummary, analyse
-from ..linear.batch import check_eigen_work
-from ..linear.intervals import GRID_POINTS, solves_per_draw
-from ..summary import format_summary, simulator_checks, summary_dict
+from stability.linear import StabilitySummary, analyse
+from stability.linear.batch import check_eigen_work
+from stability.linear.intervals import GRID_POINTS, solves_per_draw
+from stability.settings import defaults as D
+from stability.study.summary_text import format_summary, simulator_checks, summary_dict
 
 if TYPE_CHECKING:
-    from ..linear.intervals import LinearIntervals
-    from ..study.uncertain import NonlinearIntervals
+    from stability.linear.intervals import LinearIntervals
+    from stability.study.uncertain import NonlinearIntervals
 
 __all__ = ["main", "build_parser", "document"]
 
@@ -99,7 +99,7 @@ def figure(summary: StabilitySummary, n: int = 400) -> Any:
 
     Drawn by :func:`stability.plotting.eigenvalues_vs_speed` from :func:`stability.rootlocus.speed_locus`
     (``n`` speeds from 0.05 m/s to the top of the summary's ``search_range``), branches named from their eigenvectors at
-    0.75 m/s (:func:`stability.report.modes.mode_names`), with a caption from the summary's critical speeds.
+    0.75 m/s (:func:`stability.linear.names.mode_names`), with a caption from the summary's critical speeds.
 
     Parameters
     ----------
@@ -111,9 +111,9 @@ def figure(summary: StabilitySummary, n: int = 400) -> Any:
     -------
     matplotlib.figure.Figure
     """
-    from .. import plotting as P
-    from ..report.modes import mode_names
-    from ..rootlocus import speed_locus
+    from stability import plotting as P
+    from stability.linear.names import mode_names
+    from stability.rootlocus import speed_locus
 
     c, model = summary.chair, summary.model
     fig, axes = P.page(f"{c.name} | {model} model | eigenvalues against speed (shaded: unstable)",
@@ -150,7 +150,7 @@ def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, 
     summary : StabilitySummary
         :func:`stability.linear.analyse` of the chair.
     checks : list
-        :func:`stability.summary.simulator_checks` of ``summary``.
+        :func:`stability.study.summary_text.simulator_checks` of ``summary``.
     args : argparse.Namespace
         The parsed options (``build_parser().parse_args([])`` gives the defaults).
     speeds : ndarray
@@ -161,7 +161,7 @@ def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, 
     Returns
     -------
     dict
-        Common header (:func:`stability.cli.json_header`) plus :func:`stability.summary.summary_dict`.
+        Common header (:func:`stability.cli.json_header`) plus :func:`stability.study.summary_text.summary_dict`.
     """
     options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed,
                "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed, "level": args.level,
@@ -193,9 +193,9 @@ def _run(args: argparse.Namespace) -> int:
     intervals = nonlinear = None
     if args.uncertainty:
         # deferred: the uncertainty machinery (and the simulator) cost start-up time the plain summary does not need
-        from ..linear.intervals import linear_intervals
-        from ..study.uncertain import nonlinear_intervals
-        from ..uncertainty import load_uncertainty
+        from stability.linear.intervals import linear_intervals
+        from stability.study.uncertain import nonlinear_intervals
+        from stability.uncertainty import load_uncertainty
 
         unc = load_uncertainty(args.uncertainty)
         intervals = linear_intervals(c, unc, model=args.model, speeds=speeds, max_speed=args.max_speed,
@@ -204,7 +204,7 @@ def _run(args: argparse.Namespace) -> int:
             nonlinear = nonlinear_intervals(c, unc, model=args.model, samples=args.nonlinear_samples, seed=args.seed,
                                             level=args.level)
     if args.output:
-        from ..output import save_figure
+        from stability.runtime.files import save_figure
 
         with output_files({"-o": args.output}) as tmp:
             save_figure(figure(summary), tmp["-o"], title=f"stability critical_speed: {c.name}, {args.model} model")

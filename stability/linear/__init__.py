@@ -8,10 +8,17 @@ forms, divergence rates, :func:`analyse`).
 
 from __future__ import annotations
 
-from .critical import Crossing, critical_speeds, max_real_part
-from .model import STATES_FREE, STATES_LOCKED, input_matrices, lateral_force_input, state_matrices, state_space
-from .modes import eigenvalues_vs_speed, track_modes
-from .summary import (
+from stability.linear.critical import Crossing, critical_speeds, max_real_part
+from stability.linear.model import (
+    STATES_FREE,
+    STATES_LOCKED,
+    input_matrices,
+    lateral_force_input,
+    state_matrices,
+    state_space,
+)
+from stability.linear.modes import eigenvalues_vs_speed, track_modes
+from stability.linear.summary import (
     Divergence,
     StabilitySummary,
     ZeroWidthResult,

@@ -12,11 +12,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .._validate import check_casters, check_model
-from ..chair import Chair
-from ..models import linear_matrices
-from ..params import parameters
-from .model import _assemble, _stiffness_for
+from stability.chair import Chair
+from stability.linear.model import _assemble, _stiffness_for
+from stability.models import linear_matrices
+from stability.models.params import parameters
+from stability.runtime.checks import check_casters, check_model
 
 __all__ = ["ChairBatch", "MAX_MATRICES", "EIGEN_SECONDS", "MAX_EIGEN_SOLVES", "check_eigen_work"]
 

@@ -7,10 +7,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from ..uncertainty import Uncertainty, delta_method, propagate
-from .batch import ChairBatch, check_eigen_work
-from .summary import zero_width
+from stability.chair import Chair
+from stability.linear.batch import ChairBatch, check_eigen_work
+from stability.linear.summary import zero_width
+from stability.uncertainty import Uncertainty, delta_method, propagate
 
 __all__ = ["LinearIntervals", "linear_intervals", "MAX_SAMPLES", "solves_per_draw", "GRID_POINTS",
            "BISECTION_STEPS"]

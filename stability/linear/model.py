@@ -2,7 +2,7 @@
 
 Straight-line motion at forward speed U with the casters trailing; each tire's
 lateral force linear in its slip angle with the cornering stiffness of its fit
-at its static load (:func:`stability.statics.static_stiffness`); viscous pin
+at its static load (:func:`stability.models.statics.static_stiffness`); viscous pin
 damping ``Chair.pin_damping`` (Coulomb friction has no linearisation).  States
 (free casters) ``[v, r, eta, eta_dot, beta, beta_dot]`` (m/s, rad/s, rad,
 rad/s, rad, rad/s); locked casters ``[v, r]``.  See ``docs/linear.md``.
@@ -14,11 +14,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .._validate import check_casters, check_model, check_speed
-from ..chair import Chair
-from ..models import accelerations, linear_matrices
-from ..params import parameters
-from ..statics import static_stiffness
+from stability.chair import Chair
+from stability.models import accelerations, linear_matrices
+from stability.models.params import parameters
+from stability.models.statics import static_stiffness
+from stability.runtime.checks import check_casters, check_model, check_speed
 
 __all__ = ["STATES_FREE", "STATES_LOCKED", "state_matrices", "input_matrices", "state_space",
            "lateral_force_input"]

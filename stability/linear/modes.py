@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .model import state_matrices
+from stability.linear.model import state_matrices
 
 __all__ = ["track_modes", "eigenvalues_vs_speed"]
 

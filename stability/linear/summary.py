@@ -7,13 +7,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import check_speeds
-from ..chair import Chair
-from ..models import zero_width as zw
-from ..params import parameters
-from ..statics import static_loads, static_stiffness
-from .critical import critical_speeds, max_real_part
-from .model import state_matrices
+from stability.chair import Chair
+from stability.linear.critical import critical_speeds, max_real_part
+from stability.linear.model import state_matrices
+from stability.models import zero_width as zw
+from stability.models.params import parameters
+from stability.models.statics import static_loads, static_stiffness
+from stability.runtime.checks import check_speeds
 
 __all__ = ["ZeroWidthResult", "zero_width", "Divergence", "divergence", "massless_caster_rate",
            "StabilitySummary", "analyse"]
@@ -210,7 +210,7 @@ class StabilitySummary:
     model : str
         Equation variant, ``"exact"`` or ``"thesis"``.
     static_loads : dict
-        Static normal loads per wheel and per pair mean, N (:func:`stability.statics.static_loads`).
+        Static normal loads per wheel and per pair mean, N (:func:`stability.models.statics.static_loads`).
     stiffness_n_per_deg : dict
         Cornering stiffness of one tire at its static load, N/deg: ``"main"``
         (mean of D and E) and ``"caster"`` (mean of A and B).

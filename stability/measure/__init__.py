@@ -4,17 +4,17 @@
 sheet into a chair file and an uncertainty file (docs/measure.md).
 """
 
-from ..uncertainty import PropagationResult, Uncertainty, delta_method, load_uncertainty, propagate
-from .bodies import Body, combine
-from .pendulum import (
-    bifilar_pendulum_inertia,
-    compound_pendulum_inertia,
-    solid_cylinder_inertia,
-    torsional_pendulum_inertia,
-    torsional_rigidity,
-    trifilar_pendulum_inertia,
+from stability.chair.units import quantity
+from stability.measure.bodies import Body, combine
+from stability.measure.pendulum import (
+           bifilar_pendulum_inertia,
+           compound_pendulum_inertia,
+           solid_cylinder_inertia,
+           torsional_pendulum_inertia,
+           torsional_rigidity,
+           trifilar_pendulum_inertia,
 )
-from .units import quantity
+from stability.uncertainty import PropagationResult, Uncertainty, delta_method, load_uncertainty, propagate
 
 __all__ = ["Body", "combine", "bifilar_pendulum_inertia", "compound_pendulum_inertia", "solid_cylinder_inertia",
            "torsional_pendulum_inertia", "torsional_rigidity", "trifilar_pendulum_inertia", "PropagationResult",

@@ -21,11 +21,11 @@ import os
 import sys
 from collections.abc import Sequence
 
-from .. import __version__
-from .. import chair as chair_mod
-from ..cli import OneLineErrorParser, add_json_options, check_directory, check_outputs, emit_json, run
-from ..output import atomic_path
-from .sheet import load_sheet, provenance_comment
+from stability import __version__
+from stability import chair as chair_mod
+from stability.cli import OneLineErrorParser, add_json_options, check_directory, check_outputs, emit_json, run
+from stability.measure.sheet import load_sheet, provenance_comment
+from stability.runtime.files import atomic_path
 
 __all__ = ["main", "build_parser", "default_uncertainty_path"]
 

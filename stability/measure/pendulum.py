@@ -11,7 +11,7 @@ import math
 import numpy as np
 from scipy.special import ellipk
 
-from .units import STANDARD_GRAVITY
+from stability.chair.units import STANDARD_GRAVITY
 
 __all__ = [
     "torsional_pendulum_inertia",

@@ -16,15 +16,15 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from .. import chair as chair_mod
-from .. import readfiles
-from ..chair import Chair
-from ..uncertainty import Distribution, Uncertainty
-from .anthropometry import user_yaw_inertia
-from .bodies import Body, combine
-from .pendulum import compound_pendulum_inertia, solid_cylinder_inertia
-from .scales import WheelLoads, cg_from_scales, cg_height_from_tilt, tilt_reading
-from .units import STANDARD_GRAVITY, dimension_name, parse_unit
+from stability import chair as chair_mod
+from stability.chair import Chair
+from stability.chair.units import STANDARD_GRAVITY, dimension_name, parse_unit
+from stability.measure.anthropometry import user_yaw_inertia
+from stability.measure.bodies import Body, combine
+from stability.measure.pendulum import compound_pendulum_inertia, solid_cylinder_inertia
+from stability.measure.scales import WheelLoads, cg_from_scales, cg_height_from_tilt, tilt_reading
+from stability.runtime import readfiles
+from stability.uncertainty import Distribution, Uncertainty
 
 if sys.version_info >= (3, 11):
     import tomllib

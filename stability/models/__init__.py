@@ -7,8 +7,8 @@ derivations live in ``derivations/``.
 
 from __future__ import annotations
 
-from . import full_width, zero_width
-from .full_width import (
+from stability.models import full_width, zero_width
+from stability.models.full_width import (
     accelerations,
     contact_velocities,
     linear_matrices,

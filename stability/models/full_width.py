@@ -14,10 +14,10 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import full_width as _fw
-from .._validate import check_casters, check_model, check_speeds
-from ..params import Params
-from ..statics import caster_contact_points
+from stability._generated import full_width as _fw
+from stability.models.params import Params
+from stability.models.statics import caster_contact_points
+from stability.runtime.checks import check_casters, check_model, check_speeds
 
 __all__ = [
     "generated",
@@ -39,7 +39,7 @@ def contact_velocities(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d, varian
     Parameters
     ----------
     p : Params
-        Chair parameters (:func:`stability.params.parameters`).
+        Chair parameters (:func:`stability.models.params.parameters`).
     u, v : float or ndarray
         Forward and lateral velocity of the c.g. in body axes, m/s.
     r : float or ndarray
@@ -70,7 +70,7 @@ def accelerations(p: Params, u, v, r, ce, se, cb, sb, eta_d, beta_d,
     Parameters
     ----------
     p : Params
-        Chair parameters (:func:`stability.params.parameters`).
+        Chair parameters (:func:`stability.models.params.parameters`).
     u, v : float or ndarray
         Forward and lateral velocity of the c.g. in body axes, m/s.
     r : float or ndarray
@@ -126,7 +126,7 @@ def linear_matrices(p: Params, speeds, stiffness: dict[str, Any], variant: str =
     stiffness : dict of str to float or ndarray
         Cornering stiffness of each tire at its static load, N/rad: keys
         ``"A"``, ``"B"`` (left, right caster), ``"D"``, ``"E"`` (left, right main
-        wheel), as :func:`stability.statics.static_stiffness` returns them.
+        wheel), as :func:`stability.models.statics.static_stiffness` returns them.
     variant : {"exact", "thesis"}, optional
         Equation variant (default ``"exact"``).
     casters : {"free", "locked"}, optional

@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import full_width_relaxed as _gen
-from ..params import Params
+from stability._generated import full_width_relaxed as _gen
+from stability.models.params import Params
 
 __all__ = ["VARIANTS", "STATES", "relaxed_matrices"]
 

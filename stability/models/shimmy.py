@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import shimmy as _gen
+from stability._generated import shimmy as _gen
 
 __all__ = ["CASES", "STATES", "case_name", "state_matrices", "characteristic_coefficients"]
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 
-from .._generated import slope as _sl
-from ..params import Params
+from stability._generated import slope as _sl
+from stability.models.params import Params
 
 __all__ = ["generated", "gravity", "accelerations", "normal_loads", "normal_loads_plane", "hold_statics",
            "gravity_generalized_forces", "zero_width_straight", "zero_width_turn"]
@@ -120,7 +120,7 @@ def normal_loads_plane(p: Params, sum_fx, sum_fy, gn, ce=1.0, se=0.0, cb=1.0, sb
     :func:`normal_loads` with ``m a = sum F + m g_in``: the in-plane weight
     drops out of the load transfer (moments ``h sum F``) and only the normal
     weight ``m gn`` remains; ``gn = g`` is eq 6-25
-    (:func:`stability.statics.normal_loads`, to rounding).
+    (:func:`stability.models.statics.normal_loads`, to rounding).
 
     Parameters
     ----------

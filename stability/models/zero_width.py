@@ -6,7 +6,7 @@ for each function's parameters and units.
 
 from __future__ import annotations
 
-from .._generated.zero_width import (
+from stability._generated.zero_width import (
     a_coefficients,
     characteristic_coefficients,
     critical_speed_squared,

@@ -12,8 +12,8 @@ sections of the report), :mod:`.style` (colours).
 
 from __future__ import annotations
 
-from .chair import chair_geometry, parameter_table
-from .loci import (
+from stability.plotting.chair import chair_geometry, parameter_table
+from stability.plotting.loci import (
     eigenvalues_vs_speed,
     gain_locus,
     growth_rate_vs_parameter,
@@ -22,11 +22,17 @@ from .loci import (
     speed_loci_figure,
     speed_locus,
 )
-from .pages import PAGE_SIZE, finish, page, panels_page, table_axes, table_page, text_page, wrap_text
-from .responses import trajectories, yaw_rate_responses
-from .sections import drive_difference, growth_rate_band, uncorrected_heading, variance_shares
-from .studies import decision_chart, equal_instability_chart, stability_map, sweep_chart, trail_window_chart
-from .tires import cornering_stiffness_curves, tire_curves
+from stability.plotting.pages import PAGE_SIZE, finish, page, panels_page, table_axes, table_page, text_page, wrap_text
+from stability.plotting.responses import trajectories, yaw_rate_responses
+from stability.plotting.sections import drive_difference, growth_rate_band, uncorrected_heading, variance_shares
+from stability.plotting.studies import (
+    decision_chart,
+    equal_instability_chart,
+    stability_map,
+    sweep_chart,
+    trail_window_chart,
+)
+from stability.plotting.tires import cornering_stiffness_curves, tire_curves
 
 __all__ = [
     "PAGE_SIZE", "page", "finish", "panels_page", "text_page", "table_page", "table_axes", "wrap_text",

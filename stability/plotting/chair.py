@@ -8,8 +8,8 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrow, Rectangle
 
-from .pages import table_axes
-from .style import MARK, colour
+from stability.plotting.pages import table_axes
+from stability.plotting.style import MARK, colour
 
 __all__ = ["chair_geometry", "parameter_table"]
 

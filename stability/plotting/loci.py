@@ -14,8 +14,8 @@ from matplotlib.collections import LineCollection
 from matplotlib.colors import LogNorm, Normalize
 from matplotlib.figure import Figure
 
-from .pages import panels_page
-from .style import UNSTABLE, colormap, colour
+from stability.plotting.pages import panels_page
+from stability.plotting.style import UNSTABLE, colormap, colour
 
 __all__ = ["speed_locus", "speed_loci_figure", "eigenvalues_vs_speed", "parameter_locus", "parameter_loci_figure",
            "growth_rate_vs_parameter", "gain_locus"]
@@ -203,7 +203,7 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
         Axes for the real and the imaginary parts (a new figure if omitted).
     mode_names : sequence of str, optional
         A name per branch (column of ``locus.eigenvalues``), e.g. from
-        :func:`stability.report.modes.mode_names`; branches with the same
+        :func:`stability.linear.names.mode_names`; branches with the same
         name share one legend entry.  Default "branch 1", "branch 2", ...
     title : str, optional
     log_speed : bool

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from .style import colour
+from stability.plotting.style import colour
 
 __all__ = ["yaw_rate_responses", "trajectories"]
 

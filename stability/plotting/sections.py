@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .style import UNSTABLE, colour
+from stability.plotting.style import UNSTABLE, colour
 
 __all__ = ["drive_difference", "uncorrected_heading", "growth_rate_band", "variance_shares"]
 

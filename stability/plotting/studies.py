@@ -8,8 +8,8 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.figure import Figure
 
-from .pages import PAGE_SIZE
-from .style import UNSTABLE, colormap, colour
+from stability.plotting.pages import PAGE_SIZE
+from stability.plotting.style import UNSTABLE, colormap, colour
 
 __all__ = ["equal_instability_chart", "sweep_chart", "stability_map", "trail_window_chart", "decision_chart"]
 

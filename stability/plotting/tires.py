@@ -11,7 +11,7 @@ from typing import Any
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from .style import colormap, colour
+from stability.plotting.style import colormap, colour
 
 __all__ = ["tire_curves", "cornering_stiffness_curves"]
 

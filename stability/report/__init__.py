@@ -17,12 +17,10 @@ Examples
 
 from __future__ import annotations
 
-from .builders import page_builders
-from .command import build_parser, main
-from .compute import ReportData, Settings, compute, counterpart, response_speeds, stabilising_poles
-from .document import Page, ReportResult, build, figure_texts, pages
-from .findings import findings
+from stability.report.builders import page_builders
+from stability.report.compute import ReportData, Settings, compute, counterpart, response_speeds, stabilising_poles
+from stability.report.document import Page, ReportResult, build, figure_texts, pages
+from stability.report.findings import findings
 
 __all__ = ["Settings", "ReportData", "Page", "ReportResult", "compute", "pages", "build", "findings",
-           "figure_texts", "page_builders", "counterpart", "response_speeds", "stabilising_poles", "main",
-           "build_parser"]
+           "figure_texts", "page_builders", "counterpart", "response_speeds", "stabilising_poles"]

@@ -2,7 +2,7 @@
 
 import sys
 
-from .command import main
+from stability.report.command import main
 
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())

@@ -3,16 +3,16 @@ and the references.  Stated here once; the other pages refer to them."""
 
 from __future__ import annotations
 
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from ..study.facts import PROPORTIONAL_RANGE
-from .compute import ReportData
-from .summary import dropped_text, model_gap
+from stability.report.compute import ReportData
+from stability.report.summary import dropped_text, model_gap
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.study.facts import PROPORTIONAL_RANGE
 
 __all__ = ["method_text", "GLOSSARY", "REFERENCES", "glossary_text"]
 
 
 def method_text(d: ReportData) -> list[str]:
-    """Paragraphs of the method appendix; every number from ``d`` or from :mod:`stability.reference`.
+    """Paragraphs of the method appendix; every number from ``d`` or from :mod:`stability.settings.reference`.
 
     Parameters
     ----------

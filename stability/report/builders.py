@@ -8,21 +8,21 @@ from functools import partial
 
 from matplotlib.figure import Figure
 
-from .. import plotting as P
-from ..chair import preset
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
-from ..study import FRICTION_FACTORS, PUSH_FACTORS, RANGE_DEFINITION, THESIS
-from ..summary import format_summary
-from .appendix import glossary_text, method_text
-from .clinician import clinician_text
-from .comparison import comparison_rows, key_numbers
-from .compute import ReportData
-from .decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
-from .findings import _first, conclusion_rows, findings
-from .quick import MARK, coarsened_text
-from .sections import footer as _footer
-from .sections import shimmy_page, slope_page, uncertainty_page
-from .summary import dropped_pages, interval_text, push_text, summary_text
+from stability import plotting as P
+from stability.chair import preset
+from stability.report.appendix import glossary_text, method_text
+from stability.report.clinician import clinician_text
+from stability.report.comparison import comparison_rows, key_numbers
+from stability.report.compute import ReportData
+from stability.report.decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
+from stability.report.findings import _first, conclusion_rows, findings
+from stability.report.quick import MARK, coarsened_text
+from stability.report.sections import footer as _footer
+from stability.report.sections import shimmy_page, slope_page, uncertainty_page
+from stability.report.summary import dropped_pages, interval_text, push_text, summary_text
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from stability.study import FRICTION_FACTORS, PUSH_FACTORS, RANGE_DEFINITION, THESIS
+from stability.study.summary_text import format_summary
 
 __all__ = ["page_builders", "VALIDITY_NOTE"]
 

@@ -12,10 +12,10 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ..advise.text import kmh
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
-from .comparison import comparison_rows, key_numbers
-from .compute import ReportData
+from stability.advise.text import kmh
+from stability.report.comparison import comparison_rows, key_numbers
+from stability.report.compute import ReportData
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 
 __all__ = ["CAPTIONS", "caption"]
 

@@ -8,9 +8,9 @@ import math
 
 import numpy as np
 
-from ..reference import THESIS_PUSH
-from .compute import ReportData
-from .quick import mark
+from stability.report.compute import ReportData
+from stability.report.quick import mark
+from stability.settings.reference import THESIS_PUSH
 
 __all__ = ["TABLE_8_2", "TYPICAL_PUSH_N", "clinician_text"]
 

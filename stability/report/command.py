@@ -6,8 +6,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from .. import defaults as D
-from ..cli import (
+from stability.cli import (
     OneLineErrorParser,
     add_chair_options,
     add_json_options,
@@ -20,12 +19,13 @@ from ..cli import (
     output_files,
     run,
 )
-from ..linear.intervals import MAX_SAMPLES
-from ..uncertainty import load_uncertainty
-from . import document
-from .compute import compute
-from .json_data import report_mapping
-from .uncertainty_data import UncertaintySpec
+from stability.linear.intervals import MAX_SAMPLES
+from stability.report import document
+from stability.report.compute import compute
+from stability.report.json_data import report_mapping
+from stability.report.uncertainty_data import UncertaintySpec
+from stability.settings import defaults as D
+from stability.uncertainty import load_uncertainty
 
 __all__ = ["build_parser", "main"]
 

@@ -10,11 +10,11 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ..chair import Chair
-from ..linear import analyse
-from ..reference import REFERENCE_SPEED
-from .shimmy_data import ShimmySection
-from .slope_data import SlopeSection
+from stability.chair import Chair
+from stability.linear import analyse
+from stability.report.shimmy_data import ShimmySection
+from stability.report.slope_data import SlopeSection
+from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["Baseline", "KeyNumbers", "key_numbers", "comparison_rows"]
 

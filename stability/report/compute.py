@@ -9,28 +9,28 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from .. import rootlocus, study
-from ..advise import advise
-from ..advise.measures import measure_chairs
-from ..chair import Chair, preset
-from ..defaults import MEASURE_FRICTION_LAW
-from ..design import get_parameter
-from ..linear import analyse, divergence, massless_caster_rate
-from ..progress import ProgressBar
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from ..shimmy.band import shimmy_band
-from ..study.impulse import critical_impulses
-from ..tipping import LOANE_KIRBY_REAR_DEG, TipAngles, tip_angles
-from ..validation import linearisation_check, with_rolling_resistance
-from .comparison import Baseline, baseline_summary
-from .modes import mode_names
-from .settings import Settings
-from .shimmy_data import ShimmySection, shimmy_section, shimmy_unavailable
-from .slope_data import SlopeSection, slope_section
-from .tire_data import ForceCurves, StiffnessCurves, force_curves, stiffness_curves
-from .trail_window import TrailWindow, trail_window
-from .uncertainty_data import UncertaintySection, UncertaintySpec, uncertainty_section
-from .validity import responses_validity
+from stability import rootlocus, study
+from stability.advise import advise
+from stability.advise.measures import measure_chairs
+from stability.chair import Chair, preset
+from stability.chair.design import get_parameter
+from stability.linear import analyse, divergence, massless_caster_rate
+from stability.linear.names import mode_names
+from stability.report.comparison import Baseline, baseline_summary
+from stability.report.settings import Settings
+from stability.report.shimmy_data import ShimmySection, shimmy_section, shimmy_unavailable
+from stability.report.slope_data import SlopeSection, slope_section
+from stability.report.tire_data import ForceCurves, StiffnessCurves, force_curves, stiffness_curves
+from stability.report.trail_window import TrailWindow, trail_window
+from stability.report.uncertainty_data import UncertaintySection, UncertaintySpec, uncertainty_section
+from stability.report.validity import responses_validity
+from stability.runtime.progress import ProgressBar
+from stability.settings.defaults import MEASURE_FRICTION_LAW
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.shimmy.band import shimmy_band
+from stability.study.impulse import critical_impulses
+from stability.study.validation import linearisation_check, with_rolling_resistance
+from stability.tipping import LOANE_KIRBY_REAR_DEG, TipAngles, tip_angles
 
 __all__ = ["Settings", "ReportData", "Figure814", "compute", "parameter_loci", "counterpart",
            "response_speeds", "stabilising_poles", "FIGURE_8_14", "COMPARISON_CHAIR",
@@ -296,7 +296,7 @@ def stabilising_poles(locus: Any) -> np.ndarray | None:
 def parameter_loci(c: Chair, model: str, n: int) -> list:
     """Root loci against the design parameters at the reference speed, over each parameter's default span.
 
-    The spans stay within chairs that can stand (:meth:`stability.design.Parameter.span`; e.g. the
+    The spans stay within chairs that can stand (:meth:`stability.chair.design.Parameter.span`; e.g. the
     c.g.-ratio span of a front-caster chair ends before its main wheels unload).
 
     Parameters

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import math
 
-from ..advise.measures import Measures
-from ..advise.text import kmh
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from .compute import ReportData
+from stability.advise.measures import Measures
+from stability.advise.text import kmh
+from stability.report.compute import ReportData
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 
 __all__ = ["decision_paragraphs", "decision_rows", "decision_bars", "decision_beyond"]
 

@@ -11,15 +11,15 @@ from pathlib import Path
 from matplotlib.figure import Figure
 from matplotlib.text import Text
 
-from .. import plotting as P
-from .._validate import check_model
-from ..chair import Chair
-from ..output import write_pdf
-from ..progress import ProgressBar
-from . import builders
-from .captions import caption
-from .compute import ReportData, Settings, compute
-from .uncertainty_data import UncertaintySpec
+from stability import plotting as P
+from stability.chair import Chair
+from stability.report import builders
+from stability.report.captions import caption
+from stability.report.compute import ReportData, Settings, compute
+from stability.report.uncertainty_data import UncertaintySpec
+from stability.runtime.checks import check_model
+from stability.runtime.files import write_pdf
+from stability.runtime.progress import ProgressBar
 
 __all__ = ["Page", "ReportResult", "figure_texts", "pages", "build"]
 
@@ -152,7 +152,7 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     c : Chair
     path : path-like
         Output PDF; its directory must exist.  Nothing is written if a page fails.  The PDF
-        has an outline (one bookmark per page, :func:`stability.output.add_outline`).
+        has an outline (one bookmark per page, :func:`stability.runtime.files.add_outline`).
     model : {"exact", "thesis"}
     quick : bool
         Coarse settings.

@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 
-from ..chair import preset
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED
-from ..validation import has_rolling_resistance
-from .compute import ReportData
-from .summary import elasticity_floor, push_text, steady_turns
+from stability.chair import preset
+from stability.report.compute import ReportData
+from stability.report.summary import elasticity_floor, push_text, steady_turns
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from stability.study.validation import has_rolling_resistance
 
 __all__ = ["findings", "conclusion_rows"]
 

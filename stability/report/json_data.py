@@ -13,13 +13,13 @@ from typing import Any
 
 import numpy as np
 
-from ..advise.text import advice_mapping
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from .clinician import CLINIC_SLOPE_DEG, clinician_text
-from .compute import ReportData
-from .decision import decision_paragraphs
-from .quick import coarsened, coarsened_text
-from .summary import best_changes, elasticity_floor, summary_text
+from stability.advise.text import advice_mapping
+from stability.report.clinician import CLINIC_SLOPE_DEG, clinician_text
+from stability.report.compute import ReportData
+from stability.report.decision import decision_paragraphs
+from stability.report.quick import coarsened, coarsened_text
+from stability.report.summary import best_changes, elasticity_floor, summary_text
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 
 __all__ = ["report_mapping"]
 

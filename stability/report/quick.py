@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .settings import Settings
-from .uncertainty_data import BAND_SPEEDS, NONLINEAR_SAMPLES, QUICK_BAND_SPEEDS, QUICK_NONLINEAR_SAMPLES
+from stability.report.settings import Settings
+from stability.report.uncertainty_data import BAND_SPEEDS, NONLINEAR_SAMPLES, QUICK_BAND_SPEEDS, QUICK_NONLINEAR_SAMPLES
 
 __all__ = ["MARK", "mark", "coarsened", "coarsened_text"]
 
@@ -35,7 +35,7 @@ def mark(s: Settings) -> str:
 
 
 def _plan_size(plan: dict | None) -> int:
-    from .. import study
+    from stability import study
 
     p = study.DEFAULT_PLAN if plan is None else plan
     return sum(len(v) for v in p.values() if v is not None)

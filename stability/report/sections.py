@@ -6,13 +6,13 @@ import math
 
 from matplotlib.figure import Figure
 
-from .. import plotting as P
-from ..reference import LEVEL, THESIS_PUSH
-from ..shimmy.plots import plot_trail_chart
-from ..slope.plots import plot_holding
-from ..study.uncertain import MeasureInterval
-from .compute import ReportData
-from .slope_data import TREADMILL
+from stability import plotting as P
+from stability.report.compute import ReportData
+from stability.report.slope_data import TREADMILL
+from stability.settings.reference import LEVEL, THESIS_PUSH
+from stability.shimmy.plots import plot_trail_chart
+from stability.slope.plots import plot_holding
+from stability.study.uncertain import MeasureInterval
 
 __all__ = ["footer", "slope_text", "shimmy_text", "uncertainty_text", "nonlinear_uncertainty_text", "slope_page",
            "shimmy_page", "uncertainty_page", "section_drops"]

@@ -6,8 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import study
-from ..reference import HORIZON
+from stability import study
+from stability.settings.reference import HORIZON
 
 __all__ = ["Settings"]
 

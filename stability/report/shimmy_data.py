@@ -11,9 +11,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from ..shimmy import chair_critical_trail
-from ..shimmy.chair import ESTIMATE_NOTE, CasterCompliance, TrailChart, caster_wheel, critical_trail, trail_chart
+from stability.chair import Chair
+from stability.shimmy import chair_critical_trail
+from stability.shimmy.chair import (
+    ESTIMATE_NOTE,
+    CasterCompliance,
+    TrailChart,
+    caster_wheel,
+    critical_trail,
+    trail_chart,
+)
 
 __all__ = ["SHIMMY_SPEED", "ShimmySection", "shimmy_section", "shimmy_unavailable"]
 

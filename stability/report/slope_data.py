@@ -11,11 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from ..reference import CROSS_SLOPE_STUDY, REFERENCE_SPEED
-from ..slope import HandRim, Plane, drive_report, holding_moment_closed_form, solve
-from ..slope.plots import HoldingCurve
-from ..slope.uncorrected import UncorrectedPath, uncorrected_path
+from stability.chair import Chair
+from stability.settings.reference import CROSS_SLOPE_STUDY, REFERENCE_SPEED
+from stability.slope import HandRim, Plane, drive_report, holding_moment_closed_form, solve
+from stability.slope.plots import HoldingCurve
+from stability.study.veer import UncorrectedPath, uncorrected_path
 
 __all__ = ["TREADMILL", "SLOPES", "PATH_SLOPE", "SlopeSection", "drive_kind", "slope_section"]
 

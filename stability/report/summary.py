@@ -11,13 +11,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import preset
-from ..design import get_parameter
-from ..reference import CROSS_SLOPE_STUDY, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from ..study import FRICTION_OVER_TRAIL, TRAIL_AT_FIXED_GROUP
-from .compute import ReportData
-from .quick import mark
-from .sections import section_drops
+from stability.chair import preset
+from stability.chair.design import get_parameter
+from stability.report.compute import ReportData
+from stability.report.quick import mark
+from stability.report.sections import section_drops
+from stability.settings.reference import CROSS_SLOPE_STUDY, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.study import FRICTION_OVER_TRAIL, TRAIL_AT_FIXED_GROUP
 
 __all__ = ["Change", "best_changes", "elasticity_floor", "interval_text", "dropped_pages", "dropped_text",
            "model_gap", "push_text", "steady_turns", "summary_text"]

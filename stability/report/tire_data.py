@@ -1,6 +1,6 @@
 """The numbers behind the report's tire page (Figures 4-1 and 4-2 analogues).
 
-The static points use :func:`stability.statics.static_stiffness` (the one
+The static points use :func:`stability.models.statics.static_stiffness` (the one
 home of stiffness at load, WITH the chair's lateral scale), so the page
 shows the value ``python -m stability.critical_speed`` prints.
 """
@@ -12,10 +12,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import tires
-from ..chair import Chair
-from ..statics import static_loads, static_stiffness
-from ..tires.data import TABLE_4_1_FZ_N
+from stability import tires
+from stability.chair import Chair
+from stability.models.statics import static_loads, static_stiffness
+from stability.tires.data import TABLE_4_1_FZ_N
 
 __all__ = ["ForceCurves", "StaticPoint", "StiffnessCurves", "force_curves", "stiffness_curves", "TIRE_LOADS"]
 
@@ -152,7 +152,7 @@ def stiffness_curves(chair: Chair | None = None) -> StiffnessCurves:
     Returns
     -------
     StiffnessCurves
-        The marked stiffness is :func:`stability.statics.static_stiffness`
+        The marked stiffness is :func:`stability.models.statics.static_stiffness`
         (mean of each pair), converted from N/rad to N/deg.
     """
     names = tuple(tires.names())

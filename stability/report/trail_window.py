@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..shimmy.band import ShimmyBand
+from stability.shimmy.band import ShimmyBand
 
 __all__ = ["TrailWindow", "intersect", "trail_window"]
 

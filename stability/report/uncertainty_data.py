@@ -11,13 +11,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from ..linear.batch import ChairBatch
-from ..linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
-from ..reference import REFERENCE_SPEED
-from ..study.uncertain import NonlinearIntervals, nonlinear_intervals
-from ..uncertainty import Uncertainty
-from .settings import Settings
+from stability.chair import Chair
+from stability.linear.batch import ChairBatch
+from stability.linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
+from stability.report.settings import Settings
+from stability.settings.reference import REFERENCE_SPEED
+from stability.study.uncertain import NonlinearIntervals, nonlinear_intervals
+from stability.uncertainty import Uncertainty
 
 __all__ = ["UncertaintySpec", "UncertaintySection", "uncertainty_section", "BAND_SPEEDS", "QUICK_BAND_SPEEDS",
            "NONLINEAR_SAMPLES", "QUICK_NONLINEAR_SAMPLES"]

@@ -10,9 +10,9 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair
-from ..simulate import LOAD_LIMIT_N, SLIP_LIMIT_DEG
-from ..study import runs
+from stability.chair import Chair
+from stability.simulate import LOAD_LIMIT_N, SLIP_LIMIT_DEG
+from stability.study import runs
 
 __all__ = ["Validity", "run_validity", "responses_validity", "HEADING_LIMIT_DEG"]
 

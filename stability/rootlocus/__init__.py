@@ -9,10 +9,10 @@ Compute -> result dataclass -> plot (:mod:`stability.plotting`), as python-contr
 
 from __future__ import annotations
 
-from ..design import DESIGN_PARAMETERS, LOCUS_PARAMETERS, Parameter, get_parameter, parameter_names
-from .gain import GainLocus, closed_loop_matrices, gain_locus
-from .parameter import ParameterLocus, parameter_loci, parameter_locus
-from .speed import SpeedLocus, speed_locus
+from stability.chair.design import DESIGN_PARAMETERS, LOCUS_PARAMETERS, Parameter, get_parameter, parameter_names
+from stability.rootlocus.gain import GainLocus, closed_loop_matrices, gain_locus
+from stability.rootlocus.parameter import ParameterLocus, parameter_loci, parameter_locus
+from stability.rootlocus.speed import SpeedLocus, speed_locus
 
 __all__ = [
     "Parameter",

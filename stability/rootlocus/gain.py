@@ -6,11 +6,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_casters, check_model, check_speed
-from ..chair import Chair
-from ..linear import input_matrices, state_matrices, state_space, track_modes
-from ..reference import REFERENCE_SPEED
-from .speed import readonly
+from stability.chair import Chair
+from stability.linear import input_matrices, state_matrices, state_space, track_modes
+from stability.rootlocus.speed import readonly
+from stability.runtime.checks import check_casters, check_model, check_speed
+from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["GainLocus", "gain_locus", "closed_loop_matrices"]
 

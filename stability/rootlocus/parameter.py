@@ -8,12 +8,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_casters, check_model, check_speed
-from ..chair import Chair
-from ..design import LOCUS_PARAMETERS, Parameter, get_parameter, main_tires
-from ..linear import state_matrices, track_modes
-from ..reference import REFERENCE_SPEED
-from .speed import readonly
+from stability.chair import Chair
+from stability.chair.design import LOCUS_PARAMETERS, Parameter, get_parameter, main_tires
+from stability.linear import state_matrices, track_modes
+from stability.rootlocus.speed import readonly
+from stability.runtime.checks import check_casters, check_model, check_speed
+from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["ParameterLocus", "parameter_locus", "parameter_loci"]
 

@@ -7,9 +7,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import check_casters, check_model
-from ..chair import Chair
-from ..linear import STATES_FREE, STATES_LOCKED, critical_speeds, state_matrices, track_modes
+from stability.chair import Chair
+from stability.linear import STATES_FREE, STATES_LOCKED, critical_speeds, state_matrices, track_modes
+from stability.runtime.checks import check_casters, check_model
 
 __all__ = ["SpeedLocus", "speed_locus", "readonly"]
 

@@ -3,17 +3,17 @@
 See docs/shimmy.md.
 """
 
-from .chair_modes import (
-    ChairShimmy,
-    ChairTrailChart,
-    chair_critical_trail,
-    chair_shimmy,
-    chair_trail_chart,
-    relaxed_state_matrices,
-    relaxed_state_space,
-    shimmy_mode,
+from stability.shimmy.chair_modes import (
+           ChairShimmy,
+           ChairTrailChart,
+           chair_critical_trail,
+           chair_shimmy,
+           chair_trail_chart,
+           relaxed_state_matrices,
+           relaxed_state_space,
+           shimmy_mode,
 )
-from .towed_wheel import PARAMETERS, HopfBoundary, RouthHurwitz, TowedWheel, hurwitz_determinants
+from stability.shimmy.towed_wheel import PARAMETERS, HopfBoundary, RouthHurwitz, TowedWheel, hurwitz_determinants
 
 __all__ = ["TowedWheel", "RouthHurwitz", "HopfBoundary", "hurwitz_determinants", "PARAMETERS",
            "relaxed_state_matrices", "relaxed_state_space", "shimmy_mode", "ChairShimmy", "chair_shimmy",

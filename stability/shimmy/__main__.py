@@ -8,11 +8,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .. import cli
-from .. import defaults as D
-from .band import ShimmyBand, shimmy_band
-from .chair import SECONDS_PER_SPEED, CasterCompliance, caster_summary, check_speed_count, trail_chart
-from .chair_modes import chair_shimmy
+from stability import cli
+from stability.settings import defaults as D
+from stability.shimmy.band import ShimmyBand, shimmy_band
+from stability.shimmy.chair import SECONDS_PER_SPEED, CasterCompliance, caster_summary, check_speed_count, trail_chart
+from stability.shimmy.chair_modes import chair_shimmy
 
 
 def build_parser() -> cli.OneLineErrorParser:
@@ -92,8 +92,8 @@ def _body(args) -> int:
             for pin, m in modes.items():
                 _print_chair_model(pin, m)
         if args.output:
-            from ..output import _pyplot, write_pdf
-            from .plots import plot_friction_needed, plot_trail_chart
+            from stability.runtime.files import _pyplot, write_pdf
+            from stability.shimmy.plots import plot_friction_needed, plot_trail_chart
 
             plt = _pyplot()
             chart = trail_chart(chair, np.linspace(0.02, 0.12, 26), speeds, comp, math.radians(args.amplitude_deg))

@@ -20,11 +20,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from ..models import shimmy as shimmy_model
-from ..params import parameters
-from ..statics import normal_loads
-from .compliance import CasterCompliance
+from stability.chair import Chair
+from stability.models import shimmy as shimmy_model
+from stability.models.params import parameters
+from stability.models.statics import normal_loads
+from stability.shimmy.compliance import CasterCompliance
 
 __all__ = ["TRAIL_SEARCH_M", "GRID_POINTS", "ShimmyBand", "shimmy_band", "band_core", "shimmy_intervals", "abscissa",
            "margin_to_boundaries"]

@@ -14,10 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..chair import Chair
-from . import describing
-from .compliance import ESTIMATE_NOTE, CasterCompliance
-from .towed_wheel import TowedWheel
+from stability.chair import Chair
+from stability.shimmy import describing
+from stability.shimmy.compliance import ESTIMATE_NOTE, CasterCompliance
+from stability.shimmy.towed_wheel import TowedWheel
 
 __all__ = ["SECONDS_PER_SPEED", "WORK_BUDGET_S", "check_speed_count", "CasterCompliance", "caster_wheel",
            "critical_trail", "friction_trail", "TrailChart", "trail_chart",
@@ -55,9 +55,9 @@ def check_speed_count(name: str, n_speeds: int, seconds_per_speed: float) -> Non
 
 def _static_stiffness(chair: Chair) -> dict[str, float]:
     try:
-        from ..statics import static_stiffness
+        from stability.models.statics import static_stiffness
     except ImportError:  # pragma: no cover - older layout
-        from ..models import static_stiffness  # type: ignore[attr-defined,no-redef]
+        from stability.models import static_stiffness  # type: ignore[attr-defined,no-redef]
     return static_stiffness(chair)
 
 
@@ -142,7 +142,7 @@ def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | No
     float
         Critical trail, m (0 or ``inf`` as above).
     """
-    from .band import TRAIL_SEARCH_M, shimmy_intervals
+    from stability.shimmy.band import TRAIL_SEARCH_M, shimmy_intervals
 
     iv = shimmy_intervals(chair, [speed], compliance or CasterCompliance())[0]
     if not iv:
@@ -257,7 +257,7 @@ def trail_chart(chair: Chair, trails, speeds, compliance: CasterCompliance | Non
         and friction trails per speed (m), with the critical trail's range over
         the compliance range corners.
     """
-    from ..linear import eigenvalues_vs_speed
+    from stability.linear import eigenvalues_vs_speed
 
     comp = compliance or CasterCompliance()
     trails = np.asarray(trails, dtype=float)

@@ -16,13 +16,13 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_choice, check_model, check_speed, check_speeds
-from ..chair import Chair
-from ..linear import state_matrices
-from ..models.relaxed import STATES, relaxed_matrices
-from ..params import Params, parameters
-from ..statics import static_stiffness
-from .chair import ESTIMATE_NOTE, CasterCompliance
+from stability.chair import Chair
+from stability.linear import state_matrices
+from stability.models.params import Params, parameters
+from stability.models.relaxed import STATES, relaxed_matrices
+from stability.models.statics import static_stiffness
+from stability.runtime.checks import check_choice, check_model, check_speed, check_speeds
+from stability.shimmy.chair import ESTIMATE_NOTE, CasterCompliance
 
 __all__ = ["PINS", "SHIMMY_MIN_HZ", "relaxed_state_matrices", "relaxed_state_space", "shimmy_mode",
            "ChairShimmy", "chair_shimmy", "chair_critical_trail", "ChairTrailChart", "chair_trail_chart"]

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .towed_wheel import TowedWheel
+from stability.shimmy.towed_wheel import TowedWheel
 
 __all__ = ["equivalent_damping", "critical_damping", "FrictionEstimate", "suppressing_friction",
            "Simulation", "simulate", "simulated_threshold"]

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .chair import TrailChart
+from stability.shimmy.chair import TrailChart
 
 __all__ = ["plot_trail_chart", "plot_friction_needed"]
 

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from ..models import shimmy as _model
+from stability.models import shimmy as _model
 
 __all__ = ["TowedWheel", "RouthHurwitz", "HopfBoundary", "hurwitz_determinants", "PARAMETERS"]
 

@@ -15,11 +15,11 @@ Examples
 3.2
 """
 
-from .api import reference_engine, simulate, simulate_batch
-from .controller import SampledController
-from .engine import RECORDS, STATS_LEVELS
-from .linearise import linearise
-from .options import (
+from stability.simulate.api import reference_engine, simulate, simulate_batch
+from stability.simulate.controller import SampledController
+from stability.simulate.engine import RECORDS, STATS_LEVELS
+from stability.simulate.linearise import linearise
+from stability.simulate.options import (
     ADAPTIVE_METHOD,
     CASTERS,
     DEFAULTS,
@@ -33,8 +33,8 @@ from .options import (
     WHEELS,
     SimulationDefaults,
 )
-from .results import ChairState, RunStats, SimulationResult
-from .stepcheck import StepStabilityWarning
+from stability.simulate.results import ChairState, RunStats, SimulationResult
+from stability.simulate.stepcheck import StepStabilityWarning
 
 __all__ = [
     "SCHEMES",

@@ -6,8 +6,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from .. import defaults as DF
-from ..cli import (
+from stability.cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
@@ -23,12 +22,13 @@ from ..cli import (
     output_files,
     run,
 )
-from ..reference import THESIS_PUSH
-from .api import simulate
-from .bounds import MAX_DURATION_S, MAX_PUSH_N, MAX_ROWS, MAX_STEPS, ROW_BYTES
-from .options import ADAPTIVE_SAMPLE, OUT_OF_RANGE_POLICIES
-from .options import DEFAULTS as D
-from .plot import plot_result
+from stability.settings import defaults as DF
+from stability.settings.reference import THESIS_PUSH
+from stability.simulate.api import simulate
+from stability.simulate.bounds import MAX_DURATION_S, MAX_PUSH_N, MAX_ROWS, MAX_STEPS, ROW_BYTES
+from stability.simulate.options import ADAPTIVE_SAMPLE, OUT_OF_RANGE_POLICIES
+from stability.simulate.options import DEFAULTS as D
+from stability.simulate.plot import plot_result
 
 __all__ = ["main", "build_parser"]
 

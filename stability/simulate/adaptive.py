@@ -9,10 +9,10 @@ import math
 
 import numpy as np
 
-from ..chair import Chair
-from ..models.full_width import tire_resultant, tire_yaw_moment
-from .engine import _POLICY, _Packed, _raise_refused, first_use, slope_slots
-from .options import (
+from stability.chair import Chair
+from stability.models.full_width import tire_resultant, tire_yaw_moment
+from stability.simulate.engine import _POLICY, _Packed, _raise_refused, first_use, slope_slots
+from stability.simulate.options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,
     LOAD_TOLERANCE,
@@ -22,8 +22,17 @@ from .options import (
     impulse_on,
     initial_velocities,
 )
-from .physics import Physics, held_accelerations, kinematics, loads, ops, plane, slip_angles, tire_forces
-from .results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
+from stability.simulate.physics import (
+    Physics,
+    held_accelerations,
+    kinematics,
+    loads,
+    ops,
+    plane,
+    slip_angles,
+    tire_forces,
+)
+from stability.simulate.results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
 
 __all__ = ["AdaptiveModel", "adaptive_single", "NoLoadSolution", "FREE_POS", "FREE_NEG", "STUCK", "LOCKED"]
 
@@ -181,7 +190,7 @@ class _Compiled:
 
     def __init__(self, chair: Chair, speed: float, opts: Options):
         with first_use("adaptive_load"):
-            from . import adaptive_kernel  # numba and the compiled code load only when the scheme runs
+            from stability.simulate import adaptive_kernel  # numba and the compiled code load only when the scheme runs
 
         self.k = adaptive_kernel
         self.chair, self.opts = chair, opts

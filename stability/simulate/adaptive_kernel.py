@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernel import (
+from stability.simulate.kernel import (
     FCIMP,
     MAF,
     MBF,
@@ -31,8 +31,8 @@ from .kernel import (
     slip_angles,
     tire_yaw_moment,
 )
-from .kernel import gravity_body as _gravity_body
-from .options import LOAD_TOLERANCE
+from stability.simulate.kernel import gravity_body as _gravity_body
+from stability.simulate.options import LOAD_TOLERANCE
 
 __all__ = ["NAUX", "evaluate", "samples"]
 

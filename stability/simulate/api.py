@@ -11,17 +11,17 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_choice, check_speed
-from ..chair import Chair
-from ..progress import ProgressBar
-from .adaptive import adaptive_single
-from .controller import SampledController
-from .engine import RECORDS, run_compiled
-from .options import DEFAULTS, WCHAIR_DT, make_options
-from .reference import wchair_batch
-from .results import ChairState, SimulationResult
-from .stepcheck import StepStabilityWarning, auto_step, stable_steps
-from .wchair import wchair_single
+from stability.chair import Chair
+from stability.runtime.checks import check_choice, check_speed
+from stability.runtime.progress import ProgressBar
+from stability.simulate.adaptive import adaptive_single
+from stability.simulate.controller import SampledController
+from stability.simulate.engine import RECORDS, run_compiled
+from stability.simulate.options import DEFAULTS, WCHAIR_DT, make_options
+from stability.simulate.reference import wchair_batch
+from stability.simulate.results import ChairState, SimulationResult
+from stability.simulate.stepcheck import StepStabilityWarning, auto_step, stable_steps
+from stability.simulate.wchair import wchair_single
 
 __all__ = ["simulate", "simulate_batch", "reference_engine"]
 
@@ -95,7 +95,7 @@ def simulate(chair: Chair, speed: float, *, duration: float = DEFAULTS.duration,
     impulse_force, impulse_duration : float
         Lateral force at the c.g., N (FCIMP, positive to the right), and how
         long it acts, s (DUIMP; ``t <= DUIMP``).  Default: the thesis's
-        reference push :data:`stability.reference.THESIS_PUSH`; ``impulse_duration=math.inf``
+        reference push :data:`stability.settings.reference.THESIS_PUSH`; ``impulse_duration=math.inf``
         (or >= duration) gives a constant side force.
     tire_impulse : float
         Lateral force on EACH main tire while ``t <= impulse_duration``, N

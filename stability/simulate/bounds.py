@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .._validate import check_positive
+from stability.runtime.checks import check_positive
 
 __all__ = ["MAX_DURATION_S", "MAX_STEPS", "MIN_DT_S", "MAX_ROWS", "ROW_BYTES", "MAX_PUSH_N", "MIN_RTOL", "MIN_ATOL",
            "check_steps", "check_pushes", "check_rows", "check_tolerances"]

@@ -10,8 +10,8 @@ import hashlib
 import os
 from pathlib import Path
 
-from ..models.full_width import generated as _fw
-from ..models.slope import generated as _sl
+from stability.models.full_width import generated as _fw
+from stability.models.slope import generated as _sl
 
 __all__ = ["KERNEL_SOURCES", "invalidate_stale_cache"]
 

@@ -17,14 +17,14 @@ from typing import Any
 
 import numpy as np
 
-from .. import tires as _tires
-from ..chair import Chair
-from ..params import parameters
-from ..progress import NOTICE_AFTER_S, notice_if_slow
-from ..reference import LEVEL
-from .controller import SampledController
-from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
-from .results import RunStats, SimulationResult
+from stability import tires as _tires
+from stability.chair import Chair
+from stability.models.params import parameters
+from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
+from stability.settings.reference import LEVEL
+from stability.simulate.controller import SampledController
+from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
+from stability.simulate.results import RunStats, SimulationResult
 
 __all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
            "slope_slots"]
@@ -160,7 +160,7 @@ def first_use(scheme: str) -> Iterator[None]:
 
 def _kernel():
     with first_use("wchair_load"):
-        from . import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
+        from stability.simulate import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
 
     return kernel
 

@@ -4,7 +4,7 @@ Imported only when a simulation runs (numba costs about 0.5 s to import; the
 compiled code is cached on disk, see ``docs/simulator.md``).  Every array
 layout is written by :mod:`stability.simulate.engine`.  The equations are the
 generated functions behind :mod:`stability.models.full_width`, compiled as
-they are; loads (:func:`stability.statics.normal_loads`), the tire resultant
+they are; loads (:func:`stability.models.statics.normal_loads`), the tire resultant
 and yaw moment (:mod:`stability.models.full_width`) and the tire force law
 (``_segment_force`` of :mod:`stability.tires`) are transcribed with the same
 operations in the same order (tested bit for bit against them).
@@ -18,9 +18,9 @@ import numpy as np
 from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
 from numba.core import config as _config
 
-from .cache_stamp import invalidate_stale_cache
-from .kernel_controller import controller_output
-from .kernel_equations import (  # noqa: F401  (re-exported: the engine, the adaptive kernel and tests use them)
+from stability.simulate.cache_stamp import invalidate_stale_cache
+from stability.simulate.kernel_controller import controller_output
+from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: the engine, the adaptive kernel and tests use them)
     _NOWRAP,
     BETA0,
     C_PHI,
@@ -88,7 +88,7 @@ __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_nu
 
 @_inl_py
 def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
-    """:func:`stability.statics.normal_loads`, same operations."""
+    """:func:`stability.models.statics.normal_loads`, same operations."""
     c1 = 1.0 / (P[ROLL_K] + 1.0)
     xa, ya = P[X_P] - P[TRAIL] * ce, -P[T1] - P[TRAIL] * se
     xb, yb = P[X_P] - P[TRAIL] * cb, P[T2] - P[TRAIL] * sb

@@ -16,8 +16,8 @@ from typing import Any
 
 from numba import njit
 
-from ..models.full_width import generated as _fw
-from ..models.slope import generated as _sl
+from stability.models.full_width import generated as _fw
+from stability.models.slope import generated as _sl
 
 __all__ = ["accelerations", "held_pins", "stick_slip", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW",
            "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
@@ -38,7 +38,7 @@ acc_slope = _int(_sl.accelerations_slope_exact)
 gravity_body = _int(_sl.gravity_body)
 loads_plane = _int(_sl.normal_loads_plane)
 
-# Params vector layout (stability.params.Params order)
+# Params vector layout (stability.models.params.Params order)
 X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
 # per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
 U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)

@@ -7,11 +7,11 @@ from typing import Any
 
 import numpy as np
 
-from .. import tires
-from .._validate import check_positive, check_speed
-from ..chair import Chair
-from .adaptive import FREE_POS, LOCKED, AdaptiveModel
-from .options import DEFAULTS, initial_velocities, make_options
+from stability import tires
+from stability.chair import Chair
+from stability.runtime.checks import check_positive, check_speed
+from stability.simulate.adaptive import FREE_POS, LOCKED, AdaptiveModel
+from stability.simulate.options import DEFAULTS, initial_velocities, make_options
 
 __all__ = ["linearise"]
 

@@ -13,11 +13,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from .. import defaults as D
-from .._validate import check_choice, check_finite, check_positive
-from ..reference import HORIZON, THESIS_PUSH
-from ..tires.data import FZ_MAX_N, SLIP_MAX_DEG
-from .bounds import check_pushes, check_rows, check_steps, check_tolerances
+from stability.runtime.checks import check_choice, check_finite, check_positive
+from stability.settings import defaults as D
+from stability.settings.reference import HORIZON, THESIS_PUSH
+from stability.simulate.bounds import check_pushes, check_rows, check_steps, check_tolerances
+from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SCHEMES", "MODELS", "CASTERS", "FRICTION_LAWS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS",
            "SLIP_LIMIT_DEG",
@@ -55,8 +55,8 @@ BATCH_SAMPLE = 0.01
 class SimulationDefaults:
     """The defaults of a simulation (units as in :func:`stability.simulate.simulate`).
 
-    The thesis's reference push (:data:`stability.reference.THESIS_PUSH`) and
-    horizon (:data:`stability.reference.HORIZON`), WCHAIR's step and scheme
+    The thesis's reference push (:data:`stability.settings.reference.THESIS_PUSH`) and
+    horizon (:data:`stability.settings.reference.HORIZON`), WCHAIR's step and scheme
     (program WCHAIR, Appendix C; the defaults of Table 8-1).  Each field is the
     default of the keyword of the same name of :func:`stability.simulate.simulate`,
     which documents it in full.
@@ -69,7 +69,7 @@ class SimulationDefaults:
         Integration scheme: WCHAIR's fixed step or error-controlled.
     model : {"thesis", "exact"}
         Variant of the equations of motion (default "exact", as every
-        command line: :data:`stability.defaults.MODEL`).
+        command line: :data:`stability.settings.defaults.MODEL`).
     dt : float or "auto"
         Fixed step of the wchair scheme, s (WCHAIR's TSTEP; 0.001 s).  > 0 and
         <= ``duration``.

@@ -2,7 +2,7 @@
 
 Floats (one run) or numpy arrays over runs (the reference batch path).  The
 equations come through :mod:`stability.models.full_width`; loads and contact
-points from :mod:`stability.statics`.  See ``docs/simulator.md``.
+points from :mod:`stability.models.statics`.  See ``docs/simulator.md``.
 """
 
 from __future__ import annotations
@@ -13,13 +13,13 @@ from typing import Any
 
 import numpy as np
 
-from .. import tires as _tires
-from ..chair import Chair
-from ..models import full_width
-from ..models import slope as slope_model
-from ..params import parameters as _parameters
-from ..statics import normal_loads as _level_loads
-from .options import Options
+from stability import tires as _tires
+from stability.chair import Chair
+from stability.models import full_width
+from stability.models import slope as slope_model
+from stability.models.params import parameters as _parameters
+from stability.models.statics import normal_loads as _level_loads
+from stability.simulate.options import Options
 
 __all__ = ["Physics", "TireGroup", "NO_FORCE", "kinematics", "slip_angles", "tire_forces", "accelerations",
            "held_accelerations", "plane", "loads"]
@@ -373,7 +373,7 @@ def loads(K: Physics, sum_fx, sum_fy, ce, se, cb, sb, gn=None):
         cos and sin of the caster angles.
     gn : float or ndarray, optional
         Gravity normal to the plane, m/s^2 (:func:`plane`); None: level
-        (:func:`stability.statics.normal_loads`, today's arithmetic).
+        (:func:`stability.models.statics.normal_loads`, today's arithmetic).
 
     Returns
     -------

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .physics import Physics, accelerations, held_accelerations
+from stability.simulate.physics import Physics, accelerations, held_accelerations
 
 __all__ = ["stick_slip", "stick_slip_runs", "rest_rate", "rest_rates"]
 

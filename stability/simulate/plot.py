@@ -7,10 +7,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from ..output import save_figure
+from stability.runtime.files import save_figure
 
 if TYPE_CHECKING:
-    from .results import SimulationResult
+    from stability.simulate.results import SimulationResult
 
 __all__ = ["plot_result"]
 
@@ -20,7 +20,7 @@ def plot_result(result: SimulationResult, path_or_ax: Any = None, *, title: str 
 
     ``path_or_ax`` is a matplotlib Axes (drawn on, returned) or a file
     path (a figure with yaw rate and trajectory is written atomically;
-    PDFs through :func:`stability.output.write_pdf`); ``None`` returns a
+    PDFs through :func:`stability.runtime.files.write_pdf`); ``None`` returns a
     new figure.
 
     Parameters

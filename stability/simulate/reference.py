@@ -12,14 +12,22 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair
-from ..models.full_width import tire_resultant, tire_yaw_moment
-from ..progress import ProgressBar
-from ..statics import normal_loads
-from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, impulse_on, initial_velocities, n_steps
-from .physics import Physics, accelerations, held_accelerations, kinematics, loads, plane, tire_forces
-from .pin_friction import rest_rates, stick_slip_runs
-from .results import NCOLS, ChairState, SimulationResult
+from stability.chair import Chair
+from stability.models.full_width import tire_resultant, tire_yaw_moment
+from stability.models.statics import normal_loads
+from stability.runtime.progress import ProgressBar
+from stability.simulate.options import (
+    LOAD_LIMIT_N,
+    SLIP_LIMIT_DEG,
+    WARNING_LIMIT,
+    Options,
+    impulse_on,
+    initial_velocities,
+    n_steps,
+)
+from stability.simulate.physics import Physics, accelerations, held_accelerations, kinematics, loads, plane, tire_forces
+from stability.simulate.pin_friction import rest_rates, stick_slip_runs
+from stability.simulate.results import NCOLS, ChairState, SimulationResult
 
 __all__ = ["wchair_batch"]
 

@@ -12,10 +12,10 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .._validate import check_positive
-from ..chair import Chair
-from ..output import atomic_write_text
-from .options import WHEELS
+from stability.chair import Chair
+from stability.runtime.checks import check_positive
+from stability.runtime.files import atomic_write_text
+from stability.simulate.options import WHEELS
 
 __all__ = ["JSON_COLUMNS", "json_key", "COLUMNS", "NCOLS", "ChairState", "RunStats", "SimulationResult", "new_warnings",
            "note_warning"]
@@ -404,7 +404,7 @@ class SimulationResult:
         path (a figure with yaw rate and trajectory is written atomically);
         ``None`` returns a new figure.  matplotlib is imported only here.
         """
-        from .plot import plot_result  # matplotlib is a heavy optional import
+        from stability.simulate.plot import plot_result  # matplotlib is a heavy optional import
 
         return plot_result(self, path_or_ax, title=title)
 

@@ -15,9 +15,9 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..chair import Chair
-from ..linear import state_matrices
-from .options import WCHAIR_DT
+from stability.chair import Chair
+from stability.linear import state_matrices
+from stability.simulate.options import WCHAIR_DT
 
 __all__ = ["SAFETY", "stable_steps", "step_limits_and_growth", "auto_step", "StepStabilityWarning"]
 

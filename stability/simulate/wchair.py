@@ -12,13 +12,30 @@ import math
 
 import numpy as np
 
-from ..chair import Chair
-from ..models.full_width import tire_resultant, tire_yaw_moment
-from ..statics import normal_loads
-from .options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, impulse_on, initial_velocities, n_steps
-from .physics import Physics, accelerations, held_accelerations, kinematics, loads, plane, slip_angles, tire_forces
-from .pin_friction import rest_rate, stick_slip
-from .results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
+from stability.chair import Chair
+from stability.models.full_width import tire_resultant, tire_yaw_moment
+from stability.models.statics import normal_loads
+from stability.simulate.options import (
+    LOAD_LIMIT_N,
+    SLIP_LIMIT_DEG,
+    WARNING_LIMIT,
+    Options,
+    impulse_on,
+    initial_velocities,
+    n_steps,
+)
+from stability.simulate.physics import (
+    Physics,
+    accelerations,
+    held_accelerations,
+    kinematics,
+    loads,
+    plane,
+    slip_angles,
+    tire_forces,
+)
+from stability.simulate.pin_friction import rest_rate, stick_slip
+from stability.simulate.results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
 
 __all__ = ["wchair_single"]
 

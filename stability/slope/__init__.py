@@ -9,8 +9,15 @@ line: ``python -m stability.slope``.  See ``docs/slopes.md``.
 
 from __future__ import annotations
 
-from .equilibrium import Equilibrium, HandRim, drive_report, holding_moment_closed_form, max_cross_slope, solve
-from .model import Plane, SlopeModel
+from stability.slope.equilibrium import (
+           Equilibrium,
+           HandRim,
+           drive_report,
+           holding_moment_closed_form,
+           max_cross_slope,
+           solve,
+)
+from stability.slope.model import Plane, SlopeModel
 
 __all__ = ["Plane", "SlopeModel", "HandRim", "Equilibrium", "solve", "drive_report",
            "holding_moment_closed_form", "max_cross_slope"]

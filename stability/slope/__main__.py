@@ -7,8 +7,7 @@ import math
 import sys
 from collections.abc import Sequence
 
-from .. import defaults as D
-from ..cli import (
+from stability.cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
@@ -21,8 +20,9 @@ from ..cli import (
     output_files,
     run,
 )
-from .equilibrium import HandRim, drive_report, solve
-from .uncorrected import simulator_path, uncorrected_path
+from stability.settings import defaults as D
+from stability.slope.equilibrium import HandRim, drive_report, solve
+from stability.study.veer import simulator_path, uncorrected_path
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -70,9 +70,9 @@ def figure(chair, cross_slope: float, speed: float):
     -------
     matplotlib.figure.Figure
     """
-    from .. import plotting as P
-    from ..report.slope_data import TREADMILL, slope_section
-    from .plots import plot_holding
+    from stability import plotting as P
+    from stability.report.slope_data import TREADMILL, slope_section
+    from stability.slope.plots import plot_holding
 
     phi = abs(float(cross_slope))
     s = slope_section(chair, speed=speed, slopes=sorted(set(FIGURE_SLOPES) | {phi}), path_slope=phi)
@@ -171,7 +171,7 @@ def _body(a: argparse.Namespace) -> int:
     }
     data = _finite(data)
     if a.output:
-        from ..output import save_figure
+        from stability.runtime.files import save_figure
 
         with output_files({"-o": a.output}) as tmp:
             save_figure(figure(chair, a.cross_slope, a.speed), tmp["-o"],

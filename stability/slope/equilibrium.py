@@ -16,13 +16,13 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .. import defaults as D
-from .._validate import check_positive, check_speed
-from ..chair import Chair
-from ..models import slope as sl
-from ..power_chair import DriveTrain
-from ..tires.data import FZ_MAX_N
-from .model import Plane, SlopeModel
+from stability.chair import Chair
+from stability.chair.power import DriveTrain
+from stability.models import slope as sl
+from stability.runtime.checks import check_positive, check_speed
+from stability.settings import defaults as D
+from stability.slope.model import Plane, SlopeModel
+from stability.tires.data import FZ_MAX_N
 
 __all__ = ["HandRim", "Equilibrium", "solve", "harder_side", "holding_moment_closed_form", "max_cross_slope",
            "drive_report"]
@@ -343,7 +343,7 @@ def drive_report(chair: Chair, eq: Equilibrium, drive: str = "handrim", handrim:
     handrim : HandRim, optional
         Radii for a manual chair (default :class:`HandRim`).
     drive_train : DriveTrain, optional
-        Motors of a power chair (default :class:`stability.power_chair.DriveTrain`).
+        Motors of a power chair (default :class:`stability.chair.power.DriveTrain`).
 
     Returns
     -------

@@ -16,10 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_positive, check_speed
-from ..chair import Chair
-from .linear import stability_vs_speed
-from .model import Plane, SlopeModel
+from stability.chair import Chair
+from stability.runtime.checks import check_positive, check_speed
+from stability.slope.linear import stability_vs_speed
+from stability.slope.model import Plane, SlopeModel
 
 __all__ = ["GradeRun", "grade_run", "forward_gravity"]
 

@@ -16,11 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_speeds
-from ..chair import Chair
-from ..linear import critical_speeds
-from .equilibrium import _root, _state
-from .model import Plane, SlopeModel
+from stability.chair import Chair
+from stability.linear import critical_speeds
+from stability.runtime.checks import check_speeds
+from stability.slope.equilibrium import _root, _state
+from stability.slope.model import Plane, SlopeModel
 
 __all__ = ["state_matrix", "SlopeStability", "stability_vs_speed", "slope_critical_speeds"]
 

@@ -14,12 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice
-from ..chair import Chair
-from ..models import full_width as fw
-from ..models import slope as sl
-from ..params import parameters
-from ..tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire, get_policy
+from stability.chair import Chair
+from stability.models import full_width as fw
+from stability.models import slope as sl
+from stability.models.params import parameters
+from stability.runtime.checks import check_choice
+from stability.tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire, get_policy
 
 __all__ = ["Plane", "SlopeModel", "Forces", "MAX_ANGLE_DEG"]
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..reference import CROSS_SLOPE_STUDY
+from stability.settings.reference import CROSS_SLOPE_STUDY
 
 __all__ = ["HoldingCurve", "holding_curve", "plot_holding"]
 
@@ -57,7 +57,7 @@ def holding_curve(chair, cross_slopes_deg: Sequence[float] = (0.5, 1, 2, 3, 4, 5
         Holding-moment magnitude (N m) with its range under Coulomb pin friction
         and the hand-rim force difference (N) at each cross slope.
     """
-    from .equilibrium import drive_report, solve
+    from stability.slope.equilibrium import drive_report, solve
 
     eqs = [solve(chair, float(p), speed) for p in cross_slopes_deg]
     fr = np.array([sorted(abs(x) for x in e.friction_range) for e in eqs])

@@ -2,7 +2,7 @@
 
 The thesis rates a design by the time its |yaw rate| takes to reach 1 rad/s
 after a 40 N, 0.1 s lateral push at the c.g., against the E&J Premier at
-0.75 m/s (:mod:`stability.reference`).  Modules: :mod:`.criteria` (the
+0.75 m/s (:mod:`stability.settings.reference`).  Modules: :mod:`.criteria` (the
 criterion), :mod:`.runs` (simulator access), :mod:`.responses` (nonlinear
 and linear responses), :mod:`.equal_instability`, :mod:`.maps`,
 :mod:`.sweeps`, :mod:`.thesis`, :mod:`.conclusions`; the robust
@@ -13,12 +13,17 @@ docs/studies.md.
 
 from __future__ import annotations
 
-from ..linear import lateral_force_input
-from ..reference import THESIS_PUBLISHED
-from .conclusions import CONCLUSIONS, ConclusionCheck, check_conclusions
-from .criteria import Criterion, check_impulse, time_to_yaw_rate
-from .equal_instability import EqualInstability, equal_instability_speed, equal_instability_speeds, reference_time
-from .facts import (
+from stability.linear import lateral_force_input
+from stability.settings.reference import THESIS_PUBLISHED
+from stability.study.conclusions import CONCLUSIONS, ConclusionCheck, check_conclusions
+from stability.study.criteria import Criterion, check_impulse, time_to_yaw_rate
+from stability.study.equal_instability import (
+    EqualInstability,
+    equal_instability_speed,
+    equal_instability_speeds,
+    reference_time,
+)
+from stability.study.facts import (
     PROPORTIONAL_RANGE,
     EqualFrictionComparison,
     EqualFrictionRow,
@@ -30,7 +35,7 @@ from .facts import (
     growth_rate,
     steady_turn,
 )
-from .impulse import (
+from stability.study.impulse import (
     CriticalImpulse,
     CriticalImpulseCurve,
     critical_impulse,
@@ -38,8 +43,8 @@ from .impulse import (
     critical_impulses,
     push_impulse,
 )
-from .impulse_intervals import CriticalImpulseInterval, critical_impulse_intervals
-from .intervals import (
+from stability.study.impulse_intervals import CriticalImpulseInterval, critical_impulse_intervals
+from stability.study.intervals import (
     FRICTION_FACTORS,
     PUSH_FACTORS,
     RANGE_BRACKET,
@@ -51,10 +56,17 @@ from .intervals import (
     equal_instability_interval,
     equal_instability_intervals,
 )
-from .maps import StabilityMap, disturbance_map, stability_map
-from .responses import LinearResponse, Response, ResponseSet, linear_impulse_response, trajectories, yaw_rate_responses
-from .runs import SCALAR_RUNS
-from .sensitivity import (
+from stability.study.maps import StabilityMap, disturbance_map, stability_map
+from stability.study.responses import (
+    LinearResponse,
+    Response,
+    ResponseSet,
+    linear_impulse_response,
+    trajectories,
+    yaw_rate_responses,
+)
+from stability.study.runs import SCALAR_RUNS
+from stability.study.sensitivity import (
     ELASTICITY_PARAMETERS,
     FRICTION_OVER_TRAIL,
     TRAIL_AT_FIXED_GROUP,
@@ -62,11 +74,11 @@ from .sensitivity import (
     Sensitivity,
     elasticities,
 )
-from .sweeps import DEFAULT_PLAN, QUICK_PLAN, Sweep, SweepRow, SweepTable, parameter_sweeps, plan_for
-from .thesis import LinearFacts, ThesisStudy, friction_variants, thesis_study
-from .uncertain import MAX_NONLINEAR_SAMPLES, MeasureInterval, NonlinearIntervals, nonlinear_intervals
+from stability.study.sweeps import DEFAULT_PLAN, QUICK_PLAN, Sweep, SweepRow, SweepTable, parameter_sweeps, plan_for
+from stability.study.thesis import LinearFacts, ThesisStudy, friction_variants, thesis_study
+from stability.study.uncertain import MAX_NONLINEAR_SAMPLES, MeasureInterval, NonlinearIntervals, nonlinear_intervals
 
-#: Former name of :data:`stability.reference.THESIS_PUBLISHED` (kept for callers not yet moved).
+#: Former name of :data:`stability.settings.reference.THESIS_PUBLISHED` (kept for callers not yet moved).
 THESIS = THESIS_PUBLISHED
 
 __all__ = [

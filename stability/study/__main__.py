@@ -6,9 +6,8 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from .. import defaults as D
-from ..chair import Chair
-from ..cli import (
+from stability.chair import Chair
+from stability.cli import (
     OneLineErrorParser,
     add_chair_options,
     add_friction_law_option,
@@ -21,10 +20,11 @@ from ..cli import (
     parse_speeds,
     run,
 )
-from ..reference import THESIS_PUSH, Push
-from .impulse import check_study_work, critical_impulse_curve, runs_per_speed
-from .impulse_intervals import critical_impulse_intervals
-from .intervals import RANGE_DEFINITION, equal_instability_interval
+from stability.settings import defaults as D
+from stability.settings.reference import THESIS_PUSH, Push
+from stability.study.impulse import check_study_work, critical_impulse_curve, runs_per_speed
+from stability.study.impulse_intervals import critical_impulse_intervals
+from stability.study.intervals import RANGE_DEFINITION, equal_instability_interval
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -8,11 +8,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..statics import static_stiffness
-from .equal_instability import EqualInstability
-from .facts import PROPORTIONAL_RANGE, fit_exponent
-from .sweeps import SweepTable
-from .thesis import ThesisStudy
+from stability.models.statics import static_stiffness
+from stability.study.equal_instability import EqualInstability
+from stability.study.facts import PROPORTIONAL_RANGE, fit_exponent
+from stability.study.sweeps import SweepTable
+from stability.study.thesis import ThesisStudy
 
 __all__ = ["ConclusionCheck", "CONCLUSIONS", "check_conclusions"]
 

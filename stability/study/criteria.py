@@ -8,8 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from ..reference import HORIZON, LEVEL, Push
-from ..signals import time_to_level
+from stability.settings.reference import HORIZON, LEVEL, Push
+from stability.simulate.signals import time_to_level
 
 __all__ = ["Criterion", "DEFAULT_CRITERION", "PATHS_CRITERION", "time_to_yaw_rate", "check_impulse"]
 
@@ -23,9 +23,9 @@ class Criterion:
     Attributes
     ----------
     yaw_rate : float
-        The level, rad/s (default :data:`stability.reference.LEVEL`).
+        The level, rad/s (default :data:`stability.settings.reference.LEVEL`).
     duration : float
-        Simulated time, s (default :data:`stability.reference.HORIZON`).
+        Simulated time, s (default :data:`stability.settings.reference.HORIZON`).
     """
 
     yaw_rate: float = LEVEL
@@ -94,7 +94,7 @@ def time_to_yaw_rate(result: Any, level: float = LEVEL, duration: float | None =
 
 
 def check_impulse(impulse: Any) -> tuple[float, float]:
-    """A push as ``(force N, duration s)``; accepts a :class:`stability.reference.Push` or a pair.
+    """A push as ``(force N, duration s)``; accepts a :class:`stability.settings.reference.Push` or a pair.
 
     Parameters
     ----------

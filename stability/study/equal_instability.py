@@ -9,12 +9,12 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair, preset
-from ..progress import ProgressBar
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from . import runs
-from .criteria import DEFAULT_CRITERION, Criterion, check_impulse
-from .summaries import run_summaries
+from stability.chair import Chair, preset
+from stability.runtime.progress import ProgressBar
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.study import runs
+from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
+from stability.study.summaries import run_summaries
 
 __all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds", "bisect_speeds",
            "equal_instability_speed"]
@@ -369,7 +369,7 @@ def equal_instability_speed(chair: Chair, *, reference_chair: Chair | None = Non
 
     The reference case is ``reference_chair`` (default the E&J Premier) at
     ``reference_speed`` (0.75 m/s) under the push ``impulse`` (default the
-    thesis's 40 N for 0.1 s at the c.g., :data:`stability.reference.THESIS_PUSH`).
+    thesis's 40 N for 0.1 s at the c.g., :data:`stability.settings.reference.THESIS_PUSH`).
     ``criterion`` (default: time to reach ``|yaw rate| = 1 rad/s``; see
     docs/studies.md) is evaluated for the reference and for ``chair`` at
     candidate speeds; the speed at which the chair's time equals the

@@ -9,13 +9,13 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair, preset
-from ..linear import state_matrices
-from ..reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH, Push
-from . import runs
-from .criteria import DEFAULT_CRITERION, Criterion
-from .equal_instability import EqualInstability, bisect_speeds, equal_instability_speeds
-from .intervals import reference_times, scale_friction
+from stability.chair import Chair, preset
+from stability.linear import state_matrices
+from stability.settings.reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH, Push
+from stability.study import runs
+from stability.study.criteria import DEFAULT_CRITERION, Criterion
+from stability.study.equal_instability import EqualInstability, bisect_speeds, equal_instability_speeds
+from stability.study.intervals import reference_times, scale_friction
 
 __all__ = ["EqualFrictionRow", "EqualFrictionComparison", "equal_friction_comparison", "FrictionExponent",
            "friction_exponent", "fit_exponent", "PROPORTIONAL_RANGE", "SteadyTurn", "steady_turn",

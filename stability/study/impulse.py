@@ -15,12 +15,12 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_choice, check_model, check_positive, check_speeds
-from ..chair import Chair
-from ..reference import HORIZON, LEVEL, THESIS_PUSH, Push
-from ..simulate.stepcheck import step_limits_and_growth
-from .search import bracket_search
-from .summaries import SummaryRunner, run_steps
+from stability.chair import Chair
+from stability.runtime.checks import check_choice, check_model, check_positive, check_speeds
+from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
+from stability.simulate.stepcheck import step_limits_and_growth
+from stability.study.search import bracket_search
+from stability.study.summaries import SummaryRunner, run_steps
 
 __all__ = ["runs_per_speed", "check_study_work", "STEP_SECONDS", "WORK_BUDGET_S", "CriticalImpulse",
            "CriticalImpulseCurve", "critical_impulses", "critical_impulse",
@@ -191,7 +191,7 @@ def linear_critical_impulse(chair: Chair, speed: float, *, model: str = "exact",
     float
         N s (inf when the linear response never moves the yaw rate).
     """
-    from .responses import linear_peak_yaw_rate
+    from stability.study.responses import linear_peak_yaw_rate
 
     peak = linear_peak_yaw_rate(chair, speed, horizon, impulse=(1.0 / duration, duration), model=model, step=step)
     return level / peak if peak > 0 else math.inf
@@ -263,7 +263,7 @@ def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, ho
     ValueError
         Naming ``name``, the estimate and the largest allowed value.
     """
-    from ..simulate.stepcheck import auto_step, stable_steps
+    from stability.simulate.stepcheck import auto_step, stable_steps
 
     if limits is None:
         limits = stable_steps(list(chairs), np.asarray(speeds, dtype=float), model, "free")

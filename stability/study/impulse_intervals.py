@@ -19,11 +19,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from .._validate import VARIANTS, check_model
-from ..chair import Chair
-from ..simulate.options import WCHAIR_DT as DT
-from .impulse import CriticalImpulse, critical_impulses
-from .intervals import FRICTION_FACTORS, STEP_FACTORS, scale_friction
+from stability.chair import Chair
+from stability.runtime.checks import VARIANTS, check_model
+from stability.simulate.options import WCHAIR_DT as DT
+from stability.study.impulse import CriticalImpulse, critical_impulses
+from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS, scale_friction
 
 __all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS", "STEP_FACTORS"]
 

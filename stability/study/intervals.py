@@ -9,12 +9,12 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import VARIANTS, check_model
-from ..chair import Chair, preset
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH, Push
-from . import runs
-from .criteria import DEFAULT_CRITERION, Criterion
-from .equal_instability import EqualInstability, bisect_speeds
+from stability.chair import Chair, preset
+from stability.runtime.checks import VARIANTS, check_model
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH, Push
+from stability.study import runs
+from stability.study.criteria import DEFAULT_CRITERION, Criterion
+from stability.study.equal_instability import EqualInstability, bisect_speeds
 
 __all__ = ["Variant", "FactorRange", "EqualInstabilityInterval", "scale_friction", "reference_times",
            "equal_instability_interval", "equal_instability_intervals", "PUSH_FACTORS", "FRICTION_FACTORS",

@@ -8,11 +8,11 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair
-from ..reference import THESIS_PUSH
-from . import runs
-from .criteria import DEFAULT_CRITERION, Criterion, check_impulse
-from .equal_instability import interp_speed, reference_time
+from stability.chair import Chair
+from stability.settings.reference import THESIS_PUSH
+from stability.study import runs
+from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
+from stability.study.equal_instability import interp_speed, reference_time
 
 __all__ = ["StabilityMap", "stability_map", "disturbance_map"]
 

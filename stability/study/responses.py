@@ -10,11 +10,11 @@ from typing import Any
 import numpy as np
 from scipy.linalg import expm
 
-from ..chair import Chair, preset
-from ..linear import lateral_force_input, state_matrices
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from . import runs
-from .criteria import DEFAULT_CRITERION, PATHS_CRITERION, Criterion, check_impulse
+from stability.chair import Chair, preset
+from stability.linear import lateral_force_input, state_matrices
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.study import runs
+from stability.study.criteria import DEFAULT_CRITERION, PATHS_CRITERION, Criterion, check_impulse
 
 __all__ = ["linear_peak_yaw_rate", "LinearResponse", "linear_impulse_response", "Response", "ResponseSet",
            "yaw_rate_responses", "trajectories"]

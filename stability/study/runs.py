@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 
-from .. import simulate as sim
-from ..chair import Chair
-from ..defaults import MEASURE_FRICTION_LAW
-from ..simulate.stepcheck import SAFETY, stable_steps
+from stability import simulate as sim
+from stability.chair import Chair
+from stability.settings.defaults import MEASURE_FRICTION_LAW
+from stability.simulate.stepcheck import SAFETY, stable_steps
 
 __all__ = ["SCALAR_RUNS", "simulate_runs", "sim_options"]
 
@@ -112,7 +112,7 @@ def sim_options(model: str, scheme: str, impulse: tuple[float, float], dt: float
     -------
     dict
         Keywords for :func:`simulate_runs`; ``stop_on_warnings=False`` and
-        ``friction_law=``:data:`stability.defaults.MEASURE_FRICTION_LAW`
+        ``friction_law=``:data:`stability.settings.defaults.MEASURE_FRICTION_LAW`
         ("stick-slip") unless ``extra`` says otherwise.
     """
     force, length = impulse

@@ -7,11 +7,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from ..chair import Chair
-from ..reference import REFERENCE_SPEED
-from ..rootlocus import get_parameter
-from .facts import growth_rate
-from .impulse import CriticalImpulse, critical_impulses
+from stability.chair import Chair
+from stability.rootlocus import get_parameter
+from stability.settings.reference import REFERENCE_SPEED
+from stability.study.facts import growth_rate
+from stability.study.impulse import CriticalImpulse, critical_impulses
 
 __all__ = ["FRICTION_OVER_TRAIL", "TRAIL_AT_FIXED_GROUP", "ELASTICITY_PARAMETERS", "Elasticity", "Sensitivity",
            "elasticities"]

@@ -21,13 +21,13 @@ from typing import Any
 
 import numpy as np
 
-from .. import simulate as sim
-from ..chair import Chair
-from ..signals import time_to_level
-from ..simulate.api import using_reference_engine
-from ..simulate.options import make_options
-from ..simulate.stepcheck import SAFETY, stable_steps
-from . import runs
+from stability import simulate as sim
+from stability.chair import Chair
+from stability.simulate.api import using_reference_engine
+from stability.simulate.options import make_options
+from stability.simulate.signals import time_to_level
+from stability.simulate.stepcheck import SAFETY, stable_steps
+from stability.study import runs
 
 __all__ = ["Summaries", "SummaryRunner", "run_summaries", "run_steps"]
 
@@ -131,7 +131,7 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
             or using_reference_engine()):
         return _from_results(chairs, speeds, forces, opts, level, horizon)
-    from ..simulate import engine  # numba and the compiled kernel load on first use
+    from stability.simulate import engine  # numba and the compiled kernel load on first use
 
     params = sim.DEFAULTS.as_dict()
     for key in ("controller", "record"):
@@ -203,7 +203,7 @@ class SummaryRunner:
         if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
                 or using_reference_engine() or not self.chairs):
             return
-        from ..simulate import engine
+        from stability.simulate import engine
 
         params = sim.DEFAULTS.as_dict()
         for key in ("controller", "record"):

@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair, preset
-from ..design import DESIGN_PARAMETERS, get_parameter, main_tires
-from ..reference import REFERENCE_CHAIR
-from .equal_instability import EqualInstability, equal_instability_speeds
+from stability.chair import Chair, preset
+from stability.chair.design import DESIGN_PARAMETERS, get_parameter, main_tires
+from stability.settings.reference import REFERENCE_CHAIR
+from stability.study.equal_instability import EqualInstability, equal_instability_speeds
 
 __all__ = ["DEFAULT_PLAN", "QUICK_PLAN", "Sweep", "SweepRow", "SweepTable", "plan_for", "sweep_chairs",
            "collect_sweeps", "parameter_sweeps"]
@@ -263,7 +263,7 @@ def collect_sweeps(chair: Chair, groups: list, results: Sequence[EqualInstabilit
         The nominal chair (its own parameter values are recorded).
     groups : list of tuple
         One ``(name, values, labels, chairs)`` per swept parameter: a key of
-        :data:`stability.design.DESIGN_PARAMETERS`, the values (parameter
+        :data:`stability.chair.design.DESIGN_PARAMETERS`, the values (parameter
         unit), their labels (or None) and the chairs built from them.
     results : sequence of EqualInstability
         Results for all chairs of all groups, in order, from index ``start``.

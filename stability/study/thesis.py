@@ -8,15 +8,15 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair, preset
-from ..design import get_parameter, main_tires
-from ..linear import analyse
-from ..linear.summary import ZeroWidthResult, zero_width
-from ..reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from . import runs
-from .criteria import DEFAULT_CRITERION, Criterion, check_impulse
-from .equal_instability import EqualInstability, equal_instability_speeds, reference_time
-from .sweeps import DEFAULT_PLAN, SweepTable, collect_sweeps, sweep_chairs
+from stability.chair import Chair, preset
+from stability.chair.design import get_parameter, main_tires
+from stability.linear import analyse
+from stability.linear.summary import ZeroWidthResult, zero_width
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.study import runs
+from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
+from stability.study.equal_instability import EqualInstability, equal_instability_speeds, reference_time
+from stability.study.sweeps import DEFAULT_PLAN, SweepTable, collect_sweeps, sweep_chairs
 
 __all__ = ["LinearFacts", "ThesisStudy", "friction_variants", "thesis_study"]
 

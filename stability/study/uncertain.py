@@ -15,13 +15,13 @@ from typing import Any
 
 import numpy as np
 
-from .._validate import check_model, check_positive, check_speed
-from ..chair import Chair, preset
-from ..reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from ..uncertainty import Uncertainty, propagate
-from .criteria import Criterion
-from .equal_instability import equal_instability_speeds, reference_time
-from .impulse import critical_impulses
+from stability.chair import Chair, preset
+from stability.runtime.checks import check_model, check_positive, check_speed
+from stability.settings.reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.study.criteria import Criterion
+from stability.study.equal_instability import equal_instability_speeds, reference_time
+from stability.study.impulse import critical_impulses
+from stability.uncertainty import Uncertainty, propagate
 
 __all__ = ["MeasureInterval", "NonlinearIntervals", "nonlinear_intervals", "MAX_NONLINEAR_SAMPLES"]
 
@@ -99,7 +99,7 @@ class NonlinearIntervals:
     samples, seed : int
         Monte Carlo draws and their seed (same seed, same intervals).
     push : str
-        The push convention (:meth:`stability.reference.Push.describe`).
+        The push convention (:meth:`stability.settings.reference.Push.describe`).
     reference : str
         The equal-instability reference case in words (fixed: not drawn).
     reference_time : float
@@ -169,8 +169,8 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, *, speed: float 
     equal-instability speed from one batched bisection
     (:func:`~stability.study.equal_instability.equal_instability_speeds`).
     The reference case of the equal-instability speed, ``reference_chair``
-    at :data:`~stability.reference.REFERENCE_SPEED` under
-    :data:`~stability.reference.THESIS_PUSH`, is *fixed* at its nominal
+    at :data:`~stability.settings.reference.REFERENCE_SPEED` under
+    :data:`~stability.settings.reference.THESIS_PUSH`, is *fixed* at its nominal
     values: it is the benchmark being compared against, not a measurement,
     and drawing it together with the chair (when they are the same chair)
     would give ``REFERENCE_SPEED`` in every draw.
@@ -197,7 +197,7 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, *, speed: float 
         Also the equal-instability speed (the larger share of the work).
     scheme : {"wchair", "adaptive"}
     horizon : float
-        Simulated time and criterion duration, s (level :data:`~stability.reference.LEVEL`).
+        Simulated time and criterion duration, s (level :data:`~stability.settings.reference.LEVEL`).
     dt : float
         Fixed step, s.
     rel_tol : float

@@ -27,14 +27,14 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from ..cli import OneLineErrorParser, check_outputs, run
-from ..output import atomic_write_text, write_pdf
-from ..progress import is_quiet
-from .cluster import dask_mapper, parse_dask
-from .measures import n_chunks
-from .plot import measure_figures
-from .run import read_rows, run_sweep, summary, summary_text
-from .spec import SCHEMA, load_spec
+from stability.cli import OneLineErrorParser, check_outputs, run
+from stability.runtime.files import atomic_write_text, write_pdf
+from stability.runtime.progress import is_quiet
+from stability.sweep.cluster import dask_mapper, parse_dask
+from stability.sweep.measures import n_chunks
+from stability.sweep.plot import measure_figures
+from stability.sweep.run import read_rows, run_sweep, summary, summary_text
+from stability.sweep.spec import SCHEMA, load_spec
 
 __all__ = ["main", "build_parser"]
 

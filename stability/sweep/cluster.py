@@ -25,8 +25,8 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from .measures import chunk_pairs
-from .spec import SweepSpec
+from stability.sweep.measures import chunk_pairs
+from stability.sweep.spec import SweepSpec
 
 __all__ = ["COST_PER_ROW_S", "chunk_cost", "dask_mapper", "parse_dask", "worker_cache_dir"]
 
@@ -122,17 +122,17 @@ def _warm_up(dask_worker: Any = None) -> str:
             from numba.core import config
 
             config.reload_config()
-    from ..chair import preset
-    from ..simulate import simulate
-    from ..simulate.kernel import get_num_threads
+    from stability.chair import preset
+    from stability.simulate import simulate
+    from stability.simulate.kernel import get_num_threads
 
     simulate(preset("ej-premier"), 0.75, duration=0.01, record="final")
     return f"numba threads {get_num_threads()}, cache {os.environ.get('NUMBA_CACHE_DIR', 'default')}"
 
 
 def _chunk_text(spec: SweepSpec, index: int) -> str:
-    from .measures import compute_chunk
-    from .run import _chunk_text as text
+    from stability.sweep.measures import compute_chunk
+    from stability.sweep.run import _chunk_text as text
 
     return text(compute_chunk(spec, index))
 

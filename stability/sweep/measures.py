@@ -18,15 +18,15 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair
-from ..defaults import MAX_SPEED
-from ..linear.batch import ChairBatch
-from ..shimmy.band import shimmy_band
-from ..slope import solve
-from ..statics import check_static_loads
-from ..study import critical_impulses, equal_instability_speeds
-from ..tipping import tip_angles
-from .spec import _NUMERIC, MEASURES, SweepSpec, apply_axis
+from stability.chair import Chair
+from stability.linear.batch import ChairBatch
+from stability.models.statics import check_static_loads
+from stability.settings.defaults import MAX_SPEED
+from stability.shimmy.band import shimmy_band
+from stability.slope import solve
+from stability.study import critical_impulses, equal_instability_speeds
+from stability.sweep.spec import _NUMERIC, MEASURES, SweepSpec, apply_axis
+from stability.tipping import tip_angles
 
 __all__ = ["CRITICAL_SPEED_GRID", "columns", "design_values", "chunk_pairs", "n_chunks", "compute_chunk"]
 

@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from .spec import MEASURES, SweepSpec
+from stability.sweep.spec import MEASURES, SweepSpec
 
 __all__ = ["UNITS", "measure_figures"]
 

@@ -22,9 +22,9 @@ from typing import Any
 
 import numpy as np
 
-from ..output import atomic_path, atomic_write_text
-from .measures import columns, compute_chunk, n_chunks
-from .spec import MEASURES, SweepSpec
+from stability.runtime.files import atomic_path, atomic_write_text
+from stability.sweep.measures import columns, compute_chunk, n_chunks
+from stability.sweep.spec import MEASURES, SweepSpec
 
 __all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TEXT_COLUMNS", "HIGHER_IS_BETTER"]
 

@@ -33,11 +33,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .. import chair as chair_mod
-from .. import design
-from ..chair import Chair
-from ..defaults import MEASURE_FRICTION_LAW
-from ..uncertainty import Uncertainty, load_uncertainty
+from stability import chair as chair_mod
+from stability.chair import Chair, design
+from stability.settings.defaults import MEASURE_FRICTION_LAW
+from stability.uncertainty import Uncertainty, load_uncertainty
 
 if sys.version_info >= (3, 11):
     import tomllib

@@ -8,16 +8,16 @@ angle and tipping on a combined grade and cross slope.  Command line:
 
 from __future__ import annotations
 
-from .angles import (
-                     DIRECTIONS,
-                     LOANE_KIRBY_REAR_DEG,
-                     FallLine,
-                     SlopeTip,
-                     TipAngles,
-                     anti_tip_angle,
-                     fall_distance,
-                     slope_tip,
-                     tip_angles,
+from stability.tipping.angles import (
+           DIRECTIONS,
+           LOANE_KIRBY_REAR_DEG,
+           FallLine,
+           SlopeTip,
+           TipAngles,
+           anti_tip_angle,
+           fall_distance,
+           slope_tip,
+           tip_angles,
 )
 
 __all__ = ["TipAngles", "SlopeTip", "FallLine", "tip_angles", "slope_tip", "fall_distance", "anti_tip_angle",

@@ -6,8 +6,8 @@ import argparse
 import math
 from collections.abc import Sequence
 
-from .. import cli
-from .angles import DIRECTIONS, LOANE_KIRBY_REAR_DEG, slope_tip, tip_angles
+from stability import cli
+from stability.tipping.angles import DIRECTIONS, LOANE_KIRBY_REAR_DEG, slope_tip, tip_angles
 
 _WORDS = {"toward_main_wheels": "toward the main wheels", "toward_casters": "toward the casters",
           "lateral_left": "over the left side", "lateral_right": "over the right side"}

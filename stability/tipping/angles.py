@@ -32,9 +32,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..chair import Chair
-from ..models import slope as slope_model
-from ..params import Params, parameters
+from stability.chair import Chair
+from stability.models import slope as slope_model
+from stability.models.params import Params, parameters
 
 __all__ = ["TipAngles", "SlopeTip", "FallLine", "tip_angles", "slope_tip", "fall_distance", "anti_tip_angle",
            "LOANE_KIRBY_REAR_DEG", "DIRECTIONS"]

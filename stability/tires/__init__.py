@@ -24,10 +24,10 @@ True
 
 from __future__ import annotations
 
-from .base import TireCapabilities
-from .cart import CartForces, CartGeometry, cart_forces
-from .checks import WHEELS, check_chair_tires, range_check
-from .data import (
+from stability.tires.base import TireCapabilities
+from stability.tires.cart import CartForces, CartGeometry, cart_forces
+from stability.tires.checks import WHEELS, check_chair_tires, range_check
+from stability.tires.data import (
     CASTER_TIRES,
     FZ_MAX_N,
     FZ_TESTED_MAX_1DEG_N,
@@ -40,10 +40,10 @@ from .data import (
     table_3_2,
     table_4_1,
 )
-from .fit import RefitResult, camber_coefficient_fit, fit_per_angle, refit
-from .linear_tire import AnyTire, LinearTire
-from .model import THESIS_SOURCE, Tire
-from .ranges import (
+from stability.tires.fit import RefitResult, camber_coefficient_fit, fit_per_angle, refit
+from stability.tires.linear_tire import AnyTire, LinearTire
+from stability.tires.model import THESIS_SOURCE, Tire
+from stability.tires.ranges import (
     POLICIES,
     RANGE_POLICIES,
     Policy,
@@ -57,9 +57,9 @@ from .ranges import (
     set_policy,
     summarise_notes,
 )
-from .registry import get, names, register, registered, resolve_spec, unregister
-from .stack import TireStack
-from .user import FitQuality, TireData, load_tire_data, read_tire_csv, tire_from_data
+from stability.tires.registry import get, names, register, registered, resolve_spec, unregister
+from stability.tires.stack import TireStack
+from stability.tires.user import FitQuality, TireData, load_tire_data, read_tire_csv, tire_from_data
 
 __all__ = [
     "AnyTire",

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from numpy.typing import ArrayLike
 
-from .ranges import Policy
+from stability.tires.ranges import Policy
 
 __all__ = ["TireCapabilities"]
 

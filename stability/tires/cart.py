@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import check_nonnegative, check_positive
+from stability.runtime.checks import check_nonnegative, check_positive
 
 __all__ = ["CartForces", "CartGeometry", "cart_forces"]
 

@@ -8,14 +8,14 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from .ranges import RangeNote, record, resolve
+from stability.tires.ranges import RangeNote, record, resolve
 
 if TYPE_CHECKING:
-    from ..chair import Chair
+    from stability.chair import Chair
 
 __all__ = ["WHEELS", "check_chair_tires", "range_check"]
 
-#: Wheels of a chair: keys of :func:`stability.statics.static_loads` and which tire each carries.
+#: Wheels of a chair: keys of :func:`stability.models.statics.static_loads` and which tire each carries.
 WHEELS: tuple[tuple[str, str], ...] = (
     ("caster_left", "caster"), ("caster_right", "caster"), ("main_left", "main"), ("main_right", "main"),
 )
@@ -60,7 +60,7 @@ def range_check(chair: Chair, loads: Mapping[str, float], *, policy: str | None 
     ----------
     chair : Chair
     loads : mapping
-        Static normal loads (N) by wheel, as :func:`stability.statics.static_loads`
+        Static normal loads (N) by wheel, as :func:`stability.models.statics.static_loads`
         returns (keys ``caster_left``, ``caster_right``, ``main_left``, ``main_right``).
     policy : {"warn", "raise", "clamp"}, optional
         Default the policy in force (:func:`stability.tires.get_policy`).

@@ -14,7 +14,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .data import (
+from stability.tires.data import (
     CASTER_TIRES,
     MAIN_TIRES,
     TABLE_4_1_FZ_N,

@@ -9,9 +9,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .base import TireCapabilities, _CamberForce
-from .model import _DEG_PER_RAD, Tire
-from .ranges import POLICIES, Policy, _check_policy, resolve
+from stability.tires.base import TireCapabilities, _CamberForce
+from stability.tires.model import _DEG_PER_RAD, Tire
+from stability.tires.ranges import POLICIES, Policy, _check_policy, resolve
 
 __all__ = ["AnyTire", "LinearTire"]
 

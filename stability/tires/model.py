@@ -16,10 +16,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .base import TireCapabilities, _CamberForce
-from .data import CASTER_TIRES, FZ_MAX_N, MAIN_TIRES, SLIP_MAX_DEG, Coef3
-from .fit import camber_coefficient_fit
-from .ranges import POLICIES, Policy, TireRangeWarning, _check_policy, _range_message, limit_load
+from stability.tires.base import TireCapabilities, _CamberForce
+from stability.tires.data import CASTER_TIRES, FZ_MAX_N, MAIN_TIRES, SLIP_MAX_DEG, Coef3
+from stability.tires.fit import camber_coefficient_fit
+from stability.tires.ranges import POLICIES, Policy, TireRangeWarning, _check_policy, _range_message, limit_load
 
 __all__ = ["THESIS_SOURCE", "Tire"]
 

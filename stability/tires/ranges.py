@@ -19,7 +19,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .data import FZ_MAX_N, SLIP_MAX_DEG
+from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = [
     "summarise_notes",

@@ -7,11 +7,11 @@ import math
 import os
 from pathlib import Path
 
-from .. import readfiles
-from .data import _ALL, _cornering_coefficients, _rolling_coefficients, _table_3_2
-from .linear_tire import AnyTire, LinearTire
-from .model import Tire
-from .user import load_tire_data
+from stability.runtime import readfiles
+from stability.tires.data import _ALL, _cornering_coefficients, _rolling_coefficients, _table_3_2
+from stability.tires.linear_tire import AnyTire, LinearTire
+from stability.tires.model import Tire
+from stability.tires.user import load_tire_data
 
 __all__ = ["get", "names", "register", "registered", "resolve_spec", "unregister"]
 

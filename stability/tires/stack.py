@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from .data import FZ_MAX_N, SLIP_MAX_DEG
-from .model import Tire, _segment_force
-from .ranges import Policy, _check_policy
+from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
+from stability.tires.model import Tire, _segment_force
+from stability.tires.ranges import Policy, _check_policy
 
 __all__ = ["TireStack"]
 

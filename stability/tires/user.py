@@ -17,11 +17,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import readfiles
-from .cart import CartGeometry, cart_forces
-from .data import _ALL, SLIP_MAX_DEG
-from .fit import fit_per_angle
-from .model import Tire
+from stability.runtime import readfiles
+from stability.tires.cart import CartGeometry, cart_forces
+from stability.tires.data import _ALL, SLIP_MAX_DEG
+from stability.tires.fit import fit_per_angle
+from stability.tires.model import Tire
 
 __all__ = ["MIN_POINTS_PER_ANGLE", "FitQuality", "TireData", "load_tire_data", "read_tire_csv", "tire_from_data"]
 

@@ -19,9 +19,9 @@ Draws of each table come from their own stream seeded by (seed, table name),
 so adding a table leaves the others' draws unchanged.
 """
 
-from .distributions import Distribution, Uncertainty
-from .io import from_mapping, load_uncertainty, loads_uncertainty
-from .propagation import DeltaResult, PropagationResult, delta_method, propagate
+from stability.uncertainty.distributions import Distribution, Uncertainty
+from stability.uncertainty.io import from_mapping, load_uncertainty, loads_uncertainty
+from stability.uncertainty.propagation import DeltaResult, PropagationResult, delta_method, propagate
 
 __all__ = ["Distribution", "Uncertainty", "from_mapping", "load_uncertainty", "loads_uncertainty", "DeltaResult",
            "PropagationResult", "delta_method", "propagate"]

@@ -27,8 +27,8 @@ from typing import Any
 
 import numpy as np
 
-from .. import chair as chair_mod
-from ..chair import Chair
+from stability import chair as chair_mod
+from stability.chair import Chair
 
 __all__ = ["Distribution", "Uncertainty", "KEYS"]
 

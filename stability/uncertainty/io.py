@@ -7,8 +7,8 @@ import sys
 from collections.abc import Mapping
 from typing import Any
 
-from .. import readfiles
-from .distributions import KEYS, Distribution, Uncertainty
+from stability.runtime import readfiles
+from stability.uncertainty.distributions import KEYS, Distribution, Uncertainty
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -76,7 +76,7 @@ def loads_uncertainty(text: str) -> Uncertainty:
     Returns
     -------
     Uncertainty
-        As :func:`from_mapping`.
+        As :func:`stability.uncertainty.from_mapping`.
     """
     return from_mapping(tomllib.loads(text))
 
@@ -87,12 +87,12 @@ def load_uncertainty(path: str | os.PathLike[str]) -> Uncertainty:
     Parameters
     ----------
     path : str or os.PathLike
-        The file (one table per uncertain parameter, see :func:`from_mapping`).
+        The file (one table per uncertain parameter, see :func:`stability.uncertainty.from_mapping`).
 
     Returns
     -------
     Uncertainty
-        As :func:`from_mapping`.
+        As :func:`stability.uncertainty.from_mapping`.
 
     Raises
     ------

@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from ..chair import Chair
-from .distributions import Uncertainty
+from stability.chair import Chair
+from stability.uncertainty.distributions import Uncertainty
 
 __all__ = ["PropagationResult", "propagate", "DeltaResult", "delta_method"]
 

@@ -17,10 +17,10 @@ from typing import Any
 
 import numpy as np
 
-from stability._validate import check_choice, check_model, check_positive, check_speeds
 from stability.chair import Chair
-from stability.progress import ProgressBar
-from stability.reference import HORIZON, LEVEL, THESIS_PUSH, Push
+from stability.runtime.checks import check_choice, check_model, check_positive, check_speeds
+from stability.runtime.progress import ProgressBar
+from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
 from stability.study import runs
 from stability.study.criteria import Criterion
 from stability.study.equal_instability import EqualInstability, interp_speed

@@ -18,7 +18,7 @@ EXAMPLES = pathlib.Path(__file__).parents[2] / "docs" / "examples"
 def test_uncertainty_band_is_the_linear_intervals():
     from stability.app.page import Explorer
     from stability.linear.intervals import linear_intervals
-    from stability.measure.uncertainty import load_uncertainty
+    from stability.uncertainty import load_uncertainty
 
     ex = Explorer(auto_nonlinear=False)
     path = EXAMPLES / "measured_chair.uncertainty.toml"

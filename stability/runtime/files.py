@@ -20,7 +20,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
-from . import interrupts, readfiles
+from stability.runtime import interrupts, readfiles
 
 __all__ = ["json_text", "with_tire_range", "distinct_notes", "atomic_path", "write_error", "failed_write",
            "WRITE_ERRNOS", "write_pdf", "save_figure", "atomic_write_text", "PDF_METADATA", "add_outline",
@@ -86,10 +86,10 @@ def write_error(exc: OSError, path: str | os.PathLike[str]) -> OSError:
 def atomic_path(path: str | os.PathLike[str]) -> Iterator[str]:
     """Yield a temporary file name next to ``path``; rename it to ``path`` on success.
 
-    On any exception (a signal included, see :mod:`stability.interrupts`) the
+    On any exception (a signal included, see :mod:`stability.runtime.interrupts`) the
     temporary file is removed and ``path`` is untouched; a write failure
     (:data:`WRITE_ERRNOS`) is raised as an :class:`OSError` naming ``path``.
-    A file the process has read as an input (:func:`stability.readfiles.was_read`)
+    A file the process has read as an input (:func:`stability.runtime.readfiles.was_read`)
     is never replaced.
 
     Parameters

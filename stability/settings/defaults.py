@@ -4,7 +4,7 @@ Each entry names a default once: its value, its unit and what it means.
 The API functions take their keyword defaults from here (directly, or
 through the small frozen option classes that are built on this table:
 :class:`stability.simulate.options.SimulationDefaults`,
-:class:`stability.power_chair.DriveTrain`,
+:class:`stability.chair.power.DriveTrain`,
 :class:`stability.assist.weights.GyroSensor`,
 :class:`stability.slope.equilibrium.HandRim`), and every command line takes
 its option defaults from the same names, so ``stability.run_simulation(chair,
@@ -13,12 +13,12 @@ its option defaults from the same names, so ``stability.run_simulation(chair,
 and checks that both equal this table.
 
 A new command or API function that needs a default already named here takes
-it from here (``from stability import defaults as D``; ``default=D.MODEL``);
+it from here (``from stability.settings import defaults as D``; ``default=D.MODEL``);
 a new default goes into :data:`TABLE` with its unit and meaning.
 
 Examples
 --------
->>> from stability import defaults
+>>> from stability.settings import defaults
 >>> defaults.MODEL, defaults.TIRE_RANGE
 ('exact', 'warn')
 >>> defaults.TABLE["sample_rate_hz"].unit
@@ -30,7 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from .reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 
 __all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW", "MEASURE_FRICTION_LAW",
            "SCHEME", "DT", "SPEED",

@@ -11,9 +11,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from . import defaults as D
-from ._validate import check_nonnegative, check_positive
-from .chair import Chair, preset
+from stability.chair import Chair, preset
+from stability.runtime.checks import check_nonnegative, check_positive
+from stability.settings import defaults as D
 
 __all__ = ["DriveTrain", "power_fwd", "drive_train", "COMPONENTS", "LumpedEstimate", "lumped_estimate"]
 

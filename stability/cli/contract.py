@@ -23,12 +23,19 @@ from typing import Any
 
 import numpy as np
 
-from . import __version__, interrupts, notes, progress, readfiles, tires
-from . import chair as chair_mod
-from ._validate import MAX_SPEED, MIN_SPEED
-from .cli_files import check_directory, check_outputs, output_files
-from .cli_numbers import OPTION_BOUNDS, Bound, NonFiniteResult, bound_for, check_finite_text, first_non_finite, number
-from .cli_options import (
+from stability import __version__, tires
+from stability import chair as chair_mod
+from stability.cli.files import check_directory, check_outputs, output_files
+from stability.cli.numbers import (
+    OPTION_BOUNDS,
+    Bound,
+    NonFiniteResult,
+    bound_for,
+    check_finite_text,
+    first_non_finite,
+    number,
+)
+from stability.cli.options import (
     FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
@@ -40,9 +47,11 @@ from .cli_options import (
     add_uncertainty_option,
     check_format,
 )
-from .cli_options import subparsers as _subparsers
-from .output import distinct_notes, json_text, with_tire_range
-from .statics import check_static_loads, static_loads
+from stability.cli.options import subparsers as _subparsers
+from stability.models.statics import check_static_loads, static_loads
+from stability.runtime import interrupts, notes, progress, readfiles
+from stability.runtime.checks import MAX_SPEED, MIN_SPEED
+from stability.runtime.files import distinct_notes, json_text, with_tire_range
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
            "add_friction_law_option", "add_json_options",
@@ -212,7 +221,7 @@ def emit_json(data: Any, args: argparse.Namespace, write_to: str | None = None) 
         :func:`output_files`, renamed with the command's other outputs; the
         caller then says what it wrote).
     """
-    from .output import atomic_write_text
+    from stability.runtime.files import atomic_write_text
 
     data = with_tire_range(data, getattr(args, "tire_notes", None), getattr(args, "tire_range", None))
     try:
@@ -265,7 +274,7 @@ def _with_tire_policy(body: Callable[[argparse.Namespace], int | None], args: ar
     if not getattr(args, "quiet", False):
         for line in tires.summarise_notes(distinct_notes(tire_notes)):      # one line per tire and range
             print(f"note: {line}", file=sys.stderr)
-        for line in numerical:                                         # library warnings, explained (stability.notes)
+        for line in numerical:               # library warnings, explained (stability.runtime.notes)
             print(f"note: {line}", file=sys.stderr)
     return status
 

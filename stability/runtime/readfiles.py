@@ -5,7 +5,7 @@ command's work) every reader of a user's file notes it here (:func:`note`),
 every output is claimed (:func:`claim_output`, by
 :func:`stability.cli.check_outputs`), and the two may not meet: no output may
 be a file the run reads, directly or through a chair file or a sheet, in
-whichever order the two are named; :mod:`stability.output` refuses to replace
+whichever order the two are named; :mod:`stability.runtime.files` refuses to replace
 a file read (:func:`was_read`).  Outside a session (the Python API) nothing is
 recorded: a notebook may read a chair file and save it back.  :func:`read_text` and
 :func:`load_toml` read a user's file the one way: noted, and with a UTF-8

@@ -16,11 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chair import Chair
-from ..defaults import SLOPE_SIM_TIME
-from ..simulate import simulate
-from .equilibrium import Equilibrium
-from .model import Plane, SlopeModel
+from stability.chair import Chair
+from stability.settings.defaults import SLOPE_SIM_TIME
+from stability.simulate import simulate
+from stability.slope.equilibrium import Equilibrium
+from stability.slope.model import Plane, SlopeModel
 
 __all__ = ["UncorrectedPath", "uncorrected_path", "simulator_path", "simulator_slope"]
 

@@ -2,9 +2,9 @@
 
 :func:`check_outputs` refuses an output path that cannot be written, that two
 options share or that the run reads (directly, or named by a chair file or
-sheet: :mod:`stability.readfiles`); :func:`output_files` writes several outputs
+sheet: :mod:`stability.runtime.readfiles`); :func:`output_files` writes several outputs
 all or none, names the user's file in a write failure (disk full, read-only,
-no permission) and renames nothing after a signal (:mod:`stability.interrupts`).
+no permission) and renames nothing after a signal (:mod:`stability.runtime.interrupts`).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import os
 import tempfile
 from collections.abc import Iterator, Mapping
 
-from . import interrupts, readfiles
+from stability.runtime import interrupts, readfiles
 
 __all__ = ["check_directory", "check_outputs", "output_files"]
 
@@ -104,7 +104,7 @@ def output_files(outputs: Mapping[str, str | None]) -> Iterator[dict[str, str]]:
         success every temporary file replaces its final path; on any error
         (or Ctrl-C) every temporary file is removed and no output appears.
     """
-    from .output import failed_write, write_error
+    from stability.runtime.files import failed_write, write_error
 
     temps: dict[str, str] = {}
     try:

@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from ..linear import state_matrices
-from ..reference import REFERENCE_SPEED
+from stability.linear import state_matrices
+from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["mode_names", "mode_shares", "shape_arm", "SECOND_SHARE"]
 

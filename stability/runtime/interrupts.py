@@ -10,7 +10,7 @@ an entry point to its last:
   command's work has finished either.
 * :func:`interruptible` (entered by :func:`stability.cli.run` around the
   command's work): a signal raises :class:`KeyboardInterrupt`, so that every
-  ``finally`` and every atomic output (:mod:`stability.output`) removes its
+  ``finally`` and every atomic output (:mod:`stability.runtime.files`) removes its
   temporary files, and remembers that it came (:func:`pending`), so that an
   output is never renamed into place after a signal even if a library
   swallowed the exception.

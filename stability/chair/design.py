@@ -9,8 +9,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from . import tires
-from .chair import Chair
+from stability import tires
+from stability.chair import Chair
 
 __all__ = ["Parameter", "DESIGN_PARAMETERS", "LOCUS_PARAMETERS", "parameter_names", "get_parameter", "main_tires"]
 

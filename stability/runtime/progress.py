@@ -6,7 +6,7 @@ pipes and log files produce no progress noise.
 
 Examples
 --------
->>> from stability.progress import ProgressBar
+>>> from stability.runtime.progress import ProgressBar
 >>> with ProgressBar(total=3, desc="runs", enabled=False) as bar:
 ...     for _ in range(3):
 ...         bar.update()

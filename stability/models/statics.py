@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .chair import Chair
-from .params import Params, parameters
+from stability.chair import Chair
+from stability.models.params import Params, parameters
 
 __all__ = ["caster_contact_points", "normal_loads", "static_loads", "static_stiffness", "check_static_loads"]
 

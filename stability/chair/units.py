@@ -102,7 +102,7 @@ def dimension_name(dims: tuple[int, int, int, int]) -> str:
     Returns
     -------
     str
-        The name from :data:`DIMENSIONS` (``"length"``, ``"moment"``, ...), else
+        The name from ``DIMENSIONS`` (``"length"``, ``"moment"``, ...), else
         ``"M^a L^b T^c angle^d"``.
     """
     return DIMENSIONS.get((dims[0], dims[1], dims[2], dims[3]), f"M^{dims[0]} L^{dims[1]} T^{dims[2]} angle^{dims[3]}")
@@ -118,7 +118,7 @@ def quantity(value: float, unit: str, expect: str | None = None) -> float:
     unit : str
         Its unit (see :func:`parse_unit`).
     expect : str, optional
-        Required dimension name from :data:`DIMENSIONS` (``"length"``, ``"moment"``, ...).
+        Required dimension name from ``DIMENSIONS`` (``"length"``, ``"moment"``, ...).
 
     Returns
     -------

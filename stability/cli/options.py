@@ -2,7 +2,7 @@
 
 :mod:`stability.cli` re-exports these; a command builds its parser from
 :class:`OneLineErrorParser` and the ``add_*`` helpers (see docs/architecture.md, "A new command line"), takes
-every default from :mod:`stability.defaults`, and :func:`stability.cli.run` adds ``--debug`` and ``--quiet``.
+every default from :mod:`stability.settings.defaults`, and :func:`stability.cli.run` adds ``--debug`` and ``--quiet``.
 """
 
 from __future__ import annotations
@@ -15,9 +15,10 @@ import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
-from . import chair as chair_mod
-from . import defaults, tires
-from .cli_numbers import bound_for, number
+from stability import chair as chair_mod
+from stability import tires
+from stability.cli.numbers import bound_for, number
+from stability.settings import defaults
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
            "add_friction_law_option", "add_json_options",
@@ -157,8 +158,8 @@ def add_friction_law_option(parser: argparse.ArgumentParser, measures: bool = Fa
         The command's parser.
     measures : bool
         The command computes nonlinear measures: default
-        :data:`stability.defaults.MEASURE_FRICTION_LAW` ("stick-slip"); else
-        :data:`stability.defaults.FRICTION_LAW` (the scheme's own: kinetic
+        :data:`stability.settings.defaults.MEASURE_FRICTION_LAW` ("stick-slip"); else
+        :data:`stability.settings.defaults.FRICTION_LAW` (the scheme's own: kinetic
         for the wchair scheme, program WCHAIR's).
     """
     default = defaults.MEASURE_FRICTION_LAW if measures else defaults.FRICTION_LAW
@@ -171,7 +172,7 @@ def add_friction_law_option(parser: argparse.ArgumentParser, measures: bool = Fa
 
 
 def add_model_option(parser: argparse.ArgumentParser) -> None:
-    """Add ``--model {exact,thesis}`` with the toolkit's default (:data:`stability.defaults.MODEL`).
+    """Add ``--model {exact,thesis}`` with the toolkit's default (:data:`stability.settings.defaults.MODEL`).
 
     Parameters
     ----------

@@ -11,7 +11,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .chair import Chair
+from stability.chair import Chair
 
 __all__ = ["Params", "parameters"]
 

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .chair import Chair
-from .signals import growth_rate
+from stability.chair import Chair
+from stability.simulate.signals import growth_rate
 
 __all__ = ["RateComparison", "measured_rate", "linear_vs_nonlinear", "LinearisationCheck", "omitted_effects",
            "has_rolling_resistance", "with_rolling_resistance", "linearisation_check"]
@@ -56,7 +56,7 @@ class RateComparison:
 
 
 def measured_rate(t: np.ndarray, y: np.ndarray, oscillatory: bool, window: tuple[float, float]) -> float:
-    """Exponential rate of ``y(t)`` inside ``window`` (1/s); see :func:`stability.signals.growth_rate`.
+    """Exponential rate of ``y(t)`` inside ``window`` (1/s); see :func:`stability.simulate.signals.growth_rate`.
 
     Parameters
     ----------
@@ -125,8 +125,8 @@ def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", ca
         The dominant eigenvalue, both rates, their relative difference, the
         fitting window and the largest slip angle in it.
     """
-    from . import linear
-    from .simulate import simulate
+    from stability import linear
+    from stability.simulate import simulate
 
     c = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0, pin_damping=0.0)
     eigs = np.linalg.eigvals(linear.state_matrices(c, speed, model, casters)[0])
@@ -289,8 +289,8 @@ def linearisation_check(chair: Chair, speed: float = 0.75, *, model: str = "exac
         Both dominant eigenvalues, their relative rate difference and the
         relative largest difference of the state matrices.
     """
-    from . import linear
-    from .simulate import linearise
+    from stability import linear
+    from stability.simulate import linearise
 
     c = chair.replace(pin_damping=0.0)
     A_lin = linear.state_matrices(c, speed, model, casters)[0]

@@ -10,12 +10,12 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from .linear import StabilitySummary
-from .validation import linearisation_check, omitted_effects
+from stability.linear import StabilitySummary
+from stability.study.validation import linearisation_check, omitted_effects
 
 if TYPE_CHECKING:
-    from .linear.intervals import LinearIntervals
-    from .study.uncertain import NonlinearIntervals
+    from stability.linear.intervals import LinearIntervals
+    from stability.study.uncertain import NonlinearIntervals
 
 __all__ = ["simulator_checks", "summary_dict", "interpretation", "format_summary", "intervals_dict",
            "nonlinear_intervals_dict"]
@@ -32,7 +32,7 @@ def simulator_checks(s: StabilitySummary) -> list:
     """The simulator's own linearisation at the divergence-table speeds, when it matters.
 
     Empty unless the chair has effects the linear model leaves out
-    (:func:`stability.validation.omitted_effects`: rolling resistance, camber,
+    (:func:`stability.study.validation.omitted_effects`: rolling resistance, camber,
     toe); then one row per speed with the dominant rate of both models.
 
     Parameters

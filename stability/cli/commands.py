@@ -5,12 +5,12 @@
 (``pip install`` puts it on the PATH) dispatches ``stability critical-speed
 --chair revised`` to ``python -m stability.critical_speed --chair revised``;
 the tests walk :data:`COMMANDS` to check every parser (the shared options,
-the defaults of :mod:`stability.defaults`, the JSON schemas of
+the defaults of :mod:`stability.settings.defaults`, the JSON schemas of
 :mod:`stability.schemas`).  A new command adds one line here.
 
 Examples
 --------
->>> from stability.commands import COMMANDS, build_parser
+>>> from stability.cli.commands import COMMANDS, build_parser
 >>> "simulate" in COMMANDS
 True
 >>> build_parser("simulate").prog
@@ -127,7 +127,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(_USAGE)
         return 0 if args else 2
     if args[0] == "--version":
-        from . import __version__
+        from stability import __version__
 
         print(f"stability {__version__}")
         return 0

@@ -70,7 +70,7 @@ class Bound(NamedTuple):
 #: each command's estimate of time and memory (count x cost).
 OPTION_BOUNDS: dict[str, Bound] = {
     # speeds: a wheelchair, powered or pushed, does not exceed 20 m/s (72 km/h)
-    "--speed": Bound(0.01, 20.0, "m/s"),       # 0.01: stability._validate.MIN_SPEED (round-off below)
+    "--speed": Bound(0.01, 20.0, "m/s"),       # 0.01: stability.runtime.checks.MIN_SPEED (round-off below)
     "--max-speed": Bound(0.01, 100.0, "m/s", open_lo=True),
     # counts and seeds
     "--samples": Bound(1, 20_000, ""),

@@ -1,0 +1,6 @@
+"""How the toolkit runs, below every layer (standard library, numpy and matplotlib only).
+
+Atomic output files (:mod:`.files`), the inputs a command reads (:mod:`.readfiles`), progress (:mod:`.progress`),
+numerical notes (:mod:`.notes`), interrupts (:mod:`.interrupts`) and the argument checks every layer shares
+(:mod:`.checks`).
+"""
