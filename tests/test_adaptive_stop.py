@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from stability.chair import preset
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 from stability.simulate.adaptive import NoLoadSolution
 
@@ -105,7 +106,7 @@ def test_critical_impulse_on_the_adaptive_path_and_its_bracket():
     high one reaching it."""
     from stability.study import critical_impulse
 
-    res = critical_impulse(POWER_FWD, 1.5, scheme="adaptive")
+    res = critical_impulse(POWER_FWD, 1.5, run=RunSpec(scheme="adaptive"))
     assert res.status == "found" and res.largest_tried_Ns == 40.0
     assert res.high_Ns / res.low_Ns - 1 <= 0.005 * (1 + 1e-9) and res.low_Ns <= res.impulse_Ns <= res.high_Ns
     kw = dict(PUSH, impulse_force=0.0, duration=10.0)
@@ -132,7 +133,7 @@ def test_an_unaffected_run_is_unchanged():
     """A run whose loads always converge takes the unchanged path: the same solve_ivp calls and the same sample
     evaluations (checked bit for bit against main before this change on E&J Premier at 0.75 m/s, thesis and
     exact models, the default push, and a Python yaw_moment run); here its regular sample grid and no stop."""
-    r = simulate(preset("ej-premier"), 0.75, scheme="adaptive", duration=2.0)
+    r = simulate(preset("ej-premier"), 0.75, run=RunSpec(scheme="adaptive", horizon=2.0))
     np.testing.assert_array_equal(r.t, 0.01 * np.arange(201))
     assert not r.stopped_by_warnings and r.stop_time is None and r.stop_reason is None
     assert "stop_reason" in r.to_dict() and "STOPPED" not in r.summary()

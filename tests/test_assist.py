@@ -21,6 +21,7 @@ from stability.chair.power import DriveTrain, drive_train, lumped_estimate, powe
 from stability.linear import input_matrices, state_matrices
 from stability.models import params
 from stability.models.statics import static_loads
+from stability.settings.run import RunSpec
 
 SPEEDS = np.arange(0.5, 3.0001, 0.25)
 
@@ -399,8 +400,7 @@ def test_reversing_front_wheel_drive_chair_is_stable(chair):
     free = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
     for s in (0.5, 2.0):
         lam = np.linalg.eigvals(state_matrices(assist.reversed_chair(free), s)[0]).real.max()
-        res = simulate(free, s, reverse=True, eta0_deg=180.0, beta0_deg=180.0, impulse_force=4.0, duration=5.0,
-                       model="exact", stop_on_warnings=False)
+        res = simulate(free, s, run=RunSpec(reverse=True, eta0_deg=180.0, beta0_deg=180.0, push_force=4.0, horizon=5.0, model="exact", stop_on_warnings=False, friction_law="kinetic"))
         assert envelope_rate(np.asarray(res.t), np.asarray(res.yaw_rate), 1.0, 4.0) == pytest.approx(lam, rel=0.03)
     fc = chair_mod.preset("ej-premier-front-caster")
     assert np.linalg.eigvals(state_matrices(assist.reversed_chair(fc), 1.5)[0]).real.max() > 0

@@ -1,3 +1,5 @@
+from stability.settings.run import RunSpec
+
 """Every command line answers bad input the same way (issue 16's error contract).
 
 Each case runs one command in-process in an empty directory and asserts: exit
@@ -554,14 +556,14 @@ def test_the_python_api_bounds_work_naming_the_argument_and_the_largest_value(ca
 
     c = chair_mod.preset("ej-premier")
     calls = {
-        "simulate_duration": lambda: simulate(c, 0.75, duration=3600.0),
-        "simulate_dt": lambda: simulate(c, 0.75, dt=1e-7),
-        "simulate_push": lambda: simulate(c, 0.75, tire_impulse=1e308),
-        "simulate_atol": lambda: simulate(c, 0.75, scheme="adaptive", atol=1e-300),
+        "simulate_duration": lambda: simulate(c, 0.75, run=RunSpec(horizon=3600.0, friction_law="kinetic")),
+        "simulate_dt": lambda: simulate(c, 0.75, run=RunSpec(dt=1e-7, friction_law="kinetic")),
+        "simulate_push": lambda: simulate(c, 0.75, run=RunSpec(tire_push_force=1e308, friction_law="kinetic")),
+        "simulate_atol": lambda: simulate(c, 0.75, run=RunSpec(scheme="adaptive", atol=1e-300)),
         "intervals": lambda: linear_intervals(c, from_mapping({"s1": {"distribution": "normal", "std": 0.01}}),
                                               samples=20_000),
         "shimmy": lambda: caster_summary(c, np.linspace(0.1, 50, 5000)),
-        "study": lambda: critical_impulses(c, [0.01], horizon=3600.0),
+        "study": lambda: critical_impulses(c, [0.01], run=RunSpec(horizon=3600.0)),
     }
     start = time.perf_counter()
     with pytest.raises(ValueError, match=rf"\b{argument}\b"):

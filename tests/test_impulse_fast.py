@@ -30,6 +30,7 @@ from numerics import EPS, SAFETY
 from stability.chair import preset
 from stability.linear import state_matrices
 from stability.settings.reference import HORIZON, LEVEL
+from stability.settings.run import RunSpec
 from stability.study import critical_impulses
 from stability.study.impulse import linear_critical_impulse
 from stability.study.responses import linear_impulse_response, linear_peak_yaw_rate
@@ -90,8 +91,7 @@ def test_summary_runner_is_run_summaries():
 def _monotone(chair, speed, centre, half=0.03, n=13):
     """Reaching the level is monotone in the push across +-half around centre (a scan of the same kernel)."""
     pushes = centre * np.linspace(1 - half, 1 + half, n)
-    s = run_summaries([chair] * n, [speed] * n, pushes / UNIT, model="exact", scheme="wchair", duration=0.1,
-                      dt=0.001, horizon=HORIZON, level=LEVEL)
+    s = run_summaries([chair] * n, [speed] * n, pushes / UNIT, run=RunSpec(model="exact", scheme="wchair", push_duration=0.1, dt=0.001, horizon=HORIZON), level=LEVEL)
     hit = s.t_level <= HORIZON
     return bool(hit[-1] and not hit[0] and np.all(np.diff(hit.astype(int)) >= 0))
 
@@ -130,7 +130,7 @@ def test_equal_instability_search_equals_the_bisection_to_its_tolerance():
     chairs = [ej, preset("power-fwd"), ej.replace(pin_friction_left=0.15, pin_friction_right=0.15)]
     # program WCHAIR's kinetic pin friction: every chair here then has a crossing inside the bracket (with the
     # studies' stick-slip law power-fwd is stable up to 3 m/s); the two searches are compared, not the law
-    t_ref = reference_time(model="exact", friction_law="kinetic")
+    t_ref = reference_time(run=RunSpec(model="exact", friction_law="kinetic"))
     kw = dict(model="exact", scheme="wchair", criterion=DEFAULT_CRITERION, bracket=(0.2, 3.0), tol=0.005,
               candidates=7, max_rounds=8, dt=0.001, progress=False, reference_text="",
               sim_options={"friction_law": "kinetic"})
@@ -157,5 +157,5 @@ def test_run_counts_quoted_in_docs_studies_md():
     six = [0.5, 0.6, 0.75, 0.9, 1.0, 1.2]
     assert critical_impulses(ej, [0.75])[0].runs <= bound(6)
     assert sum(p.runs for p in critical_impulses(ej, six)) <= bound(36)
-    assert sum(p.runs for p in critical_impulses(ej, six, friction_law="kinetic")) <= bound(62)
+    assert sum(p.runs for p in critical_impulses(ej, six, run=RunSpec(friction_law="kinetic"))) <= bound(62)
     assert sum(p.runs for p in critical_impulses(_frictionless("ej-premier"), [0.5, 0.75])) <= bound(9)

@@ -15,6 +15,7 @@ import pytest
 
 from stability.chair import preset
 from stability.linear import state_matrices
+from stability.settings.run import RunSpec
 from stability.study import critical_impulses
 from stability.study.impulse_intervals import critical_impulse_intervals
 
@@ -24,9 +25,9 @@ def test_the_fixed_step_answer_converges_to_the_adaptive_one():
     0.125 ms is within 1 % of the adaptive scheme.  Each answer carries the search's 0.5 % bracket; the convergence
     is what is asserted.  (The measures' stick-slip law gives 2.53 N s at 1 ms: tests/test_stick_slip.py.)"""
     c = preset("ej-premier")
-    ref = critical_impulses(c, [1.0], scheme="adaptive")[0].impulse_Ns
-    coarse = critical_impulses(c, [1.0], dt=0.001, friction_law="kinetic")[0].impulse_Ns
-    fine = critical_impulses(c, [1.0], dt=0.000125, friction_law="kinetic")[0].impulse_Ns
+    ref = critical_impulses(c, [1.0], run=RunSpec(scheme="adaptive"))[0].impulse_Ns
+    coarse = critical_impulses(c, [1.0], run=RunSpec(dt=0.001, friction_law="kinetic"))[0].impulse_Ns
+    fine = critical_impulses(c, [1.0], run=RunSpec(dt=0.000125, friction_law="kinetic"))[0].impulse_Ns
     assert abs(coarse - ref) / ref > 0.05                  # the step matters here ...
     assert abs(fine - ref) / ref < 0.02                    # ... and the fixed-step answer converges to it
     assert abs(fine - ref) < abs(coarse - ref) / 5
@@ -40,7 +41,7 @@ def test_the_interval_includes_the_half_step_answer():
     lam = np.linalg.eigvals(state_matrices(c, np.array([0.75]))[0])
     assert np.max(np.abs(lam.real)) * 1e-3 > 1.0           # forward Euler's factor 1 + lambda dt < 0 at 1 ms
     assert round(float(np.max(np.abs(lam.real))), -1) == 1240  # "about 1240 1/s" in docs/advise.md
-    iv = critical_impulse_intervals([c], 0.75, friction_law="kinetic")[0]
+    iv = critical_impulse_intervals([c], 0.75, run=RunSpec(friction_law="kinetic"))[0]
     half = dict(iv.variants)["0.5 ms step"]
     assert half.status == "found" and iv.point.status == "found"
     assert half.impulse_Ns > 4 * iv.point.impulse_Ns       # 11.6 vs 2.1 N s

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from stability.chair import preset
+from stability.settings.run import RunSpec
 from stability.study.summaries import run_summaries
 
 
@@ -26,14 +27,12 @@ def _broken():
 def test_a_non_finite_run_in_a_study_batch_is_an_error_naming_the_run():
     good = preset("ej-premier")
     with pytest.raises(FloatingPointError, match=r"'ej-premier' at 0\.75 m/s left the finite numbers.*1 of 2 runs"):
-        run_summaries([good, _broken()], [0.5, 0.75], [10.0, 10.0], model="exact", scheme="wchair", duration=0.1,
-                      dt=0.001, horizon=4.0, level=0.5, steps=[0.001, 0.001])
+        run_summaries([good, _broken()], [0.5, 0.75], [10.0, 10.0], run=RunSpec(model="exact", scheme="wchair", push_duration=0.1, dt=0.001, horizon=4.0), level=0.5, steps=[0.001, 0.001])
 
 
 def test_the_same_batch_without_the_broken_chair_is_finite():
     good = preset("ej-premier")
-    s = run_summaries([good, good], [0.5, 0.75], [10.0, 10.0], model="exact", scheme="wchair", duration=0.1,
-                      dt=0.001, horizon=4.0, level=0.5, steps=[0.001, 0.001])
+    s = run_summaries([good, good], [0.5, 0.75], [10.0, 10.0], run=RunSpec(model="exact", scheme="wchair", push_duration=0.1, dt=0.001, horizon=4.0), level=0.5, steps=[0.001, 0.001])
     assert np.all(np.isfinite(s.peak)) and np.all(np.isfinite(s.sim_time))
 
 

@@ -23,6 +23,7 @@ from stability.report.tire_data import force_curves, stiffness_curves
 from stability.report.validity import run_validity
 from stability.runtime.files import read_outline
 from stability.settings.reference import THESIS_PUSH
+from stability.settings.run import RunSpec
 
 EXPECTED_PAGES = [
     # main body
@@ -203,7 +204,7 @@ def test_findings_numbers_match_the_analysis(quick):
     assert f"{linear.zero_width(c).critical_speed:.3g} m/s" in text
     # nonlinear reference case, recomputed independently
     st = d.settings
-    ref = study.reference_time(model="exact", criterion=study.Criterion(duration=st.duration), dt=st.dt)
+    ref = study.reference_time(run=RunSpec(model="exact", dt=st.dt), criterion=study.Criterion(duration=st.duration))
     assert ref == pytest.approx(d.thesis.reference_time, abs=1e-12)
     assert f"after {ref:.2f} s" in text
     # feedback gain
@@ -417,8 +418,7 @@ def test_mode_names_from_eigenvectors():
 def test_validity_ends_at_the_first_slip_beyond_the_tire_data():
     """Independent of the warning counters: the first sample whose |slip| exceeds 8 deg, from the slip arrays."""
     c = preset("ej-premier")
-    res = simulate.simulate(c, 0.95, impulse_force=THESIS_PUSH.force, impulse_duration=THESIS_PUSH.duration,
-                            duration=4.0, model="exact", stop_on_warnings=False, sample=0.01)
+    res = simulate.simulate(c, 0.95, run=RunSpec(push_force=THESIS_PUSH.force, push_duration=THESIS_PUSH.duration, horizon=4.0, model="exact", stop_on_warnings=False, sample=0.01, friction_law="kinetic"))
     v = run_validity(res)
     over = np.flatnonzero(np.abs(np.asarray(res.slip_deg)).max(axis=1) > 8.0)
     assert len(over) and v.reason == "slip > 8 deg"
@@ -637,9 +637,7 @@ def test_intervals_come_from_the_study(quick):
     """One home: the report's interval is study.equal_instability_interval's definition (push x0.5-x2, pin
     friction x0.5/x1.5 on both chairs, both models) at the quick settings' resolution."""
     d, st = quick.data, quick.data.settings
-    iv = study.equal_instability_interval(preset("revised"), model="exact",
-                                          criterion=study.Criterion(duration=st.duration), bracket=st.bracket,
-                                          tol=st.tol, candidates=st.candidates, dt=st.dt)
+    iv = study.equal_instability_interval(preset("revised"), run=RunSpec(model="exact", dt=st.dt), criterion=study.Criterion(duration=st.duration), bracket=st.bracket, tol=st.tol, candidates=st.candidates)
     assert iv.to_dict() == d.intervals.to_dict()
     assert iv.friction_scope == "both the chair and the reference chair"
     assert sorted({v.friction_factor for v in iv.variants} - {1.0}) == list(study.FRICTION_FACTORS)

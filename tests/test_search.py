@@ -25,6 +25,7 @@ from stability import simulate as sim
 from stability.chair import preset
 from stability.settings.defaults import MEASURE_FRICTION_LAW
 from stability.settings.reference import HORIZON, LEVEL, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.simulate import engine
 from stability.simulate.options import make_options
 from stability.study import critical_impulse, critical_impulses
@@ -39,9 +40,7 @@ TOL = 0.005
 
 def _reaches(chair, speed, impulses, horizon=HORIZON):
     """Full-length runs (every sample recorded, no stop) through the public simulator: reached the level?"""
-    res = sim.simulate_batch(chair, speed, model="exact", impulse_force=np.asarray(impulses) / UNIT,
-                             stop_on_warnings=False, duration=horizon, progress=False,
-                             friction_law=MEASURE_FRICTION_LAW)
+    res = sim.simulate_batch(chair, speed, run=RunSpec(model="exact", push_force=np.asarray(impulses) / UNIT, stop_on_warnings=False, horizon=horizon, friction_law=MEASURE_FRICTION_LAW), progress=False)
     return np.array([r.stats.time_to_level[1] is not None and r.stats.time_to_level[1] <= horizon for r in res])
 
 
@@ -90,7 +89,7 @@ def test_new_search_equals_the_bisection_where_reaching_is_monotone():
     c = preset("revised").replace(pin_friction_left=0.0, pin_friction_right=0.0)
     speeds = [0.5, 0.75]
     old = critical_impulses_bisection(c, speeds, model="exact")
-    new = critical_impulses(c, speeds, model="exact")
+    new = critical_impulses(c, speeds, run=RunSpec(model="exact"))
     for a, b in zip(old, new, strict=True):
         assert a.status == b.status == "found"
         assert abs(math.log(b.impulse_Ns / a.impulse_Ns)) <= math.log1p(TOL) * (1 + 1e-9)
@@ -107,7 +106,7 @@ def test_published_critical_impulses_inside_the_flip_band(name, published):
     bisection's and the published value all lie in the band where the outcome flips (+- rel_tol).
     """
     c = preset(name)
-    new = critical_impulse(c, REFERENCE_SPEED, model="exact")
+    new = critical_impulse(c, REFERENCE_SPEED, run=RunSpec(model="exact"))
     old = critical_impulses_bisection(c, REFERENCE_SPEED, model="exact")[0]
     assert new.status == "found" and new.high_Ns / new.low_Ns - 1 <= TOL * (1 + 1e-9)
     assert _reaches(c, REFERENCE_SPEED, [new.low_Ns, new.high_Ns]).tolist() == [False, True]
@@ -123,10 +122,8 @@ def test_summaries_of_the_adaptive_scheme_match_its_runs():
     """The adaptive scheme (no kernel) gets its summaries from full runs: the same criterion time as the studies."""
     from stability.study.criteria import time_to_yaw_rate
     c = preset("ej-premier")
-    s = run_summaries([c], [0.75], [40.0 / UNIT], model="exact", scheme="adaptive", duration=0.1, dt=None,
-                      horizon=4.0, level=LEVEL)
-    r = sim.simulate(c, 0.75, model="exact", scheme="adaptive", impulse_force=40.0 / UNIT, impulse_duration=0.1,
-                     duration=4.0, stop_on_warnings=False)
+    s = run_summaries([c], [0.75], [40.0 / UNIT], run=RunSpec(model="exact", scheme="adaptive", push_duration=0.1, dt=None, horizon=4.0), level=LEVEL)
+    r = sim.simulate(c, 0.75, run=RunSpec(model="exact", scheme="adaptive", push_force=40.0 / UNIT, push_duration=0.1, horizon=4.0, stop_on_warnings=False))
     assert s.t_level[0] == time_to_yaw_rate(r, LEVEL, 4.0) < 4.0
 
 
@@ -136,13 +133,12 @@ def test_a_chair_that_reaches_the_level_whatever_the_push_is_settled_in_a_few_ru
     same time.  The search tries the smallest push as soon as two early reaching pushes reach nearly together,
     instead of halving the push 25 times from 40 N s to 1e-6 N s (28 runs before)."""
     chair = preset("power-fwd")
-    r = critical_impulse(chair, 2.5, friction_law="kinetic")     # the step artefact (test_stick_slip.py)
+    r = critical_impulse(chair, 2.5, run=RunSpec(friction_law="kinetic"))     # the step artefact (test_stick_slip.py)
     assert r.status == "below" and r.smallest_tried_Ns == pytest.approx(1e-6)
     assert r.runs <= 12
     # independently of the search: full runs at the smallest push and at 1e-3 N s both reach the level, within
     # 0.1 s of each other (the push does not set the disturbance)
-    res = sim.simulate_batch(chair, 2.5, model="exact", impulse_force=np.array([1e-6, 1e-3]) / UNIT,
-                             stop_on_warnings=False, duration=HORIZON, progress=False, friction_law="kinetic")
+    res = sim.simulate_batch(chair, 2.5, run=RunSpec(model="exact", push_force=np.array([1e-6, 1e-3]) / UNIT, stop_on_warnings=False, horizon=HORIZON, friction_law="kinetic"), progress=False)
     t = [r.stats.time_to_level[1] for r in res]
     assert all(x is not None and x <= HORIZON for x in t)
     assert abs(t[0] - t[1]) < 0.1

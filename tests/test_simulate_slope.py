@@ -16,6 +16,7 @@ from stability import chair as chair_mod
 from stability.models import slope as msl
 from stability.models.params import parameters
 from stability.models.statics import normal_loads
+from stability.settings.run import RunSpec
 from stability.simulate import reference_engine, simulate, simulate_batch
 from stability.simulate.__main__ import main as simulate_main
 from stability.slope import solve
@@ -58,13 +59,13 @@ def test_zero_slope_is_todays_run(kw):
 
 
 def test_zero_slope_reference_paths_and_batch():
-    ref = simulate_batch([EJ, FRONT], [0.6, 0.9], duration=0.5, model="exact", progress=False)
-    got = simulate_batch([EJ, FRONT], [0.6, 0.9], duration=0.5, model="exact", progress=False, slope=(0, 0))
+    ref = simulate_batch([EJ, FRONT], [0.6, 0.9], run=RunSpec(horizon=0.5, model="exact", friction_law="kinetic"), progress=False)
+    got = simulate_batch([EJ, FRONT], [0.6, 0.9], run=RunSpec(horizon=0.5, model="exact", cross_slope_deg=0, grade_deg=0, friction_law="kinetic"), progress=False)
     for a, b in zip(got, ref, strict=True):
         _same(a, b)
     with reference_engine():
-        r1 = simulate(FRONT, 0.9, duration=0.3, model="exact")
-        _same(simulate(FRONT, 0.9, duration=0.3, model="exact", slope=(0.0, 0.0)), r1)
+        r1 = simulate(FRONT, 0.9, run=RunSpec(horizon=0.3, model="exact", friction_law="kinetic"))
+        _same(simulate(FRONT, 0.9, run=RunSpec(horizon=0.3, model="exact", cross_slope_deg=0.0, grade_deg=0.0, friction_law="kinetic")), r1)
 
 
 def test_plane_loads_at_zero_slope_are_eq_6_25():
@@ -176,7 +177,7 @@ def test_simulator_slope_is_the_same_plane():
 @pytest.mark.parametrize("grade", [5.0, -3.0])
 def test_grade_speed_closed_form(scheme, grade):
     """Rolling resistance off, no side forces: u = U - g sin(theta) t, x = U t - g sin(theta) t^2/2."""
-    res = simulate(EJ, 0.75, model="exact", scheme=scheme, duration=1.0, impulse_force=0.0, slope=(0.0, grade))
+    res = simulate(EJ, 0.75, run=RunSpec(model="exact", scheme=scheme, horizon=1.0, push_force=0.0, cross_slope_deg=0.0, grade_deg=grade))
     a = -EJ.g * math.sin(math.radians(grade))
     np.testing.assert_allclose(res.u, 0.75 + a * res.t, rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(res.x, 0.75 * res.t + 0.5 * a * res.t ** 2, rtol=1e-9, atol=1e-12)
@@ -231,12 +232,12 @@ def test_adaptive_compiled_matches_python_rhs():
 @pytest.mark.parametrize("slope", [(15.5, 0.0), (0.0, -16.0), (math.nan, 0.0), (1.0,), "flat"])
 def test_bad_slope_refused(slope):
     with pytest.raises(ValueError, match="slope=.*valid range"):
-        simulate(EJ, 0.75, model="exact", slope=slope)
+        simulate(EJ, 0.75, run=RunSpec(model="exact", cross_slope_deg=slope[0], grade_deg=slope[1], friction_law="kinetic"))
 
 
 def test_thesis_model_refused_on_slope():
     with pytest.raises(ValueError, match="model='thesis' is invalid on a slope"):
-        simulate(EJ, 0.75, model="thesis", slope=(2.0, 0.0))
+        simulate(EJ, 0.75, run=RunSpec(model="thesis", cross_slope_deg=2.0, grade_deg=0.0, friction_law="kinetic"))
 
 
 def test_cli_slope(capsys):

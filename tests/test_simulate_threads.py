@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from stability.chair import preset
+from stability.settings.run import RunSpec
 from stability.simulate import simulate, simulate_batch
 
 EJ = preset("ej-premier")
@@ -91,9 +92,9 @@ def test_threads_at_once_equal_one_after_the_other(layer):
 def test_threads_at_once_in_this_process():
     """The same in this process, under whichever threading layer numba picked here."""
     jobs = [
-        lambda: simulate_batch(EJ, np.linspace(0.5, 1.0, 4), duration=0.5, progress=False, workers=1),
-        lambda: [simulate(EJ, 0.8, duration=0.5)],
-        lambda: [simulate(EJ, 0.75, duration=0.5, scheme="adaptive")],
+        lambda: simulate_batch(EJ, np.linspace(0.5, 1.0, 4), run=RunSpec(horizon=0.5, friction_law="kinetic"), progress=False, workers=1),
+        lambda: [simulate(EJ, 0.8, run=RunSpec(horizon=0.5, friction_law="kinetic"))],
+        lambda: [simulate(EJ, 0.75, run=RunSpec(horizon=0.5, scheme="adaptive"))],
     ]
     alone = [job() for job in jobs]
     together: list = [None] * len(jobs)

@@ -9,6 +9,7 @@ from numerics import EPS, SAFETY, solve_tolerance, transient_bound
 
 from stability import linear, study
 from stability.chair import preset
+from stability.settings.run import RunSpec
 
 
 # ---------------------------------------------------------------------------
@@ -76,7 +77,7 @@ def test_equal_instability_bisection(fake):
     ej = preset("ej-premier")
     chairs = [ej] + study.friction_variants(ej, (0.8, 1.6)) + [ej.replace(pin_friction_left=0.01, pin_friction_right=0.01),
                                                              ej.replace(pin_friction_left=0.5, pin_friction_right=0.5)]
-    res = study.equal_instability_speeds(chairs, tol=0.002, candidates=7, bracket=(0.2, 3.0), progress=False)
+    res = study.equal_instability_speeds(chairs, run=RunSpec(model="thesis"), tol=0.002, candidates=7, bracket=(0.2, 3.0), progress=False)
     assert res[0].reference_time == pytest.approx(3.2, abs=1e-3)
     assert res[0].status == "found" and res[0].speed == pytest.approx(0.75, abs=0.002)
     assert res[1].speed == pytest.approx(0.6, abs=0.002)
@@ -90,14 +91,14 @@ def test_equal_instability_bisection(fake):
 
 
 def test_equal_instability_speed_single(fake):
-    r = study.equal_instability_speed(preset("revised"), tol=0.001, progress=False)
+    r = study.equal_instability_speed(preset("revised"), run=RunSpec(model="thesis"), tol=0.001, progress=False)
     assert r.speed == pytest.approx(0.75, abs=0.001)     # the fake ignores geometry
     assert r.low <= r.speed <= r.high and r.high - r.low <= 0.001 + 1e-12
 
 
 def test_maps_use_one_batch(fake):
     ej = preset("ej-premier")
-    m = study.stability_map(ej, [0.5, 1.0, 1.6], [0.05, 0.1, 0.2], reference=3.2, progress=False)
+    m = study.stability_map(ej, [0.5, 1.0, 1.6], [0.05, 0.1, 0.2], run=RunSpec(model="thesis"), reference=3.2, progress=False)
     assert fake.calls == [9]
     assert m.times.shape == (3, 3)
     b = m.boundary()
@@ -114,7 +115,7 @@ def test_disturbance_map_is_one_batch_with_a_force_per_run(fake, monkeypatch):
         return fake(chairs, speeds, **options)
 
     monkeypatch.setattr(study.runs, "simulate_runs", spy)
-    m = study.disturbance_map(preset("ej-premier"), [0.5, 1.0], [2.0, 4.0, 8.0], reference=3.2, progress=False)
+    m = study.disturbance_map(preset("ej-premier"), [0.5, 1.0], [2.0, 4.0, 8.0], run=RunSpec(model="thesis"), reference=3.2, progress=False)
     assert fake.calls == [6] and m.times.shape == (3, 2)
     np.testing.assert_array_equal(seen["forces"], [20.0, 20.0, 40.0, 40.0, 80.0, 80.0])   # impulse / 0.1 s
 
@@ -127,19 +128,17 @@ def test_disturbance_map_matches_separate_runs():
 
     ej = preset("ej-premier")
     crit = study.Criterion(duration=4.0)
-    m = study.disturbance_map(ej, [0.8, 1.2], [2.0, 6.0], reference=3.2, criterion=crit, progress=False)
+    m = study.disturbance_map(ej, [0.8, 1.2], [2.0, 6.0], run=RunSpec(model="thesis"), reference=3.2, criterion=crit, progress=False)
     for i, imp in enumerate((2.0, 6.0)):
         for j, u in enumerate((0.8, 1.2)):
-            r = simulate(ej, u, model="thesis", impulse_force=imp / 0.1, duration=4.0, stop_on_warnings=False,
-                         sample=0.01, friction_law=MEASURE_FRICTION_LAW)
+            r = simulate(ej, u, run=RunSpec(model="thesis", push_force=imp / 0.1, horizon=4.0, stop_on_warnings=False, sample=0.01, friction_law=MEASURE_FRICTION_LAW))
             assert m.times[i, j] == pytest.approx(crit.time(r), abs=1e-9)
     assert m.times[1, 1] < m.times[0, 1]          # a bigger push reaches the level sooner
 
 
 def test_parameter_sweeps_table(fake):
     ej = preset("ej-premier")
-    table, extra = study.parameter_sweeps(ej, {"pin_friction": (0.05, 0.1, 0.15), "trail": (0.06, 0.08)},
-                                          extra_chairs=[preset("revised")], tol=0.002, progress=False)
+    table, extra = study.parameter_sweeps(ej, {"pin_friction": (0.05, 0.1, 0.15), "trail": (0.06, 0.08)}, run=RunSpec(model="thesis"), extra_chairs=[preset("revised")], tol=0.002, progress=False)
     pf = table.get("pin_friction")
     np.testing.assert_allclose(pf.speeds, [0.375, 0.75, 1.125], atol=0.003)
     assert pf.effect_percent == pytest.approx(100, abs=1)
@@ -150,7 +149,7 @@ def test_parameter_sweeps_table(fake):
 
 def test_check_conclusions_verdicts(fake):
     """With the analytic stand-in only friction matters: conclusions about geometry are 'disagree'."""
-    st, _, _ = study.thesis_study(plan={"s1": (0.245, 0.345), "trail": (0.06, 0.08), "camber_deg": (0.0, 5.0),
+    st, _, _ = study.thesis_study(run=RunSpec(model="thesis"), plan={"s1": (0.245, 0.345), "trail": (0.06, 0.08), "camber_deg": (0.0, 5.0),
                                         "main_tire": None}, tol=0.002, progress=False)
     checks = study.check_conclusions(st)
     assert [c.number for c in checks] == list(range(1, 10))
@@ -214,7 +213,7 @@ def test_linear_overlay_matches_frictionless_simulation(model):
     from stability.simulate import simulate
 
     c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
-    res = simulate(c, 0.75, duration=1.5, model=model, stop_on_warnings=False)
+    res = simulate(c, 0.75, run=RunSpec(horizon=1.5, model=model, stop_on_warnings=False, friction_law="kinetic"))
     lin = study.linear_impulse_response(c, 0.75, 1.5, impulse=(40.0, 0.1), model=model, step=0.01)
     for tt in (0.3, 0.8, 1.5):
         r_sim = float(np.interp(tt, res.t, res.yaw_rate))
@@ -227,11 +226,10 @@ def test_linear_overlay_matches_frictionless_simulation(model):
 def test_reference_case_and_revised_design():
     """Thesis model, WCHAIR scheme: reference 'slightly over 3 s'; the reference chair rates itself 0.75 m/s;
     the revised design about 1.10-1.15 m/s (Figure 9-2)."""
-    ref = study.reference_time(model="thesis")
+    ref = study.reference_time(run=RunSpec(model="thesis"))
     assert 3.0 < ref < 3.5
     ej, rev = preset("ej-premier"), preset("revised")
-    r = study.equal_instability_speeds([ej, rev], model="thesis", bracket=(0.5, 1.5), tol=0.01, candidates=5,
-                                       reference=ref, progress=False)
+    r = study.equal_instability_speeds([ej, rev], run=RunSpec(model="thesis"), bracket=(0.5, 1.5), tol=0.01, candidates=5, reference=ref, progress=False)
     assert r[0].status == "found" and r[0].speed == pytest.approx(0.75, abs=0.01)
     assert 1.05 < r[1].speed < 1.20
     assert all(t2 <= t1 for (s1, t1), (s2, t2) in zip(r[1].evaluations, r[1].evaluations[1:], strict=False))  # monotone
@@ -265,7 +263,7 @@ def test_reduced_mass_figure_8_14_is_not_reproduced_and_why():
     assert r_light == pytest.approx(r_ref, rel=0.03)          # 1.384 vs 1.419 1/s
     c_ref, c_light = (linear.massless_caster_rate(c, 0.75) for c in (ej, light))
     assert (c_light / c_ref) == pytest.approx(r_light / r_ref, abs=0.005)
-    res = study.equal_instability_speed(light, model="thesis", progress=False)
+    res = study.equal_instability_speed(light, run=RunSpec(model="thesis"), progress=False)
     assert res.status == "found" and 0.74 < res.speed < 0.78     # 0.756 m/s, not 0.85
 
 

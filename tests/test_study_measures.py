@@ -7,6 +7,7 @@ from stability import linear, study
 from stability.chair import preset
 from stability.rootlocus import get_parameter
 from stability.settings.reference import Push
+from stability.settings.run import RunSpec
 
 
 # ---------------------------------------------------------------------------
@@ -28,7 +29,7 @@ def test_critical_impulse_frictionless_linear_limit(speed, level, horizon):
     Tolerance 2 %: the bisection's 0.5 % bracket plus the WCHAIR scheme's fixed-step error
     (about 0.6 % in the growth over the horizon)."""
     c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
-    r = study.critical_impulse(c, speed, level=level, horizon=horizon, model="exact")
+    r = study.critical_impulse(c, speed, run=RunSpec(horizon=horizon, model="exact"), level=level)
     assert r.status == "found"
     assert r.high_Ns / r.low_Ns - 1 <= 0.005 + 1e-12
     j_ref = 1.0
@@ -46,7 +47,7 @@ def test_critical_impulse_casters_held_by_high_friction_is_none():
     c = preset("ej-premier").replace(pin_friction_left=5.0, pin_friction_right=5.0)
     A = linear.state_matrices(c, 0.75, "exact", "locked")[0]
     assert np.linalg.eigvals(A).real.max() < 0
-    r = study.critical_impulse(c, 0.75, horizon=4.0)
+    r = study.critical_impulse(c, 0.75, run=RunSpec(horizon=4.0))
     assert r.status == "never" and r.impulse_Ns is None and r.kick_m_s is None
     assert r.largest_tried_Ns == pytest.approx(40.0)
     assert r.describe() == "> 40 N s"
@@ -66,7 +67,7 @@ def test_critical_impulse_curve_one_batch_per_round(monkeypatch):
 
     monkeypatch.setattr(SummaryRunner, "__call__", spy)
     c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
-    curve = study.critical_impulse_curve(c, [0.5, 0.75], level=0.02, horizon=2.0)
+    curve = study.critical_impulse_curve(c, [0.5, 0.75], run=RunSpec(horizon=2.0), level=0.02)
     assert calls[0] == [0.5, 0.75] and len(calls) <= 5
     assert all(p.runs <= 6 for p in curve.points)
     # faster is less stable: a smaller push suffices
@@ -80,7 +81,7 @@ def test_critical_impulse_argument_checks():
     with pytest.raises(ValueError, match="min_impulse"):
         study.critical_impulse(preset("ej-premier"), 0.75, min_impulse=50.0)
     with pytest.raises(ValueError, match="scheme"):
-        study.critical_impulse(preset("ej-premier"), 0.75, scheme="rk4")
+        study.critical_impulse(preset("ej-premier"), 0.75, run=RunSpec(scheme="rk4"))
 
 
 @pytest.mark.slow
@@ -176,7 +177,7 @@ def test_cli_critical_impulse_json_matches_the_function(capsys):
     assert main(args) == 0
     data = json.loads(capsys.readouterr().out)
     c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
-    direct = study.critical_impulse(c, 0.75, level=0.02, horizon=2.0)
+    direct = study.critical_impulse(c, 0.75, run=RunSpec(horizon=2.0), level=0.02)
     assert data["points"][0]["impulse_Ns"] == pytest.approx(direct.impulse_Ns, rel=1e-12)
     assert "101 steps of 1 ms" in data["points"][0]["push"]
 
@@ -205,7 +206,7 @@ def test_equal_instability_range_counts_a_variant_beyond_the_bracket_as_its_end(
     runs from the lowest found speed to the bracket's end, so the nominal value (the bound) lies inside it, as the
     advisor and page 1 show it (tests/test_advise.py checks they print the same interval)."""
     c = preset("ej-premier").replace(pin_friction_left=0.3, pin_friction_right=0.3, trail=0.06)
-    iv = study.equal_instability_interval(c, model="exact")
+    iv = study.equal_instability_interval(c, run=RunSpec(model="exact"))
     assert iv.point.status == "above" and iv.point.value_or_bound == iv.point.bracket[1] == 3.0
     found = [v.speed for v in iv.variants if v.speed is not None]
     assert found and iv.low == min(found) < 3.0 and iv.high == 3.0

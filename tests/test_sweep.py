@@ -11,6 +11,7 @@ import pytest
 
 from stability.chair import preset
 from stability.linear.batch import ChairBatch
+from stability.settings.run import RunSpec
 from stability.study import critical_impulses
 from stability.sweep import columns, compute_chunk, loads_spec, n_chunks, read_rows, run_sweep, summary
 from stability.sweep.__main__ import main
@@ -154,7 +155,7 @@ def test_friction_law_reaches_the_nonlinear_measures(tmp_path):
     k = columns(sticky).index("critical_impulse_status")
     row, = compute_chunk(sticky, 0)
     assert row[k] == "found"
-    assert row[j] == critical_impulses(preset("power-fwd"), 1.5, friction_law="stick-slip")[0].impulse_Ns
+    assert row[j] == critical_impulses(preset("power-fwd"), 1.5, run=RunSpec(friction_law="stick-slip"))[0].impulse_Ns
     assert compute_chunk(kinetic, 0)[0][k] == "below"
 
 

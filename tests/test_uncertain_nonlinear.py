@@ -10,6 +10,7 @@ import pytest
 from stability.chair import preset
 from stability.linear.intervals import linear_intervals
 from stability.settings.reference import LEVEL, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.study import Criterion, critical_impulse, equal_instability_speed
 from stability.study.uncertain import MAX_NONLINEAR_SAMPLES, nonlinear_intervals
 from stability.uncertainty import loads_uncertainty
@@ -28,9 +29,8 @@ def friction(fraction: float) -> str:
 def test_zero_spread_gives_exactly_the_nominal_values():
     u = loads_uncertainty('[s1]\ndistribution = "normal"\nstd = 0.0\n')
     iv = nonlinear_intervals(EJ, u, samples=4, seed=1, **FAST)
-    ci = critical_impulse(EJ, REFERENCE_SPEED, model="exact", horizon=HORIZON, rel_tol=FAST["rel_tol"])
-    eq = equal_instability_speed(EJ, model="exact", criterion=Criterion(LEVEL, HORIZON), bracket=FAST["bracket"],
-                                 tol=FAST["tol"], candidates=FAST["candidates"], progress=False)
+    ci = critical_impulse(EJ, REFERENCE_SPEED, run=RunSpec(model="exact", horizon=HORIZON), rel_tol=FAST["rel_tol"])
+    eq = equal_instability_speed(EJ, run=RunSpec(model="exact"), criterion=Criterion(LEVEL, HORIZON), bracket=FAST["bracket"], tol=FAST["tol"], candidates=FAST["candidates"], progress=False)
     assert ci.status == "found" and eq.status == "found"
     k, e = iv.critical_impulse, iv.equal_instability
     assert e is not None
@@ -57,9 +57,8 @@ def test_small_spread_lies_between_the_end_chairs_and_widens_with_the_spread():
     # with pin friction, so the Monte Carlo values lie between the two end chairs' impulses computed directly
     tight = dict(FAST, rel_tol=0.002)
     f = EJ.pin_friction_left
-    ends = [critical_impulse(EJ.replace(pin_friction_left=x * f, pin_friction_right=x * f), REFERENCE_SPEED,
-                             horizon=HORIZON, rel_tol=tight["rel_tol"]).impulse_Ns for x in (0.9, 1.1)]
-    nominal = critical_impulse(EJ, REFERENCE_SPEED, horizon=HORIZON, rel_tol=tight["rel_tol"]).impulse_Ns
+    ends = [critical_impulse(EJ.replace(pin_friction_left=x * f, pin_friction_right=x * f), REFERENCE_SPEED, run=RunSpec(horizon=HORIZON), rel_tol=tight["rel_tol"]).impulse_Ns for x in (0.9, 1.1)]
+    nominal = critical_impulse(EJ, REFERENCE_SPEED, run=RunSpec(horizon=HORIZON), rel_tol=tight["rel_tol"]).impulse_Ns
     assert ends[0] < nominal < ends[1]
     slack = 2 * tight["rel_tol"] * nominal                        # two bisection brackets
     narrow = nonlinear_intervals(EJ, loads_uncertainty(friction(0.05)), samples=10, equal_instability=False,
@@ -95,7 +94,7 @@ def test_bad_arguments_name_the_parameter():
     with pytest.raises(ValueError, match=f"samples={MAX_NONLINEAR_SAMPLES + 1}"):
         nonlinear_intervals(EJ, u, samples=MAX_NONLINEAR_SAMPLES + 1)
     with pytest.raises(ValueError, match="model"):
-        nonlinear_intervals(EJ, u, model="linear")
+        nonlinear_intervals(EJ, u, run=RunSpec(model="linear"))
 
 
 def test_to_dict_is_json_ready():

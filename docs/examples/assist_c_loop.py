@@ -29,6 +29,7 @@ from stability.assist import DigitalController, schedule
 from stability.assist.c_harness import find_cc
 from stability.assist.commands import COMMAND_FILTER, step_command
 from stability.assist.export_c import export_c
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 
 SPEED = 2.0                      # m/s
@@ -81,11 +82,11 @@ class CAssist:
         return self.u + (self.m - self.u) * math.exp(-(t - self.k * self.T) / self.tau)
 
 
-c_run = simulate(chair, SPEED, duration=4.0, yaw_moment=CAssist(), stop_on_warnings=False)
+c_run = simulate(chair, SPEED, run=RunSpec(horizon=4.0, stop_on_warnings=False, friction_law="kinetic"), yaw_moment=CAssist())
 gyro = sched.gyro.__class__(bias_deg_s=math.degrees(BIAS), noise_density_deg_s=0.0)
 py = DigitalController(sched.at(SPEED), chair, sched.drive, gyro=gyro, command=COMMAND,
                        command_filter_s=COMMAND_FILTER)
-py_run = simulate(chair, SPEED, duration=4.0, yaw_moment=py, stop_on_warnings=False)
+py_run = simulate(chair, SPEED, run=RunSpec(horizon=4.0, stop_on_warnings=False, friction_law="kinetic"), yaw_moment=py)
 
 fig, ax = plt.subplots(figsize=(7, 4))
 t = np.asarray(c_run.t)

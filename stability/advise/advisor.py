@@ -19,6 +19,7 @@ from stability.advise.measures import Measures, measure_chairs
 from stability.chair import Chair
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
+from stability.settings.run import RunSpec
 from stability.study import reference_time
 
 __all__ = ["Constraint", "Candidate", "Recommendation", "Advice", "advise", "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST",
@@ -377,7 +378,7 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
     times: list[float | None] = []
     for u in use if time_to_correct else ():
         try:
-            times.append(reference_time(chair, u, model="exact"))
+            times.append(reference_time(chair, u, RunSpec(model="exact")))
         except ValueError:
             times.append(None)
     return Advice(chair, use, float(cross_slope_deg), min_tip, source, base, tuple(times), tuple(cands),

@@ -52,10 +52,11 @@ def warm_up() -> Future:
     """
     def run() -> None:
         from stability.chair import preset
+        from stability.settings.run import RunSpec
         from stability.simulate import simulate
 
         try:
-            simulate(preset(D.CHAIR), D.SPEED, duration=0.05, model=D.MODEL)
+            simulate(preset(D.CHAIR), D.SPEED, RunSpec(horizon=0.05))
         finally:
             _WARM.set()
 

@@ -303,12 +303,13 @@ def response(chair: Chair, model: str, speed: float, push: tuple[float, float], 
     tuple of ndarray
         Times (s) and yaw rates (rad/s) of the nonlinear and of the linear response.
     """
+    from stability.settings.run import RunSpec
     from stability.simulate import simulate
     from stability.study import linear_impulse_response
 
-    run = simulate(chair, speed, duration=duration, model=model, impulse_force=push[0], impulse_duration=push[1])
+    res = simulate(chair, speed, RunSpec(horizon=duration, model=model, push_force=push[0], push_duration=push[1]))
     lin = linear_impulse_response(chair, speed, duration, impulse=push, model=model)
-    return run.t, run.yaw_rate, lin.t, lin.yaw_rate
+    return res.t, res.yaw_rate, lin.t, lin.yaw_rate
 
 
 def nonlinear_view(chair: Chair, model: str, speed: float, push: tuple[float, float],
@@ -330,11 +331,12 @@ def nonlinear_view(chair: Chair, model: str, speed: float, push: tuple[float, fl
     -------
     NonlinearView
     """
+    from stability.settings.run import RunSpec
     from stability.study import critical_impulse, equal_instability_speed
 
     t, r, tl, rl = response(chair, model, speed, push)
-    ci = critical_impulse(chair, speed, model=model, duration=push[1])
-    eq = equal_instability_speed(chair, model=model) if equal_instability else None
+    ci = critical_impulse(chair, speed, RunSpec(model=model, push_duration=push[1]))
+    eq = equal_instability_speed(chair, RunSpec(model=model)) if equal_instability else None
     return NonlinearView(chair, model, speed, push, t, r, tl, rl, ci, eq)
 
 

@@ -19,6 +19,7 @@ from stability.assist.schedule import Schedule
 from stability.runtime.checks import check_speed
 from stability.settings import defaults as D
 from stability.settings.reference import THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 
 __all__ = ["MAX_YAW_RATE", "LATERAL_ACCELERATION", "step_command", "ramp_command", "slalom_command",
@@ -174,9 +175,10 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
     ctl = DigitalController(sched.at(speed), sched.chair, sched.drive, gyro=sched.gyro, seed=seed, noise=noise,
                             saturate=saturate, command=command, command_filter_s=command_filter_s,
                             anti_windup=anti_windup, tracking_time_s=tracking_time_s)
-    res = simulate(sched.chair, speed, duration=duration, model=model or sched.model, dt=dt,
-                   impulse_force=impulse_force, impulse_duration=THESIS_PUSH.duration, yaw_moment=ctl,
-                   stop_on_warnings=False, slope=slope)
+    res = simulate(sched.chair, speed, RunSpec(horizon=duration, model=model or sched.model, dt=dt,
+                                               push_force=impulse_force, push_duration=THESIS_PUSH.duration,
+                                               stop_on_warnings=False, cross_slope_deg=slope[0], grade_deg=slope[1]),
+                   yaw_moment=ctl)
     t = np.asarray(res.t)
     samples = [s for s in ctl.samples if s[0] <= t[-1] + 1e-9]
     tau = np.array([s[1] for s in samples])

@@ -17,6 +17,7 @@ from stability import chair as chair_mod
 from stability.chair import Chair
 from stability.chair.power import DriveTrain
 from stability.settings.reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 
 __all__ = ["destabilising_moment", "valid_until", "DestabilisingSummary", "destabilising_summary"]
@@ -51,8 +52,8 @@ def destabilising_moment(chair: Chair | str = REFERENCE_CHAIR, speed: float = RE
         The curve is ``(result.t, result.tire_yaw_moment)``.
     """
     c = chair_mod.resolve(chair) if isinstance(chair, str) else chair
-    return simulate(c, speed, duration=duration, model=model, scheme=scheme, impulse_force=impulse_force,
-                    impulse_duration=impulse_duration)
+    return simulate(c, speed, RunSpec(horizon=duration, model=model, scheme=scheme, push_force=impulse_force,
+                                      push_duration=impulse_duration))
 
 
 def _first_slip_warning(res: Any) -> float:

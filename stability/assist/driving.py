@@ -32,6 +32,7 @@ from stability.assist.tracking import TrackingMetrics, step_metrics
 from stability.models.statics import static_loads
 from stability.runtime.checks import check_speed
 from stability.settings.reference import THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 from stability.slope import equilibrium
 from stability.study.veer import MAX_CASTER_SWING_DEG
@@ -308,8 +309,8 @@ def slope_hold(sched: Schedule, speed: float, cross_slope_deg: float, *, duratio
     slope = (float(cross_slope_deg), 0.0)
     eq = equilibrium.solve(sched.chair, slope[0], speed)
     run = command_run(sched, speed, step_command(0.0), duration=duration, slope=slope, model="exact")
-    ol = simulate(sched.chair, speed, duration=duration, model="exact", impulse_force=0.0, slope=slope,
-                  stop_on_warnings=False)
+    ol = simulate(sched.chair, speed, RunSpec(horizon=duration, model="exact", push_force=0.0, cross_slope_deg=slope[0],
+                                              grade_deg=slope[1], stop_on_warnings=False))
     cut = np.flatnonzero((np.abs(ol.heading) > math.radians(45.0)) | (np.maximum(np.abs(ol.eta), np.abs(ol.beta))
                                                                       > math.radians(MAX_CASTER_SWING_DEG)))
     n = int(cut[0]) + 1 if cut.size else len(ol.t)

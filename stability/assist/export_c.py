@@ -37,6 +37,7 @@ from stability.assist.firmware import (
 from stability.assist.schedule import Schedule
 from stability.settings import defaults as D
 from stability.settings.reference import THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 
 __all__ = ["VectorCase", "vector_speeds", "vector_cases", "c_sources", "readme", "export_c", "VECTOR_DURATION"]
@@ -157,8 +158,9 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
         for name, cmd, force in cases:
             ctl = _Recorder(sched.at(s), sched.chair, sched.drive, gyro=gyro, seed=seed + i, command=cmd,
                             command_filter_s=COMMAND_FILTER)
-            simulate(sched.chair, s, duration=duration, model=sched.model, impulse_force=force,
-                     impulse_duration=THESIS_PUSH.duration, yaw_moment=ctl, stop_on_warnings=False)
+            simulate(sched.chair, s, RunSpec(horizon=duration, model=sched.model, push_force=force,
+                                             push_duration=THESIS_PUSH.duration, stop_on_warnings=False),
+                     yaw_moment=ctl)
             nk = len(ctl.read)
             tau = np.array([h[3] for h in ctl._hist[:nk]])
             inputs = np.array([[s, float(cmd(k * ctl.Ts)), g, w] for k, (g, w) in enumerate(ctl.read)])

@@ -52,6 +52,7 @@ from stability.assist.firmware import (
     firmware_tables,
 )
 from stability.assist.schedule import Schedule
+from stability.settings.run import RunSpec
 from stability.simulate import simulate_batch
 
 __all__ = ["FAULTS", "FAULT_TIME", "WINDOW", "MONITOR_TIME", "MONITOR_THRESHOLD_DEG_S", "WHEEL_PLAUSIBLE",
@@ -260,8 +261,9 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
         kinds = [c[1] for _ in U for c in cases]
         vals = np.array([c[2] for _ in U for c in cases])
         hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed)
-        res = simulate_batch(sched.chair, run_speeds, duration=FAULT_TIME + window, dt=dt, yaw_moment=hook,
-                             stop_on_warnings=False, slope=(float(phi), 0.0), model="exact", progress=progress)
+        res = simulate_batch(sched.chair, run_speeds, RunSpec(horizon=FAULT_TIME + window, dt=dt,
+                                                              stop_on_warnings=False, cross_slope_deg=float(phi),
+                                                              model="exact"), yaw_moment=hook, progress=progress)
         for i, s in enumerate(U):
             base = i * len(cases)
             he0, _, dr0 = _measures(res[base], window)

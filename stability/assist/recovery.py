@@ -17,6 +17,7 @@ from stability.assist.schedule import Schedule
 from stability.chair import Chair
 from stability.runtime.checks import check_speed
 from stability.settings.reference import HORIZON, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 from stability.simulate.signals import envelope_rate
 from stability.simulate.signals import settle_time as _settle_time
@@ -159,9 +160,9 @@ def _simulate(chair: Chair, speed: float, controller: DigitalController | None, 
               impulse_duration: float, duration: float, dt: float, model: str, scheme: str) -> Any:
     if controller is not None:
         controller.reset()
-    return simulate(chair, speed, duration=duration, scheme=scheme, model=model, dt=dt,
-                    impulse_force=impulse_force, impulse_duration=impulse_duration,
-                    yaw_moment=controller, stop_on_warnings=False)
+    return simulate(chair, speed, RunSpec(horizon=duration, scheme=scheme, model=model, dt=dt, push_force=impulse_force,
+                                          push_duration=impulse_duration, stop_on_warnings=False),
+                    yaw_moment=controller)
 
 
 def recovery(chair: Chair, speed: float, controller: DigitalController | None, *,

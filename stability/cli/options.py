@@ -19,9 +19,10 @@ from stability import chair as chair_mod
 from stability import tires
 from stability.cli.numbers import bound_for, number
 from stability.settings import defaults
+from stability.settings.run import RUN_SETTINGS, Setting
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
-           "add_friction_law_option", "add_json_options",
+           "add_run_options", "run_from_args", "run_flag", "add_json_options",
            "subparsers", "schema_name", "add_output_option", "check_format", "add_uncertainty_option", "FIGURE_FORMATS"]
 
 _NEGATIVE = re.compile(r"^-(\d|\.\d)")
@@ -149,26 +150,115 @@ def subparsers(parser: argparse.ArgumentParser) -> list[argparse.ArgumentParser]
     return out
 
 
-def add_friction_law_option(parser: argparse.ArgumentParser, measures: bool = False) -> None:
-    """Add ``--friction-law {kinetic,stick-slip}``.
+def run_flag(name: str) -> str:
+    """The command lines' option of RunSpec field ``name`` (``push_duration`` -> ``--push-duration``).
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    str
+    """
+    return RUN_SETTINGS[name].flag or "--" + name.replace("_", "-")
+
+
+def _run_value(flag: str, setting: Setting) -> Any:
+    """The argparse ``type`` of one numeric run setting: a finite number within its bound, or a special word."""
+    bound = setting.bound
+    words = {str(w).lower(): w for w in setting.special}
+    infinite = bound is not None and bound.hi == float("inf")
+
+    def parse(text: str) -> Any:
+        if text.strip().lower() in words:
+            return words[text.strip().lower()]
+        rng = f"; valid range: {setting.range_text('value')}"
+        try:
+            value = float(text)
+        except (TypeError, ValueError, OverflowError):
+            raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid; expected a number{rng}") from None
+        if value != value or (value in (float("inf"), float("-inf")) and not infinite):
+            raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid; expected a finite number{rng}")
+        if bound is not None and not bound.holds(value):
+            raise argparse.ArgumentTypeError(f"{flag} {text} is invalid{rng}")
+        return value
+
+    parse.__name__ = "float"
+    return parse
+
+
+def add_run_options(parser: argparse.ArgumentParser, names: Sequence[str], base: Any = None) -> None:
+    """Add the options of the RunSpec fields ``names``, generated from their metadata (one table).
+
+    Each option takes its name, default, valid range or choices and help from
+    :data:`stability.settings.run.RUN_SETTINGS`, so a command line refuses
+    exactly what the API refuses, with the same range.
 
     Parameters
     ----------
     parser : argparse.ArgumentParser
         The command's parser.
-    measures : bool
-        The command computes nonlinear measures: default
-        :data:`stability.settings.defaults.MEASURE_FRICTION_LAW` ("stick-slip"); else
-        :data:`stability.settings.defaults.FRICTION_LAW` (the scheme's own: kinetic
-        for the wchair scheme, program WCHAIR's).
+    names : sequence of str
+        RunSpec fields to offer (e.g. ``("speed", "push_force", "horizon")``).
+    base : RunSpec, optional
+        The defaults (default ``RunSpec()``).
     """
-    default = defaults.MEASURE_FRICTION_LAW if measures else defaults.FRICTION_LAW
-    said = f"default {default}" if default else "default: kinetic for the wchair scheme, as program WCHAIR"
-    parser.add_argument("--friction-law", default=default, choices=["kinetic", "stick-slip"],
-                        help="pin friction of free casters in the fixed-step scheme: kinetic (program WCHAIR's: "
-                             "against the swivel rate, switching with its sign) or stick-slip (a caster at rest "
-                             "stays there while friction can hold it; converged in the step where kinetic is not, "
-                             f"docs/simulator.md); {said}; the adaptive scheme is always stick-slip")
+    from stability.settings.run import RunSpec
+
+    base = base if base is not None else RunSpec()
+    for name in names:
+        st = RUN_SETTINGS[name]
+        flag, default = run_flag(name), getattr(base, name)
+        unit = f", {st.unit}" if st.unit else ""
+        shown = "none" if default is None else (f"{default:g}" if isinstance(default, float) else str(default))
+        if st.choices is not None and set(st.choices) <= {True, False, None}:
+            parser.add_argument(flag, dest=name, action=argparse.BooleanOptionalAction, default=default,
+                                help=f"{st.help} (default {shown})")
+        elif st.choices is not None:
+            parser.add_argument(flag, dest=name, choices=list(st.choices), default=default,
+                                help=f"{st.help}: {st.range_text(name)} (default {shown})")
+        else:
+            parser.add_argument(flag, dest=name, type=_run_value(flag, st), default=default,
+                                metavar=st.unit.upper().replace("/", "_") or "X",
+                                help=f"{st.help}{unit}; {st.range_text('value')} (default {shown})")
+
+
+def run_from_args(args: argparse.Namespace, names: Sequence[str], base: Any = None, **fixed: Any) -> Any:
+    """The RunSpec a command's options describe: ``base`` with the fields ``names`` from ``args``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options (from :func:`add_run_options`).
+    names : sequence of str
+        The RunSpec fields the command offers.
+    base : RunSpec, optional
+        The other fields (default ``RunSpec()``).
+    **fixed
+        Fields the command sets itself.
+
+    Returns
+    -------
+    RunSpec
+
+    Raises
+    ------
+    ValueError
+        Settings that do not go together, the message naming the options (``--push-duration``) rather than the
+        API's fields.
+    """
+    from stability.settings.run import RunSpec
+
+    base = base if base is not None else RunSpec()
+    try:
+        return base.replace(**{n: getattr(args, n) for n in names}, **fixed)
+    except ValueError as exc:
+        msg = str(exc)
+        for n in names:
+            msg = re.sub(rf"\b{n}=", f"{run_flag(n)} ", msg)
+            msg = re.sub(rf"\b{n}\b(?= =| <| >)", run_flag(n), msg)
+        raise ValueError(msg) from None
 
 
 def add_model_option(parser: argparse.ArgumentParser) -> None:

@@ -28,8 +28,9 @@ from stability.linear.intervals import (
     solves_per_draw,
 )
 from stability.runtime.checks import check_model
-from stability.settings.defaults import MEASURE_FRICTION_LAW, SUMMARY_SPEEDS
+from stability.settings.defaults import SUMMARY_SPEEDS
 from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.uncertainty import Uncertainty
 
 __all__ = ["Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
@@ -381,7 +382,8 @@ def _nonlinear(chairs: Sequence[Chair], model: str, nonlinear_speeds: Sequence[f
 
     flat_chairs = [c for _ in nonlinear_speeds for c in chairs]
     flat_speeds = np.array([float(s) for s in nonlinear_speeds for _ in chairs])
-    res = critical_impulses(flat_chairs, flat_speeds, model=model)
+    run = RunSpec(model=model)
+    res = critical_impulses(flat_chairs, flat_speeds, run)
     qs = []
     n = len(chairs)
     for j, s in enumerate(nonlinear_speeds):
@@ -392,7 +394,7 @@ def _nonlinear(chairs: Sequence[Chair], model: str, nonlinear_speeds: Sequence[f
         qs.append(Quantity(f"critical_impulse_Ns@{s:g}", f"critical impulse at {s:g} m/s", "N s", True, vals,
                            tuple(None for _ in chairs), f"level not reached with pushes up to {largest:.3g} N s"))
     push = (f"{res[0].push}; reference push {THESIS_PUSH.describe(0.001)}" if res else THESIS_PUSH.describe(0.001)) \
-        + f"; {MEASURE_FRICTION_LAW} pin friction (docs/simulator.md)"
+        + f"; {run.friction_law} pin friction (docs/simulator.md)"
     return qs, push
 
 

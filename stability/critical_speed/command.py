@@ -201,8 +201,10 @@ def _run(args: argparse.Namespace) -> int:
         intervals = linear_intervals(c, unc, model=args.model, speeds=speeds, max_speed=args.max_speed,
                                      samples=args.samples, seed=args.seed, level=args.level)
         if args.nonlinear:
-            nonlinear = nonlinear_intervals(c, unc, model=args.model, samples=args.nonlinear_samples, seed=args.seed,
-                                            level=args.level)
+            from stability.settings.run import RunSpec
+
+            nonlinear = nonlinear_intervals(c, unc, RunSpec(model=args.model), samples=args.nonlinear_samples,
+                                            seed=args.seed, level=args.level)
     if args.output:
         from stability.runtime.files import save_figure
 

@@ -25,8 +25,8 @@ from stability.report.trail_window import TrailWindow, trail_window
 from stability.report.uncertainty_data import UncertaintySection, UncertaintySpec, uncertainty_section
 from stability.report.validity import responses_validity
 from stability.runtime.progress import ProgressBar
-from stability.settings.defaults import MEASURE_FRICTION_LAW
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.shimmy.band import shimmy_band
 from stability.study.impulse import critical_impulses
 from stability.study.validation import linearisation_check, with_rolling_resistance
@@ -236,9 +236,27 @@ def equal_instability_range(c: Chair, model: str, s: Settings, scheme: str = "wc
     stability.study.EqualInstabilityInterval
     """
     return study.equal_instability_interval(
-        c, model=model, push=THESIS_PUSH, criterion=study.Criterion(duration=s.duration), scheme=scheme, dt=s.dt,
+        c, report_run(model, s, scheme), criterion=study.Criterion(duration=s.duration),
         bracket=s.bracket if s.quick else study.RANGE_BRACKET, tol=s.tol if s.quick else study.RANGE_TOL,
-        candidates=s.candidates, friction_law=MEASURE_FRICTION_LAW)
+        candidates=s.candidates)
+
+
+def report_run(model: str, s: Settings, scheme: str) -> RunSpec:
+    """The report's runs: the thesis's push, the settings' step and horizon, ``model`` and ``scheme``, the
+    default (stick-slip) pin friction.
+
+    Parameters
+    ----------
+    model : {"exact", "thesis"}
+    s : Settings
+    scheme : str
+
+    Returns
+    -------
+    RunSpec
+    """
+    return RunSpec(model=model, scheme=scheme, dt=s.dt, horizon=s.duration, push_force=THESIS_PUSH.force,
+                   push_duration=THESIS_PUSH.duration)
 
 
 def counterpart(c: Chair) -> Chair:
@@ -345,9 +363,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     """
     s = settings or Settings.for_mode(quick)
     other = "thesis" if model == "exact" else "exact"
-    sim: dict[str, Any] = dict(dt=s.dt, scheme=scheme)
+    run = report_run(model, s, scheme)
     crit = study.Criterion(duration=s.duration)
-    push = THESIS_PUSH.as_tuple
     ref_chair = preset(REFERENCE_CHAIR)
     is_ej = c == ref_chair
     light = ref_chair.replace(name=f"{REFERENCE_CHAIR}, m {FIGURE_8_14['m']:g} kg, I_z {FIGURE_8_14['i_z']:g} kg m^2",
@@ -378,9 +395,9 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         extra = ([c] + study.friction_variants(c) if not is_ej else []) + [light] + (
             [baseline] if baseline is not None else [])
         thesis, extra_res, other_table = study.thesis_study(
-            model=model, criterion=crit, plan=s.plan, extra_chairs=extra,
+            run, criterion=crit, plan=s.plan, extra_chairs=extra,
             extra_plan_chair=None if is_ej else c, extra_plan=study.plan_for(c, s.plan), progress=progress,
-            bracket=s.bracket, tol=s.tol, candidates=s.candidates, **sim)
+            bracket=s.bracket, tol=s.tol, candidates=s.candidates)
         chair_sweeps: Any
         if is_ej:
             chair_sweeps = thesis.sweeps
@@ -399,37 +416,32 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         subject = preset(COMPARISON_CHAIR) if is_ej else c
         intervals = equal_instability_range(subject, model, s, scheme)
         rated = ([c, ref_chair] if not is_ej else [c, subject]) + ([baseline] if baseline is not None else [])
-        impulses = tuple(critical_impulses(rated, REFERENCE_SPEED, model=model, scheme=scheme, duration=push[1],
-                                           horizon=s.duration, dt=s.dt, rel_tol=s.impulse_rel_tol))
+        impulses = tuple(critical_impulses(rated, REFERENCE_SPEED, run, rel_tol=s.impulse_rel_tol))
         base_impulse = None
         if baseline is not None:
             base_impulse, impulses = impulses[-1], impulses[:-1]
-        sensitivity = study.elasticities(c, REFERENCE_SPEED, model=model, rel_tol=s.impulse_tol, scheme=scheme,
-                                         duration=push[1], horizon=s.duration, dt=s.dt)
+        sensitivity = study.elasticities(c, REFERENCE_SPEED, run, rel_tol=s.impulse_tol)
         stage("intervals, critical impulses and elasticities")
         u_star = chair_speed.speed if chair_speed.status == "found" else REFERENCE_SPEED
         r_speeds = response_speeds(u_star)
-        responses = study.yaw_rate_responses(c, r_speeds, model=model, criterion=crit, progress=False, **sim)
+        responses = study.yaw_rate_responses(c, r_speeds, run, criterion=crit, progress=False)
         free = c.replace(pin_friction_left=0.0, pin_friction_right=0.0, name=f"{c.name}, no pin friction")
         f_speeds = [round(0.5 * u_star, 2), u_star]
-        frictionless = study.yaw_rate_responses(free, f_speeds, model=model, criterion=crit, progress=False, **sim)
+        frictionless = study.yaw_rate_responses(free, f_speeds, run, criterion=crit, progress=False)
         stage("yaw-rate responses")
         path_crit = study.Criterion(duration=min(6.0, s.duration))
         pair = [c, counterpart(c)]
-        paths = study.trajectories(pair, REFERENCE_SPEED, model=model, criterion=path_crit, progress=False, **sim)
+        paths = study.trajectories(pair, REFERENCE_SPEED, run, criterion=path_crit, progress=False)
         valid = dict(
-            responses=responses_validity([c] * len(r_speeds), r_speeds, model=model, scheme=scheme, impulse=push,
-                                         duration=crit.duration, dt=s.dt),
-            frictionless=responses_validity([free] * 2, f_speeds, model=model, scheme=scheme, impulse=push,
-                                            duration=crit.duration, dt=s.dt),
-            paths=responses_validity(pair, [REFERENCE_SPEED] * 2, model=model, scheme=scheme, impulse=push,
-                                     duration=path_crit.duration, dt=s.dt))
+            responses=responses_validity([c] * len(r_speeds), r_speeds, run.replace(horizon=crit.duration)),
+            frictionless=responses_validity([free] * 2, f_speeds, run.replace(horizon=crit.duration)),
+            paths=responses_validity(pair, [REFERENCE_SPEED] * 2, run.replace(horizon=path_crit.duration)))
         stage("trajectories and validity")
-        fmap = study.stability_map(c, s.map_speeds, s.map_frictions, model=model, criterion=crit,
-                                   reference=thesis.reference_time, progress=progress, **sim)
+        fmap = study.stability_map(c, s.map_speeds, s.map_frictions, run, criterion=crit,
+                                   reference=thesis.reference_time, progress=progress)
         stage("stability map: speed x friction")
-        dmap = study.disturbance_map(c, s.map_speeds, s.map_impulses, model=model, criterion=crit,
-                                     reference=thesis.reference_time, progress=progress, **sim)
+        dmap = study.disturbance_map(c, s.map_speeds, s.map_impulses, run, criterion=crit,
+                                     reference=thesis.reference_time, progress=progress)
         stage("stability map: speed x disturbance")
         conclusions = study.check_conclusions(thesis, own=None if is_ej else chair_sweeps,
                                               own_friction=() if is_ej else chair_friction)

@@ -16,6 +16,7 @@ from stability.linear.batch import ChairBatch
 from stability.linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
 from stability.report.settings import Settings
 from stability.settings.reference import REFERENCE_SPEED
+from stability.settings.run import RunSpec
 from stability.study.uncertain import NonlinearIntervals, nonlinear_intervals
 from stability.uncertainty import Uncertainty
 
@@ -126,8 +127,8 @@ def uncertainty_section(chair: Chair, spec: UncertaintySpec, *, model: str, quic
     if nonlinear:
         n = min(int(spec.samples), QUICK_NONLINEAR_SAMPLES if quick else NONLINEAR_SAMPLES)
         # the tolerances of the report's own critical impulses and equal-instability speeds (compute.compute)
-        nl = nonlinear_intervals(chair, spec.uncertainty, speed=REFERENCE_SPEED, model=model, samples=n,
-                                 seed=spec.seed, scheme=scheme, horizon=s.duration, dt=s.dt,
-                                 rel_tol=s.impulse_rel_tol, bracket=s.bracket, tol=s.tol,
-                                 candidates=s.candidates)
+        nl = nonlinear_intervals(chair, spec.uncertainty, RunSpec(model=model, scheme=scheme, dt=s.dt,
+                                                                  horizon=s.duration),
+                                 speed=REFERENCE_SPEED, samples=n, seed=spec.seed, rel_tol=s.impulse_rel_tol,
+                                 bracket=s.bracket, tol=s.tol, candidates=s.candidates)
     return UncertaintySection(spec, iv, np.asarray(nominal, dtype=float), nl)

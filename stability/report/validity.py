@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair
+from stability.settings.run import RunSpec
 from stability.simulate import LOAD_LIMIT_N, SLIP_LIMIT_DEG
 from stability.study import runs
 
@@ -79,25 +80,18 @@ def run_validity(result: Any) -> Validity:
     return Validity(until, reason)
 
 
-def responses_validity(chairs: Sequence[Chair], speeds: Sequence[float], *, model: str, scheme: str,
-                       impulse: tuple[float, float], duration: float, dt: float | None) -> tuple[Validity, ...]:
+def responses_validity(chairs: Sequence[Chair], speeds: Sequence[float], run: RunSpec) -> tuple[Validity, ...]:
     """Validity of the runs behind a :class:`stability.study.ResponseSet` (the same runs, simulated again).
 
     Parameters
     ----------
     chairs, speeds : sequence
         One chair and one speed (m/s) per run, as given to the study.
-    model, scheme : str
-    impulse : (float, float)
-        Push force (N) and duration (s).
-    duration : float
-        Simulated time, s.
-    dt : float or None
-        Fixed step, s.
+    run : RunSpec
+        The runs' settings, as given to the study.
 
     Returns
     -------
     tuple of Validity
     """
-    opts = runs.sim_options(model, scheme, impulse, dt, duration, {})
-    return tuple(run_validity(r) for r in runs.simulate_runs(list(chairs), list(speeds), **opts))
+    return tuple(run_validity(r) for r in runs.simulate_runs(list(chairs), list(speeds), runs.study_run(run)))

@@ -30,12 +30,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from stability.settings.reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.reference import LEVEL, REFERENCE_CHAIR
+from stability.settings.run import RUN_SETTINGS, RunSpec
 
-__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW", "MEASURE_FRICTION_LAW",
+__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW",
            "SCHEME", "DT", "SPEED",
            "PUSH_FORCE",
-           "PUSH_DURATION", "YAW_RATE_LEVEL", "HORIZON_S", "MAX_IMPULSE", "TIRE_RANGE", "SIM_OUT_OF_RANGE", "MAX_SPEED",
+           "PUSH_DURATION", "YAW_RATE_LEVEL", "HORIZON_S", "MAX_IMPULSE", "TIRE_RANGE", "MAX_SPEED",
            "SAMPLES", "SEED", "COVERAGE", "NONLINEAR_SAMPLES", "SUMMARY_SPEEDS", "SHIMMY_SPEEDS", "STUDY_SPEEDS",
            "ASSIST_SPEEDS", "HANDRIM_WHEEL_RADIUS", "HANDRIM_RADIUS", "DRIVE_WHEEL_RADIUS", "TORQUE_LIMIT",
            "MOTOR_LAG", "TRACTION_COEFFICIENT", "SAMPLE_RATE_HZ", "BIAS_TIME_CONSTANT", "GYRO_NOISE", "GYRO_BIAS",
@@ -84,38 +85,32 @@ def speeds_text(speeds: tuple[float, ...]) -> str:
 CHAIR = REFERENCE_CHAIR
 POWER_CHAIR = "power-fwd"
 
-# --- models and integration ------------------------------------------------------------------------------
+# --- models and integration: the run settings' defaults are the RunSpec's (stability.settings.run) ----------
+_RUN = RunSpec()
 #: Equation variant of every analysis and simulation: "exact" (the thesis's linearisation mistakes
 #: corrected) or "thesis" (program WCHAIR's equations); see docs/models.md.
-MODEL = "exact"
+MODEL = _RUN.model
 #: Caster condition: "free" (swivelling, Coulomb pin friction) or "locked".
-CASTERS = "free"
-#: Pin friction law of the fixed-step scheme: None picks "kinetic" for the wchair scheme (program WCHAIR's: the
-#: moment always opposes the swivel rate, switching with its sign) and "stick-slip" for the adaptive one (a caster at
-#: rest stays at rest while friction can hold it); "stick-slip" on the wchair scheme too (docs/simulator.md).
-FRICTION_LAW = None
-#: Pin friction law of the nonlinear measures' runs (critical impulse, equal-instability speed, the studies'
-#: time histories): "stick-slip", converged in the step where the kinetic law is not (power-fwd's critical impulse at
-#: 1.5 m/s: 7.82 N s at 1 ms and 7.81 N s at 0.25 ms and in the adaptive scheme; kinetic: < 1e-6 N s at 1 ms).
-MEASURE_FRICTION_LAW = "stick-slip"
+CASTERS = _RUN.casters
+#: Pin friction law of every run: "stick-slip" (a caster at rest stays at rest while friction can hold it;
+#: converged in the step where program WCHAIR's "kinetic" law is not: docs/simulator.md).
+FRICTION_LAW = _RUN.friction_law
 #: Integration scheme of the simulator: program WCHAIR's fixed step ("wchair") or error-controlled ("adaptive").
-SCHEME = "wchair"
+SCHEME = _RUN.scheme
 #: Fixed time step of the wchair scheme, s (WCHAIR's TSTEP).
-DT = 0.001
+DT = _RUN.dt
 #: Speed of a single run or check, m/s (the thesis's reference speed, Figure 8-3a).
-SPEED = REFERENCE_SPEED
+SPEED = _RUN.speed
 #: The reference push at the c.g.: force (N, to the right) and duration (s), thesis chapter 8.
-PUSH_FORCE = THESIS_PUSH.force
-PUSH_DURATION = THESIS_PUSH.duration
+PUSH_FORCE = _RUN.push_force
+PUSH_DURATION = _RUN.push_duration
 #: The instability criterion: |yaw rate| level (rad/s) reached within a horizon (s).
 YAW_RATE_LEVEL = LEVEL
-HORIZON_S = HORIZON
+HORIZON_S = _RUN.horizon
 #: Largest push a critical-impulse search tries, N s.
 MAX_IMPULSE = 40.0
 #: Tire data outside its fitted slip and load range: "warn" (extrapolate and note), "clamp" or "raise".
 TIRE_RANGE = "warn"
-#: The simulator's own handling of the tire fits outside the data (MECHAN clamps the slip angle at 8 deg).
-SIM_OUT_OF_RANGE = "clamp"
 
 # --- linear analysis and uncertainty ---------------------------------------------------------------------
 #: Upper end of the critical-speed search, m/s.
@@ -181,20 +176,9 @@ ADVISE_CROSS_SLOPE_DEG = 2.0
 TABLE: dict[str, Default] = {
     "chair": Default(CHAIR, "", "chair (preset name or TOML file) of the commands that take --chair"),
     "power_chair": Default(POWER_CHAIR, "", "chair of the power-chair commands (assist)"),
-    "model": Default(MODEL, "", "equation variant: exact or thesis"),
-    "casters": Default(CASTERS, "", "caster condition: free or locked"),
-    "friction_law": Default(FRICTION_LAW, "", "pin friction law: kinetic or stick-slip (None: the scheme's own)"),
-    "measure_friction_law": Default(MEASURE_FRICTION_LAW, "", "pin friction law of the nonlinear measures' runs"),
-    "scheme": Default(SCHEME, "", "simulator integration scheme: wchair or adaptive"),
-    "dt": Default(DT, "s", "fixed step of the wchair scheme"),
-    "speed": Default(SPEED, "m/s", "speed of a single run"),
-    "push_force": Default(PUSH_FORCE, "N", "reference push at the c.g."),
-    "push_duration": Default(PUSH_DURATION, "s", "duration of the reference push"),
     "yaw_rate_level": Default(YAW_RATE_LEVEL, "rad/s", "|yaw rate| level of the instability criterion"),
-    "horizon": Default(HORIZON_S, "s", "simulated time within which the level must be reached"),
     "max_impulse": Default(MAX_IMPULSE, "N s", "largest push a critical-impulse search tries"),
     "tire_range": Default(TIRE_RANGE, "", "tire data outside the fitted range: warn, clamp or raise"),
-    "sim_out_of_range": Default(SIM_OUT_OF_RANGE, "", "the simulator's tire fits outside the data"),
     "max_speed": Default(MAX_SPEED, "m/s", "upper end of the critical-speed search"),
     "samples": Default(SAMPLES, "", "Monte Carlo draws of the linear intervals"),
     "seed": Default(SEED, "", "seed of the draws"),
@@ -225,3 +209,5 @@ TABLE: dict[str, Default] = {
     "cross_slope": Default(CROSS_SLOPE, "deg", "cross slope, falling to the right + (level ground)"),
     "grade": Default(GRADE, "deg", "grade, uphill + (level ground)"),
 }
+#: Every run setting's default, unit and meaning, from the RunSpec's own table (stability.settings.run).
+TABLE.update({name: Default(getattr(_RUN, name), st.unit, st.help) for name, st in RUN_SETTINGS.items()})

@@ -1,20 +1,21 @@
 """Nonlinear simulation of a freely rolling wheelchair (Collins 1987, chapter 7, program WCHAIR).
 
-Two schemes share one physics (:mod:`.physics`): program WCHAIR's fixed-step
-scheme (:mod:`.wchair`) and an error-controlled adaptive scheme with
-stick-slip pin friction (:mod:`.adaptive`).  Defaults come from one table
-(:data:`.options.DEFAULTS`).  Schemes, conventions and performance are
-described in ``docs/simulator.md``.
+Two schemes: program WCHAIR's fixed-step scheme and an error-controlled
+adaptive scheme with event-located stick and slip (:mod:`.adaptive`).  Every
+setting of a run, its default and its valid range are one frozen object,
+:class:`~stability.settings.run.RunSpec` (``run=``).  Schemes, conventions and
+performance are described in ``docs/simulator.md``.
 
 Examples
 --------
 >>> from stability.chair import preset
->>> from stability.simulate import simulate
->>> res = simulate(preset("ej-premier"), 0.75, duration=4.0)   # doctest: +SKIP
+>>> from stability.simulate import RunSpec, simulate
+>>> res = simulate(preset("ej-premier"), 0.75, RunSpec(horizon=4.0))   # doctest: +SKIP
 >>> round(res.first_time_abs_yaw_rate(1.0), 2)                   # doctest: +SKIP
 3.2
 """
 
+from stability.settings.run import RunSpec
 from stability.simulate.api import reference_engine, simulate, simulate_batch
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, STATS_LEVELS
@@ -22,7 +23,6 @@ from stability.simulate.linearise import linearise
 from stability.simulate.options import (
     ADAPTIVE_METHOD,
     CASTERS,
-    DEFAULTS,
     LOAD_LIMIT_N,
     MODELS,
     OUT_OF_RANGE_POLICIES,
@@ -31,7 +31,6 @@ from stability.simulate.options import (
     WARNING_LIMIT,
     WHEEL_LABELS,
     WHEELS,
-    SimulationDefaults,
 )
 from stability.simulate.results import ChairState, RunStats, SimulationResult
 from stability.simulate.stepcheck import StepStabilityWarning
@@ -47,8 +46,7 @@ __all__ = [
     "LOAD_LIMIT_N",
     "WARNING_LIMIT",
     "ADAPTIVE_METHOD",
-    "DEFAULTS",
-    "SimulationDefaults",
+    "RunSpec",
     "ChairState",
     "SimulationResult",
     "simulate",

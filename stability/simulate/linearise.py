@@ -10,13 +10,14 @@ import numpy as np
 from stability import tires
 from stability.chair import Chair
 from stability.runtime.checks import check_positive, check_speed
+from stability.settings.run import RunSpec
 from stability.simulate.adaptive import FREE_POS, LOCKED, AdaptiveModel
-from stability.simulate.options import DEFAULTS, initial_velocities, make_options
+from stability.simulate.options import initial_velocities, make_options
 
 __all__ = ["linearise"]
 
 
-def linearise(chair: Chair, speed: float, *, model: str = DEFAULTS.model, casters: str = DEFAULTS.casters,
+def linearise(chair: Chair, speed: float, *, model: str = "exact", casters: str = "free",
               step: float = 1e-6) -> Any:
     """The simulator's own linearisation about straight running, by central differences.
 
@@ -59,11 +60,9 @@ def linearise(chair: Chair, speed: float, *, model: str = DEFAULTS.model, caster
     step = check_positive("step", step)
     chair = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
     # the defaults, except: the adaptive scheme's right-hand side, no disturbance, the tire-range policy in force
-    settings = dict(DEFAULTS.as_dict(), duration=1.0, scheme="adaptive", model=model, casters=casters,
-                    impulse_force=0.0, impulse_duration=0.0, stop_on_warnings=False,
-                    out_of_range=tires.get_policy().evaluation)
-    del settings["controller"], settings["record"]     # options of the compiled WCHAIR kernel only
-    opts = make_options(**settings)
+    opts = make_options(RunSpec(speed=speed, horizon=1.0, scheme="adaptive", model=model, casters=casters,
+                                push_force=0.0, push_duration=0.0, stop_on_warnings=False,
+                                out_of_range=tires.get_policy().evaluation))
     modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)
     u0, _ = initial_velocities(opts, speed)
     mz_in = [0.0]                       # the yaw-moment input of the evaluation below (N m)

@@ -22,7 +22,7 @@ from stability.cli import (
 )
 from stability.settings import defaults as D
 from stability.slope.equilibrium import HandRim, drive_report, solve
-from stability.study.veer import simulator_path, uncorrected_path
+from stability.study.veer import VEER_RUN, simulator_path, uncorrected_path
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -126,8 +126,8 @@ def _simulated(chair, eq, t_end: float) -> dict:
         for friction in (True, False):
             key = f"{scheme}_{'pin_friction' if friction else 'frictionless'}"
             try:
-                path = simulator_path(chair, eq, scheme=scheme, duration=t_end, pin_friction=friction,
-                                      report_time=t_end)
+                path = simulator_path(chair, eq, VEER_RUN.replace(scheme=scheme, horizon=t_end),
+                                      pin_friction=friction, report_time=t_end)
             except ValueError as exc:   # e.g. viscous pin damping, a slope beyond the simulator's 15 deg
                 out[key] = {"error": str(exc)}
                 continue

@@ -10,21 +10,25 @@ from stability.chair import Chair
 from stability.cli import (
     OneLineErrorParser,
     add_chair_options,
-    add_friction_law_option,
     add_json_options,
-    add_model_option,
+    add_run_options,
     check_outputs,
     emit_json,
     json_header,
     load_chair,
     parse_speeds,
     run,
+    run_from_args,
 )
 from stability.settings import defaults as D
-from stability.settings.reference import THESIS_PUSH, Push
 from stability.study.impulse import check_study_work, critical_impulse_curve, runs_per_speed
 from stability.study.impulse_intervals import critical_impulse_intervals
 from stability.study.intervals import RANGE_DEFINITION, equal_instability_interval
+
+#: The run settings each subcommand offers (options generated from the RunSpec's table): the critical impulse
+#: varies the push force, the equal-instability speed the speed.
+CRITICAL_RUN = ("model", "friction_law", "push_duration", "horizon", "dt")
+EQUAL_RUN = ("model", "friction_law", "push_force")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -32,23 +36,16 @@ def build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineErrorParser)
     ci = sub.add_parser("critical-impulse", help="smallest push (N s) after which |yaw rate| reaches the level")
     ei = sub.add_parser("equal-instability", help="equal-instability speed with its interval")
-    for s in (ci, ei):
+    for s, names in ((ci, CRITICAL_RUN), (ei, EQUAL_RUN)):
         add_chair_options(s)
-        add_model_option(s)
-        add_friction_law_option(s, measures=True)
+        add_run_options(s, names)
         add_json_options(s)
     ci.add_argument("--speeds", default=D.STUDY_SPEEDS,
                     help=f"START:STOP:STEP or a list, m/s (default {D.STUDY_SPEEDS})")
-    ci.add_argument("--duration", type=float, default=D.PUSH_DURATION,
-                    help=f"push duration, s (default {D.PUSH_DURATION:g})")
     ci.add_argument("--level", type=float, default=D.YAW_RATE_LEVEL,
                     help=f"|yaw rate| level of the instability criterion, rad/s (default {D.YAW_RATE_LEVEL:g})")
-    ci.add_argument("--horizon", type=float, default=D.HORIZON_S,
-                    help=f"simulated time within which the level must be reached, s (default {D.HORIZON_S:g})")
     ci.add_argument("--max-impulse", type=float, default=D.MAX_IMPULSE,
                     help=f"largest push tried, N s (default {D.MAX_IMPULSE:g})")
-    ei.add_argument("--force", type=float, default=D.PUSH_FORCE,
-                    help=f"nominal push force, N (default {D.PUSH_FORCE:g}, for {D.PUSH_DURATION:g} s)")
     ci.add_argument("--interval", action="store_true",
                     help="also the range over pin friction x0.5 and x1.5 and the other model")
     ei.add_argument("--chair-friction-only", action="store_true",
@@ -58,8 +55,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair) -> None:
     if args.json or args.json_file:
-        units = {"duration": "push_duration_s", "level": "yaw_rate_level_rad_s", "horizon": "horizon_s",
-                 "max_impulse": "max_impulse_Ns", "force": "push_force_N"}
+        units = {"push_duration": "push_duration_s", "level": "yaw_rate_level_rad_s", "horizon": "horizon_s",
+             "max_impulse": "max_impulse_Ns", "push_force": "push_force_N", "dt": "dt_s"}
         options = {units.get(k, k): v for k, v in vars(args).items()
                    if k not in ("chair", "set", "json", "json_file", "debug", "quiet", "tire_notes", "speeds",
                                 "model")}
@@ -73,18 +70,16 @@ def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair) -> None
 def _critical(args: argparse.Namespace) -> None:
     chair = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
-    check_study_work([chair] * len(speeds), speeds, args.model, args.horizon, 0.001,
+    run_spec = run_from_args(args, CRITICAL_RUN)
+    check_study_work([chair] * len(speeds), speeds, run_spec.model, run_spec.horizon,
+                     0.001 if run_spec.dt == "auto" else float(run_spec.dt),
                      runs_per_speed(max_impulse=args.max_impulse), "--horizon")
-    curve = critical_impulse_curve(chair, speeds, model=args.model, duration=args.duration, level=args.level,
-                                   horizon=args.horizon, max_impulse=args.max_impulse, friction_law=args.friction_law)
-    law = args.friction_law
-    lines = [f"{chair.name}, {args.model} model, {law} pin friction: critical impulse for |yaw rate| >= "
-             f"{args.level:g} rad/s within {args.horizon:g} s", f"push: {curve.points[0].push}",
+    curve = critical_impulse_curve(chair, speeds, run_spec, level=args.level, max_impulse=args.max_impulse)
+    lines = [f"{chair.name}, {run_spec.model} model, {run_spec.friction_law} pin friction: critical impulse for "
+             f"|yaw rate| >= {args.level:g} rad/s within {run_spec.horizon:g} s", f"push: {curve.points[0].push}",
              "kick: the sideways speed the push gives the chair (impulse / mass)"]
-    opts = dict(duration=args.duration, level=args.level, horizon=args.horizon, max_impulse=args.max_impulse,
-                friction_law=args.friction_law)
-    ivs = [critical_impulse_intervals([chair], float(u), model=args.model, **opts)[0] for u in speeds] \
-        if args.interval else []
+    ivs = [critical_impulse_intervals([chair], float(u), run_spec, level=args.level,
+                                      max_impulse=args.max_impulse)[0] for u in speeds] if args.interval else []
     for k, p in enumerate(curve.points):
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
         rng = (f"  range {ivs[k].low_Ns:.3g}-{ivs[k].high_Ns:.3g} N s over "
@@ -98,14 +93,14 @@ def _critical(args: argparse.Namespace) -> None:
 
 def _interval(args: argparse.Namespace) -> None:
     chair = load_chair(args.chair, args.set)
-    r = equal_instability_interval(chair, model=args.model, push=Push(args.force, THESIS_PUSH.duration),
-                                   friction_on_reference=not args.chair_friction_only, friction_law=args.friction_law)
+    run_spec = run_from_args(args, EQUAL_RUN)
+    r = equal_instability_interval(chair, run_spec, friction_on_reference=not args.chair_friction_only)
     definition = _EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED) + (
         RANGE_DEFINITION if not args.chair_friction_only else
         RANGE_DEFINITION.replace("(on both the chair and the reference chair)", "(on the chair only: "
                                  "--chair-friction-only, not the report's and the advisor's range)"))
     lines = [f"{chair.name}: equal-instability speed {r.describe()}", f"push: {r.push}; pin friction factors "
-             f"applied to {r.friction_scope}; {args.friction_law} pin friction", definition]
+             f"applied to {r.friction_scope}; {run_spec.friction_law} pin friction", definition]
     for v in r.variants:
         sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
         lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")

@@ -11,7 +11,8 @@ import numpy as np
 
 from stability.chair import Chair, preset
 from stability.runtime.progress import ProgressBar
-from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
 from stability.study.summaries import run_summaries
@@ -81,9 +82,8 @@ class EqualInstability:
         return self.bracket[1] if self.status == "above" else self.bracket[0]
 
 
-def reference_time(reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED, *,
-                   impulse: Any = THESIS_PUSH.as_tuple, criterion: Criterion = DEFAULT_CRITERION, model: str = "thesis",
-                   scheme: str = "wchair", dt: float | None = 0.001, **sim_options: Any) -> float:
+def reference_time(reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
+                   run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION) -> float:
     """Time the reference case takes to reach the criterion's yaw rate (thesis: slightly over 3 s).
 
     Parameters
@@ -92,14 +92,10 @@ def reference_time(reference_chair: Chair | None = None, reference_speed: float 
         Default the E&J Premier.
     reference_speed : float
         m/s.
-    impulse : (float, float) or Push
-        Force (N) and duration (s).
+    run : RunSpec, optional
+        The run's settings (its push, model, scheme, step, pin-friction law); its horizon is the
+        criterion's duration.
     criterion : Criterion
-    model, scheme : str
-    dt : float or None
-        Fixed step, s.
-    **sim_options
-        More simulator options.
 
     Returns
     -------
@@ -107,8 +103,8 @@ def reference_time(reference_chair: Chair | None = None, reference_speed: float 
         Seconds.  Raises ValueError when the level is never reached.
     """
     ref = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
-    opts = runs.sim_options(model, scheme, check_impulse(impulse), dt, criterion.duration, sim_options)
-    res = runs.simulate_runs([ref], [reference_speed], progress=False, **opts)[0]
+    spec = runs.study_run(run).replace(horizon=criterion.duration)
+    res = runs.simulate_runs([ref], [reference_speed], spec)[0]
     t = criterion.time(res)
     if not math.isfinite(t):
         raise ValueError(f"the reference case ({ref.name} at {reference_speed:g} m/s) never reaches "
@@ -202,13 +198,11 @@ def _narrow(pts: list[tuple[float, float]], lo: float, hi: float, target: float,
     return "open", inside[k - 1][0], inside[k][0]
 
 
-def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair | None = None,
-                             reference_speed: float = REFERENCE_SPEED, impulse: Any = THESIS_PUSH.as_tuple,
-                             criterion: Criterion = DEFAULT_CRITERION, model: str = "thesis",
-                             scheme: str = "wchair", bracket: tuple = (0.2, 3.0), tol: float = 0.005,
-                             candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
-                             reference: float | None = None, progress: bool = True,
-                             **sim_options: Any) -> list[EqualInstability]:
+def equal_instability_speeds(chairs: Sequence[Chair], run: RunSpec | None = None, *,
+                             reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
+                             criterion: Criterion = DEFAULT_CRITERION, bracket: tuple = (0.2, 3.0),
+                             tol: float = 0.005, candidates: int = 7, max_rounds: int = 8,
+                             reference: float | None = None, progress: bool = True) -> list[EqualInstability]:
     """:func:`equal_instability_speed` for many chairs at once.
 
     The first round simulates ``candidates`` equally spaced speeds and the
@@ -217,14 +211,12 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
     the bracket's ends (Illinois-modified, so a one-sided approach cannot
     stall), all chairs' runs in one kernel call per round, every run stopped
     at the level.  When the bracket is narrower than ``tol`` the speed is
-    interpolated inside it (in log time).  Measured: 11-19 runs per chair
-    instead of the 30 of ``candidates`` speeds per round (the benchmark in
-    tests/benchmarks/test_bench_search.py; the same speeds to ``tol``).
+    interpolated inside it (in log time).
 
     Parameters
     ----------
     chairs : sequence of Chair
-    reference_chair, reference_speed, impulse, criterion, model, scheme
+    run, reference_chair, reference_speed, criterion
         As in :func:`equal_instability_speed`.
     bracket : (float, float)
         Speed range searched, m/s.
@@ -233,13 +225,9 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
     candidates : int
         Speeds per chair in the first round (inside the bracket).
     max_rounds : int
-    dt : float or None
-        Fixed step, s.
     reference : float, optional
         The reference case's time, s (computed when None).
     progress : bool
-    **sim_options
-        More simulator options.
 
     Returns
     -------
@@ -247,18 +235,18 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
         One per chair, in order.
     """
     chairs = list(chairs)
+    run = runs.study_run(run)
     # identical chairs (a sweep's nominal value is the base chair) are simulated once
     unique: dict = {}
     for c in chairs:
         unique.setdefault(c, len(unique))
     if len(unique) < len(chairs):
-        res = equal_instability_speeds(list(unique), reference_chair=reference_chair,
-                                       reference_speed=reference_speed, impulse=impulse, criterion=criterion,
-                                       model=model, scheme=scheme, bracket=bracket, tol=tol,
-                                       candidates=candidates, max_rounds=max_rounds, dt=dt, reference=reference,
-                                       progress=progress, **sim_options)
+        res = equal_instability_speeds(list(unique), run, reference_chair=reference_chair,
+                                       reference_speed=reference_speed, criterion=criterion, bracket=bracket, tol=tol,
+                                       candidates=candidates, max_rounds=max_rounds, reference=reference,
+                                       progress=progress)
         return [res[unique[c]] for c in chairs]
-    impulse = check_impulse(impulse)
+    check_impulse((run.push_force, run.push_duration))
     lo0, hi0 = (float(x) for x in bracket)
     if not (0 < lo0 < hi0 and math.isfinite(hi0)):
         raise ValueError(f"bracket={bracket!r} is invalid; expected 0 < low < high (m/s)")
@@ -267,18 +255,16 @@ def equal_instability_speeds(chairs: Sequence[Chair], *, reference_chair: Chair 
     candidates = max(1, int(candidates))
     ref_chair = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
     if reference is None:
-        reference = reference_time(ref_chair, reference_speed, impulse=impulse, criterion=criterion,
-                                   model=model, scheme=scheme, dt=dt, **sim_options)
-    return bisect_speeds(chairs, [float(reference)] * len(chairs), [impulse[0]] * len(chairs), impulse[1],
-                         model=model, scheme=scheme, criterion=criterion, bracket=(lo0, hi0), tol=tol,
-                         candidates=candidates, max_rounds=max_rounds, dt=dt, progress=progress,
-                         reference_text=f"{ref_chair.name} at {reference_speed:g} m/s", sim_options=sim_options)
+        reference = reference_time(ref_chair, reference_speed, run, criterion=criterion)
+    return bisect_speeds(chairs, [float(reference)] * len(chairs), [run.push_force] * len(chairs), run,
+                         criterion=criterion, bracket=(lo0, hi0), tol=tol, candidates=candidates,
+                         max_rounds=max_rounds, progress=progress,
+                         reference_text=f"{ref_chair.name} at {reference_speed:g} m/s")
 
 
-def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Sequence[float], length: float, *,
-                  model: str, scheme: str, criterion: Criterion, bracket: tuple[float, float], tol: float,
-                  candidates: int, max_rounds: int, dt: float | None, progress: bool, reference_text: str,
-                  sim_options: dict) -> list[EqualInstability]:
+def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Sequence[float], run: RunSpec, *,
+                  criterion: Criterion, bracket: tuple[float, float], tol: float, candidates: int, max_rounds: int,
+                  progress: bool, reference_text: str) -> list[EqualInstability]:
     """The vectorised bisection behind :func:`equal_instability_speeds`, with a target time and a push per chair.
 
     Parameters
@@ -288,14 +274,13 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
         Each chair's reference time, s.
     forces : sequence of float
         Each chair's push force, N.
-    length : float
-        Push duration, s (common).
-    model, scheme, criterion, bracket, tol, candidates, max_rounds, dt, progress
+    run : RunSpec
+        The runs' settings (the push's duration, model, scheme, step, pin-friction law; the horizon follows
+        the targets and the criterion).
+    criterion, bracket, tol, candidates, max_rounds, progress
         As in :func:`equal_instability_speeds`.
     reference_text : str
         The reference case in words.
-    sim_options : dict
-        More simulator options.
 
     Returns
     -------
@@ -309,7 +294,9 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
     # the reference: no need to simulate it to the end of the criterion's duration
     horizons = np.minimum(criterion.duration, 1.5 * target + 0.5)
     horizon = float(horizons.max())
-    end = horizons + (dt or 0.0) + 1e-12         # a run of a longer batch counts only up to its own horizon
+    run = run.replace(horizon=horizon)
+    dt = 0.0 if run.scheme != "wchair" else (0.001 if run.dt == "auto" else float(run.dt))
+    end = horizons + dt + 1e-12         # a run of a longer batch counts only up to its own horizon
     evals: list[list[tuple[float, float]]] = [[] for _ in range(n)]
     lo = np.full(n, lo0)
     hi = np.full(n, hi0)
@@ -333,8 +320,7 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
                         owner.append(i)
             old_lo, old_hi = lo.copy(), hi.copy()
             # every run stops when it reaches the level (its time is known then); one kernel call per round
-            summ = run_summaries(run_chairs, run_speeds, force[owner], model=model, scheme=scheme, duration=length,
-                                 dt=dt, horizon=horizon, level=criterion.yaw_rate, sim_options=sim_options)
+            summ = run_summaries(run_chairs, run_speeds, force[owner], run, level=criterion.yaw_rate)
             for i, s, t in zip(owner, run_speeds, summ.t_level.tolist(), strict=True):
                 evals[i].append((s, t if t <= end[i] else math.inf))
             for i in active:
@@ -357,19 +343,17 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
             t_hi = next(t for s, t in pts if s == hi[i])
             speed = interp_speed(lo[i], t_lo, hi[i], t_hi, float(target[i]))
         out.append(EqualInstability(c, speed, st, float(lo[i]), float(hi[i]), float(target[i]), pts, (lo0, hi0),
-                                    criterion, model, scheme, (float(force[i]), float(length)), reference_text))
+                                    criterion, run.model, run.scheme, (float(force[i]), run.push_duration),
+                                    reference_text))
     return out
 
 
-def equal_instability_speed(chair: Chair, *, reference_chair: Chair | None = None,
-                            reference_speed: float = REFERENCE_SPEED, impulse: Any = THESIS_PUSH.as_tuple,
-                            criterion: Criterion = DEFAULT_CRITERION, model: str = "thesis",
-                            scheme: str = "wchair", **options: Any) -> EqualInstability:
+def equal_instability_speed(chair: Chair, run: RunSpec | None = None, **options: Any) -> EqualInstability:
     """Forward speed at which ``chair`` is as unstable as the reference case (Figures 9-2, 9-3).
 
     The reference case is ``reference_chair`` (default the E&J Premier) at
-    ``reference_speed`` (0.75 m/s) under the push ``impulse`` (default the
-    thesis's 40 N for 0.1 s at the c.g., :data:`stability.settings.reference.THESIS_PUSH`).
+    ``reference_speed`` (0.75 m/s) under the run's push (default the thesis's
+    40 N for 0.1 s at the c.g., :data:`stability.settings.reference.THESIS_PUSH`).
     ``criterion`` (default: time to reach ``|yaw rate| = 1 rad/s``; see
     docs/studies.md) is evaluated for the reference and for ``chair`` at
     candidate speeds; the speed at which the chair's time equals the
@@ -378,17 +362,12 @@ def equal_instability_speed(chair: Chair, *, reference_chair: Chair | None = Non
     Parameters
     ----------
     chair : Chair
-    reference_chair : Chair, optional
-    reference_speed : float
-        m/s.
-    impulse : (float, float) or Push
-        Force (N), duration (s).
-    criterion : Criterion
-    model : {"thesis", "exact"}
-    scheme : {"wchair", "adaptive"}
+    run : RunSpec, optional
+        The runs' settings: the push, the model (the thesis's figures use ``model="thesis"`` and
+        ``friction_law="kinetic"``), the scheme, step and pin-friction law.
     **options
-        See :func:`equal_instability_speeds` (``bracket``, ``tol``,
-        ``candidates``, ``dt``, ``reference``, ``progress``, simulator options).
+        See :func:`equal_instability_speeds` (``reference_chair``, ``reference_speed``, ``criterion``,
+        ``bracket``, ``tol``, ``candidates``, ``reference``, ``progress``).
 
     Returns
     -------
@@ -397,6 +376,4 @@ def equal_instability_speed(chair: Chair, *, reference_chair: Chair | None = Non
         about 1.10-1.15 m/s (Figure 9-2), and with half or 1.5 times the pin
         friction at about 0.65 and 1.65 m/s (Figure 9-3).
     """
-    return equal_instability_speeds([chair], reference_chair=reference_chair, reference_speed=reference_speed,
-                                    impulse=impulse, criterion=criterion, model=model, scheme=scheme,
-                                    **options)[0]
+    return equal_instability_speeds([chair], run, **options)[0]

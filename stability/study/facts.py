@@ -11,7 +11,8 @@ import numpy as np
 
 from stability.chair import Chair, preset
 from stability.linear import state_matrices
-from stability.settings.reference import HORIZON, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH, Push
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion
 from stability.study.equal_instability import EqualInstability, bisect_speeds, equal_instability_speeds
@@ -94,11 +95,11 @@ class EqualFrictionComparison:
     push: str
 
 
-def equal_friction_comparison(chair: Chair | None = None, *, reference_chair: Chair | None = None,
-                              frictions: Sequence[float] = (0.0, 0.02, 0.05, 0.1), model: str = "exact",
-                              push: Push = THESIS_PUSH, criterion: Criterion = DEFAULT_CRITERION,
-                              scheme: str = "wchair", dt: float | None = 0.001, bracket: tuple = (0.2, 3.0),
-                              tol: float = 0.01, candidates: int = 7, **sim_options: Any) -> EqualFrictionComparison:
+def equal_friction_comparison(chair: Chair | None = None, run: RunSpec | None = None, *,
+                              reference_chair: Chair | None = None,
+                              frictions: Sequence[float] = (0.0, 0.02, 0.05, 0.1),
+                              criterion: Criterion = DEFAULT_CRITERION, bracket: tuple = (0.2, 3.0),
+                              tol: float = 0.01, candidates: int = 7) -> EqualFrictionComparison:
     """Equal-instability speed of ``chair`` (default the revised design) with both chairs at the same friction.
 
     Parameters
@@ -107,7 +108,7 @@ def equal_friction_comparison(chair: Chair | None = None, *, reference_chair: Ch
         Default the revised design and the E&J Premier.
     frictions : sequence of float
         Pin friction of both pins of both chairs, N m.
-    model, push, criterion, scheme, dt, bracket, tol, candidates, **sim_options
+    run, criterion, bracket, tol, candidates
         As in :func:`stability.study.equal_instability_speeds`.
 
     Returns
@@ -120,21 +121,22 @@ def equal_friction_comparison(chair: Chair | None = None, *, reference_chair: Ch
     def at(x: Chair, f: float) -> Chair:
         return x.replace(pin_friction_left=float(f), pin_friction_right=float(f))
 
-    t_ref = reference_times([at(ref, f) for f in frictions], REFERENCE_SPEED, [push.force] * len(frictions),
-                            model=model, scheme=scheme, length=push.duration, criterion=criterion, dt=dt,
-                            sim_options=sim_options)
+    run = runs.study_run(run)
+    model, push = run.model, run.push
+    dt = (0.001 if run.dt == "auto" else float(run.dt)) if run.scheme == "wchair" else None
+    t_ref = reference_times([at(ref, f) for f in frictions], REFERENCE_SPEED, [push.force] * len(frictions), run,
+                            criterion=criterion)
     ok = [k for k, t in enumerate(t_ref) if math.isfinite(t)]
     res = bisect_speeds([at(c, frictions[k]) for k in ok], [float(t_ref[k]) for k in ok], [push.force] * len(ok),
-                        push.duration, model=model, scheme=scheme, criterion=criterion,
-                        bracket=(float(bracket[0]), float(bracket[1])), tol=tol, candidates=candidates, max_rounds=8,
-                        dt=dt, progress=False, reference_text=f"{ref.name} at {REFERENCE_SPEED:g} m/s, equal friction",
-                        sim_options=sim_options)
+                        run, criterion=criterion, bracket=(float(bracket[0]), float(bracket[1])), tol=tol,
+                        candidates=candidates, max_rounds=8, progress=False,
+                        reference_text=f"{ref.name} at {REFERENCE_SPEED:g} m/s, equal friction")
     found = dict(zip(ok, res, strict=True))
     rows = tuple(EqualFrictionRow(float(f), float(t), found.get(k)) for k, (f, t) in enumerate(zip(frictions, t_ref,
                                                                                                   strict=True)))
     return EqualFrictionComparison(c.name, ref.name, rows, growth_rate(c, REFERENCE_SPEED, model),
                                    growth_rate(ref, REFERENCE_SPEED, model), float(c.s1), math.sqrt(c.i_z / c.m),
-                                   model, push.describe(dt if scheme == "wchair" else None))
+                                   model, push.describe(dt))
 
 
 def fit_exponent(frictions: Sequence[float], speeds: Sequence[float]) -> float:
@@ -190,15 +192,17 @@ class FrictionExponent:
                 f"not proportional (k = {self.exponent:.2f}; rule {lo:g}-{hi:g})")
 
 
-def friction_exponent(chair: Chair, factors: Sequence[float] = (0.5, 0.75, 1.0, 1.25, 1.5), *,
-                      model: str = "exact", reference: float | None = None, **options: Any) -> FrictionExponent:
+def friction_exponent(chair: Chair, factors: Sequence[float] = (0.5, 0.75, 1.0, 1.25, 1.5),
+                      run: RunSpec | None = None, *, reference: float | None = None,
+                      **options: Any) -> FrictionExponent:
     """Fit ``speed ~ M_f^k`` over the chair's pin friction times ``factors`` (reference case fixed).
 
     Parameters
     ----------
     chair : Chair
     factors : sequence of float
-    model : {"exact", "thesis"}
+    run : RunSpec, optional
+        The runs' settings.
     reference : float, optional
         The reference case's time, s.
     **options
@@ -209,7 +213,9 @@ def friction_exponent(chair: Chair, factors: Sequence[float] = (0.5, 0.75, 1.0, 
     FrictionExponent
     """
     chairs = [scale_friction(chair, f) for f in factors]
-    res = equal_instability_speeds(chairs, model=model, reference=reference, progress=False, **options)
+    run = runs.study_run(run)
+    model = run.model
+    res = equal_instability_speeds(chairs, run, reference=reference, progress=False, **options)
     pts = [(c.pin_friction_left, r.speed) for c, r in zip(chairs, res, strict=True) if r.speed is not None]
     k = fit_exponent(*zip(*pts, strict=True)) if len(pts) >= 2 else None
     prop = k is not None and PROPORTIONAL_RANGE[0] <= k <= PROPORTIONAL_RANGE[1]
@@ -247,9 +253,7 @@ class SteadyTurn:
     push: str
 
 
-def steady_turn(chair: Chair, speeds: Sequence[float] = (0.3, 0.5), *, model: str = "exact",
-                push: Push = THESIS_PUSH, duration: float = HORIZON, dt: float | None = 0.001,
-                **sim_options: Any) -> list[SteadyTurn]:
+def steady_turn(chair: Chair, speeds: Sequence[float] = (0.3, 0.5), run: RunSpec | None = None) -> list[SteadyTurn]:
     """Final yaw rate and heading change after a push, at speeds where the chair does not diverge (one batch).
 
     Parameters
@@ -257,19 +261,17 @@ def steady_turn(chair: Chair, speeds: Sequence[float] = (0.3, 0.5), *, model: st
     chair : Chair
     speeds : sequence of float
         m/s.
-    model : {"exact", "thesis"}
-    push : Push
-    duration : float
-        s.
-    dt : float or None
-    **sim_options
+    run : RunSpec, optional
+        The runs' settings (push, horizon, model, step, pin-friction law).
 
     Returns
     -------
     list of SteadyTurn
     """
-    opts = runs.sim_options(model, "wchair", push.as_tuple, dt, duration, sim_options)
-    res = runs.simulate_runs([chair] * len(speeds), list(speeds), progress=False, **opts)
+    run = runs.study_run(run)
+    model, push, duration = run.model, run.push, run.horizon
+    dt = (0.001 if run.dt == "auto" else float(run.dt)) if run.scheme == "wchair" else None
+    res = runs.simulate_runs([chair] * len(speeds), list(speeds), run)
     crit = Criterion(DEFAULT_CRITERION.yaw_rate, duration)
     out = []
     for s, r in zip(speeds, res, strict=True):

@@ -16,9 +16,11 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair
-from stability.runtime.checks import check_choice, check_model, check_positive, check_speeds
+from stability.runtime.checks import check_positive, check_speeds
 from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
+from stability.settings.run import RunSpec
 from stability.simulate.stepcheck import step_limits_and_growth
+from stability.study.runs import study_run
 from stability.study.search import bracket_search
 from stability.study.summaries import SummaryRunner, run_steps
 
@@ -277,11 +279,9 @@ def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, ho
                          "(or fewer or faster speeds)")
 
 
-def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: str = "exact",
-                      scheme: str = "wchair", duration: float = THESIS_PUSH.duration, level: float = LEVEL,
-                      horizon: float = HORIZON, dt: float = 0.001, max_impulse: float = 40.0,
-                      min_impulse: float = 1e-6, rel_tol: float = 0.005, max_rounds: int = 40,
-                      **sim_options: Any) -> list[CriticalImpulse]:
+def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec | None = None, *,
+                      level: float = LEVEL, max_impulse: float = 40.0, min_impulse: float = 1e-6,
+                      rel_tol: float = 0.005, max_rounds: int = 40) -> list[CriticalImpulse]:
     """:func:`critical_impulse` for many runs: chair i at speed i (broadcast), one kernel call per round.
 
     A bracketing search on the log push (:func:`stability.study.search.bracket_search`)
@@ -300,54 +300,49 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
     chairs : Chair or sequence of Chair
     speeds : float or array_like
         m/s; broadcast against ``chairs``.
-    model : {"exact", "thesis"}
-    scheme : {"wchair", "adaptive"}
-    duration : float
-        How long the constant force acts, s.
+    run : RunSpec, optional
+        The runs' settings (:func:`stability.study.runs.study_run`): the push's
+        duration, the horizon within which the level must be reached, the
+        step, scheme, pin-friction law, model and casters; its push force and
+        speed are what the search varies.
     level : float
         |yaw rate| level, rad/s.
-    horizon : float
-        Simulated time, s.
-    dt : float
-        Fixed step of the WCHAIR scheme, s.
     max_impulse, min_impulse : float
         Range of pushes tried, N s.
     rel_tol : float
         Relative width of the final bracket (0.005 = 0.5 %).
     max_rounds : int
         Search rounds at most (each one simulation batch).
-    **sim_options
-        More :func:`stability.simulate.simulate` options (``stop_on_warnings`` is False unless given).
 
     Returns
     -------
     list of CriticalImpulse
         ``runs`` counts the simulations of each pair.
     """
-    check_model(model)
-    check_choice("scheme", scheme, SCHEMES)
-    for name, arg in (("duration", duration), ("level", level), ("horizon", horizon), ("dt", dt),
-                        ("max_impulse", max_impulse), ("min_impulse", min_impulse), ("rel_tol", rel_tol)):
+    run = study_run(run)
+    for name, arg in (("level", level), ("max_impulse", max_impulse), ("min_impulse", min_impulse),
+                      ("rel_tol", rel_tol)):
         check_positive(name, arg)
+    check_positive("push_duration", run.push_duration)
     if not min_impulse < max_impulse:
         raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
     chair_arr = np.atleast_1d(np.asarray(chairs, dtype=object)) if not isinstance(chairs, Chair) else np.array([chairs],
                                                                                                               dtype=object)
     chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
+    model, scheme, duration, horizon = run.model, run.scheme, run.push_duration, run.horizon
+    dt = 0.001 if run.dt == "auto" else float(run.dt)
     pair_steps = None
-    casters = sim_options.get("casters", "free")
-    limits, rates = step_limits_and_growth(list(chair_b.ravel()), speed_b.ravel(), model, casters)
+    limits, rates = step_limits_and_growth(list(chair_b.ravel()), speed_b.ravel(), model, run.casters)
     if scheme == "wchair":
-        free = limits if casters == "free" else None       # the work check is stated for free casters
+        free = limits if run.casters == "free" else None       # the work check is stated for free casters
         check_study_work(list(chair_b.ravel()), speed_b.ravel(), model, horizon, dt,
                          runs_per_speed(min_impulse, max_impulse, max_rounds), limits=free)
-        pair_steps = run_steps([c for c, _ in run_list], [s for _, s in run_list], dt, model, casters, limits=limits)
+        pair_steps = run_steps([c for c, _ in run_list], [s for _, s in run_list], dt, model, run.casters,
+                               limits=limits)
     unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
 
-    runner = SummaryRunner([c for c, _ in run_list], [s for _, s in run_list], model=model, scheme=scheme,
-                           duration=duration, dt=dt, horizon=horizon, level=level, sim_options=sim_options,
-                           steps=pair_steps)
+    runner = SummaryRunner([c for c, _ in run_list], [s for _, s in run_list], run, level=level, steps=pair_steps)
 
     def evaluate(jobs: list[tuple[int, float]]) -> tuple[np.ndarray, ...]:
         s = runner([i for i, _ in jobs], np.exp([x for _, x in jobs]) / unit)
@@ -378,31 +373,24 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, *, model: st
     return out
 
 
-def critical_impulse(chair: Chair, speed: float, *, model: str = "exact", scheme: str = "wchair",
-                     duration: float = THESIS_PUSH.duration, level: float = LEVEL, horizon: float = HORIZON,
-                     **options: Any) -> CriticalImpulse:
-    """Smallest lateral impulse at the c.g. after which ``|yaw rate|`` reaches ``level`` within ``horizon``.
+def critical_impulse(chair: Chair, speed: float, run: RunSpec | None = None, **search: Any) -> CriticalImpulse:
+    """Smallest lateral impulse at the c.g. after which ``|yaw rate|`` reaches ``level`` within the horizon.
 
-    The push is a constant force for ``duration`` s; its impulse is stated
-    in the result's ``push`` (the WCHAIR scheme applies the force for
-    ``floor(duration/dt) + 1`` steps).  Refined on the force to
-    ``rel_tol`` (0.5 %) by the batched bracketing search of :func:`critical_impulses`.
+    The push is a constant force for ``run.push_duration`` s; its impulse is
+    stated in the result's ``push`` (the WCHAIR scheme applies the force for
+    ``floor(duration/dt) + 1`` steps).  Refined on the force to ``rel_tol``
+    (0.5 %) by the batched bracketing search of :func:`critical_impulses`.
 
     Parameters
     ----------
     chair : Chair
     speed : float
         m/s.
-    model : {"exact", "thesis"}
-    scheme : {"wchair", "adaptive"}
-    duration : float
-        s.
-    level : float
-        rad/s.
-    horizon : float
-        s.
-    **options
-        See :func:`critical_impulses` (``dt``, ``max_impulse``, ``min_impulse``, ``rel_tol``, simulator options).
+    run : RunSpec, optional
+        The runs' settings (see :func:`critical_impulses`).
+    **search
+        ``level`` (rad/s), ``max_impulse``, ``min_impulse`` (N s), ``rel_tol``, ``max_rounds``: see
+        :func:`critical_impulses`.
 
     Returns
     -------
@@ -410,23 +398,25 @@ def critical_impulse(chair: Chair, speed: float, *, model: str = "exact", scheme
         ``impulse_Ns`` (None when even ``max_impulse`` does not do it) and
         ``kick_m_s`` (impulse / mass, m/s).
     """
-    return critical_impulses(chair, speed, model=model, scheme=scheme, duration=duration, level=level,
-                             horizon=horizon, **options)[0]
+    return critical_impulses(chair, speed, run, **search)[0]
 
 
-def critical_impulse_curve(chair: Chair, speeds: Any, **options: Any) -> CriticalImpulseCurve:
-    """:func:`critical_impulse` over speeds, every bisection round one batch for all speeds.
+def critical_impulse_curve(chair: Chair, speeds: Any, run: RunSpec | None = None,
+                           **search: Any) -> CriticalImpulseCurve:
+    """:func:`critical_impulse` over speeds, every search round one batch for all speeds.
 
     Parameters
     ----------
     chair : Chair
     speeds : array_like
         m/s.
-    **options
-        As in :func:`critical_impulses`.
+    run : RunSpec, optional
+        The runs' settings.
+    **search
+        As in :func:`critical_impulse`.
 
     Returns
     -------
     CriticalImpulseCurve
     """
-    return CriticalImpulseCurve(tuple(critical_impulses(chair, speeds, **options)))
+    return CriticalImpulseCurve(tuple(critical_impulses(chair, speeds, run, **search)))

@@ -20,10 +20,12 @@ from dataclasses import dataclass
 from typing import Any
 
 from stability.chair import Chair
-from stability.runtime.checks import VARIANTS, check_model
+from stability.runtime.checks import VARIANTS
+from stability.settings.run import RunSpec
 from stability.simulate.options import WCHAIR_DT as DT
 from stability.study.impulse import CriticalImpulse, critical_impulses
 from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS, scale_friction
+from stability.study.runs import study_run
 
 __all__ = ["CriticalImpulseInterval", "critical_impulse_intervals", "FRICTION_FACTORS", "STEP_FACTORS"]
 
@@ -70,10 +72,10 @@ class CriticalImpulseInterval:
                              for label, r in self.variants]}
 
 
-def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, *, model: str = "exact",
+def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, run: RunSpec | None = None, *,
                                friction_factors: Sequence[float] = FRICTION_FACTORS,
                                models: Sequence[str] = VARIANTS, step_factors: Sequence[float] = STEP_FACTORS,
-                               **options: Any) -> list[CriticalImpulseInterval]:
+                               **search: Any) -> list[CriticalImpulseInterval]:
     """Critical impulse of each chair at ``speed``, with its range over pin friction and model.
 
     Parameters
@@ -81,25 +83,26 @@ def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, *, model: 
     chairs : sequence of Chair
     speed : float
         m/s.
-    model : {"exact", "thesis"}
-        The nominal model.
+    run : RunSpec, optional
+        The nominal runs' settings (model, push duration, horizon, step, pin-friction law).
     friction_factors : sequence of float
         Multipliers of both pins' Coulomb friction (nominal model).
     models : sequence of str
         Models compared (the other ones at nominal friction).
     step_factors : sequence of float
         Multipliers of the fixed step ``dt`` (nominal model and friction; labelled by the step in ms).
-    **options
-        As :func:`stability.study.critical_impulses` (duration, level, horizon, max_impulse, ...).
+    **search
+        As :func:`stability.study.critical_impulses` (level, max_impulse, ...).
 
     Returns
     -------
     list of CriticalImpulseInterval
         One per chair, in order.
     """
-    check_model(model)
+    run = study_run(run)
+    model = run.model
     chairs = list(chairs)
-    dt = float(options.pop("dt", DT))
+    dt = DT if run.dt == "auto" else float(run.dt)
     # (label, model, friction factor, step): one batch per (model, step)
     specs: list[tuple[str, str, float, float]] = [("nominal", model, 1.0, dt)]
     specs += [(f"x{f:g} pin friction", model, float(f), dt) for f in friction_factors]
@@ -109,8 +112,8 @@ def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, *, model: 
     for m, h in dict.fromkeys((s[1], s[3]) for s in specs):
         idx = [k for k, s in enumerate(specs) if (s[1], s[3]) == (m, h)]
         jobs = [(n, k) for n in range(len(chairs)) for k in idx]
-        res = critical_impulses([scale_friction(chairs[n], specs[k][2]) for n, k in jobs], speed, model=m,
-                                dt=h, **options)
+        res = critical_impulses([scale_friction(chairs[n], specs[k][2]) for n, k in jobs], speed,
+                                run.replace(model=m, dt=h), **search)
         results.update(zip(jobs, res, strict=True))
     out = []
     for n, c in enumerate(chairs):

@@ -5,13 +5,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from stability.chair import Chair, preset
 from stability.runtime.checks import VARIANTS, check_model
-from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH, Push
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, Push
+from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion
 from stability.study.equal_instability import EqualInstability, bisect_speeds
@@ -192,9 +192,8 @@ def scale_friction(c: Chair, factor: float) -> Chair:
     return c.replace(pin_friction_left=c.pin_friction_left * factor, pin_friction_right=c.pin_friction_right * factor)
 
 
-def reference_times(reference: Chair | Sequence[Chair], speed: float, forces: Sequence[float], *, model: str,
-                    scheme: str, length: float, criterion: Criterion, dt: float | None,
-                    sim_options: dict) -> np.ndarray:
+def reference_times(reference: Chair | Sequence[Chair], speed: float, forces: Sequence[float], run: RunSpec, *,
+                    criterion: Criterion) -> np.ndarray:
     """The reference case's time to the level for several pushes (and reference chairs), one batch.
 
     Parameters
@@ -205,12 +204,9 @@ def reference_times(reference: Chair | Sequence[Chair], speed: float, forces: Se
         m/s.
     forces : sequence of float
         N.
-    model, scheme : str
-    length : float
-        Push duration, s.
+    run : RunSpec
+        The runs' settings (push duration, model, scheme, step, friction law); the horizon is the criterion's.
     criterion : Criterion
-    dt : float or None
-    sim_options : dict
 
     Returns
     -------
@@ -219,9 +215,8 @@ def reference_times(reference: Chair | Sequence[Chair], speed: float, forces: Se
     """
     forces = [float(f) for f in forces]
     chairs = [reference] * len(forces) if isinstance(reference, Chair) else list(reference)
-    opts = runs.sim_options(model, scheme, (forces[0], length), dt, criterion.duration, sim_options)
-    opts["impulse_force"] = np.asarray(forces)
-    res = runs.simulate_runs(chairs, [speed] * len(forces), progress=False, **opts)
+    spec = runs.study_run(run).replace(horizon=criterion.duration)
+    res = runs.simulate_runs(chairs, [speed] * len(forces), spec, push_forces=forces)
     return np.array([criterion.time(r) for r in res])
 
 
@@ -238,16 +233,14 @@ def _variants(model: str, force: float, force_factors: Sequence[float], friction
     return out
 
 
-def equal_instability_interval(chair: Chair, *, model: str = "exact",
+def equal_instability_interval(chair: Chair, run: RunSpec | None = None, *,
                                force_factors: Sequence[float] = PUSH_FACTORS,
                                friction_factors: Sequence[float] = FRICTION_FACTORS, models: Sequence[str] = VARIANTS,
                                reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
-                               push: Push = THESIS_PUSH, criterion: Criterion = DEFAULT_CRITERION,
-                               scheme: str = "wchair", bracket: tuple = RANGE_BRACKET, tol: float = RANGE_TOL,
-                               candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
+                               criterion: Criterion = DEFAULT_CRITERION, bracket: tuple = RANGE_BRACKET,
+                               tol: float = RANGE_TOL, candidates: int = 7, max_rounds: int = 8,
                                friction_on_reference: bool = True, progress: bool = False,
-                               step_factors: Sequence[float] = STEP_FACTORS,
-                               **sim_options: Any) -> EqualInstabilityInterval:
+                               step_factors: Sequence[float] = STEP_FACTORS) -> EqualInstabilityInterval:
     """Equal-instability speed of ``chair`` over the inputs it depends on, one factor at a time.
 
     Its defaults are the toolkit's one definition of the equal-instability range (:data:`PUSH_FACTORS`,
@@ -255,18 +248,19 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
     used by ``python -m stability.study equal-instability``, the report and the advisor.
 
     The nominal case is the thesis's: the reference chair at the reference
-    speed under ``push``, nominal pin friction, ``model``.  Each variant moves
-    one input: the push force (``force_factors`` x), the pin friction of
-    both chairs (``friction_factors`` x: the uncertainty of the measured
-    friction applies to the reference's pins too), or the model.  A variant
-    in which the reference never reaches the level is undefined (listed).
-    Per model, the reference runs are one batch and the bisection of every
-    variant shares its rounds.
+    speed under the run's push, nominal pin friction, the run's model.  Each
+    variant moves one input: the push force (``force_factors`` x), the pin
+    friction of both chairs (``friction_factors`` x: the uncertainty of the
+    measured friction applies to the reference's pins too), the model, or the
+    step.  A variant in which the reference never reaches the level is
+    undefined (listed).  Per model and step, the reference runs are one batch
+    and the bisection of every variant shares its rounds.
 
     Parameters
     ----------
     chair : Chair
-    model : {"exact", "thesis"}
+    run : RunSpec, optional
+        The nominal runs' settings (push, model, scheme, step, pin-friction law).
     force_factors, friction_factors : sequence of float
     models : sequence of str
         Models compared (the nominal one plus the others).
@@ -274,39 +268,34 @@ def equal_instability_interval(chair: Chair, *, model: str = "exact",
         Default the E&J Premier.
     reference_speed : float
         m/s.
-    push : Push
-        The nominal push (force N, duration s).
+    criterion, bracket, tol, candidates, max_rounds, progress
+        As in :func:`stability.study.equal_instability_speeds`.
     friction_on_reference : bool
         Apply the friction factors to the reference chair too (default), or
         to ``chair`` only (the thesis's Figure 9-3 convention).
     step_factors : sequence of float
-        Multipliers of the fixed step ``dt`` (scheme ``"wchair"``): the nominal case again at each step,
+        Multipliers of the fixed step ``run.dt`` (scheme ``"wchair"``): the nominal case again at each step,
         reference runs included (:data:`STEP_FACTORS`).
-    criterion, scheme, bracket, tol, candidates, max_rounds, dt, progress, **sim_options
-        As in :func:`stability.study.equal_instability_speeds`.
 
     Returns
     -------
     EqualInstabilityInterval
     """
     return equal_instability_intervals(
-        [chair], model=model, force_factors=force_factors, friction_factors=friction_factors, models=models,
-        reference_chair=reference_chair, reference_speed=reference_speed, push=push, criterion=criterion,
-        scheme=scheme, bracket=bracket, tol=tol, candidates=candidates, max_rounds=max_rounds, dt=dt,
-        friction_on_reference=friction_on_reference, progress=progress, step_factors=step_factors,
-        **sim_options)[0]
+        [chair], run, force_factors=force_factors, friction_factors=friction_factors, models=models,
+        reference_chair=reference_chair, reference_speed=reference_speed, criterion=criterion, bracket=bracket,
+        tol=tol, candidates=candidates, max_rounds=max_rounds, friction_on_reference=friction_on_reference,
+        progress=progress, step_factors=step_factors)[0]
 
 
-def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact",
+def equal_instability_intervals(chairs: Sequence[Chair], run: RunSpec | None = None, *,
                                 force_factors: Sequence[float] = PUSH_FACTORS,
                                 friction_factors: Sequence[float] = FRICTION_FACTORS, models: Sequence[str] = VARIANTS,
                                 reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
-                                push: Push = THESIS_PUSH, criterion: Criterion = DEFAULT_CRITERION,
-                                scheme: str = "wchair", bracket: tuple = RANGE_BRACKET, tol: float = RANGE_TOL,
-                                candidates: int = 7, max_rounds: int = 8, dt: float | None = 0.001,
+                                criterion: Criterion = DEFAULT_CRITERION, bracket: tuple = RANGE_BRACKET,
+                                tol: float = RANGE_TOL, candidates: int = 7, max_rounds: int = 8,
                                 friction_on_reference: bool = True, progress: bool = False,
-                                step_factors: Sequence[float] = STEP_FACTORS,
-                                **sim_options: Any) -> list[EqualInstabilityInterval]:
+                                step_factors: Sequence[float] = STEP_FACTORS) -> list[EqualInstabilityInterval]:
     """:func:`equal_instability_interval` for many chairs: per model one reference batch and one bisection.
 
     Every chair's result equals what :func:`equal_instability_interval` gives for it alone (each run of
@@ -315,8 +304,8 @@ def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact"
     Parameters
     ----------
     chairs : sequence of Chair
-    model, force_factors, friction_factors, models, reference_chair, reference_speed, push, criterion, scheme,
-    bracket, tol, candidates, max_rounds, dt, friction_on_reference, progress, step_factors, **sim_options
+    run, force_factors, friction_factors, models, reference_chair, reference_speed, criterion, bracket, tol,
+    candidates, max_rounds, friction_on_reference, progress, step_factors
         As in :func:`equal_instability_interval`.
 
     Returns
@@ -324,28 +313,27 @@ def equal_instability_intervals(chairs: Sequence[Chair], *, model: str = "exact"
     list of EqualInstabilityInterval
         One per chair, in order.
     """
-    check_model(model)
+    run = runs.study_run(run)
     for m in models:
         check_model(m)
     chairs = list(chairs)
+    model, scheme, push = run.model, run.scheme, run.push
+    dt = (0.001 if run.dt == "auto" else float(run.dt)) if scheme == "wchair" else None
     ref0 = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
-    specs = _variants(model, push.force, force_factors, friction_factors, models,
-                      dt if scheme == "wchair" else None, step_factors)
+    specs = _variants(model, push.force, force_factors, friction_factors, models, dt, step_factors)
     variants: list[list[Variant | None]] = [[None] * len(specs) for _ in chairs]
     for m, h in dict.fromkeys((s[2], s[5]) for s in specs):     # one reference batch and bisection per model, step
         idx = [k for k, s in enumerate(specs) if (s[2], s[5]) == (m, h)]
+        spec = run.replace(model=m) if h is None else run.replace(model=m, dt=h)
         refs = [scale_friction(ref0, specs[k][4] if friction_on_reference else 1.0) for k in idx]
-        t_ref = reference_times(refs, reference_speed,
-                                [specs[k][3] for k in idx], model=m, scheme=scheme, length=push.duration,
-                                criterion=criterion, dt=h if scheme == "wchair" else dt, sim_options=sim_options)
+        t_ref = reference_times(refs, reference_speed, [specs[k][3] for k in idx], spec, criterion=criterion)
         ok = [k for k, t in zip(idx, t_ref, strict=True) if math.isfinite(t)]
         jobs = [(n, k) for n in range(len(chairs)) for k in ok]
         res = bisect_speeds([scale_friction(chairs[n], specs[k][4]) for n, k in jobs],
                             [float(t_ref[idx.index(k)]) for _, k in jobs], [specs[k][3] for _, k in jobs],
-                            push.duration, model=m, scheme=scheme, criterion=criterion,
-                            bracket=(float(bracket[0]), float(bracket[1])), tol=tol, candidates=candidates,
-                            max_rounds=max_rounds, dt=h if scheme == "wchair" else dt, progress=progress,
-                            reference_text=f"{ref0.name} at {reference_speed:g} m/s", sim_options=sim_options)
+                            spec, criterion=criterion, bracket=(float(bracket[0]), float(bracket[1])), tol=tol,
+                            candidates=candidates, max_rounds=max_rounds, progress=progress,
+                            reference_text=f"{ref0.name} at {reference_speed:g} m/s")
         found = dict(zip(jobs, res, strict=True))
         for n in range(len(chairs)):
             for k, t in zip(idx, t_ref, strict=True):

@@ -9,7 +9,8 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair
-from stability.settings.reference import THESIS_PUSH
+from stability.settings.reference import REFERENCE_SPEED
+from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
 from stability.study.equal_instability import interp_speed, reference_time
@@ -66,9 +67,8 @@ class StabilityMap:
 
 
 def _map(chair: Chair, speeds: Any, y_name: str, y_label: str, y_unit: str, y_values: Any,
-         make_chair: Callable[[float], Chair], impulses: Callable[[float], tuple[float, float]], *, model: str,
-         scheme: str, criterion: Criterion, dt: float | None, reference: float, progress: bool,
-         sim_options: dict) -> StabilityMap:
+         make_chair: Callable[[float], Chair], impulses: Callable[[float], tuple[float, float]], run: RunSpec, *,
+         criterion: Criterion, reference: float, progress: bool) -> StabilityMap:
     speeds = np.asarray(speeds, dtype=float)
     yv = np.asarray(y_values, dtype=float)
     run_chairs, run_speeds, run_force = [], [], []
@@ -81,20 +81,18 @@ def _map(chair: Chair, speeds: Any, y_name: str, y_label: str, y_unit: str, y_va
             run_force.append(f)
     forces = np.array([f[0] for f in run_force])
     length = run_force[0][1]
-    # one batch for the whole map: the chair and the impulse force may differ from run to run
-    opts = runs.sim_options(model, scheme, (forces[0], length), dt, criterion.duration, sim_options)
-    if np.any(forces != forces[0]):
-        opts["impulse_force"] = forces
-    results = runs.simulate_runs(run_chairs, run_speeds, progress=progress, desc=f"map speed x {y_name}", **opts)
+    # one batch for the whole map: the chair and the push force may differ from run to run
+    spec = runs.study_run(run).replace(push_duration=float(length), horizon=criterion.duration)
+    results = runs.simulate_runs(run_chairs, run_speeds, spec, progress=progress,
+                                 push_forces=forces if np.any(forces != forces[0]) else None)
     times = np.array([criterion.time(r) for r in results]).reshape(len(yv), len(speeds))
     return StabilityMap(chair, speeds, y_name, y_label, y_unit, yv, times, float(reference), criterion,
-                        model, scheme, (float(forces[0]), float(length)))
+                        spec.model, spec.scheme, (float(forces[0]), float(length)))
 
 
-def stability_map(chair: Chair, speeds: Sequence[float] | None = None, frictions: Sequence[float] | None = None, *,
-                  impulse: Any = THESIS_PUSH.as_tuple, model: str = "thesis", scheme: str = "wchair",
-                  criterion: Criterion = DEFAULT_CRITERION, dt: float | None = 0.001, reference: float | None = None,
-                  progress: bool = True, **sim_options: Any) -> StabilityMap:
+def stability_map(chair: Chair, speeds: Sequence[float] | None = None, frictions: Sequence[float] | None = None,
+                  run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION,
+                  reference: float | None = None, progress: bool = True) -> StabilityMap:
     """Time to the yaw-rate level over speed x pin friction (both pins), one batch of simulations.
 
     Parameters
@@ -104,9 +102,10 @@ def stability_map(chair: Chair, speeds: Sequence[float] | None = None, frictions
         m/s (default 0.3-2.0 in 18 steps).
     frictions : sequence of float, optional
         Pin friction M_f of both pins, N m (default 0-0.3 in 13 steps).
-    impulse : (float, float) or Push
-        Force (N), duration (s).
-    model, scheme, criterion, dt, progress, **sim_options
+    run : RunSpec, optional
+        The runs' settings (the push, model, scheme, step, pin-friction law; the thesis's maps use
+        ``model="thesis"``); the horizon is the criterion's.
+    criterion, progress
         As in :func:`stability.study.yaw_rate_responses`.
     reference : float, optional
         The reference case's time, s (computed with :func:`reference_time` when None).
@@ -115,22 +114,20 @@ def stability_map(chair: Chair, speeds: Sequence[float] | None = None, frictions
     -------
     StabilityMap
     """
-    impulse = check_impulse(impulse)
+    run = runs.study_run(run)
+    impulse = check_impulse(run.push.as_tuple)
     speeds_: Any = np.linspace(0.3, 2.0, 18) if speeds is None else speeds
     frictions_: Any = np.linspace(0.0, 0.3, 13) if frictions is None else frictions
     if reference is None:
-        reference = reference_time(impulse=impulse, criterion=criterion, model=model, scheme=scheme, dt=dt,
-                                   **sim_options)
+        reference = reference_time(None, REFERENCE_SPEED, run, criterion=criterion)
     return _map(chair, speeds_, "pin_friction", "pin friction M_f (both pins)", "N m", frictions_,
                 lambda f: chair.replace(pin_friction_left=float(f), pin_friction_right=float(f)),
-                lambda f: impulse, model=model, scheme=scheme, criterion=criterion, dt=dt,
-                reference=reference, progress=progress, sim_options=sim_options)
+                lambda f: impulse, run, criterion=criterion, reference=reference, progress=progress)
 
 
-def disturbance_map(chair: Chair, speeds: Sequence[float] | None = None, impulses: Sequence[float] | None = None, *,
-                    impulse_duration: float = THESIS_PUSH.duration, model: str = "thesis", scheme: str = "wchair",
-                    criterion: Criterion = DEFAULT_CRITERION, dt: float | None = 0.001, reference: float | None = None,
-                    progress: bool = True, **sim_options: Any) -> StabilityMap:
+def disturbance_map(chair: Chair, speeds: Sequence[float] | None = None, impulses: Sequence[float] | None = None,
+                    run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION,
+                    reference: float | None = None, progress: bool = True) -> StabilityMap:
     """Time to the yaw-rate level over speed x push size (lateral impulse at the c.g.), one batch.
 
     Parameters
@@ -139,25 +136,26 @@ def disturbance_map(chair: Chair, speeds: Sequence[float] | None = None, impulse
     speeds : sequence of float, optional
         m/s (default 0.3-2.0 in 18 steps).
     impulses : sequence of float, optional
-        N s (default 1-10 in 10 steps): a force of ``impulse / impulse_duration``
-        N for ``impulse_duration`` s.
-    impulse_duration : float
-        s.
-    model, scheme, criterion, dt, progress, **sim_options
+        N s (default 1-10 in 10 steps): a force of ``impulse / run.push_duration``
+        N for ``run.push_duration`` s.
+    run : RunSpec, optional
+        The runs' settings (push duration, model, scheme, step, pin-friction law); the horizon is the
+        criterion's.
+    criterion, progress
         As in :func:`stability.study.yaw_rate_responses`.
     reference : float, optional
-        The reference case's time under the thesis's push, s (computed when None).
+        The reference case's time under the run's push, s (computed when None).
 
     Returns
     -------
     StabilityMap
     """
+    run = runs.study_run(run)
+    impulse_duration = run.push_duration
     speeds_: Any = np.linspace(0.3, 2.0, 18) if speeds is None else speeds
     impulses_: Any = np.linspace(1.0, 10.0, 10) if impulses is None else impulses
     if reference is None:
-        reference = reference_time(impulse=THESIS_PUSH.as_tuple, criterion=criterion, model=model, scheme=scheme,
-                                   dt=dt, **sim_options)
+        reference = reference_time(None, REFERENCE_SPEED, run, criterion=criterion)
     return _map(chair, speeds_, "impulse", "lateral impulse at the c.g.", "N s", impulses_,
-                lambda j: chair, lambda j: (float(j) / impulse_duration, impulse_duration),
-                model=model, scheme=scheme, criterion=criterion, dt=dt, reference=reference,
-                progress=progress, sim_options=sim_options)
+                lambda j: chair, lambda j: (float(j) / impulse_duration, impulse_duration), run,
+                criterion=criterion, reference=reference, progress=progress)

@@ -13,6 +13,7 @@ from scipy.linalg import expm
 from stability.chair import Chair, preset
 from stability.linear import lateral_force_input, state_matrices
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, PATHS_CRITERION, Criterion, check_impulse
 
@@ -220,12 +221,12 @@ class ResponseSet:
         return [r.speed for r in self.responses]
 
 
-def _responses(chairs: Sequence[Chair], speeds: Sequence[float], *, impulse: Any, model: str, scheme: str,
-               criterion: Criterion, dt: float | None, linear: bool, linear_casters: str, progress: bool,
-               extra: dict) -> ResponseSet:
-    impulse = check_impulse(impulse)
-    opts = runs.sim_options(model, scheme, impulse, dt, criterion.duration, extra)
-    results = runs.simulate_runs(chairs, speeds, progress=progress, desc="responses", **opts)
+def _responses(chairs: Sequence[Chair], speeds: Sequence[float], run: RunSpec | None, *, criterion: Criterion,
+               linear: bool, linear_casters: str, progress: bool) -> ResponseSet:
+    spec = runs.study_run(run).replace(horizon=criterion.duration)
+    impulse = check_impulse(spec.push.as_tuple)
+    model, scheme = spec.model, spec.scheme
+    results = runs.simulate_runs(chairs, speeds, spec, progress=progress)
     out = []
     for c, s, res in zip(chairs, speeds, results, strict=True):
         lin = None
@@ -246,10 +247,9 @@ def _responses(chairs: Sequence[Chair], speeds: Sequence[float], *, impulse: Any
     return ResponseSet(tuple(out), model, scheme, impulse, criterion, model if linear else "", note if linear else "")
 
 
-def yaw_rate_responses(chair: Chair, speeds: Sequence[float] = (0.55, 0.65, 0.75, 0.85, 0.95), *,
-                       impulse: Any = THESIS_PUSH.as_tuple, model: str = "thesis", scheme: str = "wchair",
-                       criterion: Criterion = DEFAULT_CRITERION, dt: float | None = 0.001, linear: bool = True,
-                       linear_casters: str = "free", progress: bool = True, **sim_options: Any) -> ResponseSet:
+def yaw_rate_responses(chair: Chair, speeds: Sequence[float] = (0.55, 0.65, 0.75, 0.85, 0.95),
+                       run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION, linear: bool = True,
+                       linear_casters: str = "free", progress: bool = True) -> ResponseSet:
     """Yaw-rate responses to a push at several speeds (Figure 8-3a analogue).
 
     Parameters
@@ -257,35 +257,28 @@ def yaw_rate_responses(chair: Chair, speeds: Sequence[float] = (0.55, 0.65, 0.75
     chair : Chair
     speeds : sequence of float
         m/s.
-    impulse : (float, float) or Push
-        Force (N) and duration (s) at the c.g.; default the thesis's 40 N for 0.1 s.
-    model : {"thesis", "exact"}
-    scheme : {"wchair", "adaptive"}
+    run : RunSpec, optional
+        The runs' settings (push, model, scheme, step, pin-friction law; the thesis's Figure 8-3a uses
+        ``model="thesis"`` and ``friction_law="kinetic"``); the horizon is the criterion's.
     criterion : Criterion
         Level and simulated time.
-    dt : float or None
-        Fixed step, s.
     linear : bool
         Attach the linear model's response to each run.
     linear_casters : {"free", "locked"}
     progress : bool
-    **sim_options
-        More :func:`stability.simulate.simulate` options.
 
     Returns
     -------
     ResponseSet
     """
     speeds = [float(s) for s in speeds]
-    return _responses([chair] * len(speeds), speeds, impulse=impulse, model=model, scheme=scheme,
-                      criterion=criterion, dt=dt, linear=linear, linear_casters=linear_casters,
-                      progress=progress, extra=sim_options)
+    return _responses([chair] * len(speeds), speeds, run, criterion=criterion, linear=linear,
+                      linear_casters=linear_casters, progress=progress)
 
 
-def trajectories(chairs: Sequence[Chair] | None = None, speed: float = REFERENCE_SPEED, *,
-                 impulse: Any = THESIS_PUSH.as_tuple, model: str = "thesis", scheme: str = "wchair",
-                 criterion: Criterion = PATHS_CRITERION, dt: float | None = 0.001, linear: bool = True,
-                 progress: bool = True, **sim_options: Any) -> ResponseSet:
+def trajectories(chairs: Sequence[Chair] | None = None, speed: float = REFERENCE_SPEED, run: RunSpec | None = None,
+                 *, criterion: Criterion = PATHS_CRITERION, linear: bool = True,
+                 progress: bool = True) -> ResponseSet:
     """Paths of several chairs after a push (Figure 8-4 analogue: rear vs front casters).
 
     Parameters
@@ -294,7 +287,7 @@ def trajectories(chairs: Sequence[Chair] | None = None, speed: float = REFERENCE
         Default the E&J Premier and its front-caster counterpart.
     speed : float
         m/s.
-    impulse, model, scheme, criterion, dt, linear, progress, **sim_options
+    run, criterion, linear, progress
         As in :func:`yaw_rate_responses` (``criterion.duration`` default 6 s).
 
     Returns
@@ -304,6 +297,5 @@ def trajectories(chairs: Sequence[Chair] | None = None, speed: float = REFERENCE
     if chairs is None:
         chairs = [preset(REFERENCE_CHAIR), preset(f"{REFERENCE_CHAIR}-front-caster")]
     chairs = list(chairs)
-    return _responses(chairs, [float(speed)] * len(chairs), impulse=impulse, model=model, scheme=scheme,
-                      criterion=criterion, dt=dt, linear=linear, linear_casters="free",
-                      progress=progress, extra=sim_options)
+    return _responses(chairs, [float(speed)] * len(chairs), run, criterion=criterion, linear=linear,
+                      linear_casters="free", progress=progress)

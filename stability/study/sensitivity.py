@@ -10,8 +10,10 @@ from typing import Any
 from stability.chair import Chair
 from stability.rootlocus import get_parameter
 from stability.settings.reference import REFERENCE_SPEED
+from stability.settings.run import RunSpec
 from stability.study.facts import growth_rate
 from stability.study.impulse import CriticalImpulse, critical_impulses
+from stability.study.runs import study_run
 
 __all__ = ["FRICTION_OVER_TRAIL", "TRAIL_AT_FIXED_GROUP", "ELASTICITY_PARAMETERS", "Elasticity", "Sensitivity",
            "elasticities"]
@@ -111,8 +113,8 @@ def _elasticity(lo: float | None, hi: float | None, step: float) -> float | None
     return (math.log(hi) - math.log(lo)) / (math.log1p(step) - math.log1p(-step))
 
 
-def elasticities(chair: Chair, speed: float = REFERENCE_SPEED, *,
-                 parameters: Sequence[str] = ELASTICITY_PARAMETERS, step: float = 0.1, model: str = "exact",
+def elasticities(chair: Chair, speed: float = REFERENCE_SPEED, run: RunSpec | None = None, *,
+                 parameters: Sequence[str] = ELASTICITY_PARAMETERS, step: float = 0.1,
                  rel_tol: float = 0.001, **impulse_options: Any) -> Sensitivity:
     """Elasticities ``d ln v / d ln p`` of the critical impulse and of the linear growth rate.
 
@@ -133,11 +135,12 @@ def elasticities(chair: Chair, speed: float = REFERENCE_SPEED, *,
         :data:`FRICTION_OVER_TRAIL` / :data:`TRAIL_AT_FIXED_GROUP`.
     step : float
         Relative step, 0 < step < 1.
-    model : {"exact", "thesis"}
+    run : RunSpec, optional
+        The runs' settings (model, push duration, horizon, step, pin-friction law).
     rel_tol : float
         Relative width of the critical-impulse brackets.
     **impulse_options
-        Passed to :func:`stability.study.critical_impulses`.
+        Passed to :func:`stability.study.critical_impulses` (``level``, ``max_impulse``, ...).
 
     Returns
     -------
@@ -145,14 +148,16 @@ def elasticities(chair: Chair, speed: float = REFERENCE_SPEED, *,
     """
     if not 0 < step < 1:
         raise ValueError(f"step={step!r} is invalid; valid range: 0 < step < 1")
-    nominal = critical_impulses(chair, speed, model=model, rel_tol=rel_tol, **impulse_options)[0]
+    run = study_run(run)
+    model = run.model
+    nominal = critical_impulses(chair, speed, run, rel_tol=rel_tol, **impulse_options)[0]
     scalers = [_scaler(n) for n in parameters]
     chairs = [apply(chair, f) for apply, _, _ in scalers for f in (1.0 - step, 1.0 + step)]
     imp: list[float | None] = [None] * len(chairs)
     if nominal.impulse_Ns is not None:
         j0 = nominal.impulse_Ns
         opts = dict(impulse_options, min_impulse=j0 / 4.0, max_impulse=j0 * 4.0)
-        imp = [r.impulse_Ns for r in critical_impulses(chairs, speed, model=model, rel_tol=rel_tol, **opts)]
+        imp = [r.impulse_Ns for r in critical_impulses(chairs, speed, run, rel_tol=rel_tol, **opts)]
     g = [growth_rate(c, speed, model) for c in chairs]
     out = []
     for k, (name, (_, label, current)) in enumerate(zip(parameters, scalers, strict=True)):

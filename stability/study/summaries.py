@@ -21,8 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from stability import simulate as sim
 from stability.chair import Chair
+from stability.settings.run import RunSpec
 from stability.simulate.api import using_reference_engine
 from stability.simulate.options import make_options
 from stability.simulate.signals import time_to_level
@@ -82,17 +82,20 @@ class Summaries:
         return np.where(reached, np.maximum(above, 0.0), np.minimum(below, 0.0))
 
 
-def _options(model: str, scheme: str, duration: float, dt: float | None, horizon: float,
-             extra: dict[str, Any]) -> dict[str, Any]:
-    return runs.sim_options(model, scheme, (0.0, duration), dt if scheme == "wchair" else None, horizon, extra)
+def _compiled(run: RunSpec) -> bool:
+    """Whether the summaries come from the compiled kernel (else from full results)."""
+    return run.scheme == "wchair" and not using_reference_engine()
+
+
+def _kernel_options(run: RunSpec, h: float) -> Any:
+    """The engines' options of one step ``h`` (s): every sample kept out, the push force given per run."""
+    return make_options(run.replace(dt=float(h), sample=None, push_force=0.0), batch=True)
 
 
 def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
-                  forces: Sequence[float] | np.ndarray, *, model: str,
-                  scheme: str, duration: float, dt: float | None, horizon: float, level: float,
-                  stop: bool = True, sim_options: dict[str, Any] | None = None,
+                  forces: Sequence[float] | np.ndarray, run: RunSpec, *, level: float, stop: bool = True,
                   steps: Sequence[float] | np.ndarray | None = None) -> Summaries:
-    """Simulate runs (chair i at speed i under a push of force i for ``duration``) and summarise them.
+    """Simulate runs (chair i at speed i under a push of force i) and summarise them.
 
     Parameters
     ----------
@@ -100,21 +103,14 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     speeds : sequence of float
         m/s.
     forces : sequence of float
-        Push force at the c.g., N.
-    model, scheme : str
-    duration : float
-        How long the push acts, s.
-    dt : float or None
-        Fixed step of the WCHAIR scheme, s (kept where it is stable, else
-        ``dt / k`` as in :func:`stability.study.runs.simulate_runs`).
-    horizon : float
-        Simulated time, s.
+        Push force at the c.g., N (for ``run.push_duration``).
+    run : RunSpec
+        The runs' settings (:func:`stability.study.runs.study_run`); a fixed ``dt``
+        is kept where it is stable, else ``dt / k`` as in :func:`stability.study.runs.simulate_runs`.
     level : float
         |yaw rate| level, rad/s.
     stop : bool
         Stop each compiled run when it reaches the level.
-    sim_options : dict, optional
-        More simulator options.
     steps : sequence of float, optional
         Each run's step, s, from :func:`run_steps` (computed when None).
 
@@ -123,31 +119,22 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     Summaries
     """
     n = len(chairs)
-    extra = dict(sim_options or {})
-    opts = _options(model, scheme, duration, dt, horizon, extra)
     if n == 0:
         e = np.empty(0)
         return Summaries(e, e, e, e)
-    if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
-            or using_reference_engine()):
-        return _from_results(chairs, speeds, forces, opts, level, horizon)
+    if not _compiled(run):
+        return _from_results(chairs, speeds, forces, run, level)
     from stability.simulate import engine  # numba and the compiled kernel load on first use
 
-    params = sim.DEFAULTS.as_dict()
-    for key in ("controller", "record"):
-        params.pop(key)
-    params.update({k: v for k, v in opts.items() if k in params})
-    step = float(params["dt"])
-    params["sample"] = None
-    run_h = np.asarray(run_steps(chairs, speeds, step, params["model"], params["casters"]) if steps is None else steps)
+    step = 0.001 if run.dt == "auto" else float(run.dt)
+    run_h = np.asarray(run_steps(chairs, speeds, step, run.model, run.casters) if steps is None else steps)
     peak, t_half, t_level, sim_time = (np.empty(n) for _ in range(4))
     sp = np.asarray(speeds, dtype=float)
     fo = np.asarray(forces, dtype=float)
     for h in np.unique(run_h):
         idx = np.flatnonzero(run_h == h)
-        o = make_options(batch=True, **dict(params, dt=float(h), impulse_force=0.0))
         batch = [chairs[int(i)] for i in idx]
-        stats, status = engine.run_summaries(batch, sp[idx], o, forces=fo[idx],
+        stats, status = engine.run_summaries(batch, sp[idx], _kernel_options(run, h), forces=fo[idx],
                                              levels=(0.5 * level, level), stop_level=1 if stop else None)
         engine.raise_non_finite(batch, sp[idx], status)   # a NaN run is an error, never "did not reach"
         peak[idx] = stats[:, 0]
@@ -185,36 +172,28 @@ class SummaryRunner:
         One per pair.
     speeds : sequence of float
         m/s, one per pair.
-    model, scheme, duration, dt, horizon, level, stop, sim_options
+    run : RunSpec
+        As in :func:`run_summaries`.
+    level, stop
         As in :func:`run_summaries`.
     steps : ndarray, optional
         Each pair's step, s (:func:`run_steps`; computed when None).
     """
 
-    def __init__(self, chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, *, model: str, scheme: str,
-                 duration: float, dt: float | None, horizon: float, level: float, stop: bool = True,
-                 sim_options: dict[str, Any] | None = None, steps: Sequence[float] | np.ndarray | None = None):
+    def __init__(self, chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, run: RunSpec, *, level: float,
+                 stop: bool = True, steps: Sequence[float] | np.ndarray | None = None):
         self.chairs, self.speeds = list(chairs), np.asarray(speeds, dtype=float)
-        self.kw: dict[str, Any] = dict(model=model, scheme=scheme, duration=duration, dt=dt, horizon=horizon,
-                                       level=level, stop=stop, sim_options=dict(sim_options or {}))
+        self.run, self.level, self.stop = run, level, stop
         self.steps = steps
-        opts = _options(model, scheme, duration, dt, horizon, self.kw["sim_options"])
         self.packed = None
-        if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
-                or using_reference_engine() or not self.chairs):
+        if not _compiled(run) or not self.chairs:
             return
         from stability.simulate import engine
 
-        params = sim.DEFAULTS.as_dict()
-        for key in ("controller", "record"):
-            params.pop(key)
-        params.update({k: v for k, v in opts.items() if k in params})
-        params["sample"] = None
-        step = float(params["dt"])
-        run_h = np.asarray(run_steps(self.chairs, self.speeds, step, params["model"], params["casters"])
+        step = 0.001 if run.dt == "auto" else float(run.dt)
+        run_h = np.asarray(run_steps(self.chairs, self.speeds, step, run.model, run.casters)
                            if steps is None else steps, dtype=float)
-        by_step = {float(h): make_options(batch=True, **dict(params, dt=float(h), impulse_force=0.0))
-                   for h in np.unique(run_h)}
+        by_step = {float(h): _kernel_options(run, h) for h in np.unique(run_h)}
         self.packed = engine.PackedRuns(self.chairs, self.speeds, by_step, run_h, levels=(0.5 * level, level),
                                         stop_level=1 if stop else None)
 
@@ -236,8 +215,8 @@ class SummaryRunner:
         fo = np.asarray(forces, dtype=float)
         if self.packed is None:
             steps = None if self.steps is None else np.asarray(self.steps)[idx]
-            return run_summaries([self.chairs[int(i)] for i in idx], self.speeds[idx], fo, steps=steps,
-                                 **self.kw)
+            return run_summaries([self.chairs[int(i)] for i in idx], self.speeds[idx], fo, self.run,
+                                 level=self.level, stop=self.stop, steps=steps)
         if len(idx) == 0:
             e = np.empty(0)
             return Summaries(e, e, e, e)
@@ -280,12 +259,12 @@ def run_steps(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, dt:
 
 
 def _from_results(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, forces: Sequence[float] | np.ndarray,
-                  opts: dict[str, Any], level: float, horizon: float) -> Summaries:
-    """The same summaries from full simulation results (adaptive scheme, Python inputs)."""
-    opts = dict(opts, impulse_force=np.asarray(forces, dtype=float))
-    if opts.get("scheme") == "wchair":      # every step, so that the crossing is interpolated as the kernel does
-        opts["sample"] = opts.get("dt", sim.DEFAULTS.dt)
-    res = runs.simulate_runs(list(chairs), [float(s) for s in speeds], progress=False, **opts)
+                  run: RunSpec, level: float) -> Summaries:
+    """The same summaries from full simulation results (adaptive scheme, the reference engine)."""
+    if run.scheme == "wchair":      # every step, so that the crossing is interpolated as the kernel does
+        run = run.replace(sample=0.001 if run.dt == "auto" else run.dt)
+    res = runs.simulate_runs(list(chairs), [float(s) for s in speeds], run, push_forces=np.asarray(forces, float))
+    horizon = run.horizon
     peak, t_half, t_level, sim_time = (np.empty(len(res)) for _ in range(4))
     for i, r in enumerate(res):
         t, y = np.asarray(r.t), np.abs(np.asarray(r.yaw_rate))

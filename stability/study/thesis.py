@@ -12,7 +12,8 @@ from stability.chair import Chair, preset
 from stability.chair.design import get_parameter, main_tires
 from stability.linear import analyse
 from stability.linear.summary import ZeroWidthResult, zero_width
-from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
 from stability.study.equal_instability import EqualInstability, equal_instability_speeds, reference_time
@@ -26,7 +27,9 @@ TIRE_SPEED = 0.62
 LOCKED_CHECK_MASS = 75.0
 
 #: Options of the bisection that the single runs of :func:`thesis_study` do not take.
-_BISECTION_ONLY = ("dt", "bracket", "tol", "candidates", "max_rounds")
+#: The thesis's study's runs: its equations (``model="thesis"``), the thesis's push, the measures' stick-slip
+#: pin friction (``friction_law="kinetic"`` reproduces program WCHAIR's law).
+THESIS_RUN = RunSpec(model="thesis")
 
 
 @dataclass(frozen=True)
@@ -125,10 +128,9 @@ def linear_facts(chair: Chair, model: str) -> LinearFacts:
     return LinearFacts(free, bool(lin.free_unstable_at_all_speeds), locked, lin.divergence[0].time_to_double)
 
 
-def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | None = None,
-                 criterion: Criterion = DEFAULT_CRITERION, impulse: Any = THESIS_PUSH.as_tuple,
-                 extra_chairs: Sequence[Chair] = (), extra_plan_chair: Chair | None = None,
-                 extra_plan: dict | None = None, progress: bool = True,
+def thesis_study(run: RunSpec = THESIS_RUN, *, plan: dict | None = None,
+                 criterion: Criterion = DEFAULT_CRITERION, extra_chairs: Sequence[Chair] = (),
+                 extra_plan_chair: Chair | None = None, extra_plan: dict | None = None, progress: bool = True,
                  **options: Any) -> tuple[ThesisStudy, list[EqualInstability], SweepTable | None]:
     """The chapter 8-9 study on the E&J Premier, the revised design and +/-50 % pin friction.
 
@@ -136,7 +138,9 @@ def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | 
 
     Parameters
     ----------
-    model, scheme, criterion, impulse
+    run : RunSpec
+        The runs' settings (default :data:`THESIS_RUN`).
+    criterion
         As in :func:`stability.study.equal_instability_speed`.
     plan : dict, optional
         Sweep plan for the E&J Premier (default :data:`DEFAULT_PLAN`).
@@ -147,12 +151,14 @@ def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | 
     extra_plan : dict, optional
     progress : bool
     **options
-        Passed to :func:`equal_instability_speeds`.
+        Passed to :func:`equal_instability_speeds` (``bracket``, ``tol``, ``candidates``, ``max_rounds``).
 
     Returns
     -------
     (ThesisStudy, list of EqualInstability, SweepTable or None)
     """
+    run = runs.study_run(run)
+    model, scheme, impulse = run.model, run.scheme, run.push.as_tuple
     ej, rev = preset(REFERENCE_CHAIR), preset("revised")
     front = preset(f"{REFERENCE_CHAIR}-front-caster")
     named = [ej, rev, front] + friction_variants(ej) + friction_variants(rev)
@@ -162,12 +168,9 @@ def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | 
     if extra_plan_chair is not None:
         other_groups = sweep_chairs(extra_plan_chair, extra_plan or plan)
         other_chairs = [extra_plan_chair] + [c for g in other_groups for c in g[3]]
-    sim_extra = {k: v for k, v in options.items() if k not in _BISECTION_ONLY}
-    ref = reference_time(ej, REFERENCE_SPEED, impulse=impulse, criterion=criterion, model=model, scheme=scheme,
-                         dt=options.get("dt", 0.001), **sim_extra)
+    ref = reference_time(ej, REFERENCE_SPEED, run, criterion=criterion)
     all_chairs = named + [c for g in groups for c in g[3]] + list(extra_chairs) + other_chairs
-    res = equal_instability_speeds(all_chairs, model=model, scheme=scheme, criterion=criterion, impulse=impulse,
-                                   reference=ref, progress=progress, **options)
+    res = equal_instability_speeds(all_chairs, run, criterion=criterion, reference=ref, progress=progress, **options)
     speeds = {c.name: r for c, r in zip(named, res[: len(named)], strict=True)}
     table, k = collect_sweeps(ej, groups, res, len(named), speeds[REFERENCE_CHAIR])
     extra = list(res[k:k + len(extra_chairs)])
@@ -176,13 +179,11 @@ def thesis_study(*, model: str = "thesis", scheme: str = "wchair", plan: dict | 
     if extra_plan_chair is not None:
         other_table, k = collect_sweeps(extra_plan_chair, other_groups, res, k + 1, res[k])
     # conclusion 7: time to the level at 2 m/s
-    opts = runs.sim_options(model, scheme, check_impulse(impulse), options.get("dt", 0.001), criterion.duration,
-                            sim_extra)
     # conclusion 9 under the thesis's conditions: every main tire at 0.62 m/s (Figure 8-15)
     tire = get_parameter("main_tire")
     tire_chairs = [tire.apply(ej, float(i)) for i in range(len(main_tires()))]
-    extra_runs = runs.simulate_runs([ej] + tire_chairs, [2.0] + [TIRE_SPEED] * len(tire_chairs), progress=False,
-                                    **opts)
+    extra_runs = runs.simulate_runs([ej] + tire_chairs, [2.0] + [TIRE_SPEED] * len(tire_chairs),
+                                    run.replace(horizon=criterion.duration))
     tire_times = {c.main_tire: criterion.time(r) for c, r in zip(tire_chairs, extra_runs[1:], strict=True)}
     tire_peaks = {c.main_tire: float(np.max(np.abs(np.asarray(r.yaw_rate)[np.asarray(r.t) <= criterion.duration])))
                   for c, r in zip(tire_chairs, extra_runs[1:], strict=True)}

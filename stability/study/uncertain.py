@@ -16,11 +16,13 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair, preset
-from stability.runtime.checks import check_model, check_positive, check_speed
-from stability.settings.reference import HORIZON, LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.runtime.checks import check_speed
+from stability.settings.reference import LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.run import RunSpec
 from stability.study.criteria import Criterion
 from stability.study.equal_instability import equal_instability_speeds, reference_time
 from stability.study.impulse import critical_impulses
+from stability.study.runs import study_run
 from stability.uncertainty import Uncertainty, propagate
 
 __all__ = ["MeasureInterval", "NonlinearIntervals", "nonlinear_intervals", "MAX_NONLINEAR_SAMPLES"]
@@ -156,11 +158,10 @@ def _measure(mc: Any, j: int, statuses: list[str], outside: Sequence[str], unit:
                            shares=tuple(ranked), r_squared=at(mc.r_squared), unit=unit)
 
 
-def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, *, speed: float = REFERENCE_SPEED,
-                        model: str = "exact", samples: int = 200, seed: int = 0, level: float = 0.95,
+def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, run: RunSpec | None = None, *,
+                        speed: float = REFERENCE_SPEED, samples: int = 200, seed: int = 0, level: float = 0.95,
                         reference_chair: Chair | None = None, equal_instability: bool = True,
-                        scheme: str = "wchair", horizon: float = HORIZON, dt: float = 0.001, rel_tol: float = 0.005,
-                        bracket: tuple[float, float] = (0.2, 3.0), tol: float = 0.005,
+                        rel_tol: float = 0.005, bracket: tuple[float, float] = (0.2, 3.0), tol: float = 0.005,
                         candidates: int = 7) -> NonlinearIntervals:
     """Monte Carlo intervals of the critical impulse and the equal-instability speed.
 
@@ -181,10 +182,11 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, *, speed: float 
         The nominal chair.
     uncertainty : Uncertainty
         Distributions of its uncertain fields (:func:`stability.uncertainty.load_uncertainty`).
+    run : RunSpec, optional
+        The runs' settings of both measures and of the reference time (model, scheme, step, pin-friction
+        law; the horizon is the criterion's duration; the push is the thesis's).
     speed : float
         Speed of the critical impulse, m/s.
-    model : {"exact", "thesis"}
-        Equation variant of both measures (and of the reference time).
     samples : int
         Monte Carlo draws, 1 to :data:`MAX_NONLINEAR_SAMPLES`.
     seed : int
@@ -195,11 +197,6 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, *, speed: float 
         Reference of the equal-instability speed (default the E&J Premier), fixed.
     equal_instability : bool
         Also the equal-instability speed (the larger share of the work).
-    scheme : {"wchair", "adaptive"}
-    horizon : float
-        Simulated time and criterion duration, s (level :data:`~stability.settings.reference.LEVEL`).
-    dt : float
-        Fixed step, s.
     rel_tol : float
         Relative bracket of each critical impulse.
     bracket : (float, float)
@@ -218,31 +215,29 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, *, speed: float 
     ValueError
         For an argument out of range, or a reference case that never reaches the level.
     """
-    check_model(model)
+    run = study_run(run).replace(push_force=THESIS_PUSH.force, push_duration=THESIS_PUSH.duration)
+    model, scheme, horizon = run.model, run.scheme, run.horizon
+    dt = 0.001 if run.dt == "auto" else float(run.dt)
     check_speed(speed)
-    check_positive("horizon", horizon)
     if not 1 <= int(samples) <= MAX_NONLINEAR_SAMPLES:
         raise ValueError(f"samples={samples!r} is invalid; valid range: 1 to {MAX_NONLINEAR_SAMPLES}")
     crit = Criterion(LEVEL, horizon)
     ref_chair = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
     t_ref = math.nan
     if equal_instability:
-        t_ref = reference_time(ref_chair, REFERENCE_SPEED, impulse=THESIS_PUSH.as_tuple, criterion=crit,
-                               model=model, scheme=scheme, dt=dt)
+        t_ref = reference_time(ref_chair, REFERENCE_SPEED, run, criterion=crit)
     calls: list[tuple[list[str], list[str]]] = []      # statuses of each fn call (the last: the draws)
 
     def fn(chairs: list[Chair]) -> np.ndarray:
         distinct, owner = _unique(chairs)
-        ci = critical_impulses(distinct, speed, model=model, scheme=scheme, duration=THESIS_PUSH.duration,
-                               level=LEVEL, horizon=horizon, dt=dt, rel_tol=rel_tol)
+        ci = critical_impulses(distinct, speed, run, level=LEVEL, rel_tol=rel_tol)
         imp = [0.0 if r.status == "below" else (math.nan if r.impulse_Ns is None else r.impulse_Ns) for r in ci]
         cols = [np.array([imp[k] for k in owner])]
         eq_status: list[str] = []
         if equal_instability:
-            eq = equal_instability_speeds(distinct, reference_chair=ref_chair, reference_speed=REFERENCE_SPEED,
-                                          impulse=THESIS_PUSH.as_tuple, criterion=crit, model=model, scheme=scheme,
-                                          bracket=bracket, tol=tol, candidates=candidates, dt=dt, reference=t_ref,
-                                          progress=False)
+            eq = equal_instability_speeds(distinct, run, reference_chair=ref_chair, reference_speed=REFERENCE_SPEED,
+                                          criterion=crit, bracket=bracket, tol=tol, candidates=candidates,
+                                          reference=t_ref, progress=False)
             cols.append(np.array([math.nan if eq[k].speed is None else eq[k].speed for k in owner]))
             eq_status = [eq[k].status for k in owner]
         calls.append(([ci[k].status for k in owner], eq_status))

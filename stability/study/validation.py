@@ -126,6 +126,7 @@ def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", ca
         fitting window and the largest slip angle in it.
     """
     from stability import linear
+    from stability.settings.run import RunSpec
     from stability.simulate import simulate
 
     c = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0, pin_damping=0.0)
@@ -142,9 +143,9 @@ def linear_vs_nonlinear(chair: Chair, speed: float, *, model: str = "thesis", ca
         span = max(span, 4 * 2 * math.pi / abs(lam.imag))
     if duration is None:
         duration = t_start + span
-    res = simulate(c, speed, duration=duration, scheme=scheme, model=model, dt=dt,
-                   impulse_force=impulse_force, impulse_duration=impulse_duration, casters=casters,
-                   stop_on_warnings=False, sample=dt if scheme == "adaptive" else None)
+    res = simulate(c, speed, RunSpec(horizon=duration, scheme=scheme, model=model, dt=dt, push_force=impulse_force,
+                                     push_duration=impulse_duration, casters=casters, stop_on_warnings=False,
+                                     sample=dt if scheme == "adaptive" else None))
     window = (t_start, min(duration, t_start + span))
     rate = measured_rate(res.t, res.yaw_rate, oscillatory, window)
     sel = (res.t >= window[0]) & (res.t <= window[1])

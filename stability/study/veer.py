@@ -18,11 +18,12 @@ import numpy as np
 
 from stability.chair import Chair
 from stability.settings.defaults import SLOPE_SIM_TIME
+from stability.settings.run import RunSpec
 from stability.simulate import simulate
 from stability.slope.equilibrium import Equilibrium
 from stability.slope.model import Plane, SlopeModel
 
-__all__ = ["UncorrectedPath", "uncorrected_path", "simulator_path", "simulator_slope"]
+__all__ = ["UncorrectedPath", "uncorrected_path", "simulator_path", "simulator_slope", "VEER_RUN"]
 
 #: a caster swung this far from its held angle ends a run (beyond the tire data), deg
 MAX_CASTER_SWING_DEG = 30.0
@@ -189,9 +190,13 @@ def simulator_slope(chair: Chair, eq: Equilibrium) -> tuple[float, float]:
     return math.degrees(math.atan2(g2, gn)), math.degrees(math.asin(-g1 / chair.g))
 
 
-def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", duration: float = 2.0,
-                   pin_friction: bool = True, max_heading_deg: float = 45.0, report_time: float = REPORT_TIME,
-                   **options) -> UncorrectedPath:
+#: The uncorrected path's default run: the adaptive scheme for 2 s (the speed, the initial state and the slope
+#: come from the equilibrium; no push).
+VEER_RUN = RunSpec(scheme="adaptive", horizon=2.0)
+
+
+def simulator_path(chair: Chair, eq: Equilibrium, run: RunSpec = VEER_RUN, *, pin_friction: bool = True,
+                   max_heading_deg: float = 45.0, report_time: float = REPORT_TIME) -> UncorrectedPath:
     """The uncorrected path from the simulator (:func:`stability.simulate.simulate`) on the slope.
 
     Released from the held equilibrium ``eq`` (crab angle, caster angles,
@@ -207,19 +212,15 @@ def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", dura
         (the simulator has only Coulomb pin friction).
     eq : Equilibrium
         The held equilibrium (:func:`stability.slope.equilibrium.solve`).
-    scheme : {"adaptive", "wchair"}
-        Simulator scheme (``"wchair"``: WCHAIR's fixed 1 ms step, lagged loads,
-        ``stop_on_warnings`` as the simulator's default).
-    duration : float
-        Length of the run, s.
+    run : RunSpec
+        The run's scheme, step, tolerances and length (``horizon``, s); the speed, initial state, push (none),
+        model (exact) and slope come from ``eq``.
     pin_friction : bool
         Keep the chair's Coulomb pin friction (N m); False: frictionless pins.
     max_heading_deg : float
         Heading change that ends the path (deg).
     report_time : float
-        When the summary is taken (s, default 1; ``duration`` is raised to it if shorter).
-    **options
-        Further keywords of :func:`stability.simulate.simulate` (e.g. ``dt``, ``rtol``).
+        When the summary is taken (s, default 1; the horizon is raised to it if shorter).
 
     Returns
     -------
@@ -234,13 +235,14 @@ def simulator_path(chair: Chair, eq: Equilibrium, scheme: str = "adaptive", dura
     if chair.pin_damping != 0.0:
         raise ValueError(f"pin_damping={chair.pin_damping!r} is invalid for the simulator path; valid range: 0 "
                          "(the simulator has Coulomb pin friction only)")
-    duration = max(duration, report_time)
+    duration = max(run.horizon, report_time)
     run_chair = chair if pin_friction else chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
     psi0 = math.radians(eq.heading_deg)
     u0, v0 = eq.speed * math.cos(psi0), -eq.speed * math.sin(psi0)
-    res = simulate(run_chair, u0, duration=duration, scheme=scheme, model="exact", impulse_force=0.0,
-                   lateral_velocity=v0, eta0_deg=eq.eta_deg, beta0_deg=eq.beta_deg,
-                   slope=simulator_slope(chair, eq), **options)
+    cross, grade = simulator_slope(chair, eq)
+    res = simulate(run_chair, u0, run.replace(horizon=duration, model="exact", push_force=0.0, lateral_velocity=v0,
+                                              eta0_deg=eq.eta_deg, beta0_deg=eq.beta_deg, cross_slope_deg=cross,
+                                              grade_deg=grade))
     t, dpsi = res.t, res.heading
     swing = np.maximum(np.abs(res.eta - math.radians(eq.eta_deg)), np.abs(res.beta - math.radians(eq.beta_deg)))
     out = np.flatnonzero((np.abs(dpsi) > math.radians(max_heading_deg)) | (swing > math.radians(MAX_CASTER_SWING_DEG)))

@@ -123,10 +123,11 @@ def _warm_up(dask_worker: Any = None) -> str:
 
             config.reload_config()
     from stability.chair import preset
+    from stability.settings.run import RunSpec
     from stability.simulate import simulate
     from stability.simulate.kernel import get_num_threads
 
-    simulate(preset("ej-premier"), 0.75, duration=0.01, record="final")
+    simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01), record="final")
     return f"numba threads {get_num_threads()}, cache {os.environ.get('NUMBA_CACHE_DIR', 'default')}"
 
 

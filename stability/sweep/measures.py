@@ -182,13 +182,12 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
         # (study.impulse.check_study_work), and the searches of different pairs do not interact, so the answers
         # are those of one call for the whole chunk (any chunk_rows)
         res = [r for i in range(0, len(pc), SEARCH_SLICE)
-               for r in critical_impulses(pc[i:i + SEARCH_SLICE], ps[i:i + SEARCH_SLICE], model=spec.model,
-                                          friction_law=spec.friction_law)]
+               for r in critical_impulses(pc[i:i + SEARCH_SLICE], ps[i:i + SEARCH_SLICE], spec.run)]
         out["critical_impulse_Ns"] = np.array([math.nan if r.impulse_Ns is None else r.impulse_Ns
                                                for r in res]).reshape(n, k)
         out["critical_impulse_status"] = np.array([r.status for r in res], dtype=object).reshape(n, k)
     if "equal_instability_speed" in spec.measures:
-        res2 = equal_instability_speeds(chairs, model=spec.model, progress=False, friction_law=spec.friction_law)
+        res2 = equal_instability_speeds(chairs, spec.run, progress=False)
         v = np.array([math.nan if r.speed is None else r.speed for r in res2])
         out["equal_instability_speed_m_s"] = np.repeat(v[:, None], k, axis=1)
         out["equal_instability_status"] = np.repeat(np.array([r.status for r in res2], dtype=object)[:, None], k,

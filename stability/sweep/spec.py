@@ -35,7 +35,7 @@ from typing import Any
 
 from stability import chair as chair_mod
 from stability.chair import Chair, design
-from stability.settings.defaults import MEASURE_FRICTION_LAW
+from stability.settings.run import FRICTION_LAWS, MODELS, RunSpec
 from stability.uncertainty import Uncertainty, load_uncertainty
 
 if sys.version_info >= (3, 11):
@@ -73,7 +73,7 @@ SCHEMA: dict[str, Any] = {
     "properties": {
         "chair": {"type": "string", "description": "preset name or chair TOML file (relative to the spec)"},
         "model": {"enum": ["exact", "thesis"], "default": "exact"},
-        "friction_law": {"enum": ["kinetic", "stick-slip"], "default": MEASURE_FRICTION_LAW,
+        "friction_law": {"enum": list(FRICTION_LAWS), "default": RunSpec().friction_law,
                          "description": "pin friction of the nonlinear measures' fixed-step runs"},
         "speeds": {"type": "array", "items": {"type": "number", "exclusiveMinimum": 0, "maximum": 10},
                    "minItems": 1, "description": "forward speeds, m/s"},
@@ -125,7 +125,7 @@ class SweepSpec:
     seed: int
     uncertainty: Uncertainty | None
     chunk_rows: int
-    friction_law: str = MEASURE_FRICTION_LAW
+    friction_law: str = RunSpec().friction_law
 
     @property
     def designs(self) -> int:
@@ -136,6 +136,11 @@ class SweepSpec:
     def rows(self) -> int:
         """Rows of the results: designs x draws x speeds."""
         return self.designs * self.draws * len(self.speeds)
+
+    @property
+    def run(self) -> RunSpec:
+        """The nonlinear measures' run settings: the spec's model and pin-friction law, the rest the defaults."""
+        return RunSpec(model=self.model, friction_law=self.friction_law)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary of the spec (what a results file was made from)."""
@@ -208,12 +213,12 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
         raise _bad("chair", source, "a preset name or a chair TOML file")
     path = base / source
     chair = chair_mod.resolve(str(path) if source.endswith(".toml") else source)
-    model = data.get("model", "exact")
-    if model not in ("exact", "thesis"):
-        raise _bad("model", model, "'exact' or 'thesis'")
-    friction_law = data.get("friction_law", MEASURE_FRICTION_LAW)
-    if friction_law not in ("kinetic", "stick-slip"):
-        raise _bad("friction_law", friction_law, "'kinetic' or 'stick-slip'")
+    model = data.get("model", RunSpec().model)
+    if model not in MODELS:
+        raise _bad("model", model, " or ".join(repr(m) for m in MODELS))
+    friction_law = data.get("friction_law", RunSpec().friction_law)
+    if friction_law not in FRICTION_LAWS:
+        raise _bad("friction_law", friction_law, " or ".join(repr(m) for m in FRICTION_LAWS))
     if "speeds" not in data:
         raise ValueError("spec has no speeds; valid: speeds = [m/s, ...], each > 0")
     speeds = _numbers("speeds", data["speeds"], positive=True)

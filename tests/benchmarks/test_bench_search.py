@@ -41,6 +41,7 @@ import pytest
 from baseline_search import bisect_speeds_baseline, critical_impulses_bisection
 
 from stability.chair import preset
+from stability.settings.run import RunSpec
 from stability.study import critical_impulse, critical_impulses
 from stability.study.criteria import DEFAULT_CRITERION
 from stability.study.equal_instability import bisect_speeds, reference_time
@@ -136,7 +137,7 @@ def test_bench_critical_impulse_linear_start(bench):
 
 def test_bench_equal_instability_bisection(bench):
     chairs = [preset("revised"), EJ.replace(pin_friction_left=0.15, pin_friction_right=0.15)]
-    t_ref = reference_time(model="exact")
+    t_ref = reference_time(run=RunSpec(model="exact"))
     kw = dict(model="exact", scheme="wchair", criterion=DEFAULT_CRITERION, bracket=(0.2, 3.0), tol=0.005,
               candidates=7, max_rounds=8, dt=0.001, progress=False, reference_text="", sim_options={})
     args = (chairs, [t_ref] * 2, [40.0] * 2, 0.1)

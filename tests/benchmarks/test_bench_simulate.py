@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from stability.chair import preset
+from stability.settings.run import RunSpec
 from stability.simulate import DEFAULTS, StepStabilityWarning, simulate, simulate_batch
 from stability.simulate.options import make_options
 from stability.simulate.reference import wchair_batch
@@ -63,12 +64,12 @@ def _quiet():
 
 
 def test_bench_single_run(bench):
-    simulate(EJ, 0.75, duration=0.1)  # compile / load the cache
+    simulate(EJ, 0.75, run=RunSpec(horizon=0.1, friction_law="kinetic"))  # compile / load the cache
     res = bench.pedantic(simulate, args=(EJ, 0.75), kwargs=dict(stop_on_warnings=False), rounds=20, iterations=1,
                          warmup_rounds=2)
     assert len(res.t) == 10002
     best = bench.stats.stats.min
-    cw, cc, _ = _timed(lambda: simulate(EJ, 0.75, stop_on_warnings=False), repeat=20)
+    cw, cc, _ = _timed(lambda: simulate(EJ, 0.75, run=RunSpec(stop_on_warnings=False, friction_law="kinetic")), repeat=20)
     rw, rc, ref = _timed(lambda: _numpy([0.75], sample=0.001, stop_on_warnings=False))
     np.testing.assert_allclose(res.yaw_rate, ref[0].yaw_rate, rtol=1e-6, atol=1e-9)
     bench.extra_info.update(seconds=best, cpu_seconds=cc, numpy_reference_seconds=rw, numpy_reference_cpu=rc,
@@ -79,7 +80,7 @@ def test_bench_single_run(bench):
 
 
 def test_bench_batch_2000(bench):
-    simulate_batch(EJ, STUDY_SPEEDS[:4], duration=0.1, progress=False)
+    simulate_batch(EJ, STUDY_SPEEDS[:4], run=RunSpec(horizon=0.1, friction_law="kinetic"), progress=False)
     kw = dict(progress=False, record="final")
     res = bench.pedantic(simulate_batch, args=(EJ, STUDY_SPEEDS), kwargs=kw, rounds=3, iterations=1)
     assert len(res) == 2000 and all(len(r.t) == 1 for r in res)
@@ -93,7 +94,7 @@ def test_bench_batch_2000(bench):
         cw, cc = min(cw, w), min(cc, c)
         w, c, ref = _timed(lambda: _numpy(STUDY_SPEEDS))
         rw, rc = min(rw, w), min(rc, c)
-    sw, sc, states = _timed(lambda: simulate_batch(EJ, STUDY_SPEEDS, progress=False, record="states"))
+    sw, sc, states = _timed(lambda: simulate_batch(EJ, STUDY_SPEEDS, run=RunSpec(friction_law="kinetic"), progress=False, record="states"))
     # the same runs (rounding-level differences, libm vs numpy's SIMD functions, can move a stop by a step)
     stop_c = np.array([r.stop_time if r.stopped_by_warnings else np.inf for r in res])
     stop_r = np.array([r.stop_time if r.stopped_by_warnings else np.inf for r in ref])
@@ -112,11 +113,11 @@ def test_bench_adaptive_run(bench):
     def zero(t, state):
         return 0.0
 
-    simulate(EJ, 0.75, duration=0.1, scheme="adaptive")
+    simulate(EJ, 0.75, run=RunSpec(horizon=0.1, scheme="adaptive"))
     res = bench.pedantic(simulate, args=(EJ, 0.75), kwargs=dict(scheme="adaptive"), rounds=5, iterations=1)
     assert res.t[-1] == pytest.approx(10.0) and res.settings["engine"] == "compiled"
     best = bench.stats.stats.min
-    pw, pc, py = _timed(lambda: simulate(EJ, 0.75, scheme="adaptive", yaw_moment=zero), repeat=2)
+    pw, pc, py = _timed(lambda: simulate(EJ, 0.75, run=RunSpec(scheme="adaptive"), yaw_moment=zero), repeat=2)
     assert py.settings["engine"] == "python"
     bench.extra_info.update(seconds=best, rhs_evaluations=res.settings["nfev"], python_rhs_seconds=pw,
                             speedup=pw / best)

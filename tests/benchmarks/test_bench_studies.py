@@ -16,6 +16,7 @@ import pytest
 from stability import simulate as sim
 from stability.chair import preset
 from stability.report import document
+from stability.settings.run import RunSpec
 from stability.study import equal_instability_speed
 
 REVISED = preset("revised")
@@ -47,7 +48,7 @@ def _quiet(fn):
 
 
 def test_bench_equal_instability_speed(bench):
-    study = _quiet(lambda: equal_instability_speed(REVISED))
+    study = _quiet(lambda: equal_instability_speed(REVISED, run=RunSpec(model="thesis")))
     study()                                                     # warm-up: cached kernels, imports
 
     def reference():
