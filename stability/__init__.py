@@ -39,6 +39,7 @@ _ENTRY_POINTS = {
     "analyse": ("stability.linear", "analyse"),
     "state_space": ("stability.linear", "state_space"),
     "eigenvalues_vs_speed": ("stability.linear", "eigenvalues_vs_speed"),
+    "RunSpec": ("stability.settings.run", "RunSpec"),
     "run_simulation": ("stability.simulate", "simulate"),
     "run_batch": ("stability.simulate", "simulate_batch"),
 }

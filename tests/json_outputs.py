@@ -20,7 +20,7 @@ SHEET = ROOT / "docs" / "examples" / "measured_chair_sheet.toml"
 CASES = {
     "critical_speed": ("critical_speed", ["--speeds", "0.5,1"]),
     "compare": ("compare", ["ej-premier", "revised", "--speeds", "0.75"]),
-    "simulate": ("simulate", ["--duration", "0.5", "--sample", "0.1"]),
+    "simulate": ("simulate", ["--horizon", "0.5", "--sample", "0.1"]),
     "study_critical_impulse": ("study", ["critical-impulse", "--speeds", "0.75", "--horizon", "4"]),
     "study_equal_instability": ("study", ["equal-instability"]),
     "shimmy": ("shimmy", ["--speeds", "1,2", "--chair-model"]),

@@ -21,14 +21,14 @@ from stability.simulate import simulate
 from stability.simulate.adaptive import NoLoadSolution
 
 POWER_FWD = preset("power-fwd")
-PUSH = dict(scheme="adaptive", model="exact", impulse_force=400.0, impulse_duration=0.1, stop_on_warnings=False)
+PUSH = RunSpec(scheme="adaptive", model="exact", push_force=400.0, push_duration=0.1, stop_on_warnings=False)
 FAIL = re.compile(r"no converging solution at t = (\d+\.\d+) s \(the left caster lifts off: load (-?\d+) N, "
                   r"yaw rate ([-+]\d+\.\d+) rad/s at (\d+\.\d+) s, the last time integrated\)")
 
 
 @pytest.fixture(scope="module")
 def stopped():
-    return simulate(POWER_FWD, 1.5, duration=10.0, **PUSH)
+    return simulate(POWER_FWD, 1.5, PUSH.replace(horizon=10.0))
 
 
 def test_the_run_ends_before_the_failure_and_says_why(stopped):
@@ -61,8 +61,8 @@ def test_the_samples_before_the_stop_are_those_of_a_run_that_ends_earlier(stoppe
     proportional to the tolerance: e(tol) ~= 2 |y(tol) - y(tol / 2)| (the same run at halved rtol and atol).
     Two runs at the same tolerance then differ by at most e_a + e_b ~= 4 |y(tol) - y(tol / 2)|.  Observed:
     5.1e-9 rad/s against 4 x 1.16e-6 = 4.6e-6 rad/s (margin ~900)."""
-    short = simulate(POWER_FWD, 1.5, duration=1.0, **PUSH)
-    half = simulate(POWER_FWD, 1.5, duration=1.0, rtol=0.5e-6, atol=0.5e-9, **PUSH)
+    short = simulate(POWER_FWD, 1.5, PUSH.replace(horizon=1.0))
+    half = simulate(POWER_FWD, 1.5, PUSH.replace(horizon=1.0, rtol=0.5e-6, atol=0.5e-9))
     assert short.t[-1] == 1.0 and not short.stopped_by_warnings and short.stop_reason is None
     bound = 4.0 * abs(short.yaw_rate[-1] - half.yaw_rate[-1])
     assert 0 < bound < 1e-4                                  # the bound still sees an error of 1e-4 rad/s
@@ -73,7 +73,7 @@ def test_the_samples_before_the_stop_are_those_of_a_run_that_ends_earlier(stoppe
 
 def test_the_python_right_hand_side_stops_as_the_compiled_one(stopped):
     """The Python path (a yaw_moment input) raises the same NoLoadSolution from its load loop and stops."""
-    p = simulate(POWER_FWD, 1.5, duration=1.05, yaw_moment=lambda t, s: 0.0, **PUSH)
+    p = simulate(POWER_FWD, 1.5, PUSH.replace(horizon=1.05), yaw_moment=lambda t, s: 0.0)
     assert p.settings["engine"] == "python" and p.stopped_by_warnings and FAIL.search(p.stop_reason)
     assert 1.0 < p.t[-1] < 1.02
     # same ODE up to 1.0 s, different load-loop stopping rounding: within the integration error (as above)
@@ -90,7 +90,7 @@ def test_the_searches_count_a_stopped_run_at_its_crossing_or_at_its_stop(stopped
     reaches at the stop (as the kernel path's runs stopped by the warning rule, summaries._summaries)."""
     from stability.study.summaries import run_summaries
 
-    kw = dict(model="exact", scheme="adaptive", duration=0.1, dt=None, horizon=10.0)
+    kw = dict(run=RunSpec(model="exact", scheme="adaptive", push_duration=0.1, horizon=10.0))
     reach = run_summaries([POWER_FWD], [1.5], [400.0], level=1.0, **kw)
     assert reach.t_level[0] == pytest.approx(stopped.first_time_abs_yaw_rate(1.0), abs=1e-12)
     assert reach.t_half[0] == pytest.approx(stopped.first_time_abs_yaw_rate(0.5), abs=1e-12)
@@ -109,9 +109,9 @@ def test_critical_impulse_on_the_adaptive_path_and_its_bracket():
     res = critical_impulse(POWER_FWD, 1.5, run=RunSpec(scheme="adaptive"))
     assert res.status == "found" and res.largest_tried_Ns == 40.0
     assert res.high_Ns / res.low_Ns - 1 <= 0.005 * (1 + 1e-9) and res.low_Ns <= res.impulse_Ns <= res.high_Ns
-    kw = dict(PUSH, impulse_force=0.0, duration=10.0)
-    low = simulate(POWER_FWD, 1.5, **dict(kw, impulse_force=res.low_Ns / 0.1))
-    high = simulate(POWER_FWD, 1.5, **dict(kw, impulse_force=res.high_Ns / 0.1))
+    kw = PUSH.replace(horizon=10.0)
+    low = simulate(POWER_FWD, 1.5, kw.replace(push_force=res.low_Ns / 0.1))
+    high = simulate(POWER_FWD, 1.5, kw.replace(push_force=res.high_Ns / 0.1))
     assert low.t[-1] == 10.0 and not low.stopped_by_warnings and low.first_time_abs_yaw_rate(1.0) is None
     t_high = high.first_time_abs_yaw_rate(1.0)
     assert t_high is not None and t_high <= 10.0
@@ -121,7 +121,7 @@ def test_the_command_line_prints_the_reason_and_exits_0(capsys):
     from stability.simulate.__main__ import main
 
     rc = main(["--chair", "power-fwd", "--speed", "1.5", "--scheme", "adaptive", "--model", "exact",
-               "--impulse", "400", "0.1", "--no-stop"])
+               "--push-force", "400", "--push-duration", "0.1", "--no-stop-on-warnings"])
     out = capsys.readouterr().out
     assert rc == 0
     line = next(ln for ln in out.splitlines() if ln.startswith("STOPPED"))

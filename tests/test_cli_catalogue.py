@@ -1,4 +1,3 @@
-from stability.settings.run import RunSpec
 
 """Every command line answers bad input the same way (issue 16's error contract).
 
@@ -18,6 +17,8 @@ import time
 from pathlib import Path
 
 import pytest
+
+from stability.settings.run import RunSpec
 
 COMMANDS = {
     "critical_speed": "stability.critical_speed.command",
@@ -95,12 +96,12 @@ CASES = [
     ("simulate", ["--speed", "nan"], "speed"),
     ("simulate", ["--dt", "1e-9"], "dt"),
     ("simulate", ["--dt", "0"], "dt"),
-    ("simulate", ["--duration", "1e9", "--no-stop"], "duration"),
-    ("simulate", ["--duration", "-1"], "duration"),
-    ("simulate", ["--scheme", "adaptive", "--duration", "1e5"], "duration"),
+    ("simulate", ["--horizon", "1e9", "--no-stop-on-warnings"], "horizon"),
+    ("simulate", ["--horizon", "-1"], "horizon"),
+    ("simulate", ["--scheme", "adaptive", "--horizon", "1e5"], "horizon"),
     ("simulate", ["--scheme", "euler"], "scheme"),
-    ("simulate", ["--impulse", "40", "-1"], "impulse"),
-    ("simulate", ["--impulse", "1e12", "0.1"], "impulse"),
+    ("simulate", ["--push-force", "40", "--push-duration", "-1"], "push-duration"),
+    ("simulate", ["--push-force", "1e12", "--push-duration", "0.1"], "push-force"),
     ("simulate", ["--csv", "r.png", "-o", "r.png"], "same file"),
     ("simulate", ["-o", "/proc/r.png"], "-o"),
     ("simulate", ["--csv", "nodir/r.csv"], "does not exist"),
@@ -164,13 +165,13 @@ CASES = [
     ("critical_speed", ["--uncertainty", "{inputs}/u.toml", "--samples", "20000"], "--samples"),
     ("compare", ["ej-premier", "revised", "--uncertainty", "{inputs}/u.toml", "--uncertainty", "{inputs}/u.toml",
                  "--samples", "20000"], "--samples"),
-    ("simulate", ["--duration", "3600"], "--duration"),
-    ("simulate", ["--duration", "4", "--sample", "1e-5"], "--sample"),
+    ("simulate", ["--horizon", "3600"], "--horizon"),
+    ("simulate", ["--horizon", "4", "--sample", "1e-5"], "--sample"),
     ("slope", ["--cross-slope", "2", "--speed", "0.75", "--sim-time", "1e9"], "--sim-time"),
     # issue 19: every number is parsed knowing its option (the three named inputs and their class)
     ("assist", ["--seed", "-1"], "--seed"),
     ("critical_speed", ["--uncertainty", "{inputs}/u.toml", "--seed", "-1"], "--seed"),
-    ("simulate", ["--tire-impulse", "1e308"], "--tire-impulse"),
+    ("simulate", ["--tire-push-force", "1e308"], "--tire-push-force"),
     ("simulate", ["--lateral-velocity", "1e308"], "--lateral-velocity"),
     ("simulate", ["--sample", "1e-9"], "--sample"),
     ("simulate", ["--scheme", "adaptive", "--atol", "1e-300"], "--atol"),
@@ -269,7 +270,7 @@ def test_catalogue_is_large_and_covers_every_command():
 @pytest.mark.parametrize("command,argv", [
     ("critical_speed", ["--set", "camber_deg=10"]),       # camber up to 45 deg is a valid chair (issue 16)
     ("critical_speed", ["--speeds", "0.5,1", "--set", "m=120"]),
-    ("simulate", ["--duration", "1", "--speed", "0.5", "--impulse", "-40", "0.1"]),   # a push to the left
+    ("simulate", ["--horizon", "1", "--speed", "0.5", "--push-force", "-40", "--push-duration", "0.1"]),   # a push to the left
 ])
 def test_valid_unusual_input_is_answered(command, argv, capsys):
     main = importlib.import_module(COMMANDS[command]).main
@@ -448,8 +449,8 @@ def test_numpy_floating_point_warnings_are_not_printed(capsys):
 
 
 @pytest.mark.parametrize("command,argv,option", [
-    ("simulate", ["--duration", "0.5", "--csv", "out.csv"], "out.csv"),
-    ("simulate", ["--duration", "0.5", "-o", "out.pdf"], "out.pdf"),
+    ("simulate", ["--horizon", "0.5", "--csv", "out.csv"], "out.csv"),
+    ("simulate", ["--horizon", "0.5", "-o", "out.pdf"], "out.pdf"),
     ("critical_speed", ["--speeds", "0.5,1", "--json-file", "out.json"], "out.json"),
 ])
 def test_a_full_disk_is_one_line_naming_the_file_and_nothing_is_left(command, argv, option, tmp_path, monkeypatch,
@@ -540,7 +541,7 @@ def test_small_speed_limit_rates_are_proportional_to_speed_and_below_it_refused(
 
 
 @pytest.mark.parametrize("call,argument", [
-    ("simulate_duration", "duration"), ("simulate_dt", "dt"), ("simulate_push", "tire_impulse"),
+    ("simulate_duration", "horizon"), ("simulate_dt", "dt"), ("simulate_push", "tire_push_force"),
     ("simulate_atol", "atol"), ("intervals", "samples"), ("shimmy", "speeds"), ("study", "horizon"),
 ])
 def test_the_python_api_bounds_work_naming_the_argument_and_the_largest_value(call, argument):

@@ -33,8 +33,8 @@ def test_ctrl_c_exits_130_with_one_line_and_no_file(tmp_path):
 def test_every_signal_from_the_first_line_exits_130_with_one_line_and_no_file(signum, delay, tmp_path):
     """During the imports (0.15 s) and during the work (3 s): one line, status 130, no partial or hidden file."""
     env = dict(os.environ, PYTHONUNBUFFERED="1")
-    proc = subprocess.Popen([sys.executable, "-m", "stability.simulate", "--scheme", "adaptive", "--duration", "3600",
-                             "--rtol", "1e-10", "--atol", "1e-12", "--sample", "1", "--no-stop", "--csv", "out.csv",
+    proc = subprocess.Popen([sys.executable, "-m", "stability.simulate", "--scheme", "adaptive", "--horizon", "3600",
+                             "--rtol", "1e-10", "--atol", "1e-12", "--sample", "1", "--no-stop-on-warnings", "--csv", "out.csv",
                              "--json-file", "out.json"], cwd=tmp_path,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     time.sleep(delay)

@@ -63,7 +63,7 @@ def test_critical_speed_answers_random_chairs(capsys, sets):
 @common(15)
 @given(chair_sets())
 def test_simulate_answers_random_chairs(capsys, sets):
-    _run("stability.simulate.__main__", sets + ["--duration", "2", "--json"], capsys)
+    _run("stability.simulate.__main__", sets + ["--horizon", "2", "--json"], capsys)
 
 
 def _slope_and_shimmy(capsys, sets):

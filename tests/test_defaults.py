@@ -25,10 +25,7 @@ SUBCOMMANDS = {"study": ["critical-impulse", "equal-instability"], "chair": ["ex
 RENAMED = {
     "critical_speed": {"speeds": "summary_speeds", "level": "coverage"},
     "compare": {"speeds": "summary_speeds", "level": "coverage"},
-    "simulate": {"impulse": ("push_force", "push_duration"), "out_of_range": "sim_out_of_range"},
-    "study critical-impulse": {"speeds": "study_speeds", "duration": "push_duration", "level": "yaw_rate_level",
-                               "friction_law": "measure_friction_law"},
-    "study equal-instability": {"force": "push_force", "friction_law": "measure_friction_law"},
+    "study critical-impulse": {"speeds": "study_speeds", "level": "yaw_rate_level"},
     "shimmy": {"speeds": "shimmy_speeds"},
     "advise": {"speeds": "advise_speeds", "cross_slope": "advise_cross_slope_deg"},
     "slope": {"wheel_radius": "handrim_wheel_radius"},
@@ -36,7 +33,6 @@ RENAMED = {
 }
 #: Options with a default that belongs to one command alone (no API function shares it).
 COMMAND_ONLY = {
-    "simulate": {"tire_impulse", "lateral_velocity", "eta0", "beta0", "duration", "rtol", "atol"},
     "slope": {"drive"},
     "compare": {"pairing"},
     "assist": {"max_yaw_rate"},
@@ -106,14 +102,11 @@ def _api():
     from stability.report.document import build
     from stability.shimmy.chair_modes import chair_shimmy
     from stability.slope.equilibrium import HandRim
-    from stability.study.impulse import critical_impulse, critical_impulses
+    from stability.study.impulse import critical_impulses
     from stability.study.intervals import equal_instability_interval
     from stability.study.uncertain import nonlinear_intervals
 
-    rows = [(simulate.simulate, k, t) for k, t in [
-        ("model", "model"), ("scheme", "scheme"), ("dt", "dt"), ("casters", "casters"),
-        ("impulse_force", "push_force"), ("impulse_duration", "push_duration"), ("duration", "horizon"),
-        ("out_of_range", "sim_out_of_range")]]
+    rows = []
     rows += [(simulate.linearise, "model", "model"), (linear.state_space, "model", "model"),
              (linear.state_space, "casters", "casters"), (linear.analyse, "model", "model"),
              (linear.analyse, "speeds", "summary_speeds"), (linear.analyse, "max_speed", "max_speed"),
@@ -122,14 +115,9 @@ def _api():
         rows += [(f, k, t) for k, t in [("model", "model"), ("speeds", "summary_speeds"), ("max_speed", "max_speed"),
                                         ("samples", "samples"), ("seed", "seed"), ("level", "coverage")]]
     rows += [(nonlinear_intervals, k, t) for k, t in [
-        ("speed", "speed"), ("model", "model"), ("samples", "nonlinear_samples"), ("seed", "seed"),
-        ("level", "coverage"), ("scheme", "scheme"), ("horizon", "horizon"), ("dt", "dt")]]
-    for f in (critical_impulse, critical_impulses):
-        rows += [(f, k, t) for k, t in [("model", "model"), ("scheme", "scheme"), ("duration", "push_duration"),
-                                        ("level", "yaw_rate_level"), ("horizon", "horizon")]]
-    rows += [(critical_impulses, "max_impulse", "max_impulse"), (critical_impulses, "dt", "dt"),
-             (equal_instability_interval, "model", "model"), (equal_instability_interval, "scheme", "scheme"),
-             (equal_instability_interval, "dt", "dt"), (equal_instability_interval, "reference_speed", "speed"),
+        ("speed", "speed"), ("samples", "nonlinear_samples"), ("seed", "seed"), ("level", "coverage")]]
+    rows += [(critical_impulses, "level", "yaw_rate_level"), (critical_impulses, "max_impulse", "max_impulse"),
+             (equal_instability_interval, "reference_speed", "speed"),
              (design, "model", "model"), (design, "kind", "design"), (schedule, "model", "model"),
              (schedule, "kind", "design"), (tracking.closed_loop, "bias_time_constant", "bias_time_constant"),
              (tracking.closed_loop, "command_filter", "command_filter"), (build, "model", "model"),
@@ -158,25 +146,67 @@ def test_api_defaults_equal_the_table(func, keyword, table):
         assert default == expected, (func.__name__, keyword, default, expected)
 
 
-def test_equal_instability_push_and_criterion_are_the_tables():
+def test_equal_instability_criterion_is_the_tables():
     from stability.study.intervals import equal_instability_interval
 
-    params = inspect.signature(equal_instability_interval).parameters
-    push, crit = params["push"].default, params["criterion"].default
-    assert (push.force, push.duration) == (D.PUSH_FORCE, D.PUSH_DURATION)
+    crit = inspect.signature(equal_instability_interval).parameters["criterion"].default
     assert (crit.yaw_rate, crit.duration) == (D.YAW_RATE_LEVEL, D.HORIZON_S)
+
+
+def _simulating_apis():
+    from stability import simulate, study
+    from stability.study import runs, summaries, veer
+
+    return [simulate.simulate, simulate.simulate_batch, study.critical_impulse, study.critical_impulses,
+            study.critical_impulse_curve, study.critical_impulse_intervals, study.equal_instability_speed,
+            study.equal_instability_speeds, study.equal_instability_interval, study.equal_instability_intervals,
+            study.reference_time, study.yaw_rate_responses, study.trajectories, study.stability_map,
+            study.disturbance_map, study.nonlinear_intervals, study.elasticities, study.steady_turn,
+            study.equal_friction_comparison, study.friction_exponent, study.thesis_study, summaries.run_summaries,
+            summaries.SummaryRunner, runs.simulate_runs, veer.simulator_path]
+
+
+#: Keywords the run settings used to travel as (keyword soup): none of them may come back beside ``run``.
+_OLD_RUN_KEYWORDS = {"duration", "impulse_force", "impulse_duration", "tire_impulse", "slope", "impulse", "push",
+                     "sim_options", "scheme", "model", "dt", "horizon", "friction_law", "casters", "stop_on_warnings",
+                     "out_of_range", "sample", "rtol", "atol", "reverse", "eta0_deg", "beta0_deg", "lateral_velocity"}
+
+
+@pytest.mark.parametrize("func", _simulating_apis(), ids=lambda f: f.__name__)
+def test_every_simulating_api_takes_one_run_spec(func):
+    """Every function that simulates takes its run settings as one ``run`` (a RunSpec whose defaults are the
+    table's), never as loose keywords or ``**sim_options``."""
+    params = inspect.signature(func).parameters
+    assert "run" in params, func
+    loose = sorted(_OLD_RUN_KEYWORDS & set(params))
+    assert not loose, (func.__name__, loose)
+    assert not any(p.kind is inspect.Parameter.VAR_KEYWORD and p.name in ("sim_options", "options", "kw")
+                   and func.__name__ in ("simulate", "simulate_batch") for p in params.values())
+
+
+def test_the_run_defaults_are_the_tables():
+    """The table's run rows are the RunSpec's defaults, and the simulator's reference push is the thesis's."""
+    from stability.settings.reference import HORIZON, THESIS_PUSH
+    from stability.settings.run import RUN_SETTINGS, RunSpec
+
+    run = RunSpec()
+    for name in RUN_SETTINGS:
+        assert D.TABLE[name].value == getattr(run, name), name
+    assert run.push == THESIS_PUSH and run.horizon == HORIZON and run.friction_law == "stick-slip"
 
 
 def test_readme_snippet_runs_the_command_lines_model():
     """stability.run_simulation(chair, 0.75) is the same run as python -m stability.simulate --speed 0.75 (the
     README's snippet ran the thesis model while the command ran the exact one: 3.21 s vs 2.92 s to 1 rad/s)."""
     import stability
+    from stability.settings.run import RunSpec
     from stability.simulate.__main__ import build_parser
 
     args = build_parser().parse_args(["--speed", "0.75"])
-    run = stability.run_simulation(stability.preset("ej-premier"), 0.75, duration=0.01)
+    run = stability.run_simulation(stability.preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
     assert run.settings["model"] == args.model == "exact"
     assert run.settings["scheme"] == args.scheme and run.settings["dt"] == args.dt
+    assert run.settings["friction_law"] == args.friction_law == "stick-slip"
 
 
 def test_every_table_entry_has_a_unit_and_meaning():

@@ -34,6 +34,7 @@ from stability.settings.run import RunSpec
 from stability.study import critical_impulses
 from stability.study.impulse import linear_critical_impulse
 from stability.study.responses import linear_impulse_response, linear_peak_yaw_rate
+from stability.study.runs import study_run
 from stability.study.summaries import SummaryRunner, run_summaries
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -75,7 +76,7 @@ def test_summary_runner_is_run_summaries():
     """Packed once and launched per round: bit-identical summaries, including a pair on a smaller step."""
     pairs = [(preset("ej-premier"), 0.75), (_frictionless("revised"), 0.5), (preset("power-fwd"), 0.1)]
     chairs, speeds = [c for c, _ in pairs], [s for _, s in pairs]
-    kw = dict(model="exact", scheme="wchair", duration=0.1, dt=0.001, horizon=3.0, level=LEVEL)
+    kw = dict(run=study_run(RunSpec(model="exact", push_duration=0.1, dt=0.001, horizon=3.0)), level=LEVEL)
     runner = SummaryRunner(chairs, speeds, **kw)
     assert runner.packed is not None and len(set(runner.packed.steps)) == 2     # 0.1 m/s needs a smaller step
     idx = [2, 0, 1, 0, 2]
@@ -131,11 +132,12 @@ def test_equal_instability_search_equals_the_bisection_to_its_tolerance():
     # program WCHAIR's kinetic pin friction: every chair here then has a crossing inside the bracket (with the
     # studies' stick-slip law power-fwd is stable up to 3 m/s); the two searches are compared, not the law
     t_ref = reference_time(run=RunSpec(model="exact", friction_law="kinetic"))
-    kw = dict(model="exact", scheme="wchair", criterion=DEFAULT_CRITERION, bracket=(0.2, 3.0), tol=0.005,
-              candidates=7, max_rounds=8, dt=0.001, progress=False, reference_text="",
-              sim_options={"friction_law": "kinetic"})
-    args = (chairs, [t_ref] * 3, [40.0] * 3, 0.1)
-    new, old = bisect_speeds(*args, **kw), bisect_speeds_baseline(*args, **kw)
+    kw = dict(criterion=DEFAULT_CRITERION, bracket=(0.2, 3.0), tol=0.005, candidates=7, max_rounds=8,
+              progress=False, reference_text="")
+    run = study_run(RunSpec(model="exact", push_duration=0.1, dt=0.001, friction_law="kinetic"))
+    new = bisect_speeds(chairs, [t_ref] * 3, [40.0] * 3, run, **kw)
+    old = bisect_speeds_baseline(chairs, [t_ref] * 3, [40.0] * 3, 0.1, model="exact", scheme="wchair", dt=0.001,
+                                 sim_options={"friction_law": "kinetic"}, **kw)
     for a, b in zip(new, old, strict=True):
         assert a.status == b.status == "found"
         assert a.high - a.low <= 0.005 + 1e-12 and a.low <= a.speed <= a.high

@@ -56,15 +56,15 @@ def test_the_interval_includes_the_half_step_answer():
 
 
 def _ci(chair, speed, dt=None, law="kinetic"):
-    kw = {"scheme": "adaptive"} if dt is None else {"dt": dt, "friction_law": law}
-    return critical_impulses(chair, [speed], **kw)[0].impulse_Ns
+    run = RunSpec(scheme="adaptive") if dt is None else RunSpec(dt=dt, friction_law=law)
+    return critical_impulses(chair, [speed], run)[0].impulse_Ns
 
 
 def _ei(chair, model, dt=None, law="kinetic"):
     from stability.study import equal_instability_speeds
 
-    kw = {"scheme": "adaptive", "dt": None} if dt is None else {"dt": dt, "friction_law": law}
-    r = equal_instability_speeds([chair], model=model, progress=False, **kw)[0]
+    run = RunSpec(scheme="adaptive", model=model) if dt is None else RunSpec(dt=dt, friction_law=law, model=model)
+    r = equal_instability_speeds([chair], run, progress=False)[0]
     return "above 3" if r.status == "above" else r.speed
 
 

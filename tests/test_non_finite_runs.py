@@ -37,15 +37,10 @@ def test_the_same_batch_without_the_broken_chair_is_finite():
 
 
 def test_a_non_finite_recorded_run_is_an_error():
-    from stability import simulate as sim
     from stability.simulate import engine
     from stability.simulate.options import make_options
 
-    params = sim.DEFAULTS.as_dict()
-    for key in ("controller", "record"):
-        params.pop(key)
-    params.update(model="exact", duration=1.0, dt=0.001, impulse_force=10.0, sample=None)
-    opts = make_options(batch=True, **params)
+    opts = make_options(RunSpec(model="exact", horizon=1.0, dt=0.001, push_force=10.0), batch=True)
     with pytest.raises(FloatingPointError, match="left the finite numbers"):
         engine.run_compiled([_broken()], np.array([0.75]), opts)
 
@@ -54,8 +49,9 @@ def test_a_non_finite_run_in_a_packed_search_round_is_an_error():
     """The searches' packed rounds (SummaryRunner) raise as run_summaries does."""
     from stability.study.summaries import SummaryRunner
 
-    runner = SummaryRunner([preset("ej-premier"), _broken()], [0.5, 0.75], model="exact", scheme="wchair",
-                           duration=0.1, dt=0.001, horizon=4.0, level=0.5, steps=[0.001, 0.001])
+    runner = SummaryRunner([preset("ej-premier"), _broken()], [0.5, 0.75],
+                           RunSpec(model="exact", push_duration=0.1, dt=0.001, horizon=4.0), level=0.5,
+                           steps=[0.001, 0.001])
     runner([0], [10.0])                                  # the good pair alone is fine
     with pytest.raises(FloatingPointError, match=r"at 0\.75 m/s left the finite numbers.*1 of 2 runs"):
         runner([0, 1], [10.0, 10.0])

@@ -23,7 +23,6 @@ import pytest
 
 from stability import simulate as sim
 from stability.chair import preset
-from stability.settings.defaults import MEASURE_FRICTION_LAW
 from stability.settings.reference import HORIZON, LEVEL, REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.simulate import engine
@@ -40,7 +39,8 @@ TOL = 0.005
 
 def _reaches(chair, speed, impulses, horizon=HORIZON):
     """Full-length runs (every sample recorded, no stop) through the public simulator: reached the level?"""
-    res = sim.simulate_batch(chair, speed, run=RunSpec(model="exact", push_force=np.asarray(impulses) / UNIT, stop_on_warnings=False, horizon=horizon, friction_law=MEASURE_FRICTION_LAW), progress=False)
+    res = sim.simulate_batch(chair, speed, run=RunSpec(model="exact", stop_on_warnings=False, horizon=horizon),
+                             push_forces=np.asarray(impulses) / UNIT, progress=False)
     return np.array([r.stats.time_to_level[1] is not None and r.stats.time_to_level[1] <= horizon for r in res])
 
 
@@ -56,8 +56,8 @@ def test_stop_at_level_changes_nothing_before_the_stop():
     """The kernel's stop: the same peak and first crossings as a full run, and the run ends at the crossing."""
     c = preset("ej-premier")
     forces = np.array([3.4, 3.0, 40.0]) / UNIT
-    params = {k: v for k, v in sim.DEFAULTS.as_dict().items() if k not in ("controller", "record")}
-    opts = make_options(batch=True, **dict(params, model="exact", stop_on_warnings=False, sample=None))
+    opts = make_options(RunSpec(model="exact", stop_on_warnings=False, push_force=0.0, friction_law="kinetic"),
+                        batch=True)
     full, st_full = engine.run_summaries([c] * 3, np.full(3, 0.75), opts, forces=forces, levels=(0.5, 1.0))
     stop, st_stop = engine.run_summaries([c] * 3, np.full(3, 0.75), opts, forces=forces, levels=(0.5, 1.0),
                                          stop_level=1)
@@ -122,7 +122,7 @@ def test_summaries_of_the_adaptive_scheme_match_its_runs():
     """The adaptive scheme (no kernel) gets its summaries from full runs: the same criterion time as the studies."""
     from stability.study.criteria import time_to_yaw_rate
     c = preset("ej-premier")
-    s = run_summaries([c], [0.75], [40.0 / UNIT], run=RunSpec(model="exact", scheme="adaptive", push_duration=0.1, dt=None, horizon=4.0), level=LEVEL)
+    s = run_summaries([c], [0.75], [40.0 / UNIT], run=RunSpec(model="exact", scheme="adaptive", push_duration=0.1, horizon=4.0), level=LEVEL)
     r = sim.simulate(c, 0.75, run=RunSpec(model="exact", scheme="adaptive", push_force=40.0 / UNIT, push_duration=0.1, horizon=4.0, stop_on_warnings=False))
     assert s.t_level[0] == time_to_yaw_rate(r, LEVEL, 4.0) < 4.0
 
@@ -138,7 +138,9 @@ def test_a_chair_that_reaches_the_level_whatever_the_push_is_settled_in_a_few_ru
     assert r.runs <= 12
     # independently of the search: full runs at the smallest push and at 1e-3 N s both reach the level, within
     # 0.1 s of each other (the push does not set the disturbance)
-    res = sim.simulate_batch(chair, 2.5, run=RunSpec(model="exact", push_force=np.array([1e-6, 1e-3]) / UNIT, stop_on_warnings=False, horizon=HORIZON, friction_law="kinetic"), progress=False)
+    res = sim.simulate_batch(chair, 2.5, run=RunSpec(model="exact", stop_on_warnings=False, horizon=HORIZON,
+                                                     friction_law="kinetic"),
+                             push_forces=np.array([1e-6, 1e-3]) / UNIT, progress=False)
     t = [r.stats.time_to_level[1] for r in res]
     assert all(x is not None and x <= HORIZON for x in t)
     assert abs(t[0] - t[1]) < 0.1

@@ -114,7 +114,8 @@ def test_simulated_escape_matches_docs_and_slope_is_one_over_the_growth_rate():
     ej = preset("ej-premier")
     _, growth = step_limits_and_growth([ej], np.array([0.75]), "exact", "free")
     pushes = np.array([5.0338, 4.2729, 3.8820])      # the points of the earlier search's path, printed rounded
-    s = run_summaries([ej] * 3, np.full(3, 0.75), pushes / push_impulse(1.0, 0.1), run=RunSpec(model="exact", scheme="wchair", push_duration=0.1, dt=0.001, horizon=10.0), level=1.0, sim_options={"friction_law": "stick-slip"})
+    s = run_summaries([ej] * 3, np.full(3, 0.75), pushes / push_impulse(1.0, 0.1), run=RunSpec(model="exact", scheme="wchair", push_duration=0.1, dt=0.001, horizon=10.0,
+                                                                                                     friction_law="stick-slip"), level=1.0)
     np.testing.assert_allclose(s.t_level, [2.35, 2.74, 3.07], atol=0.005)
     slope = -np.polyfit(np.log(pushes - 3.255), s.t_level, 1)[0]
     assert slope == pytest.approx(1.0 / growth[0], rel=0.10)

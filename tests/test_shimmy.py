@@ -13,7 +13,6 @@ import scipy.linalg
 import sympy as sp
 from numerics import assert_eigenvalues_match, eig_bounds
 
-from stability.settings.run import RunSpec
 from stability.shimmy import TowedWheel, hurwitz_determinants
 from stability.shimmy import describing as df
 
@@ -234,7 +233,7 @@ def test_validation_names_parameter(kwargs, name):
 def test_simulation_without_friction_is_the_matrix_exponential():
     w = wheel_from(PARAMETER_SETS[1], False, False)
     x0 = df.shimmy_mode_state(w, 1.0, 0.05)
-    sim = df.simulate(w, 1.0, x0, 0.3, run=RunSpec(friction_law="kinetic"))
+    sim = df.simulate(w, 1.0, x0, 0.3)
     A, _ = w.state_matrix(1.0)
     np.testing.assert_allclose(sim.x[-1], scipy.linalg.expm(A * sim.t[-1]) @ x0, rtol=1e-6,
                                atol=1e-8 * np.abs(x0).max())
@@ -265,7 +264,7 @@ def test_describing_function_threshold_matches_simulation(rigid_pivot):
 def test_friction_sticks_a_stable_wheel_and_no_friction_needed():
     w = wheel_from(PARAMETER_SETS[0], True, False).replace(pin_friction=0.5)   # trail 0.08 > sigma 0.02
     assert df.suppressing_friction(w, 1.0, math.radians(5)).friction == 0.0
-    sim = df.simulate(w, 1.0, df.shimmy_mode_state(w, 1.0, 0.01), 0.5, run=RunSpec(friction_law="kinetic"))
+    sim = df.simulate(w, 1.0, df.shimmy_mode_state(w, 1.0, 0.01), 0.5)
     assert sim.stuck.any()
     assert np.abs(sim.psi[-1]) <= 0.01
 

@@ -25,7 +25,6 @@ from stability.models.full_width import generated
 from stability.models.slope import generated as slope_generated
 from stability.settings.run import RunSpec
 from stability.simulate import (
-    DEFAULTS,
     ChairState,
     SimulationResult,
     StepStabilityWarning,
@@ -38,19 +37,9 @@ from stability.simulate.options import make_options as _make_options
 from stability.simulate.reference import wchair_batch
 from stability.simulate.results import COLUMNS, new_warnings
 
-
-# These tests reproduce program WCHAIR, whose equations are the thesis variant; the toolkit's default model is
-# "exact" (stability.settings.defaults.MODEL), so the thesis model is asked for here unless a test names its model.
-def simulate(*args, **kwargs):
-    return _simulate(*args, **{"model": "thesis", **kwargs})
-
-
-def simulate_batch(*args, **kwargs):
-    return _simulate_batch(*args, **{"model": "thesis", **kwargs})
-
-
-def make_options(**kwargs):
-    return _make_options(**{"model": "thesis", **kwargs})
+# These tests reproduce program WCHAIR: its equations (the thesis variant) and its kinetic pin friction, while the
+# toolkit's defaults are the exact model and stick-slip friction; every run here names its model and law.
+simulate, simulate_batch, make_options = _simulate, _simulate_batch, _make_options
 
 
 EJ = preset("ej-premier")
@@ -81,39 +70,44 @@ SLICK = _slick()
     (dict(speed=float("nan")), r"speed=nan is invalid"),
     (dict(dt=0.0), r"dt=0\.0 is invalid; valid range"),
     (dict(dt=-1e-3), r"dt=-0\.001 is invalid"),
-    (dict(duration=0.0), r"duration=0\.0 is invalid"),
-    (dict(duration=float("inf")), r"duration=inf is invalid"),
-    (dict(scheme="euler"), r"scheme='euler' is invalid; valid choices: \['wchair', 'adaptive'\]"),
-    (dict(model="kane"), r"model='kane' is invalid; valid choices: \['thesis', 'exact'\]"),
+    (dict(horizon=0.0), r"horizon=0\.0 is invalid"),
+    (dict(horizon=float("inf")), r"horizon=inf is invalid"),
+    (dict(scheme="euler"), r"scheme='euler' is invalid; valid values: 'wchair', 'adaptive'"),
+    (dict(model="kane"), r"model='kane' is invalid; valid values: 'exact', 'thesis'"),
     (dict(casters="welded"), r"casters='welded' is invalid"),
     (dict(out_of_range="ignore"), r"out_of_range='ignore' is invalid"),
     (dict(sample=0.0015), r"sample=0\.0015 is invalid for scheme 'wchair'; valid values: a whole multiple of dt"),
-    (dict(impulse_duration=-0.1), r"impulse_duration=-0\.1 is invalid"),
-    (dict(impulse_force=float("nan")), r"impulse_force=nan is invalid"),
+    (dict(push_duration=-0.1), r"push_duration=-0\.1 is invalid"),
+    (dict(push_force=float("nan")), r"push_force=nan is invalid"),
     (dict(rtol=0.0), r"rtol=0\.0 is invalid"),
-    (dict(yaw_moment=3.0), r"yaw_moment=3\.0 is invalid"),
-    (dict(dt=2.0, duration=1.0), r"dt=2\.0 is invalid; valid range: 0 < dt <= duration"),
+    (dict(dt=0.05, horizon=0.01), r"dt=0\.05 is invalid; valid range: dt <= horizon"),
 ])
 def test_bad_input_names_parameter_value_and_range(kwargs, match):
-    args = dict(chair=EJ, speed=0.75, duration=0.01)
+    args = dict(horizon=0.01)
     args.update(kwargs)
+    speed = args.pop("speed", 0.75)
     with pytest.raises(ValueError, match=match):
-        simulate(args.pop("chair"), args.pop("speed"), **args)
+        simulate(EJ, speed, RunSpec(**args))
+
+
+def test_a_yaw_moment_that_is_not_callable_is_refused():
+    with pytest.raises(ValueError, match=r"yaw_moment=3\.0 is invalid"):
+        simulate(EJ, 0.75, RunSpec(horizon=0.01), yaw_moment=3.0)
 
 
 def test_bad_batch_input():
     with pytest.raises(ValueError, match="chairs=\\[\\] is invalid"):
-        simulate_batch([], [0.75], run=RunSpec(friction_law="kinetic"))
+        simulate_batch([], [0.75])
     with pytest.raises(ValueError, match="cannot broadcast 2 chairs against 3 speeds"):
-        simulate_batch([EJ, EJ], [0.5, 0.6, 0.7], run=RunSpec(horizon=0.01, friction_law="kinetic"))
+        simulate_batch([EJ, EJ], [0.5, 0.6, 0.7], run=RunSpec(horizon=0.01, friction_law="kinetic", model="thesis"))
     with pytest.raises(ValueError, match="speed=-1.0 is invalid"):
-        simulate_batch(EJ, [0.5, -1.0], run=RunSpec(horizon=0.01, friction_law="kinetic"))
-    with pytest.raises(ValueError, match="unknown option\\(s\\) \\['speed_mps'\\]"):
-        simulate_batch(EJ, [0.5], run=RunSpec(friction_law="kinetic"), speed_mps=3)
+        simulate_batch(EJ, [0.5, -1.0], run=RunSpec(horizon=0.01, friction_law="kinetic", model="thesis"))
+    with pytest.raises(TypeError, match="unexpected keyword argument 'speed_mps'"):
+        simulate_batch(EJ, [0.5], run=RunSpec(friction_law="kinetic", model="thesis"), speed_mps=3)
     with pytest.raises(ValueError, match="workers=0 is invalid"):
-        simulate_batch(EJ, [0.5], run=RunSpec(horizon=0.01, friction_law="kinetic"), workers=0)
+        simulate_batch(EJ, [0.5], run=RunSpec(horizon=0.01, friction_law="kinetic", model="thesis"), workers=0)
     with pytest.raises(ValueError, match="chair='ej-premier' is invalid"):
-        simulate("ej-premier", 0.75, run=RunSpec(friction_law="kinetic"))
+        simulate("ej-premier", 0.75)
 
 
 # ---------------------------------------------------------------------------
@@ -121,11 +115,11 @@ def test_bad_batch_input():
 # ---------------------------------------------------------------------------
 def test_time_loop_is_wchairs_do_loop():
     """DO 99 T = 0, TTOTAL+TSTEP, TSTEP: samples at 0, dt, ..., TTOTAL + dt."""
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.05, dt=0.001, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.05, dt=0.001, friction_law="kinetic", model="thesis"))
     assert len(r.t) == 52
     assert r.t[0] == 0.0 and r.t[-1] == pytest.approx(0.051, abs=1e-12)
     np.testing.assert_allclose(np.diff(r.t), 0.001, rtol=1e-9)
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.05, dt=0.001, sample=0.01, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.05, dt=0.001, sample=0.01, friction_law="kinetic", model="thesis"))
     np.testing.assert_allclose(r.t, np.arange(6) * 0.01, atol=1e-12)
 
 
@@ -136,7 +130,7 @@ def test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update()
     force acts (thesis variant), UPDATE/ITRATE integrate it exactly, so
     v = 40 * 0.101 / 95 afterwards and X = u t, Y = sum of the steps.
     """
-    r = simulate(SLICK, 0.75, run=RunSpec(horizon=0.2, dt=0.001, friction_law="kinetic"))
+    r = simulate(SLICK, 0.75, run=RunSpec(horizon=0.2, dt=0.001, friction_law="kinetic", model="thesis"))
     i = np.searchsorted(r.t, 0.15)
     assert r.v[i] == pytest.approx(40.0 * 0.101 / 95.0, rel=1e-12)
     assert r.v[100] == pytest.approx(40.0 * 0.100 / 95.0, rel=1e-12)   # before the 101st step
@@ -149,7 +143,7 @@ def test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update()
 
 def test_statics_uses_previous_steps_total_force_including_fcimp():
     """STATICS is called before MECHAN/DYNAM with FC1, FC2 of the previous step (FCIMP included)."""
-    r = simulate(SLICK, 0.75, run=RunSpec(horizon=0.01, friction_law="kinetic"))
+    r = simulate(SLICK, 0.75, run=RunSpec(horizon=0.01, friction_law="kinetic", model="thesis"))
     p = params.parameters(SLICK)
     np.testing.assert_allclose(r.normal_load[0], loads.normal_loads(p), rtol=1e-12)      # FC = 0 at t = 0
     np.testing.assert_allclose(r.normal_load[1], loads.normal_loads(p, 0.0, 40.0), rtol=1e-12)
@@ -175,7 +169,7 @@ def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
 
     for name in ("accelerations_thesis", "accelerations_exact"):
         monkeypatch.setattr(full_width, name, spy(name))
-    py = simulate(EJ, 0.75, run=RunSpec(horizon=0.02, friction_law="kinetic"), yaw_moment=zero)
+    py = simulate(EJ, 0.75, run=RunSpec(horizon=0.02, friction_law="kinetic", model="thesis"), yaw_moment=zero)
     assert py.settings["engine"] == "python"
     assert len(calls) == 22 and calls[0][0] == 0.0            # THEDD = 0 in BLOCK DATA
     for k in range(1, len(calls)):
@@ -186,7 +180,7 @@ def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
     assert len(calls) == 22 and all(c[0] == "absent" and c[2] == "accelerations_exact" for c in calls)
     # the compiled kernel has the same lag: it reproduces the Python path (tire fits evaluated as
     # interpolated coefficients there, interpolated forces here: equal to rounding)
-    compiled = simulate(EJ, 0.75, run=RunSpec(horizon=0.02, friction_law="kinetic"))
+    compiled = simulate(EJ, 0.75, run=RunSpec(horizon=0.02, friction_law="kinetic", model="thesis"))
     assert compiled.settings["engine"] == "compiled"
     # error model: fixed-step rounding, steps x eps (1 + dt ||A||) x growth (tests/numerics.py)
     assert_signals_close(compiled, py, ("yaw_acceleration", "eta_dot"), run_tolerance(EJ, 0.75, 0.02),
@@ -195,7 +189,7 @@ def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
 
 def test_pin_friction_opposes_caster_rate_and_is_zero_at_rest():
     """DYNAM 0810-0819: SIGN(MAF, -ED), exactly zero when ED == 0."""
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, friction_law="kinetic", model="thesis"))
     assert r.eta_dot[0] == 0.0 and np.all(r.pin_moment[0] == 0.0)
     moving = r.eta_dot != 0.0
     np.testing.assert_array_equal(r.pin_moment[moving, 0], -0.1 * np.sign(r.eta_dot[moving]))
@@ -204,7 +198,7 @@ def test_pin_friction_opposes_caster_rate_and_is_zero_at_rest():
 
 
 def test_forces_oppose_contact_velocity_and_follow_the_tire_fits():
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, friction_law="kinetic", model="thesis"))
     main, caster = EJ.main_tire_model(), EJ.caster_tire_model()
     k = 500
     for w, tire in zip(range(4), (caster, caster, main, main), strict=False):
@@ -216,7 +210,7 @@ def test_forces_oppose_contact_velocity_and_follow_the_tire_fits():
 
 def test_tire_impulse_replaces_main_tire_lateral_forces():
     """MECHAN 0704-0706: FDY = FEY = FTIMP while t <= DUIMP."""
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.3, push_force=0.0, tire_push_force=25.0, push_duration=0.05, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.3, push_force=0.0, tire_push_force=25.0, push_duration=0.05, friction_law="kinetic", model="thesis"))
     on = r.t <= 0.05 + 1e-12
     assert on.sum() == 51
     np.testing.assert_array_equal(r.fy[on, 2], 25.0)
@@ -228,7 +222,7 @@ def test_tire_impulse_replaces_main_tire_lateral_forces():
 
 
 def test_initial_lateral_velocity_and_caster_angles():
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.01, push_force=0.0, lateral_velocity=0.04, eta0_deg=5.0, beta0_deg=-3.0, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.01, push_force=0.0, lateral_velocity=0.04, eta0_deg=5.0, beta0_deg=-3.0, friction_law="kinetic", model="thesis"))
     assert r.v[0] == 0.04 and r.u[0] == 0.75
     assert r.eta[0] == pytest.approx(math.radians(5.0)) and r.beta[0] == pytest.approx(math.radians(-3.0))
     # eq 5-7: 0.04 m/s at 0.75 m/s is about 3 deg at the main wheels
@@ -236,7 +230,7 @@ def test_initial_lateral_velocity_and_caster_angles():
 
 
 def test_no_disturbance_means_straight_motion():
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, push_force=0.0, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, push_force=0.0, friction_law="kinetic", model="thesis"))
     assert np.all(r.yaw_rate == 0.0) and np.all(r.y == 0.0) and np.all(r.eta == 0.0)
     assert r.x[-1] == pytest.approx(0.75 * r.t[-1])
 
@@ -245,13 +239,13 @@ def test_toe_and_camber_as_slip_and_mechan_apply_them():
     """SLIP turns the right wheel frame by +toe and the left by -toe; MECHAN adds
     CAMCOF*POLYFT(TIRY, INT(CAMANG), FZ) to the left wheel and subtracts it on the right."""
     c = EJ.replace(toe_deg=1.0)
-    r = simulate(c, 0.75, run=RunSpec(horizon=0.002, push_force=0.0, friction_law="kinetic"))
+    r = simulate(c, 0.75, run=RunSpec(horizon=0.002, push_force=0.0, friction_law="kinetic", model="thesis"))
     assert r.slip_deg[0, 2] == pytest.approx(1.0, rel=1e-9)
     assert r.slip_deg[0, 3] == pytest.approx(-1.0, rel=1e-9)
     assert r.fy[0, 2] == pytest.approx(-r.fy[0, 3], rel=1e-12)
     assert abs(r.yaw_rate[-1]) < 1e-15                 # symmetric toe: no yaw (to rounding)
     c = EJ.replace(camber_deg=2.7, camber_coefficient=0.2, main_lateral_scale=0.5)
-    r = simulate(c, 0.75, run=RunSpec(horizon=0.002, push_force=0.0, friction_law="kinetic"))
+    r = simulate(c, 0.75, run=RunSpec(horizon=0.002, push_force=0.0, friction_law="kinetic", model="thesis"))
     fz = r.normal_load[0, 2]
     expect = tires.get("EJA").camber_force(2.0, fz, 0.2)   # whole degrees, unscaled, as WCHAIR
     assert expect > 0
@@ -261,7 +255,7 @@ def test_toe_and_camber_as_slip_and_mechan_apply_them():
 
 def test_rolling_resistance_when_switched_on():
     c = EJ.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0)
-    r = simulate(c, 0.75, run=RunSpec(horizon=2.0, push_force=0.0, friction_law="kinetic"))
+    r = simulate(c, 0.75, run=RunSpec(horizon=2.0, push_force=0.0, friction_law="kinetic", model="thesis"))
     fz = r.normal_load[0]
     assert r.fx[0, 2] == pytest.approx(-c.main_tire_model().rolling_resistance(float(fz[2])))
     assert r.fx[0, 0] == pytest.approx(-c.caster_tire_model().rolling_resistance(float(fz[0])))
@@ -270,21 +264,21 @@ def test_rolling_resistance_when_switched_on():
 
 def test_warning_rule_stops_at_the_eleventh_warning():
     """NWARN > 10: STOP 'TEST CASE TERMINATED' (MECHAN 0682-0683); the stopping step is not recorded."""
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, push_force=0.0, lateral_velocity=0.3, friction_law="kinetic"))   # ~22 deg slip
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, push_force=0.0, lateral_velocity=0.3, friction_law="kinetic", model="thesis"))   # ~22 deg slip
     assert r.stopped_by_warnings
     assert r.warnings["slip"]["count"] == 11 and r.warnings["slip"]["first_time"] == 0.0
     assert r.stop_time == pytest.approx(0.010) and len(r.t) == 10
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.05, push_force=0.0, lateral_velocity=0.3, stop_on_warnings=False, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.05, push_force=0.0, lateral_velocity=0.3, stop_on_warnings=False, friction_law="kinetic", model="thesis"))
     assert not r.stopped_by_warnings and len(r.t) == 52
     assert r.warnings["slip"]["count"] > 11
     with pytest.raises(ValueError, match="slip angle .* outside the fitted range"):
-        simulate(EJ, 0.75, run=RunSpec(horizon=0.05, push_force=0.0, lateral_velocity=0.3, out_of_range="raise", friction_law="kinetic"))
+        simulate(EJ, 0.75, run=RunSpec(horizon=0.05, push_force=0.0, lateral_velocity=0.3, out_of_range="raise", friction_law="kinetic", model="thesis"))
 
 
 def test_range_rules_skip_linear_tires():
     """A linear tire has no treadmill range: no warnings for its wheels."""
     c = EJ.replace(main_tire="linear:25", caster_tire="linear:25")
-    r = simulate(c, 0.75, run=RunSpec(horizon=0.05, push_force=0.0, lateral_velocity=0.3, friction_law="kinetic"))
+    r = simulate(c, 0.75, run=RunSpec(horizon=0.05, push_force=0.0, lateral_velocity=0.3, friction_law="kinetic", model="thesis"))
     assert r.warnings["slip"]["count"] == 0 and not r.stopped_by_warnings
 
 
@@ -304,7 +298,7 @@ def test_yaw_moment_input_reaches_the_yaw_equation():
         seen.append(t)
         return 5.0
 
-    r = simulate(SLICK, 0.75, run=RunSpec(horizon=0.1, push_force=0.0, friction_law="kinetic"), yaw_moment=mz)
+    r = simulate(SLICK, 0.75, run=RunSpec(horizon=0.1, push_force=0.0, friction_law="kinetic", model="thesis"), yaw_moment=mz)
     assert seen[0] == 0.0 and len(seen) == len(r.t)
     np.testing.assert_array_equal(r.yaw_moment_input, 5.0)
     np.testing.assert_allclose(r.yaw_acceleration, 5.0 / EJ.i_z, rtol=1e-12)
@@ -312,7 +306,7 @@ def test_yaw_moment_input_reaches_the_yaw_equation():
 
 def test_tire_yaw_moment_is_the_yaw_equation_of_the_thesis_variant():
     """Table 6-1's yaw row is I_z THEDD = moment of the tire forces (Figure 9-4)."""
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"))
     np.testing.assert_allclose(EJ.i_z * r.yaw_acceleration, r.tire_yaw_moment, rtol=1e-9, atol=1e-9)
 
 
@@ -341,9 +335,9 @@ def _close(a: SimulationResult, b: SimulationResult, t_end: float, tol: float, w
 def test_batch_equals_single_runs():
     """The vectorised path reproduces the float path (to rounding: the chair is unstable)."""
     speeds = [0.55, 0.75, 0.95]
-    res = simulate_batch(EJ, speeds, run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic"), progress=False, workers=1)
+    res = simulate_batch(EJ, speeds, run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic", model="thesis"), progress=False, workers=1)
     for s, rb in zip(speeds, res, strict=False):
-        r1 = simulate(EJ, s, run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic"))
+        r1 = simulate(EJ, s, run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic", model="thesis"))
         assert rb.speed == s and rb.chair is EJ
         # error model: fixed-step rounding grown over 2.5 s of the unstable chair (tests/numerics.py)
         tol = run_tolerance(EJ, s, 2.5)
@@ -360,27 +354,27 @@ def test_batch_equals_single_runs():
 
 def test_batch_mixed_chairs_groups_tires_and_stops_runs_individually():
     chairs = [EJ, EJ.replace(main_tire="AG"), FRONT, EJ.replace(camber_deg=2.0, toe_deg=0.5)]
-    res = simulate_batch(chairs, 0.75, run=RunSpec(horizon=1.0, sample=0.001, lateral_velocity=0.03, push_force=0.0, friction_law="kinetic"), progress=False, workers=1)
+    res = simulate_batch(chairs, 0.75, run=RunSpec(horizon=1.0, sample=0.001, lateral_velocity=0.03, push_force=0.0, friction_law="kinetic", model="thesis"), progress=False, workers=1)
     for c, rb in zip(chairs, res, strict=False):
-        r1 = simulate(c, 0.75, run=RunSpec(horizon=1.0, lateral_velocity=0.03, push_force=0.0, friction_law="kinetic"))
+        r1 = simulate(c, 0.75, run=RunSpec(horizon=1.0, lateral_velocity=0.03, push_force=0.0, friction_law="kinetic", model="thesis"))
         _close(rb, r1, 1.0, run_tolerance(c, 0.75, 1.0), what=c.main_tire)
 
 
 def test_batch_stops_runs_individually():
     # a 0.3 m/s lateral velocity makes ~20 deg slip angles: stops at step 10; 0.01 m/s does not
-    res = simulate_batch([EJ, EJ], 0.75, run=RunSpec(horizon=0.5, push_force=0.0, sample=0.001, lateral_velocity=0.3, friction_law="kinetic"), progress=False, workers=1)
+    res = simulate_batch([EJ, EJ], 0.75, run=RunSpec(horizon=0.5, push_force=0.0, sample=0.001, lateral_velocity=0.3, friction_law="kinetic", model="thesis"), progress=False, workers=1)
     assert all(r.stopped_by_warnings and len(r.t) == 10 for r in res)
-    mixed = simulate_batch([EJ, EJ.replace(main_tire="linear:25", caster_tire="linear:25")], 0.75, run=RunSpec(horizon=0.5, push_force=0.0, sample=0.001, lateral_velocity=0.3, friction_law="kinetic"), progress=False, workers=1)
+    mixed = simulate_batch([EJ, EJ.replace(main_tire="linear:25", caster_tire="linear:25")], 0.75, run=RunSpec(horizon=0.5, push_force=0.0, sample=0.001, lateral_velocity=0.3, friction_law="kinetic", model="thesis"), progress=False, workers=1)
     assert mixed[0].stopped_by_warnings and mixed[0].stop_time == pytest.approx(0.01)
     assert not mixed[1].stopped_by_warnings and len(mixed[1].t) == 502
-    r1 = simulate(EJ.replace(main_tire="linear:25", caster_tire="linear:25"), 0.75, run=RunSpec(horizon=0.5, push_force=0.0, lateral_velocity=0.3, friction_law="kinetic"))
+    r1 = simulate(EJ.replace(main_tire="linear:25", caster_tire="linear:25"), 0.75, run=RunSpec(horizon=0.5, push_force=0.0, lateral_velocity=0.3, friction_law="kinetic", model="thesis"))
     _close(mixed[1], r1, 0.5, run_tolerance(r1.chair, 0.75, 0.5), what="linear tires")
 
 
 def test_batch_processes_equal_in_process():
     speeds = np.linspace(0.6, 0.9, 7)
-    a = simulate_batch(EJ, speeds, run=RunSpec(horizon=1.0, friction_law="kinetic"), progress=False, workers=1)
-    b = simulate_batch(EJ, speeds, run=RunSpec(horizon=1.0, friction_law="kinetic"), progress=False, workers=3)
+    a = simulate_batch(EJ, speeds, run=RunSpec(horizon=1.0, friction_law="kinetic", model="thesis"), progress=False, workers=1)
+    b = simulate_batch(EJ, speeds, run=RunSpec(horizon=1.0, friction_law="kinetic", model="thesis"), progress=False, workers=3)
     for ra, rb in zip(a, b, strict=False):
         assert ra.speed == rb.speed
         # the same compiled code in another process: rounding-level at most (fixed-step model)
@@ -394,9 +388,9 @@ def test_batch_yaw_moment_gets_arrays_with_run_indices():
         runs.append(np.array(state.run))
         return -2.0 * state.yaw_rate
 
-    res = simulate_batch(EJ, [0.7, 0.8], run=RunSpec(horizon=0.2, friction_law="kinetic"), progress=False, yaw_moment=mz)
+    res = simulate_batch(EJ, [0.7, 0.8], run=RunSpec(horizon=0.2, friction_law="kinetic", model="thesis"), progress=False, yaw_moment=mz)
     np.testing.assert_array_equal(runs[0], [0, 1])
-    one = simulate(EJ, 0.8, run=RunSpec(horizon=0.2, sample=0.01, friction_law="kinetic"), yaw_moment=lambda t, s: -2.0 * s.yaw_rate)
+    one = simulate(EJ, 0.8, run=RunSpec(horizon=0.2, sample=0.01, friction_law="kinetic", model="thesis"), yaw_moment=lambda t, s: -2.0 * s.yaw_rate)
     # fixed-step rounding model, with the open-loop linearisation (the -2 r feedback only damps it)
     assert_signals_close(res[1], one, ("yaw_rate",), run_tolerance(EJ, 0.8, 0.2), what="batch hook")
 
@@ -406,9 +400,9 @@ def test_batch_yaw_moment_gets_arrays_with_run_indices():
 # ---------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def adaptive_pair():
-    kw = dict(duration=4.0, scheme="adaptive")
-    a = simulate(EJ, 0.75, rtol=1e-6, atol=1e-9, **kw)
-    b = simulate(EJ, 0.75, rtol=0.5e-6, atol=0.5e-9, **kw)
+    kw = dict(horizon=4.0, scheme="adaptive", model="thesis")
+    a = simulate(EJ, 0.75, RunSpec(rtol=1e-6, atol=1e-9, **kw))
+    b = simulate(EJ, 0.75, RunSpec(rtol=0.5e-6, atol=0.5e-9, **kw))
     return a, b
 
 
@@ -435,7 +429,7 @@ def test_adaptive_stick_slip(adaptive_pair):
         np.testing.assert_allclose(m[slipping], -0.1 * np.sign(rate[slipping]), rtol=1e-12)
     assert r.settings["switches"] >= 2
     # close to the WCHAIR scheme (different load lag and friction model: a few per cent)
-    w = simulate(EJ, 0.75, run=RunSpec(horizon=4.0, friction_law="kinetic"))
+    w = simulate(EJ, 0.75, run=RunSpec(horizon=4.0, friction_law="kinetic", model="thesis"))
     assert r.first_time_abs_yaw_rate(1.0) == pytest.approx(w.first_time_abs_yaw_rate(1.0), rel=0.05)
 
 
@@ -444,14 +438,14 @@ def test_adaptive_yaw_moment_sees_floats_and_acts():
         assert type(t) is float and type(state.yaw_rate) is float
         return -20.0 * state.yaw_rate
 
-    free = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, scheme="adaptive"))
-    damped = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, scheme="adaptive"), yaw_moment=mz)
+    free = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, scheme="adaptive", model="thesis"))
+    damped = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, scheme="adaptive", model="thesis"), yaw_moment=mz)
     np.testing.assert_allclose(damped.yaw_moment_input, -20.0 * damped.yaw_rate, rtol=1e-12)
     assert abs(damped.yaw_rate[-1]) < 0.2 * abs(free.yaw_rate[-1])
 
 
 def test_adaptive_locked_and_samples():
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, scheme="adaptive", casters="locked", sample=0.05))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, scheme="adaptive", casters="locked", sample=0.05, model="thesis"))
     np.testing.assert_allclose(r.t, np.arange(21) * 0.05, atol=1e-12)
     assert np.all(r.eta == 0.0) and np.all(r.beta == 0.0)
     assert not r.stopped_by_warnings and r.settings["switches"] == 0
@@ -459,7 +453,7 @@ def test_adaptive_locked_and_samples():
 
 def test_adaptive_loads_are_consistent_with_the_forces():
     """Instantaneous (not lagged) load transfer, without the c.g. force."""
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=2.0, scheme="adaptive", sample=0.25))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=2.0, scheme="adaptive", sample=0.25, model="thesis"))
     p = params.parameters(EJ)
     for k in range(len(r.t)):
         ce, se, cb, sb = math.cos(r.eta[k]), math.sin(r.eta[k]), math.cos(r.beta[k]), math.sin(r.beta[k])
@@ -491,8 +485,9 @@ def test_adaptive_compiled_right_hand_side_equals_the_python_one(chair, speed, k
     kappa(V) ~ 40 its transient-growth bound).  Bound ~4e-3 of each signal's size; observed <= 1.1e-8
     (exact model with a lateral push; <= 2e-10 in the others): margin > 1e5.  A wrong term in either
     right-hand side changes the signals at order one."""
-    c = simulate(chair, speed, duration=2.0, scheme="adaptive", **kw)
-    p = simulate(chair, speed, duration=2.0, scheme="adaptive", yaw_moment=_zero_moment, **kw)
+    spec = RunSpec(**{"model": "thesis", "horizon": 2.0, "scheme": "adaptive", **kw})
+    c = simulate(chair, speed, spec)
+    p = simulate(chair, speed, spec, yaw_moment=_zero_moment)
     assert c.settings["engine"] == "compiled" and p.settings["engine"] == "python"
     assert c.settings["switches"] == p.settings["switches"]
     A = state_matrices(chair, speed, model=c.settings["model"], casters=c.settings["casters"])[0]
@@ -508,7 +503,7 @@ def test_adaptive_compiled_diverging_run_within_the_integration_error(adaptive_p
     """In the diverging reference run LSODA's step choices part at rounding level; the compiled and Python
     paths then differ by less than the integration error itself (rtol vs rtol/2 of the same path)."""
     a, b = adaptive_pair                                            # compiled, rtol 1e-6 and 0.5e-6
-    p = simulate(EJ, 0.75, run=RunSpec(horizon=4.0, scheme="adaptive"), yaw_moment=_zero_moment)
+    p = simulate(EJ, 0.75, run=RunSpec(horizon=4.0, scheme="adaptive", model="thesis"), yaw_moment=_zero_moment)
     assert a.settings["engine"] == "compiled"
     assert np.max(np.abs(a.yaw_rate - p.yaw_rate)) <= np.max(np.abs(a.yaw_rate - b.yaw_rate))
 
@@ -516,7 +511,7 @@ def test_adaptive_compiled_diverging_run_within_the_integration_error(adaptive_p
 def test_adaptive_compiled_raise_policy_raises_the_tire_error():
     """A refused tire input inside the compiled right-hand side raises the tire's own error, as the Python path."""
     with pytest.raises(ValueError, match=r"outside the fitted range \[-8, 8\] deg \(tire EJA\)"):
-        simulate(EJ, 0.75, run=RunSpec(scheme="adaptive", out_of_range="raise"))
+        simulate(EJ, 0.75, run=RunSpec(scheme="adaptive", out_of_range="raise", model="thesis"))
 
 
 # ---------------------------------------------------------------------------
@@ -541,7 +536,7 @@ def test_first_time_abs_yaw_rate_interpolates():
 
 
 def test_result_is_frozen_and_resamples():
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.5, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.5, friction_law="kinetic", model="thesis"))
     with pytest.raises(dataclasses.FrozenInstanceError):
         r.speed = 1.0
     with pytest.raises(ValueError):
@@ -556,7 +551,7 @@ def test_result_is_frozen_and_resamples():
 
 
 def test_to_csv_and_plot(tmp_path):
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.5, sample=0.01, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=0.5, sample=0.01, friction_law="kinetic", model="thesis"))
     path = r.to_csv(tmp_path / "run.csv")
     data = np.loadtxt(path, delimiter=",", comments="#", skiprows=5)
     header = path.read_text().splitlines()[4].split(",")
@@ -581,7 +576,7 @@ def test_to_csv_and_plot(tmp_path):
 
 
 def test_summary_mentions_the_essentials():
-    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, friction_law="kinetic"))
+    r = simulate(EJ, 0.75, run=RunSpec(horizon=1.0, friction_law="kinetic", model="thesis"))
     text = r.summary()
     assert "ej-premier" in text and "0.75 m/s" in text and "warnings" in text
 
@@ -595,8 +590,8 @@ def _cli(*args):
 
 
 def test_cli_json(tmp_path):
-    p = _cli("--chair", "ej-premier", "--speed", "0.75", "--impulse", "40", "0.1", "--duration", "4",
-             "--model", "thesis", "--sample", "0.1", "--json", "--csv", str(tmp_path / "a.csv"), "--plot", str(tmp_path / "a.pdf"))
+    p = _cli("--chair", "ej-premier", "--speed", "0.75", "--push-force", "40", "--push-duration", "0.1", "--horizon", "4",
+             "--model", "thesis", "--friction-law", "kinetic", "--sample", "0.1", "--json", "--csv", str(tmp_path / "a.csv"), "--plot", str(tmp_path / "a.pdf"))
     assert p.returncode == 0, p.stderr
     d = json.loads(p.stdout)
     for key in ("t_s", "yaw_rate_rad_s", "heading_rad", "x_m", "y_m", "fy_caster_left_N", "slip_main_right_deg",
@@ -606,13 +601,13 @@ def test_cli_json(tmp_path):
     np.testing.assert_allclose(d["t_s"], np.arange(len(d["t_s"])) * 0.1, atol=1e-12)
     assert 3.5 <= d["t_s"][-1] < 3.7 and len(d["yaw_rate_rad_s"]) == len(d["t_s"])
     assert d["yaw_rate_levels_rad_s"] == [0.5, 1.0]
-    assert d["first_time_at_level_s"][1] == pytest.approx(simulate(EJ, 0.75, run=RunSpec(horizon=4, friction_law="kinetic")).first_time_abs_yaw_rate(1.0))
+    assert d["first_time_at_level_s"][1] == pytest.approx(simulate(EJ, 0.75, run=RunSpec(horizon=4, friction_law="kinetic", model="thesis")).first_time_abs_yaw_rate(1.0))
     assert (tmp_path / "a.csv").exists() and (tmp_path / "a.pdf").exists()
 
 
 def test_cli_summary_and_set(tmp_path):
     p = _cli("--chair", "ej-premier", "--set", "pin_friction_left=0.2", "--set", "pin_friction_right=0.2",
-             "--duration", "1", "--scheme", "adaptive")
+             "--horizon", "1", "--scheme", "adaptive")
     assert p.returncode == 0, p.stderr
     assert "ej-premier" in p.stdout and "adaptive" in p.stdout
 
@@ -621,12 +616,12 @@ def test_cli_summary_and_set(tmp_path):
     (("--speed", "-1"), "--speed -1 is invalid"),
     (("--chair", "nope"), "unknown chair 'nope'"),
     (("--set", "s9=1"), "unknown chair parameter 's9'"),
-    (("--scheme", "rk4"), "scheme='rk4' is invalid"),
-    (("--speed", "fast"), "--speed 'fast' is invalid; expected a finite number"),
+    (("--scheme", "rk4"), "invalid choice: 'rk4' (choose from 'wchair', 'adaptive')"),
+    (("--speed", "fast"), "--speed 'fast' is invalid; expected a number; valid range: 0.01 <= value <= 20 m/s"),
     (("--csv", "/nonexistent/dir/x.csv"), "does not exist"),
 ])
 def test_cli_bad_input_one_line_status_2(args, words):
-    p = _cli(*args, "--duration", "0.1")
+    p = _cli(*args, "--horizon", "0.1")
     assert p.returncode == 2
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and words in lines[0] and "Traceback" not in p.stderr
@@ -661,10 +656,11 @@ def test_batch_per_run_impulse_force_equals_separate_batches():
     speeds = np.array([0.6, 0.75, 0.9, 0.6, 0.75, 0.9])
     forces = np.array([20.0, 20.0, 20.0, 80.0, 80.0, 80.0])
     for workers in (1, 2):
-        mixed = simulate_batch(EJ, speeds, run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic"), push_forces=forces, progress=False, workers=workers)
+        mixed = simulate_batch(EJ, speeds, run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic", model="thesis"), push_forces=forces, progress=False, workers=workers)
         for f in (20.0, 80.0):
             sel = np.flatnonzero(forces == f)
-            same = simulate_batch(EJ, speeds[sel], run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic"), push_forces=f, progress=False, workers=1)
+            same = simulate_batch(EJ, speeds[sel], run=RunSpec(horizon=3.0, sample=0.01, friction_law="kinetic", model="thesis",
+                                                                push_force=f), progress=False, workers=1)
             for i, r in zip(sel, same, strict=False):
                 assert mixed[i].settings["impulse_force"] == f
                 np.testing.assert_array_equal(mixed[i].yaw_rate, r.yaw_rate)
@@ -673,10 +669,10 @@ def test_batch_per_run_impulse_force_equals_separate_batches():
 
 
 def test_batch_per_run_impulse_force_bad_input():
-    with pytest.raises(ValueError, match=r"3 impulse forces"):
-        simulate_batch(EJ, [0.5, 0.6], run=RunSpec(friction_law="kinetic"), push_forces=[1.0, 2.0, 3.0], progress=False)
-    with pytest.raises(ValueError, match=r"impulse_force=.*finite forces \(N\)"):
-        simulate_batch(EJ, [0.5, 0.6], run=RunSpec(friction_law="kinetic"), push_forces=[1.0, float("nan")], progress=False)
+    with pytest.raises(ValueError, match=r"3 push forces"):
+        simulate_batch(EJ, [0.5, 0.6], run=RunSpec(friction_law="kinetic", model="thesis"), push_forces=[1.0, 2.0, 3.0], progress=False)
+    with pytest.raises(ValueError, match=r"push_forces=.*finite forces \(N\)"):
+        simulate_batch(EJ, [0.5, 0.6], run=RunSpec(friction_law="kinetic", model="thesis"), push_forces=[1.0, float("nan")], progress=False)
 
 
 # ---------------------------------------------------------------------------
@@ -687,10 +683,10 @@ def _kernel_cases():
         (EJ, dict()),
         (EJ, dict(model="exact")),
         (EJ, dict(casters="locked")),
-        (EJ.replace(toe_deg=0.5, camber_deg=2.0), dict(lateral_velocity=0.01, impulse_force=0.0)),
+        (EJ.replace(toe_deg=0.5, camber_deg=2.0), dict(lateral_velocity=0.01, push_force=0.0)),
         (EJ.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0), dict()),
-        (EJ.replace(main_tire="linear:25", caster_tire="linear:25"), dict(lateral_velocity=0.3, impulse_force=0.0)),
-        (FRONT, dict(tire_impulse=20.0, impulse_duration=0.05)),
+        (EJ.replace(main_tire="linear:25", caster_tire="linear:25"), dict(lateral_velocity=0.3, push_force=0.0)),
+        (FRONT, dict(tire_push_force=20.0, push_duration=0.05)),
         (EJ, dict(out_of_range="extrapolate", lateral_velocity=0.2, stop_on_warnings=False)),
     ]
 
@@ -705,10 +701,9 @@ def test_kernel_equals_numpy_reference(case):
     in the last bit, and 1 s of the unstable chair amplifies that at most ~1e3.
     """
     chair, kw = _kernel_cases()[case]
-    opts = dict(DEFAULTS.as_dict(), duration=1.0, sample=0.001, **kw)
-    del opts["controller"], opts["record"]
-    ref = wchair_batch([chair], np.array([0.75]), make_options(batch=True, **opts), False)[0]
-    got = simulate(chair, 0.75, **{k: v for k, v in opts.items() if k != "yaw_moment"})
+    run = RunSpec(**{"model": "thesis", "friction_law": "kinetic", "horizon": 1.0, "sample": 0.001, **kw})
+    ref = wchair_batch([chair], np.array([0.75]), make_options(run, batch=True), False)[0]
+    got = simulate(chair, 0.75, run)
     assert got.settings["engine"] == "compiled" and len(got.t) == len(ref.t)
     # error model: fixed-step rounding (steps x eps (1 + dt ||A||)) grown by the linearisation (tests/numerics.py)
     tol = run_tolerance(chair, 0.75, 1.0, model=kw.get("model", "thesis"), casters=kw.get("casters", "free"))
@@ -720,9 +715,9 @@ def test_kernel_equals_numpy_reference(case):
 def test_single_run_is_bit_identical_to_its_batch_run():
     """One kernel: a run alone and the same run inside a batch (any threads) are the same arithmetic."""
     speeds = np.array([0.55, 0.75, 0.95])
-    batch = simulate_batch(EJ, speeds, run=RunSpec(sample=0.001, friction_law="kinetic"), progress=False, workers=2, push_forces=[20.0, 40.0, 60.0])
+    batch = simulate_batch(EJ, speeds, run=RunSpec(sample=0.001, friction_law="kinetic", model="thesis"), progress=False, workers=2, push_forces=[20.0, 40.0, 60.0])
     for s, f, rb in zip(speeds, (20.0, 40.0, 60.0), batch, strict=False):
-        r1 = simulate(EJ, float(s), run=RunSpec(push_force=f, friction_law="kinetic"))
+        r1 = simulate(EJ, float(s), run=RunSpec(push_force=f, friction_law="kinetic", model="thesis"))
         for name in ("t", "yaw_rate", "heading", "x", "y", "fy", "normal_load", "pin_moment"):
             np.testing.assert_array_equal(getattr(rb, name), getattr(r1, name), err_msg=name)
         assert rb.stop_time == r1.stop_time and rb.stats == r1.stats
@@ -760,9 +755,9 @@ def test_kernel_tire_law_equals_the_tires_module():
 
 
 def test_record_modes_and_stats():
-    full = simulate(EJ, 0.75, run=RunSpec(stop_on_warnings=False, horizon=4.0, friction_law="kinetic"))
-    states = simulate(EJ, 0.75, run=RunSpec(stop_on_warnings=False, horizon=4.0, sample=0.01, friction_law="kinetic"), record="states")
-    final = simulate(EJ, 0.75, run=RunSpec(stop_on_warnings=False, horizon=4.0, friction_law="kinetic"), record="final")
+    full = simulate(EJ, 0.75, run=RunSpec(stop_on_warnings=False, horizon=4.0, friction_law="kinetic", model="thesis"))
+    states = simulate(EJ, 0.75, run=RunSpec(stop_on_warnings=False, horizon=4.0, sample=0.01, friction_law="kinetic", model="thesis"), record="states")
+    final = simulate(EJ, 0.75, run=RunSpec(stop_on_warnings=False, horizon=4.0, friction_law="kinetic", model="thesis"), record="final")
     np.testing.assert_array_equal(states.yaw_rate, full.yaw_rate[::10])
     assert np.all(np.isnan(states.fy)) and states.fy.shape == (len(states.t), 4)
     assert len(final.t) == 1 and final.t[0] == full.t[-1] and final.yaw_rate[0] == full.yaw_rate[-1]
@@ -779,7 +774,7 @@ def test_batch_memory_scales_with_the_record():
 
     n, rows = 2000, 1002
     assert n * rows * engine.__dict__.get("NREC_STATES", 10) * 8 < 200e6
-    res = simulate_batch(EJ, np.linspace(0.5, 1.0, 20), run=RunSpec(stop_on_warnings=False, friction_law="kinetic"), record="states", progress=False)
+    res = simulate_batch(EJ, np.linspace(0.5, 1.0, 20), run=RunSpec(stop_on_warnings=False, friction_law="kinetic", model="thesis"), record="states", progress=False)
     base = res[0].yaw_rate.base
     while base is not None and base.base is not None:
         base = base.base
@@ -796,16 +791,16 @@ def test_sampled_controller_equals_the_python_callable():
     def hook(t, s):
         return min(max(-20.0 * s.yaw_rate, -15.0), 15.0)
 
-    a = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic"), controller=ctl)
-    b = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic"), yaw_moment=hook)
+    a = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"), controller=ctl)
+    b = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"), yaw_moment=hook)
     assert a.settings["engine"] == "compiled" and b.settings["engine"] == "python"
     # fixed-step rounding model with the open-loop linearisation (the feedback only damps)
     assert_signals_close(a, b, ("yaw_rate",), run_tolerance(EJ, 0.75, 3.0), what="sampled controller")
     np.testing.assert_allclose(a.yaw_moment_input, -20.0 * a.yaw_rate.clip(-0.75, 0.75), rtol=1e-12, atol=1e-15)
-    free = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic"))
+    free = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"))
     assert np.max(np.abs(a.yaw_rate)) < 0.5 * np.max(np.abs(free.yaw_rate))
     with pytest.raises(ValueError, match="choose one"):
-        simulate(EJ, 0.75, run=RunSpec(horizon=0.1, friction_law="kinetic"), controller=ctl, yaw_moment=hook)
+        simulate(EJ, 0.75, run=RunSpec(horizon=0.1, friction_law="kinetic", model="thesis"), controller=ctl, yaw_moment=hook)
 
 
 @pytest.mark.parametrize("speed", [0.1, 0.2, 0.25, 0.3])
@@ -815,18 +810,18 @@ def test_step_stability_limit_against_the_adaptive_scheme(speed):
     Such runs are flagged and warned about; dt="auto" picks a stable step and
     then agrees with the adaptive scheme (issue 10: 0.072 rad/s peak at 0.25 m/s).
     """
-    kw = dict(duration=3.0, stop_on_warnings=False)
-    ada = simulate(EJ, speed, scheme="adaptive", **kw)
-    auto = simulate(EJ, speed, dt="auto", **kw)
+    kw = dict(horizon=3.0, stop_on_warnings=False, model="thesis")
+    ada = simulate(EJ, speed, RunSpec(scheme="adaptive", **kw))
+    auto = simulate(EJ, speed, RunSpec(dt="auto", friction_law="kinetic", **kw))
     assert not auto.step_unstable and auto.settings["dt"] <= auto.settings["stable_dt"]
     peak_ada = np.max(np.abs(ada.yaw_rate))
     assert np.max(np.abs(auto.yaw_rate)) == pytest.approx(peak_ada, rel=0.08)
     if speed < 0.27:
         with pytest.warns(StepStabilityWarning, match=r"dt=0\.001 s exceeds .*largest safe step"):
-            fixed = simulate(EJ, speed, **kw)
+            fixed = simulate(EJ, speed, RunSpec(friction_law="kinetic", **kw))
         assert fixed.step_unstable and fixed.to_dict()["step_unstable"] is True
     else:
-        fixed = simulate(EJ, speed, **kw)
+        fixed = simulate(EJ, speed, RunSpec(friction_law="kinetic", **kw))
         assert not fixed.step_unstable
 
 
@@ -835,10 +830,9 @@ def test_reference_range_rules_check_only_the_tested_wheels():
     warnings and stops as the kernel does (it used to skip the rules on every wheel of such a batch).
     Times to a step: the two agree to rounding (libm against numpy's SIMD functions)."""
     chair = EJ.replace(caster_tire="linear:25")
-    kw = dict(impulse_force=150.0, duration=2.5)
-    base = {k: v for k, v in DEFAULTS.as_dict().items() if k not in ("controller", "record", "model")}
-    ref = wchair_batch([chair], np.array([0.5]), make_options(batch=True, **dict(base, **kw)), False)[0]
-    com = simulate(chair, 0.5, record="final", **kw)
+    run = RunSpec(push_force=150.0, horizon=2.5, friction_law="kinetic")
+    ref = wchair_batch([chair], np.array([0.5]), make_options(run, batch=True), False)[0]
+    com = simulate(chair, 0.5, run, record="final")
     assert ref.warning_counts == com.warning_counts and com.warning_counts["slip"] == 11
     assert ref.warnings["slip"]["first_time"] == pytest.approx(com.warnings["slip"]["first_time"], abs=1.5e-3)
     assert ref.stopped_by_warnings and ref.stop_time == pytest.approx(com.stop_time, abs=1.5e-3)

@@ -48,13 +48,12 @@ def _close(a, b, tol: float, what: str = "") -> None:
 # -- zero slope --------------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("kw", [dict(), dict(model="exact"), dict(model="exact", casters="locked"),
-                                dict(model="exact", scheme="adaptive", duration=1.0)])
+                                dict(model="exact", scheme="adaptive", horizon=1.0)])
 def test_zero_slope_is_todays_run(kw):
-    base = dict(duration=2.0, **{k: v for k, v in kw.items() if k != "duration"}) | {"duration": kw.get("duration",
-                                                                                                       2.0)}
-    ref = simulate(EJ, 0.75, **base)
-    _same(simulate(EJ, 0.75, slope=(0.0, 0.0), **base), ref)
-    _same(simulate(EJ, 0.75, slope=(-0.0, 0.0), **base), ref)
+    base = RunSpec(**{"horizon": 2.0, **kw})
+    ref = simulate(EJ, 0.75, base)
+    _same(simulate(EJ, 0.75, base.replace(cross_slope_deg=0.0, grade_deg=0.0)), ref)
+    _same(simulate(EJ, 0.75, base.replace(cross_slope_deg=-0.0, grade_deg=-0.0)), ref)
     assert "cross_slope_deg" not in ref.settings          # level runs record what they recorded before
 
 
@@ -98,11 +97,11 @@ def test_mirror_symmetry(scheme, chair):
     differences): tolerance 100 rtol with rtol = 1e-9; the fixed-step runs to 1e-9 of the signal.
     """
     chair = chair.replace(**FRICTIONLESS)
-    kw = dict(model="exact", scheme=scheme, duration=1.0, impulse_force=0.0)
+    kw = dict(model="exact", scheme=scheme, horizon=1.0, push_force=0.0)
     if scheme == "adaptive":
         kw.update(rtol=1e-9, atol=1e-12)
-    a = simulate(chair, 0.75, slope=(3.0, 1.0), **kw)
-    b = simulate(chair, 0.75, slope=(-3.0, 1.0), **kw)
+    a = simulate(chair, 0.75, RunSpec(cross_slope_deg=3.0, grade_deg=1.0, **kw))
+    b = simulate(chair, 0.75, RunSpec(cross_slope_deg=-3.0, grade_deg=1.0, **kw))
     # error models (tests/numerics.py): the fixed-step runs differ by rounding grown over the run; the
     # adaptive ones by at most the sum of their global errors (LSODA's step decisions may part)
     if scheme == "adaptive":
@@ -125,13 +124,13 @@ def test_mirror_symmetry(scheme, chair):
 @pytest.mark.parametrize("scheme", ["wchair", "adaptive"])
 def test_front_casters_turn_downhill_rear_casters_uphill(scheme):
     """The plane falls to the right (+): downhill is a clockwise (+) heading change (issue 12, 'what is known')."""
-    kw = dict(model="exact", scheme=scheme, duration=0.5, impulse_force=0.0, slope=(2.0, 0.0))
-    assert simulate(FRONT, 0.75, **kw).heading[-1] > math.radians(1.0)
-    assert simulate(EJ, 0.75, **kw).heading[-1] < -math.radians(1.0)
+    run = RunSpec(model="exact", scheme=scheme, horizon=0.5, push_force=0.0, cross_slope_deg=2.0)
+    assert simulate(FRONT, 0.75, run).heading[-1] > math.radians(1.0)
+    assert simulate(EJ, 0.75, run).heading[-1] < -math.radians(1.0)
     eq = solve(FRONT, -2.0, 0.75)
-    assert simulator_path(FRONT, eq, scheme=scheme, duration=0.5).turn == "downhill"
+    assert simulator_path(FRONT, eq, RunSpec(scheme=scheme, horizon=0.5)).turn == "downhill"
     eq = solve(EJ, -2.0, 0.75)
-    assert simulator_path(EJ, eq, scheme=scheme, duration=0.5).turn == "uphill"
+    assert simulator_path(EJ, eq, RunSpec(scheme=scheme, horizon=0.5)).turn == "uphill"
 
 
 # -- agreement with stability.study.veer ----------------------------------------------------------------------
@@ -153,8 +152,9 @@ def test_simulator_agrees_with_slope_integration(chair, t_end):
     swing = float(np.max(np.abs(href - href[0])))
     assert swing > math.radians(3.0)
     for scheme, tol in (("adaptive", 1e-4), ("wchair", 0.005 * swing)):
-        sim = simulator_path(c, eq, scheme=scheme, duration=t_end + 0.02, rtol=1e-9, atol=1e-11) \
-            if scheme == "adaptive" else simulator_path(c, eq, scheme=scheme, duration=t_end + 0.02)
+        run = RunSpec(scheme=scheme, horizon=t_end + 0.02, friction_law="stick-slip" if scheme == "adaptive" else
+                      "kinetic", **(dict(rtol=1e-9, atol=1e-11) if scheme == "adaptive" else {}))
+        sim = simulator_path(c, eq, run)
         assert sim.t[-1] >= t_end
         np.testing.assert_allclose(np.interp(tt, sim.t, sim.heading), href, rtol=0, atol=tol, err_msg=scheme)
         np.testing.assert_allclose(np.interp(tt, sim.t, sim.y), np.interp(tt, ref.t, ref.y), rtol=0,
@@ -188,13 +188,14 @@ def test_grade_speed_closed_form(scheme, grade):
 
 @pytest.mark.parametrize("casters", ["free", "locked"])
 def test_compiled_matches_reference_paths(casters):
-    kw = dict(model="exact", duration=1.0, slope=(2.0, 3.0), casters=casters)
-    comp = simulate(EJ, 0.75, **kw)
-    batch = simulate_batch([EJ, FRONT], [0.75, 0.6], progress=False, sample=0.001, **kw)
+    run = RunSpec(model="exact", horizon=1.0, cross_slope_deg=2.0, grade_deg=3.0, casters=casters,
+                  friction_law="kinetic")
+    comp = simulate(EJ, 0.75, run)
+    batch = simulate_batch([EJ, FRONT], [0.75, 0.6], run.replace(sample=0.001), progress=False)
     _same_states(batch[0], comp)                                            # one arithmetic, alone or batched
     with reference_engine():
-        ref1 = simulate(EJ, 0.75, **kw)
-        refb = simulate_batch([EJ, FRONT], [0.75, 0.6], progress=False, sample=0.001, **kw)
+        ref1 = simulate(EJ, 0.75, run)
+        refb = simulate_batch([EJ, FRONT], [0.75, 0.6], run.replace(sample=0.001), progress=False)
     assert comp.settings["engine"] == "compiled" and ref1.settings["engine"] == "python"
     # fixed-step rounding grown over the run (tests/numerics.py)
     _close(comp, ref1, run_tolerance(EJ, 0.75, 1.0, model="exact", casters=casters), what="compiled vs reference")
@@ -205,10 +206,10 @@ def test_stick_slip_on_a_slope_compiled_matches_reference():
     """The stick-slip law on a plane: the compiled kernel and the Python reference take the same steps (measured
     6e-16 relative); tolerance as above, the larger of the free and locked bounds since a caster switches between
     them (tests/test_stick_slip.py)."""
-    kw = dict(model="exact", duration=1.0, slope=(4.0, 2.0), friction_law="stick-slip")
-    comp = simulate(EJ, 1.0, **kw)
+    run = RunSpec(model="exact", horizon=1.0, cross_slope_deg=4.0, grade_deg=2.0, friction_law="stick-slip")
+    comp = simulate(EJ, 1.0, run)
     with reference_engine():
-        ref = simulate(EJ, 1.0, **kw)
+        ref = simulate(EJ, 1.0, run)
     assert comp.settings["friction_law"] == ref.settings["friction_law"] == "stick-slip"
     tol = max(run_tolerance(EJ, 1.0, 1.0, model="exact", casters=c) for c in ("free", "locked"))
     _close(comp, ref, tol, what="stick-slip on a slope")
@@ -218,10 +219,10 @@ def test_stick_slip_on_a_slope_compiled_matches_reference():
 def test_adaptive_compiled_matches_python_rhs():
     """Same right-hand side compiled and in Python; LSODA may take a different step on a rounding-level
     difference, so the two agree to the integration error (rtol = 1e-9 here), tested at 1e-8 of the signal."""
-    kw = dict(model="exact", scheme="adaptive", duration=1.0, slope=(2.0, -2.0), impulse_force=0.0, rtol=1e-9,
-              atol=1e-12)
-    comp = simulate(FRONT, 0.75, **kw)
-    py = simulate(FRONT, 0.75, yaw_moment=lambda t, s: 0.0, **kw)
+    run = RunSpec(model="exact", scheme="adaptive", horizon=1.0, cross_slope_deg=2.0, grade_deg=-2.0, push_force=0.0,
+                  rtol=1e-9, atol=1e-12)
+    comp = simulate(FRONT, 0.75, run)
+    py = simulate(FRONT, 0.75, run, yaw_moment=lambda t, s: 0.0)
     assert comp.settings["engine"] == "compiled" and py.settings["engine"] == "python"
     steps = max(comp.settings["nfev"], py.settings["nfev"])
     _close(comp, py, adaptive_run_tolerance(FRONT, 0.75, 1.0, 1e-9, steps, "exact"), what="adaptive rhs")
@@ -229,10 +230,19 @@ def test_adaptive_compiled_matches_python_rhs():
 
 # -- inputs ------------------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("slope", [(15.5, 0.0), (0.0, -16.0), (math.nan, 0.0), (1.0,), "flat"])
-def test_bad_slope_refused(slope):
-    with pytest.raises(ValueError, match="slope=.*valid range"):
-        simulate(EJ, 0.75, run=RunSpec(model="exact", cross_slope_deg=slope[0], grade_deg=slope[1], friction_law="kinetic"))
+@pytest.mark.parametrize("fields, match", [
+    (dict(cross_slope_deg=15.5), r"cross_slope_deg=15\.5 is invalid; valid range: -15 <= cross_slope_deg <= 15 deg"),
+    (dict(grade_deg=-16.0), r"grade_deg=-16\.0 is invalid; valid range"),
+    (dict(cross_slope_deg=math.nan), r"cross_slope_deg=nan is invalid"),
+])
+def test_bad_slope_refused(fields, match):
+    with pytest.raises(ValueError, match=match):
+        simulate(EJ, 0.75, run=RunSpec(model="exact", **fields))
+
+
+def test_a_slope_that_is_not_a_number_is_a_type_error():
+    with pytest.raises(TypeError, match="cross_slope_deg='flat' is invalid; expected a number"):
+        RunSpec(cross_slope_deg="flat")
 
 
 def test_thesis_model_refused_on_slope():
@@ -241,8 +251,8 @@ def test_thesis_model_refused_on_slope():
 
 
 def test_cli_slope(capsys):
-    assert simulate_main(["--chair", "manual-front-caster", "--cross-slope", "2", "--duration", "0.5",
-                          "--impulse", "0", "0", "--json"]) == 0
+    assert simulate_main(["--chair", "manual-front-caster", "--cross-slope", "2", "--horizon", "0.5",
+                          "--push-force", "0", "--push-duration", "0", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert (d["settings"]["cross_slope_deg"], d["settings"]["grade_deg"]) == (2.0, 0.0)
     assert simulate_main(["--cross-slope", "20"]) == 2

@@ -32,16 +32,17 @@ SCRIPT = textwrap.dedent("""
     import numpy as np
     import numba
     from stability.chair import preset
+    from stability.settings.run import RunSpec
     from stability.simulate import simulate, simulate_batch
 
     EJ = preset("ej-premier")
     NAMES = {names!r}
     JOBS = [
-        lambda: simulate_batch(EJ, np.linspace(0.5, 1.0, 6), duration=1.0, progress=False, workers=1),
-        lambda: simulate_batch(EJ.replace(trail=0.06), np.linspace(0.6, 0.9, 5), duration=1.0, progress=False,
-                               workers=1),
-        lambda: [simulate(EJ, 0.8, duration=1.0)],
-        lambda: [simulate(EJ, 0.75, duration=1.0, scheme="adaptive")],
+        lambda: simulate_batch(EJ, np.linspace(0.5, 1.0, 6), RunSpec(horizon=1.0), progress=False, workers=1),
+        lambda: simulate_batch(EJ.replace(trail=0.06), np.linspace(0.6, 0.9, 5), RunSpec(horizon=1.0),
+                               progress=False, workers=1),
+        lambda: [simulate(EJ, 0.8, RunSpec(horizon=1.0))],
+        lambda: [simulate(EJ, 0.75, RunSpec(horizon=1.0, scheme="adaptive"))],
     ]
     try:
         alone = [job() for job in JOBS]

@@ -20,22 +20,23 @@ from numerics import assert_signals_close, run_tolerance
 
 from stability.chair import preset
 from stability.settings.run import RunSpec
-from stability.simulate import DEFAULTS, simulate, simulate_batch
+from stability.simulate import simulate, simulate_batch
 from stability.study import critical_impulse
 
-PUSH = dict(impulse_force=20.0, impulse_duration=0.1)     # 2 N s: below the E&J's critical push at 0.75 m/s
-RUN = dict(duration=3.0, sample=0.01, stop_on_warnings=False)
+PUSH = dict(push_force=20.0, push_duration=0.1)     # 2 N s: below the E&J's critical push at 0.75 m/s
+RUN = dict(horizon=3.0, sample=0.01, stop_on_warnings=False)
 
 
 def _yaw(chair, speed, **kw):
-    return np.asarray(simulate(chair, speed, **PUSH, **RUN, **kw).yaw_rate)
+    kw.setdefault("friction_law", "kinetic")
+    return np.asarray(simulate(chair, speed, RunSpec(**PUSH, **RUN, **kw)).yaw_rate)
 
 
 def test_without_pin_friction_the_two_laws_are_the_same_run():
     chair = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
     a = simulate(chair, 0.75, run=RunSpec(stop_on_warnings=False, friction_law="kinetic"))
     b = simulate(chair, 0.75, run=RunSpec(stop_on_warnings=False, friction_law="stick-slip"))
-    assert b.settings["friction_law"] == "stick-slip" and "friction_law" not in a.settings
+    assert b.settings["friction_law"] == "stick-slip" and a.settings["friction_law"] == "kinetic"
     np.testing.assert_array_equal(a.yaw_rate, b.yaw_rate)     # no friction: nothing to stick, bit for bit
     np.testing.assert_array_equal(a.eta, b.eta)
 
@@ -46,7 +47,7 @@ def test_stick_slip_converges_at_first_order_to_the_event_located_solution():
     law at 1 ms is 9.9e-3 rad/s off, 30 % of the 0.033 rad/s peak.  The adaptive run's own error (rtol 1e-6) is
     below 1e-7 rad/s, far under the smallest difference."""
     chair = preset("ej-premier")
-    ref = np.asarray(simulate(chair, 0.75, scheme="adaptive", **PUSH, duration=3.0, sample=0.01).yaw_rate)
+    ref = np.asarray(simulate(chair, 0.75, RunSpec(scheme="adaptive", **PUSH, horizon=3.0, sample=0.01)).yaw_rate)
     err = [np.abs(_yaw(chair, 0.75, dt=dt, friction_law="stick-slip") - ref).max() for dt in (1e-3, 5e-4, 2.5e-4)]
     peak = np.abs(ref).max()
     assert err[0] < 0.05 * peak
@@ -58,8 +59,8 @@ def test_stick_slip_converges_at_first_order_to_the_event_located_solution():
 
 def test_stick_slip_is_mirror_symmetric():
     chair = preset("ej-premier")
-    right = simulate(chair, 0.75, friction_law="stick-slip", **RUN)
-    left = simulate(chair, 0.75, friction_law="stick-slip", **RUN, impulse_force=-40.0)
+    right = simulate(chair, 0.75, RunSpec(friction_law="stick-slip", **RUN))
+    left = simulate(chair, 0.75, RunSpec(friction_law="stick-slip", **RUN, push_force=-40.0))
     # the left and right casters are solved in the same operations with the roles swapped: equal to rounding,
     # amplified by the unstable mode (growth e^{1.45 x 3} ~ 80) over 3000 steps
     scale = np.abs(right.yaw_rate).max()
@@ -93,23 +94,24 @@ def test_critical_impulse_with_stick_slip_equals_the_adaptive_schemes():
 
 @pytest.mark.parametrize("kw,match", [
     (dict(scheme="adaptive", friction_law="kinetic"), "friction_law='kinetic' is invalid for scheme 'adaptive'"),
-    (dict(friction_law="sticky"), "friction_law='sticky' is invalid; valid choices"),
+    (dict(friction_law="sticky"), "friction_law='sticky' is invalid; valid values"),
 ])
 def test_bad_friction_law_is_refused_naming_it(kw, match):
     with pytest.raises(ValueError, match=match):
-        simulate(preset("ej-premier"), 0.75, duration=0.1, **kw)
+        simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.1, **kw))
 
 
 def _ci(chair, speed, dt):
-    kw = {"scheme": "adaptive"} if dt is None else {"dt": dt, "friction_law": "stick-slip"}
-    return critical_impulse(chair, speed, **kw).impulse_Ns
+    run = RunSpec(scheme="adaptive") if dt is None else RunSpec(dt=dt, friction_law="stick-slip")
+    return critical_impulse(chair, speed, run).impulse_Ns
 
 
 def _ei(chair, model, dt):
     from stability.study import equal_instability_speeds
 
-    kw = {"scheme": "adaptive", "dt": None} if dt is None else {"dt": dt, "friction_law": "stick-slip"}
-    r = equal_instability_speeds([chair], model=model, progress=False, **kw)[0]
+    run = RunSpec(scheme="adaptive", model=model) if dt is None else RunSpec(dt=dt, friction_law="stick-slip",
+                                                                            model=model)
+    r = equal_instability_speeds([chair], run, progress=False)[0]
     return "above 3" if r.status == "above" else r.speed
 
 
@@ -203,13 +205,12 @@ def test_python_paths_take_the_compiled_kernels_stick_slip_steps(model, monkeypa
 
     duration = 1.5
     chairs, speeds, forces = (list(c) for c in zip(*CASES, strict=True))
-    kw = dict(model=model, duration=duration, sample=0.001, friction_law="stick-slip", stop_on_warnings=False)
-    compiled = simulate_batch(chairs, np.array(speeds), impulse_force=forces, progress=False, **kw)
-    opts = {k: v for k, v in dict(DEFAULTS.as_dict(), **kw).items() if k not in ("controller", "record")}
-    batch = wchair_batch(chairs, np.array(speeds), make_options(batch=True, **opts), False, forces=np.array(forces))
+    run = RunSpec(model=model, horizon=duration, sample=0.001, friction_law="stick-slip", stop_on_warnings=False)
+    compiled = simulate_batch(chairs, np.array(speeds), run, push_forces=forces, progress=False)
+    batch = wchair_batch(chairs, np.array(speeds), make_options(run, batch=True), False, forces=np.array(forces))
     for i, (chair, speed, force) in enumerate(CASES):
         hold, rest = _decision_margins(monkeypatch)
-        single = wchair_single(chair, speed, make_options(**dict(opts, impulse_force=force)))
+        single = wchair_single(chair, speed, make_options(run.replace(push_force=force)))
         monkeypatch.undo()
         got = compiled[i]
         assert got.settings["engine"] == "compiled" and single.settings["friction_law"] == "stick-slip"
@@ -239,7 +240,7 @@ def test_python_yaw_moment_with_stick_slip_equals_the_compiled_controller():
     def hook(t, s):
         return np.clip(-20.0 * s.yaw_rate, -15.0, 15.0)
 
-    kw = dict(duration=3.0, sample=0.01, friction_law="stick-slip", **PUSH)
+    kw = dict(run=RunSpec(horizon=3.0, sample=0.01, friction_law="stick-slip", **PUSH))
     speeds = (0.75, 1.0)
     batch = simulate_batch([EJ, EJ], list(speeds), yaw_moment=hook, progress=False, **kw)
     for speed, c in zip(speeds, batch, strict=True):
@@ -313,7 +314,7 @@ def test_a_settled_run_never_reaches_the_level():
     stuck = (np.asarray(r.eta_dot) == 0.0) & (np.asarray(r.beta_dot) == 0.0)
     assert stuck[np.asarray(r.t) > 1.0].all()
     assert np.abs(np.asarray(r.pin_moment))[np.asarray(r.t) > 1.0].max() < chair.pin_friction_left
-    runner = SummaryRunner([chair], [0.75], model="exact", scheme="wchair", duration=0.1, dt=0.001, horizon=10.0,
-                           level=1.0, sim_options={"friction_law": "stick-slip", "stop_on_warnings": False})
+    runner = SummaryRunner([chair], [0.75], RunSpec(model="exact", push_duration=0.1, dt=0.001, horizon=10.0,
+                                                    friction_law="stick-slip", stop_on_warnings=False), level=1.0)
     s = runner([0], [3.2 / 0.101])
     assert not np.isfinite(s.t_level[0]) and s.sim_time[0] < 2.0

@@ -53,12 +53,12 @@ class FakeSim:
     def u_star(self, c):
         return 0.75 * c.pin_friction_left / 0.1
 
-    def __call__(self, chairs, speeds, *, progress=False, desc="", **options):
+    def __call__(self, chairs, speeds, run, *, push_forces=None, progress=False):
         self.calls.append(len(chairs))
         out = []
         for c, s in zip(chairs, speeds, strict=False):
             t1 = 3.2 * math.exp(-4.0 * (s - self.u_star(c)))
-            t = np.arange(0, options["duration"] + 1e-9, 0.01)
+            t = np.arange(0, run.horizon + 1e-9, 0.01)
             r = np.exp((t - t1) * 2.0)         # |r| = 1 exactly at t1
             out.append(fake_result(t, r))
         return out
@@ -110,9 +110,9 @@ def test_maps_use_one_batch(fake):
 def test_disturbance_map_is_one_batch_with_a_force_per_run(fake, monkeypatch):
     seen = {}
 
-    def spy(chairs, speeds, **options):
-        seen["forces"] = np.asarray(options["impulse_force"])
-        return fake(chairs, speeds, **options)
+    def spy(chairs, speeds, run, **options):
+        seen["forces"] = np.asarray(options["push_forces"])
+        return fake(chairs, speeds, run, **options)
 
     monkeypatch.setattr(study.runs, "simulate_runs", spy)
     m = study.disturbance_map(preset("ej-premier"), [0.5, 1.0], [2.0, 4.0, 8.0], run=RunSpec(model="thesis"), reference=3.2, progress=False)
@@ -123,7 +123,6 @@ def test_disturbance_map_is_one_batch_with_a_force_per_run(fake, monkeypatch):
 def test_disturbance_map_matches_separate_runs():
     """The one-batch map gives the times of separate simulations (real simulator, short runs, the studies' pin
     friction law)."""
-    from stability.settings.defaults import MEASURE_FRICTION_LAW
     from stability.simulate import simulate
 
     ej = preset("ej-premier")
@@ -131,7 +130,7 @@ def test_disturbance_map_matches_separate_runs():
     m = study.disturbance_map(ej, [0.8, 1.2], [2.0, 6.0], run=RunSpec(model="thesis"), reference=3.2, criterion=crit, progress=False)
     for i, imp in enumerate((2.0, 6.0)):
         for j, u in enumerate((0.8, 1.2)):
-            r = simulate(ej, u, run=RunSpec(model="thesis", push_force=imp / 0.1, horizon=4.0, stop_on_warnings=False, sample=0.01, friction_law=MEASURE_FRICTION_LAW))
+            r = simulate(ej, u, run=RunSpec(model="thesis", push_force=imp / 0.1, horizon=4.0, stop_on_warnings=False, sample=0.01, friction_law=RunSpec().friction_law))
             assert m.times[i, j] == pytest.approx(crit.time(r), abs=1e-9)
     assert m.times[1, 1] < m.times[0, 1]          # a bigger push reaches the level sooner
 
@@ -277,14 +276,13 @@ def test_studies_never_integrate_with_an_unstable_step():
     from stability.study.runs import simulate_runs
 
     ej = preset("ej-premier")
-    opts = dict(model="exact", impulse_force=40.0, impulse_duration=0.1, duration=4.0, dt=0.001,
-                stop_on_warnings=False)
+    run = RunSpec(model="exact", push_force=40.0, push_duration=0.1, horizon=4.0, dt=0.001, stop_on_warnings=False)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        slow, fast = simulate_runs([ej, ej], [0.25, 0.75], **opts)
+        slow, fast = simulate_runs([ej, ej], [0.25, 0.75], run)
     assert slow.settings["dt"] < 0.001 and not slow.step_unstable
     assert fast.settings["dt"] == 0.001
-    ref = simulate_runs([ej], [0.25], **dict(opts, scheme="adaptive"))[0]
+    ref = simulate_runs([ej], [0.25], run.replace(scheme="adaptive"))[0]
     peak = np.max(np.abs(slow.yaw_rate))
     assert peak == pytest.approx(np.max(np.abs(ref.yaw_rate)), rel=0.03)
     assert peak < 0.09

@@ -27,9 +27,9 @@ from stability.simulate import simulate as _simulate
 
 
 def simulate(*args, **kwargs):
-    """The simulator with the thesis's equations (program WCHAIR's) unless a test names another model: this
-    file reproduces the thesis's runs, while the toolkit's default model is "exact" (stability.settings.defaults)."""
-    return _simulate(*args, **{"model": "thesis", **kwargs})
+    """The simulator (this file reproduces the thesis's runs: every run names the thesis's equations and program
+    WCHAIR's kinetic pin friction, while the toolkit's defaults are the exact model and stick-slip friction)."""
+    return _simulate(*args, **kwargs)
 
 EJ = preset("ej-premier")
 FRONT = preset("ej-premier-front-caster")
@@ -42,7 +42,7 @@ def _report(label, measured, thesis):
 @pytest.fixture(scope="module")
 def speed_study():
     """Figure 8-3a: 4 N s impulse at .55, .65, .75, .85, .95 m/s (10 s)."""
-    return {s: simulate(EJ, s, run=RunSpec(friction_law="kinetic")) for s in (0.55, 0.65, 0.75, 0.85, 0.95)}
+    return {s: simulate(EJ, s, run=RunSpec(friction_law="kinetic", model="thesis")) for s in (0.55, 0.65, 0.75, 0.85, 0.95)}
 
 
 def test_reference_case_reaches_1_rad_s_in_slightly_over_3_seconds(speed_study):
@@ -116,7 +116,7 @@ def test_initial_lateral_velocity_equivalent_to_the_impulse(speed_study):
     trial and error); it also gives out-of-range normal forces at the first
     step ("a large lateral load transfer")."""
     imp = speed_study[0.75]
-    vel = simulate(EJ, 0.75, run=RunSpec(push_force=0.0, lateral_velocity=0.04, friction_law="kinetic"))
+    vel = simulate(EJ, 0.75, run=RunSpec(push_force=0.0, lateral_velocity=0.04, friction_law="kinetic", model="thesis"))
     ti, tv = imp.first_time_abs_yaw_rate(1.0), vel.first_time_abs_yaw_rate(1.0)
     _report("Figure 8-2, time to 1 rad/s (impulse, 0.04 m/s)", (round(ti, 3), round(tv, 3)), "about equal")
     assert tv == pytest.approx(ti, rel=0.10)
@@ -131,7 +131,7 @@ def test_front_caster_chair_returns_to_straight_motion(speed_study):
     and it returns to straight-line motion, while the rear-caster chair
     keeps diverging."""
     rear = speed_study[0.75]
-    front = simulate(FRONT, 0.75, run=RunSpec(friction_law="kinetic"))
+    front = simulate(FRONT, 0.75, run=RunSpec(friction_law="kinetic", model="thesis"))
     peak = np.max(np.abs(front.yaw_rate))
     k = int(np.argmax(np.abs(front.yaw_rate)))
     _report("front-caster chair: peak yaw rate, at t, yaw rate at 10 s",
@@ -149,7 +149,7 @@ def test_front_caster_chair_under_a_constant_side_force_turns_steadily():
     """Figure 8-5: a constant 40 N side force (a long DUIMP) makes the
     front-caster chair's yaw velocity rise sharply and "soon begin to
     approach a constant value" (steady turning, like a car in a side wind)."""
-    r = simulate(FRONT, 0.75, run=RunSpec(push_duration=1e3, horizon=8.0, friction_law="kinetic"))
+    r = simulate(FRONT, 0.75, run=RunSpec(push_duration=1e3, horizon=8.0, friction_law="kinetic", model="thesis"))
     rates = {t: r.at(t)["yaw_rate"] for t in (0.5, 1.0, 2.0, 4.0, 6.0, 8.0)}
     _report("Figure 8-5 constant force, yaw rate at t", {t: round(v, 3) for t, v in rates.items()}, "approaches a constant")
     assert rates[1.0] > 0.5 * rates[6.0] > 0.1          # sharp initial rise
@@ -174,9 +174,9 @@ def test_front_caster_chair_equals_the_thesis_trick(friction):
     front = FRONT.replace(pin_friction_left=friction, pin_friction_right=friction)
     trick = EJ.replace(s1=0.175, s2=0.345, pin_friction_left=friction, pin_friction_right=friction)
     assert trick.caster_position == "rear"
-    kw = dict(duration=5.0)
-    a = simulate(front, 0.75, **kw)
-    b = simulate(trick, 0.75, reverse=True, eta0_deg=180.0, beta0_deg=180.0, **kw)
+    kw = dict(horizon=5.0, model="thesis")
+    a = simulate(front, 0.75, run=RunSpec(friction_law="kinetic", **kw))
+    b = simulate(trick, 0.75, run=RunSpec(reverse=True, eta0_deg=180.0, beta0_deg=180.0, friction_law="kinetic", **kw))
     peak = np.max(np.abs(a.yaw_rate))
     err = np.max(np.abs(a.yaw_rate + b.yaw_rate))
     _report(f"trick vs front-caster chair (friction {friction}), max |r_front + r_trick| / peak", f"{err / peak:.2e}", "0")
@@ -190,8 +190,8 @@ def test_front_caster_chair_equals_the_thesis_trick(friction):
             assert np.max(np.abs(x - y)) <= tol * np.max(np.abs(y))
     else:
         assert err < 0.02 * peak
-        a = simulate(front, 0.75, scheme="adaptive", **kw)
-        b = simulate(trick, 0.75, scheme="adaptive", reverse=True, eta0_deg=180.0, beta0_deg=180.0, **kw)
+        a = simulate(front, 0.75, run=RunSpec(scheme="adaptive", **kw))
+        b = simulate(trick, 0.75, run=RunSpec(scheme="adaptive", reverse=True, eta0_deg=180.0, beta0_deg=180.0, **kw))
         assert np.max(np.abs(a.yaw_rate + b.yaw_rate)) < 1e-4 * peak
 
 
@@ -199,15 +199,15 @@ def test_pin_friction_012_nearly_stable_0115_not():
     """Figure 8-13: "The amount of time available for the user to make a
     course correction is essentially unlimited for the case where M_f = .12
     N-m", while .115 N m (5 % less) diverges."""
-    r12 = simulate(EJ.replace(pin_friction_left=0.12, pin_friction_right=0.12), 0.75, run=RunSpec(friction_law="kinetic"))
-    r115 = simulate(EJ.replace(pin_friction_left=0.115, pin_friction_right=0.115), 0.75, run=RunSpec(friction_law="kinetic"))
+    r12 = simulate(EJ.replace(pin_friction_left=0.12, pin_friction_right=0.12), 0.75, run=RunSpec(friction_law="kinetic", model="thesis"))
+    r115 = simulate(EJ.replace(pin_friction_left=0.115, pin_friction_right=0.115), 0.75, run=RunSpec(friction_law="kinetic", model="thesis"))
     m12 = float(np.max(np.abs(r12.yaw_rate)))
     t115 = r115.first_time_abs_yaw_rate(1.0)
     _report("Figure 8-13: max |yaw rate| over 10 s at .12 N m; time to 1 rad/s at .115 N m",
             (round(m12, 3), None if t115 is None else round(t115, 2)), "stays small; diverges")
     assert m12 < 0.3 and not r12.stopped_by_warnings
     assert t115 is not None and t115 < 10.0
-    t10 = simulate(EJ, 0.75, run=RunSpec(horizon=5.0, friction_law="kinetic")).first_time_abs_yaw_rate(1.0)
+    t10 = simulate(EJ, 0.75, run=RunSpec(horizon=5.0, friction_law="kinetic", model="thesis")).first_time_abs_yaw_rate(1.0)
     assert t115 > t10                                        # more friction, later divergence
 
 
@@ -215,7 +215,7 @@ def test_time_step_study():
     """Figure 8-7: .01 s is "clearly" unusable, .001 s is about the largest
     step that converges, and .0001 s changes little (3.5 s simulated to keep
     the test fast; the reference reaches 1 rad/s within it)."""
-    runs = {dt: simulate(EJ, 0.75, run=RunSpec(dt=dt, horizon=3.5, stop_on_warnings=False, friction_law="kinetic")) for dt in (0.01, 0.001, 0.0001)}
+    runs = {dt: simulate(EJ, 0.75, run=RunSpec(dt=dt, horizon=3.5, stop_on_warnings=False, friction_law="kinetic", model="thesis")) for dt in (0.01, 0.001, 0.0001)}
     t1 = {dt: r.first_time_abs_yaw_rate(1.0) for dt, r in runs.items()}
     _report("Figure 8-7, time to 1 rad/s by dt", t1, ".001 close to .0001; .01 wrong")
     assert t1[0.001] == pytest.approx(t1[0.0001], rel=0.03)
@@ -233,7 +233,7 @@ def test_locked_casters_critical_speed():
     the chair is stable at 10.0 m/s and the transition to instability lies
     between 11.25 and 12.5 m/s (eq 5-15 predicts 12 m/s)."""
     c = EJ.replace(m=75.0)
-    res = {s: simulate(c, s, run=RunSpec(casters="locked", friction_law="kinetic")) for s in (10.0, 11.25, 12.5)}
+    res = {s: simulate(c, s, run=RunSpec(casters="locked", friction_law="kinetic", model="thesis")) for s in (10.0, 11.25, 12.5)}
 
     def growth(r):  # |r| late / |r| early, both after the impulse transient
         return abs(r.at(min(5.0, r.t[-1]))["yaw_rate"]) / abs(r.at(1.0)["yaw_rate"])
@@ -255,10 +255,10 @@ def test_chapter9_revised_design_and_friction(speed_study):
     reference at about .65 m/s, with 50 % more (.15 N m) at about 1.65 m/s."""
     t_ref = speed_study[0.75].first_time_abs_yaw_rate(1.0)
     rv = preset("revised")
-    t110 = simulate(rv, 1.10, run=RunSpec(friction_law="kinetic")).first_time_abs_yaw_rate(1.0)
-    t115 = simulate(rv, 1.15, run=RunSpec(friction_law="kinetic")).first_time_abs_yaw_rate(1.0)
-    t_half = simulate(rv.replace(pin_friction_left=0.05, pin_friction_right=0.05), 0.65, run=RunSpec(friction_law="kinetic")).first_time_abs_yaw_rate(1.0)
-    t_more = simulate(rv.replace(pin_friction_left=0.15, pin_friction_right=0.15), 1.65, run=RunSpec(friction_law="kinetic")).first_time_abs_yaw_rate(1.0)
+    t110 = simulate(rv, 1.10, run=RunSpec(friction_law="kinetic", model="thesis")).first_time_abs_yaw_rate(1.0)
+    t115 = simulate(rv, 1.15, run=RunSpec(friction_law="kinetic", model="thesis")).first_time_abs_yaw_rate(1.0)
+    t_half = simulate(rv.replace(pin_friction_left=0.05, pin_friction_right=0.05), 0.65, run=RunSpec(friction_law="kinetic", model="thesis")).first_time_abs_yaw_rate(1.0)
+    t_more = simulate(rv.replace(pin_friction_left=0.15, pin_friction_right=0.15), 1.65, run=RunSpec(friction_law="kinetic", model="thesis")).first_time_abs_yaw_rate(1.0)
     _report("Figures 9-2/9-3, time to 1 rad/s: reference, revised 1.10, 1.15, (.05 N m, .65), (.15 N m, 1.65)",
             tuple(round(x, 2) for x in (t_ref, t110, t115, t_half, t_more)), "t110 > ref > t115; the last two ~ ref")
     assert t110 > t_ref > t115

@@ -17,7 +17,7 @@ from stability.uncertainty import loads_uncertainty
 
 # coarse but honest settings so that the file runs in a few seconds (the level is reached after ~3 s)
 HORIZON = 6.0
-FAST = dict(horizon=HORIZON, rel_tol=0.01, bracket=(0.3, 2.5), tol=0.02, candidates=9)
+FAST = dict(run=RunSpec(horizon=HORIZON), rel_tol=0.01, bracket=(0.3, 2.5), tol=0.02, candidates=9)
 EJ = preset("ej-premier")
 
 

@@ -104,7 +104,7 @@ def reference_time() -> Check:
     """The reference case reaches 1 rad/s 'in slightly over 3 seconds' (WCHAIR's equations)."""
     import stability
 
-    run = stability.run_simulation(_ej(), 0.75, model="thesis")
+    run = stability.run_simulation(_ej(), 0.75, stability.RunSpec(model="thesis", friction_law="kinetic"))
     t1 = run.first_time_abs_yaw_rate(1.0)
     return Check("Reference case: E&J Premier, 0.75 m/s, 40 N for 0.1 s", "Collins 1987, Figure 8-3a",
                  "1 rad/s in slightly over 3 s", f"{t1:.3f} s", "3.0-3.6 s", 3.0 < t1 < 3.6)
@@ -138,15 +138,15 @@ def simulator_linearisation() -> Check:
 
 def wchair_run_for_run() -> Check:
     """The compiled kernel against the pure-numpy transcription of the WCHAIR scheme, step for step."""
-    from stability.simulate import DEFAULTS, simulate
+    from stability.settings.run import RunSpec
+    from stability.simulate import simulate
     from stability.simulate.options import make_options
     from stability.simulate.reference import wchair_batch
 
     chair = _ej()
-    opts = dict(DEFAULTS.as_dict(), duration=1.0, sample=0.001)
-    del opts["controller"], opts["record"]
-    ref = wchair_batch([chair], np.array([0.75]), make_options(batch=True, **opts), False)[0]
-    got = simulate(chair, 0.75, **{k: v for k, v in opts.items() if k != "yaw_moment"})
+    run = RunSpec(horizon=1.0, sample=0.001, friction_law="kinetic")
+    ref = wchair_batch([chair], np.array([0.75]), make_options(run, batch=True), False)[0]
+    got = simulate(chair, 0.75, run)
     diff = float(np.max(np.abs(np.asarray(got.yaw_rate) - np.asarray(ref.yaw_rate))))
     scale = float(np.max(np.abs(np.asarray(ref.yaw_rate))))
     return Check("Compiled simulator vs the WCHAIR scheme transcribed in numpy", "Collins 1987, Appendix C",

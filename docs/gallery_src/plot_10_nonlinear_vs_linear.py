@@ -19,8 +19,9 @@ from stability import study
 from stability.plotting.style import OKABE_ITO
 
 chair = stability.preset("ej-premier")
-run = stability.run_simulation(chair, 0.75, duration=3.0)
-free = stability.run_simulation(chair.replace(pin_friction_left=0.0, pin_friction_right=0.0), 0.75, duration=3.0)
+run = stability.run_simulation(chair, 0.75, stability.RunSpec(horizon=3.0))
+free = stability.run_simulation(chair.replace(pin_friction_left=0.0, pin_friction_right=0.0), 0.75,
+                                stability.RunSpec(horizon=3.0))
 lin = study.linear_impulse_response(chair, 0.75, t_end=3.0)
 
 fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")

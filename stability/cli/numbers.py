@@ -15,52 +15,15 @@ import argparse
 import math
 import re
 from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
+from stability.settings.bounds import Bound
+from stability.settings.run import RUN_SETTINGS
+
 __all__ = ["Bound", "OPTION_BOUNDS", "bound_for", "number", "NonFiniteResult", "first_non_finite",
            "check_finite_text"]
-
-
-def _num(x: float) -> str:
-    """A bound as written: integers in full (4294967295), others in ``%g``."""
-    return str(int(x)) if float(x).is_integer() and abs(x) < 1e15 else f"{x:g}"
-
-
-class Bound(NamedTuple):
-    """Plausible range of a numeric option, ``lo <= value <= hi`` in ``unit`` (``<`` at an open end)."""
-
-    lo: float
-    hi: float
-    unit: str
-    open_lo: bool = False
-    open_hi: bool = False
-
-    def text(self) -> str:
-        """The range in words, e.g. ``"0 < value <= 20 m/s"``.
-
-        Returns
-        -------
-        str
-        """
-        unit = f" {self.unit}" if self.unit else ""
-        return (f"{_num(self.lo)} {'<' if self.open_lo else '<='} value {'<' if self.open_hi else '<='} "
-                f"{_num(self.hi)}{unit}")
-
-    def holds(self, value: float) -> bool:
-        """True when ``value`` lies in the range (NaN never does).
-
-        Parameters
-        ----------
-        value : float
-
-        Returns
-        -------
-        bool
-        """
-        return ((self.lo < value if self.open_lo else self.lo <= value)
-                and (value < self.hi if self.open_hi else value <= self.hi))
 
 
 #: Plausibility bound of every numeric option of every command, by option name; ``"command:--option"``
@@ -79,27 +42,15 @@ OPTION_BOUNDS: dict[str, Bound] = {
     "--level": Bound(0.0, 1.0, "", open_lo=True, open_hi=True),          # a probability (confidence level)
     "study:--level": Bound(0.0, 50.0, "rad/s", open_lo=True),   # a yaw-rate level
     # pushes: a person pushes with a few hundred N; 10 kN is a collision
-    "--impulse": Bound(-10_000.0, 10_000.0, "N or s"),
-    "--tire-impulse": Bound(-10_000.0, 10_000.0, "N"),
     "--max-impulse": Bound(0.0, 1_000.0, "N s", open_lo=True),
     "--force": Bound(0.0, 10_000.0, "N", open_lo=True),
-    "--lateral-velocity": Bound(-5.0, 5.0, "m/s"),
-    "--eta0": Bound(-180.0, 180.0, "deg"),
-    "--beta0": Bound(-180.0, 180.0, "deg"),
     # roads: no wheelchair ramp or road is steeper than 45 deg (commands bound it further)
     "--cross-slope": Bound(-45.0, 45.0, "deg"),
     "--grade": Bound(-45.0, 45.0, "deg"),
     # times: an hour of simulated motion; a push of at most 10 s; sample intervals from 1 us
-    "--duration": Bound(0.0, 3600.0, "s", open_lo=True),
-    "study:--duration": Bound(0.0, 10.0, "s", open_lo=True),
-    "--horizon": Bound(0.0, 3600.0, "s", open_lo=True),
     "--sim-time": Bound(0.0, 3600.0, "s", open_lo=True),
-    "--dt": Bound(1e-6, 0.1, "s"),
-    "--sample": Bound(1e-6, 3600.0, "s"),
     # integrator tolerances: below 1e-12 (relative) or 1e-14 (absolute, states of order 1) double precision
     # (eps 2.2e-16) cannot meet them and the step size collapses
-    "--rtol": Bound(1e-12, 0.1, ""),
-    "--atol": Bound(1e-14, 1.0, ""),
     # assist: drive train, gyro and controller
     "--max-heading-error": Bound(0.0, 90.0, "deg", open_lo=True),
     "--max-yaw-rate": Bound(0.0, 1000.0, "deg/s"),
@@ -119,6 +70,14 @@ OPTION_BOUNDS: dict[str, Bound] = {
     "--lateral-stiffness": Bound(0.0, 1e8, "N/m", open_lo=True),
     "--amplitude-deg": Bound(0.0, 45.0, "deg", open_lo=True, open_hi=True),
 }
+
+
+#: Commands whose run options are generated from the RunSpec's table (stability.cli.options.add_run_options): their
+#: bounds are the RunSpec's, one entry per option as ``"command:--option"``.
+RUN_COMMANDS = ("simulate", "study")
+OPTION_BOUNDS.update({f"{command}:{setting.flag or '--' + name.replace('_', '-')}": setting.bound
+                      for command in RUN_COMMANDS for name, setting in RUN_SETTINGS.items()
+                      if setting.bound is not None})
 
 
 def bound_for(prog: str | None, option: str) -> Bound | None:

@@ -168,7 +168,6 @@ def _run_value(flag: str, setting: Setting) -> Any:
     """The argparse ``type`` of one numeric run setting: a finite number within its bound, or a special word."""
     bound = setting.bound
     words = {str(w).lower(): w for w in setting.special}
-    infinite = bound is not None and bound.hi == float("inf")
 
     def parse(text: str) -> Any:
         if text.strip().lower() in words:
@@ -178,7 +177,7 @@ def _run_value(flag: str, setting: Setting) -> Any:
             value = float(text)
         except (TypeError, ValueError, OverflowError):
             raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid; expected a number{rng}") from None
-        if value != value or (value in (float("inf"), float("-inf")) and not infinite):
+        if value != value or value in (float("inf"), float("-inf")):
             raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid; expected a finite number{rng}")
         if bound is not None and not bound.holds(value):
             raise argparse.ArgumentTypeError(f"{flag} {text} is invalid{rng}")

@@ -219,8 +219,8 @@ class RunSpec:
     speed: float = _s(REFERENCE_SPEED, "m/s", "initial forward speed", Bound(0.01, 20.0, "m/s"))
     push_force: float = _s(THESIS_PUSH.force, "N", "lateral push at the c.g., positive to the right",
                            Bound(-10_000.0, 10_000.0, "N"))
-    push_duration: float = _s(THESIS_PUSH.duration, "s", "how long the push acts (t <= duration; inf: constant)",
-                              Bound(0.0, math.inf, "s"))
+    push_duration: float = _s(THESIS_PUSH.duration, "s", "how long the push acts (while t <= push_duration)",
+                              Bound(0.0, 3600.0, "s"), special=(math.inf,), special_help="or inf: a constant force")
     tire_push_force: float = _s(0.0, "N", "lateral force on each main tire while the push acts",
                                 Bound(-10_000.0, 10_000.0, "N"))
     lateral_velocity: float = _s(0.0, "m/s", "initial lateral velocity", Bound(-5.0, 5.0, "m/s"))
@@ -249,7 +249,8 @@ class RunSpec:
         for f in dataclasses.fields(self):
             s: Setting = f.metadata["setting"]
             value = getattr(self, f.name)
-            if value in s.special and (value is None or isinstance(value, str)):
+            if any(value is sp or (isinstance(sp, (str, float)) and isinstance(value, type(sp)) and value == sp)
+                   for sp in s.special):
                 continue
             if s.choices is not None:
                 if isinstance(value, (bool, str)) or value is None:

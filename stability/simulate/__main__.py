@@ -74,7 +74,7 @@ def _run_cli(args: argparse.Namespace) -> int:
     run_spec = run_from_args(args, RUN_OPTIONS, out_of_range=_sim_policy(args))
     _check_output(args, run_spec)
     c = load_chair(args.chair, args.set)
-    res = simulate(c, run=run_spec)
+    res = simulate(c, run=run_spec.replace(sample=None))     # every step: the level times exact; --sample resamples
     levels = (0.5, 1.0)
     times = [res.first_time_abs_yaw_rate(v) for v in levels]
     out = res.resample(run_spec.sample) if run_spec.sample is not None else res

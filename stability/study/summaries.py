@@ -105,7 +105,8 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     forces : sequence of float
         Push force at the c.g., N (for ``run.push_duration``).
     run : RunSpec
-        The runs' settings (:func:`stability.study.runs.study_run`); a fixed ``dt``
+        The runs' settings (through :func:`stability.study.runs.study_run`: no stop at the warnings unless
+        asked for); a fixed ``dt``
         is kept where it is stable, else ``dt / k`` as in :func:`stability.study.runs.simulate_runs`.
     level : float
         |yaw rate| level, rad/s.
@@ -119,6 +120,7 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     Summaries
     """
     n = len(chairs)
+    run = runs.study_run(run)
     if n == 0:
         e = np.empty(0)
         return Summaries(e, e, e, e)
@@ -183,6 +185,7 @@ class SummaryRunner:
     def __init__(self, chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray, run: RunSpec, *, level: float,
                  stop: bool = True, steps: Sequence[float] | np.ndarray | None = None):
         self.chairs, self.speeds = list(chairs), np.asarray(speeds, dtype=float)
+        run = runs.study_run(run)
         self.run, self.level, self.stop = run, level, stop
         self.steps = steps
         self.packed = None

@@ -21,10 +21,19 @@ from stability.chair import Chair
 from stability.runtime.checks import check_choice, check_model, check_positive, check_speeds
 from stability.runtime.progress import ProgressBar
 from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
+from stability.settings.run import SCHEMES, RunSpec
 from stability.study import runs
 from stability.study.criteria import Criterion
 from stability.study.equal_instability import EqualInstability, interp_speed
-from stability.study.impulse import SCHEMES, CriticalImpulse, push_impulse
+from stability.study.impulse import CriticalImpulse, push_impulse
+
+
+def _run(model: str, scheme: str, push_duration: float, dt: float | None, horizon: float, extra: dict) -> RunSpec:
+    """The baseline's run settings (its keyword arguments as one RunSpec; the studies' stop rule)."""
+    fields = dict(model=model, scheme=scheme, push_duration=push_duration, horizon=horizon, **extra)
+    if dt is not None:
+        fields["dt"] = dt
+    return runs.study_run(RunSpec(**fields))
 
 
 def _initial_grid(lo: float, hi: float, factor: float) -> np.ndarray:
@@ -89,7 +98,7 @@ def critical_impulses_bisection(chairs: Chair | Sequence[Chair], speeds: Any, *,
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
     unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
     crit = Criterion(level, horizon)
-    opts = runs.sim_options(model, scheme, (0.0, duration), dt if scheme == "wchair" else None, horizon, sim_options)
+    spec = _run(model, scheme, duration, dt if scheme == "wchair" else None, horizon, sim_options)
     n = len(run_list)
     tried: list[dict[float, bool]] = [{} for _ in range(n)]
     lo = np.zeros(n)
@@ -104,9 +113,8 @@ def critical_impulses_bisection(chairs: Chair | Sequence[Chair], speeds: Any, *,
         for i in active:
             pushes = grid0 if rnd == 0 else np.geomspace(lo[i], hi[i], candidates + 2)[1:-1]
             jobs += [(i, float(j)) for j in pushes]
-        opts["impulse_force"] = np.array([j / unit for _, j in jobs])
-        results = runs.simulate_runs([run_list[i][0] for i, _ in jobs], [run_list[i][1] for i, _ in jobs],
-                                     progress=False, **opts)
+        results = runs.simulate_runs([run_list[i][0] for i, _ in jobs], [run_list[i][1] for i, _ in jobs], spec,
+                                     push_forces=np.array([j / unit for _, j in jobs]))
         for (i, j), r in zip(jobs, results, strict=True):
             tried[i][j] = crit.time(r) <= horizon
         for i in active:
@@ -200,7 +208,7 @@ def bisect_speeds_baseline(chairs: Sequence[Chair], targets: Sequence[float], fo
     # the reference: no need to simulate it to the end of the criterion's duration
     horizons = np.minimum(criterion.duration, 1.5 * target + 0.5)
     horizon = float(horizons.max())
-    opts = runs.sim_options(model, scheme, (float(force[0]), length), dt, horizon, sim_options)
+    spec = _run(model, scheme, length, dt, horizon, sim_options).replace(push_force=float(force[0]))
     end = horizons + (dt or 0.0) + 1e-12         # a run of a longer batch counts only up to its own horizon
     crit = [Criterion(criterion.yaw_rate, float(h)) for h in horizons]
     evals: list[list[tuple[float, float]]] = [[] for _ in range(n)]
@@ -214,9 +222,8 @@ def bisect_speeds_baseline(chairs: Sequence[Chair], targets: Sequence[float], fo
             if not active:
                 break
             run_chairs, run_speeds, owner = _round_runs(list(chairs), active, lo, hi, candidates, rnd == 0)
-            if np.any(force != force[0]):
-                opts["impulse_force"] = force[owner]
-            results = runs.simulate_runs(run_chairs, run_speeds, progress=False, **opts)
+            results = runs.simulate_runs(run_chairs, run_speeds, spec,
+                                         push_forces=force[owner] if np.any(force != force[0]) else None)
             for i, s, r in zip(owner, run_speeds, results, strict=True):
                 t = crit[i].time(r)
                 evals[i].append((s, t if t <= end[i] else math.inf))

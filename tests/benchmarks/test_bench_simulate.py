@@ -21,7 +21,7 @@ import pytest
 
 from stability.chair import preset
 from stability.settings.run import RunSpec
-from stability.simulate import DEFAULTS, StepStabilityWarning, simulate, simulate_batch
+from stability.simulate import StepStabilityWarning, simulate, simulate_batch
 from stability.simulate.options import make_options
 from stability.simulate.reference import wchair_batch
 
@@ -50,10 +50,9 @@ def _timed(fn, repeat=1):
 
 
 def _numpy(speeds, **kw):
-    """The pure-numpy reference batch (reference.wchair_batch) with the public defaults."""
-    opts = dict(DEFAULTS.as_dict(), **kw)
-    del opts["controller"], opts["record"]
-    return wchair_batch([EJ] * len(speeds), np.asarray(speeds, dtype=float), make_options(batch=True, **opts), False)
+    """The pure-numpy reference batch (reference.wchair_batch) with program WCHAIR's kinetic law."""
+    run = RunSpec(friction_law="kinetic", **kw)
+    return wchair_batch([EJ] * len(speeds), np.asarray(speeds, dtype=float), make_options(run, batch=True), False)
 
 
 @pytest.fixture(autouse=True)
@@ -65,7 +64,8 @@ def _quiet():
 
 def test_bench_single_run(bench):
     simulate(EJ, 0.75, run=RunSpec(horizon=0.1, friction_law="kinetic"))  # compile / load the cache
-    res = bench.pedantic(simulate, args=(EJ, 0.75), kwargs=dict(stop_on_warnings=False), rounds=20, iterations=1,
+    res = bench.pedantic(simulate, args=(EJ, 0.75), kwargs=dict(run=RunSpec(stop_on_warnings=False,
+                                                                          friction_law="kinetic")), rounds=20, iterations=1,
                          warmup_rounds=2)
     assert len(res.t) == 10002
     best = bench.stats.stats.min
@@ -81,7 +81,7 @@ def test_bench_single_run(bench):
 
 def test_bench_batch_2000(bench):
     simulate_batch(EJ, STUDY_SPEEDS[:4], run=RunSpec(horizon=0.1, friction_law="kinetic"), progress=False)
-    kw = dict(progress=False, record="final")
+    kw = dict(run=RunSpec(friction_law="kinetic"), progress=False, record="final")
     res = bench.pedantic(simulate_batch, args=(EJ, STUDY_SPEEDS), kwargs=kw, rounds=3, iterations=1)
     assert len(res) == 2000 and all(len(r.t) == 1 for r in res)
     best = bench.stats.stats.min
@@ -114,7 +114,7 @@ def test_bench_adaptive_run(bench):
         return 0.0
 
     simulate(EJ, 0.75, run=RunSpec(horizon=0.1, scheme="adaptive"))
-    res = bench.pedantic(simulate, args=(EJ, 0.75), kwargs=dict(scheme="adaptive"), rounds=5, iterations=1)
+    res = bench.pedantic(simulate, args=(EJ, 0.75), kwargs=dict(run=RunSpec(scheme="adaptive")), rounds=5, iterations=1)
     assert res.t[-1] == pytest.approx(10.0) and res.settings["engine"] == "compiled"
     best = bench.stats.stats.min
     pw, pc, py = _timed(lambda: simulate(EJ, 0.75, run=RunSpec(scheme="adaptive"), yaw_moment=zero), repeat=2)
@@ -128,8 +128,8 @@ def test_bench_adaptive_run(bench):
 
 def _fresh_process(cache_dir, scheme):
     code = ("import time; t=time.perf_counter(); from stability.chair import preset; "
-            "from stability.simulate import simulate; "
-            f"simulate(preset('ej-premier'), 0.75, duration=0.01, scheme={scheme!r}); "
+            "from stability.simulate import RunSpec, simulate; "
+            f"simulate(preset('ej-premier'), 0.75, RunSpec(horizon=0.01, scheme={scheme!r})); "
             "print(time.perf_counter()-t)")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir))
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
