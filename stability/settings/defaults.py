@@ -3,7 +3,7 @@
 Each entry names a default once: its value, its unit and what it means.
 The API functions take their keyword defaults from here (directly, or
 through the small frozen option classes that are built on this table:
-:class:`stability.simulate.options.SimulationDefaults`,
+:class:`stability.settings.run.RunSpec` (every run setting: its rows here are generated from it),
 :class:`stability.chair.power.DriveTrain`,
 :class:`stability.assist.weights.GyroSensor`,
 :class:`stability.slope.equilibrium.HandRim`), and every command line takes
