@@ -16,7 +16,7 @@ from stability.study import critical_impulses
 from stability.sweep import columns, compute_chunk, loads_spec, n_chunks, read_rows, run_sweep, summary
 from stability.sweep.__main__ import main
 from stability.sweep.measures import design_values
-from stability.sweep.run import chunk_dir
+from stability.sweep.run import chunk_dir, summary_text
 from stability.uncertainty import loads_uncertainty
 
 UNC = '''[pin_friction]
@@ -163,7 +163,7 @@ def test_summary_ranks_by_the_conservative_end(spec_dir):
     spec = loads_spec(LINEAR, spec_dir)
     data = read_rows(run_sweep(spec, spec_dir / "s.csv").read_text())
     s = summary(spec, data, top=10)
-    ranked = s["measures"]["growth_rate_1_s"]["1"]
+    ranked = s["measures"]["growth_rate_1_s"]["best"][spec.speeds.index(1.0)]
     highs = [e["conservative"] for e in ranked]
     assert highs == sorted(highs) and len(ranked) == 4          # 4 valid designs, lower growth rate is better
     g = np.asarray(data["growth_rate_1_s"])
@@ -249,3 +249,88 @@ def test_each_dask_worker_gets_its_own_numba_cache_unless_the_environment_names_
     assert worker_cache_dir({}, "0") == a                       # the same worker name: the same (warm) cache
     assert "/" not in Path(worker_cache_dir({}, "tcp://10.0.0.1:4000") or "").name  # an address is made a name
     assert worker_cache_dir({"NUMBA_CACHE_DIR": "/shared/numba"}, "0") is None
+
+
+def _write(folder: Path, name: str, text: str) -> Path:
+    (folder / name).write_text(text)
+    return folder
+
+
+def _censored_data(values, statuses, col="equal_instability_speed_m_s", status_col="equal_instability_status"):
+    """Result columns of a synthetic sweep: one design per (values, statuses) list, draws in order, speed 0.75."""
+    data: dict = {"design": [], "draw": [], "speed_m_s": [], "grid_trail": [], col: [], status_col: []}
+    for d, (vs, ss) in enumerate(zip(values, statuses, strict=True)):
+        for k, (v, st) in enumerate(zip(vs, ss, strict=True)):
+            data["design"].append(d)
+            data["draw"].append(k)
+            data["speed_m_s"].append(0.75)
+            data["grid_trail"].append(0.04 + 0.01 * d)
+            data[col].append(v)
+            data[status_col].append(st)
+    return data
+
+
+def test_a_design_beyond_the_searched_range_ranks_first_as_its_bound(tmp_path):
+    """Issue 33: a design whose equal-instability speed is above the searched 3 m/s in 45 of 100 draws ranked
+    behind one at 1.164 m/s.  A bound is a value: design 1 (every draw 'above 3 m/s') is at least 3 m/s and
+    ranks first; design 2 (45 % of draws above, the rest 2.0-2.9 m/s) next; design 0 (1.164 m/s) last.  The low
+    end (2.5 % quantile) of design 1 is a bound and is printed as one."""
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["equal_instability_speed"]\n[grid]\ntrail = [0.04, 0.05, 0.06]\n'
+                      '[draws]\nn = 100\nuncertainty = "u.toml"\n',
+                      _write(tmp_path, "u.toml", UNC))
+
+    found = [1.164] * 100
+    above = [3.0] * 100
+    mixed = list(np.linspace(2.0, 2.9, 55)) + [3.0] * 45
+    data = _censored_data([found, above, mixed], [["found"] * 100, ["above"] * 100, ["found"] * 55 + ["above"] * 45])
+    s = summary(spec, data, top=3)
+    ranked = s["measures"]["equal_instability_speed_m_s"]["best"][0]
+    assert [e["design"] for e in ranked] == [1, 2, 0]
+    assert ranked[0]["conservative"] == 3.0 and ranked[0]["conservative_side"] == ">" and ranked[0]["bounds"] == 100
+    assert ranked[1]["conservative_side"] == "=" and ranked[1]["median_side"] == "=" and ranked[1]["bounds"] == 45
+    assert ranked[2]["conservative"] == pytest.approx(1.164)
+    text = summary_text(spec, s)
+    assert "> 3 m/s" in text and "{" not in text and "trail 0.05 m" in text     # a bound, no dict repr
+
+
+def test_a_critical_impulse_never_reached_is_at_least_the_largest_push_and_ranks_first(tmp_path):
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["critical_impulse"]\n[grid]\ntrail = [0.04, 0.05, 0.06]\n',
+                      tmp_path)
+    data = _censored_data([[3.2], [40.0], [1e-6]], [["found"], ["never"], ["below"]], "critical_impulse_Ns",
+                          "critical_impulse_status")
+    ranked = summary(spec, data)["measures"]["critical_impulse_Ns"]["best"][0]
+    assert [(e["design"], e["conservative_side"]) for e in ranked] == [(1, ">"), (0, "="), (2, "<")]
+
+
+def test_censored_quantile_and_order_from_their_definitions():
+    from stability.study.censored import describe, quantile, sort_key
+
+    assert quantile([1.0, 3.0, 3.0], ["=", ">", ">"], 0.025) == (1.0, "=")
+    assert quantile([1.0, 3.0, 3.0], ["=", ">", ">"], 0.5) == (3.0, ">")
+    assert quantile([], [], 0.5)[0] != quantile([], [], 0.5)[0]          # nan without draws
+    best_first = sorted([(2.0, "="), (3.0, ">"), (3.0, "="), (0.5, "<")], key=lambda v: sort_key(*v, True))
+    assert best_first == [(3.0, ">"), (3.0, "="), (2.0, "="), (0.5, "<")]
+    assert sorted([(2.0, "="), (1.0, "<"), (1.0, "=")], key=lambda v: sort_key(*v, False)) == \
+        [(1.0, "<"), (1.0, "="), (2.0, "=")]
+    assert describe(3.0, ">", "m/s") == "> 3 m/s" and describe(1.1642, "=", "m/s") == "1.164 m/s"
+
+
+def test_every_measure_has_a_cost_for_the_dask_order():
+    """Issue 33: --dask local:2 raised KeyError 'tip_angles' in the cost estimate."""
+    from stability.sweep.cluster import COST_PER_ROW_S, chunk_cost
+    from stability.sweep.spec import MEASURES
+
+    assert set(COST_PER_ROW_S) == set(MEASURES)
+    spec = loads_spec(f'speeds = [0.5]\nmeasures = {list(MEASURES)!r}\n'.replace("'", '"'), None)
+    assert chunk_cost(spec, 0) > 0
+
+
+def test_the_sweep_command_prints_its_summary_as_json(spec_dir, capsys):
+    (spec_dir / "g.toml").write_text('speeds = [0.5, 1.0]\nmeasures = ["growth_rate"]\n[grid]\ntrail = [0.05, 0.07]\n')
+    assert main([str(spec_dir / "g.toml"), "-o", str(spec_dir / "g.csv"), "--json", "--quiet"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    from stability.schemas import bad_keys
+
+    assert doc["level"] == 0.95 and set(doc["measures"]) == {"growth_rate_1_s"} and bad_keys(doc) == []
+    first = doc["measures"]["growth_rate_1_s"]["best"][1][0]
+    assert first["conservative_side"] == "=" and first["grid"]["trail"] in (0.05, 0.07)

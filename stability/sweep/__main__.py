@@ -27,7 +27,7 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from stability.cli import OneLineErrorParser, check_outputs, run
+from stability.cli import OneLineErrorParser, add_json_options, check_outputs, emit_json, run
 from stability.runtime.files import atomic_write_text, write_pdf
 from stability.runtime.progress import is_quiet
 from stability.sweep.cluster import dask_mapper, parse_dask
@@ -48,6 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--schema", action="store_true", help="print the spec's JSON Schema and exit")
     p.add_argument("--dask", metavar="ADDRESS", help="run the chunks on a Dask cluster: a scheduler address "
                    "(tcp://host:8786) or local:N for N local process workers (needs the [scale] extra)")
+    add_json_options(p)
     return p
 
 
@@ -69,8 +70,8 @@ def _run(args: argparse.Namespace) -> int:
     if out.suffix.lower() not in (".parquet", ".csv"):
         raise ValueError(f"-o {args.output!r} is invalid; valid: a .parquet or .csv file")
     summary_path, pdf_path = out.with_name(out.stem + ".summary.json"), out.with_suffix(".pdf")
-    check_outputs({"-o": args.output, "summary": str(summary_path), "figures": str(pdf_path)},
-                  {"spec": args.spec})
+    check_outputs({"-o": args.output, "summary": str(summary_path), "figures": str(pdf_path),
+                   "--json-file": args.json_file}, {"spec": args.spec})
     if args.dask:
         parse_dask(args.dask)
     spec = load_spec(args.spec)
@@ -87,9 +88,13 @@ def _run(args: argparse.Namespace) -> int:
         run_sweep(spec, out, resume=args.resume, progress=_progress, mapper=mapper)
     data = _read(out)
     s = summary(spec, data)
-    atomic_write_text(summary_path, json.dumps({"spec": spec.to_dict(), **s}, indent=2) + "\n")
+    doc = {"spec": spec.to_dict(), **s}
+    atomic_write_text(summary_path, json.dumps(doc, indent=2) + "\n")
     write_pdf(measure_figures(spec, data), pdf_path, title=f"sweep of {spec.chair.name}")
-    print(summary_text(spec, s))
+    if args.json or args.json_file:
+        emit_json(doc, args)
+    if not args.json:
+        print(summary_text(spec, s))
     print(f"wrote {out}, {summary_path}, {pdf_path}", file=sys.stderr)
     return 0
 

@@ -30,9 +30,12 @@ from stability.sweep.spec import SweepSpec
 
 __all__ = ["COST_PER_ROW_S", "chunk_cost", "dask_mapper", "parse_dask", "worker_cache_dir"]
 
-#: Measured cost per row of each measure on one core, s (docs/scale.md); used only to order the chunks.
+#: Measured cost per row of each measure on one core, s (docs/scale.md; shimmy margin, tip angles and holding
+#: moment: 7.1, 0.12 and 2.5 ms per row of a 10-row chunk, CPU time); used only to order the chunks.  Every
+#: measure of stability.sweep.spec.MEASURES has one (tests/test_sweep.py).
 COST_PER_ROW_S = {"growth_rate": 2e-4, "critical_speeds": 2e-3, "critical_impulse": 0.03,
-                  "equal_instability_speed": 0.016}
+                  "equal_instability_speed": 0.016, "shimmy_margin": 7e-3, "tip_angles": 1.2e-4,
+                  "holding_moment": 2.5e-3}
 
 
 def chunk_cost(spec: SweepSpec, index: int) -> float:

@@ -183,12 +183,12 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
         # are those of one call for the whole chunk (any chunk_rows)
         res = [r for i in range(0, len(pc), SEARCH_SLICE)
                for r in critical_impulses(pc[i:i + SEARCH_SLICE], ps[i:i + SEARCH_SLICE], spec.run)]
-        out["critical_impulse_Ns"] = np.array([math.nan if r.impulse_Ns is None else r.impulse_Ns
-                                               for r in res]).reshape(n, k)
+        # a bound is a value: "never reached up to 40 N s" is stored as 40 with the status "never"
+        out["critical_impulse_Ns"] = np.array([r.bound_Ns for r in res]).reshape(n, k)
         out["critical_impulse_status"] = np.array([r.status for r in res], dtype=object).reshape(n, k)
     if "equal_instability_speed" in spec.measures:
         res2 = equal_instability_speeds(chairs, spec.run, progress=False)
-        v = np.array([math.nan if r.speed is None else r.speed for r in res2])
+        v = np.array([r.value_or_bound for r in res2])          # "above 3 m/s" is stored as 3 with its status
         out["equal_instability_speed_m_s"] = np.repeat(v[:, None], k, axis=1)
         out["equal_instability_status"] = np.repeat(np.array([r.status for r in res2], dtype=object)[:, None], k,
                                                     axis=1)

@@ -6,7 +6,9 @@ from typing import Any
 
 import numpy as np
 
-from stability.sweep.spec import MEASURES, SweepSpec
+from stability.study.censored import quantile, side_of
+from stability.sweep.run import STATUS_OF
+from stability.sweep.spec import GRID_UNITS, MEASURES, SweepSpec
 
 __all__ = ["UNITS", "measure_figures"]
 
@@ -30,9 +32,7 @@ _CAPTION = {"growth_rate_1_s": "lower is more stable (negative: disturbances dec
             "tip_toward_main_wheels_deg": "higher is better: the static tip angle toward the main wheels",
             "tip_lateral_deg": "higher is better: the smaller lateral static tip angle",
             "holding_moment_N_m_per_deg": "lower is better: the yaw moment that holds a line across a cross slope"}
-_GRID_UNITS = {"pin_friction": "N m", "trail": "m", "s1": "m", "s2": "m", "l1": "m", "h": "m", "m": "kg",
-               "i_z": "kg m^2", "d1": "m", "d2": "m", "t1": "m", "t2": "m", "pin_friction_left": "N m",
-               "pin_friction_right": "N m", "toe_deg": "deg", "camber_deg": "deg", "m_c": "kg", "i_zp": "kg m^2"}
+_GRID_UNITS = GRID_UNITS
 
 
 def _axis_label(axis: str) -> str:
@@ -42,6 +42,10 @@ def _axis_label(axis: str) -> str:
 
 def measure_figures(spec: SweepSpec, data: dict[str, list]) -> list[Any]:
     """One figure per measure column: the median over the draws against the first two grid axes.
+
+    A median that is a bound (the search ended beyond its range: "above 3 m/s") is drawn at the bound and
+    hatched (a bound is a value, never a blank).  Colour ranges narrower than 1 % of the values are widened to
+    1 % so that rounding-level differences do not look like design differences (the caption says so).
 
     Parameters
     ----------
@@ -63,45 +67,71 @@ def measure_figures(spec: SweepSpec, data: dict[str, list]) -> list[Any]:
             if col not in UNITS:
                 continue
             vals = np.asarray(data[col], dtype=float)
-            fig = Figure(figsize=(4.0 * len(spec.speeds) + 1.0, 4.2), layout="constrained")
+            status = data.get(STATUS_OF.get(col, ""), [""] * len(vals))
+            sides = np.array([side_of(x if isinstance(x, str) else "") for x in status], dtype=object)
+            fig = Figure(figsize=(4.0 * len(spec.speeds) + 1.0, 4.6), layout="constrained")
             panels = fig.subplots(1, len(spec.speeds), squeeze=False)[0]
-            for ax, s in zip(panels, spec.speeds, strict=True):
-                _panel(ax, fig, spec, data, vals, speed == s, axes, col)
-                ax.set_title(f"{s:g} m/s")
+            narrow = False
+            for ax, sp in zip(panels, spec.speeds, strict=True):
+                narrow |= _panel(ax, fig, spec, data, vals, sides, speed == sp, axes, col)
+                ax.set_title(f"{sp:g} m/s")
             fig.suptitle(f"{UNITS[col]}: {spec.chair.name}, {spec.model} model, median of {spec.draws} draw(s)")
-            fig.text(0.01, 0.005, _CAPTION[col] + "; blank: no value (invalid chair or not found)", fontsize=8)
+            caption = _CAPTION[col] + ("; hatched: beyond the searched range (drawn at the range's end, a bound)"
+                                       if col in STATUS_OF else "") + "; blank: no value (invalid chair)"
+            if narrow:
+                caption += "; the designs differ by less than 1 % (colour range widened to 1 %)"
+            fig.text(0.01, 0.005, caption, fontsize=8, wrap=True)
             figs.append(fig)
     return figs
 
 
-def _panel(ax, fig, spec: SweepSpec, data: dict[str, list], vals: np.ndarray, sel: np.ndarray, axes: list[str],
-           col: str) -> None:
+def _cell(vals: np.ndarray, sides: np.ndarray, sel: np.ndarray) -> tuple[float, str]:
+    return quantile(vals[sel], sides[sel], 0.5) if np.isfinite(vals[sel]).any() else (np.nan, "=")
+
+
+def _panel(ax, fig, spec: SweepSpec, data: dict[str, list], vals: np.ndarray, sides: np.ndarray, sel: np.ndarray,
+           axes: list[str], col: str) -> bool:
+    """Draw one speed's panel; returns whether its colour range was widened (values within 1 %)."""
     if not axes:
-        ax.bar([0], [np.nanmedian(vals[sel]) if np.isfinite(vals[sel]).any() else np.nan], color="#0072B2")
+        v, side = _cell(vals, sides, sel)
+        ax.bar([0], [v], color="#0072B2", hatch="//" if side != "=" else None, edgecolor="white")
         ax.set_xticks([0], [spec.chair.name])
         ax.set_ylabel(UNITS[col])
-        return
+        return False
     x = np.asarray(data[f"grid_{axes[0]}"], dtype=float)
     xs = np.unique(x[sel])
     if len(axes) == 1:
-        med = [np.nanmedian(vals[sel & (x == v)]) if np.isfinite(vals[sel & (x == v)]).any() else np.nan for v in xs]
+        cells = [_cell(vals, sides, sel & (x == v)) for v in xs]
+        med = np.array([c[0] for c in cells])
         ax.plot(xs, med, "o-", color="#0072B2", label="median over draws")
+        bound = np.array([c[1] != "=" for c in cells])
+        if bound.any():
+            ax.plot(xs[bound], med[bound], "^", color="#D55E00", markersize=9, label="a bound (beyond the range)")
         ax.set_xlabel(_axis_label(axes[0]))
         ax.set_ylabel(UNITS[col])
         ax.legend(fontsize=8)
-        return
+        return False
     y = np.asarray(data[f"grid_{axes[1]}"], dtype=float)
     ys = np.unique(y[sel])
     z = np.full((len(ys), len(xs)), np.nan)
+    hatched = np.zeros_like(z, dtype=bool)
     for i, yv in enumerate(ys):
         for j, xv in enumerate(xs):
-            v = vals[sel & (x == xv) & (y == yv)]
-            if np.isfinite(v).any():
-                z[i, j] = np.nanmedian(v)
-    mesh = ax.pcolormesh(_edges(xs), _edges(ys), np.ma.masked_invalid(z), cmap="cividis", shading="flat")
+            z[i, j], side = _cell(vals, sides, sel & (x == xv) & (y == yv))
+            hatched[i, j] = side != "="
+    lo, hi = (float(np.nanmin(z)), float(np.nanmax(z))) if np.isfinite(z).any() else (0.0, 1.0)
+    mid = 0.5 * (lo + hi)
+    narrow = hi - lo < 0.01 * max(abs(mid), 1e-12)
+    if narrow:
+        lo, hi = mid - 0.005 * abs(mid) - 1e-12, mid + 0.005 * abs(mid) + 1e-12
+    xe, ye = _edges(xs), _edges(ys)
+    mesh = ax.pcolormesh(xe, ye, np.ma.masked_invalid(z), cmap="cividis", shading="flat", vmin=lo, vmax=hi)
+    if hatched.any():
+        ax.pcolor(xe, ye, np.ma.masked_where(~hatched, np.ones_like(z)), hatch="//", alpha=0.0, shading="flat")
     fig.colorbar(mesh, ax=ax, label=UNITS[col])
     ax.set_xlabel(_axis_label(axes[0]))
     ax.set_ylabel(_axis_label(axes[1]))
+    return narrow
 
 
 def _edges(v: np.ndarray) -> np.ndarray:

@@ -23,10 +23,12 @@ from typing import Any
 import numpy as np
 
 from stability.runtime.files import atomic_path, atomic_write_text
+from stability.study.censored import describe, quantile, side_of, sort_key
 from stability.sweep.measures import columns, compute_chunk, n_chunks
-from stability.sweep.spec import MEASURES, SweepSpec
+from stability.sweep.spec import GRID_UNITS, MEASURES, SweepSpec
 
-__all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TEXT_COLUMNS", "HIGHER_IS_BETTER"]
+__all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TEXT_COLUMNS", "HIGHER_IS_BETTER",
+           "STATUS_OF", "COLUMN_UNITS"]
 
 #: Columns holding text (everything else is a number).
 TEXT_COLUMNS = ("critical_impulse_status", "equal_instability_status", "error")
@@ -173,14 +175,28 @@ def read_rows(text: str) -> dict[str, list]:
     return cols
 
 
+#: The status column of a measure whose searches can end beyond their range (a bound is a value).
+STATUS_OF = {"critical_impulse_Ns": "critical_impulse_status",
+             "equal_instability_speed_m_s": "equal_instability_status"}
+#: Units of the measure columns, as printed.
+COLUMN_UNITS = {"growth_rate_1_s": "1/s", "critical_speed_m_s": "m/s", "locked_critical_speed_m_s": "m/s",
+                "critical_impulse_Ns": "N s", "equal_instability_speed_m_s": "m/s", "shimmy_margin_m": "m",
+                "static_stability_deg": "deg", "tip_toward_casters_deg": "deg", "tip_toward_main_wheels_deg": "deg",
+                "tip_lateral_deg": "deg", "holding_moment_N_m_per_deg": "N m/deg"}
+
+
 def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float = 0.95) -> dict[str, Any]:
     """The best designs for each measure and speed by the conservative end of its interval over the draws.
 
     For a measure where more is better (critical impulse, critical speeds,
     equal-instability speed) designs are ranked by the low end of the
     central ``level`` interval over the draws; for the growth rate (less is
-    better) by the high end.  Draws without a value (invalid chair, not found)
-    count as the worst case; a design with such a draw says how many.
+    better) by the high end.  A draw whose search ended beyond its range
+    counts at its bound (a bound is a value: "above 3 m/s" ranks above any
+    speed found inside the range), and an end that is such a bound says so
+    (``conservative_side`` ``">"`` or ``"<"``).  Draws without a value
+    (invalid chair, error) count as the worst case; a design with such a draw
+    says how many.
 
     Parameters
     ----------
@@ -193,8 +209,10 @@ def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float =
     Returns
     -------
     dict
-        ``{"measures": {column: {speed: [{"design": d, "grid": {...}, "conservative": x, "median": m,
-        "missing": n}, ...]}}}``.
+        ``{"level": level, "measures": {column: {"speeds_m_s": [...], "best": [[{"design": d, "grid": {...},
+        "conservative": x, "conservative_side": "=" | ">" | "<", "median": m, "median_side": ..., "missing": n,
+        "bounds": b}, ...], ...]}}}``: per speed (in the order of ``speeds_m_s``) the best designs first
+        (``bounds``: draws beyond the searched range).
     """
     design = np.asarray(data["design"], dtype=int)
     speed = np.asarray(data["speed_m_s"], dtype=float)
@@ -207,28 +225,38 @@ def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float =
                 continue
             up = HIGHER_IS_BETTER[col]
             vals = np.asarray(data[col], dtype=float)
-            per_speed = {}
-            for s in spec.speeds:
+            status = data.get(STATUS_OF.get(col, ""), [""] * len(vals))
+            sides = np.array([side_of(x if isinstance(x, str) else "") for x in status], dtype=object)
+            best = []
+            for sp in spec.speeds:
                 ranked: list[dict[str, Any]] = []
                 for dsg in np.unique(design):
-                    sel = (design == dsg) & (speed == s)
-                    v = vals[sel]
-                    fin = v[np.isfinite(v)]
-                    if fin.size == 0:
+                    sel = (design == dsg) & (speed == sp)
+                    v, sd = vals[sel], sides[sel]
+                    fin = np.isfinite(v)
+                    if not fin.any():
                         continue
-                    cons = float(np.quantile(fin, q if up else 1.0 - q))
+                    cons, cons_side = quantile(v, sd, q if up else 1.0 - q)
+                    med, med_side = quantile(v, sd, 0.5)
                     first = int(np.flatnonzero(sel)[0])
                     ranked.append({"design": int(dsg), "grid": {c[5:]: data[c][first] for c in grid_cols},
-                                   "conservative": cons, "median": float(np.median(fin)),
-                                   "missing": int(v.size - fin.size)})
-                ranked.sort(key=lambda e: (e["missing"], -e["conservative"] if up else e["conservative"]))
-                per_speed[f"{s:g}"] = ranked[:top]
-            result[col] = per_speed
+                                   "conservative": cons, "conservative_side": cons_side, "median": med,
+                                   "median_side": med_side, "missing": int(v.size - fin.sum()),
+                                   "bounds": int(sum(1 for x, f in zip(sd, fin, strict=True) if f and x != "="))})
+                ranked.sort(key=lambda e: (e["missing"], sort_key(e["conservative"], e["conservative_side"], up)))
+                best.append(ranked[:top])
+            result[col] = {"speeds_m_s": [float(x) for x in spec.speeds], "best": best}
     return {"level": level, "measures": result}
 
 
+def _grid_text(grid: dict[str, Any]) -> str:
+    if not grid:
+        return "the base chair"
+    return ", ".join(f"{k} {v:g}" + (f" {GRID_UNITS[k]}" if k in GRID_UNITS else "") for k, v in grid.items())
+
+
 def summary_text(spec: SweepSpec, s: dict[str, Any]) -> str:
-    """The summary in lines of text.
+    """The summary as a table of text: per measure and speed, the best designs first.
 
     Parameters
     ----------
@@ -240,14 +268,24 @@ def summary_text(spec: SweepSpec, s: dict[str, Any]) -> str:
     -------
     str
     """
-    lines = [f"best designs by the conservative end of the {100 * s['level']:g} % interval over {spec.draws} draw(s)"]
+    lines = [f"best designs by the conservative end of the {100 * s['level']:g} % interval over {spec.draws} "
+             "draw(s); a value beyond the searched range is ranked as its bound ('> 3 m/s' is at least 3 m/s)"]
     for col, per in s["measures"].items():
         end = "low end" if HIGHER_IS_BETTER[col] else "high end"
-        for sp, ranked in per.items():
-            best = "; ".join(f"{e['grid'] or 'base'}: {e['conservative']:.4g} ({end})"
-                             + (f", {e['missing']} draw(s) without a value" if e["missing"] else "")
-                             for e in ranked)
-            lines.append(f"{col} at {sp} m/s: {best or 'no design has a value'}")
+        unit = COLUMN_UNITS.get(col, "")
+        for sp, ranked in zip(per["speeds_m_s"], per["best"], strict=True):
+            lines.append(f"{col} at {sp:g} m/s ({end} | median | design):")
+            if not ranked:
+                lines.append("  no design has a value")
+            for rank, e in enumerate(ranked, start=1):
+                note = []
+                if e["bounds"]:
+                    note.append(f"{e['bounds']} draw(s) beyond the searched range")
+                if e["missing"]:
+                    note.append(f"{e['missing']} draw(s) without a value")
+                lines.append(f"  {rank}. {describe(e['conservative'], e['conservative_side'], unit):>14} | "
+                             f"{describe(e['median'], e['median_side'], unit):>14} | {_grid_text(e['grid'])}"
+                             + (f" ({'; '.join(note)})" if note else ""))
     return "\n".join(lines)
 
 

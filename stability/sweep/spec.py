@@ -57,6 +57,10 @@ MEASURES: dict[str, tuple[tuple[str, ...], str]] = {
                     "tip_lateral_deg"), "statics"),
     "holding_moment": (("holding_moment_N_m_per_deg",), "statics"),
 }
+#: Units of the grid's axes (chair fields), as printed and drawn.
+GRID_UNITS = {"pin_friction": "N m", "trail": "m", "s1": "m", "s2": "m", "l1": "m", "h": "m", "m": "kg",
+              "i_z": "kg m^2", "d1": "m", "d2": "m", "t1": "m", "t2": "m", "pin_friction_left": "N m",
+              "pin_friction_right": "N m", "toe_deg": "deg", "camber_deg": "deg", "m_c": "kg", "i_zp": "kg m^2"}
 #: Work bound: rows of one sweep.
 MAX_ROWS = 10_000_000
 _TOP = {"chair", "model", "friction_law", "speeds", "measures", "grid", "draws", "chunk_rows"}
