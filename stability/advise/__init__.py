@@ -1,7 +1,8 @@
 """The advisor: what to change on a chair, what it buys and what it costs.
 
 ``measures`` (every measure of many chairs, one batch per study: the one place the advisor calls
-the studies) -> ``levers`` (the design changes) -> ``advisor`` (verdict, constraints, ranking on the
+the studies) -> ``levers`` (the design changes) -> ``limits`` (the constraints a change must meet, what
+pin friction buys against shimmy) -> ``advisor`` (verdict, constraints, ranking on the
 low ends of the intervals, recommendation) -> ``text`` (plain language) and ``python -m
 stability.advise``.  See ``docs/advise.md``.
 """

@@ -3,9 +3,13 @@
 Method (docs/advise.md): measure the chair and every single change of every lever
 (:mod:`.levers`) in one batch (:func:`.measures.measure_chairs`); a change's robust gain is the
 smaller of its relative gains in the *low ends* of the critical-impulse and equal-instability
-intervals, so a change one measure contradicts gains nothing; keep the changes that meet every
-constraint; combine the best single change of the three best levers (pairs and the triple, when
-they touch different fields) and measure those too; recommend the best, with the runner-up.
+intervals, so a change one measure contradicts gains nothing.  Every pair of single changes of two
+levers is then screened on the constraints alone (statics, shimmy band, cross slope: no simulation,
+:func:`.measures.linear_measures`); the pairs that meet every limit are ranked by the gain their two
+changes predict together (the product of their relative changes) and the best of them, with the
+triple of the three best levers, are measured.  The recommendation is the best measured change that
+meets every limit, with the runner-up; a change that would be better but is blocked by a limit is
+named with that limit, its value and the option that would allow it.
 """
 
 from __future__ import annotations
@@ -15,64 +19,40 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from stability.advise.levers import LEVERS, apply, lever_changes
-from stability.advise.measures import Measures, measure_chairs
+from stability.advise.limits import (
+    HANDRIM_FACTOR,
+    MAX_PIN_FRICTION_N_M,
+    MIN_SHIMMY_MARGIN_M,
+    SHIMMY_AMPLITUDE_DEG,
+    Constraint,
+    ShimmyHold,
+    allow,
+    shimmy_hold,
+    shimmy_sentence,
+)
+from stability.advise.limits import constraints as constraints_of
+from stability.advise.measures import Linear, Measures, linear_measures, measure_chairs
 from stability.chair import Chair
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.study import reference_time
 
-__all__ = ["Constraint", "Candidate", "Recommendation", "Advice", "advise", "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST",
-           "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS", "DEFAULT_CROSS_SLOPE_DEG"]
+__all__ = ["Constraint", "Candidate", "Recommendation", "Blocked", "ShimmyHold", "Advice", "advise",
+           "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS",
+           "DEFAULT_CROSS_SLOPE_DEG", "PAIR_BUDGET", "SHIMMY_AMPLITUDE_DEG"]
 
-#: Tolerable pin friction (N m): Collins (1987) conclusion 6 (L1853), "a reasonable estimate is 0.3 N-m".
-MAX_PIN_FRICTION_N_M = 0.3
-#: Smallest distance (m) of the trail from the nearest shimmy boundary at the nominal estimates (a
-#: design choice: 5 mm, ten times the 0.5 mm at which the user journey's chair sat; docs/advise.md).
-MIN_SHIMMY_MARGIN_M = 0.005
 #: A change that only fixes a constraint the chair breaks is recommended if it costs at most this fraction of
 #: the robust measures; a dearer fix is the runner-up behind "no change, measure first".
 MAX_FIX_COST = 0.25
-#: A change may raise the hand-rim force difference on the cross slope by at most this factor.
-HANDRIM_FACTOR = 1.1
+#: Pairs of changes measured by simulation after the screening on the constraints (the best predicted ones).
+PAIR_BUDGET = 6
+#: Pairs a limit blocks that predict more than every pair meeting the limits, measured to be named (BLOCKED).
+BLOCKED_BUDGET = 2
 #: Default use speeds (m/s): :data:`stability.settings.defaults.ADVISE_SPEEDS` (0.5:1:0.25).
 DEFAULT_SPEEDS = (0.5, 0.75, 1.0)
 #: Default cross slope for the hand-rim force (deg): :data:`stability.settings.defaults.ADVISE_CROSS_SLOPE_DEG`.
 DEFAULT_CROSS_SLOPE_DEG = D.ADVISE_CROSS_SLOPE_DEG
-
-
-@dataclass(frozen=True)
-class Constraint:
-    """One constraint on a changed chair.
-
-    Attributes
-    ----------
-    name : str
-        ``static_stability_deg``, ``shimmy_margin_m``, ``turning_effort_N_m`` or
-        ``handrim_force_difference_N``.
-    value : float or None
-        The changed chair's value (unit in the name).
-    limit : float
-        The bound (``>=`` for the first two, ``<=`` for the others; see :attr:`kind`).
-    kind : str
-        ``">="`` or ``"<="``.
-    met : bool
-    note : str
-        Source of the limit, or a flag (e.g. measure pin stiffness and relaxation length first).
-    """
-
-    name: str
-    value: float | None
-    limit: float
-    kind: str
-    met: bool
-    note: str = ""
-
-    def to_mapping(self) -> dict:
-        """JSON-ready dict."""
-        v = self.value if self.value is None or math.isfinite(self.value) else None
-        return {"name": self.name, "value": v, "limit": self.limit, "kind": self.kind, "met": self.met,
-                "note": self.note}
 
 
 @dataclass(frozen=True)
@@ -176,6 +156,13 @@ class Advice:
         Recommended and runner-up (fewer, or none, when too few changes help and meet every constraint).
     reason : str
         Why there is no recommendation (empty when there is one).
+    blocked : tuple of Blocked
+        Measured changes better than the recommendation (or fixing what the chair breaks) that a limit
+        blocks, best first.
+    shimmy_hold : ShimmyHold or None
+        What the chair's own pin friction buys against shimmy (None: no pin friction).
+    pairs_screened, pairs_measured : int
+        Pairs of changes screened on the constraints, and measured by simulation.
     """
 
     chair: Chair
@@ -190,6 +177,37 @@ class Advice:
     refused: tuple
     recommendations: tuple
     reason: str
+    blocked: tuple = ()
+    shimmy_hold: ShimmyHold | None = None
+    pairs_screened: int = 0
+    pairs_measured: int = 0
+
+
+@dataclass(frozen=True)
+class Blocked:
+    """A change a limit blocks: better than the recommendation, or fixing what the chair breaks.
+
+    Attributes
+    ----------
+    candidate : Candidate
+    limits : tuple of Constraint
+        The constraints it does not meet (value, limit, source).
+    fixes : tuple of str
+        Constraints the chair breaks that it meets.
+    allow : str
+        What would allow it (an option, or why no option can).
+    """
+
+    candidate: Candidate
+    limits: tuple
+    fixes: tuple
+    allow: str
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict."""
+        return {"label": self.candidate.label, "change": self.candidate.fields, "robust_gain": self.candidate.gain,
+                "blocked_by": [k.to_mapping() for k in self.limits], "fixes": list(self.fixes),
+                "allow": self.allow}
 
 
 def _gain(m: Measures, base: Measures) -> tuple[float, dict]:
@@ -201,29 +219,6 @@ def _gain(m: Measures, base: Measures) -> tuple[float, dict]:
     g = {"critical_impulse": rel(m.critical_impulse_Ns.robust, base.critical_impulse_Ns.robust),
          "equal_instability_speed": rel(m.equal_instability_speed_m_s.robust, base.equal_instability_speed_m_s.robust)}
     return min(g.values()), g
-
-
-def _constraints(m: Measures, base: Measures, min_tip: float, tip_source: str, cross_slope: float) -> tuple:
-    out = [Constraint("static_stability_deg", m.static_stability_deg.value, min_tip, ">=",
-                      (m.static_stability_deg.value or -math.inf) >= min_tip - 1e-9, tip_source)]
-    sm = m.shimmy_margin_m.value
-    ok = sm is not None and sm >= MIN_SHIMMY_MARGIN_M
-    out.append(Constraint("shimmy_margin_m", sm, MIN_SHIMMY_MARGIN_M, ">=", ok,
-                          "nominal estimates; over their range it straddles a boundary: measure pin lateral "
-                          "stiffness and caster relaxation length first" if m.shimmy_straddles else
-                          "nominal estimates, and met over their range"))
-    limit = max(MAX_PIN_FRICTION_N_M, base.turning_effort_N_m)
-    effort = m.turning_effort_N_m
-    out.append(Constraint("turning_effort_N_m", effort, limit, "<=", effort <= limit + 1e-12,
-                          "tolerable pin friction ~0.3 N m (Collins 1987, conclusion 6)"))
-    if cross_slope:
-        b, v = base.handrim_force_difference_N, m.handrim_force_difference_N
-        lim = HANDRIM_FACTOR * abs(b) if b is not None else math.inf
-        out.append(Constraint("handrim_force_difference_N", None if v is None else abs(v), lim, "<=",
-                              v is not None and abs(v) <= lim + 1e-9,
-                              f"on a {cross_slope:g} deg cross slope at {REFERENCE_SPEED:g} m/s; at most "
-                              f"{HANDRIM_FACTOR:g} x the chair's own"))
-    return tuple(out)
 
 
 #: Relative rise of the linear growth rate above which a change that helps gets the linear-vs-nonlinear note.
@@ -259,21 +254,47 @@ def _notes(c: Candidate, base: Measures, chair: Chair) -> tuple:
     step = _step_note(m)
     if step:
         notes.append(step)
-    if m.shimmy_straddles:
-        notes.append("Shimmy: the trail is shimmy-free at the estimated pin stiffness and relaxation length, but not "
-                     "over their whole range; measure both before building it.")
+    if m.shimmy_straddles and c.changes:
+        trail = dict(c.fields).get("trail", chair.trail)
+        notes.append(f"Shimmy: {shimmy_sentence(m, trail)}.")
     return tuple(notes)
 
 
-def _combos(best: list[Candidate]) -> list[tuple]:
-    out: list[tuple] = []
-    n = len(best)
-    for i in range(n):
-        for j in range(i + 1, n):
-            out.append((best[i], best[j]))
-    if n >= 3:
-        out.append((best[0], best[1], best[2]))
-    return [c for c in out if len({k for x in c for k in x.fields}) == sum(len(x.fields) for x in c)]
+def _pairs(singles: list[Candidate]) -> list[tuple]:
+    """Every pair of single changes of two different levers that touch different chair fields."""
+    out = []
+    for i, a in enumerate(singles):
+        for b in singles[i + 1:]:
+            if a.changes[0].lever != b.changes[0].lever and not set(a.fields) & set(b.fields):
+                out.append((a, b))
+    return out
+
+
+def _predicted(combo: tuple) -> float:
+    """The robust gain a combination predicts from its parts: per measure the product of the relative changes."""
+    worst = math.inf
+    for key in ("critical_impulse", "equal_instability_speed"):
+        f = 1.0
+        for x in combo:
+            g = x.gains[key]
+            if not math.isfinite(g):
+                return -math.inf
+            f *= 1.0 + g
+        worst = min(worst, f - 1.0)
+    return worst
+
+
+def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Blocked]:
+    """Measured changes a limit blocks that beat the recommendation or fix what the chair breaks, best first."""
+    out = []
+    for c in cands:
+        if c.feasible or not c.changes:
+            continue
+        unmet = tuple(k for k in c.constraints if not k.met)
+        fixes = tuple(sorted(k.name for k in c.constraints if k.met and k.name in broken))
+        if c.gain > best_gain or fixes:
+            out.append(Blocked(c, unmet, fixes, "; ".join(allow(k) for k in unmet)))
+    return sorted(out, key=lambda b: (-len(b.fixes), len(b.limits), -b.candidate.gain))[:3]
 
 
 def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
@@ -291,7 +312,7 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
         Smallest acceptable static stability angle (deg); default the chair's own (no change may
         make it tip on a gentler slope; no citable standard minimum was found, docs/tipping.md).
     cross_slope_deg : float
-        Cross slope of the hand-rim force constraint (deg).
+        Cross slope of the drive-difference constraint (deg).
     progress : bool
         Progress bars on stderr.
     nonlinear : callable, optional
@@ -305,8 +326,9 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
     """
     use = tuple(float(u) for u in speeds)
     singles, refused = lever_changes(chair)
+    cores: dict = {}
     measured = measure_chairs([chair] + [c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
-                              progress=progress, nonlinear=nonlinear)
+                              progress=progress, nonlinear=nonlinear, cores=cores)
     base = measured[0]
     if min_tip_deg is None:
         min_tip = float(base.static_stability_deg.value or 0.0)
@@ -314,67 +336,34 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
     else:
         min_tip, source = float(min_tip_deg), "--min-tip-deg"
 
+    def constraints(m: Measures | Linear) -> tuple:
+        return constraints_of(m, base, min_tip, source, cross_slope_deg)
+
     def candidate(changes: tuple, m: Measures) -> Candidate:
         g, gs = _gain(m, base)
-        return Candidate(changes, m, g, gs, _constraints(m, base, min_tip, source, cross_slope_deg))
+        return Candidate(changes, m, g, gs, constraints(m))
 
     cands = [candidate((ch,), m) for (ch, _), m in zip(singles, measured[1:], strict=True)]
-    own = _constraints(base, base, min_tip, source, cross_slope_deg)
+    own = constraints(base)
     broken = {k.name for k in own if not k.met}            # what the chair as it is already breaks
+    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores)
+    cm = measure_chairs([c for _, c in chosen], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
+                        nonlinear=nonlinear, cores=cores) if chosen else []
+    combined = [candidate(tuple(x.changes[0] for x in combo), m) for (combo, _), m in zip(chosen, cm, strict=True)]
 
-    def acceptable(c: Candidate) -> bool:                  # breaks nothing the chair itself meets
-        return all(k.met or k.name in broken for k in c.constraints)
-
-    best_per_lever: dict[str, Candidate] = {}
-    for c in cands:
-        lever = c.changes[0].lever
-        if acceptable(c) and c.gain > 0 and (lever not in best_per_lever or c.gain > best_per_lever[lever].gain):
-            best_per_lever[lever] = c
-    pool = sorted(best_per_lever.values(), key=lambda c: -c.gain)[:3]
-    fixes = sorted((c for c in cands if c.feasible), key=lambda c: -c.gain) if broken else []
-    pool += [c for c in fixes[:2] if c.changes[0].lever not in {p.changes[0].lever for p in pool}]
-    combos = _combos(pool)
-    combo_chairs = [apply(chair, [f for x in combo for f in x.changes[0].fields]) for combo in combos]
-    cm = measure_chairs(combo_chairs, speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
-                        nonlinear=nonlinear) if combo_chairs else []
-    combined = [candidate(tuple(x.changes[0] for x in combo), m) for combo, m in zip(combos, cm, strict=True)]
-    feasible = [c for c in cands + combined if c.feasible]
-    ranked = sorted((c for c in feasible if c.gain > 0 or broken), key=lambda c: -c.gain)
+    feasible = sorted((c for c in cands + combined if c.feasible), key=lambda c: -c.gain)
     keep = Candidate((), base, 0.0, {"critical_impulse": 0.0, "equal_instability_speed": 0.0}, own)
-    if not broken and not ranked:
-        # nothing helps and nothing needs fixing: keep the chair as it is; the runner-up is the best other change
-        ranked = [keep] + sorted(feasible, key=lambda c: -c.gain)[:1]
-    elif broken and not (ranked and ranked[0].gain >= -MAX_FIX_COST):
-        # the fixes (if any) cost too much: measure first, the cheapest fix as the runner-up
-        ranked = [keep] + ranked[:1]
+    if broken:
+        ranked = feasible if feasible and feasible[0].gain >= -MAX_FIX_COST else [keep] + feasible[:1]
+    else:
+        better = [c for c in feasible if c.gain > 0]
+        ranked = better if better else [keep] + feasible[:1]
     recs = []
     for rank, c in enumerate(ranked[:2], start=1):
         parts = tuple(next(s for s in cands if s.changes == (ch,)) for ch in c.changes) if len(c.changes) > 1 else ()
-        notes = _notes(c, base, chair)
-        if broken and c.changes:
-            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}; this change meets every constraint "
-                      f"({'and gains' if c.gain > 0 else 'at a cost of'} {abs(c.gain) * 100:.0f} % on the robust "
-                      "measures).",)
-        elif broken:
-            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}, and no change fixes it for less than "
-                      f"{MAX_FIX_COST * 100:.0f} % of the robust measures"
-                      + (": measure the pin's lateral stiffness and the caster tire's relaxation length first; "
-                         "if the estimates are confirmed, the runner-up fixes it" if "shimmy_margin_m" in broken
-                         else "") + ".",)
-        if not c.changes and not broken:
-            notes += ("No change of any lever raises both the critical impulse and the equal-instability speed at the "
-                      "low ends of their intervals while meeting every constraint: keep the chair as it is"
-                      + (" (it is directionally stable beyond what the studies measure: critical impulse above "
-                         f"{base.critical_impulse_Ns.value:g} N s, equal-instability speed above "
-                         f"{base.equal_instability_speed_m_s.value:g} m/s)"
-                         if base.equal_instability_status == "above" else "") + ".",)
-        recs.append(Recommendation(rank, c, parts, notes))
-    reason = ""
-    if not recs:
-        helping = [c for c in cands if c.gain > 0]
-        reason = ("the chair breaks " + ", ".join(sorted(broken)) + " and no change of any lever meets every "
-                  "constraint: " + "; ".join(f"{c.label} ({', '.join(k.name for k in c.constraints if not k.met)})"
-                                             for c in (helping or cands)[:3]))
+        recs.append(Recommendation(rank, c, parts, _notes(c, base, chair)))
+    blocked = _blocked(cands + combined, broken, recs[0].candidate.gain if recs else -math.inf)
+    recs = _explain(recs, broken, blocked, base)
     times: list[float | None] = []
     for u in use if time_to_correct else ():
         try:
@@ -382,7 +371,74 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
         except ValueError:
             times.append(None)
     return Advice(chair, use, float(cross_slope_deg), min_tip, source, base, tuple(times), tuple(cands),
-                  tuple(combined), tuple(refused), tuple(recs), reason)
+                  tuple(combined), tuple(refused), tuple(recs), "", tuple(blocked), shimmy_hold(chair, use),
+                  n_screened, len(chosen))
+
+
+def _screen(chair: Chair, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
+            cross_slope_deg: float, cores: dict) -> tuple[list, int]:
+    """The combinations worth simulating: every pair of two levers screened on the limits alone (no simulation),
+    those that meet every limit ranked by the gain their parts predict (the best :data:`PAIR_BUDGET`), the best
+    :data:`BLOCKED_BUDGET` that a limit blocks but predict more (to be named with their values), and the triple
+    of the three best acceptable levers."""
+    screened = []
+    for combo in _pairs(cands):
+        try:
+            screened.append((combo, apply(chair, [f for x in combo for f in x.changes[0].fields])))
+        except ValueError:
+            continue
+    lin = linear_measures([c for _, c in screened], speeds=use, cross_slope_deg=cross_slope_deg, cores=cores)
+    met = [all(k.met for k in constraints(m)) for m in lin]
+    passing = sorted((x for x, ok in zip(screened, met, strict=True) if ok), key=lambda x: -_predicted(x[0]))
+    chosen = [x for x in passing if _predicted(x[0]) > -MAX_FIX_COST][:PAIR_BUDGET]
+    # the pairs a limit blocks that predict more than every passing pair: measured too, to be named with real values
+    best_passing = _predicted(passing[0][0]) if passing else -math.inf
+    failing = sorted((x for x, ok in zip(screened, met, strict=True) if not ok and _predicted(x[0]) > best_passing),
+                     key=lambda x: -_predicted(x[0]))
+    chosen += failing[:BLOCKED_BUDGET]
+    best: dict[str, Candidate] = {}
+    for c in sorted((c for c in cands if c.gain > 0 and all(k.met or k.name in broken for k in c.constraints)),
+                    key=lambda c: -c.gain):
+        best.setdefault(c.changes[0].lever, c)
+    trio = tuple(list(best.values())[:3])
+    if len(trio) == 3 and len({k for x in trio for k in x.fields}) == sum(len(x.fields) for x in trio):
+        try:
+            chosen.append((trio, apply(chair, [f for x in trio for f in x.changes[0].fields])))
+        except ValueError:
+            pass
+    return chosen, len(screened)
+
+
+def _explain(recs: list[Recommendation], broken: set, blocked: list[Blocked], base: Measures) -> list:
+    """The recommendations with the notes that say why (one statement per fact; the runner-up named only when
+    there is one)."""
+    out = []
+    runner = recs[1].candidate if len(recs) > 1 else None
+    for r in recs:
+        c, notes = r.candidate, r.notes
+        if broken and c.changes:
+            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}; this change meets every limit "
+                      f"({'and gains' if c.gain > 0 else 'at a cost of'} {abs(c.gain) * 100:.0f} % on the robust "
+                      "measures).",)
+        elif broken:
+            fix = (f"the runner-up ({runner.label}) fixes it at a cost of {abs(runner.gain) * 100:.0f} %"
+                   if runner is not None and runner.changes else
+                   "no change meets every limit" + (": a limit blocks the fixes found (see BLOCKED)" if blocked
+                                                    else ""))
+            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}, and no change fixes it for less than "
+                      f"{MAX_FIX_COST * 100:.0f} % of the robust measures; {fix}"
+                      + (". The shimmy margin rests on estimated pin stiffness and relaxation length: measure them "
+                         "first" if "shimmy_margin_m" in broken else "") + ".",)
+        if not c.changes and not broken:
+            notes += ("No change of any lever, nor any pair of two levers, raises both the critical impulse and the "
+                      "equal-instability speed at the low ends of their intervals while meeting every limit: keep "
+                      "the chair as it is"
+                      + (" (it is directionally stable beyond what the studies measure: critical impulse above "
+                         f"{base.critical_impulse_Ns.value:g} N s, equal-instability speed above "
+                         f"{base.equal_instability_speed_m_s.value:g} m/s)"
+                         if base.equal_instability_status == "above" else "") + ".",)
+        out.append(Recommendation(r.rank, c, r.built_from, notes))
+    return out
 
 
 def lever_names() -> list[str]:

@@ -8,8 +8,10 @@ import numpy as np
 
 from stability.advise.advisor import Advice, Candidate
 from stability.advise.levers import LEVERS
+from stability.advise.limits import shimmy_sentence
 from stability.advise.measures import Measures
 from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
+from stability.study.censored import describe, side_of
 
 __all__ = ["advice_text", "advice_mapping", "kmh"]
 
@@ -40,16 +42,6 @@ def _iv(x, unit: str, digits: int = 3, status: str = "found") -> str:
     return f"{value} {unit} (range {lo}-{hi})"
 
 
-def _shimmy_words(m: Measures, trail: float) -> str:
-    s = m.shimmy_margin_m.value
-    if s is None:
-        return "no shimmy boundary found" if m.shimmy_margin_m.low is None else "it shimmies at every trail checked"
-    where = "inside its shimmy-free band" if s > 0 else "INSIDE a shimmy zone"
-    flag = ("; over the estimated range of pin stiffness and tire relaxation length it could shimmy: measure "
-            "them first" if m.shimmy_straddles else "")
-    return f"the {trail * 100:g} cm trail lies {abs(s) * 100:.2f} cm {where} (estimated caster compliance){flag}"
-
-
 def _verdict(a: Advice) -> list[str]:
     m = a.verdict
     ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
@@ -76,7 +68,7 @@ def _verdict(a: Advice) -> list[str]:
     lines.append(f"  It is as unstable as the thesis's reference case (E&J Premier at 0.75 m/s) {where} "
                  f"(range {lo}-{hi} m/s over push size, pin friction, model and simulator step); faster than that it "
                  "gives the user less time than the reference case.")
-    lines.append(f"  Caster shimmy: {_shimmy_words(m, a.chair.trail)}.")
+    lines.append(f"  Caster shimmy: {shimmy_sentence(m, a.chair.trail, a.shimmy_hold)}.")
     worst = min(m.tip_angles_deg, key=lambda k: m.tip_angles_deg[k])
     lines.append(f"  Static stability: it tips {_DIRECTION_WORDS[worst]} on a {m.static_stability_deg.value:.1f} deg "
                  "slope (rigid chair, brakes locked, casters in their worst swivel position); "
@@ -86,29 +78,62 @@ def _verdict(a: Advice) -> list[str]:
                  f"at "
                  f"{REFERENCE_SPEED:g} m/s. It has no pin friction, so where it disagrees with the push and speed "
                  "measures above (which include the pins' Coulomb friction) those decide; the advice says where.")
-    if m.handrim_force_difference_N is not None and a.cross_slope_deg:
-        lines.append(f"  On a {a.cross_slope_deg:g} deg cross slope at {REFERENCE_SPEED:g} m/s one hand-rim must push "
-                     f"{abs(m.handrim_force_difference_N):.0f} N harder than the other to hold the line.")
+    if m.cross_slope_effort is not None and a.cross_slope_deg:
+        what = ("one hand rim must push {:.0f} N harder than the other" if m.drive == "handrim" else
+                "one drive motor must give {:.2g} N m more torque than the other")
+        lines.append(f"  On a {a.cross_slope_deg:g} deg cross slope at {REFERENCE_SPEED:g} m/s "
+                     + what.format(abs(m.cross_slope_effort)) + " to hold the line.")
     return lines
 
 
-def _row(c: Candidate, base: Measures) -> str:
+def _row(c: Candidate, base: Measures, broken: set) -> str:
     m = c.measures
     sm = m.shimmy_margin_m.value
-    hr = m.handrim_force_difference_N
+    hr = m.cross_slope_effort
+    ei = describe(m.equal_instability_speed_m_s.value or math.nan, side_of(m.equal_instability_status), digits=3)
+    unmet = [k.name for k in c.constraints if not k.met]
+    breaks = [n for n in unmet if n not in broken]
+    still = [n for n in unmet if n in broken]
+    flags = ("  breaks " + ", ".join(breaks) if breaks else "") + \
+        ("  does not fix " + ", ".join(still) if still else "")
     return (f"  {c.changes[0].label:<72} {m.critical_impulse_Ns.low:6.2f}-{m.critical_impulse_Ns.high:<6.2f} "
-            f"{m.equal_instability_speed_m_s.value:6.3f} {m.static_stability_deg.value:6.1f} "
+            f"{ei:>6} {m.static_stability_deg.value:6.1f} "
             f"{'none' if sm is None else format(sm * 100, '+.2f'):>7} {m.turning_effort_N_m:6.3f} "
-            f"{'-' if hr is None else format(abs(hr), '.0f'):>5} {m.growth_rate_1_s:5.2f} {c.gain * 100:+6.1f} %"
-            + ("" if c.feasible else "  breaks " + ", ".join(k.name for k in c.constraints if not k.met))
+            f"{'-' if hr is None else format(abs(hr), '.3g'):>5} {m.growth_rate_1_s:5.2f} {c.gain * 100:+6.1f} %"
+            + flags
             + ("  (impulse and speed disagree)" if min(c.gains.values()) < 0 < max(c.gains.values()) else "")
             + ("  (linear rate worse, nonlinear better: see the note on linear vs nonlinear)"
                if c.gain > 0 and m.growth_rate_1_s > base.growth_rate_1_s + 1e-9 else ""))
 
 
+def _blocked(a: Advice) -> list[str]:
+    if not a.blocked:
+        return []
+    out = ["", "BLOCKED BY A LIMIT (better than the recommendation, or fixing what the chair breaks)"]
+    for b in a.blocked:
+        c = b.candidate
+        what = ("fixes " + ", ".join(b.fixes) + " and " if b.fixes else "") + \
+            (f"gains {c.gain * 100:.0f} %" if c.gain >= 0 else f"costs {-c.gain * 100:.0f} %")
+        limits = "; ".join(f"{k.name} {k.value:.4g} against the limit {k.kind} {k.limit:.4g}" if k.value is not None
+                           else f"{k.name} refused by the slope statics" for k in b.limits)
+        out += [f"  {c.label}: {what} on the robust measures, but {limits}",
+                f"    (--set {' --set '.join(x for ch in c.changes for x in ch.assignments)}); allowed by: {b.allow}"]
+    return out
+
+
+def _own_constraints(a: Advice) -> tuple:
+    keep = [r.candidate for r in a.recommendations if not r.candidate.changes]
+    if keep:
+        return keep[0].constraints
+    from stability.advise.limits import constraints as _constraints
+
+    return _constraints(a.verdict, a.verdict, a.min_tip_deg, a.min_tip_source, a.cross_slope_deg)
+
+
 def _recommendation(a: Advice) -> list[str]:
     if not a.recommendations:
-        return ["", "RECOMMENDATION", f"  None: {a.reason}."]
+        return ["", "RECOMMENDATION", "  None: the chair breaks a limit and no change of any lever, nor any pair of "
+                "two levers, meets every limit" + (" (see BLOCKED above)" if a.blocked else "") + "."]
     out = []
     base = a.verdict
     for r in a.recommendations:
@@ -128,7 +153,7 @@ def _recommendation(a: Advice) -> list[str]:
                 f"  judged on the low ends: {c.gains['critical_impulse'] * 100:+.0f} % critical impulse, "
                 f"{c.gains['equal_instability_speed'] * 100:+.0f} % equal-instability speed"]
         for b in r.built_from:
-            out.append(f"    alone, {b.label}: +{b.gain * 100:.0f} % (robust)")
+            out.append(f"    alone, {b.label}: {b.gain * 100:+.0f} % (robust)")
         out.append("  what it costs:")
         for k in c.constraints:
             v = "refused by the slope statics" if k.value is None else f"{k.value:.4g}"
@@ -154,10 +179,15 @@ def advice_text(a: Advice) -> str:
               f"  {'change':<72} {'impulse N s':>13} {'EI m/s':>6} {'tip':>6} {'shimmy':>7} {'pin':>6} {'rim':>5} "
               f"{'lin':>5} {'gain':>8}",
               f"  {'':<72} {'(low-high)':>13} {'':>6} {'deg':>6} {'cm':>7} {'N m':>6} {'N':>5} {'1/s':>5}"]
+    own = {k.name for k in _own_constraints(a) if not k.met}
     for name in LEVERS:
-        lines += [_row(c, a.verdict) for c in a.candidates if c.changes[0].lever == name]
+        lines += [_row(c, a.verdict, own) for c in a.candidates if c.changes[0].lever == name]
     for ch, why in a.refused:
         lines.append(f"  {ch.label:<72} refused: {why}")
+    if a.pairs_screened:
+        lines.append(f"  pairs of two levers: {a.pairs_screened} screened on the limits, {a.pairs_measured} measured "
+                     "(the best predicted that meet every limit)")
+    lines += _blocked(a)
     lines += _recommendation(a)
     lines += ["", f"Limits: static stability >= {a.min_tip_deg:.1f} deg ({a.min_tip_source}); the others as listed. "
               "Speeds are also in km/h; a push in N s is force x time."]
@@ -189,7 +219,7 @@ def advice_mapping(a: Advice) -> dict:
             "shimmy_margin_m": [c.measures.shimmy_margin_m.to_mapping() for c in cs],
             "static_stability_deg": [c.measures.static_stability_deg.to_mapping() for c in cs],
             "turning_effort_N_m": [c.measures.turning_effort_N_m for c in cs],
-            "handrim_force_difference_N": [c.measures.handrim_force_difference_N for c in cs],
+            a.verdict.effort_key: [c.measures.cross_slope_effort for c in cs],
             "robust_gain": [finite(c.gain) for c in cs],
             "constraints_met": [c.feasible for c in cs],
             "refused": [{"label": ch.label, "change": ch.to_mapping(), "reason": why}
@@ -201,6 +231,9 @@ def advice_mapping(a: Advice) -> dict:
     verdict["text"] = "\n".join(_verdict(a)[3:])
     return _json_safe({"verdict": verdict, "levers": levers,
                        "recommendations": [r.to_mapping() for r in a.recommendations],
+                       "blocked": [b.to_mapping() for b in a.blocked],
+                       "shimmy_hold": None if a.shimmy_hold is None else a.shimmy_hold.to_mapping(),
+                       "pairs_screened": a.pairs_screened, "pairs_measured": a.pairs_measured,
                        "no_recommendation_reason": a.reason or None,
                        "limits": {"min_tip_deg": a.min_tip_deg, "min_tip_source": a.min_tip_source},
                        "non_finite_as": "null (an unbounded interval end, an undefined gain or an absent limit)",

@@ -15,7 +15,7 @@ from stability.chair import Chair, preset
 from stability.runtime.checks import check_nonnegative, check_positive
 from stability.settings import defaults as D
 
-__all__ = ["DriveTrain", "power_fwd", "drive_train", "COMPONENTS", "LumpedEstimate", "lumped_estimate"]
+__all__ = ["DriveTrain", "power_fwd", "drive_train", "drive_kind", "COMPONENTS", "LumpedEstimate", "lumped_estimate"]
 
 #: Lumped masses behind the estimates of ``m``, ``s1``, ``h`` and ``i_z``:
 #: (name, mass kg, x from the drive axle m (forward +), |y| of a symmetric pair m,
@@ -199,6 +199,21 @@ def power_fwd() -> Chair:
     Chair
     """
     return preset("power-fwd")
+
+
+def drive_kind(chair: Chair) -> str:
+    """What drives ``chair``: ``"motor"`` for the power-chair presets and chairs made from them (a name that
+    starts with ``power``), ``"handrim"`` for a manual chair pushed on its hand rims.
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Returns
+    -------
+    {"handrim", "motor"}
+    """
+    return "motor" if chair.name.startswith("power") else "handrim"
 
 
 def drive_train(name: str = "power-fwd") -> DriveTrain:

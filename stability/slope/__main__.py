@@ -7,6 +7,7 @@ import math
 import sys
 from collections.abc import Sequence
 
+from stability.chair.power import drive_kind
 from stability.cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
@@ -145,7 +146,7 @@ def _body(a: argparse.Namespace) -> int:
     eq = solve(chair, a.cross_slope, a.speed, a.grade)
     per_deg_eq = eq if a.cross_slope != 0 else solve(chair, 1.0, a.speed, a.grade)
     per_deg = abs(per_deg_eq.holding_moment) / abs(per_deg_eq.cross_slope_deg)
-    kind = a.drive if a.drive != "auto" else ("motor" if chair.name.startswith("power") else "handrim")
+    kind = a.drive if a.drive != "auto" else drive_kind(chair)
     drive = drive_report(chair, eq, kind, HandRim(a.wheel_radius, a.handrim_radius) if kind == "handrim" else None)
     path = uncorrected_path(chair, eq, report_time=a.sim_time) if a.cross_slope != 0 else None
     sim = _simulated(chair, eq, a.sim_time) if a.cross_slope != 0 else None

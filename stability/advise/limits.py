@@ -1,0 +1,202 @@
+"""The limits a change must meet: static stability, shimmy margin, turning effort, cross-slope drive.
+
+Each limit is a :class:`Constraint` (value, bound, source), so a change a limit blocks can be named
+with the limit and the option that would allow it.  The shimmy margin is the frictionless linear
+caster's; :func:`shimmy_hold` says what the chair's Coulomb pin friction buys against shimmy, and
+:func:`shimmy_sentence` is the one sentence the verdict and the notes share.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from stability.advise.measures import Linear, Measures
+from stability.chair import Chair
+from stability.settings import defaults as D
+from stability.settings.reference import REFERENCE_SPEED
+
+__all__ = ["Constraint", "ShimmyHold", "constraints", "allow", "shimmy_hold", "shimmy_sentence",
+           "MAX_PIN_FRICTION_N_M", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "SHIMMY_AMPLITUDE_DEG"]
+
+#: Tolerable pin friction (N m): Collins (1987) conclusion 6 (L1853), "a reasonable estimate is 0.3 N-m".
+MAX_PIN_FRICTION_N_M = 0.3
+#: Smallest distance (m) of the trail from the nearest shimmy boundary at the nominal estimates (a
+#: design choice: 5 mm, ten times the 0.5 mm at which the user journey's chair sat; docs/advise.md).
+MIN_SHIMMY_MARGIN_M = 0.005
+#: A change may raise the drive difference (hand-rim force or motor torque) on the cross slope by at most this factor.
+HANDRIM_FACTOR = 1.1
+#: Shimmy amplitude of the friction estimate, deg (what pin friction buys against shimmy; the shimmy command's).
+SHIMMY_AMPLITUDE_DEG = D.SHIMMY_AMPLITUDE_DEG
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """One constraint on a changed chair.
+
+    Attributes
+    ----------
+    name : str
+        ``static_stability_deg``, ``shimmy_margin_m``, ``turning_effort_N_m``, or the cross-slope effort:
+        ``handrim_force_difference_N`` (manual chair) or ``motor_torque_difference_N_m`` (power chair).
+    value : float or None
+        The changed chair's value (unit in the name).
+    limit : float
+        The bound (``>=`` for the first two, ``<=`` for the others; see :attr:`kind`).
+    kind : str
+        ``">="`` or ``"<="``.
+    met : bool
+    note : str
+        Source of the limit, or a flag (e.g. measure pin stiffness and relaxation length first).
+    """
+
+    name: str
+    value: float | None
+    limit: float
+    kind: str
+    met: bool
+    note: str = ""
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict."""
+        v = self.value if self.value is None or math.isfinite(self.value) else None
+        return {"name": self.name, "value": v, "limit": self.limit, "kind": self.kind, "met": self.met,
+                "note": self.note}
+
+
+@dataclass(frozen=True)
+class ShimmyHold:
+    """What the chair's Coulomb pin friction buys against caster shimmy (describing function).
+
+    The frictionless linear caster shimmies inside a shimmy zone whatever the amplitude; Coulomb friction
+    holds a shimmy of amplitude ``A`` wherever the trail is at least ``hold_trail_m``
+    (:func:`stability.shimmy.chair.friction_trail`, the largest over the use speeds).
+
+    Attributes
+    ----------
+    amplitude_deg : float
+        Shimmy amplitude, deg.
+    pin_friction_N_m : float
+        The pin friction used (the left pin's), N m.
+    hold_trail_m : float
+        Trail below which the friction no longer holds that amplitude, m (0: every trail; inf: none).
+    trail_m : float
+        The chair's trail, m.
+    """
+
+    amplitude_deg: float
+    pin_friction_N_m: float
+    hold_trail_m: float
+    trail_m: float
+
+    @property
+    def held(self) -> bool:
+        """Whether the chair's pin friction holds shimmy of that amplitude at its trail."""
+        return self.trail_m >= self.hold_trail_m
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict."""
+        return {"amplitude_deg": self.amplitude_deg, "pin_friction_N_m": self.pin_friction_N_m,
+                "hold_trail_m": self.hold_trail_m if math.isfinite(self.hold_trail_m) else None,
+                "trail_m": self.trail_m, "held": self.held}
+
+
+def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source: str, cross_slope: float) -> tuple:
+    """The constraints on a changed chair ``m`` against the chair as it is, ``base`` (docs/advise.md)."""
+    out = [Constraint("static_stability_deg", m.static_stability_deg.value, min_tip, ">=",
+                      (m.static_stability_deg.value or -math.inf) >= min_tip - 1e-9, tip_source)]
+    sm = m.shimmy_margin_m.value
+    ok = sm is not None and sm >= MIN_SHIMMY_MARGIN_M
+    out.append(Constraint("shimmy_margin_m", sm, MIN_SHIMMY_MARGIN_M, ">=", ok,
+                          "nominal estimates; over their range it straddles a boundary: measure pin lateral "
+                          "stiffness and caster relaxation length first" if m.shimmy_straddles else
+                          "nominal estimates, and met over their range"))
+    limit = max(MAX_PIN_FRICTION_N_M, base.turning_effort_N_m)
+    effort = m.turning_effort_N_m
+    out.append(Constraint("turning_effort_N_m", effort, limit, "<=", effort <= limit + 1e-12,
+                          "tolerable pin friction ~0.3 N m (Collins 1987, conclusion 6)"))
+    if cross_slope:
+        b, v = base.cross_slope_effort, m.cross_slope_effort
+        lim = HANDRIM_FACTOR * abs(b) if b is not None else math.inf
+        out.append(Constraint(m.effort_key, None if v is None else abs(v), lim, "<=",
+                              v is not None and abs(v) <= lim + 1e-9,
+                              f"on a {cross_slope:g} deg cross slope at {REFERENCE_SPEED:g} m/s; at most "
+                              f"{HANDRIM_FACTOR:g} x the chair's own"))
+    return tuple(out)
+
+
+
+def shimmy_sentence(m: Measures | Linear, trail: float, hold: ShimmyHold | None = None) -> str:
+    """The one statement of a chair's shimmy margin that the verdict and the notes share.
+
+    Parameters
+    ----------
+    m : Measures or Linear
+        The chair's measures (its frictionless shimmy margin, its range over the compliance estimates).
+    trail : float
+        The chair's trail, m.
+    hold : ShimmyHold, optional
+        What its pin friction holds.
+
+    Returns
+    -------
+    str
+        E.g. ``"the 4.5 cm trail is inside a shimmy zone by 0.23 cm (frictionless caster at the estimated pin
+        stiffness and relaxation length; ...); its 0.118 N m pin friction holds a shimmy of up to 5 deg at trails
+        from 4.4 cm, so also at this one"``.
+    """
+    sm = m.shimmy_margin_m
+    if sm.value is None:
+        text = "no shimmy boundary found" if sm.low is None else "it shimmies at every trail checked"
+    else:
+        where = "clear of the nearest shimmy zone by" if sm.value > 0 else "inside a shimmy zone by"
+        rng = ("" if sm.low is None or sm.high is None else
+               f"; over the estimates' ranges {100 * sm.low:+.2g} to {100 * sm.high:+.2g} cm")
+        flag = ": it could shimmy, measure them first" if m.shimmy_straddles else ""
+        text = (f"the {trail * 100:g} cm trail is {where} {abs(sm.value) * 100:.2f} cm (frictionless caster at the "
+                f"estimated pin stiffness and relaxation length{rng}{flag})")
+    if hold is not None and hold.pin_friction_N_m > 0:
+        if math.isinf(hold.hold_trail_m):
+            buys = f"does not hold a {hold.amplitude_deg:g} deg shimmy at any trail"
+        else:
+            buys = (f"holds a shimmy of up to {hold.amplitude_deg:g} deg at trails from "
+                    f"{hold.hold_trail_m * 100:.2g} cm, so {'also' if hold.held else 'not'} at this one")
+        text += f"; its {hold.pin_friction_N_m:.3g} N m pin friction {buys} (describing function)"
+    return text
+
+
+def allow(k: Constraint) -> str:
+    """What would allow a change that ``k`` blocks: the option and value, or why no option can."""
+    if k.name == "static_stability_deg":
+        return (f"--min-tip-deg {math.floor(k.value * 10) / 10:.1f} (the limit is {k.limit:.1f} deg, {k.note})"
+                if k.value is not None else "no limit allows it")
+    if k.name == "turning_effort_N_m":
+        return (f"no option: pin friction above {k.limit:.3g} N m makes the chair hard to turn (Collins 1987, "
+                "conclusion 6)")
+    if k.name == "shimmy_margin_m":
+        return f"no option: the shimmy margin limit is {MIN_SHIMMY_MARGIN_M * 1000:g} mm from the nearest boundary"
+    return "--cross-slope 0 (drops the cross-slope limit)"
+
+
+def shimmy_hold(chair: Chair, speeds: tuple, amplitude_deg: float = SHIMMY_AMPLITUDE_DEG) -> ShimmyHold | None:
+    """What ``chair``'s pin friction buys against shimmy of ``amplitude_deg`` at the use speeds.
+
+    Parameters
+    ----------
+    chair : Chair
+    speeds : tuple of float
+        m/s.
+    amplitude_deg : float
+        deg.
+
+    Returns
+    -------
+    ShimmyHold or None
+        None without pin friction.
+    """
+    from stability.shimmy.chair import friction_trail
+
+    if chair.pin_friction_left <= 0:
+        return None
+    trail = max(friction_trail(chair, float(u), math.radians(amplitude_deg)) for u in speeds)
+    return ShimmyHold(float(amplitude_deg), float(chair.pin_friction_left), float(trail), float(chair.trail))

@@ -1,0 +1,217 @@
+"""The advisor's decision checked from the values, not from its own flags (issues 33 and 34).
+
+The simulated measures are replaced by a closed form of the chair's fields
+(``_closed_form``), so the best change is known by enumeration: the test builds
+every single change of every lever and every pair of two levers itself
+(:func:`stability.advise.levers.lever_changes`), measures their limits with
+the analysis functions directly (``tipping.tip_angles``,
+``shimmy.band.shimmy_band``, the pin friction, ``slope.solve`` with
+``slope.drive_report``), and asserts that the advisor's recommendation
+
+* meets every limit (recomputed here),
+* beats the chair on the low ends of both measures (or fixes what the chair breaks at an allowed cost),
+* is the best change on that grid that meets every limit,
+
+and that the best change a limit blocks is named with that limit and the option that allows it.  Inverting the
+ranking, dropping a limit or dropping the pair search fails one of these.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import pytest
+
+from stability import chair as chair_mod
+from stability.advise import Interval, advise
+from stability.advise.advisor import HANDRIM_FACTOR, MAX_FIX_COST, MAX_PIN_FRICTION_N_M, MIN_SHIMMY_MARGIN_M
+from stability.advise.levers import apply, lever_changes
+from stability.advise.text import advice_mapping, advice_text
+from stability.chair.power import drive_kind
+from stability.shimmy.band import shimmy_band
+from stability.slope import drive_report, solve
+from stability.tipping import tip_angles
+
+SPEEDS = (0.5, 0.75, 1.0)
+#: The decision cases: (chair changes, cross slope of the drive-difference limit in deg).  The first has no
+#: cross-slope limit, so that the tip limit alone blocks the best change; in the second the pin friction can be
+#: raised beyond the tolerable 0.3 N m and the cross-slope limit is on.
+CASES = {"tip": (dict(trail=0.06), 0.0), "friction-and-slope": (dict(trail=0.06, pin_friction_left=0.2,
+                                                                      pin_friction_right=0.2), 2.0)}
+
+
+def _ci(c) -> float:
+    """Critical impulse stand-in, N s: grows with pin friction over trail and with the c.g. ratio (a closed
+    form, a product of the fields' effects)."""
+    return 40.0 * (c.pin_friction_left + c.pin_friction_right) / c.trail * c.s1 ** 2 * 0.52 / (c.s1 + c.s2)
+
+
+def _ei(c) -> float:
+    """Equal-instability speed stand-in, m/s: grows with pin friction and the c.g. ratio; beyond 3 m/s a bound."""
+    return 0.4 + 1.5 * (c.pin_friction_left + c.pin_friction_right) * c.s1 / (c.s1 + c.s2) / 0.66
+
+
+def _closed_form(chairs):
+    out = []
+    for c in chairs:
+        ci, ei = _ci(c), _ei(c)
+        status = "above" if ei > 3.0 else "found"
+        ei = min(ei, 3.0)
+        out.append((Interval(ci, 0.5 * ci, 1.5 * ci), Interval(ei, 0.9 * ei, min(3.0, 1.1 * ei)), status, "found",
+                    None))
+    return out
+
+
+def _low(c) -> tuple[float, float]:
+    """The low ends the advisor judges on (the stand-in's intervals)."""
+    return 0.5 * _ci(c), 0.9 * min(_ei(c), 3.0)
+
+
+def _limits_met(c, base, slope: float) -> dict[str, bool]:
+    """Every limit of the advisor, recomputed from the analysis functions."""
+    tip = tip_angles(c).smallest_deg
+    margin = shimmy_band(c, SPEEDS).shimmy_margin_m
+    effort = max(c.pin_friction_left, c.pin_friction_right)
+
+    def cross(x):
+        rep = drive_report(x, solve(x, slope, 0.75), drive_kind(x))
+        return abs(rep["handrim_force_difference_N"]) if drive_kind(x) == "handrim" else \
+            abs(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
+
+    return {"static_stability_deg": tip >= tip_angles(base).smallest_deg - 1e-9,
+            "shimmy_margin_m": margin >= MIN_SHIMMY_MARGIN_M,
+            "turning_effort_N_m": effort <= max(MAX_PIN_FRICTION_N_M, base.pin_friction_left,
+                                               base.pin_friction_right) + 1e-12,
+            "cross_slope": slope == 0 or cross(c) <= HANDRIM_FACTOR * cross(base) + 1e-9}
+
+
+def _grid(chair):
+    """Every single change and every pair of two levers touching different fields, as (label, chair)."""
+    singles, _ = lever_changes(chair)
+    out = [(ch.label, c) for ch, c in singles]
+    for (a, _), (b, _) in itertools.combinations(singles, 2):
+        if a.lever == b.lever or {k for k, _ in a.fields} & {k for k, _ in b.fields}:
+            continue
+        try:
+            out.append((f"{a.label} + {b.label}", apply(chair, list(a.fields) + list(b.fields))))
+        except ValueError:
+            continue
+    return out
+
+
+def _robust_gain(c, base) -> float:
+    (ci0, ei0), (ci, ei) = _low(base), _low(c)
+    return min(ci / ci0 - 1.0, ei / ei0 - 1.0)
+
+
+def _case(name: str):
+    changes, slope = CASES[name]
+    chair = chair_mod.preset("ej-premier").replace(**changes)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=slope)
+    grid = [(label, c, _robust_gain(c, chair), _limits_met(c, chair, slope)) for label, c in _grid(chair)]
+    return chair, a, grid, slope
+
+
+@pytest.fixture(scope="module", params=list(CASES))
+def case(request):
+    """ej-premier with a 6 cm trail (moving the axle away from the c.g. would gain most but tips the chair), and
+    with 0.2 N m pins on a 2 deg cross slope (more pin friction and a heavier cross slope effort would gain most)."""
+    return _case(request.param)
+
+
+@pytest.fixture(scope="module")
+def tip_case():
+    return _case("tip")
+
+
+def test_the_recommendation_meets_every_limit_recomputed(case):
+    chair, a, _, slope = case
+    rec = a.recommendations[0].candidate
+    c = apply(chair, list(rec.fields.items()))
+    met = _limits_met(c, chair, slope)
+    assert all(met.values()), (rec.label, met)
+
+
+def test_the_recommendation_beats_the_chair_on_both_low_ends(case):
+    chair, a, _, _ = case
+    c = apply(chair, list(a.recommendations[0].candidate.fields.items()))
+    (ci0, ei0), (ci, ei) = _low(chair), _low(c)
+    assert ci > ci0 and ei > ei0
+
+
+def test_the_recommendation_is_the_best_feasible_change_of_the_grid(case):
+    """Among every single change and every pair of two levers that meets every limit (recomputed), none has a
+    larger robust gain (the stand-in is a product of the fields' effects, so the pairs' screening predicts it)."""
+    chair, a, grid, _ = case
+    feasible = [(label, g) for label, _, g, met in grid if all(met.values())]
+    best_label, best = max(feasible, key=lambda x: x[1])
+    rec = a.recommendations[0].candidate
+    got = _robust_gain(apply(chair, list(rec.fields.items())), chair)
+    assert got >= best - 1e-9, (rec.label, got, best_label, best)
+    assert len(rec.changes) >= 1
+
+
+def test_the_best_change_of_the_grid_is_blocked_by_a_limit_in_both_cases(case):
+    """The premise of the cases: the grid's largest gain breaks a limit (so a decision that ignored a limit would
+    pick it)."""
+    _, _, grid, _ = case
+    best_label, _, _, met = max(grid, key=lambda x: x[2])
+    assert not all(met.values()), best_label
+
+
+def test_the_best_change_a_limit_blocks_is_named_with_the_limit_and_the_option(tip_case):
+    """The largest gain of the grid moves the axle away from the c.g.: it tips the chair at a gentler slope than
+    the chair's own, so the tip limit blocks it; the advice names it, the limit's value and --min-tip-deg."""
+    chair, a, grid, _ = tip_case
+    blocked_by_tip = [(label, g) for label, _, g, met in grid
+                      if not met["static_stability_deg"] and all(v for k, v in met.items()
+                                                                   if k != "static_stability_deg")]
+    assert max(g for _, g in blocked_by_tip) > max(g for _, _, g, met in grid if all(met.values()))
+    names = [b.candidate.label for b in a.blocked]
+    tip_blocked = [b for b in a.blocked if any(k.name == "static_stability_deg" for k in b.limits)]
+    assert tip_blocked, names
+    assert all("--min-tip-deg" in b.allow for b in tip_blocked)
+    text = advice_text(a)
+    assert "BLOCKED BY A LIMIT" in text and "--min-tip-deg" in text
+
+
+def test_a_lower_tip_limit_unblocks_the_change_it_named(tip_case):
+    """Following the named option (--min-tip-deg at the blocked change's angle) makes that change acceptable."""
+    chair, a, _, slope = tip_case
+    b = next(b for b in a.blocked if any(k.name == "static_stability_deg" for k in b.limits))
+    tip = next(k.value for k in b.limits if k.name == "static_stability_deg")
+    again = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=slope,
+                   min_tip_deg=math.floor(tip * 10) / 10)
+    labels = {c.label: c.feasible for c in again.candidates + again.combinations}
+    assert labels.get(b.candidate.label) is True
+
+
+def test_a_chair_inside_a_shimmy_zone_gets_a_fix_or_a_named_blocked_fix():
+    """The user journey's case: a trail just inside a shimmy zone.  Either a change that meets every limit is
+    recommended (and it is the best such change on the grid), or every fix found is listed as blocked; never a
+    'no change' that refers to a runner-up it does not print."""
+    chair = chair_mod.preset("ej-premier").replace(trail=0.0475)
+    base_margin = shimmy_band(chair, SPEEDS).shimmy_margin_m
+    assert base_margin < 0                                      # the premise: inside a zone
+    a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=2.0)
+    rec = a.recommendations[0].candidate
+    if rec.changes:
+        c = apply(chair, list(rec.fields.items()))
+        assert all(_limits_met(c, chair, 2.0).values())
+        assert _robust_gain(c, chair) >= -MAX_FIX_COST
+    else:
+        assert a.blocked
+    for r in a.recommendations:
+        assert not any("runner-up" in n for n in r.notes) or len(a.recommendations) == 2
+    text = advice_text(a)
+    verdict = text.split("LEVERS")[0]
+    assert "inside a shimmy zone" in verdict and "clear of the nearest shimmy zone" not in verdict
+
+
+def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
+    _, a, _, _ = case
+    d = advice_mapping(a)
+    assert d["recommendations"][0]["label"] == a.recommendations[0].candidate.label
+    assert [b["label"] for b in d["blocked"]] == [b.candidate.label for b in a.blocked]
+    assert d["pairs_screened"] == a.pairs_screened > 0 and d["shimmy_hold"]["amplitude_deg"] > 0
