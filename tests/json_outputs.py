@@ -30,6 +30,12 @@ CASES = {
     "tipping": ("tipping", ["--chair", "ej-premier"]),
     "advise": ("advise", []),
     "report": ("report", ["--quick", "--no-progress"]),
+    "sweep": ("sweep", ["{tmp}/g.toml", "-o", "{tmp}/g.csv"]),
+}
+#: Input files a case reads, written into its temporary directory first (name -> {file: text}).
+FILES = {
+    "sweep": {"g.toml": 'speeds = [0.5, 1.0]\nmeasures = ["growth_rate", "critical_impulse"]\n'
+                        '[grid]\ntrail = [0.05, 0.07]\n'},
 }
 #: The cases too slow for the default test run (simulations of a study).
 SLOW = {"study_equal_instability", "advise", "report"}
@@ -40,6 +46,8 @@ def output(name: str, tmp: str) -> dict:
     from stability.cli.commands import command_module
 
     command, argv = CASES[name]
+    for file, text in FILES.get(name, {}).items():
+        Path(tmp, file).write_text(text, encoding="utf-8")
     argv = [a.replace("{tmp}", tmp) for a in argv] + ["--json", "--quiet"]
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):

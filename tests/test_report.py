@@ -547,7 +547,11 @@ def test_shimmy_numbers_equal_the_analysis(quick):
     text = " ".join(_text(quick, "caster shimmy").split())
     nominal = critical_trail(c, 1.0, CasterCompliance())
     assert f"trail {100 * nominal:.2f} cm with the nominal estimates" in text
-    assert f"{100 * (c.trail - nominal):.2f} cm above it" in text
+    # the chair's statement is the advisor's (one shimmy sentence): its margin over the use speeds' band
+    from stability.shimmy.band import shimmy_band
+
+    margin = shimmy_band(c, d.advice.speeds_m_s).shimmy_margin_m
+    assert margin > 0 and f"clear of the nearest shimmy zone by {100 * margin:.2f} cm" in text
     corners = [critical_trail(c, 1.0, cc) for cc in CasterCompliance().corners()]
     assert [x[2] for x in d.shimmy.corners] == corners
     finite = [x for x in corners if math.isfinite(x)]
@@ -827,16 +831,15 @@ def test_comparison_with_itself_changes_nothing(quick):
     """``--compare``: a chair compared with itself shows every key number equal (an invariant of the table),
     and the page overlays the baseline geometry and names both chairs."""
     from stability.report.builders import page_builders
-    from stability.report.comparison import Baseline, comparison_rows, key_numbers
+    from stability.report.comparison import Baseline, comparison_rows, report_key_numbers
     from stability.report.document import figure_texts
 
     d = quick.data
     assert "comparison" in dropped_pages(d)                      # no baseline: the page is left out
     same = Baseline(d.chair.replace(name="baseline copy"), d.summary, d.chair_speed, d.impulses[0], d.slope,
-                    d.shimmy)
+                    d.shimmy, d.advice.verdict.shimmy_margin_m.value)
     d2 = dataclasses.replace(d, baseline=same)
-    rows = comparison_rows(key_numbers(d.summary, d.chair_speed, d.impulses[0], d.slope, d.shimmy),
-                           key_numbers(same.summary, same.speed, same.impulse, same.slope, same.shimmy))
+    rows = comparison_rows(*report_key_numbers(d2))
     defined = [r for r in rows if r[1] != "-"]
     assert len(defined) >= 5
     assert all(r[1] == r[2] and r[4] == "equal" and r[3] in ("+0 %", "-0 %", "+0 1/s") for r in defined), rows
@@ -846,17 +849,43 @@ def test_comparison_with_itself_changes_nothing(quick):
 
 
 def test_comparison_rows_direction():
-    """Which chair is better follows each measure's direction (higher critical impulse and speeds are better,
-    a higher growth rate and holding moment are worse); changes are relative to the baseline."""
+    """Which chair is better follows each measure's direction (higher critical impulse, speeds and shimmy margin
+    are better, a higher growth rate and holding moment are worse); changes are relative to the baseline."""
     from stability.report.comparison import KeyNumbers, comparison_rows
 
-    a = KeyNumbers(1.0, 0.7, 10.0, 1.1, 5.0, 3.0, 0.04)
-    b = KeyNumbers(1.5, 0.5, 9.0, 0.75, 3.0, 5.0, 0.05)
+    a = KeyNumbers(1.0, 0.7, 10.0, 1.1, 5.0, 3.0, 0.004)
+    b = KeyNumbers(1.5, 0.5, 9.0, 0.75, 3.0, 5.0, 0.031)
     rows = {r[0].split(" (")[0]: r for r in comparison_rows(a, b)}
     assert rows["equal-instability speed"][3] == "+47 %" and rows["equal-instability speed"][4] == "this chair"
     assert rows["linear growth rate at 0.75 m/s"][4] == "this chair"
     assert rows["holding moment on a cross slope"][4] == "this chair"
     assert comparison_rows(b, a)[3][4] == "baseline"
+    # the user journey's case: a chair 0.23 cm inside a shimmy zone against the E&J 3.1 cm clear of it
+    inside = dataclasses.replace(a, shimmy_margin_m=-0.0023)
+    rows = {r[0].split(" (")[0]: r for r in comparison_rows(inside, b)}
+    assert rows["shimmy margin"][4] == "baseline" and rows["shimmy margin"][1] == "-0.0023"
+
+
+def test_comparison_ranks_bounds_as_values():
+    """A bound is a value: 'above 3 m/s' beats 1.2 m/s, two overlapping bounds are undecided, a push that never
+    spins the chair (> 40 N s) beats a found 12 N s; the cells print the bound."""
+    from stability.report.comparison import KeyNumbers, comparison_rows
+    from stability.study.censored import compare
+
+    a = KeyNumbers(1.0, 0.7, 10.0, 3.0, 40.0, 3.0, 0.01, equal_instability_side=">", critical_impulse_side=">")
+    b = KeyNumbers(1.0, 0.7, 10.0, 1.2, 12.0, 3.0, 0.01)
+    rows = {r[0].split(" (")[0]: r for r in comparison_rows(a, b)}
+    assert rows["equal-instability speed"][1:] == ["> 3", "1.2", "-", "this chair"]
+    assert rows["critical impulse at 0.75 m/s"][1:] == ["> 40", "12", "-", "this chair"]
+    assert {r[0].split(" (")[0]: r for r in comparison_rows(b, a)}["equal-instability speed"][4] == "baseline"
+    c = dataclasses.replace(b, equal_instability_speed_m_s=3.5)
+    assert {r[0].split(" (")[0]: r for r in comparison_rows(a, c)}["equal-instability speed"][4] == \
+        "undecided (bounds)"
+    # the definition, case by case (higher is better)
+    assert compare(3.0, ">", 3.0, "=", True) == "better" and compare(3.0, ">", 3.0, ">", True) == "undecided"
+    assert compare(1.0, "<", 1.0, "=", True) == "worse" and compare(1.0, "<", 1.0, "=", False) == "better"
+    assert compare(2.0, "=", 2.0005, "=", True) == "equal" and compare(2.0, "=", 2.1, "=", True) == "worse"
+    assert compare(float("nan"), "=", 1.0, "=", True) == "undecided"
 
 
 def test_trail_window_and_tip_limits(quick):
@@ -946,21 +975,21 @@ def test_json_numbers_are_the_numbers_the_pages_print(quick):
     dec, v = j["decision"], j["decision"]["verdict"]
     ci, ei = v["critical_impulse_Ns"], v["equal_instability_speed_m_s"]
     lo, hi = ci["interval"]
-    expect1 = [f"shoveof{ci['value']:.2g}Ns", f"({dec['critical_push_force_N']:.0f}Nforatenth",
-               f"(range{lo:.2g}-{hi:.2g}Ns)",
+    expect1 = [f"pushof{ci['value']:.2g}Ns", f"(about{dec['critical_push_force_N']:.0f}Nforatenth",
+               f"range{lo:.2g}-{hi:.2g}Ns",
                # the table: this chair's column
                f"{ci['value']:.3g}({lo:.3g}-{hi:.3g})", f"{v['static_stability_deg']['value']:.1f}",
                f"{100 * v['shimmy_margin_m']['value']:+.1f}", f"{v['growth_rate_1_s']:.3g}", f"{100 * dec['trail_m']:.3g}",
                f"{ei['value']:.3g}({ei['interval'][0]:.3g}-{ei['interval'][1]:.3g})"]
-    expect1 += [f"{t:.2g}sat{3.6 * u:.2g}km/h" for u, t in zip(v["time_to_correct_speeds_m_s"], v["time_to_correct_s"],
-                                                               strict=True) if t is not None]
+    expect1 += [f"{t:.2g}sat{u:g}m/s" for u, t in zip(v["time_to_correct_speeds_m_s"], v["time_to_correct_s"],
+                                                      strict=True) if t is not None]
     rec = dec["recommendation"]
     if rec is not None:
         p = rec["predicted"]
         plo, phi = p["critical_impulse_Ns"]["interval"]
         expect1 += [f"{p['critical_impulse_Ns']['value']:.3g}Ns(range{plo:.3g}-{phi:.3g}Ns)",
                     f"{100 * rec['gains']['critical_impulse']:+.0f}%", f"{100 * rec['trail_m']:.3g}"]
-        expect1 += [_squash(f"{k['value']:.2g} N m") for k in rec["constraints"] if k["name"] == "turning_effort_N_m"]
+        expect1 += [_squash(f"{k['value']:.3g}") for k in rec["constraints"] if k["name"] == "turning_effort_N_m"]
     cl = dec["clinician"]
     expect1 += [f"{t:.1f}s\u2020" for t in cl["time_to_level_s"] if t is not None]
     if cl["handrim"] is not None:
@@ -969,6 +998,8 @@ def test_json_numbers_are_the_numbers_the_pages_print(quick):
         assert s in page1, s
     for para in dec["paragraphs"] + [j["coarsened_text"]]:
         assert _squash(para) in page1
+    # page 1's words are the advisor's decision verbatim (python -m stability.advise --json: decision.paragraphs)
+    assert dec["paragraphs"][:len(dec["advisor_decision"]["paragraphs"])] == dec["advisor_decision"]["paragraphs"]
     sm = j["summary"]
     rates = {r["model"]: r["growth_rate_1_s"] for r in sm["growth_rate"]}
     rng = sm["equal_instability_range"]

@@ -27,6 +27,7 @@ from stability.advise.limits import (
     Constraint,
     ShimmyHold,
     allow,
+    limit_words,
     shimmy_hold,
     shimmy_sentence,
 )
@@ -163,6 +164,8 @@ class Advice:
         What the chair's own pin friction buys against shimmy (None: no pin friction).
     pairs_screened, pairs_measured : int
         Pairs of changes screened on the constraints, and measured by simulation.
+    own_constraints : tuple of Constraint
+        The chair as it is against every limit (what it already breaks).
     """
 
     chair: Chair
@@ -181,6 +184,7 @@ class Advice:
     shimmy_hold: ShimmyHold | None = None
     pairs_screened: int = 0
     pairs_measured: int = 0
+    own_constraints: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -246,11 +250,10 @@ def _notes(c: Candidate, base: Measures, chair: Chair) -> tuple:
         s_peak = math.sqrt(chair.i_z / chair.m)
         notes.append(
             f"The frictionless linear growth rate gets worse ({base.growth_rate_1_s:.3g} -> {m.growth_rate_1_s:.3g} "
-            f"1/s at {REFERENCE_SPEED:g} m/s) while the critical impulse and the equal-instability speed improve. "
-            "The linear model has free, frictionless casters: its divergent mode grows at about U m s1/(I_z + m s1^2), "
-            f"which peaks at s1 = sqrt(I_z/m) = {s_peak:.3g} m, so moving the axle toward that point raises it. "
-            "The nonlinear measures include the pins' Coulomb friction, whose moment against the caster's side force "
-            "(pin friction over trail) holds the casters straight after a small push; that is what they reward.")
+            f"1/s at {REFERENCE_SPEED:g} m/s) while the push and speed measures improve: the linear model's casters "
+            "are free and frictionless, and its divergent rate, about U m s1/(I_z + m s1^2), peaks at s1 = "
+            f"sqrt(I_z/m) = {s_peak:.3g} m; the pins' Coulomb friction, which the nonlinear measures include, holds "
+            "the casters straight after a small push.")
     step = _step_note(m)
     if step:
         notes.append(step)
@@ -372,7 +375,7 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
             times.append(None)
     return Advice(chair, use, float(cross_slope_deg), min_tip, source, base, tuple(times), tuple(cands),
                   tuple(combined), tuple(refused), tuple(recs), "", tuple(blocked), shimmy_hold(chair, use),
-                  n_screened, len(chosen))
+                  n_screened, len(chosen), own)
 
 
 def _screen(chair: Chair, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
@@ -414,18 +417,19 @@ def _explain(recs: list[Recommendation], broken: set, blocked: list[Blocked], ba
     there is one)."""
     out = []
     runner = recs[1].candidate if len(recs) > 1 else None
+    breaks = ", ".join(limit_words(n) for n in sorted(broken))
     for r in recs:
         c, notes = r.candidate, r.notes
         if broken and c.changes:
-            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}; this change meets every limit "
+            notes += (f"The chair as it is breaks {breaks}; this change meets every limit "
                       f"({'and gains' if c.gain > 0 else 'at a cost of'} {abs(c.gain) * 100:.0f} % on the robust "
                       "measures).",)
         elif broken:
             fix = (f"the runner-up ({runner.label}) fixes it at a cost of {abs(runner.gain) * 100:.0f} %"
                    if runner is not None and runner.changes else
-                   "no change meets every limit" + (": a limit blocks the fixes found (see BLOCKED)" if blocked
-                                                    else ""))
-            notes += (f"The chair as it is breaks {', '.join(sorted(broken))}, and no change fixes it for less than "
+                   "no change meets every limit"
+                   + (": a limit blocks the fixes found (see BLOCKED BY A LIMIT)" if blocked else ""))
+            notes += (f"The chair as it is breaks {breaks}, and no change fixes it for less than "
                       f"{MAX_FIX_COST * 100:.0f} % of the robust measures; {fix}"
                       + (". The shimmy margin rests on estimated pin stiffness and relaxation length: measure them "
                          "first" if "shimmy_margin_m" in broken else "") + ".",)

@@ -16,7 +16,8 @@ from stability.chair import Chair
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
 
-__all__ = ["Constraint", "ShimmyHold", "constraints", "allow", "shimmy_hold", "shimmy_sentence",
+__all__ = ["Constraint", "ShimmyHold", "constraints", "allow", "allow_words", "constraint_text", "limit_words",
+           "LIMIT_WORDS", "shimmy_hold", "shimmy_sentence",
            "MAX_PIN_FRICTION_N_M", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "SHIMMY_AMPLITUDE_DEG"]
 
 #: Tolerable pin friction (N m): Collins (1987) conclusion 6 (L1853), "a reasonable estimate is 0.3 N-m".
@@ -102,7 +103,25 @@ class ShimmyHold:
 
 
 def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source: str, cross_slope: float) -> tuple:
-    """The constraints on a changed chair ``m`` against the chair as it is, ``base`` (docs/advise.md)."""
+    """The constraints on a changed chair against the chair as it is (docs/advise.md).
+
+    Parameters
+    ----------
+    m : Measures or Linear
+        The changed chair's measures.
+    base : Measures
+        The chair as it is (the turning-effort and cross-slope limits are relative to it).
+    min_tip : float
+        Smallest acceptable static stability angle, deg.
+    tip_source : str
+        Where ``min_tip`` comes from (the note of its constraint).
+    cross_slope : float
+        Cross slope of the drive-difference constraint, deg (0: no such constraint).
+
+    Returns
+    -------
+    tuple of Constraint
+    """
     out = [Constraint("static_stability_deg", m.static_stability_deg.value, min_tip, ">=",
                       (m.static_stability_deg.value or -math.inf) >= min_tip - 1e-9, tip_source)]
     sm = m.shimmy_margin_m.value
@@ -165,8 +184,61 @@ def shimmy_sentence(m: Measures | Linear, trail: float, hold: ShimmyHold | None 
     return text
 
 
+#: Each limit in words: its name, display unit and the factor from its value's unit to the display unit.
+LIMIT_WORDS = {"static_stability_deg": ("static stability", "deg", 1.0),
+               "shimmy_margin_m": ("shimmy margin", "cm", 100.0),
+               "turning_effort_N_m": ("turning pin friction", "N m", 1.0),
+               "handrim_force_difference_N": ("hand-rim force difference on the cross slope", "N", 1.0),
+               "motor_torque_difference_N_m": ("motor torque difference on the cross slope", "N m", 1.0)}
+
+
+def limit_words(name: str) -> str:
+    """A limit's name in words.
+
+    Parameters
+    ----------
+    name : str
+        The constraint's name (``shimmy_margin_m``).
+
+    Returns
+    -------
+    str
+        ``"shimmy margin"``.
+    """
+    return LIMIT_WORDS.get(name, (name.replace("_", " "), "", 1.0))[0]
+
+
+def constraint_text(k: Constraint) -> str:
+    """A constraint in plain words and display units.
+
+    Parameters
+    ----------
+    k : Constraint
+
+    Returns
+    -------
+    str
+        ``"static stability 12.9 deg against the limit >= 13.8 deg"``.
+    """
+    words, unit, f = LIMIT_WORDS.get(k.name, (k.name.replace("_", " "), "", 1.0))
+    if k.value is None:
+        return f"{words} refused by the slope statics (tire data)"
+    return f"{words} {f * k.value:.3g} {unit} against the limit {k.kind} {f * k.limit:.3g} {unit}"
+
+
 def allow(k: Constraint) -> str:
-    """What would allow a change that ``k`` blocks: the option and value, or why no option can."""
+    """What would allow a change that a constraint blocks, for the advise command.
+
+    Parameters
+    ----------
+    k : Constraint
+        The constraint the change does not meet.
+
+    Returns
+    -------
+    str
+        The command-line option and value (``"--min-tip-deg 12.9 (...)"``), or why no option can.
+    """
     if k.name == "static_stability_deg":
         return (f"--min-tip-deg {math.floor(k.value * 10) / 10:.1f} (the limit is {k.limit:.1f} deg, {k.note})"
                 if k.value is not None else "no limit allows it")
@@ -176,6 +248,30 @@ def allow(k: Constraint) -> str:
     if k.name == "shimmy_margin_m":
         return f"no option: the shimmy margin limit is {MIN_SHIMMY_MARGIN_M * 1000:g} mm from the nearest boundary"
     return "--cross-slope 0 (drops the cross-slope limit)"
+
+
+def allow_words(k: Constraint) -> str:
+    """:func:`allow` in plain words, for a reader who does not run the command (the report).
+
+    Parameters
+    ----------
+    k : Constraint
+        The constraint the change does not meet.
+
+    Returns
+    -------
+    str
+        ``"a lower static-stability limit (12.9 deg) would allow it"``, or why no setting does.
+    """
+    if k.name == "static_stability_deg":
+        return (f"a lower static-stability limit ({math.floor(k.value * 10) / 10:.1f} deg) would allow it"
+                if k.value is not None else "no limit would allow it")
+    if k.name == "turning_effort_N_m":
+        return (f"no setting allows it (pin friction above {k.limit:.3g} N m makes the chair hard to turn; Collins "
+                "1987, conclusion 6)")
+    if k.name == "shimmy_margin_m":
+        return f"no setting allows it (the shimmy margin must be at least {MIN_SHIMMY_MARGIN_M * 1000:g} mm)"
+    return "dropping the cross-slope limit would allow it"
 
 
 def shimmy_hold(chair: Chair, speeds: tuple, amplitude_deg: float = SHIMMY_AMPLITUDE_DEG) -> ShimmyHold | None:
@@ -192,11 +288,14 @@ def shimmy_hold(chair: Chair, speeds: tuple, amplitude_deg: float = SHIMMY_AMPLI
     Returns
     -------
     ShimmyHold or None
-        None without pin friction.
+        None without pin friction, or where the statics refuse the chair.
     """
     from stability.shimmy.chair import friction_trail
 
     if chair.pin_friction_left <= 0:
         return None
-    trail = max(friction_trail(chair, float(u), math.radians(amplitude_deg)) for u in speeds)
+    try:
+        trail = max(friction_trail(chair, float(u), math.radians(amplitude_deg)) for u in speeds)
+    except ValueError:          # the statics refuse the chair at its own or a scanned trail: nothing to state
+        return None
     return ShimmyHold(float(amplitude_deg), float(chair.pin_friction_left), float(trail), float(chair.trail))

@@ -305,7 +305,14 @@ def decision_chart(names: Sequence[str], values: Sequence[float], lows: Sequence
     y = np.arange(len(names))[::-1]
     v = np.asarray(values, float)
     lo, hi = np.asarray(lows, float), np.asarray(highs, float)
-    ax.barh(y, v, height=0.55, color=[colour(i) for i in range(len(names))], ec="k", lw=0.5)
+    bound = np.asarray(beyond if beyond is not None else [False] * len(v), bool)
+    bars = ax.barh(y, v, height=0.55, color=[colour(i) for i in range(len(names))], ec="k", lw=0.5)
+    for bar, b in zip(bars, bound, strict=True):
+        if b:       # a bound: the speed lies beyond the bar's end (hatched, with an arrow past the end)
+            bar.set_hatch("///")
+            ax.annotate("", xy=(bar.get_width() * 1.12, bar.get_y() + bar.get_height() / 2),
+                        xytext=(bar.get_width(), bar.get_y() + bar.get_height() / 2),
+                        arrowprops={"arrowstyle": "->", "lw": 1.5, "color": "k"})
     ax.errorbar(v, y, xerr=[np.maximum(v - lo, 0), np.maximum(hi - v, 0)], fmt="none", ecolor="k", capsize=4,
                 elinewidth=1.2, label="range: push, pin friction, model")
     for yi, vi, above in zip(y, v, beyond if beyond is not None else [False] * len(v), strict=True):
@@ -316,9 +323,15 @@ def decision_chart(names: Sequence[str], values: Sequence[float], lows: Sequence
     ax.set_yticks(y, names, fontsize=9)
     ax.set_ylabel("chair", fontsize=9)
     ax.set_xlabel("equal-instability speed (m/s; higher: more stable)", fontsize=9)
-    ax.set_xlim(0, max(1.0, float(np.nanmax(hi)) * 1.3))
+    ax.set_xlim(0, max(1.0, float(np.nanmax(hi)) * 1.3, float(np.nanmax(v)) * 1.6))     # room for the labels
     ax.grid(True, axis="x", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    handles, _ = ax.get_legend_handles_labels()
+    if bound.any():
+        from matplotlib.patches import Patch
+
+        handles.append(Patch(facecolor="white", edgecolor="k", hatch="///",
+                             label="a bound: the speed lies beyond the bar's end"))
+    ax.legend(handles=handles, fontsize=8, loc="lower right")
     ax.set_ylim(-0.6, len(names) - 0.2)
     ax.set_title(title or "how fast it can go before it is as unstable as the thesis's reference case", fontsize=9.5)
     return ax

@@ -12,7 +12,7 @@ from stability import plotting as P
 from stability.chair import preset
 from stability.report.appendix import glossary_text, method_text
 from stability.report.clinician import clinician_text
-from stability.report.comparison import comparison_rows, key_numbers
+from stability.report.comparison import comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
 from stability.report.decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
 from stability.report.findings import _first, conclusion_rows, findings
@@ -51,7 +51,7 @@ def _p_decision(d: ReportData) -> Figure:
     ax_text.axis("off")
     y = 1.0
     paras = decision_paragraphs(d) + [clinician_text(d)] + ([coarsened_text(d.settings)] if d.settings.quick else [])
-    for scale in (1.0, 0.95, 0.9, 0.85, 0.8, 0.75):     # shrink the text until it fits its column
+    for scale in (1.0, 0.95, 0.9, 0.85, 0.8, 0.75, 0.7, 0.65):     # shrink the text until it fits its column
         width = int(76 / scale) if scale == 1.0 else int(72 / scale)     # clear of the chart's labels
         if sum(0.034 * len(P.wrap_text(p, width)) + 0.02 for p in paras) * scale <= 1.0:
             break
@@ -65,12 +65,12 @@ def _p_decision(d: ReportData) -> Figure:
     header, rows = decision_rows(d)
     ax_table.axis("off")
     n = len(header)
-    P.table_axes(ax_table, header, rows, col_widths=[0.34] + [0.66 / (n - 1)] * (n - 1), fontsize=8,
-                 wrap=[30] + [16] * (n - 1), top=1.0, bottom=0.0)
+    P.table_axes(ax_table, header, rows, col_widths=[0.42] + [0.58 / (n - 1)] * (n - 1), fontsize=8,
+                 wrap=[32] + [12] * (n - 1), top=1.0, bottom=0.0)
     ax_table.set_title("key numbers (ranges over push, pin friction, model and simulator step)", fontsize=9)
     names, vals, lows, highs = decision_bars(d)
     P.decision_chart(names, vals, lows, highs, ax_bar, reference_speed=REFERENCE_SPEED,
-                     title=f"{d.chair.name}: how fast before it is as unstable as the thesis's reference case",
+                     title=f"{d.chair.name}: how fast before it is as unstable\nas the thesis's reference case",
                      beyond=decision_beyond(d))
     return fig
 
@@ -98,8 +98,7 @@ def _p_comparison(d: ReportData) -> Figure:
                        gridspec_kw={"width_ratios": [1, 1.6]})
     P.chair_geometry(d.chair, axes[0, 0], overlay=b.chair,
                      title=f"{d.chair.name} (solid) on {b.chair.name} (dashed), c.g. on c.g.")
-    this = key_numbers(d.summary, d.chair_speed, d.impulses[0] if d.impulses else None, d.slope, d.shimmy)
-    base = key_numbers(b.summary, b.speed, b.impulse, b.slope, b.shimmy)
+    this, base = report_key_numbers(d)
     geometry = [["c.g. to main axle s1 (m)", f"{d.chair.s1:.3g}", f"{b.chair.s1:.3g}", "", ""],
                 ["c.g. to caster pins s2 (m)", f"{d.chair.s2:.3g}", f"{b.chair.s2:.3g}", "", ""],
                 ["caster trail (m)", f"{d.chair.trail:.3g}", f"{b.chair.trail:.3g}", "", ""],

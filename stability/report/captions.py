@@ -12,8 +12,9 @@ from collections.abc import Callable
 
 import numpy as np
 
+from stability.advise.limits import shimmy_sentence
 from stability.advise.text import kmh
-from stability.report.comparison import comparison_rows, key_numbers
+from stability.report.comparison import comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 
@@ -164,10 +165,12 @@ def _shimmy(d: ReportData) -> str:
     if s is None:
         return "No shimmy result for this chair."
     crit = [x[2] for x in s.corners]
-    return (f"A shorter trail gives more directional stability but less shimmy margin; with the estimated caster "
-            f"compliance the boundary lies at {100 * s.critical:.3g} cm, and anywhere from {100 * min(crit):.3g} cm "
+    a = d.advice
+    return (f"Caster shimmy: {shimmy_sentence(a.verdict, d.chair.trail, a.shimmy_hold)}. At {s.speed:g} m/s the "
+            f"boundary lies at {100 * s.critical:.3g} cm with the estimated caster compliance, and anywhere from "
+            f"{100 * min(crit):.3g} cm "
             + ("to beyond 20 cm" if not math.isfinite(max(crit)) else f"to {100 * max(crit):.3g} cm")
-            + " over the estimates' range: measure the caster's compliance before shortening the trail.")
+            + " over the estimates' range: measure the caster's compliance before changing the trail.")
 
 
 def _uncertainty(d: ReportData) -> str:
@@ -184,9 +187,7 @@ def _comparison(d: ReportData) -> str:
     b = d.baseline
     if b is None:
         return ""
-    rows = comparison_rows(key_numbers(d.summary, d.chair_speed, d.impulses[0] if d.impulses else None, d.slope,
-                                       d.shimmy),
-                           key_numbers(b.summary, b.speed, b.impulse, b.slope, b.shimmy))
+    rows = comparison_rows(*report_key_numbers(d))
     wins = [r for r in rows if r[4] == "this chair"]
     losses = [r for r in rows if r[4] == "baseline"]
     txt = f"{d.chair.name} is better than {b.chair.name} on {len(wins)} of {len(rows)} measures"
@@ -199,15 +200,22 @@ def _trail_window(d: ReportData) -> str:
     w = d.trail_window
     if w is None:
         return ""
-    short = w.shortest_safe_m
-    where = {"robust": "inside the window for every estimate of the caster's compliance",
+    where = {"robust": "inside the shimmy-free window for every estimate of the caster's compliance",
              "nominal": "shimmy-free with the nominal estimates only: measure the caster's compliance first",
              "outside": "inside a shimmy zone"}[w.chair_in_window]
     txt = f"This chair's {100 * w.chair_trail_m:.3g} cm trail is {where}."
-    if short is not None:
-        txt += (f" A shorter trail raises the equal-instability speed; with the nominal estimates the caster "
-                f"stays shimmy-free down to {100 * short:.3g} cm")
-        txt += ("." if w.robust_m else ", but no trail is shimmy-free over the whole estimate range.")
+    near = w.nearest_safe_m
+    if near is None:
+        return txt + " No trail is shimmy-free at every use speed with the nominal estimates."
+    if w.chair_in_window == "outside":
+        txt += f" The nearest shimmy-free trail is {100 * near:.3g} cm (nominal estimates)."
+    best = w.best_in_window()
+    if best is not None:
+        t, u, found = best
+        txt += (f" Of the study's trails in the window, {100 * t:.3g} cm gives the highest equal-instability speed, "
+                f"{'' if found else '> '}{u:.3g} m/s.")
+    if not w.robust_m:
+        txt += " No trail is shimmy-free over the whole estimate range."
     return txt
 
 

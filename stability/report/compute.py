@@ -456,14 +456,15 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         window = None
         if shimmy_note is None and "trail" in chair_sweeps:
             window = trail_window(c.name, c.trail, chair_sweeps.get("trail"), shimmy_band(c, USE_SPEEDS))
+        stage("slope, shimmy and uncertainty")
+        advice = advise(c, progress=progress)
         base = None
         if baseline is not None:
             b_note = shimmy_unavailable(baseline)
             base = Baseline(baseline, baseline_summary(baseline, model), base_speed, base_impulse,
                             slope_section(baseline),
-                            None if b_note else shimmy_section(baseline, s.shimmy_trails, s.shimmy_speeds))
-        stage("slope, shimmy and uncertainty")
-        advice = advise(c, progress=progress)
+                            None if b_note else shimmy_section(baseline, s.shimmy_trails, s.shimmy_speeds),
+                            None if b_note else shimmy_band(baseline, advice.speeds_m_s).shimmy_margin_m)
         ref_m = None if is_ej else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
                                                   cross_slope_deg=advice.cross_slope_deg)[0]
         stage("advice")

@@ -1,46 +1,50 @@
 """Page 1 of the report: the decision, from the advisor (:func:`stability.advise.advise`).
 
-The words and the table take every number from the advisor's :class:`~stability.advise.Advice` (the chair as
-it is, the recommended change with its predicted values and what it costs) and from the thesis's reference
-chair measured the same way, so page 1 says what ``python -m stability.advise`` says.
+The words are the advisor's :class:`~stability.advise.decision.Decision` verbatim (the sentences ``python -m
+stability.advise`` prints and its JSON carries under ``decision.paragraphs``); the table takes every number from
+the advisor's :class:`~stability.advise.Advice` (the chair as it is, the recommended change's predicted values,
+every tip direction and cost) and from the thesis's reference chair measured the same way.
 """
 
 from __future__ import annotations
 
 import math
 
-from stability.advise.measures import Measures
-from stability.advise.text import kmh
+from stability.advise.decision import DIRECTION_WORDS, decide
+from stability.advise.measures import EFFORT_WORDS, Measures
 from stability.report.compute import ReportData
-from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 
-__all__ = ["decision_paragraphs", "decision_rows", "decision_bars", "decision_beyond"]
+__all__ = ["decision_paragraphs", "decision_rows", "decision_bars", "decision_beyond", "uncertainty_sentence"]
 
-_WORDS = {"static_stability_deg": "tips over on a slope of", "shimmy_margin_m": "shimmy margin",
-          "turning_effort_N_m": "pin friction to overcome when turning", "handrim_force_difference_N":
-          "hand-rim force difference on a cross slope"}
+def uncertainty_sentence(d: ReportData) -> str | None:
+    """The measured uncertainty's intervals, for page 1 when ``--uncertainty FILE`` is given (None otherwise).
 
+    Parameters
+    ----------
+    d : ReportData
 
-def _range(x, unit: str, digits: int = 3) -> str:
-    if x.low is None or x.high is None:
-        return ""
-    return f" (range {x.low:.{digits}g}-{x.high:.{digits}g} {unit})"
-
-
-def _cost(name: str, value: float | None) -> str:
-    if value is None:
-        return f"{_WORDS.get(name, name)}: not computed"
-    if name == "static_stability_deg":
-        return f"tips over on a {value:.1f} deg slope"
-    if name == "shimmy_margin_m":
-        return f"trail {100 * value:+.1f} cm from the nearest shimmy boundary"
-    if name == "turning_effort_N_m":
-        return f"{value:.2g} N m of pin friction to overcome when turning"
-    return f"{abs(value):.0f} N hand-rim force difference on a 2 deg cross slope"
+    Returns
+    -------
+    str or None
+    """
+    u = d.uncertainty
+    if u is None or u.nonlinear is None:
+        return None
+    nl = u.nonlinear
+    parts = [f"critical impulse at {nl.speed:g} m/s {nl.critical_impulse.describe()}"]
+    if nl.equal_instability is not None:
+        parts.append(f"equal-instability speed {nl.equal_instability.describe()}")
+    dom = nl.critical_impulse.dominant
+    drive = ("" if dom is None else
+             f"; the parameter that drives it most is {dom[0]} ({100 * dom[1]:.0f} % of the variance)")
+    return (f"MEASURED UNCERTAINTY. Over the distributions of {u.spec.source} ({nl.samples} draws, "
+            f"{100 * nl.level:.0f} % intervals): " + ", ".join(parts) + drive + ".")
 
 
 def decision_paragraphs(d: ReportData) -> list[str]:
-    """The decision in plain words: verdict, recommendation, what it costs.
+    """Page 1's words: the advisor's decision (:meth:`stability.advise.decision.Decision.paragraphs`), verbatim,
+    and the measured uncertainty's intervals when an uncertainty file is given.
 
     Parameters
     ----------
@@ -51,56 +55,9 @@ def decision_paragraphs(d: ReportData) -> list[str]:
     -------
     list of str
     """
-    a = d.advice
-    m = a.verdict
-    ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
-    out = []
-    if m.critical_impulse_status == "never":
-        push = (f"At {kmh(REFERENCE_SPEED)}, a slow walk, not even the largest sideways shove tried "
-                f"({ci.value:.2g} N s) spins the chair: it keeps its heading by itself.")
-    else:
-        push = (f"At {kmh(REFERENCE_SPEED)}, a slow walk, a sideways shove of {ci.value:.2g} N s "
-                f"({ci.value / THESIS_PUSH.duration:.0f} N for a tenth of a second){_range(ci, 'N s', 2)} is enough "
-                "to spin the chair "
-                "unless the user steers.")
-    where = {"found": f"at {kmh(ei.value or 0.0)}", "above": "only above 3 m/s (11 km/h)",
-             "below": "already below 0.2 m/s"}[m.equal_instability_status]
-    times = [f"{t:.2g} s at {3.6 * u:.2g} km/h" for u, t in zip(a.speeds_m_s, a.time_to_correct_s, strict=False)
-             if t is not None]
-    same = (f"It is the thesis's reference chair: the other chairs' equal-instability speeds are measured against "
-            f"it at {kmh(REFERENCE_SPEED)}." if a.chair.name == REFERENCE_CHAIR else
-            f"It is as unstable as the thesis's reference chair at walking pace {where}{_range(ei, 'm/s')}.")
-    out.append(f"VERDICT. {push} {same} After the thesis's push ({THESIS_PUSH.force:g} N for "
-               f"{THESIS_PUSH.duration:g} s) "
-               "the user has " + (", ".join(times) if times else "more than 10 s at every use speed")
-               + " before it turns at 1 rad/s.")
-    if not a.recommendations:
-        out.append(f"RECOMMENDATION. None: {a.reason}.")
-        return out
-    r = a.recommendations[0]
-    c = r.candidate
-    rm = c.measures
-    if not c.changes:
-        out.append("RECOMMENDATION. No change: none of the levers tried raises the low ends of both the critical "
-                   "impulse and the equal-instability speed while meeting every constraint"
-                   + (" (the chair already resists the largest push tried)." if m.critical_impulse_status == "never"
-                      else "."))
-        return out
-    out.append(f"RECOMMENDATION. {c.label[0].upper() + c.label[1:]}. Judged on the low ends of the ranges it "
-               f"raises the critical impulse by {100 * c.gains['critical_impulse']:+.0f} % and the "
-               f"equal-instability speed by {100 * c.gains['equal_instability_speed']:+.0f} %: predicted "
-               + (">" if rm.critical_impulse_status == "never" else "")
-               + f"{rm.critical_impulse_Ns.value:.3g} N s{_range(rm.critical_impulse_Ns, 'N s')} and "
-               + {"above": "> ", "below": "< "}.get(rm.equal_instability_status, "")
-               + f"{kmh(rm.equal_instability_speed_m_s.value or 0.0)}.")
-    costs = "; ".join(_cost(k.name, k.value) + ("" if k.met else " (limit NOT met)") for k in c.constraints)
-    out.append("WHAT IT COSTS. " + costs[:1].upper() + costs[1:] + "."
-               + (" The trail is shimmy-free only with the estimated pin stiffness and tire relaxation length: "
-                  "measure both before building it." if rm.shimmy_straddles else ""))
-    if len(a.recommendations) > 1:
-        out.append(f"RUNNER-UP. {a.recommendations[1].candidate.label}, "
-                   f"{100 * a.recommendations[1].candidate.gain:+.0f} % on the low ends.")
-    return out
+    out = decide(d.advice).paragraphs()
+    extra = uncertainty_sentence(d)
+    return out + ([extra] if extra else [])
 
 
 def _cells(m: Measures, trail: float) -> list[str]:
@@ -110,16 +67,22 @@ def _cells(m: Measures, trail: float) -> list[str]:
     def rng(x, digits=3) -> str:
         return "" if x.low is None or x.high is None else f" ({x.low:.{digits}g}-{x.high:.{digits}g})"
 
-    return [(">" if m.critical_impulse_status == "never" else "") + f"{ci.value:.3g}{rng(ci)}",
-            {"above": "> ", "below": "< "}.get(m.equal_instability_status, "") + f"{ei.value:.3g}{rng(ei)}",
-            f"{m.static_stability_deg.value:.1f}",
-            "none found" if sm.value is None else f"{100 * sm.value:+.1f}",
-            f"{m.growth_rate_1_s:.3g}",
-            f"{100 * trail:.3g}"]
+    effort = m.cross_slope_effort
+    return ([(">" if m.critical_impulse_status == "never" else "") + f"{ci.value:.3g}{rng(ci)}",
+             {"above": "> ", "below": "< "}.get(m.equal_instability_status, "") + f"{ei.value:.3g}{rng(ei)}"]
+            + [f"{m.tip_angles_deg[k]:.1f}" if k in m.tip_angles_deg else "-" for k in DIRECTION_WORDS]
+            + ["none found" if sm.value is None else f"{100 * sm.value:+.1f}",
+               f"{m.turning_effort_N_m:.3g}",
+               "-" if effort is None else f"{abs(effort):.3g}",
+               f"{m.growth_rate_1_s:.3g}",
+               f"{100 * trail:.3g}"])
 
 
 def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
     """Header and rows of page 1's table: this chair, the recommended chair, the thesis's reference chair.
+
+    Every tip direction, the shimmy margin, the turning effort and the cross-slope drive difference are rows, so
+    the table shows before -> after of everything the change costs.
 
     Parameters
     ----------
@@ -131,14 +94,17 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
     """
     a = d.advice
     cols = [("this chair", a.verdict, a.chair.trail)]
-    if a.recommendations:
+    if a.recommendations and a.recommendations[0].candidate.changes:
         c = a.recommendations[0].candidate
         cols.append(("recommended", c.measures, c.fields.get("trail", a.chair.trail)))
     if d.reference_measures is not None and a.chair.name != REFERENCE_CHAIR:
         cols.append((REFERENCE_CHAIR, d.reference_measures, d.reference_trail))
-    labels = [f"critical impulse at {REFERENCE_SPEED:g} m/s (N s)", "equal-instability speed (m/s)",
-              "static stability, smallest angle (deg)", "shimmy margin (cm)",
-              "linear growth rate, no friction (1/s)", "caster trail (cm)"]
+    words, unit = EFFORT_WORDS[a.verdict.drive]
+    labels = ([f"critical impulse, {REFERENCE_SPEED:g} m/s (N s)", "equal-instability speed (m/s)"]
+              + [f"tip {w.replace('its ', '')} (deg)" for w in DIRECTION_WORDS.values()]
+              + ["shimmy margin (cm)", "turning pin friction (N m)",
+                 f"{words.split()[0]} diff., {a.cross_slope_deg:g} deg slope ({unit})",
+                 "linear growth rate (1/s)", "caster trail (cm)"])
     cells = [_cells(m, t) for _, m, t in cols]
     rows = [[lab] + [c[i] for c in cells] for i, lab in enumerate(labels)]
     return ["measure (range)"] + [n for n, _, _ in cols], rows
@@ -158,7 +124,7 @@ def decision_beyond(d: ReportData) -> list[bool]:
     """
     a = d.advice
     st = [a.verdict.equal_instability_status]
-    if a.recommendations:
+    if a.recommendations and a.recommendations[0].candidate.changes:
         st.append(a.recommendations[0].candidate.measures.equal_instability_status)
     if d.reference_measures is not None and a.chair.name != REFERENCE_CHAIR:
         st.append(d.reference_measures.equal_instability_status)
@@ -178,7 +144,7 @@ def decision_bars(d: ReportData) -> tuple[list[str], list[float], list[float], l
     """
     a = d.advice
     items = [("this chair", a.verdict)]
-    if a.recommendations:
+    if a.recommendations and a.recommendations[0].candidate.changes:
         items.append(("recommended", a.recommendations[0].candidate.measures))
     if d.reference_measures is not None and a.chair.name != REFERENCE_CHAIR:
         items.append((f"{REFERENCE_CHAIR} (thesis)", d.reference_measures))

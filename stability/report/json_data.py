@@ -88,6 +88,7 @@ def _decision(d: ReportData) -> dict[str, Any]:
             "time_to_level_s": [_num(r.time_to_level) for r in rs],
             "handrim": handrim,
         },
+        "advisor_decision": adv["decision"],
         "paragraphs": decision_paragraphs(d) + [clinician_text(d)],
     }
 

@@ -7,11 +7,13 @@ import math
 from matplotlib.figure import Figure
 
 from stability import plotting as P
+from stability.advise.limits import shimmy_sentence
 from stability.report.compute import ReportData
 from stability.report.slope_data import TREADMILL
 from stability.settings.reference import LEVEL, THESIS_PUSH
 from stability.shimmy.plots import plot_trail_chart
 from stability.slope.plots import plot_holding
+from stability.study.censored import side_of, sort_key
 from stability.study.uncertain import MeasureInterval
 
 __all__ = ["footer", "slope_text", "shimmy_text", "uncertainty_text", "nonlinear_uncertainty_text", "slope_page",
@@ -108,11 +110,10 @@ def shimmy_text(d: ReportData) -> list[str]:
            f"{1000 * comp.relaxation_length_range[0]:g}-{1000 * comp.relaxation_length_range[1]:g} mm and "
            f"{comp.lateral_stiffness_range[0] / 1000:g}-{comp.lateral_stiffness_range[1] / 1000:g} kN/m.",
            f"Shimmy boundary at {s.speed:g} m/s (linear, no pin friction): trail {_cm(s.critical)} with the nominal "
-           f"estimates (chair model with relaxed caster tires and compliant pins: {_cm(s.chair_model_critical)}); "
-           f"this chair's trail {100 * ch.chair_trail:g} cm is "
-           + (f"{100 * s.margin:.2f} cm above it." if s.margin > 0 else f"{-100 * s.margin:.2f} cm inside the "
-              "shimmy region.")
-           + f" Over the estimate range the boundary lies between {_cm(lo)} and {_cm(hi)}:",
+           f"estimates (chair model with relaxed caster tires and compliant pins: {_cm(s.chair_model_critical)}). "
+           f"At the use speeds ({', '.join(f'{u:g}' for u in d.advice.speeds_m_s)} m/s) "
+           f"{shimmy_sentence(d.advice.verdict, d.chair.trail, d.advice.shimmy_hold)}."
+           + f" Over the estimate range the boundary at {s.speed:g} m/s lies between {_cm(lo)} and {_cm(hi)}:",
            ]
     out += [f"  relaxation {1000 * sg:g} mm, pin stiffness {k / 1000:g} kN/m: {_cm(t)}" for sg, k, t in s.corners]
     ft = ch.friction_trail[-1]
@@ -120,15 +121,18 @@ def shimmy_text(d: ReportData) -> list[str]:
     if "trail" in d.chair_sweeps:
         sw = d.chair_sweeps.get("trail")
         i = int(sw.values.index(min(sw.values)))
-        gain = (f" With pin friction the gain is real: at {100 * sw.values[i]:g} cm trail the equal-instability speed "
-                f"is {sw.results[i].describe()} against {sw.nominal.describe()} at this chair's "
-                f"{100 * sw.nominal_value:g} cm (parametric study), because the friction-limited caster side force "
-                "M_f/l grows as the trail shrinks.")
+        short, nominal = sw.results[i], sw.nominal
+        better = sort_key(short.value_or_bound, side_of(short.status), True) < \
+            sort_key(nominal.value_or_bound, side_of(nominal.status), True)
+        gain = (f" With pin friction, at {100 * sw.values[i]:g} cm trail the equal-instability speed is "
+                f"{short.describe()} against {nominal.describe()} at this chair's {100 * sw.nominal_value:g} cm "
+                "(parametric study)"
+                + (": the friction-limited caster side force M_f/l grows as the trail shrinks." if better else "."))
     out.append(f"Pin friction {ch.pin_friction:g} N m holds {math.degrees(ch.amplitude):g} deg shimmy down to a trail "
                f"of {_cm(ft)} at {ch.speeds[-1]:g} m/s (describing function). Without pin friction the linear yaw "
                f"divergence rate at {ch.speeds[-1]:g} m/s moves only {dlo:.3g}-{dhi:.3g} 1/s over trails "
-               f"{100 * ch.trails[0]:g}-{100 * ch.trails[-1]:g} cm." + gain + " A shorter trail spends shimmy "
-               "margin: whether a trail is safe depends on the two estimates, which must be measured.")
+               f"{100 * ch.trails[0]:g}-{100 * ch.trails[-1]:g} cm." + gain + " Whether a trail is shimmy-free "
+               "depends on the two estimates, which must be measured.")
     return out
 
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stability.shimmy.band import ShimmyBand
+from stability.study.censored import sort_key
 
 __all__ = ["TrailWindow", "intersect", "trail_window"]
 
@@ -80,6 +81,35 @@ class TrailWindow:
     def shortest_safe_m(self) -> float | None:
         """The shortest trail that is shimmy-free with the nominal estimates (m), None if none."""
         return min((lo for lo, _ in self.nominal_m), default=None)
+
+    @property
+    def nearest_safe_m(self) -> float | None:
+        """The shimmy-free trail (nominal estimates) nearest the chair's (m): the chair's own when it is inside the
+        window, else the nearest edge of an interval (None: no shimmy-free trail)."""
+        t = self.chair_trail_m
+        best: float | None = None
+        for lo, hi in self.nominal_m:
+            x = min(max(t, lo), hi)
+            if best is None or abs(x - t) < abs(best - t):
+                best = float(x)
+        return best
+
+    def best_in_window(self) -> tuple[float, float, bool] | None:
+        """The study's trail inside the nominal window with the highest equal-instability speed.
+
+        Returns
+        -------
+        (trail m, speed m/s, found) or None
+            ``found`` False: the speed is the bracket's end (the speed lies above it; a bound counts as its value
+            and ranks ahead of the same value found, :func:`stability.study.censored.sort_key`).  None: no trail of
+            the study lies in the window.
+        """
+        inside = [i for i, t in enumerate(self.trails_m) if any(lo <= t <= hi for lo, hi in self.nominal_m)
+                  and np.isfinite(self.speeds_m_s[i])]
+        if not inside:
+            return None
+        i = min(inside, key=lambda k: sort_key(float(self.speeds_m_s[k]), "=" if self.found[k] else ">", True))
+        return float(self.trails_m[i]), float(self.speeds_m_s[i]), bool(self.found[i])
 
 
 def trail_window(chair_name: str, chair_trail: float, sweep, band: ShimmyBand) -> TrailWindow:

@@ -23,7 +23,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-__all__ = ["SIDES", "side_of", "quantile", "describe", "sort_key"]
+__all__ = ["SIDES", "side_of", "quantile", "describe", "sort_key", "compare"]
 
 #: The sides of a result: found, lower bound (the value is above), upper bound (below).
 SIDES = ("=", ">", "<")
@@ -139,3 +139,42 @@ def describe(value: float, side: str, unit: str = "", digits: int = 4) -> str:
         return "no value"
     text = f"{value:.{digits}g}" + (f" {unit}" if unit else "")
     return text if side == "=" else f"{side} {text}"
+
+
+def compare(a: float, side_a: str, b: float, side_b: str, higher_is_better: bool, rel_tol: float = 1e-3) -> str:
+    """Which of two censored values is better.
+
+    Each value stands for the set it allows: ``"="`` the value itself, ``">"`` everything above it, ``"<"``
+    everything below.  ``a`` is better when every value it allows beats every value ``b`` allows.
+
+    Parameters
+    ----------
+    a, b : float
+        Values or bounds (NaN: no value).
+    side_a, side_b : str
+        One of :data:`SIDES`.
+    higher_is_better : bool
+    rel_tol : float
+        Two found values closer than this (relative) are equal.
+
+    Returns
+    -------
+    str
+        ``"better"``, ``"worse"``, ``"equal"`` (both found, within ``rel_tol``) or ``"undecided"`` (the allowed
+        sets overlap, e.g. ``> 3`` against ``3.5``, or a value is missing).
+    """
+    if not (math.isfinite(a) and math.isfinite(b)):
+        return "undecided"
+    if side_a == "=" and side_b == "=" and abs(a - b) <= rel_tol * max(abs(a), abs(b)):
+        return "equal"
+
+    def span(v: float, side: str) -> tuple[float, float]:
+        return {"=": (v, v), ">": (v, math.inf), "<": (-math.inf, v)}[side]
+
+    lo_a, hi_a = span(a, side_a)
+    lo_b, hi_b = span(b, side_b)
+    if lo_a >= hi_b and not (lo_a == hi_b and side_a == "=" and side_b == "="):
+        return "better" if higher_is_better else "worse"
+    if hi_a <= lo_b and not (hi_a == lo_b and side_a == "=" and side_b == "="):
+        return "worse" if higher_is_better else "better"
+    return "undecided"
