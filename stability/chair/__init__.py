@@ -31,11 +31,12 @@ from stability.chair.io import (
     resolve,
     save,
     to_mapping,
+    user_table,
 )
 from stability.chair.model import LIMITS, Chair, field_names, valid_range
 from stability.chair.presets import POWER_FWD_FIELDS, all_preset_names, preset, preset_names
 
-__all__ = [
+__all__ = ["user_table",
     "Chair",
     "LIMITS",
     "valid_range",

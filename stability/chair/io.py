@@ -22,7 +22,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 __all__ = ["to_mapping", "from_mapping", "dumps", "save", "load", "resolve", "parse_assignment", "parse_assignments",
-           "GROUPS"]
+           "GROUPS", "user_table"]
 
 
 def to_mapping(c: Chair) -> dict[str, Any]:
@@ -123,7 +123,8 @@ def load(path: str | os.PathLike[str]) -> Chair:
     path : str or os.PathLike
         TOML file with the chair's fields either at the top level or in one
         ``[chair]`` table (not both). Tire data files named by ``main_tire`` or
-        ``caster_tire`` are resolved relative to this file's directory.
+        ``caster_tire`` are resolved relative to this file's directory.  A ``[user]``
+        table (the driver, :func:`user_table`) is not part of the chair.
 
     Returns
     -------
@@ -138,10 +139,8 @@ def load(path: str | os.PathLike[str]) -> Chair:
     OSError
         If the file cannot be read.
     """
-    try:
-        data = readfiles.load_toml(path)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"chair file {str(path)!r} is not valid TOML: {exc}") from None
+    data = _read(path)
+    data.pop("user", None)                  # the driver's table: user_table()
     if "chair" in data and isinstance(data["chair"], dict):
         others = sorted(k for k in data if k != "chair")
         if others:
@@ -151,6 +150,42 @@ def load(path: str | os.PathLike[str]) -> Chair:
     base = os.path.dirname(os.path.abspath(path))
     data = {k: (tires.resolve_spec(v, base) if k in ("main_tire", "caster_tire") else v) for k, v in data.items()}
     return from_mapping(data)
+
+
+def _read(path: str | os.PathLike[str]) -> dict:
+    try:
+        return dict(readfiles.load_toml(path))
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"chair file {str(path)!r} is not valid TOML: {exc}") from None
+
+
+def user_table(spec: str | os.PathLike[str]) -> dict | None:
+    """The ``[user]`` table of a chair file: the driver who uses the chair (:class:`stability.driver.Driver`).
+
+    Parameters
+    ----------
+    spec : str or os.PathLike
+        A chair file (a preset name has no user: None).
+
+    Returns
+    -------
+    dict or None
+        E.g. ``{"reaction_time_s": 0.35, "source": "tracking task 2026-12-03"}``; None without a ``[user]`` table.
+
+    Raises
+    ------
+    ValueError
+        If ``[user]`` is not a table.
+    """
+    if str(spec) in all_preset_names() or not os.path.isfile(spec):
+        return None
+    user = _read(spec).get("user")
+    if user is None:
+        return None
+    if not isinstance(user, dict):
+        raise ValueError(f"chair file {str(spec)!r}: [user] must be a table (reaction_time_s = ..., "
+                         "hand_force_N = ...)")
+    return dict(user)
 
 
 def resolve(spec: str) -> Chair:

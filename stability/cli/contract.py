@@ -40,12 +40,14 @@ from stability.cli.options import (
     OneLineErrorParser,
     add_chair_options,
     add_common_options,
+    add_driver_options,
     add_json_options,
     add_model_option,
     add_output_option,
     add_run_options,
     add_uncertainty_option,
     check_format,
+    driver_from_args,
     run_flag,
     run_from_args,
 )
@@ -56,6 +58,7 @@ from stability.runtime.checks import MAX_SPEED, MIN_SPEED
 from stability.runtime.files import distinct_notes, json_text, with_tire_range
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
+           "add_driver_options", "driver_from_args",
            "add_run_options", "run_from_args", "run_flag", "add_json_options",
            "load_chair", "apply_assignments", "parse_speeds", "check_directory", "check_outputs", "output_files",
            "json_header", "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import math
 import os
 import re
 import sys
@@ -388,3 +389,44 @@ def add_uncertainty_option(parser: argparse.ArgumentParser, help: str, *, repeat
         parser.add_argument("--uncertainty", action="append", default=[], metavar="FILE", help=help)
     else:
         parser.add_argument("--uncertainty", metavar="FILE", help=help)
+
+
+def add_driver_options(parser: argparse.ArgumentParser) -> None:
+    """Add ``--reaction-time S``: the driver's effective delay (:class:`stability.driver.Driver`).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+    """
+    from stability.driver.model import REACTION_TIME_RANGE_S
+
+    lo, hi = REACTION_TIME_RANGE_S
+    parser.add_argument("--reaction-time", type=float, metavar="S",
+                        help=f"the driver's effective delay in correcting the heading, s ({lo:g} to {hi:g}): print "
+                             "the speed up to which this driver can hold the chair straight (default: the chair "
+                             "file's [user] reaction_time_s, else not computed)")
+
+
+def driver_from_args(args: argparse.Namespace) -> Any:
+    """The driver of ``--reaction-time``, else of the chair file's ``[user]`` table, else None.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        With ``reaction_time`` and ``chair``.
+
+    Returns
+    -------
+    stability.driver.Driver or None
+    """
+    from stability.chair import user_table
+    from stability.driver.model import REACTION_TIME_RANGE_S, Driver
+
+    value = getattr(args, "reaction_time", None)
+    if value is not None:
+        lo, hi = REACTION_TIME_RANGE_S
+        if not (math.isfinite(value) and lo <= value <= hi):
+            raise ValueError(f"--reaction-time {value!r} is invalid; valid range: {lo:g} to {hi:g} s")
+        return Driver(value, source="--reaction-time")
+    table = user_table(args.chair) if getattr(args, "chair", None) else None
+    return None if table is None else Driver.from_mapping(table, source=f"{args.chair} [user]")

@@ -27,10 +27,12 @@ from stability.cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
     add_chair_options,
+    add_driver_options,
     add_json_options,
     add_model_option,
     add_output_option,
     check_outputs,
+    driver_from_args,
     emit_json,
     json_header,
     load_chair,
@@ -38,6 +40,8 @@ from stability.cli import (
     parse_speeds,
     run,
 )
+from stability.driver import Driver, HumanLimit, human_limit
+from stability.driver.text import human_text
 from stability.linear import StabilitySummary, analyse
 from stability.linear.batch import check_eigen_work
 from stability.linear.intervals import GRID_POINTS, solves_per_draw
@@ -88,6 +92,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "equal-instability speed (simulations; about 0.05-0.1 s per draw)")
     p.add_argument("--nonlinear-samples", type=int, default=D.NONLINEAR_SAMPLES,
                    help=f"Monte Carlo draws of the nonlinear measures (1 to 2000, default {D.NONLINEAR_SAMPLES})")
+    add_driver_options(p)
     add_json_options(p)
     add_output_option(p, FIGURE_FORMATS, what="a figure: eigenvalues against speed up to --max-speed, free and "
                       "locked casters, unstable speeds shaded and critical speeds marked")
@@ -140,7 +145,8 @@ def figure(summary: StabilitySummary, n: int = 400) -> Any:
 
 
 def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, speeds: np.ndarray,
-             intervals: LinearIntervals | None = None, nonlinear: NonlinearIntervals | None = None) -> dict[str, Any]:
+             intervals: LinearIntervals | None = None, nonlinear: NonlinearIntervals | None = None,
+             human: HumanLimit | None = None, driver: Driver | None = None) -> dict[str, Any]:
     """The JSON document of ``--json`` (without its ``tire_range`` entry, which :func:`stability.cli.emit_json` adds).
 
     The interactive explorer's results download is this document too.
@@ -157,17 +163,22 @@ def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, 
         The divergence-table speeds parsed from ``args.speeds``, m/s.
     intervals, nonlinear : optional
         The uncertainty results, when ``--uncertainty`` (and ``--nonlinear``) were given.
+    human, driver : optional
+        The human-limited speed and its driver (``--reaction-time`` or the chair file's ``[user]``).
 
     Returns
     -------
     dict
-        Common header (:func:`stability.cli.json_header`) plus :func:`stability.study.summary_text.summary_dict`.
+        Common header (:func:`stability.cli.json_header`) plus :func:`stability.study.summary_text.summary_dict`,
+        and ``human_limit`` (null without a driver).
     """
     options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed,
                "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed, "level": args.level,
-               "nonlinear": args.nonlinear, "nonlinear_samples": args.nonlinear_samples if args.nonlinear else None}
+               "nonlinear": args.nonlinear, "nonlinear_samples": args.nonlinear_samples if args.nonlinear else None,
+               "reaction_time_s": None if driver is None else driver.reaction_time_s}
+    limit = None if human is None or driver is None else {**human.to_mapping(), "driver": driver.to_mapping()}
     return {**json_header(summary.chair, summary.model, options),
-            **summary_dict(summary, checks, intervals, nonlinear)}
+            **summary_dict(summary, checks, intervals, nonlinear), "human_limit": limit}
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -188,8 +199,10 @@ def _run(args: argparse.Namespace) -> int:
         check_eigen_work("--samples", args.samples, solves_per_draw(len(speeds), GRID_POINTS))
     if not (0.01 < args.max_speed <= 100.0):
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
+    driver = driver_from_args(args)
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
     checks = simulator_checks(summary)
+    human = None if driver is None else human_limit(c, driver, args.model)
     intervals = nonlinear = None
     if args.uncertainty:
         # deferred: the uncertainty machinery (and the simulator) cost start-up time the plain summary does not need
@@ -212,9 +225,11 @@ def _run(args: argparse.Namespace) -> int:
             save_figure(figure(summary), tmp["-o"], title=f"stability critical_speed: {c.name}, {args.model} model")
         print(f"wrote {args.output}", file=sys.stderr)
     if args.json or args.json_file:
-        emit_json(document(summary, checks, args, speeds, intervals, nonlinear), args)
+        emit_json(document(summary, checks, args, speeds, intervals, nonlinear, human, driver), args)
     if not args.json:
         print(format_summary(summary, checks, intervals, nonlinear))
+        if human is not None and driver is not None:
+            print(human_text(human, driver))
     return 0
 
 

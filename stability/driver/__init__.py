@@ -1,0 +1,15 @@
+"""The driver in the loop: how fast this user can drive this chair.
+
+``model`` (the driver's effective delay and strength, literature defaults) -> ``linear`` (the human-limited
+speed: the divergence rule ``lambda(U) tau = 1`` and the delayed PD loop on the full linear chair).  The
+nonlinear measure, with pin friction and the reference push, is :mod:`stability.study.driver`.  See
+``docs/driver.md``.
+"""
+
+from __future__ import annotations
+
+from stability.driver.linear import HumanLimit, OperatorFit, human_limit, operator_fit
+from stability.driver.model import REACTION_TIME_S, Driver, yaw_moment_limit
+
+__all__ = ["Driver", "REACTION_TIME_S", "yaw_moment_limit", "HumanLimit", "human_limit", "OperatorFit",
+           "operator_fit"]

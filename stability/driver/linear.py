@@ -1,0 +1,405 @@
+"""The human-limited speed: how fast a driver who corrects after a delay ``tau`` can keep this chair straight.
+
+Two linear answers, compared in docs/driver.md:
+
+- **the divergence rule**: the speed at which the chair's divergence rate reaches ``1 / tau``
+  (``lambda(U) tau = 1``): the exact limit of delayed proportional control of a one-state divergence
+  ``x' = lambda x - k x(t - tau)`` (Stepan & Kollar 2000), the quantity the critical tracking task measures;
+- **the delayed loop**: the full linear chair (free casters, heading added) closed by a delayed
+  proportional-derivative operator on heading and heading rate, ``Mz(t) = -(k_p psi + k_d r)(t - tau)``, whose
+  gains adapt to the chair (the crossover model's adaptation: McRuer & Krendel 1974).  The limit is the speed
+  above which no gains make the loop stable.  The delay is a Pade approximant of order :data:`PADE_ORDER`; the
+  limit computed at twice that order bounds its error (:attr:`HumanLimit.pade_error_m_s`).
+
+Everything here is linear and frictionless (free casters); the nonlinear measure with pin friction and the
+reference push is :func:`stability.study.driver.driver_limit`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from math import factorial
+
+import numpy as np
+from scipy.optimize import minimize
+from scipy.signal import tf2ss
+
+from stability.chair import Chair
+from stability.driver.model import Driver
+from stability.linear import input_matrices, state_matrices
+from stability.runtime.checks import check_model, check_speed
+
+__all__ = ["PADE_ORDER", "SPEED_RANGE_M_S", "pade", "closed_loop_matrix", "abscissa", "best_gains", "heading_plant",
+           "OperatorFit", "operator_fit", "divergence_rate", "HumanLimit", "human_limit"]
+
+#: Order of the Pade approximant of the driver's delay (numerator and denominator degree).
+PADE_ORDER = 8
+#: Speeds searched for the limit, m/s: a limit outside is reported as a bound (``> 6 m/s``).
+SPEED_RANGE_M_S = (0.1, 6.0)
+#: Speed grid of the search (the limit is then refined between two grid speeds).
+_GRID = np.round(np.linspace(SPEED_RANGE_M_S[0], SPEED_RANGE_M_S[1], 25), 4)
+#: Operator gain search box (log10): k_p in N m/rad, k_d in N m s/rad.
+_LOG_KP, _LOG_KD = (-1.0, 4.5), (-2.0, 3.5)
+#: Limit speeds are refined to this, m/s.
+SPEED_TOL_M_S = 1e-3
+
+
+def pade(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """State-space form of the ``[order/order]`` Pade approximant of the delay ``exp(-s tau)``.
+
+    Parameters
+    ----------
+    tau : float
+        Delay, s (> 0).
+    order : int
+        Degree of numerator and denominator (>= 1).
+
+    Returns
+    -------
+    (Ad, Bd, Cd, Dd)
+        Shapes ``(n, n)``, ``(n, 1)``, ``(1, n)``, ``(1, 1)``: ``z' = Ad z + Bd w``, ``w(t - tau) ~ Cd z + Dd w``.
+    """
+    if not (math.isfinite(tau) and tau > 0):
+        raise ValueError(f"tau={tau!r} is invalid; valid range: > 0 s")
+    if int(order) != order or order < 1:
+        raise ValueError(f"order={order!r} is invalid; valid range: an integer >= 1")
+    n = int(order)
+    c = [factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
+         for k in range(n + 1)]
+    num = [c[k] * (-tau) ** k for k in range(n, -1, -1)]
+    den = [c[k] * tau**k for k in range(n, -1, -1)]
+    Ad, Bd, Cd, Dd = tf2ss(num, den)
+    return Ad, Bd, Cd, Dd
+
+
+def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
+                       order: int = PADE_ORDER) -> np.ndarray:
+    """State matrix of the plant ``x' = A x + B u`` closed by ``u(t) = -(gains . C x)(t - tau)`` (Pade delay).
+
+    Parameters
+    ----------
+    A : ndarray (n, n)
+    B : ndarray (n, 1)
+    C : ndarray (p, n)
+        What the operator sees.
+    gains : ndarray (..., p)
+        Operator gains; leading axes give a batch of closed loops.
+    tau : float
+        Delay, s.
+    order : int
+        Pade order.
+
+    Returns
+    -------
+    ndarray (..., n + order, n + order)
+    """
+    Ad, Bd, Cd, Dd = pade(tau, order)
+    g = np.asarray(gains, dtype=float)
+    Kc = g @ C                                          # (..., n): the operator's combination of the states
+    n, m = A.shape[0], Ad.shape[0]
+    out = np.zeros(g.shape[:-1] + (n + m, n + m))
+    out[..., :n, :n] = A - (B[:, 0] * float(Dd[0, 0]))[:, None] * Kc[..., None, :]
+    out[..., :n, n:] = -B @ Cd
+    out[..., n:, :n] = Bd[:, 0][:, None] * Kc[..., None, :]
+    out[..., n:, n:] = Ad
+    return out
+
+
+def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
+             order: int = PADE_ORDER) -> np.ndarray:
+    """Largest real part of the closed loop's eigenvalues (1/s): negative means stable.
+
+    Parameters
+    ----------
+    A, B, C, gains, tau, order
+        As :func:`closed_loop_matrix`.
+
+    Returns
+    -------
+    ndarray
+        One per closed loop (shape ``gains.shape[:-1]``).
+    """
+    return np.max(np.linalg.eigvals(closed_loop_matrix(A, B, C, gains, tau, order)).real, axis=-1)
+
+
+def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
+               log_bounds: tuple[tuple[float, float], ...] = (_LOG_KP, _LOG_KD), grid: int = 21,
+               start: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+    """The positive operator gains that make the delayed loop most stable (smallest abscissa).
+
+    A log-spaced grid over ``log_bounds`` (or a given start, e.g. the best gains at a nearby speed), then
+    Nelder-Mead from the best point (the abscissa is not smooth where two roots tie).
+
+    Parameters
+    ----------
+    A, B, C, tau, order
+        As :func:`closed_loop_matrix` (``C`` has one row per gain).
+    log_bounds : tuple of (float, float)
+        log10 range of each gain.
+    grid : int
+        Grid points per gain (without ``start``).
+    start : ndarray, optional
+        Gains to start from instead of the grid.
+
+    Returns
+    -------
+    (ndarray, float)
+        The gains and the abscissa they give (1/s).
+    """
+    lo_b = np.array([lo for lo, _ in log_bounds])
+    hi_b = np.array([hi for _, hi in log_bounds])
+
+    def f(x: np.ndarray) -> float:
+        return float(abscissa(A, B, C, 10.0 ** np.clip(x, lo_b, hi_b)[None, :], tau, order)[0])
+
+    if start is None:
+        axes = [np.linspace(lo, hi, grid) for lo, hi in log_bounds]
+        mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
+        values = abscissa(A, B, C, 10.0**mesh, tau, order)
+        x0, v0 = mesh[int(np.argmin(values))], float(values.min())
+    else:
+        x0 = np.clip(np.log10(np.asarray(start, dtype=float)), lo_b, hi_b)
+        v0 = f(x0)
+    res = minimize(f, x0, method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1e-6, "maxiter": 400})
+    best = np.clip(res.x, lo_b, hi_b)
+    value = f(best)
+    if value > v0:
+        best, value = x0, v0
+    return 10.0**best, value
+
+
+def heading_plant(chair: Chair, speed: float, model: str = "exact") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The linear chair (free casters) with its heading, driven by a yaw moment; the driver sees heading and rate.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        m/s (> 0).
+    model : {"exact", "thesis"}
+
+    Returns
+    -------
+    (A, B, C)
+        States ``[v, r, eta, eta_dot, beta, beta_dot, psi]``; input the yaw moment (N m); outputs ``psi`` (rad)
+        and ``r`` (rad/s).
+    """
+    A6 = state_matrices(chair, speed, model)[0]
+    B6 = input_matrices(chair, speed, model)[0]
+    A = np.zeros((7, 7))
+    A[:6, :6] = A6
+    A[6, 1] = 1.0                                      # psi' = r
+    B = np.zeros((7, 1))
+    B[:6] = B6
+    C = np.zeros((2, 7))
+    C[0, 6] = 1.0
+    C[1, 1] = 1.0
+    return A, B, C
+
+
+def divergence_rate(chair: Chair, speed: float, model: str = "exact") -> float:
+    """The chair's divergence rate at ``speed``: the largest real part of the free-caster linear model, 1/s."""
+    return float(np.max(np.linalg.eigvals(state_matrices(chair, speed, model)[0]).real))
+
+
+@dataclass(frozen=True)
+class OperatorFit:
+    """The delayed PD operator adapted to the chair at one speed.
+
+    Attributes
+    ----------
+    speed_m_s : float
+    reaction_time_s : float
+    kp_N_m_per_rad, kd_N_m_s_per_rad : float
+        Heading and heading-rate gains.
+    abscissa_1_s : float
+        The closed loop's largest real part, 1/s (negative: the driver holds the chair).
+    crossover_rad_s : float or None
+        Where the open loop's gain crosses 1 (exact delay), rad/s; None if it does not.
+    """
+
+    speed_m_s: float
+    reaction_time_s: float
+    kp_N_m_per_rad: float
+    kd_N_m_s_per_rad: float
+    abscissa_1_s: float
+    crossover_rad_s: float | None
+
+    @property
+    def holds(self) -> bool:
+        """Whether the delayed loop is stable."""
+        return self.abscissa_1_s < 0
+
+
+def _crossover(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray) -> float | None:
+    w = np.logspace(-2, 3, 2000)
+    n = A.shape[0]
+    resp = np.array([(gains @ C @ np.linalg.solve(1j * x * np.eye(n) - A, B))[0] for x in w])
+    mag = np.abs(resp)
+    idx = np.nonzero((mag[:-1] >= 1) & (mag[1:] < 1))[0]
+    if len(idx) == 0:
+        return None
+    k = int(idx[-1])
+    f = (math.log(mag[k]) - 0.0) / (math.log(mag[k]) - math.log(mag[k + 1]))
+    return float(math.exp(math.log(w[k]) + f * (math.log(w[k + 1]) - math.log(w[k]))))
+
+
+def operator_fit(chair: Chair, speed: float, driver: Driver | None = None, model: str = "exact",
+                 order: int = PADE_ORDER) -> OperatorFit:
+    """The driver's best gains at ``speed`` and how stable they make the chair.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        m/s.
+    driver : Driver, optional
+        Default :class:`Driver`.
+    model : {"exact", "thesis"}
+    order : int
+        Pade order.
+
+    Returns
+    -------
+    OperatorFit
+    """
+    d = driver or Driver()
+    check_model(model)
+    speed = float(check_speed(speed))
+    A, B, C = heading_plant(chair, speed, model)
+    g, a = best_gains(A, B, C, d.reaction_time_s, order)
+    return OperatorFit(speed, d.reaction_time_s, float(g[0]), float(g[1]), float(a), _crossover(A, B, C, g))
+
+
+@dataclass(frozen=True)
+class HumanLimit:
+    """The human-limited speed of a chair for one driver.
+
+    Attributes
+    ----------
+    chair : str
+    model : str
+    reaction_time_s : float
+    rule_speed_m_s : float
+        Where ``lambda(U) tau = 1`` (the divergence rule), or the searched range's end (see ``rule_side``).
+    rule_side : str
+        ``"="`` found, ``">"`` above the range (the driver holds the chair at every speed searched), ``"<"`` below.
+    loop_speed_m_s : float
+        Where the best delayed PD loop stops being stable, or the range's end (``loop_side``).
+    loop_side : str
+    pade_order : int
+    pade_error_m_s : float
+        ``|loop_speed(order) - loop_speed(2 order)|``: the Pade approximant's effect on the loop limit.
+    speed_range_m_s : tuple of float
+    """
+
+    chair: str
+    model: str
+    reaction_time_s: float
+    rule_speed_m_s: float
+    rule_side: str
+    loop_speed_m_s: float
+    loop_side: str
+    pade_order: int
+    pade_error_m_s: float
+    speed_range_m_s: tuple = SPEED_RANGE_M_S
+
+    @property
+    def speed_m_s(self) -> float:
+        """The human-limited speed: the lower of the two limits (a bound when both are bounds), m/s."""
+        return min(self.rule_speed_m_s, self.loop_speed_m_s)
+
+    @property
+    def side(self) -> str:
+        """``"="``, or ``">"`` when neither limit lies in the searched range (``"<"``: below it)."""
+        sides = {self.rule_side, self.loop_side}
+        return "<" if "<" in sides else "=" if "=" in sides else ">"
+
+    @property
+    def limited_by(self) -> str:
+        """Which limit is the lower: ``"divergence rule"`` or ``"delayed loop"``."""
+        return "divergence rule" if self.rule_speed_m_s <= self.loop_speed_m_s else "delayed loop"
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict (key convention: unit last)."""
+        return {"speed_m_s": self.speed_m_s, "side": self.side, "limited_by": self.limited_by,
+                "reaction_time_s": self.reaction_time_s, "model": self.model,
+                "divergence_rule_speed_m_s": self.rule_speed_m_s, "divergence_rule_side": self.rule_side,
+                "delayed_loop_speed_m_s": self.loop_speed_m_s, "delayed_loop_side": self.loop_side,
+                "pade_order": self.pade_order, "pade_error_m_s": self.pade_error_m_s,
+                "speed_range_m_s": list(self.speed_range_m_s)}
+
+
+def _first_crossing(f, grid: np.ndarray) -> tuple[float, str]:
+    """The first speed on ``grid`` where ``f`` turns >= 0, refined by bisection to :data:`SPEED_TOL_M_S`; or a
+    bound (``"<"``: already at the grid's start, ``">"``: not on the grid)."""
+    if f(float(grid[0])) >= 0:
+        return float(grid[0]), "<"
+    for k in range(1, len(grid)):
+        if f(float(grid[k])) >= 0:
+            lo, hi = float(grid[k - 1]), float(grid[k])
+            while hi - lo > SPEED_TOL_M_S:
+                mid = 0.5 * (lo + hi)
+                lo, hi = (lo, mid) if f(mid) >= 0 else (mid, hi)
+            return 0.5 * (lo + hi), "="
+    return float(grid[-1]), ">"
+
+
+class _LoopAbscissa:
+    """``U -> best abscissa`` of the delayed loop, warm-started from the best gains at the last speed."""
+
+    def __init__(self, chair: Chair, tau: float, model: str, order: int) -> None:
+        self.chair, self.tau, self.model, self.order = chair, tau, model, order
+        self.gains: np.ndarray | None = None
+
+    def __call__(self, u: float) -> float:
+        A, B, C = heading_plant(self.chair, u, self.model)
+        if self.gains is not None:          # the optimum moves smoothly with speed: start from the last one's
+            g, a = best_gains(A, B, C, self.tau, self.order, start=self.gains)
+            if a < 0:
+                self.gains = g
+                return a
+        g, a = best_gains(A, B, C, self.tau, self.order)      # the grid: a crossing is never declared without it
+        if self.gains is not None:
+            g2, a2 = best_gains(A, B, C, self.tau, self.order, start=self.gains)
+            if a2 < a:
+                g, a = g2, a2
+        self.gains = g
+        return a
+
+
+def human_limit(chair: Chair, driver: Driver | None = None, model: str = "exact",
+                order: int = PADE_ORDER) -> HumanLimit:
+    """The speeds above which this driver cannot hold this chair straight (linear, frictionless casters).
+
+    Parameters
+    ----------
+    chair : Chair
+    driver : Driver, optional
+        Default :class:`Driver` (0.3 s).
+    model : {"exact", "thesis"}
+    order : int
+        Pade order of the delay.
+
+    Returns
+    -------
+    HumanLimit
+        The loop limit's Pade error is estimated from the abscissa at the limit with twice the order, divided
+        by the abscissa's slope in speed there.
+    """
+    d = driver or Driver()
+    check_model(model)
+    tau = d.reaction_time_s
+    rule, rule_side = _first_crossing(lambda u: divergence_rate(chair, u, model) * tau - 1.0, _GRID)
+    f = _LoopAbscissa(chair, tau, model, order)
+    speed, side = _first_crossing(f, _GRID)
+    err = 0.0
+    if side == "=":
+        A, B, C = heading_plant(chair, speed, model)
+        g, a = best_gains(A, B, C, tau, order)
+        a2 = best_gains(A, B, C, tau, 2 * order, start=g)[1]
+        h = 0.01
+        slope = (f(speed + h) - f(speed - h)) / (2 * h)
+        err = abs(a2 - a) / abs(slope) if slope else math.inf
+    return HumanLimit(chair.name, model, tau, rule, rule_side, speed, side, order, float(err))

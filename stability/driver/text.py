@@ -1,0 +1,54 @@
+"""The human-limited speed in words: one sentence that every command and the report print."""
+
+from __future__ import annotations
+
+from stability.driver.linear import HumanLimit
+from stability.driver.model import Driver
+
+__all__ = ["human_text", "human_sentence"]
+
+
+def human_sentence(h: HumanLimit, driver: Driver) -> str:
+    """``"A driver who corrects the heading 0.3 s late can hold this chair up to 1.79 m/s (6.5 km/h)"``.
+
+    Parameters
+    ----------
+    h : HumanLimit
+    driver : Driver
+
+    Returns
+    -------
+    str
+        Without a final full stop; a bound reads "beyond 6 m/s (the fastest speed checked)".
+    """
+    u = h.speed_m_s
+    if h.side == ">":
+        where = f"at every speed checked, up to {u:g} m/s ({3.6 * u:.1f} km/h)"
+    elif h.side == "<":
+        where = f"not even at {u:g} m/s, the slowest speed checked"
+    else:
+        where = f"up to {u:.3g} m/s ({3.6 * u:.1f} km/h)"
+    return f"A driver who corrects the heading {driver.reaction_time_s:g} s late can hold this chair straight {where}"
+
+
+def human_text(h: HumanLimit, driver: Driver) -> str:
+    """The human-limited speed as the commands print it: the sentence, the two limits and what they leave out.
+
+    Parameters
+    ----------
+    h : HumanLimit
+    driver : Driver
+
+    Returns
+    -------
+    str
+    """
+    def bound(u: float, side: str) -> str:       # a bound is a value: "> 6 m/s" (stability.study.censored)
+        return ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s"
+
+    rule, loop = bound(h.rule_speed_m_s, h.rule_side), bound(h.loop_speed_m_s, h.loop_side)
+    return (f"Driver (reaction time {driver.reaction_time_s:g} s, from {driver.source}):\n"
+            f"  {human_sentence(h, driver)} ({h.model} model, free frictionless casters).\n"
+            f"  divergence rule (the chair's divergence rate reaches 1/tau): {rule}\n"
+            f"  delayed loop (the driver's best delayed heading correction on the full linear chair): {loop}\n"
+            "  Linear: pin friction holds more, and the model has no fatigue, preview or learning (docs/driver.md).")

@@ -1,0 +1,191 @@
+"""The driver in the loop (stability.driver): the human-limited speed against closed forms and an exact-delay
+simulation of the delayed loop.
+
+Independent statements used:
+
+- Delayed proportional control of a one-state divergence ``x' = lam x - k x(t - tau)``: the best achievable
+  rightmost root is the double root ``s* = lam - 1/tau`` at ``k* = exp(lam tau - 1) / tau`` (from ``f(s) = s - lam +
+  k exp(-s tau) = 0`` and ``f'(s) = 0``), so the loop can be stabilised exactly while ``lam tau < 1``
+  (Stepan & Kollar 2000).
+- The Pade approximant against python-control's ``control.pade`` and against ``exp(-j w tau)`` itself.
+- The delayed loop of the full linear chair simulated with the exact delay (a delay line of whole steps, the
+  plant discretised exactly with a zero-order hold), not through the Pade approximant.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.linalg import expm
+
+from stability.chair import preset
+from stability.driver import Driver, human_limit, operator_fit, yaw_moment_limit
+from stability.driver.linear import (
+    SPEED_TOL_M_S,
+    abscissa,
+    best_gains,
+    closed_loop_matrix,
+    divergence_rate,
+    heading_plant,
+    pade,
+)
+
+
+@pytest.mark.parametrize(("lam", "tau"), [(1.0, 0.3), (2.0, 0.3), (3.0, 0.3), (1.0, 0.8), (-0.5, 0.4)])
+def test_best_gain_of_a_one_state_divergence_is_the_double_root(lam, tau):
+    """Nelder-Mead on a double-root optimum: observed |error| <= 1.2e-6 1/s in the abscissa and 1e-6 relative in
+    the gain; asserted with a margin of about 100."""
+    A, B, C = np.array([[lam]]), np.array([[1.0]]), np.array([[1.0]])
+    g, a = best_gains(A, B, C, tau, log_bounds=((-3.0, 3.0),))
+    assert a == pytest.approx(lam - 1.0 / tau, abs=1e-4)
+    assert g[0] == pytest.approx(math.exp(lam * tau - 1.0) / tau, rel=1e-4)
+    assert (a < 0) == (lam * tau < 1)
+
+
+def test_pade_is_python_controls_and_the_delay():
+    """The state-space Pade approximant has python-control's transfer function, and matches exp(-j w tau) to
+    the approximant's own truncation error at low frequency (order 8 at w tau <= 1: below 1e-12)."""
+    import control
+
+    tau = 0.3
+    Ad, Bd, Cd, Dd = pade(tau, 8)
+    num, den = control.pade(tau, 8)
+    w = np.logspace(-2, 1.5, 50)
+    ours = np.array([(Cd @ np.linalg.solve(1j * x * np.eye(8) - Ad, Bd) + Dd)[0, 0] for x in w])
+    theirs = np.polyval(num, 1j * w) / np.polyval(den, 1j * w)
+    assert np.max(np.abs(ours - theirs)) < 1e-9
+    low = w * tau <= 1
+    assert np.max(np.abs(ours[low] - np.exp(-1j * w[low] * tau))) < 1e-12
+    assert np.allclose(np.abs(ours), 1.0, atol=1e-9)             # all-pass
+    with pytest.raises(ValueError, match="tau"):
+        pade(0.0)
+
+
+def test_closed_loop_without_delay_effect_at_zero_gain_is_the_plant():
+    """At zero gains the closed loop's eigenvalues are the plant's and the Pade block's own poles."""
+    A, B, C = heading_plant(preset("ej-premier"), 1.0)
+    M = closed_loop_matrix(A, B, C, np.zeros(2), 0.3)
+    ev = np.sort_complex(np.linalg.eigvals(M))
+    expected = np.sort_complex(np.concatenate([np.linalg.eigvals(A), np.linalg.eigvals(pade(0.3)[0])]))
+    assert np.allclose(ev, expected, atol=1e-8)
+
+
+def test_divergence_rule_speed_is_where_lambda_tau_is_one():
+    """lambda(U_rule) tau = 1 to the search's speed tolerance times the rate's slope (about 2 1/s per m/s)."""
+    c = preset("ej-premier")
+    for tau in (0.3, 0.4):
+        h = human_limit(c, Driver(tau))
+        assert h.rule_side == "="
+        assert divergence_rate(c, h.rule_speed_m_s) * tau == pytest.approx(1.0, abs=100 * SPEED_TOL_M_S * 2.0 * tau)
+        assert divergence_rate(c, h.rule_speed_m_s - 0.05) * tau < 1 < divergence_rate(c, h.rule_speed_m_s + 0.05) * tau
+
+
+def _simulate_delayed_loop(A, B, C, gains, tau, t_end=12.0, dt=1e-3):
+    """The delayed loop with the exact delay: ZOH plant, the operator's output delayed by tau/dt whole steps."""
+    n = A.shape[0]
+    Phi = expm(A * dt)
+    Gam = np.linalg.solve(A, (Phi - np.eye(n))) @ B if abs(np.linalg.det(A)) > 1e-12 else \
+        sum(np.linalg.matrix_power(A * dt, k) / math.factorial(k + 1) for k in range(20)) @ B * dt
+    steps, lag = int(round(t_end / dt)), int(round(tau / dt))
+    x = np.zeros(n)
+    x[1] = 0.01                               # a small yaw-rate disturbance
+    buf = np.zeros(lag)
+    norms = np.empty(steps)
+    for k in range(steps):
+        u = -buf[k % lag]
+        buf[k % lag] = float(gains @ C @ x)
+        x = Phi @ x + Gam[:, 0] * u
+        norms[k] = np.linalg.norm(x)
+    return np.arange(1, steps + 1) * dt, norms
+
+
+def _characteristic(s, A, B, C, gains, tau):
+    """det(s I - A + exp(-s tau) B K C): the exact delayed loop's characteristic function."""
+    return np.linalg.det(s * np.eye(A.shape[0]) - A + np.exp(-s * tau) * (B @ (gains @ C)[None, :]))
+
+
+def _newton(s, *args):
+    for _ in range(60):
+        h = 1e-6 * (1 + abs(s))
+        d = (_characteristic(s + h, *args) - _characteristic(s - h, *args)) / (2 * h)
+        step = _characteristic(s, *args) / d
+        s -= step
+        if abs(step) < 1e-13 * (1 + abs(s)):
+            break
+    return s
+
+
+def _rhp_zeros(*args, radius=200.0, n=6000):
+    """Zeros of the exact characteristic function in the right half-disk (argument principle; the loop is
+    retarded, so its right-half-plane roots are bounded and a large half-disk holds them all)."""
+    w = radius * np.sinh(np.linspace(-1, 1, n) * np.arcsinh(radius)) / radius     # dense near the origin
+    up = 1e-9 + 1j * w
+    back = radius * np.exp(1j * np.linspace(np.pi / 2, -np.pi / 2, n))
+    phase = np.unwrap(np.angle([_characteristic(x, *args) for x in np.concatenate([up, back])]))
+    return -round((phase[-1] - phase[0]) / (2 * np.pi))      # the contour runs clockwise
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "power-fwd"])
+def test_loop_limit_against_the_exact_delay(name):
+    """Below the loop limit the best gains hold the chair, above it they cannot, checked without the Pade
+    approximant: (1) the exact delayed characteristic function has no right-half-plane zero below and at least
+    one above (argument principle); (2) the Pade loop's rightmost roots, refined by Newton on the exact
+    characteristic function, move by < 1e-7 (observed 1e-11: Pade [8/8] is exact to ~1e-14 at |s tau| < 0.3);
+    (3) a simulation with the exact delay (a delay line of whole 1 ms steps) decays below and grows above."""
+    c = preset(name)
+    tau = 0.3
+    h = human_limit(c, Driver(tau))
+    assert h.loop_side == "=" and h.pade_error_m_s < 0.01
+    for factor in (0.85, 1.15):
+        u = factor * h.loop_speed_m_s
+        fit = operator_fit(c, u, Driver(tau))
+        A, B, C = heading_plant(c, u)
+        g = np.array([fit.kp_N_m_per_rad, fit.kd_N_m_s_per_rad])
+        args = (A, B, C, g, tau)
+        assert (_rhp_zeros(*args) == 0) == (factor < 1)
+        ev = np.linalg.eigvals(closed_loop_matrix(A, B, C, g, tau))
+        for root in ev[np.argsort(-ev.real)][:3]:
+            assert abs(_newton(root, *args) - root) < 1e-7
+        t, norms = _simulate_delayed_loop(A, B, C, g, tau)
+        late = t > t[-1] / 2
+        growth = float(np.polyfit(t[late], np.log(norms[late]), 1)[0])
+        assert (growth < 0) == (factor < 1), (factor, growth)
+        assert fit.holds == (factor < 1)
+
+
+def test_slower_driver_lower_speed_and_a_bound_is_a_bound():
+    c = preset("revised")
+    speeds = [human_limit(c, Driver(t)).loop_speed_m_s for t in (0.2, 0.3, 0.45)]
+    assert speeds[0] > speeds[1] > speeds[2]
+    front = human_limit(preset("ej-premier-front-caster"), Driver(0.3))     # stable: no limit in the range
+    assert front.rule_side == ">" and front.loop_side == ">" and front.loop_speed_m_s == front.speed_range_m_s[1]
+
+
+def test_driver_refuses_bad_values_naming_them():
+    with pytest.raises(ValueError, match=r"reaction_time_s=5.0 is invalid; valid range: 0.05 to 2 s"):
+        Driver(5.0)
+    with pytest.raises(TypeError, match="reaction_time_s"):
+        Driver("0.3")          # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="hand_force_N"):
+        Driver(0.3, hand_force_N=-1.0)
+
+
+def test_yaw_moment_limit_closed_form():
+    """Manual: F (r_rim / R) (d1 + d2); power: T (d1 + d2) / r (docs/power-chair.md)."""
+    from stability.settings import defaults as D
+
+    c = preset("ej-premier")
+    assert yaw_moment_limit(c, Driver(hand_force_N=50.0)) == pytest.approx(
+        50.0 * D.HANDRIM_RADIUS / D.HANDRIM_WHEEL_RADIUS * (c.d1 + c.d2))
+    p = preset("power-fwd")
+    assert yaw_moment_limit(p, Driver()) == pytest.approx(D.TORQUE_LIMIT * (p.d1 + p.d2) / D.DRIVE_WHEEL_RADIUS)
+
+
+def test_abscissa_batches():
+    A, B, C = heading_plant(preset("ej-premier"), 0.75)
+    g = np.array([[10.0, 5.0], [100.0, 20.0]])
+    batch = abscissa(A, B, C, g, 0.3)
+    one = [abscissa(A, B, C, g[i][None, :], 0.3)[0] for i in range(2)]
+    assert np.allclose(batch, one, rtol=0, atol=1e-12)
