@@ -215,3 +215,37 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
     assert d["recommendations"][0]["label"] == a.recommendations[0].candidate.label
     assert [b["label"] for b in d["blocked"]] == [b.candidate.label for b in a.blocked]
     assert d["pairs_screened"] == a.pairs_screened > 0 and d["shimmy_hold"]["amplitude_deg"] > 0
+
+
+def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks():
+    """A user who corrects 0.4 s late and wants to drive at 1.3 m/s (issue 37): the recommended chair's divergence
+    rate at 1.3 m/s, from the linear model's eigenvalues directly, is below 1/tau (the divergence rule, the
+    quantity a critical tracking task measures); a change the driver limit blocks names the intended speed it
+    would allow.  Without the driver the same advisor may recommend a change that breaks it."""
+    import numpy as np
+
+    from stability.driver import Driver
+    from stability.linear import state_matrices
+
+    tau, intended = 0.4, 1.3
+    chair = chair_mod.preset("revised")
+
+    def rate(c) -> float:
+        return float(np.max(np.linalg.eigvals(state_matrices(c, intended)[0]).real))
+
+    assert rate(chair) * tau > 1                                # the premise: this user cannot drive it at 1.3 m/s
+    a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=0.0,
+               driver=Driver(tau), intended_speed=intended)
+    rec = a.recommendations[0].candidate
+    c = apply(chair, list(rec.fields.items()))
+    if rec.changes:
+        assert rate(c) * tau <= 1 + 1e-6, rec.label
+    else:                                                       # nothing fixes it cheaply: every fix is named
+        assert any(k.name == "human_limited_speed_m_s" and not k.met for k in a.own_constraints)
+    blocked = [b for b in a.blocked if any(k.name == "human_limited_speed_m_s" for k in b.limits)]
+    for b in blocked:
+        assert "--intended-speed" in b.allow
+        assert rate(apply(chair, list(b.candidate.fields.items()))) * tau > 1 - 1e-6
+    data = advice_mapping(a)
+    assert any(x["name"] == "human_limited_speed_m_s" for x in data["decision"]["costs"])
+    assert "can hold this chair straight" in " ".join(data["decision"]["verdict"])

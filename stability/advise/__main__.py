@@ -25,6 +25,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "standard minimum was found, docs/tipping.md)")
     p.add_argument("--cross-slope", type=float, default=D.ADVISE_CROSS_SLOPE_DEG, metavar="DEG",
                    help=f"cross slope of the hand-rim force constraint, deg (default {D.ADVISE_CROSS_SLOPE_DEG:g})")
+    cli.add_driver_options(p)
+    p.add_argument("--intended-speed", type=float, default=None, metavar="U",
+                   help="the speed the user wants to drive at, m/s (with --reaction-time or the chair file's [user]: "
+                        "a change must keep it within what that driver can hold; default the fastest use speed)")
     p.add_argument("--no-progress", action="store_true", help="no progress bars on stderr")
     cli.add_json_options(p)
     return p
@@ -57,12 +61,18 @@ def _body(a: argparse.Namespace) -> int:
     if not (math.isfinite(a.cross_slope) and 0 <= a.cross_slope <= 8):
         raise ValueError(f"--cross-slope {a.cross_slope!r} is invalid; valid range: 0 to 8 deg")
     chair = cli.load_chair(a.chair, a.set)
+    driver = cli.driver_from_args(a)
+    if a.intended_speed is not None:
+        if driver is None:
+            raise ValueError("--intended-speed needs --reaction-time (or a chair file with a [user] table)")
+        if not (math.isfinite(a.intended_speed) and 0.1 <= a.intended_speed <= 6.0):
+            raise ValueError(f"--intended-speed {a.intended_speed!r} is invalid; valid range: 0.1 to 6 m/s")
     unc = None
     if a.uncertainty:
         from stability.uncertainty import load_uncertainty
         unc = load_uncertainty(a.uncertainty)
     advice = advise(chair, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=a.cross_slope,
-                    progress=not a.no_progress)
+                    progress=not a.no_progress, driver=driver, intended_speed=a.intended_speed)
     data = advice_mapping(advice)
     if unc is not None:
         from stability.advise.uncertain import tip_interval
@@ -71,7 +81,9 @@ def _body(a: argparse.Namespace) -> int:
         data["verdict"]["static_stability_interval_source"] = f"{a.uncertainty} (2.5-97.5 % of 200 draws)"
     if a.json or a.json_file:
         options = {"speeds_m_s": list(speeds), "uncertainty": a.uncertainty, "min_tip_deg": a.min_tip_deg,
-                   "cross_slope_deg": a.cross_slope}
+                   "cross_slope_deg": a.cross_slope,
+                   "reaction_time_s": None if driver is None else driver.reaction_time_s,
+                   "intended_speed_m_s": advice.intended_speed_m_s}
         cli.emit_json({**cli.json_header(chair, "exact", options), **data}, a)
         if a.json:
             return 0

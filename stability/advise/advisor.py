@@ -34,6 +34,7 @@ from stability.advise.limits import (
 from stability.advise.limits import constraints as constraints_of
 from stability.advise.measures import Linear, Measures, linear_measures, measure_chairs
 from stability.chair import Chair
+from stability.driver.model import Driver
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
 from stability.settings.run import RunSpec
@@ -166,6 +167,10 @@ class Advice:
         Pairs of changes screened on the constraints, and measured by simulation.
     own_constraints : tuple of Constraint
         The chair as it is against every limit (what it already breaks).
+    driver : Driver or None
+        The user whose reaction time the human-limited speed constraint uses.
+    intended_speed_m_s : float or None
+        The speed that driver must be able to hold, m/s.
     """
 
     chair: Chair
@@ -185,6 +190,8 @@ class Advice:
     pairs_screened: int = 0
     pairs_measured: int = 0
     own_constraints: tuple = ()
+    driver: Driver | None = None
+    intended_speed_m_s: float | None = None
 
 
 @dataclass(frozen=True)
@@ -302,7 +309,8 @@ def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Bloc
 
 def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
            cross_slope_deg: float = DEFAULT_CROSS_SLOPE_DEG, progress: bool = False,
-           nonlinear: Callable | None = None, time_to_correct: bool = True) -> Advice:
+           nonlinear: Callable | None = None, time_to_correct: bool = True, driver: Driver | None = None,
+           intended_speed: float | None = None) -> Advice:
     """Verdict, levers and recommendation for ``chair``.
 
     Parameters
@@ -322,16 +330,27 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
         Replaces :func:`.measures.nonlinear_measures` (tests of everything else).
     time_to_correct : bool
         Simulate the reference push at the use speeds for the verdict (default True).
+    driver : Driver, optional
+        The user: adds the constraint that the speed this driver can hold (the divergence rule,
+        :func:`stability.driver.linear.rule_speed`) reaches ``intended_speed``.
+    intended_speed : float, optional
+        m/s; default the fastest use speed (with a driver only).
 
     Returns
     -------
     Advice
     """
     use = tuple(float(u) for u in speeds)
+    tau = None if driver is None else driver.reaction_time_s
+    if intended_speed is not None and driver is None:
+        raise ValueError("intended_speed needs a driver (driver=Driver(reaction_time_s))")
+    intended = None if driver is None else float(max(use) if intended_speed is None else intended_speed)
+    if intended is not None and not (math.isfinite(intended) and 0.01 <= intended <= 20.0):
+        raise ValueError(f"intended_speed={intended_speed!r} is invalid; valid range: 0.01 to 20 m/s")
     singles, refused = lever_changes(chair)
     cores: dict = {}
     measured = measure_chairs([chair] + [c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
-                              progress=progress, nonlinear=nonlinear, cores=cores)
+                              progress=progress, nonlinear=nonlinear, cores=cores, reaction_time=tau)
     base = measured[0]
     if min_tip_deg is None:
         min_tip = float(base.static_stability_deg.value or 0.0)
@@ -340,7 +359,8 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
         min_tip, source = float(min_tip_deg), "--min-tip-deg"
 
     def constraints(m: Measures | Linear) -> tuple:
-        return constraints_of(m, base, min_tip, source, cross_slope_deg)
+        return constraints_of(m, base, min_tip, source, cross_slope_deg,
+                              None if tau is None or intended is None else (tau, intended))
 
     def candidate(changes: tuple, m: Measures) -> Candidate:
         g, gs = _gain(m, base)
@@ -349,9 +369,9 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
     cands = [candidate((ch,), m) for (ch, _), m in zip(singles, measured[1:], strict=True)]
     own = constraints(base)
     broken = {k.name for k in own if not k.met}            # what the chair as it is already breaks
-    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores)
+    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores, tau)
     cm = measure_chairs([c for _, c in chosen], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
-                        nonlinear=nonlinear, cores=cores) if chosen else []
+                        nonlinear=nonlinear, cores=cores, reaction_time=tau) if chosen else []
     combined = [candidate(tuple(x.changes[0] for x in combo), m) for (combo, _), m in zip(chosen, cm, strict=True)]
 
     feasible = sorted((c for c in cands + combined if c.feasible), key=lambda c: -c.gain)
@@ -375,11 +395,11 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
             times.append(None)
     return Advice(chair, use, float(cross_slope_deg), min_tip, source, base, tuple(times), tuple(cands),
                   tuple(combined), tuple(refused), tuple(recs), "", tuple(blocked), shimmy_hold(chair, use),
-                  n_screened, len(chosen), own)
+                  n_screened, len(chosen), own, driver, intended)
 
 
 def _screen(chair: Chair, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
-            cross_slope_deg: float, cores: dict) -> tuple[list, int]:
+            cross_slope_deg: float, cores: dict, reaction_time: float | None = None) -> tuple[list, int]:
     """The combinations worth simulating: every pair of two levers screened on the limits alone (no simulation),
     those that meet every limit ranked by the gain their parts predict (the best :data:`PAIR_BUDGET`), the best
     :data:`BLOCKED_BUDGET` that a limit blocks but predict more (to be named with their values), and the triple
@@ -390,7 +410,8 @@ def _screen(chair: Chair, cands: list[Candidate], broken: set, constraints: Call
             screened.append((combo, apply(chair, [f for x in combo for f in x.changes[0].fields])))
         except ValueError:
             continue
-    lin = linear_measures([c for _, c in screened], speeds=use, cross_slope_deg=cross_slope_deg, cores=cores)
+    lin = linear_measures([c for _, c in screened], speeds=use, cross_slope_deg=cross_slope_deg, cores=cores,
+                          reaction_time=reaction_time)
     met = [all(k.met for k in constraints(m)) for m in lin]
     passing = sorted((x for x, ok in zip(screened, met, strict=True) if ok), key=lambda x: -_predicted(x[0]))
     chosen = [x for x in passing if _predicted(x[0]) > -MAX_FIX_COST][:PAIR_BUDGET]
@@ -421,7 +442,7 @@ def _explain(recs: list[Recommendation], broken: set, blocked: list[Blocked], ba
     for r in recs:
         c, notes = r.candidate, r.notes
         if broken and c.changes:
-            notes += (f"The chair as it is breaks {breaks}; this change meets every limit "
+            notes += (f"The chair as it is breaks the limit on {breaks}; this change meets every limit "
                       f"({'and gains' if c.gain > 0 else 'at a cost of'} {abs(c.gain) * 100:.0f} % on the robust "
                       "measures).",)
         elif broken:
@@ -429,7 +450,7 @@ def _explain(recs: list[Recommendation], broken: set, blocked: list[Blocked], ba
                    if runner is not None and runner.changes else
                    "no change meets every limit"
                    + (": a limit blocks the fixes found (see BLOCKED BY A LIMIT)" if blocked else ""))
-            notes += (f"The chair as it is breaks {breaks}, and no change fixes it for less than "
+            notes += (f"The chair as it is breaks the limit on {breaks}, and no change fixes it for less than "
                       f"{MAX_FIX_COST * 100:.0f} % of the robust measures; {fix}"
                       + (". The shimmy margin rests on estimated pin stiffness and relaxation length: measure them "
                          "first" if "shimmy_margin_m" in broken else "") + ".",)

@@ -195,6 +195,14 @@ def _verdict(a: Advice) -> tuple:
         out.append(f"It is as unstable as the thesis's reference case ({REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s) "
                    f"{where}{rng}; faster than that it gives the user less time than the reference case.")
     out.append(f"Caster shimmy: {shimmy_sentence(m, a.chair.trail, a.shimmy_hold)}.")
+    if a.driver is not None and m.human_speed_m_s is not None and a.intended_speed_m_s is not None:
+        u = m.human_speed_m_s
+        where = (f"beyond {u:g} m/s, the fastest speed checked" if m.human_side == ">" else
+                 f"up to {u:.3g} m/s ({3.6 * u:.1f} km/h)")
+        verdict = "enough" if u >= a.intended_speed_m_s else "NOT enough"
+        out.append(f"Driver: a driver who corrects the heading {a.driver.reaction_time_s:g} s late can hold this chair "
+                   f"straight {where} (divergence rule, linear); {verdict} for the intended "
+                   f"{a.intended_speed_m_s:g} m/s.")
     return tuple(out)
 
 
@@ -240,6 +248,11 @@ def _costs(a: Advice, c: Candidate) -> tuple:
     if te is not None:
         out.append(Cost("turning_effort_N_m", "pin friction to overcome when turning", "N m",
                         base.turning_effort_N_m, m.turning_effort_N_m, f"<= {te.limit:.3g} N m", te.met, False))
+    hs = lim.get("human_limited_speed_m_s")
+    if hs is not None:
+        out.append(Cost("human_limited_speed_m_s", "speed the driver can hold (driver limit)", "m/s",
+                        base.human_speed_m_s, m.human_speed_m_s, f">= {hs.limit:.3g} m/s (the intended speed)",
+                        hs.met))
     eff = lim.get(m.effort_key)
     if eff is not None:
         words, unit = EFFORT_WORDS[m.drive]
@@ -308,10 +321,10 @@ def decide(a: Advice) -> Decision:
     elif "shimmy_margin_m" in broken_names and a.verdict.shimmy_straddles:
         action = "measure first"
         rec = ("No change yet: measure the pin lateral stiffness and the caster relaxation length first; the chair "
-               f"breaks {', '.join(broken)} on estimates, and no change fixes it cheaply.")
+               f"breaks the limit on {', '.join(broken)} on estimates, and no change fixes it cheaply.")
     else:
         action = "keep"
-        rec = ("No change: " + (f"the chair breaks {', '.join(broken)} and nothing fixes it cheaply."
+        rec = ("No change: " + (f"the chair breaks the limit on {', '.join(broken)} and nothing fixes it cheaply."
                                 if broken else "no change meets every limit and improves the chair."))
     runner = None
     if len(a.recommendations) > 1:

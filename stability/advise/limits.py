@@ -102,7 +102,8 @@ class ShimmyHold:
                 "trail_m": self.trail_m, "held": self.held}
 
 
-def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source: str, cross_slope: float) -> tuple:
+def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source: str, cross_slope: float,
+                driver: tuple[float, float] | None = None) -> tuple:
     """The constraints on a changed chair against the chair as it is (docs/advise.md).
 
     Parameters
@@ -117,6 +118,8 @@ def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source
         Where ``min_tip`` comes from (the note of its constraint).
     cross_slope : float
         Cross slope of the drive-difference constraint, deg (0: no such constraint).
+    driver : (float, float), optional
+        ``(reaction_time s, intended speed m/s)``: the human-limited speed must reach the intended speed.
 
     Returns
     -------
@@ -141,6 +144,13 @@ def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source
                               v is not None and abs(v) <= lim + 1e-9,
                               f"on a {cross_slope:g} deg cross slope at {REFERENCE_SPEED:g} m/s; at most "
                               f"{HANDRIM_FACTOR:g} x the chair's own"))
+    if driver is not None:
+        tau, intended = driver
+        u = m.human_speed_m_s
+        out.append(Constraint("human_limited_speed_m_s", u, intended, ">=", u is not None and u >= intended - 1e-9,
+                              f"a driver who corrects {tau:g} s late holds the chair up to this speed (the divergence "
+                              "rule lambda(U) tau = 1; docs/driver.md)"
+                              + ("; beyond the speeds checked" if m.human_side == ">" else "")))
     return tuple(out)
 
 
@@ -189,7 +199,8 @@ LIMIT_WORDS = {"static_stability_deg": ("static stability", "deg", 1.0),
                "shimmy_margin_m": ("shimmy margin", "cm", 100.0),
                "turning_effort_N_m": ("turning pin friction", "N m", 1.0),
                "handrim_force_difference_N": ("hand-rim force difference on the cross slope", "N", 1.0),
-               "motor_torque_difference_N_m": ("motor torque difference on the cross slope", "N m", 1.0)}
+               "motor_torque_difference_N_m": ("motor torque difference on the cross slope", "N m", 1.0),
+               "human_limited_speed_m_s": ("the speed the driver can hold", "m/s", 1.0)}
 
 
 def limit_words(name: str) -> str:
@@ -247,6 +258,9 @@ def allow(k: Constraint) -> str:
                 "conclusion 6)")
     if k.name == "shimmy_margin_m":
         return f"no option: the shimmy margin limit is {MIN_SHIMMY_MARGIN_M * 1000:g} mm from the nearest boundary"
+    if k.name == "human_limited_speed_m_s":
+        return (f"--intended-speed {math.floor((k.value or 0.0) * 100) / 100:.2f} (a slower intended speed), or a "
+                "driver who reacts faster (--reaction-time)")
     return "--cross-slope 0 (drops the cross-slope limit)"
 
 
@@ -271,6 +285,8 @@ def allow_words(k: Constraint) -> str:
                 "1987, conclusion 6)")
     if k.name == "shimmy_margin_m":
         return f"no setting allows it (the shimmy margin must be at least {MIN_SHIMMY_MARGIN_M * 1000:g} mm)"
+    if k.name == "human_limited_speed_m_s":
+        return (f"driving no faster than {k.value or 0.0:.2f} m/s, or a driver who reacts faster, would allow it")
     return "dropping the cross-slope limit would allow it"
 
 

@@ -29,6 +29,7 @@ import numpy as np
 
 from stability.chair import Chair
 from stability.chair.power import drive_kind
+from stability.driver.linear import rule_speed
 from stability.linear import eigenvalues_vs_speed
 from stability.runtime.progress import ProgressBar
 from stability.settings.reference import REFERENCE_SPEED
@@ -113,6 +114,11 @@ class Measures:
         where it differs much from the value, the 1 ms step resolves the caster modes too coarsely.
     drive : {"handrim", "motor"}
         What holds the chair on the cross slope (:func:`stability.chair.power.drive_kind`).
+    human_speed_m_s : float or None
+        With a driver: the speed up to which a driver of that reaction time holds the chair (the divergence
+        rule, :func:`stability.driver.linear.rule_speed`), m/s; None without a driver.
+    human_side : str
+        ``"="``, or ``">"`` when beyond the speeds searched.
     """
 
     chair: str
@@ -129,6 +135,8 @@ class Measures:
     critical_impulse_status: str = "found"
     critical_impulse_half_step_Ns: float | None = None
     drive: str = "handrim"
+    human_speed_m_s: float | None = None
+    human_side: str = "="
 
     @property
     def effort_key(self) -> str:
@@ -152,6 +160,8 @@ class Measures:
             self.effort_key: self.cross_slope_effort,
             "growth_rate_1_s": self.growth_rate_1_s,
             "tip_angles_deg": dict(self.tip_angles_deg),
+            "human_limited_speed_m_s": self.human_speed_m_s,
+            "human_limited_side": self.human_side if self.human_speed_m_s is not None else None,
         }
 
 
@@ -235,6 +245,8 @@ class Linear:
     cross_slope_effort : float or None
     drive : str
     growth_rate_1_s : float
+    human_speed_m_s : float or None
+    human_side : str
     """
 
     static_stability_deg: Interval
@@ -245,6 +257,8 @@ class Linear:
     cross_slope_effort: float | None
     drive: str
     growth_rate_1_s: float
+    human_speed_m_s: float | None = None
+    human_side: str = "="
 
     @property
     def effort_key(self) -> str:
@@ -253,7 +267,7 @@ class Linear:
 
 
 def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_slope_deg: float,
-                    cores: dict | None = None) -> list[Linear]:
+                    cores: dict | None = None, reaction_time: float | None = None) -> list[Linear]:
     """The measures that need no simulation, for every chair (about 4 ms a chair, 25 ms with a new band core).
 
     Parameters
@@ -266,6 +280,8 @@ def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_s
     cores : dict, optional
         Cache of shimmy band cores (the band search ignores the trail and the Coulomb pin friction); shared
         between calls.
+    reaction_time : float, optional
+        A driver's effective delay, s: adds the human-limited speed (the divergence rule).
 
     Returns
     -------
@@ -282,17 +298,18 @@ def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_s
         low, high = band.shimmy_margin_interval_m
         angles = {k: getattr(tips, k + "_deg") for k in ("toward_main_wheels", "toward_casters", "lateral_left",
                                                         "lateral_right")}
+        human, side = rule_speed(c, reaction_time) if reaction_time is not None else (None, "=")
         out.append(Linear(
             Interval(tips.smallest_deg, tips.smallest_deg, tips.smallest_deg), angles,
             Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low), _finite_or_none(high)),
             band.straddles, max(c.pin_friction_left, c.pin_friction_right), cross_slope_effort(c, cross_slope_deg),
-            drive_kind(c), float(np.max(eigenvalues_vs_speed(c, [IMPULSE_SPEED], track=False).real))))
+            drive_kind(c), float(np.max(eigenvalues_vs_speed(c, [IMPULSE_SPEED], track=False).real)), human, side))
     return out
 
 
 def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_slope_deg: float,
                    progress: bool = False, nonlinear: Callable | None = None,
-                   cores: dict | None = None) -> list[Measures]:
+                   cores: dict | None = None, reaction_time: float | None = None) -> list[Measures]:
     """The advisor's measures of every chair, each study in one batch for all of them.
 
     Parameters
@@ -308,6 +325,8 @@ def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_sl
         Replaces :func:`nonlinear_measures` (same signature); for tests of everything else.
     cores : dict, optional
         Shimmy band cores to share (:func:`linear_measures`).
+    reaction_time : float, optional
+        A driver's effective delay, s (:func:`linear_measures`).
 
     Returns
     -------
@@ -321,7 +340,9 @@ def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_sl
         out = []
         for c, lin, (imp, eq, status, *more) in zip(chairs, linear_measures(chairs, speeds=speeds,
                                                                              cross_slope_deg=cross_slope_deg,
-                                                                             cores=cores), nl, strict=True):
+                                                                             cores=cores,
+                                                                             reaction_time=reaction_time),
+                                                             nl, strict=True):
             out.append(Measures(
                 chair=c.name, critical_impulse_Ns=imp, equal_instability_speed_m_s=eq,
                 static_stability_deg=lin.static_stability_deg,
@@ -330,6 +351,7 @@ def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_sl
                 growth_rate_1_s=lin.growth_rate_1_s, tip_angles_deg=lin.tip_angles_deg,
                 equal_instability_status=status, critical_impulse_status=more[0] if more else "found",
                 critical_impulse_half_step_Ns=more[1] if len(more) > 1 else None, drive=lin.drive,
+                human_speed_m_s=lin.human_speed_m_s, human_side=lin.human_side,
             ))
         bar.update()
     return out

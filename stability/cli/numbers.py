@@ -51,6 +51,7 @@ OPTION_BOUNDS: dict[str, Bound] = {
     "--sim-time": Bound(0.0, 3600.0, "s", open_lo=True),
     # the driver's effective delay: stability.driver.model.REACTION_TIME_RANGE_S (a reflex to a slow correction)
     "--reaction-time": Bound(0.05, 2.0, "s"),
+    "--intended-speed": Bound(0.1, 6.0, "m/s"),                 # the human-limited speed's search range
     # integrator tolerances: below 1e-12 (relative) or 1e-14 (absolute, states of order 1) double precision
     # (eps 2.2e-16) cannot meet them and the step size collapses
     # assist: drive train, gyro and controller

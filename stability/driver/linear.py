@@ -31,7 +31,7 @@ from stability.linear import input_matrices, state_matrices
 from stability.runtime.checks import check_model, check_speed
 
 __all__ = ["PADE_ORDER", "SPEED_RANGE_M_S", "pade", "closed_loop_matrix", "abscissa", "best_gains", "heading_plant",
-           "OperatorFit", "operator_fit", "divergence_rate", "HumanLimit", "human_limit"]
+           "OperatorFit", "operator_fit", "divergence_rate", "HumanLimit", "human_limit", "rule_speed"]
 
 #: Order of the Pade approximant of the driver's delay (numerator and denominator degree).
 PADE_ORDER = 8
@@ -199,7 +199,20 @@ def heading_plant(chair: Chair, speed: float, model: str = "exact") -> tuple[np.
 
 
 def divergence_rate(chair: Chair, speed: float, model: str = "exact") -> float:
-    """The chair's divergence rate at ``speed``: the largest real part of the free-caster linear model, 1/s."""
+    """The chair's divergence rate: the largest real part of the free-caster linear model.
+
+    Parameters
+    ----------
+    chair : Chair
+    speed : float
+        m/s.
+    model : {"exact", "thesis"}
+
+    Returns
+    -------
+    float
+        1/s.
+    """
     return float(np.max(np.linalg.eigvals(state_matrices(chair, speed, model)[0]).real))
 
 
@@ -346,6 +359,28 @@ def _first_crossing(f, grid: np.ndarray) -> tuple[float, str]:
     return float(grid[-1]), ">"
 
 
+def rule_speed(chair: Chair, reaction_time: float, model: str = "exact") -> tuple[float, str]:
+    """The divergence rule's speed alone: where the chair's divergence rate reaches ``1 / reaction_time``.
+
+    Cheap (about 35 eigenvalue problems of order 6): the advisor's constraint on every candidate chair.
+
+    Parameters
+    ----------
+    chair : Chair
+    reaction_time : float
+        s.
+    model : {"exact", "thesis"}
+
+    Returns
+    -------
+    (float, str)
+        Speed (m/s) and side (``"="``; ``">"``: beyond :data:`SPEED_RANGE_M_S`; ``"<"``: below it).
+    """
+    check_model(model)
+    tau = Driver(reaction_time).reaction_time_s
+    return _first_crossing(lambda u: divergence_rate(chair, u, model) * tau - 1.0, _GRID)
+
+
 class _LoopAbscissa:
     """``U -> best abscissa`` of the delayed loop, warm-started from the best gains at the last speed."""
 
@@ -391,7 +426,7 @@ def human_limit(chair: Chair, driver: Driver | None = None, model: str = "exact"
     d = driver or Driver()
     check_model(model)
     tau = d.reaction_time_s
-    rule, rule_side = _first_crossing(lambda u: divergence_rate(chair, u, model) * tau - 1.0, _GRID)
+    rule, rule_side = rule_speed(chair, tau, model)
     f = _LoopAbscissa(chair, tau, model, order)
     speed, side = _first_crossing(f, _GRID)
     err = 0.0
