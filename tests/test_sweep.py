@@ -200,7 +200,7 @@ def test_command_writes_results_summary_and_figures(spec_dir, capsys):
     schema = json.loads(capsys.readouterr().out)
     assert "pin_friction" in schema["properties"]["grid"]["propertyNames"]["enum"]
     assert set(schema["properties"]) == {"chair", "model", "friction_law", "speeds", "measures", "grid", "draws",
-                                          "chunk_rows"}
+                                          "chunk_rows", "reaction_time_s"}
     assert Path(spec_dir / "r.csv").read_text().splitlines()[0].split(",")[:3] == ["design", "draw", "speed_m_s"]
 
 
@@ -334,3 +334,30 @@ def test_the_sweep_command_prints_its_summary_as_json(spec_dir, capsys):
     assert doc["level"] == 0.95 and set(doc["measures"]) == {"growth_rate_1_s"} and bad_keys(doc) == []
     first = doc["measures"]["growth_rate_1_s"]["best"][1][0]
     assert first["conservative_side"] == "=" and first["grid"]["trail"] in (0.05, 0.07)
+
+
+def test_human_limited_speed_measure_is_the_divergence_rule(spec_dir):
+    """The sweep's human_limited_speed column is, for every design, the speed where the design's divergence rate
+    (the linear model's eigenvalues, computed here directly) reaches 1/reaction_time; a stable design is a bound
+    ('above') and ranks first."""
+    from stability.linear import state_matrices
+    from stability.sweep.run import summary
+
+    text = ('chair = "ej-premier"\nspeeds = [1.0]\nmeasures = ["human_limited_speed"]\nreaction_time_s = 0.4\n'
+            '[grid]\ns1 = [0.245, 0.345]\n')
+    spec = loads_spec(text, spec_dir)
+    rows = [r for i in range(n_chunks(spec)) for r in compute_chunk(spec, i)]
+    cols = columns(spec)
+    data = {c: [r[j] for r in rows] for j, c in enumerate(cols)}
+    for u, status, s1 in zip(data["human_limited_speed_m_s"], data["human_limited_status"], data["s1"],
+                             strict=True):
+        c = preset("ej-premier").replace(s1=s1)
+        rate = lambda v, c=c: float(np.max(np.linalg.eigvals(state_matrices(c, v)[0]).real))   # noqa: E731
+        assert status == "found"
+        assert rate(u - 0.01) * 0.4 < 1 < rate(u + 0.01) * 0.4
+    front = loads_spec(text.replace('"ej-premier"', '"ej-premier-front-caster"'), spec_dir)
+    frows = [r for i in range(n_chunks(front)) for r in compute_chunk(front, i)]
+    fdata = {c: [r[j] for r in frows] for j, c in enumerate(columns(front))}
+    assert set(fdata["human_limited_status"]) == {"above"}
+    s = summary(spec, data)
+    assert "human_limited_speed_m_s" in s["measures"]

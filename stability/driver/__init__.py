@@ -1,9 +1,8 @@
 """The driver in the loop: how fast this user can drive this chair.
 
 ``model`` (the driver's effective delay and strength, literature defaults) -> ``linear`` (the human-limited
-speed: the divergence rule ``lambda(U) tau = 1`` and the delayed PD loop on the full linear chair).  The
-nonlinear measure, with pin friction and the reference push, is :mod:`stability.study.driver`.  See
-``docs/driver.md``.
+speed: the divergence rule ``lambda(U) tau = 1`` and the delayed PD loop on the full linear chair) -> ``text``
+(the sentence the commands print).  Linear and frictionless; docs/driver.md says what that leaves out.
 """
 
 from __future__ import annotations

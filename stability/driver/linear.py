@@ -11,8 +11,7 @@ Two linear answers, compared in docs/driver.md:
   above which no gains make the loop stable.  The delay is a Pade approximant of order :data:`PADE_ORDER`; the
   limit computed at twice that order bounds its error (:attr:`HumanLimit.pade_error_m_s`).
 
-Everything here is linear and frictionless (free casters); the nonlinear measure with pin friction and the
-reference push is :func:`stability.study.driver.driver_limit`.
+Everything here is linear and frictionless (free casters): docs/driver.md says what that leaves out.
 """
 
 from __future__ import annotations

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair
+from stability.driver.linear import rule_speed
 from stability.linear.batch import ChairBatch
 from stability.models.statics import check_static_loads
 from stability.settings.defaults import MAX_SPEED
@@ -201,6 +202,13 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
                          ("tip_toward_main_wheels_deg", lambda t: t.toward_main_wheels_deg),
                          ("tip_lateral_deg", lambda t: min(t.lateral_left_deg, t.lateral_right_deg))):
             out[col] = np.repeat(np.array([get(t) for t in tips], dtype=float)[:, None], k, axis=1)
+    if "human_limited_speed" in spec.measures:
+        # the divergence rule (stability.driver.linear.rule_speed): beyond the speeds checked, a bound
+        lim = [rule_speed(c, spec.reaction_time_s, spec.model) for c in chairs]
+        status = {"=": "found", ">": "above", "<": "below"}
+        out["human_limited_speed_m_s"] = np.repeat(np.array([u for u, _ in lim])[:, None], k, axis=1)
+        out["human_limited_status"] = np.repeat(np.array([status[s] for _, s in lim], dtype=object)[:, None], k,
+                                                axis=1)
     if "holding_moment" in spec.measures:
         out["holding_moment_N_m_per_deg"] = np.array([[_holding(c, float(u)) for u in speeds] for c in chairs])
     return out

@@ -20,7 +20,8 @@ UNITS = {"growth_rate_1_s": "growth rate (1/s)", "critical_speed_m_s": "first cr
          "shimmy_margin_m": "shimmy margin of the trail (m)", "static_stability_deg": "static stability (deg)",
          "tip_toward_casters_deg": "tip angle toward the casters (deg)",
          "tip_toward_main_wheels_deg": "tip angle toward the main wheels (deg)",
-         "tip_lateral_deg": "lateral tip angle (deg)", "holding_moment_N_m_per_deg": "holding moment (N m/deg)"}
+         "tip_lateral_deg": "lateral tip angle (deg)", "holding_moment_N_m_per_deg": "holding moment (N m/deg)",
+         "human_limited_speed_m_s": "speed the driver can hold (m/s)"}
 _CAPTION = {"growth_rate_1_s": "lower is more stable (negative: disturbances decay)",
             "critical_speed_m_s": "higher is better: the chair is stable below it",
             "locked_critical_speed_m_s": "higher is better: with the casters locked the chair is stable below it",
@@ -31,7 +32,9 @@ _CAPTION = {"growth_rate_1_s": "lower is more stable (negative: disturbances dec
             "tip_toward_casters_deg": "higher is better: the static tip angle toward the casters",
             "tip_toward_main_wheels_deg": "higher is better: the static tip angle toward the main wheels",
             "tip_lateral_deg": "higher is better: the smaller lateral static tip angle",
-            "holding_moment_N_m_per_deg": "lower is better: the yaw moment that holds a line across a cross slope"}
+            "holding_moment_N_m_per_deg": "lower is better: the yaw moment that holds a line across a cross slope",
+            "human_limited_speed_m_s": "higher is better: the speed up to which a driver of the spec's reaction time "
+                                       "holds the chair (divergence rule)"}
 _GRID_UNITS = GRID_UNITS
 
 

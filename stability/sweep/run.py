@@ -31,12 +31,13 @@ __all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TE
            "STATUS_OF", "COLUMN_UNITS"]
 
 #: Columns holding text (everything else is a number).
-TEXT_COLUMNS = ("critical_impulse_status", "equal_instability_status", "error")
+TEXT_COLUMNS = ("critical_impulse_status", "equal_instability_status", "human_limited_status", "error")
 #: Measures where a larger value is better (a chair that needs more to go wrong); growth rate: smaller is better.
 HIGHER_IS_BETTER = {"critical_speed_m_s": True, "locked_critical_speed_m_s": True, "critical_impulse_Ns": True,
                     "equal_instability_speed_m_s": True, "growth_rate_1_s": False, "shimmy_margin_m": True,
                     "static_stability_deg": True, "tip_toward_casters_deg": True, "tip_toward_main_wheels_deg": True,
-                    "tip_lateral_deg": True, "holding_moment_N_m_per_deg": False}
+                    "tip_lateral_deg": True, "holding_moment_N_m_per_deg": False,
+                    "human_limited_speed_m_s": True}
 
 
 def chunk_dir(out: str | os.PathLike[str]) -> Path:
@@ -177,12 +178,13 @@ def read_rows(text: str) -> dict[str, list]:
 
 #: The status column of a measure whose searches can end beyond their range (a bound is a value).
 STATUS_OF = {"critical_impulse_Ns": "critical_impulse_status",
-             "equal_instability_speed_m_s": "equal_instability_status"}
+             "equal_instability_speed_m_s": "equal_instability_status",
+             "human_limited_speed_m_s": "human_limited_status"}
 #: Units of the measure columns, as printed.
 COLUMN_UNITS = {"growth_rate_1_s": "1/s", "critical_speed_m_s": "m/s", "locked_critical_speed_m_s": "m/s",
                 "critical_impulse_Ns": "N s", "equal_instability_speed_m_s": "m/s", "shimmy_margin_m": "m",
                 "static_stability_deg": "deg", "tip_toward_casters_deg": "deg", "tip_toward_main_wheels_deg": "deg",
-                "tip_lateral_deg": "deg", "holding_moment_N_m_per_deg": "N m/deg"}
+                "tip_lateral_deg": "deg", "holding_moment_N_m_per_deg": "N m/deg", "human_limited_speed_m_s": "m/s"}
 
 
 def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float = 0.95) -> dict[str, Any]:

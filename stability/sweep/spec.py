@@ -35,6 +35,7 @@ from typing import Any
 
 from stability import chair as chair_mod
 from stability.chair import Chair, design
+from stability.driver.model import REACTION_TIME_RANGE_S, REACTION_TIME_S
 from stability.settings.run import FRICTION_LAWS, MODELS, RunSpec
 from stability.uncertainty import Uncertainty, load_uncertainty
 
@@ -56,6 +57,7 @@ MEASURES: dict[str, tuple[tuple[str, ...], str]] = {
     "tip_angles": (("static_stability_deg", "tip_toward_casters_deg", "tip_toward_main_wheels_deg",
                     "tip_lateral_deg"), "statics"),
     "holding_moment": (("holding_moment_N_m_per_deg",), "statics"),
+    "human_limited_speed": (("human_limited_speed_m_s", "human_limited_status"), "linear"),
 }
 #: Units of the grid's axes (chair fields), as printed and drawn.
 GRID_UNITS = {"pin_friction": "N m", "trail": "m", "s1": "m", "s2": "m", "l1": "m", "h": "m", "m": "kg",
@@ -63,7 +65,7 @@ GRID_UNITS = {"pin_friction": "N m", "trail": "m", "s1": "m", "s2": "m", "l1": "
               "pin_friction_right": "N m", "toe_deg": "deg", "camber_deg": "deg", "m_c": "kg", "i_zp": "kg m^2"}
 #: Work bound: rows of one sweep.
 MAX_ROWS = 10_000_000
-_TOP = {"chair", "model", "friction_law", "speeds", "measures", "grid", "draws", "chunk_rows"}
+_TOP = {"chair", "model", "friction_law", "speeds", "measures", "grid", "draws", "chunk_rows", "reaction_time_s"}
 _NUMERIC = [f for f in chair_mod.field_names()
             if f not in ("name", "caster_position", "main_tire", "caster_tire", "camber_coefficient")]
 _GROUPS = {name: p for name, p in design.DESIGN_PARAMETERS.items() if not p.categorical and name not in _NUMERIC}
@@ -84,6 +86,9 @@ SCHEMA: dict[str, Any] = {
         "measures": {"type": "array", "minItems": 1, "uniqueItems": True,
                      "items": {"enum": sorted(MEASURES)}},
         "chunk_rows": {"type": "integer", "minimum": 1, "default": 300},
+        "reaction_time_s": {"type": "number", "minimum": REACTION_TIME_RANGE_S[0],
+                            "maximum": REACTION_TIME_RANGE_S[1], "default": REACTION_TIME_S,
+                            "description": "the driver's effective delay of the human_limited_speed measure, s"},
         "grid": {"type": "object", "description": "axis -> values: a numeric chair field or a design parameter",
                  "propertyNames": {"enum": sorted(_NUMERIC) + sorted(_GROUPS)},
                  "additionalProperties": {"type": "array", "items": {"type": "number"}, "minItems": 1}},
@@ -117,6 +122,8 @@ class SweepSpec:
     chunk_rows : int
     friction_law : {"kinetic", "stick-slip"}
         Pin friction of the critical impulse's and equal-instability speed's runs.
+    reaction_time_s : float
+        The driver's effective delay of the ``human_limited_speed`` measure, s (:mod:`stability.driver`).
     """
 
     chair: Chair
@@ -130,6 +137,7 @@ class SweepSpec:
     uncertainty: Uncertainty | None
     chunk_rows: int
     friction_law: str = RunSpec().friction_law
+    reaction_time_s: float = REACTION_TIME_S
 
     @property
     def designs(self) -> int:
@@ -152,7 +160,8 @@ class SweepSpec:
                 "speeds_m_s": list(self.speeds),
                 "measures": list(self.measures), "grid": {k: list(v) for k, v in self.grid},
                 "draws": self.draws, "seed": self.seed, "uncertainty": None if self.uncertainty is None
-                else self.uncertainty.dumps(), "chunk_rows": self.chunk_rows}
+                else self.uncertainty.dumps(), "chunk_rows": self.chunk_rows,
+                "reaction_time_s": self.reaction_time_s}
 
 
 def _bad(key: str, value: Any, valid: str) -> ValueError:
@@ -241,8 +250,12 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     chunk_rows = data.get("chunk_rows", 300)
     if isinstance(chunk_rows, bool) or not isinstance(chunk_rows, int) or chunk_rows < 1:
         raise _bad("chunk_rows", chunk_rows, "an integer >= 1")
+    tau = data.get("reaction_time_s", REACTION_TIME_S)
+    lo, hi = REACTION_TIME_RANGE_S
+    if isinstance(tau, bool) or not isinstance(tau, (int, float)) or not (math.isfinite(tau) and lo <= tau <= hi):
+        raise _bad("reaction_time_s", tau, f"a number of s from {lo:g} to {hi:g}")
     spec = SweepSpec(chair, source, model, speeds, measures, tuple(grid), int(n), int(seed), unc, chunk_rows,
-                     friction_law)
+                     friction_law, float(tau))
     if spec.rows > MAX_ROWS:
         raise ValueError(f"spec asks for {spec.rows} rows (designs x draws x speeds); valid: at most {MAX_ROWS}")
     return spec
