@@ -193,6 +193,11 @@ def _run(args: argparse.Namespace) -> int:
                          f"{MAX_NONLINEAR_SAMPLES}")
     if not 0 < args.level < 1:
         raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
+    from stability.layout.io import is_layout_spec
+
+    raw_speeds = [float(x) for x in args.speeds.split(",")] if ":" not in args.speeds else None
+    if is_layout_spec(args.chair) or (raw_speeds is not None and any(u < 0 for u in raw_speeds)):
+        return _run_layout(args)
     c = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
     if args.uncertainty:
@@ -230,6 +235,39 @@ def _run(args: argparse.Namespace) -> int:
         print(format_summary(summary, checks, intervals, nonlinear))
         if human is not None and driver is not None:
             print(human_text(human, driver))
+    return 0
+
+
+def _run_layout(args: argparse.Namespace) -> int:
+    """Any wheel layout, forward and in reverse: the layout's linear model (:mod:`stability.layout`)."""
+    from stability.layout import Layout, analyse_layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+    from stability.layout.text import layout_mapping, layout_text
+
+    if is_layout_spec(args.chair):
+        if args.set:
+            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+        layout = resolve_layout(args.chair)
+    else:
+        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    for name in ("uncertainty", "output", "reaction_time"):
+        if getattr(args, name, None):
+            raise ValueError(f"--{name.replace('_', '-')} is not available for a layout or reverse speeds yet; "
+                             "valid: the short-form chair at positive speeds")
+    try:
+        speeds = [float(x) for x in args.speeds.split(",")]
+    except ValueError:
+        raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout; valid: a list of signed speeds, m/s "
+                         "(negative: reverse), 0.01 <= |U| <= 20") from None
+    summary = analyse_layout(layout, speeds if any(u < 0 for u in speeds) else
+                             [-u for u in reversed(speeds)] + speeds)
+    if args.json or args.json_file:
+        from stability import __version__
+
+        emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact",
+                   "options": {"speeds_m_s": speeds}, **layout_mapping(layout, summary)}, args)
+    if not args.json:
+        print(layout_text(layout, summary))
     return 0
 
 

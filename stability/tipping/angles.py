@@ -36,7 +36,8 @@ from stability.chair import Chair
 from stability.models import slope as slope_model
 from stability.models.params import Params, parameters
 
-__all__ = ["TipAngles", "SlopeTip", "FallLine", "tip_angles", "slope_tip", "fall_distance", "anti_tip_angle",
+__all__ = ["TipAngles", "SlopeTip", "FallLine", "tip_angles", "slope_tip", "fall_distance", "support_fall_distance",
+           "anti_tip_angle",
            "LOANE_KIRBY_REAR_DEG", "DIRECTIONS"]
 
 #: Loane & Kirby (1985), Arch Phys Med Rehabil 66(3):174-176: mean static rear stability of ten
@@ -70,7 +71,7 @@ class FallLine:
     distance_m: float
     angle_deg: float
     normal: tuple[float, float]
-    caster_angles_deg: tuple[float | None, float | None]
+    caster_angles_deg: tuple
 
 
 @dataclass(frozen=True)
@@ -177,21 +178,43 @@ def fall_distance(p: Params, ex: float, ey: float) -> FallLine:
     -------
     FallLine
     """
+    points = ((p.x_m, -p.d1, 0.0), (p.x_m, p.d2, 0.0), (p.x_p, -p.t1, p.trail), (p.x_p, p.t2, p.trail))
+    return support_fall_distance(points, p.h, ex, ey)
+
+
+def support_fall_distance(points, h: float, ex: float, ey: float) -> FallLine:
+    """Distance to the tipping line along the fall line for any set of contacts, casters least stable.
+
+    Parameters
+    ----------
+    points : sequence of (float, float, float)
+        ``(x, y, r)`` per contact in body axes (m): a fixed wheel's contact with ``r = 0``, a caster's pin with
+        ``r`` its trail (its contact anywhere on that circle).
+    h : float
+        c.g. height, m.
+    ex, ey : float
+        Fall line in body axes.
+
+    Returns
+    -------
+    FallLine
+        ``caster_angles_deg`` has one entry per contact with ``r > 0`` (None when not on the tipping line).
+    """
     norm = math.hypot(ex, ey)
     ex, ey = ex / norm, ey / norm
     px, py = -ey, ex                                   # e_perp
-    points = ((p.x_m, -p.d1, 0.0), (p.x_m, p.d2, 0.0), (p.x_p, -p.t1, p.trail), (p.x_p, p.t2, p.trail))
+    n_pts = len(points)
     a = [x * ex + y * ey for x, y, _ in points]
     b = [x * px + y * py for x, y, _ in points]
     r = [rk for _, _, rk in points]
 
     def f(t: float) -> float:
         s = math.sqrt(1.0 + t * t)
-        return max(a[k] + t * b[k] - r[k] * s for k in range(4))
+        return max(a[k] + t * b[k] - r[k] * s for k in range(n_pts))
 
     candidates: list[float] = []
-    for i in range(4):
-        for j in range(i + 1, 4):
+    for i in range(n_pts):
+        for j in range(i + 1, n_pts):
             da, db, dr = a[i] - a[j], b[i] - b[j], r[i] - r[j]
             if dr == 0.0:
                 if db != 0.0:
@@ -216,11 +239,12 @@ def fall_distance(p: Params, ex: float, ey: float) -> FallLine:
     nx, ny = (ex + t_best * px) / s, (ey + t_best * py) / s
     tol = 1e-9 * (1.0 + abs(rho))
     angles: list[float | None] = []
-    for k in (2, 3):                                   # a caster on the tipping line points along -n
-        on_line = a[k] + t_best * b[k] - r[k] * s >= rho - tol
-        angles.append(math.degrees(math.atan2(ny, nx)) if on_line and r[k] > 0 else None)
-    return FallLine(distance_m=rho, angle_deg=math.degrees(math.atan2(rho, p.h)), normal=(nx, ny),
-                    caster_angles_deg=(angles[0], angles[1]))
+    for k in range(n_pts):                             # a caster on the tipping line points along -n
+        if r[k] > 0:
+            on_line = a[k] + t_best * b[k] - r[k] * s >= rho - tol
+            angles.append(math.degrees(math.atan2(ny, nx)) if on_line else None)
+    return FallLine(distance_m=rho, angle_deg=math.degrees(math.atan2(rho, h)), normal=(nx, ny),
+                    caster_angles_deg=tuple(angles))
 
 
 def anti_tip_angle(chair: Chair) -> float | None:

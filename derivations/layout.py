@@ -1,0 +1,285 @@
+"""Planar model of a chair with any wheel layout: J fixed wheels and K swivelling casters (Kane's method).
+
+The thesis's full-width model (``full_width.derive_exact``) has two fixed main wheels and two casters.  A
+mid-wheel-drive power base has two drive wheels and four casters (a pair ahead, a pair behind); a layout is any
+number of each.  The bodies and conventions are the thesis model's (SAE body axes: c1 forward, c2 right, c3 down;
+yaw positive clockwise seen from above), generalised:
+
+- the chair body (with the user and the fixed wheels) of mass ``m - sum(m_c_k)``, placed so that the system's
+  centre of mass is C when every caster trails forward (``delta_k = 0``), with a central yaw inertia such that
+  the total yaw inertia about C is ``i_z`` there (parallel-axis theorem);
+- fixed wheel ``j``: contact ``W_j = C + x_w_j c1 + y_w_j c2``, contact force ``(FWx_j, FWy_j)`` in the body
+  frame;
+- caster ``k``: pin ``P_k = C + x_p_k c1 + y_p_k c2``, swivel angle ``delta_k`` from c1 about c3, caster frame
+  ``k1 = cos(delta_k) c1 + sin(delta_k) c2``, contact ``P_k - trail_k k1``, caster centre of mass
+  ``P_k - l_k k1``, mass ``m_c_k``, yaw inertia about its pin ``i_zp_k``; contact force ``(FCx_k, FCy_k)`` in the
+  caster frame; pin moment ``M_k`` on the caster (its reaction on the chair);
+- a lateral force ``Fy_ext`` at C and a yaw moment ``Mz_ext`` on the chair body.
+
+Generalized speeds ``u, v, r, delta_d_1..K``.  The linear model about straight running at speed ``U`` has the
+tires of the thesis's linear model (``Fy = -C alpha``, ``alpha = v_y / |v_x|`` in the wheel's frame, no
+longitudinal forces) and viscous pins ``M_k = -c_pin_k delta_d_k``.  Forward (``U > 0``) the casters trail at
+``delta_k = 0``; in reverse (``U < 0``) they trail the other way, at ``delta_k = pi``, and the model is linearised
+there.  ``tests/test_layout.py`` checks that the layout of two fixed wheels and two casters gives the thesis
+model's exact linear matrices (``full_width.linearise('exact')``).
+"""
+
+from __future__ import annotations
+
+import functools
+from types import SimpleNamespace
+
+import sympy as sp
+import sympy.physics.mechanics as me
+
+__all__ = ["symbols", "derive", "linearise", "parameters"]
+
+
+def symbols(n_fixed: int, n_casters: int) -> SimpleNamespace:
+    """The plain symbols of a layout: per wheel and per caster, and the shared ones.
+
+    Parameters
+    ----------
+    n_fixed, n_casters : int
+
+    Returns
+    -------
+    SimpleNamespace
+        ``U, m, i_z, Fy_ext, Mz_ext``; lists ``x_w, y_w, C_w, FWx, FWy`` (fixed wheels) and ``x_p, y_p, trail, l,
+        m_c, i_zp, C_c, c_pin, FCx, FCy, M, delta, delta_d`` (casters); ``v, r, u`` and their rates.
+    """
+    def many(name: str, n: int) -> list:
+        return [sp.Symbol(f"{name}_{i}", real=True) for i in range(n)]
+
+    s = SimpleNamespace(**{n: sp.Symbol(n, real=True) for n in "U m i_z Fy_ext Mz_ext u v r u_dot v_dot r_dot".split()})
+    for name in ("x_w", "y_w", "C_w", "FWx", "FWy"):
+        setattr(s, name, many(name, n_fixed))
+    for name in ("x_p", "y_p", "trail", "l", "m_c", "i_zp", "C_c", "c_pin", "FCx", "FCy", "M", "delta", "delta_d",
+                 "delta_dd"):
+        setattr(s, name, many(name, n_casters))
+    return s
+
+
+@functools.cache
+def derive(n_fixed: int, n_casters: int) -> SimpleNamespace:
+    """Kane's equations of a layout: ``M(q) [u_dot, v_dot, r_dot, delta_dd...] = F``.
+
+    Parameters
+    ----------
+    n_fixed, n_casters : int
+
+    Returns
+    -------
+    SimpleNamespace
+        ``M`` (symmetric, 3 + K square), ``F``, ``vel`` (the contact velocities in each wheel's frame: fixed
+        wheels then casters, ``(vx, vy)`` each), ``sym`` (:func:`symbols`).
+    """
+    s = symbols(n_fixed, n_casters)
+    t = me.dynamicsymbols._t
+    X, Y, th = me.dynamicsymbols("X Y theta")
+    u, v, r = me.dynamicsymbols("u v r")
+    dl = [me.dynamicsymbols(f"delta_{k}") for k in range(n_casters)]
+    dld = [me.dynamicsymbols(f"delta_d_{k}") for k in range(n_casters)]
+    N = me.ReferenceFrame("N")
+    Cf = N.orientnew("C", "Axis", (th, N.z))
+    Cf.set_ang_vel(N, r * Cf.z)
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    Cp = O.locatenew("C", X * N.x + Y * N.y)
+    Cp.set_vel(N, u * Cf.x + v * Cf.y)
+
+    m_b = s.m - sum(s.m_c)
+    # casters' centres of mass with every caster trailing forward (delta = 0)
+    c0 = [(s.x_p[k] - s.l[k], s.y_p[k]) for k in range(n_casters)]
+    gb = (-sum(s.m_c[k] * c0[k][0] for k in range(n_casters)) / m_b,
+          -sum(s.m_c[k] * c0[k][1] for k in range(n_casters)) / m_b)
+    Gb = Cp.locatenew("Gb", gb[0] * Cf.x + gb[1] * Cf.y)
+    Gb.v2pt_theory(Cp, N, Cf)
+    I_c = [s.i_zp[k] - s.m_c[k] * s.l[k] ** 2 for k in range(n_casters)]
+    I_b = (s.i_z - m_b * (gb[0] ** 2 + gb[1] ** 2)
+           - sum(I_c[k] + s.m_c[k] * (c0[k][0] ** 2 + c0[k][1] ** 2) for k in range(n_casters)))
+    bodies = [me.RigidBody("chair", Gb, Cf, m_b, (me.inertia(Cf, 0, 0, I_b), Gb))]
+    loads = [(Cp, s.Fy_ext * Cf.y)]
+    body_moment = s.Mz_ext
+    vel = []
+    contacts = []
+    for j in range(n_fixed):
+        W = Cp.locatenew(f"W{j}", s.x_w[j] * Cf.x + s.y_w[j] * Cf.y)
+        W.v2pt_theory(Cp, N, Cf)
+        loads.append((W, s.FWx[j] * Cf.x + s.FWy[j] * Cf.y))
+        contacts.append((W, Cf))
+    for k in range(n_casters):
+        Kf = Cf.orientnew(f"K{k}", "Axis", (dl[k], Cf.z))
+        Kf.set_ang_vel(Cf, dld[k] * Cf.z)
+        P = Cp.locatenew(f"P{k}", s.x_p[k] * Cf.x + s.y_p[k] * Cf.y)
+        P.v2pt_theory(Cp, N, Cf)
+        G = P.locatenew(f"G{k}", -s.l[k] * Kf.x)
+        G.v2pt_theory(P, N, Kf)
+        A = P.locatenew(f"A{k}", -s.trail[k] * Kf.x)
+        A.v2pt_theory(P, N, Kf)
+        bodies.append(me.RigidBody(f"caster{k}", G, Kf, s.m_c[k], (me.inertia(Kf, 0, 0, I_c[k]), G)))
+        loads.append((A, s.FCx[k] * Kf.x + s.FCy[k] * Kf.y))
+        loads.append((Kf, s.M[k] * Kf.z))
+        body_moment = body_moment - s.M[k]
+        contacts.append((A, Kf))
+    loads.append((Cf, body_moment * Cf.z))
+    kd = [X.diff(t) - (u * sp.cos(th) - v * sp.sin(th)), Y.diff(t) - (u * sp.sin(th) + v * sp.cos(th)),
+          th.diff(t) - r] + [dl[k].diff(t) - dld[k] for k in range(n_casters)]
+    km = me.KanesMethod(N, q_ind=[X, Y, th, *dl], u_ind=[u, v, r, *dld], kd_eqs=kd)
+    km.kanes_equations(bodies, loads)
+    dyn = {u: s.u, v: s.v, r: s.r, **dict(zip(dl, s.delta, strict=True)), **dict(zip(dld, s.delta_d, strict=True))}
+
+    def plain(e):
+        e = me.msubs(e, dyn)
+        if me.find_dynamicsymbols(e):
+            raise ValueError(f"dynamic symbols left: {me.find_dynamicsymbols(e)}")
+        return e
+
+    Mm = km.mass_matrix.applyfunc(lambda e: sp.cancel(plain(e)))
+    Fv = km.forcing.applyfunc(lambda e: sp.cancel(plain(e)))
+    for P, F_ in contacts:
+        vP = P.vel(N)
+        vel += [sp.expand(plain(vP.dot(F_.x))), sp.expand(plain(vP.dot(F_.y)))]
+    return SimpleNamespace(M=Mm, F=Fv, vel=tuple(vel), sym=s, gb=gb, I_b=I_b, m_b=m_b)
+
+
+@functools.cache
+def linearise(n_fixed: int, n_casters: int, reverse: bool = False) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix,
+                                                                            sp.Matrix]:
+    """The linear model about straight running: ``M acc = K x + Bm Mz_ext + Bf Fy_ext``.
+
+    Parameters
+    ----------
+    n_fixed, n_casters : int
+    reverse : bool
+        Linearise about ``U < 0`` with every caster trailing backwards (``delta_k = pi``).
+
+    Returns
+    -------
+    (M, K, Bm, Bf) : sympy Matrices
+        ``acc = [v_dot, r_dot, delta_dd_0, ...]``, ``x = [v, r, delta_0, delta_d_0, ...]``.  Symbols:
+        :func:`symbols`; ``U`` signed, ``|U|`` written as ``-U`` in reverse.
+    """
+    d = derive(n_fixed, n_casters)
+    s = d.sym
+    absU = -s.U if reverse else s.U
+    delta0 = sp.pi if reverse else sp.Integer(0)
+    K_ = n_casters
+    # tire forces of the linear model: Fy = -C vy / |vx|, Fx = 0; viscous pins
+    sub: dict = {}
+    for j in range(n_fixed):
+        sub[s.FWx[j]] = 0
+        sub[s.FWy[j]] = -s.C_w[j] * d.vel[2 * j + 1] / absU
+    for k in range(K_):
+        sub[s.FCx[k]] = 0
+        sub[s.FCy[k]] = -s.C_c[k] * d.vel[2 * (n_fixed + k) + 1] / absU
+        sub[s.M[k]] = -s.c_pin[k] * s.delta_d[k]
+    acc = [s.u_dot, s.v_dot, s.r_dot, *s.delta_dd]
+    R = [sum(d.M[i, c] * acc[c] for c in range(3 + K_)) - d.F[i].xreplace(sub) for i in range(3 + K_)]
+    eq = {s.v: 0, s.r: 0, s.u: s.U, **{s.delta[k]: delta0 for k in range(K_)},
+          **{s.delta_d[k]: 0 for k in range(K_)}, **{a: 0 for a in acc}, s.Mz_ext: 0, s.Fy_ext: 0}
+    for i in range(3 + K_):                              # straight running is an equilibrium
+        assert sp.simplify(R[i].subs(eq)) == 0, (i, R[i].subs(eq))
+    rows = [1, 2] + [3 + k for k in range(K_)]
+    for i in rows:                                       # the forward speed decouples at first order
+        assert sp.simplify(sp.diff(R[i], s.u_dot).subs(eq)) == 0
+        assert sp.simplify(sp.diff(R[i], s.u).subs(eq)) == 0
+    state = [s.v, s.r] + [x for k in range(K_) for x in (s.delta[k], s.delta_d[k])]
+    lin_acc = [s.v_dot, s.r_dot, *s.delta_dd]
+    M = sp.Matrix([[sp.simplify(sp.diff(R[i], a).subs(eq)) for a in lin_acc] for i in rows])
+    K = sp.Matrix([[sp.simplify(-sp.diff(R[i], x).subs(eq)) for x in state] for i in rows])
+    Bm = sp.Matrix([sp.simplify(-sp.diff(R[i], s.Mz_ext).subs(eq)) for i in rows])
+    Bf = sp.Matrix([sp.simplify(-sp.diff(R[i], s.Fy_ext).subs(eq)) for i in rows])
+    return M, K, Bm, Bf
+
+
+def parameters(n_fixed: int, n_casters: int) -> tuple[sp.Symbol, ...]:
+    """The argument order of the generated linear function of a layout.
+
+    Parameters
+    ----------
+    n_fixed, n_casters : int
+
+    Returns
+    -------
+    tuple of sympy.Symbol
+        ``U, m, i_z``, then per fixed wheel ``x_w, C_w``, then per caster ``x_p, trail, l, m_c, i_zp, C_c, c_pin``
+        (the lateral positions do not enter the linear model).
+    """
+    s = symbols(n_fixed, n_casters)
+    out = [s.U, s.m, s.i_z]
+    for j in range(n_fixed):
+        out += [s.x_w[j], s.C_w[j]]
+    for k in range(n_casters):
+        out += [s.x_p[k], s.trail[k], s.l[k], s.m_c[k], s.i_zp[k], s.C_c[k], s.c_pin[k]]
+    return tuple(out)
+
+
+# ---------------------------------------------------------------------------
+# Code generation
+
+#: Layout shapes generated into ``stability/_generated/layout.py``: (fixed wheels, casters).  Two fixed wheels
+#: with one to four casters covers the thesis's chairs (2, 2), a three-wheeler (2, 1) and a mid-wheel-drive base
+#: with casters ahead and behind (2, 4); add a shape here and rerun ``python derivations/layout.py``.
+SHAPES = ((2, 1), (2, 2), (2, 3), (2, 4))
+
+
+def _function_text(n_fixed: int, n_casters: int, reverse: bool) -> tuple[str, str]:
+    from derivations.generate import _cse_lines
+
+    M, K, Bm, Bf = linearise(n_fixed, n_casters, reverse)
+    n = M.shape[0]
+    named = [(f"M{i}{j}", M[i, j]) for i in range(n) for j in range(n)]
+    named += [(f"K{i}{j}", K[i, j]) for i in range(n) for j in range(K.shape[1])]
+    named += [(f"Bm{i}", Bm[i]) for i in range(n)] + [(f"Bf{i}", Bf[i]) for i in range(n)]
+    body = _cse_lines(named, "_a")
+    name = f"linear_{n_fixed}w{n_casters}c_{'reverse' if reverse else 'forward'}"
+    args = ", ".join(str(p) for p in parameters(n_fixed, n_casters))
+    rows = lambda pre, cols: "(" + ", ".join("(" + ", ".join(f"{pre}{i}{j}" for j in range(cols)) + ",)"  # noqa: E731
+                                            for i in range(n)) + ",)"
+    ret = (f"return ({rows('M', n)}, {rows('K', K.shape[1])}, ({', '.join(f'Bm{i}' for i in range(n))},), "
+           f"({', '.join(f'Bf{i}' for i in range(n))},))")
+    doc = (f'"""Linear model of a layout with {n_fixed} fixed wheels and {n_casters} casters, '
+           f'{"in reverse (U < 0, casters trailing at pi)" if reverse else "forward (U > 0, casters trailing at 0)"}.'
+           "\n\n    Returns (M, K, Bm, Bf) as nested tuples: M acc = K x + Bm Mz_ext + Bf Fy_ext, acc = [v_dot, r_dot, "
+           'delta_dd...], x = [v, r, delta_0, delta_d_0, ...]."""')
+    lines = [f"def {name}({args}):", f"    {doc}"] + [f"    {x}" for x in body] + [f"    {ret}", ""]
+    return name, "\n".join(lines)
+
+
+def render() -> str:
+    """The text of ``stability/_generated/layout.py``: one function per shape and direction."""
+    header = ('"""Linear models of chairs with any wheel layout (generated).\n\nGenerated by derivations/layout.py '
+              "-- DO NOT EDIT.\nsympy version: " + sp.__version__ + "\n\nSee derivations/layout.py for the bodies, "
+              "conventions and the tire and pin laws of the\nlinear model.  Arguments: U (signed forward speed, m/s), "
+              "m, i_z, then per fixed wheel\nx_w (contact, m ahead of C), C_w (cornering stiffness, N/rad), then per "
+              "caster x_p, trail,\nl (c.g. behind the pin), m_c, i_zp, C_c, c_pin (SI units).\n\"\"\"\n\n")
+    names, parts = [], []
+    for shape in SHAPES:
+        for reverse in (False, True):
+            name, text = _function_text(*shape, reverse)
+            names.append(name)
+            parts.append(text)
+    shapes = "SHAPES = " + repr(tuple(SHAPES)) + "\n"
+    return header + f"__all__ = {names!r}\n\n" + shapes + "\n\n" + "\n\n".join(parts)
+
+
+def main() -> None:  # pragma: no cover - run by hand after changing the derivation
+    """Write ``stability/_generated/layout.py``."""
+    import os
+    from pathlib import Path
+
+    os.environ.setdefault("PYTHONHASHSEED", "0")
+    out = Path(__file__).resolve().parents[1] / "stability" / "_generated" / "layout.py"
+    out.write_text(render(), encoding="utf-8")
+    print(f"wrote {out}")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    import os
+    import sys
+
+    if os.environ.get("PYTHONHASHSEED") != "0":
+        os.execve(sys.executable, [sys.executable, *sys.argv], dict(os.environ, PYTHONHASHSEED="0"))
+    sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1]))
+    main()

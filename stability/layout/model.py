@@ -1,0 +1,190 @@
+"""A chair as a list of wheels: any number of fixed wheels and swivelling casters on one rigid body.
+
+The thesis's chairs have two fixed main wheels and a caster pair; a mid-wheel-drive power base has its drive
+wheels near the centre of gravity and a caster pair ahead and another behind.  A :class:`Layout` holds the body
+(mass, yaw inertia about the centre of gravity with every caster trailing forward, c.g. height) and its wheels in
+body coordinates relative to the c.g. (SAE axes: x forward, y right).  :meth:`Layout.from_chair` expands the
+short form (:class:`stability.chair.Chair`) into this form; :mod:`.presets` has the power bases.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from stability import tires
+from stability.chair import Chair
+
+__all__ = ["FixedWheel", "Caster", "Layout"]
+
+
+def _check(name: str, value: float, lo: float, hi: float, unit: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError(f"{name}={value!r} is invalid; expected a number ({unit})")
+    if not (math.isfinite(value) and lo <= value <= hi):
+        raise ValueError(f"{name}={value!r} is invalid; valid range: {lo:g} to {hi:g} {unit}")
+    return float(value)
+
+
+@dataclass(frozen=True)
+class FixedWheel:
+    """A wheel that does not swivel (a drive wheel, a main wheel).
+
+    Parameters
+    ----------
+    x, y : float
+        Contact point relative to the c.g., m (x forward, y right).
+    tire : str
+        Tire spec (:func:`stability.tires.get`: a tire name or ``"linear:C"``).
+    driven : bool
+        Whether it is a drive wheel (power chairs: the motors act through it).
+    lateral_scale : float
+        Factor on the tire's lateral force (WCHAIR's TYMOD).
+    vertical_stiffness : float
+        Suspension plus tire vertical stiffness, N/m (shares the load of a base with more than two support lines).
+    """
+
+    x: float
+    y: float
+    tire: str = "EJA"
+    driven: bool = False
+    lateral_scale: float = 1.0
+    vertical_stiffness: float = 2.0e5
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "x", _check("x", self.x, -2.0, 2.0, "m"))
+        object.__setattr__(self, "y", _check("y", self.y, -1.0, 1.0, "m"))
+        object.__setattr__(self, "lateral_scale", _check("lateral_scale", self.lateral_scale, 0.0, 10.0, ""))
+        object.__setattr__(self, "vertical_stiffness",
+                           _check("vertical_stiffness", self.vertical_stiffness, 1e3, 1e9, "N/m"))
+        tires.get(self.tire)
+
+
+@dataclass(frozen=True)
+class Caster:
+    """A swivelling caster.
+
+    Parameters
+    ----------
+    x, y : float
+        Pin relative to the c.g., m.
+    trail : float
+        Pin to contact, m (the contact trails behind the pin).
+    l : float
+        Pin to the caster's centre of mass, m.
+    m_c : float
+        Caster assembly mass, kg.
+    i_zp : float
+        Caster yaw inertia about its pin, kg m^2.
+    tire : str
+        Tire spec.
+    pin_damping : float
+        Viscous pin damping, N m s/rad (the linear model's pin law).
+    pin_friction : float
+        Coulomb pin friction, N m.
+    lateral_scale : float
+    vertical_stiffness : float
+        N/m.
+    """
+
+    x: float
+    y: float
+    trail: float = 0.05
+    l: float = 0.035                                   # noqa: E741 (the thesis's l_1)
+    m_c: float = 1.2
+    i_zp: float = 0.02
+    tire: str = "ER"
+    pin_damping: float = 0.0
+    pin_friction: float = 0.1
+    lateral_scale: float = 1.0
+    vertical_stiffness: float = 2.0e5
+
+    def __post_init__(self) -> None:
+        for name, lo, hi, unit in (("x", -2.0, 2.0, "m"), ("y", -1.0, 1.0, "m"), ("trail", 0.001, 0.5, "m"),
+                                   ("l", 0.0, 0.5, "m"), ("m_c", 0.0, 20.0, "kg"), ("i_zp", 0.0, 1.0, "kg m^2"),
+                                   ("pin_damping", 0.0, 100.0, "N m s/rad"), ("pin_friction", 0.0, 100.0, "N m"),
+                                   ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 1e3, 1e9, "N/m")):
+            object.__setattr__(self, name, _check(name, getattr(self, name), lo, hi, unit))
+        if self.i_zp < self.m_c * self.l ** 2:
+            raise ValueError(f"i_zp={self.i_zp!r} is invalid; valid range: >= m_c l^2 = {self.m_c * self.l ** 2:.4g} "
+                             "kg m^2 (the inertia about the pin includes the caster's mass at l)")
+        tires.get(self.tire)
+
+    @property
+    def contact_x(self) -> float:
+        """x of the contact with the caster trailing forward, m."""
+        return self.x - self.trail
+
+
+@dataclass(frozen=True)
+class Layout:
+    """A chair as a body and its wheels.
+
+    Parameters
+    ----------
+    name : str
+    m : float
+        Total mass with the user and every caster, kg.
+    i_z : float
+        Total yaw inertia about the c.g. with every caster trailing forward, kg m^2.
+    h : float
+        c.g. height, m.
+    wheels : tuple of FixedWheel
+    casters : tuple of Caster
+    g : float
+        Gravity, m/s^2.
+    """
+
+    name: str
+    m: float
+    i_z: float
+    h: float
+    wheels: tuple = field(default_factory=tuple)
+    casters: tuple = field(default_factory=tuple)
+    g: float = 9.81
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "m", _check("m", self.m, 5.0, 500.0, "kg"))
+        object.__setattr__(self, "i_z", _check("i_z", self.i_z, 0.05, 200.0, "kg m^2"))
+        object.__setattr__(self, "h", _check("h", self.h, 0.05, 2.0, "m"))
+        object.__setattr__(self, "g", _check("g", self.g, 1.0, 30.0, "m/s^2"))
+        object.__setattr__(self, "wheels", tuple(self.wheels))
+        object.__setattr__(self, "casters", tuple(self.casters))
+        if not all(isinstance(w, FixedWheel) for w in self.wheels):
+            raise TypeError("wheels: expected FixedWheel objects")
+        if not all(isinstance(c, Caster) for c in self.casters):
+            raise TypeError("casters: expected Caster objects")
+        if len(self.wheels) + len(self.casters) < 3:
+            raise ValueError(f"layout {self.name!r} has {len(self.wheels) + len(self.casters)} wheels; valid: at "
+                             "least 3 (a chair stands on three or more)")
+        if sum(c.m_c for c in self.casters) >= self.m:
+            raise ValueError(f"layout {self.name!r}: the casters' mass is not less than the chair's m={self.m:g} kg")
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(fixed wheels, casters)``."""
+        return len(self.wheels), len(self.casters)
+
+    @classmethod
+    def from_chair(cls, chair: Chair) -> Layout:
+        """The short form (two main wheels and a caster pair) as a layout.
+
+        Parameters
+        ----------
+        chair : Chair
+
+        Returns
+        -------
+        Layout
+            Main wheels at ``(x_main, -d1)``, ``(x_main, d2)``; caster pins at ``(x_pin, -t1)``,
+            ``(x_pin, t2)`` with the chair's trail, ``l1``, ``m_c``, ``i_zp``, pins, tires and scales.
+        """
+        from stability.chair.power import drive_kind
+
+        driven = drive_kind(chair) == "motor"
+        wheels = tuple(FixedWheel(chair.x_main, y, chair.main_tire, driven, chair.main_lateral_scale)
+                       for y in (-chair.d1, chair.d2))
+        casters = tuple(Caster(chair.x_pin, y, chair.trail, chair.l1, chair.m_c, chair.i_zp, chair.caster_tire,
+                               chair.pin_damping, mf, chair.caster_lateral_scale)
+                        for y, mf in ((-chair.t1, chair.pin_friction_left), (chair.t2, chair.pin_friction_right)))
+        return cls(chair.name, chair.m, chair.i_z, chair.h, wheels, casters, chair.g)

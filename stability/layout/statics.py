@@ -1,0 +1,175 @@
+"""Static loads of a layout: the lever rule on two support lines, vertical compliance on more.
+
+A chair on two support lines (an axle and a caster pair: the thesis's chairs) is statically determinate: the
+line loads follow from the moment balance about the c.g. and each line's load splits between its two contacts
+by the lever rule, which is eq 6-25 of Collins (1987) with no tire forces.  A base with more lines (a
+mid-wheel-drive chair with casters ahead and behind) is not: its loads follow from the wheels' vertical
+stiffnesses (suspension and tire), the body rigid: ``N_i = k_i (z + theta x_i + phi y_i)`` with heave ``z``, pitch
+``theta`` and roll ``phi`` solving the three equilibrium equations.  A load that would come out negative means the
+wheel lifts: the layout is refused for the linear analysis.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from stability.layout.model import Layout
+
+__all__ = ["contacts", "static_loads", "cornering_stiffnesses", "tip_angles", "centre_of_mass"]
+
+
+def contacts(layout: Layout, reverse: bool = False) -> list[tuple[str, float, float, float]]:
+    """Every contact: ``(label, x, y, vertical stiffness)``, fixed wheels first, then casters.
+
+    Parameters
+    ----------
+    layout : Layout
+    reverse : bool
+        The casters trail backwards (their contacts ``trail`` ahead of the pins).
+
+    Returns
+    -------
+    list of (str, float, float, float)
+        m, m, N/m.
+    """
+    out = [(f"wheel {j}", w.x, w.y, w.vertical_stiffness) for j, w in enumerate(layout.wheels)]
+    sign = -1.0 if reverse else 1.0
+    out += [(f"caster {k}", c.x - sign * c.trail, c.y, c.vertical_stiffness)
+            for k, c in enumerate(layout.casters)]
+    return out
+
+
+def centre_of_mass(layout: Layout, reverse: bool = False) -> tuple[float, float]:
+    """The system's centre of mass relative to C (the c.g. with every caster trailing forward), m.
+
+    Parameters
+    ----------
+    layout : Layout
+    reverse : bool
+        Casters trailing backwards: each caster's centre of mass moves ``2 l`` forward.
+
+    Returns
+    -------
+    (float, float)
+        ``(0, 0)`` forward.
+    """
+    if not reverse:
+        return 0.0, 0.0
+    return sum(c.m_c * 2.0 * c.l for c in layout.casters) / layout.m, 0.0
+
+
+def _lines(points: list[tuple[str, float, float, float]], tol: float = 1e-9) -> list[list[int]]:
+    xs: list[float] = []
+    groups: list[list[int]] = []
+    for i, (_, x, _, _) in enumerate(points):
+        for g, x0 in zip(groups, xs, strict=True):
+            if abs(x - x0) <= tol:
+                g.append(i)
+                break
+        else:
+            xs.append(x)
+            groups.append([i])
+    return groups
+
+
+def static_loads(layout: Layout, reverse: bool = False) -> np.ndarray:
+    """Static normal load on every contact (fixed wheels, then casters), N.
+
+    Parameters
+    ----------
+    layout : Layout
+    reverse : bool
+        Casters trailing backwards.
+
+    Returns
+    -------
+    ndarray
+        Positive loads, in :func:`contacts` order.
+
+    Raises
+    ------
+    ValueError
+        A contact would carry no load (the c.g. outside the support, or a wheel of a compliant base that lifts).
+    """
+    pts = contacts(layout, reverse)
+    weight = layout.m * layout.g
+    xg, yg = centre_of_mass(layout, reverse)
+    lines = _lines(pts)
+    loads = np.zeros(len(pts))
+    if len(lines) == 2 and all(len(g) <= 2 for g in lines):
+        (a, b) = lines
+        xa, xb = pts[a[0]][1], pts[b[0]][1]
+        la = weight * (xb - xg) / (xb - xa)             # moments about the centre of mass
+        for g, load in ((a, la), (b, weight - la)):
+            if len(g) == 1:
+                loads[g[0]] = load
+            else:
+                (i, j) = g
+                yi, yj = pts[i][2], pts[j][2]
+                loads[i] = load * (yj - yg) / (yj - yi)
+                loads[j] = load - loads[i]
+    else:
+        x = np.array([p[1] for p in pts])
+        y = np.array([p[2] for p in pts])
+        k = np.array([p[3] for p in pts])
+        basis = np.stack([np.ones_like(x), x, y])        # heave, pitch, roll
+        A = (basis * k) @ basis.T
+        z = np.linalg.solve(A, np.array([weight, weight * xg, weight * yg]))
+        loads = k * (z @ basis)
+    for (label, _, _, _), n in zip(pts, loads, strict=True):
+        if not n > 0:
+            raise ValueError(f"layout {layout.name!r}: static load on {label} is {n:.4g} N: the centre of gravity "
+                             "lies outside the support or the base rocks on it (valid: every static load > 0)")
+    return loads
+
+
+def cornering_stiffnesses(layout: Layout, reverse: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Cornering stiffness of every fixed wheel and caster at its static load, N/rad.
+
+    The tire's fit between 0 and 1 deg at the load (Table 4-1 method, as
+    :func:`stability.models.statics.static_stiffness`) times the wheel's lateral scale.
+
+    Parameters
+    ----------
+    layout : Layout
+    reverse : bool
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Fixed wheels, casters.
+    """
+    from stability import tires
+
+    loads = static_loads(layout, reverse)
+    nw = len(layout.wheels)
+    cw = np.array([tires.get(w.tire).scaled(lateral=w.lateral_scale).cornering_stiffness_per_rad(loads[j])
+                   for j, w in enumerate(layout.wheels)], dtype=float)
+    cc = np.array([tires.get(c.tire).scaled(lateral=c.lateral_scale).cornering_stiffness_per_rad(loads[nw + k])
+                   for k, c in enumerate(layout.casters)], dtype=float)
+    return cw, cc
+
+
+def tip_angles(layout: Layout) -> dict[str, float]:
+    """ISO 7176-1 static stability angles of the rigid layout (brakes locked, casters in their least stable
+    position), by direction: forward, backward, left, right.
+
+    The tipping line is the edge of the support polygon of every contact (a caster's contact anywhere on the
+    circle of its trail about its pin), :func:`stability.tipping.angles.support_fall_distance`; the suspension's
+    deflection is neglected (rigid body).
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    dict
+        ``forward_deg``, ``backward_deg``, ``left_deg``, ``right_deg``.
+    """
+    from stability.tipping.angles import support_fall_distance
+
+    points = [(w.x, w.y, 0.0) for w in layout.wheels] + [(c.x, c.y, c.trail) for c in layout.casters]
+    dirs = {"forward_deg": (1.0, 0.0), "backward_deg": (-1.0, 0.0), "left_deg": (0.0, -1.0),
+            "right_deg": (0.0, 1.0)}
+    return {k: support_fall_distance(points, layout.h, *e).angle_deg for k, e in dirs.items()}

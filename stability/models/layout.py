@@ -1,0 +1,56 @@
+"""The linear equations of any wheel layout: the door to :mod:`stability._generated.layout`.
+
+``derivations/layout.py`` derives the planar equations of a body with ``J`` fixed wheels and ``K`` casters by
+Kane's method, linearises them about straight running forward (casters trailing at 0) and in reverse (at pi), and
+generates one function per shape and direction; this module evaluates them for a batch of speeds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from stability._generated import layout as _g
+
+__all__ = ["supported_shapes", "linear_layout_matrices"]
+
+
+def supported_shapes() -> tuple[tuple[int, int], ...]:
+    """The generated ``(fixed wheels, casters)`` shapes."""
+    return tuple(tuple(s) for s in _g.SHAPES)  # type: ignore[misc]
+
+
+def linear_layout_matrices(shape: tuple[int, int], reverse: bool, speeds: np.ndarray,
+                           args: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``M, K, Bm, Bf`` of the layout's linear model at each speed.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Fixed wheels, casters.
+    reverse : bool
+        Linearised about reverse running (the speeds negative).
+    speeds : ndarray
+        m/s.
+    args : tuple of float
+        ``m, i_z``, per fixed wheel ``x_w, C_w``, per caster ``x_p, trail, l, m_c, i_zp, C_c, c_pin`` (SI).
+
+    Returns
+    -------
+    (M, K, Bm, Bf)
+        Shapes ``(S, n, n)``, ``(S, n, 2 n)``... with ``n = 2 + K``: ``M acc = K x + Bm Mz + Bf Fy``.
+    """
+    fn = getattr(_g, f"linear_{shape[0]}w{shape[1]}c_{'reverse' if reverse else 'forward'}")
+    U = np.asarray(speeds, dtype=float)
+    M, K, Bm, Bf = fn(U, *args)
+    n = len(M)
+
+    def full(rows, cols: int) -> np.ndarray:
+        out = np.empty((len(U), len(rows), cols))
+        for i, row in enumerate(rows):
+            for j, x in enumerate(row):
+                out[:, i, j] = x
+        return out
+
+    return full(M, n), full(K, len(K[0])), np.stack([np.broadcast_to(np.asarray(x, float), U.shape) for x in Bm],
+                                                    axis=-1), \
+        np.stack([np.broadcast_to(np.asarray(x, float), U.shape) for x in Bf], axis=-1)
