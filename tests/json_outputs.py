@@ -31,6 +31,7 @@ CASES = {
     "advise": ("advise", []),
     "report": ("report", ["--quick", "--no-progress"]),
     "sweep": ("sweep", ["{tmp}/g.toml", "-o", "{tmp}/g.csv"]),
+    "bench": ("bench", ["--chair", "mid-wheel-drive"]),
 }
 #: Input files a case reads, written into its temporary directory first (name -> {file: text}).
 FILES = {

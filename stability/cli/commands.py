@@ -42,6 +42,7 @@ COMMANDS: dict[str, str] = {
     "sweep": "stability.sweep.__main__",
     "tipping": "stability.tipping.__main__",
     "advise": "stability.advise.__main__",
+    "bench": "stability.bench.__main__",
     "app": "stability.app.server",
 }
 
@@ -104,6 +105,7 @@ commands:
   chair           chair files: export a preset to start from (chair export PRESET -o chair.toml)
   tipping         static tip angles (ISO 7176-1) of the rigid chair
   advise          what to change on this chair, and what it costs
+  bench           virtual test bench: ISO 7176-2 wheel lift and ISO 7176-3 braking distance (power chairs)
   app             the interactive explorer: a local web page (127.0.0.1)
 
 stability COMMAND --help shows a command's options."""

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from stability.settings.bounds import Bound
+from stability.settings.drive import DRIVE_SETTINGS, drive_flag
 from stability.settings.run import RUN_SETTINGS
 
 __all__ = ["Bound", "OPTION_BOUNDS", "bound_for", "number", "NonFiniteResult", "first_non_finite",
@@ -78,6 +79,8 @@ OPTION_BOUNDS: dict[str, Bound] = {
 #: Commands whose run options are generated from the RunSpec's table (stability.cli.options.add_run_options): their
 #: bounds are the RunSpec's, one entry per option as ``"command:--option"``.
 RUN_COMMANDS = ("simulate", "study")
+OPTION_BOUNDS.update({f"bench:{drive_flag(name)}": Bound(lo, hi, unit)
+                      for name, (unit, (lo, hi), _) in DRIVE_SETTINGS.items()})
 OPTION_BOUNDS.update({f"{command}:{setting.flag or '--' + name.replace('_', '-')}": setting.bound
                       for command in RUN_COMMANDS for name, setting in RUN_SETTINGS.items()
                       if setting.bound is not None})

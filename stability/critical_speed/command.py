@@ -195,7 +195,10 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
     from stability.layout.io import is_layout_spec
 
-    raw_speeds = [float(x) for x in args.speeds.split(",")] if ":" not in args.speeds else None
+    try:
+        raw_speeds = [float(x) for x in args.speeds.split(",")] if ":" not in args.speeds else None
+    except ValueError:
+        raw_speeds = None                       # parse_speeds below says what is wrong
     if is_layout_spec(args.chair) or (raw_speeds is not None and any(u < 0 for u in raw_speeds)):
         return _run_layout(args)
     c = load_chair(args.chair, args.set)

@@ -95,7 +95,16 @@ def load_layout(path: str | os.PathLike[str]) -> Layout:
 
 
 def is_layout_spec(spec: str) -> bool:
-    """Whether a ``--chair`` value names a layout preset or a file in the ``[[wheel]]`` form."""
+    """Whether a ``--chair`` value names a layout preset or a file in the ``[[wheel]]`` form.
+
+    Parameters
+    ----------
+    spec : str
+
+    Returns
+    -------
+    bool
+    """
     if spec in layout_preset_names():
         return True
     if os.path.isfile(spec) and spec.endswith(".toml"):

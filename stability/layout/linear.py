@@ -26,7 +26,17 @@ SEARCH_SPEEDS_M_S = np.geomspace(0.02, 20.0, 240)
 
 
 def states(layout: Layout) -> tuple[str, ...]:
-    """State names of the layout's linear model."""
+    """State names of the layout's linear model.
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    tuple of str
+        ``v`` (m/s), ``r`` (rad/s), then per caster ``delta_k`` (rad) and ``delta_d_k`` (rad/s).
+    """
     return ("v", "r") + tuple(n for k in range(len(layout.casters)) for n in (f"delta_{k}", f"delta_d_{k}"))
 
 

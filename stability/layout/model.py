@@ -133,6 +133,9 @@ class Layout:
     casters : tuple of Caster
     g : float
         Gravity, m/s^2.
+    anti_tip : tuple of (float, float)
+        Anti-tip devices' ground contacts when the chair has tipped onto them, ``(x, y)`` m (none by default): they
+        carry no load on level ground and catch the chair when it tips their way.
     """
 
     name: str
@@ -142,6 +145,7 @@ class Layout:
     wheels: tuple = field(default_factory=tuple)
     casters: tuple = field(default_factory=tuple)
     g: float = 9.81
+    anti_tip: tuple = field(default_factory=tuple)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "m", _check("m", self.m, 5.0, 500.0, "kg"))
@@ -150,6 +154,9 @@ class Layout:
         object.__setattr__(self, "g", _check("g", self.g, 1.0, 30.0, "m/s^2"))
         object.__setattr__(self, "wheels", tuple(self.wheels))
         object.__setattr__(self, "casters", tuple(self.casters))
+        object.__setattr__(self, "anti_tip", tuple((_check("anti_tip x", float(x), -2.0, 2.0, "m"),
+                                                    _check("anti_tip y", float(y), -1.0, 1.0, "m"))
+                                                   for x, y in self.anti_tip))
         if not all(isinstance(w, FixedWheel) for w in self.wheels):
             raise TypeError("wheels: expected FixedWheel objects")
         if not all(isinstance(c, Caster) for c in self.casters):
@@ -177,7 +184,8 @@ class Layout:
         -------
         Layout
             Main wheels at ``(x_main, -d1)``, ``(x_main, d2)``; caster pins at ``(x_pin, -t1)``,
-            ``(x_pin, t2)`` with the chair's trail, ``l1``, ``m_c``, ``i_zp``, pins, tires and scales.
+            ``(x_pin, t2)`` with the chair's trail, ``l1``, ``m_c``, ``i_zp``, pins, tires and scales; anti-tip
+            devices ``anti_tip_reach`` beyond the main wheels.
         """
         from stability.chair.power import drive_kind
 
@@ -187,4 +195,8 @@ class Layout:
         casters = tuple(Caster(chair.x_pin, y, chair.trail, chair.l1, chair.m_c, chair.i_zp, chair.caster_tire,
                                chair.pin_damping, mf, chair.caster_lateral_scale)
                         for y, mf in ((-chair.t1, chair.pin_friction_left), (chair.t2, chair.pin_friction_right)))
-        return cls(chair.name, chair.m, chair.i_z, chair.h, wheels, casters, chair.g)
+        anti: tuple = ()
+        if chair.anti_tip_reach > 0:                     # beyond the main wheels, away from the casters
+            x = chair.x_main + (1.0 if chair.x_main > chair.x_pin else -1.0) * chair.anti_tip_reach
+            anti = ((x, -chair.d1), (x, chair.d2))
+        return cls(chair.name, chair.m, chair.i_z, chair.h, wheels, casters, chair.g, anti)

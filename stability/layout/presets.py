@@ -26,7 +26,7 @@ from stability.layout.model import Caster, FixedWheel, Layout
 __all__ = ["layout_preset", "layout_preset_names", "BODY", "DRIVE_X_M"]
 
 #: The frame's body: mass (kg), yaw inertia about the c.g. (kg m^2), c.g. height (m): the power-fwd preset's.
-BODY = dict(m=215.0, i_z=13.0, h=0.49)
+BODY: dict = dict(m=215.0, i_z=13.0, h=0.49)
 #: Drive axle x relative to the c.g. (m) by drive layout.
 DRIVE_X_M = {"power-fwd-base": 0.18, "mid-wheel-drive": -0.03, "power-rwd-base": -0.18}
 _TRACK_HALF_M = 0.275
@@ -49,7 +49,12 @@ def _pair(x: float, k: float = CASTER_STIFFNESS_N_PER_M) -> tuple[Caster, Caster
 
 
 def layout_preset_names() -> tuple[str, ...]:
-    """The layout presets' names."""
+    """The layout presets' names.
+
+    Returns
+    -------
+    tuple of str
+    """
     return tuple(DRIVE_X_M)
 
 

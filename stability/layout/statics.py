@@ -15,7 +15,7 @@ import numpy as np
 
 from stability.layout.model import Layout
 
-__all__ = ["contacts", "static_loads", "cornering_stiffnesses", "tip_angles", "centre_of_mass"]
+__all__ = ["contacts", "static_loads", "cornering_stiffnesses", "tip_angles", "centre_of_mass", "distribute"]
 
 
 def contacts(layout: Layout, reverse: bool = False) -> list[tuple[str, float, float, float]]:
@@ -72,6 +72,54 @@ def _lines(points: list[tuple[str, float, float, float]], tol: float = 1e-9) -> 
     return groups
 
 
+def distribute(points: list[tuple[str, float, float, float]], weight: float, centre: tuple[float, float]
+               ) -> np.ndarray:
+    """Share a vertical load among contacts so that its moments about ``centre`` balance (may give loads < 0).
+
+    Three contacts: the three equilibrium equations alone.  Two support lines of at most two contacts each: the
+    lever rule (eq 6-25 of Collins 1987).  Otherwise the contacts' vertical stiffnesses with the body rigid:
+    ``N_i = k_i (z + theta x_i + phi y_i)``.
+
+    Parameters
+    ----------
+    points : list of (label, x, y, vertical stiffness)
+        As :func:`contacts` (m, m, N/m).
+    weight : float
+        The vertical load to share, N.
+    centre : (float, float)
+        Where it acts, m.
+
+    Returns
+    -------
+    ndarray
+        N per contact.
+    """
+    xg, yg = centre
+    x = np.array([p[1] for p in points])
+    y = np.array([p[2] for p in points])
+    lines = _lines(points)
+    if len(points) == 3:
+        A = np.stack([np.ones(3), x, y])
+        return np.linalg.solve(A, np.array([weight, weight * xg, weight * yg]))
+    if len(lines) == 2 and all(len(g) <= 2 for g in lines):
+        loads = np.zeros(len(points))
+        (a, b) = lines
+        xa, xb = x[a[0]], x[b[0]]
+        la = weight * (xb - xg) / (xb - xa)             # moments about the centre
+        for g, load in ((a, la), (b, weight - la)):
+            if len(g) == 1:
+                loads[g[0]] = load
+            else:
+                (i, j) = g
+                loads[i] = load * (y[j] - yg) / (y[j] - y[i])
+                loads[j] = load - loads[i]
+        return loads
+    k = np.array([p[3] for p in points])
+    basis = np.stack([np.ones_like(x), x, y])            # heave, pitch, roll
+    z = np.linalg.solve((basis * k) @ basis.T, np.array([weight, weight * xg, weight * yg]))
+    return k * (z @ basis)
+
+
 def static_loads(layout: Layout, reverse: bool = False) -> np.ndarray:
     """Static normal load on every contact (fixed wheels, then casters), N.
 
@@ -92,30 +140,7 @@ def static_loads(layout: Layout, reverse: bool = False) -> np.ndarray:
         A contact would carry no load (the c.g. outside the support, or a wheel of a compliant base that lifts).
     """
     pts = contacts(layout, reverse)
-    weight = layout.m * layout.g
-    xg, yg = centre_of_mass(layout, reverse)
-    lines = _lines(pts)
-    loads = np.zeros(len(pts))
-    if len(lines) == 2 and all(len(g) <= 2 for g in lines):
-        (a, b) = lines
-        xa, xb = pts[a[0]][1], pts[b[0]][1]
-        la = weight * (xb - xg) / (xb - xa)             # moments about the centre of mass
-        for g, load in ((a, la), (b, weight - la)):
-            if len(g) == 1:
-                loads[g[0]] = load
-            else:
-                (i, j) = g
-                yi, yj = pts[i][2], pts[j][2]
-                loads[i] = load * (yj - yg) / (yj - yi)
-                loads[j] = load - loads[i]
-    else:
-        x = np.array([p[1] for p in pts])
-        y = np.array([p[2] for p in pts])
-        k = np.array([p[3] for p in pts])
-        basis = np.stack([np.ones_like(x), x, y])        # heave, pitch, roll
-        A = (basis * k) @ basis.T
-        z = np.linalg.solve(A, np.array([weight, weight * xg, weight * yg]))
-        loads = k * (z @ basis)
+    loads = distribute(pts, layout.m * layout.g, centre_of_mass(layout, reverse))
     for (label, _, _, _), n in zip(pts, loads, strict=True):
         if not n > 0:
             raise ValueError(f"layout {layout.name!r}: static load on {label} is {n:.4g} N: the centre of gravity "

@@ -15,7 +15,12 @@ __all__ = ["supported_shapes", "linear_layout_matrices"]
 
 
 def supported_shapes() -> tuple[tuple[int, int], ...]:
-    """The generated ``(fixed wheels, casters)`` shapes."""
+    """The generated ``(fixed wheels, casters)`` shapes.
+
+    Returns
+    -------
+    tuple of (int, int)
+    """
     return tuple(tuple(s) for s in _g.SHAPES)  # type: ignore[misc]
 
 

@@ -1,0 +1,139 @@
+"""The virtual test bench (stability.bench): statics, closed forms and symmetry.
+
+Independent statements used:
+
+- at zero acceleration on level ground the bench's loads are the layout's static loads;
+- tilting the plane with no acceleration, the chair tips (score 3) exactly where the gravity line through the c.g.
+  reaches the edge of its support polygon: ``tan(alpha) = rho / h`` with ``rho`` from
+  :func:`stability.tipping.angles.support_fall_distance` (the tipping module's gauge minimisation over fixed
+  contacts, not the bench's polygon test);
+- an acceleration is a tilt: ``(a_x, 0)`` on level ground moves the effective centre as a grade of
+  ``atan(a_x / g)`` does, with the normal load scaled by ``cos``;
+- the braking distance of a constant deceleration ``a`` from ``v`` after a delay ``t`` is ``v t + v^2 / (2 a)``;
+- turning left is the mirror image of turning right.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from stability.bench import Drive, braking_distance, case_loads, run_bench
+from stability.bench.loads import polygon_margin
+from stability.layout import Layout, static_loads
+from stability.layout.presets import layout_preset, layout_preset_names
+from stability.layout.statics import contacts
+from stability.tipping.angles import support_fall_distance
+
+
+@pytest.mark.parametrize("name", layout_preset_names())
+def test_level_and_still_is_the_static_loads(name):
+    layout = layout_preset(name)
+    c = case_loads(layout)
+    assert c.score == 0 and c.lifted == ()
+    assert np.allclose(c.loads_N, static_loads(layout), rtol=1e-12)
+
+
+def _tip_grade(layout: Layout, direction: str) -> float:
+    """The plane angle at which the bench first scores 3 (bisection to 1e-6 deg)."""
+    lo, hi = 0.0, 89.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        grade = {"forward": -mid, "backward": mid}.get(direction, 0.0)
+        cross = {"right": mid, "left": -mid}.get(direction, 0.0)
+        if case_loads(layout, 0.0, 0.0, grade, cross).score == 3:
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)
+
+
+@pytest.mark.parametrize("name", layout_preset_names())
+@pytest.mark.parametrize("direction", ["forward", "backward", "right"])
+def test_tipping_on_a_slope_is_where_the_gravity_line_leaves_the_support(name, direction):
+    """The bench's tip angle against the tipping module's gauge over the same (trailing) contacts: tan(alpha) =
+    rho / h exactly on a grade; on a cross slope the grade of the bench is the plane's full tilt (observed
+    agreement 1e-6 deg, the bisection's; asserted 1e-4)."""
+    layout = layout_preset(name)
+    pts = [(x, y, 0.0) for _, x, y, _ in contacts(layout)]
+    e = {"forward": (1.0, 0.0), "backward": (-1.0, 0.0), "right": (0.0, 1.0)}[direction]
+    expected = support_fall_distance(pts, layout.h, *e).angle_deg
+    assert _tip_grade(layout, direction) == pytest.approx(expected, abs=1e-4)
+
+
+def test_an_acceleration_is_a_tilt():
+    """Braking at a on level ground shifts the effective centre as the plane tilted forward by atan(a/g) does
+    (the normal load differs by cos, the centre not at all): the loads agree after scaling."""
+    layout = layout_preset("mid-wheel-drive")
+    a = 1.2
+    braking = case_loads(layout, -a, 0.0, 0.0, 0.0)
+    tilt = case_loads(layout, 0.0, 0.0, -math.degrees(math.atan(a / layout.g)), 0.0)
+    assert braking.centre_m == pytest.approx(tilt.centre_m, abs=1e-12)
+    scale = braking.loads_N.sum() / tilt.loads_N.sum()
+    assert scale == pytest.approx(1.0 / math.cos(math.atan(a / layout.g)), rel=1e-12)
+    assert np.allclose(braking.loads_N, tilt.loads_N * scale, rtol=1e-10)
+
+
+def test_braking_distance_closed_form_and_the_bench_stops():
+    assert braking_distance(2.0, 2.0) == pytest.approx(1.0)
+    assert braking_distance(2.0, 2.0, delay=0.5) == pytest.approx(2.0)
+    assert braking_distance(2.0, 9.81 * math.sin(math.radians(6.0)), downhill_deg=6.0) == math.inf
+    drive = Drive(max_speed_m_s=2.0, decel_m_s2=1.0, traction=2.0)
+    r = run_bench(layout_preset("power-rwd-base"), drive)
+    stop = next(c for c in r.cases if c.name == "forward stop, control released" and c.slope == "level")
+    assert stop.limited_by == "" and stop.braking_distance_m == pytest.approx(2.0 ** 2 / (2 * 1.0))
+    cut = next(c for c in r.cases if c.name == "forward stop, power cut" and c.slope == "downhill")
+    a = drive.brake_decel_m_s2 - 9.81 * math.sin(math.radians(drive.max_slope_deg))
+    assert cut.braking_distance_m == pytest.approx(2.0 * drive.brake_delay_s + 2.0 ** 2 / (2 * a))
+
+
+def test_turning_left_mirrors_turning_right():
+    r = run_bench(layout_preset("mid-wheel-drive"))
+    right = [c for c in r.cases if c.name.startswith("turn right")]
+    left = [c for c in r.cases if c.name.startswith("turn left")]
+    for a, b in zip(right, left, strict=True):
+        assert a.score == b.score
+        assert a.loads.centre_m[1] == pytest.approx(-b.loads.centre_m[1], abs=1e-12)
+
+
+def test_stopping_pitches_a_mid_wheel_drive_base_forward():
+    """Stopping forward moves the load forward: the rear casters unload first (a mid-wheel-drive base rocks onto its
+    front casters), and the worst case is a stop."""
+    layout = layout_preset("mid-wheel-drive")
+    loads = [case_loads(layout, -a).loads_N for a in (0.0, 1.0, 2.0)]
+    rear = [x[4] + x[5] for x in loads]
+    front = [x[2] + x[3] for x in loads]
+    assert rear[0] > rear[1] > rear[2] >= 0 and front[0] < front[1] < front[2]
+
+
+def test_polygon_margin_of_a_square():
+    sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    assert polygon_margin(sq, (0.5, 0.5)) == pytest.approx(0.5)
+    assert polygon_margin(sq, (0.5, 1.25)) == pytest.approx(-0.25)
+    assert polygon_margin(sq, (2.0, 2.0)) == pytest.approx(-math.sqrt(2))
+
+
+def test_anti_tip_devices_catch_the_chair():
+    """A rear-caster chair tipping toward its main wheels with anti-tip devices beyond them scores 2 where it
+    would score 3 without."""
+    from stability.chair import preset
+
+    bare = Layout.from_chair(preset("ej-premier"))
+    guarded = Layout.from_chair(preset("ej-premier").replace(anti_tip_reach=0.3))
+    grade = -(_tip_grade(bare, "forward") + 2.0)           # past the main wheels' edge
+    assert case_loads(bare, 0.0, 0.0, grade, 0.0).score == 3
+    assert case_loads(guarded, 0.0, 0.0, grade, 0.0).score == 2
+
+
+def test_bench_command_and_refusals(capsys):
+    from stability.bench.__main__ import main
+
+    assert main(["--chair", "mid-wheel-drive"]) == 0
+    out = capsys.readouterr().out
+    assert "forward stop, power cut" in out and "Worst score" in out
+    assert main(["--max-speed", "50"]) == 2
+    assert "--max-speed 50 is invalid; valid range: 0.1 <= value <= 10 m/s" in capsys.readouterr().err
+    with pytest.raises(ValueError, match="traction"):
+        Drive(traction=0.0)
