@@ -750,21 +750,6 @@ def test_compiled_transcriptions_equal_statics_and_models():
             assert kernel.tire_yaw_moment(P, F, *trig) == full_width.tire_yaw_moment(p, F, *trig)
 
 
-def test_kernel_tire_law_equals_the_tires_module():
-    """Compiled lateral force = Tire.lateral_force (segment form) for every policy, bit for bit."""
-    from stability.simulate import engine, kernel
-
-    rng = np.random.default_rng(5)
-    for tire in (tires.get("EJA"), tires.get("ER").scaled(0.7), tires.get("linear:30")):
-        kind, seg, scale, lim = engine._tire_slot(tire)
-        slip = rng.uniform(-11, 11, 300)
-        fz = rng.uniform(-20, 520, 300)
-        for pol, name in enumerate(("clamp", "extrapolate")):
-            want = tire.lateral_force(slip, fz, policy=name, warn=False)
-            got = [kernel.lateral_force(kind, seg, scale, np.array(lim), s, f, pol)[0] for s, f in zip(slip, fz, strict=False)]
-            np.testing.assert_array_equal(got, want)
-
-
 def test_record_modes_and_stats():
     full = simulate(EJ, 0.75, stop_on_warnings=False, duration=4.0)
     states = simulate(EJ, 0.75, stop_on_warnings=False, duration=4.0, record="states", sample=0.01)
@@ -851,14 +836,17 @@ def test_reference_range_rules_check_only_the_tested_wheels():
 
 
 def test_compile_cache_stamp_is_the_generated_equations_hash():
-    """The stale-cache stamp next to the numba cache is the SHA-256 of the generated equations (level and slope)
-    and of the kernel modules whose functions other kernels call (numba keys a cache on its own file only)."""
-    from stability.simulate.cache_stamp import KERNEL_SOURCES
+    """The stale-cache stamp next to the numba cache is the SHA-256 of the modules the kernels compile as they are
+    (the generated equations, level and slope, and the tire law) and of the kernel modules whose functions other
+    kernels call (numba keys a cache on its own file only)."""
+    from stability.simulate.cache_stamp import COMPILED_MODULES, KERNEL_SOURCES
+    from stability.tires import law
 
     here = Path(kernel.__file__).parent
-    digest = hashlib.sha256(Path(generated.__file__).read_bytes() + Path(slope_generated.__file__).read_bytes()
+    digest = hashlib.sha256(b"".join(Path(m.__file__).read_bytes() for m in COMPILED_MODULES)
                             + b"".join((here / name).read_bytes() for name in KERNEL_SOURCES)).hexdigest()
     assert {"kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py"} <= set(KERNEL_SOURCES)
+    assert {generated, slope_generated, law} <= set(COMPILED_MODULES)
     stamp = Path(kernel.run_batch._cache.cache_path) / "kernel.equations.sha256"
     if not stamp.exists():
         pytest.skip("no writable cache directory")

@@ -76,6 +76,7 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     held_pins,
     loads_plane,
     stick_slip,
+    tire_law,
 )
 
 #: numba's largest thread count (set when numba is imported)
@@ -130,54 +131,9 @@ def tire_yaw_moment(P, F, ce, se, cb, sb):
     return xa * fay - ya * fax + xb * fby - yb * fbx + P[X_M] * (FDy + FEy) + P[D1] * FDx - P[D2] * FEx
 
 
-@_inl_py
-def lateral_force(kind, seg, scale, lim, slip, fz, policy):
-    """Cornering force (N) of one tire: ``(force, refused)``; ``refused`` under policy 2 ("raise").
-
-    kind 0: tested tire, ``seg`` = (6, 8) segment table (``_segment_force``);
-    kind 1: linear tire, ``scale`` = N/deg.  policy 0 clamp, 1 extrapolate, 2 raise.
-    """
-    if kind == 1:
-        if fz > 0.0:
-            return -scale * slip + 0.0, False
-        return 0.0, False
-    s = abs(slip)
-    f = fz
-    if s > lim[0] or f > lim[1]:
-        if policy == 2:
-            return math.nan, True
-        if policy == 0:
-            if s > lim[0]:
-                s = lim[0]
-            if f > lim[1]:
-                f = lim[1]
-    fzp = max(f, 0.0) if f == f else f
-    i = math.floor(s)
-    if not i <= 7.0:
-        i = 7.0
-    t = s - i
-    ii = int(i) if i == i else 7
-    c = seg[2, ii] + t * seg[5, ii]
-    b = seg[1, ii] + t * seg[4, ii]
-    a = seg[0, ii] + t * seg[3, ii]
-    c = ((c * fzp + b) * fzp + a) * fzp
-    if scale != 1.0:
-        c = c * scale
-    if slip > 0.0:
-        return -c + 0.0, False
-    return c + 0.0, False
-
-
-@_inl
-def rolling_force(kind, coef, scale, fz, vx):
-    """Rolling resistance (N) opposing ``vx``: kind 0 off, 1 Appendix B cubic, 2 linear ``f_r fz``."""
-    if kind == 0:
-        return 0.0 * fz
-    if kind == 1:
-        mag = abs(fz * (coef[0] + fz * (coef[1] + fz * coef[2]))) * scale if fz > 0.0 else 0.0
-    else:
-        mag = coef[0] * scale * fz if fz > 0.0 else 0.0
-    return math.copysign(mag, -vx)
+lateral_force = tire_law.lateral_force     # the one tire law (stability.tires.law), compiled
+rolling_force = tire_law.rolling_force
+camber_force = tire_law.camber_force
 
 
 @_inl
@@ -227,8 +183,8 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
         cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy)
         if badc or badd:
             refused, wheel = 2, (2 if badc else 3)
-        FDy = FDy + -CAM[1] * cD
-        FEy = FEy - -CAM[1] * cE
+        FDy = FDy + camber_force(CAM[1], cD)
+        FEy = FEy - camber_force(CAM[1], cE)
     if S[TOE] != 0.0:
         ct, st = S[CT], S[ST]
         FEx, FEy = FEx * ct - FEy * st, FEx * st + FEy * ct

@@ -12,12 +12,14 @@ this file changes (:data:`stability.simulate.cache_stamp.KERNEL_SOURCES`).
 from __future__ import annotations
 
 import math
+import types
 from typing import Any
 
 from numba import njit
 
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
+from stability.tires import law as _tire_law
 
 __all__ = ["accelerations", "held_pins", "stick_slip", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW",
            "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
@@ -29,6 +31,28 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 _int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
 _inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
+
+
+def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any) -> types.SimpleNamespace:
+    """The functions ``names`` of a plain-Python ``module`` compiled as they are, calling each other compiled.
+
+    Each function is copied into one shared namespace (the module's globals)
+    in which every name of ``names`` is its compiled version, so that a call
+    between them resolves to compiled code (numba cannot call a Python
+    function).  The module itself is untouched: Python callers keep the
+    originals, which run on floats and numpy arrays.
+    """
+    ns = dict(vars(module))
+    out = {}
+    for name in names:
+        f = getattr(module, name)
+        ns[name] = out[name] = decorator(types.FunctionType(f.__code__, ns, name, f.__defaults__, f.__closure__))
+    return types.SimpleNamespace(**out)
+
+
+#: the tire force law of :mod:`stability.tires.law` (what Tire.lateral_force evaluates), compiled
+tire_law = compiled(_tire_law, ("cubic", "segment_force", "lateral_force", "camber_force", "rolling_resistance",
+                                "rolling_force"), _inl)
 cv_exact = _int(_fw.contact_velocities_exact)
 cv_thesis = _int(_fw.contact_velocities_thesis)
 acc_exact = _int(_fw.accelerations_exact)

@@ -6,7 +6,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
-from stability.tires.model import Tire, _segment_force
+from stability.tires.model import Tire
 from stability.tires.ranges import Policy, _check_policy
 
 __all__ = ["TireStack"]
@@ -56,20 +56,6 @@ class TireStack:
         See :meth:`Tire.lateral_force` for the force law and ``policy``
         (``"raise"`` raises ValueError naming the first offending value).
         """
-        s = np.abs(slip_deg)
-        if policy == "clamp":
-            np.minimum(s, self._smax, out=s)
-            f = np.minimum(fz, self._fmax)
-        elif policy == "extrapolate":
-            f = fz
-        else:
-            _check_policy(policy)
-            bad = (s > self._smax) | (fz > self._fmax)
-            if bad.any():   # the offending row's tire raises its own error
-                j = int(np.argwhere(bad)[0][0])
-                self.tires[j].lateral_force(slip_deg[j], fz[j], policy="raise")
-            f = fz
-        c = _segment_force(self._table, s, f, self._offset)
-        if self._scale is not None:
-            c *= self._scale
-        return np.where(slip_deg > 0.0, -c, c) + 0.0
+        _check_policy(policy)
+        return np.array([t.lateral_force(slip_deg[j], fz[j], policy=policy, warn=False)
+                         for j, t in enumerate(self.tires)])
