@@ -734,22 +734,6 @@ def test_single_run_is_bit_identical_to_its_batch_run():
         assert rb.stop_time == r1.stop_time and rb.stats == r1.stats
 
 
-def test_compiled_transcriptions_equal_statics_and_models():
-    """The kernel's loads and tire yaw moment are statics.normal_loads / models.full_width's, bit for bit."""
-    from stability.models import full_width
-    rng = np.random.default_rng(3)
-    for chair in (EJ, FRONT):
-        p = params.parameters(chair)
-        P = np.array(p, dtype=float)
-        for _ in range(200):
-            fx, fy = rng.uniform(-300, 300, 2)
-            e, b = rng.uniform(-np.pi, np.pi, 2)
-            trig = (math.cos(e), math.sin(e), math.cos(b), math.sin(b))
-            assert kernel.normal_loads(P, fx, fy, *trig) == loads.normal_loads(p, fx, fy, *trig)
-            F = tuple(rng.uniform(-100, 100, 8))
-            assert kernel.tire_yaw_moment(P, F, *trig) == full_width.tire_yaw_moment(p, F, *trig)
-
-
 def test_record_modes_and_stats():
     full = simulate(EJ, 0.75, stop_on_warnings=False, duration=4.0)
     states = simulate(EJ, 0.75, stop_on_warnings=False, duration=4.0, record="states", sample=0.01)
@@ -839,6 +823,7 @@ def test_compile_cache_stamp_is_the_generated_equations_hash():
     """The stale-cache stamp next to the numba cache is the SHA-256 of the modules the kernels compile as they are
     (the generated equations, level and slope, and the tire law) and of the kernel modules whose functions other
     kernels call (numba keys a cache on its own file only)."""
+    from stability.models import forces
     from stability.simulate.cache_stamp import COMPILED_MODULES, KERNEL_SOURCES
     from stability.tires import law
 
@@ -846,7 +831,7 @@ def test_compile_cache_stamp_is_the_generated_equations_hash():
     digest = hashlib.sha256(b"".join(Path(m.__file__).read_bytes() for m in COMPILED_MODULES)
                             + b"".join((here / name).read_bytes() for name in KERNEL_SOURCES)).hexdigest()
     assert {"kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py"} <= set(KERNEL_SOURCES)
-    assert {generated, slope_generated, law} <= set(COMPILED_MODULES)
+    assert {generated, slope_generated, forces.generated, law} <= set(COMPILED_MODULES)
     stamp = Path(kernel.run_batch._cache.cache_path) / "kernel.equations.sha256"
     if not stamp.exists():
         pytest.skip("no writable cache directory")

@@ -97,7 +97,9 @@ def test_mirror_symmetry(scheme, chair):
     differences): tolerance 100 rtol with rtol = 1e-9; the fixed-step runs to 1e-9 of the signal.
     """
     chair = chair.replace(**FRICTIONLESS)
-    kw = dict(model="exact", scheme=scheme, duration=1.0, impulse_force=0.0)
+    # 0.6 s: the rear-caster chair turns 13 deg; by 0.9 s its casters swing past 90 deg and the spin-out is
+    # chaotic (there a rounding-level difference sent LSODA into steps of 1e-11 s)
+    kw = dict(model="exact", scheme=scheme, duration=0.6, impulse_force=0.0)
     if scheme == "adaptive":
         kw.update(rtol=1e-9, atol=1e-12)
     a = simulate(chair, 0.75, slope=(3.0, 1.0), **kw)
@@ -105,9 +107,9 @@ def test_mirror_symmetry(scheme, chair):
     # error models (tests/numerics.py): the fixed-step runs differ by rounding grown over the run; the
     # adaptive ones by at most the sum of their global errors (LSODA's step decisions may part)
     if scheme == "adaptive":
-        tol = adaptive_run_tolerance(chair, 0.75, 1.0, 1e-9, max(a.settings["nfev"], b.settings["nfev"]), "exact")
+        tol = adaptive_run_tolerance(chair, 0.75, 0.6, 1e-9, max(a.settings["nfev"], b.settings["nfev"]), "exact")
     else:
-        tol = run_tolerance(chair, 0.75, 1.0, model="exact")
+        tol = run_tolerance(chair, 0.75, 0.6, model="exact")
     assert a.t.shape == b.t.shape
     for name, sign in (("x", 1), ("u", 1), ("y", -1), ("heading", -1), ("yaw_rate", -1), ("v", -1)):
         x, y = getattr(a, name), sign * getattr(b, name)

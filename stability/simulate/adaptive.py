@@ -37,6 +37,10 @@ from stability.simulate.results import NCOLS, ChairState, SimulationResult, new_
 __all__ = ["AdaptiveModel", "adaptive_single", "NoLoadSolution", "FREE_POS", "FREE_NEG", "STUCK", "LOCKED"]
 
 MAX_SWITCHES = 20000
+#: Right-hand-side evaluations allowed per simulated second (at least one second's worth): a run that needs more
+#: has stalled (LSODA's step collapsing at a kink of the right-hand side) and ends with an error instead of
+#: filling the memory with dense output.  Ordinary runs take about 250 per second, stiff slow ones a few thousand.
+MAX_NFEV_PER_S = 100_000
 #: Re-integrations of the segment in which the loads lost their solution, each ending before the last failure.
 STOP_TRIES = 8
 #: The first re-integration ends this fraction of the segment's span before the failure (x4 each further try).
@@ -76,6 +80,7 @@ class AdaptiveModel:
         self._cache_key: tuple | None = None
         self._cache_val: tuple | None = None
         self.nfev = 0
+        self.max_nfev = int(MAX_NFEV_PER_S * max(opts.duration, 1.0))
         #: the compiled right-hand side (:mod:`.adaptive_kernel`) unless a Python yaw_moment input acts
         self.compiled = opts.yaw_moment is None
         self._ck: _Compiled | None = _Compiled(chair, speed, opts) if self.compiled else None
@@ -157,6 +162,10 @@ class AdaptiveModel:
         if key == self._cache_key and self._cache_val is not None:
             return self._cache_val
         self.nfev += 1
+        if self.nfev > self.max_nfev:
+            raise RuntimeError(f"adaptive integration stalled at t = {t:.9g} s: more than {self.max_nfev} "
+                               "right-hand-side evaluations (the step collapsed; try a looser rtol or the wchair "
+                               "scheme)")
         if self._ck is not None:
             val = self._ck.point(t, y, modes, imp)
         else:
@@ -470,7 +479,8 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
     Raises
     ------
     RuntimeError
-        The integrator failed, or more than ``MAX_SWITCHES`` stick-slip
+        The integrator failed or stalled (more than :data:`MAX_NFEV_PER_S`
+        evaluations per simulated second), or more than ``MAX_SWITCHES`` stick-slip
         switches occurred (chattering).
     NoLoadSolution
         The loads have no solution in the first segment of the run.

@@ -23,12 +23,13 @@ from stability.simulate.kernel import (
     _inl,
     _int,
     accelerations,
+    contact_loads,
     invalidate_stale_cache,
     kinematics,
+    kinetic_pin_moment,
     mechan,
-    normal_loads,
-    plane_loads,
     slip_angles,
+    tire_resultant,
     tire_yaw_moment,
 )
 from stability.simulate.kernel import gravity_body as _gravity_body
@@ -87,24 +88,19 @@ def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P, g1, g2):
 def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess, gn):
     """Loads consistent with the tire forces (fixed-point iteration as ``AdaptiveModel._consistent``).
 
-    ``gn``: normal gravity on a plane (m/s^2), NaN when level (eq 6-25 as ``statics.normal_loads``).
+    ``gn``: gravity normal to the plane (m/s^2; ``P[G]`` when level).
     Returns ``(loads, F, refused, wheel, converged)``; ``guess`` (sum fx, sum fy) is updated in place.
     """
     ce, se, cb, sb = trig
     sfx, sfy = guess[0], guess[1]
     it = 0
     while True:
-        if gn == gn:
-            loads = plane_loads(P, sfx, sfy, gn, ce, se, cb, sb)
-        else:
-            loads = normal_loads(P, sfx, sfy, ce, se, cb, sb)
+        loads = contact_loads(P, sfx, sfy, gn, ce, se, cb, sb)
         F, refused, wheel = mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
                                    LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
         if refused != 0:
             return loads, F, refused, wheel, True
-        FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-        nfx = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
-        nfy = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
+        nfx, nfy = tire_resultant(*F, ce, se, cb, sb)
         err = abs(nfx - sfx) + abs(nfy - sfy)
         scale = 1.0 + abs(nfx) + abs(nfy)
         sfx, sfy = nfx, nfy
@@ -126,7 +122,7 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
     plane slots (:func:`stability.simulate.engine.slope_slots`).
     """
     g1 = g2 = 0.0
-    gn = math.nan
+    gn = P[G]
     if SL[0] != 0.0:   # on a slope: gravity in body axes at the heading psi, the exact model with gravity
         model = SLOPE_MODEL
         g1, g2, gn = _gravity_body(P[G], SL[1], SL[2], SL[3], SL[4], math.cos(y[2]), math.sin(y[2]))
@@ -147,8 +143,9 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
     if not ok:
         return 3
     fy_ext = S[FCIMP] if (S[FCIMP] != 0.0 and imp) else 0.0
-    ma = -P[MAF] * ma_mode if (ma_mode == FREE_POS or ma_mode == FREE_NEG) else 0.0
-    mb = -P[MBF] * mb_mode if (mb_mode == FREE_POS or mb_mode == FREE_NEG) else 0.0
+    # a slipping caster's kinetic moment against the sign of its rate (the mode)
+    ma = kinetic_pin_moment(float(ma_mode), P[MAF]) if (ma_mode == FREE_POS or ma_mode == FREE_NEG) else 0.0
+    mb = kinetic_pin_moment(float(mb_mode), P[MBF]) if (mb_mode == FREE_POS or mb_mode == FREE_NEG) else 0.0
     hold_a = ma_mode == STUCK or ma_mode == LOCKED
     hold_b = mb_mode == STUCK or mb_mode == LOCKED
     acc, ma, mb = held(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, fy_ext, 0.0, hold_a, hold_b, P, g1, g2)

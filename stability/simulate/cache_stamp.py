@@ -10,6 +10,7 @@ import hashlib
 import os
 from pathlib import Path
 
+from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.tires import law as _tire_law
@@ -18,8 +19,8 @@ __all__ = ["KERNEL_SOURCES", "COMPILED_MODULES", "invalidate_stale_cache"]
 
 #: The compiled modules whose functions other compiled modules call (a change to one recompiles them all).
 KERNEL_SOURCES = ("kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py")
-#: The plain-Python modules the kernels compile as they are (the generated equations, the tire law).
-COMPILED_MODULES = (_fw, _sl, _tire_law)
+#: The plain-Python modules the kernels compile as they are (the generated equations and contact forces, the tire law).
+COMPILED_MODULES = (_fw, _sl, _fo, _tire_law)
 
 
 def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:

@@ -3,11 +3,11 @@
 Imported only when a simulation runs (numba costs about 0.5 s to import; the
 compiled code is cached on disk, see ``docs/simulator.md``).  Every array
 layout is written by :mod:`stability.simulate.engine`.  The equations are the
-generated functions behind :mod:`stability.models.full_width`, compiled as
-they are; loads (:func:`stability.models.statics.normal_loads`), the tire resultant
-and yaw moment (:mod:`stability.models.full_width`) and the tire force law
-(``_segment_force`` of :mod:`stability.tires`) are transcribed with the same
-operations in the same order (tested bit for bit against them).
+generated functions behind :mod:`stability.models.full_width` and
+:mod:`stability.models.slope`, compiled as they are, and so are the contact
+forces (:mod:`stability.models.forces`: normal loads, the tire resultant and
+yaw moment, slip angles, pin friction) and the tire force law
+(:mod:`stability.tires.law`): nothing is transcribed.
 """
 
 from __future__ import annotations
@@ -70,13 +70,20 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     acc_slope,
     acc_thesis,
     accelerations,
+    camber_force,
     cv_exact,
     cv_thesis,
     gravity_body,
     held_pins,
-    loads_plane,
+    kinetic_pin_moment,
+    lateral_force,
+    normal_loads,
+    rest_rate,
+    rolling_force,
+    slip_angle,
     stick_slip,
-    tire_law,
+    tire_moment,
+    tire_resultant,
 )
 
 #: numba's largest thread count (set when numba is imported)
@@ -84,28 +91,8 @@ NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
 __all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
-           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_pins", "stick_slip",
-           "tire_yaw_moment", "plane", "plane_loads"]
-
-@_inl_py
-def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
-    """:func:`stability.models.statics.normal_loads`, same operations."""
-    c1 = 1.0 / (P[ROLL_K] + 1.0)
-    xa, ya = P[X_P] - P[TRAIL] * ce, -P[T1] - P[TRAIL] * se
-    xb, yb = P[X_P] - P[TRAIL] * cb, P[T2] - P[TRAIL] * sb
-    weight = P[M] * P[G]
-    r_c = -P[H] * sum_fy * c1
-    r_m = -P[H] * sum_fy * (P[ROLL_K] * c1)
-    dy = yb - ya
-    x_c = (xa * yb - xb * ya) / dy
-    s_m = (-P[H] * sum_fx - r_c * (xb - xa) / dy - weight * x_c) / (P[X_M] - x_c)
-    s_c = weight - s_m
-    n_a = (yb * s_c - r_c) / dy
-    n_b = (r_c - ya * s_c) / dy
-    n_e = (r_m + P[D1] * s_m) / (P[D1] + P[D2])
-    n_d = s_m - n_e
-    return n_a, n_b, n_d, n_e
-
+           "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations", "held_pins", "stick_slip",
+           "tire_yaw_moment", "plane"]
 
 @_inl
 def plane(P, cfg, psi):
@@ -114,26 +101,16 @@ def plane(P, cfg, psi):
 
 
 @_inl
-def plane_loads(P, sum_fx, sum_fy, gn, ce, se, cb, sb):
-    """Normal loads on the plane from the tire-force sums (generated ``normal_loads_plane``)."""
-    return loads_plane(sum_fx, sum_fy, gn, ce, se, cb, sb, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL],
-                       P[H], P[M], P[ROLL_K])
+def contact_loads(P, sum_fx, sum_fy, gn, ce, se, cb, sb):
+    """Normal loads from the tire-force sums and the normal gravity ``gn`` (``P[G]`` when level; generated)."""
+    return normal_loads(sum_fx, sum_fy, gn, ce, se, cb, sb, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2],
+                               P[TRAIL], P[H], P[M], P[ROLL_K])
 
 
-@_inl_py
+@_inl
 def tire_yaw_moment(P, F, ce, se, cb, sb):
-    """:func:`stability.models.full_width.tire_yaw_moment`, same operations."""
-    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    xa, ya = P[X_P] - P[TRAIL] * ce, -P[T1] - P[TRAIL] * se
-    xb, yb = P[X_P] - P[TRAIL] * cb, P[T2] - P[TRAIL] * sb
-    fax, fay = FAx * ce - FAy * se, FAx * se + FAy * ce
-    fbx, fby = FBx * cb - FBy * sb, FBx * sb + FBy * cb
-    return xa * fay - ya * fax + xb * fby - yb * fbx + P[X_M] * (FDy + FEy) + P[D1] * FDx - P[D2] * FEx
-
-
-lateral_force = tire_law.lateral_force     # the one tire law (stability.tires.law), compiled
-rolling_force = tire_law.rolling_force
-camber_force = tire_law.camber_force
+    """Yaw moment of the tire forces about the c.g., N m (generated)."""
+    return tire_moment(*F, ce, se, cb, sb, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
 
 
 @_inl
@@ -194,11 +171,10 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
 
 @_inl
 def slip_angles(vel):
-    """Signed slip angles ``atan2(vy, |vx|)`` in degrees (SLIP)."""
-    rad2deg = 180.0 / math.pi
+    """Signed slip angles ``atan2(vy, |vx|)`` in degrees (SLIP; generated)."""
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
-    return (math.atan2(vAy, abs(vAx)) * rad2deg, math.atan2(vBy, abs(vBx)) * rad2deg,
-            math.atan2(vDy, abs(vDx)) * rad2deg, math.atan2(vEy, abs(vEx)) * rad2deg)
+    return (slip_angle(vAx, vAy), slip_angle(vBx, vBy), slip_angle(vDx, vDy),
+            slip_angle(vEx, vEy))
 
 
 @_inl
@@ -251,13 +227,6 @@ def record_row(rec, row, states, F, loads, slips, P, trig, extra):
 
 
 @_inl
-def rest_at_reversal(rate, new, limit):
-    """The swivel rate after a step: 0 where it would change sign within the step and friction (``limit`` > 0,
-    stick-slip law only) may hold the caster, else ``new`` (the kinetic law passes ``limit`` 0)."""
-    return 0.0 if limit > 0.0 and rate != 0.0 and new * rate <= 0.0 else new
-
-
-@_inl
 def settled(track, t, held, a, ma, mb):
     """Whether a run has settled: both casters held (stuck) since ``track[0]`` for :data:`SETTLE_WINDOW` s, the
     push over, and neither ``|yaw rate|`` ``a`` nor either holding moment ``ma``, ``mb`` larger than at the middle
@@ -295,6 +264,7 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
     if slope:
         model = SLOPE_MODEL
     g1 = g2 = 0.0
+    gn = P[G]
     z = np.zeros(Az.shape[0])
     znew = np.zeros(Az.shape[0])
     y = np.zeros(Cy.shape[0])
@@ -319,9 +289,7 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         slips = slip_angles(vel)
         if slope:   # gravity in body axes at the heading of the step; loads with the normal weight
             g1, g2, gn = plane(P, cfg, THE)
-            loads = plane_loads(P, FC1, FC2, gn, ce, se, cb, sb)
-        else:
-            loads = normal_loads(P, FC1, FC2, ce, se, cb, sb)
+        loads = contact_loads(P, FC1, FC2, gn, ce, se, cb, sb)
         if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
             status[0], status[1] = STOPPED_WARNINGS, t
             break
@@ -332,10 +300,8 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
             status[2], status[3] = refused, w
             status[4], status[5] = (slips[w], loads[w]) if refused == 1 else (CAM[0], loads[w])
             break
-        FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
         # DYNAM
-        fc1 = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
-        fc2 = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
+        fc1, fc2 = tire_resultant(*F, ce, se, cb, sb)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
         mz = 0.0
         if use_ctl:
@@ -352,8 +318,8 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         elif sticks:
             acc, MA, MB = stick_slip(model, st_, F, fy_ext, mz, THEDD, P, g1, g2)
         else:
-            MA = math.copysign(P[MAF], -ED) if ED != 0.0 else 0.0
-            MB = math.copysign(P[MBF], -BD) if BD != 0.0 else 0.0
+            MA = kinetic_pin_moment(ED, P[MAF])
+            MB = kinetic_pin_moment(BD, P[MBF])
             acc = accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
         UDD, VDD, THEDD, EDD, BDD = acc
         if locked:
@@ -389,8 +355,8 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         VD += VDD * dt
         B += BD * dt + BDD * half_dt2
         E += ED * dt + EDD * half_dt2
-        BD = rest_at_reversal(BD, BD + BDD * dt, rest_b)
-        ED = rest_at_reversal(ED, ED + EDD * dt, rest_a)
+        BD = rest_rate(BD, BD + BDD * dt, rest_b)    # the kinetic law passes limit 0: no rest
+        ED = rest_rate(ED, ED + EDD * dt, rest_a)
         THE += THED * dt + THEDD * half_dt2
         THED += THEDD * dt
     return nrec

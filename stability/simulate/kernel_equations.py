@@ -11,18 +11,21 @@ this file changes (:data:`stability.simulate.cache_stamp.KERNEL_SOURCES`).
 
 from __future__ import annotations
 
-import math
 import types
 from typing import Any
 
 from numba import njit
 
+from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.tires import law as _tire_law
 
-__all__ = ["accelerations", "held_pins", "stick_slip", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW",
-           "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
+__all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "normal_loads", "tire_resultant", "tire_moment",
+           "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment", "rest_rate", "lateral_force",
+           "camber_force", "rolling_force", "SLOPE_MODEL",
+           "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW", "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE",
+           "STOPPED_SETTLED"]
 
 # Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
@@ -41,6 +44,20 @@ def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any) -
     between them resolves to compiled code (numba cannot call a Python
     function).  The module itself is untouched: Python callers keep the
     originals, which run on floats and numpy arrays.
+
+    Parameters
+    ----------
+    module : module
+        A module of plain arithmetic functions (generated equations, the tire law).
+    names : tuple of str
+        The functions to compile.
+    decorator : callable
+        numba's ``njit`` with the options of the caller.
+
+    Returns
+    -------
+    types.SimpleNamespace
+        The compiled functions by name.
     """
     ns = dict(vars(module))
     out = {}
@@ -51,16 +68,29 @@ def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any) -
 
 
 #: the tire force law of :mod:`stability.tires.law` (what Tire.lateral_force evaluates), compiled
-tire_law = compiled(_tire_law, ("cubic", "segment_force", "lateral_force", "camber_force", "rolling_resistance",
-                                "rolling_force"), _inl)
+_tires = compiled(_tire_law, ("cubic", "segment_force", "lateral_force", "camber_force", "rolling_resistance",
+                              "rolling_force"), _inl)
+lateral_force = _tires.lateral_force
+camber_force = _tires.camber_force
+rolling_force = _tires.rolling_force
 cv_exact = _int(_fw.contact_velocities_exact)
 cv_thesis = _int(_fw.contact_velocities_thesis)
 acc_exact = _int(_fw.accelerations_exact)
 acc_thesis = _int(_fw.accelerations_thesis)
-# the chair on a plane (stability.models.slope): in-plane gravity on every body, loads with the normal weight
+# the chair on a plane (stability.models.slope): in-plane gravity on every body
 acc_slope = _int(_sl.accelerations_slope_exact)
 gravity_body = _int(_sl.gravity_body)
-loads_plane = _int(_sl.normal_loads_plane)
+#: the contact forces (stability.models.forces): normal loads, resultant, yaw moment, slip angle, pin friction
+#: (bound to names of this module: numba resolves module globals, not attributes of a namespace)
+_forces = compiled(_fo, tuple(_fo.__all__), _inl)
+normal_loads = _forces.normal_loads
+tire_resultant = _forces.tire_resultant
+tire_moment = _forces.tire_yaw_moment
+slip_angle = _forces.slip_angle
+kinetic_pin_moment = _forces.kinetic_pin_moment
+pin_holds = _forces.pin_holds
+break_away_moment = _forces.break_away_moment
+rest_rate = _forces.rest_rate
 
 # Params vector layout (stability.models.params.Params order)
 X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
@@ -127,21 +157,21 @@ def stick_slip(model, s, F, fy_ext, mz, rdc, P, g1, g2):
     break-away is decided again with the other's new moment.
     """
     ed, bd = s[7], s[8]
-    ma = math.copysign(P[MAF], -ed) if ed != 0.0 else 0.0
-    mb = math.copysign(P[MBF], -bd) if bd != 0.0 else 0.0
+    ma = kinetic_pin_moment(ed, P[MAF])
+    mb = kinetic_pin_moment(bd, P[MBF])
     ha, hb = ed == 0.0, bd == 0.0
     for _ in range(3):
         if not (ha or hb):
             break
         acc, ra, rb = held_pins(model, s, F, ma, mb, ha, hb, fy_ext, mz, rdc, P, g1, g2)
-        free_a = ha and abs(ra) > P[MAF]
-        free_b = hb and abs(rb) > P[MBF]
+        free_a = ha and not pin_holds(ra, P[MAF])
+        free_b = hb and not pin_holds(rb, P[MBF])
         if not (free_a or free_b):
             return acc, ra, rb
         if free_a:
-            ma, ha = math.copysign(P[MAF], ra), False
+            ma, ha = break_away_moment(ra, P[MAF]), False
         if free_b:
-            mb, hb = math.copysign(P[MBF], rb), False
+            mb, hb = break_away_moment(rb, P[MBF]), False
     return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
 
 
