@@ -1,8 +1,10 @@
 """Nonlinear simulation of a freely rolling wheelchair (Collins 1987, chapter 7, program WCHAIR).
 
-Two schemes share one physics (:mod:`.physics`): program WCHAIR's fixed-step
-scheme (:mod:`.wchair`) and an error-controlled adaptive scheme with
-stick-slip pin friction (:mod:`.adaptive`).  Defaults come from one table
+One compiled engine with two schemes on one physics (the generated equations
+and contact forces of :mod:`stability.models` and the tire law of
+:mod:`stability.tires.law`, compiled as they are): program WCHAIR's fixed-step
+scheme (:mod:`.kernel`) and an error-controlled adaptive scheme with stick-slip
+pin friction (:mod:`.adaptive`, its right-hand side in :mod:`.adaptive_kernel`).  Defaults come from one table
 (:data:`.options.DEFAULTS`).  Schemes, conventions and performance are
 described in ``docs/simulator.md``.
 
@@ -15,7 +17,7 @@ Examples
 3.2
 """
 
-from stability.simulate.api import reference_engine, simulate, simulate_batch
+from stability.simulate.api import simulate, simulate_batch
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, STATS_LEVELS
 from stability.simulate.linearise import linearise
@@ -53,7 +55,6 @@ __all__ = [
     "SimulationResult",
     "simulate",
     "simulate_batch",
-    "reference_engine",
     "linearise",
     "SampledController",
     "RunStats",

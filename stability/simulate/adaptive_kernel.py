@@ -1,10 +1,10 @@
 """The adaptive scheme's right-hand side compiled (numba): loads consistent with the forces, stick-slip pin modes.
 
-The same physics as :meth:`stability.simulate.adaptive.AdaptiveModel.evaluate`
-(the Python path, kept for a Python ``yaw_moment`` input and as the test
-reference), built from the WCHAIR kernel's transcriptions
-(:mod:`stability.simulate.kernel`).  scipy's ``solve_ivp`` still drives the
-integration and the event location; see ``docs/simulator.md``.
+The WCHAIR kernel's physics (:mod:`stability.simulate.kernel`: the generated
+equations and contact forces, the tire law) with the normal loads solved
+consistently with the tire forces and no one-step lag; scipy's ``solve_ivp``
+drives the integration and the event location from
+:mod:`stability.simulate.adaptive`; see ``docs/simulator.md``.
 """
 
 from __future__ import annotations
@@ -21,9 +21,8 @@ from stability.simulate.kernel import (
     SLOPE_MODEL,
     G,
     _inl,
-    _int,
-    accelerations,
     contact_loads,
+    held_pins,
     invalidate_stale_cache,
     kinematics,
     kinetic_pin_moment,
@@ -44,44 +43,6 @@ _jit = njit(cache=True, nogil=True)   # the entries called from Python; helpers 
 NAUX = 24
 #: pin modes (as :mod:`stability.simulate.adaptive`)
 FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
-
-
-@_int
-def acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2):
-    """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact, 2 exact on a plane):
-    the kernel's :func:`~stability.simulate.kernel_equations.accelerations` with no lag (``rdc`` None: the thesis
-    variant's caster equations then use the current yaw acceleration)."""
-    return accelerations(model, s, F, ma, mb, fy_ext, mz, None, P, g1, g2)
-
-
-@_int
-def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P, g1, g2):
-    """:func:`stability.simulate.physics.held_accelerations`, same operations: ``(acc, M_A, M_B)``."""
-    if not (hold_a or hold_b):
-        return acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2), ma, mb
-    base_a = 0.0 * ma if hold_a else ma
-    base_b = 0.0 * mb if hold_b else mb
-    a0 = acc_now(model, s, F, base_a, base_b, fy_ext, mz, P, g1, g2)
-    if hold_a and hold_b:
-        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P, g1, g2)
-        a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P, g1, g2)
-        k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
-        k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
-        det = k11 * k22 - k12 * k21
-        ra = (-a0[3] * k22 + a0[4] * k12) / det
-        rb = (-a0[4] * k11 + a0[3] * k21) / det
-        return ((a0[0] + ra * (a1[0] - a0[0]) + rb * (a2[0] - a0[0]),
-                 a0[1] + ra * (a1[1] - a0[1]) + rb * (a2[1] - a0[1]),
-                 a0[2] + ra * (a1[2] - a0[2]) + rb * (a2[2] - a0[2]), 0.0 * ra, 0.0 * rb), ra, rb)
-    if hold_a:
-        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P, g1, g2)
-        ra = -a0[3] / (a1[3] - a0[3])
-        return ((a0[0] + ra * (a1[0] - a0[0]), a0[1] + ra * (a1[1] - a0[1]), a0[2] + ra * (a1[2] - a0[2]),
-                 0.0 * ra, a0[4] + ra * (a1[4] - a0[4])), ra, mb)
-    a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P, g1, g2)
-    rb = -a0[4] / (a2[4] - a0[4])
-    return ((a0[0] + rb * (a2[0] - a0[0]), a0[1] + rb * (a2[1] - a0[1]), a0[2] + rb * (a2[2] - a0[2]),
-             a0[3] + rb * (a2[3] - a0[3]), 0.0 * rb), ma, rb)
 
 
 @_inl
@@ -113,13 +74,14 @@ def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM
 
 
 @_jit
-def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL, guess,
-             dy, aux):
+def evaluate(t, y, ma_mode, mb_mode, imp, mz, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL,
+             guess, dy, aux):
     """Derivatives ``dy`` (10) and ``aux`` (:data:`NAUX`) at ``(t, y)``; returns 0, or 1/2 refused, 3 no convergence.
 
     ``y`` = (X, Y, psi, u, v, r, eta, eta_dot, beta, beta_dot); pin modes as
-    :mod:`stability.simulate.adaptive`; ``imp``: the push acts; ``SL`` the
-    plane slots (:func:`stability.simulate.engine.slope_slots`).
+    :mod:`stability.simulate.adaptive`; ``imp``: the push acts; ``mz`` the
+    yaw-moment input, N m; ``SL`` the plane slots
+    (:func:`stability.simulate.packing.slope_slots`).
     """
     g1 = g2 = 0.0
     gn = P[G]
@@ -148,7 +110,8 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
     mb = kinetic_pin_moment(float(mb_mode), P[MBF]) if (mb_mode == FREE_POS or mb_mode == FREE_NEG) else 0.0
     hold_a = ma_mode == STUCK or ma_mode == LOCKED
     hold_b = mb_mode == STUCK or mb_mode == LOCKED
-    acc, ma, mb = held(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, fy_ext, 0.0, hold_a, hold_b, P, g1, g2)
+    acc, ma, mb = held_pins(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, hold_a, hold_b, fy_ext, mz, None,
+                            P, g1, g2)
     cpsi, spsi = math.cos(psi), math.sin(psi)
     dy[0], dy[1], dy[2] = u * cpsi - v * spsi, u * spsi + v * cpsi, r
     dy[3], dy[4], dy[5], dy[6], dy[7], dy[8], dy[9] = acc[0], acc[1], acc[2], ed, acc[3], bd, acc[4]
@@ -157,26 +120,27 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
         aux[12 + i] = slips[i]
     for i in range(8):
         aux[4 + i] = F[i]
-    aux[16], aux[17], aux[18] = ma, mb, 0.0
+    aux[16], aux[17], aux[18] = ma, mb, mz
     aux[19] = tire_yaw_moment(P, F, ce, se, cb, sb)
     return 0
 
 
 @_jit
-def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL, out,
-            guess, dy, aux):
+def samples(ts, yy, mzs, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL,
+            out, guess, dy, aux):
     """Recorded columns (``COLUMNS[1:]``, ``out`` of shape (31, m)) at the dense-output samples ``yy`` (10, m).
 
-    Each sample's load iteration starts from zero forces (as the Python path's
-    vector evaluation).  Returns the first nonzero status of :func:`evaluate`, else 0.
+    ``mzs``: the yaw-moment input at each sample, N m.  Each sample's load
+    iteration starts from zero forces.  Returns the first nonzero status of
+    :func:`evaluate`, else 0.
     """
     y = np.empty(10)   # a contiguous copy of each sample: evaluate compiles for the solver's contiguous y only
     for j in range(ts.shape[0]):
         for c in range(10):
             y[c] = yy[c, j]
         guess[0], guess[1] = 0.0, 0.0
-        code = evaluate(ts[j], y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC,
-                        RS, CAM, SL, guess, dy, aux)
+        code = evaluate(ts[j], y, ma_mode, mb_mode, imp, mzs[j], model, ftimp, policy, P, S, TK, TS, TL, LIM, RK,
+                        RC, RS, CAM, SL, guess, dy, aux)
         if code != 0:
             return code
         states = (y[0], y[1], y[2], y[5], y[3], y[4], y[6], dy[6], y[8], dy[8])

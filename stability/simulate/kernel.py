@@ -29,6 +29,7 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     D1,
     D2,
     ETA0,
+    EXTERNAL_MZ,
     FCIMP,
     I_Z,
     I_ZP,
@@ -38,6 +39,7 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     MBF,
     NREC_ALL,
     NREC_STATES,
+    NSTATE,
     PIN_DAMP,
     ROLL_K,
     S_PHI,
@@ -47,6 +49,15 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     SLOPE,
     SLOPE_MODEL,
     ST,
+    ST_FC1,
+    ST_FC2,
+    ST_MZ,
+    ST_NEXTK,
+    ST_NREC,
+    ST_PREV,
+    ST_THEDD,
+    ST_TPREV,
+    ST_TRACK,
     STOP_LEVEL,
     STOPPED_LEVEL,
     STOPPED_NONFINITE,
@@ -90,9 +101,9 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
-__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
-           "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations", "held_pins", "stick_slip",
-           "tire_yaw_moment", "plane"]
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch",
+           "run_serial", "run_one", "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations",
+           "held_pins", "stick_slip", "tire_yaw_moment", "plane"]
 
 @_inl
 def plane(P, cfg, psi):
@@ -246,18 +257,36 @@ def settled(track, t, held, a, ma, mb):
     return False
 
 
+@_inl
+def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """The sampled controller at ``t``: ``(yaw moment, next sample)`` after the samples ``next_k`` .. up to ``t`` are
+    taken (``z`` advanced); the last one's output is held (``held`` when no sample falls due)."""
+    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+    while next_k <= ks:
+        for c in range(10):
+            sv[c] = states[c]
+        held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        next_k += 1
+    return held, next_k
+
+
 @_int
-def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
-            rec, stats, warn, status):
-    """One run of the WCHAIR scheme; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``."""
+def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
+            state, rec, stats, warn, status):
+    """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
+    controller's states); writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
+    recorded so far.  A stopped run (``status``) does nothing.  ``cfg[EXTERNAL_MZ]``: the yaw moment is
+    ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
+    if status[0] != 0.0 or status[2] != 0.0:
+        return int(state[ST_NREC])
     dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
         cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
         int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
     settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
-    track = np.array([-1.0, 0.0, 0.0, 0.0, 0.0])      # settled(): since when both held, mid-window values
+    track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
     rest_a, rest_b = (P[MAF], P[MBF]) if sticks else (0.0, 0.0)   # stick-slip: a reversing rate comes to rest
-    use_ctl = ctl_f[0] > 0.0
+    use_ctl = ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
     slope = cfg[SLOPE] != 0.0
@@ -265,24 +294,20 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         model = SLOPE_MODEL
     g1 = g2 = 0.0
     gn = P[G]
-    z = np.zeros(Az.shape[0])
+    z = state[NSTATE:NSTATE + Az.shape[0]]
     znew = np.zeros(Az.shape[0])
     y = np.zeros(Cy.shape[0])
     sv = np.zeros(10)
-    next_k = 0
-    mz_held = 0.0
-    UD, VD = S[U0], S[V0]
-    X = Y = THE = THED = THEDD = 0.0
-    E, B = S[ETA0], S[BETA0]
-    ED = BD = 0.0
-    FC1 = FC2 = 0.0
+    X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
+                                            state[7], state[8], state[9])
+    THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]
+    prev_abs, t_prev, next_k, mz_held = state[ST_PREV], state[ST_TPREV], int(state[ST_NEXTK]), state[ST_MZ]
+    nrec = int(state[ST_NREC])
     fcimp = S[FCIMP]
-    prev_abs = t_prev = 0.0
-    nrec = 0
     seg_c, seg_m, seg_k = TS[0], TS[1], TS[2]      # per-run views made once (no per-step array views)
     lim_c, lim_m, lim_k = LIM[0], LIM[1], LIM[2]
     rc_c, rc_m = RC[0], RC[1]
-    for k in range(n):
+    for k in range(k0, min(k1, n)):
         t = k * dt
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
@@ -303,14 +328,10 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         # DYNAM
         fc1, fc2 = tire_resultant(*F, ce, se, cb, sb)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        mz = 0.0
+        mz = mz_held if cfg[EXTERNAL_MZ] != 0.0 else 0.0
         if use_ctl:
-            ks = int(math.floor(t / ctl_f[0] + 1e-9))
-            while next_k <= ks:
-                sv[0], sv[1], sv[2], sv[3], sv[4] = X, Y, THE, UD, VD
-                sv[5], sv[6], sv[7], sv[8], sv[9] = THED, E, ED, B, BD
-                mz_held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-                next_k += 1
+            mz_held, next_k = controlled(t, next_k, mz_held, z, znew, y, sv, (X, Y, THE, UD, VD, THED, E, ED, B, BD),
+                                         ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
             mz = mz_held
         st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
         if locked:
@@ -359,6 +380,11 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         ED = rest_rate(ED, ED + EDD * dt, rest_a)
         THE += THED * dt + THEDD * half_dt2
         THED += THEDD * dt
+    state[0], state[1], state[2], state[3], state[4] = X, Y, THE, UD, VD
+    state[5], state[6], state[7], state[8], state[9] = THED, E, ED, B, BD
+    state[ST_THEDD], state[ST_FC1], state[ST_FC2] = THEDD, FC1, FC2
+    state[ST_PREV], state[ST_TPREV], state[ST_NEXTK], state[ST_MZ] = prev_abs, t_prev, next_k, mz_held
+    state[ST_NREC] = nrec
     return nrec
 
 
@@ -372,12 +398,21 @@ def _note(warn, kind, t, value):
 
 
 @njit(cache=True, parallel=True)
-def run_batch(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
-              rec, stats, warn, status, nrec):
-    """All runs, one per thread (``prange``); every array has the run as its first axis."""
+def run_batch(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+              noise, state, rec, stats, warn, status, nrec):
+    """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis."""
     for i in prange(P.shape[0]):
-        nrec[i] = run_one(P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
-                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, rec[i], stats[i], warn[i], status[i])
+        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
+
+
+@njit(cache=True, nogil=True)
+def run_serial(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+               noise, state, rec, stats, warn, status, nrec):
+    """:func:`run_batch` on the calling thread: the step-by-step calls of a Python yaw-moment input."""
+    for i in range(P.shape[0]):
+        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
 
 
 invalidate_stale_cache(globals(), "kernel.equations.sha256")

@@ -23,9 +23,9 @@ from stability.tires import law as _tire_law
 
 __all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "normal_loads", "tire_resultant", "tire_moment",
            "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment", "rest_rate", "lateral_force",
-           "camber_force", "rolling_force", "SLOPE_MODEL",
-           "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW", "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE",
-           "STOPPED_SETTLED"]
+           "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW", "EXTERNAL_MZ",
+           "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK", "ST_MZ", "ST_NREC", "ST_TRACK",
+           "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
 
 # Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
@@ -105,6 +105,14 @@ STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL, STOPPED_NONFINITE = 18, 1.0, 2.0, 3
 #: after the push, both casters stuck for :data:`SETTLE_WINDOW` s and neither ``|yaw rate|`` nor either holding
 #: moment larger than at the middle of that window (docs/studies.md: it then never reaches the level)
 SETTLE, STOPPED_SETTLED, SETTLE_WINDOW = 19, 4.0, 0.5
+#: cfg slot: 1.0 when the yaw moment is the caller's (``state[ST_MZ]``, a Python input set between steps)
+EXTERNAL_MZ = 20
+#: a run's state between kernel calls: the ten states in :class:`~stability.simulate.results.ChairState`'s order
+#: (0-9), the lagged yaw acceleration, the previous step's force sums, the summaries' previous sample (|yaw rate|,
+#: time), the controller's next sample and held output (or the caller's yaw moment), the rows recorded, the settle
+#: tracker (5); the controller's states follow (``NSTATE`` on)
+ST_THEDD, ST_FC1, ST_FC2, ST_PREV, ST_TPREV, ST_NEXTK, ST_MZ, ST_NREC, ST_TRACK = range(10, 19)
+NSTATE = ST_TRACK + 5
 #: model codes: 0 thesis, 1 exact, 2 exact on a slope (accelerations with in-plane gravity)
 SLOPE_MODEL = 2
 #: recorded columns after t (COLUMNS[1:]); the first 10 are the states
@@ -117,8 +125,11 @@ def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
 
     A held caster's pin moment keeps its swivel acceleration zero (the
     accelerations are affine in the pin moments: two or three evaluations);
-    the other keeps the moment given.
+    the other keeps the moment given.  ``rdc``: the thesis variant's lagged
+    yaw acceleration (WCHAIR scheme), or None (adaptive scheme).
     """
+    if not (hold_a or hold_b):
+        return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
     if hold_a and hold_b:
         a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
         a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any
 
 import numpy as np
@@ -66,14 +65,12 @@ def linearise(chair: Chair, speed: float, *, model: str = DEFAULTS.model, caster
     opts = make_options(**settings)
     modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)
     u0, _ = initial_velocities(opts, speed)
-    mz_in = [0.0]                       # the yaw-moment input of the evaluation below (N m)
-    model_ = AdaptiveModel(chair, speed, dataclasses.replace(opts, yaw_moment=lambda t, st: mz_in[0]))
+    rhs = AdaptiveModel(chair, speed, opts)._ck     # the compiled right-hand side
 
     def derivative(dx, mz=0.0):
-        mz_in[0] = mz
-        model_.guess = (0.0, 0.0)       # every evaluation solves the load-transfer loop from scratch
-        y = [0.0, 0.0, 0.0, u0, *dx] + [0.0] * (6 - len(dx))
-        dy, _ = model_.evaluate(0.0, y, modes, False)
+        rhs.guess[:] = 0.0              # every evaluation solves the load-transfer loop from scratch
+        y = np.array([0.0, 0.0, 0.0, u0, *dx] + [0.0] * (6 - len(dx)))
+        dy, _ = rhs.point(0.0, y, modes, False, mz)
         return np.array(dy[4:4 + len(dx)], dtype=float)
 
     n = 2 if opts.casters == "locked" else 6

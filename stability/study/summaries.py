@@ -8,8 +8,7 @@ change the answer), and no per-run result is built.  Runs whose speed needs
 a smaller step than the requested one (the stiff caster modes at slow
 speeds) get the same step :func:`stability.study.runs.simulate_runs` gives
 them, one kernel call per step.  The adaptive scheme (and any Python input)
-runs through :func:`~stability.study.runs.simulate_runs` with the same summaries, and so does
-everything inside :func:`stability.simulate.reference_engine` (the benchmarks' baseline engine).
+runs through :func:`~stability.study.runs.simulate_runs` with the same summaries.
 """
 
 from __future__ import annotations
@@ -23,7 +22,6 @@ import numpy as np
 
 from stability import simulate as sim
 from stability.chair import Chair
-from stability.simulate.api import using_reference_engine
 from stability.simulate.options import make_options
 from stability.simulate.signals import time_to_level
 from stability.simulate.stepcheck import SAFETY, stable_steps
@@ -82,6 +80,12 @@ class Summaries:
         return np.where(reached, np.maximum(above, 0.0), np.minimum(below, 0.0))
 
 
+def _packed_kernel(scheme: str, opts: dict[str, Any]) -> bool:
+    """Whether the runs go through the packed kernel with only summaries kept: the WCHAIR scheme without a Python
+    input or a controller (the others run through :func:`~stability.study.runs.simulate_runs`)."""
+    return scheme == "wchair" and opts.get("yaw_moment") is None and opts.get("controller") is None
+
+
 def _options(model: str, scheme: str, duration: float, dt: float | None, horizon: float,
              extra: dict[str, Any]) -> dict[str, Any]:
     return runs.sim_options(model, scheme, (0.0, duration), dt if scheme == "wchair" else None, horizon, extra)
@@ -128,8 +132,7 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
     if n == 0:
         e = np.empty(0)
         return Summaries(e, e, e, e)
-    if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
-            or using_reference_engine()):
+    if not _packed_kernel(scheme, opts):
         return _from_results(chairs, speeds, forces, opts, level, horizon)
     from stability.simulate import engine  # numba and the compiled kernel load on first use
 
@@ -175,8 +178,8 @@ class SummaryRunner:
     The pairs are packed for the compiled kernel once
     (:class:`stability.simulate.engine.PackedRuns`); a round then costs the
     kernel and a few array copies.  Where :func:`run_summaries` would not use
-    the compiled kernel (adaptive scheme, Python inputs, the reference
-    engine) every call goes through it unchanged.  Either way the numbers are
+    the packed kernel (adaptive scheme, Python inputs) every call goes
+    through it unchanged.  Either way the numbers are
     those of :func:`run_summaries`.
 
     Parameters
@@ -200,8 +203,7 @@ class SummaryRunner:
         self.steps = steps
         opts = _options(model, scheme, duration, dt, horizon, self.kw["sim_options"])
         self.packed = None
-        if (scheme != "wchair" or opts.get("yaw_moment") is not None or opts.get("controller") is not None
-                or using_reference_engine() or not self.chairs):
+        if not _packed_kernel(scheme, opts) or not self.chairs:
             return
         from stability.simulate import engine
 

@@ -1,8 +1,9 @@
 """The tested-tire force model: cubic fits (4-1) per whole degree of slip, interpolated as WCHAIR's MECHAN.
 
-:func:`_segment_force` is the force law (also used by :class:`~stability.tires.stack.TireStack`
-and the compiled simulator); :class:`Tire` wraps it with range policies, stiffness,
-camber (eq 4-2) and rolling resistance (Appendix B, eq 3-2).
+:class:`Tire` holds a tested tire's table and evaluates the one force law of
+:mod:`stability.tires.law` (which the compiled simulator runs too) with range
+policies and warnings; stiffness, camber (eq 4-2) and rolling resistance
+(Appendix B, eq 3-2) use the same law.
 """
 
 from __future__ import annotations
