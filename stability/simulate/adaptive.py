@@ -138,6 +138,11 @@ class _Compiled:
                        pk.CAM[0], np.array(slope_slots(opts)))
         self.guess = np.zeros(2)
 
+    def hold_drive(self, left: float, right: float) -> None:
+        """Constant drive forces on the left and right main wheels, N (the linearisation about a slope's
+        equilibrium; simulations have none)."""
+        self.arrays[1][self.k.DRIVE_D], self.arrays[1][self.k.DRIVE_E] = left, right
+
     def _check(self, code: int, aux: np.ndarray, t) -> None:
         if code == 3:
             raise NoLoadSolution(t)

@@ -14,7 +14,9 @@ import math
 import numpy as np
 from numba import njit
 
-from stability.simulate.kernel import (
+from stability.simulate.kernel import (  # noqa: F401  (DRIVE_D, DRIVE_E: the slots adaptive._Compiled sets)
+    DRIVE_D,
+    DRIVE_E,
     FCIMP,
     MAF,
     MBF,

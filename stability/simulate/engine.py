@@ -452,7 +452,7 @@ def raise_non_finite(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarr
 
 
 def _raise_refused(chairs: Sequence[Chair], opts: Options, status: np.ndarray) -> None:
-    """Policy "raise": the first refused tire input raises the tire's own error, as the Python path does."""
+    """Policy "raise": the first refused tire input raises the tire's own error (what Tire.lateral_force raises)."""
     bad = np.flatnonzero(status[:, 2] != 0)
     if bad.size == 0:
         return

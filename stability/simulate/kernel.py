@@ -28,6 +28,8 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     CT,
     D1,
     D2,
+    DRIVE_D,
+    DRIVE_E,
     ETA0,
     EXTERNAL_MZ,
     FCIMP,
@@ -166,6 +168,8 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
     FBx = rolling_force(RK[0], rc_c, RS[0], NB, vBx)
     FDx = rolling_force(RK[1], rc_m, RS[1], ND, vDx)
     FEx = rolling_force(RK[1], rc_m, RS[1], NE, vEx)
+    if S[DRIVE_D] != 0.0 or S[DRIVE_E] != 0.0:       # a held drive (the slope linearisation), in the wheel frames
+        FDx, FEx = FDx + S[DRIVE_D], FEx + S[DRIVE_E]
     if CAM[0] != 0.0 and refused == 0:
         cD, badc = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], ND, policy)
         cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy)

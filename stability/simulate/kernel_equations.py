@@ -21,11 +21,11 @@ from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.tires import law as _tire_law
 
-__all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "normal_loads", "tire_resultant", "tire_moment",
-           "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment", "rest_rate", "lateral_force",
-           "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW", "EXTERNAL_MZ",
-           "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK", "ST_MZ", "ST_NREC", "ST_TRACK",
-           "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
+__all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
+           "tire_resultant", "tire_moment", "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment",
+           "rest_rate", "lateral_force", "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE",
+           "SETTLE_WINDOW", "EXTERNAL_MZ", "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK",
+           "ST_MZ", "ST_NREC", "ST_TRACK", "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
 
 # Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
@@ -96,6 +96,9 @@ rest_rate = _forces.rest_rate
 X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
 # per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
 U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
+#: per-run slots: constant drive forces on the left and right main wheels along their headings, N (0 in
+#: simulations; the linearisation about a slope's equilibrium holds the drive that keeps it, as the statics)
+DRIVE_D, DRIVE_E = 8, 9
 # cfg slots of the plane: flag, cos/sin of the cross slope, cos/sin of the grade
 SLOPE, C_PHI, S_PHI, C_THETA, S_THETA = range(13, 18)
 #: cfg slot: every run stops at ``levels[cfg[18]]`` (-1: never); ``status[0]``: 1 warning rule, 2 that level,

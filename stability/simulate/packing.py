@@ -81,7 +81,7 @@ class Packed:
     def __init__(self, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None):
         n = len(chairs)
         self.P = np.empty((n, 18))
-        self.S = np.zeros((n, 8))
+        self.S = np.zeros((n, 10))
         self.TK = np.zeros((n, 3), dtype=np.int64)
         self.TS = np.zeros((n, 3, 6, 8))
         self.TL = np.ones((n, 3))
@@ -97,7 +97,7 @@ class Packed:
             self.P[i] = np.array(parameters(c), dtype=float)
             toe = math.radians(c.toe_deg)
             force = opts.impulse_force if forces is None else float(forces[i])
-            self.S[i] = (float(speeds[i]) * u0, v0, opts.eta0, opts.beta0, force, math.cos(toe), math.sin(toe),
+            self.S[i, :8] = (float(speeds[i]) * u0, v0, opts.eta0, opts.beta0, force, math.cos(toe), math.sin(toe),
                          1.0 if toe != 0 else 0.0)
             key = (c.main_tire, c.main_lateral_scale, c.main_rolling_scale, c.caster_tire, c.caster_lateral_scale,
                    c.caster_rolling_scale, c.camber_deg, c.camber_coefficient)

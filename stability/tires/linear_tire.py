@@ -125,6 +125,11 @@ class LinearTire(_CamberForce):
         return law_on_arrays(lambda f: law.rolling_resistance(law.ROLLING_LINEAR, coef, scale, f),
                              np.asarray(fz, dtype=float), scalar=isinstance(fz, (int, float)))
 
+    def rolling_force(self, fz: float, vx: float) -> float:
+        """Rolling-resistance force (N) opposing the rolling velocity ``vx`` (m/s): ``-sign(vx) f_r fz``."""
+        return float(law.rolling_force(law.ROLLING_LINEAR, (self.f_r, 0.0, 0.0), self.rolling_scale, float(fz),
+                                       float(vx)))
+
     @property
     def rolling_coefficient_linear(self) -> float:
         """``f_r``."""

@@ -335,6 +335,16 @@ class Tire(_CamberForce):
         return law_on_arrays(lambda f: law.rolling_resistance(law.ROLLING_CUBIC, coef, scale, f),
                              np.asarray(fz, dtype=float), scalar=isinstance(fz, (int, float)))
 
+    def rolling_force(self, fz: float, vx: float) -> float:
+        """Rolling-resistance force along the wheel's heading (N), opposing its rolling velocity ``vx`` (m/s).
+
+        :meth:`rolling_resistance` at ``fz`` (N) with the sign of ``-vx``
+        (WCHAIR's ``SIGN(..., -V)``; :func:`stability.tires.law.rolling_force`).
+        """
+        if self.rolling is None:
+            raise ValueError(self._no_rolling())
+        return float(law.rolling_force(law.ROLLING_CUBIC, self.rolling, self.rolling_scale, float(fz), float(vx)))
+
     @property
     def rolling_coefficient_linear(self) -> float:
         """Coefficient of rolling resistance ``f_r`` of Table 3-2 (eq 3-2).
