@@ -4,11 +4,13 @@ Usage::
 
     python derivations/generate.py [--out DIR]
 
-writes ``zero_width.py`` and ``full_width.py`` into ``DIR`` (default
-``stability/_generated``).  The generated functions use only ``+ - * / **`` (small integer powers written as products)
-on their arguments (cosines and sines of the caster angles are passed in as
+writes ``zero_width.py``, ``full_width.py`` and ``forces.py`` into ``DIR``
+(default ``stability/_generated``).  The generated functions use only ``+ - * / **`` (small integer powers written as
+products) on their arguments (cosines and sines of the caster angles are passed in as
 ``ce, se, cb, sb``), so the same function runs on Python floats and on
-broadcast numpy arrays; they import nothing.
+broadcast numpy arrays; they import nothing.  The exceptions are in
+``forces.py``: its slip angle and pin friction laws are scalar (``math.atan2``,
+``math.copysign``, ``abs``, comparisons), for floats and the compiled kernels.
 
 Common subexpressions are eliminated with :func:`sympy.cse` (canonical
 order, numbered temporaries ``_a0, _a1, ...``) and printed with sympy's
@@ -36,12 +38,14 @@ if str(ROOT) not in sys.path:
 
 import sympy as sp  # noqa: E402
 from sympy.printing.precedence import precedence  # noqa: E402
+from sympy.printing.pycode import PythonCodePrinter  # noqa: E402
 from sympy.printing.str import StrPrinter  # noqa: E402
 
+from derivations import forces as fo  # noqa: E402
 from derivations import full_width as fw  # noqa: E402
 from derivations import zero_width as zw  # noqa: E402
 
-__all__ = ["generate", "render_zero_width", "render_full_width", "main"]
+__all__ = ["generate", "render_zero_width", "render_full_width", "render_forces", "main"]
 
 
 # ---------------------------------------------------------------------------
@@ -84,6 +88,25 @@ def _pr(expr) -> str:
     expr = sp.sympify(expr)
     _check_arith(expr)
     return _PRINTER.doprint(expr)
+
+
+def _step_lines(steps: Sequence[tuple[sp.Symbol, sp.Expr]]) -> list[str]:
+    """Assignments printed in the order given, no elimination: each step is one or two operations on earlier
+    names, so that every caller (floats, numpy, numba) evaluates the same arithmetic in the same order."""
+    return [f"{sym} = {_pr(e)}" for sym, e in steps]
+
+
+class _ScalarPrinter(PythonCodePrinter):
+    """Python's printer for the scalar laws: ``copysign`` as ``math.copysign``, products as :class:`_Printer`'s."""
+
+    def _print_copysign(self, expr):
+        return f"math.copysign({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
+    def _print_Pow(self, expr, rational=False):
+        return _PRINTER._print_Pow(expr, rational)
+
+
+_SCALAR = _ScalarPrinter({"standard": "python3"})
 
 
 def _cse_lines(named: Sequence[tuple[str, sp.Expr]], tmp: str) -> list[str]:
@@ -499,11 +522,85 @@ def render_full_width() -> str:
     return _header("Full-width wheelchair model (generated).", FW_BODY, names) + "\n\n" + "\n\n".join(parts)
 
 
+# ---------------------------------------------------------------------------
+# forces module
+
+FO_BODY = """
+The contact forces of the chair (derivations/forces.py): caster contact
+points (eq 6-24), normal loads with quasi-static load transfer on a plane
+(eq 6-25; gn = g on level ground), the resultant and yaw moment of the tire
+forces (eqs 6-2, 6-3), the signed slip angle (program WCHAIR's SLIP) and
+Coulomb pin friction (kinetic moment, stick condition, break-away moment,
+the fixed-step rest rule).  Conventions as in full_width.py.
+
+The arithmetic functions are written one operation per step in a fixed order
+and run on floats and broadcast numpy arrays; slip_angle and the pin laws are
+scalar (floats, and compiled by numba as they are, like every function here).
+"""
+
+_FORCE_ARGS = ("FAx", "FAy", "FBx", "FBy", "FDx", "FDy", "FEx", "FEy", "ce", "se", "cb", "sb")
+_FO_FUNCS = (
+    ("caster_contacts", ("ce", "se", "cb", "sb", "x_p", "t1", "t2", "trail"), "contact", "(x_A, y_A, x_B, y_B)",
+     "Body coordinates of the caster contacts A, B (m), eq 6-24: trail behind the pins along each heading.\n\n"
+     "ce, se, cb, sb: cos/sin of the caster angles; x_p, t1, t2, trail: signed pin x, pin offsets, trail (m).\n"),
+    ("normal_loads", ("sum_fx", "sum_fy", "gn", "ce", "se", "cb", "sb", "x_m", "x_p", "d1", "d2", "t1", "t2",
+                      "trail", "h", "m", "roll_k"), "loads", "(N_A, N_B, N_D, N_E)",
+     "Normal loads (N_A, N_B, N_D, N_E) in N, eq 6-25 on a plane, from the tire-force sums.\n\n"
+     "sum_fx, sum_fy: sums of the forces on the chair in body axes (N); gn: gravity normal to the\n"
+     "plane (m/s^2; g on level ground); h: c.g. height (m); m: mass (kg); roll_k: roll-stiffness\n"
+     "ratio (1/(k+1) of the roll moment to the casters, eq 6-30).  The in-plane weight drops out\n"
+     "of the load transfer (m a = sum F + m g_in).\n"),
+    ("tire_resultant", _FORCE_ARGS, "resultant", "(sum_fx, sum_fy)",
+     "Resultant of the tire forces on the chair in body axes (N), eq 6-2 (WCHAIR's FC1, FC2 without FCIMP).\n\n"
+     "FAx..FEy: each tire's force in its own wheel frame (casters A, B turned by eta, beta) (N).\n"),
+    ("tire_yaw_moment", _FORCE_ARGS + ("x_m", "x_p", "d1", "d2", "t1", "t2", "trail"), "moment", "mz",
+     "Yaw moment of the tire forces about the c.g. (N m, clockwise seen from above), eq 6-3.\n\n"
+     "sum (x_i F_yi - y_i F_xi) over the four contacts (caster contacts of caster_contacts).\n"),
+)
+_FO_LAWS = (
+    ("kinetic_pin_moment", ("rate", "limit"), "kinetic",
+     "Kinetic Coulomb pin moment on a caster (N m): -limit sign(rate), exactly zero at rest (WCHAIR's DYNAM).\n\n"
+     "rate: swivel rate (rad/s); limit: friction moment (N m, >= 0).\n"),
+    ("pin_holds", ("moment", "limit"), "holds",
+     "Stick condition: a caster at rest stays at rest while the moment that holds it (N m) is within\n"
+     "its friction limit (N m).\n"),
+    ("break_away_moment", ("moment", "limit"), "break_away",
+     "Moment on a caster breaking away (N m): the friction limit in the holding moment's direction.\n"),
+    ("rest_rate", ("rate", "new", "limit"), "rest",
+     "Swivel rate after a fixed step under the stick-slip law (rad/s): zero where the rate (rad/s)\n"
+     "would change sign within the step and the pin has friction (limit > 0, N m), else new.\n"),
+)
+
+
+def render_forces() -> str:
+    """Text of ``stability/_generated/forces.py``."""
+    steps = {"contact": fo.contact_steps(), "loads": fo.load_steps(), "resultant": fo.resultant_steps(),
+             "moment": fo.moment_steps()}
+    parts, names = [], []
+    for name, args, key, ret, doc in _FO_FUNCS:
+        parts.append(_function(name, args, doc, _step_lines(steps[key]), ret))
+        names.append(name)
+    parts.append(_function(
+        "slip_angle", ("vx", "vy"),
+        "Signed slip angle of a contact (deg): atan2(vy, |vx|) (WCHAIR's SLIP takes its magnitude).\n\n"
+        "vx, vy: the contact's velocity along and across its wheel's heading (m/s).\n",
+        [], _SCALAR.doprint(fo.slip_angle())))
+    names.append("slip_angle")
+    laws = fo.pin_laws()
+    for name, args, key, doc in _FO_LAWS:
+        parts.append(_function(name, args, doc, [], _SCALAR.doprint(laws[key])))
+        names.append(name)
+    head = _header("Contact forces of the chair (generated).", FO_BODY, names)
+    head += "\nimport math\n\n#: 180/pi: radians to degrees\nDEG_PER_RAD = 180.0 / math.pi\n"
+    return head + "\n\n" + "\n\n".join(parts)
+
+
 def generate(out: Path) -> dict[str, float]:
-    """Write both modules into ``out``; return the time spent on each (s)."""
+    """Write the modules into ``out``; return the time spent on each (s)."""
     out.mkdir(parents=True, exist_ok=True)
     times = {}
-    for fname, render in (("zero_width.py", render_zero_width), ("full_width.py", render_full_width)):
+    for fname, render in (("zero_width.py", render_zero_width), ("full_width.py", render_full_width),
+                          ("forces.py", render_forces)):
         t0 = time.perf_counter()
         text = render()
         (out / fname).write_text(text, encoding="utf-8")

@@ -29,7 +29,9 @@ and the normal one ``gn = g cos(theta) cos(phi)``.
 
 :func:`checks` returns expressions that must simplify to zero (zero slope
 recovers :mod:`derivations.full_width` and eq 6-25; the generalized forces are
-those of a potential).  :func:`generate` writes ``stability/_generated/slope.py``.
+those of a potential).  :func:`generate` writes ``stability/_generated/slope.py``;
+the normal loads are generated once, with the level ones, from
+:mod:`derivations.forces` (checked there against :func:`normal_loads_plane`).
 """
 
 from __future__ import annotations
@@ -278,10 +280,6 @@ broadcast numpy arrays.  See derivations/slope.py and docs/slopes.md.
 
 GRAV_ARGS = ("g", "c_phi", "s_phi", "c_theta", "s_theta", "c_psi", "s_psi")
 ACC_ARGS = fw.ACCEL_ARGS[:21] + ("g1", "g2") + fw.ACCEL_ARGS[21:]
-PLANE_LOAD_ARGS = ("sum_fx", "sum_fy", "gn", "ce", "se", "cb", "sb",
-                   "x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "h", "m", "roll_k")
-LOAD_ARGS = ("a1", "a2", "g1", "g2", "gn", "ce", "se", "cb", "sb",
-             "x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "h", "m", "roll_k")
 HOLD_ARGS = ("ce", "se", "cb", "sb", "g1", "g2", "M_A", "M_B", "FAx", "FBx",
              "x_m", "x_p", "d1", "d2", "t1", "t2", "trail", "l1", "m", "m_c")
 ZW_ARGS = ("U", "m", "g2", "s1", "s2", "C_f", "C_r")
@@ -340,26 +338,8 @@ def render() -> str:
         gen._cse_lines(Qn, "_a"), "(Q0, Q1, Q2, Q3, Q4)"))
     names.append("gravity_generalized_forces")
 
-    loads = normal_loads()
-    parts.append(gen._function(
-        "normal_loads_slope", LOAD_ARGS,
-        "Normal loads (N_A, N_B, N_D, N_E) in N on the plane (eq 6-25 extended).\n\n"
-        "a1, a2: in-plane acceleration of the c.g. (m/s^2; m a = tire forces + m g_in);\n"
-        "g1, g2, gn: gravity in body axes; the load-transfer moments are h m (a - g_in),\n"
-        "the normal weight m gn.  a = sum F/m, g1 = g2 = 0, gn = g is eq 6-25.\n",
-        gen._cse_lines(list(zip(("N_A", "N_B", "N_D", "N_E"), loads, strict=True)), "_a"), "(N_A, N_B, N_D, N_E)"))
-    names.append("normal_loads_slope")
-
-    parts.append(gen._function(
-        "normal_loads_plane", PLANE_LOAD_ARGS,
-        "Normal loads (N_A, N_B, N_D, N_E) in N on the plane from the tire-force sums.\n\n"
-        "sum_fx, sum_fy: sum of the tire forces in body axes (N); gn: normal gravity (m/s^2).\n"
-        "normal_loads_slope with m a = sum F + m g_in: the in-plane weight drops out of the\n"
-        "load transfer; gn = g is eq 6-25 (statics.normal_loads).  The simulator's form.\n",
-        gen._cse_lines(list(zip(("N_A", "N_B", "N_D", "N_E"), normal_loads_plane(), strict=True)), "_a"),
-        "(N_A, N_B, N_D, N_E)"))
-    names.append("normal_loads_plane")
-
+    # the loads (normal_loads, normal_loads_plane) are generated once, in _generated/forces.py
+    # (derivations/forces.py: the elimination, checked against normal_loads_plane here)
     hs = hold_statics()
     keys = ("FAy", "FBy", "Sx", "Sy", "Mh")
     parts.append(gen._function(

@@ -15,6 +15,7 @@ import pytest
 
 from stability.cli import commands
 from stability.settings import defaults as D
+from stability.settings.drive import DRIVE_SETTINGS, drive_flag
 
 #: Required arguments that let a parser produce its defaults.
 REQUIRED = {"slope": ["--cross-slope", "2", "--speed", "1"], "measure": ["sheet.toml", "-o", "c.toml"],
@@ -31,6 +32,7 @@ RENAMED = {
     "slope": {"wheel_radius": "handrim_wheel_radius"},
     "assist": {"chair": "power_chair", "speeds": "assist_speeds", "wheel_radius": "drive_wheel_radius", "sample_rate": "sample_rate_hz"},
 }
+RENAMED["bench"] = {"chair": "bench_chair", **{drive_flag(n)[2:].replace("-", "_"): n for n in DRIVE_SETTINGS}}
 #: Options with a default that belongs to one command alone (no API function shares it).
 COMMAND_ONLY = {
     "slope": {"drive"},

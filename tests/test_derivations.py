@@ -522,6 +522,102 @@ def test_load_transfer_has_no_first_order_effect():
 ALLOWED_BINOPS = (ast.Add, ast.Sub, ast.Mult, ast.Div, ast.Pow)
 
 
+@pytest.mark.slow
+def test_contact_forces_derivation():
+    """derivations/forces.py: the stepwise loads equal the slope derivation's symbolic solution (so eq 6-25 at
+    gn = g) and satisfy the four load equations 6-25a-d; the resultant and yaw moment are the vector sums over the
+    contacts; the kinetic and break-away pin moments are -M_f sign(rate) and M_f sign(M_hold)."""
+    from derivations import forces as fo
+
+    bad = {k: v for k, v in fo.checks().items() if v != 0}
+    assert not bad
+
+
+def test_generated_loads_solve_the_load_equations():
+    """The generated normal loads (stability/_generated/forces.py) against numpy's solution of eqs 6-25a-d as a
+    4x4 linear system (contacts of eq 6-24), on a plane (gn) and level (gn = g), random chairs and caster angles.
+    Error model: the elimination and the LU solve each lose at most cond(A) eps relative (cond(A) up to ~1e3
+    here), times 100."""
+    from stability._generated import forces as FO
+
+    rng = np.random.default_rng(21)
+    for _ in range(200):
+        p = random_chair(rng, front=bool(rng.integers(2)))
+        h, k, gn = rng.uniform(0.3, 0.8), rng.uniform(0.2, 3.0), rng.uniform(8.5, 9.81)
+        fx, fy = rng.uniform(-300, 300, 2)
+        eta, beta = rng.uniform(-np.pi, np.pi, 2)
+        c = (math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta))
+        got = FO.normal_loads(fx, fy, gn, *c, *geo(p), h, p["m"], k)
+        xa, ya, xb, yb = FO.caster_contacts(*c, p["x_p"], p["t1"], p["t2"], p["trail"])
+        assert (xa, ya) == (p["x_p"] - p["trail"] * c[0], -p["t1"] - p["trail"] * c[1])
+        assert (xb, yb) == (p["x_p"] - p["trail"] * c[2], p["t2"] - p["trail"] * c[3])
+        A = np.array([[1.0, 1.0, 1.0, 1.0],
+                      [xa, xb, p["x_m"], p["x_m"]],
+                      [ya, yb, 0.0, 0.0],
+                      [0.0, 0.0, -p["d1"], p["d2"]]])
+        b = np.array([p["m"] * gn, -h * fx, -h * fy / (k + 1), -h * fy * k / (k + 1)])
+        want = np.linalg.solve(A, b)
+        tol = 100 * np.linalg.cond(A) * np.finfo(float).eps * np.abs(b).max()
+        np.testing.assert_allclose(got, want, rtol=0, atol=tol)
+
+
+def test_generated_tire_resultant_and_moment_are_the_vector_sums():
+    """The generated resultant and yaw moment (eqs 6-2, 6-3) against numpy's sums of r x F over the contacts, the
+    caster forces turned by their angles.  Error model: eight products and sums of terms up to ~1e2 N m, relative
+    eps each, times 100."""
+    from stability._generated import forces as FO
+
+    rng = np.random.default_rng(22)
+    for _ in range(200):
+        p = random_chair(rng, front=bool(rng.integers(2)))
+        F = rng.uniform(-150, 150, 8)
+        eta, beta = rng.uniform(-np.pi, np.pi, 2)
+        c = (math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta))
+        ra = np.array([[c[0], -c[1]], [c[1], c[0]]]) @ F[0:2]
+        rb = np.array([[c[2], -c[3]], [c[3], c[2]]]) @ F[2:4]
+        forces = np.array([ra, rb, F[4:6], F[6:8]])
+        pts = np.array([[p["x_p"] - p["trail"] * c[0], -p["t1"] - p["trail"] * c[1]],
+                        [p["x_p"] - p["trail"] * c[2], p["t2"] - p["trail"] * c[3]],
+                        [p["x_m"], -p["d1"]], [p["x_m"], p["d2"]]])
+        tol = 100 * 8 * np.finfo(float).eps * np.abs(forces).max() * max(1.0, np.abs(pts).max())
+        np.testing.assert_allclose(FO.tire_resultant(*F, *c), forces.sum(axis=0), rtol=0, atol=tol)
+        np.testing.assert_allclose(FO.tire_yaw_moment(*F, *c, *geo(p)), (pts[:, 0] * forces[:, 1] - pts[:, 1] * forces[:, 0]).sum(), rtol=0, atol=tol)
+
+
+SCALAR_LAWS = ("slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment", "rest_rate")
+
+
+def test_generated_forces_module_is_arithmetic_except_its_scalar_laws():
+    """forces.py: the loads, contacts, resultant and moment are pure arithmetic (floats and arrays); only the slip
+    angle and the pin laws call math.atan2, math.copysign or abs and compare."""
+    tree = ast.parse((GEN_DIR / "forces.py").read_text())
+    for fn in (n for n in tree.body if isinstance(n, ast.FunctionDef)):
+        for node in ast.walk(fn):
+            if fn.name in SCALAR_LAWS and isinstance(node, ast.Call):
+                name = ast.unparse(node.func)
+                assert name in ("math.atan2", "math.copysign", "abs"), (fn.name, name)
+                continue
+            if fn.name not in SCALAR_LAWS:
+                assert not isinstance(node, (ast.Call, ast.Attribute, ast.Compare, ast.IfExp)), fn.name
+            if isinstance(node, ast.BinOp):
+                assert isinstance(node.op, ALLOWED_BINOPS), ast.dump(node)
+
+
+def test_generated_pin_laws():
+    """The pin friction laws of forces.py: kinetic moment against the rate and zero at rest (WCHAIR's DYNAM),
+    stick within the limit, break-away in the holding moment's direction, rest when a rate changes sign within a
+    step and the pin has friction."""
+    from stability._generated import forces as FO
+
+    assert FO.kinetic_pin_moment(0.3, 0.1) == -0.1 and FO.kinetic_pin_moment(-0.3, 0.1) == 0.1
+    assert FO.kinetic_pin_moment(0.0, 0.1) == 0.0
+    assert FO.pin_holds(0.1, 0.1) and FO.pin_holds(-0.05, 0.1) and not FO.pin_holds(0.1000001, 0.1)
+    assert FO.break_away_moment(-0.3, 0.1) == -0.1 and FO.break_away_moment(0.3, 0.1) == 0.1
+    assert FO.rest_rate(0.2, -0.1, 0.1) == 0.0 and FO.rest_rate(0.2, 0.1, 0.1) == 0.1
+    assert FO.rest_rate(0.2, -0.1, 0.0) == -0.1 and FO.rest_rate(0.0, -0.1, 0.1) == -0.1
+    assert FO.slip_angle(-1.0, 1.0) == pytest.approx(45.0, rel=4 * np.finfo(float).eps)
+
+
 @pytest.mark.parametrize("path", [GEN_DIR / "full_width.py", GEN_DIR / "zero_width.py"])
 def test_generated_modules_are_pure_arithmetic(path):
     """No imports, no calls, no attribute access; only + - * / ** on names."""
@@ -573,7 +669,7 @@ def regenerated(tmp_path_factory):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("fname", ["zero_width.py", "full_width.py"])
+@pytest.mark.parametrize("fname", ["zero_width.py", "full_width.py", "forces.py"])
 def test_generation_reproduces_committed_files(regenerated, fname):
     """Re-running the generation reproduces the committed file byte for byte when
     the installed sympy is the header's version; otherwise every function of the

@@ -14,14 +14,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from numerics import assert_signals_close, run_tolerance, trajectory_tolerance, transient_bound
+from numerics import assert_signals_close, run_tolerance
 
 from stability import tires
 from stability.chair import preset
-from stability.linear import state_matrices
 from stability.models import params
 from stability.models import statics as loads
-from stability.models.full_width import generated
+from stability.models.full_width import generated, tire_resultant
 from stability.models.slope import generated as slope_generated
 from stability.settings.run import RunSpec
 from stability.simulate import (
@@ -32,9 +31,7 @@ from stability.simulate import (
 )
 from stability.simulate import simulate as _simulate
 from stability.simulate import simulate_batch as _simulate_batch
-from stability.simulate.options import LOAD_TOLERANCE
 from stability.simulate.options import make_options as _make_options
-from stability.simulate.reference import wchair_batch
 from stability.simulate.results import COLUMNS, new_warnings
 
 # These tests reproduce program WCHAIR: its equations (the thesis variant) and its kinetic pin friction, while the
@@ -149,42 +146,36 @@ def test_statics_uses_previous_steps_total_force_including_fcimp():
     np.testing.assert_allclose(r.normal_load[1], loads.normal_loads(p, 0.0, 40.0), rtol=1e-12)
 
 
-def test_thesis_caster_equations_use_previous_yaw_acceleration(monkeypatch):
-    """DYNAM forms Z10 = M*THEDD before updating THEDD: the caster rows lag one step."""
+def test_thesis_caster_equations_use_previous_yaw_acceleration():
+    """DYNAM forms Z10 = M*THEDD before updating THEDD: the caster rows lag one step (THEDD = 0 in BLOCK DATA).
+
+    The kernel's caster acceleration of each step, recovered from its own update ``ED += EDD dt``, against the
+    generated equations evaluated at the recorded state, forces and pin moments with the previous step's yaw
+    acceleration (thesis) or the current one (exact).  Error model: the recovery loses 2 eps |ED| / dt, the
+    evaluation a few eps of its terms; times 100."""
     from stability._generated import full_width
 
-    calls = []
-
-    def spy(name):
-        real = getattr(full_width, name)
-
-        def f(*args, **kwargs):
-            out = real(*args, **kwargs)
-            calls.append((kwargs.get("r_dot_casters", "absent"), out[2], name))
-            return out
-        return f
-
-    def zero(t, state):      # a Python input: the Python-float path, which calls the generated code
-        return 0.0
-
-    for name in ("accelerations_thesis", "accelerations_exact"):
-        monkeypatch.setattr(full_width, name, spy(name))
-    py = simulate(EJ, 0.75, run=RunSpec(horizon=0.02, friction_law="kinetic", model="thesis"), yaw_moment=zero)
-    assert py.settings["engine"] == "python"
-    assert len(calls) == 22 and calls[0][0] == 0.0            # THEDD = 0 in BLOCK DATA
-    for k in range(1, len(calls)):
-        assert calls[k][0] == calls[k - 1][1]
-        assert calls[k][2] == "accelerations_thesis"
-    calls.clear()
-    simulate(EJ, 0.75, run=RunSpec(horizon=0.02, model="exact", friction_law="kinetic"), yaw_moment=zero)
-    assert len(calls) == 22 and all(c[0] == "absent" and c[2] == "accelerations_exact" for c in calls)
-    # the compiled kernel has the same lag: it reproduces the Python path (tire fits evaluated as
-    # interpolated coefficients there, interpolated forces here: equal to rounding)
-    compiled = simulate(EJ, 0.75, run=RunSpec(horizon=0.02, friction_law="kinetic", model="thesis"))
-    assert compiled.settings["engine"] == "compiled"
-    # error model: fixed-step rounding, steps x eps (1 + dt ||A||) x growth (tests/numerics.py)
-    assert_signals_close(compiled, py, ("yaw_acceleration", "eta_dot"), run_tolerance(EJ, 0.75, 0.02),
-                         what="compiled vs Python, 20 steps")
+    eps = np.finfo(float).eps
+    for model in ("thesis", "exact"):
+        r = simulate(EJ, 0.75, RunSpec(horizon=0.02, model=model, friction_law="kinetic"))
+        p = params.parameters(EJ)
+        edd = np.diff(r.eta_dot) / r.settings["dt"]
+        lagged, current = [], []
+        for k in range(len(edd)):
+            args = (r.u[k], r.v[k], r.yaw_rate[k], math.cos(r.eta[k]), math.sin(r.eta[k]), math.cos(r.beta[k]),
+                    math.sin(r.beta[k]), r.eta_dot[k], r.beta_dot[k], r.fx[k, 0], r.fy[k, 0], r.fx[k, 1],
+                    r.fy[k, 1], r.fx[k, 2], r.fy[k, 2], r.fx[k, 3], r.fy[k, 3], r.pin_moment[k, 0],
+                    r.pin_moment[k, 1], 40.0, 0.0, *p.inertia)
+            if model == "thesis":
+                lagged.append(full_width.accelerations_thesis(*args, r_dot_casters=r.yaw_acceleration[k - 1]
+                                                              if k else 0.0)[3])
+                current.append(full_width.accelerations_thesis(*args)[3])
+            else:
+                lagged.append(full_width.accelerations_exact(*args)[3])
+        tol = 100 * (2 * eps * np.max(np.abs(r.eta_dot)) / r.settings["dt"] + 10 * eps * np.max(np.abs(edd)))
+        np.testing.assert_allclose(edd, lagged, rtol=0, atol=tol, err_msg=model)
+        if model == "thesis":            # the lag is visible: the current yaw acceleration gives other steps
+            assert np.max(np.abs(np.array(current) - edd)) > 100 * tol
 
 
 def test_pin_friction_opposes_caster_rate_and_is_zero_at_rest():
@@ -298,8 +289,9 @@ def test_yaw_moment_input_reaches_the_yaw_equation():
         seen.append(t)
         return 5.0
 
-    r = simulate(SLICK, 0.75, run=RunSpec(horizon=0.1, push_force=0.0, friction_law="kinetic", model="thesis"), yaw_moment=mz)
-    assert seen[0] == 0.0 and len(seen) == len(r.t)
+    r = simulate(SLICK, 0.75, RunSpec(horizon=0.1, push_force=0.0, friction_law="kinetic", model="thesis"),
+                 yaw_moment=mz)
+    assert seen[0] == 0.0 and len(seen) == len(r.t)          # sampled once per step, at the step's start
     np.testing.assert_array_equal(r.yaw_moment_input, 5.0)
     np.testing.assert_allclose(r.yaw_acceleration, 5.0 / EJ.i_z, rtol=1e-12)
 
@@ -458,58 +450,24 @@ def test_adaptive_loads_are_consistent_with_the_forces():
     for k in range(len(r.t)):
         ce, se, cb, sb = math.cos(r.eta[k]), math.sin(r.eta[k]), math.cos(r.beta[k]), math.sin(r.beta[k])
         fx, fy = r.fx[k], r.fy[k]
-        sfx = fx[2] + fx[3] + fx[0] * ce - fy[0] * se + fx[1] * cb - fy[1] * sb
-        sfy = fy[2] + fy[3] + fx[0] * se + fy[0] * ce + fx[1] * sb + fy[1] * cb
+        sfx, sfy = tire_resultant((fx[0], fy[0], fx[1], fy[1], fx[2], fy[2], fx[3], fy[3]), ce, se, cb, sb)
         np.testing.assert_allclose(r.normal_load[k], loads.normal_loads(p, sfx, sfy, ce, se, cb, sb), rtol=1e-9)
 
 
-def _zero_moment(t, state):
-    return 0.0
-
-
-@pytest.mark.parametrize("chair, speed, kw", [
-    (EJ, 0.3, {}),                                                   # stable, stick-slip switches
-    (EJ, 0.75, dict(casters="locked")),
-    (EJ, 0.5, dict(model="exact", lateral_velocity=0.02)),
-    (EJ.replace(toe_deg=0.5, camber_deg=1.5, main_rolling_scale=1.0, caster_rolling_scale=1.0), 0.5, {}),
-])
-def test_adaptive_compiled_right_hand_side_equals_the_python_one(chair, speed, kw):
-    """The compiled right-hand side (engine "compiled") is the Python one's arithmetic: the two integrations
-    differ only by what the load-transfer loop's stopping rule lets through.
-
-    Error model (tests/numerics.py): both right-hand sides stop their load-transfer fixed point when the
-    total tire force changes by less than tau = LOAD_TOLERANCE = 1e-9 of its size, so with rounding-level
-    differences their forces, hence their derivatives, may differ by tau relative; relative to the state
-    that is tau ||A||_2 per second (A the linearisation at this speed, ||A|| ~ 1e4 1/s: the stiff caster
-    modes).  Over T = 2 s that grows at most to kappa(V) tau ||A|| (e^{aT} - 1)/a (a = max Re lambda,
-    kappa(V) ~ 40 its transient-growth bound).  Bound ~4e-3 of each signal's size; observed <= 1.1e-8
-    (exact model with a lateral push; <= 2e-10 in the others): margin > 1e5.  A wrong term in either
-    right-hand side changes the signals at order one."""
-    spec = RunSpec(**{"model": "thesis", "horizon": 2.0, "scheme": "adaptive", **kw})
-    c = simulate(chair, speed, spec)
-    p = simulate(chair, speed, spec, yaw_moment=_zero_moment)
-    assert c.settings["engine"] == "compiled" and p.settings["engine"] == "python"
-    assert c.settings["switches"] == p.settings["switches"]
-    A = state_matrices(chair, speed, model=c.settings["model"], casters=c.settings["casters"])[0]
-    rate, kappa = transient_bound(A)
-    rel = trajectory_tolerance(LOAD_TOLERANCE * np.linalg.norm(A, 2), 2.0, rate, kappa)
-    assert rel < 1e-2                                               # the bound still sees an error of 1 %
-    for name in ("yaw_rate", "v", "eta", "beta_dot", "fy", "normal_load", "pin_moment", "yaw_acceleration"):
-        a, b = getattr(c, name), getattr(p, name)
-        assert np.max(np.abs(a - b)) <= rel * (1.0 + np.max(np.abs(b))), name
-
-
-def test_adaptive_compiled_diverging_run_within_the_integration_error(adaptive_pair):
-    """In the diverging reference run LSODA's step choices part at rounding level; the compiled and Python
-    paths then differ by less than the integration error itself (rtol vs rtol/2 of the same path)."""
-    a, b = adaptive_pair                                            # compiled, rtol 1e-6 and 0.5e-6
-    p = simulate(EJ, 0.75, run=RunSpec(horizon=4.0, scheme="adaptive", model="thesis"), yaw_moment=_zero_moment)
-    assert a.settings["engine"] == "compiled"
-    assert np.max(np.abs(a.yaw_rate - p.yaw_rate)) <= np.max(np.abs(a.yaw_rate - b.yaw_rate))
+@pytest.mark.parametrize("scheme", ["wchair", "adaptive"])
+def test_a_zero_yaw_moment_input_changes_nothing(scheme):
+    """A Python yaw-moment input that returns 0 N m runs the same arithmetic as no input, bit for bit: the
+    kernel takes the input between its steps (wchair) or at each evaluation (adaptive) and adds it where the
+    equations take Mz_ext."""
+    run = RunSpec(horizon=2.0, scheme=scheme, model="exact", lateral_velocity=0.02)
+    a = simulate(EJ, 0.5, run)
+    b = simulate(EJ, 0.5, run, yaw_moment=lambda t, s: 0.0)
+    for name in ("yaw_rate", "eta", "beta_dot", "fy", "normal_load", "pin_moment"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
 
 
 def test_adaptive_compiled_raise_policy_raises_the_tire_error():
-    """A refused tire input inside the compiled right-hand side raises the tire's own error, as the Python path."""
+    """A refused tire input inside the compiled right-hand side raises the tire's own error."""
     with pytest.raises(ValueError, match=r"outside the fitted range \[-8, 8\] deg \(tire EJA\)"):
         simulate(EJ, 0.75, run=RunSpec(scheme="adaptive", out_of_range="raise", model="thesis"))
 
@@ -678,40 +636,6 @@ def test_batch_per_run_impulse_force_bad_input():
 # ---------------------------------------------------------------------------
 # the compiled kernel (issue 10)
 # ---------------------------------------------------------------------------
-def _kernel_cases():
-    return [
-        (EJ, dict()),
-        (EJ, dict(model="exact")),
-        (EJ, dict(casters="locked")),
-        (EJ.replace(toe_deg=0.5, camber_deg=2.0), dict(lateral_velocity=0.01, push_force=0.0)),
-        (EJ.replace(main_rolling_scale=1.0, caster_rolling_scale=1.0), dict()),
-        (EJ.replace(main_tire="linear:25", caster_tire="linear:25"), dict(lateral_velocity=0.3, push_force=0.0)),
-        (FRONT, dict(tire_push_force=20.0, push_duration=0.05)),
-        (EJ, dict(out_of_range="extrapolate", lateral_velocity=0.2, stop_on_warnings=False)),
-    ]
-
-
-@pytest.mark.parametrize("case", range(8))
-def test_kernel_equals_numpy_reference(case):
-    """The compiled kernel against the pure-numpy reference path, step for step.
-
-    Same operations in the same order (slips by atan2, the segment form of the
-    tire fits, the generated equations with x*x); they agree to rounding: the
-    kernel's libm calls (cos, sin, atan2) and numpy's SIMD versions may differ
-    in the last bit, and 1 s of the unstable chair amplifies that at most ~1e3.
-    """
-    chair, kw = _kernel_cases()[case]
-    run = RunSpec(**{"model": "thesis", "friction_law": "kinetic", "horizon": 1.0, "sample": 0.001, **kw})
-    ref = wchair_batch([chair], np.array([0.75]), make_options(run, batch=True), False)[0]
-    got = simulate(chair, 0.75, run)
-    assert got.settings["engine"] == "compiled" and len(got.t) == len(ref.t)
-    # error model: fixed-step rounding (steps x eps (1 + dt ||A||)) grown by the linearisation (tests/numerics.py)
-    tol = run_tolerance(chair, 0.75, 1.0, model=kw.get("model", "thesis"), casters=kw.get("casters", "free"))
-    assert_signals_close(got, ref, ("x", "y", "heading", "yaw_rate", "v", "eta", "eta_dot", "beta_dot", "fx", "fy",
-                                    "normal_load", "slip_deg", "tire_yaw_moment", "pin_moment"), tol, what=f"kernel {case}")
-    assert got.warnings == ref.warnings and got.stopped_by_warnings == ref.stopped_by_warnings
-
-
 def test_single_run_is_bit_identical_to_its_batch_run():
     """One kernel: a run alone and the same run inside a batch (any threads) are the same arithmetic."""
     speeds = np.array([0.55, 0.75, 0.95])
@@ -721,37 +645,6 @@ def test_single_run_is_bit_identical_to_its_batch_run():
         for name in ("t", "yaw_rate", "heading", "x", "y", "fy", "normal_load", "pin_moment"):
             np.testing.assert_array_equal(getattr(rb, name), getattr(r1, name), err_msg=name)
         assert rb.stop_time == r1.stop_time and rb.stats == r1.stats
-
-
-def test_compiled_transcriptions_equal_statics_and_models():
-    """The kernel's loads and tire yaw moment are statics.normal_loads / models.full_width's, bit for bit."""
-    from stability.models import full_width
-    rng = np.random.default_rng(3)
-    for chair in (EJ, FRONT):
-        p = params.parameters(chair)
-        P = np.array(p, dtype=float)
-        for _ in range(200):
-            fx, fy = rng.uniform(-300, 300, 2)
-            e, b = rng.uniform(-np.pi, np.pi, 2)
-            trig = (math.cos(e), math.sin(e), math.cos(b), math.sin(b))
-            assert kernel.normal_loads(P, fx, fy, *trig) == loads.normal_loads(p, fx, fy, *trig)
-            F = tuple(rng.uniform(-100, 100, 8))
-            assert kernel.tire_yaw_moment(P, F, *trig) == full_width.tire_yaw_moment(p, F, *trig)
-
-
-def test_kernel_tire_law_equals_the_tires_module():
-    """Compiled lateral force = Tire.lateral_force (segment form) for every policy, bit for bit."""
-    from stability.simulate import engine, kernel
-
-    rng = np.random.default_rng(5)
-    for tire in (tires.get("EJA"), tires.get("ER").scaled(0.7), tires.get("linear:30")):
-        kind, seg, scale, lim = engine._tire_slot(tire)
-        slip = rng.uniform(-11, 11, 300)
-        fz = rng.uniform(-20, 520, 300)
-        for pol, name in enumerate(("clamp", "extrapolate")):
-            want = tire.lateral_force(slip, fz, policy=name, warn=False)
-            got = [kernel.lateral_force(kind, seg, scale, np.array(lim), s, f, pol)[0] for s, f in zip(slip, fz, strict=False)]
-            np.testing.assert_array_equal(got, want)
 
 
 def test_record_modes_and_stats():
@@ -791,9 +684,8 @@ def test_sampled_controller_equals_the_python_callable():
     def hook(t, s):
         return min(max(-20.0 * s.yaw_rate, -15.0), 15.0)
 
-    a = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"), controller=ctl)
-    b = simulate(EJ, 0.75, run=RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"), yaw_moment=hook)
-    assert a.settings["engine"] == "compiled" and b.settings["engine"] == "python"
+    a = simulate(EJ, 0.75, RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"), controller=ctl)
+    b = simulate(EJ, 0.75, RunSpec(horizon=3.0, friction_law="kinetic", model="thesis"), yaw_moment=hook)
     # fixed-step rounding model with the open-loop linearisation (the feedback only damps)
     assert_signals_close(a, b, ("yaw_rate",), run_tolerance(EJ, 0.75, 3.0), what="sampled controller")
     np.testing.assert_allclose(a.yaw_moment_input, -20.0 * a.yaw_rate.clip(-0.75, 0.75), rtol=1e-12, atol=1e-15)
@@ -825,28 +717,35 @@ def test_step_stability_limit_against_the_adaptive_scheme(speed):
         assert not fixed.step_unstable
 
 
-def test_reference_range_rules_check_only_the_tested_wheels():
-    """Linear casters, tested main wheels, one tire group: the numpy reference counts the main wheels' slip
-    warnings and stops as the kernel does (it used to skip the rules on every wheel of such a batch).
-    Times to a step: the two agree to rounding (libm against numpy's SIMD functions)."""
+def test_range_rules_count_only_the_tested_wheels_of_a_mixed_chair():
+    """Linear casters, tested main wheels: a slip warning is a step where a main wheel's |slip| exceeds 8 deg
+    (WCHAIR's MECHAN rule); the eleventh stops the run before recording its step.  Tested casters, linear main
+    wheels: the main wheels' slips beyond 8 deg are no warning."""
     chair = EJ.replace(caster_tire="linear:25")
-    run = RunSpec(push_force=150.0, horizon=2.5, friction_law="kinetic")
-    ref = wchair_batch([chair], np.array([0.5]), make_options(run, batch=True), False)[0]
-    com = simulate(chair, 0.5, run, record="final")
-    assert ref.warning_counts == com.warning_counts and com.warning_counts["slip"] == 11
-    assert ref.warnings["slip"]["first_time"] == pytest.approx(com.warnings["slip"]["first_time"], abs=1.5e-3)
-    assert ref.stopped_by_warnings and ref.stop_time == pytest.approx(com.stop_time, abs=1.5e-3)
+    r = simulate(chair, 0.5, RunSpec(push_force=150.0, horizon=2.5, friction_law="kinetic", model="thesis"))
+    over = np.flatnonzero(np.max(np.abs(r.slip_deg[:, 2:4]), axis=1) > 8.0)
+    assert r.warning_counts["slip"] == 11 and len(over) == 10 and r.stopped_by_warnings
+    assert r.warnings["slip"]["first_time"] == r.t[over[0]]
+    assert r.stop_time == pytest.approx(r.t[-1] + r.settings["dt"], abs=1e-12)
+    other = simulate(EJ.replace(main_tire="linear:30"), 0.5, RunSpec(push_force=150.0, horizon=2.5,
+                                                                       friction_law="kinetic", model="thesis"))
+    assert np.max(np.abs(other.slip_deg[:, 2:4])) > 8.0 and np.max(np.abs(other.slip_deg[:, 0:2])) <= 8.0
+    assert other.warning_counts["slip"] == 0
 
 
 def test_compile_cache_stamp_is_the_generated_equations_hash():
-    """The stale-cache stamp next to the numba cache is the SHA-256 of the generated equations (level and slope)
-    and of the kernel modules whose functions other kernels call (numba keys a cache on its own file only)."""
-    from stability.simulate.cache_stamp import KERNEL_SOURCES
+    """The stale-cache stamp next to the numba cache is the SHA-256 of the modules the kernels compile as they are
+    (the generated equations, level and slope, and the tire law) and of the kernel modules whose functions other
+    kernels call (numba keys a cache on its own file only)."""
+    from stability.models import forces
+    from stability.simulate.cache_stamp import COMPILED_MODULES, KERNEL_SOURCES
+    from stability.tires import law
 
     here = Path(kernel.__file__).parent
-    digest = hashlib.sha256(Path(generated.__file__).read_bytes() + Path(slope_generated.__file__).read_bytes()
+    digest = hashlib.sha256(b"".join(Path(m.__file__).read_bytes() for m in COMPILED_MODULES)
                             + b"".join((here / name).read_bytes() for name in KERNEL_SOURCES)).hexdigest()
     assert {"kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py"} <= set(KERNEL_SOURCES)
+    assert {generated, slope_generated, forces.generated, law} <= set(COMPILED_MODULES)
     stamp = Path(kernel.run_batch._cache.cache_path) / "kernel.equations.sha256"
     if not stamp.exists():
         pytest.skip("no writable cache directory")

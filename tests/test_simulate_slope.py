@@ -1,5 +1,6 @@
 """The simulator on a slope (issue 12): zero slope unchanged, mirror symmetry, agreement with the slope
-package's own integration, turn directions, the grade's closed form, compiled vs reference paths, input checks."""
+package's statics, turn directions, the grade's closed form, the fixed step against the adaptive scheme,
+input checks."""
 
 from __future__ import annotations
 
@@ -17,10 +18,10 @@ from stability.models import slope as msl
 from stability.models.params import parameters
 from stability.models.statics import normal_loads
 from stability.settings.run import RunSpec
-from stability.simulate import reference_engine, simulate, simulate_batch
+from stability.simulate import simulate, simulate_batch
 from stability.simulate.__main__ import main as simulate_main
 from stability.slope import solve
-from stability.study.veer import simulator_path, simulator_slope, uncorrected_path
+from stability.study.veer import simulator_path, simulator_slope
 
 EJ = chair_mod.preset("ej-premier")                 # rear casters
 FRONT = chair_mod.preset("manual-front-caster")     # front casters
@@ -62,9 +63,6 @@ def test_zero_slope_reference_paths_and_batch():
     got = simulate_batch([EJ, FRONT], [0.6, 0.9], run=RunSpec(horizon=0.5, model="exact", cross_slope_deg=0, grade_deg=0, friction_law="kinetic"), progress=False)
     for a, b in zip(got, ref, strict=True):
         _same(a, b)
-    with reference_engine():
-        r1 = simulate(FRONT, 0.9, run=RunSpec(horizon=0.3, model="exact", friction_law="kinetic"))
-        _same(simulate(FRONT, 0.9, run=RunSpec(horizon=0.3, model="exact", cross_slope_deg=0.0, grade_deg=0.0, friction_law="kinetic")), r1)
 
 
 def test_plane_loads_at_zero_slope_are_eq_6_25():
@@ -97,7 +95,9 @@ def test_mirror_symmetry(scheme, chair):
     differences): tolerance 100 rtol with rtol = 1e-9; the fixed-step runs to 1e-9 of the signal.
     """
     chair = chair.replace(**FRICTIONLESS)
-    kw = dict(model="exact", scheme=scheme, horizon=1.0, push_force=0.0)
+    # 0.6 s: the rear-caster chair turns 13 deg; by 0.9 s its casters swing past 90 deg and the spin-out is
+    # chaotic (there a rounding-level difference sent LSODA into steps of 1e-11 s)
+    kw = dict(model="exact", scheme=scheme, horizon=0.6, push_force=0.0)
     if scheme == "adaptive":
         kw.update(rtol=1e-9, atol=1e-12)
     a = simulate(chair, 0.75, RunSpec(cross_slope_deg=3.0, grade_deg=1.0, **kw))
@@ -105,9 +105,9 @@ def test_mirror_symmetry(scheme, chair):
     # error models (tests/numerics.py): the fixed-step runs differ by rounding grown over the run; the
     # adaptive ones by at most the sum of their global errors (LSODA's step decisions may part)
     if scheme == "adaptive":
-        tol = adaptive_run_tolerance(chair, 0.75, 1.0, 1e-9, max(a.settings["nfev"], b.settings["nfev"]), "exact")
+        tol = adaptive_run_tolerance(chair, 0.75, 0.6, 1e-9, max(a.settings["nfev"], b.settings["nfev"]), "exact")
     else:
-        tol = run_tolerance(chair, 0.75, 1.0, model="exact")
+        tol = run_tolerance(chair, 0.75, 0.6, model="exact")
     assert a.t.shape == b.t.shape
     for name, sign in (("x", 1), ("u", 1), ("y", -1), ("heading", -1), ("yaw_rate", -1), ("v", -1)):
         x, y = getattr(a, name), sign * getattr(b, name)
@@ -135,32 +135,6 @@ def test_front_casters_turn_downhill_rear_casters_uphill(scheme):
 
 # -- agreement with stability.study.veer ----------------------------------------------------------------------
 
-@pytest.mark.parametrize("chair, t_end", [(FRONT, 1.0), (EJ, 0.6)], ids=["front-caster", "ej-premier"])
-def test_simulator_agrees_with_slope_integration(chair, t_end):
-    """2 deg cross slope, frictionless pins, no viscous damping, coasting from the held equilibrium.
-
-    Same equations, two integrations: the adaptive scheme (loads consistent with the forces, as the slope
-    model) agrees with solve_ivp to 1e-4 rad in heading; WCHAIR's scheme (1 ms Euler step, loads of the
-    previous step) within 0.5 % of the heading change (measured 0.03 % and 0.09 %).  Over the first second
-    (the E&J Premier's casters swing 30 deg at 0.65 s, where the slope integration stops).
-    """
-    c = chair.replace(**FRICTIONLESS)
-    eq = solve(c, 2.0, 0.75)
-    ref = uncorrected_path(c, eq, duration=t_end, coast=True)
-    tt = np.linspace(0.0, t_end, 41)
-    href = np.interp(tt, ref.t, ref.heading)
-    swing = float(np.max(np.abs(href - href[0])))
-    assert swing > math.radians(3.0)
-    for scheme, tol in (("adaptive", 1e-4), ("wchair", 0.005 * swing)):
-        run = RunSpec(scheme=scheme, horizon=t_end + 0.02, friction_law="stick-slip" if scheme == "adaptive" else
-                      "kinetic", **(dict(rtol=1e-9, atol=1e-11) if scheme == "adaptive" else {}))
-        sim = simulator_path(c, eq, run)
-        assert sim.t[-1] >= t_end
-        np.testing.assert_allclose(np.interp(tt, sim.t, sim.heading), href, rtol=0, atol=tol, err_msg=scheme)
-        np.testing.assert_allclose(np.interp(tt, sim.t, sim.y), np.interp(tt, ref.t, ref.y), rtol=0,
-                                   atol=max(tol, 1e-4), err_msg=scheme)
-
-
 def test_simulator_slope_is_the_same_plane():
     """The plane seen from the held heading has the same gravity: |g_in| and gn unchanged."""
     eq = solve(FRONT, 4.0, 0.75, 2.0)
@@ -184,48 +158,29 @@ def test_grade_speed_closed_form(scheme, grade):
     assert np.max(np.abs(res.heading)) < 1e-12
 
 
-# -- compiled vs reference -----------------------------------------------------------------------------------------
+# -- one arithmetic; two integrators -------------------------------------------------------------------------
 
 @pytest.mark.parametrize("casters", ["free", "locked"])
-def test_compiled_matches_reference_paths(casters):
-    run = RunSpec(model="exact", horizon=1.0, cross_slope_deg=2.0, grade_deg=3.0, casters=casters,
-                  friction_law="kinetic")
+def test_a_run_on_a_slope_is_the_same_alone_or_in_a_batch(casters):
+    run = RunSpec(model="exact", horizon=1.0, cross_slope_deg=2.0, grade_deg=3.0, casters=casters)
     comp = simulate(EJ, 0.75, run)
     batch = simulate_batch([EJ, FRONT], [0.75, 0.6], run.replace(sample=0.001), progress=False)
     _same_states(batch[0], comp)                                            # one arithmetic, alone or batched
-    with reference_engine():
-        ref1 = simulate(EJ, 0.75, run)
-        refb = simulate_batch([EJ, FRONT], [0.75, 0.6], run.replace(sample=0.001), progress=False)
-    assert comp.settings["engine"] == "compiled" and ref1.settings["engine"] == "python"
-    # fixed-step rounding grown over the run (tests/numerics.py)
-    _close(comp, ref1, run_tolerance(EJ, 0.75, 1.0, model="exact", casters=casters), what="compiled vs reference")
-    _close(batch[1], refb[1], run_tolerance(FRONT, 0.6, 1.0, model="exact", casters=casters), what="batch")
 
 
-def test_stick_slip_on_a_slope_compiled_matches_reference():
-    """The stick-slip law on a plane: the compiled kernel and the Python reference take the same steps (measured
-    6e-16 relative); tolerance as above, the larger of the free and locked bounds since a caster switches between
-    them (tests/test_stick_slip.py)."""
-    run = RunSpec(model="exact", horizon=1.0, cross_slope_deg=4.0, grade_deg=2.0, friction_law="stick-slip")
-    comp = simulate(EJ, 1.0, run)
-    with reference_engine():
-        ref = simulate(EJ, 1.0, run)
-    assert comp.settings["friction_law"] == ref.settings["friction_law"] == "stick-slip"
-    tol = max(run_tolerance(EJ, 1.0, 1.0, model="exact", casters=c) for c in ("free", "locked"))
-    _close(comp, ref, tol, what="stick-slip on a slope")
-    assert (np.asarray(comp.eta_dot) == 0.0).any()          # a caster did stick (the law was exercised)
-
-
-def test_adaptive_compiled_matches_python_rhs():
-    """Same right-hand side compiled and in Python; LSODA may take a different step on a rounding-level
-    difference, so the two agree to the integration error (rtol = 1e-9 here), tested at 1e-8 of the signal."""
-    run = RunSpec(model="exact", scheme="adaptive", horizon=1.0, cross_slope_deg=2.0, grade_deg=-2.0, push_force=0.0,
-                  rtol=1e-9, atol=1e-12)
-    comp = simulate(FRONT, 0.75, run)
-    py = simulate(FRONT, 0.75, run, yaw_moment=lambda t, s: 0.0)
-    assert comp.settings["engine"] == "compiled" and py.settings["engine"] == "python"
-    steps = max(comp.settings["nfev"], py.settings["nfev"])
-    _close(comp, py, adaptive_run_tolerance(FRONT, 0.75, 1.0, 1e-9, steps, "exact"), what="adaptive rhs")
+@pytest.mark.parametrize("chair", [FRONT, EJ], ids=["front-caster", "rear-caster"])
+def test_fixed_step_converges_to_the_adaptive_scheme_on_a_slope(chair):
+    """2 deg cross slope, 1 s, the chair's Coulomb pins (stick-slip law): the WCHAIR scheme's yaw rate differs
+    from the adaptive scheme's (rtol 1e-9) by an amount that halves with the step (its Euler velocity update is
+    first order; measured 7.0e-5 -> 3.5e-5 -> 1.7e-5 rad/s front caster, 9.0e-4 -> 4.5e-4 -> 2.3e-4 rear caster):
+    two integrators of the generated slope equations."""
+    run = RunSpec(model="exact", horizon=1.0, cross_slope_deg=2.0, push_force=0.0, sample=0.01)
+    ref = np.asarray(simulate(chair, 0.75, run.replace(scheme="adaptive", rtol=1e-9, atol=1e-12)).yaw_rate)
+    err = [np.abs(np.asarray(simulate(chair, 0.75, run.replace(dt=dt, stop_on_warnings=False)).yaw_rate)
+                  - ref).max() for dt in (1e-3, 5e-4, 2.5e-4)]
+    assert err[0] < 0.01 * np.abs(ref).max()
+    for coarse, fine in zip(err[:-1], err[1:], strict=True):
+        assert 0.35 < fine / coarse < 0.65, err
 
 
 # -- inputs ------------------------------------------------------------------------------------------------------

@@ -832,17 +832,16 @@ def test_missing_tire_data_fails_early():
     assert tires.get("AG").capabilities == tires.TireCapabilities("AG", camber=True, rolling=True)
 
 
-def test_stack_uses_each_tires_own_range():
-    """TireStack clamps each row at its own tire's fitted range."""
+def test_clamp_uses_each_tires_own_range():
+    """A user tire clamps at its own fitted range (slip and load), the thesis tire at 8 deg and 450 N."""
     _, slip, fz, fy = _synthetic((1, 2, 4))
     user = tires.tire_from_data(slip, fz, fy, name="U")
-    row_tires = (user, tires.get("ER"))
-    s = np.array([[6.0, 3.0], [9.0, 3.0]])
-    f = np.array([[300.0, 550.0], [300.0, 460.0]])
-    got = tires.TireStack(row_tires).lateral_force(s, f, policy="clamp")
-    want = [[t.lateral_force(s[j], f[j], policy="clamp", warn=False)[i] for i in range(2)]
-            for j, t in enumerate(row_tires)]
-    np.testing.assert_array_equal(got, want)
+    smax, fmax = user.slip_max_deg, user.fz_max_N
+    assert smax < 8.0 or fmax < 450.0
+    assert user.lateral_force(smax + 1.0, 300.0, warn=False) == user.lateral_force(smax, 300.0)
+    assert user.lateral_force(3.0, fmax + 50.0, warn=False) == user.lateral_force(3.0, fmax)
+    er = tires.get("ER")
+    assert er.lateral_force(9.0, 460.0, warn=False) == er.lateral_force(8.0, 450.0)
 
 
 def test_segment_arrays_are_the_force_law():

@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from stability import cli
 from stability.bench.matrix import Drive, run_bench
 from stability.bench.text import bench_text
-from stability.settings.drive import DRIVE_SETTINGS, drive_flag
+from stability.settings.drive import BENCH_CHAIR, DRIVE_SETTINGS, drive_flag
 
 __all__ = ["main", "build_parser"]
 
@@ -17,11 +17,11 @@ __all__ = ["main", "build_parser"]
 def build_parser() -> argparse.ArgumentParser:
     """The command-line parser (one option per drive setting, from :data:`DRIVE_SETTINGS`)."""
     p = cli.OneLineErrorParser(prog="python -m stability.bench", description=(__doc__ or "").splitlines()[0])
-    p.add_argument("--chair", default="mid-wheel-drive",
+    p.add_argument("--chair", default=BENCH_CHAIR,
                    help="a layout preset (mid-wheel-drive, power-fwd-base, power-rwd-base), a [[wheel]] chair file, "
                         "or a chair in the short form (default mid-wheel-drive)")
     defaults = Drive()
-    for name, (unit, (lo, hi), text) in DRIVE_SETTINGS.items():
+    for name, (_, unit, (lo, hi), text) in DRIVE_SETTINGS.items():
         p.add_argument(drive_flag(name), type=float, default=getattr(defaults, name), metavar="X",
                        help=f"{text}, {unit or 'no unit'} ({lo:g} to {hi:g}; default {getattr(defaults, name):g})")
     cli.add_json_options(p)
@@ -33,7 +33,7 @@ def _body(a: argparse.Namespace) -> int:
 
     cli.check_outputs({"--json-file": a.json_file}, {"--chair": a.chair})
     values = {}
-    for name, (unit, (lo, hi), _) in DRIVE_SETTINGS.items():
+    for name, (_, unit, (lo, hi), _) in DRIVE_SETTINGS.items():
         v = getattr(a, drive_flag(name)[2:].replace("-", "_"))
         if not (lo <= v <= hi):
             raise ValueError(f"{drive_flag(name)} {v!r} is invalid; valid range: {lo:g} to {hi:g} {unit}".rstrip())

@@ -49,19 +49,19 @@ class Drive:
         deg.
     """
 
-    max_speed_m_s: float = 2.7
-    reverse_speed_m_s: float = 1.0
-    accel_m_s2: float = 1.0
-    decel_m_s2: float = 2.5
-    reverse_decel_m_s2: float = 3.5
-    brake_decel_m_s2: float = 3.0
-    brake_delay_s: float = 0.25
-    turn_rate_rad_s: float = 0.8
-    traction: float = 0.8
-    max_slope_deg: float = 6.0
+    max_speed_m_s: float = DRIVE_SETTINGS["max_speed_m_s"][0]
+    reverse_speed_m_s: float = DRIVE_SETTINGS["reverse_speed_m_s"][0]
+    accel_m_s2: float = DRIVE_SETTINGS["accel_m_s2"][0]
+    decel_m_s2: float = DRIVE_SETTINGS["decel_m_s2"][0]
+    reverse_decel_m_s2: float = DRIVE_SETTINGS["reverse_decel_m_s2"][0]
+    brake_decel_m_s2: float = DRIVE_SETTINGS["brake_decel_m_s2"][0]
+    brake_delay_s: float = DRIVE_SETTINGS["brake_delay_s"][0]
+    turn_rate_rad_s: float = DRIVE_SETTINGS["turn_rate_rad_s"][0]
+    traction: float = DRIVE_SETTINGS["traction"][0]
+    max_slope_deg: float = DRIVE_SETTINGS["max_slope_deg"][0]
 
     def __post_init__(self) -> None:
-        for f, (unit, (lo, hi), _) in DRIVE_SETTINGS.items():
+        for f, (_, unit, (lo, hi), _) in DRIVE_SETTINGS.items():
             v = getattr(self, f)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and lo <= v <= hi):
                 raise ValueError(f"{f}={v!r} is invalid; valid range: {lo:g} to {hi:g} {unit}".rstrip())

@@ -80,7 +80,7 @@ OPTION_BOUNDS: dict[str, Bound] = {
 #: bounds are the RunSpec's, one entry per option as ``"command:--option"``.
 RUN_COMMANDS = ("simulate", "study")
 OPTION_BOUNDS.update({f"bench:{drive_flag(name)}": Bound(lo, hi, unit)
-                      for name, (unit, (lo, hi), _) in DRIVE_SETTINGS.items()})
+                      for name, (_, unit, (lo, hi), _) in DRIVE_SETTINGS.items()})
 OPTION_BOUNDS.update({f"{command}:{setting.flag or '--' + name.replace('_', '-')}": setting.bound
                       for command in RUN_COMMANDS for name, setting in RUN_SETTINGS.items()
                       if setting.bound is not None})

@@ -1,13 +1,15 @@
 """The equations of motion: the one door to the generated code in :mod:`stability._generated`.
 
-``full_width`` (chapter 6, variants ``"exact"`` and ``"thesis"``) and
-``zero_width`` (chapter 5).  Nothing here does symbolic algebra; the sympy
+``full_width`` (chapter 6, variants ``"exact"`` and ``"thesis"``),
+``zero_width`` (chapter 5), ``slope`` (the plane), ``forces`` (contact points,
+normal loads, resultant and moment of the tire forces, slip angles, pin
+friction) and ``statics`` (loads and stiffness at rest).  Nothing here does symbolic algebra; the sympy
 derivations live in ``derivations/``.
 """
 
 from __future__ import annotations
 
-from stability.models import full_width, zero_width
+from stability.models import forces, full_width, zero_width
 from stability.models.full_width import (
     accelerations,
     contact_velocities,
@@ -18,6 +20,7 @@ from stability.models.full_width import (
 )
 
 __all__ = [
+    "forces",
     "full_width",
     "zero_width",
     "accelerations",

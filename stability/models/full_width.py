@@ -15,8 +15,8 @@ from typing import Any
 import numpy as np
 
 from stability._generated import full_width as _fw
+from stability.models.forces import generated as _fo
 from stability.models.params import Params
-from stability.models.statics import caster_contact_points
 from stability.runtime.checks import check_casters, check_model, check_speeds
 
 __all__ = [
@@ -197,12 +197,11 @@ def tire_resultant(F, ce, se, cb, sb):
     Returns
     -------
     tuple
-        ``(sum_fx, sum_fy)``, N (program WCHAIR's FC1, FC2 without FCIMP).
+        ``(sum_fx, sum_fy)``, N (program WCHAIR's FC1, FC2 without FCIMP;
+        generated, :mod:`stability.models.forces`).
     """
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    fc1 = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
-    fc2 = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
-    return fc1, fc2
+    return _fo.tire_resultant(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ce, se, cb, sb)
 
 
 def tire_yaw_moment(p: Params, F, ce, se, cb, sb):
@@ -220,10 +219,9 @@ def tire_yaw_moment(p: Params, F, ce, se, cb, sb):
     Returns
     -------
     float or ndarray
-        ``sum (x_i F_yi - y_i F_xi)`` over the four contacts (eq 6-24 points).
+        ``sum (x_i F_yi - y_i F_xi)`` over the four contacts (eq 6-24 points;
+        generated, :mod:`stability.models.forces`).
     """
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    (xa, ya), (xb, yb) = caster_contact_points(p, ce, se, cb, sb)
-    fax, fay = FAx * ce - FAy * se, FAx * se + FAy * ce
-    fbx, fby = FBx * cb - FBy * sb, FBx * sb + FBy * cb
-    return xa * fay - ya * fax + xb * fby - yb * fbx + p.x_m * (FDy + FEy) + p.d1 * FDx - p.d2 * FEx
+    return _fo.tire_yaw_moment(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2,
+                               p.t1, p.t2, p.trail)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 
 from stability._generated import slope as _sl
+from stability.models.forces import generated as _fo
 from stability.models.params import Params
 
 __all__ = ["generated", "gravity", "accelerations", "normal_loads", "normal_loads_plane", "hold_statics",
@@ -92,7 +93,8 @@ def normal_loads(p: Params, a1, a2, g1, g2, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
     """Normal loads ``(N_A, N_B, N_D, N_E)`` on the plane, eq 6-25 extended to a slope.
 
     The load-transfer moments are ``h m (a - g_in)``, split between the caster
-    and main axles by the roll coefficient k = k_f/k_r (eqs 6-25a,b).
+    and main axles by the roll coefficient k = k_f/k_r (eqs 6-25a,b):
+    :func:`normal_loads_plane` with the force sums ``m (a - g_in)``.
 
     Parameters
     ----------
@@ -110,8 +112,7 @@ def normal_loads(p: Params, a1, a2, g1, g2, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
     tuple of 4 float or ndarray
         Normal loads on the left and right casters and left and right main wheels, N.
     """
-    return _sl.normal_loads_slope(a1, a2, g1, g2, gn, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2,
-                                  p.trail, p.h, p.m, p.roll_k)
+    return normal_loads_plane(p, p.m * (a1 - g1), p.m * (a2 - g2), gn, ce, se, cb, sb)
 
 
 def normal_loads_plane(p: Params, sum_fx, sum_fy, gn, ce=1.0, se=0.0, cb=1.0, sb=0.0):
@@ -120,7 +121,8 @@ def normal_loads_plane(p: Params, sum_fx, sum_fy, gn, ce=1.0, se=0.0, cb=1.0, sb
     :func:`normal_loads` with ``m a = sum F + m g_in``: the in-plane weight
     drops out of the load transfer (moments ``h sum F``) and only the normal
     weight ``m gn`` remains; ``gn = g`` is eq 6-25
-    (:func:`stability.models.statics.normal_loads`, to rounding).
+    (:func:`stability.models.statics.normal_loads`: the same generated function,
+    :mod:`stability.models.forces`).
 
     Parameters
     ----------
@@ -138,8 +140,8 @@ def normal_loads_plane(p: Params, sum_fx, sum_fy, gn, ce=1.0, se=0.0, cb=1.0, sb
     tuple of 4 float or ndarray
         Normal loads on the left and right casters and left and right main wheels, N.
     """
-    return _sl.normal_loads_plane(sum_fx, sum_fy, gn, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2,
-                                  p.trail, p.h, p.m, p.roll_k)
+    return _fo.normal_loads(sum_fx, sum_fy, gn, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2, p.trail,
+                            p.h, p.m, p.roll_k)
 
 
 def hold_statics(p: Params, ce, se, cb, sb, g1, g2, M_A=0.0, M_B=0.0, FAx=0.0, FBx=0.0):

@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import Any
 
 from stability.chair import Chair
+from stability.models.forces import generated as _fo
 from stability.models.params import Params, parameters
 
 __all__ = ["caster_contact_points", "normal_loads", "static_loads", "static_stiffness", "check_static_loads"]
@@ -32,13 +33,13 @@ def caster_contact_points(p: Params, ce: Any = 1.0, se: Any = 0.0, cb: Any = 1.0
         ``((x_A, y_A), (x_B, y_B))``: the contacts lie ``trail`` behind the
         pins at ``(x_p, -t1)`` and ``(x_p, t2)`` along each caster's heading.
     """
-    return ((p.x_p - p.trail * ce, -p.t1 - p.trail * se),
-            (p.x_p - p.trail * cb, p.t2 - p.trail * sb))
+    x_a, y_a, x_b, y_b = _fo.caster_contacts(ce, se, cb, sb, p.x_p, p.t1, p.t2, p.trail)
+    return (x_a, y_a), (x_b, y_b)
 
 
 def normal_loads(p: Params, sum_fx: Any = 0.0, sum_fy: Any = 0.0,
                  ce: Any = 1.0, se: Any = 0.0, cb: Any = 1.0, sb: Any = 0.0):
-    """Normal load on each tire from the total horizontal tire force, eq 6-25 solved exactly.
+    """Normal load on each tire from the total horizontal tire force, eq 6-25 solved exactly (generated).
 
     * ``N_A + N_B + N_D + N_E = m g``                              (6-25c)
     * ``sum_i x_i N_i = -h sum(Fx)``                               (6-25d)
@@ -47,7 +48,10 @@ def normal_loads(p: Params, sum_fx: Any = 0.0, sum_fy: Any = 0.0,
 
     with the caster contacts of :func:`caster_contact_points` and the main
     wheels at ``(x_m, -d1)``, ``(x_m, d2)``; ``k`` is the roll-stiffness ratio
-    (eq 6-30: ``1/(k+1)`` of the roll moment to the casters).
+    (eq 6-30: ``1/(k+1)`` of the roll moment to the casters).  Level ground is
+    the plane of :func:`stability.models.slope.normal_loads_plane` with the
+    normal gravity ``g``: one generated function
+    (:mod:`stability.models.forces`).
 
     Parameters
     ----------
@@ -65,20 +69,8 @@ def normal_loads(p: Params, sum_fx: Any = 0.0, sum_fy: Any = 0.0,
         ``(N_A, N_B, N_D, N_E)``: left caster, right caster, left main wheel,
         right main wheel, N (positive when pressing on the ground).
     """
-    c1 = 1.0 / (p.roll_k + 1.0)
-    (xa, ya), (xb, yb) = caster_contact_points(p, ce, se, cb, sb)
-    weight = p.m * p.g
-    r_c = -p.h * sum_fy * c1           # roll moment carried by the caster pair
-    r_m = -p.h * sum_fy * (p.roll_k * c1)  # ... and by the main-wheel pair
-    dy = yb - ya
-    x_c = (xa * yb - xb * ya) / dy     # effective x of the caster pair
-    s_m = (-p.h * sum_fx - r_c * (xb - xa) / dy - weight * x_c) / (p.x_m - x_c)
-    s_c = weight - s_m
-    n_a = (yb * s_c - r_c) / dy
-    n_b = (r_c - ya * s_c) / dy
-    n_e = (r_m + p.d1 * s_m) / (p.d1 + p.d2)
-    n_d = s_m - n_e
-    return n_a, n_b, n_d, n_e
+    return _fo.normal_loads(sum_fx, sum_fy, p.g, ce, se, cb, sb, p.x_m, p.x_p, p.d1, p.d2, p.t1, p.t2, p.trail,
+                            p.h, p.m, p.roll_k)
 
 
 def static_loads(chair: Chair) -> dict[str, float]:

@@ -158,7 +158,10 @@ def slope_section(chair: Chair, speed: float = REFERENCE_SPEED, slopes=SLOPES,
     p_path = max((p for p in ok if 0 < p <= path_slope), default=None)
     path = None
     if p_path is not None:
-        path = uncorrected_path(chair, eqs[ok.index(p_path)])
+        try:
+            path = uncorrected_path(chair, eqs[ok.index(p_path)])
+        except ValueError:        # viscous pin damping: the simulator has none, so no path
+            p_path = None
     return SlopeSection(
         chair.name, float(speed), curve, kind, np.array([d[0] for d in diffs]),
         tuple(d[1] for d in diffs) if kind == "motor" else (), sides, tuple(refused),

@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from stability.settings.drive import BENCH_CHAIR, DRIVE_SETTINGS
 from stability.settings.reference import LEVEL, REFERENCE_CHAIR
 from stability.settings.run import RUN_SETTINGS, RunSpec
 
@@ -211,3 +212,6 @@ TABLE: dict[str, Default] = {
 }
 #: Every run setting's default, unit and meaning, from the RunSpec's own table (stability.settings.run).
 TABLE.update({name: Default(getattr(_RUN, name), st.unit, st.help) for name, st in RUN_SETTINGS.items()})
+# the virtual test bench's drive settings (stability.settings.drive) and its default chair
+TABLE.update({name: Default(d, unit, text) for name, (d, unit, _, text) in DRIVE_SETTINGS.items()})
+TABLE["bench_chair"] = Default(BENCH_CHAIR, "-", "the bench's default chair (a layout preset)")

@@ -1,8 +1,11 @@
 """Nonlinear simulation of a freely rolling wheelchair (Collins 1987, chapter 7, program WCHAIR).
 
-Two schemes: program WCHAIR's fixed-step scheme and an error-controlled
-adaptive scheme with event-located stick and slip (:mod:`.adaptive`).  Every
-setting of a run, its default and its valid range are one frozen object,
+One compiled engine with two schemes on one physics (the generated equations
+and contact forces of :mod:`stability.models` and the tire law of
+:mod:`stability.tires.law`, compiled as they are): program WCHAIR's fixed-step
+scheme (:mod:`.kernel`) and an error-controlled adaptive scheme with stick-slip
+pin friction (:mod:`.adaptive`, its right-hand side in :mod:`.adaptive_kernel`).
+Every setting of a run, its default and its valid range are one frozen object,
 :class:`~stability.settings.run.RunSpec` (``run=``).  Schemes, conventions and
 performance are described in ``docs/simulator.md``.
 
@@ -16,7 +19,7 @@ Examples
 """
 
 from stability.settings.run import RunSpec
-from stability.simulate.api import reference_engine, simulate, simulate_batch
+from stability.simulate.api import simulate, simulate_batch
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, STATS_LEVELS
 from stability.simulate.linearise import linearise
@@ -51,7 +54,6 @@ __all__ = [
     "SimulationResult",
     "simulate",
     "simulate_batch",
-    "reference_engine",
     "linearise",
     "SampledController",
     "RunStats",

@@ -10,33 +10,27 @@ import math
 import numpy as np
 
 from stability.chair import Chair
-from stability.models.full_width import tire_resultant, tire_yaw_moment
-from stability.simulate.engine import _POLICY, _Packed, _raise_refused, first_use, slope_slots
+from stability.models.forces import pin_holds
+from stability.simulate.engine import _raise_refused, first_use
 from stability.simulate.options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,
-    LOAD_TOLERANCE,
     SLIP_LIMIT_DEG,
     WARNING_LIMIT,
     Options,
     impulse_on,
     initial_velocities,
 )
-from stability.simulate.physics import (
-    Physics,
-    held_accelerations,
-    kinematics,
-    loads,
-    ops,
-    plane,
-    slip_angles,
-    tire_forces,
-)
+from stability.simulate.packing import Packed, policy_code, slope_slots
 from stability.simulate.results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
 
 __all__ = ["AdaptiveModel", "adaptive_single", "NoLoadSolution", "FREE_POS", "FREE_NEG", "STUCK", "LOCKED"]
 
 MAX_SWITCHES = 20000
+#: Right-hand-side evaluations allowed per simulated second (at least one second's worth): a run that needs more
+#: has stalled (LSODA's step collapsing at a kink of the right-hand side) and ends with an error instead of
+#: filling the memory with dense output.  Ordinary runs take about 250 per second, stiff slow ones a few thousand.
+MAX_NFEV_PER_S = 100_000
 #: Re-integrations of the segment in which the loads lost their solution, each ending before the last failure.
 STOP_TRIES = 8
 #: The first re-integration ends this fraction of the segment's span before the failure (x4 each further try).
@@ -65,103 +59,41 @@ class NoLoadSolution(RuntimeError):
 
 
 class AdaptiveModel:
-    """Right-hand side, stick-slip bookkeeping and sample evaluation of one run."""
+    """Right-hand side (compiled, :mod:`.adaptive_kernel`), stick-slip bookkeeping and samples of one run.
+
+    A Python ``yaw_moment`` input is called at every evaluation with the
+    state there (floats) and its value passed to the compiled right-hand side.
+    """
 
     def __init__(self, chair: Chair, speed: float, opts: Options):
-        self.K = Physics([chair], opts, vector=False)
         self.opts = opts
         self.chair = chair
         self.speed = speed
-        self.guess = (0.0, 0.0)
         self._cache_key: tuple | None = None
         self._cache_val: tuple | None = None
         self.nfev = 0
-        #: the compiled right-hand side (:mod:`.adaptive_kernel`) unless a Python yaw_moment input acts
-        self.compiled = opts.yaw_moment is None
-        self._ck: _Compiled | None = _Compiled(chair, speed, opts) if self.compiled else None
+        self.max_nfev = int(MAX_NFEV_PER_S * max(opts.duration, 1.0))
+        self._ck = _Compiled(chair, speed, opts)
 
-    # loads consistent with forces: N = loads(sum F(N))
-    def _consistent(self, t, imp, vel, slips, ce, se, cb, sb, guess, gn=None):
-        """Fixed-point iteration of the load-transfer loop (a strong contraction).
-
-        Stops when the total tire force changes by less than LOAD_TOLERANCE (1e-9) of its size
-        between iterations; starts from the previous evaluation's solution.
-        ``gn``: normal gravity on a slope (m/s^2), None when level.
-        """
-        K = self.K
-        sfx, sfy = guess
-        vector = not isinstance(ce, float)
-        for _ in range(100):
-            N = loads(K, sfx, sfy, ce, se, cb, sb, gn)
-            F = tire_forces(K, imp, vel, slips, *N)
-            nfx, nfy = tire_resultant(F, ce, se, cb, sb)
-            if vector:
-                err = float(np.max(np.abs(nfx - sfx) + np.abs(nfy - sfy), initial=0.0))
-                scale = 1.0 + float(np.max(np.abs(nfx) + np.abs(nfy), initial=0.0))
-            else:
-                err = abs(nfx - sfx) + abs(nfy - sfy)
-                scale = 1.0 + abs(nfx) + abs(nfy)
-            sfx, sfy = nfx, nfy
-            if err <= LOAD_TOLERANCE * scale:
-                return N, F, (sfx, sfy)
-        raise NoLoadSolution(t)
-
-    def evaluate(self, t, y, modes, imp):
-        """Derivatives and auxiliary quantities at ``(t, y)`` (floats or arrays of samples)."""
-        K = self.K
-        xp = ops(eta := y[6])
-        X, Y, psi, u, v, r, eta, ed, beta, bd = y
-        ma_mode, mb_mode = modes
-        if ma_mode in (STUCK, LOCKED):
-            ed = 0.0 * ed
-        if mb_mode in (STUCK, LOCKED):
-            bd = 0.0 * bd
-        ce, se, cb, sb = xp.cos(eta), xp.sin(eta), xp.cos(beta), xp.sin(beta)
-        vel = kinematics(K, u, v, r, ce, se, cb, sb, ed, bd)
-        slips = slip_angles(K, vel)
-        vector = not isinstance(ce, float)
-        guess = (0.0, 0.0) if vector else self.guess
-        gn = grav = None
-        if K.slope_trig is not None:   # gravity in body axes at the heading psi
-            g1, g2, gn = plane(K, psi)
-            grav = (g1, g2)
-        N, F, sums = self._consistent(t, imp, vel, slips, ce, se, cb, sb, guess, gn)
-        if not vector:
-            self.guess = sums
-        opts = self.opts
-        fy_ext = opts.impulse_force if (opts.impulse_force != 0.0 and imp) else 0.0
-        yaw_fn = opts.yaw_moment
-        if yaw_fn is None:
-            mz = 0.0
-        elif not vector:
-            mz = float(yaw_fn(t, ChairState(X, Y, psi, u, v, r, eta, ed, beta, bd, 0)))
-        else:  # samples of a single run: the input sees floats, one call per sample
-            cols = np.broadcast_arrays(t, X, Y, psi, u, v, r, eta, ed, beta, bd)
-            mz = np.array([float(yaw_fn(float(row[0]), ChairState(*(float(x) for x in row[1:]), 0)))
-                           for row in zip(*cols, strict=False)])
-        MA = -K.maf * ma_mode if ma_mode in (FREE_POS, FREE_NEG) else 0.0
-        MB = -K.mbf * mb_mode if mb_mode in (FREE_POS, FREE_NEG) else 0.0
-        hold_a = ma_mode in (STUCK, LOCKED)
-        hold_b = mb_mode in (STUCK, LOCKED)
-        state = (u, v, r, ce, se, cb, sb, ed, bd)
-        acc, MA, MB = held_accelerations(K, state, F, MA, MB, fy_ext, mz, hold_a, hold_b, None, grav)
-        ud, vd, rd, edd, bdd = acc
-        cpsi, spsi = xp.cos(psi), xp.sin(psi)
-        dy = (u * cpsi - v * spsi, u * spsi + v * cpsi, r, ud, vd, rd, ed, edd, bd, bdd)
-        return dy, dict(N=N, F=F, slips=slips, MA=MA, MB=MB, mz=mz, ce=ce, se=se, cb=cb, sb=sb)
+    def yaw_moment(self, t: float, y: np.ndarray) -> float:
+        """The yaw-moment input at ``(t, y)``, N m (0 without one)."""
+        if self.opts.yaw_moment is None:
+            return 0.0
+        X, Y, psi, u, v, r, eta, ed, beta, bd = (float(x) for x in y)
+        return float(self.opts.yaw_moment(float(t), ChairState(X, Y, psi, u, v, r, eta, ed, beta, bd, 0)))
 
     def _point(self, t, y, modes, imp):
-        """(dy array, aux dict) at one point, compiled or Python, cached for the event functions."""
+        """(dy array, aux dict) at one point, cached for the event functions."""
         y = np.ascontiguousarray(y, dtype=float)
         key = (t, y.tobytes())
         if key == self._cache_key and self._cache_val is not None:
             return self._cache_val
         self.nfev += 1
-        if self._ck is not None:
-            val = self._ck.point(t, y, modes, imp)
-        else:
-            dy, aux = self.evaluate(t, [float(a) for a in y], modes, imp)
-            val = (np.array(dy), aux)
+        if self.nfev > self.max_nfev:
+            raise RuntimeError(f"adaptive integration stalled at t = {t:.9g} s: more than {self.max_nfev} "
+                               "right-hand-side evaluations (the step collapsed; try a looser rtol or the wchair "
+                               "scheme)")
+        val = self._ck.point(t, y, modes, imp, self.yaw_moment(t, y))
         self._cache_key, self._cache_val = key, val
         return val
 
@@ -183,7 +115,13 @@ class AdaptiveModel:
         return aux["MA"] if side == 0 else aux["MB"]
 
     def limit(self, side):
-        return self.K.maf if side == 0 else self.K.mbf
+        """The friction limit of caster ``side``'s pin, N m."""
+        return self.chair.pin_friction_left if side == 0 else self.chair.pin_friction_right
+
+    def holds(self, moment, side):
+        """Whether caster ``side``'s pin holds it against ``moment`` (N m): the stick condition."""
+        return pin_holds(moment, self.limit(side))
+
 
 class _Compiled:
     """The packed arrays of one run for :mod:`.adaptive_kernel` (imported here: numba loads on first use)."""
@@ -194,11 +132,16 @@ class _Compiled:
 
         self.k = adaptive_kernel
         self.chair, self.opts = chair, opts
-        pk = _Packed([chair], np.array([speed]), opts, None)
-        self.head = (0 if opts.model == "thesis" else 1, float(opts.tire_impulse), _POLICY[opts.out_of_range])
+        pk = Packed([chair], np.array([speed]), opts, None)
+        self.head = (0 if opts.model == "thesis" else 1, float(opts.tire_impulse), policy_code(opts))
         self.arrays = (pk.P[0], pk.S[0], pk.TK[0], pk.TS[0], pk.TL[0], pk.LIM[0], pk.RK[0], pk.RC[0], pk.RS[0],
                        pk.CAM[0], np.array(slope_slots(opts)))
         self.guess = np.zeros(2)
+
+    def hold_drive(self, left: float, right: float) -> None:
+        """Constant drive forces on the left and right main wheels, N (the linearisation about a slope's
+        equilibrium; simulations have none)."""
+        self.arrays[1][self.k.DRIVE_D], self.arrays[1][self.k.DRIVE_E] = left, right
 
     def _check(self, code: int, aux: np.ndarray, t) -> None:
         if code == 3:
@@ -206,19 +149,19 @@ class _Compiled:
         if code:
             _raise_refused([self.chair], self.opts, np.array([[0.0, 0.0, *aux[20:24]]]))
 
-    def point(self, t: float, y: np.ndarray, modes, imp: bool) -> tuple[np.ndarray, dict]:
+    def point(self, t: float, y: np.ndarray, modes, imp: bool, mz: float) -> tuple[np.ndarray, dict]:
         dy, aux = np.empty(10), np.zeros(self.k.NAUX)
-        code = self.k.evaluate(float(t), y, int(modes[0]), int(modes[1]), bool(imp), *self.head, *self.arrays,
-                               self.guess, dy, aux)
+        code = self.k.evaluate(float(t), y, int(modes[0]), int(modes[1]), bool(imp), float(mz), *self.head,
+                               *self.arrays, self.guess, dy, aux)
         self._check(code, aux, t)
         return dy, {"MA": float(aux[16]), "MB": float(aux[17])}
 
-    def samples(self, tt: np.ndarray, yy: np.ndarray, modes, imp: bool) -> np.ndarray:
-        """Columns ``COLUMNS[1:]`` at the samples, shape (31, m)."""
+    def samples(self, tt: np.ndarray, yy: np.ndarray, modes, imp: bool, mzs: np.ndarray) -> np.ndarray:
+        """Columns ``COLUMNS[1:]`` at the samples, shape (31, m); ``mzs`` the yaw-moment input at each, N m."""
         out, dy, aux = np.empty((NCOLS - 1, tt.size)), np.empty(10), np.zeros(self.k.NAUX)
         code = self.k.samples(np.ascontiguousarray(tt, dtype=float), np.ascontiguousarray(yy, dtype=float),
-                              int(modes[0]), int(modes[1]), bool(imp), *self.head, *self.arrays, out, np.zeros(2),
-                              dy, aux)
+                              np.ascontiguousarray(mzs, dtype=float), int(modes[0]), int(modes[1]), bool(imp),
+                              *self.head, *self.arrays, out, np.zeros(2), dy, aux)
         self._check(code, aux, tt)
         return out
 
@@ -257,7 +200,7 @@ def _switch(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, kinds: 
         if kind == "rest":
             y[7 if side == 0 else 9] = 0.0
             h = model.holding(t, y, tuple(new), side, imp)
-            if abs(h) <= model.limit(side):
+            if model.holds(h, side):
                 new[side] = STUCK
             else:
                 new[side] = FREE_NEG if h > 0 else FREE_POS
@@ -273,7 +216,7 @@ def _settle(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, imp: bo
     for side in (0, 1):
         if new[side] == STUCK:
             h = model.holding(t, y, tuple(new), side, imp)
-            if abs(h) > model.limit(side):
+            if not model.holds(h, side):
                 new[side] = FREE_NEG if h > 0 else FREE_POS
     return tuple(new)
 
@@ -367,16 +310,8 @@ def _block(model: AdaptiveModel, tt: np.ndarray, yy: np.ndarray, modes: tuple, i
     """Every column of :data:`COLUMNS` at the samples ``tt`` of one segment (states ``yy``), shape (NCOLS, m)."""
     out = np.empty((NCOLS, tt.size))
     out[0] = tt
-    if model._ck is not None:
-        out[1:] = model._ck.samples(tt, yy, modes, imp)
-        return out
-    dy, aux = model.evaluate(tt, list(yy), modes, imp)
-    F = aux["F"]
-    block = (yy[0], yy[1], yy[2], yy[5], yy[3], yy[4], yy[6], yy[7], yy[8], yy[9], *F, *aux["N"],
-             *aux["slips"], tire_yaw_moment(model.K.p, F, aux["ce"], aux["se"], aux["cb"], aux["sb"]),
-             aux["mz"], dy[5], aux["MA"], aux["MB"])
-    for j, c in enumerate(block, start=1):
-        out[j] = c
+    mzs = np.array([model.yaw_moment(t, yy[:, j]) for j, t in enumerate(tt)])
+    out[1:] = model._ck.samples(tt, yy, modes, imp, mzs)
     return out
 
 
@@ -444,8 +379,8 @@ def _sample_warnings(ts: np.ndarray, rec: np.ndarray, opts: Options) -> tuple[di
 def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResult:
     """One run of the adaptive scheme (see ``docs/simulator.md``).
 
-    The right-hand side runs compiled (:mod:`.adaptive_kernel`) unless a
-    Python ``yaw_moment`` input acts (``settings["engine"]`` says which).
+    The right-hand side runs compiled (:mod:`.adaptive_kernel`); a Python
+    ``yaw_moment`` input is called at every evaluation.
 
     Parameters
     ----------
@@ -470,7 +405,8 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
     Raises
     ------
     RuntimeError
-        The integrator failed, or more than ``MAX_SWITCHES`` stick-slip
+        The integrator failed or stalled (more than :data:`MAX_NFEV_PER_S`
+        evaluations per simulated second), or more than ``MAX_SWITCHES`` stick-slip
         switches occurred (chattering).
     NoLoadSolution
         The loads have no solution in the first segment of the run.
@@ -485,7 +421,7 @@ def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResu
     if t_fail is not None and not stopped:
         stopped, stop_time, reason = True, float(ts[-1]), _stop_reason(t_fail, rec[-1])
     settings = opts.settings()
-    settings.update(switches=switches, nfev=model.nfev, engine="compiled" if model.compiled else "python")
+    settings.update(switches=switches, nfev=model.nfev, engine="compiled")
     return SimulationResult._from_records(rec[:end], warnings=warn, stopped=stopped, stop_time=stop_time,
                                           chair=chair, speed=speed, settings=settings, stop_reason=reason)
 

@@ -1,10 +1,10 @@
 """The adaptive scheme's right-hand side compiled (numba): loads consistent with the forces, stick-slip pin modes.
 
-The same physics as :meth:`stability.simulate.adaptive.AdaptiveModel.evaluate`
-(the Python path, kept for a Python ``yaw_moment`` input and as the test
-reference), built from the WCHAIR kernel's transcriptions
-(:mod:`stability.simulate.kernel`).  scipy's ``solve_ivp`` still drives the
-integration and the event location; see ``docs/simulator.md``.
+The WCHAIR kernel's physics (:mod:`stability.simulate.kernel`: the generated
+equations and contact forces, the tire law) with the normal loads solved
+consistently with the tire forces and no one-step lag; scipy's ``solve_ivp``
+drives the integration and the event location from
+:mod:`stability.simulate.adaptive`; see ``docs/simulator.md``.
 """
 
 from __future__ import annotations
@@ -14,21 +14,23 @@ import math
 import numpy as np
 from numba import njit
 
-from stability.simulate.kernel import (
+from stability.simulate.kernel import (  # noqa: F401  (DRIVE_D, DRIVE_E: the slots adaptive._Compiled sets)
+    DRIVE_D,
+    DRIVE_E,
     FCIMP,
     MAF,
     MBF,
     SLOPE_MODEL,
     G,
     _inl,
-    _int,
-    accelerations,
+    contact_loads,
+    held_pins,
     invalidate_stale_cache,
     kinematics,
+    kinetic_pin_moment,
     mechan,
-    normal_loads,
-    plane_loads,
     slip_angles,
+    tire_resultant,
     tire_yaw_moment,
 )
 from stability.simulate.kernel import gravity_body as _gravity_body
@@ -45,66 +47,23 @@ NAUX = 24
 FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
 
 
-@_int
-def acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2):
-    """The model's accelerations without WCHAIR's lagged yaw acceleration (0 thesis, 1 exact, 2 exact on a plane):
-    the kernel's :func:`~stability.simulate.kernel_equations.accelerations` with no lag (``rdc`` None: the thesis
-    variant's caster equations then use the current yaw acceleration)."""
-    return accelerations(model, s, F, ma, mb, fy_ext, mz, None, P, g1, g2)
-
-
-@_int
-def held(model, s, F, ma, mb, fy_ext, mz, hold_a, hold_b, P, g1, g2):
-    """:func:`stability.simulate.physics.held_accelerations`, same operations: ``(acc, M_A, M_B)``."""
-    if not (hold_a or hold_b):
-        return acc_now(model, s, F, ma, mb, fy_ext, mz, P, g1, g2), ma, mb
-    base_a = 0.0 * ma if hold_a else ma
-    base_b = 0.0 * mb if hold_b else mb
-    a0 = acc_now(model, s, F, base_a, base_b, fy_ext, mz, P, g1, g2)
-    if hold_a and hold_b:
-        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P, g1, g2)
-        a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P, g1, g2)
-        k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
-        k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
-        det = k11 * k22 - k12 * k21
-        ra = (-a0[3] * k22 + a0[4] * k12) / det
-        rb = (-a0[4] * k11 + a0[3] * k21) / det
-        return ((a0[0] + ra * (a1[0] - a0[0]) + rb * (a2[0] - a0[0]),
-                 a0[1] + ra * (a1[1] - a0[1]) + rb * (a2[1] - a0[1]),
-                 a0[2] + ra * (a1[2] - a0[2]) + rb * (a2[2] - a0[2]), 0.0 * ra, 0.0 * rb), ra, rb)
-    if hold_a:
-        a1 = acc_now(model, s, F, base_a + 1.0, base_b, fy_ext, mz, P, g1, g2)
-        ra = -a0[3] / (a1[3] - a0[3])
-        return ((a0[0] + ra * (a1[0] - a0[0]), a0[1] + ra * (a1[1] - a0[1]), a0[2] + ra * (a1[2] - a0[2]),
-                 0.0 * ra, a0[4] + ra * (a1[4] - a0[4])), ra, mb)
-    a2 = acc_now(model, s, F, base_a, base_b + 1.0, fy_ext, mz, P, g1, g2)
-    rb = -a0[4] / (a2[4] - a0[4])
-    return ((a0[0] + rb * (a2[0] - a0[0]), a0[1] + rb * (a2[1] - a0[1]), a0[2] + rb * (a2[2] - a0[2]),
-             a0[3] + rb * (a2[3] - a0[3]), 0.0 * rb), ma, rb)
-
-
 @_inl
 def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess, gn):
     """Loads consistent with the tire forces (fixed-point iteration as ``AdaptiveModel._consistent``).
 
-    ``gn``: normal gravity on a plane (m/s^2), NaN when level (eq 6-25 as ``statics.normal_loads``).
+    ``gn``: gravity normal to the plane (m/s^2; ``P[G]`` when level).
     Returns ``(loads, F, refused, wheel, converged)``; ``guess`` (sum fx, sum fy) is updated in place.
     """
     ce, se, cb, sb = trig
     sfx, sfy = guess[0], guess[1]
     it = 0
     while True:
-        if gn == gn:
-            loads = plane_loads(P, sfx, sfy, gn, ce, se, cb, sb)
-        else:
-            loads = normal_loads(P, sfx, sfy, ce, se, cb, sb)
+        loads = contact_loads(P, sfx, sfy, gn, ce, se, cb, sb)
         F, refused, wheel = mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, TS[0], TS[1], TS[2], TL, LIM[0],
                                    LIM[1], LIM[2], RK, RC[0], RC[1], RS, CAM, S)
         if refused != 0:
             return loads, F, refused, wheel, True
-        FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-        nfx = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
-        nfy = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
+        nfx, nfy = tire_resultant(*F, ce, se, cb, sb)
         err = abs(nfx - sfx) + abs(nfy - sfy)
         scale = 1.0 + abs(nfx) + abs(nfy)
         sfx, sfy = nfx, nfy
@@ -117,16 +76,17 @@ def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM
 
 
 @_jit
-def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL, guess,
-             dy, aux):
+def evaluate(t, y, ma_mode, mb_mode, imp, mz, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL,
+             guess, dy, aux):
     """Derivatives ``dy`` (10) and ``aux`` (:data:`NAUX`) at ``(t, y)``; returns 0, or 1/2 refused, 3 no convergence.
 
     ``y`` = (X, Y, psi, u, v, r, eta, eta_dot, beta, beta_dot); pin modes as
-    :mod:`stability.simulate.adaptive`; ``imp``: the push acts; ``SL`` the
-    plane slots (:func:`stability.simulate.engine.slope_slots`).
+    :mod:`stability.simulate.adaptive`; ``imp``: the push acts; ``mz`` the
+    yaw-moment input, N m; ``SL`` the plane slots
+    (:func:`stability.simulate.packing.slope_slots`).
     """
     g1 = g2 = 0.0
-    gn = math.nan
+    gn = P[G]
     if SL[0] != 0.0:   # on a slope: gravity in body axes at the heading psi, the exact model with gravity
         model = SLOPE_MODEL
         g1, g2, gn = _gravity_body(P[G], SL[1], SL[2], SL[3], SL[4], math.cos(y[2]), math.sin(y[2]))
@@ -147,11 +107,13 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
     if not ok:
         return 3
     fy_ext = S[FCIMP] if (S[FCIMP] != 0.0 and imp) else 0.0
-    ma = -P[MAF] * ma_mode if (ma_mode == FREE_POS or ma_mode == FREE_NEG) else 0.0
-    mb = -P[MBF] * mb_mode if (mb_mode == FREE_POS or mb_mode == FREE_NEG) else 0.0
+    # a slipping caster's kinetic moment against the sign of its rate (the mode)
+    ma = kinetic_pin_moment(float(ma_mode), P[MAF]) if (ma_mode == FREE_POS or ma_mode == FREE_NEG) else 0.0
+    mb = kinetic_pin_moment(float(mb_mode), P[MBF]) if (mb_mode == FREE_POS or mb_mode == FREE_NEG) else 0.0
     hold_a = ma_mode == STUCK or ma_mode == LOCKED
     hold_b = mb_mode == STUCK or mb_mode == LOCKED
-    acc, ma, mb = held(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, fy_ext, 0.0, hold_a, hold_b, P, g1, g2)
+    acc, ma, mb = held_pins(model, (u, v, r, ce, se, cb, sb, ed, bd), F, ma, mb, hold_a, hold_b, fy_ext, mz, None,
+                            P, g1, g2)
     cpsi, spsi = math.cos(psi), math.sin(psi)
     dy[0], dy[1], dy[2] = u * cpsi - v * spsi, u * spsi + v * cpsi, r
     dy[3], dy[4], dy[5], dy[6], dy[7], dy[8], dy[9] = acc[0], acc[1], acc[2], ed, acc[3], bd, acc[4]
@@ -160,26 +122,27 @@ def evaluate(t, y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL
         aux[12 + i] = slips[i]
     for i in range(8):
         aux[4 + i] = F[i]
-    aux[16], aux[17], aux[18] = ma, mb, 0.0
+    aux[16], aux[17], aux[18] = ma, mb, mz
     aux[19] = tire_yaw_moment(P, F, ce, se, cb, sb)
     return 0
 
 
 @_jit
-def samples(ts, yy, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL, out,
-            guess, dy, aux):
+def samples(ts, yy, mzs, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, SL,
+            out, guess, dy, aux):
     """Recorded columns (``COLUMNS[1:]``, ``out`` of shape (31, m)) at the dense-output samples ``yy`` (10, m).
 
-    Each sample's load iteration starts from zero forces (as the Python path's
-    vector evaluation).  Returns the first nonzero status of :func:`evaluate`, else 0.
+    ``mzs``: the yaw-moment input at each sample, N m.  Each sample's load
+    iteration starts from zero forces.  Returns the first nonzero status of
+    :func:`evaluate`, else 0.
     """
     y = np.empty(10)   # a contiguous copy of each sample: evaluate compiles for the solver's contiguous y only
     for j in range(ts.shape[0]):
         for c in range(10):
             y[c] = yy[c, j]
         guess[0], guess[1] = 0.0, 0.0
-        code = evaluate(ts[j], y, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC,
-                        RS, CAM, SL, guess, dy, aux)
+        code = evaluate(ts[j], y, ma_mode, mb_mode, imp, mzs[j], model, ftimp, policy, P, S, TK, TS, TL, LIM, RK,
+                        RC, RS, CAM, SL, guess, dy, aux)
         if code != 0:
             return code
         states = (y[0], y[1], y[2], y[5], y[3], y[4], y[6], dy[6], y[8], dy[8])

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import warnings
-from collections.abc import Callable, Iterator, Sequence
-from contextvars import ContextVar
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -19,42 +17,10 @@ from stability.simulate.adaptive import adaptive_single
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, run_compiled
 from stability.simulate.options import make_options
-from stability.simulate.reference import wchair_batch
 from stability.simulate.results import ChairState, SimulationResult
 from stability.simulate.stepcheck import StepStabilityWarning, auto_step, stable_steps
-from stability.simulate.wchair import wchair_single
 
-__all__ = ["simulate", "simulate_batch", "reference_engine"]
-
-_REFERENCE: ContextVar[bool] = ContextVar("stability_simulate_reference_engine", default=False)
-
-
-@contextlib.contextmanager
-def reference_engine() -> Iterator[None]:
-    """Context manager: inside it, WCHAIR runs use the pure-Python/numpy reference paths, not the kernel.
-
-    The reference paths (:func:`~stability.simulate.wchair.wchair_single` for one
-    run, :func:`~stability.simulate.reference.wchair_batch` for a batch) are what
-    the compiled kernel is tested against; benchmarks time a whole study or
-    report inside this block to measure the kernel's gain in the same run.
-    Options only the kernel offers (``controller=``, ``record=`` other than
-    ``"all"``) are refused inside it.
-
-    Yields
-    ------
-    None
-    """
-    token = _REFERENCE.set(True)
-    try:
-        yield
-    finally:
-        _REFERENCE.reset(token)
-
-
-def using_reference_engine() -> bool:
-    """True inside :func:`reference_engine` (WCHAIR runs take the pure-Python/numpy reference paths)."""
-    return bool(_REFERENCE.get())
-
+__all__ = ["simulate", "simulate_batch"]
 
 def _check_chair(chair: Any) -> Chair:
     if not isinstance(chair, Chair):
@@ -91,9 +57,10 @@ def simulate(chair: Chair, speed: float | None = None, run: RunSpec | None = Non
         wchair scheme with stick-slip pin friction.
     yaw_moment : callable, optional
         ``yaw_moment(t, state) -> N m``: a yaw moment on the chair; ``state``
-        is a :class:`ChairState`.  A Python callable runs the WCHAIR scheme
-        in Python floats (recorded as ``settings["engine"] = "python"``); a
-        linear controller runs compiled as ``controller``.
+        is a :class:`ChairState`.  The wchair scheme samples it at every step
+        and holds it over the step (the compiled kernel runs one step at a
+        time with the call in between: slower than a ``controller``); the
+        adaptive scheme calls it at every evaluation of its right-hand side.
     controller : SampledController, optional
         A sampled linear yaw-moment controller run inside the compiled kernel
         (:class:`stability.simulate.controller.SampledController`).
@@ -130,9 +97,10 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     applies to all runs (``yaw_moment`` receives arrays over the active runs,
     with ``state.run`` their indices).
 
-    The wchair scheme runs compiled, one run per thread (a Python
-    ``yaw_moment`` steps all runs together on numpy arrays instead).  The
-    adaptive scheme integrates the runs one after another.  Batches record
+    The wchair scheme runs compiled, one run per thread (with a Python
+    ``yaw_moment`` the kernel steps all runs on this thread, one step at a
+    time, and calls it in between with arrays over the runs still going).
+    The adaptive scheme integrates the runs one after another.  Batches record
     every 0.01 s by default (``run.sample``): about ``runs * samples * 31 * 8``
     bytes, or ``* 10 * 8`` with ``record="states"``; ``record="final"``
     keeps one row per run.  ``progress`` shows a bar on a terminal.
@@ -231,24 +199,17 @@ def _run(chairs: list[Chair], speeds: np.ndarray, run: RunSpec, forces: np.ndarr
         raise ValueError(f"controller={controller!r} is invalid; expected a SampledController (or use yaw_moment=)")
     auto = run.dt == "auto"
     opts = make_options(run, yaw_moment=yaw_moment, batch=batch)
-    python_input = opts.yaw_moment is not None or _REFERENCE.get()
-    if python_input and controller is not None:
+    if opts.yaw_moment is not None and controller is not None:
         raise ValueError("yaw_moment and controller are both given; choose one")
-    if (opts.scheme == "adaptive" or python_input) and (controller is not None or record != "all"):
-        raise ValueError(f"controller= and record={record!r} need the compiled WCHAIR scheme (scheme='wchair' "
-                         "without a Python yaw_moment)")
+    if opts.scheme == "adaptive" and (controller is not None or record != "all"):
+        raise ValueError(f"controller= and record={record!r} need the WCHAIR scheme (scheme='wchair')")
     if opts.scheme == "adaptive":
         return _adaptive_runs(chairs, speeds, opts, forces, progress)
     limits = stable_steps(chairs, speeds, opts.model, opts.casters)
     if auto:
         opts = make_options(run, yaw_moment=yaw_moment, batch=batch, dt=auto_step(float(limits.min())))
-    if not python_input:
-        out = run_compiled(chairs, speeds, opts, forces=forces, controller=controller, record=record,
-                           threads=threads)
-    elif batch:
-        out = wchair_batch(chairs, speeds, opts, progress, forces=forces)
-    else:
-        out = [wchair_single(chairs[0], float(speeds[0]), opts)]
+    out = run_compiled(chairs, speeds, opts, forces=forces, controller=controller, record=record, threads=threads,
+                       batch=batch)
     return _flag_steps(out, opts.dt, limits, auto, speeds)
 
 
@@ -260,8 +221,7 @@ def _flag_steps(out: list[SimulationResult], dt: float, limits: np.ndarray, auto
         warnings.warn(f"dt={dt:g} s exceeds the WCHAIR scheme's stability limit in {int(bad.sum())} of {len(out)} "
                       f"run(s) (largest safe step {limits[i]:.3g} s at {speeds[i]:g} m/s): flagged step_unstable; "
                       "use dt='auto', a smaller dt or scheme='adaptive'", StepStabilityWarning, stacklevel=4)
-    return [dataclasses.replace(r, step_unstable=bool(b), settings=dict(r.settings, stable_dt=float(lim), dt_auto=auto,
-                                                                       engine=r.settings.get("engine", "python")))
+    return [dataclasses.replace(r, step_unstable=bool(b), settings=dict(r.settings, stable_dt=float(lim), dt_auto=auto))
             for r, b, lim in zip(out, bad, limits, strict=True)]
 
 

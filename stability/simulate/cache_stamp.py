@@ -10,13 +10,17 @@ import hashlib
 import os
 from pathlib import Path
 
+from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
+from stability.tires import law as _tire_law
 
-__all__ = ["KERNEL_SOURCES", "invalidate_stale_cache"]
+__all__ = ["KERNEL_SOURCES", "COMPILED_MODULES", "invalidate_stale_cache"]
 
 #: The compiled modules whose functions other compiled modules call (a change to one recompiles them all).
 KERNEL_SOURCES = ("kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py")
+#: The plain-Python modules the kernels compile as they are (the generated equations and contact forces, the tire law).
+COMPILED_MODULES = (_fw, _sl, _fo, _tire_law)
 
 
 def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
@@ -25,9 +29,9 @@ def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
     numba keys a cached function on its own source file only, and a cached
     kernel carries a copy of every function it calls from other modules (the
     generated equations, the WCHAIR kernel's helpers that the adaptive kernel
-    uses, the controller); so a stamp (the SHA-256 of
-    ``stability/_generated/full_width.py`` and ``slope.py`` and of the kernel
-    modules :data:`KERNEL_SOURCES`) is kept next to the cache and, when it
+    uses, the controller); so a stamp (the SHA-256 of the modules compiled as
+    they are, :data:`COMPILED_MODULES`, and of the kernel modules
+    :data:`KERNEL_SOURCES`) is kept next to the cache and, when it
     differs, every kernel of the module is recompiled.
     Nothing happens when the cache directory is not writable.
 
@@ -39,7 +43,7 @@ def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
         File name of the stamp in the module's cache folder.
     """
     here = Path(__file__).parent
-    sources = [Path(_fw.__file__), Path(_sl.__file__), *(here / name for name in KERNEL_SOURCES)]
+    sources = [*(Path(str(m.__file__)) for m in COMPILED_MODULES), *(here / name for name in KERNEL_SOURCES)]
     digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources)).hexdigest()
     kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
     try:

@@ -1,4 +1,4 @@
-"""Driver of the compiled WCHAIR kernel: pack chairs and options into arrays, run, build the results.
+"""Driver of the compiled WCHAIR kernel: run the packed arrays (:mod:`.packing`), build the results.
 
 :func:`run_compiled` serves :func:`~stability.simulate.simulate` (one run)
 and :func:`~stability.simulate.simulate_batch` (many, threads over runs)
@@ -19,112 +19,22 @@ import numpy as np
 
 from stability import tires as _tires
 from stability.chair import Chair
-from stability.models.params import parameters
 from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
 from stability.settings.reference import LEVEL
 from stability.simulate.controller import SampledController
-from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, initial_velocities, n_steps
-from stability.simulate.results import RunStats, SimulationResult
+from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, n_steps
+from stability.simulate.packing import Packed, policy_code, slope_slots
+from stability.simulate.results import ChairState, RunStats, SimulationResult
 
-__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
-           "slope_slots"]
+__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite"]
 
 #: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
 RECORDS = ("all", "states", "final")
 #: |yaw rate| levels (rad/s) whose first crossing every compiled run reports in ``result.stats``.
 STATS_LEVELS = (0.5, LEVEL)
-_POLICY = {"clamp": 0, "extrapolate": 1, "raise": 2}
 #: Runs stopped at a level (the searches) and with stick-slip friction also stop once settled (kernel.SETTLE).
 SETTLE_STOP = True
 _WARN_KINDS = ("slip", "load", "lift_off")
-
-
-def _segments(tire: Any) -> np.ndarray:
-    segs = tire.segment_arrays() if hasattr(tire, "segment_arrays") else tire._segments
-    return np.array(segs, dtype=float)
-
-
-def _tire_slot(tire: Any) -> tuple[int, np.ndarray, float, tuple[float, float]]:
-    """(kind, (6, 8) segments, scale or N/deg, (slip limit deg, load limit N)) of one tire."""
-    if isinstance(tire, _tires.LinearTire):
-        return 1, np.zeros((6, 8)), tire.stiffness_N_per_deg * tire.lateral_scale, (math.inf, math.inf)
-    lim = (float(getattr(tire, "slip_max_deg", SLIP_LIMIT_DEG)), float(getattr(tire, "fz_max_N", LOAD_LIMIT_N)))
-    return 0, _segments(tire), float(tire.lateral_scale), lim
-
-
-def _rolling_slot(tire: Any, on: bool) -> tuple[int, tuple[float, float, float], float]:
-    if not on:
-        return 0, (0.0, 0.0, 0.0), 0.0
-    tire.rolling_resistance(1.0)          # a tire without rolling data raises its own error here
-    if isinstance(tire, _tires.LinearTire):
-        return 2, (float(tire.f_r), 0.0, 0.0), float(tire.rolling_scale)
-    a, b, c = tire.rolling
-    return 1, (float(a), float(b), float(c)), float(tire.rolling_scale)
-
-
-class _Packed:
-    """The per-run arrays of the kernel (run = first axis)."""
-
-    def __init__(self, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None):
-        n = len(chairs)
-        self.P = np.empty((n, 18))
-        self.S = np.zeros((n, 8))
-        self.TK = np.zeros((n, 3), dtype=np.int64)
-        self.TS = np.zeros((n, 3, 6, 8))
-        self.TL = np.ones((n, 3))
-        self.LIM = np.full((n, 3, 2), math.inf)
-        self.RK = np.zeros((n, 2), dtype=np.int64)
-        self.RC = np.zeros((n, 2, 3))
-        self.RS = np.zeros((n, 2))
-        self.CAM = np.zeros((n, 2))
-        self.CHK = np.zeros((n, 4), dtype=np.bool_)
-        cache: dict = {}
-        u0, v0 = initial_velocities(opts, 1.0)
-        for i, c in enumerate(chairs):
-            self.P[i] = np.array(parameters(c), dtype=float)
-            toe = math.radians(c.toe_deg)
-            force = opts.impulse_force if forces is None else float(forces[i])
-            self.S[i] = (float(speeds[i]) * u0, v0, opts.eta0, opts.beta0, force, math.cos(toe), math.sin(toe),
-                         1.0 if toe != 0 else 0.0)
-            key = (c.main_tire, c.main_lateral_scale, c.main_rolling_scale, c.caster_tire, c.caster_lateral_scale,
-                   c.caster_rolling_scale, c.camber_deg, c.camber_coefficient)
-            if key not in cache:
-                cache[key] = self._tire_arrays(c, opts)
-            (self.TK[i], self.TS[i], self.TL[i], self.LIM[i], self.RK[i], self.RC[i], self.RS[i], self.CAM[i],
-             self.CHK[i]) = cache[key]
-
-    @staticmethod
-    def _tire_arrays(c: Chair, opts: Options) -> tuple:
-        main, caster = c.main_tire_model(), c.caster_tire_model()
-        if opts.scheme == "wchair":   # MECHAN: CAMCOF*POLYFT(TIRY, INT(CAMANG), FZ), the unscaled tire
-            cam_tire, cam_deg = _tires.get(c.main_tire), float(math.trunc(c.camber_deg))
-        else:
-            cam_tire, cam_deg = main, float(c.camber_deg)
-        slots = [_tire_slot(t) for t in (caster, main, cam_tire)]
-        fc = 0.0
-        if cam_deg != 0:
-            fc = cam_tire.camber_coefficient if c.camber_coefficient is None else float(c.camber_coefficient)
-        rolls = [_rolling_slot(caster, c.caster_rolling_scale != 0), _rolling_slot(main, c.main_rolling_scale != 0)]
-        chk_c, chk_m = isinstance(caster, _tires.Tire), isinstance(main, _tires.Tire)
-        return ([s[0] for s in slots], [s[1] for s in slots], [s[2] for s in slots], [s[3] for s in slots],
-                [r[0] for r in rolls], [r[1] for r in rolls], [r[2] for r in rolls], (cam_deg, fc),
-                (chk_c, chk_c, chk_m, chk_m))
-
-
-def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:
-    """The kernels' plane slots: ``(on, cos(phi), sin(phi), cos(theta), sin(theta))`` (``on`` 1.0 on a slope).
-
-    Parameters
-    ----------
-    opts : Options
-        Checked options (``slope`` = cross slope phi, grade theta, deg).
-
-    Returns
-    -------
-    tuple of 5 float
-        The flag and the cosines and sines of the cross slope and the grade.
-    """
-    return (1.0 if opts.on_slope else 0.0, *opts.slope_trig())
 
 
 _FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True}
@@ -167,8 +77,14 @@ def _kernel():
 
 def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
                  controller: SampledController | None = None, record: str = "all",
-                 threads: int | None = None) -> list[SimulationResult]:
+                 threads: int | None = None, batch: bool = True) -> list[SimulationResult]:
     """Run the WCHAIR scheme compiled for every (chair, speed) pair; one result per run.
+
+    A Python ``opts.yaw_moment(t, state)`` input is sampled at every step and
+    held over it (a sampled controller with the step as its sample time): the
+    kernel runs one step at a time and the input is called in between, with
+    floats for one run (``batch`` False) or arrays over the runs still going
+    (``batch`` True, ``state.run`` their indices).
 
     Parameters
     ----------
@@ -178,18 +94,21 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
         Initial forward speeds, m/s (> 0), shape ``(len(chairs),)``.
     opts : Options
         Checked options (:func:`~stability.simulate.options.make_options`),
-        ``scheme="wchair"``, no Python ``yaw_moment``.
+        ``scheme="wchair"``.
     forces : ndarray, optional
         Per-run lateral push at the c.g., N (FCIMP), shape ``(len(chairs),)``,
         instead of ``opts.impulse_force``.
     controller : SampledController, optional
-        Sampled linear yaw-moment controller run inside the kernel.
+        Sampled linear yaw-moment controller run inside the kernel (not with
+        a Python ``opts.yaw_moment``).
     record : {"all", "states", "final"}
         Every column, the ten states (the other columns NaN), or only the
         last executed step (:data:`RECORDS`).
     threads : int, optional
         Threads of the kernel (>= 1); None: numba's default.  The numbers do
         not depend on it.
+    batch : bool
+        How a Python ``yaw_moment`` sees the state: arrays (True) or floats.
 
     Returns
     -------
@@ -211,7 +130,7 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
     nrec = 1 if mode == 2 else (steps - 1) // opts.stride + 1
     levels = np.array(STATS_LEVELS, dtype=float)
     rec, stats, warn, status, counts = _launch_runs(k, chairs, speeds, opts, forces, controller, mode, nrec, levels,
-                                                    -1, threads)
+                                                    -1, threads, batch)
     _raise_refused(chairs, opts, status)
     raise_non_finite(chairs, speeds, status)
     times = np.arange(nrec) * float(opts.stride) * opts.dt
@@ -258,11 +177,12 @@ def kernel_entry_guard() -> AbstractContextManager:
 
 
 def _config(opts: Options, mode: int, stop_level: int) -> np.ndarray:
-    """The kernel's configuration row (step, push, model, warning rule, slope, stop level, settle stop)."""
+    """The kernel's configuration row (step, push, model, warning rule, slope, stop level, settle stop, and the
+    flag of a Python yaw-moment input, set by :func:`_launch_runs`)."""
     return np.array([opts.dt, opts.impulse_duration, opts.tire_impulse, n_steps(opts), opts.stride,
                      0 if opts.model == "thesis" else 1, opts.pin_mode, opts.stop_on_warnings,
-                     _POLICY[opts.out_of_range], mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
-                     *slope_slots(opts), stop_level, float(SETTLE_STOP)], dtype=float)
+                     policy_code(opts), mode, SLIP_LIMIT_DEG, LOAD_LIMIT_N, WARNING_LIMIT,
+                     *slope_slots(opts), stop_level, float(SETTLE_STOP), 0.0], dtype=float)
 
 
 class PackedRuns:
@@ -297,7 +217,7 @@ class PackedRuns:
         self.speeds = np.asarray(speeds, dtype=float)
         self.steps = np.asarray(steps, dtype=float)
         first = opts[float(self.steps[0])] if len(self.steps) else next(iter(opts.values()))
-        self.pk = _Packed(self.chairs, np.asarray(speeds, dtype=float), first, np.zeros(len(self.chairs)))
+        self.pk = Packed(self.chairs, np.asarray(speeds, dtype=float), first, np.zeros(len(self.chairs)))
         stop = -1 if stop_level is None else int(stop_level)
         self.levels = np.array(levels, dtype=float)
         self.cfg = {float(h): _config(o, 2, stop) for h, o in opts.items()}
@@ -337,9 +257,10 @@ class PackedRuns:
             warn = np.zeros((m, 3, 3))
             stat = np.zeros((m, 6))
             counts = np.zeros(m, dtype=np.int64)
-            _launch(self.k, threads, m, (pk.P[idx], S, pk.TK[idx], pk.TS[idx], pk.TL[idx], pk.LIM[idx], pk.RK[idx],
-                                         pk.RC[idx], pk.RS[idx], pk.CAM[idx], pk.CHK[idx], self.cfg[float(h)],
-                                         self.levels, *self.ctl, rec, st, warn, stat, counts))
+            _launch(self.k, threads, m, (0, n_steps(self.opts[float(h)]), pk.P[idx], S,
+                                         pk.TK[idx], pk.TS[idx], pk.TL[idx], pk.LIM[idx], pk.RK[idx], pk.RC[idx],
+                                         pk.RS[idx], pk.CAM[idx], pk.CHK[idx], self.cfg[float(h)], self.levels,
+                                         *self.ctl, initial_state(S, 0), rec, st, warn, stat, counts))
             batch = [self.chairs[int(i)] for i in idx]
             _raise_refused(batch, self.opts[float(h)], stat)
             raise_non_finite(batch, self.speeds[idx], stat)     # a NaN run is an error, never "did not reach"
@@ -347,22 +268,67 @@ class PackedRuns:
         return stats, status
 
 
+def initial_state(S: np.ndarray, nz: int) -> np.ndarray:
+    """The kernel's per-run state at ``t = 0`` (:data:`~stability.simulate.kernel_equations.NSTATE` + ``nz``).
+
+    Parameters
+    ----------
+    S : ndarray, shape (n, 8)
+        The packed per-run scalars (initial velocities m/s, caster angles rad, ...).
+    nz : int
+        States of the sampled controller.
+
+    Returns
+    -------
+    ndarray, shape (n, NSTATE + nz)
+        The ten states (u, v, caster angles from ``S``), everything else zero,
+        the settle tracker unset.
+    """
+    k = _kernel()
+    state = np.zeros((S.shape[0], k.NSTATE + nz))
+    state[:, 3], state[:, 4], state[:, 6], state[:, 8] = S[:, k.U0], S[:, k.V0], S[:, k.ETA0], S[:, k.BETA0]
+    state[:, k.ST_TRACK] = -1.0
+    return state
+
+
 def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None,
                  controller: SampledController | None, mode: int, nrec: int, levels: np.ndarray, stop_level: int,
-                 threads: int | None) -> tuple[np.ndarray, ...]:
-    """Pack, allocate and run the kernel once: ``(rec, stats, warn, status, counts)``."""
-    pk = _Packed(chairs, speeds, opts, forces)
+                 threads: int | None, batch: bool = True) -> tuple[np.ndarray, ...]:
+    """Pack, allocate and run the kernel: ``(rec, stats, warn, status, counts)``.
+
+    With a Python ``opts.yaw_moment`` the kernel runs step by step on this
+    thread and the input is sampled in between (:func:`run_compiled`).
+    """
+    pk = Packed(chairs, speeds, opts, forces)
     n_runs = len(chairs)
     ncol = (k.NREC_ALL, k.NREC_STATES, k.NREC_ALL)[mode]
     cfg = _config(opts, mode, stop_level)
     ctl = (controller or SampledController.none()).arrays()
+    state = initial_state(pk.S, ctl[3].shape[0])
     rec = np.empty((n_runs, ncol, nrec))
     stats = np.full((n_runs, 3 + len(levels)), np.nan)
     warn = np.zeros((n_runs, 3, 3))
     status = np.zeros((n_runs, 6))
     counts = np.zeros(n_runs, dtype=np.int64)
-    _launch(k, threads, n_runs, (pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK, cfg,
-                                 levels, *ctl, rec, stats, warn, status, counts))
+    args = (pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK, cfg, levels, *ctl, state,
+            rec, stats, warn, status, counts)
+    if opts.yaw_moment is None:
+        _launch(k, threads, n_runs, (0, n_steps(opts), *args))
+        return rec, stats, warn, status, counts
+    cfg[k.EXTERNAL_MZ] = 1.0
+    hook, dt = opts.yaw_moment, opts.dt
+    with first_use("wchair"):
+        for step in range(n_steps(opts)):
+            going = np.flatnonzero((status[:, 0] == 0.0) & (status[:, 2] == 0.0))
+            if going.size == 0:
+                break
+            st = state[going, :10]
+            if batch:
+                mz = hook(step * dt, ChairState._make([*(st[:, c].copy() for c in range(10)), going]))
+                state[going, k.ST_MZ] = np.broadcast_to(np.asarray(mz, dtype=float), going.shape)
+            else:
+                state[0, k.ST_MZ] = float(hook(step * dt, ChairState._make([*(float(x) for x in st[0]), 0])))
+            k.run_serial(step, step + 1, *args)
     return rec, stats, warn, status, counts
 
 
@@ -486,7 +452,7 @@ def raise_non_finite(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarr
 
 
 def _raise_refused(chairs: Sequence[Chair], opts: Options, status: np.ndarray) -> None:
-    """Policy "raise": the first refused tire input raises the tire's own error, as the Python path does."""
+    """Policy "raise": the first refused tire input raises the tire's own error (what Tire.lateral_force raises)."""
     bad = np.flatnonzero(status[:, 2] != 0)
     if bad.size == 0:
         return

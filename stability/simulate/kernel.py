@@ -3,11 +3,11 @@
 Imported only when a simulation runs (numba costs about 0.5 s to import; the
 compiled code is cached on disk, see ``docs/simulator.md``).  Every array
 layout is written by :mod:`stability.simulate.engine`.  The equations are the
-generated functions behind :mod:`stability.models.full_width`, compiled as
-they are; loads (:func:`stability.models.statics.normal_loads`), the tire resultant
-and yaw moment (:mod:`stability.models.full_width`) and the tire force law
-(``_segment_force`` of :mod:`stability.tires`) are transcribed with the same
-operations in the same order (tested bit for bit against them).
+generated functions behind :mod:`stability.models.full_width` and
+:mod:`stability.models.slope`, compiled as they are, and so are the contact
+forces (:mod:`stability.models.forces`: normal loads, the tire resultant and
+yaw moment, slip angles, pin friction) and the tire force law
+(:mod:`stability.tires.law`): nothing is transcribed.
 """
 
 from __future__ import annotations
@@ -28,7 +28,10 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     CT,
     D1,
     D2,
+    DRIVE_D,
+    DRIVE_E,
     ETA0,
+    EXTERNAL_MZ,
     FCIMP,
     I_Z,
     I_ZP,
@@ -38,6 +41,7 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     MBF,
     NREC_ALL,
     NREC_STATES,
+    NSTATE,
     PIN_DAMP,
     ROLL_K,
     S_PHI,
@@ -47,6 +51,15 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     SLOPE,
     SLOPE_MODEL,
     ST,
+    ST_FC1,
+    ST_FC2,
+    ST_MZ,
+    ST_NEXTK,
+    ST_NREC,
+    ST_PREV,
+    ST_THEDD,
+    ST_TPREV,
+    ST_TRACK,
     STOP_LEVEL,
     STOPPED_LEVEL,
     STOPPED_NONFINITE,
@@ -70,41 +83,29 @@ from stability.simulate.kernel_equations import (  # noqa: F401  (re-exported: t
     acc_slope,
     acc_thesis,
     accelerations,
+    camber_force,
     cv_exact,
     cv_thesis,
     gravity_body,
     held_pins,
-    loads_plane,
+    kinetic_pin_moment,
+    lateral_force,
+    normal_loads,
+    rest_rate,
+    rolling_force,
+    slip_angle,
     stick_slip,
+    tire_moment,
+    tire_resultant,
 )
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
-__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch", "run_one",
-           "mechan", "kinematics", "normal_loads", "lateral_force", "accelerations", "held_pins", "stick_slip",
-           "tire_yaw_moment", "plane", "plane_loads"]
-
-@_inl_py
-def normal_loads(P, sum_fx, sum_fy, ce, se, cb, sb):
-    """:func:`stability.models.statics.normal_loads`, same operations."""
-    c1 = 1.0 / (P[ROLL_K] + 1.0)
-    xa, ya = P[X_P] - P[TRAIL] * ce, -P[T1] - P[TRAIL] * se
-    xb, yb = P[X_P] - P[TRAIL] * cb, P[T2] - P[TRAIL] * sb
-    weight = P[M] * P[G]
-    r_c = -P[H] * sum_fy * c1
-    r_m = -P[H] * sum_fy * (P[ROLL_K] * c1)
-    dy = yb - ya
-    x_c = (xa * yb - xb * ya) / dy
-    s_m = (-P[H] * sum_fx - r_c * (xb - xa) / dy - weight * x_c) / (P[X_M] - x_c)
-    s_c = weight - s_m
-    n_a = (yb * s_c - r_c) / dy
-    n_b = (r_c - ya * s_c) / dy
-    n_e = (r_m + P[D1] * s_m) / (P[D1] + P[D2])
-    n_d = s_m - n_e
-    return n_a, n_b, n_d, n_e
-
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch",
+           "run_serial", "run_one", "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations",
+           "held_pins", "stick_slip", "tire_yaw_moment", "plane"]
 
 @_inl
 def plane(P, cfg, psi):
@@ -113,71 +114,16 @@ def plane(P, cfg, psi):
 
 
 @_inl
-def plane_loads(P, sum_fx, sum_fy, gn, ce, se, cb, sb):
-    """Normal loads on the plane from the tire-force sums (generated ``normal_loads_plane``)."""
-    return loads_plane(sum_fx, sum_fy, gn, ce, se, cb, sb, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL],
-                       P[H], P[M], P[ROLL_K])
-
-
-@_inl_py
-def tire_yaw_moment(P, F, ce, se, cb, sb):
-    """:func:`stability.models.full_width.tire_yaw_moment`, same operations."""
-    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    xa, ya = P[X_P] - P[TRAIL] * ce, -P[T1] - P[TRAIL] * se
-    xb, yb = P[X_P] - P[TRAIL] * cb, P[T2] - P[TRAIL] * sb
-    fax, fay = FAx * ce - FAy * se, FAx * se + FAy * ce
-    fbx, fby = FBx * cb - FBy * sb, FBx * sb + FBy * cb
-    return xa * fay - ya * fax + xb * fby - yb * fbx + P[X_M] * (FDy + FEy) + P[D1] * FDx - P[D2] * FEx
-
-
-@_inl_py
-def lateral_force(kind, seg, scale, lim, slip, fz, policy):
-    """Cornering force (N) of one tire: ``(force, refused)``; ``refused`` under policy 2 ("raise").
-
-    kind 0: tested tire, ``seg`` = (6, 8) segment table (``_segment_force``);
-    kind 1: linear tire, ``scale`` = N/deg.  policy 0 clamp, 1 extrapolate, 2 raise.
-    """
-    if kind == 1:
-        if fz > 0.0:
-            return -scale * slip + 0.0, False
-        return 0.0, False
-    s = abs(slip)
-    f = fz
-    if s > lim[0] or f > lim[1]:
-        if policy == 2:
-            return math.nan, True
-        if policy == 0:
-            if s > lim[0]:
-                s = lim[0]
-            if f > lim[1]:
-                f = lim[1]
-    fzp = max(f, 0.0) if f == f else f
-    i = math.floor(s)
-    if not i <= 7.0:
-        i = 7.0
-    t = s - i
-    ii = int(i) if i == i else 7
-    c = seg[2, ii] + t * seg[5, ii]
-    b = seg[1, ii] + t * seg[4, ii]
-    a = seg[0, ii] + t * seg[3, ii]
-    c = ((c * fzp + b) * fzp + a) * fzp
-    if scale != 1.0:
-        c = c * scale
-    if slip > 0.0:
-        return -c + 0.0, False
-    return c + 0.0, False
+def contact_loads(P, sum_fx, sum_fy, gn, ce, se, cb, sb):
+    """Normal loads from the tire-force sums and the normal gravity ``gn`` (``P[G]`` when level; generated)."""
+    return normal_loads(sum_fx, sum_fy, gn, ce, se, cb, sb, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2],
+                               P[TRAIL], P[H], P[M], P[ROLL_K])
 
 
 @_inl
-def rolling_force(kind, coef, scale, fz, vx):
-    """Rolling resistance (N) opposing ``vx``: kind 0 off, 1 Appendix B cubic, 2 linear ``f_r fz``."""
-    if kind == 0:
-        return 0.0 * fz
-    if kind == 1:
-        mag = abs(fz * (coef[0] + fz * (coef[1] + fz * coef[2]))) * scale if fz > 0.0 else 0.0
-    else:
-        mag = coef[0] * scale * fz if fz > 0.0 else 0.0
-    return math.copysign(mag, -vx)
+def tire_yaw_moment(P, F, ce, se, cb, sb):
+    """Yaw moment of the tire forces about the c.g., N m (generated)."""
+    return tire_moment(*F, ce, se, cb, sb, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
 
 
 @_inl
@@ -222,13 +168,15 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
     FBx = rolling_force(RK[0], rc_c, RS[0], NB, vBx)
     FDx = rolling_force(RK[1], rc_m, RS[1], ND, vDx)
     FEx = rolling_force(RK[1], rc_m, RS[1], NE, vEx)
+    if S[DRIVE_D] != 0.0 or S[DRIVE_E] != 0.0:       # a held drive (the slope linearisation), in the wheel frames
+        FDx, FEx = FDx + S[DRIVE_D], FEx + S[DRIVE_E]
     if CAM[0] != 0.0 and refused == 0:
         cD, badc = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], ND, policy)
         cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy)
         if badc or badd:
             refused, wheel = 2, (2 if badc else 3)
-        FDy = FDy + -CAM[1] * cD
-        FEy = FEy - -CAM[1] * cE
+        FDy = FDy + camber_force(CAM[1], cD)
+        FEy = FEy - camber_force(CAM[1], cE)
     if S[TOE] != 0.0:
         ct, st = S[CT], S[ST]
         FEx, FEy = FEx * ct - FEy * st, FEx * st + FEy * ct
@@ -238,11 +186,10 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
 
 @_inl
 def slip_angles(vel):
-    """Signed slip angles ``atan2(vy, |vx|)`` in degrees (SLIP)."""
-    rad2deg = 180.0 / math.pi
+    """Signed slip angles ``atan2(vy, |vx|)`` in degrees (SLIP; generated)."""
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
-    return (math.atan2(vAy, abs(vAx)) * rad2deg, math.atan2(vBy, abs(vBx)) * rad2deg,
-            math.atan2(vDy, abs(vDx)) * rad2deg, math.atan2(vEy, abs(vEx)) * rad2deg)
+    return (slip_angle(vAx, vAy), slip_angle(vBx, vBy), slip_angle(vDx, vDy),
+            slip_angle(vEx, vEy))
 
 
 @_inl
@@ -295,13 +242,6 @@ def record_row(rec, row, states, F, loads, slips, P, trig, extra):
 
 
 @_inl
-def rest_at_reversal(rate, new, limit):
-    """The swivel rate after a step: 0 where it would change sign within the step and friction (``limit`` > 0,
-    stick-slip law only) may hold the caster, else ``new`` (the kinetic law passes ``limit`` 0)."""
-    return 0.0 if limit > 0.0 and rate != 0.0 and new * rate <= 0.0 else new
-
-
-@_inl
 def settled(track, t, held, a, ma, mb):
     """Whether a run has settled: both casters held (stuck) since ``track[0]`` for :data:`SETTLE_WINDOW` s, the
     push over, and neither ``|yaw rate|`` ``a`` nor either holding moment ``ma``, ``mb`` larger than at the middle
@@ -321,51 +261,64 @@ def settled(track, t, held, a, ma, mb):
     return False
 
 
+@_inl
+def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """The sampled controller at ``t``: ``(yaw moment, next sample)`` after the samples ``next_k`` .. up to ``t`` are
+    taken (``z`` advanced); the last one's output is held (``held`` when no sample falls due)."""
+    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+    while next_k <= ks:
+        for c in range(10):
+            sv[c] = states[c]
+        held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        next_k += 1
+    return held, next_k
+
+
 @_int
-def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
-            rec, stats, warn, status):
-    """One run of the WCHAIR scheme; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``."""
+def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
+            state, rec, stats, warn, status):
+    """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
+    controller's states); writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
+    recorded so far.  A stopped run (``status``) does nothing.  ``cfg[EXTERNAL_MZ]``: the yaw moment is
+    ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
+    if status[0] != 0.0 or status[2] != 0.0:
+        return int(state[ST_NREC])
     dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
         cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
         int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
     settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
-    track = np.array([-1.0, 0.0, 0.0, 0.0, 0.0])      # settled(): since when both held, mid-window values
+    track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
     rest_a, rest_b = (P[MAF], P[MBF]) if sticks else (0.0, 0.0)   # stick-slip: a reversing rate comes to rest
-    use_ctl = ctl_f[0] > 0.0
+    use_ctl = ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
     slope = cfg[SLOPE] != 0.0
     if slope:
         model = SLOPE_MODEL
     g1 = g2 = 0.0
-    z = np.zeros(Az.shape[0])
+    gn = P[G]
+    z = state[NSTATE:NSTATE + Az.shape[0]]
     znew = np.zeros(Az.shape[0])
     y = np.zeros(Cy.shape[0])
     sv = np.zeros(10)
-    next_k = 0
-    mz_held = 0.0
-    UD, VD = S[U0], S[V0]
-    X = Y = THE = THED = THEDD = 0.0
-    E, B = S[ETA0], S[BETA0]
-    ED = BD = 0.0
-    FC1 = FC2 = 0.0
+    X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
+                                            state[7], state[8], state[9])
+    THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]
+    prev_abs, t_prev, next_k, mz_held = state[ST_PREV], state[ST_TPREV], int(state[ST_NEXTK]), state[ST_MZ]
+    nrec = int(state[ST_NREC])
     fcimp = S[FCIMP]
-    prev_abs = t_prev = 0.0
-    nrec = 0
     seg_c, seg_m, seg_k = TS[0], TS[1], TS[2]      # per-run views made once (no per-step array views)
     lim_c, lim_m, lim_k = LIM[0], LIM[1], LIM[2]
     rc_c, rc_m = RC[0], RC[1]
-    for k in range(n):
+    for k in range(k0, min(k1, n)):
         t = k * dt
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
         slips = slip_angles(vel)
         if slope:   # gravity in body axes at the heading of the step; loads with the normal weight
             g1, g2, gn = plane(P, cfg, THE)
-            loads = plane_loads(P, FC1, FC2, gn, ce, se, cb, sb)
-        else:
-            loads = normal_loads(P, FC1, FC2, ce, se, cb, sb)
+        loads = contact_loads(P, FC1, FC2, gn, ce, se, cb, sb)
         if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
             status[0], status[1] = STOPPED_WARNINGS, t
             break
@@ -376,19 +329,13 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
             status[2], status[3] = refused, w
             status[4], status[5] = (slips[w], loads[w]) if refused == 1 else (CAM[0], loads[w])
             break
-        FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
         # DYNAM
-        fc1 = FDx + FEx + FAx * ce - FAy * se + FBx * cb - FBy * sb
-        fc2 = FDy + FEy + FAx * se + FAy * ce + FBx * sb + FBy * cb
+        fc1, fc2 = tire_resultant(*F, ce, se, cb, sb)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        mz = 0.0
+        mz = mz_held if cfg[EXTERNAL_MZ] != 0.0 else 0.0
         if use_ctl:
-            ks = int(math.floor(t / ctl_f[0] + 1e-9))
-            while next_k <= ks:
-                sv[0], sv[1], sv[2], sv[3], sv[4] = X, Y, THE, UD, VD
-                sv[5], sv[6], sv[7], sv[8], sv[9] = THED, E, ED, B, BD
-                mz_held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-                next_k += 1
+            mz_held, next_k = controlled(t, next_k, mz_held, z, znew, y, sv, (X, Y, THE, UD, VD, THED, E, ED, B, BD),
+                                         ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
             mz = mz_held
         st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
         if locked:
@@ -396,8 +343,8 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         elif sticks:
             acc, MA, MB = stick_slip(model, st_, F, fy_ext, mz, THEDD, P, g1, g2)
         else:
-            MA = math.copysign(P[MAF], -ED) if ED != 0.0 else 0.0
-            MB = math.copysign(P[MBF], -BD) if BD != 0.0 else 0.0
+            MA = kinetic_pin_moment(ED, P[MAF])
+            MB = kinetic_pin_moment(BD, P[MBF])
             acc = accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
         UDD, VDD, THEDD, EDD, BDD = acc
         if locked:
@@ -433,10 +380,15 @@ def run_one(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy,
         VD += VDD * dt
         B += BD * dt + BDD * half_dt2
         E += ED * dt + EDD * half_dt2
-        BD = rest_at_reversal(BD, BD + BDD * dt, rest_b)
-        ED = rest_at_reversal(ED, ED + EDD * dt, rest_a)
+        BD = rest_rate(BD, BD + BDD * dt, rest_b)    # the kinetic law passes limit 0: no rest
+        ED = rest_rate(ED, ED + EDD * dt, rest_a)
         THE += THED * dt + THEDD * half_dt2
         THED += THEDD * dt
+    state[0], state[1], state[2], state[3], state[4] = X, Y, THE, UD, VD
+    state[5], state[6], state[7], state[8], state[9] = THED, E, ED, B, BD
+    state[ST_THEDD], state[ST_FC1], state[ST_FC2] = THEDD, FC1, FC2
+    state[ST_PREV], state[ST_TPREV], state[ST_NEXTK], state[ST_MZ] = prev_abs, t_prev, next_k, mz_held
+    state[ST_NREC] = nrec
     return nrec
 
 
@@ -450,12 +402,21 @@ def _note(warn, kind, t, value):
 
 
 @njit(cache=True, parallel=True)
-def run_batch(P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
-              rec, stats, warn, status, nrec):
-    """All runs, one per thread (``prange``); every array has the run as its first axis."""
+def run_batch(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+              noise, state, rec, stats, warn, status, nrec):
+    """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis."""
     for i in prange(P.shape[0]):
-        nrec[i] = run_one(P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
-                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, rec[i], stats[i], warn[i], status[i])
+        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
+
+
+@njit(cache=True, nogil=True)
+def run_serial(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+               noise, state, rec, stats, warn, status, nrec):
+    """:func:`run_batch` on the calling thread: the step-by-step calls of a Python yaw-moment input."""
+    for i in range(P.shape[0]):
+        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
 
 
 invalidate_stale_cache(globals(), "kernel.equations.sha256")

@@ -11,16 +11,21 @@ this file changes (:data:`stability.simulate.cache_stamp.KERNEL_SOURCES`).
 
 from __future__ import annotations
 
-import math
+import types
 from typing import Any
 
 from numba import njit
 
+from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
+from stability.tires import law as _tire_law
 
-__all__ = ["accelerations", "held_pins", "stick_slip", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW",
-           "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
+__all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
+           "tire_resultant", "tire_moment", "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment",
+           "rest_rate", "lateral_force", "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE",
+           "SETTLE_WINDOW", "EXTERNAL_MZ", "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK",
+           "ST_MZ", "ST_NREC", "ST_TRACK", "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
 
 # Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
@@ -29,19 +34,71 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 _int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
 _inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
+
+
+def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any) -> types.SimpleNamespace:
+    """The functions ``names`` of a plain-Python ``module`` compiled as they are, calling each other compiled.
+
+    Each function is copied into one shared namespace (the module's globals)
+    in which every name of ``names`` is its compiled version, so that a call
+    between them resolves to compiled code (numba cannot call a Python
+    function).  The module itself is untouched: Python callers keep the
+    originals, which run on floats and numpy arrays.
+
+    Parameters
+    ----------
+    module : module
+        A module of plain arithmetic functions (generated equations, the tire law).
+    names : tuple of str
+        The functions to compile.
+    decorator : callable
+        numba's ``njit`` with the options of the caller.
+
+    Returns
+    -------
+    types.SimpleNamespace
+        The compiled functions by name.
+    """
+    ns = dict(vars(module))
+    out = {}
+    for name in names:
+        f = getattr(module, name)
+        ns[name] = out[name] = decorator(types.FunctionType(f.__code__, ns, name, f.__defaults__, f.__closure__))
+    return types.SimpleNamespace(**out)
+
+
+#: the tire force law of :mod:`stability.tires.law` (what Tire.lateral_force evaluates), compiled
+_tires = compiled(_tire_law, ("cubic", "segment_force", "lateral_force", "camber_force", "rolling_resistance",
+                              "rolling_force"), _inl)
+lateral_force = _tires.lateral_force
+camber_force = _tires.camber_force
+rolling_force = _tires.rolling_force
 cv_exact = _int(_fw.contact_velocities_exact)
 cv_thesis = _int(_fw.contact_velocities_thesis)
 acc_exact = _int(_fw.accelerations_exact)
 acc_thesis = _int(_fw.accelerations_thesis)
-# the chair on a plane (stability.models.slope): in-plane gravity on every body, loads with the normal weight
+# the chair on a plane (stability.models.slope): in-plane gravity on every body
 acc_slope = _int(_sl.accelerations_slope_exact)
 gravity_body = _int(_sl.gravity_body)
-loads_plane = _int(_sl.normal_loads_plane)
+#: the contact forces (stability.models.forces): normal loads, resultant, yaw moment, slip angle, pin friction
+#: (bound to names of this module: numba resolves module globals, not attributes of a namespace)
+_forces = compiled(_fo, tuple(_fo.__all__), _inl)
+normal_loads = _forces.normal_loads
+tire_resultant = _forces.tire_resultant
+tire_moment = _forces.tire_yaw_moment
+slip_angle = _forces.slip_angle
+kinetic_pin_moment = _forces.kinetic_pin_moment
+pin_holds = _forces.pin_holds
+break_away_moment = _forces.break_away_moment
+rest_rate = _forces.rest_rate
 
 # Params vector layout (stability.models.params.Params order)
 X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
 # per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
 U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
+#: per-run slots: constant drive forces on the left and right main wheels along their headings, N (0 in
+#: simulations; the linearisation about a slope's equilibrium holds the drive that keeps it, as the statics)
+DRIVE_D, DRIVE_E = 8, 9
 # cfg slots of the plane: flag, cos/sin of the cross slope, cos/sin of the grade
 SLOPE, C_PHI, S_PHI, C_THETA, S_THETA = range(13, 18)
 #: cfg slot: every run stops at ``levels[cfg[18]]`` (-1: never); ``status[0]``: 1 warning rule, 2 that level,
@@ -51,6 +108,14 @@ STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL, STOPPED_NONFINITE = 18, 1.0, 2.0, 3
 #: after the push, both casters stuck for :data:`SETTLE_WINDOW` s and neither ``|yaw rate|`` nor either holding
 #: moment larger than at the middle of that window (docs/studies.md: it then never reaches the level)
 SETTLE, STOPPED_SETTLED, SETTLE_WINDOW = 19, 4.0, 0.5
+#: cfg slot: 1.0 when the yaw moment is the caller's (``state[ST_MZ]``, a Python input set between steps)
+EXTERNAL_MZ = 20
+#: a run's state between kernel calls: the ten states in :class:`~stability.simulate.results.ChairState`'s order
+#: (0-9), the lagged yaw acceleration, the previous step's force sums, the summaries' previous sample (|yaw rate|,
+#: time), the controller's next sample and held output (or the caller's yaw moment), the rows recorded, the settle
+#: tracker (5); the controller's states follow (``NSTATE`` on)
+ST_THEDD, ST_FC1, ST_FC2, ST_PREV, ST_TPREV, ST_NEXTK, ST_MZ, ST_NREC, ST_TRACK = range(10, 19)
+NSTATE = ST_TRACK + 5
 #: model codes: 0 thesis, 1 exact, 2 exact on a slope (accelerations with in-plane gravity)
 SLOPE_MODEL = 2
 #: recorded columns after t (COLUMNS[1:]); the first 10 are the states
@@ -63,8 +128,11 @@ def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
 
     A held caster's pin moment keeps its swivel acceleration zero (the
     accelerations are affine in the pin moments: two or three evaluations);
-    the other keeps the moment given.
+    the other keeps the moment given.  ``rdc``: the thesis variant's lagged
+    yaw acceleration (WCHAIR scheme), or None (adaptive scheme).
     """
+    if not (hold_a or hold_b):
+        return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
     if hold_a and hold_b:
         a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
         a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
@@ -103,21 +171,21 @@ def stick_slip(model, s, F, fy_ext, mz, rdc, P, g1, g2):
     break-away is decided again with the other's new moment.
     """
     ed, bd = s[7], s[8]
-    ma = math.copysign(P[MAF], -ed) if ed != 0.0 else 0.0
-    mb = math.copysign(P[MBF], -bd) if bd != 0.0 else 0.0
+    ma = kinetic_pin_moment(ed, P[MAF])
+    mb = kinetic_pin_moment(bd, P[MBF])
     ha, hb = ed == 0.0, bd == 0.0
     for _ in range(3):
         if not (ha or hb):
             break
         acc, ra, rb = held_pins(model, s, F, ma, mb, ha, hb, fy_ext, mz, rdc, P, g1, g2)
-        free_a = ha and abs(ra) > P[MAF]
-        free_b = hb and abs(rb) > P[MBF]
+        free_a = ha and not pin_holds(ra, P[MAF])
+        free_b = hb and not pin_holds(rb, P[MBF])
         if not (free_a or free_b):
             return acc, ra, rb
         if free_a:
-            ma, ha = math.copysign(P[MAF], ra), False
+            ma, ha = break_away_moment(ra, P[MAF]), False
         if free_b:
-            mb, hb = math.copysign(P[MBF], rb), False
+            mb, hb = break_away_moment(rb, P[MBF]), False
     return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
 
 

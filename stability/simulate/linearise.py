@@ -1,8 +1,12 @@
-"""The simulator's own linearisation about straight running (central differences of its right-hand side)."""
+"""The simulator's own linearisation about straight running (central differences of its right-hand side).
+
+On level ground about the casters trailing; on a plane (``slope``) about any
+straight-running state (``at``: the lateral velocity and caster angles of an
+equilibrium, :mod:`stability.study.slope_stability`).
+"""
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any
 
 import numpy as np
@@ -14,11 +18,59 @@ from stability.settings.run import RunSpec
 from stability.simulate.adaptive import FREE_POS, LOCKED, AdaptiveModel
 from stability.simulate.options import initial_velocities, make_options
 
-__all__ = ["linearise"]
+__all__ = ["linearise", "forward_acceleration"]
+
+
+def _rhs(chair: Chair, speed: float, model: str, casters: str, slope: tuple[float, float],
+         drive: tuple[float, float]) -> tuple[Any, Any]:
+    """The compiled right-hand side of straight running (frictionless pins, no push, the drive held) and its options."""
+    chair = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    # the defaults, except: the adaptive scheme's right-hand side, no disturbance, the tire-range policy in force
+    opts = make_options(RunSpec(speed=speed, horizon=1.0, scheme="adaptive", model=model, casters=casters,
+                                push_force=0.0, push_duration=0.0, stop_on_warnings=False,
+                                out_of_range=tires.get_policy().evaluation, cross_slope_deg=float(slope[0]),
+                                grade_deg=float(slope[1])))
+    rhs = AdaptiveModel(chair, speed, opts)._ck
+    rhs.hold_drive(float(drive[0]), float(drive[1]))
+    return rhs, opts
+
+
+def forward_acceleration(chair: Chair, speed: float, *, model: str = "exact",
+                         slope: tuple[float, float] = (0.0, 0.0), drive: tuple[float, float] = (0.0, 0.0)) -> float:
+    """Forward acceleration of straight running, m/s^2: the simulator's right-hand side, loads consistent.
+
+    Casters trailing, no sideslip or yaw, frictionless pins, no push: what
+    rolling resistance (with its pitch load transfer) and the in-plane weight
+    on a plane do to the forward speed.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    speed : float
+        Forward speed, m/s (> 0).
+    model : {"thesis", "exact"}
+        Equation variant.
+    slope : tuple of float
+        ``(cross_slope_deg, grade_deg)``, deg.
+    drive : tuple of float
+        Constant drive forces on the left and right main wheels, N.
+
+    Returns
+    -------
+    float
+        ``u_dot``, m/s^2.
+    """
+    rhs, opts = _rhs(chair, check_speed(speed), model, "free", slope, drive)
+    u0, _ = initial_velocities(opts, speed)
+    dy, _ = rhs.point(0.0, np.array([0.0, 0.0, 0.0, u0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), (FREE_POS, FREE_POS), False,
+                      0.0)
+    return float(dy[3])
 
 
 def linearise(chair: Chair, speed: float, *, model: str = "exact", casters: str = "free",
-              step: float = 1e-6) -> Any:
+              step: float = 1e-6, slope: tuple[float, float] = (0.0, 0.0),
+              at: tuple[float, float, float] = (0.0, 0.0, 0.0), drive: tuple[float, float] = (0.0, 0.0)) -> Any:
     """The simulator's own linearisation about straight running, by central differences.
 
     Differentiates the right-hand side the simulator integrates (the adaptive
@@ -47,6 +99,18 @@ def linearise(chair: Chair, speed: float, *, model: str = "exact", casters: str 
         Central-difference step in the state units (m/s, rad/s, rad); the
         slip angles stay far inside the first degree, where the tire model
         is linear in slip.
+    slope : tuple of float
+        ``(cross_slope_deg, grade_deg)`` of the plane seen from the chair's
+        heading, deg (as :func:`stability.simulate.simulate`; needs
+        ``model="exact"``).
+    at : tuple of float
+        The operating point: lateral velocity, m/s, and the left and right
+        caster angles, rad (yaw rate and swivel rates zero); default the
+        casters trailing with no sideslip.
+    drive : tuple of float
+        Drive forces on the left and right main wheels held constant, N (the
+        statics' drive that holds a slope's equilibrium; the simulator's runs
+        have none).
 
     Returns
     -------
@@ -58,21 +122,16 @@ def linearise(chair: Chair, speed: float, *, model: str = "exact", casters: str 
 
     speed = check_speed(speed)
     step = check_positive("step", step)
-    chair = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
-    # the defaults, except: the adaptive scheme's right-hand side, no disturbance, the tire-range policy in force
-    opts = make_options(RunSpec(speed=speed, horizon=1.0, scheme="adaptive", model=model, casters=casters,
-                                push_force=0.0, push_duration=0.0, stop_on_warnings=False,
-                                out_of_range=tires.get_policy().evaluation))
+    rhs, opts = _rhs(chair, speed, model, casters, slope, drive)
     modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)
     u0, _ = initial_velocities(opts, speed)
-    mz_in = [0.0]                       # the yaw-moment input of the evaluation below (N m)
-    model_ = AdaptiveModel(chair, speed, dataclasses.replace(opts, yaw_moment=lambda t, st: mz_in[0]))
+
+    x0 = np.array([at[0], 0.0, at[1], 0.0, at[2], 0.0])
 
     def derivative(dx, mz=0.0):
-        mz_in[0] = mz
-        model_.guess = (0.0, 0.0)       # every evaluation solves the load-transfer loop from scratch
-        y = [0.0, 0.0, 0.0, u0, *dx] + [0.0] * (6 - len(dx))
-        dy, _ = model_.evaluate(0.0, y, modes, False)
+        rhs.guess[:] = 0.0              # every evaluation solves the load-transfer loop from scratch
+        y = np.array([0.0, 0.0, 0.0, u0, *(x0 + np.pad(dx, (0, 6 - len(dx))))])
+        dy, _ = rhs.point(0.0, y, modes, False, mz)
         return np.array(dy[4:4 + len(dx)], dtype=float)
 
     n = 2 if opts.casters == "locked" else 6

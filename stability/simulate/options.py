@@ -141,12 +141,6 @@ class Options:
         phi, theta = math.radians(self.slope[0]), math.radians(self.slope[1])
         return math.cos(phi), math.sin(phi), math.cos(theta), math.sin(theta)
 
-    def step_constants(self) -> tuple:
-        """What the WCHAIR loops read every step, as locals:
-        ``(dt, dt^2/2, locked, thesis, yaw_moment, stop_on_warnings, stride, impulse_force)``."""
-        return (self.dt, 0.5 * self.dt * self.dt, self.casters == "locked", self.model == "thesis",
-                self.yaw_moment, self.stop_on_warnings, self.stride, self.impulse_force)
-
     def settings(self) -> dict[str, Any]:
         """The options as recorded in a result's ``settings``."""
         d = {

@@ -1,10 +1,11 @@
-"""A chair on a slope: cross-slope veer, holding moment, stability and grades.
+"""A chair on a slope: the statics of straight running, holding moment, drive forces.
 
-``model`` (forces and equations of motion on the plane) -> ``equilibrium``
-(steady straight running, holding moment) -> ``uncorrected`` (the path when
-nobody corrects), ``linear`` (stability about the slope equilibrium),
-``grade`` (speed change and stability on a grade) -> ``plots``.  Command
-line: ``python -m stability.slope``.  See ``docs/slopes.md``.
+``model`` (the plane; tire forces at given loads) -> ``equilibrium``
+(steady straight running, holding moment, drive report) -> ``plots``.
+The motion on a slope is the simulator's: the uncorrected path
+(:mod:`stability.study.veer`) and the stability about the equilibrium and on
+grades (:mod:`stability.study.slope_stability`).  Command line:
+``python -m stability.slope``.  See ``docs/slopes.md``.
 """
 
 from __future__ import annotations

@@ -148,7 +148,12 @@ def _body(a: argparse.Namespace) -> int:
     per_deg = abs(per_deg_eq.holding_moment) / abs(per_deg_eq.cross_slope_deg)
     kind = a.drive if a.drive != "auto" else drive_kind(chair)
     drive = drive_report(chair, eq, kind, HandRim(a.wheel_radius, a.handrim_radius) if kind == "handrim" else None)
-    path = uncorrected_path(chair, eq, report_time=a.sim_time) if a.cross_slope != 0 else None
+    path, why = None, None
+    if a.cross_slope != 0:
+        try:
+            path = uncorrected_path(chair, eq, report_time=a.sim_time)
+        except ValueError as exc:     # e.g. viscous pin damping, which the simulator does not have
+            why = str(exc)
     sim = _simulated(chair, eq, a.sim_time) if a.cross_slope != 0 else None
     data = {
         "chair": chair.name, "cross_slope_deg": eq.cross_slope_deg, "grade_deg": eq.grade_deg, "speed_m_s": eq.speed,
@@ -190,7 +195,7 @@ def _body(a: argparse.Namespace) -> int:
           f"friction any of {eq.friction_range[0]:.3f} .. {eq.friction_range[1]:.3f} N m (signed, clockwise +)")
     extra = (f", heading {path.heading_change_deg:+.1f} deg (downhill +) after {path.report_time:.2f} s"
              if path else "")
-    print(f"  uncorrected: turns {turn}{extra}")
+    print(f"  uncorrected: turns {turn}{extra}" if why is None else f"  uncorrected: not run ({why})")
     for key, d in (sim or {}).items():
         if "error" in d:
             print(f"  simulator {key.replace('_', ' ')}: not run ({d['error']})")

@@ -25,7 +25,7 @@ from stability.slope.model import Plane, SlopeModel
 from stability.tires.data import FZ_MAX_N
 
 __all__ = ["HandRim", "Equilibrium", "solve", "harder_side", "holding_moment_closed_form", "max_cross_slope",
-           "drive_report"]
+           "drive_report", "operating_point"]
 
 
 @dataclass(frozen=True)
@@ -123,7 +123,7 @@ def _state(model: SlopeModel, speed: float, z, pins=(0.0, 0.0)):
     g1, g2, gn = model.plane.gravity(p.g, psi)
     u, v = speed * math.cos(psi), -speed * math.sin(psi)
     loads = sl.normal_loads(p, 0.0, 0.0, g1, g2, gn, ce, se, cb, sb)
-    f = model.forces(u, v, 0.0, ce, se, cb, sb, 0.0, 0.0, (0.0, 0.0), (g1, g2, gn), loads=loads)
+    f = model.forces(u, v, 0.0, ce, se, cb, sb, 0.0, 0.0, (0.0, 0.0), loads)
     RA, FAy, RB, FBy, RD, FDy, RE, FEy = f.F
     FAy_req, FBy_req, Sx, Sy, Mh = sl.hold_statics(p, ce, se, cb, sb, g1, g2, pins[0], pins[1], RA, RB)
     scale = p.m * p.g
@@ -153,6 +153,41 @@ def _root(model: SlopeModel, speed: float, pins=(0.0, 0.0), guess=None):
         if ok:
             return sol.x, True
     return sol.x, False
+
+
+def operating_point(chair: Chair, plane: Plane, speed: float) -> tuple[float, float, float, tuple[float, float]]:
+    """Heading (crab angle), caster angles (rad) and drive forces (N) of straight running on ``plane`` at ``speed``.
+
+    The frictionless equilibrium of :func:`solve` without its report (no
+    tire-range check): what a linearisation about it needs.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair.
+    plane : Plane
+        Cross slope and grade, deg.
+    speed : float
+        Speed along the path, m/s.
+
+    Returns
+    -------
+    tuple
+        ``(psi, eta, beta, (F_D, F_E))``: rad, and the drive forces on the
+        left and right main wheels, N.
+
+    Raises
+    ------
+    ValueError
+        No equilibrium found.
+    """
+    model = SlopeModel(chair, plane)
+    z, ok = _root(model, speed)
+    if not ok:
+        raise ValueError(f"speed={speed!r}: no straight-running equilibrium on cross slope "
+                         f"{plane.cross_slope_deg:g} deg")
+    drive = _state(model, speed, z)[2]
+    return float(z[0]), float(z[1]), float(z[2]), (float(drive[0]), float(drive[1]))
 
 
 def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:
@@ -285,13 +320,31 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
 
 
 def residual_accelerations(chair: Chair, eq: Equilibrium) -> tuple:
-    """Accelerations of the full equations of motion at the equilibrium (should vanish; a check)."""
+    """Accelerations of the equations of motion on the plane at the equilibrium (should vanish; a check).
+
+    The generated exact model with gravity (:func:`stability.models.slope.accelerations`) at the
+    equilibrium's state, with its tire and drive forces at its loads (the loads of zero acceleration, so
+    consistent if the accelerations vanish) and frictionless pins.
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair ``eq`` was solved for.
+    eq : Equilibrium
+        The equilibrium (:func:`solve`).
+
+    Returns
+    -------
+    tuple of 5 float
+        ``(u_dot, v_dot, r_dot, eta_dd, beta_dd)``: m/s^2, m/s^2, rad/s^2, rad/s^2, rad/s^2.
+    """
     model = SlopeModel(chair, Plane(eq.cross_slope_deg, eq.grade_deg))
-    psi = math.radians(eq.heading_deg)
+    psi, eta, beta = (math.radians(x) for x in (eq.heading_deg, eq.eta_deg, eq.beta_deg))
     u, v = eq.speed * math.cos(psi), -eq.speed * math.sin(psi)
-    acc, _ = model.accelerations(u, v, 0.0, math.radians(eq.eta_deg), 0.0, math.radians(eq.beta_deg), 0.0,
-                                 psi, eq.drive_forces)
-    return acc
+    ce, se, cb, sb = math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta)
+    g1, g2, _ = model.plane.gravity(model.p.g, psi)
+    f = model.forces(u, v, 0.0, ce, se, cb, sb, 0.0, 0.0, eq.drive_forces, eq.loads)
+    return sl.accelerations(model.p, u, v, 0.0, ce, se, cb, sb, 0.0, 0.0, f.F, 0.0, 0.0, g1, g2)
 
 
 def harder_side(right_minus_left: float, cross_slope_deg: float) -> str:

@@ -1,10 +1,12 @@
-"""Forces and equations of motion of a chair on a plane (cross slope, grade).
+"""The plane (cross slope, grade) and the tire forces of a chair on it at given normal loads: the statics.
 
-The exact full-width model with gravity (:mod:`stability.models.slope`), the
-tested tire fits at the quasi-static normal loads of the plane (eq 6-25
-extended, solved consistently with the tire forces), optional rolling
-resistance, drive forces at the main-wheel contacts.  Camber and toe are not
-modelled on the plane (refused).  See ``docs/slopes.md``.
+What the equilibrium of :mod:`stability.slope.equilibrium` needs: gravity in
+body axes (:mod:`stability.models.slope`), the contact velocities and slip
+angles (generated), the tire fits (:mod:`stability.tires`), rolling resistance
+and drive forces at the main-wheel contacts, and the tire-data range of the
+result.  The chair's motion on a plane is the simulator's
+(:func:`stability.simulate.simulate` with ``slope=``): one nonlinear model.
+Camber and toe are not modelled on the plane (refused).  See ``docs/slopes.md``.
 """
 
 from __future__ import annotations
@@ -12,13 +14,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from stability.chair import Chair
 from stability.models import full_width as fw
 from stability.models import slope as sl
+from stability.models.forces import slip_angle
 from stability.models.params import parameters
-from stability.runtime.checks import check_choice
 from stability.tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire, get_policy
 
 __all__ = ["Plane", "SlopeModel", "Forces", "MAX_ANGLE_DEG"]
@@ -83,7 +83,7 @@ class Forces:
 
 
 class SlopeModel:
-    """A chair on a plane: tire forces and accelerations (exact model with gravity).
+    """A chair on a plane: its parameters, tires and the tire forces of a state at given loads (statics).
 
     Parameters
     ----------
@@ -142,88 +142,16 @@ class SlopeModel:
         return out
 
     # -- forces ----------------------------------------------------------------
-    def lateral(self, slips_deg, loads) -> tuple[float, float, float, float]:
-        """Lateral tire forces of A, B, D, E (N) from the fits (WCHAIR's law, extrapolated in slip)."""
-        c, mtire = self.caster, self.main
-        pol = self._policy
-        return (c.lateral_force(slips_deg[0], loads[0], policy=pol, warn=False),
-                c.lateral_force(slips_deg[1], loads[1], policy=pol, warn=False),
-                mtire.lateral_force(slips_deg[2], loads[2], policy=pol, warn=False),
-                mtire.lateral_force(slips_deg[3], loads[3], policy=pol, warn=False))
-
-    def rolling_forces(self, loads, vx) -> tuple[float, ...]:
-        """Rolling-resistance forces along each wheel's heading (N), opposing its rolling velocity."""
-        out = []
-        for k in range(4):
-            on = self.rolling[0] if k < 2 else self.rolling[1]
-            tire = self.caster if k < 2 else self.main
-            out.append(math.copysign(tire.rolling_resistance(float(loads[k])), -vx[k]) if on else 0.0)
-        return tuple(out)
-
-    def forces(self, u, v, r, ce, se, cb, sb, eta_d, beta_d, drive: tuple[float, float], g: tuple,
-               loads: tuple | None = None, tol: float = 1e-9) -> Forces:
-        """Tire forces at a state; the normal loads are solved consistently with them.
-
-        ``drive = (FDx_drive, FEx_drive)`` (N) are added to the main wheels;
-        ``g = (g1, g2, gn)``.  With ``loads`` given they are used as they are
-        (no load transfer iteration).
-        """
-        p = self.p
-        vel = fw.contact_velocities(p, u, v, r, ce, se, cb, sb, eta_d, beta_d, "exact")
-        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
-        slips = tuple(math.degrees(math.atan2(vy, abs(vx)))
-                      for vx, vy in ((vAx, vAy), (vBx, vBy), (vDx, vDy), (vEx, vEy)))
-        g1, g2, gn = g
-        fixed = loads is not None
-        N: tuple = loads if loads is not None else sl.normal_loads(p, 0.0, 0.0, g1, g2, gn, ce, se, cb, sb)
-        for it in range(400):
-            FAy, FBy, FDy, FEy = self.lateral(slips, N)
-            RA, RB, RD, RE = self.rolling_forces(N, (vAx, vBx, vDx, vEx))
-            F = (RA, FAy, RB, FBy, RD + drive[0], FDy, RE + drive[1], FEy)
-            if fixed:
-                break
-            fx, fy = fw.tire_resultant(F, ce, se, cb, sb)
-            new = sl.normal_loads(p, fx / p.m + g1, fy / p.m + g2, g1, g2, gn, ce, se, cb, sb)
-            done = max(abs(a - b) for a, b in zip(new, N, strict=True)) < tol
-            # under-relax when plain iteration does not contract (large slips, high c.g.)
-            w = 1.0 if it < 20 else 0.25
-            N = tuple(b + w * (a - b) for a, b in zip(new, N, strict=True))
-            if done:
-                break
-        else:  # pragma: no cover - the load transfer is a strong contraction
-            raise RuntimeError("normal loads did not converge")
-        return Forces(F=F, loads=tuple(float(n) for n in N), slips_deg=slips)
-
-    def accelerations(self, u, v, r, eta, eta_d, beta, beta_d, heading, drive, M_pins=(0.0, 0.0),
-                      Mz_ext: float = 0.0):
-        """``((u_dot, v_dot, r_dot, eta_dd, beta_dd), Forces)`` at a state.
-
-        ``heading`` (rad) sets gravity's body components; pin moments
-        ``M_pins`` (N m) act on the casters (viscous damping ``pin_damping`` is added).
-        """
-        ce, se, cb, sb = math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta)
-        g = self.plane.gravity(self.p.g, heading)
-        f = self.forces(u, v, r, ce, se, cb, sb, eta_d, beta_d, drive, g)
-        c = self.p.pin_damping
-        acc = sl.accelerations(self.p, u, v, r, ce, se, cb, sb, eta_d, beta_d, f.F,
-                               M_pins[0] - c * eta_d, M_pins[1] - c * beta_d, g[0], g[1], 0.0, Mz_ext)
-        return acc, f
-
-    def rhs(self, drive: tuple[float, float]):
-        """Right-hand side ``f(t, y)`` for ``y = [X, Y, psi, u, v, r, eta, eta_d, beta, beta_d]``.
-
-        ``X, Y`` (m) the c.g. along and to the right of the path direction,
-        ``psi`` the heading (rad, clockwise); constant drive forces (N).
-        """
-        def f(t, y):
-            _, _, psi, u, v, r, eta, eta_d, beta, beta_d = y
-            acc, _ = self.accelerations(u, v, r, eta, eta_d, beta, beta_d, psi, drive)
-            c, s = math.cos(psi), math.sin(psi)
-            return np.array([u * c - v * s, u * s + v * c, r, acc[0], acc[1], acc[2], eta_d, acc[3],
-                             beta_d, acc[4]])
-        return f
-
-
-def check_drive(kind: str) -> str:
-    """Drive kind, ``"handrim"`` or ``"motor"``."""
-    return check_choice("drive", kind, ("handrim", "motor"))
+    def forces(self, u, v, r, ce, se, cb, sb, eta_d, beta_d, drive: tuple[float, float], loads: tuple) -> Forces:
+        """Tire forces at a state and normal loads (N): the fits at the slip angles, rolling resistance and the
+        drive forces ``drive = (FDx_drive, FEx_drive)`` (N) on the main wheels."""
+        vel = fw.contact_velocities(self.p, u, v, r, ce, se, cb, sb, eta_d, beta_d, "exact")
+        vx, vy = vel[0::2], vel[1::2]
+        slips = tuple(slip_angle(a, b) for a, b in zip(vx, vy, strict=True))
+        tires = (self.caster, self.caster, self.main, self.main)
+        lat = [t.lateral_force(s, n, policy=self._policy, warn=False)
+               for t, s, n in zip(tires, slips, loads, strict=True)]
+        on = (self.rolling[0], self.rolling[0], self.rolling[1], self.rolling[1])
+        roll = [t.rolling_force(float(n), w) if k else 0.0 for t, n, w, k in zip(tires, loads, vx, on, strict=True)]
+        F = (roll[0], lat[0], roll[1], lat[1], roll[2] + drive[0], lat[2], roll[3] + drive[1], lat[3])
+        return Forces(F=F, loads=tuple(float(n) for n in loads), slips_deg=slips)

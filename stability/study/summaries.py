@@ -8,8 +8,7 @@ change the answer), and no per-run result is built.  Runs whose speed needs
 a smaller step than the requested one (the stiff caster modes at slow
 speeds) get the same step :func:`stability.study.runs.simulate_runs` gives
 them, one kernel call per step.  The adaptive scheme (and any Python input)
-runs through :func:`~stability.study.runs.simulate_runs` with the same summaries, and so does
-everything inside :func:`stability.simulate.reference_engine` (the benchmarks' baseline engine).
+runs through :func:`~stability.study.runs.simulate_runs` with the same summaries.
 """
 
 from __future__ import annotations
@@ -23,7 +22,6 @@ import numpy as np
 
 from stability.chair import Chair
 from stability.settings.run import RunSpec
-from stability.simulate.api import using_reference_engine
 from stability.simulate.options import make_options
 from stability.simulate.signals import time_to_level
 from stability.simulate.stepcheck import SAFETY, stable_steps
@@ -83,8 +81,10 @@ class Summaries:
 
 
 def _compiled(run: RunSpec) -> bool:
-    """Whether the summaries come from the compiled kernel (else from full results)."""
-    return run.scheme == "wchair" and not using_reference_engine()
+    """Whether the runs go through the packed kernel with only summaries kept: the WCHAIR scheme (a run
+    specification holds no Python input or controller; the adaptive scheme runs through
+    :func:`~stability.study.runs.simulate_runs`)."""
+    return run.scheme == "wchair"
 
 
 def _kernel_options(run: RunSpec, h: float) -> Any:
@@ -164,8 +164,8 @@ class SummaryRunner:
     The pairs are packed for the compiled kernel once
     (:class:`stability.simulate.engine.PackedRuns`); a round then costs the
     kernel and a few array copies.  Where :func:`run_summaries` would not use
-    the compiled kernel (adaptive scheme, Python inputs, the reference
-    engine) every call goes through it unchanged.  Either way the numbers are
+    the packed kernel (adaptive scheme, Python inputs) every call goes
+    through it unchanged.  Either way the numbers are
     those of :func:`run_summaries`.
 
     Parameters

@@ -1,12 +1,11 @@
 """The uncorrected path: which way and how fast the chair turns when nobody holds it straight.
 
 Starts from the held equilibrium (:func:`stability.slope.equilibrium.solve`)
-and removes the differential drive.  Two integrations: :func:`uncorrected_path`
-(the exact equations with gravity of :class:`~stability.slope.model.SlopeModel`
-under :func:`scipy.integrate.solve_ivp`, both wheels keeping the mean drive
-force or coasting, viscous pin damping only) and :func:`simulator_path`
-(:func:`stability.simulate.simulate` on the slope, either scheme, coasting,
-with or without Coulomb pin friction).  See ``docs/slopes.md``.
+and removes the drive: the simulator (:func:`stability.simulate.simulate`
+with ``slope=``) from that state, coasting.  :func:`uncorrected_path` is its
+adaptive scheme with frictionless pins (the statics' own assumption);
+:func:`simulator_path` runs either scheme, with or without the chair's
+Coulomb pin friction.  See ``docs/slopes.md``.
 """
 
 from __future__ import annotations
@@ -21,9 +20,15 @@ from stability.settings.defaults import SLOPE_SIM_TIME
 from stability.settings.run import RunSpec
 from stability.simulate import simulate
 from stability.slope.equilibrium import Equilibrium
-from stability.slope.model import Plane, SlopeModel
+from stability.slope.model import Plane
 
-__all__ = ["UncorrectedPath", "uncorrected_path", "simulator_path", "simulator_slope", "VEER_RUN"]
+__all__ = ["UncorrectedPath", "uncorrected_path", "simulator_path", "simulator_slope", "plane_seen_from", "VEER_RUN"]
+
+#: Tolerances of the uncorrected path's adaptive run (those of the slope package's former solve_ivp path).
+PATH_RTOL, PATH_ATOL = 1e-8, 1e-10
+#: The simulator path's default run: the adaptive scheme for 2 s (the speed, the initial state and the slope come
+#: from the equilibrium; no push).
+VEER_RUN = RunSpec(scheme="adaptive", horizon=2.0)
 
 #: a caster swung this far from its held angle ends a run (beyond the tire data), deg
 MAX_CASTER_SWING_DEG = 30.0
@@ -88,26 +93,25 @@ class UncorrectedPath:
 
 
 def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_heading_deg: float = 45.0,
-                     n_out: int = 201, coast: bool = False, report_time: float = REPORT_TIME) -> UncorrectedPath:
-    """Integrate the chair released from the held equilibrium ``eq``.
+                     report_time: float = REPORT_TIME) -> UncorrectedPath:
+    """The chair released from the held equilibrium ``eq``: the simulator's adaptive scheme, frictionless pins.
+
+    :func:`simulator_path` with ``scheme="adaptive"``, ``pin_friction=False``
+    and tolerances :data:`PATH_RTOL`, :data:`PATH_ATOL`: the chair coasts (no
+    drive force) from the held state (crab angle, caster angles, speed).
 
     Parameters
     ----------
     chair : Chair
-        The chair ``eq`` was solved for.
+        The chair ``eq`` was solved for (``pin_damping`` 0: the simulator has
+        no viscous pin damping).
     eq : Equilibrium
-        The held equilibrium (:func:`stability.slope.equilibrium.solve`): the
-        run starts from it with both main wheels driven by the mean of its
-        drive forces (N), i.e. without the holding moment.
+        The held equilibrium (:func:`stability.slope.equilibrium.solve`).
     duration : float
-        Length of the run (s); it stops early when the heading change exceeds ``max_heading_deg``
+        Length of the run (s); the path is cut when the heading change exceeds ``max_heading_deg``
         or a caster swings more than 30 deg from its held angle.
     max_heading_deg : float
-        Heading change that ends the run (deg, default 45).
-    n_out : int
-        Output samples.
-    coast : bool
-        No drive force at all (as :func:`simulator_path`, whose simulator has none); default False.
+        Heading change that ends the path (deg, default 45).
     report_time : float
         When the summary is taken (s, default 1; ``duration`` is raised to it if shorter).
 
@@ -115,33 +119,15 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
     -------
     UncorrectedPath
         Time history (s, m, rad, rad/s, m/s), turn direction and the summary
-        at ``report_time`` or the run's end if earlier (heading change, deg; yaw rate, deg/s; lateral offset, m).
+        at ``report_time`` or the path's end if earlier (heading change, deg; yaw rate, deg/s; lateral offset, m).
+
+    Raises
+    ------
+    ValueError
+        ``chair.pin_damping`` nonzero.
     """
-    duration = max(duration, report_time)
-    from scipy.integrate import solve_ivp  # heavy optional import kept local
-
-    plane = Plane(eq.cross_slope_deg, eq.grade_deg)
-    model = SlopeModel(chair, plane)
-    mean = 0.0 if coast else 0.5 * (eq.drive_forces[0] + eq.drive_forces[1])
-    f = model.rhs((mean, mean))
-    psi0 = math.radians(eq.heading_deg)
-    y0 = [0.0, 0.0, psi0, eq.speed * math.cos(psi0), -eq.speed * math.sin(psi0), 0.0,
-          math.radians(eq.eta_deg), 0.0, math.radians(eq.beta_deg), 0.0]
-
-    def turned(t, y):
-        return abs(y[2] - psi0) - math.radians(max_heading_deg)
-    turned.terminal = True  # type: ignore[attr-defined]
-
-    def swung(t, y):  # a caster swung far round: beyond the tire data, stop
-        return max(abs(y[6] - y0[6]), abs(y[8] - y0[8])) - math.radians(MAX_CASTER_SWING_DEG)
-    swung.terminal = True  # type: ignore[attr-defined]
-
-    t_eval = np.linspace(0.0, duration, n_out)
-    sol = solve_ivp(f, (0.0, duration), y0, method="LSODA", t_eval=t_eval, events=(turned, swung),
-                    rtol=1e-8, atol=1e-10)
-    t, y = sol.t, sol.y
-    g2 = plane.gravity(model.p.g)[1]
-    return _summarise(eq, t, y[0], y[1], y[2], y[5], y[3], g2, report_time)
+    return simulator_path(chair, eq, VEER_RUN.replace(horizon=duration, rtol=PATH_RTOL, atol=PATH_ATOL),
+                          pin_friction=False, max_heading_deg=max_heading_deg, report_time=report_time)
 
 
 def _summarise(eq: Equilibrium, t, x, y, heading, yaw_rate, speed, g2: float,
@@ -186,13 +172,31 @@ def simulator_slope(chair: Chair, eq: Equilibrium) -> tuple[float, float]:
     tuple of float
         Cross slope and grade in the chair's initial frame, deg.
     """
-    g1, g2, gn = Plane(eq.cross_slope_deg, eq.grade_deg).gravity(chair.g, math.radians(eq.heading_deg))
+    return plane_seen_from(chair, Plane(eq.cross_slope_deg, eq.grade_deg), math.radians(eq.heading_deg))
+
+
+def plane_seen_from(chair: Chair, plane: Plane, heading: float) -> tuple[float, float]:
+    """``plane`` seen from a chair headed ``heading`` (rad) from the path: ``(cross_slope_deg, grade_deg)``.
+
+    The plane whose in-plane gravity at heading 0 is ``plane``'s at ``heading``
+    (grade ``asin(-g1/g)``, cross slope ``atan2(g2, gn)``).
+
+    Parameters
+    ----------
+    chair : Chair
+        The chair (its ``g``).
+    plane : Plane
+        Cross slope and grade, deg.
+    heading : float
+        Heading from the path direction, rad (clockwise +).
+
+    Returns
+    -------
+    tuple of float
+        Cross slope and grade, deg.
+    """
+    g1, g2, gn = plane.gravity(chair.g, heading)
     return math.degrees(math.atan2(g2, gn)), math.degrees(math.asin(-g1 / chair.g))
-
-
-#: The uncorrected path's default run: the adaptive scheme for 2 s (the speed, the initial state and the slope
-#: come from the equilibrium; no push).
-VEER_RUN = RunSpec(scheme="adaptive", horizon=2.0)
 
 
 def simulator_path(chair: Chair, eq: Equilibrium, run: RunSpec = VEER_RUN, *, pin_friction: bool = True,

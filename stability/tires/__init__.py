@@ -6,7 +6,7 @@ rolling resistance (Appendix B, eq 3-2); a user's own tire data fitted the same
 way; one policy for loads and slips outside the fitted data. Forces in N,
 angles in deg. Modules: ``data`` (tables, raw tests), ``fit`` (the cubic fits),
 ``ranges`` (fitted range, policies, notes), ``base``/``model`` (:class:`Tire`),
-``linear_tire``, ``stack`` (:class:`TireStack`), ``cart`` (Appendix A statics),
+``law`` (the force law, once: floats, arrays, compiled), ``linear_tire``, ``cart`` (Appendix A statics),
 ``user`` (your own data), ``registry`` (:func:`get`, :func:`register`),
 ``checks`` (chair checks). See ``docs/tires.md``.
 
@@ -58,7 +58,6 @@ from stability.tires.ranges import (
     summarise_notes,
 )
 from stability.tires.registry import get, names, register, registered, resolve_spec, unregister
-from stability.tires.stack import TireStack
 from stability.tires.user import FitQuality, TireData, load_tire_data, read_tire_csv, tire_from_data
 
 __all__ = [
@@ -85,7 +84,6 @@ __all__ = [
     "TireCapabilities",
     "TireData",
     "TireRangeWarning",
-    "TireStack",
     "WHEELS",
     "camber_coefficient_fit",
     "cart_forces",

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from numpy.typing import ArrayLike
 
+from stability.tires import law
 from stability.tires.ranges import Policy
 
 __all__ = ["TireCapabilities"]
@@ -78,4 +79,4 @@ class _CamberForce:
             N.
         """
         fc = self.camber_coefficient if camber_coefficient is None else float(camber_coefficient)
-        return -fc * self.lateral_force(camber_deg, fz, policy=policy, warn=warn)
+        return law.camber_force(fc, self.lateral_force(camber_deg, fz, policy=policy, warn=warn))

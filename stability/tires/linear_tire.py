@@ -9,8 +9,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stability.tires import law
 from stability.tires.base import TireCapabilities, _CamberForce
-from stability.tires.model import _DEG_PER_RAD, Tire
+from stability.tires.model import _DEG_PER_RAD, Tire, law_on_arrays
 from stability.tires.ranges import POLICIES, Policy, _check_policy, resolve
 
 __all__ = ["AnyTire", "LinearTire"]
@@ -87,12 +88,9 @@ class LinearTire(_CamberForce):
         if policy not in POLICIES:
             _check_policy(policy)
         k = self.stiffness_N_per_deg * self.lateral_scale
-        if isinstance(slip_deg, (int, float)) and isinstance(fz, (int, float)):
-            if fz <= 0.0:
-                return 0.0
-            return -k * float(slip_deg) + 0.0
-        s, f = np.broadcast_arrays(np.asarray(slip_deg, dtype=float), np.asarray(fz, dtype=float))
-        return np.where(f > 0.0, -k * s, 0.0) + 0.0
+        scalar = isinstance(slip_deg, (int, float)) and isinstance(fz, (int, float))
+        return law_on_arrays(lambda x, y: law.lateral_force(law.LINEAR, None, k, None, x, y, 0)[0],
+                             np.asarray(slip_deg, dtype=float), np.asarray(fz, dtype=float), scalar=scalar)
 
     def cornering_stiffness(self, fz: ArrayLike, *, include_intercept: bool = False,
                             policy: str | None = None, wheel: str | None = None) -> Any:
@@ -123,11 +121,14 @@ class LinearTire(_CamberForce):
 
     def rolling_resistance(self, fz: ArrayLike) -> Any:
         """``f_r * fz * rolling_scale`` (N), eq (3-2); 0 where ``fz <= 0``."""
-        k = self.f_r * self.rolling_scale
-        if isinstance(fz, (int, float)):
-            return k * float(fz) if fz > 0.0 else 0.0
-        f = np.asarray(fz, dtype=float)
-        return np.where(f > 0.0, k * f, 0.0)
+        coef, scale = (self.f_r, 0.0, 0.0), self.rolling_scale
+        return law_on_arrays(lambda f: law.rolling_resistance(law.ROLLING_LINEAR, coef, scale, f),
+                             np.asarray(fz, dtype=float), scalar=isinstance(fz, (int, float)))
+
+    def rolling_force(self, fz: float, vx: float) -> float:
+        """Rolling-resistance force (N) opposing the rolling velocity ``vx`` (m/s): ``-sign(vx) f_r fz``."""
+        return float(law.rolling_force(law.ROLLING_LINEAR, (self.f_r, 0.0, 0.0), self.rolling_scale, float(fz),
+                                       float(vx)))
 
     @property
     def rolling_coefficient_linear(self) -> float:

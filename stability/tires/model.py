@@ -1,8 +1,9 @@
 """The tested-tire force model: cubic fits (4-1) per whole degree of slip, interpolated as WCHAIR's MECHAN.
 
-:func:`_segment_force` is the force law (also used by :class:`~stability.tires.stack.TireStack`
-and the compiled simulator); :class:`Tire` wraps it with range policies, stiffness,
-camber (eq 4-2) and rolling resistance (Appendix B, eq 3-2).
+:class:`Tire` holds a tested tire's table and evaluates the one force law of
+:mod:`stability.tires.law` (which the compiled simulator runs too) with range
+policies and warnings; stiffness, camber (eq 4-2) and rolling resistance
+(Appendix B, eq 3-2) use the same law.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stability.tires import law
 from stability.tires.base import TireCapabilities, _CamberForce
 from stability.tires.data import CASTER_TIRES, FZ_MAX_N, MAIN_TIRES, SLIP_MAX_DEG, Coef3
 from stability.tires.fit import camber_coefficient_fit
@@ -29,38 +31,25 @@ THESIS_SOURCE = "Collins (1987), Appendix B"
 _DEG_PER_RAD = 180.0 / math.pi
 
 
-def _segment_force(segments: tuple, s: NDArray[np.float64], fz: NDArray[np.float64],
-                   offset: Any = None) -> NDArray[np.float64]:
-    """Magnitude of the interpolated cornering force (N): the force law of WCHAIR's MECHAN.
+def law_on_arrays(fn: Any, *arrays: NDArray[np.float64], scalar: bool) -> Any:
+    """A scalar function of :mod:`stability.tires.law` over broadcast arrays, element by element.
 
-    ``segments`` are the columns ``a0, b0, c0, da, db, dc`` of one-degree
-    segments (8 per tire, tires end to end, ``offset`` selecting the tire);
-    ``s`` the slip magnitude (deg, already limited as the policy says) and
-    ``fz`` the normal force (N).  Interpolating the coefficients linearly
-    in slip and evaluating one cubic equals interpolating the forces, since
-    the force is linear in the coefficients.  ``fz <= 0`` gives 0 (a wheel
-    off the ground); NaN in gives NaN out.
+    Parameters
+    ----------
+    fn : callable
+        ``fn(*floats) -> float``.
+    *arrays : ndarray
+        Its arguments (broadcast together).
+    scalar : bool
+        Return a Python float (the inputs were numbers).
+
+    Returns
+    -------
+    float or ndarray
+        ``fn`` at every element, of the broadcast shape.
     """
-    fzp = np.maximum(fz, 0.0)
-    i = np.floor(s)
-    np.fmin(i, 7.0, out=i)                   # NaN slip -> segment 7 (t stays NaN: NaN force)
-    t = s - i
-    ii = i.astype(np.intp)
-    if offset is not None:
-        ii += offset
-    a0, b0, c0, da, db, dc = segments
-    c = c0.take(ii)
-    c += t * dc.take(ii)
-    b = b0.take(ii)
-    b += t * db.take(ii)
-    a = a0.take(ii)
-    a += t * da.take(ii)
-    c *= fzp
-    c += b
-    c *= fzp
-    c += a
-    c *= fzp
-    return c
+    out = np.asarray(np.frompyfunc(lambda *x: float(fn(*x)), len(arrays), 1)(*arrays), dtype=float)
+    return float(out) if scalar else out
 
 
 @dataclass(frozen=True)
@@ -112,6 +101,7 @@ class Tire(_CamberForce):
     fit_quality: Any = field(default=None, repr=False, compare=False)
     _array: NDArray[np.float64] = field(init=False, repr=False, compare=False)
     _segments: tuple = field(init=False, repr=False, compare=False)
+    _table: NDArray[np.float64] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if len(self.rows) != 9:
@@ -127,6 +117,9 @@ class Tire(_CamberForce):
         for col in segs:
             col.flags.writeable = False
         object.__setattr__(self, "_segments", segs)
+        table = np.array(segs)              # (6, 8): the law's segment table (stability.tires.law)
+        table.flags.writeable = False
+        object.__setattr__(self, "_table", table)
 
     # -- identity ---------------------------------------------------------
     @property
@@ -154,7 +147,7 @@ class Tire(_CamberForce):
             ``k`` (slip ``k..k+1`` deg) has coefficients ``a0[k] + t da[k]`` etc.
             with ``t = s - k``, and the force magnitude (before ``lateral_scale``)
             is ``F = ((c fz + b) fz + a) fz`` with ``fz = max(F_z, 0)``, ``k =
-            min(floor(s), 7)`` -- exactly :func:`_segment_force`.
+            min(floor(s), 7)`` -- exactly :func:`stability.tires.law.segment_force`.
         """
         return self._segments
 
@@ -211,64 +204,36 @@ class Tire(_CamberForce):
             Unknown ``policy``, or ``policy="raise"`` with an out-of-range
             input (the message names the quantity, value and range).
         """
-        if isinstance(slip_deg, (int, float)) and isinstance(fz, (int, float)):
-            return self._lateral_scalar(float(slip_deg), float(fz), policy, warn)
-        return self._lateral_array(slip_deg, fz, policy, warn)
-
-    def _lateral_scalar(self, slip: float, fz: float, policy: str, warn: bool) -> float:
-        if policy not in POLICIES:
-            _check_policy(policy)
-        if slip != slip or fz != fz:
-            return math.nan
-        s = slip if slip >= 0.0 else -slip
-        if fz <= 0.0 or s == 0.0:
-            return 0.0
-        smax, fmax = self.slip_max_deg, self.fz_max_N
-        bad_s = s > smax
-        bad_f = fz > fmax
-        if bad_s or bad_f:
-            if policy == "raise":
-                self._refuse(slip if bad_s else fz, bad_s, 1)
-            if policy == "clamp":
-                if bad_s:
-                    s = smax
-                if bad_f:
-                    fz = fmax
-            if warn:
-                self._warn(int(bad_s), int(bad_f), 1, policy)
-        i = int(s)
-        if i > 7:
-            i = 7
-        a0, b0, c0 = self.rows[i]
-        a1, b1, c1 = self.rows[i + 1]
-        f0 = fz * (a0 + fz * (b0 + fz * c0))
-        f1 = fz * (a1 + fz * (b1 + fz * c1))
-        force = ((s - i) * (f1 - f0) + f0) * self.lateral_scale
-        return -force if slip > 0.0 else force
-
-    def _lateral_array(self, slip_deg: ArrayLike, fz: ArrayLike, policy: str, warn: bool) -> NDArray[np.float64]:
         _check_policy(policy)
+        table, scale, code = self._table, self.lateral_scale, POLICIES.index(policy)
+        lim = (self.slip_max_deg, self.fz_max_N)
+        if isinstance(slip_deg, (int, float)) and isinstance(fz, (int, float)):
+            force, refused = law.lateral_force(law.TESTED, table, scale, lim, float(slip_deg), float(fz), code)
+            bad_s, bad_f = abs(slip_deg) > lim[0], fz > lim[1]
+            if bad_s or bad_f:
+                self._out_of_range(policy, warn, float(slip_deg if bad_s else fz), bad_s, int(bad_s), int(bad_f), 1)
+            return float(force)
         slip, f = np.broadcast_arrays(np.asarray(slip_deg, dtype=float), np.asarray(fz, dtype=float))
-        s = np.abs(slip)
-        bad_s = s > self.slip_max_deg
-        bad_f = f > self.fz_max_N
-        n_s, n_f = int(bad_s.sum()), int(bad_f.sum())
+        bad = np.abs(slip) > lim[0]
+        badf = f > lim[1]
+        n_s, n_f = int(bad.sum()), int(badf.sum())
         if n_s or n_f:
-            if policy == "raise":
-                self._refuse(float((slip[bad_s] if n_s else f[bad_f]).flat[0]), bool(n_s), n_s or n_f)
-            if policy == "clamp":
-                s = np.minimum(s, self.slip_max_deg)
-                f = np.minimum(f, self.fz_max_N)
-            if warn:
-                self._warn(n_s, n_f, int(s.size), policy)
-        force = _segment_force(self._segments, s, f)
-        if self.lateral_scale != 1.0:
-            force = force * self.lateral_scale
-        return np.where(slip > 0.0, -force, force) + 0.0
+            self._out_of_range(policy, warn, float((slip[bad] if n_s else f[badf]).flat[0]), bool(n_s), n_s, n_f,
+                               int(slip.size))
+        return law_on_arrays(lambda x, y: law.lateral_force(law.TESTED, table, scale, lim, x, y, code)[0],
+                             slip, f, scalar=False)
+
+    def _out_of_range(self, policy: str, warn: bool, value: float, is_slip: bool, n_s: int, n_f: int,
+                      n: int) -> None:
+        """``policy="raise"``: raise for the first value outside the fitted range; else warn (``warn``)."""
+        if policy == "raise":
+            self._refuse(value, is_slip, n_s or n_f)
+        if warn:
+            self._warn(n_s, n_f, n, policy)
 
     def _refuse(self, value: float, is_slip: bool, n: int) -> None:
         """Raise the one-line ValueError of ``policy="raise"`` (slip or load ``value``)."""
-        more = f"; {n} such point(s)" if n > 1 or not isinstance(value, float) else ""
+        more = f"; {n} such point(s)" if n > 1 else ""
         if is_slip:
             smax = self.slip_max_deg
             raise ValueError(f"slip angle {value!r} deg is outside the fitted range "
@@ -318,10 +283,9 @@ class Tire(_CamberForce):
             fz = float(fz)
             if fz <= 0.0:
                 return 0.0
-            return (fz * (a + fz * (b + fz * c)) + d) * self.lateral_scale
+            return (law.cubic(a, b, c, fz) + d) * self.lateral_scale
         f = np.asarray(fz, dtype=float)
-        out = (f * (a + f * (b + f * c)) + d) * self.lateral_scale
-        return np.where(f > 0.0, out, 0.0)
+        return np.where(f > 0.0, (law.cubic(a, b, c, f) + d) * self.lateral_scale, 0.0)
 
     def cornering_stiffness_per_rad(self, fz: ArrayLike, *, include_intercept: bool = False,
                                     policy: str | None = None, wheel: str | None = None) -> Any:
@@ -367,15 +331,19 @@ class Tire(_CamberForce):
         """
         if self.rolling is None:
             raise ValueError(self._no_rolling())
-        a, b, c = self.rolling
-        if isinstance(fz, (int, float)):
-            fz = float(fz)
-            if fz <= 0.0:
-                return 0.0
-            return abs(fz * (a + fz * (b + fz * c))) * self.rolling_scale
-        f = np.asarray(fz, dtype=float)
-        out = np.abs(f * (a + f * (b + f * c))) * self.rolling_scale
-        return np.where(f > 0.0, out, 0.0)
+        coef, scale = self.rolling, self.rolling_scale
+        return law_on_arrays(lambda f: law.rolling_resistance(law.ROLLING_CUBIC, coef, scale, f),
+                             np.asarray(fz, dtype=float), scalar=isinstance(fz, (int, float)))
+
+    def rolling_force(self, fz: float, vx: float) -> float:
+        """Rolling-resistance force along the wheel's heading (N), opposing its rolling velocity ``vx`` (m/s).
+
+        :meth:`rolling_resistance` at ``fz`` (N) with the sign of ``-vx``
+        (WCHAIR's ``SIGN(..., -V)``; :func:`stability.tires.law.rolling_force`).
+        """
+        if self.rolling is None:
+            raise ValueError(self._no_rolling())
+        return float(law.rolling_force(law.ROLLING_CUBIC, self.rolling, self.rolling_scale, float(fz), float(vx)))
 
     @property
     def rolling_coefficient_linear(self) -> float:

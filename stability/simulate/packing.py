@@ -1,0 +1,140 @@
+"""The array layouts of the compiled kernels: chairs, tires and options packed per run.
+
+Written by :class:`Packed` (and :func:`slope_slots`, :func:`policy_code`);
+read by :mod:`stability.simulate.kernel` and
+:mod:`stability.simulate.adaptive_kernel` (slot indices in
+:mod:`stability.simulate.kernel_equations`).  The tire slots carry what the
+tire law (:mod:`stability.tires.law`) takes: kind, segment table, scale,
+fitted range.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from stability import tires as _tires
+from stability.chair import Chair
+from stability.models.params import parameters
+from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, Options, initial_velocities
+
+__all__ = ["Packed", "slope_slots", "policy_code"]
+
+
+def policy_code(opts: Options) -> int:
+    """The tire law's code of ``opts.out_of_range`` (the index in :data:`stability.tires.POLICIES`).
+
+    Parameters
+    ----------
+    opts : Options
+        Checked options.
+
+    Returns
+    -------
+    int
+        0 clamp, 1 extrapolate, 2 raise.
+    """
+    return _tires.POLICIES.index(opts.out_of_range)
+
+
+def _segments(tire: Any) -> np.ndarray:
+    segs = tire.segment_arrays() if hasattr(tire, "segment_arrays") else tire._segments
+    return np.array(segs, dtype=float)
+
+
+def _tire_slot(tire: Any) -> tuple[int, np.ndarray, float, tuple[float, float]]:
+    """(kind, (6, 8) segments, scale or N/deg, (slip limit deg, load limit N)) of one tire."""
+    if isinstance(tire, _tires.LinearTire):
+        return 1, np.zeros((6, 8)), tire.stiffness_N_per_deg * tire.lateral_scale, (math.inf, math.inf)
+    lim = (float(getattr(tire, "slip_max_deg", SLIP_LIMIT_DEG)), float(getattr(tire, "fz_max_N", LOAD_LIMIT_N)))
+    return 0, _segments(tire), float(tire.lateral_scale), lim
+
+
+def _rolling_slot(tire: Any, on: bool) -> tuple[int, tuple[float, float, float], float]:
+    if not on:
+        return 0, (0.0, 0.0, 0.0), 0.0
+    tire.rolling_resistance(1.0)          # a tire without rolling data raises its own error here
+    if isinstance(tire, _tires.LinearTire):
+        return 2, (float(tire.f_r), 0.0, 0.0), float(tire.rolling_scale)
+    a, b, c = tire.rolling
+    return 1, (float(a), float(b), float(c)), float(tire.rolling_scale)
+
+
+class Packed:
+    """The per-run arrays of the kernels (run = first axis): parameters, initial state, tires, rolling, camber.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+        One chair per run.
+    speeds : ndarray
+        Initial forward speeds, m/s.
+    opts : Options
+        Checked options.
+    forces : ndarray, optional
+        Per-run push at the c.g., N (else ``opts.impulse_force``).
+    """
+
+    def __init__(self, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None):
+        n = len(chairs)
+        self.P = np.empty((n, 18))
+        self.S = np.zeros((n, 10))
+        self.TK = np.zeros((n, 3), dtype=np.int64)
+        self.TS = np.zeros((n, 3, 6, 8))
+        self.TL = np.ones((n, 3))
+        self.LIM = np.full((n, 3, 2), math.inf)
+        self.RK = np.zeros((n, 2), dtype=np.int64)
+        self.RC = np.zeros((n, 2, 3))
+        self.RS = np.zeros((n, 2))
+        self.CAM = np.zeros((n, 2))
+        self.CHK = np.zeros((n, 4), dtype=np.bool_)
+        cache: dict = {}
+        u0, v0 = initial_velocities(opts, 1.0)
+        for i, c in enumerate(chairs):
+            self.P[i] = np.array(parameters(c), dtype=float)
+            toe = math.radians(c.toe_deg)
+            force = opts.impulse_force if forces is None else float(forces[i])
+            self.S[i, :8] = (float(speeds[i]) * u0, v0, opts.eta0, opts.beta0, force, math.cos(toe), math.sin(toe),
+                         1.0 if toe != 0 else 0.0)
+            key = (c.main_tire, c.main_lateral_scale, c.main_rolling_scale, c.caster_tire, c.caster_lateral_scale,
+                   c.caster_rolling_scale, c.camber_deg, c.camber_coefficient)
+            if key not in cache:
+                cache[key] = self._tire_arrays(c, opts)
+            (self.TK[i], self.TS[i], self.TL[i], self.LIM[i], self.RK[i], self.RC[i], self.RS[i], self.CAM[i],
+             self.CHK[i]) = cache[key]
+
+    @staticmethod
+    def _tire_arrays(c: Chair, opts: Options) -> tuple:
+        main, caster = c.main_tire_model(), c.caster_tire_model()
+        if opts.scheme == "wchair":   # MECHAN: CAMCOF*POLYFT(TIRY, INT(CAMANG), FZ), the unscaled tire
+            cam_tire, cam_deg = _tires.get(c.main_tire), float(math.trunc(c.camber_deg))
+        else:
+            cam_tire, cam_deg = main, float(c.camber_deg)
+        slots = [_tire_slot(t) for t in (caster, main, cam_tire)]
+        fc = 0.0
+        if cam_deg != 0:
+            fc = cam_tire.camber_coefficient if c.camber_coefficient is None else float(c.camber_coefficient)
+        rolls = [_rolling_slot(caster, c.caster_rolling_scale != 0), _rolling_slot(main, c.main_rolling_scale != 0)]
+        chk_c, chk_m = isinstance(caster, _tires.Tire), isinstance(main, _tires.Tire)
+        return ([s[0] for s in slots], [s[1] for s in slots], [s[2] for s in slots], [s[3] for s in slots],
+                [r[0] for r in rolls], [r[1] for r in rolls], [r[2] for r in rolls], (cam_deg, fc),
+                (chk_c, chk_c, chk_m, chk_m))
+
+
+def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:
+    """The kernels' plane slots: ``(on, cos(phi), sin(phi), cos(theta), sin(theta))`` (``on`` 1.0 on a slope).
+
+    Parameters
+    ----------
+    opts : Options
+        Checked options (``slope`` = cross slope phi, grade theta, deg).
+
+    Returns
+    -------
+    tuple of 5 float
+        The flag and the cosines and sines of the cross slope and the grade.
+    """
+    return (1.0 if opts.on_slope else 0.0, *opts.slope_trig())
