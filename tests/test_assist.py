@@ -212,7 +212,7 @@ def test_recovery_within_the_torque_limit(schedules, chair):
     heading error stays under 2 deg, while the open-loop chair passes 10 deg within 0.5 s."""
     sched = schedules["gyro"]
     (closed, opened), = assist.recovery_runs(sched, speeds=(3.0,), impulses=(400.0,), seed=1)
-    assert 0 < closed.peak_torque_Nm <= sched.drive.torque_limit
+    assert 0 < closed.peak_torque_N_m <= sched.drive.torque_limit
     assert closed.settle_time_s is not None and closed.settle_time_s < 2.0
     assert closed.peak_heading_error_deg < 2.0
     assert opened.time_to_10deg_s is not None and opened.time_to_10deg_s < 0.5
