@@ -174,17 +174,24 @@ def test_margins_at_the_plant_input(schedules):
     its 200 Hz implementation.  (With the drive's 20 ms motor lag in the loop the gyro design's
     recovery is partial: phase margin 42-46 deg and min |1 + L| 0.69-0.73, against 57-58 deg and 0.9
     without the lag; the full-state LQR keeps its guarantees because the motor state is in its
-    model.)"""
+    model.)
+
+    The balanced disk margin follows from Kalman's inequality alone: alpha = min 2 |1 + L| / |1 - L| and
+    |1 - L| <= |1 + L| + 2, so |1 + L| >= 1 gives alpha >= 2/3, a disk gain margin >= 20 log10(2) dB and a
+    disk phase margin >= 2 atan(1/3) (python-control's disk_margins checked against that bound)."""
     for d in schedules["full-state"].designs:
         m = assist.loop_margins(d)
-        assert m.disk_margin >= 1 - 1e-6
+        assert m.min_return_difference >= 1 - 1e-6
         assert m.phase_margin_deg >= 60.0
         assert m.gain_margin_upper == math.inf
         assert m.gain_margin_lower < 0.5
+        assert m.disk_margin >= 2 / 3 - 1e-6
+        assert m.disk_gain_margin_db >= 20 * math.log10(2) - 1e-5
+        assert m.disk_phase_margin_deg >= math.degrees(2 * math.atan(1 / 3)) - 1e-5
     for d in schedules["gyro"].designs:
         m = assist.loop_margins(d)
         assert m.phase_margin_deg > 40.0
-        assert m.disk_margin > 0.65
+        assert m.min_return_difference > 0.65
         assert m.gain_margin_lower < 0.5
         assert m.delay_margin_s > 0.03
 

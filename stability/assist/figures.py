@@ -414,7 +414,7 @@ def figure_margin_pair(sched: Schedule, curves: MarginCurves) -> Figure:
                    "the balanced disk margin's gain and phase, which the loop tolerates together (at most the "
                    "classical ones; Seiler, Packard & Gahinet 2020)",
                    nrows=1, ncols=3)
-    names = ("continuous design loop", f"sampled loop, {rate:g} Hz")
+    names = ("continuous", f"sampled, {rate:g} Hz")
     for a, data, disk, what, unit in ((ax[0, 0], curves.gain_db, curves.disk_gain_db,
                                        "gain margin (smaller of up/down)", "dB"),
                                       (ax[0, 1], curves.phase_deg, curves.disk_phase_deg, "phase margin", "deg"),
@@ -424,12 +424,11 @@ def figure_margin_pair(sched: Schedule, curves: MarginCurves) -> Figure:
                    label=f"{name}, classical" if disk is not None else name)
             if disk is not None:
                 a.plot(curves.speeds, disk[i], color=colour(i), marker="os"[i], ms=3, mfc="none", ls=":",
-                       label=f"{name}, disk (gain and phase together)")
+                       label=f"{name}, disk")
         a.set_title(what)
         _labels(a, "speed (m/s)", f"{what.split(' (')[0]} ({unit})", legend=False)
-    fig.legend(*ax[0, 0].get_legend_handles_labels(), loc="lower center", ncol=2, fontsize=8)
-    fig.tight_layout(rect=(0.0, 0.08, 1.0, 0.93))
-    return fig
+        a.legend(fontsize=7, loc="upper right")
+    return _finish(fig)
 
 
 def figure_torque(sched: Schedule, rows: Sequence[TorqueRow]) -> Figure:

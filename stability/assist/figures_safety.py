@@ -38,7 +38,7 @@ def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] |
     lim = ts.limits()
     why = "; ".join(x.describe() for x in lim) if lim else "every checked constraint holds on the design grid"
     caption = (f"{why}. A constraint holds above ratio 1; the top speed is the highest design speed where all hold "
-               "there and below" + (". Not checked: " + ", ".join(f"{k} ({ENABLE[k]})" for k in ts.not_checked)
+               "there and below" + (". Not checked: " + ", ".join(ENABLE[k] for k in ts.not_checked)
                                     if ts.not_checked else ""))
     if faults is not None:
         caption += (". Right: worst single sensor fault (injected at 1 s, straight command) per speed, against the "

@@ -61,7 +61,7 @@ DESCRIPTIONS = {
     "faults": ("the number of unsafe single sensor faults", "", "the allowed", "above"),
 }
 #: How to add a constraint that was not checked.
-ENABLE = {"torque": "drop --no-check", "faults": "--faults"}
+ENABLE = {"torque": "the torque (run without --no-check)", "faults": "the single sensor faults (add --faults)"}
 
 
 def loop_delay(sched: Schedule) -> float:
@@ -192,12 +192,13 @@ class TopSpeed:
 
     def sentence(self) -> str:
         """One line: the safe top speed, what limits it with its value against its limit, and what was checked."""
-        top = "none" if self.safe_top_speed_m_s is None else f"{self.safe_top_speed_m_s:g} m/s"
         lim = self.limits()
         why = ("; ".join(x.describe() for x in lim) if lim else
                f"every checked constraint holds up to the last design speed {self.last_speed_m_s:g} m/s "
                "(extend --speeds to find the limit)")
-        return f"safe top speed {top}: {why}" + self._scope()
+        head = "no design speed is safe" if self.safe_top_speed_m_s is None else \
+            f"safe top speed {self.safe_top_speed_m_s:g} m/s"
+        return f"{head}: {why}" + self._scope()
 
     def warning(self) -> str | None:
         """The export's warning (one line) when the schedule goes beyond the safe top speed, else None."""
@@ -210,7 +211,7 @@ class TopSpeed:
     def _scope(self) -> str:
         if not self.not_checked:
             return ""
-        return " (not checked: " + ", ".join(f"{k} ({ENABLE[k]})" for k in self.not_checked) + ")"
+        return " (not checked: " + ", ".join(ENABLE[k] for k in self.not_checked) + ")"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON: ``safe_top_speed_m_s``, ``limited_by``, ``constraints_checked``, ``limits`` and ``checks``."""
