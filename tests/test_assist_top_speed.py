@@ -265,11 +265,11 @@ def test_disk_margins_of_the_assist_loops(chair, rate):
         A, B, C = np.asarray(L.A), np.asarray(L.B)[:, 0], np.asarray(L.C)[0]
         n = A.shape[0]
 
-        def resp(w: float) -> complex:
+        def resp(w: float, A=A, B=B, C=C, n=n, T=T) -> complex:
             z = np.exp(1j * w * T) if T else 1j * w
             return complex(C @ np.linalg.solve(z * np.eye(n) - A, B))
 
-        def alpha(w: float) -> float:
+        def alpha(w: float, resp=resp) -> float:
             Lw = resp(w)
             return 2 * abs(1 + Lw) / abs(1 - Lw)
 

@@ -32,7 +32,7 @@ from stability.runtime.notes import library_warnings
 from stability.settings.defaults import SAMPLE_RATE_HZ
 
 __all__ = ["Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins", "LOOP_INPUT",
-           "LOOP_OUTPUT", "GAIN_UNITS"]
+           "LOOP_OUTPUT", "GAIN_UNITS", "on_drive"]
 
 _DEG = math.pi / 180.0
 #: Signal names of the loop broken at the plant input (:meth:`Design.loop`, ``discrete_loop``): the yaw moment
@@ -250,12 +250,28 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     Kr, _, _ = control.lqr(p.A[ix], p.B[keep], Q[ix], R)
     K = np.zeros((1, p.n))
     K[0, keep] = np.asarray(Kr, dtype=float).reshape(-1)
-    drive_kw = {"sample_time": 1.0 / gyro.sample_rate_hz, "wheel_radius": drive.wheel_radius,
-                "track_width": drive.lever(chair)}
     if kind == "full-state":
-        return replace(realise(kind, p, K, None), **drive_kw)
+        return on_drive(realise(kind, p, K, None), gyro, drive, chair)
     d = realise(kind, p, K, _kalman(p, gyro, estimator) if speed != 0 else _kalman_standstill(p, gyro, estimator))
-    return replace(d, **drive_kw)
+    return on_drive(d, gyro, drive, chair)
+
+
+def on_drive(d: Design, gyro: GyroSensor, drive: DriveTrain, chair: Chair) -> Design:
+    """``d`` with the sample time of ``gyro`` and the wheel radius and track width of ``drive`` on ``chair``.
+
+    Parameters
+    ----------
+    d : Design
+    gyro : GyroSensor
+    drive : DriveTrain
+    chair : Chair
+
+    Returns
+    -------
+    Design
+    """
+    return replace(d, sample_time=1.0 / gyro.sample_rate_hz, wheel_radius=float(drive.wheel_radius),
+                   track_width=float(drive.lever(chair)))
 
 
 def _kalman(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:
