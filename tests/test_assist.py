@@ -647,13 +647,14 @@ def test_driving_figures_have_units_legends_and_titles(chair):
 
 @pytest.mark.slow
 def test_cli_pdf_has_the_driving_pages(tmp_path):
-    """``--no-check --pdf`` at two speeds writes 9 pages: gains, poles, margins, robustness, Figure 9-4
-    and the four driving pages (tracking, bias drift, continuous vs sampled margins, torque)."""
+    """``--no-check --pdf`` at two speeds writes 10 pages: gains, poles, margins, robustness, Figure 9-4,
+    the four driving pages (tracking, bias drift, continuous vs sampled margins, torque) and the safe top speed
+    (issue 33: in every PDF, not only with --faults)."""
     import re
 
     out = tmp_path / "assist.pdf"
     assert assist_main(["--speeds", "0.5,1.0", "--no-check", "--pdf", str(out)]) == 0
-    assert len(re.findall(rb"/Type\s*/Page\b(?!s)", out.read_bytes())) == 9
+    assert len(re.findall(rb"/Type\s*/Page\b(?!s)", out.read_bytes())) == 10
 
 
 # ---------------------------------------------------------------------------
