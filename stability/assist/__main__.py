@@ -193,7 +193,7 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     # the safe top speed: the sampled margins always, the torque (nonlinear runs at the design speeds) unless
     # --no-check, the single sensor faults with --faults; the export's README and warning need it
     torques = None if args.no_check else torque_requirement(sched, tuple(float(s) for s in sched.speeds))
-    faults = fault_runs(sched, seed=args.seed) if args.faults else None
+    faults = fault_runs(sched, seed=args.seed, progress=True) if args.faults else None
     top = check_top_speed(sched, rows, torque_rows=torques, fault_rows=faults)
     fw_json, fw_text = _firmware(args, sched, top)
     fw_json.update(_top_speed_json(top, faults))

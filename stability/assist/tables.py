@@ -11,7 +11,7 @@ import numpy as np
 
 from stability.assist._format import fmt, json_float
 from stability.assist.controller import DigitalController
-from stability.assist.design import LoopMargins, closed_loop_poles, loop_margins
+from stability.assist.design import GAIN_UNITS, LoopMargins, closed_loop_poles, loop_margins
 from stability.assist.digital import MarginPair, margin_pair
 from stability.assist.driving import HOLD_TOLERANCE, SlopeHold, tracking_step
 from stability.assist.plant import plant, reversed_chair
@@ -41,7 +41,10 @@ class GainRow:
         LQR gain on :data:`~stability.assist.plant.STATES` (N m of yaw moment
         per SI unit of each state, ``Mz = -gains . x``).
     wheel_torque_gains : tuple of float
-        The same as differential torque per wheel (N m per unit state).
+        The same as differential torque per wheel (N m per unit state; ``gains`` times ``r / (d1 + d2)``,
+        :attr:`~stability.assist.design.Design.wheel_torque_gains`).  The JSON row also lists each gain's unit
+        (``gain_units``, :data:`~stability.assist.design.GAIN_UNITS`; N m of yaw moment for ``gains``, N m per
+        wheel for ``wheel_torque_gains``).
     estimator_gain : tuple of float or None
         Gyro design: Kalman gain on ``v, r, eta, eta_dot, beta, beta_dot``
         per rad/s of gyro innovation.
@@ -99,6 +102,7 @@ class GainRow:
             "design": self.design,
             "gains": list(self.gains),
             "gain_states": list(self.gain_states),
+            "gain_units": [GAIN_UNITS.get(x, "") for x in self.gain_states],
             "wheel_torque_gains": list(self.wheel_torque_gains),
             "estimator_gain": None if self.estimator_gain is None else list(self.estimator_gain),
             "closed_loop_poles": [[float(p.real), float(p.imag)] for p in self.closed_loop_poles],
@@ -227,7 +231,9 @@ def format_table(sched: Schedule, rows: Sequence[GainRow]) -> str:
            f"{sched.gyro.sample_rate_hz:g} Hz, bias estimate {sched.gyro.bias_time_constant_s:g} s"
            if sched.kind == "gyro" else f"; {sched.gyro.sample_rate_hz:g} Hz"),
         "Gains: differential torque per wheel, tau = -(k . x), x = [v m/s, r rad/s, eta rad, eta_dot rad/s, "
-        "beta rad, beta_dot rad/s, psi rad" + (", mz N m]" if motor else "]"),
+        "beta rad, beta_dot rad/s, psi rad" + (", mz N m]" if motor else "]")
+        + f" (Python: Design.wheel_torque_gains; the yaw-moment gain Design.K = k (d1 + d2) / r = "
+        f"{sched.designs[0].yaw_moment_per_wheel_torque:.4g} k)",
         "",
         f"{'U':>5s} {'k_v':>8s} {'k_r':>8s} {'k_eta':>8s} {'k_etad':>8s} {'k_beta':>8s} {'k_betad':>8s} "
         f"{'k_psi':>8s}" + (f" {'k_mz':>8s}" if motor else "")

@@ -194,8 +194,8 @@ class TopSpeed:
         """One line: the safe top speed, what limits it with its value against its limit, and what was checked."""
         lim = self.limits()
         why = ("; ".join(x.describe() for x in lim) if lim else
-               f"every checked constraint holds up to the last design speed {self.last_speed_m_s:g} m/s "
-               "(extend --speeds to find the limit)")
+               f"every checked constraint holds up to the last design speed {self.last_speed_m_s:g} m/s; extend "
+               "--speeds to find the limit")
         head = "no design speed is safe" if self.safe_top_speed_m_s is None else \
             f"safe top speed {self.safe_top_speed_m_s:g} m/s"
         return f"{head}: {why}" + self._scope()
