@@ -60,7 +60,7 @@ def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] |
     a.set_ylabel("value / limit (torque: limit / peak) (-)")
     a.set_title("constraints")
     a.grid(alpha=0.3)
-    a.legend(fontsize=7, loc="upper right")
+    a.legend(fontsize=7)
     if faults is not None:
         _faults_panel(ax[0, 1], faults)
     fig.tight_layout(rect=(0.0, 0.0, 1.0, 0.93))
