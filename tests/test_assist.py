@@ -174,17 +174,24 @@ def test_margins_at_the_plant_input(schedules):
     its 200 Hz implementation.  (With the drive's 20 ms motor lag in the loop the gyro design's
     recovery is partial: phase margin 42-46 deg and min |1 + L| 0.69-0.73, against 57-58 deg and 0.9
     without the lag; the full-state LQR keeps its guarantees because the motor state is in its
-    model.)"""
+    model.)
+
+    The balanced disk margin follows from Kalman's inequality alone: alpha = min 2 |1 + L| / |1 - L| and
+    |1 - L| <= |1 + L| + 2, so |1 + L| >= 1 gives alpha >= 2/3, a disk gain margin >= 20 log10(2) dB and a
+    disk phase margin >= 2 atan(1/3) (python-control's disk_margins checked against that bound)."""
     for d in schedules["full-state"].designs:
         m = assist.loop_margins(d)
-        assert m.disk_margin >= 1 - 1e-6
+        assert m.min_return_difference >= 1 - 1e-6
         assert m.phase_margin_deg >= 60.0
         assert m.gain_margin_upper == math.inf
         assert m.gain_margin_lower < 0.5
+        assert m.disk_margin >= 2 / 3 - 1e-6
+        assert m.disk_gain_margin_db >= 20 * math.log10(2) - 1e-5
+        assert m.disk_phase_margin_deg >= math.degrees(2 * math.atan(1 / 3)) - 1e-5
     for d in schedules["gyro"].designs:
         m = assist.loop_margins(d)
         assert m.phase_margin_deg > 40.0
-        assert m.disk_margin > 0.65
+        assert m.min_return_difference > 0.65
         assert m.gain_margin_lower < 0.5
         assert m.delay_margin_s > 0.03
 
@@ -212,7 +219,7 @@ def test_recovery_within_the_torque_limit(schedules, chair):
     heading error stays under 2 deg, while the open-loop chair passes 10 deg within 0.5 s."""
     sched = schedules["gyro"]
     (closed, opened), = assist.recovery_runs(sched, speeds=(3.0,), impulses=(400.0,), seed=1)
-    assert 0 < closed.peak_torque_Nm <= sched.drive.torque_limit
+    assert 0 < closed.peak_torque_N_m <= sched.drive.torque_limit
     assert closed.settle_time_s is not None and closed.settle_time_s < 2.0
     assert closed.peak_heading_error_deg < 2.0
     assert opened.time_to_10deg_s is not None and opened.time_to_10deg_s < 0.5
@@ -640,13 +647,14 @@ def test_driving_figures_have_units_legends_and_titles(chair):
 
 @pytest.mark.slow
 def test_cli_pdf_has_the_driving_pages(tmp_path):
-    """``--no-check --pdf`` at two speeds writes 9 pages: gains, poles, margins, robustness, Figure 9-4
-    and the four driving pages (tracking, bias drift, continuous vs sampled margins, torque)."""
+    """``--no-check --pdf`` at two speeds writes 10 pages: gains, poles, margins, robustness, Figure 9-4,
+    the four driving pages (tracking, bias drift, continuous vs sampled margins, torque) and the safe top speed
+    (issue 33: in every PDF, not only with --faults)."""
     import re
 
     out = tmp_path / "assist.pdf"
     assert assist_main(["--speeds", "0.5,1.0", "--no-check", "--pdf", str(out)]) == 0
-    assert len(re.findall(rb"/Type\s*/Page\b(?!s)", out.read_bytes())) == 9
+    assert len(re.findall(rb"/Type\s*/Page\b(?!s)", out.read_bytes())) == 10
 
 
 # ---------------------------------------------------------------------------

@@ -93,7 +93,8 @@ def test_top_speed_is_the_last_speed_before_the_first_failure(sched):
     faults.append(SimpleNamespace(speed_m_s=1.0, outcome="unsafe"))
     ts = TS.top_speed(sched, rows, torques, faults)
     assert ts.safe_top_speed_m_s is None and ts.limited_by == "faults"
-    assert "safe top speed: none; limited by: faults" in TS.format_top_speed(ts)
+    assert TS.format_top_speed(ts).endswith("No design speed is safe: at 1 m/s the number of unsafe single sensor "
+                                            "faults is 1, above the allowed 0.")
 
 
 def test_cli_refuses_faults_for_the_full_state_design(capsys):
@@ -111,7 +112,8 @@ def test_cli_faults_json_text_and_pdf(tmp_path, capsys):
     data = json.loads(js.read_text())
     assert len(data["faults"]) == 3 * 2 * len(F.FAULTS)
     assert "safe_top_speed_m_s" in data and "limited_by" in data
-    assert f"safe top speed: {data['safe_top_speed_m_s']:g} m/s; limited by: {data['limited_by']}" in out
+    assert f"Safe top speed {data['safe_top_speed_m_s']:g} m/s" in out and data["top_speed_constraints"] == \
+        list(TS.CONSTRAINTS[:3]) + ["faults"]               # --no-check: the torque is not checked
     assert pdf.stat().st_size > 0
 
 

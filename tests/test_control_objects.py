@@ -48,7 +48,10 @@ def test_bode_and_margin_of_the_loop_transfer(design):
     L = design.loop()
     Ld = assist.discrete_loop(design)
     assert Ld.dt == pytest.approx(1 / 100.0, rel=1e-15) and design.sample_time == Ld.dt
-    assert Ld.input_labels == ["Mz"] and Ld.output_labels == ["u"] and Ld.name == "gyro_loop_U1"
+    assert Ld.input_labels == ["Mz_N_m"] and Ld.output_labels == ["u_N_m"] and Ld.name == "gyro_loop_U1"
+    # the continuous loop is named and labelled the same way, its states those of the plant and the estimator
+    assert L.input_labels == ["Mz_N_m"] and L.output_labels == ["u_N_m"] and L.name == "gyro_loop_U1"
+    assert L.state_labels[:8] == list(design.plant.states) and L.state_labels[8] == "xhat_v"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")        # python-control's own frequency-grid notes
         gm, pm, wcg, wcp = control.margin(L)

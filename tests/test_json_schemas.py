@@ -65,7 +65,9 @@ def test_schema_refuses_a_renamed_key(tmp_path):
         schemas.validate("slope", data)
 
 
-ASSIST_OPTIONAL = ("firmware", "faults", "safe_top_speed_m_s", "limited_by", "top_speed_checks")
+ASSIST_OPTIONAL = ("firmware", "faults")
+#: The safe top speed is in every assist output (issue 33), not only with --faults.
+ASSIST_TOP_SPEED = ("safe_top_speed_m_s", "limited_by", "top_speed_constraints", "top_speed_limits", "top_speed_checks")
 
 
 def _assist_json(argv):
@@ -84,6 +86,7 @@ def _assist_json(argv):
 def test_assist_schema_declares_every_optional_key_and_refuses_others():
     s = schemas.schema("assist")
     assert set(ASSIST_OPTIONAL) <= set(s["properties"]) and not set(ASSIST_OPTIONAL) & set(s["required"])
+    assert set(ASSIST_TOP_SPEED) <= set(s["required"])
     assert s["additionalProperties"] is False
 
 

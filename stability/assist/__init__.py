@@ -1,21 +1,23 @@
 """Motor assist for a front-wheel-drive power chair: LQR yaw stabilisation (Collins 1987, chapter 9).
 
 Plant (:mod:`.plant`), design options (:mod:`.weights`), LQR and Kalman
-design and margins (:mod:`.design`), gain schedule (:mod:`.schedule`),
-robustness box (:mod:`.robustness`), sampled controller (:mod:`.controller`),
-command tracking and gyro-bias handling (:mod:`.tracking`), the sampled
-loop and its margins (:mod:`.digital`), joystick commands (:mod:`.commands`), commanded driving, the torque
-requirement and the cross-slope check (:mod:`.driving`), nonlinear checks (:mod:`.recovery`),
-thesis Figure 9-4 (:mod:`.destabilising`),
-gain table (:mod:`.tables`), figures (:mod:`.figures`, :mod:`.figures_slope`, imported on demand:
-matplotlib) and the command line (``python -m stability.assist``).
+design and margins (:mod:`.design`; disk margins :mod:`.disk`), gain
+schedule (:mod:`.schedule`), robustness box (:mod:`.robustness`), sampled
+controller (:mod:`.controller`), command tracking and gyro-bias handling
+(:mod:`.tracking`), the sampled loop and its margins (:mod:`.digital`), the
+safe top speed (:mod:`.top_speed`), joystick commands (:mod:`.commands`),
+commanded driving, the torque requirement and the cross-slope check
+(:mod:`.driving`), nonlinear checks (:mod:`.recovery`), thesis Figure 9-4
+(:mod:`.destabilising`), gain table (:mod:`.tables`), figures
+(:mod:`.figures`, :mod:`.figures_slope`, imported on demand: matplotlib) and
+the command line (``python -m stability.assist``).
 Rationale and results: ``docs/assist.md``.
 """
 
 from __future__ import annotations
 
 from stability.assist.controller import ANTI_WINDUP, TRACKING_TIME, DigitalController
-from stability.assist.design import Design, LoopMargins, closed_loop_poles, design, loop_margins, realise
+from stability.assist.design import GAIN_UNITS, Design, LoopMargins, closed_loop_poles, design, loop_margins, realise
 from stability.assist.destabilising import (
     DestabilisingSummary,
     destabilising_moment,
@@ -30,6 +32,7 @@ from stability.assist.digital import (
     margin_curves,
     margin_pair,
 )
+from stability.assist.disk import DiskMargins, disk_margins
 from stability.assist.driving import (
     CROSS_SLOPES,
     HOLD_TOLERANCE,
@@ -84,6 +87,7 @@ from stability.assist.tables import (
     pole_curves,
     reverse_table,
 )
+from stability.assist.top_speed import TopSpeed, check_top_speed, margin_top_speed
 from stability.assist.tracking import (
     DriftCurves,
     Feedforward,
@@ -107,7 +111,8 @@ __all__ = [
     "CommandRun", "command_run", "tracking_step", "step_command", "ramp_command", "slalom_command",
     "TorqueRow", "torque_requirement", "traction_limit", "CROSS_SLOPES", "HOLD_TOLERANCE", "SlopeHold", "slope_hold",
     "ReverseRow", "reverse_table", "format_margins",
-    "Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins",
+    "Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins", "GAIN_UNITS",
+    "DiskMargins", "disk_margins", "TopSpeed", "check_top_speed", "margin_top_speed",
     "Schedule", "schedule",
     "ROBUST_PARAMETERS", "WorstCorner", "Robustness", "robustness",
     "ANTI_WINDUP", "TRACKING_TIME", "DigitalController",

@@ -18,16 +18,17 @@ from stability.assist.driving import (
     CROSS_SLOPES,
     TRACKING_SPEED,
     SlopeHold,
+    TorqueRow,
     slope_hold,
     torque_requirement,
     tracking_runs,
     traction_limit,
 )
 from stability.assist.export_run import check_export, run_export
+from stability.assist.faults import FaultRow, fault_runs, format_faults
 from stability.assist.firmware import Q_FORMATS
 from stability.assist.recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from stability.assist.robustness import Robustness, robustness
-from stability.assist.safety import Safety, run_safety
 from stability.assist.schedule import Schedule, schedule
 from stability.assist.tables import (
     format_margins,
@@ -38,6 +39,7 @@ from stability.assist.tables import (
     pole_curves,
     reverse_table,
 )
+from stability.assist.top_speed import TopSpeed, check_top_speed, format_top_speed
 from stability.assist.tracking import drift_curves
 from stability.assist.weights import DESIGNS, GyroSensor, Weights
 from stability.chair import Chair
@@ -96,7 +98,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--sample-rate", type=float, default=GyroSensor.sample_rate_hz, metavar="HZ",
                    help="controller sample rate (Hz, default 200)")
     p.add_argument("--seed", type=int, default=0, help="seed of the gyro noise (default 0)")
-    p.add_argument("--no-check", action="store_true", help="skip the nonlinear simulations")
+    p.add_argument("--no-check", action="store_true",
+                   help="skip the nonlinear simulations (the safe top speed is then checked on the margins alone)")
     p.add_argument("--min-torque", action="store_true",
                    help="also find the smallest torque limit that recovers from the 400 N disturbance "
                         "at 1, 2, 3 m/s (bisection, ~1 min)")
@@ -112,8 +115,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "README.txt; created if missing) at --sample-rate, and report the number format's margins")
     p.add_argument("--faults", action="store_true",
                    help="simulate every single sensor fault at every design speed on level ground and a 2 deg cross "
-                        "slope (monitor, detection, degraded mode) and find the safe top speed (gyro design; "
-                        "a few minutes)")
+                        "slope (monitor, detection, degraded mode) and add them to the safe top speed's constraints "
+                        "(gyro design; a few minutes)")
     p.add_argument("--q-format", default=D.Q_FORMAT, choices=list(Q_FORMATS),
                    help=f"number format of the exported tables (default {D.Q_FORMAT})")
     return p
@@ -187,12 +190,15 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     rows = gain_table(sched, check=not args.no_check, seed=args.seed)
     rev = reverse_table(sched) if args.reverse else []
     holds = [] if args.no_check else _slope_holds(sched)
-    fw_json, fw_text = _firmware(args, sched)
-    safety = run_safety(sched, rows, seed=args.seed) if args.faults else None
-    fw_json.update(safety.to_dict() if safety else {})
-    fw_text += safety.format() if safety else ""
+    # the safe top speed: the sampled margins always, the torque (nonlinear runs at the design speeds) unless
+    # --no-check, the single sensor faults with --faults; the export's README and warning need it
+    torques = None if args.no_check else torque_requirement(sched, tuple(float(s) for s in sched.speeds))
+    faults = fault_runs(sched, seed=args.seed, progress=True) if args.faults else None
+    top = check_top_speed(sched, rows, torque_rows=torques, fault_rows=faults)
+    fw_json, fw_text = _firmware(args, sched, top)
+    fw_json.update(_top_speed_json(top, faults))
     rob = robustness(sched)
-    checks = None if args.no_check else _nonlinear_checks(sched, args.seed)
+    checks = None if args.no_check else _nonlinear_checks(sched, args.seed, torques or [])
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(s) for s in speeds], "design": args.design,
                    "max_heading_error_deg": args.max_heading_error, "max_yaw_rate_deg_s": args.max_yaw_rate,
@@ -218,7 +224,9 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
             return 0
     print(format_table(sched, rows))
     print(f"\nMargins at the plant input, continuous / sampled at {sched.gyro.sample_rate_hz:g} Hz (ZOH, one-sample "
-          f"computation delay, {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both); yaw-rate step "
+          f"computation delay, {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both): classical (GM: the "
+          "smaller of the gain increase and decrease that destabilises) and balanced disk margins (alpha, and the "
+          "gain and phase change it tolerates together; Seiler, Packard & Gahinet 2020); yaw-rate step "
           f"(nonlinear loop, {1e3 * COMMAND_FILTER:g} ms reference model):")
     print(format_margins(rows))
     if rev:
@@ -235,10 +243,11 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
         print("\nNonlinear recovery (10 s, WCHAIR scheme, exact model, pin friction, torque limit"
               + (", gyro noise and bias" if sched.kind == "gyro" else "") + "): closed loop vs open loop")
         print(format_recovery(runs))
-        print("\nFigure 9-4 criterion, open loop (destabilising moment of the tire forces vs the motors' "
-              f"{sched.drive.max_yaw_moment(sched.chair):.0f} N m):")
+        print("\nFigure 9-4 criterion, open loop (destabilising yaw moment of the tire forces vs the motors' "
+              f"{sched.drive.max_yaw_moment(sched.chair):.0f} N m of yaw moment at {sched.drive.torque_limit:g} N m "
+              "per wheel):")
         for closed, d_ in checks.figure_9_4:
-            print(f"  {closed.speed:g} m/s, {closed.impulse_force:g} N: peak {d_.peak_moment_Nm:.0f} N m "
+            print(f"  {closed.speed:g} m/s, {closed.impulse_force:g} N: peak {d_.peak_moment_N_m:.0f} N m "
                   f"({d_.fraction_of_capacity:.0%}) up to {d_.valid_until_s:.2f} s (heading "
                   f"{d_.heading_at_end_deg:.0f} deg; a slip angle reaches 8 deg or the heading 90 deg)"
                   + ("" if d_.exceeds_capacity_at_s is None else
@@ -256,25 +265,42 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
                           f"{a.fitted_1_s:.3f} 1/s ({a.relative_error:.2%})" for a in agree))
         print(format_slope_holds(holds))
     sys.stdout.write(fw_text)
+    if faults is not None:
+        print("\n" + format_faults(faults))
     if args.min_torque:
         for s_ in (1.0, 2.0, 3.0):
             mt = minimum_torque_limit(sched, s_)
             print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
                   f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
+    print("\n" + format_top_speed(top))
     if args.output:
-        _write_pdf(sched, rows, rob, runs, tmp["-o"], [h for h in holds if isinstance(h, SlopeHold)], safety)
+        _write_pdf(sched, rows, rob, runs, tmp["-o"], [h for h in holds if isinstance(h, SlopeHold)], top, faults,
+                   torques)
     for option, path in (("--json-file", args.json_file), ("-o", args.output)):
         if option in tmp:
             print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 
-def _firmware(args: argparse.Namespace, sched: Schedule) -> tuple[dict, str]:
-    """``--export-c``: write the firmware; its JSON entry (``{"firmware": ...}`` or empty) and its text block."""
+def _firmware(args: argparse.Namespace, sched: Schedule, top: TopSpeed) -> tuple[dict, str]:
+    """``--export-c``: write the firmware; its JSON entry (``{"firmware": ...}`` or empty) and its text block.
+
+    A schedule beyond the safe top speed is written with a warning: one line on stderr and in the README."""
     if not args.export_c:
         return {}, ""
-    report = run_export(sched, args.export_c, args.q_format, seed=args.seed)
+    report = run_export(sched, args.export_c, args.q_format, seed=args.seed, top=top)
+    if report.warning:
+        print(f"warning: --export-c: {report.warning}", file=sys.stderr)
     return {"firmware": report.to_dict()}, "\n" + report.format() + "\n"
+
+
+def _top_speed_json(top: TopSpeed, faults: list[FaultRow] | None) -> dict:
+    """The top-speed keys of the JSON (and ``faults`` with --faults)."""
+    t = top.to_dict()
+    out = {"safe_top_speed_m_s": t["safe_top_speed_m_s"], "limited_by": t["limited_by"],
+           "top_speed_constraints": t["constraints_checked"], "top_speed_limits": t["limits"],
+           "top_speed_checks": t["checks"]}
+    return {**out, "faults": [f.to_dict() for f in faults]} if faults is not None else out
 
 
 @dataclass(frozen=True)
@@ -299,12 +325,11 @@ class _Checks:
         }
 
 
-def _nonlinear_checks(sched: Schedule, seed: int) -> _Checks:
+def _nonlinear_checks(sched: Schedule, seed: int, torques: list[TorqueRow]) -> _Checks:
     runs = recovery_runs(sched, seed=seed)
     fig = [(closed, destabilising_summary(opened.result, sched.drive, sched.chair))
            for closed, opened in runs if opened is not None]
-    return _Checks(runs, fig, torque_requirement(sched), traction_limit(sched),
-                   [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)])
+    return _Checks(runs, fig, torques, traction_limit(sched), [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)])
 
 
 def _slope_holds(sched: Schedule) -> list[SlopeHold | dict]:
@@ -320,10 +345,12 @@ def _slope_holds(sched: Schedule) -> list[SlopeHold | dict]:
 
 
 def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, path: str,
-               holds: list[SlopeHold], safety: Safety | None = None) -> None:
+               holds: list[SlopeHold], top: TopSpeed, faults: list[FaultRow] | None,
+               torques: list[TorqueRow] | None) -> None:
     """The assist figures as a PDF at ``path`` (matplotlib is imported only here)."""
     # matplotlib is imported only when a PDF is asked for
     from stability.assist import figures, figures_slope
+    from stability.assist.figures_safety import figure_top_speed
 
     figs = [figures.figure_gains(sched, rows), figures.figure_poles(sched, rows, pole_curves(sched), rob),
             figures.figure_margins(sched, rows), figures.figure_robustness(rob, sched)]
@@ -342,13 +369,11 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
     figs += [figures.figure_tracking(sched, tracking_runs(sched)),
              figures.figure_drift(sched, drift_curves(sched.at(TRACKING_SPEED), bias_time_constant=tb)),
              figures.figure_margin_pair(sched, margin_curves(sched.speeds, [r.margin_pair for r in rows])),
-             figures.figure_torque(sched, torque_requirement(sched, tuple(float(s) for s in sched.speeds)))]
+             figures.figure_torque(sched, torques if torques is not None
+                                   else torque_requirement(sched, tuple(float(s) for s in sched.speeds)))]
     if holds:
         figs.append(figures_slope.figure_slope_hold(sched, holds))
-    if safety is not None:
-        from stability.assist.figures_safety import figure_top_speed
-
-        figs.append(figure_top_speed(sched, safety.top, safety.faults))
+    figs.append(figure_top_speed(sched, top, faults))
     write_pdf(figs, path, title=f"stability.assist: {sched.kind} LQR for {sched.chair.name}")
 
 

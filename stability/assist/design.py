@@ -14,6 +14,7 @@ import control
 import numpy as np
 
 from stability.assist._format import json_float
+from stability.assist.disk import disk_margins
 from stability.assist.plant import Plant, measurement_matrix, plant, standstill_plant, system_name
 from stability.assist.weights import (
     DEFAULT_ESTIMATOR,
@@ -30,9 +31,17 @@ from stability.runtime.checks import check_choice
 from stability.runtime.notes import library_warnings
 from stability.settings.defaults import SAMPLE_RATE_HZ
 
-__all__ = ["Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins"]
+__all__ = ["Design", "design", "realise", "closed_loop_poles", "LoopMargins", "loop_margins", "LOOP_INPUT",
+           "LOOP_OUTPUT", "GAIN_UNITS", "on_drive"]
 
 _DEG = math.pi / 180.0
+#: Signal names of the loop broken at the plant input (:meth:`Design.loop`, ``discrete_loop``): the yaw moment
+#: applied at the plant input and the controller's output ``-Mz`` (both N m).
+LOOP_INPUT, LOOP_OUTPUT = "Mz_N_m", "u_N_m"
+#: Unit of each gain by state (:attr:`Design.K`: N m of yaw moment; :attr:`Design.wheel_torque_gains`: N m per
+#: drive wheel) per SI unit of the state.
+GAIN_UNITS = {"v": "N m/(m/s)", "r": "N m/(rad/s)", "eta": "N m/rad", "eta_dot": "N m/(rad/s)", "beta": "N m/rad",
+              "beta_dot": "N m/(rad/s)", "psi": "N m/rad", "mz": "N m/N m"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,7 +61,10 @@ class Design:
     plant : Plant
         Nominal plant the controller was designed on.
     K : ndarray (1, n)
-        LQR gain (N m per unit state) on ``plant.states``.
+        LQR gain on ``plant.states`` as a yaw moment: ``Mz = -K x`` (N m of yaw
+        moment per SI unit of each state: N m/(m/s), N m/(rad/s), N m/rad, ...).
+        The command line prints the same gain per drive wheel,
+        :attr:`wheel_torque_gains` (``K`` times ``wheel_radius / track_width``).
     L : ndarray (6, 1) or None
         Kalman gain of the gyro design.
     Ac, Bc, Cc, Dc : ndarray
@@ -66,6 +78,17 @@ class Design:
         Sample time of the sampled controller (s): ``1 / gyro.sample_rate_hz``
         of the design's :class:`~stability.assist.weights.GyroSensor`, so the
         discrete loop and its margins take it from here (given once).
+    wheel_radius : float
+        Rolling radius ``r`` of the drive wheels (m), from the design's
+        :class:`~stability.chair.power.DriveTrain` (nan for a design made by
+        :func:`realise` alone).
+    track_width : float
+        ``d1 + d2``, the lateral distance between the drive wheels' contact
+        points (m): the arm of the couple of the two wheel forces
+        (:meth:`~stability.chair.power.DriveTrain.lever`).  A differential
+        torque ``tau`` per wheel (``+tau`` left, ``-tau`` right) gives ground
+        forces ``+-tau / r`` and the yaw moment ``Mz = tau (d1 + d2) / r``
+        (Collins 1987, eq 6-3; ``docs/power-chair.md``).
     """
 
     kind: str
@@ -80,6 +103,29 @@ class Design:
     model_A: np.ndarray | None = None
     model_B: np.ndarray | None = None
     sample_time: float = 1.0 / SAMPLE_RATE_HZ
+    wheel_radius: float = math.nan
+    track_width: float = math.nan
+
+    @property
+    def yaw_moment_per_wheel_torque(self) -> float:
+        """``(d1 + d2) / r``: yaw moment (N m) per N m of differential torque per wheel (-).
+
+        3.09 for the power-fwd preset (0.55 m / 0.178 m); nan when the design has no drive train.
+        """
+        return float(self.track_width / self.wheel_radius)
+
+    @property
+    def wheel_torque_gains(self) -> np.ndarray:
+        """The LQR gain as differential torque per drive wheel, ``tau = -k x`` (1, n): the command line's gains.
+
+        ``k = K r / (d1 + d2)`` (:attr:`wheel_radius`, :attr:`track_width`), in N m per wheel per SI unit of
+        each state (:data:`GAIN_UNITS`).
+
+        Returns
+        -------
+        ndarray (1, n)
+        """
+        return self.K / self.yaw_moment_per_wheel_torque
 
     @property
     def measured(self) -> tuple[str, ...]:
@@ -111,10 +157,18 @@ class Design:
         Returns
         -------
         control.StateSpace
+            SISO, continuous: input ``Mz_N_m`` (the yaw moment at the plant
+            input, N m), output ``u_N_m`` (the controller's output ``-Mz``,
+            N m); named ``<design>_loop_U<speed>`` like
+            :func:`~stability.assist.digital.discrete_loop`.
         """
         p = true_plant or self.plant
         P = p.ss("states" if self.kind == "full-state" else "gyro")[:, 0]
-        return control.series(P, self.controller_ss())
+        C = self.controller_ss()
+        L = control.series(P, C)            # states: the plant's, then the controller's
+        states = [*p.states, *C.state_labels] if L.nstates == p.n + C.nstates else None
+        return control.ss(L.A, L.B, L.C, L.D, inputs=[LOOP_INPUT], outputs=[LOOP_OUTPUT], states=states,
+                          name=system_name(f"{self.kind.replace('-', '_')}_loop", self.speed))
 
     def closed_loop_matrix(self, true_plant: Plant | None = None) -> np.ndarray:
         """State matrix (1/s) of plant (seven states) plus controller.
@@ -137,9 +191,20 @@ class Design:
         bottom = np.hstack([self.Bc @ Cy, self.Ac])
         return np.vstack([top, bottom])
 
-    def gains_dict(self) -> dict[str, float]:
-        """LQR gains by state name (N m per SI unit of the state)."""
-        return {s: float(k) for s, k in zip(self.plant.states, self.K[0], strict=True)}
+    def gains_dict(self, per_wheel: bool = False) -> dict[str, float]:
+        """LQR gains by state name: yaw moment (N m per SI unit of the state, :attr:`K`) or, with
+        ``per_wheel``, differential torque per drive wheel (:attr:`wheel_torque_gains`, the command line's).
+
+        Parameters
+        ----------
+        per_wheel : bool
+
+        Returns
+        -------
+        dict
+        """
+        k = self.wheel_torque_gains if per_wheel else self.K
+        return {s: float(x) for s, x in zip(self.plant.states, k[0], strict=True)}
 
 
 def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights = DEFAULT_WEIGHTS,
@@ -186,9 +251,27 @@ def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights =
     K = np.zeros((1, p.n))
     K[0, keep] = np.asarray(Kr, dtype=float).reshape(-1)
     if kind == "full-state":
-        return replace(realise(kind, p, K, None), sample_time=1.0 / gyro.sample_rate_hz)
+        return on_drive(realise(kind, p, K, None), gyro, drive, chair)
     d = realise(kind, p, K, _kalman(p, gyro, estimator) if speed != 0 else _kalman_standstill(p, gyro, estimator))
-    return replace(d, sample_time=1.0 / gyro.sample_rate_hz)
+    return on_drive(d, gyro, drive, chair)
+
+
+def on_drive(d: Design, gyro: GyroSensor, drive: DriveTrain, chair: Chair) -> Design:
+    """``d`` with the sample time of ``gyro`` and the wheel radius and track width of ``drive`` on ``chair``.
+
+    Parameters
+    ----------
+    d : Design
+    gyro : GyroSensor
+    drive : DriveTrain
+    chair : Chair
+
+    Returns
+    -------
+    Design
+    """
+    return replace(d, sample_time=1.0 / gyro.sample_rate_hz, wheel_radius=float(drive.wheel_radius),
+                   track_width=float(drive.lever(chair)))
 
 
 def _kalman(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:
@@ -277,8 +360,18 @@ class LoopMargins:
         Gain-crossover frequency of that phase margin (rad/s).
     delay_margin_s : float
         Smallest ``pm / w_gc``: the loop delay that destabilises (s).
+    min_return_difference : float
+        ``min |1 + L(jw)|`` (-), the return difference: the skew-1 (sensitivity) disk margin ``1 / max |S|``
+        (LQR guarantees >= 1).
     disk_margin : float
-        ``min |1 + L(jw)|``, the return difference (LQR guarantees >= 1).
+        Balanced (skew 0) disk margin ``alpha`` (-; :mod:`stability.assist.disk`, Seiler, Packard & Gahinet
+        2020): stable for every simultaneous gain and phase change inside the disk.
+    disk_gain_margin_db : float
+        Gain change the disk guarantees, up or down (dB); at most the classical margins.
+    disk_phase_margin_deg : float
+        Phase change the disk guarantees (deg), ``2 atan(alpha / 2)``; at most the classical one.
+    disk_frequency_rad_s : float or None
+        Frequency of the disk margin's worst case (rad/s).
     """
 
     gain_margin_upper: float
@@ -286,7 +379,11 @@ class LoopMargins:
     phase_margin_deg: float
     crossover_rad_s: float | None
     delay_margin_s: float
-    disk_margin: float
+    min_return_difference: float
+    disk_margin: float = math.nan
+    disk_gain_margin_db: float = math.nan
+    disk_phase_margin_deg: float = math.nan
+    disk_frequency_rad_s: float | None = None
 
     def to_dict(self) -> dict[str, float | str | None]:
         """JSON-ready dict (infinities as ``"inf"``)."""
@@ -298,7 +395,9 @@ def loop_margins(d: Design, true_plant: Plant | None = None) -> LoopMargins:
 
     Uses :func:`control.stability_margins` (``returnall=True``) on
     ``L(s) = C(s) P(s)``; the return difference ``min |1 + L(jw)|`` is
-    checked on a dense frequency grid (1e-3 to 1e4 rad/s).
+    checked on a dense frequency grid (1e-3 to 1e4 rad/s), and the balanced
+    disk margin (:func:`~stability.assist.disk.disk_margins`) is taken on
+    the same grid.
 
     Parameters
     ----------
@@ -319,11 +418,16 @@ def loop_margins(d: Design, true_plant: Plant | None = None) -> LoopMargins:
                           "a candidate frequency near the floating-point limit, where |1 + L| is 1, never the "
                           "minimum: the margins are unaffected"):
         gm, pm, sm, wpc, wgc, wms = control.stability_margins(L, returnall=True)
-    return _margins(L, gm, pm, sm, wgc, continuous=True)
+    m = _margins(L, gm, pm, sm, wgc, continuous=True)
+    if closed_loop_poles(d, true_plant).real.max() >= 0:
+        # the disk margin is the distance to instability of a stable loop; an unstable one has none
+        m = replace(m, disk_margin=0.0, disk_gain_margin_db=0.0, disk_phase_margin_deg=0.0, disk_frequency_rad_s=None)
+    return m
 
 
 def _margins(L: Any, gm: Any, pm: Any, sm: Any, wgc: Any, *, continuous: bool, dt: float = 0.0,
-             disk: float | None = None) -> LoopMargins:
+             return_difference: float | None = None) -> LoopMargins:
+    w = np.geomspace(1e-3, 1e4, 6000) if continuous else np.geomspace(1e-3, math.pi / dt * (1 - 1e-9), 6000)
     gm = np.atleast_1d(np.asarray(gm, dtype=float))
     pm = np.atleast_1d(np.asarray(pm, dtype=float))
     wgc = np.atleast_1d(np.asarray(wgc, dtype=float))
@@ -336,16 +440,19 @@ def _margins(L: Any, gm: Any, pm: Any, sm: Any, wgc: Any, *, continuous: bool, d
     # the smallest delay tau > 0 that rotates L(jw_gc) onto -1: w tau = pm (mod 360 deg); a negative pm at a
     # crossing of a stable loop needs 360 + pm of lag there (it read inf before)
     delay = (np.mod(pm[ok], 360.0) * _DEG / wgc[ok]) if ok.any() else np.array([np.inf])
-    if disk is None:
-        w = np.geomspace(1e-3, 1e4, 6000) if continuous else np.geomspace(1e-3, math.pi / dt, 6000)
+    rd = return_difference
+    if rd is None:
         resp = np.asarray(L(1j * w if continuous else np.exp(1j * w * dt))).reshape(-1)
-        disk = float(np.min(np.abs(1.0 + resp)))
+        rd = float(np.min(np.abs(1.0 + resp)))
     sm_c = np.atleast_1d(np.asarray(sm, dtype=float))
+    dk = disk_margins(L, w[::3])      # 2000 frequencies, the worst one refined
     return LoopMargins(
         gain_margin_upper=float(upper.min()) if upper.size else math.inf,
         gain_margin_lower=float(lower.max()) if lower.size else 0.0,
         phase_margin_deg=float(pm_abs.min()) if pm_abs.size else math.inf,
         crossover_rad_s=float(wgc[ok][np.argmin(pm_abs)]) if pm_abs.size else None,
         delay_margin_s=float(np.min(delay)) if np.size(delay) else math.inf,
-        disk_margin=min(disk, float(np.min(sm_c))) if sm_c.size and np.all(np.isfinite(sm_c)) else disk,
+        min_return_difference=min(rd, float(np.min(sm_c))) if sm_c.size and np.all(np.isfinite(sm_c)) else rd,
+        disk_margin=dk.alpha, disk_gain_margin_db=dk.gain_db, disk_phase_margin_deg=dk.phase_deg,
+        disk_frequency_rad_s=dk.frequency_rad_s,
     )

@@ -99,26 +99,26 @@ class DestabilisingSummary:
         End of the meaningful part (:func:`valid_until`, s).
     heading_at_end_deg : float
         Heading there (deg).
-    peak_moment_Nm : float
+    peak_moment_N_m : float
         Largest ``|tire yaw moment|`` (N m).
-    motor_capacity_Nm : float
+    motor_capacity_N_m : float
         Yaw moment of the motors at their torque limit (N m).
     fraction_of_capacity : float
-        ``peak_moment_Nm / motor_capacity_Nm``.
+        ``peak_moment_N_m / motor_capacity_N_m``.
     exceeds_capacity_at_s : float or None
         When the moment first exceeds the capacity (s); None if never.
     """
 
     valid_until_s: float
     heading_at_end_deg: float
-    peak_moment_Nm: float
-    motor_capacity_Nm: float
+    peak_moment_N_m: float
+    motor_capacity_N_m: float
     fraction_of_capacity: float
     exceeds_capacity_at_s: float | None
 
     def to_dict(self) -> dict[str, float | None]:
         """JSON-ready dict (keys with their units: ``peak_moment_N_m``, ``motor_capacity_N_m``)."""
-        return {k.replace("_Nm", "_N_m"): getattr(self, k) for k in self.__dataclass_fields__}
+        return {k: getattr(self, k) for k in self.__dataclass_fields__}
 
 
 def destabilising_summary(res: Any, drive: DriveTrain, chair: Chair) -> DestabilisingSummary:
@@ -144,8 +144,8 @@ def destabilising_summary(res: Any, drive: DriveTrain, chair: Chair) -> Destabil
     return DestabilisingSummary(
         valid_until_s=float(min(end, t[-1])),
         heading_at_end_deg=float(np.degrees(np.asarray(res.heading)[k][-1])) if k.any() else 0.0,
-        peak_moment_Nm=float(m.max()) if m.size else 0.0,
-        motor_capacity_Nm=float(cap),
+        peak_moment_N_m=float(m.max()) if m.size else 0.0,
+        motor_capacity_N_m=float(cap),
         fraction_of_capacity=float(m.max() / cap) if m.size else 0.0,
         exceeds_capacity_at_s=float(t[k][over[0]]) if over.size else None,
     )

@@ -17,7 +17,7 @@ import control
 import numpy as np
 from scipy.linalg import expm
 
-from stability.assist.design import Design, LoopMargins, _margins, loop_margins
+from stability.assist.design import LOOP_INPUT, LOOP_OUTPUT, Design, LoopMargins, _margins, loop_margins
 from stability.assist.plant import system_name
 
 __all__ = ["discrete_controller", "discrete_loop", "discrete_margins", "MarginPair", "margin_pair", "MarginCurves",
@@ -86,8 +86,8 @@ def discrete_loop(d: Design, sample_time: float | None = None,
     -------
     control.StateSpace
         Discrete (``dt`` = the sample time), SISO, negative feedback: input
-        ``Mz`` (the yaw moment applied at the plant input, N m), output ``u``
-        (the controller's ``-Mz``); named ``<design>_loop_U<speed>``.
+        ``Mz_N_m`` (the yaw moment applied at the plant input, N m), output
+        ``u_N_m`` (the controller's ``-Mz``, N m); named ``<design>_loop_U<speed>``.
     """
     sample_time = d.sample_time if sample_time is None else sample_time
     p = d.plant
@@ -96,7 +96,7 @@ def discrete_loop(d: Design, sample_time: float | None = None,
     C = np.eye(len(idx))[1:2] if d.kind == "gyro" else np.eye(len(idx))
     Pd = control.c2d(control.ss(A, B, C, np.zeros((C.shape[0], 1))), sample_time, method="zoh")
     L = control.series(Pd, discrete_controller(d, sample_time) if controller is None else controller)
-    return control.ss(L.A, L.B, L.C, L.D, L.dt, inputs=["Mz"], outputs=["u"],
+    return control.ss(L.A, L.B, L.C, L.D, L.dt, inputs=[LOOP_INPUT], outputs=[LOOP_OUTPUT],
                       name=system_name(f"{d.kind.replace('-', '_')}_loop", d.speed))
 
 
@@ -135,12 +135,13 @@ def discrete_margins(d: Design, sample_time: float | None = None,
     gm = [1.0 / abs(float(resp(x)[0].real)) for x in wpc if float(resp(x)[0].real) < 0]
     disk = float(np.min(np.abs(1.0 + Lw)))
     m = _margins(L, gm or [np.inf], pm if len(pm) else [np.inf], [disk], wgc or [np.nan], continuous=False,
-                 dt=T, disk=disk)
+                 dt=T, return_difference=disk)
     # L is strictly proper (one sample of computation delay): the closed loop u = -y has state matrix A - B C
     if np.max(np.abs(np.linalg.eigvals(A - np.outer(B, C)))) >= 1.0:
         # the sampled loop is unstable at this rate: no margin is left (phase margin reported negative, no
         # delay is tolerated); the text and the JSON say so instead of a margin read off an unstable loop
-        return replace(m, phase_margin_deg=-abs(m.phase_margin_deg), delay_margin_s=0.0, disk_margin=0.0)
+        return replace(m, phase_margin_deg=-abs(m.phase_margin_deg), delay_margin_s=0.0, min_return_difference=0.0,
+                       disk_margin=0.0, disk_gain_margin_db=0.0, disk_phase_margin_deg=0.0, disk_frequency_rad_s=None)
     return m
 
 
@@ -158,7 +159,8 @@ def _summary(m: LoopMargins) -> dict[str, Any]:
     lower = -20 * math.log10(m.gain_margin_lower) if m.gain_margin_lower > 0 else math.inf
     upper = 20 * math.log10(m.gain_margin_upper) if math.isfinite(m.gain_margin_upper) else math.inf
     return {"gain_db": min(lower, upper), "gain_up_db": upper, "gain_down_db": lower,
-            "phase_deg": m.phase_margin_deg, "delay_ms": 1e3 * m.delay_margin_s}
+            "phase_deg": m.phase_margin_deg, "delay_ms": 1e3 * m.delay_margin_s, "disk_margin": m.disk_margin,
+            "disk_gain_db": m.disk_gain_margin_db, "disk_phase_deg": m.disk_phase_margin_deg}
 
 
 @dataclass(frozen=True)
@@ -180,7 +182,10 @@ class MarginPair:
         """``{continuous: {gain_db, phase_deg, delay_ms, ...}, discrete: {...}}``.
 
         ``gain_db`` is the smaller of the gain increase and decrease (dB) that
-        destabilises (the open-loop chair is unstable, so a decrease can).
+        destabilises (the open-loop chair is unstable, so a decrease can);
+        ``disk_margin`` (-), ``disk_gain_db`` and ``disk_phase_deg`` are the
+        balanced disk margin and the gain (up or down) and phase change it
+        tolerates together (:mod:`stability.assist.disk`).
         """
         from stability.assist._format import json_float
 
@@ -220,6 +225,8 @@ class MarginCurves:
         ms.
     sample_time : float
         s.
+    disk_gain_db, disk_phase_deg : ndarray (2, n)
+        Gain (dB, up or down) and phase (deg) change the balanced disk margin tolerates together.
     """
 
     speeds: np.ndarray
@@ -227,6 +234,8 @@ class MarginCurves:
     phase_deg: np.ndarray
     delay_ms: np.ndarray
     sample_time: float
+    disk_gain_db: np.ndarray | None = None
+    disk_phase_deg: np.ndarray | None = None
 
 
 def margin_curves(speeds: Sequence[float] | np.ndarray, pairs: Sequence[MarginPair]) -> MarginCurves:
@@ -249,4 +258,5 @@ def margin_curves(speeds: Sequence[float] | np.ndarray, pairs: Sequence[MarginPa
         return out
 
     return MarginCurves(np.asarray(speeds, dtype=float), arr("gain_db"), arr("phase_deg"), arr("delay_ms"),
-                        float(pairs[0].sample_time) if pairs else math.nan)
+                        float(pairs[0].sample_time) if pairs else math.nan, arr("disk_gain_db"),
+                        arr("disk_phase_deg"))

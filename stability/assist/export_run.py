@@ -12,6 +12,7 @@ from stability.assist.export_c import export_c, vector_cases
 from stability.assist.firmware import firmware_tables
 from stability.assist.quantisation import MarginRow, margin_rows, worst_change
 from stability.assist.schedule import Schedule
+from stability.assist.top_speed import TopSpeed
 
 __all__ = ["check_export", "FirmwareReport", "run_export"]
 
@@ -60,6 +61,10 @@ class FirmwareReport:
         Case -> derived tolerance of the C against the vectors (N m).
     margins : list of MarginRow
         Ideal schedule vs the firmware's tables (float, Q15, Q31).
+    top_speed : str
+        The safe top speed in words (:meth:`~stability.assist.top_speed.TopSpeed.sentence`), as in the README.
+    warning : str or None
+        The schedule goes beyond the safe top speed (:meth:`~stability.assist.top_speed.TopSpeed.warning`).
     """
 
     directory: str
@@ -67,6 +72,8 @@ class FirmwareReport:
     sample_rate_hz: float
     tolerance_N_m: dict[str, float]
     margins: list[MarginRow]
+    top_speed: str = ""
+    warning: str | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (key ``firmware`` of the command's JSON)."""
@@ -74,6 +81,7 @@ class FirmwareReport:
 
         # the convention of stability.schemas: no value (a case's speed, a number format) inside a key
         return {"directory": self.directory, "q_format": self.q_format, "sample_rate_hz": self.sample_rate_hz,
+                "top_speed": self.top_speed, "warning": self.warning,
                 "tolerances": [{"case": k, "tolerance_N_m": v} for k, v in self.tolerance_N_m.items()],
                 "margins": [{"speed_m_s": r.speed_m_s,
                              "tables": [{"format": f, **{k: json_float(x) for k, x in m.items()}}
@@ -87,6 +95,8 @@ class FirmwareReport:
         lines = [f"Firmware export ({self.q_format} tables, {self.sample_rate_hz:g} Hz) written to {self.directory}: "
                  "assist.h, assist.c, assist_vectors.json, README.txt",
                  f"  largest derived tolerance against the vectors: {max(self.tolerance_N_m.values()):.3g} N m",
+                 *([f"  WARNING (also in README.txt): {self.warning}"] if self.warning else
+                   [f"  {self.top_speed} (also in README.txt)"]),
                  "  sampled margins, ideal schedule vs the firmware's tables (gain dB / phase deg / delay ms):"]
         for r in self.margins:
             lines.append(f"  {r.speed_m_s:5.3g} m/s  " + "  ".join(
@@ -99,7 +109,8 @@ class FirmwareReport:
         return "\n".join(lines)
 
 
-def run_export(sched: Schedule, directory: str, q_format: str, *, seed: int = 0) -> FirmwareReport:
+def run_export(sched: Schedule, directory: str, q_format: str, *, seed: int = 0,
+               top: TopSpeed | None = None) -> FirmwareReport:
     """Write the firmware (:func:`~stability.assist.export_c.export_c`) and the margins of its tables.
 
     Parameters
@@ -110,11 +121,16 @@ def run_export(sched: Schedule, directory: str, q_format: str, *, seed: int = 0)
     q_format : str
     seed : int
         Noise seed of the vectors.
+    top : TopSpeed, optional
+        The schedule's safe top speed (default: checked on the sampled margins alone,
+        :func:`~stability.assist.export_c.margin_top_speed`).
 
     Returns
     -------
     FirmwareReport
     """
-    info = export_c(sched, directory, q_format, vectors=vector_cases(sched, seed=seed))
+    info = export_c(sched, directory, q_format, vectors=vector_cases(sched, seed=seed), top=top)
     rows = margin_rows(sched, firmware_tables(sched, command_filter_s=COMMAND_FILTER))
-    return FirmwareReport(directory, q_format, sched.gyro.sample_rate_hz, info["tolerance_N_m"], rows)
+    t = info["top_speed"]
+    return FirmwareReport(directory, q_format, sched.gyro.sample_rate_hz, info["tolerance_N_m"], rows,
+                          t.sentence(), t.warning())

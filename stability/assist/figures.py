@@ -160,7 +160,8 @@ def figure_margins(sched: Schedule, rows: Sequence[GainRow]) -> Figure:
     b.set_xlabel("speed (m/s)")
     b.grid(alpha=0.3)
     c = ax[0, 2]
-    c.plot(U, val("disk_margin"), "m-o", ms=3, label="min |1 + L(jw)|")
+    c.plot(U, val("min_return_difference"), "m-o", ms=3, label="min |1 + L(jw)|")
+    c.plot(U, val("disk_margin"), "c-s", ms=3, label="balanced disk margin alpha")
     c.plot(U, val("delay_margin_s") * 10, "k--", label="delay margin x 10 (s)")
     c.axhline(1, color="0.5", ls=":", lw=0.8)
     c.set_xlabel("speed (m/s)")
@@ -199,7 +200,7 @@ def figure_robustness(rob: Robustness, sched: Schedule) -> Figure:
 
 
 def figure_destabilising(ref: Any, ref_end_s: float, runs: Sequence[RecoveryRun],
-                         summaries: Sequence[DestabilisingSummary], ends_s: Sequence[float], capacity_Nm: float,
+                         summaries: Sequence[DestabilisingSummary], ends_s: Sequence[float], capacity_N_m: float,
                          chair_name: str) -> Figure:
     """Figure 9-4 (reference case) and the power chair's open-loop destabilising moment vs its motors.
 
@@ -219,7 +220,7 @@ def figure_destabilising(ref: Any, ref_end_s: float, runs: Sequence[RecoveryRun]
         One per run.
     ends_s : sequence of float
         End of each run's meaningful part (s).
-    capacity_Nm : float
+    capacity_N_m : float
         Yaw moment of the motors at their limit (N m).
     chair_name : str
 
@@ -243,12 +244,12 @@ def figure_destabilising(ref: Any, ref_end_s: float, runs: Sequence[RecoveryRun]
         res = run.result
         k = np.asarray(res.t) < end
         b.plot(np.asarray(res.t)[k], np.asarray(res.tire_yaw_moment)[k],
-               label=f"{run.speed:g} m/s, {run.impulse_force:g} N: peak {summ.peak_moment_Nm:.0f} N m "
+               label=f"{run.speed:g} m/s, {run.impulse_force:g} N: peak {summ.peak_moment_N_m:.0f} N m "
                      f"({summ.fraction_of_capacity:.0%} of the motors) by {summ.valid_until_s:.2f} s")
-    b.axhline(capacity_Nm, color="r", ls="--", label=f"motor limit {capacity_Nm:.0f} N m")
-    b.axhline(-capacity_Nm, color="r", ls="--")
+    b.axhline(capacity_N_m, color="r", ls="--", label=f"motor limit {capacity_N_m:.0f} N m")
+    b.axhline(-capacity_N_m, color="r", ls="--")
     b.set_title(f"{chair_name} open loop ({runs[0].result.settings.get('model') if runs else ''} model)")
-    b.set_ylim(-1.6 * capacity_Nm, 1.6 * capacity_Nm)
+    b.set_ylim(-1.6 * capacity_N_m, 1.6 * capacity_N_m)
     b.set_xlabel("time (s)")
     b.set_ylabel("yaw moment of the tire forces about the c.g. (N m)")
     b.legend(fontsize=8)
@@ -315,7 +316,7 @@ def figure_recovery_table(runs: Sequence[RecoveryPair], sched: Schedule) -> Figu
     for c, o in runs:
         rows.append([f"{c.speed:g}", f"{c.impulse_force:g} N x {c.impulse_duration:g} s",
                      f"{c.peak_heading_error_deg:.2f} / {fmt(o.peak_heading_error_deg if o else None, '.1f')} deg",
-                     f"{c.peak_response_deg:.3f} deg", f"{c.peak_torque_Nm:.1f} N m", f"{c.saturated_fraction:.1%}",
+                     f"{c.peak_response_deg:.3f} deg", f"{c.peak_torque_N_m:.1f} N m", f"{c.saturated_fraction:.1%}",
                      fmt(c.settle_time_s, ".2f", "not settled"),
                      fmt(json_float(c.final_drift_deg_s), ".3f") + " deg/s",
                      fmt(o.time_to_10deg_s if o else None, ".2f", "not reached") + " s"])
@@ -409,17 +410,24 @@ def figure_margin_pair(sched: Schedule, curves: MarginCurves) -> Figure:
     rate = 1.0 / curves.sample_time
     fig, ax = page(f"Continuous vs sampled loop margins: {sched.kind} LQR on {sched.chair.name}, {sched.model} model",
                    f"loop broken at the plant input; sampled at {rate:g} Hz with zero-order hold and one sample of "
-                   f"computation delay; {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both",
+                   f"computation delay; {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both. Dotted: "
+                   "the balanced disk margin's gain and phase, which the loop tolerates together (at most the "
+                   "classical ones; Seiler, Packard & Gahinet 2020)",
                    nrows=1, ncols=3)
-    names = ("continuous design loop", f"sampled loop, {rate:g} Hz")
-    for a, data, what, unit in ((ax[0, 0], curves.gain_db, "gain margin (smaller of up/down)", "dB"),
-                                (ax[0, 1], curves.phase_deg, "phase margin", "deg"),
-                                (ax[0, 2], curves.delay_ms, "delay margin", "ms")):
+    names = ("continuous", f"sampled, {rate:g} Hz")
+    for a, data, disk, what, unit in ((ax[0, 0], curves.gain_db, curves.disk_gain_db,
+                                       "gain margin (smaller of up/down)", "dB"),
+                                      (ax[0, 1], curves.phase_deg, curves.disk_phase_deg, "phase margin", "deg"),
+                                      (ax[0, 2], curves.delay_ms, None, "delay margin", "ms")):
         for i, name in enumerate(names):
             a.plot(curves.speeds, data[i], color=colour(i), marker="os"[i], ms=4, ls="-" if i == 0 else "--",
-                   label=name)
+                   label=f"{name}, classical" if disk is not None else name)
+            if disk is not None:
+                a.plot(curves.speeds, disk[i], color=colour(i), marker="os"[i], ms=3, mfc="none", ls=":",
+                       label=f"{name}, disk")
         a.set_title(what)
-        _labels(a, "speed (m/s)", f"{what.split(' (')[0]} ({unit})")
+        _labels(a, "speed (m/s)", f"{what.split(' (')[0]} ({unit})", legend=False)
+        a.legend(fontsize=7, loc="upper right")
     return _finish(fig)
 
 

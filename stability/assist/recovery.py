@@ -62,7 +62,7 @@ class RecoveryRun:
         including the drift and wander the gyro's bias and noise cause.
     peak_response_deg : float
         Largest ``|disturbance response|`` (deg).
-    peak_torque_Nm : float
+    peak_torque_N_m : float
         Largest applied ``|tau|`` per wheel (N m); 0 open loop.
     saturated_fraction : float
         Share of the controller samples at the torque limit.
@@ -94,7 +94,7 @@ class RecoveryRun:
     controlled: bool
     peak_heading_error_deg: float
     peak_response_deg: float
-    peak_torque_Nm: float
+    peak_torque_N_m: float
     saturated_fraction: float
     settle_time_s: float | None
     final_drift_deg_s: float
@@ -111,7 +111,7 @@ class RecoveryRun:
             "speed_m_s": self.speed, "impulse_N": self.impulse_force, "impulse_s": self.impulse_duration,
             "controlled": self.controlled, "peak_heading_error_deg": self.peak_heading_error_deg,
             "peak_response_deg": self.peak_response_deg,
-            "peak_torque_Nm": self.peak_torque_Nm, "saturated_fraction": self.saturated_fraction,
+            "peak_torque_N_m": self.peak_torque_N_m, "saturated_fraction": self.saturated_fraction,
             "settle_time_s": self.settle_time_s, "final_drift_deg_s": json_float(self.final_drift_deg_s),
             "max_yaw_rate_deg_s": self.max_yaw_rate_deg_s, "time_to_10deg_s": self.time_to_10deg_s,
             "caster_out_of_range_steps": self.caster_out_of_range, "stopped_by_warnings": self.stopped_by_warnings,
@@ -226,7 +226,7 @@ def recovery(chair: Chair, speed: float, controller: DigitalController | None, *
     return RecoveryRun(
         speed=speed, impulse_force=float(impulse_force), impulse_duration=float(impulse_duration),
         controlled=controller is not None, peak_heading_error_deg=float(np.max(np.abs(head))),
-        peak_response_deg=float(np.max(np.abs(resp))), peak_torque_Nm=peak_tau, saturated_fraction=sat,
+        peak_response_deg=float(np.max(np.abs(resp))), peak_torque_N_m=peak_tau, saturated_fraction=sat,
         settle_time_s=settle_time(t[:len(resp)], resp), final_drift_deg_s=drift,
         max_yaw_rate_deg_s=float(np.degrees(np.max(np.abs(res.yaw_rate)))),
         time_to_10deg_s=float(t[big[0]]) if big.size else None, caster_out_of_range=oor,

@@ -7,7 +7,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from stability.assist.design import Design, design, realise
+from stability.assist.design import Design, design, on_drive, realise
 from stability.assist.plant import Plant, plant
 from stability.assist.weights import (
     DEFAULT_ESTIMATOR,
@@ -125,13 +125,13 @@ class Schedule:
         K = self._interp(speed, lambda d: d.K)
         true_p = plant(self.chair, speed, self.model, self.drive.motor_time_constant)
         if self.kind == "full-state":
-            return replace(realise(self.kind, true_p, K, None), sample_time=1.0 / self.gyro.sample_rate_hz)
+            return on_drive(realise(self.kind, true_p, K, None), self.gyro, self.drive, self.chair)
         L = self._interp(speed, lambda d: d.L)
         A = self._interp(speed, lambda d: d.plant.A)
         B = self._interp(speed, lambda d: d.plant.B)
         p_model = Plant(speed, A, B, true_p.Bf, true_p.motor_time_constant)
         d = realise(self.kind, p_model, K, L)
-        return replace(d, plant=true_p, sample_time=1.0 / self.gyro.sample_rate_hz)
+        return on_drive(replace(d, plant=true_p), self.gyro, self.drive, self.chair)
 
 
 def schedule(chair: Chair, speeds: Sequence[float] | np.ndarray, kind: str = "gyro", *,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -10,7 +11,7 @@ import numpy as np
 
 from stability.assist._format import fmt, json_float
 from stability.assist.controller import DigitalController
-from stability.assist.design import LoopMargins, closed_loop_poles, loop_margins
+from stability.assist.design import GAIN_UNITS, LoopMargins, closed_loop_poles, loop_margins
 from stability.assist.digital import MarginPair, margin_pair
 from stability.assist.driving import HOLD_TOLERANCE, SlopeHold, tracking_step
 from stability.assist.plant import plant, reversed_chair
@@ -40,7 +41,10 @@ class GainRow:
         LQR gain on :data:`~stability.assist.plant.STATES` (N m of yaw moment
         per SI unit of each state, ``Mz = -gains . x``).
     wheel_torque_gains : tuple of float
-        The same as differential torque per wheel (N m per unit state).
+        The same as differential torque per wheel (N m per unit state; ``gains`` times ``r / (d1 + d2)``,
+        :attr:`~stability.assist.design.Design.wheel_torque_gains`).  The JSON row also lists each gain's unit
+        (``gain_units``, :data:`~stability.assist.design.GAIN_UNITS`; N m of yaw moment for ``gains``, N m per
+        wheel for ``wheel_torque_gains``).
     estimator_gain : tuple of float or None
         Gyro design: Kalman gain on ``v, r, eta, eta_dot, beta, beta_dot``
         per rad/s of gyro innovation.
@@ -54,7 +58,7 @@ class GainRow:
         Continuous and sampled loop (ZOH, one-sample delay, motor lag).
     tracking : TrackingMetrics or None
         Yaw-rate step in the nonlinear loop (None when not checked).
-    peak_torque_Nm, peak_heading_error_deg, settle_time_s, peak_response_deg, saturated_fraction,
+    peak_torque_N_m, peak_heading_error_deg, settle_time_s, peak_response_deg, saturated_fraction,
     final_drift_deg_s : float or None
         Nonlinear closed loop after the push (None when not checked).
     checked : bool
@@ -72,7 +76,7 @@ class GainRow:
     margins: LoopMargins
     margin_pair: MarginPair
     tracking: TrackingMetrics | None = None
-    peak_torque_Nm: float | None = None
+    peak_torque_N_m: float | None = None
     peak_heading_error_deg: float | None = None
     settle_time_s: float | None = None
     peak_response_deg: float | None = None
@@ -98,6 +102,7 @@ class GainRow:
             "design": self.design,
             "gains": list(self.gains),
             "gain_states": list(self.gain_states),
+            "gain_units": [GAIN_UNITS.get(x, "") for x in self.gain_states],
             "wheel_torque_gains": list(self.wheel_torque_gains),
             "estimator_gain": None if self.estimator_gain is None else list(self.estimator_gain),
             "closed_loop_poles": [[float(p.real), float(p.imag)] for p in self.closed_loop_poles],
@@ -107,7 +112,7 @@ class GainRow:
             "loop_margins": self.margins.to_dict(),
             "margins": self.margin_pair.to_dict(),
             "tracking": None if self.tracking is None else self.tracking.to_dict(),
-            "peak_torque_N_m": self.peak_torque_Nm,
+            "peak_torque_N_m": self.peak_torque_N_m,
             "peak_heading_error_deg": self.peak_heading_error_deg,
             "settle_time_s": self.settle_time_s,
         }
@@ -146,7 +151,7 @@ def gain_table(sched: Schedule, *, check: bool = True, impulse_force: float = TH
         if check:
             ctl = DigitalController(d, sched.chair, sched.drive, gyro=sched.gyro, seed=seed + i)
             run = recovery(sched.chair, s, ctl, impulse_force=impulse_force, duration=duration, model=sched.model)
-            kw = dict(peak_torque_Nm=run.peak_torque_Nm, peak_heading_error_deg=run.peak_heading_error_deg,
+            kw = dict(peak_torque_N_m=run.peak_torque_N_m, peak_heading_error_deg=run.peak_heading_error_deg,
                       peak_response_deg=run.peak_response_deg, settle_time_s=run.settle_time_s,
                       saturated_fraction=run.saturated_fraction, final_drift_deg_s=run.final_drift_deg_s,
                       checked=True, tracking=tracking_step(sched, s))
@@ -195,6 +200,11 @@ def pole_curves(sched: Schedule) -> PoleCurves:
     return PoleCurves(ol, fine, np.array([closed_loop_poles(sched.at(s)).real.max() for s in fine]))
 
 
+def _db(ratio: float) -> float:
+    """A gain ratio in dB (0 -> -inf, inf -> inf)."""
+    return 20.0 * math.log10(ratio) if 0 < ratio < math.inf else (math.inf if ratio > 0 else -math.inf)
+
+
 def format_table(sched: Schedule, rows: Sequence[GainRow]) -> str:
     """The gain table as text.
 
@@ -221,15 +231,17 @@ def format_table(sched: Schedule, rows: Sequence[GainRow]) -> str:
            f"{sched.gyro.sample_rate_hz:g} Hz, bias estimate {sched.gyro.bias_time_constant_s:g} s"
            if sched.kind == "gyro" else f"; {sched.gyro.sample_rate_hz:g} Hz"),
         "Gains: differential torque per wheel, tau = -(k . x), x = [v m/s, r rad/s, eta rad, eta_dot rad/s, "
-        "beta rad, beta_dot rad/s, psi rad" + (", mz N m]" if motor else "]"),
+        "beta rad, beta_dot rad/s, psi rad" + (", mz N m]" if motor else "]")
+        + f" (Python: Design.wheel_torque_gains; the yaw-moment gain Design.K = k (d1 + d2) / r = "
+        f"{sched.designs[0].yaw_moment_per_wheel_torque:.4g} k)",
         "",
         f"{'U':>5s} {'k_v':>8s} {'k_r':>8s} {'k_eta':>8s} {'k_etad':>8s} {'k_beta':>8s} {'k_betad':>8s} "
         f"{'k_psi':>8s}" + (f" {'k_mz':>8s}" if motor else "")
-        + f" | {'OL max':>7s} {'CL max':>7s} {'GM up':>6s} {'GM low':>6s} {'PM':>5s} {'|1+L|':>5s} "
+        + f" | {'OL max':>7s} {'CL max':>7s} {'GM up':>6s} {'GM dn':>6s} {'PM':>5s} {'|1+L|':>5s} "
         f"| {'tau pk':>6s} {'psi pk':>6s} {'settle':>6s}",
         f"{'m/s':>5s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s} {'':>8s}"
         + (f" {'':>8s}" if motor else "") + f" | {'1/s':>7s} {'1/s':>7s} "
-        f"{'':>6s} {'':>6s} {'deg':>5s} {'':>5s} | {'N m':>6s} {'deg':>6s} {'s':>6s}",
+        f"{'dB':>6s} {'dB':>6s} {'deg':>5s} {'min':>5s} | {'N m':>6s} {'deg':>6s} {'s':>6s}",
     ]
     lines = list(head)
     for r in rows:
@@ -237,9 +249,9 @@ def format_table(sched: Schedule, rows: Sequence[GainRow]) -> str:
         lines.append(
             f"{r.speed_m_s:5.2f} " + " ".join(f"{x:8.4g}" for x in r.wheel_torque_gains)
             + f" | {r.open_loop_max_real_1_s:7.3f} {r.closed_loop_max_real_1_s:7.3f} "
-            f"{fmt(m.gain_margin_upper, '.3g'):>6s} {fmt(m.gain_margin_lower, '.2g'):>6s} "
-            f"{fmt(m.phase_margin_deg, '.0f'):>5s} {fmt(m.disk_margin, '.2f'):>5s} | "
-            f"{fmt(r.peak_torque_Nm, '.1f'):>6s} {fmt(r.peak_heading_error_deg, '.2f'):>6s} "
+            f"{fmt(_db(m.gain_margin_upper), '.1f'):>6s} {fmt(-_db(m.gain_margin_lower), '.1f'):>6s} "
+            f"{fmt(m.phase_margin_deg, '.0f'):>5s} {fmt(m.min_return_difference, '.2f'):>5s} | "
+            f"{fmt(r.peak_torque_N_m, '.1f'):>6s} {fmt(r.peak_heading_error_deg, '.2f'):>6s} "
             f"{fmt(r.settle_time_s, '.2f'):>6s}"
         )
     stable = all(r.stable for r in rows)
@@ -267,7 +279,7 @@ def format_recovery(runs: Sequence[RecoveryPair]) -> str:
         lines.append(
             f"{cl.speed:6.2f} {cl.impulse_force:7.0f}N {cl.peak_heading_error_deg:10.2f} "
             f"{cl.peak_response_deg:8.3f} {fmt(ol.peak_heading_error_deg if ol else None, '.1f'):>10s} "
-            f"{cl.peak_torque_Nm:7.1f} {cl.saturated_fraction:6.1%} "
+            f"{cl.peak_torque_N_m:7.1f} {cl.saturated_fraction:6.1%} "
             f"{fmt(cl.settle_time_s, '.2f', 'no'):>9s} {fmt(json_float(cl.final_drift_deg_s), '.3f'):>7s} "
             f"{fmt(ol.time_to_10deg_s if ol else None, '.2f', 'never'):>10s}")
     return "\n".join(lines)
@@ -284,9 +296,11 @@ def format_margins(rows: Sequence[GainRow]) -> str:
     -------
     str
     """
-    lines = [f"{'U':>5s} | {'GM dB c/d':>11s} {'PM deg c/d':>11s} {'DM ms c/d':>11s} | {'r_cmd':>6s} "
-             f"{'sse %':>6s} {'os %':>5s} {'settle':>6s} {'tau pk':>6s}",
-             f"{'m/s':>5s} | {'':>11s} {'':>11s} {'':>11s} | {'rad/s':>6s} {'':>6s} {'':>5s} {'s':>6s} {'N m':>6s}"]
+    lines = [f"{'U':>5s} | {'GM dB c/d':>11s} {'PM deg c/d':>11s} {'DM ms c/d':>11s} | {'disk a c/d':>11s} "
+             f"{'DGM dB c/d':>11s} {'DPM deg c/d':>11s} | {'r_cmd':>6s} {'sse %':>6s} {'os %':>5s} {'settle':>6s} "
+             f"{'tau pk':>6s}",
+             f"{'m/s':>5s} | {'classical':^35s} | {'disk (gain, phase together)':^35s} | "
+             f"{'rad/s':>6s} {'':>6s} {'':>5s} {'s':>6s} {'N m':>6s}"]
     for r in rows:
         m = r.margin_pair.to_dict()
         c, d = m["continuous"], m["discrete"]
@@ -295,7 +309,10 @@ def format_margins(rows: Sequence[GainRow]) -> str:
                  f"{fmt(tr.settling_time_s, '.2f'):>6s} {tr.peak_torque_N_m:6.1f}") if tr else "     -"
         lines.append(f"{r.speed_m_s:5.2f} | {fmt(c['gain_db'], '.1f'):>5s}/{fmt(d['gain_db'], '.1f'):<5s} "
                      f"{fmt(c['phase_deg'], '.1f'):>5s}/{fmt(d['phase_deg'], '.1f'):<5s} "
-                     f"{fmt(c['delay_ms'], '.1f'):>5s}/{fmt(d['delay_ms'], '.1f'):<5s} | {track}")
+                     f"{fmt(c['delay_ms'], '.1f'):>5s}/{fmt(d['delay_ms'], '.1f'):<5s} | "
+                     f"{fmt(c['disk_margin'], '.2f'):>5s}/{fmt(d['disk_margin'], '.2f'):<5s} "
+                     f"{fmt(c['disk_gain_db'], '.1f'):>5s}/{fmt(d['disk_gain_db'], '.1f'):<5s} "
+                     f"{fmt(c['disk_phase_deg'], '.1f'):>5s}/{fmt(d['disk_phase_deg'], '.1f'):<5s} | {track}")
     unstable = [r.speed_m_s for r in rows if r.margin_pair.discrete.delay_margin_s == 0.0]
     if unstable:
         lines.append("SAMPLED LOOP UNSTABLE at " + ", ".join(f"{u:g}" for u in unstable) + " m/s at "
