@@ -99,3 +99,20 @@ def test_docs_step_table_is_what_the_studies_give(row):
     line = " ".join(f"| {label} | {' | '.join(cells)} |".split())       # one space between tokens
     text = (Path(__file__).parents[1] / "docs" / "simulator.md").read_text(encoding="utf-8")
     assert line in [" ".join(t.split()) for t in text.splitlines()], line
+
+
+def test_the_reported_impulse_is_the_one_the_chair_receives_where_the_step_is_cut():
+    """power-fwd at 0.3 m/s: the search cuts the step to 0.5 ms (a stiff caster mode), so the push is 201 steps of
+    0.5 ms (force x 0.1005 s), not 101 of 1 ms (x 0.101 s, 0.5 % more).  The bracket holds in the impulse the chair
+    receives: re-simulated at that step with force = impulse / 0.1005 s, the high end reaches 1 rad/s within 10 s
+    and the low end does not."""
+    from stability.simulate import simulate
+
+    c = preset("power-fwd")
+    r = critical_impulses(c, [0.3])[0]
+    assert r.status == "found" and "201 steps of 0.5 ms" in r.push and "x 0.1005 s" in r.push
+    unit = 201 * 0.0005
+    for impulse, reaches in ((r.high_Ns, True), (r.low_Ns, False)):
+        run = RunSpec(dt=0.0005, push_force=impulse / unit, push_duration=0.1, horizon=10.0, stop_on_warnings=False)
+        t = simulate(c, 0.3, run).first_time_abs_yaw_rate(1.0)
+        assert (t is not None) == reaches, (impulse, t)

@@ -195,3 +195,18 @@ def test_cli_json_and_errors(tmp_path, capsys):
         assert main(argv) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and word in err and "valid" in err
+
+
+def test_slope_command_notes_the_extrapolated_load_and_which_scheme_to_read(capsys):
+    """power-fwd on a 6 deg cross slope at 1 m/s: the right caster carries more than the tire data's 450 N (the
+    statics say so in a note), and the fixed-step runs stop at their eleventh warning while the adaptive ones run
+    on: the output says why each run ends and which to read."""
+    from stability.slope import solve
+    from stability.slope.__main__ import main
+
+    eq = solve(chair_mod.preset("power-fwd"), 6.0, 1.0)
+    assert max(eq.loads) > 450.0
+    assert main(["--chair", "power-fwd", "--cross-slope", "6", "--speed", "1"]) == 0
+    out, err = capsys.readouterr()
+    assert f"load {eq.loads[1]:.0f} N is outside the fitted range 0 to 450 N; extrapolated" in err
+    assert "run ends: stopped:" in out and "read the adaptive scheme's runs" in out

@@ -138,6 +138,18 @@ def _simulated(chair, eq, t_end: float) -> dict:
     return out
 
 
+def _schemes_verdict(sim: dict, t_end: float) -> str:
+    """Which of the two schemes' uncorrected turns to read when they end at different times (one sentence)."""
+    ends = {k: d for k, d in sim.items() if "error" not in d}
+    short = [k for k, d in ends.items() if k.startswith("wchair") and "warning" in d["ended"]
+             and d["report_time_s"] < 0.5 * t_end]
+    if not short:
+        return ""
+    return ("the fixed-step (wchair) runs stop at their eleventh warning beyond the tire data, before the report "
+            "time; read the adaptive scheme's runs (event-located, no warning stop), and note that the turn they "
+            "show runs on extrapolated tire data past that point")
+
+
 def _body(a: argparse.Namespace) -> int:
     check_outputs({"--json-file": a.json_file, "-o": a.output}, {"--chair": a.chair})
     if not 0 < a.sim_time <= 10.0:
@@ -202,7 +214,10 @@ def _body(a: argparse.Namespace) -> int:
             continue
         print(f"  simulator {key.replace('_', ' ')}: turns {d['uncorrected_turn']}, heading "
               f"{d['heading_change_deg']:+.2f} deg, yaw rate {d['yaw_rate_deg_s']:+.1f} deg/s "
-              f"at {d['report_time_s']:.2f} s")
+              f"at {d['report_time_s']:.2f} s" + ("" if d["ended"] == "horizon" else f" (run ends: {d['ended']})"))
+    verdict = _schemes_verdict(sim or {}, a.sim_time)
+    if verdict:
+        print(f"  {verdict}")
     print(f"  crab {eq.heading_deg:+.3f} deg, casters {eq.eta_deg:+.3f} / {eq.beta_deg:+.3f} deg; loads "
           + ", ".join(f"{x:.1f}" for x in eq.loads) + " N (A, B, D, E)")
     if kind == "handrim":

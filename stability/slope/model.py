@@ -20,6 +20,7 @@ from stability.models import slope as sl
 from stability.models.forces import slip_angle
 from stability.models.params import parameters
 from stability.tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire, get_policy
+from stability.tires.ranges import RangeNote, limit_load, record
 
 __all__ = ["Plane", "SlopeModel", "Forces", "MAX_ANGLE_DEG"]
 
@@ -127,13 +128,16 @@ class SlopeModel:
                 continue
             if isinstance(tire, LinearTire):
                 continue
-            if self.clamp:
-                if abs(s) > SLIP_MAX_DEG or n > FZ_MAX_N:   # a note under the clamp policy (tires.collect_notes)
-                    tire.lateral_force(s, n, policy="clamp")
+            key = ("caster_left", "caster_right", "main_left", "main_right")[k]
+            if self.clamp:              # a note under the clamp policy (tires.collect_notes): the force held
+                if n > FZ_MAX_N:
+                    limit_load(tire, n, "clamp", wheel=key)
+                if abs(s) > SLIP_MAX_DEG:
+                    record(RangeNote(tire.name, "slip", abs(s), 0.0, SLIP_MAX_DEG, "clamp", key))
                 continue
             if self.policy == "warn" and abs(s) <= SLIP_MAX_DEG:
                 if n > FZ_MAX_N:        # warn: the load polynomial extrapolated, with a note (tires.collect_notes)
-                    tire.lateral_force(s, n, policy="extrapolate")
+                    limit_load(tire, n, "warn", wheel=key)
                 continue
             if abs(s) > SLIP_MAX_DEG:
                 out.append(f"{wheel} slip {abs(s):.2f} deg beyond the tire data (|slip| <= {SLIP_MAX_DEG:g} deg)")

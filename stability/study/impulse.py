@@ -340,25 +340,31 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec
                          runs_per_speed(min_impulse, max_impulse, max_rounds), limits=free)
         pair_steps = run_steps([c for c, _ in run_list], [s for _, s in run_list], dt, model, run.casters,
                                limits=limits)
-    unit = push_impulse(1.0, duration, scheme, dt)         # N s per N of force
+    # N s per N of force, per pair: a pair whose step is cut below dt (a stiff caster mode) holds the force over
+    # its own steps, so the force that gives an impulse J is J over that pair's unit: the impulse the chair
+    # receives is the one reported
+    pair_dt = [dt] * len(run_list) if pair_steps is None else [float(h) for h in pair_steps]
+    units = np.array([push_impulse(1.0, duration, scheme, h) for h in pair_dt])
 
     runner = SummaryRunner([c for c, _ in run_list], [s for _, s in run_list], run, level=level, steps=pair_steps)
 
     def evaluate(jobs: list[tuple[int, float]]) -> tuple[np.ndarray, ...]:
-        s = runner([i for i, _ in jobs], np.exp([x for _, x in jobs]) / unit)
+        idx = [i for i, _ in jobs]
+        s = runner(idx, np.exp([x for _, x in jobs]) / units[idx])
         return s.t_level <= horizon, s.margin(level, horizon), s.sim_time, s.t_level
 
     starts = [_start(c, s, model, duration, level, horizon, min_impulse, max_impulse) for c, s in run_list]
     probs = bracket_search(len(run_list), starts, evaluate, x_min=math.log(min_impulse), x_max=math.log(max_impulse),
                            width=math.log1p(rel_tol), max_step=math.log(2.0), max_rounds=max_rounds,
                            horizon=horizon, rates=rates)
-    steps = Push(1.0, duration).steps(dt)
-    convention = (f"constant force at the c.g. for {duration:g} s ({steps} steps of {dt * 1e3:g} ms: "
-                  f"impulse = force x {unit:.4g} s)" if scheme == "wchair" else
-                  f"constant force at the c.g. for {duration:g} s (impulse = force x {duration:g} s)")
+    def convention(h: float, unit: float) -> str:
+        return (f"constant force at the c.g. for {duration:g} s ({Push(1.0, duration).steps(h)} steps of "
+                f"{h * 1e3:g} ms: impulse = force x {unit:.4g} s)" if scheme == "wchair" else
+                f"constant force at the c.g. for {duration:g} s (impulse = force x {duration:g} s)")
+
     out = []
     value: float | None
-    for (c, s), p in zip(run_list, probs, strict=True):
+    for k, ((c, s), p) in enumerate(zip(run_list, probs, strict=True)):
         tried = [math.exp(x) for x in p.x]
         lo_x, hi_x = p.bracket()
         if hi_x is None:
@@ -368,8 +374,9 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec
         else:
             low, high = math.exp(lo_x), math.exp(hi_x)
             status, value = "found", math.sqrt(low * high)
-        out.append(CriticalImpulse(c.name, float(c.m), s, value, status, low, high, max(tried), min(tried), convention,
-                                   model, scheme, float(level), float(horizon), len(tried)))
+        out.append(CriticalImpulse(c.name, float(c.m), s, value, status, low, high, max(tried), min(tried),
+                                   convention(pair_dt[k], float(units[k])), model, scheme, float(level),
+                                   float(horizon), len(tried)))
     return out
 
 

@@ -67,6 +67,9 @@ class UncorrectedPath:
         Time until the heading has changed by 10 deg (s); None if it did not within the run.
     quasi_steady_rate_deg_s : float
         ``g2/U`` (deg/s): the free-castered zero-width model's quasi-steady yaw rate.
+    ended : str
+        Why the path ends: ``"horizon"``, ``"heading past 45 deg"``, ``"a caster swung 30 deg"``, or the
+        simulator's stop (e.g. its eleventh slip warning beyond the tire data).
     """
 
     t: np.ndarray
@@ -82,6 +85,7 @@ class UncorrectedPath:
     lateral_offset: float
     time_to_10deg: float | None
     quasi_steady_rate_deg_s: float
+    ended: str = "horizon"
 
     def to_dict(self) -> dict:
         """Summary numbers for JSON (no time histories)."""
@@ -89,7 +93,7 @@ class UncorrectedPath:
                 "heading_change_deg": self.heading_change_deg, "yaw_rate_deg_s": self.yaw_rate_deg_s,
                 "lateral_offset_m": self.lateral_offset, "time_to_10deg_s": self.time_to_10deg,
                 "quasi_steady_yaw_rate_deg_s": self.quasi_steady_rate_deg_s,
-                "duration_s": float(self.t[-1])}
+                "duration_s": float(self.t[-1]), "ended": self.ended}
 
 
 def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_heading_deg: float = 45.0,
@@ -131,7 +135,7 @@ def uncorrected_path(chair: Chair, eq: Equilibrium, duration: float = 2.0, max_h
 
 
 def _summarise(eq: Equilibrium, t, x, y, heading, yaw_rate, speed, g2: float,
-               report_time: float = 1.0) -> UncorrectedPath:
+               report_time: float = 1.0, ended: str = "horizon") -> UncorrectedPath:
     """The :class:`UncorrectedPath` of a time history (path frame, heading from the path direction)."""
     psi0 = math.radians(eq.heading_deg)
     side = math.copysign(1.0, eq.cross_slope_deg) if eq.cross_slope_deg != 0 else 1.0
@@ -148,7 +152,7 @@ def _summarise(eq: Equilibrium, t, x, y, heading, yaw_rate, speed, g2: float,
         t=t, x=x, y=y, heading=heading, yaw_rate=yaw_rate, speed=speed, turn=turn,
         report_time=t_rep, heading_change_deg=math.degrees(at1(dpsi)),
         yaw_rate_deg_s=math.degrees(at1(yaw_rate * side)), lateral_offset=at1(y * side), time_to_10deg=t10,
-        quasi_steady_rate_deg_s=math.degrees(g2 / eq.speed))
+        quasi_steady_rate_deg_s=math.degrees(g2 / eq.speed), ended=ended)
 
 
 def simulator_slope(chair: Chair, eq: Equilibrium) -> tuple[float, float]:
@@ -249,10 +253,20 @@ def simulator_path(chair: Chair, eq: Equilibrium, run: RunSpec = VEER_RUN, *, pi
                                               grade_deg=grade))
     t, dpsi = res.t, res.heading
     swing = np.maximum(np.abs(res.eta - math.radians(eq.eta_deg)), np.abs(res.beta - math.radians(eq.beta_deg)))
-    out = np.flatnonzero((np.abs(dpsi) > math.radians(max_heading_deg)) | (swing > math.radians(MAX_CASTER_SWING_DEG)))
+    turned = np.abs(dpsi) > math.radians(max_heading_deg)
+    swung = swing > math.radians(MAX_CASTER_SWING_DEG)
+    out = np.flatnonzero(turned | swung)
     n = int(out[0]) + 1 if out.size else t.size
+    if out.size:
+        ended = f"heading past {max_heading_deg:g} deg" if turned[out[0]] else \
+            f"a caster swung {MAX_CASTER_SWING_DEG:g} deg"
+    elif res.stop_reason is not None or res.stopped_by_warnings:
+        ended = res.stop_reason or "stopped: " + ", ".join(f"{v} {k} warnings" for k, v in res.warning_counts.items()
+                                                            if v) + " (beyond the tire data)"
+    else:
+        ended = "horizon"
     c, s = math.cos(psi0), math.sin(psi0)
     X, Y = res.x[:n], res.y[:n]
     g2 = Plane(eq.cross_slope_deg, eq.grade_deg).gravity(chair.g)[1]
     return _summarise(eq, t[:n], X * c - Y * s, X * s + Y * c, psi0 + dpsi[:n], res.yaw_rate[:n], res.u[:n], g2,
-                      report_time)
+                      report_time, ended)
