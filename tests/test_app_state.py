@@ -191,9 +191,17 @@ def test_growth_rate_shown_is_the_command_lines():
 
 
 def test_mode_shape_is_an_eigenvector():
+    """The mode shape is computed at the slider's speed itself (the explorer review: it snapped to the plot's
+    grid, 0.76 m/s for 0.75, and never matched the table): its eigenvalue is the table's growth rate."""
     view = linear_view(chair_mod.preset("ej-premier"))
     shape = mode_shape(view, 0.75)
-    assert shape.eigenvalue.real == pytest.approx(view.growth_rate[np.argmin(np.abs(GRID - 0.75))], rel=1e-12)
+    assert shape.speed == 0.75
+    row = next(r for r in view.table if r.speed == 0.75)
+    # the same matrix through the same LAPACK routine: equal to rounding (error model: eps * ||A|| * 1e3)
+    A = state_matrices(view.chair, 0.75)[0]
+    assert abs(shape.eigenvalue.real - row.rate) <= 1e3 * np.finfo(float).eps * np.linalg.norm(A)
+    for u in (0.06, 0.08, 1.234):
+        assert mode_shape(view, u).speed == u
     assert max(shape.magnitude) == 1.0 and sum(shape.shares.values()) == pytest.approx(1.0, abs=1e-12)
     # the ej-premier's least stable mode: both casters swing together (mirror symmetry), no opposed part
     assert shape.shares["casters opposed"] < 1e-20
@@ -285,7 +293,7 @@ def test_applying_a_recommendation_is_its_set_assignments():
 
 def test_shimmy_band_quoted_in_docs_app_md():
     """docs/app.md's trail-window caption quotes the E&J Premier's shimmy-free band as the tab shows it."""
-    from stability.app.views import TRAIL_SPEEDS
+    from stability.app.measures import TRAIL_SPEEDS
     from stability.shimmy.band import shimmy_band
 
     text = (pathlib.Path(__file__).parents[1] / "docs" / "app.md").read_text()

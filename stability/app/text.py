@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-import io
-from typing import Any
-
 import numpy as np
 
 from stability import chair as chair_mod
 from stability.app.views import LinearView
 from stability.chair import Chair
 
-__all__ = ["summary_text", "geometry_text", "figure_file", "downloads", "field_rows", "FIELD_KINDS"]
+__all__ = ["summary_text", "geometry_text", "field_rows", "field_label", "FIELD_KINDS", "FIELD_GROUPS"]
 
 #: Fields edited as text choices rather than numbers.
 TEXT_FIELDS = ("name", "caster_position", "main_tire", "caster_tire")
@@ -20,6 +17,41 @@ FIELD_KINDS: dict[str, str] = {
     f: ("choice" if f in ("caster_position", "main_tire", "caster_tire") else "text" if f == "name" else "number")
     for f in chair_mod.field_names()
 }
+
+
+#: The editor's groups of chair fields (title, fields, shown open), in the page's order; every field once.
+FIELD_GROUPS: tuple[tuple[str, tuple[str, ...], bool], ...] = (
+    ("Chair", ("name", "caster_position"), True),
+    ("Wheel positions, from the c.g.", ("s1", "s2", "d1", "d2", "t1", "t2", "h"), True),
+    ("Casters", ("trail", "l1", "m_c", "i_zp", "pin_friction_left", "pin_friction_right", "pin_damping"), True),
+    ("Mass and inertia", ("m", "i_z"), True),
+    ("Tires", ("main_tire", "caster_tire", "roll_k", "camber_deg", "camber_coefficient", "toe_deg",
+               "main_lateral_scale", "main_rolling_scale", "caster_lateral_scale", "caster_rolling_scale"), False),
+    ("Anti-tip wheels and gravity", ("anti_tip_reach", "anti_tip_clearance", "g"), False),
+)
+
+
+def field_label(row: dict[str, str]) -> str:
+    """An editor field's label: its meaning in words, its name (as links and ``--set`` spell it) and its unit.
+
+    Parameters
+    ----------
+    row : dict
+        A row of :func:`field_rows`.
+
+    Returns
+    -------
+    str
+        E.g. ``"Caster trail, pin to contact: trail (m)"``.
+
+    Examples
+    --------
+    >>> field_label({"name": "trail", "unit": "m", "doc": "caster trail, pin to contact"})
+    'Caster trail, pin to contact: trail (m)'
+    """
+    doc = row["doc"][:1].upper() + row["doc"][1:]
+    unit = f" ({row['unit']})" if row["unit"] != "-" else ""
+    return f"{doc}: {row['name']}{unit}"
 
 
 def field_rows() -> list[dict[str, str]]:
@@ -72,32 +104,6 @@ def summary_text(v: LinearView) -> str:
             "\n\nLeast stable mode (what `python -m stability.critical_speed` prints):\n\n" + "\n".join(lines))
 
 
-def figure_file(v: LinearView, fmt: str) -> io.BytesIO:
-    """The toolkit's eigenvalues-against-speed figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as a file.
-
-    Parameters
-    ----------
-    v : LinearView
-    fmt : {"png", "svg"}
-
-    Returns
-    -------
-    io.BytesIO
-    """
-    from matplotlib.figure import Figure
-
-    from stability.plotting.loci import eigenvalues_vs_speed
-
-    fig = Figure(figsize=(7.5, 6.5))
-    axes = fig.subplots(2, 1)
-    eigenvalues_vs_speed(v.locus, axes, mode_names=v.names,
-                         title=f"{v.chair.name}, {v.model} model: eigenvalues against speed")
-    buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, dpi=150)
-    buf.seek(0)
-    return buf
-
-
 def geometry_text(c: Chair, v: LinearView) -> str:
     """The text under the geometry views: the static stability angles, the static loads, the wheelbase.
 
@@ -121,37 +127,3 @@ def geometry_text(c: Chair, v: LinearView) -> str:
             f"\n\nStatic loads: main wheel {L['main']:.1f} N, caster {L['caster']:.1f} N (per wheel); wheelbase "
             f"{c.wheelbase:.3f} m; c.g. ratio s1/(s1+s2) {c.cg_ratio:.3f}. Drawn from the chair's fields, c.g. at "
             "the origin; dotted: from the c.g. to each tipping line, with its angle.")
-
-
-def downloads(state: Any, view: Any) -> Any:
-    """The download buttons: chair TOML, results JSON, eigenvalues CSV, the figure as PNG and SVG.
-
-    Parameters
-    ----------
-    state : AppState
-        The session's state (read when a button is pressed).
-    view : callable
-        ``view() -> LinearView`` of the current chair.
-
-    Returns
-    -------
-    panel.Row
-    """
-    import panel as pn
-
-    from stability.app.views import eigenvalues_csv
-
-    return pn.Row(
-        pn.widgets.FileDownload(callback=lambda: io.StringIO(state.chair_toml()), filename="chair.toml",
-                                label="chair (TOML)", css_classes=["download-toml"], width=160),
-        pn.widgets.FileDownload(callback=lambda: io.StringIO(state.results_json()), filename="results.json",
-                                label="results (JSON)", css_classes=["download-json"], width=160),
-        pn.widgets.FileDownload(callback=lambda: io.StringIO(eigenvalues_csv(view())),
-                                filename="eigenvalues.csv", label="eigenvalues (CSV)",
-                                css_classes=["download-csv"], width=170),
-        pn.widgets.FileDownload(callback=lambda: figure_file(view(), "png"), filename="eigenvalues.png",
-                                label="figure (PNG)", css_classes=["download-png"], width=150),
-        pn.widgets.FileDownload(callback=lambda: figure_file(view(), "svg"), filename="eigenvalues.svg",
-                                label="figure (SVG)", css_classes=["download-svg"], width=150),
-    )
-
