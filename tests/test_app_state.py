@@ -299,3 +299,83 @@ def test_shimmy_band_quoted_in_docs_app_md():
     text = (pathlib.Path(__file__).parents[1] / "docs" / "app.md").read_text()
     band = shimmy_band(chair_mod.preset("ej-premier"), TRAIL_SPEEDS)
     assert f"shimmy-free band {band.describe(1)} cm" in text
+
+
+def test_reset_drops_every_change_and_undo_takes_it_back():
+    s = AppState("revised")
+    assert s.reset() is False                                   # nothing changed yet
+    s.set_field("trail", "0.05")
+    s.set_field("s1", "0.25")
+    changed = s.chair
+    assert s.reset() and s.chair == chair_mod.preset("revised") and s.url_query() == "chair=revised"
+    assert s.undo() and s.chair == changed
+
+
+def test_undo_restores_the_model_too():
+    s = AppState()
+    s.set_field("trail", "0.05")
+    s.set_model("thesis")
+    assert s.url_query() == "chair=ej-premier&trail=0.05&model=thesis"
+    assert s.undo() and s.model == "exact" and s.chair.trail == 0.05
+
+
+def test_upload_messages_name_the_file_not_the_servers_copy(tmp_path):
+    import tempfile
+
+    s = AppState()
+    msg = s.load_toml(b"trail = 'x", "my chair.toml")
+    assert msg.startswith("error: chair file 'my chair.toml' is not valid TOML")
+    assert tempfile.gettempdir() not in msg
+    msg = s.load_uncertainty(b"[trail\n", "u.toml")
+    assert msg.startswith("error: uncertainty file 'u.toml' is not valid TOML")       # the CLI's words
+    assert tempfile.gettempdir() not in msg
+
+
+def test_download_file_names_carry_the_chair_and_no_markup():
+    from stability.app.downloads import file_names, file_stem
+
+    s = AppState("revised")
+    s.set_field("trail", "0.055")
+    names = file_names(s.chair.name)
+    assert names["toml"] == "revised-modified-trail-0.055.toml" and names["png"].endswith(".eigenvalues.png")
+    for hostile in ("<script>alert(1)</script>", "../../etc/passwd", "", "a" * 500, "é/ü"):
+        stem = file_stem(hostile)
+        assert stem and len(stem) <= 60 and all(c.isascii() and (c.isalnum() or c in "._-") for c in stem)
+        assert not stem.startswith(".")
+
+
+def test_every_field_is_in_one_editor_group_with_a_label_in_words():
+    from stability.app.text import FIELD_GROUPS, field_label, field_rows
+
+    grouped = [f for _, fields, _ in FIELD_GROUPS for f in fields]
+    assert sorted(grouped) == sorted(chair_mod.field_names()) and len(grouped) == len(set(grouped))
+    labels = {r["name"]: field_label(r) for r in field_rows()}
+    assert labels["trail"] == "Caster trail, pin to contact: trail (m)"
+    assert labels["roll_k"].startswith("Roll coefficient") and labels["roll_k"].endswith(": roll_k")
+
+
+def test_simulator_warnings_reach_the_nonlinear_view():
+    """The explorer review: trail=0.5 raised StepStabilityWarning on the server's stderr only."""
+    from stability.app.measures import nonlinear_view
+
+    nv = nonlinear_view(chair_mod.preset("ej-premier").replace(trail=0.5), "exact", 0.75, (40.0, 0.1),
+                        equal_instability=False)
+    assert any(w.startswith("StepStabilityWarning: ") for w in nv.warnings), nv.warnings
+    quiet = nonlinear_view(chair_mod.preset("ej-premier"), "exact", 0.75, (40.0, 0.1), equal_instability=False)
+    assert quiet.warnings == ()
+    assert 2.0 < quiet.time_to_level < 4.0                         # the criterion's time, from the run itself
+    assert quiet.critical_impulse.low_Ns <= quiet.critical_impulse.point.bound_Ns <= quiet.critical_impulse.high_Ns
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "revised"])
+def test_trail_chart_crosses_zero_at_the_bands_boundary(name):
+    """The explorer review: the chart's dashed shimmy curves crossed zero at 2 cm (rigid pins) while the band's
+    boundary drawn on it was at 4.9 cm (the towed wheel on its pin spring).  The chart now uses the compliant pins:
+    for a symmetric chair its least damped caster mode is the towed wheel's (docs/shimmy.md), so the crossings
+    coincide (the chart's bisection stops at 0.01 mm)."""
+    from stability.app.measures import TRAIL_SPEEDS, trail_window
+
+    tw = trail_window(chair_mod.preset(name))
+    lower = [min(bs) for bs in tw.band.boundaries_m]
+    assert len(lower) == len(TRAIL_SPEEDS)
+    assert np.allclose(tw.chart.critical_trail, lower, atol=2e-5)

@@ -21,9 +21,9 @@ from bokeh.plotting import figure
 
 from stability.app.markup import PRE_STYLESHEET, literal, pre
 from stability.app.nonlinear_tab import FRESH, STALE
+from stability.app.plots import BRANCH_COLOURS
 from stability.app.tabtext import TabText
 from stability.chair import Chair
-from stability.plotting.style import OKABE_ITO
 from stability.settings import defaults as D
 
 __all__ = ["AssistTab", "assist_schedule"]
@@ -131,8 +131,9 @@ class AssistTab:
         while len(self.sources) < len(names):
             j = len(self.sources)
             src = ColumnDataSource({"speed": [], "gain": []})
-            line: Any = self.fig.line("speed", "gain", source=src, line_width=2, color=OKABE_ITO[j % len(OKABE_ITO)],
-                                      line_dash=["solid", "dashed", "dotdash", "dotted"][(j // len(OKABE_ITO)) % 4])
+            colours = BRANCH_COLOURS            # no yellow (unreadable on white), no vermillion (instability)
+            line: Any = self.fig.line("speed", "gain", source=src, line_width=2, color=colours[j % len(colours)],
+                                      line_dash=["solid", "dashed", "dotdash", "dotted"][(j // len(colours)) % 4])
             self.sources.append(src)
             self.legend.items = [*self.legend.items, LegendItem(label=value(""), renderers=[line])]
         for j, src in enumerate(self.sources):

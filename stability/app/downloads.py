@@ -6,7 +6,7 @@
 * the eigenvalues against speed as CSV (:func:`stability.app.views.eigenvalues_csv`),
 * the toolkit's eigenvalue figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as PNG or SVG.
 
-Each file is named after the chair (``revised-modified-trail-0.06.toml``): the
+Each file is named after the chair (``revised-modified-trail-0.055.toml``): the
 name is user text, so only ASCII letters, digits, ``.``, ``-`` and ``_`` are
 kept.  Everything here but :func:`download_buttons` is pure Python (no Panel).
 """
@@ -45,8 +45,8 @@ def file_stem(name: str) -> str:
 
     Examples
     --------
-    >>> file_stem("revised (modified: trail=0.06)")
-    'revised-modified-trail-0.06'
+    >>> file_stem("revised (modified: trail=0.055)")
+    'revised-modified-trail-0.055'
     """
     stem = re.sub(r"[^A-Za-z0-9._]+", "-", str(name)).strip("-.")[:STEM_LENGTH].strip("-.")
     return stem or "chair"

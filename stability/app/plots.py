@@ -235,7 +235,7 @@ def top_view(sources: dict[str, ColumnDataSource], compact: bool = False):
                                 line_width=2)))
         p.text("x1", "y1", text="label", source=sources["tip"], text_font_size="9pt", x_offset=3, y_offset=-3)
     _title(p).text_font_size = "10pt" if compact else "11pt"
-    _legend_below(p, [LegendItem(label=k, renderers=[r]) for k, r in items], ncols=2 if compact else 3,
+    _legend_below(p, [LegendItem(label=k, renderers=[r]) for k, r in items], ncols=2,
                   label_text_font_size="8pt" if compact else "9pt")
     return p
 

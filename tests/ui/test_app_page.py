@@ -161,3 +161,40 @@ def test_a_chair_whose_modes_share_a_name_does_not_break_the_session():
         ex.refresh()
         ex.editor.model.value = "thesis"
         assert ex._view_errors == {} and ex.state.url_query().startswith("chair=revised")
+
+
+def test_fast_edits_coalesce_and_the_latest_wins():
+    """Edits that arrive before the page has drawn are applied in order and drawn once, for the last chair (the
+    explorer review: 30 fast edits each computed and sent in full, the views reaching the last one 20 s later)."""
+    from stability.app.page import Explorer
+
+    ticks: list = []
+    ex = Explorer(deliver=ticks.append, auto_nonlinear=False)        # the document's next tick, run by hand
+    drawn: list = []
+    refresh = ex.refresh
+    ex.refresh = lambda: (drawn.append(ex.state.chair.s1), refresh())
+    for value in ("0.30", "0.31", "abc", "0.33"):
+        ex.editor.inputs["s1"].value = value                         # as the browser's events arrive
+    assert len(ticks) == 1                                           # one drain for all four
+    ticks.pop()()
+    assert drawn == [0.33] and ex.state.url_query() == "chair=ej-premier&s1=0.33"
+    assert ex.state.errors == {}                                     # the bad value was answered by a good one
+    assert ex.speed_tab.branch_src.data["real0"] is not None and ex.view.chair.s1 == 0.33
+    for want in (0.31, 0.30):                                        # each accepted edit is its own undo step
+        assert ex.state.undo() and ex.state.chair.s1 == want
+
+
+def test_a_hidden_tabs_text_waits_until_the_tab_is_shown():
+    import panel as pn
+
+    from stability.app.tabtext import TabText
+
+    pane, texts = pn.pane.Markdown("old"), TabText(shown=False)
+    texts.set(pane, "new")
+    assert pane.object == "old" and texts.get(pane) == "new"
+    texts.set(pane, "newer")                                         # the latest wins
+    texts.shown = True
+    texts.flush()
+    assert pane.object == "newer"
+    texts.set(pane, "now")
+    assert pane.object == "now"
