@@ -51,11 +51,17 @@ from stability.app.trail_tab import TrailTab
 from stability.app.views import LinearView, linear_view
 from stability.settings import defaults as D
 
-__all__ = ["Explorer", "TAB_NAMES"]
+__all__ = ["Explorer", "TAB_NAMES", "BACKGROUND_DELAY_MS"]
 
 #: The tabs, in order.
 TAB_NAMES = ("Stability vs speed", "Geometry", "Nonlinear", "Trail window", "Advice", "Compare",
              "Power assist", "Downloads")
+
+
+#: How long after an edit the background work starts, ms: the edit's answer reaches the browser and is painted
+#: first (the simulator's batch kernel runs on every core and would otherwise compete with it), and a burst of
+#: edits starts the work once.
+BACKGROUND_DELAY_MS = 300
 
 
 def _held(fn: Callable[..., Any], *args: Any) -> None:
@@ -80,6 +86,9 @@ class Explorer:
         The session's URL, updated after each accepted change.
     auto_nonlinear : bool
         Queue the nonlinear measures and the trail window after each change (default True).
+    later : callable, optional
+        ``later(fn, ms)`` runs ``fn()`` after ``ms`` milliseconds where the session may change its page: the
+        document's ``add_timeout_callback`` in a served session; default: at once (tests).
 
     Attributes
     ----------
@@ -91,9 +100,11 @@ class Explorer:
     """
 
     def __init__(self, query: Any = None, deliver: Callable[[Callable[[], None]], Any] | None = None,
-                 location: Any = None, auto_nonlinear: bool = True) -> None:
+                 location: Any = None, auto_nonlinear: bool = True,
+                 later: Callable[[Callable[[], None], int], Any] | None = None) -> None:
         self.state = AppState.from_query(query) if query else AppState()
         self._deliver = deliver or (lambda fn: fn())
+        self._later = later or (lambda fn, ms: fn())
         self.jobs = Jobs(lambda fn: self._deliver(partial(_held, fn)))
         self.location = location
         self.auto_nonlinear = auto_nonlinear
@@ -309,11 +320,19 @@ class Explorer:
         self._guarded("downloads", self._name_downloads)
         if self.state.uncertainty is not None:
             self.speed_tab.show_band([], [], [])
+        self._later(partial(_held, partial(self._start_background, self.jobs.generation)), BACKGROUND_DELAY_MS)
+        self._show_messages()
+
+    def _start_background(self, generation: int) -> None:
+        """Queue the background work of the chair drawn at ``generation`` (nothing if the chair changed since)."""
+        if generation != self.jobs.generation:
+            return
+        chair, model = self.state.chair, self.state.model
+        if self.state.uncertainty is not None:
             self._start_bands()
         if self.auto_nonlinear:
             self.nonlinear.start(chair, model)
             self.trail.start(chair, model)
-        self._show_messages()
 
     def sync_location(self) -> None:
         """Set the address bar's query to the chair shown (the page calls it again once the browser is connected:

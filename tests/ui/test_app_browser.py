@@ -67,6 +67,7 @@ def test_bad_value_shows_the_message_and_keeps_the_chair(page, explorer, artifac
         msg.wait_for()
         assert msg.first.inner_text().replace("\n", " ") == cli_message(f"trail={text}")
         assert row(page).inner_text() == before                # the views keep the last valid chair
+    page.locator(".error-trail").evaluate("e => e.scrollIntoView({block: 'center'})")
     page.screenshot(path=artifacts / "bad-value.png")
     set_field(page, "trail", "0.07")                            # a good value clears it
     row(page).locator("td", has_text=printed_rate("ej-premier", "trail=0.07")).wait_for()

@@ -31,6 +31,13 @@ def test_uncertainty_band_is_the_linear_intervals():
                             seed=0)
     assert list(data["low"]) == [a for a, _ in want.rate] and list(data["high"]) == [b for _, b in want.rate]
     assert np.all(np.asarray(data["low"]) <= np.asarray(data["high"]))
+    # the band has its legend entry (the explorer review: it had none), before and after the next edit
+    labels = [it.label["value"] for it in ex.speed_tab.figs["legend"].items]
+    assert "95 % interval of the growth rate (uncertainty file)" not in labels      # loaded but not yet shown
+    ex._load_uncertainty(type("E", (), {"new": path.read_bytes()})())
+    ex.edit("trail", "0.07")
+    labels = [it.label["value"] for it in ex.speed_tab.figs["legend"].items]
+    assert labels[-1] == "95 % interval of the growth rate (uncertainty file)"
 
 
 def test_a_chair_change_drops_the_old_chairs_results():
