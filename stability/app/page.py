@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 import panel as pn
 
+from stability.app import plots
 from stability.app.advice_tab import AdviceTab
 from stability.app.assist_tab import AssistTab
 from stability.app.compare_tab import CompareTab
@@ -138,10 +139,11 @@ class Explorer:
         ed.upload_unc.param.watch(on(self._load_uncertainty), "value")
         ed.watch(lambda name, e: on(partial(self._field_event, name))(e))
         self.message = pn.pane.HTML("", css_classes=["app-message"], styles=ERROR_STYLE, sizing_mode="stretch_width")
-        self.title = pn.pane.Markdown("", css_classes=["chair-title"], sizing_mode="stretch_width")
+        self.title, title_pane = plots.text_div("chair-title")
         # how many times the page has settled after a change (sent last, so a browser can tell the page is done)
-        self.settled = pn.pane.HTML("0", css_classes=["page-settled"], width=1, height=1, margin=0,
-                                    styles={"overflow": "hidden", "opacity": "0"})
+        self.settled, settled_pane = plots.text_div("page-settled", "0", width=1, height=1, margin=0,
+                                                    sizing_mode="fixed", styles={"overflow": "hidden",
+                                                                                 "opacity": "0"})
         self.speed_tab = SpeedTab()
         self.speed_tab.speed.param.watch(on(lambda e: self._show_shape()), "value_throttled")
         self.geometry = GeometryTab()
@@ -165,8 +167,8 @@ class Explorer:
                        self.advice.texts, self.compare.texts, self.assist.texts, None]
         self.tabs.param.watch(on(self._tab_shown), "active")
         header = pn.Column(pn.Row(pn.pane.Markdown("### stability explorer", margin=(0, 10), width=EDITOR_WIDTH - 20),
-                                  self.title, sizing_mode="stretch_width"),
-                           self.message, self.settled, sizing_mode="stretch_width")
+                                  title_pane, sizing_mode="stretch_width"),
+                           self.message, settled_pane, sizing_mode="stretch_width")
         views = pn.Column(self.tabs, sizing_mode="stretch_width", min_width=560, css_classes=["views-column"])
         self.layout = pn.Column(header, pn.Row(self.editor.panel(self.geometry.sketch), views,
                                                sizing_mode="stretch_width"),
@@ -360,13 +362,13 @@ class Explorer:
         if self.message.object != other:
             self.message.object = other
         c = self.state.current
-        title = (f"**{literal(c.chair.name)}** ({c.chair.caster_position} casters; base {literal(c.base)}; "
+        title = (f"<b>{literal(c.chair.name)}</b> ({c.chair.caster_position} casters; base {literal(c.base)}; "
                  f"{self.state.model} model)" + (f"; uncertainty file {literal(self.state.uncertainty_name)}"
                                                   if self.state.uncertainty is not None else ""))
-        if self.title.object != title:
-            self.title.object = title
+        if self.title.text != title:
+            self.title.text = title
         self._settled += 1
-        self.settled.object = str(self._settled)
+        self.settled.text = str(self._settled)
 
     def _show_shape(self) -> None:
         if self.view is not None:

@@ -24,7 +24,14 @@ from stability.plotting.style import OKABE_ITO, UNSTABLE
 
 __all__ = ["STABLE", "BRANCH_COLOURS", "CURSOR", "BAND", "NEUTRAL", "speed_figures", "shape_figure", "top_view",
            "side_view", "response_figure", "compare_figure", "trail_figure", "MAX_BRANCHES", "MAX_CROSSINGS",
-           "short_title", "replace_data"]
+           "short_title", "replace_data", "text_div", "TEXT_STYLESHEET"]
+
+#: The style of the page's per-edit text blocks (Bokeh ``Div``s): the look of Panel's Markdown, a compact table.
+TEXT_STYLESHEET = (
+    ":host { font-size: 14px; line-height: 1.45; } p { margin: 0 0 0.6em 0; } "
+    "code { font-size: 12.5px; color: #1f5f8b; } "
+    "table { border-collapse: collapse; font-size: 13px; margin-bottom: 0.5em; } "
+    "th, td { border: 1px solid #bbb; padding: 1px 10px; text-align: right; } th { font-weight: 600; }")
 
 #: Shading of stable speed ranges (Okabe-Ito bluish green, light).
 STABLE = "#009E73"
@@ -60,6 +67,34 @@ def short_title(text: str, limit: int = TITLE_NAME) -> str:
     """
     text = " ".join(str(text).split())
     return text if len(text) <= limit else text[:limit - 1] + "…"
+
+
+def text_div(css_class: str, text: str = "", **kw: Any) -> Any:
+    """A Bokeh ``Div`` for HTML the page rewrites on every edit, and the Panel pane that holds it.
+
+    A ``Div``'s text goes to the browser as one property (Panel's Markdown and HTML panes send every property of
+    the pane again and convert their text first), and rewriting it does not lay the page out again.
+
+    Parameters
+    ----------
+    css_class : str
+        The element's class (the browser tests find it by that).
+    text : str
+        Initial HTML (inert: user text through :mod:`stability.app.markup`).
+    **kw
+        More ``Div`` properties (``width``, ``height``, ``styles``).
+
+    Returns
+    -------
+    (bokeh.models.Div, panel.pane.Bokeh)
+    """
+    import panel as pn
+    from bokeh.models.widgets.markups import Div
+
+    kw.setdefault("sizing_mode", "stretch_width")
+    div = Div(text=text, css_classes=[css_class], stylesheets=[TEXT_STYLESHEET], **kw)
+    pane_kw = {k: kw[k] for k in ("width", "height", "margin", "sizing_mode") if k in kw}
+    return div, pn.pane.Bokeh(div, **pane_kw)
 
 
 def replace_data(source: ColumnDataSource, data: dict) -> bool:

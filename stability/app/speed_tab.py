@@ -20,15 +20,14 @@ from bokeh.models.annotations import LegendItem
 from stability.app import plots
 from stability.app.markup import literal
 from stability.app.tabtext import TabText
-from stability.app.text import summary_text
+from stability.app.text import summary_html
 from stability.app.views import GRID, LinearView, mode_shape
 from stability.plotting.style import UNSTABLE
 from stability.settings import defaults as D
 
 __all__ = ["SpeedTab", "real_range"]
 
-#: The summary's table, compact (a laptop's screen shows it and the plot together).
-_COMPACT_TABLE = "table { font-size: 13px; } th, td { padding: 1px 10px !important; }"
+
 
 
 def real_range(eig: np.ndarray) -> tuple[float, float]:
@@ -53,7 +52,7 @@ class SpeedTab:
 
     Attributes
     ----------
-    summary : panel.pane.Markdown
+    summary : bokeh.models.Div
         The verdict, the critical speeds and the table ``python -m stability.critical_speed`` prints.
     speed : panel.widgets.FloatSlider
         The speed of the mode shape, m/s.
@@ -73,25 +72,24 @@ class SpeedTab:
         self.figs = plots.speed_figures(self.branch_src, self.bands_src, self.unc_src)
         self.shape_src = ColumnDataSource({"component": [], "magnitude": [], "phase": []})
         self.shape_fig = plots.shape_figure(self.shape_src)
-        self.summary = pn.pane.Markdown("", css_classes=["summary"], sizing_mode="stretch_width",
-                                        stylesheets=[_COMPACT_TABLE])
+        self.summary, summary_pane = plots.text_div("summary")
         self.speed = pn.widgets.FloatSlider(name="speed U (m/s) of the mode shape below", start=0.05, end=3.0,
                                             step=0.01, value=D.SPEED, css_classes=["speed"],
                                             sizing_mode="stretch_width")
-        self.shape_text = pn.pane.Markdown("", css_classes=["shape-text"], sizing_mode="stretch_width")
+        self.shape_text, shape_pane = plots.text_div("shape-text")
         self._legend_key: Any = None
         self.texts = TabText(shown=True)
         self._band = False
         f = self.figs
         self.panel = pn.Column(
-            self.summary,
+            summary_pane,
             pn.pane.Bokeh(f["real"], sizing_mode="stretch_width"),
             pn.pane.Bokeh(f["imag"], sizing_mode="stretch_width"),
             pn.pane.Markdown("What to conclude: where the vermillion shading is, the chair's heading drifts away by "
                              "itself after a disturbance (the growth rate is how fast: it doubles every ln 2 / σ "
                              "seconds); dashed vermillion lines mark the critical speeds where that starts or stops. "
                              "Click a legend entry to hide that mode.", sizing_mode="stretch_width"),
-            self.speed, self.shape_text, pn.pane.Bokeh(self.shape_fig, sizing_mode="stretch_width"),
+            self.speed, shape_pane, pn.pane.Bokeh(self.shape_fig, sizing_mode="stretch_width"),
             sizing_mode="stretch_width")
 
     def show(self, v: LinearView, band: bool) -> None:
@@ -149,7 +147,9 @@ class SpeedTab:
                  "(> 0: that mode grows)")
         if f["real"].title.text != title:
             f["real"].title.text = title
-        self.texts.set(self.summary, summary_text(v))
+        html = summary_html(v)
+        if self.summary.text != html:
+            self.summary.text = html
 
     def show_band_entry(self, band: bool) -> None:
         """Add (or drop) the 95 % interval's legend entry.
@@ -197,10 +197,10 @@ class SpeedTab:
         lam = sh.eigenvalue
         t2 = f"; a heading error doubles every {np.log(2) / lam.real:.3g} s" if lam.real > 0 else ""
         shares = ", ".join(f"{k} {100 * x:.0f} %" for k, x in sh.shares.items())
-        self.texts.set(self.shape_text, f"**At {sh.speed:.3g} m/s** the least stable mode is *{literal(sh.name)}*: "
-                                  f"eigenvalue {lam.real:.4f} {'+' if lam.imag >= 0 else '-'} {abs(lam.imag):.3g}j "
-                                  f"1/s{t2}. Shares of its motion: {shares}. The bars give each component's size "
-                                  "relative to the largest, the numbers its phase relative to it.")
+        self.shape_text.text = (f"<p><b>At {sh.speed:.3g} m/s</b> the least stable mode is <i>{literal(sh.name)}</i>: "
+                                f"eigenvalue {lam.real:.4f} {'+' if lam.imag >= 0 else '-'} {abs(lam.imag):.3g}j "
+                                f"1/s{t2}. Shares of its motion: {shares}. The bars give each component's size "
+                                "relative to the largest, the numbers its phase relative to it.</p>")
 
     def show_band(self, speeds: Any, low: Any, high: Any) -> None:
         """Draw the growth rate's 95 % interval (empty arrays: none).

@@ -8,7 +8,7 @@ from stability import chair as chair_mod
 from stability.app.views import LinearView
 from stability.chair import Chair
 
-__all__ = ["summary_text", "geometry_text", "field_rows", "field_label", "FIELD_KINDS", "FIELD_GROUPS"]
+__all__ = ["summary_html", "geometry_text", "field_rows", "field_label", "FIELD_KINDS", "FIELD_GROUPS"]
 
 #: Fields edited as text choices rather than numbers.
 TEXT_FIELDS = ("name", "caster_position", "main_tire", "caster_tire")
@@ -76,8 +76,10 @@ def _fmt(x: float | None, unit: str, digits: int = 4) -> str:
     return "none in range" if x is None else f"{x:.{digits}g} {unit}"
 
 
-def summary_text(v: LinearView) -> str:
+def summary_html(v: LinearView) -> str:
     """The linear summary over the plots: verdict, critical speeds, the divergence table as ``critical_speed`` prints.
+
+    HTML: the page shows it in a Bokeh ``Div`` (no Markdown to convert per edit).
 
     Parameters
     ----------
@@ -86,22 +88,24 @@ def summary_text(v: LinearView) -> str:
     Returns
     -------
     str
-        Markdown.
+        HTML made of numbers and the page's own words only (no user text).
     """
     first_free = v.free_crossings[0].speed if v.free_crossings else None
     first_locked = v.locked_crossings[0].speed if v.locked_crossings else None
-    lines = ["| speed (m/s) | growth rate (1/s) | doubling time (s) | frequency (rad/s) |",
-             "|---:|---:|---:|---:|"]
+    rows = []
     for r in v.table:
         t2 = "-" if r.time_to_double is None else f"{r.time_to_double:.3g}"
-        lines.append(f"| {r.speed:.3g} | {r.rate:.4f} | {t2} | {r.frequency:.3g} |")
+        rows.append(f"<tr><td>{r.speed:.3g}</td><td>{r.rate:.4f}</td><td>{t2}</td><td>{r.frequency:.3g}</td></tr>")
     g = v.growth_rate
     verdict = ("unstable at every speed from 0.01 to 30 m/s" if np.all(g > 0) else
                "stable at every speed from 0.01 to 30 m/s" if np.all(g < 0) else "stable in the shaded green "
                "ranges, unstable in the vermillion ones")
-    return (f"**Free casters: {verdict}.** Critical speeds: free casters {_fmt(first_free, 'm/s')}, locked casters "
-            f"{_fmt(first_locked, 'm/s')}, zero-width model (eq 5-15) {_fmt(v.zero_width.critical_speed, 'm/s')}."
-            "\n\nLeast stable mode (what `python -m stability.critical_speed` prints):\n\n" + "\n".join(lines))
+    return (f"<p><b>Free casters: {verdict}.</b> Critical speeds: free casters {_fmt(first_free, 'm/s')}, locked "
+            f"casters {_fmt(first_locked, 'm/s')}, zero-width model (eq 5-15) "
+            f"{_fmt(v.zero_width.critical_speed, 'm/s')}.</p>"
+            "<p>Least stable mode (what <code>python -m stability.critical_speed</code> prints):</p>"
+            "<table><thead><tr><th>speed (m/s)</th><th>growth rate (1/s)</th><th>doubling time (s)</th>"
+            "<th>frequency (rad/s)</th></tr></thead><tbody>" + "".join(rows) + "</tbody></table>")
 
 
 def geometry_text(c: Chair, v: LinearView) -> str:

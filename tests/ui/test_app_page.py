@@ -65,8 +65,8 @@ def test_a_chair_change_drops_the_old_chairs_results():
 HOSTILE_NAMES = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "[x](javascript:alert(3))",
                  "```\n<svg onload=alert(4)>", "</pre><script>alert(5)</script>"]
 #: Elements the page's own Markdown and HTML may produce (tables of numbers, emphasis, the command output block).
-PAGE_TAGS = {"p", "strong", "em", "br", "table", "thead", "tbody", "tr", "th", "td", "pre", "code", "h2", "h3",
-             "ul", "li"}
+PAGE_TAGS = {"p", "strong", "em", "b", "i", "br", "table", "thead", "tbody", "tr", "th", "td", "pre", "code", "h2",
+             "h3", "ul", "li"}
 
 
 def _rendered(pane) -> str:
@@ -101,11 +101,14 @@ def _assert_no_user_markup(ex) -> None:
     import panel as pn
 
     _show_every_tab(ex)
+    from bokeh.models.widgets.markups import Div
+
     panes = [*ex.layout.select(pn.pane.Markdown), *ex.layout.select(pn.pane.HTML)]
-    assert len(panes) > 10
-    for pane in panes:
-        tags, attrs = _elements(_rendered(pane))
-        assert tags <= PAGE_TAGS, (pane, tags - PAGE_TAGS)
+    divs = [p.object for p in ex.layout.select(pn.pane.Bokeh) if isinstance(p.object, Div)]
+    assert len(panes) > 10 and len(divs) >= 4                # the per-edit texts are Bokeh Divs
+    for html in [_rendered(pane) for pane in panes] + [d.text for d in divs]:
+        tags, attrs = _elements(html)
+        assert tags <= PAGE_TAGS, (html, tags - PAGE_TAGS)
         assert all(not k.startswith("on") and "javascript:" not in (v or "") for k, v in attrs), attrs
 
 
@@ -120,7 +123,7 @@ def test_hostile_text_from_a_url_a_field_and_files_is_never_markup(name, tmp_pat
     ex = Explorer(query=urlencode({"chair": "ej-premier", "name": name}), auto_nonlinear=False)
     _show_every_tab(ex)
     assert ex.state.chair.name == name
-    assert "alert" in ex.title.object                         # the name is shown (as text)
+    assert "alert" in ex.title.text                           # the name is shown (as text)
     _assert_no_user_markup(ex)
     ex.edit("trail", name)                                    # refused: the message quotes the value
     assert ex.state.errors["trail"]
