@@ -9,6 +9,7 @@ on the chair as one edit (undo takes it back).
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import panel as pn
@@ -16,6 +17,7 @@ import panel as pn
 from stability.app.editor import BUTTON_WRAP
 from stability.app.edits import assignments
 from stability.app.markup import PRE_STYLESHEET, literal, pre
+from stability.app.measures import warning_lines
 from stability.app.nonlinear_tab import FRESH, STALE, busy_bar, show_busy
 from stability.app.tabtext import TabText
 from stability.chair import Chair
@@ -77,8 +79,10 @@ class AdviceTab:
             from stability.advise import advise
             from stability.advise.text import advice_text
 
-            a = advise(chair)
-            return a, advice_text(a)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                a = advise(chair)
+            return a, advice_text(a) + "".join(f"\nnote: {line}" for line in warning_lines(caught))
 
         self.submit(work, self.show, self.failed)
 

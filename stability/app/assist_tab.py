@@ -10,6 +10,7 @@ continuous and sampled margins).
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
@@ -20,6 +21,7 @@ from bokeh.models.annotations import Legend, LegendItem
 from bokeh.plotting import figure
 
 from stability.app.markup import PRE_STYLESHEET, literal, pre
+from stability.app.measures import warning_lines
 from stability.app.nonlinear_tab import FRESH, STALE
 from stability.app.plots import BRANCH_COLOURS
 from stability.app.tabtext import TabText
@@ -40,14 +42,21 @@ def assist_schedule(chair: Chair, model: str = D.MODEL) -> tuple[Any, list, str]
     Returns
     -------
     (Schedule, list of GainRow, str)
+        The text ends with every warning raised while designing (``note: Kind: message``).
     """
     from stability.assist import schedule
     from stability.assist.tables import format_margins, format_table, gain_table
     from stability.cli import parse_speeds
 
-    sched = schedule(chair, parse_speeds(D.ASSIST_SPEEDS, increasing=True), "gyro", model=model)
-    rows = gain_table(sched, check=False)
-    return sched, rows, format_table(sched, rows) + "\n\n" + format_margins(rows)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sched = schedule(chair, parse_speeds(D.ASSIST_SPEEDS, increasing=True), "gyro", model=model)
+        rows = gain_table(sched, check=False)
+    notes = "".join(f"\nnote: {line}" for line in warning_lines(caught))
+    caption = (f"Margins at the plant input, continuous / sampled at {sched.gyro.sample_rate_hz:g} Hz (ZOH, one-sample "
+               f"computation delay, {1e3 * sched.drive.motor_time_constant:g} ms motor lag in both); the yaw-rate "
+               "step columns (a nonlinear simulation) are '-' here: python -m stability.assist runs it.")
+    return sched, rows, format_table(sched, rows) + "\n\n" + caption + "\n" + format_margins(rows) + notes
 
 
 class AssistTab:
