@@ -38,7 +38,11 @@ extensions = [
     "stability_api",          # _ext: API pages from each package's __all__, reference resolution
     "stability_cli",          # _ext: command-line reference from the argparse parsers
     "stability_validation",   # _ext: the validation table, computed at build time
+    "stability_mathjax",      # _ext: MathJax copied into the site (no CDN: equations render offline)
 ]
+
+# MathJax 3 from the site itself (docs/_ext/stability_mathjax.py copies it into _static/mathjax)
+mathjax_path = "mathjax/tex-chtml.js"
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"

@@ -191,9 +191,17 @@ def test_growth_rate_shown_is_the_command_lines():
 
 
 def test_mode_shape_is_an_eigenvector():
+    """The mode shape is computed at the slider's speed itself (the explorer review: it snapped to the plot's
+    grid, 0.76 m/s for 0.75, and never matched the table): its eigenvalue is the table's growth rate."""
     view = linear_view(chair_mod.preset("ej-premier"))
     shape = mode_shape(view, 0.75)
-    assert shape.eigenvalue.real == pytest.approx(view.growth_rate[np.argmin(np.abs(GRID - 0.75))], rel=1e-12)
+    assert shape.speed == 0.75
+    row = next(r for r in view.table if r.speed == 0.75)
+    # the same matrix through the same LAPACK routine: equal to rounding (error model: eps * ||A|| * 1e3)
+    A = state_matrices(view.chair, 0.75)[0]
+    assert abs(shape.eigenvalue.real - row.rate) <= 1e3 * np.finfo(float).eps * np.linalg.norm(A)
+    for u in (0.06, 0.08, 1.234):
+        assert mode_shape(view, u).speed == u
     assert max(shape.magnitude) == 1.0 and sum(shape.shares.values()) == pytest.approx(1.0, abs=1e-12)
     # the ej-premier's least stable mode: both casters swing together (mirror symmetry), no opposed part
     assert shape.shares["casters opposed"] < 1e-20
@@ -285,9 +293,89 @@ def test_applying_a_recommendation_is_its_set_assignments():
 
 def test_shimmy_band_quoted_in_docs_app_md():
     """docs/app.md's trail-window caption quotes the E&J Premier's shimmy-free band as the tab shows it."""
-    from stability.app.views import TRAIL_SPEEDS
+    from stability.app.measures import TRAIL_SPEEDS
     from stability.shimmy.band import shimmy_band
 
     text = (pathlib.Path(__file__).parents[1] / "docs" / "app.md").read_text()
     band = shimmy_band(chair_mod.preset("ej-premier"), TRAIL_SPEEDS)
     assert f"shimmy-free band {band.describe(1)} cm" in text
+
+
+def test_reset_drops_every_change_and_undo_takes_it_back():
+    s = AppState("revised")
+    assert s.reset() is False                                   # nothing changed yet
+    s.set_field("trail", "0.05")
+    s.set_field("s1", "0.25")
+    changed = s.chair
+    assert s.reset() and s.chair == chair_mod.preset("revised") and s.url_query() == "chair=revised"
+    assert s.undo() and s.chair == changed
+
+
+def test_undo_restores_the_model_too():
+    s = AppState()
+    s.set_field("trail", "0.05")
+    s.set_model("thesis")
+    assert s.url_query() == "chair=ej-premier&trail=0.05&model=thesis"
+    assert s.undo() and s.model == "exact" and s.chair.trail == 0.05
+
+
+def test_upload_messages_name_the_file_not_the_servers_copy(tmp_path):
+    import tempfile
+
+    s = AppState()
+    msg = s.load_toml(b"trail = 'x", "my chair.toml")
+    assert msg.startswith("error: chair file 'my chair.toml' is not valid TOML")
+    assert tempfile.gettempdir() not in msg
+    msg = s.load_uncertainty(b"[trail\n", "u.toml")
+    assert msg.startswith("error: uncertainty file 'u.toml' is not valid TOML")       # the CLI's words
+    assert tempfile.gettempdir() not in msg
+
+
+def test_download_file_names_carry_the_chair_and_no_markup():
+    from stability.app.downloads import file_names, file_stem
+
+    s = AppState("revised")
+    s.set_field("trail", "0.055")
+    names = file_names(s.chair.name)
+    assert names["toml"] == "revised-modified-trail-0.055.toml" and names["png"].endswith(".eigenvalues.png")
+    for hostile in ("<script>alert(1)</script>", "../../etc/passwd", "", "a" * 500, "é/ü"):
+        stem = file_stem(hostile)
+        assert stem and len(stem) <= 60 and all(c.isascii() and (c.isalnum() or c in "._-") for c in stem)
+        assert not stem.startswith(".")
+
+
+def test_every_field_is_in_one_editor_group_with_a_label_in_words():
+    from stability.app.text import FIELD_GROUPS, field_label, field_rows
+
+    grouped = [f for _, fields, _ in FIELD_GROUPS for f in fields]
+    assert sorted(grouped) == sorted(chair_mod.field_names()) and len(grouped) == len(set(grouped))
+    labels = {r["name"]: field_label(r) for r in field_rows()}
+    assert labels["trail"] == "Caster trail, pin to contact: trail (m)"
+    assert labels["roll_k"].startswith("Roll coefficient") and labels["roll_k"].endswith(": roll_k")
+
+
+def test_simulator_warnings_reach_the_nonlinear_view():
+    """The explorer review: trail=0.5 raised StepStabilityWarning on the server's stderr only."""
+    from stability.app.measures import nonlinear_view
+
+    nv = nonlinear_view(chair_mod.preset("ej-premier").replace(trail=0.5), "exact", 0.75, (40.0, 0.1),
+                        equal_instability=False)
+    assert any(w.startswith("StepStabilityWarning: ") for w in nv.warnings), nv.warnings
+    quiet = nonlinear_view(chair_mod.preset("ej-premier"), "exact", 0.75, (40.0, 0.1), equal_instability=False)
+    assert quiet.warnings == ()
+    assert 2.0 < quiet.time_to_level < 4.0                         # the criterion's time, from the run itself
+    assert quiet.critical_impulse.low_Ns <= quiet.critical_impulse.point.bound_Ns <= quiet.critical_impulse.high_Ns
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "revised"])
+def test_trail_chart_crosses_zero_at_the_bands_boundary(name):
+    """The explorer review: the chart's dashed shimmy curves crossed zero at 2 cm (rigid pins) while the band's
+    boundary drawn on it was at 4.9 cm (the towed wheel on its pin spring).  The chart now uses the compliant pins:
+    for a symmetric chair its least damped caster mode is the towed wheel's (docs/shimmy.md), so the crossings
+    coincide (the chart's bisection stops at 0.01 mm)."""
+    from stability.app.measures import TRAIL_SPEEDS, trail_window
+
+    tw = trail_window(chair_mod.preset(name))
+    lower = [min(bs) for bs in tw.band.boundaries_m]
+    assert len(lower) == len(TRAIL_SPEEDS)
+    assert np.allclose(tw.chart.critical_trail, lower, atol=2e-5)

@@ -142,3 +142,12 @@ def test_batch_parameters_vectorise():
     loads = np.array(normal_loads(p))
     for i, c in enumerate(chairs):
         np.testing.assert_allclose(loads[:, i], normal_loads(parameters(c)), rtol=1e-14)
+
+
+def test_a_bad_value_of_a_field_without_unit_is_explained_without_one():
+    """The explorer review: roll_k=abc said 'needs a number in - or a number with a unit of the same kind'."""
+    with pytest.raises(ValueError, match=r"^chair parameter roll_k needs a number \(it has no unit\), got 'abc'$"):
+        chair_mod.parse_assignment("roll_k=abc")
+    with pytest.raises(ValueError, match=r"^chair parameter roll_k has no unit; give a plain number \(got '5cm'\)$"):
+        chair_mod.parse_assignment("roll_k=5cm")
+

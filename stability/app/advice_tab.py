@@ -1,6 +1,6 @@
 """The explorer's advice tab: the advisor's verdict and recommendation for the current chair, applied in one click.
 
-On request (the advisor simulates every lever: about a minute), on the
+On request (the advisor simulates every lever: several seconds), on the
 background worker: :func:`stability.advise.advise` with the command line's
 defaults, shown as :func:`stability.advise.text.advice_text` (what
 ``python -m stability.advise`` prints).  "Apply" sets the recommended fields
@@ -9,12 +9,17 @@ on the chair as one edit (undo takes it back).
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import panel as pn
 
-from stability.app.markup import literal, pre
-from stability.app.state import assignments
+from stability.app.editor import BUTTON_WRAP
+from stability.app.edits import assignments
+from stability.app.markup import PRE_STYLESHEET, literal, pre
+from stability.app.measures import warning_lines
+from stability.app.nonlinear_tab import FRESH, STALE, busy_bar, show_busy
+from stability.app.tabtext import TabText
 from stability.chair import Chair
 
 __all__ = ["AdviceTab"]
@@ -38,45 +43,53 @@ class AdviceTab:
     def __init__(self, submit: Any, on_change: Any, current: Any, apply: Any) -> None:
         self.submit, self.current, self.apply = submit, current, apply
         self.advice: Any = None
-        self.button = pn.widgets.Button(name="advise this chair", button_type="primary", width=180,
+        self.button = pn.widgets.Button(name="advise this chair", button_type="primary", width=260,
+                                        stylesheets=BUTTON_WRAP,
                                         css_classes=["run-advice"])
         self.button.on_click(on_change(lambda e: self.start()))
-        self.apply_buttons = [pn.widgets.Button(name=name, width=220, disabled=True, css_classes=[css])
-                              for name, css in (("apply the recommendation", "apply-1"),
-                                                ("apply the runner-up", "apply-2"))]
+        self.apply_buttons = [pn.widgets.Button(name=name, disabled=True, css_classes=[css], button_type=kind,
+                                                sizing_mode="stretch_width", stylesheets=BUTTON_WRAP)
+                              for name, css, kind in (("apply the recommendation", "apply-1", "success"),
+                                                      ("apply the runner-up", "apply-2", "default"))]
         for k, b in enumerate(self.apply_buttons):
             b.on_click(on_change(lambda e, k=k: self._apply(k)))
-        self.progress = pn.indicators.Progress(active=False, visible=False, width=300, bar_color="primary")
+        self.progress = busy_bar()
+        self.texts = TabText()
         self.text = pn.pane.Markdown("Press the button: the advisor weighs every lever (trail, axle position, "
                                      "wheelbase, pin friction, caster tire and mass) against shimmy, tipping, "
                                      "turning effort and the cross-slope effort (`python -m stability.advise`, "
-                                     "docs/advise.md). It runs simulations: about a minute.",
-                                     css_classes=["advice-text"], sizing_mode="stretch_width")
-        self.panel = pn.Column(pn.Row(self.button, *self.apply_buttons), self.progress, self.text,
+                                     "docs/advise.md). It runs simulations: several seconds.",
+                                     css_classes=["advice-text"], sizing_mode="stretch_width",
+                                     stylesheets=[PRE_STYLESHEET])
+        self.panel = pn.Column(self.button, self.progress, *self.apply_buttons, self.text,
                                sizing_mode="stretch_width")
 
     def start(self) -> None:
         """Queue the advice for the session's current chair."""
         chair: Chair = self.current()
+        self.button.name = "advise this chair"
         self.advice = None
         for b in self.apply_buttons:
             b.disabled = True
-        self.progress.visible, self.progress.active = True, True
-        self.text.object = f"advising on {literal(chair.name)} (simulating every lever)..."
+        show_busy(self.progress, True)
+        self.text.styles = FRESH
+        self.texts.set(self.text, f"advising on {literal(chair.name)} (simulating every lever)...")
 
         def work() -> tuple[Any, str]:
             from stability.advise import advise
             from stability.advise.text import advice_text
 
-            a = advise(chair)
-            return a, advice_text(a)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                a = advise(chair)
+            return a, advice_text(a) + "".join(f"\nnote: {line}" for line in warning_lines(caught))
 
         self.submit(work, self.show, self.failed)
 
     def failed(self, exc: BaseException) -> None:
         """Show why there is no advice (one line)."""
-        self.progress.visible, self.progress.active = False, False
-        self.text.object = f"error: could not advise on this chair: {literal(exc)}"
+        show_busy(self.progress, False)
+        self.texts.set(self.text, f"error: could not advise on this chair: {literal(exc)}")
 
     def show(self, result: tuple[Any, str]) -> None:
         """Show the advice and enable the buttons of the recommendations it makes.
@@ -85,14 +98,15 @@ class AdviceTab:
         ----------
         result : (Advice, str)
         """
-        self.progress.visible, self.progress.active = False, False
+        show_busy(self.progress, False)
         self.advice, text = result
         recs = list(self.advice.recommendations)
         for k, b in enumerate(self.apply_buttons):
+            what = ("apply the recommendation", "apply the runner-up")[k]
             b.disabled = k >= len(recs)
-            if k < len(recs):
-                b.name = f"apply: {recs[k].candidate.label}"[:80]
-        self.text.object = pre(text)
+            b.name = f"{what}: {recs[k].candidate.label}" if k < len(recs) else what
+        self.text.styles = FRESH
+        self.texts.set(self.text, pre(text))
 
     def chair_changed(self, chair: Chair) -> None:
         """Disable applying advice given for another chair.
@@ -102,12 +116,13 @@ class AdviceTab:
         chair : Chair
             The session's chair now.
         """
-        if self.advice is not None and self.advice.chair != chair:
-            for b in self.apply_buttons:
-                b.disabled = True
-            if not self.text.object.startswith("*"):
-                self.text.object = ("*The chair has changed since this advice: press the button again.*\n\n"
-                                    + self.text.object)
+        if self.advice is None:
+            return
+        same = self.advice.chair == chair
+        for k, b in enumerate(self.apply_buttons):
+            b.disabled = not same or k >= len(self.advice.recommendations)
+        self.text.styles = FRESH if same else STALE
+        self.button.name = "advise this chair" if same else "advise the changed chair (this advice is for another)"
 
     def _apply(self, k: int) -> None:
         recs = list(self.advice.recommendations) if self.advice is not None else []

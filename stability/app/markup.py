@@ -20,8 +20,11 @@ from __future__ import annotations
 import html
 import unicodedata
 
-__all__ = ["literal", "pre", "MAX_SHOWN"]
+__all__ = ["literal", "pre", "MAX_SHOWN", "PRE_STYLESHEET"]
 
+#: The style of :func:`pre` blocks: a line longer than the pane scrolls sideways within the block (a command
+#: line's table keeps its columns) instead of being cut or wrapped mid-row.
+PRE_STYLESHEET = "pre.cli-text { overflow-x: auto; white-space: pre; font-size: 12px; line-height: 1.35; }"
 #: Longest user text shown in full (characters); longer text is cut with its length stated.
 MAX_SHOWN = 1000
 

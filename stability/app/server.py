@@ -105,9 +105,11 @@ def create_page() -> Any:
 
     doc = pn.state.curdoc
     deliver = doc.add_next_tick_callback if doc is not None else None
+    later = (lambda fn, ms: doc.add_timeout_callback(fn, ms)) if doc is not None else None
     from stability.app.page import Explorer
 
-    ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location)
+    ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location,
+                  later=later)
     if doc is not None:                      # a closed page's queued work is dropped
         doc.on_session_destroyed(lambda _context: ex.jobs.cancel())
         pn.state.onload(ex.sync_location)    # once connected: the address bar names the chair shown

@@ -8,92 +8,44 @@ does with a chair can be tested without a browser.
   (:func:`stability.cli.apply_assignments`); a bad value gives the same one
   line ``error: ...`` and the chair stays the last valid one.
 * The chair is a base (a preset, or an uploaded TOML file) plus the fields
-  changed from it, in the order they were first changed; the URL query
-  carries exactly that (``?chair=revised&trail=0.06&s1=0.25``), so opening
-  the URL rebuilds the same chair, its name included.
-* Every accepted change can be undone.
-* Downloads: the chair as TOML (it reloads to the same chair), the results
-  JSON (the document ``python -m stability.critical_speed --json`` prints),
-  the eigenvalues against speed as CSV.
+  changed from it, in the order they were first changed
+  (:class:`~stability.app.edits.Edit`); the URL query carries exactly that
+  (:mod:`stability.app.links`).
+* Every accepted change can be undone; the chair can be reset to its base.
+* Downloads: :mod:`stability.app.downloads`.
 """
 
 from __future__ import annotations
 
 import os
 import tempfile
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
-from urllib.parse import parse_qsl, urlencode
 
 from stability import chair as chair_mod
-from stability import tires
+from stability.app import downloads, links
+from stability.app.edits import (
+    DEFAULT_PRESET,
+    Edit,
+    assignments,
+    build_edit,
+    error_line,
+    field_text,
+    preset_chair,
+)
 from stability.chair import Chair
-from stability.cli import apply_assignments
-from stability.runtime.files import json_text, with_tire_range
 from stability.settings import defaults as D
 
 __all__ = ["AppState", "Edit", "MAX_PINNED", "DEFAULT_PRESET", "error_line", "assignments"]
 
 #: Largest number of chairs pinned for comparison.
 MAX_PINNED = 3
-#: The chair a new session starts with (the command lines' default ``--chair``).
-DEFAULT_PRESET = D.CHAIR
-def error_line(exc: BaseException) -> str:
-    """The one line the command lines print for ``exc`` (:func:`stability.cli.error`'s text).
-
-    Parameters
-    ----------
-    exc : BaseException
-
-    Returns
-    -------
-    str
-        ``"error: "`` and the first line of the message.
-    """
-    msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-    return f"error: {msg}"
 
 
-def _text(value: Any) -> str:
-    """A field value as the text an edit or a URL carries (floats with ``repr``: exact round trip)."""
-    if value is None:
-        return "none"
-    if isinstance(value, float):
-        return repr(value)
-    return str(value)
-
-
-@dataclass(frozen=True)
-class Edit:
-    """One state of the editor: the base chair and the fields changed from it.
-
-    Attributes
-    ----------
-    base : str
-        Preset name, or ``"file:<name>"`` for an uploaded chair file.
-    base_chair : Chair
-        The chair the changes start from.
-    changes : tuple of (str, Any)
-        Field name and value, in the order first changed.
-    chair : Chair
-        ``base_chair`` with ``changes`` applied (checked).
-    """
-
-    base: str
-    base_chair: Chair
-    changes: tuple[tuple[str, Any], ...]
-    chair: Chair
-
-
-def _build(base: str, base_chair: Chair, changes: Mapping[str, Any]) -> Edit:
-    """The checked edit; raises ValueError with the command line's message."""
-    assignments = [f"{k}={_text(v)}" for k, v in changes.items()]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", tires.TireRangeWarning)
-        c = apply_assignments(base_chair, assignments)
-    return Edit(base, base_chair, tuple(changes.items()), c)
+def _file_message(exc: BaseException, path: str, filename: str) -> str:
+    """The one-line message for an uploaded file, naming the file as the user named it (not the server's copy)."""
+    return error_line(exc).replace(repr(path), repr(filename)).replace(path, filename)
 
 
 @dataclass
@@ -133,12 +85,12 @@ class AppState:
     pinned: list[Chair] = field(default_factory=list)
     uncertainty: Any = None
     uncertainty_name: str = ""
-    _history: list[Edit] = field(default_factory=list, repr=False)
+    _history: list[tuple[Edit, str]] = field(default_factory=list, repr=False)
 
     def __post_init__(self) -> None:
-        if self.model not in ("exact", "thesis"):
+        if self.model not in links.MODELS:
             raise ValueError(f"model={self.model!r} is invalid; valid: 'exact' or 'thesis'")
-        self.current = _build(self.preset, _preset(self.preset), {})
+        self.current = build_edit(self.preset, preset_chair(self.preset), {})
 
     # -- reading ----------------------------------------------------------
     @property
@@ -167,15 +119,36 @@ class AppState:
         -------
         str
         """
-        return _text(getattr(self.chair, name))
+        return field_text(getattr(self.chair, name))
 
     # -- changing ---------------------------------------------------------
-    def _accept(self, new: Edit, keys: Sequence[str]) -> None:
+    def accept(self, new: Edit, keys: Sequence[str]) -> None:
+        """Make ``new`` the current chair (undoable when it differs) and clear the messages of ``keys``.
+
+        Parameters
+        ----------
+        new : Edit
+        keys : sequence of str
+            Fields (or ``"chair"``, ``"file"``, ``"url"``) whose messages the change answers.
+        """
         if new.chair != self.current.chair or new.base != self.current.base:
-            self._history.append(self.current)
+            self._history.append((self.current, self.model))
         self.current = new
         for k in keys:
             self.errors.pop(k, None)
+
+    def set_model(self, model: str) -> None:
+        """Switch the equation variant (undoable: undo goes back to the chair and model before).
+
+        Parameters
+        ----------
+        model : {"exact", "thesis"}
+        """
+        if model not in links.MODELS:
+            raise ValueError(f"model={model!r} is invalid; valid: 'exact' or 'thesis'")
+        if model != self.model:
+            self._history.append((self.current, self.model))
+            self.model = model
 
     def set_field(self, name: str, text: str) -> str | None:
         """Edit one field from its text, as ``--set NAME=TEXT`` would.
@@ -217,11 +190,11 @@ class AppState:
                     del changes[k]
                 elif getattr(self.current.base_chair, k) != v or k in changes:
                     changes[k] = v
-            new = _build(self.current.base, self.current.base_chair, changes)
+            new = build_edit(self.current.base, self.current.base_chair, changes)
         except ValueError as exc:
             self.errors[key] = error_line(exc)
             return self.errors[key]
-        self._accept(new, list(texts))
+        self.accept(new, list(texts))
         return None
 
     def select_preset(self, name: str) -> str | None:
@@ -238,13 +211,26 @@ class AppState:
             None, or the message for an unknown preset (``errors["chair"]``).
         """
         try:
-            new = _build(name, _preset(name), {})
+            new = build_edit(name, preset_chair(name), {})
         except ValueError as exc:
             self.errors["chair"] = error_line(exc)
             return self.errors["chair"]
-        self._accept(new, ["chair", *chair_mod.field_names()])
+        self.accept(new, ["chair", *chair_mod.field_names()])
         self.errors.clear()
         return None
+
+    def reset(self) -> bool:
+        """Drop every change from the base chair (the preset or the uploaded file); undo takes it back.
+
+        Returns
+        -------
+        bool
+            False when nothing was changed.
+        """
+        if not self.current.changes:
+            return False
+        self.accept(build_edit(self.current.base, self.current.base_chair, {}), chair_mod.field_names())
+        return True
 
     def load_toml(self, data: bytes | str, filename: str = "chair.toml") -> str | None:
         """Load an uploaded chair file (as ``--chair FILE`` reads it).
@@ -254,29 +240,31 @@ class AppState:
         data : bytes or str
             The file's contents.
         filename : str
-            Its name, shown as the base (``file:<name>``).
+            Its name, shown as the base (``file:<name>``) and in messages.
 
         Returns
         -------
         str or None
-            None, or the one-line message (``errors["file"]``); the chair is then unchanged.
+            None, or the one-line message (``errors["file"]``; it names the file as uploaded, never the
+            server's temporary copy); the chair is then unchanged.
         """
-        try:
-            raw = data.encode() if isinstance(data, str) else bytes(data)
-            with tempfile.TemporaryDirectory() as d:
-                path = os.path.join(d, os.path.basename(filename) or "chair.toml")
+        name = os.path.basename(filename) or "chair.toml"
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, name)
+            try:
+                raw = data.encode() if isinstance(data, str) else bytes(data)
                 with open(path, "wb") as fh:
                     fh.write(raw)
                 base_chair = chair_mod.load(path)
-            new = _build(f"file:{os.path.basename(filename)}", base_chair, {})
-        except (ValueError, UnicodeDecodeError) as exc:
-            self.errors["file"] = error_line(exc)
-            return self.errors["file"]
-        self._accept(new, ["file", *chair_mod.field_names()])
+                new = build_edit(f"file:{name}", base_chair, {})
+            except (ValueError, UnicodeDecodeError) as exc:
+                self.errors["file"] = _file_message(exc, path, name)
+                return self.errors["file"]
+        self.accept(new, ["file", *chair_mod.field_names()])
         return None
 
     def load_uncertainty(self, data: bytes | str, filename: str = "uncertainty.toml") -> str | None:
-        """Load an uploaded uncertainty file (as ``--uncertainty FILE`` reads it).
+        """Load an uploaded uncertainty file (as ``--uncertainty FILE`` reads it, with its messages).
 
         Parameters
         ----------
@@ -290,15 +278,19 @@ class AppState:
         str or None
             None, or the one-line message (``errors["uncertainty"]``).
         """
-        from stability.uncertainty import loads_uncertainty
+        from stability.uncertainty import load_uncertainty
 
-        try:
-            text = data if isinstance(data, str) else bytes(data).decode()
-            unc = loads_uncertainty(text)
-        except (ValueError, UnicodeDecodeError) as exc:
-            self.errors["uncertainty"] = error_line(exc)
-            return self.errors["uncertainty"]
-        self.uncertainty, self.uncertainty_name = unc, os.path.basename(filename)
+        name = os.path.basename(filename) or "uncertainty.toml"
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, name)
+            try:
+                with open(path, "wb") as fh:
+                    fh.write(data.encode() if isinstance(data, str) else bytes(data))
+                unc = load_uncertainty(path)
+            except (ValueError, UnicodeDecodeError) as exc:
+                self.errors["uncertainty"] = _file_message(exc, path, name)
+                return self.errors["uncertainty"]
+        self.uncertainty, self.uncertainty_name = unc, name
         self.errors.pop("uncertainty", None)
         return None
 
@@ -307,7 +299,7 @@ class AppState:
         self.uncertainty, self.uncertainty_name = None, ""
 
     def undo(self) -> bool:
-        """Go back to the chair before the last accepted change.
+        """Go back to the chair (and model) before the last accepted change.
 
         Returns
         -------
@@ -316,7 +308,7 @@ class AppState:
         """
         if not self._history:
             return False
-        self.current = self._history.pop()
+        self.current, self.model = self._history.pop()
         self.errors.clear()
         return True
 
@@ -350,30 +342,15 @@ class AppState:
         if 0 <= index < len(self.pinned):
             del self.pinned[index]
 
-    # -- the URL ----------------------------------------------------------
+    # -- the URL (stability.app.links) -------------------------------------
     def query(self) -> dict[str, str]:
-        """The URL query that rebuilds this chair: ``chair`` (a preset) and the fields changed from it.
-
-        An uploaded chair is given as the default preset plus every field that
-        differs from it, its name included.
+        """The URL query that rebuilds this chair (:func:`stability.app.links.query`).
 
         Returns
         -------
         dict
-            Parameter -> text, in order (``model`` only when not ``exact``).
         """
-        base = self.current.base
-        if base.startswith("file:"):
-            ref = _preset(DEFAULT_PRESET)
-            out = {"chair": DEFAULT_PRESET}
-            out.update({k: _text(getattr(self.chair, k)) for k in chair_mod.field_names()
-                        if getattr(self.chair, k) != getattr(ref, k)})
-        else:
-            out = {"chair": base}
-            out.update({k: _text(v) for k, v in self.current.changes})
-        if self.model != "exact":
-            out["model"] = self.model
-        return out
+        return links.query(self)
 
     def url_query(self) -> str:
         """:meth:`query` encoded, e.g. ``"chair=revised&trail=0.06&s1=0.25"``.
@@ -382,58 +359,21 @@ class AppState:
         -------
         str
         """
-        return urlencode(self.query())
+        return links.url_query(self)
 
     def apply_query(self, query: str | Mapping[str, Any]) -> str | None:
-        """Restore the chair a URL query describes (see :meth:`query`), keeping every valid part of it.
-
-        A bad part (an unknown preset or model, an unknown field, a bad value) is
-        dropped with the command line's one-line message, and the rest is applied:
-        ``?chair=revised&trail=abc`` opens the revised chair with a message about
-        ``trail``, never another chair.  The page then rewrites the URL to the chair shown.
+        """Restore the chair a URL query describes, its bad parts dropped (:func:`stability.app.links.apply_query`).
 
         Parameters
         ----------
         query : str or mapping
-            ``"chair=revised&trail=0.06"`` (a leading ``?`` is ignored) or a mapping of
-            parameter -> text (a list value uses its last item, as a browser's repeated key).
 
         Returns
         -------
         str or None
-            None, or the messages of the dropped parts joined by ``"; "`` (``errors["url"]``).
+            None, or the messages of the dropped parts (``errors["url"]``).
         """
-        if isinstance(query, str):
-            items = parse_qsl(query.lstrip("?"), keep_blank_values=True)
-        else:
-            items = [(k, v[-1] if isinstance(v, (list, tuple)) else v) for k, v in query.items()]
-        params = {k: (v.decode("utf-8", "replace") if isinstance(v, bytes) else str(v)) for k, v in items}
-        problems: list[str] = []
-        base = params.pop("chair", DEFAULT_PRESET)
-        try:
-            base_chair = _preset(base)
-        except ValueError as exc:
-            problems.append(error_line(exc).removeprefix("error: "))
-            base, base_chair = DEFAULT_PRESET, _preset(DEFAULT_PRESET)
-        model = params.pop("model", self.model)
-        if model not in ("exact", "thesis"):
-            problems.append(f"model {model!r} is invalid; valid: 'exact' or 'thesis'")
-            model = self.model
-        changes: dict[str, Any] = {}
-        for k, v in params.items():
-            try:
-                name, value = chair_mod.parse_assignment(f"{k}={v}")
-                _build(base, base_chair, {**changes, name: value})
-            except ValueError as exc:
-                problems.append(error_line(exc).removeprefix("error: "))
-                continue
-            changes[name] = value
-        self.model = model
-        self._accept(_build(base, base_chair, changes), ["url", *chair_mod.field_names()])
-        if problems:
-            self.errors["url"] = "error: the link's " + "; ".join(problems) + " (dropped; the rest applied)"
-            return self.errors["url"]
-        return None
+        return links.apply_query(self, query)
 
     @classmethod
     def from_query(cls, query: str | Mapping[str, Any]) -> AppState:
@@ -452,62 +392,21 @@ class AppState:
         state._history.clear()
         return state
 
-    # -- downloads --------------------------------------------------------
+    # -- downloads (stability.app.downloads) --------------------------------
     def chair_toml(self) -> str:
-        """The chair as a TOML file (:func:`stability.chair.dumps`; loading it gives the same chair).
+        """The chair as a TOML file (loading it gives the same chair).
 
         Returns
         -------
         str
         """
-        return chair_mod.dumps(self.chair)
+        return downloads.chair_toml(self.chair)
 
     def results_json(self) -> str:
         """The results JSON: what ``python -m stability.critical_speed --chair <this chair> --json`` prints.
 
-        Computed with the command's own defaults (its parser's) and its own
-        document builder, so the two cannot drift apart.
-
         Returns
         -------
         str
         """
-        from stability.cli import parse_speeds
-        from stability.critical_speed.command import build_parser, document
-        from stability.linear import analyse
-        from stability.study.summary_text import simulator_checks
-
-        args = build_parser().parse_args(["--model", self.model])
-        speeds = parse_speeds(args.speeds)
-        with tires.range_policy(args.tire_range), tires.collect_notes() as notes, warnings.catch_warnings():
-            warnings.simplefilter("ignore", tires.TireRangeWarning)
-            tires.range_check(self.chair, _static_loads(self.chair))
-            summary = analyse(self.chair, model=self.model, speeds=speeds, max_speed=args.max_speed)
-            doc = document(summary, simulator_checks(summary), args, speeds)
-        return json_text(with_tire_range(doc, notes, args.tire_range)) + "\n"
-
-
-def _preset(name: str) -> Chair:
-    return chair_mod.preset(name)
-
-
-def _static_loads(c: Chair) -> Any:
-    from stability.models.statics import static_loads
-
-    return static_loads(c)
-
-
-def assignments(fields: dict) -> dict[str, str]:
-    """A recommendation's chair fields as editor texts (floats with ``repr``: the exact values).
-
-    Parameters
-    ----------
-    fields : dict
-        Chair field -> new value (:attr:`stability.advise.Candidate.fields`).
-
-    Returns
-    -------
-    dict
-        Field -> text for :meth:`stability.app.state.AppState.set_fields`.
-    """
-    return {k: repr(v) if isinstance(v, float) else str(v) for k, v in fields.items()}
+        return downloads.results_json(self.chair, self.model)

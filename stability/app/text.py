@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-import io
-from typing import Any
-
 import numpy as np
 
 from stability import chair as chair_mod
 from stability.app.views import LinearView
 from stability.chair import Chair
 
-__all__ = ["summary_text", "geometry_text", "figure_file", "downloads", "field_rows", "FIELD_KINDS"]
+__all__ = ["summary_html", "geometry_text", "field_rows", "field_label", "FIELD_KINDS", "FIELD_GROUPS"]
 
 #: Fields edited as text choices rather than numbers.
 TEXT_FIELDS = ("name", "caster_position", "main_tire", "caster_tire")
@@ -20,6 +17,41 @@ FIELD_KINDS: dict[str, str] = {
     f: ("choice" if f in ("caster_position", "main_tire", "caster_tire") else "text" if f == "name" else "number")
     for f in chair_mod.field_names()
 }
+
+
+#: The editor's groups of chair fields (title, fields, shown open), in the page's order; every field once.
+FIELD_GROUPS: tuple[tuple[str, tuple[str, ...], bool], ...] = (
+    ("Chair", ("name", "caster_position"), True),
+    ("Wheel positions, from the c.g.", ("s1", "s2", "d1", "d2", "t1", "t2", "h"), True),
+    ("Casters", ("trail", "l1", "m_c", "i_zp", "pin_friction_left", "pin_friction_right", "pin_damping"), True),
+    ("Mass and inertia", ("m", "i_z"), True),
+    ("Tires", ("main_tire", "caster_tire", "roll_k", "camber_deg", "camber_coefficient", "toe_deg",
+               "main_lateral_scale", "main_rolling_scale", "caster_lateral_scale", "caster_rolling_scale"), False),
+    ("Anti-tip wheels and gravity", ("anti_tip_reach", "anti_tip_clearance", "g"), False),
+)
+
+
+def field_label(row: dict[str, str]) -> str:
+    """An editor field's label: its meaning in words, its name (as links and ``--set`` spell it) and its unit.
+
+    Parameters
+    ----------
+    row : dict
+        A row of :func:`field_rows`.
+
+    Returns
+    -------
+    str
+        E.g. ``"Caster trail, pin to contact: trail (m)"``.
+
+    Examples
+    --------
+    >>> field_label({"name": "trail", "unit": "m", "doc": "caster trail, pin to contact"})
+    'Caster trail, pin to contact: trail (m)'
+    """
+    doc = row["doc"][:1].upper() + row["doc"][1:]
+    unit = f" ({row['unit']})" if row["unit"] != "-" else ""
+    return f"{doc}: {row['name']}{unit}"
 
 
 def field_rows() -> list[dict[str, str]]:
@@ -44,8 +76,10 @@ def _fmt(x: float | None, unit: str, digits: int = 4) -> str:
     return "none in range" if x is None else f"{x:.{digits}g} {unit}"
 
 
-def summary_text(v: LinearView) -> str:
+def summary_html(v: LinearView) -> str:
     """The linear summary over the plots: verdict, critical speeds, the divergence table as ``critical_speed`` prints.
+
+    HTML: the page shows it in a Bokeh ``Div`` (no Markdown to convert per edit).
 
     Parameters
     ----------
@@ -54,48 +88,24 @@ def summary_text(v: LinearView) -> str:
     Returns
     -------
     str
-        Markdown.
+        HTML made of numbers and the page's own words only (no user text).
     """
     first_free = v.free_crossings[0].speed if v.free_crossings else None
     first_locked = v.locked_crossings[0].speed if v.locked_crossings else None
-    lines = ["| speed (m/s) | growth rate (1/s) | doubling time (s) | frequency (rad/s) |",
-             "|---:|---:|---:|---:|"]
+    rows = []
     for r in v.table:
         t2 = "-" if r.time_to_double is None else f"{r.time_to_double:.3g}"
-        lines.append(f"| {r.speed:.3g} | {r.rate:.4f} | {t2} | {r.frequency:.3g} |")
+        rows.append(f"<tr><td>{r.speed:.3g}</td><td>{r.rate:.4f}</td><td>{t2}</td><td>{r.frequency:.3g}</td></tr>")
     g = v.growth_rate
     verdict = ("unstable at every speed from 0.01 to 30 m/s" if np.all(g > 0) else
                "stable at every speed from 0.01 to 30 m/s" if np.all(g < 0) else "stable in the shaded green "
                "ranges, unstable in the vermillion ones")
-    return (f"**Free casters: {verdict}.** Critical speeds: free casters {_fmt(first_free, 'm/s')}, locked casters "
-            f"{_fmt(first_locked, 'm/s')}, zero-width model (eq 5-15) {_fmt(v.zero_width.critical_speed, 'm/s')}."
-            "\n\nLeast stable mode (what `python -m stability.critical_speed` prints):\n\n" + "\n".join(lines))
-
-
-def figure_file(v: LinearView, fmt: str) -> io.BytesIO:
-    """The toolkit's eigenvalues-against-speed figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as a file.
-
-    Parameters
-    ----------
-    v : LinearView
-    fmt : {"png", "svg"}
-
-    Returns
-    -------
-    io.BytesIO
-    """
-    from matplotlib.figure import Figure
-
-    from stability.plotting.loci import eigenvalues_vs_speed
-
-    fig = Figure(figsize=(7.5, 6.5))
-    axes = fig.subplots(2, 1)
-    eigenvalues_vs_speed(v.locus, axes, mode_names=v.names,
-                         title=f"{v.chair.name}, {v.model} model: eigenvalues against speed")
-    buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, dpi=150)
-    buf.seek(0)
-    return buf
+    return (f"<p><b>Free casters: {verdict}.</b> Critical speeds: free casters {_fmt(first_free, 'm/s')}, locked "
+            f"casters {_fmt(first_locked, 'm/s')}, zero-width model (eq 5-15) "
+            f"{_fmt(v.zero_width.critical_speed, 'm/s')}.</p>"
+            "<p>Least stable mode (what <code>python -m stability.critical_speed</code> prints):</p>"
+            "<table><thead><tr><th>speed (m/s)</th><th>growth rate (1/s)</th><th>doubling time (s)</th>"
+            "<th>frequency (rad/s)</th></tr></thead><tbody>" + "".join(rows) + "</tbody></table>")
 
 
 def geometry_text(c: Chair, v: LinearView) -> str:
@@ -121,37 +131,3 @@ def geometry_text(c: Chair, v: LinearView) -> str:
             f"\n\nStatic loads: main wheel {L['main']:.1f} N, caster {L['caster']:.1f} N (per wheel); wheelbase "
             f"{c.wheelbase:.3f} m; c.g. ratio s1/(s1+s2) {c.cg_ratio:.3f}. Drawn from the chair's fields, c.g. at "
             "the origin; dotted: from the c.g. to each tipping line, with its angle.")
-
-
-def downloads(state: Any, view: Any) -> Any:
-    """The download buttons: chair TOML, results JSON, eigenvalues CSV, the figure as PNG and SVG.
-
-    Parameters
-    ----------
-    state : AppState
-        The session's state (read when a button is pressed).
-    view : callable
-        ``view() -> LinearView`` of the current chair.
-
-    Returns
-    -------
-    panel.Row
-    """
-    import panel as pn
-
-    from stability.app.views import eigenvalues_csv
-
-    return pn.Row(
-        pn.widgets.FileDownload(callback=lambda: io.StringIO(state.chair_toml()), filename="chair.toml",
-                                label="chair (TOML)", css_classes=["download-toml"], width=160),
-        pn.widgets.FileDownload(callback=lambda: io.StringIO(state.results_json()), filename="results.json",
-                                label="results (JSON)", css_classes=["download-json"], width=160),
-        pn.widgets.FileDownload(callback=lambda: io.StringIO(eigenvalues_csv(view())),
-                                filename="eigenvalues.csv", label="eigenvalues (CSV)",
-                                css_classes=["download-csv"], width=170),
-        pn.widgets.FileDownload(callback=lambda: figure_file(view(), "png"), filename="eigenvalues.png",
-                                label="figure (PNG)", css_classes=["download-png"], width=150),
-        pn.widgets.FileDownload(callback=lambda: figure_file(view(), "svg"), filename="eigenvalues.svg",
-                                label="figure (SVG)", css_classes=["download-svg"], width=150),
-    )
-

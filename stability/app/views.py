@@ -8,7 +8,8 @@ speeds (:func:`stability.linear.critical_speeds`),
 the zero-width closed form, the divergence table (:func:`stability.linear.divergence`,
 the rows ``critical_speed`` prints), the static loads and the mode names of
 the report (:func:`stability.linear.names.mode_names`).  Nothing here is
-physics: every number comes from those functions.
+physics: every number comes from those functions.  The background work (the
+simulator's measures and the trail window) is in :mod:`stability.app.measures`.
 """
 
 from __future__ import annotations
@@ -17,7 +18,6 @@ import csv
 import io
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -40,8 +40,7 @@ from stability.settings import defaults as D
 from stability.tipping import TipAngles, tip_angles
 
 __all__ = ["LinearView", "linear_view", "ModeShape", "mode_shape", "eigenvalues_csv", "GRID", "TABLE_SPEEDS",
-           "geometry_points", "SHAPE_COMPONENTS", "NonlinearView", "nonlinear_view", "response",
-           "TrailWindow", "trail_window", "TRAILS", "TRAIL_SPEEDS"]
+           "geometry_points", "SHAPE_COMPONENTS"]
 
 #: Speeds of the eigenvalue curves, m/s: 160 geometrically spaced over the range ``critical_speed`` searches.
 GRID = np.geomspace(0.01, D.MAX_SPEED, 160)
@@ -145,11 +144,11 @@ class ModeShape:
     Attributes
     ----------
     speed : float
-        Grid speed nearest the one asked for, m/s.
+        The speed asked for, m/s (the eigenvalue is computed there, not on the plot's grid).
     eigenvalue : complex
         1/s.
     name : str
-        The branch's name.
+        The name of the branch it lies on (the plotted branch nearest to it at the nearest grid speed).
     shares : dict
         Share of sideslip, yaw, casters in phase and casters opposed (sums to 1; the report's rule).
     components : tuple of str
@@ -170,15 +169,19 @@ class ModeShape:
 
 
 def mode_shape(view: LinearView, speed: float, branch: int | None = None) -> ModeShape:
-    """Eigenvector of a branch (default the least stable) of the free-caster model at ``speed``.
+    """Eigenvector of the least stable mode (or of a branch) of the free-caster model at ``speed``.
+
+    The eigenvalues are those of the state matrix at ``speed`` itself, so at a speed of the table
+    (:data:`TABLE_SPEEDS`) the least stable one is the table's growth rate.
 
     Parameters
     ----------
     view : LinearView
     speed : float
-        m/s (the nearest grid speed is used).
+        m/s (> 0).
     branch : int, optional
-        Column of ``view.locus.eigenvalues``; default the one with the largest real part at ``speed``.
+        Column of ``view.locus.eigenvalues``: the mode at ``speed`` nearest that branch's eigenvalue at the
+        nearest grid speed; default the mode with the largest real part at ``speed``.
 
     Returns
     -------
@@ -186,17 +189,18 @@ def mode_shape(view: LinearView, speed: float, branch: int | None = None) -> Mod
     """
     U = view.locus.speeds
     k = int(np.argmin(np.abs(np.log(U) - math.log(speed))))
-    eig = view.locus.eigenvalues[k]
-    j = int(np.argmax(eig.real)) if branch is None else int(branch)
-    u = float(U[k])
+    grid_eig = view.locus.eigenvalues[k]
+    u = float(speed)
     a = np.asarray(state_matrices(view.chair, u, view.model, "free"))[0]
     w, v = np.linalg.eig(a)
-    vec = v[:, int(np.argmin(np.abs(w - eig[j])))]
+    i = int(np.argmax(w.real)) if branch is None else int(np.argmin(np.abs(w - grid_eig[int(branch)])))
+    j = int(np.argmin(np.abs(grid_eig - w[i]))) if branch is None else int(branch)
+    vec = v[:, i]
     arm = shape_arm(view.chair)
     comp = np.array([vec[0] / u, vec[1] * arm / u, vec[2], vec[4]])
     big = comp[int(np.argmax(np.abs(comp)))]
     comp = comp / big
-    return ModeShape(u, complex(eig[j]), view.names[j], mode_shares(vec, u, arm), SHAPE_COMPONENTS,
+    return ModeShape(u, complex(w[i]), view.names[j], mode_shares(vec, u, arm), SHAPE_COMPONENTS,
                      tuple(float(x) for x in np.abs(comp)), tuple(float(x) for x in np.degrees(np.angle(comp))))
 
 
@@ -248,153 +252,3 @@ def geometry_points(chair: Chair) -> dict[str, tuple[np.ndarray, np.ndarray]]:
             "main": (np.array([xm, xm]), np.array([-chair.d1, chair.d2])),
             "pins": (np.array([xp, xp]), np.array([-chair.t1, chair.t2])),
             "casters": (np.array([xc, xc]), np.array([-chair.t1, chair.t2]))}
-
-
-@dataclass(frozen=True)
-class NonlinearView:
-    """The nonlinear measures the explorer computes in the background for one chair.
-
-    Attributes
-    ----------
-    chair : Chair
-    model : str
-    speed : float
-        m/s.
-    push : tuple of float
-        Force (N) and duration (s) of the push at the c.g.
-    t, yaw_rate : ndarray
-        The simulator's run (WCHAIR scheme), s and rad/s.
-    linear_t, linear_yaw_rate : ndarray
-        The linear model's response to the same push, s and rad/s.
-    critical_impulse : CriticalImpulse
-        Smallest push that spins the chair (|yaw rate| 1 rad/s within 10 s) at ``speed``.
-    equal_instability : EqualInstability or None
-        Speed at which the chair is as unstable as the thesis's reference case (None: not computed).
-    """
-
-    chair: Chair
-    model: str
-    speed: float
-    push: tuple[float, float]
-    t: np.ndarray
-    yaw_rate: np.ndarray
-    linear_t: np.ndarray
-    linear_yaw_rate: np.ndarray
-    critical_impulse: Any
-    equal_instability: Any
-
-
-def response(chair: Chair, model: str, speed: float, push: tuple[float, float], duration: float = 4.0):
-    """The yaw-rate response to a push: the simulator's run and the linear model's, as ``(t, r, t_lin, r_lin)``.
-
-    Parameters
-    ----------
-    chair : Chair
-    model : {"exact", "thesis"}
-    speed : float
-        m/s.
-    push : (float, float)
-        Force at the c.g. (N) and its duration (s).
-    duration : float
-        Simulated time, s.
-
-    Returns
-    -------
-    tuple of ndarray
-        Times (s) and yaw rates (rad/s) of the nonlinear and of the linear response.
-    """
-    from stability.settings.run import RunSpec
-    from stability.simulate import simulate
-    from stability.study import linear_impulse_response
-
-    res = simulate(chair, speed, RunSpec(horizon=duration, model=model, push_force=push[0], push_duration=push[1]))
-    lin = linear_impulse_response(chair, speed, duration, impulse=push, model=model)
-    return res.t, res.yaw_rate, lin.t, lin.yaw_rate
-
-
-def nonlinear_view(chair: Chair, model: str, speed: float, push: tuple[float, float],
-                   equal_instability: bool = True) -> NonlinearView:
-    """Run the simulator for the response, the critical impulse and the equal-instability speed.
-
-    Parameters
-    ----------
-    chair : Chair
-    model : {"exact", "thesis"}
-    speed : float
-        m/s.
-    push : (float, float)
-        Force (N), duration (s).
-    equal_instability : bool
-        Also the equal-instability speed (:func:`stability.study.equal_instability_speed`).
-
-    Returns
-    -------
-    NonlinearView
-    """
-    from stability.settings.run import RunSpec
-    from stability.study import critical_impulse, equal_instability_speed
-
-    t, r, tl, rl = response(chair, model, speed, push)
-    ci = critical_impulse(chair, speed, RunSpec(model=model, push_duration=push[1]))
-    eq = equal_instability_speed(chair, RunSpec(model=model)) if equal_instability else None
-    return NonlinearView(chair, model, speed, push, t, r, tl, rl, ci, eq)
-
-
-#: Trails of the trail window, m.
-TRAILS = np.linspace(0.005, 0.2, 40)
-#: Speeds of the trail window, m/s.
-TRAIL_SPEEDS = (0.5, 1.0, 1.5)
-
-
-@dataclass(frozen=True)
-class TrailWindow:
-    """The trail trade-off for one chair: directional stability and caster shimmy against trail, and a cross slope.
-
-    Attributes
-    ----------
-    chart : ChairTrailChart
-        :func:`stability.shimmy.chair_trail_chart` over :data:`TRAILS` x :data:`TRAIL_SPEEDS`: growth rate of
-        the yaw mode and real part of the shimmy mode (1/s).
-    band : ShimmyBand
-        :func:`stability.shimmy.band.shimmy_band` at :data:`TRAIL_SPEEDS`: the shimmy-free trail band(s), every
-        boundary, the chair's margin (m) and damping ratio, and whether the estimate range straddles a boundary.
-    slope : Equilibrium
-        :func:`stability.slope.solve` on the cross slope at the speed: the holding moment (N m).
-    handrim : dict
-        :func:`stability.slope.drive_report` (hand-rim forces and their difference, N).
-    cross_slope_deg, speed : float
-        The cross slope (deg) and speed (m/s) of ``slope``.
-    """
-
-    chart: Any
-    band: Any
-    slope: Any
-    handrim: dict
-    cross_slope_deg: float
-    speed: float
-
-
-def trail_window(chair: Chair, model: str = D.MODEL, cross_slope_deg: float = 2.0, speed: float = 1.0) -> TrailWindow:
-    """Compute the trail window (see :class:`TrailWindow`).
-
-    Parameters
-    ----------
-    chair : Chair
-    model : {"exact", "thesis"}
-    cross_slope_deg : float
-        deg, positive falling to the right.
-    speed : float
-        m/s.
-
-    Returns
-    -------
-    TrailWindow
-    """
-    from stability.shimmy import chair_trail_chart
-    from stability.shimmy.band import shimmy_band
-    from stability.slope import drive_report, solve
-
-    chart = chair_trail_chart(chair, TRAILS, TRAIL_SPEEDS, model=model)
-    band = shimmy_band(chair, TRAIL_SPEEDS)
-    eq = solve(chair, cross_slope_deg, speed)
-    return TrailWindow(chart, band, eq, drive_report(chair, eq), cross_slope_deg, speed)

@@ -301,7 +301,8 @@ def _with_unit(name: str, raw: str, field_unit: str) -> float:
     """``raw`` = number and unit (``5cm``), converted to ``field_unit``; one-line ValueError otherwise."""
 
     m = _NUMBER_UNIT.match(raw)
-    bad = (f"chair parameter {name} needs a number in {field_unit} or a number with a unit of the same kind "
+    bad = (f"chair parameter {name} needs a number (it has no unit), got {raw!r}" if field_unit == "-" else
+           f"chair parameter {name} needs a number in {field_unit} or a number with a unit of the same kind "
            f"(e.g. {name}=5cm), got {raw!r}")
     if not m:
         raise ValueError(bad)
@@ -311,6 +312,8 @@ def _with_unit(name: str, raw: str, field_unit: str) -> float:
     except ValueError as exc:
         raise ValueError(f"{bad}: {exc}") from None
     if dims != field_dims:
+        if field_unit == "-":
+            raise ValueError(f"chair parameter {name} has no unit; give a plain number (got {raw!r})")
         raise ValueError(f"chair parameter {name} is in {field_unit}; {m.group(2)!r} is not a unit of that kind "
                          f"(got {raw!r})")
     return float(m.group(1)) * factor / field_factor

@@ -11,29 +11,19 @@ from __future__ import annotations
 
 import os
 import pathlib
-import re
-import shutil
-import subprocess
-import sys
 import tempfile
-import time
-import urllib.request
 
 import pytest
+from explorer_server import chromium, serve
 
 pytest.importorskip("panel")
 pytest.importorskip("playwright")
 
 
-def _chromium() -> str | None:
-    path = os.environ.get("STABILITY_CHROMIUM") or shutil.which("chromium") or shutil.which("chromium-browser")
-    return path if path and os.path.exists(path) else None
-
-
 @pytest.fixture(scope="session")
 def browser_type_launch_args(browser_type_launch_args):
     """pytest-playwright's launch options with Debian's chromium (never a downloaded browser)."""
-    path = _chromium()
+    path = chromium()
     if path is None:
         pytest.skip("no chromium on this machine (apt-get install chromium, or set STABILITY_CHROMIUM)")
     return {**browser_type_launch_args, "executable_path": path, "args": ["--no-sandbox"]}
@@ -58,32 +48,8 @@ def artifacts() -> pathlib.Path:
 @pytest.fixture(scope="session")
 def app_url():
     """``python -m stability.app --port 0 --no-browser``, running for the session; its URL."""
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p)}
-    proc = subprocess.Popen([sys.executable, "-m", "stability.app", "--port", "0", "--no-browser"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-    try:
-        line = proc.stdout.readline()
-        m = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-        assert m, line
-        url = m.group(1)
-        deadline = time.monotonic() + 120
-        while True:
-            try:
-                urllib.request.urlopen(url, timeout=60).close()
-                break
-            except OSError:
-                assert time.monotonic() < deadline and proc.poll() is None, "the server did not answer"
-                time.sleep(0.5)
+    with serve() as url:
         yield url
-    finally:
-        proc.terminate()
-        try:
-            out, _ = proc.communicate(timeout=30)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            out, _ = proc.communicate()
-        if "Traceback" in (out or ""):
-            print(out)
 
 
 @pytest.fixture

@@ -242,7 +242,7 @@ def test_random_edits_keep_table_url_and_header_on_one_chair(page, explorer, dia
             else:
                 if page.locator(".model select").input_value() == name:
                     continue
-                model.model = name
+                model.set_model(name)
                 page.locator(".model select").select_option(name)
             wait_settled(page, n)
             query = page_query(page)

@@ -25,12 +25,19 @@ def test_uncertainty_band_is_the_linear_intervals():
     assert ex.state.load_uncertainty(path.read_bytes(), path.name) is None
     ex._start_bands()
     ex.jobs._futures[-1].result(timeout=600)
-    data = ex.unc_src.data
+    data = ex.speed_tab.unc_src.data
     speeds = np.asarray(data["speed"])
     want = linear_intervals(chair_mod.preset("ej-premier"), load_uncertainty(path), speeds=speeds, samples=300,
                             seed=0)
     assert list(data["low"]) == [a for a, _ in want.rate] and list(data["high"]) == [b for _, b in want.rate]
     assert np.all(np.asarray(data["low"]) <= np.asarray(data["high"]))
+    # the band has its legend entry (the explorer review: it had none), before and after the next edit
+    labels = [it.label["value"] for it in ex.speed_tab.figs["legend"].items]
+    assert "95 % interval of the growth rate (uncertainty file)" not in labels      # loaded but not yet shown
+    ex._load_uncertainty(type("E", (), {"new": path.read_bytes()})())
+    ex.edit("trail", "0.07")
+    labels = [it.label["value"] for it in ex.speed_tab.figs["legend"].items]
+    assert labels[-1] == "95 % interval of the growth rate (uncertainty file)"
 
 
 def test_a_chair_change_drops_the_old_chairs_results():
@@ -58,8 +65,8 @@ def test_a_chair_change_drops_the_old_chairs_results():
 HOSTILE_NAMES = ["<script>alert(1)</script>", "<img src=x onerror=alert(2)>", "[x](javascript:alert(3))",
                  "```\n<svg onload=alert(4)>", "</pre><script>alert(5)</script>"]
 #: Elements the page's own Markdown and HTML may produce (tables of numbers, emphasis, the command output block).
-PAGE_TAGS = {"p", "strong", "em", "br", "table", "thead", "tbody", "tr", "th", "td", "pre", "code", "h2", "h3",
-             "ul", "li"}
+PAGE_TAGS = {"p", "strong", "em", "b", "i", "br", "table", "thead", "tbody", "tr", "th", "td", "pre", "code", "h2",
+             "h3", "ul", "li"}
 
 
 def _rendered(pane) -> str:
@@ -82,14 +89,26 @@ def _elements(fragment: str) -> tuple[set, list]:
     return tags, attrs
 
 
+def _show_every_tab(ex) -> None:
+    """Write every tab's texts now (a hidden tab's wait until it is shown: stability.app.tabtext)."""
+    for texts in ex._texts:
+        if texts is not None:
+            texts.shown = True
+            texts.flush()
+
+
 def _assert_no_user_markup(ex) -> None:
     import panel as pn
 
+    _show_every_tab(ex)
+    from bokeh.models.widgets.markups import Div
+
     panes = [*ex.layout.select(pn.pane.Markdown), *ex.layout.select(pn.pane.HTML)]
-    assert len(panes) > 10
-    for pane in panes:
-        tags, attrs = _elements(_rendered(pane))
-        assert tags <= PAGE_TAGS, (pane, tags - PAGE_TAGS)
+    divs = [p.object for p in ex.layout.select(pn.pane.Bokeh) if isinstance(p.object, Div)]
+    assert len(panes) > 10 and len(divs) >= 4                # the per-edit texts are Bokeh Divs
+    for html in [_rendered(pane) for pane in panes] + [d.text for d in divs]:
+        tags, attrs = _elements(html)
+        assert tags <= PAGE_TAGS, (html, tags - PAGE_TAGS)
         assert all(not k.startswith("on") and "javascript:" not in (v or "") for k, v in attrs), attrs
 
 
@@ -102,8 +121,9 @@ def test_hostile_text_from_a_url_a_field_and_files_is_never_markup(name, tmp_pat
     from stability.app.page import Explorer
 
     ex = Explorer(query=urlencode({"chair": "ej-premier", "name": name}), auto_nonlinear=False)
+    _show_every_tab(ex)
     assert ex.state.chair.name == name
-    assert "alert" in ex.title.object                         # the name is shown (as text)
+    assert "alert" in ex.title.text                           # the name is shown (as text)
     _assert_no_user_markup(ex)
     ex.edit("trail", name)                                    # refused: the message quotes the value
     assert ex.state.errors["trail"]
@@ -111,12 +131,13 @@ def test_hostile_text_from_a_url_a_field_and_files_is_never_markup(name, tmp_pat
     ex.state.pin()
     ex._show_compare()
     ex.jobs._futures[-1].result(timeout=300)
-    assert ex.compare_text.object.startswith("<pre")
+    assert ex.compare.text.object.startswith("<pre")
     bad_toml = f'name = "{name}"\nm = "{name}"\n'.replace("\n<", " <").encode()
     ex.state.load_toml(bad_toml, filename=name + ".toml")
     ex.state.load_uncertainty(name.encode(), filename=name)
     ex.apply_fields({"m": name})
-    ex._failed(ValueError(name))
+    ex.nonlinear.failed(ValueError(name))
+    ex.compare.failed(ValueError(name))
     ex.trail.failed(ValueError(name))
     ex.assist.failed(ValueError(name))
     ex.advice.failed(ValueError(name))
@@ -138,8 +159,9 @@ def test_a_chair_whose_modes_share_a_name_does_not_break_the_session():
             assert ex.edit("trail", trail) is None
             names = linear_view(ex.state.chair, ex.state.model).names
             shared += len(names) != len(set(names))
-            legend = ex.speed_figs["legend"].items
-            assert [it.label["value"] for it in legend] == list(dict.fromkeys(names))
+            legend = ex.speed_tab.figs["legend"].items
+            assert [it.label["value"].removesuffix(" (below the plot at every speed)") for it in legend] == \
+                list(dict.fromkeys(names))
             assert sum(len(it.renderers) for it in legend) == len(names)     # every branch hides with its name
             assert ex._view_errors == {} and ex.state.chair.trail == float(trail)
         assert shared, preset                                  # the case of the review was met
@@ -147,5 +169,42 @@ def test_a_chair_whose_modes_share_a_name_does_not_break_the_session():
         ex.refresh()
         ex.state.select_preset("revised")
         ex.refresh()
-        ex.model.value = "thesis"
+        ex.editor.model.value = "thesis"
         assert ex._view_errors == {} and ex.state.url_query().startswith("chair=revised")
+
+
+def test_fast_edits_coalesce_and_the_latest_wins():
+    """Edits that arrive before the page has drawn are applied in order and drawn once, for the last chair (the
+    explorer review: 30 fast edits each computed and sent in full, the views reaching the last one 20 s later)."""
+    from stability.app.page import Explorer
+
+    ticks: list = []
+    ex = Explorer(deliver=ticks.append, auto_nonlinear=False)        # the document's next tick, run by hand
+    drawn: list = []
+    refresh = ex.refresh
+    ex.refresh = lambda: (drawn.append(ex.state.chair.s1), refresh())
+    for value in ("0.30", "0.31", "abc", "0.33"):
+        ex.editor.inputs["s1"].value = value                         # as the browser's events arrive
+    assert len(ticks) == 1                                           # one drain for all four
+    ticks.pop()()
+    assert drawn == [0.33] and ex.state.url_query() == "chair=ej-premier&s1=0.33"
+    assert ex.state.errors == {}                                     # the bad value was answered by a good one
+    assert ex.speed_tab.branch_src.data["real0"] is not None and ex.view.chair.s1 == 0.33
+    for want in (0.31, 0.30):                                        # each accepted edit is its own undo step
+        assert ex.state.undo() and ex.state.chair.s1 == want
+
+
+def test_a_hidden_tabs_text_waits_until_the_tab_is_shown():
+    import panel as pn
+
+    from stability.app.tabtext import TabText
+
+    pane, texts = pn.pane.Markdown("old"), TabText(shown=False)
+    texts.set(pane, "new")
+    assert pane.object == "old" and texts.get(pane) == "new"
+    texts.set(pane, "newer")                                         # the latest wins
+    texts.shown = True
+    texts.flush()
+    assert pane.object == "newer"
+    texts.set(pane, "now")
+    assert pane.object == "now"

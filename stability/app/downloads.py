@@ -1,0 +1,173 @@
+"""What the explorer offers to download: the chair, the results, the eigenvalues, the figure; named after the chair.
+
+* the chair as TOML (:func:`stability.chair.dumps`; it loads back to the same chair),
+* the results JSON: exactly what ``python -m stability.critical_speed --chair FILE --json`` prints, built by
+  that command's own parser defaults and ``document`` function,
+* the eigenvalues against speed as CSV (:func:`stability.app.views.eigenvalues_csv`),
+* the toolkit's eigenvalue figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as PNG or SVG.
+
+Each file is named after the chair (``revised-modified-trail-0.055.toml``): the
+name is user text, so only ASCII letters, digits, ``.``, ``-`` and ``_`` are
+kept.  Everything here but :func:`download_buttons` is pure Python (no Panel).
+"""
+
+from __future__ import annotations
+
+import io
+import re
+import warnings
+from typing import Any
+
+from stability import chair as chair_mod
+from stability import tires
+from stability.chair import Chair
+from stability.runtime.files import json_text, with_tire_range
+
+__all__ = ["chair_toml", "results_json", "figure_file", "file_stem", "file_names", "download_buttons", "STEM_LENGTH"]
+
+#: Longest file-name stem taken from a chair's name (characters).
+STEM_LENGTH = 60
+
+
+def file_stem(name: str) -> str:
+    """A file-name stem for a chair named ``name``: ASCII letters, digits, ``.``, ``-``, ``_`` only.
+
+    Parameters
+    ----------
+    name : str
+        The chair's name (any text).
+
+    Returns
+    -------
+    str
+        Runs of other characters become one ``-``; at most :data:`STEM_LENGTH` characters; ``"chair"`` when
+        nothing is left.
+
+    Examples
+    --------
+    >>> file_stem("revised (modified: trail=0.055)")
+    'revised-modified-trail-0.055'
+    """
+    stem = re.sub(r"[^A-Za-z0-9._]+", "-", str(name)).strip("-.")[:STEM_LENGTH].strip("-.")
+    return stem or "chair"
+
+
+def file_names(name: str) -> dict[str, str]:
+    """The download file names for a chair named ``name``.
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    dict
+        ``"toml"``, ``"json"``, ``"csv"``, ``"png"``, ``"svg"`` -> file name.
+    """
+    stem = file_stem(name)
+    return {"toml": f"{stem}.toml", "json": f"{stem}.results.json", "csv": f"{stem}.eigenvalues.csv",
+            "png": f"{stem}.eigenvalues.png", "svg": f"{stem}.eigenvalues.svg"}
+
+
+def chair_toml(chair: Chair) -> str:
+    """The chair as a TOML file (:func:`stability.chair.dumps`; loading it gives the same chair).
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Returns
+    -------
+    str
+    """
+    return chair_mod.dumps(chair)
+
+
+def results_json(chair: Chair, model: str) -> str:
+    """The results JSON: what ``python -m stability.critical_speed --chair <this chair> --json`` prints.
+
+    Computed with the command's own defaults (its parser's) and its own
+    document builder, so the two cannot drift apart.
+
+    Parameters
+    ----------
+    chair : Chair
+    model : {"exact", "thesis"}
+
+    Returns
+    -------
+    str
+    """
+    from stability.cli import parse_speeds
+    from stability.critical_speed.command import build_parser, document
+    from stability.linear import analyse
+    from stability.models.statics import static_loads
+    from stability.study.summary_text import simulator_checks
+
+    args = build_parser().parse_args(["--model", model])
+    speeds = parse_speeds(args.speeds)
+    with tires.range_policy(args.tire_range), tires.collect_notes() as notes, warnings.catch_warnings():
+        warnings.simplefilter("ignore", tires.TireRangeWarning)
+        tires.range_check(chair, static_loads(chair))
+        summary = analyse(chair, model=model, speeds=speeds, max_speed=args.max_speed)
+        doc = document(summary, simulator_checks(summary), args, speeds)
+    return json_text(with_tire_range(doc, notes, args.tire_range)) + "\n"
+
+
+def figure_file(view: Any, fmt: str) -> io.BytesIO:
+    """The toolkit's eigenvalues-against-speed figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as a file.
+
+    Parameters
+    ----------
+    view : LinearView
+    fmt : {"png", "svg"}
+
+    Returns
+    -------
+    io.BytesIO
+    """
+    from matplotlib.figure import Figure
+
+    from stability.plotting.loci import eigenvalues_vs_speed
+
+    fig = Figure(figsize=(7.5, 7.5), layout="constrained")     # constrained: no title over an axis label
+    axes = fig.subplots(2, 1)
+    eigenvalues_vs_speed(view.locus, axes, mode_names=view.names,
+                         title=f"{view.chair.name}, {view.model} model: eigenvalues against speed")
+    buf = io.BytesIO()
+    fig.savefig(buf, format=fmt, dpi=150)
+    buf.seek(0)
+    return buf
+
+
+def download_buttons(state: Any, view: Any) -> Any:
+    """The download buttons (Panel): chair TOML, results JSON, eigenvalues CSV, the figure as PNG and SVG.
+
+    Parameters
+    ----------
+    state : AppState
+        The session's state (read when a button is pressed).
+    view : callable
+        ``view() -> LinearView`` of the current chair.
+
+    Returns
+    -------
+    dict
+        Kind (``"toml"``, ``"json"``, ``"csv"``, ``"png"``, ``"svg"``) -> ``panel.widgets.FileDownload``; the page
+        sets their ``filename`` from :func:`file_names` when the chair changes.
+    """
+    import panel as pn
+
+    from stability.app.views import eigenvalues_csv
+
+    work = {"toml": lambda: io.StringIO(chair_toml(state.chair)),
+            "json": lambda: io.StringIO(results_json(state.chair, state.model)),
+            "csv": lambda: io.StringIO(eigenvalues_csv(view())),
+            "png": lambda: figure_file(view(), "png"), "svg": lambda: figure_file(view(), "svg")}
+    labels = {"toml": "the chair (TOML)", "json": "results (JSON, as critical_speed --json)",
+              "csv": "eigenvalues against speed (CSV)", "png": "eigenvalue figure (PNG)",
+              "svg": "eigenvalue figure (SVG)"}
+    names = file_names(state.chair.name)
+    return {k: pn.widgets.FileDownload(callback=fn, filename=names[k], label=labels[k],
+                                       css_classes=[f"download-{k}"], width=340)
+            for k, fn in work.items()}
