@@ -137,3 +137,28 @@ def test_bench_command_and_refusals(capsys):
     assert "--max-speed 50 is invalid; valid range: 0.1 <= value <= 10 m/s" in capsys.readouterr().err
     with pytest.raises(ValueError, match="traction"):
         Drive(traction=0.0)
+
+
+@pytest.mark.parametrize("name", layout_preset_names())
+def test_a_traction_limited_stop_is_held_by_the_grip_of_its_own_state(name):
+    """Where traction limits a start or stop, the drive force equals the drive wheels' grip in the state it
+    produces, ``m |a + g sin(grade)| = mu N_driven(a)`` (an invariant of the quasi-static balance, checked from the
+    case's own loads); the tolerance is the root's ``xtol`` 1e-12 m/s^2 times the mass, times 100.  And braking
+    harder never stops a chair later: a reverse command asking for more than the released control's deceleration
+    stops it at least as soon, on every slope (the limit is the grip, whatever is asked beyond it)."""
+    layout = layout_preset(name)
+    drive = Drive(reverse_decel_m_s2=8.0)
+    r = run_bench(layout, drive)
+    driven = {f"wheel {j}" for j, w in enumerate(layout.wheels) if w.driven}
+    limited = [c for c in r.cases if c.limited_by == "traction of the drive wheels"]
+    assert limited
+    for c in limited:
+        grip = drive.traction * sum(n for (lab, *_), n in zip(contacts(layout), c.loads.loads_N, strict=True)
+                                    if lab in driven)
+        force = layout.m * abs(c.ax_m_s2 + layout.g * math.sin(math.radians(c.grade_deg)))
+        assert force == pytest.approx(grip, rel=0, abs=100 * 1e-12 * layout.m + 1e-9 * grip)
+    for direction in ("forward", "rearward"):
+        for slope in {c.slope for c in r.cases if c.name.startswith(f"{direction} stop")}:
+            rel = next(c for c in r.cases if c.name == f"{direction} stop, control released" and c.slope == slope)
+            rev = next(c for c in r.cases if c.name == f"{direction} stop, reverse command" and c.slope == slope)
+            assert rev.braking_distance_m <= rel.braking_distance_m * (1 + 1e-12)
