@@ -162,3 +162,17 @@ def test_a_traction_limited_stop_is_held_by_the_grip_of_its_own_state(name):
             rel = next(c for c in r.cases if c.name == f"{direction} stop, control released" and c.slope == slope)
             rev = next(c for c in r.cases if c.name == f"{direction} stop, reverse command" and c.slope == slope)
             assert rev.braking_distance_m <= rel.braking_distance_m * (1 + 1e-12)
+
+
+def test_a_chair_cannot_brake_itself_over_an_edge_its_braking_wheels_leave():
+    """Quasi-statically a chair tips forward over its front contacts only if the braking force survives to the
+    tip: a rear-wheel-drive base braking on its rear wheels unloads them as it pitches onto its front casters, so
+    however hard the stop is asked (15 m/s^2, grip 2) it stays on its wheels, limited by traction; a front-wheel-
+    drive chair brakes on the wheels of its tipping edge, keeps its grip to the tip, and goes over."""
+    hard = Drive(reverse_decel_m_s2=15.0, brake_decel_m_s2=15.0, traction=2.0)
+    rwd = run_bench(layout_preset("power-rwd-base"), hard)
+    for c in (c for c in rwd.cases if c.name.startswith("forward stop")):
+        assert c.score <= 1 and c.limited_by in ("", "traction of the drive wheels"), c
+    assert any(c.limited_by == "traction of the drive wheels" for c in rwd.cases if c.name.startswith("forward stop"))
+    fwd = run_bench(layout_preset("power-fwd-base"), hard)
+    assert any(c.score >= 2 for c in fwd.cases if c.name.startswith("forward stop"))
