@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from stability import tires
 from stability.chair import Chair
+from stability.chair.model import LIMITS
 
 __all__ = ["FixedWheel", "Caster", "Layout"]
 
@@ -24,6 +25,12 @@ def _check(name: str, value: float, lo: float, hi: float, unit: str) -> float:
     if not (math.isfinite(value) and lo <= value <= hi):
         raise ValueError(f"{name}={value!r} is invalid; valid range: {lo:g} to {hi:g} {unit}")
     return float(value)
+
+
+def _chair(name: str) -> tuple[float, float]:
+    """The short form's range of a field (:data:`stability.chair.model.LIMITS`)."""
+    lo, hi, _ = LIMITS[name]
+    return lo, hi
 
 
 @dataclass(frozen=True)
@@ -100,9 +107,13 @@ class Caster:
     vertical_stiffness: float = 2.0e5
 
     def __post_init__(self) -> None:
-        for name, lo, hi, unit in (("x", -2.0, 2.0, "m"), ("y", -1.0, 1.0, "m"), ("trail", 0.001, 0.5, "m"),
-                                   ("l", 0.0, 0.5, "m"), ("m_c", 0.0, 20.0, "kg"), ("i_zp", 0.0, 1.0, "kg m^2"),
-                                   ("pin_damping", 0.0, 100.0, "N m s/rad"), ("pin_friction", 0.0, 100.0, "N m"),
+        # the short form's ranges where the quantity is the same (stability.chair.model.LIMITS): a valid chair
+        # expands into a valid layout
+        for name, lo, hi, unit in (("x", -2.0, 2.0, "m"), ("y", -1.0, 1.0, "m"), ("trail", *_chair("trail"), "m"),
+                                   ("l", *_chair("l1"), "m"), ("m_c", *_chair("m_c"), "kg"),
+                                   ("i_zp", 0.0, LIMITS["i_zp"][1], "kg m^2"),
+                                   ("pin_damping", *_chair("pin_damping"), "N m s/rad"),
+                                   ("pin_friction", *_chair("pin_friction_left"), "N m"),
                                    ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 1e3, 1e9, "N/m")):
             object.__setattr__(self, name, _check(name, getattr(self, name), lo, hi, unit))
         if self.i_zp < self.m_c * self.l ** 2:
@@ -148,10 +159,10 @@ class Layout:
     anti_tip: tuple = field(default_factory=tuple)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "m", _check("m", self.m, 5.0, 500.0, "kg"))
-        object.__setattr__(self, "i_z", _check("i_z", self.i_z, 0.05, 200.0, "kg m^2"))
-        object.__setattr__(self, "h", _check("h", self.h, 0.05, 2.0, "m"))
-        object.__setattr__(self, "g", _check("g", self.g, 1.0, 30.0, "m/s^2"))
+        object.__setattr__(self, "m", _check("m", self.m, *_chair("m"), "kg"))
+        object.__setattr__(self, "i_z", _check("i_z", self.i_z, *_chair("i_z"), "kg m^2"))
+        object.__setattr__(self, "h", _check("h", self.h, *_chair("h"), "m"))
+        object.__setattr__(self, "g", _check("g", self.g, *_chair("g"), "m/s^2"))
         object.__setattr__(self, "wheels", tuple(self.wheels))
         object.__setattr__(self, "casters", tuple(self.casters))
         object.__setattr__(self, "anti_tip", tuple((_check("anti_tip x", float(x), -2.0, 2.0, "m"),
