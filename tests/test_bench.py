@@ -176,3 +176,24 @@ def test_a_chair_cannot_brake_itself_over_an_edge_its_braking_wheels_leave():
     assert any(c.limited_by == "traction of the drive wheels" for c in rwd.cases if c.name.startswith("forward stop"))
     fwd = run_bench(layout_preset("power-fwd-base"), hard)
     assert any(c.score >= 2 for c in fwd.cases if c.name.startswith("forward stop"))
+
+
+def test_bench_pdf_one_page_per_family_with_its_conclusion(tmp_path, capsys):
+    """``-o FILE.pdf``: a page per manoeuvre family, each titled with the chair and saying what to conclude from its
+    own cases (the worst case and its score); a suffix that is not .pdf is refused before any work, nothing written."""
+    from pypdf import PdfReader
+
+    from stability.bench.__main__ import main
+
+    out = tmp_path / "bench.pdf"
+    assert main(["--chair", "power-fwd", "-o", str(out)]) == 0
+    pages = [p.extract_text() for p in PdfReader(out).pages]
+    assert len(pages) == 3
+    r = run_bench(Layout.from_chair(__import__("stability.chair", fromlist=["preset"]).preset("power-fwd")))
+    for text, family in zip(pages, ("start", "stop", "turn"), strict=True):
+        worst = max(c.score for c in r.cases if c.family == family)
+        assert "power-fwd: virtual bench" in text and f"scores {worst}" in text.replace("\n", " ")
+    assert "braking distance" in pages[1]
+    capsys.readouterr()
+    assert main(["--chair", "power-fwd", "-o", str(tmp_path / "bench.png")]) == 2
+    assert "valid: .pdf" in capsys.readouterr().err and not (tmp_path / "bench.png").exists()
