@@ -205,3 +205,29 @@ def test_abscissa_batches():
     batch = abscissa(A, B, C, g, 0.3)
     one = [abscissa(A, B, C, g[i][None, :], 0.3)[0] for i in range(2)]
     assert np.allclose(batch, one, rtol=0, atol=1e-12)
+
+
+def test_with_the_assist_the_driver_limit_is_the_assisted_loops_divergence(monkeypatch):
+    """With the assist on, the divergence rule reads the assisted closed loop's slowest pole: power-fwd's default
+    gyro design is Hurwitz at every schedule speed (its closed-loop matrix's spectrum, here through
+    python-control's ``ss.poles``), so the driver's limit is a bound at the schedule's top ('>'); and where the
+    slowest pole does cross 1/tau (a stand-in loop diverging at 2 U 1/s) the limit is the first schedule speed with
+    2 U tau >= 1: for tau = 0.3 s, 2 U >= 3.33 1/s, U >= 1.67 m/s: 1.75 m/s on the 0.25 m/s grid."""
+    import control
+
+    from stability.assist import human
+    from stability.assist.schedule import schedule
+
+    c = preset("power-fwd")
+    r = human.assisted_driver_limit(c, 0.3)
+    s = schedule(c, np.asarray(human.ASSIST_SPEEDS), "gyro")
+    for d, p in zip(s.designs, r.slowest_pole_1_s, strict=True):
+        A = d.closed_loop_matrix()
+        assert max(control.ss(A, np.zeros((A.shape[0], 1)), np.zeros((1, A.shape[0])), 0).poles().real) < 0
+        assert p < 0
+    assert r.side == ">" and r.speed_m_s == human.ASSIST_SPEEDS[-1] and "above 3 m/s" in r.sentence()
+    monkeypatch.setattr(human, "closed_loop_poles", lambda d: np.array([2.0 * d.speed + 0j, -1.0 + 0j]))
+    r2 = human.assisted_driver_limit(c, 0.3)
+    assert r2.side == "=" and r2.speed_m_s == 1.75 and "up to 1.75 m/s (6.3 km/h)" in r2.sentence()
+    with pytest.raises(ValueError, match="reaction_time"):
+        human.assisted_driver_limit(c, 0.0)

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from stability.chair.power import drive_kind
 from stability.cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
@@ -181,6 +182,35 @@ def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, 
             **summary_dict(summary, checks, intervals, nonlinear), "human_limit": limit}
 
 
+def _driver(c: Any, args: argparse.Namespace) -> tuple:
+    """The driver (``--reaction-time`` or the chair file's ``[user]``), the human-limited speed and, for a powered
+    chair, the limit with the assist on (:mod:`stability.assist.human`); Nones without a driver."""
+    driver = driver_from_args(args)
+    if driver is None:
+        return None, None, None
+    assisted = None
+    if drive_kind(c) == "motor":
+        from stability.assist.human import assisted_driver_limit
+
+        assisted = assisted_driver_limit(c, driver.reaction_time_s)
+    return driver, human_limit(c, driver, args.model), assisted
+
+
+def _print_driver(human: HumanLimit | None, driver: Driver | None, assisted: Any) -> None:
+    """The driver's limits as text (nothing without a driver)."""
+    if human is not None and driver is not None:
+        print(human_text(human, driver))
+    if assisted is not None:
+        print("  " + assisted.sentence() + ".")
+
+
+def _with_assist(doc: dict[str, Any], assisted: Any) -> dict[str, Any]:
+    """``doc`` with the driver's limit under the assist (``human_limit.with_assist``; null for a manual chair)."""
+    if doc["human_limit"] is not None:
+        doc["human_limit"]["with_assist"] = None if assisted is None else assisted.to_mapping()
+    return doc
+
+
 def _run(args: argparse.Namespace) -> int:
     check_outputs({"--json-file": args.json_file, "-o": args.output},
                   {"--chair": args.chair, "--uncertainty": args.uncertainty})
@@ -207,10 +237,9 @@ def _run(args: argparse.Namespace) -> int:
         check_eigen_work("--samples", args.samples, solves_per_draw(len(speeds), GRID_POINTS))
     if not (0.01 < args.max_speed <= 100.0):
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
-    driver = driver_from_args(args)
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
     checks = simulator_checks(summary)
-    human = None if driver is None else human_limit(c, driver, args.model)
+    driver, human, assisted = _driver(c, args)
     intervals = nonlinear = None
     if args.uncertainty:
         # deferred: the uncertainty machinery (and the simulator) cost start-up time the plain summary does not need
@@ -233,11 +262,11 @@ def _run(args: argparse.Namespace) -> int:
             save_figure(figure(summary), tmp["-o"], title=f"stability critical_speed: {c.name}, {args.model} model")
         print(f"wrote {args.output}", file=sys.stderr)
     if args.json or args.json_file:
-        emit_json(document(summary, checks, args, speeds, intervals, nonlinear, human, driver), args)
+        doc = document(summary, checks, args, speeds, intervals, nonlinear, human, driver)
+        emit_json(_with_assist(doc, assisted), args)
     if not args.json:
         print(format_summary(summary, checks, intervals, nonlinear))
-        if human is not None and driver is not None:
-            print(human_text(human, driver))
+        _print_driver(human, driver, assisted)
     return 0
 
 
