@@ -26,6 +26,7 @@ import numpy as np
 
 from stability.layout.model import Layout
 from stability.layout.statics import centre_of_mass, contacts, distribute
+from stability.models import slope as slope_model
 
 __all__ = ["LoadCase", "case_loads", "effective_centre", "polygon_margin", "SCORE_WORDS"]
 
@@ -78,11 +79,10 @@ def effective_centre(layout: Layout, ax: float, ay: float, grade_deg: float, cro
     (x, y, normal load)
         m, m, N.
     """
-    g = layout.g
-    gam, phi = math.radians(grade_deg), math.radians(cross_deg)
-    ex = -g * math.sin(gam) - ax
-    ey = g * math.cos(gam) * math.sin(phi) - ay
-    ez = g * math.cos(gam) * math.cos(phi)
+    # gravity in body axes on the plane, the generated model's (stability.models.slope.gravity), less the
+    # d'Alembert acceleration
+    g1, g2, ez = slope_model.gravity(layout.g, math.radians(cross_deg), math.radians(grade_deg))
+    ex, ey = g1 - ax, g2 - ay
     xg, yg = centre_of_mass(layout, reverse)
     return xg + layout.h * ex / ez, yg + layout.h * ey / ez, layout.m * ez
 
