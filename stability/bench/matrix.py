@@ -28,6 +28,7 @@ from scipy.optimize import brentq
 from stability.bench.loads import SCORE_WORDS, LoadCase, case_loads
 from stability.layout.model import Layout
 from stability.layout.statics import contacts
+from stability.models import slope as slope_model
 from stability.settings.drive import DRIVE_SETTINGS
 
 __all__ = ["Drive", "DRIVE_SETTINGS", "Case", "BenchResult", "run_bench", "braking_distance"]
@@ -148,6 +149,12 @@ class BenchResult:
                 "cases": [c.to_mapping() for c in self.cases]}
 
 
+def _pull(g: float, grade_deg: float) -> float:
+    """The slope's pull back down a grade rising ahead, ``g sin(grade)`` (m/s^2): minus the forward component of
+    gravity in body axes of the generated slope model (:func:`stability.models.slope.gravity`)."""
+    return -slope_model.gravity(g, 0.0, math.radians(grade_deg))[0]
+
+
 def braking_distance(speed: float, decel: float, delay: float = 0.0, downhill_deg: float = 0.0, g: float = 9.81
                      ) -> float:
     """Stopping distance from ``speed``: ``speed delay + speed^2 / (2 (decel - g sin(downhill)))``, m.
@@ -169,7 +176,7 @@ def braking_distance(speed: float, decel: float, delay: float = 0.0, downhill_de
     float
         m; ``inf`` when the slope's pull is not less than the deceleration.
     """
-    a = decel - g * math.sin(math.radians(downhill_deg))
+    a = decel - _pull(g, downhill_deg)
     return math.inf if a <= 0 else speed * delay + speed * speed / (2.0 * a)
 
 
@@ -191,7 +198,7 @@ def _state(layout: Layout, ax: float, grade: float, drive: Drive, reverse: bool)
     force) and the controller's request, not the grip of the requested state.
     """
     c = case_loads(layout, ax, 0.0, grade, 0.0, reverse)
-    m, pull = layout.m, layout.g * math.sin(math.radians(grade))
+    m, pull = layout.m, _pull(layout.g, grade)
 
     def excess(a: float) -> float:
         ca = case_loads(layout, a, 0.0, grade, 0.0, reverse)
@@ -259,7 +266,7 @@ def run_bench(layout: Layout, drive: Drive | None = None) -> BenchResult:
                                               ("rearward", d.reverse_speed_m_s, 1.0,
                                                (("level", 0.0), ("backwards down the slope", s)))):
             for slope, grade in cases:
-                ax = sign * decel - (g * math.sin(math.radians(grade)) if brakes else 0.0)
+                ax = sign * decel - (_pull(g, grade) if brakes else 0.0)
                 c, ax, why = _state(layout, ax, grade, d, direction == "rearward")
                 dist = speed * delay + speed * speed / (2.0 * abs(ax)) if sign * ax > 0 else math.inf
                 if not math.isfinite(dist):
