@@ -342,9 +342,9 @@ def _nonlinear_text(n_fixed: int, n_casters: int) -> tuple[list[str], str]:
            "writes M (n x n) and F0 (n), n = 3 + casters,\n    with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + "
            "sum_k M_k e_(3+k) (M_k the pin moment on caster k).\n\n    u, v, r (m/s, m/s, rad/s); cs, sn, dd: "
            "cos, sin and rate (rad/s) of each caster angle;\n    p: parameters (nonlinear_parameters order); "
-           "fw: (Fx, Fy) of each fixed wheel in body axes;\n    fc: (Fx, Fy) of each caster in its frame; fy_ext "
-           "(N) at the c.g., mz_ext (N m) on the body.\n    " + '"' * 3)
-    eq = [f"def equations_{tag}(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):", f"    {doc}"]
+           "fw: (Fx, Fy) of each fixed wheel in body axes;\n    fc: (Fx, Fy) of each caster in its frame; Fy_ext "
+           "(N) at the c.g., Mz_ext (N m) on the body.\n    " + '"' * 3)
+    eq = [f"def equations_{tag}(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):", f"    {doc}"]
     eq += [f"    {x}" for x in body] + ["    return None", ""]
     # the contact velocities
     named = [(f"out[{i}]", e) for i, e in enumerate(d.vel)]
@@ -381,6 +381,10 @@ def render_nonlinear() -> str:
     disp_v.append("    return None")
     names += ["equations", "contact_velocities"]
     shapes = "SHAPES = " + repr(tuple(SHAPES)) + "\n"
+    shapes += ("#: the parameter vector p of each shape, by name (a fixed wheel's x_w_j, y_w_j; a caster's x_p_k, "
+               "y_p_k, trail_k, l_k, m_c_k, i_zp_k)\nPARAMETERS = {\n" + "".join(
+                   f"    {shape!r}: {tuple(str(x) for x in nonlinear_parameters(*shape))!r},\n" for shape in SHAPES)
+               + "}\n")
     return (header + f"__all__ = {names!r}\n\n" + shapes + "\n\n" + "\n\n".join(parts) + "\n\n"
             + "\n".join(disp_e) + "\n\n\n" + "\n".join(disp_v) + "\n")
 

@@ -10,15 +10,22 @@ indexable sequences: the simulator compiles these functions as they are.
 __all__ = ['equations_2w1c', 'contact_velocities_2w1c', 'equations_2w2c', 'contact_velocities_2w2c', 'equations_2w3c', 'contact_velocities_2w3c', 'equations_2w4c', 'contact_velocities_2w4c', 'equations', 'contact_velocities']
 
 SHAPES = ((2, 1), (2, 2), (2, 3), (2, 4))
+#: the parameter vector p of each shape, by name (a fixed wheel's x_w_j, y_w_j; a caster's x_p_k, y_p_k, trail_k, l_k, m_c_k, i_zp_k)
+PARAMETERS = {
+    (2, 1): ('m', 'i_z', 'x_w_0', 'y_w_0', 'x_w_1', 'y_w_1', 'x_p_0', 'y_p_0', 'trail_0', 'l_0', 'm_c_0', 'i_zp_0'),
+    (2, 2): ('m', 'i_z', 'x_w_0', 'y_w_0', 'x_w_1', 'y_w_1', 'x_p_0', 'y_p_0', 'trail_0', 'l_0', 'm_c_0', 'i_zp_0', 'x_p_1', 'y_p_1', 'trail_1', 'l_1', 'm_c_1', 'i_zp_1'),
+    (2, 3): ('m', 'i_z', 'x_w_0', 'y_w_0', 'x_w_1', 'y_w_1', 'x_p_0', 'y_p_0', 'trail_0', 'l_0', 'm_c_0', 'i_zp_0', 'x_p_1', 'y_p_1', 'trail_1', 'l_1', 'm_c_1', 'i_zp_1', 'x_p_2', 'y_p_2', 'trail_2', 'l_2', 'm_c_2', 'i_zp_2'),
+    (2, 4): ('m', 'i_z', 'x_w_0', 'y_w_0', 'x_w_1', 'y_w_1', 'x_p_0', 'y_p_0', 'trail_0', 'l_0', 'm_c_0', 'i_zp_0', 'x_p_1', 'y_p_1', 'trail_1', 'l_1', 'm_c_1', 'i_zp_1', 'x_p_2', 'y_p_2', 'trail_2', 'l_2', 'm_c_2', 'i_zp_2', 'x_p_3', 'y_p_3', 'trail_3', 'l_3', 'm_c_3', 'i_zp_3'),
+}
 
 
-def equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):
+def equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 1 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; fy_ext (N) at the c.g., mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
     """
     m = p[0]
     i_z = p[1]
@@ -117,13 +124,13 @@ def contact_velocities_2w1c(u, v, r, cs, sn, dd, p, out):
     return None
 
 
-def equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):
+def equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 2 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; fy_ext (N) at the c.g., mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
     """
     m = p[0]
     i_z = p[1]
@@ -274,13 +281,13 @@ def contact_velocities_2w2c(u, v, r, cs, sn, dd, p, out):
     return None
 
 
-def equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):
+def equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 3 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; fy_ext (N) at the c.g., mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
     """
     m = p[0]
     i_z = p[1]
@@ -479,13 +486,13 @@ def contact_velocities_2w3c(u, v, r, cs, sn, dd, p, out):
     return None
 
 
-def equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):
+def equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 4 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; fy_ext (N) at the c.g., mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
     """
     m = p[0]
     i_z = p[1]
