@@ -215,7 +215,7 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     TK, TS, TL, LIM, CHK = _tire_arrays(layout)
     mf = np.array([c.pin_friction for c in layout.casters], dtype=float)
     cpin = np.array([c.pin_damping for c in layout.casters], dtype=float)
-    from stability.simulate import layout_kernel as k    # numba loads on first use
+    from stability.simulate import layout_kernel as k  # numba loads on first use
 
     nrec = (steps - 1) // opts.stride + 1
     rec = np.full((k.NREC + 2 * nc, nrec), np.nan)

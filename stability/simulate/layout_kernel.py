@@ -195,6 +195,89 @@ def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
     _accelerations(Mm, F0, nc, mom, held, W, w, acc)
 
 
+@_inl
+def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit):
+    """Program WCHAIR's STATICS / MECHAN range rules on the tested tires on the ground: count the warnings;
+    the stop code when a kind reaches its limit (``stop``), else 0."""
+    nmax, smax, nmin = -math.inf, 0.0, math.inf
+    for i in range(loads.shape[0]):
+        if kv[i] != 0.0:
+            nmin = min(nmin, loads[i])
+            if CHK[i]:
+                nmax = max(nmax, loads[i])
+                smax = max(smax, abs(slips[i]))
+    if nmax > maxload:
+        _note(warn, 1, t, nmax)
+        if stop and warn[1, 0] > nwarn_limit:
+            return STOPPED_LOAD
+    if nmin < 0.0:
+        _note(warn, 2, t, nmin)
+    if smax > maxslip:
+        _note(warn, 0, t, smax)
+        if stop and warn[0, 0] > nwarn_limit:
+            return STOPPED_SLIP
+    return 0.0
+
+
+@_inl
+def _tire_forces(nw, nc, TK, TS, TL, LIM, slips, loads, policy, tire_push, ftimp, cs, sn, fw, fc):
+    """Lateral tire forces (fixed wheels in body axes, casters in their frames; ``ftimp`` on the fixed wheels while
+    ``tire_push``) written into ``fw``, ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N."""
+    sum_fx = sum_fy = 0.0
+    for j in range(nw):
+        if tire_push:
+            fy = ftimp
+        else:
+            fy, _bad = lateral_force(TK[j], TS[j], TL[j], LIM[j], slips[j], loads[j], policy)
+        fw[2 * j], fw[2 * j + 1] = 0.0, fy
+        sum_fy += fy
+    for kk in range(nc):
+        i = nw + kk
+        fy, _bad = lateral_force(TK[i], TS[i], TL[i], LIM[i], slips[i], loads[i], policy)
+        fc[2 * kk], fc[2 * kk + 1] = 0.0, fy
+        sum_fx -= fy * sn[kk]
+        sum_fy += fy * cs[kk]
+    return sum_fx, sum_fy
+
+
+@_inl
+def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
+    """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
+    with the viscous part ``-c_pin rate``)."""
+    if pin_mode == 1:
+        for kk in range(nc):
+            held[kk] = True
+        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+    elif pin_mode == 2:
+        _stick_slip(Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
+    else:
+        for kk in range(nc):
+            mom[kk] = kinetic_pin_moment(DD[kk], mf[kk]) - cpin[kk] * DD[kk]
+            held[kk] = False
+        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+
+
+@_inl
+def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys):
+    """The caster angles' cosines and sines, the contact velocities and slip angles (deg), the caster contacts."""
+    for kk in range(nc):
+        cs[kk], sn[kk] = math.cos(D[kk]), math.sin(D[kk])
+    contact_velocities(shape, UD, VD, THED, cs, sn, DD, p, vel)
+    for i in range(nw + nc):
+        slips[i] = slip_angle(vel[2 * i], vel[2 * i + 1])
+    for kk in range(nc):
+        base = 2 + 2 * nw + 6 * kk                 # x_p, y_p, trail of caster kk in p
+        xs[nw + kk] = p[base] - p[base + 2] * cs[kk]
+        ys[nw + kk] = p[base + 1] - p[base + 2] * sn[kk]
+
+
+@_inl
+def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
+    rec[0, row], rec[1, row], rec[2, row], rec[3, row], rec[4, row], rec[5, row] = X, Y, THE, THED, UD, VD
+    for kk in range(D.shape[0]):
+        rec[NREC + 2 * kk, row], rec[NREC + 2 * kk + 1, row] = D[kk], DD[kk]
+
+
 @njit(cache=True, nogil=True)
 def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, kv, line, share, mf, cpin, u0, v0, delta0, rec, status, warn):
     """One run: ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and
@@ -206,101 +289,42 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, kv, line, share, mf, cpin, 
     pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
     maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
                                                              cfg[14], int(cfg[15]))
-    nt = nw + nc
-    n = 3 + nc
+    nt, n = nw + nc, 3 + nc
     half_dt2 = 0.5 * dt * dt
-    X = Y = THE = 0.0
-    UD, VD, THED = u0, v0, 0.0
-    D = delta0.copy()
-    DD = np.zeros(nc)
-    cs, sn = np.zeros(nc), np.zeros(nc)
-    vel = np.zeros(2 * nt)
-    slips = np.zeros(nt)
-    loads = np.zeros(nt)
-    xs, ys = np.zeros(nt), np.zeros(nt)
-    fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
-    Mm, F0 = np.zeros((n, n)), np.zeros(n)
-    W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros(n)
-    mom = np.zeros(nc)
+    X = Y = THE = THED = 0.0
+    UD, VD = u0, v0
+    D, DD = delta0.copy(), np.zeros(nc)
+    cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
     held = np.zeros(nc, dtype=np.bool_)
-    rest = np.zeros(nc)
-    for kk in range(nc):
-        if pin_mode == 2:
-            rest[kk] = mf[kk]
+    rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
+    vel, slips, loads, xs, ys = np.zeros(2 * nt), np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
+    fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
+    Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
     for j in range(nw):
         xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
     FC1 = FC2 = 0.0
     nrec = 0
     for k in range(nsteps):
         t = k * dt
-        for kk in range(nc):
-            cs[kk], sn[kk] = math.cos(D[kk]), math.sin(D[kk])
-        contact_velocities(shape, UD, VD, THED, cs, sn, DD, p, vel)
-        for i in range(nt):
-            slips[i] = slip_angle(vel[2 * i], vel[2 * i + 1])
-        for kk in range(nc):
-            base = 2 + 2 * nw + 6 * kk
-            xs[nw + kk] = p[base] - p[base + 2] * cs[kk]
-            ys[nw + kk] = p[base + 1] - p[base + 2] * sn[kk]
+        _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys)
         layout_loads(mode, xs, ys, kv, line, share, weight, h, FC1, FC2, loads)
-        # STATICS / MECHAN range rules on the tested tires (program WCHAIR's warnings)
-        nmax, smax, nmin = -math.inf, 0.0, math.inf
-        for i in range(nt):
-            if kv[i] != 0.0:
-                nmin = min(nmin, loads[i])
-            if CHK[i]:
-                nmax = max(nmax, loads[i])
-                smax = max(smax, abs(slips[i]))
-        if nmax > maxload:
-            _note(warn, 1, t, nmax)
-            if stop and warn[1, 0] > nwarn_limit:
-                status[0], status[1] = STOPPED_LOAD, t
-                break
-        if nmin < 0.0:
-            _note(warn, 2, t, nmin)
-        if smax > maxslip:
-            _note(warn, 0, t, smax)
-            if stop and warn[0, 0] > nwarn_limit:
-                status[0], status[1] = STOPPED_SLIP, t
-                break
+        code = _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
+        if code != 0.0:
+            status[0], status[1] = code, t
+            break
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
-        sum_fx = sum_fy = 0.0
-        for j in range(nw):                     # fixed wheels: their frames are the body's
-            if ftimp != 0.0 and imp:
-                fy = ftimp
-            else:
-                fy, _bad = lateral_force(TK[j], TS[j], TL[j], LIM[j], slips[j], loads[j], policy)
-            fw[2 * j], fw[2 * j + 1] = 0.0, fy
-            sum_fy += fy
-        for kk in range(nc):                    # casters: in their own frames
-            fy, _bad = lateral_force(TK[nw + kk], TS[nw + kk], TL[nw + kk], LIM[nw + kk], slips[nw + kk],
-                                     loads[nw + kk], policy)
-            fc[2 * kk], fc[2 * kk + 1] = 0.0, fy
-            sum_fx -= fy * sn[kk]
-            sum_fy += fy * cs[kk]
+        sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, slips, loads, policy, ftimp != 0.0 and imp, ftimp,
+                                      cs, sn, fw, fc)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
         equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, 0.0, Mm, F0)
-        if pin_mode == 1:
-            for kk in range(nc):
-                held[kk] = True
-            _accelerations(Mm, F0, nc, mom, held, W, w, acc)
-        elif pin_mode == 2:
-            _stick_slip(Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
-        else:
-            for kk in range(nc):
-                mom[kk] = kinetic_pin_moment(DD[kk], mf[kk]) - cpin[kk] * DD[kk]
-                held[kk] = False
-            _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+        _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
         if not abs(THED) < math.inf:
             status[0], status[1] = STOPPED_NONFINITE, t
             break
         if k % stride == 0:
-            row = k // stride
-            rec[0, row], rec[1, row], rec[2, row], rec[3, row], rec[4, row], rec[5, row] = X, Y, THE, THED, UD, VD
-            for kk in range(nc):
-                rec[NREC + 2 * kk, row], rec[NREC + 2 * kk + 1, row] = D[kk], DD[kk]
-            nrec = row + 1
-        # UPDATE
+            _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
+            nrec = k // stride + 1
+        # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
         FC1, FC2 = sum_fx, sum_fy + fy_ext
         du = UD * dt + acc[0] * half_dt2
         dv = VD * dt + acc[1] * half_dt2
@@ -309,11 +333,10 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, kv, line, share, mf, cpin, 
         Y += du * sint + dv * cost
         UD += acc[0] * dt
         VD += acc[1] * dt
-        for kk in range(nc):
-            if pin_mode == 1:
-                continue
-            D[kk] += DD[kk] * dt + acc[3 + kk] * half_dt2
-            DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
+        if pin_mode != 1:
+            for kk in range(nc):
+                D[kk] += DD[kk] * dt + acc[3 + kk] * half_dt2
+                DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
         THE += THED * dt + acc[2] * half_dt2
         THED += acc[2] * dt
     return nrec
