@@ -192,3 +192,32 @@ def test_reverse_by_a_negative_speed_or_by_the_run_is_the_same_run():
     assert a.speed_m_s == b.speed_m_s == -0.8
     np.testing.assert_array_equal(a.heading_rad, b.heading_rad)
     assert a.u_m_s[0] == -0.8 and a.settings["reverse"] is True
+
+
+def test_the_simulate_command_runs_a_layout_in_reverse(capsys):
+    import json
+
+    from stability.simulate.__main__ import main
+
+    assert main(["--chair", "mid-wheel-drive", "--reverse", "--eta0", "180", "--beta0", "180", "--horizon", "2",
+                 "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    direct = simulate_layout(layout_preset("mid-wheel-drive"), -0.75, RunSpec(horizon=2.0),
+                             caster_angles_deg=[180.0] * 4)
+    assert d["chair"] == "mid-wheel-drive" and d["speed_m_s"] == -0.75 and d["ended"] == "horizon"
+    assert d["final_heading_deg"] == direct.final_heading_deg
+    assert d["settings"]["caster_angles_deg"] == [180.0] * 4
+    assert main(["--chair", "power-fwd-base", "--horizon", "1"]) == 0
+    assert "power-fwd-base: 0.75 m/s forwards" in capsys.readouterr().out
+    assert main(["--chair", "mid-wheel-drive", "--csv", "x.csv"]) == 2
+    assert "--csv is not available for a layout" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_the_generated_nonlinear_layout_module_is_current():
+    from pathlib import Path
+
+    from derivations import layout as L
+
+    path = Path(__file__).resolve().parents[1] / "stability" / "_generated" / "layout_nonlinear.py"
+    assert path.read_text(encoding="utf-8") == L.render_nonlinear(), "regenerate: python derivations/layout.py"

@@ -104,6 +104,26 @@ class LayoutRun:
         """Heading at ``time_s`` (linear between rows), deg."""
         return float(np.degrees(np.interp(time_s, self.t_s, self.heading_rad)))
 
+    def summary(self) -> str:
+        """The run in a few lines: speed and direction, how it ended, the heading and path at the end, the casters."""
+        direction = "backwards" if self.speed_m_s < 0 else "forwards"
+        start = ", ".join(f"{a:g}" for a in self.settings.get("caster_angles_deg", []))
+        end = ", ".join(f"{np.degrees(a[-1]):.1f}" for a in self.caster_angle_rad)
+        why = {"horizon": "ran to the horizon", "slip warnings": "stopped at the eleventh slip warning (a tire "
+               "beyond its data: give --no-stop-on-warnings to run on with the fits clamped)",
+               "load warnings": "stopped at the eleventh load warning (a tire beyond its data)"}.get(self.ended,
+                                                                                                  self.ended)
+        return "\n".join([
+            f"{self.layout}: {abs(self.speed_m_s):g} m/s {direction}, casters starting at {start} deg "
+            "(0: trailing for forward driving, 180: for reversing); layout model, wchair scheme",
+            f"  {why} at t = {self.end_time_s:.3f} s",
+            f"  heading {self.final_heading_deg:+.2f} deg (peak |heading| {np.abs(self.heading_deg).max():.2f} deg), "
+            f"lateral offset {self.y_m[-1]:+.3f} m after {abs(self.x_m[-1]):.2f} m of travel",
+            f"  caster angles at the end: {end} deg",
+            "  slip warnings {slip}, load warnings {load}, lift-off {lift}".format(
+                slip=self.warnings["slip"]["count"], load=self.warnings["load"]["count"],
+                lift=self.warnings["lift_off"]["count"])])
+
     def to_mapping(self) -> dict:
         """JSON-ready summary (unit last): the final heading, lateral offset and caster angles, the ending."""
         return {"layout": self.layout, "speed_m_s": self.speed_m_s, "ended": self.ended,
