@@ -43,7 +43,7 @@ __all__ = ["LayoutRun", "simulate_layout", "ENDINGS"]
 ENDINGS = {0.0: "horizon", 1.0: "slip warnings", 2.0: "load warnings", 3.0: "non-finite"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class LayoutRun:
     """One simulated run of a layout (arrays read-only).
 
