@@ -249,3 +249,26 @@ def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks(
     data = advice_mapping(a)
     assert any(x["name"] == "human_limited_speed_m_s" for x in data["decision"]["costs"])
     assert "can hold this chair straight" in " ".join(data["decision"]["verdict"])
+
+
+def test_a_powered_chair_is_not_changed_into_one_that_tips_on_the_iso_bench():
+    """A powered chair (power-fwd with its c.g. at 0.35 m: no case of the virtual ISO 7176-2 bench above score 0,
+    and inside a shimmy zone) with the static-stability limit lowered to 5 deg: moving the axle 10 cm toward the
+    c.g. fixes its shimmy margin and meets every other limit, but the chair would then tip in the bench's stops
+    (recomputed here from the bench and the lever's fields): it is named as blocked by the bench's limit, and the
+    recommendation's own recomputed worst score is at most 1 (issue 39: no case above score 1)."""
+    from stability.bench import run_bench
+    from stability.layout.model import Layout
+
+    def score(c) -> int:
+        return run_bench(Layout.from_chair(c)).worst_score
+
+    chair = chair_mod.preset("power-fwd").replace(h=0.35)
+    assert score(chair) == 0
+    a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, min_tip_deg=5.0)
+    rec = a.recommendations[0].candidate
+    assert score(apply(chair, [f for ch in rec.changes for f in ch.fields])) <= 1
+    axle = [b for b in a.blocked if [ch.label for ch in b.candidate.changes]
+            == ["axle 10 cm toward the c.g. at fixed s1+s2 (s1 18.0 -> 8.0 cm)"]]
+    assert len(axle) == 1 and [k.name for k in axle[0].limits] == ["bench_worst_score"]
+    assert score(apply(chair, list(axle[0].candidate.changes[0].fields))) >= 2

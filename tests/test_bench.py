@@ -137,3 +137,63 @@ def test_bench_command_and_refusals(capsys):
     assert "--max-speed 50 is invalid; valid range: 0.1 <= value <= 10 m/s" in capsys.readouterr().err
     with pytest.raises(ValueError, match="traction"):
         Drive(traction=0.0)
+
+
+@pytest.mark.parametrize("name", layout_preset_names())
+def test_a_traction_limited_stop_is_held_by_the_grip_of_its_own_state(name):
+    """Where traction limits a start or stop, the drive force equals the drive wheels' grip in the state it
+    produces, ``m |a + g sin(grade)| = mu N_driven(a)`` (an invariant of the quasi-static balance, checked from the
+    case's own loads); the tolerance is the root's ``xtol`` 1e-12 m/s^2 times the mass, times 100.  And braking
+    harder never stops a chair later: a reverse command asking for more than the released control's deceleration
+    stops it at least as soon, on every slope (the limit is the grip, whatever is asked beyond it)."""
+    layout = layout_preset(name)
+    drive = Drive(reverse_decel_m_s2=8.0)
+    r = run_bench(layout, drive)
+    driven = {f"wheel {j}" for j, w in enumerate(layout.wheels) if w.driven}
+    limited = [c for c in r.cases if c.limited_by == "traction of the drive wheels"]
+    assert limited
+    for c in limited:
+        grip = drive.traction * sum(n for (lab, *_), n in zip(contacts(layout), c.loads.loads_N, strict=True)
+                                    if lab in driven)
+        force = layout.m * abs(c.ax_m_s2 + layout.g * math.sin(math.radians(c.grade_deg)))
+        assert force == pytest.approx(grip, rel=0, abs=100 * 1e-12 * layout.m + 1e-9 * grip)
+    for direction in ("forward", "rearward"):
+        for slope in {c.slope for c in r.cases if c.name.startswith(f"{direction} stop")}:
+            rel = next(c for c in r.cases if c.name == f"{direction} stop, control released" and c.slope == slope)
+            rev = next(c for c in r.cases if c.name == f"{direction} stop, reverse command" and c.slope == slope)
+            assert rev.braking_distance_m <= rel.braking_distance_m * (1 + 1e-12)
+
+
+def test_a_chair_cannot_brake_itself_over_an_edge_its_braking_wheels_leave():
+    """Quasi-statically a chair tips forward over its front contacts only if the braking force survives to the
+    tip: a rear-wheel-drive base braking on its rear wheels unloads them as it pitches onto its front casters, so
+    however hard the stop is asked (15 m/s^2, grip 2) it stays on its wheels, limited by traction; a front-wheel-
+    drive chair brakes on the wheels of its tipping edge, keeps its grip to the tip, and goes over."""
+    hard = Drive(reverse_decel_m_s2=15.0, brake_decel_m_s2=15.0, traction=2.0)
+    rwd = run_bench(layout_preset("power-rwd-base"), hard)
+    for c in (c for c in rwd.cases if c.name.startswith("forward stop")):
+        assert c.score <= 1 and c.limited_by in ("", "traction of the drive wheels"), c
+    assert any(c.limited_by == "traction of the drive wheels" for c in rwd.cases if c.name.startswith("forward stop"))
+    fwd = run_bench(layout_preset("power-fwd-base"), hard)
+    assert any(c.score >= 2 for c in fwd.cases if c.name.startswith("forward stop"))
+
+
+def test_bench_pdf_one_page_per_family_with_its_conclusion(tmp_path, capsys):
+    """``-o FILE.pdf``: a page per manoeuvre family, each titled with the chair and saying what to conclude from its
+    own cases (the worst case and its score); a suffix that is not .pdf is refused before any work, nothing written."""
+    from pypdf import PdfReader
+
+    from stability.bench.__main__ import main
+
+    out = tmp_path / "bench.pdf"
+    assert main(["--chair", "power-fwd", "-o", str(out)]) == 0
+    pages = [p.extract_text() for p in PdfReader(out).pages]
+    assert len(pages) == 3
+    r = run_bench(Layout.from_chair(__import__("stability.chair", fromlist=["preset"]).preset("power-fwd")))
+    for text, family in zip(pages, ("start", "stop", "turn"), strict=True):
+        worst = max(c.score for c in r.cases if c.family == family)
+        assert "power-fwd: virtual bench" in text and f"scores {worst}" in text.replace("\n", " ")
+    assert "braking distance" in pages[1]
+    capsys.readouterr()
+    assert main(["--chair", "power-fwd", "-o", str(tmp_path / "bench.png")]) == 2
+    assert "valid: .pdf" in capsys.readouterr().err and not (tmp_path / "bench.png").exists()

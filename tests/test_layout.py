@@ -226,3 +226,51 @@ def test_critical_speed_command_on_a_layout_and_in_reverse(capsys):
     out = capsys.readouterr().out
     g = growth_rates(Layout.from_chair(preset("ej-premier")), [-1.0, 1.0])
     assert f"{g[0]:+17.4f}" in out and f"{g[1]:+17.4f}" in out
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "power-fwd", "ej-premier-front-caster"])
+@pytest.mark.parametrize("cross, grade", [(6.0, 0.0), (-4.0, 3.0), (0.0, -8.0), (10.0, 10.0)])
+def test_a_layouts_slope_tip_is_the_short_forms(name, cross, grade):
+    """A thesis chair expanded into a layout tips on a combined slope where the short form does: the short form's
+    fall line over its own four contacts (``tipping.angles.fall_distance`` of the chair's parameters) against the
+    layout's over its wheel list; both solve a one-dimensional minimisation to machine precision (1e-12 deg
+    observed), so 1e-9 deg."""
+    from stability.layout.statics import slope_tip as layout_slope_tip
+    from stability.tipping.angles import slope_tip
+
+    c = preset(name)
+    a, b = slope_tip(c, cross, grade), layout_slope_tip(Layout.from_chair(c), cross, grade)
+    assert b.tilt_deg == pytest.approx(a.tilt_deg, abs=1e-12)
+    assert b.fall_direction_deg == pytest.approx(a.fall_direction_deg, abs=1e-9)
+    assert b.tip_deg == pytest.approx(a.tip_deg, abs=1e-9)
+
+
+def test_the_tipping_command_answers_a_layout(capsys):
+    """``python -m stability.tipping --chair mid-wheel-drive``: the four ISO 7176-1 angles over the outermost
+    contacts; on a pure cross slope falling to the right the fall line is the right tip line (so the tip angle is
+    the right angle)."""
+    import json
+
+    from stability.layout.statics import tip_angles as layout_tips
+    from stability.tipping.__main__ import main
+
+    assert main(["--chair", "mid-wheel-drive", "--cross-slope", "6", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    want = layout_tips(layout_preset("mid-wheel-drive"))
+    assert {k: doc[k] for k in want} == pytest.approx(want, abs=0)
+    assert doc["slope"]["tip_deg"] == pytest.approx(want["right_deg"], abs=1e-9)
+    assert main(["--chair", "mid-wheel-drive", "--set", "h=0.5"]) == 2
+    assert "--set is for the short form" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["stability.shimmy"])      # stability.simulate answers layouts
+def test_a_short_form_command_refuses_a_layout_by_name(command):
+    """A command that answers the short form only refuses a layout with one line naming it and the commands that
+    answer layouts, exit status 2 (not 'unknown chair')."""
+    import subprocess
+    import sys
+
+    r = subprocess.run([sys.executable, "-m", command, "--chair", "mid-wheel-drive"], capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr.count("\n") == 1 and "is a wheel layout" in r.stderr and "tipping" in r.stderr

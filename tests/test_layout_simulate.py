@@ -74,6 +74,10 @@ def test_the_roll_moment_is_shared_as_the_thesis_roll_coefficient_says():
     for k in (0.5, 1.0, 3.0):
         rule = load_rule(Layout.from_chair(dataclasses.replace(preset("ej-premier"), roll_k=k)))
         np.testing.assert_allclose(rule.roll_share, [k / (k + 1), 1 / (k + 1)], rtol=1e-12)
+    for k, d, t in ((0.001, 1.0, 0.05), (1000.0, 0.05, 1.0)):      # the short form's extremes expand too
+        c = dataclasses.replace(preset("ej-premier"), roll_k=k, d1=d, d2=d, t1=t, t2=t)
+        np.testing.assert_allclose(load_rule(Layout.from_chair(c)).roll_share, [k / (k + 1), 1 / (k + 1)],
+                                   rtol=1e-9)
 
 
 @pytest.mark.parametrize("law", ["kinetic", "stick-slip"])

@@ -205,12 +205,13 @@ def test_command_writes_results_summary_and_figures(spec_dir, capsys):
 
 
 def test_example_spec_is_the_issue_sweep():
-    """docs/examples/sweep.toml: a 3 x 3 x 3 grid x 100 draws x 3 speeds of every available measure."""
+    """docs/examples/sweep.toml: a 3 x 3 x 3 grid x 100 draws x 3 speeds of every measure that applies to its manual
+    chair (the bench needs a powered chair: tests/test_sweep.py's bench test)."""
     from stability.sweep import MEASURES, load_spec
 
     spec = load_spec(Path(__file__).parent.parent / "docs" / "examples" / "sweep.toml")
     assert spec.designs == 27 and spec.draws == 100 and len(spec.speeds) == 3 and spec.rows == 8100
-    assert set(spec.measures) == set(MEASURES)
+    assert set(spec.measures) == set(MEASURES) - {"bench"}
 
 
 def test_statics_and_shimmy_measures_are_the_library_values(tmp_path):
@@ -361,3 +362,32 @@ def test_human_limited_speed_measure_is_the_divergence_rule(spec_dir):
     assert set(fdata["human_limited_status"]) == {"above"}
     s = summary(spec, data)
     assert "human_limited_speed_m_s" in s["measures"]
+
+
+def test_bench_measure_scores_and_stops_a_powered_chair_only(spec_dir):
+    """The sweep's bench columns for a powered chair: a higher centre of mass never lifts fewer wheels (the worst
+    score is non-decreasing in h: a taller chair's effective centre moves further per m/s^2), the level-ground stop
+    of a controller-limited case is ``v delay + v^2 / (2 a)`` of the longest of the three stops at the default
+    drive settings (the stop distances do not depend on h while traction does not limit them), and a chair
+    pushed on its hand rims has no drive to bench (NaN).  The lower score and shorter stop rank first."""
+    import math
+
+    from stability.bench import Drive, braking_distance
+    from stability.sweep.run import summary
+
+    text = 'chair = "power-fwd"\nspeeds = [1.0]\nmeasures = ["bench"]\n[grid]\nh = [0.3, 0.5, 0.9]\n'
+    spec = loads_spec(text, spec_dir)
+    rows = [r for i in range(n_chunks(spec)) for r in compute_chunk(spec, i)]
+    data = {c: [r[j] for r in rows] for j, c in enumerate(columns(spec))}
+    scores = data["bench_worst_score"]
+    assert scores == sorted(scores) and scores[0] < scores[-1]
+    d = Drive()
+    longest = max(braking_distance(d.max_speed_m_s, d.decel_m_s2), braking_distance(d.max_speed_m_s,
+                  d.reverse_decel_m_s2), braking_distance(d.max_speed_m_s, d.brake_decel_m_s2, d.brake_delay_s))
+    assert data["level_braking_distance_m"][0] == pytest.approx(longest, rel=1e-12)
+    best = summary(spec, data)["measures"]["bench_worst_score"]["best"]
+    assert best[0][0]["grid"]["h"] == 0.3
+    manual = loads_spec(text.replace('"power-fwd"', '"ej-premier"'), spec_dir)
+    mrows = [r for i in range(n_chunks(manual)) for r in compute_chunk(manual, i)]
+    j = columns(manual).index("bench_worst_score")
+    assert all(math.isnan(r[j]) for r in mrows)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from stability.advise.advisor import Advice, Blocked, Candidate
 from stability.advise.limits import allow_words, constraint_text, limit_words, shimmy_sentence
 from stability.advise.measures import EFFORT_WORDS, Measures
+from stability.bench.loads import SCORE_WORDS
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.study.censored import describe, side_of
 
@@ -88,7 +89,7 @@ class Cost:
 
         change = f(self.before) if self.before == self.after else f"{f(self.before)} -> {f(self.after)}"
         lim = "" if not self.limit else f" (limit {self.limit}, {'met' if self.met else 'NOT met'})"
-        return f"{self.words} {change} {self.unit}{lim}"
+        return f"{self.words} {change}{' ' + self.unit if self.unit else ''}{lim}"
 
     def to_mapping(self) -> dict:
         """JSON-ready dict."""
@@ -217,6 +218,9 @@ def _details(a: Advice) -> tuple:
     out.append(f"Linear model (free, frictionless casters): the heading error grows at {m.growth_rate_1_s:.3g} 1/s at "
                f"{REFERENCE_SPEED:g} m/s; it has no pin friction, so where it disagrees with the push and speed "
                "measures (which include the pins' Coulomb friction) those decide.")
+    if m.bench_score is not None:
+        out.append(f"Virtual ISO 7176-2 bench (default drive settings, quasi-static): worst wheel-lift score "
+                   f"{m.bench_score}, {SCORE_WORDS[m.bench_score]} (python -m stability.bench; docs/bench.md).")
     if m.cross_slope_effort is not None and a.cross_slope_deg:
         what = ("one hand rim must push {:.0f} N harder than the other" if m.drive == "handrim" else
                 "one drive motor must give {:.2g} N m more torque than the other")
@@ -253,6 +257,10 @@ def _costs(a: Advice, c: Candidate) -> tuple:
         out.append(Cost("human_limited_speed_m_s", "speed the driver can hold (driver limit)", "m/s",
                         base.human_speed_m_s, m.human_speed_m_s, f">= {hs.limit:.3g} m/s (the intended speed)",
                         hs.met))
+    bs = lim.get("bench_worst_score")
+    if bs is not None:
+        out.append(Cost("bench_worst_score", "worst wheel-lift score on the ISO 7176-2 bench (0-3)", "",
+                        base.bench_score, m.bench_score, f"<= {bs.limit:g}", bs.met, False))
     eff = lim.get(m.effort_key)
     if eff is not None:
         words, unit = EFFORT_WORDS[m.drive]

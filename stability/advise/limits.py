@@ -18,7 +18,7 @@ from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["Constraint", "ShimmyHold", "constraints", "allow", "allow_words", "constraint_text", "limit_words",
            "LIMIT_WORDS", "shimmy_hold", "shimmy_sentence",
-           "MAX_PIN_FRICTION_N_M", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "SHIMMY_AMPLITUDE_DEG"]
+           "MAX_PIN_FRICTION_N_M", "MAX_BENCH_SCORE", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "SHIMMY_AMPLITUDE_DEG"]
 
 #: Tolerable pin friction (N m): Collins (1987) conclusion 6 (L1853), "a reasonable estimate is 0.3 N-m".
 MAX_PIN_FRICTION_N_M = 0.3
@@ -27,6 +27,8 @@ MAX_PIN_FRICTION_N_M = 0.3
 MIN_SHIMMY_MARGIN_M = 0.005
 #: A change may raise the drive difference (hand-rim force or motor torque) on the cross slope by at most this factor.
 HANDRIM_FACTOR = 1.1
+#: Largest acceptable worst wheel-lift score on the virtual ISO 7176-2 bench (issue 39: no case above score 1).
+MAX_BENCH_SCORE = 1
 #: Shimmy amplitude of the friction estimate, deg (what pin friction buys against shimmy; the shimmy command's).
 SHIMMY_AMPLITUDE_DEG = D.SHIMMY_AMPLITUDE_DEG
 
@@ -144,6 +146,16 @@ def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source
                               v is not None and abs(v) <= lim + 1e-9,
                               f"on a {cross_slope:g} deg cross slope at {REFERENCE_SPEED:g} m/s; at most "
                               f"{HANDRIM_FACTOR:g} x the chair's own"))
+    if m.bench_score is not None:
+        # ISO 7176-2's matrix on the virtual bench (issue 39: no case above score 1); a chair already above it may
+        # not get worse
+        own = base.bench_score if base.bench_score is not None else MAX_BENCH_SCORE
+        lim = max(MAX_BENCH_SCORE, own)
+        out.append(Constraint("bench_worst_score", float(m.bench_score), float(lim), "<=", m.bench_score <= lim,
+                              "the virtual ISO 7176-2 bench at the default drive settings (docs/bench.md): no case "
+                              f"above score {MAX_BENCH_SCORE} (a wheel may lift, the chair may not tip)"
+                              + (f"; the chair as it is scores {own}, so not worse than that" if own > MAX_BENCH_SCORE
+                                 else "")))
     if driver is not None:
         tau, intended = driver
         u = m.human_speed_m_s
@@ -200,7 +212,8 @@ LIMIT_WORDS = {"static_stability_deg": ("static stability", "deg", 1.0),
                "turning_effort_N_m": ("turning pin friction", "N m", 1.0),
                "handrim_force_difference_N": ("hand-rim force difference on the cross slope", "N", 1.0),
                "motor_torque_difference_N_m": ("motor torque difference on the cross slope", "N m", 1.0),
-               "human_limited_speed_m_s": ("the speed the driver can hold", "m/s", 1.0)}
+               "human_limited_speed_m_s": ("the speed the driver can hold", "m/s", 1.0),
+               "bench_worst_score": ("worst wheel-lift score on the ISO 7176-2 bench", "", 1.0)}
 
 
 def limit_words(name: str) -> str:
@@ -234,7 +247,8 @@ def constraint_text(k: Constraint) -> str:
     words, unit, f = LIMIT_WORDS.get(k.name, (k.name.replace("_", " "), "", 1.0))
     if k.value is None:
         return f"{words} refused by the slope statics (tire data)"
-    return f"{words} {f * k.value:.3g} {unit} against the limit {k.kind} {f * k.limit:.3g} {unit}"
+    u = f" {unit}" if unit else ""
+    return f"{words} {f * k.value:.3g}{u} against the limit {k.kind} {f * k.limit:.3g}{u}"
 
 
 def allow(k: Constraint) -> str:
@@ -258,6 +272,9 @@ def allow(k: Constraint) -> str:
                 "conclusion 6)")
     if k.name == "shimmy_margin_m":
         return f"no option: the shimmy margin limit is {MIN_SHIMMY_MARGIN_M * 1000:g} mm from the nearest boundary"
+    if k.name == "bench_worst_score":
+        return ("no option: the bench's drive settings are those of python -m stability.bench (docs/bench.md); a "
+                "change that tips the chair in the ISO 7176-2 matrix is not allowed")
     if k.name == "human_limited_speed_m_s":
         return (f"--intended-speed {math.floor((k.value or 0.0) * 100) / 100:.2f} (a slower intended speed), or a "
                 "driver who reacts faster (--reaction-time)")
@@ -285,6 +302,8 @@ def allow_words(k: Constraint) -> str:
                 "1987, conclusion 6)")
     if k.name == "shimmy_margin_m":
         return f"no setting allows it (the shimmy margin must be at least {MIN_SHIMMY_MARGIN_M * 1000:g} mm)"
+    if k.name == "bench_worst_score":
+        return "no setting allows it (the chair would tip in the ISO 7176-2 manoeuvres of the virtual bench)"
     if k.name == "human_limited_speed_m_s":
         return (f"driving no faster than {k.value or 0.0:.2f} m/s, or a driver who reacts faster, would allow it")
     return "dropping the cross-slope limit would allow it"

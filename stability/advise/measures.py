@@ -27,9 +27,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from stability.bench import run_bench
 from stability.chair import Chair
 from stability.chair.power import drive_kind
 from stability.driver.linear import rule_speed
+from stability.layout.model import Layout
 from stability.linear import eigenvalues_vs_speed
 from stability.runtime.progress import ProgressBar
 from stability.settings.reference import REFERENCE_SPEED
@@ -119,6 +121,9 @@ class Measures:
         rule, :func:`stability.driver.linear.rule_speed`), m/s; None without a driver.
     human_side : str
         ``"="``, or ``">"`` when beyond the speeds searched.
+    bench_score : int or None
+        A powered chair's worst ISO 7176-2 wheel-lift score on the virtual bench at the default drive settings
+        (0-3, :func:`stability.bench.run_bench`); None for a chair pushed on its hand rims.
     """
 
     chair: str
@@ -137,6 +142,7 @@ class Measures:
     drive: str = "handrim"
     human_speed_m_s: float | None = None
     human_side: str = "="
+    bench_score: int | None = None
 
     @property
     def effort_key(self) -> str:
@@ -162,6 +168,7 @@ class Measures:
             "tip_angles_deg": dict(self.tip_angles_deg),
             "human_limited_speed_m_s": self.human_speed_m_s,
             "human_limited_side": self.human_side if self.human_speed_m_s is not None else None,
+            "bench_worst_score": self.bench_score,
         }
 
 
@@ -247,6 +254,8 @@ class Linear:
     growth_rate_1_s : float
     human_speed_m_s : float or None
     human_side : str
+    bench_score : int or None
+        As :attr:`Measures.bench_score`.
     """
 
     static_stability_deg: Interval
@@ -259,11 +268,27 @@ class Linear:
     growth_rate_1_s: float
     human_speed_m_s: float | None = None
     human_side: str = "="
+    bench_score: int | None = None
 
     @property
     def effort_key(self) -> str:
         """As :attr:`Measures.effort_key`."""
         return EFFORT_KEYS[self.drive]
+
+
+def bench_score(chair: Chair) -> int | None:
+    """A powered chair's worst wheel-lift score on the virtual bench (ISO 7176-2 matrix, default drive settings).
+
+    Parameters
+    ----------
+    chair : Chair
+
+    Returns
+    -------
+    int or None
+        0-3 (:data:`stability.bench.loads.SCORE_WORDS`); None for a chair pushed on its hand rims.
+    """
+    return run_bench(Layout.from_chair(chair)).worst_score if drive_kind(chair) == "motor" else None
 
 
 def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_slope_deg: float,
@@ -303,7 +328,8 @@ def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_s
             Interval(tips.smallest_deg, tips.smallest_deg, tips.smallest_deg), angles,
             Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low), _finite_or_none(high)),
             band.straddles, max(c.pin_friction_left, c.pin_friction_right), cross_slope_effort(c, cross_slope_deg),
-            drive_kind(c), float(np.max(eigenvalues_vs_speed(c, [IMPULSE_SPEED], track=False).real)), human, side))
+            drive_kind(c), float(np.max(eigenvalues_vs_speed(c, [IMPULSE_SPEED], track=False).real)), human, side,
+            bench_score(c)))
     return out
 
 
@@ -351,7 +377,7 @@ def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_sl
                 growth_rate_1_s=lin.growth_rate_1_s, tip_angles_deg=lin.tip_angles_deg,
                 equal_instability_status=status, critical_impulse_status=more[0] if more else "found",
                 critical_impulse_half_step_Ns=more[1] if len(more) > 1 else None, drive=lin.drive,
-                human_speed_m_s=lin.human_speed_m_s, human_side=lin.human_side,
+                human_speed_m_s=lin.human_speed_m_s, human_side=lin.human_side, bench_score=lin.bench_score,
             ))
         bar.update()
     return out

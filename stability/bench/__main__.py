@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import sys
 from collections.abc import Sequence
 
 from stability import cli
@@ -25,13 +26,15 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument(drive_flag(name), type=float, default=getattr(defaults, name), metavar="X",
                        help=f"{text}, {unit or 'no unit'} ({lo:g} to {hi:g}; default {getattr(defaults, name):g})")
     cli.add_json_options(p)
+    cli.add_output_option(p, ("pdf",), what="one page per manoeuvre family (starts, stops, turns) as a PDF")
     return p
 
 
 def _body(a: argparse.Namespace) -> int:
     from stability.layout.io import resolve_layout
 
-    cli.check_outputs({"--json-file": a.json_file}, {"--chair": a.chair})
+    outputs = {"--json-file": a.json_file, "-o": a.output}
+    cli.check_outputs(outputs, {"--chair": a.chair})
     values = {}
     for name, (_, unit, (lo, hi), _) in DRIVE_SETTINGS.items():
         v = getattr(a, drive_flag(name)[2:].replace("-", "_"))
@@ -41,12 +44,22 @@ def _body(a: argparse.Namespace) -> int:
     drive = dataclasses.replace(Drive(), **values)
     layout = resolve_layout(a.chair)
     result = run_bench(layout, drive)
-    if a.json or a.json_file:
-        from stability import __version__
+    with cli.output_files(outputs) as tmp:
+        if a.json or a.json_file:
+            from stability import __version__
 
-        cli.emit_json({"stability_version": __version__, "chair": layout.name, **result.to_mapping()}, a)
-    if not a.json:
-        print(bench_text(result))
+            cli.emit_json({"stability_version": __version__, "chair": layout.name, **result.to_mapping()}, a,
+                          write_to=tmp.get("--json-file"))
+        if not a.json:
+            print(bench_text(result))
+        if a.output:
+            from stability.bench.plots import bench_pages
+            from stability.runtime.files import write_pdf
+
+            write_pdf(bench_pages(result), tmp["-o"], title=f"virtual bench: {layout.name}")
+    for path in outputs.values():
+        if path:
+            print(f"wrote {path}", file=sys.stderr)
     return 0
 
 

@@ -22,6 +22,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+from scipy.optimize import brentq
+
 from stability.bench.loads import SCORE_WORDS, LoadCase, case_loads
 from stability.layout.model import Layout
 from stability.layout.statics import contacts
@@ -180,17 +183,39 @@ def _driven_share(layout: Layout, case: LoadCase) -> float:
 
 def _state(layout: Layout, ax: float, grade: float, drive: Drive, reverse: bool) -> tuple[LoadCase, float, str]:
     """The longitudinal state: the drive wheels' force ``m (ax + g sin(grade))`` limited by their traction
-    ``mu N_driven`` (the acceleration then the traction's), its loads and what limits it."""
+    ``mu N_driven`` (the acceleration then the traction's), its loads and what limits it.
+
+    The traction limit is taken in the state it limits: the loads shift with the acceleration (a stop pitches a
+    mid-wheel-drive base onto its front casters and unloads the drive wheels), so the achieved acceleration
+    ``a`` solves ``m |a + g sin(grade)| = mu N_driven(a)`` between the free roll (``a = -g sin(grade)``, no drive
+    force) and the controller's request, not the grip of the requested state.
+    """
     c = case_loads(layout, ax, 0.0, grade, 0.0, reverse)
+    m, pull = layout.m, layout.g * math.sin(math.radians(grade))
+
+    def excess(a: float) -> float:
+        ca = case_loads(layout, a, 0.0, grade, 0.0, reverse)
+        return abs(m * (a + pull)) - drive.traction * _driven_share(layout, ca) * float(ca.loads_N.sum())
+
+    top = ax
     if c.score >= 2:
+        # the chair tips at the request: can the drive wheels' grip take it there?  The last state before the
+        # tip (bisection on the support margin from the free roll, to 2^-60 of the interval) decides: a chair
+        # braking on wheels off its tipping edge unloads them as it pitches and cannot brake itself over it.
+        lo, hi = -pull, ax
+        if case_loads(layout, lo, 0.0, grade, 0.0, reverse).score >= 2:
+            return c, ax, _why(layout, c)                      # it tips standing on the slope
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (lo, mid) if case_loads(layout, mid, 0.0, grade, 0.0, reverse).score >= 2 else (mid, hi)
+        if excess(lo) <= 0.0:
+            return c, ax, _why(layout, c)
+        top = lo
+    elif excess(ax) <= 0.0:
         return c, ax, _why(layout, c)
-    g, m = layout.g, layout.m
-    force = m * (ax + g * math.sin(math.radians(grade)))
-    grip = drive.traction * _driven_share(layout, c) * c.loads_N.sum()
-    if abs(force) > grip:
-        ax2 = math.copysign(grip, force) / m - g * math.sin(math.radians(grade))
-        return case_loads(layout, ax2, 0.0, grade, 0.0, reverse), ax2, "traction of the drive wheels"
-    return c, ax, _why(layout, c)
+    # excess(-pull) = -grip <= 0 and excess(top) > 0: a root between (to 1e-12 m/s^2)
+    ax2 = float(brentq(excess, -pull, top, xtol=1e-12, rtol=4 * np.finfo(float).eps))
+    return case_loads(layout, ax2, 0.0, grade, 0.0, reverse), ax2, "traction of the drive wheels"
 
 
 def _why(layout: Layout, c: LoadCase) -> str:

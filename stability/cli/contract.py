@@ -68,6 +68,10 @@ __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add
 #: Largest number of speeds a ``--speeds`` option may ask for (each costs an eigenvalue solve or a run).
 MAX_SPEEDS = 10_001
 
+#: The commands that answer any wheel layout (docs/layouts.md).
+LAYOUT_COMMANDS = ("critical_speed", "tipping", "bench", "simulate")
+
+
 def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
     """Chair from ``--chair`` and ``--set`` options, with its static loads checked.
 
@@ -93,6 +97,12 @@ def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
     """
     if os.path.isdir(spec):
         raise ValueError(f"--chair {spec!r} is a directory; expected a preset name or a TOML file")
+    from stability.layout.io import is_layout_spec
+
+    if is_layout_spec(spec):
+        raise ValueError(f"--chair {spec!r} is a wheel layout (the [[wheel]] form); this command answers the short "
+                         "form (two main wheels and a caster pair) only; for a layout use python -m "
+                         f"stability.{{{','.join(LAYOUT_COMMANDS)}}}")
     try:
         c = chair_mod.resolve(spec)
     except OSError as exc:

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from stability import tires
 from stability.chair import Chair
+from stability.chair.model import LIMITS
 
 __all__ = ["FixedWheel", "Caster", "Layout"]
 
@@ -33,9 +34,18 @@ K_REF_N_PER_M = 2.0e5
 
 def _roll_pair(roll_k: float, main_track: float, caster_track: float) -> tuple[float, float]:
     """Vertical stiffnesses (main wheel, caster), N/m, about :data:`K_REF_N_PER_M`, whose pairs' roll
-    stiffnesses ``k track^2 / 2`` have the ratio ``roll_k`` (the thesis's ``k = k_f / k_r``, eq 6-28)."""
+    stiffnesses ``k track^2 / 2`` have the ratio ``roll_k`` (the thesis's ``k = k_f / k_r``, eq 6-28); both
+    scaled up together when one would fall below the wheels' 1000 N/m (only their ratio matters on two support
+    lines: every valid chair expands)."""
     r = math.sqrt(roll_k) * caster_track / main_track
-    return K_REF_N_PER_M * r, K_REF_N_PER_M / r
+    scale = max(1.0, 1e3 / (K_REF_N_PER_M * r), 1e3 * r / K_REF_N_PER_M)
+    return K_REF_N_PER_M * r * scale, K_REF_N_PER_M / r * scale
+
+
+def _chair(name: str) -> tuple[float, float]:
+    """The short form's range of a field (:data:`stability.chair.model.LIMITS`)."""
+    lo, hi, _ = LIMITS[name]
+    return lo, hi
 
 
 @dataclass(frozen=True)
@@ -115,9 +125,13 @@ class Caster:
     vertical_stiffness: float = 2.0e5
 
     def __post_init__(self) -> None:
-        for name, lo, hi, unit in (("x", -2.0, 2.0, "m"), ("y", -1.0, 1.0, "m"), ("trail", 0.001, 0.5, "m"),
-                                   ("l", 0.0, 0.5, "m"), ("m_c", 0.0, 20.0, "kg"), ("i_zp", 0.0, 1.0, "kg m^2"),
-                                   ("pin_damping", 0.0, 100.0, "N m s/rad"), ("pin_friction", 0.0, 100.0, "N m"),
+        # the short form's ranges where the quantity is the same (stability.chair.model.LIMITS): a valid chair
+        # expands into a valid layout
+        for name, lo, hi, unit in (("x", -2.0, 2.0, "m"), ("y", -1.0, 1.0, "m"), ("trail", *_chair("trail"), "m"),
+                                   ("l", *_chair("l1"), "m"), ("m_c", *_chair("m_c"), "kg"),
+                                   ("i_zp", 0.0, LIMITS["i_zp"][1], "kg m^2"),
+                                   ("pin_damping", *_chair("pin_damping"), "N m s/rad"),
+                                   ("pin_friction", *_chair("pin_friction_left"), "N m"),
                                    ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 0.0, 1e9, "N/m")):
             object.__setattr__(self, name, _check(name, getattr(self, name), lo, hi, unit))
         if 0.0 < self.vertical_stiffness < 1e3:
@@ -166,10 +180,10 @@ class Layout:
     anti_tip: tuple = field(default_factory=tuple)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "m", _check("m", self.m, 5.0, 500.0, "kg"))
-        object.__setattr__(self, "i_z", _check("i_z", self.i_z, 0.05, 200.0, "kg m^2"))
-        object.__setattr__(self, "h", _check("h", self.h, 0.05, 2.0, "m"))
-        object.__setattr__(self, "g", _check("g", self.g, 1.0, 30.0, "m/s^2"))
+        object.__setattr__(self, "m", _check("m", self.m, *_chair("m"), "kg"))
+        object.__setattr__(self, "i_z", _check("i_z", self.i_z, *_chair("i_z"), "kg m^2"))
+        object.__setattr__(self, "h", _check("h", self.h, *_chair("h"), "m"))
+        object.__setattr__(self, "g", _check("g", self.g, *_chair("g"), "m/s^2"))
         object.__setattr__(self, "wheels", tuple(self.wheels))
         object.__setattr__(self, "casters", tuple(self.casters))
         object.__setattr__(self, "anti_tip", tuple((_check("anti_tip x", float(x), -2.0, 2.0, "m"),

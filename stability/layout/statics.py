@@ -11,14 +11,19 @@ wheel lifts: the layout is refused for the linear analysis.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from stability.layout.model import Layout
 
+if TYPE_CHECKING:
+    from stability.tipping.angles import SlopeTip
+
 __all__ = ["contacts", "static_loads", "cornering_stiffnesses", "tip_angles", "centre_of_mass", "distribute",
-           "LoadRule", "load_rule", "LEVER", "THREE", "COMPLIANT"]
+           "slope_tip", "LoadRule", "load_rule", "LEVER", "THREE", "COMPLIANT"]
 
 
 def contacts(layout: Layout, reverse: bool = False) -> list[tuple[str, float, float, float]]:
@@ -208,6 +213,41 @@ def tip_angles(layout: Layout) -> dict[str, float]:
     dirs = {"forward_deg": (1.0, 0.0), "backward_deg": (-1.0, 0.0), "left_deg": (0.0, -1.0),
             "right_deg": (0.0, 1.0)}
     return {k: support_fall_distance(points, layout.h, *e).angle_deg for k, e in dirs.items()}
+
+
+def slope_tip(layout: Layout, cross_slope_deg: float, grade_deg: float = 0.0) -> SlopeTip:
+    """Tipping of the rigid layout on a combined cross slope and grade, heading along the path.
+
+    As :func:`stability.tipping.angles.slope_tip` for the short form: gravity in body axes from
+    :func:`stability.models.slope.gravity`, the fall line its in-plane part, the tip angle along that line over every
+    contact's tipping edge (:func:`stability.tipping.angles.support_fall_distance`).
+
+    Parameters
+    ----------
+    layout : Layout
+    cross_slope_deg : float
+        deg, positive falling to the right of the path.
+    grade_deg : float
+        deg, positive uphill ahead.
+
+    Returns
+    -------
+    stability.tipping.angles.SlopeTip
+        On level ground ``tip_deg`` is the smallest of the four angles of :func:`tip_angles`.
+    """
+    from stability.models import slope as slope_model
+    from stability.tipping.angles import SlopeTip, support_fall_distance
+
+    g1, g2, gn = slope_model.gravity(layout.g, math.radians(cross_slope_deg), math.radians(grade_deg))
+    g_in = math.hypot(g1, g2)
+    tilt = math.degrees(math.atan2(g_in, gn))
+    if g_in == 0.0:
+        tip, direction = min(tip_angles(layout).values()), 0.0
+    else:
+        points = [(w.x, w.y, 0.0) for w in layout.wheels] + [(c.x, c.y, c.trail) for c in layout.casters]
+        tip, direction = support_fall_distance(points, layout.h, g1, g2).angle_deg, math.degrees(math.atan2(g2, g1))
+    return SlopeTip(cross_slope_deg=cross_slope_deg, grade_deg=grade_deg, tilt_deg=tilt,
+                    fall_direction_deg=direction, tip_deg=tip, margin_deg=tip - tilt)
 
 
 #: Load rules of the simulator (:func:`load_rule`): two support lines of two contacts (the lever rule with the

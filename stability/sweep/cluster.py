@@ -35,7 +35,7 @@ __all__ = ["COST_PER_ROW_S", "chunk_cost", "dask_mapper", "parse_dask", "worker_
 #: measure of stability.sweep.spec.MEASURES has one (tests/test_sweep.py).
 COST_PER_ROW_S = {"growth_rate": 2e-4, "critical_speeds": 2e-3, "critical_impulse": 0.03,
                   "equal_instability_speed": 0.016, "shimmy_margin": 7e-3, "tip_angles": 1.2e-4,
-                  "holding_moment": 2.5e-3, "human_limited_speed": 1e-3}
+                  "holding_moment": 2.5e-3, "human_limited_speed": 1e-3, "bench": 3e-3}
 
 
 def chunk_cost(spec: SweepSpec, index: int) -> float:

@@ -18,8 +18,11 @@ from typing import Any
 
 import numpy as np
 
+from stability.bench import run_bench
 from stability.chair import Chair
+from stability.chair.power import drive_kind
 from stability.driver.linear import rule_speed
+from stability.layout.model import Layout
 from stability.linear.batch import ChairBatch
 from stability.models.statics import check_static_loads
 from stability.settings.defaults import MAX_SPEED
@@ -209,6 +212,13 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
         out["human_limited_speed_m_s"] = np.repeat(np.array([u for u, _ in lim])[:, None], k, axis=1)
         out["human_limited_status"] = np.repeat(np.array([status[s] for _, s in lim], dtype=object)[:, None], k,
                                                 axis=1)
+    if "bench" in spec.measures:
+        # the virtual test bench (stability.bench, default drive settings) on each powered design: the worst
+        # wheel-lift score of the ISO 7176-2 matrix and the longest level-ground stop (ISO 7176-3); NaN for a chair
+        # pushed on its hand rims (no drive controller to test)
+        rows = [_bench(c) for c in chairs]
+        out["bench_worst_score"] = np.repeat(np.array([s for s, _ in rows])[:, None], k, axis=1)
+        out["level_braking_distance_m"] = np.repeat(np.array([d for _, d in rows])[:, None], k, axis=1)
     if "holding_moment" in spec.measures:
         out["holding_moment_N_m_per_deg"] = np.array([[_holding(c, float(u)) for u in speeds] for c in chairs])
     return out
@@ -220,6 +230,15 @@ def _shimmy(chair: Chair, speeds: np.ndarray) -> np.ndarray:
         return np.asarray(shimmy_band(chair, speeds).margin_m, dtype=float)
     except ValueError:
         return np.full(len(speeds), math.nan)
+
+
+def _bench(chair: Chair) -> tuple[float, float]:
+    """The bench's worst score and longest level-ground stopping distance (m) of a powered chair, NaN otherwise."""
+    if drive_kind(chair) != "motor":
+        return math.nan, math.nan
+    r = run_bench(Layout.from_chair(chair))
+    return float(r.worst_score), max(float(c.braking_distance_m) for c in r.cases
+                                     if c.family == "stop" and c.slope == "level")
 
 
 def _holding(chair: Chair, speed: float) -> float:

@@ -21,7 +21,9 @@ UNITS = {"growth_rate_1_s": "growth rate (1/s)", "critical_speed_m_s": "first cr
          "tip_toward_casters_deg": "tip angle toward the casters (deg)",
          "tip_toward_main_wheels_deg": "tip angle toward the main wheels (deg)",
          "tip_lateral_deg": "lateral tip angle (deg)", "holding_moment_N_m_per_deg": "holding moment (N m/deg)",
-         "human_limited_speed_m_s": "speed the driver can hold (m/s)"}
+         "human_limited_speed_m_s": "speed the driver can hold (m/s)",
+         "bench_worst_score": "worst ISO 7176-2 wheel-lift score (0-3)",
+         "level_braking_distance_m": "longest level-ground stop (m)"}
 _CAPTION = {"growth_rate_1_s": "lower is more stable (negative: disturbances decay)",
             "critical_speed_m_s": "higher is better: the chair is stable below it",
             "locked_critical_speed_m_s": "higher is better: with the casters locked the chair is stable below it",
@@ -34,7 +36,11 @@ _CAPTION = {"growth_rate_1_s": "lower is more stable (negative: disturbances dec
             "tip_lateral_deg": "higher is better: the smaller lateral static tip angle",
             "holding_moment_N_m_per_deg": "lower is better: the yaw moment that holds a line across a cross slope",
             "human_limited_speed_m_s": "higher is better: the speed up to which a driver of the spec's reaction time "
-                                       "holds the chair (divergence rule)"}
+                                       "holds the chair (divergence rule)",
+            "bench_worst_score": "lower is better: 0 no wheel lifts, 1 a wheel lifts, 2 held by anti-tip devices, "
+                                 "3 tips over (quasi-static bench, default drive settings)",
+            "level_braking_distance_m": "lower is better: the longest ISO 7176-3 stop on level ground (quasi-static "
+                                        "bench, default drive settings)"}
 _GRID_UNITS = GRID_UNITS
 
 

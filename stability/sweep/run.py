@@ -37,7 +37,7 @@ HIGHER_IS_BETTER = {"critical_speed_m_s": True, "locked_critical_speed_m_s": Tru
                     "equal_instability_speed_m_s": True, "growth_rate_1_s": False, "shimmy_margin_m": True,
                     "static_stability_deg": True, "tip_toward_casters_deg": True, "tip_toward_main_wheels_deg": True,
                     "tip_lateral_deg": True, "holding_moment_N_m_per_deg": False,
-                    "human_limited_speed_m_s": True}
+                    "human_limited_speed_m_s": True, "bench_worst_score": False, "level_braking_distance_m": False}
 
 
 def chunk_dir(out: str | os.PathLike[str]) -> Path:
@@ -184,7 +184,8 @@ STATUS_OF = {"critical_impulse_Ns": "critical_impulse_status",
 COLUMN_UNITS = {"growth_rate_1_s": "1/s", "critical_speed_m_s": "m/s", "locked_critical_speed_m_s": "m/s",
                 "critical_impulse_Ns": "N s", "equal_instability_speed_m_s": "m/s", "shimmy_margin_m": "m",
                 "static_stability_deg": "deg", "tip_toward_casters_deg": "deg", "tip_toward_main_wheels_deg": "deg",
-                "tip_lateral_deg": "deg", "holding_moment_N_m_per_deg": "N m/deg", "human_limited_speed_m_s": "m/s"}
+                "tip_lateral_deg": "deg", "holding_moment_N_m_per_deg": "N m/deg", "human_limited_speed_m_s": "m/s",
+                "bench_worst_score": "", "level_braking_distance_m": "m"}
 
 
 def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float = 0.95) -> dict[str, Any]:

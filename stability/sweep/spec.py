@@ -58,6 +58,7 @@ MEASURES: dict[str, tuple[tuple[str, ...], str]] = {
                     "tip_lateral_deg"), "statics"),
     "holding_moment": (("holding_moment_N_m_per_deg",), "statics"),
     "human_limited_speed": (("human_limited_speed_m_s", "human_limited_status"), "linear"),
+    "bench": (("bench_worst_score", "level_braking_distance_m"), "statics"),
 }
 #: Units of the grid's axes (chair fields), as printed and drawn.
 GRID_UNITS = {"pin_friction": "N m", "trail": "m", "s1": "m", "s2": "m", "l1": "m", "h": "m", "m": "kg",

@@ -6,7 +6,7 @@ import argparse
 import math
 from collections.abc import Sequence
 
-from stability import cli
+from stability import __version__, cli
 from stability.tipping.angles import DIRECTIONS, LOANE_KIRBY_REAR_DEG, slope_tip, tip_angles
 
 _WORDS = {"toward_main_wheels": "toward the main wheels", "toward_casters": "toward the casters",
@@ -29,6 +29,10 @@ def _body(a: argparse.Namespace) -> int:
     for name, v in (("--cross-slope", a.cross_slope), ("--grade", a.grade)):
         if not (math.isfinite(v) and -45.0 < v < 45.0):
             raise ValueError(f"{name} {v!r} is invalid; valid range: -45 < DEG < 45")
+    from stability.layout.io import is_layout_spec
+
+    if is_layout_spec(a.chair):
+        return _layout(a)
     chair = cli.load_chair(a.chair, a.set)
     t = tip_angles(chair)
     s = slope_tip(chair, a.cross_slope, a.grade)
@@ -55,6 +59,40 @@ def _body(a: argparse.Namespace) -> int:
               f"tips at a tilt of {s.tip_deg:.1f} deg along the same fall line, margin {s.margin_deg:+.1f} deg")
     print(f"  for scale: Loane & Kirby (1985) measured {LOANE_KIRBY_REAR_DEG} deg mean rear stability of an occupied "
           "conventional manual chair (brakes unlocked); no numeric minimum of EN 12183/12184 was found to cite")
+    return 0
+
+
+_LAYOUT_WORDS = {"forward": "forward", "backward": "backward", "left": "over the left side",
+                 "right": "over the right side"}
+
+
+def _layout(a: argparse.Namespace) -> int:
+    """A chair in the ``[[wheel]]`` form or a layout preset: the tip angles over its outermost contacts."""
+    from stability.layout import statics
+    from stability.layout.io import resolve_layout
+
+    if a.set:
+        raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+    layout = resolve_layout(a.chair)
+    t = statics.tip_angles(layout)
+    s = statics.slope_tip(layout, a.cross_slope, a.grade)
+    smallest = min(t, key=lambda k: t[k])
+    data = {**t, "smallest_deg": t[smallest], "smallest_direction": smallest.removesuffix("_deg"),
+            "slope": s.to_mapping(), "reference_rear_stability_deg": LOANE_KIRBY_REAR_DEG}
+    if a.json or a.json_file:
+        options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade}
+        cli.emit_json({"stability_version": __version__, "chair": layout.name, "options": options, **data}, a)
+        if a.json:
+            return 0
+    print(f"{layout.name}: static stability angles (ISO 7176-1 directions; rigid body, brakes locked, every caster "
+          f"in its least stable swivel orientation; {len(layout.wheels)} fixed wheels, {len(layout.casters)} casters; "
+          "suspension deflection neglected)")
+    for k, v in t.items():
+        print(f"  {_LAYOUT_WORDS[k.removesuffix('_deg')]:<24} {v:6.1f} deg")
+    print(f"  smallest: {t[smallest]:.1f} deg ({_LAYOUT_WORDS[smallest.removesuffix('_deg')]})")
+    if a.cross_slope or a.grade:
+        print(f"  on cross slope {s.cross_slope_deg:g} deg + grade {s.grade_deg:g} deg (tilt {s.tilt_deg:.2f} deg): "
+              f"tips at a tilt of {s.tip_deg:.1f} deg along the same fall line, margin {s.margin_deg:+.1f} deg")
     return 0
 
 
