@@ -32,7 +32,7 @@ from types import SimpleNamespace
 import sympy as sp
 import sympy.physics.mechanics as me
 
-__all__ = ["symbols", "derive", "linearise", "parameters"]
+__all__ = ["symbols", "derive", "linearise", "parameters", "nonlinear", "nonlinear_parameters"]
 
 
 def symbols(n_fixed: int, n_casters: int) -> SimpleNamespace:
@@ -215,6 +215,74 @@ def parameters(n_fixed: int, n_casters: int) -> tuple[sp.Symbol, ...]:
     return tuple(out)
 
 
+def nonlinear_parameters(n_fixed: int, n_casters: int) -> tuple[sp.Symbol, ...]:
+    """The order of the parameter vector ``p`` of the generated nonlinear functions of a layout.
+
+    Parameters
+    ----------
+    n_fixed, n_casters : int
+
+    Returns
+    -------
+    tuple of sympy.Symbol
+        ``m, i_z``, then per fixed wheel ``x_w, y_w``, then per caster ``x_p, y_p, trail, l, m_c, i_zp``.
+    """
+    s = symbols(n_fixed, n_casters)
+    out = [s.m, s.i_z]
+    for j in range(n_fixed):
+        out += [s.x_w[j], s.y_w[j]]
+    for k in range(n_casters):
+        out += [s.x_p[k], s.y_p[k], s.trail[k], s.l[k], s.m_c[k], s.i_zp[k]]
+    return tuple(out)
+
+
+@functools.cache
+def nonlinear(n_fixed: int, n_casters: int) -> SimpleNamespace:
+    """The nonlinear equations of a layout in the symbols the generated code takes.
+
+    ``sin(delta_k)``, ``cos(delta_k)`` become the symbols ``sn_k``, ``cs_k`` (the simulator evaluates them once
+    per step).  The pin moments enter the forcing only as ``F = F0 + sum_k M_k e_(3+k)`` (the moment's power is
+    ``M_k delta_d_k``: it acts on the caster and reacts on the chair), checked here, so ``F0`` (the forcing with
+    every pin moment zero) is what is generated and the simulator adds the moments it chooses (free, stuck or
+    held casters).
+
+    Parameters
+    ----------
+    n_fixed, n_casters : int
+
+    Returns
+    -------
+    SimpleNamespace
+        ``M`` (3 + K square), ``F0`` (3 + K), ``vel`` (2 (J + K): each contact's ``(vx, vy)`` in its wheel's
+        frame, fixed wheels then casters), ``cs``, ``sn`` (the symbols).
+    """
+    d = derive(n_fixed, n_casters)
+    s = d.sym
+    cs = [sp.Symbol(f"cs_{k}", real=True) for k in range(n_casters)]
+    sn = [sp.Symbol(f"sn_{k}", real=True) for k in range(n_casters)]
+    trig = {}
+    for k in range(n_casters):
+        trig[sp.sin(s.delta[k])] = sn[k]
+        trig[sp.cos(s.delta[k])] = cs[k]
+
+    def plain(e: sp.Expr) -> sp.Expr:
+        e = sp.expand(sp.expand_trig(e)).xreplace(trig)
+        left = e.free_symbols & set(s.delta)
+        if left:
+            raise ValueError(f"caster angles left outside sin/cos: {left}")
+        return e
+
+    n = 3 + n_casters
+    for k in range(n_casters):                           # the pin moments enter as e_(3+k) only
+        for i in range(n):
+            assert sp.simplify(sp.diff(d.F[i], s.M[k]) - (1 if i == 3 + k else 0)) == 0, (k, i)
+    zero = {m_: 0 for m_ in s.M}
+    M = d.M.applyfunc(plain)
+    F0 = d.F.xreplace(zero).applyfunc(plain)
+    vel = tuple(plain(v) for v in d.vel)
+    return SimpleNamespace(M=M, F0=F0, vel=vel, cs=cs, sn=sn, sym=s)
+
+
 # ---------------------------------------------------------------------------
 # Code generation
 
@@ -247,6 +315,80 @@ def _function_text(n_fixed: int, n_casters: int, reverse: bool) -> tuple[str, st
     return name, "\n".join(lines)
 
 
+def _unpack_lines(n_fixed: int, n_casters: int, with_forces: bool) -> list[str]:
+    s = symbols(n_fixed, n_casters)
+    lines = [f"{p} = p[{i}]" for i, p in enumerate(nonlinear_parameters(n_fixed, n_casters))]
+    for k in range(n_casters):
+        lines += [f"cs_{k} = cs[{k}]", f"sn_{k} = sn[{k}]", f"delta_d_{k} = dd[{k}]"]
+    if with_forces:
+        for j in range(n_fixed):
+            lines += [f"{s.FWx[j]} = fw[{2 * j}]", f"{s.FWy[j]} = fw[{2 * j + 1}]"]
+        for k in range(n_casters):
+            lines += [f"{s.FCx[k]} = fc[{2 * k}]", f"{s.FCy[k]} = fc[{2 * k + 1}]"]
+    return lines
+
+
+def _nonlinear_text(n_fixed: int, n_casters: int) -> tuple[list[str], str]:
+    from derivations.generate import _cse_lines
+
+    d = nonlinear(n_fixed, n_casters)
+    n = 3 + n_casters
+    tag = f"{n_fixed}w{n_casters}c"
+    # the equations: M and F0 written into the caller's arrays
+    named = [(f"M[{i}, {j}]", d.M[i, j]) for i in range(n) for j in range(n)] + [(f"F[{i}]", d.F0[i])
+                                                                              for i in range(n)]
+    body = _unpack_lines(n_fixed, n_casters, True) + _cse_lines(named, "_e")
+    doc = (f'"""Nonlinear equations of a layout with {n_fixed} fixed wheels and {n_casters} casters: '
+           "writes M (n x n) and F0 (n), n = 3 + casters,\n    with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + "
+           "sum_k M_k e_(3+k) (M_k the pin moment on caster k).\n\n    u, v, r (m/s, m/s, rad/s); cs, sn, dd: "
+           "cos, sin and rate (rad/s) of each caster angle;\n    p: parameters (nonlinear_parameters order); "
+           "fw: (Fx, Fy) of each fixed wheel in body axes;\n    fc: (Fx, Fy) of each caster in its frame; Fy_ext "
+           "(N) at the c.g., Mz_ext (N m) on the body.\n    " + '"' * 3)
+    eq = [f"def equations_{tag}(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):", f"    {doc}"]
+    eq += [f"    {x}" for x in body] + ["    return None", ""]
+    # the contact velocities
+    named = [(f"out[{i}]", e) for i, e in enumerate(d.vel)]
+    body = _unpack_lines(n_fixed, n_casters, False) + _cse_lines(named, "_v")
+    doc = ('"""Contact velocities (vx, vy) in each wheel\'s frame (m/s): fixed wheels, then casters, written '
+           'into out."""')
+    cv = [f"def contact_velocities_{tag}(u, v, r, cs, sn, dd, p, out):", f"    {doc}"]
+    cv += [f"    {x}" for x in body] + ["    return None", ""]
+    return [f"equations_{tag}", f"contact_velocities_{tag}"], "\n".join(eq) + "\n\n" + "\n".join(cv)
+
+
+def render_nonlinear() -> str:
+    """The text of ``stability/_generated/layout_nonlinear.py``: the equations and contact velocities per shape,
+    and ``equations`` / ``contact_velocities`` dispatching on the shape's index in ``SHAPES``."""
+    header = ('"""Nonlinear equations of chairs with any wheel layout (generated).\n\nGenerated by '
+              "derivations/layout.py -- DO NOT EDIT.\nsympy version: " + sp.__version__ + "\n\nSee "
+              "derivations/layout.py (derive, nonlinear) for the bodies and conventions.  Plain arithmetic on "
+              "floats and\nindexable sequences: the simulator compiles these functions as they are.\n\"\"\"\n\n")
+    names, parts = [], []
+    for shape in SHAPES:
+        ns, text = _nonlinear_text(*shape)
+        names += ns
+        parts.append(text)
+    disp_e = ["def equations(shape, u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):",
+              '    """equations_<shape> of the shape SHAPES[shape]."""']
+    disp_v = ["def contact_velocities(shape, u, v, r, cs, sn, dd, p, out):",
+              '    """contact_velocities_<shape> of the shape SHAPES[shape]."""']
+    for i, (j, k) in enumerate(SHAPES):
+        kw = "if" if i == 0 else "elif"
+        disp_e += [f"    {kw} shape == {i}:", f"        equations_{j}w{k}c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, "
+                   "mz_ext, M, F)"]
+        disp_v += [f"    {kw} shape == {i}:", f"        contact_velocities_{j}w{k}c(u, v, r, cs, sn, dd, p, out)"]
+    disp_e.append("    return None")
+    disp_v.append("    return None")
+    names += ["equations", "contact_velocities"]
+    shapes = "SHAPES = " + repr(tuple(SHAPES)) + "\n"
+    shapes += ("#: the parameter vector p of each shape, by name (a fixed wheel's x_w_j, y_w_j; a caster's x_p_k, "
+               "y_p_k, trail_k, l_k, m_c_k, i_zp_k)\nPARAMETERS = {\n" + "".join(
+                   f"    {shape!r}: {tuple(str(x) for x in nonlinear_parameters(*shape))!r},\n" for shape in SHAPES)
+               + "}\n")
+    return (header + f"__all__ = {names!r}\n\n" + shapes + "\n\n" + "\n\n".join(parts) + "\n\n"
+            + "\n".join(disp_e) + "\n\n\n" + "\n".join(disp_v) + "\n")
+
+
 def render() -> str:
     """The text of ``stability/_generated/layout.py``: one function per shape and direction."""
     header = ('"""Linear models of chairs with any wheel layout (generated).\n\nGenerated by derivations/layout.py '
@@ -265,14 +407,15 @@ def render() -> str:
 
 
 def main() -> None:  # pragma: no cover - run by hand after changing the derivation
-    """Write ``stability/_generated/layout.py``."""
+    """Write ``stability/_generated/layout.py`` (linear) and ``layout_nonlinear.py``."""
     import os
     from pathlib import Path
 
     os.environ.setdefault("PYTHONHASHSEED", "0")
-    out = Path(__file__).resolve().parents[1] / "stability" / "_generated" / "layout.py"
-    out.write_text(render(), encoding="utf-8")
-    print(f"wrote {out}")
+    gen = Path(__file__).resolve().parents[1] / "stability" / "_generated"
+    for name, text in (("layout.py", render()), ("layout_nonlinear.py", render_nonlinear())):
+        (gen / name).write_text(text, encoding="utf-8")
+        print(f"wrote {gen / name}")
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -192,6 +192,49 @@ def holding_moment() -> Check:
 
 
 #: Every check, in the page's order: (function, cheap enough for the default test run).
+def layout_is_the_engine() -> Check:
+    """The layout simulator on the thesis's chair as a layout against the thesis engine (reference push, 3 s)."""
+    from stability import preset
+    from stability.layout import Layout
+    from stability.settings.run import RunSpec
+    from stability.simulate import simulate
+    from stability.simulate.layout import simulate_layout
+
+    c = preset("ej-premier")
+    worst, peak = 0.0, 0.0
+    for law in ("kinetic", "stick-slip"):
+        run = RunSpec(horizon=3.0, friction_law=law)
+        ours, theirs = simulate_layout(Layout.from_chair(c), 0.75, run), simulate(c, 0.75, run)
+        worst = max(worst, float(np.abs(ours.heading_rad - np.asarray(theirs.heading)).max()))
+        peak = max(peak, float(np.abs(ours.heading_deg).max()))
+    return Check("Any-layout simulator = thesis engine (the E&J Premier as a layout, both pin-friction laws)",
+                 "simulate(), the thesis engine", f"heading up to {peak:.1f} deg over 3 s",
+                 f"largest heading difference {worst:.1e} rad", "1e-11 rad (rounding)", worst <= 1e-11)
+
+
+def layout_growth_rate() -> Check:
+    """A mid-wheel-drive base reversing: the nonlinear run's growth at small amplitude = the linear model's."""
+    import dataclasses
+
+    from stability.layout import growth_rates
+    from stability.layout.presets import layout_preset
+    from stability.settings.run import RunSpec
+    from stability.simulate.layout import simulate_layout
+
+    b = layout_preset("mid-wheel-drive")
+    b = dataclasses.replace(b, wheels=tuple(dataclasses.replace(w, tire="linear:100") for w in b.wheels),
+                            casters=tuple(dataclasses.replace(k, tire="linear:30", pin_friction=0.0,
+                                                              pin_damping=0.5) for k in b.casters))
+    lam = float(growth_rates(b, [-1.0])[0])
+    r = simulate_layout(b, -1.0, RunSpec(horizon=4.0, push_force=0.01, friction_law="kinetic"),
+                        caster_angles_deg=[180.0] * len(b.casters))
+    sel = r.t_s >= 1.5
+    fit = float(np.polyfit(r.t_s[sel], np.log(np.abs(r.yaw_rate_rad_s[sel])), 1)[0])
+    return Check("Layout simulator's small-amplitude growth = linear eigenvalue (mid-wheel drive, -1 m/s)",
+                 "stability.layout.linear", f"{lam:.4f} 1/s", f"{fit:.4f} 1/s", "1 % (first-order step error)",
+                 abs(fit - lam) <= 0.01 * abs(lam))
+
+
 CHECKS: tuple[tuple[Callable[[], Check], bool], ...] = (
     (eq_8_2_to_8_5, True),
     (figure_8_6, True),
@@ -203,5 +246,7 @@ CHECKS: tuple[tuple[Callable[[], Check], bool], ...] = (
     (linear_vs_nonlinear, False),
     (simulator_linearisation, False),
     (fixed_step_vs_events, False),
+    (layout_is_the_engine, False),
+    (layout_growth_rate, False),
 )
 

@@ -27,6 +27,21 @@ def _check(name: str, value: float, lo: float, hi: float, unit: str) -> float:
     return float(value)
 
 
+#: Reference vertical stiffness of a wheel, N/m (a stated estimate: the scale only matters on bases of more than
+#: two support lines, where the ratios share the load).
+K_REF_N_PER_M = 2.0e5
+
+
+def _roll_pair(roll_k: float, main_track: float, caster_track: float) -> tuple[float, float]:
+    """Vertical stiffnesses (main wheel, caster), N/m, about :data:`K_REF_N_PER_M`, whose pairs' roll
+    stiffnesses ``k track^2 / 2`` have the ratio ``roll_k`` (the thesis's ``k = k_f / k_r``, eq 6-28); both
+    scaled up together when one would fall below the wheels' 1000 N/m (only their ratio matters on two support
+    lines: every valid chair expands)."""
+    r = math.sqrt(roll_k) * caster_track / main_track
+    scale = max(1.0, 1e3 / (K_REF_N_PER_M * r), 1e3 * r / K_REF_N_PER_M)
+    return K_REF_N_PER_M * r * scale, K_REF_N_PER_M / r * scale
+
+
 def _chair(name: str) -> tuple[float, float]:
     """The short form's range of a field (:data:`stability.chair.model.LIMITS`)."""
     lo, hi, _ = LIMITS[name]
@@ -48,7 +63,8 @@ class FixedWheel:
     lateral_scale : float
         Factor on the tire's lateral force (WCHAIR's TYMOD).
     vertical_stiffness : float
-        Suspension plus tire vertical stiffness, N/m (shares the load of a base with more than two support lines).
+        Suspension plus tire vertical stiffness, N/m (shares the load of a base with more than two support lines;
+        0: the wheel does not reach the ground and carries nothing).
     """
 
     x: float
@@ -62,8 +78,10 @@ class FixedWheel:
         object.__setattr__(self, "x", _check("x", self.x, -2.0, 2.0, "m"))
         object.__setattr__(self, "y", _check("y", self.y, -1.0, 1.0, "m"))
         object.__setattr__(self, "lateral_scale", _check("lateral_scale", self.lateral_scale, 0.0, 10.0, ""))
-        object.__setattr__(self, "vertical_stiffness",
-                           _check("vertical_stiffness", self.vertical_stiffness, 1e3, 1e9, "N/m"))
+        k = _check("vertical_stiffness", self.vertical_stiffness, 0.0, 1e9, "N/m")
+        if 0.0 < k < 1e3:
+            raise ValueError(f"vertical_stiffness={k!r} is invalid; valid range: 0 (off the ground) or 1000 to 1e9 N/m")
+        object.__setattr__(self, "vertical_stiffness", k)
         tires.get(self.tire)
 
 
@@ -91,7 +109,7 @@ class Caster:
         Coulomb pin friction, N m.
     lateral_scale : float
     vertical_stiffness : float
-        N/m.
+        N/m (0: off the ground, no load).
     """
 
     x: float
@@ -114,8 +132,11 @@ class Caster:
                                    ("i_zp", 0.0, LIMITS["i_zp"][1], "kg m^2"),
                                    ("pin_damping", *_chair("pin_damping"), "N m s/rad"),
                                    ("pin_friction", *_chair("pin_friction_left"), "N m"),
-                                   ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 1e3, 1e9, "N/m")):
+                                   ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 0.0, 1e9, "N/m")):
             object.__setattr__(self, name, _check(name, getattr(self, name), lo, hi, unit))
+        if 0.0 < self.vertical_stiffness < 1e3:
+            raise ValueError(f"vertical_stiffness={self.vertical_stiffness!r} is invalid; valid range: 0 (off the "
+                             "ground) or 1000 to 1e9 N/m")
         if self.i_zp < self.m_c * self.l ** 2:
             raise ValueError(f"i_zp={self.i_zp!r} is invalid; valid range: >= m_c l^2 = {self.m_c * self.l ** 2:.4g} "
                              "kg m^2 (the inertia about the pin includes the caster's mass at l)")
@@ -196,15 +217,19 @@ class Layout:
         Layout
             Main wheels at ``(x_main, -d1)``, ``(x_main, d2)``; caster pins at ``(x_pin, -t1)``,
             ``(x_pin, t2)`` with the chair's trail, ``l1``, ``m_c``, ``i_zp``, pins, tires and scales; anti-tip
-            devices ``anti_tip_reach`` beyond the main wheels.
+            devices ``anti_tip_reach`` beyond the main wheels; vertical stiffnesses whose pairs' roll stiffnesses
+            have the chair's ratio ``roll_k`` (the load transfer of the simulator,
+            :func:`stability.layout.statics.load_rule`).
         """
         from stability.chair.power import drive_kind
 
         driven = drive_kind(chair) == "motor"
-        wheels = tuple(FixedWheel(chair.x_main, y, chair.main_tire, driven, chair.main_lateral_scale)
+        # vertical stiffnesses whose roll stiffnesses k (2 y)^2 / 2 stand in the ratio roll_k = k_f / k_r (eq 6-28)
+        k_w, k_c = _roll_pair(chair.roll_k, chair.d1 + chair.d2, chair.t1 + chair.t2)
+        wheels = tuple(FixedWheel(chair.x_main, y, chair.main_tire, driven, chair.main_lateral_scale, k_w)
                        for y in (-chair.d1, chair.d2))
         casters = tuple(Caster(chair.x_pin, y, chair.trail, chair.l1, chair.m_c, chair.i_zp, chair.caster_tire,
-                               chair.pin_damping, mf, chair.caster_lateral_scale)
+                               chair.pin_damping, mf, chair.caster_lateral_scale, k_c)
                         for y, mf in ((-chair.t1, chair.pin_friction_left), (chair.t2, chair.pin_friction_right)))
         anti: tuple = ()
         if chair.anti_tip_reach > 0:                     # beyond the main wheels, away from the casters

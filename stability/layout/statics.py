@@ -12,6 +12,7 @@ wheel lifts: the layout is refused for the linear analysis.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -22,7 +23,7 @@ if TYPE_CHECKING:
     from stability.tipping.angles import SlopeTip
 
 __all__ = ["contacts", "static_loads", "cornering_stiffnesses", "tip_angles", "centre_of_mass", "distribute",
-           "slope_tip"]
+           "slope_tip", "LoadRule", "load_rule", "LEVER", "THREE", "COMPLIANT"]
 
 
 def contacts(layout: Layout, reverse: bool = False) -> list[tuple[str, float, float, float]]:
@@ -85,7 +86,8 @@ def distribute(points: list[tuple[str, float, float, float]], weight: float, cen
 
     Three contacts: the three equilibrium equations alone.  Two support lines of at most two contacts each: the
     lever rule (eq 6-25 of Collins 1987).  Otherwise the contacts' vertical stiffnesses with the body rigid:
-    ``N_i = k_i (z + theta x_i + phi y_i)``.
+    ``N_i = k_i (z + theta x_i + phi y_i)``.  A contact of zero vertical stiffness (a wheel that does not reach
+    the ground) carries nothing; the others share the load by these rules.
 
     Parameters
     ----------
@@ -102,6 +104,12 @@ def distribute(points: list[tuple[str, float, float, float]], weight: float, cen
         N per contact.
     """
     xg, yg = centre
+    k_all = np.array([p[3] for p in points], dtype=float)
+    if np.any(k_all == 0.0):                             # wheels off the ground carry nothing
+        out = np.zeros(len(points))
+        on = np.flatnonzero(k_all != 0.0)
+        out[on] = distribute([points[i] for i in on], weight, centre)
+        return out
     x = np.array([p[1] for p in points])
     y = np.array([p[2] for p in points])
     lines = _lines(points)
@@ -240,3 +248,74 @@ def slope_tip(layout: Layout, cross_slope_deg: float, grade_deg: float = 0.0) ->
         tip, direction = support_fall_distance(points, layout.h, g1, g2).angle_deg, math.degrees(math.atan2(g2, g1))
     return SlopeTip(cross_slope_deg=cross_slope_deg, grade_deg=grade_deg, tilt_deg=tilt,
                     fall_direction_deg=direction, tip_deg=tip, margin_deg=tip - tilt)
+
+
+#: Load rules of the simulator (:func:`load_rule`): two support lines of two contacts (the lever rule with the
+#: roll moment shared by the lines' roll stiffnesses: eq 6-25 and 6-28 of Collins 1987), three contacts
+#: (equilibrium alone), a rigid body on compliant contacts.
+LEVER, THREE, COMPLIANT = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class LoadRule:
+    """How a layout's normal loads follow the tire forces (quasi-static load transfer, :func:`load_rule`).
+
+    Attributes
+    ----------
+    mode : int
+        :data:`LEVER`, :data:`THREE` or :data:`COMPLIANT`.
+    line : ndarray of int
+        Support line of each contact (:data:`LEVER`: 0 or 1; -1 for a contact off the ground).
+    roll_share : ndarray
+        Share of the roll moment each line carries (:data:`LEVER`), in ``line`` order.
+    stiffness : ndarray
+        Vertical stiffness of each contact, N/m (0: off the ground).
+    """
+
+    mode: int
+    line: np.ndarray
+    roll_share: np.ndarray
+    stiffness: np.ndarray
+
+
+def load_rule(layout: Layout) -> LoadRule:
+    """The load rule of a layout, as :func:`distribute` chooses it for the contacts with the casters trailing
+    forward.
+
+    The loads then balance the weight ``m g`` at the c.g. and the moments of the tire forces' resultant
+    ``(F_x, F_y)`` acting at the ground, ``h`` below it: ``sum N = m g``, ``sum N x = -h F_x``,
+    ``sum N y = -h F_y``, with the contacts where they are at the moment (casters swivelled).  Two support
+    lines of two contacts (the thesis's chairs) are statically indeterminate in roll only: each line carries the
+    share of the roll moment ``-h F_y`` of its roll stiffness ``k_a k_b (y_b - y_a)^2 / (k_a + k_b)``, which is
+    the thesis's roll coefficient ``k = k_f / k_r`` (eq 6-28) and gives its loads (eq 6-25, program WCHAIR's
+    STATICS) when the stiffnesses are :meth:`~stability.layout.model.Layout.from_chair`'s.
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    LoadRule
+    """
+    pts = contacts(layout)
+    k = np.array([p[3] for p in pts], dtype=float)
+    on = [i for i in range(len(pts)) if k[i] != 0.0]
+    line = np.full(len(pts), -1, dtype=np.int64)
+    share = np.zeros(2)
+    if len(on) < 3:
+        raise ValueError(f"layout {layout.name!r} has {len(on)} contacts on the ground; valid: at least 3")
+    groups = _lines([pts[i] for i in on])
+    if len(on) == 3:
+        mode = THREE
+    elif len(groups) == 2 and all(len(g) == 2 for g in groups):
+        mode = LEVER
+        roll = []
+        for g_i, g in enumerate(groups):
+            a, b = (on[i] for i in g)
+            line[a] = line[b] = g_i
+            roll.append(k[a] * k[b] * (pts[b][2] - pts[a][2]) ** 2 / (k[a] + k[b]))
+        share = np.array(roll) / sum(roll)
+    else:
+        mode = COMPLIANT
+    return LoadRule(mode, line, share, k)

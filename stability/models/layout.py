@@ -1,8 +1,12 @@
-"""The linear equations of any wheel layout: the door to :mod:`stability._generated.layout`.
+"""The equations of any wheel layout: the door to :mod:`stability._generated.layout` (linear) and
+:mod:`stability._generated.layout_nonlinear`.
 
 ``derivations/layout.py`` derives the planar equations of a body with ``J`` fixed wheels and ``K`` casters by
 Kane's method, linearises them about straight running forward (casters trailing at 0) and in reverse (at pi), and
-generates one function per shape and direction; this module evaluates them for a batch of speeds.
+generates one function per shape and direction; this module evaluates them for a batch of speeds.  It also
+generates the nonlinear equations (mass matrix, forcing without the pin moments, contact velocities) per shape,
+which the layout simulator (:mod:`stability.simulate.layout_kernel`) compiles as they are
+(:data:`nonlinear`).
 """
 
 from __future__ import annotations
@@ -10,8 +14,37 @@ from __future__ import annotations
 import numpy as np
 
 from stability._generated import layout as _g
+from stability._generated import layout_nonlinear as _gn
 
-__all__ = ["supported_shapes", "linear_layout_matrices"]
+__all__ = ["supported_shapes", "linear_layout_matrices", "nonlinear", "shape_index"]
+
+#: The generated nonlinear module itself (what the layout simulator compiles): ``equations(shape, ...)`` writes
+#: ``M`` and ``F0`` (``M acc = F0 + sum_k M_k e_(3+k)``), ``contact_velocities(shape, ...)`` the contacts'
+#: velocities in their wheels' frames; ``shape`` is the index in ``SHAPES``.
+nonlinear = _gn
+
+
+def shape_index(shape: tuple[int, int]) -> int:
+    """Index of a ``(fixed wheels, casters)`` shape in the generated nonlinear module's ``SHAPES``.
+
+    Parameters
+    ----------
+    shape : (int, int)
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        A shape that is not generated.
+    """
+    shapes = tuple(tuple(s) for s in _gn.SHAPES)
+    if tuple(shape) not in shapes:
+        raise ValueError(f"shape={tuple(shape)!r} is not generated; valid shapes: {shapes} (add one to "
+                         "derivations/layout.py SHAPES)")
+    return shapes.index(tuple(shape))
 
 
 def supported_shapes() -> tuple[tuple[int, int], ...]:

@@ -22,6 +22,7 @@ from stability.settings.run import RunSpec
 from stability.simulate.api import simulate, simulate_batch
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, STATS_LEVELS
+from stability.simulate.layout import LayoutRun, simulate_layout
 from stability.simulate.linearise import linearise
 from stability.simulate.options import (
     ADAPTIVE_METHOD,
@@ -60,4 +61,6 @@ __all__ = [
     "RECORDS",
     "STATS_LEVELS",
     "StepStabilityWarning",
+    "simulate_layout",
+    "LayoutRun",
 ]

@@ -1,4 +1,9 @@
-"""Command line: ``python -m stability.simulate --chair ej-premier --speed 0.75 --json``."""
+"""Command line: ``python -m stability.simulate --chair ej-premier --speed 0.75 --json``.
+
+A layout (``--chair mid-wheel-drive``, a ``[[wheel]]`` file) runs the layout simulator
+(:func:`stability.simulate.layout.simulate_layout`): ``python -m stability.simulate --chair mid-wheel-drive
+--reverse --eta0 180 --beta0 180``.
+"""
 
 from __future__ import annotations
 
@@ -68,11 +73,35 @@ def _sim_policy(args: argparse.Namespace) -> str:
     return "raise" if args.tire_range == "raise" else RunSpec().out_of_range
 
 
+def _run_layout(args: argparse.Namespace, run_spec: RunSpec) -> int:
+    """A chair in the ``[[wheel]]`` form or a layout preset: :func:`stability.simulate.layout.simulate_layout`
+    (casters on the left start at ``--eta0``, on the right at ``--beta0``)."""
+    from stability import __version__
+    from stability.layout.io import resolve_layout
+    from stability.simulate.layout import simulate_layout
+
+    for flag, value in (("--set", args.set), ("--csv", args.csv), ("-o", args.output)):
+        if value:
+            raise ValueError(f"{flag} is not available for a layout yet; valid: --json, --json-file and the run "
+                             "settings (a layout's wheels are set in its [[wheel]] file)")
+    res = simulate_layout(resolve_layout(args.chair), None, run_spec)
+    if args.json or args.json_file:
+        emit_json({"stability_version": __version__, "chair": res.layout, "model": "exact",
+                   "options": run_spec.to_dict(), **res.to_mapping()}, args)
+    if not args.json:
+        print(res.summary())
+    return 0
+
+
 def _run_cli(args: argparse.Namespace) -> int:
+    from stability.layout.io import is_layout_spec
+
     outputs = {"--csv": args.csv, "-o": args.output, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair})
     run_spec = run_from_args(args, RUN_OPTIONS, out_of_range=_sim_policy(args))
     _check_output(args, run_spec)
+    if is_layout_spec(args.chair):
+        return _run_layout(args, run_spec)
     c = load_chair(args.chair, args.set)
     res = simulate(c, run=run_spec.replace(sample=None))     # every step: the level times exact; --sample resamples
     levels = (0.5, 1.0)

@@ -23,7 +23,7 @@ KERNEL_SOURCES = ("kernel.py", "kernel_equations.py", "kernel_controller.py", "a
 COMPILED_MODULES = (_fw, _sl, _fo, _tire_law)
 
 
-def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
+def invalidate_stale_cache(namespace: dict, stamp_name: str, extra: tuple = ()) -> None:
     """Drop the on-disk compiled code of ``namespace``'s kernels when the generated equations changed.
 
     numba keys a cached function on its own source file only, and a cached
@@ -41,9 +41,12 @@ def invalidate_stale_cache(namespace: dict, stamp_name: str) -> None:
         The kernel module's globals (its numba dispatchers are found there).
     stamp_name : str
         File name of the stamp in the module's cache folder.
+    extra : tuple of module
+        Further modules the kernel compiles or is (the layout kernel and its generated equations).
     """
     here = Path(__file__).parent
-    sources = [*(Path(str(m.__file__)) for m in COMPILED_MODULES), *(here / name for name in KERNEL_SOURCES)]
+    sources = [*(Path(str(m.__file__)) for m in (*COMPILED_MODULES, *extra)),
+               *(here / name for name in KERNEL_SOURCES)]
     digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources)).hexdigest()
     kernels = [d for d in namespace.values() if getattr(d, "_cache", None) is not None and hasattr(d, "py_func")]
     try:

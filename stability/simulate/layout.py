@@ -1,0 +1,259 @@
+"""Nonlinear simulation of a chair with any wheel layout, forward and in reverse.
+
+:func:`simulate_layout` runs a :class:`~stability.layout.model.Layout` (any generated shape: two fixed wheels and
+one to four casters) through the compiled layout kernel (:mod:`stability.simulate.layout_kernel`): program
+WCHAIR's fixed-step scheme, the exact equations of the layout (``derivations/layout.py``), each wheel's tire
+through the thesis engine's tire law at its normal load, the loads from the layout's statics with the
+quasi-static load transfer of the tire forces (:func:`stability.layout.statics.load_rule`), and each caster's pin
+under the run's friction law (``run.friction_law``: WCHAIR's kinetic law or stick-slip; ``run.casters="locked"``
+holds them) plus its viscous part (``Caster.pin_damping``).  The run's push, step, horizon, stop rule and tire
+range policy are the :class:`~stability.settings.run.RunSpec`'s, applied as the thesis engine applies them.
+
+A negative speed (or ``run.reverse``) drives backwards.  Each caster starts at its own angle
+(``caster_angles_deg``; by default ``run.eta0_deg`` for the casters on the left, ``y < 0``, and ``run.beta0_deg``
+on the right): 0 deg trails for driving forwards, 180 deg trails for reversing, 90 deg points the wheel to the
+right (the cases of Guo et al. 2003).
+
+Not modelled here (the thesis engine has them for the short-form chair): rolling resistance, camber, toe, a
+slope, the thesis's lagged-yaw variant, the adaptive scheme; the weight acts at C (the c.g. with the casters
+trailing forward) as in the thesis engine, not at the system's c.g. with the casters swivelled.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from stability import tires as _tires
+from stability.layout.model import Layout
+from stability.layout.statics import load_rule
+from stability.models.layout import nonlinear as _gn
+from stability.models.layout import shape_index
+from stability.settings.run import RunSpec
+from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
+from stability.simulate.packing import _tire_slot, policy_code
+
+__all__ = ["LayoutRun", "simulate_layout", "ENDINGS"]
+
+#: Why a run ends, by the kernel's status code.
+ENDINGS = {0.0: "horizon", 1.0: "slip warnings", 2.0: "load warnings", 3.0: "non-finite"}
+
+
+@dataclass(frozen=True, eq=False)
+class LayoutRun:
+    """One simulated run of a layout (arrays read-only).
+
+    Attributes
+    ----------
+    layout : str
+    speed_m_s : float
+        Initial forward speed, m/s (negative: reverse).
+    t_s : ndarray
+        Times of the rows, s.
+    heading_rad, yaw_rate_rad_s : ndarray
+        Heading (positive clockwise seen from above: to the right) and its rate.
+    x_m, y_m : ndarray
+        Path of the c.g. in the ground frame (x along the initial heading, y to its right), m.
+    u_m_s, v_m_s : ndarray
+        Body-axis velocities, m/s.
+    caster_angle_rad, caster_rate_rad_s : ndarray
+        Shape ``(casters, rows)``: swivel angles from the body's forward axis (0 trailing for forward driving) and
+        their rates.
+    ended : str
+        Why the run ended: ``"horizon"``, ``"slip warnings"`` or ``"load warnings"`` (program WCHAIR's eleventh
+        warning of a kind, with ``run.stop_on_warnings``), ``"non-finite"``.
+    end_time_s : float
+        When, s.
+    warnings : dict
+        ``slip``, ``load``, ``lift_off``: count, first time (s), largest value (deg or N).
+    settings : dict
+        The run's settings (:meth:`RunSpec.to_dict` keys) and ``caster_angles_deg``.
+    """
+
+    layout: str
+    speed_m_s: float
+    t_s: np.ndarray
+    heading_rad: np.ndarray
+    yaw_rate_rad_s: np.ndarray
+    x_m: np.ndarray
+    y_m: np.ndarray
+    u_m_s: np.ndarray
+    v_m_s: np.ndarray
+    caster_angle_rad: np.ndarray
+    caster_rate_rad_s: np.ndarray
+    ended: str
+    end_time_s: float
+    warnings: dict = field(default_factory=dict)
+    settings: dict = field(default_factory=dict)
+
+    @property
+    def heading_deg(self) -> np.ndarray:
+        """Heading, deg."""
+        return np.degrees(self.heading_rad)
+
+    @property
+    def final_heading_deg(self) -> float:
+        """Heading at the last row, deg."""
+        return float(np.degrees(self.heading_rad[-1]))
+
+    def heading_at(self, time_s: float) -> float:
+        """Heading at ``time_s`` (linear between rows), deg."""
+        return float(np.degrees(np.interp(time_s, self.t_s, self.heading_rad)))
+
+    def summary(self) -> str:
+        """The run in a few lines: speed and direction, how it ended, the heading and path at the end, the casters."""
+        direction = "backwards" if self.speed_m_s < 0 else "forwards"
+        start = ", ".join(f"{a:g}" for a in self.settings.get("caster_angles_deg", []))
+        end = ", ".join(f"{np.degrees(a[-1]):.1f}" for a in self.caster_angle_rad)
+        why = {"horizon": "ran to the horizon", "slip warnings": "stopped at the eleventh slip warning (a tire "
+               "beyond its data: give --no-stop-on-warnings to run on with the fits clamped)",
+               "load warnings": "stopped at the eleventh load warning (a tire beyond its data)"}.get(self.ended,
+                                                                                                  self.ended)
+        return "\n".join([
+            f"{self.layout}: {abs(self.speed_m_s):g} m/s {direction}, casters starting at {start} deg "
+            "(0: trailing for forward driving, 180: for reversing); layout model, wchair scheme",
+            f"  {why} at t = {self.end_time_s:.3f} s",
+            f"  heading {self.final_heading_deg:+.2f} deg (peak |heading| {np.abs(self.heading_deg).max():.2f} deg), "
+            f"lateral offset {self.y_m[-1]:+.3f} m after {abs(self.x_m[-1]):.2f} m of travel",
+            f"  caster angles at the end: {end} deg",
+            "  slip warnings {slip}, load warnings {load}, lift-off {lift}".format(
+                slip=self.warnings["slip"]["count"], load=self.warnings["load"]["count"],
+                lift=self.warnings["lift_off"]["count"])])
+
+    def to_mapping(self) -> dict:
+        """JSON-ready summary (unit last): the final heading, lateral offset and caster angles, the ending."""
+        return {"layout": self.layout, "speed_m_s": self.speed_m_s, "ended": self.ended,
+                "end_time_s": self.end_time_s, "final_heading_deg": self.final_heading_deg,
+                "final_lateral_offset_m": float(self.y_m[-1]),
+                "final_caster_angles_deg": [float(np.degrees(a[-1])) for a in self.caster_angle_rad],
+                "warnings": self.warnings, "settings": self.settings}
+
+
+def _check_run(layout: Any, speed: Any, run: RunSpec | None) -> tuple[Layout, float, RunSpec]:
+    if not isinstance(layout, Layout):
+        raise ValueError(f"layout={layout!r} is invalid; expected a stability.layout.Layout")
+    if run is None:
+        run = RunSpec()
+    elif not isinstance(run, RunSpec):
+        raise TypeError(f"run={run!r} is invalid; expected a stability.settings.run.RunSpec")
+    if speed is None:
+        signed = -run.speed if run.reverse else run.speed
+    else:
+        if isinstance(speed, bool) or not isinstance(speed, (int, float, np.floating, np.integer)):
+            raise TypeError(f"speed={speed!r} is invalid; expected a number (m/s, negative: reverse)")
+        signed = float(speed)
+        if not (math.isfinite(signed) and 0.01 <= abs(signed) <= 20.0):
+            raise ValueError(f"speed={speed!r} is invalid; valid range: 0.01 <= |speed| <= 20 m/s (negative: "
+                             "reverse)")
+        run = run.replace(speed=abs(signed), reverse=signed < 0)
+    for name, ok, valid in (("scheme", run.scheme == "wchair", "'wchair'"), ("model", run.model == "exact", "'exact'")):
+        if not ok:
+            raise ValueError(f"{name}={getattr(run, name)!r} is invalid for a layout; valid values: {valid} (the "
+                             "layout's equations are the exact model's, stepped by the fixed-step scheme)")
+    if run.on_slope:
+        raise ValueError(f"cross_slope_deg={run.cross_slope_deg:g}, grade_deg={run.grade_deg:g} is invalid for a "
+                         "layout; valid: level ground (0, 0)")
+    return layout, signed, run
+
+
+def _caster_angles(layout: Layout, run: RunSpec, caster_angles_deg: Sequence[float] | None) -> np.ndarray:
+    nc = len(layout.casters)
+    if caster_angles_deg is None:
+        return np.radians([run.eta0_deg if c.y < 0 else run.beta0_deg for c in layout.casters])
+    a = np.asarray(caster_angles_deg, dtype=float).reshape(-1)
+    if a.shape != (nc,) or not np.all(np.abs(a) <= 180.0):
+        raise ValueError(f"caster_angles_deg={caster_angles_deg!r} is invalid; valid: {nc} angles (one per caster), "
+                         "each -180 to 180 deg")
+    return np.radians(a)
+
+
+def _parameters(layout: Layout) -> np.ndarray:
+    values = {"m": layout.m, "i_z": layout.i_z}
+    for j, w in enumerate(layout.wheels):
+        values.update({f"x_w_{j}": w.x, f"y_w_{j}": w.y})
+    for k, c in enumerate(layout.casters):
+        values.update({f"x_p_{k}": c.x, f"y_p_{k}": c.y, f"trail_{k}": c.trail, f"l_{k}": c.l, f"m_c_{k}": c.m_c,
+                       f"i_zp_{k}": c.i_zp})
+    return np.array([values[n] for n in _gn.PARAMETERS[layout.shape]], dtype=float)
+
+
+def _tire_arrays(layout: Layout) -> tuple[np.ndarray, ...]:
+    specs = [(w.tire, w.lateral_scale) for w in layout.wheels] + [(c.tire, c.lateral_scale) for c in layout.casters]
+    n = len(specs)
+    TK, TS, TL = np.zeros(n, dtype=np.int64), np.zeros((n, 6, 8)), np.zeros(n)
+    LIM, CHK = np.zeros((n, 2)), np.zeros(n, dtype=np.bool_)
+    for i, (spec, scale) in enumerate(specs):
+        tire = _tires.get(spec).scaled(lateral=scale)
+        TK[i], TS[i], TL[i], LIM[i] = _tire_slot(tire)
+        CHK[i] = isinstance(tire, _tires.Tire)
+    return TK, TS, TL, LIM, CHK
+
+
+def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | None = None, *,
+                    caster_angles_deg: Sequence[float] | None = None) -> LayoutRun:
+    """Simulate one run of a layout disturbed from straight motion by the run's push.
+
+    Parameters
+    ----------
+    layout : Layout
+        Any generated shape (:func:`stability.models.layout.supported_shapes`).
+    speed : float, optional
+        Initial forward speed, m/s; negative drives backwards.  Default ``run.speed`` (backwards with
+        ``run.reverse``).
+    run : RunSpec, optional
+        Push, horizon, step (``"auto"``: 1 ms), pin-friction law, casters free or locked, tire range policy, stop
+        rule, sampling (default ``RunSpec()``).  The scheme must be ``"wchair"``, the model ``"exact"``, the
+        ground level.
+    caster_angles_deg : sequence of float, optional
+        Initial swivel angle of each caster, deg (0: trailing for forward driving, 180: for reversing); default
+        ``run.eta0_deg`` on the left (``y < 0``), ``run.beta0_deg`` on the right.
+
+    Returns
+    -------
+    LayoutRun
+
+    Raises
+    ------
+    ValueError
+        A bad argument (named, with its value and the valid range), a shape that is not generated, or a layout
+        with fewer than three contacts on the ground.
+    """
+    layout, signed, run = _check_run(layout, speed, run)
+    shape = shape_index(layout.shape)
+    delta0 = _caster_angles(layout, run, caster_angles_deg)
+    opts = make_options(run)
+    steps = n_steps(opts)
+    rule = load_rule(layout)
+    nw, nc = layout.shape
+    cfg = np.array([opts.dt, steps, opts.stride, opts.impulse_duration, opts.impulse_force, opts.tire_impulse,
+                    opts.pin_mode, float(opts.stop_on_warnings), policy_code(opts), SLIP_LIMIT_DEG, LOAD_LIMIT_N,
+                    WARNING_LIMIT, shape, layout.m * layout.g, layout.h, rule.mode], dtype=float)
+    TK, TS, TL, LIM, CHK = _tire_arrays(layout)
+    mf = np.array([c.pin_friction for c in layout.casters], dtype=float)
+    cpin = np.array([c.pin_damping for c in layout.casters], dtype=float)
+    from stability.simulate import layout_kernel as k  # numba loads on first use
+
+    nrec = (steps - 1) // opts.stride + 1
+    rec = np.full((k.NREC + 2 * nc, nrec), np.nan)
+    status = np.zeros(2)
+    warn = np.zeros((3, 3))
+    m = k.run_layout(cfg, _parameters(layout), nw, nc, TK, TS, TL, LIM, CHK, rule.stiffness, rule.line,
+                     rule.roll_share, mf, cpin, signed, run.lateral_velocity, delta0, rec, status, warn)
+    if status[0] == k.STOPPED_NONFINITE:
+        raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
+                                 f"numbers at t = {status[1]:g} s")
+    rec = rec[:, :m].copy()
+    rec.flags.writeable = False
+    t = np.arange(m) * opts.stride * opts.dt
+    t.flags.writeable = False
+    end = float(status[1]) if status[0] else float(t[-1])
+    w = {kind: {"count": int(warn[j, 0]), "first_time_s": None if warn[j, 0] == 0 else float(warn[j, 1]),
+                "max": None if warn[j, 0] == 0 else float(warn[j, 2])}
+         for j, kind in enumerate(("slip", "load", "lift_off"))}
+    settings = dict(run.to_dict(), caster_angles_deg=[float(x) for x in np.degrees(delta0)], dt_s=opts.dt)
+    return LayoutRun(layout.name, signed, t, rec[2], rec[3], rec[0], rec[1], rec[4], rec[5], rec[k.NREC::2],
+                     rec[k.NREC + 1::2], ENDINGS[float(status[0])], end, w, settings)

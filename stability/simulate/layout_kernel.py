@@ -1,0 +1,354 @@
+"""The compiled layout kernel (numba): program WCHAIR's fixed-step scheme for a chair with any wheel layout.
+
+The equations are the generated nonlinear functions of :mod:`stability.models.layout` (Kane's method for any
+number of fixed wheels and casters, ``derivations/layout.py``), compiled as they are; the tire force law
+(:mod:`stability.tires.law`), the slip angle and the pin-friction laws (:mod:`stability.models.forces`) are the
+thesis engine's compiled functions (:mod:`stability.simulate.kernel_equations`), not copies.  What is new here
+is the bookkeeping of ``K`` casters: a linear solve of the mass matrix instead of the thesis model's closed form,
+the holding moments of any set of held (locked or stuck) casters, and the normal loads of any layout
+(:func:`stability.layout.statics.load_rule`).
+
+The step is :func:`stability.simulate.kernel.run_one`'s for the exact model on level ground: the contact
+velocities and slips, the normal loads from the previous step's tire-force sums (the push included, as WCHAIR's
+UPDATE keeps it), the tire forces, the accelerations, then the update ``x += v dt + a dt^2 / 2``, ``v += a dt``
+with the stick-slip rest rule.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+from numba import njit
+
+from stability.models.layout import nonlinear as _gn
+from stability.simulate.cache_stamp import invalidate_stale_cache
+from stability.simulate.kernel_equations import (
+    _inl,
+    _inl_py,
+    break_away_moment,
+    compiled,
+    kinetic_pin_moment,
+    lateral_force,
+    pin_holds,
+    rest_rate,
+    slip_angle,
+)
+
+__all__ = ["run_layout", "layout_loads", "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
+
+_eq = compiled(_gn, tuple(_gn.__all__), _inl)
+equations = _eq.equations
+contact_velocities = _eq.contact_velocities
+
+#: ``status[0]``: 0 ran to the horizon, 1 the eleventh slip warning, 2 the eleventh load warning, 3 non-finite
+STOPPED_SLIP, STOPPED_LOAD, STOPPED_NONFINITE = 1.0, 2.0, 3.0
+#: cfg slots: dt, steps, stride, push duration, push force, tire push force, pin mode (0 kinetic, 1 locked,
+#: 2 stick-slip), stop on warnings, tire policy, slip limit deg, load limit N, warning limit, shape index, weight N,
+#: c.g. height m, load mode (statics.LEVER / THREE / COMPLIANT)
+NCFG = 16
+#: recorded columns: x, y, heading, yaw rate, u, v, then each caster's angle and rate
+NREC = 6
+_LEVER, _THREE = 0, 1
+
+
+@_inl
+def _solve(A, b, n, x):
+    """Solve the leading ``n x n`` system ``A x = b`` by Gaussian elimination with partial pivoting (``A``, ``b``
+    overwritten)."""
+    for c in range(n):
+        p = c
+        big = abs(A[c, c])
+        for r in range(c + 1, n):
+            if abs(A[r, c]) > big:
+                big, p = abs(A[r, c]), r
+        if p != c:
+            for cc in range(n):
+                A[c, cc], A[p, cc] = A[p, cc], A[c, cc]
+            b[c], b[p] = b[p], b[c]
+        for r in range(c + 1, n):
+            f = A[r, c] / A[c, c]
+            if f != 0.0:
+                for cc in range(c, n):
+                    A[r, cc] -= f * A[c, cc]
+                b[r] -= f * b[c]
+    for c in range(n - 1, -1, -1):
+        s = b[c]
+        for cc in range(c + 1, n):
+            s -= A[c, cc] * x[cc]
+        x[c] = s / A[c, c]
+
+
+@_inl_py
+def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
+    """Normal loads of the contacts at ``(xs, ys)`` (m, about the c.g.) under the weight (N) and the tire forces'
+    resultant ``(sum_fx, sum_fy)`` (N) at the ground ``h`` (m) below the c.g.: ``sum N = weight``,
+    ``sum N x = -h sum_fx``, ``sum N y = -h sum_fy`` (:func:`stability.layout.statics.load_rule`).
+
+    ``mode`` LEVER: two lines of two contacts (``line`` 0 or 1), each carrying ``share[line]`` of the roll moment;
+    THREE: three contacts; COMPLIANT: ``N_i = k_i (z + theta x_i + phi y_i)``.  Contacts with ``k == 0`` carry
+    nothing.  Written into ``out`` (N)."""
+    n = xs.shape[0]
+    pitch, roll = -h * sum_fx, -h * sum_fy
+    for i in range(n):
+        out[i] = 0.0
+    if mode == _LEVER:
+        A = np.zeros((4, 4))
+        b = np.array([weight, pitch, share[0] * roll, share[1] * roll])
+        sel = np.zeros(4, dtype=np.int64)
+        m = 0
+        for i in range(n):
+            if line[i] >= 0:
+                sel[m] = i
+                A[0, m] = 1.0
+                A[1, m] = xs[i]
+                A[2 + line[i], m] = ys[i]
+                m += 1
+        x = np.zeros(4)
+        _solve(A, b, 4, x)
+        for j in range(4):
+            out[sel[j]] = x[j]
+        return
+    A = np.zeros((3, 3))
+    b = np.array([weight, pitch, roll])
+    if mode == _THREE:
+        sel = np.zeros(3, dtype=np.int64)
+        m = 0
+        for i in range(n):
+            if k[i] != 0.0:
+                sel[m] = i
+                A[0, m], A[1, m], A[2, m] = 1.0, xs[i], ys[i]
+                m += 1
+        x = np.zeros(3)
+        _solve(A, b, 3, x)
+        for j in range(3):
+            out[sel[j]] = x[j]
+        return
+    for i in range(n):                                   # sum_i k_i b_i b_i^T q = (weight, pitch, roll)
+        bi = (1.0, xs[i], ys[i])
+        for r in range(3):
+            for c in range(3):
+                A[r, c] += k[i] * bi[r] * bi[c]
+    q = np.zeros(3)
+    _solve(A, b, 3, q)
+    for i in range(n):
+        out[i] = k[i] * (q[0] + q[1] * xs[i] + q[2] * ys[i])
+
+
+@_inl
+def _accelerations(Mm, F0, nc, mom, held, W, w, acc):
+    """Accelerations with the pin moments ``mom`` on the free casters and the ``held`` casters' swivel
+    accelerations zero: the free rows of ``M acc = F0 + sum_k M_k e_(3+k)``; each held caster's moment (written
+    into ``mom``) is then its own row's balance."""
+    n = 3 + nc
+    free = np.zeros(n, dtype=np.int64)
+    m = 0
+    for i in range(n):
+        if i < 3 or not held[i - 3]:
+            free[m] = i
+            m += 1
+    for a in range(m):
+        w[a] = F0[free[a]] + (mom[free[a] - 3] if free[a] >= 3 else 0.0)
+        for c in range(m):
+            W[a, c] = Mm[free[a], free[c]]
+    x = np.zeros(n)
+    _solve(W, w, m, x)
+    for i in range(n):
+        acc[i] = 0.0
+    for a in range(m):
+        acc[free[a]] = x[a]
+    for kk in range(nc):
+        if held[kk]:
+            s = -F0[3 + kk]
+            for c in range(n):
+                s += Mm[3 + kk, c] * acc[c]
+            mom[kk] = s
+
+
+@_inl
+def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
+    """Stick-slip Coulomb pins (the thesis engine's ``stick_slip`` for any number of casters): a swivelling caster
+    gets the kinetic moment (plus its viscous part), a caster at rest is held while its holding moment is within
+    its friction limit, else it breaks away with the limit moment in the holding moment's direction; decided again
+    after each release (a held caster's moment changes the others')."""
+    for kk in range(nc):
+        mom[kk] = kinetic_pin_moment(dd[kk], mf[kk]) - cpin[kk] * dd[kk]
+        held[kk] = dd[kk] == 0.0
+    for _ in range(nc + 1):
+        anyheld = False
+        for kk in range(nc):
+            anyheld = anyheld or held[kk]
+        if not anyheld:
+            break
+        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+        released = False
+        for kk in range(nc):
+            if held[kk] and not pin_holds(mom[kk], mf[kk]):
+                mom[kk] = break_away_moment(mom[kk], mf[kk])
+                held[kk] = False
+                released = True
+        if not released:
+            return
+    for kk in range(nc):
+        held[kk] = False
+    _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+
+
+@_inl
+def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit):
+    """Program WCHAIR's STATICS / MECHAN range rules on the tested tires on the ground: count the warnings;
+    the stop code when a kind reaches its limit (``stop``), else 0."""
+    nmax, smax, nmin = -math.inf, 0.0, math.inf
+    for i in range(loads.shape[0]):
+        if kv[i] != 0.0:
+            nmin = min(nmin, loads[i])
+            if CHK[i]:
+                nmax = max(nmax, loads[i])
+                smax = max(smax, abs(slips[i]))
+    if nmax > maxload:
+        _note(warn, 1, t, nmax)
+        if stop and warn[1, 0] > nwarn_limit:
+            return STOPPED_LOAD
+    if nmin < 0.0:
+        _note(warn, 2, t, nmin)
+    if smax > maxslip:
+        _note(warn, 0, t, smax)
+        if stop and warn[0, 0] > nwarn_limit:
+            return STOPPED_SLIP
+    return 0.0
+
+
+@_inl
+def _tire_forces(nw, nc, TK, TS, TL, LIM, slips, loads, policy, tire_push, ftimp, cs, sn, fw, fc):
+    """Lateral tire forces (fixed wheels in body axes, casters in their frames; ``ftimp`` on the fixed wheels while
+    ``tire_push``) written into ``fw``, ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N."""
+    sum_fx = sum_fy = 0.0
+    for j in range(nw):
+        if tire_push:
+            fy = ftimp
+        else:
+            fy, _bad = lateral_force(TK[j], TS[j], TL[j], LIM[j], slips[j], loads[j], policy)
+        fw[2 * j], fw[2 * j + 1] = 0.0, fy
+        sum_fy += fy
+    for kk in range(nc):
+        i = nw + kk
+        fy, _bad = lateral_force(TK[i], TS[i], TL[i], LIM[i], slips[i], loads[i], policy)
+        fc[2 * kk], fc[2 * kk + 1] = 0.0, fy
+        sum_fx -= fy * sn[kk]
+        sum_fy += fy * cs[kk]
+    return sum_fx, sum_fy
+
+
+@_inl
+def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
+    """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
+    with the viscous part ``-c_pin rate``)."""
+    if pin_mode == 1:
+        for kk in range(nc):
+            held[kk] = True
+        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+    elif pin_mode == 2:
+        _stick_slip(Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
+    else:
+        for kk in range(nc):
+            mom[kk] = kinetic_pin_moment(DD[kk], mf[kk]) - cpin[kk] * DD[kk]
+            held[kk] = False
+        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+
+
+@_inl
+def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys):
+    """The caster angles' cosines and sines, the contact velocities and slip angles (deg), the caster contacts."""
+    for kk in range(nc):
+        cs[kk], sn[kk] = math.cos(D[kk]), math.sin(D[kk])
+    contact_velocities(shape, UD, VD, THED, cs, sn, DD, p, vel)
+    for i in range(nw + nc):
+        slips[i] = slip_angle(vel[2 * i], vel[2 * i + 1])
+    for kk in range(nc):
+        base = 2 + 2 * nw + 6 * kk                 # x_p, y_p, trail of caster kk in p
+        xs[nw + kk] = p[base] - p[base + 2] * cs[kk]
+        ys[nw + kk] = p[base + 1] - p[base + 2] * sn[kk]
+
+
+@_inl
+def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
+    rec[0, row], rec[1, row], rec[2, row], rec[3, row], rec[4, row], rec[5, row] = X, Y, THE, THED, UD, VD
+    for kk in range(D.shape[0]):
+        rec[NREC + 2 * kk, row], rec[NREC + 2 * kk + 1, row] = D[kk], DD[kk]
+
+
+@njit(cache=True, nogil=True)
+def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, kv, line, share, mf, cpin, u0, v0, delta0, rec, status, warn):
+    """One run: ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and
+    ``nc`` casters, per contact (fixed wheels, then casters) the tire slots and range check, the vertical
+    stiffness and support line, the lines' roll shares, per caster the Coulomb limit (N m) and viscous
+    coefficient (N m s/rad), the initial state; writes ``rec`` (:data:`NREC` + 2 nc, rows), ``status``
+    (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and returns the rows written."""
+    dt, nsteps, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[1]), int(cfg[2]), cfg[3], cfg[4], cfg[5]
+    pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
+    maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
+                                                             cfg[14], int(cfg[15]))
+    nt, n = nw + nc, 3 + nc
+    half_dt2 = 0.5 * dt * dt
+    X = Y = THE = THED = 0.0
+    UD, VD = u0, v0
+    D, DD = delta0.copy(), np.zeros(nc)
+    cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
+    held = np.zeros(nc, dtype=np.bool_)
+    rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
+    vel, slips, loads, xs, ys = np.zeros(2 * nt), np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
+    fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
+    Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
+    for j in range(nw):
+        xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
+    FC1 = FC2 = 0.0
+    nrec = 0
+    for k in range(nsteps):
+        t = k * dt
+        _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys)
+        layout_loads(mode, xs, ys, kv, line, share, weight, h, FC1, FC2, loads)
+        code = _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
+        if code != 0.0:
+            status[0], status[1] = code, t
+            break
+        imp = t <= duimp * (1.0 + 1e-12) + 1e-15
+        sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, slips, loads, policy, ftimp != 0.0 and imp, ftimp,
+                                      cs, sn, fw, fc)
+        fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
+        equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, 0.0, Mm, F0)
+        _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
+        if not abs(THED) < math.inf:
+            status[0], status[1] = STOPPED_NONFINITE, t
+            break
+        if k % stride == 0:
+            _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
+            nrec = k // stride + 1
+        # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
+        FC1, FC2 = sum_fx, sum_fy + fy_ext
+        du = UD * dt + acc[0] * half_dt2
+        dv = VD * dt + acc[1] * half_dt2
+        cost, sint = math.cos(THE), math.sin(THE)
+        X += du * cost - dv * sint
+        Y += du * sint + dv * cost
+        UD += acc[0] * dt
+        VD += acc[1] * dt
+        if pin_mode != 1:
+            for kk in range(nc):
+                D[kk] += DD[kk] * dt + acc[3 + kk] * half_dt2
+                DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
+        THE += THED * dt + acc[2] * half_dt2
+        THED += acc[2] * dt
+    return nrec
+
+
+@_inl
+def _note(warn, kind, t, value):
+    if warn[kind, 0] == 0.0 or abs(value) > abs(warn[kind, 2]):
+        warn[kind, 2] = value
+    if warn[kind, 0] == 0.0:
+        warn[kind, 1] = t
+    warn[kind, 0] += 1.0
+
+
+invalidate_stale_cache(globals(), "layout_kernel.equations.sha256", (_gn, sys.modules[__name__]))
