@@ -582,7 +582,7 @@ def render_forces() -> str:
         names.append(name)
     parts.append(_function(
         "slip_angle", ("vx", "vy"),
-        "Signed slip angle of a contact (deg): atan2(vy, |vx|) (WCHAIR's SLIP takes its magnitude).\n\n"
+        "Signed slip angle of a contact (deg): ``atan2(vy, abs(vx))`` (WCHAIR's SLIP takes its magnitude).\n\n"
         "vx, vy: the contact's velocity along and across its wheel's heading (m/s).\n",
         [], _SCALAR.doprint(fo.slip_angle())))
     names.append("slip_angle")

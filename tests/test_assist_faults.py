@@ -143,7 +143,15 @@ def test_documented_fault_table_and_top_speed():
     assert not any(r.detected for f in ("gyro_bias_1_deg_s", "gyro_dropout_0.1_s", "wheel_slip") for r in by[f])
     assert max(r.detection_time_s for r in by["gyro_bias_20_deg_s"]) == pytest.approx(0.005)
     lvl = {r.speed_m_s: r for r in by["gyro_bias_1_deg_s"] if r.slope_deg == 0.0}
-    assert 20 < lvl[1.0].unassisted_heading_error_deg < 30 and lvl[3.0].unassisted_heading_error_deg > 180
+    # Without the assist the free-caster linear model is unstable at every scheduled speed (its largest real
+    # part, an independent eigenvalue computation, 0.97-5.0 1/s); in the simulator the stick-slip pins
+    # (0.15 N m each) hold the casters after the default 4 N s push, so the unassisted chair does not diverge but
+    # turns steadily like a rigid vehicle: "4.7 deg of heading over the first 6 s at 1 m/s and 5.5 deg at 3 m/s"
+    # (docs/assist.md; a regression band: the turn rate is set by where the push leaves the casters).
+    assert all(np.max(np.linalg.eigvals(d.model_A).real) > 0.5 for d in full.designs)
+    for u in (1.0, 3.0):
+        assert 2.0 < lvl[u].unassisted_heading_error_deg < 8.0
+        assert lvl[u].unassisted_drift_m < 1.0
     torques = assist.torque_requirement(full, tuple(float(s) for s in full.speeds))
     gain = assist.tables.gain_table(full, check=False)
     turn = TS.full_turn_peaks(full, [3.0, 5.0])

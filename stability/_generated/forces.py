@@ -124,7 +124,7 @@ def tire_yaw_moment(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ce, se, cb, sb, x_m,
 
 
 def slip_angle(vx, vy):
-    """Signed slip angle of a contact (deg): atan2(vy, |vx|) (WCHAIR's SLIP takes its magnitude).
+    """Signed slip angle of a contact (deg): ``atan2(vy, abs(vx))`` (WCHAIR's SLIP takes its magnitude).
 
     vx, vy: the contact's velocity along and across its wheel's heading (m/s).
     """
