@@ -183,31 +183,42 @@ def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, 
 
 
 def _driver(c: Any, args: argparse.Namespace) -> tuple:
-    """The driver (``--reaction-time`` or the chair file's ``[user]``), the human-limited speed and, for a powered
-    chair, the limit with the assist on (:mod:`stability.assist.human`); Nones without a driver."""
+    """The driver (``--reaction-time`` or the chair file's ``[user]``), the human-limited speed, and the extras:
+    for a powered chair the limit with the assist on (:mod:`stability.assist.human`), and the nonlinear lane
+    limit (:mod:`stability.driver.lane`); Nones without a driver."""
     driver = driver_from_args(args)
     if driver is None:
-        return None, None, None
+        return None, None, (None, None)
     assisted = None
     if drive_kind(c) == "motor":
         from stability.assist.human import assisted_driver_limit
 
         assisted = assisted_driver_limit(c, driver.reaction_time_s)
-    return driver, human_limit(c, driver, args.model), assisted
+    from stability.settings.run import RunSpec
+    from stability.study.lane import lane_limit
+
+    lane = lane_limit(c, driver, RunSpec(model=args.model))
+    return driver, human_limit(c, driver, args.model), (assisted, lane)
 
 
-def _print_driver(human: HumanLimit | None, driver: Driver | None, assisted: Any) -> None:
+def _print_driver(human: HumanLimit | None, driver: Driver | None, extras: tuple) -> None:
     """The driver's limits as text (nothing without a driver)."""
+    assisted, lane = extras
     if human is not None and driver is not None:
-        print(human_text(human, driver))
+        from stability.study.lane import lane_text
+
+        print(human_text(human, driver, None if lane is None else lane_text(lane)))
     if assisted is not None:
         print("  " + assisted.sentence() + ".")
 
 
-def _with_assist(doc: dict[str, Any], assisted: Any) -> dict[str, Any]:
-    """``doc`` with the driver's limit under the assist (``human_limit.with_assist``; null for a manual chair)."""
+def _with_assist(doc: dict[str, Any], extras: tuple) -> dict[str, Any]:
+    """``doc`` with the driver's limit under the assist (``human_limit.with_assist``; null for a manual chair)
+    and the nonlinear lane limit (``human_limit.nonlinear``)."""
+    assisted, lane = extras
     if doc["human_limit"] is not None:
         doc["human_limit"]["with_assist"] = None if assisted is None else assisted.to_mapping()
+        doc["human_limit"]["nonlinear"] = None if lane is None else lane.to_mapping()
     return doc
 
 

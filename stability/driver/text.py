@@ -31,13 +31,15 @@ def human_sentence(h: HumanLimit, driver: Driver) -> str:
     return f"A driver who corrects the heading {driver.reaction_time_s:g} s late can hold this chair straight {where}"
 
 
-def human_text(h: HumanLimit, driver: Driver) -> str:
+def human_text(h: HumanLimit, driver: Driver, lane_line: str | None = None) -> str:
     """The human-limited speed as the commands print it: the sentence, the two limits and what they leave out.
 
     Parameters
     ----------
     h : HumanLimit
     driver : Driver
+    lane_line : str, optional
+        The nonlinear lane limit (:func:`stability.study.lane.lane_text`), printed after the linear ones.
 
     Returns
     -------
@@ -51,4 +53,8 @@ def human_text(h: HumanLimit, driver: Driver) -> str:
             f"  {human_sentence(h, driver)} ({h.model} model, free frictionless casters).\n"
             f"  divergence rule (the chair's divergence rate reaches 1/tau): {rule}\n"
             f"  delayed loop (the driver's best delayed heading correction on the full linear chair): {loop}\n"
-            "  Linear: pin friction holds more, and the model has no fatigue, preview or learning (docs/driver.md).")
+            + ("" if lane_line is None else f"  {lane_line}\n")
+            + "  The linear limits leave out pin friction, which can hold the casters after a small push or trap the "
+            "driver in a slow stick-slip weave (the nonlinear line has it); no model here has fatigue, preview or "
+            "learning (docs/driver.md).")
+

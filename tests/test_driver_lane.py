@@ -1,0 +1,114 @@
+"""The driver in the nonlinear run (stability.study.lane): the delay, the kinematics the lane operator assumes,
+the saturation, and the limit's order in the reaction time."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from stability import chair as chair_mod
+from stability.driver import Driver
+from stability.settings.run import RunSpec
+from stability.simulate import simulate
+from stability.study.lane import (
+    LANE_HALF_WIDTH_M,
+    SAMPLE_TIME_S,
+    lane_controller,
+    lane_gains,
+    lane_limit,
+    lane_plant,
+    lane_run,
+)
+
+EJ = chair_mod.preset("ej-premier")
+
+
+def _kinematic_residual(dt: float) -> tuple[float, float]:
+    res = simulate(EJ, 1.0, RunSpec(speed=1.0, horizon=2.0, dt=dt, stop_on_warnings=False))
+    t, Y = np.asarray(res.t), np.asarray(res.y)
+    psi, u, v = (np.asarray(a) for a in (res.heading, res.u, res.v))
+    dY = (Y[2:] - Y[:-2]) / (t[2:] - t[:-2])
+    kin = u[1:-1] * np.sin(psi[1:-1]) + v[1:-1] * np.cos(psi[1:-1])
+    return float(np.max(np.abs(dY - kin))), float(np.max(np.abs(kin)))
+
+
+def test_lane_plant_row_is_the_simulators_kinematics():
+    """The operator's lateral offset obeys the simulator's own kinematics ``Y' = u sin psi + v cos psi``, whose
+    linearisation about the straight line is the plant's row ``y' = U psi + v``.
+
+    Error model: the fixed-step scheme updates the position to first order, so the central difference of the
+    recorded ``Y`` differs from the kinematics by about ``dt max|d/dt (u sin psi + v cos psi)|`` (observed
+    5.7e-4 m/s at dt = 1 ms, 1.4 dt x 0.42 m/s^2): tolerance 100 times that, 0.06 m/s, still a quarter of the
+    lateral speed a sign error would leave (2 x 0.24 m/s); and the residual halves with the step (first order:
+    ratio 1.6-2.5 between 1 ms and 0.5 ms)."""
+    A, _B, C = lane_plant(EJ, 1.0)
+    assert A[7].tolist() == [1.0, 0, 0, 0, 0, 0, 1.0, 0]            # y' = v + U psi at U = 1 m/s
+    assert C[0, 7] == 1.0 and C[1, 6] == 1.0 and C[2, 1] == 1.0
+    err1, peak = _kinematic_residual(1e-3)
+    err2, _ = _kinematic_residual(5e-4)
+    assert peak > 0.2                                                 # the run does drift sideways
+    assert err1 < 0.06
+    assert 1.6 < err1 / err2 < 2.5
+
+
+def test_the_driver_acts_on_what_it_saw_one_delay_ago():
+    """``Mz(t_k) = sat(-(k_y Y + k_p psi + k_d r)(t_{k-n}))`` with ``n = tau / T``, read off the recorded run
+    (not the controller's matrices): the delay is exact in samples."""
+    g = lane_gains(EJ, 1.0, Driver(0.3))
+    ctl = lane_controller(EJ, g, Driver(0.3))
+    n = int(round(0.3 / SAMPLE_TIME_S))
+    assert ctl.Az.shape == (n, n)
+    res = simulate(EJ, 1.0, RunSpec(speed=1.0, horizon=1.5, stop_on_warnings=False), controller=ctl)
+    t = np.asarray(res.t)
+    s = np.stack([np.asarray(res.y), np.asarray(res.heading), np.asarray(res.yaw_rate)])
+    mz = np.asarray(res.yaw_moment_input)
+    T = SAMPLE_TIME_S
+    checked = 0
+    for k in range(n + 1, int(1.4 / T)):
+        i_now = int(np.searchsorted(t, k * T - 1e-9))             # the first step at or after the sample
+        i_then = int(np.searchsorted(t, (k - n) * T - 1e-9))
+        want = float(np.clip(-g.gains @ s[:, i_then], -ctl.limit, ctl.limit))
+        assert mz[i_now] == pytest.approx(want, rel=1e-9, abs=1e-12)
+        checked += 1
+    assert checked > 100
+    assert np.all(mz[t < n * T - 1e-9] == 0.0)                      # nothing before the first delayed sample
+    assert np.max(np.abs(mz)) > 0.1
+
+
+def test_the_driver_never_exceeds_what_a_hand_has():
+    """A weak driver saturates: the largest moment equals the hand-rim limit F r_h / r_w (d1 + d2)."""
+    weak = Driver(0.3, hand_force_N=2.0)
+    r = lane_run(EJ, 1.5, weak)
+    limit = 2.0 * 0.265 / 0.3 * (EJ.d1 + EJ.d2)          # stability.settings.defaults: hand rim 0.265 m, wheel 0.3 m
+    assert r.moment_limit_N_m == pytest.approx(limit, rel=0.02)
+    assert r.peak_moment_N_m <= r.moment_limit_N_m * (1 + 1e-12)
+
+
+def test_lane_limit_falls_with_the_reaction_time():
+    """A slower driver keeps the lane only at lower speeds (the issue's monotonicity test), and every reported
+    kept run lies within the lane while the first failure above the limit does not."""
+    speeds = []
+    for tau in (0.2, 0.3, 0.5):
+        lim = lane_limit(EJ, Driver(tau))
+        assert lim.side == "="
+        speeds.append(lim.speed_m_s)
+        kept = [r for r in lim.runs if r.kept]
+        assert all(r.peak_offset_m <= LANE_HALF_WIDTH_M for r in kept)
+        above = [r for r in lim.runs if r.speed_m_s > lim.speed_m_s]
+        assert above and not above[0].kept
+    assert speeds[0] > speeds[1] > speeds[2]
+
+
+def test_a_stable_chair_is_kept_everywhere():
+    """The front-caster chair is directionally stable at every speed: the lane is kept up to the last speed
+    tried, reported as the bound ``>``."""
+    lim = lane_limit(chair_mod.preset("ej-premier-front-caster"), Driver(0.3), speeds=(0.5, 1.5, 3.0))
+    assert lim.side == ">" and lim.speed_m_s == 3.0
+    assert math.isfinite(lim.runs[-1].peak_offset_m)
+
+
+def test_bad_speed_grid_is_refused():
+    with pytest.raises(ValueError, match="speeds="):
+        lane_limit(EJ, Driver(0.3), speeds=(1.0, 0.5))
