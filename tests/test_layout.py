@@ -263,7 +263,7 @@ def test_the_tipping_command_answers_a_layout(capsys):
     assert "--set is for the short form" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("command", ["stability.shimmy"])      # stability.simulate answers layouts
+@pytest.mark.parametrize("command", ["stability.advise"])      # simulate and shimmy answer layouts
 def test_a_short_form_command_refuses_a_layout_by_name(command):
     """A command that answers the short form only refuses a layout with one line naming it and the commands that
     answer layouts, exit status 2 (not 'unknown chair')."""
@@ -274,3 +274,4 @@ def test_a_short_form_command_refuses_a_layout_by_name(command):
                        timeout=120)
     assert r.returncode == 2 and r.stdout == ""
     assert r.stderr.count("\n") == 1 and "is a wheel layout" in r.stderr and "tipping" in r.stderr
+    assert "shimmy" in r.stderr

@@ -37,12 +37,7 @@ def _fmt(x: float, scale: float = 1.0, spec: str = ".1f") -> str:
     return "none" if x == 0 else (">20" if math.isinf(x) else format(x * scale, spec))
 
 
-def _body(args) -> int:
-    chair = cli.load_chair(args.chair, args.set)
-    cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
-    speeds = cli.parse_speeds(args.speeds)
-    check_speed_count("--speeds", len(speeds), SECONDS_PER_SPEED["summary"]
-                      + (SECONDS_PER_SPEED["chart"] if args.output else 0.0))
+def _compliance(args) -> CasterCompliance:
     comp = CasterCompliance()
     for name in ("relaxation_length", "lateral_stiffness"):
         v = getattr(args, name)
@@ -53,6 +48,20 @@ def _body(args) -> int:
             comp = comp.__class__(**{**comp.__dict__, name: v, name + "_range": (min(lo, v), max(hi, v))})
     if not (0 < args.amplitude_deg < 45):
         raise ValueError(f"--amplitude-deg={args.amplitude_deg!r} is invalid; valid range: 0 < value < 45 deg")
+    return comp
+
+
+def _body(args) -> int:
+    from stability.layout.io import is_layout_spec
+
+    if is_layout_spec(args.chair):
+        return _body_layout(args)
+    chair = cli.load_chair(args.chair, args.set)
+    cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
+    speeds = cli.parse_speeds(args.speeds)
+    check_speed_count("--speeds", len(speeds), SECONDS_PER_SPEED["summary"]
+                      + (SECONDS_PER_SPEED["chart"] if args.output else 0.0))
+    comp = _compliance(args)
     s = caster_summary(chair, speeds, comp, math.radians(args.amplitude_deg))
     band = shimmy_band(chair, speeds, comp)
     modes = {pin: chair_shimmy(chair, speeds, comp, pin=pin) for pin in ("rigid", "compliant")} \
@@ -76,18 +85,7 @@ def _body(args) -> int:
                   f"(range {comp.relaxation_length_range[0] * 1000:g}-{comp.relaxation_length_range[1] * 1000:g}), "
                   f"lateral stiffness {comp.lateral_stiffness / 1000:g} kN/m "
                   f"(range {comp.lateral_stiffness_range[0] / 1000:g}-{comp.lateral_stiffness_range[1] / 1000:g}).")
-            print(f"{'speed':>6} {'linear':>9} {'freq':>6} {'growth':>7} {'damping':>8} {'shimmy-free trail cm':>22} "
-                  f"{'friction N m':>13} {'held below cm':>14}")
-            print(f"{'m/s':>6} {'':>9} {'Hz':>6} {'1/s':>7} {'ratio':>8} {'(nominal estimates)':>22} "
-                  f"{f'@{args.amplitude_deg:g} deg':>13} {'(pin friction)':>14}")
-            for i, u in enumerate(s.speeds):
-                print(f"{u:6.2f} {'stable' if s.stable[i] else 'SHIMMY':>9} {s.shimmy_frequency_hz[i]:6.1f} "
-                      f"{s.shimmy_growth_rate[i]:7.2f} {band.damping_ratio[i]:8.4f} {band.describe(i):>22} "
-                      f"{s.friction_needed[i]:13.3f} {_fmt(s.friction_trail[i], 100):>14}")
-            print("linear/growth/damping: the caster at this chair's trail without Coulomb pin friction; shimmy-free "
-                  "trail: every band of trail (searched 0.1-25 cm, '+': goes on beyond 25 cm) where it does not "
-                  "shimmy; friction: Coulomb pin friction that holds shimmy of that amplitude (describing function); "
-                  "held below: trail under which the chair's own pin friction no longer does.")
+            _print_table(s, band, args.amplitude_deg)
             _print_band(band)
             for pin, m in modes.items():
                 _print_chair_model(pin, m)
@@ -105,6 +103,77 @@ def _body(args) -> int:
     for path in outputs.values():
         if path:
             print(f"wrote {path}", file=sys.stderr)
+    return 0
+
+
+def _print_table(s, band: ShimmyBand, amplitude_deg: float) -> None:
+    """The per-speed table of one caster and its legend."""
+    print(f"{'speed':>6} {'linear':>9} {'freq':>6} {'growth':>7} {'damping':>8} {'shimmy-free trail cm':>22} "
+          f"{'friction N m':>13} {'held below cm':>14}")
+    print(f"{'m/s':>6} {'':>9} {'Hz':>6} {'1/s':>7} {'ratio':>8} {'(nominal estimates)':>22} "
+          f"{f'@{amplitude_deg:g} deg':>13} {'(pin friction)':>14}")
+    for i, u in enumerate(s.speeds):
+        print(f"{u:6.2f} {'stable' if s.stable[i] else 'SHIMMY':>9} {s.shimmy_frequency_hz[i]:6.1f} "
+              f"{s.shimmy_growth_rate[i]:7.2f} {band.damping_ratio[i]:8.4f} {band.describe(i):>22} "
+              f"{s.friction_needed[i]:13.3f} {_fmt(s.friction_trail[i], 100):>14}")
+    print("linear/growth/damping: the caster at this chair's trail without Coulomb pin friction; shimmy-free "
+          "trail: every band of trail (searched 0.1-25 cm, '+': goes on beyond 25 cm) where it does not "
+          "shimmy; friction: Coulomb pin friction that holds shimmy of that amplitude (describing function); "
+          "held below: trail under which the chair's own pin friction no longer does.")
+
+
+def _body_layout(args) -> int:
+    """Every caster row of a wheel layout: the towed-wheel summary and band at the caster's own static load."""
+    from stability.layout.io import resolve_layout
+    from stability.shimmy.layout_caster import layout_casters
+
+    if args.set:
+        raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+    for flag, given in (("-o", args.output), ("--chair-model", args.chair_model)):
+        if given:
+            raise ValueError(f"{flag} is not available for a wheel layout yet; valid: the short-form chair "
+                             "(the trail chart and the full-chair shimmy model are the thesis chair's)")
+    cli.check_outputs({"--json-file": args.json_file}, {"--chair": args.chair})
+    layout = resolve_layout(args.chair)
+    speeds = cli.parse_speeds(args.speeds)
+    comp = _compliance(args)
+    # one caster per row (a left-right pair on one pin line shares its answer)
+    rows, seen = [], set()
+    for c in layout_casters(layout):
+        cc = layout.casters[c.index]
+        key = (round(cc.x, 9), cc.trail, cc.m_c, cc.i_zp, cc.l, cc.tire, cc.pin_damping, cc.pin_friction,
+               cc.lateral_scale, round(c.static_load(), 6))
+        if key not in seen:
+            seen.add(key)
+            rows.append(c)
+    if not rows:
+        raise ValueError(f"--chair {args.chair!r}: the layout has no casters; valid: a layout with casters")
+    check_speed_count("--speeds", len(speeds) * len(rows), SECONDS_PER_SPEED["summary"])
+    results = [(c, caster_summary(c, speeds, comp, math.radians(args.amplitude_deg)), shimmy_band(c, speeds, comp))
+               for c in rows]
+    with cli.output_files({"--json-file": args.json_file}) as tmp:
+        if args.json or args.json_file:
+            doc = {"schema": "stability.shimmy.layout/1", "layout": layout.name,
+                   "options": {"speeds_m_s": [float(u) for u in speeds],
+                               "relaxation_length_m": comp.relaxation_length,
+                               "lateral_stiffness_N_per_m": comp.lateral_stiffness,
+                               "amplitude_deg": args.amplitude_deg},
+                   "casters": [{"caster": c.name, "static_load_N": c.static_load(), **s.to_mapping(),
+                                "shimmy_band": b.to_mapping()} for c, s, b in results]}
+            cli.emit_json(doc, args, write_to=tmp.get("--json-file"))
+        if not args.json:
+            print(f"caster shimmy, layout {layout.name!r}: each caster row as a towed wheel on its pin at its own "
+                  f"static load (a left-right pair shares one answer; in reverse a caster swings round and trails "
+                  f"the other way: the same answer)")
+            print(f"NOTE: {results[0][1].note}: relaxation length {comp.relaxation_length * 1000:g} mm, lateral "
+                  f"stiffness {comp.lateral_stiffness / 1000:g} kN/m.")
+            for c, s, band in results:
+                print(f"\n{c.name}: trail {c.trail * 100:g} cm, pin friction {c.pin_friction_left:g} N m, static "
+                      f"load {c.static_load():.1f} N")
+                _print_table(s, band, args.amplitude_deg)
+                _print_band(band)
+    if args.json_file:
+        print(f"wrote {args.json_file}", file=sys.stderr)
     return 0
 
 

@@ -20,11 +20,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stability.chair import Chair
 from stability.models import shimmy as shimmy_model
 from stability.models.params import parameters
 from stability.models.statics import normal_loads
 from stability.shimmy.compliance import CasterCompliance
+from stability.shimmy.layout_caster import CasterSource, LayoutCaster
 
 __all__ = ["TRAIL_SEARCH_M", "GRID_POINTS", "ShimmyBand", "shimmy_band", "band_core", "shimmy_intervals", "abscissa",
            "margin_to_boundaries"]
@@ -36,10 +36,13 @@ GRID_POINTS = 100
 _BISECTIONS = 24          # bracket 2.5 mm / 2^24 ~ 1.5e-10 m
 
 
-def _wheel_params(chair: Chair, trails: np.ndarray, comp: CasterCompliance) -> tuple[str, dict]:
-    """Towed-wheel parameters of the left caster at each trail (arrays), as caster_wheel builds them."""
-    p = parameters(chair)._replace(trail=trails)
-    n_a = normal_loads(p)[0]
+def _wheel_params(chair: CasterSource, trails: np.ndarray, comp: CasterCompliance) -> tuple[str, dict]:
+    """Towed-wheel parameters of the left caster (or the layout's caster) at each trail (arrays), as caster_wheel
+    builds them."""
+    if isinstance(chair, LayoutCaster):
+        n_a = np.nan_to_num(chair.loads(trails), nan=-1.0)
+    else:
+        n_a = normal_loads(parameters(chair)._replace(trail=trails))[0]
     with np.errstate(invalid="ignore"):
         c_alpha = np.asarray(chair.caster_tire_model().cornering_stiffness_per_rad(np.maximum(n_a, 1e-9)), float)
     c_alpha = np.where(n_a > 0, c_alpha, np.nan)
@@ -52,12 +55,12 @@ def _wheel_params(chair: Chair, trails: np.ndarray, comp: CasterCompliance) -> t
     return case, params
 
 
-def abscissa(chair: Chair, trails, speeds, comp: CasterCompliance | None = None) -> np.ndarray:
+def abscissa(chair: CasterSource, trails, speeds, comp: CasterCompliance | None = None) -> np.ndarray:
     """Largest real part of the caster's eigenvalues (1/s), shape ``(len(trails), len(speeds))``.
 
     Parameters
     ----------
-    chair : Chair
+    chair : Chair or LayoutCaster
         The chair (its left caster; its trail replaced by each of ``trails``).
     trails : array_like
         Trails (m).
@@ -82,7 +85,7 @@ def abscissa(chair: Chair, trails, speeds, comp: CasterCompliance | None = None)
     return np.where(ok, out, np.nan)
 
 
-def _damping_ratio(chair: Chair, speeds: np.ndarray, comp: CasterCompliance) -> np.ndarray:
+def _damping_ratio(chair: CasterSource, speeds: np.ndarray, comp: CasterCompliance) -> np.ndarray:
     """Damping ratio of the least damped oscillatory caster mode at the chair's trail, per speed."""
     case, params = _wheel_params(chair, np.full(speeds.size, chair.trail), comp)
     A, _ = shimmy_model.state_matrices(case, params, speeds)
@@ -92,12 +95,12 @@ def _damping_ratio(chair: Chair, speeds: np.ndarray, comp: CasterCompliance) -> 
     return zeta.min(axis=-1)
 
 
-def _boundaries(chair: Chair, speeds: np.ndarray, comp: CasterCompliance) -> tuple[list, list]:
+def _boundaries(chair: CasterSource, speeds: np.ndarray, comp: CasterCompliance) -> tuple[list, list]:
     """Per speed: stable intervals [(lo, hi), ...] and the true boundaries (sorted), m."""
     return _boundaries_many(chair, speeds, [comp])[0]
 
 
-def _boundaries_many(chair: Chair, speeds: np.ndarray, comps: list) -> list[tuple[list, list]]:
+def _boundaries_many(chair: CasterSource, speeds: np.ndarray, comps: list) -> list[tuple[list, list]]:
     """:func:`_boundaries` for several compliances, every bisection step one vectorised call per pivot case."""
     grid = np.linspace(*TRAIL_SEARCH_M, GRID_POINTS)
     scans = [abscissa(chair, grid, speeds, comp) for comp in comps]
@@ -144,12 +147,12 @@ def _boundaries_many(chair: Chair, speeds: np.ndarray, comps: list) -> list[tupl
     return out
 
 
-def shimmy_intervals(chair: Chair, speeds, compliance: CasterCompliance) -> list:
+def shimmy_intervals(chair: CasterSource, speeds, compliance: CasterCompliance) -> list:
     """Per speed, the shimmy-free trail intervals ``[(lo, hi), ...]`` (m) at one compliance.
 
     Parameters
     ----------
-    chair : Chair
+    chair : Chair or LayoutCaster
     speeds : array_like
         m/s.
     compliance : CasterCompliance
@@ -162,7 +165,7 @@ def shimmy_intervals(chair: Chair, speeds, compliance: CasterCompliance) -> list
     return _boundaries(chair, np.atleast_1d(np.asarray(speeds, float)), compliance)[0]
 
 
-def _abscissa_pairs(chair: Chair, trails: np.ndarray, speeds: np.ndarray, ks: np.ndarray, sigmas: np.ndarray,
+def _abscissa_pairs(chair: CasterSource, trails: np.ndarray, speeds: np.ndarray, ks: np.ndarray, sigmas: np.ndarray,
                     rigid: bool) -> np.ndarray:
     """Abscissa (1/s) at paired (trail, speed, pin stiffness, relaxation length) points of one pivot case."""
     comp = CasterCompliance(lateral_stiffness=math.inf if rigid else 1.0, relaxation_length=1.0,
@@ -293,7 +296,7 @@ class ShimmyBand:
         }
 
 
-def band_core(chair: Chair, speeds, compliance: CasterCompliance | None = None) -> tuple:
+def band_core(chair: CasterSource, speeds, compliance: CasterCompliance | None = None) -> tuple:
     """The trail-independent part of :func:`shimmy_band`: intervals and boundaries, nominal and per corner.
 
     Everything here depends on the chair except its own trail, so chairs differing only in trail can
@@ -301,7 +304,7 @@ def band_core(chair: Chair, speeds, compliance: CasterCompliance | None = None) 
 
     Parameters
     ----------
-    chair : Chair
+    chair : Chair or LayoutCaster
     speeds : array_like
         m/s.
     compliance : CasterCompliance, optional
@@ -320,13 +323,13 @@ def band_core(chair: Chair, speeds, compliance: CasterCompliance | None = None) 
     return U, comp, allb[0], allb[1:]
 
 
-def shimmy_band(chair: Chair, speeds, compliance: CasterCompliance | None = None, *,
+def shimmy_band(chair: CasterSource, speeds, compliance: CasterCompliance | None = None, *,
                 core: tuple | None = None) -> ShimmyBand:
     """Every boundary of the shimmy-free trail set of ``chair``'s caster, and the chair's margin.
 
     Parameters
     ----------
-    chair : Chair
+    chair : Chair or LayoutCaster
         The chair (left caster; trail > 0, m_c > 0).
     speeds : array_like
         Speeds (m/s, > 0).

@@ -17,6 +17,7 @@ from scipy.optimize import brentq
 from stability.chair import Chair
 from stability.shimmy import describing
 from stability.shimmy.compliance import ESTIMATE_NOTE, CasterCompliance
+from stability.shimmy.layout_caster import CasterSource, LayoutCaster
 from stability.shimmy.towed_wheel import TowedWheel
 
 __all__ = ["SECONDS_PER_SPEED", "WORK_BUDGET_S", "check_speed_count", "CasterCompliance", "caster_wheel",
@@ -53,7 +54,10 @@ def check_speed_count(name: str, n_speeds: int, seconds_per_speed: float) -> Non
                          f"{int(WORK_BUDGET_S // seconds_per_speed)}")
 
 
-def _static_stiffness(chair: Chair) -> dict[str, float]:
+def _static_stiffness(chair: CasterSource) -> dict[str, float]:
+    if isinstance(chair, LayoutCaster):         # one caster: both "sides" are it
+        c = float(chair.caster_tire_model().cornering_stiffness_per_rad(chair.static_load()))
+        return {"A": c, "B": c}
     try:
         from stability.models.statics import static_stiffness
     except ImportError:  # pragma: no cover - older layout
@@ -61,7 +65,7 @@ def _static_stiffness(chair: Chair) -> dict[str, float]:
     return static_stiffness(chair)
 
 
-def caster_wheel(chair: Chair, compliance: CasterCompliance | None = None, side: str = "A") -> TowedWheel:
+def caster_wheel(chair: CasterSource, compliance: CasterCompliance | None = None, side: str = "A") -> TowedWheel:
     """One caster of ``chair`` as a :class:`TowedWheel` (side ``"A"`` left, ``"B"`` right).
 
     mass ``m_c``; inertia about its own c.g. ``i_zp - m_c l1^2``; c.g. ``l1``
@@ -114,11 +118,11 @@ def _roots(f, grid: np.ndarray) -> list[float]:
     return out
 
 
-def _trail_grid(chair: Chair) -> np.ndarray:
+def _trail_grid(chair: CasterSource) -> np.ndarray:
     return np.linspace(max(1e-3, chair.l1 * 0.05), 0.2, 60)
 
 
-def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | None = None) -> float:
+def critical_trail(chair: CasterSource, speed: float, compliance: CasterCompliance | None = None) -> float:
     """Lower boundary of the shimmy-free trail set (linear model, viscous damping only).
 
     The smallest trail at which the caster stops shimmying (the lower end of the
@@ -151,7 +155,7 @@ def critical_trail(chair: Chair, speed: float, compliance: CasterCompliance | No
     return 0.0 if lo <= TRAIL_SEARCH_M[0] else lo
 
 
-def friction_trail(chair: Chair, speed: float, amplitude: float, compliance: CasterCompliance | None = None
+def friction_trail(chair: CasterSource, speed: float, amplitude: float, compliance: CasterCompliance | None = None
                    ) -> float:
     """Largest trail below which the chair's pin friction cannot hold shimmy of ``amplitude``.
 
@@ -349,7 +353,7 @@ class CasterSummary:
         }
 
 
-def caster_summary(chair: Chair, speeds, compliance: CasterCompliance | None = None,
+def caster_summary(chair: CasterSource, speeds, compliance: CasterCompliance | None = None,
                    amplitude: float = math.radians(5.0)) -> CasterSummary:
     """Shimmy summary of ``chair``'s left caster at ``speeds`` (see :class:`CasterSummary`).
 
