@@ -84,3 +84,17 @@ def test_shimmy_command_answers_a_layout(capsys):
     assert main(["--chair", "mid-wheel-drive", "--chair-model"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--chair-model" in err
+
+
+def test_every_caster_field_reaches_the_towed_wheel():
+    """A chair with non-default caster mass, tire scale and pin friction, expanded into a layout, gives the same
+    towed wheel as the short form (each field travels: mass, inertia, c.g., trail, cornering stiffness, damping,
+    friction)."""
+    c = EJ.replace(m_c=1.5, i_zp=0.009, caster_lateral_scale=0.8, pin_friction_left=0.25, pin_friction_right=0.25,
+                   pin_damping=0.02)
+    lc = layout_casters(Layout.from_chair(c))[0]
+    a, b = caster_wheel(c), caster_wheel(lc)
+    for name in ("mass", "inertia", "contact_behind_cm", "pivot_ahead_of_cm", "cornering_stiffness", "pin_damping",
+                 "pin_friction"):
+        assert getattr(b, name) == pytest.approx(getattr(a, name), rel=1e-12), name
+    assert (b.mass, b.pin_friction) == (1.5, 0.25)
