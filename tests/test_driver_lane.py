@@ -125,3 +125,16 @@ def test_a_gentle_driver_is_trapped_by_the_stuck_casters_and_a_firmer_one_is_not
     best = lane_run(EJ, 1.0, Driver(0.3))
     assert not gentle.kept and gentle.peak_offset_m > LANE_HALF_WIDTH_M
     assert best.kept and best.gains.kp_N_m_per_rad > g.kp_N_m_per_rad
+
+
+def test_a_harder_push_never_lets_the_driver_go_faster():
+    """The lane limit over half, once and twice the reference push (the range ``critical_speed`` prints): a
+    larger push frees the casters further, so the limit does not rise with it."""
+    from stability.study.lane import lane_range, lane_text
+
+    rng = lane_range(EJ, Driver(0.3))
+    by = sorted((rng.nominal, *rng.others), key=lambda x: x.push_N_s)
+    assert [x.push_N_s for x in by] == pytest.approx([2.0, 4.0, 8.0])
+    assert by[0].speed_m_s >= by[1].speed_m_s >= by[2].speed_m_s
+    assert rng.low_m_s == by[2].speed_m_s and rng.high_m_s == by[0].speed_m_s
+    assert "after 2 N s" in lane_text(rng) and "after 8 N s" in lane_text(rng)

@@ -195,9 +195,9 @@ def _driver(c: Any, args: argparse.Namespace) -> tuple:
 
         assisted = assisted_driver_limit(c, driver.reaction_time_s)
     from stability.settings.run import RunSpec
-    from stability.study.lane import lane_limit
+    from stability.study.lane import lane_range
 
-    lane = lane_limit(c, driver, RunSpec(model=args.model))
+    lane = lane_range(c, driver, RunSpec(model=args.model))
     return driver, human_limit(c, driver, args.model), (assisted, lane)
 
 

@@ -42,7 +42,7 @@ from stability.simulate.controller import STATE_ORDER
 
 __all__ = ["LANE_HALF_WIDTH_M", "LANE_LENGTH_M", "SAMPLE_TIME_S", "LANE_SPEEDS_M_S", "OPERATOR_SCALES",
            "lane_plant", "LaneGains", "lane_gains", "lane_controller", "LaneRun", "lane_run", "LaneLimit",
-           "lane_limit", "lane_text"]
+           "lane_limit", "PUSH_FACTORS", "LaneRange", "lane_range", "lane_text"]
 
 #: Half width of the lane the driver must stay in, m (the issue's "0.5 m drift in 10 m").
 LANE_HALF_WIDTH_M = 0.5
@@ -55,6 +55,10 @@ SAMPLE_TIME_S = 0.005
 LANE_SPEEDS_M_S = tuple(np.round(np.arange(0.25, 3.001, 0.25), 3).tolist())
 #: Multiples of the most stable linear loop's gains the driver may use (all three gains scaled alike).
 OPERATOR_SCALES = (1.0, 2.0, 4.0)
+#: The push the lane limit is also computed with, as factors on the run's push: the limit depends on whether the
+#: push frees the casters (the chair's critical impulse), so the answer comes with its range over half and twice
+#: the reference push.
+PUSH_FACTORS = (0.5, 2.0)
 #: Gain search box of the lane operator (log10): k_y in N m/m, k_p in N m/rad, k_d in N m s/rad.
 _LOG_BOUNDS = ((-1.0, 4.0), (-1.0, 4.5), (-2.0, 3.5))
 
@@ -357,19 +361,86 @@ def lane_limit(chair: Chair, driver: Driver | None = None, run: RunSpec | None =
     return LaneLimit(chair.name, d.reaction_time_s, push, grid[-1], ">", tuple(runs))
 
 
-def lane_text(lane: LaneLimit) -> str:
-    """The nonlinear lane limit in one line: ``"nonlinear (stick-slip pins, a 4 N s push, lane +/- 0.5 m over
-    10 m): 1.32 m/s"``; a bound reads ``"> 3 m/s"``.
+@dataclass(frozen=True)
+class LaneRange:
+    """The lane limit at the run's push and over :data:`PUSH_FACTORS` times it.
+
+    Attributes
+    ----------
+    nominal : LaneLimit
+    others : tuple of LaneLimit
+        One per push factor, in :data:`PUSH_FACTORS` order.
+    """
+
+    nominal: LaneLimit
+    others: tuple
+
+    @property
+    def low_m_s(self) -> float:
+        """The lowest limit over the pushes, m/s (a bound's value where the limit is a bound)."""
+        return min(x.speed_m_s for x in (self.nominal, *self.others))
+
+    @property
+    def high_m_s(self) -> float:
+        """The highest, m/s."""
+        return max(x.speed_m_s for x in (self.nominal, *self.others))
+
+    @property
+    def push_range_N_s(self) -> tuple[float, float]:
+        """The pushes spanned, N s."""
+        p = [x.push_N_s for x in (self.nominal, *self.others)]
+        return min(p), max(p)
+
+    def to_mapping(self) -> dict:
+        """JSON-ready: the nominal limit's mapping with ``by_push`` (every push's limit and side)."""
+        return {**self.nominal.to_mapping(),
+                "by_push": [{"push_N_s": x.push_N_s, "speed_m_s": x.speed_m_s, "side": x.side}
+                            for x in sorted((self.nominal, *self.others), key=lambda x: x.push_N_s)]}
+
+
+def lane_range(chair: Chair, driver: Driver | None = None, run: RunSpec | None = None,
+               factors: tuple = PUSH_FACTORS) -> LaneRange:
+    """:func:`lane_limit` at the run's push and at each factor times it.
 
     Parameters
     ----------
-    lane : LaneLimit
+    chair : Chair
+    driver : Driver, optional
+    run : RunSpec, optional
+    factors : tuple of float
+        Multiples of the run's push force (> 0).
+
+    Returns
+    -------
+    LaneRange
+    """
+    spec = run or RunSpec()
+    others = tuple(lane_limit(chair, driver, spec.replace(push_force=f * spec.push_force)) for f in factors)
+    return LaneRange(lane_limit(chair, driver, spec), others)
+
+
+def lane_text(lane: LaneLimit | LaneRange) -> str:
+    """The nonlinear lane limit in one line: ``"nonlinear (..., a 4 N s push, ...): 1.32 m/s (0.9-1.6 m/s for
+    pushes of 2-8 N s)"``; a bound reads ``"> 3 m/s"``.
+
+    Parameters
+    ----------
+    lane : LaneLimit or LaneRange
 
     Returns
     -------
     str
     """
-    u = lane.speed_m_s
-    value = f"{u:.3g} m/s" if lane.side == "=" else f"{lane.side} {u:g} m/s"
-    return (f"nonlinear (the simulator with its pin friction, a {lane.push_N_s:.3g} N s push, the driver's moment "
-            f"saturated; kept within +/- {lane.lane_half_width_m:g} m over {lane.lane_length_m:g} m): {value}")
+    rng = lane if isinstance(lane, LaneRange) else None
+    lim = rng.nominal if rng is not None else lane
+    assert isinstance(lim, LaneLimit)
+
+    def show(x: LaneLimit) -> str:
+        return f"{x.speed_m_s:.3g} m/s" if x.side == "=" else f"{x.side} {x.speed_m_s:g} m/s"
+
+    text = (f"nonlinear (the simulator with its pin friction, a {lim.push_N_s:.3g} N s push, the driver's moment "
+            f"saturated; kept within +/- {lim.lane_half_width_m:g} m over {lim.lane_length_m:g} m): {show(lim)}")
+    if rng is not None:
+        parts = sorted((rng.nominal, *rng.others), key=lambda x: x.push_N_s)
+        text += " (" + ", ".join(f"{show(x)} after {x.push_N_s:.3g} N s" for x in parts if x is not rng.nominal) + ")"
+    return text
