@@ -28,9 +28,10 @@ _NONE = (0, 0, 0, 0)
 
 #: unit token -> (factor to SI, dimension exponents (mass, length, time, angle))
 _TOKENS: dict[str, tuple[float, tuple[int, int, int, int]]] = {
-    "m": (1.0, _L), "cm": (0.01, _L), "mm": (0.001, _L), "in": (_IN, _L), "ft": (_FT, _L),
+    "m": (1.0, _L), "cm": (0.01, _L), "mm": (0.001, _L), "km": (1000.0, _L), "in": (_IN, _L), "ft": (_FT, _L),
+    "mi": (1609.344, _L),
     "kg": (1.0, _M), "g": (0.001, _M), "lb": (_LB, _M), "lbm": (_LB, _M), "slug": (_LBF / _FT, _M),
-    "s": (1.0, _T), "ms": (0.001, _T), "min": (60.0, _T),
+    "s": (1.0, _T), "ms": (0.001, _T), "min": (60.0, _T), "h": (3600.0, _T), "Hz": (1.0, (0, 0, -1, 0)),
     "N": (1.0, _F), "kN": (1000.0, _F), "lbf": (_LBF, _F), "kgf": (STANDARD_GRAVITY, _F),
     "ozf": (_LBF / 16, _F),
     "rad": (1.0, _A), "deg": (math.pi / 180, _A), "rev": (2 * math.pi, _A),
@@ -41,7 +42,7 @@ _TOKENS: dict[str, tuple[float, tuple[int, int, int, int]]] = {
 DIMENSIONS: dict[tuple[int, int, int, int], str] = {
     _L: "length", _M: "mass", _T: "time", _F: "force", _A: "angle", _NONE: "dimensionless",
     (1, 2, -2, 0): "moment", (1, 2, -2, -1): "torsional rigidity", (1, 2, 0, 0): "inertia",
-    (0, 1, -2, 0): "acceleration",
+    (0, 1, -2, 0): "acceleration", (0, 1, -1, 0): "speed", (0, 0, -1, 0): "frequency", (1, 1, -1, 0): "impulse",
 }
 
 _TOKEN_RE = re.compile(r"^([A-Za-z]+|1|-)(?:\^?(-?\d+))?$")
