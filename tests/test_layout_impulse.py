@@ -48,6 +48,18 @@ def test_the_e_and_j_premier_as_a_layout_finds_the_thesis_chairs_critical_impuls
     assert layout.push == thesis.push and layout.runs == thesis.runs
 
 
+def test_the_e_and_j_premier_as_a_layout_brackets_the_same_push_at_other_speeds():
+    """At 0.5 and 1 m/s the runs near the threshold agree to rounding only until a stick-slip decision differs, so
+    the searches may pick other points: each bracket (0.5 % wide) must still hold the other's critical push, i.e.
+    the two brackets overlap."""
+    chair = resolve("ej-premier")
+    speeds = [0.5, 1.0]
+    for p, q in zip(critical_impulses(chair, speeds), layout_critical_impulses(Layout.from_chair(chair), speeds),
+                    strict=True):
+        assert p.status == q.status == "found"
+        assert max(p.low_Ns, q.low_Ns) < min(p.high_Ns, q.high_Ns)
+
+
 def _lopsided() -> Layout:
     base = layout_preset("power-fwd-base")
     left, right = base.casters
@@ -191,3 +203,21 @@ def test_reverse_casters_start_trailing_for_the_reverse():
     lay = layout_preset("mid-wheel-drive")
     assert trailing_angles(lay, -0.5) == [180.0] * 4 and trailing_angles(lay, 0.5) == [0.0] * 4
     assert math.isclose(push_impulse(1.0, 0.1), 0.101)
+
+
+def test_the_docs_directive_shows_what_the_command_prints(capsys):
+    """docs/layouts.md's numbers come from docs/_ext/stability_command_output.py running the commands it shows:
+    its output is the command's own, and a line that is not a command is refused."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "docs" / "_ext"))
+    import stability_command_output as directive
+
+    line = "python -m stability.study critical-impulse --chair power-fwd-base --speeds 1"
+    status, text, err = directive.run_command(line)
+    assert main(line.split()[3:]) == 0 and status == 0
+    assert text == capsys.readouterr().out.rstrip("\n") and "+1 m/s forward      10.8 N s" in text
+    assert directive.run_command("python -m stability.study critical-impulse --speeds x")[0] == 2
+    with pytest.raises(ValueError, match="not a command"):
+        directive.run_command("ls -l")
