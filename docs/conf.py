@@ -38,6 +38,7 @@ extensions = [
     "stability_api",          # _ext: API pages from each package's __all__, reference resolution
     "stability_cli",          # _ext: command-line reference from the argparse parsers
     "stability_validation",   # _ext: the validation table, computed at build time
+    "stability_command_output",  # _ext: commands and their output, run at build time
     "stability_mathjax",      # _ext: MathJax copied into the site (no CDN: equations render offline)
 ]
 

@@ -46,9 +46,9 @@ def test_debug_and_quiet_accepted_after_every_subcommand(name):
 def test_study_debug_after_subcommand_parses(capsys):
     from stability.study.__main__ import main
 
-    assert main(["critical-impulse", "--speeds", "-1", "--debug", "--quiet"]) == 2
+    assert main(["critical-impulse", "--speeds", "0", "--debug", "--quiet"]) == 2
     err = capsys.readouterr().err
-    assert "unrecognized arguments" not in err and "Traceback" in err and "error: --speeds '-1'" in err
+    assert "unrecognized arguments" not in err and "Traceback" in err and "error: --speeds '0'" in err
 
 
 def test_chair_export_round_trips(tmp_path, capsys):

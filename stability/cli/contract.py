@@ -69,7 +69,7 @@ __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add
 MAX_SPEEDS = 10_001
 
 #: The commands that answer any wheel layout (docs/layouts.md).
-LAYOUT_COMMANDS = ("critical_speed", "tipping", "bench", "simulate", "shimmy")
+LAYOUT_COMMANDS = ("critical_speed", "tipping", "bench", "simulate", "shimmy", "study critical-impulse")
 
 
 def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
@@ -134,7 +134,8 @@ def apply_assignments(c: chair_mod.Chair, assignments: Sequence[str]) -> chair_m
     return c
 
 
-def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SPEEDS) -> np.ndarray:
+def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SPEEDS,
+                 signed: bool = False) -> np.ndarray:
     """Parse ``START:STOP:STEP`` (inclusive of STOP) or a comma list into speeds (m/s).
 
     Parameters
@@ -145,14 +146,16 @@ def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SP
         Require a list to be strictly increasing.
     max_count : int
         Largest number of speeds allowed (bounded work).
+    signed : bool
+        Accept negative speeds (reverse driving, for the commands that answer it): every ``|speed|`` in range.
 
     Returns
     -------
     ndarray
-        The speeds, m/s, each finite and > 0.
+        The speeds, m/s, each finite and > 0 (``signed``: each finite, its size in range).
     """
-    bad = (f"--speeds {text!r} is invalid; expected START:STOP:STEP with 0 < START <= STOP and STEP > 0 "
-           "(finite, m/s), or a comma-separated list")
+    bad = (f"--speeds {text!r} is invalid; expected START:STOP:STEP with {'' if signed else '0 < '}START <= STOP "
+           "and STEP > 0 (finite, m/s), or a comma-separated list")
     count = 0
     try:
         if ":" in text:
@@ -173,7 +176,11 @@ def parse_speeds(text: str, *, increasing: bool = False, max_count: int = MAX_SP
     if count > max_count:
         raise ValueError(f"--speeds {text!r} asks for {count} speeds; at most {max_count} are allowed "
                          "(use a larger STEP)")
-    if not np.all(np.isfinite(speeds) & (speeds >= MIN_SPEED) & (speeds <= MAX_SPEED)):
+    if signed:
+        if not np.all(np.isfinite(speeds) & (np.abs(speeds) >= MIN_SPEED) & (np.abs(speeds) <= MAX_SPEED)):
+            raise ValueError(f"--speeds {text!r} is invalid; valid range: every |speed| {MIN_SPEED:g} to "
+                             f"{MAX_SPEED:g} m/s (negative: reverse)")
+    elif not np.all(np.isfinite(speeds) & (speeds >= MIN_SPEED) & (speeds <= MAX_SPEED)):
         raise ValueError(f"--speeds {text!r} is invalid; valid range: every speed {MIN_SPEED:g} to {MAX_SPEED:g} m/s "
                          f"(below {MIN_SPEED:g} m/s the rates, proportional to speed there, are lost in round-off)")
     if increasing and np.any(np.diff(speeds) <= 0):

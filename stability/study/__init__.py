@@ -7,7 +7,8 @@ criterion), :mod:`.runs` (simulator access), :mod:`.responses` (nonlinear
 and linear responses), :mod:`.equal_instability`, :mod:`.maps`,
 :mod:`.sweeps`, :mod:`.thesis`, :mod:`.conclusions`; the robust
 measures :mod:`.impulse`, :mod:`.intervals`, :mod:`.sensitivity`, :mod:`.facts`;
-:mod:`.uncertain` (nonlinear measures with Monte Carlo intervals).  Rationale:
+:mod:`.uncertain` (nonlinear measures with Monte Carlo intervals); :mod:`.layout_impulse` (the critical impulse
+of any wheel layout, forward and in reverse).  Rationale:
 docs/studies.md.
 """
 
@@ -56,6 +57,7 @@ from stability.study.intervals import (
     equal_instability_interval,
     equal_instability_intervals,
 )
+from stability.study.layout_impulse import layout_critical_impulse_curve, layout_critical_impulses
 from stability.study.maps import StabilityMap, disturbance_map, stability_map
 from stability.study.responses import (
     LinearResponse,
@@ -153,4 +155,6 @@ __all__ = [
     "NonlinearIntervals",
     "nonlinear_intervals",
     "MAX_NONLINEAR_SAMPLES",
+    "layout_critical_impulses",
+    "layout_critical_impulse_curve",
 ]

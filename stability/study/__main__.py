@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
 from collections.abc import Sequence
+
+import numpy as np
 
 from stability.chair import Chair
 from stability.cli import (
@@ -41,7 +44,8 @@ def build_parser() -> argparse.ArgumentParser:
         add_run_options(s, names)
         add_json_options(s)
     ci.add_argument("--speeds", default=D.STUDY_SPEEDS,
-                    help=f"START:STOP:STEP or a list, m/s (default {D.STUDY_SPEEDS})")
+                    help=f"START:STOP:STEP or a list, m/s (default {D.STUDY_SPEEDS}); negative: reverse (the "
+                         "layout simulator, as for a layout --chair)")
     ci.add_argument("--level", type=float, default=D.YAW_RATE_LEVEL,
                     help=f"|yaw rate| level of the instability criterion, rad/s (default {D.YAW_RATE_LEVEL:g})")
     ci.add_argument("--max-impulse", type=float, default=D.MAX_IMPULSE,
@@ -53,7 +57,9 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair) -> None:
+def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair | None,
+          header: dict | None = None) -> None:
+    """Print ``text`` and/or the JSON (``header``, else the chair's :func:`json_header`, then ``data``)."""
     if args.json or args.json_file:
         units = {"push_duration": "push_duration_s", "level": "yaw_rate_level_rad_s", "horizon": "horizon_s",
              "max_impulse": "max_impulse_Ns", "push_force": "push_force_N", "dt": "dt_s"}
@@ -61,13 +67,26 @@ def _emit(args: argparse.Namespace, data: dict, text: str, chair: Chair) -> None
                    if k not in ("chair", "set", "json", "json_file", "debug", "quiet", "tire_notes", "speeds",
                                 "model")}
         if getattr(args, "speeds", None) is not None:
-            options["speeds_m_s"] = [float(s) for s in parse_speeds(args.speeds)]
-        emit_json({**json_header(chair, getattr(args, "model", None), options), **data}, args)
+            options["speeds_m_s"] = [float(s) for s in parse_speeds(args.speeds, signed=True)]
+        head = json_header(chair, getattr(args, "model", None), options) if chair is not None else \
+            {**(header or {}), "options": options}
+        emit_json({**head, **data}, args)
     if not args.json:
         print(text)
 
 
 def _critical(args: argparse.Namespace) -> None:
+    from stability.layout.io import is_layout_spec
+
+    try:
+        signed = parse_speeds(args.speeds, signed=True)
+    except ValueError:
+        if not is_layout_spec(args.chair):
+            parse_speeds(args.speeds)            # the short form's message where it refuses the value too
+        raise
+    if is_layout_spec(args.chair) or bool(np.any(signed < 0)):
+        _critical_layout(args, signed)
+        return
     chair = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
     run_spec = run_from_args(args, CRITICAL_RUN)
@@ -89,6 +108,57 @@ def _critical(args: argparse.Namespace) -> None:
     if ivs:
         data["intervals"] = [iv.to_dict() for iv in ivs]
     _emit(args, data, "\n".join(lines), chair)
+
+
+def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
+    """A layout preset or ``[[wheel]]`` file, or any chair at negative speeds: the layout simulator's runs
+    (:func:`stability.study.layout_impulse.layout_critical_impulses`)."""
+    from stability import __version__
+    from stability.layout import Layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+    from stability.study.layout_impulse import (
+        SPEED_RANGE_M_S,
+        check_layout_work,
+        layout_critical_impulse_curve,
+        layout_step_limits_and_growth,
+    )
+    from stability.study.summaries import run_steps
+
+    if is_layout_spec(args.chair):
+        if args.set:
+            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+        layout = resolve_layout(args.chair)
+    else:
+        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    lo, hi = SPEED_RANGE_M_S
+    if np.any(np.abs(speeds) > hi):
+        raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout; valid range: every |speed| {lo:g} to "
+                         f"{hi:g} m/s (negative: reverse)")
+    if args.interval:
+        raise ValueError("--interval is not available for a layout or reverse speeds yet; valid: the short-form "
+                         "chair at positive speeds")
+    run_spec = run_from_args(args, CRITICAL_RUN)
+    if run_spec.model != "exact":
+        raise ValueError(f"--model {run_spec.model} is invalid for a layout or reverse speeds; valid values: exact "
+                         "(the layout's equations are the exact model's)")
+    dt = 0.001 if run_spec.dt == "auto" else float(run_spec.dt)
+    limits, _ = layout_step_limits_and_growth(layout, speeds)
+    check_layout_work([float(h) for h in run_steps([], speeds, dt, "exact", "free", limits=limits)],
+                      run_spec.horizon, runs_per_speed(max_impulse=args.max_impulse), "--horizon")
+    curve = layout_critical_impulse_curve(layout, speeds, run_spec, level=args.level, max_impulse=args.max_impulse)
+    lines = [f"{layout.name} (layout: {layout.shape[0]} fixed wheels, {layout.shape[1]} casters), layout model, "
+             f"{run_spec.friction_law} pin friction: critical impulse for |yaw rate| >= {args.level:g} rad/s within "
+             f"{run_spec.horizon:g} s", f"push: {curve.points[0].push}",
+             "casters start trailing the direction of travel (0 deg forward, 180 deg in reverse)",
+             "kick: the sideways speed the push gives the chair (impulse / mass)"]
+    for p in curve.points:
+        kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
+        way = "reverse" if p.speed < 0 else "forward"
+        lines.append(f"  {p.speed:+6.3g} m/s {way:7s}  {p.describe():>12s}  (kick {kick})")
+    header = {"stability_version": __version__, "chair": layout.name,
+              "chair_parameters": dataclasses.asdict(layout), "model": "exact"}
+    _emit(args, {**curve.to_dict(), "caster_start": "trailing the direction of travel (0 deg forward, 180 deg in "
+                 "reverse)"}, "\n".join(lines), None, header)
 
 
 def _interval(args: argparse.Namespace) -> None:

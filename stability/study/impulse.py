@@ -357,14 +357,44 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec
     probs = bracket_search(len(run_list), starts, evaluate, x_min=math.log(min_impulse), x_max=math.log(max_impulse),
                            width=math.log1p(rel_tol), max_step=math.log(2.0), max_rounds=max_rounds,
                            horizon=horizon, rates=rates)
+    return outcomes([(c.name, float(c.m), s) for c, s in run_list], probs, pair_dt, units, run, level)
+
+
+def outcomes(pairs: Sequence[tuple[str, float, float]], probs: Sequence[Any], pair_dt: Sequence[float],
+             units: np.ndarray, run: RunSpec, level: float, toward: str = "") -> list[CriticalImpulse]:
+    """The searches' results: each problem's final bracket as a :class:`CriticalImpulse`.
+
+    Parameters
+    ----------
+    pairs : sequence of (str, float, float)
+        Per search: the chair's (or layout's) name, its mass (kg) and the speed (m/s).
+    probs : sequence of stability.study.search.Problem
+        The finished searches.
+    pair_dt : sequence of float
+        Each search's step, s.
+    units : ndarray
+        Each search's impulse per newton of push force, s.
+    run : RunSpec
+        The runs' settings (model, scheme, push duration, horizon).
+    level : float
+        rad/s.
+    toward : str
+        Words on the push's direction for its description (``""``: none, ``" to the left"``).
+
+    Returns
+    -------
+    list of CriticalImpulse
+    """
+    model, scheme, duration, horizon = run.model, run.scheme, run.push_duration, run.horizon
+
     def convention(h: float, unit: float) -> str:
-        return (f"constant force at the c.g. for {duration:g} s ({Push(1.0, duration).steps(h)} steps of "
+        return (f"constant force at the c.g.{toward} for {duration:g} s ({Push(1.0, duration).steps(h)} steps of "
                 f"{h * 1e3:g} ms: impulse = force x {unit:.4g} s)" if scheme == "wchair" else
-                f"constant force at the c.g. for {duration:g} s (impulse = force x {duration:g} s)")
+                f"constant force at the c.g.{toward} for {duration:g} s (impulse = force x {duration:g} s)")
 
     out = []
     value: float | None
-    for k, ((c, s), p) in enumerate(zip(run_list, probs, strict=True)):
+    for k, ((name, mass, s), p) in enumerate(zip(pairs, probs, strict=True)):
         tried = [math.exp(x) for x in p.x]
         lo_x, hi_x = p.bracket()
         if hi_x is None:
@@ -374,7 +404,7 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec
         else:
             low, high = math.exp(lo_x), math.exp(hi_x)
             status, value = "found", math.sqrt(low * high)
-        out.append(CriticalImpulse(c.name, float(c.m), s, value, status, low, high, max(tried), min(tried),
+        out.append(CriticalImpulse(name, mass, s, value, status, low, high, max(tried), min(tried),
                                    convention(pair_dt[k], float(units[k])), model, scheme, float(level),
                                    float(horizon), len(tried)))
     return out
