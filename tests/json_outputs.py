@@ -32,6 +32,7 @@ CASES = {
     "report": ("report", ["--quick", "--no-progress"]),
     "sweep": ("sweep", ["{tmp}/g.toml", "-o", "{tmp}/g.csv"]),
     "bench": ("bench", ["--chair", "mid-wheel-drive"]),
+    "chair_export": ("chair", ["export", "ej-premier", "--set", "trail=6cm"]),
 }
 #: Input files a case reads, written into its temporary directory first (name -> {file: text}).
 FILES = {

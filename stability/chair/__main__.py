@@ -16,7 +16,16 @@ import sys
 from collections.abc import Sequence
 
 from stability import chair as chair_mod
-from stability.cli import OneLineErrorParser, add_common_options, check_outputs, load_chair, run
+from stability.cli import (
+    OneLineErrorParser,
+    add_common_options,
+    add_json_options,
+    check_outputs,
+    emit_json,
+    json_header,
+    load_chair,
+    run,
+)
 from stability.runtime.files import atomic_write_text
 
 __all__ = ["build_parser", "main"]
@@ -37,6 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="override a chair field (repeatable; units allowed, e.g. trail=5cm)")
     ex.add_argument("-o", "--output", metavar="FILE.toml",
                     help="chair file to write (default: print the TOML on standard output)")
+    add_json_options(ex)
     ls = sub.add_parser("list", help="the presets, one a line")
     for s in (ex, ls):
         add_common_options(s)
@@ -51,8 +61,15 @@ def _run(args: argparse.Namespace) -> int:
     output = args.output
     if output is not None and not output.lower().endswith(".toml"):
         raise ValueError(f"-o {output!r} is invalid; a chair file ends in .toml")
-    check_outputs({"-o": output}, {"CHAIR": args.chair})
+    check_outputs({"-o": output, "--json-file": args.json_file}, {"CHAIR": args.chair})
     c = load_chair(args.chair, args.set)
+    if args.json or args.json_file:
+        # the chair as every command's JSON header gives it (name and every parameter, key convention)
+        emit_json(json_header(c, None, {"set": list(args.set)}), args)
+        if args.json_file and not args.quiet:
+            print(f"wrote {args.json_file}", file=sys.stderr)
+        if args.json and output is None:
+            return 0
     text = chair_mod.dumps(c)
     if output is None:
         sys.stdout.write(text)
