@@ -86,6 +86,10 @@ def _fields_epilog() -> str:
     for f in dataclasses.fields(chair_mod.Chair):
         unit = f.metadata["unit"]
         rng = chair_mod.valid_range(f.name) if f.name in chair_mod.LIMITS else ""
+        if f.name in ("main_tire", "caster_tire"):
+            from stability.tires.registry import names as tire_names
+
+            rng = f"one of {', '.join(tire_names())}, 'linear:<N/deg>' or 'file:<csv>'"
         rows.append(f"  {f.name:22s} {unit:10s} {f.metadata['doc']}" + (f" [{rng}]" if rng else ""))
     return ("chair presets: " + ", ".join(chair_mod.preset_names()) + "\n"
             "settable chair fields (--set NAME=VALUE; unit; meaning [valid range]):\n" + "\n".join(rows))
