@@ -1,8 +1,10 @@
 """A tiny progress bar: tqdm when it is installed, else a plain text bar on stderr.
 
-The bar is silent unless it is asked for (``enabled=True``, the default) AND
-stderr is a terminal, or it is forced (``force=True``): batch runs in CI,
-pipes and log files produce no progress noise.
+On a terminal the bar is drawn in place.  When stderr is not a terminal (a
+pipe, a log file, CI) long work still shows progress, as plain lines: one
+after :data:`LINE_EVERY_S` seconds and then every :data:`LINE_EVERY_S`
+seconds, and a last one when such work ends; short work prints nothing.
+``enabled=False`` or :func:`quiet` (``--quiet``) silence both.
 
 Examples
 --------
@@ -20,10 +22,13 @@ import time
 from collections.abc import Iterable, Iterator
 from typing import IO, TypeVar
 
-__all__ = ["ProgressBar", "track", "should_show", "quiet", "is_quiet", "notice_if_slow", "NOTICE_AFTER_S"]
+__all__ = ["ProgressBar", "track", "should_show", "quiet", "is_quiet", "notice_if_slow", "NOTICE_AFTER_S",
+           "LINE_EVERY_S"]
 
 #: Work that takes longer than this says so on stderr (s).
 NOTICE_AFTER_S = 2.0
+#: Off a terminal, a progress line at most this often (s), the first after as long.
+LINE_EVERY_S = 10.0
 
 _QUIET = [False]
 
@@ -162,9 +167,13 @@ class ProgressBar:
         self.n = 0
         self._file = sys.stderr if file is None else file
         self._show = should_show(enabled, force, self._file)
+        # off a terminal: plain lines for long work (not drawn in place)
+        self._lines = not self._show and enabled and not is_quiet()
+        self._lines_written = 0
         self._tqdm = None
         self._last_draw = 0.0
         self._start = time.perf_counter()
+        self._last_line = self._start
         self._closed = False
         if self._show:
             try:
@@ -190,6 +199,12 @@ class ProgressBar:
     def update(self, n: int = 1) -> None:
         """Advance by ``n`` units."""
         self.n += n
+        if self._lines and not self._closed:
+            now = time.perf_counter()
+            if now - self._last_line >= LINE_EVERY_S:
+                self._last_line = now
+                self._line()
+            return
         if not self._show or self._closed:
             return
         if self._tqdm is not None:
@@ -210,11 +225,23 @@ class ProgressBar:
                          f"{self.n}/{self.total} {self.unit} {elapsed:5.1f} s")
         self._file.flush()
 
+    def _line(self) -> None:
+        label = f"{self.desc}: " if self.desc else ""
+        of = f"/{self.total}" if self.total else ""
+        try:
+            self._file.write(f"{label}{self.n}{of} {self.unit}, {time.perf_counter() - self._start:.0f} s\n")
+            self._file.flush()
+            self._lines_written += 1
+        except (OSError, ValueError):  # pragma: no cover - stream closed
+            self._lines = False
+
     def close(self) -> None:
         """Finish the bar (idempotent)."""
         if self._closed:
             return
         self._closed = True
+        if self._lines and self._lines_written:
+            self._line()                      # long work off a terminal: say where it ended
         if not self._show:
             return
         if self._tqdm is not None:
