@@ -197,3 +197,15 @@ def test_nonlinear_critical_impulse_states_the_push():
     assert q.values[1] == math.inf and "N s" in q.none_means
     assert "101 steps of 1 ms" in c.push       # WCHAIR applies the force while t <= 0.1 s
     assert _diffs(c)[(q.key, c.labels[1])].more_stable == c.labels[1]
+
+
+def test_no_percentage_of_a_quantity_that_crosses_zero():
+    """A stable front-caster chair against an unstable rear-caster one: their growth rates and understeer
+    coefficients have opposite signs, so the difference is printed without a percentage (the user-journey review
+    found '+283 %' and '-1.03e+03 %'); same-sign quantities keep theirs."""
+    cmp = compare([chair.preset("manual-front-caster"), chair.preset("ej-premier")], speeds=[0.75])
+    d = _diffs(cmp)
+    g = d[("growth_rate_1_s@0.75", "ej-premier")]
+    assert g.absolute > 0 and g.percent is None
+    k = [v for (key, _), v in d.items() if key == "understeer_coefficient_rad"]
+    assert k and all(v.percent is None for v in k)

@@ -85,7 +85,9 @@ class Difference:
     absolute : float or None
         ``value(chair) - value(reference)`` in the quantity's unit; None when either is infinite/undefined.
     percent : float or None
-        ``100 absolute / |value(reference)|``; None when the reference value is 0 or not finite.
+        ``100 absolute / |value(reference)|``; None when the reference value is 0 or not finite, or when the two
+        values have opposite signs (a stable and an unstable growth rate, an understeering and an oversteering
+        chair: a percentage of a quantity that crosses zero says nothing).
     more_stable : str
         Label of the more stable chair, or ``"equal"``, or ``"undetermined"``.
     interval : (float, float) or None
@@ -259,7 +261,7 @@ def _difference(q: Quantity, i: int, label: str, ref_label: str, samples: np.nda
     a, r = q.values[i], q.values[0]
     finite = math.isfinite(a) and math.isfinite(r)
     absolute = a - r if finite else None
-    percent = 100.0 * (a - r) / abs(r) if finite and r != 0 else None
+    percent = 100.0 * (a - r) / abs(r) if finite and r != 0 and a * r > 0 else None
     interval, dist = None, None
     if samples is not None:
         d = samples[np.isfinite(samples)]
