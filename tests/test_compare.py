@@ -209,3 +209,11 @@ def test_no_percentage_of_a_quantity_that_crosses_zero():
     assert g.absolute > 0 and g.percent is None
     k = [v for (key, _), v in d.items() if key == "understeer_coefficient_rad"]
     assert k and all(v.percent is None for v in k)
+
+
+def test_the_comparison_figure_as_png(tmp_path, capsys):
+    """-o FILE.png writes the growth-rate figure (the review: the three-chair figure was PDF-only)."""
+    out = tmp_path / "three.png"
+    assert main(["manual-front-caster", "ej-premier", "--speeds", "0.75", "-o", str(out)]) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "the growth rates" in capsys.readouterr().err

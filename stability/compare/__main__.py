@@ -23,6 +23,7 @@ from collections.abc import Sequence
 
 from stability.chair import Chair
 from stability.cli import (
+    FIGURE_FORMATS,
     OneLineErrorParser,
     add_json_options,
     add_model_option,
@@ -69,7 +70,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--nonlinear", action="store_true",
                    help="also the critical impulse by simulation (slower; states the push convention)")
     add_json_options(p)
-    add_output_option(p, ("pdf",), what="the figures (a PDF, one figure a page)", aliases=("--pdf",))
+    add_output_option(p, FIGURE_FORMATS, what="the figures (a PDF, one figure a page; a .png or .svg holds the "
+                      "first, the growth rates against speed)", aliases=("--pdf",))
     return p
 
 
@@ -127,11 +129,17 @@ def _run(args: argparse.Namespace) -> int:
                      level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)
     if args.output:
         from stability.compare.plots import comparison_figures
-        from stability.runtime.files import write_pdf  # matplotlib is imported only when a PDF is asked for
+        from stability.runtime.files import save_figure, write_pdf  # matplotlib only when figures are asked for
 
-        write_pdf(comparison_figures(result), args.output, title=f"stability compare: {' vs '.join(result.labels)}",
-                  close=False)
-        print(f"wrote {args.output}", file=sys.stderr)
+        figs = comparison_figures(result)
+        title = f"stability compare: {' vs '.join(result.labels)}"
+        if args.output.lower().endswith(".pdf"):
+            write_pdf(figs, args.output, title=title, close=False)
+            print(f"wrote {args.output}", file=sys.stderr)
+        else:
+            save_figure(figs[0], args.output, title=title)
+            print(f"wrote {args.output} (the growth rates; the effects figures are in the PDF: -o FILE.pdf)",
+                  file=sys.stderr)
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed, "set": args.set,
                    "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,

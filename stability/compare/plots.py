@@ -37,9 +37,10 @@ def plot_growth_rates(ax: Any, c: Comparison) -> Any:
             mid = 0.5 * (lo + hi)
             ax.errorbar(iv.speeds, mid, yerr=[mid - lo, hi - mid], fmt="none", ecolor=colour, capsize=3)
     ax.axhline(0.0, color="black", lw=0.8)
-    ax.axvline(REFERENCE_SPEED, color=UNSTABLE, lw=0.8, ls=":")
+    ax.axvline(REFERENCE_SPEED, color=UNSTABLE, lw=0.8, ls=":",
+               label=f"{REFERENCE_SPEED:g} m/s, the thesis's reference speed")
     ax.set_xlabel("forward speed U (m/s)")
-    ax.set_ylabel("growth rate of least stable mode (1/s)")
+    ax.set_ylabel("growth rate of least stable mode (1/s)\n(> 0: the heading error grows by itself)")
     ax.set_title(f"Free-caster growth rate: {' vs '.join(c.labels)} ({c.model} model)")
     ax.legend(loc="best", fontsize="small")
     ax.grid(True, alpha=0.3)
