@@ -1,0 +1,232 @@
+"""The value groups of the pages (README.md, docs/slopes.md, docs/driver.md, ...): one function per group.
+
+Each function calls the toolkit's public API once per quantity it states and returns formatted strings (or
+:class:`value_groups.Table`); the ``source`` of its registration is the command or API call a reader runs to
+see the same numbers. Import :mod:`value_groups`, not this module.
+"""
+
+from __future__ import annotations
+
+from value_groups import Table, fixed, group, pct, sig, signed
+
+SLOPE_CHAIRS = ("ej-premier", "revised", "power-fwd", "ej-premier-front-caster", "manual-front-caster")
+SLOPE_DEG, SLOPE_SPEED = 2.0, 0.75
+
+
+def _preset(name: str):
+    import stability
+
+    return stability.preset(name)
+
+
+# --- README.md, guide-clinician.md: the push convention ---------------------------------------------------
+
+@group("push", "stability.study.push_impulse(RunSpec().push_force, RunSpec().push_duration, 'wchair', RunSpec().dt)",
+       cheap=True)
+def push() -> dict:
+    """The default push on the WCHAIR step: steps and impulse."""
+    import math
+
+    from stability.settings.run import RunSpec
+    from stability.study import push_impulse
+
+    r = RunSpec()
+    return {"steps": str(math.floor(r.push_duration / r.dt + 1e-9) + 1),
+            "impulse": sig(push_impulse(r.push_force, r.push_duration, "wchair", r.dt)),
+            "force": f"{r.push_force:g}", "duration": f"{r.push_duration:g}", "dt_ms": f"{1e3 * r.dt:g}"}
+
+
+# --- docs/slopes.md ---------------------------------------------------------------------------------------
+
+@group("slope_holding", "python -m stability.slope --chair NAME --cross-slope 2 --speed 0.75 "
+       "(stability.slope.equilibrium.solve(chair, 2, 0.75).holding_moment / 2)")
+def slope_holding() -> dict:
+    """Holding moment per degree of cross slope and the statics' uncorrected turn, per preset."""
+    from stability.slope.equilibrium import solve
+
+    rows, out = [], {}
+    for name in SLOPE_CHAIRS:
+        eq = solve(_preset(name), SLOPE_DEG, SLOPE_SPEED)
+        per_deg = abs(eq.holding_moment) / SLOPE_DEG
+        rel = abs(eq.holding_moment - eq.closed_form) / abs(eq.holding_moment)
+        out[f"{name}.rel_closed_form_pct"] = sig(100 * rel, 2)
+        out[f"{name}.n_m_per_deg"] = fixed(per_deg, 2)
+        rows.append((name, fixed(per_deg, 2), eq.uncorrected_turn))
+    out["max_rel_closed_form_pct"] = sig(max(float(out[f"{n}.rel_closed_form_pct"]) for n in SLOPE_CHAIRS), 1)
+    out["table"] = Table((f"chair ({SLOPE_DEG:g} deg, {SLOPE_SPEED:g} m/s)", "N m/deg", "uncorrected turn"),
+                         tuple(rows))
+    return out
+
+
+@group("slope_paths", "python -m stability.slope --chair NAME --cross-slope 2 --speed 0.75 "
+       "(stability.study.veer.simulator_path, both schemes, with and without pin friction)")
+def slope_paths() -> dict:
+    """The simulator's uncorrected turn on 2 deg at 0.75 m/s, both schemes, pin friction on and off."""
+    from stability.slope.equilibrium import solve
+    from stability.study.veer import REPORT_TIME, VEER_RUN, simulator_path
+
+    def cell(p, rate: bool) -> str:
+        at = "1 s" if abs(p.report_time - 1.0) < 1e-9 else f"{p.report_time:.2f} s"
+        s = f"{signed(p.heading_change_deg, 2)} deg"
+        if rate:
+            s += f", {signed(p.yaw_rate_deg_s, 1)} deg/s"
+        return f"{s} at {at}"
+
+    rows, out = [], {}
+    spread, ends = 0.0, []
+    for name in ("ej-premier", "manual-front-caster", "ej-premier-front-caster"):
+        c = _preset(name)
+        eq = solve(c, SLOPE_DEG, SLOPE_SPEED)
+        paths = {}
+        for scheme in ("adaptive", "wchair"):
+            for fr in (True, False):
+                paths[scheme, fr] = simulator_path(c, eq, VEER_RUN.replace(scheme=scheme, horizon=REPORT_TIME),
+                                                   pin_friction=fr, report_time=REPORT_TIME)
+        for fr in (True, False):
+            spread = max(spread, abs(paths["adaptive", fr].heading_change_deg - paths["wchair", fr].heading_change_deg))
+        pin = f"{c.pin_friction_left:g} N m"
+        for scheme in ("adaptive", "wchair"):
+            rows.append((f"{name} ({pin})", scheme, cell(paths[scheme, True], True), cell(paths[scheme, False], True)))
+        fric, free = paths["adaptive", True], paths["adaptive", False]
+        out[f"{name}.slowdown_pct"] = pct(1 - fric.heading_change_deg / free.heading_change_deg)
+        if name == "ej-premier":
+            ends = [p.report_time for p in paths.values()]
+    out["scheme_spread_deg"] = sig(spread, 1)
+    out["ej_cut_from_s"] = fixed(min(ends), 2)
+    out["ej_cut_to_s"] = fixed(max(ends), 2)
+    out["table"] = Table(("chair", "scheme", "pin friction (chair's)", "frictionless"), tuple(rows))
+    return out
+
+
+@group("slope_manual", "python -m stability.slope --chair manual-front-caster --cross-slope 3 --speed 0.75 "
+       "(stability.slope.equilibrium.solve, drive_report)")
+def slope_manual() -> dict:
+    """The manual-front-caster preset against the treadmill study: moment per degree and what drives it."""
+    from stability.slope.equilibrium import drive_report, solve
+
+    c = _preset("manual-front-caster")
+    one = solve(c, 3.0, SLOPE_SPEED)
+    lo, hi = sorted(abs(x) / 3.0 for x in one.friction_range)
+    out = {"per_deg": fixed(abs(solve(c, SLOPE_DEG, SLOPE_SPEED).holding_moment) / SLOPE_DEG, 2),
+           "band_lo": fixed(lo, 2), "band_hi": fixed(hi, 2),
+           "s1_006": fixed(abs(solve(c.replace(s1=0.06), SLOPE_DEG, SLOPE_SPEED).holding_moment) / SLOPE_DEG, 2),
+           "m_60": fixed(abs(solve(c.replace(m=60.0), SLOPE_DEG, SLOPE_SPEED).holding_moment) / SLOPE_DEG, 2)}
+    base = abs(solve(c, SLOPE_DEG, SLOPE_SPEED).holding_moment)
+    rolling = abs(solve(c.replace(main_rolling_scale=1.0), SLOPE_DEG, SLOPE_SPEED).holding_moment)
+    out["rolling_pct"] = sig(100 * (rolling - base) / base, 1)
+    eq1 = solve(c, 1.0, SLOPE_SPEED)
+    out["rim_per_deg"] = sig(drive_report(c, eq1, "handrim")["handrim_force_difference_N"], 2)
+    return out
+
+
+@group("slope_stability", "stability.study.slope_stability.stability_vs_speed(chair, cross_deg, [0.75]) and "
+       "grade_run(chair, -3, 0.75, duration=2, n=2)")
+def slope_stability() -> dict:
+    """Largest real part level and on 6 deg, and a 3 deg downhill grade's effect on the E&J Premier."""
+    import math
+
+    from stability.study.slope_stability import grade_run, stability_vs_speed
+
+    ej, fc = _preset("ej-premier"), _preset("ej-premier-front-caster")
+    out = {}
+    for key, c in (("ej", ej), ("fc", fc)):
+        for deg in (0.0, 6.0):
+            out[f"{key}_{deg:g}"] = fixed(float(stability_vs_speed(c, deg, [SLOPE_SPEED], critical=False).max_real[0]), 3)
+    g = grade_run(ej, -3.0, SLOPE_SPEED, duration=2.0, n=2)
+    out.update(grade_u0=fixed(g.speeds[0], 2), grade_u1=fixed(g.speeds[-1], 2),
+               grade_l0=fixed(g.max_real[0], 2), grade_l1=fixed(g.max_real[-1], 2),
+               grade_d0=fixed(math.log(2) / g.max_real[0], 2), grade_d1=fixed(math.log(2) / g.max_real[-1], 2))
+    return out
+
+
+# --- docs/driver.md ---------------------------------------------------------------------------------------
+
+DRIVER_CHAIRS = ("ej-premier", "revised", "power-fwd")
+DRIVER_TAUS = (0.2, 0.3, 0.4, 0.5)
+
+
+@group("driver_limits", "python -m stability.critical_speed --chair NAME --reaction-time TAU "
+       "(stability.driver.linear.human_limit(chair, Driver(TAU)))")
+def driver_limits() -> dict:
+    """The divergence rule against the delayed loop, presets x reaction times."""
+    from stability.driver.linear import human_limit
+    from stability.driver.model import Driver
+
+    rows, out = [], {}
+    worst = (0.0, "", 0.0)
+    usual = 0.0
+    for name in DRIVER_CHAIRS:
+        c = _preset(name)
+        for tau in DRIVER_TAUS:
+            h = human_limit(c, Driver(tau))
+            rel = abs(h.loop_speed_m_s - h.rule_speed_m_s) / max(h.loop_speed_m_s, h.rule_speed_m_s)
+            if rel > worst[0]:
+                worst = (rel, name, tau)
+            if tau >= 0.3:
+                usual = max(usual, rel)
+            mark = lambda side: "> " if side == ">" else ("< " if side == "<" else "")  # noqa: E731
+            rows.append((name, f"{tau:g}", mark(h.rule_side) + fixed(h.rule_speed_m_s, 2),
+                         mark(h.loop_side) + fixed(h.loop_speed_m_s, 2), pct(rel), h.limited_by))
+            out[f"{name}.{tau:g}.rule"] = fixed(h.rule_speed_m_s, 2)
+            out[f"{name}.{tau:g}.loop"] = fixed(h.loop_speed_m_s, 2)
+    out["worst_pct"], out["worst_chair"], out["worst_tau"] = pct(worst[0]), worst[1], f"{worst[2]:g}"
+    out["usual_pct"] = pct(usual)
+    out["table"] = Table(("chair", "tau (s)", "divergence rule (m/s)", "delayed loop (m/s)",
+                          "lower by (%)", "lower"), tuple(rows))
+    return out
+
+
+@group("driver_settings", "stability.driver.linear.PADE_ORDER, stability.study.lane (LANE_HALF_WIDTH_M, "
+       "LANE_LENGTH_M, LANE_SPEEDS_M_S), stability.driver.REACTION_TIME_S", cheap=True)
+def driver_settings() -> dict:
+    """The driver model's fixed settings, read from the code (not results, but quoted from one place)."""
+    from stability import driver
+    from stability.driver.linear import PADE_ORDER
+    from stability.study import lane
+
+    return {"pade": str(PADE_ORDER), "pade2": str(2 * PADE_ORDER),
+            "half_width": f"{lane.LANE_HALF_WIDTH_M:g}", "length": f"{lane.LANE_LENGTH_M:g}",
+            "top": f"{lane.LANE_SPEEDS_M_S[-1]:g}", "tau": f"{driver.REACTION_TIME_S:g}",
+            "sample_ms": f"{1e3 * lane.SAMPLE_TIME_S:g}"}
+
+
+@group("driver_lane", "python -m stability.critical_speed --chair NAME --reaction-time 0.3 "
+       "(stability.study.lane.lane_limit(chair, Driver(0.3)))")
+def driver_lane() -> dict:
+    """The nonlinear lane limit at 0.3 s, ej-premier and power-fwd (a bound printed with its side)."""
+    from stability.driver.model import Driver
+    from stability.study.lane import lane_limit
+
+    out = {}
+    for name in ("ej-premier", "power-fwd"):
+        lim = lane_limit(_preset(name), Driver(0.3))
+        out[name] = ("" if lim.side == "=" else f"{lim.side} ") + fixed(lim.speed_m_s, 2)
+    return out
+
+
+# --- docs/simulator.md, README.md: compile time ------------------------------------------------------------
+
+@group("compile_time", "python -m stability.simulate --speed 0.75 --quiet, twice, in fresh processes with an "
+       "empty NUMBA_CACHE_DIR (CPU time of the child: user + sys)")
+def compile_time() -> dict:
+    """CPU time of the first ``simulate`` command with an empty numba cache, and of the next one (cached)."""
+    import os
+    import resource
+    import subprocess
+    import sys
+    import tempfile
+
+    from value_groups import ROOT
+
+    def child_cpu(env: dict) -> float:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        subprocess.run([sys.executable, "-m", "stability.simulate", "--speed", "0.75", "--quiet"], cwd=ROOT,
+                       env=env, check=True, stdout=subprocess.DEVNULL)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+    with tempfile.TemporaryDirectory() as cache:
+        env = {**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)}
+        first = child_cpu(env)
+        second = child_cpu(env)
+    return {"first_s": sig(first, 2), "cached_s": sig(second, 2), "ratio": f"{first / second:.0f}"}
