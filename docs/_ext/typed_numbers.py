@@ -30,9 +30,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 
-NUMBER = re.compile(r"(?<![A-Za-z_\d.])\d+(?:\.\d+)?(?:[eE][-+]?\d+)?(?![A-Za-z_\d])")
+NUMBER = re.compile(r"(?<![A-Za-z_\d.^])\d+(?:\.\d+)?(?:[eE][-+]?\d+)?(?![A-Za-z_\d]|/s\b)")
 _FENCE = re.compile(r"^\s*(```|~~~)")
 _INLINE = [
+    re.compile(r"<!--dv [^>]*-->.*?<!--/dv-->"),     # README's computed values
     re.compile(r"\{[\w:-]+\}`[^`]*`"),               # MyST roles
     re.compile(r"``[^`]*``|`[^`]*`"),                # inline code
     re.compile(r"\$\$.*?\$\$|\$[^$\s][^$]*?\$"),     # math

@@ -114,6 +114,12 @@ def slope_manual() -> dict:
     base = abs(solve(c, SLOPE_DEG, SLOPE_SPEED).holding_moment)
     rolling = abs(solve(c.replace(main_rolling_scale=1.0), SLOPE_DEG, SLOPE_SPEED).holding_moment)
     out["rolling_pct"] = sig(100 * (rolling - base) / base, 1)
+    import math
+
+    per_kg_m = c.g * math.sin(math.radians(1.0))          # N m/deg per kg m of m s1 (leading order)
+    lo_ms1, hi_ms1 = 0.25 / per_kg_m, 1.80 / per_kg_m      # Richter et al. 2007's range, N m/deg
+    out.update(ms1_lo=sig(lo_ms1, 2), ms1_hi=sig(hi_ms1, 2),
+               s1_lo_cm=fixed(100 * lo_ms1 / c.m, 0), s1_hi_cm=fixed(100 * hi_ms1 / c.m, 0), mass=f"{c.m:g}")
     eq1 = solve(c, 1.0, SLOPE_SPEED)
     out["rim_per_deg"] = sig(drive_report(c, eq1, "handrim")["handrim_force_difference_N"], 2)
     return out
@@ -131,7 +137,8 @@ def slope_stability() -> dict:
     out = {}
     for key, c in (("ej", ej), ("fc", fc)):
         for deg in (0.0, 6.0):
-            out[f"{key}_{deg:g}"] = fixed(float(stability_vs_speed(c, deg, [SLOPE_SPEED], critical=False).max_real[0]), 3)
+            st = stability_vs_speed(c, deg, [SLOPE_SPEED], critical=False)
+            out[f"{key}_{deg:g}"] = fixed(float(st.max_real[0]), 3)
     g = grade_run(ej, -3.0, SLOPE_SPEED, duration=2.0, n=2)
     out.update(grade_u0=fixed(g.speeds[0], 2), grade_u1=fixed(g.speeds[-1], 2),
                grade_l0=fixed(g.max_real[0], 2), grade_l1=fixed(g.max_real[-1], 2),
@@ -230,3 +237,49 @@ def compile_time() -> dict:
         first = child_cpu(env)
         second = child_cpu(env)
     return {"first_s": sig(first, 2), "cached_s": sig(second, 2), "ratio": f"{first / second:.0f}"}
+
+
+# --- docs/assist.md ---------------------------------------------------------------------------------------
+
+@group("assist_weights", "stability.assist.loop_margins(stability.assist.design(power_fwd, 1.0, 'full-state'"
+       "[, weights=Weights(max_yaw_rate_deg_s=10)])) and closed_loop_poles(...)")
+def assist_weights() -> dict:
+    """The full-state design at 1 m/s with and without a 10 deg/s yaw-rate weight: margins, slowest poles."""
+    import warnings
+
+    import numpy as np
+
+    from stability import assist
+    from stability.assist.weights import Weights
+    from stability.settings import defaults as D
+
+    c = _preset("power-fwd")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)    # polynomial overflow inside stability_margins
+        plain_d = assist.design(c, 1.0, "full-state")
+        plain = assist.loop_margins(plain_d)
+        rate = assist.loop_margins(assist.design(c, 1.0, "full-state", weights=Weights(max_yaw_rate_deg_s=10.0)))
+    poles = assist.closed_loop_poles(plain_d)
+    slow = poles[np.argmax(poles.real)]
+    budget = D.TORQUE_LIMIT / 2
+    return {"budget_n_m": f"{budget:g}", "gain_per_deg": f"{budget / D.MAX_HEADING_ERROR:g}",
+            "pole_re": fixed(slow.real, 1), "pole_im": fixed(abs(slow.imag), 1),
+            "crossover": sig(plain.crossover_rad_s, 2), "crossover_rate": sig(rate.crossover_rad_s, 2),
+            "delay_ms": fixed(1e3 * plain.delay_margin_s, 1), "delay_rate_ms": fixed(1e3 * rate.delay_margin_s, 1),
+            "cut_pct": pct(1 - rate.delay_margin_s / plain.delay_margin_s)}
+
+
+@group("assist_overshoot", "control.step_info(stability.assist.tracking.closed_loop(stability.assist.design(power_fwd, "
+       "U, DESIGN), command_filter=0)[0, 0]) for U in 0.5:3:0.25 and both designs")
+def assist_overshoot() -> dict:
+    """Overshoot of a yaw-rate step through feedforward and integral alone (no reference model), linear loop."""
+    import control
+    import numpy as np
+
+    from stability import assist
+    from stability.assist.tracking import closed_loop
+
+    c = _preset("power-fwd")
+    over = [control.step_info(closed_loop(assist.design(c, u, kind), command_filter=0.0)[0, 0])["Overshoot"]
+            for kind in assist.DESIGNS for u in np.arange(0.5, 3.0001, 0.25)]
+    return {"min_pct": fixed(min(over), 0), "max_pct": fixed(max(over), 0)}
