@@ -283,3 +283,18 @@ def assist_overshoot() -> dict:
     over = [control.step_info(closed_loop(assist.design(c, u, kind), command_filter=0.0)[0, 0])["Overshoot"]
             for kind in assist.DESIGNS for u in np.arange(0.5, 3.0001, 0.25)]
     return {"min_pct": fixed(min(over), 0), "max_pct": fixed(max(over), 0)}
+
+
+# --- docs/layouts.md --------------------------------------------------------------------------------------
+
+@group("layout_mid", "stability.layout.statics.static_loads(stability.layout.presets.layout_preset('mid-wheel-drive'))",
+       cheap=True)
+def layout_mid() -> dict:
+    """The mid-wheel-drive base's share of the weight on its drive wheels."""
+    from stability.layout.presets import layout_preset
+    from stability.layout.statics import contacts, static_loads
+
+    lay = layout_preset("mid-wheel-drive")
+    loads = static_loads(lay)
+    drive = sum(w for (name, *_), w in zip(contacts(lay), loads, strict=True) if name.startswith("wheel"))
+    return {"drive_pct": pct(drive / sum(loads))}
