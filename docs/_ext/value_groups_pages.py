@@ -298,3 +298,155 @@ def layout_mid() -> dict:
     loads = static_loads(lay)
     drive = sum(w for (name, *_), w in zip(contacts(lay), loads, strict=True) if name.startswith("wheel"))
     return {"drive_pct": pct(drive / sum(loads))}
+
+
+def _assist_rows(kind: str, speeds, drive=None):
+    """Gain-table rows (margins only, no nonlinear check) of the power-fwd schedule."""
+    import warnings
+
+    from stability import assist
+    from stability.assist.tables import gain_table
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")    # python-control's overflow note at a huge candidate frequency (harmless)
+        kw = {} if drive is None else {"drive": drive}
+        return gain_table(assist.schedule(_preset("power-fwd"), speeds, kind, **kw), check=False)
+
+
+def _gain_db(m) -> float:
+    import math
+
+    return 20 * math.log10(min(m.gain_margin_upper, 1.0 / m.gain_margin_lower))
+
+
+def _span(values, fmt) -> str:
+    lo, hi = fmt(min(values)), fmt(max(values))
+    return lo if lo == hi else f"{lo}-{hi}"
+
+
+@group("assist_sampled", "python -m stability.assist --chair power-fwd --design gyro|full-state --no-check "
+       "(gain_table(schedule(power_fwd, 0.5:3:0.25, DESIGN), check=False): margin_pair.continuous / .discrete)")
+def assist_sampled() -> dict:
+    """Continuous and sampled margins of the default schedule, with and without the motor lag."""
+    import math
+
+    import numpy as np
+
+    from stability.chair.power import DriveTrain
+    from stability.settings import defaults as D
+
+    speeds = np.arange(0.5, 3.0001, 0.25)
+    out = {}
+    gyro_rows = []
+    for kind in ("gyro", "full-state"):
+        rows = _assist_rows(kind, speeds)
+        if kind == "gyro":
+            gyro_rows = rows
+        for side in ("continuous", "discrete"):
+            ms = [getattr(r.margin_pair, side) for r in rows]
+            k = f"{kind}.{side}"
+            out[f"{k}.gain_db"] = _span([_gain_db(m) for m in ms], lambda x: fixed(x, 1))
+            out[f"{k}.phase_deg"] = _span([m.phase_margin_deg for m in ms], lambda x: fixed(x, 0))
+            out[f"{k}.delay_ms"] = _span([1e3 * m.delay_margin_s for m in ms], lambda x: fixed(x, 0))
+            out[f"{k}.return_difference"] = _span([m.min_return_difference for m in ms], lambda x: fixed(x, 2))
+    no_lag = _assist_rows("gyro", speeds, DriveTrain(motor_time_constant=0.0))
+    out["gyro.no_lag.phase_deg"] = _span([r.margin_pair.continuous.phase_margin_deg for r in no_lag],
+                                         lambda x: fixed(x, 0))
+    out["gyro.no_lag.return_difference"] = _span([r.margin_pair.continuous.min_return_difference for r in no_lag],
+                                                  lambda x: fixed(x, 1))
+    t = 1.0 / D.SAMPLE_RATE_HZ
+    sampled_delay = [1e3 * r.margin_pair.discrete.delay_margin_s for r in gyro_rows]
+    out["added_delay_ms"] = f"{1.5e3 * t:g}"
+    out["added_phase_deg"] = fixed(math.degrees(1.5 * t * 20.0), 1)
+    out["times_added"] = _span([d / (1.5e3 * t) for d in sampled_delay], lambda x: fixed(x, 0))
+    return out
+
+
+@group("assist_reverse", "stability.linear.state_matrices(stability.assist.reversed_chair(power_fwd), U) "
+       "(largest real part of the eigenvalues)", cheap=True)
+def assist_reverse() -> dict:
+    """The reversed front-wheel-drive chair's slowest eigenvalue at 0.5 and 3 m/s."""
+    import numpy as np
+
+    from stability import assist, linear
+
+    rc = assist.reversed_chair(_preset("power-fwd"))
+    out = {}
+    for u in (0.5, 3.0):
+        a = linear.state_matrices(rc, u, "exact", "free")[0]
+        out[f"{u:g}"] = sig(float(np.max(np.linalg.eigvals(a).real)), 2)
+    return out
+
+
+@group("assist_standstill", "stability.assist.pivot_inertia(power_fwd)", cheap=True)
+def assist_standstill() -> dict:
+    """The pivot inertia about the drive-axle midpoint."""
+    from stability import assist
+
+    return {"pivot_inertia": fixed(assist.pivot_inertia(_preset("power-fwd")), 1)}
+
+
+@group("assist_faults", "python -m stability.assist --chair power-fwd --speeds 0.5:5:0.25 --faults "
+       "(faults.fault_runs(schedule(power_fwd, 0.5:5:0.25, 'gyro')), top_speed.top_speed(...))")
+def assist_faults() -> dict:
+    """Every single sensor fault at every speed to 5 m/s on level ground and 2 deg; the safe top speed."""
+    import warnings
+
+    import numpy as np
+
+    from stability import assist
+    from stability.assist import faults as F
+    from stability.assist import top_speed as TS
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")    # python-control's overflow note at a huge candidate frequency (harmless)
+        full = assist.schedule(_preset("power-fwd"), np.arange(0.5, 5.01, 0.25), "gyro")
+        rows = F.fault_runs(full)
+        torques = assist.torque_requirement(full, tuple(float(s) for s in full.speeds))
+        gain = assist.tables.gain_table(full, check=False)
+        turn = TS.full_turn_peaks(full, [3.0, 5.0])
+        ts = TS.top_speed(full, gain, torques, rows, turn)
+    low = [r for r in rows if r.speed_m_s <= 3.0 + 1e-9]
+    by: dict = {}
+    for r in rows:
+        by.setdefault(r.fault, []).append(r)
+    low_by: dict = {}
+    for r in low:
+        low_by.setdefault(r.fault, []).append(r)
+
+    def times(rs) -> str:
+        t = [r.detection_time_s for r in rs if r.detected]
+        return _span(t, lambda x: sig(x, 2)) if t else "never"
+
+    worst_h = max(low, key=lambda r: r.peak_heading_error_deg)
+    worst_d = max(low, key=lambda r: r.drift_m)
+    out = {"runs": str(len(low)),
+           "all_safe": "every fault safe" if all(r.outcome == "safe" for r in low) else "NOT every fault safe",
+           "peak_heading": sig(worst_h.peak_heading_error_deg, 3), "peak_heading_fault": worst_h.fault,
+           "peak_heading_speed": f"{worst_h.speed_m_s:g}", "peak_heading_slope": f"{worst_h.slope_deg:g}",
+           "drift": sig(worst_d.drift_m, 3), "drift_fault": worst_d.fault, "drift_speed": f"{worst_d.speed_m_s:g}",
+           "pairs": str(len(by["gyro_stuck_last"])), "low_pairs": str(len(low_by["gyro_dropout_1_s"]))}
+    for f in ("gyro_bias_5_deg_s", "gyro_bias_20_deg_s", "gyro_sign_inverted", "gyro_noise_x10",
+              "gyro_stuck_last", "gyro_stuck_zero"):
+        src = by[f] if f.startswith("gyro_stuck") else low_by[f]
+        out[f"{f}.times"] = times(src)
+        out[f"{f}.detected"] = str(sum(r.detected for r in src))
+    out["gyro_dropout_1_s.detected"] = str(sum(r.detected for r in low_by["gyro_dropout_1_s"]))
+    unstable = [float(np.max(np.linalg.eigvals(d.model_A).real)) for d in full.designs
+                if d.speed <= 3.0 + 1e-9 and d.speed > 0]
+    out["unassisted_rate_lo"], out["unassisted_rate_hi"] = sig(unstable[0], 2), sig(unstable[-1], 2)
+    lvl = {r.speed_m_s: r for r in by["gyro_bias_1_deg_s"] if r.slope_deg == 0.0}
+    out["unassisted_heading_1"] = sig(lvl[1.0].unassisted_heading_error_deg, 2)
+    out["unassisted_heading_3"] = sig(lvl[3.0].unassisted_heading_error_deg, 2)
+    bias1 = {(r.speed_m_s, r.slope_deg): r.drift_m for r in by["gyro_bias_1_deg_s"]}
+    for u in (3.0, 3.5, 3.75, 5.0):
+        out[f"bias1_drift_{u:g}"] = f"{bias1[u, 0.0]:.3f} m (level) / {bias1[u, 2.0]:.3f} m (2 deg)"
+    out["top_speed"] = f"{ts.safe_top_speed_m_s:g}"
+    out["limited_by"] = ts.limited_by
+    checks = {c.speed_m_s: c.values for c in ts.checks}
+    for u in (3.0, 5.0):
+        v = checks[u]
+        out[f"at_{u:g}"] = (f"gain {v['gain_margin'][0]:.1f} dB, phase {v['phase_margin'][0]:.1f} deg, delay margin "
+                            f"{v['delay_margin'][0]:.1f} ms")
+        out[f"turn_{u:g}"] = fixed(turn[u], 1)
+    return out
