@@ -198,7 +198,8 @@ def update_pending() -> int:
             "ALLOWED: dict[str, list[tuple[str, str]]] = {\n"]
     for page in sorted(keep, key=lambda p: (p != "README.md", p)):
         if keep[page]:
-            body.append(f"    {page!r}: [\n" + "".join(f"        ({s!r}, {w!r}),\n" for s, w in keep[page]) + "    ],\n")
+            rows = "".join(f"        ({s!r}, {w!r}),\n" for s, w in keep[page])
+            body.append(f"    {page!r}: [\n{rows}    ],\n")
     body.append("}\n")
     path.write_text(head + "".join(body), encoding="utf-8")
     return pending
