@@ -10,13 +10,15 @@ What the rules let through (each is a kind of number that is not a computed resu
 - code: fenced code blocks and inline code spans (commands, their arguments, API calls, file names; the
   transcripts' output lines are compared with what the command prints by ``tests/test_docs_examples.py``);
 - math: ``$...$`` and ``$$...$$`` (constants of equations);
+- the number of a numbered list item or heading (``1. **One way.**``, ``## 2. How large``);
 - markup: MyST roles and directives (``{docvalue}`...```), HTML comments, link targets and URLs, images;
 - references: years (1900-2099), and the number after ``issue``, ``eq``/``equation``, ``Figure``/``Fig.``,
   ``Table``, ``chapter``, ``section``, ``Appendix``, ``p.``/``pp.``/``page``, ``ISO``, ``IEEE``, ``Python``,
-  ``version``, ``step``/``steps N-M`` of a list, and citation forms ``88:76-80``, ``40(5)``, ``31(4-5):199-205``;
+  ``version``, ``sec.``, ``exit status``, ``step``/``steps N-M`` of a list, and citation forms ``88:76-80``, ``40(5)``, ``31(4-5):199-205``;
   the lines of a ``References`` section;
 - a default of the settings table: a number followed by its unit that equals a default of
-  ``stability.settings.defaults.TABLE`` in that unit (``200 Hz``, ``0.75 m/s``, ``70 N m``).
+  ``stability.settings.defaults.TABLE`` in that unit (``200 Hz``, ``0.75 m/s``, ``70 N m``, ``95 %`` for a
+  coverage of 0.95), or the tire data's fitted range (``8 deg``, ``450 N``).
 
 Run ``python docs/_ext/typed_numbers.py`` to list what remains per page, and
 ``python docs/_ext/typed_numbers.py --update-pending`` after converting a page (the allow-list loses the
@@ -44,10 +46,11 @@ _INLINE = [
     re.compile(r"https?://\S+"),                      # URLs
 ]
 _REFERENCE_WORDS = (r"issues?|eqs?\.?|equations?|figures?|figs?\.?|tables?|chapters?|sections?|appendix|"
-                    r"pp?\.|pages?|ISO(?:/TS)?|IEEE|Python|version|v|doi|hfe|steps?|rule")
-_REFERENCE = re.compile(rf"(?:\b(?:{_REFERENCE_WORDS})\s*[-/]?\s*)((?:\d+[-.,]?\s*(?:and|to|or|&)?\s*)+)$",
+                    r"pp?\.|pages?|sec\.|ISO(?:/TS)?|IEEE|Python|version|v|doi|hfe|steps?|rule|status")
+_REFERENCE = re.compile(rf"(?:\b(?:{_REFERENCE_WORDS})\s*[-/]?\s*)((?:\d+[-.,/]?\s*(?:and|to|or|&)?\s*)+)$",
                         re.IGNORECASE)
 _CITATION = re.compile(r"\d+\s*\(\s*\d+(?:-\d+)?\s*\)(?::\s*\d+(?:-\d+)?)?|\d+:\d+(?:-\d+)?")
+_LIST_NUMBER = re.compile(r"^\s*(?:#+\s*)?\d+\.(?=\s)")
 _YEAR = re.compile(r"(?:19|20)\d\d")
 
 
@@ -81,10 +84,14 @@ def _setting_numbers() -> set[tuple[float, str]]:
     sys.path.insert(0, str(ROOT))
     from stability.settings import defaults
 
-    out: set[tuple[float, str]] = set()
+    from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
+
+    out: set[tuple[float, str]] = {(FZ_MAX_N, "N"), (SLIP_MAX_DEG, "deg")}      # the tire data's fitted range
     for d in defaults.TABLE.values():
         vals = d.value if isinstance(d.value, tuple) else (d.value,)
         for v in vals:
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and not d.unit:
+                out.add((round(100 * float(v), 9), "%"))          # a fraction quoted as a percentage
             if isinstance(v, (int, float)) and not isinstance(v, bool) and d.unit:
                 out.add((float(v), d.unit))
                 if d.unit == "s":
@@ -93,7 +100,7 @@ def _setting_numbers() -> set[tuple[float, str]]:
 
 
 def _unit_after(rest: str) -> str:
-    m = re.match(r"\s*(N m/deg|N m|N s|m/s\^2|m/s|rad/s|deg/s|Hz|ms|s|m|N|deg|kg)\b", rest)
+    m = re.match(r"\s*(N m/deg|N m|N s|m/s\^2|m/s|rad/s|deg/s|Hz|ms|s|m|N|deg|kg|%)(?![\w/])", rest)
     return m.group(1) if m else ""
 
 
@@ -104,11 +111,19 @@ def scan_text(page: str, text: str, settings: set[tuple[float, str]] | None = No
     in_fence = False
     in_refs = False
     in_comment = False
+    in_math = False
+    previous = ""
     for no, raw in enumerate(text.splitlines(), 1):
+        tail, previous = previous[-24:], raw
         if _FENCE.match(raw):
             in_fence = not in_fence
             continue
         if in_fence:
+            continue
+        if raw.count("$$") == 1:
+            in_math = not in_math
+            continue
+        if in_math:
             continue
         if in_comment:
             if "-->" in raw:
@@ -121,7 +136,7 @@ def scan_text(page: str, text: str, settings: set[tuple[float, str]] | None = No
             in_refs = bool(re.match(r"#+\s*references\b", raw, re.IGNORECASE))
         if in_refs or raw.lstrip().startswith(("```{", ":::", "![", ".. ")):
             continue
-        line = raw
+        line = _blank(raw, _LIST_NUMBER)
         for p in _INLINE:
             line = _blank(line, p)
         line = _blank(line, _CITATION)
@@ -129,7 +144,7 @@ def scan_text(page: str, text: str, settings: set[tuple[float, str]] | None = No
             num = m.group(0)
             if _YEAR.fullmatch(num):
                 continue
-            if _REFERENCE.search(line[:m.end()]):
+            if _REFERENCE.search(tail + " " + line[:m.end()]):
                 continue
             unit = _unit_after(line[m.end():])
             if unit and (float(num), unit) in settings:

@@ -450,3 +450,15 @@ def assist_faults() -> dict:
                             f"{v['delay_margin'][0]:.1f} ms")
         out[f"turn_{u:g}"] = fixed(turn[u], 1)
     return out
+
+
+# --- docs/getting-started.md ------------------------------------------------------------------------------
+
+@group("getting_started", "python -m stability.critical_speed (stability.analyse(stability.preset('ej-premier')))",
+       cheap=True)
+def getting_started() -> dict:
+    """The default chair's doubling time at 0.75 m/s."""
+    import stability
+
+    div = {d.speed: d for d in stability.analyse(_preset("ej-premier")).divergence}
+    return {"doubling": sig(div[0.75].time_to_double, 2)}
