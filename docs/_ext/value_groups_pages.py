@@ -462,3 +462,64 @@ def getting_started() -> dict:
 
     div = {d.speed: d for d in stability.analyse(_preset("ej-premier")).divergence}
     return {"doubling": sig(div[0.75].time_to_double, 2)}
+
+
+# --- docs/simulator.md: the studies' answers against the step ----------------------------------------------
+
+def _step_rows(law: str) -> Table:
+    """Critical impulses and equal-instability speeds at several fixed steps with one pin-friction law, and
+    with the adaptive scheme (event-located stick-slip)."""
+    from stability.settings.run import RunSpec
+    from stability.study import critical_impulses, equal_instability_speeds
+
+    def run(dt, model="exact"):
+        return RunSpec(scheme="adaptive", model=model) if dt is None else RunSpec(dt=dt, friction_law=law,
+                                                                                  model=model)
+
+    def ci(chair, speed):
+        return lambda dt: f"{critical_impulses(chair, [speed], run(dt))[0].impulse_Ns:.3g}"
+
+    def ei(chair, model, digits):
+        def f(dt):
+            r = equal_instability_speeds([chair], run(dt, model), progress=False)[0]
+            return "above 3" if r.status == "above" else f"{r.speed:.{digits}g}"
+        return f
+
+    ej, pf, rv = _preset("ej-premier"), _preset("power-fwd"), _preset("revised")
+    pf6 = pf.replace(trail=0.06)
+    if law == "kinetic":
+        steps = (1.0, 0.5, 0.25, 0.125, None)
+        rows = [("E&J Premier, critical impulse at 0.75 m/s (N s)", ci(ej, 0.75), (1.0, 0.5, 0.25)),
+                ("E&J Premier, critical impulse at 1.0 m/s (N s)", ci(ej, 1.0), steps),
+                ("power-fwd with a 6 cm trail, critical impulse at 0.75 m/s (N s)", ci(pf6, 0.75), (1.0, 0.5, 0.25)),
+                ("revised, equal-instability speed (m/s, thesis model)", ei(rv, "thesis", 4), (1.0, 0.5, 0.25)),
+                ("power-fwd, equal-instability speed (m/s, exact model)", ei(pf, "exact", 3), steps)]
+    else:
+        steps = (1.0, 0.5, 0.25, None)
+        rows = [("E&J Premier, critical impulse at 0.75 m/s (N s)", ci(ej, 0.75), steps),
+                ("E&J Premier, critical impulse at 1.0 m/s (N s)", ci(ej, 1.0), steps),
+                ("E&J Premier, critical impulse at 1.2 m/s (N s)", ci(ej, 1.2), steps),
+                ("power-fwd, critical impulse at 1.5 m/s (N s)", ci(pf, 1.5), steps),
+                ("power-fwd with a 6 cm trail, critical impulse at 0.75 m/s (N s)", ci(pf6, 0.75), steps),
+                ("revised, equal-instability speed (m/s, thesis model)", ei(rv, "thesis", 4), steps),
+                ("power-fwd, equal-instability speed (m/s, exact model)", ei(pf, "exact", 3), steps)]
+    header = ("chair, measure" + (" (stick-slip)" if law != "kinetic" else ""),
+              *("adaptive" if s is None else f"{s:g} ms" for s in steps))
+    body = []
+    for label, f, used in rows:
+        body.append((label, *(f(None if s is None else s * 1e-3) if s in used else "" for s in steps)))
+    return Table(header, tuple(body))
+
+
+@group("step_kinetic", "stability.study.critical_impulses / equal_instability_speeds with "
+       "RunSpec(dt=DT, friction_law='kinetic') and RunSpec(scheme='adaptive')")
+def step_kinetic() -> dict:
+    """Program WCHAIR's kinetic pin friction: the measures against the step."""
+    return {"table": _step_rows("kinetic")}
+
+
+@group("step_stick_slip", "stability.study.critical_impulses / equal_instability_speeds with "
+       "RunSpec(dt=DT, friction_law='stick-slip') and RunSpec(scheme='adaptive')")
+def step_stick_slip() -> dict:
+    """The stick-slip law: the measures against the step."""
+    return {"table": _step_rows("stick-slip")}
