@@ -14,7 +14,8 @@ What the rules let through (each is a kind of number that is not a computed resu
 - markup: MyST roles and directives (``{docvalue}`...```), HTML comments, link targets and URLs, images;
 - references: years (1900-2099), and the number after ``issue``, ``eq``/``equation``, ``Figure``/``Fig.``,
   ``Table``, ``chapter``, ``section``, ``Appendix``, ``p.``/``pp.``/``page``, ``ISO``, ``IEEE``, ``Python``,
-  ``version``, ``sec.``, ``exit status``, ``step``/``steps N-M`` of a list, and citation forms ``88:76-80``, ``40(5)``, ``31(4-5):199-205``;
+  ``version``, ``sec.``, ``exit status``, ``step``/``steps N-M`` of a list, and citation forms ``88:76-80``,
+  ``40(5)``, ``31(4-5):199-205``;
   the lines of a ``References`` section;
 - a default of the settings table: a number followed by its unit that equals a default of
   ``stability.settings.defaults.TABLE`` in that unit (``200 Hz``, ``0.75 m/s``, ``70 N m``, ``95 %`` for a
@@ -83,7 +84,6 @@ def _setting_numbers() -> set[tuple[float, str]]:
     """(value, unit) of every numeric default of the settings table, with ms for seconds."""
     sys.path.insert(0, str(ROOT))
     from stability.settings import defaults
-
     from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
     out: set[tuple[float, str]] = {(FZ_MAX_N, "N"), (SLIP_MAX_DEG, "deg")}      # the tire data's fitted range
