@@ -104,6 +104,24 @@ def _unit_after(rest: str) -> str:
     return m.group(1) if m else ""
 
 
+def _line_hits(page: str, no: int, raw: str, tail: str, settings: set[tuple[float, str]]) -> list[Hit]:
+    """The typed numbers of one line of prose (``tail``: the end of the line before, for a reference)."""
+    line = _blank(raw, _LIST_NUMBER)
+    for p in _INLINE:
+        line = _blank(line, p)
+    line = _blank(line, _CITATION)
+    hits = []
+    for m in NUMBER.finditer(line):
+        num = m.group(0)
+        if _YEAR.fullmatch(num) or _REFERENCE.search(tail + " " + line[:m.end()]):
+            continue
+        unit = _unit_after(line[m.end():])
+        if unit and (float(num), unit) in settings:
+            continue
+        hits.append(Hit(page, no, num, m.start(), raw))
+    return hits
+
+
 def scan_text(page: str, text: str, settings: set[tuple[float, str]] | None = None) -> list[Hit]:
     """Every typed number of one page that the rules do not let through."""
     settings = _setting_numbers() if settings is None else settings
@@ -136,20 +154,7 @@ def scan_text(page: str, text: str, settings: set[tuple[float, str]] | None = No
             in_refs = bool(re.match(r"#+\s*references\b", raw, re.IGNORECASE))
         if in_refs or raw.lstrip().startswith(("```{", ":::", "![", ".. ")):
             continue
-        line = _blank(raw, _LIST_NUMBER)
-        for p in _INLINE:
-            line = _blank(line, p)
-        line = _blank(line, _CITATION)
-        for m in NUMBER.finditer(line):
-            num = m.group(0)
-            if _YEAR.fullmatch(num):
-                continue
-            if _REFERENCE.search(tail + " " + line[:m.end()]):
-                continue
-            unit = _unit_after(line[m.end():])
-            if unit and (float(num), unit) in settings:
-                continue
-            hits.append(Hit(page, no, num, m.start(), raw))
+        hits += _line_hits(page, no, raw, tail, settings)
     return hits
 
 
