@@ -523,3 +523,31 @@ def step_kinetic() -> dict:
 def step_stick_slip() -> dict:
     """The stick-slip law: the measures against the step."""
     return {"table": _step_rows("stick-slip")}
+
+
+# --- docs/tipping.md --------------------------------------------------------------------------------------
+
+TIP_CHAIRS = ("ej-premier", "ej-premier-front-caster", "revised", "power-fwd", "manual-front-caster")
+
+
+@group("tipping", "python -m stability.tipping --chair NAME (stability.tipping.tip_angles(chair))", cheap=True)
+def tipping() -> dict:
+    """ISO 7176-1 static tip angles of the presets, and the E&J Premier's closed form toward its casters."""
+    import math
+
+    from stability.tipping import tip_angles
+
+    rows, out = [], {}
+    for name in TIP_CHAIRS:
+        t = tip_angles(_preset(name))
+        cells = (t.toward_main_wheels_deg, t.toward_casters_deg, t.lateral_left_deg, t.lateral_right_deg,
+                 t.smallest_deg)
+        rows.append((name, *(fixed(v, 1) for v in cells)))
+        out[f"{name}.main"], out[f"{name}.casters"] = fixed(cells[0], 1), fixed(cells[1], 1)
+    ej = _preset("ej-premier")
+    arm = ej.s2 - ej.trail
+    out.update(ej_arm=f"{arm:.3f}", ej_h=f"{ej.h:.2f}", ej_closed=fixed(math.degrees(math.atan2(arm, ej.h)), 2),
+               ej_slope=fixed(math.degrees(math.atan2(arm, ej.h)), 0), revised_s1=f"{_preset('revised').s1:g}")
+    out["table"] = Table(("chair", "toward main wheels (deg)", "toward casters (deg)", "left (deg)", "right (deg)",
+                          "smallest (deg)"), tuple(rows))
+    return out
