@@ -551,3 +551,31 @@ def tipping() -> dict:
     out["table"] = Table(("chair", "toward main wheels (deg)", "toward casters (deg)", "left (deg)", "right (deg)",
                           "smallest (deg)"), tuple(rows))
     return out
+
+
+# --- docs/shimmy.md ---------------------------------------------------------------------------------------
+
+@group("shimmy_band", "python -m stability.shimmy --chair NAME --speeds 1 "
+       "(stability.shimmy.band.shimmy_band(chair, [1.0]))")
+def shimmy_band_group() -> dict:
+    """The shimmy-free trail band at 1 m/s for the presets and the measured example chair."""
+    import math
+
+    from stability import chair as chair_mod
+    from stability.shimmy.band import shimmy_band
+    from value_groups import ROOT
+
+    chairs = [chair_mod.preset(n) for n in chair_mod.preset_names()]
+    chairs.append(chair_mod.load(ROOT / "docs" / "examples" / "measured_chair.toml"))
+
+    def edge(x: float) -> str:
+        return "every trail shimmies" if x == -math.inf else f"{x * 100:+.2f}"
+
+    rows = []
+    for c in chairs:
+        b = shimmy_band(c, [1.0])
+        lo, hi = b.shimmy_margin_interval_m
+        rows.append((c.name, f"{c.trail * 100:g}", b.describe(0), f"{b.shimmy_margin_m * 100:+.2f}",
+                     f"{b.damping_ratio[0]:.4f}", f"{edge(lo)} to {edge(hi)}"))
+    return {"table": Table(("chair", "trail (cm)", "shimmy-free trail (cm)", "margin (cm)",
+                            "damping ratio at its trail", "margin over the estimate ranges (cm)"), tuple(rows))}
