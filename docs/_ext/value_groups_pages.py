@@ -544,6 +544,7 @@ def tipping() -> dict:
                  t.smallest_deg)
         rows.append((name, *(fixed(v, 1) for v in cells)))
         out[f"{name}.main"], out[f"{name}.casters"] = fixed(cells[0], 1), fixed(cells[1], 1)
+        out[f"{name}.side"] = fixed(cells[2], 1)
     ej = _preset("ej-premier")
     arm = ej.s2 - ej.trail
     out.update(ej_arm=f"{arm:.3f}", ej_h=f"{ej.h:.2f}", ej_closed=fixed(math.degrees(math.atan2(arm, ej.h)), 2),
@@ -579,3 +580,65 @@ def shimmy_band_group() -> dict:
                      f"{b.damping_ratio[0]:.4f}", f"{edge(lo)} to {edge(hi)}"))
     return {"table": Table(("chair", "trail (cm)", "shimmy-free trail (cm)", "margin (cm)",
                             "damping ratio at its trail", "margin over the estimate ranges (cm)"), tuple(rows))}
+
+
+# --- docs/advise.md ---------------------------------------------------------------------------------------
+
+ADVISE_CHAIRS = ("ej-premier", "revised", "ej-premier-front-caster", "power-fwd", "manual-front-caster",
+                 "measured-example")
+
+
+@group("advise_table", "python -m stability.advise --chair NAME (stability.advise.advise(chair))")
+def advise_table() -> dict:
+    """The advisor's verdict and recommendation for the presets and the measured example chair."""
+    from stability import chair as chair_mod
+    from stability.advise import advise
+    from value_groups import ROOT
+
+    def g(v):
+        return "?" if v is None else f"{v:.3g}"
+
+    def fm(x, status):
+        pre = {"above": "> ", "never": "> ", "below": "< "}.get(status, "")
+        lo, hi = g(x.low), g(x.high)
+        return f"{pre}{x.value:.3g}" + ("" if lo == hi else f" ({lo}-{hi})")      # no degenerate range
+
+    import warnings
+
+    rows, out = [], {}
+    for name in ADVISE_CHAIRS:
+        c = (chair_mod.load(ROOT / "docs" / "examples" / "measured_chair.toml") if name == "measured-example"
+             else _preset(name))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")     # tire-range notes of candidate chairs (the verdict carries them)
+            a = advise(c)
+        v, r = a.verdict, a.recommendations[0]
+        p = r.candidate.measures
+        rows.append((name, fm(v.critical_impulse_Ns, v.critical_impulse_status),
+                     fm(v.equal_instability_speed_m_s, v.equal_instability_status),
+                     f"{v.static_stability_deg.value:.1f}", f"{v.shimmy_margin_m.value * 100:+.2f}", r.candidate.label,
+                     fm(p.critical_impulse_Ns, p.critical_impulse_status),
+                     fm(p.equal_instability_speed_m_s, p.equal_instability_status)))
+        out[f"{name}.eis"] = f"{v.equal_instability_speed_m_s.value:.3g}"
+    ej, rv = float(out["ej-premier.eis"]), float(out["revised.eis"])
+    out["eis_gain_pct"] = pct(rv / ej - 1)
+    out["table"] = Table(("chair", "critical impulse", "equal-instability speed", "tip", "shimmy margin",
+                          "recommendation", "predicted critical impulse", "predicted equal-instability speed"),
+                         tuple(rows))
+    return out
+
+
+@group("advise_linear", "stability.linear.eigenvalues_vs_speed(chair, [0.75]) (largest real part); "
+       "sqrt(chair.i_z / chair.m)", cheap=True)
+def advise_linear() -> dict:
+    """The frictionless growth rates of the E&J Premier and the revised design, and the peak's s1."""
+    import math
+
+    import numpy as np
+
+    from stability.linear import eigenvalues_vs_speed
+
+    ej, rv = _preset("ej-premier"), _preset("revised")
+    r_ej, r_rv = (float(np.max(eigenvalues_vs_speed(c, [0.75], track=False).real)) for c in (ej, rv))
+    return {"ej": fixed(r_ej, 2), "revised": fixed(r_rv, 2), "peak_s1": f"{math.sqrt(ej.i_z / ej.m):.3f}",
+            "revised_s1": f"{rv.s1:g}"}
