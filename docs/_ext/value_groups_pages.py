@@ -562,9 +562,10 @@ def shimmy_band_group() -> dict:
     """The shimmy-free trail band at 1 m/s for the presets and the measured example chair."""
     import math
 
+    from value_groups import ROOT
+
     from stability import chair as chair_mod
     from stability.shimmy.band import shimmy_band
-    from value_groups import ROOT
 
     chairs = [chair_mod.preset(n) for n in chair_mod.preset_names()]
     chairs.append(chair_mod.load(ROOT / "docs" / "examples" / "measured_chair.toml"))
@@ -591,9 +592,10 @@ ADVISE_CHAIRS = ("ej-premier", "revised", "ej-premier-front-caster", "power-fwd"
 @group("advise_table", "python -m stability.advise --chair NAME (stability.advise.advise(chair))")
 def advise_table() -> dict:
     """The advisor's verdict and recommendation for the presets and the measured example chair."""
+    from value_groups import ROOT
+
     from stability import chair as chair_mod
     from stability.advise import advise
-    from value_groups import ROOT
 
     def g(v):
         return "?" if v is None else f"{v:.3g}"
