@@ -644,3 +644,37 @@ def advise_linear() -> dict:
     r_ej, r_rv = (float(np.max(eigenvalues_vs_speed(c, [0.75], track=False).real)) for c in (ej, rv))
     return {"ej": fixed(r_ej, 2), "revised": fixed(r_rv, 2), "peak_s1": f"{math.sqrt(ej.i_z / ej.m):.3f}",
             "revised_s1": f"{rv.s1:g}"}
+
+
+# --- docs/studies.md --------------------------------------------------------------------------------------
+
+#: The uncertainty file of docs/studies.md's nonlinear-interval table: s1 std 0.01 m, I_z std 0.3 kg m^2, both
+#: pins' friction +-30 % uniform (one draw shared).
+STUDIES_UNCERTAINTY = ('[pin_friction]\nfields = ["pin_friction_left", "pin_friction_right"]\n'
+                       'distribution = "uniform"\nlow = -0.3\nhigh = 0.3\nrelative = true\n'
+                       '\n[i_z]\ndistribution = "normal"\nstd = 0.3\n\n[s1]\ndistribution = "normal"\nstd = 0.01\n')
+
+
+@group("studies_nonlinear", "python -m stability.critical_speed --chair NAME --uncertainty FILE --nonlinear "
+       "(stability.study.uncertain.nonlinear_intervals(chair, loads_uncertainty(FILE)); 200 draws, seed 0)")
+def studies_nonlinear() -> dict:
+    """95 % intervals and variance shares of the critical impulse and the equal-instability speed."""
+    from stability.study.uncertain import nonlinear_intervals
+    from stability.uncertainty import loads_uncertainty
+
+    names = {"pin_friction": "pin friction", "i_z": "I_z", "s1": "s1"}
+
+    def shares(m) -> str:
+        return ", ".join(f"{names.get(k, k)} {100 * s:.0f} %" for k, s in m.shares if round(100 * s) >= 1)
+
+    rows, out = [], {}
+    top = []
+    for name in ("ej-premier", "revised"):
+        iv = nonlinear_intervals(_preset(name), loads_uncertainty(STUDIES_UNCERTAINTY))
+        k, e = iv.critical_impulse, iv.equal_instability
+        rows.append((name, f"{k.nominal:.3g} N s, 95 %: {k.low:.4g}-{k.high:.4g} N s ({shares(k)})",
+                     f"{e.nominal:.3g} m/s, 95 %: {e.low:.4g}-{e.high:.4g} ({shares(e)})"))
+        top += [dict(m.shares).get("pin_friction", 0.0) for m in (k, e)]
+    out["friction_share"] = _span([100 * x for x in top], lambda x: fixed(x, 0))
+    out["table"] = Table(("chair", "critical impulse at 0.75 m/s", "equal-instability speed"), tuple(rows))
+    return out
