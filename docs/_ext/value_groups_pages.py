@@ -622,8 +622,10 @@ def advise_table() -> dict:
                      fm(p.critical_impulse_Ns, p.critical_impulse_status),
                      fm(p.equal_instability_speed_m_s, p.equal_instability_status)))
         out[f"{name}.eis"] = f"{v.equal_instability_speed_m_s.value:.3g}"
+        out[f"{name}.ci"] = f"{v.critical_impulse_Ns.value:.3g}"
     ej, rv = float(out["ej-premier.eis"]), float(out["revised.eis"])
     out["eis_gain_pct"] = pct(rv / ej - 1)
+    out["ci_gain_pct"] = pct(float(out["revised.ci"]) / float(out["ej-premier.ci"]) - 1)
     out["table"] = Table(("chair", "critical impulse", "equal-instability speed", "tip", "shimmy margin",
                           "recommendation", "predicted critical impulse", "predicted equal-instability speed"),
                          tuple(rows))
@@ -677,4 +679,41 @@ def studies_nonlinear() -> dict:
         top += [dict(m.shares).get("pin_friction", 0.0) for m in (k, e)]
     out["friction_share"] = _span([100 * x for x in top], lambda x: fixed(x, 0))
     out["table"] = Table(("chair", "critical impulse at 0.75 m/s", "equal-instability speed"), tuple(rows))
+    return out
+
+
+# --- docs/compare.md --------------------------------------------------------------------------------------
+
+@group("compare_effects", "python -m stability.compare ej-premier revised "
+       "(stability.compare.compute.single_effects(ej_premier, revised, 'revised'))", cheap=True)
+def compare_effects() -> dict:
+    """Single-parameter effects ej-premier -> revised and -> the front-caster chair; the growth rates."""
+    import numpy as np
+
+    from stability.compare.compute import single_effects
+    from stability.linear import eigenvalues_vs_speed, zero_width
+
+    ej, rv, fc = _preset("ej-premier"), _preset("revised"), _preset("ej-premier-front-caster")
+
+    def num(x, nd):
+        return "none" if x is None else ("+" if x >= 0 else "") + fixed(x, nd)
+
+    es = single_effects(ej, rv, "revised")
+    rows = [(f"{e.field} {e.reference_value:g} -> {e.value:g}", num(e.growth_rate, 4), num(e.locked_critical_speed, 2))
+            for e in es.effects]
+    rows += [("total", num(es.total_growth_rate, 4), num(es.total_locked_critical_speed, 2)),
+             ("interaction", num(es.remainder_growth_rate, 4), num(es.remainder_locked_critical_speed, 2))]
+    out = {"table": Table(("field", "growth rate at 0.75 m/s (1/s)", "locked critical speed (m/s)"), tuple(rows))}
+    s1 = next(e for e in es.effects if e.field == "s1")
+    out["s1_effect"] = num(s1.growth_rate, 3)
+    r_ej, r_rv, r_fc = (float(np.max(eigenvalues_vs_speed(c, [0.75], track=False).real)) for c in (ej, rv, fc))
+    out.update(ej=fixed(r_ej, 3), revised=fixed(r_rv, 3), rel_pct=signed(100 * (r_rv / r_ej - 1), 0), fc=fixed(r_fc, 2))
+    ef = single_effects(ej, fc, "ej-premier-front-caster")
+    cp = next(e for e in ef.effects if e.field == "caster_position")
+    out["caster_position_effect"] = fixed(cp.growth_rate, 2)
+    out["fc_kus"] = signed(zero_width(fc).understeer_coefficient, 4)
+    import stability
+
+    for key, c in (("ej_locked", ej), ("revised_locked", rv)):
+        out[key] = fixed(stability.analyse(c).locked_crossings[0].speed, 1)
     return out
