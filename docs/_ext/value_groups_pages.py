@@ -717,3 +717,25 @@ def compare_effects() -> dict:
     for key, c in (("ej_locked", ej), ("revised_locked", rv)):
         out[key] = fixed(stability.analyse(c).locked_crossings[0].speed, 1)
     return out
+
+
+@group("shimmy_corners", "stability.shimmy.chair.critical_trail(ej_premier, 1.0, CasterCompliance("
+       "relaxation_length=SIGMA, lateral_stiffness=K))")
+def shimmy_corners() -> dict:
+    """The E&J Premier's critical trail at 1 m/s over the two compliance estimates."""
+    import math
+
+    from stability.shimmy.chair import CasterCompliance, critical_trail
+    from stability.shimmy.band import TRAIL_SEARCH_M
+
+    ej = _preset("ej-premier")
+    sigmas, ks = (0.01, 0.02, 0.04), (2e4, 5e4, 1e5, 2e5)
+    rows = []
+    for k in ks:
+        cells = []
+        for s in sigmas:
+            t = critical_trail(ej, 1.0, CasterCompliance(relaxation_length=s, lateral_stiffness=k))
+            cells.append(f"> {100 * TRAIL_SEARCH_M[1]:g}" if math.isinf(t) else fixed(100 * t, 1))
+        rows.append((f"{k / 1e3:g} kN/m", *cells))
+    return {"table": Table(("lateral stiffness \\ relaxation length", *(f"{1e3 * s:g} mm" for s in sigmas)),
+                           tuple(rows))}
