@@ -725,8 +725,8 @@ def shimmy_corners() -> dict:
     """The E&J Premier's critical trail at 1 m/s over the two compliance estimates."""
     import math
 
-    from stability.shimmy.chair import CasterCompliance, critical_trail
     from stability.shimmy.band import TRAIL_SEARCH_M
+    from stability.shimmy.chair import CasterCompliance, critical_trail
 
     ej = _preset("ej-premier")
     sigmas, ks = (0.01, 0.02, 0.04), (2e4, 5e4, 1e5, 2e5)
