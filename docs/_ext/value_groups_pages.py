@@ -739,3 +739,27 @@ def shimmy_corners() -> dict:
         rows.append((f"{k / 1e3:g} kN/m", *cells))
     return {"table": Table(("lateral stiffness \\ relaxation length", *(f"{1e3 * s:g} mm" for s in sigmas)),
                            tuple(rows))}
+
+
+@group("shimmy_results", "python -m stability.shimmy --chair NAME --speeds 0.5,1,3 "
+       "(stability.shimmy.chair.caster_summary(chair, [0.5, 1, 3]))", cheap=True)
+def shimmy_results() -> dict:
+    """Shimmy mode, critical trail and its range, and the pin-friction trail of three presets."""
+    import math
+
+    from stability.shimmy.band import TRAIL_SEARCH_M
+    from stability.shimmy.chair import caster_summary
+
+    def cm(x: float) -> str:
+        return f"> {100 * TRAIL_SEARCH_M[1]:g} cm" if math.isinf(x) else f"{100 * x:.1f} cm"
+
+    rows = []
+    for name in ("ej-premier", "revised", "ej-premier-front-caster"):
+        c = _preset(name)
+        s = caster_summary(c, [0.5, 1.0, 3.0])
+        rows.append((name, f"{100 * c.trail:g} cm",
+                     f"{s.shimmy_frequency_hz[1]:.1f} Hz, {'damped' if s.stable[1] else 'GROWING'}",
+                     cm(s.critical_trail[1]), f"{cm(s.critical_trail_low[1])} to {cm(s.critical_trail_high[1])}",
+                     " / ".join(f"{100 * x:.1f}" for x in s.friction_trail) + " cm"))
+    return {"table": Table(("chair", "trail", "shimmy mode", "linear shimmy below trail", "over the compliance range",
+                            "pin friction holds 5 deg shimmy down to trail (0.5 / 1 / 3 m/s)"), tuple(rows))}
