@@ -763,3 +763,28 @@ def shimmy_results() -> dict:
                      " / ".join(f"{100 * x:.1f}" for x in s.friction_trail) + " cm"))
     return {"table": Table(("chair", "trail", "shimmy mode", "linear shimmy below trail", "over the compliance range",
                             "pin friction holds 5 deg shimmy down to trail (0.5 / 1 / 3 m/s)"), tuple(rows))}
+
+
+@group("shimmy_chair_model", "python -m stability.shimmy --chair NAME --speeds 0.5,1,3 --chair-model "
+       "(stability.shimmy.chair_modes.chair_shimmy(chair, [0.5, 1, 3], pin=PIN); "
+       "stability.shimmy.chair.critical_trail(chair, 1.0))")
+def shimmy_chair_model() -> dict:
+    """The chair model's shimmy mode with rigid and compliant pins against the towed wheel, two presets."""
+    from stability.shimmy.chair import critical_trail
+    from stability.shimmy.chair_modes import chair_shimmy
+    from stability.shimmy.compliance import CasterCompliance
+
+    sigma = CasterCompliance().relaxation_length
+    rows = []
+    for name in ("ej-premier", "revised"):
+        c = _preset(name)
+        for pin, nd in (("rigid", 1), ("compliant", 2)):
+            m = chair_shimmy(c, [0.5, 1.0, 3.0], pin=pin)
+            towed = f"L > sigma: {100 * sigma:.2f} cm" if pin == "rigid" else \
+                f"{100 * critical_trail(c, 1.0):.2f} cm"
+            rows.append((f"{name} ({100 * c.trail:g} cm)", pin,
+                         " / ".join(f"{f:.{nd}f}" for f in m.frequency_hz) + " Hz",
+                         " / ".join(f"{z:.3f}" for z in m.damping_ratio), f"{100 * m.critical_trail[1]:.2f} cm",
+                         towed))
+    return {"table": Table(("chair", "pins", "shimmy mode 0.5 / 1 / 3 m/s", "damping ratio 0.5 / 1 / 3 m/s",
+                            "critical trail", "towed wheel (same inputs)"), tuple(rows))}
