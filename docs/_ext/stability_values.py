@@ -118,6 +118,9 @@ def _append_sources(app: Any, doctree: nodes.document) -> None:
             used.append(name)
     if not used:
         return
+    if not hasattr(app.env, "docvalue_docs"):
+        app.env.docvalue_docs = set()
+    app.env.docvalue_docs.add(app.env.docname)
     section = nodes.section(ids=["computed-numbers-on-this-page"], names=["computed numbers on this page"])
     section += nodes.title(text="Computed numbers on this page")
     section += nodes.paragraph(text="Every number marked as a link on this page was computed when the site was "
@@ -138,7 +141,30 @@ def _append_sources(app: Any, doctree: nodes.document) -> None:
     (top if top is not None else doctree).append(section)
 
 
+def _outdated(app: Any, env: Any, added: set, changed: set, removed: set) -> list[str]:
+    """Pages that quote computed values are read again when the package's sources changed since the last build
+    (an incremental build would otherwise keep the old numbers of an unchanged page)."""
+    key = value_groups.source_hash()
+    old, env.docvalues_hash = getattr(env, "docvalues_hash", None), key
+    if old == key:
+        return []
+    return sorted(d for d in getattr(env, "docvalue_docs", set()) if d in env.found_docs)
+
+
+def _purge(app: Any, env: Any, docname: str) -> None:
+    getattr(env, "docvalue_docs", set()).discard(docname)
+
+
+def _merge(app: Any, env: Any, docnames: set, other: Any) -> None:
+    if not hasattr(env, "docvalue_docs"):
+        env.docvalue_docs = set()
+    env.docvalue_docs |= getattr(other, "docvalue_docs", set())
+
+
 def setup(app: Any) -> dict[str, Any]:
+    app.connect("env-get-outdated", _outdated)
+    app.connect("env-purge-doc", _purge)
+    app.connect("env-merge-info", _merge)
     app.add_role("docvalue", DocValueRole())
     app.add_directive("docvalue-table", DocValueTable)
     app.connect("doctree-read", _append_sources)
