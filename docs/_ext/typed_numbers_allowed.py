@@ -470,10 +470,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('gave 4.99 against', 'pending'),
         ('gave 4.99 against 3.22 N s), and', 'pending'),
     ],
-    'docs/contributing-docs.md': [
-        ('computes every group (about 90 s of CPU', 'pending'),
-        ('the shared 2-core machine,', 'pending'),
-    ],
     'docs/driver.md': [
         ('{docvalue}`driver_limits.usual_pct` % at reaction times of 0.3 s and more,', 'parameter'),
         ('at the usual reaction times (0.3 s:', 'parameter'),
