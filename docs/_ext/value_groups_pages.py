@@ -788,3 +788,31 @@ def shimmy_chair_model() -> dict:
                          towed))
     return {"table": Table(("chair", "pins", "shimmy mode 0.5 / 1 / 3 m/s", "damping ratio 0.5 / 1 / 3 m/s",
                             "critical trail", "towed wheel (same inputs)"), tuple(rows))}
+
+
+@group("assist_torque", "stability.assist.torque_requirement(schedule(power_fwd, 0.5:3:0.25, 'gyro')) "
+       "(speeds 0.5, 1, 2, 3 m/s) and traction_limit(...)")
+def assist_torque() -> dict:
+    """Peak and RMS differential torque per wheel for the reference push and the commanded turn; the limits."""
+    import dataclasses
+    import warnings
+
+    import numpy as np
+
+    from stability import assist
+    from stability.assist.driving import traction_limit
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")    # python-control's overflow note at a huge candidate frequency (harmless)
+        sched = assist.schedule(_preset("power-fwd"), np.arange(0.5, 3.0001, 0.25), "gyro")
+        rows = assist.torque_requirement(sched)
+
+    def span(attr: str, f=lambda x: sig(x, 2)) -> str:
+        return _span([abs(getattr(r, attr)) for r in rows], f)
+
+    wet = dataclasses.replace(sched, drive=dataclasses.replace(sched.drive, traction_coefficient=0.4))
+    return {"push_peak": span("push_peak_N_m"), "push_rms": span("push_rms_N_m", lambda x: fixed(x, 1)),
+            "turn_peak": span("turn_peak_N_m", lambda x: fixed(x, 0)), "turn_rms": span("turn_rms_N_m"),
+            "steady": span("steady_turn_N_m", lambda x: fixed(x, 0)),
+            "motor": f"{rows[0].motor_limit_N_m:g}", "traction": fixed(traction_limit(sched), 0),
+            "mu": f"{sched.drive.traction_coefficient:g}", "traction_wet": fixed(traction_limit(wet), 0)}
