@@ -18,7 +18,7 @@ REASONS = {
     "pending": "a computed number on a page not yet converted to value groups (issue 35); only to be removed",
 }
 
-PENDING_LIMIT = 1362
+PENDING_LIMIT = 1361
 
 ALLOWED: dict[str, list[tuple[str, str]]] = {
     'README.md': [
@@ -199,9 +199,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('torque *against* the turn (-6 N m at 1', 'pending'),
         ('continuous one less T/2 (hold) and', 'pending'),
         ('(hold) and T (computation) within 0.1 T; the gyro', 'pending'),
-        ('Linear loop, straight command, 20 s: without', 'pending'),
-        ('bias, -2.0 deg (0.1 deg/s) and -20.0 deg (1 deg/s);', 'pending'),
-        ('T_b` (final-value theorem): -0.1 and -1.0', 'pending'),
         ('agrees (1 deg/s, 10', 'pending'),
         ('agrees (1 deg/s, 10 s: -10 deg without,', 'pending'),
         ('deg/s, 10 s: -10 deg without, -1 deg with).', 'pending'),
@@ -443,6 +440,8 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('wheel in the nonlinear loop (0.5, 1, 2 and', 'pending'),
         ('{docvalue}`assist_torque.mu`, dry floor; 0.4 on a wet', 'pending'),
         ("{docvalue}`assist_torque.traction_wet` N m). Figure 9-4's 129 N m is an", 'pending'),
+        ('design, 1 m/s), straight command, 20 s: without', 'pending'),
+        ('{docvalue}`assist_bias.without_1` deg (1 deg/s);', 'pending'),
     ],
     'docs/bench.md': [
         ("statement of ISO 7176-2's scoring: **0** no wheel", 'structure'),

@@ -816,3 +816,24 @@ def assist_torque() -> dict:
             "steady": span("steady_turn_N_m", lambda x: fixed(x, 0)),
             "motor": f"{rows[0].motor_limit_N_m:g}", "traction": fixed(traction_limit(sched), 0),
             "mu": f"{sched.drive.traction_coefficient:g}", "traction_wet": fixed(traction_limit(wet), 0)}
+
+
+@group("assist_bias", "stability.assist.tracking.heading_drift(design(power_fwd, 1.0, 'gyro'), BIAS, 20, "
+       "bias_time_constant=0 or GyroSensor().bias_time_constant_s)", cheap=True)
+def assist_bias() -> dict:
+    """Heading after 20 s of straight driving with a gyro bias, without and with the bias estimate (linear)."""
+    import warnings
+
+    from stability import assist
+    from stability.assist.tracking import heading_drift
+    from stability.assist.weights import GyroSensor
+
+    tb = GyroSensor().bias_time_constant_s
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        d = assist.design(_preset("power-fwd"), 1.0, "gyro")
+        out = {"tb": f"{tb:g}"}
+        for b in (0.1, 1.0):
+            out[f"without_{b:g}"] = fixed(heading_drift(d, b, 20.0), 1)
+            out[f"with_{b:g}"] = fixed(heading_drift(d, b, 20.0, bias_time_constant=tb), 1)
+    return out
