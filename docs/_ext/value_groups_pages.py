@@ -378,12 +378,20 @@ def assist_reverse() -> dict:
     return out
 
 
-@group("assist_standstill", "stability.assist.pivot_inertia(power_fwd)", cheap=True)
+@group("assist_standstill", "stability.assist.pivot_inertia(power_fwd); eigenvalues of "
+       "stability.linear.state_matrices(power_fwd, 0.02)", cheap=True)
 def assist_standstill() -> dict:
-    """The pivot inertia about the drive-axle midpoint."""
-    from stability import assist
+    """The pivot inertia about the drive-axle midpoint; the linear model's eigenvalues at 0.02 m/s."""
+    import numpy as np
 
-    return {"pivot_inertia": fixed(assist.pivot_inertia(_preset("power-fwd")), 1)}
+    from stability import assist, linear
+
+    c = _preset("power-fwd")
+    u = 0.02
+    e = np.sort(np.linalg.eigvals(linear.state_matrices(c, u, "exact", "free")[0]).real)
+    return {"pivot_inertia": fixed(assist.pivot_inertia(c), 1), "u": f"{u:g}",
+            "fast": ", ".join(f"{x:.2g}".replace("e+0", "e") for x in e[:3]),
+            "swivel": fixed(-u / c.trail, 2), "swivel_eig": fixed(e[3], 2), "divergence_per_u": fixed(e[-1] / u, 2)}
 
 
 @group("assist_faults", "python -m stability.assist --chair power-fwd --speeds 0.5:5:0.25 --faults "
