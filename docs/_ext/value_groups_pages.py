@@ -845,3 +845,21 @@ def assist_bias() -> dict:
             out[f"without_{b:g}"] = fixed(heading_drift(d, b, 20.0), 1)
             out[f"with_{b:g}"] = fixed(heading_drift(d, b, 20.0, bias_time_constant=tb), 1)
     return out
+
+
+@group("adaptive_stop", "python -m stability.simulate --chair power-fwd --speed 1.5 --scheme adaptive "
+       "--push-force 400 (stability.simulate.simulate(power_fwd, 1.5, RunSpec(scheme='adaptive', push_force=400)))")
+def adaptive_stop() -> dict:
+    """Where the adaptive scheme's run of a spin-out ends, and why."""
+    import re
+
+    from stability.settings.run import RunSpec
+    from stability.simulate import simulate
+
+    r = simulate(_preset("power-fwd"), 1.5, RunSpec(scheme="adaptive", push_force=400.0, push_duration=0.1,
+                                                      model="exact"))
+    m = re.search(r"at t = ([\d.]+) s .*load (-?[\d.]+) N, yaw rate (-?[\d.]+) rad/s", r.stop_reason)
+    if m is None:
+        raise ValueError(f"adaptive_stop: unexpected stop reason {r.stop_reason!r}")
+    return {"fail_s": m.group(1), "load_N": m.group(2), "yaw_rate": m.group(3), "end_s": f"{r.stop_time:.4f}",
+            "level_s": f"{r.first_time_abs_yaw_rate(1.0):.3f}"}
