@@ -863,3 +863,20 @@ def adaptive_stop() -> dict:
         raise ValueError(f"adaptive_stop: unexpected stop reason {r.stop_reason!r}")
     return {"fail_s": m.group(1), "load_N": m.group(2), "yaw_rate": m.group(3), "end_s": f"{r.stop_time:.4f}",
             "level_s": f"{r.first_time_abs_yaw_rate(1.0):.3f}"}
+
+
+@group("step_limit", "stability.simulate.stepcheck.stable_steps([ej_premier], SPEEDS, 'thesis', 'free')", cheap=True)
+def step_limit() -> dict:
+    """The fixed step's stability limit of the E&J Premier (thesis model) and the speed where it is 1 ms."""
+    import numpy as np
+    from scipy.optimize import brentq
+
+    from stability.simulate.stepcheck import stable_steps
+
+    c = _preset("ej-premier")
+    speeds = (0.1, 0.25, 0.28, 0.75)
+    lim = stable_steps([c] * len(speeds), np.array(speeds), "thesis", "free")
+    out = {f"{u:g}": sig(1e3 * x, 2 if x < 1e-3 or x > 2e-3 else 3) for u, x in zip(speeds, lim, strict=True)}
+    one = brentq(lambda u: stable_steps([c], np.array([u]), "thesis", "free")[0] - 1e-3, 0.1, 0.75, xtol=1e-4)
+    out["one_ms_speed"] = fixed(one, 2)
+    return out
