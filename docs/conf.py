@@ -40,6 +40,7 @@ extensions = [
     "stability_validation",   # _ext: the validation table, computed at build time
     "stability_command_output",  # _ext: commands and their output, run at build time
     "stability_mathjax",      # _ext: MathJax copied into the site (no CDN: equations render offline)
+    "stability_values",       # _ext: {docvalue}`group.key` and docvalue-table, computed at build time
 ]
 
 # MathJax 3 from the site itself (docs/_ext/stability_mathjax.py copies it into _static/mathjax)

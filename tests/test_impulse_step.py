@@ -11,7 +11,6 @@ pin friction, whose sign follows it, chatters).  The independent reference is th
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from stability.chair import preset
 from stability.linear import state_matrices
@@ -53,52 +52,6 @@ def test_the_interval_includes_the_half_step_answer():
     half = dict(sticky.variants)["0.5 ms step"]
     assert abs(np.log(half.impulse_Ns / sticky.point.impulse_Ns)) < 0.01
     assert abs(np.log(sticky.point.impulse_Ns / kinetic_half.impulse_Ns)) < 0.02     # 11.7 vs 11.6 N s
-
-
-def _ci(chair, speed, dt=None, law="kinetic"):
-    run = RunSpec(scheme="adaptive") if dt is None else RunSpec(dt=dt, friction_law=law)
-    return critical_impulses(chair, [speed], run)[0].impulse_Ns
-
-
-def _ei(chair, model, dt=None, law="kinetic"):
-    from stability.study import equal_instability_speeds
-
-    run = RunSpec(scheme="adaptive", model=model) if dt is None else RunSpec(dt=dt, friction_law=law, model=model)
-    r = equal_instability_speeds([chair], run, progress=False)[0]
-    return "above 3" if r.status == "above" else r.speed
-
-
-# docs/simulator.md, "Accuracy beyond stability": each row's cells (steps in ms; None: the adaptive scheme)
-DOC_ROWS = [
-    ("E&J Premier, critical impulse at 0.75 m/s (N s)", "{:.3g}",
-     lambda dt: _ci(preset("ej-premier"), 0.75, dt), (1.0, 0.5, 0.25)),
-    ("E&J Premier, critical impulse at 1.0 m/s (N s)", "{:.3g}",
-     lambda dt: _ci(preset("ej-premier"), 1.0, dt), (1.0, 0.5, 0.25, 0.125, None)),
-    ("power-fwd with a 6 cm trail, critical impulse at 0.75 m/s (N s)", "{:.3g}",
-     lambda dt: _ci(preset("power-fwd").replace(trail=0.06), 0.75, dt), (1.0, 0.5, 0.25)),
-    ("revised, equal-instability speed (m/s, thesis model)", "{:.4g}",
-     lambda dt: _ei(preset("revised"), "thesis", dt), (1.0, 0.5, 0.25)),
-    ("power-fwd, equal-instability speed (m/s, exact model)", "{:.3g}",
-     lambda dt: _ei(preset("power-fwd"), "exact", dt), (1.0, 0.5, 0.25, 0.125, None)),
-]
-
-
-@pytest.mark.slow       # about 20 s: fine steps and the adaptive scheme
-@pytest.mark.parametrize("row", DOC_ROWS, ids=[r[0] for r in DOC_ROWS])
-def test_docs_step_table_is_what_the_studies_give(row):
-    """Each cell of docs/simulator.md's step table is recomputed (the searches' own 0.5 % brackets are below the
-    printed digits except where a value sits on a rounding edge, which a regeneration would show)."""
-    from pathlib import Path
-
-    label, fmt, compute, steps = row
-    cells = []
-    for ms in steps:
-        v = compute(None if ms is None else ms * 1e-3)
-        cells.append(v if isinstance(v, str) else fmt.format(v))
-    cells += [""] * (5 - len(cells))
-    line = " ".join(f"| {label} | {' | '.join(cells)} |".split())       # one space between tokens
-    text = (Path(__file__).parents[1] / "docs" / "simulator.md").read_text(encoding="utf-8")
-    assert line in [" ".join(t.split()) for t in text.splitlines()], line
 
 
 def test_the_reported_impulse_is_the_one_the_chair_receives_where_the_step_is_cut():

@@ -101,55 +101,6 @@ def test_bad_friction_law_is_refused_naming_it(kw, match):
         simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.1, **kw))
 
 
-def _ci(chair, speed, dt):
-    run = RunSpec(scheme="adaptive") if dt is None else RunSpec(dt=dt, friction_law="stick-slip")
-    return critical_impulse(chair, speed, run).impulse_Ns
-
-
-def _ei(chair, model, dt):
-    from stability.study import equal_instability_speeds
-
-    run = RunSpec(scheme="adaptive", model=model) if dt is None else RunSpec(dt=dt, friction_law="stick-slip",
-                                                                            model=model)
-    r = equal_instability_speeds([chair], run, progress=False)[0]
-    return "above 3" if r.status == "above" else r.speed
-
-
-# docs/simulator.md, "The stick-slip law": each row's cells (steps in ms; None: the adaptive scheme)
-DOC_ROWS = [
-    ("E&J Premier, critical impulse at 0.75 m/s (N s)", "{:.3g}", lambda dt: _ci(preset("ej-premier"), 0.75, dt)),
-    ("E&J Premier, critical impulse at 1.0 m/s (N s)", "{:.3g}", lambda dt: _ci(preset("ej-premier"), 1.0, dt)),
-    ("E&J Premier, critical impulse at 1.2 m/s (N s)", "{:.3g}", lambda dt: _ci(preset("ej-premier"), 1.2, dt)),
-    ("power-fwd, critical impulse at 1.5 m/s (N s)", "{:.3g}", lambda dt: _ci(preset("power-fwd"), 1.5, dt)),
-    ("power-fwd with a 6 cm trail, critical impulse at 0.75 m/s (N s)", "{:.3g}",
-     lambda dt: _ci(preset("power-fwd").replace(trail=0.06), 0.75, dt)),
-    ("revised, equal-instability speed (m/s, thesis model)", "{:.4g}", lambda dt: _ei(preset("revised"), "thesis", dt)),
-    ("power-fwd, equal-instability speed (m/s, exact model)", "{:.3g}", lambda dt: _ei(preset("power-fwd"), "exact", dt)),
-]
-
-
-def doc_line(row) -> str:
-    """The table line of docs/simulator.md for one row, recomputed (stick-slip at 1, 0.5, 0.25 ms; adaptive)."""
-    label, fmt, compute = row
-    cells = []
-    for ms in (1.0, 0.5, 0.25, None):
-        v = compute(None if ms is None else ms * 1e-3)
-        cells.append(v if isinstance(v, str) else fmt.format(v))
-    return " ".join(f"| {label} | {' | '.join(cells)} |".split())
-
-
-@pytest.mark.slow       # about 10 s: fine steps and the adaptive scheme
-@pytest.mark.parametrize("row", DOC_ROWS, ids=[r[0] for r in DOC_ROWS])
-def test_docs_stick_slip_table_is_what_the_studies_give(row):
-    """Each cell of docs/simulator.md's stick-slip table is recomputed (the searches' 0.5 % brackets are below the
-    printed digits except where a value sits on a rounding edge, which a regeneration would show)."""
-    from pathlib import Path
-
-    text = (Path(__file__).parents[1] / "docs" / "simulator.md").read_text(encoding="utf-8")
-    line = doc_line(row)
-    assert line in [" ".join(t.split()) for t in text.splitlines()], line
-
-
 # ---------------------------------------------------------------------------
 # inputs and searches with the stick-slip law
 # ---------------------------------------------------------------------------

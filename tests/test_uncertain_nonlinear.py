@@ -129,29 +129,3 @@ def test_critical_speed_command_prints_the_nonlinear_intervals(tmp_path, capsys)
     assert f"{nl.critical_impulse.low:.4g} to {nl.critical_impulse.high:.4g} N s" in text
     assert main(["--nonlinear"]) == 2
     assert "--nonlinear needs --uncertainty FILE" in capsys.readouterr().err
-
-
-#: docs/studies.md, "Nonlinear intervals": the file behind its table (s1 std 0.01 m, I_z std 0.3 kg m^2, both pins'
-#: friction +-30 % uniform, one draw shared)
-STUDIES_MD_FILE = friction(0.3) + '\n[i_z]\ndistribution = "normal"\nstd = 0.3\n\n[s1]\ndistribution = "normal"\nstd = 0.01\n'
-_NAMES = {"pin_friction": "pin friction", "i_z": "I_z", "s1": "s1"}
-
-
-def _shares(m) -> str:
-    return ", ".join(f"{_NAMES.get(k, k)} {100 * s:.0f} %" for k, s in m.shares if round(100 * s) >= 1)
-
-
-@pytest.mark.slow        # 200 draws of both measures with the defaults the page states: about 30 s a chair
-@pytest.mark.parametrize("name", ["ej-premier", "revised"])
-def test_docs_studies_md_nonlinear_interval_table(name):
-    """Each row of docs/studies.md's nonlinear-interval table is what ``nonlinear_intervals`` gives (200 draws,
-    seed 0, exact model, 10 s horizon: the defaults ``critical_speed --nonlinear`` uses), with the measures'
-    stick-slip pin friction; the printed digits are those of ``critical_speed --uncertainty FILE --nonlinear``."""
-    from pathlib import Path
-
-    iv = nonlinear_intervals(preset(name), loads_uncertainty(STUDIES_MD_FILE))
-    k, e = iv.critical_impulse, iv.equal_instability
-    assert e is not None and k.finite_fraction == e.finite_fraction == 1.0
-    row = (f"| {name} | {k.nominal:.3g} N s, 95 %: {k.low:.4g}-{k.high:.4g} N s ({_shares(k)}) | "
-           f"{e.nominal:.3g} m/s, 95 %: {e.low:.4g}-{e.high:.4g} ({_shares(e)}) |")
-    assert row in (Path(__file__).resolve().parents[1] / "docs" / "studies.md").read_text(encoding="utf-8")
