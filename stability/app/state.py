@@ -76,6 +76,9 @@ class AppState:
         The loaded uncertainty file.
     uncertainty_name : str
         Its file name.
+    user : dict or None
+        The chair's user (``[user]`` table: :meth:`stability.driver.tracking.TrackingResult.user_table`), written
+        into the chair's TOML download.
     """
 
     preset: str = DEFAULT_PRESET
@@ -85,6 +88,7 @@ class AppState:
     pinned: list[Chair] = field(default_factory=list)
     uncertainty: Any = None
     uncertainty_name: str = ""
+    user: dict | None = None
     _history: list[tuple[Edit, str]] = field(default_factory=list, repr=False)
 
     def __post_init__(self) -> None:

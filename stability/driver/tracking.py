@@ -1,0 +1,588 @@
+"""The critical tracking task: measure a user's effective delay ``tau_e`` (Jex, McDonnell & Phatak 1966).
+
+The user keeps a marker centred on an unstable first-order plant whose instability rises until control is lost::
+
+    x' = lambda(t) x + u + d(t),        lose control when |x| > LIMIT
+
+``x`` is the marker's offset in display half-widths (the edge of the track is :data:`LIMIT`), ``u`` the user's
+input (half-widths per second; full deflection of the stick, the mouse or a key is :data:`INPUT_LIMIT_1_S`) and
+``d`` a small stated disturbance (a sum of sines, random phases per trial) that keeps the task alive while the
+user holds the marker still.  The instability's time constant ``1 / lambda`` falls linearly in time,
+``1/lambda(t) = 1/lambda_0 - rate t``, so the task looks the same to a fast and a slow user scaled to their own
+delay: ``d(lambda tau)/d(t/tau) = rate (lambda tau)^2``.
+
+The ``lambda`` at loss of control, ``lambda_c``, is about ``1 / tau_e`` (a delayed proportional operator holds
+``x' = lambda x - k x(t - tau)`` exactly while ``lambda tau < 1``: Stepan & Kollar 2000,
+:mod:`stability.driver.linear`).  It is a little above: control is lost only once the error, already growing,
+reaches the edge, while ``lambda`` keeps rising.  The **escape factor** ``E = lambda_c tau`` of that operator is
+computed here, not typed: the operator of the delayed-loop model (the most stable gain at each ``lambda``, found
+by :func:`stability.driver.linear.best_gains` on the one-state plant through the Pade delay) is run through the
+same task, frame by frame, over a population of delays, gain errors and disturbance phases
+(:func:`escape_factor`).  A user's delay is then ``tau_e = E / mean(lambda_c)``.
+
+The protocol (after ISO/TS 14198:2019, which standardises the task; docs/driver.md): :data:`PRACTICE_TRIALS`
+practice trials (faster rise, not scored) then :data:`SCORED_TRIALS` scored trials; a trial is invalid with no
+input (the input never left its dead band) or an early loss (``lambda_c`` less than :data:`EARLY_RISE` times
+the trial's starting ``lambda``: a lapse, not the limit); the result needs :data:`MIN_VALID` valid scored
+trials.  Each trial starts at :data:`START_FRACTION` of the last valid ``lambda_c`` (the first at
+``1 / FIRST_TIME_CONSTANT_S``).
+
+The explorer's Tracking tab runs the same plant in the browser (:mod:`stability.app.tracking_tab`), one step
+per :data:`FRAME_S`, with the constants of :func:`browser_config`.
+
+References
+----------
+- Jex HR, McDonnell JD, Phatak AV (1966) A "critical" tracking task for manual control research. IEEE
+  Transactions on Human Factors in Electronics HFE-7(4):138-145.
+- Stepan G, Kollar L (2000) Balancing with reflex delay. Mathematical and Computer Modelling 31(4-5):199-205.
+- ISO/TS 14198:2019 Road vehicles - Ergonomic aspects of transport information and control systems -
+  Calibration tasks for methods which assess driver demand due to the use of in-vehicle systems.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import unicodedata
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from stability.driver.linear import best_gains
+from stability.driver.model import REACTION_TIME_RANGE_S
+
+__all__ = ["FRAME_S", "LIMIT", "INPUT_LIMIT_1_S", "RAMP_S_PER_S", "PRACTICE_RAMP_S_PER_S", "FIRST_TIME_CONSTANT_S",
+           "START_FRACTION", "LAMBDA_MAX_1_S", "DISTURBANCE_HZ", "DISTURBANCE_AMPLITUDE_1_S", "PRACTICE_TRIALS",
+           "SCORED_TRIALS", "MIN_VALID", "INPUT_DEADBAND", "EARLY_RISE", "CALIBRATION_TAU_S", "CALIBRATION_GAIN",
+           "CALIBRATION_SEEDS", "ramp_lambda", "disturbance", "plant_step", "operator_gain_table", "operator_gain",
+           "simulate_operator", "EscapeFactor", "escape_factor", "TrialRecord", "Trial", "judge", "next_trial",
+           "TrackingResult", "tracking_result", "browser_config", "user_toml"]
+
+#: One step of the task, s: the browser steps the plant at a fixed 60 Hz whatever the display's rate.
+FRAME_S = 1.0 / 60.0
+#: Loss of control: the marker's offset beyond this, display half-widths (the track's edge).
+LIMIT = 1.0
+#: The input at full deflection, half-widths per second: enough that a delayed proportional operator with
+#: ``tau >= 0.15 s`` never saturates before it loses control (its gain ``k* <= e^0.6 / tau``, ``|x| <= 1``).
+INPUT_LIMIT_1_S = 12.0
+#: How fast the instability's time constant ``1 / lambda`` falls in a scored trial, s per s.
+RAMP_S_PER_S = 0.03
+#: The same in a practice trial (shorter trials; not scored), s per s.
+PRACTICE_RAMP_S_PER_S = 0.1
+#: ``1 / lambda`` at the start of the first trial, s.
+FIRST_TIME_CONSTANT_S = 1.5
+#: A trial starts at this fraction of the last valid ``lambda_c``.
+START_FRACTION = 0.6
+#: The instability stops rising here, 1/s (nobody holds it: ``tau`` would be 30 ms).
+LAMBDA_MAX_1_S = 50.0
+#: Frequencies of the disturbance's sines, Hz (below the crossover of any human operator).
+DISTURBANCE_HZ = (0.13, 0.23, 0.37, 0.61, 0.97)
+#: Amplitude of each sine, half-widths per second (an uncontrolled marker would drift about 0.1 half-width).
+DISTURBANCE_AMPLITUDE_1_S = 0.05
+#: Longest simulated trial, s.
+MAX_TRIAL_S = 600.0
+#: Practice trials (not scored), then scored trials.
+PRACTICE_TRIALS = 1
+SCORED_TRIALS = 5
+#: Valid scored trials needed for a result.
+MIN_VALID = 3
+#: The input counts as used once it has moved more than this fraction of its range during the trial.
+INPUT_DEADBAND = 0.02
+#: A loss before ``lambda`` has risen by this factor from the trial's start is an early loss (invalid).
+EARLY_RISE = 1.25
+#: The operators the escape factor is computed over: delays (s), gains relative to the most stable one, and
+#: disturbance phases per (delay, gain).
+CALIBRATION_TAU_S = (0.2, 0.3, 0.4, 0.5, 0.6)
+CALIBRATION_GAIN = (0.95, 1.0, 1.05)
+CALIBRATION_SEEDS = 10
+
+
+def ramp_lambda(t: np.ndarray | float, lambda0: float, rate: float) -> np.ndarray:
+    """The instability at time ``t`` of a trial: ``1/lambda = 1/lambda0 - rate t``, capped at LAMBDA_MAX_1_S.
+
+    Parameters
+    ----------
+    t : float or ndarray
+        Time since the trial's start, s.
+    lambda0 : float
+        Starting instability, 1/s (> 0).
+    rate : float
+        Fall of ``1 / lambda``, s per s (>= 0).
+
+    Returns
+    -------
+    ndarray
+        1/s.
+    """
+    tc = 1.0 / lambda0 - rate * np.asarray(t, dtype=float)
+    return np.where(tc > 1.0 / LAMBDA_MAX_1_S, 1.0 / np.maximum(tc, 1.0 / LAMBDA_MAX_1_S), LAMBDA_MAX_1_S)
+
+
+def disturbance(t: float, phases: np.ndarray) -> np.ndarray:
+    """The disturbance ``d(t)``, half-widths per second.
+
+    Parameters
+    ----------
+    t : float
+        Time since the trial's start, s.
+    phases : ndarray (..., len(DISTURBANCE_HZ))
+        Phase of each sine, rad.
+
+    Returns
+    -------
+    ndarray (...)
+    """
+    f = np.asarray(DISTURBANCE_HZ)
+    return DISTURBANCE_AMPLITUDE_1_S * np.sum(np.sin(2.0 * np.pi * f * t + phases), axis=-1)
+
+
+def plant_step(x: np.ndarray, lam: float, w: np.ndarray, dt: float = FRAME_S) -> np.ndarray:
+    """One step of ``x' = lambda x + w`` with ``w`` held over the step (exact zero-order hold).
+
+    Parameters
+    ----------
+    x : ndarray
+        Offset, half-widths.
+    lam : float
+        Instability, 1/s (> 0).
+    w : ndarray
+        Input plus disturbance, half-widths/s.
+    dt : float
+        Step, s.
+
+    Returns
+    -------
+    ndarray
+        The offset one step later, half-widths.
+    """
+    e = math.exp(lam * dt)
+    return e * x + (e - 1.0) / lam * w
+
+
+@lru_cache(maxsize=4)
+def operator_gain_table(points: int = 41) -> tuple[np.ndarray, np.ndarray]:
+    """The delayed-loop model's most stable proportional gain for ``x' = lambda x - k x(t - tau)``.
+
+    Computed by :func:`stability.driver.linear.best_gains` (Pade delay) on the one-state plant at ``tau = 1 s``;
+    the loop depends on ``lambda tau`` and ``k tau`` only, so one table serves every delay.
+
+    Parameters
+    ----------
+    points : int
+        Table points over ``lambda tau`` in [0.05, 2.5].
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        ``lambda tau`` and the best ``k tau`` (dimensionless).
+    """
+    theta = np.linspace(0.05, 2.5, points)
+    one = np.array([[1.0]])
+    ktau = np.array([best_gains(np.array([[th]]), one, one, 1.0, log_bounds=((-3.0, 3.0),))[0][0]
+                     for th in theta])
+    return theta, ktau
+
+
+def operator_gain(lam: np.ndarray | float, tau: float) -> np.ndarray:
+    """The model operator's gain at instability ``lam``: the most stable gain of the delayed loop, 1/s.
+
+    Parameters
+    ----------
+    lam : float or ndarray
+        Instability, 1/s.
+    tau : float
+        The operator's delay, s.
+
+    Returns
+    -------
+    ndarray
+        Gain ``k`` (input per offset), 1/s.
+    """
+    theta, ktau = operator_gain_table()
+    return np.interp(np.asarray(lam, dtype=float) * tau, theta, ktau) / tau
+
+
+def simulate_operator(tau: float, lambda0: float, phases: np.ndarray, gain: float = 1.0,
+                      rate: float = RAMP_S_PER_S, dt: float = FRAME_S) -> tuple[np.ndarray, np.ndarray]:
+    """Trials of the task run by a delayed proportional operator, as the browser runs them.
+
+    The operator sees the marker as drawn (one value per step) ``tau`` late, the latest step at or before
+    ``t - tau``, and applies ``u = -gain k*(lambda) x_seen`` limited to :data:`INPUT_LIMIT_1_S`.
+
+    Parameters
+    ----------
+    tau : float
+        The operator's delay, s.
+    lambda0 : float
+        Starting instability, 1/s.
+    phases : ndarray (n, len(DISTURBANCE_HZ))
+        Disturbance phases of ``n`` trials, rad.
+    gain : float
+        The operator's gain relative to the most stable one.
+    rate : float
+        Fall of ``1/lambda``, s per s.
+    dt : float
+        Step, s.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        ``lambda_c`` (1/s) and the trial's duration (s), per trial.
+    """
+    phases = np.atleast_2d(np.asarray(phases, dtype=float))
+    n = phases.shape[0]
+    lag = int(math.ceil(tau / dt - 1e-9))
+    hist = np.zeros((lag + 1, n))              # ring of the drawn offsets; row k % (lag+1) holds step k
+    x = np.zeros(n)
+    lam_c = np.full(n, np.nan)
+    dur = np.full(n, np.nan)
+    alive = np.ones(n, dtype=bool)
+    k = 0
+    while alive.any():
+        t = k * dt
+        lam = float(ramp_lambda(t, lambda0, rate))
+        seen = hist[(k - lag) % (lag + 1)] if k >= lag else np.zeros(n)
+        u = np.clip(-gain * float(operator_gain(lam, tau)) * seen, -INPUT_LIMIT_1_S, INPUT_LIMIT_1_S)
+        x = plant_step(x, lam, u + disturbance(t, phases), dt)
+        k += 1
+        hist[k % (lag + 1)] = x
+        lost = alive & (np.abs(x) > LIMIT)
+        lam_c[lost], dur[lost] = lam, k * dt
+        alive &= ~lost
+        if t > MAX_TRIAL_S:                    # a bound on the loop; LAMBDA_MAX_1_S loses every operator first
+            break
+    return lam_c, dur
+
+
+@dataclass(frozen=True)
+class EscapeFactor:
+    """``E = lambda_c tau`` of the model operator in the task: how far past ``1/tau`` control is lost.
+
+    Attributes
+    ----------
+    mean, sd : float
+        Over the calibration population (dimensionless).
+    low, high : float
+        Its smallest and largest value.
+    samples : int
+        Trials simulated.
+    rate_s_per_s : float
+        The ramp it holds for.
+    by_tau : tuple of (float, float)
+        ``(tau, mean E)`` per calibration delay (s, dimensionless).
+    """
+
+    mean: float
+    sd: float
+    low: float
+    high: float
+    samples: int
+    rate_s_per_s: float
+    by_tau: tuple[tuple[float, float], ...]
+
+
+@lru_cache(maxsize=4)
+def escape_factor(rate: float = RAMP_S_PER_S, taus: tuple[float, ...] = CALIBRATION_TAU_S,
+                  gains: tuple[float, ...] = CALIBRATION_GAIN, seeds: int = CALIBRATION_SEEDS) -> EscapeFactor:
+    """The escape factor of the delayed proportional operator, computed from the delayed-loop model.
+
+    Every calibration delay and gain runs ``seeds`` trials with random disturbance phases (seeded: the same
+    every call), each started as a scored trial is, at ``START_FRACTION`` of the operator's own limit
+    ``1/tau`` (so the task is scaled to the operator, as the protocol scales it to the user).
+
+    Parameters
+    ----------
+    rate : float
+        Fall of ``1/lambda``, s per s.
+    taus : tuple of float
+        Operator delays, s.
+    gains : tuple of float
+        Gains relative to the most stable one.
+    seeds : int
+        Trials per (delay, gain).
+
+    Returns
+    -------
+    EscapeFactor
+    """
+    rng = np.random.default_rng(20261204)
+    values: list[float] = []
+    by_tau = []
+    for tau in taus:
+        here: list[float] = []
+        for g in gains:
+            phases = rng.uniform(0.0, 2.0 * np.pi, (seeds, len(DISTURBANCE_HZ)))
+            lam_c, _ = simulate_operator(tau, START_FRACTION / tau, phases, gain=g, rate=rate)
+            here.extend((lam_c * tau).tolist())
+        values.extend(here)
+        by_tau.append((float(tau), float(np.mean(here))))
+    v = np.asarray(values)
+    return EscapeFactor(float(v.mean()), float(v.std(ddof=1)), float(v.min()), float(v.max()), int(v.size),
+                        float(rate), tuple(by_tau))
+
+
+@dataclass(frozen=True)
+class TrialRecord:
+    """One trial as the browser reports it.
+
+    Attributes
+    ----------
+    kind : str
+        ``"practice"`` or ``"scored"``.
+    lambda_start_1_s : float
+        The instability at the start, 1/s.
+    lambda_c_1_s : float
+        The instability when control was lost, 1/s.
+    duration_s : float
+        From the start to the loss, s.
+    input_range : float
+        How far the input moved during the trial (largest minus smallest, fraction of full deflection, 0-2).
+    device : str
+        ``"keyboard"``, ``"mouse"``, ``"gamepad"`` (the last one used).
+    """
+
+    kind: str
+    lambda_start_1_s: float
+    lambda_c_1_s: float
+    duration_s: float
+    input_range: float
+    device: str = "keyboard"
+
+    @classmethod
+    def from_mapping(cls, data: Mapping) -> TrialRecord:
+        """A record from the browser's JSON (untrusted: every field checked).
+
+        Parameters
+        ----------
+        data : mapping
+            The fields of :class:`TrialRecord`.
+
+        Returns
+        -------
+        TrialRecord
+
+        Raises
+        ------
+        ValueError
+            On a missing, non-finite or out-of-range field.
+        """
+        if not isinstance(data, Mapping):
+            raise ValueError("a trial must be a table of numbers")
+        kind = data.get("kind")
+        if kind not in ("practice", "scored"):
+            raise ValueError(f"trial kind={kind!r} is invalid; valid: 'practice', 'scored'")
+        nums = {}
+        for name, lo, hi in (("lambda_start_1_s", 0.0, LAMBDA_MAX_1_S), ("lambda_c_1_s", 0.0, LAMBDA_MAX_1_S),
+                             ("duration_s", 0.0, 3600.0), ("input_range", 0.0, 2.0)):
+            v = data.get(name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or not lo <= v <= hi:
+                raise ValueError(f"trial {name}={v!r} is invalid; valid range: {lo:g} to {hi:g}")
+            nums[name] = float(v)
+        device = data.get("device", "keyboard")
+        if device not in ("keyboard", "mouse", "gamepad"):
+            device = "keyboard"
+        return cls(str(kind), device=str(device), **nums)
+
+
+@dataclass(frozen=True)
+class Trial:
+    """A judged trial.
+
+    Attributes
+    ----------
+    record : TrialRecord
+    valid : bool
+    reason : str
+        Why it is invalid (``"no input"``, ``"early loss"``), or ``""``.
+    """
+
+    record: TrialRecord
+    valid: bool
+    reason: str = ""
+
+
+def judge(records: Sequence[TrialRecord]) -> tuple[Trial, ...]:
+    """Apply the validity rules to each trial.
+
+    Parameters
+    ----------
+    records : sequence of TrialRecord
+
+    Returns
+    -------
+    tuple of Trial
+        Invalid: the input never moved more than :data:`INPUT_DEADBAND` of its range (``"no input"``), or control
+        was lost before ``lambda`` rose by :data:`EARLY_RISE` from the trial's start (``"early loss"``).
+    """
+    out = []
+    for r in records:
+        if r.input_range <= INPUT_DEADBAND:
+            out.append(Trial(r, False, "no input"))
+        elif r.lambda_c_1_s < EARLY_RISE * r.lambda_start_1_s:
+            out.append(Trial(r, False, "early loss"))
+        else:
+            out.append(Trial(r, True))
+    return tuple(out)
+
+
+def next_trial(records: Sequence[TrialRecord]) -> dict | None:
+    """The next trial of the protocol, or None when it is complete.
+
+    Parameters
+    ----------
+    records : sequence of TrialRecord
+        The trials so far.
+
+    Returns
+    -------
+    dict or None
+        ``kind``, ``number`` (1-based within its kind), ``lambda_start_1_s``, ``rate_s_per_s``.  Scored trials
+        continue until :data:`SCORED_TRIALS` valid ones or twice that many in all.
+    """
+    trials = judge(records)
+    practice = sum(1 for t in trials if t.record.kind == "practice")
+    scored = [t for t in trials if t.record.kind == "scored"]
+    valid_scored = sum(1 for t in scored if t.valid)
+    last = [t.record.lambda_c_1_s for t in trials if t.valid]
+    lam0 = START_FRACTION * last[-1] if last else 1.0 / FIRST_TIME_CONSTANT_S
+    if practice < PRACTICE_TRIALS:
+        return {"kind": "practice", "number": practice + 1, "lambda_start_1_s": lam0,
+                "rate_s_per_s": PRACTICE_RAMP_S_PER_S}
+    if valid_scored >= SCORED_TRIALS or len(scored) >= 2 * SCORED_TRIALS:
+        return None
+    return {"kind": "scored", "number": len(scored) + 1, "lambda_start_1_s": lam0, "rate_s_per_s": RAMP_S_PER_S}
+
+
+@dataclass(frozen=True)
+class TrackingResult:
+    """The task's result: ``lambda_c`` and the user's effective delay with its spread.
+
+    Attributes
+    ----------
+    trials : tuple of Trial
+    lambda_c_1_s : float or None
+        Mean ``lambda_c`` of the valid scored trials, 1/s (None: fewer than :data:`MIN_VALID`).
+    lambda_c_sd_1_s : float or None
+        Their standard deviation, 1/s.
+    escape : EscapeFactor
+    reaction_time_s : float or None
+        ``tau_e = E / lambda_c``, s.
+    reaction_time_sd_s : float or None
+        Its spread, s: the trials' and the escape factor's relative spreads combined in quadrature.
+    """
+
+    trials: tuple[Trial, ...]
+    lambda_c_1_s: float | None
+    lambda_c_sd_1_s: float | None
+    escape: EscapeFactor
+    reaction_time_s: float | None
+    reaction_time_sd_s: float | None
+
+    @property
+    def valid_scored(self) -> int:
+        """Valid scored trials."""
+        return sum(1 for t in self.trials if t.valid and t.record.kind == "scored")
+
+    def user_table(self, note: str = "") -> dict:
+        """The chair file's ``[user]`` table (:meth:`stability.driver.Driver.from_mapping` reads it back).
+
+        Parameters
+        ----------
+        note : str
+            The user's own note (who, when); kept as text in ``source``.
+
+        Returns
+        -------
+        dict
+            Empty without a result.
+        """
+        if self.reaction_time_s is None:
+            return {}
+        lo, hi = REACTION_TIME_RANGE_S
+        scored = [t for t in self.trials if t.record.kind == "scored"]
+        src = (f"critical tracking task: {self.valid_scored} valid scored trials, lambda_c "
+               f"{self.lambda_c_1_s:.3f} +/- {self.lambda_c_sd_1_s:.3f} 1/s, escape factor "
+               f"{self.escape.mean:.3f} +/- {self.escape.sd:.3f}")
+        if note.strip():
+            src += "; " + " ".join(note.split())[:200]
+        return {"reaction_time_s": float(min(max(self.reaction_time_s, lo), hi)),
+                "reaction_time_sd_s": float(self.reaction_time_sd_s or 0.0),
+                "source": src,
+                "tracking_lambda_c_1_s": [round(t.record.lambda_c_1_s, 4) for t in scored],
+                "tracking_valid": [t.valid for t in scored]}
+
+
+def tracking_result(records: Sequence[TrialRecord], escape: EscapeFactor | None = None) -> TrackingResult:
+    """Judge the trials and compute ``tau_e``.
+
+    Parameters
+    ----------
+    records : sequence of TrialRecord
+    escape : EscapeFactor, optional
+        Default :func:`escape_factor` for :data:`RAMP_S_PER_S`.
+
+    Returns
+    -------
+    TrackingResult
+        ``tau_e = E / mean(lambda_c)`` over the valid scored trials; relative spread
+        ``sqrt((sd_E / E)^2 + (sd_lambda / lambda)^2)``.
+    """
+    esc = escape or escape_factor()
+    trials = judge(records)
+    lam = np.array([t.record.lambda_c_1_s for t in trials if t.valid and t.record.kind == "scored"])
+    if lam.size < MIN_VALID:
+        return TrackingResult(trials, None, None, esc, None, None)
+    mean, sd = float(lam.mean()), float(lam.std(ddof=1))
+    tau = esc.mean / mean
+    rel = math.hypot(esc.sd / esc.mean, sd / mean)
+    return TrackingResult(trials, mean, sd, esc, tau, tau * rel)
+
+
+def browser_config() -> dict:
+    """The task's constants as the browser needs them (JSON-ready).
+
+    Returns
+    -------
+    dict
+    """
+    return {"frame_s": FRAME_S, "limit": LIMIT, "input_limit": INPUT_LIMIT_1_S,
+            "lambda_max": LAMBDA_MAX_1_S, "disturbance_hz": list(DISTURBANCE_HZ),
+            "disturbance_amplitude": DISTURBANCE_AMPLITUDE_1_S, "input_deadband": INPUT_DEADBAND}
+
+
+def _toml_scalar(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        if not math.isfinite(float(value)):
+            raise ValueError(f"[user] value {value!r} is not finite")
+        return repr(float(value))
+    text = "".join(c for c in str(value) if unicodedata.category(c) != "Cc")     # no control characters
+    return json.dumps(text, ensure_ascii=False)              # a TOML basic string: \\ and \" escaped
+
+
+def user_toml(table: Mapping) -> str:
+    """A ``[user]`` table as TOML text (to append to :func:`stability.chair.dumps`'s flat table).
+
+    Parameters
+    ----------
+    table : mapping
+        Keys (from :data:`stability.driver.model.TRACKING_KEYS` and :meth:`Driver.to_mapping`) to numbers,
+        booleans, text or lists of them.  Text is written as an escaped string without control characters.
+
+    Returns
+    -------
+    str
+        ``"\\n[user]\\nkey = value\\n..."``.
+    """
+    lines = ["", "[user]"]
+    for key, value in table.items():
+        if not key.replace("_", "").isalnum() or not key.isascii():
+            raise ValueError(f"[user] key {key!r} is invalid; valid: ASCII letters, digits and _")
+        if isinstance(value, (list, tuple)):
+            lines.append(f"{key} = [" + ", ".join(_toml_scalar(v) for v in value) + "]")
+        else:
+            lines.append(f"{key} = {_toml_scalar(value)}")
+    return "\n".join(lines) + "\n"
