@@ -67,7 +67,8 @@ canvas.addEventListener('mousemove', (e) => {
 canvas.addEventListener('mouseleave', () => { state.mouse = null; });
 window.stabilityTracking = {
   snapshot: () => ({running: state.running, x: state.x, lambda: state.lam, steps: state.k,
-                    drawn: state.drawn.slice(), input_limit: state.cfg.input_limit}),
+                    drawn: state.drawn.slice(), input_limit: state.cfg.input_limit,
+                    planned: !!(data.plan && data.plan.kind), ready: !state.running && !start.disabled}),
   start: () => self.start(),
 };
 self.draw();
@@ -107,6 +108,7 @@ const frame = (now) => {
     state.lam = lam;
     if (Math.abs(state.x) > cfg.limit) {
       state.running = false;
+      start.disabled = true;
       data.record = {kind: plan.kind, lambda_start_1_s: plan.lambda_start_1_s, lambda_c_1_s: lam,
                      duration_s: state.k * dt, input_range: Math.max(0, state.vmax - state.vmin),
                      device: state.device};
@@ -252,10 +254,11 @@ class TrackingTab:
             rec = TrialRecord.from_mapping(event.new)
         except ValueError as exc:
             self.text.object = f"<p>trial refused: {literal(exc)}</p>"
+            self.task.plan = {**(next_trial(self.records) or {}), "seq": -len(self.records) - 1}
             return
         self.records.append(rec)
-        self.task.plan = next_trial(self.records) or {}
         self._show()
+        self.task.plan = next_trial(self.records) or {"seq": len(self.records)}
 
     def start_over(self) -> None:
         """Forget the trials (the last saved result stays with the chair until a new one)."""

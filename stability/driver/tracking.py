@@ -73,8 +73,9 @@ RAMP_S_PER_S = 0.03
 PRACTICE_RAMP_S_PER_S = 0.1
 #: ``1 / lambda`` at the start of the first trial, s.
 FIRST_TIME_CONSTANT_S = 1.5
-#: A trial starts at this fraction of the last valid ``lambda_c``.
-START_FRACTION = 0.6
+#: A trial starts at this fraction of the user's limit ``1/tau_e`` estimated from the last valid trial
+#: (``lambda_c`` over the escape factor of that trial's ramp): well below the limit whatever the last ramp.
+START_FRACTION = 0.5
 #: The instability stops rising here, 1/s (nobody holds it: ``tau`` would be 30 ms).
 LAMBDA_MAX_1_S = 50.0
 #: Frequencies of the disturbance's sines, Hz (below the crossover of any human operator).
@@ -438,21 +439,27 @@ def next_trial(records: Sequence[TrialRecord]) -> dict | None:
     Returns
     -------
     dict or None
-        ``kind``, ``number`` (1-based within its kind), ``lambda_start_1_s``, ``rate_s_per_s``.  Scored trials
+        ``kind``, ``number`` (1-based within its kind), ``lambda_start_1_s``, ``rate_s_per_s``, ``seq`` (the
+        trials so far).  Scored trials
         continue until :data:`SCORED_TRIALS` valid ones or twice that many in all.
     """
     trials = judge(records)
     practice = sum(1 for t in trials if t.record.kind == "practice")
     scored = [t for t in trials if t.record.kind == "scored"]
     valid_scored = sum(1 for t in scored if t.valid)
-    last = [t.record.lambda_c_1_s for t in trials if t.valid]
-    lam0 = START_FRACTION * last[-1] if last else 1.0 / FIRST_TIME_CONSTANT_S
+    last = [t.record for t in trials if t.valid]
+    if last:
+        rate = PRACTICE_RAMP_S_PER_S if last[-1].kind == "practice" else RAMP_S_PER_S
+        lam0 = START_FRACTION * last[-1].lambda_c_1_s / escape_factor(rate).mean
+    else:
+        lam0 = 1.0 / FIRST_TIME_CONSTANT_S
     if practice < PRACTICE_TRIALS:
         return {"kind": "practice", "number": practice + 1, "lambda_start_1_s": lam0,
-                "rate_s_per_s": PRACTICE_RAMP_S_PER_S}
+                "rate_s_per_s": PRACTICE_RAMP_S_PER_S, "seq": len(records)}
     if valid_scored >= SCORED_TRIALS or len(scored) >= 2 * SCORED_TRIALS:
         return None
-    return {"kind": "scored", "number": len(scored) + 1, "lambda_start_1_s": lam0, "rate_s_per_s": RAMP_S_PER_S}
+    return {"kind": "scored", "number": len(scored) + 1, "lambda_start_1_s": lam0, "rate_s_per_s": RAMP_S_PER_S,
+            "seq": len(records)}
 
 
 @dataclass(frozen=True)
