@@ -1,0 +1,135 @@
+"""The critical tracking task (stability.driver.tracking) against closed forms and a known operator.
+
+Independent statements used:
+
+- ``x' = lam x + w`` with ``w`` held over a step: ``x(dt) = e^{lam dt} x + (e^{lam dt} - 1) w / lam``.
+- The most stable gain of ``x' = lam x - k x(t - tau)`` is ``k* = exp(lam tau - 1) / tau`` (the double root;
+  tests/test_driver.py checks it for best_gains itself), so the table of ``k* tau`` against ``lam tau`` is
+  ``exp(theta - 1)``.
+- A delayed proportional operator cannot hold the plant past ``lam tau = 1``, so its ``lambda_c tau`` is above 1
+  for the most stable gain whatever the ramp; and its delay, run through the protocol, must come back within
+  10 % (the brief of issue 37).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+
+import numpy as np
+import pytest
+
+from stability.driver import Driver
+from stability.driver import tracking as T
+
+
+def test_plant_step_is_the_exact_zero_order_hold():
+    """Against the closed form and against a fine Euler integration (first order: error ~ dt/2 * lam^2 x dt)."""
+    lam, x0, w, dt = 2.5, 0.1, -0.3, T.FRAME_S
+    x1 = float(T.plant_step(np.array([x0]), lam, np.array([w]), dt)[0])
+    assert x1 == pytest.approx(math.exp(lam * dt) * x0 + (math.exp(lam * dt) - 1) / lam * w, rel=1e-14)
+    x, n = x0, 100_000
+    for _ in range(n):
+        x += dt / n * (lam * x + w)
+    assert x1 == pytest.approx(x, rel=1e-6)
+
+
+def test_ramp_falls_linearly_in_time_constant_and_is_capped():
+    t = np.array([0.0, 10.0, 20.0, 1000.0])
+    lam = T.ramp_lambda(t, 0.5, 0.05)
+    assert 1 / lam[0] == pytest.approx(2.0) and 1 / lam[1] == pytest.approx(1.5) and 1 / lam[2] == pytest.approx(1.0)
+    assert lam[3] == T.LAMBDA_MAX_1_S
+
+
+def test_operator_gain_table_is_the_double_root_gain():
+    """best_gains (Nelder-Mead through the Pade delay) against exp(theta - 1): observed 2.2e-6 relative;
+    asserted at 1e-4."""
+    theta, ktau = T.operator_gain_table()
+    assert np.max(np.abs(ktau / np.exp(theta - 1.0) - 1.0)) < 1e-4
+    assert T.operator_gain(2.0, 0.4) == pytest.approx(math.exp(0.8 - 1.0) / 0.4, rel=1e-3)   # interpolated
+
+
+def test_escape_factor_is_above_the_delay_limit_and_narrow():
+    """The best-gain operator loses control past lam tau = 1 (the escape), and the calibration's spread is a
+    fraction of its mean.  Regression values (E about 1.15 +/- 0.11 at the scored ramp) are printed, not asserted."""
+    e = T.escape_factor()
+    print(e)
+    best = T.escape_factor(gains=(1.0,))
+    assert best.low > 1.0                                # nobody holds the plant past 1/tau, the escape adds
+    assert 1.0 < e.mean < 1.6 and e.sd < 0.2 * e.mean
+    assert T.escape_factor(rate=T.PRACTICE_RAMP_S_PER_S).mean > e.mean    # a faster ramp: more escape
+
+
+def _protocol(tau: float, seed: int) -> list[T.TrialRecord]:
+    """The protocol run by the model operator with delay ``tau`` (the same frames as the browser)."""
+    rng = np.random.default_rng(seed)
+    records: list[T.TrialRecord] = []
+    while (plan := T.next_trial(records)) is not None:
+        lam_c, dur = T.simulate_operator(tau, plan["lambda_start_1_s"], rng.uniform(0, 2 * np.pi, (1, 5)),
+                                         rate=plan["rate_s_per_s"])
+        records.append(T.TrialRecord(plan["kind"], plan["lambda_start_1_s"], float(lam_c[0]), float(dur[0]), 1.0,
+                                     "gamepad"))
+    return records
+
+
+@pytest.mark.parametrize("tau", [0.25, 0.3, 0.5])
+def test_a_delayed_proportional_operator_of_known_delay_is_recovered(tau):
+    """Within 10 % (issue 37); five seeds each.  Observed: within about 6 %."""
+    for seed in range(5):
+        res = T.tracking_result(_protocol(tau, seed))
+        assert res.valid_scored == T.SCORED_TRIALS
+        assert res.reaction_time_s == pytest.approx(tau, rel=0.10), (seed, res.reaction_time_s)
+        assert 0 < res.reaction_time_sd_s < 0.3 * tau
+
+
+def test_validity_rules():
+    ok = T.TrialRecord("scored", 2.0, 4.0, 10.0, 0.5)
+    still = T.TrialRecord("scored", 2.0, 4.0, 10.0, T.INPUT_DEADBAND / 2)
+    early = T.TrialRecord("scored", 2.0, 2.0 * T.EARLY_RISE * 0.99, 1.0, 0.5)
+    judged = T.judge([ok, still, early])
+    assert [(t.valid, t.reason) for t in judged] == [(True, ""), (False, "no input"), (False, "early loss")]
+    res = T.tracking_result([T.TrialRecord("practice", 0.6, 3.0, 9.0, 0.5), ok, still, early, ok])
+    assert res.reaction_time_s is None                  # two valid scored trials < MIN_VALID
+    res = T.tracking_result([ok, ok, T.TrialRecord("scored", 2.0, 5.0, 10.0, 0.5)])
+    assert res.lambda_c_1_s == pytest.approx(13 / 3)
+    assert res.reaction_time_s == pytest.approx(res.escape.mean / (13 / 3))
+
+
+def test_protocol_practice_first_then_scored_until_enough_valid():
+    plan = T.next_trial([])
+    assert plan["kind"] == "practice" and plan["lambda_start_1_s"] == pytest.approx(1 / T.FIRST_TIME_CONSTANT_S)
+    recs = [T.TrialRecord("practice", plan["lambda_start_1_s"], 6.0, 12.0, 0.5)]
+    plan = T.next_trial(recs)
+    e = T.escape_factor(T.PRACTICE_RAMP_S_PER_S).mean
+    assert plan["kind"] == "scored" and plan["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 6.0 / e)
+    bad = T.TrialRecord("scored", 2.0, 2.1, 0.5, 0.5)
+    assert T.next_trial(recs + [bad] * (2 * T.SCORED_TRIALS)) is None          # gives up after twice the trials
+    assert T.next_trial(recs + [bad] * 3)["number"] == 4
+
+
+@pytest.mark.parametrize("data", [{}, {"kind": "x"}, {"kind": "scored", "lambda_start_1_s": float("nan"),
+                                                      "lambda_c_1_s": 1, "duration_s": 1, "input_range": 1},
+                                  {"kind": "scored", "lambda_start_1_s": 1, "lambda_c_1_s": True,
+                                   "duration_s": 1, "input_range": 1}, "<script>"])
+def test_browser_records_are_checked(data):
+    with pytest.raises(ValueError):
+        T.TrialRecord.from_mapping(data)
+
+
+def test_user_table_round_trips_through_toml_and_the_driver(tmp_path):
+    from stability.app.downloads import chair_toml
+    from stability.chair import load, preset, user_table
+
+    recs = [T.TrialRecord("scored", 1.5, 3.8, 9.0, 0.5)] * 4
+    res = T.tracking_result(recs)
+    note = 'Dr "X" \\ <b>2026</b>\x00\n'
+    table = res.user_table(note)
+    path = tmp_path / "c.toml"
+    path.write_text(chair_toml(preset("revised"), table))
+    back = user_table(str(path))
+    assert back["reaction_time_s"] == pytest.approx(res.reaction_time_s)
+    assert back["tracking_lambda_c_1_s"] == [3.8] * 4 and back["tracking_valid"] == [True] * 4
+    assert 'Dr "X" \\ <b>2026</b>' in back["source"] and "\x00" not in back["source"]
+    assert Driver.from_mapping(back).reaction_time_s == pytest.approx(res.reaction_time_s)
+    assert load(str(path)) == preset("revised")
+    tomllib.loads(path.read_text())
