@@ -14,12 +14,12 @@ Independent statements used:
 from __future__ import annotations
 
 import math
-import tomllib
 
 import numpy as np
 import pytest
 
 from stability.driver import Driver
+from stability.driver import protocol as P
 from stability.driver import tracking as T
 
 
@@ -60,14 +60,14 @@ def test_escape_factor_is_above_the_delay_limit_and_narrow():
     assert T.escape_factor(rate=T.PRACTICE_RAMP_S_PER_S).mean > e.mean    # a faster ramp: more escape
 
 
-def _protocol(tau: float, seed: int) -> list[T.TrialRecord]:
+def _protocol(tau: float, seed: int) -> list[P.TrialRecord]:
     """The protocol run by the model operator with delay ``tau`` (the same frames as the browser)."""
     rng = np.random.default_rng(seed)
-    records: list[T.TrialRecord] = []
-    while (plan := T.next_trial(records)) is not None:
+    records: list[P.TrialRecord] = []
+    while (plan := P.next_trial(records)) is not None:
         lam_c, dur = T.simulate_operator(tau, plan["lambda_start_1_s"], rng.uniform(0, 2 * np.pi, (1, 5)),
                                          rate=plan["rate_s_per_s"])
-        records.append(T.TrialRecord(plan["kind"], plan["lambda_start_1_s"], float(lam_c[0]), float(dur[0]), 1.0,
+        records.append(P.TrialRecord(plan["kind"], plan["lambda_start_1_s"], float(lam_c[0]), float(dur[0]), 1.0,
                                      "gamepad"))
     return records
 
@@ -76,35 +76,35 @@ def _protocol(tau: float, seed: int) -> list[T.TrialRecord]:
 def test_a_delayed_proportional_operator_of_known_delay_is_recovered(tau):
     """Within 10 % (issue 37); five seeds each.  Observed: within about 6 %."""
     for seed in range(5):
-        res = T.tracking_result(_protocol(tau, seed))
+        res = P.tracking_result(_protocol(tau, seed))
         assert res.valid_scored == T.SCORED_TRIALS
         assert res.reaction_time_s == pytest.approx(tau, rel=0.10), (seed, res.reaction_time_s)
         assert 0 < res.reaction_time_sd_s < 0.3 * tau
 
 
 def test_validity_rules():
-    ok = T.TrialRecord("scored", 2.0, 4.0, 10.0, 0.5)
-    still = T.TrialRecord("scored", 2.0, 4.0, 10.0, T.INPUT_DEADBAND / 2)
-    early = T.TrialRecord("scored", 2.0, 2.0 * T.EARLY_RISE * 0.99, 1.0, 0.5)
-    judged = T.judge([ok, still, early])
+    ok = P.TrialRecord("scored", 2.0, 4.0, 10.0, 0.5)
+    still = P.TrialRecord("scored", 2.0, 4.0, 10.0, T.INPUT_DEADBAND / 2)
+    early = P.TrialRecord("scored", 2.0, 2.0 * T.EARLY_RISE * 0.99, 1.0, 0.5)
+    judged = P.judge([ok, still, early])
     assert [(t.valid, t.reason) for t in judged] == [(True, ""), (False, "no input"), (False, "early loss")]
-    res = T.tracking_result([T.TrialRecord("practice", 0.6, 3.0, 9.0, 0.5), ok, still, early, ok])
+    res = P.tracking_result([P.TrialRecord("practice", 0.6, 3.0, 9.0, 0.5), ok, still, early, ok])
     assert res.reaction_time_s is None                  # two valid scored trials < MIN_VALID
-    res = T.tracking_result([ok, ok, T.TrialRecord("scored", 2.0, 5.0, 10.0, 0.5)])
+    res = P.tracking_result([ok, ok, P.TrialRecord("scored", 2.0, 5.0, 10.0, 0.5)])
     assert res.lambda_c_1_s == pytest.approx(13 / 3)
     assert res.reaction_time_s == pytest.approx(res.escape.mean / (13 / 3))
 
 
 def test_protocol_practice_first_then_scored_until_enough_valid():
-    plan = T.next_trial([])
+    plan = P.next_trial([])
     assert plan["kind"] == "practice" and plan["lambda_start_1_s"] == pytest.approx(1 / T.FIRST_TIME_CONSTANT_S)
-    recs = [T.TrialRecord("practice", plan["lambda_start_1_s"], 6.0, 12.0, 0.5)]
-    plan = T.next_trial(recs)
+    recs = [P.TrialRecord("practice", plan["lambda_start_1_s"], 6.0, 12.0, 0.5)]
+    plan = P.next_trial(recs)
     e = T.escape_factor(T.PRACTICE_RAMP_S_PER_S).mean
     assert plan["kind"] == "scored" and plan["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 6.0 / e)
-    bad = T.TrialRecord("scored", 2.0, 2.1, 0.5, 0.5)
-    assert T.next_trial(recs + [bad] * (2 * T.SCORED_TRIALS)) is None          # gives up after twice the trials
-    assert T.next_trial(recs + [bad] * 3)["number"] == 4
+    bad = P.TrialRecord("scored", 2.0, 2.1, 0.5, 0.5)
+    assert P.next_trial(recs + [bad] * (2 * T.SCORED_TRIALS)) is None          # gives up after twice the trials
+    assert P.next_trial(recs + [bad] * 3)["number"] == 4
 
 
 @pytest.mark.parametrize("data", [{}, {"kind": "x"}, {"kind": "scored", "lambda_start_1_s": float("nan"),
@@ -113,23 +113,51 @@ def test_protocol_practice_first_then_scored_until_enough_valid():
                                    "duration_s": 1, "input_range": 1}, "<script>"])
 def test_browser_records_are_checked(data):
     with pytest.raises(ValueError):
-        T.TrialRecord.from_mapping(data)
+        P.TrialRecord.from_mapping(data)
 
 
 def test_user_table_round_trips_through_toml_and_the_driver(tmp_path):
     from stability.app.downloads import chair_toml
     from stability.chair import load, preset, user_table
 
-    recs = [T.TrialRecord("scored", 1.5, 3.8, 9.0, 0.5)] * 4
-    res = T.tracking_result(recs)
+    recs = [P.TrialRecord("scored", 1.5, 3.8, 9.0, 0.5)] * 4
+    res = P.tracking_result(recs)
     note = 'Dr "X" \\ <b>2026</b>\x00\n'
     table = res.user_table(note)
     path = tmp_path / "c.toml"
     path.write_text(chair_toml(preset("revised"), table))
     back = user_table(str(path))
-    assert back["reaction_time_s"] == pytest.approx(res.reaction_time_s)
+    assert back["reaction_time_s"] == round(res.reaction_time_s, 4)
     assert back["tracking_lambda_c_1_s"] == [3.8] * 4 and back["tracking_valid"] == [True] * 4
     assert 'Dr "X" \\ <b>2026</b>' in back["source"] and "\x00" not in back["source"]
-    assert Driver.from_mapping(back).reaction_time_s == pytest.approx(res.reaction_time_s)
+    assert Driver.from_mapping(back).reaction_time_s == round(res.reaction_time_s, 4)
     assert load(str(path)) == preset("revised")
-    tomllib.loads(path.read_text())
+
+
+def test_the_explorer_keeps_the_measured_user_with_the_chair(tmp_path):
+    """The Tracking tab's trials (as the browser sends them) become the session's [user] table; an uploaded chair
+    file's [user] is kept, a bad one refused in one line."""
+    pytest.importorskip("panel")
+    from stability.app.downloads import chair_toml
+    from stability.app.page import Explorer
+
+    ex = Explorer(auto_nonlinear=False)
+    plan = ex.tracking.task.plan
+    assert plan["kind"] == "practice"
+    ex.tracking.task.record = {"kind": "practice", "lambda_start_1_s": plan["lambda_start_1_s"],
+                               "lambda_c_1_s": 5.0, "duration_s": 12.0, "input_range": 0.8, "device": "mouse"}
+    for k in range(3):
+        plan = ex.tracking.task.plan
+        assert plan["kind"] == "scored" and plan["number"] == k + 1
+        ex.tracking.task.record = {"kind": "scored", "lambda_start_1_s": plan["lambda_start_1_s"],
+                                   "lambda_c_1_s": 3.9 + 0.1 * k, "duration_s": 10.0, "input_range": 0.8}
+    ex.tracking.task.record = {"kind": "<img src=x onerror=alert(1)>"}
+    assert "trial refused" in ex.tracking.text.object and "<img" not in ex.tracking.text.object
+    assert ex.state.user["reaction_time_s"] == pytest.approx(round(T.escape_factor().mean / 4.0, 4))
+    text = chair_toml(ex.state.chair, ex.state.user)
+    ex2 = Explorer(auto_nonlinear=False)
+    assert ex2.state.load_toml(text, "measured.toml") is None
+    assert ex2.state.user == ex.state.user
+    bad = text.replace(f"reaction_time_s = {ex.state.user['reaction_time_s']!r}", "reaction_time_s = 9.0")
+    msg = ex2.state.load_toml(bad, "bad.toml")
+    assert msg is not None and "reaction_time_s=9.0" in msg and "\n" not in msg

@@ -77,13 +77,13 @@ def chair_toml(chair: Chair, user: dict | None = None) -> str:
     chair : Chair
     user : dict, optional
         Its user's ``[user]`` table (the Tracking tab's result), appended as TOML
-        (:func:`stability.driver.tracking.user_toml`); the commands' ``--chair`` read it.
+        (:func:`stability.driver.protocol.user_toml`); the commands' ``--chair`` read it.
 
     Returns
     -------
     str
     """
-    from stability.driver.tracking import user_toml
+    from stability.driver.protocol import user_toml
 
     return chair_mod.dumps(chair) + (user_toml(user) if user else "")
 

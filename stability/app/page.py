@@ -48,8 +48,8 @@ from stability.app.markup import literal
 from stability.app.nonlinear_tab import NonlinearTab
 from stability.app.speed_tab import SpeedTab
 from stability.app.state import AppState, error_line
-from stability.app.trail_tab import TrailTab
 from stability.app.tracking_tab import TrackingTab
+from stability.app.trail_tab import TrailTab
 from stability.app.views import LinearView, linear_view
 from stability.settings import defaults as D
 

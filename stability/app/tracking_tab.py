@@ -6,11 +6,11 @@ input read at every step from the keyboard (left/right arrows or A/D), the mouse
 stick: the pointer's offset from the centre is the deflection) or the first gamepad's first axis (the browser's
 Gamepad API), whichever moved last.  When the marker leaves the track the browser sends the trial (its starting
 and final ``lambda``, duration, how far the input moved, the device) to the server, which judges it
-(:func:`stability.driver.tracking.judge`), plans the next trial (:func:`~stability.driver.tracking.next_trial`)
+(:func:`stability.driver.protocol.judge`), plans the next trial (:func:`~stability.driver.protocol.next_trial`)
 and, after enough valid scored trials, gives ``tau_e`` with its spread; the chair's TOML download then carries it
 as a ``[user]`` table (``reaction_time_s``), which every command's ``--chair`` reads.
 
-Everything the browser sends is checked (:meth:`stability.driver.tracking.TrialRecord.from_mapping`); the user's
+Everything the browser sends is checked (:meth:`stability.driver.protocol.TrialRecord.from_mapping`); the user's
 note is shown through :func:`stability.app.markup.literal` and written to TOML as an escaped string.  The
 component's template holds no user text.  ``window.stabilityTracking`` exposes the task's state (offset, lambda,
 the drawn offsets with their times) for scripted operators (the browser tests).
@@ -25,16 +25,8 @@ import param
 from panel.reactive import ReactiveHTML
 
 from stability.app.markup import literal
-from stability.driver.tracking import (
-    MIN_VALID,
-    PRACTICE_TRIALS,
-    SCORED_TRIALS,
-    TrackingResult,
-    TrialRecord,
-    browser_config,
-    next_trial,
-    tracking_result,
-)
+from stability.driver.protocol import TrackingResult, TrialRecord, next_trial, tracking_result
+from stability.driver.tracking import MIN_VALID, PRACTICE_TRIALS, SCORED_TRIALS, browser_config
 
 __all__ = ["TrackingTask", "TrackingTab", "MAX_TRIALS"]
 
@@ -189,7 +181,7 @@ class TrackingTask(ReactiveHTML):
     config : dict
         :func:`stability.driver.tracking.browser_config`.
     plan : dict
-        The next trial (:func:`stability.driver.tracking.next_trial`), ``{}`` when none is left.
+        The next trial (:func:`stability.driver.protocol.next_trial`), ``{}`` when none is left.
     record : dict
         The last trial, set by the browser (untrusted).
     """

@@ -100,10 +100,27 @@ def test_a_scripted_operator_of_known_delay_is_measured(page, explorer, artifact
     path = tmp_path / "chair.toml"
     dl.value.save_as(path)
     table = user_table(str(path))
-    assert table is not None and table["reaction_time_s"] == pytest.approx(measured, abs=6e-4)
-    assert Driver.from_mapping(table).reaction_time_s == pytest.approx(measured, abs=6e-4)
+    assert table is not None and table["reaction_time_s"] == pytest.approx(measured, abs=5e-4)   # 3 vs 4 decimals
+    assert Driver.from_mapping(table).reaction_time_s == table["reaction_time_s"]
     out = io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
         assert critical_speed_main(["--chair", str(path)]) == 0
-    assert "[user]" in out.getvalue() and "can hold this chair straight up to" in out.getvalue()
+    assert (f"Driver (reaction time {table['reaction_time_s']:g} s, from critical tracking task: "
+            in out.getvalue()), out.getvalue()
 
+
+
+@pytest.mark.parametrize("width, height", [(1280, 720), (1024, 768)])
+def test_the_tracking_tab_fits_a_laptop_and_a_tablet(page, explorer, artifacts, width, height):
+    """As tests/ui/test_app_layout.py checks the other tabs: no sideways scroll, the track inside the window."""
+    page.set_viewport_size({"width": width, "height": height})
+    explorer()
+    page.get_by_text("Tracking", exact=True).click()
+    canvas = page.locator(".ctt-canvas")
+    canvas.wait_for()
+    page.wait_for_timeout(500)
+    page.screenshot(path=artifacts / f"layout-{width}x{height}-tracking.png")
+    box = canvas.bounding_box()
+    assert box is not None and box["x"] >= 0 and box["x"] + box["width"] <= width + 0.5 and box["width"] >= 300
+    assert page.evaluate("() => document.documentElement.scrollWidth <= document.documentElement.clientWidth")
+    assert page.locator(".ctt-status").inner_text().startswith("next: practice trial 1")
