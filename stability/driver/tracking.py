@@ -21,11 +21,11 @@ same task, frame by frame, over a population of delays, gain errors and disturba
 (:func:`escape_factor`).  A user's delay is then ``tau_e = E / mean(lambda_c)``.
 
 The protocol (:mod:`.protocol`; after ISO/TS 14198:2019, which standardises the task; docs/driver.md):
-:data:`PRACTICE_TRIALS` practice trials (faster rise, not scored) then :data:`SCORED_TRIALS` scored trials; a
-trial is invalid with no input (the input never left its dead band) or an early loss (``lambda_c`` less than :data:`EARLY_RISE` times
-the trial's starting ``lambda``: a lapse, not the limit); the result needs :data:`MIN_VALID` valid scored
-trials.  Each trial starts at :data:`START_FRACTION` of the last valid ``lambda_c`` (the first at
-``1 / FIRST_TIME_CONSTANT_S``).
+:data:`PRACTICE_TRIALS` practice trials (faster rise, not scored) then :data:`SCORED_TRIALS` scored trials.
+A trial is invalid with no input (the input never left its dead band) or an early loss (``lambda_c`` less
+than :data:`EARLY_RISE` times the trial's starting ``lambda``: a lapse, not the limit); the result needs
+:data:`MIN_VALID` valid scored trials.  Each trial starts at :data:`START_FRACTION` of the limit ``1/tau_e``
+estimated from the last valid trial (the first at ``1 / FIRST_TIME_CONSTANT_S``).
 
 The explorer's Tracking tab runs the same plant in the browser (:mod:`stability.app.tracking_tab`), one step
 per :data:`FRAME_S`, with the constants of :func:`browser_config`.
