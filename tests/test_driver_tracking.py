@@ -49,15 +49,17 @@ def test_operator_gain_table_is_the_double_root_gain():
     assert T.operator_gain(2.0, 0.4) == pytest.approx(math.exp(0.8 - 1.0) / 0.4, rel=1e-3)   # interpolated
 
 
-def test_escape_factor_is_above_the_delay_limit_and_narrow():
-    """The best-gain operator loses control past lam tau = 1 (the escape), and the calibration's spread is a
-    fraction of its mean.  Regression values (E about 1.15 +/- 0.11 at the scored ramp) are printed, not asserted."""
+def test_escape_factor_is_past_the_delay_limit_and_narrow():
+    """The best-gain operator loses control on average past lam tau = 1 (the escape: the error must still grow to
+    the edge while lambda rises), a few per cent before it at worst (near the limit the loop's margin vanishes and
+    the disturbance alone can reach the edge); a faster ramp escapes further; a gain 10 % under the best loses
+    control before the limit (the stable gain band closes at lam tau = 1).  Regression values (E = 1.125 +/- 0.073,
+    0.99-1.29, at the scored ramp) are printed, not asserted."""
     e = T.escape_factor()
     print(e)
-    best = T.escape_factor(gains=(1.0,))
-    assert best.low > 1.0                                # nobody holds the plant past 1/tau, the escape adds
-    assert 1.0 < e.mean < 1.6 and e.sd < 0.2 * e.mean
-    assert T.escape_factor(rate=T.PRACTICE_RAMP_S_PER_S).mean > e.mean    # a faster ramp: more escape
+    assert 1.0 < e.mean < 1.5 and e.low > 0.9 and e.sd < 0.15 * e.mean
+    assert T.escape_factor(rate=T.PRACTICE_RAMP_S_PER_S).mean > e.mean + 3 * e.sd / math.sqrt(e.samples)
+    assert T.escape_factor(gains=(0.9,)).mean < 1.0
 
 
 def _protocol(tau: float, seed: int) -> list[P.TrialRecord]:
@@ -74,7 +76,8 @@ def _protocol(tau: float, seed: int) -> list[P.TrialRecord]:
 
 @pytest.mark.parametrize("tau", [0.25, 0.3, 0.5])
 def test_a_delayed_proportional_operator_of_known_delay_is_recovered(tau):
-    """Within 10 % (issue 37); five seeds each.  Observed: within about 6 %."""
+    """Within 10 % (issue 37); five seeds each.  Observed: -4.9 % to +6.4 % (five scored trials of about 8 %
+    spread each, and the escape factor's own spread over the calibration delays)."""
     for seed in range(5):
         res = P.tracking_result(_protocol(tau, seed))
         assert res.valid_scored == T.SCORED_TRIALS
@@ -100,7 +103,7 @@ def test_protocol_practice_first_then_scored_until_enough_valid():
     assert plan["kind"] == "practice" and plan["lambda_start_1_s"] == pytest.approx(1 / T.FIRST_TIME_CONSTANT_S)
     recs = [P.TrialRecord("practice", plan["lambda_start_1_s"], 6.0, 12.0, 0.5)]
     plan = P.next_trial(recs)
-    e = T.escape_factor(T.PRACTICE_RAMP_S_PER_S).mean
+    e = T.escape_factor(T.PRACTICE_RAMP_S_PER_S, lambda0_1_s=1 / T.FIRST_TIME_CONSTANT_S).mean
     assert plan["kind"] == "scored" and plan["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 6.0 / e)
     bad = P.TrialRecord("scored", 2.0, 2.1, 0.5, 0.5)
     assert P.next_trial(recs + [bad] * (2 * T.SCORED_TRIALS)) is None          # gives up after twice the trials
@@ -140,6 +143,7 @@ def test_the_explorer_keeps_the_measured_user_with_the_chair(tmp_path):
     pytest.importorskip("panel")
     from stability.app.downloads import chair_toml
     from stability.app.page import Explorer
+    from stability.app.state import AppState
 
     ex = Explorer(auto_nonlinear=False)
     plan = ex.tracking.task.plan
@@ -155,9 +159,9 @@ def test_the_explorer_keeps_the_measured_user_with_the_chair(tmp_path):
     assert "trial refused" in ex.tracking.text.object and "<img" not in ex.tracking.text.object
     assert ex.state.user["reaction_time_s"] == pytest.approx(round(T.escape_factor().mean / 4.0, 4))
     text = chair_toml(ex.state.chair, ex.state.user)
-    ex2 = Explorer(auto_nonlinear=False)
-    assert ex2.state.load_toml(text, "measured.toml") is None
-    assert ex2.state.user == ex.state.user
+    state = AppState()
+    assert state.load_toml(text, "measured.toml") is None
+    assert state.user == ex.state.user
     bad = text.replace(f"reaction_time_s = {ex.state.user['reaction_time_s']!r}", "reaction_time_s = 9.0")
-    msg = ex2.state.load_toml(bad, "bad.toml")
+    msg = state.load_toml(bad, "bad.toml")
     assert msg is not None and "reaction_time_s=9.0" in msg and "\n" not in msg

@@ -71,7 +71,7 @@ _START = r"""
 if (state.running || !data.plan || !data.plan.kind) return;
 state.x = 0; state.k = 0; state.acc = 0; state.last = null; state.v = 0;
 state.vmin = Infinity; state.vmax = -Infinity; state.drawn = [];
-state.phases = state.cfg.disturbance_hz.map(() => 2 * Math.PI * Math.random());
+state.phases = state.cfg.disturbance_ratios.map(() => 2 * Math.PI * Math.random());
 state.trial = data.plan;
 state.lam = data.plan.lambda_start_1_s;
 state.running = true;
@@ -91,8 +91,9 @@ const frame = (now) => {
     const v = self.input();
     state.vmin = Math.min(state.vmin, v); state.vmax = Math.max(state.vmax, v);
     let d = 0;
-    for (let i = 0; i < cfg.disturbance_hz.length; i++) {
-      d += cfg.disturbance_amplitude * Math.sin(2 * Math.PI * cfg.disturbance_hz[i] * t + state.phases[i]);
+    const l0 = plan.lambda_start_1_s;
+    for (let i = 0; i < cfg.disturbance_ratios.length; i++) {
+      d += cfg.disturbance_amplitude_ratio * l0 * Math.sin(cfg.disturbance_ratios[i] * l0 * t + state.phases[i]);
     }
     const e = Math.exp(lam * dt);
     state.x = e * state.x + (e - 1) / lam * (cfg.input_limit * v + d);

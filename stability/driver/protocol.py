@@ -151,7 +151,8 @@ def next_trial(records: Sequence[TrialRecord]) -> dict | None:
     -------
     dict or None
         ``kind``, ``number`` (1-based within its kind), ``lambda_start_1_s``, ``rate_s_per_s``, ``seq`` (the
-        trials so far).  Scored trials
+        trials so far).  A trial starts at ``START_FRACTION`` of the limit estimated from the last valid trial
+        (its ``lambda_c`` over the escape factor of its ramp and start), lower after an early loss.  Scored trials
         continue until :data:`SCORED_TRIALS` valid ones or twice that many in all.
     """
     trials = judge(records)
@@ -159,11 +160,15 @@ def next_trial(records: Sequence[TrialRecord]) -> dict | None:
     scored = [t for t in trials if t.record.kind == "scored"]
     valid_scored = sum(1 for t in scored if t.valid)
     last = [t.record for t in trials if t.valid]
-    if last:
-        rate = PRACTICE_RAMP_S_PER_S if last[-1].kind == "practice" else RAMP_S_PER_S
-        lam0 = START_FRACTION * last[-1].lambda_c_1_s / escape_factor(rate).mean
+    if last and last[-1].kind == "practice":           # the practice trial starts at the same lambda for all
+        esc = escape_factor(PRACTICE_RAMP_S_PER_S, lambda0_1_s=1.0 / FIRST_TIME_CONSTANT_S)
+        lam0 = START_FRACTION * last[-1].lambda_c_1_s / esc.mean
+    elif last:
+        lam0 = START_FRACTION * last[-1].lambda_c_1_s / escape_factor(RAMP_S_PER_S).mean
     else:
         lam0 = 1.0 / FIRST_TIME_CONSTANT_S
+    if trials and trials[-1].reason == "early loss":   # lost at once: start lower than that trial did
+        lam0 = min(lam0, START_FRACTION * trials[-1].record.lambda_start_1_s)
     if practice < PRACTICE_TRIALS:
         return {"kind": "practice", "number": practice + 1, "lambda_start_1_s": lam0,
                 "rate_s_per_s": PRACTICE_RAMP_S_PER_S, "seq": len(records)}

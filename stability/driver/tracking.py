@@ -6,8 +6,8 @@ The user keeps a marker centred on an unstable first-order plant whose instabili
 
 ``x`` is the marker's offset in display half-widths (the edge of the track is :data:`LIMIT`), ``u`` the user's
 input (half-widths per second; full deflection of the stick, the mouse or a key is :data:`INPUT_LIMIT_1_S`) and
-``d`` a small stated disturbance (a sum of sines, random phases per trial) that keeps the task alive while the
-user holds the marker still.  The instability's time constant ``1 / lambda`` falls linearly in time,
+``d`` a small stated disturbance (a sum of sines, random phases per trial, scaled to the trial's start as the
+ramp is) that keeps the task alive while the user holds the marker still.  The instability's time constant ``1 / lambda`` falls linearly in time,
 ``1/lambda(t) = 1/lambda_0 - rate t``, so the task looks the same to a fast and a slow user scaled to their own
 delay: ``d(lambda tau)/d(t/tau) = rate (lambda tau)^2``.
 
@@ -50,7 +50,7 @@ import numpy as np
 from stability.driver.linear import best_gains
 
 __all__ = ["FRAME_S", "LIMIT", "INPUT_LIMIT_1_S", "RAMP_S_PER_S", "PRACTICE_RAMP_S_PER_S", "FIRST_TIME_CONSTANT_S",
-           "START_FRACTION", "LAMBDA_MAX_1_S", "DISTURBANCE_HZ", "DISTURBANCE_AMPLITUDE_1_S", "PRACTICE_TRIALS",
+           "START_FRACTION", "LAMBDA_MAX_1_S", "DISTURBANCE_FREQUENCY_RATIOS", "DISTURBANCE_AMPLITUDE_RATIO", "PRACTICE_TRIALS",
            "SCORED_TRIALS", "MIN_VALID", "INPUT_DEADBAND", "EARLY_RISE", "CALIBRATION_TAU_S", "CALIBRATION_GAIN",
            "CALIBRATION_SEEDS", "ramp_lambda", "disturbance", "plant_step", "operator_gain_table", "operator_gain",
            "simulate_operator", "EscapeFactor", "escape_factor", "browser_config"]
@@ -63,20 +63,23 @@ LIMIT = 1.0
 #: ``tau >= 0.15 s`` never saturates before it loses control (its gain ``k* <= e^0.6 / tau``, ``|x| <= 1``).
 INPUT_LIMIT_1_S = 12.0
 #: How fast the instability's time constant ``1 / lambda`` falls in a scored trial, s per s.
-RAMP_S_PER_S = 0.03
+RAMP_S_PER_S = 0.02
 #: The same in a practice trial (shorter trials; not scored), s per s.
 PRACTICE_RAMP_S_PER_S = 0.1
 #: ``1 / lambda`` at the start of the first trial, s.
 FIRST_TIME_CONSTANT_S = 1.5
 #: A trial starts at this fraction of the user's limit ``1/tau_e`` estimated from the last valid trial
 #: (``lambda_c`` over the escape factor of that trial's ramp): well below the limit whatever the last ramp.
-START_FRACTION = 0.5
+START_FRACTION = 0.7
 #: The instability stops rising here, 1/s (nobody holds it: ``tau`` would be 30 ms).
 LAMBDA_MAX_1_S = 50.0
-#: Frequencies of the disturbance's sines, Hz (below the crossover of any human operator).
-DISTURBANCE_HZ = (0.13, 0.23, 0.37, 0.61, 0.97)
-#: Amplitude of each sine, half-widths per second (an uncontrolled marker would drift about 0.1 half-width).
-DISTURBANCE_AMPLITUDE_1_S = 0.05
+#: Angular frequencies of the disturbance's sines relative to the trial's starting instability ``lambda_0``
+#: (rad/s per 1/s): the disturbance is scaled to the trial as the ramp is, so the task is the same for every
+#: user in time measured in their own delay (at ``lambda_0 = 1.67 1/s``, a user of 0.3 s: 0.13-0.98 Hz).
+DISTURBANCE_FREQUENCY_RATIOS = (0.5, 0.87, 1.4, 2.3, 3.65)
+#: Amplitude of each sine relative to ``lambda_0`` (half-widths per second per 1/s): 0.05 half-widths/s at
+#: ``lambda_0 = 1.67 1/s``.
+DISTURBANCE_AMPLITUDE_RATIO = 0.03
 #: Longest simulated trial, s.
 MAX_TRIAL_S = 600.0
 #: Practice trials (not scored), then scored trials.
@@ -88,10 +91,11 @@ MIN_VALID = 3
 INPUT_DEADBAND = 0.02
 #: A loss before ``lambda`` has risen by this factor from the trial's start is an early loss (invalid).
 EARLY_RISE = 1.25
-#: The operators the escape factor is computed over: delays (s), gains relative to the most stable one, and
-#: disturbance phases per (delay, gain).
+#: The operators the escape factor is computed over: delays (s), gains relative to the most stable one (the
+#: model's operator: the best gain; docs/driver.md gives the effect of a mistuned gain), and disturbance phases
+#: per (delay, gain).
 CALIBRATION_TAU_S = (0.2, 0.3, 0.4, 0.5, 0.6)
-CALIBRATION_GAIN = (0.95, 1.0, 1.05)
+CALIBRATION_GAIN = (1.0,)
 CALIBRATION_SEEDS = 10
 
 
@@ -116,22 +120,24 @@ def ramp_lambda(t: np.ndarray | float, lambda0: float, rate: float) -> np.ndarra
     return np.where(tc > 1.0 / LAMBDA_MAX_1_S, 1.0 / np.maximum(tc, 1.0 / LAMBDA_MAX_1_S), LAMBDA_MAX_1_S)
 
 
-def disturbance(t: float, phases: np.ndarray) -> np.ndarray:
-    """The disturbance ``d(t)``, half-widths per second.
+def disturbance(t: float, phases: np.ndarray, lambda0: float) -> np.ndarray:
+    """The disturbance ``d(t) = A lambda_0 sum_i sin(r_i lambda_0 t + phi_i)``, half-widths per second.
 
     Parameters
     ----------
     t : float
         Time since the trial's start, s.
-    phases : ndarray (..., len(DISTURBANCE_HZ))
+    phases : ndarray (..., len(DISTURBANCE_FREQUENCY_RATIOS))
         Phase of each sine, rad.
+    lambda0 : float
+        The trial's starting instability, 1/s.
 
     Returns
     -------
     ndarray (...)
     """
-    f = np.asarray(DISTURBANCE_HZ)
-    return DISTURBANCE_AMPLITUDE_1_S * np.sum(np.sin(2.0 * np.pi * f * t + phases), axis=-1)
+    w = np.asarray(DISTURBANCE_FREQUENCY_RATIOS) * lambda0
+    return DISTURBANCE_AMPLITUDE_RATIO * lambda0 * np.sum(np.sin(w * t + phases), axis=-1)
 
 
 def plant_step(x: np.ndarray, lam: float, w: np.ndarray, dt: float = FRAME_S) -> np.ndarray:
@@ -213,7 +219,7 @@ def simulate_operator(tau: float, lambda0: float, phases: np.ndarray, gain: floa
         The operator's delay, s.
     lambda0 : float
         Starting instability, 1/s.
-    phases : ndarray (n, len(DISTURBANCE_HZ))
+    phases : ndarray (n, len(DISTURBANCE_FREQUENCY_RATIOS))
         Disturbance phases of ``n`` trials, rad.
     gain : float
         The operator's gain relative to the most stable one.
@@ -241,7 +247,7 @@ def simulate_operator(tau: float, lambda0: float, phases: np.ndarray, gain: floa
         lam = float(ramp_lambda(t, lambda0, rate))
         seen = hist[(k - lag) % (lag + 1)] if k >= lag else np.zeros(n)
         u = np.clip(-gain * float(operator_gain(lam, tau)) * seen, -INPUT_LIMIT_1_S, INPUT_LIMIT_1_S)
-        x = plant_step(x, lam, u + disturbance(t, phases), dt)
+        x = plant_step(x, lam, u + disturbance(t, phases, lambda0), dt)
         k += 1
         hist[k % (lag + 1)] = x
         lost = alive & (np.abs(x) > LIMIT)
@@ -281,7 +287,8 @@ class EscapeFactor:
 
 @lru_cache(maxsize=4)
 def escape_factor(rate: float = RAMP_S_PER_S, taus: tuple[float, ...] = CALIBRATION_TAU_S,
-                  gains: tuple[float, ...] = CALIBRATION_GAIN, seeds: int = CALIBRATION_SEEDS) -> EscapeFactor:
+                  gains: tuple[float, ...] = CALIBRATION_GAIN, seeds: int = CALIBRATION_SEEDS,
+                  lambda0_1_s: float | None = None) -> EscapeFactor:
     """The escape factor of the delayed proportional operator, computed from the delayed-loop model.
 
     Every calibration delay and gain runs ``seeds`` trials with random disturbance phases (seeded: the same
@@ -298,6 +305,9 @@ def escape_factor(rate: float = RAMP_S_PER_S, taus: tuple[float, ...] = CALIBRAT
         Gains relative to the most stable one.
     seeds : int
         Trials per (delay, gain).
+    lambda0_1_s : float, optional
+        Start every trial here (1/s) instead of at ``START_FRACTION / tau`` (the first practice trial's fixed
+        start).
 
     Returns
     -------
@@ -309,8 +319,9 @@ def escape_factor(rate: float = RAMP_S_PER_S, taus: tuple[float, ...] = CALIBRAT
     for tau in taus:
         here: list[float] = []
         for g in gains:
-            phases = rng.uniform(0.0, 2.0 * np.pi, (seeds, len(DISTURBANCE_HZ)))
-            lam_c, _ = simulate_operator(tau, START_FRACTION / tau, phases, gain=g, rate=rate)
+            phases = rng.uniform(0.0, 2.0 * np.pi, (seeds, len(DISTURBANCE_FREQUENCY_RATIOS)))
+            lam0 = START_FRACTION / tau if lambda0_1_s is None else lambda0_1_s
+            lam_c, _ = simulate_operator(tau, lam0, phases, gain=g, rate=rate)
             here.extend((lam_c * tau).tolist())
         values.extend(here)
         by_tau.append((float(tau), float(np.mean(here))))
@@ -327,6 +338,6 @@ def browser_config() -> dict:
     dict
     """
     return {"frame_s": FRAME_S, "limit": LIMIT, "input_limit": INPUT_LIMIT_1_S,
-            "lambda_max": LAMBDA_MAX_1_S, "disturbance_hz": list(DISTURBANCE_HZ),
-            "disturbance_amplitude": DISTURBANCE_AMPLITUDE_1_S, "input_deadband": INPUT_DEADBAND}
+            "lambda_max": LAMBDA_MAX_1_S, "disturbance_ratios": list(DISTURBANCE_FREQUENCY_RATIOS),
+            "disturbance_amplitude_ratio": DISTURBANCE_AMPLITUDE_RATIO, "input_deadband": INPUT_DEADBAND}
 
