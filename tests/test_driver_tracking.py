@@ -165,3 +165,16 @@ def test_the_explorer_keeps_the_measured_user_with_the_chair(tmp_path):
     bad = text.replace(f"reaction_time_s = {ex.state.user['reaction_time_s']!r}", "reaction_time_s = 9.0")
     msg = state.load_toml(bad, "bad.toml")
     assert msg is not None and "reaction_time_s=9.0" in msg and "\n" not in msg
+
+
+def test_the_user_table_in_docs_driver_md_is_what_the_task_writes():
+    """docs/driver.md's example [user] table is the one five such trials give (its numbers trace here)."""
+    import pathlib
+
+    from stability.driver.protocol import user_toml
+
+    doc = (pathlib.Path(__file__).parents[1] / "docs" / "driver.md").read_text()
+    lam = (3.6, 3.9, 3.5, 4.0, 3.7)
+    res = P.tracking_result([P.TrialRecord("scored", 2.3, x, 8.0, 0.5) for x in lam])
+    for line in user_toml(res.user_table()).splitlines()[2:]:
+        assert line in doc, line

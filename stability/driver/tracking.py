@@ -6,10 +6,10 @@ The user keeps a marker centred on an unstable first-order plant whose instabili
 
 ``x`` is the marker's offset in display half-widths (the edge of the track is :data:`LIMIT`), ``u`` the user's
 input (half-widths per second; full deflection of the stick, the mouse or a key is :data:`INPUT_LIMIT_1_S`) and
-``d`` a small stated disturbance (a sum of sines, random phases per trial, scaled to the trial's start as the
-ramp is) that keeps the task alive while the user holds the marker still.  The instability's time constant ``1 / lambda`` falls linearly in time,
-``1/lambda(t) = 1/lambda_0 - rate t``, so the task looks the same to a fast and a slow user scaled to their own
-delay: ``d(lambda tau)/d(t/tau) = rate (lambda tau)^2``.
+``d`` a small stated disturbance (a sum of sines, random phases per trial, scaled to the trial's start) that
+keeps the task alive while the user holds the marker still.  The instability's time constant ``1 / lambda``
+falls linearly in time, ``1/lambda(t) = 1/lambda_0 - rate t``, so the task looks the same to a fast and a slow
+user scaled to their own delay: ``d(lambda tau)/d(t/tau) = rate (lambda tau)^2``.
 
 The ``lambda`` at loss of control, ``lambda_c``, is about ``1 / tau_e`` (a delayed proportional operator holds
 ``x' = lambda x - k x(t - tau)`` exactly while ``lambda tau < 1``: Stepan & Kollar 2000,
@@ -50,8 +50,8 @@ import numpy as np
 from stability.driver.linear import best_gains
 
 __all__ = ["FRAME_S", "LIMIT", "INPUT_LIMIT_1_S", "RAMP_S_PER_S", "PRACTICE_RAMP_S_PER_S", "FIRST_TIME_CONSTANT_S",
-           "START_FRACTION", "LAMBDA_MAX_1_S", "DISTURBANCE_FREQUENCY_RATIOS", "DISTURBANCE_AMPLITUDE_RATIO", "PRACTICE_TRIALS",
-           "SCORED_TRIALS", "MIN_VALID", "INPUT_DEADBAND", "EARLY_RISE", "CALIBRATION_TAU_S", "CALIBRATION_GAIN",
+           "START_FRACTION", "LAMBDA_MAX_1_S", "DISTURBANCE_FREQUENCY_RATIOS", "DISTURBANCE_AMPLITUDE_RATIO",
+           "PRACTICE_TRIALS", "SCORED_TRIALS", "MIN_VALID", "INPUT_DEADBAND", "EARLY_RISE", "CALIBRATION_TAU_S", "CALIBRATION_GAIN",
            "CALIBRATION_SEEDS", "ramp_lambda", "disturbance", "plant_step", "operator_gain_table", "operator_gain",
            "simulate_operator", "EscapeFactor", "escape_factor", "browser_config"]
 
