@@ -51,7 +51,8 @@ from stability.driver.linear import best_gains
 
 __all__ = ["FRAME_S", "LIMIT", "INPUT_LIMIT_1_S", "RAMP_S_PER_S", "PRACTICE_RAMP_S_PER_S", "FIRST_TIME_CONSTANT_S",
            "START_FRACTION", "LAMBDA_MAX_1_S", "DISTURBANCE_FREQUENCY_RATIOS", "DISTURBANCE_AMPLITUDE_RATIO",
-           "PRACTICE_TRIALS", "SCORED_TRIALS", "MIN_VALID", "INPUT_DEADBAND", "EARLY_RISE", "CALIBRATION_TAU_S", "CALIBRATION_GAIN",
+           "PRACTICE_TRIALS", "SCORED_TRIALS", "MIN_VALID", "INPUT_DEADBAND", "EARLY_RISE", "CALIBRATION_TAU_S",
+           "CALIBRATION_GAIN",
            "CALIBRATION_SEEDS", "ramp_lambda", "disturbance", "plant_step", "operator_gain_table", "operator_gain",
            "simulate_operator", "EscapeFactor", "escape_factor", "browser_config"]
 
