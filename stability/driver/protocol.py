@@ -151,30 +151,35 @@ def next_trial(records: Sequence[TrialRecord]) -> dict | None:
     -------
     dict or None
         ``kind``, ``number`` (1-based within its kind), ``lambda_start_1_s``, ``rate_s_per_s``, ``seq`` (the
-        trials so far).  A trial starts at ``START_FRACTION`` of the limit estimated from the last valid trial
-        (its ``lambda_c`` over the escape factor of its ramp and start), lower after an early loss.  Scored trials
-        continue until :data:`SCORED_TRIALS` valid ones or twice that many in all.
+        trials so far).  The first trial (practice, to find the range) runs the fast ramp from
+        ``1 / FIRST_TIME_CONSTANT_S``; every later one (the second practice trial, then the scored trials) runs the
+        scored ramp from ``START_FRACTION`` of the user's limit estimated so far: the mean ``lambda_c`` of the valid
+        trials at the scored ramp over its escape factor (before there is one, the first trial's ``lambda_c``
+        over the fast ramp's); lower after an early loss.  Scored trials continue until :data:`SCORED_TRIALS` are
+        valid or twice that many have run.
     """
     trials = judge(records)
     practice = sum(1 for t in trials if t.record.kind == "practice")
     scored = [t for t in trials if t.record.kind == "scored"]
     valid_scored = sum(1 for t in scored if t.valid)
-    last = [t.record for t in trials if t.valid]
-    if last and last[-1].kind == "practice":           # the practice trial starts at the same lambda for all
-        esc = escape_factor(PRACTICE_RAMP_S_PER_S, lambda0_1_s=1.0 / FIRST_TIME_CONSTANT_S)
-        lam0 = START_FRACTION * last[-1].lambda_c_1_s / esc.mean
-    elif last:
-        lam0 = START_FRACTION * last[-1].lambda_c_1_s / escape_factor(RAMP_S_PER_S).mean
+    same_ramp = [t.record.lambda_c_1_s for t in trials[1:] if t.valid]
+    if same_ramp:                                       # averaged: one lucky trial does not move the next start
+        limit = float(np.mean(same_ramp)) / escape_factor(RAMP_S_PER_S).mean
+    elif trials and trials[0].valid:
+        limit = trials[0].record.lambda_c_1_s / escape_factor(PRACTICE_RAMP_S_PER_S,
+                                                              lambda0_1_s=1.0 / FIRST_TIME_CONSTANT_S).mean
     else:
-        lam0 = 1.0 / FIRST_TIME_CONSTANT_S
+        limit = 1.0 / (START_FRACTION * FIRST_TIME_CONSTANT_S)
+    lam0 = START_FRACTION * limit
     if trials and trials[-1].reason == "early loss":   # lost at once: start lower than that trial did
         lam0 = min(lam0, START_FRACTION * trials[-1].record.lambda_start_1_s)
+    rate = PRACTICE_RAMP_S_PER_S if not trials else RAMP_S_PER_S
     if practice < PRACTICE_TRIALS:
-        return {"kind": "practice", "number": practice + 1, "lambda_start_1_s": lam0,
-                "rate_s_per_s": PRACTICE_RAMP_S_PER_S, "seq": len(records)}
+        return {"kind": "practice", "number": practice + 1, "lambda_start_1_s": lam0, "rate_s_per_s": rate,
+                "seq": len(records)}
     if valid_scored >= SCORED_TRIALS or len(scored) >= 2 * SCORED_TRIALS:
         return None
-    return {"kind": "scored", "number": len(scored) + 1, "lambda_start_1_s": lam0, "rate_s_per_s": RAMP_S_PER_S,
+    return {"kind": "scored", "number": len(scored) + 1, "lambda_start_1_s": lam0, "rate_s_per_s": rate,
             "seq": len(records)}
 
 

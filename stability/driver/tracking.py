@@ -21,7 +21,8 @@ same task, frame by frame, over a population of delays, gain errors and disturba
 (:func:`escape_factor`).  A user's delay is then ``tau_e = E / mean(lambda_c)``.
 
 The protocol (:mod:`.protocol`; after ISO/TS 14198:2019, which standardises the task; docs/driver.md):
-:data:`PRACTICE_TRIALS` practice trials (faster rise, not scored) then :data:`SCORED_TRIALS` scored trials.
+:data:`PRACTICE_TRIALS` practice trials (the first with a faster rise; not scored) then :data:`SCORED_TRIALS`
+scored trials.
 A trial is invalid with no input (the input never left its dead band) or an early loss (``lambda_c`` less
 than :data:`EARLY_RISE` times the trial's starting ``lambda``: a lapse, not the limit); the result needs
 :data:`MIN_VALID` valid scored trials.  Each trial starts at :data:`START_FRACTION` of the limit ``1/tau_e``
@@ -83,8 +84,9 @@ DISTURBANCE_FREQUENCY_RATIOS = (0.5, 0.87, 1.4, 2.3, 3.65)
 DISTURBANCE_AMPLITUDE_RATIO = 0.03
 #: Longest simulated trial, s.
 MAX_TRIAL_S = 600.0
-#: Practice trials (not scored), then scored trials.
-PRACTICE_TRIALS = 1
+#: Practice trials (not scored: the first at the fast ramp to find the range, the others as a scored trial
+#: runs), then scored trials.
+PRACTICE_TRIALS = 2
 SCORED_TRIALS = 5
 #: Valid scored trials needed for a result.
 MIN_VALID = 3
@@ -211,8 +213,11 @@ def simulate_operator(tau: float, lambda0: float, phases: np.ndarray, gain: floa
                       rate: float = RAMP_S_PER_S, dt: float = FRAME_S) -> tuple[np.ndarray, np.ndarray]:
     """Trials of the task run by a delayed proportional operator, as the browser runs them.
 
-    The operator sees the marker as drawn (one value per step) ``tau`` late, the latest step at or before
-    ``t - tau``, and applies ``u = -gain k*(lambda) x_seen`` limited to :data:`INPUT_LIMIT_1_S`.
+    The operator sees the marker as drawn (one value per step) ``tau`` late and applies
+    ``u = -gain k*(lambda) x_seen`` limited to :data:`INPUT_LIMIT_1_S`.  The steps are the browser's: at each
+    animation frame the input is read and the plant stepped to the offset drawn in that same frame, so the
+    offset drawn ``lag = ceil(tau / dt)`` frames before the one being computed is what the input answers
+    (``x_{k+1}`` from ``u(x_{k+1-lag})``).
 
     Parameters
     ----------
@@ -246,7 +251,7 @@ def simulate_operator(tau: float, lambda0: float, phases: np.ndarray, gain: floa
     while alive.any():
         t = k * dt
         lam = float(ramp_lambda(t, lambda0, rate))
-        seen = hist[(k - lag) % (lag + 1)] if k >= lag else np.zeros(n)
+        seen = hist[(k + 1 - lag) % (lag + 1)] if k + 1 >= lag else np.zeros(n)
         u = np.clip(-gain * float(operator_gain(lam, tau)) * seen, -INPUT_LIMIT_1_S, INPUT_LIMIT_1_S)
         x = plant_step(x, lam, u + disturbance(t, phases, lambda0), dt)
         k += 1
