@@ -232,7 +232,8 @@ class TrackingTab:
             "The marker drifts away by itself, faster and faster, until you lose it at the red edges. "
             f"{PRACTICE_TRIALS} practice trials, then scored trials until {SCORED_TRIALS} are valid (at most "
             f"{2 * SCORED_TRIALS}; a result needs {MIN_VALID}). Your effective delay `tau_e` is saved with the "
-            "chair (Downloads: the chair TOML gets a `[user]` table that every command's `--chair` reads). See docs/driver.md.",
+            "chair (Downloads: the chair TOML gets a `[user]` table that every command's `--chair` reads). "
+            "See docs/driver.md.",
             sizing_mode="stretch_width")
         self.panel = pn.Column(intro, self.task, pn.Row(self.note, self.restart), self.text,
                                sizing_mode="stretch_width")
