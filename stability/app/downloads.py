@@ -69,18 +69,23 @@ def file_names(name: str) -> dict[str, str]:
             "png": f"{stem}.eigenvalues.png", "svg": f"{stem}.eigenvalues.svg"}
 
 
-def chair_toml(chair: Chair) -> str:
+def chair_toml(chair: Chair, user: dict | None = None) -> str:
     """The chair as a TOML file (:func:`stability.chair.dumps`; loading it gives the same chair).
 
     Parameters
     ----------
     chair : Chair
+    user : dict, optional
+        Its user's ``[user]`` table (the Tracking tab's result), appended as TOML
+        (:func:`stability.driver.protocol.user_toml`); the commands' ``--chair`` read it.
 
     Returns
     -------
     str
     """
-    return chair_mod.dumps(chair)
+    from stability.driver.protocol import user_toml
+
+    return chair_mod.dumps(chair) + (user_toml(user) if user else "")
 
 
 def results_json(chair: Chair, model: str) -> str:
@@ -160,7 +165,7 @@ def download_buttons(state: Any, view: Any) -> Any:
 
     from stability.app.views import eigenvalues_csv
 
-    work = {"toml": lambda: io.StringIO(chair_toml(state.chair)),
+    work = {"toml": lambda: io.StringIO(chair_toml(state.chair, getattr(state, "user", None))),
             "json": lambda: io.StringIO(results_json(state.chair, state.model)),
             "csv": lambda: io.StringIO(eigenvalues_csv(view())),
             "png": lambda: figure_file(view(), "png"), "svg": lambda: figure_file(view(), "svg")}

@@ -48,6 +48,7 @@ from stability.app.markup import literal
 from stability.app.nonlinear_tab import NonlinearTab
 from stability.app.speed_tab import SpeedTab
 from stability.app.state import AppState, error_line
+from stability.app.tracking_tab import TrackingTab
 from stability.app.trail_tab import TrailTab
 from stability.app.views import LinearView, linear_view
 from stability.settings import defaults as D
@@ -56,7 +57,7 @@ __all__ = ["Explorer", "TAB_NAMES", "BACKGROUND_DELAY_MS"]
 
 #: The tabs, in order.
 TAB_NAMES = ("Stability vs speed", "Geometry", "Nonlinear", "Trail window", "Advice", "Compare",
-             "Power assist", "Downloads")
+             "Power assist", "Tracking", "Downloads")
 
 
 #: How long after an edit the background work starts, ms: the edit's answer reaches the browser and is painted
@@ -153,10 +154,11 @@ class Explorer:
         self.compare.unpin_button.on_click(on(lambda e: self._unpin()))
         self.assist = AssistTab(self.jobs.submit, on, lambda: (self.state.chair, self.state.model))
         self.advice = AdviceTab(self.jobs.submit, on, lambda: self.state.chair, self.apply_fields)
+        self.tracking = TrackingTab(on, self._measured)
         self.downloads = download_buttons(self.state, self._view)
         self.tabs = pn.Tabs(*zip(TAB_NAMES, (
             self.speed_tab.panel, self.geometry.panel, self.nonlinear.panel, self.trail.panel, self.advice.panel,
-            self.compare.panel, self.assist.panel,
+            self.compare.panel, self.assist.panel, self.tracking.panel,
             pn.Column(pn.pane.Markdown("Files named after the chair; the results JSON is exactly what "
                                        "`python -m stability.critical_speed --chair FILE --json` prints.",
                                        sizing_mode="stretch_width"),
@@ -164,7 +166,7 @@ class Explorer:
             dynamic=True, sizing_mode="stretch_width", css_classes=["views"], min_width=560,
             stylesheets=[".bk-tab { padding: 4px 9px; }"])
         self._texts = [self.speed_tab.texts, self.geometry.texts, self.nonlinear.texts, self.trail.texts,
-                       self.advice.texts, self.compare.texts, self.assist.texts, None]
+                       self.advice.texts, self.compare.texts, self.assist.texts, None, None]
         self.tabs.param.watch(on(self._tab_shown), "active")
         header = pn.Column(pn.Row(pn.pane.Markdown("### stability explorer", margin=(0, 10), width=EDITOR_WIDTH - 20),
                                   title_pane, sizing_mode="stretch_width"),
@@ -284,6 +286,10 @@ class Explorer:
                 self.speed_tab.show_band_entry(True)
                 self._start_bands()
             self._show_messages()
+
+    def _measured(self, user: dict | None) -> None:
+        """The Tracking tab's result: the chair's ``[user]`` table (the TOML download carries it)."""
+        self.state.user = user
 
     def _view(self) -> LinearView:
         assert self.view is not None

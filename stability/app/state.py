@@ -76,6 +76,9 @@ class AppState:
         The loaded uncertainty file.
     uncertainty_name : str
         Its file name.
+    user : dict or None
+        The chair's user (``[user]`` table: :meth:`stability.driver.protocol.TrackingResult.user_table`), written
+        into the chair's TOML download.
     """
 
     preset: str = DEFAULT_PRESET
@@ -85,6 +88,7 @@ class AppState:
     pinned: list[Chair] = field(default_factory=list)
     uncertainty: Any = None
     uncertainty_name: str = ""
+    user: dict | None = None
     _history: list[tuple[Edit, str]] = field(default_factory=list, repr=False)
 
     def __post_init__(self) -> None:
@@ -256,11 +260,17 @@ class AppState:
                 with open(path, "wb") as fh:
                     fh.write(raw)
                 base_chair = chair_mod.load(path)
+                user = chair_mod.user_table(path)
+                if user is not None:
+                    from stability.driver import Driver
+
+                    Driver.from_mapping(user)                   # checked as the commands check it
                 new = build_edit(f"file:{name}", base_chair, {})
             except (ValueError, UnicodeDecodeError) as exc:
                 self.errors["file"] = _file_message(exc, path, name)
                 return self.errors["file"]
         self.accept(new, ["file", *chair_mod.field_names()])
+        self.user = user
         return None
 
     def load_uncertainty(self, data: bytes | str, filename: str = "uncertainty.toml") -> str | None:

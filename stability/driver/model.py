@@ -25,7 +25,7 @@ from stability.chair import Chair
 from stability.chair.power import drive_kind
 from stability.settings import defaults as D
 
-__all__ = ["Driver", "REACTION_TIME_S", "REACTION_TIME_RANGE_S", "HAND_FORCE_N", "HAND_FORCE_RANGE_N",
+__all__ = ["Driver", "REACTION_TIME_S", "REACTION_TIME_RANGE_S", "HAND_FORCE_N", "HAND_FORCE_RANGE_N", "TRACKING_KEYS",
            "yaw_moment_limit"]
 
 #: Default effective delay of the driver's heading corrections, s: a design value inside the range the
@@ -40,6 +40,9 @@ REACTION_TIME_RANGE_S = (0.05, 2.0)
 HAND_FORCE_N = 63.0
 #: Valid hand forces, N.
 HAND_FORCE_RANGE_N = (1.0, 1000.0)
+#: Keys of a ``[user]`` table that record the critical tracking task (:mod:`stability.driver.tracking`):
+#: the reaction time's spread (s) and the scored trials' ``lambda_c`` (1/s) and validity.
+TRACKING_KEYS = ("reaction_time_sd_s", "tracking_lambda_c_1_s", "tracking_valid")
 
 
 @dataclass(frozen=True)
@@ -79,7 +82,8 @@ class Driver:
         ----------
         data : dict
             ``reaction_time_s`` (required), ``hand_force_N`` (optional), ``source`` (optional text: where the
-            reaction time was measured).
+            reaction time was measured); the tracking task's record (:data:`TRACKING_KEYS`) is allowed and not
+            used here.
         source : str
             Default source text.
 
@@ -92,7 +96,7 @@ class Driver:
         ValueError
             On an unknown key, a missing ``reaction_time_s`` or a value out of range.
         """
-        known = {"reaction_time_s", "hand_force_N", "source"}
+        known = {"reaction_time_s", "hand_force_N", "source", *TRACKING_KEYS}
         unknown = sorted(set(data) - known)
         if unknown:
             raise ValueError(f"[user] has unknown key(s) {unknown}; valid: {sorted(known)}")
