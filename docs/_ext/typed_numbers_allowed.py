@@ -461,6 +461,13 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('gave 4.99 against 3.22 N s), and', 'pending'),
     ],
     'docs/driver.md': [
+        ('back within the tolerance of 10 % the issue', 'parameter'),
+        ('recovered within 10 %, the validity', 'parameter'),
+        ('scripted operator of 0.3 s and 0.5 s played', 'parameter'),
+        ('Gamepad API, recovered within 10 %, the download', 'parameter'),
+        ('control earlier: an operator at 0.95 or 0.9 of the best', 'parameter'),
+        ('% long), at 1.05 or 1.1 of it', 'parameter'),
+        ('deflection at 3 per second):', 'parameter'),
         ('{docvalue}`driver_limits.usual_pct` % at reaction times of 0.3 s and more,', 'parameter'),
         ('at the usual reaction times (0.3 s:', 'parameter'),
         ('is kept at every speed tried (0.3 s: {docvalue}`driver_lane.power-fwd`', 'parameter'),

@@ -197,6 +197,30 @@ def driver_settings() -> dict:
             "sample_ms": f"{1e3 * lane.SAMPLE_TIME_S:g}"}
 
 
+@group("tracking", "stability.driver.tracking (constants, escape_factor())", cheap=True)
+def tracking() -> dict:
+    """The critical tracking task's settings (read from the code) and its escape factor (computed)."""
+    from stability.driver import tracking as T
+
+    e = T.escape_factor()
+    means = [m for _, m in e.by_tau]
+    f = T.DISTURBANCE_FREQUENCY_RATIOS
+    first = T.escape_factor(T.PRACTICE_RAMP_S_PER_S, lambda0_1_s=1.0 / T.FIRST_TIME_CONSTANT_S)
+    off = {g: T.escape_factor(gains=(g,)).mean for g in (0.9, 0.95, 1.05, 1.1)}
+    return {"first_mean": fixed(first.mean, 2), "first_sd": fixed(first.sd, 2),
+            "practice_ramp": f"{T.PRACTICE_RAMP_S_PER_S:g}", "first_tc": f"{T.FIRST_TIME_CONSTANT_S:g}",
+            "start": f"{T.START_FRACTION:g}", "deadband_pct": f"{100 * T.INPUT_DEADBAND:g}",
+            "early_pct": f"{100 * (T.EARLY_RISE - 1):g}",
+            **{f"e_gain_{g:g}": fixed(v, 2) for g, v in off.items()},
+            **{f"long_pct_{g:g}": f"{100 * (e.mean / v - 1):.0f}" for g, v in off.items()},
+            "ramp": f"{T.RAMP_S_PER_S:g}", "input": f"{T.INPUT_LIMIT_1_S:g}", "frame_hz": f"{1 / T.FRAME_S:.0f}",
+            "f_lo": f"{f[0]:g}", "f_hi": f"{f[-1]:g}", "amp": f"{T.DISTURBANCE_AMPLITUDE_RATIO:g}",
+            "tau_lo": f"{T.CALIBRATION_TAU_S[0]:g}", "tau_hi": f"{T.CALIBRATION_TAU_S[-1]:g}",
+            "seeds": str(T.CALIBRATION_SEEDS), "e_mean": fixed(e.mean, 3), "e_sd": fixed(e.sd, 3),
+            "e_n": str(e.samples), "e_lo": fixed(e.low, 2), "e_hi": fixed(e.high, 2),
+            "e_by_lo": fixed(min(means), 2), "e_by_hi": fixed(max(means), 2)}
+
+
 @group("driver_lane", "python -m stability.critical_speed --chair NAME --reaction-time 0.3 "
        "(stability.study.lane.lane_limit(chair, Driver(0.3)))")
 def driver_lane() -> dict:
