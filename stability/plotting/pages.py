@@ -252,7 +252,8 @@ def table_axes(ax, header, rows, *, col_widths=None, fontsize: float = 8.5, wrap
         if n_lines * 1.2 * fs <= height_pt or fs <= MIN_TABLE_FONT:
             break
         fs = max(MIN_TABLE_FONT, fs - 0.25)
-    line_h = min(0.045, 1.2 * fs / 72.0 / (ax.get_position().height * ax.figure.get_figheight()))
+    need = 1.2 * fs / 72.0 / (ax.get_position().height * ax.figure.get_figheight())   # one line, axes fraction
+    line_h = max(need, min(0.045, (top - bottom) / max(n_lines, 1)))
     x0 = [sum(col_widths[:i]) for i in range(ncol)]
     y = top
     for i, h in enumerate(header):

@@ -100,7 +100,7 @@ GLOSSARY: tuple[tuple[str, str], ...] = (
      "much unknown; bounds cannot rank parameters."),
     ("wchair scheme", "the thesis's simulator's fixed-step integration, re-implemented (step 1 ms)."),
     ("stick-slip pin friction", "the report's pin-friction law: a caster stays put until the side moment exceeds "
-     "the friction torque, then slides against it; the simulate command's --friction-law stick-slip."),
+     "the friction torque, then slides against it; the simulate command's stick-slip friction law."),
     ("x_m", "the caster pins' distance ahead of (or behind) the centre of gravity along the chair, m."),
     ("M_f/l", "pin friction divided by trail: the side force at the caster's contact that the friction holds, N."),
     ("k_us", "the understeer coefficient of the locked-caster (zero-width) model, rad; negative: oversteer."),
