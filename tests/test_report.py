@@ -243,7 +243,9 @@ def test_conclusions_under_the_thesis_conditions(quick):
       rounds k_us to one figure (-0.04, eq 8-4), so any k_us in [-0.045, -0.035] reproduces it:
       sqrt(9.8 * 0.60 / k) lies in [11.4, 13.0] m/s.
     - Figure 8-15 (0.62 m/s): "only the EJA tires significantly increase the time" -> EJA is the most stable
-      main tire, and it has the lowest cornering stiffness at its static load (Figure 4-2).
+      main tire, and it has the lowest cornering stiffness at its static load (Figure 4-2); but its lead over the
+      next tire is about 1 % here, not the thesis's "significant" increase, so the verdict is PARTLY (review
+      error 5: a 2 % spread cannot be an AGREE).
     - conclusion 6 recommends 0.3 N m; the evidence quotes the E&J Premier at that friction.
     """
     st = quick.data.thesis
@@ -256,7 +258,9 @@ def test_conclusions_under_the_thesis_conditions(quick):
     ours = sorted(st.tire_times, key=lambda n: st.tire_times[n])
     assert ours == ["AG", "EJP", "SS", "IM", "EJA"]
     rows = {c.number: c for c in quick.data.conclusions}
-    assert "0.62 m/s" in rows[9].evidence and rows[9].verdict == "agree"
+    assert "0.62 m/s" in rows[9].evidence and rows[9].verdict == "partly"
+    times = sorted(st.tire_times.values())
+    assert 100 * (times[-1] / times[-2] - 1) < study.conclusions.TIRE_SIGNIFICANT_PERCENT
     assert "0.3 N m" in rows[6].evidence and "0.3 N m" in rows[6].statement
     assert "indoors" in rows[7].statement
     assert "constant s1+s2" in rows[2].evidence
