@@ -984,7 +984,9 @@ def test_json_numbers_are_the_numbers_the_pages_print(quick):
                # the table: this chair's column
                f"{ci['value']:.3g}({lo:.3g}-{hi:.3g})", f"{v['static_stability_deg']['value']:.1f}",
                f"{100 * v['shimmy_margin_m']['value']:+.1f}", f"{v['growth_rate_1_s']:.3g}", f"{100 * dec['trail_m']:.3g}",
-               f"{ei['value']:.3g}({ei['interval'][0]:.3g}-{ei['interval'][1]:.3g})"]
+               # a range that rounds to one value is not printed (review change 7: no "0.75 (0.75-0.75)")
+               f"{ei['value']:.3g}" + ("" if f"{ei['interval'][0]:.3g}" == f"{ei['interval'][1]:.3g}" else
+                                       f"({ei['interval'][0]:.3g}-{ei['interval'][1]:.3g})")]
     expect1 += [f"{t:.2g}sat{u:g}m/s" for u, t in zip(v["time_to_correct_speeds_m_s"], v["time_to_correct_s"],
                                                       strict=True) if t is not None]
     rec = dec["recommendation"]

@@ -83,11 +83,17 @@ def _p_chair(d: ReportData) -> Figure:
     P.chair_geometry(c, axes[0, 1])
     t = d.tipping
     if t is not None:
-        fig.text(0.60, 0.13, "Static stability angles (ISO 7176-1; brakes locked, casters in their least stable "
+        fig.text(0.60, 0.13, "Static stability angles (ISO 7176-1; brakes locked, casters in their\nleast stable "
                  f"orientation):\ntoward the main wheels {t.toward_main_wheels_deg:.1f} deg, toward the casters "
-                 f"{t.toward_casters_deg:.1f} deg, sideways {t.lateral_left_deg:.1f} / {t.lateral_right_deg:.1f} "
+                 f"{t.toward_casters_deg:.1f} deg,\nsideways {t.lateral_left_deg:.1f} / {t.lateral_right_deg:.1f} "
                  "deg (left / right)", fontsize=8.5, va="top", ha="left")
     return P.finish(fig)
+
+
+def _pins(c) -> str:
+    """Both pins' friction, N m (one value when they are equal)."""
+    a, b = c.pin_friction_left, c.pin_friction_right
+    return f"{a:.3g}" if f"{a:.3g}" == f"{b:.3g}" else f"{a:.3g} / {b:.3g}"
 
 
 def _p_comparison(d: ReportData) -> Figure:
@@ -102,7 +108,7 @@ def _p_comparison(d: ReportData) -> Figure:
     geometry = [["c.g. to main axle s1 (m)", f"{d.chair.s1:.3g}", f"{b.chair.s1:.3g}", "", ""],
                 ["c.g. to caster pins s2 (m)", f"{d.chair.s2:.3g}", f"{b.chair.s2:.3g}", "", ""],
                 ["caster trail (m)", f"{d.chair.trail:.3g}", f"{b.chair.trail:.3g}", "", ""],
-                ["pin friction (N m)", f"{d.chair.pin_friction_left:.3g}", f"{b.chair.pin_friction_left:.3g}", "", ""],
+                ["pin friction, left / right (N m)", _pins(d.chair), _pins(b.chair), "", ""],
                 ["mass (kg)", f"{d.chair.m:.3g}", f"{b.chair.m:.3g}", "", ""]]
     axes[0, 1].axis("off")
     P.table_axes(axes[0, 1], ["", d.chair.name, b.chair.name, "change", "better"],
@@ -198,12 +204,12 @@ def _p_responses(d: ReportData) -> Figure:
     fig, axes = P.page(_title(d, "nonlinear yaw-rate responses (Figure 8-3a analogue), linear overlay"), sub,
                        nrows=1, ncols=2)
     P.yaw_rate_responses(d.responses, axes[0, 0], reference_time=d.thesis.reference_time,
-                         validity=d.validity.get("responses"),
-                         title=f"{c.name}: pin friction {c.pin_friction_left:g} N m ({d.model} model, "
+                         validity=d.validity.get("responses"), flip=True,
+                         title=f"{c.name}: pin friction {_pins(c)} N m, stick-slip\n({d.model} model, "
                                f"{d.scheme} scheme); dashed: linear, frictionless")
     P.yaw_rate_responses(d.responses_frictionless, axes[0, 1], reference_time=d.thesis.reference_time,
-                         validity=d.validity.get("frictionless"),
-                         title=f"{c.name} without pin friction: where the linear model applies")
+                         validity=d.validity.get("frictionless"), flip=True,
+                         title=f"{c.name} without pin friction:\nwhere the linear model applies")
     bottom = _footer(fig, f"Push: {push_text(d)} at the c.g. (WCHAIR applies the force while t <= 0.1 s). "
                      + VALIDITY_NOTE + "\n" + d.responses.linear_note + ".")
     return P.finish(fig, bottom=bottom)
@@ -216,6 +222,7 @@ def _p_paths(d: ReportData) -> Figure:
                    title=f"paths after {push_text(d)} at the c.g., {REFERENCE_SPEED:g} m/s: {d.model} model, "
                          f"{d.scheme} scheme")
     P.yaw_rate_responses(d.paths, axes[0, 1], label_chair=True, ylim=(-1.0, 1.5), validity=d.validity.get("paths"),
+                         flip=True,
                          title=f"yaw rates of the same runs, {REFERENCE_SPEED:g} m/s ({d.model} model); "
                                "dashed: linear")
     bottom = _footer(fig, VALIDITY_NOTE)
@@ -294,7 +301,9 @@ def _p_sweeps(d: ReportData) -> Figure:
     limits = {p: (v, f"tips at {d.tip_limits_deg:g} deg") for p, v in d.tip_limits.items()}
     P.sweep_chart(table, axes, limits=limits)
     note = (f" Dash-dot line: where the braked chair's static stability angle toward its main wheels falls to "
-            f"{d.tip_limits_deg:g} deg (Loane and Kirby's measured mean for a conventional chair): moving the axle "
+            f"{d.tip_limits_deg:g} deg (Loane and Kirby's measured mean for a conventional chair, brakes "
+            "unlocked: a scale, not a like-for-like "
+            "limit): moving the axle "
             "past it trades tipping for directional stability." if limits else "")
     bottom = _footer(fig, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
              "parameter; other parameters at the chair's values. Same speed scale in every panel." + note)

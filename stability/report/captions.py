@@ -15,7 +15,7 @@ import numpy as np
 from stability.advise.limits import shimmy_sentence
 from stability.advise.text import kmh
 from stability.report.behaviour import friction_role, motion, sig3
-from stability.report.comparison import comparison_rows, report_key_numbers
+from stability.report.comparison import RESTATED, comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
 from stability.report.ranges import interval_words
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
@@ -128,10 +128,14 @@ def _responses(d: ReportData) -> str:
 def _paths(d: ReportData) -> str:
     ms = _motions(d, "paths")
     m = ms[0]
-    txt = f"After the push at {kmh(m.speed)} the chair {m.words()}: {m.where()}"
+    txt = f"After the push at {kmh(m.speed)} (stick-slip pin friction) the chair {m.words()}: {m.where()}"
     if len(ms) > 1:
         o = ms[1]
         txt += f"; with its casters at the other end the same chair {o.words()}: {o.where()}"
+    front = [x for x, r in zip(ms, d.paths.responses, strict=False) if r.chair.caster_position == "front"]
+    if front and front[0].kind == "keeps turning":
+        txt += (". The thesis's Figure 8-4b shows its front-caster chair returning to straight-line motion; here "
+                "the turn persists")
     return txt + "."
 
 
@@ -213,13 +217,13 @@ def _comparison(d: ReportData) -> str:
     b = d.baseline
     if b is None:
         return ""
-    rows = comparison_rows(*report_key_numbers(d))
+    rows = [r for r in comparison_rows(*report_key_numbers(d)) if not r[0].startswith(RESTATED)]
     wins = [r for r in rows if r[4] == "this chair"]
     losses = [r for r in rows if r[4] == "baseline"]
     txt = f"{d.chair.name} is better than {b.chair.name} on {len(wins)} of {len(rows)} measures"
     if losses:
         txt += "; worse on " + ", ".join(f"{r[0].split(' (')[0]} ({r[3]})" for r in losses)
-    return txt + "."
+    return txt + " (the doubling time restates the growth rate and is not counted again)."
 
 
 def _trail_window(d: ReportData) -> str:

@@ -389,6 +389,13 @@ def summary_text(d: ReportData) -> str:
                    + (f"; growth rate {ch.growth:+.2f})" if ch.growth is not None else ")") for ch in changes)
         out.append("  Pin friction and trail act through one quantity, the friction-limited caster side force M_f/l: "
                    "it is ranked as one group, and trail separately at fixed M_f/l.")
+        opposite = [ch.label for ch in changes if ch.growth is not None and ch.elasticity * ch.growth > 0]
+        if opposite:
+            # both elasticities positive (or both negative): raising the parameter raises the critical impulse
+            # (better) and the growth rate (worse) - the two measures disagree on direction
+            out.append("  For " + ", ".join(opposite) + " the two measures point opposite ways: the linear growth "
+                       "rate leaves out pin friction, the critical impulse (nonlinear, with stick-slip friction) "
+                       "includes it, so the critical impulse decides (see the findings).")
     else:
         sens = d.sensitivity
         why = ("its critical impulse at this speed was not found (no push up to the largest tried brings |yaw rate| "
