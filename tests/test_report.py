@@ -291,8 +291,8 @@ def test_cli_quick_is_byte_identical(quick, tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(report.document, "compute", fake_compute)
     a = tmp_path / "a.pdf"
     txt = tmp_path / "a.txt"
-    assert report_command.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(a), "--text", str(txt)]) == 0
-    assert calls == [("ej-premier", "exact", True)]
+    assert report_command.main(["--chair", "ej-premier", "--no-progress", "-o", str(a), "--text", str(txt)]) == 0
+    assert calls == [("ej-premier", "exact", False)]
     assert a.read_bytes() == quick.path.read_bytes()
     dump = txt.read_text()
     assert dump.count("=== page ") == len(EXPECTED_PAGES)
@@ -1002,8 +1002,9 @@ def test_json_numbers_are_the_numbers_the_pages_print(quick):
         expect1.append(f"push{cl['handrim']['force_difference_N']:.0f}Nharder")
     for s in map(_squash, expect1):
         assert s in page1, s
-    for para in dec["paragraphs"] + [j["coarsened_text"]]:
+    for para in dec["paragraphs"]:
         assert _squash(para) in page1
+    assert _squash(j["coarsened_text"]) in _squash(" ".join(_page(quick, "method").texts))
     # page 1's words are the advisor's decision verbatim (python -m stability.advise --json: decision.paragraphs)
     assert dec["paragraphs"][:len(dec["advisor_decision"]["paragraphs"])] == dec["advisor_decision"]["paragraphs"]
     sm = j["summary"]
@@ -1036,15 +1037,17 @@ def test_json_numbers_are_the_numbers_the_pages_print(quick):
 
 
 def test_quick_report_says_what_it_coarsens_and_full_marks_nothing(quick):
-    """Quick: page 1 lists the coarsened settings (their quick and full values from Settings) and the values
-    computed on them carry a dagger; the same data under full settings prints neither."""
+    """Quick: page 1 says it is quick, the method appendix lists the coarsened settings (their quick and full
+    values from Settings) and the values computed on them carry a dagger; the same data under full settings
+    prints neither."""
     from stability.report.json_data import report_mapping
     from stability.report.quick import MARK, coarsened
 
     d = quick.data
     page1 = " ".join(" ".join(_page(quick, "decision").texts).split())
+    method = " ".join(" ".join(_page(quick, "method").texts).split())
     full, q = report.Settings.for_mode(False), report.Settings.for_mode(True)
-    assert f"bisected to {q.tol:g} m/s" in page1 and f"(full: {full.tol:g} m/s" in page1
+    assert f"bisected to {q.tol:g} m/s" in method and f"(full: {full.tol:g} m/s" in method
     assert "QUICK REPORT." in page1 and f"Values marked {MARK}" in page1
     rows = {r["setting"]: r for r in coarsened(d.settings)}
     assert (rows["tol"]["quick"], rows["tol"]["full"]) == (q.tol, full.tol)
@@ -1068,16 +1071,18 @@ def test_report_json_command(quick, tmp_path, monkeypatch, capsys):
 
     monkeypatch.setattr(command, "compute", lambda c, model="exact", **kw: quick.data)
     out = tmp_path / "r.json"
-    assert report_command.main(["--quick", "--no-progress", "--json", "--json-file", str(out)]) == 0
+    assert report_command.main(["--no-progress", "--json", "--json-file", str(out)]) == 0
     cap = capsys.readouterr()
     printed = json.loads(cap.out)
     assert json.loads(out.read_text()) == printed and f"wrote {out}" in cap.err
     schemas.validate("report", printed)
     assert {k: printed[k] for k in report_mapping(quick.data)} == json.loads(json.dumps(report_mapping(quick.data)))
-    assert printed["chair"] == "ej-premier" and printed["options"]["quick"] is True
+    assert printed["chair"] == "ej-premier" and printed["options"]["quick"] is False
     assert printed["summary"]["reference_time_s"] == quick.data.thesis.reference_time
     assert list(tmp_path.iterdir()) == [out]
     assert report_command.main(["--quick"]) == 2
     assert "-o FILE.pdf is required" in capsys.readouterr().err
-    assert report_command.main(["--quick", "--json", "--text", str(tmp_path / "t.txt")]) == 2
+    assert report_command.main(["--quick", "--json"]) == 2          # the quick report is a brief PDF
+    assert "--json needs the full report" in capsys.readouterr().err
+    assert report_command.main(["--json", "--text", str(tmp_path / "t.txt")]) == 2
     assert "--text" in capsys.readouterr().err and not (tmp_path / "t.txt").exists()

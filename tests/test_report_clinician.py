@@ -94,3 +94,43 @@ def test_study_runs_are_stick_slip():
 
     assert report_run("exact", Settings.for_mode(False), "wchair").friction_law == "stick-slip"
     assert study.Criterion().yaw_rate == 1.0
+
+
+@pytest.fixture(scope="module")
+def brief(tmp_path_factory):
+    from stability.report import document
+
+    path = tmp_path_factory.mktemp("brief") / "q.pdf"
+    return document.build(preset("ej-premier"), path, brief=True, progress=False)
+
+
+def test_quick_report_is_the_decision_the_sheet_and_the_references(brief):
+    """``--quick`` (issue 35): page 1 with the full report's decision (the advisor's paragraphs verbatim, the
+    same function the full report calls), the clinician sheet and the references; nothing coarsened, so no
+    dagger marks, and every time to 1 rad/s it prints is the advisor's (one value per measure)."""
+    from stability.advise.decision import decide
+    from stability.report.quick import MARK
+
+    assert [p.title for p in brief.pages] == ["decision", "for the clinician", "glossary and references"]
+    d = brief.data
+    page1 = " ".join(" ".join(brief.pages[0].texts).split())
+    for para in decide(d.advice).paragraphs():
+        assert " ".join(para.split()) in page1
+    whole = " ".join(" ".join(t for p in brief.pages for t in p.texts).split())
+    assert MARK not in whole and "QUICK REPORT." in page1
+    # the sheet's runs are the advisor's reference-push runs: the same times, to the digits either prints
+    for u, t, m in zip(d.advice.speeds_m_s, d.advice.time_to_correct_s, d.sheet.motions, strict=True):
+        assert m.speed == pytest.approx(u)
+        if t is None:
+            assert m.kind != "spins up"
+        else:
+            assert m.time_to_level == pytest.approx(t, abs=1e-9)
+
+
+def test_quick_cli_refuses_what_needs_the_full_report(tmp_path, capsys):
+    for extra in (["--compare", "revised"], ["--json"]):
+        with pytest.raises(SystemExit) as e:
+            raise SystemExit(report_command.main(["--quick", "-o", str(tmp_path / "q.pdf"), *extra]))
+        assert e.value.code == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "needs the full report" in err

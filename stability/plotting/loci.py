@@ -76,7 +76,7 @@ def _limits(eig, xlim, ylim, scale, keep, linthresh):
     return xlim or auto[0], ylim or auto[1]
 
 
-def _label_points(ax, pts, labels, fontsize=6.5, min_px=14.0):
+def _label_points(ax, pts, labels, fontsize=7, min_px=14.0):
     """Annotate points, skipping any that would land within ``min_px`` pixels of one already labelled."""
     placed = []
     trans = ax.transData
@@ -161,7 +161,7 @@ def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 1
         cb = ax.figure.colorbar(lc, ax=ax, pad=0.01)
         cb.set_label("forward speed U (m/s)", fontsize=8)
         cb.ax.tick_params(labelsize=7)
-    ax.legend(fontsize=6.5, loc="lower left")
+    ax.legend(fontsize=7, loc="lower left")
     ax.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters",
                  fontsize=9)
     return ax
@@ -260,7 +260,7 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
         ax.set_xlim(*(xlim or (U[0], U[-1])))
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3, which="both")
-    ax1.legend(fontsize=6.5, ncol=2, loc="lower left")
+    ax1.legend(fontsize=7, ncol=2, loc="lower left")
     ax1.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters (shaded: unstable)",
                   fontsize=9)
     ax2.set_title("imaginary parts (oscillation frequencies)", fontsize=8)
@@ -325,7 +325,7 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
         ax.plot([], [], " ", label=f"largest σ {locus.max_real.min():.3g} .. {locus.max_real.max():.3g} 1/s")
         for b in locus.stability_boundaries():
             ax.plot([], [], " ", label=f"crosses σ = 0 at {b:.4g}")
-        ax.legend(fontsize=6.5, loc="lower left")
+        ax.legend(fontsize=7, loc="lower left")
     ax.set_title(title or f"vs {locus.label}", fontsize=9)
     return ax
 

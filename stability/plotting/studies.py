@@ -130,7 +130,7 @@ def sweep_chart(table, axes=None, *, title: str | None = None, limits: dict | No
             ax.plot(x, sp, "-o", ms=3.5, color=colour(0))
             if cens.any():
                 ax.plot(x[cens], sp[cens], "o", ms=6, mfc="w", mec=UNSTABLE, label="outside bracket")
-                ax.legend(fontsize=6)
+                ax.legend(fontsize=7)
             if math.isfinite(s.nominal_value):
                 ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
             if s.parameter in limits:

@@ -4,6 +4,7 @@ and the references.  Stated here once; the other pages refer to them."""
 from __future__ import annotations
 
 from stability.report.compute import ReportData
+from stability.report.quick import coarsened_text
 from stability.report.summary import dropped_text, model_gap
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.study.facts import PROPORTIONAL_RANGE
@@ -25,9 +26,7 @@ def method_text(d: ReportData) -> list[str]:
     dt = d.settings.dt if d.scheme == "wchair" else None
     crit = d.thesis.criterion
     a, b = PROPORTIONAL_RANGE
-    quick = ("This is a QUICK report: coarser speed grids, fewer parameter values and shorter bisections than the "
-             "full report; its numbers can move by a few per cent and its rankings of close parameters can swap. "
-             if d.settings.quick else "")
+    quick = coarsened_text(d.settings) + " " if d.settings.quick else ""
     return [
         quick + "Models. Linear: straight-line motion, tire forces linear in slip with the cornering stiffness at "
         "the static load (the thesis's Table 4-1 method), free casters without pin friction (Coulomb friction has "

@@ -6,6 +6,7 @@ import math
 from collections.abc import Callable
 from functools import partial
 
+import numpy as np
 from matplotlib.figure import Figure
 
 from stability import plotting as P
@@ -16,7 +17,7 @@ from stability.report.comparison import comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
 from stability.report.decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
 from stability.report.findings import _first, conclusion_rows, findings
-from stability.report.quick import MARK, coarsened_text
+from stability.report.quick import MARK
 from stability.report.sections import footer as _footer
 from stability.report.sections import shimmy_page, slope_page, uncertainty_page
 from stability.report.summary import dropped_pages, interval_text, push_text, summary_text
@@ -31,10 +32,27 @@ VALIDITY_NOTE = ("Curves end where the run leaves the model's range: first slip 
                  "heading past 90 deg, or speed reversal (tire forces beyond are clamped, not results).")
 
 
+#: Page 1's note in a quick report (what it coarsens is listed in the method appendix).
+QUICK_NOTE = (f"QUICK REPORT. Values marked {MARK} come from coarse grids and may move in the full report; the "
+              "decision above is the advisor's, the same in both. The method appendix lists what is coarsened.")
+
+
+#: Page 1's note in the quick (brief) report.
+BRIEF_NOTE = ("QUICK REPORT. This page, the clinician sheet and the references only, at full resolution: the "
+              "decision is the full report's. The evidence (responses, paths, parametric study, maps, shimmy, "
+              "slope, the thesis's conclusions) is in the full report (the same command without --quick).")
+
+
+def _p_sheet(d: ReportData) -> Figure:
+    from stability.report.clinician_sheet import sheet_figure
+
+    return sheet_figure(d.sheet, d.model)
+
+
 def _subtitle(d: ReportData) -> str:
     c = d.chair
-    return (f"{c.caster_position} casters; s1 = {c.s1:g} m, s2 = {c.s2:g} m, trail = {c.trail:g} m, m = {c.m:g} kg, "
-            f"pin friction {c.pin_friction_left:g}/{c.pin_friction_right:g} N m, main tire {c.main_tire}, "
+    return (f"{c.caster_position} casters; s1 = {c.s1:.3g} m, s2 = {c.s2:.3g} m, trail = {c.trail:.3g} m, "
+            f"m = {c.m:.3g} kg, pin friction {_pins(c)} N m, main tire {c.main_tire}, "
             f"caster tire {c.caster_tire}"
             + (f"   [QUICK: values marked {MARK} may move]" if d.settings.quick else ""))
 
@@ -50,18 +68,22 @@ def _p_decision(d: ReportData) -> Figure:
     ax_text, ax_table, ax_bar = fig.add_subplot(gs[:, 0]), fig.add_subplot(gs[0, 1]), fig.add_subplot(gs[1, 1])
     ax_text.axis("off")
     y = 1.0
-    paras = decision_paragraphs(d) + [clinician_text(d)] + ([coarsened_text(d.settings)] if d.settings.quick else [])
-    for scale in (1.0, 0.95, 0.9, 0.85, 0.8, 0.75, 0.7, 0.65):     # shrink the text until it fits its column
-        width = int(76 / scale) if scale == 1.0 else int(72 / scale)     # clear of the chart's labels
-        if sum(0.034 * len(P.wrap_text(p, width)) + 0.02 for p in paras) * scale <= 1.0:
+    paras = (decision_paragraphs(d) + [clinician_text(d)] + ([QUICK_NOTE] if d.settings.quick else [])
+             + ([BRIEF_NOTE] if d.brief else []))
+    pos = ax_text.get_position()
+    w_pt, h_pt = pos.width * fig.get_figwidth() * 72.0, pos.height * fig.get_figheight() * 72.0
+    for fs in np.arange(9.3, 6.99, -0.1):        # shrink the text until it fits its column, never below 7 pt
+        width = int(w_pt / (0.58 * fs))           # DejaVu Sans: about 0.55 em per character on average
+        line_h, gap = 1.22 * fs / h_pt, 0.5 * 1.22 * fs / h_pt
+        if sum(len(P.wrap_text(p, width)) * line_h + gap for p in paras) <= 1.0:
             break
     for para in paras:
         head = para.split(" ", 1)[0].rstrip(".").isupper()       # VERDICT., RECOMMENDATION., ...
         for i, line in enumerate(P.wrap_text(para, width)):
-            ax_text.text(0.0, y, line, fontsize=9.3 * scale, va="top", transform=ax_text.transAxes,
+            ax_text.text(0.0, y, line, fontsize=fs, va="top", transform=ax_text.transAxes,
                          fontweight="bold" if i == 0 and head else "normal")
-            y -= 0.034 * scale
-        y -= 0.02 * scale
+            y -= line_h
+        y -= gap
     header, rows = decision_rows(d)
     ax_table.axis("off")
     n = len(header)
@@ -113,7 +135,7 @@ def _p_comparison(d: ReportData) -> Figure:
     axes[0, 1].axis("off")
     P.table_axes(axes[0, 1], ["", d.chair.name, b.chair.name, "change", "better"],
                  geometry + comparison_rows(this, base), col_widths=[0.5, 0.13, 0.13, 0.12, 0.12], fontsize=8.5,
-                 wrap=[52, 14, 14, 12, 12], top=0.97, bottom=0.05)
+                 wrap=[44, 12, 12, 10, 10], top=0.97, bottom=0.05)
     axes[0, 1].set_title(f"key numbers, {d.model} model, same settings for both chairs", fontsize=10)
     return P.finish(fig)
 
@@ -205,11 +227,11 @@ def _p_responses(d: ReportData) -> Figure:
                        nrows=1, ncols=2)
     P.yaw_rate_responses(d.responses, axes[0, 0], reference_time=d.thesis.reference_time,
                          validity=d.validity.get("responses"), flip=True,
-                         title=f"{c.name}: pin friction {_pins(c)} N m, stick-slip\n({d.model} model, "
-                               f"{d.scheme} scheme); dashed: linear, frictionless")
+                         title=f"pin friction {_pins(c)} N m, stick-slip ({d.model} model, {d.scheme} scheme); "
+                               "dashed: linear")
     P.yaw_rate_responses(d.responses_frictionless, axes[0, 1], reference_time=d.thesis.reference_time,
                          validity=d.validity.get("frictionless"), flip=True,
-                         title=f"{c.name} without pin friction:\nwhere the linear model applies")
+                         title="without pin friction (where the linear model applies)")
     bottom = _footer(fig, f"Push: {push_text(d)} at the c.g. (WCHAIR applies the force while t <= 0.1 s). "
                      + VALIDITY_NOTE + "\n" + d.responses.linear_note + ".")
     return P.finish(fig, bottom=bottom)
@@ -406,6 +428,9 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
     -------
     list of (str, callable)
     """
+    if d.brief:
+        return [("decision", partial(_p_decision, d)), ("for the clinician", partial(_p_sheet, d)),
+                ("glossary and references", partial(_p_glossary, d))]
     drop = dropped_pages(d)
     pages = [
         # main body: the decision and the evidence

@@ -59,7 +59,7 @@ def clinician_text(d: ReportData) -> str:
     times = "; ".join(at(r, v) for r, v in pairs)
     thesis = ", ".join(f"{_kmh(u)}: " + ("> 6 s" if math.isinf(t) else f"{t:g} s") for u, t in TABLE_8_2.items())
     out = [f"FOR THE CLINICIAN. After a firm sideways shove ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) "
-           f"{c.name} spins up to {d.thesis.criterion.yaw_rate:g} rad/s (about 60 deg/s): {times}. The user must "
+           f"{c.name} spins up to {d.responses.criterion.yaw_rate:g} rad/s (about 60 deg/s): {times}. The user must "
            "correct well before that: for the thesis's chair the thesis estimated the time before the turn speeds "
            f"up sharply at {thesis} (Table 8-2)."]
     if c.caster_position == "rear":

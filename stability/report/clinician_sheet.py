@@ -57,6 +57,9 @@ class ClinicianSheet:
         the error dies out).
     slope : SlopeSection or None
     tipping : TipAngles
+    responses : stability.study.ResponseSet
+        The runs behind ``motions``.
+    validity : tuple of Validity
     """
 
     chair: Chair
@@ -65,6 +68,8 @@ class ClinicianSheet:
     doubling: tuple
     slope: SlopeSection | None
     tipping: TipAngles
+    responses: Any = None
+    validity: tuple = ()
 
 
 def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact") -> ClinicianSheet:
@@ -87,7 +92,7 @@ def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact") -> ClinicianS
     val = responses_validity([c] * len(speeds), list(speeds), run)
     motions = tuple(motion(r, v) for r, v in zip(rs.responses, val, strict=True))
     dbl = tuple(x.time_to_double for x in divergence(c, list(speeds), model, "free"))
-    return ClinicianSheet(c, tuple(speeds), motions, dbl, slope_section(c), tip_angles(c))
+    return ClinicianSheet(c, tuple(speeds), motions, dbl, slope_section(c), tip_angles(c), rs, tuple(val))
 
 
 def _kmh(u: float) -> str:

@@ -43,7 +43,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.report", description=_DESCRIPTION)
     add_chair_options(p)
     add_model_option(p)
-    p.add_argument("--quick", action="store_true", help="coarse version in seconds")
+    p.add_argument("--quick", action="store_true",
+                   help="quick report: page 1 (the full report's decision), the clinician sheet and the references")
     p.add_argument("--clinician", action="store_true",
                    help="one page for a clinician instead of the report: the chair after a bump at the user's "
                         "speeds, time to correct, drift, cross-slope effort, checking pin friction, tip angles")
@@ -92,6 +93,12 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError("-o FILE.pdf is required (or --json / --json-file for the numbers without the PDF)")
     if args.text and not args.output:
         raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
+    if args.quick and not args.clinician:
+        for flag, given in (("--json", args.json), ("--json-file", args.json_file), ("--compare", args.compare),
+                            ("--uncertainty", args.uncertainty)):
+            if given:
+                raise ValueError(f"{flag} needs the full report: --quick is page 1, the clinician sheet and the "
+                                 "references (drop --quick)")
     outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair, "--uncertainty": args.uncertainty, "--compare": args.compare})
     if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
@@ -108,12 +115,11 @@ def _run(args: argparse.Namespace) -> int:
     with output_files(outputs) as tmp:
         res = None
         if args.output:
-            res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress,
+            res = document.build(c, tmp["-o"], model=args.model, brief=args.quick, progress=not args.no_progress,
                                  uncertainty=spec, baseline=baseline)
             data = res.data
         else:
-            data = compute(c, args.model, quick=args.quick, progress=not args.no_progress, uncertainty=spec,
-                           baseline=baseline)
+            data = compute(c, args.model, progress=not args.no_progress, uncertainty=spec, baseline=baseline)
         if args.text:
             with open(tmp["--text"], "w", encoding="utf-8") as fh:
                 assert res is not None          # --text needs -o (checked above)
