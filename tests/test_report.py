@@ -635,7 +635,7 @@ def test_bad_uncertainty_input_is_one_line(extra, content, needle, tmp_path, cap
         (out if "{out}" in extra else f).write_text(content)
     argv = [a.format(missing=tmp_path / "none.toml", file=f, out=out) for a in extra]
     with pytest.raises(SystemExit) as exc:
-        raise SystemExit(report_command.main(["--chair", "ej-premier", "--quick", "--no-progress", "-o", str(out)] + argv))
+        raise SystemExit(report_command.main(["--chair", "ej-premier", "--no-progress", "-o", str(out)] + argv))
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and needle in err, err
