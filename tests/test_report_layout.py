@@ -64,7 +64,7 @@ def _random_chair(seed: int, caster_position: str):
         p = get_parameter(name)
         lo, hi = p.span(c)
         c = p.apply(c, float(lo + (hi - lo) * rng.uniform(0.25, 0.75)))
-    return c
+    return c.replace(name=f"random-{caster_position}-{seed}")
 
 
 @pytest.mark.slow

@@ -58,7 +58,8 @@ def _subtitle(d: ReportData) -> str:
 
 
 def _title(d: ReportData, what: str) -> str:
-    return f"{d.chair.name} | {d.model} model | {what}"
+    name = d.chair.name if len(d.chair.name) <= 40 else d.chair.name[:39] + "\u2026"   # the subtitle has the rest
+    return f"{name} | {d.model} model | {what}"
 
 
 def _p_decision(d: ReportData) -> Figure:
@@ -73,7 +74,8 @@ def _p_decision(d: ReportData) -> Figure:
     pos = ax_text.get_position()
     w_pt, h_pt = pos.width * fig.get_figwidth() * 72.0, pos.height * fig.get_figheight() * 72.0
     for fs in np.arange(9.3, 6.99, -0.1):        # shrink the text until it fits its column, never below 7 pt
-        width = int(w_pt / (0.58 * fs))           # DejaVu Sans: about 0.55 em per character on average
+        # DejaVu Sans: about 0.55 em per character on average; the chart's bar labels reach 8 % into the column
+        width = int(0.92 * w_pt / (0.58 * fs))
         line_h, gap = 1.22 * fs / h_pt, 0.5 * 1.22 * fs / h_pt
         if sum(len(P.wrap_text(p, width)) * line_h + gap for p in paras) <= 1.0:
             break
@@ -297,8 +299,8 @@ def _p_equal(d: ReportData) -> Figure:
         + "; 1.5x friction " + THESIS["revised_1.5x_friction"] + ".",
         "Figure 8-14 (lighter chair): thesis about 0.85 m/s; not reproduced, see the findings page.",
         "Grey hatched bars: outside the bracket (value is a bound).",
-        "'x0.5 / x1.5 friction' bars: that chair's pin friction scaled, the reference case unchanged; the range "
-        "above scales the friction of both chairs at once, so the two answer different questions.",
+        "'x0.5 / x1.5 friction' bars: that chair's friction scaled, the reference unchanged (the range scales "
+        "both chairs').",
         "Thesis vs ours: the two model variants are compared in the method appendix.",
     ]
     if d.intervals is not None:

@@ -55,18 +55,16 @@ def interval_words(iv: Any) -> str:
     Returns
     -------
     str
-        E.g. ``"range 0.78-1.12 m/s over push x0.5-x2, pin friction x0.5-x1.5 on both chairs, the other model and
-        half the step, one at a time; 3 of 8 variants undefined and left out: ..."``.
+        E.g. ``"range 0.78-1.12 m/s over the push, pin friction, model and step variants; 3 of 8 undefined and
+        left out: disturbance 20 N (0.5x), ..."`` (the variants are defined on the equal-instability page).
     """
     if iv is None or iv.low is None or iv.high is None:
         return ""
     out = []
     rng = iv.range_text()
     if sig3(iv.low) != sig3(iv.high):
-        out.append(rng + " over push x0.5-x2, pin friction x0.5-x1.5 (on " + iv.friction_scope
-                   + "), the other model and half the step, one at a time")
+        out.append(rng + " over the push, pin friction, model and step variants")
     und = undefined_variants(iv)
     if und:
-        out.append(f"{len(und)} of {len(iv.variants)} variants undefined and left out ("
-                   + ", ".join(und) + ": the reference case never reaches the level there)")
+        out.append(f"{len(und)} of {len(iv.variants)} undefined and left out: " + ", ".join(und))
     return "; ".join(out)
