@@ -313,3 +313,13 @@ def test_conclusion_verdicts_are_the_thesis_chairs_in_every_report(fake):
             assert col[4] in ("agree", "partly", "disagree") and col[8] == "agree"   # camber: no effect in the fake
             assert col[2] == col[3] == "not tested"                                  # not swept for this chair
         assert col[1] == col[5] == col[7] == col[9] == ""                            # about the thesis's chairs only
+
+
+def test_plan_for_contains_the_chairs_own_value():
+    """Review error 13: the revised design's c.g.-ratio sweep missed the chair (0.5178 against 0.5213), so its
+    'own' value printed 1.03 instead of 1.02 m/s. The value standing for the E&J's own (the thesis's rounded
+    0.66 for 0.6635) becomes the chair's own; the E&J's plan is the thesis's, unchanged."""
+    rev, ej = preset("revised"), preset("ej-premier")
+    own = rev.s1 / (rev.s1 + rev.s2)
+    assert own in study.plan_for(rev)["cg_ratio"]
+    assert study.plan_for(ej)["cg_ratio"] == study.DEFAULT_PLAN["cg_ratio"]
