@@ -78,16 +78,21 @@ def _limits(eig, xlim, ylim, scale, keep, linthresh):
 
 def _label_points(ax, pts, labels, fontsize=7, min_px=14.0):
     """Annotate points, skipping any that would land within ``min_px`` pixels of one already labelled."""
-    placed = []
+    placed: list = []
     trans = ax.transData
     xlim, ylim = ax.get_xlim(), ax.get_ylim()
+    pt = ax.figure.dpi / 72.0                      # display units per point
     for (x, y), lab in zip(pts, labels, strict=True):
         if not (min(xlim) <= x <= max(xlim) and min(ylim) <= y <= max(ylim)):
             continue
         px = trans.transform((x, y))
-        if any(np.hypot(*(px - q)) < min_px for q in placed):
+        # the label's box (about 0.62 em per character, 1.2 em high) at its 2/3-point offset, plus a margin
+        x0, y0 = px[0] + 2 * pt, px[1] + 3 * pt
+        box = (x0 - pt, y0 - pt, x0 + (0.62 * fontsize * len(lab) + 1) * pt, y0 + (1.2 * fontsize + 1) * pt)
+        if any(np.hypot(*(px - q[:2])) < min_px or not (box[2] < q[2] or q[4] < box[0] or box[3] < q[3]
+                                                          or q[5] < box[1]) for q in placed):
             continue
-        placed.append(px)
+        placed.append((px[0], px[1], *box))
         ax.annotate(lab, (x, y), xytext=(2, 3), textcoords="offset points", fontsize=fontsize)
 
 

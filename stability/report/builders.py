@@ -346,7 +346,7 @@ def _p_sweep_table(d: ReportData) -> Figure:
     return P.table_page(_title(d, "which parameters matter, by how much"),
                         ["rank", "parameter", "values tried", "equal-instability speed (m/s)", "spread (%)",
                          "how varied"], rows, sub,
-                        col_widths=[0.04, 0.17, 0.17, 0.27, 0.08, 0.27], wrap=[4, 26, 26, 44, 12, 42],
+                        col_widths=[0.04, 0.17, 0.17, 0.27, 0.08, 0.27], wrap=[4, 24, 22, 40, 10, 40],
                         notes=(f"This chair: {table.nominal.describe()} (reference {d.thesis.reference_time:.2f} s "
                                f"to {d.thesis.criterion.yaw_rate:g} rad/s). Spread: (max - min) / this chair's "
                                "speed over the values tried. '(bound)': some speed lies outside the bracket, so "
@@ -374,7 +374,7 @@ def _p_conclusions(d: ReportData) -> Figure:
     return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers"),
                         header, rows, sub,
                         col_widths=[0.03, 0.2, 0.08, 0.44, 0.25] if own else [0.03, 0.25, 0.08, 0.64],
-                        wrap=[3, 32, 10, 68, 38] if own else [3, 40, 10, 100], fontsize=7 if own else 8,
+                        wrap=[3, 38, 12, 84, 46] if own else [3, 44, 12, 104], fontsize=7 if own else 8,
                         notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
                               f"{d.thesis.criterion.describe()}; push {push_text(d)}. The verdicts test the thesis "
                               "on its own chairs under its own conditions and are the same in every report; the "

@@ -9,6 +9,7 @@ every tip direction and cost) and from the thesis's reference chair measured the
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 from stability.advise.decision import DIRECTION_WORDS, decide
 from stability.advise.measures import EFFORT_WORDS, Measures
@@ -35,11 +36,16 @@ def uncertainty_sentence(d: ReportData) -> str | None:
     nl = u.nonlinear
     parts = [f"critical impulse at {nl.speed:g} m/s {nl.critical_impulse.describe()}"]
     if nl.equal_instability is not None:
-        parts.append(f"equal-instability speed {nl.equal_instability.describe()}")
+        eq = nl.equal_instability
+        cross = ("" if not (eq.low < REFERENCE_SPEED < eq.high) else
+                 f": it includes the reference {REFERENCE_SPEED:g} m/s, so within the measurement uncertainty the "
+                 f"chair may be less stable than the {REFERENCE_CHAIR}")
+        parts.append(f"equal-instability speed {eq.describe()}{cross}")
     dom = nl.critical_impulse.dominant
     drive = ("" if dom is None else
              f"; the parameter that drives it most is {dom[0]} ({100 * dom[1]:.0f} % of the variance)")
-    return (f"MEASURED UNCERTAINTY. Over the distributions of {u.spec.source} ({nl.samples} draws, "
+    return (f"MEASURED UNCERTAINTY (these intervals, not the table's, carry the measurement error). Over the "
+            f"distributions of {Path(u.spec.source).name} ({nl.samples} draws, "
             f"{100 * nl.level:.0f} % intervals): " + ", ".join(parts) + drive + ".")
 
 

@@ -239,7 +239,7 @@ def interval_text(iv) -> str:
     str
     """
     rng = (f"{iv.range_text()}; moves it most: {iv.dominant}" if iv.low is not None and iv.high is not None
-           else iv.range_text())
+           and _ranked(iv) else iv.range_text())
     return f"{iv.chair_name} {iv.point.describe()}, {rng}"
 
 
@@ -259,8 +259,14 @@ def _interval_lines(d: ReportData) -> list[str]:
         + ", ".join(f"x{v.friction_factor:g} -> {_describe(v, q)}" for v in by["pin friction"]) + "; "
         + ", ".join(f"{v.model} model -> {_describe(v, q)}" for v in by["model"])
         + "".join(f"; {v.label} -> {_describe(v, q)}" for v in by["step"])
-        + f". Moves it most: {iv.dominant}{q}.",
+        + (f". Moves it most: {iv.dominant}{q}." if _ranked(iv) else
+           ". Nothing can be ranked: every variant is a bound or undefined."),
     ]
+
+
+def _ranked(iv) -> bool:
+    """Whether the interval's variants can rank its factors (at least one found speed besides the nominal)."""
+    return any(v.result is not None and v.result.status == "found" for v in iv.variants)
 
 
 def _section_lines(d: ReportData) -> list[str]:

@@ -86,7 +86,7 @@ class Sweep:
         """The ``i``-th value as text."""
         if self.labels is not None:
             return self.labels[i]
-        return f"{self.values[i]:g}"
+        return f"{self.values[i]:.3g}"
 
     @property
     def change_percent(self) -> np.ndarray:
