@@ -374,7 +374,7 @@ def _p_conclusions(d: ReportData) -> Figure:
     return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers"),
                         header, rows, sub,
                         col_widths=[0.03, 0.2, 0.08, 0.44, 0.25] if own else [0.03, 0.25, 0.08, 0.64],
-                        wrap=[3, 38, 12, 84, 46] if own else [3, 44, 12, 104], fontsize=7 if own else 8,
+                        wrap=[3, 34, 12, 80, 44] if own else [3, 40, 12, 100], fontsize=7 if own else 8,
                         notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
                               f"{d.thesis.criterion.describe()}; push {push_text(d)}. The verdicts test the thesis "
                               "on its own chairs under its own conditions and are the same in every report; the "
