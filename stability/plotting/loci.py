@@ -247,8 +247,12 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
     for c in locus.crossings:
         for ax in (ax1, ax2):
             ax.axvline(c.speed, color=UNSTABLE, lw=1.0, ls="--")
-        ax1.annotate(f"{c.speed:.3g} m/s", (c.speed, 0), xytext=(4, 6), textcoords="offset points",
-                     fontsize=8, color=UNSTABLE)
+        # near the right edge the label goes to the left of its line, so it stays on the page
+        x0, x1 = xlim or (U[0], U[-1])
+        f = np.log if log_speed else (lambda v: v)
+        right = (f(c.speed) - f(x0)) / (f(x1) - f(x0)) > 0.8
+        ax1.annotate(f"{c.speed:.3g} m/s", (c.speed, 0), xytext=(-4 if right else 4, 6), textcoords="offset points",
+                     fontsize=8, color=UNSTABLE, ha="right" if right else "left")
     if off:
         ax1.plot([], [], " ", label=f"below {lo:.3g} 1/s at every speed (off scale): " + ", ".join(off))
     ax1.axhline(0, color="k", lw=0.8)

@@ -32,7 +32,7 @@ from stability.study.impulse import critical_impulses
 from stability.study.validation import linearisation_check, with_rolling_resistance
 from stability.tipping import LOANE_KIRBY_REAR_DEG, TipAngles, tip_angles
 
-__all__ = ["Settings", "ReportData", "Figure814", "compute", "compute_brief", "parameter_loci", "counterpart",
+__all__ = ["Settings", "ReportData", "Figure814", "compute", "parameter_loci", "counterpart",
            "response_speeds", "stabilising_poles", "FIGURE_8_14", "COMPARISON_CHAIR",
            "equal_instability_range"]
 
@@ -144,7 +144,8 @@ class ReportData:
     reference_trail : float
         Its trail, m.
     brief : bool
-        The quick report (:func:`compute_brief`): page 1, the clinician sheet and the references only.
+        The quick report (:func:`stability.report.brief.compute_brief`): page 1, the clinician sheet and the
+        references only.
     sheet : stability.report.clinician_sheet.ClinicianSheet or None
         The clinician sheet (brief report only).
     """
@@ -483,32 +484,3 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                       trail_window=window, tip_limits=limits, advice=advice, reference_measures=ref_m,
                       reference_trail=ref_chair.trail)
 
-
-def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True) -> ReportData:
-    """The quick report's data: the advisor's decision (as in the full report), the thesis's reference chair
-    measured the same way, and the clinician sheet at the advisor's use speeds; nothing else is computed, so
-    every measure the quick PDF prints has one value.
-
-    Parameters
-    ----------
-    c : Chair
-    model : {"exact", "thesis"}
-    progress : bool
-
-    Returns
-    -------
-    ReportData
-        With ``brief`` set; the fields the brief pages do not use are empty.
-    """
-    from stability.report.clinician_sheet import clinician_sheet
-
-    s = Settings.for_mode(False)
-    ref_chair = preset(REFERENCE_CHAIR)
-    advice = advise(c, progress=progress)
-    ref_m = None if c == ref_chair else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
-                                                      cross_slope_deg=advice.cross_slope_deg)[0]
-    sheet = clinician_sheet(c, tuple(advice.speeds_m_s), model)
-    return ReportData(c, model, s, None, None, {}, [], [], None, None, None, [], sheet.responses, None, None, None,
-                      None, [], validity={"responses": sheet.validity}, slope=sheet.slope, tipping=sheet.tipping,
-                      advice=advice, reference_measures=ref_m, reference_trail=ref_chair.trail, brief=True,
-                      sheet=sheet)

@@ -14,8 +14,9 @@ from matplotlib.text import Text
 from stability import plotting as P
 from stability.chair import Chair
 from stability.report import builders
+from stability.report.brief import compute_brief
 from stability.report.captions import caption
-from stability.report.compute import ReportData, Settings, compute, compute_brief
+from stability.report.compute import ReportData, Settings, compute
 from stability.report.uncertainty_data import UncertaintySpec
 from stability.runtime.checks import check_model
 from stability.runtime.files import write_pdf
@@ -168,7 +169,7 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         Compare with this chair: an overlaid geometry and a side-by-side table of the key numbers.
     brief : bool
         The quick report of ``python -m stability.report --quick``: page 1 (the same decision as the full
-        report), the clinician sheet and the references (:func:`~stability.report.compute.compute_brief`).
+        report), the clinician sheet and the references (:func:`~stability.report.brief.compute_brief`).
         ``quick`` instead keeps every page and coarsens their grids.
 
     Returns
