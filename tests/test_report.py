@@ -1086,3 +1086,21 @@ def test_report_json_command(quick, tmp_path, monkeypatch, capsys):
     assert "--json needs the full report" in capsys.readouterr().err
     assert report_command.main(["--json", "--text", str(tmp_path / "t.txt")]) == 2
     assert "--text" in capsys.readouterr().err and not (tmp_path / "t.txt").exists()
+
+
+def test_path_caption_quotes_the_valid_part_only(quick):
+    """Review error 1: the caption quoted the 6 s state of a run valid to 3.33 s. It now quotes the state at the
+    validity end, read here independently off the run's arrays."""
+    from stability.report.captions import caption
+
+    d = quick.data
+    txt = " ".join(caption(d, "paths").split())
+    r, v = d.paths.responses[0], d.validity["paths"][0]
+    t = np.asarray(r.t)
+    k = int(np.flatnonzero(t <= v.until)[-1]) if v.until is not None else len(t) - 1
+    valid = abs(math.degrees(r.heading[k] - r.heading[0]))
+    assert f"heading changed by {valid:.0f} deg by" in txt
+    end = abs(math.degrees(r.heading[-1] - r.heading[0]))
+    if v.until is not None and f"{end:.0f}" != f"{valid:.0f}":
+        assert f"heading changed by {end:.0f} deg" not in txt
+        assert v.reason in txt

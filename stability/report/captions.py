@@ -46,10 +46,15 @@ def _chair(d: ReportData) -> str:
 
 def _tires(d: ReportData) -> str:
     zw = d.summary.zero_width
+    row = _at_reference(d)
+    grows = row is not None and row.rate > 0
     return (f"At this chair's static loads ({zw.load_main:.0f} N per main wheel, {zw.load_caster:.0f} N per caster) "
             f"the main tires give {math.radians(zw.stiffness_main):.3g} N/deg and the casters "
-            f"{math.radians(zw.stiffness_caster):.3g} N/deg of cornering stiffness; a softer main tire slows the "
-            "divergence a little (conclusion 9).")
+            f"{math.radians(zw.stiffness_caster):.3g} N/deg of cornering stiffness; "
+            + ("a softer main tire slows the divergence a little (conclusion 9)." if grows else
+               f"this chair does not diverge at {REFERENCE_SPEED:g} m/s (growth rate {row.rate:.3g} 1/s), so the "
+               "tire has no divergence to slow." if row is not None else "no linear growth rate at the reference "
+               "speed."))
 
 
 def _linear(d: ReportData) -> str:
@@ -240,7 +245,10 @@ def _trail_window(d: ReportData) -> str:
     if w.chair_in_window == "outside":
         txt += f" The nearest shimmy-free trail is {100 * near:.3g} cm (nominal estimates)."
     best = w.best_in_window()
-    if best is not None:
+    if best is not None and not any(bool(f) for f in w.found):
+        txt += (f" Every trail of the study is a bound (> {best[1]:.3g} m/s): the chart cannot rank trails for "
+                "directional stability, only place them against the shimmy zones.")
+    elif best is not None:
         t, u, found = best
         txt += (f" Of the study's trails in the window, {100 * t:.3g} cm gives the highest equal-instability speed, "
                 f"{'' if found else '> '}{u:.3g} m/s.")
