@@ -29,7 +29,16 @@ SETTLE_WINDOW_S = 1.0
 
 
 def sig3(x: float) -> str:
-    """``x`` to 3 significant figures for prose (``"0.0750"`` -> ``"0.075"``; no exponent below 1e6)."""
+    """``x`` to 3 significant figures for prose (``0.0750`` -> ``"0.075"``; no exponent below 1e6).
+
+    Parameters
+    ----------
+    x : float
+
+    Returns
+    -------
+    str
+    """
     if x == 0 or not math.isfinite(x):
         return f"{x:g}"
     return f"{float(f'{x:.3g}'):g}"
@@ -134,6 +143,11 @@ def motion(r: Any, validity: Validity | None = None) -> Motion:
 
 def friction_role(with_friction: Motion, without: Motion) -> str:
     """What the pin friction does, from the same speed's runs with and without it.
+
+    Parameters
+    ----------
+    with_friction, without : Motion
+        The chair's run and its frictionless twin's at the same speed.
 
     Returns
     -------

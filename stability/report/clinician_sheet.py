@@ -117,6 +117,10 @@ def _bump_row(u: float, m: Motion, dbl: float | None) -> list[str]:
 def sheet_lines(s: ClinicianSheet) -> dict[str, Any]:
     """The sheet's words and table rows (what :func:`sheet_figure` draws and ``--text`` writes).
 
+    Parameters
+    ----------
+    s : ClinicianSheet
+
     Returns
     -------
     dict

@@ -41,7 +41,17 @@ def value_range(value: float | None, low: float | None, high: float | None, unit
 
 
 def undefined_variants(iv: Any) -> list[str]:
-    """Labels of the variants of an :class:`stability.study.EqualInstabilityInterval` left out of its range."""
+    """Labels of the variants of an :class:`stability.study.EqualInstabilityInterval` left out of its range.
+
+    Parameters
+    ----------
+    iv : stability.study.EqualInstabilityInterval
+
+    Returns
+    -------
+    list of str
+        ``"<factor> <label>"`` of every undefined variant.
+    """
     return [f"{v.factor} {v.label}" for v in iv.variants if v.result is None]
 
 
