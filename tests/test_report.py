@@ -1104,3 +1104,13 @@ def test_path_caption_quotes_the_valid_part_only(quick):
     if v.until is not None and f"{end:.0f}" != f"{valid:.0f}":
         assert f"heading changed by {end:.0f} deg" not in txt
         assert v.reason in txt
+
+
+def test_feedback_page_dropped_when_stable_without_feedback(quick):
+    """Review: a whole page whose conclusion is 'stable without feedback' cannot apply: it is left out with the
+    reason; the E&J Premier (which needs feedback) keeps it."""
+    d = quick.data
+    assert "yaw-rate feedback root locus" not in dropped_pages(d)
+    stable = [dataclasses.replace(g, stabilising_gain=0.0) for g in d.gain_loci]
+    why = dropped_pages(dataclasses.replace(d, gain_loci=stable))["yaw-rate feedback root locus"]
+    assert "stable without yaw-rate feedback" in why

@@ -166,6 +166,10 @@ def dropped_pages(d: ReportData) -> dict[str, str]:
         out["stability maps"] = (f"no run of either map reaches |yaw rate| = {d.friction_map.criterion.yaw_rate:g} "
                                  f"rad/s within {d.friction_map.criterion.duration:g} s, so both maps are blank")
     out.update(section_drops(d))
+    if d.gain_loci and all(g.stabilising_gain == 0 for g in d.gain_loci):
+        out["yaw-rate feedback root locus"] = ("the linear model is stable without yaw-rate feedback at "
+                                               + " and ".join(f"{g.speed:g}" for g in d.gain_loci)
+                                               + " m/s, so there is no feedback gain to find")
     if d.baseline is None:
         out["comparison"] = "no baseline chair was given"
     if d.trail_window is None:
