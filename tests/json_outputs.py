@@ -29,7 +29,7 @@ CASES = {
     "measure": ("measure", [str(SHEET), "-o", "{tmp}/c.toml"]),
     "tipping": ("tipping", ["--chair", "ej-premier"]),
     "advise": ("advise", []),
-    "report": ("report", ["--quick", "--no-progress"]),
+    "report": ("report", ["--no-progress"]),
     "sweep": ("sweep", ["{tmp}/g.toml", "-o", "{tmp}/g.csv"]),
     "bench": ("bench", ["--chair", "mid-wheel-drive"]),
     "chair_export": ("chair", ["export", "ej-premier", "--set", "trail=6cm"]),

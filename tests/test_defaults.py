@@ -29,6 +29,7 @@ RENAMED = {
     "study critical-impulse": {"speeds": "study_speeds", "level": "yaw_rate_level"},
     "shimmy": {"speeds": "shimmy_speeds"},
     "advise": {"speeds": "advise_speeds", "cross_slope": "advise_cross_slope_deg"},
+    "report": {"speeds": "advise_speeds"},      # --clinician's use speeds: the advisor's
     "slope": {"wheel_radius": "handrim_wheel_radius"},
     "assist": {"chair": "power_chair", "speeds": "assist_speeds", "wheel_radius": "drive_wheel_radius", "sample_rate": "sample_rate_hz"},
 }

@@ -286,3 +286,40 @@ def test_studies_never_integrate_with_an_unstable_step():
     peak = np.max(np.abs(slow.yaw_rate))
     assert peak == pytest.approx(np.max(np.abs(ref.yaw_rate)), rel=0.03)
     assert peak < 0.09
+
+
+def test_conclusion_verdicts_are_the_thesis_chairs_in_every_report(fake):
+    """The nine verdicts come from the thesis's chairs only: another chair's own study changes none of them
+    (review error 4) and goes into the separate chair column: 'not applicable' for a front-caster chair, 'not
+    testable (bound)' when its speeds are bounds (review: DISAGREE on censored values), its own verdict else."""
+    plan = {"s1": (0.245, 0.345), "trail": (0.06, 0.08), "camber_deg": (0.0, 5.0), "main_tire": None}
+    st, _, _ = study.thesis_study(run=RunSpec(model="thesis"), plan=plan, tol=0.002, progress=False)
+    base = study.check_conclusions(st)
+    assert all(c.chair_verdict == "" and c.chair_evidence == "" for c in base)
+    own_plan = {"trail": (0.06, 0.08), "camber_deg": (0.0, 5.0)}
+    # friction 0.6 N m: U* = 4.5 m/s, beyond the bracket, so every speed of that chair is a bound
+    chairs = {"revised": preset("revised"), "ej-premier-front-caster": preset("ej-premier-front-caster"),
+              "stiff": preset("revised").replace(name="stiff", pin_friction_left=0.6, pin_friction_right=0.6)}
+    for name, c in chairs.items():
+        own, _ = study.parameter_sweeps(c, own_plan, run=RunSpec(model="thesis"), tol=0.002, progress=False)
+        checks = study.check_conclusions(st, own=own)
+        assert [(x.verdict, x.evidence) for x in checks] == [(x.verdict, x.evidence) for x in base]
+        col = {x.number: x.chair_verdict for x in checks}
+        if name == "ej-premier-front-caster":
+            assert {col[n] for n in (2, 3, 4, 8)} == {"not applicable"}
+        elif name == "stiff":
+            assert col[4] == col[8] == "not testable (bound)"
+        else:
+            assert col[4] in ("agree", "partly", "disagree") and col[8] == "agree"   # camber: no effect in the fake
+            assert col[2] == col[3] == "not tested"                                  # not swept for this chair
+        assert col[1] == col[5] == col[7] == col[9] == ""                            # about the thesis's chairs only
+
+
+def test_plan_for_contains_the_chairs_own_value():
+    """Review error 13: the revised design's c.g.-ratio sweep missed the chair (0.5178 against 0.5213), so its
+    'own' value printed 1.03 instead of 1.02 m/s. The value standing for the E&J's own (the thesis's rounded
+    0.66 for 0.6635) becomes the chair's own; the E&J's plan is the thesis's, unchanged."""
+    rev, ej = preset("revised"), preset("ej-premier")
+    own = rev.s1 / (rev.s1 + rev.s2)
+    assert own in study.plan_for(rev)["cg_ratio"]
+    assert study.plan_for(ej)["cg_ratio"] == study.DEFAULT_PLAN["cg_ratio"]

@@ -173,7 +173,8 @@ def _verdict(a: Advice) -> tuple:
     out = []
     if m.critical_impulse_status == "never":
         out.append(f"At {kmh(REFERENCE_SPEED)} not even a sideways push of {ci.value:.2g} N s at the seat (the largest "
-                   "tried) turns the chair to 1 rad/s within 10 s: it keeps its heading by itself.")
+                   "tried) turns the chair to 1 rad/s within 10 s: it does not spin up (a slow steady turn is not "
+                   "excluded by this measure).")
     else:
         rng = "" if ci.low is None or ci.high is None else f"; range {ci.low:.2g}-{ci.high:.2g} N s"
         out.append(f"At {kmh(REFERENCE_SPEED)} a sideways push of {ci.value:.2g} N s at the seat (about "

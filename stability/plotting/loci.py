@@ -76,18 +76,23 @@ def _limits(eig, xlim, ylim, scale, keep, linthresh):
     return xlim or auto[0], ylim or auto[1]
 
 
-def _label_points(ax, pts, labels, fontsize=6.5, min_px=14.0):
+def _label_points(ax, pts, labels, fontsize=7, min_px=14.0):
     """Annotate points, skipping any that would land within ``min_px`` pixels of one already labelled."""
-    placed = []
+    placed: list = []
     trans = ax.transData
     xlim, ylim = ax.get_xlim(), ax.get_ylim()
+    pt = ax.figure.dpi / 72.0                      # display units per point
     for (x, y), lab in zip(pts, labels, strict=True):
         if not (min(xlim) <= x <= max(xlim) and min(ylim) <= y <= max(ylim)):
             continue
         px = trans.transform((x, y))
-        if any(np.hypot(*(px - q)) < min_px for q in placed):
+        # the label's box (about 0.62 em per character, 1.2 em high) at its 2/3-point offset, plus a margin
+        x0, y0 = px[0] + 2 * pt, px[1] + 3 * pt
+        box = (x0 - pt, y0 - pt, x0 + (0.62 * fontsize * len(lab) + 1) * pt, y0 + (1.2 * fontsize + 1) * pt)
+        if any(np.hypot(*(px - q[:2])) < min_px or not (box[2] < q[2] or q[4] < box[0] or box[3] < q[3]
+                                                          or q[5] < box[1]) for q in placed):
             continue
-        placed.append(px)
+        placed.append((px[0], px[1], *box))
         ax.annotate(lab, (x, y), xytext=(2, 3), textcoords="offset points", fontsize=fontsize)
 
 
@@ -161,7 +166,7 @@ def speed_locus(locus, ax=None, *, marks=(0.1, 0.25, 0.5, 0.75, 1.0, 2.0, 5.0, 1
         cb = ax.figure.colorbar(lc, ax=ax, pad=0.01)
         cb.set_label("forward speed U (m/s)", fontsize=8)
         cb.ax.tick_params(labelsize=7)
-    ax.legend(fontsize=6.5, loc="lower left")
+    ax.legend(fontsize=7, loc="lower left")
     ax.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters",
                  fontsize=9)
     return ax
@@ -242,8 +247,12 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
     for c in locus.crossings:
         for ax in (ax1, ax2):
             ax.axvline(c.speed, color=UNSTABLE, lw=1.0, ls="--")
-        ax1.annotate(f"{c.speed:.3g} m/s", (c.speed, 0), xytext=(4, 6), textcoords="offset points",
-                     fontsize=8, color=UNSTABLE)
+        # near the right edge the label goes to the left of its line, so it stays on the page
+        x0, x1 = xlim or (U[0], U[-1])
+        f = np.log if log_speed else (lambda v: v)
+        right = (f(c.speed) - f(x0)) / (f(x1) - f(x0)) > 0.8
+        ax1.annotate(f"{c.speed:.3g} m/s", (c.speed, 0), xytext=(-4 if right else 4, 6), textcoords="offset points",
+                     fontsize=8, color=UNSTABLE, ha="right" if right else "left")
     if off:
         ax1.plot([], [], " ", label=f"below {lo:.3g} 1/s at every speed (off scale): " + ", ".join(off))
     ax1.axhline(0, color="k", lw=0.8)
@@ -260,7 +269,7 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
         ax.set_xlim(*(xlim or (U[0], U[-1])))
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3, which="both")
-    ax1.legend(fontsize=6.5, ncol=2, loc="lower left")
+    ax1.legend(fontsize=7, ncol=2, loc="lower left")
     ax1.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters (shaded: unstable)",
                   fontsize=9)
     ax2.set_title("imaginary parts (oscillation frequencies)", fontsize=8)
@@ -325,7 +334,7 @@ def parameter_locus(locus, ax=None, *, xlim=None, ylim=None, scale: str = "symlo
         ax.plot([], [], " ", label=f"largest σ {locus.max_real.min():.3g} .. {locus.max_real.max():.3g} 1/s")
         for b in locus.stability_boundaries():
             ax.plot([], [], " ", label=f"crosses σ = 0 at {b:.4g}")
-        ax.legend(fontsize=6.5, loc="lower left")
+        ax.legend(fontsize=7, loc="lower left")
     ax.set_title(title or f"vs {locus.label}", fontsize=9)
     return ax
 

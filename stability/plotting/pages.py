@@ -161,6 +161,10 @@ def text_page(title: str, body: str | Sequence[str], subtitle: str = "", *, size
     return fig
 
 
+#: Smallest font a table is drawn in, points (the layout test's floor).
+MIN_TABLE_FONT = 7.0
+
+
 def table_page(title: str, header: Sequence[str], rows: Sequence[Sequence[str]], subtitle: str = "", *,
                col_widths: Sequence[float] | None = None, notes: str = "", size=PAGE_SIZE,
                fontsize: float = 8.5, wrap: Sequence[int] | None = None) -> Figure:
@@ -236,16 +240,28 @@ def table_axes(ax, header, rows, *, col_widths=None, fontsize: float = 8.5, wrap
     col_widths = [w / tot for w in col_widths]
     if wrap is None:
         wrap = [max(8, int(160 * w)) for w in col_widths]
-    cells = [[wrap_text(str(c), w) for c, w in zip(r, wrap, strict=True)] for r in rows]
-    heights = [max(len(c) for c in r) for r in cells]
-    n_lines = sum(heights) + 1.6 + 0.35 * len(rows)
-    line_h = min(0.045, (top - bottom) / max(n_lines, 1))
-    fs = fontsize if line_h >= 0.028 else max(5.5, fontsize * line_h / 0.028)
+    # shrink the font (never below MIN_TABLE_FONT) until the rows fit, widening the wrap as the font shrinks;
+    # a line takes 1.15 font sizes (matplotlib's linespacing) and the rows 0.35 line of padding each
+    height_pt = ax.get_position().height * ax.figure.get_figheight() * 72.0 * (top - bottom)
+    fs = fontsize
+    while True:
+        widths = [max(3, int(w * fontsize / fs)) for w in wrap]
+        cells = [[wrap_text(str(c), w) for c, w in zip(r, widths, strict=True)] for r in rows]
+        heads = [wrap_text(str(h), w) or [""] for h, w in zip(header, widths, strict=True)]
+        head_lines = max(len(h) for h in heads)
+        heights = [max(len(c) for c in r) for r in cells]
+        n_lines = sum(heights) + head_lines + 0.6 + 0.35 * len(rows)
+        if n_lines * 1.2 * fs <= height_pt or fs <= MIN_TABLE_FONT:
+            break
+        fs = max(MIN_TABLE_FONT, fs - 0.25)
+    need = 1.2 * fs / 72.0 / (ax.get_position().height * ax.figure.get_figheight())   # one line, axes fraction
+    line_h = max(need, min(0.045, (top - bottom) / max(n_lines, 1)))
     x0 = [sum(col_widths[:i]) for i in range(ncol)]
     y = top
-    for i, h in enumerate(header):
-        ax.text(x0[i] + 0.005, y, h, transform=ax.transAxes, fontsize=fs, fontweight="bold", va="top")
-    y -= 1.3 * line_h
+    for i, h in enumerate(heads):
+        ax.text(x0[i] + 0.005, y, "\n".join(h), transform=ax.transAxes, fontsize=fs, fontweight="bold", va="top",
+                linespacing=1.15)
+    y -= (head_lines + 0.3) * line_h
     ax.plot([0, 1], [y + 0.25 * line_h] * 2, transform=ax.transAxes, color="0.3", lw=0.8)
     for r, hgt in zip(cells, heights, strict=True):
         for i, lines in enumerate(r):

@@ -105,7 +105,7 @@ def yaw_rate_responses(rs, ax=None, *, reference_time: float | None = None, ylim
     ax.set_ylabel("yaw rate r (rad/s, clockwise positive)" if sgn > 0 else
                   "yaw rate -r (rad/s, counter-clockwise positive)")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left", ncol=2)
+    ax.legend(fontsize=7, loc="upper left", ncol=1)
     f, d = rs.impulse
     ax.set_title(title or f"yaw-rate responses to {f:g} N for {d:g} s at the c.g.: "
                  f"{rs.model} model, {rs.scheme} scheme", fontsize=9)

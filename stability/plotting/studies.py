@@ -130,7 +130,7 @@ def sweep_chart(table, axes=None, *, title: str | None = None, limits: dict | No
             ax.plot(x, sp, "-o", ms=3.5, color=colour(0))
             if cens.any():
                 ax.plot(x[cens], sp[cens], "o", ms=6, mfc="w", mec=UNSTABLE, label="outside bracket")
-                ax.legend(fontsize=6)
+                ax.legend(fontsize=7)
             if math.isfinite(s.nominal_value):
                 ax.axvline(s.nominal_value, color="k", ls=":", lw=0.8)
             if s.parameter in limits:
@@ -192,8 +192,9 @@ def stability_map(smap, ax=None, *, title: str | None = None, nominal: float | N
     cb.set_label(f"time to |r| = {smap.criterion.yaw_rate:g} rad/s (s; {smap.criterion.duration:g} = never)")
     ref = smap.reference_time
     if T.min() < ref < T.max():
-        c = ax.contour(X, Y, T, levels=[ref], colors="k", linewidths=2.0)
-        ax.clabel(c, fmt={ref: f"reference {ref:.2f} s"}, fontsize=7)
+        ax.contour(X, Y, T, levels=[ref], colors="k", linewidths=2.0)
+        # named in the legend, not on the line: an inline label on a staircase contour collides with itself
+        ax.plot([], [], color="k", lw=2.0, label=f"reference case's time, {ref:.2f} s")
     if nominal is not None:
         ax.axhline(nominal, color="k", ls=":", lw=0.8, label=f"chair: {nominal:g} {smap.y_unit}")
     if thesis_points:

@@ -4,6 +4,7 @@ and the references.  Stated here once; the other pages refer to them."""
 from __future__ import annotations
 
 from stability.report.compute import ReportData
+from stability.report.quick import coarsened_text
 from stability.report.summary import dropped_text, model_gap
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.study.facts import PROPORTIONAL_RANGE
@@ -25,9 +26,7 @@ def method_text(d: ReportData) -> list[str]:
     dt = d.settings.dt if d.scheme == "wchair" else None
     crit = d.thesis.criterion
     a, b = PROPORTIONAL_RANGE
-    quick = ("This is a QUICK report: coarser speed grids, fewer parameter values and shorter bisections than the "
-             "full report; its numbers can move by a few per cent and its rankings of close parameters can swap. "
-             if d.settings.quick else "")
+    quick = coarsened_text(d.settings) + " " if d.settings.quick else ""
     return [
         quick + "Models. Linear: straight-line motion, tire forces linear in slip with the cornering stiffness at "
         "the static load (the thesis's Table 4-1 method), free casters without pin friction (Coulomb friction has "
@@ -39,7 +38,8 @@ def method_text(d: ReportData) -> list[str]:
         "divided by the step, which is why the impulse is slightly above force x duration.",
         f"Instability measures. Reference case: the {REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s after the push; "
         f"{crit.describe()}. Equal-instability speed: the speed at which a chair takes exactly as long as the "
-        "reference case (bisection on speed, one batch of simulations per round). Critical impulse: the smallest "
+        "reference case (a bracketing search on speed: a first round of candidate speeds, then a regula-falsi "
+        "pair per round, one batch of simulations per round). Critical impulse: the smallest "
         "push (same 0.1 s duration) that brings |yaw rate| to the level within the same time; unlike the "
         "equal-instability speed it does not depend on the size of the thesis's push.",
         "Verdict thresholds for the thesis's conclusions (chapter 9). The thesis compares response curves by eye; "
@@ -50,14 +50,23 @@ def method_text(d: ReportData) -> list[str]:
         "for the "
         "combined revision (the thesis reports +46 %, conclusion 5), a speed exponent "
         f"{a:g}-{b:g} for 'roughly proportional' (conclusion 6), less than 2 s to the level at 2 m/s (conclusion "
-        "7), under 5 % for 'no significant effect' (conclusion 8), and the softest tire the most stable at the "
-        "thesis's own 0.62 m/s (conclusion 9). 'Partly' means the direction agrees but not the size.",
+        "7), under 5 % for 'no significant effect' (conclusion 8), and for conclusion 9 the softest tire the most "
+        "stable at the thesis's own 0.62 m/s, at least 10 % ahead of the next tire (the thesis's 'significantly') "
+        "with a spread of at most 60 % over all tires. 'Partly' means the direction agrees but not the size. The "
+        "verdicts are computed on the thesis's chairs only, so every report prints the same ones; a chair's own "
+        "test is a separate column, 'not applicable' for a front-caster chair and 'not testable (bound)' when its "
+        "speeds are bounds.",
         "Validity. Curves on the time-history pages end where a run leaves the model's range: slip above 8 deg, "
         "a load outside the tire data, heading past 90 deg or the speed reversing. Caster shimmy uses two "
         "estimated inputs (the caster tire's relaxation length and the frame's lateral stiffness at the pin), "
         "which the thesis does not give.",
     ] + (["Pages left out of this report:\n" + "\n".join(dropped_text(d))] if dropped_text(d) else [])
 
+
+#: The thesis's title exactly as its title page prints it (the seed's first line).
+THESIS_TITLE = ("AN ANALYSIS OF PARAMETERS RELATED TO THE DIRECTIONAL INSTABILITY OF REAR CASTER WHEELCHAIRS")
+#: The 2022 hand-rim study's DOI (the source of :data:`stability.report.clinician.TYPICAL_PUSH_N`).
+HANDRIM_STUDY_DOI = "10.1186/s12984-022-01007-5"
 
 #: Terms a reader meets in the report, in plain words.
 GLOSSARY: tuple[tuple[str, str], ...] = (
@@ -76,13 +85,38 @@ GLOSSARY: tuple[tuple[str, str], ...] = (
     ("caster shimmy", "a fast side-to-side oscillation of a caster about its pin, worse with a short trail."),
     ("holding moment (N m)", "the yaw moment a user or a motor must supply to keep the chair straight on a cross "
      "slope."),
-    ("static stability angle (deg)", "the slope at which the braked chair tips over (ISO 7176-1)."),
+    ("static stability angle (deg)", "the slope at which the braked chair tips over (ISO 7176-1); Loane and "
+     "Kirby's 28.6 deg benchmark was measured with brakes unlocked, so it is a scale, not a like-for-like limit."),
+    ("shimmy margin (cm)", "how far the chair's trail lies from the nearest trail at which the casters shimmy at "
+     "the use speeds; positive: on the safe side."),
+    ("relaxation length (m)", "the distance a rolling tire travels before its side force builds up after a "
+     "change of slip (an estimated input of the shimmy model)."),
+    ("pin stiffness", "the lateral stiffness of the frame at the caster pin (the other estimated shimmy input)."),
+    ("elasticity", "the per cent change of a measure per per cent change of a parameter; +0.5: raising the "
+     "parameter 10 % raises the measure 5 %. Two measures can have opposite-signed elasticities for one "
+     "parameter: the linear growth rate ignores pin friction, the critical impulse includes it."),
+    ("censored value / bound", "a search that ended at its bracket's edge: '> 3 m/s' means above 3 m/s, by how "
+     "much unknown; bounds cannot rank parameters."),
+    ("wchair scheme", "the thesis's simulator's fixed-step integration, re-implemented (step 1 ms)."),
+    ("stick-slip pin friction", "the report's pin-friction law: a caster stays put until the side moment exceeds "
+     "the friction torque, then slides against it; the simulate command's stick-slip friction law."),
+    ("x_m", "the caster pins' distance ahead of (or behind) the centre of gravity along the chair, m."),
+    ("M_f/l", "pin friction divided by trail: the side force at the caster's contact that the friction holds, N."),
+    ("k_us", "the understeer coefficient of the locked-caster (zero-width) model, rad; negative: oversteer."),
+    ("yaw rate (rad/s)", "how fast the heading changes; plotted counter-clockwise positive (seen from above) "
+     "in every report."),
 )
 
 #: Sources the report uses.
 REFERENCES: tuple[str, ...] = (
-    "Collins, T. J. (1987). An analysis of parameters related to the directional stability of rear caster "
-    "wheelchairs. M.S. thesis, University of Virginia, Charlottesville. (Tire data, models, WCHAIR, chapters 8-9.)",
+    f"Collins, T. J. (1987). {THESIS_TITLE}. M.S. thesis, University of Virginia, Charlottesville. (Tire data, "
+    "models, WCHAIR, chapters 8-9.)",
+    "ISO 7176-1: Wheelchairs - Part 1: Determination of static stability. (The static stability angles.)",
+    "Loane, T. D. and Kirby, R. L. (1985). Static rear stability of conventional and lightweight variable-axle-"
+    "position wheelchairs. Arch Phys Med Rehabil 66(3):174-176. (28.6 deg mean rear stability, brakes unlocked.)",
+    "A novel push-pull central-lever mechanism reduces peak forces and energy-cost compared to hand-rim "
+    "wheelchair propulsion during a controlled lab-based experiment (2022). J NeuroEng Rehabil, "
+    f"doi:{HANDRIM_STUDY_DOI}. (Peak hand-rim force 63 +/- 21 N, the clinician paragraph's typical push.)",
     "Kauzlarich, J. J., Bruning, T. and Thacker, J. G.: caster shimmy and the dual-tread caster (cited by Collins "
     "1987 as ref. 8.2).",
     "Pacejka, H. B. (2006). Tyre and Vehicle Dynamics, 2nd ed. Butterworth-Heinemann. (Tire relaxation length.)",

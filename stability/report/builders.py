@@ -6,6 +6,7 @@ import math
 from collections.abc import Callable
 from functools import partial
 
+import numpy as np
 from matplotlib.figure import Figure
 
 from stability import plotting as P
@@ -16,7 +17,7 @@ from stability.report.comparison import comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
 from stability.report.decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
 from stability.report.findings import _first, conclusion_rows, findings
-from stability.report.quick import MARK, coarsened_text
+from stability.report.quick import MARK
 from stability.report.sections import footer as _footer
 from stability.report.sections import shimmy_page, slope_page, uncertainty_page
 from stability.report.summary import dropped_pages, interval_text, push_text, summary_text
@@ -31,16 +32,34 @@ VALIDITY_NOTE = ("Curves end where the run leaves the model's range: first slip 
                  "heading past 90 deg, or speed reversal (tire forces beyond are clamped, not results).")
 
 
+#: Page 1's note in a quick report (what it coarsens is listed in the method appendix).
+QUICK_NOTE = (f"QUICK REPORT. Values marked {MARK} come from coarse grids and may move in the full report; the "
+              "decision above is the advisor's, the same in both. The method appendix lists what is coarsened.")
+
+
+#: Page 1's note in the quick (brief) report.
+BRIEF_NOTE = ("QUICK REPORT. This page, the clinician sheet and the references only, at full resolution: the "
+              "decision is the full report's. The evidence (responses, paths, parametric study, maps, shimmy, "
+              "slope, the thesis's conclusions) is in the full report (the same command without --quick).")
+
+
+def _p_sheet(d: ReportData) -> Figure:
+    from stability.report.clinician_sheet import sheet_figure
+
+    return sheet_figure(d.sheet, d.model)
+
+
 def _subtitle(d: ReportData) -> str:
     c = d.chair
-    return (f"{c.caster_position} casters; s1 = {c.s1:g} m, s2 = {c.s2:g} m, trail = {c.trail:g} m, m = {c.m:g} kg, "
-            f"pin friction {c.pin_friction_left:g}/{c.pin_friction_right:g} N m, main tire {c.main_tire}, "
+    return (f"{c.caster_position} casters; s1 = {c.s1:.3g} m, s2 = {c.s2:.3g} m, trail = {c.trail:.3g} m, "
+            f"m = {c.m:.3g} kg, pin friction {_pins(c)} N m, main tire {c.main_tire}, "
             f"caster tire {c.caster_tire}"
             + (f"   [QUICK: values marked {MARK} may move]" if d.settings.quick else ""))
 
 
 def _title(d: ReportData, what: str) -> str:
-    return f"{d.chair.name} | {d.model} model | {what}"
+    name = d.chair.name if len(d.chair.name) <= 40 else d.chair.name[:39] + "\u2026"   # the subtitle has the rest
+    return f"{name} | {d.model} model | {what}"
 
 
 def _p_decision(d: ReportData) -> Figure:
@@ -50,18 +69,23 @@ def _p_decision(d: ReportData) -> Figure:
     ax_text, ax_table, ax_bar = fig.add_subplot(gs[:, 0]), fig.add_subplot(gs[0, 1]), fig.add_subplot(gs[1, 1])
     ax_text.axis("off")
     y = 1.0
-    paras = decision_paragraphs(d) + [clinician_text(d)] + ([coarsened_text(d.settings)] if d.settings.quick else [])
-    for scale in (1.0, 0.95, 0.9, 0.85, 0.8, 0.75, 0.7, 0.65):     # shrink the text until it fits its column
-        width = int(76 / scale) if scale == 1.0 else int(72 / scale)     # clear of the chart's labels
-        if sum(0.034 * len(P.wrap_text(p, width)) + 0.02 for p in paras) * scale <= 1.0:
+    paras = (decision_paragraphs(d) + [clinician_text(d)] + ([QUICK_NOTE] if d.settings.quick else [])
+             + ([BRIEF_NOTE] if d.brief else []))
+    pos = ax_text.get_position()
+    w_pt, h_pt = pos.width * fig.get_figwidth() * 72.0, pos.height * fig.get_figheight() * 72.0
+    for fs in np.arange(9.3, 6.99, -0.1):        # shrink the text until it fits its column, never below 7 pt
+        # DejaVu Sans: about 0.55 em per character on average; the chart's bar labels reach 8 % into the column
+        width = int(0.92 * w_pt / (0.58 * fs))
+        line_h, gap = 1.22 * fs / h_pt, 0.5 * 1.22 * fs / h_pt
+        if sum(len(P.wrap_text(p, width)) * line_h + gap for p in paras) <= 1.0:
             break
     for para in paras:
         head = para.split(" ", 1)[0].rstrip(".").isupper()       # VERDICT., RECOMMENDATION., ...
         for i, line in enumerate(P.wrap_text(para, width)):
-            ax_text.text(0.0, y, line, fontsize=9.3 * scale, va="top", transform=ax_text.transAxes,
+            ax_text.text(0.0, y, line, fontsize=fs, va="top", transform=ax_text.transAxes,
                          fontweight="bold" if i == 0 and head else "normal")
-            y -= 0.034 * scale
-        y -= 0.02 * scale
+            y -= line_h
+        y -= gap
     header, rows = decision_rows(d)
     ax_table.axis("off")
     n = len(header)
@@ -83,11 +107,17 @@ def _p_chair(d: ReportData) -> Figure:
     P.chair_geometry(c, axes[0, 1])
     t = d.tipping
     if t is not None:
-        fig.text(0.60, 0.13, "Static stability angles (ISO 7176-1; brakes locked, casters in their least stable "
+        fig.text(0.60, 0.13, "Static stability angles (ISO 7176-1; brakes locked, casters in their\nleast stable "
                  f"orientation):\ntoward the main wheels {t.toward_main_wheels_deg:.1f} deg, toward the casters "
-                 f"{t.toward_casters_deg:.1f} deg, sideways {t.lateral_left_deg:.1f} / {t.lateral_right_deg:.1f} "
+                 f"{t.toward_casters_deg:.1f} deg,\nsideways {t.lateral_left_deg:.1f} / {t.lateral_right_deg:.1f} "
                  "deg (left / right)", fontsize=8.5, va="top", ha="left")
     return P.finish(fig)
+
+
+def _pins(c) -> str:
+    """Both pins' friction, N m (one value when they are equal)."""
+    a, b = c.pin_friction_left, c.pin_friction_right
+    return f"{a:.3g}" if f"{a:.3g}" == f"{b:.3g}" else f"{a:.3g} / {b:.3g}"
 
 
 def _p_comparison(d: ReportData) -> Figure:
@@ -102,12 +132,12 @@ def _p_comparison(d: ReportData) -> Figure:
     geometry = [["c.g. to main axle s1 (m)", f"{d.chair.s1:.3g}", f"{b.chair.s1:.3g}", "", ""],
                 ["c.g. to caster pins s2 (m)", f"{d.chair.s2:.3g}", f"{b.chair.s2:.3g}", "", ""],
                 ["caster trail (m)", f"{d.chair.trail:.3g}", f"{b.chair.trail:.3g}", "", ""],
-                ["pin friction (N m)", f"{d.chair.pin_friction_left:.3g}", f"{b.chair.pin_friction_left:.3g}", "", ""],
+                ["pin friction, left / right (N m)", _pins(d.chair), _pins(b.chair), "", ""],
                 ["mass (kg)", f"{d.chair.m:.3g}", f"{b.chair.m:.3g}", "", ""]]
     axes[0, 1].axis("off")
     P.table_axes(axes[0, 1], ["", d.chair.name, b.chair.name, "change", "better"],
                  geometry + comparison_rows(this, base), col_widths=[0.5, 0.13, 0.13, 0.12, 0.12], fontsize=8.5,
-                 wrap=[52, 14, 14, 12, 12], top=0.97, bottom=0.05)
+                 wrap=[44, 12, 12, 10, 10], top=0.97, bottom=0.05)
     axes[0, 1].set_title(f"key numbers, {d.model} model, same settings for both chairs", fontsize=10)
     return P.finish(fig)
 
@@ -198,12 +228,12 @@ def _p_responses(d: ReportData) -> Figure:
     fig, axes = P.page(_title(d, "nonlinear yaw-rate responses (Figure 8-3a analogue), linear overlay"), sub,
                        nrows=1, ncols=2)
     P.yaw_rate_responses(d.responses, axes[0, 0], reference_time=d.thesis.reference_time,
-                         validity=d.validity.get("responses"),
-                         title=f"{c.name}: pin friction {c.pin_friction_left:g} N m ({d.model} model, "
-                               f"{d.scheme} scheme); dashed: linear, frictionless")
+                         validity=d.validity.get("responses"), flip=True,
+                         title=f"pin friction {_pins(c)} N m, stick-slip ({d.model} model, {d.scheme} scheme); "
+                               "dashed: linear")
     P.yaw_rate_responses(d.responses_frictionless, axes[0, 1], reference_time=d.thesis.reference_time,
-                         validity=d.validity.get("frictionless"),
-                         title=f"{c.name} without pin friction: where the linear model applies")
+                         validity=d.validity.get("frictionless"), flip=True,
+                         title="without pin friction (where the linear model applies)")
     bottom = _footer(fig, f"Push: {push_text(d)} at the c.g. (WCHAIR applies the force while t <= 0.1 s). "
                      + VALIDITY_NOTE + "\n" + d.responses.linear_note + ".")
     return P.finish(fig, bottom=bottom)
@@ -216,6 +246,7 @@ def _p_paths(d: ReportData) -> Figure:
                    title=f"paths after {push_text(d)} at the c.g., {REFERENCE_SPEED:g} m/s: {d.model} model, "
                          f"{d.scheme} scheme")
     P.yaw_rate_responses(d.paths, axes[0, 1], label_chair=True, ylim=(-1.0, 1.5), validity=d.validity.get("paths"),
+                         flip=True,
                          title=f"yaw rates of the same runs, {REFERENCE_SPEED:g} m/s ({d.model} model); "
                                "dashed: linear")
     bottom = _footer(fig, VALIDITY_NOTE)
@@ -268,6 +299,8 @@ def _p_equal(d: ReportData) -> Figure:
         + "; 1.5x friction " + THESIS["revised_1.5x_friction"] + ".",
         "Figure 8-14 (lighter chair): thesis about 0.85 m/s; not reproduced, see the findings page.",
         "Grey hatched bars: outside the bracket (value is a bound).",
+        "'x0.5 / x1.5 friction' bars: that chair's friction scaled, the reference unchanged (the range scales "
+        "both chairs').",
         "Thesis vs ours: the two model variants are compared in the method appendix.",
     ]
     if d.intervals is not None:
@@ -292,7 +325,9 @@ def _p_sweeps(d: ReportData) -> Figure:
     limits = {p: (v, f"tips at {d.tip_limits_deg:g} deg") for p, v in d.tip_limits.items()}
     P.sweep_chart(table, axes, limits=limits)
     note = (f" Dash-dot line: where the braked chair's static stability angle toward its main wheels falls to "
-            f"{d.tip_limits_deg:g} deg (Loane and Kirby's measured mean for a conventional chair): moving the axle "
+            f"{d.tip_limits_deg:g} deg (Loane and Kirby's measured mean for a conventional chair, brakes "
+            "unlocked: a scale, not a like-for-like "
+            "limit): moving the axle "
             "past it trades tipping for directional stability." if limits else "")
     bottom = _footer(fig, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
              "parameter; other parameters at the chair's values. Same speed scale in every panel." + note)
@@ -311,7 +346,7 @@ def _p_sweep_table(d: ReportData) -> Figure:
     return P.table_page(_title(d, "which parameters matter, by how much"),
                         ["rank", "parameter", "values tried", "equal-instability speed (m/s)", "spread (%)",
                          "how varied"], rows, sub,
-                        col_widths=[0.04, 0.17, 0.17, 0.27, 0.08, 0.27], wrap=[4, 26, 26, 44, 12, 42],
+                        col_widths=[0.04, 0.17, 0.17, 0.27, 0.08, 0.27], wrap=[4, 24, 22, 40, 10, 40],
                         notes=(f"This chair: {table.nominal.describe()} (reference {d.thesis.reference_time:.2f} s "
                                f"to {d.thesis.criterion.yaw_rate:g} rad/s). Spread: (max - min) / this chair's "
                                "speed over the values tried. '(bound)': some speed lies outside the bracket, so "
@@ -332,14 +367,19 @@ def _p_maps(d: ReportData) -> Figure:
 def _p_conclusions(d: ReportData) -> Figure:
     sub = _subtitle(d)
     rows = conclusion_rows(d)
-    own = "" if d.chair == preset(REFERENCE_CHAIR) else f"; design changes (2, 3, 4, 6, 8) tested on {d.chair.name}"
-    return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers (E&J Premier, revised" + own
-                               + ")"),
-                        ["#", "conclusion (chapter 9)", "verdict", "our evidence"], rows, sub,
-                        col_widths=[0.03, 0.25, 0.08, 0.64], wrap=[3, 40, 10, 100], fontsize=8,
+    own = len(rows[0]) > 4
+    header = ["#", "conclusion (chapter 9)", "verdict (thesis's chairs)", "our evidence (E&J Premier, revised)"]
+    if own:
+        header.append(f"{d.chair.name}'s own test")
+    return P.table_page(_title(d, "the thesis's conclusions 1-9 against our numbers"),
+                        header, rows, sub,
+                        col_widths=[0.03, 0.2, 0.08, 0.44, 0.25] if own else [0.03, 0.25, 0.08, 0.64],
+                        wrap=[3, 34, 12, 80, 44] if own else [3, 40, 12, 100], fontsize=7 if own else 8,
                         notes=f"Nonlinear runs: {d.thesis.model} model, {d.scheme} scheme; "
-                              f"{d.thesis.criterion.describe()}; push {push_text(d)}. The 'agree if' thresholds "
-                              "are justified in the method appendix.")
+                              f"{d.thesis.criterion.describe()}; push {push_text(d)}. The verdicts test the thesis "
+                              "on its own chairs under its own conditions and are the same in every report; the "
+                              "last column (when present) applies the design conclusions to this chair. The 'agree "
+                              "if' thresholds are justified in the method appendix.")
 
 
 def _p_summary_page(d: ReportData) -> Figure:
@@ -390,6 +430,9 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
     -------
     list of (str, callable)
     """
+    if d.brief:
+        return [("decision", partial(_p_decision, d)), ("for the clinician", partial(_p_sheet, d)),
+                ("glossary and references", partial(_p_glossary, d))]
     drop = dropped_pages(d)
     pages = [
         # main body: the decision and the evidence

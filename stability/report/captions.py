@@ -14,8 +14,10 @@ import numpy as np
 
 from stability.advise.limits import shimmy_sentence
 from stability.advise.text import kmh
-from stability.report.comparison import comparison_rows, report_key_numbers
+from stability.report.behaviour import friction_role, motion, sig3
+from stability.report.comparison import RESTATED, comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
+from stability.report.ranges import interval_words
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 
 __all__ = ["CAPTIONS", "caption"]
@@ -44,10 +46,15 @@ def _chair(d: ReportData) -> str:
 
 def _tires(d: ReportData) -> str:
     zw = d.summary.zero_width
+    row = _at_reference(d)
+    grows = row is not None and row.rate > 0
     return (f"At this chair's static loads ({zw.load_main:.0f} N per main wheel, {zw.load_caster:.0f} N per caster) "
             f"the main tires give {math.radians(zw.stiffness_main):.3g} N/deg and the casters "
-            f"{math.radians(zw.stiffness_caster):.3g} N/deg of cornering stiffness; a softer main tire slows the "
-            "divergence a little (conclusion 9).")
+            f"{math.radians(zw.stiffness_caster):.3g} N/deg of cornering stiffness; "
+            + ("a softer main tire slows the divergence a little (conclusion 9)." if grows else
+               f"this chair does not diverge at {REFERENCE_SPEED:g} m/s (growth rate {row.rate:.3g} 1/s), so the "
+               "tire has no divergence to slow." if row is not None else "no linear growth rate at the reference "
+               "speed."))
 
 
 def _linear(d: ReportData) -> str:
@@ -90,32 +97,50 @@ def _gain(d: ReportData) -> str:
             "this.")
 
 
+def _motions(d: ReportData, key: str) -> list:
+    rs = getattr(d, {"responses": "responses", "frictionless": "responses_frictionless", "paths": "paths"}[key])
+    val = d.validity.get(key) or (None,) * len(rs.responses)
+    return [motion(r, v) for r, v in zip(rs.responses, val, strict=True)]
+
+
 def _responses(d: ReportData) -> str:
-    rs = [r for r in d.responses.responses if math.isfinite(r.time_to_level)]
+    ms = _motions(d, "responses")
     ref = d.thesis.reference_time
-    if not rs:
-        return (f"No speed shown reaches {d.thesis.criterion.yaw_rate:g} rad/s within "
-                f"{d.thesis.criterion.duration:g} s after the push: the pin friction holds the chair.")
-    fast = min(rs, key=lambda r: r.time_to_level)
-    return (f"After the thesis's push the chair spins up to {d.thesis.criterion.yaw_rate:g} rad/s within "
-            f"{fast.time_to_level:.2g} s at {kmh(fast.speed)} (reference case {ref:.3g} s): the faster it goes, "
-            "the less time the user has to correct it.")
+    law = "stick-slip pin friction"
+    spun = [m for m in ms if m.kind == "spins up"]
+    if spun:
+        fast = min(spun, key=lambda m: m.time_to_level)
+        txt = (f"After the thesis's push ({law}) the chair spins up to {d.thesis.criterion.yaw_rate:g} rad/s within "
+               f"{sig3(fast.time_to_level)} s at {kmh(fast.speed)} (reference case {sig3(ref)} s): the faster it "
+               "goes, the less time the user has to correct it")
+    else:
+        txt = (f"No speed shown reaches {d.thesis.criterion.yaw_rate:g} rad/s within "
+               f"{d.thesis.criterion.duration:g} s after the push ({law})")
+    turning = [m for m in ms if m.kind == "keeps turning"]
+    if turning:
+        txt += ("; at " + ", ".join(kmh(m.speed) for m in turning) + " it "
+                + turning[0].words().split(",")[0] + (" and similar" if len(turning) > 1 else ""))
+    free = _motions(d, "frictionless")
+    if free and ms:
+        u = free[-1].speed
+        own = min(ms, key=lambda m: abs(m.speed - u))
+        if abs(own.speed - u) < 1e-6:
+            txt += (f". At {kmh(u)} the pin friction {friction_role(own, free[-1])}: without it the chair "
+                    f"{free[-1].words()}")
+    return txt + "."
 
 
 def _paths(d: ReportData) -> str:
-    def drift(r) -> tuple[float, float, float]:
-        y, x = np.asarray(r.y), np.asarray(r.x)
-        return abs(y[-1] - y[0]), abs(x[-1] - x[0]), abs(float(np.degrees(r.heading[-1] - r.heading[0])))
-
-    r = d.paths.responses[0]
-    dy, dx, head = drift(r)
-    txt = (f"After the push the chair leaves its line: {dy:.2g} m sideways after {dx:.2g} m of travel, heading "
-           f"changed by {head:.0f} deg at {kmh(r.speed)}")
-    if len(d.paths.responses) > 1:
-        o = d.paths.responses[1]
-        oy, ox, oh = drift(o)
-        txt += (f"; with its casters at the other end the same chair moves {oy:.2g} m sideways after {ox:.2g} m, "
-                f"heading changed by {oh:.0f} deg")
+    ms = _motions(d, "paths")
+    m = ms[0]
+    txt = f"After the push at {kmh(m.speed)} (stick-slip pin friction) the chair {m.words()}: {m.where()}"
+    if len(ms) > 1:
+        o = ms[1]
+        txt += f"; with its casters at the other end the same chair {o.words()}: {o.where()}"
+    front = [x for x, r in zip(ms, d.paths.responses, strict=False) if r.chair.caster_position == "front"]
+    if front and front[0].kind == "keeps turning":
+        txt += (". The thesis's Figure 8-4b shows its front-caster chair returning to straight-line motion; here "
+                "the turn persists")
     return txt + "."
 
 
@@ -125,10 +150,17 @@ def _equal(d: ReportData) -> str:
         return (f"This chair never matches the reference instability within {cs.bracket[0]:g}-{cs.bracket[1]:g} m/s "
                 f"({cs.describe()}).")
     iv = d.intervals
-    rng = (f" (range {iv.low:.3g}-{iv.high:.3g} m/s, moved most by {iv.dominant})" if iv is not None
-           and iv.low is not None and iv.high is not None else "")
-    return (f"This chair is as unstable at {kmh(cs.speed)}{rng} as the {REFERENCE_CHAIR} is at {kmh(REFERENCE_SPEED)}: "
-            "the higher this speed, the more stable the chair.")
+    rng = interval_words(iv)
+    if d.chair.name == REFERENCE_CHAIR:
+        txt = (f"This is the thesis's reference chair: at {kmh(REFERENCE_SPEED)} it defines the reference case, so "
+               "its own bar is the reference speed by construction; the other bars show what a change would buy.")
+        if iv is not None and rng:
+            txt += (f" The {iv.chair_name} design reaches the reference instability at {sig3(iv.point.speed)} m/s "
+                    f"({rng}).")
+        return txt
+    txt = (f"This chair is as unstable at {kmh(cs.speed)} as the {REFERENCE_CHAIR} is at {kmh(REFERENCE_SPEED)}: "
+           "the higher this speed, the more stable the chair")
+    return txt + (f" ({rng})." if rng else ".")
 
 
 def _sweeps(d: ReportData) -> str:
@@ -145,8 +177,10 @@ def _maps(d: ReportData) -> str:
     fm = d.friction_map
     j = int(np.argmax(fm.y_values))
     ok = fm.speeds[~(fm.times[j] < fm.reference_time)]
-    top = (f"with {fm.y_values[j]:g} N m of pin friction the chair stays below the reference instability up to "
-           f"{kmh(float(ok.max()))}" if len(ok) else
+    edge = float(ok.max()) >= float(np.max(fm.speeds)) - 1e-9 if len(ok) else False
+    top = (f"with {fm.y_values[j]:g} N m of pin friction the chair stays below the reference instability "
+           + (f"at every speed of the map (up to its edge, {kmh(float(ok.max()))}; the equal-instability search "
+              "gives the speed itself)" if edge else f"up to {kmh(float(ok.max()))}") if len(ok) else
            f"even {fm.y_values[j]:g} N m of pin friction does not keep it below the reference instability")
     return f"More pin friction or a smaller push moves the line to higher speeds: {top}."
 
@@ -166,10 +200,11 @@ def _shimmy(d: ReportData) -> str:
         return "No shimmy result for this chair."
     crit = [x[2] for x in s.corners]
     a = d.advice
-    return (f"Caster shimmy: {shimmy_sentence(a.verdict, d.chair.trail, a.shimmy_hold)}. At {s.speed:g} m/s the "
-            f"boundary lies at {100 * s.critical:.3g} cm with the estimated caster compliance, and anywhere from "
-            f"{100 * min(crit):.3g} cm "
-            + ("to beyond 20 cm" if not math.isfinite(max(crit)) else f"to {100 * max(crit):.3g} cm")
+    return (f"Caster shimmy: {shimmy_sentence(a.verdict, d.chair.trail, a.shimmy_hold)}. The boundary lies at "
+            f"{100 * s.critical:.3g} cm with the estimated caster compliance (the same at every speed without viscous "
+            f"pin damping; computed at {s.speed:g} m/s), and anywhere from {100 * min(crit):.3g} cm "
+            + ("to beyond 25 cm (shimmy at every trail checked)" if not math.isfinite(max(crit))
+               else f"to {100 * max(crit):.3g} cm")
             + " over the estimates' range: measure the caster's compliance before changing the trail.")
 
 
@@ -187,13 +222,13 @@ def _comparison(d: ReportData) -> str:
     b = d.baseline
     if b is None:
         return ""
-    rows = comparison_rows(*report_key_numbers(d))
+    rows = [r for r in comparison_rows(*report_key_numbers(d)) if not r[0].startswith(RESTATED)]
     wins = [r for r in rows if r[4] == "this chair"]
     losses = [r for r in rows if r[4] == "baseline"]
     txt = f"{d.chair.name} is better than {b.chair.name} on {len(wins)} of {len(rows)} measures"
     if losses:
         txt += "; worse on " + ", ".join(f"{r[0].split(' (')[0]} ({r[3]})" for r in losses)
-    return txt + "."
+    return txt + " (the doubling time restates the growth rate and is not counted again)."
 
 
 def _trail_window(d: ReportData) -> str:
@@ -210,7 +245,10 @@ def _trail_window(d: ReportData) -> str:
     if w.chair_in_window == "outside":
         txt += f" The nearest shimmy-free trail is {100 * near:.3g} cm (nominal estimates)."
     best = w.best_in_window()
-    if best is not None:
+    if best is not None and not any(bool(f) for f in w.found):
+        txt += (f" Every trail of the study is a bound (> {best[1]:.3g} m/s): the chart cannot rank trails for "
+                "directional stability, only place them against the shimmy zones.")
+    elif best is not None:
         t, u, found = best
         txt += (f" Of the study's trails in the window, {100 * t:.3g} cm gives the highest equal-instability speed, "
                 f"{'' if found else '> '}{u:.3g} m/s.")
@@ -221,8 +259,14 @@ def _trail_window(d: ReportData) -> str:
 
 def _conclusions(d: ReportData) -> str:
     v = [c.verdict for c in d.conclusions]
-    return (f"Of the thesis's nine conclusions our numbers agree with {v.count('agree')}, partly with "
-            f"{v.count('partly')} and disagree with {v.count('disagree')}; the evidence column says why.")
+    txt = (f"On the thesis's own chairs our numbers agree with {v.count('agree')} of its nine conclusions, partly "
+           f"with {v.count('partly')} and disagree with {v.count('disagree')}")
+    own = [c.chair_verdict for c in d.conclusions if c.chair_verdict]
+    if own:
+        counts = {k: own.count(k) for k in dict.fromkeys(own)}
+        txt += (f"; on {d.chair.name} the design conclusions come out "
+                + ", ".join(f"{k} {n}" for k, n in counts.items()))
+    return txt + "; the evidence column says why."
 
 
 #: Page title -> caption function (pages without one are text pages).

@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from stability.report.behaviour import motion, sig3
 from stability.report.compute import ReportData
 from stability.report.quick import mark
 from stability.settings.reference import THESIS_PUSH
@@ -42,14 +43,23 @@ def clinician_text(d: ReportData) -> str:
     str
     """
     c = d.chair
-    rs = sorted(d.responses.responses, key=lambda r: r.speed)
+    val = d.validity.get("responses") or (None,) * len(d.responses.responses)
+    pairs = sorted(zip(d.responses.responses, val, strict=True), key=lambda p: p[0].speed)
     q = mark(d.settings)           # the speeds sit around the (coarse, in a quick report) equal-instability speed
-    times = "; ".join(f"at {_kmh(r.speed)} {r.time_to_level:.1f} s{q}" if math.isfinite(r.time_to_level)
-                      else f"at {_kmh(r.speed)} it does not within {d.responses.criterion.duration:g} s"
-                      for r in rs)
+
+    def at(r, v) -> str:
+        if math.isfinite(r.time_to_level):
+            return f"at {_kmh(r.speed)} {r.time_to_level:.1f} s{q}"
+        m = motion(r, v)
+        if m.kind == "keeps turning":
+            return (f"at {_kmh(r.speed)} it does not spin up within {d.responses.criterion.duration:g} s but keeps "
+                    f"turning, {sig3(math.degrees(abs(m.final_rate)) * 10)} deg every 10 s")
+        return f"at {_kmh(r.speed)} it does not within {d.responses.criterion.duration:g} s ({m.words()})"
+
+    times = "; ".join(at(r, v) for r, v in pairs)
     thesis = ", ".join(f"{_kmh(u)}: " + ("> 6 s" if math.isinf(t) else f"{t:g} s") for u, t in TABLE_8_2.items())
     out = [f"FOR THE CLINICIAN. After a firm sideways shove ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) "
-           f"{c.name} spins up to {d.thesis.criterion.yaw_rate:g} rad/s (about 60 deg/s): {times}. The user must "
+           f"{c.name} spins up to {d.responses.criterion.yaw_rate:g} rad/s (about 60 deg/s): {times}. The user must "
            "correct well before that: for the thesis's chair the thesis estimated the time before the turn speeds "
            f"up sharply at {thesis} (Table 8-2)."]
     if c.caster_position == "rear":
@@ -63,7 +73,8 @@ def clinician_text(d: ReportData) -> str:
             f = float(abs(s.drive_difference[k]))
             mean, sd = TYPICAL_PUSH_N
             out.append(f"On a {CLINIC_SLOPE_DEG:g} deg cross slope at {_kmh(s.speed)} one hand rim must push "
-                       f"{f:.0f} N harder than the other to go straight: {100 * f / mean:.0f} % of a typical peak "
-                       f"push of {mean:g} +/- {sd:g} N on the level (hand-rim propulsion study, J NeuroEng Rehabil "
-                       "2022).")
+                       f"{f:.0f} N harder than the other, all the way across, to go straight: a sustained force "
+                       f"of {100 * f / mean:.0f} % of a typical PEAK stroke force of {mean:g} +/- {sd:g} N on the "
+                       "level (hand-rim propulsion study, J NeuroEng Rehabil 2022), which a stroke holds only "
+                       "briefly.")
     return " ".join(out)

@@ -17,6 +17,7 @@ from stability.cli import (
     json_header,
     load_chair,
     output_files,
+    parse_speeds,
     run,
 )
 from stability.linear.intervals import MAX_SAMPLES
@@ -42,7 +43,14 @@ def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.report", description=_DESCRIPTION)
     add_chair_options(p)
     add_model_option(p)
-    p.add_argument("--quick", action="store_true", help="coarse version in seconds")
+    p.add_argument("--quick", action="store_true",
+                   help="quick report: page 1 (the full report's decision), the clinician sheet and the references")
+    p.add_argument("--clinician", action="store_true",
+                   help="one page for a clinician instead of the report: the chair after a bump at the user's "
+                        "speeds, time to correct, drift, cross-slope effort, checking pin friction, tip angles")
+    p.add_argument("--speeds", default=D.ADVISE_SPEEDS, metavar="SPEEDS",
+                   help=f"the user's speeds for --clinician, m/s: START:STOP:STEP or a list, 0.1 to 3 m/s "
+                        f"(default {D.ADVISE_SPEEDS}, the advisor's)")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.add_argument("--text", metavar="FILE", help="also write the text of every page to FILE")
     p.add_argument("--uncertainty", metavar="FILE",
@@ -85,6 +93,12 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError("-o FILE.pdf is required (or --json / --json-file for the numbers without the PDF)")
     if args.text and not args.output:
         raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
+    if args.quick and not args.clinician:
+        for flag, given in (("--json", args.json), ("--json-file", args.json_file), ("--compare", args.compare),
+                            ("--uncertainty", args.uncertainty)):
+            if given:
+                raise ValueError(f"{flag} needs the full report: --quick is page 1, the clinician sheet and the "
+                                 "references (drop --quick)")
     outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair, "--uncertainty": args.uncertainty, "--compare": args.compare})
     if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
@@ -93,16 +107,19 @@ def _run(args: argparse.Namespace) -> int:
     if args.uncertainty is not None:
         spec = UncertaintySpec(args.uncertainty, load_uncertainty(args.uncertainty), args.samples, args.seed)
     c = load_chair(args.chair, args.set)
+    if args.clinician:
+        return _clinician(args, c, outputs)
+    if args.speeds != D.ADVISE_SPEEDS:
+        raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")
     baseline = None if args.compare is None else load_chair(args.compare, [])
     with output_files(outputs) as tmp:
         res = None
         if args.output:
-            res = document.build(c, tmp["-o"], model=args.model, quick=args.quick, progress=not args.no_progress,
+            res = document.build(c, tmp["-o"], model=args.model, brief=args.quick, progress=not args.no_progress,
                                  uncertainty=spec, baseline=baseline)
             data = res.data
         else:
-            data = compute(c, args.model, quick=args.quick, progress=not args.no_progress, uncertainty=spec,
-                           baseline=baseline)
+            data = compute(c, args.model, progress=not args.no_progress, uncertainty=spec, baseline=baseline)
         if args.text:
             with open(tmp["--text"], "w", encoding="utf-8") as fh:
                 assert res is not None          # --text needs -o (checked above)
@@ -118,4 +135,36 @@ def _run(args: argparse.Namespace) -> int:
               (f" and {args.text}" if args.text else ""), file=sys.stderr if args.json else sys.stdout)
     if args.json_file:
         print(f"wrote {args.json_file}", file=sys.stderr)
+    return 0
+
+
+def _clinician(args: argparse.Namespace, c, outputs: dict) -> int:
+    from stability.report.clinician_sheet import clinician_sheet, sheet_figure
+    from stability.report.document import figure_texts
+    from stability.runtime.files import write_pdf
+
+    for flag, given in (("--compare", args.compare), ("--uncertainty", args.uncertainty), ("--json", args.json),
+                        ("--json-file", args.json_file), ("--quick", args.quick)):
+        if given:
+            raise ValueError(f"{flag} cannot be combined with --clinician (a one-page sheet at full resolution)")
+    if not args.output:
+        raise ValueError("--clinician needs -o FILE.pdf")
+    speeds = tuple(float(u) for u in parse_speeds(args.speeds, max_count=12))
+    if not speeds or min(speeds) < 0.1 or max(speeds) > 3.0:
+        raise ValueError(f"--speeds {args.speeds!r} is invalid; valid range: 0.1 to 3 m/s")
+    sheet = clinician_sheet(c, speeds, args.model)
+    texts: list[str] = []
+
+    def figs():
+        fig = sheet_figure(sheet, args.model)
+        texts.extend(figure_texts(fig))
+        yield fig
+
+    with output_files(outputs) as tmp:
+        write_pdf(figs(), tmp["-o"], title=f"stability clinician sheet: {c.name} ({args.model} model)",
+                  outline=[("for the clinician", 0)])
+        if args.text:
+            with open(tmp["--text"], "w", encoding="utf-8") as fh:
+                fh.write("=== page 1: for the clinician\n" + "\n".join(texts) + "\n")
+    print(f"wrote {args.output} (1 page)" + (f" and {args.text}" if args.text else ""))
     return 0

@@ -161,6 +161,11 @@ _ROWS = (
     ("shimmy margin (trail from the nearest boundary)", "shimmy_margin_m", "m", 3, True),
 )
 
+#: Measures that are None when the chair is stable there (a better value than any number), and their words.
+_NONE_IS_STABLE = {"doubling_time_s": "none (stable)", "locked_critical_speed_m_s": "none (stable)"}
+#: Rows that restate another row's measure (not counted again in the page's "better on N of M").
+RESTATED = ("time for a heading error to double",)
+
 _BETTER = {"better": "this chair", "worse": "baseline", "equal": "equal", "undecided": "undecided (bounds)"}
 
 
@@ -187,6 +192,13 @@ def comparison_rows(this: KeyNumbers, base: KeyNumbers) -> list[list[str]]:
     for label, attr, unit, digits, higher in _ROWS:
         a, b = getattr(this, attr), getattr(base, attr)
         sa, sb = this.side(attr), base.side(attr)
+        if attr in _NONE_IS_STABLE and (a is None or b is None):
+            # no doubling / no locked-caster critical speed: the error dies out, the chair is stable there
+            change = "-"
+            better = "equal" if a is None and b is None else ("this chair" if a is None else "baseline")
+            rows.append([f"{label} ({unit})", _NONE_IS_STABLE[attr] if a is None else _fmt(a, sa, digits),
+                         _NONE_IS_STABLE[attr] if b is None else _fmt(b, sb, digits), change, better])
+            continue
         if a is None or b is None:
             change, better = "-", "-"
         else:

@@ -143,6 +143,11 @@ class ReportData:
         The thesis's reference chair measured as the advisor measures (None when the chair is that chair).
     reference_trail : float
         Its trail, m.
+    brief : bool
+        The quick report (:func:`stability.report.brief.compute_brief`): page 1, the clinician sheet and the
+        references only.
+    sheet : stability.report.clinician_sheet.ClinicianSheet or None
+        The clinician sheet (brief report only).
     """
 
     chair: Chair
@@ -186,6 +191,8 @@ class ReportData:
     reference_measures: Any = None
     reference_trail: float = float("nan")
     tip_limits_deg: float = LOANE_KIRBY_REAR_DEG
+    brief: bool = False
+    sheet: Any = None
 
 
 def tip_limits(c: Chair, sweeps: Any, angle_deg: float = LOANE_KIRBY_REAR_DEG) -> dict:
@@ -476,3 +483,4 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                       shimmy_note=shimmy_note, uncertainty=unc, baseline=base, tipping=tipping,
                       trail_window=window, tip_limits=limits, advice=advice, reference_measures=ref_m,
                       reference_trail=ref_chair.trail)
+

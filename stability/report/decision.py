@@ -9,9 +9,11 @@ every tip direction and cost) and from the thesis's reference chair measured the
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 from stability.advise.decision import DIRECTION_WORDS, decide
 from stability.advise.measures import EFFORT_WORDS, Measures
+from stability.report.behaviour import better_word
 from stability.report.compute import ReportData
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 
@@ -34,11 +36,16 @@ def uncertainty_sentence(d: ReportData) -> str | None:
     nl = u.nonlinear
     parts = [f"critical impulse at {nl.speed:g} m/s {nl.critical_impulse.describe()}"]
     if nl.equal_instability is not None:
-        parts.append(f"equal-instability speed {nl.equal_instability.describe()}")
+        eq = nl.equal_instability
+        cross = ("" if not (eq.low < REFERENCE_SPEED < eq.high) else
+                 f": it includes the reference {REFERENCE_SPEED:g} m/s, so within the measurement uncertainty the "
+                 f"chair may be less stable than the {REFERENCE_CHAIR}")
+        parts.append(f"equal-instability speed {eq.describe()}{cross}")
     dom = nl.critical_impulse.dominant
     drive = ("" if dom is None else
              f"; the parameter that drives it most is {dom[0]} ({100 * dom[1]:.0f} % of the variance)")
-    return (f"MEASURED UNCERTAINTY. Over the distributions of {u.spec.source} ({nl.samples} draws, "
+    return (f"MEASURED UNCERTAINTY (these intervals, not the table's, carry the measurement error). Over the "
+            f"distributions of {Path(u.spec.source).name} ({nl.samples} draws, "
             f"{100 * nl.level:.0f} % intervals): " + ", ".join(parts) + drive + ".")
 
 
@@ -64,12 +71,17 @@ def _cells(m: Measures, trail: float) -> list[str]:
     ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
     sm = m.shimmy_margin_m
 
-    def rng(x, digits=3) -> str:
-        return "" if x.low is None or x.high is None else f" ({x.low:.{digits}g}-{x.high:.{digits}g})"
+    def rng(x, digits=3, bound=False) -> str:     # no range for a bound or a range that rounds to one value
+        if bound or x.low is None or x.high is None or f"{x.low:.{digits}g}" == f"{x.high:.{digits}g}":
+            return ""
+        return f" ({x.low:.{digits}g}-{x.high:.{digits}g})"
 
     effort = m.cross_slope_effort
-    return ([(">" if m.critical_impulse_status == "never" else "") + f"{ci.value:.3g}{rng(ci)}",
-             {"above": "> ", "below": "< "}.get(m.equal_instability_status, "") + f"{ei.value:.3g}{rng(ei)}"]
+    ci_bound = m.critical_impulse_status == "never"
+    ei_bound = m.equal_instability_status in ("above", "below")
+    return ([("> " if ci_bound else "") + f"{ci.value:.3g}{rng(ci, bound=ci_bound)}",
+             {"above": "> ", "below": "< "}.get(m.equal_instability_status, "")
+             + f"{ei.value:.3g}{rng(ei, bound=ei_bound)}"]
             + [f"{m.tip_angles_deg[k]:.1f}" if k in m.tip_angles_deg else "-" for k in DIRECTION_WORDS]
             + ["none found" if sm.value is None else f"{100 * sm.value:+.1f}",
                f"{m.turning_effort_N_m:.3g}",
@@ -106,8 +118,29 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
                  f"{words.split()[0]} diff., {a.cross_slope_deg:g} deg slope ({unit})",
                  "linear growth rate (1/s)", "caster trail (cm)"])
     cells = [_cells(m, t) for _, m, t in cols]
+    if len(cols) > 1 and cols[1][0] == "recommended":       # the change's direction on every measure, in words
+        before, after = _values(cols[0][1], cols[0][2]), _values(cols[1][1], cols[1][2])
+        for i, (a, b, higher) in enumerate(zip(before, after, _HIGHER_IS_BETTER, strict=True)):
+            if a is not None and b is not None and higher is not None:
+                word = better_word(b - a, higher, tolerance=1e-3 * max(abs(a), abs(b), 1e-12))
+                cells[1][i] += "" if word == "no change" else f" ({word})"
     rows = [[lab] + [c[i] for c in cells] for i, lab in enumerate(labels)]
     return ["measure (range)"] + [n for n, _, _ in cols], rows
+
+
+#: Per row of :func:`decision_rows`: whether a higher value is better (None: neither, e.g. the trail itself).
+_HIGHER_IS_BETTER: tuple = ((True, True) + (True,) * len(DIRECTION_WORDS) + (True, False, False, False, None))
+
+
+def _values(m: Measures, trail: float) -> list:
+    """The numbers behind :func:`_cells` (None where a row has none, or where the value is a bound)."""
+    ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
+    effort = m.cross_slope_effort
+    return ([None if m.critical_impulse_status == "never" else ci.value,
+             ei.value if m.equal_instability_status == "found" else None]
+            + [m.tip_angles_deg.get(k) for k in DIRECTION_WORDS]
+            + [m.shimmy_margin_m.value, m.turning_effort_N_m, None if effort is None else abs(effort),
+               m.growth_rate_1_s, trail])
 
 
 def decision_beyond(d: ReportData) -> list[bool]:

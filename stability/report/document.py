@@ -14,6 +14,7 @@ from matplotlib.text import Text
 from stability import plotting as P
 from stability.chair import Chair
 from stability.report import builders
+from stability.report.brief import compute_brief
 from stability.report.captions import caption
 from stability.report.compute import ReportData, Settings, compute
 from stability.report.uncertainty_data import UncertaintySpec
@@ -144,7 +145,8 @@ def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
 
 def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick: bool = False, progress: bool = True,
           settings: Settings | None = None, data: ReportData | None = None,
-          uncertainty: UncertaintySpec | None = None, baseline: Chair | None = None) -> ReportResult:
+          uncertainty: UncertaintySpec | None = None, baseline: Chair | None = None,
+          brief: bool = False) -> ReportResult:
     """Compute and write the report for chair ``c`` to ``path`` (atomically, reproducibly).
 
     Parameters
@@ -165,6 +167,10 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         Parameter distributions for the uncertainty page and the intervals on the summary.
     baseline : Chair, optional
         Compare with this chair: an overlaid geometry and a side-by-side table of the key numbers.
+    brief : bool
+        The quick report of ``python -m stability.report --quick``: page 1 (the same decision as the full
+        report), the clinician sheet and the references (:func:`~stability.report.brief.compute_brief`).
+        ``quick`` instead keeps every page and coarsens their grids.
 
     Returns
     -------
@@ -176,8 +182,16 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     directory = path.parent if str(path.parent) else Path(".")
     if not directory.is_dir():
         raise ValueError(f"output directory {str(directory)!r} does not exist")
-    d = data or compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty,
-                        baseline=baseline)
+    if data is not None:
+        d = data
+    elif brief:
+        if uncertainty is not None or baseline is not None:
+            raise ValueError("the quick report is page 1, the clinician sheet and the references: drop --quick to "
+                             "use --uncertainty or --compare")
+        d = compute_brief(c, model, progress=progress)
+    else:
+        d = compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty,
+                    baseline=baseline)
     record: list[Page] = []
     n_pages = len(builders.page_builders(d))
     with ProgressBar(n_pages, "pages", enabled=progress, unit="page") as bar:

@@ -211,7 +211,8 @@ def _figure_8_14_text(d: ReportData) -> str:
 
 
 def conclusion_rows(d: ReportData) -> list[list[str]]:
-    """The conclusions table: number, statement, verdict, evidence (verdict rules: :mod:`stability.study.conclusions`).
+    """The conclusions table: number, statement, verdict, evidence (verdict rules: :mod:`stability.study.conclusions`)
+    and, when the report's chair has its own tests, a separate column with that chair's verdict and evidence.
 
     Parameters
     ----------
@@ -222,4 +223,7 @@ def conclusion_rows(d: ReportData) -> list[list[str]]:
     list of list of str
         One row per conclusion.
     """
-    return [[str(x.number), x.statement, x.verdict.upper(), x.evidence] for x in d.conclusions]
+    own = any(x.chair_verdict for x in d.conclusions)
+    return [[str(x.number), x.statement, x.verdict.upper(), x.evidence]
+            + ([(x.chair_verdict.upper() + ": " + x.chair_evidence) if x.chair_verdict else "-"] if own else [])
+            for x in d.conclusions]

@@ -166,6 +166,10 @@ def dropped_pages(d: ReportData) -> dict[str, str]:
         out["stability maps"] = (f"no run of either map reaches |yaw rate| = {d.friction_map.criterion.yaw_rate:g} "
                                  f"rad/s within {d.friction_map.criterion.duration:g} s, so both maps are blank")
     out.update(section_drops(d))
+    if d.gain_loci and all(g.stabilising_gain == 0 for g in d.gain_loci):
+        out["yaw-rate feedback root locus"] = ("the linear model is stable without yaw-rate feedback at "
+                                               + " and ".join(f"{g.speed:g}" for g in d.gain_loci)
+                                               + " m/s, so there is no feedback gain to find")
     if d.baseline is None:
         out["comparison"] = "no baseline chair was given"
     if d.trail_window is None:
@@ -239,7 +243,7 @@ def interval_text(iv) -> str:
     str
     """
     rng = (f"{iv.range_text()}; moves it most: {iv.dominant}" if iv.low is not None and iv.high is not None
-           else iv.range_text())
+           and _ranked(iv) else iv.range_text())
     return f"{iv.chair_name} {iv.point.describe()}, {rng}"
 
 
@@ -259,8 +263,14 @@ def _interval_lines(d: ReportData) -> list[str]:
         + ", ".join(f"x{v.friction_factor:g} -> {_describe(v, q)}" for v in by["pin friction"]) + "; "
         + ", ".join(f"{v.model} model -> {_describe(v, q)}" for v in by["model"])
         + "".join(f"; {v.label} -> {_describe(v, q)}" for v in by["step"])
-        + f". Moves it most: {iv.dominant}{q}.",
+        + (f". Moves it most: {iv.dominant}{q}." if _ranked(iv) else
+           ". Nothing can be ranked: every variant is a bound or undefined."),
     ]
+
+
+def _ranked(iv) -> bool:
+    """Whether the interval's variants can rank its factors (at least one found speed besides the nominal)."""
+    return any(v.result is not None and v.result.status == "found" for v in iv.variants)
 
 
 def _section_lines(d: ReportData) -> list[str]:
@@ -389,6 +399,13 @@ def summary_text(d: ReportData) -> str:
                    + (f"; growth rate {ch.growth:+.2f})" if ch.growth is not None else ")") for ch in changes)
         out.append("  Pin friction and trail act through one quantity, the friction-limited caster side force M_f/l: "
                    "it is ranked as one group, and trail separately at fixed M_f/l.")
+        opposite = [ch.label for ch in changes if ch.growth is not None and ch.elasticity * ch.growth > 0]
+        if opposite:
+            # both elasticities positive (or both negative): raising the parameter raises the critical impulse
+            # (better) and the growth rate (worse) - the two measures disagree on direction
+            out.append("  For " + ", ".join(opposite) + " the two measures point opposite ways: the linear growth "
+                       "rate leaves out pin friction, the critical impulse (nonlinear, with stick-slip friction) "
+                       "includes it, so the critical impulse decides (see the findings).")
     else:
         sens = d.sensitivity
         why = ("its critical impulse at this speed was not found (no push up to the largest tried brings |yaw rate| "

@@ -86,7 +86,7 @@ class Sweep:
         """The ``i``-th value as text."""
         if self.labels is not None:
             return self.labels[i]
-        return f"{self.values[i]:g}"
+        return f"{self.values[i]:.3g}"
 
     @property
     def change_percent(self) -> np.ndarray:
@@ -223,9 +223,20 @@ def plan_for(chair: Chair, plan: dict | None = None, base: Chair | None = None) 
             except ValueError:
                 continue
             ok.append(v)
+        # a plan value that stands for the base chair's own (the thesis's rounded 0.66 for the E&J's c.g. ratio
+        # 0.6635) becomes this chair's own value, so the sweep contains the chair itself
+        near = [i for i, v in enumerate(ok) if abs(v - c0) <= _OWN_VALUE_TOLERANCE * max(abs(c0), 1e-12)]
+        if near and c0 != v0 and c0 not in ok and abs(v0 - min(values, key=lambda v: abs(v - v0))) <= \
+                _OWN_VALUE_TOLERANCE * max(abs(v0), 1e-12):
+            ok[min(near, key=lambda i: abs(ok[i] - c0))] = c0
         if ok:
             out[name] = tuple(ok)
     return out
+
+
+#: Relative distance within which a plan value stands for the base chair's own value (the thesis rounds to
+#: two digits: 0.66 for 0.6635 is 0.5 % away).
+_OWN_VALUE_TOLERANCE = 0.01
 
 
 def sweep_chairs(chair: Chair, plan: dict) -> list[tuple[str, tuple, tuple | None, list[Chair]]]:

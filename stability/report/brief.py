@@ -1,0 +1,42 @@
+"""The quick report's data (``python -m stability.report --quick``): page 1's decision, the clinician sheet and
+the references, nothing else computed."""
+
+from __future__ import annotations
+
+from stability.advise import advise
+from stability.advise.measures import measure_chairs
+from stability.chair import Chair, preset
+from stability.report.clinician_sheet import clinician_sheet
+from stability.report.compute import ReportData
+from stability.report.settings import Settings
+from stability.settings.reference import REFERENCE_CHAIR
+
+__all__ = ["compute_brief"]
+
+
+def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True) -> ReportData:
+    """The quick report's data: the advisor's decision (as in the full report), the thesis's reference chair
+    measured the same way, and the clinician sheet at the advisor's use speeds; nothing else is computed, so
+    every measure the quick PDF prints has one value.
+
+    Parameters
+    ----------
+    c : Chair
+    model : {"exact", "thesis"}
+    progress : bool
+
+    Returns
+    -------
+    ReportData
+        With ``brief`` set; the fields the brief pages do not use are empty.
+    """
+    s = Settings.for_mode(False)
+    ref_chair = preset(REFERENCE_CHAIR)
+    advice = advise(c, progress=progress)
+    ref_m = None if c == ref_chair else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
+                                                      cross_slope_deg=advice.cross_slope_deg)[0]
+    sheet = clinician_sheet(c, tuple(advice.speeds_m_s), model)
+    return ReportData(c, model, s, None, None, {}, [], [], None, None, None, [], sheet.responses, None, None, None,
+                      None, [], validity={"responses": sheet.validity}, slope=sheet.slope, tipping=sheet.tipping,
+                      advice=advice, reference_measures=ref_m, reference_trail=ref_chair.trail, brief=True,
+                      sheet=sheet)
