@@ -18,7 +18,7 @@ REASONS = {
     "pending": "a computed number on a page not yet converted to value groups (issue 35); only to be removed",
 }
 
-PENDING_LIMIT = 1350
+PENDING_LIMIT = 1335
 
 ALLOWED: dict[str, list[tuple[str, str]]] = {
     'README.md': [
@@ -846,6 +846,21 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('longitudinal force is 390 N against ~710 N of normal', 'pending'),
     ],
     'docs/report.md': [
+        ('conclusions 2, 3, 4, 6 and 8 to its own', 'structure'),
+        ('Conclusion 9 agrees only', 'structure'),
+        ('tire leads the next by at least 10 % (the thesis:', 'parameter'),
+        ('"significantly" increase the time); our 0.62 m/s spread', 'cited'),
+        ('("spins up", "keeps turning" above 0.01 rad/s,', 'parameter'),
+        ('typical *peak* stroke force (63 +/- 21 N,', 'cited'),
+        ('J NeuroEng Rehabil 2022, doi:10.1186/s12984-022-01007-5);', 'cited'),
+        ('hooked 10 cm from', 'parameter'),
+        ("from the pin (reading = M_f / 0.1 m: the thesis's 0.3 N m is 3 N, 306 g); and", 'example'),
+        ("brakes locked; Loane and Kirby's 28.6 deg was", 'cited'),
+        ('different lines sharing more than 35 % of a box,', 'parameter'),
+        ('line under 7 pt; it runs', 'parameter'),
+        ('slow. Tables never shrink below 7 pt', 'parameter'),
+        ('my_chair.toml --clinician --speeds 0.6,0.9,1.2 -o sheet.pdf', 'example'),
+        ('1.75 cm to > 25 cm over', 'parameter'),
         ('cross slope against a typical 63 +/- 21 N', 'pending'),
         ('with the linear prediction; 7. paths;', 'pending'),
         ('12. caster shimmy; 13. cross slope;', 'pending'),
@@ -853,8 +868,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ("thesis's own conditions (conclusion 9 at 0.62", 'pending'),
         ('main tire, conclusion 2 at constant', 'pending'),
         ('constant s1+s2 and at fixed s2, 0.3 N m pin', 'pending'),
-        ('the E&J Premier, conclusions 2, 3, 4, 6', 'pending'),
-        ('Premier, conclusions 2, 3, 4, 6 and 8 are tested', 'pending'),
         ('force x0.5, x0.75, x1.5 and x2 (20, 30, 60', 'pending'),
         ('x1.5 and x2 (20, 30, 60 and 80 N, same', 'pending'),
         ('x1.5 and x2 (`PUSH_FACTORS`; 20-80 N, same', 'pending'),
@@ -891,17 +904,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('positive (each axle keeps at least 2 % of the', 'pending'),
         ('Premier with front casters ends at 0.829 instead', 'pending'),
         ('casters ends at 0.829 instead of 0.90).', 'pending'),
-        ('equal-instability bisection (0.05 m/s in 0.3-2.5', 'pending'),
-        ('(0.05 m/s in 0.3-2.5 m/s; full 0.005 m/s in 0.2-3),', 'pending'),
-        ('0.2-3), the critical impulses (5 %;', 'pending'),
-        ('full 0.5 %), the', 'pending'),
-        ('full 0.5 %), the elasticities (1 %; full', 'pending'),
-        ('the elasticities (1 %; full 0.1 %), 6 s', 'pending'),
-        ('0.1 %), 6 s runs (full 10 s), 14 parametric-study', 'pending'),
-        ('parametric-study variants (full 44),', 'pending'),
-        ('5 map speeds', 'pending'),
-        ('5 map speeds (full 18) and 150', 'pending'),
-        ('150 speed-locus points (full 700). Every', 'pending'),
         ('--chair my_chair.toml --set trail=0.05 -o chair.pdf', 'pending'),
         ('my_chair.unc.toml --samples 2000 --seed 1 -o chair.pdf', 'pending'),
         ('Holding moment 5.43 N m/deg', 'pending'),
@@ -916,8 +918,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('range, hence 6.2 times the', 'pending'),
         ('treadmill mean. Shimmy boundary 4.86 cm at nominal', 'pending'),
         ('4.86 cm), 1.75', 'pending'),
-        ('4.86 cm), 1.75 cm to > 20 cm over', 'pending'),
-        ('20 cm over the estimates; the 8 cm trail', 'pending'),
         ('estimates; the 8 cm trail is 3.14 cm above', 'pending'),
         ('critical impulse (3.25-3.26 N s):', 'pending'),
         ('impulse (3.25-3.26 N s): M_f/l +0.98, s1+s2 +0.84,', 'pending'),
