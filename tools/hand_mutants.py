@@ -225,11 +225,11 @@ MUTANTS: tuple[Mutant, ...] = (
 
 
 def _sync(work: Path) -> None:
-    """Copy the repository (without .git, caches and build output) into ``work``, keeping ``work``'s numba caches."""
+    """Copy the repository (without .git, caches and build output) over ``work``, keeping ``work``'s numba caches."""
     work.mkdir(parents=True, exist_ok=True)
-    subprocess.run(["rsync", "-a", "--delete", "--exclude", ".git", "--exclude", "__pycache__", "--exclude",
-                    ".pytest_cache", "--exclude", "reports/", "--exclude", "_build", f"{ROOT}/", f"{work}/"],
-                   check=True)
+    shutil.copytree(ROOT, work, dirs_exist_ok=True,
+                    ignore=shutil.ignore_patterns(".git", "__pycache__", ".pytest_cache", "reports", "_build",
+                                                  ".mutmut-cache", "mutants"))
 
 
 def run_mutant(m: Mutant, work: Path, timeout: float) -> tuple[str, float, str]:
@@ -259,7 +259,8 @@ def run_mutant(m: Mutant, work: Path, timeout: float) -> tuple[str, float, str]:
     if proc.returncode == 0:
         return "survived", dt, ""
     failed = [ln for ln in proc.stdout.splitlines() if ln.startswith(("FAILED", "ERROR"))]
-    return "killed", dt, (failed[0] if failed else proc.stdout.strip().splitlines()[-1:] or [""])[0][:160]
+    last = proc.stdout.strip().splitlines()[-1:] or [""]
+    return "killed", dt, (failed[0] if failed else last[0])[:160]
 
 
 def main(argv: list[str] | None = None) -> int:
