@@ -272,3 +272,33 @@ def test_a_powered_chair_is_not_changed_into_one_that_tips_on_the_iso_bench():
             == ["axle 10 cm toward the c.g. at fixed s1+s2 (s1 18.0 -> 8.0 cm)"]]
     assert len(axle) == 1 and [k.name for k in axle[0].limits] == ["bench_worst_score"]
     assert score(apply(chair, list(axle[0].candidate.changes[0].fields))) >= 2
+
+
+def _peaked_at(base):
+    """A stand-in whose measures peak at ``base``: every numeric field's relative change costs exp(-change^2) on both
+    measures, any other field's change (a tire, a layout) halves them, so every change of every lever loses."""
+    numeric = [k for k, v in vars(base).items() if isinstance(v, float) and v != 0.0]
+    other = [k for k, v in vars(base).items() if k != "name" and k not in numeric]
+
+    def measures(chairs):
+        out = []
+        for c in chairs:
+            drop = math.exp(-sum((getattr(c, k) / getattr(base, k) - 1.0) ** 2 for k in numeric))
+            drop *= 0.5 ** sum(getattr(c, k) != getattr(base, k) for k in other)
+            ci, ei = 8.0 * drop, 1.2 * drop
+            out.append((Interval(ci, 0.5 * ci, 1.5 * ci), Interval(ei, 0.9 * ei, 1.1 * ei), "found", "found", None))
+        return out
+
+    return measures
+
+
+def test_a_chair_no_change_improves_is_kept_as_it_is():
+    """When every change loses on the measures (a stand-in peaked at the chair) and the chair breaks no limit, the
+    advice is 'no change': recommending the least bad change would make the chair worse on both low ends."""
+    chair = chair_mod.preset("ej-premier").replace(trail=0.06)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair), time_to_correct=False, cross_slope_deg=0.0)
+    assert all(k.met for k in a.own_constraints)                 # the premise: nothing to fix
+    assert a.candidates and all(c.gain < 0 for c in a.candidates + a.combinations), \
+        [c.label for c in a.candidates if c.gain >= 0]
+    assert a.recommendations[0].candidate.changes == ()
+    assert "keep the chair as it is" in " ".join(a.recommendations[0].notes)

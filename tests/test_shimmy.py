@@ -250,7 +250,7 @@ def test_equivalent_damping_dissipates_the_coulomb_energy_per_cycle(friction, am
     period = 2.0 * math.pi / omega
     pieces = (0.0, period / 4, 3 * period / 4, period)        # |cos| is smooth between its zeros
     coulomb = 0.0
-    for a, b in zip(pieces[:-1], pieces[1:]):
+    for a, b in zip(pieces[:-1], pieces[1:], strict=True):
         t = np.linspace(a, b, 2**16 + 1)
         coulomb += simpson(friction * np.abs(amplitude * omega * np.cos(omega * t)), x=t)
     c_eq = df.equivalent_damping(friction, amplitude, omega)

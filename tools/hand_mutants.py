@@ -22,6 +22,7 @@ Usage (from the repository root, in the project's venv)::
 Exit status 0 when every non-equivalent mutant run is killed, 1 otherwise.
 """
 
+# ruff: noqa: E501  (the mutants' source texts are quoted exactly, one per line)
 from __future__ import annotations
 
 import argparse
