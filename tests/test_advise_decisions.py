@@ -274,7 +274,7 @@ def test_a_powered_chair_is_not_changed_into_one_that_tips_on_the_iso_bench():
     assert score(apply(chair, list(axle[0].candidate.changes[0].fields))) >= 2
 
 
-def _peaked_at(base):
+def _peaked_at(base, sharpness: float = 1.0):
     """A stand-in whose measures peak at ``base``: every numeric field's relative change costs exp(-change^2) on both
     measures, any other field's change (a tire, a layout) halves them, so every change of every lever loses."""
     numeric = [k for k, v in vars(base).items() if isinstance(v, float) and v != 0.0]
@@ -283,7 +283,7 @@ def _peaked_at(base):
     def measures(chairs):
         out = []
         for c in chairs:
-            drop = math.exp(-sum((getattr(c, k) / getattr(base, k) - 1.0) ** 2 for k in numeric))
+            drop = math.exp(-sharpness * sum((getattr(c, k) / getattr(base, k) - 1.0) ** 2 for k in numeric))
             drop *= 0.5 ** sum(getattr(c, k) != getattr(base, k) for k in other)
             ci, ei = 8.0 * drop, 1.2 * drop
             out.append((Interval(ci, 0.5 * ci, 1.5 * ci), Interval(ei, 0.9 * ei, 1.1 * ei), "found", "found", None))
@@ -302,3 +302,21 @@ def test_a_chair_no_change_improves_is_kept_as_it_is():
         [c.label for c in a.candidates if c.gain >= 0]
     assert a.recommendations[0].candidate.changes == ()
     assert "keep the chair as it is" in " ".join(a.recommendations[0].notes)
+
+
+def test_a_fix_dearer_than_the_allowed_cost_is_only_the_runner_up():
+    """A chair inside a shimmy zone whose every fix costs more than MAX_FIX_COST of the robust measures (a sharply
+    peaked stand-in; the tip limit lowered to 5 deg so that a longer trail can fix it): the advice is 'no change, measure first' with the best fix as the runner-up, and that fix's
+    cost, recomputed from the low ends, is above the allowed cost."""
+    chair = chair_mod.preset("ej-premier").replace(trail=0.0475)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair, 20.0), time_to_correct=False, cross_slope_deg=0.0,
+               min_tip_deg=5.0)
+    assert {k.name for k in a.own_constraints if not k.met} == {"shimmy_margin_m"}       # the premise
+    fixes = [c for c in a.candidates + a.combinations if c.feasible]
+    assert fixes and max(c.gain for c in fixes) < -MAX_FIX_COST                         # every fix is dear
+    first, runner = (r.candidate for r in a.recommendations)
+    assert first.changes == () and runner.changes
+    lo0 = (a.verdict.critical_impulse_Ns.robust, a.verdict.equal_instability_speed_m_s.robust)
+    lo = (runner.measures.critical_impulse_Ns.robust, runner.measures.equal_instability_speed_m_s.robust)
+    assert min(x / x0 - 1.0 for x, x0 in zip(lo, lo0, strict=True)) < -MAX_FIX_COST
+    assert runner.gain == max(c.gain for c in fixes)
