@@ -220,6 +220,34 @@ def test_critical_speed_hidden_double_crossing_is_found():
     assert cross[0].eigenvalue.imag == pytest.approx(3.0, abs=1e-6)
 
 
+@pytest.mark.parametrize("casters, speeds", [("free", [0.3, 0.75, 1.25, 2.0, 5.0, 8.0]), ("locked", [3.0, 6.0, 10.0, 14.0])])
+def test_crossing_guard_slopes_equal_a_central_difference_of_the_largest_real_part(casters, speeds):
+    """The double-crossing guard's d(alpha)/dU (eigenvalue perturbation theory with a finite-difference dA) is the
+    derivative of max Re(lambda): a central difference of alpha with h = 1e-3 m/s, whose truncation error is
+    h^2 |d3 alpha/dU3| / 6 (observed 3e-9 to 2.6e-8 1/s per m/s); bound 1e-6 (margin 40)."""
+    from stability.linear.critical import _slopes
+
+    c = chair_mod.preset("ej-premier")
+
+    def f(U):
+        return linear.state_matrices(c, U, casters=casters)
+
+    U, h = np.array(speeds), 1e-3
+    got = _slopes(f, U, linear.max_real_part(f, U))
+    fd = (linear.max_real_part(f, U + h) - linear.max_real_part(f, U - h)) / (2 * h)
+    np.testing.assert_allclose(got, fd, rtol=0, atol=1e-6)
+    assert np.all(np.abs(fd) > 0.4)                  # the premise: slopes far from zero, a sign error shows
+
+
+def test_a_crossing_is_immutable():
+    """A Crossing is a value (frozen): results cannot be edited after the search."""
+    import dataclasses
+
+    cross = linear.critical_speeds(lambda U: np.asarray(U)[:, None, None] - 1.0, np.linspace(0.5, 2.0, 4))[0]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        cross.speed = 0.0  # type: ignore[misc]
+
+
 def test_mode_tracking_through_a_crossing_and_zero():
     """diag(U - 1, 1 - U, 0): branches cross at U = 1 (repeated eigenvalue 0, three-fold) and stay continuous."""
     U = np.linspace(0, 2, 201)
