@@ -320,3 +320,41 @@ def test_a_fix_dearer_than_the_allowed_cost_is_only_the_runner_up():
     lo = (runner.measures.critical_impulse_Ns.robust, runner.measures.equal_instability_speed_m_s.robust)
     assert min(x / x0 - 1.0 for x, x0 in zip(lo, lo0, strict=True)) < -MAX_FIX_COST
     assert runner.gain == max(c.gain for c in fixes)
+
+
+#: Exponents of the separable stand-in: each measure a product of powers of the fields (a tire change a factor).
+_CI_POWERS = {"pin_friction_left": 0.5, "pin_friction_right": 0.5, "trail": -1.0, "s1": 2.0, "s2": -0.5, "m_c": -0.3}
+_EI_POWERS = {"pin_friction_left": 0.3, "pin_friction_right": 0.3, "trail": -0.2, "s1": 1.0, "s2": -1.0, "m_c": -0.1}
+
+
+def _separable(base):
+    """Measures that are products of per-field factors: the gain of two changes to different fields is exactly
+    the product of their relative changes, per measure."""
+    def prod(c, powers, tire):
+        f = math.prod((getattr(c, k) / getattr(base, k)) ** p for k, p in powers.items())
+        return f * (tire if c.caster_tire != base.caster_tire else 1.0)
+
+    def measures(chairs):
+        out = []
+        for c in chairs:
+            ci, ei = 6.0 * prod(c, _CI_POWERS, 1.3), 1.1 * prod(c, _EI_POWERS, 0.9)
+            out.append((Interval(ci, 0.5 * ci, 1.5 * ci), Interval(ei, 0.9 * ei, 1.1 * ei), "found", "found", None))
+        return out
+
+    return measures
+
+
+def test_a_combination_is_predicted_from_its_parts_by_the_product_of_their_changes():
+    """With measures that are products of per-field factors, the gain the screening predicts for a combination from
+    its parts' measured gains is the combination's measured gain (per measure the product of the relative changes,
+    the worse measure deciding), to rounding; a sum of the gains would miss the cross term."""
+    from stability.advise.advisor import _predicted
+
+    chair = chair_mod.preset("ej-premier").replace(trail=0.06)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_separable(chair), time_to_correct=False, cross_slope_deg=0.0,
+               min_tip_deg=0.0)
+    singles = {c.changes: c for c in a.candidates}
+    assert a.combinations                                     # the premise: pairs were measured
+    for combo in a.combinations:
+        parts = tuple(singles[(ch,)] for ch in combo.changes)
+        assert _predicted(parts) == pytest.approx(combo.gain, rel=1e-12, abs=1e-12), combo.label
