@@ -249,6 +249,7 @@ def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks(
     data = advice_mapping(a)
     assert any(x["name"] == "human_limited_speed_m_s" for x in data["decision"]["costs"])
     assert "can hold this chair straight" in " ".join(data["decision"]["verdict"])
+    assert f"NOT enough for the intended {intended:g} m/s" in " ".join(data["decision"]["verdict"])   # rate * tau > 1
 
 
 def test_a_powered_chair_is_not_changed_into_one_that_tips_on_the_iso_bench():
@@ -320,6 +321,12 @@ def test_a_fix_dearer_than_the_allowed_cost_is_only_the_runner_up():
     lo = (runner.measures.critical_impulse_Ns.robust, runner.measures.equal_instability_speed_m_s.robust)
     assert min(x / x0 - 1.0 for x, x0 in zip(lo, lo0, strict=True)) < -MAX_FIX_COST
     assert runner.gain == max(c.gain for c in fixes)
+    from stability.advise.decision import decide
+
+    d = decide(a)
+    assert d.action == "measure first"
+    _cost_checks(d, chair, chair, 5.0)
+    assert "shimmy margin" in d.cost_sentence()
 
 
 #: Exponents of the separable stand-in: each measure a product of powers of the fields (a tire change a factor).
@@ -358,3 +365,54 @@ def test_a_combination_is_predicted_from_its_parts_by_the_product_of_their_chang
     for combo in a.combinations:
         parts = tuple(singles[(ch,)] for ch in combo.changes)
         assert _predicted(parts) == pytest.approx(combo.gain, rel=1e-12, abs=1e-12), combo.label
+
+
+def _cost_checks(d, chair, after_chair, min_tip: float) -> None:
+    """Every cost of a decision against the values recomputed from the analysis functions: before and after, the
+    limit met or not, and 'worse' by the quantity's direction; 'WHAT IT COSTS' names exactly the worse ones and
+    'LIMITS' exactly the unmet ones."""
+    costs = {k.name: k for k in d.costs}
+    t0, t1 = tip_angles(chair), tip_angles(after_chair)
+    for key in ("toward_main_wheels", "toward_casters", "lateral_left", "lateral_right"):
+        k = costs[f"tip_{key}_deg"]
+        before, after = getattr(t0, key + "_deg"), getattr(t1, key + "_deg")
+        assert (k.before, k.after) == pytest.approx((before, after), abs=1e-9), k
+        assert k.met == (after >= min_tip - 1e-9) and k.worse == (after < before - 1e-9), k
+    k = costs["shimmy_margin_m"]
+    margin = 100 * shimmy_band(after_chair, SPEEDS).shimmy_margin_m
+    assert k.after == pytest.approx(margin, abs=1e-9) and k.met == (margin >= 100 * MIN_SHIMMY_MARGIN_M), k
+    k = costs["turning_effort_N_m"]
+    e0 = max(chair.pin_friction_left, chair.pin_friction_right)
+    e1 = max(after_chair.pin_friction_left, after_chair.pin_friction_right)
+    assert (k.before, k.after) == pytest.approx((e0, e1)) and k.worse == (e1 > e0), k
+    sentence = d.cost_sentence()
+    if d.action == "change":
+        assert [k.name for k in d.costs if k.text() in sentence] == [k.name for k in d.costs if k.worse]
+    else:
+        assert [k.name for k in d.costs if k.text() in sentence] == [k.name for k in d.costs if k.met is False]
+
+
+def test_the_decision_prints_the_recomputed_costs_of_the_change(case):
+    from stability.advise.decision import DIRECTION_WORDS, decide
+
+    chair, a, _, _ = case
+    d = decide(a)
+    assert d.action == "change"
+    c = apply(chair, list(a.recommendations[0].candidate.fields.items()))
+    _cost_checks(d, chair, c, tip_angles(chair).smallest_deg)
+    t0 = tip_angles(chair)
+    assert f"it tips {DIRECTION_WORDS[t0.smallest_direction]} on a {t0.smallest_deg:.1f} deg slope" in d.details[0]
+
+
+def test_a_limit_nothing_meets_is_printed_as_not_met_against_the_recomputed_values():
+    """A tip limit of 40 deg (no chair of the grid reaches it): the decision is not a change, and its costs are the
+    chair against the limits: every tip direction NOT met, named in 'LIMITS'."""
+    from stability.advise.decision import decide
+
+    chair = chair_mod.preset("ej-premier").replace(trail=0.06)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=0.0,
+               min_tip_deg=40.0)
+    d = decide(a)
+    assert d.action != "change"
+    _cost_checks(d, chair, chair, 40.0)
+    assert sum(k.met is False for k in d.costs) >= 4 and "The chair breaks: tips" in d.cost_sentence()
