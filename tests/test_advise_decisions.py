@@ -416,3 +416,49 @@ def test_a_limit_nothing_meets_is_printed_as_not_met_against_the_recomputed_valu
     assert d.action != "change"
     _cost_checks(d, chair, chair, 40.0)
     assert sum(k.met is False for k in d.costs) >= 4 and "The chair breaks: tips" in d.cost_sentence()
+
+
+@pytest.fixture(scope="module")
+def slope_case():
+    return _case("friction-and-slope")
+
+
+def test_the_blocked_changes_are_named_best_first(slope_case):
+    """Among the blocked changes that fix as many broken limits and break as many limits (both recomputed here),
+    the larger recomputed robust gain comes first."""
+    chair, a, _, slope = slope_case
+    rows = []
+    for b in a.blocked:
+        c = apply(chair, list(b.candidate.fields.items()))
+        unmet = sorted(k for k, ok in _limits_met(c, chair, slope).items() if not ok)
+        named = sorted("cross_slope" if k.name.endswith("_difference_N") or k.name.endswith("_difference_N_m")
+                       else k.name for k in b.limits)
+        assert unmet == named, b.candidate.label
+        rows.append((len(b.fixes), len(unmet), _robust_gain(c, chair)))
+    assert len(rows) >= 2
+    for (f0, n0, g0), (f1, n1, g1) in zip(rows, rows[1:], strict=False):
+        assert (-f0, n0) <= (-f1, n1)
+        if (f0, n0) == (f1, n1):
+            assert g0 >= g1 - 1e-12
+
+
+def test_blocked_changes_rank_by_what_they_fix_then_limits_then_gain():
+    """The order of the BLOCKED list on synthetic candidates whose order is known: a fix of a broken limit first,
+    then the fewest limits broken, then the larger gain; candidates that meet every limit, or gain less than the
+    recommendation without fixing anything, are not listed."""
+    from stability.advise.advisor import Candidate, _blocked
+    from stability.advise.levers import Change
+    from stability.advise.limits import Constraint
+
+    def cand(label, gain, unmet, met=()):
+        ks = tuple(Constraint(n, 1.0, 0.0, "<=", False) for n in unmet) + \
+            tuple(Constraint(n, 0.0, 1.0, "<=", True) for n in met)
+        return Candidate((Change("x", label, ()),), None, gain, {}, ks)
+
+    cands = [cand("small", 0.2, ["tip"]), cand("big", 0.9, ["tip"]), cand("mid", 0.5, ["tip"]),
+             cand("two limits", 2.0, ["tip", "effort"]), cand("fixes", 0.05, ["tip"], met=["shimmy"]),
+             cand("feasible", 3.0, []), cand("below", 0.01, ["tip"])]
+    got = [b.candidate.label for b in _blocked(cands, {"shimmy"}, best_gain=0.1)]
+    assert got == ["fixes", "big", "mid"]
+    got = [b.candidate.label for b in _blocked(cands, set(), best_gain=0.1)]
+    assert got == ["big", "mid", "small"]
