@@ -248,6 +248,21 @@ def test_a_crossing_is_immutable():
         cross.speed = 0.0  # type: ignore[misc]
 
 
+def test_critical_speed_grid_is_checked_naming_the_problem():
+    """The grid: at least two speeds (two are enough: one bracket), strictly increasing (a repeated speed is refused),
+    positive (the message names the first speed and the valid range)."""
+    def A(U):
+        return np.asarray(U)[:, None, None] - 1.0
+
+    assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 2.0])] == [1.0]
+    with pytest.raises(ValueError, match=r"at least 2 speeds, got shape \(1,\)"):
+        linear.critical_speeds(A, [0.5])
+    with pytest.raises(ValueError, match="strictly increasing"):
+        linear.critical_speeds(A, [0.5, 1.5, 1.5, 2.0])
+    with pytest.raises(ValueError, match=r"^speeds\[0\]=0\.0 is invalid; valid range: speed > 0 m/s$"):
+        linear.critical_speeds(A, [0.0, 1.0, 2.0])
+
+
 def test_mode_tracking_through_a_crossing_and_zero():
     """diag(U - 1, 1 - U, 0): branches cross at U = 1 (repeated eigenvalue 0, three-fold) and stay continuous."""
     U = np.linspace(0, 2, 201)
