@@ -263,6 +263,19 @@ def test_critical_speed_grid_is_checked_naming_the_problem():
         linear.critical_speeds(A, [0.0, 1.0, 2.0])
 
 
+def test_critical_speed_exactly_on_a_grid_point_is_found_once():
+    """alpha(U) = U - 1 on a grid with 1.0 in it: alpha is exactly 0 there (no sign change between neighbours of
+    the same sign either side); the crossing is bracketed by the neighbours and found once, destabilising."""
+    def A(U):
+        return np.asarray(U, dtype=float)[:, None, None] - 1.0
+
+    cross = linear.critical_speeds(A, [0.5, 0.75, 1.0, 1.25, 1.5])
+    assert len(cross) == 1
+    assert cross[0].speed == pytest.approx(1.0, abs=1e-10) and cross[0].direction == "destabilising"
+    # and at the first grid point (no neighbour below: bracketed from the point itself)
+    assert [round(c.speed, 10) for c in linear.critical_speeds(A, [1.0, 1.25, 1.5])] == [1.0]
+
+
 def test_mode_tracking_through_a_crossing_and_zero():
     """diag(U - 1, 1 - U, 0): branches cross at U = 1 (repeated eigenvalue 0, three-fold) and stay continuous."""
     U = np.linspace(0, 2, 201)
