@@ -398,3 +398,16 @@ def test_bench_measure_scores_and_stops_a_powered_chair_only(spec_dir):
     mrows = [r for i in range(n_chunks(manual)) for r in compute_chunk(manual, i)]
     j = columns(manual).index("bench_worst_score")
     assert all(math.isnan(r[j]) for r in mrows)
+
+
+def test_a_design_with_failed_draws_ranks_behind_every_complete_one(tmp_path):
+    """Draws without a value (an invalid chair, an error) count as the worst case: a design whose good draws are the
+    best of the grid but which lost 1 of 100 draws ranks behind the complete designs, and says how many it lost."""
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["equal_instability_speed"]\n[grid]\ntrail = [0.04, 0.05, 0.06]\n'
+                      '[draws]\nn = 100\nuncertainty = "u.toml"\n',
+                      _write(tmp_path, "u.toml", UNC))
+    lossy = [2.8] * 99 + [float("nan")]
+    data = _censored_data([[1.2] * 100, lossy, [1.5] * 100], [["found"] * 100] * 3)
+    ranked = summary(spec, data, top=3)["measures"]["equal_instability_speed_m_s"]["best"][0]
+    assert [e["design"] for e in ranked] == [2, 0, 1]
+    assert [e["missing"] for e in ranked] == [0, 0, 1]
