@@ -18,6 +18,7 @@ ranking, dropping a limit or dropping the pair search fails one of these.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 
@@ -105,7 +106,9 @@ def _robust_gain(c, base) -> float:
     return min(ci / ci0 - 1.0, ei / ei0 - 1.0)
 
 
+@functools.cache
 def _case(name: str):
+    """The advice on one of :data:`CASES` with the closed-form stand-in, and the grid recomputed (built once)."""
     changes, slope = CASES[name]
     chair = chair_mod.preset("ej-premier").replace(**changes)
     a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=slope)
