@@ -276,6 +276,17 @@ def test_critical_speed_exactly_on_a_grid_point_is_found_once():
     assert [round(c.speed, 10) for c in linear.critical_speeds(A, [1.0, 1.25, 1.5])] == [1.0]
 
 
+@pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd"])
+def test_locked_casters_lateral_force_at_the_cg_is_newtons_law(name):
+    """Casters locked (one rigid body): a lateral force through the c.g. accelerates it at F/m and has no moment
+    about the c.g., whatever the speed; with free casters the swivelling casters' inertia reacts, so the yaw row
+    is not zero there."""
+    c = chair_mod.preset(name)
+    for speed in (0.5, 2.0):
+        np.testing.assert_array_equal(linear.lateral_force_input(c, speed, casters="locked"), [1.0 / c.m, 0.0])
+    assert linear.lateral_force_input(c, 0.75, casters="free")[0] > 0
+
+
 def test_mode_tracking_through_a_crossing_and_zero():
     """diag(U - 1, 1 - U, 0): branches cross at U = 1 (repeated eigenvalue 0, three-fold) and stay continuous."""
     U = np.linspace(0, 2, 201)
