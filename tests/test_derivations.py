@@ -697,3 +697,34 @@ def _flat(x):
     if isinstance(x, (tuple, list)):
         return [y for e in x for y in _flat(e)]
     return [float(x)]
+
+
+def test_the_door_routes_each_variant_to_its_own_generated_equations():
+    """stability.models' door (issue 34: a door that returned another variant's function passed the suite): through
+    the door the thesis's contact velocities differ from the exact ones by the derivation's (0, -trail r) at each
+    caster; its accelerations and its linear matrices (free and locked casters) are those of the thesis's generated
+    functions, not the exact ones; trig is (cos, sin)."""
+    from stability import linear
+    from stability.chair import preset
+    from stability.models import accelerations, contact_velocities, trig
+    from stability.models.params import parameters
+
+    c = preset("ej-premier")
+    p = parameters(c)
+    r = 0.3
+    st = (1.1, 0.1, r, *trig(0.4), *trig(-0.7), 0.5, -0.2)
+    d = np.array(contact_velocities(p, *st, variant="exact")) - np.array(contact_velocities(p, *st, variant="thesis"))
+    np.testing.assert_allclose(d, [0, -c.trail * r, 0, -c.trail * r, 0, 0, 0, 0], atol=1e-14)
+    forces = (10.0, 5.0, -3.0, 2.0, 1.0, 50.0, -2.0, 40.0, 0.0, 0.0)
+    for variant in ("exact", "thesis"):
+        got = np.array(accelerations(p, *st, *forces, variant=variant), dtype=float)
+        args = (*st, *forces, 0.0, 0.0, *p.inertia)
+        want = np.array(getattr(G, f"accelerations_{variant}")(*args), dtype=float)
+        np.testing.assert_array_equal(got, want)
+    assert not np.allclose(accelerations(p, *st, *forces, variant="exact"),
+                           accelerations(p, *st, *forces, variant="thesis"))
+    for casters in ("free", "locked"):
+        a = linear.state_matrices(c, [0.75, 3.0], "exact", casters)
+        b = linear.state_matrices(c, [0.75, 3.0], "thesis", casters)
+        assert np.abs(a - b).max() > 1.0, casters          # the variants' matrices differ (by 15-540 here)
+    assert trig(0.3) == (math.cos(0.3), math.sin(0.3))
