@@ -728,3 +728,28 @@ def test_the_door_routes_each_variant_to_its_own_generated_equations():
         b = linear.state_matrices(c, [0.75, 3.0], "thesis", casters)
         assert np.abs(a - b).max() > 1.0, casters          # the variants' matrices differ (by 15-540 here)
     assert trig(0.3) == (math.cos(0.3), math.sin(0.3))
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd"])
+def test_tire_yaw_moment_is_the_lever_arms_of_the_chair(name):
+    """The door's tire yaw moment (casters straight) from the chair's own dimensions, not its parameters: a unit
+    lateral force at a main-wheel contact acts s1 from the c.g. (the main axle's side), at a caster contact on the
+    other side s2 + trail for rear casters and s2 - trail for front casters (pin s2 away, contact a trail behind it
+    in the direction of travel), and equal and opposite longitudinal forces at the main wheels are a couple of arm
+    d1 + d2."""
+    from stability.chair import preset
+    from stability.models import tire_yaw_moment, trig
+    from stability.models.params import parameters
+
+    c = preset(name)
+    p = parameters(c)
+    names = ("FAx", "FAy", "FBx", "FBy", "FDx", "FDy", "FEx", "FEy")
+
+    def moment(**f):
+        return tire_yaw_moment(p, tuple(f.get(k, 0.0) for k in names), *trig(0.0), *trig(0.0))
+
+    main, caster = moment(FDy=1.0), moment(FAy=1.0)
+    assert abs(main) == pytest.approx(c.s1, abs=1e-12) and moment(FEy=1.0) == pytest.approx(main, abs=1e-12)
+    arm = c.s2 + c.trail if c.caster_position == "rear" else c.s2 - c.trail
+    assert abs(caster) == pytest.approx(arm, abs=1e-12) and np.sign(caster) == -np.sign(main)
+    assert abs(moment(FDx=1.0, FEx=-1.0)) == pytest.approx(c.d1 + c.d2, abs=1e-12)
