@@ -287,6 +287,30 @@ def test_locked_casters_lateral_force_at_the_cg_is_newtons_law(name):
     assert linear.lateral_force_input(c, 0.75, casters="free")[0] > 0
 
 
+def test_critical_speed_pair_hidden_where_only_the_interpolant_shows_it():
+    """alpha(U) is, on [1.0, 1.1], the cubic through alpha = -0.01 with slope 2 at both ends (the slopes keep their
+    sign, so only the cubic Hermite interpolant of the grid values and slopes reveals the bump), and a straight
+    line of slope 2 outside (C1).  The bump rises to +0.00925: two crossings hidden between the grid points 1.0 and
+    1.1, plus the line's crossing at 1.105; their speeds are the cubic's roots (numpy.roots) and 1.105."""
+    def alpha(U):
+        U = np.asarray(U, dtype=float)
+        t = (U - 1.0) / 0.1
+        cubic = -0.01 + 0.2 * (2 * t**3 - 3 * t**2 + t)
+        line = -0.01 + 2.0 * np.where(U < 1.0, U - 1.0, U - 1.1)
+        return np.where((U >= 1.0) & (U <= 1.1), cubic, line)
+
+    def A(U):
+        return alpha(U)[..., None, None]
+
+    grid = np.round(np.linspace(0.5, 2.0, 16), 12)
+    assert np.all(alpha(grid[grid <= 1.1]) < 0)           # the premise: no sign change on the grid up to 1.1
+    roots = sorted(1.0 + 0.1 * x.real for x in np.roots([0.4, -0.6, 0.2, -0.01])
+                   if abs(x.imag) < 1e-12 and 0 < x.real < 1)
+    cross = linear.critical_speeds(A, grid)
+    assert [c.direction for c in cross] == ["destabilising", "stabilising", "destabilising"]
+    np.testing.assert_allclose([c.speed for c in cross], [*roots, 1.105], atol=1e-9)
+
+
 def test_mode_tracking_through_a_crossing_and_zero():
     """diag(U - 1, 1 - U, 0): branches cross at U = 1 (repeated eigenvalue 0, three-fold) and stay continuous."""
     U = np.linspace(0, 2, 201)
