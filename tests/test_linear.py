@@ -143,12 +143,34 @@ def test_state_space_object():
     c = chair_mod.preset("ej-premier")
     sys = linear.state_space(c, 0.75)
     assert isinstance(sys, control.StateSpace)
-    assert sys.state_labels == list(linear.STATES_FREE)
+    assert sys.state_labels == ["v", "r", "eta", "eta_dot", "beta", "beta_dot"]     # the documented order
     assert sys.input_labels == ["Mz"] and sys.output_labels == ["v", "r"]
     np.testing.assert_allclose(sys.A, linear.state_matrices(c, 0.75)[0])
     np.testing.assert_allclose(sys.B[1, 0], 1 / c.i_z, rtol=0.05)  # yaw moment mostly drives yaw rate
+    np.testing.assert_array_equal(sys.C, np.eye(2, 6))                 # the outputs are the states v and r
+    assert not sys.D.any() and "ej-premier" in sys.name and "U=0p75" in sys.name
     locked = linear.state_space(c, 0.75, casters="locked")
-    assert locked.nstates == 2
+    assert locked.nstates == 2 and locked.state_labels == ["v", "r"]
+    np.testing.assert_array_equal(locked.C, np.eye(2))
+
+
+@pytest.mark.parametrize("model", ["exact", "thesis"])
+def test_yaw_moment_input_is_the_accelerations_per_newton_metre(model):
+    """The input column (default arguments and each variant): the door's accelerations for a unit yaw moment in
+    straight running, placed in the state derivative's rows (v, r, eta_dot, beta_dot; zero in the angle rows)."""
+    from stability.models import accelerations
+    from stability.models.params import parameters
+
+    c = chair_mod.preset("ej-premier")
+    z = 0.0
+    args = (parameters(c), 0.75, z, z, 1.0, z, 1.0, z, z, z) + (z,) * 10
+    a1 = np.array(accelerations(*args, Fy_ext=0.0, Mz_ext=1.0, variant=model), dtype=float)
+    a0 = np.array(accelerations(*args, Fy_ext=0.0, Mz_ext=0.0, variant=model), dtype=float)
+    d = a1 - a0
+    b = linear.input_matrices(c, 0.75, model)[0][:, 0]
+    np.testing.assert_allclose(b, [d[1], d[2], 0.0, d[3], 0.0, d[4]], rtol=1e-9, atol=1e-15)
+    if model == "exact":
+        np.testing.assert_array_equal(linear.input_matrices(c, 0.75)[0][:, 0], b)
 
 
 def test_batched_eigenvalues_equal_python_control():
@@ -178,6 +200,10 @@ def test_bad_input():
         linear.state_matrices(c, 1.0, model="bicycle")
     with pytest.raises(ValueError, match="casters"):
         linear.state_matrices(c, 1.0, casters="half")
+    with pytest.raises(ValueError, match="model"):
+        linear.lateral_force_input(c, 1.0, model="bicycle")
+    with pytest.raises(ValueError, match="casters"):
+        linear.lateral_force_input(c, 1.0, casters="half")
 
 
 # ---------------------------------------------------------------------------
