@@ -301,6 +301,14 @@ def test_critical_speed_exactly_on_a_grid_point_is_found_once():
     # and at the first grid point (no neighbour below: bracketed from the point itself)
     assert [round(c.speed, 10) for c in linear.critical_speeds(A, [1.0, 1.25, 1.5])] == [1.0]
 
+    def B(U):                                             # zero on the grid at 1.0, a second crossing at 1.9 after it
+        U = np.asarray(U, dtype=float)
+        return ((U - 1.0) * (U - 1.9))[:, None, None]
+
+    cross = linear.critical_speeds(B, np.arange(0.5, 2.3, 0.25))
+    assert [c.direction for c in cross] == ["stabilising", "destabilising"]
+    np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], atol=1e-10)
+
 
 @pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd"])
 def test_locked_casters_lateral_force_at_the_cg_is_newtons_law(name):
