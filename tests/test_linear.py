@@ -305,6 +305,10 @@ def test_critical_speed_exactly_on_a_grid_point_is_found_once():
         U = np.asarray(U, dtype=float)
         return ((U - 1.0) * (U - 1.9))[:, None, None]
 
+    # a zero at the last-but-one grid point, and a zero that touches without crossing (no sign change: none)
+    assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 0.75, 1.0, 1.25])] == [1.0]
+    assert linear.critical_speeds(lambda U: -((np.asarray(U, dtype=float) - 1.0) ** 2)[:, None, None],
+                                  [0.5, 0.75, 1.0, 1.25, 1.5]) == []
     cross = linear.critical_speeds(B, np.arange(0.5, 2.3, 0.25))
     assert [c.direction for c in cross] == ["stabilising", "destabilising"]
     np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], atol=1e-10)
