@@ -148,7 +148,7 @@ def test_state_space_object():
     np.testing.assert_allclose(sys.A, linear.state_matrices(c, 0.75)[0])
     np.testing.assert_allclose(sys.B[1, 0], 1 / c.i_z, rtol=0.05)  # yaw moment mostly drives yaw rate
     np.testing.assert_array_equal(sys.C, np.eye(2, 6))                 # the outputs are the states v and r
-    assert not sys.D.any() and "ej-premier" in sys.name and "U=0p75" in sys.name
+    assert not sys.D.any() and sys.name == "ej-premier (exact, free casters, U=0p75 m per s)"
     locked = linear.state_space(c, 0.75, casters="locked")
     assert locked.nstates == 2 and locked.state_labels == ["v", "r"]
     np.testing.assert_array_equal(locked.C, np.eye(2))
@@ -157,7 +157,9 @@ def test_state_space_object():
 @pytest.mark.parametrize("model", ["exact", "thesis"])
 def test_yaw_moment_input_is_the_accelerations_per_newton_metre(model):
     """The input column (default arguments and each variant): the door's accelerations for a unit yaw moment in
-    straight running, placed in the state derivative's rows (v, r, eta_dot, beta_dot; zero in the angle rows)."""
+    straight running (the generated nonlinear equations, not the generated linear matrices the column comes from),
+    placed in the state derivative's rows (v, r, eta_dot, beta_dot; zero in the angle rows).  (The two casters'
+    rows are equal for every chair: one trail, one pin line, the same kinematics in straight running.)"""
     from stability.models import accelerations
     from stability.models.params import parameters
 
@@ -171,6 +173,10 @@ def test_yaw_moment_input_is_the_accelerations_per_newton_metre(model):
     np.testing.assert_allclose(b, [d[1], d[2], 0.0, d[3], 0.0, d[4]], rtol=1e-9, atol=1e-15)
     if model == "exact":
         np.testing.assert_array_equal(linear.input_matrices(c, 0.75)[0][:, 0], b)
+    # the lateral force at the c.g.: the same rows of the door's accelerations per N, nothing in the angle rows
+    f1 = np.array(accelerations(*args, Fy_ext=1.0, Mz_ext=0.0, variant=model), dtype=float) - a0
+    np.testing.assert_allclose(linear.lateral_force_input(c, 0.75, model), [f1[1], f1[2], 0.0, f1[3], 0.0, f1[4]],
+                               rtol=1e-12, atol=0)
 
 
 def test_batched_eigenvalues_equal_python_control():
