@@ -20,6 +20,10 @@ Usage (from the repository root, in the project's venv)::
     python tools/hand_mutants.py --id advise-rank-inverted
 
 Exit status 0 when every non-equivalent mutant run is killed, 1 otherwise.
+
+Measured for issue 34 (55 mutants): with the tests of main at 61978c5, 35/54 non-equivalent killed (advise 13/17,
+decision 0/8, sweep 4/5, linear 7/8, door 2/6, tipping 5/5, shimmy 4/5); with this branch's tests 54/54 (advise
+17/17, decision 8/8, sweep 5/5, linear 8/8, door 6/6, tipping 5/5, shimmy 5/5 + 1 equivalent).
 """
 
 # ruff: noqa: E501  (the mutants' source texts are quoted exactly, one per line)
