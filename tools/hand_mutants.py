@@ -302,8 +302,8 @@ def main(argv: list[str] | None = None) -> int:
             if status not in ("killed", "timeout"):
                 survivors.append(m.id)
     print("\ngroup      killed/non-equivalent  (+equivalent)")
-    for g, (killed, total, eq) in tally.items():
-        print(f"{g:10} {killed}/{total}" + (f"  (+{eq} equivalent)" if eq else ""))
+    for grp, (n_killed, n_total, n_eq) in tally.items():
+        print(f"{grp:10} {n_killed}/{n_total}" + (f"  (+{n_eq} equivalent)" if n_eq else ""))
     print(f"total      {sum(v[0] for v in tally.values())}/{sum(v[1] for v in tally.values())}")
     if survivors:
         print("survived: " + ", ".join(survivors))
