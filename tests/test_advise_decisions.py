@@ -18,6 +18,7 @@ ranking, dropping a limit or dropping the pair search fails one of these.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 
@@ -105,7 +106,9 @@ def _robust_gain(c, base) -> float:
     return min(ci / ci0 - 1.0, ei / ei0 - 1.0)
 
 
+@functools.cache
 def _case(name: str):
+    """The advice on one of :data:`CASES` with the closed-form stand-in, and the grid recomputed (built once)."""
     changes, slope = CASES[name]
     chair = chair_mod.preset("ej-premier").replace(**changes)
     a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=slope)
@@ -249,6 +252,7 @@ def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks(
     data = advice_mapping(a)
     assert any(x["name"] == "human_limited_speed_m_s" for x in data["decision"]["costs"])
     assert "can hold this chair straight" in " ".join(data["decision"]["verdict"])
+    assert f"NOT enough for the intended {intended:g} m/s" in " ".join(data["decision"]["verdict"])   # rate * tau > 1
 
 
 def test_a_powered_chair_is_not_changed_into_one_that_tips_on_the_iso_bench():
@@ -272,3 +276,192 @@ def test_a_powered_chair_is_not_changed_into_one_that_tips_on_the_iso_bench():
             == ["axle 10 cm toward the c.g. at fixed s1+s2 (s1 18.0 -> 8.0 cm)"]]
     assert len(axle) == 1 and [k.name for k in axle[0].limits] == ["bench_worst_score"]
     assert score(apply(chair, list(axle[0].candidate.changes[0].fields))) >= 2
+
+
+def _peaked_at(base, sharpness: float = 1.0):
+    """A stand-in whose measures peak at ``base``: every numeric field's relative change costs exp(-change^2) on both
+    measures, any other field's change (a tire, a layout) halves them, so every change of every lever loses."""
+    numeric = [k for k, v in vars(base).items() if isinstance(v, float) and v != 0.0]
+    other = [k for k, v in vars(base).items() if k != "name" and k not in numeric]
+
+    def measures(chairs):
+        out = []
+        for c in chairs:
+            drop = math.exp(-sharpness * sum((getattr(c, k) / getattr(base, k) - 1.0) ** 2 for k in numeric))
+            drop *= 0.5 ** sum(getattr(c, k) != getattr(base, k) for k in other)
+            ci, ei = 8.0 * drop, 1.2 * drop
+            out.append((Interval(ci, 0.5 * ci, 1.5 * ci), Interval(ei, 0.9 * ei, 1.1 * ei), "found", "found", None))
+        return out
+
+    return measures
+
+
+def test_a_chair_no_change_improves_is_kept_as_it_is():
+    """When every change loses on the measures (a stand-in peaked at the chair) and the chair breaks no limit, the
+    advice is 'no change': recommending the least bad change would make the chair worse on both low ends."""
+    chair = chair_mod.preset("ej-premier").replace(trail=0.06)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair), time_to_correct=False, cross_slope_deg=0.0)
+    assert all(k.met for k in a.own_constraints)                 # the premise: nothing to fix
+    assert a.candidates and all(c.gain < 0 for c in a.candidates + a.combinations), \
+        [c.label for c in a.candidates if c.gain >= 0]
+    assert a.recommendations[0].candidate.changes == ()
+    assert "keep the chair as it is" in " ".join(a.recommendations[0].notes)
+
+
+def test_a_fix_dearer_than_the_allowed_cost_is_only_the_runner_up():
+    """A chair inside a shimmy zone whose every fix costs more than MAX_FIX_COST of the robust measures (a sharply
+    peaked stand-in; the tip limit lowered to 5 deg so that a longer trail can fix it): the advice is 'no change, measure first' with the best fix as the runner-up, and that fix's
+    cost, recomputed from the low ends, is above the allowed cost."""
+    chair = chair_mod.preset("ej-premier").replace(trail=0.0475)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair, 20.0), time_to_correct=False, cross_slope_deg=0.0,
+               min_tip_deg=5.0)
+    assert {k.name for k in a.own_constraints if not k.met} == {"shimmy_margin_m"}       # the premise
+    fixes = [c for c in a.candidates + a.combinations if c.feasible]
+    assert fixes and max(c.gain for c in fixes) < -MAX_FIX_COST                         # every fix is dear
+    first, runner = (r.candidate for r in a.recommendations)
+    assert first.changes == () and runner.changes
+    lo0 = (a.verdict.critical_impulse_Ns.robust, a.verdict.equal_instability_speed_m_s.robust)
+    lo = (runner.measures.critical_impulse_Ns.robust, runner.measures.equal_instability_speed_m_s.robust)
+    assert min(x / x0 - 1.0 for x, x0 in zip(lo, lo0, strict=True)) < -MAX_FIX_COST
+    assert runner.gain == max(c.gain for c in fixes)
+    from stability.advise.decision import decide
+
+    d = decide(a)
+    assert d.action == "measure first"
+    _cost_checks(d, chair, chair, 5.0)
+    assert "shimmy margin" in d.cost_sentence()
+
+
+#: Exponents of the separable stand-in: each measure a product of powers of the fields (a tire change a factor).
+_CI_POWERS = {"pin_friction_left": 0.5, "pin_friction_right": 0.5, "trail": -1.0, "s1": 2.0, "s2": -0.5, "m_c": -0.3}
+_EI_POWERS = {"pin_friction_left": 0.3, "pin_friction_right": 0.3, "trail": -0.2, "s1": 1.0, "s2": -1.0, "m_c": -0.1}
+
+
+def _separable(base):
+    """Measures that are products of per-field factors: the gain of two changes to different fields is exactly
+    the product of their relative changes, per measure."""
+    def prod(c, powers, tire):
+        f = math.prod((getattr(c, k) / getattr(base, k)) ** p for k, p in powers.items())
+        return f * (tire if c.caster_tire != base.caster_tire else 1.0)
+
+    def measures(chairs):
+        out = []
+        for c in chairs:
+            ci, ei = 6.0 * prod(c, _CI_POWERS, 1.3), 1.1 * prod(c, _EI_POWERS, 0.9)
+            out.append((Interval(ci, 0.5 * ci, 1.5 * ci), Interval(ei, 0.9 * ei, 1.1 * ei), "found", "found", None))
+        return out
+
+    return measures
+
+
+def test_a_combination_is_predicted_from_its_parts_by_the_product_of_their_changes():
+    """With measures that are products of per-field factors, the gain the screening predicts for a combination from
+    its parts' measured gains is the combination's measured gain (per measure the product of the relative changes,
+    the worse measure deciding), to rounding; a sum of the gains would miss the cross term."""
+    from stability.advise.advisor import _predicted
+
+    chair = chair_mod.preset("ej-premier").replace(trail=0.06)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_separable(chair), time_to_correct=False, cross_slope_deg=0.0,
+               min_tip_deg=0.0)
+    singles = {c.changes: c for c in a.candidates}
+    assert a.combinations                                     # the premise: pairs were measured
+    for combo in a.combinations:
+        parts = tuple(singles[(ch,)] for ch in combo.changes)
+        assert _predicted(parts) == pytest.approx(combo.gain, rel=1e-12, abs=1e-12), combo.label
+
+
+def _cost_checks(d, chair, after_chair, min_tip: float) -> None:
+    """Every cost of a decision against the values recomputed from the analysis functions: before and after, the
+    limit met or not, and 'worse' by the quantity's direction; 'WHAT IT COSTS' names exactly the worse ones and
+    'LIMITS' exactly the unmet ones."""
+    costs = {k.name: k for k in d.costs}
+    t0, t1 = tip_angles(chair), tip_angles(after_chair)
+    for key in ("toward_main_wheels", "toward_casters", "lateral_left", "lateral_right"):
+        k = costs[f"tip_{key}_deg"]
+        before, after = getattr(t0, key + "_deg"), getattr(t1, key + "_deg")
+        assert (k.before, k.after) == pytest.approx((before, after), abs=1e-9), k
+        assert k.met == (after >= min_tip - 1e-9) and k.worse == (after < before - 1e-9), k
+    k = costs["shimmy_margin_m"]
+    margin = 100 * shimmy_band(after_chair, SPEEDS).shimmy_margin_m
+    assert k.after == pytest.approx(margin, abs=1e-9) and k.met == (margin >= 100 * MIN_SHIMMY_MARGIN_M), k
+    k = costs["turning_effort_N_m"]
+    e0 = max(chair.pin_friction_left, chair.pin_friction_right)
+    e1 = max(after_chair.pin_friction_left, after_chair.pin_friction_right)
+    assert (k.before, k.after) == pytest.approx((e0, e1)) and k.worse == (e1 > e0), k
+    sentence = d.cost_sentence()
+    if d.action == "change":
+        assert [k.name for k in d.costs if k.text() in sentence] == [k.name for k in d.costs if k.worse]
+    else:
+        assert [k.name for k in d.costs if k.text() in sentence] == [k.name for k in d.costs if k.met is False]
+
+
+def test_the_decision_prints_the_recomputed_costs_of_the_change(case):
+    from stability.advise.decision import DIRECTION_WORDS, decide
+
+    chair, a, _, _ = case
+    d = decide(a)
+    assert d.action == "change"
+    c = apply(chair, list(a.recommendations[0].candidate.fields.items()))
+    _cost_checks(d, chair, c, tip_angles(chair).smallest_deg)
+    t0 = tip_angles(chair)
+    assert f"it tips {DIRECTION_WORDS[t0.smallest_direction]} on a {t0.smallest_deg:.1f} deg slope" in d.details[0]
+
+
+def test_a_limit_nothing_meets_is_printed_as_not_met_against_the_recomputed_values():
+    """A tip limit of 40 deg (no chair of the grid reaches it): the decision is not a change, and its costs are the
+    chair against the limits: every tip direction NOT met, named in 'LIMITS'."""
+    from stability.advise.decision import decide
+
+    chair = chair_mod.preset("ej-premier").replace(trail=0.06)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False, cross_slope_deg=0.0,
+               min_tip_deg=40.0)
+    d = decide(a)
+    assert d.action != "change"
+    _cost_checks(d, chair, chair, 40.0)
+    assert sum(k.met is False for k in d.costs) >= 4 and "The chair breaks: tips" in d.cost_sentence()
+
+
+@pytest.fixture(scope="module")
+def slope_case():
+    return _case("friction-and-slope")
+
+
+def test_the_blocked_changes_are_named_best_first(slope_case):
+    """Among the blocked changes that fix as many broken limits and break as many limits (both recomputed here),
+    the larger recomputed robust gain comes first."""
+    chair, a, _, slope = slope_case
+    rows = []
+    for b in a.blocked:
+        c = apply(chair, list(b.candidate.fields.items()))
+        unmet = sorted(k for k, ok in _limits_met(c, chair, slope).items() if not ok)
+        named = sorted("cross_slope" if k.name.endswith("_difference_N") or k.name.endswith("_difference_N_m")
+                       else k.name for k in b.limits)
+        assert unmet == named, b.candidate.label
+        rows.append((len(b.fixes), len(unmet), _robust_gain(c, chair)))
+    assert len(rows) >= 2
+    for (f0, n0, g0), (f1, n1, g1) in zip(rows, rows[1:], strict=False):
+        assert (-f0, n0) <= (-f1, n1)
+        if (f0, n0) == (f1, n1):
+            assert g0 >= g1 - 1e-12
+
+
+def test_blocked_changes_rank_by_what_they_fix_then_limits_then_gain():
+    """The order of the BLOCKED list on synthetic candidates whose order is known: a fix of a broken limit first,
+    then the fewest limits broken, then the larger gain; candidates that meet every limit, or gain less than the
+    recommendation without fixing anything, are not listed."""
+    from stability.advise.advisor import Candidate, _blocked
+    from stability.advise.levers import Change
+    from stability.advise.limits import Constraint
+
+    def cand(label, gain, unmet, met=()):
+        ks = tuple(Constraint(n, 1.0, 0.0, "<=", False) for n in unmet) + \
+            tuple(Constraint(n, 0.0, 1.0, "<=", True) for n in met)
+        return Candidate((Change("x", label, ()),), None, gain, {}, ks)
+
+    cands = [cand("small", 0.2, ["tip"]), cand("big", 0.9, ["tip"]), cand("mid", 0.5, ["tip"]),
+             cand("two limits", 2.0, ["tip", "effort"]), cand("fixes", 0.05, ["tip"], met=["shimmy"]),
+             cand("feasible", 3.0, []), cand("below", 0.01, ["tip"])]
+    got = [b.candidate.label for b in _blocked(cands, {"shimmy"}, best_gain=0.1)]
+    assert got == ["fixes", "big", "mid"]
+    got = [b.candidate.label for b in _blocked(cands, set(), best_gain=0.1)]
+    assert got == ["big", "mid", "small"]

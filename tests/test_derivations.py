@@ -697,3 +697,59 @@ def _flat(x):
     if isinstance(x, (tuple, list)):
         return [y for e in x for y in _flat(e)]
     return [float(x)]
+
+
+def test_the_door_routes_each_variant_to_its_own_generated_equations():
+    """stability.models' door (issue 34: a door that returned another variant's function passed the suite): through
+    the door the thesis's contact velocities differ from the exact ones by the derivation's (0, -trail r) at each
+    caster; its accelerations and its linear matrices (free and locked casters) are those of the thesis's generated
+    functions, not the exact ones; trig is (cos, sin)."""
+    from stability import linear
+    from stability.chair import preset
+    from stability.models import accelerations, contact_velocities, trig
+    from stability.models.params import parameters
+
+    c = preset("ej-premier")
+    p = parameters(c)
+    r = 0.3
+    st = (1.1, 0.1, r, *trig(0.4), *trig(-0.7), 0.5, -0.2)
+    d = np.array(contact_velocities(p, *st, variant="exact")) - np.array(contact_velocities(p, *st, variant="thesis"))
+    np.testing.assert_allclose(d, [0, -c.trail * r, 0, -c.trail * r, 0, 0, 0, 0], atol=1e-14)
+    forces = (10.0, 5.0, -3.0, 2.0, 1.0, 50.0, -2.0, 40.0, 0.0, 0.0)
+    for variant in ("exact", "thesis"):
+        got = np.array(accelerations(p, *st, *forces, variant=variant), dtype=float)
+        args = (*st, *forces, 0.0, 0.0, *p.inertia)
+        want = np.array(getattr(G, f"accelerations_{variant}")(*args), dtype=float)
+        np.testing.assert_array_equal(got, want)
+    assert not np.allclose(accelerations(p, *st, *forces, variant="exact"),
+                           accelerations(p, *st, *forces, variant="thesis"))
+    for casters in ("free", "locked"):
+        a = linear.state_matrices(c, [0.75, 3.0], "exact", casters)
+        b = linear.state_matrices(c, [0.75, 3.0], "thesis", casters)
+        assert np.abs(a - b).max() > 1.0, casters          # the variants' matrices differ (by 15-540 here)
+    assert trig(0.3) == (math.cos(0.3), math.sin(0.3))
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd"])
+def test_tire_yaw_moment_is_the_lever_arms_of_the_chair(name):
+    """The door's tire yaw moment (casters straight) from the chair's own dimensions, not its parameters: a unit
+    lateral force at a main-wheel contact acts s1 from the c.g. (the main axle's side), at a caster contact on the
+    other side s2 + trail for rear casters and s2 - trail for front casters (pin s2 away, contact a trail behind it
+    in the direction of travel), and equal and opposite longitudinal forces at the main wheels are a couple of arm
+    d1 + d2."""
+    from stability.chair import preset
+    from stability.models import tire_yaw_moment, trig
+    from stability.models.params import parameters
+
+    c = preset(name)
+    p = parameters(c)
+    names = ("FAx", "FAy", "FBx", "FBy", "FDx", "FDy", "FEx", "FEy")
+
+    def moment(**f):
+        return tire_yaw_moment(p, tuple(f.get(k, 0.0) for k in names), *trig(0.0), *trig(0.0))
+
+    main, caster = moment(FDy=1.0), moment(FAy=1.0)
+    assert abs(main) == pytest.approx(c.s1, abs=1e-12) and moment(FEy=1.0) == pytest.approx(main, abs=1e-12)
+    arm = c.s2 + c.trail if c.caster_position == "rear" else c.s2 - c.trail
+    assert abs(caster) == pytest.approx(arm, abs=1e-12) and np.sign(caster) == -np.sign(main)
+    assert abs(moment(FDx=1.0, FEx=-1.0)) == pytest.approx(c.d1 + c.d2, abs=1e-12)

@@ -39,7 +39,7 @@ def test_the_interval_includes_the_half_step_answer():
     c = preset("power-fwd").replace(trail=0.06)
     lam = np.linalg.eigvals(state_matrices(c, np.array([0.75]))[0])
     assert np.max(np.abs(lam.real)) * 1e-3 > 1.0           # forward Euler's factor 1 + lambda dt < 0 at 1 ms
-    assert round(float(np.max(np.abs(lam.real))), -1) == 1240  # "about 1240 1/s" in docs/advise.md
+    assert 1200.0 < float(np.max(np.abs(lam.real))) < 1300.0  # "about 1240 1/s" in docs/advise.md (1242 1/s; the window only guards the docs' word, not a rounding edge)
     iv = critical_impulse_intervals([c], 0.75, run=RunSpec(friction_law="kinetic"))[0]
     half = dict(iv.variants)["0.5 ms step"]
     assert half.status == "found" and iv.point.status == "found"

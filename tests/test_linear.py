@@ -143,12 +143,40 @@ def test_state_space_object():
     c = chair_mod.preset("ej-premier")
     sys = linear.state_space(c, 0.75)
     assert isinstance(sys, control.StateSpace)
-    assert sys.state_labels == list(linear.STATES_FREE)
+    assert sys.state_labels == ["v", "r", "eta", "eta_dot", "beta", "beta_dot"]     # the documented order
     assert sys.input_labels == ["Mz"] and sys.output_labels == ["v", "r"]
     np.testing.assert_allclose(sys.A, linear.state_matrices(c, 0.75)[0])
     np.testing.assert_allclose(sys.B[1, 0], 1 / c.i_z, rtol=0.05)  # yaw moment mostly drives yaw rate
+    np.testing.assert_array_equal(sys.C, np.eye(2, 6))                 # the outputs are the states v and r
+    assert not sys.D.any() and sys.name == "ej-premier (exact, free casters, U=0p75 m per s)"
     locked = linear.state_space(c, 0.75, casters="locked")
-    assert locked.nstates == 2
+    assert locked.nstates == 2 and locked.state_labels == ["v", "r"]
+    np.testing.assert_array_equal(locked.C, np.eye(2))
+
+
+@pytest.mark.parametrize("model", ["exact", "thesis"])
+def test_yaw_moment_input_is_the_accelerations_per_newton_metre(model):
+    """The input column (default arguments and each variant): the door's accelerations for a unit yaw moment in
+    straight running (the generated nonlinear equations, not the generated linear matrices the column comes from),
+    placed in the state derivative's rows (v, r, eta_dot, beta_dot; zero in the angle rows).  (The two casters'
+    rows are equal for every chair: one trail, one pin line, the same kinematics in straight running.)"""
+    from stability.models import accelerations
+    from stability.models.params import parameters
+
+    c = chair_mod.preset("ej-premier")
+    z = 0.0
+    args = (parameters(c), 0.75, z, z, 1.0, z, 1.0, z, z, z) + (z,) * 10
+    a1 = np.array(accelerations(*args, Fy_ext=0.0, Mz_ext=1.0, variant=model), dtype=float)
+    a0 = np.array(accelerations(*args, Fy_ext=0.0, Mz_ext=0.0, variant=model), dtype=float)
+    d = a1 - a0
+    b = linear.input_matrices(c, 0.75, model)[0][:, 0]
+    np.testing.assert_allclose(b, [d[1], d[2], 0.0, d[3], 0.0, d[4]], rtol=1e-9, atol=1e-15)
+    if model == "exact":
+        np.testing.assert_array_equal(linear.input_matrices(c, 0.75)[0][:, 0], b)
+    # the lateral force at the c.g.: the same rows of the door's accelerations per N, nothing in the angle rows
+    f1 = np.array(accelerations(*args, Fy_ext=1.0, Mz_ext=0.0, variant=model), dtype=float) - a0
+    np.testing.assert_allclose(linear.lateral_force_input(c, 0.75, model), [f1[1], f1[2], 0.0, f1[3], 0.0, f1[4]],
+                               rtol=1e-12, atol=0)
 
 
 def test_batched_eigenvalues_equal_python_control():
@@ -178,6 +206,10 @@ def test_bad_input():
         linear.state_matrices(c, 1.0, model="bicycle")
     with pytest.raises(ValueError, match="casters"):
         linear.state_matrices(c, 1.0, casters="half")
+    with pytest.raises(ValueError, match="model"):
+        linear.lateral_force_input(c, 1.0, model="bicycle")
+    with pytest.raises(ValueError, match="casters"):
+        linear.lateral_force_input(c, 1.0, casters="half")
 
 
 # ---------------------------------------------------------------------------
@@ -218,6 +250,109 @@ def test_critical_speed_hidden_double_crossing_is_found():
     assert cross[1].speed == pytest.approx(c0 + d, abs=1e-10)
     assert all(c.kind == "complex" for c in cross)
     assert cross[0].eigenvalue.imag == pytest.approx(3.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("casters, speeds", [("free", [0.3, 0.75, 1.25, 2.0, 5.0, 8.0]), ("locked", [3.0, 6.0, 10.0, 14.0])])
+def test_crossing_guard_slopes_equal_a_central_difference_of_the_largest_real_part(casters, speeds):
+    """The double-crossing guard's d(alpha)/dU (eigenvalue perturbation theory with a finite-difference dA) is the
+    derivative of max Re(lambda): a central difference of alpha with h = 1e-3 m/s, whose truncation error is
+    h^2 |d3 alpha/dU3| / 6 (observed 3e-9 to 2.6e-8 1/s per m/s); bound 1e-6 (margin 40)."""
+    from stability.linear.critical import _slopes
+
+    c = chair_mod.preset("ej-premier")
+
+    def f(U):
+        return linear.state_matrices(c, U, casters=casters)
+
+    U, h = np.array(speeds), 1e-3
+    got = _slopes(f, U, linear.max_real_part(f, U))
+    fd = (linear.max_real_part(f, U + h) - linear.max_real_part(f, U - h)) / (2 * h)
+    np.testing.assert_allclose(got, fd, rtol=0, atol=1e-6)
+    assert np.all(np.abs(fd) > 0.4)                  # the premise: slopes far from zero, a sign error shows
+
+
+def test_a_crossing_is_immutable():
+    """A Crossing is a value (frozen): results cannot be edited after the search."""
+    import dataclasses
+
+    cross = linear.critical_speeds(lambda U: np.asarray(U)[:, None, None] - 1.0, np.linspace(0.5, 2.0, 4))[0]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        cross.speed = 0.0  # type: ignore[misc]
+
+
+def test_critical_speed_grid_is_checked_naming_the_problem():
+    """The grid: at least two speeds (two are enough: one bracket), strictly increasing (a repeated speed is refused),
+    positive (the message names the first speed and the valid range)."""
+    def A(U):
+        return np.asarray(U)[:, None, None] - 1.0
+
+    assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 2.0])] == [1.0]
+    with pytest.raises(ValueError, match=r"at least 2 speeds, got shape \(1,\)"):
+        linear.critical_speeds(A, [0.5])
+    with pytest.raises(ValueError, match="strictly increasing"):
+        linear.critical_speeds(A, [0.5, 1.5, 1.5, 2.0])
+    with pytest.raises(ValueError, match=r"^speeds\[0\]=0\.0 is invalid; valid range: speed > 0 m/s$"):
+        linear.critical_speeds(A, [0.0, 1.0, 2.0])
+
+
+def test_critical_speed_exactly_on_a_grid_point_is_found_once():
+    """alpha(U) = U - 1 on a grid with 1.0 in it: alpha is exactly 0 there (no sign change between neighbours of
+    the same sign either side); the crossing is bracketed by the neighbours and found once, destabilising."""
+    def A(U):
+        return np.asarray(U, dtype=float)[:, None, None] - 1.0
+
+    cross = linear.critical_speeds(A, [0.5, 0.75, 1.0, 1.25, 1.5])
+    assert len(cross) == 1
+    assert cross[0].speed == pytest.approx(1.0, abs=1e-10) and cross[0].direction == "destabilising"
+    # and at the first grid point (no neighbour below: bracketed from the point itself)
+    assert [round(c.speed, 10) for c in linear.critical_speeds(A, [1.0, 1.25, 1.5])] == [1.0]
+
+    def B(U):                                             # zero on the grid at 1.0, a second crossing at 1.9 after it
+        U = np.asarray(U, dtype=float)
+        return ((U - 1.0) * (U - 1.9))[:, None, None]
+
+    # a zero at the last-but-one grid point, and a zero that touches without crossing (no sign change: none)
+    assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 0.75, 1.0, 1.25])] == [1.0]
+    assert linear.critical_speeds(lambda U: -((np.asarray(U, dtype=float) - 1.0) ** 2)[:, None, None],
+                                  [0.5, 0.75, 1.0, 1.25, 1.5]) == []
+    cross = linear.critical_speeds(B, np.arange(0.5, 2.3, 0.25))
+    assert [c.direction for c in cross] == ["stabilising", "destabilising"]
+    np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], atol=1e-10)
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd"])
+def test_locked_casters_lateral_force_at_the_cg_is_newtons_law(name):
+    """Casters locked (one rigid body): a lateral force through the c.g. accelerates it at F/m and has no moment
+    about the c.g., whatever the speed; with free casters the swivelling casters' inertia reacts, so the yaw row
+    is not zero there."""
+    c = chair_mod.preset(name)
+    for speed in (0.5, 2.0):
+        np.testing.assert_array_equal(linear.lateral_force_input(c, speed, casters="locked"), [1.0 / c.m, 0.0])
+    assert linear.lateral_force_input(c, 0.75, casters="free")[0] > 0
+
+
+def test_critical_speed_pair_hidden_where_only_the_interpolant_shows_it():
+    """alpha(U) is, on [1.0, 1.1], the cubic through alpha = -0.01 with slope 2 at both ends (the slopes keep their
+    sign, so only the cubic Hermite interpolant of the grid values and slopes reveals the bump), and a straight
+    line of slope 2 outside (C1).  The bump rises to +0.00925: two crossings hidden between the grid points 1.0 and
+    1.1, plus the line's crossing at 1.105; their speeds are the cubic's roots (numpy.roots) and 1.105."""
+    def alpha(U):
+        U = np.asarray(U, dtype=float)
+        t = (U - 1.0) / 0.1
+        cubic = -0.01 + 0.2 * (2 * t**3 - 3 * t**2 + t)
+        line = -0.01 + 2.0 * np.where(U < 1.0, U - 1.0, U - 1.1)
+        return np.where((U >= 1.0) & (U <= 1.1), cubic, line)
+
+    def A(U):
+        return alpha(U)[..., None, None]
+
+    grid = np.round(np.linspace(0.5, 2.0, 16), 12)
+    assert np.all(alpha(grid[grid <= 1.1]) < 0)           # the premise: no sign change on the grid up to 1.1
+    roots = sorted(1.0 + 0.1 * x.real for x in np.roots([0.4, -0.6, 0.2, -0.01])
+                   if abs(x.imag) < 1e-12 and 0 < x.real < 1)
+    cross = linear.critical_speeds(A, grid)
+    assert [c.direction for c in cross] == ["destabilising", "stabilising", "destabilising"]
+    np.testing.assert_allclose([c.speed for c in cross], [*roots, 1.105], atol=1e-9)
 
 
 def test_mode_tracking_through_a_crossing_and_zero():

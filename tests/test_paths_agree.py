@@ -7,6 +7,7 @@ import io
 import json
 
 import pytest
+import regression
 
 from stability import preset
 from stability.slope.equilibrium import drive_report, harder_side, solve
@@ -47,7 +48,17 @@ def test_slope_command_and_report_name_the_same_side():
 
     data = _slope_json(["--chair", "ej-premier", "--cross-slope", "6", "--speed", "0.75", "--sim-time", "0.5"])
     assert data["drive_forces"]["harder_side"] == "uphill"
-    assert data["drive_forces"]["handrim_force_difference_N"] == pytest.approx(-141.26, abs=0.01)  # statics, 6 deg
+    diff = data["drive_forces"]["handrim_force_difference_N"]
+    assert diff == pytest.approx(regression.value("ej_handrim_force_difference_6deg_N"), abs=0.01)
+    # what the number is: the holding moment the main wheels supply, over the half track, through the wheel to the
+    # rim (statics closed form, frictionless), within what the two pins' Coulomb friction can carry (0.2 N m)
+    from stability.slope import Plane, holding_moment_closed_form
+    from stability.slope.equilibrium import HandRim
+
+    c, hr = preset("ej-premier"), HandRim()
+    m_cf = holding_moment_closed_form(c, Plane(cross_slope_deg=6.0, grade_deg=0.0))
+    pins = (c.pin_friction_left + c.pin_friction_right) / c.d1 * hr.wheel_radius / hr.handrim_radius
+    assert abs(diff - (-m_cf / c.d1 * hr.wheel_radius / hr.handrim_radius)) <= pins
     sec = slope_section(preset("ej-premier"), slopes=(0.0, 2.0, 4.0, 6.0))
     assert set(sec.harder_side) - {"neither"} == {"uphill"}
 

@@ -74,4 +74,5 @@ def test_critical_impulse_runs_per_row_as_documented(tmp_path, monkeypatch):
     assert rows == 300                          # one chunk holds the whole sweep
     assert seen["runs"] / rows == pytest.approx(runs_doc, rel=0.05)
     assert seen["sim"] / rows == pytest.approx(sim_doc, rel=0.05)
-    assert cpu / rows < 3 * cpu_doc
+    # CPU time is recorded, not asserted (a shared machine; issue 34): the deterministic counts above are the check
+    print(f"\nCPU per row {1e3 * cpu / rows:.0f} ms (docs/scale.md: {1e3 * cpu_doc:.0f} ms)")

@@ -114,3 +114,15 @@ def test_cli_prints_the_band_and_the_margin():
     assert d["shimmy_margin_m"] == pytest.approx(ref.shimmy_margin_m, abs=1e-15)
     assert d["shimmy_free_intervals_m"][0] == [list(iv) for iv in ref.intervals_m[0]]
     assert d["shimmy_margin_interval_m"][0] is None        # -inf: a corner shimmies at every trail
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "power-fwd"])
+def test_the_margin_over_several_speeds_is_the_smallest_single_speed_margin(name):
+    """The shimmy margin of a band over several use speeds is the worst (smallest) of the margins of the bands at
+    each speed alone: the limit must hold at every speed of use.  Viscous pin damping (0.05 N m s/rad) makes the
+    boundaries move with speed (without it they do not move for these chairs)."""
+    c = chair_mod.preset(name).replace(pin_damping=0.05)
+    speeds = [0.5, 1.0, 2.0, 3.0]
+    alone = [shimmy_band(c, [u]).shimmy_margin_m for u in speeds]
+    assert shimmy_band(c, speeds).shimmy_margin_m == pytest.approx(min(alone), abs=TOL_M)
+    assert max(alone) - min(alone) > 10 * TOL_M           # the premise: the speeds disagree

@@ -76,7 +76,9 @@ def test_critical_impulse_is_step_converged_with_stick_slip():
     fine = critical_impulse(chair, 1.5, run=RunSpec(friction_law="stick-slip", dt=2.5e-4))
     assert coarse.status == fine.status == "found"
     assert abs(math.log(coarse.impulse_Ns / fine.impulse_Ns)) < 0.01
-    assert 5.0 < coarse.impulse_Ns < 12.0        # a real push (a 4 N s push gives |r| <= 0.02 rad/s, adaptive)
+    # a real push, not a step artefact: above 4 N s, which the event-located adaptive scheme (no step) shows does
+    # not reach the level (|r| <= 0.02 rad/s); no upper window: the two steps' agreement above is the check
+    assert coarse.impulse_Ns > 4.0
     assert critical_impulse(chair, 1.5, run=RunSpec(friction_law="kinetic")).status == "below"   # at 1 ms any push "suffices"
     assert critical_impulse(chair, 1.5).impulse_Ns == coarse.impulse_Ns     # the measures' default law
 

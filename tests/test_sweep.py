@@ -75,8 +75,15 @@ def test_rows_equal_the_library_and_a_bad_chair_is_a_row(spec_dir):
     assert data["pin_friction_left"][i] == c.pin_friction_left and data["i_z"][i] == c.i_z
     expected = ChairBatch([c], "exact").growth_rates([1.0])[0, 0]
     assert data["growth_rate_1_s"][i] == pytest.approx(expected, rel=1e-12)
-    # free casters: unstable at every speed searched (no critical speed); locked: 9.7 m/s class (README)
-    assert math.isnan(data["critical_speed_m_s"][i]) and 5.0 < data["locked_critical_speed_m_s"][i] < 20.0
+    # free casters: unstable at every speed searched (no critical speed); locked: the first destabilising crossing of
+    # the locked-caster model that linear.analyse finds on its own grid (Brent to 1e-10 m/s; the batch bisects to
+    # xtol = 1e-6 m/s and reports its midpoint: error at most 5e-7 m/s)
+    from stability.linear import analyse
+
+    s = analyse(c, "exact")
+    assert math.isnan(data["critical_speed_m_s"][i]) and not [x for x in s.free_crossings if x.speed <= 30.0]
+    locked = [x.speed for x in s.locked_crossings if x.direction == "destabilising"]
+    assert data["locked_critical_speed_m_s"][i] == pytest.approx(locked[0], abs=5e-7 + 1e-10)
 
 
 def test_resume_after_an_interruption_gives_the_same_file(spec_dir, monkeypatch):
@@ -391,3 +398,16 @@ def test_bench_measure_scores_and_stops_a_powered_chair_only(spec_dir):
     mrows = [r for i in range(n_chunks(manual)) for r in compute_chunk(manual, i)]
     j = columns(manual).index("bench_worst_score")
     assert all(math.isnan(r[j]) for r in mrows)
+
+
+def test_a_design_with_failed_draws_ranks_behind_every_complete_one(tmp_path):
+    """Draws without a value (an invalid chair, an error) count as the worst case: a design whose good draws are the
+    best of the grid but which lost 1 of 100 draws ranks behind the complete designs, and says how many it lost."""
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["equal_instability_speed"]\n[grid]\ntrail = [0.04, 0.05, 0.06]\n'
+                      '[draws]\nn = 100\nuncertainty = "u.toml"\n',
+                      _write(tmp_path, "u.toml", UNC))
+    lossy = [2.8] * 99 + [float("nan")]
+    data = _censored_data([[1.2] * 100, lossy, [1.5] * 100], [["found"] * 100] * 3)
+    ranked = summary(spec, data, top=3)["measures"]["equal_instability_speed_m_s"]["best"][0]
+    assert [e["design"] for e in ranked] == [2, 0, 1]
+    assert [e["missing"] for e in ranked] == [0, 0, 1]

@@ -244,21 +244,23 @@ def _run(args: argparse.Namespace) -> int:
         return _run_layout(args)
     c = load_chair(args.chair, args.set)
     speeds = parse_speeds(args.speeds)
+    unc = None
     if args.uncertainty:
         check_eigen_work("--samples", args.samples, solves_per_draw(len(speeds), GRID_POINTS))
+        from stability.uncertainty import load_uncertainty
+
+        unc = load_uncertainty(args.uncertainty)        # a bad file is refused before any work
     if not (0.01 < args.max_speed <= 100.0):
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
     summary = analyse(c, model=args.model, speeds=speeds, max_speed=args.max_speed)
     checks = simulator_checks(summary)
     driver, human, assisted = _driver(c, args)
     intervals = nonlinear = None
-    if args.uncertainty:
+    if unc is not None:
         # deferred: the uncertainty machinery (and the simulator) cost start-up time the plain summary does not need
         from stability.linear.intervals import linear_intervals
         from stability.study.uncertain import nonlinear_intervals
-        from stability.uncertainty import load_uncertainty
 
-        unc = load_uncertainty(args.uncertainty)
         intervals = linear_intervals(c, unc, model=args.model, speeds=speeds, max_speed=args.max_speed,
                                      samples=args.samples, seed=args.seed, level=args.level)
         if args.nonlinear:

@@ -118,7 +118,7 @@ def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
     if np.any(np.diff(U) <= 0):
         raise ValueError("speeds must be strictly increasing")
     if U[0] <= 0:
-        raise ValueError(f"speeds[0]={U[0]!r} is invalid; valid range: speed > 0 m/s")
+        raise ValueError(f"speeds[0]={float(U[0])!r} is invalid; valid range: speed > 0 m/s")
 
     def alpha(x: float) -> float:
         return float(max_real_part(state_matrix, np.array([x]))[0])

@@ -12,7 +12,8 @@ share the two cores with the timing).
 
 Target: 100 ms on the 2-core machine, stated as a ratio against one bare
 :func:`stability.analyse` of the same chair timed interleaved in the same run
-(best of 7 each): the update must cost at most :data:`RATIO` analyses.
+(best of 7 each): the update should cost at most :data:`RATIO` analyses (recorded and printed, not asserted:
+no test asserts wall-clock time).
 ``analyse`` measured 133-299 ms on the 2-core machine under other jobs' load
 (docs/app.md), so 0.45 analyses is within 100 ms whenever ``analyse`` takes up to
 220 ms; measured: x0.25 (33 ms against 133 ms).
@@ -64,4 +65,4 @@ def test_bench_linear_update(bench):
     bench.extra_info.update(update_s=t_update, analyse_s=t_analyse, ratio=ratio)
     print(f"\nexplorer linear update: {t_update * 1e3:.0f} ms; one bare stability.analyse of the same chair "
           f"{t_analyse * 1e3:.0f} ms (update = x{ratio:.2f} analyse; target x{RATIO} = about 100 ms)")
-    assert ratio <= RATIO
+    # recorded, not asserted: a wall-clock ratio on a shared machine (issue 34)

@@ -48,12 +48,11 @@ from stability.study.equal_instability import bisect_speeds, reference_time
 
 EJ = preset("ej-premier")
 SPEEDS = [0.5, 0.6, 0.75, 0.9, 1.0, 1.2]
-#: the ratios asserted: about 2/3 of the lowest measured idle (load on a shared machine moves them by x1.5);
-#: measured idle with stick-slip pin friction (ten runs of this file): single x18.3-27.6, six-speed curve
-#: x16.7-25.9, without pin friction x3.2-5.7, equal-instability x2.2-3.9 (this machine's drift shows most in
-#: the new search's 9-18 ms: the same call's median moved from 9 to 17 ms within the hour, load average 1.0
-#: with nothing of ours running).
-RATIO_SINGLE, RATIO_CURVE, RATIO_LINEAR_START, RATIO_EQUAL_INSTABILITY = 12.0, 11.0, 2.1, 1.5
+#: Wall-clock ratios are recorded (``bench.extra_info``, printed), never asserted: on the shared machine their
+#: thresholds moved five times in eight commits.  What is asserted is deterministic: the answers agree, and the new
+#: search needs at most this fraction of the baseline's runs (measured 35 -> 6, 210 -> 36 and 70 -> 9 runs:
+#: 0.17, 0.17 and 0.13).
+RUN_FRACTION = 0.25
 
 
 @pytest.fixture
@@ -97,7 +96,7 @@ def test_bench_critical_impulse_single(bench):
     print(f"\ncritical impulse, E&J Premier 0.75 m/s: old {t_old:.3f} s ({a[0].runs} runs, {a[0].describe()}), "
           f"new {t_new:.3f} s ({b[0].runs} runs, {b[0].describe()}), x{ratio:.1f}")
     assert abs(math.log(b[0].impulse_Ns / a[0].impulse_Ns)) < 0.02    # inside the flip band (test_search.py)
-    assert ratio >= RATIO_SINGLE
+    assert b[0].runs <= RUN_FRACTION * a[0].runs
 
 
 def test_bench_critical_impulse_curve(bench):
@@ -112,7 +111,8 @@ def test_bench_critical_impulse_curve(bench):
     dev = [abs(math.log(y.impulse_Ns / x.impulse_Ns)) for x, y in zip(a, b, strict=True)]
     print(f"\ncritical impulse curve, E&J Premier, {len(SPEEDS)} speeds: old {t_old:.3f} s ({runs_old} runs), "
           f"new {t_new:.3f} s ({runs_new} runs), x{ratio:.1f}; largest difference {100 * max(dev):.1f} %")
-    assert ratio >= RATIO_CURVE
+    assert max(dev) < 0.02                                             # inside the flip band (test_search.py)
+    assert runs_new <= RUN_FRACTION * runs_old
 
 
 def test_bench_critical_impulse_linear_start(bench):
@@ -132,7 +132,7 @@ def test_bench_critical_impulse_linear_start(bench):
           f"({runs_old} runs), new {t_new:.3f} s ({runs_new} runs), x{ratio:.1f}; largest difference "
           f"{100 * max(dev):.2f} %")
     assert max(dev) <= math.log1p(0.005) * (1 + 1e-9)      # monotone here: the same bracket (test_impulse_fast.py)
-    assert ratio >= RATIO_LINEAR_START
+    assert runs_new <= RUN_FRACTION * runs_old
 
 
 def test_bench_equal_instability_bisection(bench):
@@ -151,4 +151,3 @@ def test_bench_equal_instability_bisection(bench):
     print(f"\nequal-instability bisection, 2 chairs: old {t_old:.3f} s, new {t_new:.3f} s, x{ratio:.1f}")
     # the same bracket width (tol 0.005 m/s) around the same crossing, times interpolated per 1 ms step
     np.testing.assert_allclose([x.speed for x in b], [x.speed for x in a], atol=0.005)
-    assert ratio >= RATIO_EQUAL_INSTABILITY
