@@ -75,6 +75,64 @@ def _kernel():
     return kernel
 
 
+#: The WCHAIR kernels: ``"lanes"`` (:mod:`.lanes_kernel`, runs as SIMD lanes: every WCHAIR run, alone or in a
+#: batch) or ``"scalar"`` (:func:`.kernel.run_batch`, one run per thread: the reference the lanes kernel is tested
+#: and benchmarked against, :func:`use_kernel`)
+KERNELS = ("lanes", "scalar")
+_CHOICE = {"kernel": "lanes"}
+
+
+@contextlib.contextmanager
+def use_kernel(name: str) -> Iterator[None]:
+    """Run the WCHAIR scheme on kernel ``name`` (:data:`KERNELS`) inside the block (process-wide; tests, benchmarks).
+
+    Parameters
+    ----------
+    name : {"lanes", "scalar"}
+        The kernel.
+
+    Yields
+    ------
+    None
+    """
+    if name not in KERNELS:
+        raise ValueError(f"kernel={name!r} is invalid; valid: {', '.join(KERNELS)}")
+    before = _CHOICE["kernel"]
+    _CHOICE["kernel"] = name
+    try:
+        yield
+    finally:
+        _CHOICE["kernel"] = before
+
+
+def _lanes_kernel():
+    with first_use("wchair_load"):
+        from stability.simulate import lanes_kernel
+
+    return lanes_kernel
+
+
+def lane_block(n_runs: int, nthreads: int) -> int:
+    """Runs per block of the lanes kernel: up to :data:`.lanes_kernel.LANES`, at least 8 (one AVX-512 vector of
+    doubles) unless fewer runs, and about four blocks per thread so that runs stopping early do not leave a thread
+    idle.  The numbers do not depend on it.
+
+    Parameters
+    ----------
+    n_runs : int
+        Runs in the call.
+    nthreads : int
+        Kernel threads.
+
+    Returns
+    -------
+    int
+        Block size.
+    """
+    per = -(-n_runs // (4 * max(1, nthreads)))
+    return int(max(1, min(_lanes_kernel().LANES, max(8, per), n_runs)))
+
+
 def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
                  controller: SampledController | None = None, record: str = "all",
                  threads: int | None = None, batch: bool = True) -> list[SimulationResult]:
@@ -328,7 +386,10 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
                 state[going, k.ST_MZ] = np.broadcast_to(np.asarray(mz, dtype=float), going.shape)
             else:
                 state[0, k.ST_MZ] = float(hook(step * dt, ChairState._make([*(float(x) for x in st[0]), 0])))
-            k.run_serial(step, step + 1, *args)
+            if _CHOICE["kernel"] == "scalar":
+                k.run_serial(step, step + 1, *args)
+            else:
+                _run_lanes(step, step + 1, args, 1, n_runs)
     return rec, stats, warn, status, counts
 
 
@@ -409,7 +470,33 @@ def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> 
             k.set_num_threads(before)
 
 
+def _run_lanes(k0: int, k1: int, args: tuple, nthreads: int, n_runs: int) -> None:
+    """Steps ``k0 .. k1 - 1`` of every run on the lanes kernel with ``nthreads`` threads (under the entry guard)."""
+    lk = _lanes_kernel()
+    with kernel_entry_guard():
+        before = lk.get_num_threads()
+        lk.set_num_threads(max(1, min(nthreads, before)))
+        try:
+            with lk.parallel_chunksize(1):
+                lk.run_lanes(k0, k1, *args, lane_block(n_runs, nthreads))
+        finally:
+            lk.set_num_threads(before)
+
+
 def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthreads: int) -> None:
+    if _CHOICE["kernel"] == "lanes":
+        lk = _lanes_kernel()
+        lanes = lane_block(n_runs, nthreads)
+        if -(-n_runs // lanes) == 1 and nthreads > 1:      # one block: on this thread (no team to wake)
+            lk.set_num_threads(1)
+            try:
+                lk.run_lanes(*args, lanes)
+            finally:
+                lk.set_num_threads(nthreads)
+            return
+        with lk.parallel_chunksize(1):
+            lk.run_lanes(*args, lanes)
+        return
     if n_runs == 1 and nthreads > 1:
         k.set_num_threads(1)
         try:
