@@ -484,7 +484,7 @@ def _run_lanes(k0: int, k1: int, args: tuple, nthreads: int, n_runs: int) -> Non
 
 
 def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthreads: int) -> None:
-    if _CHOICE["kernel"] == "lanes":
+    if _CHOICE["kernel"] == "lanes" and len(args[14]) <= _lanes_kernel().MAX_LEVELS:
         lk = _lanes_kernel()
         lanes = lane_block(n_runs, nthreads)
         if -(-n_runs // lanes) == 1 and nthreads > 1:      # one block: on this thread (no team to wake)

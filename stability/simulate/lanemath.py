@@ -40,8 +40,8 @@ __all__ = ["sin_cos", "sin", "cos", "atan2_pos", "atan2", "LANE_MATH", "SIN_COS_
 SIN_COS_ULP = 2.0
 #: absolute part of the bound of :func:`sin_cos` (the reduction's pi/2 to 99 bits, times ``|n| <= 2^19``)
 SIN_COS_ABS = 2.0 ** -80
-#: stated bound of :func:`atan2_pos`, ulp (the ratio's division 0.5 ulp, the interval's reduction about 1.5 ulp,
-#: the polynomial 2^-58 and its roundings about 1 ulp)
+#: stated bound of :func:`atan2_pos`, ulp (the reduced argument's one division and one addition 1 ulp, the
+#: polynomial 2^-58 and its roundings about 1 ulp, the final additions 0.5 ulp each)
 ATAN2_ULP = 3.0
 #: largest ``|x|`` (rad) for which the reduction of :func:`sin_cos` keeps its bound: ``n pi/2`` with ``|n| < 2^19``
 REDUCTION_LIMIT = 2.0 ** 19 * math.pi / 2
@@ -127,11 +127,15 @@ def atan2_pos(y, x):
         rad.
     """
     ay = abs(y)
-    big = max(ay, x)
-    a = min(ay, x) / (big if big > 0.0 else 1.0)          # in [0, 1]; 0 when y = x = 0
-    mid = a >= 0.4375
-    top = a >= 0.6875
-    u = (a - 1.0) / (a + 1.0) if top else ((2.0 * a - 1.0) / (2.0 + a) if mid else a)
+    p = min(ay, x)
+    q = max(ay, x)
+    mid = p > 0.4375 * q                                   # a = p/q in [7/16, 11/16): about atan(1/2)
+    top = p > 0.6875 * q                                   # a in [11/16, 1]: about atan(1)
+    # one division (LLVM's vector division is the slow part): u = a, (2a - 1)/(2 + a) or (a - 1)/(a + 1) as
+    # (2p - q)/(2q + p) and (p - q)/(p + q), whose numerators are exact (Sterbenz) in their intervals
+    num = (p - q) if top else ((2.0 * p - q) if mid else p)
+    den = (p + q) if top else ((2.0 * q + p) if mid else (q if q > 0.0 else 1.0))
+    u = num / den
     hi = _PIO4_HI if top else (_ATAN_HALF_HI if mid else 0.0)
     lo = _PIO4_LO if top else (_ATAN_HALF_LO if mid else 0.0)
     z = u * u
