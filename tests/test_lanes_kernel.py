@@ -40,7 +40,7 @@ CASES = {
     "power-fwd stick-slip, 1.2 m/s": (preset("power-fwd"), 1.2, RunSpec(push_force=30.0, push_duration=0.1)),
     "revised thesis, 1.0 m/s": (preset("revised"), 1.0, RunSpec(model="thesis", push_force=20.0, push_duration=0.1)),
     "front-caster, 0.6 m/s": (preset("ej-premier-front-caster"), 0.6, RunSpec(push_force=10.0, push_duration=0.1)),
-    "ej on a 2 deg cross slope, 1 s (it then turns downhill)": (EJ, 0.5, RunSpec(cross_slope_deg=2.0, horizon=1.0,
+    "ej on a 2 deg cross slope, 0.4 s (it then turns downhill)": (EJ, 0.5, RunSpec(cross_slope_deg=2.0, horizon=0.4,
                                                                                 push_force=5.0, push_duration=0.1)),
     "ej toe, camber, rolling resistance": (dataclasses.replace(EJ, toe_deg=0.5, camber_deg=2.0,
                                                                main_rolling_scale=1.0, caster_rolling_scale=1.0),
