@@ -8,8 +8,10 @@ step therefore perturbs the state by at most ``(SIN_COS_ULP + ATAN2_ULP + 2) eps
 each side), and in a run that neither grows (below its critical speed or push) nor crosses a discontinuity of the
 step (a warning count, the rest rule's sign test, a stick condition within rounding of its limit) the perturbations
 add at most linearly: after ``n`` steps a column differs by at most ``n (SIN_COS_ULP + ATAN2_ULP + 2) eps`` times
-its largest magnitude.  That bound is the tolerance (``_bound``); observed differences are 10^3-10^5 smaller (the
-rounding errors do not all add with one sign).  A spinning-out run amplifies any perturbation exponentially, as it
+its largest magnitude.  That bound is the tolerance (``_bound``); observed over 3 s: 1/20 (thesis model) to 1/600
+of it (the rounding errors do not all add with one sign).  On a slope the heading's sine and cosine enter the
+gravity terms, whose size is not the columns' own: the bound does not apply there (observed 0.55 of it after
+0.1 s), and the slope runs are checked by tests/test_simulate_slope.py's invariants instead, on the lanes kernel.  A spinning-out run amplifies any perturbation exponentially, as it
 does a change of compiler; such runs are compared by the quantity they are used for (the critical impulse, below).
 """
 
@@ -40,8 +42,6 @@ CASES = {
     "power-fwd stick-slip, 1.2 m/s": (preset("power-fwd"), 1.2, RunSpec(push_force=30.0, push_duration=0.1)),
     "revised thesis, 1.0 m/s": (preset("revised"), 1.0, RunSpec(model="thesis", push_force=20.0, push_duration=0.1)),
     "front-caster, 0.6 m/s": (preset("ej-premier-front-caster"), 0.6, RunSpec(push_force=10.0, push_duration=0.1)),
-    "ej on a 2 deg cross slope, 0.4 s (it then turns downhill)": (EJ, 0.5, RunSpec(cross_slope_deg=2.0, horizon=0.4,
-                                                                                push_force=5.0, push_duration=0.1)),
     "ej toe, camber, rolling resistance": (dataclasses.replace(EJ, toe_deg=0.5, camber_deg=2.0,
                                                                main_rolling_scale=1.0, caster_rolling_scale=1.0),
                                            0.75, RunSpec(push_force=10.0, push_duration=0.1)),
