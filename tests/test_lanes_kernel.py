@@ -22,7 +22,7 @@ import pytest
 
 from stability.chair import preset
 from stability.settings.run import RunSpec
-from stability.simulate import engine, lanemath, simulate, simulate_batch
+from stability.simulate import engine, kernel_choice, lanemath, simulate, simulate_batch
 
 #: the recorded quantities of a result
 FIELDS = ("x", "y", "heading", "yaw_rate", "u", "v", "eta", "eta_dot", "beta", "beta_dot", "fx", "fy", "normal_load",
@@ -90,7 +90,7 @@ def test_a_run_is_the_same_in_any_block_and_batch(monkeypatch):
     run = RunSpec(horizon=2.0, push_duration=0.1)
     ref = simulate_batch(EJ, speeds, run=run, push_forces=forces, progress=False, record="states")
     for block in (1, 8, 64):
-        monkeypatch.setattr(engine, "lane_block", lambda n, t, b=block: min(b, n))
+        monkeypatch.setattr(kernel_choice, "lane_block", lambda n, t, b=block: min(b, n))
         got = simulate_batch(EJ, speeds, run=run, push_forces=forces, progress=False, record="states")
         for r, g in zip(ref, got, strict=True):
             np.testing.assert_array_equal(r.yaw_rate, g.yaw_rate)

@@ -21,12 +21,17 @@ from stability import tires as _tires
 from stability.chair import Chair
 from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
 from stability.settings.reference import LEVEL
+from stability.simulate import kernel_choice as _kc
 from stability.simulate.controller import SampledController
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, n_steps
 from stability.simulate.packing import Packed, policy_code, slope_slots
 from stability.simulate.results import ChairState, RunStats, SimulationResult
 
-__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite"]
+__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
+           "use_kernel"]
+
+#: the kernel choice (tests, benchmarks): :func:`stability.simulate.kernel_choice.use_kernel`
+use_kernel = _kc.use_kernel
 
 #: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
 RECORDS = ("all", "states", "final")
@@ -73,64 +78,6 @@ def _kernel():
         from stability.simulate import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
 
     return kernel
-
-
-#: The WCHAIR kernels: ``"lanes"`` (:mod:`.lanes_kernel`, runs as SIMD lanes: every WCHAIR run, alone or in a
-#: batch) or ``"scalar"`` (:func:`.kernel.run_batch`, one run per thread: the reference the lanes kernel is tested
-#: and benchmarked against, :func:`use_kernel`)
-KERNELS = ("lanes", "scalar")
-_CHOICE = {"kernel": "lanes"}
-
-
-@contextlib.contextmanager
-def use_kernel(name: str) -> Iterator[None]:
-    """Run the WCHAIR scheme on kernel ``name`` (:data:`KERNELS`) inside the block (process-wide; tests, benchmarks).
-
-    Parameters
-    ----------
-    name : {"lanes", "scalar"}
-        The kernel.
-
-    Yields
-    ------
-    None
-    """
-    if name not in KERNELS:
-        raise ValueError(f"kernel={name!r} is invalid; valid: {', '.join(KERNELS)}")
-    before = _CHOICE["kernel"]
-    _CHOICE["kernel"] = name
-    try:
-        yield
-    finally:
-        _CHOICE["kernel"] = before
-
-
-def _lanes_kernel():
-    with first_use("wchair_load"):
-        from stability.simulate import lanes_kernel
-
-    return lanes_kernel
-
-
-def lane_block(n_runs: int, nthreads: int) -> int:
-    """Runs per block of the lanes kernel: up to :data:`.lanes_kernel.LANES`, at least 8 (one AVX-512 vector of
-    doubles) unless fewer runs, and about four blocks per thread so that runs stopping early do not leave a thread
-    idle.  The numbers do not depend on it.
-
-    Parameters
-    ----------
-    n_runs : int
-        Runs in the call.
-    nthreads : int
-        Kernel threads.
-
-    Returns
-    -------
-    int
-        Block size.
-    """
-    per = -(-n_runs // (4 * max(1, nthreads)))
-    return int(max(1, min(_lanes_kernel().LANES, max(8, per), n_runs)))
 
 
 def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
@@ -386,10 +333,11 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
                 state[going, k.ST_MZ] = np.broadcast_to(np.asarray(mz, dtype=float), going.shape)
             else:
                 state[0, k.ST_MZ] = float(hook(step * dt, ChairState._make([*(float(x) for x in st[0]), 0])))
-            if _CHOICE["kernel"] == "scalar":
+            if _kc.choice() == "scalar":
                 k.run_serial(step, step + 1, *args)
             else:
-                _run_lanes(step, step + 1, args, 1, n_runs)
+                with kernel_entry_guard():
+                    _kc.run_lanes(step, step + 1, args, 1, n_runs)
     return rec, stats, warn, status, counts
 
 
@@ -470,23 +418,10 @@ def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> 
             k.set_num_threads(before)
 
 
-def _run_lanes(k0: int, k1: int, args: tuple, nthreads: int, n_runs: int) -> None:
-    """Steps ``k0 .. k1 - 1`` of every run on the lanes kernel with ``nthreads`` threads (under the entry guard)."""
-    lk = _lanes_kernel()
-    with kernel_entry_guard():
-        before = lk.get_num_threads()
-        lk.set_num_threads(max(1, min(nthreads, before)))
-        try:
-            with lk.parallel_chunksize(1):
-                lk.run_lanes(k0, k1, *args, lane_block(n_runs, nthreads))
-        finally:
-            lk.set_num_threads(before)
-
-
 def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthreads: int) -> None:
-    if _CHOICE["kernel"] == "lanes" and len(args[14]) <= _lanes_kernel().MAX_LEVELS:
-        lk = _lanes_kernel()
-        lanes = lane_block(n_runs, nthreads)
+    if _kc.choice() == "lanes" and len(args[14]) <= _kc.lanes_kernel().MAX_LEVELS:
+        lk = _kc.lanes_kernel()
+        lanes = _kc.lane_block(n_runs, nthreads)
         if -(-n_runs // lanes) == 1 and nthreads > 1:      # one block: on this thread (no team to wake)
             lk.set_num_threads(1)
             try:

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 import types
+from typing import Any
 
 from numba import njit
 
@@ -46,9 +47,8 @@ ATAN2_ULP = 3.0
 #: largest ``|x|`` (rad) for which the reduction of :func:`sin_cos` keeps its bound: ``n pi/2`` with ``|n| < 2^19``
 REDUCTION_LIMIT = 2.0 ** 19 * math.pi / 2
 
-_OPTS = dict(cache=False, nogil=True, forceinline=True, error_model="numpy", no_cpython_wrapper=True,
-             no_cfunc_wrapper=True)
-_lane = njit(**_OPTS)
+_NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
+_lane = njit(cache=False, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 
 # pi/2 in three 33-bit parts (fdlibm e_rem_pio2.c: pio2_1, pio2_2, pio2_3); n * part is exact for |n| < 2^20
 _PIO2_1 = 1.57079632673412561417e+00
@@ -159,7 +159,8 @@ def _lane_math() -> types.ModuleType:
     for name in dir(math):
         if not name.startswith("_"):
             setattr(mod, name, getattr(math, name))
-    mod.sin, mod.cos, mod.atan2 = sin, cos, atan2
+    for name, f in (("sin", sin), ("cos", cos), ("atan2", atan2)):
+        setattr(mod, name, f)
     return mod
 
 
