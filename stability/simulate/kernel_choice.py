@@ -45,14 +45,26 @@ def use_kernel(name: str) -> Iterator[None]:
 
 
 def lanes_kernel() -> Any:
-    """The lanes kernel module, imported (numba, the compiled code) on first use."""
+    """The lanes kernel module, imported (numba, the compiled code) on first use.
+
+    Returns
+    -------
+    module
+        :mod:`stability.simulate.lanes_kernel`.
+    """
     from stability.simulate import lanes_kernel as lk
 
     return lk
 
 
 def choice() -> str:
-    """The kernel in use (:data:`KERNELS`)."""
+    """The kernel in use.
+
+    Returns
+    -------
+    str
+        One of :data:`KERNELS`.
+    """
     return _CHOICE["kernel"]
 
 
@@ -81,6 +93,17 @@ def run_lanes(k0: int, k1: int, args: tuple, nthreads: int, n_runs: int) -> None
     """Steps ``k0 .. k1 - 1`` of every run on the lanes kernel with ``nthreads`` threads.
 
     The caller holds the engine's entry guard (:func:`stability.simulate.engine.kernel_entry_guard`).
+
+    Parameters
+    ----------
+    k0, k1 : int
+        First step and the step after the last.
+    args : tuple
+        The kernel's arrays (:func:`stability.simulate.kernel.run_batch`'s arguments after the steps).
+    nthreads : int
+        Threads (>= 1).
+    n_runs : int
+        Runs in ``args``.
     """
     lk = lanes_kernel()
     before = lk.get_num_threads()

@@ -101,6 +101,12 @@ def _s(W, j):
 
 
 def lane_physics() -> dict:
-    """The lane versions by name (for the tests: each is the scalar kernel's function in the lane namespace)."""
+    """The lane versions by name: each the scalar kernel's function compiled in the lane namespace.
+
+    Returns
+    -------
+    dict
+        Name to numba dispatcher (inlined into the lanes kernel; no Python wrapper).
+    """
     return {"accelerations": l_accelerations, "plane": l_plane, "contact_loads": l_contact_loads,
             "kinematics": l_kinematics, "slip_angles": l_slip_angles, "tire_resultant": l_tire_resultant}
