@@ -181,8 +181,8 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
         tire_forces(W, L, ftimp, imp, policy, seg_c, seg_m, seg_k)
         checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
                znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-        dynam(W, L, model, imp)
-        if locked or sticks:
+        dynam(W, L, model, imp, sticks, locked)
+        if sticks:
             held(W, L, model, locked)
         stops(W, L, lo, k, t, levels, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp)
         if mode == 2:

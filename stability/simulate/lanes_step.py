@@ -82,7 +82,9 @@ MAX_LEVELS = 6
 # the last recorded row of a run that records its final step only (record="final": written when the call ends), whether
 # this step is recorded, whether any step of this call was
 _REC, _RECF, _RECANY = 133, 164, 165
-NROWS = 166
+#: a lane whose held caster breaks away this step (its stick-slip solve is the scalar kernel's, lane by lane)
+_HELD = 166
+NROWS = 167
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
@@ -216,8 +218,8 @@ def checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, 
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def dynam(W, L, model, imp):
-    """DYNAM, vectorised: the resultant and the accelerations under the kinetic pin moments."""
+def _dynam_kinetic(W, L, model, imp):
+    """DYNAM, vectorised: the resultant and the accelerations under the kinetic pin moments (no caster held)."""
     for j in range(L):
         ce, se, cb, sb = W[_TR, j], W[_TR + 1, j], W[_TR + 2, j], W[_TR + 3, j]
         f8 = (W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j],
@@ -236,10 +238,77 @@ def dynam(W, L, model, imp):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def held(W, L, model, locked):
-    """Held casters (locked, or at rest under stick-slip), lane by lane: the scalar kernel's solve."""
+def _dynam_held(W, L, model, imp, sticks, locked):
+    """DYNAM, vectorised: the resultant and the accelerations; held casters (locked, or at rest under stick-slip)
+    solved here too, by :func:`stability.simulate.kernel_equations.held_pins`'s arithmetic on its three evaluations
+    (their points are known before the solve), except a lane whose held caster breaks away: ``W[_HELD]`` 1, left to
+    :func:`held` (the scalar kernel's :func:`~stability.simulate.kernel_equations.stick_slip`)."""
     for j in range(L):
-        if W[_ACT, j] == 0.0 or not (locked or W[_ED, j] == 0.0 or W[_BD, j] == 0.0):
+        ce, se, cb, sb = W[_TR, j], W[_TR + 1, j], W[_TR + 2, j], W[_TR + 3, j]
+        f8 = (W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j],
+              W[_F + 7, j])
+        f1, f2 = l_tire_resultant(*f8, ce, se, cb, sb)
+        fimp = W[_SR + FCIMP, j]
+        fy = fimp if (fimp != 0.0 and imp) else 0.0
+        Pj = _p(W, j)
+        ed, bd = W[_ED, j], W[_BD, j]
+        ma = 0.0 if locked else l_kinetic(ed, Pj[MAF])
+        mb = 0.0 if locked else l_kinetic(bd, Pj[MBF])
+        ha = locked or (sticks and ed == 0.0)
+        hb = locked or (sticks and bd == 0.0)
+        st_ = (W[_UD, j], W[_VD, j], W[_THED, j], ce, se, cb, sb, ed, bd)
+        mz, rdc, g1, g2 = W[_EXT + 1, j], W[_THEDD, j], W[_GRAV, j], W[_GRAV + 1, j]
+        # held_pins' evaluation points: both held (0, 0), (1, 0), (0, 1); one held (0|1, other's moment)
+        p0a, p0b = (0.0 if ha else ma), (0.0 if hb else mb)
+        p1a, p1b = (1.0 if ha else ma), (0.0 if (ha and hb) else (1.0 if hb else mb))
+        p2a, p2b = p0a, (1.0 if (ha and hb) else p0b)
+        a0 = l_accelerations(model, st_, f8, p0a, p0b, fy, mz, rdc, Pj, g1, g2)
+        a1 = l_accelerations(model, st_, f8, p1a, p1b, fy, mz, rdc, Pj, g1, g2)
+        a2 = l_accelerations(model, st_, f8, p2a, p2b, fy, mz, rdc, Pj, g1, g2)
+        # both held
+        k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
+        k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
+        det = k11 * k22 - k12 * k21
+        bma = (-a0[3] * k22 + a0[4] * k12) / det
+        bmb = (-a0[4] * k11 + a0[3] * k21) / det
+        # one held (A, or B)
+        ra = -a0[3] / (a1[3] - a0[3])
+        rb = -a0[4] / (a1[4] - a0[4])
+        both, only_a, only_b = ha and hb, ha and not hb, hb and not ha
+        r = ra if only_a else rb
+        MA = bma if both else (ra if only_a else ma)
+        MB = bmb if both else (rb if only_b else mb)
+        u = a0[0] + bma * (a1[0] - a0[0]) + bmb * (a2[0] - a0[0]) if both else a0[0] + r * (a1[0] - a0[0])
+        v = a0[1] + bma * (a1[1] - a0[1]) + bmb * (a2[1] - a0[1]) if both else a0[1] + r * (a1[1] - a0[1])
+        w = a0[2] + bma * (a1[2] - a0[2]) + bmb * (a2[2] - a0[2]) if both else a0[2] + r * (a1[2] - a0[2])
+        e = 0.0 if (both or only_a) else (a0[3] + r * (a1[3] - a0[3]) if only_b else a0[3])
+        b = 0.0 if (both or only_b) else (a0[4] + r * (a1[4] - a0[4]) if only_a else a0[4])
+        held_any = ha or hb
+        W[_FC, j], W[_FC + 1, j], W[_EXT, j] = f1, f2, fy
+        W[_AC, j] = u if held_any else a0[0]
+        W[_AC + 1, j] = v if held_any else a0[1]
+        W[_AC + 2, j] = w if held_any else a0[2]
+        W[_AC + 3, j] = 0.0 if locked else e
+        W[_AC + 4, j] = 0.0 if locked else b
+        W[_AC + 5, j], W[_AC + 6, j] = MA, MB
+        free = not locked and ((ha and not abs(MA) <= Pj[MAF]) or (hb and not abs(MB) <= Pj[MBF]))
+        W[_HELD, j] = 1.0 if free else 0.0
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def dynam(W, L, model, imp, sticks, locked):
+    """DYNAM, vectorised: the kinetic law's one evaluation of the accelerations, or the holding solve's three."""
+    if sticks or locked:
+        _dynam_held(W, L, model, imp, sticks, locked)
+    else:
+        _dynam_kinetic(W, L, model, imp)
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def held(W, L, model, locked):
+    """A held caster breaking away under stick-slip (``W[_HELD]``), lane by lane: the scalar kernel's solve."""
+    for j in range(L):
+        if W[_ACT, j] == 0.0 or W[_HELD, j] == 0.0:
             continue
         st_ = (W[_UD, j], W[_VD, j], W[_THED, j], W[_TR, j], W[_TR + 1, j], W[_TR + 2, j], W[_TR + 3, j],
                W[_ED, j], W[_BD, j])
