@@ -83,11 +83,13 @@ def test_lanes_equal_the_scalar_kernel_within_the_rounding_bound(case):
                                                           abs=_bound(n, scalar.yaw_rate))
 
 
-def test_a_run_is_the_same_in_any_block_and_batch(monkeypatch):
-    """Bit for bit: alone, at several places of a 70-run batch, with blocks of 1, 8 and 64 lanes."""
+@pytest.mark.parametrize("casters", ["free", "locked"])
+def test_a_run_is_the_same_in_any_block_and_batch(monkeypatch, casters):
+    """Bit for bit: alone, at several places of a 70-run batch, with blocks of 1, 8 and 64 lanes (a block of 1
+    solves its held casters lane by lane, larger ones vectorised: the same arithmetic)."""
     speeds = np.linspace(0.4, 1.3, 70)
     forces = np.where(np.arange(70) % 3 == 0, 30.0, 10.0)
-    run = RunSpec(horizon=2.0, push_duration=0.1)
+    run = RunSpec(horizon=2.0, push_duration=0.1, casters=casters)
     ref = simulate_batch(EJ, speeds, run=run, push_forces=forces, progress=False, record="states")
     for block in (1, 8, 64):
         monkeypatch.setattr(kernel_choice, "lane_block", lambda n, t, b=block: min(b, n))

@@ -296,19 +296,23 @@ def _dynam_held(W, L, model, imp, sticks, locked):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def dynam(W, L, model, imp, sticks, locked):
-    """DYNAM, vectorised: the kinetic law's one evaluation of the accelerations, or the holding solve's three."""
-    if sticks or locked:
+def dynam(W, L, model, imp, sticks, locked, vec_held):
+    """DYNAM, vectorised: the kinetic law's one evaluation of the accelerations, or (``vec_held``) the holding
+    solve's three; without ``vec_held`` (a block too small to vectorise) :func:`held` solves held casters."""
+    if vec_held:
         _dynam_held(W, L, model, imp, sticks, locked)
     else:
         _dynam_kinetic(W, L, model, imp)
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def held(W, L, model, locked):
-    """A held caster breaking away under stick-slip (``W[_HELD]``), lane by lane: the scalar kernel's solve."""
+def held(W, L, model, locked, vec_held):
+    """Held casters lane by lane, the scalar kernel's solve: with ``vec_held`` only a caster breaking away under
+    stick-slip (``W[_HELD]``), else every locked or resting caster (the same arithmetic as the vectorised solve)."""
     for j in range(L):
-        if W[_ACT, j] == 0.0 or W[_HELD, j] == 0.0:
+        if W[_ACT, j] == 0.0:
+            continue
+        if (W[_HELD, j] == 0.0) if vec_held else not (locked or W[_ED, j] == 0.0 or W[_BD, j] == 0.0):
             continue
         st_ = (W[_UD, j], W[_VD, j], W[_THED, j], W[_TR, j], W[_TR + 1, j], W[_TR + 2, j], W[_TR + 3, j],
                W[_ED, j], W[_BD, j])
