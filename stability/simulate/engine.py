@@ -21,12 +21,17 @@ from stability import tires as _tires
 from stability.chair import Chair
 from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
 from stability.settings.reference import LEVEL
+from stability.simulate import kernel_choice as _kc
 from stability.simulate.controller import SampledController
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, n_steps
 from stability.simulate.packing import Packed, policy_code, slope_slots
 from stability.simulate.results import ChairState, RunStats, SimulationResult
 
-__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite"]
+__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
+           "use_kernel"]
+
+#: the kernel choice (tests, benchmarks): :func:`stability.simulate.kernel_choice.use_kernel`
+use_kernel = _kc.use_kernel
 
 #: What a run records: every column, the ten states only, or only the final step (plus :class:`RunStats`).
 RECORDS = ("all", "states", "final")
@@ -328,7 +333,11 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
                 state[going, k.ST_MZ] = np.broadcast_to(np.asarray(mz, dtype=float), going.shape)
             else:
                 state[0, k.ST_MZ] = float(hook(step * dt, ChairState._make([*(float(x) for x in st[0]), 0])))
-            k.run_serial(step, step + 1, *args)
+            if _kc.choice() == "scalar":
+                k.run_serial(step, step + 1, *args)
+            else:
+                with kernel_entry_guard():
+                    _kc.run_lanes(step, step + 1, args, 1, n_runs)
     return rec, stats, warn, status, counts
 
 
@@ -410,6 +419,19 @@ def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> 
 
 
 def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthreads: int) -> None:
+    if _kc.choice() == "lanes" and len(args[14]) <= _kc.lanes_kernel().MAX_LEVELS:
+        lk = _kc.lanes_kernel()
+        lanes = _kc.lane_block(n_runs, nthreads)
+        if -(-n_runs // lanes) == 1 and nthreads > 1:      # one block: on this thread (no team to wake)
+            lk.set_num_threads(1)
+            try:
+                lk.run_lanes(*args, lanes)
+            finally:
+                lk.set_num_threads(nthreads)
+            return
+        with lk.parallel_chunksize(1):
+            lk.run_lanes(*args, lanes)
+        return
     if n_runs == 1 and nthreads > 1:
         k.set_num_threads(1)
         try:

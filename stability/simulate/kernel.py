@@ -144,23 +144,24 @@ def kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd):
 
 @_inl
 def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, TL, lim_c, lim_m, lim_k, RK, rc_c,
-           rc_m, RS, CAM, S):
+           rc_m, RS, CAM, S, col=0):
     """MECHAN: tire forces ``F`` (casters in their frames, main wheels in body axes) and ``(refused, wheel)``.
 
     ``refused``: 0 none, 1 a lateral force refused (policy "raise") at ``wheel``, 2 a camber force refused.
-    ``tire_imp``: FTIMP acts (it then replaces the main wheels' lateral forces).
+    ``tire_imp``: FTIMP acts (it then replaces the main wheels' lateral forces).  ``col``: the run's first column
+    in the segment tables (0; the lanes kernel's block tables, :func:`stability.tires.law.segment_force`).
     """
     vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = vel
     sA, sB, sD, sE = slips
     NA, NB, ND, NE = loads
-    FAy, bad0 = lateral_force(TK[0], seg_c, TL[0], lim_c, sA, NA, policy)
-    FBy, bad1 = lateral_force(TK[0], seg_c, TL[0], lim_c, sB, NB, policy)
+    FAy, bad0 = lateral_force(TK[0], seg_c, TL[0], lim_c, sA, NA, policy, col)
+    FBy, bad1 = lateral_force(TK[0], seg_c, TL[0], lim_c, sB, NB, policy, col)
     if tire_imp:
         FDy, bad2 = ftimp + 0.0 * ND, False
         FEy, bad3 = ftimp + 0.0 * NE, False
     else:
-        FDy, bad2 = lateral_force(TK[1], seg_m, TL[1], lim_m, sD, ND, policy)
-        FEy, bad3 = lateral_force(TK[1], seg_m, TL[1], lim_m, sE, NE, policy)
+        FDy, bad2 = lateral_force(TK[1], seg_m, TL[1], lim_m, sD, ND, policy, col)
+        FEy, bad3 = lateral_force(TK[1], seg_m, TL[1], lim_m, sE, NE, policy, col)
     refused, wheel = 0, 0
     if bad0 or bad1 or bad2 or bad3:
         refused, wheel = 1, (0 if bad0 else (1 if bad1 else (2 if bad2 else 3)))
@@ -171,8 +172,8 @@ def mechan(vel, slips, loads, tire_imp, ftimp, policy, TK, seg_c, seg_m, seg_k, 
     if S[DRIVE_D] != 0.0 or S[DRIVE_E] != 0.0:       # a held drive (the slope linearisation), in the wheel frames
         FDx, FEx = FDx + S[DRIVE_D], FEx + S[DRIVE_E]
     if CAM[0] != 0.0 and refused == 0:
-        cD, badc = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], ND, policy)
-        cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy)
+        cD, badc = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], ND, policy, col)
+        cE, badd = lateral_force(TK[2], seg_k, TL[2], lim_k, CAM[0], NE, policy, col)
         if badc or badd:
             refused, wheel = 2, (2 if badc else 3)
         FDy = FDy + camber_force(CAM[1], cD)

@@ -36,7 +36,8 @@ _inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined i
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
 
 
-def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any) -> types.SimpleNamespace:
+def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any,
+             overrides: dict[str, Any] | None = None) -> types.SimpleNamespace:
     """The functions ``names`` of a plain-Python ``module`` compiled as they are, calling each other compiled.
 
     Each function is copied into one shared namespace (the module's globals)
@@ -53,6 +54,11 @@ def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any) -
         The functions to compile.
     decorator : callable
         numba's ``njit`` with the options of the caller.
+    overrides : dict, optional
+        Further names of the shared namespace (the lanes kernel's: :mod:`math`
+        with its polynomial trigonometry, the lane versions of the functions
+        these call).  A name of ``names`` that is a numba dispatcher is
+        compiled again from its Python function.
 
     Returns
     -------
@@ -60,9 +66,11 @@ def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any) -
         The compiled functions by name.
     """
     ns = dict(vars(module))
+    ns.update(overrides or {})
     out = {}
     for name in names:
         f = getattr(module, name)
+        f = getattr(f, "py_func", f)
         ns[name] = out[name] = decorator(types.FunctionType(f.__code__, ns, name, f.__defaults__, f.__closure__))
     return types.SimpleNamespace(**out)
 

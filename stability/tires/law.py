@@ -45,7 +45,7 @@ def cubic(a, b, c, fz):
     return fz * (a + fz * (b + fz * c))
 
 
-def segment_force(seg, s, fz):
+def segment_force(seg, s, fz, col=0):
     """Magnitude of the cornering force of a tested tire (N): WCHAIR's MECHAN/POLYFT interpolation.
 
     ``F(s) = (s - I) (F_{I+1} - F_I) + F_I`` with ``I = min(floor(s), 7)``:
@@ -62,6 +62,9 @@ def segment_force(seg, s, fz):
         Slip magnitude, deg (already limited as the policy says).
     fz : float
         Normal force, N.
+    col : int
+        Column of segment 0 in ``seg`` (0; the lanes kernel keeps a block of
+        runs' tables side by side, ``8 j`` for run ``j``).
 
     Returns
     -------
@@ -71,11 +74,11 @@ def segment_force(seg, s, fz):
     fzp = max(fz, 0.0) if fz == fz else fz
     i = float(math.floor(s)) if s < 8.0 else 7.0    # min(floor(s), 7); NaN -> 7 (t stays NaN: NaN force)
     t = s - i
-    k = int(i)
+    k = int(i) + col
     return cubic(seg[0, k] + t * seg[3, k], seg[1, k] + t * seg[4, k], seg[2, k] + t * seg[5, k], fzp)
 
 
-def lateral_force(kind, seg, scale, lim, slip, fz, policy):
+def lateral_force(kind, seg, scale, lim, slip, fz, policy, col=0):
     """Cornering force of one tire, N, and whether a ``"raise"`` policy refuses the input.
 
     Parameters
@@ -97,6 +100,8 @@ def lateral_force(kind, seg, scale, lim, slip, fz, policy):
         Outside the fitted range: :data:`CLAMP` evaluates at its edge,
         :data:`EXTRAPOLATE` extends the 7-8 deg segment and the cubic in
         load, :data:`RAISE` flags the input as refused.
+    col : int
+        Column of segment 0 in ``seg`` (:func:`segment_force`).
 
     Returns
     -------
@@ -115,7 +120,7 @@ def lateral_force(kind, seg, scale, lim, slip, fz, policy):
             s = lim[0]
         if f > lim[1]:
             f = lim[1]
-    c = segment_force(seg, s, f) * scale
+    c = segment_force(seg, s, f, col) * scale
     return (-c if slip > 0.0 else c) + 0.0, out and policy == RAISE
 
 

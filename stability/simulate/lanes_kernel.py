@@ -1,0 +1,212 @@
+"""The WCHAIR-scheme kernel with runs as SIMD lanes (numba): a block of runs stepped together, state as [state, run].
+
+The same step as :func:`stability.simulate.kernel.run_one`, for a block of
+runs at once: every per-step quantity is an array over the block's runs, and
+the loops over runs that are plain arithmetic (the caster angles' sine and
+cosine, the contact velocities, the slip angles, the normal loads, the
+resultant, the accelerations under the kinetic pin law, the update) are
+vectorised by LLVM.  What they compute is not written here: they are the
+scalar kernel's own helpers (:mod:`stability.simulate.kernel`) and the
+generated physics (:mod:`stability.models`), compiled again in a namespace
+whose :mod:`math` is :data:`stability.simulate.lanemath.LANE_MATH`
+(polynomial ``sin``, ``cos``, ``atan2`` that LLVM can vectorise; pip's numba
+has no vector libm) and with numpy's error model (a division by zero gives
+inf instead of raising, so the loops have no exits).  The decisions that
+differ from run to run (the range rules and MECHAN's tire tables, the
+stick-slip holding solve, the controller, the summaries and the stop rules)
+run lane by lane through the scalar kernel's functions, unchanged.
+
+So a run's numbers differ from the scalar kernel's only through the
+polynomials' rounding (:mod:`stability.simulate.lanemath`: within 2 ulp for
+sine and cosine, 3 ulp for the slip angle's arctangent); docs/simulator.md
+states the tolerance that follows and ``tests/test_lanes_kernel.py`` checks
+it.  A run's numbers do not depend on the block size, on its place in the
+block or on the other runs (every lane executes the same instructions; LLVM
+does not contract multiplies and adds into FMAs without fast-math, so the
+vector and scalar forms of a loop round alike).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
+
+from stability.simulate.cache_stamp import invalidate_stale_cache
+from stability.simulate.kernel import (
+    EXTERNAL_MZ,
+    MAF,
+    MBF,
+    SETTLE,
+    SLOPE,
+    SLOPE_MODEL,
+    ST_FC1,
+    ST_FC2,
+    ST_MZ,
+    ST_NEXTK,
+    ST_NREC,
+    ST_PREV,
+    ST_THEDD,
+    ST_TPREV,
+    ST_TRACK,
+    STOP_LEVEL,
+)
+from stability.simulate.kernel_equations import _NOWRAP
+from stability.simulate.lanes_physics import _borrowed, lane_physics
+from stability.simulate.lanes_step import (
+    _ACT,
+    _CAM,
+    _CHK,
+    _FC1,
+    _FC2,
+    _LIM,
+    _MZH,
+    _PR,
+    _PREV,
+    _RA,
+    _RB,
+    _RC,
+    _REC,
+    _RECANY,
+    _RK,
+    _RS,
+    _SR,
+    _STT,
+    _THEDD,
+    _TK,
+    _TL,
+    _TPREV,
+    _TRK,
+    _XR,
+    LANES,
+    MAX_LEVELS,
+    NROWS,
+    checks,
+    dynam,
+    final_row,
+    held,
+    slip_statics,
+    stops,
+    tire_forces,
+    update,
+)
+
+__all__ = ["LANES", "MAX_LEVELS", "run_lanes", "lane_physics", "get_num_threads", "set_num_threads",
+           "parallel_chunksize"]
+
+
+#: smallest block whose holding solve is vectorised (three evaluations for every lane); a smaller block (one run)
+#: solves only its held lanes, lane by lane, with the same arithmetic (tested: blocks of 1, 8 and 64 agree bit for bit)
+VEC_HELD_MIN = 4
+
+
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+def _load(W, TSB, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks):
+    """The block's runs into ``W`` (rows) and ``TSB`` (the tire tables side by side)."""
+    for j in range(L):
+        i = lo + j
+        for c in range(18):
+            W[_PR + c, j] = P[i, c]
+        for c in range(10):
+            W[_SR + c, j] = S[i, c]
+            W[_XR + c, j] = state[i, c]
+        W[_THEDD, j], W[_FC1, j], W[_FC2, j] = state[i, ST_THEDD], state[i, ST_FC1], state[i, ST_FC2]
+        W[_PREV, j], W[_TPREV, j], W[_MZH, j] = state[i, ST_PREV], state[i, ST_TPREV], state[i, ST_MZ]
+        next_k[j], nrc[j] = int(state[i, ST_NEXTK]), int(state[i, ST_NREC])
+        W[_ACT, j] = 1.0 if status[i, 0] == 0.0 and status[i, 2] == 0.0 else 0.0
+        W[_RA, j], W[_RB, j] = (P[i, MAF], P[i, MBF]) if sticks else (0.0, 0.0)
+        for c in range(3):
+            W[_TK + c, j], W[_TL + c, j] = TK[i, c], TL[i, c]
+            W[_LIM + 2 * c, j], W[_LIM + 2 * c + 1, j] = LIM[i, c, 0], LIM[i, c, 1]
+            for r in range(6):
+                for q in range(8):
+                    TSB[c, r, 8 * j + q] = TS[i, c, r, q]
+        for c in range(2):
+            W[_RK + c, j], W[_RS + c, j], W[_CAM + c, j] = RK[i, c], RS[i, c], CAM[i, c]
+            W[_RC + 3 * c, j], W[_RC + 3 * c + 1, j], W[_RC + 3 * c + 2, j] = RC[i, c, 0], RC[i, c, 1], RC[i, c, 2]
+        for c in range(4):
+            W[_CHK + c, j] = 1.0 if CHK[i, c] else 0.0
+        for c in range(3 + nlev):
+            W[_STT + (c if c < 2 + nlev else MAX_LEVELS + 2), j] = stats[i, c]
+        for c in range(5):
+            W[_TRK + c, j] = state[i, ST_TRACK + c]
+
+
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+def _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode):
+    """The block's runs back from ``W``: states, summaries, the final row (``record="final"``)."""
+    for j in range(L):
+        i = lo + j
+        for c in range(10):
+            state[i, c] = W[_XR + c, j]
+        state[i, ST_THEDD], state[i, ST_FC1], state[i, ST_FC2] = W[_THEDD, j], W[_FC1, j], W[_FC2, j]
+        state[i, ST_PREV], state[i, ST_TPREV], state[i, ST_MZ] = W[_PREV, j], W[_TPREV, j], W[_MZH, j]
+        state[i, ST_NEXTK], state[i, ST_NREC] = next_k[j], nrc[j]
+        nrec[i] = nrc[j]
+        for c in range(3 + nlev):
+            stats[i, c] = W[_STT + (c if c < 2 + nlev else MAX_LEVELS + 2), j]
+        for c in range(5):
+            state[i, ST_TRACK + c] = W[_TRK + c, j]
+        if mode == 2 and W[_RECANY, j] != 0.0:
+            for c in range(rec.shape[1]):
+                rec[i, c, 0] = W[_REC + c, j]
+
+
+@njit(cache=True, nogil=True, error_model="numpy", **_NOWRAP)
+def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+           noise, state, rec, stats, warn, status, nrec):
+    """Steps ``k0 .. k1 - 1`` of runs ``lo .. hi - 1`` (at most :data:`LANES`) as lanes (see
+    :func:`stability.simulate.kernel.run_one`, whose arithmetic this is)."""
+    L = hi - lo
+    dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
+        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
+        int(cfg[8]), int(cfg[9]))
+    sticks = cfg[6] == 2.0
+    settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
+    ext = cfg[EXTERNAL_MZ] != 0.0
+    use_ctl = ctl_f[0] > 0.0 and not ext
+    half_dt2 = 0.5 * dt * dt
+    maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
+    slope = cfg[SLOPE] != 0.0
+    model = SLOPE_MODEL if slope else model
+    nlev = levels.shape[0]
+    nz = Az.shape[0]
+    znew, y, sv = np.zeros(nz), np.zeros(Cy.shape[0]), np.zeros(10)
+    W = np.zeros((NROWS, LANES))              # constant shape: LLVM sees the rows' distances (no aliasing checks)
+    TSB = np.zeros((3, 6, 8 * LANES))
+    next_k = np.zeros(LANES, dtype=np.int64)
+    nrc = np.zeros(LANES, dtype=np.int64)
+    vec_held = (sticks or locked) and L >= VEC_HELD_MIN
+    _load(W, TSB, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks)
+    seg_c, seg_m, seg_k = _borrowed(TSB[0]), _borrowed(TSB[1]), _borrowed(TSB[2])
+    for k in range(k0, min(k1, n)):
+        if W[_ACT, :L].sum() == 0.0:
+            break
+        t = k * dt
+        imp = t <= duimp * (1.0 + 1e-12) + 1e-15
+        slip_statics(W, L, model, slope, cfg)
+        tire_forces(W, L, ftimp, imp, policy, seg_c, seg_m, seg_k)
+        checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
+               znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        dynam(W, L, model, imp, sticks, locked, vec_held)
+        if sticks or (locked and not vec_held):
+            held(W, L, model, locked, vec_held)
+        stops(W, L, lo, k, t, levels, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp)
+        if mode == 2:
+            final_row(W, L, rec.shape[1] > 10)
+        update(W, L, dt, half_dt2)
+    _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode)
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def run_lanes(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+              noise, state, rec, stats, warn, status, nrec, lanes):
+    """:func:`stability.simulate.kernel.run_batch` with the runs in blocks of ``lanes`` (at most :data:`LANES`)
+    stepped as lanes, one block per thread (``prange``); the same arguments, and the block size."""
+    nb = (P.shape[0] + lanes - 1) // lanes
+    for b in prange(nb):
+        lo = b * lanes
+        _block(lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels,
+               ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+
+
+invalidate_stale_cache(globals(), "lanes_kernel.equations.sha256")
