@@ -176,7 +176,7 @@ def test_cli_set_and_pdf(capsys, tmp_path):
     (["ej-premier", "revised", "--speeds", "0:1:0"], "--speeds"),
     (["ej-premier", "revised", "--json-file", "NODIR/x.json"], "--json-file"),
     (["ej-premier", "revised", "-o", "OUT.pdf", "--json-file", "OUT.pdf"], "same file"),
-    (["ej-premier", "revised", "--pdf", "OUT.png"], "valid: .pdf"),
+    (["ej-premier", "revised", "--pdf", "OUT.jpg"], "valid: .pdf, .png, .svg"),
 ])
 def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, fragment):
     argv = [a.replace("NODIR", str(tmp_path / "missing")).replace("OUT", str(tmp_path / "out")) for a in argv]

@@ -86,10 +86,10 @@ def test_output_suffix_names_the_format_and_unknown_is_refused(tmp_path, capsys)
     cannot write, in one line, before any work, and write nothing."""
     from stability.compare.__main__ import main
 
-    out = tmp_path / "x.png"
+    out = tmp_path / "x.jpg"
     assert main(["ej-premier", "revised", "--pdf", str(out)]) == 2
     err = capsys.readouterr().err.strip()
-    assert err == f"error: -o {str(out)!r} is invalid; the suffix names the format, valid: .pdf"
+    assert err == f"error: -o {str(out)!r} is invalid; the suffix names the format, valid: .pdf, .png, .svg"
     assert not out.exists()
     from stability.simulate.__main__ import main as sim
 
