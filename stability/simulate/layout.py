@@ -150,6 +150,22 @@ def _check_run(layout: Any, speed: Any, run: RunSpec | None) -> tuple[Layout, fl
             raise ValueError(f"speed={speed!r} is invalid; valid range: 0.01 <= |speed| <= 20 m/s (negative: "
                              "reverse)")
         run = run.replace(speed=abs(signed), reverse=signed < 0)
+    check_layout_run(run)
+    return layout, signed, run
+
+
+def check_layout_run(run: RunSpec) -> None:
+    """Refuse run settings the layout simulator does not have (another scheme or model, a slope).
+
+    Parameters
+    ----------
+    run : RunSpec
+
+    Raises
+    ------
+    ValueError
+        Naming the setting, its value and the valid values.
+    """
     for name, ok, valid in (("scheme", run.scheme == "wchair", "'wchair'"), ("model", run.model == "exact", "'exact'")):
         if not ok:
             raise ValueError(f"{name}={getattr(run, name)!r} is invalid for a layout; valid values: {valid} (the "
@@ -157,7 +173,6 @@ def _check_run(layout: Any, speed: Any, run: RunSpec | None) -> tuple[Layout, fl
     if run.on_slope:
         raise ValueError(f"cross_slope_deg={run.cross_slope_deg:g}, grade_deg={run.grade_deg:g} is invalid for a "
                          "layout; valid: level ground (0, 0)")
-    return layout, signed, run
 
 
 def _caster_angles(layout: Layout, run: RunSpec, caster_angles_deg: Sequence[float] | None) -> np.ndarray:

@@ -279,6 +279,35 @@ def check_study_work(chairs: Sequence[Chair], speeds: np.ndarray, model: str, ho
                          "(or fewer or faster speeds)")
 
 
+
+def check_search(run: RunSpec | None, level: float, max_impulse: float, min_impulse: float,
+                 rel_tol: float) -> RunSpec:
+    """The study's run settings (:func:`study_run`) with the search's arguments checked.
+
+    Parameters
+    ----------
+    run : RunSpec or None
+    level, max_impulse, min_impulse, rel_tol : float
+        As :func:`critical_impulses` (1/s, N s, N s, relative).
+
+    Returns
+    -------
+    RunSpec
+
+    Raises
+    ------
+    ValueError
+        A non-positive argument, or ``min_impulse >= max_impulse``, named with its value and the valid range.
+    """
+    run = study_run(run)
+    for name, arg in (("level", level), ("max_impulse", max_impulse), ("min_impulse", min_impulse),
+                      ("rel_tol", rel_tol)):
+        check_positive(name, arg)
+    check_positive("push_duration", run.push_duration)
+    if not min_impulse < max_impulse:
+        raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
+    return run
+
 def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec | None = None, *,
                       level: float = LEVEL, max_impulse: float = 40.0, min_impulse: float = 1e-6,
                       rel_tol: float = 0.005, max_rounds: int = 40) -> list[CriticalImpulse]:
@@ -319,13 +348,7 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec
     list of CriticalImpulse
         ``runs`` counts the simulations of each pair.
     """
-    run = study_run(run)
-    for name, arg in (("level", level), ("max_impulse", max_impulse), ("min_impulse", min_impulse),
-                      ("rel_tol", rel_tol)):
-        check_positive(name, arg)
-    check_positive("push_duration", run.push_duration)
-    if not min_impulse < max_impulse:
-        raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
+    run = check_search(run, level, max_impulse, min_impulse, rel_tol)
     chair_arr = np.atleast_1d(np.asarray(chairs, dtype=object)) if not isinstance(chairs, Chair) else np.array([chairs],
                                                                                                               dtype=object)
     chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))

@@ -26,20 +26,19 @@ import numpy as np
 
 from stability.layout.linear import state_matrices
 from stability.layout.model import Layout
-from stability.runtime.checks import check_positive
 from stability.settings.reference import LEVEL
 from stability.settings.run import RunSpec
-from stability.simulate.layout import simulate_layout
+from stability.simulate.layout import check_layout_run, simulate_layout
 from stability.simulate.signals import time_to_level
 from stability.study.impulse import (
     WORK_BUDGET_S,
     CriticalImpulse,
     CriticalImpulseCurve,
+    check_search,
     outcomes,
     push_impulse,
     runs_per_speed,
 )
-from stability.study.runs import study_run
 from stability.study.search import bracket_search
 from stability.study.summaries import Summaries, run_steps
 
@@ -191,22 +190,10 @@ def layout_critical_impulses(layout: Layout, speeds: Any, run: RunSpec | None = 
     """
     if not isinstance(layout, Layout):
         raise ValueError(f"layout={layout!r} is invalid; expected a stability.layout.Layout")
-    run = study_run(run)
-    for name, arg in (("level", level), ("max_impulse", max_impulse), ("min_impulse", min_impulse),
-                      ("rel_tol", rel_tol)):
-        check_positive(name, arg)
-    check_positive("push_duration", run.push_duration)
-    if not min_impulse < max_impulse:
-        raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
+    run = check_search(run, level, max_impulse, min_impulse, rel_tol)
     if side not in SIDES:
         raise ValueError(f"side={side!r} is invalid; valid values: {', '.join(map(repr, SIDES))}")
-    for name, ok, valid in (("scheme", run.scheme == "wchair", "'wchair'"), ("model", run.model == "exact", "'exact'")):
-        if not ok:
-            raise ValueError(f"{name}={getattr(run, name)!r} is invalid for a layout; valid values: {valid} (the "
-                             "layout's equations are the exact model's, stepped by the fixed-step scheme)")
-    if run.on_slope:
-        raise ValueError(f"cross_slope_deg={run.cross_slope_deg:g}, grade_deg={run.grade_deg:g} is invalid for a "
-                         "layout; valid: level ground (0, 0)")
+    check_layout_run(run)
     u = _signed_speeds(speeds)
     dt = 0.001 if run.dt == "auto" else float(run.dt)
     limits, rates = layout_step_limits_and_growth(layout, u)
