@@ -137,3 +137,20 @@ def test_quick_cli_refuses_what_needs_the_full_report(tmp_path, capsys):
         assert e.value.code == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and "needs the full report" in err
+
+
+def test_the_sheet_says_up_to_which_speed_this_user_holds_the_chair(tmp_path):
+    """--reaction-time (issue 37: the clinician sheet uses U_h): the sheet's USER line is the driver's human-limited
+    speed (stability.driver.human_limit), and a speed of use above it is named."""
+    from stability.chair import preset
+    from stability.driver import Driver, human_limit
+    from stability.report.command import main as report_main
+
+    pdf, txt = tmp_path / "s.pdf", tmp_path / "s.txt"
+    assert report_main(["--clinician", "--reaction-time", "1.5", "--speeds", "0.5,1", "-o", str(pdf),
+                        "--text", str(txt)]) == 0
+    text = " ".join(txt.read_text().split())
+    h = human_limit(preset("ej-premier"), Driver(1.5))
+    assert h.side == "=" and h.speed_m_s < 1.0
+    assert f"up to {h.speed_m_s:.3g} m/s" in text and "1.5 s late" in text
+    assert "at 1.8 km/h, 3.6 km/h this user cannot hold it" in text          # both speeds above 0.291 m/s

@@ -70,9 +70,11 @@ class ClinicianSheet:
     tipping: TipAngles
     responses: Any = None
     validity: tuple = ()
+    driver: Any = None
+    human: Any = None
 
 
-def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact") -> ClinicianSheet:
+def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact", driver: Any = None) -> ClinicianSheet:
     """Compute the clinician sheet of chair ``c`` at the user's ``speeds`` (m/s).
 
     Parameters
@@ -81,18 +83,27 @@ def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact") -> ClinicianS
     speeds : tuple of float
         m/s.
     model : {"exact", "thesis"}
+    driver : stability.driver.Driver, optional
+        The user's reaction time (``--reaction-time`` or the chair file's ``[user]``): the sheet then says up to
+        which speed this user can hold the chair straight (:func:`stability.driver.human_limit`).
 
     Returns
     -------
     ClinicianSheet
     """
+    human = None
+    if driver is not None:
+        from stability.driver import human_limit
+
+        human = human_limit(c, driver, model)
     run = report_run(model, Settings.for_mode(False), "wchair").replace(horizon=DURATION_S)
     crit = study.Criterion(duration=DURATION_S)
     rs = study.yaw_rate_responses(c, list(speeds), run, criterion=crit, progress=False)
     val = responses_validity([c] * len(speeds), list(speeds), run)
     motions = tuple(motion(r, v) for r, v in zip(rs.responses, val, strict=True))
     dbl = tuple(x.time_to_double for x in divergence(c, list(speeds), model, "free"))
-    return ClinicianSheet(c, tuple(speeds), motions, dbl, slope_section(c), tip_angles(c), rs, tuple(val))
+    return ClinicianSheet(c, tuple(speeds), motions, dbl, slope_section(c), tip_angles(c), rs, tuple(val), driver,
+                          human)
 
 
 def _kmh(u: float) -> str:
@@ -144,6 +155,13 @@ def sheet_lines(s: ClinicianSheet) -> dict[str, Any]:
              "(Table 8-2: " + ", ".join(f"{_kmh(u)} " + ("> 6 s" if math.isinf(t) else f"{t:g} s")
                                           for u, t in TABLE_8_2.items()) + ").")
     paras.append(bump)
+    if s.human is not None and s.driver is not None:
+        from stability.driver.text import human_sentence
+
+        over = [u for u in s.speeds if s.human.side != ">" and u > s.human.speed_m_s]
+        paras.append(f"THE USER. {human_sentence(s.human, s.driver)} (reaction time from {s.driver.source}; linear "
+                     "model without pin friction: docs/driver.md)"
+                     + (f"; at {', '.join(_kmh(u) for u in over)} this user cannot hold it." if over else "."))
     if c.caster_position == "rear":
         paras.append("USE. The thesis advises rear-caster chairs primarily indoors, inclines only with another "
                      "person's help, and not above about 2 m/s (7 km/h).")

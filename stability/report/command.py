@@ -9,10 +9,12 @@ from collections.abc import Sequence
 from stability.cli import (
     OneLineErrorParser,
     add_chair_options,
+    add_driver_options,
     add_json_options,
     add_model_option,
     add_output_option,
     check_outputs,
+    driver_from_args,
     emit_json,
     json_header,
     load_chair,
@@ -51,6 +53,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--speeds", default=D.ADVISE_SPEEDS, metavar="SPEEDS",
                    help=f"the user's speeds for --clinician, m/s: START:STOP:STEP or a list, 0.1 to 3 m/s "
                         f"(default {D.ADVISE_SPEEDS}, the advisor's)")
+    add_driver_options(p)
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.add_argument("--text", metavar="FILE", help="also write the text of every page to FILE")
     p.add_argument("--uncertainty", metavar="FILE",
@@ -152,7 +155,7 @@ def _clinician(args: argparse.Namespace, c, outputs: dict) -> int:
     speeds = tuple(float(u) for u in parse_speeds(args.speeds, max_count=12))
     if not speeds or min(speeds) < 0.1 or max(speeds) > 3.0:
         raise ValueError(f"--speeds {args.speeds!r} is invalid; valid range: 0.1 to 3 m/s")
-    sheet = clinician_sheet(c, speeds, args.model)
+    sheet = clinician_sheet(c, speeds, args.model, driver_from_args(args))
     texts: list[str] = []
 
     def figs():
