@@ -169,6 +169,14 @@ def test_the_explorer_keeps_the_measured_user_with_the_chair(tmp_path):
         assert plan["kind"] == "scored" and plan["number"] == k + 1
         ex.tracking.task.record = {"kind": "scored", "lambda_start_1_s": plan["lambda_start_1_s"],
                                    "lambda_c_1_s": 3.9 + 0.1 * k, "duration_s": 10.0, "input_range": 0.8}
+    # what the measured delay means for the chair being edited: the divergence rule's speed (issue 37: the
+    # explorer uses U_h), shown as inert text
+    import html
+
+    from stability.driver.linear import rule_speed
+
+    u, side = rule_speed(ex.state.chair, ex.state.user["reaction_time_s"])
+    assert side == "=" and f"up to {u:.3g} m/s" in html.unescape(ex.tracking.text.object)
     ex.tracking.task.record = {"kind": "<img src=x onerror=alert(1)>"}
     assert "trial refused" in ex.tracking.text.object and "<img" not in ex.tracking.text.object
     assert ex.state.user["reaction_time_s"] == pytest.approx(round(T.escape_factor().mean / 4.0, 4))

@@ -287,9 +287,20 @@ class Explorer:
                 self._start_bands()
             self._show_messages()
 
-    def _measured(self, user: dict | None) -> None:
-        """The Tracking tab's result: the chair's ``[user]`` table (the TOML download carries it)."""
+    def _measured(self, user: dict | None) -> str:
+        """The Tracking tab's result: the chair's ``[user]`` table (the TOML download carries it); returns what it
+        means for the chair being edited (the human-limited speed of :mod:`stability.driver`, as plain text)."""
         self.state.user = user
+        if not user:
+            return ""
+        from stability.driver.linear import rule_speed
+
+        c = self.state.chair
+        u, side = rule_speed(c, float(user["reaction_time_s"]), self.state.model)
+        where = {"=": f"up to {u:.3g} m/s ({3.6 * u:.1f} km/h)", ">": f"at every speed checked, up to {u:g} m/s",
+                 "<": f"not even at {u:g} m/s"}[side]
+        return (f"With this delay, {c.name} can be held straight {where} (the divergence rule: its divergence rate "
+                "reaches 1/tau there; critical_speed --reaction-time gives the delayed loop and the lane limit too).")
 
     def _view(self) -> LinearView:
         assert self.view is not None

@@ -210,7 +210,8 @@ class TrackingTab:
     on_change : callable
         Wraps a widget callback as the page does.
     measured : callable
-        ``measured(user_table or None)``: the page keeps the ``[user]`` table for the chair download.
+        ``measured(user_table or None) -> str``: the page keeps the ``[user]`` table for the chair download and returns
+        what the result means for the chair being edited (plain text, shown under the result).
     """
 
     def __init__(self, on_change: Any, measured: Any) -> None:
@@ -283,7 +284,9 @@ class TrackingTab:
                        f"<code>[user] reaction_time_s = {user['reaction_time_s']:.4f}</code>"
                        + (f"; note: {literal(self.note.value)}" if (self.note.value or '').strip() else "")
                        + "</p>")
-            self.measured(user)
+            meaning = self.measured(user)
+            if meaning:
+                summary += f"<p class='tracking-meaning'>{literal(meaning)}</p>"
         else:
             summary = "<p>No result yet.</p>"
         html = summary + table
