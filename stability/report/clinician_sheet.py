@@ -60,6 +60,10 @@ class ClinicianSheet:
     responses : stability.study.ResponseSet
         The runs behind ``motions``.
     validity : tuple of Validity
+    driver : stability.driver.Driver or None
+        The user's reaction time, when given.
+    human : stability.driver.HumanLimit or None
+        Up to which speed that user holds the chair (None without a driver).
     """
 
     chair: Chair
