@@ -141,7 +141,10 @@ def test_bench_equal_instability_bisection(bench):
     kw = dict(model="exact", scheme="wchair", criterion=DEFAULT_CRITERION, bracket=(0.2, 3.0), tol=0.005,
               candidates=7, max_rounds=8, dt=0.001, progress=False, reference_text="", sim_options={})
     args = (chairs, [t_ref] * 2, [40.0] * 2, 0.1)
-    new = lambda: bisect_speeds(*args, **kw)                        # noqa: E731
+    run = RunSpec(model="exact", scheme="wchair", dt=0.001, push_duration=0.1)
+    new_kw = {k: kw[k] for k in ("criterion", "bracket", "tol", "candidates", "max_rounds", "progress",
+                                 "reference_text")}
+    new = lambda: bisect_speeds(chairs, [t_ref] * 2, [40.0] * 2, run, **new_kw)      # noqa: E731
     old = lambda: bisect_speeds_baseline(*args, **kw)              # noqa: E731
     new()
     t_old, a, t_new, b = _alternate(old, new)
