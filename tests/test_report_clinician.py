@@ -154,3 +154,14 @@ def test_the_sheet_says_up_to_which_speed_this_user_holds_the_chair(tmp_path):
     assert h.side == "=" and h.speed_m_s < 1.0
     assert f"up to {h.speed_m_s:.3g} m/s" in text and "1.5 s late" in text
     assert "at 1.8 km/h, 3.6 km/h this user cannot hold it" in text          # both speeds above 0.291 m/s
+
+
+def test_the_quick_brief_carries_the_user_and_the_full_report_refuses_it(tmp_path, capsys):
+    """--quick's clinician sheet says up to which speed the user holds the chair; the full report does not use
+    --reaction-time yet and says so in one line (exit 2) instead of ignoring it."""
+    from stability.report.command import main as report_main
+
+    assert report_main(["--reaction-time", "0.3", "-o", str(tmp_path / "f.pdf")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--reaction-time is for --clinician and --quick" in err
+    assert not (tmp_path / "f.pdf").exists()

@@ -3,6 +3,8 @@ the references, nothing else computed."""
 
 from __future__ import annotations
 
+from typing import Any
+
 from stability.advise import advise
 from stability.advise.measures import measure_chairs
 from stability.chair import Chair, preset
@@ -14,7 +16,7 @@ from stability.settings.reference import REFERENCE_CHAIR
 __all__ = ["compute_brief"]
 
 
-def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True) -> ReportData:
+def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driver: Any = None) -> ReportData:
     """The quick report's data: the advisor's decision (as in the full report), the thesis's reference chair
     measured the same way, and the clinician sheet at the advisor's use speeds; nothing else is computed, so
     every measure the quick PDF prints has one value.
@@ -24,6 +26,8 @@ def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True) -> R
     c : Chair
     model : {"exact", "thesis"}
     progress : bool
+    driver : stability.driver.Driver, optional
+        The user's reaction time: the clinician sheet says up to which speed this user holds the chair.
 
     Returns
     -------
@@ -35,7 +39,7 @@ def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True) -> R
     advice = advise(c, progress=progress)
     ref_m = None if c == ref_chair else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
                                                       cross_slope_deg=advice.cross_slope_deg)[0]
-    sheet = clinician_sheet(c, tuple(advice.speeds_m_s), model)
+    sheet = clinician_sheet(c, tuple(advice.speeds_m_s), model, driver)
     return ReportData(c, model, s, None, None, {}, [], [], None, None, None, [], sheet.responses, None, None, None,
                       None, [], validity={"responses": sheet.validity}, slope=sheet.slope, tipping=sheet.tipping,
                       advice=advice, reference_measures=ref_m, reference_trail=ref_chair.trail, brief=True,

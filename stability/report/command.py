@@ -115,11 +115,12 @@ def _run(args: argparse.Namespace) -> int:
     if args.speeds != D.ADVISE_SPEEDS:
         raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")
     baseline = None if args.compare is None else load_chair(args.compare, [])
+    driver = _brief_driver(args)
     with output_files(outputs) as tmp:
         res = None
         if args.output:
             res = document.build(c, tmp["-o"], model=args.model, brief=args.quick, progress=not args.no_progress,
-                                 uncertainty=spec, baseline=baseline)
+                                 uncertainty=spec, baseline=baseline, driver=driver)
             data = res.data
         else:
             data = compute(c, args.model, progress=not args.no_progress, uncertainty=spec, baseline=baseline)
@@ -139,6 +140,15 @@ def _run(args: argparse.Namespace) -> int:
     if args.json_file:
         print(f"wrote {args.json_file}", file=sys.stderr)
     return 0
+
+
+def _brief_driver(args: argparse.Namespace):
+    """The user of ``--reaction-time`` (or the chair file's ``[user]``) for ``--quick``'s clinician sheet; the full
+    report refuses the option in one line (it does not use it yet)."""
+    if args.reaction_time is not None and not args.quick:
+        raise ValueError("--reaction-time is for --clinician and --quick (their clinician sheet says up to which "
+                         "speed this user holds the chair); the full report does not use it yet")
+    return driver_from_args(args) if args.quick else None
 
 
 def _clinician(args: argparse.Namespace, c, outputs: dict) -> int:

@@ -7,6 +7,7 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from matplotlib.figure import Figure
 from matplotlib.text import Text
@@ -146,7 +147,7 @@ def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
 def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick: bool = False, progress: bool = True,
           settings: Settings | None = None, data: ReportData | None = None,
           uncertainty: UncertaintySpec | None = None, baseline: Chair | None = None,
-          brief: bool = False) -> ReportResult:
+          brief: bool = False, driver: Any = None) -> ReportResult:
     """Compute and write the report for chair ``c`` to ``path`` (atomically, reproducibly).
 
     Parameters
@@ -170,6 +171,8 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
     brief : bool
         The quick report of ``python -m stability.report --quick``: page 1 (the same decision as the full
         report), the clinician sheet and the references (:func:`~stability.report.brief.compute_brief`).
+    driver : stability.driver.Driver, optional
+        With ``brief``: the user's reaction time for the clinician sheet.
         ``quick`` instead keeps every page and coarsens their grids.
 
     Returns
@@ -188,7 +191,7 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         if uncertainty is not None or baseline is not None:
             raise ValueError("the quick report is page 1, the clinician sheet and the references: drop --quick to "
                              "use --uncertainty or --compare")
-        d = compute_brief(c, model, progress=progress)
+        d = compute_brief(c, model, progress=progress, driver=driver)
     else:
         d = compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty,
                     baseline=baseline)
