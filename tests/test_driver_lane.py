@@ -81,8 +81,12 @@ def test_the_driver_never_exceeds_what_a_hand_has():
     """A weak driver saturates: the largest moment equals the hand-rim limit F r_h / r_w (d1 + d2)."""
     weak = Driver(0.3, hand_force_N=2.0)
     r = lane_run(EJ, 1.5, weak)
-    limit = 2.0 * 0.265 / 0.3 * (EJ.d1 + EJ.d2)          # stability.settings.defaults: hand rim 0.265 m, wheel 0.3 m
-    assert r.moment_limit_N_m == pytest.approx(limit, rel=0.02)
+    from stability.settings import defaults as D
+
+    # eq 6-3: one hand pushes, the other pulls, F r_h / r_w at each wheel's contact, d1 + d2 apart (the radii are
+    # the settings table's inputs); a few roundings of the same product: rel 1e-13 (~100 times 4 ulp)
+    limit = 2.0 * D.HANDRIM_RADIUS / D.HANDRIM_WHEEL_RADIUS * (EJ.d1 + EJ.d2)
+    assert r.moment_limit_N_m == pytest.approx(limit, rel=1e-13)
     assert r.peak_moment_N_m <= r.moment_limit_N_m * (1 + 1e-12)
 
 

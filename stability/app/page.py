@@ -294,11 +294,10 @@ class Explorer:
         if not user:
             return ""
         from stability.driver.linear import rule_speed
+        from stability.driver.text import held_where
 
         c = self.state.chair
-        u, side = rule_speed(c, float(user["reaction_time_s"]), self.state.model)
-        where = {"=": f"up to {u:.3g} m/s ({3.6 * u:.1f} km/h)", ">": f"at every speed checked, up to {u:g} m/s",
-                 "<": f"not even at {u:g} m/s"}[side]
+        where = held_where(*rule_speed(c, float(user["reaction_time_s"]), self.state.model))
         return (f"With this delay, {c.name} can be held straight {where} (the divergence rule: its divergence rate "
                 "reaches 1/tau there; critical_speed --reaction-time gives the delayed loop and the lane limit too).")
 

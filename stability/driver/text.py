@@ -5,7 +5,7 @@ from __future__ import annotations
 from stability.driver.linear import HumanLimit
 from stability.driver.model import Driver
 
-__all__ = ["human_text", "human_sentence"]
+__all__ = ["human_text", "human_sentence", "held_where"]
 
 
 def human_sentence(h: HumanLimit, driver: Driver) -> str:
@@ -21,14 +21,29 @@ def human_sentence(h: HumanLimit, driver: Driver) -> str:
     str
         Without a final full stop; a bound reads "beyond 6 m/s (the fastest speed checked)".
     """
-    u = h.speed_m_s
-    if h.side == ">":
-        where = f"at every speed checked, up to {u:g} m/s ({3.6 * u:.1f} km/h)"
-    elif h.side == "<":
-        where = f"not even at {u:g} m/s, the slowest speed checked"
-    else:
-        where = f"up to {u:.3g} m/s ({3.6 * u:.1f} km/h)"
+    where = held_where(h.speed_m_s, h.side)
     return f"A driver who corrects the heading {driver.reaction_time_s:g} s late can hold this chair straight {where}"
+
+
+def held_where(u: float, side: str) -> str:
+    """Where a chair can be held: ``"up to 1.79 m/s (6.4 km/h)"``, or the bound's words.
+
+    Parameters
+    ----------
+    u : float
+        The limit or the searched range's end, m/s.
+    side : {"=", ">", "<"}
+        Found, above the range (held everywhere checked), below it.
+
+    Returns
+    -------
+    str
+    """
+    if side == ">":
+        return f"at every speed checked, up to {u:g} m/s ({3.6 * u:.1f} km/h)"
+    if side == "<":
+        return f"not even at {u:g} m/s, the slowest speed checked"
+    return f"up to {u:.3g} m/s ({3.6 * u:.1f} km/h)"
 
 
 def human_text(h: HumanLimit, driver: Driver, lane_line: str | None = None) -> str:
