@@ -205,6 +205,7 @@ def test_reverse_casters_start_trailing_for_the_reverse():
     assert math.isclose(push_impulse(1.0, 0.1), 0.101)
 
 
+@pytest.mark.docs  # the directive imports docutils: the [docs] extra, installed in CI's docs step
 def test_the_docs_directive_shows_what_the_command_prints(capsys):
     """docs/layouts.md's numbers come from docs/_ext/stability_command_output.py running the commands it shows:
     its output is the command's own, and a line that is not a command is refused."""
