@@ -40,7 +40,7 @@ from stability.settings.run import RunSpec
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
 from stability.simulate.packing import _rolling_slot, _tire_slot, policy_code, slope_slots
 
-__all__ = ["LayoutRun", "simulate_layout", "ENDINGS"]
+__all__ = ["LayoutRun", "simulate_layout", "ENDINGS", "parameter_vector", "tire_slots", "check_layout_run"]
 
 #: Why a run ends, by the kernel's status code.
 ENDINGS = {0.0: "horizon", 1.0: "slip warnings", 2.0: "load warnings", 3.0: "non-finite"}
@@ -192,7 +192,17 @@ def _caster_angles(layout: Layout, run: RunSpec, caster_angles_deg: Sequence[flo
     return np.radians(a)
 
 
-def _parameters(layout: Layout) -> np.ndarray:
+def parameter_vector(layout: Layout) -> np.ndarray:
+    """The generated nonlinear equations' parameter vector ``p`` of a layout (their ``PARAMETERS`` order, SI).
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    ndarray
+    """
     values = {"m": layout.m, "i_z": layout.i_z}
     for j, w in enumerate(layout.wheels):
         values.update({f"x_w_{j}": w.x, f"y_w_{j}": w.y})
@@ -202,10 +212,21 @@ def _parameters(layout: Layout) -> np.ndarray:
     return np.array([values[n] for n in _gn.PARAMETERS[layout.shape]], dtype=float)
 
 
-def _tire_arrays(layout: Layout) -> tuple[np.ndarray, ...]:
-    """The kernel's tire slots: one per contact (fixed wheels, then casters), then each fixed wheel's camber tire
-    (MECHAN's: the unscaled tire at the camber angle truncated to whole degrees); the rolling slots per contact;
-    per fixed wheel ``(camber deg, side sign x f_c)`` (the thrust points to the side the wheel's top leans)."""
+def tire_slots(layout: Layout) -> tuple[np.ndarray, ...]:
+    """The kernel's tire arrays ``(TK, TS, TL, LIM, CHK, RK, RC, RS, CAM)``.
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    tuple of ndarray
+        The tire slots, one per contact (fixed wheels, then casters), then each fixed wheel's camber tire
+        (MECHAN's: the unscaled tire at the camber angle truncated to whole degrees); the range check per
+        contact; the rolling slots per contact; per fixed wheel ``(camber deg, side sign x f_c)`` (the thrust
+        points to the side the wheel's top leans).
+    """
     specs = [(w.tire, w.lateral_scale, w.rolling_scale) for w in layout.wheels]
     specs += [(c.tire, c.lateral_scale, c.rolling_scale) for c in layout.casters]
     n, nw = len(specs), len(layout.wheels)
@@ -269,7 +290,7 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
                     opts.pin_mode, float(opts.stop_on_warnings), policy_code(opts), SLIP_LIMIT_DEG, LOAD_LIMIT_N,
                     WARNING_LIMIT, shape, layout.m * layout.g, layout.h, rule.mode, *slope_slots(opts), layout.g],
                    dtype=float)
-    TK, TS, TL, LIM, CHK, RK, RC, RS, CAM = _tire_arrays(layout)
+    TK, TS, TL, LIM, CHK, RK, RC, RS, CAM = tire_slots(layout)
     mf = np.array([c.pin_friction for c in layout.casters], dtype=float)
     cpin = np.array([c.pin_damping for c in layout.casters], dtype=float)
     from stability.simulate import layout_kernel as k  # numba loads on first use
@@ -278,7 +299,7 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     rec = np.full((k.NREC + 2 * nc, nrec), np.nan)
     status = np.zeros(2)
     warn = np.zeros((3, 3))
-    m = k.run_layout(cfg, _parameters(layout), nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, rule.stiffness,
+    m = k.run_layout(cfg, parameter_vector(layout), nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, rule.stiffness,
                      rule.line, rule.roll_share, mf, cpin, signed, run.lateral_velocity, delta0, rec, status, warn)
     if status[0] == k.STOPPED_NONFINITE:
         raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "

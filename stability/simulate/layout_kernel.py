@@ -26,6 +26,7 @@ import numpy as np
 from numba import njit
 
 from stability.models.layout import nonlinear as _gn
+from stability.simulate import layout_forces as _lf
 from stability.simulate.cache_stamp import invalidate_stale_cache
 from stability.simulate.kernel_equations import (
     _inl,
@@ -47,6 +48,10 @@ __all__ = ["run_layout", "layout_loads", "STOPPED_SLIP", "STOPPED_LOAD", "STOPPE
 _eq = compiled(_gn, tuple(_gn.__all__), _inl)
 equations = _eq.equations
 contact_velocities = _eq.contact_velocities
+#: MECHAN for any layout (:mod:`.layout_forces`, plain Python that the statics call too), compiled with the
+#: thesis engine's compiled tire law
+_tire_forces = compiled(_lf, ("tire_forces",), _inl, {"lateral_force": lateral_force, "rolling_force": rolling_force,
+                                                      "camber_force": camber_force}).tire_forces
 
 #: ``status[0]``: 0 ran to the horizon, 1 the eleventh slip warning, 2 the eleventh load warning, 3 non-finite
 STOPPED_SLIP, STOPPED_LOAD, STOPPED_NONFINITE = 1.0, 2.0, 3.0
@@ -227,38 +232,6 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
 
 
 @_inl
-def _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy, tire_push, ftimp, cs, sn, fw,
-                 fc):
-    """MECHAN for any layout: the tire forces of the fixed wheels in body axes (lateral, ``ftimp`` instead while
-    ``tire_push``; rolling resistance against the contact's forward velocity; the camber thrust ``CAM[j, 1]``
-    (the side's sign times ``f_c``) times the camber tire's force at ``CAM[j, 0]`` deg, the camber tires in the
-    tire slots after the contacts') and of the casters in their frames (lateral, rolling) written into ``fw``,
-    ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N."""
-    sum_fx = sum_fy = 0.0
-    nt = nw + nc
-    for j in range(nw):
-        if tire_push:
-            fy = ftimp
-        else:
-            fy, _bad = lateral_force(TK[j], TS[j], TL[j], LIM[j], slips[j], loads[j], policy)
-        fx = rolling_force(RK[j], RC[j], RS[j], loads[j], vel[2 * j])
-        if CAM[j, 1] != 0.0:
-            cf, _bad = lateral_force(TK[nt + j], TS[nt + j], TL[nt + j], LIM[nt + j], CAM[j, 0], loads[j], policy)
-            fy += camber_force(CAM[j, 1], cf)
-        fw[2 * j], fw[2 * j + 1] = fx, fy
-        sum_fx += fx
-        sum_fy += fy
-    for kk in range(nc):
-        i = nw + kk
-        fy, _bad = lateral_force(TK[i], TS[i], TL[i], LIM[i], slips[i], loads[i], policy)
-        fx = rolling_force(RK[i], RC[i], RS[i], loads[i], vel[2 * i])
-        fc[2 * kk], fc[2 * kk + 1] = fx, fy
-        sum_fx += fx * cs[kk] - fy * sn[kk]
-        sum_fy += fx * sn[kk] + fy * cs[kk]
-    return sum_fx, sum_fy
-
-
-@_inl
 def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
     """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
     with the viscous part ``-c_pin rate``)."""
@@ -378,4 +351,4 @@ def _note(warn, kind, t, value):
     warn[kind, 0] += 1.0
 
 
-invalidate_stale_cache(globals(), "layout_kernel.equations.sha256", (_gn, sys.modules[__name__]))
+invalidate_stale_cache(globals(), "layout_kernel.equations.sha256", (_gn, _lf, sys.modules[__name__]))
