@@ -101,19 +101,28 @@ def test_the_heading_gain_is_brysons_ratio_and_the_loop_separates(name, speed):
     assert got.real.max() < 0
 
 
-def _command_matches_api(name: str, capsys) -> None:
-    assert main(["--chair", name, "--speeds", "0.5,1.5", "--reverse", "--json"]) == 0
+def _command_matches_api(name: str, speeds: list[float], capsys) -> None:
+    assert main(["--chair", name, "--speeds", ",".join(map(str, speeds)), "--reverse", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert [r["speed_m_s"] for r in d["forward"]] == [0.5, 1.5]
-    assert [r["speed_m_s"] for r in d["reverse"]] == [-0.5, -1.5]
-    direct = layout_assist(layout_preset(name), [0.5, 1.5], reverse=True)
+    assert [r["speed_m_s"] for r in d["forward"]] == speeds
+    assert [r["speed_m_s"] for r in d["reverse"]] == [-u for u in speeds]
+    direct = layout_assist(layout_preset(name), speeds, reverse=True)
     assert direct.forward_top is not None
     assert d["forward_top_speed"]["safe_top_speed_m_s"] == direct.forward_top.safe_top_speed_m_s
     assert d["reverse"][0]["wheel_torque_gains"]["r"] == direct.reverse[0].wheel_torque_gains["r"]
 
 
 def test_the_assist_command_answers_a_layout_and_reverse(capsys):
-    _command_matches_api("mid-wheel-drive", capsys)
+    """The command's gains are the design's: the heading gain per wheel is Bryson's ratio (1e-9 as above)."""
+    assert main(["--chair", "mid-wheel-drive", "--speeds", "1", "--reverse", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    drive = DriveTrain()
+    per_wheel = (DEFAULT_WEIGHTS.budget(drive) / math.radians(DEFAULT_WEIGHTS.max_heading_error_deg))
+    for rows in (d["forward"], d["reverse"]):
+        assert rows[0]["wheel_torque_gains"]["psi"] == pytest.approx(per_wheel, rel=1e-9)
+        assert rows[0]["closed_loop_growth_rate_1_s"] < 0
+    assert [r["speed_m_s"] for r in d["reverse"]] == [-1.0]
+    assert d["forward_top_speed"]["constraints_checked"] == ["gain_margin", "phase_margin", "delay_margin"]
     assert main(["--chair", "power-fwd", "--speeds=-1", "--design", "full-state"]) == 0
     out = capsys.readouterr().out
     assert "power-fwd: motor assist (full-state design)" in out and "reverse: safe top speed" in out
@@ -122,7 +131,7 @@ def test_the_assist_command_answers_a_layout_and_reverse(capsys):
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["power-fwd-base", "power-rwd-base"])
 def test_the_assist_command_answers_every_drive_layout(name, capsys):
-    _command_matches_api(name, capsys)
+    _command_matches_api(name, [0.5, 1.5], capsys)
 
 
 @pytest.mark.parametrize("argv,words", [
