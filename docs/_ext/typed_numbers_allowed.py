@@ -546,6 +546,12 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('casters at 0 deg flip through 180 deg together', 'parameter'),
         ('most. So the model agrees that 90 deg is', 'parameter'),
         ('ISO 7176-2/-3 matrix,', 'cited'),
+        ('the casters across the path (90 deg either way) turn either chair: 0 and 180 deg are', 'parameter'),
+        ('agrees with Guo et al. that 90 deg is the', 'parameter'),
+        ('best start is 180 deg (trailing', 'parameter'),
+        ("its tire's Appendix B data; 0 by default,", 'parameter'),
+        ('with the casters trailing at 180 deg); the', 'parameter'),
+        ('rules (6 dB, 30 deg).', 'parameter'),
     ],
     'docs/measure.md': [
         ('fixture_inertia)` | I = K_t T^2/(4 pi^2) -', 'pending'),
