@@ -423,9 +423,10 @@ def layout_slope_report(layout: Layout, cross_slope_deg: float, speed: float, gr
     lines.append(f"  crab {eq.heading_deg:+.3f} deg, casters " + " / ".join(f"{a:+.3f}" for a in eq.caster_angles_deg)
                  + " deg; loads " + ", ".join(f"{x:.1f}" for x in eq.loads_N) + " N (fixed wheels, then casters)")
     if kind == "handrim":
+        diff = drive_q["handrim_force_difference_N"]
         lines.append(f"  hand-rim forces left {drive_q['handrim_force_left_N']:.2f} N, right "
-                     f"{drive_q['handrim_force_right_N']:.2f} N (right - left {drive_q['handrim_force_difference_N']:+.2f}"
-                     f" N: the {drive_q['harder_side']} rim works harder)")
+                     f"{drive_q['handrim_force_right_N']:.2f} N (right - left {diff:+.2f} N: the "
+                     f"{drive_q['harder_side']} rim works harder)")
     else:
         lines.append(f"  motor torques left {drive_q['motor_torque_left_N_m']:.2f}, right "
                      f"{drive_q['motor_torque_right_N_m']:.2f} N m (differential (left - right)/2 "
