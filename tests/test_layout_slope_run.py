@@ -114,3 +114,18 @@ def test_a_fixed_wheel_on_the_centre_line_has_no_camber():
         FixedWheel(0.0, 0.0, camber_deg=2.0)
     with pytest.raises(ValueError, match="rolling_scale=-1.0 is invalid"):
         FixedWheel(0.0, 0.2, rolling_scale=-1.0)
+
+
+def test_the_simulate_command_runs_a_layout_on_a_slope(capsys):
+    import json
+
+    from stability.simulate.__main__ import main
+
+    assert main(["--chair", "mid-wheel-drive", "--cross-slope", "2", "--grade", "-1", "--horizon", "1",
+                 "--push-force", "0", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    direct = simulate_layout(layout_preset("mid-wheel-drive"), 0.75,
+                             RunSpec(horizon=1.0, push_force=0.0, cross_slope_deg=2.0, grade_deg=-1.0))
+    assert d["final_heading_deg"] == direct.final_heading_deg and d["settings"]["cross_slope_deg"] == 2.0
+    assert main(["--chair", "mid-wheel-drive", "--cross-slope", "2", "--horizon", "1"]) == 0
+    assert "on a cross slope of 2 deg and a grade of 0 deg" in capsys.readouterr().out

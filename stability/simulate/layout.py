@@ -116,8 +116,10 @@ class LayoutRun:
                "beyond its data: give --no-stop-on-warnings to run on with the fits clamped)",
                "load warnings": "stopped at the eleventh load warning (a tire beyond its data)"}.get(self.ended,
                                                                                                   self.ended)
+        cross, grade = self.settings.get("cross_slope_deg", 0.0), self.settings.get("grade_deg", 0.0)
+        plane = f" on a cross slope of {cross:g} deg and a grade of {grade:g} deg" if cross or grade else ""
         return "\n".join([
-            f"{self.layout}: {abs(self.speed_m_s):g} m/s {direction}, casters starting at {start} deg "
+            f"{self.layout}: {abs(self.speed_m_s):g} m/s {direction}{plane}, casters starting at {start} deg "
             "(0: trailing for forward driving, 180: for reversing); layout model, wchair scheme",
             f"  {why} at t = {self.end_time_s:.3f} s",
             f"  heading {self.final_heading_deg:+.2f} deg (peak |heading| {np.abs(self.heading_deg).max():.2f} deg), "
