@@ -47,6 +47,26 @@ def test_the_thesis_chair_as_a_layout_holds_the_line_as_the_short_form(phi, grad
     np.testing.assert_allclose(lay.drive_forces_N, short.drive_forces, rtol=0, atol=1e-8)
 
 
+@pytest.mark.parametrize("pin_friction", [True, False])
+def test_the_thesis_chair_as_a_layout_turns_as_the_short_form_when_let_go(pin_friction):
+    """The uncorrected path from the held line: the layout simulator against the thesis engine's fixed-step run
+    (:func:`stability.study.veer.simulator_path`, the same release, plane and cut rules): the same arithmetic up
+    to the order of sums, observed 1e-14 deg; asserted 1e-9 deg, 1e-9 deg/s and 1e-12 m, the same end."""
+    from stability.study.layout_slope import layout_uncorrected_path
+    from stability.study.veer import VEER_RUN, simulator_path
+
+    c = preset("ej-premier")
+    short = simulator_path(c, solve(c, 2.0, 0.75), VEER_RUN.replace(scheme="wchair", horizon=1.0),
+                           pin_friction=pin_friction, report_time=1.0)
+    lay = Layout.from_chair(c)
+    mine = layout_uncorrected_path(lay, layout_equilibrium(lay, 2.0, 0.75), 1.0, pin_friction=pin_friction)
+    assert abs(short.heading_change_deg) > 5.0 and mine.turn == short.turn == "uphill"
+    assert mine.ended == short.ended and mine.report_time_s == short.report_time
+    assert mine.heading_change_deg == pytest.approx(short.heading_change_deg, abs=1e-9)
+    assert mine.yaw_rate_deg_s == pytest.approx(short.yaw_rate_deg_s, abs=1e-9)
+    assert mine.lateral_offset_m == pytest.approx(short.lateral_offset, abs=1e-12)
+
+
 def _closed_form(layout: Layout, phi_deg: float, reverse: bool) -> float:
     """Holding moment with the casters straight (trailing at 0, or at 180 deg in reverse) and no crab, one drive
     axle at ``x_w``: each caster's tire carries ``F_k = -(l/trail) m_c g2`` (its pin moment balance), the axle
