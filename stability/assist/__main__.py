@@ -203,6 +203,9 @@ def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, 
         if given:
             raise ValueError(f"{flag} is not available for a layout or reverse speeds yet; valid: the design, weight, "
                              "drive and gyro options, --reverse, --json, --json-file")
+    if np.any(np.abs(speeds) > 20.0):
+        raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
+                         "0.01 <= |U| <= 20 m/s (negative: reverse)")
     if is_layout_spec(args.chair):
         if args.set:
             raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
