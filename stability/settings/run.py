@@ -34,7 +34,9 @@ Examples
 >>> RunSpec(speed=25.0)
 Traceback (most recent call last):
 ...
-ValueError: speed=25.0 is invalid; valid range: 0.01 <= speed <= 20 m/s
+ValueError: speed=25.0 is invalid; valid range: 0.01 <= |speed| <= 20 m/s (negative: reverse)
+>>> RunSpec(speed=-0.5).speed, RunSpec(speed=-0.5).reverse
+(0.5, True)
 """
 
 from __future__ import annotations

@@ -188,8 +188,6 @@ def _body(a: argparse.Namespace) -> int:
     check_outputs({"--json-file": a.json_file, "-o": a.output}, {"--chair": a.chair})
     if not 0 < a.sim_time <= 10.0:
         raise ValueError(f"--sim-time {a.sim_time!r} is invalid; valid range: 0 < T <= 10 s")
-    if abs(a.speed) < 0.01:
-        raise ValueError(f"--speed {a.speed!r} is invalid; valid range: 0.01 <= |U| <= 20 m/s (negative: reverse)")
     if is_layout_spec(a.chair) or a.speed < 0:
         return _run_layout(a)
     chair = load_chair(a.chair, a.set)
