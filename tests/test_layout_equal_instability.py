@@ -20,12 +20,12 @@ from stability.settings.reference import REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.study.__main__ import main
 from stability.study.equal_instability import equal_instability_speed
+from stability.study.intervals import equal_instability_interval
 from stability.study.layout_equal_instability import (
     layout_equal_instability,
     layout_equal_instability_interval,
     scale_layout_friction,
 )
-from stability.study.intervals import equal_instability_interval
 
 #: The searches' rounding: runs equal to ~1e-15 rad (tests/test_layout_simulate.py) make the same decisions, so
 #: the speeds agree to a few ulps (observed 4e-16 m/s); 1e-12 relative leaves a factor of more than 100.
