@@ -24,6 +24,7 @@ the speed a driver can hold (the driver's linear model is the short form's).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Sequence
 
@@ -36,7 +37,7 @@ from stability.layout.statics import tip_angles
 from stability.runtime.progress import ProgressBar
 from stability.settings.reference import THESIS_PUSH
 from stability.settings.run import RunSpec
-from stability.shimmy.band import ShimmyBand, shimmy_band
+from stability.shimmy.band import ShimmyBand, band_core, shimmy_band
 from stability.shimmy.layout_caster import LayoutCaster
 from stability.simulate.options import WCHAIR_DT
 from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS
@@ -71,7 +72,16 @@ def direction_of(speeds: Sequence[float]) -> bool:
     return bool(neg) and all(neg)
 
 
-def layout_shimmy_rows(layout: Layout, speeds: Sequence[float]) -> list[tuple[str, float, ShimmyBand]]:
+def _core_key(layout: Layout, row: list[int]) -> tuple:
+    """What a row's band core depends on: the layout with that row's trail and pin friction set aside (the band
+    search scans the row's trail, the loads following, and ignores the Coulomb pin friction)."""
+    casters = tuple(dataclasses.replace(c, trail=0.05, pin_friction=0.0) if k in row else c
+                    for k, c in enumerate(layout.casters))
+    return dataclasses.replace(layout, name="-", casters=casters), row[0]
+
+
+def layout_shimmy_rows(layout: Layout, speeds: Sequence[float],
+                       cores: dict | None = None) -> list[tuple[str, float, ShimmyBand]]:
     """Each caster row's shimmy band at the use speeds: ``(row name, trail m, ShimmyBand)``, front first.
 
     Parameters
@@ -79,21 +89,31 @@ def layout_shimmy_rows(layout: Layout, speeds: Sequence[float]) -> list[tuple[st
     layout : Layout
     speeds : sequence of float
         m/s (their magnitudes: in reverse a caster swings round and trails the other way, the same towed wheel).
+    cores : dict, optional
+        Band cores to share between calls (:func:`stability.shimmy.band.band_core`), keyed by what they depend on.
 
     Returns
     -------
     list of tuple
     """
     u = [abs(float(s)) for s in speeds]
-    return [(row_name(layout, row), layout.casters[row[0]].trail, shimmy_band(LayoutCaster(layout, row[0]), u))
-            for row in caster_rows(layout)]
+    cores = {} if cores is None else cores
+    out = []
+    for row in caster_rows(layout):
+        key = (_core_key(layout, row), tuple(u))
+        if key not in cores:
+            cores[key] = band_core(LayoutCaster(key[0][0], row[0]), u)
+        out.append((row_name(layout, row), layout.casters[row[0]].trail,
+                    shimmy_band(LayoutCaster(layout, row[0]), u, core=cores[key])))
+    return out
 
 
 def _finite_or_none(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]) -> list[Linear]:
+def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float],
+                           cores: dict | None = None) -> list[Linear]:
     """The measures that need no simulation, for every layout (the constraints of the advisor).
 
     Parameters
@@ -102,6 +122,8 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
     speeds : sequence of float
         Use speeds, m/s (negative: reverse; the growth rate is taken at :data:`~.measures.IMPULSE_SPEED` in the
         direction of travel).
+    cores : dict, optional
+        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
 
     Returns
     -------
@@ -113,7 +135,7 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
         tips = tip_angles(lay)
         angles = {k.removesuffix("_deg"): float(v) for k, v in tips.items()}
         smallest = min(angles.values())
-        rows = layout_shimmy_rows(lay, speeds)
+        rows = layout_shimmy_rows(lay, speeds, cores)
         if rows:
             name, trail, band = min(rows, key=lambda r: r[2].shimmy_margin_m)
             low, high = band.shimmy_margin_interval_m
@@ -171,7 +193,7 @@ def layout_nonlinear_measures(layouts: Sequence[Layout], reverse: bool = False
 
 
 def measure_layouts(layouts: Sequence[Layout], *, speeds: Sequence[float], progress: bool = False,
-                    nonlinear: Callable | None = None) -> list[Measures]:
+                    nonlinear: Callable | None = None, cores: dict | None = None) -> list[Measures]:
     """The advisor's measures of every layout (:func:`.measures.measure_chairs` for layouts).
 
     Parameters
@@ -182,6 +204,8 @@ def measure_layouts(layouts: Sequence[Layout], *, speeds: Sequence[float], progr
     progress : bool
     nonlinear : callable, optional
         Replaces :func:`layout_nonlinear_measures` (``nonlinear(layouts)``); for tests of everything else.
+    cores : dict, optional
+        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
 
     Returns
     -------
@@ -193,8 +217,8 @@ def measure_layouts(layouts: Sequence[Layout], *, speeds: Sequence[float], progr
         nl = nonlinear(layouts) if nonlinear is not None else layout_nonlinear_measures(layouts, reverse)
         bar.update()
         out = []
-        for lay, lin, (imp, eq, status, *more) in zip(layouts, layout_linear_measures(layouts, speeds=speeds), nl,
-                                                      strict=True):
+        lins = layout_linear_measures(layouts, speeds=speeds, cores=cores)
+        for lay, lin, (imp, eq, status, *more) in zip(layouts, lins, nl, strict=True):
             out.append(Measures(
                 chair=lay.name, critical_impulse_Ns=imp, equal_instability_speed_m_s=eq,
                 static_stability_deg=lin.static_stability_deg, shimmy_margin_m=lin.shimmy_margin_m,

@@ -125,7 +125,7 @@ def measure_chairs(subjects: Sequence, *, speeds: Sequence[float], cross_slope_d
     subjects = list(subjects)
     if _all_layouts(subjects):
         _layout_options(cross_slope_deg, reaction_time)
-        return measure_layouts(subjects, speeds=speeds, progress=progress, nonlinear=nonlinear)
+        return measure_layouts(subjects, speeds=speeds, progress=progress, nonlinear=nonlinear, cores=cores)
     return chair_measures(subjects, speeds=speeds, cross_slope_deg=cross_slope_deg, progress=progress,
                           nonlinear=nonlinear, cores=cores, reaction_time=reaction_time)
 
@@ -147,7 +147,7 @@ def linear_measures(subjects: Sequence, *, speeds: Sequence[float], cross_slope_
     subjects = list(subjects)
     if subjects and _all_layouts(subjects):
         _layout_options(cross_slope_deg, reaction_time)
-        return layout_linear_measures(subjects, speeds=speeds)
+        return layout_linear_measures(subjects, speeds=speeds, cores=cores)
     return chair_linear_measures(subjects, speeds=speeds, cross_slope_deg=cross_slope_deg, cores=cores,
                                  reaction_time=reaction_time)
 
