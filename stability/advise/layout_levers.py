@@ -1,7 +1,7 @@
 """The design levers of a wheel layout: caster trail per caster row, drive-wheel position, suspension.
 
 A layout (:class:`stability.layout.Layout`) has no ``--set`` fields; a change names the wheels it moves
-(``caster_1.trail``, ``wheel_2.x``, 1-based as the shimmy command names the casters) and their new values, which is
+(``caster_1_trail``, ``wheel_2_x``, 1-based as the shimmy command names the casters) and their new values, which is
 what to write into the layout's ``[[wheel]]`` file.  The levers:
 
 ``trail_<row>``
@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import re
 from collections.abc import Callable
 
 from stability.advise.levers import Change
@@ -97,7 +98,7 @@ def _trail(layout: Layout, row: list[int]) -> list[Change]:
         t = _r(t0 + d)
         if t > 0:
             out.append(Change(f"trail_{name}", f"{name} caster trail {t0 * 100:g} -> {t * 100:g} cm",
-                              tuple((f"caster_{k + 1}.trail", t) for k in row)))
+                              tuple((f"caster_{k + 1}_trail", t) for k in row)))
     return out
 
 
@@ -107,7 +108,7 @@ def _drive(layout: Layout) -> list[Change]:
     x0 = layout.wheels[idx[0]].x
     return [Change("drive_position", f"{what} {abs(d) * 100:g} cm {'forward' if d > 0 else 'back'} (x "
                    f"{x0 * 100:+.1f} -> {(x0 + d) * 100:+.1f} cm from the c.g.)",
-                   tuple((f"wheel_{j + 1}.x", _r(layout.wheels[j].x + d)) for j in idx)) for d in DRIVE_STEPS_M]
+                   tuple((f"wheel_{j + 1}_x", _r(layout.wheels[j].x + d)) for j in idx)) for d in DRIVE_STEPS_M]
 
 
 def _suspension(layout: Layout, row: list[int]) -> list[Change]:
@@ -119,7 +120,7 @@ def _suspension(layout: Layout, row: list[int]) -> list[Change]:
     share0 = sum(loads[nw + k] for k in row) / layout.m / layout.g
     out = []
     for f in STIFFNESS_FACTORS:
-        fields = tuple((f"caster_{k + 1}.vertical_stiffness", _r(layout.casters[k].vertical_stiffness * f))
+        fields = tuple((f"caster_{k + 1}_vertical_stiffness", _r(layout.casters[k].vertical_stiffness * f))
                        for k in row)
         try:
             changed = apply_layout(layout, fields)
@@ -163,7 +164,7 @@ def apply_layout(layout: Layout, fields) -> Layout:
     ----------
     layout : Layout
     fields : iterable of (str, float)
-        ``("caster_K.NAME", value)`` or ``("wheel_J.NAME", value)``, K and J from 1.
+        ``("caster_K_NAME", value)`` or ``("wheel_J_NAME", value)``, K and J from 1 (``caster_1_trail``).
 
     Returns
     -------
@@ -176,13 +177,12 @@ def apply_layout(layout: Layout, fields) -> Layout:
     """
     wheels, casters = list(layout.wheels), list(layout.casters)
     for key, value in fields:
-        kind, _, name = str(key).partition(".")
-        group, _, num = kind.partition("_")
-        seq = {"caster": casters, "wheel": wheels}.get(group)
-        if seq is None or not num.isdigit() or not 1 <= int(num) <= len(seq):
-            raise ValueError(f"{key}={value!r} is invalid; valid: caster_K.FIELD (K 1-{len(casters)}) or "
-                             f"wheel_J.FIELD (J 1-{len(wheels)})")
-        i = int(num) - 1
+        hit = re.fullmatch(r"(caster|wheel)_(\d+)_(\w+)", str(key))
+        seq = {"caster": casters, "wheel": wheels}.get(hit.group(1)) if hit else None
+        if hit is None or seq is None or not 1 <= int(hit.group(2)) <= len(seq):
+            raise ValueError(f"{key}={value!r} is invalid; valid: caster_K_FIELD (K 1-{len(casters)}) or "
+                             f"wheel_J_FIELD (J 1-{len(wheels)})")
+        group, i, name = hit.group(1), int(hit.group(2)) - 1, hit.group(3)
         if name not in {f.name for f in dataclasses.fields(seq[i])}:
             raise ValueError(f"{key}={value!r} is invalid; {name!r} is not a field of a {group}")
         seq[i] = dataclasses.replace(seq[i], **{name: value})
