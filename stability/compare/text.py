@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
 from stability.chair import to_mapping
 from stability.compare.compute import Comparison, Difference, Quantity
+from stability.compare.layouts import LAYOUT_NOTE
+from stability.layout.model import Layout
 from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["format_comparison", "comparison_dict"]
@@ -65,6 +68,13 @@ def format_comparison(c: Comparison) -> str:
     ref = c.labels[0]
     lines = [f"Comparison of {', '.join(c.labels)} ({c.model} linear model; reference: {ref})", ""]
     for i, (label, ch) in enumerate(zip(c.labels, c.chairs, strict=True)):
+        if isinstance(ch, Layout):
+            nf, nc = ch.shape
+            lines.append(f"  [{i + 1}] {label}: layout of {nf} fixed wheels ({sum(w.driven for w in ch.wheels)} "
+                         f"driven, x = {', '.join(f'{w.x:+.3g}' for w in ch.wheels)} m) and {nc} casters (pins "
+                         f"x = {', '.join(f'{k.x:+.3g}' for k in ch.casters)} m), m = {ch.m:g} kg, I_z = {ch.i_z:g} "
+                         "kg m^2")
+            continue
         lines.append(f"  [{i + 1}] {label}: casters {ch.caster_position}, s1 = {ch.s1:g} m, s2 = {ch.s2:g} m, "
                      f"trail = {ch.trail:g} m, m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
     width = max(len(q.label) for q in c.quantities) + 2
@@ -91,6 +101,13 @@ def format_comparison(c: Comparison) -> str:
     if c.uncertainty:
         lines.append(f"  (differences drawn with {c.uncertainty['pairing']} draws, {c.uncertainty['samples']} "
                      f"samples, seed {c.uncertainty['seed']}; overlapping chair intervals alone do not decide)")
+    if any(isinstance(ch, Layout) for ch in c.chairs):
+        lines += ["", LAYOUT_NOTE]
+        if c.push:
+            lines += ["", f"Critical impulse: push convention {c.push}."]
+        lines += ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
+                  "critical impulse (--nonlinear) includes it: see docs/compare.md."]
+        return "\n".join(lines)
     lines += ["", f"Why: each differing parameter applied alone to {ref}, largest effect first (change of the "
               f"growth rate at {REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s; 0: below "
               "the eigenvalue solver's resolution):"]
@@ -164,7 +181,8 @@ def comparison_dict(c: Comparison, header: dict[str, Any]) -> dict[str, Any]:
         ``single_effects``, ``uncertainty``, ``push``.  No value is ever part of a key.
     """
     out = {k: v for k, v in header.items() if k not in ("chair", "chair_parameters")}
-    out["chairs"] = [{"label": lab, "name": ch.name, "parameters": to_mapping(ch)}
+    out["chairs"] = [{"label": lab, "name": ch.name,
+                      "parameters": dataclasses.asdict(ch) if isinstance(ch, Layout) else to_mapping(ch)}
                      for lab, ch in zip(c.labels, c.chairs, strict=True)]
     out["reference"] = c.labels[0]
     out["speeds_m_s"] = list(c.speeds)
