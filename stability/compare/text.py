@@ -54,6 +54,26 @@ def _verdict(d: Difference, q: Quantity) -> str:
     return text
 
 
+def _describe(ch) -> str:
+    """A chair's or a layout's geometry in one line."""
+    if isinstance(ch, Layout):
+        nf, nc = ch.shape
+        return (f"layout of {nf} fixed wheels ({sum(w.driven for w in ch.wheels)} driven, x = "
+                f"{', '.join(f'{w.x:+.3g}' for w in ch.wheels)} m) and {nc} casters (pins x = "
+                f"{', '.join(f'{k.x:+.3g}' for k in ch.casters)} m), m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
+    return (f"casters {ch.caster_position}, s1 = {ch.s1:g} m, s2 = {ch.s2:g} m, trail = {ch.trail:g} m, "
+            f"m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
+
+
+def _layout_tail(c: Comparison) -> list[str]:
+    """The end of a comparison of layouts: what does not apply, the push, the linear model's limit."""
+    out = ["", LAYOUT_NOTE]
+    if c.push:
+        out += ["", f"Critical impulse: push convention {c.push}."]
+    return out + ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
+                  "critical impulse (--nonlinear) includes it: see docs/compare.md."]
+
+
 def format_comparison(c: Comparison) -> str:
     """The comparison as plain text: per-measure table, verdicts against the reference, single-parameter effects.
 
@@ -68,15 +88,7 @@ def format_comparison(c: Comparison) -> str:
     ref = c.labels[0]
     lines = [f"Comparison of {', '.join(c.labels)} ({c.model} linear model; reference: {ref})", ""]
     for i, (label, ch) in enumerate(zip(c.labels, c.chairs, strict=True)):
-        if isinstance(ch, Layout):
-            nf, nc = ch.shape
-            lines.append(f"  [{i + 1}] {label}: layout of {nf} fixed wheels ({sum(w.driven for w in ch.wheels)} "
-                         f"driven, x = {', '.join(f'{w.x:+.3g}' for w in ch.wheels)} m) and {nc} casters (pins "
-                         f"x = {', '.join(f'{k.x:+.3g}' for k in ch.casters)} m), m = {ch.m:g} kg, I_z = {ch.i_z:g} "
-                         "kg m^2")
-            continue
-        lines.append(f"  [{i + 1}] {label}: casters {ch.caster_position}, s1 = {ch.s1:g} m, s2 = {ch.s2:g} m, "
-                     f"trail = {ch.trail:g} m, m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
+        lines.append(f"  [{i + 1}] {label}: {_describe(ch)}")
     width = max(len(q.label) for q in c.quantities) + 2
     lines += ["", "Measures" + (f" (intervals: central {c.uncertainty['level']:.0%} over the uncertain parameters)"
                               if c.uncertainty else "") + ":"]
@@ -102,12 +114,7 @@ def format_comparison(c: Comparison) -> str:
         lines.append(f"  (differences drawn with {c.uncertainty['pairing']} draws, {c.uncertainty['samples']} "
                      f"samples, seed {c.uncertainty['seed']}; overlapping chair intervals alone do not decide)")
     if any(isinstance(ch, Layout) for ch in c.chairs):
-        lines += ["", LAYOUT_NOTE]
-        if c.push:
-            lines += ["", f"Critical impulse: push convention {c.push}."]
-        lines += ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
-                  "critical impulse (--nonlinear) includes it: see docs/compare.md."]
-        return "\n".join(lines)
+        return "\n".join(lines + _layout_tail(c))
     lines += ["", f"Why: each differing parameter applied alone to {ref}, largest effect first (change of the "
               f"growth rate at {REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s; 0: below "
               "the eigenvalue solver's resolution):"]
