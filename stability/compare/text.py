@@ -74,6 +74,37 @@ def _layout_tail(c: Comparison) -> list[str]:
                   "critical impulse (--nonlinear) includes it: see docs/compare.md."]
 
 
+def _effects_tail(c: Comparison) -> list[str]:
+    """The end of a comparison of short-form chairs: each differing parameter alone, the push, the linear limit."""
+    ref = c.labels[0]
+    lines: list[str] = []
+    lines += ["", f"Why: each differing parameter applied alone to {ref}, largest effect first (change of the "
+              f"growth rate at {REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s; 0: below "
+              "the eigenvalue solver's resolution):"]
+    for e in c.effects:
+        lines.append(f"  {e.chair}:")
+        if not e.effects:
+            lines.append("    no parameter differs")
+            continue
+        for s in sorted(e.effects, key=lambda s: (s.error is not None, -abs(s.growth_rate or 0.0),
+                                                  -abs(s.locked_critical_speed or 0.0))):
+            if s.error:
+                lines.append(f"    {s.field:<22} {_field(s.reference_value)} -> {_field(s.value)}: "
+                             f"not a valid chair alone ({s.error})")
+                continue
+            lines.append(f"    {s.field:<22} {_field(s.reference_value)} -> {_field(s.value)}: growth rate "
+                         f"{_signed(s.growth_rate)}, locked critical speed {_signed(s.locked_critical_speed)}")
+        lines.append(f"    {'total':<22} growth rate {_signed(e.total_growth_rate)}, locked critical speed "
+                     f"{_signed(e.total_locked_critical_speed)}")
+        lines.append(f"    {'interaction remainder':<22} growth rate {_signed(e.remainder_growth_rate)}, "
+                     f"locked critical speed {_signed(e.remainder_locked_critical_speed)}")
+    if c.push:
+        lines += ["", f"Critical impulse: push convention {c.push}."]
+    lines += ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
+              "thesis's ranking by time to 1 rad/s after a push (--nonlinear) can differ: see docs/compare.md."]
+    return lines
+
+
 def format_comparison(c: Comparison) -> str:
     """The comparison as plain text: per-measure table, verdicts against the reference, single-parameter effects.
 
@@ -113,32 +144,7 @@ def format_comparison(c: Comparison) -> str:
     if c.uncertainty:
         lines.append(f"  (differences drawn with {c.uncertainty['pairing']} draws, {c.uncertainty['samples']} "
                      f"samples, seed {c.uncertainty['seed']}; overlapping chair intervals alone do not decide)")
-    if any(isinstance(ch, Layout) for ch in c.chairs):
-        return "\n".join(lines + _layout_tail(c))
-    lines += ["", f"Why: each differing parameter applied alone to {ref}, largest effect first (change of the "
-              f"growth rate at {REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s; 0: below "
-              "the eigenvalue solver's resolution):"]
-    for e in c.effects:
-        lines.append(f"  {e.chair}:")
-        if not e.effects:
-            lines.append("    no parameter differs")
-            continue
-        for s in sorted(e.effects, key=lambda s: (s.error is not None, -abs(s.growth_rate or 0.0),
-                                                  -abs(s.locked_critical_speed or 0.0))):
-            if s.error:
-                lines.append(f"    {s.field:<22} {_field(s.reference_value)} -> {_field(s.value)}: "
-                             f"not a valid chair alone ({s.error})")
-                continue
-            lines.append(f"    {s.field:<22} {_field(s.reference_value)} -> {_field(s.value)}: growth rate "
-                         f"{_signed(s.growth_rate)}, locked critical speed {_signed(s.locked_critical_speed)}")
-        lines.append(f"    {'total':<22} growth rate {_signed(e.total_growth_rate)}, locked critical speed "
-                     f"{_signed(e.total_locked_critical_speed)}")
-        lines.append(f"    {'interaction remainder':<22} growth rate {_signed(e.remainder_growth_rate)}, "
-                     f"locked critical speed {_signed(e.remainder_locked_critical_speed)}")
-    if c.push:
-        lines += ["", f"Critical impulse: push convention {c.push}."]
-    lines += ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
-              "thesis's ranking by time to 1 rad/s after a push (--nonlinear) can differ: see docs/compare.md."]
+    lines += _layout_tail(c) if any(isinstance(ch, Layout) for ch in c.chairs) else _effects_tail(c)
     return "\n".join(lines)
 
 
