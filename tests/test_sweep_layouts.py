@@ -92,6 +92,7 @@ def test_bad_specs_are_refused_in_one_line(text, words):
     assert words in str(exc.value) and "\n" not in str(exc.value)
 
 
+@pytest.mark.slow
 def test_the_command_sweeps_a_layout(tmp_path, capsys):
     spec = tmp_path / "s.toml"
     spec.write_text('chair = "power-rwd-base"\nspeeds = [0.75, -0.75]\nmeasures = ["growth_rate", "tip_angles"]\n'
