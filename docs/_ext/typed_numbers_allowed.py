@@ -546,6 +546,10 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('casters at 0 deg flip through 180 deg together', 'parameter'),
         ('most. So the model agrees that 90 deg is', 'parameter'),
         ('ISO 7176-2/-3 matrix,', 'cited'),
+        ('caster starting trailing (180 deg), against', 'parameter'),
+        ('holds the casters. Under an 80 N push the', 'parameter'),
+        ('rows are separate levers), -3, -2, -1 and +1 cm;', 'parameter'),
+        ('position**, the driven wheels 5 and 10 cm forward', 'parameter'),
     ],
     'docs/measure.md': [
         ('fixture_inertia)` | I = K_t T^2/(4 pi^2) -', 'pending'),
