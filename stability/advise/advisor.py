@@ -39,6 +39,7 @@ from stability.driver.model import Driver
 from stability.layout.model import Layout
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
+from stability.tires import summarised_warnings
 
 __all__ = ["Constraint", "Candidate", "Recommendation", "Blocked", "ShimmyHold", "Advice", "advise",
            "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS",
@@ -309,6 +310,7 @@ def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Bloc
     return sorted(out, key=lambda b: (-len(b.fixes), len(b.limits), -b.candidate.gain))[:3]
 
 
+@summarised_warnings
 def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
            cross_slope_deg: float = DEFAULT_CROSS_SLOPE_DEG, progress: bool = False,
            nonlinear: Callable | None = None, time_to_correct: bool = True, driver: Driver | None = None,

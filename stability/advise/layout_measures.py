@@ -18,8 +18,9 @@ The measures of a layout are what the commands print for it, as for the short fo
 - ``growth_rate_1_s``: the layout's linear model at 0.75 m/s (or -0.75);
 - ``bench_score``: ``python -m stability.bench``'s worst score for a layout with driven wheels.
 
-The cross-slope drive difference is not a measure of a layout yet (the slope statics of a layout: None), nor is
-the speed a driver can hold (the driver's linear model is the short form's).
+The cross-slope drive difference is not among a layout's measures here yet (None: the advisor does not use the
+layout slope statics of :mod:`stability.study.layout_slope` yet), nor is the speed a driver can hold (the driver's
+linear model is the short form's).
 """
 
 from __future__ import annotations

@@ -154,8 +154,8 @@ def linear_measures(subjects: Sequence, *, speeds: Sequence[float], cross_slope_
 
 def _layout_options(cross_slope_deg: float, reaction_time: float | None) -> None:
     if cross_slope_deg:
-        raise ValueError(f"cross_slope_deg={cross_slope_deg!r} is invalid for a layout; valid: 0 (the cross-slope "
-                         "drive difference of a layout is not computed yet)")
+        raise ValueError(f"cross_slope_deg={cross_slope_deg!r} is invalid for a layout; valid: 0 (the advisor does "
+                         "not weigh a layout's cross-slope drive difference yet)")
     if reaction_time is not None:
         raise ValueError(f"reaction_time={reaction_time!r} is invalid for a layout; valid: None (the driver's model "
                          "is the short form's)")

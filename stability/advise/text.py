@@ -126,7 +126,7 @@ def advice_text(a: Advice) -> str:
               "Speeds are also in km/h; a push in N s is force x time."]
     if is_layout(a.chair):
         lines.append("Wheel layout: caster wheels are numbered front to back as in the [[wheel]] file; no cross-slope "
-                     "or driver limit yet (the slope statics and the driver's model of a layout are not computed).")
+                     "or driver limit yet (the advisor does not use a layout's slope statics or a driver model yet).")
     return "\n".join(lines)
 
 

@@ -36,8 +36,8 @@ __all__ = ["LayoutReport", "NOT_APPLICABLE", "compute_layout_report", "layout_re
 
 #: The short form's report sections that do not apply to a layout, each with why, in one line.
 NOT_APPLICABLE = (
-    ("Cross slopes and grades", "not computed for a wheel layout yet: the slope statics and drive forces of a layout "
-     "are not in the toolkit (python -m stability.slope answers the short form)."),
+    ("Cross slopes and grades", "not in this report yet: python -m stability.slope --chair NAME answers a layout "
+     "(the held line, the holding moment and the uncorrected turn; docs/layouts.md)."),
     ("Design parameters and root loci (thesis chapter 8)", "the chapter's parameters (s1, s2, trail, ...) are the "
      "short form's fields; a layout's levers are the advisor's (caster trail per row, drive-axle position, "
      "suspension), whose effects the decision lists."),
