@@ -553,6 +553,10 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ("its tire's Appendix B data; 0 by default,", 'parameter'),
         ('with the casters trailing at 180 deg); the', 'parameter'),
         ('rules (6 dB, 30 deg).', 'parameter'),
+        ('caster starting trailing (180 deg), against', 'parameter'),
+        ('holds the casters. Under an 80 N push the', 'parameter'),
+        ('rows are separate levers), -3, -2, -1 and +1 cm;', 'parameter'),
+        ('position**, the driven wheels 5 and 10 cm forward', 'parameter'),
     ],
     'docs/measure.md': [
         ('fixture_inertia)` | I = K_t T^2/(4 pi^2) -', 'pending'),
