@@ -18,7 +18,41 @@ def tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, pol
     ``tire_push``; rolling resistance against the contact's forward velocity; the camber thrust ``CAM[j, 1]``
     (the side's sign times ``f_c``) times the camber tire's force at ``CAM[j, 0]`` deg, the camber tires in the
     tire slots after the contacts') and of the casters in their frames (lateral, rolling) written into ``fw``,
-    ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N."""
+    ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N.
+
+    Parameters
+    ----------
+    nw, nc : int
+        Numbers of fixed wheels and casters.
+    TK, TS, TL, LIM : ndarray
+        Per tire slot (contacts first, then the camber tires): the tire law's kind, coefficients, load
+        scale and slip/load limits (:mod:`stability.tires.law`).
+    RK, RC, RS : ndarray
+        Per contact: rolling-resistance kind, coefficients and scale.
+    CAM : ndarray, shape (nw, 2)
+        Per fixed wheel: camber angle, deg, and the camber thrust's sign (0: no camber).
+    vel : ndarray
+        Contact velocities in the wheel's frame, m/s, forward then lateral per contact.
+    slips : ndarray
+        Slip angle per contact, deg.
+    loads : ndarray
+        Normal load per contact, N.
+    policy : int
+        The tire-range policy's code.
+    tire_push : bool
+        While the tire push acts (lateral force ``ftimp`` on each fixed wheel).
+    ftimp : float
+        The tire push's lateral force per fixed wheel, N.
+    cs, sn : ndarray
+        Cosine and sine of each caster's swivel angle.
+    fw, fc : ndarray
+        Written: the fixed wheels' (body axes) and casters' (caster frames) ``(fx, fy)``, N.
+
+    Returns
+    -------
+    tuple of float
+        ``(sum_fx, sum_fy)``: the resultant in body axes, N.
+    """
     sum_fx = sum_fy = 0.0
     nt = nw + nc
     for j in range(nw):
