@@ -49,7 +49,7 @@ FREE_POS, FREE_NEG, STUCK, LOCKED = 1, -1, 0, 2
 
 @_inl
 def _consistent(vel, slips, trig, tire_imp, ftimp, policy, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, guess, gn):
-    """Loads consistent with the tire forces (fixed-point iteration as ``AdaptiveModel._consistent``).
+    """Loads consistent with the tire forces (a fixed-point iteration).
 
     ``gn``: gravity normal to the plane (m/s^2; ``P[G]`` when level).
     Returns ``(loads, F, refused, wheel, converged)``; ``guess`` (sum fx, sum fy) is updated in place.

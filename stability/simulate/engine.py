@@ -25,7 +25,7 @@ from stability.simulate import kernel_choice as _kc
 from stability.simulate.controller import SampledController
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, n_steps
 from stability.simulate.packing import Packed, policy_code, slope_slots
-from stability.simulate.results import ChairState, RunStats, SimulationResult
+from stability.simulate.results import ChairState, RunStats, SimulationResult, warning_table
 
 __all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
            "use_kernel"]
@@ -39,7 +39,6 @@ RECORDS = ("all", "states", "final")
 STATS_LEVELS = (0.5, LEVEL)
 #: Runs stopped at a level (the searches) and with stick-slip friction also stop once settled (kernel.SETTLE).
 SETTLE_STOP = True
-_WARN_KINDS = ("slip", "load", "lift_off")
 
 
 _FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True}
@@ -146,8 +145,7 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
     out = []
     for i in range(n_runs):
         s = settings if forces is None else dict(settings, impulse_force=float(forces[i]))
-        w = {kind: {"count": int(warn[i, j, 0]), "first_time": None if warn[i, j, 0] == 0 else float(warn[i, j, 1]),
-                    "max": None if warn[i, j, 0] == 0 else float(warn[i, j, 2])} for j, kind in enumerate(_WARN_KINDS)}
+        w = warning_table(warn[i])
         m = int(counts[i])
         t = times[:m] if mode != 2 else np.array([_last_time(opts, status[i], steps)])
         run_stats = RunStats(levels=STATS_LEVELS, time_to_level=tuple(None if math.isnan(x) else float(x)

@@ -30,7 +30,7 @@ def _rhs(chair: Chair, speed: float, model: str, casters: str, slope: tuple[floa
                                 push_force=0.0, push_duration=0.0, stop_on_warnings=False,
                                 out_of_range=tires.get_policy().evaluation, cross_slope_deg=float(slope[0]),
                                 grade_deg=float(slope[1])))
-    rhs = AdaptiveModel(chair, speed, opts)._ck
+    rhs = AdaptiveModel(chair, speed, opts)
     rhs.hold_drive(float(drive[0]), float(drive[1]))
     return rhs, opts
 

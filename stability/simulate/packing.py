@@ -25,18 +25,7 @@ __all__ = ["Packed", "slope_slots", "policy_code"]
 
 
 def policy_code(opts: Options) -> int:
-    """The tire law's code of ``opts.out_of_range`` (the index in :data:`stability.tires.POLICIES`).
-
-    Parameters
-    ----------
-    opts : Options
-        Checked options.
-
-    Returns
-    -------
-    int
-        0 clamp, 1 extrapolate, 2 raise.
-    """
+    """The tire law's code of ``opts.out_of_range``: its index in :data:`stability.tires.POLICIES` (0 clamp, ...)."""
     return _tires.POLICIES.index(opts.out_of_range)
 
 
@@ -125,16 +114,9 @@ class Packed:
 
 
 def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:
-    """The kernels' plane slots: ``(on, cos(phi), sin(phi), cos(theta), sin(theta))`` (``on`` 1.0 on a slope).
+    """The kernels' plane slots ``(on, cos(phi), sin(phi), cos(theta), sin(theta))`` of ``opts.slope`` (deg).
 
-    Parameters
-    ----------
-    opts : Options
-        Checked options (``slope`` = cross slope phi, grade theta, deg).
-
-    Returns
-    -------
-    tuple of 5 float
-        The flag and the cosines and sines of the cross slope and the grade.
+    ``on`` is 1.0 on a slope; phi is the cross slope, theta the grade.
     """
-    return (1.0 if opts.on_slope else 0.0, *opts.slope_trig())
+    phi, theta = math.radians(opts.slope[0]), math.radians(opts.slope[1])
+    return (1.0 if opts.slope != (0.0, 0.0) else 0.0, math.cos(phi), math.sin(phi), math.cos(theta), math.sin(theta))
