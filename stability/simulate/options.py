@@ -14,20 +14,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from stability.settings.run import (
-    CASTERS,
-    FRICTION_LAWS,
-    MODELS,
-    OUT_OF_RANGE_POLICIES,
-    SCHEMES,
-    WCHAIR_DT,
-    RunSpec,
-)
+from stability.settings.run import WCHAIR_DT, RunSpec
 from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
-__all__ = ["SCHEMES", "MODELS", "CASTERS", "FRICTION_LAWS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS",
-           "SLIP_LIMIT_DEG", "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT", "Options",
-           "make_options", "n_steps", "impulse_on", "initial_velocities"]
+__all__ = ["WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG", "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT",
+           "Options", "make_options", "n_steps", "impulse_on", "initial_velocities"]
 
 #: Wheel order of the per-wheel arrays: left caster, right caster, left main, right main.
 WHEELS = ("A", "B", "D", "E")
@@ -51,16 +42,21 @@ ADAPTIVE_SAMPLE = BATCH_SAMPLE = 0.01
 class Options:
     """Checked options of one simulation, built only by :func:`make_options`.
 
-    The fields are the :class:`~stability.settings.run.RunSpec` fields under
-    program WCHAIR's names: ``duration`` = ``horizon`` (TTOTAL, s),
-    ``impulse_force`` = ``push_force`` (FCIMP, N), ``impulse_duration`` =
-    ``push_duration`` (DUIMP, s), ``tire_impulse`` = ``tire_push_force``
-    (FTIMP, N), ``out_of_range`` the tire fits' policy, and ``eta0``,
-    ``beta0`` the initial caster angles in rad; resolved by the call:
-    ``dt`` (TSTEP, s, never ``"auto"``), ``stop_on_warnings`` (never None),
-    ``sample`` (output interval, s; None: every step), ``stride`` (steps
-    between recorded rows of the wchair scheme, >= 1) and the ``yaw_moment``
-    input (``yaw_moment(t, state) -> N m``, or None).
+    Attributes
+    ----------
+    duration, impulse_force, impulse_duration, tire_impulse : float
+        The :class:`~stability.settings.run.RunSpec` fields under program
+        WCHAIR's names: ``horizon`` (TTOTAL, s), ``push_force`` (FCIMP, N),
+        ``push_duration`` (DUIMP, s), ``tire_push_force`` (FTIMP, N).
+    eta0, beta0 : float
+        Initial left and right caster angles, rad.
+    dt, stride, stop_on_warnings, sample, yaw_moment
+        Resolved by the call: the fixed step (TSTEP, s, never ``"auto"``),
+        the steps between recorded rows of the wchair scheme (>= 1), the stop
+        rule (never None), the output interval (s; None: every step), the
+        ``yaw_moment(t, state) -> N m`` input or None.
+    scheme, model, lateral_velocity, casters, out_of_range, rtol, atol, reverse, slope, friction_law
+        The RunSpec fields of these names (``slope``: cross slope and grade, deg).
     """
 
     duration: float
@@ -162,22 +158,53 @@ def make_options(run: RunSpec, *, yaw_moment: Callable | None = None, batch: boo
 def n_steps(opts: Options) -> int:
     """Steps of a wchair run: the F77 trip count of ``DO 99 T = 0, TTOTAL+TSTEP, TSTEP`` (program WCHAIR).
 
-    ``floor((duration + 2 dt) / dt)`` (a tolerance of 1e-9 absorbs the
-    quotient's rounding): the run covers ``t = 0, dt, ..., duration + dt``.
+    Parameters
+    ----------
+    opts : Options
+        Uses ``duration`` (TTOTAL, s) and ``dt`` (TSTEP, s).
+
+    Returns
+    -------
+    int
+        ``floor((duration + 2 dt) / dt)`` (a tolerance of 1e-9 absorbs the
+        quotient's rounding): the run covers ``t = 0, dt, ..., duration + dt``.
     """
     return int(math.floor((opts.duration + 2.0 * opts.dt) / opts.dt + 1e-9))
 
 
 def impulse_on(opts: Options, t: float) -> bool:
-    """Whether the push acts at ``t`` (s): WCHAIR's ``T .LE. DUIMP``.
+    """Whether the push acts at ``t``: WCHAIR's ``T .LE. DUIMP``.
 
-    WCHAIR accumulates T in REAL; here ``t = k dt``, and a relative tolerance
-    of 1e-12 keeps the inclusive test exact at ``t = DUIMP``.
+    Parameters
+    ----------
+    opts : Options
+        Uses ``impulse_duration`` (DUIMP, s).
+    t : float
+        Time, s (>= 0).
+
+    Returns
+    -------
+    bool
+        ``t <= impulse_duration`` within a relative 1e-12 (WCHAIR accumulates
+        T in REAL; here ``t = k dt``, and the tolerance keeps ``t = DUIMP`` in).
     """
     return t <= opts.impulse_duration * (1.0 + 1e-12) + 1e-15
 
 
 def initial_velocities(opts: Options, speed: float) -> tuple[float, float]:
-    """``(u0, v0)``, m/s: the forward velocity (``-speed`` when reversing) and the lateral one (VD)."""
+    """The initial body-axis velocities.
+
+    Parameters
+    ----------
+    opts : Options
+        Uses ``reverse`` and ``lateral_velocity`` (VD, m/s).
+    speed : float
+        Initial forward speed, m/s (> 0; WCHAIR's UD).
+
+    Returns
+    -------
+    tuple of float
+        ``(u0, v0)``, m/s: ``-speed`` when reversing, else ``speed``, and VD.
+    """
     u0 = -speed if opts.reverse else speed
     return u0, opts.lateral_velocity

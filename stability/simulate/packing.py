@@ -25,7 +25,18 @@ __all__ = ["Packed", "slope_slots", "policy_code"]
 
 
 def policy_code(opts: Options) -> int:
-    """The tire law's code of ``opts.out_of_range``: its index in :data:`stability.tires.POLICIES` (0 clamp, ...)."""
+    """The tire law's code of a policy.
+
+    Parameters
+    ----------
+    opts : Options
+        Uses ``out_of_range``.
+
+    Returns
+    -------
+    int
+        Its index in :data:`stability.tires.POLICIES`: 0 clamp, 1 extrapolate, 2 raise.
+    """
     return _tires.POLICIES.index(opts.out_of_range)
 
 
@@ -114,9 +125,17 @@ class Packed:
 
 
 def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:
-    """The kernels' plane slots ``(on, cos(phi), sin(phi), cos(theta), sin(theta))`` of ``opts.slope`` (deg).
+    """The kernels' plane slots.
 
-    ``on`` is 1.0 on a slope; phi is the cross slope, theta the grade.
+    Parameters
+    ----------
+    opts : Options
+        Uses ``slope``: the cross slope phi and the grade theta, deg.
+
+    Returns
+    -------
+    tuple of 5 float
+        ``(on, cos(phi), sin(phi), cos(theta), sin(theta))``; ``on`` is 1.0 on a slope.
     """
     phi, theta = math.radians(opts.slope[0]), math.radians(opts.slope[1])
     return (1.0 if opts.slope != (0.0, 0.0) else 0.0, math.cos(phi), math.sin(phi), math.cos(theta), math.sin(theta))

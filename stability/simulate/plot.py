@@ -41,21 +41,16 @@ def plot_result(result: SimulationResult, path_or_ax: Any = None, *, title: str 
     if title is None:
         title = (f"{result.chair.name} ({result.chair.caster_position} casters): "
                  f"{result.settings.get('model')} model, {result.settings.get('scheme')} scheme")
-    if path_or_ax is not None and hasattr(path_or_ax, "plot") and hasattr(path_or_ax, "set_xlabel"):
-        ax = path_or_ax
-        ax.plot(result.t, result.yaw_rate, label=label)
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("yaw rate (rad/s)")
-        ax.set_title(title)
-        ax.legend()
-        ax.grid(True, alpha=0.3)
-        return ax
-    from matplotlib.figure import Figure
+    on_axes = path_or_ax is not None and hasattr(path_or_ax, "plot") and hasattr(path_or_ax, "set_xlabel")
+    if on_axes:
+        ax1 = path_or_ax
+    else:
+        from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(8.0, 6.5))
-    ax1, ax2 = fig.subplots(2, 1)
+        fig = Figure(figsize=(8.0, 6.5))
+        ax1, ax2 = fig.subplots(2, 1)
     ax1.plot(result.t, result.yaw_rate, label=label)
-    if result.stopped_by_warnings and result.stop_time is not None:
+    if not on_axes and result.stopped_by_warnings and result.stop_time is not None:
         ax1.axvline(result.stop_time, color="k", ls=":", lw=0.8,
                     label="stopped by warnings" if result.stop_reason is None else "stopped: no load solution")
     ax1.set_xlabel("time (s)")
@@ -63,6 +58,8 @@ def plot_result(result: SimulationResult, path_or_ax: Any = None, *, title: str 
     ax1.set_title(title)
     ax1.legend()
     ax1.grid(True, alpha=0.3)
+    if on_axes:
+        return ax1
     ax2.plot(result.x, result.y, label="c.g. path")
     ax2.set_xlabel("X (m)")
     ax2.set_ylabel("Y (m, to the right)")
@@ -74,4 +71,3 @@ def plot_result(result: SimulationResult, path_or_ax: Any = None, *, title: str 
     if path_or_ax is None:
         return fig
     return save_figure(fig, path_or_ax, title=title)
-

@@ -370,12 +370,7 @@ class SimulationResult:
         return atomic_write_text(path, "\n".join(lines) + "\n")
 
     def plot(self, path_or_ax=None, *, title: str | None = None):
-        """Plot the yaw rate against time: see :func:`stability.simulate.plot.plot_result`.
-
-        ``path_or_ax`` is a matplotlib Axes (drawn on, returned) or a file
-        path (a figure with yaw rate and trajectory is written atomically);
-        ``None`` returns a new figure.  matplotlib is imported only here.
-        """
+        """Plot the yaw rate against time (and the path): :func:`stability.simulate.plot.plot_result`."""
         from stability.simulate.plot import plot_result  # matplotlib is a heavy optional import
 
         return plot_result(self, path_or_ax, title=title)
@@ -405,18 +400,32 @@ def _freeze_warnings(w):
 
 
 def warning_table(warn: np.ndarray) -> dict[str, dict[str, Any]]:
-    """A run's range warnings ``{kind: {"count", "first_time", "max"}}`` from its ``(3, 3)`` counters.
+    """A run's range warnings from its counters.
 
-    The kinds, in order, are WCHAIR's two range warnings (slip angle > 8 deg
-    in MECHAN, normal force > 450 N in STATICS; program WCHAIR, Appendix C)
-    and a negative normal force (a wheel lifting off, counted but never
-    stopping a run); each row of ``warn`` holds the count, the first time (s)
-    and the offending value of largest magnitude (deg or N).
+    Parameters
+    ----------
+    warn : ndarray, shape (3, 3)
+        Per kind of :data:`WARNING_KINDS`: the count, the first time (s) and
+        the offending value of largest magnitude (deg or N).  The kinds are
+        WCHAIR's two range warnings (slip angle > 8 deg in MECHAN, normal
+        force > 450 N in STATICS; program WCHAIR, Appendix C) and a negative
+        normal force (a wheel lifting off, counted but never stopping a run).
+
+    Returns
+    -------
+    dict
+        ``{kind: {"count": int, "first_time": float | None, "max": float | None}}``.
     """
     return {kind: {"count": int(w[0]), "first_time": None if w[0] == 0 else float(w[1]),
                    "max": None if w[0] == 0 else float(w[2])} for kind, w in zip(WARNING_KINDS, warn, strict=True)}
 
 
 def new_warnings() -> dict[str, dict[str, Any]]:
-    """Empty warning counters (:func:`warning_table` of no warning)."""
+    """Empty warning counters.
+
+    Returns
+    -------
+    dict
+        :func:`warning_table` of no warning.
+    """
     return warning_table(np.zeros((3, 3)))

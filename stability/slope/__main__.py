@@ -24,6 +24,7 @@ from stability.cli import (
 from stability.settings import defaults as D
 from stability.slope.equilibrium import HandRim, drive_report, solve
 from stability.study.veer import VEER_RUN, simulator_path, uncorrected_path
+from stability.tires import WHEELS
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -179,11 +180,8 @@ def _body(a: argparse.Namespace) -> int:
         "uncorrected_path": path.to_dict() if path else None,
         "uncorrected_simulator": sim,
         "heading_deg": eq.heading_deg, "caster_angle_left_deg": eq.eta_deg, "caster_angle_right_deg": eq.beta_deg,
-        "slip_angles_deg": dict(zip(("caster_left", "caster_right", "main_left", "main_right"), eq.slips_deg,
-                                    strict=True)),
-        "lateral_forces_N": dict(zip(("caster_left", "caster_right", "main_left", "main_right"),
-                                     eq.lateral_forces, strict=True)),
-        "normal_loads_N": dict(zip(("caster_left", "caster_right", "main_left", "main_right"), eq.loads, strict=True)),
+        **{key: {w: x for (w, _), x in zip(WHEELS, values, strict=True)} for key, values in (
+            ("slip_angles_deg", eq.slips_deg), ("lateral_forces_N", eq.lateral_forces), ("normal_loads_N", eq.loads))},
         "drive_forces": drive,
         "problems": list(eq.problems),
     }

@@ -156,17 +156,13 @@ def _root(model: SlopeModel, speed: float, pins=(0.0, 0.0), guess=None):
 
 
 def operating_point(chair: Chair, plane: Plane, speed: float) -> tuple[float, float, float, tuple[float, float]]:
-    """Heading (crab angle), caster angles (rad) and drive forces (N) of straight running on ``plane`` at ``speed``.
-
-    The frictionless equilibrium of :func:`solve` without its report (no
-    tire-range check): what a linearisation about it needs.
+    """Crab angle, caster angles and drive forces of straight running: :func:`solve`'s frictionless equilibrium
+    without its report (no tire-range check), what a linearisation about it needs.
 
     Parameters
     ----------
-    chair : Chair
-        The chair.
-    plane : Plane
-        Cross slope and grade, deg.
+    chair, plane
+        The chair and the plane (cross slope and grade, deg).
     speed : float
         Speed along the path, m/s.
 
@@ -174,12 +170,7 @@ def operating_point(chair: Chair, plane: Plane, speed: float) -> tuple[float, fl
     -------
     tuple
         ``(psi, eta, beta, (F_D, F_E))``: rad, and the drive forces on the
-        left and right main wheels, N.
-
-    Raises
-    ------
-    ValueError
-        No equilibrium found.
+        left and right main wheels, N.  ValueError when there is none.
     """
     model = SlopeModel(chair, plane)
     z, ok = _root(model, speed)
@@ -199,10 +190,8 @@ def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:
 
     Parameters
     ----------
-    chair : Chair
-        The chair (trail > 0 m).
-    plane : Plane
-        Cross slope phi and grade theta, deg.
+    chair, plane
+        The chair (trail > 0 m) and the plane (cross slope phi, grade theta, deg).
 
     Returns
     -------
@@ -243,12 +232,8 @@ def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 
 
     Parameters
     ----------
-    chair : Chair
-        The chair.
-    grade_deg : float
-        Grade theta, deg (positive uphill).
-    speed : float
-        Speed along the path, m/s (> 0).
+    chair, grade_deg, speed
+        As in :func:`solve` (deg, uphill +; m/s).
     sign : float, optional
         +1 (default) for cross slopes falling to the right, -1 for falling to the left.
     hi : float, optional
@@ -258,8 +243,7 @@ def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 
     -------
     float
         Cross-slope magnitude, deg, resolved to ``hi / 2**14``; ``hi`` if every
-        slope up to it has an equilibrium, -1.0 if even zero cross slope
-        has none.
+        slope up to it has an equilibrium, -1.0 if even zero cross slope has none.
     """
     def good(phi: float) -> bool:
         e = _solve_once(chair, Plane(sign * phi, grade_deg), speed)

@@ -19,7 +19,7 @@ from stability.models import full_width as fw
 from stability.models import slope as sl
 from stability.models.forces import slip_angle
 from stability.models.params import parameters
-from stability.tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire, get_policy
+from stability.tires import FZ_MAX_N, SLIP_MAX_DEG, WHEELS, LinearTire, get_policy
 from stability.tires.ranges import RangeNote, limit_load, record
 
 __all__ = ["Plane", "SlopeModel", "Forces", "MAX_ANGLE_DEG"]
@@ -32,8 +32,7 @@ def _check_angle(name: str, value: float) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name}={value!r} is invalid; valid range: -{MAX_ANGLE_DEG:g} to {MAX_ANGLE_DEG:g} deg"
-                         ) from None
+        v = math.nan
     if not (math.isfinite(v) and abs(v) <= MAX_ANGLE_DEG):
         raise ValueError(f"{name}={value!r} is invalid; valid range: -{MAX_ANGLE_DEG:g} to {MAX_ANGLE_DEG:g} deg")
     return v
@@ -120,15 +119,14 @@ class SlopeModel:
         at all would rest on the extrapolated fit.
         """
         out = []
-        for k, (tire, s, n) in enumerate(zip((self.caster, self.caster, self.main, self.main),
-                                             f.slips_deg, f.loads, strict=True)):
-            wheel = ("left caster", "right caster", "left main wheel", "right main wheel")[k]
+        labels = ("left caster", "right caster", "left main wheel", "right main wheel")
+        for (key, _), wheel, tire, s, n in zip(WHEELS, labels, (self.caster, self.caster, self.main, self.main),
+                                               f.slips_deg, f.loads, strict=True):
             if n <= 0.0:
                 out.append(f"the {wheel} lifts off (normal load {n:.1f} N)")
                 continue
             if isinstance(tire, LinearTire):
                 continue
-            key = ("caster_left", "caster_right", "main_left", "main_right")[k]
             if self.clamp:              # a note under the clamp policy (tires.collect_notes): the force held
                 if n > FZ_MAX_N:
                     limit_load(tire, n, "clamp", wheel=key)
