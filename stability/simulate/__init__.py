@@ -35,28 +35,7 @@ from stability.simulate.options import (
 from stability.simulate.results import ChairState, RunStats, SimulationResult
 from stability.simulate.stepcheck import StepStabilityWarning
 
-__all__ = [
-    "SCHEMES",
-    "MODELS",
-    "CASTERS",
-    "OUT_OF_RANGE_POLICIES",
-    "WHEELS",
-    "WHEEL_LABELS",
-    "SLIP_LIMIT_DEG",
-    "LOAD_LIMIT_N",
-    "WARNING_LIMIT",
-    "ADAPTIVE_METHOD",
-    "RunSpec",
-    "ChairState",
-    "SimulationResult",
-    "simulate",
-    "simulate_batch",
-    "linearise",
-    "SampledController",
-    "RunStats",
-    "RECORDS",
-    "STATS_LEVELS",
-    "StepStabilityWarning",
-    "simulate_layout",
-    "LayoutRun",
-]
+__all__ = ["SCHEMES", "MODELS", "CASTERS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG",
+           "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "RunSpec", "ChairState", "SimulationResult", "simulate",
+           "simulate_batch", "linearise", "SampledController", "RunStats", "RECORDS", "STATS_LEVELS",
+           "StepStabilityWarning", "simulate_layout", "LayoutRun"]

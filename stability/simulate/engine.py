@@ -50,17 +50,8 @@ COMPILE_NOTICE = ("compiling the simulator (first use on this machine, about 10-
 
 @contextlib.contextmanager
 def first_use(scheme: str) -> Iterator[None]:
-    """Around the first compiled call of ``scheme`` in a process: say so if it takes over 2 s (a compile).
-
-    Parameters
-    ----------
-    scheme : str
-        A key of the first-use table (the kernel's load or its first call).
-
-    Yields
-    ------
-    None
-    """
+    """Around the first compiled call of ``scheme`` (a key of the first-use table: the kernel's load or its first
+    call) in a process: say so if it takes over 2 s (a compile)."""
     if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False):
         yield
         return
@@ -272,21 +263,8 @@ class PackedRuns:
 
 
 def initial_state(S: np.ndarray, nz: int) -> np.ndarray:
-    """The kernel's per-run state at ``t = 0`` (:data:`~stability.simulate.kernel_equations.NSTATE` + ``nz``).
-
-    Parameters
-    ----------
-    S : ndarray, shape (n, 8)
-        The packed per-run scalars (initial velocities m/s, caster angles rad, ...).
-    nz : int
-        States of the sampled controller.
-
-    Returns
-    -------
-    ndarray, shape (n, NSTATE + nz)
-        The ten states (u, v, caster angles from ``S``), everything else zero,
-        the settle tracker unset.
-    """
+    """The kernels' per-run state at ``t = 0``, shape (n, NSTATE + ``nz``) (``nz``: the controller's states): the
+    ten states (u, v and the caster angles from the packed scalars ``S``), the rest zero, the settle tracker unset."""
     k = _kernel()
     state = np.zeros((S.shape[0], k.NSTATE + nz))
     state[:, 3], state[:, 4], state[:, 6], state[:, 8] = S[:, k.U0], S[:, k.V0], S[:, k.ETA0], S[:, k.BETA0]
@@ -350,14 +328,10 @@ def run_summaries(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *,
 
     Parameters
     ----------
-    chairs : sequence of Chair
-        One chair per run.
-    speeds : ndarray
-        Initial forward speeds, m/s, shape ``(len(chairs),)``.
+    chairs, speeds, forces, threads
+        As in :func:`run_compiled`.
     opts : Options
         Checked options, ``scheme="wchair"``, no Python ``yaw_moment``.
-    forces : ndarray, optional
-        Per-run push at the c.g., N.
     levels : sequence of float
         |yaw rate| levels whose first crossing is reported, rad/s.
     stop_level : int, optional
@@ -365,8 +339,6 @@ def run_summaries(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *,
         ``|yaw rate|`` first reaches that level (its summaries are final then:
         the first crossing is found, and the peak up to it is the level).
         None: every run goes to the end.
-    threads : int, optional
-        Kernel threads (None: numba's default).
 
     Returns
     -------

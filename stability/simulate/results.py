@@ -405,11 +405,9 @@ def warning_table(warn: np.ndarray) -> dict[str, dict[str, Any]]:
     Parameters
     ----------
     warn : ndarray, shape (3, 3)
-        Per kind of :data:`WARNING_KINDS`: the count, the first time (s) and
-        the offending value of largest magnitude (deg or N).  The kinds are
-        WCHAIR's two range warnings (slip angle > 8 deg in MECHAN, normal
-        force > 450 N in STATICS; program WCHAIR, Appendix C) and a negative
-        normal force (a wheel lifting off, counted but never stopping a run).
+        Per kind of :data:`WARNING_KINDS` (program WCHAIR's slip angle > 8 deg
+        and normal force > 450 N, and a wheel lifting off, which never stops a
+        run): the count, the first time (s), the value of largest magnitude.
 
     Returns
     -------

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from stability.chair import Chair
 from stability.models import full_width as fw
@@ -62,24 +63,12 @@ class Plane:
         return sl.gravity(g, math.radians(self.cross_slope_deg), math.radians(self.grade_deg), heading)
 
 
-@dataclass(frozen=True)
-class Forces:
-    """Tire forces, loads and slips at one state.
+class Forces(NamedTuple):
+    """Tire forces, normal loads and slip angles at one state (wheels A, B, D, E)."""
 
-    Attributes
-    ----------
-    F : tuple
-        ``(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)`` in wheel frames (N); ``FDx``, ``FEx``
-        include the drive forces.
-    loads : tuple
-        ``(N_A, N_B, N_D, N_E)`` (N).
-    slips_deg : tuple
-        Signed slip angles ``atan2(vy, |vx|)`` of A, B, D, E (deg).
-    """
-
-    F: tuple
-    loads: tuple
-    slips_deg: tuple
+    F: tuple            #: ``(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)`` in wheel frames, N (FDx, FEx with the drive)
+    loads: tuple        #: normal loads, N
+    slips_deg: tuple    #: signed slip angles ``atan2(vy, |vx|)``, deg
 
 
 class SlopeModel:
