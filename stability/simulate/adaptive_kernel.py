@@ -22,8 +22,8 @@ __all__ = ["NAUX", "evaluate", "samples"]
 
 _jit = njit(cache=True, nogil=True)   # the entries called from Python; helpers as the WCHAIR kernel's (_int, _inl)
 
-#: aux layout: loads (4), forces (8), slips (4), pin moments A, B, yaw-moment input, tire yaw moment,
-#: refused tire input (kind, wheel, slip or camber deg, load)
+#: aux layout: loads (4), forces (8), slips (4), pin moments A, B, yaw-moment input, (19 unused), refused tire
+#: input (kind, wheel, slip or camber deg, load)
 NAUX = 24
 #: the slots of the held drive that :meth:`stability.simulate.adaptive.AdaptiveModel.hold_drive` sets
 DRIVE_D, DRIVE_E = _k.DRIVE_D, _k.DRIVE_E
@@ -107,7 +107,6 @@ def evaluate(t, y, ma_mode, mb_mode, imp, mz, model, ftimp, policy, P, S, TK, TS
     for i in range(8):
         aux[4 + i] = F[i]
     aux[16], aux[17], aux[18] = ma, mb, mz
-    aux[19] = _k.tire_yaw_moment(P, F, ce, se, cb, sb)
     return 0
 
 
@@ -129,15 +128,10 @@ def samples(ts, yy, mzs, ma_mode, mb_mode, imp, model, ftimp, policy, P, S, TK, 
                         RC, RS, CAM, SL, guess, dy, aux)
         if code != 0:
             return code
-        states = (y[0], y[1], y[2], y[5], y[3], y[4], y[6], dy[6], y[8], dy[8])
-        for c in range(10):
-            out[c, j] = states[c]
-        for c in range(8):
-            out[10 + c, j] = aux[4 + c]
-        for c in range(4):
-            out[18 + c, j] = aux[c]
-            out[22 + c, j] = aux[12 + c]
-        out[26, j], out[27, j], out[28, j], out[29, j], out[30, j] = aux[19], aux[18], dy[5], aux[16], aux[17]
+        F = (aux[4], aux[5], aux[6], aux[7], aux[8], aux[9], aux[10], aux[11])
+        _k.record_row(out, j, (y[0], y[1], y[2], y[5], y[3], y[4], y[6], dy[6], y[8], dy[8]), F, aux[0:4],
+                      aux[12:16], P, (math.cos(y[6]), math.sin(y[6]), math.cos(y[8]), math.sin(y[8])),
+                      (aux[18], dy[5], aux[16], aux[17]))
     return 0
 
 
