@@ -77,8 +77,7 @@ class Equilibrium:
     friction_range : tuple
         ``(min, max)`` holding moment over the equilibria allowed by Coulomb pin friction (N m).
     closed_form : float
-        ``g2 (m x_m - 2 m_c (l1/trail)(x_m - x_c))`` (N m): the frictionless holding moment with
-        the casters straight (casters carry l1/trail of their own lateral weight).
+        :func:`holding_moment_closed_form`, N m: the frictionless holding moment with the casters straight.
     problems : tuple of str
         Tire-data or lift-off problems at this equilibrium (empty when the result is inside the data).
     """

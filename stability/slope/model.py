@@ -89,9 +89,9 @@ class SlopeModel:
         self.chair = chair
         self.plane = plane
         self.p = parameters(chair)
-        self.main = chair.main_tire_model()
-        self.caster = chair.caster_tire_model()
-        self.rolling = (chair.caster_rolling_scale > 0, chair.main_rolling_scale > 0)
+        main, caster = chair.main_tire_model(), chair.caster_tire_model()
+        self.tires = (caster, caster, main, main)       # wheels A, B, D, E
+        self.rolling = (chair.caster_rolling_scale > 0,) * 2 + (chair.main_rolling_scale > 0,) * 2
         # --tire-range: clamp holds the forces at the data's edge, warn extrapolates the fits; both note a
         # load or slip beyond the data and answer; only raise refuses it (a range problem)
         self.policy = get_policy().name
@@ -109,8 +109,7 @@ class SlopeModel:
         """
         out = []
         labels = ("left caster", "right caster", "left main wheel", "right main wheel")
-        for (key, _), wheel, tire, s, n in zip(WHEELS, labels, (self.caster, self.caster, self.main, self.main),
-                                               f.slips_deg, f.loads, strict=True):
+        for (key, _), wheel, tire, s, n in zip(WHEELS, labels, self.tires, f.slips_deg, f.loads, strict=True):
             if n <= 0.0:
                 out.append(f"the {wheel} lifts off (normal load {n:.1f} N)")
                 continue
@@ -139,10 +138,9 @@ class SlopeModel:
         vel = fw.contact_velocities(self.p, u, v, r, ce, se, cb, sb, eta_d, beta_d, "exact")
         vx, vy = vel[0::2], vel[1::2]
         slips = tuple(slip_angle(a, b) for a, b in zip(vx, vy, strict=True))
-        tires = (self.caster, self.caster, self.main, self.main)
         lat = [t.lateral_force(s, n, policy=self._policy, warn=False)
-               for t, s, n in zip(tires, slips, loads, strict=True)]
-        on = (self.rolling[0], self.rolling[0], self.rolling[1], self.rolling[1])
-        roll = [t.rolling_force(float(n), w) if k else 0.0 for t, n, w, k in zip(tires, loads, vx, on, strict=True)]
+               for t, s, n in zip(self.tires, slips, loads, strict=True)]
+        roll = [t.rolling_force(float(n), w) if k else 0.0
+                for t, n, w, k in zip(self.tires, loads, vx, self.rolling, strict=True)]
         F = (roll[0], lat[0], roll[1], lat[1], roll[2] + drive[0], lat[2], roll[3] + drive[1], lat[3])
         return Forces(F=F, loads=tuple(float(n) for n in loads), slips_deg=slips)
