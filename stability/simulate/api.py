@@ -50,11 +50,8 @@ def simulate(chair: Chair, speed: float | None = None, run: RunSpec | None = Non
         Initial forward speed, m/s: shorthand for ``run.replace(speed=speed)``
         (default ``run.speed``, 0.75 m/s).
     run : RunSpec, optional
-        Every other setting of the run (:class:`stability.settings.run.RunSpec`:
-        push, initial conditions, horizon, step, scheme, pin-friction law,
-        model, casters, tire-range policy, stop rule, sampling, tolerances,
-        slope); default ``RunSpec()``, the thesis's reference push on the
-        wchair scheme with stick-slip pin friction.
+        Every other setting of the run (:class:`stability.settings.run.RunSpec`); default
+        ``RunSpec()``: the thesis's reference push, the wchair scheme, stick-slip pin friction.
     yaw_moment : callable, optional
         ``yaw_moment(t, state) -> N m``: a yaw moment on the chair; ``state``
         is a :class:`ChairState`.  The wchair scheme samples it at every step
