@@ -190,18 +190,14 @@ class PackedRuns:
 
     Parameters
     ----------
-    chairs : sequence of Chair
-        One per pair.
-    speeds : ndarray
-        m/s, one per pair.
+    chairs, speeds
+        One per pair, as in :func:`run_compiled`.
     opts : dict of float to Options
         Checked options per fixed step (s): the runs of a pair use ``opts[steps[i]]``.
     steps : ndarray
         Each pair's step, s (a key of ``opts``).
-    levels : sequence of float
-        |yaw rate| levels whose first crossing is reported, rad/s.
-    stop_level : int, optional
-        Index into ``levels`` at which every run stops (None: none).
+    levels, stop_level
+        As in :func:`run_summaries`.
     """
 
     def __init__(self, chairs: Sequence[Chair], speeds: np.ndarray, opts: dict[float, Options], steps: np.ndarray,

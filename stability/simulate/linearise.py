@@ -53,16 +53,8 @@ def forward_acceleration(chair: Chair, speed: float, *, model: str = "exact",
 
     Parameters
     ----------
-    chair : Chair
-        The chair.
-    speed : float
-        Forward speed, m/s (> 0).
-    model : {"thesis", "exact"}
-        Equation variant.
-    slope : tuple of float
-        ``(cross_slope_deg, grade_deg)``, deg.
-    drive : tuple of float
-        Constant drive forces on the left and right main wheels, N.
+    chair, speed, model, slope, drive
+        As in :func:`linearise` (m/s; deg; N).
 
     Returns
     -------

@@ -40,17 +40,12 @@ def policy_code(opts: Options) -> int:
     return _tires.POLICIES.index(opts.out_of_range)
 
 
-def _segments(tire: Any) -> np.ndarray:
-    segs = tire.segment_arrays() if hasattr(tire, "segment_arrays") else tire._segments
-    return np.array(segs, dtype=float)
-
-
 def _tire_slot(tire: Any) -> tuple[int, np.ndarray, float, tuple[float, float]]:
     """(kind, (6, 8) segments, scale or N/deg, (slip limit deg, load limit N)) of one tire."""
     if isinstance(tire, _tires.LinearTire):
         return 1, np.zeros((6, 8)), tire.stiffness_N_per_deg * tire.lateral_scale, (math.inf, math.inf)
     lim = (float(getattr(tire, "slip_max_deg", SLIP_LIMIT_DEG)), float(getattr(tire, "fz_max_N", LOAD_LIMIT_N)))
-    return 0, _segments(tire), float(tire.lateral_scale), lim
+    return 0, np.array(tire.segment_arrays(), dtype=float), float(tire.lateral_scale), lim
 
 
 def _rolling_slot(tire: Any, on: bool) -> tuple[int, tuple[float, float, float], float]:
