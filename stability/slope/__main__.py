@@ -54,23 +54,12 @@ FIGURE_SLOPES = (0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
 
 
 def figure(chair, cross_slope: float, speed: float):
-    """The slope figure of ``-o``: holding moment, drive difference and the uncorrected heading.
+    """The slope figure of ``-o`` (a matplotlib Figure): holding moment, drive difference and the uncorrected
+    heading of ``chair`` at ``speed`` (m/s) on ``|cross_slope|`` (deg; the side does not change the magnitudes).
 
     The curves come from :func:`stability.report.slope_data.slope_section` (the report's cross-slope page, at
     this speed, over :data:`FIGURE_SLOPES` and ``|cross_slope|``); the drawing from :mod:`stability.plotting`
     and :func:`stability.slope.plots.plot_holding`.
-
-    Parameters
-    ----------
-    chair : Chair
-    cross_slope : float
-        deg (its magnitude is drawn; the side does not change the magnitudes).
-    speed : float
-        m/s.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     from stability import plotting as P
     from stability.report.slope_data import TREADMILL, slope_section

@@ -303,23 +303,12 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
 
 
 def residual_accelerations(chair: Chair, eq: Equilibrium) -> tuple:
-    """Accelerations of the equations of motion on the plane at the equilibrium (should vanish; a check).
+    """``(u_dot, v_dot, r_dot, eta_dd, beta_dd)`` (m/s^2, rad/s^2) at the equilibrium ``eq`` of ``chair``: they
+    should vanish (a check).
 
     The generated exact model with gravity (:func:`stability.models.slope.accelerations`) at the
     equilibrium's state, with its tire and drive forces at its loads (the loads of zero acceleration, so
     consistent if the accelerations vanish) and frictionless pins.
-
-    Parameters
-    ----------
-    chair : Chair
-        The chair ``eq`` was solved for.
-    eq : Equilibrium
-        The equilibrium (:func:`solve`).
-
-    Returns
-    -------
-    tuple of 5 float
-        ``(u_dot, v_dot, r_dot, eta_dd, beta_dd)``: m/s^2, m/s^2, rad/s^2, rad/s^2, rad/s^2.
     """
     model = SlopeModel(chair, Plane(eq.cross_slope_deg, eq.grade_deg))
     psi, eta, beta = (math.radians(x) for x in (eq.heading_deg, eq.eta_deg, eq.beta_deg))
