@@ -84,9 +84,7 @@ class Options:
     @property
     def pin_mode(self) -> float:
         """The compiled kernel's pin mode: 0 free (kinetic friction), 1 locked, 2 free (stick-slip)."""
-        if self.casters == "locked":
-            return 1.0
-        return 2.0 if self.friction_law == "stick-slip" else 0.0
+        return 1.0 if self.casters == "locked" else (2.0 if self.friction_law == "stick-slip" else 0.0)
 
     def settings(self) -> dict[str, Any]:
         """The options as recorded in a result's ``settings``."""

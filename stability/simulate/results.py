@@ -225,7 +225,7 @@ class SimulationResult:
             slip_deg=wheels(slice(22, 26)), tire_yaw_moment=col("tire_yaw_moment"),
             yaw_moment_input=col("yaw_moment_input"),
             yaw_acceleration=col("yaw_acceleration"), pin_moment=pins,
-            warnings=_freeze_warnings(warnings), stopped_by_warnings=bool(stopped),
+            warnings={k: dict(v) for k, v in warnings.items()}, stopped_by_warnings=bool(stopped),
             stop_time=None if stop_time is None else float(stop_time), chair=chair, speed=float(speed),
             settings=dict(settings), stats=stats, step_unstable=bool(step_unstable), stop_reason=stop_reason)
 
@@ -360,7 +360,8 @@ class SimulationResult:
         rec = self._records()
         meta = [f"# stability.simulate: chair={self.chair.name} speed={self.speed!r} m/s",
                 "# settings: " + json.dumps({k: _json_scalar(v) for k, v in self.settings.items()}, sort_keys=True),
-                "# warnings: " + json.dumps(_json_warnings(self.warnings), sort_keys=True)
+                "# warnings: " + json.dumps({k: {kk: _json_scalar(vv) for kk, vv in v.items()}
+                                             for k, v in self.warnings.items()}, sort_keys=True)
                 + f" stopped_by_warnings={self.stopped_by_warnings}"
                 + (f" stop_reason: {self.stop_reason}" if self.stop_reason is not None else ""),
                 "# units: s, m, rad, m/s, rad/s, N, deg, N m, rad/s^2; wheels A/B = left/right caster, "
@@ -389,14 +390,6 @@ def _json_scalar(v):
 def _json_list(a):
     a = np.asarray(a, dtype=float)
     return [float(x) if math.isfinite(x) else None for x in a.tolist()]
-
-
-def _json_warnings(w):
-    return {k: {kk: _json_scalar(vv) for kk, vv in v.items()} for k, v in w.items()}
-
-
-def _freeze_warnings(w):
-    return {k: dict(v) for k, v in w.items()}
 
 
 def warning_table(warn: np.ndarray) -> dict[str, dict[str, Any]]:
