@@ -27,10 +27,10 @@ from stability.cli import (
     run,
     run_from_args,
 )
+from stability.plotting.responses import plot_result
 from stability.settings.run import RunSpec
 from stability.simulate.api import simulate
 from stability.simulate.options import ADAPTIVE_SAMPLE, WCHAIR_DT
-from stability.simulate.plot import plot_result
 
 __all__ = ["main", "build_parser"]
 

@@ -371,8 +371,8 @@ class SimulationResult:
         return atomic_write_text(path, "\n".join(lines) + "\n")
 
     def plot(self, path_or_ax=None, *, title: str | None = None):
-        """Plot the yaw rate against time (and the path): :func:`stability.simulate.plot.plot_result`."""
-        from stability.simulate.plot import plot_result  # matplotlib is a heavy optional import
+        """Plot the yaw rate against time (and the path): :func:`stability.plotting.responses.plot_result`."""
+        from stability.plotting.responses import plot_result  # matplotlib is a heavy optional import
 
         return plot_result(self, path_or_ax, title=title)
 
