@@ -350,7 +350,6 @@ class Explorer:
         """Queue the background work of the chair drawn at ``generation`` (nothing if the chair changed since)."""
         if generation != self.jobs.generation:
             return
-        chair, model = self.state.chair, self.state.model
         if self.state.uncertainty is not None:
             self._start_bands()
         if self.auto_nonlinear:
