@@ -101,10 +101,12 @@ class TextBox:
         import panel as pn
         from panel.models.markup import HTML
 
+        from stability.app.markup import PRE_STYLESHEET
+
         kw.setdefault("sizing_mode", "stretch_width")
         self._text = text
         self.model = HTML(text=html.escape(text, quote=False), run_scripts=False, disable_math=True,
-                          css_classes=[css_class], stylesheets=[TEXT_STYLESHEET], **kw)
+                          css_classes=[css_class], stylesheets=[TEXT_STYLESHEET, PRE_STYLESHEET], **kw)
         self.pane = pn.pane.Bokeh(self.model, **{k: kw[k] for k in ("width", "height", "margin", "sizing_mode")
                                                  if k in kw})
 
