@@ -105,8 +105,9 @@ class TextBox:
 
         kw.setdefault("sizing_mode", "stretch_width")
         self._text = text
-        self.model = HTML(text=html.escape(text, quote=False), run_scripts=False, disable_math=True,
-                          css_classes=[css_class], stylesheets=[TEXT_STYLESHEET, PRE_STYLESHEET], **kw)
+        props: dict[str, Any] = dict(text=html.escape(text, quote=False), run_scripts=False, disable_math=True,
+                                     css_classes=[css_class], stylesheets=[TEXT_STYLESHEET, PRE_STYLESHEET], **kw)
+        self.model = HTML(**props)
         self.pane = pn.pane.Bokeh(self.model, **{k: kw[k] for k in ("width", "height", "margin", "sizing_mode")
                                                  if k in kw})
 

@@ -150,7 +150,8 @@ def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
     same = np.sign(a[:-1]) == np.sign(a[1:])
     suspicious = same & (np.any(np.sign(herm) != np.sign(a0), axis=1) | (
         (np.sign(da[:-1]) != np.sign(da[1:])) & (np.min(np.abs(herm), axis=1) < 0.05 * scale)))
-    for k in np.flatnonzero(suspicious):
+    for kk in np.flatnonzero(suspicious):
+        k = int(kk)
         sgn = np.sign(a[k])
         res = minimize_scalar(lambda x, sgn=sgn: sgn * alpha(x), bounds=(U[k], U[k + 1]), method="bounded",
                               options={"xatol": 1e-9})
