@@ -88,6 +88,9 @@ def test_the_other_layouts_open(page, app_url, console_errors, artifacts, name):
     page.locator(".chair-title", has_text="mid-wheel-drive").wait_for()
     page.locator(".layout-about a", has_text="ej-premier").click()
     page.locator(".summary table").wait_for()                      # the field editor's page
+    page.get_by_text("Wheel layouts", exact=True).click()          # its card of links to the layouts
+    page.locator(".layout-links a", has_text=name).click()
+    page.locator(".chair-title", has_text=f"{name} (wheel layout").wait_for()
 
 
 @pytest.mark.parametrize("name", ["mid-wheel-drive", "power-fwd-base", "power-rwd-base"])

@@ -212,3 +212,23 @@ def test_a_hidden_tabs_text_waits_until_the_tab_is_shown():
     assert pane.object == "newer"
     texts.set(pane, "now")
     assert pane.object == "now"
+
+
+def test_background_work_runs_for_the_tab_shown_only():
+    """An edit starts the Nonlinear or Trail window simulations only while that tab is shown; a tab shown later
+    starts its own, once per chair (a hidden tab's runs took both cores from the next edit's answer)."""
+    from stability.app.page import TAB_NAMES, Explorer
+
+    ex = Explorer(auto_nonlinear=True)                  # deliver and later at once
+    started: list = []
+    ex.nonlinear.start = lambda chair, model: started.append(("nonlinear", chair.s1))
+    ex.trail.start = lambda chair, model: started.append(("trail", chair.s1))
+    ex.edit("s1", "0.31")
+    assert started == []                                # the Stability vs speed tab is shown
+    ex.tabs.active = TAB_NAMES.index("Nonlinear")
+    assert started == [("nonlinear", 0.31)]
+    ex.edit("s1", "0.32")                               # shown: the new chair's runs start at once
+    assert started[-1] == ("nonlinear", 0.32)
+    ex.tabs.active = TAB_NAMES.index("Trail window")
+    ex.tabs.active = TAB_NAMES.index("Nonlinear")       # already started for this chair: not again
+    assert started[1:] == [("nonlinear", 0.32), ("trail", 0.32)]
