@@ -215,7 +215,7 @@ def test_bench_edit_to_answer_in_the_browser(bench):
           f"{min(r['changes'] for r in rows)}-{max(r['changes'] for r in rows)}, page layouts "
           f"{max(r['page_layouts'] for r in rows)}")
     for r in rows:
-        assert r["messages"] == 1 and r["messages_after"] == 0, r
+        assert r["messages"] == 1 and r["messages_after"] == 0, (r["after"], r)
         assert r["bytes"] <= MAX_BYTES, r
         assert r["changes"] <= MAX_MODEL_CHANGES, r
         assert r["page_layouts"] == 0, r
