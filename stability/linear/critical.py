@@ -65,14 +65,14 @@ def _slopes(state_matrix, speeds: np.ndarray, alpha: np.ndarray) -> np.ndarray:
     A = np.asarray(state_matrix(speeds))
     lam, V = np.linalg.eig(A)
     lamL, W = np.linalg.eig(np.swapaxes(A, -1, -2).conj())
-    out = np.empty(len(speeds))
-    for k in range(len(speeds)):
-        i = int(np.argmax(lam[k].real))
-        j = int(np.argmin(np.abs(lamL[k].conj() - lam[k, i])))
-        v, w = V[k][:, i], W[k][:, j]
-        den = np.vdot(w, v)
-        out[k] = (np.vdot(w, dA[k] @ v) / den).real if abs(den) > 1e-14 else 0.0
-    return out
+    k = np.arange(len(speeds))
+    i = np.argmax(lam.real, axis=1)
+    j = np.argmin(np.abs(lamL.conj() - lam[k, i][:, None]), axis=1)
+    v, w = V[k, :, i], W[k, :, j]                      # the right and left eigenvectors, one row per speed
+    den = np.sum(w.conj() * v, axis=1)
+    num = np.sum(w.conj() * np.einsum("kab,kb->ka", dA, v), axis=1)
+    ok = np.abs(den) > 1e-14
+    return np.where(ok, (num / np.where(ok, den, 1.0)).real, 0.0)
 
 
 def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
@@ -141,19 +141,17 @@ def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
     # guard against double crossings hidden between grid points
     da = _slopes(state_matrix, U, a)
     scale = max(np.max(np.abs(a)), 1e-9)
-    for k in range(len(U) - 1):
-        if np.sign(a[k]) != np.sign(a[k + 1]):
-            continue
-        h = U[k + 1] - U[k]
-        tt = np.linspace(0, 1, 9)[1:-1]
-        h00, h10 = 2 * tt**3 - 3 * tt**2 + 1, tt**3 - 2 * tt**2 + tt
-        h01, h11 = -2 * tt**3 + 3 * tt**2, tt**3 - tt**2
-        herm = h00 * a[k] + h10 * h * da[k] + h01 * a[k + 1] + h11 * h * da[k + 1]
-        suspicious = np.any(np.sign(herm) != np.sign(a[k])) or (
-            np.sign(da[k]) != np.sign(da[k + 1]) and np.min(np.abs(herm)) < 0.05 * scale
-        )
-        if not suspicious:
-            continue
+    h = np.diff(U)[:, None]
+    tt = np.linspace(0, 1, 9)[1:-1]
+    h00, h10 = 2 * tt**3 - 3 * tt**2 + 1, tt**3 - 2 * tt**2 + tt
+    h01, h11 = -2 * tt**3 + 3 * tt**2, tt**3 - tt**2
+    a0, a1, d0, d1 = a[:-1, None], a[1:, None], da[:-1, None], da[1:, None]
+    herm = h00 * a0 + h10 * h * d0 + h01 * a1 + h11 * h * d1       # one row per grid interval
+    same = np.sign(a[:-1]) == np.sign(a[1:])
+    suspicious = same & (np.any(np.sign(herm) != np.sign(a0), axis=1) | (
+        (np.sign(da[:-1]) != np.sign(da[1:])) & (np.min(np.abs(herm), axis=1) < 0.05 * scale)))
+    for kk in np.flatnonzero(suspicious):
+        k = int(kk)
         sgn = np.sign(a[k])
         res = minimize_scalar(lambda x, sgn=sgn: sgn * alpha(x), bounds=(U[k], U[k + 1]), method="bounded",
                               options={"xatol": 1e-9})
