@@ -25,8 +25,13 @@ def shimmy_tradeoff() -> dict:
 
     from stability.linear import eigenvalues_vs_speed
     from stability.shimmy.chair import critical_trail, friction_trail
-    from stability.shimmy.chair_modes import (_TRAIL_GRID, SHIMMY_MIN_HZ, chair_critical_trail, chair_shimmy,
-                                              relaxed_state_matrices)
+    from stability.shimmy.chair_modes import (
+        _TRAIL_GRID,
+        SHIMMY_MIN_HZ,
+        chair_critical_trail,
+        chair_shimmy,
+        relaxed_state_matrices,
+    )
     from stability.shimmy.compliance import CasterCompliance
 
     ej, rv = _preset("ej-premier"), _preset("revised")
@@ -56,7 +61,8 @@ def shimmy_tradeoff() -> dict:
     out.update(corner_lo_cm=fixed(100 * finite[s_lo, k_lo], 1), corner_lo_sigma_mm=f"{1e3 * s_lo:g}",
                corner_lo_k=f"{k_lo / 1e3:g}", corner_hi_cm=fixed(100 * finite[s_hi, k_hi], 1),
                corner_hi_sigma_mm=f"{1e3 * s_hi:g}", corner_hi_k=f"{k_hi / 1e3:g}",
-               corner_inf_cm=f"{100 * _TRAIL_GRID[1]:g}", corner_inf_k=", ".join(f"{k / 1e3:g}" for k in soft) or "none")
+               corner_inf_cm=f"{100 * _TRAIL_GRID[1]:g}",
+               corner_inf_k=", ".join(f"{k / 1e3:g}" for k in soft) or "none")
 
     # the two caster modes at 1 m/s, compliant pins: anti-phase (least damped) and in-phase
     for key, c in (("ej", ej), ("revised", rv)):
