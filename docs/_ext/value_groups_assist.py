@@ -110,15 +110,13 @@ def pf_motor(sched) -> float:
 
 
 def _step_metrics(run, size: float) -> dict:
-    """Settling (within 2 % of the command, s; None: not settled), overshoot (%), error at the end (%),
-    saturated fraction of a yaw-rate step."""
-    import numpy as np
+    """``stability.assist.tracking.step_metrics`` of a yaw-rate step (settled within 2 % of the command, s, None:
+    never; overshoot %; error ``(r_cmd - r_end)/r_cmd`` %) and the saturated fraction (%)."""
+    from stability.assist.tracking import step_metrics
 
-    err = np.asarray(run.yaw_rate) - size
-    out = np.flatnonzero(np.abs(err) > 0.02 * size)
-    settle = None if out.size and out[-1] == err.size - 1 else (float(run.t[out[-1] + 1]) if out.size else 0.0)
-    return {"settle": settle, "over": 100 * max(0.0, float(np.max(run.yaw_rate)) / size - 1),
-            "error": 100 * float(err[-1]) / size, "sat": 100 * run.saturated_fraction}
+    m = step_metrics(run.t, run.yaw_rate, run.torque, size)
+    return {"settle": m.settling_time_s, "over": m.overshoot_pct, "error": m.steady_state_error_pct,
+            "sat": 100 * run.saturated_fraction}
 
 
 @group("assist_windup", "stability.assist.driving.command_run(schedule(power_fwd, 0.5:3:0.25, 'gyro') with "
@@ -209,3 +207,51 @@ def assist_tracking() -> dict:
             out[f"beyond.{aw}.error"] = sig(abs(m["error"]), 1)
             out[f"beyond.{aw}.peak"] = sig(float(np.max(np.abs(r.yaw_rate))), 1)
     return out
+
+
+@group("assist_step", "stability.assist.driving.tracking_step(schedule(power_fwd, 0.5:3:0.25, DESIGN), U) and "
+       "command_run(..., 1.0, step_command(0.8), command_filter_s=COMMAND_FILTER) (nonlinear loop)")
+def assist_step() -> dict:
+    """The reference step through the reference model at every design speed, both designs; the steady torque."""
+    import warnings
+
+    import numpy as np
+
+    from stability.assist import driving
+
+    pf = _preset("power-fwd")
+    ms = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for kind in ("gyro", "full-state"):
+            sched = _schedule(pf, kind)
+            ms += [driving.tracking_step(sched, float(u)) for u in sched.speeds]
+        run = driving.command_run(_schedule(pf), 1.0, driving.step_command(0.8), duration=4.0,
+                                  command_filter_s=driving.COMMAND_FILTER)
+    over = max(m.overshoot_pct for m in ms)
+    return {"overshoot": "no overshoot" if over < 0.05 else f"at most {sig(over, 2)} % overshoot",
+            "settle": _span([m.settling_time_s for m in ms], lambda x: fixed(x, 2)),
+            "error": _span([abs(m.steady_state_error_pct) for m in ms], lambda x: fixed(x, 2)),
+            "filter_ms": f"{1e3 * driving.COMMAND_FILTER:g}",
+            "steady_torque": fixed(float(np.mean(run.torque[run.torque_t > 3.0])), 0)}
+
+
+@group("assist_constants", "stability.assist.faults (MONITOR_TIME, MONITOR_THRESHOLD_DEG_S), "
+       "stability.settings.defaults (SAMPLE_RATE_HZ, MOTOR_LAG)", cheap=True)
+def assist_constants() -> dict:
+    """The monitor's detection time of a bias step (closed form of its low-pass) and the loop's own delay."""
+    import math
+
+    from stability.assist.faults import MONITOR_THRESHOLD_DEG_S, MONITOR_TIME
+    from stability.settings import defaults as D
+
+    t = 1.0 / D.SAMPLE_RATE_HZ
+
+    def detect(b: float) -> str:
+        n = next(n for n in range(10_000) if b * (1 - math.exp(-(n + 1) * t / MONITOR_TIME)) > MONITOR_THRESHOLD_DEG_S)
+        return f"{n * t:.3f}"
+
+    return {"monitor_ms": f"{1e3 * MONITOR_TIME:g}", "threshold": f"{MONITOR_THRESHOLD_DEG_S:g}",
+            "detect_20": detect(20.0), "detect_5": detect(5.0),
+            "own_delay_ms": f"{1e3 * (1.5 * t + D.MOTOR_LAG):g}", "rate_hz": f"{D.SAMPLE_RATE_HZ:g}",
+            "lag_ms": f"{1e3 * D.MOTOR_LAG:g}"}
