@@ -255,3 +255,53 @@ def assist_constants() -> dict:
             "detect_20": detect(20.0), "detect_5": detect(5.0),
             "own_delay_ms": f"{1e3 * (1.5 * t + D.MOTOR_LAG):g}", "rate_hz": f"{D.SAMPLE_RATE_HZ:g}",
             "lag_ms": f"{1e3 * D.MOTOR_LAG:g}"}
+
+
+@group("assist_quantised", "stability.assist.quantisation.margin_rows(schedule(power_fwd, SPEEDS, 'gyro'), "
+       "firmware_tables(schedule, command_filter_s=COMMAND_FILTER)) (the --export-c margins table)")
+def assist_quantised() -> dict:
+    """Sampled margins of the firmware tables (float, Q15, Q31) against the ideal schedule."""
+    import math
+    import warnings
+
+    import numpy as np
+
+    from stability import assist
+    from stability.assist.driving import COMMAND_FILTER
+    from stability.assist.firmware import firmware_tables
+    from stability.assist.quantisation import margin_rows
+
+    keys = ("gain_db", "phase_deg", "delay_ms")
+
+    def diff(rows, a: str, b: str, key: str, at=None) -> float:
+        d = [abs(r.margins[a][key] - r.margins[b][key]) for r in rows
+             if (at is None or any(abs(r.speed_m_s - s) < 1e-9 for s in at))
+             and math.isfinite(r.margins[a][key]) and math.isfinite(r.margins[b][key])]
+        return max(d) if d else 0.0
+
+    def e(x: float) -> str:
+        return f"{x:.0e}".replace("e-0", "e-")
+
+    pf = _preset("power-fwd")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sched = assist.schedule(pf, np.arange(0.5, 3.0001, 0.25), "gyro")
+        rows = margin_rows(sched, firmware_tables(sched, command_filter_s=COMMAND_FILTER))
+        coarse = assist.schedule(pf, [1.0, 2.0, 3.0], "gyro")
+        crows = margin_rows(coarse, firmware_tables(coarse, command_filter_s=COMMAND_FILTER))
+    grid = [float(s) for s in sched.speeds]
+    mids = [r.speed_m_s for r in rows if all(abs(r.speed_m_s - s) > 1e-9 for s in grid)]
+    out = {"n_speeds": str(len(rows)),
+           "grid_equal": e(max(diff(rows, "float", "ideal", k, grid) for k in keys)),
+           "mid_phase": fixed(diff(rows, "float", "ideal", "phase_deg", mids), 3),
+           "mid_delay": fixed(diff(rows, "float", "ideal", "delay_ms", mids), 3),
+           "mid_gain": e(diff(rows, "float", "ideal", "gain_db", mids)),
+           "q15_gain": f"{diff(rows, 'Q15', 'float', 'gain_db'):.1e}".replace("e-0", "e-"),
+           "q15_phase": f"{diff(rows, 'Q15', 'float', 'phase_deg'):.0e}".replace("e-0", "e-"),
+           "q31": e(max(diff(rows, "Q31", "float", k) for k in keys)),
+           "coarse_phase": fixed(diff(crows, "float", "ideal", "phase_deg"), 3)}
+    top = next(r for r in rows if abs(r.speed_m_s - 3.0) < 1e-9)
+    for v in ("ideal", "Q15"):
+        m = top.margins[v]
+        out[f"at3.{v}"] = f"{m['gain_db']:.3f} dB / {m['phase_deg']:.3f} deg / {m['delay_ms']:.3f} ms"
+    return out
