@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from value_groups import Table, fixed, group, pct, sig, signed
-from value_groups_pages import _preset, _span
+from value_groups_pages import _gain_db, _preset, _span
 
 SLOPE_SPEEDS = (0.5, 1.0, 1.5, 2.0, 2.5, 3.0)
 
@@ -304,4 +304,66 @@ def assist_quantised() -> dict:
     for v in ("ideal", "Q15"):
         m = top.margins[v]
         out[f"at3.{v}"] = f"{m['gain_db']:.3f} dB / {m['phase_deg']:.3f} deg / {m['delay_ms']:.3f} ms"
+    return out
+
+
+@group("assist_low_speed", "stability.assist.schedule(power_fwd, 0.5:3:0.25, DESIGN).at(U) for U in 0.02-0.4 m/s: "
+       "closed_loop_poles, loop_margins, digital.discrete_margins; design(power_fwd, 0.1, 'full-state').K; "
+       "driving.tracking_step(schedule, U); the linear model's Mz -> r response against 1/(J s)")
+def assist_low_speed() -> dict:
+    """The schedule from standstill: pivot limit of the linear model, gains, poles, margins, nonlinear turns."""
+    import math
+    import warnings
+
+    import numpy as np
+
+    from stability import assist
+    from stability.assist import driving
+    from stability.assist.digital import discrete_margins
+    from stability.linear import input_matrices, state_matrices
+    from stability.settings import defaults as D
+
+    c = _preset("power-fwd")
+    J = assist.pivot_inertia(c)
+    mag, ph = 0.0, 0.0
+    for u in (0.02, 0.05, 0.1):
+        a, b = state_matrices(c, u)[0], input_matrices(c, u)[0]
+        for w in (5.0, 20.0):
+            g = (np.eye(a.shape[0])[1] @ np.linalg.solve(1j * w * np.eye(a.shape[0]) - a, b))[0] * J * 1j * w
+            mag, ph = max(mag, abs(abs(g) - 1)), max(ph, abs(math.degrees(np.angle(g))))
+    out = {"pivot_mag_pct": sig(100 * mag, 1), "pivot_phase_deg": sig(ph, 1)}
+    low = (0.02, 0.1, 0.25, 0.4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        scheds = {k: _schedule(c, k) for k in ("gyro", "full-state")}
+        k0 = scheds["full-state"].standstill.K[0]
+        k1 = assist.design(c, 0.1, "full-state").K[0]
+        out.update(k_r0=f"{k0[1]:.0f}", k_r=f"{k1[1]:.0f}", k_v=f"{abs(k1[0]):.0f}",
+                   k_sum=f"{k1[1] - c.s1 * k1[0]:.0f}", s1=f"{c.s1:g}")
+        stable = all(assist.closed_loop_poles(s.at(u)).real.max() < 0 for s in scheds.values() for u in low)
+        out["stable"] = "stable" if stable else "NOT stable"
+        lam = assist.closed_loop_poles(scheds["gyro"].at(0.02))
+        pair = sorted((x for x in lam if x.imag > 0.1), key=lambda x: -x.real)[0]
+        out["yaw_pole"] = f"{pair.real:.1f} +/- {pair.imag:.0f}j"
+        t = 1.0 / D.SAMPLE_RATE_HZ
+        for kind, s in scheds.items():
+            cont = [assist.loop_margins(s.at(u)) for u in low]
+            disc = [discrete_margins(s.at(u), t) for u in low]
+            for name, ms in (("c", cont), ("d", disc)):
+                out[f"{kind}.{name}.gain"] = _span([_gain_db(m) for m in ms], lambda x: fixed(x, 1))
+                out[f"{kind}.{name}.phase"] = _span([m.phase_margin_deg for m in ms], lambda x: fixed(x, 0))
+                out[f"{kind}.{name}.delay"] = _span([1e3 * m.delay_margin_s for m in ms], lambda x: fixed(x, 0))
+        for u in (0.1, 0.25):
+            m = driving.tracking_step(scheds["gyro"], u)
+            out[f"step_{u:g}.settle"] = fixed(m.settling_time_s, 2) if m.settling_time_s is not None else "never"
+            out[f"step_{u:g}.over"] = "no overshoot" if m.overshoot_pct < 0.05 else \
+                f"{sig(m.overshoot_pct, 2)} % overshoot"
+            out[f"step_{u:g}.error"] = fixed(abs(m.steady_state_error_pct), 2)
+            out[f"step_{u:g}.peak"] = f"{m.peak_torque_N_m:.0f}"
+    out["radius"] = fixed(0.1 / 0.8, 3)
+    from stability.assist.tracking import feedforward
+
+    sched = scheds["gyro"]
+    for u, r in ((1.0, 0.8), (2.0, 0.5)):
+        out[f"ff_{u:g}"] = fixed(abs(sched.drive.wheel_torque(c, feedforward(sched.at(u).plant).Nu * r)), 1)
     return out
