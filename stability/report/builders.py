@@ -165,8 +165,8 @@ def _p_tires(d: ReportData) -> Figure:
     return P.finish(fig)
 
 
-def _p_summary(d: ReportData) -> Figure:
-    sub, c = _subtitle(d), d.chair
+def _linear_text(d: ReportData) -> str:
+    c = d.chair
     txt = format_summary(d.summary)
     so = d.summary_other
     txt += ("\n\nOther model variant (" + so.model + "): free casters "
@@ -179,38 +179,74 @@ def _p_summary(d: ReportData) -> Figure:
               "at the static load (Table 4-1 method), viscous pin damping "
               f"{c.pin_damping:g} N m s/rad; Coulomb pin friction has no linearisation (it appears only in the "
               "nonlinear simulations of the later pages).")
-    return P.text_page(_title(d, "linear stability: critical speeds"), txt, sub, monospace=True, width=125,
-                       fontsize=9)
+    return txt
 
 
-def _p_speed_loci(d: ReportData) -> Figure:
+def _p_linear(d: ReportData) -> Figure:
+    """The linear analysis in one appendix page: the critical speeds and the least stable mode (text, top) and
+    the eigenvalues as speed varies, free and locked casters (parametric root loci, bottom)."""
     sub = _subtitle(d)
-    fig, axes = P.page(_title(d, "eigenvalues as speed varies (parametric root locus)"), sub, nrows=1, ncols=2)
+    fig, axes = P.page(_title(d, "linear stability: critical speeds and eigenvalues as speed varies"), sub,
+                       nrows=1, ncols=2)
+    fs = 7.5
+    y, step = 0.905, 0.0215 * fs / 9.5
+    for line in P.wrap_text(_linear_text(d), 150):
+        fig.text(0.05, y, line, ha="left", va="top", fontsize=fs, fontfamily="monospace")
+        y -= step
     for ax, cs in zip(axes[0], ("free", "locked"), strict=True):
         P.speed_locus(d.speed_loci[(d.model, cs)], ax, scale="linear", keep=0.6,
                       marks=(0.25, 0.75, 2.0, 5.0, 10.0))
-    bottom = _footer(fig, "Linear axes around the slow modes, which decide directional stability; the fast caster "
-                     "modes (large negative real parts) leave the frame. The other model variant is compared in the "
-                     "method appendix.")
-    return P.finish(fig, bottom=bottom)
+    bottom = _footer(fig, "Root loci: linear axes around the slow modes, which decide directional stability; the fast "
+                     "caster modes (large negative real parts) leave the frame. The other model variant is compared "
+                     "in the method appendix.")
+    return P.finish(fig, top=y - 0.05, bottom=bottom)
+
+
+#: Below this |imaginary part| (rad/s) at every speed a mode set is non-oscillatory: its frequency panel is
+#: one line (numpy returns exactly 0 for a real eigenvalue of a real matrix; the margin covers rounding).
+NON_OSCILLATORY = 1e-9
 
 
 def _p_re_im(d: ReportData) -> Figure:
     sub = _subtitle(d)
     fig, axes = P.page(_title(d, "eigenvalues against speed (shaded: unstable)"), sub, nrows=2, ncols=2)
     for j, cs in enumerate(("free", "locked")):
-        P.eigenvalues_vs_speed(d.speed_loci[(d.model, cs)], [axes[0, j], axes[1, j]],
+        locus = d.speed_loci[(d.model, cs)]
+        real_only = float(np.abs(locus.eigenvalues.imag).max()) < NON_OSCILLATORY
+        P.eigenvalues_vs_speed(locus, [axes[0, j], None if real_only else axes[1, j]],
                                mode_names=d.mode_names.get((d.model, cs)))
+        if real_only:
+            axes[1, j].axis("off")
+            axes[1, j].text(0.5, 0.6, f"{cs.capitalize()} casters: every mode is non-oscillatory at every speed "
+                            "(imaginary parts 0),\nso there is no frequency to plot.", ha="center", va="center",
+                            fontsize=8.5, transform=axes[1, j].transAxes)
     bottom = _footer(fig, f"Modes named from their eigenvectors at {REFERENCE_SPEED:g} m/s (largest share of "
                      "sideslip v/U, yaw r s/U, casters in phase, casters opposed; a second share named when above "
                      "20 %). Linear axis; fast modes off scale are listed in the legend.")
     return P.finish(fig, bottom=bottom)
 
 
+#: A growth-rate panel whose largest real part moves by less than this fraction of its size over the parameter's
+#: whole span is one line instead of a panel (the doubling time, ln 2 / rate, then moves by less than 1 % too).
+FLAT_GROWTH = 0.01
+
+
+def _flat(loc) -> bool:
+    a = loc.max_real
+    return float(np.ptp(a)) < FLAT_GROWTH * float(np.max(np.abs(a)))
+
+
 def _p_growth(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    return P.growth_rate_vs_parameter(d.parameter_loci, _title(d, "growth rate of the least stable mode "
-                                      "against design parameters, 0.75 m/s"), sub)
+    drawn = [loc for loc in d.parameter_loci if not _flat(loc)]
+    flat = [loc for loc in d.parameter_loci if _flat(loc)]
+    fig = P.growth_rate_vs_parameter(drawn, _title(d, "growth rate of the least stable mode against design "
+                                                      "parameters, 0.75 m/s"), sub, ncols=_columns(len(drawn)))
+    bottom = 0.08
+    if flat:
+        bottom = _footer(fig, f"Within {100 * FLAT_GROWTH:g} % over the whole span (not drawn): " + "; ".join(
+            f"{loc.label}: {float(np.median(loc.max_real)):.3g} 1/s" for loc in flat) + ".")
+    return P.finish(fig, top=0.88, bottom=bottom)
 
 
 def _p_gain(d: ReportData) -> Figure:
@@ -314,23 +350,64 @@ def _p_equal(d: ReportData) -> Figure:
     return P.finish(fig, left=0.22)
 
 
+def _columns(n: int) -> int:
+    """Panels per row for ``n`` small multiples: one row up to 4, else two or more rows of 3 or 4."""
+    return n if n <= 4 else (3 if n <= 6 else 4)
+
+
+def no_effect(d: ReportData) -> tuple[list, list]:
+    """The parametric study's sweeps split into those with an effect and those without: a sweep whose speeds
+    (or bounds) all lie within the bisection's tolerance of each other moves nothing the search can resolve.
+
+    Parameters
+    ----------
+    d : ReportData
+
+    Returns
+    -------
+    (list, list)
+        Sweeps with an effect (ranked), sweeps without one (ranked).
+    """
+    tol = d.settings.tol
+    ranked = d.chair_sweeps.ranked()
+    flat = [s for s in ranked if float(np.ptp(s.speeds)) <= tol]
+    return [s for s in ranked if s not in flat], flat
+
+
+def no_effect_line(d: ReportData, flat: list) -> str:
+    """One line for the sweeps without an effect: what each tried and the one speed it gives (m/s)."""
+    if not flat:
+        return ""
+    parts = []
+    for s in flat:
+        r = s.results[0]
+        speed = (f"{r.value_or_bound:.3g} m/s" if r.status == "found" else
+                 f"{'above' if r.status == 'above' else 'below'} {r.value_or_bound:.3g} m/s")
+        parts.append(f"{s.label} ({s.value_text(0)} to {s.value_text(len(s.values) - 1)}"
+                     + ("" if s.unit == "-" else f" {s.unit}") + f"): {speed}")
+    return (f"No effect within the search's {d.settings.tol:g} m/s (not drawn): " + "; ".join(parts) + ".")
+
+
 def _p_sweeps(d: ReportData) -> Figure:
     sub = _subtitle(d)
     table = d.chair_sweeps
-    n = len(table.sweeps)
-    ncols = 4
+    drawn, flat = no_effect(d)
+    n = max(len(drawn), 1)
+    ncols = _columns(n)
     nrows = int(math.ceil(n / ncols))
     fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
                        sub, nrows=nrows, ncols=ncols)
     limits = {p: (v, f"tips at {d.tip_limits_deg:g} deg") for p, v in d.tip_limits.items()}
-    P.sweep_chart(table, axes, limits=limits)
+    P.sweep_chart(table, axes, limits=limits, sweeps=drawn)
     note = (f" Dash-dot line: where the braked chair's static stability angle toward its main wheels falls to "
             f"{d.tip_limits_deg:g} deg (Loane and Kirby's measured mean for a conventional chair, brakes "
             "unlocked: a scale, not a like-for-like "
             "limit): moving the axle "
             "past it trades tipping for directional stability." if limits else "")
+    flat_line = no_effect_line(d, flat)
     bottom = _footer(fig, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
-             "parameter; other parameters at the chair's values. Same speed scale in every panel." + note)
+             "parameter; other parameters at the chair's values. Same speed scale in every panel." + note
+             + ("\n" + flat_line if flat_line else ""))
     return P.finish(fig, bottom=bottom)
 
 
@@ -454,9 +531,8 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         # appendix: method, validation and the linear analysis in full
         ("method", partial(_p_method, d)),
         ("findings", partial(_p_findings, d)),
-        ("linear stability: critical speeds", partial(_p_summary, d)),
+        ("linear stability: critical speeds", partial(_p_linear, d)),
         ("tires", partial(_p_tires, d)),
-        ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
         ("growth rate against design parameters", partial(_p_growth, d)),
         ("yaw-rate feedback root locus", partial(_p_gain, d)),
         ("parametric study table", partial(_p_sweep_table, d)),
