@@ -380,9 +380,11 @@ def no_effect_line(d: ReportData, flat: list) -> str:
         return ""
     parts = []
     for s in flat:
-        r = s.results[0]
-        speed = (f"{r.value_or_bound:.3g} m/s" if r.status == "found" else
-                 f"{'above' if r.status == 'above' else 'below'} {r.value_or_bound:.3g} m/s")
+        lo, hi = f"{float(s.speeds.min()):.3g}", f"{float(s.speeds.max()):.3g}"
+        status = {r.status for r in s.results}
+        speed = (f"{lo} m/s" if lo == hi else f"{lo}-{hi} m/s") if status == {"found"} else (
+            f"above {hi} m/s" if status == {"above"} else f"below {lo} m/s" if status == {"below"} else
+            f"{lo}-{hi} m/s (bounds included)")
         parts.append(f"{s.label} ({s.value_text(0)} to {s.value_text(len(s.values) - 1)}"
                      + ("" if s.unit == "-" else f" {s.unit}") + f"): {speed}")
     return (f"No effect within the search's {d.settings.tol:g} m/s (not drawn): " + "; ".join(parts) + ".")
