@@ -1134,7 +1134,8 @@ def test_panels_that_cannot_apply_are_one_line(quick):
     flat within 1 % are named in one line, the others drawn."""
     import matplotlib.pyplot as plt
 
-    from stability.report.builders import FLAT_GROWTH, _p_growth, _p_re_im, _p_sweeps, no_effect
+    from stability.report.builders import _p_growth, _p_re_im, _p_sweeps
+    from stability.report.panels import FLAT_GROWTH, no_effect
     from stability.report.document import figure_texts
 
     d = quick.data

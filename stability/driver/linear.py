@@ -67,7 +67,7 @@ def pade(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, n
          for k in range(n + 1)]
     num = [c[k] * (-tau) ** k for k in range(n, -1, -1)]
     den = [c[k] * tau**k for k in range(n, -1, -1)]
-    from scipy.signal import tf2ss      # imported here: scipy.signal costs ~0.5 s CPU to import (every CLI)
+    from scipy.signal import tf2ss  # imported here: scipy.signal costs ~0.5 s CPU to import (every CLI)
 
     Ad, Bd, Cd, Dd = tf2ss(num, den)
     return Ad, Bd, Cd, Dd

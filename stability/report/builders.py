@@ -17,6 +17,7 @@ from stability.report.comparison import comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
 from stability.report.decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
 from stability.report.findings import _first, conclusion_rows, findings
+from stability.report.panels import FLAT_GROWTH, NON_OSCILLATORY, columns, flat_growth, no_effect, no_effect_line
 from stability.report.quick import MARK
 from stability.report.sections import footer as _footer
 from stability.report.sections import shimmy_page, slope_page, uncertainty_page
@@ -202,11 +203,6 @@ def _p_linear(d: ReportData) -> Figure:
     return P.finish(fig, top=y - 0.05, bottom=bottom)
 
 
-#: Below this |imaginary part| (rad/s) at every speed a mode set is non-oscillatory: its frequency panel is
-#: one line (numpy returns exactly 0 for a real eigenvalue of a real matrix; the margin covers rounding).
-NON_OSCILLATORY = 1e-9
-
-
 def _p_re_im(d: ReportData) -> Figure:
     sub = _subtitle(d)
     fig, axes = P.page(_title(d, "eigenvalues against speed (shaded: unstable)"), sub, nrows=2, ncols=2)
@@ -226,22 +222,12 @@ def _p_re_im(d: ReportData) -> Figure:
     return P.finish(fig, bottom=bottom)
 
 
-#: A growth-rate panel whose largest real part moves by less than this fraction of its size over the parameter's
-#: whole span is one line instead of a panel (the doubling time, ln 2 / rate, then moves by less than 1 % too).
-FLAT_GROWTH = 0.01
-
-
-def _flat(loc) -> bool:
-    a = loc.max_real
-    return float(np.ptp(a)) < FLAT_GROWTH * float(np.max(np.abs(a)))
-
-
 def _p_growth(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    drawn = [loc for loc in d.parameter_loci if not _flat(loc)]
-    flat = [loc for loc in d.parameter_loci if _flat(loc)]
+    drawn = [loc for loc in d.parameter_loci if not flat_growth(loc)]
+    flat = [loc for loc in d.parameter_loci if flat_growth(loc)]
     fig = P.growth_rate_vs_parameter(drawn, _title(d, "growth rate of the least stable mode against design "
-                                                      "parameters, 0.75 m/s"), sub, ncols=_columns(len(drawn)))
+                                                      "parameters, 0.75 m/s"), sub, ncols=columns(len(drawn)))
     bottom = 0.08
     if flat:
         bottom = _footer(fig, f"Within {100 * FLAT_GROWTH:g} % over the whole span (not drawn): " + "; ".join(
@@ -350,52 +336,12 @@ def _p_equal(d: ReportData) -> Figure:
     return P.finish(fig, left=0.22)
 
 
-def _columns(n: int) -> int:
-    """Panels per row for ``n`` small multiples: one row up to 4, else two or more rows of 3 or 4."""
-    return n if n <= 4 else (3 if n <= 6 else 4)
-
-
-def no_effect(d: ReportData) -> tuple[list, list]:
-    """The parametric study's sweeps split into those with an effect and those without: a sweep whose speeds
-    (or bounds) all lie within the bisection's tolerance of each other moves nothing the search can resolve.
-
-    Parameters
-    ----------
-    d : ReportData
-
-    Returns
-    -------
-    (list, list)
-        Sweeps with an effect (ranked), sweeps without one (ranked).
-    """
-    tol = d.settings.tol
-    ranked = d.chair_sweeps.ranked()
-    flat = [s for s in ranked if float(np.ptp(s.speeds)) <= tol]
-    return [s for s in ranked if s not in flat], flat
-
-
-def no_effect_line(d: ReportData, flat: list) -> str:
-    """One line for the sweeps without an effect: what each tried and the one speed it gives (m/s)."""
-    if not flat:
-        return ""
-    parts = []
-    for s in flat:
-        lo, hi = f"{float(s.speeds.min()):.3g}", f"{float(s.speeds.max()):.3g}"
-        status = {r.status for r in s.results}
-        speed = (f"{lo} m/s" if lo == hi else f"{lo}-{hi} m/s") if status == {"found"} else (
-            f"above {hi} m/s" if status == {"above"} else f"below {lo} m/s" if status == {"below"} else
-            f"{lo}-{hi} m/s (bounds included)")
-        parts.append(f"{s.label} ({s.value_text(0)} to {s.value_text(len(s.values) - 1)}"
-                     + ("" if s.unit == "-" else f" {s.unit}") + f"): {speed}")
-    return (f"No effect within the search's {d.settings.tol:g} m/s (not drawn): " + "; ".join(parts) + ".")
-
-
 def _p_sweeps(d: ReportData) -> Figure:
     sub = _subtitle(d)
     table = d.chair_sweeps
     drawn, flat = no_effect(d)
     n = max(len(drawn), 1)
-    ncols = _columns(n)
+    ncols = columns(n)
     nrows = int(math.ceil(n / ncols))
     fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
                        sub, nrows=nrows, ncols=ncols)
