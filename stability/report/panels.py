@@ -91,6 +91,7 @@ def no_effect_line(d: ReportData, flat: list) -> str:
         speed = (f"{lo} m/s" if lo == hi else f"{lo}-{hi} m/s") if status == {"found"} else (
             f"above {hi} m/s" if status == {"above"} else f"below {lo} m/s" if status == {"below"} else
             f"{lo}-{hi} m/s (bounds included)")
-        parts.append(f"{s.label} ({s.value_text(0)} to {s.value_text(len(s.values) - 1)}"
-                     + ("" if s.unit == "-" else f" {s.unit}") + f"): {speed}")
+        tried = (", ".join(s.labels) if s.labels is not None else
+                 f"{s.value_text(0)} to {s.value_text(len(s.values) - 1)}" + ("" if s.unit == "-" else f" {s.unit}"))
+        parts.append(f"{s.label} ({tried}): {speed}")
     return (f"No effect within the search's {d.settings.tol:g} m/s (not drawn): " + "; ".join(parts) + ".")
