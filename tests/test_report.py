@@ -1136,8 +1136,8 @@ def test_panels_that_cannot_apply_are_one_line(quick):
     import matplotlib.pyplot as plt
 
     from stability.report.builders import _p_growth, _p_re_im, _p_sweeps
-    from stability.report.panels import FLAT_GROWTH, no_effect
     from stability.report.document import figure_texts
+    from stability.report.panels import FLAT_GROWTH, no_effect
 
     d = quick.data
     assert np.abs(d.speed_loci[("exact", "locked")].eigenvalues.imag).max() == 0.0
