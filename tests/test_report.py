@@ -950,6 +950,8 @@ def test_decision_page_is_the_advisor(quick):
     header, rows = decision_rows(d)
     assert header[1:] == ["this chair", "recommended"]
     assert rows[0][1].startswith(f"{a.verdict.critical_impulse_Ns.value:.3g}")
+    tips = [r[0] for r in rows if r[0].startswith("tip ")]      # the chair's four directions, none without a value
+    assert len(tips) == len(a.verdict.tip_angles_deg) == 4 and len(set(tips)) == 4
     names, vals, lo, hi = decision_bars(d)
     assert all(low <= v <= high for v, low, high in zip(vals, lo, hi, strict=True))
     from stability.report.decision import decision_beyond
