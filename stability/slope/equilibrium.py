@@ -75,7 +75,8 @@ class Equilibrium:
     holding_moment : float
         Yaw moment of the drive forces, ``d1 F_D - d2 F_E`` (N m, clockwise +), frictionless pins.
     friction_range : tuple
-        ``(min, max)`` holding moment over the equilibria allowed by Coulomb pin friction (N m).
+        ``(min, max)`` holding moment over the equilibria allowed by Coulomb pin friction (N m); ``(nan, nan)``
+        when not asked for (:func:`solve` with ``friction_range=False``).
     closed_form : float
         :func:`holding_moment_closed_form`, N m: the frictionless holding moment with the casters straight.
     problems : tuple of str
@@ -204,14 +205,14 @@ def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:
     return g2 * (p.m * p.x_m - 2 * p.m_c * (p.l1 / p.trail) * (p.x_m - x_c))
 
 
-def _solve_once(chair: Chair, plane: Plane, speed: float) -> Equilibrium | None:
+def _solve_once(chair: Chair, plane: Plane, speed: float, friction_range: bool = True) -> Equilibrium | None:
     model = SlopeModel(chair, plane)
     z, ok = _root(model, speed)
     if not ok:
         return None
     _, f, drive, mh = _state(model, speed, z)
     fr = []
-    for pins in ((1, 1), (-1, -1), (1, -1), (-1, 1)):
+    for pins in ((1, 1), (-1, -1), (1, -1), (-1, 1)) if friction_range else ():
         mp = (pins[0] * chair.pin_friction_left, pins[1] * chair.pin_friction_right)
         zf, okf = _root(model, speed, mp, guess=z)
         fr.append(_state(model, speed, zf, mp)[3] if okf else math.nan)
@@ -221,7 +222,7 @@ def _solve_once(chair: Chair, plane: Plane, speed: float) -> Equilibrium | None:
         slips_deg=tuple(float(s) for s in f.slips_deg),
         lateral_forces=tuple(float(f.F[k]) for k in (1, 3, 5, 7)),
         loads=f.loads, drive_forces=tuple(float(d) for d in drive), holding_moment=float(mh),
-        friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if not all(map(math.isnan, fr))
+        friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if fr and not all(map(math.isnan, fr))
         else (math.nan, math.nan),
         closed_form=holding_moment_closed_form(chair, plane), problems=tuple(model.range_problems(f)))
 
@@ -260,7 +261,7 @@ def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 
 
 
 def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float = 0.0,
-          strict: bool = True) -> Equilibrium:
+          strict: bool = True, friction_range: bool = True) -> Equilibrium:
     """Steady straight running along the path on a plane.
 
     Parameters
@@ -276,6 +277,9 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
         Raise ValueError (naming the parameter, value and valid range) when the equilibrium does
         not exist or lies outside the tire data (slip > 8 deg, load > 450 N) or a wheel lifts off;
         with ``False`` such a result is returned with :attr:`Equilibrium.problems` filled.
+    friction_range : bool
+        Also solve the four equilibria at the pins' Coulomb friction limits (:attr:`Equilibrium.friction_range`;
+        four root solves more). Nothing else of the result depends on them.
 
     Returns
     -------
@@ -283,7 +287,7 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
     """
     speed = check_speed(speed)
     plane = Plane(cross_slope_deg, grade_deg)
-    eq = _solve_once(chair, plane, speed)
+    eq = _solve_once(chair, plane, speed, friction_range)
     if eq is not None and (not eq.problems or not strict):
         return eq
     if eq is None and not strict:
