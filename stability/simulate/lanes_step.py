@@ -59,7 +59,7 @@ from stability.simulate.lanes_physics import (
 )
 
 __all__ = ["LANES", "MAX_LEVELS", "NROWS", "slip_statics", "tire_forces", "checks", "dynam", "held", "stops",
-           "final_row", "update"]
+           "final_row", "update", "padded_levels"]
 
 #: runs per block (measured: docs/simulator.md, "Runs as lanes"); the numbers do not depend on it
 LANES = 64
@@ -84,7 +84,10 @@ MAX_LEVELS = 6
 _REC, _RECF, _RECANY = 133, 164, 165
 #: a lane whose held caster breaks away this step (its stick-slip solve is the scalar kernel's, lane by lane)
 _HELD = 166
-NROWS = 167
+# a lane the range rules, a refusal or the controller need this step (:func:`checks`); a lane whose summaries or
+# stop rules have an event this step (:func:`stops`): each then goes lane by lane through the scalar functions
+_ATTN, _EVT = 167, 168
+NROWS = 169
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
@@ -177,12 +180,36 @@ def tire_forces(W, L, ftimp, imp, policy, seg_c, seg_m, seg_k):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def _attention(W, L, maxload, maxslip, ext, use_ctl):
+    """Which lanes :func:`checks` takes lane by lane (``W[_ATTN]``), vectorised: a tested tire's load or slip beyond
+    its limit or a negative load (the range rule counts), a refusal, or the controller; every lane's yaw moment
+    ``W[_EXT + 1]`` (the held external moment, or none: what :func:`checks` leaves for a lane it does not take)."""
+    for j in range(L):
+        nmax = -math.inf
+        smax = 0.0
+        l0, l1, l2, l3 = W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]
+        c0, c1, c2, c3 = W[_CHK, j] != 0.0, W[_CHK + 1, j] != 0.0, W[_CHK + 2, j] != 0.0, W[_CHK + 3, j] != 0.0
+        nmax = max(nmax, l0) if c0 else nmax
+        smax = max(smax, abs(W[_SL, j])) if c0 else smax
+        nmax = max(nmax, l1) if c1 else nmax
+        smax = max(smax, abs(W[_SL + 1, j])) if c1 else smax
+        nmax = max(nmax, l2) if c2 else nmax
+        smax = max(smax, abs(W[_SL + 2, j])) if c2 else smax
+        nmax = max(nmax, l3) if c3 else nmax
+        smax = max(smax, abs(W[_SL + 3, j])) if c3 else smax
+        bad = (nmax > maxload) | (smax > maxslip) | (min(min(l0, l1), min(l2, l3)) < 0.0) | (W[_REF, j] != 0.0)
+        W[_ATTN, j] = 1.0 if (W[_ACT, j] != 0.0) & (bad | use_ctl) else 0.0
+        W[_EXT + 1, j] = W[_MZH, j] if ext else 0.0
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 def checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
            znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """The range rules (counted where a limit is exceeded, by the scalar kernel's function), refusals, the
-    controller, lane by lane."""
+    controller: lane by lane for the lanes that need one (:func:`_attention`, vectorised)."""
+    _attention(W, L, maxload, maxslip, ext, use_ctl)
     for j in range(L):
-        if W[_ACT, j] == 0.0:
+        if W[_ATTN, j] == 0.0:
             continue
         i = lo + j
         loads = (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j])
@@ -330,11 +357,55 @@ def held(W, L, model, locked, vec_held):
         W[_AC + 5, j], W[_AC + 6, j] = ma, mb
 
 
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+def padded_levels(levels):
+    """The |yaw rate| levels (rad/s) as :data:`MAX_LEVELS` scalars, infinite beyond ``levels`` (never reached)."""
+    lv = [math.inf] * MAX_LEVELS
+    for m in range(min(levels.shape[0], MAX_LEVELS)):
+        lv[m] = levels[m]
+    return lv[0], lv[1], lv[2], lv[3], lv[4], lv[5]
+
+
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def stops(W, L, lo, k, t, levels, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp):
-    """The summaries, the record (every ``stride`` steps) and the stop rules, lane by lane."""
+def _quiet_step(W, L, k, t, lv, mode, settle):
+    """The summaries of the running lanes without an event this step, vectorised: the peak |yaw rate| and its
+    time, the previous sample, the final row's flag and time (``record="final"``); ``W[_EVT]`` 1 for a lane with an
+    event (a first crossing of a level, a non-finite yaw rate, a settle tracker to step), left to :func:`stops`.
+    A lane without an event reaches no new level, so no stop rule fires for it."""
+    l0, l1, l2, l3, l4, l5 = lv
+    r = _STT + 2
     for j in range(L):
-        if W[_ACT, j] == 0.0:
+        on = W[_ACT, j] != 0.0
+        a = abs(W[_THED, j])
+        ev = settle | (not a < math.inf)
+        ev = ev | ((W[r, j] != W[r, j]) & (a >= l0)) | ((W[r + 1, j] != W[r + 1, j]) & (a >= l1))
+        ev = ev | ((W[r + 2, j] != W[r + 2, j]) & (a >= l2)) | ((W[r + 3, j] != W[r + 3, j]) & (a >= l3))
+        ev = ev | ((W[r + 4, j] != W[r + 4, j]) & (a >= l4)) | ((W[r + 5, j] != W[r + 5, j]) & (a >= l5))
+        W[_EVT, j] = 1.0 if on & ev else 0.0
+        quiet = on & (not ev)
+        peak = quiet & ((a > W[_STT, j]) | (k == 0))
+        W[_STT, j] = a if peak else W[_STT, j]
+        W[_STT + 1, j] = t if peak else W[_STT + 1, j]
+        W[_PREV, j] = a if quiet else W[_PREV, j]
+        W[_TPREV, j] = t if quiet else W[_TPREV, j]
+        if mode == 2:
+            W[_RECF, j] = 1.0 if quiet else W[_RECF, j]
+            W[_STT + MAX_LEVELS + 2, j] = t if quiet else W[_STT + MAX_LEVELS + 2, j]
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp):
+    """The summaries, the record (every ``stride`` steps) and the stop rules: vectorised for the lanes without an
+    event (:func:`_quiet_step`), lane by lane for the others and for a recorded step (``record`` not "final")."""
+    _quiet_step(W, L, k, t, lv, mode, settle)
+    record_now = mode != 2 and k % stride == 0
+    for j in range(L):
+        if W[_EVT, j] == 0.0:
+            if record_now and W[_ACT, j] != 0.0:
+                row = k // stride
+                _record(rec, lo + j, row, W, j)
+                nrc[j] = row + 1
+                W[_STT + MAX_LEVELS + 2, j] = t
             continue
         i = lo + j
         a = abs(W[_THED, j])
@@ -347,7 +418,6 @@ def stops(W, L, lo, k, t, levels, nlev, mode, stride, rec, nrc, status, stop_lvl
         W[_PREV, j], W[_TPREV, j] = a, t
         if mode == 2:                       # kept in W (a vectorised copy below), written when the call ends
             W[_RECF, j] = 1.0
-            nrc[j] = 1
             W[_STT + MAX_LEVELS + 2, j] = t
         elif k % stride == 0:
             row = k // stride
@@ -372,10 +442,17 @@ def final_row(W, L, full):
         on = W[_RECF, j] != 0.0
         W[_RECANY, j] = 1.0 if on else W[_RECANY, j]
         W[_RECF, j] = 0.0
-        vals = (W[_X, j], W[_Y, j], W[_THE, j], W[_THED, j], W[_UD, j], W[_VD, j], W[_E, j], W[_ED, j],
-                W[_B, j], W[_BD, j])
-        for c in range(10):
-            W[_REC + c, j] = vals[c] if on else W[_REC + c, j]
+        # the states in the record's order, one line each (a tuple indexed in a loop is a switch: no vectors)
+        W[_REC, j] = W[_X, j] if on else W[_REC, j]
+        W[_REC + 1, j] = W[_Y, j] if on else W[_REC + 1, j]
+        W[_REC + 2, j] = W[_THE, j] if on else W[_REC + 2, j]
+        W[_REC + 3, j] = W[_THED, j] if on else W[_REC + 3, j]
+        W[_REC + 4, j] = W[_UD, j] if on else W[_REC + 4, j]
+        W[_REC + 5, j] = W[_VD, j] if on else W[_REC + 5, j]
+        W[_REC + 6, j] = W[_E, j] if on else W[_REC + 6, j]
+        W[_REC + 7, j] = W[_ED, j] if on else W[_REC + 7, j]
+        W[_REC + 8, j] = W[_B, j] if on else W[_REC + 8, j]
+        W[_REC + 9, j] = W[_BD, j] if on else W[_REC + 9, j]
         if full:
             for c in range(8):
                 W[_REC + 10 + c, j] = W[_F + c, j] if on else W[_REC + 10 + c, j]
