@@ -420,10 +420,24 @@ def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> 
 
 def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthreads: int) -> None:
     if _kc.choice() == "lanes" and len(args[14]) <= _kc.lanes_kernel().MAX_LEVELS:
-        _kc.launch(args, nthreads, n_runs)
+        lk = _kc.lanes_kernel()
+        lanes = _kc.lane_block(n_runs, nthreads)
+        if -(-n_runs // lanes) == 1 and nthreads > 1:      # one block: on this thread (no team to wake)
+            lk.set_num_threads(1)
+            try:
+                lk.run_lanes(*args, lanes)
+            finally:
+                lk.set_num_threads(nthreads)
+            return
+        with lk.parallel_chunksize(1):
+            lk.run_lanes(*args, lanes)
         return
-    if n_runs == 1:          # on this thread: no team to wake, and a first run compiles no parallel loop
-        k.run_serial(*args)
+    if n_runs == 1 and nthreads > 1:
+        k.set_num_threads(1)
+        try:
+            k.run_batch(*args)
+        finally:
+            k.set_num_threads(nthreads)
         return
     with k.parallel_chunksize(max(1, n_runs // (16 * nthreads))):
         k.run_batch(*args)

@@ -13,7 +13,7 @@ import os
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["KERNELS", "use_kernel", "choice", "lanes_kernel", "lane_block", "run_lanes", "launch"]
+__all__ = ["KERNELS", "use_kernel", "choice", "lanes_kernel", "lane_block", "run_lanes"]
 
 #: The WCHAIR kernels: ``"scalar"`` (:func:`.kernel.run_batch`, one run per thread: the default, whose numbers
 #: every test, report and document states) or ``"lanes"`` (:mod:`.lanes_kernel`, runs as SIMD lanes: about 2.4
@@ -112,35 +112,11 @@ def run_lanes(k0: int, k1: int, args: tuple, nthreads: int, n_runs: int) -> None
     n_runs : int
         Runs in ``args``.
     """
-    launch((k0, k1, *args), nthreads, n_runs)
-
-
-def launch(args: tuple, nthreads: int, n_runs: int) -> None:
-    """Runs the lanes kernel on ``args`` (:func:`stability.simulate.kernel.run_batch`'s arguments, the steps
-    first): one block, or one thread, on the calling thread (:func:`.lanes_kernel.run_lanes_serial`: no thread
-    team to wake, no parallel loop to compile on first use), else one block per thread in turn.  The numbers do
-    not depend on which.
-
-    The caller holds the engine's entry guard (:func:`stability.simulate.engine.kernel_entry_guard`).
-
-    Parameters
-    ----------
-    args : tuple
-        First step, the step after the last, and the kernel's arrays.
-    nthreads : int
-        Threads (>= 1).
-    n_runs : int
-        Runs in ``args``.
-    """
     lk = lanes_kernel()
-    lanes = lane_block(n_runs, nthreads)
-    if nthreads <= 1 or n_runs <= lanes:
-        lk.run_lanes_serial(*args, lanes)
-        return
     before = lk.get_num_threads()
     lk.set_num_threads(max(1, min(nthreads, before)))
     try:
         with lk.parallel_chunksize(1):
-            lk.run_lanes(*args, lanes)
+            lk.run_lanes(k0, k1, *args, lane_block(n_runs, nthreads))
     finally:
         lk.set_num_threads(before)

@@ -91,7 +91,7 @@ from stability.simulate.lanes_step import (
     update,
 )
 
-__all__ = ["LANES", "MAX_LEVELS", "run_lanes", "run_lanes_serial", "lane_physics", "get_num_threads", "set_num_threads",
+__all__ = ["LANES", "MAX_LEVELS", "run_lanes", "lane_physics", "get_num_threads", "set_num_threads",
            "parallel_chunksize"]
 
 
@@ -199,16 +199,6 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
             final_row(W, L, rec.shape[1] > 10)
         update(W, L, dt, half_dt2)
     _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode)
-
-
-@njit(cache=True, nogil=True, error_model="numpy")
-def run_lanes_serial(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-                     noise, state, rec, stats, warn, status, nrec, lanes):
-    """:func:`run_lanes` on the calling thread, block after block: one block (a single run, a small batch) needs
-    no thread team, and its first use compiles no parallel loop (about a quarter of the lanes kernel's compile)."""
-    for lo in range(0, P.shape[0], lanes):
-        _block(lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels,
-               ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
