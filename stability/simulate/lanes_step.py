@@ -442,17 +442,10 @@ def final_row(W, L, full):
         on = W[_RECF, j] != 0.0
         W[_RECANY, j] = 1.0 if on else W[_RECANY, j]
         W[_RECF, j] = 0.0
-        # the states in the record's order, one line each (a tuple indexed in a loop is a switch: no vectors)
-        W[_REC, j] = W[_X, j] if on else W[_REC, j]
-        W[_REC + 1, j] = W[_Y, j] if on else W[_REC + 1, j]
-        W[_REC + 2, j] = W[_THE, j] if on else W[_REC + 2, j]
-        W[_REC + 3, j] = W[_THED, j] if on else W[_REC + 3, j]
-        W[_REC + 4, j] = W[_UD, j] if on else W[_REC + 4, j]
-        W[_REC + 5, j] = W[_VD, j] if on else W[_REC + 5, j]
-        W[_REC + 6, j] = W[_E, j] if on else W[_REC + 6, j]
-        W[_REC + 7, j] = W[_ED, j] if on else W[_REC + 7, j]
-        W[_REC + 8, j] = W[_B, j] if on else W[_REC + 8, j]
-        W[_REC + 9, j] = W[_BD, j] if on else W[_REC + 9, j]
+        vals = (W[_X, j], W[_Y, j], W[_THE, j], W[_THED, j], W[_UD, j], W[_VD, j], W[_E, j], W[_ED, j],
+                W[_B, j], W[_BD, j])
+        for c in range(10):
+            W[_REC + c, j] = vals[c] if on else W[_REC + c, j]
         if full:
             for c in range(8):
                 W[_REC + 10 + c, j] = W[_F + c, j] if on else W[_REC + 10 + c, j]
