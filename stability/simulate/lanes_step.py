@@ -323,13 +323,27 @@ def _dynam_held(W, L, model, imp, sticks, locked):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def _held_lanes(W, L):
+    """How many running lanes have a caster at rest (stick-slip: held this step), vectorised."""
+    n = 0
+    for j in range(L):
+        n += int((W[_ACT, j] != 0.0) & ((W[_ED, j] == 0.0) | (W[_BD, j] == 0.0)))
+    return n
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 def dynam(W, L, model, imp, sticks, locked, vec_held):
     """DYNAM, vectorised: the kinetic law's one evaluation of the accelerations, or (``vec_held``) the holding
-    solve's three; without ``vec_held`` (a block too small to vectorise) :func:`held` solves held casters."""
-    if vec_held:
+    solve's three; without ``vec_held`` (a block too small to vectorise) :func:`held` solves held casters.  A
+    stick-slip block none of whose running lanes holds a caster this step evaluates once: for such a lane the
+    holding solve's first evaluation is the kinetic law's, with the same arguments, and the only one it uses."""
+    if vec_held and (locked or _held_lanes(W, L) > 0):
         _dynam_held(W, L, model, imp, sticks, locked)
     else:
         _dynam_kinetic(W, L, model, imp)
+        if vec_held:
+            for j in range(L):
+                W[_HELD, j] = 0.0
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
