@@ -1,18 +1,17 @@
 """The lanes kernel's step, phase by phase: each phase one loop over a block's runs on its work array ``W``.
 
-The vectorised phases (:func:`slip_statics`, :func:`tire_forces`, :func:`dynam`,
-:func:`final_row`, :func:`update`) are arithmetic on ``W``'s rows (the lane
-physics of :mod:`stability.simulate.lanes_physics`); the others go lane by lane
-through the scalar kernel's functions.  All are inlined into
-:func:`stability.simulate.lanes_kernel.run_lanes`'s block, where ``W`` is
-allocated with a constant shape: the rows' distances are then constants and
-LLVM vectorises the loops without aliasing checks.
+The vectorised phases (:func:`slip_statics`, :func:`dynam`, :func:`final_row`, :func:`update`, the masks of
+:func:`checks` and :func:`stops`) are arithmetic on ``W``'s rows (the lane physics of
+:mod:`stability.simulate.lanes_physics`); MECHAN (:func:`tire_forces`) and the lanes a mask picks go lane by lane
+through the scalar kernel's functions.  All are inlined into :func:`stability.simulate.lanes_kernel.run_lanes`'s
+block, where ``W`` has a constant shape: the rows' distances are constants, and LLVM vectorises without aliasing checks.
 """
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from stability.simulate.kernel import (
@@ -84,9 +83,7 @@ MAX_LEVELS = 6
 _REC, _RECF, _RECANY = 133, 164, 165
 #: a lane whose held caster breaks away this step (its stick-slip solve is the scalar kernel's, lane by lane)
 _HELD = 166
-# a lane the range rules, a refusal or the controller need this step (:func:`checks`); a lane whose summaries or
-# stop rules have an event this step (:func:`stops`): each then goes lane by lane through the scalar functions
-_ATTN, _EVT = 167, 168
+_ATTN, _EVT = 167, 168        # the masks of checks and stops: a lane they take lane by lane this step
 NROWS = 169
 
 
@@ -374,9 +371,8 @@ def held(W, L, model, locked, vec_held):
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
 def padded_levels(levels):
     """The |yaw rate| levels (rad/s) as :data:`MAX_LEVELS` scalars, infinite beyond ``levels`` (never reached)."""
-    lv = [math.inf] * MAX_LEVELS
-    for m in range(min(levels.shape[0], MAX_LEVELS)):
-        lv[m] = levels[m]
+    lv = np.full(MAX_LEVELS, math.inf)
+    lv[:min(levels.shape[0], MAX_LEVELS)] = levels[:MAX_LEVELS]
     return lv[0], lv[1], lv[2], lv[3], lv[4], lv[5]
 
 
