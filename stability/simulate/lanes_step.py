@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from stability.simulate.kernel import (
@@ -371,9 +370,9 @@ def held(W, L, model, locked, vec_held):
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
 def padded_levels(levels):
     """The |yaw rate| levels (rad/s) as :data:`MAX_LEVELS` scalars, infinite beyond ``levels`` (never reached)."""
-    lv = np.full(MAX_LEVELS, math.inf)
-    lv[:min(levels.shape[0], MAX_LEVELS)] = levels[:MAX_LEVELS]
-    return lv[0], lv[1], lv[2], lv[3], lv[4], lv[5]
+    n, inf = levels.shape[0], math.inf          # no array operation: their error paths cost seconds to compile
+    return (levels[0] if n > 0 else inf, levels[1] if n > 1 else inf, levels[2] if n > 2 else inf,
+            levels[3] if n > 3 else inf, levels[4] if n > 4 else inf, levels[5] if n > 5 else inf)
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
