@@ -84,6 +84,7 @@ from stability.simulate.lanes_step import (
     dynam,
     final_row,
     held,
+    padded_levels,
     slip_statics,
     stops,
     tire_forces,
@@ -140,6 +141,8 @@ def _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode):
             state[i, c] = W[_XR + c, j]
         state[i, ST_THEDD], state[i, ST_FC1], state[i, ST_FC2] = W[_THEDD, j], W[_FC1, j], W[_FC2, j]
         state[i, ST_PREV], state[i, ST_TPREV], state[i, ST_MZ] = W[_PREV, j], W[_TPREV, j], W[_MZH, j]
+        if mode == 2 and W[_RECANY, j] != 0.0:        # record="final": a step recorded in this call (final_row)
+            nrc[j] = 1
         state[i, ST_NEXTK], state[i, ST_NREC] = next_k[j], nrc[j]
         nrec[i] = nrc[j]
         for c in range(3 + nlev):
@@ -176,6 +179,7 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
     next_k = np.zeros(LANES, dtype=np.int64)
     nrc = np.zeros(LANES, dtype=np.int64)
     vec_held = (sticks or locked) and L >= VEC_HELD_MIN
+    lv = padded_levels(levels)
     _load(W, TSB, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks)
     seg_c, seg_m, seg_k = _borrowed(TSB[0]), _borrowed(TSB[1]), _borrowed(TSB[2])
     for k in range(k0, min(k1, n)):
@@ -190,7 +194,7 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
         dynam(W, L, model, imp, sticks, locked, vec_held)
         if sticks or (locked and not vec_held):
             held(W, L, model, locked, vec_held)
-        stops(W, L, lo, k, t, levels, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp)
+        stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp)
         if mode == 2:
             final_row(W, L, rec.shape[1] > 10)
         update(W, L, dt, half_dt2)

@@ -1,12 +1,10 @@
 """The lanes kernel's step, phase by phase: each phase one loop over a block's runs on its work array ``W``.
 
-The vectorised phases (:func:`slip_statics`, :func:`tire_forces`, :func:`dynam`,
-:func:`final_row`, :func:`update`) are arithmetic on ``W``'s rows (the lane
-physics of :mod:`stability.simulate.lanes_physics`); the others go lane by lane
-through the scalar kernel's functions.  All are inlined into
-:func:`stability.simulate.lanes_kernel.run_lanes`'s block, where ``W`` is
-allocated with a constant shape: the rows' distances are then constants and
-LLVM vectorises the loops without aliasing checks.
+The vectorised phases (:func:`slip_statics`, :func:`dynam`, :func:`final_row`, :func:`update`, the masks of
+:func:`checks` and :func:`stops`) are arithmetic on ``W``'s rows (the lane physics of
+:mod:`stability.simulate.lanes_physics`); MECHAN (:func:`tire_forces`) and the lanes a mask picks go lane by lane
+through the scalar kernel's functions.  All are inlined into :func:`stability.simulate.lanes_kernel.run_lanes`'s
+block, where ``W`` has a constant shape: the rows' distances are constants, and LLVM vectorises without aliasing checks.
 """
 
 from __future__ import annotations
@@ -59,7 +57,7 @@ from stability.simulate.lanes_physics import (
 )
 
 __all__ = ["LANES", "MAX_LEVELS", "NROWS", "slip_statics", "tire_forces", "checks", "dynam", "held", "stops",
-           "final_row", "update"]
+           "final_row", "update", "padded_levels"]
 
 #: runs per block (measured: docs/simulator.md, "Runs as lanes"); the numbers do not depend on it
 LANES = 64
@@ -84,7 +82,8 @@ MAX_LEVELS = 6
 _REC, _RECF, _RECANY = 133, 164, 165
 #: a lane whose held caster breaks away this step (its stick-slip solve is the scalar kernel's, lane by lane)
 _HELD = 166
-NROWS = 167
+_ATTN, _EVT = 167, 168        # the masks of checks and stops: a lane they take lane by lane this step
+NROWS = 169
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
@@ -177,12 +176,36 @@ def tire_forces(W, L, ftimp, imp, policy, seg_c, seg_m, seg_k):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def _attention(W, L, maxload, maxslip, ext, use_ctl):
+    """Which lanes :func:`checks` takes lane by lane (``W[_ATTN]``), vectorised: a tested tire's load or slip beyond
+    its limit or a negative load (the range rule counts), a refusal, or the controller; every lane's yaw moment
+    ``W[_EXT + 1]`` (the held external moment, or none: what :func:`checks` leaves for a lane it does not take)."""
+    for j in range(L):
+        nmax = -math.inf
+        smax = 0.0
+        l0, l1, l2, l3 = W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]
+        c0, c1, c2, c3 = W[_CHK, j] != 0.0, W[_CHK + 1, j] != 0.0, W[_CHK + 2, j] != 0.0, W[_CHK + 3, j] != 0.0
+        nmax = max(nmax, l0) if c0 else nmax
+        smax = max(smax, abs(W[_SL, j])) if c0 else smax
+        nmax = max(nmax, l1) if c1 else nmax
+        smax = max(smax, abs(W[_SL + 1, j])) if c1 else smax
+        nmax = max(nmax, l2) if c2 else nmax
+        smax = max(smax, abs(W[_SL + 2, j])) if c2 else smax
+        nmax = max(nmax, l3) if c3 else nmax
+        smax = max(smax, abs(W[_SL + 3, j])) if c3 else smax
+        bad = (nmax > maxload) | (smax > maxslip) | (min(min(l0, l1), min(l2, l3)) < 0.0) | (W[_REF, j] != 0.0)
+        W[_ATTN, j] = 1.0 if (W[_ACT, j] != 0.0) & (bad | use_ctl) else 0.0
+        W[_EXT + 1, j] = W[_MZH, j] if ext else 0.0
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 def checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
            znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """The range rules (counted where a limit is exceeded, by the scalar kernel's function), refusals, the
-    controller, lane by lane."""
+    controller: lane by lane for the lanes that need one (:func:`_attention`, vectorised)."""
+    _attention(W, L, maxload, maxslip, ext, use_ctl)
     for j in range(L):
-        if W[_ACT, j] == 0.0:
+        if W[_ATTN, j] == 0.0:
             continue
         i = lo + j
         loads = (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j])
@@ -296,13 +319,27 @@ def _dynam_held(W, L, model, imp, sticks, locked):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def _held_lanes(W, L):
+    """How many running lanes have a caster at rest (stick-slip: held this step), vectorised."""
+    n = 0
+    for j in range(L):
+        n += int((W[_ACT, j] != 0.0) & ((W[_ED, j] == 0.0) | (W[_BD, j] == 0.0)))
+    return n
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 def dynam(W, L, model, imp, sticks, locked, vec_held):
     """DYNAM, vectorised: the kinetic law's one evaluation of the accelerations, or (``vec_held``) the holding
-    solve's three; without ``vec_held`` (a block too small to vectorise) :func:`held` solves held casters."""
-    if vec_held:
+    solve's three; without ``vec_held`` (a block too small to vectorise) :func:`held` solves held casters.  A
+    stick-slip block none of whose running lanes holds a caster this step evaluates once: for such a lane the
+    holding solve's first evaluation is the kinetic law's, with the same arguments, and the only one it uses."""
+    if vec_held and (locked or _held_lanes(W, L) > 0):
         _dynam_held(W, L, model, imp, sticks, locked)
     else:
         _dynam_kinetic(W, L, model, imp)
+        if vec_held:
+            for j in range(L):
+                W[_HELD, j] = 0.0
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
@@ -330,11 +367,54 @@ def held(W, L, model, locked, vec_held):
         W[_AC + 5, j], W[_AC + 6, j] = ma, mb
 
 
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+def padded_levels(levels):
+    """The |yaw rate| levels (rad/s) as :data:`MAX_LEVELS` scalars, infinite beyond ``levels`` (never reached)."""
+    n, inf = levels.shape[0], math.inf          # no array operation: their error paths cost seconds to compile
+    return (levels[0] if n > 0 else inf, levels[1] if n > 1 else inf, levels[2] if n > 2 else inf,
+            levels[3] if n > 3 else inf, levels[4] if n > 4 else inf, levels[5] if n > 5 else inf)
+
+
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def stops(W, L, lo, k, t, levels, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp):
-    """The summaries, the record (every ``stride`` steps) and the stop rules, lane by lane."""
+def _quiet_step(W, L, k, t, lv, mode, settle):
+    """The summaries of the running lanes without an event this step, vectorised: the peak |yaw rate| and its
+    time, the previous sample, the final row's flag and time (``record="final"``); ``W[_EVT]`` 1 for a lane with an
+    event (a first crossing of a level, a non-finite yaw rate, a settle tracker to step), left to :func:`stops`.
+    A lane without an event reaches no new level, so no stop rule fires for it."""
+    l0, l1, l2, l3, l4, l5 = lv
+    r = _STT + 2
     for j in range(L):
-        if W[_ACT, j] == 0.0:
+        on = W[_ACT, j] != 0.0
+        a = abs(W[_THED, j])
+        ev = settle | (not a < math.inf)
+        ev = ev | ((W[r, j] != W[r, j]) & (a >= l0)) | ((W[r + 1, j] != W[r + 1, j]) & (a >= l1))
+        ev = ev | ((W[r + 2, j] != W[r + 2, j]) & (a >= l2)) | ((W[r + 3, j] != W[r + 3, j]) & (a >= l3))
+        ev = ev | ((W[r + 4, j] != W[r + 4, j]) & (a >= l4)) | ((W[r + 5, j] != W[r + 5, j]) & (a >= l5))
+        W[_EVT, j] = 1.0 if on & ev else 0.0
+        quiet = on & (not ev)
+        peak = quiet & ((a > W[_STT, j]) | (k == 0))
+        W[_STT, j] = a if peak else W[_STT, j]
+        W[_STT + 1, j] = t if peak else W[_STT + 1, j]
+        W[_PREV, j] = a if quiet else W[_PREV, j]
+        W[_TPREV, j] = t if quiet else W[_TPREV, j]
+        if mode == 2:
+            W[_RECF, j] = 1.0 if quiet else W[_RECF, j]
+            W[_STT + MAX_LEVELS + 2, j] = t if quiet else W[_STT + MAX_LEVELS + 2, j]
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp):
+    """The summaries, the record (every ``stride`` steps) and the stop rules: vectorised for the lanes without an
+    event (:func:`_quiet_step`), lane by lane for the others and for a recorded step (``record`` not "final")."""
+    _quiet_step(W, L, k, t, lv, mode, settle)
+    record_now = mode != 2 and k % stride == 0
+    for j in range(L):
+        if W[_EVT, j] == 0.0:
+            if record_now and W[_ACT, j] != 0.0:
+                row = k // stride
+                _record(rec, lo + j, row, W, j)
+                nrc[j] = row + 1
+                W[_STT + MAX_LEVELS + 2, j] = t
             continue
         i = lo + j
         a = abs(W[_THED, j])
@@ -347,7 +427,6 @@ def stops(W, L, lo, k, t, levels, nlev, mode, stride, rec, nrc, status, stop_lvl
         W[_PREV, j], W[_TPREV, j] = a, t
         if mode == 2:                       # kept in W (a vectorised copy below), written when the call ends
             W[_RECF, j] = 1.0
-            nrc[j] = 1
             W[_STT + MAX_LEVELS + 2, j] = t
         elif k % stride == 0:
             row = k // stride
