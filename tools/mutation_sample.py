@@ -53,9 +53,27 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]       # the source mutated (and, without --tests-from, the tests)
 
 #: The fast tests that judge each module's mutants (the default marker selection; slow tests excluded).
+ADVISE = ["tests/test_advise.py", "tests/test_advise_decisions.py"]
 MODULES = {
     "stability/linear/critical.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
     "stability/linear/model.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
+    "stability/advise/advisor.py": ADVISE,
+    "stability/advise/levers.py": ADVISE,
+    "stability/advise/limits.py": ADVISE,
+    "stability/study/search.py": ["tests/test_search.py", "tests/test_search_rate_fit.py"],
+    "stability/study/intervals.py": ["tests/test_intervals.py", "tests/test_impulse_step.py"],
+    "stability/study/impulse.py": ["tests/test_impulse_fast.py", "tests/test_impulse_step.py"],
+    "stability/study/impulse_intervals.py": ["tests/test_impulse_step.py", "tests/test_intervals.py"],
+    "stability/study/censored.py": ["tests/test_sweep.py"],
+    "stability/tipping/angles.py": ["tests/test_tipping.py"],
+    "stability/shimmy/band.py": ["tests/test_shimmy_band.py"],
+    "stability/slope/equilibrium.py": ["tests/test_slope.py"],
+    "stability/sweep/run.py": ["tests/test_sweep.py"],
+    "stability/uncertainty/propagation.py": ["tests/test_uncertainty.py"],
+    "stability/measure/sheet.py": ["tests/test_measure.py"],
+    "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py"],
+    "stability/assist/export_c.py": ["tests/test_assist_export.py"],
+    "stability/models/full_width.py": ["tests/test_linear.py", "tests/test_simulate.py"],
 }
 
 
