@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Crossing", "max_real_part", "critical_speeds"]
+__all__ = ["Crossing", "GUARD_FRACTIONS", "critical_speeds", "hermite", "max_real_part"]
 
 
 @dataclass(frozen=True)
@@ -73,6 +73,34 @@ def _slopes(state_matrix, speeds: np.ndarray, alpha: np.ndarray) -> np.ndarray:
         den = np.vdot(w, v)
         out[k] = (np.vdot(w, dA[k] @ v) / den).real if abs(den) > 1e-14 else 0.0
     return out
+
+
+#: Where the double-crossing guard samples the Hermite interpolant: fractions of a grid interval.
+GUARD_FRACTIONS = np.linspace(0.0, 1.0, 9)[1:-1]
+
+
+def hermite(a0: float, a1: float, s0: float, s1: float, h: float, t: np.ndarray = GUARD_FRACTIONS) -> np.ndarray:
+    """Cubic Hermite interpolant on an interval of width ``h`` from its end values and slopes.
+
+    Parameters
+    ----------
+    a0, a1 : float
+        Values at the interval's ends (unit of the value, 1/s for ``alpha``).
+    s0, s1 : float
+        Slopes at the ends (value per unit of the abscissa, 1/s per m/s for ``alpha``).
+    h : float
+        Width of the interval (unit of the abscissa, m/s).
+    t : ndarray, optional
+        Fractions of the interval (0 at ``a0``, 1 at ``a1``); default :data:`GUARD_FRACTIONS`.
+
+    Returns
+    -------
+    ndarray
+        The interpolant at ``t`` (unit of the value); exact for a cubic.
+    """
+    h00, h10 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t
+    h01, h11 = -2 * t**3 + 3 * t**2, t**3 - t**2
+    return h00 * a0 + h10 * h * s0 + h01 * a1 + h11 * h * s1
 
 
 def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
@@ -144,11 +172,7 @@ def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
     for k in range(len(U) - 1):
         if np.sign(a[k]) != np.sign(a[k + 1]):
             continue
-        h = U[k + 1] - U[k]
-        tt = np.linspace(0, 1, 9)[1:-1]
-        h00, h10 = 2 * tt**3 - 3 * tt**2 + 1, tt**3 - 2 * tt**2 + tt
-        h01, h11 = -2 * tt**3 + 3 * tt**2, tt**3 - tt**2
-        herm = h00 * a[k] + h10 * h * da[k] + h01 * a[k + 1] + h11 * h * da[k + 1]
+        herm = hermite(a[k], a[k + 1], da[k], da[k + 1], U[k + 1] - U[k])
         suspicious = np.any(np.sign(herm) != np.sign(a[k])) or (
             np.sign(da[k]) != np.sign(da[k + 1]) and np.min(np.abs(herm)) < 0.05 * scale
         )
