@@ -105,66 +105,148 @@ def _mutated(path: str, line: int, index: int) -> str:
     return new
 
 
+#: Mutants shown to change no answer: (module, old line, new line) -> why (the table of docs/testing.md).
+EQUIVALENT: dict[tuple[str, str, str], str] = {}
+
+
+def equivalent(path: str, old: str, new: str) -> str:
+    """Why the mutant ``old`` -> ``new`` of ``path`` changes no answer, or ``""``."""
+    return EQUIVALENT.get((path, old, new), "")
+
+
+def changed_modules(base: str | None) -> tuple[str, list[str]]:
+    """The base revision and the modules of :data:`MODULES` changed between it and HEAD.
+
+    ``base`` None: the merge base with ``origin/main`` (or ``main``) when HEAD is not on it, else ``HEAD~1``.
+    """
+    def git(*args: str) -> str:
+        return subprocess.run(["git", "-C", str(ROOT), *args], check=True, capture_output=True,
+                              text=True).stdout.strip()
+
+    if base is None:
+        head = git("rev-parse", "HEAD")
+        for ref in ("origin/main", "main"):
+            try:
+                mb = git("merge-base", "HEAD", ref)
+            except subprocess.CalledProcessError:
+                continue
+            if mb != head:
+                base = mb
+                break
+        else:
+            base = "HEAD~1"
+    names = git("diff", "--name-only", base, "HEAD").splitlines()
+    return base, [m for m in MODULES if m in names]
+
+
+def _draw(path: str, args: argparse.Namespace) -> list[tuple[int, int, str, str]]:
+    every = mutants(path)
+    if args.only_survivors:
+        rows = [json.loads(x) for x in Path(args.only_survivors).read_text().splitlines() if x.strip()]
+        keep = {(r.get("path", path), r["old"], r["new"]) for r in rows if r["status"] == "survived"}
+        return [m for m in every if (path, m[2], m[3]) in keep]
+    if args.all or args.sample >= len(every):
+        return every
+    return sorted(random.Random(args.seed).sample(every, args.sample))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Command line: run the sample and print the score."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("path", choices=sorted(MODULES))
-    ap.add_argument("--sample", type=int, default=60, help="mutants drawn (default 60)")
+    ap.add_argument("path", nargs="?", choices=sorted(MODULES))
+    ap.add_argument("--sample", type=int, default=60, help="mutants drawn per module (default 60)")
     ap.add_argument("--all", action="store_true", help="every mutant instead of a sample")
     ap.add_argument("--seed", type=int, default=34)
-    ap.add_argument("--only-survivors", metavar="JSONL", help="re-test the survivors of an earlier run")
+    ap.add_argument("--only-survivors", metavar="JSONL", help="re-test the survivors of an earlier run (matched by "
+                    "their old and new line, so they are found again after lines moved)")
+    ap.add_argument("--changed", action="store_true", help="the modules of MODULES changed since --base (CI)")
+    ap.add_argument("--base", metavar="REV", help="with --changed: compare against REV (default: the merge base "
+                    "with origin/main or main, else HEAD~1)")
+    ap.add_argument("--budget", type=float, default=None, metavar="SECONDS",
+                    help="start no mutant after this many seconds (the mutants are taken round-robin over the "
+                         "modules, so every module gets its share)")
+    ap.add_argument("--target", type=float, default=0.9, help="with --changed: exit 1 when the killed share of "
+                    "the non-equivalent mutants run is below this (default 0.9, issue 34's target)")
     ap.add_argument("--out", required=True, help="JSON lines, one per mutant")
     ap.add_argument("--work", default="/tmp/mutation_sample/copy")
     ap.add_argument("--timeout", type=float, default=300.0)
     ap.add_argument("--tests-from", metavar="REV", help="the tests/ folder of this git revision (e.g. main: the "
                     "score before new tests)")
     args = ap.parse_args(argv)
-
-    every = mutants(args.path)
-    if args.only_survivors:
-        rows = [json.loads(x) for x in Path(args.only_survivors).read_text().splitlines() if x.strip()]
-        keep = {(r["line"], r["index"]) for r in rows if r["status"] == "survived"}
-        chosen = [m for m in every if (m[0], m[1]) in keep]
-    elif args.all or args.sample >= len(every):
-        chosen = every
+    if args.changed:
+        base, paths = changed_modules(args.base)
+        print(f"modules changed since {base}: {', '.join(paths) or 'none of MODULES'}", flush=True)
+        if not paths:
+            Path(args.out).write_text("")
+            return 0
+    elif args.path:
+        paths = [args.path]
     else:
-        chosen = sorted(random.Random(args.seed).sample(every, args.sample))
-    print(f"{args.path}: {len(every)} mutants, running {len(chosen)}", flush=True)
+        ap.error("give a module path or --changed")
+
+    queues = {}
+    for path in paths:
+        queues[path] = _draw(path, args)
+        print(f"{path}: {len(mutants(path))} mutants, drawn {len(queues[path])}", flush=True)
+    # round-robin: one mutant of each module in turn, so a time budget spreads over the modules
+    order = [(path, q[i]) for i in range(max(map(len, queues.values()), default=0))
+             for path, q in queues.items() if i < len(q)]
 
     work = Path(args.work)
     work.mkdir(parents=True, exist_ok=True)
     shutil.copytree(ROOT, work, dirs_exist_ok=True,
-                    ignore=shutil.ignore_patterns(".git", "__pycache__", ".pytest_cache", "reports", "_build"))
+                    ignore=shutil.ignore_patterns(".git", "__pycache__", ".pytest_cache", "reports", "_build",
+                                                  ".ci-venv", ".venv", "ui-artifacts", ".mypy_cache",
+                                                  ".ruff_cache", ".benchmarks"))
     if args.tests_from:
         shutil.rmtree(work / "tests")
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", args.tests_from, "tests"], check=True,
                                  capture_output=True).stdout
         subprocess.run(["tar", "-x", "-C", str(work)], input=archive, check=True)
-    target = work / args.path
-    original = target.read_text()
     env = dict(os.environ, PYTHONPATH=str(work), PYTHONDONTWRITEBYTECODE="1")
-    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-n", "0", "-p", "no:cacheprovider", "-p", "no:warnings",
-           *MODULES[args.path]]
-    killed = 0
+    score: dict[str, list[int]] = {path: [0, 0, 0] for path in paths}      # killed, run, equivalent
+    t_start = time.perf_counter()
     with open(args.out, "w") as fh:
-        for line, index, old, new in chosen:
+        for path, (line, index, old, new) in order:
+            if args.budget is not None and time.perf_counter() - t_start > args.budget:
+                print(f"time budget of {args.budget:g} s used: {len(order) - sum(r for _, r, _ in score.values())} "
+                      "mutants not run", flush=True)
+                break
+            target = work / path
+            original = target.read_text()
+            cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-n", "0", "-p", "no:cacheprovider",
+                   "-p", "no:warnings", *MODULES[path]]
             t0 = time.perf_counter()
             try:
-                target.write_text(_mutated(args.path, line, index))
+                target.write_text(_mutated(path, line, index))
                 proc = subprocess.run(cmd, cwd=work, env=env, capture_output=True, text=True, timeout=args.timeout)
                 status = "survived" if proc.returncode == 0 else "killed"
             except subprocess.TimeoutExpired:
                 status = "timeout"
             finally:
                 target.write_text(original)
-            killed += status != "survived"
-            row = {"line": line, "index": index, "old": old, "new": new, "status": status,
+            why = equivalent(path, old, new)
+            s = score[path]
+            s[0] += status != "survived"
+            s[1] += 1
+            s[2] += bool(why) and status == "survived"
+            row = {"path": path, "line": line, "index": index, "old": old, "new": new, "status": status,
                    "seconds": round(time.perf_counter() - t0, 1)}
+            if why and status == "survived":
+                row["equivalent"] = why
             fh.write(json.dumps(row) + "\n")
             fh.flush()
-            print(f"{status:8} {line:4}:{index} {old[:60]!r} -> {new[:60]!r}", flush=True)
-    print(f"killed {killed}/{len(chosen)}")
-    return 0 if killed == len(chosen) else 1
+            tag = "survived (equivalent)" if row.get("equivalent") else status
+            print(f"{tag:8} {path}:{line}:{index} {old[:60]!r} -> {new[:60]!r}", flush=True)
+    ok = True
+    for path, (killed, run, eq) in score.items():
+        share = killed / (run - eq) if run > eq else 1.0
+        print(f"{path}: killed {killed}/{run}, {eq} equivalent: {100 * share:.0f} % of the non-equivalent")
+        ok &= share >= args.target
+    if not args.changed:
+        print(f"killed {sum(s[0] for s in score.values())}/{sum(s[1] for s in score.values())}")
+        return 0 if all(s[0] + s[2] == s[1] for s in score.values()) else 1
+    return 0 if ok else 1
 
 
 if __name__ == "__main__":
