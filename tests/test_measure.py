@@ -318,3 +318,31 @@ def test_cli_checks_output_paths_before_work(tmp_path, capsys):
     code = measure_main([EXAMPLE, "-o", str(tmp_path / "c.toml"), "--uncertainty-file", str(tmp_path / "c.toml")])
     assert code == 2
     assert list(tmp_path.iterdir()) == []
+
+
+def test_readings_table_of_docs_measure_is_what_the_sheet_accepts():
+    """docs/measure.md's readings table (written for the measurer: dimension, valid range, required, what) states
+    every reading the sheet reader knows, with the same bounds (lower bound -1e-12 read as '>= 0': the reader
+    admits a zero up to rounding), the same required flag and the same description."""
+    from pathlib import Path
+
+    from stability.measure.sheet import READINGS
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "measure.md").read_text(encoding="utf-8")
+    rows = {}
+    for line in page.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 5 and cells[0].startswith("`") and "." in cells[0]:
+            rows[cells[0].strip("`")] = cells[1:]
+    assert set(rows) == set(READINGS)
+
+    def num(x):
+        return str(int(x)) if float(x).is_integer() else f"{x:g}"
+
+    for key, (dims, lo, hi, required, what) in READINGS.items():
+        dim, rng, req, doc = rows[key]
+        assert dim == " or ".join(d.replace("_", " ") for d in dims), key
+        low = ">= 0" if lo == -1e-12 else f"> {num(lo)}"
+        assert rng == f"{low}, <= {num(hi)}", key
+        assert req == ("yes" if required else "no"), key
+        assert doc == what, key
