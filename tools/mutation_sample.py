@@ -38,6 +38,7 @@ Measured for issue 34 (seed 34, 50 mutants of each file; tests of ``MODULES``; "
   lengths).
 """
 
+# ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
 from __future__ import annotations
 
 import argparse
@@ -106,7 +107,52 @@ def _mutated(path: str, line: int, index: int) -> str:
 
 
 #: Mutants shown to change no answer: (module, old line, new line) -> why (the table of docs/testing.md).
-EQUIVALENT: dict[tuple[str, str, str], str] = {}
+EQUIVALENT: dict[tuple[str, str, str], str] = {
+    ('stability/linear/critical.py',
+     'h = 1e-6 * np.maximum(1.0, np.abs(speeds))',
+     'h = 1e-6 * np.maximum(2.0, np.abs(speeds))'):
+        "the finite-difference step of the eigenvalue slope doubles below `2 m/s`: the slope moves by `O(h^2)`, about `1e-12` relative, and only shapes the guard's interpolant",
+    ('stability/linear/critical.py',
+     'out[k] = (np.vdot(w, dA[k] @ v) / den).real if abs(den) > 1e-14 else 0.0',
+     'out[k] = (np.vdot(w, dA[k] @ v) / den).real if abs(den) >= 1e-14 else 0.0'):
+        '`|w^H v|` equal to `1e-14` exactly does not occur (unit eigenvectors; zero only at a defective eigenvalue)',
+    ('stability/linear/critical.py',
+     'np.sign(da[k]) != np.sign(da[k + 1]) and np.min(np.abs(herm)) < 0.05 * scale',
+     'np.sign(da[k]) != np.sign(da[k + 1]) and np.min(np.abs(herm)) <= 0.05 * scale'):
+        "the interpolant's smallest magnitude equal to `0.05` of the scale exactly does not occur",
+    ('stability/linear/critical.py',
+     's = brentq(alpha, lo, hi, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=500)',
+     's = brentq(alpha, lo, hi, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=501)'):
+        "Brent's method converges to `xtol` in far fewer iterations than either limit",
+    ('stability/linear/critical.py',
+     'options={"xatol": 1e-9})',
+     'options={"XXxatolXX": 1e-9})'):
+        "scipy warns of the unknown option and keeps its default `xatol`: the maximum's location only has to show a positive value, which a looser location still does",
+    ('stability/linear/critical.py',
+     'kind = "complex" if abs(lam[i].imag) > 1e-8 * max(1.0, abs(lam[i])) else "real"',
+     'kind = "complex" if abs(lam[i].imag) >= 1e-8 * max(1.0, abs(lam[i])) else "real"'):
+        'an imaginary part exactly at the threshold does not occur',
+    ('stability/linear/critical.py',
+     'kind = "complex" if abs(lam[i].imag) > 1e-8 * max(1.0, abs(lam[i])) else "real"',
+     'kind = "complex" if abs(lam[i].imag) > 1e-8 * max(2.0, abs(lam[i])) else "real"'):
+        'only an eigenvalue whose imaginary part lies between `1e-8` and `2e-8` would change its word; crossing eigenvalues are real to rounding or complex by far more',
+    ('stability/linear/critical.py',
+     'direction = "destabilising" if alpha(hi) > alpha(lo) else "stabilising"',
+     'direction = "destabilising" if alpha(hi) >= alpha(lo) else "stabilising"'):
+        "a bracket's ends have opposite signs of `alpha`, so they are never equal",
+    ('stability/tipping/angles.py',
+     'for j in range(i + 1, n_pts):',
+     'for j in range(i - 1, n_pts):'):
+        'adds the pairs `(i, i)`, whose differences are all zero and give no candidate, and pairs already taken: the same candidate set, the same minimum',
+    ('stability/shimmy/band.py',
+     'c_alpha = np.where(n_a > 0, c_alpha, np.nan)',
+     'c_alpha = np.where(n_a >= 0, c_alpha, np.nan)'):
+        "differs only where a caster's load is exactly `0.0` N, which the continuous trail search does not hit (a negative load gives NaN either way)",
+    ('stability/slope/equilibrium.py',
+     'for pins in ((1, 1), (-1, -1), (1, -1), (-1, 1)):',
+     'for pins in ((1, 1), (-1, -1), (1, -1), (+1, 1)):'):
+        "the mixed-sign pin moments give holding moments strictly between the same-sign pairs' (each pin moment moves the holding moment the same way; checked on every preset on three cross slopes and two grades), so the range's ends come from `(1, 1)` and `(-1, -1)` with or without `(-1, 1)`",
+}
 
 
 def equivalent(path: str, old: str, new: str) -> str:
