@@ -62,7 +62,7 @@ MODULES = {
     "stability/advise/levers.py": ADVISE,
     "stability/advise/limits.py": ADVISE,
     "stability/study/search.py": ["tests/test_search.py", "tests/test_search_rate_fit.py"],
-    "stability/study/intervals.py": ["tests/test_intervals.py", "tests/test_impulse_step.py"],
+    "stability/study/intervals.py": ["tests/test_study_measures.py", "tests/test_impulse_step.py"],
     "stability/study/impulse.py": ["tests/test_impulse_fast.py", "tests/test_impulse_step.py"],
     "stability/study/impulse_intervals.py": ["tests/test_impulse_step.py", "tests/test_intervals.py"],
     "stability/study/censored.py": ["tests/test_sweep.py"],
