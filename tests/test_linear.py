@@ -289,7 +289,7 @@ def test_critical_speed_grid_is_checked_naming_the_problem():
     assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 2.0])] == [1.0]
     with pytest.raises(ValueError, match=r"at least 2 speeds, got shape \(1,\)"):
         linear.critical_speeds(A, [0.5])
-    with pytest.raises(ValueError, match="strictly increasing"):
+    with pytest.raises(ValueError, match="^speeds must be strictly increasing$"):
         linear.critical_speeds(A, [0.5, 1.5, 1.5, 2.0])
     with pytest.raises(ValueError, match=r"^speeds\[0\]=0\.0 is invalid; valid range: speed > 0 m/s$"):
         linear.critical_speeds(A, [0.0, 1.0, 2.0])
@@ -318,6 +318,9 @@ def test_critical_speed_exactly_on_a_grid_point_is_found_once():
     cross = linear.critical_speeds(B, np.arange(0.5, 2.3, 0.25))
     assert [c.direction for c in cross] == ["stabilising", "destabilising"]
     np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], atol=1e-10)
+    # a zero at the last grid point (no neighbour above: bracketed from the point below to the point itself)
+    last = linear.critical_speeds(A, [0.5, 0.75, 1.0])
+    assert [round(c.speed, 10) for c in last] == [1.0] and last[0].direction == "destabilising"
 
 
 @pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd"])
