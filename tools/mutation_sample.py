@@ -189,8 +189,15 @@ def _draw(path: str, args: argparse.Namespace) -> list[tuple[int, int, str, str]
     every = mutants(path)
     if args.only_survivors:
         rows = [json.loads(x) for x in Path(args.only_survivors).read_text().splitlines() if x.strip()]
-        keep = {(r.get("path", path), r["old"], r["new"]) for r in rows if r["status"] == "survived"}
-        return [m for m in every if (path, m[2], m[3]) in keep]
+        chosen: list[tuple[int, int, str, str]] = []
+        for r in rows:
+            if r["status"] != "survived" or r.get("path", path) != path:
+                continue
+            # the same change of the same text may occur on several lines: the one nearest the old line number
+            same = [m for m in every if (m[2], m[3]) == (r["old"], r["new"]) and m not in chosen]
+            if same:
+                chosen.append(min(same, key=lambda m: abs(m[0] - r["line"])))
+        return sorted(chosen)
     if args.all or args.sample >= len(every):
         return every
     return sorted(random.Random(args.seed).sample(every, args.sample))
