@@ -69,3 +69,25 @@ def test_the_reported_impulse_is_the_one_the_chair_receives_where_the_step_is_cu
         run = RunSpec(dt=0.0005, push_force=impulse / unit, push_duration=0.1, horizon=10.0, stop_on_warnings=False)
         t = simulate(c, 0.3, run).first_time_abs_yaw_rate(1.0)
         assert (t is not None) == reaches, (impulse, t)
+
+
+def test_critical_impulse_interval_words_and_json_from_its_variants():
+    """A constructed interval: the words give the point, the range to 3 figures and every variant's label; the
+    JSON has each variant's label, impulse, status and bound (the largest push tried for 'never')."""
+    from stability.study.impulse import CriticalImpulse
+    from stability.study.impulse_intervals import CriticalImpulseInterval
+
+    def imp(j, status="found"):
+        return CriticalImpulse(chair_name="c", mass=90.0, speed=0.75, impulse_Ns=j, status=status, low_Ns=0.0,
+                               high_Ns=0.0, largest_tried_Ns=40.0, smallest_tried_Ns=1e-6, push="40 N for 0.1 s",
+                               model="exact", scheme="wchair", level=1.0, horizon=10.0, runs=20)
+
+    iv = CriticalImpulseInterval("c", 0.75, imp(3.2216), (("x0.5 pin friction", imp(2.3012)),
+                                                         ("thesis model", imp(None, "never"))), 2.3012, 40.0)
+    assert iv.describe() == "3.22 N s (range 2.3-40 N s over x0.5 pin friction, thesis model)"
+    assert iv.to_dict() == {"chair": "c", "speed_m_s": 0.75, "impulse_Ns": 3.2216, "status": "found",
+                            "low_Ns": 2.3012, "high_Ns": 40.0,
+                            "variants": [{"label": "x0.5 pin friction", "impulse_Ns": 2.3012, "status": "found",
+                                          "bound_Ns": 2.3012},
+                                         {"label": "thesis model", "impulse_Ns": None, "status": "never",
+                                          "bound_Ns": 40.0}]}
