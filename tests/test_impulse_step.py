@@ -41,6 +41,13 @@ def test_the_interval_includes_the_half_step_answer():
     assert np.max(np.abs(lam.real)) * 1e-3 > 1.0           # forward Euler's factor 1 + lambda dt < 0 at 1 ms
     assert 1200.0 < float(np.max(np.abs(lam.real))) < 1300.0  # "about 1240 1/s" in docs/advise.md (1242 1/s; the window only guards the docs' word, not a rounding edge)
     iv = critical_impulse_intervals([c], 0.75, run=RunSpec(friction_law="kinetic"))[0]
+    # every variant of the defaults, in order: each friction factor, the other model, each step factor
+    from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS, scale_friction
+
+    assert [label for label, _ in iv.variants] == ([f"x{f:g} pin friction" for f in FRICTION_FACTORS] + ["thesis model"]
+                                                   + [f"{f:g} ms step" for f in STEP_FACTORS])
+    lower = critical_impulses(scale_friction(c, FRICTION_FACTORS[0]), [0.75], run=RunSpec(friction_law="kinetic"))[0]
+    assert iv.variants[0][1].impulse_Ns == lower.impulse_Ns            # the same search on the changed chair
     half = dict(iv.variants)["0.5 ms step"]
     assert half.status == "found" and iv.point.status == "found"
     assert half.impulse_Ns > 4 * iv.point.impulse_Ns       # 11.6 vs 2.1 N s
