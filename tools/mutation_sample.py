@@ -152,6 +152,26 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'for pins in ((1, 1), (-1, -1), (1, -1), (-1, 1)):',
      'for pins in ((1, 1), (-1, -1), (1, -1), (+1, 1)):'):
         "the mixed-sign pin moments give holding moments strictly between the same-sign pairs' (each pin moment moves the holding moment the same way; checked on every preset on three cross slopes and two grades), so the range's ends come from `(1, 1)` and `(-1, -1)` with or without `(-1, 1)`",
+    ('stability/linear/critical.py',
+     'hi = U[k + 1] if k < len(U) - 1 else U[k]',
+     'hi = U[k + 1] if k < len(U) - 2 else U[k]'):
+        "for a zero exactly at the last-but-one grid point the bracket ends at that point instead of the next: Brent's method returns the bracket's end where `alpha` is zero, the same speed",
+    ('stability/linear/critical.py',
+     'if lo < hi and np.sign(alpha(lo)) != np.sign(alpha(hi)):',
+     'if lo <= hi and np.sign(alpha(lo)) != np.sign(alpha(hi)):'):
+        'with `lo == hi` the two signs compared are of one value, equal, so no bracket is added either way',
+    ('stability/linear/critical.py',
+     'scale = max(np.max(np.abs(a)), 1e-9)',
+     'scale = max(np.max(np.abs(a)), 2e-09)'):
+        "the floor only acts when every grid value of `alpha` is below `1e-9` 1/s in magnitude, zero to the eigenvalue solver's rounding, where the guard's margin decides nothing",
+    ('stability/study/impulse.py',
+     'run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]',
+     'run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=False)]'):
+        'the two arrays come from `np.broadcast_arrays`: always the same length',
+    ('stability/study/impulse_intervals.py',
+     'specs: list[tuple[str, str, float, float]] = [("nominal", model, 1.0, dt)]',
+     'specs: list[tuple[str, str, float, float]] = [("XXnominalXX", model, 1.0, dt)]'):
+        "the nominal case's label is never shown: the point is taken by its index, the variants are the specs after it",
 }
 
 
