@@ -411,3 +411,14 @@ def test_a_design_with_failed_draws_ranks_behind_every_complete_one(tmp_path):
     ranked = summary(spec, data, top=3)["measures"]["equal_instability_speed_m_s"]["best"][0]
     assert [e["design"] for e in ranked] == [2, 0, 1]
     assert [e["missing"] for e in ranked] == [0, 0, 1]
+
+
+def test_censored_sides_are_every_side_a_status_can_have():
+    """SIDES lists exactly the sides the searches' statuses map to, and every one of them is described and
+    ranked: at one value, a bound beyond it in the good direction ranks first, the bound on the bad side last."""
+    from stability.study.censored import SIDES, describe, side_of, sort_key
+
+    assert set(SIDES) == {side_of(s) for s in ("found", "above", "never", "below")} and len(SIDES) == 3
+    assert [describe(3.0, s, "m/s") for s in SIDES] == ["3 m/s", "> 3 m/s", "< 3 m/s"]
+    assert sorted(SIDES, key=lambda s: sort_key(3.0, s, True)) == [">", "=", "<"]
+    assert sorted(SIDES, key=lambda s: sort_key(3.0, s, False)) == ["<", "=", ">"]
