@@ -422,3 +422,19 @@ def test_censored_sides_are_every_side_a_status_can_have():
     assert [describe(3.0, s, "m/s") for s in SIDES] == ["3 m/s", "> 3 m/s", "< 3 m/s"]
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, True)) == [">", "=", "<"]
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, False)) == ["<", "=", ">"]
+
+
+def test_censored_quantile_takes_the_conservative_neighbour_and_compare_touching_sets():
+    """Draws 1, 2 and '> 3': the 0.9 quantile lies between 2 and the bound, so it is the upper neighbour with its
+    side (above the median the conservative side is up), the 0.1 quantile interpolates two values.  Sets that
+    only touch are ordered: '< 3' allows only values below 3, so it is worse than 3 where higher is better (and
+    '> 3' better), undecided against '< 4'."""
+    from stability.study.censored import compare, quantile
+
+    assert quantile([1.0, 2.0, 3.0], ["=", "=", ">"], 0.9) == (3.0, ">")
+    assert quantile([1.0, 2.0, 3.0], ["<", "=", ">"], 0.1) == (1.0, "<")
+    assert quantile([1.0, 2.0, 3.0], ["=", "=", ">"], 0.25) == (1.5, "=")
+    assert compare(3.0, "<", 3.0, "=", True) == "worse"
+    assert compare(3.0, "<", 3.0, "=", False) == "better"
+    assert compare(3.0, ">", 3.0, "=", True) == "better"
+    assert compare(3.0, "<", 4.0, "<", True) == "undecided"
