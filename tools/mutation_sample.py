@@ -201,7 +201,11 @@ def changed_modules(base: str | None) -> tuple[str, list[str]]:
                 break
         else:
             base = "HEAD~1"
-    names = git("diff", "--name-only", base, "HEAD").splitlines()
+    try:
+        names = git("diff", "--name-only", base, "HEAD").splitlines()
+    except subprocess.CalledProcessError as exc:      # a shallow clone without the base, or no git history
+        print(f"cannot compare with {base}: {exc.stderr.strip()}; no mutants run", flush=True)
+        return base, []
     return base, [m for m in MODULES if m in names]
 
 
