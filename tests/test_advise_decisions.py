@@ -218,6 +218,18 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
     assert d["recommendations"][0]["label"] == a.recommendations[0].candidate.label
     assert [b["label"] for b in d["blocked"]] == [b.candidate.label for b in a.blocked]
     assert d["pairs_screened"] == a.pairs_screened > 0 and d["shimmy_hold"]["amplitude_deg"] > 0
+    # what a recommendation was built from: each part is a measured single change, named with its own change
+    # and gain, and the parts' changes together are the recommendation's
+    singles = {c.label: c for c in a.candidates}
+    assert any(rec["built_from"] for rec in d["recommendations"])     # the premise: a combination is recommended
+    for rec in d["recommendations"]:
+        merged: dict = {}
+        for part in rec["built_from"]:
+            single = singles[part["label"]]
+            assert part["change"] == single.fields and part["robust_gain"] == single.gain, part["label"]
+            merged.update(part["change"])
+        if rec["built_from"]:
+            assert merged == rec["change"], rec["label"]
 
 
 def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks():
