@@ -172,6 +172,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'specs: list[tuple[str, str, float, float]] = [("nominal", model, 1.0, dt)]',
      'specs: list[tuple[str, str, float, float]] = [("XXnominalXX", model, 1.0, dt)]'):
         "the nominal case's label is never shown: the point is taken by its index, the variants are the specs after it",
+    ('stability/assist/export_c.py',
+     'VECTOR_BIAS_DEG_S = 2.0',
+     'VECTOR_BIAS_DEG_S = 3.0'):
+        'an input of the exported test vectors (the gyro bias they carry), not an answer: the exported C is checked against the Python controller on whatever vectors are written, and any bias the estimator tracks serves',
 }
 
 
