@@ -279,3 +279,17 @@ def test_range_definition_words_are_the_factors_the_range_uses():
                                 f"{listed(FRICTION_FACTORS)} (on both the chair and the reference chair), the other "
                                 "model variant and half the simulator's step, one at a time: not a statistical "
                                 "interval")
+
+
+def test_the_intervals_of_many_chairs_have_the_one_chairs_defaults():
+    """equal_instability_intervals (many chairs) and equal_instability_interval (one) are one definition of the
+    range: every argument they share has the same default (a default changed in one only would make the advisor's
+    and the study command's ranges differ)."""
+    import inspect
+
+    one = inspect.signature(study.equal_instability_interval).parameters
+    many = inspect.signature(study.equal_instability_intervals).parameters
+    shared = [n for n in one if n in many and n not in ("chair", "chairs")]
+    assert len(shared) >= 12
+    for name in shared:
+        assert one[name].default == many[name].default, name
