@@ -180,6 +180,14 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'standstill: Design | None = None',
      'standstill: Design & None = None'):
         'an annotation: the module has `from __future__ import annotations`, so it is a string nobody evaluates',
+    ('stability/linear/model.py',
+     'if M.ndim == 2:',
+     'if M.ndim == 3:'):
+        'a batched solve instead of the one inverse: the same matrices to rounding',
+    ('stability/linear/model.py',
+     'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd',
+     'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=False)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd'):
+        'the two accelerations compared always have the same five entries',
 }
 
 
