@@ -768,3 +768,8 @@ def test_a_schedule_built_without_a_standstill_design_starts_at_its_first_speed(
     speeds, designs = bare.grid
     np.testing.assert_array_equal(speeds, [1.0, 2.0])
     assert designs == s.designs
+
+
+def test_a_schedule_of_no_speed_is_refused_in_one_line():
+    with pytest.raises(ValueError, match="^speeds: expected at least one speed$"):
+        assist.schedule(chair_mod.preset("power-fwd"), [], "gyro")

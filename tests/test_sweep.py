@@ -438,3 +438,44 @@ def test_censored_quantile_takes_the_conservative_neighbour_and_compare_touching
     assert compare(3.0, "<", 3.0, "=", False) == "better"
     assert compare(3.0, ">", 3.0, "=", True) == "better"
     assert compare(3.0, "<", 4.0, "<", True) == "undecided"
+
+
+def test_every_measure_column_has_a_direction_and_the_unit_its_name_ends_with():
+    """Each numeric measure column is ranked (HIGHER_IS_BETTER) and printed with the unit its key's suffix names
+    (the JSON key convention, stability.schemas); a dimensionless score has none."""
+    from stability.sweep.run import COLUMN_UNITS, HIGHER_IS_BETTER, TEXT_COLUMNS
+    from stability.sweep.spec import MEASURES
+
+    numeric = {c for cols, _ in MEASURES.values() for c in cols if c not in TEXT_COLUMNS}
+    assert set(HIGHER_IS_BETTER) == numeric and set(COLUMN_UNITS) == numeric
+    suffixes = [("_N_m_per_deg", "N m/deg"), ("_1_s", "1/s"), ("_m_s", "m/s"), ("_Ns", "N s"), ("_deg", "deg"),
+                ("_m", "m"), ("_score", "")]
+    for col in numeric:
+        assert COLUMN_UNITS[col] == next(u for s, u in suffixes if col.endswith(s)), col
+    # larger is safer except where the measure is a rate, a needed effort, a score of faults or a distance
+    assert {c for c in numeric if not HIGHER_IS_BETTER[c]} == {"growth_rate_1_s", "holding_moment_N_m_per_deg",
+                                                               "bench_worst_score", "level_braking_distance_m"}
+
+
+def test_censored_exact_value_against_a_bound_at_it():
+    """3 exactly against '> 3': every value the bound allows is above 3, so 3 is worse where higher is better."""
+    from stability.study.censored import compare
+
+    assert compare(3.0, "=", 3.0, ">", True) == "worse"
+    assert compare(3.0, "=", 3.0, "<", True) == "better"
+
+
+def test_unfinished_chunks_are_refused_naming_both_ways_on(spec_dir):
+    """An output whose chunk directory is left from an interrupted run is refused before any work, in one line
+    naming the output, the directory and both ways on."""
+    import re
+
+    from stability.sweep.run import chunk_dir
+
+    spec = loads_spec(LINEAR, spec_dir)
+    out = spec_dir / "b.csv"
+    chunk_dir(out).mkdir(parents=True)
+    with pytest.raises(ValueError, match=rf"^output {re.escape(repr(str(out)))} has unfinished chunks in "
+                                         rf"{re.escape(repr(str(chunk_dir(out))))}; valid: --resume to finish them, "
+                                         r"or remove that directory$"):
+        run_sweep(spec, out)
