@@ -217,6 +217,14 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
     d = advice_mapping(a)
     assert d["recommendations"][0]["label"] == a.recommendations[0].candidate.label
     assert [b["label"] for b in d["blocked"]] == [b.candidate.label for b in a.blocked]
+    # each blocking limit with its value and limit as the constraint measured them (finite values as numbers)
+    for b_json, b in zip(d["blocked"], a.blocked, strict=True):
+        by = b.limits
+        assert by
+        assert [(k["name"], k["value"], k["limit"]) for k in b_json["blocked_by"]] == \
+            [(k.name, k.value if k.value is None or math.isfinite(k.value) else None, k.limit) for k in by]
+        assert all(k["value"] is not None for k, lim in zip(b_json["blocked_by"], by, strict=True)
+                   if lim.value is not None and math.isfinite(lim.value))
     assert d["pairs_screened"] == a.pairs_screened > 0 and d["shimmy_hold"]["amplitude_deg"] > 0
     # what a recommendation was built from: each part is a measured single change, named with its own change
     # and gain, and the parts' changes together are the recommendation's
