@@ -299,6 +299,11 @@ def test_a_design_beyond_the_searched_range_ranks_first_as_its_bound(tmp_path):
     assert ranked[2]["conservative"] == pytest.approx(1.164)
     text = summary_text(spec, s)
     assert "> 3 m/s" in text and "{" not in text and "trail 0.05 m" in text     # a bound, no dict repr
+    # a higher speed is better, so the designs are ranked by their interval's low end, said in the heading
+    assert "equal_instability_speed_m_s at 0.75 m/s (low end | median | design):" in text.splitlines()
+    from stability.sweep.run import _grid_text
+
+    assert _grid_text({"cg_ratio": 0.5, "trail": 0.05}) == "cg_ratio 0.5, trail 0.05 m"   # a group has no unit
 
 
 def test_a_critical_impulse_never_reached_is_at_least_the_largest_push_and_ranks_first(tmp_path):
