@@ -188,6 +188,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd',
      'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=False)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd'):
         'the two accelerations compared always have the same five entries',
+    ('stability/sweep/run.py',
+     'for sp, ranked in zip(per["speeds_m_s"], per["best"], strict=True):',
+     'for sp, ranked in zip(per["speeds_m_s"], per["best"], strict=False):'):
+        '`summary` builds one list of best designs per speed: the two lists always have the same length',
 }
 
 
