@@ -484,3 +484,7 @@ def test_unfinished_chunks_are_refused_naming_both_ways_on(spec_dir):
                                          rf"{re.escape(repr(str(chunk_dir(out))))}; valid: --resume to finish them, "
                                          r"or remove that directory$"):
         run_sweep(spec, out)
+    (chunk_dir(out) / "spec.json").write_text("{}")             # chunks of another spec
+    with pytest.raises(ValueError, match=rf"^--resume: the chunks in {re.escape(repr(str(chunk_dir(out))))} come "
+                                         r"from another spec; valid: the same spec, or remove that directory$"):
+        run_sweep(spec, out, resume=True)
