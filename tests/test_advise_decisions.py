@@ -485,3 +485,20 @@ def test_blocked_changes_rank_by_what_they_fix_then_limits_then_gain():
     assert got == ["fixes", "big", "mid"]
     got = [b.candidate.label for b in _blocked(cands, set(), best_gain=0.1)]
     assert got == ["big", "mid", "small"]
+
+
+def test_a_limit_in_words_has_its_value_limit_and_display_unit():
+    """constraint_text: the limit's words, the value and the limit in the display unit (the shimmy margin in cm from
+    m), 3 figures; a value the slope statics refused is said as such (the docstring's example first)."""
+    from stability.advise.limits import Constraint, constraint_text
+
+    assert constraint_text(Constraint("static_stability_deg", 12.94, 13.8, ">=", False)) == \
+        "static stability 12.9 deg against the limit >= 13.8 deg"
+    assert constraint_text(Constraint("shimmy_margin_m", 0.0123, 0.005, ">=", True)) == \
+        "shimmy margin 1.23 cm against the limit >= 0.5 cm"
+    assert constraint_text(Constraint("turning_effort_N_m", 0.35, 0.3, "<=", False)) == \
+        "turning pin friction 0.35 N m against the limit <= 0.3 N m"
+    assert constraint_text(Constraint("bench_worst_score", 2.0, 1.0, "<=", False)) == \
+        "worst wheel-lift score on the ISO 7176-2 bench 2 against the limit <= 1"
+    assert constraint_text(Constraint("handrim_force_difference_N", None, 30.0, "<=", False)) == \
+        "hand-rim force difference on the cross slope refused by the slope statics (tire data)"
