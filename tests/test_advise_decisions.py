@@ -502,3 +502,39 @@ def test_a_limit_in_words_has_its_value_limit_and_display_unit():
         "worst wheel-lift score on the ISO 7176-2 bench 2 against the limit <= 1"
     assert constraint_text(Constraint("handrim_force_difference_N", None, 30.0, "<=", False)) == \
         "hand-rim force difference on the cross slope refused by the slope statics (tire data)"
+    assert constraint_text(Constraint("a_new_limit", 1.0, 2.0, "<=", False)) == \
+        "a new limit 1 against the limit <= 2"                   # a limit without words: its name, no unit
+
+
+def test_the_shimmy_sentence_gives_the_margin_and_its_range_in_cm():
+    """The margin and the ends of its range over the compliance estimates, m -> cm with their signs; a range
+    across zero is flagged."""
+    from types import SimpleNamespace
+
+    from stability.advise.limits import shimmy_sentence
+
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=-0.001, high=0.004), shimmy_straddles=True)
+    assert shimmy_sentence(m, 0.05) == ("the 5 cm trail is clear of the nearest shimmy zone by 0.23 cm (frictionless "
+                                        "caster at the estimated pin stiffness and relaxation length; over the "
+                                        "estimates' ranges -0.1 to +0.4 cm: it could shimmy, measure them first)")
+
+
+def test_the_tip_limit_is_met_by_a_value_at_it_and_not_without_a_value():
+    """The static-stability limit compares the value with the limit: 0 deg meets a 0 deg limit (a value, not a
+    missing one), 2.9 deg misses 3 deg, and a chair without a tip angle does not meet it."""
+    from types import SimpleNamespace
+
+    from stability.advise.limits import constraints
+
+    base = SimpleNamespace(turning_effort_N_m=0.1)
+
+    def tip_met(value, min_tip):
+        m = SimpleNamespace(static_stability_deg=SimpleNamespace(value=value),
+                            shimmy_margin_m=SimpleNamespace(value=0.01), shimmy_straddles=False,
+                            turning_effort_N_m=0.1, bench_score=None)
+        k = constraints(m, base, min_tip, "test", 0.0)[0]
+        assert k.name == "static_stability_deg" and k.value == value and k.limit == min_tip
+        return k.met
+
+    assert tip_met(0.0, 0.0) and tip_met(3.0, 3.0) and tip_met(12.0, 3.0)
+    assert not tip_met(2.9, 3.0) and not tip_met(None, 0.0)
