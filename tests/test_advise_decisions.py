@@ -538,3 +538,16 @@ def test_the_tip_limit_is_met_by_a_value_at_it_and_not_without_a_value():
 
     assert tip_met(0.0, 0.0) and tip_met(3.0, 3.0) and tip_met(12.0, 3.0)
     assert not tip_met(2.9, 3.0) and not tip_met(None, 0.0)
+
+
+def test_the_tip_option_offered_is_the_changed_chairs_angle_rounded_down():
+    """The --min-tip-deg offered for a change the tip limit blocks is its tip angle rounded down to 0.1 deg: at most
+    the angle (so the change then meets it) and within 0.1 deg of it."""
+    from stability.advise.limits import Constraint, allow
+
+    for value in (12.94, 12.9, 7.05, 0.04):
+        text = allow(Constraint("static_stability_deg", value, 13.8, ">=", False, "the chair's own"))
+        offered = float(text.split()[1])
+        assert value - 0.1 < offered <= value + 1e-12, (value, text)
+        assert text == f"--min-tip-deg {offered:.1f} (the limit is 13.8 deg, the chair's own)"
+    assert allow(Constraint("static_stability_deg", None, 13.8, ">=", False)) == "no limit allows it"
