@@ -32,7 +32,7 @@ from types import SimpleNamespace
 import sympy as sp
 import sympy.physics.mechanics as me
 
-__all__ = ["symbols", "derive", "linearise", "parameters", "nonlinear", "nonlinear_parameters"]
+__all__ = ["symbols", "derive", "gravity", "linearise", "parameters", "nonlinear", "nonlinear_parameters"]
 
 
 def symbols(n_fixed: int, n_casters: int) -> SimpleNamespace:
@@ -140,7 +140,39 @@ def derive(n_fixed: int, n_casters: int) -> SimpleNamespace:
     for P, F_ in contacts:
         vP = P.vel(N)
         vel += [sp.expand(plain(vP.dot(F_.x))), sp.expand(plain(vP.dot(F_.y)))]
-    return SimpleNamespace(M=Mm, F=Fv, vel=tuple(vel), sym=s, gb=gb, I_b=I_b, m_b=m_b)
+    return SimpleNamespace(M=Mm, F=Fv, vel=tuple(vel), sym=s, gb=gb, I_b=I_b, m_b=m_b, bodies=tuple(bodies), N=N,
+                           frame=Cf, speeds=(u, v, r, *dld), plain=plain)
+
+
+#: In-plane gravity in body axes, m/s^2: ``g1`` forward, ``g2`` to the right (the slope model's symbols,
+#: :data:`derivations.slope.G`: on a plane of cross slope ``phi`` and grade ``theta`` at heading ``psi``).
+G1, G2 = sp.Symbol("g1", real=True), sp.Symbol("g2", real=True)
+
+
+@functools.cache
+def gravity(n_fixed: int, n_casters: int) -> tuple[sp.Expr, ...]:
+    """Generalized active forces of the in-plane weight of every body (chair at ``Gb``, each caster at its own
+    centre of mass ``l_k`` behind its pin): ``Q_i = sum_b dv_b/du_i . m_b (g1 c1 + g2 c2)``, the slope model's
+    construction (:func:`derivations.slope.derive_gravity`) for any layout.
+
+    Parameters
+    ----------
+    n_fixed, n_casters : int
+
+    Returns
+    -------
+    tuple of sympy.Expr
+        One per generalized speed ``u, v, r, delta_d_0..``, in ``g1, g2`` (m/s^2) and the layout's symbols.
+    """
+    d = derive(n_fixed, n_casters)
+    grav = G1 * d.frame.x + G2 * d.frame.y
+    out = []
+    for us in d.speeds:
+        q = sp.Integer(0)
+        for body in d.bodies:
+            q += body.masscenter.vel(d.N).diff(us, d.N).dot(body.mass * grav)
+        out.append(sp.cancel(d.plain(q)))
+    return tuple(out)
 
 
 @functools.cache
@@ -253,7 +285,8 @@ def nonlinear(n_fixed: int, n_casters: int) -> SimpleNamespace:
     Returns
     -------
     SimpleNamespace
-        ``M`` (3 + K square), ``F0`` (3 + K), ``vel`` (2 (J + K): each contact's ``(vx, vy)`` in its wheel's
+        ``M`` (3 + K square), ``F0`` (3 + K, with the in-plane weight of :func:`gravity` in ``g1, g2``),
+        ``vel`` (2 (J + K): each contact's ``(vx, vy)`` in its wheel's
         frame, fixed wheels then casters), ``cs``, ``sn`` (the symbols).
     """
     d = derive(n_fixed, n_casters)
@@ -278,7 +311,8 @@ def nonlinear(n_fixed: int, n_casters: int) -> SimpleNamespace:
             assert sp.simplify(sp.diff(d.F[i], s.M[k]) - (1 if i == 3 + k else 0)) == 0, (k, i)
     zero = {m_: 0 for m_ in s.M}
     M = d.M.applyfunc(plain)
-    F0 = d.F.xreplace(zero).applyfunc(plain)
+    Q = gravity(n_fixed, n_casters)
+    F0 = (d.F + sp.Matrix(Q)).xreplace(zero).applyfunc(plain)
     vel = tuple(plain(v) for v in d.vel)
     return SimpleNamespace(M=M, F0=F0, vel=vel, cs=cs, sn=sn, sym=s)
 
@@ -343,8 +377,9 @@ def _nonlinear_text(n_fixed: int, n_casters: int) -> tuple[list[str], str]:
            "sum_k M_k e_(3+k) (M_k the pin moment on caster k).\n\n    u, v, r (m/s, m/s, rad/s); cs, sn, dd: "
            "cos, sin and rate (rad/s) of each caster angle;\n    p: parameters (nonlinear_parameters order); "
            "fw: (Fx, Fy) of each fixed wheel in body axes;\n    fc: (Fx, Fy) of each caster in its frame; Fy_ext "
-           "(N) at the c.g., Mz_ext (N m) on the body.\n    " + '"' * 3)
-    eq = [f"def equations_{tag}(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):", f"    {doc}"]
+           "(N) at the c.g., Mz_ext (N m) on the body;\n    g1, g2: in-plane gravity in body axes (m/s^2, forward and "
+           "to the right; 0 on level ground).\n    " + '"' * 3)
+    eq = [f"def equations_{tag}(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, g1, g2, M, F):", f"    {doc}"]
     eq += [f"    {x}" for x in body] + ["    return None", ""]
     # the contact velocities
     named = [(f"out[{i}]", e) for i, e in enumerate(d.vel)]
@@ -368,14 +403,14 @@ def render_nonlinear() -> str:
         ns, text = _nonlinear_text(*shape)
         names += ns
         parts.append(text)
-    disp_e = ["def equations(shape, u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):",
+    disp_e = ["def equations(shape, u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, g1, g2, M, F):",
               '    """equations_<shape> of the shape SHAPES[shape]."""']
     disp_v = ["def contact_velocities(shape, u, v, r, cs, sn, dd, p, out):",
               '    """contact_velocities_<shape> of the shape SHAPES[shape]."""']
     for i, (j, k) in enumerate(SHAPES):
         kw = "if" if i == 0 else "elif"
         disp_e += [f"    {kw} shape == {i}:", f"        equations_{j}w{k}c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, "
-                   "mz_ext, M, F)"]
+                   "mz_ext, g1, g2, M, F)"]
         disp_v += [f"    {kw} shape == {i}:", f"        contact_velocities_{j}w{k}c(u, v, r, cs, sn, dd, p, out)"]
     disp_e.append("    return None")
     disp_v.append("    return None")

@@ -173,8 +173,12 @@ def test_hand_written_schema_bounds_the_options_by_the_settings_tables(name):
     assert len(bounds) >= 4
     for path, b in bounds.items():
         node = leaves[path]
-        assert node["exclusiveMinimum" if b.open_lo else "minimum"] == b.lo, (name, path)
-        assert node["exclusiveMaximum" if b.open_hi else "maximum"] == b.hi, (name, path)
+        if getattr(b, "signed", False):             # lo <= |value| <= hi: either sign, not near zero
+            assert (node["minimum"], node["maximum"]) == (-b.hi, b.hi), (name, path)
+            assert node["not"] == {"exclusiveMinimum": -b.lo, "exclusiveMaximum": b.lo}, (name, path)
+        else:
+            assert node["exclusiveMinimum" if b.open_lo else "minimum"] == b.lo, (name, path)
+            assert node["exclusiveMaximum" if b.open_hi else "maximum"] == b.hi, (name, path)
         assert b.text() in node["description"], (name, path)
 
 

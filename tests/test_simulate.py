@@ -62,8 +62,9 @@ SLICK = _slick()
 # bad input
 # ---------------------------------------------------------------------------
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(speed=0.0), r"speed=0\.0 is invalid; valid range: 0\.01 <= speed"),
-    (dict(speed=-0.75), r"speed=-0\.75 is invalid"),
+    (dict(speed=0.0), r"speed=0\.0 is invalid; valid range: 0\.01 <= \|speed\| <= 20 m/s \(negative: reverse\)"),
+    (dict(speed=-25.0), r"speed=-25\.0 is invalid"),
+    (dict(speed=-0.75, reverse=True), r"speed=-0\.75 is invalid with reverse=True"),
     (dict(speed=float("nan")), r"speed=nan is invalid"),
     (dict(dt=0.0), r"dt=0\.0 is invalid; valid range"),
     (dict(dt=-1e-3), r"dt=-0\.001 is invalid"),
@@ -92,13 +93,41 @@ def test_a_yaw_moment_that_is_not_callable_is_refused():
         simulate(EJ, 0.75, RunSpec(horizon=0.01), yaw_moment=3.0)
 
 
+def test_a_negative_speed_drives_backwards():
+    """A negative speed is the reverse flag's shorthand (API, batch and command line share RunSpec's rule), and
+    the reverse run obeys two invariants of the symmetric chair: with the casters trailing (180 deg) and no push
+    it runs straight back at its speed, and a push to the left is the mirror image of a push to the right.
+
+    Error model: the mirrored runs execute the same operations on negated values, except that the caster angle
+    pi is not exact in binary (sin(pi) = 1.2e-16), so the two differ by rounding that accumulates at most one
+    eps of the peak heading per step: n eps max|psi| (observed 1/250 of it); the straight run's heading is that
+    rounding alone, n eps rad (observed 4e-16 rad against 4.4e-13)."""
+    assert RunSpec(speed=-0.75) == RunSpec(speed=0.75, reverse=True)
+    trailing = RunSpec(horizon=2.0, eta0_deg=180.0, beta0_deg=180.0, model="exact", friction_law="stick-slip")
+    straight = simulate(EJ, -0.75, trailing.replace(push_force=0.0))
+    n = straight.t.size
+    assert straight.u[0] == -0.75 and straight.settings["reverse"] is True
+    EPS = float(np.finfo(float).eps)
+    assert np.max(np.abs(straight.heading)) <= n * EPS
+    assert straight.x[-1] == pytest.approx(-0.75 * straight.t[-1], rel=n * EPS)
+    right = simulate(EJ, -0.75, trailing)
+    left = simulate(EJ, -0.75, trailing.replace(push_force=-trailing.push_force))
+    peak = float(np.max(np.abs(right.heading)))
+    assert peak > 0.05                                  # the push turns the chair: the mirror test is not vacuous
+    assert np.max(np.abs(right.heading + left.heading)) <= n * EPS * peak
+    batch = simulate_batch(EJ, [-0.75, 0.75], run=trailing.replace(sample=0.01))
+    alone = simulate(EJ, -0.75, trailing.replace(sample=0.01))
+    assert batch[0].u[0] == -0.75 and batch[1].u[0] == 0.75
+    np.testing.assert_array_equal(batch[0].heading, alone.heading)   # the same run, per-run sign in a batch
+
+
 def test_bad_batch_input():
     with pytest.raises(ValueError, match="chairs=\\[\\] is invalid"):
         simulate_batch([], [0.75])
     with pytest.raises(ValueError, match="cannot broadcast 2 chairs against 3 speeds"):
         simulate_batch([EJ, EJ], [0.5, 0.6, 0.7], run=RunSpec(horizon=0.01, friction_law="kinetic", model="thesis"))
-    with pytest.raises(ValueError, match="speed=-1.0 is invalid"):
-        simulate_batch(EJ, [0.5, -1.0], run=RunSpec(horizon=0.01, friction_law="kinetic", model="thesis"))
+    with pytest.raises(ValueError, match="speed=-21.0 is invalid"):
+        simulate_batch(EJ, [0.5, -21.0], run=RunSpec(horizon=0.01, friction_law="kinetic", model="thesis"))
     with pytest.raises(TypeError, match="unexpected keyword argument 'speed_mps'"):
         simulate_batch(EJ, [0.5], run=RunSpec(friction_law="kinetic", model="thesis"), speed_mps=3)
     with pytest.raises(ValueError, match="workers=0 is invalid"):
@@ -571,11 +600,12 @@ def test_cli_summary_and_set(tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (("--speed", "-1"), "--speed -1 is invalid"),
+    (("--speed", "-21"), "--speed -21 is invalid; valid range: 0.01 <= |value| <= 20 m/s (negative: reverse)"),
+    (("--speed", "-1", "--reverse"), "--speed -1.0 is invalid with --reverse True"),
     (("--chair", "nope"), "unknown chair 'nope'"),
     (("--set", "s9=1"), "unknown chair parameter 's9'"),
     (("--scheme", "rk4"), "invalid choice: 'rk4' (choose from 'wchair', 'adaptive')"),
-    (("--speed", "fast"), "--speed 'fast' is invalid; expected a number (or a number with a unit of m/s); valid range: 0.01 <= value <= 20 m/s"),
+    (("--speed", "fast"), "--speed 'fast' is invalid; expected a number (or a number with a unit of m/s); valid range: 0.01 <= |value| <= 20 m/s (negative: reverse)"),
     (("--csv", "/nonexistent/dir/x.csv"), "does not exist"),
 ])
 def test_cli_bad_input_one_line_status_2(args, words):

@@ -190,7 +190,7 @@ def test_cli_json_and_errors(tmp_path, capsys):
     assert main(["--chair", "manual-front-caster", "--cross-slope", "2", "--speed", "0.9", "--sim-time", "0"]) == 2
     assert "--sim-time" in capsys.readouterr().err
     for argv, word in ((["--cross-slope", "25", "--speed", "1"], "cross_slope"),
-                       (["--cross-slope", "2", "--speed", "-1"], "speed"),
+                       (["--cross-slope", "2", "--speed", "0"], "speed"),     # negative: reverse (layouts)
                        (["--cross-slope", "15", "--speed", "0.75"], "cross_slope=15.0")):
         assert main(argv) == 2
         err = capsys.readouterr().err

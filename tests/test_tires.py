@@ -854,3 +854,46 @@ def test_segment_arrays_are_the_force_law():
     u = s - k
     a, b, c = a0[k] + u * da[k], b0[k] + u * db[k], c0[k] + u * dc[k]
     assert -(((c * fz + b) * fz + a) * fz) == pytest.approx(t.lateral_force(s, fz), rel=1e-14)
+
+
+def test_a_function_screening_many_loads_warns_once_per_tire_and_passes_its_notes_on():
+    """``summarised_warnings``: three out-of-range loads of one tire inside the function are one warning
+    naming the three uses and the worst load, raised at the caller's line; the enclosing ``collect_notes``
+    block (the command lines') still receives every note; a note under the clamp policy is not warned."""
+    from stability.tires.ranges import RangeNote, record
+
+    @tires.summarised_warnings
+    def screen(loads):
+        for load in loads:
+            record(RangeNote("ER", "load", load, 0.0, 450.0, "warn", "caster_left"))
+        record(RangeNote("PU", "load", 470.0, 0.0, 450.0, "clamp", "caster_right"))
+        return len(loads)
+
+    with warnings.catch_warnings(record=True) as caught, tires.collect_notes() as notes:
+        warnings.simplefilter("always")
+        assert screen([451.0, 480.5, 462.0]) == 3
+    assert [w.category for w in caught] == [tires.TireRangeWarning]
+    assert "load up to 480.5 N (3 uses, 451-480.5 N" in str(caught[0].message)
+    assert caught[0].filename == __file__
+    assert sorted(n.value for n in notes) == [451.0, 462.0, 470.0, 480.5]
+
+
+def test_the_advisor_warns_once_per_tire_not_once_per_candidate():
+    """The advisor screens dozens of candidate chairs of the power chair, whose caster loads exceed the tire
+    data: one warning per tire, and the uses they count are every note the screening recorded."""
+    import re
+
+    from stability.advise import Interval, advise
+    from stability.chair import preset
+
+    def same_nonlinear(chairs):             # the screening's tire loads are the linear and static measures'
+        return [(Interval(3.0, 2.0, 4.0), Interval(1.0, 0.8, 1.2), "found")] * len(chairs)
+
+    with warnings.catch_warnings(record=True) as caught, tires.collect_notes() as notes:
+        warnings.simplefilter("always")
+        advise(preset("power-fwd"), nonlinear=same_nonlinear, time_to_correct=False)
+    range_warnings = [str(w.message) for w in caught if w.category is tires.TireRangeWarning]
+    tires_named = [m.split(":")[0] for m in range_warnings]
+    assert range_warnings and len(tires_named) == len(set(tires_named))
+    uses = sum(int(re.search(r"\((\d+) uses", m).group(1)) if "uses" in m else 1 for m in range_warnings)
+    assert uses == len([n for n in notes if n.policy == "warn"]) > len(range_warnings)

@@ -144,4 +144,5 @@ def evaluate(name: str, use_cache: bool = True) -> tuple[dict, float, bool]:
     return values, took, False
 
 
+from value_groups_layouts import *  # noqa: E402,F401,F403  (registers the layout groups)
 from value_groups_pages import *  # noqa: E402,F401,F403  (registers the groups)

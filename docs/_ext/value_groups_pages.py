@@ -324,6 +324,43 @@ def layout_mid() -> dict:
     return {"drive_pct": pct(drive / sum(loads))}
 
 
+@group("layout_equal", "stability.study.layout_equal_instability.layout_equal_instability(Layout.from_chair(revised)) "
+       "and (power-fwd-base, 80 N push)")
+def layout_equal() -> dict:
+    """The equal-instability speed on the layout runs: the revised chair as a layout (the thesis engine's speed) and
+    the front-wheel-drive base under an 80 N push (the 40 N push leaves every power base above 3 m/s)."""
+    from stability.chair import resolve
+    from stability.layout.model import Layout
+    from stability.layout.presets import layout_preset
+    from stability.settings.run import RunSpec
+    from stability.study.equal_instability import equal_instability_speed
+    from stability.study.layout_equal_instability import layout_equal_instability
+
+    rev = layout_equal_instability(Layout.from_chair(resolve("revised")))
+    short = equal_instability_speed(resolve("revised"))
+    fwd = layout_equal_instability(layout_preset("power-fwd-base"), RunSpec(push_force=80.0))
+    return {"revised": sig(rev.speed, 4), "revised_short": sig(short.speed, 4), "fwd80": sig(fwd.speed, 3)}
+
+
+@group("layout_advise", "stability.advise.layout_measures.layout_linear_measures(layout presets) and the advisor's "
+       "levers (stability.advise.layout_levers)", cheap=True)
+def layout_advise() -> dict:
+    """The advisor's limits on the power bases: the shimmy margin of the row nearest a boundary, the number of
+    single changes."""
+    from stability.advise.layout_levers import layout_lever_changes
+    from stability.advise.layout_measures import layout_linear_measures
+    from stability.layout.presets import layout_preset
+
+    out = {}
+    for key, name in (("fwd", "power-fwd-base"), ("mid", "mid-wheel-drive")):
+        lay = layout_preset(name)
+        m = layout_linear_measures([lay], speeds=(0.5, 0.75, 1.0))[0]
+        out[f"{key}_margin_cm"] = fixed(100 * (m.shimmy_margin_m.value or 0.0), 2)
+        out[f"{key}_row"] = m.shimmy_row
+        out[f"{key}_changes"] = str(len(layout_lever_changes(lay)[0]))
+    return out
+
+
 def _assist_rows(kind: str, speeds, drive=None):
     """Gain-table rows (margins only, no nonlinear check) of the power-fwd schedule."""
     import warnings

@@ -19,13 +19,14 @@ PARAMETERS = {
 }
 
 
-def equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
+def equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, g1, g2, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 1 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body;
+    g1, g2: in-plane gravity in body axes (m/s^2, forward and to the right; 0 on level ground).
     """
     m = p[0]
     i_z = p[1]
@@ -71,7 +72,7 @@ def equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     _e20 = _e1*_e14
     _e21 = _e1*_e11
     _e22 = r*u
-    _e23 = -FCy_0*trail_0 + _e19*v + _e2*_e22
+    _e23 = -FCy_0*trail_0 + _e1*g1 + _e19*v + _e2*_e22 - _e2*g2
     M[0, 0] = m
     M[0, 1] = 0
     M[0, 2] = _e1
@@ -88,9 +89,9 @@ def equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     M[3, 1] = _e4
     M[3, 2] = _e7
     M[3, 3] = i_zp_0
-    F[0] = FWx_0 + FWx_1 + _e0*_e11 + _e10*v - _e13 - _e15 - _e16 + _e8 - _e9
-    F[1] = FWy_0 + FWy_1 + Fy_ext - _e10*u - _e12*_e19 + _e17 + _e18 - _e20 - _e21
-    F[2] = -FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e22 + _e13*y_p_0 + _e15*y_p_0 + _e17*x_p_0 + _e18*x_p_0 - _e19*_e5*delta_d_0 - _e20*x_p_0 + _e23 - _e8*y_p_0 + _e9*y_p_0
+    F[0] = FWx_0 + FWx_1 + _e0*_e11 + _e10*v - _e13 - _e15 - _e16 + _e8 - _e9 + g1*m
+    F[1] = FWy_0 + FWy_1 + Fy_ext - _e10*u - _e12*_e19 + _e17 + _e18 - _e20 - _e21 + g2*m
+    F[2] = -FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e22 + _e0*g2 + _e13*y_p_0 + _e15*y_p_0 + _e17*x_p_0 + _e18*x_p_0 - _e19*_e5*delta_d_0 - _e20*x_p_0 + _e23 - _e8*y_p_0 + _e9*y_p_0
     F[3] = -_e16*y_p_0 + _e21*x_p_0 + _e23
     return None
 
@@ -124,13 +125,14 @@ def contact_velocities_2w1c(u, v, r, cs, sn, dd, p, out):
     return None
 
 
-def equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
+def equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, g1, g2, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 2 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body;
+    g1, g2: in-plane gravity in body axes (m/s^2, forward and to the right; 0 on level ground).
     """
     m = p[0]
     i_z = p[1]
@@ -180,32 +182,35 @@ def equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     _e13 = _e3*y_p_1
     _e14 = -_e12 - _e5*x_p_0 + i_zp_0
     _e15 = -_e13 - _e6*x_p_1 + i_zp_1
-    _e16 = FCy_0*sn_0
-    _e17 = FCy_1*sn_1
-    _e18 = (r*r)
-    _e19 = (delta_d_0*delta_d_0)
-    _e20 = _e19*_e5
-    _e21 = _e18*_e5
-    _e22 = (delta_d_1*delta_d_1)
-    _e23 = _e22*_e6
-    _e24 = _e18*_e6
-    _e25 = 2*r
-    _e26 = _e25*delta_d_0
-    _e27 = _e26*_e5
-    _e28 = _e25*delta_d_1
-    _e29 = _e28*_e6
-    _e30 = FCx_0*sn_0
-    _e31 = FCx_1*sn_1
-    _e32 = FCy_0*cs_0
-    _e33 = FCy_1*cs_1
-    _e34 = _e1*_e19
-    _e35 = _e22*_e3
-    _e36 = _e1*_e18
-    _e37 = _e18*_e3
-    _e38 = r*u
-    _e39 = r*v
-    _e40 = -FCy_0*trail_0 + _e1*_e39 + _e38*_e5
-    _e41 = -FCy_1*trail_1 + _e3*_e39 + _e38*_e6
+    _e16 = FCx_0*cs_0
+    _e17 = FCx_1*cs_1
+    _e18 = FCy_0*sn_0
+    _e19 = FCy_1*sn_1
+    _e20 = m*r
+    _e21 = (r*r)
+    _e22 = 2*r
+    _e23 = _e22*delta_d_0
+    _e24 = _e23*_e5
+    _e25 = _e22*delta_d_1
+    _e26 = _e25*_e6
+    _e27 = (delta_d_0*delta_d_0)
+    _e28 = _e27*_e5
+    _e29 = _e21*_e5
+    _e30 = (delta_d_1*delta_d_1)
+    _e31 = _e30*_e6
+    _e32 = _e21*_e6
+    _e33 = FCx_0*sn_0
+    _e34 = FCx_1*sn_1
+    _e35 = FCy_0*cs_0
+    _e36 = FCy_1*cs_1
+    _e37 = _e1*_e27
+    _e38 = _e3*_e30
+    _e39 = _e1*_e21
+    _e40 = _e21*_e3
+    _e41 = r*u
+    _e42 = r*v
+    _e43 = -FCy_0*trail_0 + _e1*_e42 + _e1*g1 + _e41*_e5 - _e5*g2
+    _e44 = -FCy_1*trail_1 + _e3*_e42 + _e3*g1 + _e41*_e6 - _e6*g2
     M[0, 0] = m
     M[0, 1] = 0
     M[0, 2] = _e4
@@ -231,11 +236,11 @@ def equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     M[4, 2] = _e15
     M[4, 3] = 0
     M[4, 4] = i_zp_1
-    F[0] = FCx_0*cs_0 + FCx_1*cs_1 + FWx_0 + FWx_1 - _e16 - _e17 + _e18*l_0*m_c_0 + _e18*l_1*m_c_1 - _e20 - _e21 - _e23 - _e24 - _e27 - _e29 + m*r*v
-    F[1] = FWy_0 + FWy_1 + Fy_ext - _e1*_e26 - _e28*_e3 + _e30 + _e31 + _e32 + _e33 - _e34 - _e35 - _e36 - _e37 - m*r*u
-    F[2] = -FCx_0*cs_0*y_p_0 - FCx_1*cs_1*y_p_1 - FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e38 - _e1*_e10*delta_d_0*r - _e11*_e3*delta_d_1*r + _e16*y_p_0 + _e17*y_p_1 - _e2*_e38 + _e20*y_p_0 + _e23*y_p_1 + _e27*y_p_0 + _e29*y_p_1 + _e30*x_p_0 + _e31*x_p_1 + _e32*x_p_0 + _e33*x_p_1 - _e34*x_p_0 - _e35*x_p_1 + _e40 + _e41
-    F[3] = -_e21*y_p_0 + _e36*x_p_0 + _e40
-    F[4] = -_e24*y_p_1 + _e37*x_p_1 + _e41
+    F[0] = FWx_0 + FWx_1 + _e0*_e21 + _e16 + _e17 - _e18 - _e19 + _e2*_e21 + _e20*v - _e24 - _e26 - _e28 - _e29 - _e31 - _e32 + g1*m
+    F[1] = FWy_0 + FWy_1 + Fy_ext - _e1*_e23 - _e20*u - _e25*_e3 + _e33 + _e34 + _e35 + _e36 - _e37 - _e38 - _e39 - _e40 + g2*m
+    F[2] = -FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e41 + _e0*g2 - _e1*_e10*delta_d_0*r - _e11*_e3*delta_d_1*r - _e16*y_p_0 - _e17*y_p_1 + _e18*y_p_0 + _e19*y_p_1 - _e2*_e41 + _e2*g2 + _e24*y_p_0 + _e26*y_p_1 + _e28*y_p_0 + _e31*y_p_1 + _e33*x_p_0 + _e34*x_p_1 + _e35*x_p_0 + _e36*x_p_1 - _e37*x_p_0 - _e38*x_p_1 + _e43 + _e44
+    F[3] = -_e29*y_p_0 + _e39*x_p_0 + _e43
+    F[4] = -_e32*y_p_1 + _e40*x_p_1 + _e44
     return None
 
 
@@ -281,13 +286,14 @@ def contact_velocities_2w2c(u, v, r, cs, sn, dd, p, out):
     return None
 
 
-def equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
+def equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, g1, g2, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 3 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body;
+    g1, g2: in-plane gravity in body axes (m/s^2, forward and to the right; 0 on level ground).
     """
     m = p[0]
     i_z = p[1]
@@ -375,17 +381,23 @@ def equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     _e40 = _e39*_e8
     _e41 = _e36*delta_d_2
     _e42 = _e41*_e9
-    _e43 = _e1*_e27
-    _e44 = _e3*_e30
-    _e45 = _e33*_e5
-    _e46 = _e1*_e26
-    _e47 = _e26*_e3
-    _e48 = _e26*_e5
-    _e49 = r*u
-    _e50 = r*v
-    _e51 = -FCy_0*trail_0 + _e1*_e50 + _e49*_e7
-    _e52 = -FCy_1*trail_1 + _e3*_e50 + _e49*_e8
-    _e53 = -FCy_2*trail_2 + _e49*_e9 + _e5*_e50
+    _e43 = FCx_0*sn_0
+    _e44 = FCx_1*sn_1
+    _e45 = FCx_2*sn_2
+    _e46 = FCy_0*cs_0
+    _e47 = FCy_1*cs_1
+    _e48 = FCy_2*cs_2
+    _e49 = _e1*_e27
+    _e50 = _e3*_e30
+    _e51 = _e33*_e5
+    _e52 = _e1*_e26
+    _e53 = _e26*_e3
+    _e54 = _e26*_e5
+    _e55 = r*u
+    _e56 = r*v
+    _e57 = -FCy_0*trail_0 + _e1*_e56 + _e1*g1 + _e55*_e7 - _e7*g2
+    _e58 = -FCy_1*trail_1 + _e3*_e56 + _e3*g1 + _e55*_e8 - _e8*g2
+    _e59 = -FCy_2*trail_2 + _e5*_e56 + _e5*g1 + _e55*_e9 - _e9*g2
     M[0, 0] = m
     M[0, 1] = 0
     M[0, 2] = _e6
@@ -422,12 +434,12 @@ def equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     M[5, 3] = 0
     M[5, 4] = 0
     M[5, 5] = i_zp_2
-    F[0] = FCx_0*cs_0 + FCx_1*cs_1 + FCx_2*cs_2 + FWx_0 + FWx_1 - _e23 - _e24 - _e25 + _e26*l_0*m_c_0 + _e26*l_1*m_c_1 + _e26*l_2*m_c_2 - _e28 - _e29 - _e31 - _e32 - _e34 - _e35 - _e38 - _e40 - _e42 + m*r*v
-    F[1] = FCx_0*sn_0 + FCx_1*sn_1 + FCx_2*sn_2 + FCy_0*cs_0 + FCy_1*cs_1 + FCy_2*cs_2 + FWy_0 + FWy_1 + Fy_ext - _e1*_e37 - _e3*_e39 - _e41*_e5 - _e43 - _e44 - _e45 - _e46 - _e47 - _e48 - m*r*u
-    F[2] = -FCx_0*cs_0*y_p_0 + FCx_0*sn_0*x_p_0 - FCx_1*cs_1*y_p_1 + FCx_1*sn_1*x_p_1 - FCx_2*cs_2*y_p_2 + FCx_2*sn_2*x_p_2 + FCy_0*cs_0*x_p_0 + FCy_1*cs_1*x_p_1 + FCy_2*cs_2*x_p_2 - FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e49 - _e1*_e14*delta_d_0*r - _e15*_e3*delta_d_1*r - _e16*_e5*delta_d_2*r - _e2*_e49 + _e23*y_p_0 + _e24*y_p_1 + _e25*y_p_2 + _e28*y_p_0 + _e31*y_p_1 + _e34*y_p_2 + _e38*y_p_0 - _e4*_e49 + _e40*y_p_1 + _e42*y_p_2 - _e43*x_p_0 - _e44*x_p_1 - _e45*x_p_2 + _e51 + _e52 + _e53
-    F[3] = -_e29*y_p_0 + _e46*x_p_0 + _e51
-    F[4] = -_e32*y_p_1 + _e47*x_p_1 + _e52
-    F[5] = -_e35*y_p_2 + _e48*x_p_2 + _e53
+    F[0] = FCx_0*cs_0 + FCx_1*cs_1 + FCx_2*cs_2 + FWx_0 + FWx_1 - _e23 - _e24 - _e25 + _e26*l_0*m_c_0 + _e26*l_1*m_c_1 + _e26*l_2*m_c_2 - _e28 - _e29 - _e31 - _e32 - _e34 - _e35 - _e38 - _e40 - _e42 + g1*m + m*r*v
+    F[1] = FWy_0 + FWy_1 + Fy_ext - _e1*_e37 - _e3*_e39 - _e41*_e5 + _e43 + _e44 + _e45 + _e46 + _e47 + _e48 - _e49 - _e50 - _e51 - _e52 - _e53 - _e54 + g2*m - m*r*u
+    F[2] = -FCx_0*cs_0*y_p_0 - FCx_1*cs_1*y_p_1 - FCx_2*cs_2*y_p_2 - FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e55 + _e0*g2 - _e1*_e14*delta_d_0*r - _e15*_e3*delta_d_1*r - _e16*_e5*delta_d_2*r - _e2*_e55 + _e2*g2 + _e23*y_p_0 + _e24*y_p_1 + _e25*y_p_2 + _e28*y_p_0 + _e31*y_p_1 + _e34*y_p_2 + _e38*y_p_0 - _e4*_e55 + _e4*g2 + _e40*y_p_1 + _e42*y_p_2 + _e43*x_p_0 + _e44*x_p_1 + _e45*x_p_2 + _e46*x_p_0 + _e47*x_p_1 + _e48*x_p_2 - _e49*x_p_0 - _e50*x_p_1 - _e51*x_p_2 + _e57 + _e58 + _e59
+    F[3] = -_e29*y_p_0 + _e52*x_p_0 + _e57
+    F[4] = -_e32*y_p_1 + _e53*x_p_1 + _e58
+    F[5] = -_e35*y_p_2 + _e54*x_p_2 + _e59
     return None
 
 
@@ -486,13 +498,14 @@ def contact_velocities_2w3c(u, v, r, cs, sn, dd, p, out):
     return None
 
 
-def equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
+def equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, g1, g2, M, F):
     """Nonlinear equations of a layout with 2 fixed wheels and 4 casters: writes M (n x n) and F0 (n), n = 3 + casters,
     with M [u_dot, v_dot, r_dot, delta_dd...] = F0 + sum_k M_k e_(3+k) (M_k the pin moment on caster k).
 
     u, v, r (m/s, m/s, rad/s); cs, sn, dd: cos, sin and rate (rad/s) of each caster angle;
     p: parameters (nonlinear_parameters order); fw: (Fx, Fy) of each fixed wheel in body axes;
-    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body.
+    fc: (Fx, Fy) of each caster in its frame; Fy_ext (N) at the c.g., Mz_ext (N m) on the body;
+    g1, g2: in-plane gravity in body axes (m/s^2, forward and to the right; 0 on level ground).
     """
     m = p[0]
     i_z = p[1]
@@ -614,10 +627,10 @@ def equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     _e63 = _e34*_e7
     _e64 = r*u
     _e65 = r*v
-    _e66 = -FCy_0*trail_0 + _e1*_e65 + _e64*_e9
-    _e67 = -FCy_1*trail_1 + _e10*_e64 + _e3*_e65
-    _e68 = -FCy_2*trail_2 + _e11*_e64 + _e5*_e65
-    _e69 = -FCy_3*trail_3 + _e12*_e64 + _e65*_e7
+    _e66 = -FCy_0*trail_0 + _e1*_e65 + _e1*g1 + _e64*_e9 - _e9*g2
+    _e67 = -FCy_1*trail_1 + _e10*_e64 - _e10*g2 + _e3*_e65 + _e3*g1
+    _e68 = -FCy_2*trail_2 + _e11*_e64 - _e11*g2 + _e5*_e65 + _e5*g1
+    _e69 = -FCy_3*trail_3 + _e12*_e64 - _e12*g2 + _e65*_e7 + _e7*g1
     M[0, 0] = m
     M[0, 1] = 0
     M[0, 2] = _e8
@@ -667,9 +680,9 @@ def equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, Fy_ext, Mz_ext, M, F):
     M[6, 4] = 0
     M[6, 5] = 0
     M[6, 6] = i_zp_3
-    F[0] = FCx_0*cs_0 + FCx_1*cs_1 + FCx_2*cs_2 + FCx_3*cs_3 + FWx_0 + FWx_1 - _e30 - _e31 - _e32 - _e33 + _e34*l_0*m_c_0 + _e34*l_1*m_c_1 + _e34*l_2*m_c_2 + _e34*l_3*m_c_3 - _e36 - _e37 - _e39 - _e40 - _e42 - _e43 - _e45 - _e46 - _e49 - _e51 - _e53 - _e55 + m*r*v
-    F[1] = FCx_0*sn_0 + FCx_1*sn_1 + FCx_2*sn_2 + FCx_3*sn_3 + FCy_0*cs_0 + FCy_1*cs_1 + FCy_2*cs_2 + FCy_3*cs_3 + FWy_0 + FWy_1 + Fy_ext - _e1*_e48 - _e3*_e50 - _e5*_e52 - _e54*_e7 - _e56 - _e57 - _e58 - _e59 - _e60 - _e61 - _e62 - _e63 - m*r*u
-    F[2] = -FCx_0*cs_0*y_p_0 + FCx_0*sn_0*x_p_0 - FCx_1*cs_1*y_p_1 + FCx_1*sn_1*x_p_1 - FCx_2*cs_2*y_p_2 + FCx_2*sn_2*x_p_2 - FCx_3*cs_3*y_p_3 + FCx_3*sn_3*x_p_3 + FCy_0*cs_0*x_p_0 + FCy_1*cs_1*x_p_1 + FCy_2*cs_2*x_p_2 + FCy_3*cs_3*x_p_3 - FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e64 - _e1*_e18*delta_d_0*r - _e19*_e3*delta_d_1*r - _e2*_e64 - _e20*_e5*delta_d_2*r - _e21*_e7*delta_d_3*r + _e30*y_p_0 + _e31*y_p_1 + _e32*y_p_2 + _e33*y_p_3 + _e36*y_p_0 + _e39*y_p_1 - _e4*_e64 + _e42*y_p_2 + _e45*y_p_3 + _e49*y_p_0 + _e51*y_p_1 + _e53*y_p_2 + _e55*y_p_3 - _e56*x_p_0 - _e57*x_p_1 - _e58*x_p_2 - _e59*x_p_3 - _e6*_e64 + _e66 + _e67 + _e68 + _e69
+    F[0] = FCx_0*cs_0 + FCx_1*cs_1 + FCx_2*cs_2 + FCx_3*cs_3 + FWx_0 + FWx_1 - _e30 - _e31 - _e32 - _e33 + _e34*l_0*m_c_0 + _e34*l_1*m_c_1 + _e34*l_2*m_c_2 + _e34*l_3*m_c_3 - _e36 - _e37 - _e39 - _e40 - _e42 - _e43 - _e45 - _e46 - _e49 - _e51 - _e53 - _e55 + g1*m + m*r*v
+    F[1] = FCx_0*sn_0 + FCx_1*sn_1 + FCx_2*sn_2 + FCx_3*sn_3 + FCy_0*cs_0 + FCy_1*cs_1 + FCy_2*cs_2 + FCy_3*cs_3 + FWy_0 + FWy_1 + Fy_ext - _e1*_e48 - _e3*_e50 - _e5*_e52 - _e54*_e7 - _e56 - _e57 - _e58 - _e59 - _e60 - _e61 - _e62 - _e63 + g2*m - m*r*u
+    F[2] = -FCx_0*cs_0*y_p_0 + FCx_0*sn_0*x_p_0 - FCx_1*cs_1*y_p_1 + FCx_1*sn_1*x_p_1 - FCx_2*cs_2*y_p_2 + FCx_2*sn_2*x_p_2 - FCx_3*cs_3*y_p_3 + FCx_3*sn_3*x_p_3 + FCy_0*cs_0*x_p_0 + FCy_1*cs_1*x_p_1 + FCy_2*cs_2*x_p_2 + FCy_3*cs_3*x_p_3 - FWx_0*y_w_0 - FWx_1*y_w_1 + FWy_0*x_w_0 + FWy_1*x_w_1 + Mz_ext - _e0*_e64 + _e0*g2 - _e1*_e18*delta_d_0*r - _e19*_e3*delta_d_1*r - _e2*_e64 + _e2*g2 - _e20*_e5*delta_d_2*r - _e21*_e7*delta_d_3*r + _e30*y_p_0 + _e31*y_p_1 + _e32*y_p_2 + _e33*y_p_3 + _e36*y_p_0 + _e39*y_p_1 - _e4*_e64 + _e4*g2 + _e42*y_p_2 + _e45*y_p_3 + _e49*y_p_0 + _e51*y_p_1 + _e53*y_p_2 + _e55*y_p_3 - _e56*x_p_0 - _e57*x_p_1 - _e58*x_p_2 - _e59*x_p_3 - _e6*_e64 + _e6*g2 + _e66 + _e67 + _e68 + _e69
     F[3] = -_e37*y_p_0 + _e60*x_p_0 + _e66
     F[4] = -_e40*y_p_1 + _e61*x_p_1 + _e67
     F[5] = -_e43*y_p_2 + _e62*x_p_2 + _e68
@@ -745,16 +758,16 @@ def contact_velocities_2w4c(u, v, r, cs, sn, dd, p, out):
     return None
 
 
-def equations(shape, u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F):
+def equations(shape, u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, g1, g2, M, F):
     """equations_<shape> of the shape SHAPES[shape]."""
     if shape == 0:
-        equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F)
+        equations_2w1c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, g1, g2, M, F)
     elif shape == 1:
-        equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F)
+        equations_2w2c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, g1, g2, M, F)
     elif shape == 2:
-        equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F)
+        equations_2w3c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, g1, g2, M, F)
     elif shape == 3:
-        equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, M, F)
+        equations_2w4c(u, v, r, cs, sn, dd, p, fw, fc, fy_ext, mz_ext, g1, g2, M, F)
     return None
 
 

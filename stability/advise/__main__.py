@@ -35,6 +35,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _speeds(text: str) -> tuple[float, ...]:
+    """Use speeds: all forward, or all backwards (a leading ``-`` on a range ``-A:B`` or every value negative)."""
+    if text.startswith("-") and text.count(":") == 1 and not text.split(":")[1].startswith("-"):
+        return tuple(-u for u in _speeds(text[1:]))             # -A:B: the range A:B backwards
+    if "," in text and all(x.strip().startswith("-") for x in text.split(",")):
+        return tuple(-u for u in _speeds(",".join(x.strip()[1:] for x in text.split(","))))
+    if text.startswith("-") and ":" not in text and "," not in text:
+        return tuple(-u for u in _speeds(text[1:]))
     speeds: tuple[float, ...]
     parts = text.split(":")
     if len(parts) == 2:                                    # a range A:B: its ends and middle
@@ -49,7 +56,8 @@ def _speeds(text: str) -> tuple[float, ...]:
     else:
         speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=12))
     if max(speeds) > 3.0 or min(speeds) < 0.1:
-        raise ValueError(f"--speeds {text!r} is invalid; valid range: 0.1 to 3 m/s")
+        raise ValueError(f"--speeds {text!r} is invalid; valid range: 0.1 to 3 m/s (all negative: in reverse, "
+                         "e.g. -0.5,-0.75 or -0.5:1)")
     return speeds
 
 
@@ -60,6 +68,10 @@ def _body(a: argparse.Namespace) -> int:
         raise ValueError(f"--min-tip-deg {a.min_tip_deg!r} is invalid; valid range: 0 <= D < 60 deg")
     if not (math.isfinite(a.cross_slope) and 0 <= a.cross_slope <= 8):
         raise ValueError(f"--cross-slope {a.cross_slope!r} is invalid; valid range: 0 to 8 deg")
+    from stability.layout.io import is_layout_spec
+
+    if is_layout_spec(a.chair) or min(speeds) < 0:
+        return _body_layout(a, speeds)
     chair = cli.load_chair(a.chair, a.set)
     driver = cli.driver_from_args(a)
     if a.intended_speed is not None:
@@ -91,6 +103,44 @@ def _body(a: argparse.Namespace) -> int:
     if unc is not None:
         lo, hi = data["verdict"]["static_stability_deg"]["interval"]
         print(f"Static stability over {a.uncertainty}: {lo:.1f}-{hi:.1f} deg (2.5-97.5 % of 200 draws).")
+    return 0
+
+
+def _body_layout(a: argparse.Namespace, speeds: tuple[float, ...]) -> int:
+    """A wheel layout, or any chair at reverse speeds (as its layout): the layout levers and measures."""
+    import dataclasses
+
+    from stability import __version__
+    from stability.layout import Layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+
+    if is_layout_spec(a.chair):
+        if a.set:
+            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+        layout = resolve_layout(a.chair)
+    else:
+        layout = Layout.from_chair(cli.load_chair(a.chair, a.set))
+    for flag, given in (("--uncertainty", a.uncertainty), ("--reaction-time", getattr(a, "reaction_time", None)),
+                        ("--intended-speed", a.intended_speed)):
+        if given is not None:
+            raise ValueError(f"{flag} is not available for a wheel layout or reverse speeds yet; valid: the "
+                             "short-form chair at forward speeds")
+    if a.cross_slope not in (0.0, D.ADVISE_CROSS_SLOPE_DEG):
+        raise ValueError(f"--cross-slope {a.cross_slope!r} is invalid for a wheel layout or reverse speeds; valid: "
+                         "the default (the cross-slope limit is not applied to a layout yet)")
+    advice = advise(layout, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=0.0,
+                    progress=not a.no_progress)
+    data = advice_mapping(advice)
+    if a.json or a.json_file:
+        options = {"speeds_m_s": list(speeds), "uncertainty": None, "min_tip_deg": a.min_tip_deg,
+                   "cross_slope_deg": 0.0, "reaction_time_s": None, "intended_speed_m_s": None,
+                   "direction": "reverse" if speeds[0] < 0 else "forward"}
+        cli.emit_json({"stability_version": __version__, "chair": layout.name,
+                       "chair_parameters": dataclasses.asdict(layout), "model": "exact", "options": options,
+                       **data}, a)
+        if a.json:
+            return 0
+    print(data["text"])
     return 0
 
 

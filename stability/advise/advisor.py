@@ -18,7 +18,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from stability.advise.levers import LEVERS, apply, lever_changes
+from stability.advise.levers import LEVERS
 from stability.advise.limits import (
     HANDRIM_FACTOR,
     MAX_PIN_FRICTION_N_M,
@@ -28,17 +28,18 @@ from stability.advise.limits import (
     ShimmyHold,
     allow,
     limit_words,
-    shimmy_hold,
     shimmy_sentence,
 )
 from stability.advise.limits import constraints as constraints_of
-from stability.advise.measures import Linear, Measures, linear_measures, measure_chairs
+from stability.advise.measures import Linear, Measures
+from stability.advise.subject import apply, lever_changes, linear_measures, measure_chairs, shimmy_hold
+from stability.advise.subject import time_to_correct as correct_time
 from stability.chair import Chair
 from stability.driver.model import Driver
+from stability.layout.model import Layout
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
-from stability.settings.run import RunSpec
-from stability.study import reference_time
+from stability.tires import summarised_warnings
 
 __all__ = ["Constraint", "Candidate", "Recommendation", "Blocked", "ShimmyHold", "Advice", "advise",
            "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS",
@@ -137,9 +138,10 @@ class Advice:
 
     Attributes
     ----------
-    chair : Chair
+    chair : Chair or Layout
+        The chair, or the wheel layout (:mod:`.subject`).
     speeds_m_s : tuple of float
-        Use speeds (m/s).
+        Use speeds (m/s; negative: a layout in reverse).
     cross_slope_deg : float
     min_tip_deg : float
         The static stability limit applied (deg).
@@ -173,7 +175,7 @@ class Advice:
         The speed that driver must be able to hold, m/s.
     """
 
-    chair: Chair
+    chair: Chair | Layout
     speeds_m_s: tuple
     cross_slope_deg: float
     min_tip_deg: float
@@ -250,10 +252,10 @@ def _step_note(m: Measures) -> str | None:
             "is uncertain; the range includes both, and the adaptive scheme (--scheme adaptive) has no fixed step.")
 
 
-def _notes(c: Candidate, base: Measures, chair: Chair) -> tuple:
+def _notes(c: Candidate, base: Measures, chair: Chair | Layout) -> tuple:
     m = c.measures
     notes = []
-    if m.growth_rate_1_s > base.growth_rate_1_s * (1 + RATE_NOTE_RISE) and c.gain > 0:
+    if m.growth_rate_1_s > base.growth_rate_1_s * (1 + RATE_NOTE_RISE) and c.gain > 0 and isinstance(chair, Chair):
         s_peak = math.sqrt(chair.i_z / chair.m)
         notes.append(
             f"The frictionless linear growth rate gets worse ({base.growth_rate_1_s:.3g} -> {m.growth_rate_1_s:.3g} "
@@ -265,7 +267,8 @@ def _notes(c: Candidate, base: Measures, chair: Chair) -> tuple:
     if step:
         notes.append(step)
     if m.shimmy_straddles and c.changes:
-        trail = dict(c.fields).get("trail", chair.trail)
+        own = m.shimmy_trail_m if m.shimmy_trail_m is not None or not isinstance(chair, Chair) else chair.trail
+        trail = float(dict(c.fields).get("trail", own) or 0.0)
         notes.append(f"Shimmy: {shimmy_sentence(m, trail)}.")
     return tuple(notes)
 
@@ -307,7 +310,8 @@ def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Bloc
     return sorted(out, key=lambda b: (-len(b.fixes), len(b.limits), -b.candidate.gain))[:3]
 
 
-def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
+@summarised_warnings
+def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
            cross_slope_deg: float = DEFAULT_CROSS_SLOPE_DEG, progress: bool = False,
            nonlinear: Callable | None = None, time_to_correct: bool = True, driver: Driver | None = None,
            intended_speed: float | None = None) -> Advice:
@@ -315,10 +319,13 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
 
     Parameters
     ----------
-    chair : Chair
+    chair : Chair or Layout
+        A wheel layout gets its own levers and measures (:mod:`.subject`; no cross-slope or driver limit yet:
+        ``cross_slope_deg`` is then taken as 0 and ``driver`` refused); a chair at negative speeds is advised as
+        its layout.
     speeds : sequence of float
-        Use speeds (m/s); the shimmy margin (the smallest over them) and the time to correct are taken
-        at each.
+        Use speeds (m/s; all negative: in reverse); the shimmy margin (the smallest over them) and the time to
+        correct are taken at each.
     min_tip_deg : float, optional
         Smallest acceptable static stability angle (deg); default the chair's own (no change may
         make it tip on a gentler slope; no citable standard minimum was found, docs/tipping.md).
@@ -341,6 +348,10 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
     Advice
     """
     use = tuple(float(u) for u in speeds)
+    if isinstance(chair, Chair) and any(u < 0 for u in use):
+        chair = Layout.from_chair(chair)
+    if isinstance(chair, Layout):
+        cross_slope_deg = 0.0
     tau = None if driver is None else driver.reaction_time_s
     if intended_speed is not None and driver is None:
         raise ValueError("intended_speed needs a driver (driver=Driver(reaction_time_s))")
@@ -390,7 +401,7 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
     times: list[float | None] = []
     for u in use if time_to_correct else ():
         try:
-            times.append(reference_time(chair, u, RunSpec(model="exact")))
+            times.append(correct_time(chair, u))
         except ValueError:
             times.append(None)
     return Advice(chair, use, float(cross_slope_deg), min_tip, source, base, tuple(times), tuple(cands),
@@ -398,7 +409,7 @@ def advise(chair: Chair, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = N
                   n_screened, len(chosen), own, driver, intended)
 
 
-def _screen(chair: Chair, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
+def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
             cross_slope_deg: float, cores: dict, reaction_time: float | None = None) -> tuple[list, int]:
     """The combinations worth simulating: every pair of two levers screened on the limits alone (no simulation),
     those that meet every limit ranked by the gain their parts predict (the best :data:`PAIR_BUDGET`), the best

@@ -16,14 +16,18 @@ from stability.advise.advisor import Advice, Blocked, Candidate
 from stability.advise.limits import allow_words, constraint_text, limit_words, shimmy_sentence
 from stability.advise.measures import EFFORT_WORDS, Measures
 from stability.bench.loads import SCORE_WORDS
+from stability.layout.model import Layout
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.study.censored import describe, side_of
 
 __all__ = ["Cost", "Decision", "decide", "kmh", "DIRECTION_WORDS"]
 
-#: The four ISO 7176-1 tip directions in words.
+#: The four ISO 7176-1 tip directions in words: the short form's, then a wheel layout's
+#: (:func:`stability.layout.statics.tip_angles`).
 DIRECTION_WORDS = {"toward_main_wheels": "toward its main wheels", "toward_casters": "toward its casters",
-                   "lateral_left": "over its left side", "lateral_right": "over its right side"}
+                   "lateral_left": "over its left side", "lateral_right": "over its right side",
+                   "forward": "toward its front", "backward": "toward its back", "left": "over its left side",
+                   "right": "over its right side"}
 
 
 def kmh(speed: float) -> str:
@@ -167,36 +171,50 @@ class Decision:
                 "paragraphs": self.paragraphs()}
 
 
+def _direction(a: Advice) -> tuple[str, str, bool]:
+    """``(" backwards" or "", what the ranges are over, whether it is the reference case)`` of the advice."""
+    layout = isinstance(a.chair, Layout)
+    reverse = any(u < 0 for u in a.speeds_m_s)
+    over = "pin friction and simulator step" if layout else "pin friction, model and simulator step"
+    return (" backwards" if reverse else ""), over, a.chair.name == REFERENCE_CHAIR and not reverse
+
+
 def _verdict(a: Advice) -> tuple:
     m = a.verdict
     ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
+    back, over, reference = _direction(a)
     out = []
     if m.critical_impulse_status == "never":
-        out.append(f"At {kmh(REFERENCE_SPEED)} not even a sideways push of {ci.value:.2g} N s at the seat (the largest "
-                   "tried) turns the chair to 1 rad/s within 10 s: it does not spin up (a slow steady turn is not "
-                   "excluded by this measure).")
+        out.append(f"At {kmh(REFERENCE_SPEED)}{back} not even a sideways push of {ci.value:.2g} N s at the seat (the "
+                   "largest tried) turns the chair to 1 rad/s within 10 s: it does not spin up (a slow steady turn is "
+                   "not excluded by this measure).")
     else:
         rng = "" if ci.low is None or ci.high is None else f"; range {ci.low:.2g}-{ci.high:.2g} N s"
-        out.append(f"At {kmh(REFERENCE_SPEED)} a sideways push of {ci.value:.2g} N s at the seat (about "
-                   f"{(ci.value or 0.0) / THESIS_PUSH.duration:.0f} N for a tenth of a second{rng} over pin friction, "
-                   "model and simulator step) turns the chair until it spins at 1 rad/s (57 deg/s) within 10 s unless "
+        out.append(f"At {kmh(REFERENCE_SPEED)}{back} a sideways push of {ci.value:.2g} N s at the seat (about "
+                   f"{(ci.value or 0.0) / THESIS_PUSH.duration:.0f} N for a tenth of a second{rng} over {over}) turns "
+                   "the chair until it spins at 1 rad/s (57 deg/s) within 10 s unless "
                    "the user steers.")
     times = [f"{t:.2g} s at {u:g} m/s" if t is not None else f"more than 10 s at {u:g} m/s"
              for u, t in zip(a.speeds_m_s, a.time_to_correct_s, strict=False)]
     if times:
         out.append(f"After the thesis's reference push ({THESIS_PUSH.force:g} N for {THESIS_PUSH.duration:g} s) the "
                    f"user has {', '.join(times)} to correct before it turns at 1 rad/s.")
-    if a.chair.name == REFERENCE_CHAIR:
+    if reference:
         out.append(f"It is the thesis's reference chair: other chairs' equal-instability speeds are measured against "
                    f"it at {kmh(REFERENCE_SPEED)}.")
     else:
         where = {"found": f"at {kmh(ei.value or 0.0)}", "above": f"only above {kmh(ei.value or 0.0)}",
-                 "below": f"already below {kmh(ei.value or 0.0)}"}[m.equal_instability_status]
+                 "below": f"already below {kmh(ei.value or 0.0)}"}[m.equal_instability_status] + back
         rng = "" if ei.low is None or ei.high is None else f" (range {ei.low:.3g}-{ei.high:.3g} m/s over push size, " \
-            "pin friction, model and simulator step)"
+            f"{over})"
         out.append(f"It is as unstable as the thesis's reference case ({REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s) "
                    f"{where}{rng}; faster than that it gives the user less time than the reference case.")
-    out.append(f"Caster shimmy: {shimmy_sentence(m, a.chair.trail, a.shimmy_hold)}.")
+    if isinstance(a.chair, Layout):
+        row = f" ({m.shimmy_row} casters, the row nearest a shimmy boundary)" if m.shimmy_row else ""
+        out.append(f"Caster shimmy{row}: {shimmy_sentence(m, m.shimmy_trail_m or 0.0, a.shimmy_hold)}."
+                   if m.shimmy_row else "Caster shimmy: the layout has no casters.")
+    else:
+        out.append(f"Caster shimmy: {shimmy_sentence(m, a.chair.trail, a.shimmy_hold)}.")
     if a.driver is not None and m.human_speed_m_s is not None and a.intended_speed_m_s is not None:
         u = m.human_speed_m_s
         where = (f"beyond {u:g} m/s, the fastest speed checked" if m.human_side == ">" else
@@ -237,6 +255,8 @@ def _costs(a: Advice, c: Candidate) -> tuple:
     out = []
     smallest = lim.get("static_stability_deg")
     for key, words in DIRECTION_WORDS.items():
+        if key not in base.tip_angles_deg and key not in m.tip_angles_deg:
+            continue                                     # the other form's directions
         before, after = base.tip_angles_deg.get(key), m.tip_angles_deg.get(key)
         limit = f">= {smallest.limit:.1f} deg" if smallest is not None else ""
         met = None if after is None or smallest is None else after >= smallest.limit - 1e-9

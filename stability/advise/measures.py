@@ -124,6 +124,11 @@ class Measures:
     bench_score : int or None
         A powered chair's worst ISO 7176-2 wheel-lift score on the virtual bench at the default drive settings
         (0-3, :func:`stability.bench.run_bench`); None for a chair pushed on its hand rims.
+    shimmy_row : str
+        A wheel layout's caster row whose margin this is (``"front"``, ``"rear"``; :mod:`.layout_measures`);
+        empty for the short form (its one caster pair).
+    shimmy_trail_m : float or None
+        That row's trail, m (None: the short form's ``trail``).
     """
 
     chair: str
@@ -143,6 +148,8 @@ class Measures:
     human_speed_m_s: float | None = None
     human_side: str = "="
     bench_score: int | None = None
+    shimmy_row: str = ""
+    shimmy_trail_m: float | None = None
 
     @property
     def effort_key(self) -> str:
@@ -169,6 +176,8 @@ class Measures:
             "human_limited_speed_m_s": self.human_speed_m_s,
             "human_limited_side": self.human_side if self.human_speed_m_s is not None else None,
             "bench_worst_score": self.bench_score,
+            **({"shimmy_caster_row": self.shimmy_row, "shimmy_trail_m": self.shimmy_trail_m}
+               if self.shimmy_row else {}),
         }
 
 
@@ -256,6 +265,9 @@ class Linear:
     human_side : str
     bench_score : int or None
         As :attr:`Measures.bench_score`.
+    shimmy_row : str
+    shimmy_trail_m : float or None
+        As :attr:`Measures.shimmy_row` and :attr:`Measures.shimmy_trail_m`.
     """
 
     static_stability_deg: Interval
@@ -269,6 +281,8 @@ class Linear:
     human_speed_m_s: float | None = None
     human_side: str = "="
     bench_score: int | None = None
+    shimmy_row: str = ""
+    shimmy_trail_m: float | None = None
 
     @property
     def effort_key(self) -> str:

@@ -8,9 +8,9 @@ import numpy as np
 
 from stability.advise.advisor import Advice, Candidate
 from stability.advise.decision import Decision, decide, kmh
-from stability.advise.levers import LEVERS
 from stability.advise.limits import limit_words
 from stability.advise.measures import Measures
+from stability.advise.subject import is_layout, levers_of
 from stability.settings.reference import REFERENCE_SPEED
 from stability.study.censored import describe, side_of
 
@@ -43,13 +43,19 @@ def _row(c: Candidate, base: Measures, broken: set) -> str:
                if c.gain > 0 and m.growth_rate_1_s > base.growth_rate_1_s + 1e-9 else ""))
 
 
+def _sets(a: Advice, changes: tuple) -> str:
+    """The changes as ``--set`` options, or for a layout as the fields to write into its ``[[wheel]]`` file."""
+    if is_layout(a.chair):
+        return "in the [[wheel]] file: " + ", ".join(x for ch in changes for x in ch.assignments)
+    return " ".join(f"--set {x}" for ch in changes for x in ch.assignments)
+
+
 def _blocked(a: Advice, d: Decision) -> list[str]:
     if not d.blocked:
         return []
     out = ["", "BLOCKED BY A LIMIT (better than the recommendation, or fixing what the chair breaks)"]
     for b, sentence in zip(a.blocked, d.blocked, strict=True):
-        sets = " ".join(f"--set {x}" for ch in b.candidate.changes for x in ch.assignments)
-        out += [f"  {sentence}", f"    ({sets}); allowed by: {b.allow}"]
+        out += [f"  {sentence}", f"    ({_sets(a, b.candidate.changes)}); allowed by: {b.allow}"]
     return out
 
 
@@ -57,7 +63,7 @@ def _recommendation(a: Advice, d: Decision) -> list[str]:
     out = ["", "RECOMMENDATION", f"  {d.recommendation}"]
     first = a.recommendations[0].candidate if a.recommendations else None
     if first is not None and first.changes:
-        out.append(f"  ({' '.join(f'--set {x}' for ch in first.changes for x in ch.assignments)})")
+        out.append(f"  ({_sets(a, first.changes)})")
     if not a.recommendations:
         return out + ["  limits:"] + [f"    {c.text()}" for c in d.costs]
     base = a.verdict
@@ -67,7 +73,7 @@ def _recommendation(a: Advice, d: Decision) -> list[str]:
         if r.rank > 1:
             out += ["", "RUNNER-UP", f"  {d.runner_up}"]
             if c.changes:
-                out.append(f"  ({' '.join(f'--set {x}' for ch in c.changes for x in ch.assignments)})")
+                out.append(f"  ({_sets(a, c.changes)})")
         if c.changes:
             out += [f"  critical impulse at {REFERENCE_SPEED:g} m/s: "
                     f"{_iv(base.critical_impulse_Ns, 'N s', status=base.critical_impulse_status)} -> "
@@ -107,7 +113,7 @@ def advice_text(a: Advice) -> str:
               f"{'lin':>5} {'gain':>8}",
               f"  {'':<72} {'(low-high)':>13} {'':>6} {'deg':>6} {'cm':>7} {'N m':>6} {'N':>5} {'1/s':>5}"]
     own = {k.name for k in a.own_constraints if not k.met}
-    for name in LEVERS:
+    for name in levers_of(a.chair):
         lines += [_row(c, a.verdict, own) for c in a.candidates if c.changes[0].lever == name]
     for ch, why in a.refused:
         lines.append(f"  {ch.label:<72} refused: {why}")
@@ -118,6 +124,9 @@ def advice_text(a: Advice) -> str:
     lines += _recommendation(a, d)
     lines += ["", f"Limits: static stability >= {a.min_tip_deg:.1f} deg ({a.min_tip_source}); the others as listed. "
               "Speeds are also in km/h; a push in N s is force x time."]
+    if is_layout(a.chair):
+        lines.append("Wheel layout: caster wheels are numbered front to back as in the [[wheel]] file; no cross-slope "
+                     "or driver limit yet (the advisor does not use a layout's slope statics or a driver model yet).")
     return "\n".join(lines)
 
 
@@ -136,7 +145,7 @@ def advice_mapping(a: Advice) -> dict:
         return None if x is None or (isinstance(x, float) and not math.isfinite(x)) else x
 
     levers = []
-    for name, (desc, _) in LEVERS.items():
+    for name, (desc, _) in levers_of(a.chair).items():
         cs = [c for c in a.candidates if c.changes[0].lever == name]
         levers.append({
             "name": name, "description": desc,

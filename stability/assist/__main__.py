@@ -177,11 +177,52 @@ def _run(args: argparse.Namespace) -> int:
     if args.faults and args.design != "gyro":
         raise ValueError(f"--faults needs --design gyro (got {args.design!r}): the faults are those of the gyro "
                          "and wheel-speed sensors")
+    from stability.layout.io import is_layout_spec
+
+    signed = parse_speeds(args.speeds, max_count=50, signed=True)
+    if is_layout_spec(args.chair) or np.any(signed < 0):
+        return _run_layout(args, signed, *_options(args))
     speeds = parse_speeds(args.speeds, increasing=True, max_count=50)
     weights, drive, gyro = _options(args)
     c = load_chair(args.chair, args.set)
     with output_files({"--json-file": args.json_file, "-o": args.output}) as tmp:
         return _work(args, c, speeds, weights, drive, gyro, tmp)
+
+
+def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, drive: DriveTrain,
+                gyro: GyroSensor) -> int:
+    """A wheel layout, or any chair at negative (reverse) speeds: :func:`stability.assist.layout.layout_assist`
+    (the layout's linear model; the margins' safe top speed, forward and in reverse)."""
+    from stability import __version__
+    from stability.assist.layout import format_layout_assist, layout_assist
+    from stability.layout import Layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+
+    for flag, given in (("-o", args.output), ("--export-c", args.export_c), ("--faults", args.faults),
+                        ("--min-torque", args.min_torque), ("--model thesis", args.model == "thesis")):
+        if given:
+            raise ValueError(f"{flag} is not available for a layout or reverse speeds yet; valid: the design, weight, "
+                             "drive and gyro options, --reverse, --json, --json-file")
+    if np.any(np.abs(speeds) > 20.0):
+        raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
+                         "0.01 <= |U| <= 20 m/s (negative: reverse)")
+    if is_layout_spec(args.chair):
+        if args.set:
+            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+        layout = resolve_layout(args.chair)
+    else:
+        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    res = layout_assist(layout, [float(u) for u in speeds], args.design, reverse=args.reverse, weights=weights,
+                        drive=drive, gyro=gyro)
+    if args.json or args.json_file:
+        options = {"speeds_m_s": [float(u) for u in speeds], "design": args.design, "reverse": args.reverse,
+                   "wheel_radius_m": drive.wheel_radius, "torque_limit_N_m": drive.torque_limit,
+                   "motor_lag_s": drive.motor_time_constant, "sample_rate_hz": gyro.sample_rate_hz}
+        emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
+                   **res.to_mapping()}, args)
+    if not args.json:
+        print(format_layout_assist(res))
+    return 0
 
 
 def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weights, drive: DriveTrain, gyro: GyroSensor,

@@ -182,7 +182,7 @@ class Design:
         ndarray (n + n_c, n + n_c)
         """
         p = true_plant or self.plant
-        Cy = measurement_matrix(self.kind, p.n)
+        Cy = measurement_matrix(self.kind, p.n, p.psi)
         n = self.Ac.shape[0]
         top = np.hstack([p.A - p.B @ self.Dc @ Cy, -p.B @ self.Cc]) if n else p.A - p.B @ self.Dc @ Cy
         if not n:
@@ -274,13 +274,13 @@ def on_drive(d: Design, gyro: GyroSensor, drive: DriveTrain, chair: Chair) -> De
 
 
 def _kalman(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:
-    C = np.zeros((1, 6))
+    C = np.zeros((1, p.psi))
     C[0, 1] = 1.0
     G = np.hstack([p.Bf6, p.B6])
     QN = np.diag([est.lateral_force, est.yaw_moment])
     RN = np.array([[gyro.noise_psd]])
     L, _, _ = control.lqe(p.A6, G, C, QN, RN)
-    return np.asarray(L, dtype=float).reshape(6, 1)
+    return np.asarray(L, dtype=float).reshape(p.psi, 1)
 
 
 def _kalman_standstill(p: Plant, gyro: GyroSensor, est: EstimatorWeights) -> np.ndarray:
@@ -315,8 +315,8 @@ def realise(kind: str, p: Plant, K: np.ndarray, L: np.ndarray | None) -> Design:
     assert L is not None
     idx = p.internal
     Am, Bm = p.A[np.ix_(idx, idx)], p.B[idx]
-    Le = np.vstack([L, np.zeros((len(idx) - 6, 1))])
-    Kx, Kpsi = K[:, idx], K[:, 6:7]
+    Le = np.vstack([L, np.zeros((len(idx) - p.psi, 1))])
+    Kx, Kpsi = K[:, idx], K[:, p.psi:p.psi + 1]
     C = np.zeros((1, len(idx)))
     C[0, 1] = 1.0
     Ac = Am - Bm @ Kx - Le @ C

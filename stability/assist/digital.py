@@ -46,10 +46,10 @@ def discrete_controller(d: Design, sample_time: float) -> control.StateSpace:
     p = d.plant
     idx = p.internal
     ni = len(idx)
-    Kint, Kpsi = d.K[:, idx], d.K[:, 6:7]
+    Kint, Kpsi = d.K[:, idx], d.K[:, p.psi:p.psi + 1]
     if d.kind == "gyro":
         assert d.model_A is not None and d.model_B is not None and d.L is not None
-        Le = np.vstack([d.L, np.zeros((ni - 6, 1))])
+        Le = np.vstack([d.L, np.zeros((ni - p.psi, 1))])
         M = np.zeros((ni + 2, ni + 2))
         M[:ni, :ni] = d.model_A - Le @ np.eye(ni)[1:2]
         M[:ni, ni:ni + 1] = d.model_B

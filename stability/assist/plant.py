@@ -44,6 +44,10 @@ class Plant:
     motor_time_constant : float
         First-order lag between the yaw-moment command and the moment the
         wheels apply (s); 0: none (seven states).
+    chair_states : tuple of str
+        Names of the chair's own states, which come first (the short form's six of :data:`STATES`; a wheel
+        layout's ``v, r`` and each caster's angle and rate, :func:`stability.layout.linear.states`); the heading
+        follows them, then the motor state.
     """
 
     speed: float
@@ -51,6 +55,7 @@ class Plant:
     B: np.ndarray
     Bf: np.ndarray
     motor_time_constant: float = 0.0
+    chair_states: tuple[str, ...] = STATES[:6]
 
     @property
     def n(self) -> int:
@@ -58,29 +63,39 @@ class Plant:
         return int(self.A.shape[0])
 
     @property
+    def psi(self) -> int:
+        """Index of the heading: after the chair's states."""
+        return len(self.chair_states)
+
+    @property
+    def has_motor(self) -> bool:
+        """Whether the last state is the motor lag's applied moment."""
+        return self.n == self.psi + 2
+
+    @property
     def states(self) -> tuple[str, ...]:
-        """State names: :data:`STATES`, plus :data:`MOTOR_STATE` with a motor lag."""
-        return STATES + ((MOTOR_STATE,) if self.n == 8 else ())
+        """State names: the chair's, the heading, plus :data:`MOTOR_STATE` with a motor lag."""
+        return self.chair_states + ("psi",) + ((MOTOR_STATE,) if self.has_motor else ())
 
     @property
     def internal(self) -> list[int]:
         """Indices of the states a controller models internally: all but the heading."""
-        return [i for i in range(self.n) if i != 6]
+        return [i for i in range(self.n) if i != self.psi]
 
     @property
     def A6(self) -> np.ndarray:
-        """State matrix of the six chair states (without the heading and the motor)."""
-        return self.A[:6, :6]
+        """State matrix of the chair's states (without the heading and the motor; six for the short form)."""
+        return self.A[:self.psi, :self.psi]
 
     @property
     def B6(self) -> np.ndarray:
-        """Column of the applied yaw moment in the six chair states (per N m)."""
-        return self.A[:6, 7:8] if self.n == 8 else self.B[:6]
+        """Column of the applied yaw moment in the chair's states (per N m)."""
+        return self.A[:self.psi, self.psi + 1:self.psi + 2] if self.has_motor else self.B[:self.psi]
 
     @property
     def Bf6(self) -> np.ndarray:
-        """Lateral-force column of the six chair states."""
-        return self.Bf[:6]
+        """Lateral-force column of the chair's states."""
+        return self.Bf[:self.psi]
 
     def ss(self, outputs: str = "states") -> control.StateSpace:
         """:class:`control.StateSpace` with inputs ``Mz``, ``Fy``.
@@ -98,7 +113,7 @@ class Plant:
         if outputs == "states":
             C, names = np.eye(self.n), list(self.states)
         elif outputs == "gyro":
-            C, names = measurement_matrix("gyro", self.n), ["r", "psi"]
+            C, names = measurement_matrix("gyro", self.n, self.psi), ["r", "psi"]
         else:
             raise ValueError(f"outputs={outputs!r} is invalid; valid choices: ['states', 'gyro']")
         return control.ss(self.A, Bu, C, np.zeros((C.shape[0], 2)), states=list(self.states),
@@ -122,14 +137,16 @@ def system_name(prefix: str, speed: float) -> str:
     return f"{prefix}_U{speed:g}".replace(".", "p").replace("-", "_")
 
 
-def measurement_matrix(kind: str, n: int = 7) -> np.ndarray:
+def measurement_matrix(kind: str, n: int = 7, psi: int = 6) -> np.ndarray:
     """What the controller measures of the ``n`` plant states: all (``"full-state"``) or ``[r, psi]`` (``"gyro"``).
 
     Parameters
     ----------
     kind : {"full-state", "gyro"}
     n : int
-        Number of plant states (7, or 8 with a motor lag).
+        Number of plant states (7, or 8 with a motor lag; a layout's own count).
+    psi : int
+        Index of the heading (6: after the short form's six chair states; ``r`` is always index 1).
 
     Returns
     -------
@@ -138,7 +155,7 @@ def measurement_matrix(kind: str, n: int = 7) -> np.ndarray:
     if kind == "full-state":
         return np.eye(n)
     C = np.zeros((2, n))
-    C[0, 1] = C[1, 6] = 1.0
+    C[0, 1] = C[1, psi] = 1.0
     return C
 
 

@@ -6,6 +6,7 @@ Rationale in ``docs/assist.md``.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -70,14 +71,32 @@ class Weights:
         R : ndarray (1, 1)
             Input weight (1/(N m)^2).
         """
+        return self.weight_matrices(STATES, n, drive.yaw_moment(chair, self.budget(drive)))
+
+    def weight_matrices(self, states: Sequence[str], n: int, mz_max: float) -> tuple[np.ndarray, np.ndarray]:
+        """``(Q, R)`` for named states (any plant: the short form's, a wheel layout's) and the input ``Mz``.
+
+        Parameters
+        ----------
+        states : sequence of str
+            State names in the plant's order (``psi``, ``r``, ``v`` are weighted; the rest not).
+        n : int
+            Number of plant states.
+        mz_max : float
+            Yaw moment of the torque budget, N m (``R = 1 / mz_max^2``).
+
+        Returns
+        -------
+        Q : ndarray (n, n)
+        R : ndarray (1, 1)
+        """
+        names = list(states)
         q = np.zeros(n)
-        q[STATES.index("psi")] = 1.0 / (self.max_heading_error_deg * _DEG) ** 2
+        q[names.index("psi")] = 1.0 / (self.max_heading_error_deg * _DEG) ** 2
         if self.max_yaw_rate_deg_s is not None:
-            q[STATES.index("r")] = 1.0 / (self.max_yaw_rate_deg_s * _DEG) ** 2
+            q[names.index("r")] = 1.0 / (self.max_yaw_rate_deg_s * _DEG) ** 2
         if self.max_lateral_velocity_m_s is not None:
-            q[STATES.index("v")] = 1.0 / self.max_lateral_velocity_m_s ** 2
-        budget = self.budget(drive)
-        mz_max = drive.yaw_moment(chair, budget)
+            q[names.index("v")] = 1.0 / self.max_lateral_velocity_m_s ** 2
         return np.diag(q), np.array([[1.0 / mz_max ** 2]])
 
     def budget(self, drive: DriveTrain) -> float:

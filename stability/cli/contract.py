@@ -69,7 +69,8 @@ __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add
 MAX_SPEEDS = 10_001
 
 #: The commands that answer any wheel layout (docs/layouts.md).
-LAYOUT_COMMANDS = ("critical_speed", "tipping", "bench", "simulate", "shimmy", "study critical-impulse")
+LAYOUT_COMMANDS = ("critical_speed", "tipping", "bench", "simulate", "shimmy", "study critical-impulse", "slope",
+                   "assist", "study equal-instability", "advise", "compare")
 
 
 def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:

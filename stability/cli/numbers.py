@@ -36,6 +36,8 @@ OPTION_BOUNDS: dict[str, Bound] = {
     # speeds: a wheelchair, powered or pushed, does not exceed 20 m/s (72 km/h)
     "--speed": Bound(0.01, 20.0, "m/s"),       # 0.01: stability.runtime.checks.MIN_SPEED (round-off below)
     "--max-speed": Bound(0.01, 100.0, "m/s", open_lo=True),
+    # the slope command answers reverse (negative speeds) with the layout model, as RunSpec's speed
+    "slope:--speed": Bound(0.01, 20.0, "m/s", signed=True),
     # counts and seeds
     "--samples": Bound(1, 20_000, ""),
     "--nonlinear-samples": Bound(1, 20_000, ""),

@@ -119,6 +119,11 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
     if not (0.01 < args.max_speed <= 100.0):
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
+    from stability.layout.io import is_layout_spec
+
+    signed = parse_speeds(args.speeds, max_count=200, signed=True)
+    if any(is_layout_spec(s) for s in args.chairs) or bool((signed < 0).any()):
+        return _run_layouts(args, signed)
     speeds = parse_speeds(args.speeds, max_count=200)
     chairs, names = _chairs(args.chairs, args.set)
     uncs = _uncertainties(args.uncertainty, len(chairs))
@@ -145,6 +150,59 @@ def _run(args: argparse.Namespace) -> int:
                    "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,
                    "level": args.level, "pairing": args.pairing, "nonlinear": args.nonlinear}
         emit_json(comparison_dict(result, json_header(chairs[0], args.model, options)), args)
+    if not args.json:
+        print(format_comparison(result))
+    return 0
+
+
+def _run_layouts(args: argparse.Namespace, speeds) -> int:
+    """Any chair a wheel layout, or a negative speed: every chair compared as a layout
+    (:func:`stability.compare.layouts.compare_layouts`)."""
+    import dataclasses
+
+    from stability import __version__
+    from stability.compare.layouts import compare_layouts
+    from stability.layout import Layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+
+    for flag, given in (("--uncertainty", args.uncertainty), ("-o", args.output)):
+        if given:
+            raise ValueError(f"{flag} is not available when comparing wheel layouts (or at reverse speeds) yet; "
+                             "valid: short-form chairs at forward speeds")
+    if args.model != "exact":
+        raise ValueError(f"--model {args.model} is invalid for wheel layouts; valid values: exact (the layout's "
+                         "equations are the exact model's)")
+    if any(abs(u) < 0.01 or abs(u) > 20.0 for u in speeds):
+        raise ValueError(f"--speeds {args.speeds!r} is invalid for wheel layouts; valid range: 0.01 <= |speed| <= 20 "
+                         "m/s (negative: reverse)")
+    per: list[list[str]] = [[] for _ in args.chairs]
+    for a in args.set:
+        k, sep, rest = a.partition(":")
+        if not sep or not k.strip().isdigit() or not 1 <= int(k) <= len(args.chairs):
+            raise ValueError(f"--set {a!r} is invalid; expected K:NAME=VALUE with K from 1 to {len(args.chairs)} "
+                             "(the chair's position)")
+        per[int(k) - 1].append(rest)
+    layouts, names = [], []
+    for i, (spec, sets) in enumerate(zip(args.chairs, per, strict=True)):
+        try:
+            if is_layout_spec(spec):
+                if sets:
+                    raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+                layouts.append(resolve_layout(spec))
+            else:
+                layouts.append(Layout.from_chair(load_chair(spec, sets)))
+        except ValueError as exc:
+            raise ValueError(f"chair {i + 1} ({spec!r}): {str(exc).splitlines()[0]}") from None
+        names.append(layouts[-1].name + (f" ({', '.join(sets)})" if sets else ""))
+    result = compare_layouts(layouts, labels=unique_labels(names), speeds=[float(u) for u in speeds],
+                             nonlinear=args.nonlinear)
+    if args.json or args.json_file:
+        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": result.max_speed, "set": args.set,
+                   "uncertainty": [], "samples": None, "seed": None, "level": None, "pairing": None,
+                   "nonlinear": args.nonlinear, "layouts": True}
+        header = {"stability_version": __version__, "chair": layouts[0].name,
+                  "chair_parameters": dataclasses.asdict(layouts[0]), "model": "layout", "options": options}
+        emit_json(comparison_dict(result, header), args)
     if not args.json:
         print(format_comparison(result))
     return 0

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair, to_mapping
+from stability.layout.model import Layout
 from stability.linear import zero_width
 from stability.linear.batch import ChairBatch, check_eigen_work
 from stability.linear.intervals import (
@@ -184,7 +185,7 @@ class Comparison:
         The push convention of the nonlinear measures (None without them).
     """
 
-    chairs: tuple[Chair, ...]
+    chairs: tuple[Chair | Layout, ...]
     labels: tuple[str, ...]
     model: str
     speeds: tuple[float, ...]

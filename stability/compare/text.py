@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
 from stability.chair import to_mapping
 from stability.compare.compute import Comparison, Difference, Quantity
+from stability.compare.layouts import LAYOUT_NOTE
+from stability.layout.model import Layout
 from stability.settings.reference import REFERENCE_SPEED
 
 __all__ = ["format_comparison", "comparison_dict"]
@@ -51,46 +54,30 @@ def _verdict(d: Difference, q: Quantity) -> str:
     return text
 
 
-def format_comparison(c: Comparison) -> str:
-    """The comparison as plain text: per-measure table, verdicts against the reference, single-parameter effects.
+def _describe(ch) -> str:
+    """A chair's or a layout's geometry in one line."""
+    if isinstance(ch, Layout):
+        nf, nc = ch.shape
+        return (f"layout of {nf} fixed wheels ({sum(w.driven for w in ch.wheels)} driven, x = "
+                f"{', '.join(f'{w.x:+.3g}' for w in ch.wheels)} m) and {nc} casters (pins x = "
+                f"{', '.join(f'{k.x:+.3g}' for k in ch.casters)} m), m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
+    return (f"casters {ch.caster_position}, s1 = {ch.s1:g} m, s2 = {ch.s2:g} m, trail = {ch.trail:g} m, "
+            f"m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
 
-    Parameters
-    ----------
-    c : Comparison
 
-    Returns
-    -------
-    str
-    """
+def _layout_tail(c: Comparison) -> list[str]:
+    """The end of a comparison of layouts: what does not apply, the push, the linear model's limit."""
+    out = ["", LAYOUT_NOTE]
+    if c.push:
+        out += ["", f"Critical impulse: push convention {c.push}."]
+    return out + ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
+                  "critical impulse (--nonlinear) includes it: see docs/compare.md."]
+
+
+def _effects_tail(c: Comparison) -> list[str]:
+    """The end of a comparison of short-form chairs: each differing parameter alone, the push, the linear limit."""
     ref = c.labels[0]
-    lines = [f"Comparison of {', '.join(c.labels)} ({c.model} linear model; reference: {ref})", ""]
-    for i, (label, ch) in enumerate(zip(c.labels, c.chairs, strict=True)):
-        lines.append(f"  [{i + 1}] {label}: casters {ch.caster_position}, s1 = {ch.s1:g} m, s2 = {ch.s2:g} m, "
-                     f"trail = {ch.trail:g} m, m = {ch.m:g} kg, I_z = {ch.i_z:g} kg m^2")
-    width = max(len(q.label) for q in c.quantities) + 2
-    lines += ["", "Measures" + (f" (intervals: central {c.uncertainty['level']:.0%} over the uncertain parameters)"
-                              if c.uncertainty else "") + ":"]
-    for q in c.quantities:
-        cells = []
-        for v, iv in zip(q.values, q.intervals, strict=True):
-            cell = _value(q, v, c.max_speed)
-            if q.key.startswith("growth_rate"):
-                cell += f" (doubles {_time_to_double(v)})"
-            if iv is not None:
-                cell += f" [{_num(iv[0])}, {_num(iv[1])}]"
-            cells.append(cell)
-        lines.append(f"  {q.label:<{width}}" + " | ".join(cells))
-    lines += ["", f"Against the reference {ref} (lower growth rate, higher critical speed, "
-              "understeer coefficient and critical impulse = more stable):"]
-    qmap = {q.key: q for q in c.quantities}
-    for label in c.labels[1:]:
-        lines.append(f"  {label}:")
-        for d in c.differences:
-            if d.chair == label:
-                lines.append(f"    {qmap[d.key].label:<{width}}{_verdict(d, qmap[d.key])}")
-    if c.uncertainty:
-        lines.append(f"  (differences drawn with {c.uncertainty['pairing']} draws, {c.uncertainty['samples']} "
-                     f"samples, seed {c.uncertainty['seed']}; overlapping chair intervals alone do not decide)")
+    lines: list[str] = []
     lines += ["", f"Why: each differing parameter applied alone to {ref}, largest effect first (change of the "
               f"growth rate at {REFERENCE_SPEED:g} m/s, 1/s; of the locked-caster critical speed, m/s; 0: below "
               "the eigenvalue solver's resolution):"]
@@ -115,6 +102,49 @@ def format_comparison(c: Comparison) -> str:
         lines += ["", f"Critical impulse: push convention {c.push}."]
     lines += ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
               "thesis's ranking by time to 1 rad/s after a push (--nonlinear) can differ: see docs/compare.md."]
+    return lines
+
+
+def format_comparison(c: Comparison) -> str:
+    """The comparison as plain text: per-measure table, verdicts against the reference, single-parameter effects.
+
+    Parameters
+    ----------
+    c : Comparison
+
+    Returns
+    -------
+    str
+    """
+    ref = c.labels[0]
+    lines = [f"Comparison of {', '.join(c.labels)} ({c.model} linear model; reference: {ref})", ""]
+    for i, (label, ch) in enumerate(zip(c.labels, c.chairs, strict=True)):
+        lines.append(f"  [{i + 1}] {label}: {_describe(ch)}")
+    width = max(len(q.label) for q in c.quantities) + 2
+    lines += ["", "Measures" + (f" (intervals: central {c.uncertainty['level']:.0%} over the uncertain parameters)"
+                              if c.uncertainty else "") + ":"]
+    for q in c.quantities:
+        cells = []
+        for v, iv in zip(q.values, q.intervals, strict=True):
+            cell = _value(q, v, c.max_speed)
+            if q.key.startswith("growth_rate"):
+                cell += f" (doubles {_time_to_double(v)})"
+            if iv is not None:
+                cell += f" [{_num(iv[0])}, {_num(iv[1])}]"
+            cells.append(cell)
+        lines.append(f"  {q.label:<{width}}" + " | ".join(cells))
+    lines += ["", f"Against the reference {ref} (lower growth rate, higher critical speed, "
+              "understeer coefficient and critical impulse = more stable):"]
+    qmap = {q.key: q for q in c.quantities}
+    for label in c.labels[1:]:
+        lines.append(f"  {label}:")
+        for d in c.differences:
+            if d.chair == label:
+                lines.append(f"    {qmap[d.key].label:<{width}}{_verdict(d, qmap[d.key])}")
+    if c.uncertainty:
+        lines.append(f"  (differences drawn with {c.uncertainty['pairing']} draws, {c.uncertainty['samples']} "
+                     f"samples, seed {c.uncertainty['seed']}; overlapping chair intervals alone do not decide)")
+    lines += _layout_tail(c) if any(isinstance(ch, Layout) for ch in c.chairs) else _effects_tail(c)
     return "\n".join(lines)
 
 
@@ -164,7 +194,8 @@ def comparison_dict(c: Comparison, header: dict[str, Any]) -> dict[str, Any]:
         ``single_effects``, ``uncertainty``, ``push``.  No value is ever part of a key.
     """
     out = {k: v for k, v in header.items() if k not in ("chair", "chair_parameters")}
-    out["chairs"] = [{"label": lab, "name": ch.name, "parameters": to_mapping(ch)}
+    out["chairs"] = [{"label": lab, "name": ch.name,
+                      "parameters": dataclasses.asdict(ch) if isinstance(ch, Layout) else to_mapping(ch)}
                      for lab, ch in zip(c.labels, c.chairs, strict=True)]
     out["reference"] = c.labels[0]
     out["speeds_m_s"] = list(c.speeds)

@@ -65,6 +65,14 @@ class FixedWheel:
     vertical_stiffness : float
         Suspension plus tire vertical stiffness, N/m (shares the load of a base with more than two support lines;
         0: the wheel does not reach the ground and carries nothing).
+    rolling_scale : float
+        Factor on the tire's rolling-resistance force (WCHAIR's TXMOD; 0, the default, switches it off as the
+        thesis's studies do).
+    camber_deg : float
+        Camber, deg, the wheel's top leaning toward the chair's centre line ``y = 0`` (a wheel on the centre line
+        has none).
+    camber_coefficient : float or None
+        Camber coefficient ``f_c`` of eq 4-2; ``None``: the tire's own.
     """
 
     x: float
@@ -73,11 +81,23 @@ class FixedWheel:
     driven: bool = False
     lateral_scale: float = 1.0
     vertical_stiffness: float = 2.0e5
+    rolling_scale: float = 0.0
+    camber_deg: float = 0.0
+    camber_coefficient: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "x", _check("x", self.x, -2.0, 2.0, "m"))
         object.__setattr__(self, "y", _check("y", self.y, -1.0, 1.0, "m"))
         object.__setattr__(self, "lateral_scale", _check("lateral_scale", self.lateral_scale, 0.0, 10.0, ""))
+        object.__setattr__(self, "rolling_scale", _check("rolling_scale", self.rolling_scale,
+                                                         *_chair("main_rolling_scale"), ""))
+        object.__setattr__(self, "camber_deg", _check("camber_deg", self.camber_deg, *_chair("camber_deg"), "deg"))
+        if self.camber_deg != 0.0 and self.y == 0.0:
+            raise ValueError(f"camber_deg={self.camber_deg!r} is invalid for a wheel on the centre line (y = 0); "
+                             "valid: 0")
+        if self.camber_coefficient is not None:
+            object.__setattr__(self, "camber_coefficient", _check("camber_coefficient", self.camber_coefficient,
+                                                                  *_chair("camber_coefficient"), ""))
         k = _check("vertical_stiffness", self.vertical_stiffness, 0.0, 1e9, "N/m")
         if 0.0 < k < 1e3:
             raise ValueError(f"vertical_stiffness={k!r} is invalid; valid range: 0 (off the ground) or 1000 to 1e9 N/m")
@@ -110,6 +130,8 @@ class Caster:
     lateral_scale : float
     vertical_stiffness : float
         N/m (0: off the ground, no load).
+    rolling_scale : float
+        Factor on the tire's rolling-resistance force (WCHAIR's CXMOD; 0, the default, switches it off).
     """
 
     x: float
@@ -123,6 +145,7 @@ class Caster:
     pin_friction: float = 0.1
     lateral_scale: float = 1.0
     vertical_stiffness: float = 2.0e5
+    rolling_scale: float = 0.0
 
     def __post_init__(self) -> None:
         # the short form's ranges where the quantity is the same (stability.chair.model.LIMITS): a valid chair
@@ -132,7 +155,8 @@ class Caster:
                                    ("i_zp", 0.0, LIMITS["i_zp"][1], "kg m^2"),
                                    ("pin_damping", *_chair("pin_damping"), "N m s/rad"),
                                    ("pin_friction", *_chair("pin_friction_left"), "N m"),
-                                   ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 0.0, 1e9, "N/m")):
+                                   ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 0.0, 1e9, "N/m"),
+                                   ("rolling_scale", *_chair("caster_rolling_scale"), "")):
             object.__setattr__(self, name, _check(name, getattr(self, name), lo, hi, unit))
         if 0.0 < self.vertical_stiffness < 1e3:
             raise ValueError(f"vertical_stiffness={self.vertical_stiffness!r} is invalid; valid range: 0 (off the "
@@ -216,7 +240,8 @@ class Layout:
         -------
         Layout
             Main wheels at ``(x_main, -d1)``, ``(x_main, d2)``; caster pins at ``(x_pin, -t1)``,
-            ``(x_pin, t2)`` with the chair's trail, ``l1``, ``m_c``, ``i_zp``, pins, tires and scales; anti-tip
+            ``(x_pin, t2)`` with the chair's trail, ``l1``, ``m_c``, ``i_zp``, pins, tires and scales (lateral and
+            rolling), the main wheels' camber; anti-tip
             devices ``anti_tip_reach`` beyond the main wheels; vertical stiffnesses whose pairs' roll stiffnesses
             have the chair's ratio ``roll_k`` (the load transfer of the simulator,
             :func:`stability.layout.statics.load_rule`).
@@ -226,10 +251,11 @@ class Layout:
         driven = drive_kind(chair) == "motor"
         # vertical stiffnesses whose roll stiffnesses k (2 y)^2 / 2 stand in the ratio roll_k = k_f / k_r (eq 6-28)
         k_w, k_c = _roll_pair(chair.roll_k, chair.d1 + chair.d2, chair.t1 + chair.t2)
-        wheels = tuple(FixedWheel(chair.x_main, y, chair.main_tire, driven, chair.main_lateral_scale, k_w)
+        wheels = tuple(FixedWheel(chair.x_main, y, chair.main_tire, driven, chair.main_lateral_scale, k_w,
+                                  chair.main_rolling_scale, chair.camber_deg, chair.camber_coefficient)
                        for y in (-chair.d1, chair.d2))
         casters = tuple(Caster(chair.x_pin, y, chair.trail, chair.l1, chair.m_c, chair.i_zp, chair.caster_tire,
-                               chair.pin_damping, mf, chair.caster_lateral_scale, k_c)
+                               chair.pin_damping, mf, chair.caster_lateral_scale, k_c, chair.caster_rolling_scale)
                         for y, mf in ((-chair.t1, chair.pin_friction_left), (chair.t2, chair.pin_friction_right)))
         anti: tuple = ()
         if chair.anti_tip_reach > 0:                     # beyond the main wheels, away from the casters

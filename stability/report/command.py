@@ -92,6 +92,16 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from stability.layout.io import is_layout_spec
+
+    if not (args.output or args.json or args.json_file):
+        raise ValueError("-o FILE.pdf is required (or --json / --json-file for the numbers without the PDF)")
+    if is_layout_spec(args.chair):
+        return _layout(args)
+    return _run_chair(args)
+
+
+def _run_chair(args: argparse.Namespace) -> int:
     if not (args.output or args.json or args.json_file):
         raise ValueError("-o FILE.pdf is required (or --json / --json-file for the numbers without the PDF)")
     if args.text and not args.output:
@@ -139,6 +149,50 @@ def _run(args: argparse.Namespace) -> int:
               (f" and {args.text}" if args.text else ""), file=sys.stderr if args.json else sys.stdout)
     if args.json_file:
         print(f"wrote {args.json_file}", file=sys.stderr)
+    return 0
+
+
+def _layout(args: argparse.Namespace) -> int:
+    """A wheel layout: its own report (:mod:`stability.report.layout_report`), forward and in reverse."""
+    from stability import __version__
+    from stability.layout.io import resolve_layout
+    from stability.report.layout_report import compute_layout_report, write_layout_report
+
+    if args.text and not args.output:
+        raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
+    outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
+    check_outputs(outputs, {"--chair": args.chair})
+
+    for flag, given in (("--set", args.set), ("--quick", args.quick), ("--clinician", args.clinician),
+                        ("--uncertainty", args.uncertainty), ("--compare", args.compare),
+                        ("--reaction-time", args.reaction_time)):
+        if given:
+            raise ValueError(f"{flag} is not available for a wheel layout yet; valid: the full report (-o FILE.pdf, "
+                             "--json, --text)")
+    if args.model != "exact":
+        raise ValueError(f"--model {args.model} is invalid for a wheel layout; valid values: exact (the layout's "
+                         "equations are the exact model's)")
+    if args.speeds != D.ADVISE_SPEEDS:
+        raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")
+    layout = resolve_layout(args.chair)
+    r = compute_layout_report(layout, progress=not args.no_progress)
+    n = 0
+    with output_files(outputs) as tmp:
+        if args.output:
+            n = write_layout_report(r, tmp["-o"])
+        if args.text:
+            with open(tmp["--text"], "w", encoding="utf-8") as fh:
+                fh.write(r.text() + "\n")
+        if args.json or args.json_file:
+            import dataclasses
+
+            head = {"stability_version": __version__, "chair": layout.name,
+                    "chair_parameters": dataclasses.asdict(layout), "model": "exact",
+                    "options": {"output": args.output}, "schema": "stability.report.layout/1"}
+            emit_json({**head, **r.data}, args, write_to=tmp.get("--json-file"))
+    if args.output:
+        print(f"wrote {args.output} ({n} pages)" + (f" and {args.text}" if args.text else ""),
+              file=sys.stderr if args.json else sys.stdout)
     return 0
 
 

@@ -42,6 +42,9 @@ class Bound(NamedTuple):
         Unit of the value (``""``: dimensionless).
     open_lo, open_hi : bool
         Whether the end itself is excluded.
+    signed : bool
+        The range is of the magnitude: ``lo <= |value| <= hi``, either sign
+        (a speed, negative in reverse).
     """
 
     lo: float
@@ -49,6 +52,7 @@ class Bound(NamedTuple):
     unit: str
     open_lo: bool = False
     open_hi: bool = False
+    signed: bool = False
 
     def text(self, name: str = "value") -> str:
         """The range in words, e.g. ``"0 < value <= 20 m/s"``.
@@ -63,6 +67,8 @@ class Bound(NamedTuple):
         str
         """
         unit = f" {self.unit}" if self.unit else ""
+        if self.signed:
+            name = f"|{name}|"
         if math.isinf(self.hi) and self.hi > 0:
             return f"{name} {'>' if self.open_lo else '>='} {number_text(self.lo)}{unit}"
         return (f"{number_text(self.lo)} {'<' if self.open_lo else '<='} {name} {'<' if self.open_hi else '<='} "
@@ -79,5 +85,7 @@ class Bound(NamedTuple):
         -------
         bool
         """
+        if self.signed:
+            value = abs(value)
         return ((self.lo < value if self.open_lo else self.lo <= value)
                 and (value < self.hi if self.open_hi else value <= self.hi))

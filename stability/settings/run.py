@@ -34,7 +34,9 @@ Examples
 >>> RunSpec(speed=25.0)
 Traceback (most recent call last):
 ...
-ValueError: speed=25.0 is invalid; valid range: 0.01 <= speed <= 20 m/s
+ValueError: speed=25.0 is invalid; valid range: 0.01 <= |speed| <= 20 m/s (negative: reverse)
+>>> RunSpec(speed=-0.5).speed, RunSpec(speed=-0.5).reverse
+(0.5, True)
 """
 
 from __future__ import annotations
@@ -153,8 +155,9 @@ class RunSpec:
     Parameters
     ----------
     speed : float
-        Initial forward speed, m/s (WCHAIR's UD); 0.01-20.  A study that sweeps
-        speeds sets it per run.
+        Initial forward speed, m/s (WCHAIR's UD); 0.01-20 in magnitude.  A
+        negative speed drives backwards: it is stored as ``speed=|speed|,
+        reverse=True``.  A study that sweeps speeds sets it per run.
     push_force : float
         Lateral push at the c.g., N, positive to the right (FCIMP).
     push_duration : float
@@ -216,7 +219,8 @@ class RunSpec:
         A value of the wrong type (a string for a number).
     """
 
-    speed: float = _s(REFERENCE_SPEED, "m/s", "initial forward speed", Bound(0.01, 20.0, "m/s"))
+    speed: float = _s(REFERENCE_SPEED, "m/s", "initial forward speed (negative: reverse)",
+                      Bound(0.01, 20.0, "m/s", signed=True), special_help="negative: reverse")
     push_force: float = _s(THESIS_PUSH.force, "N", "lateral push at the c.g., positive to the right",
                            Bound(-10_000.0, 10_000.0, "N"))
     push_duration: float = _s(THESIS_PUSH.duration, "s", "how long the push acts (while t <= push_duration)",
@@ -261,6 +265,12 @@ class RunSpec:
             if math.isnan(x) or (s.bound is not None and not s.bound.holds(x)):
                 raise ValueError(f"{f.name}={value!r} is invalid; valid range: {s.range_text(f.name)}")
             object.__setattr__(self, f.name, x + 0.0)          # numpy scalars, ints and -0.0 as floats
+        if self.speed < 0:                                      # a negative speed is the reverse flag's shorthand
+            if self.reverse:
+                raise ValueError(f"speed={self.speed!r} is invalid with reverse=True; valid values: a positive "
+                                 "speed with reverse=True, or a negative speed alone (negative: reverse)")
+            object.__setattr__(self, "speed", -self.speed)
+            object.__setattr__(self, "reverse", True)
         self._check_together()
 
     def _check_together(self) -> None:

@@ -205,7 +205,7 @@ def _run(chairs: list[Chair], speeds: np.ndarray, run: RunSpec, forces: np.ndarr
         raise ValueError(f"controller= and record={record!r} need the WCHAIR scheme (scheme='wchair')")
     if opts.scheme == "adaptive":
         return _adaptive_runs(chairs, speeds, opts, forces, progress)
-    limits = stable_steps(chairs, speeds, opts.model, opts.casters)
+    limits = stable_steps(chairs, np.abs(speeds), opts.model, opts.casters)   # a reverse run: as with reverse=True
     if auto:
         opts = make_options(run, yaw_moment=yaw_moment, batch=batch, dt=auto_step(float(limits.min())))
     out = run_compiled(chairs, speeds, opts, forces=forces, controller=controller, record=record, threads=threads,

@@ -14,9 +14,12 @@ A negative speed (or ``run.reverse``) drives backwards.  Each caster starts at i
 on the right): 0 deg trails for driving forwards, 180 deg trails for reversing, 90 deg points the wheel to the
 right (the cases of Guo et al. 2003).
 
-Not modelled here (the thesis engine has them for the short-form chair): rolling resistance, camber, toe, a
-slope, the thesis's lagged-yaw variant, the adaptive scheme; the weight acts at C (the c.g. with the casters
-trailing forward) as in the thesis engine, not at the system's c.g. with the casters swivelled.
+Rolling resistance (each wheel's ``rolling_scale``, its tire's rolling data), the camber thrust of the fixed
+wheels (``camber_deg``, tops toward the centre line) and a plane (``run.cross_slope_deg``, ``run.grade_deg``:
+each body's in-plane weight from the generated equations, the loads under the normal weight) are the thesis
+engine's, applied as it applies them to the short form.  Not modelled here: toe, the thesis's lagged-yaw variant,
+the adaptive scheme; the normal loads take the weight at C (the c.g. with the casters trailing forward) as in the
+thesis engine, not at the system's c.g. with the casters swivelled.
 """
 
 from __future__ import annotations
@@ -35,9 +38,9 @@ from stability.models.layout import nonlinear as _gn
 from stability.models.layout import shape_index
 from stability.settings.run import RunSpec
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
-from stability.simulate.packing import _tire_slot, policy_code
+from stability.simulate.packing import _rolling_slot, _tire_slot, policy_code, slope_slots
 
-__all__ = ["LayoutRun", "simulate_layout", "ENDINGS"]
+__all__ = ["LayoutRun", "simulate_layout", "ENDINGS", "parameter_vector", "tire_slots", "check_layout_run"]
 
 #: Why a run ends, by the kernel's status code.
 ENDINGS = {0.0: "horizon", 1.0: "slip warnings", 2.0: "load warnings", 3.0: "non-finite"}
@@ -113,8 +116,10 @@ class LayoutRun:
                "beyond its data: give --no-stop-on-warnings to run on with the fits clamped)",
                "load warnings": "stopped at the eleventh load warning (a tire beyond its data)"}.get(self.ended,
                                                                                                   self.ended)
+        cross, grade = self.settings.get("cross_slope_deg", 0.0), self.settings.get("grade_deg", 0.0)
+        plane = f" on a cross slope of {cross:g} deg and a grade of {grade:g} deg" if cross or grade else ""
         return "\n".join([
-            f"{self.layout}: {abs(self.speed_m_s):g} m/s {direction}, casters starting at {start} deg "
+            f"{self.layout}: {abs(self.speed_m_s):g} m/s {direction}{plane}, casters starting at {start} deg "
             "(0: trailing for forward driving, 180: for reversing); layout model, wchair scheme",
             f"  {why} at t = {self.end_time_s:.3f} s",
             f"  heading {self.final_heading_deg:+.2f} deg (peak |heading| {np.abs(self.heading_deg).max():.2f} deg), "
@@ -154,12 +159,15 @@ def _check_run(layout: Any, speed: Any, run: RunSpec | None) -> tuple[Layout, fl
     return layout, signed, run
 
 
-def check_layout_run(run: RunSpec) -> None:
-    """Refuse run settings the layout simulator does not have (another scheme or model, a slope).
+def check_layout_run(run: RunSpec, level_only: bool = False) -> None:
+    """Refuse run settings the layout simulator does not have (another scheme or model).
 
     Parameters
     ----------
     run : RunSpec
+    level_only : bool
+        Refuse a slope too (a study defined on level ground: the critical impulse, whose push must be what turns
+        the chair).
 
     Raises
     ------
@@ -170,9 +178,9 @@ def check_layout_run(run: RunSpec) -> None:
         if not ok:
             raise ValueError(f"{name}={getattr(run, name)!r} is invalid for a layout; valid values: {valid} (the "
                              "layout's equations are the exact model's, stepped by the fixed-step scheme)")
-    if run.on_slope:
-        raise ValueError(f"cross_slope_deg={run.cross_slope_deg:g}, grade_deg={run.grade_deg:g} is invalid for a "
-                         "layout; valid: level ground (0, 0)")
+    if level_only and run.on_slope:
+        raise ValueError(f"cross_slope_deg={run.cross_slope_deg:g}, grade_deg={run.grade_deg:g} is invalid here; "
+                         "valid: level ground (0, 0) (on a slope the chair turns without a push)")
 
 
 def _caster_angles(layout: Layout, run: RunSpec, caster_angles_deg: Sequence[float] | None) -> np.ndarray:
@@ -186,7 +194,17 @@ def _caster_angles(layout: Layout, run: RunSpec, caster_angles_deg: Sequence[flo
     return np.radians(a)
 
 
-def _parameters(layout: Layout) -> np.ndarray:
+def parameter_vector(layout: Layout) -> np.ndarray:
+    """The generated nonlinear equations' parameter vector ``p`` of a layout (their ``PARAMETERS`` order, SI).
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    ndarray
+    """
     values = {"m": layout.m, "i_z": layout.i_z}
     for j, w in enumerate(layout.wheels):
         values.update({f"x_w_{j}": w.x, f"y_w_{j}": w.y})
@@ -196,16 +214,42 @@ def _parameters(layout: Layout) -> np.ndarray:
     return np.array([values[n] for n in _gn.PARAMETERS[layout.shape]], dtype=float)
 
 
-def _tire_arrays(layout: Layout) -> tuple[np.ndarray, ...]:
-    specs = [(w.tire, w.lateral_scale) for w in layout.wheels] + [(c.tire, c.lateral_scale) for c in layout.casters]
-    n = len(specs)
-    TK, TS, TL = np.zeros(n, dtype=np.int64), np.zeros((n, 6, 8)), np.zeros(n)
-    LIM, CHK = np.zeros((n, 2)), np.zeros(n, dtype=np.bool_)
-    for i, (spec, scale) in enumerate(specs):
-        tire = _tires.get(spec).scaled(lateral=scale)
+def tire_slots(layout: Layout) -> tuple[np.ndarray, ...]:
+    """The kernel's tire arrays ``(TK, TS, TL, LIM, CHK, RK, RC, RS, CAM)``.
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    tuple of ndarray
+        The tire slots, one per contact (fixed wheels, then casters), then each fixed wheel's camber tire
+        (MECHAN's: the unscaled tire at the camber angle truncated to whole degrees); the range check per
+        contact; the rolling slots per contact; per fixed wheel ``(camber deg, side sign x f_c)`` (the thrust
+        points to the side the wheel's top leans).
+    """
+    specs = [(w.tire, w.lateral_scale, w.rolling_scale) for w in layout.wheels]
+    specs += [(c.tire, c.lateral_scale, c.rolling_scale) for c in layout.casters]
+    n, nw = len(specs), len(layout.wheels)
+    TK, TS, TL = np.zeros(n + nw, dtype=np.int64), np.zeros((n + nw, 6, 8)), np.ones(n + nw)
+    LIM, CHK = np.full((n + nw, 2), math.inf), np.zeros(n, dtype=np.bool_)
+    RK, RC, RS = np.zeros(n, dtype=np.int64), np.zeros((n, 3)), np.zeros(n)
+    CAM = np.zeros((nw, 2))
+    for i, (spec, scale, rolling) in enumerate(specs):
+        tire = _tires.get(spec).scaled(lateral=scale, rolling=rolling)
         TK[i], TS[i], TL[i], LIM[i] = _tire_slot(tire)
         CHK[i] = isinstance(tire, _tires.Tire)
-    return TK, TS, TL, LIM, CHK
+        RK[i], RC[i], RS[i] = _rolling_slot(tire, rolling != 0)
+    for j, w in enumerate(layout.wheels):
+        cam_deg = float(math.trunc(w.camber_deg))
+        if cam_deg == 0.0:
+            continue
+        cam_tire = _tires.get(w.tire)
+        TK[n + j], TS[n + j], TL[n + j], LIM[n + j] = _tire_slot(cam_tire)
+        fc = cam_tire.camber_coefficient if w.camber_coefficient is None else float(w.camber_coefficient)
+        CAM[j] = cam_deg, (1.0 if w.y < 0 else -1.0) * fc
+    return TK, TS, TL, LIM, CHK, RK, RC, RS, CAM
 
 
 def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | None = None, *,
@@ -221,8 +265,8 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
         ``run.reverse``).
     run : RunSpec, optional
         Push, horizon, step (``"auto"``: 1 ms), pin-friction law, casters free or locked, tire range policy, stop
-        rule, sampling (default ``RunSpec()``).  The scheme must be ``"wchair"``, the model ``"exact"``, the
-        ground level.
+        rule, sampling, the plane (cross slope falling to the right +, grade uphill +; the chair starts headed
+        along the path) (default ``RunSpec()``).  The scheme must be ``"wchair"``, the model ``"exact"``.
     caster_angles_deg : sequence of float, optional
         Initial swivel angle of each caster, deg (0: trailing for forward driving, 180: for reversing); default
         ``run.eta0_deg`` on the left (``y < 0``), ``run.beta0_deg`` on the right.
@@ -246,8 +290,9 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     nw, nc = layout.shape
     cfg = np.array([opts.dt, steps, opts.stride, opts.impulse_duration, opts.impulse_force, opts.tire_impulse,
                     opts.pin_mode, float(opts.stop_on_warnings), policy_code(opts), SLIP_LIMIT_DEG, LOAD_LIMIT_N,
-                    WARNING_LIMIT, shape, layout.m * layout.g, layout.h, rule.mode], dtype=float)
-    TK, TS, TL, LIM, CHK = _tire_arrays(layout)
+                    WARNING_LIMIT, shape, layout.m * layout.g, layout.h, rule.mode, *slope_slots(opts), layout.g],
+                   dtype=float)
+    TK, TS, TL, LIM, CHK, RK, RC, RS, CAM = tire_slots(layout)
     mf = np.array([c.pin_friction for c in layout.casters], dtype=float)
     cpin = np.array([c.pin_damping for c in layout.casters], dtype=float)
     from stability.simulate import layout_kernel as k  # numba loads on first use
@@ -256,8 +301,8 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     rec = np.full((k.NREC + 2 * nc, nrec), np.nan)
     status = np.zeros(2)
     warn = np.zeros((3, 3))
-    m = k.run_layout(cfg, _parameters(layout), nw, nc, TK, TS, TL, LIM, CHK, rule.stiffness, rule.line,
-                     rule.roll_share, mf, cpin, signed, run.lateral_velocity, delta0, rec, status, warn)
+    m = k.run_layout(cfg, parameter_vector(layout), nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, rule.stiffness,
+                     rule.line, rule.roll_share, mf, cpin, signed, run.lateral_velocity, delta0, rec, status, warn)
     if status[0] == k.STOPPED_NONFINITE:
         raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
                                  f"numbers at t = {status[1]:g} s")

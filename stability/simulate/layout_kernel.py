@@ -8,10 +8,13 @@ is the bookkeeping of ``K`` casters: a linear solve of the mass matrix instead o
 the holding moments of any set of held (locked or stuck) casters, and the normal loads of any layout
 (:func:`stability.layout.statics.load_rule`).
 
-The step is :func:`stability.simulate.kernel.run_one`'s for the exact model on level ground: the contact
-velocities and slips, the normal loads from the previous step's tire-force sums (the push included, as WCHAIR's
-UPDATE keeps it), the tire forces, the accelerations, then the update ``x += v dt + a dt^2 / 2``, ``v += a dt``
-with the stick-slip rest rule.
+The step is :func:`stability.simulate.kernel.run_one`'s for the exact model, level or on a plane: the contact
+velocities and slips, in-plane gravity in body axes at the step's heading (the generated ``gravity_body``), the
+normal loads from the previous step's tire-force sums (the push included, as WCHAIR's UPDATE keeps it) under the
+normal weight, the tire forces (MECHAN's: lateral, rolling resistance along each wheel, camber thrust on the fixed
+wheels from their unscaled tire at the truncated camber angle), the accelerations with each body's in-plane weight
+(the generated equations' ``g1, g2``), then the update ``x += v dt + a dt^2 / 2``, ``v += a dt`` with the
+stick-slip rest rule.
 """
 
 from __future__ import annotations
@@ -23,16 +26,20 @@ import numpy as np
 from numba import njit
 
 from stability.models.layout import nonlinear as _gn
+from stability.simulate import layout_forces as _lf
 from stability.simulate.cache_stamp import invalidate_stale_cache
 from stability.simulate.kernel_equations import (
     _inl,
     _inl_py,
     break_away_moment,
+    camber_force,
     compiled,
+    gravity_body,
     kinetic_pin_moment,
     lateral_force,
     pin_holds,
     rest_rate,
+    rolling_force,
     slip_angle,
 )
 
@@ -41,13 +48,18 @@ __all__ = ["run_layout", "layout_loads", "STOPPED_SLIP", "STOPPED_LOAD", "STOPPE
 _eq = compiled(_gn, tuple(_gn.__all__), _inl)
 equations = _eq.equations
 contact_velocities = _eq.contact_velocities
+#: MECHAN for any layout (:mod:`.layout_forces`, plain Python that the statics call too), compiled with the
+#: thesis engine's compiled tire law
+_tire_forces = compiled(_lf, ("tire_forces",), _inl, {"lateral_force": lateral_force, "rolling_force": rolling_force,
+                                                      "camber_force": camber_force}).tire_forces
 
 #: ``status[0]``: 0 ran to the horizon, 1 the eleventh slip warning, 2 the eleventh load warning, 3 non-finite
 STOPPED_SLIP, STOPPED_LOAD, STOPPED_NONFINITE = 1.0, 2.0, 3.0
 #: cfg slots: dt, steps, stride, push duration, push force, tire push force, pin mode (0 kinetic, 1 locked,
 #: 2 stick-slip), stop on warnings, tire policy, slip limit deg, load limit N, warning limit, shape index, weight N,
-#: c.g. height m, load mode (statics.LEVER / THREE / COMPLIANT)
-NCFG = 16
+#: c.g. height m, load mode (statics.LEVER / THREE / COMPLIANT), then the plane: on a slope (1.0) or level (0.0),
+#: cos and sin of the cross slope, cos and sin of the grade, and g (m/s^2)
+NCFG = 22
 #: recorded columns: x, y, heading, yaw rate, u, v, then each caster's angle and rate
 NREC = 6
 _LEVER, _THREE = 0, 1
@@ -220,27 +232,6 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
 
 
 @_inl
-def _tire_forces(nw, nc, TK, TS, TL, LIM, slips, loads, policy, tire_push, ftimp, cs, sn, fw, fc):
-    """Lateral tire forces (fixed wheels in body axes, casters in their frames; ``ftimp`` on the fixed wheels while
-    ``tire_push``) written into ``fw``, ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N."""
-    sum_fx = sum_fy = 0.0
-    for j in range(nw):
-        if tire_push:
-            fy = ftimp
-        else:
-            fy, _bad = lateral_force(TK[j], TS[j], TL[j], LIM[j], slips[j], loads[j], policy)
-        fw[2 * j], fw[2 * j + 1] = 0.0, fy
-        sum_fy += fy
-    for kk in range(nc):
-        i = nw + kk
-        fy, _bad = lateral_force(TK[i], TS[i], TL[i], LIM[i], slips[i], loads[i], policy)
-        fc[2 * kk], fc[2 * kk + 1] = 0.0, fy
-        sum_fx -= fy * sn[kk]
-        sum_fy += fy * cs[kk]
-    return sum_fx, sum_fy
-
-
-@_inl
 def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
     """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
     with the viscous part ``-c_pin rate``)."""
@@ -279,9 +270,12 @@ def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
 
 
 @njit(cache=True, nogil=True)
-def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, kv, line, share, mf, cpin, u0, v0, delta0, rec, status, warn):
+def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, u0, v0, delta0, rec,
+               status, warn):
     """One run: ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and
-    ``nc`` casters, per contact (fixed wheels, then casters) the tire slots and range check, the vertical
+    ``nc`` casters, per contact (fixed wheels, then casters) the tire slots (then each fixed wheel's camber tire)
+    and range check, the rolling-resistance slots (kind, coefficients, scale), per fixed wheel the camber
+    ``(deg, signed coefficient)``, the vertical
     stiffness and support line, the lines' roll shares, per caster the Coulomb limit (N m) and viscous
     coefficient (N m s/rad), the initial state; writes ``rec`` (:data:`NREC` + 2 nc, rows), ``status``
     (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and returns the rows written."""
@@ -289,6 +283,9 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, kv, line, share, mf, cpin, 
     pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
     maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
                                                              cfg[14], int(cfg[15]))
+    slope, c_phi, s_phi, c_theta, s_theta, grav = cfg[16] != 0.0, cfg[17], cfg[18], cfg[19], cfg[20], cfg[21]
+    g1 = g2 = 0.0
+    wn = weight
     nt, n = nw + nc, 3 + nc
     half_dt2 = 0.5 * dt * dt
     X = Y = THE = THED = 0.0
@@ -307,16 +304,19 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, kv, line, share, mf, cpin, 
     for k in range(nsteps):
         t = k * dt
         _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys)
-        layout_loads(mode, xs, ys, kv, line, share, weight, h, FC1, FC2, loads)
+        if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
+            g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
+            wn = weight * gn / grav
+        layout_loads(mode, xs, ys, kv, line, share, wn, h, FC1, FC2, loads)
         code = _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
         if code != 0.0:
             status[0], status[1] = code, t
             break
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
-        sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, slips, loads, policy, ftimp != 0.0 and imp, ftimp,
-                                      cs, sn, fw, fc)
+        sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy,
+                                      ftimp != 0.0 and imp, ftimp, cs, sn, fw, fc)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, 0.0, Mm, F0)
+        equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, 0.0, g1, g2, Mm, F0)
         _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
         if not abs(THED) < math.inf:
             status[0], status[1] = STOPPED_NONFINITE, t
@@ -351,4 +351,4 @@ def _note(warn, kind, t, value):
     warn[kind, 0] += 1.0
 
 
-invalidate_stale_cache(globals(), "layout_kernel.equations.sha256", (_gn, sys.modules[__name__]))
+invalidate_stale_cache(globals(), "layout_kernel.equations.sha256", (_gn, _lf, sys.modules[__name__]))

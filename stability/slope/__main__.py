@@ -1,4 +1,8 @@
-"""``python -m stability.slope``: holding moment, equilibrium and uncorrected turn on a cross slope."""
+"""``python -m stability.slope``: holding moment, equilibrium and uncorrected turn on a cross slope.
+
+A wheel layout (``--chair mid-wheel-drive``, a ``[[wheel]]`` file) or a negative ``--speed`` (reverse, any chair)
+is answered by the layout model (:func:`stability.study.layout_slope.layout_slope_report`).
+"""
 
 from __future__ import annotations
 
@@ -32,7 +36,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--cross-slope", type=float, required=True, metavar="DEG",
                    help="cross slope (deg), positive falling to the right")
     p.add_argument("--grade", type=float, default=0.0, metavar="DEG", help="grade (deg), uphill + (default 0)")
-    p.add_argument("--speed", type=float, required=True, metavar="U", help="speed along the path (m/s)")
+    p.add_argument("--speed", type=float, required=True, metavar="U",
+                   help="speed along the path (m/s; negative: reverse, answered by the layout model)")
     p.add_argument("--sim-time", type=float, default=D.SLOPE_SIM_TIME, metavar="T",
                    help=f"simulator runs of the uncorrected turn: report time (s, 0 < T <= 10; "
                         f"default {D.SLOPE_SIM_TIME:g})")
@@ -150,10 +155,41 @@ def _schemes_verdict(sim: dict, t_end: float) -> str:
             "show runs on extrapolated tire data past that point")
 
 
+def _run_layout(a: argparse.Namespace) -> int:
+    """A wheel layout, or any chair in reverse: the layout model's statics and the layout simulator."""
+    from stability import __version__
+    from stability.layout import Layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+    from stability.study.layout_slope import layout_slope_report
+
+    if a.output:
+        raise ValueError("-o is not available for a layout or a reverse speed yet; valid: --json, --json-file")
+    if is_layout_spec(a.chair):
+        if a.set:
+            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+        layout = resolve_layout(a.chair)
+    else:
+        layout = Layout.from_chair(load_chair(a.chair, a.set))
+    data, lines = layout_slope_report(layout, a.cross_slope, a.speed, a.grade, a.sim_time, a.drive,
+                                      HandRim(a.wheel_radius, a.handrim_radius))
+    if a.json or a.json_file:
+        options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade, "speed_m_s": a.speed, "drive": a.drive,
+                   "sim_time_s": a.sim_time}
+        emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
+                   **_finite(data)}, a)
+    if not a.json:
+        print("\n".join(lines))
+    return 0
+
+
 def _body(a: argparse.Namespace) -> int:
+    from stability.layout.io import is_layout_spec
+
     check_outputs({"--json-file": a.json_file, "-o": a.output}, {"--chair": a.chair})
     if not 0 < a.sim_time <= 10.0:
         raise ValueError(f"--sim-time {a.sim_time!r} is invalid; valid range: 0 < T <= 10 s")
+    if is_layout_spec(a.chair) or a.speed < 0:
+        return _run_layout(a)
     chair = load_chair(a.chair, a.set)
     eq = solve(chair, a.cross_slope, a.speed, a.grade)
     per_deg_eq = eq if a.cross_slope != 0 else solve(chair, 1.0, a.speed, a.grade)

@@ -31,7 +31,7 @@ from stability.study.intervals import RANGE_DEFINITION, equal_instability_interv
 #: The run settings each subcommand offers (options generated from the RunSpec's table): the critical impulse
 #: varies the push force, the equal-instability speed the speed.
 CRITICAL_RUN = ("model", "friction_law", "push_duration", "horizon", "dt")
-EQUAL_RUN = ("model", "friction_law", "push_force")
+EQUAL_RUN = ("model", "friction_law", "push_force", "reverse")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -162,8 +162,13 @@ def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
 
 
 def _interval(args: argparse.Namespace) -> None:
-    chair = load_chair(args.chair, args.set)
+    from stability.layout.io import is_layout_spec
+
     run_spec = run_from_args(args, EQUAL_RUN)
+    if is_layout_spec(args.chair) or run_spec.reverse:
+        _interval_layout(args, run_spec)
+        return
+    chair = load_chair(args.chair, args.set)
     r = equal_instability_interval(chair, run_spec, friction_on_reference=not args.chair_friction_only)
     definition = _EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED) + (
         RANGE_DEFINITION if not args.chair_friction_only else
@@ -175,6 +180,50 @@ def _interval(args: argparse.Namespace) -> None:
         sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
         lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")
     _emit(args, {**r.to_dict(), "definition": lines[2]}, "\n".join(lines), chair)
+
+
+def _interval_layout(args: argparse.Namespace, run_spec) -> None:
+    """A layout preset or ``[[wheel]]`` file, or any chair with ``--reverse``: the layout simulator's runs
+    (:func:`stability.study.layout_equal_instability.layout_equal_instability_interval`)."""
+    from stability import __version__
+    from stability.layout import Layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+    from stability.study.layout_equal_instability import (
+        LAYOUT_RANGE_DEFINITION,
+        direction_words,
+        layout_equal_instability_interval,
+    )
+
+    if is_layout_spec(args.chair):
+        if args.set:
+            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+        layout = resolve_layout(args.chair)
+    else:
+        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    if run_spec.model != "exact":
+        raise ValueError(f"--model {run_spec.model} is invalid for a layout or --reverse; valid values: exact "
+                         "(the layout's equations are the exact model's)")
+    reverse = run_spec.reverse
+    r = layout_equal_instability_interval(layout, run_spec.replace(reverse=False), reverse=reverse,
+                                          friction_on_reference=not args.chair_friction_only)
+    way = direction_words(reverse)
+    definition = (_EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED)
+                  + ("driving backwards, every caster starting trailing (180 deg), against the reference case "
+                     "forwards; " if reverse else "") + LAYOUT_RANGE_DEFINITION)
+    if args.chair_friction_only:
+        definition = definition.replace("(on both the layout's casters and the reference chair)",
+                                        "(on the layout only: --chair-friction-only)")
+    lines = [f"{layout.name} (layout: {layout.shape[0]} fixed wheels, {layout.shape[1]} casters) {way}: "
+             f"equal-instability speed {r.describe()}" + (" backwards" if reverse else ""),
+             f"push: {r.push}; pin friction factors applied to {r.friction_scope}; {run_spec.friction_law} pin "
+             "friction; layout model", definition]
+    for v in r.variants:
+        sp = "undefined (reference never reaches the level)" if v.result is None else v.result.describe()
+        lines.append(f"  {v.factor:12s} {v.label:28s} {sp}")
+    header = {"stability_version": __version__, "chair": layout.name,
+              "chair_parameters": dataclasses.asdict(layout), "model": "exact"}
+    _emit(args, {**r.to_dict(), "direction": "reverse" if reverse else "forward", "definition": lines[2]},
+          "\n".join(lines), None, header)
 
 
 #: What the equal-instability speed means (printed with it, followed by the range's one definition,

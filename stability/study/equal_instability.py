@@ -3,19 +3,20 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from stability.chair import Chair, preset
+from stability.layout.model import Layout
 from stability.runtime.progress import ProgressBar
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
-from stability.study.summaries import run_summaries
+from stability.study.summaries import Summaries, run_summaries
 
 __all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds", "bisect_speeds",
            "equal_instability_speed"]
@@ -27,7 +28,8 @@ class EqualInstability:
 
     Attributes
     ----------
-    chair : Chair
+    chair : Chair or Layout
+        The chair, or the layout (:mod:`stability.study.layout_equal_instability`).
     speed : float or None
         Equal-instability speed (m/s); None when outside the bracket.
     status : {"found", "above", "below"}
@@ -51,7 +53,7 @@ class EqualInstability:
         The reference case in words.
     """
 
-    chair: Chair
+    chair: Chair | Layout
     speed: float | None
     status: str
     low: float
@@ -144,8 +146,8 @@ def interp_speed(s0: float, t0: float, s1: float, t1: float, target: float) -> f
     return s0 + min(max(f, 0.0), 1.0) * (s1 - s0)
 
 
-def _round_runs(chairs: list[Chair], active: list[int], lo: np.ndarray, hi: np.ndarray, candidates: int,
-                first: bool) -> tuple[list[Chair], list[float], list[int]]:
+def _round_runs(chairs: list[Chair | Layout], active: list[int], lo: np.ndarray, hi: np.ndarray, candidates: int,
+                first: bool) -> tuple[list[Chair | Layout], list[float], list[int]]:
     run_chairs, run_speeds, owner = [], [], []
     for i in active:
         grid = np.linspace(lo[i], hi[i], candidates + 2)
@@ -262,9 +264,10 @@ def equal_instability_speeds(chairs: Sequence[Chair], run: RunSpec | None = None
                          reference_text=f"{ref_chair.name} at {reference_speed:g} m/s")
 
 
-def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Sequence[float], run: RunSpec, *,
+def bisect_speeds(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: Sequence[float], run: RunSpec, *,
                   criterion: Criterion, bracket: tuple[float, float], tol: float, candidates: int, max_rounds: int,
-                  progress: bool, reference_text: str) -> list[EqualInstability]:
+                  progress: bool, reference_text: str,
+                  summarise: Callable[..., Summaries] | None = None) -> list[EqualInstability]:
     """The vectorised bisection behind :func:`equal_instability_speeds`, with a target time and a push per chair.
 
     Parameters
@@ -281,11 +284,16 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
         As in :func:`equal_instability_speeds`.
     reference_text : str
         The reference case in words.
+    summarise : callable, optional
+        ``summarise(chairs, speeds, forces, run, level=...) -> Summaries`` of one round's runs; default
+        :func:`stability.study.summaries.run_summaries` (the thesis engine).  The layout study passes the layout
+        simulator's (:mod:`stability.study.layout_equal_instability`), so both share this search.
 
     Returns
     -------
     list of EqualInstability
     """
+    summ_fn: Callable[..., Summaries] = run_summaries if summarise is None else summarise
     lo0, hi0 = bracket
     n = len(chairs)
     target = np.asarray(targets, dtype=float)
@@ -320,7 +328,7 @@ def bisect_speeds(chairs: Sequence[Chair], targets: Sequence[float], forces: Seq
                         owner.append(i)
             old_lo, old_hi = lo.copy(), hi.copy()
             # every run stops when it reaches the level (its time is known then); one kernel call per round
-            summ = run_summaries(run_chairs, run_speeds, force[owner], run, level=criterion.yaw_rate)
+            summ = summ_fn(run_chairs, run_speeds, force[owner], run, level=criterion.yaw_rate)
             for i, s, t in zip(owner, run_speeds, summ.t_level.tolist(), strict=True):
                 evals[i].append((s, t if t <= end[i] else math.inf))
             for i in active:

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stability.chair import Chair, preset
+from stability.layout.model import Layout
 from stability.runtime.checks import VARIANTS, check_model
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, Push
 from stability.settings.run import RunSpec
@@ -344,7 +345,7 @@ def equal_instability_intervals(chairs: Sequence[Chair], run: RunSpec | None = N
                       scheme, scope) for chair, vlist in zip(chairs, variants, strict=True)]
 
 
-def _assemble(chair: Chair, vs: tuple, ref0: Chair, reference_speed: float, criterion: Criterion, push: Push,
+def _assemble(chair: Chair | Layout, vs: tuple, ref0: Chair, reference_speed: float, criterion: Criterion, push: Push,
               dt: float | None, scheme: str, scope: str) -> EqualInstabilityInterval:
     nominal = vs[0]
     if nominal.result is None:

@@ -193,7 +193,7 @@ def layout_critical_impulses(layout: Layout, speeds: Any, run: RunSpec | None = 
     run = check_search(run, level, max_impulse, min_impulse, rel_tol)
     if side not in SIDES:
         raise ValueError(f"side={side!r} is invalid; valid values: {', '.join(map(repr, SIDES))}")
-    check_layout_run(run)
+    check_layout_run(run, level_only=True)
     u = _signed_speeds(speeds)
     dt = 0.001 if run.dt == "auto" else float(run.dt)
     limits, rates = layout_step_limits_and_growth(layout, u)

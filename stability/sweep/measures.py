@@ -12,13 +12,13 @@ the equal-instability speed from one batched bisection over its chairs.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from typing import Any
 
 import numpy as np
 
-from stability.bench import run_bench
 from stability.chair import Chair
 from stability.chair.power import drive_kind
 from stability.driver.linear import rule_speed
@@ -29,6 +29,7 @@ from stability.settings.defaults import MAX_SPEED
 from stability.shimmy.band import shimmy_band
 from stability.slope import solve
 from stability.study import critical_impulses, equal_instability_speeds
+from stability.sweep.layouts import apply_layout_axis, bench_of, layout_chunk_values
 from stability.sweep.spec import _NUMERIC, MEASURES, SweepSpec, apply_axis
 from stability.tipping import tip_angles
 
@@ -49,7 +50,9 @@ def columns(spec: SweepSpec) -> list[str]:
     -------
     list of str
     """
-    cols = ["design", "draw", "speed_m_s"] + [f"grid_{a}" for a, _ in spec.grid] + list(_NUMERIC)
+    # a layout sweep's designs are its grid values (a layout has no fixed list of fields)
+    fields = [] if isinstance(spec.chair, Layout) else list(_NUMERIC)
+    cols = ["design", "draw", "speed_m_s"] + [f"grid_{a}" for a, _ in spec.grid] + fields
     for m in spec.measures:
         cols += list(MEASURES[m][0])
     return cols + ["error"]
@@ -101,7 +104,13 @@ def chunk_pairs(spec: SweepSpec, index: int) -> range:
     return range(index * per, min((index + 1) * per, spec.designs * spec.draws))
 
 
-def _chair(spec: SweepSpec, values: tuple[float, ...], draw: int, unit: dict[str, np.ndarray] | None) -> Chair:
+def _chair(spec: SweepSpec, values: tuple[float, ...], draw: int,
+           unit: dict[str, np.ndarray] | None) -> Chair | Layout:
+    if isinstance(spec.chair, Layout):
+        lay = spec.chair
+        for (axis, _), v in zip(spec.grid, values, strict=True):
+            lay = apply_layout_axis(lay, axis, v)
+        return dataclasses.replace(lay, name=f"{spec.chair.name} design {values}" if values else spec.chair.name)
     c = spec.chair
     for (axis, _), v in zip(spec.grid, values, strict=True):
         c = apply_axis(c, axis, v)
@@ -131,7 +140,7 @@ def compute_chunk(spec: SweepSpec, index: int) -> list[list[Any]]:
     designs = design_values(spec)
     unit = spec.uncertainty.unit_draws(spec.draws, spec.seed) if spec.uncertainty is not None else None
     pairs = list(chunk_pairs(spec, index))
-    chairs: list[Chair | None] = []
+    chairs: list[Chair | Layout | None] = []
     errors: list[str] = []
     for p in pairs:
         d, k = divmod(p, spec.draws)
@@ -144,7 +153,11 @@ def compute_chunk(spec: SweepSpec, index: int) -> list[list[Any]]:
     ok = [i for i, c in enumerate(chairs) if c is not None]
     good = [c for c in chairs if c is not None]
     speeds = np.array(spec.speeds)
-    values = _measures(spec, good, speeds)            # column -> (len(ok), K) array
+    if isinstance(spec.chair, Layout):
+        values = layout_chunk_values(spec.measures, good, speeds, spec.run)      # type: ignore[arg-type]
+    else:
+        values = _measures(spec, good, speeds)        # type: ignore[arg-type]   # column -> (len(ok), K) array
+    fields = [] if isinstance(spec.chair, Layout) else _NUMERIC
     rows = []
     for i, p in enumerate(pairs):
         d, k = divmod(p, spec.draws)
@@ -152,7 +165,7 @@ def compute_chunk(spec: SweepSpec, index: int) -> list[list[Any]]:
         j = ok.index(i) if c is not None else -1
         for s_i, s in enumerate(spec.speeds):
             row: list[Any] = [d, k, s, *designs[d]]
-            row += [float(getattr(c, f)) if c is not None else math.nan for f in _NUMERIC]
+            row += [float(getattr(c, f)) if c is not None else math.nan for f in fields]
             for m in spec.measures:
                 for col in MEASURES[m][0]:
                     row.append(values[col][j, s_i] if j >= 0 else (math.nan if not col.endswith("status")
@@ -236,9 +249,7 @@ def _bench(chair: Chair) -> tuple[float, float]:
     """The bench's worst score and longest level-ground stopping distance (m) of a powered chair, NaN otherwise."""
     if drive_kind(chair) != "motor":
         return math.nan, math.nan
-    r = run_bench(Layout.from_chair(chair))
-    return float(r.worst_score), max(float(c.braking_distance_m) for c in r.cases
-                                     if c.family == "stop" and c.slope == "level")
+    return bench_of(Layout.from_chair(chair))
 
 
 def _holding(chair: Chair, speed: float) -> float:

@@ -36,7 +36,10 @@ from typing import Any
 from stability import chair as chair_mod
 from stability.chair import Chair, design
 from stability.driver.model import REACTION_TIME_RANGE_S, REACTION_TIME_S
+from stability.layout.io import is_layout_spec, resolve_layout
+from stability.layout.model import Layout
 from stability.settings.run import FRICTION_LAWS, MODELS, RunSpec
+from stability.sweep.layouts import LAYOUT_MEASURES, check_layout_axis
 from stability.uncertainty import Uncertainty, load_uncertainty
 
 if sys.version_info >= (3, 11):
@@ -106,13 +109,13 @@ class SweepSpec:
 
     Attributes
     ----------
-    chair : Chair
-        The base chair.
+    chair : Chair or Layout
+        The base chair, or the base layout of a layout sweep (a layout, or reverse speeds: :mod:`.layouts`).
     chair_source : str
         Preset name or file as given.
     model : str
     speeds : tuple of float
-        m/s.
+        m/s (negative: reverse, a layout sweep).
     measures : tuple of str
     grid : tuple of (str, tuple of float)
         Axes in file order (the first two are the plot axes).
@@ -127,7 +130,7 @@ class SweepSpec:
         The driver's effective delay of the ``human_limited_speed`` measure, s (:mod:`stability.driver`).
     """
 
-    chair: Chair
+    chair: Chair | Layout
     chair_source: str
     model: str
     speeds: tuple
@@ -226,7 +229,9 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     if not isinstance(source, str):
         raise _bad("chair", source, "a preset name or a chair TOML file")
     path = base / source
-    chair = chair_mod.resolve(str(path) if source.endswith(".toml") else source)
+    where = str(path) if source.endswith(".toml") else source
+    layout_form = is_layout_spec(where)
+    chair: Chair | Layout = resolve_layout(where) if layout_form else chair_mod.resolve(where)
     model = data.get("model", RunSpec().model)
     if model not in MODELS:
         raise _bad("model", model, " or ".join(repr(m) for m in MODELS))
@@ -235,19 +240,17 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
         raise _bad("friction_law", friction_law, " or ".join(repr(m) for m in FRICTION_LAWS))
     if "speeds" not in data:
         raise ValueError("spec has no speeds; valid: speeds = [m/s, ...], each > 0")
-    speeds = _numbers("speeds", data["speeds"], positive=True)
+    chair, speeds = _speeds(data["speeds"], chair, layout_form)
     if "measures" not in data:
         raise ValueError(f"spec has no measures; valid: measures = a list of {sorted(MEASURES)}")
     measures = _measures(data["measures"])
     grid_t = data.get("grid", {})
     if not isinstance(grid_t, Mapping):
         raise _bad("grid", grid_t, "a table [grid] of axis = [values]")
-    grid = []
-    for axis, values in grid_t.items():
-        if axis not in _NUMERIC and axis not in _GROUPS:
-            raise _bad("grid", axis, f"a numeric chair field {_NUMERIC} or a design parameter {sorted(_GROUPS)}")
-        grid.append((axis, _numbers(f"grid.{axis}", values)))
+    grid = _grid(grid_t, chair)
     n, seed, unc = _draws(data.get("draws"), base)
+    if isinstance(chair, Layout):
+        _check_layout(measures, model, unc)
     chunk_rows = data.get("chunk_rows", 300)
     if isinstance(chunk_rows, bool) or not isinstance(chunk_rows, int) or chunk_rows < 1:
         raise _bad("chunk_rows", chunk_rows, "an integer >= 1")
@@ -255,11 +258,47 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     lo, hi = REACTION_TIME_RANGE_S
     if isinstance(tau, bool) or not isinstance(tau, (int, float)) or not (math.isfinite(tau) and lo <= tau <= hi):
         raise _bad("reaction_time_s", tau, f"a number of s from {lo:g} to {hi:g}")
-    spec = SweepSpec(chair, source, model, speeds, measures, tuple(grid), int(n), int(seed), unc, chunk_rows,
+    spec = SweepSpec(chair, source, model, speeds, measures, grid, int(n), int(seed), unc, chunk_rows,
                      friction_law, float(tau))
     if spec.rows > MAX_ROWS:
         raise ValueError(f"spec asks for {spec.rows} rows (designs x draws x speeds); valid: at most {MAX_ROWS}")
     return spec
+
+
+def _speeds(value: Any, chair: Chair | Layout, layout_form: bool) -> tuple[Chair | Layout, tuple[float, ...]]:
+    """The speeds, and the base chair as a layout when it is one or a speed is negative (reverse)."""
+    speeds = _numbers("speeds", value)
+    if layout_form or any(u < 0 for u in speeds):       # a layout, or reverse: the layout sweep (sweep.layouts)
+        if any(not 0.01 <= abs(u) <= 20.0 for u in speeds):
+            raise _bad("speeds", value, "numbers with 0.01 <= |speed| <= 20 m/s (negative: reverse)")
+        return (chair if isinstance(chair, Layout) else Layout.from_chair(chair)), speeds
+    if any(u <= 0 for u in speeds):
+        raise _bad("speeds", value, "numbers > 0 (or a negative one: the layout sweep in reverse)")
+    return chair, speeds
+
+
+def _grid(grid_t: Mapping[str, Any], chair: Chair | Layout) -> tuple:
+    """The grid's axes in file order, each checked against the chair's fields or the layout's axes."""
+    grid = []
+    for axis, values in grid_t.items():
+        if isinstance(chair, Layout):
+            check_layout_axis(chair, axis)
+        elif axis not in _NUMERIC and axis not in _GROUPS:
+            raise _bad("grid", axis, f"a numeric chair field {_NUMERIC} or a design parameter {sorted(_GROUPS)}")
+        grid.append((axis, _numbers(f"grid.{axis}", values)))
+    return tuple(grid)
+
+
+def _check_layout(measures: tuple, model: str, unc: Uncertainty | None) -> None:
+    """What a layout sweep (a layout, or reverse speeds) refuses, in one line each."""
+    other = [m for m in measures if m not in LAYOUT_MEASURES]
+    if other:
+        raise _bad("measures", other, f"for a layout or reverse speeds one of {list(LAYOUT_MEASURES)}")
+    if model != "exact":
+        raise _bad("model", model, "'exact' for a layout or reverse speeds (the layout's equations)")
+    if unc is not None:
+        raise _bad("draws", "a [draws] table", "none for a layout or reverse speeds (the uncertainty files name "
+                   "the short form's fields)")
 
 
 def loads_spec(text: str, base: Path | None = None) -> SweepSpec:

@@ -56,6 +56,7 @@ from stability.tires.ranges import (
     range_policy,
     set_policy,
     summarise_notes,
+    summarised_warnings,
 )
 from stability.tires.registry import get, names, register, registered, resolve_spec, unregister
 from stability.tires.user import FitQuality, TireData, load_tire_data, read_tire_csv, tire_from_data
@@ -90,6 +91,7 @@ __all__ = [
     "check_chair_tires",
     "collect_notes",
     "summarise_notes",
+    "summarised_warnings",
     "fit_per_angle",
     "get",
     "get_policy",

@@ -9,12 +9,13 @@ outside the fits are gathered with :func:`collect_notes`. See ``docs/tires.md``.
 
 from __future__ import annotations
 
+import functools
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import asdict, dataclass
-from typing import Any, Literal
+from typing import Any, Literal, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -170,9 +171,13 @@ def summarise_notes(notes: Sequence[RangeNote]) -> list[str]:
     return out
 
 
+P = ParamSpec("P")
+R = TypeVar("R")
+
 _DEFAULT_POLICY = RangePolicy()
 _POLICY: ContextVar[RangePolicy] = ContextVar("stability_tire_range_policy", default=_DEFAULT_POLICY)
 _NOTES: ContextVar[list[RangeNote] | None] = ContextVar("stability_tire_range_notes", default=None)
+_QUIET: ContextVar[bool] = ContextVar("stability_tire_range_quiet", default=False)
 
 
 def _check_range_policy(name: str) -> RangePolicyName:
@@ -262,8 +267,40 @@ def record(note: RangeNote, *, warn: bool = True) -> None:
     notes = _NOTES.get()
     if notes is not None and note not in notes:
         notes.append(note)
-    if warn and note.policy == "warn":
+    if warn and note.policy == "warn" and not _QUIET.get():
         warnings.warn(str(note), TireRangeWarning, stacklevel=4)
+
+
+def summarised_warnings(func: Callable[P, R]) -> Callable[P, R]:
+    """Decorator: a function that evaluates tires at many loads warns once per group, not once per load.
+
+    Inside ``func`` the notes are collected without a warning each; when it returns (or raises) every
+    group of :func:`summarise_notes` is warned once as a :class:`TireRangeWarning` (the advisor screens
+    dozens of candidate chairs: 300 warnings of one tire's load said one thing), and the notes pass on to
+    an enclosing :func:`collect_notes` block (the command lines' note lines are unchanged).
+
+    Parameters
+    ----------
+    func : callable
+
+    Returns
+    -------
+    callable
+    """
+    @functools.wraps(func)
+    def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
+        notes: list[RangeNote] = []
+        token, quiet = _NOTES.set(notes), _QUIET.set(True)
+        try:
+            return func(*args, **kwargs)
+        finally:
+            _NOTES.reset(token)
+            _QUIET.reset(quiet)
+            for n in notes:
+                record(n, warn=False)
+            for line in summarise_notes([n for n in notes if n.policy == "warn"]):
+                warnings.warn(line, TireRangeWarning, stacklevel=2)
+    return wrapper
 
 
 def resolve(policy: str | None) -> RangePolicy:

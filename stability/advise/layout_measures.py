@@ -1,0 +1,257 @@
+"""Every measure the advisor weighs, for wheel layouts, forward or in reverse: the layout studies' answers.
+
+The measures of a layout are what the commands print for it, as for the short form (:mod:`.measures`):
+
+- ``critical_impulse_Ns``: ``python -m stability.study critical-impulse --chair LAYOUT --speeds 0.75`` (or -0.75
+  in reverse; :func:`stability.study.layout_impulse.layout_critical_impulses`), with the short form's interval
+  over pin friction x0.5/x1.5 and half the simulator step (no model variant: a layout's equations are the exact
+  model's);
+- ``equal_instability_speed_m_s``: ``python -m stability.study equal-instability --chair LAYOUT [--reverse]``
+  (:func:`stability.study.layout_equal_instability.layout_equal_instability_interval`);
+- ``static_stability_deg``: the smallest of ``python -m stability.tipping``'s four ISO 7176-1 angles of the layout
+  (tip lines between the outermost contacts: :func:`stability.layout.statics.tip_angles`; keys ``forward``,
+  ``backward``, ``left``, ``right``);
+- ``shimmy_margin_m``: the smallest over the caster rows of ``python -m stability.shimmy --chair LAYOUT``'s margins
+  (each row's towed wheel at its own static load, :mod:`stability.shimmy.layout_caster`), with the row that sets
+  it (``shimmy_row``, ``shimmy_trail_m``);
+- ``turning_effort_N_m``: the largest pin friction of any caster;
+- ``growth_rate_1_s``: the layout's linear model at 0.75 m/s (or -0.75);
+- ``bench_score``: ``python -m stability.bench``'s worst score for a layout with driven wheels.
+
+The cross-slope drive difference is not among a layout's measures here yet (None: the advisor does not use the
+layout slope statics of :mod:`stability.study.layout_slope` yet), nor is the speed a driver can hold (the driver's
+linear model is the short form's).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable, Sequence
+
+from stability.advise.layout_levers import caster_rows, row_name
+from stability.advise.measures import IMPULSE_SPEED, Interval, Linear, Measures
+from stability.bench import run_bench
+from stability.layout.linear import growth_rates
+from stability.layout.model import Layout
+from stability.layout.statics import tip_angles
+from stability.runtime.progress import ProgressBar
+from stability.settings.reference import THESIS_PUSH
+from stability.settings.run import RunSpec
+from stability.shimmy.band import ShimmyBand, band_core, shimmy_band
+from stability.shimmy.layout_caster import LayoutCaster
+from stability.simulate.options import WCHAIR_DT
+from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS
+from stability.study.layout_equal_instability import (
+    layout_equal_instability_interval,
+    layout_summaries,
+    scale_layout_friction,
+)
+from stability.study.layout_impulse import layout_critical_impulses
+from stability.study.runs import study_run
+
+__all__ = ["direction_of", "layout_linear_measures", "layout_nonlinear_measures", "measure_layouts",
+           "layout_time_to_correct", "layout_shimmy_rows"]
+
+
+def direction_of(speeds: Sequence[float]) -> bool:
+    """Whether the use speeds are backwards (all negative); mixed signs are refused.
+
+    Parameters
+    ----------
+    speeds : sequence of float
+        m/s.
+
+    Returns
+    -------
+    bool
+        True in reverse.
+    """
+    neg = [float(u) < 0 for u in speeds]
+    if any(neg) and not all(neg):
+        raise ValueError(f"speeds={tuple(speeds)!r} is invalid; valid: all forward (> 0) or all in reverse (< 0)")
+    return bool(neg) and all(neg)
+
+
+def _core_key(layout: Layout, row: list[int]) -> tuple:
+    """What a row's band core depends on: the layout with that row's trail and pin friction set aside (the band
+    search scans the row's trail, the loads following, and ignores the Coulomb pin friction)."""
+    casters = tuple(dataclasses.replace(c, trail=0.05, pin_friction=0.0) if k in row else c
+                    for k, c in enumerate(layout.casters))
+    return dataclasses.replace(layout, name="-", casters=casters), row[0]
+
+
+def layout_shimmy_rows(layout: Layout, speeds: Sequence[float],
+                       cores: dict | None = None) -> list[tuple[str, float, ShimmyBand]]:
+    """Each caster row's shimmy band at the use speeds: ``(row name, trail m, ShimmyBand)``, front first.
+
+    Parameters
+    ----------
+    layout : Layout
+    speeds : sequence of float
+        m/s (their magnitudes: in reverse a caster swings round and trails the other way, the same towed wheel).
+    cores : dict, optional
+        Band cores to share between calls (:func:`stability.shimmy.band.band_core`), keyed by what they depend on.
+
+    Returns
+    -------
+    list of tuple
+    """
+    u = [abs(float(s)) for s in speeds]
+    cores = {} if cores is None else cores
+    out = []
+    for row in caster_rows(layout):
+        key = (_core_key(layout, row), tuple(u))
+        if key not in cores:
+            cores[key] = band_core(LayoutCaster(key[0][0], row[0]), u)
+        out.append((row_name(layout, row), layout.casters[row[0]].trail,
+                    shimmy_band(LayoutCaster(layout, row[0]), u, core=cores[key])))
+    return out
+
+
+def _finite_or_none(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float],
+                           cores: dict | None = None) -> list[Linear]:
+    """The measures that need no simulation, for every layout (the constraints of the advisor).
+
+    Parameters
+    ----------
+    layouts : sequence of Layout
+    speeds : sequence of float
+        Use speeds, m/s (negative: reverse; the growth rate is taken at :data:`~.measures.IMPULSE_SPEED` in the
+        direction of travel).
+    cores : dict, optional
+        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
+
+    Returns
+    -------
+    list of Linear
+    """
+    sign = -1.0 if direction_of(speeds) else 1.0
+    out = []
+    for lay in layouts:
+        tips = tip_angles(lay)
+        angles = {k.removesuffix("_deg"): float(v) for k, v in tips.items()}
+        smallest = min(angles.values())
+        rows = layout_shimmy_rows(lay, speeds, cores)
+        if rows:
+            name, trail, band = min(rows, key=lambda r: r[2].shimmy_margin_m)
+            low, high = band.shimmy_margin_interval_m
+            margin = Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low), _finite_or_none(high))
+            straddles = any(r[2].straddles for r in rows)
+        else:
+            name, trail, margin, straddles = "", None, Interval(None, None, None), False
+        driven = any(w.driven for w in lay.wheels)
+        out.append(Linear(
+            Interval(smallest, smallest, smallest), angles, margin, straddles,
+            max((c.pin_friction for c in lay.casters), default=0.0), None, "motor" if driven else "handrim",
+            float(growth_rates(lay, [sign * IMPULSE_SPEED])[0]), None, "=",
+            run_bench(lay).worst_score if driven else None, shimmy_row=name, shimmy_trail_m=trail))
+    return out
+
+
+def _critical(layouts: list[Layout], speed: float) -> list[tuple[Interval, str, float | None]]:
+    """Critical impulse with its range over pin friction and half the step (the short form's, less the model)."""
+    specs = [("nominal", 1.0, WCHAIR_DT)] + [(f"x{f:g} pin friction", f, WCHAIR_DT) for f in FRICTION_FACTORS]
+    specs += [(f"{WCHAIR_DT * f * 1e3:g} ms step", 1.0, WCHAIR_DT * f) for f in STEP_FACTORS]
+    out = []
+    for lay in layouts:
+        res = [layout_critical_impulses(scale_layout_friction(lay, f), speed, RunSpec(dt=h))[0] for _, f, h in specs]
+        bounds = [r.bound_Ns for r in res]
+        half = [r.bound_Ns for (label, _, _), r in zip(specs, res, strict=True) if label.endswith(" ms step")]
+        out.append((Interval(float(res[0].bound_Ns), float(min(bounds)), float(max(bounds))), res[0].status,
+                    float(half[0]) if half else None))
+    return out
+
+
+def layout_nonlinear_measures(layouts: Sequence[Layout], reverse: bool = False
+                              ) -> list[tuple[Interval, Interval, str, str, float | None]]:
+    """Critical impulse and equal-instability speed (with intervals) of every layout, as
+    :func:`.measures.nonlinear_measures` for the short form.
+
+    Parameters
+    ----------
+    layouts : sequence of Layout
+    reverse : bool
+        Backwards: the critical impulse at ``-IMPULSE_SPEED``, the equal-instability speed backwards.
+
+    Returns
+    -------
+    list of tuple
+        ``(critical_impulse_Ns, equal_instability_speed_m_s, equal_instability_status, critical_impulse_status,
+        critical_impulse_half_step_Ns)`` per layout.
+    """
+    layouts = list(layouts)
+    ci = _critical(layouts, -IMPULSE_SPEED if reverse else IMPULSE_SPEED)
+    out = []
+    for lay, (imp, status, half) in zip(layouts, ci, strict=True):
+        eq = layout_equal_instability_interval(lay, reverse=reverse)
+        out.append((imp, Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status, status, half))
+    return out
+
+
+def measure_layouts(layouts: Sequence[Layout], *, speeds: Sequence[float], progress: bool = False,
+                    nonlinear: Callable | None = None, cores: dict | None = None) -> list[Measures]:
+    """The advisor's measures of every layout (:func:`.measures.measure_chairs` for layouts).
+
+    Parameters
+    ----------
+    layouts : sequence of Layout
+    speeds : sequence of float
+        Use speeds, m/s (all negative: reverse).
+    progress : bool
+    nonlinear : callable, optional
+        Replaces :func:`layout_nonlinear_measures` (``nonlinear(layouts)``); for tests of everything else.
+    cores : dict, optional
+        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
+
+    Returns
+    -------
+    list of Measures
+    """
+    layouts = list(layouts)
+    reverse = direction_of(speeds)
+    with ProgressBar(2, f"measuring {len(layouts)} layout(s)", enabled=progress, unit="step") as bar:
+        nl = nonlinear(layouts) if nonlinear is not None else layout_nonlinear_measures(layouts, reverse)
+        bar.update()
+        out = []
+        lins = layout_linear_measures(layouts, speeds=speeds, cores=cores)
+        for lay, lin, (imp, eq, status, *more) in zip(layouts, lins, nl, strict=True):
+            out.append(Measures(
+                chair=lay.name, critical_impulse_Ns=imp, equal_instability_speed_m_s=eq,
+                static_stability_deg=lin.static_stability_deg, shimmy_margin_m=lin.shimmy_margin_m,
+                shimmy_straddles=lin.shimmy_straddles, turning_effort_N_m=lin.turning_effort_N_m,
+                cross_slope_effort=None, growth_rate_1_s=lin.growth_rate_1_s, tip_angles_deg=lin.tip_angles_deg,
+                equal_instability_status=status, critical_impulse_status=more[0] if more else "found",
+                critical_impulse_half_step_Ns=more[1] if len(more) > 1 else None, drive=lin.drive,
+                bench_score=lin.bench_score, shimmy_row=lin.shimmy_row, shimmy_trail_m=lin.shimmy_trail_m))
+        bar.update()
+    return out
+
+
+def layout_time_to_correct(layout: Layout, speed: float, level: float = 1.0) -> float:
+    """Time after the thesis's push until ``|yaw rate|`` reaches ``level``, every caster trailing at the start.
+
+    Parameters
+    ----------
+    layout : Layout
+    speed : float
+        m/s (negative: reverse).
+    level : float
+        rad/s.
+
+    Returns
+    -------
+    float
+        s.  Raises ValueError when the level is not reached within the run (10 s), as
+        :func:`stability.study.reference_time` does.
+    """
+    s = layout_summaries([layout], [abs(float(speed))], [THESIS_PUSH.force], study_run(RunSpec()), level=level,
+                         reverse=speed < 0)
+    t = float(s.t_level[0])
+    if not math.isfinite(t) or t > s.sim_time[0]:
+        raise ValueError(f"{layout.name} at {speed:g} m/s never reaches {level:g} rad/s within {s.sim_time[0]:g} s")
+    return t

@@ -1,0 +1,218 @@
+"""What the advisor advises on: a short-form chair or a wheel layout, one door for both.
+
+The advisor's method (:mod:`.advisor`: measure every single change, screen the pairs on the limits, measure the best,
+the decision and the blocked-fix logic) does not depend on what it changes.  These functions give it the levers,
+the changed designs and their measures of either kind: a :class:`stability.chair.Chair` goes to :mod:`.levers` and
+:mod:`.measures` (the thesis engine's studies), a :class:`stability.layout.Layout` to :mod:`.layout_levers` and
+:mod:`.layout_measures` (the layout studies, forward or in reverse).  Every function has the signature of the one
+it stands for, so the advisor calls them unchanged.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+from stability.advise.layout_levers import apply_layout, caster_rows, layout_lever_changes, layout_levers
+from stability.advise.layout_measures import (
+    layout_linear_measures,
+    layout_shimmy_rows,
+    layout_time_to_correct,
+    measure_layouts,
+)
+from stability.advise.levers import LEVERS
+from stability.advise.levers import apply as apply_chair
+from stability.advise.levers import lever_changes as chair_lever_changes
+from stability.advise.limits import SHIMMY_AMPLITUDE_DEG, ShimmyHold
+from stability.advise.limits import shimmy_hold as chair_shimmy_hold
+from stability.advise.measures import linear_measures as chair_linear_measures
+from stability.advise.measures import measure_chairs as chair_measures
+from stability.chair import Chair
+from stability.layout.model import Layout
+from stability.settings.run import RunSpec
+from stability.study import reference_time
+
+__all__ = ["lever_changes", "apply", "levers_of", "measure_chairs", "linear_measures", "shimmy_hold",
+           "time_to_correct", "is_layout"]
+
+
+def is_layout(subject: object) -> bool:
+    """Whether the subject is a wheel layout.
+
+    Parameters
+    ----------
+    subject : Chair or Layout
+
+    Returns
+    -------
+    bool
+    """
+    return isinstance(subject, Layout)
+
+
+def _all_layouts(subjects: Sequence) -> bool:
+    kinds = {is_layout(s) for s in subjects}
+    if len(kinds) > 1:
+        raise ValueError("subjects: expected chairs or layouts, not both")
+    return kinds == {True}
+
+
+def lever_changes(subject: Chair | Layout) -> tuple[list, list]:
+    """:func:`.levers.lever_changes` or :func:`.layout_levers.layout_lever_changes`.
+
+    Parameters
+    ----------
+    subject : Chair or Layout
+
+    Returns
+    -------
+    tuple
+        ``([(change, changed subject), ...], [(change, reason), ...])``.
+    """
+    if isinstance(subject, Layout):
+        return layout_lever_changes(subject)
+    return chair_lever_changes(subject)
+
+
+def apply(subject: Chair | Layout, fields) -> Chair | Layout:
+    """:func:`.levers.apply` or :func:`.layout_levers.apply_layout`.
+
+    Parameters
+    ----------
+    subject : Chair or Layout
+    fields : iterable of (str, value)
+
+    Returns
+    -------
+    Chair or Layout
+    """
+    if isinstance(subject, Layout):
+        return apply_layout(subject, fields)
+    return apply_chair(subject, fields)
+
+
+def levers_of(subject: Chair | Layout) -> dict:
+    """The subject's levers, name -> (description, generator), in the order the advice lists them.
+
+    Parameters
+    ----------
+    subject : Chair or Layout
+
+    Returns
+    -------
+    dict
+    """
+    if isinstance(subject, Layout):
+        return layout_levers(subject)
+    return LEVERS
+
+
+def measure_chairs(subjects: Sequence, *, speeds: Sequence[float], cross_slope_deg: float, progress: bool = False,
+                   nonlinear: Callable | None = None, cores: dict | None = None,
+                   reaction_time: float | None = None) -> list:
+    """:func:`.measures.measure_chairs`, or :func:`.layout_measures.measure_layouts` for layouts (which have no
+    cross-slope effort or driver measure yet: ``cross_slope_deg`` and ``reaction_time`` must then be 0 and None).
+
+    Parameters
+    ----------
+    subjects : sequence of Chair, or of Layout
+    speeds, cross_slope_deg, progress, nonlinear, cores, reaction_time
+        As :func:`.measures.measure_chairs` (negative speeds: a layout in reverse).
+
+    Returns
+    -------
+    list of Measures
+    """
+    subjects = list(subjects)
+    if _all_layouts(subjects):
+        _layout_options(cross_slope_deg, reaction_time)
+        return measure_layouts(subjects, speeds=speeds, progress=progress, nonlinear=nonlinear, cores=cores)
+    return chair_measures(subjects, speeds=speeds, cross_slope_deg=cross_slope_deg, progress=progress,
+                          nonlinear=nonlinear, cores=cores, reaction_time=reaction_time)
+
+
+def linear_measures(subjects: Sequence, *, speeds: Sequence[float], cross_slope_deg: float,
+                    cores: dict | None = None, reaction_time: float | None = None) -> list:
+    """:func:`.measures.linear_measures`, or :func:`.layout_measures.layout_linear_measures` for layouts.
+
+    Parameters
+    ----------
+    subjects : sequence of Chair, or of Layout
+    speeds, cross_slope_deg, cores, reaction_time
+        As :func:`.measures.linear_measures`.
+
+    Returns
+    -------
+    list of Linear
+    """
+    subjects = list(subjects)
+    if subjects and _all_layouts(subjects):
+        _layout_options(cross_slope_deg, reaction_time)
+        return layout_linear_measures(subjects, speeds=speeds, cores=cores)
+    return chair_linear_measures(subjects, speeds=speeds, cross_slope_deg=cross_slope_deg, cores=cores,
+                                 reaction_time=reaction_time)
+
+
+def _layout_options(cross_slope_deg: float, reaction_time: float | None) -> None:
+    if cross_slope_deg:
+        raise ValueError(f"cross_slope_deg={cross_slope_deg!r} is invalid for a layout; valid: 0 (the advisor does "
+                         "not weigh a layout's cross-slope drive difference yet)")
+    if reaction_time is not None:
+        raise ValueError(f"reaction_time={reaction_time!r} is invalid for a layout; valid: None (the driver's model "
+                         "is the short form's)")
+
+
+def shimmy_hold(subject: Chair | Layout, speeds: tuple,
+                amplitude_deg: float = SHIMMY_AMPLITUDE_DEG) -> ShimmyHold | None:
+    """:func:`.limits.shimmy_hold`; for a layout, of the caster row nearest a shimmy boundary.
+
+    Parameters
+    ----------
+    subject : Chair or Layout
+    speeds : tuple of float
+        m/s (magnitudes taken).
+    amplitude_deg : float
+
+    Returns
+    -------
+    ShimmyHold or None
+    """
+    if not isinstance(subject, Layout):
+        return chair_shimmy_hold(subject, speeds, amplitude_deg)
+    import math
+
+    from stability.shimmy.chair import friction_trail
+    from stability.shimmy.layout_caster import LayoutCaster
+
+    rows = caster_rows(subject)
+    if not rows:
+        return None
+    bands = layout_shimmy_rows(subject, speeds)
+    k = min(range(len(rows)), key=lambda i: bands[i][2].shimmy_margin_m)
+    caster = LayoutCaster(subject, rows[k][0])
+    if caster.pin_friction_left <= 0:
+        return None
+    try:
+        trail = max(friction_trail(caster, abs(float(u)), math.radians(amplitude_deg)) for u in speeds)
+    except ValueError:
+        return None
+    return ShimmyHold(float(amplitude_deg), float(caster.pin_friction_left), float(trail),
+                             float(caster.trail))
+
+
+def time_to_correct(subject: Chair | Layout, speed: float) -> float:
+    """Time after the thesis's push until ``|yaw rate|`` reaches 1 rad/s at ``speed`` (the advisor's verdict).
+
+    Parameters
+    ----------
+    subject : Chair or Layout
+    speed : float
+        m/s (negative: a layout in reverse).
+
+    Returns
+    -------
+    float
+        s.  Raises ValueError when never reached.
+    """
+    if isinstance(subject, Layout):
+        return layout_time_to_correct(subject, speed)
+    return reference_time(subject, speed, RunSpec(model="exact"))

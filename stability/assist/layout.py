@@ -1,0 +1,288 @@
+"""The motor assist of any wheel layout, forward and in reverse: plant, LQR, Kalman filter, margins, safe top speed.
+
+The short form's assist (:mod:`.plant`, :mod:`.design`, :mod:`.digital`, :mod:`.top_speed`) for a chair given as
+a list of wheels (:class:`stability.layout.Layout`): the plant is the layout's linear model
+(:mod:`stability.layout.linear`: ``v, r`` and each caster's angle and rate; a negative speed drives backwards with
+the casters trailing at 180 deg) augmented with the heading and the motor lag; the differential torque ``tau``
+per drive wheel gives the yaw moment ``Mz = tau w / r`` with ``w`` the lateral distance between the two drive
+wheels (:func:`stability.study.layout_slope.drive_wheels`) and ``r`` their radius.  The LQR weights are Bryson's
+(:class:`.weights.Weights`), the gyro design's estimator the same Kalman filter on the chair's states, the margins
+those of the continuous and the sampled loop (:func:`.digital.margin_pair`), and the safe top speed the highest
+design speed at which the sampled loop's margins hold there and below (:func:`.top_speed.top_speed` with the
+margins: the torque and fault constraints need the short form's simulations and are named as not checked).
+Forward and reverse each have their own grid and top speed.  See ``docs/assist.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+import control
+import numpy as np
+
+from stability.assist.design import Design, _kalman, closed_loop_poles, realise
+from stability.assist.digital import MarginPair, margin_pair
+from stability.assist.plant import MOTOR_STATE, Plant
+from stability.assist.top_speed import TopSpeed, top_speed
+from stability.assist.weights import (
+    DEFAULT_ESTIMATOR,
+    DEFAULT_GYRO,
+    DEFAULT_WEIGHTS,
+    DESIGNS,
+    EstimatorWeights,
+    GyroSensor,
+    Weights,
+)
+from stability.chair.power import DriveTrain
+from stability.layout.linear import input_matrices, state_matrices, states
+from stability.layout.model import Layout
+from stability.runtime.checks import check_choice, check_nonnegative
+from stability.study.layout_slope import drive_wheels
+
+__all__ = ["drive_lever", "layout_plant", "layout_design", "LayoutAssistRow", "LayoutAssist", "layout_assist",
+           "format_layout_assist"]
+
+
+def drive_lever(layout: Layout) -> float:
+    """Lateral distance between the two drive wheels, m: the arm of the couple of their forces.
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    float
+    """
+    left, right = drive_wheels(layout)
+    return float(layout.wheels[right].y - layout.wheels[left].y)
+
+
+def layout_plant(layout: Layout, speed: float, motor_time_constant: float = 0.0) -> Plant:
+    """The layout's linear plant at a signed speed, augmented with the heading and, optionally, the motor lag.
+
+    Parameters
+    ----------
+    layout : Layout
+    speed : float
+        m/s; negative: reverse (0.01 <= |speed| <= 20).
+    motor_time_constant : float
+        s, >= 0 (as :func:`stability.assist.plant.plant`).
+
+    Returns
+    -------
+    Plant
+        States: the layout's (:func:`stability.layout.linear.states`), ``psi``, and ``mz`` with a motor lag.
+    """
+    tau = check_nonnegative("motor_time_constant", motor_time_constant)
+    A_c = state_matrices(layout, [speed])[0]
+    Bm, Bf_c = (x[0] for x in input_matrices(layout, [speed]))
+    nc = A_c.shape[0]
+    n = nc + (2 if tau > 0 else 1)
+    A, B, Bf = np.zeros((n, n)), np.zeros((n, 1)), np.zeros((n, 1))
+    A[:nc, :nc] = A_c
+    A[nc, 1] = 1.0                                      # psi_dot = r
+    if tau > 0:
+        A[:nc, nc + 1:nc + 2] = Bm
+        A[nc + 1, nc + 1], B[nc + 1, 0] = -1.0 / tau, 1.0 / tau
+    else:
+        B[:nc] = Bm
+    Bf[:nc] = Bf_c
+    return Plant(float(speed), A, B, Bf, tau, chair_states=states(layout))
+
+
+def layout_design(layout: Layout, speed: float, kind: str = "gyro", *, weights: Weights = DEFAULT_WEIGHTS,
+                  drive: DriveTrain | None = None, gyro: GyroSensor = DEFAULT_GYRO,
+                  estimator: EstimatorWeights = DEFAULT_ESTIMATOR) -> Design:
+    """LQR design (and, for ``kind="gyro"``, its Kalman estimator) of a layout at one signed speed.
+
+    Parameters
+    ----------
+    layout : Layout
+    speed : float
+        m/s (negative: reverse).
+    kind : {"full-state", "gyro"}
+    weights, drive, gyro, estimator
+        As :func:`stability.assist.design.design`; the torque budget's yaw moment uses :func:`drive_lever`.
+
+    Returns
+    -------
+    Design
+    """
+    check_choice("design", kind, DESIGNS)
+    drive = drive or DriveTrain()
+    lever = drive_lever(layout)
+    p = layout_plant(layout, speed, drive.motor_time_constant)
+    Q, R = weights.weight_matrices(p.states, p.n, weights.budget(drive) * lever / drive.wheel_radius)
+    K = np.asarray(control.lqr(p.A, p.B, Q, R)[0], dtype=float).reshape(1, p.n)
+    d = realise(kind, p, K, None if kind == "full-state" else _kalman(p, gyro, estimator))
+    return replace(d, sample_time=1.0 / gyro.sample_rate_hz, wheel_radius=float(drive.wheel_radius),
+                   track_width=lever)
+
+
+@dataclass(frozen=True)
+class LayoutAssistRow:
+    """One design speed.
+
+    Attributes
+    ----------
+    speed_m_s : float
+        Signed design speed, m/s.
+    open_loop_growth_1_s : float
+        Largest real part of the chair's own eigenvalues (no assist), 1/s.
+    closed_loop_growth_1_s : float
+        Largest real part of the closed loop's eigenvalues (continuous), 1/s.
+    wheel_torque_gains : dict
+        The gain per drive wheel by state, N m per SI unit (``tau = -k x``).
+    margin_pair : MarginPair
+        Continuous and sampled margins.
+    """
+
+    speed_m_s: float
+    open_loop_growth_1_s: float
+    closed_loop_growth_1_s: float
+    wheel_torque_gains: dict
+    margin_pair: MarginPair
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict."""
+        return {"speed_m_s": self.speed_m_s, "open_loop_growth_rate_1_s": self.open_loop_growth_1_s,
+                "closed_loop_growth_rate_1_s": self.closed_loop_growth_1_s,
+                "wheel_torque_gains": self.wheel_torque_gains, "margins": self.margin_pair.to_dict()}
+
+
+@dataclass(frozen=True)
+class _Grid:
+    """What :func:`stability.assist.top_speed.top_speed` reads of a schedule: the gyro's rate and the drive."""
+
+    gyro: GyroSensor
+    drive: DriveTrain
+
+
+@dataclass(frozen=True)
+class _MarginRow:
+    speed_m_s: float
+    margin_pair: MarginPair
+
+
+@dataclass(frozen=True)
+class LayoutAssist:
+    """The assist of a layout over a forward grid and, optionally, a reverse one.
+
+    Attributes
+    ----------
+    layout : str
+    kind : str
+    forward, reverse : tuple of LayoutAssistRow
+        Increasing ``|speed|`` (reverse rows have negative speeds; empty: not asked).
+    forward_top, reverse_top : TopSpeed or None
+        Safe top speed of each direction (speeds as magnitudes, m/s).
+    lever_m, wheel_radius_m : float
+        Drive-wheel lever and radius, m.
+    """
+
+    layout: str
+    kind: str
+    forward: tuple
+    reverse: tuple
+    forward_top: TopSpeed | None
+    reverse_top: TopSpeed | None
+    lever_m: float
+    wheel_radius_m: float
+
+    def to_mapping(self) -> dict:
+        """JSON-ready dict."""
+        def top(t: TopSpeed | None) -> Any:
+            return None if t is None else t.to_dict()
+
+        return {"layout": self.layout, "design": self.kind, "drive_lever_m": self.lever_m,
+                "wheel_radius_m": self.wheel_radius_m, "forward": [r.to_mapping() for r in self.forward],
+                "reverse": [r.to_mapping() for r in self.reverse], "forward_top_speed": top(self.forward_top),
+                "reverse_top_speed": top(self.reverse_top)}
+
+
+def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
+          estimator: EstimatorWeights) -> tuple[tuple[LayoutAssistRow, ...], TopSpeed | None]:
+    rows = []
+    for s in speeds:
+        d = layout_design(layout, s, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
+        open_g = float(np.linalg.eigvals(d.plant.A6).real.max())
+        closed = float(closed_loop_poles(d).real.max())
+        gains = {k: v for k, v in d.gains_dict(per_wheel=True).items() if k != MOTOR_STATE}
+        rows.append(LayoutAssistRow(float(s), open_g, closed, gains, margin_pair(d, d.sample_time)))
+    if not rows:
+        return (), None
+    ts = top_speed(_Grid(gyro, drive), [_MarginRow(abs(r.speed_m_s), r.margin_pair) for r in rows],  # type: ignore[arg-type]
+                   None, None)
+    return tuple(rows), ts
+
+
+def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *, reverse: bool = False,
+                  weights: Weights = DEFAULT_WEIGHTS, drive: DriveTrain | None = None, gyro: GyroSensor = DEFAULT_GYRO,
+                  estimator: EstimatorWeights = DEFAULT_ESTIMATOR) -> LayoutAssist:
+    """Designs, margins and the safe top speed of a layout's assist, forward and (optionally) in reverse.
+
+    Parameters
+    ----------
+    layout : Layout
+    speeds : sequence of float
+        Design speeds, m/s: positive ones make the forward grid, negative ones the reverse grid (each sorted by
+        magnitude); 0.01 <= |speed| <= 20.
+    kind : {"full-state", "gyro"}
+    reverse : bool
+        Also design in reverse at the negatives of the positive speeds.
+    weights, drive, gyro, estimator
+        As :func:`layout_design`.
+
+    Returns
+    -------
+    LayoutAssist
+    """
+    U = np.asarray(speeds, dtype=float).reshape(-1)
+    if U.size == 0 or not np.all(np.isfinite(U)) or np.any(np.abs(U) < 0.01) or np.any(np.abs(U) > 20.0):
+        raise ValueError(f"speeds={list(map(float, U))!r} is invalid; valid range: at least one speed, each "
+                         "0.01 <= |U| <= 20 m/s (negative: reverse)")
+    drive = drive or DriveTrain()
+    fwd = sorted(set(float(u) for u in U if u > 0))
+    rev = sorted(set(float(u) for u in U if u < 0) | ({-u for u in fwd} if reverse else set()), key=abs)
+    f_rows, f_top = _rows(layout, fwd, kind, weights, drive, gyro, estimator)
+    r_rows, r_top = _rows(layout, rev, kind, weights, drive, gyro, estimator)
+    return LayoutAssist(layout.name, kind, f_rows, r_rows, f_top, r_top, drive_lever(layout),
+                        float(drive.wheel_radius))
+
+
+def format_layout_assist(a: LayoutAssist) -> str:
+    """The command line's text: per speed the open and closed loop's growth rates, the heading and yaw-rate gains
+    per wheel and the sampled margins, then each direction's safe top speed.
+
+    Parameters
+    ----------
+    a : LayoutAssist
+
+    Returns
+    -------
+    str
+    """
+    lines = [f"{a.layout}: motor assist ({a.kind} design), differential torque per drive wheel, drive wheels "
+             f"{a.lever_m:g} m apart, radius {a.wheel_radius_m:g} m (layout model; reverse: casters trailing at "
+             "180 deg)",
+             f"{'U m/s':>7s} {'open 1/s':>9s} {'closed 1/s':>10s} {'k_psi N m/rad':>14s} {'k_r N m s/rad':>14s} "
+             f"{'gain dB':>8s} {'phase deg':>9s} {'delay ms':>9s}"]
+
+    def fmt(x: Any) -> str:
+        return "inf" if x == "inf" or (isinstance(x, float) and math.isinf(x)) else f"{float(x):.3g}"
+
+    for rows, top, what in ((a.forward, a.forward_top, "forward"), (a.reverse, a.reverse_top, "reverse")):
+        for r in rows:
+            d = r.margin_pair.to_dict()["discrete"]
+            lines.append(f"{r.speed_m_s:7.2f} {r.open_loop_growth_1_s:9.3f} {r.closed_loop_growth_1_s:10.3f} "
+                         f"{r.wheel_torque_gains['psi']:14.4g} {r.wheel_torque_gains['r']:14.4g} "
+                         f"{fmt(d['gain_db']):>8s} {fmt(d['phase_deg']):>9s} {fmt(d['delay_ms']):>9s}")
+        if top is not None:
+            words = top.sentence().split(" (not checked:")[0]
+            lines.append(f"{what}: {words} (margins only: the peak torque and the sensor faults need the short "
+                         "form's nonlinear runs, not checked for a layout)")
+    return "\n".join(lines)

@@ -1,0 +1,116 @@
+"""Side-by-side comparison of any chairs as wheel layouts, forward and in reverse.
+
+When one of the chairs is a wheel layout (a layout preset or a ``[[wheel]]`` file), or a speed is negative, every
+chair is compared as a layout (a short-form chair through :meth:`stability.layout.Layout.from_chair`): the
+measures are those ``python -m stability.critical_speed``, ``tipping`` and ``study critical-impulse`` print for a
+layout, each with the short form's comparison (the differences from the first chair, which is more stable):
+
+- the growth rate of the least stable mode at each signed speed (the layout's linear model, free frictionless
+  casters; negative speeds: in reverse, the casters trailing at 180 deg), lower is more stable;
+- forward and in reverse, the speed up to which the chair is stable (:func:`stability.layout.linear.critical_speed`:
+  the destabilising critical speed; infinite when stable up to 20 m/s, 0 when unstable from the slowest speed or
+  only stable above a speed), higher is more stable;
+- the static stability, the smallest of the four ISO 7176-1 angles over the outermost contacts, higher is more
+  stable;
+- with ``nonlinear``: the critical impulse at the reference speed (forward, and in reverse when a speed is
+  negative), higher is more stable.
+
+The short form's zero-width and locked-caster measures and its single-parameter effects (a chair's named fields)
+have no layout counterpart here: the comparison says so in one line.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from stability.compare.compute import CURVE_SPEEDS, Comparison, Quantity, _difference
+from stability.layout.linear import SEARCH_SPEEDS_M_S, critical_speed, growth_rates
+from stability.layout.model import Layout
+from stability.layout.statics import tip_angles
+from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
+from stability.study.layout_impulse import layout_critical_impulses
+
+__all__ = ["compare_layouts", "stable_up_to", "LAYOUT_NOTE"]
+
+#: What a layout comparison leaves out, in one line.
+LAYOUT_NOTE = ("Compared as wheel layouts: the short form's zero-width and locked-caster measures and its "
+               "single-parameter effects (a chair's named fields) do not apply to a layout.")
+
+
+def stable_up_to(layout: Layout, reverse: bool = False) -> float:
+    """The speed up to which ``layout`` is stable (linear model, free frictionless casters), m/s.
+
+    Parameters
+    ----------
+    layout : Layout
+    reverse : bool
+
+    Returns
+    -------
+    float
+        The destabilising critical speed; ``inf`` when stable up to the searched 20 m/s; 0 when unstable at the
+        slowest speed searched (0.02 m/s) or only stable above a speed.
+    """
+    speed, kind = critical_speed(layout, reverse)
+    if kind == "destabilising":
+        return float(speed)
+    return math.inf if kind == "none-stable" else 0.0
+
+
+def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None = None,
+                    speeds: Sequence[float] = (0.5, 0.75, 1.0, 1.5), nonlinear: bool = False) -> Comparison:
+    """Compare layouts; the first is the reference.
+
+    Parameters
+    ----------
+    layouts : sequence of Layout
+        Two or more.
+    labels : sequence of str, optional
+        Unique labels (default the names).
+    speeds : sequence of float
+        Signed speeds of the growth rates, m/s (negative: reverse; ``0.01 <= |U| <= 20``).
+    nonlinear : bool
+        Also the critical impulse at :data:`~stability.settings.reference.REFERENCE_SPEED` (and at its negative
+        when a speed is negative): the layout simulator's search.
+
+    Returns
+    -------
+    Comparison
+        ``chairs`` are the layouts; ``effects`` empty; ``model`` ``"layout"``; ``max_speed`` the searched 20 m/s.
+    """
+    layouts = list(layouts)
+    if len(layouts) < 2:
+        raise ValueError(f"layouts: {len(layouts)} given; valid: at least two")
+    labels = tuple(labels) if labels is not None else tuple(lay.name for lay in layouts)
+    if len(labels) != len(layouts) or len(set(labels)) != len(labels):
+        raise ValueError(f"labels={labels!r} is invalid; valid: one unique label per layout")
+    u = np.asarray(speeds, dtype=float)
+    rates = np.array([growth_rates(lay, u) for lay in layouts])          # (layouts, speeds)
+    qs = [Quantity(f"growth_rate_1_s@{s:g}", f"growth rate at {s:g} m/s" + (" (reverse)" if s < 0 else ""), "1/s",
+                   False, tuple(float(x) for x in rates[:, k]), (None,) * len(layouts))
+          for k, s in enumerate(u)]
+    top = float(SEARCH_SPEEDS_M_S[-1])
+    for reverse in (False, True):
+        way = "reverse" if reverse else "forward"
+        qs.append(Quantity(f"stable_up_to_{way}_m_s", f"stable up to ({way}, linear)", "m/s", True,
+                           tuple(stable_up_to(lay, reverse) for lay in layouts), (None,) * len(layouts),
+                           f"stable up to {top:g} m/s"))
+    qs.append(Quantity("static_stability_deg", "static stability (ISO 7176-1, smallest)", "deg", True,
+                       tuple(float(min(tip_angles(lay).values())) for lay in layouts), (None,) * len(layouts)))
+    push = None
+    if nonlinear:
+        signs = [1.0] + ([-1.0] if bool(np.any(u < 0)) else [])
+        for sign in signs:
+            v = sign * REFERENCE_SPEED
+            qs.append(Quantity(f"critical_impulse_Ns@{v:g}", f"critical impulse at {v:g} m/s", "N s", True,
+                               tuple(float(layout_critical_impulses(lay, v)[0].bound_Ns) for lay in layouts),
+                               (None,) * len(layouts)))
+        push = (f"{THESIS_PUSH.force:g} N lateral at the c.g. for {THESIS_PUSH.duration:g} s, scaled; every caster "
+                "trailing the direction of travel at the start (the layout simulator)")
+    diffs = tuple(_difference(q, i, labels[i], labels[0], None, 0.0) for i in range(1, len(layouts)) for q in qs)
+    curves = tuple(tuple(float(x) for x in growth_rates(lay, CURVE_SPEEDS)) for lay in layouts)
+    return Comparison(tuple(layouts), labels, "layout", tuple(float(s) for s in u), top, tuple(qs), diffs, (),
+                      CURVE_SPEEDS, curves, None, (None,) * len(layouts), push)

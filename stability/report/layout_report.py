@@ -1,0 +1,204 @@
+"""The report on a wheel layout: what every layout command answers, forward and in reverse, in one PDF.
+
+The short form's report (:mod:`stability.report.document`) is built on a :class:`stability.chair.Chair`'s fields;
+a layout (a layout preset or a ``[[wheel]]`` file) gets this report instead, from the same computations the layout
+commands print: the advisor's decision (:mod:`stability.advise`, forward driving, as page 1 of the short form's),
+the wheels and their static loads, the linear model's growth rates and critical speeds both ways
+(:mod:`stability.layout.text`), the ISO 7176-1 tip angles, the critical impulse at the reference speed forwards
+and backwards, the equal-instability speed both ways, each caster row's shimmy margin, and the virtual bench.  The
+short form's sections that cannot apply to a layout say so in one line each (:data:`NOT_APPLICABLE`).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+
+from matplotlib.figure import Figure
+
+from stability import plotting as P
+from stability.advise.advisor import advise
+from stability.advise.decision import decide
+from stability.advise.layout_measures import layout_shimmy_rows
+from stability.bench import run_bench
+from stability.bench.loads import SCORE_WORDS
+from stability.layout.linear import analyse_layout
+from stability.layout.model import Layout
+from stability.layout.text import layout_text
+from stability.runtime.files import write_pdf
+from stability.settings.reference import REFERENCE_SPEED
+from stability.study.layout_equal_instability import layout_equal_instability_interval
+from stability.study.layout_impulse import layout_critical_impulses
+
+__all__ = ["LayoutReport", "NOT_APPLICABLE", "compute_layout_report", "layout_report_pages", "write_layout_report"]
+
+#: The short form's report sections that do not apply to a layout, each with why, in one line.
+NOT_APPLICABLE = (
+    ("Cross slopes and grades", "not in this report yet: python -m stability.slope --chair NAME answers a layout "
+     "(the held line, the holding moment and the uncorrected turn; docs/layouts.md)."),
+    ("Design parameters and root loci (thesis chapter 8)", "the chapter's parameters (s1, s2, trail, ...) are the "
+     "short form's fields; a layout's levers are the advisor's (caster trail per row, drive-axle position, "
+     "suspension), whose effects the decision lists."),
+    ("Thesis model against the exact model", "a layout's equations are the exact model's only."),
+    ("Parameter uncertainty", "the uncertainty files name the short form's fields."),
+    ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
+     "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
+    ("The driver", "the driver's linear model is the short form's (docs/driver.md)."),
+)
+
+
+@dataclass(frozen=True)
+class LayoutReport:
+    """The report on one layout.
+
+    Attributes
+    ----------
+    layout : Layout
+    sections : tuple of (str, tuple of str)
+        Title and paragraphs of each section, in page order.
+    not_applicable : tuple of (str, str)
+        :data:`NOT_APPLICABLE`.
+    data : dict
+        The numbers (JSON-ready): growth rates, critical speeds, tip angles, critical impulses, equal-instability
+        speeds, shimmy margins, bench score, decision.
+    """
+
+    layout: Layout
+    sections: tuple
+    not_applicable: tuple
+    data: dict
+
+    def text(self) -> str:
+        """Every section's text, page by page."""
+        out = []
+        for i, (title, lines) in enumerate(self.sections + (("Not applicable to a wheel layout",
+                                                             tuple(f"{t}: {w}" for t, w in self.not_applicable)),)):
+            out += [f"=== page {i + 1}: {title}", *lines]
+        return "\n".join(out)
+
+
+def _impulses(layout: Layout) -> tuple[list[str], list[dict]]:
+    pts = layout_critical_impulses(layout, [REFERENCE_SPEED, -REFERENCE_SPEED])
+    lines = [f"The smallest sideways push at the c.g. (a constant force for 0.1 s, as its impulse) after which the "
+             f"yaw rate reaches 1 rad/s within 10 s, every caster starting trailing the direction of travel; push "
+             f"{pts[0].push}:"]
+    for p in pts:
+        way = "backwards" if p.speed < 0 else "forwards"
+        kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
+        lines.append(f"  {abs(p.speed):g} m/s {way}: {p.describe()} (sideways kick {kick})")
+    return lines, [p.to_dict() for p in pts]
+
+
+def _equal(layout: Layout) -> tuple[list[str], list[dict]]:
+    lines = ["The speed at which this layout, after the thesis's push, reaches 1 rad/s as soon as the reference "
+             "chair (E&J Premier) does at 0.75 m/s forwards; in reverse, driving backwards against the same "
+             "reference:"]
+    data = []
+    for reverse in (False, True):
+        r = layout_equal_instability_interval(layout, reverse=reverse)
+        lines.append(f"  {'backwards' if reverse else 'forwards'}: {r.describe()}")
+        data.append({"direction": "reverse" if reverse else "forward", **r.to_dict()})
+    return lines, data
+
+
+def _shimmy(layout: Layout, speeds: tuple) -> tuple[list[str], list[dict]]:
+    rows = layout_shimmy_rows(layout, speeds)
+    if not rows:
+        return ["The layout has no casters."], []
+    lines = [f"Each caster row as a towed wheel on its pin at its own static load, at {', '.join(map(str, speeds))} "
+             "m/s (in reverse a caster swings round and trails the other way: the same answer):"]
+    data = []
+    for name, trail, band in rows:
+        lo, hi = band.shimmy_margin_interval_m
+        lines.append(f"  {name} casters, trail {trail * 100:g} cm: margin {band.shimmy_margin_m * 100:+.2f} cm to the "
+                     f"nearest shimmy boundary (over the estimate ranges {lo * 100:+.2f} to {hi * 100:+.2f} cm"
+                     + ("; it straddles a boundary: measure pin stiffness and relaxation length" if band.straddles
+                        else "") + ")")
+        data.append({"row": name, "trail_m": trail, "shimmy_margin_m": band.shimmy_margin_m,
+                     "interval_m": [lo if math.isfinite(lo) else None, hi if math.isfinite(hi) else None],
+                     "straddles": band.straddles})
+    return lines, data
+
+
+def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), progress: bool = False,
+                          nonlinear: Callable | None = None) -> LayoutReport:
+    """Every section of the layout's report.
+
+    Parameters
+    ----------
+    layout : Layout
+    speeds : tuple of float
+        Use speeds of the advisor and the shimmy margins, m/s (forwards).
+    progress : bool
+    nonlinear : callable, optional
+        Replaces the advisor's simulated measures (:func:`stability.advise.advise`'s ``nonlinear``; tests).
+
+    Returns
+    -------
+    LayoutReport
+    """
+    a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear)
+    d = decide(a)
+    summary = analyse_layout(layout)
+    text = layout_text(layout, summary).split("\n")
+    imp_lines, imp = _impulses(layout)
+    eq_lines, eq = _equal(layout)
+    sh_lines, sh = _shimmy(layout, speeds)
+    sections: list[tuple[str, tuple]] = [
+        ("The decision (forward driving)", tuple(d.paragraphs()) + (
+            f"For the advice on reversing: python -m stability.advise --chair {layout.name} --speeds -0.5:1.",)),
+        ("Wheels, static loads, tip angles and the linear model", tuple(text)),
+        ("After a push: the critical impulse, forwards and backwards", tuple(imp_lines)),
+        ("The equal-instability speed, forwards and backwards", tuple(eq_lines)),
+        ("Caster shimmy, row by row", tuple(sh_lines)),
+    ]
+    bench = None
+    if any(w.driven for w in layout.wheels):
+        b = run_bench(layout)
+        bench = {"worst_score": b.worst_score}
+        sections.append(("The virtual ISO 7176-2/-3 bench", (
+            f"Worst wheel-lift score {b.worst_score}: {SCORE_WORDS[b.worst_score]} (default drive settings, "
+            "quasi-static; python -m stability.bench gives every case).",)))
+    else:
+        sections.append(("The virtual ISO 7176-2/-3 bench", ("Not applicable: the layout has no driven wheel.",)))
+    data = {"layout": layout.name, "growth_rates": summary.to_mapping(), "critical_impulse": imp,
+            "equal_instability": eq, "shimmy_rows": sh, "bench": bench, "decision": d.to_mapping(),
+            "not_applicable": [{"section": t, "why": w} for t, w in NOT_APPLICABLE]}
+    return LayoutReport(layout, tuple(sections), NOT_APPLICABLE, data)
+
+
+def layout_report_pages(r: LayoutReport) -> Iterator[Figure]:
+    """The report's pages: one text page per section, then the sections that do not apply.
+
+    Parameters
+    ----------
+    r : LayoutReport
+
+    Yields
+    ------
+    matplotlib.figure.Figure
+    """
+    sub = f"wheel layout {r.layout.name}: {r.layout.shape[0]} fixed wheels, {r.layout.shape[1]} casters"
+    for title, lines in r.sections:
+        yield P.text_page(title, list(lines), sub, monospace=title.startswith("Wheels"))
+    yield P.text_page("Not applicable to a wheel layout", [f"{t}: {w}" for t, w in r.not_applicable], sub)
+
+
+def write_layout_report(r: LayoutReport, path: str | os.PathLike[str]) -> int:
+    """Write the report's PDF (atomically, reproducibly); returns the number of pages.
+
+    Parameters
+    ----------
+    r : LayoutReport
+    path : str or os.PathLike
+
+    Returns
+    -------
+    int
+    """
+    titles = [t for t, _ in r.sections] + ["Not applicable to a wheel layout"]
+    write_pdf(layout_report_pages(r), path, title=f"stability report: {r.layout.name} (wheel layout)",
+              outline=[(f"{i + 1}. {t}", i) for i, t in enumerate(titles)])
+    return len(titles)

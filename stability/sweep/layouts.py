@@ -1,0 +1,195 @@
+"""Sweeps of a wheel layout, forward and in reverse: the layout's grid axes and its measures.
+
+A spec whose ``chair`` is a layout (a layout preset or a ``[[wheel]]`` file), or whose speeds include a negative one
+(reverse; a short-form chair is then expanded with :meth:`stability.layout.Layout.from_chair`), sweeps the layout.
+Its grid axes:
+
+``caster_K_FIELD``, ``wheel_J_FIELD``
+    One field of caster K or fixed wheel J (1-based, in the file's order): ``caster_1_trail``, ``wheel_2_x``,
+    ``caster_3_vertical_stiffness`` ...;
+``trail_ROW``
+    The trail of every caster of one row (``trail_front``, ``trail_rear``; the advisor's row names,
+    :func:`stability.advise.layout_levers.row_name`);
+``drive_x``
+    The x of every driven wheel (every fixed wheel if none is driven), m ahead of the c.g.;
+``m``, ``i_z``, ``h``
+    The body's mass (kg), yaw inertia (kg m^2) and c.g. height (m).
+
+The measures are the layout commands' (each row in the direction of its speed's sign): ``growth_rate`` (the layout's
+linear model), ``critical_speeds`` (``critical_speed_m_s``: the speed up to which the layout is stable,
+:func:`stability.compare.layouts.stable_up_to`; no locked-caster model of a layout: NaN), ``critical_impulse``
+and ``equal_instability_speed`` (the layout studies), ``shimmy_margin`` (the smallest over the caster rows),
+``tip_angles`` (the ISO 7176-1 angles over the outermost contacts: the smallest and the smaller lateral one; the
+short form's toward-casters and toward-main-wheels columns are NaN), ``bench``.  Random draws, the human-limited
+speed and the holding moment are the short form's only.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any
+
+import numpy as np
+
+from stability.advise.layout_levers import apply_layout, caster_rows, row_name
+from stability.bench import run_bench
+from stability.compare.layouts import stable_up_to
+from stability.layout.linear import growth_rates
+from stability.layout.model import Layout
+from stability.layout.statics import static_loads, tip_angles
+from stability.shimmy.band import shimmy_band
+from stability.shimmy.layout_caster import LayoutCaster
+from stability.study.layout_equal_instability import layout_equal_instability
+from stability.study.layout_impulse import layout_critical_impulses
+
+__all__ = ["LAYOUT_MEASURES", "check_layout_axis", "apply_layout_axis", "layout_chunk_values", "bench_of"]
+
+#: The measures a layout sweep computes.
+LAYOUT_MEASURES = ("growth_rate", "critical_speeds", "critical_impulse", "equal_instability_speed", "shimmy_margin",
+                   "tip_angles", "bench")
+_BODY = ("m", "i_z", "h")
+_WHEEL = re.compile(r"(caster|wheel)_(\d+)_(\w+)")
+
+
+def check_layout_axis(layout: Layout, axis: str) -> None:
+    """Refuse a grid axis the layout does not have (one line naming it and the valid forms).
+
+    Parameters
+    ----------
+    layout : Layout
+    axis : str
+
+    Raises
+    ------
+    ValueError
+    """
+    rows = [f"trail_{row_name(layout, r)}" for r in caster_rows(layout)]
+    valid = (f"caster_K_FIELD (K 1-{len(layout.casters)}), wheel_J_FIELD (J 1-{len(layout.wheels)}), "
+             f"{', '.join(rows + ['drive_x', *_BODY])}")
+    if axis in rows or axis == "drive_x" or axis in _BODY:
+        return
+    hit = _WHEEL.fullmatch(axis)
+    if hit:
+        try:
+            k = int(hit.group(2)) - 1
+            seq = layout.casters if hit.group(1) == "caster" else layout.wheels
+            if 0 <= k < len(seq) and hasattr(seq[k], hit.group(3)) and hit.group(3) not in ("tire", "driven"):
+                return
+        except ValueError:
+            pass
+    raise ValueError(f"spec grid={axis!r} is invalid for the layout {layout.name!r}; valid: {valid}")
+
+
+def apply_layout_axis(layout: Layout, axis: str, value: float) -> Layout:
+    """The layout with one grid axis set (validated: ranges, positive static loads).
+
+    Parameters
+    ----------
+    layout : Layout
+    axis : str
+        See the module's axes.
+    value : float
+
+    Returns
+    -------
+    Layout
+    """
+    import dataclasses
+
+    if axis in _BODY:
+        changes: dict[str, Any] = {axis: value}
+        out = dataclasses.replace(layout, **changes)
+        static_loads(out)
+        return out
+    if axis == "drive_x":
+        idx = [j for j, w in enumerate(layout.wheels) if w.driven] or list(range(len(layout.wheels)))
+        return apply_layout(layout, [(f"wheel_{j + 1}_x", value) for j in idx])
+    for r in caster_rows(layout):
+        if axis == f"trail_{row_name(layout, r)}":
+            return apply_layout(layout, [(f"caster_{k + 1}_trail", value) for k in r])
+    return apply_layout(layout, [(axis, value)])
+
+
+def bench_of(layout: Layout) -> tuple[float, float]:
+    """The virtual bench's worst score and longest level-ground stop (m) of a powered layout, NaN otherwise.
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    (float, float)
+    """
+    if not any(w.driven for w in layout.wheels):
+        return math.nan, math.nan
+    r = run_bench(layout)
+    return float(r.worst_score), max(float(c.braking_distance_m) for c in r.cases
+                                     if c.family == "stop" and c.slope == "level")
+
+
+def _shimmy(layout: Layout, speeds: np.ndarray) -> np.ndarray:
+    """The smallest margin over the caster rows at each |speed|, m (NaN: none computable)."""
+    rows = caster_rows(layout)
+    if not rows:
+        return np.full(len(speeds), math.nan)
+    try:
+        m = [np.asarray(shimmy_band(LayoutCaster(layout, r[0]), np.abs(speeds)).margin_m, dtype=float)
+             for r in rows]
+    except ValueError:
+        return np.full(len(speeds), math.nan)
+    return np.min(np.array(m), axis=0)
+
+
+def layout_chunk_values(measures: tuple, layouts: list[Layout], speeds: np.ndarray, run: Any) -> dict[str, np.ndarray]:
+    """Every measure of the chunk's layouts at the spec's signed speeds: column -> ``(layouts, speeds)`` array.
+
+    Parameters
+    ----------
+    measures : tuple of str
+    layouts : list of Layout
+    speeds : ndarray
+        m/s (negative: reverse).
+    run : RunSpec
+        The nonlinear measures' settings.
+
+    Returns
+    -------
+    dict
+    """
+    n, k = len(layouts), len(speeds)
+    out: dict[str, np.ndarray] = {}
+    if n == 0:
+        return out
+    rev = speeds < 0
+    if "growth_rate" in measures:
+        out["growth_rate_1_s"] = np.array([growth_rates(lay, speeds) for lay in layouts])
+    if "critical_speeds" in measures:
+        out["critical_speed_m_s"] = np.array([[stable_up_to(lay, bool(r)) for r in rev] for lay in layouts])
+        out["locked_critical_speed_m_s"] = np.full((n, k), math.nan)
+    if "critical_impulse" in measures:
+        res = [layout_critical_impulses(lay, speeds, run) for lay in layouts]
+        out["critical_impulse_Ns"] = np.array([[r.bound_Ns for r in row] for row in res])
+        out["critical_impulse_status"] = np.array([[r.status for r in row] for row in res], dtype=object)
+    if "equal_instability_speed" in measures:
+        v, st = np.full((n, k), math.nan), np.full((n, k), "", dtype=object)
+        for i, lay in enumerate(layouts):
+            for reverse in sorted(set(rev.tolist())):
+                r = layout_equal_instability(lay, run, reverse=reverse)
+                v[i, rev == reverse], st[i, rev == reverse] = r.value_or_bound, r.status
+        out["equal_instability_speed_m_s"], out["equal_instability_status"] = v, st
+    if "shimmy_margin" in measures:
+        out["shimmy_margin_m"] = np.array([_shimmy(lay, speeds) for lay in layouts])
+    if "tip_angles" in measures:
+        tips = [tip_angles(lay) for lay in layouts]
+        for col, get in (("static_stability_deg", lambda t: min(t.values())),
+                         ("tip_toward_casters_deg", lambda t: math.nan),
+                         ("tip_toward_main_wheels_deg", lambda t: math.nan),
+                         ("tip_lateral_deg", lambda t: min(t["left_deg"], t["right_deg"]))):
+            out[col] = np.repeat(np.array([get(t) for t in tips], dtype=float)[:, None], k, axis=1)
+    if "bench" in measures:
+        rows = [bench_of(lay) for lay in layouts]
+        out["bench_worst_score"] = np.repeat(np.array([s for s, _ in rows])[:, None], k, axis=1)
+        out["level_braking_distance_m"] = np.repeat(np.array([d for _, d in rows])[:, None], k, axis=1)
+    return out

@@ -1,0 +1,102 @@
+"""The report on a wheel layout (stability.report.layout_report): the layout commands' numbers, both directions.
+
+Independent references: the short form's own commands for the thesis chair as a layout (its linear model and
+tipping: the wiring), the layout studies run directly, and the shimmy command's rows; every section the short
+form's report has and a layout does not is stated in one line.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from stability.advise.measures import Interval
+from stability.chair import resolve
+from stability.layout.model import Layout
+from stability.layout.presets import layout_preset
+from stability.linear import eigenvalues_vs_speed
+from stability.report.__main__ import main
+from stability.report.layout_report import NOT_APPLICABLE, compute_layout_report
+from stability.study.layout_impulse import layout_critical_impulses
+from stability.tipping import tip_angles
+
+
+def _fake(layouts):
+    """A stated stand-in for the advisor's simulations (the report's own numbers are simulated for real)."""
+    return [(Interval(10.0, 9.0, 11.0), Interval(1.0, 0.9, 1.1), "found", "found", None) for _ in layouts]
+
+
+@pytest.fixture(scope="module")
+def ej():
+    return compute_layout_report(Layout.from_chair(resolve("ej-premier")), nonlinear=_fake)
+
+
+def test_the_thesis_chair_as_a_layout_reports_the_short_forms_growth_rates_and_tip_angles(ej):
+    """Forward growth rates from the short form's linear model (a separate code path), to 1e-9; the smallest tip
+    angle from the short form's tipping."""
+    g = ej.data["growth_rates"]
+    fwd = [(u, x) for u, x in zip(g["speeds_m_s"], g["growth_rate_1_s"], strict=True) if u > 0]
+    short = eigenvalues_vs_speed(resolve("ej-premier"), [u for u, _ in fwd], track=False).real.max(axis=1)
+    for (_, x), y in zip(fwd, short, strict=True):
+        assert x == pytest.approx(float(y), rel=1e-9)
+    text = ej.text()
+    assert f"{tip_angles(resolve('ej-premier')).smallest_deg:.1f} deg" in text
+
+
+def test_the_report_quotes_the_layout_studies_both_ways(ej):
+    """The critical impulses forwards and backwards are those of the layout study run directly (same search,
+    same runs: equal)."""
+    lay = Layout.from_chair(resolve("ej-premier"))
+    direct = layout_critical_impulses(lay, [0.75, -0.75])
+    assert [p["impulse_Ns"] for p in ej.data["critical_impulse"]] == [p.impulse_Ns for p in direct]
+    assert {e["direction"] for e in ej.data["equal_instability"]} == {"forward", "reverse"}
+    assert "0.75 m/s backwards" in ej.text()
+
+
+def test_sections_that_do_not_apply_say_so_in_one_line(ej):
+    assert ej.not_applicable == NOT_APPLICABLE
+    for title, why in NOT_APPLICABLE:
+        assert "\n" not in why and f"{title}: {why}" in ej.text()
+    assert len({t for t, _ in NOT_APPLICABLE}) == len(NOT_APPLICABLE)
+    # a chair pushed on its hand rims has no bench section but a line saying why
+    assert "no driven wheel" in ej.text()
+
+
+@pytest.mark.slow
+def test_the_shimmy_rows_of_a_mid_wheel_drive_base():
+    """Two rows with their own margins (the shimmy command's rows; docs/layouts.md)."""
+    r = compute_layout_report(layout_preset("mid-wheel-drive"), nonlinear=_fake)
+    rows = r.data["shimmy_rows"]
+    assert [x["row"] for x in rows] == ["front", "rear"] and rows[0]["shimmy_margin_m"] != rows[1]["shimmy_margin_m"]
+    assert r.data["bench"] is not None
+
+
+@pytest.mark.slow
+def test_the_command_writes_a_layout_report(tmp_path, capsys):
+    out, txt = tmp_path / "r.pdf", tmp_path / "r.txt"
+    assert main(["--chair", "power-rwd-base", "-o", str(out), "--text", str(txt), "--no-progress"]) == 0
+    assert out.read_bytes().startswith(b"%PDF") and "Not applicable to a wheel layout" in txt.read_text()
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--chair", "mid-wheel-drive", "--json", "--quick"], "--quick is not available for a wheel layout"),
+    (["--chair", "mid-wheel-drive", "--json", "--model", "thesis"], "--model thesis is invalid for a wheel layout"),
+    (["--chair", "mid-wheel-drive", "--json", "--set", "m=90"], "--set is not available for a wheel layout"),
+])
+def test_bad_input_is_refused_in_one_line(argv, words, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert words in err and "\n" not in err
+
+
+@pytest.mark.slow
+def test_the_json_of_a_layout_report(monkeypatch, capsys):
+    import stability.report.layout_report as lr
+
+    real = lr.compute_layout_report
+    monkeypatch.setattr(lr, "compute_layout_report", lambda layout, **kw: real(layout, nonlinear=_fake))
+    assert main(["--chair", "power-fwd-base", "--json", "--no-progress"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["schema"] == "stability.report.layout/1" and d["chair"] == "power-fwd-base"
+    assert [x["section"] for x in d["not_applicable"]] == [t for t, _ in NOT_APPLICABLE]

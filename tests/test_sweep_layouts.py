@@ -1,0 +1,104 @@
+"""Sweeps of wheel layouts (stability.sweep.layouts), forward and in reverse.
+
+Independent references: the short form's sweep of the same chair (a separate code path: its batched linear model,
+tipping, shimmy band and critical-impulse search; the wiring), the frame turned round (a grid over the rear-wheel-
+drive base backwards is the front-wheel-drive base forwards), the layout commands' own answers, and one-line
+refusals.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from stability.layout.linear import growth_rates
+from stability.layout.presets import layout_preset
+from stability.sweep.__main__ import main
+from stability.sweep.measures import columns, compute_chunk
+from stability.sweep.spec import loads_spec
+
+
+def _rows(text: str) -> list[dict]:
+    spec = loads_spec(text)
+    cols = columns(spec)
+    return [dict(zip(cols, r, strict=True)) for r in compute_chunk(spec, 0)]
+
+
+def test_the_thesis_chair_swept_as_a_layout_gives_the_short_forms_rows():
+    """The E&J Premier over its trail, at 0.75 m/s: the short form's sweep and the layout sweep (a reverse speed
+    makes it one) agree on the growth rate, static stability, lateral tip angle and shimmy margin to rounding
+    (1e-9) and on the critical impulse to the search's rounding (1e-12 relative: the same decisions)."""
+    measures = '["growth_rate", "tip_angles", "shimmy_margin", "critical_impulse"]'
+    short = _rows(f'chair = "ej-premier"\nspeeds = [0.75]\nmeasures = {measures}\nchunk_rows = 100\n'
+                  '[grid]\ntrail = [0.06, 0.08]\n')
+    lay = _rows(f'chair = "ej-premier"\nspeeds = [0.75, -0.75]\nmeasures = {measures}\nchunk_rows = 100\n'
+                '[grid]\ntrail_rear = [0.06, 0.08]\n')
+    fwd = [r for r in lay if r["speed_m_s"] > 0]
+    assert len(fwd) == len(short) == 2
+    for a, b in zip(fwd, short, strict=True):
+        assert a["grid_trail_rear"] == b["grid_trail"] and a["error"] == b["error"] == ""
+        for col in ("growth_rate_1_s", "static_stability_deg", "tip_lateral_deg", "shimmy_margin_m"):
+            assert a[col] == pytest.approx(b[col], rel=1e-9, abs=1e-12), col
+        assert a["critical_impulse_Ns"] == pytest.approx(b["critical_impulse_Ns"], rel=1e-12)
+        assert a["critical_impulse_status"] == b["critical_impulse_status"]
+        assert math.isnan(a["tip_toward_casters_deg"])          # no such direction on a layout
+
+
+def test_a_frame_turned_round_sweeps_backwards_as_it_does_forwards():
+    """Every caster's mass at its pin (grid caster_K_l = 0), the drive axle swept: the rear-wheel-drive base at
+    -1 m/s is the front-wheel-drive base at +1 m/s with the axle mirrored (growth rate 1e-9 relative; the speed up
+    to which it is stable; the static stability)."""
+    def rows(name: str, xs: str, speed: float) -> list[dict]:
+        return _rows(f'chair = "{name}"\nspeeds = [{speed}]\nmeasures = ["growth_rate", "critical_speeds", '
+                     f'"tip_angles"]\n[grid]\ndrive_x = {xs}\ncaster_1_l = [0.0]\ncaster_2_l = [0.0]\n')
+
+    fwd = rows("power-fwd-base", "[0.18, 0.13]", 1.0)
+    rwd = rows("power-rwd-base", "[-0.18, -0.13]", -1.0)
+    for a, b in zip(fwd, rwd, strict=True):
+        assert a["growth_rate_1_s"] == pytest.approx(b["growth_rate_1_s"], rel=1e-9)
+        assert a["critical_speed_m_s"] == b["critical_speed_m_s"]
+        assert a["static_stability_deg"] == pytest.approx(b["static_stability_deg"], rel=1e-12)
+    assert fwd[0]["growth_rate_1_s"] != pytest.approx(fwd[1]["growth_rate_1_s"], rel=1e-3)   # the axis reaches it
+
+
+def test_a_grid_axis_is_the_layout_changed():
+    """``caster_3_trail`` of the mid-wheel-drive base changes that caster alone (its growth rates are the layout's
+    with that caster's trail changed, computed directly); an invalid design gets its one-line error."""
+    import dataclasses as dc
+
+    lay = layout_preset("mid-wheel-drive")
+    rows = _rows('chair = "mid-wheel-drive"\nspeeds = [1.0, -1.0]\nmeasures = ["growth_rate"]\n'
+                 '[grid]\ncaster_3_trail = [0.04, 0.9]\n')
+    changed = dc.replace(lay, casters=tuple(dc.replace(c, trail=0.04) if k == 2 else c
+                                            for k, c in enumerate(lay.casters)))
+    np.testing.assert_allclose([r["growth_rate_1_s"] for r in rows[:2]], growth_rates(changed, [1.0, -1.0]),
+                               rtol=1e-12)
+    assert "trail" in rows[2]["error"] and math.isnan(rows[2]["growth_rate_1_s"])
+
+
+@pytest.mark.parametrize("text, words", [
+    ('chair = "mid-wheel-drive"\nspeeds = [1.0]\nmeasures = ["holding_moment"]\n', "for a layout or reverse"),
+    ('chair = "mid-wheel-drive"\nspeeds = [1.0]\nmeasures = ["growth_rate"]\n[grid]\ntrail = [0.05]\n',
+     "grid='trail' is invalid for the layout"),
+    ('chair = "mid-wheel-drive"\nspeeds = [1.0]\nmodel = "thesis"\nmeasures = ["growth_rate"]\n', "'exact'"),
+    ('chair = "ej-premier"\nspeeds = [0.0]\nmeasures = ["growth_rate"]\n', "numbers > 0"),
+    ('chair = "ej-premier"\nspeeds = [-30.0]\nmeasures = ["growth_rate"]\n', "0.01 <= |speed| <= 20"),
+])
+def test_bad_specs_are_refused_in_one_line(text, words):
+    with pytest.raises(ValueError, match=None) as exc:
+        loads_spec(text)
+    assert words in str(exc.value) and "\n" not in str(exc.value)
+
+
+@pytest.mark.slow
+def test_the_command_sweeps_a_layout(tmp_path, capsys):
+    spec = tmp_path / "s.toml"
+    spec.write_text('chair = "power-rwd-base"\nspeeds = [0.75, -0.75]\nmeasures = ["growth_rate", "tip_angles"]\n'
+                    '[grid]\ntrail_front = [0.04, 0.05]\n')
+    out = tmp_path / "r.csv"
+    assert main([str(spec), "-o", str(out), "--quiet"]) == 0
+    lines = out.read_text().splitlines()
+    assert lines[0].startswith("design,draw,speed_m_s,grid_trail_front,growth_rate_1_s")
+    assert len(lines) == 1 + 4
