@@ -551,3 +551,34 @@ def test_the_tip_option_offered_is_the_changed_chairs_angle_rounded_down():
         assert value - 0.1 < offered <= value + 1e-12, (value, text)
         assert text == f"--min-tip-deg {offered:.1f} (the limit is 13.8 deg, the chair's own)"
     assert allow(Constraint("static_stability_deg", None, 13.8, ">=", False)) == "no limit allows it"
+
+
+def test_the_geometry_levers_are_the_steps_docs_advise_lists():
+    """The trail and axle levers of the E&J Premier change exactly by the steps of docs/advise.md's lever table
+    (cm), each label saying the value before and after."""
+    import re
+    from pathlib import Path
+
+    from stability.advise.levers import lever_changes
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "advise.md").read_text(encoding="utf-8")
+
+    def steps(lever):
+        row = next(line for line in page.splitlines() if line.startswith(f"| `{lever}`"))
+        return [float(x) / 100 for x in re.findall(r"[-+]\d+", row.split("|")[2])]
+
+    ej = chair_mod.preset("ej-premier")
+    singles, _ = lever_changes(ej)
+    by = {}
+    for ch, _c in singles:
+        by.setdefault(ch.lever, []).append(ch)
+    assert [dict(ch.fields)["trail"] for ch in by["trail"]] == pytest.approx([ej.trail + d for d in steps("trail")])
+    for lever, moves_s2 in (("s1_fixed_wheelbase", True), ("s1_fixed_s2", False)):
+        ds = steps(lever)
+        assert len(by[lever]) == len(ds)
+        for ch, d in zip(by[lever], ds, strict=True):
+            f = dict(ch.fields)
+            assert f["s1"] == pytest.approx(ej.s1 + d) and ("s2" in f) == moves_s2
+            if moves_s2:
+                assert f["s2"] == pytest.approx(ej.s2 - d)
+            assert f"(s1 {ej.s1 * 100:.1f} -> {(ej.s1 + d) * 100:.1f} cm)" in ch.label
