@@ -215,6 +215,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'if pred is None or not lo < pred < hi:',
      'if pred is None or not lo <= pred < hi:'):
         'differs only when a fitted prediction equals a tried push to the last bit',
+    ('stability/advise/levers.py',
+     'return round(float(x), 6)',
+     'return round(float(x), 7)'):
+        "the levers' values are the chair's fields plus centimetre steps or simple factors, whose float error (about `1e-17`) rounds away at six decimals and at seven alike",
 }
 
 
