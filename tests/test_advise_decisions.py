@@ -513,10 +513,11 @@ def test_the_shimmy_sentence_gives_the_margin_and_its_range_in_cm():
 
     from stability.advise.limits import shimmy_sentence
 
-    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=-0.001, high=0.004), shimmy_straddles=True)
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=-0.0099, high=0.0099),
+                        shimmy_straddles=True)
     assert shimmy_sentence(m, 0.05) == ("the 5 cm trail is clear of the nearest shimmy zone by 0.23 cm (frictionless "
                                         "caster at the estimated pin stiffness and relaxation length; over the "
-                                        "estimates' ranges -0.1 to +0.4 cm: it could shimmy, measure them first)")
+                                        "estimates' ranges -0.99 to +0.99 cm: it could shimmy, measure them first)")
 
 
 def test_the_tip_limit_is_met_by_a_value_at_it_and_not_without_a_value():
