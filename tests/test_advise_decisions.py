@@ -583,3 +583,15 @@ def test_the_geometry_levers_are_the_steps_docs_advise_lists():
             if moves_s2:
                 assert f["s2"] == pytest.approx(ej.s2 - d)
             assert f"(s1 {ej.s1 * 100:.1f} -> {(ej.s1 + d) * 100:.1f} cm)" in ch.label
+    # the wheelbase lever scales s1 and s2 by the table's factors
+    from stability.advise.levers import LEVERS
+
+    row = next(line for line in page.splitlines() if line.startswith("| `wheelbase`"))
+    factors = [float(x) for x in re.findall(r"x(\d+(?:\.\d+)?)", row.split("|")[2])]
+    assert len(by["wheelbase"]) == len(factors) == 2
+    for ch, k in zip(by["wheelbase"], factors, strict=True):
+        assert dict(ch.fields) == pytest.approx({"s1": ej.s1 * k, "s2": ej.s2 * k})
+        assert f"s2 {ej.s2 * 100:.1f} -> {ej.s2 * k * 100:.1f} cm)" in ch.label
+    # every lever of the advisor is a row of the table
+    listed = {m for line in page.splitlines() for m in re.findall(r"^\| `([a-z0-9_]+)`", line)}
+    assert set(LEVERS) <= listed
