@@ -513,10 +513,11 @@ def test_the_shimmy_sentence_gives_the_margin_and_its_range_in_cm():
 
     from stability.advise.limits import shimmy_sentence
 
-    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=-0.001, high=0.004), shimmy_straddles=True)
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=-0.0099, high=0.0099),
+                        shimmy_straddles=True)
     assert shimmy_sentence(m, 0.05) == ("the 5 cm trail is clear of the nearest shimmy zone by 0.23 cm (frictionless "
                                         "caster at the estimated pin stiffness and relaxation length; over the "
-                                        "estimates' ranges -0.1 to +0.4 cm: it could shimmy, measure them first)")
+                                        "estimates' ranges -0.99 to +0.99 cm: it could shimmy, measure them first)")
 
 
 def test_the_tip_limit_is_met_by_a_value_at_it_and_not_without_a_value():
@@ -551,3 +552,46 @@ def test_the_tip_option_offered_is_the_changed_chairs_angle_rounded_down():
         assert value - 0.1 < offered <= value + 1e-12, (value, text)
         assert text == f"--min-tip-deg {offered:.1f} (the limit is 13.8 deg, the chair's own)"
     assert allow(Constraint("static_stability_deg", None, 13.8, ">=", False)) == "no limit allows it"
+
+
+def test_the_geometry_levers_are_the_steps_docs_advise_lists():
+    """The trail and axle levers of the E&J Premier change exactly by the steps of docs/advise.md's lever table
+    (cm), each label saying the value before and after."""
+    import re
+    from pathlib import Path
+
+    from stability.advise.levers import lever_changes
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "advise.md").read_text(encoding="utf-8")
+
+    def steps(lever):
+        row = next(line for line in page.splitlines() if line.startswith(f"| `{lever}`"))
+        return [float(x) / 100 for x in re.findall(r"[-+]\d+", row.split("|")[2])]
+
+    ej = chair_mod.preset("ej-premier")
+    singles, _ = lever_changes(ej)
+    by = {}
+    for ch, _c in singles:
+        by.setdefault(ch.lever, []).append(ch)
+    assert [dict(ch.fields)["trail"] for ch in by["trail"]] == pytest.approx([ej.trail + d for d in steps("trail")])
+    for lever, moves_s2 in (("s1_fixed_wheelbase", True), ("s1_fixed_s2", False)):
+        ds = steps(lever)
+        assert len(by[lever]) == len(ds)
+        for ch, d in zip(by[lever], ds, strict=True):
+            f = dict(ch.fields)
+            assert f["s1"] == pytest.approx(ej.s1 + d) and ("s2" in f) == moves_s2
+            if moves_s2:
+                assert f["s2"] == pytest.approx(ej.s2 - d)
+            assert f"(s1 {ej.s1 * 100:.1f} -> {(ej.s1 + d) * 100:.1f} cm)" in ch.label
+    # the wheelbase lever scales s1 and s2 by the table's factors
+    from stability.advise.levers import LEVERS
+
+    row = next(line for line in page.splitlines() if line.startswith("| `wheelbase`"))
+    factors = [float(x) for x in re.findall(r"x(\d+(?:\.\d+)?)", row.split("|")[2])]
+    assert len(by["wheelbase"]) == len(factors) == 2
+    for ch, k in zip(by["wheelbase"], factors, strict=True):
+        assert dict(ch.fields) == pytest.approx({"s1": ej.s1 * k, "s2": ej.s2 * k})
+        assert f"s2 {ej.s2 * 100:.1f} -> {ej.s2 * k * 100:.1f} cm)" in ch.label
+    # every lever of the advisor is a row of the table
+    listed = {m for line in page.splitlines() for m in re.findall(r"^\| `([a-z0-9_]+)`", line)}
+    assert set(LEVERS) <= listed

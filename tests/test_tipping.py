@@ -239,7 +239,7 @@ def test_fixed_contacts_fall_distance_is_the_ray_to_the_support_polygon(theta_de
     th = math.radians(theta_deg)
     e = (math.cos(th), math.sin(th))
     hits = []
-    for (px, py), (qx, qy) in zip(tri, tri[1:] + tri[:1]):
+    for (px, py), (qx, qy) in zip(tri, tri[1:] + tri[:1], strict=True):
         # rho e = P + u (Q - P): [e, P - Q] [rho, u]^T = P
         det = e[0] * (py - qy) - e[1] * (px - qx)
         rho = (px * (py - qy) - py * (px - qx)) / det
