@@ -222,7 +222,7 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
     ('stability/advise/levers.py',
      'return round(float(x), 6)',
      'return round(float(x), 7)'):
-        "on the presets the changed fields are centimetre steps and simple factors of values with few decimals, the same at six and seven; on a measured chair the field moves by less than `5e-7` (m, N m), far below every measure's resolution (the values' 3-figure words do not change)",
+        "on the presets the changed fields are centimetre steps and simple factors of values with few decimals, the same at six and seven; on a measured chair the field moves by less than `5e-7` (m, N m), far below every measure's resolution (the values' three-figure words do not change)",
 }
 
 
