@@ -222,3 +222,31 @@ def test_the_docs_directive_shows_what_the_command_prints(capsys):
     assert directive.run_command("python -m stability.study critical-impulse --speeds x")[0] == 2
     with pytest.raises(ValueError, match="not a command"):
         directive.run_command("ls -l")
+
+
+def test_a_slow_divergence_is_not_reported_as_robustness(capsys):
+    """Backing the mid-wheel-drive base at 0.75 m/s: its linear model diverges (an eigenvalue with a positive real
+    part, computed here from the state matrices), yet no push up to 40 N s spins it up to 1 rad/s. The search's
+    "> 40 N s" then comes with the run that shows the divergence: the chair keeps turning away from its line (the
+    heading grows over the run, past 10 deg, while the yaw rate stays below the level). Forward at 1 m/s the
+    linear model is stable and nothing is added."""
+    from stability.layout.linear import state_matrices
+    from stability.study.layout_impulse import slow_divergences
+
+    lay = layout_preset("mid-wheel-drive")
+    a_rev, a_fwd = state_matrices(lay, [-0.75, 1.0])
+    growth = float(np.max(np.linalg.eigvals(a_rev).real))
+    assert growth > 0.1 and float(np.max(np.linalg.eigvals(a_fwd).real)) < 0.0
+    points = layout_critical_impulses(lay, [-0.75, 1.0])
+    assert [p.status for p in points] == ["never", "never"]
+    (slow,) = slow_divergences(lay, points)
+    assert slow.speed == -0.75 and math.isclose(slow.growth_rate, growth, rel_tol=1e-9)
+    assert slow.push_Ns == points[0].largest_tried_Ns and slow.peak_yaw_rate < 1.0
+    assert abs(slow.heading_deg) > 10.0 and slow.end_time_s == pytest.approx(10.0, abs=2e-3)
+    force = slow.push_Ns / push_impulse(1.0, 0.1)
+    half = simulate_layout(lay, -0.75, RunSpec(push_force=force, horizon=5.0),
+                           caster_angles_deg=trailing_angles(lay, -0.75))
+    assert abs(half.heading_deg[-1]) < abs(slow.heading_deg)          # still turning away at the end
+    assert main(["critical-impulse", "--chair", "mid-wheel-drive", "--speeds=-0.75", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["slow_divergences"] == [slow.to_dict()]

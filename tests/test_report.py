@@ -31,8 +31,8 @@ EXPECTED_PAGES = [
     "nonlinear yaw-rate responses", "paths", "equal-instability speeds", "parametric study", "stability maps",
     "trail design chart", "caster shimmy", "cross slope", "parameter uncertainty", "thesis conclusions",
     # appendix
-    "method", "findings", "linear stability: critical speeds", "tires", "eigenvalues as speed varies",
-    "growth rate against design parameters", "yaw-rate feedback root locus", "parametric study table",
+    "method", "findings", "linear stability: critical speeds", "tires",
+    "growth rate against design parameters", "parametric study table",
     "glossary and references",
 ]
 
@@ -111,15 +111,14 @@ def test_page_texts(quick):
         "chair parameters and geometry": ["Coulomb pin friction, left caster", "M_af", "s1 = 0.345 m", "lateral position y (m, to the right)"],
         "tires": ["EJA (main wheels)", "ER (casters)", "slip angle α (deg)", "normal force F_z (N)",
                   "cornering stiffness C_α (N/deg)"],
-        "linear stability: critical speeds": ["Critical speeds (m/s)", "zero-width model", "Least stable mode"],
-        "eigenvalues as speed varies": ["forward speed U (m/s)", "ej-premier: exact model, free casters",
-                                        "ej-premier: exact model, locked casters"],
+        "linear stability: critical speeds": ["Critical speeds (m/s)", "zero-width model", "Least stable mode",
+                                              "ej-premier: exact model, free casters",
+                                              "ej-premier: exact model, locked casters"],
         "eigenvalues against speed": ["forward speed U (m/s)", "real part σ (1/s)", "yaw + casters in phase",
                                       "casters opposed (slow)", "Modes named from their eigenvectors"],
         "summary": ["Verdict: ej-premier", "Key numbers", "Critical impulse at 0.75 m/s", "What helps most", "Caveats",
                     "40 N for 0.1 s", "Model variant:"],
         "growth rate against design parameters": ["largest real part (1/s)"],
-        "yaw-rate feedback root locus": ["feedback gain K (N m s/rad)", "open-loop poles (K = 0)"],
         "nonlinear yaw-rate responses": ["time t (s)", "linear (exact)", "end of validity (nothing drawn after)",
                                          "40 N for 0.1 s"],
         "method": ["4.04 N s", "five small terms", "Verdict thresholds"],
@@ -466,7 +465,8 @@ def test_pages_without_information_are_dropped_with_a_reason(quick):
     from stability.report.appendix import method_text
 
     d = quick.data
-    assert dropped_pages(d) == {"comparison": "no baseline chair was given"}
+    assert set(dropped_pages(d)) == {"comparison", "yaw-rate feedback root locus"}    # and a manual chair's
+    assert dropped_pages(d)["comparison"] == "no baseline chair was given"
     above = lambda r: dataclasses.replace(r, status="above", speed=None)  # noqa: E731
     table = dataclasses.replace(d.chair_sweeps, sweeps=[dataclasses.replace(sw, results=tuple(above(r) for r in sw.results))
                                                         for sw in d.chair_sweeps.sweeps])
@@ -983,6 +983,8 @@ def test_decision_page_is_the_advisor(quick):
     header, rows = decision_rows(d)
     assert header[1:] == ["this chair", "recommended"]
     assert rows[0][1].startswith(f"{a.verdict.critical_impulse_Ns.value:.3g}")
+    tips = [r[0] for r in rows if r[0].startswith("tip ")]      # the chair's four directions, none without a value
+    assert len(tips) == len(a.verdict.tip_angles_deg) == 4 and len(set(tips)) == 4
     names, vals, lo, hi = decision_bars(d)
     assert all(low <= v <= high for v, low, high in zip(vals, lo, hi, strict=True))
     from stability.report.decision import decision_beyond
@@ -1139,11 +1141,63 @@ def test_path_caption_quotes_the_valid_part_only(quick):
         assert v.reason in txt
 
 
-def test_feedback_page_dropped_when_stable_without_feedback(quick):
-    """Review: a whole page whose conclusion is 'stable without feedback' cannot apply: it is left out with the
-    reason; the E&J Premier (which needs feedback) keeps it."""
+def test_feedback_page_only_for_a_power_chair_that_needs_feedback(quick):
+    """Review: the yaw-rate feedback locus cannot apply to a manual chair (no controller) nor to a chair stable
+    without feedback: it is left out with the reason; a power chair that needs feedback keeps it, and its page
+    draws the locus."""
+    import matplotlib.pyplot as plt
+
+    from stability.report.builders import _p_gain
+    from stability.report.document import figure_texts
+
     d = quick.data
-    assert "yaw-rate feedback root locus" not in dropped_pages(d)
+    assert "manual chair" in dropped_pages(d)["yaw-rate feedback root locus"]      # the E&J Premier
+    power = dataclasses.replace(d, chair=d.chair.replace(name="power-" + d.chair.name))
+    assert "yaw-rate feedback root locus" not in dropped_pages(power)
     stable = [dataclasses.replace(g, stabilising_gain=0.0) for g in d.gain_loci]
-    why = dropped_pages(dataclasses.replace(d, gain_loci=stable))["yaw-rate feedback root locus"]
+    why = dropped_pages(dataclasses.replace(power, gain_loci=stable))["yaw-rate feedback root locus"]
     assert "stable without yaw-rate feedback" in why
+    fig = _p_gain(power)
+    texts = " ".join(figure_texts(fig))
+    plt.close(fig)
+    assert "feedback gain K (N m s/rad)" in texts and "open-loop poles (K = 0)" in texts
+
+
+def test_panels_that_cannot_apply_are_one_line(quick):
+    """Review: empty panels and zero-effect panels become one line. The locked casters' modes are all real (no
+    frequency panel, one line instead); every parametric-study sweep drawn moves the speed by more than the
+    search's tolerance and every one left out by no more, each named in the page's one line; growth-rate panels
+    flat within 1 % are named in one line, the others drawn."""
+    import matplotlib.pyplot as plt
+
+    from stability.report.builders import _p_growth, _p_re_im, _p_sweeps
+    from stability.report.document import figure_texts
+    from stability.report.panels import FLAT_GROWTH, no_effect
+
+    d = quick.data
+    assert np.abs(d.speed_loci[("exact", "locked")].eigenvalues.imag).max() == 0.0
+    fig = _p_re_im(d)
+    texts = " ".join(figure_texts(fig))
+    plt.close(fig)
+    assert "Locked casters: every mode is non-oscillatory" in texts
+    assert texts.count("imaginary parts (oscillation frequencies)") == 1            # the free casters' only
+    drawn, flat = no_effect(d)
+    assert len(drawn) + len(flat) == len(d.chair_sweeps.sweeps)
+    assert all(np.ptp(s.speeds) > d.settings.tol for s in drawn)
+    assert all(np.ptp(s.speeds) <= d.settings.tol for s in flat)
+    def reading_order(fig):          # the footer's lines are drawn bottom up
+        return " ".join(t.get_text() for t in sorted(fig.texts, key=lambda t: -t.get_position()[1]))
+
+    fig = _p_sweeps(d)
+    texts = reading_order(fig)
+    n_axes = sum(ax.get_visible() and ax.axison for ax in fig.axes)
+    plt.close(fig)
+    assert n_axes == len(drawn)
+    assert all(s.label in texts for s in flat) and (not flat or "No effect within the search's" in texts)
+    fig = _p_growth(d)
+    texts = reading_order(fig)
+    n_axes = sum(ax.axison for ax in fig.axes)
+    plt.close(fig)
+    flat_g = [loc for loc in d.parameter_loci if np.ptp(loc.max_real) < FLAT_GROWTH * np.abs(loc.max_real).max()]
+    assert flat_g and n_axes == len(d.parameter_loci) - len(flat_g)
+    assert all(loc.label in texts for loc in flat_g)

@@ -7,9 +7,10 @@ value as ``{docvalue}`group.key``` and a table with the ``docvalue-table`` direc
 markers that ``python -m docs._ext.readme_values`` rewrites. Every group names the command or API call that
 produced it (``source``), which the pages show beside the values.
 
-Results are cached on disk (``docs/_build/docvalues/``) under a hash of every file of the ``stability`` package
-and of this module, so a rebuild without code changes reads them back; :func:`evaluate` says how long a group
-took.
+Results are cached on disk (``docs/_build/docvalues/``) under a hash of every file of the ``stability`` package,
+of this module, of ``value_groups_pages.py`` (its helpers are shared) and of the group's own module
+(``value_groups_<page>.py``), so a rebuild without code changes reads them back and a change to one page's groups
+recomputes only that module's; :func:`evaluate` says how long a group took.
 """
 
 from __future__ import annotations
@@ -88,12 +89,21 @@ def pct(x: float, nd: int = 0) -> str:
 
 # --- evaluation and cache ------------------------------------------------------------------------------------
 
-def source_hash() -> str:
-    """Hash of the ``stability`` package's files (sources and data, not compiled caches) and of the group modules."""
+#: The modules every group may use (the formatting and cache here, the shared helpers of the pages' module).
+_SHARED = ("value_groups.py", "value_groups_pages.py")
+
+
+def source_hash(module: str | None = None) -> str:
+    """Hash of the ``stability`` package's files (sources and data, not compiled caches) and of the group modules:
+    all of them, or (``module``: a group module's file name) the shared ones and that one, so that editing one
+    page's groups leaves the cached values of the other pages' groups valid."""
     h = hashlib.sha256()
     files = sorted(p for p in (ROOT / "stability").rglob("*")
                    if p.is_file() and "__pycache__" not in p.parts and p.suffix not in {".nbi", ".nbc", ".pyc"})
-    for p in [*files, *sorted(Path(__file__).parent.glob("value_groups*.py"))]:
+    here = Path(__file__).parent
+    mods = sorted(here.glob("value_groups*.py")) if module is None else \
+        [here / m for m in sorted({*_SHARED, module})]
+    for p in [*files, *mods]:
         h.update(p.relative_to(ROOT).as_posix().encode())
         h.update(p.read_bytes())
     return h.hexdigest()[:16]
@@ -122,7 +132,7 @@ def evaluate(name: str, use_cache: bool = True) -> tuple[dict, float, bool]:
         If there is no group ``name``.
     """
     g = GROUPS[name]
-    key = source_hash()
+    key = source_hash(Path(sys.modules[g.func.__module__].__file__ or "").name)
     path = CACHE / f"{name}-{key}.json"
     if use_cache and path.exists():
         data = json.loads(path.read_text())
@@ -144,5 +154,12 @@ def evaluate(name: str, use_cache: bool = True) -> tuple[dict, float, bool]:
     return values, took, False
 
 
+from value_groups_advise import *  # noqa: E402,F401,F403
+from value_groups_assist import *  # noqa: E402,F401,F403
 from value_groups_layouts import *  # noqa: E402,F401,F403  (registers the layout groups)
+from value_groups_measure import *  # noqa: E402,F401,F403
+from value_groups_misc import *  # noqa: E402,F401,F403
 from value_groups_pages import *  # noqa: E402,F401,F403  (registers the groups)
+from value_groups_power import *  # noqa: E402,F401,F403
+from value_groups_shimmy import *  # noqa: E402,F401,F403
+from value_groups_studies import *  # noqa: E402,F401,F403

@@ -584,14 +584,22 @@ def _step_rows(law: str) -> Table:
        "RunSpec(dt=DT, friction_law='kinetic') and RunSpec(scheme='adaptive')")
 def step_kinetic() -> dict:
     """Program WCHAIR's kinetic pin friction: the measures against the step."""
-    return {"table": _step_rows("kinetic")}
+    t = _step_rows("kinetic")
+    return {"table": t, **_step_cells(t)}
 
 
 @group("step_stick_slip", "stability.study.critical_impulses / equal_instability_speeds with "
        "RunSpec(dt=DT, friction_law='stick-slip') and RunSpec(scheme='adaptive')")
 def step_stick_slip() -> dict:
     """The stick-slip law: the measures against the step."""
-    return {"table": _step_rows("stick-slip")}
+    t = _step_rows("stick-slip")
+    return {"table": t, **_step_cells(t)}
+
+
+def _step_cells(t: Table) -> dict:
+    """The power-fwd 6 cm chair's critical impulse per step (``pf6.1``, ``pf6.0.5``, ..., ``pf6.adaptive``)."""
+    row = next(r for r in t.rows if r[0].startswith("power-fwd with a 6 cm trail"))
+    return {f"pf6.{h.removesuffix(' ms')}": v for h, v in zip(t.header[1:], row[1:], strict=True) if v}
 
 
 # --- docs/tipping.md --------------------------------------------------------------------------------------
@@ -652,54 +660,7 @@ def shimmy_band_group() -> dict:
                             "damping ratio at its trail", "margin over the estimate ranges (cm)"), tuple(rows))}
 
 
-# --- docs/advise.md ---------------------------------------------------------------------------------------
-
-ADVISE_CHAIRS = ("ej-premier", "revised", "ej-premier-front-caster", "power-fwd", "manual-front-caster",
-                 "measured-example")
-
-
-@group("advise_table", "python -m stability.advise --chair NAME (stability.advise.advise(chair))")
-def advise_table() -> dict:
-    """The advisor's verdict and recommendation for the presets and the measured example chair."""
-    from value_groups import ROOT
-
-    from stability import chair as chair_mod
-    from stability.advise import advise
-
-    def g(v):
-        return "?" if v is None else f"{v:.3g}"
-
-    def fm(x, status):
-        pre = {"above": "> ", "never": "> ", "below": "< "}.get(status, "")
-        lo, hi = g(x.low), g(x.high)
-        return f"{pre}{x.value:.3g}" + ("" if lo == hi else f" ({lo}-{hi})")      # no degenerate range
-
-    import warnings
-
-    rows, out = [], {}
-    for name in ADVISE_CHAIRS:
-        c = (chair_mod.load(ROOT / "docs" / "examples" / "measured_chair.toml") if name == "measured-example"
-             else _preset(name))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")     # tire-range notes of candidate chairs (the verdict carries them)
-            a = advise(c)
-        v, r = a.verdict, a.recommendations[0]
-        p = r.candidate.measures
-        rows.append((name, fm(v.critical_impulse_Ns, v.critical_impulse_status),
-                     fm(v.equal_instability_speed_m_s, v.equal_instability_status),
-                     f"{v.static_stability_deg.value:.1f}", f"{v.shimmy_margin_m.value * 100:+.2f}", r.candidate.label,
-                     fm(p.critical_impulse_Ns, p.critical_impulse_status),
-                     fm(p.equal_instability_speed_m_s, p.equal_instability_status)))
-        out[f"{name}.eis"] = f"{v.equal_instability_speed_m_s.value:.3g}"
-        out[f"{name}.ci"] = f"{v.critical_impulse_Ns.value:.3g}"
-    ej, rv = float(out["ej-premier.eis"]), float(out["revised.eis"])
-    out["eis_gain_pct"] = pct(rv / ej - 1)
-    out["ci_gain_pct"] = pct(float(out["revised.ci"]) / float(out["ej-premier.ci"]) - 1)
-    out["table"] = Table(("chair", "critical impulse", "equal-instability speed", "tip", "shimmy margin",
-                          "recommendation", "predicted critical impulse", "predicted equal-instability speed"),
-                         tuple(rows))
-    return out
-
+# --- docs/advise.md: the advisor's table is in value_groups_advise.py -------------------------------------
 
 @group("advise_linear", "stability.linear.eigenvalues_vs_speed(chair, [0.75]) (largest real part); "
        "sqrt(chair.i_z / chair.m)", cheap=True)

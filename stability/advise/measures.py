@@ -205,7 +205,7 @@ def cross_slope_effort(chair: Chair, cross_slope_deg: float) -> float | None:
     if cross_slope_deg == 0:
         return 0.0
     try:
-        eq = solve(chair, cross_slope_deg, IMPULSE_SPEED)
+        eq = solve(chair, cross_slope_deg, IMPULSE_SPEED, friction_range=False)   # the drive only: 4 solves fewer
     except ValueError:
         return None
     kind = drive_kind(chair)

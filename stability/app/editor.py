@@ -124,13 +124,20 @@ class Editor:
                         pn.pane.Markdown("An uncertainty file (TOML, as `--uncertainty FILE`): the 95 % interval of "
                                          "the growth rate is drawn.", margin=(0, 10)),
                         self.upload_unc, title="Files", collapsed=True, sizing_mode="stretch_width", margin=(4, 0))
+        from stability.layout.presets import layout_preset_names
+
+        layouts = pn.Card(pn.pane.HTML(
+            "<p>Power bases as lists of wheels (docs/layouts.md), each on a page of its own: "
+            + ", ".join(f'<a href="?chair={n}">{n}</a>' for n in layout_preset_names()) + ".</p>",
+            margin=(0, 10), sizing_mode="stretch_width", css_classes=["layout-links"]),
+            title="Wheel layouts", collapsed=True, sizing_mode="stretch_width", margin=(4, 0))
         return pn.Column(
             sketch,
             pn.pane.Markdown("Values in SI units; hover a field's **?** for its valid range. Press Enter (or leave "
                              "the field) to apply.", margin=(0, 10)),
             pn.Row(self.preset, self.model, sizing_mode="stretch_width"),
             pn.Row(self.undo_button, self.reset_button, sizing_mode="stretch_width"),
-            self.pin_button, files, *cards, width=EDITOR_WIDTH, css_classes=["editor"])
+            self.pin_button, files, layouts, *cards, width=EDITOR_WIDTH, css_classes=["editor"])
 
     def sync(self, state: Any) -> None:
         """Set every widget to the session's chair, preset and model (their events are ignored meanwhile).

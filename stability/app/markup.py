@@ -24,7 +24,8 @@ __all__ = ["literal", "pre", "MAX_SHOWN", "PRE_STYLESHEET"]
 
 #: The style of :func:`pre` blocks: a line longer than the pane scrolls sideways within the block (a command
 #: line's table keeps its columns) instead of being cut or wrapped mid-row.
-PRE_STYLESHEET = "pre.cli-text { overflow-x: auto; white-space: pre; font-size: 12px; line-height: 1.35; }"
+PRE_STYLESHEET = ("pre.cli-text { overflow-x: auto; white-space: pre; font-size: 12px; line-height: 1.35; "
+                  "max-width: 100%; }")
 #: Longest user text shown in full (characters); longer text is cut with its length stated.
 MAX_SHOWN = 1000
 

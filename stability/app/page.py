@@ -18,7 +18,8 @@ How an edit reaches the browser quickly:
   sources and moves existing annotations; no layout property (size,
   visibility, CSS classes) changes, so the browser does not lay the page out
   again.  Tabs are rendered when shown (``dynamic``): a hidden tab costs
-  nothing per edit.
+  nothing per edit, and the simulations of the Nonlinear and Trail window
+  tabs run only for the tab shown (a tab shown later starts its own).
 * **Background work stays in the background**, its old result greyed until
   the new one arrives.
 
@@ -116,6 +117,8 @@ class Explorer:
         self._queue: list[Callable[[], None]] = []
         self._draining = self._scheduled = self._dirty = False
         self._settled = 0
+        self._stale: set[str] = set()       # background results (tab names) for an older chair, not yet restarted
+        self._started: dict[str, int] = {}  # tab name -> the chair generation its background work was started for
         self._build()
         self._building = False
         self.refresh()
@@ -260,6 +263,8 @@ class Explorer:
         texts = self._texts[self.tabs.active]
         if texts is not None:
             texts.flush()
+        if self.view is not None:
+            self._start_shown()
 
     def _set_model(self, event: Any) -> None:
         self.state.set_model(event.new)
@@ -345,12 +350,23 @@ class Explorer:
         """Queue the background work of the chair drawn at ``generation`` (nothing if the chair changed since)."""
         if generation != self.jobs.generation:
             return
-        chair, model = self.state.chair, self.state.model
         if self.state.uncertainty is not None:
             self._start_bands()
         if self.auto_nonlinear:
-            self.nonlinear.start(chair, model)
-            self.trail.start(chair, model)
+            # only the tab shown: a hidden tab's simulations would take both cores from the next edit's answer
+            # for a result nobody looks at; a tab shown later starts its own (:meth:`_tab_shown`)
+            self._stale = {k for k in ("nonlinear", "trail") if self._started.get(k) != generation}
+            self._start_shown()
+
+    def _start_shown(self) -> None:
+        """Start the background work of the tab shown, if its result is for an older chair."""
+        name = {TAB_NAMES.index("Nonlinear"): "nonlinear", TAB_NAMES.index("Trail window"): "trail"}.get(
+            self.tabs.active)
+        if name in self._stale:
+            self._stale.discard(name)
+            self._started[name] = self.jobs.generation
+            tab = self.nonlinear if name == "nonlinear" else self.trail
+            tab.start(self.state.chair, self.state.model)
 
     def sync_location(self) -> None:
         """Set the address bar's query to the chair shown (the page calls it again once the browser is connected:

@@ -13,6 +13,7 @@ only (no new Bokeh models).
 
 from __future__ import annotations
 
+import html
 from typing import Any
 
 import numpy as np
@@ -24,9 +25,9 @@ from stability.plotting.style import OKABE_ITO, UNSTABLE
 
 __all__ = ["STABLE", "BRANCH_COLOURS", "CURSOR", "BAND", "NEUTRAL", "speed_figures", "shape_figure", "top_view",
            "side_view", "response_figure", "compare_figure", "trail_figure", "MAX_BRANCHES", "MAX_CROSSINGS",
-           "short_title", "replace_data", "text_div", "TEXT_STYLESHEET"]
+           "short_title", "replace_data", "text_div", "TextBox", "TEXT_STYLESHEET"]
 
-#: The style of the page's per-edit text blocks (Bokeh ``Div``s): the look of Panel's Markdown, a compact table.
+#: The style of the page's per-edit text blocks (:class:`TextBox`): the look of Panel's Markdown, a compact table.
 TEXT_STYLESHEET = (
     ":host { font-size: 14px; line-height: 1.45; } p { margin: 0 0 0.6em 0; } "
     "code { font-size: 12.5px; color: #1f5f8b; } "
@@ -69,11 +70,16 @@ def short_title(text: str, limit: int = TITLE_NAME) -> str:
     return text if len(text) <= limit else text[:limit - 1] + "…"
 
 
-def text_div(css_class: str, text: str = "", **kw: Any) -> Any:
-    """A Bokeh ``Div`` for HTML the page rewrites on every edit, and the Panel pane that holds it.
+class TextBox:
+    """HTML the page rewrites on every edit, shown by Panel's ``HTML`` Bokeh model (not a pane, not a ``Div``).
 
-    A ``Div``'s text goes to the browser as one property (Panel's Markdown and HTML panes send every property of
-    the pane again and convert their text first), and rewriting it does not lay the page out again.
+    Why this model: a Bokeh ``Div`` re-renders itself when its text changes and then computes the layout of the
+    whole page (BokehJS ``LayoutDOMView.rerender`` -> ``compute_layout``, which measures every plot and
+    widget: about 15 ms per rewritten ``Div`` in chromium on the shared 2-core machine), while Panel's ``HTML``
+    model only replaces its element's ``innerHTML``.  Panel's HTML *pane* would send every property of the
+    pane again on each change; the bare model sends the one ``text`` property.  The model's browser side
+    decodes one level of HTML escaping (``html_decode``), so the text goes out escaped once; its scripts are
+    never run and TeX is off (user text with ``$`` stays text).
 
     Parameters
     ----------
@@ -82,19 +88,57 @@ def text_div(css_class: str, text: str = "", **kw: Any) -> Any:
     text : str
         Initial HTML (inert: user text through :mod:`stability.app.markup`).
     **kw
-        More ``Div`` properties (``width``, ``height``, ``styles``).
+        More model properties (``width``, ``height``, ``margin``, ``sizing_mode``, ``styles``).
+
+    Attributes
+    ----------
+    model : panel.models.markup.HTML
+    pane : panel.pane.Bokeh
+        The pane that holds it in the page's layout.
+    """
+
+    def __init__(self, css_class: str, text: str = "", **kw: Any) -> None:
+        import panel as pn
+        from panel.models.markup import HTML
+
+        from stability.app.markup import PRE_STYLESHEET
+
+        kw.setdefault("sizing_mode", "stretch_width")
+        self._text = text
+        props: dict[str, Any] = dict(text=html.escape(text, quote=False), run_scripts=False, disable_math=True,
+                                     css_classes=[css_class], stylesheets=[TEXT_STYLESHEET, PRE_STYLESHEET], **kw)
+        self.model = HTML(**props)
+        self.pane = pn.pane.Bokeh(self.model, **{k: kw[k] for k in ("width", "height", "margin", "sizing_mode")
+                                                 if k in kw})
+
+    @property
+    def text(self) -> str:
+        """The HTML shown; setting it sends it only when it differs from what is shown."""
+        return self._text
+
+    @text.setter
+    def text(self, value: str) -> None:
+        if value != self._text:
+            self._text = value
+            self.model.text = html.escape(value, quote=False)
+
+
+def text_div(css_class: str, text: str = "", **kw: Any) -> tuple[TextBox, Any]:
+    """A :class:`TextBox` for HTML the page rewrites on every edit, and the Panel pane that holds it.
+
+    Parameters
+    ----------
+    css_class : str
+    text : str
+    **kw
+        See :class:`TextBox`.
 
     Returns
     -------
-    (bokeh.models.Div, panel.pane.Bokeh)
+    (TextBox, panel.pane.Bokeh)
     """
-    import panel as pn
-    from bokeh.models.widgets.markups import Div
-
-    kw.setdefault("sizing_mode", "stretch_width")
-    div = Div(text=text, css_classes=[css_class], stylesheets=[TEXT_STYLESHEET], **kw)
-    pane_kw = {k: kw[k] for k in ("width", "height", "margin", "sizing_mode") if k in kw}
-    return div, pn.pane.Bokeh(div, **pane_kw)
+    box = TextBox(css_class, text, **kw)
+    return box, box.pane
 
 
 def replace_data(source: ColumnDataSource, data: dict) -> bool:

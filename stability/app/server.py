@@ -106,9 +106,18 @@ def create_page() -> Any:
     doc = pn.state.curdoc
     deliver = doc.add_next_tick_callback if doc is not None else None
     later = (lambda fn, ms: doc.add_timeout_callback(fn, ms)) if doc is not None else None
+    from stability.app.layout_page import LayoutExplorer, layout_in_query
+
+    query = dict(pn.state.session_args or {})
+    name = layout_in_query(query)
+    if name is not None:                     # a wheel layout preset: its own page (no field editor)
+        lx = LayoutExplorer(name, query, deliver=deliver)
+        if doc is not None:
+            doc.on_session_destroyed(lambda _context: lx.jobs.cancel())
+        return lx.layout
     from stability.app.page import Explorer
 
-    ex = Explorer(query=dict(pn.state.session_args or {}), deliver=deliver, location=pn.state.location,
+    ex = Explorer(query=query, deliver=deliver, location=pn.state.location,
                   later=later)
     if doc is not None:                      # a closed page's queued work is dropped
         doc.on_session_destroyed(lambda _context: ex.jobs.cancel())

@@ -105,11 +105,14 @@ class SpeedTab:
         f = self.figs
         lo, hi = real_range(eig)
         update: dict[str, Any] = {}
+        # single precision on the wire (half the bytes; 7 digits, far below a pixel): the numbers shown as text
+        # (table, critical speeds, CSV) come from the view, not from these columns
         for j in range(plots.MAX_BRANCHES):
             if j < eig.shape[1]:
-                update[f"real{j}"], update[f"imag{j}"] = eig[:, j].real, np.abs(eig[:, j].imag)
+                update[f"real{j}"] = eig[:, j].real.astype(np.float32)
+                update[f"imag{j}"] = np.abs(eig[:, j].imag).astype(np.float32)
             else:
-                update[f"real{j}"] = update[f"imag{j}"] = np.full(len(GRID), np.nan)
+                update[f"real{j}"] = update[f"imag{j}"] = np.full(len(GRID), np.nan, dtype=np.float32)
         self.branch_src.data.update(update)
         off = [bool(np.all(eig[:, j].real < lo)) for j in range(eig.shape[1])]
         for j, r in enumerate(f["branch_renderers"]):

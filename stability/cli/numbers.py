@@ -52,6 +52,7 @@ OPTION_BOUNDS: dict[str, Bound] = {
     "--grade": Bound(-45.0, 45.0, "deg"),
     # times: an hour of simulated motion; a push of at most 10 s; sample intervals from 1 us
     "--sim-time": Bound(0.0, 3600.0, "s", open_lo=True),
+    "slope:--sim-time": Bound(0.0, 10.0, "s", open_lo=True),      # the slope command's uncorrected turn
     # the driver's effective delay: stability.driver.model.REACTION_TIME_RANGE_S (a reflex to a slow correction)
     "--reaction-time": Bound(0.05, 2.0, "s"),
     "--intended-speed": Bound(0.1, 6.0, "m/s"),                 # the human-limited speed's search range

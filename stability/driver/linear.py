@@ -22,7 +22,6 @@ from math import factorial
 
 import numpy as np
 from scipy.optimize import minimize
-from scipy.signal import tf2ss
 
 from stability.chair import Chair
 from stability.driver.model import Driver
@@ -68,6 +67,8 @@ def pade(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, n
          for k in range(n + 1)]
     num = [c[k] * (-tau) ** k for k in range(n, -1, -1)]
     den = [c[k] * tau**k for k in range(n, -1, -1)]
+    from scipy.signal import tf2ss  # imported here: scipy.signal costs ~0.5 s CPU to import (every CLI)
+
     Ad, Bd, Cd, Dd = tf2ss(num, den)
     return Ad, Bd, Cd, Dd
 

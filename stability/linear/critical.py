@@ -65,30 +65,31 @@ def _slopes(state_matrix, speeds: np.ndarray, alpha: np.ndarray) -> np.ndarray:
     A = np.asarray(state_matrix(speeds))
     lam, V = np.linalg.eig(A)
     lamL, W = np.linalg.eig(np.swapaxes(A, -1, -2).conj())
-    out = np.empty(len(speeds))
-    for k in range(len(speeds)):
-        i = int(np.argmax(lam[k].real))
-        j = int(np.argmin(np.abs(lamL[k].conj() - lam[k, i])))
-        v, w = V[k][:, i], W[k][:, j]
-        den = np.vdot(w, v)
-        out[k] = (np.vdot(w, dA[k] @ v) / den).real if abs(den) > 1e-14 else 0.0
-    return out
+    k = np.arange(len(speeds))
+    i = np.argmax(lam.real, axis=1)
+    j = np.argmin(np.abs(lamL.conj() - lam[k, i][:, None]), axis=1)
+    v, w = V[k, :, i], W[k, :, j]                      # the right and left eigenvectors, one row per speed
+    den = np.sum(w.conj() * v, axis=1)
+    num = np.sum(w.conj() * np.einsum("kab,kb->ka", dA, v), axis=1)
+    ok = np.abs(den) > 1e-14
+    return np.where(ok, (num / np.where(ok, den, 1.0)).real, 0.0)
 
 
 #: Where the double-crossing guard samples the Hermite interpolant: fractions of a grid interval.
 GUARD_FRACTIONS = np.linspace(0.0, 1.0, 9)[1:-1]
 
 
-def hermite(a0: float, a1: float, s0: float, s1: float, h: float, t: np.ndarray = GUARD_FRACTIONS) -> np.ndarray:
+def hermite(a0: float | np.ndarray, a1: float | np.ndarray, s0: float | np.ndarray, s1: float | np.ndarray,
+            h: float | np.ndarray, t: np.ndarray = GUARD_FRACTIONS) -> np.ndarray:
     """Cubic Hermite interpolant on an interval of width ``h`` from its end values and slopes.
 
     Parameters
     ----------
-    a0, a1 : float
-        Values at the interval's ends (unit of the value, 1/s for ``alpha``).
-    s0, s1 : float
+    a0, a1 : float or ndarray
+        Values at the interval's ends (unit of the value, 1/s for ``alpha``); arrays of shape (n, 1): n intervals.
+    s0, s1 : float or ndarray
         Slopes at the ends (value per unit of the abscissa, 1/s per m/s for ``alpha``).
-    h : float
+    h : float or ndarray
         Width of the interval (unit of the abscissa, m/s).
     t : ndarray, optional
         Fractions of the interval (0 at ``a0``, 1 at ``a1``); default :data:`GUARD_FRACTIONS`.
@@ -96,7 +97,7 @@ def hermite(a0: float, a1: float, s0: float, s1: float, h: float, t: np.ndarray 
     Returns
     -------
     ndarray
-        The interpolant at ``t`` (unit of the value); exact for a cubic.
+        The interpolant at ``t`` (unit of the value), one row per interval; exact for a cubic.
     """
     h00, h10 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t
     h01, h11 = -2 * t**3 + 3 * t**2, t**3 - t**2
@@ -169,15 +170,14 @@ def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
     # guard against double crossings hidden between grid points
     da = _slopes(state_matrix, U, a)
     scale = max(np.max(np.abs(a)), 1e-9)
-    for k in range(len(U) - 1):
-        if np.sign(a[k]) != np.sign(a[k + 1]):
-            continue
-        herm = hermite(a[k], a[k + 1], da[k], da[k + 1], U[k + 1] - U[k])
-        suspicious = np.any(np.sign(herm) != np.sign(a[k])) or (
-            np.sign(da[k]) != np.sign(da[k + 1]) and np.min(np.abs(herm)) < 0.05 * scale
-        )
-        if not suspicious:
-            continue
+    h = np.diff(U)[:, None]
+    a0, a1, d0, d1 = a[:-1, None], a[1:, None], da[:-1, None], da[1:, None]
+    herm = hermite(a0, a1, d0, d1, h)                                # one row per grid interval
+    same = np.sign(a[:-1]) == np.sign(a[1:])
+    suspicious = same & (np.any(np.sign(herm) != np.sign(a0), axis=1) | (
+        (np.sign(da[:-1]) != np.sign(da[1:])) & (np.min(np.abs(herm), axis=1) < 0.05 * scale)))
+    for kk in np.flatnonzero(suspicious):
+        k = int(kk)
         sgn = np.sign(a[k])
         res = minimize_scalar(lambda x, sgn=sgn: sgn * alpha(x), bounds=(U[k], U[k + 1]), method="bounded",
                               options={"xatol": 1e-9})

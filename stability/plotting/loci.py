@@ -205,7 +205,8 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
     ----------
     locus : stability.rootlocus.SpeedLocus
     axes : pair of matplotlib.axes.Axes, optional
-        Axes for the real and the imaginary parts (a new figure if omitted).
+        Axes for the real and the imaginary parts (a new figure if omitted); the second may be None (no
+        frequency panel, e.g. when every mode is non-oscillatory).
     mode_names : sequence of str, optional
         A name per branch (column of ``locus.eigenvalues``), e.g. from
         :func:`stability.linear.names.mode_names`; branches with the same
@@ -240,12 +241,14 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
         if label:
             labelled.add(label)
         ax1.plot(U, eig[:, j].real, lw=1.4, color=colour(k), label=label)
-        ax2.plot(U, np.abs(eig[:, j].imag), lw=1.4, color=colour(k))
+        if ax2 is not None:
+            ax2.plot(U, np.abs(eig[:, j].imag), lw=1.4, color=colour(k))
+    both = [ax for ax in (ax1, ax2) if ax is not None]
     for lo_u, hi_u in locus.unstable_intervals():
-        for ax in (ax1, ax2):
+        for ax in both:
             ax.axvspan(lo_u, hi_u, color=UNSTABLE, alpha=0.12, lw=0)
     for c in locus.crossings:
-        for ax in (ax1, ax2):
+        for ax in both:
             ax.axvline(c.speed, color=UNSTABLE, lw=1.0, ls="--")
         # near the right edge the label goes to the left of its line, so it stays on the page
         x0, x1 = xlim or (U[0], U[-1])
@@ -258,21 +261,20 @@ def eigenvalues_vs_speed(locus, axes=None, *, mode_names=None, title: str | None
     ax1.axhline(0, color="k", lw=0.8)
     ax1.set_ylim(lo, hi)
     ax1.set_ylabel("real part σ (1/s)", fontsize=8.5)
-    ax2.set_ylabel("|imaginary part| ω (rad/s)", fontsize=8.5)
     ax1.set_xlabel("forward speed U (m/s)", fontsize=8.5)
-    ax2.set_xlabel("forward speed U (m/s)", fontsize=8.5)
-    ims = np.abs(eig.imag)
-    ax2.set_ylim(0, max(float(ims.max()) * 1.15, 1.0))
-    for ax in (ax1, ax2):
+    if ax2 is not None:
+        ax2.set_ylabel("|imaginary part| ω (rad/s)", fontsize=8.5)
+        ax2.set_xlabel("forward speed U (m/s)", fontsize=8.5)
+        ax2.set_ylim(0, max(float(np.abs(eig.imag).max()) * 1.15, 1.0))
+        ax2.set_title("imaginary parts (oscillation frequencies)", fontsize=8)
+    for ax in both:
         if log_speed:
             ax.set_xscale("log")
         ax.set_xlim(*(xlim or (U[0], U[-1])))
-    for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3, which="both")
     ax1.legend(fontsize=7, ncol=2, loc="lower left")
     ax1.set_title(title or f"{locus.chair.name}: {locus.model} model, {locus.casters} casters (shaded: unstable)",
                   fontsize=9)
-    ax2.set_title("imaginary parts (oscillation frequencies)", fontsize=8)
     return axes
 
 
@@ -368,6 +370,7 @@ def _growth_rate_panel(loc, ax) -> None:
         ax.set_xticks(range(len(loc.labels)), loc.labels, fontsize=8)
     else:
         ax.plot(loc.values, a, color=colour(0))
+        ax.set_title(f"{loc.label}: {a.min():.3g} to {a.max():.3g} 1/s", fontsize=8)
         if np.isfinite(loc.nominal):
             ax.axvline(loc.nominal, color="k", ls=":", lw=0.8, label="chair")
         for b in loc.stability_boundaries():

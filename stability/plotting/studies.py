@@ -81,7 +81,8 @@ def equal_instability_chart(results: Sequence, ax=None, *, thesis: dict | None =
     return ax
 
 
-def sweep_chart(table, axes=None, *, title: str | None = None, limits: dict | None = None):
+def sweep_chart(table, axes=None, *, title: str | None = None, limits: dict | None = None,
+                sweeps: Sequence | None = None):
     """The parametric study: equal-instability speed against each parameter (small multiples).
 
     ``table`` is a :class:`stability.study.SweepTable`.  Returns the axes array.
@@ -97,13 +98,16 @@ def sweep_chart(table, axes=None, *, title: str | None = None, limits: dict | No
     limits : dict, optional
         Parameter name -> ``(value, label)``: a constraint drawn as a vertical line (e.g. where the chair
         tips over at the minimum stability angle).
+    sweeps : sequence of stability.study.Sweep, optional
+        The panels to draw (default every sweep of ``table``, ranked); the speed scale is theirs and the
+        chair's.
 
     Returns
     -------
     array of matplotlib.axes.Axes
         ``axes``.
     """
-    sweeps = table.ranked()
+    sweeps = table.ranked() if sweeps is None else list(sweeps)
     limits = limits or {}
     n = len(sweeps)
     if axes is None:

@@ -17,6 +17,7 @@ from stability.report.comparison import comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
 from stability.report.decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
 from stability.report.findings import _first, conclusion_rows, findings
+from stability.report.panels import FLAT_GROWTH, NON_OSCILLATORY, columns, flat_growth, no_effect, no_effect_line
 from stability.report.quick import MARK
 from stability.report.sections import footer as _footer
 from stability.report.sections import shimmy_page, slope_page, uncertainty_page
@@ -165,8 +166,8 @@ def _p_tires(d: ReportData) -> Figure:
     return P.finish(fig)
 
 
-def _p_summary(d: ReportData) -> Figure:
-    sub, c = _subtitle(d), d.chair
+def _linear_text(d: ReportData) -> str:
+    c = d.chair
     txt = format_summary(d.summary)
     so = d.summary_other
     txt += ("\n\nOther model variant (" + so.model + "): free casters "
@@ -179,28 +180,42 @@ def _p_summary(d: ReportData) -> Figure:
               "at the static load (Table 4-1 method), viscous pin damping "
               f"{c.pin_damping:g} N m s/rad; Coulomb pin friction has no linearisation (it appears only in the "
               "nonlinear simulations of the later pages).")
-    return P.text_page(_title(d, "linear stability: critical speeds"), txt, sub, monospace=True, width=125,
-                       fontsize=9)
+    return txt
 
 
-def _p_speed_loci(d: ReportData) -> Figure:
+def _p_linear(d: ReportData) -> Figure:
+    """The linear analysis in one appendix page: the critical speeds and the least stable mode (text, top) and
+    the eigenvalues as speed varies, free and locked casters (parametric root loci, bottom)."""
     sub = _subtitle(d)
-    fig, axes = P.page(_title(d, "eigenvalues as speed varies (parametric root locus)"), sub, nrows=1, ncols=2)
+    fig, axes = P.page(_title(d, "linear stability: critical speeds and eigenvalues as speed varies"), sub,
+                       nrows=1, ncols=2)
+    fs = 7.5
+    y, step = 0.905, 0.0215 * fs / 9.5
+    for line in P.wrap_text(_linear_text(d), 150):
+        fig.text(0.05, y, line, ha="left", va="top", fontsize=fs, fontfamily="monospace")
+        y -= step
     for ax, cs in zip(axes[0], ("free", "locked"), strict=True):
         P.speed_locus(d.speed_loci[(d.model, cs)], ax, scale="linear", keep=0.6,
                       marks=(0.25, 0.75, 2.0, 5.0, 10.0))
-    bottom = _footer(fig, "Linear axes around the slow modes, which decide directional stability; the fast caster "
-                     "modes (large negative real parts) leave the frame. The other model variant is compared in the "
-                     "method appendix.")
-    return P.finish(fig, bottom=bottom)
+    bottom = _footer(fig, "Root loci: linear axes around the slow modes, which decide directional stability; the fast "
+                     "caster modes (large negative real parts) leave the frame. The other model variant is compared "
+                     "in the method appendix.")
+    return P.finish(fig, top=y - 0.05, bottom=bottom)
 
 
 def _p_re_im(d: ReportData) -> Figure:
     sub = _subtitle(d)
     fig, axes = P.page(_title(d, "eigenvalues against speed (shaded: unstable)"), sub, nrows=2, ncols=2)
     for j, cs in enumerate(("free", "locked")):
-        P.eigenvalues_vs_speed(d.speed_loci[(d.model, cs)], [axes[0, j], axes[1, j]],
+        locus = d.speed_loci[(d.model, cs)]
+        real_only = float(np.abs(locus.eigenvalues.imag).max()) < NON_OSCILLATORY
+        P.eigenvalues_vs_speed(locus, [axes[0, j], None if real_only else axes[1, j]],
                                mode_names=d.mode_names.get((d.model, cs)))
+        if real_only:
+            axes[1, j].axis("off")
+            axes[1, j].text(0.5, 0.6, f"{cs.capitalize()} casters: every mode is non-oscillatory at every speed "
+                            "(imaginary parts 0),\nso there is no frequency to plot.", ha="center", va="center",
+                            fontsize=8.5, transform=axes[1, j].transAxes)
     bottom = _footer(fig, f"Modes named from their eigenvectors at {REFERENCE_SPEED:g} m/s (largest share of "
                      "sideslip v/U, yaw r s/U, casters in phase, casters opposed; a second share named when above "
                      "20 %). Linear axis; fast modes off scale are listed in the legend.")
@@ -209,8 +224,15 @@ def _p_re_im(d: ReportData) -> Figure:
 
 def _p_growth(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    return P.growth_rate_vs_parameter(d.parameter_loci, _title(d, "growth rate of the least stable mode "
-                                      "against design parameters, 0.75 m/s"), sub)
+    drawn = [loc for loc in d.parameter_loci if not flat_growth(loc)]
+    flat = [loc for loc in d.parameter_loci if flat_growth(loc)]
+    fig = P.growth_rate_vs_parameter(drawn, _title(d, "growth rate of the least stable mode against design "
+                                                      "parameters, 0.75 m/s"), sub, ncols=columns(len(drawn)))
+    bottom = 0.08
+    if flat:
+        bottom = _footer(fig, f"Within {100 * FLAT_GROWTH:g} % over the whole span (not drawn): " + "; ".join(
+            f"{loc.label}: {float(np.median(loc.max_real)):.3g} 1/s" for loc in flat) + ".")
+    return P.finish(fig, top=0.88, bottom=bottom)
 
 
 def _p_gain(d: ReportData) -> Figure:
@@ -317,20 +339,23 @@ def _p_equal(d: ReportData) -> Figure:
 def _p_sweeps(d: ReportData) -> Figure:
     sub = _subtitle(d)
     table = d.chair_sweeps
-    n = len(table.sweeps)
-    ncols = 4
+    drawn, flat = no_effect(d)
+    n = max(len(drawn), 1)
+    ncols = columns(n)
     nrows = int(math.ceil(n / ncols))
     fig, axes = P.page(_title(d, "parametric study: equal-instability speed per chapter-8 parameter"),
                        sub, nrows=nrows, ncols=ncols)
     limits = {p: (v, f"tips at {d.tip_limits_deg:g} deg") for p, v in d.tip_limits.items()}
-    P.sweep_chart(table, axes, limits=limits)
+    P.sweep_chart(table, axes, limits=limits, sweeps=drawn)
     note = (f" Dash-dot line: where the braked chair's static stability angle toward its main wheels falls to "
             f"{d.tip_limits_deg:g} deg (Loane and Kirby's measured mean for a conventional chair, brakes "
             "unlocked: a scale, not a like-for-like "
             "limit): moving the axle "
             "past it trades tipping for directional stability." if limits else "")
+    flat_line = no_effect_line(d, flat)
     bottom = _footer(fig, "Dashed line: this chair's equal-instability speed; dotted line: its value of the "
-             "parameter; other parameters at the chair's values. Same speed scale in every panel." + note)
+             "parameter; other parameters at the chair's values. Same speed scale in every panel." + note
+             + ("\n" + flat_line if flat_line else ""))
     return P.finish(fig, bottom=bottom)
 
 
@@ -454,9 +479,8 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         # appendix: method, validation and the linear analysis in full
         ("method", partial(_p_method, d)),
         ("findings", partial(_p_findings, d)),
-        ("linear stability: critical speeds", partial(_p_summary, d)),
+        ("linear stability: critical speeds", partial(_p_linear, d)),
         ("tires", partial(_p_tires, d)),
-        ("eigenvalues as speed varies", partial(_p_speed_loci, d)),
         ("growth rate against design parameters", partial(_p_growth, d)),
         ("yaw-rate feedback root locus", partial(_p_gain, d)),
         ("parametric study table", partial(_p_sweep_table, d)),

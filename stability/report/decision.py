@@ -125,6 +125,10 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
                 word = better_word(b - a, higher, tolerance=1e-3 * max(abs(a), abs(b), 1e-12))
                 cells[1][i] += "" if word == "no change" else f" ({word})"
     rows = [[lab] + [c[i] for c in cells] for i, lab in enumerate(labels)]
+    # a tip direction no column has (a chair's four, a wheel layout's four) is no row: it could only print dashes
+    have = {k for _, m, _ in cols for k, v in m.tip_angles_deg.items() if v is not None}
+    tips = {2 + j: k for j, k in enumerate(DIRECTION_WORDS)}
+    rows = [r for i, r in enumerate(rows) if i not in tips or tips[i] in have]
     return ["measure (range)"] + [n for n, _, _ in cols], rows
 
 

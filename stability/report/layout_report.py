@@ -30,7 +30,7 @@ from stability.layout.text import layout_text
 from stability.runtime.files import write_pdf
 from stability.settings.reference import REFERENCE_SPEED
 from stability.study.layout_equal_instability import layout_equal_instability_interval
-from stability.study.layout_impulse import layout_critical_impulses
+from stability.study.layout_impulse import layout_critical_impulses, slow_divergences
 
 __all__ = ["LayoutReport", "NOT_APPLICABLE", "compute_layout_report", "layout_report_pages", "write_layout_report"]
 
@@ -88,7 +88,10 @@ def _impulses(layout: Layout) -> tuple[list[str], list[dict]]:
         way = "backwards" if p.speed < 0 else "forwards"
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
         lines.append(f"  {abs(p.speed):g} m/s {way}: {p.describe()} (sideways kick {kick})")
-    return lines, [p.to_dict() for p in pts]
+    slow = {d.speed: d for d in slow_divergences(layout, pts)}
+    lines += [f"  Note, {d.text()}" for d in slow.values()]
+    return lines, [{**p.to_dict(), "slow_divergence": slow[p.speed].to_dict() if p.speed in slow else None}
+                   for p in pts]
 
 
 def _equal(layout: Layout) -> tuple[list[str], list[dict]]:

@@ -13,6 +13,7 @@ import numpy as np
 
 from stability.chair import preset
 from stability.chair.design import get_parameter
+from stability.chair.power import drive_kind
 from stability.report.compute import ReportData
 from stability.report.quick import mark
 from stability.report.sections import section_drops
@@ -166,7 +167,10 @@ def dropped_pages(d: ReportData) -> dict[str, str]:
         out["stability maps"] = (f"no run of either map reaches |yaw rate| = {d.friction_map.criterion.yaw_rate:g} "
                                  f"rad/s within {d.friction_map.criterion.duration:g} s, so both maps are blank")
     out.update(section_drops(d))
-    if d.gain_loci and all(g.stabilising_gain == 0 for g in d.gain_loci):
+    if drive_kind(d.chair) == "handrim":
+        out["yaw-rate feedback root locus"] = ("it is a manual chair, pushed on its hand rims: no controller can "
+                                               "close a yaw-rate feedback loop (the page is for power chairs)")
+    elif d.gain_loci and all(g.stabilising_gain == 0 for g in d.gain_loci):
         out["yaw-rate feedback root locus"] = ("the linear model is stable without yaw-rate feedback at "
                                                + " and ".join(f"{g.speed:g}" for g in d.gain_loci)
                                                + " m/s, so there is no feedback gain to find")

@@ -18,7 +18,7 @@ Examples
 3.2
 """
 
-from stability.settings.run import RunSpec
+from stability.settings.run import CASTERS, MODELS, OUT_OF_RANGE_POLICIES, SCHEMES, RunSpec
 from stability.simulate.api import simulate, simulate_batch
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, STATS_LEVELS
@@ -26,11 +26,7 @@ from stability.simulate.layout import LayoutRun, simulate_layout
 from stability.simulate.linearise import linearise
 from stability.simulate.options import (
     ADAPTIVE_METHOD,
-    CASTERS,
     LOAD_LIMIT_N,
-    MODELS,
-    OUT_OF_RANGE_POLICIES,
-    SCHEMES,
     SLIP_LIMIT_DEG,
     WARNING_LIMIT,
     WHEEL_LABELS,
@@ -39,28 +35,7 @@ from stability.simulate.options import (
 from stability.simulate.results import ChairState, RunStats, SimulationResult
 from stability.simulate.stepcheck import StepStabilityWarning
 
-__all__ = [
-    "SCHEMES",
-    "MODELS",
-    "CASTERS",
-    "OUT_OF_RANGE_POLICIES",
-    "WHEELS",
-    "WHEEL_LABELS",
-    "SLIP_LIMIT_DEG",
-    "LOAD_LIMIT_N",
-    "WARNING_LIMIT",
-    "ADAPTIVE_METHOD",
-    "RunSpec",
-    "ChairState",
-    "SimulationResult",
-    "simulate",
-    "simulate_batch",
-    "linearise",
-    "SampledController",
-    "RunStats",
-    "RECORDS",
-    "STATS_LEVELS",
-    "StepStabilityWarning",
-    "simulate_layout",
-    "LayoutRun",
-]
+__all__ = ["SCHEMES", "MODELS", "CASTERS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG",
+           "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "RunSpec", "ChairState", "SimulationResult", "simulate",
+           "simulate_batch", "linearise", "SampledController", "RunStats", "RECORDS", "STATS_LEVELS",
+           "StepStabilityWarning", "simulate_layout", "LayoutRun"]

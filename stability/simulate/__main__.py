@@ -27,10 +27,10 @@ from stability.cli import (
     run,
     run_from_args,
 )
+from stability.plotting.responses import plot_result
 from stability.settings.run import RunSpec
 from stability.simulate.api import simulate
-from stability.simulate.options import ADAPTIVE_SAMPLE
-from stability.simulate.plot import plot_result
+from stability.simulate.options import ADAPTIVE_SAMPLE, WCHAIR_DT
 
 __all__ = ["main", "build_parser"]
 
@@ -60,17 +60,11 @@ MAX_OUTPUT_ROWS = 100_000
 
 def _check_output(args: argparse.Namespace, run: RunSpec) -> None:
     """The output's size (rows of --csv/--json) within :data:`MAX_OUTPUT_ROWS`, before any work."""
-    step = (0.001 if run.dt == "auto" else float(run.dt)) if run.scheme == "wchair" else ADAPTIVE_SAMPLE
+    step = (WCHAIR_DT if run.dt == "auto" else float(run.dt)) if run.scheme == "wchair" else ADAPTIVE_SAMPLE
     interval = run.sample if run.sample is not None else step
     if args.csv or args.json or args.json_file:
         check_work(f"--horizon {run.horizon:g} s every {interval:g} s (output rows)", run.horizon / interval,
                    MAX_OUTPUT_ROWS, f"give --sample >= {run.horizon / MAX_OUTPUT_ROWS:.2g} s")
-
-
-def _sim_policy(args: argparse.Namespace) -> str:
-    """The simulator's tire policy from ``--tire-range``: raise stops a run, warn and clamp clamp the fits at the
-    data's edge and count the warnings, as program WCHAIR."""
-    return "raise" if args.tire_range == "raise" else RunSpec().out_of_range
 
 
 def _run_layout(args: argparse.Namespace, run_spec: RunSpec) -> int:
@@ -98,7 +92,10 @@ def _run_cli(args: argparse.Namespace) -> int:
 
     outputs = {"--csv": args.csv, "-o": args.output, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair})
-    run_spec = run_from_args(args, RUN_OPTIONS, out_of_range=_sim_policy(args))
+    # the tire policy from --tire-range: raise stops a run; warn and clamp clamp the fits at the data's edge and
+    # count the warnings, as program WCHAIR
+    policy = "raise" if args.tire_range == "raise" else RunSpec().out_of_range
+    run_spec = run_from_args(args, RUN_OPTIONS, out_of_range=policy)
     _check_output(args, run_spec)
     if is_layout_spec(args.chair):
         return _run_layout(args, run_spec)

@@ -17,12 +17,14 @@ from stability.simulate.options import (
     LOAD_LIMIT_N,
     SLIP_LIMIT_DEG,
     WARNING_LIMIT,
+    WHEEL_LABELS,
+    WHEELS,
     Options,
     impulse_on,
     initial_velocities,
 )
 from stability.simulate.packing import Packed, policy_code, slope_slots
-from stability.simulate.results import NCOLS, ChairState, SimulationResult, new_warnings, note_warning
+from stability.simulate.results import NCOLS, ChairState, SimulationResult, warning_table
 
 __all__ = ["AdaptiveModel", "adaptive_single", "NoLoadSolution", "FREE_POS", "FREE_NEG", "STUCK", "LOCKED"]
 
@@ -59,72 +61,11 @@ class NoLoadSolution(RuntimeError):
 
 
 class AdaptiveModel:
-    """Right-hand side (compiled, :mod:`.adaptive_kernel`), stick-slip bookkeeping and samples of one run.
+    """One run's right-hand side compiled (:mod:`.adaptive_kernel`), its stick-slip bookkeeping and its samples.
 
     A Python ``yaw_moment`` input is called at every evaluation with the
     state there (floats) and its value passed to the compiled right-hand side.
     """
-
-    def __init__(self, chair: Chair, speed: float, opts: Options):
-        self.opts = opts
-        self.chair = chair
-        self.speed = speed
-        self._cache_key: tuple | None = None
-        self._cache_val: tuple | None = None
-        self.nfev = 0
-        self.max_nfev = int(MAX_NFEV_PER_S * max(opts.duration, 1.0))
-        self._ck = _Compiled(chair, speed, opts)
-
-    def yaw_moment(self, t: float, y: np.ndarray) -> float:
-        """The yaw-moment input at ``(t, y)``, N m (0 without one)."""
-        if self.opts.yaw_moment is None:
-            return 0.0
-        X, Y, psi, u, v, r, eta, ed, beta, bd = (float(x) for x in y)
-        return float(self.opts.yaw_moment(float(t), ChairState(X, Y, psi, u, v, r, eta, ed, beta, bd, 0)))
-
-    def _point(self, t, y, modes, imp):
-        """(dy array, aux dict) at one point, cached for the event functions."""
-        y = np.ascontiguousarray(y, dtype=float)
-        key = (t, y.tobytes())
-        if key == self._cache_key and self._cache_val is not None:
-            return self._cache_val
-        self.nfev += 1
-        if self.nfev > self.max_nfev:
-            raise RuntimeError(f"adaptive integration stalled at t = {t:.9g} s: more than {self.max_nfev} "
-                               "right-hand-side evaluations (the step collapsed; try a looser rtol or the wchair "
-                               "scheme)")
-        val = self._ck.point(t, y, modes, imp, self.yaw_moment(t, y))
-        self._cache_key, self._cache_val = key, val
-        return val
-
-    def rhs(self, modes, imp):
-        def f(t, y):
-            return self._point(t, y, modes, imp)[0]
-        return f
-
-    def aux(self, t, y, modes, imp):
-        return self._point(t, y, modes, imp)[1]
-
-    def holding(self, t, y, modes, side, imp):
-        """Pin moment needed to hold caster ``side`` (0 = A, 1 = B) at rest."""
-        m = list(modes)
-        m[side] = STUCK
-        y = np.array(y, dtype=float)
-        y[7 if side == 0 else 9] = 0.0
-        aux = self.aux(t, y, tuple(m), imp)
-        return aux["MA"] if side == 0 else aux["MB"]
-
-    def limit(self, side):
-        """The friction limit of caster ``side``'s pin, N m."""
-        return self.chair.pin_friction_left if side == 0 else self.chair.pin_friction_right
-
-    def holds(self, moment, side):
-        """Whether caster ``side``'s pin holds it against ``moment`` (N m): the stick condition."""
-        return pin_holds(moment, self.limit(side))
-
-
-class _Compiled:
-    """The packed arrays of one run for :mod:`.adaptive_kernel` (imported here: numba loads on first use)."""
 
     def __init__(self, chair: Chair, speed: float, opts: Options):
         with first_use("adaptive_load"):
@@ -137,11 +78,20 @@ class _Compiled:
         self.arrays = (pk.P[0], pk.S[0], pk.TK[0], pk.TS[0], pk.TL[0], pk.LIM[0], pk.RK[0], pk.RC[0], pk.RS[0],
                        pk.CAM[0], np.array(slope_slots(opts)))
         self.guess = np.zeros(2)
+        self._cache: tuple = (None, None)
+        self.nfev = 0
+        self.max_nfev = int(MAX_NFEV_PER_S * max(opts.duration, 1.0))
 
     def hold_drive(self, left: float, right: float) -> None:
         """Constant drive forces on the left and right main wheels, N (the linearisation about a slope's
         equilibrium; simulations have none)."""
         self.arrays[1][self.k.DRIVE_D], self.arrays[1][self.k.DRIVE_E] = left, right
+
+    def yaw_moment(self, t: float, y: np.ndarray) -> float:
+        """The yaw-moment input at ``(t, y)``, N m (0 without one)."""
+        if self.opts.yaw_moment is None:
+            return 0.0
+        return float(self.opts.yaw_moment(float(t), ChairState._make([*(float(x) for x in y), 0])))
 
     def _check(self, code: int, aux: np.ndarray, t) -> None:
         if code == 3:
@@ -149,12 +99,49 @@ class _Compiled:
         if code:
             _raise_refused([self.chair], self.opts, np.array([[0.0, 0.0, *aux[20:24]]]))
 
-    def point(self, t: float, y: np.ndarray, modes, imp: bool, mz: float) -> tuple[np.ndarray, dict]:
+    def point(self, t: float, y: np.ndarray, modes, imp: bool, mz: float) -> tuple[np.ndarray, tuple[float, float]]:
+        """``(dy, (M_A, M_B))`` at ``(t, y)``: the derivatives and the pin moments, N m (the yaw moment ``mz``)."""
         dy, aux = np.empty(10), np.zeros(self.k.NAUX)
         code = self.k.evaluate(float(t), y, int(modes[0]), int(modes[1]), bool(imp), float(mz), *self.head,
                                *self.arrays, self.guess, dy, aux)
         self._check(code, aux, t)
-        return dy, {"MA": float(aux[16]), "MB": float(aux[17])}
+        return dy, (float(aux[16]), float(aux[17]))
+
+    def _point(self, t, y, modes, imp):
+        """:meth:`point` with the input's yaw moment, counted and cached for the event functions."""
+        y = np.ascontiguousarray(y, dtype=float)
+        key = (t, y.tobytes())
+        if key == self._cache[0]:
+            return self._cache[1]
+        self.nfev += 1
+        if self.nfev > self.max_nfev:
+            raise RuntimeError(f"adaptive integration stalled at t = {t:.9g} s: more than {self.max_nfev} "
+                               "right-hand-side evaluations (the step collapsed; try a looser rtol or the wchair "
+                               "scheme)")
+        val = self.point(t, y, modes, imp, self.yaw_moment(t, y))
+        self._cache = (key, val)
+        return val
+
+    def rhs(self, modes, imp):
+        def f(t, y):
+            return self._point(t, y, modes, imp)[0]
+        return f
+
+    def pin_moment(self, t, y, modes, side, imp) -> float:
+        """Pin moment of caster ``side`` (0 = A, 1 = B) at ``(t, y)``, N m."""
+        return self._point(t, y, modes, imp)[1][side]
+
+    def holding(self, t, y, modes, side, imp) -> float:
+        """Pin moment needed to hold caster ``side`` (0 = A, 1 = B) at rest, N m."""
+        m = list(modes)
+        m[side] = STUCK
+        y = np.array(y, dtype=float)
+        y[7 if side == 0 else 9] = 0.0
+        return self.pin_moment(t, y, tuple(m), side, imp)
+
+    def limit(self, side):
+        """The friction limit of caster ``side``'s pin, N m."""
+        return self.chair.pin_friction_left if side == 0 else self.chair.pin_friction_right
 
     def samples(self, tt: np.ndarray, yy: np.ndarray, modes, imp: bool, mzs: np.ndarray) -> np.ndarray:
         """Columns ``COLUMNS[1:]`` at the samples, shape (31, m); ``mzs`` the yaw-moment input at each, N m."""
@@ -182,12 +169,19 @@ def _events(model: AdaptiveModel, modes: tuple, imp: bool) -> tuple[list, list]:
             lim = model.limit(side)
 
             def ev_break(tt, yy, side=side, lim=lim, m=modes, i=imp):
-                aux = model.aux(tt, yy, m, i)
-                return abs(aux["MA"] if side == 0 else aux["MB"]) - lim
+                return abs(model.pin_moment(tt, yy, m, side, i)) - lim
             ev_break.terminal, ev_break.direction = True, 1  # type: ignore[attr-defined]
             events.append(ev_break)
             kinds.append(("break", side))
     return events, kinds
+
+
+def _held_or_slipping(model: AdaptiveModel, t: float, y: np.ndarray, modes: list, side: int, imp: bool,
+                      may_stick: bool = True) -> int:
+    """Caster ``side`` at rest: stuck while its pin holds it (``may_stick``), else slipping against the holding
+    moment."""
+    h = model.holding(t, y, tuple(modes), side, imp)
+    return STUCK if may_stick and pin_holds(h, model.limit(side)) else (FREE_NEG if h > 0 else FREE_POS)
 
 
 def _switch(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, kinds: list, t_events: list,
@@ -199,14 +193,7 @@ def _switch(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, kinds: 
             continue
         if kind == "rest":
             y[7 if side == 0 else 9] = 0.0
-            h = model.holding(t, y, tuple(new), side, imp)
-            if model.holds(h, side):
-                new[side] = STUCK
-            else:
-                new[side] = FREE_NEG if h > 0 else FREE_POS
-        else:
-            h = model.holding(t, y, tuple(new), side, imp)
-            new[side] = FREE_NEG if h > 0 else FREE_POS
+        new[side] = _held_or_slipping(model, t, y, new, side, imp, may_stick=kind == "rest")
     return tuple(new)
 
 
@@ -215,9 +202,7 @@ def _settle(model: AdaptiveModel, t: float, y: np.ndarray, modes: tuple, imp: bo
     new = list(modes)
     for side in (0, 1):
         if new[side] == STUCK:
-            h = model.holding(t, y, tuple(new), side, imp)
-            if not model.holds(h, side):
-                new[side] = FREE_NEG if h > 0 else FREE_POS
+            new[side] = _held_or_slipping(model, t, y, new, side, imp)
     return tuple(new)
 
 
@@ -311,7 +296,7 @@ def _block(model: AdaptiveModel, tt: np.ndarray, yy: np.ndarray, modes: tuple, i
     out = np.empty((NCOLS, tt.size))
     out[0] = tt
     mzs = np.array([model.yaw_moment(t, yy[:, j]) for j, t in enumerate(tt)])
-    out[1:] = model._ck.samples(tt, yy, modes, imp, mzs)
+    out[1:] = model.samples(tt, yy, modes, imp, mzs)
     return out
 
 
@@ -355,25 +340,23 @@ def _sample(model: AdaptiveModel, segments: list, opts: Options,
                     raise
                 return ts[:row], rec[:row]
     return ts, rec
+
+
 def _sample_warnings(ts: np.ndarray, rec: np.ndarray, opts: Options) -> tuple[dict, bool, float | None, int]:
-    """Range warnings counted per sample: ``(warnings, stopped, stop_time, samples kept)``."""
-    warn = new_warnings()
-    slip_abs = np.max(np.abs(rec[:, 23:27]), axis=1)
-    nmax = np.max(rec[:, 19:23], axis=1)
-    nmin = np.min(rec[:, 19:23], axis=1)
-    counts = {"slip": 0, "load": 0}
-    for i in range(len(ts)):
-        if nmax[i] > LOAD_LIMIT_N:
-            note_warning(warn, "load", ts[i], nmax[i])
-            counts["load"] += 1
-        if nmin[i] < 0:
-            note_warning(warn, "lift_off", ts[i], nmin[i])
-        if slip_abs[i] > SLIP_LIMIT_DEG:
-            note_warning(warn, "slip", ts[i], slip_abs[i])
-            counts["slip"] += 1
-        if opts.stop_on_warnings and max(counts.values()) > WARNING_LIMIT:
-            return warn, True, float(ts[i]), i
-    return warn, False, None, len(ts)
+    """Range warnings counted per sample: ``(warnings, stopped, stop_time, samples kept)``.
+
+    A run that stops at the eleventh slip or load warning keeps the samples before it; its warnings count it.
+    """
+    values = (np.max(np.abs(rec[:, 23:27]), axis=1), np.max(rec[:, 19:23], axis=1), np.min(rec[:, 19:23], axis=1))
+    hits = (values[0] > SLIP_LIMIT_DEG, values[1] > LOAD_LIMIT_N, values[2] < 0)
+    over = np.flatnonzero(np.maximum(np.cumsum(hits[0]), np.cumsum(hits[1])) > WARNING_LIMIT)
+    end = int(over[0]) if opts.stop_on_warnings and over.size else len(ts)
+    warn = np.zeros((3, 3))
+    for j, (hit, v) in enumerate(zip(hits, values, strict=True)):
+        idx = np.flatnonzero(hit[:end + 1])
+        if idx.size:
+            warn[j] = idx.size, ts[idx[0]], v[idx[np.argmax(np.abs(v[idx]))]]
+    return warning_table(warn), end < len(ts), float(ts[end]) if end < len(ts) else None, end
 
 
 def adaptive_single(chair: Chair, speed: float, opts: Options) -> SimulationResult:
@@ -430,7 +413,7 @@ def _stop_reason(t_fail: float, row: np.ndarray) -> str:
     """One line: why a run ended early (no load solution at ``t_fail``, s), with the state of its last sample."""
     loads = row[19:23]
     w = int(np.argmin(loads))
-    side = ("left caster", "right caster", "left main wheel", "right main wheel")[w]
+    side = WHEEL_LABELS[WHEELS[w]]
     what = "lifts off" if loads[w] < 0 else "is about to lift off"
     return (f"normal loads and tire forces have no converging solution at t = {t_fail:.4f} s (the {side} {what}: "
             f"load {loads[w]:.0f} N, yaw rate {row[4]:+.2f} rad/s at {row[0]:.4f} s, the last time integrated)")

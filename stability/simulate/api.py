@@ -50,11 +50,8 @@ def simulate(chair: Chair, speed: float | None = None, run: RunSpec | None = Non
         Initial forward speed, m/s: shorthand for ``run.replace(speed=speed)``
         (default ``run.speed``, 0.75 m/s).
     run : RunSpec, optional
-        Every other setting of the run (:class:`stability.settings.run.RunSpec`:
-        push, initial conditions, horizon, step, scheme, pin-friction law,
-        model, casters, tire-range policy, stop rule, sampling, tolerances,
-        slope); default ``RunSpec()``, the thesis's reference push on the
-        wchair scheme with stick-slip pin friction.
+        Every other setting of the run (:class:`stability.settings.run.RunSpec`); default
+        ``RunSpec()``: the thesis's reference push, the wchair scheme, stick-slip pin friction.
     yaw_moment : callable, optional
         ``yaw_moment(t, state) -> N m``: a yaw moment on the chair; ``state``
         is a :class:`ChairState`.  The wchair scheme samples it at every step
@@ -138,14 +135,10 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
         valid range).
     """
     spec = _spec(None, run)
-    if isinstance(chairs, Chair):
-        chair_list = [chairs]
-    else:
-        chair_list = list(chairs)
-        if not chair_list:
-            raise ValueError("chairs=[] is invalid; expected a Chair or a non-empty sequence of Chair")
-    for c in chair_list:
-        _check_chair(c)
+    one = isinstance(chairs, Chair)
+    chair_list = [_check_chair(c) for c in ([chairs] if isinstance(chairs, Chair) else chairs)]
+    if not chair_list:
+        raise ValueError("chairs=[] is invalid; expected a Chair or a non-empty sequence of Chair")
     sp = np.asarray(spec.speed if speeds is None else speeds, dtype=float)
     if sp.ndim > 1:
         raise ValueError(f"speeds has shape {sp.shape}; expected a number or a 1-D array")
@@ -166,18 +159,14 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
         for f in (float(fa.min()), float(fa.max())):
             spec.replace(push_force=f)                      # within the push's range
     try:
-        shape = np.broadcast_shapes((len(chair_list),) if not isinstance(chairs, Chair) else (), sp.shape,
-                                    () if fa is None else fa.shape)
+        shape = np.broadcast_shapes(() if one else (len(chair_list),), sp.shape, () if fa is None else fa.shape)
     except ValueError:
         raise ValueError(f"cannot broadcast {len(chair_list)} chairs against {sp.size} speeds"
                          + ("" if fa is None else f" and {fa.size} push forces")
                          + "; give one of each or equally many") from None
-    n = int(np.prod(shape)) if shape else 1
-    chair_idx = np.broadcast_to(np.arange(len(chair_list)) if not isinstance(chairs, Chair) else 0, shape).reshape(-1)
+    chair_idx = np.broadcast_to(0 if one else np.arange(len(chair_list)), shape).reshape(-1)
     speed_arr = np.broadcast_to(sp, shape).reshape(-1).astype(float)
     run_chairs = [chair_list[int(i)] for i in chair_idx]
-    if n == 0:
-        return []
     forces = None if fa is None else np.broadcast_to(fa, shape).reshape(-1).astype(float)
     threads = None if workers is None else _check_workers(workers)
     return _run(run_chairs, speed_arr, spec, forces, yaw_moment, controller, record, progress=progress,

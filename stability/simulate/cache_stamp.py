@@ -27,14 +27,12 @@ COMPILED_MODULES = (_fw, _sl, _fo, _tire_law)
 def invalidate_stale_cache(namespace: dict, stamp_name: str, extra: tuple = ()) -> None:
     """Drop the on-disk compiled code of ``namespace``'s kernels when the generated equations changed.
 
-    numba keys a cached function on its own source file only, and a cached
-    kernel carries a copy of every function it calls from other modules (the
-    generated equations, the WCHAIR kernel's helpers that the adaptive kernel
-    uses, the controller); so a stamp (the SHA-256 of the modules compiled as
-    they are, :data:`COMPILED_MODULES`, and of the kernel modules
-    :data:`KERNEL_SOURCES`) is kept next to the cache and, when it
-    differs, every kernel of the module is recompiled.
-    Nothing happens when the cache directory is not writable.
+    numba keys a cached function on its own source file only, but a cached
+    kernel carries a copy of every function it calls from other modules; so
+    a stamp (the SHA-256 of :data:`COMPILED_MODULES` and
+    :data:`KERNEL_SOURCES`) is kept next to the cache, and when it differs
+    every kernel of the module is recompiled (not when the cache directory is
+    not writable).
 
     Parameters
     ----------

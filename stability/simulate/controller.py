@@ -105,14 +105,10 @@ class SampledController:
         ----------
         K : array_like, shape (len(states),)
             Gains, N m per state unit.
-        sample_time : float
-            Sample period, s.
-        limit : float
-            Saturation, N m.
+        sample_time, limit, name
+            As the controller's (s, N m).
         states : tuple of str
             Names from :data:`STATE_ORDER`.
-        name : str
-            Recorded in the settings.
 
         Returns
         -------

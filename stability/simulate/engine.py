@@ -25,7 +25,7 @@ from stability.simulate import kernel_choice as _kc
 from stability.simulate.controller import SampledController
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, n_steps
 from stability.simulate.packing import Packed, policy_code, slope_slots
-from stability.simulate.results import ChairState, RunStats, SimulationResult
+from stability.simulate.results import ChairState, RunStats, SimulationResult, warning_table
 
 __all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
            "use_kernel"]
@@ -39,7 +39,6 @@ RECORDS = ("all", "states", "final")
 STATS_LEVELS = (0.5, LEVEL)
 #: Runs stopped at a level (the searches) and with stick-slip friction also stop once settled (kernel.SETTLE).
 SETTLE_STOP = True
-_WARN_KINDS = ("slip", "load", "lift_off")
 
 
 _FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True}
@@ -51,17 +50,8 @@ COMPILE_NOTICE = ("compiling the simulator (first use on this machine, about 10-
 
 @contextlib.contextmanager
 def first_use(scheme: str) -> Iterator[None]:
-    """Around the first compiled call of ``scheme`` in a process: say so if it takes over 2 s (a compile).
-
-    Parameters
-    ----------
-    scheme : str
-        A key of the first-use table (the kernel's load or its first call).
-
-    Yields
-    ------
-    None
-    """
+    """Around the first compiled call of ``scheme`` (a key of the first-use table: the kernel's load or its first
+    call) in a process: say so if it takes over 2 s (a compile)."""
     if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False):
         yield
         return
@@ -146,8 +136,7 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
     out = []
     for i in range(n_runs):
         s = settings if forces is None else dict(settings, impulse_force=float(forces[i]))
-        w = {kind: {"count": int(warn[i, j, 0]), "first_time": None if warn[i, j, 0] == 0 else float(warn[i, j, 1]),
-                    "max": None if warn[i, j, 0] == 0 else float(warn[i, j, 2])} for j, kind in enumerate(_WARN_KINDS)}
+        w = warning_table(warn[i])
         m = int(counts[i])
         t = times[:m] if mode != 2 else np.array([_last_time(opts, status[i], steps)])
         run_stats = RunStats(levels=STATS_LEVELS, time_to_level=tuple(None if math.isnan(x) else float(x)
@@ -201,18 +190,14 @@ class PackedRuns:
 
     Parameters
     ----------
-    chairs : sequence of Chair
-        One per pair.
-    speeds : ndarray
-        m/s, one per pair.
+    chairs, speeds
+        One per pair, as in :func:`run_compiled`.
     opts : dict of float to Options
         Checked options per fixed step (s): the runs of a pair use ``opts[steps[i]]``.
     steps : ndarray
         Each pair's step, s (a key of ``opts``).
-    levels : sequence of float
-        |yaw rate| levels whose first crossing is reported, rad/s.
-    stop_level : int, optional
-        Index into ``levels`` at which every run stops (None: none).
+    levels, stop_level
+        As in :func:`run_summaries`.
     """
 
     def __init__(self, chairs: Sequence[Chair], speeds: np.ndarray, opts: dict[float, Options], steps: np.ndarray,
@@ -274,21 +259,8 @@ class PackedRuns:
 
 
 def initial_state(S: np.ndarray, nz: int) -> np.ndarray:
-    """The kernel's per-run state at ``t = 0`` (:data:`~stability.simulate.kernel_equations.NSTATE` + ``nz``).
-
-    Parameters
-    ----------
-    S : ndarray, shape (n, 8)
-        The packed per-run scalars (initial velocities m/s, caster angles rad, ...).
-    nz : int
-        States of the sampled controller.
-
-    Returns
-    -------
-    ndarray, shape (n, NSTATE + nz)
-        The ten states (u, v, caster angles from ``S``), everything else zero,
-        the settle tracker unset.
-    """
+    """The kernels' per-run state at ``t = 0``, shape (n, NSTATE + ``nz``) (``nz``: the controller's states): the
+    ten states (u, v and the caster angles from the packed scalars ``S``), the rest zero, the settle tracker unset."""
     k = _kernel()
     state = np.zeros((S.shape[0], k.NSTATE + nz))
     state[:, 3], state[:, 4], state[:, 6], state[:, 8] = S[:, k.U0], S[:, k.V0], S[:, k.ETA0], S[:, k.BETA0]
@@ -352,14 +324,10 @@ def run_summaries(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *,
 
     Parameters
     ----------
-    chairs : sequence of Chair
-        One chair per run.
-    speeds : ndarray
-        Initial forward speeds, m/s, shape ``(len(chairs),)``.
+    chairs, speeds, forces, threads
+        As in :func:`run_compiled`.
     opts : Options
         Checked options, ``scheme="wchair"``, no Python ``yaw_moment``.
-    forces : ndarray, optional
-        Per-run push at the c.g., N.
     levels : sequence of float
         |yaw rate| levels whose first crossing is reported, rad/s.
     stop_level : int, optional
@@ -367,8 +335,6 @@ def run_summaries(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *,
         ``|yaw rate|`` first reaches that level (its summaries are final then:
         the first crossing is found, and the peak up to it is the level).
         None: every run goes to the end.
-    threads : int, optional
-        Kernel threads (None: numba's default).
 
     Returns
     -------

@@ -25,7 +25,11 @@ __all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "DRIVE_D", "D
            "tire_resultant", "tire_moment", "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment",
            "rest_rate", "lateral_force", "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE",
            "SETTLE_WINDOW", "EXTERNAL_MZ", "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK",
-           "ST_MZ", "ST_NREC", "ST_TRACK", "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED"]
+           "ST_MZ", "ST_NREC", "ST_TRACK", "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED",
+           "X_M", "X_P", "D1", "D2", "T1", "T2", "TRAIL", "L1", "H", "M", "M_C", "I_Z", "I_ZP", "G", "ROLL_K",
+           "PIN_DAMP", "MAF", "MBF", "U0", "V0", "ETA0", "BETA0", "FCIMP", "CT", "ST", "TOE", "SLOPE", "C_PHI",
+           "S_PHI", "C_THETA", "S_THETA", "NREC_ALL", "NREC_STATES", "cv_exact", "cv_thesis", "acc_exact",
+           "acc_thesis", "acc_slope", "gravity_body"]
 
 # Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,

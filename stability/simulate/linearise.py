@@ -23,16 +23,24 @@ __all__ = ["linearise", "forward_acceleration"]
 
 def _rhs(chair: Chair, speed: float, model: str, casters: str, slope: tuple[float, float],
          drive: tuple[float, float]) -> tuple[Any, Any]:
-    """The compiled right-hand side of straight running (frictionless pins, no push, the drive held) and its options."""
+    """``(f, opts)``: the compiled right-hand side of straight running (frictionless pins, no push, the drive held),
+    ``f(x, mz) -> dy`` at ``x = [v, r, eta, eta_dot, beta, beta_dot]`` (SI) under the yaw moment ``mz`` (N m)."""
     chair = chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
     # the defaults, except: the adaptive scheme's right-hand side, no disturbance, the tire-range policy in force
     opts = make_options(RunSpec(speed=speed, horizon=1.0, scheme="adaptive", model=model, casters=casters,
                                 push_force=0.0, push_duration=0.0, stop_on_warnings=False,
                                 out_of_range=tires.get_policy().evaluation, cross_slope_deg=float(slope[0]),
                                 grade_deg=float(slope[1])))
-    rhs = AdaptiveModel(chair, speed, opts)._ck
+    rhs = AdaptiveModel(chair, speed, opts)
     rhs.hold_drive(float(drive[0]), float(drive[1]))
-    return rhs, opts
+    modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)
+    u0, _ = initial_velocities(opts, speed)
+
+    def f(x: np.ndarray, mz: float = 0.0) -> np.ndarray:
+        rhs.guess[:] = 0.0              # every evaluation solves the load-transfer loop from scratch
+        return rhs.point(0.0, np.array([0.0, 0.0, 0.0, u0, *x]), modes, False, mz)[0]
+
+    return f, opts
 
 
 def forward_acceleration(chair: Chair, speed: float, *, model: str = "exact",
@@ -45,27 +53,16 @@ def forward_acceleration(chair: Chair, speed: float, *, model: str = "exact",
 
     Parameters
     ----------
-    chair : Chair
-        The chair.
-    speed : float
-        Forward speed, m/s (> 0).
-    model : {"thesis", "exact"}
-        Equation variant.
-    slope : tuple of float
-        ``(cross_slope_deg, grade_deg)``, deg.
-    drive : tuple of float
-        Constant drive forces on the left and right main wheels, N.
+    chair, speed, model, slope, drive
+        As in :func:`linearise` (m/s; deg; N).
 
     Returns
     -------
     float
         ``u_dot``, m/s^2.
     """
-    rhs, opts = _rhs(chair, check_speed(speed), model, "free", slope, drive)
-    u0, _ = initial_velocities(opts, speed)
-    dy, _ = rhs.point(0.0, np.array([0.0, 0.0, 0.0, u0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), (FREE_POS, FREE_POS), False,
-                      0.0)
-    return float(dy[3])
+    f, _ = _rhs(chair, check_speed(speed), model, "free", slope, drive)
+    return float(f(np.zeros(6))[3])
 
 
 def linearise(chair: Chair, speed: float, *, model: str = "exact", casters: str = "free",
@@ -122,17 +119,11 @@ def linearise(chair: Chair, speed: float, *, model: str = "exact", casters: str 
 
     speed = check_speed(speed)
     step = check_positive("step", step)
-    rhs, opts = _rhs(chair, speed, model, casters, slope, drive)
-    modes = (LOCKED, LOCKED) if opts.casters == "locked" else (FREE_POS, FREE_POS)
-    u0, _ = initial_velocities(opts, speed)
-
+    f, opts = _rhs(chair, speed, model, casters, slope, drive)
     x0 = np.array([at[0], 0.0, at[1], 0.0, at[2], 0.0])
 
     def derivative(dx, mz=0.0):
-        rhs.guess[:] = 0.0              # every evaluation solves the load-transfer loop from scratch
-        y = np.array([0.0, 0.0, 0.0, u0, *(x0 + np.pad(dx, (0, 6 - len(dx))))])
-        dy, _ = rhs.point(0.0, y, modes, False, mz)
-        return np.array(dy[4:4 + len(dx)], dtype=float)
+        return np.array(f(x0 + np.pad(dx, (0, 6 - len(dx))), mz)[4:4 + len(dx)], dtype=float)
 
     n = 2 if opts.casters == "locked" else 6
     eye = np.eye(n) * step

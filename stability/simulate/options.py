@@ -14,20 +14,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from stability.settings.run import (
-    CASTERS,
-    FRICTION_LAWS,
-    MODELS,
-    OUT_OF_RANGE_POLICIES,
-    SCHEMES,
-    WCHAIR_DT,
-    RunSpec,
-)
+from stability.settings.run import WCHAIR_DT, RunSpec
 from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
-__all__ = ["SCHEMES", "MODELS", "CASTERS", "FRICTION_LAWS", "OUT_OF_RANGE_POLICIES", "WHEELS", "WHEEL_LABELS",
-           "SLIP_LIMIT_DEG", "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT", "Options",
-           "make_options", "n_steps", "impulse_on", "initial_velocities", "MAX_SLOPE_DEG"]
+__all__ = ["WHEELS", "WHEEL_LABELS", "SLIP_LIMIT_DEG", "LOAD_LIMIT_N", "WARNING_LIMIT", "ADAPTIVE_METHOD", "WCHAIR_DT",
+           "Options", "make_options", "n_steps", "impulse_on", "initial_velocities"]
 
 #: Wheel order of the per-wheel arrays: left caster, right caster, left main, right main.
 WHEELS = ("A", "B", "D", "E")
@@ -43,63 +34,29 @@ ADAPTIVE_METHOD = "LSODA"
 #: the adaptive scheme's load-transfer loop stops when the total tire force changes by less than this
 #: fraction of its size (1 + |sum F_x| + |sum F_y|, N) between iterations
 LOAD_TOLERANCE = 1e-9
-#: Largest |cross slope| and |grade| of a simulation, deg (RunSpec's bound; tire data: slips stay within 8 deg
-#: up to about 15 deg).
-MAX_SLOPE_DEG = 15.0
-ADAPTIVE_SAMPLE = 0.01
-BATCH_SAMPLE = 0.01
+#: Default output interval of the adaptive scheme and of a batch, s.
+ADAPTIVE_SAMPLE = BATCH_SAMPLE = 0.01
 
 
 @dataclass(frozen=True)
 class Options:
-    """Checked options of one simulation (angles in rad; see :func:`make_options`).
-
-    Built only by :func:`make_options`; the fields mean what the keywords of
-    :func:`stability.simulate.simulate` of the same name mean, except where
-    noted.
+    """Checked options of one simulation, built only by :func:`make_options`.
 
     Attributes
     ----------
-    duration : float
-        Simulated time, s (TTOTAL).  > 0.
-    scheme : {"wchair", "adaptive"}
-        Integration scheme.
-    model : {"thesis", "exact"}
-        Variant of the equations of motion.
-    dt : float
-        Fixed step of the wchair scheme, s (TSTEP), already resolved from
-        ``"auto"``.  0 < dt <= duration for the wchair scheme.
-    impulse_force : float
-        Lateral push at the c.g., N (FCIMP).
-    impulse_duration : float
-        How long the pushes act, s (DUIMP).  >= 0, may be ``inf``.
-    tire_impulse : float
-        Lateral force on each main tire while the push acts, N (FTIMP).
-    lateral_velocity : float
-        Initial lateral velocity, m/s (VD).
+    duration, impulse_force, impulse_duration, tire_impulse : float
+        The :class:`~stability.settings.run.RunSpec` fields under program
+        WCHAIR's names: ``horizon`` (TTOTAL, s), ``push_force`` (FCIMP, N),
+        ``push_duration`` (DUIMP, s), ``tire_push_force`` (FTIMP, N).
     eta0, beta0 : float
-        Initial left and right caster angles, rad (E, B).
-    casters : {"free", "locked"}
-        Caster condition.
-    yaw_moment : callable or None
-        ``yaw_moment(t, state) -> N m`` input, or None.
-    stop_on_warnings : bool
-        Stop at the eleventh warning of a kind (resolved from None).
-    out_of_range : {"clamp", "extrapolate", "raise"}
-        Policy of the tire fits outside their data.
-    sample : float or None
-        Output interval, s (0 < sample <= duration); None: every step.
-    stride : int
-        Steps between recorded rows of the wchair scheme (``sample / dt``;
-        >= 1).
-    rtol, atol : float
-        Tolerances of the adaptive scheme.
-    reverse : bool
-        Drive backwards (initial forward velocity ``-speed``).
-    slope : tuple of float
-        ``(cross_slope_deg, grade_deg)``, deg.
-    friction_law : {"kinetic", "stick-slip"}
-        Pin friction law (resolved from None).
+        Initial left and right caster angles, rad.
+    dt, stride, stop_on_warnings, sample, yaw_moment
+        Resolved by the call: the fixed step (TSTEP, s, never ``"auto"``),
+        the steps between recorded rows of the wchair scheme (>= 1), the stop
+        rule (never None), the output interval (s; None: every step), the
+        ``yaw_moment(t, state) -> N m`` input or None.
+    scheme, model, lateral_velocity, casters, out_of_range, rtol, atol, reverse, slope, friction_law
+        The RunSpec fields of these names (``slope``: cross slope and grade, deg).
     """
 
     duration: float
@@ -127,19 +84,7 @@ class Options:
     @property
     def pin_mode(self) -> float:
         """The compiled kernel's pin mode: 0 free (kinetic friction), 1 locked, 2 free (stick-slip)."""
-        if self.casters == "locked":
-            return 1.0
-        return 2.0 if self.friction_law == "stick-slip" else 0.0
-
-    @property
-    def on_slope(self) -> bool:
-        """True when the plane is inclined (``slope != (0, 0)``)."""
-        return self.slope != (0.0, 0.0)
-
-    def slope_trig(self) -> tuple[float, float, float, float]:
-        """``(cos(phi), sin(phi), cos(theta), sin(theta))`` of the cross slope phi and the grade theta."""
-        phi, theta = math.radians(self.slope[0]), math.radians(self.slope[1])
-        return math.cos(phi), math.sin(phi), math.cos(theta), math.sin(theta)
+        return 1.0 if self.casters == "locked" else (2.0 if self.friction_law == "stick-slip" else 0.0)
 
     def settings(self) -> dict[str, Any]:
         """The options as recorded in a result's ``settings``."""
@@ -151,10 +96,9 @@ class Options:
             "stop_on_warnings": self.stop_on_warnings, "out_of_range": self.out_of_range,
             "sample": self.sample, "yaw_moment": None if self.yaw_moment is None else getattr(
                 self.yaw_moment, "__name__", type(self.yaw_moment).__name__),
-            "reverse": self.reverse,
+            "reverse": self.reverse, "friction_law": self.friction_law,
         }
-        d["friction_law"] = self.friction_law
-        if self.on_slope:   # level runs keep today's settings (and JSON) unchanged
+        if self.slope != (0.0, 0.0):   # level runs keep today's settings (and JSON) unchanged
             d.update(cross_slope_deg=self.slope[0], grade_deg=self.slope[1])
         if self.scheme == "wchair":
             d["dt"] = self.dt
@@ -210,59 +154,55 @@ def make_options(run: RunSpec, *, yaw_moment: Callable | None = None, batch: boo
 
 
 def n_steps(opts: Options) -> int:
-    """Iterations of ``DO 99 T = 0, TTOTAL+TSTEP, TSTEP`` (F77 trip count; program WCHAIR, Appendix C).
+    """Steps of a wchair run: the F77 trip count of ``DO 99 T = 0, TTOTAL+TSTEP, TSTEP`` (program WCHAIR).
 
     Parameters
     ----------
     opts : Options
-        Checked options; uses ``duration`` (TTOTAL, s) and ``dt`` (TSTEP, s).
+        Uses ``duration`` (TTOTAL, s) and ``dt`` (TSTEP, s).
 
     Returns
     -------
     int
-        Number of steps, ``floor((duration + 2 dt) / dt)`` (a tolerance of
-        1e-9 absorbs rounding of the quotient): the run covers
-        ``t = 0, dt, ..., duration + dt``.
+        ``floor((duration + 2 dt) / dt)`` (a tolerance of 1e-9 absorbs the
+        quotient's rounding): the run covers ``t = 0, dt, ..., duration + dt``.
     """
     return int(math.floor((opts.duration + 2.0 * opts.dt) / opts.dt + 1e-9))
 
 
 def impulse_on(opts: Options, t: float) -> bool:
-    """Whether the push acts at ``t`` (s): WCHAIR's ``T .LE. DUIMP``.
-
-    WCHAIR accumulates T in REAL; here ``t = k dt`` and a relative tolerance
-    keeps the inclusive test exact at ``t = DUIMP``.
+    """Whether the push acts at ``t``: WCHAIR's ``T .LE. DUIMP``.
 
     Parameters
     ----------
     opts : Options
-        Checked options; uses ``impulse_duration`` (DUIMP, s).
+        Uses ``impulse_duration`` (DUIMP, s).
     t : float
         Time, s (>= 0).
 
     Returns
     -------
     bool
-        True while ``t <= impulse_duration`` (within a relative 1e-12).
+        ``t <= impulse_duration`` within a relative 1e-12 (WCHAIR accumulates
+        T in REAL; here ``t = k dt``, and the tolerance keeps ``t = DUIMP`` in).
     """
     return t <= opts.impulse_duration * (1.0 + 1e-12) + 1e-15
 
 
 def initial_velocities(opts: Options, speed: float) -> tuple[float, float]:
-    """``(u0, v0)``, m/s: forward (negative when reversing) and lateral.
+    """The initial body-axis velocities.
 
     Parameters
     ----------
     opts : Options
-        Checked options; uses ``reverse`` and ``lateral_velocity`` (VD, m/s).
+        Uses ``reverse`` and ``lateral_velocity`` (VD, m/s).
     speed : float
         Initial forward speed, m/s (> 0; WCHAIR's UD).
 
     Returns
     -------
     tuple of float
-        ``(u0, v0)``: body-axis forward velocity (``-speed`` when
-        ``opts.reverse``) and lateral velocity, m/s.
+        ``(u0, v0)``, m/s: ``-speed`` when reversing, else ``speed``, and VD.
     """
     u0 = -speed if opts.reverse else speed
     return u0, opts.lateral_velocity

@@ -25,24 +25,19 @@ __all__ = ["Packed", "slope_slots", "policy_code"]
 
 
 def policy_code(opts: Options) -> int:
-    """The tire law's code of ``opts.out_of_range`` (the index in :data:`stability.tires.POLICIES`).
+    """The tire law's code of a policy.
 
     Parameters
     ----------
     opts : Options
-        Checked options.
+        Uses ``out_of_range``.
 
     Returns
     -------
     int
-        0 clamp, 1 extrapolate, 2 raise.
+        Its index in :data:`stability.tires.POLICIES`: 0 clamp, 1 extrapolate, 2 raise.
     """
     return _tires.POLICIES.index(opts.out_of_range)
-
-
-def _segments(tire: Any) -> np.ndarray:
-    segs = tire.segment_arrays() if hasattr(tire, "segment_arrays") else tire._segments
-    return np.array(segs, dtype=float)
 
 
 def _tire_slot(tire: Any) -> tuple[int, np.ndarray, float, tuple[float, float]]:
@@ -50,7 +45,7 @@ def _tire_slot(tire: Any) -> tuple[int, np.ndarray, float, tuple[float, float]]:
     if isinstance(tire, _tires.LinearTire):
         return 1, np.zeros((6, 8)), tire.stiffness_N_per_deg * tire.lateral_scale, (math.inf, math.inf)
     lim = (float(getattr(tire, "slip_max_deg", SLIP_LIMIT_DEG)), float(getattr(tire, "fz_max_N", LOAD_LIMIT_N)))
-    return 0, _segments(tire), float(tire.lateral_scale), lim
+    return 0, np.array(tire.segment_arrays(), dtype=float), float(tire.lateral_scale), lim
 
 
 def _rolling_slot(tire: Any, on: bool) -> tuple[int, tuple[float, float, float], float]:
@@ -125,16 +120,17 @@ class Packed:
 
 
 def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:
-    """The kernels' plane slots: ``(on, cos(phi), sin(phi), cos(theta), sin(theta))`` (``on`` 1.0 on a slope).
+    """The kernels' plane slots.
 
     Parameters
     ----------
     opts : Options
-        Checked options (``slope`` = cross slope phi, grade theta, deg).
+        Uses ``slope``: the cross slope phi and the grade theta, deg.
 
     Returns
     -------
     tuple of 5 float
-        The flag and the cosines and sines of the cross slope and the grade.
+        ``(on, cos(phi), sin(phi), cos(theta), sin(theta))``; ``on`` is 1.0 on a slope.
     """
-    return (1.0 if opts.on_slope else 0.0, *opts.slope_trig())
+    phi, theta = math.radians(opts.slope[0]), math.radians(opts.slope[1])
+    return (1.0 if opts.slope != (0.0, 0.0) else 0.0, math.cos(phi), math.sin(phi), math.cos(theta), math.sin(theta))

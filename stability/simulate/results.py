@@ -16,9 +16,10 @@ from stability.chair import Chair
 from stability.runtime.checks import check_positive
 from stability.runtime.files import atomic_write_text
 from stability.simulate.options import WHEELS
+from stability.simulate.signals import time_to_level
 
 __all__ = ["JSON_COLUMNS", "json_key", "COLUMNS", "NCOLS", "ChairState", "RunStats", "SimulationResult", "new_warnings",
-           "note_warning"]
+           "warning_table", "WARNING_KINDS"]
 
 COLUMNS = ("t", "x", "y", "heading", "yaw_rate", "u", "v", "eta", "eta_dot", "beta", "beta_dot",
          "fx_A", "fy_A", "fx_B", "fy_B", "fx_D", "fy_D", "fx_E", "fy_E",
@@ -53,6 +54,8 @@ def json_key(column: str) -> str:
 #: JSON keys of the time histories, in :data:`COLUMNS` order.
 JSON_COLUMNS = tuple(json_key(c) for c in COLUMNS)
 _WARNING_UNITS = {"slip": "deg", "load": "N", "lift_off": "N"}
+#: The range warnings a run counts (:func:`warning_table`).
+WARNING_KINDS = tuple(_WARNING_UNITS)
 
 
 # ---------------------------------------------------------------------------
@@ -114,12 +117,6 @@ class RunStats:
 def _readonly(a: np.ndarray) -> np.ndarray:
     """A read-only view (no copy)."""
     a = a.view()
-    a.flags.writeable = False
-    return a
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a = np.ascontiguousarray(a, dtype=float)
     a.flags.writeable = False
     return a
 
@@ -202,7 +199,8 @@ class SimulationResult:
     # -- construction ----------------------------------------------------
     @classmethod
     def from_columns(cls, t: np.ndarray, cols: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings,
-                     stats: RunStats | None = None, step_unstable: bool = False) -> SimulationResult:
+                     stats: RunStats | None = None, step_unstable: bool = False,
+                     stop_reason: str | None = None) -> SimulationResult:
         """A result from ``t`` (n,) and ``cols`` (k, n): the columns after ``t`` of :data:`COLUMNS`.
 
         ``k = 31`` (all) or ``10`` (the states; the other quantities read as NaN,
@@ -227,33 +225,15 @@ class SimulationResult:
             slip_deg=wheels(slice(22, 26)), tire_yaw_moment=col("tire_yaw_moment"),
             yaw_moment_input=col("yaw_moment_input"),
             yaw_acceleration=col("yaw_acceleration"), pin_moment=pins,
-            warnings=_freeze_warnings(warnings), stopped_by_warnings=bool(stopped),
+            warnings={k: dict(v) for k, v in warnings.items()}, stopped_by_warnings=bool(stopped),
             stop_time=None if stop_time is None else float(stop_time), chair=chair, speed=float(speed),
-            settings=dict(settings), stats=stats, step_unstable=bool(step_unstable))
+            settings=dict(settings), stats=stats, step_unstable=bool(step_unstable), stop_reason=stop_reason)
 
     @classmethod
-    def _from_records(cls, rec: np.ndarray, *, warnings, stopped, stop_time, chair, speed, settings,
-                      stop_reason: str | None = None):
-        cols = np.ascontiguousarray(rec.T, dtype=float)  # one copy; every column below is a view of it
-        c = {name: cols[i] for i, name in enumerate(COLUMNS)}
-
-        def wheels(prefix):
-            return _frozen(np.stack([c[f"{prefix}_{w}"] for w in WHEELS], axis=1).reshape(-1, 4))
-
-        return cls(
-            t=_frozen(c["t"]), x=_frozen(c["x"]), y=_frozen(c["y"]), heading=_frozen(c["heading"]),
-            yaw_rate=_frozen(c["yaw_rate"]), u=_frozen(c["u"]), v=_frozen(c["v"]),
-            eta=_frozen(c["eta"]), eta_dot=_frozen(c["eta_dot"]), beta=_frozen(c["beta"]),
-            beta_dot=_frozen(c["beta_dot"]), fx=wheels("fx"), fy=wheels("fy"),
-            normal_load=wheels("fz"), slip_deg=wheels("slip"),
-            tire_yaw_moment=_frozen(c["tire_yaw_moment"]),
-            yaw_moment_input=_frozen(c["yaw_moment_input"]),
-            yaw_acceleration=_frozen(c["yaw_acceleration"]),
-            pin_moment=_frozen(np.stack([c["pin_moment_A"], c["pin_moment_B"]], axis=1).reshape(-1, 2)),
-            warnings=_freeze_warnings(warnings), stopped_by_warnings=bool(stopped),
-            stop_time=None if stop_time is None else float(stop_time), chair=chair,
-            speed=float(speed), settings=dict(settings), stop_reason=stop_reason,
-        )
+    def _from_records(cls, rec: np.ndarray, **kw: Any) -> SimulationResult:
+        """A result from ``rec`` (n, 32): every column of :data:`COLUMNS` (one copy; the arrays are views of it)."""
+        cols = np.ascontiguousarray(rec.T, dtype=float)
+        return cls.from_columns(cols[0], cols[1:], **kw)
 
     def _records(self) -> np.ndarray:
         """All columns of :data:`COLUMNS` as one ``(n, 32)`` array."""
@@ -293,16 +273,8 @@ class SimulationResult:
         value = float(value)
         if not math.isfinite(value) or value < 0:
             raise ValueError(f"value={value!r} is invalid; valid range: a finite yaw rate >= 0 rad/s")
-        a = np.abs(self.yaw_rate)
-        hit = np.flatnonzero(a >= value)
-        if hit.size == 0:
-            return None
-        i = int(hit[0])
-        if i == 0:
-            return float(self.t[0])
-        a0, a1 = a[i - 1], a[i]
-        t0, t1 = self.t[i - 1], self.t[i]
-        return float(t0 + (value - a0) / (a1 - a0) * (t1 - t0))
+        t = time_to_level(self.t, self.yaw_rate, value)
+        return None if math.isinf(t) else t
 
     def at(self, time: float) -> dict[str, float]:
         """All scalar quantities linearly interpolated at ``time`` (s)."""
@@ -388,7 +360,8 @@ class SimulationResult:
         rec = self._records()
         meta = [f"# stability.simulate: chair={self.chair.name} speed={self.speed!r} m/s",
                 "# settings: " + json.dumps({k: _json_scalar(v) for k, v in self.settings.items()}, sort_keys=True),
-                "# warnings: " + json.dumps(_json_warnings(self.warnings), sort_keys=True)
+                "# warnings: " + json.dumps({k: {kk: _json_scalar(vv) for kk, vv in v.items()}
+                                             for k, v in self.warnings.items()}, sort_keys=True)
                 + f" stopped_by_warnings={self.stopped_by_warnings}"
                 + (f" stop_reason: {self.stop_reason}" if self.stop_reason is not None else ""),
                 "# units: s, m, rad, m/s, rad/s, N, deg, N m, rad/s^2; wheels A/B = left/right caster, "
@@ -398,13 +371,8 @@ class SimulationResult:
         return atomic_write_text(path, "\n".join(lines) + "\n")
 
     def plot(self, path_or_ax=None, *, title: str | None = None):
-        """Plot the yaw rate against time: see :func:`stability.simulate.plot.plot_result`.
-
-        ``path_or_ax`` is a matplotlib Axes (drawn on, returned) or a file
-        path (a figure with yaw rate and trajectory is written atomically);
-        ``None`` returns a new figure.  matplotlib is imported only here.
-        """
-        from stability.simulate.plot import plot_result  # matplotlib is a heavy optional import
+        """Plot the yaw rate against time (and the path): :func:`stability.plotting.responses.plot_result`."""
+        from stability.plotting.responses import plot_result  # matplotlib is a heavy optional import
 
         return plot_result(self, path_or_ax, title=title)
 
@@ -424,48 +392,31 @@ def _json_list(a):
     return [float(x) if math.isfinite(x) else None for x in a.tolist()]
 
 
-def _json_warnings(w):
-    return {k: {kk: _json_scalar(vv) for kk, vv in v.items()} for k, v in w.items()}
+def warning_table(warn: np.ndarray) -> dict[str, dict[str, Any]]:
+    """A run's range warnings from its counters.
 
-
-def _freeze_warnings(w):
-    return {k: dict(v) for k, v in w.items()}
-
-
-def new_warnings() -> dict[str, dict[str, Any]]:
-    """Empty warning counters ``{kind: {"count", "first_time", "max"}}`` for slip, load, lift_off.
+    Parameters
+    ----------
+    warn : ndarray, shape (3, 3)
+        Per kind of :data:`WARNING_KINDS` (program WCHAIR's slip angle > 8 deg
+        and normal force > 450 N, and a wheel lifting off, which never stops a
+        run): the count, the first time (s), the value of largest magnitude.
 
     Returns
     -------
     dict
-        ``{"slip": ..., "load": ..., "lift_off": ...}``, each
-        ``{"count": 0, "first_time": None, "max": None}``; filled by
-        :func:`note_warning`.  The kinds are WCHAIR's two range warnings
-        (slip angle > 8 deg in MECHAN, normal force > 450 N in STATICS;
-        program WCHAIR, Appendix C) and a negative normal force (a wheel
-        lifting off), which is counted but never stops a run.
+        ``{kind: {"count": int, "first_time": float | None, "max": float | None}}``.
     """
-    return {k: {"count": 0, "first_time": None, "max": None} for k in ("slip", "load", "lift_off")}
+    return {kind: {"count": int(w[0]), "first_time": None if w[0] == 0 else float(w[1]),
+                   "max": None if w[0] == 0 else float(w[2])} for kind, w in zip(WARNING_KINDS, warn, strict=True)}
 
 
-def note_warning(w: dict, kind: str, t: float, value: float) -> None:
-    """Count one warning of ``kind`` at time ``t`` (s) with the offending ``value``.
+def new_warnings() -> dict[str, dict[str, Any]]:
+    """Empty warning counters.
 
-    Parameters
-    ----------
-    w : dict
-        Counters from :func:`new_warnings`; updated in place.
-    kind : {"slip", "load", "lift_off"}
-        Which check failed.
-    t : float
-        Time of the step, s.
-    value : float
-        The offending value: largest |slip angle|, deg ("slip"); largest
-        normal load, N ("load"); smallest (negative) normal load, N
-        ("lift_off").  ``max`` keeps the value of largest magnitude.
+    Returns
+    -------
+    dict
+        :func:`warning_table` of no warning.
     """
-    d = w[kind]
-    d["count"] += 1
-    if d["first_time"] is None:
-        d["first_time"] = float(t)
-    d["max"] = float(value) if d["max"] is None else max(d["max"], float(value), key=abs)
+    return warning_table(np.zeros((3, 3)))

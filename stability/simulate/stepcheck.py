@@ -30,12 +30,12 @@ class StepStabilityWarning(UserWarning):
 
 
 def stable_steps(chairs: Sequence[Chair], speeds: np.ndarray, model: str, casters: str) -> np.ndarray:
-    """Largest stable fixed step (s) of each (chair, speed) pair: ``min -2 Re(lambda)/|lambda|^2`` over Re < 0.
+    """Largest stable fixed step of each (chair, speed) pair: ``min -2 Re(lambda)/|lambda|^2`` over Re < 0.
 
     Parameters
     ----------
     chairs, speeds, model, casters
-        As in :func:`step_limits_and_growth` (one chair and one speed, m/s, per run).
+        As in :func:`step_limits_and_growth`.
 
     Returns
     -------
@@ -86,21 +86,19 @@ def step_limits_and_growth(chairs: Sequence[Chair], speeds: np.ndarray, model: s
 
 
 def auto_step(limit: float) -> float:
-    """The step ``dt="auto"`` picks: WCHAIR's 1 ms, or ``1 ms / k`` (whole k) within ``SAFETY`` of ``limit`` (s).
+    """The step ``dt="auto"`` picks.
 
     Parameters
     ----------
     limit : float
-        Largest stable fixed step, s (> 0; ``inf`` when no mode decays), e.g.
-        the smallest of :func:`stable_steps` over a batch.
+        Largest stable fixed step, s (``inf`` when no mode decays).
 
     Returns
     -------
     float
-        ``WCHAIR_DT`` (0.001 s, WCHAIR's TSTEP) if ``SAFETY * limit`` (0.8 of
-        the limit) is at least that or ``limit`` is not finite; otherwise
-        ``0.001 / k`` s with the smallest whole ``k`` for which
-        ``dt <= SAFETY * limit``.
+        Program WCHAIR's 1 ms (:data:`WCHAIR_DT`) when ``SAFETY * limit`` is
+        at least that or ``limit`` is not finite, else ``1 ms / k`` with the
+        smallest whole ``k`` for which ``dt <= SAFETY * limit``, s.
     """
     if not math.isfinite(limit) or limit * SAFETY >= WCHAIR_DT:
         return WCHAIR_DT

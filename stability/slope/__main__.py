@@ -28,6 +28,7 @@ from stability.cli import (
 from stability.settings import defaults as D
 from stability.slope.equilibrium import HandRim, drive_report, solve
 from stability.study.veer import VEER_RUN, simulator_path, uncorrected_path
+from stability.tires import WHEELS
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -58,23 +59,12 @@ FIGURE_SLOPES = (0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
 
 
 def figure(chair, cross_slope: float, speed: float):
-    """The slope figure of ``-o``: holding moment, drive difference and the uncorrected heading.
+    """The slope figure of ``-o`` (a matplotlib Figure): holding moment, drive difference and the uncorrected
+    heading of ``chair`` at ``speed`` (m/s) on ``|cross_slope|`` (deg; the side does not change the magnitudes).
 
     The curves come from :func:`stability.report.slope_data.slope_section` (the report's cross-slope page, at
     this speed, over :data:`FIGURE_SLOPES` and ``|cross_slope|``); the drawing from :mod:`stability.plotting`
     and :func:`stability.slope.plots.plot_holding`.
-
-    Parameters
-    ----------
-    chair : Chair
-    cross_slope : float
-        deg (its magnitude is drawn; the side does not change the magnitudes).
-    speed : float
-        m/s.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     from stability import plotting as P
     from stability.report.slope_data import TREADMILL, slope_section
@@ -186,8 +176,6 @@ def _body(a: argparse.Namespace) -> int:
     from stability.layout.io import is_layout_spec
 
     check_outputs({"--json-file": a.json_file, "-o": a.output}, {"--chair": a.chair})
-    if not 0 < a.sim_time <= 10.0:
-        raise ValueError(f"--sim-time {a.sim_time!r} is invalid; valid range: 0 < T <= 10 s")
     if is_layout_spec(a.chair) or a.speed < 0:
         return _run_layout(a)
     chair = load_chair(a.chair, a.set)
@@ -215,11 +203,8 @@ def _body(a: argparse.Namespace) -> int:
         "uncorrected_path": path.to_dict() if path else None,
         "uncorrected_simulator": sim,
         "heading_deg": eq.heading_deg, "caster_angle_left_deg": eq.eta_deg, "caster_angle_right_deg": eq.beta_deg,
-        "slip_angles_deg": dict(zip(("caster_left", "caster_right", "main_left", "main_right"), eq.slips_deg,
-                                    strict=True)),
-        "lateral_forces_N": dict(zip(("caster_left", "caster_right", "main_left", "main_right"),
-                                     eq.lateral_forces, strict=True)),
-        "normal_loads_N": dict(zip(("caster_left", "caster_right", "main_left", "main_right"), eq.loads, strict=True)),
+        **{key: {w: x for (w, _), x in zip(WHEELS, values, strict=True)} for key, values in (
+            ("slip_angles_deg", eq.slips_deg), ("lateral_forces_N", eq.lateral_forces), ("normal_loads_N", eq.loads))},
         "drive_forces": drive,
         "problems": list(eq.problems),
     }

@@ -75,10 +75,10 @@ class Equilibrium:
     holding_moment : float
         Yaw moment of the drive forces, ``d1 F_D - d2 F_E`` (N m, clockwise +), frictionless pins.
     friction_range : tuple
-        ``(min, max)`` holding moment over the equilibria allowed by Coulomb pin friction (N m).
+        ``(min, max)`` holding moment over the equilibria allowed by Coulomb pin friction (N m); ``(nan, nan)``
+        when not asked for (:func:`solve` with ``friction_range=False``).
     closed_form : float
-        ``g2 (m x_m - 2 m_c (l1/trail)(x_m - x_c))`` (N m): the frictionless holding moment with
-        the casters straight (casters carry l1/trail of their own lateral weight).
+        :func:`holding_moment_closed_form`, N m: the frictionless holding moment with the casters straight.
     problems : tuple of str
         Tire-data or lift-off problems at this equilibrium (empty when the result is inside the data).
     """
@@ -156,17 +156,13 @@ def _root(model: SlopeModel, speed: float, pins=(0.0, 0.0), guess=None):
 
 
 def operating_point(chair: Chair, plane: Plane, speed: float) -> tuple[float, float, float, tuple[float, float]]:
-    """Heading (crab angle), caster angles (rad) and drive forces (N) of straight running on ``plane`` at ``speed``.
-
-    The frictionless equilibrium of :func:`solve` without its report (no
-    tire-range check): what a linearisation about it needs.
+    """Crab angle, caster angles and drive forces of straight running: :func:`solve`'s frictionless equilibrium
+    without its report (no tire-range check), what a linearisation about it needs.
 
     Parameters
     ----------
-    chair : Chair
-        The chair.
-    plane : Plane
-        Cross slope and grade, deg.
+    chair, plane
+        The chair and the plane (cross slope and grade, deg).
     speed : float
         Speed along the path, m/s.
 
@@ -174,12 +170,7 @@ def operating_point(chair: Chair, plane: Plane, speed: float) -> tuple[float, fl
     -------
     tuple
         ``(psi, eta, beta, (F_D, F_E))``: rad, and the drive forces on the
-        left and right main wheels, N.
-
-    Raises
-    ------
-    ValueError
-        No equilibrium found.
+        left and right main wheels, N.  ValueError when there is none.
     """
     model = SlopeModel(chair, plane)
     z, ok = _root(model, speed)
@@ -199,10 +190,8 @@ def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:
 
     Parameters
     ----------
-    chair : Chair
-        The chair (trail > 0 m).
-    plane : Plane
-        Cross slope phi and grade theta, deg.
+    chair, plane
+        The chair (trail > 0 m) and the plane (cross slope phi, grade theta, deg).
 
     Returns
     -------
@@ -216,14 +205,14 @@ def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:
     return g2 * (p.m * p.x_m - 2 * p.m_c * (p.l1 / p.trail) * (p.x_m - x_c))
 
 
-def _solve_once(chair: Chair, plane: Plane, speed: float) -> Equilibrium | None:
+def _solve_once(chair: Chair, plane: Plane, speed: float, friction_range: bool = True) -> Equilibrium | None:
     model = SlopeModel(chair, plane)
     z, ok = _root(model, speed)
     if not ok:
         return None
     _, f, drive, mh = _state(model, speed, z)
     fr = []
-    for pins in ((1, 1), (-1, -1), (1, -1), (-1, 1)):
+    for pins in ((1, 1), (-1, -1), (1, -1), (-1, 1)) if friction_range else ():
         mp = (pins[0] * chair.pin_friction_left, pins[1] * chair.pin_friction_right)
         zf, okf = _root(model, speed, mp, guess=z)
         fr.append(_state(model, speed, zf, mp)[3] if okf else math.nan)
@@ -233,7 +222,7 @@ def _solve_once(chair: Chair, plane: Plane, speed: float) -> Equilibrium | None:
         slips_deg=tuple(float(s) for s in f.slips_deg),
         lateral_forces=tuple(float(f.F[k]) for k in (1, 3, 5, 7)),
         loads=f.loads, drive_forces=tuple(float(d) for d in drive), holding_moment=float(mh),
-        friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if not all(map(math.isnan, fr))
+        friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if fr and not all(map(math.isnan, fr))
         else (math.nan, math.nan),
         closed_form=holding_moment_closed_form(chair, plane), problems=tuple(model.range_problems(f)))
 
@@ -243,12 +232,8 @@ def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 
 
     Parameters
     ----------
-    chair : Chair
-        The chair.
-    grade_deg : float
-        Grade theta, deg (positive uphill).
-    speed : float
-        Speed along the path, m/s (> 0).
+    chair, grade_deg, speed
+        As in :func:`solve` (deg, uphill +; m/s).
     sign : float, optional
         +1 (default) for cross slopes falling to the right, -1 for falling to the left.
     hi : float, optional
@@ -258,8 +243,7 @@ def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 
     -------
     float
         Cross-slope magnitude, deg, resolved to ``hi / 2**14``; ``hi`` if every
-        slope up to it has an equilibrium, -1.0 if even zero cross slope
-        has none.
+        slope up to it has an equilibrium, -1.0 if even zero cross slope has none.
     """
     def good(phi: float) -> bool:
         e = _solve_once(chair, Plane(sign * phi, grade_deg), speed)
@@ -277,7 +261,7 @@ def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 
 
 
 def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float = 0.0,
-          strict: bool = True) -> Equilibrium:
+          strict: bool = True, friction_range: bool = True) -> Equilibrium:
     """Steady straight running along the path on a plane.
 
     Parameters
@@ -293,6 +277,9 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
         Raise ValueError (naming the parameter, value and valid range) when the equilibrium does
         not exist or lies outside the tire data (slip > 8 deg, load > 450 N) or a wheel lifts off;
         with ``False`` such a result is returned with :attr:`Equilibrium.problems` filled.
+    friction_range : bool
+        Also solve the four equilibria at the pins' Coulomb friction limits (:attr:`Equilibrium.friction_range`;
+        four root solves more). Nothing else of the result depends on them.
 
     Returns
     -------
@@ -300,7 +287,7 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
     """
     speed = check_speed(speed)
     plane = Plane(cross_slope_deg, grade_deg)
-    eq = _solve_once(chair, plane, speed)
+    eq = _solve_once(chair, plane, speed, friction_range)
     if eq is not None and (not eq.problems or not strict):
         return eq
     if eq is None and not strict:
@@ -320,23 +307,12 @@ def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float =
 
 
 def residual_accelerations(chair: Chair, eq: Equilibrium) -> tuple:
-    """Accelerations of the equations of motion on the plane at the equilibrium (should vanish; a check).
+    """``(u_dot, v_dot, r_dot, eta_dd, beta_dd)`` (m/s^2, rad/s^2) at the equilibrium ``eq`` of ``chair``: they
+    should vanish (a check).
 
     The generated exact model with gravity (:func:`stability.models.slope.accelerations`) at the
     equilibrium's state, with its tire and drive forces at its loads (the loads of zero acceleration, so
     consistent if the accelerations vanish) and frictionless pins.
-
-    Parameters
-    ----------
-    chair : Chair
-        The chair ``eq`` was solved for.
-    eq : Equilibrium
-        The equilibrium (:func:`solve`).
-
-    Returns
-    -------
-    tuple of 5 float
-        ``(u_dot, v_dot, r_dot, eta_dd, beta_dd)``: m/s^2, m/s^2, rad/s^2, rad/s^2, rad/s^2.
     """
     model = SlopeModel(chair, Plane(eq.cross_slope_deg, eq.grade_deg))
     psi, eta, beta = (math.radians(x) for x in (eq.heading_deg, eq.eta_deg, eq.beta_deg))

@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from stability.chair import Chair
 from stability.models import full_width as fw
 from stability.models import slope as sl
 from stability.models.forces import slip_angle
 from stability.models.params import parameters
-from stability.tires import FZ_MAX_N, SLIP_MAX_DEG, LinearTire, get_policy
+from stability.tires import FZ_MAX_N, SLIP_MAX_DEG, WHEELS, LinearTire, get_policy
 from stability.tires.ranges import RangeNote, limit_load, record
 
 __all__ = ["Plane", "SlopeModel", "Forces", "MAX_ANGLE_DEG"]
@@ -32,8 +33,7 @@ def _check_angle(name: str, value: float) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name}={value!r} is invalid; valid range: -{MAX_ANGLE_DEG:g} to {MAX_ANGLE_DEG:g} deg"
-                         ) from None
+        v = math.nan
     if not (math.isfinite(v) and abs(v) <= MAX_ANGLE_DEG):
         raise ValueError(f"{name}={value!r} is invalid; valid range: -{MAX_ANGLE_DEG:g} to {MAX_ANGLE_DEG:g} deg")
     return v
@@ -63,24 +63,12 @@ class Plane:
         return sl.gravity(g, math.radians(self.cross_slope_deg), math.radians(self.grade_deg), heading)
 
 
-@dataclass(frozen=True)
-class Forces:
-    """Tire forces, loads and slips at one state.
+class Forces(NamedTuple):
+    """Tire forces, normal loads and slip angles at one state (wheels A, B, D, E)."""
 
-    Attributes
-    ----------
-    F : tuple
-        ``(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)`` in wheel frames (N); ``FDx``, ``FEx``
-        include the drive forces.
-    loads : tuple
-        ``(N_A, N_B, N_D, N_E)`` (N).
-    slips_deg : tuple
-        Signed slip angles ``atan2(vy, |vx|)`` of A, B, D, E (deg).
-    """
-
-    F: tuple
-    loads: tuple
-    slips_deg: tuple
+    F: tuple            #: ``(FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy)`` in wheel frames, N (FDx, FEx with the drive)
+    loads: tuple        #: normal loads, N
+    slips_deg: tuple    #: signed slip angles ``atan2(vy, |vx|)``, deg
 
 
 class SlopeModel:
@@ -101,9 +89,9 @@ class SlopeModel:
         self.chair = chair
         self.plane = plane
         self.p = parameters(chair)
-        self.main = chair.main_tire_model()
-        self.caster = chair.caster_tire_model()
-        self.rolling = (chair.caster_rolling_scale > 0, chair.main_rolling_scale > 0)
+        main, caster = chair.main_tire_model(), chair.caster_tire_model()
+        self.tires = (caster, caster, main, main)       # wheels A, B, D, E
+        self.rolling = (chair.caster_rolling_scale > 0,) * 2 + (chair.main_rolling_scale > 0,) * 2
         # --tire-range: clamp holds the forces at the data's edge, warn extrapolates the fits; both note a
         # load or slip beyond the data and answer; only raise refuses it (a range problem)
         self.policy = get_policy().name
@@ -120,15 +108,13 @@ class SlopeModel:
         at all would rest on the extrapolated fit.
         """
         out = []
-        for k, (tire, s, n) in enumerate(zip((self.caster, self.caster, self.main, self.main),
-                                             f.slips_deg, f.loads, strict=True)):
-            wheel = ("left caster", "right caster", "left main wheel", "right main wheel")[k]
+        labels = ("left caster", "right caster", "left main wheel", "right main wheel")
+        for (key, _), wheel, tire, s, n in zip(WHEELS, labels, self.tires, f.slips_deg, f.loads, strict=True):
             if n <= 0.0:
                 out.append(f"the {wheel} lifts off (normal load {n:.1f} N)")
                 continue
             if isinstance(tire, LinearTire):
                 continue
-            key = ("caster_left", "caster_right", "main_left", "main_right")[k]
             if self.clamp:              # a note under the clamp policy (tires.collect_notes): the force held
                 if n > FZ_MAX_N:
                     limit_load(tire, n, "clamp", wheel=key)
@@ -152,10 +138,9 @@ class SlopeModel:
         vel = fw.contact_velocities(self.p, u, v, r, ce, se, cb, sb, eta_d, beta_d, "exact")
         vx, vy = vel[0::2], vel[1::2]
         slips = tuple(slip_angle(a, b) for a, b in zip(vx, vy, strict=True))
-        tires = (self.caster, self.caster, self.main, self.main)
         lat = [t.lateral_force(s, n, policy=self._policy, warn=False)
-               for t, s, n in zip(tires, slips, loads, strict=True)]
-        on = (self.rolling[0], self.rolling[0], self.rolling[1], self.rolling[1])
-        roll = [t.rolling_force(float(n), w) if k else 0.0 for t, n, w, k in zip(tires, loads, vx, on, strict=True)]
+               for t, s, n in zip(self.tires, slips, loads, strict=True)]
+        roll = [t.rolling_force(float(n), w) if k else 0.0
+                for t, n, w, k in zip(self.tires, loads, vx, self.rolling, strict=True)]
         F = (roll[0], lat[0], roll[1], lat[1], roll[2] + drive[0], lat[2], roll[3] + drive[1], lat[3])
         return Forces(F=F, loads=tuple(float(n) for n in loads), slips_deg=slips)

@@ -121,6 +121,7 @@ def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
         check_layout_work,
         layout_critical_impulse_curve,
         layout_step_limits_and_growth,
+        slow_divergences,
     )
     from stability.study.summaries import run_steps
 
@@ -155,10 +156,12 @@ def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
         way = "reverse" if p.speed < 0 else "forward"
         lines.append(f"  {p.speed:+6.3g} m/s {way:7s}  {p.describe():>12s}  (kick {kick})")
+    slow = slow_divergences(layout, curve.points, run_spec)
+    lines += [f"note: {d.text()}" for d in slow]
     header = {"stability_version": __version__, "chair": layout.name,
               "chair_parameters": dataclasses.asdict(layout), "model": "exact"}
     _emit(args, {**curve.to_dict(), "caster_start": "trailing the direction of travel (0 deg forward, 180 deg in "
-                 "reverse)"}, "\n".join(lines), None, header)
+                 "reverse)", "slow_divergences": [d.to_dict() for d in slow]}, "\n".join(lines), None, header)
 
 
 def _interval(args: argparse.Namespace) -> None:

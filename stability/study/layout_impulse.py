@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -43,7 +44,8 @@ from stability.study.search import bracket_search
 from stability.study.summaries import Summaries, run_steps
 
 __all__ = ["layout_critical_impulses", "layout_critical_impulse_curve", "layout_step_limits_and_growth",
-           "check_layout_work", "trailing_angles", "LAYOUT_STEP_SECONDS", "SIDES", "MAX_PUSH_FORCE_N"]
+           "check_layout_work", "trailing_angles", "SlowDivergence", "slow_divergences",
+           "LAYOUT_STEP_SECONDS", "SIDES", "MAX_PUSH_FORCE_N"]
 
 #: Cost of one layout-kernel step, s: 2.1 us measured (a 10 s run of 10 001 steps in 21 ms, four casters, on the
 #: shared 2-core machine), taken five times over for a loaded machine.
@@ -240,3 +242,86 @@ def layout_critical_impulse_curve(layout: Layout, speeds: Any, run: RunSpec | No
     CriticalImpulseCurve
     """
     return CriticalImpulseCurve(tuple(layout_critical_impulses(layout, speeds, run, **search)))
+
+
+@dataclass(frozen=True)
+class SlowDivergence:
+    """A speed at which the linear model diverges but no push up to the largest tried reaches the yaw-rate level.
+
+    The critical-impulse criterion (``|yaw rate| >= level`` within the horizon) is the thesis's spin-out of the
+    rear-caster chair; a chair whose unstable mode is slow turns away from its line without spinning up to the
+    level, so "> 40 N s" there is not robustness.  This is the run at the largest push that shows it.
+
+    Attributes
+    ----------
+    speed : float
+        m/s (negative: reverse).
+    growth_rate : float
+        Largest real part of the linear model's eigenvalues at ``speed``, 1/s (> 0).
+    push_Ns : float
+        The largest push tried, N s.
+    heading_deg : float
+        Heading at the end of that run, deg (the direction the chair faces against its starting line).
+    peak_yaw_rate : float
+        Largest ``|yaw rate|`` of the run, rad/s (below the level).
+    end_time_s : float
+        When the run ended, s.
+    """
+
+    speed: float
+    growth_rate: float
+    push_Ns: float
+    heading_deg: float
+    peak_yaw_rate: float
+    end_time_s: float
+
+    def text(self) -> str:
+        """One line for the command's output."""
+        return (f"{self.speed:+.3g} m/s: the linear model diverges (growth rate {self.growth_rate:.3g} 1/s, "
+                f"doubling in {math.log(2.0) / self.growth_rate:.3g} s) yet no push reaches the yaw-rate level: "
+                f"after {self.push_Ns:.3g} N s the chair turns {abs(self.heading_deg):.3g} deg off its line in "
+                f"{self.end_time_s:.3g} s at up to {self.peak_yaw_rate:.3g} rad/s (a slow divergence the driver "
+                "must steer against, not robustness)")
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict (units in the keys)."""
+        return {"speed_m_s": self.speed, "growth_rate_1_s": self.growth_rate, "push_Ns": self.push_Ns,
+                "heading_deg": self.heading_deg, "peak_yaw_rate_rad_s": self.peak_yaw_rate,
+                "end_time_s": self.end_time_s}
+
+
+def slow_divergences(layout: Layout, points: Sequence[CriticalImpulse], run: RunSpec | None = None,
+                     side: str = "right") -> tuple[SlowDivergence, ...]:
+    """The speeds of ``points`` whose search found no critical push although the linear model diverges there.
+
+    Parameters
+    ----------
+    layout : Layout
+    points : sequence of CriticalImpulse
+        As returned by :func:`layout_critical_impulses` for ``layout`` (with the same ``run`` and ``side``).
+    run : RunSpec, optional
+        The searches' settings (push duration, horizon, step, pin-friction law).
+    side : {"right", "left"}
+
+    Returns
+    -------
+    tuple of SlowDivergence
+        One per point with status ``"never"`` and a positive growth rate, the largest push re-run.
+    """
+    run = check_search(run, LEVEL, 40.0, 1e-6, 0.005)
+    never = [p for p in points if p.status == "never"]
+    if not never:
+        return ()
+    u = np.array([p.speed for p in never])
+    limits, rates = layout_step_limits_and_growth(layout, u)
+    out = []
+    dt = 0.001 if run.dt == "auto" else float(run.dt)
+    for p, h, rate in zip(never, run_steps([], u, dt, run.model, run.casters, limits=limits), rates, strict=True):
+        if not rate > 0.0:
+            continue
+        force = SIDES[side] * p.largest_tried_Ns / push_impulse(1.0, run.push_duration, "wchair", float(h))
+        r = simulate_layout(layout, p.speed, run.replace(push_force=force, dt=float(h)),
+                            caster_angles_deg=trailing_angles(layout, p.speed))
+        out.append(SlowDivergence(p.speed, float(rate), p.largest_tried_Ns, float(r.heading_deg[-1]),
+                                  float(np.max(np.abs(r.yaw_rate_rad_s))), float(r.t_s[-1])))
+    return tuple(out)

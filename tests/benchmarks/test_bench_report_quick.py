@@ -1,0 +1,105 @@
+"""``report --quick`` against the full report (issue 35): CPU time recorded, work asserted.
+
+CPU time: user + system time of ``python -m stability.report --chair ej-premier [--quick] --no-progress -o F``
+run as a child process (``resource.getrusage(RUSAGE_CHILDREN)`` before and after, so the numba threads of the
+child count), each command run once first and that run excluded (numba's cache load on first use on the
+machine, the file cache), then the smallest of :data:`REPEAT`.  The quick/full ratio is recorded in the
+benchmark's ``extra_info`` and printed; nothing asserts a time (issue 35 asks for at most a quarter).
+
+Work, asserted (deterministic: the same chairs, the same searches): the simulated runs each report launches on
+the compiled kernel, counted in-process at :func:`stability.simulate.engine._launch`.  The quick report runs the
+advisor's runs (the same in both reports: the decision on page 1 is computed once, the same way), the
+reference chair's measures and the clinician sheet's runs, and nothing else; the page-1 decision paragraphs of the
+two reports are identical.  Skipped unless ``--benchmark-enable``.
+"""
+
+from __future__ import annotations
+
+import resource
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from stability.chair import preset
+
+ROOT = Path(__file__).resolve().parents[2]
+#: Timed runs per command after the excluded first one.
+REPEAT = 2
+CHAIR = "ej-premier"
+
+
+@pytest.fixture
+def bench(request):
+    cfg = request.config
+    if cfg.getoption("benchmark_disable", False) and not cfg.getoption("benchmark_enable", False):
+        pytest.skip("benchmarks are disabled (run with --benchmark-enable)")
+    return request.getfixturevalue("benchmark")
+
+
+def _cpu(args: list[str]) -> float:
+    """CPU seconds (user + system) of one child ``python -m stability.report`` run."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([sys.executable, "-m", "stability.report", *args], cwd=ROOT, check=True, capture_output=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def _best_cpu(args: list[str]) -> float:
+    _cpu(args)                                   # excluded: first use (numba's cache, file cache)
+    return min(_cpu(args) for _ in range(REPEAT))
+
+
+class _Runs:
+    """Counts the runs launched on the compiled kernel (wraps ``engine._launch``)."""
+
+    def __init__(self, monkeypatch):
+        from stability.simulate import engine
+
+        self.n = 0
+        inner = engine._launch
+
+        def counting(k, threads, n_runs, args):
+            self.n += int(n_runs)
+            return inner(k, threads, n_runs, args)
+
+        monkeypatch.setattr(engine, "_launch", counting)
+
+    def during(self, fn):
+        start = self.n
+        out = fn()
+        return self.n - start, out
+
+
+def test_bench_quick_report(bench, monkeypatch, tmp_path):
+    from stability.advise import advise
+    from stability.advise.measures import measure_chairs
+    from stability.report.brief import compute_brief
+    from stability.report.clinician_sheet import clinician_sheet
+    from stability.report.compute import compute
+    from stability.report.decision import decision_paragraphs
+
+    c, ref = preset(CHAIR), preset("ej-premier")
+    runs = _Runs(monkeypatch)
+    n_advice, advice = runs.during(lambda: advise(c))
+    n_ref = 0 if c == ref else runs.during(lambda: measure_chairs([ref], speeds=advice.speeds_m_s,
+                                                                   cross_slope_deg=advice.cross_slope_deg))[0]
+    n_sheet, _ = runs.during(lambda: clinician_sheet(c, tuple(advice.speeds_m_s), "exact", None))
+    n_quick, brief = runs.during(lambda: compute_brief(c, progress=False))
+    n_full, full = runs.during(lambda: compute(c, progress=False))
+    # the quick report computes the advisor's decision, the reference's measures and the sheet, nothing else
+    assert n_quick == n_advice + n_ref + n_sheet
+    # ... and the full report runs the same advisor among its own runs
+    assert n_full > n_quick and n_full - n_advice > 0
+    assert decision_paragraphs(brief) == decision_paragraphs(full)
+
+    quick_cpu = _best_cpu(["--chair", CHAIR, "--quick", "--no-progress", "-o", str(tmp_path / "q.pdf")])
+    full_cpu = _best_cpu(["--chair", CHAIR, "--no-progress", "-o", str(tmp_path / "f.pdf")])
+    bench.pedantic(lambda: None, rounds=1, iterations=1)
+    bench.extra_info.update({"quick_cpu_s": quick_cpu, "full_cpu_s": full_cpu, "cpu_ratio": quick_cpu / full_cpu,
+                             "runs_quick": n_quick, "runs_full": n_full, "runs_advisor": n_advice,
+                             "runs_ratio": n_quick / n_full})
+    print(f"\nreport --quick: {quick_cpu:.2f} s CPU, full report {full_cpu:.2f} s CPU, ratio {quick_cpu / full_cpu:.2f} "
+          f"(target <= 0.25); simulated runs {n_quick} vs {n_full} (advisor {n_advice}), ratio "
+          f"{n_quick / n_full:.2f}")
