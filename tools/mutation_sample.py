@@ -30,7 +30,7 @@ survivors re-run with this branch's tests; killed / non-equivalent mutants of th
   ``study/impulse_intervals.py`` 6/9 -> 9/9; ``study/censored.py`` 5/10 -> 10/10; ``sweep/run.py``
   4/9 -> 9/9; ``assist/export_c.py`` 8/9 -> 9/9; ``assist/schedule.py`` 7/9 -> 9/9;
   ``models/full_width.py`` 10/10 (no survivor); ``advise/advisor.py`` 7/10 -> 8/10;
-  ``advise/limits.py`` 0/9 (the tenth not run: the source changed under the run) -> 8/8 (the ninth's line, ``value or -inf``, rewritten: it read 0 deg as missing); ``advise/levers.py`` 4/9 -> (running);
+  ``advise/limits.py`` 0/9 (the tenth not run: the source changed under the run) -> 8/8 (the ninth's line, ``value or -inf``, rewritten: it read 0 deg as missing); ``advise/levers.py`` 4/9 -> 9/9;
   ``study/search.py`` 3/5 (5 equivalent) -> 4/5.
 * ``stability/linear/critical.py``, 50 mutants: 32/42 (76 %) before this branch's last tests on the file as it was
   (the Hermite interpolant inline); with the interpolant as :func:`stability.linear.critical.hermite` and its
