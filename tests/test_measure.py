@@ -325,29 +325,14 @@ def test_cli_checks_output_paths_before_work(tmp_path, capsys):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_readings_table_of_docs_measure_is_what_the_sheet_accepts():
-    """docs/measure.md's readings table (written for the measurer: dimension, valid range, required, what) states
-    every reading the sheet reader knows, with the same bounds (lower bound -1e-12 read as '>= 0': the reader
-    admits a zero up to rounding), the same required flag and the same description."""
-    from pathlib import Path
+def test_a_missing_required_reading_is_named_with_what_it_measures(tmp_path):
+    """A sheet without the caster track is refused in one line naming the reading and what it is (the words the
+    measurer reads on the sheet and in docs/measure.md's table)."""
+    import re
 
-    from stability.measure.sheet import READINGS
-
-    page = (Path(__file__).resolve().parents[1] / "docs" / "measure.md").read_text(encoding="utf-8")
-    rows = {}
-    for line in page.splitlines():
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cells) == 5 and cells[0].startswith("`") and "." in cells[0]:
-            rows[cells[0].strip("`")] = cells[1:]
-    assert set(rows) == set(READINGS)
-
-    def num(x):
-        return str(int(x)) if float(x).is_integer() else f"{x:g}"
-
-    for key, (dims, lo, hi, required, what) in READINGS.items():
-        dim, rng, req, doc = rows[key]
-        assert dim == " or ".join(d.replace("_", " ") for d in dims), key
-        low = ">= 0" if lo == -1e-12 else f"> {num(lo)}"
-        assert rng == f"{low}, <= {num(hi)}", key
-        assert req == ("yes" if required else "no"), key
-        assert doc == what, key
+    text = re.sub(r"(?m)^caster_track = .*\n", "", _sheet_text())
+    bad = tmp_path / "s.toml"
+    bad.write_text(text)
+    with pytest.raises(ValueError, match=r"^sheet reading geometry\.caster_track is missing; it is required "
+                                         r"\(between the caster contacts\)$"):
+        sheet.load_sheet(bad)
