@@ -26,7 +26,7 @@ survivors re-run with this branch's tests; killed / non-equivalent mutants of th
 
 * 10 mutants per module: ``tipping/angles.py`` 7/9 -> 9/9; ``shimmy/band.py`` 8/9 -> 9/9;
   ``slope/equilibrium.py`` 7/9 -> 9/9; ``uncertainty/propagation.py`` 9/10 -> 10/10; ``measure/sheet.py`` 7/10 ->
-  10/10; ``study/intervals.py`` 3/10 -> 10/10; ``study/impulse.py`` 4/9 -> 9/9;
+  9/10 (a reading's words used only in the docs' generated table left); ``study/intervals.py`` 3/10 -> 10/10; ``study/impulse.py`` 4/9 -> 9/9;
   ``study/impulse_intervals.py`` 6/9 -> 9/9; ``study/censored.py`` 5/10 -> 10/10; ``sweep/run.py``
   4/9 -> 9/9; ``assist/export_c.py`` 8/9 -> 9/9; ``assist/schedule.py`` 7/9 -> 9/9;
   ``models/full_width.py`` 10/10 (no survivor); ``advise/advisor.py`` 7/10 -> 8/10;
