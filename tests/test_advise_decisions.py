@@ -217,7 +217,27 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
     d = advice_mapping(a)
     assert d["recommendations"][0]["label"] == a.recommendations[0].candidate.label
     assert [b["label"] for b in d["blocked"]] == [b.candidate.label for b in a.blocked]
+    # each blocking limit with its value and limit as the constraint measured them (finite values as numbers)
+    for b_json, b in zip(d["blocked"], a.blocked, strict=True):
+        by = b.limits
+        assert by
+        assert [(k["name"], k["value"], k["limit"]) for k in b_json["blocked_by"]] == \
+            [(k.name, k.value if k.value is None or math.isfinite(k.value) else None, k.limit) for k in by]
+        assert all(k["value"] is not None for k, lim in zip(b_json["blocked_by"], by, strict=True)
+                   if lim.value is not None and math.isfinite(lim.value))
     assert d["pairs_screened"] == a.pairs_screened > 0 and d["shimmy_hold"]["amplitude_deg"] > 0
+    # what a recommendation was built from: each part is a measured single change, named with its own change
+    # and gain, and the parts' changes together are the recommendation's
+    singles = {c.label: c for c in a.candidates}
+    assert any(rec["built_from"] for rec in d["recommendations"])     # the premise: a combination is recommended
+    for rec in d["recommendations"]:
+        merged: dict = {}
+        for part in rec["built_from"]:
+            single = singles[part["label"]]
+            assert part["change"] == single.fields and part["robust_gain"] == single.gain, part["label"]
+            merged.update(part["change"])
+        if rec["built_from"]:
+            assert merged == rec["change"], rec["label"]
 
 
 def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks():
@@ -465,3 +485,113 @@ def test_blocked_changes_rank_by_what_they_fix_then_limits_then_gain():
     assert got == ["fixes", "big", "mid"]
     got = [b.candidate.label for b in _blocked(cands, set(), best_gain=0.1)]
     assert got == ["big", "mid", "small"]
+
+
+def test_a_limit_in_words_has_its_value_limit_and_display_unit():
+    """constraint_text: the limit's words, the value and the limit in the display unit (the shimmy margin in cm from
+    m), 3 figures; a value the slope statics refused is said as such (the docstring's example first)."""
+    from stability.advise.limits import Constraint, constraint_text
+
+    assert constraint_text(Constraint("static_stability_deg", 12.94, 13.8, ">=", False)) == \
+        "static stability 12.9 deg against the limit >= 13.8 deg"
+    assert constraint_text(Constraint("shimmy_margin_m", 0.0123, 0.005, ">=", True)) == \
+        "shimmy margin 1.23 cm against the limit >= 0.5 cm"
+    assert constraint_text(Constraint("turning_effort_N_m", 0.35, 0.3, "<=", False)) == \
+        "turning pin friction 0.35 N m against the limit <= 0.3 N m"
+    assert constraint_text(Constraint("bench_worst_score", 2.0, 1.0, "<=", False)) == \
+        "worst wheel-lift score on the ISO 7176-2 bench 2 against the limit <= 1"
+    assert constraint_text(Constraint("handrim_force_difference_N", None, 30.0, "<=", False)) == \
+        "hand-rim force difference on the cross slope refused by the slope statics (tire data)"
+    assert constraint_text(Constraint("a_new_limit", 1.0, 2.0, "<=", False)) == \
+        "a new limit 1 against the limit <= 2"                   # a limit without words: its name, no unit
+
+
+def test_the_shimmy_sentence_gives_the_margin_and_its_range_in_cm():
+    """The margin and the ends of its range over the compliance estimates, m -> cm with their signs; a range
+    across zero is flagged."""
+    from types import SimpleNamespace
+
+    from stability.advise.limits import shimmy_sentence
+
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=-0.0099, high=0.0099),
+                        shimmy_straddles=True)
+    assert shimmy_sentence(m, 0.05) == ("the 5 cm trail is clear of the nearest shimmy zone by 0.23 cm (frictionless "
+                                        "caster at the estimated pin stiffness and relaxation length; over the "
+                                        "estimates' ranges -0.99 to +0.99 cm: it could shimmy, measure them first)")
+
+
+def test_the_tip_limit_is_met_by_a_value_at_it_and_not_without_a_value():
+    """The static-stability limit compares the value with the limit: 0 deg meets a 0 deg limit (a value, not a
+    missing one), 2.9 deg misses 3 deg, and a chair without a tip angle does not meet it."""
+    from types import SimpleNamespace
+
+    from stability.advise.limits import constraints
+
+    base = SimpleNamespace(turning_effort_N_m=0.1)
+
+    def tip_met(value, min_tip):
+        m = SimpleNamespace(static_stability_deg=SimpleNamespace(value=value),
+                            shimmy_margin_m=SimpleNamespace(value=0.01), shimmy_straddles=False,
+                            turning_effort_N_m=0.1, bench_score=None)
+        k = constraints(m, base, min_tip, "test", 0.0)[0]
+        assert k.name == "static_stability_deg" and k.value == value and k.limit == min_tip
+        return k.met
+
+    assert tip_met(0.0, 0.0) and tip_met(3.0, 3.0) and tip_met(12.0, 3.0)
+    assert not tip_met(2.9, 3.0) and not tip_met(None, 0.0)
+
+
+def test_the_tip_option_offered_is_the_changed_chairs_angle_rounded_down():
+    """The --min-tip-deg offered for a change the tip limit blocks is its tip angle rounded down to 0.1 deg: at most
+    the angle (so the change then meets it) and within 0.1 deg of it."""
+    from stability.advise.limits import Constraint, allow
+
+    for value in (12.94, 12.9, 7.05, 0.04):
+        text = allow(Constraint("static_stability_deg", value, 13.8, ">=", False, "the chair's own"))
+        offered = float(text.split()[1])
+        assert value - 0.1 < offered <= value + 1e-12, (value, text)
+        assert text == f"--min-tip-deg {offered:.1f} (the limit is 13.8 deg, the chair's own)"
+    assert allow(Constraint("static_stability_deg", None, 13.8, ">=", False)) == "no limit allows it"
+
+
+def test_the_geometry_levers_are_the_steps_docs_advise_lists():
+    """The trail and axle levers of the E&J Premier change exactly by the steps of docs/advise.md's lever table
+    (cm), each label saying the value before and after."""
+    import re
+    from pathlib import Path
+
+    from stability.advise.levers import lever_changes
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "advise.md").read_text(encoding="utf-8")
+
+    def steps(lever):
+        row = next(line for line in page.splitlines() if line.startswith(f"| `{lever}`"))
+        return [float(x) / 100 for x in re.findall(r"[-+]\d+", row.split("|")[2])]
+
+    ej = chair_mod.preset("ej-premier")
+    singles, _ = lever_changes(ej)
+    by = {}
+    for ch, _c in singles:
+        by.setdefault(ch.lever, []).append(ch)
+    assert [dict(ch.fields)["trail"] for ch in by["trail"]] == pytest.approx([ej.trail + d for d in steps("trail")])
+    for lever, moves_s2 in (("s1_fixed_wheelbase", True), ("s1_fixed_s2", False)):
+        ds = steps(lever)
+        assert len(by[lever]) == len(ds)
+        for ch, d in zip(by[lever], ds, strict=True):
+            f = dict(ch.fields)
+            assert f["s1"] == pytest.approx(ej.s1 + d) and ("s2" in f) == moves_s2
+            if moves_s2:
+                assert f["s2"] == pytest.approx(ej.s2 - d)
+            assert f"(s1 {ej.s1 * 100:.1f} -> {(ej.s1 + d) * 100:.1f} cm)" in ch.label
+    # the wheelbase lever scales s1 and s2 by the table's factors
+    from stability.advise.levers import LEVERS
+
+    row = next(line for line in page.splitlines() if line.startswith("| `wheelbase`"))
+    factors = [float(x) for x in re.findall(r"x(\d+(?:\.\d+)?)", row.split("|")[2])]
+    assert len(by["wheelbase"]) == len(factors) == 2
+    for ch, k in zip(by["wheelbase"], factors, strict=True):
+        assert dict(ch.fields) == pytest.approx({"s1": ej.s1 * k, "s2": ej.s2 * k})
+        assert f"s2 {ej.s2 * 100:.1f} -> {ej.s2 * k * 100:.1f} cm)" in ch.label
+    # every lever of the advisor is a row of the table
+    listed = {m for line in page.splitlines() for m in re.findall(r"^\| `([a-z0-9_]+)`", line)}
+    assert set(LEVERS) <= listed

@@ -754,3 +754,22 @@ def test_slope_hold_figure_and_text(schedules, slope_holds):
     assert "Cross slope" in text and (f"{holds[1].steady_torque_N_m:.2f} ({holds[1].harder_side} wheel harder) vs "
                                       f"{holds[1].holding_torque_N_m:.2f}") in text
     assert "9 deg: skipped (no equilibrium)" in text
+
+
+def test_a_schedule_built_without_a_standstill_design_starts_at_its_first_speed():
+    """Schedule's standstill design defaults to none: its grid is then the design speeds alone (no 0 m/s entry)."""
+    import dataclasses
+
+    from stability.assist.schedule import Schedule
+
+    s = assist.schedule(chair_mod.preset("power-fwd"), [1.0, 2.0], "gyro")
+    bare = Schedule(**{f.name: getattr(s, f.name) for f in dataclasses.fields(s) if f.name != "standstill"})
+    assert bare.standstill is None
+    speeds, designs = bare.grid
+    np.testing.assert_array_equal(speeds, [1.0, 2.0])
+    assert designs == s.designs
+
+
+def test_a_schedule_of_no_speed_is_refused_in_one_line():
+    with pytest.raises(ValueError, match="^speeds: expected at least one speed$"):
+        assist.schedule(chair_mod.preset("power-fwd"), [], "gyro")

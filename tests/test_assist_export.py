@@ -211,3 +211,19 @@ def test_docs_example_runs_the_c_in_the_loop():
                        capture_output=True, text=True, env=env, timeout=600, check=True)
     diff = float(p.stdout.strip().split()[-2])
     assert diff < 1e-3        # docs: 3.4e-5 deg/s (single precision against float64)
+
+
+def test_c_source_states_the_torque_limit_and_an_unlimited_one_as_float_max_scale(tables):
+    """The C carries the table's torque limit; an unlimited drive (inf) becomes 1e30f, a finite C float (FLT_MAX is
+    about 3.4e38) beyond any torque, where the Python saturation never acts either."""
+    import dataclasses
+    import math
+
+    from stability.assist.export_c import c_sources
+
+    q, ints = quantise(tables, "float")
+    _, c = c_sources(q, ints)
+    line = next(x for x in c.splitlines() if x.startswith("static const float TORQUE_LIMIT = "))
+    assert float(line.split("= ")[1].split("f;")[0]) == q.torque_limit
+    _, c_inf = c_sources(dataclasses.replace(q, torque_limit=math.inf), ints)
+    assert "static const float TORQUE_LIMIT = 1e30f;" in c_inf

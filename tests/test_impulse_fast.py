@@ -170,3 +170,54 @@ def test_run_counts_quoted_in_docs_studies_md():
     assert sum(p.runs for p in critical_impulses(ej, six)) <= bound(36)
     assert sum(p.runs for p in critical_impulses(ej, six, run=RunSpec(friction_law="kinetic"))) <= bound(62)
     assert sum(p.runs for p in critical_impulses(_frictionless("ej-premier"), [0.5, 0.75])) <= bound(9)
+
+
+def _impulse(**kw):
+    from stability.study.impulse import CriticalImpulse
+
+    base = dict(chair_name="c", mass=90.0, speed=0.75, impulse_Ns=0.123456, status="found", low_Ns=0.1234,
+                high_Ns=0.1235, largest_tried_Ns=40.0, smallest_tried_Ns=1e-6, push="40 N for 0.1 s", model="exact",
+                scheme="wchair", level=1.0, horizon=10.0, runs=20)
+    base.update(kw)
+    return CriticalImpulse(**base)
+
+
+def test_critical_impulse_words_have_three_figures_and_name_the_side_of_a_bound():
+    """describe(): 3 significant figures by default, '>' beyond the largest push tried, '<' below the smallest; the
+    result is a frozen value."""
+    import dataclasses
+
+    assert _impulse().describe() == "0.123 N s"
+    assert _impulse().describe(5) == "0.12346 N s"
+    assert _impulse(impulse_Ns=None, status="never").describe() == "> 40 N s"
+    assert _impulse(impulse_Ns=None, status="always").describe() == "< 1e-06 N s"
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        _impulse().impulse_Ns = 1.0  # type: ignore[misc]
+
+
+def test_study_work_estimate_is_runs_times_steps_times_the_step_cost():
+    """The work check refuses exactly above the budget: runs x (horizon / step) x STEP_SECONDS, at the step dt
+    where the chair's stable step is larger (the E&J at 0.75 m/s with 1 ms).  The largest allowed horizon it
+    names is the budget's."""
+    from stability.study.impulse import STEP_SECONDS, WORK_BUDGET_S, check_study_work
+
+    ej = preset("ej-premier")
+    runs, dt = 40, 0.001
+    allowed = WORK_BUDGET_S / (runs * STEP_SECONDS) * dt           # one speed: runs x horizon / dt steps
+    check_study_work([ej], np.array([0.75]), "exact", allowed * 0.99, dt, runs, limits=np.array([1.0]))
+    import re
+
+    with pytest.raises(ValueError, match=re.escape(f"the largest allowed horizon is {allowed:.3g} s")):
+        check_study_work([ej], np.array([0.75]), "exact", allowed * 1.01, dt, runs, limits=np.array([1.0]))
+
+
+def test_search_arguments_are_refused_by_name():
+    """Each of the search's arguments is named in its refusal, with its value and the valid range."""
+    from stability.study.impulse import check_search
+
+    good = dict(level=1.0, max_impulse=40.0, min_impulse=1e-6, rel_tol=1e-3)
+    for name in good:
+        with pytest.raises(ValueError, match=rf"^{name}="):
+            check_search(None, **dict(good, **{name: -1.0}))
+    with pytest.raises(ValueError, match=r"^min_impulse=50\.0 is invalid; valid range: < max_impulse=40\.0 N s$"):
+        check_search(None, **dict(good, min_impulse=50.0))

@@ -41,6 +41,13 @@ def test_the_interval_includes_the_half_step_answer():
     assert np.max(np.abs(lam.real)) * 1e-3 > 1.0           # forward Euler's factor 1 + lambda dt < 0 at 1 ms
     assert 1200.0 < float(np.max(np.abs(lam.real))) < 1300.0  # "about 1240 1/s" in docs/advise.md (1242 1/s; the window only guards the docs' word, not a rounding edge)
     iv = critical_impulse_intervals([c], 0.75, run=RunSpec(friction_law="kinetic"))[0]
+    # every variant of the defaults, in order: each friction factor, the other model, each step factor
+    from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS, scale_friction
+
+    assert [label for label, _ in iv.variants] == ([f"x{f:g} pin friction" for f in FRICTION_FACTORS] + ["thesis model"]
+                                                   + [f"{f:g} ms step" for f in STEP_FACTORS])
+    lower = critical_impulses(scale_friction(c, FRICTION_FACTORS[0]), [0.75], run=RunSpec(friction_law="kinetic"))[0]
+    assert iv.variants[0][1].impulse_Ns == lower.impulse_Ns            # the same search on the changed chair
     half = dict(iv.variants)["0.5 ms step"]
     assert half.status == "found" and iv.point.status == "found"
     assert half.impulse_Ns > 4 * iv.point.impulse_Ns       # 11.6 vs 2.1 N s
@@ -69,3 +76,25 @@ def test_the_reported_impulse_is_the_one_the_chair_receives_where_the_step_is_cu
         run = RunSpec(dt=0.0005, push_force=impulse / unit, push_duration=0.1, horizon=10.0, stop_on_warnings=False)
         t = simulate(c, 0.3, run).first_time_abs_yaw_rate(1.0)
         assert (t is not None) == reaches, (impulse, t)
+
+
+def test_critical_impulse_interval_words_and_json_from_its_variants():
+    """A constructed interval: the words give the point, the range to 3 figures and every variant's label; the
+    JSON has each variant's label, impulse, status and bound (the largest push tried for 'never')."""
+    from stability.study.impulse import CriticalImpulse
+    from stability.study.impulse_intervals import CriticalImpulseInterval
+
+    def imp(j, status="found"):
+        return CriticalImpulse(chair_name="c", mass=90.0, speed=0.75, impulse_Ns=j, status=status, low_Ns=0.0,
+                               high_Ns=0.0, largest_tried_Ns=40.0, smallest_tried_Ns=1e-6, push="40 N for 0.1 s",
+                               model="exact", scheme="wchair", level=1.0, horizon=10.0, runs=20)
+
+    iv = CriticalImpulseInterval("c", 0.75, imp(3.2216), (("x0.5 pin friction", imp(2.3012)),
+                                                         ("thesis model", imp(None, "never"))), 2.3012, 40.0)
+    assert iv.describe() == "3.22 N s (range 2.3-40 N s over x0.5 pin friction, thesis model)"
+    assert iv.to_dict() == {"chair": "c", "speed_m_s": 0.75, "impulse_Ns": 3.2216, "status": "found",
+                            "low_Ns": 2.3012, "high_Ns": 40.0,
+                            "variants": [{"label": "x0.5 pin friction", "impulse_Ns": 2.3012, "status": "found",
+                                          "bound_Ns": 2.3012},
+                                         {"label": "thesis model", "impulse_Ns": None, "status": "never",
+                                          "bound_Ns": 40.0}]}

@@ -107,3 +107,115 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
     data = _assist_json(["--speeds", "1,2", "--no-check", "--faults", "--export-c", str(tmp_path / "fw")])
     assert set(ASSIST_OPTIONAL) <= set(data)
     schemas.validate("assist", data)
+
+
+# hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
+HAND_WRITTEN = ("critical_speed", "simulate", "advise")
+#: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
+SUFFIX_UNITS = [("_rad_s2", "rad/s^2"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
+                ("_m_s", "m/s"), ("_1_s", "1/s"), ("_rad", "rad"), ("_deg", "deg"), ("_Ns", "N s"), ("_N", "N"),
+                ("_m", "m"), ("_s", "s")]
+
+
+def _numbers(node, path=""):
+    """(path, key carrying the unit, schema node) of every number in a schema; items of an array and the
+    ``value``/``interval`` of a quantity take their unit from the enclosing key."""
+    if node.get("type") == "object" and "properties" in node:
+        for k, v in node["properties"].items():
+            yield from _numbers(v, f"{path}.{k}")
+    elif node.get("type") == "array":
+        yield from _numbers(node.get("items", {}), path + "[]")
+    elif "number" in str(node.get("type")):
+        keys = [k.rstrip("[]") for k in path.split(".") if k]
+        unit_key = keys[-2] if keys[-1] in ("value", "interval", "main", "caster") and len(keys) > 1 else keys[-1]
+        yield path, unit_key, node
+
+
+def _unit(key):
+    return next((u for suffix, u in SUFFIX_UNITS if key.endswith(suffix)), None)
+
+
+@pytest.mark.parametrize("name", HAND_WRITTEN)
+def test_hand_written_schema_states_every_numbers_unit(name):
+    leaves = list(_numbers(schemas.schema(name)))
+    assert len(leaves) >= 20
+    for path, key, node in leaves:
+        desc = node.get("description", "")
+        assert "; unit: " in desc, (name, path)
+        unit = _unit(key)
+        if unit is not None:
+            assert desc.split("; unit: ")[1].split(";")[0] == unit, (name, path, desc)
+
+
+def _option_bounds():
+    from stability.cli.numbers import OPTION_BOUNDS
+    from stability.settings.run import RUN_SETTINGS, RunSpec
+
+    simulate = {f".options.{k}": RUN_SETTINGS[f].bound for k, f in
+                zip(RunSpec().to_dict(), RUN_SETTINGS, strict=True) if RUN_SETTINGS[f].bound is not None}
+    simulate[".speed_m_s"] = RUN_SETTINGS["speed"].bound
+    o = OPTION_BOUNDS
+    return {"simulate": simulate,
+            "critical_speed": {".options.speeds_m_s[]": o["--speed"], ".options.max_speed_m_s": o["--max-speed"],
+                               ".options.samples": o["--samples"], ".options.seed": o["--seed"],
+                               ".options.level": o["--level"], ".options.reaction_time_s": o["--reaction-time"],
+                               ".options.nonlinear_samples": o["--nonlinear-samples"]},
+            "advise": {".options.speeds_m_s[]": o["--speed"], ".options.cross_slope_deg": o["--cross-slope"],
+                       ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
+
+
+@pytest.mark.parametrize("name", HAND_WRITTEN)
+def test_hand_written_schema_bounds_the_options_by_the_settings_tables(name):
+    """Every option echoed in the output carries the range its command line refuses outside of (the settings
+    tables stability.settings.run.RunSpec and stability.cli.numbers.OPTION_BOUNDS), stated in words too."""
+    leaves = {path: node for path, _, node in _numbers(schemas.schema(name))}
+    bounds = _option_bounds()[name]
+    assert len(bounds) >= 4
+    for path, b in bounds.items():
+        node = leaves[path]
+        if getattr(b, "signed", False):             # lo <= |value| <= hi: either sign, not near zero
+            assert (node["minimum"], node["maximum"]) == (-b.hi, b.hi), (name, path)
+            assert node["not"] == {"exclusiveMinimum": -b.lo, "exclusiveMaximum": b.lo}, (name, path)
+        else:
+            assert node["exclusiveMinimum" if b.open_lo else "minimum"] == b.lo, (name, path)
+            assert node["exclusiveMaximum" if b.open_hi else "maximum"] == b.hi, (name, path)
+        assert b.text() in node["description"], (name, path)
+
+
+def _refused(name, data, message):
+    with pytest.raises(ValueError, match=message):
+        schemas.validate(name, data)
+
+
+def test_hand_written_schemas_refuse_a_value_outside_its_range(tmp_path):
+    """Real outputs pass; the same outputs with one number moved beyond the settings table's range fail."""
+    import copy
+
+    from stability.cli.numbers import OPTION_BOUNDS
+    from stability.settings.run import RUN_SETTINGS
+
+    cs = output("critical_speed", str(tmp_path))
+    schemas.validate("critical_speed", cs)
+    bad = copy.deepcopy(cs)
+    bad["options"]["speeds_m_s"][0] = OPTION_BOUNDS["--speed"].hi * 1.5
+    _refused("critical_speed", bad, "options/speeds_m_s/0.*maximum")
+    bad = copy.deepcopy(cs)
+    bad["search_range_m_s"][0] = -1.0
+    _refused("critical_speed", bad, "search_range_m_s/0.*minimum")
+
+    sim = output("simulate", str(tmp_path))
+    schemas.validate("simulate", sim)
+    for key, value in (("dt_s", RUN_SETTINGS["dt"].bound.hi * 2), ("speed_m_s", 0.0),
+                       ("cross_slope_deg", RUN_SETTINGS["cross_slope_deg"].bound.lo - 1)):
+        bad = copy.deepcopy(sim)
+        bad["options"][key] = value
+        _refused("simulate", bad, f"options/{key}")
+    bad = copy.deepcopy(sim)
+    bad["t_s"][0] = -0.001
+    _refused("simulate", bad, "t_s/0.*minimum")
+
+
+def test_write_schemas_keeps_the_hand_written_ones():
+    from json_outputs import HAND_WRITTEN as KEPT
+
+    assert set(HAND_WRITTEN) <= set(KEPT)

@@ -289,7 +289,7 @@ def test_critical_speed_grid_is_checked_naming_the_problem():
     assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 2.0])] == [1.0]
     with pytest.raises(ValueError, match=r"at least 2 speeds, got shape \(1,\)"):
         linear.critical_speeds(A, [0.5])
-    with pytest.raises(ValueError, match="strictly increasing"):
+    with pytest.raises(ValueError, match="^speeds must be strictly increasing$"):
         linear.critical_speeds(A, [0.5, 1.5, 1.5, 2.0])
     with pytest.raises(ValueError, match=r"^speeds\[0\]=0\.0 is invalid; valid range: speed > 0 m/s$"):
         linear.critical_speeds(A, [0.0, 1.0, 2.0])
@@ -318,6 +318,9 @@ def test_critical_speed_exactly_on_a_grid_point_is_found_once():
     cross = linear.critical_speeds(B, np.arange(0.5, 2.3, 0.25))
     assert [c.direction for c in cross] == ["stabilising", "destabilising"]
     np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], atol=1e-10)
+    # a zero at the last grid point (no neighbour above: bracketed from the point below to the point itself)
+    last = linear.critical_speeds(A, [0.5, 0.75, 1.0])
+    assert [round(c.speed, 10) for c in last] == [1.0] and last[0].direction == "destabilising"
 
 
 @pytest.mark.parametrize("name", ["ej-premier", "ej-premier-front-caster", "power-fwd"])
@@ -401,3 +404,88 @@ def test_real_casters_close_to_massless_limit():
 def test_front_caster_massless_limit_is_stable():
     c = chair_mod.preset("ej-premier-front-caster")
     assert np.all(linear.massless_caster_rate(c, np.array([0.5, 1.0, 3.0])) < 0)
+
+
+def test_guard_interpolant_is_exact_for_a_cubic():
+    """The guard's interpolant from a cubic's end values and slopes is that cubic (Hermite interpolation is exact
+    up to degree 3), at the guard's fractions and elsewhere, on an interval of width 0.37 starting at 1.3.
+    Error model: rounding of terms up to |c3| x^3 ~ 30, a few ulps: 1e-12 absolute."""
+    from stability.linear.critical import GUARD_FRACTIONS, hermite
+
+    rng = np.random.default_rng(34)
+    x0, h = 1.3, 0.37
+    for c in rng.normal(size=(5, 4)):
+        def p(x, c=c):
+            return c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3
+
+        def dp(x, c=c):
+            return c[1] + 2 * c[2] * x + 3 * c[3] * x**2
+
+        for t in (GUARD_FRACTIONS, np.array([0.0, 0.05, 0.33, 0.9, 1.0])):
+            got = hermite(p(x0), p(x0 + h), dp(x0), dp(x0 + h), h, t)
+            np.testing.assert_allclose(got, p(x0 + t * h), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(GUARD_FRACTIONS, np.arange(1, 8) / 8)
+
+
+def test_guard_interpolant_shows_a_hidden_root_pair_where_the_factors_do():
+    """p(x) = (x - 1.05)(x - 1.15)(x - 2.6) is negative at both ends of [1.0, 1.25] and positive between its
+    known roots 1.05 and 1.15: the interpolant's sign at each guard fraction is the factors' sign there."""
+    from stability.linear.critical import GUARD_FRACTIONS, hermite
+
+    r = (1.05, 1.15, 2.6)
+
+    def p(x):
+        return (x - r[0]) * (x - r[1]) * (x - r[2])
+
+    def dp(x):
+        return (x - r[1]) * (x - r[2]) + (x - r[0]) * (x - r[2]) + (x - r[0]) * (x - r[1])
+
+    x0, h = 1.0, 0.25
+    assert p(x0) < 0 and p(x0 + h) < 0
+    x = x0 + GUARD_FRACTIONS * h
+    inside = (x > r[0]) & (x < r[1])
+    herm = hermite(p(x0), p(x0 + h), dp(x0), dp(x0 + h), h)
+    np.testing.assert_array_equal(herm > 0, inside)
+    assert inside.sum() == 3                             # 1.0625, 1.09375, 1.125
+
+
+def test_critical_speed_guard_maximises_only_where_the_cubic_is_suspicious():
+    """alpha(U) = (U - 1.05)(U - 1.15)(U - 2.6) on a grid of step 0.25: the guard's rule (docstring: the
+    interpolant changes sign against an end, or the slopes change sign and the interpolant comes within 5 % of
+    max |alpha| of zero) evaluated on the exact cubic (its own Hermite interpolant) names the intervals it
+    maximises in; the three roots are the crossings."""
+    r = (1.05, 1.15, 2.6)
+    calls = []
+
+    def alpha(U):
+        return (U - r[0]) * (U - r[1]) * (U - r[2])
+
+    def A(U):
+        U = np.asarray(U, dtype=float)
+        if U.size == 1:
+            calls.append(float(U[0]))
+        return alpha(U)[..., None, None]
+
+    grid = np.linspace(0.5, 3.0, 11)
+    cross = linear.critical_speeds(A, grid)
+    np.testing.assert_allclose([c.speed for c in cross], r, atol=1e-9)
+    assert [c.direction for c in cross] == ["destabilising", "stabilising", "destabilising"]
+
+    def dalpha(U):
+        return (U - r[1]) * (U - r[2]) + (U - r[0]) * (U - r[2]) + (U - r[0]) * (U - r[1])
+
+    scale = np.max(np.abs(alpha(grid)))
+    expected = set()
+    for k in range(len(grid) - 1):
+        lo, hi = grid[k], grid[k + 1]
+        if np.sign(alpha(lo)) != np.sign(alpha(hi)):
+            continue
+        cubic = alpha(lo + np.arange(1, 8) / 8 * (hi - lo))
+        if np.any(np.sign(cubic) != np.sign(alpha(lo))) or (
+                np.sign(dalpha(lo)) != np.sign(dalpha(hi)) and np.min(np.abs(cubic)) < 0.05 * scale):
+            expected.add(k)
+    # single-speed evaluations strictly inside an interval without a sign change at its ends: the maximisations
+    maximised = {int(k) for x in calls for k in [np.searchsorted(grid, x) - 1]
+                 if grid[k] < x < grid[k + 1] and np.sign(alpha(grid[k])) == np.sign(alpha(grid[k + 1]))}
+    assert expected == {2}
+    assert maximised == expected

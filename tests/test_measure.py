@@ -245,6 +245,11 @@ def test_example_sheet_values_and_uncertainties():
     assert c.s2 == pytest.approx(L - c.s1 - 0.075, rel=1e-12)
     assert c.pin_friction_left == pytest.approx(0.100 * G0 * 0.10, rel=1e-12)
     assert c.h == pytest.approx(0.60, abs=0.01)  # the sheet was made from a c.g. 0.60 m high
+    # lateral: the c.g. sits y right of the centre line (moments of the four scales), so the contacts' distances
+    # from it are half-track +- y (tracks 0.54 m main, 0.47 m casters, the sheet's readings)
+    y = (0.54 * (loaded["rm"] - loaded["lm"]) + 0.47 * (loaded["rc"] - loaded["lc"])) / (2 * w)
+    assert (c.d1, c.d2) == pytest.approx((0.27 + y, 0.27 - y), rel=1e-12)
+    assert (c.t1, c.t2) == pytest.approx((0.235 + y, 0.235 - y), rel=1e-12)
     # first-order std of s1 = L C / W, by hand
     ds_dl, ds_dc, ds_dm = (loaded["lc"] + loaded["rc"]) / w, L / w - L * (loaded["lc"] + loaded["rc"]) / w**2, \
         -L * (loaded["lc"] + loaded["rc"]) / w**2
@@ -318,3 +323,16 @@ def test_cli_checks_output_paths_before_work(tmp_path, capsys):
     code = measure_main([EXAMPLE, "-o", str(tmp_path / "c.toml"), "--uncertainty-file", str(tmp_path / "c.toml")])
     assert code == 2
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_missing_required_reading_is_named_with_what_it_measures(tmp_path):
+    """A sheet without the caster track is refused in one line naming the reading and what it is (the words the
+    measurer reads on the sheet and in docs/measure.md's table)."""
+    import re
+
+    text = re.sub(r"(?m)^caster_track = .*\n", "", _sheet_text())
+    bad = tmp_path / "s.toml"
+    bad.write_text(text)
+    with pytest.raises(ValueError, match=r"^sheet reading geometry\.caster_track is missing; it is required "
+                                         r"\(between the caster contacts\)$"):
+        sheet.load_sheet(bad)

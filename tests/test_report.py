@@ -713,12 +713,45 @@ def test_what_helps_most_is_ranked_by_elasticities(quick):
     assert [ch.label for ch in changes] == [e.label for e in ranked]
     text = summary_text(d)
     for ch, e in zip(changes, ranked, strict=True):
-        assert ch.percent == pytest.approx(100 * ((1.1 if e.critical_impulse > 0 else 0.9) ** e.critical_impulse - 1))
+        assert ch.direction == ("raise" if e.critical_impulse > 0 else "lower")
         assert f"(elasticity {e.critical_impulse:+.2f}" in text
     # M_f/l: the friction-limited side force; at fixed trail its elasticity is the friction's
     assert changes[0].label.startswith("pin friction / trail M_f/l") and "N" in changes[0].value
     page = " ".join(_page(quick, "findings").texts).replace("\n", " ")
     assert f"{ranked[0].label} {ranked[0].critical_impulse:+.2f}" in page
+
+
+def test_best_change_percent_is_a_recomputed_ten_percent_change(quick):
+    """The summary's "+x % per 10 %" of the top change against the critical impulse recomputed (an independent
+    finite difference, not the elasticity's power-law step) at the chair with that parameter changed 10 % each way.
+
+    Error model: with x = ln(p / p0), a = ln 1.1 and b = ln 0.9, the printed change is the power law
+    ``exp(e x) - 1`` with ``e`` the central difference of ln J over [b, a].  For ln J = e1 x + k x^2 it misses the
+    change actually reached at ``x`` (the way the summary says) by ``k x (x - a - b)`` in ln J, with k from the three
+    impulses; each impulse carries its bisection's relative bracket width ``rel_tol`` (three impulses).
+    """
+    from stability.report.compute import report_run
+    from stability.report.summary import best_changes
+    from stability.study.sensitivity import _scaler
+
+    d = quick.data
+    sens = d.sensitivity
+    top = best_changes(d)[0]
+    e = next(x for x in sens.ranked() if x.label == top.label)
+    apply, _, _ = _scaler(e.parameter)
+    run = report_run(d.model, d.settings, d.scheme)
+    j0 = sens.nominal.impulse_Ns
+    lo, hi = (r.impulse_Ns for r in study.critical_impulses([apply(d.chair, 0.9), apply(d.chair, 1.1)],
+                                                            sens.speed, run, rel_tol=d.settings.impulse_tol))
+    a, b = math.log(1.1), math.log(0.9)
+    x, j = (a, hi) if top.direction == "raise" else (b, lo)
+    recomputed = 100.0 * (j / j0 - 1.0)                       # the 10 % change, simulated
+    k = (b * math.log(hi / j0) - a * math.log(lo / j0)) / (a * b * (a - b))     # ln J = e1 x + k x^2 through 3 points
+    curvature = abs(k * x * (x - a - b))
+    brackets = 3 * d.settings.impulse_tol
+    assert recomputed > 0                                      # the change raises the critical impulse
+    gap = math.log1p(recomputed / 100.0) - math.log1p(top.percent / 100.0)
+    assert abs(gap) <= curvature + brackets, (recomputed, top.percent, curvature, brackets)
 
 
 def test_cg_ratio_span_keeps_static_loads_positive():

@@ -126,3 +126,18 @@ def test_the_margin_over_several_speeds_is_the_smallest_single_speed_margin(name
     alone = [shimmy_band(c, [u]).shimmy_margin_m for u in speeds]
     assert shimmy_band(c, speeds).shimmy_margin_m == pytest.approx(min(alone), abs=TOL_M)
     assert max(alone) - min(alone) > 10 * TOL_M           # the premise: the speeds disagree
+
+
+def test_describe_writes_each_band_in_cm_with_a_plus_at_the_search_end():
+    """The words of a band are its ends x 100 (cm, one decimal), a '+' only on a band reaching the search end."""
+    import dataclasses
+    import re
+
+    band = shimmy_band(MEASURED, [1.0])
+    end = TRAIL_SEARCH_M[1]
+    fake = dataclasses.replace(band, intervals_m=[[(0.0123, 0.0456), (0.0789, end)]])
+    text = fake.describe(0)
+    numbers = [float(x) for x in re.findall(r"\d+\.\d", text)]
+    assert numbers == [1.2, 4.6, 7.9, round(100 * end, 1)]
+    assert text.count("+") == 1 and text.endswith("+") and text.count(",") == 1
+    assert dataclasses.replace(band, intervals_m=[[]]).describe(0) == "none"

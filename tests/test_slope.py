@@ -210,3 +210,30 @@ def test_slope_command_notes_the_extrapolated_load_and_which_scheme_to_read(caps
     out, err = capsys.readouterr()
     assert f"load {eq.loads[1]:.0f} N is outside the fitted range 0 to 450 N; extrapolated" in err
     assert "run ends: stopped:" in out and "read the adaptive scheme's runs" in out
+
+
+@pytest.mark.parametrize("name", ("ej-premier", "revised"))
+@pytest.mark.parametrize("phi", (2.0, 6.0))
+def test_handrim_force_difference_is_the_statics_moment_over_track_and_rim(name, phi):
+    """Without pin friction the main wheels supply the statics closed-form holding moment M as opposite contact
+    forces +-M / d at half-track d (d1 = d2), each scaled to the rim by R / r: the rim forces differ by
+    -(R / r) M / d (right minus left).  Error model: the closed form's straight-caster neglect, as
+    test_frictionless_statics (rel 2e-3; observed 4e-4)."""
+    from stability.slope import drive_report
+
+    c = chair_mod.preset(name).replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    assert c.d1 == c.d2
+    e = eqm.solve(c, phi, 0.75)
+    rim = drive_report(c, e, "handrim")
+    ratio = rim["wheel_radius_m"] / rim["handrim_radius_m"]
+    assert rim["handrim_force_difference_N"] == pytest.approx(-ratio * e.closed_form / c.d1, rel=2e-3)
+
+
+def test_max_cross_slope_is_the_edge_of_the_tire_data():
+    """manual-front-caster on a 6 deg grade keeps its equilibrium inside the tire data only below a fraction of a
+    degree of cross slope: the answer is inside, one resolution step (hi / 2^14) beyond it is outside."""
+    c = chair_mod.preset("manual-front-caster")
+    best = eqm.max_cross_slope(c, 6.0, 0.75, hi=20.0)
+    assert 0.0 < best < 1.0
+    assert not eqm.solve(c, best, 0.75, 6.0, strict=False).problems
+    assert eqm.solve(c, best + 20.0 / 2**14, 0.75, 6.0, strict=False).problems

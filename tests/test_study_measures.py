@@ -219,3 +219,77 @@ def test_equal_instability_range_counts_a_variant_beyond_the_bracket_as_its_end(
     found = [v.speed for v in iv.variants if v.speed is not None]
     assert found and iv.low == min(found) < 3.0 and iv.high == 3.0
     assert iv.range_text() == f"range {iv.low:.3g} to above 3 m/s"
+
+
+def test_reference_times_are_the_single_runs_times():
+    """The reference batch's times to the level equal single runs of the same pushes sampled every 0.01 s as the
+    batch is (same arithmetic per run: equal to the printed digits, 1e-9 s)."""
+    from stability.simulate import simulate
+    from stability.study.criteria import DEFAULT_CRITERION as crit
+    from stability.study.intervals import reference_times
+
+    ej = preset("ej-premier")
+    got = reference_times(ej, 0.75, [40.0, 60.0], RunSpec(model="exact"), criterion=crit)
+    single = [crit.time(simulate(ej, 0.75, RunSpec(model="exact", push_force=f, horizon=crit.duration, sample=0.01)))
+              for f in (40.0, 60.0)]
+    np.testing.assert_allclose(got, single, rtol=0, atol=1e-9)
+
+
+def test_equal_instability_interval_variants_range_and_json_from_their_runs():
+    """A small interval of the revised chair (the nominal case, a 2x push, x0.5 pin friction, half the step): each
+    variant's
+    reference time is the reference chair's own run (with the friction factor on the reference's pins too, the
+    default), the range is the variants' smallest and largest speed, written to 3 figures, and the JSON carries
+    every variant with its status."""
+    from stability.study.criteria import DEFAULT_CRITERION as crit
+    from stability.study.intervals import reference_times, scale_friction
+
+    ej = preset("ej-premier")
+    iv = study.equal_instability_interval(preset("revised"), force_factors=(2.0,), friction_factors=(0.5,),
+                                          models=("exact",), step_factors=(0.5,))
+    assert [v.factor for v in iv.variants] == ["nominal", "disturbance", "pin friction", "step"]
+    spec = RunSpec(model="exact")
+    expected = [reference_times(ej, 0.75, [40.0, 80.0], spec, criterion=crit),
+                reference_times(scale_friction(ej, 0.5), 0.75, [40.0], spec, criterion=crit),
+                reference_times(ej, 0.75, [40.0], spec.replace(dt=spec.dt / 2), criterion=crit)]
+    np.testing.assert_allclose([v.reference_time for v in iv.variants], np.concatenate(expected), rtol=0,
+                               atol=1e-9)
+    speeds = [v.speed for v in iv.variants]
+    assert all(s is not None for s in speeds) and (iv.low, iv.high) == (min(speeds), max(speeds))
+    assert iv.range_text() == f"range {min(speeds):.3g}-{max(speeds):.3g} m/s"
+    d = iv.to_dict()
+    assert [(x["factor"], x["model"], x["force_N"], x["friction_factor"], x["speed_m_s"], x["status"])
+            for x in d["variants"]] == [(v.factor, "exact", v.force, v.friction_factor, v.speed, "found")
+                                        for v in iv.variants]
+    assert [x["label"] for x in d["variants"]] == ["40 N, x1 friction, exact", "80 N (2x)", "x0.5 pin friction",
+                                                   f"{1e3 * spec.dt / 2:g} ms step"]
+
+
+def test_range_definition_words_are_the_factors_the_range_uses():
+    """The printed definition of the range names exactly the factors of PUSH_FACTORS, FRICTION_FACTORS and
+    STEP_FACTORS (a changed factor must change the words)."""
+    from stability.study.intervals import FRICTION_FACTORS, PUSH_FACTORS, RANGE_DEFINITION, STEP_FACTORS
+
+    def listed(xs):
+        words = [f"x{x:g}" for x in xs]
+        return ", ".join(words[:-1]) + " and " + words[-1]
+
+    assert STEP_FACTORS == (0.5,)
+    assert RANGE_DEFINITION == (f"the range is over the push force {listed(PUSH_FACTORS)}, the pin friction "
+                                f"{listed(FRICTION_FACTORS)} (on both the chair and the reference chair), the other "
+                                "model variant and half the simulator's step, one at a time: not a statistical "
+                                "interval")
+
+
+def test_the_intervals_of_many_chairs_have_the_one_chairs_defaults():
+    """equal_instability_intervals (many chairs) and equal_instability_interval (one) are one definition of the
+    range: every argument they share has the same default (a default changed in one only would make the advisor's
+    and the study command's ranges differ)."""
+    import inspect
+
+    one = inspect.signature(study.equal_instability_interval).parameters
+    many = inspect.signature(study.equal_instability_intervals).parameters
+    shared = [n for n in one if n in many and n not in ("chair", "chairs")]
+    assert len(shared) >= 12
+    for name in shared:
+        assert one[name].default == many[name].default, name

@@ -299,6 +299,11 @@ def test_a_design_beyond_the_searched_range_ranks_first_as_its_bound(tmp_path):
     assert ranked[2]["conservative"] == pytest.approx(1.164)
     text = summary_text(spec, s)
     assert "> 3 m/s" in text and "{" not in text and "trail 0.05 m" in text     # a bound, no dict repr
+    # a higher speed is better, so the designs are ranked by their interval's low end, said in the heading
+    assert "equal_instability_speed_m_s at 0.75 m/s (low end | median | design):" in text.splitlines()
+    from stability.sweep.run import _grid_text
+
+    assert _grid_text({"cg_ratio": 0.5, "trail": 0.05}) == "cg_ratio 0.5, trail 0.05 m"   # a group has no unit
 
 
 def test_a_critical_impulse_never_reached_is_at_least_the_largest_push_and_ranks_first(tmp_path):
@@ -411,3 +416,75 @@ def test_a_design_with_failed_draws_ranks_behind_every_complete_one(tmp_path):
     ranked = summary(spec, data, top=3)["measures"]["equal_instability_speed_m_s"]["best"][0]
     assert [e["design"] for e in ranked] == [2, 0, 1]
     assert [e["missing"] for e in ranked] == [0, 0, 1]
+
+
+def test_censored_sides_are_every_side_a_status_can_have():
+    """SIDES lists exactly the sides the searches' statuses map to, and every one of them is described and
+    ranked: at one value, a bound beyond it in the good direction ranks first, the bound on the bad side last."""
+    from stability.study.censored import SIDES, describe, side_of, sort_key
+
+    assert set(SIDES) == {side_of(s) for s in ("found", "above", "never", "below")} and len(SIDES) == 3
+    assert [describe(3.0, s, "m/s") for s in SIDES] == ["3 m/s", "> 3 m/s", "< 3 m/s"]
+    assert sorted(SIDES, key=lambda s: sort_key(3.0, s, True)) == [">", "=", "<"]
+    assert sorted(SIDES, key=lambda s: sort_key(3.0, s, False)) == ["<", "=", ">"]
+
+
+def test_censored_quantile_takes_the_conservative_neighbour_and_compare_touching_sets():
+    """Draws 1, 2 and '> 3': the 0.9 quantile lies between 2 and the bound, so it is the upper neighbour with its
+    side (above the median the conservative side is up), the 0.1 quantile interpolates two values.  Sets that
+    only touch are ordered: '< 3' allows only values below 3, so it is worse than 3 where higher is better (and
+    '> 3' better), undecided against '< 4'."""
+    from stability.study.censored import compare, quantile
+
+    assert quantile([1.0, 2.0, 3.0], ["=", "=", ">"], 0.9) == (3.0, ">")
+    assert quantile([1.0, 2.0, 3.0], ["<", "=", ">"], 0.1) == (1.0, "<")
+    assert quantile([1.0, 2.0, 3.0], ["=", "=", ">"], 0.25) == (1.5, "=")
+    assert compare(3.0, "<", 3.0, "=", True) == "worse"
+    assert compare(3.0, "<", 3.0, "=", False) == "better"
+    assert compare(3.0, ">", 3.0, "=", True) == "better"
+    assert compare(3.0, "<", 4.0, "<", True) == "undecided"
+
+
+def test_every_measure_column_has_a_direction_and_the_unit_its_name_ends_with():
+    """Each numeric measure column is ranked (HIGHER_IS_BETTER) and printed with the unit its key's suffix names
+    (the JSON key convention, stability.schemas); a dimensionless score has none."""
+    from stability.sweep.run import COLUMN_UNITS, HIGHER_IS_BETTER, TEXT_COLUMNS
+    from stability.sweep.spec import MEASURES
+
+    numeric = {c for cols, _ in MEASURES.values() for c in cols if c not in TEXT_COLUMNS}
+    assert set(HIGHER_IS_BETTER) == numeric and set(COLUMN_UNITS) == numeric
+    suffixes = [("_N_m_per_deg", "N m/deg"), ("_1_s", "1/s"), ("_m_s", "m/s"), ("_Ns", "N s"), ("_deg", "deg"),
+                ("_m", "m"), ("_score", "")]
+    for col in numeric:
+        assert COLUMN_UNITS[col] == next(u for s, u in suffixes if col.endswith(s)), col
+    # larger is safer except where the measure is a rate, a needed effort, a score of faults or a distance
+    assert {c for c in numeric if not HIGHER_IS_BETTER[c]} == {"growth_rate_1_s", "holding_moment_N_m_per_deg",
+                                                               "bench_worst_score", "level_braking_distance_m"}
+
+
+def test_censored_exact_value_against_a_bound_at_it():
+    """3 exactly against '> 3': every value the bound allows is above 3, so 3 is worse where higher is better."""
+    from stability.study.censored import compare
+
+    assert compare(3.0, "=", 3.0, ">", True) == "worse"
+    assert compare(3.0, "=", 3.0, "<", True) == "better"
+
+
+def test_unfinished_chunks_are_refused_naming_both_ways_on(spec_dir):
+    """An output whose chunk directory is left from an interrupted run is refused before any work, in one line
+    naming the output, the directory and both ways on."""
+    import re
+
+    from stability.sweep.run import chunk_dir
+
+    spec = loads_spec(LINEAR, spec_dir)
+    out = spec_dir / "b.csv"
+    chunk_dir(out).mkdir(parents=True)
+    with pytest.raises(ValueError, match=rf"^output {re.escape(repr(str(out)))} has unfinished chunks in "
+                                         rf"{re.escape(repr(str(chunk_dir(out))))}; valid: --resume to finish them, "
+                                         r"or remove that directory$"):
+        run_sweep(spec, out)
+    (chunk_dir(out) / "spec.json").write_text("{}")             # chunks of another spec
+    with pytest.raises(ValueError, match=rf"^--resume: the chunks in {re.escape(repr(str(chunk_dir(out))))} come "
+                                         r"from another spec; valid: the same spec, or remove that directory$"):
+        run_sweep(spec, out, resume=True)

@@ -227,3 +227,38 @@ def test_derivation_statements_and_the_anti_tip_closed_form():
     assert math.atan(val) > math.atan2(c.s1, c.h)                 # caught before it goes over
     assert anti_tip_angle(c) == pytest.approx(math.degrees(math.atan(val)), abs=1e-10)
     assert isinstance(closed, sp.Expr)
+
+
+@pytest.mark.parametrize("theta_deg", [0.0, 20.0, 75.0, 135.0, 200.0, 290.0])
+def test_fixed_contacts_fall_distance_is_the_ray_to_the_support_polygon(theta_deg):
+    """Fixed contacts only (r = 0), an asymmetric triangle: the distance along the fall line is where the ray from
+    the c.g.'s foot point leaves the triangle (ray against each edge, solved here by Cramer's rule)."""
+    from stability.tipping.angles import support_fall_distance
+
+    tri = [(0.31, -0.22), (0.44, 0.37), (-0.27, 0.05)]
+    th = math.radians(theta_deg)
+    e = (math.cos(th), math.sin(th))
+    hits = []
+    for (px, py), (qx, qy) in zip(tri, tri[1:] + tri[:1], strict=True):
+        # rho e = P + u (Q - P): [e, P - Q] [rho, u]^T = P
+        det = e[0] * (py - qy) - e[1] * (px - qx)
+        rho = (px * (py - qy) - py * (px - qx)) / det
+        u = (e[0] * py - e[1] * px) / det
+        if rho > 0 and 0.0 <= u <= 1.0:
+            hits.append(rho)
+    assert len(hits) == 1
+    h = 0.55
+    got = support_fall_distance([(x, y, 0.0) for x, y in tri], h, *e)
+    assert got.distance_m == pytest.approx(hits[0], abs=TOL_M)
+    assert got.angle_deg == pytest.approx(_deg(hits[0], h), abs=1e-9)
+
+
+def test_fall_line_is_a_frozen_value():
+    """A FallLine is a value (settings and results travel as frozen objects): no field can be reassigned."""
+    import dataclasses
+
+    from stability.tipping.angles import support_fall_distance
+
+    line = support_fall_distance([(0.3, -0.2, 0.0), (0.3, 0.2, 0.0), (-0.2, 0.0, 0.0)], 0.5, 1.0, 0.0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        line.distance_m = 1.0  # type: ignore[misc]

@@ -164,3 +164,14 @@ def test_vector_outputs_and_nan_rows():
         propagate(C, u, fn, level=95)
 
 
+
+
+def test_propagate_refuses_an_fn_without_one_row_per_chair_naming_the_shape():
+    """fn must return one row per chair: a scalar or a wrong first axis is refused in one line naming the shape
+    returned and the one required (the nominal chair is evaluated first, alone)."""
+    u = loads_uncertainty(LINEAR_U)
+    with pytest.raises(ValueError, match=r"^fn returned shape \(3,\); valid: first axis of length 1 "
+                                         r"\(one row per chair\)$"):
+        propagate(C, u, lambda chairs: np.zeros(3), samples=20, seed=1)
+    with pytest.raises(ValueError, match=r"^fn returned shape \(\); valid: first axis of length 1"):
+        propagate(C, u, lambda chairs: 1.0, samples=20, seed=1)

@@ -127,8 +127,9 @@ def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source
     -------
     tuple of Constraint
     """
-    out = [Constraint("static_stability_deg", m.static_stability_deg.value, min_tip, ">=",
-                      (m.static_stability_deg.value or -math.inf) >= min_tip - 1e-9, tip_source)]
+    tip = m.static_stability_deg.value            # None: no tip angle (not met); 0 deg is a value
+    out = [Constraint("static_stability_deg", tip, min_tip, ">=", tip is not None and tip >= min_tip - 1e-9,
+                      tip_source)]
     sm = m.shimmy_margin_m.value
     ok = sm is not None and sm >= MIN_SHIMMY_MARGIN_M
     out.append(Constraint("shimmy_margin_m", sm, MIN_SHIMMY_MARGIN_M, ">=", ok,

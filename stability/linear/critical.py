@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Crossing", "max_real_part", "critical_speeds"]
+__all__ = ["Crossing", "GUARD_FRACTIONS", "critical_speeds", "hermite", "max_real_part"]
 
 
 @dataclass(frozen=True)
@@ -73,6 +73,35 @@ def _slopes(state_matrix, speeds: np.ndarray, alpha: np.ndarray) -> np.ndarray:
     num = np.sum(w.conj() * np.einsum("kab,kb->ka", dA, v), axis=1)
     ok = np.abs(den) > 1e-14
     return np.where(ok, (num / np.where(ok, den, 1.0)).real, 0.0)
+
+
+#: Where the double-crossing guard samples the Hermite interpolant: fractions of a grid interval.
+GUARD_FRACTIONS = np.linspace(0.0, 1.0, 9)[1:-1]
+
+
+def hermite(a0: float | np.ndarray, a1: float | np.ndarray, s0: float | np.ndarray, s1: float | np.ndarray,
+            h: float | np.ndarray, t: np.ndarray = GUARD_FRACTIONS) -> np.ndarray:
+    """Cubic Hermite interpolant on an interval of width ``h`` from its end values and slopes.
+
+    Parameters
+    ----------
+    a0, a1 : float or ndarray
+        Values at the interval's ends (unit of the value, 1/s for ``alpha``); arrays of shape (n, 1): n intervals.
+    s0, s1 : float or ndarray
+        Slopes at the ends (value per unit of the abscissa, 1/s per m/s for ``alpha``).
+    h : float or ndarray
+        Width of the interval (unit of the abscissa, m/s).
+    t : ndarray, optional
+        Fractions of the interval (0 at ``a0``, 1 at ``a1``); default :data:`GUARD_FRACTIONS`.
+
+    Returns
+    -------
+    ndarray
+        The interpolant at ``t`` (unit of the value), one row per interval; exact for a cubic.
+    """
+    h00, h10 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t
+    h01, h11 = -2 * t**3 + 3 * t**2, t**3 - t**2
+    return h00 * a0 + h10 * h * s0 + h01 * a1 + h11 * h * s1
 
 
 def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
@@ -142,11 +171,8 @@ def critical_speeds(state_matrix: Callable[[np.ndarray], np.ndarray], speeds,
     da = _slopes(state_matrix, U, a)
     scale = max(np.max(np.abs(a)), 1e-9)
     h = np.diff(U)[:, None]
-    tt = np.linspace(0, 1, 9)[1:-1]
-    h00, h10 = 2 * tt**3 - 3 * tt**2 + 1, tt**3 - 2 * tt**2 + tt
-    h01, h11 = -2 * tt**3 + 3 * tt**2, tt**3 - tt**2
     a0, a1, d0, d1 = a[:-1, None], a[1:, None], da[:-1, None], da[1:, None]
-    herm = h00 * a0 + h10 * h * d0 + h01 * a1 + h11 * h * d1       # one row per grid interval
+    herm = hermite(a0, a1, d0, d1, h)                                # one row per grid interval
     same = np.sign(a[:-1]) == np.sign(a[1:])
     suspicious = same & (np.any(np.sign(herm) != np.sign(a0), axis=1) | (
         (np.sign(da[:-1]) != np.sign(da[1:])) & (np.min(np.abs(herm), axis=1) < 0.05 * scale)))
