@@ -14,7 +14,7 @@ Usage (from the repository root, in the project's venv)::
         --tests-from main
     python tools/mutation_sample.py stability/linear/critical.py --only-survivors before_critical.jsonl \\
         --out after_critical.jsonl
-    python tools/mutation_sample.py --changed --budget 300 --out ci.jsonl      # CI: the modules a change touched
+    python tools/mutation_sample.py --changed --budget 180 --out ci.jsonl      # CI: the modules a change touched
 
 Exit status: for one module, 0 when every mutant run is killed or listed in :data:`EQUIVALENT`, 1 otherwise; with
 ``--changed``, 1 when a module's killed share of its non-equivalent mutants is below ``--target``.  The
