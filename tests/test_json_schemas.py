@@ -160,7 +160,7 @@ def _option_bounds():
                                ".options.samples": o["--samples"], ".options.seed": o["--seed"],
                                ".options.level": o["--level"], ".options.reaction_time_s": o["--reaction-time"],
                                ".options.nonlinear_samples": o["--nonlinear-samples"]},
-            "advise": {".options.speeds_m_s[]": o["--speed"], ".options.cross_slope_deg": o["--cross-slope"],
+            "advise": {".options.speeds_m_s[]": RUN_SETTINGS["speed"].bound, ".options.cross_slope_deg": o["--cross-slope"],
                        ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
 
 

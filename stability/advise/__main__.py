@@ -111,15 +111,8 @@ def _body_layout(a: argparse.Namespace, speeds: tuple[float, ...]) -> int:
     import dataclasses
 
     from stability import __version__
-    from stability.layout import Layout
-    from stability.layout.io import is_layout_spec, resolve_layout
 
-    if is_layout_spec(a.chair):
-        if a.set:
-            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-        layout = resolve_layout(a.chair)
-    else:
-        layout = Layout.from_chair(cli.load_chair(a.chair, a.set))
+    layout = cli.load_layout(a.chair, a.set)
     for flag, given in (("--uncertainty", a.uncertainty), ("--reaction-time", getattr(a, "reaction_time", None)),
                         ("--intended-speed", a.intended_speed)):
         if given is not None:

@@ -54,6 +54,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     output_files,
     parse_speeds,
     run,
@@ -195,8 +196,6 @@ def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, 
     (the layout's linear model; the margins' safe top speed, forward and in reverse)."""
     from stability import __version__
     from stability.assist.layout import format_layout_assist, layout_assist
-    from stability.layout import Layout
-    from stability.layout.io import is_layout_spec, resolve_layout
 
     for flag, given in (("-o", args.output), ("--export-c", args.export_c), ("--faults", args.faults),
                         ("--min-torque", args.min_torque), ("--model thesis", args.model == "thesis")):
@@ -206,12 +205,7 @@ def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, 
     if np.any(np.abs(speeds) > 20.0):
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
                          "0.01 <= |U| <= 20 m/s (negative: reverse)")
-    if is_layout_spec(args.chair):
-        if args.set:
-            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-        layout = resolve_layout(args.chair)
-    else:
-        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    layout = load_layout(args.chair, args.set)
     res = layout_assist(layout, [float(u) for u in speeds], args.design, reverse=args.reverse, weights=weights,
                         drive=drive, gyro=gyro)
     if args.json or args.json_file:

@@ -60,7 +60,8 @@ from stability.runtime.files import distinct_notes, json_text, with_tire_range
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
            "add_driver_options", "driver_from_args",
            "add_run_options", "run_from_args", "run_flag", "add_json_options",
-           "load_chair", "apply_assignments", "parse_speeds", "check_directory", "check_outputs", "output_files",
+           "load_chair", "load_layout", "apply_assignments", "parse_speeds", "check_directory", "check_outputs",
+           "output_files",
            "json_header", "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
            "add_uncertainty_option", "FIGURE_FORMATS", "Bound", "OPTION_BOUNDS", "number", "bound_for",
            "check_finite_text", "NonFiniteResult"]
@@ -109,6 +110,36 @@ def load_chair(spec: str, assignments: Sequence[str]) -> chair_mod.Chair:
     except OSError as exc:
         raise ValueError(f"--chair {spec!r}: cannot read the file ({exc.strerror or exc})") from None
     return apply_assignments(c, assignments)
+
+
+def load_layout(spec: str, assignments: Sequence[str]) -> Any:
+    """``--chair`` and ``--set`` as a wheel layout, for the commands that answer any layout.
+
+    Parameters
+    ----------
+    spec : str
+        ``--chair`` value: a layout preset or ``[[wheel]]`` file, taken as it is, or a short-form chair
+        (:func:`load_chair`) expanded into its layout (:meth:`stability.layout.Layout.from_chair`).
+    assignments : sequence of str
+        ``--set`` values, for a short-form chair only.
+
+    Returns
+    -------
+    Layout
+
+    Raises
+    ------
+    ValueError
+        ``--set`` given with a layout, or as :func:`load_chair`.
+    """
+    from stability.layout import Layout
+    from stability.layout.io import is_layout_spec, resolve_layout
+
+    if not is_layout_spec(spec):
+        return Layout.from_chair(load_chair(spec, assignments))
+    if assignments:
+        raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
+    return resolve_layout(spec)
 
 
 def apply_assignments(c: chair_mod.Chair, assignments: Sequence[str]) -> chair_mod.Chair:

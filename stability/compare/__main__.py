@@ -32,6 +32,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     parse_speeds,
     run,
 )
@@ -162,8 +163,6 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
 
     from stability import __version__
     from stability.compare.layouts import compare_layouts
-    from stability.layout import Layout
-    from stability.layout.io import is_layout_spec, resolve_layout
 
     for flag, given in (("--uncertainty", args.uncertainty), ("-o", args.output)):
         if given:
@@ -185,12 +184,7 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
     layouts, names = [], []
     for i, (spec, sets) in enumerate(zip(args.chairs, per, strict=True)):
         try:
-            if is_layout_spec(spec):
-                if sets:
-                    raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-                layouts.append(resolve_layout(spec))
-            else:
-                layouts.append(Layout.from_chair(load_chair(spec, sets)))
+            layouts.append(load_layout(spec, sets))
         except ValueError as exc:
             raise ValueError(f"chair {i + 1} ({spec!r}): {str(exc).splitlines()[0]}") from None
         names.append(layouts[-1].name + (f" ({', '.join(sets)})" if sets else ""))

@@ -37,6 +37,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     output_files,
     parse_speeds,
     run,
@@ -285,16 +286,10 @@ def _run(args: argparse.Namespace) -> int:
 
 def _run_layout(args: argparse.Namespace) -> int:
     """Any wheel layout, forward and in reverse: the layout's linear model (:mod:`stability.layout`)."""
-    from stability.layout import Layout, analyse_layout
-    from stability.layout.io import is_layout_spec, resolve_layout
+    from stability.layout import analyse_layout
     from stability.layout.text import layout_mapping, layout_text
 
-    if is_layout_spec(args.chair):
-        if args.set:
-            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-        layout = resolve_layout(args.chair)
-    else:
-        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    layout = load_layout(args.chair, args.set)
     for name in ("uncertainty", "output", "reaction_time"):
         if getattr(args, name, None):
             raise ValueError(f"--{name.replace('_', '-')} is not available for a layout or reverse speeds yet; "

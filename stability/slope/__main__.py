@@ -22,6 +22,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     output_files,
     run,
 )
@@ -52,57 +53,6 @@ def build_parser() -> argparse.ArgumentParser:
     add_output_option(p, FIGURE_FORMATS, what="a figure (holding moment and drive difference against cross slope "
                       "from 0 to 6 deg and this slope, and the uncorrected heading at this slope)")
     return p
-
-
-#: Cross slopes of the figure's curves (deg; the command's own slope is added).
-FIGURE_SLOPES = (0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
-
-
-def figure(chair, cross_slope: float, speed: float):
-    """The slope figure of ``-o`` (a matplotlib Figure): holding moment, drive difference and the uncorrected
-    heading of ``chair`` at ``speed`` (m/s) on ``|cross_slope|`` (deg; the side does not change the magnitudes).
-
-    The curves come from :func:`stability.report.slope_data.slope_section` (the report's cross-slope page, at
-    this speed, over :data:`FIGURE_SLOPES` and ``|cross_slope|``); the drawing from :mod:`stability.plotting`
-    and :func:`stability.slope.plots.plot_holding`.
-    """
-    from stability import plotting as P
-    from stability.report.slope_data import TREADMILL, slope_section
-    from stability.slope.plots import plot_holding
-
-    phi = abs(float(cross_slope))
-    s = slope_section(chair, speed=speed, slopes=sorted(set(FIGURE_SLOPES) | {phi}), path_slope=phi)
-    fig, axes = P.page(f"{chair.name} | exact model | cross slope {phi:g} deg at {speed:g} m/s",
-                       "steady straight running across a slope: what holds the line, and what happens without it",
-                       nrows=1, ncols=3, size=(13.0, 5.6))
-    plot_holding([s.curve], axes[0, 0], published=TREADMILL)
-    axes[0, 0].set_title("holding yaw moment\n(band: Coulomb pin friction; grey: treadmill study)", fontsize=9)
-    P.drive_difference(s.curve.cross_slopes_deg, s.drive_difference, s.drive_label, axes[0, 1], chair=chair.name)
-    axes[0, 1].set_title("drive difference that holds a straight line", fontsize=9)
-    if s.path is not None:
-        P.uncorrected_heading(s.path.t, s.path_heading_deg, axes[0, 2],
-                              title=f"uncorrected at {s.path_slope:g} deg: turns {s.path.turn}",
-                              quasi_steady_deg_s=s.path.quasi_steady_rate_deg_s)
-    else:
-        axes[0, 2].axis("off")
-        axes[0, 2].text(0.0, 0.5, "no uncorrected run: level ground or every slope refused", fontsize=9)
-    k = [float(x) for x in s.curve.cross_slopes_deg].index(phi) if phi in s.curve.cross_slopes_deg else None
-    what = "hand-rim force" if s.drive == "handrim" else "motor torque"
-    unit = "N" if s.drive == "handrim" else "N m"
-    words = [f"What to conclude: to run straight at {speed:g} m/s on a {phi:g} deg cross slope"]
-    if k is not None:
-        words.append(f" the drive must supply {s.curve.holding_moment[k]:.3g} N m of yaw moment, a {what} difference "
-                     f"of {s.drive_difference[k]:.3g} {unit} with the {s.harder_side[k]} wheel working harder")
-    else:
-        words.append(" the statics refuse this slope (" + "; ".join(r for p, r in s.refused if p == phi) + ")")
-    if s.path is not None:
-        words.append(f"; let go, the chair turns {s.path.turn} ({s.path.heading_change_deg:+.1f} deg after "
-                     f"{s.path.report_time:.2f} s, downhill +)")
-    words.append(". Above the grey band the chair needs more holding than the manual chairs of the treadmill study.")
-    lines = P.wrap_text("".join(words), 170)
-    fig.text(0.5, 0.02, "\n".join(lines), ha="center", va="bottom", fontsize=8.5, fontweight="bold", color="0.1",
-             linespacing=1.4)
-    return P.finish(fig, top=0.82, bottom=0.16 + 0.035 * (len(lines) - 1))
 
 
 def _finite(x):
@@ -148,18 +98,11 @@ def _schemes_verdict(sim: dict, t_end: float) -> str:
 def _run_layout(a: argparse.Namespace) -> int:
     """A wheel layout, or any chair in reverse: the layout model's statics and the layout simulator."""
     from stability import __version__
-    from stability.layout import Layout
-    from stability.layout.io import is_layout_spec, resolve_layout
     from stability.study.layout_slope import layout_slope_report
 
     if a.output:
         raise ValueError("-o is not available for a layout or a reverse speed yet; valid: --json, --json-file")
-    if is_layout_spec(a.chair):
-        if a.set:
-            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-        layout = resolve_layout(a.chair)
-    else:
-        layout = Layout.from_chair(load_chair(a.chair, a.set))
+    layout = load_layout(a.chair, a.set)
     data, lines = layout_slope_report(layout, a.cross_slope, a.speed, a.grade, a.sim_time, a.drive,
                                       HandRim(a.wheel_radius, a.handrim_radius))
     if a.json or a.json_file:
@@ -210,10 +153,11 @@ def _body(a: argparse.Namespace) -> int:
     }
     data = _finite(data)
     if a.output:
+        from stability.report.slope_figure import slope_figure
         from stability.runtime.files import save_figure
 
         with output_files({"-o": a.output}) as tmp:
-            save_figure(figure(chair, a.cross_slope, a.speed), tmp["-o"],
+            save_figure(slope_figure(chair, a.cross_slope, a.speed), tmp["-o"],
                         title=f"stability slope: {chair.name}, {a.cross_slope:g} deg")
         print(f"wrote {a.output}", file=sys.stderr)
     if a.json or a.json_file:

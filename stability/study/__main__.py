@@ -19,6 +19,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     parse_speeds,
     run,
     run_from_args,
@@ -114,8 +115,6 @@ def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
     """A layout preset or ``[[wheel]]`` file, or any chair at negative speeds: the layout simulator's runs
     (:func:`stability.study.layout_impulse.layout_critical_impulses`)."""
     from stability import __version__
-    from stability.layout import Layout
-    from stability.layout.io import is_layout_spec, resolve_layout
     from stability.study.layout_impulse import (
         SPEED_RANGE_M_S,
         check_layout_work,
@@ -125,12 +124,7 @@ def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
     )
     from stability.study.summaries import run_steps
 
-    if is_layout_spec(args.chair):
-        if args.set:
-            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-        layout = resolve_layout(args.chair)
-    else:
-        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    layout = load_layout(args.chair, args.set)
     lo, hi = SPEED_RANGE_M_S
     if np.any(np.abs(speeds) > hi):
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout; valid range: every |speed| {lo:g} to "
@@ -189,20 +183,13 @@ def _interval_layout(args: argparse.Namespace, run_spec) -> None:
     """A layout preset or ``[[wheel]]`` file, or any chair with ``--reverse``: the layout simulator's runs
     (:func:`stability.study.layout_equal_instability.layout_equal_instability_interval`)."""
     from stability import __version__
-    from stability.layout import Layout
-    from stability.layout.io import is_layout_spec, resolve_layout
     from stability.study.layout_equal_instability import (
         LAYOUT_RANGE_DEFINITION,
         direction_words,
         layout_equal_instability_interval,
     )
 
-    if is_layout_spec(args.chair):
-        if args.set:
-            raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-        layout = resolve_layout(args.chair)
-    else:
-        layout = Layout.from_chair(load_chair(args.chair, args.set))
+    layout = load_layout(args.chair, args.set)
     if run_spec.model != "exact":
         raise ValueError(f"--model {run_spec.model} is invalid for a layout or --reverse; valid values: exact "
                          "(the layout's equations are the exact model's)")
