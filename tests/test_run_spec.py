@@ -124,3 +124,24 @@ def test_a_run_records_its_settings_and_the_default_law_is_stick_slip():
     k = simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.2, friction_law="kinetic", model="thesis"))
     assert k.settings["friction_law"] == "kinetic" and k.settings["model"] == "thesis"
     assert "kinetic pin friction" in k.summary() and "stick-slip pin friction" in r.summary()
+
+
+def test_an_infinite_push_duration_is_null_in_json_and_reads_back():
+    """JSON has no infinity: the constant force (push_duration inf, the setting's special value) is written as
+    null and read back as inf; the simulate command's JSON with it validates against its schema."""
+    import json
+    import subprocess
+    import sys
+
+    from stability import schemas
+
+    run = RunSpec(push_duration=math.inf, horizon=0.5)
+    assert run.to_dict()["push_duration_s"] is None and RunSpec.from_dict(run.to_dict()) == run
+    with pytest.raises(TypeError, match="horizon=None is invalid"):
+        RunSpec.from_dict({"horizon_s": None})          # null is inf only where inf is allowed
+    r = subprocess.run([sys.executable, "-m", "stability.simulate", "--push-duration", "inf", "--horizon", "0.5",
+                        "--json"], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    assert out["options"]["push_duration_s"] is None
+    schemas.validate("simulate", out)

@@ -359,11 +359,15 @@ class RunSpec:
     def to_dict(self) -> dict[str, Any]:
         """The settings under their JSON keys (snake_case, unit last: ``speed_m_s``, ``horizon_s``).
 
+        JSON has no infinity: a setting whose special value is ``inf`` (``push_duration``: a constant
+        force) is written as null, and :meth:`from_dict` reads null back as ``inf``.
+
         Returns
         -------
         dict
         """
-        return {json_key(f.name, f.metadata["setting"].unit): getattr(self, f.name) for f in dataclasses.fields(self)}
+        return {json_key(f.name, f.metadata["setting"].unit): _json_value(f, getattr(self, f.name))
+                for f in dataclasses.fields(self)}
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> RunSpec:
@@ -382,7 +386,15 @@ class RunSpec:
         unknown = sorted(set(data) - set(by_key))
         if unknown:
             raise ValueError(f"unknown run setting(s) {unknown}; valid: {sorted(by_key)}")
-        return cls(**{by_key[k]: v for k, v in data.items()})
+        fields = {f.name: f for f in dataclasses.fields(cls)}
+        return cls(**{by_key[k]: math.inf if v is None and math.inf in fields[by_key[k]].metadata["setting"].special
+                      else v for k, v in data.items()})
+
+
+def _json_value(f: dataclasses.Field, value: Any) -> Any:
+    """``value`` for JSON: None for an infinite value the setting allows (:meth:`RunSpec.to_dict`)."""
+    return None if isinstance(value, float) and math.isinf(value) and math.inf in f.metadata["setting"].special \
+        else value
 
 
 def names() -> list[str]:
