@@ -24,6 +24,10 @@ from stability.chair import preset
 from stability.settings.run import RunSpec
 from stability.simulate import engine, kernel_choice, lanemath, simulate, simulate_batch
 
+# The lanes kernel is opt-in (STABILITY_KERNEL=lanes): its first compile costs about 25 s of CPU, more than any
+# other module of the default suite with an empty numba cache, so its tests run in CI's slow step.
+pytestmark = pytest.mark.slow
+
 #: the recorded quantities of a result
 FIELDS = ("x", "y", "heading", "yaw_rate", "u", "v", "eta", "eta_dot", "beta", "beta_dot", "fx", "fy", "normal_load",
           "slip_deg", "tire_yaw_moment", "yaw_moment_input", "yaw_acceleration", "pin_moment")
