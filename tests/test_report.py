@@ -695,10 +695,8 @@ def test_study_command_and_full_report_print_the_same_range(capsys):
     assert study_cli.main(["equal-instability", "--chair", "revised", "--json", "--quiet"]) == 0
     j = json.loads(capsys.readouterr().out)
     assert (j["low_m_s"], j["high_m_s"], j["speed_m_s"]) == (iv.low, iv.high, iv.point.speed)
-    from pathlib import Path
-
-    doc = " ".join((Path(__file__).resolve().parents[1] / "docs" / "interface.md").read_text().split())
-    assert f"{iv.point.speed:.3g} m/s, {iv.range_text()}" in doc      # the numbers docs/interface.md quotes
+    # docs/interface.md no longer quotes typed numbers here: they are computed when the site builds
+    # ({docvalue}`advise_table.revised.verdict.eis`), so no test pins them (issue 35)
 
 
 def test_what_helps_most_is_ranked_by_elasticities(quick):
