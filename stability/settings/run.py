@@ -387,8 +387,9 @@ class RunSpec:
         if unknown:
             raise ValueError(f"unknown run setting(s) {unknown}; valid: {sorted(by_key)}")
         fields = {f.name: f for f in dataclasses.fields(cls)}
-        return cls(**{by_key[k]: math.inf if v is None and math.inf in fields[by_key[k]].metadata["setting"].special
-                      else v for k, v in data.items()})
+        values: dict[str, Any] = {by_key[k]: math.inf if v is None and math.inf in
+                                  fields[by_key[k]].metadata["setting"].special else v for k, v in data.items()}
+        return cls(**values)
 
 
 def _json_value(f: dataclasses.Field, value: Any) -> Any:
