@@ -1,7 +1,7 @@
 """The explorer opens a wheel layout preset (``?chair=mid-wheel-drive``) and shows what the layout commands compute.
 
-Checked in chromium at a laptop's 1280x720, failing on any console error (the ``console_errors`` fixture): the
-header names the layout; the Stability vs speed tab's text is what ``python -m stability.critical_speed --chair
+Checked in chromium at a laptop's 1280x720 and a tablet's 1024x768 (every tab of the mid-wheel-drive base), failing
+on any console error (the ``console_errors`` fixture): the header names the layout; the Stability vs speed tab's text is what ``python -m stability.critical_speed --chair
 NAME`` prints (run here as a command: an independent path from the page's in-process call); the Geometry tab's is
 what ``python -m stability.tipping --chair NAME`` prints; the Nonlinear and Trail window tabs show the critical
 impulse forward and in reverse and a shimmy table per caster row; every other tab says in one line that it does
@@ -27,9 +27,9 @@ def _command(*args: str) -> str:
     return done.stdout.rstrip()
 
 
-def _open(page, app_url, query: str):
+def _open(page, app_url, query: str, size: tuple[int, int] = (1280, 720)):
     page.context.set_default_timeout(90_000)
-    page.set_viewport_size({"width": 1280, "height": 720})
+    page.set_viewport_size({"width": size[0], "height": size[1]})
     page.goto(f"{app_url}?{query}")
     page.locator(".summary pre", has_text="growth rate").wait_for()
 
@@ -42,15 +42,16 @@ def _shot(page, artifacts, name: str, tab: str) -> None:
     page.wait_for_timeout(500)                                      # the figures' first paint
     page.screenshot(path=artifacts / f"wheel-layout-{name}-{re.sub(r'[^a-z]+', '-', tab.lower())}.png")
     box = page.evaluate(_SCROLL)
-    assert box["scroll"] <= box["client"], (tab, box)               # no sideways scroll at 1280 px
+    assert box["scroll"] <= box["client"], (tab, box)               # no sideways scroll at this width
 
 
-def test_mid_wheel_drive_every_tab(page, app_url, console_errors, artifacts):
+@pytest.mark.parametrize("size", [(1280, 720), (1024, 768)], ids=["laptop", "tablet"])
+def test_mid_wheel_drive_every_tab(page, app_url, console_errors, artifacts, size):
     from stability.app.layout_page import NOT_FOR_LAYOUTS
     from stability.app.page import TAB_NAMES
 
     name = "mid-wheel-drive"
-    _open(page, app_url, f"chair={name}")
+    _open(page, app_url, f"chair={name}", size)
     page.locator(".chair-title", has_text=f"{name} (wheel layout: 2 fixed wheels, 4 casters").wait_for()
     # the summary equals the command line's output, character for character
     assert page.locator(".summary pre").inner_text().rstrip() == _command("stability.critical_speed", "--chair", name)
@@ -70,7 +71,7 @@ def test_mid_wheel_drive_every_tab(page, app_url, console_errors, artifacts):
             assert "(front left)" in text and "(rear left)" in text, text       # one table per caster row
         elif tab != "Stability vs speed":
             page.locator(".not-for-layouts", has_text=NOT_FOR_LAYOUTS[tab][:30]).wait_for()
-        _shot(page, artifacts, name, tab)
+        _shot(page, artifacts, f"{name}-{size[0]}x{size[1]}", tab)
 
 
 @pytest.mark.parametrize("name", ["power-fwd-base", "power-rwd-base"])
