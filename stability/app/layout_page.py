@@ -38,6 +38,7 @@ from bokeh.models import ColumnDataSource, Range1d
 from bokeh.models.annotations import Label, LegendItem, Span
 
 from stability.app import plots
+from stability.app.editor import EDITOR_WIDTH
 from stability.app.jobs import Jobs
 from stability.app.markup import literal, pre
 from stability.layout.linear import analyse_layout, state_matrices
@@ -157,7 +158,7 @@ def top_view(layout: Layout):
     -------
     bokeh.plotting.figure
     """
-    p = plots._fig(f"{plots.short_title(layout.name, 30)} from above (loads in N)",
+    p = plots._fig(f"{plots.short_title(layout.name, 30)} from above: loads, N",
                    "x, forward from the c.g. (m)", "lateral, left up (m)", match_aspect=True, height=380)
     pts = contacts(layout)
     loads = static_loads(layout)
@@ -176,13 +177,13 @@ def top_view(layout: Layout):
     items = [
         ("support polygon", p.patch(list(hull[:, 0]), list(hull[:, 1]), fill_alpha=0.06, fill_color="grey",
                                     line_color="grey", line_dash="dashed")),
-        ("caster trail (pin to contact)", p.segment(px, py, cx, py, line_width=3, color=OKABE_ITO[1])),
+        ("trail (pin to contact)", p.segment(px, py, cx, py, line_width=3, color=OKABE_ITO[1])),
         ("drive wheels", p.scatter([x for x, d in zip(wx, driven, strict=True) if d],
                                    [y for y, d in zip(wy, driven, strict=True) if d], size=14, marker="square",
                                    color=OKABE_ITO[0])),
         ("caster pins", p.scatter(px, py, size=8, marker="circle", color=OKABE_ITO[1])),
         ("caster contacts", p.scatter(cx, py, size=10, marker="triangle", color=OKABE_ITO[2])),
-        ("centre of gravity", p.scatter([0.0], [0.0], size=15, marker="circle_cross", color="black", fill_alpha=0)),
+        ("c.g.", p.scatter([0.0], [0.0], size=15, marker="circle_cross", color="black", fill_alpha=0)),
     ]
     if not all(driven):
         items.insert(2, ("fixed wheels (not driven)", p.scatter(
@@ -306,7 +307,7 @@ class LayoutExplorer:
         self.tabs.param.watch(lambda e: self._deliver(partial(_held, self._tab_shown)), "active")
         self.top = top_view(self.wheels)
         left = pn.Column(pn.pane.Bokeh(self.top, sizing_mode="stretch_width", css_classes=["chair-sketch"]),
-                         about.pane, width=420)
+                         about.pane, width=EDITOR_WIDTH)       # the explorer's left column: the tabs fit at 1024 px
         header = pn.Column(pn.Row(pn.pane.Markdown("### stability explorer", margin=(0, 10), width=400),
                                   title.pane, sizing_mode="stretch_width"), message.pane, sizing_mode="stretch_width")
         self.layout = pn.Column(header, pn.Row(left, pn.Column(self.tabs, sizing_mode="stretch_width",
