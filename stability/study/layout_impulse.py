@@ -40,6 +40,7 @@ from stability.study.impulse import (
     push_impulse,
     runs_per_speed,
 )
+from stability.study.runs import study_run
 from stability.study.search import bracket_search
 from stability.study.summaries import Summaries, run_steps
 
@@ -308,7 +309,9 @@ def slow_divergences(layout: Layout, points: Sequence[CriticalImpulse], run: Run
     tuple of SlowDivergence
         One per point with status ``"never"`` and a positive growth rate, the largest push re-run.
     """
-    run = check_search(run, LEVEL, 40.0, 1e-6, 0.005)
+    run = study_run(run)                      # the searches' settings; their push bounds are in the points
+    if side not in SIDES:
+        raise ValueError(f"side={side!r} is invalid; valid values: {', '.join(map(repr, SIDES))}")
     never = [p for p in points if p.status == "never"]
     if not never:
         return ()
