@@ -207,3 +207,24 @@ def test_bad_input_is_refused_in_one_line(argv, words, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert words in err and "\n" not in err
+
+
+def test_a_bound_found_by_every_variant_prints_no_degenerate_range():
+    """A base that no push up to the search's 40 N s spins (every variant a bound at 40 N s) and whose
+    equal-instability speed is above the searched 3 m/s in every variant: the advice prints "> 40 N s" and
+    "> 3 m/s", never "(range 40-40)" or "(range 3-3 ...)", which say nothing (issue 35: degenerate ranges are not
+    printed); a real range still is (the fake's 14-16 N s at the 5 cm trail)."""
+    import re
+
+    from stability.advise.text import advice_text
+
+    def bounds(layouts):
+        return [(Interval(40.0, 40.0, 40.0), Interval(3.0, 3.0, 3.0), "above", "never", None) for _ in layouts]
+
+    text = advice_text(advise(layout_preset("power-rwd-base"), speeds=SPEEDS, nonlinear=bounds,
+                              time_to_correct=False))
+    assert "> 40 N s" in text and "> 3 m/s" in text
+    assert not re.search(r"range (\d[\d.]*)-\1\b", text), text
+    ranged = advice_text(advise(layout_preset("power-rwd-base"), speeds=SPEEDS, nonlinear=_fake,
+                                time_to_correct=False))
+    assert "15 N s (range 14-16 N s over pin friction and simulator step)" in ranged, ranged

@@ -323,3 +323,13 @@ def test_plan_for_contains_the_chairs_own_value():
     own = rev.s1 / (rev.s1 + rev.s2)
     assert own in study.plan_for(rev)["cg_ratio"]
     assert study.plan_for(ej)["cg_ratio"] == study.DEFAULT_PLAN["cg_ratio"]
+
+
+def test_range_words_prints_a_range_only_when_it_says_something():
+    from stability.study.censored import range_words
+
+    assert range_words(2.31, 4.2, "N s") == " (range 2.31-4.2 N s)"
+    assert range_words(0.779, 1.12, "m/s", "push size") == " (range 0.779-1.12 m/s over push size)"
+    assert range_words(40.0, 40.0, "N s") == ""
+    assert range_words(3.0, 3.0004, "m/s") == ""                   # equal to the printed 3 figures
+    assert range_words(None, 3.0, "m/s") == "" and range_words(1.0, None, "m/s") == ""

@@ -18,7 +18,7 @@ from stability.advise.measures import EFFORT_WORDS, Measures
 from stability.bench.loads import SCORE_WORDS
 from stability.layout.model import Layout
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
-from stability.study.censored import describe, side_of
+from stability.study.censored import describe, range_words, side_of
 
 __all__ = ["Cost", "Decision", "decide", "kmh", "DIRECTION_WORDS"]
 
@@ -189,9 +189,9 @@ def _verdict(a: Advice) -> tuple:
                    "largest tried) turns the chair to 1 rad/s within 10 s: it does not spin up (a slow steady turn is "
                    "not excluded by this measure).")
     else:
-        rng = "" if ci.low is None or ci.high is None else f"; range {ci.low:.2g}-{ci.high:.2g} N s"
-        out.append(f"At {kmh(REFERENCE_SPEED)}{back} a sideways push of {ci.value:.2g} N s at the seat (about "
-                   f"{(ci.value or 0.0) / THESIS_PUSH.duration:.0f} N for a tenth of a second{rng} over {over}) turns "
+        rng = range_words(ci.low, ci.high, "N s", over, digits=2)
+        out.append(f"At {kmh(REFERENCE_SPEED)}{back} a sideways push of {ci.value:.2g} N s{rng} at the seat (about "
+                   f"{(ci.value or 0.0) / THESIS_PUSH.duration:.0f} N for a tenth of a second) turns "
                    "the chair until it spins at 1 rad/s (57 deg/s) within 10 s unless "
                    "the user steers.")
     times = [f"{t:.2g} s at {u:g} m/s" if t is not None else f"more than 10 s at {u:g} m/s"
@@ -205,8 +205,7 @@ def _verdict(a: Advice) -> tuple:
     else:
         where = {"found": f"at {kmh(ei.value or 0.0)}", "above": f"only above {kmh(ei.value or 0.0)}",
                  "below": f"already below {kmh(ei.value or 0.0)}"}[m.equal_instability_status] + back
-        rng = "" if ei.low is None or ei.high is None else f" (range {ei.low:.3g}-{ei.high:.3g} m/s over push size, " \
-            f"{over})"
+        rng = range_words(ei.low, ei.high, "m/s", f"push size, {over}")
         out.append(f"It is as unstable as the thesis's reference case ({REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s) "
                    f"{where}{rng}; faster than that it gives the user less time than the reference case.")
     if isinstance(a.chair, Layout):
@@ -299,7 +298,7 @@ def _predicted(m: Measures) -> str:
     ci = describe(m.critical_impulse_Ns.value or math.nan, side_of(m.critical_impulse_status), digits=3)
     ei = describe(m.equal_instability_speed_m_s.value or math.nan, side_of(m.equal_instability_status), digits=3)
     rng = m.critical_impulse_Ns
-    r = "" if rng.low is None or rng.high is None else f" (range {rng.low:.3g}-{rng.high:.3g} N s)"
+    r = range_words(rng.low, rng.high, "N s")
     return f"critical impulse {ci} N s{r}, equal-instability speed {ei} m/s"
 
 

@@ -12,15 +12,13 @@ from stability.advise.limits import limit_words
 from stability.advise.measures import Measures
 from stability.advise.subject import is_layout, levers_of
 from stability.settings.reference import REFERENCE_SPEED
-from stability.study.censored import describe, side_of
+from stability.study.censored import describe, range_words, side_of
 
 __all__ = ["advice_text", "advice_mapping", "kmh"]
 
 def _iv(x, unit: str, digits: int = 3, status: str = "found") -> str:
-    lo = "?" if x.low is None else f"{x.low:.{digits}g}"
-    hi = "?" if x.high is None else f"{x.high:.{digits}g}"
     value = {"above": "> ", "never": "> ", "below": "< "}.get(status, "") + f"{x.value:.{digits}g}"
-    return f"{value} {unit} (range {lo}-{hi})"
+    return f"{value} {unit}" + range_words(x.low, x.high, unit, digits=digits)
 
 
 def _row(c: Candidate, base: Measures, broken: set) -> str:

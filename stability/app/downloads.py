@@ -4,7 +4,9 @@
 * the results JSON: exactly what ``python -m stability.critical_speed --chair FILE --json`` prints, built by
   that command's own parser defaults and ``document`` function,
 * the eigenvalues against speed as CSV (:func:`stability.app.views.eigenvalues_csv`),
-* the toolkit's eigenvalue figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as PNG or SVG.
+* the toolkit's eigenvalue figure (:func:`stability.plotting.loci.eigenvalues_vs_speed`) as PNG or SVG;
+* for a wheel layout (:func:`layout_buttons`): its ``[[wheel]]`` file (:func:`stability.layout.io.dumps`), the
+  results JSON of ``critical_speed --chair LAYOUT --json`` and the page's eigenvalues against signed speed as CSV.
 
 Each file is named after the chair (``revised-modified-trail-0.055.toml``): the
 name is user text, so only ASCII letters, digits, ``.``, ``-`` and ``_`` are
@@ -23,7 +25,8 @@ from stability import tires
 from stability.chair import Chair
 from stability.runtime.files import json_text, with_tire_range
 
-__all__ = ["chair_toml", "results_json", "figure_file", "file_stem", "file_names", "download_buttons", "STEM_LENGTH"]
+__all__ = ["chair_toml", "results_json", "figure_file", "file_stem", "file_names", "download_buttons", "STEM_LENGTH",
+           "layout_results_json", "layout_buttons"]
 
 #: Longest file-name stem taken from a chair's name (characters).
 STEM_LENGTH = 60
@@ -173,6 +176,60 @@ def download_buttons(state: Any, view: Any) -> Any:
               "csv": "eigenvalues against speed (CSV)", "png": "eigenvalue figure (PNG)",
               "svg": "eigenvalue figure (SVG)"}
     names = file_names(state.chair.name)
+    return {k: pn.widgets.FileDownload(callback=fn, filename=names[k], label=labels[k],
+                                       css_classes=[f"download-{k}"], width=340)
+            for k, fn in work.items()}
+
+
+def layout_results_json(layout: Any) -> str:
+    """What ``python -m stability.critical_speed --chair <this layout> --json`` prints (its default speeds).
+
+    Parameters
+    ----------
+    layout : stability.layout.Layout
+
+    Returns
+    -------
+    str
+    """
+    from stability.critical_speed.command import build_parser, layout_document, layout_summary
+
+    args = build_parser().parse_args([])
+    speeds = [float(x) for x in args.speeds.split(",")]
+    with tires.range_policy(args.tire_range), tires.collect_notes() as notes, warnings.catch_warnings():
+        warnings.simplefilter("ignore", tires.TireRangeWarning)
+        doc = layout_document(layout, layout_summary(layout, speeds), speeds)
+    return json_text(with_tire_range(doc, notes, args.tire_range)) + "\n"
+
+
+def layout_buttons(layout: Any, eigenvalues: Any) -> Any:
+    """The layout page's download buttons (Panel): the ``[[wheel]]`` file, the results JSON, the eigenvalues CSV.
+
+    Parameters
+    ----------
+    layout : stability.layout.Layout
+    eigenvalues : bokeh.models.ColumnDataSource
+        The page's eigenvalue source (``speed`` m/s, ``real`` 1/s), written as drawn.
+
+    Returns
+    -------
+    dict
+        Kind (``"toml"``, ``"json"``, ``"csv"``) -> ``panel.widgets.FileDownload``.
+    """
+    import panel as pn
+
+    from stability.layout.io import dumps
+
+    def csv() -> io.StringIO:
+        d = eigenvalues.data
+        rows = ["speed_m_s,real_part_1_s"] + [f"{u!r},{r!r}" for u, r in zip(d["speed"], d["real"], strict=True)]
+        return io.StringIO("\n".join(rows) + "\n")
+
+    work = {"toml": lambda: io.StringIO(dumps(layout)), "json": lambda: io.StringIO(layout_results_json(layout)),
+            "csv": csv}
+    labels = {"toml": "the wheel layout ([[wheel]] TOML)", "json": "results (JSON, as critical_speed --json)",
+              "csv": "eigenvalues' real parts against signed speed (CSV)"}
+    names = file_names(layout.name)
     return {k: pn.widgets.FileDownload(callback=fn, filename=names[k], label=labels[k],
                                        css_classes=[f"download-{k}"], width=340)
             for k, fn in work.items()}

@@ -10,13 +10,18 @@ commands compute for the preset and draws it from above.
   with the critical speeds of :func:`stability.layout.linear.critical_speed`
   marked, and the text ``python -m stability.critical_speed --chair NAME``
   prints (:func:`stability.layout.text.layout_text`, the same call).
-* **Geometry**, **Nonlinear** and **Trail window**: the output of the commands
-  ``tipping``, ``study critical-impulse`` (forward and in reverse) and
-  ``shimmy`` (one table per caster row) for the layout, run in the background
-  when the tab is first shown, each headed by its command line.  They run as
-  the commands themselves (a child process of the server), so the page shows
-  exactly what a user at the command line gets.
-* The other tabs say in one line why they do not apply to a layout yet.
+* **Geometry**, **Nonlinear**, **Trail window**, **Advice**, **Compare** and
+  **Power assist**: the output of the commands ``tipping``, ``study
+  critical-impulse`` (forward and in reverse), ``shimmy`` (one table per caster
+  row), ``advise``, ``compare`` (against the frame's other drive layouts) and
+  ``assist`` for the layout, run in the background when the tab is first shown,
+  each headed by its command line.  They run as the commands themselves (a
+  child process of the server), so the page shows exactly what a user at the
+  command line gets.
+* **Downloads**: the layout as a ``[[wheel]]`` chair file (the file to start
+  from), the results JSON of ``critical_speed --json`` and the plotted
+  eigenvalues as CSV (:func:`stability.app.downloads.layout_buttons`).
+* **Tracking** says in one line why it does not apply to a layout.
 
 Nothing here is user text except the URL's other fields, which are named (as
 text) in the one-line message that says they were ignored.
@@ -59,17 +64,13 @@ COMMANDS: dict[str, tuple[str, ...]] = {
     "Geometry": ("stability.tipping", "--chair", "{chair}"),
     "Nonlinear": ("stability.study", "critical-impulse", "--chair", "{chair}", "--speeds=-0.75,0.75"),
     "Trail window": ("stability.shimmy", "--chair", "{chair}"),
+    "Advice": ("stability.advise", "--chair", "{chair}"),
+    "Compare": ("stability.compare", "{chair}", "{others}"),
+    "Power assist": ("stability.assist", "--chair", "{chair}"),
 }
 #: The one line of each tab that does not apply to a wheel layout.
 NOT_FOR_LAYOUTS = {
-    "Advice": "The advisor's levers are the short form's fields (trail, axle position): not available for a wheel "
-              "layout yet.",
-    "Compare": "Pinning and comparing chairs works on the short form's chairs: not available for a wheel layout yet.",
-    "Power assist": "The yaw-rate assist is designed on the short form's model: not available for a wheel layout "
-                    "yet.",
     "Tracking": "The tracking task measures the driver, not the chair: open it from a short-form chair.",
-    "Downloads": "A layout preset is its own file: python -m stability.critical_speed --chair NAME --json gives its "
-                 "results; the chair file downloads are for the short form.",
 }
 #: Longest a background command may run, s.
 COMMAND_TIMEOUT_S = 900
@@ -103,13 +104,14 @@ def command_line(tab: str, name: str) -> list[str]:
     tab : str
         A key of :data:`COMMANDS`.
     name : str
-        A layout preset's name.
+        A layout preset's name (``{chair}``); ``{others}`` stands for the other layout presets, in order.
 
     Returns
     -------
     list of str
     """
-    return [a.format(chair=name) for a in COMMANDS[tab]]
+    others = [n for n in layout_preset_names() if n != name]
+    return [b for a in COMMANDS[tab] for b in (others if a == "{others}" else [a.format(chair=name)])]
 
 
 def run_command(args: list[str]) -> str:
@@ -255,6 +257,8 @@ class LayoutExplorer:
     wheels : Layout
     texts : dict
         Tab name -> its text pane (:class:`stability.app.plots.TextBox`).
+    downloads : dict
+        Kind -> its download button (:func:`stability.app.downloads.layout_buttons`).
     """
 
     def __init__(self, name: str, query: Any = None, deliver: Callable[[Callable[[], None]], Any] | None = None
@@ -284,7 +288,8 @@ class LayoutExplorer:
         others = ", ".join(f'<a href="?chair={n}">{n}</a>' for n in layout_preset_names() if n != name)
         about = plots.TextBox("layout-about", (
             "<p>A wheel layout (stability/layout/presets.py; docs/layouts.md): its wheels are data, not the short "
-            "form's fields, so there is nothing to edit here.  Other layouts: " + others + ".  The thesis's "
+            "form's fields, so there is nothing to edit here (Downloads gives its [[wheel]] file to edit).  Other "
+            "layouts: " + others + ".  The thesis's "
             f'chairs, with the field editor: <a href="?chair={D.CHAIR}">{D.CHAIR}</a>.</p>'))
         speed_text = plots.TextBox("summary", pre(layout_text(self.wheels, self.summary)))
         self.texts["Stability vs speed"] = speed_text
@@ -293,6 +298,16 @@ class LayoutExplorer:
             if tab == "Stability vs speed":
                 panels.append(pn.Column(pn.pane.Bokeh(fig, sizing_mode="stretch_width"), speed_text.pane,
                                         sizing_mode="stretch_width"))
+            elif tab == "Downloads":
+                from stability.app.downloads import layout_buttons
+
+                self.downloads = layout_buttons(self.wheels, self.eig_src)
+                box = plots.TextBox("layout-downloads", (
+                    "<p>The layout as a chair file in the [[wheel]] form (edit its wheels, then give it to any "
+                    "command as <code>--chair FILE</code>), the results as <code>python -m stability.critical_speed "
+                    "--chair FILE --json</code> prints them, and the eigenvalues drawn on Stability vs speed.</p>"))
+                self.texts[tab] = box
+                panels.append(pn.Column(box.pane, *self.downloads.values(), sizing_mode="stretch_width"))
             elif tab in COMMANDS:
                 box = plots.TextBox(f"layout-{tab.lower().replace(' ', '-')}",
                                     f"<p>computing <code>python -m {' '.join(command_line(tab, name))}</code>...</p>")

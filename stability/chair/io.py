@@ -21,8 +21,8 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["to_mapping", "from_mapping", "dumps", "save", "load", "resolve", "parse_assignment", "parse_assignments",
-           "GROUPS", "user_table"]
+__all__ = ["to_mapping", "from_mapping", "dumps", "toml_value", "save", "load", "resolve", "parse_assignment",
+           "parse_assignments", "GROUPS", "user_table"]
 
 
 def to_mapping(c: Chair) -> dict[str, Any]:
@@ -71,7 +71,17 @@ def from_mapping(data: Mapping[str, Any], base: Chair | None = None) -> Chair:
     return base.replace(**dict(data))
 
 
-def _toml_value(value: Any) -> str:
+def toml_value(value: Any) -> str:
+    """A field's value as TOML (strings quoted and escaped; floats by ``repr``, which round-trips exactly).
+
+    Parameters
+    ----------
+    value : str, bool, int or float
+
+    Returns
+    -------
+    str
+    """
     if isinstance(value, str):
         return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
     if isinstance(value, bool):
@@ -98,7 +108,7 @@ def dumps(c: Chair) -> str:
         value = getattr(c, f.name)
         if value is None:
             continue
-        lines.append(f"{f.name} = {_toml_value(value)}  # {f.metadata['unit']}: {f.metadata['doc']}")
+        lines.append(f"{f.name} = {toml_value(value)}  # {f.metadata['unit']}: {f.metadata['doc']}")
     return "\n".join(lines) + "\n"
 
 

@@ -54,7 +54,7 @@ if TYPE_CHECKING:
     from stability.linear.intervals import LinearIntervals
     from stability.study.uncertain import NonlinearIntervals
 
-__all__ = ["main", "build_parser", "document"]
+__all__ = ["main", "build_parser", "document", "layout_summary", "layout_document"]
 
 #: Largest --samples (bounded work: about 1 ms per drawn chair); equals stability.linear.intervals.MAX_SAMPLES.
 MAX_SAMPLES = 20_000
@@ -286,8 +286,7 @@ def _run(args: argparse.Namespace) -> int:
 
 def _run_layout(args: argparse.Namespace) -> int:
     """Any wheel layout, forward and in reverse: the layout's linear model (:mod:`stability.layout`)."""
-    from stability.layout import analyse_layout
-    from stability.layout.text import layout_mapping, layout_text
+    from stability.layout.text import layout_text
 
     layout = load_layout(args.chair, args.set)
     for name in ("uncertainty", "output", "reaction_time"):
@@ -299,16 +298,53 @@ def _run_layout(args: argparse.Namespace) -> int:
     except ValueError:
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout; valid: a list of signed speeds, m/s "
                          "(negative: reverse), 0.01 <= |U| <= 20") from None
-    summary = analyse_layout(layout, speeds if any(u < 0 for u in speeds) else
-                             [-u for u in reversed(speeds)] + speeds)
+    summary = layout_summary(layout, speeds)
     if args.json or args.json_file:
-        from stability import __version__
-
-        emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact",
-                   "options": {"speeds_m_s": speeds}, **layout_mapping(layout, summary)}, args)
+        emit_json(layout_document(layout, summary, speeds), args)
     if not args.json:
         print(layout_text(layout, summary))
     return 0
+
+
+def layout_summary(layout: Any, speeds: Sequence[float]) -> Any:
+    """The layout's linear summary at ``speeds``, and at the same speeds in reverse when all are forward.
+
+    Parameters
+    ----------
+    layout : stability.layout.Layout
+    speeds : sequence of float
+        Signed speeds, m/s (negative: reverse).
+
+    Returns
+    -------
+    stability.layout.LayoutSummary
+    """
+    from stability.layout import analyse_layout
+
+    speeds = list(speeds)
+    return analyse_layout(layout, speeds if any(u < 0 for u in speeds) else [-u for u in reversed(speeds)] + speeds)
+
+
+def layout_document(layout: Any, summary: Any, speeds: Sequence[float]) -> dict:
+    """The JSON document ``--chair LAYOUT --json`` prints.
+
+    Parameters
+    ----------
+    layout : stability.layout.Layout
+    summary : stability.layout.LayoutSummary
+        :func:`layout_summary`'s.
+    speeds : sequence of float
+        The ``--speeds`` asked for, m/s.
+
+    Returns
+    -------
+    dict
+    """
+    from stability import __version__
+    from stability.layout.text import layout_mapping
+
+    return {"stability_version": __version__, "chair": layout.name, "model": "exact",
+            "options": {"speeds_m_s": list(speeds)}, **layout_mapping(layout, summary)}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -22,8 +22,13 @@ A chair file in the long form::
     trail = 0.05
     ...
 
+    [[anti_tip]]       # optional: where an anti-tip device touches the ground once the chair has tipped
+    x = -0.45
+    y = 0.0
+
 Every field of :class:`~stability.layout.model.FixedWheel` and :class:`~stability.layout.model.Caster` may be
-given; the short form (:class:`stability.chair.Chair`'s fields) expands with :meth:`Layout.from_chair`.
+given (:func:`dumps` writes them all: ``python -m stability.chair export mid-wheel-drive`` gives a file to start
+from); the short form (:class:`stability.chair.Chair`'s fields) expands with :meth:`Layout.from_chair`.
 """
 
 from __future__ import annotations
@@ -35,7 +40,7 @@ from stability.layout.model import Caster, FixedWheel, Layout
 from stability.layout.presets import layout_preset, layout_preset_names
 from stability.runtime import readfiles
 
-__all__ = ["load_layout", "resolve_layout", "is_layout_spec"]
+__all__ = ["load_layout", "resolve_layout", "is_layout_spec", "dumps"]
 
 
 def _fields(cls) -> set[str]:
@@ -59,10 +64,10 @@ def load_layout(path: str | os.PathLike[str]) -> Layout:
         A missing table, an unknown key or kind, or a value out of range (one line naming it).
     """
     data = readfiles.load_toml(path)
-    unknown = sorted(set(data) - {"body", "wheel", "user"})
+    unknown = sorted(set(data) - {"body", "wheel", "anti_tip", "user"})
     if unknown:
         raise ValueError(f"chair file {str(path)!r}: unknown table(s) {unknown} in the [[wheel]] form; valid: "
-                         "[body], [[wheel]], [user]")
+                         "[body], [[wheel]], [[anti_tip]], [user]")
     body = data.get("body")
     wheels = data.get("wheel")
     if not isinstance(body, dict) or not isinstance(wheels, list) or not wheels:
@@ -89,9 +94,44 @@ def load_layout(path: str | os.PathLike[str]) -> Layout:
                 casters.append(Caster(**w))
         except (TypeError, ValueError) as exc:
             raise ValueError(f"chair file {str(path)!r}: wheel {i + 1} ({kind}): {exc}") from None
+    anti_tip = data.get("anti_tip", [])
+    if not isinstance(anti_tip, list) or any(not isinstance(a, dict) or set(a) != {"x", "y"} for a in anti_tip):
+        raise ValueError(f"chair file {str(path)!r}: each [[anti_tip]] table needs exactly x and y (m)")
     name = body.get("name", os.path.splitext(os.path.basename(str(path)))[0])
     return Layout(str(name), body.get("m", 0.0), body.get("i_z", 0.0), body.get("h", 0.0), tuple(fixed),
-                  tuple(casters), body.get("g", 9.81))
+                  tuple(casters), body.get("g", 9.81), tuple((a["x"], a["y"]) for a in anti_tip))
+
+
+def dumps(layout: Layout) -> str:
+    """A layout as a chair file in the ``[[wheel]]`` form, every field written (:func:`load_layout` reads it back
+    exactly: floats by ``repr``).
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    str
+        TOML text: ``[body]``, one ``[[wheel]]`` table per fixed wheel then per caster (the order the layout keeps
+        them in, which the advisor's caster numbers follow), and ``[[anti_tip]]`` tables if any.
+    """
+    from stability.chair.io import toml_value
+
+    def table(header: str, pairs: list[tuple[str, object]]) -> list[str]:
+        return ["", header] + [f"{k} = {toml_value(v)}" for k, v in pairs if v is not None]
+
+    lines = ["# stability wheel layout (the [[wheel]] form; units: m, kg, kg m^2, N/m, N m s/rad, N m, deg;",
+             "# every field: docs/layouts.md).  x forward of the c.g., y to its right; a caster's x, y is its pin."]
+    lines += table("[body]", [("name", layout.name), ("m", layout.m), ("i_z", layout.i_z), ("h", layout.h),
+                              ("g", layout.g)])
+    for kind, items in (("fixed", layout.wheels), ("caster", layout.casters)):
+        for w in items:
+            lines += table("[[wheel]]", [("kind", kind)] + [(f.name, getattr(w, f.name))
+                                                              for f in dataclasses.fields(w)])
+    for x, y in layout.anti_tip:
+        lines += table("[[anti_tip]]", [("x", x), ("y", y)])
+    return "\n".join(lines) + "\n"
 
 
 def is_layout_spec(spec: str) -> bool:

@@ -13,7 +13,8 @@ only worse.
 
 :func:`side_of` maps the searches' statuses to sides, :func:`quantile` takes an
 order statistic of censored draws (telling whether the quantile itself is a
-bound), :func:`describe` prints one (``"> 3 m/s"``).
+bound), :func:`describe` prints one (``"> 3 m/s"``) and :func:`range_words` its range, unless the range is
+degenerate (``"range 3-3 m/s"`` says nothing).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-__all__ = ["SIDES", "side_of", "quantile", "describe", "sort_key", "compare"]
+__all__ = ["SIDES", "side_of", "quantile", "describe", "range_words", "sort_key", "compare"]
 
 #: The sides of a result: found, lower bound (the value is above), upper bound (below).
 SIDES = ("=", ">", "<")
@@ -139,6 +140,32 @@ def describe(value: float, side: str, unit: str = "", digits: int = 4) -> str:
         return "no value"
     text = f"{value:.{digits}g}" + (f" {unit}" if unit else "")
     return text if side == "=" else f"{side} {text}"
+
+
+def range_words(low: float | None, high: float | None, unit: str, over: str = "", digits: int = 3) -> str:
+    """``" (range 2.31-4.2 N s over ...)"``, or ``""`` when an end is missing or both print the same.
+
+    Parameters
+    ----------
+    low, high : float or None
+        The range's ends (None: no range).
+    unit : str
+    over : str
+        What the range spans (``"push size, pin friction and simulator step"``), after "over".
+    digits : int
+        Significant figures.
+
+    Returns
+    -------
+    str
+        With a leading space, for appending to a value.
+    """
+    if low is None or high is None:
+        return ""
+    lo, hi = f"{low:.{digits}g}", f"{high:.{digits}g}"
+    if lo == hi:
+        return ""
+    return f" (range {lo}-{hi}" + (f" {unit}" if unit else "") + (f" over {over}" if over else "") + ")"
 
 
 def compare(a: float, side_a: str, b: float, side_b: str, higher_is_better: bool, rel_tol: float = 1e-3) -> str:

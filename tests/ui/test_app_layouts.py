@@ -4,8 +4,11 @@ Checked in chromium at a laptop's 1280x720 and a tablet's 1024x768 (every tab of
 on any console error (the ``console_errors`` fixture): the header names the layout; the Stability vs speed tab's text is what ``python -m stability.critical_speed --chair
 NAME`` prints (run here as a command: an independent path from the page's in-process call); the Geometry tab's is
 what ``python -m stability.tipping --chair NAME`` prints; the Nonlinear and Trail window tabs show the critical
-impulse forward and in reverse and a shimmy table per caster row; every other tab says in one line that it does
-not apply; the top view draws every contact; no sideways scroll.  A screenshot of each tab goes to
+impulse forward and in reverse and a shimmy table per caster row; Advice, Compare and Power assist show what
+``advise``, ``compare`` (against the other drive layouts) and ``assist`` print, each read here from the command run
+independently; the Downloads tab's layout file reads back as the preset and its JSON is what ``critical_speed
+--json`` prints; Tracking says in one line that it does not apply; the top view draws every contact; no sideways
+scroll.  A screenshot of each tab goes to
 ``STABILITY_UI_ARTIFACTS`` (``wheel-layout-<name>-<tab>.png``).
 """
 
@@ -46,9 +49,11 @@ def _shot(page, artifacts, name: str, tab: str) -> None:
 
 
 @pytest.mark.parametrize("size", [(1280, 720), (1024, 768)], ids=["laptop", "tablet"])
-def test_mid_wheel_drive_every_tab(page, app_url, console_errors, artifacts, size):
+def test_mid_wheel_drive_every_tab(page, app_url, console_errors, artifacts, size, tmp_path):
     from stability.app.layout_page import NOT_FOR_LAYOUTS
     from stability.app.page import TAB_NAMES
+    from stability.layout.io import load_layout
+    from stability.layout.presets import layout_preset
 
     name = "mid-wheel-drive"
     _open(page, app_url, f"chair={name}", size)
@@ -69,6 +74,26 @@ def test_mid_wheel_drive_every_tab(page, app_url, console_errors, artifacts, siz
         elif tab == "Trail window":
             text = page.locator(".layout-trail-window pre", has_text="caster shimmy").inner_text(timeout=600_000)
             assert "(front left)" in text and "(rear left)" in text, text       # one table per caster row
+        elif tab in ("Advice", "Compare", "Power assist"):
+            from stability.app.layout_page import command_line
+
+            cls = f".layout-{tab.lower().replace(' ', '-')} pre"
+            text = page.locator(cls, has_text="$ python -m").inner_text(timeout=600_000)
+            head, body = text.split("\n\n", 1)
+            assert head == "$ python -m " + " ".join(command_line(tab, name))
+            if size == (1280, 720):                  # the command's own output, once (the advisor's minute)
+                assert body.split("\n\n")[0] == _command(*command_line(tab, name)).split("\n\n")[0]
+        elif tab == "Downloads":
+            with page.expect_download() as dl:
+                page.locator(".download-toml button").click()
+            path = tmp_path / f"{name}.toml"
+            dl.value.save_as(path)
+            assert load_layout(path) == layout_preset(name)
+            with page.expect_download() as dl:
+                page.locator(".download-json button").click()
+            dl.value.save_as(tmp_path / "results.json")
+            assert (tmp_path / "results.json").read_text() == _command("stability.critical_speed", "--chair", name,
+                                                                       "--json") + "\n"
         elif tab != "Stability vs speed":
             page.locator(".not-for-layouts", has_text=NOT_FOR_LAYOUTS[tab][:30]).wait_for()
         _shot(page, artifacts, f"{name}-{size[0]}x{size[1]}", tab)
