@@ -18,7 +18,7 @@ REASONS = {
     "pending": "a computed number on a page not yet converted to value groups (issue 35); only to be removed",
 }
 
-PENDING_LIMIT = 161
+PENDING_LIMIT = 150
 
 ALLOWED: dict[str, list[tuple[str, str]]] = {
     'README.md': [
@@ -88,6 +88,8 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('Modules are split by topic. About 500 lines is', 'parameter'),
     ],
     'docs/assist.md': [
+        ('`assist_auto_step.dt_01_ms` ms at 0.1 m/s) a', 'parameter'),
+        ('the power-fwd schedule at 1, 2, 3 m/s', 'parameter'),
         ('yaw-rate weight of 10 deg/s', 'parameter'),
         ('margin [1/2, inf), phase margin >= 60 deg,', 'parameter'),
         ('2/3, i.e. a gain change of 2 up or down or a phase change of', 'parameter'),
@@ -167,7 +169,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('5 s after the fault', 'parameter'),
         ('of a 0.6 m chair in a 1.2 m corridor;', 'parameter'),
         ('default grid 0.5-3 m/s', 'parameter'),
-        ('the undetected 1 deg/s bias step, whose 1 s bias estimate', 'parameter'),
         ('bias 5 and 20 deg/s', 'parameter'),
         ('the 1 s dropout. Never detected, and harmless: bias 1 deg/s', 'parameter'),
         ('gain margin >= 6 dB and phase margin >= 30 deg', 'parameter'),
@@ -190,18 +191,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('model, inside the 10 N m limit,', 'parameter'),
         ('at 2 m/s, 10 N m, the 0.5 rad/s step', 'parameter'),
         ('(gyro, 0.5-3 m/s) and', 'parameter'),
-        ('schedule at 1, 2, 3 m/s (200 Hz):', 'parameter'),
-        ('-160 1/s, about', 'pending'),
-        ('agrees (1 deg/s, 10', 'pending'),
-        ('agrees (1 deg/s, 10 s: -10 deg without,', 'pending'),
-        ('deg/s, 10 s: -10 deg without, -1 deg with).', 'pending'),
-        ('simulator (WCHAIR scheme; below ~0.3 m/s the', 'pending'),
-        ('`command_run` now uses `dt="auto"`, 0.2 ms at 0.1', 'pending'),
-        ('m/s (200 Hz): Q15 tolerance 0.004 to', 'pending'),
-        ('0.050 N m per', 'pending'),
-        ('inside (tested); Q31 bound about 1e-7 of full', 'pending'),
-        ('1 s bias estimate leaves a ~1 deg heading', 'pending'),
-        ('{docvalue}`assist_faults.limited_by`**: at 3.75 m/s the', 'pending'),
     ],
     'docs/bench.md': [
         ("statement of ISO 7176-2's scoring: **0** no wheel", 'structure'),

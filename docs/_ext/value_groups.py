@@ -156,6 +156,7 @@ def evaluate(name: str, use_cache: bool = True) -> tuple[dict, float, bool]:
 
 from value_groups_advise import *  # noqa: E402,F401,F403
 from value_groups_assist import *  # noqa: E402,F401,F403
+from value_groups_assist_extra import *  # noqa: E402,F401,F403
 from value_groups_layouts import *  # noqa: E402,F401,F403  (registers the layout groups)
 from value_groups_measure import *  # noqa: E402,F401,F403
 from value_groups_misc import *  # noqa: E402,F401,F403
