@@ -45,7 +45,8 @@ def assist_estimator() -> dict:
         w.__exit__(None, None, None)
     lo, hi = max(fastest), min(fastest)
     return {"pole_lo": f"{lo:.0f}", "pole_hi": f"{hi:.0f}", "rate_hz": f"{rate:g}",
-            "fraction_lo": sig(abs(lo) / (2 * math.pi * rate), 2), "fraction_hi": sig(abs(hi) / (2 * math.pi * rate), 2)}
+            "fraction_lo": sig(abs(lo) / (2 * math.pi * rate), 2),
+            "fraction_hi": sig(abs(hi) / (2 * math.pi * rate), 2)}
 
 
 @group("assist_nonlinear_bias", "stability.assist.recovery(power_fwd, 1.0, DigitalController(schedule(power_fwd, "

@@ -30,7 +30,8 @@ def report_slope() -> dict:
     i6 = int(np.argmax(c.cross_slopes_deg))
     mean, lo, hi = s.treadmill_m_x
     p = s.path
-    out = {"speed": f"{s.speed:g}", "per_deg": fixed(s.per_degree, 2), "closed_form": fixed(s.closed_form_per_degree, 2),
+    out = {"speed": f"{s.speed:g}", "per_deg": fixed(s.per_degree, 2),
+           "closed_form": fixed(s.closed_form_per_degree, 2),
            "top_slope": f"{c.cross_slopes_deg[i6]:g}", "top_moment": sig(c.holding_moment[i6], 3),
            "band_lo": sig(c.friction_low[i6], 3), "band_hi": sig(c.friction_high[i6], 3),
            "rim_top": sig(s.drive_difference[i6], 3), "m_x": sig(s.m_x, 3),
