@@ -157,10 +157,10 @@ def run_measurement() -> dict:
     return data
 
 
-LABELS = {"growth_rate": "`growth_rate`", "critical_speeds": "`critical_speeds` (free and locked)",
-          "critical_impulse": "`critical_impulse`", "equal_instability_speed": "`equal_instability_speed`",
-          "shimmy_margin": "`shimmy_margin` (shimmy band at the speeds)", "tip_angles": "`tip_angles`",
-          "holding_moment": "`holding_moment` (cross-slope equilibrium per speed)"}
+LABELS = {"growth_rate": "growth_rate", "critical_speeds": "critical_speeds (free and locked)",
+          "critical_impulse": "critical_impulse", "equal_instability_speed": "equal_instability_speed",
+          "shimmy_margin": "shimmy_margin (shimmy band at the speeds)", "tip_angles": "tip_angles",
+          "holding_moment": "holding_moment (cross-slope equilibrium per speed)"}     # plain text: a table cell
 
 
 @group("scale_costs", "NUMBA_NUM_THREADS=1: stability.sweep.compute_chunk(loads_spec(SPEC), 0) per measure "
