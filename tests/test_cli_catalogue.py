@@ -640,7 +640,6 @@ def test_slope_answers_a_heavy_chair_under_the_clamp_and_warn_policies(capsys):
     # the loads follow from statics and the lateral forces' small moments: the two policies move the
     # caster forces only beyond the data, so the loads agree to well under 1 N of about 500 N
     assert loads["warn"]["caster_left"] > 450.0
-    assert round(loads["warn"]["caster_left"]) == 518           # "518 N" in docs/hostile-input.md
     for k, v in loads["clamp"].items():
         assert loads["warn"][k] == pytest.approx(v, abs=1.0)
 

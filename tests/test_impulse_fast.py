@@ -151,7 +151,7 @@ def test_equal_instability_search_equals_the_bisection_to_its_tolerance():
         assert a.status == b.status == "found"
         assert a.high - a.low <= 0.005 + 1e-12 and a.low <= a.speed <= a.high
         assert abs(a.speed - b.speed) <= 0.005
-        assert len(a.evaluations) <= 19 < len(b.evaluations) == 30     # docs/studies.md: 30 -> 11-19 runs
+        assert len(a.evaluations) <= 19 < len(b.evaluations) == 30     # the grid search: 30 runs
     assert abs(new[0].speed - 0.75) <= 0.005
 
 

@@ -15,19 +15,11 @@ import validation_checks
 from docutils import nodes
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective
+from stability_values import table_row
 
 logger = logging.getLogger(__name__)
 COLUMNS = ("check", "source", "reference", "computed at build time", "criterion", "result")
 WIDTHS = (22, 14, 20, 20, 12, 6)
-
-
-def _row(cells: list[str]) -> nodes.row:
-    row = nodes.row()
-    for text in cells:
-        entry = nodes.entry()
-        entry += nodes.paragraph(text=text)
-        row += entry
-    return row
 
 
 class StabilityValidation(SphinxDirective):
@@ -40,7 +32,7 @@ class StabilityValidation(SphinxDirective):
         for w in WIDTHS:
             group += nodes.colspec(colwidth=w)
         head = nodes.thead()
-        head += _row(list(COLUMNS))
+        head += table_row(list(COLUMNS))
         group += head
         body = nodes.tbody()
         group += body
@@ -49,7 +41,8 @@ class StabilityValidation(SphinxDirective):
         for check, _cheap in validation_checks.CHECKS:
             c = check()
             failed += not c.passed
-            body += _row([c.name, c.source, c.reference, c.computed, c.criterion, "agrees" if c.passed else "FAILS"])
+            body += table_row([c.name, c.source, c.reference, c.computed, c.criterion,
+                               "agrees" if c.passed else "FAILS"])
             if not c.passed:
                 logger.warning("validation check failed: %s: %s (reference %s)", c.name, c.computed, c.reference,
                                location=self.get_location())

@@ -67,7 +67,8 @@ class DocValueRole(SphinxRole):
         return [_source_ref(name, abbr)], []
 
 
-def _row(cells, head: bool = False) -> nodes.row:
+def table_row(cells) -> nodes.row:
+    """A docutils table row of one paragraph per cell (the value tables here and ``stability_validation``'s)."""
     row = nodes.row()
     for text in cells:
         entry = nodes.entry()
@@ -97,12 +98,12 @@ class DocValueTable(SphinxDirective):
         for _ in table.header:
             g += nodes.colspec(colwidth=1)
         head = nodes.thead()
-        head += _row(table.header)
+        head += table_row(table.header)
         g += head
         body = nodes.tbody()
         g += body
         for r in table.rows:
-            body += _row(r)
+            body += table_row(r)
         note = nodes.paragraph()
         note += nodes.Text("Computed when this page was built: ")
         note += _source_ref(name, nodes.literal(text=value_groups.GROUPS[name].source))

@@ -156,10 +156,14 @@ def evaluate(name: str, use_cache: bool = True) -> tuple[dict, float, bool]:
 
 from value_groups_advise import *  # noqa: E402,F401,F403
 from value_groups_assist import *  # noqa: E402,F401,F403
+from value_groups_assist_extra import *  # noqa: E402,F401,F403
+from value_groups_hostile import *  # noqa: E402,F401,F403
 from value_groups_layouts import *  # noqa: E402,F401,F403  (registers the layout groups)
 from value_groups_measure import *  # noqa: E402,F401,F403
 from value_groups_misc import *  # noqa: E402,F401,F403
 from value_groups_pages import *  # noqa: E402,F401,F403  (registers the groups)
 from value_groups_power import *  # noqa: E402,F401,F403
+from value_groups_report import *  # noqa: E402,F401,F403
+from value_groups_scale import *  # noqa: E402,F401,F403
 from value_groups_shimmy import *  # noqa: E402,F401,F403
 from value_groups_studies import *  # noqa: E402,F401,F403

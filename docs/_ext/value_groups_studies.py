@@ -123,3 +123,66 @@ def studies_flip() -> dict:
         last_miss = max(i for i, r in enumerate(reach) if not r) if not all(reach) else -1
         out[f"{key}.band"] = f"{grid[first]:.3f}-{grid[last_miss]:.3f}" if last_miss > first else "none"
     return out
+
+
+@group("studies_linear_start", "stability.study.impulse.linear_critical_impulse(chair, U) against "
+       "stability.study.critical_impulses(chair, [U]) at SPEEDS (frictionless E&J Premier: the linear prediction's "
+       "error at the 1 rad/s level); critical_impulses with the pin friction x1.1 (elasticity of the critical "
+       "impulse in M_f/l at 0.75 m/s)")
+def studies_linear_start() -> dict:
+    """How far the linear start is off without pin friction, and how the critical impulse scales with M_f/l."""
+    import math
+
+    from stability.study import critical_impulses
+    from stability.study.impulse import linear_critical_impulse
+
+    ej = _preset("ej-premier")
+    free = ej.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    nl = critical_impulses(free, list(SEARCH_SPEEDS))
+    errs = [abs(linear_critical_impulse(free, u) / r.impulse_Ns - 1) for u, r in zip(SEARCH_SPEEDS, nl, strict=True)
+            if r.status == "found"]
+    more = ej.replace(pin_friction_left=1.1 * ej.pin_friction_left, pin_friction_right=1.1 * ej.pin_friction_right)
+    j0, j1 = (critical_impulses(c, [0.75])[0].impulse_Ns for c in (ej, more))
+    return {"err_lo": fixed(100 * min(errs), 0), "err_hi": fixed(100 * max(errs), 0),
+            "elasticity": fixed(math.log(j1 / j0) / math.log(1.1), 2), "step_pct": "10"}
+
+
+#: how far below the kinetic law's critical impulse the creeping run of docs/studies.md is pushed
+CREEP_BELOW = 0.01
+
+
+@group("studies_creep", "stability.simulate.simulate(ej_premier, 0.75, RunSpec(push_force=J/0.101, "
+       "friction_law='kinetic')) with J 1 % below critical_impulses(..., RunSpec(friction_law='kinetic')); "
+       "its yaw rate at 5 s and at the horizon")
+def studies_creep() -> dict:
+    """A push just below the kinetic law's threshold: the yaw rate creeps up over the horizon."""
+    import numpy as np
+
+    from stability.settings.run import RunSpec
+    from stability.simulate import simulate
+    from stability.study import critical_impulses
+    from stability.study.impulse import push_impulse
+
+    ej = _preset("ej-premier")
+    run = RunSpec(friction_law="kinetic")
+    j = critical_impulses(ej, [0.75], run)[0].low_Ns * (1 - CREEP_BELOW)
+    res = simulate(ej, 0.75, run.replace(push_force=j / push_impulse(1.0, 0.1, "wchair", 0.001)))
+    r = np.abs(np.asarray(res.yaw_rate))
+    t = np.asarray(res.t)
+    mid = float(np.interp(0.5 * t[-1], t, r))
+    if res.first_time_abs_yaw_rate(1.0) is not None:
+        raise RuntimeError("the push below the critical impulse reached 1 rad/s: choose CREEP_BELOW larger")
+    return {"below_pct": f"{100 * CREEP_BELOW:g}", "mid_t": fixed(0.5 * t[-1], 0), "mid": sig(mid, 2),
+            "end_t": fixed(t[-1], 0), "end": sig(float(r[-1]), 2),
+            "growing": "still growing" if r[-1] > mid else "not growing"}
+
+
+@group("studies_eis_runs", "stability.study.equal_instability_speed(NAME) for the presets "
+       "(len(EqualInstability.evaluations): the runs each search made)")
+def studies_eis_runs() -> dict:
+    """Runs of the equal-instability search per chair."""
+    from stability import study
+
+    runs = [len(study.equal_instability_speed(_preset(n), progress=False).evaluations)
+            for n in ("ej-premier", "revised", "power-fwd")]
+    return {"lo": str(min(runs)), "hi": str(max(runs))}
