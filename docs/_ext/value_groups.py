@@ -162,4 +162,5 @@ from value_groups_misc import *  # noqa: E402,F401,F403
 from value_groups_pages import *  # noqa: E402,F401,F403  (registers the groups)
 from value_groups_power import *  # noqa: E402,F401,F403
 from value_groups_shimmy import *  # noqa: E402,F401,F403
+from value_groups_simulator import *  # noqa: E402,F401,F403
 from value_groups_studies import *  # noqa: E402,F401,F403
