@@ -758,6 +758,8 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('one run and a first use under 5 s of CPU:', 'cited'),
         ('(phases timed alone, 64 lanes,', 'parameter'),
         ('the speed study: 2,000 x 10 s runs, E&J Premier 0.3-1.5 m/s,', 'parameter'),
+        ('compiler: in the 2,000-run speed study', 'parameter'),
+        ("bracket (E&J 0.75 and 1.0 m/s,", 'parameter'),
     ],
     'docs/slopes.md': [
         ('sample past a heading change of 45 deg or a', 'parameter'),
