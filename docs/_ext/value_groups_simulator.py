@@ -75,7 +75,7 @@ def kernel_speed() -> dict:
     one = np.isnan(lv["lanes"]) != np.isnan(lv["scalar"])
     dt_level = float(np.max(np.abs(lv["lanes"][both] - lv["scalar"][both]), initial=0.0))
     last = {k: np.array([r.t[-1] for r in bout[k]]) for k in kernels}
-    stopped = {k: np.array([r.stopped for r in bout[k]]) for k in kernels}
+    stopped = {k: np.array([r.stop_time is not None for r in bout[k]]) for k in kernels}
     per = {k: 1e3 * bcpu[k] / STUDY_RUNS for k in kernels}
     return {"lanes_ms": sig(per["lanes"], 2), "scalar_ms": sig(per["scalar"], 2),
             "batch_ratio": fixed(per["scalar"] / per["lanes"], 2),
