@@ -166,4 +166,5 @@ from value_groups_power import *  # noqa: E402,F401,F403
 from value_groups_report import *  # noqa: E402,F401,F403
 from value_groups_scale import *  # noqa: E402,F401,F403
 from value_groups_shimmy import *  # noqa: E402,F401,F403
+from value_groups_simulator import *  # noqa: E402,F401,F403
 from value_groups_studies import *  # noqa: E402,F401,F403

@@ -25,6 +25,7 @@ __all__ = ["STATE_ORDER", "SampledController"]
 
 #: Order of the simulator state the measurement matrix ``Cy`` multiplies.
 STATE_ORDER = ("x", "y", "heading", "u", "v", "yaw_rate", "eta", "eta_dot", "beta", "beta_dot")
+_NONE: dict[type, SampledController] = {}      # SampledController.none(), per class
 
 
 def _matrix(a, shape: tuple[int, ...], name: str) -> np.ndarray:
@@ -121,9 +122,13 @@ class SampledController:
 
     @classmethod
     def none(cls) -> SampledController:
-        """No controller (the kernel's "no input" arrays)."""
-        c = cls(1.0, np.zeros((0, len(STATE_ORDER))), np.zeros(0), name="none")
-        object.__setattr__(c, "sample_time", 0.0)
+        """No controller (the kernel's "no input" arrays): one instance, made on first use (it is frozen and its
+        arrays are empty; building it cost about a tenth of a short run's Python work)."""
+        c = _NONE.get(cls)
+        if c is None:
+            c = cls(1.0, np.zeros((0, len(STATE_ORDER))), np.zeros(0), name="none")
+            object.__setattr__(c, "sample_time", 0.0)
+            _NONE[cls] = c
         return c
 
     def arrays(self) -> tuple[Any, ...]:

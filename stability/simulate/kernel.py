@@ -267,7 +267,8 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
             mz = mz_held
         st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
         if locked:
-            acc, MA, MB = held_pins(model, st_, F, 0.0, 0.0, True, True, fy_ext, mz, THEDD, P, g1, g2)
+            # the flags as variables (True here): literal True would compile held_pins for a second signature
+            acc, MA, MB = held_pins(model, st_, F, 0.0, 0.0, locked, locked, fy_ext, mz, THEDD, P, g1, g2)
         elif sticks:
             acc, MA, MB = stick_slip(model, st_, F, fy_ext, mz, THEDD, P, g1, g2)
         else:

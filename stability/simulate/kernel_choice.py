@@ -16,10 +16,11 @@ from typing import Any
 __all__ = ["KERNELS", "use_kernel", "choice", "lanes_kernel", "lane_block", "run_lanes"]
 
 #: The WCHAIR kernels: ``"scalar"`` (:func:`.kernel.run_batch`, one run per thread: the default, whose numbers
-#: every test, report and document states) or ``"lanes"`` (:mod:`.lanes_kernel`, runs as SIMD lanes: about 2.4
-#: times the batch throughput per core, equal to the scalar kernel within its polynomial trig's rounding bound,
-#: but a chaotic spin-out may stop at another time and a critical impulse move within the search's bracket; and
-#: its first compile costs about 17 s of CPU).  Chosen for the process by the environment variable
+#: every test, report and document states) or ``"lanes"`` (:mod:`.lanes_kernel`, runs as SIMD lanes: more batch
+#: throughput per core, equal to the scalar kernel within its polynomial trig's rounding bound, but a chaotic
+#: spin-out may stop at another time and a critical impulse move within the search's bracket; one run alone is
+#: slower on it and its first compile costs more: docs/simulator.md, "Runs as lanes", gives the figures measured
+#: when the site is built).  Chosen for the process by the environment variable
 #: ``STABILITY_KERNEL`` (``lanes`` or ``scalar``) or inside a block by :func:`use_kernel`.
 KERNELS = ("scalar", "lanes")
 _ENV = os.environ.get("STABILITY_KERNEL", "scalar").strip().lower() or "scalar"

@@ -78,16 +78,6 @@ def _borrowed(a):
 
 
 @_lane
-def _t3(W, r, j):
-    return (W[r, j], W[r + 1, j], W[r + 2, j])
-
-
-@_lane
-def _t2(W, r, j):
-    return (W[r, j], W[r + 1, j])
-
-
-@_lane
 def _p(W, j):
     """Lane ``j``'s chair parameters as a tuple (the scalar helpers index it like a run's ``P``)."""
     return (W[0, j], W[1, j], W[2, j], W[3, j], W[4, j], W[5, j], W[6, j], W[7, j], W[8, j], W[9, j],

@@ -42,8 +42,6 @@ from stability.simulate.lanemath import sin_cos
 from stability.simulate.lanes_physics import (
     _p,
     _s,
-    _t2,
-    _t3,
     l_accelerations,
     l_contact_loads,
     l_kinematics,
@@ -167,9 +165,12 @@ def tire_forces(W, L, ftimp, imp, policy, seg_c, seg_m, seg_k):
         f8, refused, w = l_mechan(
             (W[_VEL, j], W[_VEL + 1, j], W[_VEL + 2, j], W[_VEL + 3, j], W[_VEL + 4, j], W[_VEL + 5, j],
              W[_VEL + 6, j], W[_VEL + 7, j]), (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j]),
-            (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy, _t3(W, _TK, j),
-            seg_c, seg_m, seg_k, _t3(W, _TL, j), _t2(W, _LIM, j), _t2(W, _LIM + 2, j), _t2(W, _LIM + 4, j),
-            _t2(W, _RK, j), _t3(W, _RC, j), _t3(W, _RC + 3, j), _t2(W, _RS, j), _t2(W, _CAM, j), _s(W, j), 8 * j)
+            (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy,
+            (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), seg_c, seg_m, seg_k, (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
+            (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
+            (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
+            (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
+            _s(W, j), 8 * j)   # the rows as tuples here: a helper taking the row offset compiled once per offset
         W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], \
             W[_F + 7, j] = f8
         W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
@@ -356,7 +357,7 @@ def held(W, L, model, locked, vec_held):
         f8 = (W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j],
               W[_F + 7, j])
         if locked:
-            a5, ma, mb = held_pins(model, st_, f8, 0.0, 0.0, True, True, W[_EXT, j], W[_EXT + 1, j],
+            a5, ma, mb = held_pins(model, st_, f8, 0.0, 0.0, locked, locked, W[_EXT, j], W[_EXT + 1, j],
                                    W[_THEDD, j], _p(W, j), W[_GRAV, j], W[_GRAV + 1, j])
         else:
             a5, ma, mb = stick_slip(model, st_, f8, W[_EXT, j], W[_EXT + 1, j], W[_THEDD, j], _p(W, j),

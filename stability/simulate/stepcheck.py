@@ -11,6 +11,8 @@ speed) set the limit.  Derivation and checks in ``docs/simulator.md``.
 from __future__ import annotations
 
 import math
+import threading
+from collections import OrderedDict
 from collections.abc import Sequence
 
 import numpy as np
@@ -19,10 +21,16 @@ from stability.chair import Chair
 from stability.linear import state_matrices
 from stability.simulate.options import WCHAIR_DT
 
-__all__ = ["SAFETY", "stable_steps", "step_limits_and_growth", "auto_step", "StepStabilityWarning"]
+__all__ = ["SAFETY", "CACHE_SIZE", "stable_steps", "step_limits_and_growth", "auto_step", "StepStabilityWarning"]
 
 #: Fraction of the limit that ``dt="auto"`` uses.
 SAFETY = 0.8
+#: (chair, speed, model, casters) pairs whose limit and growth rate are kept (least recently used dropped): a
+#: single run's eigen-decomposition cost about as much as its 10 s of simulation, and the searches, the explorer
+#: and repeated runs ask for the same pairs again
+CACHE_SIZE = 8192
+_CACHE: OrderedDict[tuple[Chair, float, str, str], tuple[float, float]] = OrderedDict()
+_CACHE_LOCK = threading.Lock()
 
 
 class StepStabilityWarning(UserWarning):
@@ -72,16 +80,28 @@ def step_limits_and_growth(chairs: Sequence[Chair], speeds: np.ndarray, model: s
     speeds = np.abs(np.asarray(speeds, dtype=float))
     out = np.empty(len(speeds))
     growth = np.empty(len(speeds))
-    groups: dict[Chair, list[int]] = {}
-    for i, c in enumerate(chairs):
-        groups.setdefault(c, []).append(i)
-    for c, idx in groups.items():     # one chair's parameters built once, all its speeds in one batched call
+    missing: dict[Chair, list[int]] = {}
+    with _CACHE_LOCK:
+        for i, (c, u) in enumerate(zip(chairs, speeds.tolist(), strict=True)):
+            hit = _CACHE.get((c, u, model, casters))
+            if hit is None:
+                missing.setdefault(c, []).append(i)
+            else:
+                out[i], growth[i] = hit
+                _CACHE.move_to_end((c, u, model, casters))
+    for c, idx in missing.items():     # one chair's parameters built once, all its speeds in one batched call
         u, inverse = np.unique(speeds[idx], return_inverse=True)
         lam = np.linalg.eigvals(state_matrices(c, u, model=model, casters=casters))
         with np.errstate(divide="ignore", invalid="ignore"):
             lim = np.where(lam.real < 0, -2.0 * lam.real / np.abs(lam) ** 2, np.inf)
-        out[idx] = lim.min(axis=-1)[inverse.reshape(-1)]
-        growth[idx] = lam.real.max(axis=-1)[inverse.reshape(-1)]
+        lim_u, growth_u = lim.min(axis=-1), lam.real.max(axis=-1)
+        out[idx] = lim_u[inverse.reshape(-1)]
+        growth[idx] = growth_u[inverse.reshape(-1)]
+        with _CACHE_LOCK:
+            for uj, lj, gj in zip(u.tolist(), lim_u.tolist(), growth_u.tolist(), strict=True):
+                _CACHE[(c, uj, model, casters)] = (lj, gj)
+            while len(_CACHE) > CACHE_SIZE:
+                _CACHE.popitem(last=False)
     return out, growth
 
 

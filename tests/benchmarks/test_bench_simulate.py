@@ -73,6 +73,31 @@ def test_bench_single_run(bench):
           f"{hw * 1e3:.0f} ms ({hc * 1e3:.0f} ms CPU, x{hw / best:.0f})")
 
 
+def test_bench_single_run_step_check_cached(bench):
+    """One 10 s run with the step check's eigenvalues computed (cache emptied before each call) against the same
+    run with them cached, alternately; the work asserted: the same run, bit for bit, and the same limit."""
+    from stability.simulate import stepcheck
+
+    run = RunSpec(stop_on_warnings=False)
+    simulate(EJ, 0.75, run=RunSpec(horizon=0.1))
+    cold_best = warm_best = float("inf")
+    cold = warm = None
+    for _ in range(20):
+        stepcheck._CACHE.clear()
+        c0 = time.process_time()
+        cold = simulate(EJ, 0.75, run=run)
+        cold_best = min(cold_best, time.process_time() - c0)
+        c0 = time.process_time()
+        warm = simulate(EJ, 0.75, run=run)
+        warm_best = min(warm_best, time.process_time() - c0)
+    bench.pedantic(lambda: None, rounds=1)
+    np.testing.assert_array_equal(cold.yaw_rate, warm.yaw_rate)
+    assert cold.settings["stable_dt"] == warm.settings["stable_dt"]
+    bench.extra_info.update(cold_cpu_ms=cold_best * 1e3, cached_cpu_ms=warm_best * 1e3, ratio=cold_best / warm_best)
+    print(f"\none 10 s run, CPU: step check computed {cold_best * 1e3:.2f} ms, cached {warm_best * 1e3:.2f} ms "
+          f"-> x{cold_best / warm_best:.2f}")
+
+
 def test_bench_batch_2000(bench):
     simulate_batch(EJ, STUDY_SPEEDS[:4], run=RunSpec(horizon=0.1), progress=False)
     kw = dict(progress=False, record="final")

@@ -1,0 +1,74 @@
+"""What a first ``simulate`` compiles with an empty numba cache: each function's compile time (recorded, not
+asserted) and how many times each is compiled (asserted: docs/simulator.md, "Compile time", says every
+dispatcher is compiled for one signature except the two it names).
+
+Run with ``python -m pytest tests/benchmarks/test_bench_first_use.py --benchmark-enable -s -n 0``.  numba's
+compile events (``numba.core.event``, kind ``numba:compile``) give each compile's start and end in the fresh
+process; a compile's own time excludes the compiles nested in it.
+"""
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+#: compiled for more than one signature by design (docs/simulator.md): the thesis accelerations with and without
+#: the lagged yaw acceleration, the range rules' note for its three literal kinds
+MANY_SIGNATURES = {"stability._generated.full_width.accelerations_thesis", "stability.simulate.kernel._note"}
+
+_CHILD = r"""
+import json, sys, time
+from numba.core import event
+t0 = time.process_time()
+with event.install_recorder("numba:compile") as rec:
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import engine, simulate
+    with engine.use_kernel(sys.argv[1]):
+        simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
+cpu = time.process_time() - t0
+stack, own, count = [], {}, {}
+for ts, ev in rec.buffer:
+    d = ev.data.get("dispatcher")
+    f = getattr(d, "py_func", None)
+    name = f"{f.__module__}.{f.__qualname__}#{id(d)}" if f else "?"
+    if ev.is_start:
+        stack.append([name, ts, 0.0])
+        continue
+    n, t, child = stack.pop()
+    own[n] = own.get(n, 0.0) + (ts - t) - child
+    count[n] = count.get(n, 0) + 1
+    if stack:
+        stack[-1][2] += ts - t
+print(json.dumps({"cpu": cpu, "own": own, "count": count}))
+"""
+
+
+@pytest.fixture
+def bench(request):
+    cfg = request.config
+    if cfg.getoption("benchmark_disable", False) and not cfg.getoption("benchmark_enable", False):
+        pytest.skip("benchmarks are disabled (run with --benchmark-enable)")
+    return request.getfixturevalue("benchmark")
+
+
+@pytest.mark.parametrize("kernel", ["scalar", "lanes"])
+def test_bench_what_first_use_compiles(bench, tmp_path, kernel):
+    out = subprocess.run([sys.executable, "-c", _CHILD, kernel], check=True, capture_output=True, text=True,
+                         env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache")))
+    data = json.loads(out.stdout.strip().splitlines()[-1])
+    bench.pedantic(lambda: None, rounds=1)
+    # per dispatcher (a function compiled again in another namespace, as the lanes kernel's copies, is another one)
+    own, count = data["own"], data["count"]
+    ours = {n: c for n, c in count.items() if n.startswith("stability.")}
+    assert ours, "nothing of the package was compiled: the cache was not empty"
+    many = {n: c for n, c in ours.items() if c > 1 and n.split("#")[0] not in MANY_SIGNATURES}
+    bench.extra_info.update(cpu_s=data["cpu"], compiles=sum(count.values()), own_s=own, many=many)
+    top = sorted(own.items(), key=lambda kv: -kv[1])[:12]
+    print(f"\n{kernel}: first use {data['cpu']:.1f} s CPU, {sum(count.values())} compiles "
+          f"({len(ours)} of the package's dispatchers); largest own compile times (wall, s):")
+    for n, s in top:
+        print(f"  {s:6.2f}  {n.split('#')[0]} (x{count[n]})")
+    assert not many, f"compiled for more than one signature: {many}"
