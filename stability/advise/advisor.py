@@ -10,6 +10,11 @@ changes predict together (the product of their relative changes) and the best of
 triple of the three best levers, are measured.  The recommendation is the best measured change that
 meets every limit, with the runner-up; a change that would be better but is blocked by a limit is
 named with that limit, its value and the option that would allow it.
+
+Screening (:mod:`.pruning`, the default for a chair): the chair is measured with its intervals, every change at
+the nominal inputs only; a change's intervals are computed only when its nominal values (an upper bound of its
+robust gain: an interval's low end is never above its nominal value) let it reach one of the advisor's choices,
+so the decision is the one ``prune=False`` (every interval computed) gives.
 """
 
 from __future__ import annotations
@@ -31,7 +36,8 @@ from stability.advise.limits import (
     shimmy_sentence,
 )
 from stability.advise.limits import constraints as constraints_of
-from stability.advise.measures import Linear, Measures
+from stability.advise.measures import Linear, Measures, nominal_measures, nonlinear_measures
+from stability.advise.pruning import Choice, Pool, nominal_of, settle
 from stability.advise.subject import apply, lever_changes, linear_measures, measure_chairs, shimmy_hold
 from stability.advise.subject import time_to_correct as correct_time
 from stability.chair import Chair
@@ -73,6 +79,10 @@ class Candidate:
     gains : dict
         The two relative gains (``critical_impulse``, ``equal_instability_speed``).
     constraints : tuple of Constraint
+    bounded : bool
+        The intervals were not computed (:mod:`.pruning`): ``measures`` holds the nominal values with, as the
+        low ends, the screening runs' upper bounds of them (:func:`.measures.nominal_measures`; high ends None),
+        and ``gain``/``gains`` are upper bounds of the robust gains, below what the advisor chose.
     """
 
     changes: tuple
@@ -80,6 +90,7 @@ class Candidate:
     gain: float
     gains: dict
     constraints: tuple
+    bounded: bool = False
 
     @property
     def feasible(self) -> bool:
@@ -173,6 +184,8 @@ class Advice:
         The user whose reaction time the human-limited speed constraint uses.
     intended_speed_m_s : float or None
         The speed that driver must be able to hold, m/s.
+    intervals_computed : int
+        Changes (single or combined) whose intervals were computed; the others are bounded (:mod:`.pruning`).
     """
 
     chair: Chair | Layout
@@ -194,6 +207,7 @@ class Advice:
     own_constraints: tuple = ()
     driver: Driver | None = None
     intended_speed_m_s: float | None = None
+    intervals_computed: int = 0
 
 
 @dataclass(frozen=True)
@@ -314,7 +328,7 @@ def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Bloc
 def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
            cross_slope_deg: float = DEFAULT_CROSS_SLOPE_DEG, progress: bool = False,
            nonlinear: Callable | None = None, time_to_correct: bool = True, driver: Driver | None = None,
-           intended_speed: float | None = None) -> Advice:
+           intended_speed: float | None = None, prune: bool = True) -> Advice:
     """Verdict, levers and recommendation for ``chair``.
 
     Parameters
@@ -342,6 +356,10 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         :func:`stability.driver.linear.rule_speed`) reaches ``intended_speed``.
     intended_speed : float, optional
         m/s; default the fastest use speed (with a driver only).
+    prune : bool
+        Measure the changes at the nominal inputs first and compute the intervals only of those that can reach
+        a choice (:mod:`.pruning`; the same decision); False: every change with its intervals.  A wheel layout
+        is always measured with every interval.
 
     Returns
     -------
@@ -360,8 +378,17 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         raise ValueError(f"intended_speed={intended_speed!r} is invalid; valid range: 0.01 to 20 m/s")
     singles, refused = lever_changes(chair)
     cores: dict = {}
-    measured = measure_chairs([chair] + [c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
-                              progress=progress, nonlinear=nonlinear, cores=cores, reaction_time=tau)
+    prune = prune and isinstance(chair, Chair)
+    if prune:
+        nominal = nominal_measures if nonlinear is None else nominal_of(nonlinear)
+        measured = measure_chairs([chair], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
+                                  nonlinear=nonlinear, cores=cores, reaction_time=tau)
+        measured += measure_chairs([c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
+                                   progress=progress, nonlinear=nominal, cores=cores,
+                                   reaction_time=tau) if singles else []
+    else:
+        measured = measure_chairs([chair] + [c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
+                                  progress=progress, nonlinear=nonlinear, cores=cores, reaction_time=tau)
     base = measured[0]
     if min_tip_deg is None:
         min_tip = float(base.static_stability_deg.value or 0.0)
@@ -373,17 +400,28 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         return constraints_of(m, base, min_tip, source, cross_slope_deg,
                               None if tau is None or intended is None else (tau, intended))
 
-    def candidate(changes: tuple, m: Measures) -> Candidate:
+    def candidate(changes: tuple, m: Measures, bounded: bool = False) -> Candidate:
         g, gs = _gain(m, base)
-        return Candidate(changes, m, g, gs, constraints(m))
+        return Candidate(changes, m, g, gs, constraints(m), bounded)
 
-    cands = [candidate((ch,), m) for (ch, _), m in zip(singles, measured[1:], strict=True)]
+    pool = Pool(candidate, nonlinear or nonlinear_measures)
+    pool.add([candidate((ch,), m, prune) for (ch, _), m in zip(singles, measured[1:], strict=True)],
+             [c for _, c in singles])
+    pool.refine(pool.unbounded())
+    cands = pool.cands[:]
     own = constraints(base)
     broken = {k.name for k in own if not k.met}            # what the chair as it is already breaks
-    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores, tau)
+    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores, tau,
+                                 pool=pool if prune else None)
     cm = measure_chairs([c for _, c in chosen], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
-                        nonlinear=nonlinear, cores=cores, reaction_time=tau) if chosen else []
-    combined = [candidate(tuple(x.changes[0] for x in combo), m) for (combo, _), m in zip(chosen, cm, strict=True)]
+                        nonlinear=nominal if prune else nonlinear, cores=cores, reaction_time=tau) if chosen else []
+    pool.add([candidate(tuple(x.changes[0] for x in combo), m, prune) for (combo, _), m in zip(chosen, cm,
+                                                                                              strict=True)],
+             [c for _, c in chosen])
+    pool.refine(pool.unbounded())
+    if prune:
+        _settle_choice(pool, broken)
+    cands, combined = pool.cands[:len(singles)], pool.cands[len(singles):]
 
     feasible = sorted((c for c in cands + combined if c.feasible), key=lambda c: -c.gain)
     keep = Candidate((), base, 0.0, {"critical_impulse": 0.0, "equal_instability_speed": 0.0}, own)
@@ -396,7 +434,8 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     for rank, c in enumerate(ranked[:2], start=1):
         parts = tuple(next(s for s in cands if s.changes == (ch,)) for ch in c.changes) if len(c.changes) > 1 else ()
         recs.append(Recommendation(rank, c, parts, _notes(c, base, chair)))
-    blocked = _blocked(cands + combined, broken, recs[0].candidate.gain if recs else -math.inf)
+    best_gain = recs[0].candidate.gain if recs else -math.inf
+    blocked = _blocked(cands + combined, broken, best_gain)
     recs = _explain(recs, broken, blocked, base)
     times: list[float | None] = []
     for u in use if time_to_correct else ():
@@ -406,15 +445,18 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
             times.append(None)
     return Advice(chair, use, float(cross_slope_deg), min_tip, source, base, tuple(times), tuple(cands),
                   tuple(combined), tuple(refused), tuple(recs), "", tuple(blocked), shimmy_hold(chair, use),
-                  n_screened, len(chosen), own, driver, intended)
+                  n_screened, len(chosen), own, driver, intended,
+                  sum(not c.bounded for c in cands + combined))
 
 
 def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
-            cross_slope_deg: float, cores: dict, reaction_time: float | None = None) -> tuple[list, int]:
+            cross_slope_deg: float, cores: dict, reaction_time: float | None = None,
+            pool: Pool | None = None) -> tuple[list, int]:
     """The combinations worth simulating: every pair of two levers screened on the limits alone (no simulation),
     those that meet every limit ranked by the gain their parts predict (the best :data:`PAIR_BUDGET`), the best
     :data:`BLOCKED_BUDGET` that a limit blocks but predict more (to be named with their values), and the triple
-    of the three best acceptable levers."""
+    of the three best acceptable levers.  With a ``pool`` (:mod:`.pruning`) the singles that can reach these
+    choices get their intervals first (:func:`_settle_screen`)."""
     screened = []
     for combo in _pairs(cands):
         try:
@@ -424,6 +466,10 @@ def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constrai
     lin = linear_measures([c for _, c in screened], speeds=use, cross_slope_deg=cross_slope_deg, cores=cores,
                           reaction_time=reaction_time)
     met = [all(k.met for k in constraints(m)) for m in lin]
+    if pool is not None:
+        _settle_screen(pool, screened, met, broken)
+        cands = [pool.current(c) for c in cands]
+        screened = [(tuple(pool.current(x) for x in combo), c) for combo, c in screened]
     passing = sorted((x for x, ok in zip(screened, met, strict=True) if ok), key=lambda x: -_predicted(x[0]))
     chosen = [x for x in passing if _predicted(x[0]) > -MAX_FIX_COST][:PAIR_BUDGET]
     # the pairs a limit blocks that predict more than every passing pair: measured too, to be named with real values
@@ -442,6 +488,82 @@ def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constrai
         except ValueError:
             pass
     return chosen, len(screened)
+
+
+def _settle_screen(pool: Pool, screened: list, met: list, broken: set) -> None:
+    """Compute the intervals of the singles that can reach :func:`_screen`'s choices (:func:`.pruning.settle`):
+    the best passing pair (its predicted gain is the blocked pairs' threshold), the :data:`PAIR_BUDGET` best
+    passing pairs above ``-MAX_FIX_COST``, the :data:`BLOCKED_BUDGET` best blocked pairs above the best passing one,
+    and the best single of each of the three best acceptable levers."""
+    parts = [[pool.index[x.changes] for x in combo] for combo, _ in screened]
+
+    def pred(j: int) -> float:
+        return _predicted(tuple(pool.cands[i] for i in parts[j]))
+
+    def exact(j: int) -> bool:
+        return not any(pool.cands[i].bounded for i in parts[j])
+
+    def by_pred(j: int) -> tuple:
+        return (-pred(j),)
+
+    passing = [j for j, ok in enumerate(met) if ok]
+    failing = [j for j, ok in enumerate(met) if not ok]
+    def needs(j: int) -> list[int]:
+        return parts[j]
+
+    first = Choice(passing, by_pred, exact, lambda j: True, lambda p: len(p) >= 1, needs)
+
+    def above_best(j: int) -> bool:          # exact once ``first`` is settled (the last round)
+        p = first.pending()[0]
+        return pred(j) > (pred(p[0]) if p else -math.inf)
+
+    singles = [i for i, c in enumerate(pool.cands) if len(c.changes) == 1]
+    settle([first,
+            Choice(passing, by_pred, exact, lambda j: pred(j) > -MAX_FIX_COST, lambda p: len(p) >= PAIR_BUDGET,
+                   needs),
+            Choice(failing, by_pred, exact, above_best, lambda p: len(p) >= BLOCKED_BUDGET, needs),
+            Choice(singles, lambda i: (-pool.cands[i].gain,), lambda i: not pool.cands[i].bounded,
+                   lambda i: pool.cands[i].gain > 0 and all(k.met or k.name in broken
+                                                            for k in pool.cands[i].constraints),
+                   lambda p: len({pool.cands[i].changes[0].lever for i in p}) >= 3)], pool.refine)
+
+
+def _settle_choice(pool: Pool, broken: set) -> None:
+    """Compute the intervals of the changes that can be the recommendation or the runner-up (the two best that
+    meet every limit), of the parts of a combination among them, and of the changes that can be among
+    :func:`_blocked`'s three (a limit blocks them, and they beat the recommendation or fix what the chair breaks):
+    :func:`.pruning.settle`."""
+    every = range(len(pool.cands))
+
+    def exact(i: int) -> bool:
+        return not pool.cands[i].bounded
+
+    def gain(i: int) -> tuple:
+        return (-pool.cands[i].gain,)
+
+    top = Choice(every, gain, exact, lambda i: pool.cands[i].feasible, lambda p: len(p) >= 2)
+
+    def fixes(c: Candidate) -> int:
+        return sum(1 for k in c.constraints if k.met and k.name in broken)
+
+    def order(i: int) -> tuple:
+        c = pool.cands[i]
+        return (-fixes(c), sum(1 for k in c.constraints if not k.met), -c.gain)
+
+    def blocked(i: int) -> bool:             # beats the recommendation's gain (exact once ``top`` is settled)
+        c, p = pool.cands[i], top.pending()[0]
+        g0 = pool.cands[p[0]].gain if p else None
+        best = g0 if g0 is not None and (g0 >= -MAX_FIX_COST if broken else g0 > 0) else 0.0    # else "no change"
+        return not c.feasible and bool(c.changes) and (fixes(c) > 0 or c.gain > best)
+
+    def parts(p: list[int]) -> list[int]:
+        return [pool.index[(ch,)] for i in p[:2] if len(pool.cands[i].changes) > 1 for ch in pool.cands[i].changes]
+
+    def refine(todo: list[int]) -> None:
+        pool.refine(todo + [j for j in parts(top.pending()[0]) if j not in todo])
+
+    settle([top, Choice(every, order, exact, blocked, lambda p: len(p) >= 3)], refine)
+    pool.refine(parts(top.pending()[0]))
 
 
 def _explain(recs: list[Recommendation], broken: set, blocked: list[Blocked], base: Measures) -> list:

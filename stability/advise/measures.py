@@ -41,7 +41,7 @@ from stability.study import critical_impulse_intervals, equal_instability_interv
 from stability.study.impulse_intervals import CriticalImpulseInterval
 from stability.tipping import tip_angles
 
-__all__ = ["Interval", "Measures", "Linear", "measure_chairs", "linear_measures", "nonlinear_measures",
+__all__ = ["Interval", "Measures", "Linear", "measure_chairs", "linear_measures", "nonlinear_measures", "nominal_measures",
            "cross_slope_effort", "IMPULSE_SPEED", "EFFORT_KEYS", "EFFORT_WORDS"]
 
 #: Speed of the critical impulse the advisor weighs (the thesis's reference speed), m/s.
@@ -237,6 +237,39 @@ def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval
     return [(Interval(float(imp.point.bound_Ns), imp.low_Ns, imp.high_Ns),
              Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status,
              imp.point.status, _half_step(imp))
+            for imp, eq in zip(ci, ei, strict=True)]
+
+
+#: Pin-friction factors of the screening runs (:func:`nominal_measures`): x0.5 sets the low end of the presets'
+#: and their changes' critical-impulse intervals, and of most of their equal-instability intervals.
+SCREEN_FRICTION_FACTORS = (0.5,)
+
+
+def nominal_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str, str, float | None]]:
+    """Critical impulse and equal-instability speed of every chair at the nominal inputs, with an upper bound of
+    their intervals' low ends: the advisor's screening (:mod:`.pruning`).
+
+    Runs the nominal case of :func:`nonlinear_measures` and its :data:`SCREEN_FRICTION_FACTORS` variant only, one
+    batch per study.  A chair's result does not depend on its batch, so ``value`` is the value
+    :func:`nonlinear_measures` gives, and ``low`` (the smaller of the two runs) is at least the low end it gives
+    (the smallest over every variant); ``high`` is None (not computed).
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+
+    Returns
+    -------
+    list of tuple
+        As :func:`nonlinear_measures`, with ``Interval(value, bound of the low end, None)`` and no half-step
+        value.
+    """
+    ci = critical_impulse_intervals(chairs, IMPULSE_SPEED, friction_factors=SCREEN_FRICTION_FACTORS, models=(),
+                                    step_factors=())
+    ei = equal_instability_intervals(chairs, force_factors=(), friction_factors=SCREEN_FRICTION_FACTORS, models=(),
+                                     step_factors=())
+    return [(Interval(float(imp.point.bound_Ns), imp.low_Ns, None),
+             Interval(float(eq.point.value_or_bound), eq.low, None), eq.point.status, imp.point.status, None)
             for imp, eq in zip(ci, ei, strict=True)]
 
 
