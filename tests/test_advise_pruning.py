@@ -15,13 +15,13 @@ import math
 
 import numpy as np
 import pytest
+from test_advise import _plausible, _proxy
 
 from stability import chair as chair_mod
 from stability.advise import advise
 from stability.advise.decision import decide
 from stability.advise.pruning import Choice, settle
 from stability.advise.text import advice_mapping, advice_text
-from test_advise import _plausible, _proxy
 
 PRESETS = ["ej-premier", "revised", "ej-premier-front-caster", "power-fwd", "manual-front-caster"]
 

@@ -41,8 +41,9 @@ from stability.study import critical_impulse_intervals, equal_instability_interv
 from stability.study.impulse_intervals import CriticalImpulseInterval
 from stability.tipping import tip_angles
 
-__all__ = ["Interval", "Measures", "Linear", "measure_chairs", "linear_measures", "nonlinear_measures", "nominal_measures",
-           "cross_slope_effort", "IMPULSE_SPEED", "EFFORT_KEYS", "EFFORT_WORDS"]
+__all__ = ["Interval", "Measures", "Linear", "measure_chairs", "linear_measures", "nonlinear_measures",
+           "nominal_measures", "SCREEN_FRICTION_FACTORS", "cross_slope_effort", "IMPULSE_SPEED", "EFFORT_KEYS",
+           "EFFORT_WORDS"]
 
 #: Speed of the critical impulse the advisor weighs (the thesis's reference speed), m/s.
 IMPULSE_SPEED = REFERENCE_SPEED

@@ -3,23 +3,27 @@
 The advisor judges a change on the *low ends* of its critical-impulse and equal-instability intervals
 (:func:`.advisor.advise`).  An interval's low end is the smallest value over the nominal case and its variants
 (pin friction x0.5/x1.5, the thesis model, half the step; for the speed also the push), so it is never above the
-nominal value.  Hence the rule, with ``n`` a change's nominal values and ``l_b`` the low ends of the chair as it
-is (always measured with its intervals):
+nominal value, nor above any one variant's value.  The screening runs the nominal case and the x0.5 pin-friction
+variant of every change (:func:`.measures.nominal_measures`; x0.5 sets the low end in most cases, so the bound is
+usually the low end itself).  Hence the rule, with ``s`` the smaller of a change's two screening values and
+``l_b`` the low end of the chair as it is (always measured with its intervals), per measure:
 
-    robust gain = min over the two measures of (l / l_b - 1)  <=  min of (n / l_b - 1) =: upper bound,
+    robust gain = min over the two measures of (l / l_b - 1)  <=  min of (s / l_b - 1) =: upper bound,
 
 and a pair's predicted gain (per measure the product of its parts' ``l / l_b``) is at most the same product of
-the parts' ``n / l_b`` (all factors non-negative).  Every choice the advisor makes from these gains is "the first
-``k`` of a list sorted by gain, among those that meet a condition that only a larger gain can meet" (the pairs it
-measures, the triple, the recommendation and runner-up, the blocked changes: a :class:`Choice`).  :func:`settle`
-computes the intervals, one batch a round, of exactly the changes whose upper bound lets them reach such a
-prefix: walking each list in the order of (bound or exact value, not-yet-computed first, position), it stops once
-every choice's first ``k`` eligible entries are all computed.  Every change left bounded then has an upper bound below the ``k``-th exact value (a tie
-is computed), so its exact value could not enter the prefix: the choice equals the one the advisor makes with
-every interval computed (``advise(..., prune=False)``; ``tests/test_advise_pruning.py`` compares the two).
+the parts' ``s / l_b`` (all factors non-negative; a change whose bound is not finite or below -100 % is computed
+at once).  Every choice the advisor makes from these gains is "the first ``k`` of a list sorted by gain, among
+those that meet a condition that only a larger gain can meet" (the pairs it measures, the triple, the
+recommendation and runner-up, the blocked changes: a :class:`Choice`).  :func:`settle` computes the intervals,
+one batch a round, of the changes whose upper bound lets them reach such a prefix: walking each list in the order
+of (bound or exact value, not-yet-computed first, position), it stops once every choice's first ``k`` eligible
+entries are all computed.  Every change left bounded then sorts after the ``k``-th computed entry by its bound
+(a tie is computed), so by its exact value too, which is lower: the choice equals the one the advisor makes with
+every interval computed (``advise(..., prune=False)``; ``tests/test_advise_pruning.py`` compares the two).  When a
+change's intervals arrive, its exact gains are checked against its bound (:meth:`Pool.refine`).
 
-A change whose intervals are not computed keeps its nominal measures (:class:`Pool`, ``Candidate.bounded``); the
-advice prints them as nominal values with their gain as an upper bound.
+A change whose intervals are not computed keeps its screening measures (:class:`Pool`, ``Candidate.bounded``);
+the advice prints their nominal values with the gain as an upper bound.
 """
 
 from __future__ import annotations
