@@ -3,18 +3,18 @@
 Method (docs/advise.md): measure the chair and every single change of every lever
 (:mod:`.levers`) in one batch (:func:`.measures.measure_chairs`); a change's robust gain is the
 smaller of its relative gains in the *low ends* of the critical-impulse and equal-instability
-intervals, so a change one measure contradicts gains nothing.  Every pair of single changes of two
-levers is then screened on the constraints alone (statics, shimmy band, cross slope: no simulation,
-:func:`.measures.linear_measures`); the pairs that meet every limit are ranked by the gain their two
-changes predict together (the product of their relative changes) and the best of them, with the
-triple of the three best levers, are measured.  The recommendation is the best measured change that
+intervals, so a change one measure contradicts gains nothing.  The pairs of single changes of two
+levers are ranked by the gain their two changes predict together (the product of their relative
+changes) and checked in that order on the constraints alone (statics, shimmy band, cross slope: no
+simulation, :func:`.measures.linear_measures`) as far as the choice reaches; the best that meet every
+limit, with the triple of the three best levers, are measured.  The recommendation is the best measured change that
 meets every limit, with the runner-up; a change that would be better but is blocked by a limit is
 named with that limit, its value and the option that would allow it.
 
 Screening (:mod:`.pruning`, the default for a chair): the chair is measured with its intervals, every change at
-the nominal inputs only; a change's intervals are computed only when its nominal values (an upper bound of its
-robust gain: an interval's low end is never above its nominal value) let it reach one of the advisor's choices,
-so the decision is the one ``prune=False`` (every interval computed) gives.
+the nominal inputs and x0.5 pin friction only; a change's intervals are computed only when these runs (an upper
+bound of its robust gain: an interval's low end is never above any of its runs) let it reach one of the
+advisor's choices, so the decision is the one ``prune=False`` (every interval computed) gives.
 """
 
 from __future__ import annotations
@@ -23,6 +23,15 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from stability.advise.combinations import BLOCKED_BUDGET as BLOCKED_BUDGET  # re-exported: the combination filter
+from stability.advise.combinations import (
+    MAX_FIX_COST,
+    PAIR_BUDGET,
+    _screen,
+    _settle_choice,
+)
+from stability.advise.combinations import _pairs as _pairs
+from stability.advise.combinations import _predicted as _predicted
 from stability.advise.levers import LEVERS
 from stability.advise.limits import (
     HANDRIM_FACTOR,
@@ -37,8 +46,8 @@ from stability.advise.limits import (
 )
 from stability.advise.limits import constraints as constraints_of
 from stability.advise.measures import Linear, Measures, nominal_measures, nonlinear_measures
-from stability.advise.pruning import Choice, Pool, nominal_of, settle
-from stability.advise.subject import apply, lever_changes, linear_measures, measure_chairs, shimmy_hold
+from stability.advise.pruning import Pool, nominal_of
+from stability.advise.subject import lever_changes, measure_chairs, shimmy_hold
 from stability.advise.subject import time_to_correct as correct_time
 from stability.chair import Chair
 from stability.driver.model import Driver
@@ -51,13 +60,6 @@ __all__ = ["Constraint", "Candidate", "Recommendation", "Blocked", "ShimmyHold",
            "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS",
            "DEFAULT_CROSS_SLOPE_DEG", "PAIR_BUDGET", "SHIMMY_AMPLITUDE_DEG"]
 
-#: A change that only fixes a constraint the chair breaks is recommended if it costs at most this fraction of
-#: the robust measures; a dearer fix is the runner-up behind "no change, measure first".
-MAX_FIX_COST = 0.25
-#: Pairs of changes measured by simulation after the screening on the constraints (the best predicted ones).
-PAIR_BUDGET = 6
-#: Pairs a limit blocks that predict more than every pair meeting the limits, measured to be named (BLOCKED).
-BLOCKED_BUDGET = 2
 #: Default use speeds (m/s): :data:`stability.settings.defaults.ADVISE_SPEEDS` (0.5:1:0.25).
 DEFAULT_SPEEDS = (0.5, 0.75, 1.0)
 #: Default cross slope for the hand-rim force (deg): :data:`stability.settings.defaults.ADVISE_CROSS_SLOPE_DEG`.
@@ -177,7 +179,8 @@ class Advice:
     shimmy_hold : ShimmyHold or None
         What the chair's own pin friction buys against shimmy (None: no pin friction).
     pairs_screened, pairs_measured : int
-        Pairs of changes screened on the constraints, and measured by simulation.
+        Pairs of changes checked on the constraints (in the order of their predicted gain, as far as the choice
+        reaches), and measured by simulation.
     own_constraints : tuple of Constraint
         The chair as it is against every limit (what it already breaks).
     driver : Driver or None
@@ -285,30 +288,6 @@ def _notes(c: Candidate, base: Measures, chair: Chair | Layout) -> tuple:
         trail = float(dict(c.fields).get("trail", own) or 0.0)
         notes.append(f"Shimmy: {shimmy_sentence(m, trail)}.")
     return tuple(notes)
-
-
-def _pairs(singles: list[Candidate]) -> list[tuple]:
-    """Every pair of single changes of two different levers that touch different chair fields."""
-    out = []
-    for i, a in enumerate(singles):
-        for b in singles[i + 1:]:
-            if a.changes[0].lever != b.changes[0].lever and not set(a.fields) & set(b.fields):
-                out.append((a, b))
-    return out
-
-
-def _predicted(combo: tuple) -> float:
-    """The robust gain a combination predicts from its parts: per measure the product of the relative changes."""
-    worst = math.inf
-    for key in ("critical_impulse", "equal_instability_speed"):
-        f = 1.0
-        for x in combo:
-            g = x.gains[key]
-            if not math.isfinite(g):
-                return -math.inf
-            f *= 1.0 + g
-        worst = min(worst, f - 1.0)
-    return worst
 
 
 def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Blocked]:
@@ -447,123 +426,6 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
                   tuple(combined), tuple(refused), tuple(recs), "", tuple(blocked), shimmy_hold(chair, use),
                   n_screened, len(chosen), own, driver, intended,
                   sum(not c.bounded for c in cands + combined))
-
-
-def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
-            cross_slope_deg: float, cores: dict, reaction_time: float | None = None,
-            pool: Pool | None = None) -> tuple[list, int]:
-    """The combinations worth simulating: every pair of two levers screened on the limits alone (no simulation),
-    those that meet every limit ranked by the gain their parts predict (the best :data:`PAIR_BUDGET`), the best
-    :data:`BLOCKED_BUDGET` that a limit blocks but predict more (to be named with their values), and the triple
-    of the three best acceptable levers.  With a ``pool`` (:mod:`.pruning`) the singles that can reach these
-    choices get their intervals first (:func:`_settle_screen`)."""
-    screened = []
-    for combo in _pairs(cands):
-        try:
-            screened.append((combo, apply(chair, [f for x in combo for f in x.changes[0].fields])))
-        except ValueError:
-            continue
-    lin = linear_measures([c for _, c in screened], speeds=use, cross_slope_deg=cross_slope_deg, cores=cores,
-                          reaction_time=reaction_time)
-    met = [all(k.met for k in constraints(m)) for m in lin]
-    if pool is not None:
-        _settle_screen(pool, screened, met, broken)
-        cands = [pool.current(c) for c in cands]
-        screened = [(tuple(pool.current(x) for x in combo), c) for combo, c in screened]
-    passing = sorted((x for x, ok in zip(screened, met, strict=True) if ok), key=lambda x: -_predicted(x[0]))
-    chosen = [x for x in passing if _predicted(x[0]) > -MAX_FIX_COST][:PAIR_BUDGET]
-    # the pairs a limit blocks that predict more than every passing pair: measured too, to be named with real values
-    best_passing = _predicted(passing[0][0]) if passing else -math.inf
-    failing = sorted((x for x, ok in zip(screened, met, strict=True) if not ok and _predicted(x[0]) > best_passing),
-                     key=lambda x: -_predicted(x[0]))
-    chosen += failing[:BLOCKED_BUDGET]
-    best: dict[str, Candidate] = {}
-    for c in sorted((c for c in cands if c.gain > 0 and all(k.met or k.name in broken for k in c.constraints)),
-                    key=lambda c: -c.gain):
-        best.setdefault(c.changes[0].lever, c)
-    trio = tuple(list(best.values())[:3])
-    if len(trio) == 3 and len({k for x in trio for k in x.fields}) == sum(len(x.fields) for x in trio):
-        try:
-            chosen.append((trio, apply(chair, [f for x in trio for f in x.changes[0].fields])))
-        except ValueError:
-            pass
-    return chosen, len(screened)
-
-
-def _settle_screen(pool: Pool, screened: list, met: list, broken: set) -> None:
-    """Compute the intervals of the singles that can reach :func:`_screen`'s choices (:func:`.pruning.settle`):
-    the best passing pair (its predicted gain is the blocked pairs' threshold), the :data:`PAIR_BUDGET` best
-    passing pairs above ``-MAX_FIX_COST``, the :data:`BLOCKED_BUDGET` best blocked pairs above the best passing one,
-    and the best single of each of the three best acceptable levers."""
-    parts = [[pool.index[x.changes] for x in combo] for combo, _ in screened]
-
-    def pred(j: int) -> float:
-        return _predicted(tuple(pool.cands[i] for i in parts[j]))
-
-    def exact(j: int) -> bool:
-        return not any(pool.cands[i].bounded for i in parts[j])
-
-    def by_pred(j: int) -> tuple:
-        return (-pred(j),)
-
-    passing = [j for j, ok in enumerate(met) if ok]
-    failing = [j for j, ok in enumerate(met) if not ok]
-    def needs(j: int) -> list[int]:
-        return parts[j]
-
-    first = Choice(passing, by_pred, exact, lambda j: True, lambda p: len(p) >= 1, needs)
-
-    def above_best(j: int) -> bool:          # exact once ``first`` is settled (the last round)
-        p = first.pending()[0]
-        return pred(j) > (pred(p[0]) if p else -math.inf)
-
-    singles = [i for i, c in enumerate(pool.cands) if len(c.changes) == 1]
-    settle([first,
-            Choice(passing, by_pred, exact, lambda j: pred(j) > -MAX_FIX_COST, lambda p: len(p) >= PAIR_BUDGET,
-                   needs),
-            Choice(failing, by_pred, exact, above_best, lambda p: len(p) >= BLOCKED_BUDGET, needs),
-            Choice(singles, lambda i: (-pool.cands[i].gain,), lambda i: not pool.cands[i].bounded,
-                   lambda i: pool.cands[i].gain > 0 and all(k.met or k.name in broken
-                                                            for k in pool.cands[i].constraints),
-                   lambda p: len({pool.cands[i].changes[0].lever for i in p}) >= 3)], pool.refine)
-
-
-def _settle_choice(pool: Pool, broken: set) -> None:
-    """Compute the intervals of the changes that can be the recommendation or the runner-up (the two best that
-    meet every limit), of the parts of a combination among them, and of the changes that can be among
-    :func:`_blocked`'s three (a limit blocks them, and they beat the recommendation or fix what the chair breaks):
-    :func:`.pruning.settle`."""
-    every = range(len(pool.cands))
-
-    def exact(i: int) -> bool:
-        return not pool.cands[i].bounded
-
-    def gain(i: int) -> tuple:
-        return (-pool.cands[i].gain,)
-
-    top = Choice(every, gain, exact, lambda i: pool.cands[i].feasible, lambda p: len(p) >= 2)
-
-    def fixes(c: Candidate) -> int:
-        return sum(1 for k in c.constraints if k.met and k.name in broken)
-
-    def order(i: int) -> tuple:
-        c = pool.cands[i]
-        return (-fixes(c), sum(1 for k in c.constraints if not k.met), -c.gain)
-
-    def blocked(i: int) -> bool:             # beats the recommendation's gain (exact once ``top`` is settled)
-        c, p = pool.cands[i], top.pending()[0]
-        g0 = pool.cands[p[0]].gain if p else None
-        best = g0 if g0 is not None and (g0 >= -MAX_FIX_COST if broken else g0 > 0) else 0.0    # else "no change"
-        return not c.feasible and bool(c.changes) and (fixes(c) > 0 or c.gain > best)
-
-    def parts(p: list[int]) -> list[int]:
-        return [pool.index[(ch,)] for i in p[:2] if len(pool.cands[i].changes) > 1 for ch in pool.cands[i].changes]
-
-    def refine(todo: list[int]) -> None:
-        pool.refine(todo + [j for j in parts(top.pending()[0]) if j not in todo])
-
-    settle([top, Choice(every, order, exact, blocked, lambda p: len(p) >= 3)], refine)
-    pool.refine(parts(top.pending()[0]))
 
 
 def _explain(recs: list[Recommendation], broken: set, blocked: list[Blocked], base: Measures) -> list:

@@ -126,7 +126,8 @@ def advice_text(a: Advice) -> str:
                      "put them below the changes chosen (an interval's low end is never above its nominal value), so "
                      "their intervals were not computed and their gain is an upper bound (<=)")
     if a.pairs_screened:
-        lines.append(f"  pairs of two levers: {a.pairs_screened} screened on the limits, {a.pairs_measured} measured "
+        lines.append(f"  pairs of two levers: {a.pairs_screened} checked on the limits in the order of their predicted "
+                     f"gain, {a.pairs_measured} measured "
                      "(the best predicted that meet every limit)")
     lines += _blocked(a, d)
     lines += _recommendation(a, d)
