@@ -28,9 +28,10 @@ PRESETS = ["ej-premier", "revised", "ej-premier-front-caster", "power-fwd", "man
 
 def _decision(a) -> tuple:
     """Everything the advice decides: page 1's decision, the recommendations and the blocked changes with their
-    values, the pairs screened and measured (labels)."""
+    values, the pairs measured (labels).  Not the count of pairs checked on the limits: the walk in the order of
+    predicted gain reaches further while some parts are only bounded (more checks, the same choice)."""
     d = advice_mapping(a)
-    return (decide(a).to_mapping(), d["recommendations"], d["blocked"], d["pairs_screened"], d["pairs_measured"],
+    return (decide(a).to_mapping(), d["recommendations"], d["blocked"], d["pairs_measured"],
             [c.label for c in a.combinations])
 
 
