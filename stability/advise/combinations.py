@@ -105,9 +105,10 @@ def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constrai
     every = range(len(screened))
     first = Choice(every, by_pred, exact, met, lambda p: len(p) >= 1, needs)
 
+    threshold = _per_round(pool, lambda: (lambda p: pred(p[0]) if p else -math.inf)(first.pending()[0]))
+
     def blocked(j: int) -> bool:              # predicts more than the best passing pair (exact once settled)
-        p = first.pending()[0]
-        return pred(j) > (pred(p[0]) if p else -math.inf) and not met(j)
+        return pred(j) > threshold() and not met(j)
 
     singles = [i for i, c in enumerate(pool.cands) if len(c.changes) == 1]
     _, top, over, levers = settle([
@@ -135,6 +136,19 @@ def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constrai
     return chosen, len(met_of)
 
 
+def _per_round(pool: Pool, fn: Callable[[], Any]) -> Callable[[], Any]:
+    """``fn()`` computed once per state of the pool (until its next refinement): a threshold read by every entry."""
+    cache: dict[int, Any] = {}
+
+    def get() -> Any:
+        if pool.refined not in cache:
+            cache.clear()
+            cache[pool.refined] = fn()
+        return cache[pool.refined]
+
+    return get
+
+
 def _settle_choice(pool: Pool, broken: set) -> None:
     """Compute the intervals of the changes that can be the recommendation or the runner-up (the two best that
     meet every limit), of the parts of a combination among them, and of the changes that can be among
@@ -149,6 +163,7 @@ def _settle_choice(pool: Pool, broken: set) -> None:
         return (-pool.cands[i].gain,)
 
     top = Choice(every, gain, exact, lambda i: pool.cands[i].feasible, lambda p: len(p) >= 2)
+    leaders = _per_round(pool, lambda: top.pending()[0])
 
     def fixes(c: Candidate) -> int:
         return sum(1 for k in c.constraints if k.met and k.name in broken)
@@ -158,7 +173,7 @@ def _settle_choice(pool: Pool, broken: set) -> None:
         return (-fixes(c), sum(1 for k in c.constraints if not k.met), -c.gain)
 
     def blocked(i: int) -> bool:             # beats the recommendation's gain (exact once ``top`` is settled)
-        c, p = pool.cands[i], top.pending()[0]
+        c, p = pool.cands[i], leaders()
         g0 = pool.cands[p[0]].gain if p else None
         best = g0 if g0 is not None and (g0 >= -MAX_FIX_COST if broken else g0 > 0) else 0.0    # else "no change"
         return not c.feasible and bool(c.changes) and (fixes(c) > 0 or c.gain > best)
