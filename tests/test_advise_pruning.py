@@ -1,9 +1,9 @@
 """The advisor's screening (stability.advise.pruning): the pruned advisor decides as the one that computes every
 interval.
 
-The rule (docs in :mod:`stability.advise.pruning`): an interval's low end is never above its nominal value, so a
-change's nominal values bound its robust gain from above, and a change whose bound cannot reach one of the
-advisor's choices keeps its nominal values only.  Checked here: :func:`settle` against a full sort on random
+The rule (docs in :mod:`stability.advise.pruning`): an interval's low end is never above any of its variants, so
+a change's x0.5-pin-friction run bounds its robust gain from above, and a change whose bound cannot reach one of
+the advisor's choices keeps that run only.  Checked here: :func:`settle` against a full sort on random
 lists; the pruned and the unpruned advisor's decisions (recommendation, runner-up, blocked changes, the pairs
 measured, the decision text) on random chairs with the closed-form stand-in of the simulator (default run) and on
 every preset and two random seeded chairs with the simulator (slow).
@@ -40,13 +40,13 @@ def _same(pruned, full) -> None:
     exact = {c.changes: c for c in full.candidates + full.combinations}
     for c in pruned.candidates + pruned.combinations:
         e = exact[c.changes]
-        if c.bounded:          # the bound: the nominal-based gain is at least the robust gain
+        if c.bounded:          # the bound: the screening run's gain is at least the robust gain
             assert all(c.gains[k] >= e.gains[k] for k in e.gains), c.label
-            assert c.measures.critical_impulse_Ns.value == e.measures.critical_impulse_Ns.value, c.label
-            assert c.measures.equal_instability_speed_m_s.value == e.measures.equal_instability_speed_m_s.value
+            assert c.measures.critical_impulse_Ns.low >= e.measures.critical_impulse_Ns.low, c.label
+            assert c.measures.equal_instability_speed_m_s.low >= e.measures.equal_instability_speed_m_s.low
         else:
             assert c == e, c.label
-    assert "(nom.)" in advice_text(pruned) or pruned.intervals_computed == len(exact)
+    assert "(x0.5)" in advice_text(pruned) or pruned.intervals_computed == len(exact)
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -92,13 +92,13 @@ def test_a_bound_below_the_computed_gain_is_refused():
     import stability.advise.advisor as adv
 
     c = chair_mod.preset("ej-premier")
-    orig = adv.nominal_of
-    adv.nominal_of = lambda nl: liar
+    orig = adv.screening_of
+    adv.screening_of = lambda nl: liar
     try:
         with pytest.raises(RuntimeError, match="screening bound broken"):
             advise(c, nonlinear=nominal_then_more, time_to_correct=False)
     finally:
-        adv.nominal_of = orig
+        adv.screening_of = orig
 
 
 def _random_chairs(n: int, seed: int) -> list:

@@ -12,8 +12,8 @@ meets every limit, with the runner-up; a change that would be better but is bloc
 named with that limit, its value and the option that would allow it.
 
 Screening (:mod:`.pruning`, the default for a chair): the chair is measured with its intervals, every change at
-the nominal inputs and x0.5 pin friction only; a change's intervals are computed only when these runs (an upper
-bound of its robust gain: an interval's low end is never above any of its runs) let it reach one of the
+x0.5 pin friction only (one run per measure); a change's intervals are computed only when these runs (an upper
+bound of its robust gain: an interval's low end is never above any of its variants) let it reach one of the
 advisor's choices, so the decision is the one ``prune=False`` (every interval computed) gives.
 """
 
@@ -45,8 +45,8 @@ from stability.advise.limits import (
     shimmy_sentence,
 )
 from stability.advise.limits import constraints as constraints_of
-from stability.advise.measures import Linear, Measures, nominal_measures, nonlinear_measures
-from stability.advise.pruning import Pool, nominal_of
+from stability.advise.measures import Linear, Measures, nonlinear_measures, screening_measures
+from stability.advise.pruning import Pool, screening_of
 from stability.advise.subject import lever_changes, measure_chairs, shimmy_hold
 from stability.advise.subject import time_to_correct as correct_time
 from stability.chair import Chair
@@ -82,9 +82,9 @@ class Candidate:
         The two relative gains (``critical_impulse``, ``equal_instability_speed``).
     constraints : tuple of Constraint
     bounded : bool
-        The intervals were not computed (:mod:`.pruning`): ``measures`` holds the nominal values with, as the
-        low ends, the screening runs' upper bounds of them (:func:`.measures.nominal_measures`; high ends None),
-        and ``gain``/``gains`` are upper bounds of the robust gains, below what the advisor chose.
+        The intervals were not computed (:mod:`.pruning`): ``measures`` holds, as the low ends, the screening
+        run's upper bounds of them (:func:`.measures.screening_measures`; no nominal value, high ends None), and
+        ``gain``/``gains`` are upper bounds of the robust gains, below what the advisor chose.
     """
 
     changes: tuple
@@ -336,7 +336,7 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     intended_speed : float, optional
         m/s; default the fastest use speed (with a driver only).
     prune : bool
-        Measure the changes at the nominal inputs first and compute the intervals only of those that can reach
+        Measure the changes at x0.5 pin friction first and compute the intervals only of those that can reach
         a choice (:mod:`.pruning`; the same decision); False: every change with its intervals.  A wheel layout
         is always measured with every interval.
 
@@ -359,7 +359,7 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     cores: dict = {}
     prune = prune and isinstance(chair, Chair)
     if prune:
-        nominal = nominal_measures if nonlinear is None else nominal_of(nonlinear)
+        nominal = screening_measures if nonlinear is None else screening_of(nonlinear)
         measured = measure_chairs([chair], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
                                   nonlinear=nonlinear, cores=cores, reaction_time=tau)
         measured += measure_chairs([c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,

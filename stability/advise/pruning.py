@@ -1,12 +1,12 @@
-"""The advisor's screening: every change measured at the nominal inputs, intervals only where they can decide.
+"""The advisor's screening: every change measured once per measure first, intervals only where they can decide.
 
 The advisor judges a change on the *low ends* of its critical-impulse and equal-instability intervals
 (:func:`.advisor.advise`).  An interval's low end is the smallest value over the nominal case and its variants
-(pin friction x0.5/x1.5, the thesis model, half the step; for the speed also the push), so it is never above the
-nominal value, nor above any one variant's value.  The screening runs the nominal case and the x0.5 pin-friction
-variant of every change (:func:`.measures.nominal_measures`; x0.5 sets the low end in most cases, so the bound is
-usually the low end itself).  Hence the rule, with ``s`` the smaller of a change's two screening values and
-``l_b`` the low end of the chair as it is (always measured with its intervals), per measure:
+(pin friction x0.5/x1.5, the thesis model, half the step; for the speed also the push), so it is never above any
+one variant's value.  The screening runs one variant of every change, x0.5 pin friction
+(:func:`.measures.screening_measures`: the variant that sets the low end in most cases, so the bound is usually
+the low end itself).  Hence the rule, with ``s`` a change's screening value and ``l_b`` the low end of the chair
+as it is (always measured with its intervals), per measure:
 
     robust gain = min over the two measures of (l / l_b - 1)  <=  min of (s / l_b - 1) =: upper bound,
 
@@ -22,8 +22,8 @@ entries are all computed.  Every change left bounded then sorts after the ``k``-
 every interval computed (``advise(..., prune=False)``; ``tests/test_advise_pruning.py`` compares the two).  When a
 change's intervals arrive, its exact gains are checked against its bound (:meth:`Pool.refine`).
 
-A change whose intervals are not computed keeps its screening measures (:class:`Pool`, ``Candidate.bounded``);
-the advice prints their nominal values with the gain as an upper bound.
+A change whose intervals are not computed keeps its screening values (:class:`Pool`, ``Candidate.bounded``); the
+advice prints them, marked as the x0.5-pin-friction run, with the gain as an upper bound.
 """
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ from typing import Any
 
 from stability.advise.measures import Interval
 
-__all__ = ["Choice", "settle", "nominal_of", "Pool"]
+__all__ = ["Choice", "settle", "screening_of", "Pool"]
 
 
 @dataclass(frozen=True)
@@ -109,8 +109,9 @@ def settle(choices: Sequence[Choice], refine: Callable[[list[int]], None]) -> li
         refine(todo)
 
 
-def nominal_of(nonlinear: Callable) -> Callable:
-    """The nominal stage of a replacement of :func:`.measures.nonlinear_measures` (tests): its values, no ends.
+def screening_of(nonlinear: Callable) -> Callable:
+    """The screening stage of a replacement of :func:`.measures.nonlinear_measures` (tests): its nominal values as
+    the bounds (an interval's low end is never above its nominal value).
 
     Parameters
     ----------
@@ -120,13 +121,13 @@ def nominal_of(nonlinear: Callable) -> Callable:
     Returns
     -------
     callable
-        Same signature; every interval ``Interval(value, None, None)``.
+        Same signature; every interval ``Interval(None, value, None)``.
     """
-    def nominal(chairs: Sequence) -> list:
-        return [(Interval(imp.value, None, None), Interval(eq.value, None, None), *rest)
+    def screening(chairs: Sequence) -> list:
+        return [(Interval(None, imp.value, None), Interval(None, eq.value, None), *rest)
                 for imp, eq, *rest in nonlinear(chairs)]
 
-    return nominal
+    return screening
 
 
 class Pool:

@@ -27,14 +27,15 @@ def _row(c: Candidate, base: Measures, broken: set) -> str:
     m = c.measures
     sm = m.shimmy_margin_m.value
     hr = m.cross_slope_effort
-    ei = describe(m.equal_instability_speed_m_s.value or math.nan, side_of(m.equal_instability_status), digits=3)
+    v = m.equal_instability_speed_m_s
+    ei = describe((v.low if c.bounded else v.value) or math.nan, side_of(m.equal_instability_status), digits=3)
     unmet = [k.name for k in c.constraints if not k.met]
     breaks = [n for n in unmet if n not in broken]
     still = [n for n in unmet if n in broken]
     flags = ("  breaks " + ", ".join(breaks) if breaks else "") + \
         ("  does not fix " + ", ".join(still) if still else "")
     j = m.critical_impulse_Ns
-    impulse = f"{j.value:6.2f} (nom.)" if c.bounded else f"{j.low:6.2f}-{j.high:<6.2f}"
+    impulse = f"{j.low:6.2f} (x0.5)" if c.bounded else f"{j.low:6.2f}-{j.high:<6.2f}"
     gain = f"<={c.gain * 100:+4.0f} %" if c.bounded else f"{c.gain * 100:+6.1f} %"
     return (f"  {c.changes[0].label:<72} {impulse} "
             f"{ei:>6} {m.static_stability_deg.value:6.1f} "
@@ -122,9 +123,10 @@ def advice_text(a: Advice) -> str:
         lines.append(f"  {ch.label:<72} refused: {why}")
     bounded = sum(c.bounded for c in a.candidates + a.combinations)
     if bounded:
-        lines.append(f"  (nom.): {bounded} change(s) measured at the nominal inputs only; their nominal values already "
-                     "put them below the changes chosen (an interval's low end is never above its nominal value), so "
-                     "their intervals were not computed and their gain is an upper bound (<=)")
+        lines.append(f"  (x0.5): {bounded} change(s) measured at x0.5 pin friction only (impulse and EI columns); "
+                     "these values already put them below the changes chosen (an interval's low end is never above "
+                     "any of its variants), so their intervals were not computed and their gain is an upper bound "
+                     "(<=)")
     if a.pairs_screened:
         lines.append(f"  pairs of two levers: {a.pairs_screened} checked on the limits in the order of their predicted "
                      f"gain, {a.pairs_measured} measured "
