@@ -42,7 +42,8 @@ def _row(c: Candidate, base: Measures, broken: set) -> str:
             f"{'none' if sm is None else format(sm * 100, '+.2f'):>7} {m.turning_effort_N_m:6.3f} "
             f"{'-' if hr is None else format(abs(hr), '.3g'):>5} {m.growth_rate_1_s:5.2f} {gain}"
             + flags
-            + ("  (impulse and speed disagree)" if min(c.gains.values()) < 0 < max(c.gains.values()) else "")
+            + ("  (impulse and speed disagree)" if not c.bounded and min(c.gains.values()) < 0 < max(c.gains.values())
+               else "")
             + ("  (linear rate worse, nonlinear better: see the note on linear vs nonlinear)"
                if c.gain > 0 and m.growth_rate_1_s > base.growth_rate_1_s + 1e-9 else ""))
 
