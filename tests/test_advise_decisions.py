@@ -382,7 +382,7 @@ def test_a_combination_is_predicted_from_its_parts_by_the_product_of_their_chang
 
     chair = chair_mod.preset("ej-premier").replace(trail=0.06)
     a = advise(chair, speeds=SPEEDS, nonlinear=_separable(chair), time_to_correct=False, cross_slope_deg=0.0,
-               min_tip_deg=0.0)
+               min_tip_deg=0.0, prune=False)                  # every part's and combination's interval computed
     singles = {c.changes: c for c in a.candidates}
     assert a.combinations                                     # the premise: pairs were measured
     for combo in a.combinations:

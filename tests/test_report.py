@@ -27,11 +27,11 @@ from stability.settings.run import RunSpec
 
 EXPECTED_PAGES = [
     # main body
-    "decision", "summary", "chair parameters and geometry", "eigenvalues against speed",
+    "decision", "summary", "eigenvalues against speed",
     "nonlinear yaw-rate responses", "paths", "equal-instability speeds", "parametric study", "stability maps",
     "trail design chart", "caster shimmy", "cross slope", "parameter uncertainty", "thesis conclusions",
     # appendix
-    "method", "findings", "linear stability: critical speeds", "tires",
+    "method", "chair parameters and geometry", "findings", "linear stability: critical speeds", "tires",
     "growth rate against design parameters", "parametric study table",
     "glossary and references",
 ]

@@ -92,12 +92,16 @@ def advise_table() -> dict:
         out[f"{name}.singles"] = str(len(a.candidates))
         out[f"{name}.pairs_measured"] = str(a.pairs_measured)
         out[f"{name}.pairs_screened"] = str(a.pairs_screened)
+        out[f"{name}.changes"] = str(len(a.candidates) + len(a.combinations))
+        out[f"{name}.computed"] = str(a.intervals_computed)
     ej, rv = float(out["ej-premier.eis"]), float(out["revised.eis"])
     out["eis_gain_pct"] = pct(rv / ej - 1)
     out["ci_gain_pct"] = pct(float(out["revised.ci"]) / float(out["ej-premier.ci"]) - 1)
     out["singles"] = _span([int(out[f"{n}.singles"]) for n in ADVISE_CHAIRS], str)
     out["pairs_measured_max"] = str(max(int(out[f"{n}.pairs_measured"]) for n in ADVISE_CHAIRS))
     out["cpu_s"] = f"{min(cpu):.1f}-{max(cpu):.1f}"
+    out["changes"] = _span([int(out[f"{n}.changes"]) for n in ADVISE_CHAIRS], str)
+    out["computed"] = _span([int(out[f"{n}.computed"]) for n in ADVISE_CHAIRS], str)
     out["table"] = Table(("chair", "critical impulse", "equal-instability speed", "tip", "shimmy margin",
                           "recommendation", "predicted critical impulse", "predicted equal-instability speed"),
                          tuple(rows))

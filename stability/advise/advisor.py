@@ -3,13 +3,18 @@
 Method (docs/advise.md): measure the chair and every single change of every lever
 (:mod:`.levers`) in one batch (:func:`.measures.measure_chairs`); a change's robust gain is the
 smaller of its relative gains in the *low ends* of the critical-impulse and equal-instability
-intervals, so a change one measure contradicts gains nothing.  Every pair of single changes of two
-levers is then screened on the constraints alone (statics, shimmy band, cross slope: no simulation,
-:func:`.measures.linear_measures`); the pairs that meet every limit are ranked by the gain their two
-changes predict together (the product of their relative changes) and the best of them, with the
-triple of the three best levers, are measured.  The recommendation is the best measured change that
+intervals, so a change one measure contradicts gains nothing.  The pairs of single changes of two
+levers are ranked by the gain their two changes predict together (the product of their relative
+changes) and checked in that order on the constraints alone (statics, shimmy band, cross slope: no
+simulation, :func:`.measures.linear_measures`) as far as the choice reaches; the best that meet every
+limit, with the triple of the three best levers, are measured.  The recommendation is the best measured change that
 meets every limit, with the runner-up; a change that would be better but is blocked by a limit is
 named with that limit, its value and the option that would allow it.
+
+Screening (:mod:`.pruning`, the default for a chair): the chair is measured with its intervals, every change at
+x0.5 pin friction only (one run per measure); a change's intervals are computed only when these runs (an upper
+bound of its robust gain: an interval's low end is never above any of its variants) let it reach one of the
+advisor's choices, so the decision is the one ``prune=False`` (every interval computed) gives.
 """
 
 from __future__ import annotations
@@ -18,6 +23,15 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from stability.advise.combinations import BLOCKED_BUDGET as BLOCKED_BUDGET  # re-exported: the combination filter
+from stability.advise.combinations import (
+    MAX_FIX_COST,
+    PAIR_BUDGET,
+    _screen,
+    _settle_choice,
+)
+from stability.advise.combinations import _pairs as _pairs
+from stability.advise.combinations import _predicted as _predicted
 from stability.advise.levers import LEVERS
 from stability.advise.limits import (
     HANDRIM_FACTOR,
@@ -31,8 +45,9 @@ from stability.advise.limits import (
     shimmy_sentence,
 )
 from stability.advise.limits import constraints as constraints_of
-from stability.advise.measures import Linear, Measures
-from stability.advise.subject import apply, lever_changes, linear_measures, measure_chairs, shimmy_hold
+from stability.advise.measures import Linear, Measures, nonlinear_measures, screening_measures
+from stability.advise.pruning import Pool, screening_of
+from stability.advise.subject import lever_changes, measure_chairs, shimmy_hold
 from stability.advise.subject import time_to_correct as correct_time
 from stability.chair import Chair
 from stability.driver.model import Driver
@@ -45,13 +60,6 @@ __all__ = ["Constraint", "Candidate", "Recommendation", "Blocked", "ShimmyHold",
            "MAX_PIN_FRICTION_N_M", "MAX_FIX_COST", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "DEFAULT_SPEEDS",
            "DEFAULT_CROSS_SLOPE_DEG", "PAIR_BUDGET", "SHIMMY_AMPLITUDE_DEG"]
 
-#: A change that only fixes a constraint the chair breaks is recommended if it costs at most this fraction of
-#: the robust measures; a dearer fix is the runner-up behind "no change, measure first".
-MAX_FIX_COST = 0.25
-#: Pairs of changes measured by simulation after the screening on the constraints (the best predicted ones).
-PAIR_BUDGET = 6
-#: Pairs a limit blocks that predict more than every pair meeting the limits, measured to be named (BLOCKED).
-BLOCKED_BUDGET = 2
 #: Default use speeds (m/s): :data:`stability.settings.defaults.ADVISE_SPEEDS` (0.5:1:0.25).
 DEFAULT_SPEEDS = (0.5, 0.75, 1.0)
 #: Default cross slope for the hand-rim force (deg): :data:`stability.settings.defaults.ADVISE_CROSS_SLOPE_DEG`.
@@ -73,6 +81,10 @@ class Candidate:
     gains : dict
         The two relative gains (``critical_impulse``, ``equal_instability_speed``).
     constraints : tuple of Constraint
+    bounded : bool
+        The intervals were not computed (:mod:`.pruning`): ``measures`` holds, as the low ends, the screening
+        run's upper bounds of them (:func:`.measures.screening_measures`; no nominal value, high ends None), and
+        ``gain``/``gains`` are upper bounds of the robust gains, below what the advisor chose.
     """
 
     changes: tuple
@@ -80,6 +92,7 @@ class Candidate:
     gain: float
     gains: dict
     constraints: tuple
+    bounded: bool = False
 
     @property
     def feasible(self) -> bool:
@@ -166,13 +179,16 @@ class Advice:
     shimmy_hold : ShimmyHold or None
         What the chair's own pin friction buys against shimmy (None: no pin friction).
     pairs_screened, pairs_measured : int
-        Pairs of changes screened on the constraints, and measured by simulation.
+        Pairs of changes checked on the constraints (in the order of their predicted gain, as far as the choice
+        reaches), and measured by simulation.
     own_constraints : tuple of Constraint
         The chair as it is against every limit (what it already breaks).
     driver : Driver or None
         The user whose reaction time the human-limited speed constraint uses.
     intended_speed_m_s : float or None
         The speed that driver must be able to hold, m/s.
+    intervals_computed : int
+        Changes (single or combined) whose intervals were computed; the others are bounded (:mod:`.pruning`).
     """
 
     chair: Chair | Layout
@@ -194,6 +210,7 @@ class Advice:
     own_constraints: tuple = ()
     driver: Driver | None = None
     intended_speed_m_s: float | None = None
+    intervals_computed: int = 0
 
 
 @dataclass(frozen=True)
@@ -273,30 +290,6 @@ def _notes(c: Candidate, base: Measures, chair: Chair | Layout) -> tuple:
     return tuple(notes)
 
 
-def _pairs(singles: list[Candidate]) -> list[tuple]:
-    """Every pair of single changes of two different levers that touch different chair fields."""
-    out = []
-    for i, a in enumerate(singles):
-        for b in singles[i + 1:]:
-            if a.changes[0].lever != b.changes[0].lever and not set(a.fields) & set(b.fields):
-                out.append((a, b))
-    return out
-
-
-def _predicted(combo: tuple) -> float:
-    """The robust gain a combination predicts from its parts: per measure the product of the relative changes."""
-    worst = math.inf
-    for key in ("critical_impulse", "equal_instability_speed"):
-        f = 1.0
-        for x in combo:
-            g = x.gains[key]
-            if not math.isfinite(g):
-                return -math.inf
-            f *= 1.0 + g
-        worst = min(worst, f - 1.0)
-    return worst
-
-
 def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Blocked]:
     """Measured changes a limit blocks that beat the recommendation or fix what the chair breaks, best first."""
     out = []
@@ -314,7 +307,7 @@ def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Bloc
 def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
            cross_slope_deg: float = DEFAULT_CROSS_SLOPE_DEG, progress: bool = False,
            nonlinear: Callable | None = None, time_to_correct: bool = True, driver: Driver | None = None,
-           intended_speed: float | None = None) -> Advice:
+           intended_speed: float | None = None, prune: bool = True) -> Advice:
     """Verdict, levers and recommendation for ``chair``.
 
     Parameters
@@ -342,6 +335,10 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         :func:`stability.driver.linear.rule_speed`) reaches ``intended_speed``.
     intended_speed : float, optional
         m/s; default the fastest use speed (with a driver only).
+    prune : bool
+        Measure the changes at x0.5 pin friction first and compute the intervals only of those that can reach
+        a choice (:mod:`.pruning`; the same decision); False: every change with its intervals.  A wheel layout
+        is always measured with every interval.
 
     Returns
     -------
@@ -360,8 +357,17 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         raise ValueError(f"intended_speed={intended_speed!r} is invalid; valid range: 0.01 to 20 m/s")
     singles, refused = lever_changes(chair)
     cores: dict = {}
-    measured = measure_chairs([chair] + [c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
-                              progress=progress, nonlinear=nonlinear, cores=cores, reaction_time=tau)
+    prune = prune and isinstance(chair, Chair)
+    if prune:
+        nominal = screening_measures if nonlinear is None else screening_of(nonlinear)
+        measured = measure_chairs([chair], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
+                                  nonlinear=nonlinear, cores=cores, reaction_time=tau)
+        measured += measure_chairs([c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
+                                   progress=progress, nonlinear=nominal, cores=cores,
+                                   reaction_time=tau) if singles else []
+    else:
+        measured = measure_chairs([chair] + [c for _, c in singles], speeds=use, cross_slope_deg=cross_slope_deg,
+                                  progress=progress, nonlinear=nonlinear, cores=cores, reaction_time=tau)
     base = measured[0]
     if min_tip_deg is None:
         min_tip = float(base.static_stability_deg.value or 0.0)
@@ -373,17 +379,28 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         return constraints_of(m, base, min_tip, source, cross_slope_deg,
                               None if tau is None or intended is None else (tau, intended))
 
-    def candidate(changes: tuple, m: Measures) -> Candidate:
+    def candidate(changes: tuple, m: Measures, bounded: bool = False) -> Candidate:
         g, gs = _gain(m, base)
-        return Candidate(changes, m, g, gs, constraints(m))
+        return Candidate(changes, m, g, gs, constraints(m), bounded)
 
-    cands = [candidate((ch,), m) for (ch, _), m in zip(singles, measured[1:], strict=True)]
+    pool = Pool(candidate, nonlinear or nonlinear_measures)
+    pool.add([candidate((ch,), m, prune) for (ch, _), m in zip(singles, measured[1:], strict=True)],
+             [c for _, c in singles])
+    pool.refine(pool.unbounded())
+    cands = pool.cands[:]
     own = constraints(base)
     broken = {k.name for k in own if not k.met}            # what the chair as it is already breaks
-    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores, tau)
+    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores, tau,
+                                 pool=pool if prune else None)
     cm = measure_chairs([c for _, c in chosen], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
-                        nonlinear=nonlinear, cores=cores, reaction_time=tau) if chosen else []
-    combined = [candidate(tuple(x.changes[0] for x in combo), m) for (combo, _), m in zip(chosen, cm, strict=True)]
+                        nonlinear=nominal if prune else nonlinear, cores=cores, reaction_time=tau) if chosen else []
+    pool.add([candidate(tuple(x.changes[0] for x in combo), m, prune) for (combo, _), m in zip(chosen, cm,
+                                                                                              strict=True)],
+             [c for _, c in chosen])
+    pool.refine(pool.unbounded())
+    if prune:
+        _settle_choice(pool, broken)
+    cands, combined = pool.cands[:len(singles)], pool.cands[len(singles):]
 
     feasible = sorted((c for c in cands + combined if c.feasible), key=lambda c: -c.gain)
     keep = Candidate((), base, 0.0, {"critical_impulse": 0.0, "equal_instability_speed": 0.0}, own)
@@ -396,7 +413,8 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     for rank, c in enumerate(ranked[:2], start=1):
         parts = tuple(next(s for s in cands if s.changes == (ch,)) for ch in c.changes) if len(c.changes) > 1 else ()
         recs.append(Recommendation(rank, c, parts, _notes(c, base, chair)))
-    blocked = _blocked(cands + combined, broken, recs[0].candidate.gain if recs else -math.inf)
+    best_gain = recs[0].candidate.gain if recs else -math.inf
+    blocked = _blocked(cands + combined, broken, best_gain)
     recs = _explain(recs, broken, blocked, base)
     times: list[float | None] = []
     for u in use if time_to_correct else ():
@@ -406,42 +424,8 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
             times.append(None)
     return Advice(chair, use, float(cross_slope_deg), min_tip, source, base, tuple(times), tuple(cands),
                   tuple(combined), tuple(refused), tuple(recs), "", tuple(blocked), shimmy_hold(chair, use),
-                  n_screened, len(chosen), own, driver, intended)
-
-
-def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
-            cross_slope_deg: float, cores: dict, reaction_time: float | None = None) -> tuple[list, int]:
-    """The combinations worth simulating: every pair of two levers screened on the limits alone (no simulation),
-    those that meet every limit ranked by the gain their parts predict (the best :data:`PAIR_BUDGET`), the best
-    :data:`BLOCKED_BUDGET` that a limit blocks but predict more (to be named with their values), and the triple
-    of the three best acceptable levers."""
-    screened = []
-    for combo in _pairs(cands):
-        try:
-            screened.append((combo, apply(chair, [f for x in combo for f in x.changes[0].fields])))
-        except ValueError:
-            continue
-    lin = linear_measures([c for _, c in screened], speeds=use, cross_slope_deg=cross_slope_deg, cores=cores,
-                          reaction_time=reaction_time)
-    met = [all(k.met for k in constraints(m)) for m in lin]
-    passing = sorted((x for x, ok in zip(screened, met, strict=True) if ok), key=lambda x: -_predicted(x[0]))
-    chosen = [x for x in passing if _predicted(x[0]) > -MAX_FIX_COST][:PAIR_BUDGET]
-    # the pairs a limit blocks that predict more than every passing pair: measured too, to be named with real values
-    best_passing = _predicted(passing[0][0]) if passing else -math.inf
-    failing = sorted((x for x, ok in zip(screened, met, strict=True) if not ok and _predicted(x[0]) > best_passing),
-                     key=lambda x: -_predicted(x[0]))
-    chosen += failing[:BLOCKED_BUDGET]
-    best: dict[str, Candidate] = {}
-    for c in sorted((c for c in cands if c.gain > 0 and all(k.met or k.name in broken for k in c.constraints)),
-                    key=lambda c: -c.gain):
-        best.setdefault(c.changes[0].lever, c)
-    trio = tuple(list(best.values())[:3])
-    if len(trio) == 3 and len({k for x in trio for k in x.fields}) == sum(len(x.fields) for x in trio):
-        try:
-            chosen.append((trio, apply(chair, [f for x in trio for f in x.changes[0].fields])))
-        except ValueError:
-            pass
-    return chosen, len(screened)
+                  n_screened, len(chosen), own, driver, intended,
+                  sum(not c.bounded for c in cands + combined))
 
 
 def _explain(recs: list[Recommendation], broken: set, blocked: list[Blocked], base: Measures) -> list:

@@ -28,21 +28,23 @@ from dataclasses import dataclass
 import numpy as np
 
 from stability.bench import run_bench
-from stability.chair import Chair
+from stability.chair import Chair, preset
 from stability.chair.power import drive_kind
 from stability.driver.linear import rule_speed
 from stability.layout.model import Layout
 from stability.linear import eigenvalues_vs_speed
 from stability.runtime.progress import ProgressBar
-from stability.settings.reference import REFERENCE_SPEED
+from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.shimmy.band import band_core, shimmy_band
 from stability.slope import drive_report, solve
 from stability.study import critical_impulse_intervals, equal_instability_intervals
 from stability.study.impulse_intervals import CriticalImpulseInterval
+from stability.study.intervals import scale_friction
 from stability.tipping import tip_angles
 
 __all__ = ["Interval", "Measures", "Linear", "measure_chairs", "linear_measures", "nonlinear_measures",
-           "cross_slope_effort", "IMPULSE_SPEED", "EFFORT_KEYS", "EFFORT_WORDS"]
+           "screening_measures", "SCREEN_FRICTION_FACTOR", "cross_slope_effort", "IMPULSE_SPEED", "EFFORT_KEYS",
+           "EFFORT_WORDS"]
 
 #: Speed of the critical impulse the advisor weighs (the thesis's reference speed), m/s.
 IMPULSE_SPEED = REFERENCE_SPEED
@@ -238,6 +240,39 @@ def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval
              Interval(float(eq.point.value_or_bound), eq.low, eq.high), eq.point.status,
              imp.point.status, _half_step(imp))
             for imp, eq in zip(ci, ei, strict=True)]
+
+
+#: Pin-friction factor of the screening runs (:func:`screening_measures`): the variant that sets the low end of the
+#: presets' and their changes' critical-impulse intervals, and of most of their equal-instability intervals.
+SCREEN_FRICTION_FACTOR = 0.5
+
+
+def screening_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str, str, float | None]]:
+    """Upper bounds of the low ends of every chair's critical-impulse and equal-instability intervals: the
+    advisor's screening (:mod:`.pruning`), one run per measure and chair.
+
+    Runs only the :data:`SCREEN_FRICTION_FACTOR` pin-friction variant of :func:`nonlinear_measures` (the chair's
+    pins scaled, and for the equal-instability speed the reference chair's too, as the interval scales both), one
+    batch per study.  A chair's result does not depend on its batch, so each value is that variant's value in
+    :func:`nonlinear_measures`, and the low end it gives (the smallest over every variant) is at most this.
+
+    Parameters
+    ----------
+    chairs : sequence of Chair
+
+    Returns
+    -------
+    list of tuple
+        As :func:`nonlinear_measures`, with ``Interval(None, bound of the low end, None)`` (no nominal value),
+        the statuses of the screening runs and no half-step value.
+    """
+    f = SCREEN_FRICTION_FACTOR
+    scaled = [scale_friction(c, f) for c in chairs]
+    ci = critical_impulse_intervals(scaled, IMPULSE_SPEED, friction_factors=(), models=(), step_factors=())
+    ei = equal_instability_intervals(scaled, force_factors=(), friction_factors=(), models=(), step_factors=(),
+                                     reference_chair=scale_friction(preset(REFERENCE_CHAIR), f))
+    return [(Interval(None, float(imp.point.bound_Ns), None), Interval(None, float(eq.point.value_or_bound), None),
+             eq.point.status, imp.point.status, None) for imp, eq in zip(ci, ei, strict=True)]
 
 
 def _half_step(imp: CriticalImpulseInterval) -> float | None:

@@ -25,18 +25,23 @@ def _row(c: Candidate, base: Measures, broken: set) -> str:
     m = c.measures
     sm = m.shimmy_margin_m.value
     hr = m.cross_slope_effort
-    ei = describe(m.equal_instability_speed_m_s.value or math.nan, side_of(m.equal_instability_status), digits=3)
+    v = m.equal_instability_speed_m_s
+    ei = describe((v.low if c.bounded else v.value) or math.nan, side_of(m.equal_instability_status), digits=3)
     unmet = [k.name for k in c.constraints if not k.met]
     breaks = [n for n in unmet if n not in broken]
     still = [n for n in unmet if n in broken]
     flags = ("  breaks " + ", ".join(breaks) if breaks else "") + \
         ("  does not fix " + ", ".join(still) if still else "")
-    return (f"  {c.changes[0].label:<72} {m.critical_impulse_Ns.low:6.2f}-{m.critical_impulse_Ns.high:<6.2f} "
+    j = m.critical_impulse_Ns
+    impulse = f"{j.low:6.2f} (x0.5)" if c.bounded else f"{j.low:6.2f}-{j.high:<6.2f}"
+    gain = f"<={c.gain * 100:+4.0f} %" if c.bounded else f"{c.gain * 100:+6.1f} %"
+    return (f"  {c.changes[0].label:<72} {impulse} "
             f"{ei:>6} {m.static_stability_deg.value:6.1f} "
             f"{'none' if sm is None else format(sm * 100, '+.2f'):>7} {m.turning_effort_N_m:6.3f} "
-            f"{'-' if hr is None else format(abs(hr), '.3g'):>5} {m.growth_rate_1_s:5.2f} {c.gain * 100:+6.1f} %"
+            f"{'-' if hr is None else format(abs(hr), '.3g'):>5} {m.growth_rate_1_s:5.2f} {gain}"
             + flags
-            + ("  (impulse and speed disagree)" if min(c.gains.values()) < 0 < max(c.gains.values()) else "")
+            + ("  (impulse and speed disagree)" if not c.bounded and min(c.gains.values()) < 0 < max(c.gains.values())
+               else "")
             + ("  (linear rate worse, nonlinear better: see the note on linear vs nonlinear)"
                if c.gain > 0 and m.growth_rate_1_s > base.growth_rate_1_s + 1e-9 else ""))
 
@@ -115,8 +120,15 @@ def advice_text(a: Advice) -> str:
         lines += [_row(c, a.verdict, own) for c in a.candidates if c.changes[0].lever == name]
     for ch, why in a.refused:
         lines.append(f"  {ch.label:<72} refused: {why}")
+    bounded = sum(c.bounded for c in a.candidates + a.combinations)
+    if bounded:
+        lines.append(f"  (x0.5): {bounded} change(s) measured at x0.5 pin friction only (impulse and EI columns); "
+                     "these values already put them below the changes chosen (an interval's low end is never above "
+                     "any of its variants), so their intervals were not computed and their gain is an upper bound "
+                     "(<=)")
     if a.pairs_screened:
-        lines.append(f"  pairs of two levers: {a.pairs_screened} screened on the limits, {a.pairs_measured} measured "
+        lines.append(f"  pairs of two levers: {a.pairs_screened} checked on the limits in the order of their predicted "
+                     f"gain, {a.pairs_measured} measured "
                      "(the best predicted that meet every limit)")
     lines += _blocked(a, d)
     lines += _recommendation(a, d)
@@ -155,6 +167,7 @@ def advice_mapping(a: Advice) -> dict:
             "turning_effort_N_m": [c.measures.turning_effort_N_m for c in cs],
             a.verdict.effort_key: [c.measures.cross_slope_effort for c in cs],
             "robust_gain": [finite(c.gain) for c in cs],
+            "intervals_computed": [not c.bounded for c in cs],
             "constraints_met": [c.feasible for c in cs],
             "refused": [{"label": ch.label, "change": ch.to_mapping(), "reason": why}
                         for ch, why in a.refused if ch.lever == name],
@@ -169,6 +182,7 @@ def advice_mapping(a: Advice) -> dict:
                        "blocked": [b.to_mapping() for b in a.blocked],
                        "shimmy_hold": None if a.shimmy_hold is None else a.shimmy_hold.to_mapping(),
                        "pairs_screened": a.pairs_screened, "pairs_measured": a.pairs_measured,
+                       "intervals_computed": a.intervals_computed,
                        "no_recommendation_reason": a.reason or None,
                        "limits": {"min_tip_deg": a.min_tip_deg, "min_tip_source": a.min_tip_source},
                        "non_finite_as": "null (an unbounded interval end, an undefined gain or an absent limit)",

@@ -102,7 +102,7 @@ def _p_decision(d: ReportData) -> Figure:
 
 def _p_chair(d: ReportData) -> Figure:
     sub, c = _subtitle(d), d.chair
-    fig, axes = P.page(_title(d, "chair parameters and geometry"), sub, nrows=1, ncols=2,
+    fig, axes = P.page(_title(d, "appendix: chair parameters and geometry"), sub, nrows=1, ncols=2,
                        gridspec_kw={"width_ratios": [1.35, 1]})
     P.parameter_table(c, axes[0, 0])
     P.chair_geometry(c, axes[0, 1])
@@ -159,7 +159,7 @@ def _p_trail_window(d: ReportData) -> Figure:
 
 def _p_tires(d: ReportData) -> Figure:
     sub = _subtitle(d)
-    fig, axes = P.page(_title(d, "tires (Figures 4-1 and 4-2 analogues)"), sub, nrows=1, ncols=3)
+    fig, axes = P.page(_title(d, "appendix: tires (Figures 4-1 and 4-2 analogues)"), sub, nrows=1, ncols=3)
     P.tire_curves(d.tire_force[0], axes[0, 0])
     P.tire_curves(d.tire_force[1], axes[0, 1])
     P.cornering_stiffness_curves(d.tire_stiffness, axes[0, 2])
@@ -187,7 +187,7 @@ def _p_linear(d: ReportData) -> Figure:
     """The linear analysis in one appendix page: the critical speeds and the least stable mode (text, top) and
     the eigenvalues as speed varies, free and locked casters (parametric root loci, bottom)."""
     sub = _subtitle(d)
-    fig, axes = P.page(_title(d, "linear stability: critical speeds and eigenvalues as speed varies"), sub,
+    fig, axes = P.page(_title(d, "appendix: linear stability: critical speeds and eigenvalues as speed varies"), sub,
                        nrows=1, ncols=2)
     fs = 7.5
     y, step = 0.905, 0.0215 * fs / 9.5
@@ -226,7 +226,7 @@ def _p_growth(d: ReportData) -> Figure:
     sub = _subtitle(d)
     drawn = [loc for loc in d.parameter_loci if not flat_growth(loc)]
     flat = [loc for loc in d.parameter_loci if flat_growth(loc)]
-    fig = P.growth_rate_vs_parameter(drawn, _title(d, "growth rate of the least stable mode against design "
+    fig = P.growth_rate_vs_parameter(drawn, _title(d, "appendix: growth rate of the least stable mode against design "
                                                       "parameters, 0.75 m/s"), sub, ncols=columns(len(drawn)))
     bottom = 0.08
     if flat:
@@ -237,7 +237,7 @@ def _p_growth(d: ReportData) -> Figure:
 
 def _p_gain(d: ReportData) -> Figure:
     sub, c = _subtitle(d), d.chair
-    fig, axes = P.page(_title(d, "root locus against a yaw-rate feedback gain (for power chairs)"), sub,
+    fig, axes = P.page(_title(d, "appendix: root locus against a yaw-rate feedback gain (for power chairs)"), sub,
                        nrows=1, ncols=2)
     for ax, g, poles in zip(axes[0], d.gain_loci, d.gain_poles, strict=True):
         P.gain_locus(g, ax, stabilising_poles=poles,
@@ -368,7 +368,7 @@ def _p_sweep_table(d: ReportData) -> Figure:
                      ", ".join(s.value_text(k) for k in range(len(s.values))),
                      ", ".join(r.describe(unit=False) for r in s.results),
                      f"{s.effect_percent:.1f}" + (" (bound)" if s.censored else ""), s.how])
-    return P.table_page(_title(d, "which parameters matter, by how much"),
+    return P.table_page(_title(d, "appendix: which parameters matter, by how much"),
                         ["rank", "parameter", "values tried", "equal-instability speed (m/s)", "spread (%)",
                          "how varied"], rows, sub,
                         col_widths=[0.04, 0.17, 0.17, 0.27, 0.08, 0.27], wrap=[4, 24, 22, 40, 10, 40],
@@ -464,7 +464,6 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("decision", partial(_p_decision, d)),
         ("summary", partial(_p_summary_page, d)),
         ("comparison", partial(_p_comparison, d)),
-        ("chair parameters and geometry", partial(_p_chair, d)),
         ("eigenvalues against speed", partial(_p_re_im, d)),
         ("nonlinear yaw-rate responses", partial(_p_responses, d)),
         ("paths", partial(_p_paths, d)),
@@ -478,6 +477,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("thesis conclusions", partial(_p_conclusions, d)),
         # appendix: method, validation and the linear analysis in full
         ("method", partial(_p_method, d)),
+        ("chair parameters and geometry", partial(_p_chair, d)),
         ("findings", partial(_p_findings, d)),
         ("linear stability: critical speeds", partial(_p_linear, d)),
         ("tires", partial(_p_tires, d)),

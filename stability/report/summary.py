@@ -390,6 +390,12 @@ def summary_text(d: ReportData) -> str:
     out.extend(_nonlinear_lines(d))
     out.extend(_interval_lines(d))
     out.extend(_section_lines(d))
+    t = d.tipping
+    if t is not None:         # the appendix's chair-parameters page prints the same angles
+        out.append(f"- Static stability angles (ISO 7176-1; brakes locked, casters in their least stable orientation): "
+                   f"toward the main wheels {t.toward_main_wheels_deg:.1f} deg, toward the casters "
+                   f"{t.toward_casters_deg:.1f} deg, sideways {t.lateral_left_deg:.1f} / {t.lateral_right_deg:.1f} deg "
+                   "(left / right).")
     out.append(f"- Reference case ({REFERENCE_CHAIR} at {REFERENCE_SPEED:g} m/s, {push_text(d)}): |yaw rate| reaches "
                f"{d.thesis.criterion.yaw_rate:g} rad/s after {d.thesis.reference_time:.2f} s "
                "(thesis: slightly over 3 s).")

@@ -10,7 +10,9 @@ Work, asserted (deterministic: the same chairs, the same searches): the simulate
 the compiled kernel, counted in-process at :func:`stability.simulate.engine._launch`.  The quick report runs the
 advisor's runs (the same in both reports: the decision on page 1 is computed once, the same way), the
 reference chair's measures and the clinician sheet's runs, and nothing else; the page-1 decision paragraphs of the
-two reports are identical.  Skipped unless ``--benchmark-enable``.
+two reports are identical.  The advisor's screening (:mod:`stability.advise.pruning`) launches fewer runs than the
+advisor that computes every interval (``prune=False``), with the same decision.  Skipped unless
+``--benchmark-enable``.
 """
 
 from __future__ import annotations
@@ -83,6 +85,11 @@ def test_bench_quick_report(bench, monkeypatch, tmp_path):
     c, ref = preset(CHAIR), preset("ej-premier")
     runs = _Runs(monkeypatch)
     n_advice, advice = runs.during(lambda: advise(c))
+    n_every, every = runs.during(lambda: advise(c, prune=False))
+    # the screening: fewer runs, the same decision
+    assert n_advice < n_every
+    assert [r.to_mapping() for r in advice.recommendations] == [r.to_mapping() for r in every.recommendations]
+    assert [b.to_mapping() for b in advice.blocked] == [b.to_mapping() for b in every.blocked]
     n_ref = 0 if c == ref else runs.during(lambda: measure_chairs([ref], speeds=advice.speeds_m_s,
                                                                    cross_slope_deg=advice.cross_slope_deg))[0]
     n_sheet, _ = runs.during(lambda: clinician_sheet(c, tuple(advice.speeds_m_s), "exact", None))
@@ -99,7 +106,9 @@ def test_bench_quick_report(bench, monkeypatch, tmp_path):
     bench.pedantic(lambda: None, rounds=1, iterations=1)
     bench.extra_info.update({"quick_cpu_s": quick_cpu, "full_cpu_s": full_cpu, "cpu_ratio": quick_cpu / full_cpu,
                              "runs_quick": n_quick, "runs_full": n_full, "runs_advisor": n_advice,
+                             "runs_advisor_every_interval": n_every,
                              "runs_ratio": n_quick / n_full})
     print(f"\nreport --quick: {quick_cpu:.2f} s CPU, full report {full_cpu:.2f} s CPU, ratio {quick_cpu / full_cpu:.2f} "
-          f"(target <= 0.25); simulated runs {n_quick} vs {n_full} (advisor {n_advice}), ratio "
+          f"(target <= 0.25); simulated runs {n_quick} vs {n_full} (advisor {n_advice}, {n_every} with every "
+          f"interval), ratio "
           f"{n_quick / n_full:.2f}")
