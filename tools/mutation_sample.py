@@ -61,7 +61,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]       # the source mutated (and, without --tests-from, the tests)
 
 #: The fast tests that judge each module's mutants (the default marker selection; slow tests excluded).
-ADVISE = ["tests/test_advise.py", "tests/test_advise_decisions.py"]
+ADVISE = ["tests/test_advise.py", "tests/test_advise_decisions.py", "tests/test_advise_combinations.py"]
 MODULES = {
     "stability/linear/critical.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
     "stability/linear/model.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
@@ -223,6 +223,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'return round(float(x), 6)',
      'return round(float(x), 7)'):
         "on the presets the changed fields are centimetre steps and simple factors of values with few decimals, the same at six and seven; on a measured chair the field moves by less than `5e-7` (m, N m), far below every measure's resolution (the values' three-figure words do not change)",
+    ('stability/advise/advisor.py',
+     'f"({\'and gains\' if c.gain > 0 else \'at a cost of\'} {abs(c.gain) * 100:.0f} % on the robust "',
+     'f"({\'and gains\' if c.gain >= 0 else \'at a cost of\'} {abs(c.gain) * 100:.0f} % on the robust "'):
+        "the note's word differs only for a robust gain of exactly `0`, where the note says `0 %` either way (no gain, no cost)",
 }
 
 
