@@ -42,16 +42,24 @@ FILES = {
 }
 #: Schemas written by hand (units in each number's description, the settings tables' ranges as minimum/maximum,
 #: issue 34): ``--write-schemas`` leaves them alone; edit stability/schemas/NAME.json itself.
-HAND_WRITTEN = ("critical_speed", "simulate", "advise")
+HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
+                "study_equal_instability", "measure", "chair_export")
+#: The layout forms of commands (a wheel layout instead of the thesis's chair), validated against the same schema.
+LAYOUT_CASES = {
+    "tipping": ("tipping", ["--chair", "mid-wheel-drive"]),
+    "study_critical_impulse": ("study", ["critical-impulse", "--chair", "mid-wheel-drive", "--speeds", "0.75",
+                                         "--horizon", "4"]),
+    "bench": ("bench", ["--chair", "ej-premier"]),
+}
 #: The cases too slow for the default test run (simulations of a study).
 SLOW = {"study_equal_instability", "advise", "report"}
 
 
-def output(name: str, tmp: str) -> dict:
-    """Run case ``name`` in-process with ``--json`` and return the decoded JSON."""
+def output(name: str, tmp: str, layout: bool = False) -> dict:
+    """Run case ``name`` (of :data:`LAYOUT_CASES` with ``layout``) in-process with ``--json``; the decoded JSON."""
     from stability.cli.commands import command_module
 
-    command, argv = CASES[name]
+    command, argv = (LAYOUT_CASES if layout else CASES)[name]
     for file, text in FILES.get(name, {}).items():
         Path(tmp, file).write_text(text, encoding="utf-8")
     argv = [a.replace("{tmp}", tmp) for a in argv] + ["--json", "--quiet"]
