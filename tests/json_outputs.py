@@ -46,6 +46,7 @@ HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "stu
                 "study_equal_instability", "measure", "chair_export")
 #: The layout forms of commands (a wheel layout instead of the thesis's chair), validated against the same schema.
 LAYOUT_CASES = {
+    "critical_speed": ("critical_speed", ["--chair", "mid-wheel-drive", "--speeds", "0.5,1"]),
     "tipping": ("tipping", ["--chair", "mid-wheel-drive"]),
     "study_critical_impulse": ("study", ["critical-impulse", "--chair", "mid-wheel-drive", "--speeds", "0.75",
                                          "--horizon", "4"]),

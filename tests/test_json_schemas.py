@@ -245,6 +245,8 @@ def test_the_layout_form_of_a_command_matches_its_schema(name, tmp_path):
 #: (schema, form, path to a number, a value outside its range, the message's pattern): one per hand-written schema
 #: with numbers, each beyond the range its description states (an option's table range or a physical range).
 OUT_OF_RANGE = [
+    ("critical_speed", "layout", ("speeds_m_s", 0), 0.005, "speeds_m_s/0.*should not be valid"),
+    ("critical_speed", "layout", ("forward_critical", "speed_m_s"), 25.0, "forward_critical/speed_m_s.*maximum"),
     ("tipping", "chair", ("static_stability_deg",), 91.0, "static_stability_deg.*maximum"),
     ("tipping", "chair", ("options", "grade_deg"), -46.0, "options/grade_deg.*minimum"),
     ("tipping", "chair", ("tipping_lines", "lateral_left", "normal", 0), 1.5, "normal/0.*maximum"),
