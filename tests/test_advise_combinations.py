@@ -172,3 +172,21 @@ def test_no_three_lever_combination_is_measured_when_only_two_levers_help():
     assert gains["trail"] == 0.0
     assert a.combinations and all(len(c.changes) <= 2 for c in a.combinations)
     assert any(len(c.changes) == 3 for c in _trio_case()[1].combinations)
+
+
+def test_no_change_gains_nothing_on_either_measure():
+    """When the advice is to keep the chair (every change loses: a stand-in peaked at the chair), the 'no change'
+    recommendation is the chair against itself: its relative gains on both low ends are 0 exactly (x / x - 1), in
+    the advice and in its JSON, and its predicted measures are the verdict's."""
+    from stability.advise.text import advice_mapping
+
+    chair = chair_mod.preset("ej-premier").replace(trail=0.06)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair), time_to_correct=False, cross_slope_deg=0.0)
+    keep = a.recommendations[0].candidate
+    assert keep.changes == () and all(k.met for k in a.own_constraints)          # the premise: nothing to fix
+    v = a.verdict
+    own = {"critical_impulse": v.critical_impulse_Ns.robust / v.critical_impulse_Ns.robust - 1.0,
+           "equal_instability_speed": v.equal_instability_speed_m_s.robust / v.equal_instability_speed_m_s.robust - 1.0}
+    assert keep.gains == own == {"critical_impulse": 0.0, "equal_instability_speed": 0.0} and keep.gain == 0.0
+    rec = advice_mapping(a)["recommendations"][0]
+    assert rec["gains"] == own and rec["robust_gain"] == 0.0 and rec["change"] == {}
