@@ -46,6 +46,8 @@ HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "stu
                 "study_equal_instability", "measure", "chair_export")
 #: The layout forms of commands (a wheel layout instead of the thesis's chair), validated against the same schema.
 LAYOUT_CASES = {
+    "shimmy": ("shimmy", ["--chair", "mid-wheel-drive", "--speeds", "1,2"]),
+    "slope": ("slope", ["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1"]),
     "critical_speed": ("critical_speed", ["--chair", "mid-wheel-drive", "--speeds", "0.5,1"]),
     "tipping": ("tipping", ["--chair", "mid-wheel-drive"]),
     "study_critical_impulse": ("study", ["critical-impulse", "--chair", "mid-wheel-drive", "--speeds", "0.75",
@@ -109,7 +111,12 @@ def write_schemas(names: list[str] | None = None) -> None:
                    "description": "JSON output: keys snake_case with the unit last (stability.schemas); "
                                   "arrays over speeds sit next to a speeds_m_s list.",
                    **infer(data)}
-            (ROOT / "stability" / "schemas" / f"{name}.json").write_text(json.dumps(doc, indent=1) + "\n")
+            path = ROOT / "stability" / "schemas" / f"{name}.json"
+            old = json.loads(path.read_text()) if path.exists() else {}
+            if "then" in old:       # a hand-written wheel-layout form: kept, the inferred chair form is its else
+                form = {"type": doc["type"], **{k: doc.pop(k) for k in ("required", "properties") if k in doc}}
+                doc.update({k: old[k] for k in ("description", "if", "then")}, **{"else": form})
+            path.write_text(json.dumps(doc, indent=1) + "\n")
             print(f"wrote {name}.json", file=sys.stderr)
 
 

@@ -113,7 +113,8 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
                 "study_equal_instability", "measure", "chair_export")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
-SUFFIX_UNITS = [("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
+SUFFIX_UNITS = [("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
+                ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
                 ("_m_s", "m/s"), ("_1_s", "1/s"), ("_rad", "rad"), ("_deg", "deg"), ("_Ns", "N s"), ("_N", "N"),
                 ("_m", "m"), ("_s", "s")]
 
@@ -237,6 +238,20 @@ def test_write_schemas_keeps_the_hand_written_ones():
 
 
 @pytest.mark.parametrize("name", sorted(LAYOUT_CASES))
+def test_the_layout_form_states_every_numbers_unit(name):
+    """The wheel-layout forms are hand-written: each number's unit in its description (by the key's suffix)."""
+    s = schemas.schema(name)
+    leaves = list(_numbers(s.get("then", s)))
+    assert len(leaves) >= 4
+    for path, key, node in leaves:
+        desc = node.get("description", "")
+        assert "; unit: " in desc, (name, path)
+        unit = _unit(key)
+        if unit is not None:
+            assert desc.split("; unit: ")[1].split(";")[0] == unit, (name, path, desc)
+
+
+@pytest.mark.parametrize("name", sorted(LAYOUT_CASES))
 def test_the_layout_form_of_a_command_matches_its_schema(name, tmp_path):
     """The wheel-layout form of a command (``--chair mid-wheel-drive`` etc.) validates against the command's schema."""
     schemas.validate(name, output(name, str(tmp_path), layout=True))
@@ -245,6 +260,10 @@ def test_the_layout_form_of_a_command_matches_its_schema(name, tmp_path):
 #: (schema, form, path to a number, a value outside its range, the message's pattern): one per hand-written schema
 #: with numbers, each beyond the range its description states (an option's table range or a physical range).
 OUT_OF_RANGE = [
+    ("shimmy", "layout", ("casters", 0, "critical_trail_m", 0), 0.25, "critical_trail_m/0.*maximum"),
+    ("shimmy", "layout", ("options", "amplitude_deg"), 45.0, "amplitude_deg.*maximum"),
+    ("slope", "layout", ("loads_N", 0), -1.0, "loads_N/0.*minimum"),
+    ("slope", "layout", ("options", "sim_time_s"), 11.0, "sim_time_s.*maximum"),
     ("critical_speed", "layout", ("speeds_m_s", 0), 0.005, "speeds_m_s/0.*should not be valid"),
     ("critical_speed", "layout", ("forward_critical", "speed_m_s"), 25.0, "forward_critical/speed_m_s.*maximum"),
     ("tipping", "chair", ("static_stability_deg",), 91.0, "static_stability_deg.*maximum"),
