@@ -190,3 +190,21 @@ def test_no_change_gains_nothing_on_either_measure():
     assert keep.gains == own == {"critical_impulse": 0.0, "equal_instability_speed": 0.0} and keep.gain == 0.0
     rec = advice_mapping(a)["recommendations"][0]
     assert rec["gains"] == own and rec["robust_gain"] == 0.0 and rec["change"] == {}
+
+
+def test_a_chair_breaking_two_limits_is_told_both_in_the_note():
+    """A 4.75 cm trail (inside a shimmy zone) and a 40 deg tip limit (the chair tips at less): both limits broken,
+    recomputed here; every recommendation's note names exactly those limits, one per item of its list."""
+    from stability.advise.limits import limit_words
+
+    chair = chair_mod.preset("ej-premier").replace(trail=0.0475)
+    a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair, 1.0), time_to_correct=False, cross_slope_deg=0.0,
+               min_tip_deg=40.0)
+    met = _limits_met(chair, chair, 0.0)
+    met["static_stability_deg"] = tip_angles(chair).smallest_deg >= 40.0
+    broken = {k for k, ok in met.items() if not ok}
+    assert broken == {"shimmy_margin_m", "static_stability_deg"}                    # the premise, recomputed
+    for r in a.recommendations:
+        note = next(n for n in r.notes if n.startswith("The chair as it is breaks the limit on "))
+        listed = re.match(r"The chair as it is breaks the limit on (.*?)(?:;|, and no change)", note).group(1)
+        assert sorted(listed.split(", ")) == sorted(limit_words(k) for k in broken), note
