@@ -76,6 +76,7 @@ MODULES = {
     "stability/advise/advisor.py": ADVISE,
     "stability/advise/levers.py": ADVISE,
     "stability/advise/limits.py": ADVISE,
+    "stability/advise/layout_levers.py": ["tests/test_advise_layout.py"],
     "stability/study/search.py": ["tests/test_search.py", "tests/test_search_rate_fit.py", "tests/test_impulse_fast.py"],
     "stability/study/intervals.py": ["tests/test_study_measures.py", "tests/test_impulse_step.py"],
     "stability/study/impulse.py": ["tests/test_impulse_fast.py", "tests/test_impulse_step.py"],
