@@ -43,7 +43,7 @@ FILES = {
 #: Schemas written by hand (units in each number's description, the settings tables' ranges as minimum/maximum,
 #: issue 34): ``--write-schemas`` leaves them alone; edit stability/schemas/NAME.json itself.
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export")
+                "study_equal_instability", "measure", "chair_export", "sweep")
 #: The layout forms of commands (a wheel layout instead of the thesis's chair), validated against the same schema.
 LAYOUT_CASES = {
     "shimmy": ("shimmy", ["--chair", "mid-wheel-drive", "--speeds", "1,2"]),

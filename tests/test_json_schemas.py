@@ -111,7 +111,7 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
 
 # hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export")
+                "study_equal_instability", "measure", "chair_export", "sweep")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
 SUFFIX_UNITS = [("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
                 ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
@@ -176,6 +176,7 @@ def _option_bounds():
                                        ".options.max_impulse_Ns": o["--max-impulse"],
                                        ".options.speeds_m_s[]": o["study:--speed"]},
             "study_equal_instability": {".options.push_force_N": o["--force"]},
+            "sweep": {".spec.speeds_m_s[]": o["slope:--speed"]},      # the same signed range (the spec's check)
             "advise": {".options.speeds_m_s[]": RUN_SETTINGS["speed"].bound, ".options.cross_slope_deg": o["--cross-slope"],
                        ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
 
@@ -186,7 +187,8 @@ def test_hand_written_schema_bounds_the_options_by_the_settings_tables(name):
     tables stability.settings.run.RunSpec and stability.cli.numbers.OPTION_BOUNDS), stated in words too."""
     leaves = {path: node for path, _, node in _numbers(schemas.schema(name))}
     bounds = _option_bounds().get(name, {})
-    assert len(bounds) >= {"measure": 0, "chair_export": 0, "study_equal_instability": 1, "tipping": 2}.get(name, 4)
+    assert len(bounds) >= {"measure": 0, "chair_export": 0, "study_equal_instability": 1, "tipping": 2,
+                           "sweep": 1}.get(name, 4)
     for path, b in bounds.items():
         node = leaves[path]
         if getattr(b, "signed", False):             # lo <= |value| <= hi: either sign, not near zero
@@ -260,6 +262,9 @@ def test_the_layout_form_of_a_command_matches_its_schema(name, tmp_path):
 #: (schema, form, path to a number, a value outside its range, the message's pattern): one per hand-written schema
 #: with numbers, each beyond the range its description states (an option's table range or a physical range).
 OUT_OF_RANGE = [
+    ("sweep", "chair", ("level",), 1.0, "level.*maximum"),
+    ("sweep", "chair", ("measures", "growth_rate_1_s", "best", 0, 0, "missing"), -1, "missing.*minimum"),
+    ("sweep", "chair", ("spec", "draws"), 0, "draws.*minimum"),
     ("shimmy", "layout", ("casters", 0, "critical_trail_m", 0), 0.25, "critical_trail_m/0.*maximum"),
     ("shimmy", "layout", ("options", "amplitude_deg"), 45.0, "amplitude_deg.*maximum"),
     ("slope", "layout", ("loads_N", 0), -1.0, "loads_N/0.*minimum"),
