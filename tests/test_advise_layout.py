@@ -207,3 +207,26 @@ def test_bad_input_is_refused_in_one_line(argv, words, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert words in err and "\n" not in err
+
+
+def test_a_layouts_trail_lever_offers_the_steps_docs_advise_lists_for_each_row():
+    """Each caster row's trail lever sets both casters of the row to the row's trail plus each step of
+    docs/advise.md's lever table (-3, -2, -1, +1 cm), read from the page: four distinct trails, in the table's
+    order, on a two-row base (mid-wheel-drive) and on the thesis chair as a layout."""
+    import re
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "advise.md").read_text(encoding="utf-8")
+    row = next(line for line in page.splitlines() if line.startswith("| `trail`"))
+    steps = [float(x) / 100 for x in re.findall(r"[-+]\d+", row.split("|")[2])]
+    assert len(steps) == 4
+    for lay in (layout_preset("mid-wheel-drive"), Layout.from_chair(resolve("ej-premier"))):
+        ok, _ = layout_lever_changes(lay)
+        for r in caster_rows(lay):
+            t0 = lay.casters[r[0]].trail
+            trails = [dict(ch.fields) for ch, _ in ok if ch.lever.startswith("trail_")
+                      and set(dict(ch.fields)) == {f"caster_{k + 1}_trail" for k in r}]
+            assert all(len(set(f.values())) == 1 for f in trails), (lay.name, r)        # the row's casters together
+            # the 6-digit rounding of the lever's values (5e-7 m at most)
+            assert [next(iter(f.values())) for f in trails] == pytest.approx([t0 + d for d in steps if t0 + d > 0],
+                                                                            abs=5e-7), (lay.name, r)
