@@ -240,6 +240,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'failing = sorted((x for x, ok in zip(screened, met, strict=True) if not ok and _predicted(x[0]) > best_passing),',
      'failing = sorted((x for x, ok in zip(screened, met, strict=True) if not ok and _predicted(x[0]) >= best_passing),'):
         "differs only when a blocked pair's predicted gain equals the best acceptable pair's to the last bit: the predictions are products of simulated relative changes of different fields, which do not tie exactly",
+    ('stability/advise/layout_levers.py',
+     'return round(float(x), 6)',
+     'return round(float(x), 7)'):
+        "as the short form's rounding (advise/levers.py): the changed values are centimetre steps and simple factors of the layout's values, which differ at the seventh decimal only below `5e-7` (m, N/m relative), far below every measure's resolution",
 }
 
 
