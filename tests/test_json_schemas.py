@@ -111,7 +111,7 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
 
 # hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export", "sweep")
+                "study_equal_instability", "measure", "chair_export", "sweep", "compare")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
 SUFFIX_UNITS = [("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
                 ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
@@ -176,7 +176,10 @@ def _option_bounds():
                                        ".options.max_impulse_Ns": o["--max-impulse"],
                                        ".options.speeds_m_s[]": o["study:--speed"]},
             "study_equal_instability": {".options.push_force_N": o["--force"]},
-            "sweep": {".spec.speeds_m_s[]": o["slope:--speed"]},      # the same signed range (the spec's check)
+            "sweep": {".spec.speeds_m_s[]": o["slope:--speed"]},
+            "compare": {".options.speeds_m_s[]": o["slope:--speed"], ".options.max_speed_m_s": o["--max-speed"],
+                        ".options.samples": o["--samples"], ".options.seed": o["--seed"],
+                        ".options.level": o["--level"], ".speeds_m_s[]": o["slope:--speed"]},   # signed: reverse      # the same signed range (the spec's check)
             "advise": {".options.speeds_m_s[]": RUN_SETTINGS["speed"].bound, ".options.cross_slope_deg": o["--cross-slope"],
                        ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
 
@@ -262,6 +265,9 @@ def test_the_layout_form_of_a_command_matches_its_schema(name, tmp_path):
 #: (schema, form, path to a number, a value outside its range, the message's pattern): one per hand-written schema
 #: with numbers, each beyond the range its description states (an option's table range or a physical range).
 OUT_OF_RANGE = [
+    ("compare", "chair", ("options", "level"), 1.0, "options/level.*maximum"),
+    ("compare", "chair", ("speeds_m_s", 0), 25.0, "speeds_m_s/0.*maximum"),
+    ("compare", "layout", ("measures", 0, "chairs", 0, "time_to_double_s"), 0.0, "time_to_double_s.*minimum"),
     ("sweep", "chair", ("level",), 1.0, "level.*maximum"),
     ("sweep", "chair", ("measures", "growth_rate_1_s", "best", 0, 0, "missing"), -1, "missing.*minimum"),
     ("sweep", "chair", ("spec", "draws"), 0, "draws.*minimum"),
