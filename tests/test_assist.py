@@ -51,9 +51,11 @@ def test_preset_validates_and_matches_its_documentation(chair):
     assert chair.caster_position == "rear"            # front-wheel drive = drive wheels ahead of the c.g.
     est = lumped_estimate()
     assert est.m == pytest.approx(chair.m)
-    assert est.s1 == pytest.approx(chair.s1, abs=0.01)
-    assert est.h == pytest.approx(chair.h, abs=0.01)
-    assert est.i_z == pytest.approx(chair.i_z, rel=0.02)
+    # error model: the preset rounds the table's s1 and h to the centimetre and I_z to 1 kg m^2 (half a unit each;
+    # observed 4.4 and 4.9 mm, 0.11 kg m^2)
+    assert est.s1 == pytest.approx(chair.s1, abs=0.005 + 1e-12)
+    assert est.h == pytest.approx(chair.h, abs=0.005 + 1e-12)
+    assert est.i_z == pytest.approx(chair.i_z, abs=0.5)
     loads = static_loads(chair)
     drive_share = 2 * loads["main"] / (chair.m * chair.g)
     assert drive_share == pytest.approx((chair.s2 + chair.trail) / chair.wheelbase)
