@@ -42,16 +42,28 @@ FILES = {
 }
 #: Schemas written by hand (units in each number's description, the settings tables' ranges as minimum/maximum,
 #: issue 34): ``--write-schemas`` leaves them alone; edit stability/schemas/NAME.json itself.
-HAND_WRITTEN = ("critical_speed", "simulate", "advise")
+HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
+                "study_equal_instability", "measure", "chair_export", "sweep", "compare")
+#: The layout forms of commands (a wheel layout instead of the thesis's chair), validated against the same schema.
+LAYOUT_CASES = {
+    "compare": ("compare", ["ej-premier", "mid-wheel-drive", "--speeds", "0.75"]),
+    "shimmy": ("shimmy", ["--chair", "mid-wheel-drive", "--speeds", "1,2"]),
+    "slope": ("slope", ["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1"]),
+    "critical_speed": ("critical_speed", ["--chair", "mid-wheel-drive", "--speeds", "0.5,1"]),
+    "tipping": ("tipping", ["--chair", "mid-wheel-drive"]),
+    "study_critical_impulse": ("study", ["critical-impulse", "--chair", "mid-wheel-drive", "--speeds", "0.75",
+                                         "--horizon", "4"]),
+    "bench": ("bench", ["--chair", "ej-premier"]),
+}
 #: The cases too slow for the default test run (simulations of a study).
 SLOW = {"study_equal_instability", "advise", "report"}
 
 
-def output(name: str, tmp: str) -> dict:
-    """Run case ``name`` in-process with ``--json`` and return the decoded JSON."""
+def output(name: str, tmp: str, layout: bool = False) -> dict:
+    """Run case ``name`` (of :data:`LAYOUT_CASES` with ``layout``) in-process with ``--json``; the decoded JSON."""
     from stability.cli.commands import command_module
 
-    command, argv = CASES[name]
+    command, argv = (LAYOUT_CASES if layout else CASES)[name]
     for file, text in FILES.get(name, {}).items():
         Path(tmp, file).write_text(text, encoding="utf-8")
     argv = [a.replace("{tmp}", tmp) for a in argv] + ["--json", "--quiet"]
@@ -100,7 +112,12 @@ def write_schemas(names: list[str] | None = None) -> None:
                    "description": "JSON output: keys snake_case with the unit last (stability.schemas); "
                                   "arrays over speeds sit next to a speeds_m_s list.",
                    **infer(data)}
-            (ROOT / "stability" / "schemas" / f"{name}.json").write_text(json.dumps(doc, indent=1) + "\n")
+            path = ROOT / "stability" / "schemas" / f"{name}.json"
+            old = json.loads(path.read_text()) if path.exists() else {}
+            if "then" in old:       # a hand-written wheel-layout form: kept, the inferred chair form is its else
+                form = {"type": doc["type"], **{k: doc.pop(k) for k in ("required", "properties") if k in doc}}
+                doc.update({k: old[k] for k in ("description", "if", "then")}, **{"else": form})
+            path.write_text(json.dumps(doc, indent=1) + "\n")
             print(f"wrote {name}.json", file=sys.stderr)
 
 

@@ -228,3 +228,61 @@ def test_a_bound_found_by_every_variant_prints_no_degenerate_range():
     ranged = advice_text(advise(layout_preset("power-rwd-base"), speeds=SPEEDS, nonlinear=_fake,
                                 time_to_correct=False))
     assert "15 N s (range 14-16 N s over pin friction and simulator step)" in ranged, ranged
+
+
+def test_a_layouts_trail_lever_offers_the_steps_docs_advise_lists_for_each_row():
+    """Each caster row's trail lever sets both casters of the row to the row's trail plus each step of
+    docs/advise.md's lever table (-3, -2, -1, +1 cm), read from the page: four distinct trails, in the table's
+    order, on a two-row base (mid-wheel-drive) and on the thesis chair as a layout."""
+    import re
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "advise.md").read_text(encoding="utf-8")
+    row = next(line for line in page.splitlines() if line.startswith("| `trail`"))
+    steps = [float(x) / 100 for x in re.findall(r"[-+]\d+", row.split("|")[2])]
+    assert len(steps) == 4
+    for lay in (layout_preset("mid-wheel-drive"), Layout.from_chair(resolve("ej-premier"))):
+        ok, _ = layout_lever_changes(lay)
+        for r in caster_rows(lay):
+            t0 = lay.casters[r[0]].trail
+            trails = [dict(ch.fields) for ch, _ in ok if ch.lever.startswith("trail_")
+                      and set(dict(ch.fields)) == {f"caster_{k + 1}_trail" for k in r}]
+            assert all(len(set(f.values())) == 1 for f in trails), (lay.name, r)        # the row's casters together
+            # the 6-digit rounding of the lever's values (5e-7 m at most)
+            assert [next(iter(f.values())) for f in trails] == pytest.approx([t0 + d for d in steps if t0 + d > 0],
+                                                                            abs=5e-7), (lay.name, r)
+
+
+def test_a_layouts_drive_and_suspension_levers_offer_the_steps_docs_layouts_lists():
+    """docs/layouts.md ("The advisor on a layout") says the driven wheels move 5 and 10 cm forward and back and a
+    caster row's stiffness goes x0.5 and x2: read from the page, those are exactly the changes each lever offers on
+    a mid-wheel-drive base (every driven wheel by the same move; both casters of a row by the same factor)."""
+    import re
+    from pathlib import Path
+
+    from stability.advise.layout_levers import layout_levers
+
+    page = " ".join((Path(__file__).resolve().parents[1] / "docs" / "layouts.md").read_text(encoding="utf-8").split())
+    moves = re.search(r"the driven wheels (\d+) and (\d+) cm forward and back", page).groups()
+    factors = re.search(r"the row's stiffness x([\d.]+) and x([\d.]+)", page).groups()
+    want_moves = sorted(s * float(m) / 100 for m in moves for s in (1, -1))
+    lay = layout_preset("mid-wheel-drive")
+    levers = layout_levers(lay)
+    driven = [j for j, w in enumerate(lay.wheels) if w.driven]
+    got = []
+    for ch in levers["drive_position"][1](lay):
+        f = dict(ch.fields)
+        assert set(f) == {f"wheel_{j + 1}_x" for j in driven}
+        d = {round(f[f"wheel_{j + 1}_x"] - lay.wheels[j].x, 9) for j in driven}
+        assert len(d) == 1
+        got.append(d.pop())
+    assert sorted(got) == pytest.approx(want_moves, abs=1e-6)        # the 6-digit rounding of the values
+    suspensions = [k for k in levers if k.startswith("suspension_")]
+    assert len(suspensions) == len(caster_rows(lay)) == 2
+    for name in suspensions:
+        seen = []
+        for ch in levers[name][1](lay):
+            ratios = {round(v / lay.casters[int(k.split("_")[1]) - 1].vertical_stiffness, 9) for k, v in ch.fields}
+            assert len(ratios) == 1 and all(k.endswith("_vertical_stiffness") for k, _ in ch.fields)
+            seen.append(ratios.pop())
+        assert sorted(seen) == pytest.approx(sorted(float(x) for x in factors), rel=1e-6)

@@ -336,3 +336,13 @@ def test_a_missing_required_reading_is_named_with_what_it_measures(tmp_path):
     with pytest.raises(ValueError, match=r"^sheet reading geometry\.caster_track is missing; it is required "
                                          r"\(between the caster contacts\)$"):
         sheet.load_sheet(bad)
+
+
+def test_the_wheel_readings_descriptions_name_the_wheel_and_who_sits_in_the_chair():
+    """The reading table (docs' generated table of READINGS) tells the two weighings apart: each wheel-scale
+    reading's description starts with its wheel's words and ends with the load on the scales, the user in the
+    chair (``scales.loaded``) or the chair alone (``scales.empty``)."""
+    for wheel in ("left_main", "right_main", "left_caster", "right_caster"):
+        for kind, load in (("loaded", "with user"), ("empty", "chair alone")):
+            description = sheet.READINGS[f"scales.{kind}.{wheel}"][4]
+            assert description.startswith(f"{wheel} wheel") and description.endswith(load), description

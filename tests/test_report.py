@@ -410,7 +410,14 @@ def test_mode_names_from_eigenvectors():
     k = int(np.argmin(np.abs(free.speeds - 0.75)))
     u = free.speeds[k]
     opposed = free.eigenvalues[k][names.index("casters opposed (slow)")]
+    # error model: -U/trail is the massless caster's rate; the casters' mass and pin inertia move it at first
+    # order (1.43 % at 1.2 kg, 0.71 % with both halved): 3 % bounds the thesis chair's, and halving both halves it
     assert opposed.real == pytest.approx(-u / c.trail, rel=0.03)
+    half = c.replace(m_c=c.m_c / 2, i_zp=c.i_zp / 2)
+    locus = rootlocus.speed_locus(half, model="exact", casters="free", n=60)
+    light = locus.eigenvalues[k][mode_names(locus, 0.75).index("casters opposed (slow)")]
+    # the ratio is 2 up to the next order (1.5 % observed); bound 5 % (a zeroth-order term would give 1)
+    assert (opposed.real * c.trail / -u - 1) / (light.real * c.trail / -u - 1) == pytest.approx(2.0, rel=0.05)
     unstable = int(np.argmax(free.eigenvalues[k].real))
     assert free.eigenvalues[k][unstable].real > 0 and "casters in phase" in names[unstable] and "yaw" in names[unstable]
     assert len(set(names)) == len(names)

@@ -152,3 +152,48 @@ def test_preset_problem_counts_quoted_in_docs_studies_md():
     assert sum(len(p.x) for p in seen) == pytest.approx(120, rel=0.05)
     assert sum(p.cost for p in seen) == pytest.approx(298, rel=0.05)
     assert all(2 <= p.rounds <= 6 for p in seen)
+
+
+#: A round's state for the threshold tests: log-push units, a bracket width of 0.01 (1 %), a horizon of 10 s.
+_WIDTH, _HORIZON = 0.01, 10.0
+
+
+def _bracket_state(t_hi: float) -> Problem:
+    """A bracket 10 widths wide whose margins grow like a linear response (slope 1: regula falsi predicts the
+    middle), one reaching run (no three-point fit) and no growth rate (no rate fit); the reaching run at ``t_hi``."""
+    return Problem(x=[0.0, 0.1], g=[-0.05, 0.05], reached=[False, True], t=[math.inf, t_hi], misses=1)
+
+
+@pytest.mark.parametrize("fraction, runs", [(0.95, 2), (0.8, 2), (0.79, 1), (0.5, 1)])
+def test_a_bracket_whose_reaching_end_reaches_late_gets_the_pair_else_one_run(fraction, runs):
+    """Inside a wide bracket (more than 4 widths, no trusted fit) a round proposes the pair ``a``, ``a - 0.98 width``
+    around the predicted root only when the smallest reaching push reached the level at 80 % of the horizon or
+    later (the docstring's rule: it reaches late, so the root is close and the pair may close the bracket in this
+    round); earlier, one run at ``a``.  Counted: the runs proposed.  The pair straddles the predicted root (0.05)
+    and lies inside the bracket."""
+    from stability.study.search import _close
+
+    p = _bracket_state(fraction * _HORIZON)
+    got = _close(p, 0.0, 0.1, _WIDTH, _HORIZON, math.nan)
+    assert len(got) == runs and p.status == "open"
+    # error model: a few roundings of values below 1 (at most 3 eps), margin 100
+    assert got[0] == pytest.approx(0.05 + 0.45 * _WIDTH, abs=300 * EPS)
+    if runs == 2:
+        assert got[1] == pytest.approx(got[0] - 0.98 * _WIDTH, abs=300 * EPS)
+        assert 0.0 < got[1] < 0.05 < got[0] < 0.1
+
+
+@pytest.mark.parametrize("fraction, runs", [(0.95, 2), (0.8, 2), (0.79, 1), (0.5, 1)])
+def test_going_down_from_a_late_reaching_push_proposes_the_pair_else_one_run(fraction, runs):
+    """No bracket yet (the only run reached): the step down the margin predicts (exact for a linear response:
+    ``hi - g(hi)``) is one run, or the pair ``target``, ``target - 0.98 width`` when that run reached the level at
+    80 % of the horizon or later (the root is then close, and the pair may bracket it in this round)."""
+    from stability.study.search import _go_down
+
+    p = Problem(x=[1.0], g=[0.2], reached=[True], t=[fraction * _HORIZON])
+    got = _go_down(p, 1.0, math.log(1e-6), _WIDTH, math.log(2.0), _HORIZON, math.nan)
+    target = 1.0 - 0.2 + 0.45 * _WIDTH
+    # error model: a few roundings of values about 1 (at most 3 eps), margin 100
+    assert len(got) == runs and got[0] == pytest.approx(target, abs=300 * EPS)
+    if runs == 2:
+        assert got[1] == pytest.approx(target - 0.98 * _WIDTH, abs=300 * EPS)

@@ -310,7 +310,9 @@ def test_critical_trail_tends_to_relaxation_length_for_a_stiff_pin():
 
     c = preset("ej-premier")
     stiff = CasterCompliance(relaxation_length=0.03, lateral_stiffness=1e9)
-    assert critical_trail(c, 1.0, stiff) == pytest.approx(0.03, rel=0.02)
+    # error model: the pin's compliance, first order in 1/k: 4.7e-5 relative at k = 1e9 N/m (4.7e-4 at 1e8,
+    # 4.7e-6 at 1e10); margin 100
+    assert critical_trail(c, 1.0, stiff) == pytest.approx(0.03, rel=100 * 4.7e-5)
     nominal = CasterCompliance()
     crit = [critical_trail(c, u, nominal) for u in (0.5, 2.0)]
     assert crit[0] == pytest.approx(crit[1], rel=1e-6)           # no viscous damping: speed-independent
