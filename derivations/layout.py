@@ -20,10 +20,10 @@ Generalized speeds ``u, v, r, delta_d_1..K``.  The linear model about straight r
 tires of the thesis's linear model (``Fy = -C alpha``, ``alpha = v_y / |v_x|`` in the wheel's frame, no
 longitudinal forces) and viscous pins ``M_k = -c_pin_k delta_d_k``; a fixed wheel turned by its angle ``a_w_j``
 (toe) has its slip ``atan(v_y' / |v_x'|)`` in its own frame and its force along its own lateral axis, turned back
-into body axes (the linear model takes the angle's cosine and sine, ``ca_w_j``, ``sa_w_j``).  Forward (``U > 0``) the casters trail at
-``delta_k = 0``; in reverse (``U < 0``) they trail the other way, at ``delta_k = pi``, and the model is linearised
-there.  ``tests/test_layout.py`` checks that the layout of two fixed wheels and two casters gives the thesis
-model's exact linear matrices (``full_width.linearise('exact')``).
+into body axes (the linear model takes the angle's cosine and sine, ``ca_w_j``, ``sa_w_j``).  Forward
+(``U > 0``) the casters trail at ``delta_k = 0``; in reverse (``U < 0``) they trail the other way, at
+``delta_k = pi``, and the model is linearised there.  ``tests/test_layout.py`` checks that the layout of two
+fixed wheels and two casters gives the thesis model's exact linear matrices (``full_width.linearise('exact')``).
 """
 
 from __future__ import annotations
