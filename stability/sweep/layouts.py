@@ -220,16 +220,23 @@ def bench_of(layout: Layout) -> tuple[float, float]:
 
 
 def _shimmy(layout: Layout, speeds: np.ndarray) -> np.ndarray:
-    """The smallest margin over the caster rows at each |speed|, m (NaN: none computable)."""
+    """The smallest margin over the caster rows at each speed, m (NaN: none computable); a negative speed's at its
+    size with the casters swung round (the reversed statics' loads, as ``python -m stability.shimmy``)."""
+    out = np.full(len(speeds), math.nan)
     rows = caster_rows(layout)
     if not rows:
-        return np.full(len(speeds), math.nan)
-    try:
-        m = [np.asarray(shimmy_band(LayoutCaster(layout, r[0]), np.abs(speeds)).margin_m, dtype=float)
-             for r in rows]
-    except ValueError:
-        return np.full(len(speeds), math.nan)
-    return np.min(np.array(m), axis=0)
+        return out
+    for reverse in (False, True):
+        sel = (speeds < 0) == reverse
+        if not sel.any():
+            continue
+        try:
+            m = [np.asarray(shimmy_band(LayoutCaster(layout, r[0], reverse), np.abs(speeds[sel])).margin_m,
+                            dtype=float) for r in rows]
+        except ValueError:
+            continue
+        out[sel] = np.min(np.array(m), axis=0)
+    return out
 
 
 def layout_chunk_values(measures: tuple, layouts: list[Layout], speeds: np.ndarray, run: Any) -> dict[str, np.ndarray]:
