@@ -121,3 +121,26 @@ def test_toe_in_reverse_is_the_turned_chair_with_toe_forward():
         a = np.sort_complex(np.linalg.eigvals(state_matrices(lay, [u])[0]))
         b = np.sort_complex(np.linalg.eigvals(state_matrices(mirror, [u])[0]))
         assert np.allclose(a, b, rtol=1e-9)
+
+
+def test_a_wheel_file_carries_each_fixed_wheels_angle(tmp_path):
+    """The ``[[wheel]]`` form reads ``angle_deg`` as any other field: the E&J written out wheel by wheel, with its
+    toe as two angles, has the linear model of the short form with that toe expanded (the same numbers: 1e-12)."""
+    import dataclasses
+
+    from stability.layout.io import load_layout
+
+    lay = Layout.from_chair(preset("ej-premier").replace(toe_deg=TOE_DEG))
+    lines = [f'[body]\nname = "toed"\nm = {lay.m!r}\ni_z = {lay.i_z!r}\nh = {lay.h!r}\n']
+    for kind, items in (("fixed", lay.wheels), ("caster", lay.casters)):
+        for w in items:
+            fields = {f.name: getattr(w, f.name) for f in dataclasses.fields(w) if getattr(w, f.name) is not None}
+            body = "\n".join(f"{k} = {v!r}" if not isinstance(v, (str, bool)) else
+                             (f'{k} = "{v}"' if isinstance(v, str) else f"{k} = {str(v).lower()}")
+                             for k, v in fields.items())
+            lines.append(f'[[wheel]]\nkind = "{kind}"\n{body}\n')
+    path = tmp_path / "toed.toml"
+    path.write_text("\n".join(lines))
+    read = load_layout(path)
+    assert [w.angle_deg for w in read.wheels] == [-TOE_DEG, TOE_DEG]
+    np.testing.assert_allclose(state_matrices(read, [1.0, -1.0]), state_matrices(lay, [1.0, -1.0]), rtol=1e-12)
