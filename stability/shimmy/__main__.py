@@ -19,7 +19,8 @@ def build_parser() -> cli.OneLineErrorParser:
     p = cli.OneLineErrorParser(prog="python -m stability.shimmy", description=__doc__)
     cli.add_chair_options(p)
     p.add_argument("--speeds", default=D.SHIMMY_SPEEDS,
-                   help=f"START:STOP:STEP or a list (m/s; default {D.SHIMMY_SPEEDS})")
+                   help=f"START:STOP:STEP or a list (m/s; negative: reverse, each caster row swung round; "
+                        f"default {D.SHIMMY_SPEEDS})")
     p.add_argument("--relaxation-length", type=float, default=None, help="caster tire relaxation length (m)")
     p.add_argument("--lateral-stiffness", type=float, default=None, help="frame lateral stiffness at the pin (N/m)")
     p.add_argument("--amplitude-deg", type=float, default=D.SHIMMY_AMPLITUDE_DEG,
