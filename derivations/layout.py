@@ -18,10 +18,12 @@ yaw positive clockwise seen from above), generalised:
 
 Generalized speeds ``u, v, r, delta_d_1..K``.  The linear model about straight running at speed ``U`` has the
 tires of the thesis's linear model (``Fy = -C alpha``, ``alpha = v_y / |v_x|`` in the wheel's frame, no
-longitudinal forces) and viscous pins ``M_k = -c_pin_k delta_d_k``.  Forward (``U > 0``) the casters trail at
-``delta_k = 0``; in reverse (``U < 0``) they trail the other way, at ``delta_k = pi``, and the model is linearised
-there.  ``tests/test_layout.py`` checks that the layout of two fixed wheels and two casters gives the thesis
-model's exact linear matrices (``full_width.linearise('exact')``).
+longitudinal forces) and viscous pins ``M_k = -c_pin_k delta_d_k``; a fixed wheel turned by its angle ``a_w_j``
+(toe) has its slip ``atan(v_y' / |v_x'|)`` in its own frame and its force along its own lateral axis, turned back
+into body axes (the linear model takes the angle's cosine and sine, ``ca_w_j``, ``sa_w_j``).  Forward
+(``U > 0``) the casters trail at ``delta_k = 0``; in reverse (``U < 0``) they trail the other way, at
+``delta_k = pi``, and the model is linearised there.  ``tests/test_layout.py`` checks that the layout of two
+fixed wheels and two casters gives the thesis model's exact linear matrices (``full_width.linearise('exact')``).
 """
 
 from __future__ import annotations
@@ -45,14 +47,15 @@ def symbols(n_fixed: int, n_casters: int) -> SimpleNamespace:
     Returns
     -------
     SimpleNamespace
-        ``U, m, i_z, Fy_ext, Mz_ext``; lists ``x_w, y_w, C_w, FWx, FWy`` (fixed wheels) and ``x_p, y_p, trail, l,
-        m_c, i_zp, C_c, c_pin, FCx, FCy, M, delta, delta_d`` (casters); ``v, r, u`` and their rates.
+        ``U, m, i_z, Fy_ext, Mz_ext``; lists ``x_w, y_w, C_w, a_w, ca_w, sa_w, FWx, FWy`` (fixed wheels;
+        ``a_w`` the wheel's angle, rad, ``ca_w, sa_w`` its cosine and sine in the generated code) and ``x_p, y_p,
+        trail, l, m_c, i_zp, C_c, c_pin, FCx, FCy, M, delta, delta_d`` (casters); ``v, r, u`` and their rates.
     """
     def many(name: str, n: int) -> list:
         return [sp.Symbol(f"{name}_{i}", real=True) for i in range(n)]
 
     s = SimpleNamespace(**{n: sp.Symbol(n, real=True) for n in "U m i_z Fy_ext Mz_ext u v r u_dot v_dot r_dot".split()})
-    for name in ("x_w", "y_w", "C_w", "FWx", "FWy"):
+    for name in ("x_w", "y_w", "C_w", "a_w", "ca_w", "sa_w", "FWx", "FWy"):
         setattr(s, name, many(name, n_fixed))
     for name in ("x_p", "y_p", "trail", "l", "m_c", "i_zp", "C_c", "c_pin", "FCx", "FCy", "M", "delta", "delta_d",
                  "delta_dd"):
@@ -195,13 +198,20 @@ def linearise(n_fixed: int, n_casters: int, reverse: bool = False) -> tuple[sp.M
     d = derive(n_fixed, n_casters)
     s = d.sym
     absU = -s.U if reverse else s.U
+    sign = -1 if reverse else 1
     delta0 = sp.pi if reverse else sp.Integer(0)
     K_ = n_casters
-    # tire forces of the linear model: Fy = -C vy / |vx|, Fx = 0; viscous pins
+    # tire forces of the linear model: Fy = -C vy / |vx|, Fx = 0; viscous pins.  A fixed wheel turned by its
+    # angle a_w (toe) about c3 has its slip in its own frame, alpha = atan(vy' / |vx'|) as the simulator's SLIP,
+    # and its force -C alpha along its own lateral axis, written back into body axes
     sub: dict = {}
     for j in range(n_fixed):
-        sub[s.FWx[j]] = 0
-        sub[s.FWy[j]] = -s.C_w[j] * d.vel[2 * j + 1] / absU
+        a = s.a_w[j]
+        vx, vy = d.vel[2 * j], d.vel[2 * j + 1]
+        vxw, vyw = vx * sp.cos(a) + vy * sp.sin(a), -vx * sp.sin(a) + vy * sp.cos(a)
+        fyw = -s.C_w[j] * sp.atan(vyw / (sign * vxw))
+        sub[s.FWx[j]] = -fyw * sp.sin(a)
+        sub[s.FWy[j]] = fyw * sp.cos(a)
     for k in range(K_):
         sub[s.FCx[k]] = 0
         sub[s.FCy[k]] = -s.C_c[k] * d.vel[2 * (n_fixed + k) + 1] / absU
@@ -210,8 +220,9 @@ def linearise(n_fixed: int, n_casters: int, reverse: bool = False) -> tuple[sp.M
     R = [sum(d.M[i, c] * acc[c] for c in range(3 + K_)) - d.F[i].xreplace(sub) for i in range(3 + K_)]
     eq = {s.v: 0, s.r: 0, s.u: s.U, **{s.delta[k]: delta0 for k in range(K_)},
           **{s.delta_d[k]: 0 for k in range(K_)}, **{a: 0 for a in acc}, s.Mz_ext: 0, s.Fy_ext: 0}
-    for i in range(3 + K_):                              # straight running is an equilibrium
-        assert sp.simplify(R[i].subs(eq)) == 0, (i, R[i].subs(eq))
+    straight = {a: 0 for a in s.a_w}
+    for i in range(3 + K_):        # straight running is an equilibrium (with toe, where the toe forces balance)
+        assert sp.simplify(R[i].subs(eq).subs(straight)) == 0, (i, R[i].subs(eq))
     rows = [1, 2] + [3 + k for k in range(K_)]
     for i in rows:                                       # the forward speed decouples at first order
         assert sp.simplify(sp.diff(R[i], s.u_dot).subs(eq)) == 0
@@ -219,10 +230,26 @@ def linearise(n_fixed: int, n_casters: int, reverse: bool = False) -> tuple[sp.M
     state = [s.v, s.r] + [x for k in range(K_) for x in (s.delta[k], s.delta_d[k])]
     lin_acc = [s.v_dot, s.r_dot, *s.delta_dd]
     M = sp.Matrix([[sp.simplify(sp.diff(R[i], a).subs(eq)) for a in lin_acc] for i in rows])
-    K = sp.Matrix([[sp.simplify(-sp.diff(R[i], x).subs(eq)) for x in state] for i in rows])
+    K = sp.Matrix([[_simplify_angles(-sp.diff(R[i], x).subs(eq), s.a_w, reverse) for x in state] for i in rows])
     Bm = sp.Matrix([sp.simplify(-sp.diff(R[i], s.Mz_ext).subs(eq)) for i in rows])
     Bf = sp.Matrix([sp.simplify(-sp.diff(R[i], s.Fy_ext).subs(eq)) for i in rows])
+    trig = {}
+    for j in range(n_fixed):                             # the generated code takes the angle's cosine and sine
+        trig[sp.cos(s.a_w[j])] = s.ca_w[j]
+        trig[sp.sin(s.a_w[j])] = s.sa_w[j]
+    M, K, Bm, Bf = (X.xreplace(trig) for X in (M, K, Bm, Bf))
+    for X in (M, K, Bm, Bf):
+        assert not (X.free_symbols & set(s.a_w)), "a wheel angle left outside its cosine and sine"
     return M, K, Bm, Bf
+
+
+def _simplify_angles(e: sp.Expr, angles: list, reverse: bool) -> sp.Expr:
+    """Simplify a linear coefficient with the fixed wheels' angles in it: ``atan`` of the slip at straight
+    running, ``atan(-tan a) = -a`` forward (``+a`` in reverse), valid for ``|a| < 90 deg``."""
+    e = sp.simplify(e)
+    for a in angles:
+        e = e.subs(sp.atan(sp.tan(a)), a).subs(sp.atan(-sp.tan(a)), -a)
+    return sp.simplify(e)
 
 
 def parameters(n_fixed: int, n_casters: int) -> tuple[sp.Symbol, ...]:
@@ -235,13 +262,15 @@ def parameters(n_fixed: int, n_casters: int) -> tuple[sp.Symbol, ...]:
     Returns
     -------
     tuple of sympy.Symbol
-        ``U, m, i_z``, then per fixed wheel ``x_w, C_w``, then per caster ``x_p, trail, l, m_c, i_zp, C_c, c_pin``
-        (the lateral positions do not enter the linear model).
+        ``U, m, i_z``, then per fixed wheel ``x_w, y_w, C_w, ca_w, sa_w`` (the cosine and sine of its angle),
+        then per caster ``x_p, trail, l, m_c, i_zp,
+        C_c, c_pin`` (a fixed wheel's lateral position enters through its angle's longitudinal force; the
+        casters' do not enter the linear model).
     """
     s = symbols(n_fixed, n_casters)
     out = [s.U, s.m, s.i_z]
     for j in range(n_fixed):
-        out += [s.x_w[j], s.C_w[j]]
+        out += [s.x_w[j], s.y_w[j], s.C_w[j], s.ca_w[j], s.sa_w[j]]
     for k in range(n_casters):
         out += [s.x_p[k], s.trail[k], s.l[k], s.m_c[k], s.i_zp[k], s.C_c[k], s.c_pin[k]]
     return tuple(out)
@@ -429,8 +458,9 @@ def render() -> str:
     header = ('"""Linear models of chairs with any wheel layout (generated).\n\nGenerated by derivations/layout.py '
               "-- DO NOT EDIT.\nsympy version: " + sp.__version__ + "\n\nSee derivations/layout.py for the bodies, "
               "conventions and the tire and pin laws of the\nlinear model.  Arguments: U (signed forward speed, m/s), "
-              "m, i_z, then per fixed wheel\nx_w (contact, m ahead of C), C_w (cornering stiffness, N/rad), then per "
-              "caster x_p, trail,\nl (c.g. behind the pin), m_c, i_zp, C_c, c_pin (SI units).\n\"\"\"\n\n")
+              "m, i_z, then per fixed wheel\nx_w, y_w (contact, m ahead of and right of C), C_w (cornering stiffness, "
+              "N/rad), ca_w, sa_w (cosine and\nsine of the wheel's angle, toe), then per caster x_p, trail, l (c.g. "
+              "behind the pin), m_c, i_zp, C_c, c_pin\n(SI units).\n\"\"\"\n\n")
     names, parts = [], []
     for shape in SHAPES:
         for reverse in (False, True):

@@ -42,7 +42,8 @@ def test_the_thesis_layout_is_the_exact_model_symbolically():
 
     M, K, Bm, _ = L.linearise(2, 2)
     s, S = L.symbols(2, 2), fw.S
-    sub = {s.x_w[0]: S.x_m, s.x_w[1]: S.x_m, s.C_w[0]: S.C_D, s.C_w[1]: S.C_E, s.U: S.U, s.m: S.m, s.i_z: S.i_z}
+    sub = {s.x_w[0]: S.x_m, s.x_w[1]: S.x_m, s.C_w[0]: S.C_D, s.C_w[1]: S.C_E, s.U: S.U, s.m: S.m, s.i_z: S.i_z,
+           s.ca_w[0]: 1, s.ca_w[1]: 1, s.sa_w[0]: 0, s.sa_w[1]: 0}         # the thesis model has no toe
     for k, (y, C) in enumerate(((-S.t1, S.C_A), (S.t2, S.C_B))):
         sub.update({s.x_p[k]: S.x_p, s.y_p[k]: y, s.trail[k]: S.trail, s.l[k]: S.l1, s.m_c[k]: S.m_c,
                     s.i_zp[k]: S.i_zp, s.C_c[k]: C, s.c_pin[k]: S.c_pin})

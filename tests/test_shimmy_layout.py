@@ -98,3 +98,84 @@ def test_every_caster_field_reaches_the_towed_wheel():
                  "pin_friction"):
         assert getattr(b, name) == pytest.approx(getattr(a, name), rel=1e-12), name
     assert (b.mass, b.pin_friction) == (1.5, 0.25)
+
+
+def _turned(lay: Layout) -> Layout:
+    """``lay`` turned by 180 deg about the vertical (x and y flip), its origin moved so that it is again the
+    system's centre of mass with every caster trailing forward in the turned frame: driving the turned layout
+    backwards puts every contact and mass where driving ``lay`` forwards does."""
+    from dataclasses import replace
+
+    e = sum(c.m_c * 2.0 * c.l for c in lay.casters) / lay.m
+    return replace(lay, name=lay.name + " turned",
+                   wheels=tuple(replace(w, x=-w.x + e, y=-w.y) for w in lay.wheels),
+                   casters=tuple(replace(c, x=-c.x + e, y=-c.y) for c in lay.casters),
+                   anti_tip=tuple((-x + e, -y) for x, y in lay.anti_tip))
+
+
+@pytest.mark.parametrize("name", ["mid-wheel-drive", "ej-premier"])
+def test_reversing_the_turned_chair_is_driving_it_forwards(name):
+    """Invariant: a chair turned round and driven backwards is the chair driven forwards.  Every caster of the
+    turned layout in reverse has the forward caster's static load and so its whole shimmy answer (band, margin,
+    frequency, friction trail); the arithmetic differs (reversed statics about a moved origin), so equality is to
+    round-off (observed about 1e-13 relative; asserted 1e-9)."""
+    lay = layout_preset(name) if name != "ej-premier" else Layout.from_chair(EJ)
+    fwd, rev = layout_casters(lay), layout_casters(_turned(lay), reverse=True)
+    for a, b in zip(fwd, rev, strict=True):
+        assert b.static_load() == pytest.approx(a.static_load(), rel=1e-9)
+        trails = np.array([0.02, 0.05, 0.09])
+        assert b.loads(trails) == pytest.approx(a.loads(trails), rel=1e-9, nan_ok=True)
+    sa, sb = caster_summary(fwd[0], [1.0]), caster_summary(rev[0], [1.0])
+    for field in ("shimmy_frequency_hz", "shimmy_growth_rate", "critical_trail", "friction_trail"):
+        assert getattr(sb, field) == pytest.approx(getattr(sa, field), rel=1e-9), field
+    ba, bb = shimmy_band(fwd[0], SPEEDS), shimmy_band(rev[0], SPEEDS)
+    assert bb.margin_m == pytest.approx(ba.margin_m, rel=1e-9)
+
+
+def test_reverse_loads_follow_the_lever_rule():
+    """The E&J in reverse: its casters swing round, each contact moves ``2 trail`` toward the main wheels and each
+    caster's mass ``2 l1`` with it; on two support lines the caster pair carries the weight times the c.g.'s
+    distance from the main-wheel line over the contact line's (the lever rule, computed here by hand from the
+    chair's fields).  A 1e-9 relative tolerance (round-off)."""
+    lay = Layout.from_chair(EJ)
+    x_cg = 2 * EJ.m_c * 2 * EJ.l1 / EJ.m
+    x_contact = EJ.x_pin + EJ.trail
+    pair = EJ.m * EJ.g * (EJ.x_main - x_cg) / (EJ.x_main - x_contact)
+    rev = layout_casters(lay, reverse=True)
+    assert rev[0].static_load() + rev[1].static_load() == pytest.approx(pair, rel=1e-9)
+    assert rev[0].static_load() > layout_casters(lay)[0].static_load()   # rear casters: contacts move inward
+
+
+def test_a_leading_caster_diverges_at_speed_over_trail():
+    """Just after reversing a caster leads its pin: the generated rigid-pin rigid-tire towed wheel at ``-|U|``
+    has the one eigenvalue ``|U| / trail`` (the no-side-slip constraint ``L psi_dot = U psi`` solved by hand)."""
+    from stability.shimmy.layout_caster import leading_divergence_rate
+
+    u = np.array([-0.5, -1.0, -3.0])
+    assert leading_divergence_rate(0.05, u) == pytest.approx(np.abs(u) / 0.05, rel=1e-12)
+    assert leading_divergence_rate(0.08, [2.0]) == pytest.approx([2.0 / 0.08], rel=1e-12)
+
+
+def test_shimmy_command_answers_reverse(capsys):
+    """Negative speeds: each caster row forward and swung round in reverse; the forward answers of a mixed run are
+    those of a forward-only run (the forward path unchanged), the reverse ones carry signed speeds and the
+    leading caster's divergence rate."""
+    assert main(["--chair", "mid-wheel-drive", "--speeds", "-1,1", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert [c["direction"] for c in doc["casters"]] == ["forward", "forward", "reverse", "reverse"]
+    assert main(["--chair", "mid-wheel-drive", "--speeds", "1", "--json"]) == 0
+    only = json.loads(capsys.readouterr().out)
+    assert doc["casters"][:2] == [{**c, "direction": "forward"} for c in only["casters"]]
+    rev = doc["casters"][2]
+    assert rev["speeds_m_s"] == [-1.0] and rev["shimmy_band"]["speeds_m_s"] == [-1.0]
+    assert rev["leading_divergence_rate_1_s"] == pytest.approx([1.0 / rev["trail_m"]], rel=1e-12)
+    lay = layout_preset("mid-wheel-drive")
+    assert rev["static_load_N"] == pytest.approx(LayoutCaster(lay, 0, reverse=True).static_load(), rel=1e-12)
+    # the short form in reverse answers through its layout
+    assert main(["--chair", "ej-premier", "--speeds", "-1", "--json"]) == 0
+    ej = json.loads(capsys.readouterr().out)
+    assert ej["layout"] == "ej-premier" and {c["direction"] for c in ej["casters"]} == {"reverse"}
+    for bad in (["--chair-model"], ["-o", "x.pdf"]):
+        assert main(["--chair", "ej-premier", "--speeds", "-1", *bad]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "reverse" in err

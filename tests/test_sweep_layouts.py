@@ -102,3 +102,70 @@ def test_the_command_sweeps_a_layout(tmp_path, capsys):
     lines = out.read_text().splitlines()
     assert lines[0].startswith("design,draw,speed_m_s,grid_trail_front,growth_rate_1_s")
     assert len(lines) == 1 + 4
+
+
+def _rows_at(tmp_path, text: str, unc: str) -> list[dict]:
+    (tmp_path / "u.toml").write_text(unc)
+    (tmp_path / "s.toml").write_text(text + '[draws]\nn = 4\nseed = 3\nuncertainty = "u.toml"\n')
+    from stability.sweep.spec import load_spec
+
+    spec = load_spec(tmp_path / "s.toml")
+    cols = columns(spec)
+    return [dict(zip(cols, r, strict=True)) for r in compute_chunk(spec, 0)]
+
+
+def test_random_draws_of_a_layout_are_the_short_forms_draws(tmp_path):
+    """Draws of the E&J's trail (one table, the same name and seed: the same standardised draws) around each
+    design: the layout sweep (axis ``trail_rear``, a reverse speed makes it one) gives the short form's sweep
+    (field ``trail``) its rows: growth rate, static stability and shimmy margin per (design, draw) to rounding
+    (1e-9; the same arithmetic as the grid test above), with the designs sharing their draws (common random
+    numbers).  A drawn mass, relative to the layout's own, reaches the layout too."""
+    measures = '["growth_rate", "tip_angles", "shimmy_margin"]'
+    unc = '[trail_draw]\nfields = ["{f}"]\ndistribution = "normal"\nstd = 0.004\n'
+    short = _rows_at(tmp_path, f'chair = "ej-premier"\nspeeds = [0.75]\nmeasures = {measures}\nchunk_rows = 100\n'
+                     '[grid]\ntrail = [0.06, 0.08]\n', unc.format(f="trail"))
+    lay = _rows_at(tmp_path, f'chair = "ej-premier"\nspeeds = [0.75, -0.75]\nmeasures = {measures}\n'
+                   'chunk_rows = 100\n[grid]\ntrail_rear = [0.06, 0.08]\n', unc.format(f="trail_rear"))
+    fwd = [r for r in lay if r["speed_m_s"] > 0]
+    assert len(fwd) == len(short) == 8                              # 2 designs x 4 draws
+    for a, b in zip(fwd, short, strict=True):
+        assert (a["design"], a["draw"], a["error"]) == (b["design"], b["draw"], b["error"])
+        for col in ("growth_rate_1_s", "static_stability_deg", "shimmy_margin_m"):
+            assert a[col] == pytest.approx(b[col], rel=1e-9, abs=1e-12), col
+    trail_of = {(r["design"], r["draw"]): r["trail"] for r in short}
+    assert len({v for v in trail_of.values()}) == 8                 # every draw moves the trail
+    for k in range(4):                                              # common random numbers: the same offset
+        assert trail_of[(1, k)] - trail_of[(0, k)] == pytest.approx(0.02, abs=1e-12)
+    heavy = _rows_at(tmp_path, 'chair = "mid-wheel-drive"\nspeeds = [1.0]\nmeasures = ["growth_rate"]\n',
+                     '[m]\ndistribution = "uniform"\nlow = 0.1\nhigh = 0.2\nrelative = true\n')
+    from stability.sweep.layouts import draw_layout
+    from stability.uncertainty import loads_uncertainty
+
+    base = layout_preset("mid-wheel-drive")
+    u = loads_uncertainty('[m]\ndistribution = "uniform"\nlow = 0.1\nhigh = 0.2\nrelative = true\n')
+    assert u.distributions[0].chair_fields                          # a chair field name reads as one
+    from stability.uncertainty.io import from_mapping
+
+    u = from_mapping({"m": {"distribution": "uniform", "low": 0.1, "high": 0.2, "relative": True}}, False)
+    unit = u.unit_draws(4, 3)
+    for r in heavy:
+        drawn = draw_layout(base, u, unit, r["draw"])
+        assert 1.1 * base.m <= drawn.m <= 1.2 * base.m
+        assert r["growth_rate_1_s"] == pytest.approx(float(growth_rates(drawn, [1.0])[0]), rel=1e-12)
+
+
+def test_a_draw_that_breaks_the_layout_is_a_row_with_its_reason(tmp_path):
+    rows = _rows_at(tmp_path, 'chair = "mid-wheel-drive"\nspeeds = [1.0]\nmeasures = ["growth_rate"]\n',
+                    '[trail_front]\ndistribution = "uniform"\nlow = 0.5\nhigh = 0.6\n')
+    assert all("trail" in r["error"] and math.isnan(r["growth_rate_1_s"]) for r in rows)
+
+
+def test_an_uncertainty_field_the_layout_does_not_have_is_refused_in_one_line(tmp_path):
+    (tmp_path / "u.toml").write_text('[trail]\ndistribution = "normal"\nstd = 0.01\n')
+    text = 'chair = "mid-wheel-drive"\nspeeds = [1.0]\nmeasures = ["growth_rate"]\n[draws]\nn = 2\n' \
+           'uncertainty = "u.toml"\n'
+    with pytest.raises(ValueError) as exc:
+        loads_spec(text, tmp_path)
+    msg = str(exc.value)
+    assert "uncertainty [trail] field 'trail' is invalid for the layout" in msg and "\n" not in msg
+    assert "trail_front" in msg                                     # the valid axes named

@@ -118,3 +118,49 @@ def shimmy_tradeoff() -> dict:
     out["table"] = Table(("chair", "trail", "divergence rate (1/s)", "shimmy real part (1/s)", "shimmy frequency"),
                          tuple(rows))
     return out
+
+
+@group("shimmy_reverse", "python -m stability.shimmy --chair NAME --speeds -1,1 "
+       "(stability.shimmy.layout_caster.layout_casters(layout, reverse), leading_divergence_rate; "
+       "stability.shimmy.band.shimmy_band)")
+def shimmy_reverse() -> dict:
+    """Each caster row of the three drive layouts and the E&J Premier forward and in reverse at 1 m/s: its static
+    load, its margin to the nearest shimmy boundary, and the leading caster's divergence rate when reversing."""
+    import warnings
+
+    speed = 1.0
+    rows, out = [], {"speed": f"{speed:g}"}
+    with warnings.catch_warnings():
+        # the trail searches reach caster loads beyond the ER tire's fitted range (extrapolated; the command notes it)
+        warnings.simplefilter("ignore")
+        for name in ("ej-premier", "power-fwd-base", "mid-wheel-drive", "power-rwd-base"):
+            _reverse_rows(name, speed, rows, out)
+    out["table"] = Table(("chair", "caster row", "load forward N", "load reverse N", "margin forward cm",
+                          "margin reverse cm", f"leading caster 1/s at {speed:g} m/s reversing"), tuple(rows))
+    return out
+
+
+def _reverse_rows(name: str, speed: float, rows: list, out: dict) -> None:
+    """One chair's caster rows for :func:`shimmy_reverse` (appended to ``rows``, keys into ``out``)."""
+    from stability.layout import Layout
+    from stability.layout.presets import layout_preset
+    from stability.shimmy.band import shimmy_band
+    from stability.shimmy.layout_caster import layout_casters, leading_divergence_rate
+
+    lay = Layout.from_chair(_preset(name)) if name == "ej-premier" else layout_preset(name)
+    seen: set = set()
+    for fwd, rev in zip(layout_casters(lay), layout_casters(lay, reverse=True), strict=True):
+        c = lay.casters[fwd.index]
+        if round(c.x, 9) in seen:
+            continue
+        seen.add(round(c.x, 9))
+        where = "front" if c.x > 0 else "rear"
+        m_f = 100 * shimmy_band(fwd, [speed]).shimmy_margin_m
+        m_r = 100 * shimmy_band(rev, [speed]).shimmy_margin_m
+        rate = float(leading_divergence_rate(c.trail, [-speed])[0])
+        rows.append((name, where, fixed(fwd.static_load(), 0), fixed(rev.static_load(), 0), signed(m_f, 2),
+                     signed(m_r, 2), fixed(rate, 1)))
+        key = f"{name}.{where}"
+        out.update({f"{key}.load_fwd": fixed(fwd.static_load(), 0), f"{key}.load_rev": fixed(rev.static_load(), 0),
+                    f"{key}.margin_fwd_cm": signed(m_f, 2), f"{key}.margin_rev_cm": signed(m_r, 2),
+                    f"{key}.leading_1_s": fixed(rate, 1), f"{key}.trail_cm": f"{100 * c.trail:g}"})

@@ -61,6 +61,18 @@ def _speeds(text: str) -> tuple[float, ...]:
     return speeds
 
 
+def _driver(a: argparse.Namespace):
+    """The driver of ``--reaction-time`` (or the chair file's ``[user]``), with ``--intended-speed`` checked."""
+    driver = cli.driver_from_args(a)
+    if a.intended_speed is not None:
+        if driver is None:
+            raise ValueError("--intended-speed needs --reaction-time (or a chair file with a [user] table)")
+        if not (math.isfinite(a.intended_speed) and 0.1 <= a.intended_speed <= 6.0):
+            raise ValueError(f"--intended-speed {a.intended_speed!r} is invalid; valid range: 0.1 to 6 m/s (a "
+                             "size, also in reverse)")
+    return driver
+
+
 def _body(a: argparse.Namespace) -> int:
     cli.check_outputs({"--json-file": a.json_file}, {"--chair": a.chair, "--uncertainty": a.uncertainty})
     speeds = _speeds(a.speeds)
@@ -73,12 +85,7 @@ def _body(a: argparse.Namespace) -> int:
     if is_layout_spec(a.chair) or min(speeds) < 0:
         return _body_layout(a, speeds)
     chair = cli.load_chair(a.chair, a.set)
-    driver = cli.driver_from_args(a)
-    if a.intended_speed is not None:
-        if driver is None:
-            raise ValueError("--intended-speed needs --reaction-time (or a chair file with a [user] table)")
-        if not (math.isfinite(a.intended_speed) and 0.1 <= a.intended_speed <= 6.0):
-            raise ValueError(f"--intended-speed {a.intended_speed!r} is invalid; valid range: 0.1 to 6 m/s")
+    driver = _driver(a)
     unc = None
     if a.uncertainty:
         from stability.uncertainty import load_uncertainty
@@ -113,20 +120,18 @@ def _body_layout(a: argparse.Namespace, speeds: tuple[float, ...]) -> int:
     from stability import __version__
 
     layout = cli.load_layout(a.chair, a.set)
-    for flag, given in (("--uncertainty", a.uncertainty), ("--reaction-time", getattr(a, "reaction_time", None)),
-                        ("--intended-speed", a.intended_speed)):
-        if given is not None:
-            raise ValueError(f"{flag} is not available for a wheel layout or reverse speeds yet; valid: the "
-                             "short-form chair at forward speeds")
-    if a.cross_slope not in (0.0, D.ADVISE_CROSS_SLOPE_DEG):
-        raise ValueError(f"--cross-slope {a.cross_slope!r} is invalid for a wheel layout or reverse speeds; valid: "
-                         "the default (the cross-slope limit is not applied to a layout yet)")
-    advice = advise(layout, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=0.0,
-                    progress=not a.no_progress)
+    if a.uncertainty is not None:
+        raise ValueError("--uncertainty is not available for a wheel layout or reverse speeds yet; valid: the "
+                         "short-form chair at forward speeds")
+    driver = _driver(a)
+    advice = advise(layout, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=a.cross_slope,
+                    progress=not a.no_progress, driver=driver, intended_speed=a.intended_speed)
     data = advice_mapping(advice)
     if a.json or a.json_file:
         options = {"speeds_m_s": list(speeds), "uncertainty": None, "min_tip_deg": a.min_tip_deg,
-                   "cross_slope_deg": 0.0, "reaction_time_s": None, "intended_speed_m_s": None,
+                   "cross_slope_deg": a.cross_slope,
+                   "reaction_time_s": None if driver is None else driver.reaction_time_s,
+                   "intended_speed_m_s": advice.intended_speed_m_s,
                    "direction": "reverse" if speeds[0] < 0 else "forward"}
         cli.emit_json({"stability_version": __version__, "chair": layout.name,
                        "chair_parameters": dataclasses.asdict(layout), "model": "exact", "options": options,

@@ -313,9 +313,9 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     Parameters
     ----------
     chair : Chair or Layout
-        A wheel layout gets its own levers and measures (:mod:`.subject`; no cross-slope or driver limit yet:
-        ``cross_slope_deg`` is then taken as 0 and ``driver`` refused); a chair at negative speeds is advised as
-        its layout.
+        A wheel layout gets its own levers and measures (:mod:`.subject`: the cross-slope limit from the layout
+        slope statics, the driver's limit from the layout's linear model, in the direction of travel); a chair at
+        negative speeds is advised as its layout.
     speeds : sequence of float
         Use speeds (m/s; all negative: in reverse); the shimmy margin (the smallest over them) and the time to
         correct are taken at each.
@@ -334,7 +334,7 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         The user: adds the constraint that the speed this driver can hold (the divergence rule,
         :func:`stability.driver.linear.rule_speed`) reaches ``intended_speed``.
     intended_speed : float, optional
-        m/s; default the fastest use speed (with a driver only).
+        m/s, a size (also in reverse); default the fastest use speed's size (with a driver only).
     prune : bool
         Measure the changes at x0.5 pin friction first and compute the intervals only of those that can reach
         a choice (:mod:`.pruning`; the same decision); False: every change with its intervals.  A wheel layout
@@ -347,12 +347,12 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     use = tuple(float(u) for u in speeds)
     if isinstance(chair, Chair) and any(u < 0 for u in use):
         chair = Layout.from_chair(chair)
-    if isinstance(chair, Layout):
-        cross_slope_deg = 0.0
     tau = None if driver is None else driver.reaction_time_s
     if intended_speed is not None and driver is None:
         raise ValueError("intended_speed needs a driver (driver=Driver(reaction_time_s))")
-    intended = None if driver is None else float(max(use) if intended_speed is None else intended_speed)
+    # the speed's size (in reverse too: the human-limited speed of a layout backwards is a size)
+    intended = None if driver is None else float(max(abs(u) for u in use) if intended_speed is None
+                                                 else intended_speed)
     if intended is not None and not (math.isfinite(intended) and 0.01 <= intended <= 20.0):
         raise ValueError(f"intended_speed={intended_speed!r} is invalid; valid range: 0.01 to 20 m/s")
     singles, refused = lever_changes(chair)

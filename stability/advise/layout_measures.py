@@ -18,9 +18,13 @@ The measures of a layout are what the commands print for it, as for the short fo
 - ``growth_rate_1_s``: the layout's linear model at 0.75 m/s (or -0.75);
 - ``bench_score``: ``python -m stability.bench``'s worst score for a layout with driven wheels.
 
-The cross-slope drive difference is not among a layout's measures here yet (None: the advisor does not use the
-layout slope statics of :mod:`stability.study.layout_slope` yet), nor is the speed a driver can hold (the driver's
-linear model is the short form's).
+- ``cross_slope_effort``: ``python -m stability.slope --chair LAYOUT --cross-slope D --speed 0.75`` (or -0.75)'s
+  drive difference, right minus left (:func:`layout_cross_slope_effort`: the layout slope statics of
+  :mod:`stability.study.layout_slope` with the short form's drive report): the hand-rim force difference (N) of a
+  layout without driven wheels, the motor torque difference (N m) of a powered one;
+- ``human_speed_m_s``: the divergence rule of :func:`stability.driver.linear.rule_speed` on the layout's linear
+  model in the direction of travel (:func:`layout_rule_speed`): the speed (its size) at which the layout's
+  largest growth rate reaches ``1 / reaction_time``.
 """
 
 from __future__ import annotations
@@ -51,7 +55,7 @@ from stability.study.layout_impulse import layout_critical_impulses
 from stability.study.runs import study_run
 
 __all__ = ["direction_of", "layout_linear_measures", "layout_nonlinear_measures", "measure_layouts",
-           "layout_time_to_correct", "layout_shimmy_rows"]
+           "layout_time_to_correct", "layout_shimmy_rows", "layout_cross_slope_effort", "layout_rule_speed"]
 
 
 def direction_of(speeds: Sequence[float]) -> bool:
@@ -89,7 +93,10 @@ def layout_shimmy_rows(layout: Layout, speeds: Sequence[float],
     ----------
     layout : Layout
     speeds : sequence of float
-        m/s (their magnitudes: in reverse a caster swings round and trails the other way, the same towed wheel).
+        m/s (all negative: in reverse, where each caster has swung round and trails the other way, the towed wheel
+        at the speeds' sizes with the load of the casters trailing backwards,
+        :class:`stability.shimmy.layout_caster.LayoutCaster` ``reverse=True``, as ``python -m stability.shimmy``
+        answers negative speeds).
     cores : dict, optional
         Band cores to share between calls (:func:`stability.shimmy.band.band_core`), keyed by what they depend on.
 
@@ -97,15 +104,16 @@ def layout_shimmy_rows(layout: Layout, speeds: Sequence[float],
     -------
     list of tuple
     """
+    reverse = direction_of(speeds)
     u = [abs(float(s)) for s in speeds]
     cores = {} if cores is None else cores
     out = []
     for row in caster_rows(layout):
-        key = (_core_key(layout, row), tuple(u))
+        key = (_core_key(layout, row), tuple(u), reverse)
         if key not in cores:
-            cores[key] = band_core(LayoutCaster(key[0][0], row[0]), u)
+            cores[key] = band_core(LayoutCaster(key[0][0], row[0], reverse), u)
         out.append((row_name(layout, row), layout.casters[row[0]].trail,
-                    shimmy_band(LayoutCaster(layout, row[0]), u, core=cores[key])))
+                    shimmy_band(LayoutCaster(layout, row[0], reverse), u, core=cores[key])))
     return out
 
 
@@ -113,8 +121,73 @@ def _finite_or_none(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float],
-                           cores: dict | None = None) -> list[Linear]:
+def layout_cross_slope_effort(layout: Layout, cross_slope_deg: float, reverse: bool = False) -> float | None:
+    """The drive difference (right minus left) that holds ``layout`` on the cross slope at :data:`IMPULSE_SPEED`.
+
+    Parameters
+    ----------
+    layout : Layout
+    cross_slope_deg : float
+        deg (0: level, no effort).
+    reverse : bool
+        Backwards (at ``-IMPULSE_SPEED``, the casters trailing the other way).
+
+    Returns
+    -------
+    float or None
+        Hand-rim force difference (N) of a layout without driven wheels, motor torque difference (N m) of a
+        powered one (the short form's :func:`stability.slope.equilibrium.drive_report` on the layout's drive
+        forces); None where the slope statics refuse the layout or find no equilibrium.
+    """
+    if cross_slope_deg == 0:
+        return 0.0
+    from types import SimpleNamespace
+    from typing import Any, cast
+
+    from stability.slope.equilibrium import drive_report
+    from stability.study.layout_slope import layout_equilibrium
+
+    try:
+        eq = layout_equilibrium(layout, cross_slope_deg, -IMPULSE_SPEED if reverse else IMPULSE_SPEED)
+    except ValueError:
+        return None
+    kind = "motor" if any(w.driven for w in layout.wheels) else "handrim"
+    shim = SimpleNamespace(drive_forces=eq.drive_forces_N, cross_slope_deg=eq.cross_slope_deg)
+    rep = drive_report(cast(Any, None), cast(Any, shim), kind)
+    if kind == "handrim":
+        return float(rep["handrim_force_difference_N"])
+    return float(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
+
+
+def layout_rule_speed(layout: Layout, reaction_time: float, reverse: bool = False) -> tuple[float, str]:
+    """The divergence rule's speed of a layout: where its largest growth rate reaches ``1 / reaction_time``.
+
+    :func:`stability.driver.linear.rule_speed` (its speed grid and refinement) on the layout's linear model,
+    forward or in reverse.
+
+    Parameters
+    ----------
+    layout : Layout
+    reaction_time : float
+        s (:class:`stability.driver.model.Driver`'s range).
+    reverse : bool
+        Backwards: the rates at ``-U``.
+
+    Returns
+    -------
+    (float, str)
+        The speed's size (m/s) and side (``"="``; ``">"``: beyond the speeds checked; ``"<"``: below them).
+    """
+    from stability.driver.linear import _GRID, _first_crossing
+    from stability.driver.model import Driver
+
+    tau = Driver(reaction_time).reaction_time_s
+    sign = -1.0 if reverse else 1.0
+    return _first_crossing(lambda u: float(growth_rates(layout, [sign * u])[0]) * tau - 1.0, _GRID)
+
+
+def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float], cores: dict | None = None,
+                           cross_slope_deg: float = 0.0, reaction_time: float | None = None) -> list[Linear]:
     """The measures that need no simulation, for every layout (the constraints of the advisor).
 
     Parameters
@@ -125,12 +198,17 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
         direction of travel).
     cores : dict, optional
         Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
+    cross_slope_deg : float
+        deg: the cross-slope drive difference (:func:`layout_cross_slope_effort`; 0: none).
+    reaction_time : float, optional
+        A driver's effective delay, s: adds the human-limited speed (:func:`layout_rule_speed`).
 
     Returns
     -------
     list of Linear
     """
-    sign = -1.0 if direction_of(speeds) else 1.0
+    reverse = direction_of(speeds)
+    sign = -1.0 if reverse else 1.0
     out = []
     for lay in layouts:
         tips = tip_angles(lay)
@@ -145,10 +223,12 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
         else:
             name, trail, margin, straddles = "", None, Interval(None, None, None), False
         driven = any(w.driven for w in lay.wheels)
+        human, side = layout_rule_speed(lay, reaction_time, reverse) if reaction_time is not None else (None, "=")
         out.append(Linear(
             Interval(smallest, smallest, smallest), angles, margin, straddles,
-            max((c.pin_friction for c in lay.casters), default=0.0), None, "motor" if driven else "handrim",
-            float(growth_rates(lay, [sign * IMPULSE_SPEED])[0]), None, "=",
+            max((c.pin_friction for c in lay.casters), default=0.0),
+            layout_cross_slope_effort(lay, cross_slope_deg, reverse), "motor" if driven else "handrim",
+            float(growth_rates(lay, [sign * IMPULSE_SPEED])[0]), human, side,
             run_bench(lay).worst_score if driven else None, shimmy_row=name, shimmy_trail_m=trail))
     return out
 
@@ -194,7 +274,8 @@ def layout_nonlinear_measures(layouts: Sequence[Layout], reverse: bool = False
 
 
 def measure_layouts(layouts: Sequence[Layout], *, speeds: Sequence[float], progress: bool = False,
-                    nonlinear: Callable | None = None, cores: dict | None = None) -> list[Measures]:
+                    nonlinear: Callable | None = None, cores: dict | None = None, cross_slope_deg: float = 0.0,
+                    reaction_time: float | None = None) -> list[Measures]:
     """The advisor's measures of every layout (:func:`.measures.measure_chairs` for layouts).
 
     Parameters
@@ -207,6 +288,8 @@ def measure_layouts(layouts: Sequence[Layout], *, speeds: Sequence[float], progr
         Replaces :func:`layout_nonlinear_measures` (``nonlinear(layouts)``); for tests of everything else.
     cores : dict, optional
         Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
+    cross_slope_deg, reaction_time
+        As :func:`layout_linear_measures`.
 
     Returns
     -------
@@ -218,16 +301,19 @@ def measure_layouts(layouts: Sequence[Layout], *, speeds: Sequence[float], progr
         nl = nonlinear(layouts) if nonlinear is not None else layout_nonlinear_measures(layouts, reverse)
         bar.update()
         out = []
-        lins = layout_linear_measures(layouts, speeds=speeds, cores=cores)
+        lins = layout_linear_measures(layouts, speeds=speeds, cores=cores, cross_slope_deg=cross_slope_deg,
+                                      reaction_time=reaction_time)
         for lay, lin, (imp, eq, status, *more) in zip(layouts, lins, nl, strict=True):
             out.append(Measures(
                 chair=lay.name, critical_impulse_Ns=imp, equal_instability_speed_m_s=eq,
                 static_stability_deg=lin.static_stability_deg, shimmy_margin_m=lin.shimmy_margin_m,
                 shimmy_straddles=lin.shimmy_straddles, turning_effort_N_m=lin.turning_effort_N_m,
-                cross_slope_effort=None, growth_rate_1_s=lin.growth_rate_1_s, tip_angles_deg=lin.tip_angles_deg,
+                cross_slope_effort=lin.cross_slope_effort, growth_rate_1_s=lin.growth_rate_1_s,
+                tip_angles_deg=lin.tip_angles_deg,
                 equal_instability_status=status, critical_impulse_status=more[0] if more else "found",
                 critical_impulse_half_step_Ns=more[1] if len(more) > 1 else None, drive=lin.drive,
-                bench_score=lin.bench_score, shimmy_row=lin.shimmy_row, shimmy_trail_m=lin.shimmy_trail_m))
+                bench_score=lin.bench_score, shimmy_row=lin.shimmy_row, shimmy_trail_m=lin.shimmy_trail_m,
+                human_speed_m_s=lin.human_speed_m_s, human_side=lin.human_side))
         bar.update()
     return out
 

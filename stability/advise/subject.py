@@ -109,8 +109,7 @@ def levers_of(subject: Chair | Layout) -> dict:
 def measure_chairs(subjects: Sequence, *, speeds: Sequence[float], cross_slope_deg: float, progress: bool = False,
                    nonlinear: Callable | None = None, cores: dict | None = None,
                    reaction_time: float | None = None) -> list:
-    """:func:`.measures.measure_chairs`, or :func:`.layout_measures.measure_layouts` for layouts (which have no
-    cross-slope effort or driver measure yet: ``cross_slope_deg`` and ``reaction_time`` must then be 0 and None).
+    """:func:`.measures.measure_chairs`, or :func:`.layout_measures.measure_layouts` for layouts.
 
     Parameters
     ----------
@@ -124,8 +123,8 @@ def measure_chairs(subjects: Sequence, *, speeds: Sequence[float], cross_slope_d
     """
     subjects = list(subjects)
     if _all_layouts(subjects):
-        _layout_options(cross_slope_deg, reaction_time)
-        return measure_layouts(subjects, speeds=speeds, progress=progress, nonlinear=nonlinear, cores=cores)
+        return measure_layouts(subjects, speeds=speeds, progress=progress, nonlinear=nonlinear, cores=cores,
+                               cross_slope_deg=cross_slope_deg, reaction_time=reaction_time)
     return chair_measures(subjects, speeds=speeds, cross_slope_deg=cross_slope_deg, progress=progress,
                           nonlinear=nonlinear, cores=cores, reaction_time=reaction_time)
 
@@ -146,19 +145,10 @@ def linear_measures(subjects: Sequence, *, speeds: Sequence[float], cross_slope_
     """
     subjects = list(subjects)
     if subjects and _all_layouts(subjects):
-        _layout_options(cross_slope_deg, reaction_time)
-        return layout_linear_measures(subjects, speeds=speeds, cores=cores)
+        return layout_linear_measures(subjects, speeds=speeds, cores=cores, cross_slope_deg=cross_slope_deg,
+                                      reaction_time=reaction_time)
     return chair_linear_measures(subjects, speeds=speeds, cross_slope_deg=cross_slope_deg, cores=cores,
                                  reaction_time=reaction_time)
-
-
-def _layout_options(cross_slope_deg: float, reaction_time: float | None) -> None:
-    if cross_slope_deg:
-        raise ValueError(f"cross_slope_deg={cross_slope_deg!r} is invalid for a layout; valid: 0 (the advisor does "
-                         "not weigh a layout's cross-slope drive difference yet)")
-    if reaction_time is not None:
-        raise ValueError(f"reaction_time={reaction_time!r} is invalid for a layout; valid: None (the driver's model "
-                         "is the short form's)")
 
 
 def shimmy_hold(subject: Chair | Layout, speeds: tuple,
@@ -188,7 +178,7 @@ def shimmy_hold(subject: Chair | Layout, speeds: tuple,
         return None
     bands = layout_shimmy_rows(subject, speeds)
     k = min(range(len(rows)), key=lambda i: bands[i][2].shimmy_margin_m)
-    caster = LayoutCaster(subject, rows[k][0])
+    caster = LayoutCaster(subject, rows[k][0], all(float(u) < 0 for u in speeds))
     if caster.pin_friction_left <= 0:
         return None
     try:

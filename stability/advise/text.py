@@ -135,8 +135,9 @@ def advice_text(a: Advice) -> str:
     lines += ["", f"Limits: static stability >= {a.min_tip_deg:.1f} deg ({a.min_tip_source}); the others as listed. "
               "Speeds are also in km/h; a push in N s is force x time."]
     if is_layout(a.chair):
-        lines.append("Wheel layout: caster wheels are numbered front to back as in the [[wheel]] file; no cross-slope "
-                     "or driver limit yet (the advisor does not use a layout's slope statics or a driver model yet).")
+        lines.append("Wheel layout: caster wheels are numbered front to back as in the [[wheel]] file; the "
+                     "cross-slope drive difference from the layout's slope statics and the driver's limit from its "
+                     "linear model, in the direction of travel.")
     return "\n".join(lines)
 
 

@@ -3,13 +3,16 @@
 The generated functions of :mod:`stability.models.layout` (from ``derivations/layout.py``: Kane's method for any
 number of fixed wheels and casters) give ``M acc = K x + Bm Mz + Bf Fy``; each tire's lateral force is linear in
 its slip with its cornering stiffness at its static load (:func:`.statics.cornering_stiffnesses`), the pins
-viscous.  States ``[v, r, delta_0, delta_d_0, delta_1, delta_d_1, ...]`` (m/s, rad/s, rad, rad/s, ...).  A negative
-speed drives the chair backwards with every caster trailing the other way (``delta = pi``): the linearisation
-about that state.
+viscous; a fixed wheel turned by its angle (toe, ``FixedWheel.angle_deg``) has its force along its own lateral
+axis, linear in its slip at straight running (its cornering stiffness at the static load, so a toed wheel on a
+curved tire is approximated by the slope at zero slip).  States ``[v, r, delta_0, delta_d_0, delta_1, delta_d_1,
+...]`` (m/s, rad/s, rad, rad/s, ...).  A negative speed drives the chair backwards with every caster trailing the
+other way (``delta = pi``): the linearisation about that state.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,7 +47,7 @@ def _args(layout: Layout, reverse: bool) -> tuple[float, ...]:
     cw, cc = cornering_stiffnesses(layout, reverse)
     out: list[float] = [layout.m, layout.i_z]
     for w, c in zip(layout.wheels, cw, strict=True):
-        out += [w.x, float(c)]
+        out += [w.x, w.y, float(c), math.cos(math.radians(w.angle_deg)), math.sin(math.radians(w.angle_deg))]
     for k, c in enumerate(layout.casters):
         out += [c.x, c.trail, c.l, c.m_c, c.i_zp, float(cc[k]), c.pin_damping]
     return tuple(out)

@@ -73,6 +73,11 @@ class FixedWheel:
         has none).
     camber_coefficient : float or None
         Camber coefficient ``f_c`` of eq 4-2; ``None``: the tire's own.
+    angle_deg : float
+        The wheel's angle (toe, a misalignment), deg: its plane turned from the body's forward axis about the
+        vertical, positive turning its front to the right (``+y``, clockwise seen from above, the yaw sign).
+        :meth:`Layout.from_chair` gives a chair's ``toe_deg`` to the left wheel as ``-toe`` and to the right
+        as ``+toe`` (the thesis engine's convention: positive toe turns the fronts apart).
     """
 
     x: float
@@ -84,9 +89,11 @@ class FixedWheel:
     rolling_scale: float = 0.0
     camber_deg: float = 0.0
     camber_coefficient: float | None = None
+    angle_deg: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "x", _check("x", self.x, -2.0, 2.0, "m"))
+        object.__setattr__(self, "angle_deg", _check("angle_deg", self.angle_deg, *_chair("toe_deg"), "deg"))
         object.__setattr__(self, "y", _check("y", self.y, -1.0, 1.0, "m"))
         object.__setattr__(self, "lateral_scale", _check("lateral_scale", self.lateral_scale, 0.0, 10.0, ""))
         object.__setattr__(self, "rolling_scale", _check("rolling_scale", self.rolling_scale,
@@ -241,7 +248,7 @@ class Layout:
         Layout
             Main wheels at ``(x_main, -d1)``, ``(x_main, d2)``; caster pins at ``(x_pin, -t1)``,
             ``(x_pin, t2)`` with the chair's trail, ``l1``, ``m_c``, ``i_zp``, pins, tires and scales (lateral and
-            rolling), the main wheels' camber; anti-tip
+            rolling), the main wheels' camber and toe (``angle_deg`` ``-toe_deg`` left, ``+toe_deg`` right); anti-tip
             devices ``anti_tip_reach`` beyond the main wheels; vertical stiffnesses whose pairs' roll stiffnesses
             have the chair's ratio ``roll_k`` (the load transfer of the simulator,
             :func:`stability.layout.statics.load_rule`).
@@ -252,8 +259,9 @@ class Layout:
         # vertical stiffnesses whose roll stiffnesses k (2 y)^2 / 2 stand in the ratio roll_k = k_f / k_r (eq 6-28)
         k_w, k_c = _roll_pair(chair.roll_k, chair.d1 + chair.d2, chair.t1 + chair.t2)
         wheels = tuple(FixedWheel(chair.x_main, y, chair.main_tire, driven, chair.main_lateral_scale, k_w,
-                                  chair.main_rolling_scale, chair.camber_deg, chair.camber_coefficient)
-                       for y in (-chair.d1, chair.d2))
+                                  chair.main_rolling_scale, chair.camber_deg, chair.camber_coefficient,
+                                  side * chair.toe_deg)
+                       for y, side in ((-chair.d1, -1.0), (chair.d2, 1.0)))
         casters = tuple(Caster(chair.x_pin, y, chair.trail, chair.l1, chair.m_c, chair.i_zp, chair.caster_tire,
                                chair.pin_damping, mf, chair.caster_lateral_scale, k_c, chair.caster_rolling_scale)
                         for y, mf in ((-chair.t1, chair.pin_friction_left), (chair.t2, chair.pin_friction_right)))

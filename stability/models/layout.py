@@ -70,7 +70,8 @@ def linear_layout_matrices(shape: tuple[int, int], reverse: bool, speeds: np.nda
     speeds : ndarray
         m/s.
     args : tuple of float
-        ``m, i_z``, per fixed wheel ``x_w, C_w``, per caster ``x_p, trail, l, m_c, i_zp, C_c, c_pin`` (SI).
+        ``m, i_z``, per fixed wheel ``x_w, y_w, C_w, ca_w, sa_w`` (the cosine and sine of the wheel's
+        angle), per caster ``x_p, trail, l, m_c, i_zp, C_c, c_pin`` (SI).
 
     Returns
     -------

@@ -19,7 +19,8 @@ def build_parser() -> cli.OneLineErrorParser:
     p = cli.OneLineErrorParser(prog="python -m stability.shimmy", description=__doc__)
     cli.add_chair_options(p)
     p.add_argument("--speeds", default=D.SHIMMY_SPEEDS,
-                   help=f"START:STOP:STEP or a list (m/s; default {D.SHIMMY_SPEEDS})")
+                   help=f"START:STOP:STEP or a list (m/s; negative: reverse, each caster row swung round; "
+                        f"default {D.SHIMMY_SPEEDS})")
     p.add_argument("--relaxation-length", type=float, default=None, help="caster tire relaxation length (m)")
     p.add_argument("--lateral-stiffness", type=float, default=None, help="frame lateral stiffness at the pin (N/m)")
     p.add_argument("--amplitude-deg", type=float, default=D.SHIMMY_AMPLITUDE_DEG,
@@ -58,7 +59,16 @@ def _body(args) -> int:
         return _body_layout(args)
     chair = cli.load_chair(args.chair, args.set)
     cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
-    speeds = cli.parse_speeds(args.speeds)
+    speeds = cli.parse_speeds(args.speeds, signed=True)
+    if np.any(speeds < 0):
+        # reverse: the casters swing round and carry the reversed statics' loads, which the layout form computes
+        for flag, given in (("-o", args.output), ("--chair-model", args.chair_model)):
+            if given:
+                raise ValueError(f"{flag} with --speeds {args.speeds!r} is not available in reverse; valid: speeds "
+                                 "> 0 (the trail chart and the full-chair shimmy model are forward only)")
+        from stability.layout import Layout
+
+        return _layout_answer(args, Layout.from_chair(chair), speeds)
     check_speed_count("--speeds", len(speeds), SECONDS_PER_SPEED["summary"]
                       + (SECONDS_PER_SPEED["chart"] if args.output else 0.0))
     comp = _compliance(args)
@@ -106,13 +116,14 @@ def _body(args) -> int:
     return 0
 
 
-def _print_table(s, band: ShimmyBand, amplitude_deg: float) -> None:
-    """The per-speed table of one caster and its legend."""
+def _print_table(s, band: ShimmyBand, amplitude_deg: float, speeds: np.ndarray | None = None) -> None:
+    """The per-speed table of one caster and its legend (``speeds``: the signed speeds to show, m/s; default
+    the summary's)."""
     print(f"{'speed':>6} {'linear':>9} {'freq':>6} {'growth':>7} {'damping':>8} {'shimmy-free trail cm':>22} "
           f"{'friction N m':>13} {'held below cm':>14}")
     print(f"{'m/s':>6} {'':>9} {'Hz':>6} {'1/s':>7} {'ratio':>8} {'(nominal estimates)':>22} "
           f"{f'@{amplitude_deg:g} deg':>13} {'(pin friction)':>14}")
-    for i, u in enumerate(s.speeds):
+    for i, u in enumerate(s.speeds if speeds is None else speeds):
         print(f"{u:6.2f} {'stable' if s.stable[i] else 'SHIMMY':>9} {s.shimmy_frequency_hz[i]:6.1f} "
               f"{s.shimmy_growth_rate[i]:7.2f} {band.damping_ratio[i]:8.4f} {band.describe(i):>22} "
               f"{s.friction_needed[i]:13.3f} {_fmt(s.friction_trail[i], 100):>14}")
@@ -125,7 +136,6 @@ def _print_table(s, band: ShimmyBand, amplitude_deg: float) -> None:
 def _body_layout(args) -> int:
     """Every caster row of a wheel layout: the towed-wheel summary and band at the caster's own static load."""
     from stability.layout.io import resolve_layout
-    from stability.shimmy.layout_caster import layout_casters
 
     if args.set:
         raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
@@ -134,50 +144,80 @@ def _body_layout(args) -> int:
             raise ValueError(f"{flag} is not available for a wheel layout yet; valid: the short-form chair "
                              "(the trail chart and the full-chair shimmy model are the thesis chair's)")
     cli.check_outputs({"--json-file": args.json_file}, {"--chair": args.chair})
-    layout = resolve_layout(args.chair)
-    speeds = cli.parse_speeds(args.speeds)
-    comp = _compliance(args)
-    # one caster per row (a left-right pair on one pin line shares its answer)
+    return _layout_answer(args, resolve_layout(args.chair), cli.parse_speeds(args.speeds, signed=True))
+
+
+def _rows(layout, reverse: bool) -> list:
+    """One caster per row and direction (a left-right pair on one pin line shares its answer)."""
+    from stability.shimmy.layout_caster import layout_casters
+
     rows, seen = [], set()
-    for c in layout_casters(layout):
+    for c in layout_casters(layout, reverse):
         cc = layout.casters[c.index]
         key = (round(cc.x, 9), cc.trail, cc.m_c, cc.i_zp, cc.l, cc.tire, cc.pin_damping, cc.pin_friction,
                cc.lateral_scale, round(c.static_load(), 6))
         if key not in seen:
             seen.add(key)
             rows.append(c)
+    return rows
+
+
+def _layout_answer(args, layout, speeds: np.ndarray) -> int:
+    """Every caster row of ``layout`` at the forward speeds and, swung round, at the reverse ones."""
+    from stability.shimmy.layout_caster import leading_divergence_rate
+
+    comp = _compliance(args)
+    groups = [(rev, speeds[speeds < 0] if rev else speeds[speeds > 0]) for rev in (False, True)]
+    groups = [(rev, u) for rev, u in groups if u.size]
+    rows = [(c, u) for rev, u in groups for c in _rows(layout, rev)]
     if not rows:
         raise ValueError(f"--chair {args.chair!r}: the layout has no casters; valid: a layout with casters")
-    check_speed_count("--speeds", len(speeds) * len(rows), SECONDS_PER_SPEED["summary"])
-    results = [(c, caster_summary(c, speeds, comp, math.radians(args.amplitude_deg)), shimmy_band(c, speeds, comp))
-               for c in rows]
+    check_speed_count("--speeds", sum(u.size for _, u in rows), SECONDS_PER_SPEED["summary"])
+    amp = math.radians(args.amplitude_deg)
+    results = [(c, u, caster_summary(c, np.abs(u), comp, amp), shimmy_band(c, np.abs(u), comp)) for c, u in rows]
     with cli.output_files({"--json-file": args.json_file}) as tmp:
         if args.json or args.json_file:
+            casters = []
+            for c, u, s, b in results:
+                signed = [float(x) for x in u]
+                entry = {"caster": c.name, "direction": "reverse" if c.reverse else "forward",
+                         "static_load_N": c.static_load(), **s.to_mapping(),
+                         "shimmy_band": {**b.to_mapping(), "speeds_m_s": signed}, "speeds_m_s": signed}
+                if c.reverse:
+                    entry["leading_divergence_rate_1_s"] = [float(x) for x in leading_divergence_rate(c.trail, u)]
+                casters.append(entry)
             doc = {"schema": "stability.shimmy.layout/1", "layout": layout.name,
                    "options": {"speeds_m_s": [float(u) for u in speeds],
                                "relaxation_length_m": comp.relaxation_length,
                                "lateral_stiffness_N_per_m": comp.lateral_stiffness,
                                "amplitude_deg": args.amplitude_deg},
-                   "casters": [{"caster": c.name, "static_load_N": c.static_load(), **s.to_mapping(),
-                                "shimmy_band": b.to_mapping()} for c, s, b in results]}
+                   "casters": casters}
             cli.emit_json(doc, args, write_to=tmp.get("--json-file"))
         if not args.json:
             print(f"caster shimmy, layout {layout.name!r}: each caster row as a towed wheel on its pin at its own "
-                  f"static load (a left-right pair shares one answer; in reverse a caster swings round and trails "
-                  f"the other way: the same answer)")
-            print(f"NOTE: {results[0][1].note}: relaxation length {comp.relaxation_length * 1000:g} mm, lateral "
+                  f"static load (a left-right pair shares one answer)")
+            print(f"NOTE: {results[0][2].note}: relaxation length {comp.relaxation_length * 1000:g} mm, lateral "
                   f"stiffness {comp.lateral_stiffness / 1000:g} kN/m.")
-            for c, s, band in results:
+            if any(c.reverse for c, *_ in results):
+                print("reverse (negative speeds): when the chair reverses each caster leads its pin, which is "
+                      "unstable (its swivel angle grows at 'leading' 1/s, |speed|/trail); it swings round and "
+                      "trails the other way, so its shimmy is the towed wheel's at |speed| with the load of the "
+                      "casters trailing backwards (each contact moved by twice the trail)")
+            for c, u, s, band in results:
                 print(f"\n{c.name}: trail {c.trail * 100:g} cm, pin friction {c.pin_friction_left:g} N m, static "
                       f"load {c.static_load():.1f} N")
-                _print_table(s, band, args.amplitude_deg)
-                _print_band(band)
+                if c.reverse:
+                    rate = leading_divergence_rate(c.trail, u)
+                    print("leading 1/s: " + ", ".join(f"{x:g} m/s: {r:.1f}" for x, r in zip(u, rate, strict=True)))
+                _print_table(s, band, args.amplitude_deg, u)
+                _print_band(band, u)
     if args.json_file:
         print(f"wrote {args.json_file}", file=sys.stderr)
     return 0
 
 
-def _print_band(band: ShimmyBand) -> None:
+def _print_band(band: ShimmyBand, speeds: np.ndarray | None = None) -> None:
+    shown = band.speeds_m_s if speeds is None else tuple(float(u) for u in speeds)
     m, (lo, hi) = band.shimmy_margin_m, band.shimmy_margin_interval_m
     near = band.nearest_boundary_m
     k = int(np.argmin(band.margin_m))
@@ -186,7 +226,7 @@ def _print_band(band: ShimmyBand) -> None:
     else:
         side = "inside the shimmy-free band" if m > 0 else "inside a shimmy zone"
         where = (f"{abs(m) * 100:.2f} cm {side}, nearest boundary {near * 100:.2f} cm "
-                 f"(at {band.speeds_m_s[k]:g} m/s; damping ratio there {band.damping_ratio[k]:.4f})")
+                 f"(at {shown[k]:g} m/s; damping ratio there {band.damping_ratio[k]:.4f})")
     print(f"this chair's trail {band.trail_m * 100:g} cm: {where}")
 
     def cm(x: float) -> str:
@@ -199,7 +239,7 @@ def _print_band(band: ShimmyBand) -> None:
     for c, iv in zip(band.compliance.corners(), band.corner_intervals_m, strict=True):
         text = ", ".join(f"{a * 100:.1f}-{b * 100:.1f}" for a, b in iv[0]) or "none"
         print(f"  relaxation {c.relaxation_length * 1000:g} mm, pin stiffness {c.lateral_stiffness / 1000:g} kN/m: "
-              f"shimmy-free {text} cm at {band.speeds_m_s[0]:g} m/s")
+              f"shimmy-free {text} cm at {shown[0]:g} m/s")
 
 
 def _print_chair_model(pin: str, m) -> None:

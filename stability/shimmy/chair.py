@@ -178,7 +178,8 @@ def friction_trail(chair: CasterSource, speed: float, amplitude: float, complian
     Returns
     -------
     float
-        Friction trail, m (0 or ``inf`` as above).
+        Friction trail, m (0 or ``inf`` as above; for a layout's caster the trails searched end where the layout
+        would no longer stand, NaN if it stands on fewer than two of them).
     """
     def excess(trail: float) -> float:
         w = caster_wheel(chair.replace(trail=trail), compliance)
@@ -186,6 +187,12 @@ def friction_trail(chair: CasterSource, speed: float, amplitude: float, complian
         return min(need, 1e3) - w.pin_friction
 
     grid = _trail_grid(chair)
+    if isinstance(chair, LayoutCaster):
+        # a layout's caster: only the trails at which the layout still stands (in reverse a long trail moves the
+        # contacts so far that a base can tip onto the casters)
+        grid = grid[np.isfinite(chair.loads(grid))]
+        if grid.size < 2:
+            return math.nan
     if excess(float(grid[-1])) > 0:
         return math.inf
     roots = _roots(excess, grid)

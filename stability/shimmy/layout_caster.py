@@ -9,8 +9,13 @@ lines, the stated vertical compliance on more), recomputed for every trail the a
 moves with the trail, and with it the load).  So a mid-wheel-drive base's front and rear casters, which carry
 different loads, get their own shimmy bands.
 
-Reverse driving: a caster swings round and trails in the new direction, so its shimmy is that of the same
-towed wheel after the swing; the loads are the same (statics do not depend on the direction of travel).
+Reverse driving: a caster trails behind its pin in the direction of travel.  At the moment the chair reverses,
+every caster leads its pin; that straight-running state is unstable (a leading caster's swivel angle grows, for a
+rigid pin and tire at the rate ``|U| / trail``, :func:`leading_divergence_rate`), so the caster swings round
+and trails the other way.  Its shimmy in reverse is then that of the same towed wheel at ``|U|``, with the load
+of the layout whose casters trail backwards: each contact has moved ``2 trail`` and each caster's centre of mass
+``2 l`` (:func:`stability.layout.static_loads` with ``reverse=True``), so the rows share the weight differently
+than forwards.  ``LayoutCaster(layout, k, reverse=True)`` is that caster.
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ from stability import tires
 from stability.chair import Chair
 from stability.layout import Layout, static_loads
 
-__all__ = ["LayoutCaster", "layout_casters", "CasterSource"]
+__all__ = ["LayoutCaster", "layout_casters", "CasterSource", "leading_divergence_rate"]
 
 
 @dataclass(frozen=True)
@@ -35,10 +40,14 @@ class LayoutCaster:
     layout : Layout
     index : int
         Position in ``layout.casters`` (0-based).
+    reverse : bool
+        The chair drives backwards: every caster has swung round and trails behind its pin the other way (its
+        load from the reversed statics).
     """
 
     layout: Layout
     index: int
+    reverse: bool = False
 
     def __post_init__(self) -> None:
         n = len(self.layout.casters)
@@ -51,10 +60,10 @@ class LayoutCaster:
 
     @property
     def name(self) -> str:
-        """``"<layout> caster k (front left)"``, k from 1."""
+        """``"<layout> caster k (front left)"``, k from 1 (``", reverse"`` appended in reverse)."""
         c = self._c
         where = ("front" if c.x > 0 else "rear") + (" left" if c.y < 0 else " right" if c.y > 0 else "")
-        return f"{self.layout.name} caster {self.index + 1} ({where})"
+        return f"{self.layout.name} caster {self.index + 1} ({where}{', reverse' if self.reverse else ''})"
 
     @property
     def trail(self) -> float:
@@ -115,11 +124,11 @@ class LayoutCaster:
         # together, as a chair's trail does; changing one caster of a pair would tilt the base onto three lines
         casters = tuple(replace(c, **changes) if abs(c.x - me.x) < 1e-9 and c.trail == me.trail else c
                         for c in self.layout.casters)
-        return LayoutCaster(replace(self.layout, casters=casters), self.index)
+        return LayoutCaster(replace(self.layout, casters=casters), self.index, self.reverse)
 
     def static_load(self) -> float:
-        """The caster's static load, N."""
-        return float(static_loads(self.layout)[len(self.layout.wheels) + self.index])
+        """The caster's static load, N (casters trailing backwards in reverse)."""
+        return float(static_loads(self.layout, self.reverse)[len(self.layout.wheels) + self.index])
 
     def loads(self, trails: np.ndarray) -> np.ndarray:
         """Static load of this caster at each trail (m), N; NaN where the layout would not stand.
@@ -144,18 +153,48 @@ class LayoutCaster:
         return out[inv].reshape(t.shape)
 
 
-def layout_casters(layout: Layout) -> list[LayoutCaster]:
+def layout_casters(layout: Layout, reverse: bool = False) -> list[LayoutCaster]:
     """Every caster of ``layout``, in order.
 
     Parameters
     ----------
     layout : Layout
+    reverse : bool
+        Driving backwards (each caster swung round, see :class:`LayoutCaster`).
 
     Returns
     -------
     list of LayoutCaster
     """
-    return [LayoutCaster(layout, k) for k in range(len(layout.casters))]
+    return [LayoutCaster(layout, k, reverse) for k in range(len(layout.casters))]
+
+
+def leading_divergence_rate(trail: float, speeds) -> np.ndarray:
+    """Growth rate of a caster's swivel angle while it leads its pin (just after the chair reverses), 1/s.
+
+    The generated towed wheel (:mod:`stability.models.shimmy`) with a rigid pin and a rigid tire, run at the
+    speed ``-|U|``: its one state, the swivel angle, follows the no-side-slip constraint
+    ``L psi_dot = U sin psi``, so it grows at ``|U| / L`` and the caster swings round (the reorientation the
+    layout simulator shows).  Mass, inertia and tire do not enter this limit.
+
+    Parameters
+    ----------
+    trail : float
+        m (> 0).
+    speeds : array_like
+        Speeds, m/s (their size is used).
+
+    Returns
+    -------
+    ndarray
+        Per speed, the rate (1/s, > 0: it diverges).
+    """
+    from stability.models import shimmy as shimmy_model
+
+    U = -np.abs(np.asarray(speeds, dtype=float))
+    params = dict(mass=1.0, inertia=1.0, a=trail, b=0.0, k=1.0, C=1.0, sigma=1.0, c=0.0)
+    A, _ = shimmy_model.state_matrices(shimmy_model.case_name(True, True), params, U)
+    return np.linalg.eigvals(A).real.max(axis=-1)
 
 
 #: What the shimmy analyses take: a chair (its left or right caster) or one caster of a layout.

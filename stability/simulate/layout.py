@@ -17,7 +17,9 @@ right (the cases of Guo et al. 2003).
 Rolling resistance (each wheel's ``rolling_scale``, its tire's rolling data), the camber thrust of the fixed
 wheels (``camber_deg``, tops toward the centre line) and a plane (``run.cross_slope_deg``, ``run.grade_deg``:
 each body's in-plane weight from the generated equations, the loads under the normal weight) are the thesis
-engine's, applied as it applies them to the short form.  Not modelled here: toe, the thesis's lagged-yaw variant,
+engine's, applied as it applies them to the short form, and so is each fixed wheel's angle (``angle_deg``, toe:
+its velocity turned into its frame for the slip, its forces turned back).  Not modelled here: the thesis's
+lagged-yaw variant,
 the adaptive scheme; the normal loads take the weight at C (the c.g. with the casters trailing forward) as in the
 thesis engine, not at the system's c.g. with the casters swivelled.
 """
@@ -226,8 +228,8 @@ def tire_slots(layout: Layout) -> tuple[np.ndarray, ...]:
     tuple of ndarray
         The tire slots, one per contact (fixed wheels, then casters), then each fixed wheel's camber tire
         (MECHAN's: the unscaled tire at the camber angle truncated to whole degrees); the range check per
-        contact; the rolling slots per contact; per fixed wheel ``(camber deg, side sign x f_c)`` (the thrust
-        points to the side the wheel's top leans).
+        contact; the rolling slots per contact; per fixed wheel ``(camber deg, side sign x f_c, cos a, sin a)``
+        (the thrust points to the side the wheel's top leans; ``a`` the wheel's angle, its toe).
     """
     specs = [(w.tire, w.lateral_scale, w.rolling_scale) for w in layout.wheels]
     specs += [(c.tire, c.lateral_scale, c.rolling_scale) for c in layout.casters]
@@ -235,7 +237,9 @@ def tire_slots(layout: Layout) -> tuple[np.ndarray, ...]:
     TK, TS, TL = np.zeros(n + nw, dtype=np.int64), np.zeros((n + nw, 6, 8)), np.ones(n + nw)
     LIM, CHK = np.full((n + nw, 2), math.inf), np.zeros(n, dtype=np.bool_)
     RK, RC, RS = np.zeros(n, dtype=np.int64), np.zeros((n, 3)), np.zeros(n)
-    CAM = np.zeros((nw, 2))
+    CAM = np.zeros((nw, 4))
+    for j, w in enumerate(layout.wheels):
+        CAM[j, 2:] = math.cos(math.radians(w.angle_deg)), math.sin(math.radians(w.angle_deg))
     for i, (spec, scale, rolling) in enumerate(specs):
         tire = _tires.get(spec).scaled(lateral=scale, rolling=rolling)
         TK[i], TS[i], TL[i], LIM[i] = _tire_slot(tire)
@@ -248,7 +252,7 @@ def tire_slots(layout: Layout) -> tuple[np.ndarray, ...]:
         cam_tire = _tires.get(w.tire)
         TK[n + j], TS[n + j], TL[n + j], LIM[n + j] = _tire_slot(cam_tire)
         fc = cam_tire.camber_coefficient if w.camber_coefficient is None else float(w.camber_coefficient)
-        CAM[j] = cam_deg, (1.0 if w.y < 0 else -1.0) * fc
+        CAM[j, :2] = cam_deg, (1.0 if w.y < 0 else -1.0) * fc
     return TK, TS, TL, LIM, CHK, RK, RC, RS, CAM
 
 

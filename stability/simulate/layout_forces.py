@@ -9,7 +9,27 @@ from __future__ import annotations
 
 from stability.tires.law import camber_force, lateral_force, rolling_force
 
-__all__ = ["tire_forces"]
+__all__ = ["tire_forces", "wheel_frames"]
+
+
+def wheel_frames(nw, CAM, vel):
+    """Turn each fixed wheel's contact velocity from body axes into its own frame (the wheel turned by its angle
+    ``a``, toe: ``CAM[j, 2:] = cos a, sin a``), in place, as the thesis engine's SLIP turns the toed main wheels'.
+
+    Parameters
+    ----------
+    nw : int
+        Number of fixed wheels.
+    CAM : ndarray, shape (nw, 4)
+        Per fixed wheel: camber deg, camber sign x f_c, cos and sin of the wheel's angle.
+    vel : ndarray
+        Contact velocities (forward, lateral per contact, fixed wheels first), m/s; the fixed wheels' rewritten.
+    """
+    for j in range(nw):
+        if CAM[j, 3] != 0.0:
+            c, s = CAM[j, 2], CAM[j, 3]
+            vx, vy = vel[2 * j], vel[2 * j + 1]
+            vel[2 * j], vel[2 * j + 1] = vx * c + vy * s, -vx * s + vy * c
 
 
 def tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy, tire_push, ftimp, cs, sn, fw,
@@ -17,8 +37,9 @@ def tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, pol
     """MECHAN for any layout: the tire forces of the fixed wheels in body axes (lateral, ``ftimp`` instead while
     ``tire_push``; rolling resistance against the contact's forward velocity; the camber thrust ``CAM[j, 1]``
     (the side's sign times ``f_c``) times the camber tire's force at ``CAM[j, 0]`` deg, the camber tires in the
-    tire slots after the contacts') and of the casters in their frames (lateral, rolling) written into ``fw``,
-    ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N.
+    tire slots after the contacts'; all in the wheel's frame, turned into body axes by its angle ``CAM[j, 2:]``,
+    as the thesis engine's MECHAN turns a toed main wheel's) and of the casters in their frames (lateral, rolling)
+    written into ``fw``, ``fc``; returns their resultant in body axes ``(sum_fx, sum_fy)``, N.
 
     Parameters
     ----------
@@ -29,10 +50,11 @@ def tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, pol
         scale and slip/load limits (:mod:`stability.tires.law`).
     RK, RC, RS : ndarray
         Per contact: rolling-resistance kind, coefficients and scale.
-    CAM : ndarray, shape (nw, 2)
-        Per fixed wheel: camber angle, deg, and the camber thrust's sign (0: no camber).
+    CAM : ndarray, shape (nw, 4)
+        Per fixed wheel: camber angle, deg, and the camber thrust's sign (0: no camber); cos and sin of the
+        wheel's angle.
     vel : ndarray
-        Contact velocities in the wheel's frame, m/s, forward then lateral per contact.
+        Contact velocities in the wheel's frame (:func:`wheel_frames`), m/s, forward then lateral per contact.
     slips : ndarray
         Slip angle per contact, deg.
     loads : ndarray
@@ -64,6 +86,9 @@ def tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, pol
         if CAM[j, 1] != 0.0:
             cf, _bad = lateral_force(TK[nt + j], TS[nt + j], TL[nt + j], LIM[nt + j], CAM[j, 0], loads[j], policy)
             fy += camber_force(CAM[j, 1], cf)
+        if CAM[j, 3] != 0.0:
+            c, s = CAM[j, 2], CAM[j, 3]
+            fx, fy = fx * c - fy * s, fx * s + fy * c
         fw[2 * j], fw[2 * j + 1] = fx, fy
         sum_fx += fx
         sum_fy += fy

@@ -50,8 +50,10 @@ equations = _eq.equations
 contact_velocities = _eq.contact_velocities
 #: MECHAN for any layout (:mod:`.layout_forces`, plain Python that the statics call too), compiled with the
 #: thesis engine's compiled tire law
-_tire_forces = compiled(_lf, ("tire_forces",), _inl, {"lateral_force": lateral_force, "rolling_force": rolling_force,
-                                                      "camber_force": camber_force}).tire_forces
+_lfc = compiled(_lf, ("tire_forces", "wheel_frames"), _inl, {"lateral_force": lateral_force,
+                                                              "rolling_force": rolling_force,
+                                                              "camber_force": camber_force})
+_tire_forces, _wheel_frames = _lfc.tire_forces, _lfc.wheel_frames
 
 #: ``status[0]``: 0 ran to the horizon, 1 the eleventh slip warning, 2 the eleventh load warning, 3 non-finite
 STOPPED_SLIP, STOPPED_LOAD, STOPPED_NONFINITE = 1.0, 2.0, 3.0
@@ -249,11 +251,13 @@ def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
 
 
 @_inl
-def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys):
-    """The caster angles' cosines and sines, the contact velocities and slip angles (deg), the caster contacts."""
+def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM):
+    """The caster angles' cosines and sines, the contact velocities (the fixed wheels' in their turned frames) and
+    slip angles (deg), the caster contacts."""
     for kk in range(nc):
         cs[kk], sn[kk] = math.cos(D[kk]), math.sin(D[kk])
     contact_velocities(shape, UD, VD, THED, cs, sn, DD, p, vel)
+    _wheel_frames(nw, CAM, vel)
     for i in range(nw + nc):
         slips[i] = slip_angle(vel[2 * i], vel[2 * i + 1])
     for kk in range(nc):
@@ -275,7 +279,7 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
     """One run: ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and
     ``nc`` casters, per contact (fixed wheels, then casters) the tire slots (then each fixed wheel's camber tire)
     and range check, the rolling-resistance slots (kind, coefficients, scale), per fixed wheel the camber
-    ``(deg, signed coefficient)``, the vertical
+    ``(deg, signed coefficient)`` and its angle's ``(cos, sin)``, the vertical
     stiffness and support line, the lines' roll shares, per caster the Coulomb limit (N m) and viscous
     coefficient (N m s/rad), the initial state; writes ``rec`` (:data:`NREC` + 2 nc, rows), ``status``
     (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and returns the rows written."""
@@ -303,7 +307,7 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
     nrec = 0
     for k in range(nsteps):
         t = k * dt
-        _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys)
+        _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
         if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
             g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
             wn = weight * gn / grav

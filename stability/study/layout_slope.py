@@ -135,6 +135,11 @@ class _Statics:
     """The layout's equations at steady straight running on a plane (arrays made once)."""
 
     def __init__(self, layout: Layout, plane: Plane, speed: float):
+        toed = [j for j, w in enumerate(layout.wheels) if w.angle_deg != 0.0]
+        if toed:
+            raise ValueError(f"layout {layout.name!r}: fixed wheel {toed[0]} angle_deg="
+                             f"{layout.wheels[toed[0]].angle_deg!r} is invalid on a slope; valid: 0 (toe is not "
+                             "modelled in the slope statics, as the short form's slope refuses it)")
         self.layout, self.plane, self.speed = layout, plane, speed
         self.shape = shape_index(layout.shape)
         self.nw, self.nc = layout.shape

@@ -15,13 +15,19 @@ Its grid axes:
 ``m``, ``i_z``, ``h``
     The body's mass (kg), yaw inertia (kg m^2) and c.g. height (m).
 
+Random draws (``[draws]``): the uncertainty file's tables name these axes instead of the short form's fields
+(``[trail_front]``, ``[m]``, ``[caster_1_pin_friction]`` ...; ``relative = true`` as a fraction of the layout's own
+value, :func:`layout_axis_value`); each draw sets them in file order after the grid's values
+(:func:`draw_layout`), with the short form's common random numbers across designs.  A draw that makes an invalid
+layout (outside a field's range, a base that no longer stands) is a row with the reason in ``error``.
+
 The measures are the layout commands' (each row in the direction of its speed's sign): ``growth_rate`` (the layout's
 linear model), ``critical_speeds`` (``critical_speed_m_s``: the speed up to which the layout is stable,
 :func:`stability.compare.layouts.stable_up_to`; no locked-caster model of a layout: NaN), ``critical_impulse``
 and ``equal_instability_speed`` (the layout studies), ``shimmy_margin`` (the smallest over the caster rows),
 ``tip_angles`` (the ISO 7176-1 angles over the outermost contacts: the smallest and the smaller lateral one; the
-short form's toward-casters and toward-main-wheels columns are NaN), ``bench``.  Random draws, the human-limited
-speed and the holding moment are the short form's only.
+short form's toward-casters and toward-main-wheels columns are NaN), ``bench``.  The human-limited speed and the holding
+moment are the short form's only.
 """
 
 from __future__ import annotations
@@ -42,8 +48,10 @@ from stability.shimmy.band import shimmy_band
 from stability.shimmy.layout_caster import LayoutCaster
 from stability.study.layout_equal_instability import layout_equal_instability
 from stability.study.layout_impulse import layout_critical_impulses
+from stability.uncertainty import Uncertainty
 
-__all__ = ["LAYOUT_MEASURES", "check_layout_axis", "apply_layout_axis", "layout_chunk_values", "bench_of"]
+__all__ = ["LAYOUT_MEASURES", "check_layout_axis", "apply_layout_axis", "layout_chunk_values", "bench_of",
+           "layout_axis_value", "check_layout_uncertainty", "draw_layout"]
 
 #: The measures a layout sweep computes.
 LAYOUT_MEASURES = ("growth_rate", "critical_speeds", "critical_impulse", "equal_instability_speed", "shimmy_margin",
@@ -111,6 +119,88 @@ def apply_layout_axis(layout: Layout, axis: str, value: float) -> Layout:
     return apply_layout(layout, [(axis, value)])
 
 
+def layout_axis_value(layout: Layout, axis: str) -> float:
+    """The layout's own value of one axis (the centre of a draw around it).
+
+    Parameters
+    ----------
+    layout : Layout
+    axis : str
+        See the module's axes (checked with :func:`check_layout_axis`).
+
+    Returns
+    -------
+    float
+        ``drive_x``: the first driven wheel's x (the first fixed wheel's if none is driven); ``trail_ROW``: the
+        row's first caster's trail; otherwise the field itself (SI units).
+    """
+    check_layout_axis(layout, axis)
+    if axis in _BODY:
+        return float(getattr(layout, axis))
+    if axis == "drive_x":
+        idx = [j for j, w in enumerate(layout.wheels) if w.driven] or [0]
+        return float(layout.wheels[idx[0]].x)
+    for r in caster_rows(layout):
+        if axis == f"trail_{row_name(layout, r)}":
+            return float(layout.casters[r[0]].trail)
+    hit = _WHEEL.fullmatch(axis)
+    assert hit is not None                       # checked above
+    seq = layout.casters if hit.group(1) == "caster" else layout.wheels
+    return float(getattr(seq[int(hit.group(2)) - 1], hit.group(3)))
+
+
+def check_layout_uncertainty(layout: Layout, unc: Uncertainty) -> None:
+    """Refuse an uncertainty table whose field is not one of the layout's axes (one line naming it).
+
+    Parameters
+    ----------
+    layout : Layout
+    unc : Uncertainty
+        Read with ``chair_fields=False``.
+
+    Raises
+    ------
+    ValueError
+    """
+    for d in unc.distributions:
+        for f in d.fields:
+            try:
+                layout_axis_value(layout, f)
+            except ValueError as exc:
+                raise ValueError(f"uncertainty [{d.name}] field {f!r} is invalid for the layout {layout.name!r}; "
+                                 + str(exc).split("; ", 1)[-1]) from None
+
+
+def draw_layout(layout: Layout, unc: Uncertainty, unit: dict[str, np.ndarray], draw: int) -> Layout:
+    """The layout with draw ``draw`` of every uncertain axis set (each around the layout's own value).
+
+    Parameters
+    ----------
+    layout : Layout
+        The design (its grid values set).
+    unc : Uncertainty
+        The layout's uncertainty (:func:`check_layout_uncertainty`).
+    unit : dict
+        Standardised draws per table (:meth:`Uncertainty.unit_draws`: common random numbers across designs).
+    draw : int
+        Which draw.
+
+    Returns
+    -------
+    Layout
+
+    Raises
+    ------
+    ValueError
+        A drawn value outside its field's range, or a base that no longer stands.
+    """
+    values = [(f, float(d.values(layout_axis_value(layout, f), unit[d.name][draw:draw + 1])[0]))
+              for d in unc.distributions for f in d.fields]
+    for f, v in values:
+        layout = apply_layout_axis(layout, f, v)
+    return layout
+
+
 def bench_of(layout: Layout) -> tuple[float, float]:
     """The virtual bench's worst score and longest level-ground stop (m) of a powered layout, NaN otherwise.
 
@@ -130,16 +220,23 @@ def bench_of(layout: Layout) -> tuple[float, float]:
 
 
 def _shimmy(layout: Layout, speeds: np.ndarray) -> np.ndarray:
-    """The smallest margin over the caster rows at each |speed|, m (NaN: none computable)."""
+    """The smallest margin over the caster rows at each speed, m (NaN: none computable); a negative speed's at its
+    size with the casters swung round (the reversed statics' loads, as ``python -m stability.shimmy``)."""
+    out = np.full(len(speeds), math.nan)
     rows = caster_rows(layout)
     if not rows:
-        return np.full(len(speeds), math.nan)
-    try:
-        m = [np.asarray(shimmy_band(LayoutCaster(layout, r[0]), np.abs(speeds)).margin_m, dtype=float)
-             for r in rows]
-    except ValueError:
-        return np.full(len(speeds), math.nan)
-    return np.min(np.array(m), axis=0)
+        return out
+    for reverse in (False, True):
+        sel = (speeds < 0) == reverse
+        if not sel.any():
+            continue
+        try:
+            m = [np.asarray(shimmy_band(LayoutCaster(layout, r[0], reverse), np.abs(speeds[sel])).margin_m,
+                            dtype=float) for r in rows]
+        except ValueError:
+            continue
+        out[sel] = np.min(np.array(m), axis=0)
+    return out
 
 
 def layout_chunk_values(measures: tuple, layouts: list[Layout], speeds: np.ndarray, run: Any) -> dict[str, np.ndarray]:

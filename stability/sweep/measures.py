@@ -29,7 +29,7 @@ from stability.settings.defaults import MAX_SPEED
 from stability.shimmy.band import shimmy_band
 from stability.slope import solve
 from stability.study import critical_impulses, equal_instability_speeds
-from stability.sweep.layouts import apply_layout_axis, bench_of, layout_chunk_values
+from stability.sweep.layouts import apply_layout_axis, bench_of, draw_layout, layout_chunk_values
 from stability.sweep.spec import _NUMERIC, MEASURES, SweepSpec, apply_axis
 from stability.tipping import tip_angles
 
@@ -110,6 +110,8 @@ def _chair(spec: SweepSpec, values: tuple[float, ...], draw: int,
         lay = spec.chair
         for (axis, _), v in zip(spec.grid, values, strict=True):
             lay = apply_layout_axis(lay, axis, v)
+        if spec.uncertainty is not None and unit is not None:
+            lay = draw_layout(lay, spec.uncertainty, unit, draw)
         return dataclasses.replace(lay, name=f"{spec.chair.name} design {values}" if values else spec.chair.name)
     c = spec.chair
     for (axis, _), v in zip(spec.grid, values, strict=True):

@@ -39,7 +39,7 @@ from stability.driver.model import REACTION_TIME_RANGE_S, REACTION_TIME_S
 from stability.layout.io import is_layout_spec, resolve_layout
 from stability.layout.model import Layout
 from stability.settings.run import FRICTION_LAWS, MODELS, RunSpec
-from stability.sweep.layouts import LAYOUT_MEASURES, check_layout_axis
+from stability.sweep.layouts import LAYOUT_MEASURES, check_layout_axis, check_layout_uncertainty
 from stability.uncertainty import Uncertainty, load_uncertainty
 
 if sys.version_info >= (3, 11):
@@ -192,7 +192,7 @@ def _measures(value: Any) -> tuple[str, ...]:
     return tuple(value)
 
 
-def _draws(draws_t: Any, base: Path) -> tuple[int, int, Uncertainty | None]:
+def _draws(draws_t: Any, base: Path, chair: Chair | Layout) -> tuple[int, int, Uncertainty | None]:
     if draws_t is None:
         return 1, 0, None
     if not isinstance(draws_t, Mapping) or set(draws_t) - {"n", "seed", "uncertainty"}:
@@ -204,7 +204,12 @@ def _draws(draws_t: Any, base: Path) -> tuple[int, int, Uncertainty | None]:
         raise _bad("draws.seed", seed, "an integer >= 0")
     if not isinstance(draws_t.get("uncertainty"), str):
         raise _bad("draws.uncertainty", draws_t.get("uncertainty"), "an uncertainty TOML file")
-    return n, seed, load_uncertainty(base / draws_t["uncertainty"])
+    if not isinstance(chair, Layout):
+        return n, seed, load_uncertainty(base / draws_t["uncertainty"])
+    # a layout sweep: the tables name the layout's axes (stability.sweep.layouts)
+    unc = load_uncertainty(base / draws_t["uncertainty"], chair_fields=False)
+    check_layout_uncertainty(chair, unc)
+    return n, seed, unc
 
 
 def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec:
@@ -248,9 +253,9 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     if not isinstance(grid_t, Mapping):
         raise _bad("grid", grid_t, "a table [grid] of axis = [values]")
     grid = _grid(grid_t, chair)
-    n, seed, unc = _draws(data.get("draws"), base)
+    n, seed, unc = _draws(data.get("draws"), base, chair)
     if isinstance(chair, Layout):
-        _check_layout(measures, model, unc)
+        _check_layout(measures, model)
     chunk_rows = data.get("chunk_rows", 300)
     if isinstance(chunk_rows, bool) or not isinstance(chunk_rows, int) or chunk_rows < 1:
         raise _bad("chunk_rows", chunk_rows, "an integer >= 1")
@@ -289,16 +294,13 @@ def _grid(grid_t: Mapping[str, Any], chair: Chair | Layout) -> tuple:
     return tuple(grid)
 
 
-def _check_layout(measures: tuple, model: str, unc: Uncertainty | None) -> None:
+def _check_layout(measures: tuple, model: str) -> None:
     """What a layout sweep (a layout, or reverse speeds) refuses, in one line each."""
     other = [m for m in measures if m not in LAYOUT_MEASURES]
     if other:
         raise _bad("measures", other, f"for a layout or reverse speeds one of {list(LAYOUT_MEASURES)}")
     if model != "exact":
         raise _bad("model", model, "'exact' for a layout or reverse speeds (the layout's equations)")
-    if unc is not None:
-        raise _bad("draws", "a [draws] table", "none for a layout or reverse speeds (the uncertainty files name "
-                   "the short form's fields)")
 
 
 def loads_spec(text: str, base: Path | None = None) -> SweepSpec:

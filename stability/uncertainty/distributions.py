@@ -54,6 +54,9 @@ class Distribution:
     low, high : float or None
         Uniform: bounds (field units, or fractional deviations from the chair's value if ``relative``).
     relative : bool
+    chair_fields : bool
+        The fields are the short form's (checked here); False: another model's parameters, such as a wheel
+        layout's sweep axes, which the caller checks (:func:`stability.sweep.layouts.check_layout_axis`).
     """
 
     name: str
@@ -64,6 +67,7 @@ class Distribution:
     low: float | None = None
     high: float | None = None
     relative: bool = False
+    chair_fields: bool = True
 
     def __post_init__(self) -> None:
         def bad(key: str, value: Any, valid: str) -> ValueError:
@@ -71,7 +75,7 @@ class Distribution:
 
         valid = set(chair_mod.field_names()) - _TEXT_FIELDS - {"camber_coefficient"}
         for f in self.fields:
-            if f not in valid:
+            if self.chair_fields and f not in valid:
                 raise bad("field" if f != self.name else "table", f, f"a numeric chair field {sorted(valid)}")
         if self.kind == "normal":
             if self.std is None or not math.isfinite(self.std) or self.std < 0:
