@@ -68,7 +68,11 @@ def test_bad_layout_options_are_refused_in_one_line(tmp_path, capsys):
             (["--chair", "mid-wheel-drive", "--quick", "--compare", "ej-premier", "--json"],
              "--compare needs the full report"),
             (["--chair", "mid-wheel-drive", "--json", "--uncertainty", "docs/examples/measured_chair.uncertainty.toml"],
-             "not available for a wheel layout"),
+             "numeric layout field"),
+            (["--chair", "mid-wheel-drive", "--json", "--quick", "--uncertainty",
+              "docs/examples/mid_wheel_drive.uncertainty.toml"], "--uncertainty needs the full report"),
+            (["--chair", "mid-wheel-drive", "--json", "--samples", "0", "--uncertainty",
+              "docs/examples/mid_wheel_drive.uncertainty.toml"], "--samples 0 is invalid"),
             (["--chair", "mid-wheel-drive", "--json", "--reaction-time", "0.5"], "--reaction-time")):
         assert main(argv) == 2, argv
         err = capsys.readouterr().err.strip()
@@ -119,3 +123,57 @@ def test_the_clinician_command_on_a_layout(tmp_path, capsys):
                  str(txt)]) == 0
     assert "1 page" in capsys.readouterr().out and layout_problems(out) == []
     assert "-0.5 m/s" in txt.read_text()
+
+
+def test_layout_uncertainty_fields_are_the_layouts_and_a_bad_one_is_named(tmp_path):
+    from stability.report.layout_uncertainty import layout_fields, load_layout_uncertainty
+
+    lay = layout_preset("mid-wheel-drive")
+    assert {"m", "i_z", "h", "caster_1_trail", "wheel_2_x"} <= layout_fields(lay)
+    bad = tmp_path / "u.toml"
+    bad.write_text('[s1]\ndistribution = "normal"\nstd = 0.01\n')
+    with pytest.raises(ValueError, match="s1.*numeric layout field"):
+        load_layout_uncertainty(bad, lay)
+
+
+def test_layout_uncertainty_interval_follows_the_parameter_it_draws():
+    """A uniform drive-axle position x0 +/- 1 cm (one draw for both wheels): the growth rate is monotone in it,
+    so the 95 % interval lies inside the growth rates at x0 -/+ 1 cm (computed directly) and spans more than those
+    at x0 -/+ 0.9 cm (the 2.5 and 97.5 % quantiles of 1000 uniform draws are at +/- 0.95 cm, sampling SD 0.01 cm)."""
+    from stability.advise.layout_levers import apply_layout
+    from stability.layout.linear import growth_rates
+    from stability.report.layout_uncertainty import layout_uncertainty
+    from stability.uncertainty import Distribution, Uncertainty
+
+    lay = layout_preset("mid-wheel-drive")
+    x0 = lay.wheels[0].x
+    fields = ("wheel_1_x", "wheel_2_x")
+    unc = Uncertainty((Distribution("axle", fields, "uniform", low=x0 - 0.01, high=x0 + 0.01,
+                                    valid_fields=frozenset(fields)),))
+    r = layout_uncertainty(lay, unc, (0.75,), samples=1000, seed=0)
+    key, _, nom, lo, hi, fin = r.rows()[0]
+
+    def g(dx):
+        return float(growth_rates(apply_layout(lay, [(f, x0 + dx) for f in fields]), [0.75])[0])
+
+    outer = sorted((g(-0.01), g(0.01)))
+    inner = sorted((g(-0.009), g(0.009)))
+    assert key == "growth_rate_1_s@0.75" and nom == pytest.approx(g(0.0), rel=1e-12) and fin == 1.0
+    assert outer[0] <= lo < inner[0] and inner[1] < hi <= outer[1]
+    assert r.result.dominant_parameters[0][0] == "axle"
+
+
+@pytest.mark.slow
+def test_the_uncertainty_page_of_a_layout_report(tmp_path, capsys, monkeypatch):
+    import stability.report.layout_report as lr
+    from pdf_layout import layout_problems
+
+    real = lr.compute_layout_report
+    monkeypatch.setattr(lr, "compute_layout_report", lambda layout, **kw: real(layout, **{**kw, "nonlinear": _fake}))
+    out = tmp_path / "u.pdf"
+    assert main(["--chair", "mid-wheel-drive", "--uncertainty", "docs/examples/mid_wheel_drive.uncertainty.toml",
+                 "--samples", "200", "-o", str(out), "--json", "--no-progress"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["uncertainty"]["samples"] == 200 and d["options"]["samples"] == 200
+    assert [m["measure"] for m in d["uncertainty"]["measures"]][-1] == "static_stability_deg"
+    assert layout_problems(out) == []

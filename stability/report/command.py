@@ -155,7 +155,8 @@ def _run_chair(args: argparse.Namespace) -> int:
 def _layout(args: argparse.Namespace) -> int:
     """A wheel layout: its own report (:mod:`stability.report.layout_report`), forward and in reverse; with
     ``--clinician`` the short form's one-page sheet from the layout's model, with ``--quick`` the decision and that
-    sheet, with ``--compare`` a comparison page (the baseline a layout or a short-form chair as a layout)."""
+    sheet, with ``--compare`` a comparison page (the baseline a layout or a short-form chair as a layout), with
+    ``--uncertainty`` a page of the linear results' intervals over the file's layout fields."""
     from stability import __version__
     from stability.layout.io import resolve_layout
     from stability.report.layout_report import compute_layout_report, write_layout_report
@@ -170,7 +171,13 @@ def _layout(args: argparse.Namespace) -> int:
     if args.speeds != D.ADVISE_SPEEDS:
         raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")
     baseline = None if args.compare is None else _layout_baseline(args.compare)
-    r = compute_layout_report(layout, progress=not args.no_progress, quick=args.quick, baseline=baseline)
+    unc = None
+    if args.uncertainty is not None:
+        from stability.report.layout_uncertainty import load_layout_uncertainty
+
+        unc = load_layout_uncertainty(args.uncertainty, layout)
+    r = compute_layout_report(layout, progress=not args.no_progress, quick=args.quick, baseline=baseline,
+                              uncertainty=unc, samples=args.samples, seed=args.seed)
     n = 0
     with output_files(outputs) as tmp:
         if args.output:
@@ -183,7 +190,9 @@ def _layout(args: argparse.Namespace) -> int:
 
             head = {"stability_version": __version__, "chair": layout.name,
                     "chair_parameters": dataclasses.asdict(layout), "model": "exact",
-                    "options": {"output": args.output, "quick": bool(args.quick), "compare": args.compare},
+                    "options": {"output": args.output, "quick": bool(args.quick), "compare": args.compare,
+                                "uncertainty": args.uncertainty, "samples": args.samples if unc else None,
+                                "seed": args.seed if unc else None},
                     "schema": "stability.report.layout/1"}
             emit_json({**head, **r.data}, args, write_to=tmp.get("--json-file"))
     if args.output:
@@ -206,14 +215,15 @@ def _check_layout_args(args: argparse.Namespace) -> dict:
     if args.model != "exact":
         raise ValueError(f"--model {args.model} is invalid for a wheel layout; valid values: exact (the layout's "
                          "equations are the exact model's)")
-    if args.uncertainty is not None:
-        raise ValueError(f"--uncertainty {args.uncertainty!r} is not available for a wheel layout yet (the "
-                         "uncertainty files name the short form's fields); valid: a short-form chair")
-    if args.samples != D.SAMPLES or args.seed != D.SEED:
+    if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
         raise ValueError("--samples and --seed need --uncertainty FILE")
-    if args.quick and not args.clinician and args.compare:
-        raise ValueError("--compare needs the full report: --quick is the decision and the clinician sheet "
-                         "(drop --quick)")
+    if not 1 <= args.samples <= MAX_SAMPLES:
+        raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES}")
+    if args.quick and not args.clinician:
+        for flag, given in (("--compare", args.compare), ("--uncertainty", args.uncertainty)):
+            if given:
+                raise ValueError(f"{flag} needs the full report: --quick is the decision and the clinician sheet "
+                                 "(drop --quick)")
     return outputs
 
 

@@ -15,6 +15,7 @@ import math
 import os
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import Any
 
 from matplotlib.figure import Figure
 
@@ -30,6 +31,7 @@ from stability.layout.model import Layout
 from stability.layout.text import layout_text
 from stability.report.clinician_sheet import ClinicianSheet
 from stability.runtime.files import write_pdf
+from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
 from stability.study.layout_equal_instability import layout_equal_instability_interval
 from stability.study.layout_impulse import layout_critical_impulses, slow_divergences
@@ -43,6 +45,7 @@ COMPARE_SPEEDS = (0.5, REFERENCE_SPEED, 1.0, 1.5, -REFERENCE_SPEED)
 SHEET_TITLE, COMPARE_TITLE, CURVES_TITLE, NA_TITLE = ("For the clinician", "Compared with the baseline",
                                                       "Growth rates against speed, both chairs",
                                                       "Not applicable to a wheel layout")
+UNCERTAINTY_TITLE = "Parameter uncertainty: the linear results' intervals"
 
 #: The short form's report sections that do not apply to a layout, each with why, in one line.
 NOT_APPLICABLE = (
@@ -52,7 +55,9 @@ NOT_APPLICABLE = (
      "short form's fields; a layout's levers are the advisor's (caster trail per row, drive-axle position, "
      "suspension), whose effects the decision lists."),
     ("Thesis model against the exact model", "a layout's equations are the exact model's only."),
-    ("Parameter uncertainty", "the uncertainty files name the short form's fields."),
+    ("Parameter uncertainty (nonlinear measures)", "--uncertainty FILE (tables naming the layout's fields: m, i_z, "
+     "h, caster_K_FIELD, wheel_J_FIELD) propagates the linear growth rates and the static stability; the critical "
+     "impulse and the equal-instability speed are a simulator search per draw and are not propagated."),
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
     ("The driver", "the driver's linear model is the short form's (docs/driver.md)."),
@@ -78,6 +83,8 @@ class LayoutReport:
         The clinician sheet (``--quick``).
     comparison : Comparison or None
         The comparison with the baseline (``--compare``).
+    uncertainty : stability.report.layout_uncertainty.LayoutUncertainty or None
+        The propagated intervals (``--uncertainty``).
     """
 
     layout: Layout
@@ -86,6 +93,7 @@ class LayoutReport:
     data: dict
     sheet: ClinicianSheet | None = None
     comparison: Comparison | None = None
+    uncertainty: Any = None
 
     def page_texts(self) -> list[tuple[str, list[str]]]:
         """Each page's title and text lines, in page order (what :func:`layout_report_pages` draws)."""
@@ -101,6 +109,8 @@ class LayoutReport:
 
             out.append((COMPARE_TITLE, format_comparison(self.comparison).split("\n")))
             out.append((CURVES_TITLE, [comparison_caption(self.comparison)]))
+        if self.uncertainty is not None:
+            out.append((UNCERTAINTY_TITLE, self.uncertainty.lines()))
         if self.not_applicable:
             out.append((NA_TITLE, [f"{t}: {w}" for t, w in self.not_applicable]))
         return out
@@ -200,7 +210,8 @@ def _shimmy(layout: Layout, speeds: tuple) -> tuple[list[str], list[dict]]:
 
 def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), progress: bool = False,
                           nonlinear: Callable | None = None, quick: bool = False,
-                          baseline: Layout | None = None) -> LayoutReport:
+                          baseline: Layout | None = None, uncertainty: Any = None, samples: int = D.SAMPLES,
+                          seed: int = D.SEED) -> LayoutReport:
     """Every section of the layout's report.
 
     Parameters
@@ -215,13 +226,18 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
         The quick report: the decision and the clinician sheet only.
     baseline : Layout, optional
         Compare with this layout (a short-form chair as :meth:`Layout.from_chair`).
+    uncertainty : stability.uncertainty.Uncertainty, optional
+        Distributions of the layout's fields (:func:`stability.report.layout_uncertainty.load_layout_uncertainty`).
+    samples, seed : int
+        Monte Carlo draws and their seed with ``uncertainty``.
 
     Returns
     -------
     LayoutReport
     """
-    if quick and baseline is not None:
-        raise ValueError("baseline: the quick report is the decision and the clinician sheet; drop quick to compare")
+    if quick and (baseline is not None or uncertainty is not None):
+        raise ValueError("baseline, uncertainty: the quick report is the decision and the clinician sheet; drop quick "
+                         "to compare or to propagate an uncertainty")
     a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear)
     d = decide(a)
     decision = ("The decision (forward driving)", tuple(d.paragraphs()) + (
@@ -267,7 +283,13 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
         cd = comparison_dict(comparison, {})
         data["comparison"] = {k: cd[k] for k in ("chairs", "reference", "speeds_m_s", "measures", "verdicts", "push")
                               if k in cd}
-    return LayoutReport(layout, tuple(sections), NOT_APPLICABLE, data, comparison=comparison)
+    unc = None
+    if uncertainty is not None:
+        from stability.report.layout_uncertainty import layout_uncertainty
+
+        unc = layout_uncertainty(layout, uncertainty, COMPARE_SPEEDS, samples=samples, seed=seed)
+        data["uncertainty"] = unc.to_mapping()
+    return LayoutReport(layout, tuple(sections), NOT_APPLICABLE, data, comparison=comparison, uncertainty=unc)
 
 
 def _sheet_data(s: ClinicianSheet) -> dict:
@@ -315,6 +337,8 @@ def layout_report_pages(r: LayoutReport) -> Iterator[Figure]:
         yield P.text_page(COMPARE_TITLE, format_comparison(r.comparison).split("\n"), sub, monospace=True,
                           fontsize=8.0, width=140)
         yield _curves_page(r.comparison, sub)
+    if r.uncertainty is not None:
+        yield P.text_page(UNCERTAINTY_TITLE, r.uncertainty.lines(), sub)
     if r.not_applicable:
         yield P.text_page(NA_TITLE, [f"{t}: {w}" for t, w in r.not_applicable], sub)
 
