@@ -109,7 +109,7 @@ def test_compare_a_layout_with_the_short_form_and_with_a_layout(tmp_path):
         g = {q.key: q.values for q in direct.quantities}["growth_rate_1_s@0.75"]
         winner = r.comparison.labels[0 if g[0] < g[1] else 1]
         assert f"forwards {winner}'s heading error grows more slowly" in comparison_caption(r.comparison)
-    assert write_layout_report(r, tmp_path / "c.pdf") == 10
+    assert write_layout_report(r, tmp_path / "c.pdf") == 9          # 6 sections, table, curves, not applicable
     assert layout_problems(tmp_path / "c.pdf") == []
     json.dumps(r.data["comparison"], allow_nan=False)
 
@@ -165,8 +165,9 @@ def test_layout_uncertainty_interval_follows_the_parameter_it_draws():
 
 @pytest.mark.slow
 def test_the_uncertainty_page_of_a_layout_report(tmp_path, capsys, monkeypatch):
-    import stability.report.layout_report as lr
     from pdf_layout import layout_problems
+
+    import stability.report.layout_report as lr
 
     real = lr.compute_layout_report
     monkeypatch.setattr(lr, "compute_layout_report", lambda layout, **kw: real(layout, **{**kw, "nonlinear": _fake}))
