@@ -7,7 +7,8 @@ compiled (:class:`stability.simulate.controller.SampledController` in
 :func:`stability.simulate.layout.simulate_layout`): at each sample it reads the gyro (the gyro design) or the
 layout's states (the full-state design, the caster angles from their trailing angle, 0 or 180 deg), commands a
 yaw moment, saturated at the drive wheels' torque limit
-(``tau_max w / r``, :func:`stability.assist.layout.drive_lever`) and held until the next sample, and the estimator
+(``tau_max w / r``, ``w`` the design's drive lever, :func:`stability.assist.layout.drive_lever`) and held until
+the next sample, and the estimator
 is driven by the saturated command (no wind-up); the motors apply it through the drive train's first-order lag.
 The full-state design measures the applied moment of the motor lag, which the simulator does not give the
 controller: with a motor lag it is refused (use the gyro design).
@@ -70,8 +71,6 @@ def layout_controller(d: Design, layout: Layout, drive: DriveTrain, *, sample_ti
     SampledController
         Measuring the yaw rate (gyro design) or the layout's states (full-state).
     """
-    from stability.assist.layout import drive_lever
-
     T = float(d.sample_time if sample_time is None else sample_time)
     p = d.plant
     if d.kind == "full-state" and p.n != len(p.internal) + 1:
@@ -95,7 +94,7 @@ def layout_controller(d: Design, layout: Layout, drive: DriveTrain, *, sample_ti
         Cy[i, order.index(kernel[n])] = 1.0
         if n.startswith("delta_") and not n.startswith("delta_d_") and d.speed < 0:
             offset[i] = -math.pi                 # the caster angle from its reversing trail
-    lim = drive.torque_limit * drive_lever(layout) / drive.wheel_radius if saturate else math.inf
+    lim = drive.torque_limit * d.track_width / drive.wheel_radius if saturate else math.inf
     return SampledController(T, Cy, np.zeros(len(names)), Az=A0, Bu=G, By=B, Cz=-C.reshape(-1), limit=lim,
                              offset=offset, name=f"{d.kind} assist designed at {d.speed:g} m/s",
                              state_names=order)
@@ -185,8 +184,6 @@ def layout_recovery(layout: Layout, d: Design, drive: DriveTrain, *, push: float
     -------
     LayoutRecovery
     """
-    from stability.assist.layout import drive_lever
-
     speed = float(d.speed)
     ctl = layout_controller(d, layout, drive)
     closed = _run(layout, speed, push, duration, ctl, drive.motor_time_constant)
@@ -195,7 +192,7 @@ def layout_recovery(layout: Layout, d: Design, drive: DriveTrain, *, push: float
     head = np.degrees(np.asarray(closed.heading_rad))
     last = t >= t[-1] - 1.0
     final_rate = float(np.mean(np.asarray(closed.yaw_rate_rad_s)[last]))
-    per_wheel = np.abs(np.asarray(closed.yaw_moment_N_m)) * drive.wheel_radius / drive_lever(layout)
+    per_wheel = np.abs(np.asarray(closed.yaw_moment_N_m)) * drive.wheel_radius / d.track_width
     win = t <= THESIS_PUSH.duration + TORQUE_WINDOW_S
     tl = time_to_level(np.asarray(opened.t_s), np.asarray(opened.yaw_rate_rad_s), LEVEL)
     return LayoutRecovery(
