@@ -178,3 +178,11 @@ def test_the_uncertainty_page_of_a_layout_report(tmp_path, capsys, monkeypatch):
     assert d["uncertainty"]["samples"] == 200 and d["options"]["samples"] == 200
     assert [m["measure"] for m in d["uncertainty"]["measures"]][-1] == "static_stability_deg"
     assert layout_problems(out) == []
+
+
+def test_a_reverse_bump_run_is_valid_while_it_backs():
+    """Backing at 0.75 m/s the run is valid while it keeps backing (the short form's speed-reversal rule along the
+    direction of travel): it travels about 7.5 m in 10 s, not 0."""
+    s = layout_clinician_sheet(layout_preset("power-fwd-base"), (-0.75,))
+    m = s.motions[0]
+    assert m.until == pytest.approx(10.0, abs=0.01) and m.travel == pytest.approx(7.5, rel=0.05)

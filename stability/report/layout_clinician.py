@@ -24,6 +24,8 @@ import math
 from types import SimpleNamespace
 from typing import Any, cast
 
+import numpy as np
+
 from stability.layout.linear import growth_rates
 from stability.layout.model import Layout
 from stability.layout.statics import tip_angles
@@ -42,9 +44,12 @@ __all__ = ["layout_clinician_sheet", "layout_response", "layout_slope_effort"]
 
 
 def _as_result(r: LayoutRun) -> Any:
-    """The run in the short form's result names (what :func:`run_validity` and :class:`Criterion` read)."""
+    """The run in the short form's result names (what :func:`run_validity` and :class:`Criterion` read); ``u``
+    along the direction of travel, so that a reverse run's valid part ends where it stops backing, as a forward
+    run's ends where it stops going forwards."""
     w = {k: {"first_time": v["first_time_s"]} for k, v in r.warnings.items()}
-    return SimpleNamespace(t=r.t_s, yaw_rate=r.yaw_rate_rad_s, heading=r.heading_rad, u=r.u_m_s, warnings=w,
+    u = np.asarray(r.u_m_s) * (-1.0 if r.speed_m_s < 0 else 1.0)
+    return SimpleNamespace(t=r.t_s, yaw_rate=r.yaw_rate_rad_s, heading=r.heading_rad, u=u, warnings=w,
                            stopped_by_warnings=r.ended in ("slip warnings", "load warnings"))
 
 
