@@ -80,7 +80,8 @@ def test_the_command_writes_a_layout_report(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["--chair", "mid-wheel-drive", "--json", "--quick"], "--quick is not available for a wheel layout"),
+    (["--chair", "mid-wheel-drive", "--json", "--quick", "--compare", "ej-premier"],
+     "--compare needs the full report"),
     (["--chair", "mid-wheel-drive", "--json", "--model", "thesis"], "--model thesis is invalid for a wheel layout"),
     (["--chair", "mid-wheel-drive", "--json", "--set", "m=90"], "--set is not available for a wheel layout"),
 ])

@@ -143,10 +143,12 @@ def test_random_draws_of_a_layout_are_the_short_forms_draws(tmp_path):
 
     base = layout_preset("mid-wheel-drive")
     u = loads_uncertainty('[m]\ndistribution = "uniform"\nlow = 0.1\nhigh = 0.2\nrelative = true\n')
-    assert u.distributions[0].chair_fields                          # a chair field name reads as one
+    assert u.distributions[0].valid_fields is None                  # a chair field name reads as one
+    from stability.sweep.layouts import layout_axes
     from stability.uncertainty.io import from_mapping
 
-    u = from_mapping({"m": {"distribution": "uniform", "low": 0.1, "high": 0.2, "relative": True}}, False)
+    u = from_mapping({"m": {"distribution": "uniform", "low": 0.1, "high": 0.2, "relative": True}},
+                     layout_axes(base))
     unit = u.unit_draws(4, 3)
     for r in heavy:
         drawn = draw_layout(base, u, unit, r["draw"])

@@ -9,6 +9,8 @@ from __future__ import annotations
 from value_groups import Table, fixed, group, sig, signed
 
 DRIVE_LAYOUTS = ("power-fwd-base", "mid-wheel-drive", "power-rwd-base")
+#: The relative error within which tests/test_assist.py and tests/test_assist_layout_checks.py hold the decay.
+DECAY_TOLERANCE = 0.05
 SLOPE_DEG, SLOPE_SPEED = 2.0, 1.0
 
 
@@ -94,3 +96,86 @@ def layout_guo() -> dict:
     return {"table": Table(("chair", "push", *(f"|heading| deg, casters at {a:g} deg" for a in angles)),
                            tuple(rows)),
             "speed": f"{abs(speed):g}", "distance": f"{distance:g}"}
+
+
+@group("layout_sheet", "python -m stability.report --chair NAME --clinician --speeds 0.5,0.75,1 "
+       "(stability.report.layout_clinician.layout_clinician_sheet)")
+def layout_sheet() -> dict:
+    """Per drive layout: what it does after the bump at each of the sheet's speeds, the cross-slope drive difference
+    and the smallest tip angle; and the thesis chair's sheet as a layout against the short form's."""
+    from stability.chair import preset
+    from stability.layout import Layout
+    from stability.layout.presets import layout_preset
+    from stability.report.clinician import CLINIC_SLOPE_DEG
+    from stability.report.clinician_sheet import clinician_sheet
+    from stability.report.layout_clinician import layout_clinician_sheet
+
+    speeds = (0.5, 0.75, 1.0)
+    rows = []
+    for name in DRIVE_LAYOUTS:
+        s = layout_clinician_sheet(layout_preset(name), speeds)
+        e = s.effort
+        effort = "-" if e is None else (f"{sig(e.difference, 3)} N m ({e.harder_side} motor)" if e.drive == "motor"
+                                        else f"{sig(e.difference, 3)} N ({e.harder_side} rim)")
+        rows.append((name, "; ".join(m.kind for m in s.motions), effort, fixed(min(s.tipping.values()), 1)))
+    c = preset("ej-premier")
+    a, b = clinician_sheet(c, speeds), layout_clinician_sheet(Layout.from_chair(c), speeds)
+    ttl = [(x.time_to_level, y.time_to_level) for x, y in zip(a.motions, b.motions, strict=True)
+           if x.time_to_level != float("inf")]
+    worst = max(abs(y - x) / x for x, y in ttl)
+    return {"table": Table(("layout", "after the bump at " + ", ".join(f"{u:g}" for u in speeds) + " m/s",
+                            f"drive difference on {CLINIC_SLOPE_DEG:g} deg", "smallest tip angle deg"), tuple(rows)),
+            "speeds": ", ".join(f"{u:g}" for u in speeds), "ej_time_agreement": f"{worst:.0e}"}
+
+
+@group("layout_assist_checks", "python -m stability.assist --chair NAME --speeds 1 --reverse "
+       "(stability.assist.layout_checks.layout_checks)")
+def layout_assist_checks() -> dict:
+    """Per drive layout and direction at 1 m/s: the peak torque after the reference and the strong push, the
+    peak heading error after the strong push, and the decay against the linear prediction; the power chair as a
+    layout against the short form's checks."""
+    import warnings
+
+    import numpy as np
+
+    from stability.assist.controller import DigitalController
+    from stability.assist.layout import layout_design
+    from stability.assist.layout_checks import CHECK_SPEEDS, layout_checks, layout_decay_agreement, layout_recovery
+    from stability.assist.recovery import STRONG_FORCE, decay_agreement, recovery
+    from stability.assist.schedule import schedule
+    from stability.chair import preset
+    from stability.chair.power import DriveTrain
+    from stability.layout import Layout
+    from stability.layout.presets import layout_preset
+
+    drive, rows = DriveTrain(), []
+    for name in DRIVE_LAYOUTS:
+        lay = layout_preset(name)
+        for speed in (1.0, -1.0):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                chk = layout_checks(lay, [layout_design(lay, speed, "gyro", drive=drive)], drive)
+            ref, strong = chk.recoveries
+            a = chk.decays[0]
+            rows.append((name, "forward" if speed > 0 else "reverse", fixed(ref.peak_torque_N_m, 1),
+                         fixed(strong.peak_torque_N_m, 1), fixed(strong.peak_heading_error_deg, 2),
+                         f"{fixed(a.predicted_1_s, 2)} / {fixed(a.fitted_1_s, 2)}"))
+    c = preset("power-fwd")
+    sched = schedule(c, np.array([1.0]), "gyro")
+    d = sched.at(1.0)
+    lay = Layout.from_chair(c)
+    dl = layout_design(lay, 1.0, "gyro", drive=sched.drive, gyro=sched.gyro)
+    short = recovery(c, 1.0, DigitalController(d, c, sched.drive, gyro=sched.gyro, noise=False),
+                     impulse_force=STRONG_FORCE)
+    mine = layout_recovery(lay, dl, sched.drive, push=STRONG_FORCE)
+    da, db = decay_agreement(sched, 1.0), layout_decay_agreement(lay, dl, sched.drive)
+    return {"table": Table(("layout (1 m/s)", "direction", "peak torque N m, reference push",
+                            "peak torque N m, strong push", "peak heading error deg, strong push",
+                            "decay 1/s linear / simulated"), tuple(rows)),
+            "short_torque": fixed(short.peak_torque_N_m, 2), "layout_torque": fixed(mine.peak_torque_N_m, 2),
+            "short_heading": fixed(short.peak_heading_error_deg, 3),
+            "layout_heading": fixed(mine.peak_heading_error_deg, 3),
+            "decay_agreement": f"{abs(db.fitted_1_s - da.fitted_1_s) / abs(da.fitted_1_s):.0e}",
+            "strong": f"{STRONG_FORCE:g}",
+            "check_speeds": ", ".join(f"{u:g}" for u in CHECK_SPEEDS[:-1]) + f" and {CHECK_SPEEDS[-1]:g}",
+            "decay_tolerance": f"{100 * DECAY_TOLERANCE:g}"}

@@ -10,7 +10,9 @@ wheels (:func:`stability.study.layout_slope.drive_wheels`) and ``r`` their radiu
 those of the continuous and the sampled loop (:func:`.digital.margin_pair`), and the safe top speed the highest
 design speed at which the sampled loop's margins hold there and below (:func:`.top_speed.top_speed` with the
 margins: the torque and fault constraints need the short form's simulations and are named as not checked).
-Forward and reverse each have their own grid and top speed.  See ``docs/assist.md``.
+Forward and reverse each have their own grid and top speed.  With ``check`` the closed loop is simulated with the
+layout simulator in each direction (:mod:`.layout_checks`: recovery after a push, the torque it takes, the decay
+against the linear prediction).  See ``docs/assist.md``.
 """
 
 from __future__ import annotations
@@ -182,6 +184,8 @@ class LayoutAssist:
         Safe top speed of each direction (speeds as magnitudes, m/s).
     lever_m, wheel_radius_m : float
         Drive-wheel lever and radius, m.
+    forward_checks, reverse_checks : stability.assist.layout_checks.LayoutChecks or None
+        The nonlinear checks of each direction (None: not asked or no rows).
     """
 
     layout: str
@@ -192,6 +196,8 @@ class LayoutAssist:
     reverse_top: TopSpeed | None
     lever_m: float
     wheel_radius_m: float
+    forward_checks: Any = None
+    reverse_checks: Any = None
 
     def to_mapping(self) -> dict:
         """JSON-ready dict."""
@@ -201,7 +207,9 @@ class LayoutAssist:
         return {"layout": self.layout, "design": self.kind, "drive_lever_m": self.lever_m,
                 "wheel_radius_m": self.wheel_radius_m, "forward": [r.to_mapping() for r in self.forward],
                 "reverse": [r.to_mapping() for r in self.reverse], "forward_top_speed": top(self.forward_top),
-                "reverse_top_speed": top(self.reverse_top)}
+                "reverse_top_speed": top(self.reverse_top),
+                "forward_checks": None if self.forward_checks is None else self.forward_checks.to_mapping(),
+                "reverse_checks": None if self.reverse_checks is None else self.reverse_checks.to_mapping()}
 
 
 def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
@@ -222,7 +230,7 @@ def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, 
 
 def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *, reverse: bool = False,
                   weights: Weights = DEFAULT_WEIGHTS, drive: DriveTrain | None = None, gyro: GyroSensor = DEFAULT_GYRO,
-                  estimator: EstimatorWeights = DEFAULT_ESTIMATOR) -> LayoutAssist:
+                  estimator: EstimatorWeights = DEFAULT_ESTIMATOR, check: bool = False) -> LayoutAssist:
     """Designs, margins and the safe top speed of a layout's assist, forward and (optionally) in reverse.
 
     Parameters
@@ -236,6 +244,9 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
         Also design in reverse at the negatives of the positive speeds.
     weights, drive, gyro, estimator
         As :func:`layout_design`.
+    check : bool
+        Also the nonlinear checks of each direction with the layout simulator
+        (:func:`stability.assist.layout_checks.layout_checks` at :func:`~stability.assist.layout_checks.check_speeds`).
 
     Returns
     -------
@@ -250,8 +261,17 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
     rev = sorted(set(float(u) for u in U if u < 0) | ({-u for u in fwd} if reverse else set()), key=abs)
     f_rows, f_top = _rows(layout, fwd, kind, weights, drive, gyro, estimator)
     r_rows, r_top = _rows(layout, rev, kind, weights, drive, gyro, estimator)
+    checks: list[Any] = [None, None]
+    if check:
+        from stability.assist.layout_checks import check_speeds, layout_checks
+
+        for i, grid in enumerate((fwd, rev)):
+            if grid:
+                designs = [layout_design(layout, u, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
+                           for u in check_speeds(grid)]
+                checks[i] = layout_checks(layout, designs, drive)
     return LayoutAssist(layout.name, kind, f_rows, r_rows, f_top, r_top, drive_lever(layout),
-                        float(drive.wheel_radius))
+                        float(drive.wheel_radius), checks[0], checks[1])
 
 
 def format_layout_assist(a: LayoutAssist) -> str:
@@ -275,7 +295,8 @@ def format_layout_assist(a: LayoutAssist) -> str:
     def fmt(x: Any) -> str:
         return "inf" if x == "inf" or (isinstance(x, float) and math.isinf(x)) else f"{float(x):.3g}"
 
-    for rows, top, what in ((a.forward, a.forward_top, "forward"), (a.reverse, a.reverse_top, "reverse")):
+    for rows, top, what, chk in ((a.forward, a.forward_top, "forward", a.forward_checks),
+                                 (a.reverse, a.reverse_top, "reverse", a.reverse_checks)):
         for r in rows:
             d = r.margin_pair.to_dict()["discrete"]
             lines.append(f"{r.speed_m_s:7.2f} {r.open_loop_growth_1_s:9.3f} {r.closed_loop_growth_1_s:10.3f} "
@@ -283,6 +304,10 @@ def format_layout_assist(a: LayoutAssist) -> str:
                          f"{fmt(d['gain_db']):>8s} {fmt(d['phase_deg']):>9s} {fmt(d['delay_ms']):>9s}")
         if top is not None:
             words = top.sentence().split(" (not checked:")[0]
-            lines.append(f"{what}: {words} (margins only: the peak torque and the sensor faults need the short "
-                         "form's nonlinear runs, not checked for a layout)")
+            lines.append(f"{what}: {words} (from the margins; the sensor faults are not checked for a layout, the "
+                         "push torque below is not counted in it)")
+        if chk is not None:
+            lines.append(f"{what}, nonlinear checks (layout simulator, the sampled controller compiled in, torque "
+                         "limit, motor lag, noise-free; no --no-check):")
+            lines += chk.lines()
     return "\n".join(lines)

@@ -25,7 +25,7 @@ from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
            "recovery_runs", "recovery_table", "minimum_torque_limit", "DecayAgreement", "decay_agreement",
-           "fit_decay_rate"]
+           "decay_window", "fit_decay_rate"]
 
 #: The ten-times push of the strong-disturbance check (N): 400 N for 0.1 s.
 STRONG_FORCE = 10.0 * THESIS_PUSH.force
@@ -393,7 +393,34 @@ def decay_agreement(sched: Schedule, speed: float, *, impulse_force: float = THE
     """
     speed = check_speed(speed)
     d = sched.at(speed)
-    lam = closed_loop_poles(d)
+    slow, (t0, t1) = decay_window(closed_loop_poles(d), impulse_duration, decades)
+    w = abs(slow.imag)
+    c = sched.chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    gyro = replace(sched.gyro, sample_rate_hz=1000.0)
+    ctl = DigitalController(d, c, sched.drive, gyro=gyro, noise=False, saturate=False)
+    res = _simulate(c, speed, ctl, impulse_force, impulse_duration, t1 + 0.1, 0.001, sched.model, "wchair")
+    fitted = fit_decay_rate(res.t, res.yaw_rate, t0, t1)
+    return DecayAgreement(speed, float(slow.real), fitted, abs(fitted - slow.real) / abs(slow.real),
+                          (t0, t1), float(w))
+
+
+def decay_window(lam: np.ndarray, impulse_duration: float, decades: float = 3.0) -> tuple[complex, tuple[float, float]]:
+    """The slowest closed-loop eigenvalue and the window in which its decay is fitted (:func:`decay_agreement`).
+
+    Parameters
+    ----------
+    lam : ndarray
+        Closed-loop eigenvalues, slowest first (:func:`stability.assist.design.closed_loop_poles`), 1/s.
+    impulse_duration : float
+        s.
+    decades : float
+        Decades of separation from the next-slowest mode and of fit span.
+
+    Returns
+    -------
+    (complex, (float, float))
+        The slowest eigenvalue (1/s) and the window (s).
+    """
     slow = lam[0]
     others = lam[np.abs(lam - np.conj(slow)) > 1e-9 * max(1.0, abs(slow))]
     others = others[np.abs(others - slow) > 1e-9 * max(1.0, abs(slow))]
@@ -402,14 +429,7 @@ def decay_agreement(sched: Schedule, speed: float, *, impulse_force: float = THE
     t0 = impulse_duration + decades * math.log(10) / gap
     w = abs(slow.imag)
     span = max(decades * math.log(10) / abs(slow.real), 3.5 * math.pi / w if w > 1e-6 else 0.0)
-    t1 = t0 + span
-    c = sched.chair.replace(pin_friction_left=0.0, pin_friction_right=0.0)
-    gyro = replace(sched.gyro, sample_rate_hz=1000.0)
-    ctl = DigitalController(d, c, sched.drive, gyro=gyro, noise=False, saturate=False)
-    res = _simulate(c, speed, ctl, impulse_force, impulse_duration, t1 + 0.1, 0.001, sched.model, "wchair")
-    fitted = fit_decay_rate(res.t, res.yaw_rate, t0, t1)
-    return DecayAgreement(speed, float(slow.real), fitted, abs(fitted - slow.real) / abs(slow.real),
-                          (t0, t1), float(w))
+    return complex(slow), (float(t0), float(t0 + span))
 
 
 def fit_decay_rate(t: np.ndarray, y: np.ndarray, t_start: float, t_end: float) -> float:

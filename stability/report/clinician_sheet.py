@@ -28,7 +28,7 @@ from stability.report.validity import responses_validity
 from stability.settings.reference import THESIS_PUSH
 from stability.tipping import TipAngles, tip_angles
 
-__all__ = ["ClinicianSheet", "clinician_sheet", "sheet_lines", "sheet_figure", "SPRING_LEVER_M",
+__all__ = ["ClinicianSheet", "SlopeEffort", "clinician_sheet", "sheet_lines", "sheet_figure", "SPRING_LEVER_M",
            "TOLERABLE_PIN_FRICTION_N_M", "G"]
 
 #: Lever arm at which the spring scale is hooked, m (10 cm from the pin axis: a hand's width).
@@ -41,13 +41,38 @@ G = 9.80665
 DURATION_S = 10.0
 
 
+@dataclass(frozen=True)
+class SlopeEffort:
+    """The cross-slope paragraph's numbers at :data:`~stability.report.clinician.CLINIC_SLOPE_DEG`.
+
+    Attributes
+    ----------
+    drive : {"handrim", "motor"}
+    difference : float
+        ``|right - left|`` hand-rim force (N) or ``|left - right|`` motor torque (N m) that holds the line.
+    harder_side : str
+        ``"uphill"`` or ``"downhill"``: the drive wheel that works harder.
+    speed_m_s : float
+        m/s.
+    turn : str or None
+        Which way the uncorrected chair turns (None: not simulated).
+    """
+
+    drive: str
+    difference: float
+    harder_side: str
+    speed_m_s: float
+    turn: str | None
+
+
 @dataclass(frozen=True, eq=False)
 class ClinicianSheet:
     """Everything the clinician sheet prints.
 
     Attributes
     ----------
-    chair : Chair
+    chair : Chair or stability.layout.Layout
+        A short-form chair, or a wheel layout (:func:`stability.report.layout_clinician.layout_clinician_sheet`).
     speeds : tuple of float
         The user's speeds, m/s.
     motions : tuple of Motion
@@ -56,7 +81,8 @@ class ClinicianSheet:
         Linear doubling time of a heading error at each speed (free casters, no pin friction), s (None:
         the error dies out).
     slope : SlopeSection or None
-    tipping : TipAngles
+    tipping : TipAngles or dict
+        The short form's angles, or a layout's by direction (:func:`stability.layout.statics.tip_angles`).
     responses : stability.study.ResponseSet
         The runs behind ``motions``.
     validity : tuple of Validity
@@ -64,18 +90,22 @@ class ClinicianSheet:
         The user's reaction time, when given.
     human : stability.driver.HumanLimit or None
         Up to which speed that user holds the chair (None without a driver).
+    effort : SlopeEffort or None
+        A wheel layout's cross-slope numbers (:mod:`stability.report.layout_clinician`); a chair's come from
+        ``slope``.
     """
 
-    chair: Chair
+    chair: Any
     speeds: tuple
     motions: tuple
     doubling: tuple
     slope: SlopeSection | None
-    tipping: TipAngles
+    tipping: Any
     responses: Any = None
     validity: tuple = ()
     driver: Any = None
     human: Any = None
+    effort: SlopeEffort | None = None
 
 
 def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact", driver: Any = None) -> ClinicianSheet:
@@ -166,50 +196,97 @@ def sheet_lines(s: ClinicianSheet) -> dict[str, Any]:
         paras.append(f"THE USER. {human_sentence(s.human, s.driver)} (reaction time from {s.driver.source}; linear "
                      "model without pin friction: docs/driver.md)"
                      + (f"; at {', '.join(_kmh(u) for u in over)} this user cannot hold it." if over else "."))
-    if c.caster_position == "rear":
+    if getattr(c, "caster_position", None) == "rear":
         paras.append("USE. The thesis advises rear-caster chairs primarily indoors, inclines only with another "
                      "person's help, and not above about 2 m/s (7 km/h).")
-    sl = s.slope
-    if sl is not None and sl.per_degree is not None:
-        import numpy as np
-
-        slopes = np.asarray(sl.curve.cross_slopes_deg, float)
-        k = int(np.argmin(np.abs(slopes - CLINIC_SLOPE_DEG)))
-        if abs(slopes[k] - CLINIC_SLOPE_DEG) < 1e-9:
-            f = float(abs(sl.drive_difference[k]))
-            side = sl.harder_side[k] if k < len(sl.harder_side) else ""
-            if sl.drive == "handrim":
-                mean, sd = TYPICAL_PUSH_N
-                paras.append(
-                    f"CROSS SLOPE. On a {CLINIC_SLOPE_DEG:g} deg camber at {_kmh(sl.speed)} the {side} hand rim must "
-                    f"push {f:.0f} N harder than the other, all the way across, to go straight. That is a sustained "
-                    f"force: {100 * f / mean:.0f} % of a typical PEAK stroke force on the level ({mean:g} +/- "
-                    f"{sd:g} N, hand-rim study 2022), and a stroke's force is at its peak only briefly. "
-                    f"Uncorrected, the chair turns " + (sl.path.turn if sl.path is not None else "off its line")
-                    + ".")
-            else:
-                paras.append(f"CROSS SLOPE. On a {CLINIC_SLOPE_DEG:g} deg camber at {_kmh(sl.speed)} the {side} "
-                             f"motor must give {f:.3g} N m more than the other to go straight.")
-    mf = (c.pin_friction_left, c.pin_friction_right)
+    eff = s.effort if s.effort is not None else _chair_effort(s.slope)
+    if eff is not None:
+        if eff.drive == "handrim":
+            mean, sd = TYPICAL_PUSH_N
+            f = eff.difference
+            paras.append(
+                f"CROSS SLOPE. On a {CLINIC_SLOPE_DEG:g} deg camber at {_kmh(eff.speed_m_s)} the {eff.harder_side} "
+                f"hand rim must push {f:.0f} N harder than the other, all the way across, to go straight. That is a "
+                f"sustained force: {100 * f / mean:.0f} % of a typical PEAK stroke force on the level ({mean:g} +/- "
+                f"{sd:g} N, hand-rim study 2022), and a stroke's force is at its peak only briefly. "
+                f"Uncorrected, the chair turns " + (eff.turn if eff.turn is not None else "off its line") + ".")
+        else:
+            paras.append(f"CROSS SLOPE. On a {CLINIC_SLOPE_DEG:g} deg camber at {_kmh(eff.speed_m_s)} the "
+                         f"{eff.harder_side} motor must give {eff.difference:.3g} N m more than the other to go "
+                         "straight.")
+    mf, who = _pins(c)
     reads = " / ".join(f"{1000 * m / SPRING_LEVER_M / G:.0f} g ({m / SPRING_LEVER_M:.2g} N)" for m in mf)
     paras.append(
         f"CHECK THE PIN FRICTION. With the chair's weight on the caster, hook a spring scale {100 * SPRING_LEVER_M:g} "
         "cm from the swivel pin's axis, pull at right angles to that line and read the scale as the caster starts "
-        f"to swivel: friction = reading x {SPRING_LEVER_M:g} m. This chair's pins ({mf[0]:.2g} / {mf[1]:.2g} N m, "
-        f"left / right) should read {reads}; the thesis's tolerable maximum {TOLERABLE_PIN_FRICTION_N_M:g} N m "
-        f"reads {1000 * TOLERABLE_PIN_FRICTION_N_M / SPRING_LEVER_M / G:.0f} g "
+        f"to swivel: friction = reading x {SPRING_LEVER_M:g} m. This chair's pins ("
+        + " / ".join(f"{m:.2g}" for m in mf) + f" N m, {who}) should read {reads}; the thesis's tolerable maximum "
+        f"{TOLERABLE_PIN_FRICTION_N_M:g} N m reads {1000 * TOLERABLE_PIN_FRICTION_N_M / SPRING_LEVER_M / G:.0f} g "
         f"({TOLERABLE_PIN_FRICTION_N_M / SPRING_LEVER_M:.2g} N). More friction holds the line after a bump but "
         "makes turning harder and sustains a slow drift.")
-    t = s.tipping
-    fwd_main = c.caster_position == "rear"
-    main_dir, cast_dir = ("forward", "backward") if fwd_main else ("backward", "forward")
+    fore_aft, (left, right) = _tips(c, s.tipping)
     paras.append(
         "TIPPING (ISO 7176-1, brakes locked, static). The braked chair tips on a slope steeper than: "
-        f"{main_dir} (toward the main wheels) {t.toward_main_wheels_deg:.1f} deg, {cast_dir} (toward the casters) "
-        f"{t.toward_casters_deg:.1f} deg, sideways {t.lateral_left_deg:.1f} / {t.lateral_right_deg:.1f} deg (left "
-        "/ right). For scale: Loane and Kirby (1985) measured 28.6 deg mean rear stability of an occupied "
-        "conventional chair with brakes unlocked. Dynamic effects (a push, a kerb) tip it earlier.")
+        + ", ".join(f"{what} {deg:.1f} deg" for what, deg in fore_aft)
+        + f", sideways {left:.1f} / {right:.1f} deg (left / right). For scale: Loane and Kirby (1985) measured "
+        "28.6 deg mean rear stability of an occupied conventional chair with brakes unlocked. Dynamic effects (a "
+        "push, a kerb) tip it earlier.")
     return {"bump_header": header, "bump_rows": rows, "paragraphs": paras}
+
+
+def _chair_effort(sl: SlopeSection | None) -> SlopeEffort | None:
+    """A short-form chair's cross-slope numbers at :data:`CLINIC_SLOPE_DEG` from its slope section (None: not
+    solved there)."""
+    if sl is None or sl.per_degree is None:
+        return None
+    import numpy as np
+
+    slopes = np.asarray(sl.curve.cross_slopes_deg, float)
+    k = int(np.argmin(np.abs(slopes - CLINIC_SLOPE_DEG)))
+    if abs(slopes[k] - CLINIC_SLOPE_DEG) >= 1e-9:
+        return None
+    side = sl.harder_side[k] if k < len(sl.harder_side) else ""
+    return SlopeEffort(sl.drive, float(abs(sl.drive_difference[k])), side, float(sl.speed),
+                       sl.path.turn if sl.path is not None else None)
+
+
+def _pins(c: Any) -> tuple[tuple[float, ...], str]:
+    """Each caster's pin friction (N m) and which caster is which, in words."""
+    if isinstance(c, Chair):
+        return (c.pin_friction_left, c.pin_friction_right), "left / right"
+    from stability.advise.layout_levers import caster_rows, row_name
+
+    rows = caster_rows(c)
+    order = [k for row in rows for k in row]
+    words = []
+    for row in rows:
+        name = row_name(c, row)
+        words += [f"{name} " + ("left" if c.casters[k].y < 0 else "right" if c.casters[k].y > 0 else "centre")
+                  for k in row]
+    return tuple(float(c.casters[k].pin_friction) for k in order), " / ".join(words)
+
+
+def _tips(c: Any, t: TipAngles | dict) -> tuple[list[tuple[str, float]], tuple[float, float]]:
+    """The fore-and-aft tip angles with their words, and the sideways pair (left, right), deg."""
+    if isinstance(t, dict):                    # a layout's (stability.layout.statics.tip_angles)
+        return ([("forward", float(t["forward_deg"])), ("backward", float(t["backward_deg"]))],
+                (float(t["left_deg"]), float(t["right_deg"])))
+    main_dir, cast_dir = ("forward", "backward") if c.caster_position == "rear" else ("backward", "forward")
+    return ([(f"{main_dir} (toward the main wheels)", t.toward_main_wheels_deg),
+             (f"{cast_dir} (toward the casters)", t.toward_casters_deg)],
+            (t.lateral_left_deg, t.lateral_right_deg))
+
+
+def _subtitle(s: ClinicianSheet, model: str) -> str:
+    c = s.chair
+    if isinstance(c, Chair):
+        return (f"{c.caster_position} casters; s1 = {c.s1:.3g} m, trail = {c.trail:.3g} m, m = {c.m:.3g} kg, pin "
+                f"friction {c.pin_friction_left:.2g}/{c.pin_friction_right:.2g} N m; {model} model, stick-slip pin "
+                "friction")
+    trails = sorted({round(k.trail, 6) for k in c.casters})
+    return (f"wheel layout: {c.shape[0]} fixed wheels, {c.shape[1]} casters; trail = "
+            + "/".join(f"{x:.3g}" for x in trails) + f" m, m = {c.m:.3g} kg; layout model (exact), stick-slip pin "
+            "friction, casters trailing at the start")
 
 
 def sheet_figure(s: ClinicianSheet, model: str = "exact") -> Figure:
@@ -226,9 +303,7 @@ def sheet_figure(s: ClinicianSheet, model: str = "exact") -> Figure:
     """
     c = s.chair
     lines = sheet_lines(s)
-    fig, _ = P.page(f"{c.name} | for the clinician", f"{c.caster_position} casters; s1 = {c.s1:.3g} m, trail = "
-                    f"{c.trail:.3g} m, m = {c.m:.3g} kg, pin friction {c.pin_friction_left:.2g}/"
-                    f"{c.pin_friction_right:.2g} N m; {model} model, stick-slip pin friction", nrows=0, ncols=0)
+    fig, _ = P.page(f"{c.name} | for the clinician", _subtitle(s, model), nrows=0, ncols=0)
     ax_t = fig.add_axes((0.04, 0.70, 0.92, 0.17))
     ax_t.axis("off")
     P.table_axes(ax_t, lines["bump_header"], lines["bump_rows"], col_widths=[0.17, 0.27, 0.2, 0.16, 0.2],

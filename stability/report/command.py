@@ -153,29 +153,31 @@ def _run_chair(args: argparse.Namespace) -> int:
 
 
 def _layout(args: argparse.Namespace) -> int:
-    """A wheel layout: its own report (:mod:`stability.report.layout_report`), forward and in reverse."""
+    """A wheel layout: its own report (:mod:`stability.report.layout_report`), forward and in reverse; with
+    ``--clinician`` the short form's one-page sheet from the layout's model, with ``--quick`` the decision and that
+    sheet, with ``--compare`` a comparison page (the baseline a layout or a short-form chair as a layout), with
+    ``--uncertainty`` a page of the linear results' intervals over the file's layout fields."""
     from stability import __version__
     from stability.layout.io import resolve_layout
     from stability.report.layout_report import compute_layout_report, write_layout_report
 
-    if args.text and not args.output:
-        raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
-    outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
-    check_outputs(outputs, {"--chair": args.chair})
+    outputs = _check_layout_args(args)
+    layout = resolve_layout(args.chair)
+    if args.clinician:
+        from stability.report.layout_clinician import layout_clinician_sheet
 
-    for flag, given in (("--set", args.set), ("--quick", args.quick), ("--clinician", args.clinician),
-                        ("--uncertainty", args.uncertainty), ("--compare", args.compare),
-                        ("--reaction-time", args.reaction_time)):
-        if given:
-            raise ValueError(f"{flag} is not available for a wheel layout yet; valid: the full report (-o FILE.pdf, "
-                             "--json, --text)")
-    if args.model != "exact":
-        raise ValueError(f"--model {args.model} is invalid for a wheel layout; valid values: exact (the layout's "
-                         "equations are the exact model's)")
+        return _clinician(args, layout, outputs, lambda speeds: layout_clinician_sheet(layout, speeds),
+                          signed=True)
     if args.speeds != D.ADVISE_SPEEDS:
         raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")
-    layout = resolve_layout(args.chair)
-    r = compute_layout_report(layout, progress=not args.no_progress)
+    baseline = None if args.compare is None else _layout_baseline(args.compare)
+    unc = None
+    if args.uncertainty is not None:
+        from stability.report.layout_uncertainty import load_layout_uncertainty
+
+        unc = load_layout_uncertainty(args.uncertainty, layout)
+    r = compute_layout_report(layout, progress=not args.no_progress, quick=args.quick, baseline=baseline,
+                              uncertainty=unc, samples=args.samples, seed=args.seed)
     n = 0
     with output_files(outputs) as tmp:
         if args.output:
@@ -188,12 +190,52 @@ def _layout(args: argparse.Namespace) -> int:
 
             head = {"stability_version": __version__, "chair": layout.name,
                     "chair_parameters": dataclasses.asdict(layout), "model": "exact",
-                    "options": {"output": args.output}, "schema": "stability.report.layout/1"}
+                    "options": {"output": args.output, "quick": bool(args.quick), "compare": args.compare,
+                                "uncertainty": args.uncertainty, "samples": args.samples if unc else None,
+                                "seed": args.seed if unc else None},
+                    "schema": "stability.report.layout/1"}
             emit_json({**head, **r.data}, args, write_to=tmp.get("--json-file"))
     if args.output:
         print(f"wrote {args.output} ({n} pages)" + (f" and {args.text}" if args.text else ""),
               file=sys.stderr if args.json else sys.stdout)
     return 0
+
+
+def _check_layout_args(args: argparse.Namespace) -> dict:
+    """The options a layout's report refuses, each in one line; the output files."""
+    if args.text and not args.output:
+        raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
+    outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
+    check_outputs(outputs, {"--chair": args.chair, "--uncertainty": args.uncertainty, "--compare": args.compare})
+    for flag, given, valid in (("--set", args.set, "edit the layout file's [[wheel]] tables"),
+                               ("--reaction-time", args.reaction_time, "a short-form chair (the driver's model is "
+                                                                       "the short form's)")):
+        if given:
+            raise ValueError(f"{flag} is not available for a wheel layout; valid: {valid}")
+    if args.model != "exact":
+        raise ValueError(f"--model {args.model} is invalid for a wheel layout; valid values: exact (the layout's "
+                         "equations are the exact model's)")
+    if args.uncertainty is None and (args.samples != D.SAMPLES or args.seed != D.SEED):
+        raise ValueError("--samples and --seed need --uncertainty FILE")
+    if not 1 <= args.samples <= MAX_SAMPLES:
+        raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES}")
+    if args.quick and not args.clinician:
+        for flag, given in (("--compare", args.compare), ("--uncertainty", args.uncertainty)):
+            if given:
+                raise ValueError(f"{flag} needs the full report: --quick is the decision and the clinician sheet "
+                                 "(drop --quick)")
+    return outputs
+
+
+def _layout_baseline(spec: str):
+    """``--compare`` next to a layout: a layout, or a short-form chair as a layout
+    (:meth:`stability.layout.Layout.from_chair`)."""
+    from stability.layout.io import is_layout_spec, resolve_layout
+    from stability.layout.model import Layout
+
+    if is_layout_spec(spec):
+        return resolve_layout(spec)
+    return Layout.from_chair(load_chair(spec, []))
 
 
 def _brief_driver(args: argparse.Namespace):
@@ -205,7 +247,9 @@ def _brief_driver(args: argparse.Namespace):
     return driver_from_args(args) if args.quick else None
 
 
-def _clinician(args: argparse.Namespace, c, outputs: dict) -> int:
+def _clinician(args: argparse.Namespace, c, outputs: dict, make_sheet=None, signed: bool = False) -> int:
+    """``--clinician``: the one-page sheet of ``c`` (a chair, or a layout with its ``make_sheet(speeds)``; a
+    layout's speeds may be negative: ``signed``, their magnitudes in range)."""
     from stability.report.clinician_sheet import clinician_sheet, sheet_figure
     from stability.report.document import figure_texts
     from stability.runtime.files import write_pdf
@@ -216,10 +260,13 @@ def _clinician(args: argparse.Namespace, c, outputs: dict) -> int:
             raise ValueError(f"{flag} cannot be combined with --clinician (a one-page sheet at full resolution)")
     if not args.output:
         raise ValueError("--clinician needs -o FILE.pdf")
-    speeds = tuple(float(u) for u in parse_speeds(args.speeds, max_count=12))
-    if not speeds or min(speeds) < 0.1 or max(speeds) > 3.0:
-        raise ValueError(f"--speeds {args.speeds!r} is invalid; valid range: 0.1 to 3 m/s")
-    sheet = clinician_sheet(c, speeds, args.model, driver_from_args(args))
+    speeds = tuple(float(u) for u in parse_speeds(args.speeds, max_count=12, signed=signed))
+    mags = [abs(u) for u in speeds]
+    if not speeds or min(mags) < 0.1 or max(mags) > 3.0:
+        raise ValueError(f"--speeds {args.speeds!r} is invalid; valid range: "
+                         + ("0.1 <= |U| <= 3 m/s (negative: reverse)" if signed else "0.1 to 3 m/s"))
+    sheet = (clinician_sheet(c, speeds, args.model, driver_from_args(args)) if make_sheet is None
+             else make_sheet(speeds))
     texts: list[str] = []
 
     def figs():

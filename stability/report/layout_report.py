@@ -15,6 +15,7 @@ import math
 import os
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import Any
 
 from matplotlib.figure import Figure
 
@@ -24,15 +25,27 @@ from stability.advise.decision import decide
 from stability.advise.layout_measures import layout_shimmy_rows
 from stability.bench import run_bench
 from stability.bench.loads import SCORE_WORDS
+from stability.compare.compute import Comparison
 from stability.layout.linear import analyse_layout
 from stability.layout.model import Layout
 from stability.layout.text import layout_text
+from stability.report.clinician_sheet import ClinicianSheet
 from stability.runtime.files import write_pdf
+from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
 from stability.study.layout_equal_instability import layout_equal_instability_interval
 from stability.study.layout_impulse import layout_critical_impulses, slow_divergences
 
-__all__ = ["LayoutReport", "NOT_APPLICABLE", "compute_layout_report", "layout_report_pages", "write_layout_report"]
+__all__ = ["LayoutReport", "NOT_APPLICABLE", "COMPARE_SPEEDS", "compute_layout_report", "layout_report_pages",
+           "write_layout_report", "comparison_caption"]
+
+#: Signed speeds of a comparison's growth-rate rows, m/s: the use range forwards and the reference speed backwards.
+COMPARE_SPEEDS = (0.5, REFERENCE_SPEED, 1.0, 1.5, -REFERENCE_SPEED)
+#: The page titles of the optional pages.
+SHEET_TITLE, COMPARE_TITLE, CURVES_TITLE, NA_TITLE = ("For the clinician", "Compared with the baseline",
+                                                      "Growth rates against speed, both chairs",
+                                                      "Not applicable to a wheel layout")
+UNCERTAINTY_TITLE = "Parameter uncertainty: the linear results' intervals"
 
 #: The short form's report sections that do not apply to a layout, each with why, in one line.
 NOT_APPLICABLE = (
@@ -42,7 +55,9 @@ NOT_APPLICABLE = (
      "short form's fields; a layout's levers are the advisor's (caster trail per row, drive-axle position, "
      "suspension), whose effects the decision lists."),
     ("Thesis model against the exact model", "a layout's equations are the exact model's only."),
-    ("Parameter uncertainty", "the uncertainty files name the short form's fields."),
+    ("Parameter uncertainty (nonlinear measures)", "--uncertainty FILE (tables naming the layout's fields: m, i_z, "
+     "h, caster_K_FIELD, wheel_J_FIELD) propagates the linear growth rates and the static stability; the critical "
+     "impulse and the equal-instability speed are a simulator search per draw and are not propagated."),
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
     ("The driver", "the driver's linear model is the short form's (docs/driver.md)."),
@@ -59,24 +74,92 @@ class LayoutReport:
     sections : tuple of (str, tuple of str)
         Title and paragraphs of each section, in page order.
     not_applicable : tuple of (str, str)
-        :data:`NOT_APPLICABLE`.
+        :data:`NOT_APPLICABLE` (empty in a quick report).
     data : dict
         The numbers (JSON-ready): growth rates, critical speeds, tip angles, critical impulses, equal-instability
-        speeds, shimmy margins, bench score, decision.
+        speeds, shimmy margins, bench score, decision, and with the options the clinician sheet and the
+        comparison.
+    sheet : ClinicianSheet or None
+        The clinician sheet (``--quick``).
+    comparison : Comparison or None
+        The comparison with the baseline (``--compare``).
+    uncertainty : stability.report.layout_uncertainty.LayoutUncertainty or None
+        The propagated intervals (``--uncertainty``).
     """
 
     layout: Layout
     sections: tuple
     not_applicable: tuple
     data: dict
+    sheet: ClinicianSheet | None = None
+    comparison: Comparison | None = None
+    uncertainty: Any = None
+
+    def page_texts(self) -> list[tuple[str, list[str]]]:
+        """Each page's title and text lines, in page order (what :func:`layout_report_pages` draws)."""
+        out = [(t, list(lines)) for t, lines in self.sections]
+        if self.sheet is not None:
+            from stability.report.clinician_sheet import sheet_lines
+
+            d = sheet_lines(self.sheet)
+            out.append((SHEET_TITLE, [" | ".join(d["bump_header"])] + [" | ".join(r) for r in d["bump_rows"]]
+                        + d["paragraphs"]))
+        if self.comparison is not None:
+            from stability.compare.text import format_comparison
+
+            out.append((COMPARE_TITLE, format_comparison(self.comparison).split("\n")))
+            out.append((CURVES_TITLE, [comparison_caption(self.comparison)]))
+        if self.uncertainty is not None:
+            out.append((UNCERTAINTY_TITLE, self.uncertainty.lines()))
+        if self.not_applicable:
+            out.append((NA_TITLE, [f"{t}: {w}" for t, w in self.not_applicable]))
+        return out
 
     def text(self) -> str:
-        """Every section's text, page by page."""
+        """Every page's text, page by page."""
         out = []
-        for i, (title, lines) in enumerate(self.sections + (("Not applicable to a wheel layout",
-                                                             tuple(f"{t}: {w}" for t, w in self.not_applicable)),)):
+        for i, (title, lines) in enumerate(self.page_texts()):
             out += [f"=== page {i + 1}: {title}", *lines]
         return "\n".join(out)
+
+
+def _up_to(x: float) -> str:
+    """A :func:`stability.compare.layouts.stable_up_to` speed in words."""
+    if math.isinf(x):
+        return "20 m/s and beyond"
+    return "none: unstable from low speed" if x == 0 else f"{x:.3g} m/s"
+
+
+def comparison_caption(c: Comparison) -> str:
+    """The growth-rate figure's caption, from the comparison's own numbers: which chair's heading error grows
+    more slowly at the reference speed forwards and backwards, and up to which speed each is stable.
+
+    Parameters
+    ----------
+    c : Comparison
+        Of two layouts (:func:`stability.compare.layouts.compare_layouts`).
+
+    Returns
+    -------
+    str
+    """
+    q = {x.key: x for x in c.quantities}
+    parts = []
+    for v in (REFERENCE_SPEED, -REFERENCE_SPEED):
+        g = q.get(f"growth_rate_1_s@{v:g}")
+        if g is None:
+            continue
+        way = "backwards" if v < 0 else "forwards"
+        lo = min(range(len(c.labels)), key=lambda i: g.values[i])
+        words = ", ".join(f"{lab} {x:+.3g} 1/s" for lab, x in zip(c.labels, g.values, strict=True))
+        parts.append(f"at {abs(v):g} m/s {way} {c.labels[lo]}'s heading error grows more slowly ({words}; below 0: "
+                     "it dies out)")
+    for way in ("forward", "reverse"):
+        s = q[f"stable_up_to_{way}_m_s"]
+        parts.append(f"stable {way} up to " + ", ".join(
+            f"{lab} " + _up_to(x) for lab, x in zip(c.labels, s.values, strict=True)))
+    return ("Linear model, free frictionless casters: " + "; ".join(parts)
+            + ". The figure draws the forward speeds; the table on the page before has the reverse ones.")
 
 
 def _impulses(layout: Layout) -> tuple[list[str], list[dict]]:
@@ -126,32 +209,52 @@ def _shimmy(layout: Layout, speeds: tuple) -> tuple[list[str], list[dict]]:
 
 
 def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), progress: bool = False,
-                          nonlinear: Callable | None = None) -> LayoutReport:
+                          nonlinear: Callable | None = None, quick: bool = False,
+                          baseline: Layout | None = None, uncertainty: Any = None, samples: int = D.SAMPLES,
+                          seed: int = D.SEED) -> LayoutReport:
     """Every section of the layout's report.
 
     Parameters
     ----------
     layout : Layout
     speeds : tuple of float
-        Use speeds of the advisor and the shimmy margins, m/s (forwards).
+        Use speeds of the advisor, the shimmy margins and the clinician sheet, m/s (forwards).
     progress : bool
     nonlinear : callable, optional
         Replaces the advisor's simulated measures (:func:`stability.advise.advise`'s ``nonlinear``; tests).
+    quick : bool
+        The quick report: the decision and the clinician sheet only.
+    baseline : Layout, optional
+        Compare with this layout (a short-form chair as :meth:`Layout.from_chair`).
+    uncertainty : stability.uncertainty.Uncertainty, optional
+        Distributions of the layout's fields (:func:`stability.report.layout_uncertainty.load_layout_uncertainty`).
+    samples, seed : int
+        Monte Carlo draws and their seed with ``uncertainty``.
 
     Returns
     -------
     LayoutReport
     """
+    if quick and (baseline is not None or uncertainty is not None):
+        raise ValueError("baseline, uncertainty: the quick report is the decision and the clinician sheet; drop quick "
+                         "to compare or to propagate an uncertainty")
     a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear)
     d = decide(a)
+    decision = ("The decision (forward driving)", tuple(d.paragraphs()) + (
+        f"For the advice on reversing: python -m stability.advise --chair {layout.name} --speeds -0.5:1.",))
+    if quick:
+        from stability.report.layout_clinician import layout_clinician_sheet
+
+        sheet = layout_clinician_sheet(layout, tuple(a.speeds_m_s))
+        data = {"layout": layout.name, "quick": True, "decision": d.to_mapping(), "clinician": _sheet_data(sheet)}
+        return LayoutReport(layout, (decision,), (), data, sheet=sheet)
     summary = analyse_layout(layout)
     text = layout_text(layout, summary).split("\n")
     imp_lines, imp = _impulses(layout)
     eq_lines, eq = _equal(layout)
     sh_lines, sh = _shimmy(layout, speeds)
     sections: list[tuple[str, tuple]] = [
-        ("The decision (forward driving)", tuple(d.paragraphs()) + (
-            f"For the advice on reversing: python -m stability.advise --chair {layout.name} --speeds -0.5:1.",)),
+        decision,
         ("Wheels, static loads, tip angles and the linear model", tuple(text)),
         ("After a push: the critical impulse, forwards and backwards", tuple(imp_lines)),
         ("The equal-instability speed, forwards and backwards", tuple(eq_lines)),
@@ -169,11 +272,49 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     data = {"layout": layout.name, "growth_rates": summary.to_mapping(), "critical_impulse": imp,
             "equal_instability": eq, "shimmy_rows": sh, "bench": bench, "decision": d.to_mapping(),
             "not_applicable": [{"section": t, "why": w} for t, w in NOT_APPLICABLE]}
-    return LayoutReport(layout, tuple(sections), NOT_APPLICABLE, data)
+    comparison = None
+    if baseline is not None:
+        from stability.compare.compute import unique_labels
+        from stability.compare.layouts import compare_layouts
+        from stability.compare.text import comparison_dict
+
+        comparison = compare_layouts([layout, baseline], labels=unique_labels([layout.name, baseline.name]),
+                                     speeds=COMPARE_SPEEDS, nonlinear=True)
+        cd = comparison_dict(comparison, {})
+        data["comparison"] = {k: cd[k] for k in ("chairs", "reference", "speeds_m_s", "measures", "verdicts", "push")
+                              if k in cd}
+    unc = None
+    if uncertainty is not None:
+        from stability.report.layout_uncertainty import layout_uncertainty
+
+        unc = layout_uncertainty(layout, uncertainty, COMPARE_SPEEDS, samples=samples, seed=seed)
+        data["uncertainty"] = unc.to_mapping()
+    return LayoutReport(layout, tuple(sections), NOT_APPLICABLE, data, comparison=comparison, uncertainty=unc)
+
+
+def _sheet_data(s: ClinicianSheet) -> dict:
+    """The clinician sheet's numbers (JSON-ready, unit last)."""
+    def fin(x: float) -> float | None:
+        return x if math.isfinite(x) else None
+
+    rows = [{"speed_m_s": m.speed, "after_the_bump": m.kind, "time_to_level_s": fin(m.time_to_level),
+             "doubling_time_s": dbl, "final_yaw_rate_rad_s": m.final_rate, "sideways_m": m.sideways,
+             "travel_m": m.travel, "valid_until_s": m.until}
+            for m, dbl in zip(s.motions, s.doubling, strict=True)]
+    e = s.effort
+    effort = None if e is None else {"drive": e.drive, ("handrim_force_difference_N" if e.drive == "handrim" else
+                                                        "motor_torque_difference_N_m"): e.difference,
+                                     "harder_side": e.harder_side, "speed_m_s": e.speed_m_s, "uncorrected_turn": e.turn}
+    from stability.report.clinician import CLINIC_SLOPE_DEG
+
+    return {"bump": rows, "cross_slope_deg": CLINIC_SLOPE_DEG, "cross_slope": effort,
+            "pin_friction_N_m": [float(c.pin_friction) for c in s.chair.casters],
+            "tip_angles_deg": {k.removesuffix("_deg"): float(v) for k, v in dict(s.tipping).items()}}
 
 
 def layout_report_pages(r: LayoutReport) -> Iterator[Figure]:
-    """The report's pages: one text page per section, then the sections that do not apply.
+    """The report's pages: one text page per section, the clinician sheet, the comparison's table and curves, then
+    the sections that do not apply.
 
     Parameters
     ----------
@@ -186,7 +327,31 @@ def layout_report_pages(r: LayoutReport) -> Iterator[Figure]:
     sub = f"wheel layout {r.layout.name}: {r.layout.shape[0]} fixed wheels, {r.layout.shape[1]} casters"
     for title, lines in r.sections:
         yield P.text_page(title, list(lines), sub, monospace=title.startswith("Wheels"))
-    yield P.text_page("Not applicable to a wheel layout", [f"{t}: {w}" for t, w in r.not_applicable], sub)
+    if r.sheet is not None:
+        from stability.report.clinician_sheet import sheet_figure
+
+        yield sheet_figure(r.sheet)
+    if r.comparison is not None:
+        from stability.compare.text import format_comparison
+
+        yield P.text_page(COMPARE_TITLE, format_comparison(r.comparison).split("\n"), sub, monospace=True,
+                          fontsize=8.0, width=140)
+        yield _curves_page(r.comparison, sub)
+    if r.uncertainty is not None:
+        yield P.text_page(UNCERTAINTY_TITLE, r.uncertainty.lines(), sub)
+    if r.not_applicable:
+        yield P.text_page(NA_TITLE, [f"{t}: {w}" for t, w in r.not_applicable], sub)
+
+
+def _curves_page(c: Comparison, sub: str) -> Figure:
+    from stability.compare.plots import plot_growth_rates
+    from stability.report.document import add_caption
+
+    fig, axes = P.page(CURVES_TITLE, sub)
+    plot_growth_rates(axes[0, 0], c)
+    P.finish(fig)
+    add_caption(fig, comparison_caption(c))
+    return fig
 
 
 def write_layout_report(r: LayoutReport, path: str | os.PathLike[str]) -> int:
@@ -201,7 +366,7 @@ def write_layout_report(r: LayoutReport, path: str | os.PathLike[str]) -> int:
     -------
     int
     """
-    titles = [t for t, _ in r.sections] + ["Not applicable to a wheel layout"]
+    titles = [t for t, _ in r.page_texts()]
     write_pdf(layout_report_pages(r), path, title=f"stability report: {r.layout.name} (wheel layout)",
               outline=[(f"{i + 1}. {t}", i) for i, t in enumerate(titles)])
     return len(titles)

@@ -58,6 +58,9 @@ class SampledController:
         Added to the measurements at samples ``0 .. nk-1`` (zero afterwards).
     name : str
         Recorded in the result's settings.
+    state_names : tuple of str
+        The state ``Cy`` multiplies (default :data:`STATE_ORDER`; a wheel layout's is
+        :func:`stability.simulate.layout.layout_state_order`).
     """
 
     sample_time: float
@@ -71,6 +74,7 @@ class SampledController:
     offset: np.ndarray | None = None
     noise: np.ndarray | None = None
     name: str = "sampled controller"
+    state_names: tuple = STATE_ORDER
 
     def __post_init__(self) -> None:
         ts = float(self.sample_time)
@@ -82,7 +86,7 @@ class SampledController:
         nz = int(round(math.sqrt(nz)))
         set_ = object.__setattr__
         set_(self, "sample_time", ts)
-        set_(self, "Cy", _matrix(Cy, (ny, len(STATE_ORDER)), "Cy"))
+        set_(self, "Cy", _matrix(Cy, (ny, len(self.state_names)), "Cy"))
         set_(self, "Dy", _matrix(self.Dy, (ny,), "Dy"))
         set_(self, "Az", _matrix(self.Az, (nz, nz), "Az"))
         set_(self, "Bu", _matrix(self.Bu, (nz,), "Bu"))

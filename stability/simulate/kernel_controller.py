@@ -26,7 +26,7 @@ def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     nz = Az.shape[0]
     for i in range(ny):
         acc = ctl_f[2 + i] if 2 + i < ctl_f.shape[0] else 0.0
-        for j in range(10):
+        for j in range(Cy.shape[1]):       # the state's length: 10 (the thesis engine), 6 + 2 K (a layout)
             acc += Cy[i, j] * s[j]
         if k < noise.shape[0]:
             acc += noise[k, i]

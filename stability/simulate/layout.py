@@ -42,7 +42,8 @@ from stability.settings.run import RunSpec
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
 from stability.simulate.packing import _rolling_slot, _tire_slot, policy_code, slope_slots
 
-__all__ = ["LayoutRun", "simulate_layout", "ENDINGS", "parameter_vector", "tire_slots", "check_layout_run"]
+__all__ = ["LayoutRun", "simulate_layout", "layout_state_order", "ENDINGS", "parameter_vector", "tire_slots",
+           "check_layout_run"]
 
 #: Why a run ends, by the kernel's status code.
 ENDINGS = {0.0: "horizon", 1.0: "slip warnings", 2.0: "load warnings", 3.0: "non-finite"}
@@ -77,6 +78,9 @@ class LayoutRun:
         ``slip``, ``load``, ``lift_off``: count, first time (s), largest value (deg or N).
     settings : dict
         The run's settings (:meth:`RunSpec.to_dict` keys) and ``caster_angles_deg``.
+    yaw_moment_N_m : ndarray
+        The controller's commanded yaw moment at the rows (saturated, before the motor lag), N m (empty without a
+        controller).
     """
 
     layout: str
@@ -94,6 +98,7 @@ class LayoutRun:
     end_time_s: float
     warnings: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
+    yaw_moment_N_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def heading_deg(self) -> np.ndarray:
@@ -256,8 +261,26 @@ def tire_slots(layout: Layout) -> tuple[np.ndarray, ...]:
     return TK, TS, TL, LIM, CHK, RK, RC, RS, CAM
 
 
+def layout_state_order(layout: Layout) -> tuple[str, ...]:
+    """The state a layout's sampled controller measures (:class:`stability.simulate.controller.SampledController`'s
+    ``state_names``): ``x, y, heading, u, v, yaw_rate``, then each caster's ``delta_k, delta_d_k`` (k from 0; the
+    swivel angle from the body's forward axis, rad, and its rate).
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    tuple of str
+    """
+    return ("x", "y", "heading", "u", "v", "yaw_rate") + tuple(
+        n for k in range(len(layout.casters)) for n in (f"delta_{k}", f"delta_d_{k}"))
+
+
 def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | None = None, *,
-                    caster_angles_deg: Sequence[float] | None = None) -> LayoutRun:
+                    caster_angles_deg: Sequence[float] | None = None, controller: Any = None,
+                    motor_lag_s: float = 0.0) -> LayoutRun:
     """Simulate one run of a layout disturbed from straight motion by the run's push.
 
     Parameters
@@ -274,6 +297,11 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     caster_angles_deg : sequence of float, optional
         Initial swivel angle of each caster, deg (0: trailing for forward driving, 180: for reversing); default
         ``run.eta0_deg`` on the left (``y < 0``), ``run.beta0_deg`` on the right.
+    controller : stability.simulate.controller.SampledController, optional
+        A sampled yaw-moment controller on the body (its ``state_names`` :func:`layout_state_order`); its command
+        (saturated, before the motor lag) is the run's ``yaw_moment_N_m``.
+    motor_lag_s : float
+        First-order lag between the controller's command and the applied moment, s (>= 0; exact over each step).
 
     Returns
     -------
@@ -294,8 +322,9 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     nw, nc = layout.shape
     cfg = np.array([opts.dt, steps, opts.stride, opts.impulse_duration, opts.impulse_force, opts.tire_impulse,
                     opts.pin_mode, float(opts.stop_on_warnings), policy_code(opts), SLIP_LIMIT_DEG, LOAD_LIMIT_N,
-                    WARNING_LIMIT, shape, layout.m * layout.g, layout.h, rule.mode, *slope_slots(opts), layout.g],
-                   dtype=float)
+                    WARNING_LIMIT, shape, layout.m * layout.g, layout.h, rule.mode, *slope_slots(opts), layout.g,
+                    _check_lag(motor_lag_s)], dtype=float)
+    ctl = _controller_arrays(layout, controller)
     TK, TS, TL, LIM, CHK, RK, RC, RS, CAM = tire_slots(layout)
     mf = np.array([c.pin_friction for c in layout.casters], dtype=float)
     cpin = np.array([c.pin_damping for c in layout.casters], dtype=float)
@@ -305,8 +334,10 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     rec = np.full((k.NREC + 2 * nc, nrec), np.nan)
     status = np.zeros(2)
     warn = np.zeros((3, 3))
+    mzrec = np.zeros(nrec)
     m = k.run_layout(cfg, parameter_vector(layout), nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, rule.stiffness,
-                     rule.line, rule.roll_share, mf, cpin, signed, run.lateral_velocity, delta0, rec, status, warn)
+                     rule.line, rule.roll_share, mf, cpin, signed, run.lateral_velocity, delta0, rec, status, warn,
+                     *ctl, mzrec)  # type: ignore[call-arg]
     if status[0] == k.STOPPED_NONFINITE:
         raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
                                  f"numbers at t = {status[1]:g} s")
@@ -319,5 +350,29 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
                 "max": None if warn[j, 0] == 0 else float(warn[j, 2])}
          for j, kind in enumerate(("slip", "load", "lift_off"))}
     settings = dict(run.to_dict(), caster_angles_deg=[float(x) for x in np.degrees(delta0)], dt_s=opts.dt)
+    if controller is not None:
+        settings.update(controller=controller.name, motor_lag_s=float(motor_lag_s))
+    mz = mzrec[:m].copy() if controller is not None else np.zeros(0)
+    mz.flags.writeable = False
     return LayoutRun(layout.name, signed, t, rec[2], rec[3], rec[0], rec[1], rec[4], rec[5], rec[k.NREC::2],
-                     rec[k.NREC + 1::2], ENDINGS[float(status[0])], end, w, settings)
+                     rec[k.NREC + 1::2], ENDINGS[float(status[0])], end, w, settings, mz)
+
+
+def _check_lag(motor_lag_s: float) -> float:
+    lag = float(motor_lag_s)
+    if not (math.isfinite(lag) and 0.0 <= lag <= 1.0):
+        raise ValueError(f"motor_lag_s={motor_lag_s!r} is invalid; valid range: 0 to 1 s")
+    return lag
+
+
+def _controller_arrays(layout: Layout, controller: Any) -> tuple:
+    """The kernel's controller arrays (the "no controller" ones for None)."""
+    from stability.simulate.controller import SampledController
+
+    if controller is None:
+        return SampledController.none().arrays()
+    order = layout_state_order(layout)
+    if tuple(controller.state_names) != order:
+        raise ValueError(f"controller state_names={tuple(controller.state_names)!r} is invalid for layout "
+                         f"{layout.name!r}; valid: {order!r} (stability.simulate.layout.layout_state_order)")
+    return controller.arrays()

@@ -28,6 +28,7 @@ from numba import njit
 from stability.models.layout import nonlinear as _gn
 from stability.simulate import layout_forces as _lf
 from stability.simulate.cache_stamp import invalidate_stale_cache
+from stability.simulate.kernel_controller import controller_output
 from stability.simulate.kernel_equations import (
     _inl,
     _inl_py,
@@ -60,8 +61,9 @@ STOPPED_SLIP, STOPPED_LOAD, STOPPED_NONFINITE = 1.0, 2.0, 3.0
 #: cfg slots: dt, steps, stride, push duration, push force, tire push force, pin mode (0 kinetic, 1 locked,
 #: 2 stick-slip), stop on warnings, tire policy, slip limit deg, load limit N, warning limit, shape index, weight N,
 #: c.g. height m, load mode (statics.LEVER / THREE / COMPLIANT), then the plane: on a slope (1.0) or level (0.0),
-#: cos and sin of the cross slope, cos and sin of the grade, and g (m/s^2)
-NCFG = 22
+#: cos and sin of the cross slope, cos and sin of the grade, and g (m/s^2), then the motor lag of the controller's
+#: yaw moment (s, 0: none)
+NCFG = 23
 #: recorded columns: x, y, heading, yaw rate, u, v, then each caster's angle and rate
 NREC = 6
 _LEVER, _THREE = 0, 1
@@ -275,14 +277,18 @@ def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
 
 @njit(cache=True, nogil=True)
 def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, u0, v0, delta0, rec,
-               status, warn):
+               status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
     """One run: ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and
     ``nc`` casters, per contact (fixed wheels, then casters) the tire slots (then each fixed wheel's camber tire)
     and range check, the rolling-resistance slots (kind, coefficients, scale), per fixed wheel the camber
     ``(deg, signed coefficient)`` and its angle's ``(cos, sin)``, the vertical
     stiffness and support line, the lines' roll shares, per caster the Coulomb limit (N m) and viscous
     coefficient (N m s/rad), the initial state; writes ``rec`` (:data:`NREC` + 2 nc, rows), ``status``
-    (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and returns the rows written."""
+    (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and returns the rows written.
+    With ``ctl_f[0] > 0`` the sampled controller of :mod:`stability.simulate.controller` (its arrays; the state it
+    measures is ``[x, y, heading, u, v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at
+    each sample, held until the next, through a first-order motor lag (``cfg[22]``, exact over each step); the
+    commanded (saturated) moment is recorded in ``mzrec`` (N m)."""
     dt, nsteps, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[1]), int(cfg[2]), cfg[3], cfg[4], cfg[5]
     pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
     maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
@@ -305,8 +311,24 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
         xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
     FC1 = FC2 = 0.0
     nrec = 0
+    use_ctl = ctl_f[0] > 0.0
+    lag = cfg[22]
+    keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
+    nz, ny = Az.shape[0], Cy.shape[0]
+    z, znew, y, sv = np.zeros(nz), np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
+    next_k, cmd, mz = 0, 0.0, 0.0
     for k in range(nsteps):
         t = k * dt
+        if use_ctl:
+            ks = int(math.floor(t / ctl_f[0] + 1e-9))
+            while next_k <= ks:
+                sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
+                for kk in range(nc):
+                    sv[6 + 2 * kk], sv[7 + 2 * kk] = D[kk], DD[kk]
+                cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+                next_k += 1
+            if lag <= 0.0:
+                mz = cmd
         _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
         if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
             g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
@@ -320,13 +342,15 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
         sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy,
                                       ftimp != 0.0 and imp, ftimp, cs, sn, fw, fc)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, 0.0, g1, g2, Mm, F0)
+        equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, mz, g1, g2, Mm, F0)
         _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
         if not abs(THED) < math.inf:
             status[0], status[1] = STOPPED_NONFINITE, t
             break
         if k % stride == 0:
             _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
+            if use_ctl:
+                mzrec[k // stride] = cmd
             nrec = k // stride + 1
         # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
         FC1, FC2 = sum_fx, sum_fy + fy_ext
@@ -343,6 +367,8 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
                 DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
         THE += THED * dt + acc[2] * half_dt2
         THED += acc[2] * dt
+        if use_ctl and lag > 0.0:     # the motor lag, exact over the step for the held command
+            mz = cmd + (mz - cmd) * keep
     return nrec
 
 

@@ -32,6 +32,7 @@ moment are the short form's only.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from typing import Any
@@ -50,7 +51,8 @@ from stability.study.layout_equal_instability import layout_equal_instability
 from stability.study.layout_impulse import layout_critical_impulses
 from stability.uncertainty import Uncertainty
 
-__all__ = ["LAYOUT_MEASURES", "check_layout_axis", "apply_layout_axis", "layout_chunk_values", "bench_of",
+__all__ = ["LAYOUT_MEASURES", "check_layout_axis", "layout_axes", "apply_layout_axis", "layout_chunk_values",
+           "bench_of",
            "layout_axis_value", "check_layout_uncertainty", "draw_layout"]
 
 #: The measures a layout sweep computes.
@@ -87,6 +89,24 @@ def check_layout_axis(layout: Layout, axis: str) -> None:
         except ValueError:
             pass
     raise ValueError(f"spec grid={axis!r} is invalid for the layout {layout.name!r}; valid: {valid}")
+
+
+def layout_axes(layout: Layout) -> frozenset:
+    """Every axis :func:`check_layout_axis` accepts for ``layout`` (the names an uncertainty file's tables may use).
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    frozenset of str
+    """
+    out = {f"trail_{row_name(layout, r)}" for r in caster_rows(layout)} | {"drive_x", *_BODY}
+    for group, seq in (("caster", layout.casters), ("wheel", layout.wheels)):
+        for k, w in enumerate(seq, start=1):
+            out |= {f"{group}_{k}_{f.name}" for f in dataclasses.fields(w) if f.name not in ("tire", "driven")}
+    return frozenset(out)
 
 
 def apply_layout_axis(layout: Layout, axis: str, value: float) -> Layout:
@@ -156,7 +176,7 @@ def check_layout_uncertainty(layout: Layout, unc: Uncertainty) -> None:
     ----------
     layout : Layout
     unc : Uncertainty
-        Read with ``chair_fields=False``.
+        Read with ``valid_fields=layout_axes(layout)``.
 
     Raises
     ------

@@ -39,7 +39,7 @@ from stability.driver.model import REACTION_TIME_RANGE_S, REACTION_TIME_S
 from stability.layout.io import is_layout_spec, resolve_layout
 from stability.layout.model import Layout
 from stability.settings.run import FRICTION_LAWS, MODELS, RunSpec
-from stability.sweep.layouts import LAYOUT_MEASURES, check_layout_axis, check_layout_uncertainty
+from stability.sweep.layouts import LAYOUT_MEASURES, check_layout_axis, check_layout_uncertainty, layout_axes
 from stability.uncertainty import Uncertainty, load_uncertainty
 
 if sys.version_info >= (3, 11):
@@ -207,7 +207,7 @@ def _draws(draws_t: Any, base: Path, chair: Chair | Layout) -> tuple[int, int, U
     if not isinstance(chair, Layout):
         return n, seed, load_uncertainty(base / draws_t["uncertainty"])
     # a layout sweep: the tables name the layout's axes (stability.sweep.layouts)
-    unc = load_uncertainty(base / draws_t["uncertainty"], chair_fields=False)
+    unc = load_uncertainty(base / draws_t["uncertainty"], valid_fields=layout_axes(chair))
     check_layout_uncertainty(chair, unc)
     return n, seed, unc
 

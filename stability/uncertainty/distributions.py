@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import zlib
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -54,9 +54,9 @@ class Distribution:
     low, high : float or None
         Uniform: bounds (field units, or fractional deviations from the chair's value if ``relative``).
     relative : bool
-    chair_fields : bool
-        The fields are the short form's (checked here); False: another model's parameters, such as a wheel
-        layout's sweep axes, which the caller checks (:func:`stability.sweep.layouts.check_layout_axis`).
+    valid_fields : frozenset of str, optional
+        The fields a table may name (default: the short form's numeric chair fields; a wheel layout's are
+        :func:`stability.report.layout_uncertainty.layout_fields`).
     """
 
     name: str
@@ -67,16 +67,18 @@ class Distribution:
     low: float | None = None
     high: float | None = None
     relative: bool = False
-    chair_fields: bool = True
+    valid_fields: frozenset | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         def bad(key: str, value: Any, valid: str) -> ValueError:
             return ValueError(f"uncertainty [{self.name}] {key}={value!r} is invalid; valid range: {valid}")
 
-        valid = set(chair_mod.field_names()) - _TEXT_FIELDS - {"camber_coefficient"}
+        valid = (set(chair_mod.field_names()) - _TEXT_FIELDS - {"camber_coefficient"} if self.valid_fields is None
+                 else set(self.valid_fields))
+        what = "a numeric chair field" if self.valid_fields is None else "a numeric layout field"
         for f in self.fields:
-            if self.chair_fields and f not in valid:
-                raise bad("field" if f != self.name else "table", f, f"a numeric chair field {sorted(valid)}")
+            if f not in valid:
+                raise bad("field" if f != self.name else "table", f, f"{what} {sorted(valid)}")
         if self.kind == "normal":
             if self.std is None or not math.isfinite(self.std) or self.std < 0:
                 raise bad("std", self.std, ">= 0")

@@ -18,7 +18,7 @@ else:  # pragma: no cover
 __all__ = ["from_mapping", "loads_uncertainty", "load_uncertainty"]
 
 
-def from_mapping(data: Mapping[str, Any], chair_fields: bool = True) -> Uncertainty:
+def from_mapping(data: Mapping[str, Any], valid_fields: frozenset | None = None) -> Uncertainty:
     """Build an :class:`Uncertainty` from a parsed TOML mapping (table name -> table).
 
     Parameters
@@ -27,9 +27,8 @@ def from_mapping(data: Mapping[str, Any], chair_fields: bool = True) -> Uncertai
         Table name -> table with keys ``distribution`` (``"normal"`` or
         ``"uniform"``), ``std``, ``mean``, ``low``, ``high``, ``relative`` and
         ``fields`` (default ``[name]``); values in the chair file's units.
-    chair_fields : bool
-        The fields are the short form's chair fields (checked); False: a wheel layout's sweep axes, which the
-        caller checks (:attr:`Distribution.chair_fields`).
+    valid_fields : frozenset of str, optional
+        The fields a table may name (default the short form's numeric chair fields).
 
     Returns
     -------
@@ -64,7 +63,7 @@ def from_mapping(data: Mapping[str, Any], chair_fields: bool = True) -> Uncertai
         if not isinstance(relative, bool):
             raise ValueError(f"uncertainty [{name}] relative={relative!r} is invalid; valid: true or false")
         dists.append(Distribution(name, tuple(fields), str(table.get("distribution", "")), num("std"),
-                                  num("mean"), num("low"), num("high"), relative, chair_fields))
+                                  num("mean"), num("low"), num("high"), relative, valid_fields))
     return Uncertainty(tuple(dists))
 
 
@@ -84,15 +83,15 @@ def loads_uncertainty(text: str) -> Uncertainty:
     return from_mapping(tomllib.loads(text))
 
 
-def load_uncertainty(path: str | os.PathLike[str], chair_fields: bool = True) -> Uncertainty:
+def load_uncertainty(path: str | os.PathLike[str], valid_fields: frozenset | None = None) -> Uncertainty:
     """Read an uncertainty TOML file.
 
     Parameters
     ----------
     path : str or os.PathLike
         The file (one table per uncertain parameter, see :func:`stability.uncertainty.from_mapping`).
-    chair_fields : bool
-        As :func:`stability.uncertainty.from_mapping`.
+    valid_fields : frozenset of str, optional
+        As :func:`from_mapping`.
 
     Returns
     -------
@@ -110,4 +109,4 @@ def load_uncertainty(path: str | os.PathLike[str], chair_fields: bool = True) ->
         data = readfiles.load_toml(path)
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"uncertainty file {str(path)!r} is not valid TOML: {exc}") from None
-    return from_mapping(data, chair_fields)
+    return from_mapping(data, valid_fields)
