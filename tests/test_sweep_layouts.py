@@ -169,5 +169,6 @@ def test_an_uncertainty_field_the_layout_does_not_have_is_refused_in_one_line(tm
     with pytest.raises(ValueError) as exc:
         loads_spec(text, tmp_path)
     msg = str(exc.value)
-    assert "uncertainty [trail] field 'trail' is invalid for the layout" in msg and "\n" not in msg
+    assert "uncertainty [trail] table='trail' is invalid; valid range: a numeric layout field" in msg
+    assert "\n" not in msg
     assert "trail_front" in msg                                     # the valid axes named

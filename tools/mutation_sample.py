@@ -245,10 +245,6 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'f"({\'and gains\' if c.gain > 0 else \'at a cost of\'} {abs(c.gain) * 100:.0f} % on the robust "',
      'f"({\'and gains\' if c.gain >= 0 else \'at a cost of\'} {abs(c.gain) * 100:.0f} % on the robust "'):
         "the note's word differs only for a robust gain of exactly `0`, where the note says `0 %` either way (no gain, no cost)",
-    ('stability/advise/advisor.py',
-     'failing = sorted((x for x, ok in zip(screened, met, strict=True) if not ok and _predicted(x[0]) > best_passing),',
-     'failing = sorted((x for x, ok in zip(screened, met, strict=True) if not ok and _predicted(x[0]) >= best_passing),'):
-        "differs only when a blocked pair's predicted gain equals the best acceptable pair's to the last bit: the predictions are products of simulated relative changes of different fields, which do not tie exactly",
 }
 
 

@@ -35,7 +35,7 @@ from stability.assist.digital import discrete_controller
 from stability.assist.recovery import DecayAgreement, decay_window, fit_decay_rate
 from stability.chair.power import DriveTrain
 from stability.layout.model import Layout
-from stability.report.behaviour import STEADY_YAW_RATE
+from stability.settings.defaults import STEADY_YAW_RATE
 from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.simulate.controller import SampledController

@@ -15,13 +15,13 @@ from typing import Any
 import numpy as np
 
 from stability.report.validity import Validity
+from stability.settings import defaults as D
 
 __all__ = ["Motion", "motion", "friction_role", "better_word", "STEADY_YAW_RATE", "STRAIGHT_HEADING_DEG",
            "sig3"]
 
-#: Yaw rate (rad/s) above which the end of a run is a steady turn rather than straight running: 0.01 rad/s is
-#: 5.7 deg in 10 s, a drift a user notices over a corridor's length (the front-caster chair's is 0.04 rad/s).
-STEADY_YAW_RATE = 0.01
+#: Yaw rate (rad/s) above which a run ends in a steady turn (:data:`stability.settings.defaults.STEADY_YAW_RATE`).
+STEADY_YAW_RATE = D.STEADY_YAW_RATE
 #: Heading change (deg) below which a run that settles counts as keeping its line.
 STRAIGHT_HEADING_DEG = 5.0
 #: The final stretch (s) over which the steady yaw rate is averaged.

@@ -34,7 +34,7 @@ from stability.settings.drive import BENCH_CHAIR, DRIVE_SETTINGS
 from stability.settings.reference import LEVEL, REFERENCE_CHAIR
 from stability.settings.run import RUN_SETTINGS, RunSpec
 
-__all__ = ["Default", "TABLE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW",
+__all__ = ["Default", "TABLE", "STEADY_YAW_RATE", "CHAIR", "POWER_CHAIR", "MODEL", "CASTERS", "FRICTION_LAW",
            "SCHEME", "DT", "SPEED",
            "PUSH_FORCE",
            "PUSH_DURATION", "YAW_RATE_LEVEL", "HORIZON_S", "MAX_IMPULSE", "TIRE_RANGE", "MAX_SPEED",
@@ -82,6 +82,10 @@ def speeds_text(speeds: tuple[float, ...]) -> str:
 
 
 # --- chairs ---------------------------------------------------------------------------------------------
+#: Yaw rate (rad/s) above which the end of a run is a steady turn rather than straight running: 0.01 rad/s is
+#: 5.7 deg in 10 s, a drift a user notices over a corridor's length (the front-caster chair's is 0.04 rad/s).
+#: The report's words and the assist's straight-again check both use it.
+STEADY_YAW_RATE = 0.01
 #: Chair of every command that takes ``--chair`` (the thesis's reference chair), and of the power-chair commands.
 CHAIR = REFERENCE_CHAIR
 POWER_CHAIR = "power-fwd"
