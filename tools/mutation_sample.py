@@ -79,7 +79,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]       # the source mutated (and, without --tests-from, the tests)
 
 #: The fast tests that judge each module's mutants (the default marker selection; slow tests excluded).
-ADVISE = ["tests/test_advise.py", "tests/test_advise_decisions.py", "tests/test_advise_combinations.py"]
+ADVISE = ["tests/test_advise.py", "tests/test_advise_decisions.py", "tests/test_advise_combinations.py",
+          "tests/test_advise_pruning.py"]
 MODULES = {
     "stability/linear/critical.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
     "stability/linear/model.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
@@ -90,7 +91,7 @@ MODULES = {
     "stability/study/intervals.py": ["tests/test_study_measures.py", "tests/test_impulse_step.py"],
     "stability/study/impulse.py": ["tests/test_impulse_fast.py", "tests/test_impulse_step.py"],
     "stability/study/impulse_intervals.py": ["tests/test_impulse_step.py", "tests/test_intervals.py"],
-    "stability/study/censored.py": ["tests/test_sweep.py"],
+    "stability/study/censored.py": ["tests/test_sweep.py", "tests/test_study.py"],
     "stability/tipping/angles.py": ["tests/test_tipping.py"],
     "stability/shimmy/band.py": ["tests/test_shimmy_band.py"],
     "stability/slope/equilibrium.py": ["tests/test_slope.py"],
