@@ -82,13 +82,17 @@ def _run(args: argparse.Namespace) -> int:
             print(f"wrote {args.json_file}", file=sys.stderr)
         if args.json and output is None:
             return 0
-    text = chair_mod.dumps(c)
+    return _write(chair_mod.dumps(c), output, args, f"chair {c.name!r}")
+
+
+def _write(text: str, output: str | None, args: argparse.Namespace, what: str) -> int:
+    """The chair file on standard output, or written to ``output`` atomically with one note."""
     if output is None:
         sys.stdout.write(text)
     else:
         atomic_write_text(output, text)
         if not args.quiet:
-            print(f"wrote {output}: chair {c.name!r}", file=sys.stderr)
+            print(f"wrote {output}: {what}", file=sys.stderr)
     return 0
 
 
@@ -100,14 +104,7 @@ def _export_layout(args: argparse.Namespace, output: str | None) -> int:
         raise ValueError("--json is for the short form's chair; a wheel layout's file is its own record (read it "
                          "with python -m stability.critical_speed --chair FILE --json)")
     layout = load_layout(args.chair, args.set)
-    text = dumps(layout)
-    if output is None:
-        sys.stdout.write(text)
-    else:
-        atomic_write_text(output, text)
-        if not args.quiet:
-            print(f"wrote {output}: wheel layout {layout.name!r}", file=sys.stderr)
-    return 0
+    return _write(dumps(layout), output, args, f"wheel layout {layout.name!r}")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
