@@ -98,3 +98,21 @@ def test_bad_input_is_refused_in_one_line(argv, words, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert words in err and "\n" not in err
+
+
+def test_a_push_search_that_never_reaches_the_level_compares_as_a_bound():
+    """Backing or driving a mid-wheel-drive base at 0.75 m/s, no push up to the search's largest spins it: the
+    comparison carries that as a bound (inf, "level not reached with pushes up to 40 N s"), as the short form's
+    comparison does, never as the largest push tried (a number that would rank it as if measured); a chair the
+    search does spin keeps its found value, and the base ranks above it (bounds are values, issue 33)."""
+    from stability.study.layout_impulse import layout_critical_impulses
+
+    mwd, fwd = layout_preset("mid-wheel-drive"), layout_preset("power-fwd-base")
+    c = compare_layouts([mwd, fwd], nonlinear=True)
+    q = next(q for q in c.quantities if q.key.startswith("critical_impulse_Ns@0.75"))
+    found = layout_critical_impulses(fwd, 0.75)[0]
+    assert layout_critical_impulses(mwd, 0.75)[0].status == "never" and found.status == "found"
+    assert math.isinf(q.values[0]) and q.values[1] == float(found.bound_Ns)
+    assert "pushes up to 40 N s" in q.none_means
+    d = next(d for d in c.differences if d.key == q.key)
+    assert d.more_stable == c.labels[0]

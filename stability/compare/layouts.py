@@ -105,9 +105,14 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
         signs = [1.0] + ([-1.0] if bool(np.any(u < 0)) else [])
         for sign in signs:
             v = sign * REFERENCE_SPEED
-            qs.append(Quantity(f"critical_impulse_Ns@{v:g}", f"critical impulse at {v:g} m/s", "N s", True,
-                               tuple(float(layout_critical_impulses(lay, v)[0].bound_Ns) for lay in layouts),
-                               (None,) * len(layouts)))
+            # as the short form's comparison: a push search that never reached the level is a bound (inf, "never
+            # reached up to ..."), one already past it at the smallest push is 0 (stability.study.censored)
+            row = [layout_critical_impulses(lay, v)[0] for lay in layouts]
+            vals = tuple(np.inf if r.status == "never" else 0.0 if r.status == "below" else float(r.bound_Ns)
+                         for r in row)
+            largest = max(r.largest_tried_Ns for r in row)
+            qs.append(Quantity(f"critical_impulse_Ns@{v:g}", f"critical impulse at {v:g} m/s", "N s", True, vals,
+                               (None,) * len(layouts), f"level not reached with pushes up to {largest:.3g} N s"))
         push = (f"{THESIS_PUSH.force:g} N lateral at the c.g. for {THESIS_PUSH.duration:g} s, scaled; every caster "
                 "trailing the direction of travel at the start (the layout simulator)")
     diffs = tuple(_difference(q, i, labels[i], labels[0], None, 0.0) for i in range(1, len(layouts)) for q in qs)
