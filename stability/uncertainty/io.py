@@ -91,7 +91,7 @@ def load_uncertainty(path: str | os.PathLike[str], valid_fields: frozenset | Non
     path : str or os.PathLike
         The file (one table per uncertain parameter, see :func:`stability.uncertainty.from_mapping`).
     valid_fields : frozenset of str, optional
-        As :func:`from_mapping`.
+        As :func:`stability.uncertainty.from_mapping`.
 
     Returns
     -------
