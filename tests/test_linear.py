@@ -27,10 +27,12 @@ def test_eq_8_2_to_8_5_with_the_thesis_stiffness():
     """Eqs 8-2..8-5: W = 748 N, W_f = 159 N, W_r = 215 N, C = 25 N/deg -> k_us = -.04, u_crit = 12 m/s."""
     c = method_two_chair(m=76.2, main_tire="linear:25", caster_tire="linear:25")
     zw = linear.zero_width(c)
-    assert c.m * c.g == pytest.approx(748, abs=1)            # eq 8-2, W
-    assert zw.load_main == pytest.approx(159, abs=1)         # eq 8-2, W_f
-    assert zw.load_caster == pytest.approx(215, abs=1)       # eq 8-2, W_r
-    assert zw.stiffness_main == pytest.approx(1432, abs=1)   # eq 8-3, 25 N/deg = 1432 N/rad
+    # error model: rounding of the thesis's printed values: whole newtons (half a unit, 0.5 N; observed 0.48, 0.15,
+    # 0.09 N and 0.39 N/rad), -.04 (rounding bound 0.005, observed 8.6e-4: kept at 0.002) and 12 m/s (0.5; 0.26)
+    assert c.m * c.g == pytest.approx(748, abs=0.5)            # eq 8-2, W
+    assert zw.load_main == pytest.approx(159, abs=0.5)         # eq 8-2, W_f
+    assert zw.load_caster == pytest.approx(215, abs=0.5)       # eq 8-2, W_r
+    assert zw.stiffness_main == pytest.approx(1432, abs=0.5)   # eq 8-3, 25 N/deg = 1432 N/rad
     assert zw.understeer_coefficient == pytest.approx(-0.04, abs=0.002)   # eq 8-4
     assert zw.critical_speed == pytest.approx(12, abs=0.5)               # eq 8-5
 
@@ -93,7 +95,9 @@ def test_locked_critical_speed_matches_zero_width():
     grid = np.linspace(1, 40, 200)
     cross = linear.critical_speeds(lambda U: linear.state_matrices(c, U, "exact", "locked"), grid)
     assert len(cross) == 1 and cross[0].kind == "real" and cross[0].direction == "destabilising"
-    assert cross[0].speed == pytest.approx(linear.zero_width(c).critical_speed, rel=1e-8)
+    # error model: bisection bracket: brentq's xtol 1e-10 m/s (1e-11 of the 9.7 m/s speed) plus the eigenvalue's
+    # rounding; observed 6.7e-13 relative, tolerance 1e-10 (margin 150)
+    assert cross[0].speed == pytest.approx(linear.zero_width(c).critical_speed, rel=1e-10)
 
 
 def test_figure_8_6_locked_casters_transition():
@@ -145,7 +149,7 @@ def test_state_space_object():
     assert isinstance(sys, control.StateSpace)
     assert sys.state_labels == ["v", "r", "eta", "eta_dot", "beta", "beta_dot"]     # the documented order
     assert sys.input_labels == ["Mz"] and sys.output_labels == ["v", "r"]
-    np.testing.assert_allclose(sys.A, linear.state_matrices(c, 0.75)[0])
+    np.testing.assert_array_equal(sys.A, linear.state_matrices(c, 0.75)[0])   # the same matrix, not recomputed
     np.testing.assert_allclose(sys.B[1, 0], 1 / c.i_z, rtol=0.05)  # yaw moment mostly drives yaw rate
     np.testing.assert_array_equal(sys.C, np.eye(2, 6))                 # the outputs are the states v and r
     assert not sys.D.any() and sys.name == "ej-premier (exact, free casters, U=0p75 m per s)"
@@ -170,11 +174,14 @@ def test_yaw_moment_input_is_the_accelerations_per_newton_metre(model):
     a0 = np.array(accelerations(*args, Fy_ext=0.0, Mz_ext=0.0, variant=model), dtype=float)
     d = a1 - a0
     b = linear.input_matrices(c, 0.75, model)[0][:, 0]
-    np.testing.assert_allclose(b, [d[1], d[2], 0.0, d[3], 0.0, d[4]], rtol=1e-9, atol=1e-15)
+    # error model: rounding: the linear column and the nonlinear accelerations are the same expressions evaluated
+    # in another order, a few ulp (observed 1.9e-16 relative, 5.6e-17 absolute); margins 500 and 20
+    np.testing.assert_allclose(b, [d[1], d[2], 0.0, d[3], 0.0, d[4]], rtol=1e-13, atol=1e-15)
     if model == "exact":
         np.testing.assert_array_equal(linear.input_matrices(c, 0.75)[0][:, 0], b)
     # the lateral force at the c.g.: the same rows of the door's accelerations per N, nothing in the angle rows
     f1 = np.array(accelerations(*args, Fy_ext=1.0, Mz_ext=0.0, variant=model), dtype=float) - a0
+    # error model: rounding, as above (observed 0)
     np.testing.assert_allclose(linear.lateral_force_input(c, 0.75, model), [f1[1], f1[2], 0.0, f1[3], 0.0, f1[4]],
                                rtol=1e-12, atol=0)
 
@@ -195,6 +202,7 @@ def test_vectorised_over_chairs():
     chairs = [chair_mod.preset("ej-premier").replace(trail=t) for t in (0.05, 0.08, 0.1)]
     A = linear.state_matrices(chairs, 0.75)
     for k, c in enumerate(chairs):
+        # error model: rounding: the same expressions over an array of chairs, a few ulp (observed 4.9e-16)
         np.testing.assert_allclose(A[k], linear.state_matrices(c, 0.75)[0], rtol=1e-13)
 
 
@@ -226,7 +234,7 @@ def test_critical_speed_real_crossing_refined_to_1e_10():
 
     cross = linear.critical_speeds(A, np.linspace(0.1, 3, 7))
     assert len(cross) == 1
-    assert abs(cross[0].speed - math.sqrt(2)) < 1e-10
+    assert abs(cross[0].speed - math.sqrt(2)) < 1e-10        # bisection bracket: brentq's xtol (observed 1e-16)
     assert cross[0].kind == "real" and cross[0].direction == "destabilising"
 
 
@@ -246,17 +254,20 @@ def test_critical_speed_hidden_double_crossing_is_found():
     assert np.all(linear.max_real_part(A, grid) < 0)
     cross = linear.critical_speeds(A, grid)
     assert [c.direction for c in cross] == ["destabilising", "stabilising"]
+    # error model: bisection bracket: brentq's xtol 1e-10 (observed 1.0e-13 and 5.7e-14)
     assert cross[0].speed == pytest.approx(c0 - d, abs=1e-10)
     assert cross[1].speed == pytest.approx(c0 + d, abs=1e-10)
     assert all(c.kind == "complex" for c in cross)
-    assert cross[0].eigenvalue.imag == pytest.approx(3.0, abs=1e-6)
+    # error model: the pair is a +/- 3i exactly; LAPACK's rounding n eps ||A|| = 1.3e-15 (observed 4.4e-16), x100
+    assert cross[0].eigenvalue.imag == pytest.approx(3.0, abs=1.3e-13)
 
 
 @pytest.mark.parametrize("casters, speeds", [("free", [0.3, 0.75, 1.25, 2.0, 5.0, 8.0]), ("locked", [3.0, 6.0, 10.0, 14.0])])
 def test_crossing_guard_slopes_equal_a_central_difference_of_the_largest_real_part(casters, speeds):
     """The double-crossing guard's d(alpha)/dU (eigenvalue perturbation theory with a finite-difference dA) is the
-    derivative of max Re(lambda): a central difference of alpha with h = 1e-3 m/s, whose truncation error is
-    h^2 |d3 alpha/dU3| / 6 (observed 3e-9 to 2.6e-8 1/s per m/s); bound 1e-6 (margin 40)."""
+    derivative of max Re(lambda): a central difference of alpha with h = 1e-3 m/s and 2h, Richardson-extrapolated so
+    that the h^2 |d3 alpha/dU3| / 6 truncation term cancels (alone it reached 8.0e-7 1/s per m/s with the casters
+    locked at 3 m/s: margin 1.3 under the former bound 1e-6, not the 40 this docstring claimed)."""
     from stability.linear.critical import _slopes
 
     c = chair_mod.preset("ej-premier")
@@ -266,7 +277,12 @@ def test_crossing_guard_slopes_equal_a_central_difference_of_the_largest_real_pa
 
     U, h = np.array(speeds), 1e-3
     got = _slopes(f, U, linear.max_real_part(f, U))
-    fd = (linear.max_real_part(f, U + h) - linear.max_real_part(f, U - h)) / (2 * h)
+    def central(h):
+        return (linear.max_real_part(f, U + h) - linear.max_real_part(f, U - h)) / (2 * h)
+
+    fd = (4 * central(h) - central(2 * h)) / 3
+    # error model: truncation O(h^4) (~1e-12) plus _slopes' own rounding, eps ||A|| / 1e-6 for its dA step
+    # (observed 6.3e-9 free, 5.1e-10 locked); 1e-6 keeps a margin of 160
     np.testing.assert_allclose(got, fd, rtol=0, atol=1e-6)
     assert np.all(np.abs(fd) > 0.4)                  # the premise: slopes far from zero, a sign error shows
 
@@ -303,6 +319,7 @@ def test_critical_speed_exactly_on_a_grid_point_is_found_once():
 
     cross = linear.critical_speeds(A, [0.5, 0.75, 1.0, 1.25, 1.5])
     assert len(cross) == 1
+    # error model: bisection bracket: brentq's xtol 1e-10 (observed 0: the zero is on the grid)
     assert cross[0].speed == pytest.approx(1.0, abs=1e-10) and cross[0].direction == "destabilising"
     # and at the first grid point (no neighbour below: bracketed from the point itself)
     assert [round(c.speed, 10) for c in linear.critical_speeds(A, [1.0, 1.25, 1.5])] == [1.0]
@@ -317,7 +334,8 @@ def test_critical_speed_exactly_on_a_grid_point_is_found_once():
                                   [0.5, 0.75, 1.0, 1.25, 1.5]) == []
     cross = linear.critical_speeds(B, np.arange(0.5, 2.3, 0.25))
     assert [c.direction for c in cross] == ["stabilising", "destabilising"]
-    np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], atol=1e-10)
+    # error model: bisection bracket: brentq's xtol 1e-10 (observed 1.1e-13)
+    np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], rtol=0, atol=1e-10)
     # a zero at the last grid point (no neighbour above: bracketed from the point below to the point itself)
     last = linear.critical_speeds(A, [0.5, 0.75, 1.0])
     assert [round(c.speed, 10) for c in last] == [1.0] and last[0].direction == "destabilising"
@@ -352,10 +370,11 @@ def test_critical_speed_pair_hidden_where_only_the_interpolant_shows_it():
     grid = np.round(np.linspace(0.5, 2.0, 16), 12)
     assert np.all(alpha(grid[grid <= 1.1]) < 0)           # the premise: no sign change on the grid up to 1.1
     roots = sorted(1.0 + 0.1 * x.real for x in np.roots([0.4, -0.6, 0.2, -0.01])
-                   if abs(x.imag) < 1e-12 and 0 < x.real < 1)
+                   if abs(x.imag) < 1e-12 and 0 < x.real < 1)   # rounding: the complex pair's imag is ~0.2
     cross = linear.critical_speeds(A, grid)
     assert [c.direction for c in cross] == ["destabilising", "stabilising", "destabilising"]
-    np.testing.assert_allclose([c.speed for c in cross], [*roots, 1.105], atol=1e-9)
+    # error model: bisection bracket: the guard's maximiser (xatol 1e-9) then brentq (xtol 1e-10); observed 6.1e-12
+    np.testing.assert_allclose([c.speed for c in cross], [*roots, 1.105], rtol=0, atol=1e-9)
 
 
 def test_mode_tracking_through_a_crossing_and_zero():
@@ -387,8 +406,10 @@ def test_free_caster_rate_massless_limit_closed_form(model):
         i = int(np.argmax(lam.real))
         kappa = np.linalg.norm(W[:, i]) * np.linalg.norm(V[:, i]) / abs(np.vdot(W[:, i], V[:, i]))
         rounding = np.finfo(float).eps * np.linalg.norm(A, 2) * kappa
+        # error model (above): rounding eps ||A|| kappa plus first order in m_c (observed 7.7e-7 relative)
         assert lam[i].real == pytest.approx(rate, rel=2e-6, abs=10 * rounding)
-    # low-speed limit U m s1 / (I_z + m s1^2): pivoting about the main axle
+    # low-speed limit U m s1 / (I_z + m s1^2): pivoting about the main axle; error model: the next order of the
+    # expansion in U (1.5e-3 relative at 0.3 m/s)
     assert closed[0] == pytest.approx(0.3 * c.m * c.s1 / (c.i_z + c.m * c.s1**2), rel=0.02)
 
 
@@ -432,8 +453,8 @@ def test_guard_interpolant_is_exact_for_a_cubic():
 
         for t in (GUARD_FRACTIONS, np.array([0.0, 0.05, 0.33, 0.9, 1.0])):
             got = hermite(p(x0), p(x0 + h), dp(x0), dp(x0 + h), h, t)
-            np.testing.assert_allclose(got, p(x0 + t * h), rtol=0, atol=1e-12)
-    np.testing.assert_allclose(GUARD_FRACTIONS, np.arange(1, 8) / 8)
+            np.testing.assert_allclose(got, p(x0 + t * h), rtol=0, atol=1e-12)    # rounding (docstring)
+    np.testing.assert_array_equal(GUARD_FRACTIONS, np.arange(1, 8) / 8)      # k / 8: exact in binary
 
 
 def test_guard_interpolant_shows_a_hidden_root_pair_where_the_factors_do():
@@ -477,7 +498,8 @@ def test_critical_speed_guard_maximises_only_where_the_cubic_is_suspicious():
 
     grid = np.linspace(0.5, 3.0, 11)
     cross = linear.critical_speeds(A, grid)
-    np.testing.assert_allclose([c.speed for c in cross], r, atol=1e-9)
+    # error model: bisection bracket, as in the test above (observed 9.4e-13)
+    np.testing.assert_allclose([c.speed for c in cross], r, rtol=0, atol=1e-9)
     assert [c.direction for c in cross] == ["destabilising", "stabilising", "destabilising"]
 
     def dalpha(U):

@@ -49,8 +49,10 @@ def test_pending_entries_only_shrink():
 @pytest.mark.parametrize(("src", "expected"), [
     ("assert x == pytest.approx(y)", [False]),                                 # approx's default rel=1e-6
     ("assert x == pytest.approx(y, rel=1e-9)  # rounding: 3 ulp", [True]),
-    ("# error model: bisection bracket 1e-3\n\nassert x == approx(y, rel=1e-3)", [True]),
+    ("# error model: bisection bracket 1e-3\nassert x == approx(y, rel=1e-3)", [True]),
     ("# the same chair\nassert x == approx(y, rel=1e-3)", [False]),
+    ("# rounding\nassert a == approx(b, rel=1e-9)\nassert c == approx(d, rel=1e-9)", [True, True]),
+    ("# rounding\nassert a == approx(b, rel=1e-9)\n\nassert c == approx(d, rel=1e-9)", [True, False]),
     ("a = 1  # rounding\nassert x == approx(y, rel=1e-3)", [False]),           # another statement's comment
     ("np.testing.assert_allclose(a, b, rtol=0)", []),                          # exact: atol defaults to 0
     ("np.testing.assert_allclose(a, b)", [False]),                             # rtol defaults to 1e-7

@@ -15,8 +15,8 @@ bound of 1e-3 or more without a difference inside is a physical threshold, not a
 
 A tolerance's error model is *stated* when
 
-* a comment on a line of its statement, or a full-line comment block ending at most :data:`ABOVE` lines above
-  the statement, contains one of :data:`STATED_FORMS`; or
+* a comment on a line of its statement, or a full-line comment at most :data:`ABOVE` lines above it with no
+  blank line between (or the rest of that comment's block), contains one of :data:`STATED_FORMS`; or
 * its tolerance expression names something from ``tests/numerics.py`` (shared tolerances, each with its error
   model there), or a name assigned in the same file on a statement whose comments state one.
 
@@ -58,8 +58,9 @@ STATED_FORMS: dict[str, str] = {
     "exact": "equal in exact arithmetic: only rounding is allowed",
 }
 
-#: A full-line comment block ending at most this many lines above a statement belongs to it.
-ABOVE = 4
+#: A full-line comment at most this many lines above a statement, with no blank line between (a comment heading a
+#: block of assertions), belongs to it, and so does the rest of its comment block.
+ABOVE = 8
 
 _APPROX = {"approx"}
 _NUMPY = {"isclose", "allclose", "assert_allclose", "assert_almost_equal", "assert_array_almost_equal",
@@ -199,10 +200,13 @@ class _FileScan:
         for row in range(first, last + 1):
             if row in self.comments and states_model(self.comments[row][0]):
                 return True
+        lines = self.src.splitlines()
         row = first - 1
-        while row >= max(1, first - ABOVE) and not (row in self.comments and self.comments[row][1]):
+        while row >= max(1, first - ABOVE) and lines[row - 1].strip():
+            if row in self.comments and self.comments[row][1] and states_model(self.comments[row][0]):
+                return True
             row -= 1
-        while row >= 1 and row in self.comments and self.comments[row][1]:
+        while row >= 1 and row in self.comments and self.comments[row][1]:     # the rest of a comment block
             if states_model(self.comments[row][0]):
                 return True
             row -= 1

@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 815
+PENDING_LIMIT = 779
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -74,13 +74,11 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     ],
     'tests/test_app_state.py': [
         ('test_growth_rate_shown_is_the_command_lines', 'pytest.approx( [c["speed_m_s"] for c in doc["locked_casters"]["crossings"]], abs=1e-8)'),
-        ('test_mode_shape_is_an_eigenvector', 'pytest.approx(shape.magnitude[3], rel=1e-9)'),
         ('test_critical_speeds_shown_are_the_command_lines', 'pytest.approx([x.speed for x in want], abs=1e-8)'),
         ('test_trail_chart_crosses_zero_at_the_bands_boundary', 'np.allclose(tw.chart.critical_trail, lower, atol=2e-5)'),
     ],
     'tests/test_assist.py': [
         ('test_preset_validates_and_matches_its_documentation', 'pytest.approx(chair.m)'),
-        ('test_preset_validates_and_matches_its_documentation', 'pytest.approx((chair.s2 + chair.trail) / chair.wheelbase)'),
         ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'pytest.approx(10.0 * (c.d1 + c.d2) / dt.wheel_radius)'),
         ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'pytest.approx(7.0)'),
         ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'pytest.approx(dt.torque_limit * 0.55 / 0.178)'),
@@ -133,7 +131,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/test_assist_export.py': [
         ('_check_c', 'pytest.approx(200.0)'),
         ('test_float_export_compiles_and_reproduces_the_vectors', 'pytest.approx(FLOAT_RELATIVE * sched.drive.torque_limit)'),
-        ('test_quantised_schedule_margins_against_the_ideal_one', 'abs(grid.margins["Q15"][k] - grid.margins["ideal"][k]) < 1e-2'),
         ('test_scheduled_speed_input_interpolates_between_grid_tables', 'np.allclose(tab[1], 0.5 * (tab[0] + tab[2]), rtol=0, atol=1e-12 * np.max(np.abs(tab)))'),
         ('test_cli_export_end_to_end', 'np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))'),
         ('test_documented_export_numbers', 'abs(f["gain_db"]) < 1e-12'),
@@ -278,8 +275,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_exact_reduces_to_thesis_limit', 'pytest.approx(p["i_z"] * e[2] + p["i_zp"] * (e[3] + e[4]), rel=1e-12)'),
         ('test_exact_reduces_to_thesis_limit', 'np.allclose(G.contact_velocities_exact(*st, *geo(q)), G.contact_velocities_thesis(*st, *ge'),
         ('test_exact_reduces_to_thesis_limit', 'pytest.approx((MA - p["trail"] * F[1]) / 0.5)'),
-        ('test_linearisation_matches_finite_differences', 'np.allclose(M, M.T)'),
-        ('test_locked_models', 'np.allclose(J, np.linalg.solve(Mt, Kt), rtol=1e-6)'),
         ('test_locked_models', 'np.allclose(dK[:, 0], 0)'),
         ('test_locked_models', 'pytest.approx(-2 * Cr * tr / U)'),
         ('test_locked_models', 'pytest.approx(2 * Cr * tr * (tr - p["x_p"]) / U)'),
@@ -457,39 +452,10 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_a_wheel_file_carries_each_fixed_wheels_angle', 'np.testing.assert_allclose(state_matrices(read, [1.0, -1.0]), state_matrices(lay, [1.0, -1'),
     ],
     'tests/test_linear.py': [
-        ('test_eq_8_2_to_8_5_with_the_thesis_stiffness', 'pytest.approx(748, abs=1)'),
-        ('test_eq_8_2_to_8_5_with_the_thesis_stiffness', 'pytest.approx(159, abs=1)'),
-        ('test_eq_8_2_to_8_5_with_the_thesis_stiffness', 'pytest.approx(215, abs=1)'),
-        ('test_eq_8_2_to_8_5_with_the_thesis_stiffness', 'pytest.approx(1432, abs=1)'),
-        ('test_eq_8_2_to_8_5_with_the_thesis_stiffness', 'pytest.approx(-0.04, abs=0.002)'),
-        ('test_eq_8_2_to_8_5_with_the_thesis_stiffness', 'pytest.approx(12, abs=0.5)'),
         ('test_eq_8_5_with_the_tire_fits', 'pytest.approx(12, rel=0.15)'),
-        ('test_locked_critical_speed_matches_zero_width', 'pytest.approx(linear.zero_width(c).critical_speed, rel=1e-8)'),
-        ('test_state_space_object', 'np.testing.assert_allclose(sys.A, linear.state_matrices(c, 0.75)[0])'),
         ('test_state_space_object', 'np.testing.assert_allclose(sys.B[1, 0], 1 / c.i_z, rtol=0.05)'),
-        ('test_yaw_moment_input_is_the_accelerations_per_newton_metre', 'np.testing.assert_allclose(b, [d[1], d[2], 0.0, d[3], 0.0, d[4]], rtol=1e-9, atol=1e-15)'),
-        ('test_yaw_moment_input_is_the_accelerations_per_newton_metre', 'np.testing.assert_allclose(linear.lateral_force_input(c, 0.75, model), [f1[1], f1[2], 0.0,'),
-        ('test_vectorised_over_chairs', 'np.testing.assert_allclose(A[k], linear.state_matrices(c, 0.75)[0], rtol=1e-13)'),
-        ('test_critical_speed_real_crossing_refined_to_1e_10', 'abs(cross[0].speed - math.sqrt(2)) < 1e-10'),
-        ('test_critical_speed_hidden_double_crossing_is_found', 'pytest.approx(c0 - d, abs=1e-10)'),
-        ('test_critical_speed_hidden_double_crossing_is_found', 'pytest.approx(c0 + d, abs=1e-10)'),
-        ('test_critical_speed_hidden_double_crossing_is_found', 'pytest.approx(3.0, abs=1e-6)'),
-        ('test_crossing_guard_slopes_equal_a_central_difference_of_the_largest_real_part', 'np.testing.assert_allclose(got, fd, rtol=0, atol=1e-6)'),
-        ('test_critical_speed_exactly_on_a_grid_point_is_found_once', 'pytest.approx(1.0, abs=1e-10)'),
-        ('test_critical_speed_exactly_on_a_grid_point_is_found_once', 'np.testing.assert_allclose([c.speed for c in cross], [1.0, 1.9], atol=1e-10)'),
-        ('test_critical_speed_pair_hidden_where_only_the_interpolant_shows_it', 'abs(x.imag) < 1e-12'),
-        ('test_critical_speed_pair_hidden_where_only_the_interpolant_shows_it', 'np.testing.assert_allclose([c.speed for c in cross], [*roots, 1.105], atol=1e-9)'),
-        ('test_free_caster_rate_massless_limit_closed_form', 'pytest.approx(rate, rel=2e-6, abs=10 * rounding)'),
-        ('test_free_caster_rate_massless_limit_closed_form', 'pytest.approx(0.3 * c.m * c.s1 / (c.i_z + c.m * c.s1**2), rel=0.02)'),
-        ('test_guard_interpolant_is_exact_for_a_cubic', 'np.testing.assert_allclose(got, p(x0 + t * h), rtol=0, atol=1e-12)'),
-        ('test_guard_interpolant_is_exact_for_a_cubic', 'np.testing.assert_allclose(GUARD_FRACTIONS, np.arange(1, 8) / 8)'),
-        ('test_critical_speed_guard_maximises_only_where_the_cubic_is_suspicious', 'np.testing.assert_allclose([c.speed for c in cross], r, atol=1e-9)'),
     ],
     'tests/test_measure.py': [
-        ('test_exact_conversion_factors', 'pytest.approx(0.45359237 * 0.0254**2, rel=1e-15)'),
-        ('test_exact_conversion_factors', 'pytest.approx(0.0254 * 4.4482216152605, rel=1e-15)'),
-        ('test_exact_conversion_factors', 'pytest.approx(math.pi, rel=1e-15)'),
-        ('test_exact_conversion_factors', 'pytest.approx(180 / math.pi, rel=1e-15)'),
         ('test_thesis_rod_rigidity', 'pytest.approx(0.8948, abs=5e-5)'),
         ('test_torsional_pendulum_with_calibration_cylinder', 'pytest.approx(0.2, rel=1e-15)'),
         ('test_torsional_pendulum_with_calibration_cylinder', 'pytest.approx(float(k_expr.subs({T: t_cal, Isym: 0.2})), rel=1e-13)'),
@@ -786,7 +752,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_parameter_sweeps_table', 'pytest.approx(0, abs=0.5)'),
         ('test_lateral_force_input_and_yaw_moment_input_agree_with_linear', 'np.testing.assert_allclose([a[1], a[2], a[3], a[4]], b[[0, 1, 3, 5]], rtol=1e-9, atol=1e-1'),
         ('test_linear_impulse_response_is_the_matrix_exponential_solution', 'pytest.approx(tt)'),
-        ('test_linear_impulse_response_is_the_matrix_exponential_solution', 'np.testing.assert_allclose(lin.heading[-1], np.trapezoid(lin.yaw_rate, lin.t), rtol=1e-3)'),
         ('test_linear_overlay_matches_frictionless_simulation', 'pytest.approx(r_sim, rel=0.08)'),
         ('test_linear_overlay_matches_frictionless_simulation', 'pytest.approx(y_sim, rel=0.15, abs=0.005)'),
         ('test_reference_case_and_revised_design', 'pytest.approx(0.75, abs=0.01)'),
@@ -953,7 +918,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_monte_carlo_interval_matches_delta_method_on_linear_function', 'pytest.approx((mean - norm.ppf(0.975) * sigma, mean + norm.ppf(0.975) * sigma), rel=1e-7)'),
         ('test_monte_carlo_interval_matches_delta_method_on_linear_function', 'pytest.approx(mean - 1.96 * sigma, abs=4 * se)'),
         ('test_monte_carlo_interval_matches_delta_method_on_linear_function', 'pytest.approx(mean + 1.96 * sigma, abs=4 * se)'),
-        ('test_monte_carlo_interval_matches_delta_method_on_linear_function', 'pytest.approx(1.0, abs=1e-12)'),
         ('test_monte_carlo_vs_delta_on_the_chair_model', 'pytest.approx(d.value, abs=0.1 * d.std)'),
         ('test_shared_draw_and_truncation', 'np.allclose(ratio, 2.0, rtol=1e-12)'),
         ('test_vector_outputs_and_nan_rows', 'pytest.approx(C.s1 - norm.ppf(0.95) * 0.01, abs=0.001)'),
