@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 779
+PENDING_LIMIT = 744
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -694,42 +694,7 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_grade_speed_closed_form', 'np.max(np.abs(res.heading)) < 1e-12'),
     ],
     'tests/test_slope.py': [
-        ('test_zero_slope_accelerations_equal_level_model', 'np.testing.assert_allclose(got, ref, rtol=1e-11, atol=1e-11)'),
-        ('test_zero_slope_loads_are_eq_6_25', 'np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-9)'),
-        ('test_slope_loads_use_in_plane_weight', 'np.testing.assert_allclose(got, ref, rtol=1e-12)'),
-        ('test_slope_loads_use_in_plane_weight', 'pytest.approx(p.m * p.g * math.cos(math.radians(4)) * math.cos(math.radians(3)))'),
-        ('test_caster_weight_generalized_forces', 'pytest.approx(p.m * g1)'),
-        ('test_caster_weight_generalized_forces', 'pytest.approx(p.m * g2)'),
-        ('test_caster_weight_generalized_forces', 'pytest.approx(-p.m_c * p.l1 * (g2 * math.cos(eta) - g1 * math.sin(eta)))'),
-        ('test_caster_weight_generalized_forces', 'pytest.approx(-p.m_c * p.l1 * (g2 * math.cos(beta) - g1 * math.sin(beta)))'),
-        ('test_zero_slope_equilibrium_is_straight_running', 'abs(e.eta_deg) < 1e-9'),
-        ('test_zero_slope_equilibrium_is_straight_running', 'abs(e.heading_deg) < 1e-9'),
-        ('test_zero_slope_equilibrium_is_straight_running', 'abs(e.holding_moment) < 1e-9'),
-        ('test_zero_slope_equilibrium_is_straight_running', 'np.testing.assert_allclose(e.loads, (s["caster_left"], s["caster_right"], s["main_left"], '),
-        ('test_zero_slope_linearisation_equals_linear_model', 'np.testing.assert_allclose(A, ref, rtol=1e-6, atol=1e-6 * np.abs(ref).max())'),
-        ('test_mirror_symmetry', 'pytest.approx(-b.holding_moment, rel=1e-9)'),
-        ('test_mirror_symmetry', 'pytest.approx(-b.heading_deg, rel=1e-7)'),
-        ('test_mirror_symmetry', 'pytest.approx(-b.beta_deg, rel=1e-7)'),
-        ('test_mirror_symmetry', 'pytest.approx(-b.eta_deg, rel=1e-7)'),
-        ('test_mirror_symmetry', 'np.testing.assert_allclose(a.loads, (b.loads[1], b.loads[0], b.loads[3], b.loads[2]), rtol'),
-        ('test_mirror_symmetry', 'np.testing.assert_allclose(a.drive_forces, b.drive_forces[::-1], rtol=1e-7, atol=1e-9)'),
-        ('test_mirror_symmetry', 'np.testing.assert_allclose(a.friction_range, [-x for x in b.friction_range[::-1]], rtol=1e'),
-        ('test_frictionless_statics', 'np.max(np.abs(eqm.residual_accelerations(c, e))) < 1e-9'),
-        ('test_frictionless_statics', 'pytest.approx(e.closed_form, rel=2e-3)'),
-        ('test_frictionless_statics', 'abs(e.holding_moment - lead) <= 1.01 * bound + 2e-3 * abs(lead)'),
-        ('test_front_caster_turn_rate_near_free_caster_closed_form', 'pytest.approx(g2 / U, rel=1e-12)'),
         ('test_front_caster_turn_rate_near_free_caster_closed_form', 'pytest.approx(g2 / U, rel=0.1)'),
-        ('test_zero_width_hold_closed_form', 'pytest.approx(-m * g2)'),
-        ('test_zero_width_hold_closed_form', 'pytest.approx(m * g2 * s1)'),
-        ('test_zero_width_hold_closed_form', 'pytest.approx(-(s1 * Ff - s2 * Fr))'),
-        ('test_zero_width_hold_closed_form', 'pytest.approx(-m * g2)'),
-        ('test_zero_width_hold_closed_form', 'pytest.approx(Fr / 1000.0)'),
-        ('test_grade_forward_component', 'pytest.approx(-c.m * c.g * math.sin(math.radians(theta)), rel=1e-12)'),
-        ('test_grade_forward_component', 'pytest.approx(-c.g * math.sin(math.radians(theta)), rel=1e-9)'),
-        ('test_cli_json_and_errors', 'pytest.approx(2 * d["holding_yaw_moment_N_m_per_deg"])'),
-        ('test_cli_json_and_errors', 'pytest.approx(1.0)'),
-        ('test_cli_json_and_errors', 'pytest.approx( d["uncorrected_path"]["heading_change_deg"], rel=1e-4)'),
-        ('test_handrim_force_difference_is_the_statics_moment_over_track_and_rim', 'pytest.approx(-ratio * e.closed_form / c.d1, rel=2e-3)'),
     ],
     'tests/test_stick_slip.py': [
         ('test_critical_impulse_is_step_converged_with_stick_slip', 'abs(math.log(coarse.impulse_Ns / fine.impulse_Ns)) < 0.01'),
