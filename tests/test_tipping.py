@@ -30,8 +30,9 @@ def test_fore_aft_closed_forms(name):
     """Toward the main wheels: tan a = s1/h; toward the casters, casters turned toward the c.g.: (s2 - l)/h."""
     c = chair_mod.preset(name)
     t = tip_angles(c)
-    assert t.toward_main_wheels_deg == pytest.approx(_deg(c.s1, c.h), abs=1e-10)
-    assert t.toward_casters_deg == pytest.approx(_deg(c.s2 - c.trail, c.h), abs=1e-10)
+    # error model: rounding: an atan of stored lengths, a few ulp of an angle below 90 deg (1.4e-14 deg each); observed 0; 1e-12 deg
+    assert t.toward_main_wheels_deg == pytest.approx(_deg(c.s1, c.h), abs=1e-12)
+    assert t.toward_casters_deg == pytest.approx(_deg(c.s2 - c.trail, c.h), abs=1e-12)
     assert t.lines["toward_casters"].distance_m == pytest.approx(c.s2 - c.trail, abs=TOL_M)
 
 
@@ -39,8 +40,10 @@ def test_ej_premier_tips_backwards_near_nine_degrees():
     """The issue's rigid E&J Premier, casters swivelled toward the c.g.: about 9 deg (atan(0.095/0.61) = 8.85)."""
     t = tip_angles(chair_mod.preset("ej-premier"))
     assert t.smallest_direction == "toward_casters"
-    assert t.toward_casters_deg == pytest.approx(math.degrees(math.atan(0.095 / 0.61)), abs=1e-10)
-    assert t.lines["toward_casters"].caster_angles_deg == (pytest.approx(180.0), pytest.approx(180.0))
+    # error model: rounding: an atan of stored lengths, a few ulp of an angle below 90 deg (1.4e-14 deg each) (observed 1.8e-15 deg); the casters' angles likewise (observed 0)
+    assert t.toward_casters_deg == pytest.approx(math.degrees(math.atan(0.095 / 0.61)), abs=1e-12)
+    assert t.lines["toward_casters"].caster_angles_deg == (pytest.approx(180.0, abs=1e-12),
+                                                           pytest.approx(180.0, abs=1e-12))
 
 
 @pytest.mark.parametrize("name", ["ej-premier", "revised"])
@@ -84,12 +87,15 @@ def test_mirror_symmetry(name):
     c = chair_mod.preset(name).replace(d1=0.25, d2=0.29, t1=0.22, t2=0.26)
     m = c.replace(d1=c.d2, d2=c.d1, t1=c.t2, t2=c.t1)
     a, b = tip_angles(c), tip_angles(m)
-    assert a.lateral_left_deg == pytest.approx(b.lateral_right_deg, abs=1e-10)
-    assert a.lateral_right_deg == pytest.approx(b.lateral_left_deg, abs=1e-10)
-    assert a.toward_casters_deg == pytest.approx(b.toward_casters_deg, abs=1e-10)
+    # error model: mirror images in exact arithmetic, the same closed forms on swapped lengths: rounding, a few ulp
+    # (observed 0); 1e-12 deg
+    assert a.lateral_left_deg == pytest.approx(b.lateral_right_deg, abs=1e-12)
+    assert a.lateral_right_deg == pytest.approx(b.lateral_left_deg, abs=1e-12)
+    assert a.toward_casters_deg == pytest.approx(b.toward_casters_deg, abs=1e-12)
     assert a.lines["lateral_left"].caster_angles_deg[0] == pytest.approx(
-        -b.lines["lateral_right"].caster_angles_deg[1], abs=1e-8)
-    assert a.lateral_left_deg != pytest.approx(a.lateral_right_deg, abs=0.1)   # the asymmetry is seen
+        -b.lines["lateral_right"].caster_angles_deg[1], abs=1e-12)
+    # the asymmetry (3-4 cm of half-track) moves the angle by 3.8 deg, far beyond the rounding above
+    assert a.lateral_left_deg != pytest.approx(a.lateral_right_deg, abs=0.1)
 
 
 def _uphill_moment(c, key, alpha_deg: float) -> float:
@@ -137,41 +143,47 @@ def test_fore_aft_uphill_load_sum_is_zero_at_the_tip():
     c = chair_mod.preset("ej-premier")
     a = math.atan2(c.s1, c.h)
     loads = slope_model.normal_loads(parameters(c), 0.0, 0.0, c.g * math.sin(a), 0.0, c.g * math.cos(a))
+    # error model: rounding: O(m g) sums of O(1) products, ~100 eps m g, as above (x >= 1e4)
     assert abs(float(loads[0] + loads[1])) < 1e-10 * c.m * c.g
 
 
 def test_slope_tip_reduces_to_the_iso_directions():
     c = chair_mod.preset("ej-premier")
     t = tip_angles(c)
-    assert slope_tip(c, 5.0).tip_deg == pytest.approx(t.lateral_right_deg, abs=1e-10)
-    assert slope_tip(c, -5.0).tip_deg == pytest.approx(t.lateral_left_deg, abs=1e-10)
-    assert slope_tip(c, 0.0, 4.0).tip_deg == pytest.approx(t.toward_casters_deg, abs=1e-10)   # uphill ahead
-    assert slope_tip(c, 0.0, -4.0).tip_deg == pytest.approx(t.toward_main_wheels_deg, abs=1e-10)
+    # error model: rounding: an atan of stored lengths, a few ulp of an angle below 90 deg (1.4e-14 deg each); the same closed forms along a fall line of exact direction (observed 0)
+    assert slope_tip(c, 5.0).tip_deg == pytest.approx(t.lateral_right_deg, abs=1e-12)
+    assert slope_tip(c, -5.0).tip_deg == pytest.approx(t.lateral_left_deg, abs=1e-12)
+    assert slope_tip(c, 0.0, 4.0).tip_deg == pytest.approx(t.toward_casters_deg, abs=1e-12)   # uphill ahead
+    assert slope_tip(c, 0.0, -4.0).tip_deg == pytest.approx(t.toward_main_wheels_deg, abs=1e-12)
     level = slope_tip(c, 0.0, 0.0)
     assert level.tilt_deg == 0.0 and level.tip_deg == t.smallest_deg
     s = slope_tip(c, 6.0, 3.0)
-    # tilt of a plane with cross slope phi and grade theta: cos(tilt) = cos(phi) cos(theta)
+    # tilt of a plane with cross slope phi and grade theta: cos(tilt) = cos(phi) cos(theta); error model: rounding
+    # amplified by acos's conditioning, eps / sin(tilt) = 1.9e-15 rad = 1.1e-13 deg (observed 2.7e-14), x100
     assert s.tilt_deg == pytest.approx(math.degrees(math.acos(math.cos(math.radians(6)) * math.cos(math.radians(3)))),
-                                       abs=1e-10)
+                                       abs=1.1e-11)
     g1, g2, _ = slope_model.gravity(c.g, math.radians(6.0), math.radians(3.0))
     e = (g1 / math.hypot(g1, g2), g2 / math.hypot(g1, g2))
-    assert s.fall_direction_deg == pytest.approx(math.degrees(math.atan2(e[1], e[0])))
+    # error model: rounding of an atan2 of the same gravity components (observed 0)
+    assert s.fall_direction_deg == pytest.approx(math.degrees(math.atan2(e[1], e[0])), abs=1e-12)
     w = c.m * c.g * 0.5          # the slope statics unload the uphill contacts at this tilt (as below)
+    # error model: rounding: O(m g) sums of O(1) products, ~100 eps m g (x >= 1e4)
     assert abs(_uphill_moment(c, e, s.tip_deg)) < 1e-10 * w
     assert _uphill_moment(c, e, s.tip_deg - 0.1) > 1e-4 * w
     assert _uphill_moment(c, e, s.tip_deg + 0.1) < -1e-4 * w
-    assert s.margin_deg == pytest.approx(s.tip_deg - s.tilt_deg)
+    assert s.margin_deg == s.tip_deg - s.tilt_deg              # the same difference
 
 
 def test_anti_tip():
     c = chair_mod.preset("manual-front-caster")
     assert anti_tip_angle(c) is None and tip_angles(c).anti_tip_deg is None
     flat = c.replace(anti_tip_reach=0.2)
-    assert anti_tip_angle(flat) == pytest.approx(_deg(c.s1 + 0.2, c.h), abs=1e-10)   # touching: a longer base
+    # error model: rounding: an atan of stored lengths, a few ulp of an angle below 90 deg (1.4e-14 deg each) (observed 3.6e-15)
+    assert anti_tip_angle(flat) == pytest.approx(_deg(c.s1 + 0.2, c.h), abs=1e-12)   # touching: a longer base
     raised = c.replace(anti_tip_reach=0.2, anti_tip_clearance=0.05)
     assert tip_angles(c).toward_main_wheels_deg < anti_tip_angle(raised) < anti_tip_angle(flat)
     high = c.replace(anti_tip_reach=0.05, anti_tip_clearance=0.4)   # catches it only past its balance point
-    assert anti_tip_angle(high) == pytest.approx(tip_angles(c).toward_main_wheels_deg, abs=1e-10)
+    assert anti_tip_angle(high) == pytest.approx(tip_angles(c).toward_main_wheels_deg, abs=1e-12)   # rounding
 
 
 def test_fall_distance_sign_when_the_casters_can_swing_past_the_cg():
@@ -197,9 +209,9 @@ def test_cli_json_and_errors():
         assert k in d
     t = tip_angles(chair_mod.preset("revised"))
     for k in DIRECTIONS:
-        assert d[k + "_deg"] == pytest.approx(getattr(t, k + "_deg"), rel=1e-12)
-    assert d["static_stability_deg"] == pytest.approx(t.smallest_deg)
-    assert d["slope"]["tip_deg"] == pytest.approx(slope_tip(chair_mod.preset("revised"), 6, 2).tip_deg)
+        assert d[k + "_deg"] == pytest.approx(getattr(t, k + "_deg"), rel=1e-12)   # exact: JSON round trip
+    assert d["static_stability_deg"] == t.smallest_deg                                 # (repr is exact)
+    assert d["slope"]["tip_deg"] == slope_tip(chair_mod.preset("revised"), 6, 2).tip_deg
     bad = _run("--cross-slope", "60")
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "--cross-slope" in bad.stderr
     text = _run("--chair", "ej-premier")
@@ -225,7 +237,8 @@ def test_derivation_statements_and_the_anti_tip_closed_form():
     sym = {str(s): s for s in closed.free_symbols}
     val = float(closed.subs({sym["s1"]: c.s1, sym["h"]: c.h, sym["reach"]: 0.15, sym["clearance"]: 0.01}))
     assert math.atan(val) > math.atan2(c.s1, c.h)                 # caught before it goes over
-    assert anti_tip_angle(c) == pytest.approx(math.degrees(math.atan(val)), abs=1e-10)
+    # error model: rounding of sympy's float evaluation and the atan, a few ulp (observed 0)
+    assert anti_tip_angle(c) == pytest.approx(math.degrees(math.atan(val)), abs=1e-12)
     assert isinstance(closed, sp.Expr)
 
 
@@ -250,7 +263,8 @@ def test_fixed_contacts_fall_distance_is_the_ray_to_the_support_polygon(theta_de
     h = 0.55
     got = support_fall_distance([(x, y, 0.0) for x, y in tri], h, *e)
     assert got.distance_m == pytest.approx(hits[0], abs=TOL_M)
-    assert got.angle_deg == pytest.approx(_deg(hits[0], h), abs=1e-9)
+    # error model: rounding of Cramer's rule and the atan, a few ulp (observed 7.1e-15 deg), margin 140
+    assert got.angle_deg == pytest.approx(_deg(hits[0], h), abs=1e-12)
 
 
 def test_fall_line_is_a_frozen_value():
