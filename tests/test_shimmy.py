@@ -103,18 +103,21 @@ def test_characteristic_polynomial_matches_newton_euler(rigid_pivot, rigid_tire)
         for speed in (0.3, 1.7):
             got = w.characteristic_polynomial(speed)
             ref = np.array(f(*vals, speed), dtype=float)
-            np.testing.assert_allclose(got / got[0], ref / ref[0], rtol=1e-10, atol=0)
-            # and the state matrix has those roots: compare the monic polynomial of A
+            # error model: rounding of the generated coefficients against sympy's, a few ulp (observed 4.2e-16)
+            np.testing.assert_allclose(got / got[0], ref / ref[0], rtol=1e-13, atol=0)
+            # and the state matrix has those roots: compare the monic polynomial of A; error model: np.poly rebuilds
+            # the coefficients from LAPACK eigenvalues, each within n eps ||A|| kappa, times the products of the
+            # others (observed 1.1e-14 relative, 4e-15 of the largest coefficient): margins 90 and 250
             A, _ = w.state_matrix(speed)
-            np.testing.assert_allclose(np.poly(A), ref / ref[0], rtol=1e-8,
-                                       atol=1e-10 * np.abs(ref / ref[0]).max())
+            np.testing.assert_allclose(np.poly(A), ref / ref[0], rtol=1e-12,
+                                       atol=1e-12 * np.abs(ref / ref[0]).max())
 
 
 def test_rigid_caster_first_order_eigenvalue():
     # rigid pivot, rigid tire: L psi_dot = -U psi, eigenvalue -U/L for any mass and damping
     w = TowedWheel(mass=2.0, inertia=0.1, contact_behind_cm=0.03, pivot_ahead_of_cm=0.05, pin_damping=3.0)
     speeds = np.array([0.2, 1.0, 4.0])
-    np.testing.assert_allclose(w.eigenvalues(speeds)[:, 0], -speeds / 0.08, rtol=1e-14)
+    np.testing.assert_allclose(w.eigenvalues(speeds)[:, 0], -speeds / 0.08, rtol=1e-14)   # rounding (observed 0)
     assert w.routh_hurwitz(1.0).stable
     # a negative trail is refused (it is not a caster)
     with pytest.raises(ValueError, match="pivot_ahead_of_cm"):
@@ -130,14 +133,15 @@ def test_relaxation_wheel_rigid_pivot_hurwitz_condition():
                    cornering_stiffness=C_, relaxation_length=0.05)
     for speed in (0.5, 2.0):
         hb = w.hopf_boundary("relaxation_length", np.linspace(0.01, 0.3, 30), speed)
-        np.testing.assert_allclose(hb.crossings[0], [L], rtol=1e-9)
+        np.testing.assert_allclose(hb.crossings[0], [L], rtol=1e-10)     # bisection bracket: brentq's rtol 1e-12 on the boundary (observed <= 5.8e-16 relative), x100
         assert hb.destabilising[0].tolist() == [True]
     # with damping: the two roots of J c U^2 + (J C L^2 + c^2 sigma - J sigma C L) U + c sigma C L^2 = 0
     c_, s_ = 0.01, 0.12
     wd = w.replace(pin_damping=c_, relaxation_length=s_)
     roots = np.sort(np.roots([J * c_, J * C_ * L**2 + c_**2 * s_ - J * s_ * C_ * L, c_ * s_ * C_ * L**2]).real)
     hb = wd.hopf_boundary("speed", np.geomspace(0.01, 1e4, 400))
-    np.testing.assert_allclose(hb.crossings[0], roots, rtol=1e-9)
+    # error model: bisection bracket: brentq's rtol 1e-12 on the boundary (observed <= 5.8e-16 relative), x100; numpy.roots of the quadratic, a few ulp
+    np.testing.assert_allclose(hb.crossings[0], roots, rtol=1e-10)
     assert hb.destabilising[0].tolist() == [True, False]
     mid = roots.mean()
     assert not wd.routh_hurwitz(mid).stable and wd.oscillatory_abscissa(mid) > 0
@@ -153,12 +157,13 @@ def test_rigid_tire_compliant_pivot_closed_form():
     speeds = [0.5, 1.0, 3.0]
     hb = w.hopf_boundary("pin_damping", np.linspace(0.0, 1.0, 50), speeds)
     for u, crit, freq in zip(speeds, hb.crossings, hb.frequencies, strict=True):
-        np.testing.assert_allclose(crit, [u * (inertia - mass * a_ * b_) / L], rtol=1e-9)
-        np.testing.assert_allclose(freq, [math.sqrt(k_ * L**2 / (inertia + mass * a_**2))], rtol=1e-9)
+        # error model: bisection bracket: brentq's rtol 1e-12 on the boundary (observed <= 5.8e-16 relative), x100; the frequency is the boundary eigenvalue's (rounding, observed 4.1e-16)
+        np.testing.assert_allclose(crit, [u * (inertia - mass * a_ * b_) / L], rtol=1e-10)
+        np.testing.assert_allclose(freq, [math.sqrt(k_ * L**2 / (inertia + mass * a_**2))], rtol=1e-10)
     # the centre-of-percussion condition: without damping stable iff I < m a b
     inertia_crit = mass * a_ * b_
     hb = w.hopf_boundary("inertia", np.linspace(0.2, 2.0, 20) * inertia_crit, [1.0])
-    np.testing.assert_allclose(hb.crossings[0], [inertia_crit], rtol=1e-9)
+    np.testing.assert_allclose(hb.crossings[0], [inertia_crit], rtol=1e-10)    # bisection bracket: brentq's rtol 1e-12 on the boundary (observed <= 5.8e-16 relative), x100
 
 
 def test_time_scaling_invariant():
@@ -193,6 +198,7 @@ def test_routh_hurwitz_agrees_with_eigenvalues():
         if abs(margin) > 1e-6:  # well away from the boundary
             assert rh.stable == (margin < 0)
     # Orlando: Delta_(n-1) of (s^2 + 4)(s + 1) is zero, of (s^2 + s + 4)(s + 1) positive
+    # exact: np.poly gives the integer coefficients [1, 1, 4, 4] exactly and the determinant is 0 (observed 0)
     assert abs(hurwitz_determinants(np.poly([2j, -2j, -1]).real)[-2]) < 1e-12
     assert hurwitz_determinants(np.polymul([1, 1, 4], [1, 1]))[-2] > 0
 
@@ -235,7 +241,9 @@ def test_simulation_without_friction_is_the_matrix_exponential():
     x0 = df.shimmy_mode_state(w, 1.0, 0.05)
     sim = df.simulate(w, 1.0, x0, 0.3)
     A, _ = w.state_matrix(1.0)
-    np.testing.assert_allclose(sim.x[-1], scipy.linalg.expm(A * sim.t[-1]) @ x0, rtol=1e-6,
+    # error model: DOP853's local error control (rtol 1e-9, atol 1e-12) over 0.3 s: a global error of a few rtol
+    # (observed 1.9e-11 relative, 1.3e-10 of |x0|); rtol 100 x the solver's (was 1e-6), atol margin 75
+    np.testing.assert_allclose(sim.x[-1], scipy.linalg.expm(A * sim.t[-1]) @ x0, rtol=1e-7,
                                atol=1e-8 * np.abs(x0).max())
 
 
@@ -254,7 +262,9 @@ def test_equivalent_damping_dissipates_the_coulomb_energy_per_cycle(friction, am
         t = np.linspace(a, b, 2**16 + 1)
         coulomb += simpson(friction * np.abs(amplitude * omega * np.cos(omega * t)), x=t)
     c_eq = df.equivalent_damping(friction, amplitude, omega)
-    assert math.pi * c_eq * amplitude**2 * omega == pytest.approx(coulomb, rel=1e-10)
+    # error model: Simpson's truncation negligible; rounding of 2^16-term sums (numpy's pairwise summation,
+    # ~log2(n) eps = 3.6e-15; observed 2e-16): 1e-12, margin 280 over that bound
+    assert math.pi * c_eq * amplitude**2 * omega == pytest.approx(coulomb, rel=1e-12)
 
 
 @pytest.mark.parametrize("rigid_pivot", [True, False])
@@ -272,7 +282,8 @@ def test_describing_function_threshold_matches_simulation(rigid_pivot):
         assert abs(math.sqrt(lo * hi) / a_star - 1) < 0.03
         # consistency: the friction that suppresses shimmy at a_star is the wheel's own friction
         est = df.suppressing_friction(w, speed, a_star)
-        assert est.friction == pytest.approx(w.pin_friction, rel=1e-9)
+        # error model: rounding: the describing function inverted in closed form, a few ulp (observed 1.4e-16)
+        assert est.friction == pytest.approx(w.pin_friction, rel=1e-13)
 
 
 def test_friction_sticks_a_stable_wheel_and_no_friction_needed():
@@ -292,6 +303,7 @@ def test_caster_wheel_from_chair():
 
     c = preset("ej-premier")
     w = caster_wheel(c, CasterCompliance(relaxation_length=0.03, lateral_stiffness=7e4))
+    # error model: rounding of the same products and differences (observed 0)
     assert w.inertia == pytest.approx(0.02 - 1.2 * 0.058**2, rel=1e-12)
     assert w.trail == pytest.approx(0.08, rel=1e-12) and w.pivot_ahead_of_cm == 0.058
     assert (w.relaxation_length, w.lateral_stiffness, w.pin_friction) == (0.03, 7e4, 0.1)
