@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 704
+PENDING_LIMIT = 687
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -688,26 +688,9 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_a_settled_run_never_reaches_the_level', 'abs(y[-1] - y[len(y) // 2]) < 1e-3'),
     ],
     'tests/test_study.py': [
-        ('test_time_to_yaw_rate_interpolates', 'pytest.approx(math.log(10), abs=1e-4)'),
-        ('test_time_to_yaw_rate_interpolates', 'pytest.approx(math.log(10), abs=1e-4)'),
-        ('test_time_to_yaw_rate_never_and_stopped', 'pytest.approx(4.0)'),
-        ('test_equal_instability_bisection', 'pytest.approx(3.2, abs=1e-3)'),
-        ('test_equal_instability_bisection', 'pytest.approx(0.75, abs=0.002)'),
-        ('test_equal_instability_bisection', 'pytest.approx(0.6, abs=0.002)'),
-        ('test_equal_instability_bisection', 'pytest.approx(1.2, abs=0.002)'),
-        ('test_equal_instability_speed_single', 'pytest.approx(0.75, abs=0.001)'),
         ('test_maps_use_one_batch', 'pytest.approx(0.75, abs=0.01)'),
-        ('test_disturbance_map_matches_separate_runs', 'pytest.approx(crit.time(r), abs=1e-9)'),
-        ('test_parameter_sweeps_table', 'np.testing.assert_allclose(pf.speeds, [0.375, 0.75, 1.125], atol=0.003)'),
-        ('test_parameter_sweeps_table', 'pytest.approx(100, abs=1)'),
-        ('test_parameter_sweeps_table', 'pytest.approx(0, abs=0.5)'),
-        ('test_lateral_force_input_and_yaw_moment_input_agree_with_linear', 'np.testing.assert_allclose([a[1], a[2], a[3], a[4]], b[[0, 1, 3, 5]], rtol=1e-9, atol=1e-1'),
-        ('test_linear_impulse_response_is_the_matrix_exponential_solution', 'pytest.approx(tt)'),
         ('test_linear_overlay_matches_frictionless_simulation', 'pytest.approx(r_sim, rel=0.08)'),
         ('test_linear_overlay_matches_frictionless_simulation', 'pytest.approx(y_sim, rel=0.15, abs=0.005)'),
-        ('test_reference_case_and_revised_design', 'pytest.approx(0.75, abs=0.01)'),
-        ('test_plan_for_moves_the_thesis_steps_to_the_chair', 'pytest.approx((0.145, 0.195, 0.245))'),
-        ('test_plan_for_moves_the_thesis_steps_to_the_chair', 'pytest.approx((0.03, 0.04, 0.05, 0.06, 0.08))'),
         ('test_reduced_mass_figure_8_14_is_not_reproduced_and_why', 'pytest.approx(r_ref, rel=0.03)'),
         ('test_reduced_mass_figure_8_14_is_not_reproduced_and_why', 'pytest.approx(r_light / r_ref, abs=0.005)'),
         ('test_studies_never_integrate_with_an_unstable_step', 'pytest.approx(np.max(np.abs(ref.yaw_rate)), rel=0.03)'),
