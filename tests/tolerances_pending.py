@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 687
+PENDING_LIMIT = 644
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -623,53 +623,10 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_shimmy_command_answers_reverse', 'pytest.approx(LayoutCaster(lay, 0, reverse=True).static_load(), rel=1e-12)'),
     ],
     'tests/test_simulate.py': [
-        ('test_a_negative_speed_drives_backwards', 'np.max(np.abs(straight.heading)) <= n * EPS'),
-        ('test_a_negative_speed_drives_backwards', 'pytest.approx(-0.75 * straight.t[-1], rel=n * EPS)'),
-        ('test_a_negative_speed_drives_backwards', 'np.max(np.abs(right.heading + left.heading)) <= n * EPS * peak'),
-        ('test_time_loop_is_wchairs_do_loop', 'pytest.approx(0.051, abs=1e-12)'),
-        ('test_time_loop_is_wchairs_do_loop', 'np.testing.assert_allclose(np.diff(r.t), 0.001, rtol=1e-9)'),
-        ('test_time_loop_is_wchairs_do_loop', 'np.testing.assert_allclose(r.t, np.arange(6) * 0.01, atol=1e-12)'),
-        ('test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update', 'pytest.approx(40.0 * 0.101 / 95.0, rel=1e-12)'),
-        ('test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update', 'pytest.approx(40.0 * 0.100 / 95.0, rel=1e-12)'),
-        ('test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update', 'np.testing.assert_allclose(r.x, 0.75 * r.t, rtol=1e-12, atol=1e-15)'),
-        ('test_impulse_at_cg_acts_while_t_le_duimp_with_constant_acceleration_update', 'pytest.approx(0.5 * a * r.t[k] ** 2, rel=1e-9)'),
-        ('test_statics_uses_previous_steps_total_force_including_fcimp', 'np.testing.assert_allclose(r.normal_load[0], loads.normal_loads(p), rtol=1e-12)'),
-        ('test_statics_uses_previous_steps_total_force_including_fcimp', 'np.testing.assert_allclose(r.normal_load[1], loads.normal_loads(p, 0.0, 40.0), rtol=1e-12)'),
-        ('test_forces_oppose_contact_velocity_and_follow_the_tire_fits', 'pytest.approx(expect, rel=1e-12, abs=1e-12)'),
-        ('test_tire_impulse_replaces_main_tire_lateral_forces', 'pytest.approx(main.lateral_force(float(r.slip_deg[k, 2]), float(r.normal_load[k, 2])))'),
-        ('test_initial_lateral_velocity_and_caster_angles', 'pytest.approx(math.radians(-3.0))'),
-        ('test_initial_lateral_velocity_and_caster_angles', 'pytest.approx(math.radians(5.0))'),
-        ('test_initial_lateral_velocity_and_caster_angles', 'pytest.approx(math.degrees(math.atan(0.04 / 0.75)), rel=1e-12)'),
-        ('test_no_disturbance_means_straight_motion', 'pytest.approx(0.75 * r.t[-1])'),
-        ('test_toe_and_camber_as_slip_and_mechan_apply_them', 'pytest.approx(1.0, rel=1e-9)'),
-        ('test_toe_and_camber_as_slip_and_mechan_apply_them', 'pytest.approx(-1.0, rel=1e-9)'),
-        ('test_toe_and_camber_as_slip_and_mechan_apply_them', 'pytest.approx(-r.fy[0, 3], rel=1e-12)'),
-        ('test_toe_and_camber_as_slip_and_mechan_apply_them', 'pytest.approx(expect, rel=1e-12)'),
-        ('test_toe_and_camber_as_slip_and_mechan_apply_them', 'pytest.approx(-expect, rel=1e-12)'),
-        ('test_rolling_resistance_when_switched_on', 'pytest.approx(-c.main_tire_model().rolling_resistance(float(fz[2])))'),
-        ('test_rolling_resistance_when_switched_on', 'pytest.approx(-c.caster_tire_model().rolling_resistance(float(fz[0])))'),
-        ('test_warning_rule_stops_at_the_eleventh_warning', 'pytest.approx(0.010)'),
-        ('test_yaw_moment_input_reaches_the_yaw_equation', 'np.testing.assert_allclose(r.yaw_acceleration, 5.0 / EJ.i_z, rtol=1e-12)'),
-        ('test_tire_yaw_moment_is_the_yaw_equation_of_the_thesis_variant', 'np.testing.assert_allclose(EJ.i_z * r.yaw_acceleration, r.tire_yaw_moment, rtol=1e-9, atol'),
-        ('test_batch_stops_runs_individually', 'pytest.approx(0.01)'),
         ('test_adaptive_converges_when_tolerances_are_halved', 'abs(ra - rb) < 0.005 * abs(rb)'),
         ('test_adaptive_stick_slip', 'np.abs(m[stuck]) <= 0.1 * (1 + 1e-6)'),
-        ('test_adaptive_stick_slip', 'np.testing.assert_allclose(m[slipping], -0.1 * np.sign(rate[slipping]), rtol=1e-12)'),
         ('test_adaptive_stick_slip', 'pytest.approx(w.first_time_abs_yaw_rate(1.0), rel=0.05)'),
-        ('test_adaptive_yaw_moment_sees_floats_and_acts', 'np.testing.assert_allclose(damped.yaw_moment_input, -20.0 * damped.yaw_rate, rtol=1e-12)'),
-        ('test_adaptive_locked_and_samples', 'np.testing.assert_allclose(r.t, np.arange(21) * 0.05, atol=1e-12)'),
-        ('test_adaptive_loads_are_consistent_with_the_forces', 'np.testing.assert_allclose(r.normal_load[k], loads.normal_loads(p, sfx, sfy, ce, se, cb, s'),
-        ('test_first_time_abs_yaw_rate_interpolates', 'pytest.approx(1.5)'),
-        ('test_first_time_abs_yaw_rate_interpolates', 'pytest.approx(2.5)'),
-        ('test_result_is_frozen_and_resamples', 'np.testing.assert_allclose(q.t, np.arange(11) * 0.05, atol=1e-12)'),
-        ('test_result_is_frozen_and_resamples', 'np.testing.assert_allclose(q.yaw_rate, np.interp(q.t, r.t, r.yaw_rate))'),
-        ('test_result_is_frozen_and_resamples', 'pytest.approx(0.501)'),
-        ('test_to_csv_and_plot', 'np.testing.assert_allclose(data[:, header.index("yaw_rate")], r.yaw_rate, rtol=1e-15)'),
-        ('test_cli_json', 'np.testing.assert_allclose(d["t_s"], np.arange(len(d["t_s"])) * 0.1, atol=1e-12)'),
-        ('test_cli_json', 'pytest.approx(simulate(EJ, 0.75, run=RunSpec(horizon=4, friction_law="kinetic", model="the'),
-        ('test_record_modes_and_stats', 'pytest.approx(full.first_time_abs_yaw_rate(1.0), abs=1e-12)'),
         ('test_step_stability_limit_against_the_adaptive_scheme', 'pytest.approx(peak_ada, rel=0.08)'),
-        ('test_range_rules_count_only_the_tested_wheels_of_a_mixed_chair', 'pytest.approx(r.t[-1] + r.settings["dt"], abs=1e-12)'),
     ],
     'tests/test_simulate_slope.py': [
         ('test_plane_loads_at_zero_slope_are_eq_6_25', 'np.testing.assert_allclose(msl.normal_loads_plane(p, fx, fy, p.g, *trig), normal_loads(p, '),
