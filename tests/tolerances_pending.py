@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 644
+PENDING_LIMIT = 613
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -78,27 +78,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_trail_chart_crosses_zero_at_the_bands_boundary', 'np.allclose(tw.chart.critical_trail, lower, atol=2e-5)'),
     ],
     'tests/test_assist.py': [
-        ('test_preset_validates_and_matches_its_documentation', 'pytest.approx(chair.m)'),
-        ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'pytest.approx(10.0 * (c.d1 + c.d2) / dt.wheel_radius)'),
-        ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'pytest.approx(7.0)'),
-        ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'pytest.approx(dt.torque_limit * 0.55 / 0.178)'),
-        ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'pytest.approx((20.0 / dt.wheel_radius, -20.0 / dt.wheel_radius))'),
-        ('test_drive_train_yaw_moment_is_the_couple_of_eq_6_3', 'np.allclose(a, b, rtol=1e-12, atol=1e-12)'),
-        ('test_plant_is_the_linear_model_augmented_with_the_heading', 'np.allclose(p.A[:6, :6], state_matrices(chair, s)[0])'),
-        ('test_plant_is_the_linear_model_augmented_with_the_heading', 'np.allclose(p.B[:6], input_matrices(chair, s)[0])'),
-        ('test_bryson_weights_are_physical', 'pytest.approx(1 / math.radians(2.0) ** 2)'),
-        ('test_bryson_weights_are_physical', 'pytest.approx(1 / DriveTrain().yaw_moment(chair, 35.0) ** 2)'),
-        ('test_bryson_weights_are_physical', 'pytest.approx(35.0, rel=1e-3)'),
-        ('test_robustness_box_stable', 'pytest.approx(rob.max_real.max())'),
-        ('test_recovery_through_saturation', 'np.max(np.abs(taus)) <= 15.0 + 1e-9'),
-        ('test_fit_decay_rate_on_known_signals', 'pytest.approx(-4, rel=1e-3)'),
-        ('test_fit_decay_rate_on_known_signals', 'pytest.approx(-1.5, rel=1e-9)'),
-        ('test_destabilising_moment_reference_case', 'np.allclose(m, c.i_z * np.asarray(res.yaw_acceleration), rtol=1e-9, atol=1e-9)'),
-        ('test_yaw_rate_command_has_unit_dc_gain', 'pytest.approx(1.0, abs=1e-9)'),
-        ('test_yaw_rate_command_has_unit_dc_gain', 'pytest.approx(tracking.feedforward(d.plant).Nu, rel=1e-9)'),
-        ('test_gyro_bias_handling_closed_forms', 'pytest.approx(-1.0, abs=1e-9)'),
-        ('test_gyro_bias_handling_closed_forms', 'pytest.approx(0.0, abs=1e-9)'),
-        ('test_gyro_bias_handling_closed_forms', 'pytest.approx(-tb, rel=1e-6)'),
         ('test_discrete_delay_margin_is_the_continuous_one_less_the_sampling_delays', 'pytest.approx(m.continuous.delay_margin_s - 1.5 * T, abs=0.15 * T)'),
         ('test_discrete_delay_margin_is_the_continuous_one_less_the_sampling_delays', 'pytest.approx(g.continuous.delay_margin_s - T, abs=0.2 * T)'),
         ('test_reversing_front_wheel_drive_chair_is_stable', 'pytest.approx(lam, rel=0.03)'),
@@ -106,10 +85,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_nonlinear_tracking_step_and_slalom', 'np.abs(run.yaw_rate - run.command)[run.t > 1.0].max() < 0.05'),
         ('test_nonlinear_bias_handling', 'pytest.approx(-10.0, abs=0.3)'),
         ('test_nonlinear_bias_handling', 'pytest.approx(-1.0, abs=0.2)'),
-        ('test_standstill_plant_is_the_low_speed_limit_of_the_linear_model', 'pytest.approx(J)'),
-        ('test_standstill_plant_is_the_low_speed_limit_of_the_linear_model', 'pytest.approx(1.0, abs=0.015)'),
-        ('test_standstill_lqr_closed_forms', 'pytest.approx(k_psi, rel=1e-6)'),
-        ('test_standstill_lqr_closed_forms', 'pytest.approx(math.sqrt(2 * J * k_psi), rel=1e-6)'),
         ('test_schedule_from_standstill', 'pytest.approx(-U / chair.trail, rel=0.03)'),
         ('test_schedule_from_standstill', 'pytest.approx(0.8, rel=0.005)'),
         ('test_nonlinear_ramp_saturation_and_noise', 'pytest.approx(0.8, rel=0.01)'),
@@ -118,12 +93,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_driving_figures_have_units_legends_and_titles', 'pytest.approx([-0.1, -1.0], rel=100 * math.exp(-20.0))'),
         ('test_driving_figures_have_units_legends_and_titles', 'pytest.approx(curves.handled[0, -1])'),
         ('test_slope_hold_steady_torque_is_the_statics_holding_moment', 'abs(free.steady_torque_N_m / free.holding_torque_N_m - 1) < driving.HOLD_TOLERANCE'),
-        ('test_slope_hold_steady_torque_is_the_statics_holding_moment', 'pytest.approx(cf, rel=0.005)'),
-        ('test_slope_hold_steady_torque_is_the_statics_holding_moment', 'pytest.approx(free.holding_torque_N_m, rel=1e-12)'),
-        ('test_slope_hold_steady_torque_is_the_statics_holding_moment', 'pytest.approx(math.sin(math.radians(4.0)) / math.sin(math.radians(2.0)), rel=0.005)'),
-        ('test_slope_hold_mirror_symmetry', 'pytest.approx(-x, rel=1e-9)'),
-        ('test_slope_hold_mirror_symmetry', 'pytest.approx(b.peak_torque_N_m, rel=1e-9)'),
-        ('test_slope_hold_mirror_symmetry', 'pytest.approx(b.friction_use, rel=1e-9)'),
         ('test_slope_hold_open_loop_veers_uphill_closed_loop_holds', 'pytest.approx(h.crab_deg, abs=0.2)'),
         ('test_slope_hold_open_loop_veers_uphill_closed_loop_holds', 'pytest.approx(h.crab_deg, abs=0.1)'),
         ('test_slope_hold_figure_and_text', 'pytest.approx(holds[0].holding_torque_N_m)'),
