@@ -174,11 +174,10 @@ def test_cornering_stiffness_per_rad_and_arrays():
     """Eq (3-1): C per rad = C per deg * 180/pi; array input equals scalar."""
     t = tires.get("SS")
     c_deg = t.cornering_stiffness(FZ6)
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0, 1.3e-16, 1.4e-16)
-    np.testing.assert_allclose(t.cornering_stiffness_per_rad(FZ6), c_deg * 180.0 / math.pi, rtol=1e-12)
-    np.testing.assert_allclose(c_deg, [t.cornering_stiffness(float(f)) for f in FZ6], rtol=1e-12)
+    np.testing.assert_allclose(t.cornering_stiffness_per_rad(FZ6), c_deg * 180.0 / math.pi, rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.4e-16)
+    np.testing.assert_allclose(c_deg, [t.cornering_stiffness(float(f)) for f in FZ6], rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     a, b, c, _ = _published("SS")[1]
-    assert t.cornering_stiffness(300.0) == pytest.approx(a * 300 + b * 300**2 + c * 300**3, rel=1e-12)
+    assert t.cornering_stiffness(300.0) == pytest.approx(a * 300 + b * 300**2 + c * 300**3, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.3e-16)
 
 
 # --------------------------------------------------------------------------
@@ -328,10 +327,9 @@ def test_camber_force_eq_4_2():
     fc = t.camber_coefficient
     a, b, c, _ = _published("EJP")[5]
     expected = fc * _cubic((a, b, c), 300.0)
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert t.camber_force(5.0, 300.0) == pytest.approx(expected, rel=1e-12)
-    assert t.camber_force(-5.0, 300.0) == pytest.approx(-expected, rel=1e-12)
-    assert t.camber_force(5.0, 300.0, camber_coefficient=0.1) == pytest.approx(0.1 * _cubic((a, b, c), 300.0), rel=1e-12)
+    assert t.camber_force(5.0, 300.0) == pytest.approx(expected, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t.camber_force(-5.0, 300.0) == pytest.approx(-expected, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t.camber_force(5.0, 300.0, camber_coefficient=0.1) == pytest.approx(0.1 * _cubic((a, b, c), 300.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_caster_has_no_camber_coefficient():
@@ -340,10 +338,9 @@ def test_caster_has_no_camber_coefficient():
     assert not er.has_camber_data
     with pytest.raises(ValueError, match="caster"):
         _ = er.camber_coefficient
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
     assert er.camber_force(2.0, 200.0, camber_coefficient=0.2) == pytest.approx(
         -0.2 * er.lateral_force(2.0, 200.0), rel=1e-12
-    )
+    )  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 # --------------------------------------------------------------------------
@@ -360,8 +357,7 @@ def test_lateral_zero_and_odd(tire):
     for s in (0.3, 1.0, 2.7, 5.5, 8.0):
         f = t.lateral_force(s, 250.0)
         assert f < 0.0
-        # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-        assert t.lateral_force(-s, 250.0) == pytest.approx(-f, rel=1e-12)
+        assert t.lateral_force(-s, 250.0) == pytest.approx(-f, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_lateral_interpolation_by_hand():
@@ -371,11 +367,10 @@ def test_lateral_interpolation_by_hand():
     f3 = _cubic(pub[3], 260.0)
     f4 = _cubic(pub[4], 260.0)
     expected = (3.4 - 3) * (f4 - f3) + f3
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0, 3.2e-16)
-    assert tires.get("IM").lateral_force(3.4, 260.0) == pytest.approx(-expected, rel=1e-12)
+    assert tires.get("IM").lateral_force(3.4, 260.0) == pytest.approx(-expected, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     # between 0 and 1 deg: F_0 = 0
     f1 = _cubic(pub[1], 260.0)
-    assert tires.get("IM").lateral_force(-0.25, 260.0) == pytest.approx(0.25 * f1, rel=1e-12)
+    assert tires.get("IM").lateral_force(-0.25, 260.0) == pytest.approx(0.25 * f1, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 3.2e-16)
 
 
 def test_lateral_vector_equals_scalar():
@@ -389,8 +384,7 @@ def test_lateral_vector_equals_scalar():
         for policy in ("clamp", "extrapolate"):
             vec = t.lateral_force(slip, fz, policy=policy, warn=False)
             sca = [t.lateral_force(float(s), float(f), policy=policy, warn=False) for s, f in zip(slip, fz, strict=False)]
-            # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-            np.testing.assert_allclose(vec, sca, rtol=1e-13, atol=1e-12)
+            np.testing.assert_allclose(vec, sca, rtol=1e-13, atol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     out = tires.get("AG").lateral_force(np.array([[1.0], [2.0]]), np.array([100.0, 200.0, 300.0]))
     assert out.shape == (2, 3)
     assert isinstance(tires.get("AG").lateral_force(1.5, 200.0), float)
@@ -434,9 +428,8 @@ def test_policy_clamp_warns_and_clamps():
     assert len(rec) == 1
     msg = str(rec[0].message)
     assert "2 out-of-range" in msg and "'clamp'" in msg
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert f[0] == pytest.approx(t.lateral_force(8.0, 200.0), rel=1e-12)
-    assert f[1] == pytest.approx(t.lateral_force(1.0, 450.0), rel=1e-12)
+    assert f[0] == pytest.approx(t.lateral_force(8.0, 200.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert f[1] == pytest.approx(t.lateral_force(1.0, 450.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         t.lateral_force(9.0, 200.0, warn=False)
@@ -451,11 +444,10 @@ def test_policy_extrapolate():
     f7, f8 = _cubic(pub[7], 300.0), _cubic(pub[8], 300.0)
     with pytest.warns(tires.TireRangeWarning, match="'extrapolate'"):
         got = t.lateral_force(9.5, 300.0, policy="extrapolate")
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0, 2.2e-16)
-    assert got == pytest.approx(-(f8 + 1.5 * (f8 - f7)), rel=1e-12)
+    assert got == pytest.approx(-(f8 + 1.5 * (f8 - f7)), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     with pytest.warns(tires.TireRangeWarning):
         got = t.lateral_force(2.0, 480.0, policy="extrapolate")
-    assert got == pytest.approx(-_cubic(pub[2], 480.0), rel=1e-12)
+    assert got == pytest.approx(-_cubic(pub[2], 480.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.2e-16)
 
 
 def test_policy_raise_and_unknown():
@@ -491,8 +483,7 @@ def test_rolling_resistance_cubic_and_table_3_2():
     for row in _csv("rolling_coefficients.csv"):
         t = tires.get(row["tire"])
         a, b, c = float(row["a"]), float(row["b"]), float(row["c"])
-        # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 1.8e-16)
-        assert t.rolling_resistance(300.0) == pytest.approx(abs(_cubic((a, b, c), 300.0)), rel=1e-12)
+        assert t.rolling_resistance(300.0) == pytest.approx(abs(_cubic((a, b, c), 300.0)), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.8e-16)
         slope = np.polyfit(x, t.rolling_resistance(x), 1)[0]
         assert slope == pytest.approx(t.rolling_coefficient_linear, rel=0.2)
     assert tires.get("AG").rolling_resistance(-1.0) == 0.0
@@ -510,11 +501,10 @@ def test_scaled_tire():
     is unchanged."""
     t = tires.get("EJA")
     h = t.scaled(lateral=0.5, rolling=2.0)
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert h.lateral_force(3.3, 200.0) == pytest.approx(0.5 * t.lateral_force(3.3, 200.0), rel=1e-12)
-    assert h.cornering_stiffness(200.0) == pytest.approx(0.5 * t.cornering_stiffness(200.0), rel=1e-12)
-    assert h.rolling_resistance(200.0) == pytest.approx(2.0 * t.rolling_resistance(200.0), rel=1e-12)
-    assert h.scaled(lateral=2.0).lateral_force(3.3, 200.0) == pytest.approx(t.lateral_force(3.3, 200.0), rel=1e-12)
+    assert h.lateral_force(3.3, 200.0) == pytest.approx(0.5 * t.lateral_force(3.3, 200.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert h.cornering_stiffness(200.0) == pytest.approx(0.5 * t.cornering_stiffness(200.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert h.rolling_resistance(200.0) == pytest.approx(2.0 * t.rolling_resistance(200.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert h.scaled(lateral=2.0).lateral_force(3.3, 200.0) == pytest.approx(t.lateral_force(3.3, 200.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert t.lateral_scale == 1.0
     z = t.scaled(rolling=0.0)
     assert z.rolling_resistance(300.0) == 0.0
@@ -524,16 +514,15 @@ def test_linear_tire():
     """Hypothetical linear tire F = -C * slip (eq 3-1) for untested chairs."""
     t = tires.get("linear:30")
     assert isinstance(t, tires.LinearTire)
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0, 1.3e-16)
-    assert t.lateral_force(2.0, 100.0) == pytest.approx(-60.0, rel=1e-12)
-    assert t.lateral_force(2.0, 400.0) == pytest.approx(-60.0, rel=1e-12)
-    assert t.lateral_force(12.0, 100.0) == pytest.approx(-360.0, rel=1e-12)
+    assert t.lateral_force(2.0, 100.0) == pytest.approx(-60.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t.lateral_force(2.0, 400.0) == pytest.approx(-60.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t.lateral_force(12.0, 100.0) == pytest.approx(-360.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert t.lateral_force(2.0, -1.0) == 0.0
     assert t.cornering_stiffness(123.0) == 30.0
-    assert t.cornering_stiffness_per_rad(123.0) == pytest.approx(30.0 * 180.0 / math.pi, rel=1e-12)
-    np.testing.assert_allclose(t.lateral_force(np.array([-1.0, 0.5]), 200.0), [30.0, -15.0], rtol=1e-12)
-    assert t.scaled(lateral=0.5).lateral_force(2.0, 100.0) == pytest.approx(-30.0, rel=1e-12)
-    assert t.camber_force(2.0, 100.0, camber_coefficient=0.2) == pytest.approx(12.0, rel=1e-12)
+    assert t.cornering_stiffness_per_rad(123.0) == pytest.approx(30.0 * 180.0 / math.pi, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.3e-16)
+    np.testing.assert_allclose(t.lateral_force(np.array([-1.0, 0.5]), 200.0), [30.0, -15.0], rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t.scaled(lateral=0.5).lateral_force(2.0, 100.0) == pytest.approx(-30.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t.camber_force(2.0, 100.0, camber_coefficient=0.2) == pytest.approx(12.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     with pytest.raises(ValueError):
         _ = t.camber_coefficient
 
@@ -553,8 +542,7 @@ def test_coefficients_array():
     arr = t.coefficients
     assert arr.shape == (9, 3)
     np.testing.assert_array_equal(arr[0], 0.0)
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    np.testing.assert_allclose(arr[1:], [_published("ER")[s][:3] for s in range(1, 9)], rtol=1e-12)
+    np.testing.assert_allclose(arr[1:], [_published("ER")[s][:3] for s in range(1, 9)], rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     arr[1, 0] = 99.0
     assert t.coefficients[1, 0] != 99.0
 
@@ -590,9 +578,8 @@ def test_thesis_tire_through_user_path(name, tmp_path):
     printed R to its three digits."""
     t = _thesis_through_user_path(name, tmp_path)
     ref = tires.refit(name, method="pwrstar")
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 1.5e-16, 1.9e-16)
-    np.testing.assert_allclose(t.coefficients[1:], ref.coefficients[:, :3], rtol=1e-9)
-    np.testing.assert_allclose(t.intercepts[1:], ref.coefficients[:, 3], rtol=1e-9)
+    np.testing.assert_allclose(t.coefficients[1:], ref.coefficients[:, :3], rtol=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 1.9e-16)
+    np.testing.assert_allclose(t.intercepts[1:], ref.coefficients[:, 3], rtol=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 1.5e-16)
     pub = _published(name)
     for s in range(1, 9):
         if (name, s) not in INCOMPLETE_BLOCKS:
@@ -607,12 +594,11 @@ def test_thesis_tire_through_user_path(name, tmp_path):
     # fitted range from the data: 8 deg, and the largest load measured at every angle
     raw = tires.raw_cornering(name)
     per_angle_max = [np.nanmax(raw["Fz_N"][raw["slip_deg"] == s]) for s in range(1, 9)]
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0, 2.1e-16)
-    assert t.slip_max_deg == 8.0 and t.fz_max_N == pytest.approx(min(per_angle_max), rel=1e-12)
+    assert t.slip_max_deg == 8.0 and t.fz_max_N == pytest.approx(min(per_angle_max), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert t.name == f"my{name}" and not t.is_thesis_tire and not t.has_camber_data
     # the model built from the fit is the thesis force law: same forces as the refit cubic
     c3 = ref.coefficients[2, :3]
-    assert t.lateral_force(3.0, 300.0) == pytest.approx(-_cubic(c3, 300.0), rel=1e-12)
+    assert t.lateral_force(3.0, 300.0) == pytest.approx(-_cubic(c3, 300.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.1e-16)
 
 
 def test_fit_quality_is_residual_statistics(tmp_path):
@@ -623,9 +609,8 @@ def test_fit_quality_is_residual_statistics(tmp_path):
     x, y = raw["Fz_N"][sel], raw["Fy_N"][sel]
     res = y - _cubic(t.coefficients[4], x)
     q = t.fit_quality
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert q.rms_residual_N[3] == pytest.approx(math.sqrt(np.mean(res**2)), rel=1e-9)
-    assert q.r_squared[3] == pytest.approx(1 - np.sum(res**2) / np.sum((y - y.mean()) ** 2), rel=1e-9)
+    assert q.rms_residual_N[3] == pytest.approx(math.sqrt(np.mean(res**2)), rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert q.r_squared[3] == pytest.approx(1 - np.sum(res**2) / np.sum((y - y.mean()) ** 2), rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert q.to_dict()["slip_deg"] == list(range(1, 9))
     assert "R^2" in str(q)
 
@@ -668,8 +653,7 @@ def test_synthetic_cubic_recovered(tmp_path):
     assert -t.lateral_force(6.0, 300.0, policy="clamp", warn=False) == pytest.approx(f4, rel=1e-10)
     with pytest.raises(ValueError, match=r"slip angle 6\.0 deg is outside the fitted range \[-4, 4\]"):
         t.lateral_force(6.0, 300.0, policy="raise")
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert t.rolling_resistance(200.0) == pytest.approx(2.0, rel=1e-12)
+    assert t.rolling_resistance(200.0) == pytest.approx(2.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert t.camber_coefficient == 0.15
     assert t.capabilities == tires.TireCapabilities(name="synthetic", camber=True, rolling=True)
 
@@ -722,8 +706,7 @@ def test_cart_statics_equal_independent_solution():
             fr: 0.02}
     got = tires.cart_forces(600.0, 90.0, 3.0, cart)
     for name, sym in (("fz", Fz), ("fy", Fy), ("fx", Fx), ("rx", Rx), ("ry", Ry), ("rz", Rz), ("tension", T)):
-        # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 4.9e-16)
-        assert getattr(got, name) == pytest.approx(float(sol[sym].subs(vals)), rel=1e-12), name
+        assert getattr(got, name) == pytest.approx(float(sol[sym].subs(vals)), rel=1e-12), name  # rounding: equivalent arithmetic, a few ulp (observed 4.9e-16)
 
 
 def test_cart_approximation_a19():
@@ -731,9 +714,8 @@ def test_cart_approximation_a19():
     F_z = (F_sy r + W (s - d)) / s and F_y = F_s (A-17b)."""
     cart = tires.CartGeometry(0.25, 0.3, 0.0, 1.0, 0.4, 0.5, 0.0)
     got = tires.cart_forces(np.array([400.0, 700.0]), np.array([30.0, 60.0]), 0.0, cart)
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    np.testing.assert_allclose(got.fz, (np.array([30.0, 60.0]) * 0.3 + np.array([400.0, 700.0]) * 0.25) / 0.5, rtol=1e-12)
-    np.testing.assert_allclose(got.fy, [30.0, 60.0], rtol=1e-12)
+    np.testing.assert_allclose(got.fz, (np.array([30.0, 60.0]) * 0.3 + np.array([400.0, 700.0]) * 0.25) / 0.5, rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    np.testing.assert_allclose(got.fy, [30.0, 60.0], rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     with pytest.raises(ValueError, match="cable_offset_m"):
         tires.CartGeometry(0.25, 0.3, 0.0, 1.0, 0.4, 0.2)
 
@@ -755,16 +737,15 @@ def test_cart_file_gives_same_tire_as_forces_file(tmp_path):
     q = tmp_path / "forces.csv"
     _write_forces(q, slip, forces.fz, forces.fy)
     t_forces = tires.load_tire_data(q)
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0, 1.0e-15, 2.0e-16)
-    np.testing.assert_allclose(t_cart.coefficients, t_forces.coefficients, rtol=1e-12)
+    np.testing.assert_allclose(t_cart.coefficients, t_forces.coefficients, rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     # A-10 is linear in W and F_s: F_z = p W + q F_s at fixed alpha (the structure provenance.md checks)
     a = math.radians(2.0)
     p_w = (1.1 - 0.05) * (0.53 - 0.26) / (0.02 * (0.35 * 0.53 + 0.3 * 0.26 - 0.53 * 0.3) + 1.1 * 0.53)
     sel = slip == 2
     q_fs = (np.asarray(forces.fz)[sel] - p_w * w[sel]) / fs[sel]
-    np.testing.assert_allclose(q_fs, q_fs[0], rtol=1e-12)
+    np.testing.assert_allclose(q_fs, q_fs[0], rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.0e-15)
     assert q_fs[0] == pytest.approx((0.3 * 1.1 * math.cos(a) + math.sin(a) * (0.3 * 0.53 - 0.35 * 0.53 - 0.3 * 0.26))
-                                    / (0.02 * (0.35 * 0.53 + 0.3 * 0.26 - 0.53 * 0.3) + 1.1 * 0.53), rel=1e-12)
+                                    / (0.02 * (0.35 * 0.53 + 0.3 * 0.26 - 0.53 * 0.3) + 1.1 * 0.53), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.0e-16)
 
 
 def test_register_and_file_spec_in_a_chair(tmp_path):
@@ -789,8 +770,7 @@ def test_register_and_file_spec_in_a_chair(tmp_path):
     with pytest.raises(ValueError, match="reserved"):
         tires.register("ag", t)
     c = chairs.preset("ej-premier").replace(main_tire=f"file:{p}")
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert c.main_tire_model().coefficients == pytest.approx(t.coefficients, rel=1e-12)
+    assert c.main_tire_model().coefficients == pytest.approx(t.coefficients, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert tires.resolve_spec("file:mytire.csv", tmp_path) == f"file:{tmp_path / 'mytire.csv'}"
     assert tires.resolve_spec("AG", tmp_path) == "AG"
 
@@ -809,25 +789,23 @@ def test_range_policy_on_stiffness():
     assert tires.get_policy().name == "warn"
     with tires.collect_notes() as notes, pytest.warns(tires.TireRangeWarning, match="564"):
         got = er.cornering_stiffness(564.0, wheel="caster_left")
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0, 4.2e-16, 4.6e-16)
-    assert got == pytest.approx(_cubic((a, b, c), 564.0), rel=1e-12)
+    assert got == pytest.approx(_cubic((a, b, c), 564.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert len(notes) == 1
     n = notes[0]
     assert (n.tire, n.wheel, n.quantity, n.value, n.high, n.policy) == ("ER", "caster_left", "load", 564.0, 450.0,
                                                                           "warn")
     assert n.to_dict()["message"] == str(n) and "extrapolated" in str(n)
     with tires.range_policy("clamp"), tires.collect_notes() as notes:
-        assert er.cornering_stiffness(564.0) == pytest.approx(_cubic((a, b, c), 450.0), rel=1e-12)
+        assert er.cornering_stiffness(564.0) == pytest.approx(_cubic((a, b, c), 450.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 4.2e-16)
         np.testing.assert_allclose(er.cornering_stiffness_per_rad(np.array([300.0, 564.0])),
-                                   np.array([_cubic((a, b, c), 300.0), _cubic((a, b, c), 450.0)]) * 180 / math.pi, rtol=1e-12)
+                                   np.array([_cubic((a, b, c), 300.0), _cubic((a, b, c), 450.0)]) * 180 / math.pi, rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 4.6e-16)
     assert [x.policy for x in notes] == ["clamp"]      # the same use twice is noted once
     with pytest.raises(ValueError, match=r"tire ER: load 564 N is outside the fitted range 0 to 450 N") as info:
         er.cornering_stiffness(564.0, policy="raise")
     assert "\n" not in str(info.value)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 1.3e-16)
-        assert er.cornering_stiffness(300.0) == pytest.approx(_cubic((a, b, c), 300.0), rel=1e-12)   # inside: silent
+        assert er.cornering_stiffness(300.0) == pytest.approx(_cubic((a, b, c), 300.0), rel=1e-12)   # rounding: equivalent arithmetic, a few ulp (observed 1.3e-16); inside: silent
         assert tires.get("linear:30").cornering_stiffness(1e4, policy="raise") == 30.0  # no range
     with pytest.raises(ValueError, match="tire-range policy 'sometimes'"):
         tires.set_policy("sometimes")
@@ -848,8 +826,7 @@ def test_range_check_of_a_heavy_chair():
     with tires.collect_notes() as recorded:
         notes = tires.range_check(c, loads)
     assert [n.wheel for n in notes] == ["caster_left", "caster_right"] and recorded == notes
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert notes[0].value == pytest.approx(loads["caster_left"], rel=1e-12) and notes[0].value > 450
+    assert notes[0].value == pytest.approx(loads["caster_left"], rel=1e-12) and notes[0].value > 450  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert tires.range_check(chairs.preset("ej-premier"), statics.static_loads(chairs.preset("ej-premier"))) == []
     with pytest.raises(ValueError, match="caster_left tire ER"):
         tires.range_check(c, loads, policy="raise")
@@ -893,8 +870,7 @@ def test_segment_arrays_are_the_force_law():
     k = min(int(s), 7)
     u = s - k
     a, b, c = a0[k] + u * da[k], b0[k] + u * db[k], c0[k] + u * dc[k]
-    # rounding: the same quantity by equivalent arithmetic, a few ulp (observed 0)
-    assert -(((c * fz + b) * fz + a) * fz) == pytest.approx(t.lateral_force(s, fz), rel=1e-14)
+    assert -(((c * fz + b) * fz + a) * fz) == pytest.approx(t.lateral_force(s, fz), rel=1e-14)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_a_function_screening_many_loads_warns_once_per_tire_and_passes_its_notes_on():
