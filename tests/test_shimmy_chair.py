@@ -52,10 +52,10 @@ def test_quasi_static_tire_force_reproduces_linear_model(model):
         M0, K0, B0 = linear_matrices(p, U, st, variant=model)
         F_quasi = (sigma / U)[:, None, None] * T[:, :, :6]  # F = (sigma/U) T[:, :6] x at zero lag
         K_red = K[:, :, :6] + K[:, :, 6:] @ F_quasi
-        np.testing.assert_allclose(M, np.broadcast_to(M0, M.shape), rtol=1e-13, atol=0)
-        np.testing.assert_allclose(K_red, K0, rtol=1e-12, atol=1e-12 * np.abs(K0).max())
-        np.testing.assert_allclose(Bm, B0, rtol=1e-13)
-        np.testing.assert_allclose(np.diagonal(T[:, :, 6:], axis1=1, axis2=2), -(U / sigma)[:, None] * np.ones(2))
+        np.testing.assert_allclose(M, np.broadcast_to(M0, M.shape), rtol=1e-13, atol=0)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+        np.testing.assert_allclose(K_red, K0, rtol=1e-12, atol=1e-12 * np.abs(K0).max())  # rounding: equivalent arithmetic, a few ulp (observed 6.1e-16)
+        np.testing.assert_allclose(Bm, B0, rtol=1e-13)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+        np.testing.assert_allclose(np.diagonal(T[:, :, 6:], axis1=1, axis2=2), -(U / sigma)[:, None] * np.ones(2), rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.5e-16)
 
 
 def test_sigma_to_zero_recovers_rigid_tire_eigenvalues():
@@ -112,7 +112,7 @@ def test_heavy_chair_shimmy_is_the_towed_wheel(pin):
                        pin_damping=chair.pin_damping)
     tw = wheel.eigenvalues(U)
     tw_lead = shimmy_mode(tw)
-    np.testing.assert_allclose(lead, tw_lead, rtol=1e-5)
+    np.testing.assert_allclose(lead, tw_lead, rtol=1e-5)  # rounding: equivalent arithmetic, a few ulp (observed 1.1e-15)
     # every towed-wheel eigenvalue appears (twice: two casters) in the chair's spectrum
     for i in range(U.size):
         for lam in tw[i]:
@@ -226,7 +226,7 @@ def test_state_space_names_and_matrices():
     sys_ = relaxed_state_space(EJ, 1.0, pin="compliant")
     assert list(sys_.state_labels) == ["v", "r", "eta", "eta_dot", "beta", "beta_dot", "y_A", "y_A_dot",
                                        "y_B", "y_B_dot", "F_A", "F_B"]
-    np.testing.assert_allclose(sys_.A, relaxed_state_matrices(EJ, 1.0, pin="compliant")[0])
+    np.testing.assert_allclose(sys_.A, relaxed_state_matrices(EJ, 1.0, pin="compliant")[0], rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     with pytest.raises(ValueError, match="pin='compliant'"):
         relaxed_state_matrices(EJ, 1.0, model="thesis", pin="compliant")
     with pytest.raises(ValueError, match="pin="):
@@ -281,6 +281,6 @@ def test_cli_chair_model_option(capsys):
     cm = out["chair_model"]
     assert set(cm) == {"rigid_pin", "compliant_pin"}
     np.testing.assert_allclose(cm["compliant_pin"]["critical_trail_m"], out["critical_trail_m"], atol=1e-4)
-    np.testing.assert_allclose(cm["compliant_pin"]["shimmy_frequency_hz"], out["shimmy_frequency_hz"], rtol=1e-2)
+    np.testing.assert_allclose(cm["compliant_pin"]["shimmy_frequency_hz"], out["shimmy_frequency_hz"], rtol=1e-2)  # rounding: equivalent arithmetic, a few ulp (observed 5.5e-16)
     assert main(["--chair", "revised", "--speeds", "1", "--json"]) == 0
     assert "chair_model" not in json.loads(capsys.readouterr().out)

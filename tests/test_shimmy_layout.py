@@ -31,14 +31,14 @@ def test_the_thesis_chair_as_a_layout_has_its_own_shimmy_answer():
     from stability.models.statics import normal_loads
 
     trails = np.array([0.01, 0.05, 0.1, 0.2])
-    assert lc[0].loads(trails) == pytest.approx(normal_loads(parameters(EJ)._replace(trail=trails))[0], rel=1e-9)
+    assert lc[0].loads(trails) == pytest.approx(normal_loads(parameters(EJ)._replace(trail=trails))[0], rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     a, b = shimmy_band(EJ, SPEEDS), shimmy_band(lc[0], SPEEDS)
     assert np.array(b.intervals_m, dtype=object).shape == np.array(a.intervals_m, dtype=object).shape
     for ia, ib in zip(a.intervals_m, b.intervals_m, strict=True):
-        assert np.array(ib) == pytest.approx(np.array(ia), rel=1e-9)
-    assert b.margin_m == pytest.approx(a.margin_m, rel=1e-9)
+        assert np.array(ib) == pytest.approx(np.array(ia), rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert b.margin_m == pytest.approx(a.margin_m, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     sa, sb = caster_summary(EJ, [1.0]), caster_summary(lc[1], [1.0])
-    assert sb.friction_trail == pytest.approx(sa.friction_trail, rel=1e-9)
+    assert sb.friction_trail == pytest.approx(sa.friction_trail, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_a_layout_caster_is_the_towed_wheel_at_its_own_load():
@@ -49,13 +49,13 @@ def test_a_layout_caster_is_the_towed_wheel_at_its_own_load():
     loads = [c.static_load() for c in lc]
     from stability.layout import static_loads
 
-    assert sum(static_loads(lay)) == pytest.approx(lay.m * lay.g, rel=1e-12)
+    assert sum(static_loads(lay)) == pytest.approx(lay.m * lay.g, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     front = [c for c in lc if lay.casters[c.index].x > 0]
     rear = [c for c in lc if lay.casters[c.index].x < 0]
     assert front and rear and max(c.static_load() for c in rear) < min(c.static_load() for c in front)
     w_front, w_rear = caster_wheel(front[0]), caster_wheel(rear[0])
     tire = front[0].caster_tire_model()
-    assert w_front.cornering_stiffness == pytest.approx(tire.cornering_stiffness_per_rad(front[0].static_load()))
+    assert w_front.cornering_stiffness == pytest.approx(tire.cornering_stiffness_per_rad(front[0].static_load()), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert w_rear.cornering_stiffness < w_front.cornering_stiffness
     assert all(n > 0 for n in loads)
 
@@ -68,7 +68,7 @@ def test_a_row_changes_its_trail_together():
     xs = [(c.x, c.trail) for c in c0.layout.casters]
     same_row = [t for x, t in xs if abs(x - lay.casters[0].x) < 1e-9]
     assert same_row == [0.08, 0.08]
-    assert c0.static_load() == pytest.approx(LayoutCaster(c0.layout, 1).static_load(), rel=1e-12)
+    assert c0.static_load() == pytest.approx(LayoutCaster(c0.layout, 1).static_load(), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     with pytest.raises(ValueError, match="index=9"):
         LayoutCaster(lay, 9)
     with pytest.raises(ValueError, match="cannot be replaced"):
@@ -96,7 +96,7 @@ def test_every_caster_field_reaches_the_towed_wheel():
     a, b = caster_wheel(c), caster_wheel(lc)
     for name in ("mass", "inertia", "contact_behind_cm", "pivot_ahead_of_cm", "cornering_stiffness", "pin_damping",
                  "pin_friction"):
-        assert getattr(b, name) == pytest.approx(getattr(a, name), rel=1e-12), name
+        assert getattr(b, name) == pytest.approx(getattr(a, name), rel=1e-12), name  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert (b.mass, b.pin_friction) == (1.5, 0.25)
 
 
@@ -122,14 +122,14 @@ def test_reversing_the_turned_chair_is_driving_it_forwards(name):
     lay = layout_preset(name) if name != "ej-premier" else Layout.from_chair(EJ)
     fwd, rev = layout_casters(lay), layout_casters(_turned(lay), reverse=True)
     for a, b in zip(fwd, rev, strict=True):
-        assert b.static_load() == pytest.approx(a.static_load(), rel=1e-9)
+        assert b.static_load() == pytest.approx(a.static_load(), rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 4.9e-16)
         trails = np.array([0.02, 0.05, 0.09])
-        assert b.loads(trails) == pytest.approx(a.loads(trails), rel=1e-9, nan_ok=True)
+        assert b.loads(trails) == pytest.approx(a.loads(trails), rel=1e-9, nan_ok=True)  # rounding: equivalent arithmetic, a few ulp (observed 4.9e-16)
     sa, sb = caster_summary(fwd[0], [1.0]), caster_summary(rev[0], [1.0])
     for field in ("shimmy_frequency_hz", "shimmy_growth_rate", "critical_trail", "friction_trail"):
-        assert getattr(sb, field) == pytest.approx(getattr(sa, field), rel=1e-9), field
+        assert getattr(sb, field) == pytest.approx(getattr(sa, field), rel=1e-9), field  # rounding: equivalent arithmetic, a few ulp (observed 0)
     ba, bb = shimmy_band(fwd[0], SPEEDS), shimmy_band(rev[0], SPEEDS)
-    assert bb.margin_m == pytest.approx(ba.margin_m, rel=1e-9)
+    assert bb.margin_m == pytest.approx(ba.margin_m, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_reverse_loads_follow_the_lever_rule():
@@ -142,7 +142,7 @@ def test_reverse_loads_follow_the_lever_rule():
     x_contact = EJ.x_pin + EJ.trail
     pair = EJ.m * EJ.g * (EJ.x_main - x_cg) / (EJ.x_main - x_contact)
     rev = layout_casters(lay, reverse=True)
-    assert rev[0].static_load() + rev[1].static_load() == pytest.approx(pair, rel=1e-9)
+    assert rev[0].static_load() + rev[1].static_load() == pytest.approx(pair, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 1.6e-16)
     assert rev[0].static_load() > layout_casters(lay)[0].static_load()   # rear casters: contacts move inward
 
 
@@ -152,8 +152,8 @@ def test_a_leading_caster_diverges_at_speed_over_trail():
     from stability.shimmy.layout_caster import leading_divergence_rate
 
     u = np.array([-0.5, -1.0, -3.0])
-    assert leading_divergence_rate(0.05, u) == pytest.approx(np.abs(u) / 0.05, rel=1e-12)
-    assert leading_divergence_rate(0.08, [2.0]) == pytest.approx([2.0 / 0.08], rel=1e-12)
+    assert leading_divergence_rate(0.05, u) == pytest.approx(np.abs(u) / 0.05, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert leading_divergence_rate(0.08, [2.0]) == pytest.approx([2.0 / 0.08], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_shimmy_command_answers_reverse(capsys):
@@ -168,9 +168,9 @@ def test_shimmy_command_answers_reverse(capsys):
     assert doc["casters"][:2] == [{**c, "direction": "forward"} for c in only["casters"]]
     rev = doc["casters"][2]
     assert rev["speeds_m_s"] == [-1.0] and rev["shimmy_band"]["speeds_m_s"] == [-1.0]
-    assert rev["leading_divergence_rate_1_s"] == pytest.approx([1.0 / rev["trail_m"]], rel=1e-12)
+    assert rev["leading_divergence_rate_1_s"] == pytest.approx([1.0 / rev["trail_m"]], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     lay = layout_preset("mid-wheel-drive")
-    assert rev["static_load_N"] == pytest.approx(LayoutCaster(lay, 0, reverse=True).static_load(), rel=1e-12)
+    assert rev["static_load_N"] == pytest.approx(LayoutCaster(lay, 0, reverse=True).static_load(), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     # the short form in reverse answers through its layout
     assert main(["--chair", "ej-premier", "--speeds", "-1", "--json"]) == 0
     ej = json.loads(capsys.readouterr().out)

@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 506
+PENDING_LIMIT = 475
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -211,13 +211,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/test_control_objects.py': [
         ('test_bode_and_margin_of_the_loop_transfer', 'pytest.approx(1 / 100.0, rel=1e-15)'),
         ('test_sample_rate_defaults_to_the_table', 'pytest.approx(1 / defaults.SAMPLE_RATE_HZ, rel=1e-15)'),
-    ],
-    'tests/test_critical_speed_cli.py': [
-        ('test_json_structure_and_values', 'pytest.approx(linear.zero_width(c).critical_speed)'),
-        ('test_json_structure_and_values', 'pytest.approx(rate)'),
-        ('test_json_structure_and_values', 'pytest.approx(0.6931471805599453 / rate)'),
-        ('test_omitted_effects_reported_with_the_simulator_linearisation', 'pytest.approx(linearisation_check(c, 0.5).eigenvalue_simulator.real)'),
-        ('test_omitted_effects_reported_with_the_simulator_linearisation', 'pytest.approx(d["free_casters"]["divergence"][0]["rate_1_s"])'),
     ],
     'tests/test_derivations.py': [
         ('test_zero_width_generated_numbers', 'pytest.approx(-0.0391, abs=5e-4)'),
@@ -511,39 +504,15 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_cli_prints_the_band_and_the_margin', 'pytest.approx(ref.shimmy_margin_m, abs=1e-15)'),
     ],
     'tests/test_shimmy_chair.py': [
-        ('test_quasi_static_tire_force_reproduces_linear_model', 'np.testing.assert_allclose(M, np.broadcast_to(M0, M.shape), rtol=1e-13, atol=0)'),
-        ('test_quasi_static_tire_force_reproduces_linear_model', 'np.testing.assert_allclose(K_red, K0, rtol=1e-12, atol=1e-12 * np.abs(K0).max())'),
-        ('test_quasi_static_tire_force_reproduces_linear_model', 'np.testing.assert_allclose(Bm, B0, rtol=1e-13)'),
-        ('test_quasi_static_tire_force_reproduces_linear_model', 'np.testing.assert_allclose(np.diagonal(T[:, :, 6:], axis1=1, axis2=2), -(U / sigma)[:, Non'),
         ('test_sigma_to_zero_recovers_rigid_tire_eigenvalues', 'np.testing.assert_allclose(fast.real, -U / sigma, rtol=1e-2)'),
-        ('test_heavy_chair_shimmy_is_the_towed_wheel', 'np.testing.assert_allclose(lead, tw_lead, rtol=1e-5)'),
         ('test_real_chair_critical_trail_close_to_towed_wheel', 'np.testing.assert_allclose(crit, comp.relaxation_length, atol=1e-3)'),
         ('test_mirror_symmetry', 'np.allclose(A1, A2)'),
         ('test_characteristic_polynomial_against_newton_euler', 'np.testing.assert_allclose(np.array(ours) / scale, np.array(exact) / scale, rtol=0, atol=1'),
-        ('test_state_space_names_and_matrices', 'np.testing.assert_allclose(sys_.A, relaxed_state_matrices(EJ, 1.0, pin="compliant")[0])'),
         ('test_generation_reproduces_committed_file', 'np.allclose(_flat(fa(*args)), _flat(fb(*args)), rtol=1e-10)'),
         ('test_cli_chair_model_option', 'np.testing.assert_allclose(cm["compliant_pin"]["critical_trail_m"], out["critical_trail_m"'),
-        ('test_cli_chair_model_option', 'np.testing.assert_allclose(cm["compliant_pin"]["shimmy_frequency_hz"], out["shimmy_frequen'),
     ],
     'tests/test_shimmy_layout.py': [
-        ('test_the_thesis_chair_as_a_layout_has_its_own_shimmy_answer', 'pytest.approx(normal_loads(parameters(EJ)._replace(trail=trails))[0], rel=1e-9)'),
-        ('test_the_thesis_chair_as_a_layout_has_its_own_shimmy_answer', 'pytest.approx(np.array(ia), rel=1e-9)'),
-        ('test_the_thesis_chair_as_a_layout_has_its_own_shimmy_answer', 'pytest.approx(a.margin_m, rel=1e-9)'),
-        ('test_the_thesis_chair_as_a_layout_has_its_own_shimmy_answer', 'pytest.approx(sa.friction_trail, rel=1e-9)'),
-        ('test_a_layout_caster_is_the_towed_wheel_at_its_own_load', 'pytest.approx(lay.m * lay.g, rel=1e-12)'),
-        ('test_a_layout_caster_is_the_towed_wheel_at_its_own_load', 'pytest.approx(tire.cornering_stiffness_per_rad(front[0].static_load()))'),
         ('test_a_row_changes_its_trail_together', 'abs(x - lay.casters[0].x) < 1e-9'),
-        ('test_a_row_changes_its_trail_together', 'pytest.approx(LayoutCaster(c0.layout, 1).static_load(), rel=1e-12)'),
-        ('test_every_caster_field_reaches_the_towed_wheel', 'pytest.approx(getattr(a, name), rel=1e-12)'),
-        ('test_reversing_the_turned_chair_is_driving_it_forwards', 'pytest.approx(a.static_load(), rel=1e-9)'),
-        ('test_reversing_the_turned_chair_is_driving_it_forwards', 'pytest.approx(a.loads(trails), rel=1e-9, nan_ok=True)'),
-        ('test_reversing_the_turned_chair_is_driving_it_forwards', 'pytest.approx(getattr(sa, field), rel=1e-9)'),
-        ('test_reversing_the_turned_chair_is_driving_it_forwards', 'pytest.approx(ba.margin_m, rel=1e-9)'),
-        ('test_reverse_loads_follow_the_lever_rule', 'pytest.approx(pair, rel=1e-9)'),
-        ('test_a_leading_caster_diverges_at_speed_over_trail', 'pytest.approx(np.abs(u) / 0.05, rel=1e-12)'),
-        ('test_a_leading_caster_diverges_at_speed_over_trail', 'pytest.approx([2.0 / 0.08], rel=1e-12)'),
-        ('test_shimmy_command_answers_reverse', 'pytest.approx([1.0 / rev["trail_m"]], rel=1e-12)'),
-        ('test_shimmy_command_answers_reverse', 'pytest.approx(LayoutCaster(lay, 0, reverse=True).static_load(), rel=1e-12)'),
     ],
     'tests/test_simulate.py': [
         ('test_adaptive_converges_when_tolerances_are_halved', 'abs(ra - rb) < 0.005 * abs(rb)'),
@@ -626,7 +595,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     ],
     'tests/test_tires.py': [
         ('test_rolling_resistance_cubic_and_table_3_2', 'pytest.approx(t.rolling_coefficient_linear, rel=0.2)'),
-        ('test_thesis_tire_through_user_path', 'np.testing.assert_allclose(t.coefficients[s], pub[s][:3], rtol=5e-6, err_msg=f"{name} {s}"'),
     ],
     'tests/test_uncertain_nonlinear.py': [
         ('test_zero_spread_gives_exactly_the_nominal_values', 'abs(eq.speed - REFERENCE_SPEED) < FAST["tol"]'),
@@ -649,7 +617,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('_check', 'abs(cmp.rate_nonlinear - _euler_rate(lam, dt)) <= FIT * abs(lam.real)'),
         ('test_halving_the_step_moves_the_rate_by_the_euler_law', 'abs((a.rate_nonlinear - b.rate_nonlinear) - law) <= 0.2 * abs(law)'),
         ('test_adaptive_scheme_agrees_too', 'abs(cmp.rate_nonlinear - cmp.rate_linear) <= FIT * abs(cmp.rate_linear)'),
-        ('test_measured_rate_on_known_signals', 'pytest.approx(0.7, rel=1e-9)'),
         ('test_measured_rate_on_known_signals', 'pytest.approx(-0.4, rel=1e-6)'),
         ('test_caster_drag_acts_as_rear_cornering_stiffness', 'np.testing.assert_allclose(sim, closed, rtol=0.025)'),
         ('test_caster_drag_acts_as_rear_cornering_stiffness', 'np.testing.assert_allclose(no_drag, linear.massless_caster_rate(c, speeds), rtol=0.01)'),
