@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 475
+PENDING_LIMIT = 469
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -583,13 +583,10 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_random_draws_of_a_layout_are_the_short_forms_draws', 'pytest.approx(float(growth_rates(drawn, [1.0])[0]), rel=1e-12)'),
     ],
     'tests/test_thesis_chapter8.py': [
-        ('test_speed_study_ordering_and_response_times', 'pytest.approx(t, abs=0.3)'),
         ('test_initial_lateral_velocity_equivalent_to_the_impulse', 'pytest.approx(ti, rel=0.10)'),
         ('test_initial_lateral_velocity_equivalent_to_the_impulse', 'pytest.approx(imp.at(t)["yaw_rate"], rel=0.25)'),
         ('test_front_caster_chair_under_a_constant_side_force_turns_steadily', 'pytest.approx(rates[6.0], rel=0.15)'),
         ('test_front_caster_chair_equals_the_thesis_trick', 'np.max(np.abs(a.yaw_rate + b.yaw_rate)) < 1e-4 * peak'),
-        ('test_time_step_study', 'pytest.approx(t1[0.0001], rel=0.03)'),
-        ('test_time_step_study', 'pytest.approx(runs[0.0001].at(t)["yaw_rate"], rel=0.08)'),
         ('test_chapter9_revised_design_and_friction', 'pytest.approx(t_ref, rel=0.15)'),
         ('test_chapter9_revised_design_and_friction', 'pytest.approx(t_ref, rel=0.15)'),
     ],
@@ -614,9 +611,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_vector_outputs_and_nan_rows', 'pytest.approx(C.s1 - norm.ppf(0.95) * 0.01, abs=0.001)'),
     ],
     'tests/test_validation.py': [
-        ('_check', 'abs(cmp.rate_nonlinear - _euler_rate(lam, dt)) <= FIT * abs(lam.real)'),
-        ('test_halving_the_step_moves_the_rate_by_the_euler_law', 'abs((a.rate_nonlinear - b.rate_nonlinear) - law) <= 0.2 * abs(law)'),
-        ('test_adaptive_scheme_agrees_too', 'abs(cmp.rate_nonlinear - cmp.rate_linear) <= FIT * abs(cmp.rate_linear)'),
         ('test_measured_rate_on_known_signals', 'pytest.approx(-0.4, rel=1e-6)'),
         ('test_caster_drag_acts_as_rear_cornering_stiffness', 'np.testing.assert_allclose(sim, closed, rtol=0.025)'),
         ('test_caster_drag_acts_as_rear_cornering_stiffness', 'np.testing.assert_allclose(no_drag, linear.massless_caster_rate(c, speeds), rtol=0.01)'),
