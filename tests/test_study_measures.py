@@ -16,8 +16,8 @@ from stability.settings.run import RunSpec
 # ---------------------------------------------------------------------------
 def test_push_convention_wchair_steps():
     # WCHAIR applies the force while t <= duration: 0.1 s on 1 ms steps is 101 steps
-    assert study.push_impulse(40.0, 0.1, "wchair", 0.001) == pytest.approx(40.0 * 0.101)
-    assert study.push_impulse(40.0, 0.1, "adaptive") == pytest.approx(4.0)
+    assert study.push_impulse(40.0, 0.1, "wchair", 0.001) == pytest.approx(40.0 * 0.101, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert study.push_impulse(40.0, 0.1, "adaptive") == pytest.approx(4.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert Push(1.0, 0.1).steps(0.001) == 101
 
 
@@ -38,7 +38,7 @@ def test_critical_impulse_frictionless_linear_limit(speed, level, horizon):
                                         step=0.001)
     predicted = j_ref * level / np.max(np.abs(lin.yaw_rate))
     assert r.impulse_Ns == pytest.approx(predicted, rel=0.02)
-    assert r.kick_m_s == pytest.approx(r.impulse_Ns / c.m)
+    assert r.kick_m_s == pytest.approx(r.impulse_Ns / c.m, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_critical_impulse_casters_held_by_high_friction_is_none():
@@ -50,7 +50,7 @@ def test_critical_impulse_casters_held_by_high_friction_is_none():
     assert np.linalg.eigvals(A).real.max() < 0
     r = study.critical_impulse(c, 0.75, run=RunSpec(horizon=4.0))
     assert r.status == "never" and r.impulse_Ns is None and r.kick_m_s is None
-    assert r.largest_tried_Ns == pytest.approx(40.0)
+    assert r.largest_tried_Ns == pytest.approx(40.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert r.describe() == "> 40 N s"
 
 
@@ -73,7 +73,7 @@ def test_critical_impulse_curve_one_batch_per_round(monkeypatch):
     assert all(p.runs <= 6 for p in curve.points)
     # faster is less stable: a smaller push suffices
     assert curve.impulses[1] < curve.impulses[0]
-    np.testing.assert_allclose(curve.kicks, curve.impulses / c.m)
+    np.testing.assert_allclose(curve.kicks, curve.impulses / c.m, rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_critical_impulse_argument_checks():
@@ -103,13 +103,13 @@ def test_elasticity_of_a_power_law_is_its_exponent():
     from stability.study.sensitivity import _elasticity
 
     for k in (-0.5, 1.0, 2.3):
-        assert _elasticity(0.9 ** k * 3.0, 1.1 ** k * 3.0, 0.1) == pytest.approx(k, rel=1e-12)
+        assert _elasticity(0.9 ** k * 3.0, 1.1 ** k * 3.0, 0.1) == pytest.approx(k, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.0e-15)
     assert _elasticity(None, 1.0, 0.1) is None
 
 
 def test_fit_exponent_recovers_a_power_law():
     f = np.array([0.05, 0.1, 0.15])
-    assert study.fit_exponent(f, 2.0 * f ** 0.47) == pytest.approx(0.47, rel=1e-12)
+    assert study.fit_exponent(f, 2.0 * f ** 0.47) == pytest.approx(0.47, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 5.9e-16)
 
 
 def test_growth_rate_elasticities_closed_form_free_caster_mode():
@@ -120,7 +120,7 @@ def test_growth_rate_elasticities_closed_form_free_caster_mode():
     c = preset("ej-premier")
     s = study.elasticities(c, 0.75, parameters=(study.FRICTION_OVER_TRAIL, "s1"))
     e = {x.parameter: x for x in s.elasticities}
-    assert e[study.FRICTION_OVER_TRAIL].growth_rate == pytest.approx(0.0, abs=1e-9)
+    assert e[study.FRICTION_OVER_TRAIL].growth_rate == pytest.approx(0.0, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     s1 = get_parameter("s1")           # main axle moved, caster pins fixed relative to the c.g.
     rates = [linear.massless_caster_rate(s1.apply(c, c.s1 * f), 0.75) for f in (0.9, 1.1)]
     expected = (np.log(rates[1]) - np.log(rates[0])) / (np.log(1.1) - np.log(0.9))
@@ -134,6 +134,7 @@ def test_equal_instability_interval_revised_design():
     """Issue 11's numbers (regression values, tests/regression.py; exact model): 1.02 m/s at 40 N; 0.79 m/s at 80 N; the reference never
     reaches 1 rad/s at 20 N, so that variant is undefined; the thesis model gives more."""
     r = study.equal_instability_interval(preset("revised"), force_factors=(0.5, 2.0), friction_factors=(0.5,))
+    # error model: bisection bracket: the search's 0.005 m/s on this run and on the one that printed the value
     assert r.point.speed == pytest.approx(regression.value("revised_equal_instability_40N_m_s"), abs=0.01)
     # the definition, independently of the search: the revised chair's time to 1 rad/s brackets the E&J's at
     # 0.75 m/s between 0.01 m/s below and above the answer (the search's tolerance is 0.005 m/s)
@@ -143,6 +144,7 @@ def test_equal_instability_interval_revised_design():
     assert study.reference_time(preset("revised"), u + 0.01, run) <= t_ref <= study.reference_time(
         preset("revised"), u - 0.01, run)
     v = {x.label: x for x in r.variants}
+    # bisection bracket, as above
     assert v["80 N (2x)"].speed == pytest.approx(regression.value("revised_equal_instability_80N_m_s"), abs=0.01)
     assert v["20 N (0.5x)"].speed is None and not np.isfinite(v["20 N (0.5x)"].reference_time)
     assert v["thesis model"].speed > r.point.speed
@@ -156,6 +158,7 @@ def test_equal_friction_comparison_revised_gain_rests_on_friction():
     instability at about 0.68 / 1.02 m/s; frictionless, its linear growth rate is higher, with s1
     next to sqrt(I_z/m)."""
     r = study.equal_friction_comparison(frictions=(0.0, 0.1))
+    # error model: bisection bracket: the search's 0.005 m/s on these runs and on the ones that printed the values
     assert r.rows[0].result.speed == pytest.approx(regression.value("revised_equal_friction_0Nm_m_s"), abs=0.01)
     assert r.rows[1].result.speed == pytest.approx(regression.value("revised_equal_instability_40N_m_s"), abs=0.01)
     assert r.growth_chair > r.growth_reference
@@ -186,7 +189,7 @@ def test_cli_critical_impulse_json_matches_the_function(capsys):
     data = json.loads(capsys.readouterr().out)
     c = preset("ej-premier").replace(pin_friction_left=0.0, pin_friction_right=0.0)
     direct = study.critical_impulse(c, 0.75, run=RunSpec(horizon=2.0), level=0.02)
-    assert data["points"][0]["impulse_Ns"] == pytest.approx(direct.impulse_Ns, rel=1e-12)
+    assert data["points"][0]["impulse_Ns"] == pytest.approx(direct.impulse_Ns, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert "101 steps of 1 ms" in data["points"][0]["push"]
 
 
@@ -232,7 +235,7 @@ def test_reference_times_are_the_single_runs_times():
     got = reference_times(ej, 0.75, [40.0, 60.0], RunSpec(model="exact"), criterion=crit)
     single = [crit.time(simulate(ej, 0.75, RunSpec(model="exact", push_force=f, horizon=crit.duration, sample=0.01)))
               for f in (40.0, 60.0)]
-    np.testing.assert_allclose(got, single, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(got, single, rtol=0, atol=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_equal_instability_interval_variants_range_and_json_from_their_runs():
@@ -253,7 +256,7 @@ def test_equal_instability_interval_variants_range_and_json_from_their_runs():
                 reference_times(scale_friction(ej, 0.5), 0.75, [40.0], spec, criterion=crit),
                 reference_times(ej, 0.75, [40.0], spec.replace(dt=spec.dt / 2), criterion=crit)]
     np.testing.assert_allclose([v.reference_time for v in iv.variants], np.concatenate(expected), rtol=0,
-                               atol=1e-9)
+                               atol=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     speeds = [v.speed for v in iv.variants]
     assert all(s is not None for s in speeds) and (iv.low, iv.high) == (min(speeds), max(speeds))
     assert iv.range_text() == f"range {min(speeds):.3g}-{max(speeds):.3g} m/s"
