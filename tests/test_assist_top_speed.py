@@ -124,7 +124,7 @@ def test_exact_loop_at_whole_samples_is_the_sampled_loop_with_pure_delay():
         Lk = Ld if k == 0 else control.series(
             control.ss(np.diag(np.ones(k - 1), -1), np.eye(k)[:, :1], np.eye(k)[-1:], 0, Ld.dt), Ld)
         rho = float(np.max(np.abs(np.linalg.eigvals(control.feedback(Lk, 1).A))))
-        assert _spectral_radius(d, k * d.sample_time) == pytest.approx(rho, abs=1e-9), k
+        assert _spectral_radius(d, k * d.sample_time) == pytest.approx(rho, abs=1e-9), k  # rounding: equivalent arithmetic, a few ulp (observed 4.2e-15)
 
 
 @pytest.mark.parametrize("rate", [100.0, 200.0])
@@ -154,15 +154,15 @@ def test_default_top_speed_power_fwd_100_hz(chair, speeds):
     ts = TS.check_top_speed(sched100, rows100, torque_rows=torque)
     assert ts.checked == ("gain_margin", "phase_margin", "delay_margin", "torque")
     own = 1.5 / 100.0 + sched100.drive.motor_time_constant
-    assert TS.loop_delay(sched100) == pytest.approx(own, rel=1e-15) and own == pytest.approx(0.035, rel=1e-12)
+    assert TS.loop_delay(sched100) == pytest.approx(own, rel=1e-15) and own == pytest.approx(0.035, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     exact = [_exact_delay_margin(d, r.margin_pair.discrete.delay_margin_s) for d, r in zip(sched100.designs, rows100,
                                                                                              strict=True)]
     first_bad = next(i for i, x in enumerate(exact) if x <= own)
     assert first_bad > 0
-    assert ts.safe_top_speed_m_s == pytest.approx(speeds[first_bad - 1]) and ts.limited_by == "delay_margin"
+    assert ts.safe_top_speed_m_s == pytest.approx(speeds[first_bad - 1], rel=1e-12) and ts.limited_by == "delay_margin"  # rounding: equivalent arithmetic, a few ulp (observed 0)
     [lim] = ts.limits()
-    assert (lim.constraint, lim.speed_m_s, lim.unit) == ("delay_margin", pytest.approx(speeds[first_bad]), "ms")
-    assert lim.limit == pytest.approx(1e3 * own) and lim.value < lim.limit
+    assert (lim.constraint, lim.speed_m_s, lim.unit) == ("delay_margin", pytest.approx(speeds[first_bad], rel=1e-12), "ms")  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert lim.limit == pytest.approx(1e3 * own, rel=1e-12) and lim.value < lim.limit  # rounding: equivalent arithmetic, a few ulp (observed 0)
     at_top = ts.checks[first_bad - 1].values["delay_margin"]
     assert at_top[2] and at_top[0] > at_top[1]
     # the exact boundary is on the same side of 35 ms as the reported margin at both speeds (clearance 0.7 and
@@ -185,7 +185,7 @@ def test_margin_top_speed_at_200_hz_holds_on_the_whole_grid(chair):
     assert ts.checked == ("gain_margin", "phase_margin", "delay_margin")
     exact = [_exact_delay_margin(d, c.values["delay_margin"][0] / 1e3) for d, c in zip(sched.designs, ts.checks,
                                                                                         strict=True)]
-    assert min(exact) > TS.loop_delay(sched) == pytest.approx(0.0275)
+    assert min(exact) > TS.loop_delay(sched) == pytest.approx(0.0275, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert ts.safe_top_speed_m_s == 3.0 and ts.limited_by == "design_grid" and ts.warning() is None
     assert ts.limits() == [] and "every checked constraint holds up to the last design speed 3 m/s" in ts.sentence()
 
@@ -249,7 +249,7 @@ def test_disk_margin_closed_forms():
     for K in (0.5, 1.0, 1.5):
         dk = disk_margins(control.ss(control.tf([K], [1.0, -1.0], T)), np.geomspace(1e-3, math.pi / T * (1 - 1e-9),
                                                                                      2000))
-        assert dk.alpha == pytest.approx(2 * (2 - K) / (2 + K), rel=1e-9), K
+        assert dk.alpha == pytest.approx(2 * (2 - K) / (2 + K), rel=1e-9), K  # rounding: equivalent arithmetic, a few ulp (observed 1.9e-16)
 
 
 @pytest.mark.parametrize("rate", [100.0, 200.0])
@@ -281,11 +281,11 @@ def test_disk_margins_of_the_assist_loops(chair, rate):
                                options={"xatol": 1e-10 * w[i]})
         assert m.disk_margin == pytest.approx(best.fun, rel=1e-5)
         f = -1.0 / resp(m.disk_frequency_rad_s)
-        assert abs(2 * (f - 1) / (f + 1)) == pytest.approx(m.disk_margin, rel=1e-5)
+        assert abs(2 * (f - 1) / (f + 1)) == pytest.approx(m.disk_margin, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 4.3e-16)
         gm_classical = min(20 * math.log10(m.gain_margin_upper), -20 * math.log10(m.gain_margin_lower))
         assert m.disk_gain_margin_db <= gm_classical + 1e-9
         assert m.disk_phase_margin_deg <= m.phase_margin_deg + 1e-6
-        assert m.disk_phase_margin_deg == pytest.approx(math.degrees(2 * math.atan(m.disk_margin / 2)), rel=1e-9)
+        assert m.disk_phase_margin_deg == pytest.approx(math.degrees(2 * math.atan(m.disk_margin / 2)), rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 5.1e-16)
 
 
 # ---------------------------------------------------------------------------
@@ -305,20 +305,20 @@ def test_per_wheel_gains_are_the_command_lines_and_make_the_yaw_moment(chair, tm
     for row in data["rows"]:
         d = assist.design(chair, row["speed_m_s"], "gyro")
         assert d.yaw_moment_per_wheel_torque == pytest.approx((chair.d1 + chair.d2) / drive.wheel_radius,
-                                                              rel=1e-15)
-        assert (chair.d1 + chair.d2, drive.wheel_radius) == (pytest.approx(0.55), 0.178)
+                                                              rel=1e-15)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+        assert (chair.d1 + chair.d2, drive.wheel_radius) == (pytest.approx(0.55, rel=1e-12), 0.178)  # rounding: equivalent arithmetic, a few ulp (observed 0)
         k = d.wheel_torque_gains[0]
         for j in range(d.plant.n):
             x = np.eye(d.plant.n)[j]
             tau = -float(k @ x)
             f_left, f_right = drive.wheel_forces(chair, tau)
-            assert f_left * chair.d1 - f_right * chair.d2 == pytest.approx(-float(d.K[0] @ x), rel=1e-12)
-        assert row["wheel_torque_gains"] == pytest.approx(list(k), rel=1e-12)
-        assert row["gains"] == pytest.approx(list(d.K[0]), rel=1e-12)
+            assert f_left * chair.d1 - f_right * chair.d2 == pytest.approx(-float(d.K[0] @ x), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.9e-16)
+        assert row["wheel_torque_gains"] == pytest.approx(list(k), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.0e-16)
+        assert row["gains"] == pytest.approx(list(d.K[0]), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
         line = next(x for x in text.splitlines() if x.startswith(f"{row['speed_m_s']:5.2f} ") and "|" in x)
         printed = [float(v) for v in line.split("|")[0].split()[1:]]
         assert printed == pytest.approx(list(k), rel=5e-4)          # %8.4g: half a unit in the 4th digit
-        assert d.gains_dict(per_wheel=True) == pytest.approx(dict(zip(d.plant.states, k, strict=True)))
+        assert d.gains_dict(per_wheel=True) == pytest.approx(dict(zip(d.plant.states, k, strict=True)), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert set(GAIN_UNITS) == set(assist.design(chair, 1.0).plant.states)
 
 
@@ -328,8 +328,8 @@ def test_scheduled_design_between_grid_speeds_has_the_drive(chair):
     for kind in assist.DESIGNS:
         sched = assist.schedule(chair, [1.0, 2.0], kind)
         d = sched.at(1.5)
-        assert d.track_width == pytest.approx(0.55) and d.wheel_radius == 0.178
-        assert d.wheel_torque_gains == pytest.approx(d.K * 0.178 / 0.55, rel=1e-12)
+        assert d.track_width == pytest.approx(0.55, rel=1e-12) and d.wheel_radius == 0.178  # rounding: equivalent arithmetic, a few ulp (observed 0)
+        assert d.wheel_torque_gains == pytest.approx(d.K * 0.178 / 0.55, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.4e-16)
 
 
 # ---------------------------------------------------------------------------

@@ -51,7 +51,7 @@ def test_presets():
     r = chair_mod.preset("revised")
     # Figure 9-1: trail 8 -> 6 cm, s1 .345 -> .245, s1+s2 reduced by only 5 cm.
     assert r.trail == 0.06 and r.s1 == 0.245
-    assert r.s1 + r.s2 == pytest.approx(0.345 + 0.175 - 0.05)
+    assert r.s1 + r.s2 == pytest.approx(0.345 + 0.175 - 0.05, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.2e-16)
     with pytest.raises(ValueError, match="unknown chair preset 'nope'"):
         chair_mod.preset("nope")
 
@@ -96,9 +96,9 @@ def test_static_loads_eq_6_23():
     c = chair_mod.preset("ej-premier")
     loads = static_loads(c)
     W, s = c.m * c.g, c.s1 + c.s2 + c.trail
-    assert loads["main"] == pytest.approx(W * (c.s2 + c.trail) / (2 * s), rel=1e-12)
-    assert loads["caster"] == pytest.approx(W * c.s1 / (2 * s), rel=1e-12)
-    assert sum(loads[k] for k in ("main_left", "main_right", "caster_left", "caster_right")) == pytest.approx(W)
+    assert loads["main"] == pytest.approx(W * (c.s2 + c.trail) / (2 * s), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert loads["caster"] == pytest.approx(W * c.s1 / (2 * s), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert sum(loads[k] for k in ("main_left", "main_right", "caster_left", "caster_right")) == pytest.approx(W, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 @pytest.mark.parametrize("overrides", [{}, {"d1": 0.2, "t2": 0.3, "roll_k": 2.0}, {"h": 0.4, "trail": 0.05}])
@@ -109,7 +109,7 @@ def test_load_transfer_matches_wchair_statics(overrides):
     rng = np.random.default_rng(1)
     for FC1, FC2, E, B in rng.uniform([-30, -60, -0.5, -0.5], [30, 60, 0.5, 0.5], size=(20, 4)):
         ours = normal_loads(p, FC1, FC2, math.cos(E), math.sin(E), math.cos(B), math.sin(B))
-        np.testing.assert_allclose(ours, wchair_statics(c, FC1, FC2, E, B), rtol=1e-11)
+        np.testing.assert_allclose(ours, wchair_statics(c, FC1, FC2, E, B), rtol=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 5.9e-16)
 
 
 def test_load_transfer_balances_moments_and_mirrors():
@@ -119,12 +119,12 @@ def test_load_transfer_balances_moments_and_mirrors():
     fx, fy = 12.0, 35.0
     na, nb, nd, ne = normal_loads(p, fx, fy)
     xa = xb = c.x_pin - c.trail
-    assert na + nb + nd + ne == pytest.approx(c.m * c.g)
-    assert xa * na + xb * nb + c.x_main * (nd + ne) == pytest.approx(-c.h * fx)
-    assert -c.t1 * na + c.t2 * nb - c.d1 * nd + c.d2 * ne == pytest.approx(-c.h * fy)
+    assert na + nb + nd + ne == pytest.approx(c.m * c.g, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert xa * na + xb * nb + c.x_main * (nd + ne) == pytest.approx(-c.h * fx, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 9.7e-16)
+    assert -c.t1 * na + c.t2 * nb - c.d1 * nd + c.d2 * ne == pytest.approx(-c.h * fy, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
     assert nd > ne and na > nb  # a rightward tire force (right turn) loads the left wheels
     ma, mb, md, me = normal_loads(p, fx, -fy)
-    np.testing.assert_allclose([ma, mb, md, me], [nb, na, ne, nd], rtol=1e-12)
+    np.testing.assert_allclose([ma, mb, md, me], [nb, na, ne, nd], rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_front_caster_loads():
@@ -132,8 +132,8 @@ def test_front_caster_loads():
     c = chair_mod.preset("ej-premier-front-caster")
     loads = static_loads(c)
     W = c.m * c.g
-    assert loads["main"] == pytest.approx(W * (c.s2 - c.trail) / (2 * (c.s1 + c.s2 - c.trail)))
-    assert loads["main"] + loads["caster"] == pytest.approx(W / 2)
+    assert loads["main"] == pytest.approx(W * (c.s2 - c.trail) / (2 * (c.s1 + c.s2 - c.trail)), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.0e-16)
+    assert loads["main"] + loads["caster"] == pytest.approx(W / 2, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_batch_parameters_vectorise():
@@ -141,7 +141,7 @@ def test_batch_parameters_vectorise():
     p = parameters(chairs)
     loads = np.array(normal_loads(p))
     for i, c in enumerate(chairs):
-        np.testing.assert_allclose(loads[:, i], normal_loads(parameters(c)), rtol=1e-14)
+        np.testing.assert_allclose(loads[:, i], normal_loads(parameters(c)), rtol=1e-14)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_a_bad_value_of_a_field_without_unit_is_explained_without_one():

@@ -58,7 +58,7 @@ def test_pade_is_python_controls_and_the_delay():
     assert np.max(np.abs(ours - theirs)) < 1e-9
     low = w * tau <= 1
     assert np.max(np.abs(ours[low] - np.exp(-1j * w[low] * tau))) < 1e-12
-    assert np.allclose(np.abs(ours), 1.0, atol=1e-9)             # all-pass
+    assert np.allclose(np.abs(ours), 1.0, atol=1e-9)             # rounding: equivalent arithmetic, a few ulp (observed 1.8e-15); all-pass
     with pytest.raises(ValueError, match="tau"):
         pade(0.0)
 
@@ -194,9 +194,9 @@ def test_yaw_moment_limit_closed_form():
 
     c = preset("ej-premier")
     assert yaw_moment_limit(c, Driver(hand_force_N=50.0)) == pytest.approx(
-        50.0 * D.HANDRIM_RADIUS / D.HANDRIM_WHEEL_RADIUS * (c.d1 + c.d2))
+        50.0 * D.HANDRIM_RADIUS / D.HANDRIM_WHEEL_RADIUS * (c.d1 + c.d2), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     p = preset("power-fwd")
-    assert yaw_moment_limit(p, Driver()) == pytest.approx(D.TORQUE_LIMIT * (p.d1 + p.d2) / D.DRIVE_WHEEL_RADIUS)
+    assert yaw_moment_limit(p, Driver()) == pytest.approx(D.TORQUE_LIMIT * (p.d1 + p.d2) / D.DRIVE_WHEEL_RADIUS, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_abscissa_batches():
@@ -204,7 +204,7 @@ def test_abscissa_batches():
     g = np.array([[10.0, 5.0], [100.0, 20.0]])
     batch = abscissa(A, B, C, g, 0.3)
     one = [abscissa(A, B, C, g[i][None, :], 0.3)[0] for i in range(2)]
-    assert np.allclose(batch, one, rtol=0, atol=1e-12)
+    assert np.allclose(batch, one, rtol=0, atol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_with_the_assist_the_driver_limit_is_the_assisted_loops_divergence(monkeypatch):

@@ -27,7 +27,7 @@ def test_plant_step_is_the_exact_zero_order_hold():
     """Against the closed form and against a fine Euler integration (first order: error ~ dt/2 * lam^2 x dt)."""
     lam, x0, w, dt = 2.5, 0.1, -0.3, T.FRAME_S
     x1 = float(T.plant_step(np.array([x0]), lam, np.array([w]), dt)[0])
-    assert x1 == pytest.approx(math.exp(lam * dt) * x0 + (math.exp(lam * dt) - 1) / lam * w, rel=1e-14)
+    assert x1 == pytest.approx(math.exp(lam * dt) * x0 + (math.exp(lam * dt) - 1) / lam * w, rel=1e-14)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     x, n = x0, 100_000
     for _ in range(n):
         x += dt / n * (lam * x + w)
@@ -37,7 +37,7 @@ def test_plant_step_is_the_exact_zero_order_hold():
 def test_ramp_falls_linearly_in_time_constant_and_is_capped():
     t = np.array([0.0, 10.0, 20.0, 1000.0])
     lam = T.ramp_lambda(t, 0.5, 0.05)
-    assert 1 / lam[0] == pytest.approx(2.0) and 1 / lam[1] == pytest.approx(1.5) and 1 / lam[2] == pytest.approx(1.0)
+    assert 1 / lam[0] == pytest.approx(2.0, rel=1e-12) and 1 / lam[1] == pytest.approx(1.5, rel=1e-12) and 1 / lam[2] == pytest.approx(1.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert lam[3] == T.LAMBDA_MAX_1_S
 
 
@@ -94,27 +94,27 @@ def test_validity_rules():
     res = P.tracking_result([P.TrialRecord("practice", 0.6, 3.0, 9.0, 0.5), ok, still, early, ok])
     assert res.reaction_time_s is None                  # two valid scored trials < MIN_VALID
     res = P.tracking_result([ok, ok, P.TrialRecord("scored", 2.0, 5.0, 10.0, 0.5)])
-    assert res.lambda_c_1_s == pytest.approx(13 / 3)
-    assert res.reaction_time_s == pytest.approx(res.escape.mean / (13 / 3))
+    assert res.lambda_c_1_s == pytest.approx(13 / 3, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert res.reaction_time_s == pytest.approx(res.escape.mean / (13 / 3), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_protocol_practice_first_then_scored_until_enough_valid():
     plan = P.next_trial([])
-    assert plan["kind"] == "practice" and plan["lambda_start_1_s"] == pytest.approx(1 / T.FIRST_TIME_CONSTANT_S)
+    assert plan["kind"] == "practice" and plan["lambda_start_1_s"] == pytest.approx(1 / T.FIRST_TIME_CONSTANT_S, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
     assert plan["rate_s_per_s"] == T.PRACTICE_RAMP_S_PER_S
     recs = [P.TrialRecord("practice", plan["lambda_start_1_s"], 6.0, 12.0, 0.5)]
     plan = P.next_trial(recs)
     e = T.escape_factor(T.PRACTICE_RAMP_S_PER_S, lambda0_1_s=1 / T.FIRST_TIME_CONSTANT_S).mean
-    assert plan["kind"] == "practice" and plan["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 6.0 / e)
+    assert plan["kind"] == "practice" and plan["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 6.0 / e, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.1e-16)
     assert plan["rate_s_per_s"] == T.RAMP_S_PER_S
     recs.append(P.TrialRecord("practice", plan["lambda_start_1_s"], 4.0, 8.0, 0.5))
     plan = P.next_trial(recs)
     assert plan["kind"] == "scored" and plan["number"] == 1
-    assert plan["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 4.0 / T.escape_factor().mean)
+    assert plan["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 4.0 / T.escape_factor().mean, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     recs.append(P.TrialRecord("scored", plan["lambda_start_1_s"], 5.0, 8.0, 0.5))
-    assert P.next_trial(recs)["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 4.5 / T.escape_factor().mean)
+    assert P.next_trial(recs)["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 4.5 / T.escape_factor().mean, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
     early = P.TrialRecord("scored", 2.0, 2.1, 0.5, 0.5)                         # lost at once: start lower
-    assert P.next_trial(recs + [early])["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 2.0)
+    assert P.next_trial(recs + [early])["lambda_start_1_s"] == pytest.approx(T.START_FRACTION * 2.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     recs = recs[:2]
     bad = P.TrialRecord("scored", 2.0, 2.1, 0.5, 0.5)
     assert P.next_trial(recs + [bad] * (2 * T.SCORED_TRIALS)) is None          # gives up after twice the trials
@@ -179,7 +179,7 @@ def test_the_explorer_keeps_the_measured_user_with_the_chair(tmp_path):
     assert side == "=" and f"up to {u:.3g} m/s" in html.unescape(ex.tracking.text.object)
     ex.tracking.task.record = {"kind": "<img src=x onerror=alert(1)>"}
     assert "trial refused" in ex.tracking.text.object and "<img" not in ex.tracking.text.object
-    assert ex.state.user["reaction_time_s"] == pytest.approx(round(T.escape_factor().mean / 4.0, 4))
+    assert ex.state.user["reaction_time_s"] == pytest.approx(round(T.escape_factor().mean / 4.0, 4), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     text = chair_toml(ex.state.chair, ex.state.user)
     state = AppState()
     assert state.load_toml(text, "measured.toml") is None

@@ -71,12 +71,12 @@ def test_every_preset_as_a_layout_is_the_thesis_model(name):
     assert np.max(np.abs(A - A0)) <= 1e-12 * np.max(np.abs(A0))
     loads = chair_static_loads(c)
     expected = [loads["main_left"], loads["main_right"], loads["caster_left"], loads["caster_right"]]
-    assert np.allclose(static_loads(layout), expected, rtol=1e-9, atol=0)
+    assert np.allclose(static_loads(layout), expected, rtol=1e-9, atol=0)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     t0, t = chair_tip_angles(c), tip_angles(layout)
     main, casters = ("forward_deg", "backward_deg") if c.caster_position == "rear" else ("backward_deg", "forward_deg")
-    assert t[main] == pytest.approx(t0.toward_main_wheels_deg, abs=1e-9)
-    assert t[casters] == pytest.approx(t0.toward_casters_deg, abs=1e-9)
-    assert t["left_deg"] == pytest.approx(t0.lateral_left_deg, abs=1e-9)
+    assert t[main] == pytest.approx(t0.toward_main_wheels_deg, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t[casters] == pytest.approx(t0.toward_casters_deg, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert t["left_deg"] == pytest.approx(t0.lateral_left_deg, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def _turned(layout: Layout) -> Layout:
@@ -112,7 +112,7 @@ def test_mirror_image_has_the_same_eigenvalues():
     for u in (-1.0, 1.0):
         a = np.sort_complex(np.linalg.eigvals(state_matrices(layout, [u])[0]))
         b = np.sort_complex(np.linalg.eigvals(state_matrices(mirror, [u])[0]))
-        assert np.allclose(a, b, rtol=1e-10)
+        assert np.allclose(a, b, rtol=1e-10)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_a_caster_pair_without_force_or_mass_changes_nothing():
@@ -171,11 +171,11 @@ def test_mid_wheel_drive_loads_and_the_compliance_rule():
     x = np.array([p[1] for p in pts])
     y = np.array([p[2] for p in pts])
     k = np.array([p[3] for p in pts])
-    assert n.sum() == pytest.approx(layout.m * layout.g, rel=1e-12)
+    assert n.sum() == pytest.approx(layout.m * layout.g, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert abs(n @ x) < 1e-9 * n.sum() and abs(n @ y) < 1e-9 * n.sum()
     deflection = n / k
     coef, *_ = np.linalg.lstsq(np.stack([np.ones_like(x), x, y], axis=1), deflection, rcond=None)
-    assert np.allclose(np.stack([np.ones_like(x), x, y], axis=1) @ coef, deflection, rtol=1e-10)
+    assert np.allclose(np.stack([np.ones_like(x), x, y], axis=1) @ coef, deflection, rtol=1e-10)  # rounding: equivalent arithmetic, a few ulp (observed 1.6e-15)
 
 
 def test_a_layout_file_reads_and_refuses_by_name(tmp_path):
@@ -241,9 +241,9 @@ def test_a_layouts_slope_tip_is_the_short_forms(name, cross, grade):
 
     c = preset(name)
     a, b = slope_tip(c, cross, grade), layout_slope_tip(Layout.from_chair(c), cross, grade)
-    assert b.tilt_deg == pytest.approx(a.tilt_deg, abs=1e-12)
-    assert b.fall_direction_deg == pytest.approx(a.fall_direction_deg, abs=1e-9)
-    assert b.tip_deg == pytest.approx(a.tip_deg, abs=1e-9)
+    assert b.tilt_deg == pytest.approx(a.tilt_deg, abs=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert b.fall_direction_deg == pytest.approx(a.fall_direction_deg, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert b.tip_deg == pytest.approx(a.tip_deg, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_the_tipping_command_answers_a_layout(capsys):
@@ -258,8 +258,8 @@ def test_the_tipping_command_answers_a_layout(capsys):
     assert main(["--chair", "mid-wheel-drive", "--cross-slope", "6", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     want = layout_tips(layout_preset("mid-wheel-drive"))
-    assert {k: doc[k] for k in want} == pytest.approx(want, abs=0)
-    assert doc["slope"]["tip_deg"] == pytest.approx(want["right_deg"], abs=1e-9)
+    assert {k: doc[k] for k in want} == pytest.approx(want, abs=0)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert doc["slope"]["tip_deg"] == pytest.approx(want["right_deg"], abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert main(["--chair", "mid-wheel-drive", "--set", "h=0.5"]) == 2
     assert "--set is for the short form" in capsys.readouterr().err
 

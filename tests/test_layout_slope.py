@@ -38,13 +38,13 @@ def test_the_thesis_chair_as_a_layout_holds_the_line_as_the_short_form(phi, grad
     short = solve(c, phi, speed, grade)
     lay = layout_equilibrium(Layout.from_chair(c), phi, speed, grade)
     assert abs(short.holding_moment) > 1.0
-    assert lay.holding_moment_N_m == pytest.approx(short.holding_moment, abs=1e-8)
-    assert lay.heading_deg == pytest.approx(short.heading_deg, abs=1e-8)
-    np.testing.assert_allclose(lay.caster_angles_deg, [short.eta_deg, short.beta_deg], rtol=0, atol=1e-8)
-    np.testing.assert_allclose(lay.friction_range_N_m, short.friction_range, rtol=0, atol=1e-8)
+    assert lay.holding_moment_N_m == pytest.approx(short.holding_moment, abs=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 4.9e-16)
+    assert lay.heading_deg == pytest.approx(short.heading_deg, abs=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 4.7e-16)
+    np.testing.assert_allclose(lay.caster_angles_deg, [short.eta_deg, short.beta_deg], rtol=0, atol=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 4.8e-16)
+    np.testing.assert_allclose(lay.friction_range_N_m, short.friction_range, rtol=0, atol=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 5.7e-16)
     # the layout lists the fixed wheels first (D, E), then the casters (A, B)
-    np.testing.assert_allclose(lay.loads_N, np.asarray(short.loads)[[2, 3, 0, 1]], rtol=0, atol=1e-8)
-    np.testing.assert_allclose(lay.drive_forces_N, short.drive_forces, rtol=0, atol=1e-8)
+    np.testing.assert_allclose(lay.loads_N, np.asarray(short.loads)[[2, 3, 0, 1]], rtol=0, atol=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 4.1e-16)
+    np.testing.assert_allclose(lay.drive_forces_N, short.drive_forces, rtol=0, atol=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 6.9e-16)
 
 
 @pytest.mark.parametrize("pin_friction", [True, False])
@@ -62,9 +62,9 @@ def test_the_thesis_chair_as_a_layout_turns_as_the_short_form_when_let_go(pin_fr
     mine = layout_uncorrected_path(lay, layout_equilibrium(lay, 2.0, 0.75), 1.0, pin_friction=pin_friction)
     assert abs(short.heading_change_deg) > 5.0 and mine.turn == short.turn == "uphill"
     assert mine.ended == short.ended and mine.report_time_s == short.report_time
-    assert mine.heading_change_deg == pytest.approx(short.heading_change_deg, abs=1e-9)
-    assert mine.yaw_rate_deg_s == pytest.approx(short.yaw_rate_deg_s, abs=1e-9)
-    assert mine.lateral_offset_m == pytest.approx(short.lateral_offset, abs=1e-12)
+    assert mine.heading_change_deg == pytest.approx(short.heading_change_deg, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert mine.yaw_rate_deg_s == pytest.approx(short.yaw_rate_deg_s, abs=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
+    assert mine.lateral_offset_m == pytest.approx(short.lateral_offset, abs=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.8e-16)
 
 
 def _closed_form(layout: Layout, phi_deg: float, reverse: bool) -> float:
@@ -106,7 +106,7 @@ def test_the_thesis_chair_closed_form_is_the_short_forms():
     observed 2e-16 relative; asserted 1e-12."""
     c = preset("ej-premier")
     assert _closed_form(Layout.from_chair(c), 3.0, False) == pytest.approx(
-        holding_moment_closed_form(c, Plane(3.0, 0.0)), rel=1e-12)
+        holding_moment_closed_form(c, Plane(3.0, 0.0)), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.2e-16)
 
 
 @pytest.mark.parametrize("name,speed", [("mid-wheel-drive", 1.0), ("mid-wheel-drive", -1.0),
@@ -117,10 +117,10 @@ def test_a_slope_to_the_left_needs_the_opposite_holding_moment(name, speed):
     4e-15 (N m, deg); asserted 1e-8 N m and 1e-8 deg."""
     layout = layout_preset(name)
     right, left = layout_equilibrium(layout, 2.5, speed), layout_equilibrium(layout, -2.5, speed)
-    assert right.holding_moment_N_m == pytest.approx(-left.holding_moment_N_m, abs=1e-8)
-    assert right.heading_deg == pytest.approx(-left.heading_deg, abs=1e-8)
+    assert right.holding_moment_N_m == pytest.approx(-left.holding_moment_N_m, abs=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 3.2e-16)
+    assert right.heading_deg == pytest.approx(-left.heading_deg, abs=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 1.4e-16)
     np.testing.assert_allclose(right.friction_range_N_m, -np.asarray(left.friction_range_N_m)[::-1], rtol=0,
-                               atol=1e-8)
+                               atol=1e-11)  # rounding: equivalent arithmetic, a few ulp (observed 6.1e-16)
     back = 180.0 if speed < 0 else 0.0
     mirror = {i: j for i, a in enumerate(layout.casters) for j, b in enumerate(layout.casters)
               if a.x == b.x and a.y == -b.y}

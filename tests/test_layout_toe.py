@@ -120,7 +120,7 @@ def test_toe_in_reverse_is_the_turned_chair_with_toe_forward():
         assert np.allclose(rev, fwd, rtol=1e-9, atol=1e-9 * np.abs(fwd).max())
         a = np.sort_complex(np.linalg.eigvals(state_matrices(lay, [u])[0]))
         b = np.sort_complex(np.linalg.eigvals(state_matrices(mirror, [u])[0]))
-        assert np.allclose(a, b, rtol=1e-9)
+        assert np.allclose(a, b, rtol=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_a_wheel_file_carries_each_fixed_wheels_angle(tmp_path):
@@ -143,4 +143,4 @@ def test_a_wheel_file_carries_each_fixed_wheels_angle(tmp_path):
     path.write_text("\n".join(lines))
     read = load_layout(path)
     assert [w.angle_deg for w in read.wheels] == [-TOE_DEG, TOE_DEG]
-    np.testing.assert_allclose(state_matrices(read, [1.0, -1.0]), state_matrices(lay, [1.0, -1.0]), rtol=1e-12)
+    np.testing.assert_allclose(state_matrices(read, [1.0, -1.0]), state_matrices(lay, [1.0, -1.0]), rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)

@@ -45,16 +45,16 @@ def test_cg_ratio_keeps_s1_plus_s2(ej):
     """Eq 8-6: the c.g. ratio is varied at constant s1 + s2."""
     loc = rootlocus.parameter_locus(ej, "cg_ratio", [0.5, 0.6, 0.66, 0.75], speed=0.75)
     for r, c in zip(loc.values, loc.chairs, strict=False):
-        assert c.s1 + c.s2 == pytest.approx(ej.s1 + ej.s2)
-        assert c.cg_ratio == pytest.approx(r)
-    assert loc.nominal == pytest.approx(ej.cg_ratio)
+        assert c.s1 + c.s2 == pytest.approx(ej.s1 + ej.s2, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+        assert c.cg_ratio == pytest.approx(r, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert loc.nominal == pytest.approx(ej.cg_ratio, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_caster_mass_scales_mass_and_inertia_together(ej):
     """Figure 8-12: m_c and I_zp multiplied by the same factor."""
     loc = rootlocus.parameter_locus(ej, "caster_mass_factor", [1.0, 2.0, 3.0])
     for f, c in zip(loc.values, loc.chairs, strict=False):
-        assert c.m_c == pytest.approx(ej.m_c * f) and c.i_zp == pytest.approx(ej.i_zp * f)
+        assert c.m_c == pytest.approx(ej.m_c * f, rel=1e-12) and c.i_zp == pytest.approx(ej.i_zp * f, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
         assert c.m == ej.m and c.i_z == ej.i_z
 
 
@@ -143,15 +143,15 @@ def test_pin_damping_stabilises_free_casters_at_reference_speed(ej):
 def test_speed_locus_matches_linear(ej, casters):
     loc = rootlocus.speed_locus(ej, model="exact", casters=casters, n=200)
     ref = linear.eigenvalues_vs_speed(ej, loc.speeds, "exact", casters, track=True)
-    np.testing.assert_allclose(loc.eigenvalues, ref)
+    np.testing.assert_allclose(loc.eigenvalues, ref, rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     crit = linear.critical_speeds(lambda U: linear.state_matrices(ej, U, "exact", casters), loc.speeds)
-    assert [c.speed for c in loc.crossings] == pytest.approx([c.speed for c in crit])
+    assert [c.speed for c in loc.crossings] == pytest.approx([c.speed for c in crit], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     if casters == "locked":
         # Figure 8-6: the locked chair turns unstable between 10 and 12.5 m/s (full-width model ~ eq 5-15)
         first = [c.speed for c in loc.crossings if c.direction == "destabilising"][0]
         assert 9.0 < first < 13.5
         iv = loc.unstable_intervals()
-        assert iv[0][0] == pytest.approx(first)
+        assert iv[0][0] == pytest.approx(first, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 # ---------------------------------------------------------------------------

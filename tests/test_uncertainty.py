@@ -47,8 +47,8 @@ def test_parse_and_round_trip(tmp_path):
     u = loads_uncertainty(LINEAR_U + '\n[pin]\nfields = ["pin_friction_right"]\ndistribution = "normal"\nstd = 0.5\n'
                           "relative = true\n")
     assert u.names == ("s1", "i_z", "pin_friction_left", "pin")
-    assert u["i_z"].std_value(C.i_z) == pytest.approx(0.56)
-    assert u["pin_friction_left"].std_value(0.1) == pytest.approx(0.02 / math.sqrt(12))
+    assert u["i_z"].std_value(C.i_z) == pytest.approx(0.56, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.0e-16)
+    assert u["pin_friction_left"].std_value(0.1) == pytest.approx(0.02 / math.sqrt(12), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.5e-16)
     path = tmp_path / "u.toml"
     path.write_text(u.dumps())
     assert load_uncertainty(path) == u
@@ -104,9 +104,9 @@ def test_monte_carlo_interval_matches_delta_method_on_linear_function():
     mean = linear_fn([C])[0] + COEF["pin_friction_left"] * (0.1 - C.pin_friction_left)  # uniform centre 0.1
     d = delta_method(C, u, linear_fn)
     assert d.std == pytest.approx(sigma, rel=1e-7)
-    assert d.value == pytest.approx(mean, rel=1e-12)
+    assert d.value == pytest.approx(mean, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert (d.low, d.high) == pytest.approx((mean - norm.ppf(0.975) * sigma, mean + norm.ppf(0.975) * sigma),
-                                            rel=1e-7)
+                                            rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 9.9e-15)
     n = 20000
     r = propagate(C, u, linear_fn, samples=n, seed=2)
     # output is nearly normal (two normal terms dominate the variance); the 2.5 % quantile's standard
@@ -141,7 +141,7 @@ def test_shared_draw_and_truncation():
     c = C.replace(pin_friction_right=0.2)
     chairs = u.sample(c, 400, seed=0)
     ratio = np.array([ch.pin_friction_right / ch.pin_friction_left for ch in chairs])
-    assert np.allclose(ratio, 2.0, rtol=1e-12)  # one draw shared, relative to each field's own value
+    assert np.allclose(ratio, 2.0, rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0); one draw shared, relative to each field's own value
     r = propagate(c, u, lambda cs: np.array([ch.pin_friction_left for ch in cs]), samples=400, seed=0)
     assert r.rejected > 0  # N(0.1, 0.06) is negative 5 % of the time: redrawn (truncated)
     assert r.low >= 0
