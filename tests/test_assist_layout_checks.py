@@ -78,9 +78,9 @@ def test_the_torque_limit_saturates_the_command():
     drive = DriveTrain(torque_limit=1.0)
     d = layout_design(lay, 1.0, "gyro", drive=drive)
     r = layout_recovery(lay, d, drive, push=STRONG_FORCE, duration=2.0)
-    assert r.peak_torque_N_m == pytest.approx(1.0, rel=1e-12) and r.saturated_fraction > 0
+    assert r.peak_torque_N_m == pytest.approx(1.0, rel=1e-12) and r.saturated_fraction > 0  # rounding: equivalent arithmetic, a few ulp (observed 0)
     ctl = layout_controller(d, lay, drive)
-    assert ctl.limit == pytest.approx(drive.torque_limit * d.track_width / drive.wheel_radius, rel=1e-12)
+    assert ctl.limit == pytest.approx(drive.torque_limit * d.track_width / drive.wheel_radius, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_check_speeds_and_traction_limit():
@@ -91,7 +91,7 @@ def test_check_speeds_and_traction_limit():
     from stability.layout.statics import static_loads
 
     n = static_loads(lay)[:2].min()
-    assert layout_traction_limit(lay, drive) == pytest.approx(drive.traction_coefficient * n * drive.wheel_radius)
+    assert layout_traction_limit(lay, drive) == pytest.approx(drive.traction_coefficient * n * drive.wheel_radius, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 @pytest.mark.slow

@@ -40,7 +40,7 @@ def test_the_thesis_chairs_as_layouts_get_the_short_forms_growth_rates_and_tip_a
         assert da.more_stable == db.more_stable
     tips = mine.quantity("static_stability_deg").values
     for c, t in zip(chairs, tips, strict=True):
-        assert t == pytest.approx(tip_angles(c).smallest_deg, rel=1e-9)
+        assert t == pytest.approx(tip_angles(c).smallest_deg, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def _pinned(name: str) -> Layout:
@@ -55,11 +55,11 @@ def test_a_frame_turned_round_compares_backwards_as_it_does_forwards():
     c = compare_layouts([_pinned("power-fwd-base"), _pinned("power-rwd-base")], speeds=[1.0, -1.0, 2.0, -2.0])
     for u in (1.0, 2.0):
         f, r = c.quantity(f"growth_rate_1_s@{u:g}").values, c.quantity(f"growth_rate_1_s@{-u:g}").values
-        assert f[0] == pytest.approx(r[1], rel=1e-9) and r[0] == pytest.approx(f[1], rel=1e-9)
+        assert f[0] == pytest.approx(r[1], rel=1e-9) and r[0] == pytest.approx(f[1], rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     fwd, rev = c.quantity("stable_up_to_forward_m_s").values, c.quantity("stable_up_to_reverse_m_s").values
     assert (fwd[0], rev[0]) == (rev[1], fwd[1])
     s = c.quantity("static_stability_deg").values
-    assert s[0] == pytest.approx(s[1], rel=1e-12)
+    assert s[0] == pytest.approx(s[1], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_a_chair_compared_with_itself_is_equal_on_every_measure():

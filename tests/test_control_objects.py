@@ -47,7 +47,7 @@ def test_bode_and_margin_of_the_loop_transfer(design):
     matplotlib.use("Agg")
     L = design.loop()
     Ld = assist.discrete_loop(design)
-    assert Ld.dt == pytest.approx(1 / 100.0, rel=1e-15) and design.sample_time == Ld.dt
+    assert Ld.dt == pytest.approx(1 / 100.0, rel=1e-15) and design.sample_time == Ld.dt  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert Ld.input_labels == ["Mz_N_m"] and Ld.output_labels == ["u_N_m"] and Ld.name == "gyro_loop_U1"
     # the continuous loop is named and labelled the same way, its states those of the plant and the estimator
     assert L.input_labels == ["Mz_N_m"] and L.output_labels == ["u_N_m"] and L.name == "gyro_loop_U1"
@@ -63,7 +63,7 @@ def test_bode_and_margin_of_the_loop_transfer(design):
 
 def test_sample_rate_defaults_to_the_table():
     d = assist.design(preset("power-fwd"), 1.0, "gyro")
-    assert d.sample_time == pytest.approx(1 / defaults.SAMPLE_RATE_HZ, rel=1e-15)
+    assert d.sample_time == pytest.approx(1 / defaults.SAMPLE_RATE_HZ, rel=1e-15)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def _with_delay(L, k):

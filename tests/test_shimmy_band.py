@@ -61,7 +61,7 @@ def test_rigid_pivot_closed_form_trail_above_relaxation_length():
     band = shimmy_band(c, [0.5, 1.0, 2.0], rigid)
     for iv, b in zip(band.intervals_m, band.boundaries_m, strict=True):
         assert b == pytest.approx((0.02,), abs=TOL_M)
-        assert iv[0][1] == pytest.approx(TRAIL_SEARCH_M[1])
+        assert iv[0][1] == pytest.approx(TRAIL_SEARCH_M[1], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 @pytest.mark.parametrize("speed", [0.5, 1.0, 2.0])
@@ -84,8 +84,8 @@ def test_rigid_pivot_with_pin_damping_has_a_shimmy_zone_between_two_closed_form_
 
 
 def test_margin_sign_and_corners():
-    assert margin_to_boundaries(0.07, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(0.02)
-    assert margin_to_boundaries(0.04, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(-0.01)
+    assert margin_to_boundaries(0.07, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(0.02, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
+    assert margin_to_boundaries(0.04, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(-0.01, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
     assert margin_to_boundaries(0.04, [(0.001, 0.25)], []) == math.inf
     assert margin_to_boundaries(0.04, [], []) == -math.inf
     band = shimmy_band(MEASURED.replace(trail=0.05), [1.0])
@@ -111,7 +111,7 @@ def test_cli_prints_the_band_and_the_margin():
     j = _shimmy("--chair", chair, "--speeds", "0.5,1", "--json")
     d = json.loads(j.stdout)["shimmy_band"]
     ref = shimmy_band(MEASURED, [0.5, 1.0])
-    assert d["shimmy_margin_m"] == pytest.approx(ref.shimmy_margin_m, abs=1e-15)
+    assert d["shimmy_margin_m"] == pytest.approx(ref.shimmy_margin_m, abs=1e-15)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert d["shimmy_free_intervals_m"][0] == [list(iv) for iv in ref.intervals_m[0]]
     assert d["shimmy_margin_interval_m"][0] is None        # -inf: a corner shimmies at every trail
 

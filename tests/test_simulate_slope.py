@@ -74,7 +74,7 @@ def test_plane_loads_at_zero_slope_are_eq_6_25():
             fx, fy, eta, beta = rng.normal(size=4) * (30.0, 60.0, 0.5, 0.5)
             trig = (math.cos(eta), math.sin(eta), math.cos(beta), math.sin(beta))
             np.testing.assert_allclose(msl.normal_loads_plane(p, fx, fy, p.g, *trig),
-                                       normal_loads(p, fx, fy, *trig), rtol=1e-12, atol=1e-9)
+                                       normal_loads(p, fx, fy, *trig), rtol=1e-12, atol=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
             # and equal the acceleration form with m a = sum F + m g_in on a slope
             g1, g2, gn = msl.gravity(p.g, 0.05, -0.03, eta)
             np.testing.assert_allclose(msl.normal_loads_plane(p, fx, fy, gn, *trig),
@@ -142,7 +142,7 @@ def test_simulator_slope_is_the_same_plane():
     a = msl.gravity(FRONT.g, math.radians(cross), math.radians(grade), 0.0)
     b = msl.gravity(FRONT.g, math.radians(eq.cross_slope_deg), math.radians(eq.grade_deg),
                     math.radians(eq.heading_deg))
-    np.testing.assert_allclose(a, b, rtol=1e-13, atol=1e-13)
+    np.testing.assert_allclose(a, b, rtol=1e-13, atol=1e-13)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 # -- grade ------------------------------------------------------------------------------------------------------

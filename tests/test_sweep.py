@@ -74,7 +74,7 @@ def test_rows_equal_the_library_and_a_bad_chair_is_a_row(spec_dir):
     c = c.replace(**{f: float(v[0]) for f, v in vals.items()})
     assert data["pin_friction_left"][i] == c.pin_friction_left and data["i_z"][i] == c.i_z
     expected = ChairBatch([c], "exact").growth_rates([1.0])[0, 0]
-    assert data["growth_rate_1_s"][i] == pytest.approx(expected, rel=1e-12)
+    assert data["growth_rate_1_s"][i] == pytest.approx(expected, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     # free casters: unstable at every speed searched (no critical speed); locked: the first destabilising crossing of
     # the locked-caster model that linear.analyse finds on its own grid (Brent to 1e-10 m/s; the batch bisects to
     # xtol = 1e-6 m/s and reports its midpoint: error at most 5e-7 m/s)
@@ -175,7 +175,7 @@ def test_summary_ranks_by_the_conservative_end(spec_dir):
     assert highs == sorted(highs) and len(ranked) == 4          # 4 valid designs, lower growth rate is better
     g = np.asarray(data["growth_rate_1_s"])
     sel = (np.asarray(data["design"]) == ranked[0]["design"]) & (np.asarray(data["speed_m_s"]) == 1.0)
-    assert ranked[0]["conservative"] == pytest.approx(np.quantile(g[sel], 0.975), rel=1e-12)
+    assert ranked[0]["conservative"] == pytest.approx(np.quantile(g[sel], 0.975), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 @pytest.mark.parametrize("text, word", [
@@ -296,7 +296,7 @@ def test_a_design_beyond_the_searched_range_ranks_first_as_its_bound(tmp_path):
     assert [e["design"] for e in ranked] == [1, 2, 0]
     assert ranked[0]["conservative"] == 3.0 and ranked[0]["conservative_side"] == ">" and ranked[0]["bounds"] == 100
     assert ranked[1]["conservative_side"] == "=" and ranked[1]["median_side"] == "=" and ranked[1]["bounds"] == 45
-    assert ranked[2]["conservative"] == pytest.approx(1.164)
+    assert ranked[2]["conservative"] == pytest.approx(1.164, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     text = summary_text(spec, s)
     assert "> 3 m/s" in text and "{" not in text and "trail 0.05 m" in text     # a bound, no dict repr
     # a higher speed is better, so the designs are ranked by their interval's low end, said in the heading
@@ -396,7 +396,7 @@ def test_bench_measure_scores_and_stops_a_powered_chair_only(spec_dir):
     d = Drive()
     longest = max(braking_distance(d.max_speed_m_s, d.decel_m_s2), braking_distance(d.max_speed_m_s,
                   d.reverse_decel_m_s2), braking_distance(d.max_speed_m_s, d.brake_decel_m_s2, d.brake_delay_s))
-    assert data["level_braking_distance_m"][0] == pytest.approx(longest, rel=1e-12)
+    assert data["level_braking_distance_m"][0] == pytest.approx(longest, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     best = summary(spec, data)["measures"]["bench_worst_score"]["best"]
     assert best[0][0]["grid"]["h"] == 0.3
     manual = loads_spec(text.replace('"power-fwd"', '"ej-premier"'), spec_dir)

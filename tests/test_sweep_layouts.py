@@ -41,7 +41,7 @@ def test_the_thesis_chair_swept_as_a_layout_gives_the_short_forms_rows():
         assert a["grid_trail_rear"] == b["grid_trail"] and a["error"] == b["error"] == ""
         for col in ("growth_rate_1_s", "static_stability_deg", "tip_lateral_deg", "shimmy_margin_m"):
             assert a[col] == pytest.approx(b[col], rel=1e-9, abs=1e-12), col
-        assert a["critical_impulse_Ns"] == pytest.approx(b["critical_impulse_Ns"], rel=1e-12)
+        assert a["critical_impulse_Ns"] == pytest.approx(b["critical_impulse_Ns"], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.9e-15)
         assert a["critical_impulse_status"] == b["critical_impulse_status"]
         assert math.isnan(a["tip_toward_casters_deg"])          # no such direction on a layout
 
@@ -57,9 +57,9 @@ def test_a_frame_turned_round_sweeps_backwards_as_it_does_forwards():
     fwd = rows("power-fwd-base", "[0.18, 0.13]", 1.0)
     rwd = rows("power-rwd-base", "[-0.18, -0.13]", -1.0)
     for a, b in zip(fwd, rwd, strict=True):
-        assert a["growth_rate_1_s"] == pytest.approx(b["growth_rate_1_s"], rel=1e-9)
+        assert a["growth_rate_1_s"] == pytest.approx(b["growth_rate_1_s"], rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
         assert a["critical_speed_m_s"] == b["critical_speed_m_s"]
-        assert a["static_stability_deg"] == pytest.approx(b["static_stability_deg"], rel=1e-12)
+        assert a["static_stability_deg"] == pytest.approx(b["static_stability_deg"], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert fwd[0]["growth_rate_1_s"] != pytest.approx(fwd[1]["growth_rate_1_s"], rel=1e-3)   # the axis reaches it
 
 
@@ -74,7 +74,7 @@ def test_a_grid_axis_is_the_layout_changed():
     changed = dc.replace(lay, casters=tuple(dc.replace(c, trail=0.04) if k == 2 else c
                                             for k, c in enumerate(lay.casters)))
     np.testing.assert_allclose([r["growth_rate_1_s"] for r in rows[:2]], growth_rates(changed, [1.0, -1.0]),
-                               rtol=1e-12)
+                               rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert "trail" in rows[2]["error"] and math.isnan(rows[2]["growth_rate_1_s"])
 
 
@@ -135,7 +135,7 @@ def test_random_draws_of_a_layout_are_the_short_forms_draws(tmp_path):
     trail_of = {(r["design"], r["draw"]): r["trail"] for r in short}
     assert len({v for v in trail_of.values()}) == 8                 # every draw moves the trail
     for k in range(4):                                              # common random numbers: the same offset
-        assert trail_of[(1, k)] - trail_of[(0, k)] == pytest.approx(0.02, abs=1e-12)
+        assert trail_of[(1, k)] - trail_of[(0, k)] == pytest.approx(0.02, abs=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
     heavy = _rows_at(tmp_path, 'chair = "mid-wheel-drive"\nspeeds = [1.0]\nmeasures = ["growth_rate"]\n',
                      '[m]\ndistribution = "uniform"\nlow = 0.1\nhigh = 0.2\nrelative = true\n')
     from stability.sweep.layouts import draw_layout
@@ -153,7 +153,7 @@ def test_random_draws_of_a_layout_are_the_short_forms_draws(tmp_path):
     for r in heavy:
         drawn = draw_layout(base, u, unit, r["draw"])
         assert 1.1 * base.m <= drawn.m <= 1.2 * base.m
-        assert r["growth_rate_1_s"] == pytest.approx(float(growth_rates(drawn, [1.0])[0]), rel=1e-12)
+        assert r["growth_rate_1_s"] == pytest.approx(float(growth_rates(drawn, [1.0])[0]), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_a_draw_that_breaks_the_layout_is_a_row_with_its_reason(tmp_path):

@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 315
+PENDING_LIMIT = 273
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -30,8 +30,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_the_run_ends_before_the_failure_and_says_why', 'pytest.approx(r.t[-1], abs=5e-5)'),
         ('test_the_samples_before_the_stop_are_those_of_a_run_that_ends_earlier', 'abs(stopped.yaw_rate[i] - short.yaw_rate[-1]) <= bound'),
         ('test_the_samples_before_the_stop_are_those_of_a_run_that_ends_earlier', 'np.max(np.abs(stopped.yaw_rate[:i + 1] - short.yaw_rate)) <= bound'),
-        ('test_the_searches_count_a_stopped_run_at_its_crossing_or_at_its_stop', 'pytest.approx(stopped.first_time_abs_yaw_rate(1.0), abs=1e-12)'),
-        ('test_the_searches_count_a_stopped_run_at_its_crossing_or_at_its_stop', 'pytest.approx(stopped.first_time_abs_yaw_rate(0.5), abs=1e-12)'),
     ],
     'tests/test_advise.py': [
         ('test_every_change_is_a_set_assignment', 'pytest.approx(c.s1 + c.s2, abs=1e-12)'),
@@ -73,7 +71,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_the_cross_slope_and_driver_limits_bind_on_the_front_wheel_drive_base', 'pytest.approx( abs(layout_cross_slope_effort(moved, a.cross_slope_deg)), rel=1e-12)'),
     ],
     'tests/test_app_state.py': [
-        ('test_growth_rate_shown_is_the_command_lines', 'pytest.approx( [c["speed_m_s"] for c in doc["locked_casters"]["crossings"]], abs=1e-8)'),
         ('test_critical_speeds_shown_are_the_command_lines', 'pytest.approx([x.speed for x in want], abs=1e-8)'),
         ('test_trail_chart_crosses_zero_at_the_bands_boundary', 'np.allclose(tw.chart.critical_trail, lower, atol=2e-5)'),
     ],
@@ -98,9 +95,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_slope_hold_figure_and_text', 'pytest.approx(holds[0].holding_torque_N_m)'),
     ],
     'tests/test_assist_export.py': [
-        ('_check_c', 'pytest.approx(200.0)'),
-        ('test_float_export_compiles_and_reproduces_the_vectors', 'pytest.approx(FLOAT_RELATIVE * sched.drive.torque_limit)'),
-        ('test_scheduled_speed_input_interpolates_between_grid_tables', 'np.allclose(tab[1], 0.5 * (tab[0] + tab[2]), rtol=0, atol=1e-12 * np.max(np.abs(tab)))'),
         ('test_cli_export_end_to_end', 'np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))'),
         ('test_documented_export_numbers', 'abs(f["gain_db"]) < 1e-12'),
         ('test_documented_export_numbers', 'abs(q15[k] - f[k]) < 5e-4'),
@@ -108,8 +102,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     ],
     'tests/test_assist_faults.py': [
         ('test_bias_step_detection_time_is_the_monitors_closed_form', 'abs(r.detection_time_s - _closed_form_detection(b, T)) <= 2 * T + 1e-12'),
-        ('test_lost_wheel_sensor_is_detected_at_once', 'pytest.approx(0.0, abs=1e-12)'),
-        ('test_top_speed_is_the_last_speed_before_the_first_failure', 'pytest.approx(1e3 * (1.5 / 200 + 0.02))'),
         ('test_documented_fault_table_and_top_speed', 'pytest.approx(turn[5.0])'),
     ],
     'tests/test_assist_layout.py': [
@@ -125,9 +117,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(short.peak_torque_N_m, rel=0.05)'),
         ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(a.predicted_1_s, rel=1e-9)'),
         ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(a.fitted_1_s, rel=1e-6)'),
-        ('test_the_torque_limit_saturates_the_command', 'pytest.approx(1.0, rel=1e-12)'),
-        ('test_the_torque_limit_saturates_the_command', 'pytest.approx(drive.torque_limit * d.track_width / drive.wheel_radius, rel=1e-12)'),
-        ('test_check_speeds_and_traction_limit', 'pytest.approx(drive.traction_coefficient * n * drive.wheel_radius)'),
     ],
     'tests/test_assist_top_speed.py': [
         ('test_delay_margin_is_the_exact_sampled_data_boundary', 'pytest.approx(dm, abs=0.025 * d.sample_time)'),
@@ -173,14 +162,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     ],
     'tests/test_compare_layouts.py': [
         ('test_the_thesis_chairs_as_layouts_get_the_short_forms_growth_rates_and_tip_angles', 'pytest.approx(y, rel=1e-9)'),
-        ('test_the_thesis_chairs_as_layouts_get_the_short_forms_growth_rates_and_tip_angles', 'pytest.approx(tip_angles(c).smallest_deg, rel=1e-9)'),
-        ('test_a_frame_turned_round_compares_backwards_as_it_does_forwards', 'pytest.approx(f[1], rel=1e-9)'),
-        ('test_a_frame_turned_round_compares_backwards_as_it_does_forwards', 'pytest.approx(r[1], rel=1e-9)'),
-        ('test_a_frame_turned_round_compares_backwards_as_it_does_forwards', 'pytest.approx(s[1], rel=1e-12)'),
-    ],
-    'tests/test_control_objects.py': [
-        ('test_bode_and_margin_of_the_loop_transfer', 'pytest.approx(1 / 100.0, rel=1e-15)'),
-        ('test_sample_rate_defaults_to_the_table', 'pytest.approx(1 / defaults.SAMPLE_RATE_HZ, rel=1e-15)'),
     ],
     'tests/test_derivations.py': [
         ('test_exact_conserves_energy_without_forces', 'abs(ke(y1) - ke(y0)) / ke(y0) < 1e-9'),
@@ -196,10 +177,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_divergence_rule_speed_is_where_lambda_tau_is_one', 'pytest.approx(1.0, abs=100 * SPEED_TOL_M_S * 2.0 * tau)'),
         ('_newton', 'abs(step) < 1e-13 * (1 + abs(s))'),
         ('test_loop_limit_against_the_exact_delay', 'abs(_newton(root, *args) - root) < 1e-7'),
-    ],
-    'tests/test_driver_lane.py': [
-        ('test_the_driver_acts_on_what_it_saw_one_delay_ago', 'pytest.approx(want, rel=1e-9, abs=1e-12)'),
-        ('test_a_harder_push_never_lets_the_driver_go_faster', 'pytest.approx([2.0, 4.0, 8.0])'),
     ],
     'tests/test_driver_tracking.py': [
         ('test_plant_step_is_the_exact_zero_order_hold', 'pytest.approx(x, rel=1e-6)'),
@@ -217,9 +194,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_the_fixed_step_answer_converges_to_the_adaptive_one', 'abs(fine - ref) < abs(coarse - ref) / 5'),
     ],
     'tests/test_interface.py': [
-        ('test_set_groups_and_units', 'pytest.approx(0.05, rel=1e-15)'),
-        ('test_set_groups_and_units', 'pytest.approx(210 * 0.45359237, rel=1e-15)'),
-        ('test_set_groups_and_units', 'pytest.approx(0.27, rel=1e-15)'),
         ('test_set_groups_and_units', 'pytest.approx(0.1 * 0.3048 * 0.45359237 * 9.80665, rel=1e-15)'),
     ],
     'tests/test_intervals.py': [
@@ -261,7 +235,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/test_layout_reverse_casters.py': [
         ('test_only_casters_across_the_path_turn_a_chair_backing_up_undisturbed', 'abs(err[0.0]) < 1e-9'),
         ('test_only_casters_across_the_path_turn_a_chair_backing_up_undisturbed', 'abs(err[180.0]) < 1e-9'),
-        ('test_only_casters_across_the_path_turn_a_chair_backing_up_undisturbed', 'pytest.approx(-err[-90.0], abs=1e-9)'),
     ],
     'tests/test_layout_simulate.py': [
         ('test_the_thesis_chair_as_a_layout_is_the_thesis_engine', 'np.abs(ours.heading_rad - np.asarray(theirs.heading)).max() <= 1e-11'),
@@ -295,7 +268,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/test_paths_agree.py': [
         ('test_slope_command_and_report_name_the_same_side', 'pytest.approx(regression.value("ej_handrim_force_difference_6deg_N"), abs=0.01)'),
         ('test_slope_command_and_report_name_the_same_side', 'abs(diff - (-m_cf / c.d1 * hr.wheel_radius / hr.handrim_radius)) <= pins'),
-        ('test_slope_sim_time_is_the_report_time', 'pytest.approx(float(np.interp(3.0, p.t, dpsi)) + (np.degrees(p.heading[0]) - eq.heading_de'),
     ],
     'tests/test_report.py': [
         ('test_tire_page_stiffness_equals_critical_speed', 'pytest.approx(printed["main"], rel=1e-12)'),
@@ -346,9 +318,7 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     ],
     'tests/test_search.py': [
         ('test_stop_at_level_changes_nothing_before_the_stop', 'np.abs(st_stop[hit, 1] - full[hit, 3]) <= 0.001 + 1e-12'),
-        ('test_summaries_margin_is_the_log_push_ratio_for_exponential_growth', 'np.testing.assert_allclose(s.margin(LEVEL, HORIZON), np.log(J / J_star), rtol=1e-12, atol='),
         ('test_new_search_equals_the_bisection_where_reaching_is_monotone', 'abs(math.log(b.impulse_Ns / a.impulse_Ns)) <= math.log1p(TOL) * (1 + 1e-9)'),
-        ('test_a_chair_that_reaches_the_level_whatever_the_push_is_settled_in_a_few_runs', 'pytest.approx(1e-6)'),
         ('test_a_chair_that_reaches_the_level_whatever_the_push_is_settled_in_a_few_runs', 'abs(t[0] - t[1]) < 0.1'),
     ],
     'tests/test_search_rate_fit.py': [
@@ -365,10 +335,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     ],
     'tests/test_shimmy_band.py': [
         ('test_band_agrees_with_a_trail_scan', 'min((abs(t - x) for x in band.boundaries_m[0]), default=1.0) < 1e-6'),
-        ('test_rigid_pivot_closed_form_trail_above_relaxation_length', 'pytest.approx(TRAIL_SEARCH_M[1])'),
-        ('test_margin_sign_and_corners', 'pytest.approx(0.02)'),
-        ('test_margin_sign_and_corners', 'pytest.approx(-0.01)'),
-        ('test_cli_prints_the_band_and_the_margin', 'pytest.approx(ref.shimmy_margin_m, abs=1e-15)'),
     ],
     'tests/test_shimmy_chair.py': [
         ('test_sigma_to_zero_recovers_rigid_tire_eigenvalues', 'np.testing.assert_allclose(fast.real, -U / sigma, rtol=1e-2)'),
@@ -388,9 +354,7 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_step_stability_limit_against_the_adaptive_scheme', 'pytest.approx(peak_ada, rel=0.08)'),
     ],
     'tests/test_simulate_slope.py': [
-        ('test_plane_loads_at_zero_slope_are_eq_6_25', 'np.testing.assert_allclose(msl.normal_loads_plane(p, fx, fy, p.g, *trig), normal_loads(p, '),
         ('test_plane_loads_at_zero_slope_are_eq_6_25', 'np.testing.assert_allclose(msl.normal_loads_plane(p, fx, fy, gn, *trig), msl.normal_loads('),
-        ('test_simulator_slope_is_the_same_plane', 'np.testing.assert_allclose(a, b, rtol=1e-13, atol=1e-13)'),
         ('test_grade_speed_closed_form', 'np.testing.assert_allclose(res.u, 0.75 + a * res.t, rtol=1e-10, atol=1e-12)'),
         ('test_grade_speed_closed_form', 'np.testing.assert_allclose(res.x, 0.75 * res.t + 0.5 * a * res.t ** 2, rtol=1e-9, atol=1e-'),
         ('test_grade_speed_closed_form', 'np.max(np.abs(res.heading)) < 1e-12'),
@@ -416,22 +380,12 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_growth_rate_elasticities_closed_form_free_caster_mode', 'pytest.approx(expected, abs=0.02)'),
     ],
     'tests/test_sweep.py': [
-        ('test_rows_equal_the_library_and_a_bad_chair_is_a_row', 'pytest.approx(expected, rel=1e-12)'),
         ('test_rows_equal_the_library_and_a_bad_chair_is_a_row', 'pytest.approx(locked[0], abs=5e-7 + 1e-10)'),
-        ('test_summary_ranks_by_the_conservative_end', 'pytest.approx(np.quantile(g[sel], 0.975), rel=1e-12)'),
-        ('test_a_design_beyond_the_searched_range_ranks_first_as_its_bound', 'pytest.approx(1.164)'),
-        ('test_bench_measure_scores_and_stops_a_powered_chair_only', 'pytest.approx(longest, rel=1e-12)'),
     ],
     'tests/test_sweep_layouts.py': [
         ('test_the_thesis_chair_swept_as_a_layout_gives_the_short_forms_rows', 'pytest.approx(b[col], rel=1e-9, abs=1e-12)'),
-        ('test_the_thesis_chair_swept_as_a_layout_gives_the_short_forms_rows', 'pytest.approx(b["critical_impulse_Ns"], rel=1e-12)'),
-        ('test_a_frame_turned_round_sweeps_backwards_as_it_does_forwards', 'pytest.approx(b["growth_rate_1_s"], rel=1e-9)'),
-        ('test_a_frame_turned_round_sweeps_backwards_as_it_does_forwards', 'pytest.approx(b["static_stability_deg"], rel=1e-12)'),
         ('test_a_frame_turned_round_sweeps_backwards_as_it_does_forwards', 'pytest.approx(fwd[1]["growth_rate_1_s"], rel=1e-3)'),
-        ('test_a_grid_axis_is_the_layout_changed', 'np.testing.assert_allclose([r["growth_rate_1_s"] for r in rows[:2]], growth_rates(changed,'),
         ('test_random_draws_of_a_layout_are_the_short_forms_draws', 'pytest.approx(b[col], rel=1e-9, abs=1e-12)'),
-        ('test_random_draws_of_a_layout_are_the_short_forms_draws', 'pytest.approx(0.02, abs=1e-12)'),
-        ('test_random_draws_of_a_layout_are_the_short_forms_draws', 'pytest.approx(float(growth_rates(drawn, [1.0])[0]), rel=1e-12)'),
     ],
     'tests/test_thesis_chapter8.py': [
         ('test_initial_lateral_velocity_equivalent_to_the_impulse', 'pytest.approx(ti, rel=0.10)'),
