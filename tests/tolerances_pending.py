@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 273
+PENDING_LIMIT = 263
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -103,14 +103,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/test_assist_faults.py': [
         ('test_bias_step_detection_time_is_the_monitors_closed_form', 'abs(r.detection_time_s - _closed_form_detection(b, T)) <= 2 * T + 1e-12'),
         ('test_documented_fault_table_and_top_speed', 'pytest.approx(turn[5.0])'),
-    ],
-    'tests/test_assist_layout.py': [
-        ('test_the_power_chair_as_a_layout_has_the_short_forms_gains', 'np.abs(lay.K - short.K).max() <= 1e-9 * np.abs(short.K).max()'),
-        ('test_reversing_is_driving_the_turned_chair_forwards', 'np.abs(a - b).max() <= 1e-9 * np.abs(a).max()'),
-        ('test_reversing_is_driving_the_turned_chair_forwards', 'np.abs(rev.K - fwd.K @ T).max() <= 1e-8 * np.abs(rev.K).max()'),
-        ('test_the_heading_gain_is_brysons_ratio_and_the_loop_separates', 'pytest.approx(k_psi, rel=1e-9)'),
-        ('test_the_heading_gain_is_brysons_ratio_and_the_loop_separates', 'np.abs(got - want).max() <= 1e-8 * np.abs(want).max()'),
-        ('test_the_assist_command_answers_a_layout_and_reverse', 'pytest.approx(per_wheel, rel=1e-9)'),
     ],
     'tests/test_assist_layout_checks.py': [
         ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(short.peak_heading_error_deg, rel=0.05)'),
@@ -221,13 +213,7 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_mid_wheel_drive_loads_and_the_compliance_rule', 'abs(n @ x) < 1e-9 * n.sum()'),
         ('test_mid_wheel_drive_loads_and_the_compliance_rule', 'abs(n @ y) < 1e-9 * n.sum()'),
     ],
-    'tests/test_layout_equal_instability.py': [
-        ('test_the_reference_chair_as_a_layout_is_as_unstable_as_itself_at_the_reference_speed', 'pytest.approx(REFERENCE_SPEED, abs=0.005)'),
-        ('test_a_short_form_chair_as_a_layout_finds_the_thesis_engines_speed', 'pytest.approx(1.0248, abs=5e-4)'),
-    ],
     'tests/test_layout_impulse.py': [
-        ('test_the_e_and_j_premier_as_a_layout_finds_the_thesis_chairs_critical_impulse', 'pytest.approx(3.2558, abs=5e-5)'),
-        ('test_a_short_form_chair_at_a_negative_speed_runs_as_its_layout', 'pytest.approx(3.2558, abs=5e-5)'),
         ('test_reverse_casters_start_trailing_for_the_reverse', 'math.isclose(push_impulse(1.0, 0.1), 0.101)'),
         ('test_a_slow_divergence_is_not_reported_as_robustness', 'math.isclose(slow.growth_rate, growth, rel_tol=1e-9)'),
         ('test_a_slow_divergence_is_not_reported_as_robustness', 'pytest.approx(10.0, abs=2e-3)'),
