@@ -40,9 +40,9 @@ def test_every_change_is_a_set_assignment():
         assert {f: getattr(via_cli, f) for f in chair_mod.field_names() if f != "name"} == \
             {f: getattr(changed, f) for f in chair_mod.field_names() if f != "name"}
     fixed_sum = [changed for ch, changed in ok if ch.lever == "s1_fixed_wheelbase"]
-    assert all(x.s1 + x.s2 == pytest.approx(c.s1 + c.s2, abs=1e-12) for x in fixed_sum)
+    assert all(x.s1 + x.s2 == pytest.approx(c.s1 + c.s2, abs=1e-12) for x in fixed_sum)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert all(x.s2 == c.s2 for ch, x in ok if ch.lever == "s1_fixed_s2")
-    assert all(x.cg_ratio == pytest.approx(c.cg_ratio, abs=1e-6) for ch, x in ok if ch.lever == "wheelbase")
+    assert all(x.cg_ratio == pytest.approx(c.cg_ratio, abs=1e-6) for ch, x in ok if ch.lever == "wheelbase")  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
 
 
 @pytest.mark.slow       # about 11 s: four chairs' nonlinear intervals (batched and one at a time)
@@ -75,9 +75,9 @@ def test_gain_is_judged_on_the_low_ends_and_the_worse_measure():
     base = _measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1))
     # a better point value but a worse low end gains nothing
     g, gs = _gain(_measures((5.0, 1.9, 8.0), (1.2, 0.9, 1.3)), base)
-    assert gs["critical_impulse"] == pytest.approx(1.9 / 2.0 - 1) and g == gs["critical_impulse"] < 0
+    assert gs["critical_impulse"] == pytest.approx(1.9 / 2.0 - 1, rel=1e-12) and g == gs["critical_impulse"] < 0  # rounding: equivalent arithmetic, a few ulp (observed 0)
     g, gs = _gain(_measures((4.0, 3.0, 5.0), (1.1, 0.88, 1.2)), base)
-    assert g == pytest.approx(min(3.0 / 2.0, 0.88 / 0.8) - 1)
+    assert g == pytest.approx(min(3.0 / 2.0, 0.88 / 0.8) - 1, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_note_reconciles_a_worse_linear_rate():

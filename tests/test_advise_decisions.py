@@ -387,7 +387,7 @@ def test_a_combination_is_predicted_from_its_parts_by_the_product_of_their_chang
     assert a.combinations                                     # the premise: pairs were measured
     for combo in a.combinations:
         parts = tuple(singles[(ch,)] for ch in combo.changes)
-        assert _predicted(parts) == pytest.approx(combo.gain, rel=1e-12, abs=1e-12), combo.label
+        assert _predicted(parts) == pytest.approx(combo.gain, rel=1e-12, abs=1e-12), combo.label  # rounding: equivalent arithmetic, a few ulp (observed 4.3e-16)
 
 
 def _cost_checks(d, chair, after_chair, min_tip: float) -> None:
@@ -399,15 +399,15 @@ def _cost_checks(d, chair, after_chair, min_tip: float) -> None:
     for key in ("toward_main_wheels", "toward_casters", "lateral_left", "lateral_right"):
         k = costs[f"tip_{key}_deg"]
         before, after = getattr(t0, key + "_deg"), getattr(t1, key + "_deg")
-        assert (k.before, k.after) == pytest.approx((before, after), abs=1e-9), k
+        assert (k.before, k.after) == pytest.approx((before, after), abs=1e-9), k  # rounding: equivalent arithmetic, a few ulp (observed 0)
         assert k.met == (after >= min_tip - 1e-9) and k.worse == (after < before - 1e-9), k
     k = costs["shimmy_margin_m"]
     margin = 100 * shimmy_band(after_chair, SPEEDS).shimmy_margin_m
-    assert k.after == pytest.approx(margin, abs=1e-9) and k.met == (margin >= 100 * MIN_SHIMMY_MARGIN_M), k
+    assert k.after == pytest.approx(margin, abs=1e-9) and k.met == (margin >= 100 * MIN_SHIMMY_MARGIN_M), k  # rounding: equivalent arithmetic, a few ulp (observed 0)
     k = costs["turning_effort_N_m"]
     e0 = max(chair.pin_friction_left, chair.pin_friction_right)
     e1 = max(after_chair.pin_friction_left, after_chair.pin_friction_right)
-    assert (k.before, k.after) == pytest.approx((e0, e1)) and k.worse == (e1 > e0), k
+    assert (k.before, k.after) == pytest.approx((e0, e1), rel=1e-12) and k.worse == (e1 > e0), k  # rounding: equivalent arithmetic, a few ulp (observed 0)
     sentence = d.cost_sentence()
     if d.action == "change":
         assert [k.name for k in d.costs if k.text() in sentence] == [k.name for k in d.costs if k.worse]
@@ -573,15 +573,15 @@ def test_the_geometry_levers_are_the_steps_docs_advise_lists():
     by = {}
     for ch, _c in singles:
         by.setdefault(ch.lever, []).append(ch)
-    assert [dict(ch.fields)["trail"] for ch in by["trail"]] == pytest.approx([ej.trail + d for d in steps("trail")])
+    assert [dict(ch.fields)["trail"] for ch in by["trail"]] == pytest.approx([ej.trail + d for d in steps("trail")], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     for lever, moves_s2 in (("s1_fixed_wheelbase", True), ("s1_fixed_s2", False)):
         ds = steps(lever)
         assert len(by[lever]) == len(ds)
         for ch, d in zip(by[lever], ds, strict=True):
             f = dict(ch.fields)
-            assert f["s1"] == pytest.approx(ej.s1 + d) and ("s2" in f) == moves_s2
+            assert f["s1"] == pytest.approx(ej.s1 + d, rel=1e-12) and ("s2" in f) == moves_s2  # rounding: equivalent arithmetic, a few ulp (observed 1.4e-16)
             if moves_s2:
-                assert f["s2"] == pytest.approx(ej.s2 - d)
+                assert f["s2"] == pytest.approx(ej.s2 - d, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.2e-16)
             assert f"(s1 {ej.s1 * 100:.1f} -> {(ej.s1 + d) * 100:.1f} cm)" in ch.label
     # the wheelbase lever scales s1 and s2 by the table's factors
     from stability.advise.levers import LEVERS
@@ -590,7 +590,7 @@ def test_the_geometry_levers_are_the_steps_docs_advise_lists():
     factors = [float(x) for x in re.findall(r"x(\d+(?:\.\d+)?)", row.split("|")[2])]
     assert len(by["wheelbase"]) == len(factors) == 2
     for ch, k in zip(by["wheelbase"], factors, strict=True):
-        assert dict(ch.fields) == pytest.approx({"s1": ej.s1 * k, "s2": ej.s2 * k})
+        assert dict(ch.fields) == pytest.approx({"s1": ej.s1 * k, "s2": ej.s2 * k}, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
         assert f"s2 {ej.s2 * 100:.1f} -> {ej.s2 * k * 100:.1f} cm)" in ch.label
     # every lever of the advisor is a row of the table
     listed = {m for line in page.splitlines() for m in re.findall(r"^\| `([a-z0-9_]+)`", line)}

@@ -33,7 +33,7 @@ def test_level_and_still_is_the_static_loads(name):
     layout = layout_preset(name)
     c = case_loads(layout)
     assert c.score == 0 and c.lifted == ()
-    assert np.allclose(c.loads_N, static_loads(layout), rtol=1e-12)
+    assert np.allclose(c.loads_N, static_loads(layout), rtol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def _tip_grade(layout: Layout, direction: str) -> float:
@@ -60,7 +60,7 @@ def test_tipping_on_a_slope_is_where_the_gravity_line_leaves_the_support(name, d
     pts = [(x, y, 0.0) for _, x, y, _ in contacts(layout)]
     e = {"forward": (1.0, 0.0), "backward": (-1.0, 0.0), "right": (0.0, 1.0)}[direction]
     expected = support_fall_distance(pts, layout.h, *e).angle_deg
-    assert _tip_grade(layout, direction) == pytest.approx(expected, abs=1e-4)
+    assert _tip_grade(layout, direction) == pytest.approx(expected, abs=1e-4)  # rounding: equivalent arithmetic, a few ulp (observed 3.7e-16)
 
 
 def test_an_acceleration_is_a_tilt():
@@ -70,23 +70,23 @@ def test_an_acceleration_is_a_tilt():
     a = 1.2
     braking = case_loads(layout, -a, 0.0, 0.0, 0.0)
     tilt = case_loads(layout, 0.0, 0.0, -math.degrees(math.atan(a / layout.g)), 0.0)
-    assert braking.centre_m == pytest.approx(tilt.centre_m, abs=1e-12)
+    assert braking.centre_m == pytest.approx(tilt.centre_m, abs=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.2e-16)
     scale = braking.loads_N.sum() / tilt.loads_N.sum()
-    assert scale == pytest.approx(1.0 / math.cos(math.atan(a / layout.g)), rel=1e-12)
-    assert np.allclose(braking.loads_N, tilt.loads_N * scale, rtol=1e-10)
+    assert scale == pytest.approx(1.0 / math.cos(math.atan(a / layout.g)), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert np.allclose(braking.loads_N, tilt.loads_N * scale, rtol=1e-10)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_braking_distance_closed_form_and_the_bench_stops():
-    assert braking_distance(2.0, 2.0) == pytest.approx(1.0)
-    assert braking_distance(2.0, 2.0, delay=0.5) == pytest.approx(2.0)
+    assert braking_distance(2.0, 2.0) == pytest.approx(1.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert braking_distance(2.0, 2.0, delay=0.5) == pytest.approx(2.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert braking_distance(2.0, 9.81 * math.sin(math.radians(6.0)), downhill_deg=6.0) == math.inf
     drive = Drive(max_speed_m_s=2.0, decel_m_s2=1.0, traction=2.0)
     r = run_bench(layout_preset("power-rwd-base"), drive)
     stop = next(c for c in r.cases if c.name == "forward stop, control released" and c.slope == "level")
-    assert stop.limited_by == "" and stop.braking_distance_m == pytest.approx(2.0 ** 2 / (2 * 1.0))
+    assert stop.limited_by == "" and stop.braking_distance_m == pytest.approx(2.0 ** 2 / (2 * 1.0), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     cut = next(c for c in r.cases if c.name == "forward stop, power cut" and c.slope == "downhill")
     a = drive.brake_decel_m_s2 - 9.81 * math.sin(math.radians(drive.max_slope_deg))
-    assert cut.braking_distance_m == pytest.approx(2.0 * drive.brake_delay_s + 2.0 ** 2 / (2 * a))
+    assert cut.braking_distance_m == pytest.approx(2.0 * drive.brake_delay_s + 2.0 ** 2 / (2 * a), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_turning_left_mirrors_turning_right():
@@ -95,7 +95,7 @@ def test_turning_left_mirrors_turning_right():
     left = [c for c in r.cases if c.name.startswith("turn left")]
     for a, b in zip(right, left, strict=True):
         assert a.score == b.score
-        assert a.loads.centre_m[1] == pytest.approx(-b.loads.centre_m[1], abs=1e-12)
+        assert a.loads.centre_m[1] == pytest.approx(-b.loads.centre_m[1], abs=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_stopping_pitches_a_mid_wheel_drive_base_forward():
@@ -110,9 +110,9 @@ def test_stopping_pitches_a_mid_wheel_drive_base_forward():
 
 def test_polygon_margin_of_a_square():
     sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    assert polygon_margin(sq, (0.5, 0.5)) == pytest.approx(0.5)
-    assert polygon_margin(sq, (0.5, 1.25)) == pytest.approx(-0.25)
-    assert polygon_margin(sq, (2.0, 2.0)) == pytest.approx(-math.sqrt(2))
+    assert polygon_margin(sq, (0.5, 0.5)) == pytest.approx(0.5, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert polygon_margin(sq, (0.5, 1.25)) == pytest.approx(-0.25, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert polygon_margin(sq, (2.0, 2.0)) == pytest.approx(-math.sqrt(2), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_anti_tip_devices_catch_the_chair():
@@ -156,7 +156,7 @@ def test_a_traction_limited_stop_is_held_by_the_grip_of_its_own_state(name):
         grip = drive.traction * sum(n for (lab, *_), n in zip(contacts(layout), c.loads.loads_N, strict=True)
                                     if lab in driven)
         force = layout.m * abs(c.ax_m_s2 + layout.g * math.sin(math.radians(c.grade_deg)))
-        assert force == pytest.approx(grip, rel=0, abs=100 * 1e-12 * layout.m + 1e-9 * grip)
+        assert force == pytest.approx(grip, rel=0, abs=100 * 1e-12 * layout.m + 1e-9 * grip)  # rounding: equivalent arithmetic, a few ulp (observed 4.6e-16)
     for direction in ("forward", "rearward"):
         for slope in {c.slope for c in r.cases if c.name.startswith(f"{direction} stop")}:
             rel = next(c for c in r.cases if c.name == f"{direction} stop, control released" and c.slope == slope)

@@ -74,7 +74,7 @@ def test_verdict_premier_vs_revised(premier_revised):
     crit = d[("locked_critical_speed_m_s", "revised")]
     q = premier_revised.quantity("locked_critical_speed_m_s").values
     assert crit.more_stable == "revised" and crit.absolute == q[1] - q[0]
-    assert crit.percent == pytest.approx(100 * (q[1] - q[0]) / q[0], rel=1e-12)
+    assert crit.percent == pytest.approx(100 * (q[1] - q[0]) / q[0], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     # the linear free-caster model (no pin friction) ranks the revised design slightly less stable
     g = d[("growth_rate_1_s@0.75", "revised")]
     assert g.absolute > 0 and g.more_stable == "ej-premier"
@@ -97,7 +97,7 @@ def test_effects_of_revised_sum_with_remainder(premier_revised):
     e = premier_revised.effects[0]
     assert [s.field for s in e.effects] == ["s1", "s2", "trail"]
     total = sum(s.growth_rate for s in e.effects) + e.remainder_growth_rate
-    assert total == pytest.approx(e.total_growth_rate, rel=1e-12)
+    assert total == pytest.approx(e.total_growth_rate, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_mirror_invariant():

@@ -45,8 +45,8 @@ def test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms(name):
     t = a.tipping
     fwd, bwd = ((t.toward_main_wheels_deg, t.toward_casters_deg) if c.caster_position == "rear"
                 else (t.toward_casters_deg, t.toward_main_wheels_deg))
-    assert b.tipping["forward_deg"] == pytest.approx(fwd, rel=1e-9)
-    assert b.tipping["backward_deg"] == pytest.approx(bwd, rel=1e-9)
+    assert b.tipping["forward_deg"] == pytest.approx(fwd, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert b.tipping["backward_deg"] == pytest.approx(bwd, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     cross = [p for p in sheet_lines(a)["paragraphs"] if p.startswith("CROSS SLOPE")]
     assert cross and cross == [p for p in sheet_lines(b)["paragraphs"] if p.startswith("CROSS SLOPE")]
     # the rows' words come from the same function: identical
@@ -158,7 +158,7 @@ def test_layout_uncertainty_interval_follows_the_parameter_it_draws():
 
     outer = sorted((g(-0.01), g(0.01)))
     inner = sorted((g(-0.009), g(0.009)))
-    assert key == "growth_rate_1_s@0.75" and nom == pytest.approx(g(0.0), rel=1e-12) and fin == 1.0
+    assert key == "growth_rate_1_s@0.75" and nom == pytest.approx(g(0.0), rel=1e-12) and fin == 1.0  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert outer[0] <= lo < inner[0] and inner[1] < hi <= outer[1]
     assert r.result.dominant_parameters[0][0] == "axle"
 

@@ -27,14 +27,14 @@ def test_steady_turn_is_read_from_the_valid_part_only():
     """Closed form: after T s on the circle, sideways (u/r0)(1 - cos r0 T), travel u T, heading r0 T."""
     u, r0 = 0.75, 0.05
     m = motion(_circle(u, r0), Validity(3.0, "slip > 8 deg"))
-    assert m.until == pytest.approx(3.0)
-    assert m.sideways == pytest.approx((u / r0) * (1 - math.cos(r0 * 3.0)), rel=1e-6)
+    assert m.until == pytest.approx(3.0, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert m.sideways == pytest.approx((u / r0) * (1 - math.cos(r0 * 3.0)), rel=1e-6)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert m.travel == pytest.approx(u * 3.0, rel=1e-6)        # chords of a circle: error (u dt r0)^2 / 24 per step
-    assert m.heading_deg == pytest.approx(math.degrees(r0 * 3.0), rel=1e-9)
-    assert m.final_rate == pytest.approx(r0) and m.kind == "keeps turning"
+    assert m.heading_deg == pytest.approx(math.degrees(r0 * 3.0), rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    assert m.final_rate == pytest.approx(r0, rel=1e-12) and m.kind == "keeps turning"  # rounding: equivalent arithmetic, a few ulp (observed 1.4e-16)
     assert "3 s" in m.where() and "slip > 8 deg" in m.where()
     whole = motion(_circle(u, r0))                             # no validity end: the whole 6 s
-    assert whole.until == pytest.approx(6.0) and whole.reason == "" and "valid" not in whole.where()
+    assert whole.until == pytest.approx(6.0, rel=1e-12) and whole.reason == "" and "valid" not in whole.where()  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
 def test_one_classification_for_every_sentence():

@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 263
+PENDING_LIMIT = 224
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -32,24 +32,10 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_the_samples_before_the_stop_are_those_of_a_run_that_ends_earlier', 'np.max(np.abs(stopped.yaw_rate[:i + 1] - short.yaw_rate)) <= bound'),
     ],
     'tests/test_advise.py': [
-        ('test_every_change_is_a_set_assignment', 'pytest.approx(c.s1 + c.s2, abs=1e-12)'),
-        ('test_every_change_is_a_set_assignment', 'pytest.approx(c.cg_ratio, abs=1e-6)'),
-        ('test_gain_is_judged_on_the_low_ends_and_the_worse_measure', 'pytest.approx(1.9 / 2.0 - 1)'),
-        ('test_gain_is_judged_on_the_low_ends_and_the_worse_measure', 'pytest.approx(min(3.0 / 2.0, 0.88 / 0.8) - 1)'),
         ('test_note_reconciles_a_worse_linear_rate', 'abs(rev.s1 - math.sqrt(ej.i_z / ej.m)) < 0.01'),
     ],
     'tests/test_advise_combinations.py': [
         ('test_the_note_on_a_fix_gives_its_recomputed_gain_or_cost', 'abs(int(pct) - 100 * abs(g)) <= 0.5 + 1e-9'),
-    ],
-    'tests/test_advise_decisions.py': [
-        ('test_a_combination_is_predicted_from_its_parts_by_the_product_of_their_changes', 'pytest.approx(combo.gain, rel=1e-12, abs=1e-12)'),
-        ('_cost_checks', 'pytest.approx((before, after), abs=1e-9)'),
-        ('_cost_checks', 'pytest.approx(margin, abs=1e-9)'),
-        ('_cost_checks', 'pytest.approx((e0, e1))'),
-        ('test_the_geometry_levers_are_the_steps_docs_advise_lists', 'pytest.approx([ej.trail + d for d in steps("trail")])'),
-        ('test_the_geometry_levers_are_the_steps_docs_advise_lists', 'pytest.approx(ej.s1 + d)'),
-        ('test_the_geometry_levers_are_the_steps_docs_advise_lists', 'pytest.approx(ej.s2 - d)'),
-        ('test_the_geometry_levers_are_the_steps_docs_advise_lists', 'pytest.approx({"s1": ej.s1 * k, "s2": ej.s2 * k})'),
     ],
     'tests/test_advise_layout.py': [
         ('test_the_thesis_chair_as_a_layout_has_the_short_forms_trail_and_axle_changes', 'pytest.approx(y, abs=1e-9)'),
@@ -121,22 +107,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_disk_margins_of_the_assist_loops', 'pytest.approx(best.fun, rel=1e-5)'),
         ('test_per_wheel_gains_are_the_command_lines_and_make_the_yaw_moment', 'pytest.approx(list(k), rel=5e-4)'),
     ],
-    'tests/test_bench.py': [
-        ('test_level_and_still_is_the_static_loads', 'np.allclose(c.loads_N, static_loads(layout), rtol=1e-12)'),
-        ('test_tipping_on_a_slope_is_where_the_gravity_line_leaves_the_support', 'pytest.approx(expected, abs=1e-4)'),
-        ('test_an_acceleration_is_a_tilt', 'pytest.approx(tilt.centre_m, abs=1e-12)'),
-        ('test_an_acceleration_is_a_tilt', 'pytest.approx(1.0 / math.cos(math.atan(a / layout.g)), rel=1e-12)'),
-        ('test_an_acceleration_is_a_tilt', 'np.allclose(braking.loads_N, tilt.loads_N * scale, rtol=1e-10)'),
-        ('test_braking_distance_closed_form_and_the_bench_stops', 'pytest.approx(1.0)'),
-        ('test_braking_distance_closed_form_and_the_bench_stops', 'pytest.approx(2.0)'),
-        ('test_braking_distance_closed_form_and_the_bench_stops', 'pytest.approx(2.0 ** 2 / (2 * 1.0))'),
-        ('test_braking_distance_closed_form_and_the_bench_stops', 'pytest.approx(2.0 * drive.brake_delay_s + 2.0 ** 2 / (2 * a))'),
-        ('test_turning_left_mirrors_turning_right', 'pytest.approx(-b.loads.centre_m[1], abs=1e-12)'),
-        ('test_polygon_margin_of_a_square', 'pytest.approx(0.5)'),
-        ('test_polygon_margin_of_a_square', 'pytest.approx(-0.25)'),
-        ('test_polygon_margin_of_a_square', 'pytest.approx(-math.sqrt(2))'),
-        ('test_a_traction_limited_stop_is_held_by_the_grip_of_its_own_state', 'pytest.approx(grip, rel=0, abs=100 * 1e-12 * layout.m + 1e-9 * grip)'),
-    ],
     'tests/test_chair.py': [
         ('test_default_chair_is_wchair_block_data', 'pytest.approx(0.66, abs=0.005)'),
     ],
@@ -149,8 +119,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_numbers_equal_stability_linear', 'np.abs(np.asarray(got) - rates) <= tol'),
         ('test_numbers_equal_stability_linear', 'pytest.approx(locked[0], abs=2e-6)'),
         ('test_locked_critical_speed_matches_eq_5_15_by_hand', 'pytest.approx(expected, rel=1e-5)'),
-        ('test_verdict_premier_vs_revised', 'pytest.approx(100 * (q[1] - q[0]) / q[0], rel=1e-12)'),
-        ('test_effects_of_revised_sum_with_remainder', 'pytest.approx(e.total_growth_rate, rel=1e-12)'),
     ],
     'tests/test_compare_layouts.py': [
         ('test_the_thesis_chairs_as_layouts_get_the_short_forms_growth_rates_and_tip_angles', 'pytest.approx(y, rel=1e-9)'),
@@ -276,15 +244,10 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     ],
     'tests/test_report_clinician.py': [
         ('test_bump_times_are_the_simulators', 'pytest.approx(t_level, abs=2e-3)'),
-        ('test_quick_report_is_the_decision_the_sheet_and_the_references', 'pytest.approx(u)'),
-        ('test_quick_report_is_the_decision_the_sheet_and_the_references', 'pytest.approx(t, abs=1e-9)'),
     ],
     'tests/test_report_layout_options.py': [
         ('test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms', 'pytest.approx(m.time_to_level, rel=5e-4)'),
         ('test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms', 'pytest.approx(x, rel=1e-9)'),
-        ('test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms', 'pytest.approx(fwd, rel=1e-9)'),
-        ('test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms', 'pytest.approx(bwd, rel=1e-9)'),
-        ('test_layout_uncertainty_interval_follows_the_parameter_it_draws', 'pytest.approx(g(0.0), rel=1e-12)'),
         ('test_a_reverse_bump_run_is_valid_while_it_backs', 'pytest.approx(10.0, abs=0.01)'),
         ('test_a_reverse_bump_run_is_valid_while_it_backs', 'pytest.approx(7.5, rel=0.05)'),
     ],
@@ -292,12 +255,7 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_the_thesis_chair_as_a_layout_reports_the_short_forms_growth_rates_and_tip_angles', 'pytest.approx(float(y), rel=1e-9)'),
     ],
     'tests/test_report_words.py': [
-        ('test_steady_turn_is_read_from_the_valid_part_only', 'pytest.approx(3.0)'),
-        ('test_steady_turn_is_read_from_the_valid_part_only', 'pytest.approx((u / r0) * (1 - math.cos(r0 * 3.0)), rel=1e-6)'),
         ('test_steady_turn_is_read_from_the_valid_part_only', 'pytest.approx(u * 3.0, rel=1e-6)'),
-        ('test_steady_turn_is_read_from_the_valid_part_only', 'pytest.approx(math.degrees(r0 * 3.0), rel=1e-9)'),
-        ('test_steady_turn_is_read_from_the_valid_part_only', 'pytest.approx(r0)'),
-        ('test_steady_turn_is_read_from_the_valid_part_only', 'pytest.approx(6.0)'),
     ],
     'tests/test_rootlocus.py': [
         ('test_branches_are_continuous', 'np.abs(np.diff(eig, axis=0)).sum() <= np.abs(np.diff(raw, axis=0)).sum() + 1e-9'),
@@ -387,7 +345,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/test_uncertain_nonlinear.py': [
         ('test_zero_spread_gives_exactly_the_nominal_values', 'abs(eq.speed - REFERENCE_SPEED) < FAST["tol"]'),
         ('test_small_spread_lies_between_the_end_chairs_and_widens_with_the_spread', 'abs(narrow.median - nominal) < 0.05 * nominal'),
-        ('test_critical_speed_command_prints_the_nonlinear_intervals', 'pytest.approx(1.0)'),
     ],
     'tests/test_uncertainty.py': [
         ('test_monte_carlo_interval_matches_delta_method_on_linear_function', 'pytest.approx(sigma, rel=1e-7)'),
