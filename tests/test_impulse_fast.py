@@ -116,6 +116,7 @@ def test_search_equals_the_bisection_to_its_tolerance(name, speed):
     old = critical_impulses_bisection(c, [speed])[0]
     assert new.status == old.status == "found"
     assert _monotone(c, speed, new.impulse_Ns)
+    # error model: bisection bracket: both searches stop within the relative tolerance TOL of the same boundary
     assert abs(math.log(new.impulse_Ns / old.impulse_Ns)) <= math.log1p(TOL) * (1 + 1e-9)
     assert new.high_Ns / new.low_Ns - 1 <= TOL * (1 + 1e-9)
     assert new.runs <= 8 < old.runs
@@ -150,9 +151,9 @@ def test_equal_instability_search_equals_the_bisection_to_its_tolerance():
     for a, b in zip(new, old, strict=True):
         assert a.status == b.status == "found"
         assert a.high - a.low <= 0.005 + 1e-12 and a.low <= a.speed <= a.high
-        assert abs(a.speed - b.speed) <= 0.005
+        assert abs(a.speed - b.speed) <= 0.005          # bisection bracket: the searches' 0.005 m/s
         assert len(a.evaluations) <= 19 < len(b.evaluations) == 30     # the grid search: 30 runs
-    assert abs(new[0].speed - 0.75) <= 0.005
+    assert abs(new[0].speed - 0.75) <= 0.005             # bisection bracket: the reference rates itself 0.75 m/s
 
 
 def test_run_counts_quoted_in_docs_studies_md():

@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 224
+PENDING_LIMIT = 218
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -144,11 +144,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_operator_gain_table_is_the_double_root_gain', 'pytest.approx(math.exp(0.8 - 1.0) / 0.4, rel=1e-3)'),
         ('test_a_delayed_proportional_operator_of_known_delay_is_recovered', 'pytest.approx(tau, rel=0.10)'),
     ],
-    'tests/test_impulse_fast.py': [
-        ('test_search_equals_the_bisection_to_its_tolerance', 'abs(math.log(new.impulse_Ns / old.impulse_Ns)) <= math.log1p(TOL) * (1 + 1e-9)'),
-        ('test_equal_instability_search_equals_the_bisection_to_its_tolerance', 'abs(a.speed - b.speed) <= 0.005'),
-        ('test_equal_instability_search_equals_the_bisection_to_its_tolerance', 'abs(new[0].speed - 0.75) <= 0.005'),
-    ],
     'tests/test_impulse_step.py': [
         ('test_the_fixed_step_answer_converges_to_the_adaptive_one', 'abs(fine - ref) / ref < 0.02'),
         ('test_the_fixed_step_answer_converges_to_the_adaptive_one', 'abs(fine - ref) < abs(coarse - ref) / 5'),
@@ -162,11 +157,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_zero_uncertainty_gives_exactly_the_point_values', 'pytest.approx(r, rel=1e-13)'),
         ('test_monte_carlo_matches_delta_method_on_a_nearly_linear_case', 'abs(hi - dhi) < 0.08 * width'),
         ('test_monte_carlo_matches_delta_method_on_a_nearly_linear_case', 'abs(lo - dlo) < 0.08 * width'),
-    ],
-    'tests/test_lanemath.py': [
-        ('test_sin_cos_near_the_zeros_and_exact_points', 'np.abs(got - ref) <= (lm.SIN_COS_ULP + 1.0) * np.spacing(np.abs(ref)) + lm.SIN_COS_ABS'),
-        ('test_atan2_within_the_stated_bound', 'np.abs(got - ref) <= (lm.ATAN2_ULP + 1.0) * np.spacing(np.abs(ref))'),
-        ('test_atan2_exact_cases', 'abs(got[4] - math.pi / 4) <= np.spacing(math.pi / 4)'),
     ],
     'tests/test_lanes_kernel.py': [
         ('test_lanes_equal_the_scalar_kernel_within_the_rounding_bound', 'pytest.approx(scalar.stats.peak_abs_yaw_rate, abs=_bound(n, scalar.yaw_rate))'),
