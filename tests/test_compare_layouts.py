@@ -63,10 +63,35 @@ def test_a_frame_turned_round_compares_backwards_as_it_does_forwards():
 
 
 def test_a_chair_compared_with_itself_is_equal_on_every_measure():
+    """Equal on every measured value; where both values are the same search's bound (the base is stable forwards
+    up to the searched 20 m/s), 'not separable': a bound is not a tie."""
     lay = layout_preset("mid-wheel-drive")
     c = compare_layouts([lay, dc.replace(lay, name="again")], speeds=[0.75, -0.75])
-    assert c.differences and all(d.more_stable == "equal" for d in c.differences)
+    bounds = {q.key for q in c.quantities if all(math.isinf(v) for v in q.values)}
+    assert bounds == {"stable_up_to_forward_m_s"}
+    assert c.differences and all(d.more_stable == ("not separable" if d.key in bounds else "equal")
+                                 for d in c.differences)
     assert all(d.absolute in (0.0, None) for d in c.differences)
+
+
+def test_two_bounds_are_not_separable_and_a_bound_ranks_above_a_smaller_value():
+    """Two critical impulses whose level no push up to 40 N s reached (both stored as inf, the search's bound) are
+    not 'equal': each is somewhere above 40 N s, so the verdict says the two cannot be separated and names the
+    bound; a bound against a value below it still ranks (the bound is the larger)."""
+    from stability.compare.compute import Quantity, _difference
+    from stability.compare.text import _verdict
+
+    words = "level not reached with pushes up to 40 N s"
+    both = Quantity("critical_impulse_Ns@0.75", "critical impulse at 0.75 m/s", "N s", True,
+                    (math.inf, math.inf), (None, None), words)
+    d = _difference(both, 1, "b", "a", None, 0.95)
+    assert d.more_stable == "not separable" and d.absolute is None
+    assert _verdict(d, both) == f"not separable (both bounds: {words})"
+    one = dc.replace(both, values=(math.inf, 12.5))
+    assert _difference(one, 1, "b", "a", None, 0.95).more_stable == "a"
+    # a quantity whose infinity is not a search's bound keeps the plain comparison
+    plain = dc.replace(both, none_means="")
+    assert _difference(plain, 1, "b", "a", None, 0.95).more_stable == "equal"
 
 
 def test_stable_up_to_is_the_critical_speed_or_its_bounds():
@@ -116,3 +141,9 @@ def test_a_push_search_that_never_reaches_the_level_compares_as_a_bound():
     assert "pushes up to 40 N s" in q.none_means
     d = next(d for d in c.differences if d.key == q.key)
     assert d.more_stable == c.labels[0]
+    # a heavier base that no push spins either: two bounds, not separable (not "equal", issue 38)
+    heavy = dc.replace(mwd, name="heavier", m=1.1 * mwd.m)
+    assert layout_critical_impulses(heavy, 0.75)[0].status == "never"
+    c2 = compare_layouts([mwd, heavy], speeds=[0.75], nonlinear=True)
+    d2 = next(d for d in c2.differences if d.key == q.key)
+    assert d2.more_stable == "not separable" and d2.absolute is None

@@ -34,7 +34,7 @@ from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.uncertainty import Uncertainty
 
-__all__ = ["Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
+__all__ = ["NOT_SEPARABLE", "Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
            "single_effects", "growth_curves"]
 
 DEFAULT_SPEEDS = SUMMARY_SPEEDS
@@ -90,7 +90,9 @@ class Difference:
         values have opposite signs (a stable and an unstable growth rate, an understeering and an oversteering
         chair: a percentage of a quantity that crosses zero says nothing).
     more_stable : str
-        Label of the more stable chair, or ``"equal"``, or ``"undetermined"``.
+        Label of the more stable chair, or ``"equal"``, or ``"undetermined"``, or ``"not separable"`` (both values
+        are bounds of the quantity's search, e.g. two critical impulses whose level no push up to 40 N s reached:
+        :attr:`Quantity.none_means`).
     interval : (float, float) or None
         Central interval of the difference from paired draws (see :func:`compare`), or None.
     distinguishable : bool or None
@@ -249,6 +251,10 @@ def _measures(chairs: Sequence[Chair], model: str, speeds: np.ndarray, grid: np.
     return np.column_stack([b.growth_rates(speeds.tolist()), _locked(b, grid), kus, zcrit])
 
 
+#: ``Difference.more_stable`` when both values are bounds of the same search (both beyond what it reached).
+NOT_SEPARABLE = "not separable"
+
+
 def _more_stable(a: float, b: float, higher: bool, la: str, lb: str) -> str:
     if math.isnan(a) or math.isnan(b):
         return "undetermined"
@@ -271,8 +277,13 @@ def _difference(q: Quantity, i: int, label: str, ref_label: str, samples: np.nda
             interval, dist = (float(lo), float(hi)), bool(lo > 0 or hi < 0)
         else:  # the measure is undefined or infinite in most draws: no interval of the difference
             dist = None
-    return Difference(q.key, label, absolute, percent, _more_stable(a, r, q.higher_is_more_stable, label, ref_label),
-                      interval, dist)
+    if math.isinf(a) and math.isinf(r) and a > 0 and r > 0 and q.none_means:
+        # both bounds of a search ("level not reached with pushes up to 40 N s", "stable up to 20 m/s"): each is
+        # somewhere above the bound, so neither ranks above the other (a bound is a value, not a tie)
+        more = NOT_SEPARABLE
+    else:
+        more = _more_stable(a, r, q.higher_is_more_stable, label, ref_label)
+    return Difference(q.key, label, absolute, percent, more, interval, dist)
 
 
 def single_effects(reference: Chair, other: Chair, label: str, *, model: str = "exact",

@@ -7,7 +7,7 @@ import math
 from typing import Any
 
 from stability.chair import to_mapping
-from stability.compare.compute import Comparison, Difference, Quantity
+from stability.compare.compute import NOT_SEPARABLE, Comparison, Difference, Quantity
 from stability.compare.layouts import LAYOUT_NOTE
 from stability.layout.model import Layout
 from stability.settings.reference import REFERENCE_SPEED
@@ -42,6 +42,8 @@ def _verdict(d: Difference, q: Quantity) -> str:
         text = "equal"
     elif d.more_stable == "undetermined":
         text = "undetermined"
+    elif d.more_stable == NOT_SEPARABLE:
+        text = f"not separable (both bounds: {q.none_means})"
     else:
         text = f"{d.more_stable} more stable"
     if d.absolute is not None:
