@@ -173,7 +173,7 @@ def _layout(args: argparse.Namespace) -> int:
     baseline = None if args.compare is None else _layout_baseline(args.compare)
     unc = None
     if args.uncertainty is not None:
-        from stability.report.layout_uncertainty import load_layout_uncertainty
+        from stability.advise.layout_axes import load_layout_uncertainty
 
         unc = load_layout_uncertainty(args.uncertainty, layout)
     r = compute_layout_report(layout, progress=not args.no_progress, quick=args.quick, baseline=baseline,
