@@ -34,8 +34,8 @@ from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.uncertainty import Uncertainty
 
-__all__ = ["NOT_SEPARABLE", "Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
-           "single_effects", "growth_curves"]
+__all__ = ["NOT_SEPARABLE", "Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare",
+           "DEFAULT_SPEEDS", "single_effects", "growth_curves"]
 
 DEFAULT_SPEEDS = SUMMARY_SPEEDS
 #: Speeds of the growth-rate curves in the figure, m/s.

@@ -70,6 +70,10 @@ def _describe(ch) -> str:
 def _layout_tail(c: Comparison) -> list[str]:
     """The end of a comparison of layouts: what does not apply, the push, the linear model's limit."""
     out = ["", LAYOUT_NOTE]
+    if c.uncertainty:
+        out += ["", "Intervals: the growth rates and the static stability over the uncertainty files' draws (the "
+                "layouts' axes); the speeds up to which a layout is stable and the critical impulse are its own "
+                "values, not propagated (a search per draw)."]
     if c.push:
         out += ["", f"Critical impulse: push convention {c.push}."]
     return out + ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "

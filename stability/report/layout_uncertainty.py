@@ -4,10 +4,12 @@ An uncertainty file for a layout has the short form's tables (:mod:`stability.un
 absolute or relative, one draw shared by several ``fields``), naming the layout's axes
 (:func:`stability.advise.layout_axes.layout_axes`, the sweep's: the body's ``m``, ``i_z``, ``h``, any wheel's field
 ``caster_K_FIELD`` / ``wheel_J_FIELD`` with K and J from 1, a caster row's ``trail_ROW``, ``drive_x``; read with
-:func:`stability.advise.layout_axes.load_layout_uncertainty`).  The draws are the short form's (:meth:`stability.uncertainty.Uncertainty.sample`: a draw that makes an invalid layout is redrawn) and the
-intervals its Monte Carlo propagation (:func:`stability.uncertainty.propagate`) of the layout's linear growth rates
+:func:`stability.advise.layout_axes.load_layout_uncertainty`).  The draws are the short form's
+(:meth:`stability.uncertainty.Uncertainty.sample`: a draw that makes an invalid layout is redrawn) and the intervals
+its Monte Carlo propagation (:func:`stability.uncertainty.propagate`) of the layout's linear growth rates
 at :data:`stability.report.layout_report.COMPARE_SPEEDS` (forward, and at the reference speed in reverse) and its
-static stability (the smallest ISO 7176-1 tip angle).  The nonlinear measures are not propagated (a thousand
+static stability (the smallest ISO 7176-1 tip angle; both :func:`stability.compare.layouts.linear_rows`, as
+``compare``'s).  The nonlinear measures are not propagated (a thousand
 simulator searches per measure).
 """
 
@@ -21,9 +23,8 @@ from typing import Any
 import numpy as np
 
 from stability.advise.layout_axes import LayoutDraw
-from stability.layout.linear import growth_rates
+from stability.compare.layouts import linear_rows
 from stability.layout.model import Layout
-from stability.layout.statics import tip_angles
 from stability.uncertainty import Uncertainty, propagate
 
 __all__ = ["LayoutUncertainty", "layout_uncertainty", "MEASURES"]
@@ -109,12 +110,7 @@ def layout_uncertainty(layout: Layout, uncertainty: Uncertainty, speeds: Sequenc
     u = [float(x) for x in speeds]
 
     def fn(draws: list) -> np.ndarray:
-        out = np.empty((len(draws), len(u) + 1))
-        for i, d in enumerate(draws):
-            lay = d.layout
-            out[i, :len(u)] = growth_rates(lay, u)
-            out[i, -1] = min(tip_angles(lay).values())
-        return out
+        return linear_rows([d.layout for d in draws], u)
 
     res = propagate(LayoutDraw(layout), uncertainty, fn, samples=samples, seed=seed)  # type: ignore[arg-type]
     return LayoutUncertainty(tuple(u), res, uncertainty.names)
