@@ -159,7 +159,8 @@ def comparison_caption(c: Comparison) -> str:
         parts.append(f"stable {way} up to " + ", ".join(
             f"{lab} " + _up_to(x) for lab, x in zip(c.labels, s.values, strict=True)))
     return ("Linear model, free frictionless casters: " + "; ".join(parts)
-            + ". The figure draws the forward speeds; the table on the page before has the reverse ones.")
+            + (". The figure draws both directions (negative speeds: in reverse)." if min(c.curve_speeds) < 0
+               else ". The figure draws the forward speeds; the table on the page before has the reverse ones."))
 
 
 def _impulses(layout: Layout) -> tuple[list[str], list[dict]]:
@@ -190,21 +191,32 @@ def _equal(layout: Layout) -> tuple[list[str], list[dict]]:
 
 
 def _shimmy(layout: Layout, speeds: tuple) -> tuple[list[str], list[dict]]:
-    rows = layout_shimmy_rows(layout, speeds)
-    if not rows:
+    """Each caster row's shimmy margin forwards and in reverse: the reverse rows are their own computation
+    (:func:`stability.advise.layout_measures.layout_shimmy_rows` at the negated speeds: every caster swung round,
+    trailing the other way, at the reversed statics' load), which differs from forwards wherever the rows carry
+    different loads backwards."""
+    sizes = tuple(abs(float(u)) for u in speeds)
+    both = [(way, layout_shimmy_rows(layout, tuple(sign * u for u in sizes)))
+            for way, sign in (("forward", 1.0), ("reverse", -1.0))]
+    if not both[0][1]:
         return ["The layout has no casters."], []
-    lines = [f"Each caster row as a towed wheel on its pin at its own static load, at {', '.join(map(str, speeds))} "
-             "m/s (in reverse a caster swings round and trails the other way: the same answer):"]
+    at = ", ".join(f"{u:g}" for u in sizes)
+    lines = [f"Each caster row as a towed wheel on its pin at its own static load, at {at} m/s; in reverse each "
+             "caster has swung round and trails the other way, its load from the statics of the casters trailing "
+             "backwards (python -m stability.shimmy --chair NAME --speeds -U):"]
     data = []
-    for name, trail, band in rows:
-        lo, hi = band.shimmy_margin_interval_m
-        lines.append(f"  {name} casters, trail {trail * 100:g} cm: margin {band.shimmy_margin_m * 100:+.2f} cm to the "
-                     f"nearest shimmy boundary (over the estimate ranges {lo * 100:+.2f} to {hi * 100:+.2f} cm"
-                     + ("; it straddles a boundary: measure pin stiffness and relaxation length" if band.straddles
-                        else "") + ")")
-        data.append({"row": name, "trail_m": trail, "shimmy_margin_m": band.shimmy_margin_m,
-                     "interval_m": [lo if math.isfinite(lo) else None, hi if math.isfinite(hi) else None],
-                     "straddles": band.straddles})
+    for way, rows in both:
+        lines.append(f"  {'Forwards' if way == 'forward' else 'Backwards'}:")
+        for name, trail, band in rows:
+            lo, hi = band.shimmy_margin_interval_m
+            lines.append(f"    {name} casters, trail {trail * 100:g} cm: margin {band.shimmy_margin_m * 100:+.2f} cm "
+                         f"to the nearest shimmy boundary (over the estimate ranges {lo * 100:+.2f} to "
+                         f"{hi * 100:+.2f} cm"
+                         + ("; it straddles a boundary: measure pin stiffness and relaxation length" if band.straddles
+                            else "") + ")")
+            data.append({"row": name, "direction": way, "trail_m": trail, "shimmy_margin_m": band.shimmy_margin_m,
+                         "interval_m": [lo if math.isfinite(lo) else None, hi if math.isfinite(hi) else None],
+                         "straddles": band.straddles})
     return lines, data
 
 
