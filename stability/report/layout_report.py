@@ -60,7 +60,9 @@ NOT_APPLICABLE = (
      "impulse and the equal-instability speed are a simulator search per draw and are not propagated."),
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
-    ("The driver", "the driver's linear model is the short form's (docs/driver.md)."),
+    ("The driver", "--reaction-time S (or the file's [user]) adds the speed up to which that driver holds the "
+     "layout, forwards and backwards (the divergence rule on the layout's linear model); the delayed-loop and lane "
+     "limits are the short form's only (docs/driver.md)."),
 )
 
 
@@ -220,10 +222,30 @@ def _shimmy(layout: Layout, speeds: tuple) -> tuple[list[str], list[dict]]:
     return lines, data
 
 
+def _driver(layout: Layout, driver: Any) -> tuple[tuple[str, ...], dict]:
+    """The speed up to which the driver holds the layout, forwards and backwards: the divergence rule on the layout's
+    linear model (:func:`stability.advise.layout_measures.layout_rule_speed`, the advisor's driver limit)."""
+    from stability.advise.layout_measures import layout_rule_speed
+
+    tau = float(driver.reaction_time_s)
+    lines = [f"A driver with an effective delay of {tau:g} s (from {driver.source}): the speed up to which the "
+             f"layout's own divergence is slow enough for them (its largest growth rate reaches 1/{tau:g} s, the "
+             "divergence rule on the layout's linear model, free frictionless casters):"]
+    rows = []
+    for reverse in (False, True):
+        u, side = layout_rule_speed(layout, tau, reverse)
+        way = "backwards" if reverse else "forwards"
+        lines.append(f"  {way}: " + ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s")
+        rows.append({"direction": "reverse" if reverse else "forward", "rule_speed_m_s": float(u), "side": side})
+    lines.append("It leaves out pin friction and the driver's own heading loop (the delayed-loop and lane limits are "
+                 "the short form's: python -m stability.critical_speed --reaction-time on a short-form chair).")
+    return tuple(lines), {"reaction_time_s": tau, "source": driver.source, "limits": rows}
+
+
 def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), progress: bool = False,
                           nonlinear: Callable | None = None, quick: bool = False,
                           baseline: Layout | None = None, uncertainty: Any = None, samples: int = D.SAMPLES,
-                          seed: int = D.SEED) -> LayoutReport:
+                          seed: int = D.SEED, driver: Any = None) -> LayoutReport:
     """Every section of the layout's report.
 
     Parameters
@@ -242,6 +264,9 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
         Distributions of the layout's fields (:func:`stability.report.layout_uncertainty.load_layout_uncertainty`).
     samples, seed : int
         Monte Carlo draws and their seed with ``uncertainty``.
+    driver : stability.driver.Driver, optional
+        The user (``--reaction-time`` or the file's ``[user]``): the advisor's decision weighs the speed this driver
+        holds (:func:`stability.advise.advise`'s ``driver``) and a section gives that speed both ways.
 
     Returns
     -------
@@ -250,7 +275,7 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     if quick and (baseline is not None or uncertainty is not None):
         raise ValueError("baseline, uncertainty: the quick report is the decision and the clinician sheet; drop quick "
                          "to compare or to propagate an uncertainty")
-    a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear)
+    a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear, driver=driver)
     d = decide(a)
     decision = ("The decision (forward driving)", tuple(d.paragraphs()) + (
         f"For the advice on reversing: python -m stability.advise --chair {layout.name} --speeds -0.5:1.",))
@@ -281,9 +306,13 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
             "quasi-static; python -m stability.bench gives every case).",)))
     else:
         sections.append(("The virtual ISO 7176-2/-3 bench", ("Not applicable: the layout has no driven wheel.",)))
+    drv = None
+    if driver is not None:
+        drv_lines, drv = _driver(layout, driver)
+        sections.append(("The driver: the speed this user holds, forwards and backwards", drv_lines))
     data = {"layout": layout.name, "growth_rates": summary.to_mapping(), "critical_impulse": imp,
             "equal_instability": eq, "shimmy_rows": sh, "bench": bench, "decision": d.to_mapping(),
-            "not_applicable": [{"section": t, "why": w} for t, w in NOT_APPLICABLE]}
+            "driver": drv, "not_applicable": [{"section": t, "why": w} for t, w in NOT_APPLICABLE]}
     comparison = None
     if baseline is not None:
         from stability.compare.compute import unique_labels
