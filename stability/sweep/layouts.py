@@ -2,20 +2,9 @@
 
 A spec whose ``chair`` is a layout (a layout preset or a ``[[wheel]]`` file), or whose speeds include a negative one
 (reverse; a short-form chair is then expanded with :meth:`stability.layout.Layout.from_chair`), sweeps the layout.
-Its grid axes:
-
-``caster_K_FIELD``, ``wheel_J_FIELD``
-    One field of caster K or fixed wheel J (1-based, in the file's order): ``caster_1_trail``, ``wheel_2_x``,
-    ``caster_3_vertical_stiffness`` ...;
-``trail_ROW``
-    The trail of every caster of one row (``trail_front``, ``trail_rear``; the advisor's row names,
-    :func:`stability.advise.layout_levers.row_name`);
-``drive_x``
-    The x of every driven wheel (every fixed wheel if none is driven), m ahead of the c.g.;
-``m``, ``i_z``, ``h``
-    The body's mass (kg), yaw inertia (kg m^2) and c.g. height (m)
-
-(:mod:`stability.advise.layout_axes`: the same names every layout command's uncertainty file uses).
+Its grid axes are the layout's axes (:mod:`stability.advise.layout_axes`, the one set every layout command's
+uncertainty file uses): ``caster_K_FIELD`` and ``wheel_J_FIELD`` (one wheel's field, 1-based), ``trail_ROW`` (every
+caster of a row), ``drive_x`` (the driven wheels) and the body's ``m``, ``i_z``, ``h``.
 
 Random draws (``[draws]``): the uncertainty file's tables name these axes instead of the short form's fields
 (``[trail_front]``, ``[m]``, ``[caster_1_pin_friction]`` ...; ``relative = true`` as a fraction of the layout's own
