@@ -55,8 +55,8 @@ NOT_APPLICABLE = (
      "short form's fields; a layout's levers are the advisor's (caster trail per row, drive-axle position, "
      "suspension), whose effects the decision lists."),
     ("Thesis model against the exact model", "a layout's equations are the exact model's only."),
-    ("Parameter uncertainty (nonlinear measures)", "--uncertainty FILE (tables naming the layout's fields: m, i_z, "
-     "h, caster_K_FIELD, wheel_J_FIELD) propagates the linear growth rates and the static stability; the critical "
+    ("Parameter uncertainty (nonlinear measures)", "--uncertainty FILE (tables naming the layout's axes: m, i_z, "
+     "h, caster_K_FIELD, wheel_J_FIELD, trail_ROW, drive_x) propagates the linear growth rates and the static stability; the critical "
      "impulse and the equal-instability speed are a simulator search per draw and are not propagated."),
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
@@ -261,7 +261,7 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     baseline : Layout, optional
         Compare with this layout (a short-form chair as :meth:`Layout.from_chair`).
     uncertainty : stability.uncertainty.Uncertainty, optional
-        Distributions of the layout's fields (:func:`stability.report.layout_uncertainty.load_layout_uncertainty`).
+        Distributions of the layout's axes (:func:`stability.advise.layout_axes.load_layout_uncertainty`).
     samples, seed : int
         Monte Carlo draws and their seed with ``uncertainty``.
     driver : stability.driver.Driver, optional
