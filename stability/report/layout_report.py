@@ -56,8 +56,9 @@ NOT_APPLICABLE = (
      "suspension), whose effects the decision lists."),
     ("Thesis model against the exact model", "a layout's equations are the exact model's only."),
     ("Parameter uncertainty (nonlinear measures)", "--uncertainty FILE (tables naming the layout's axes: m, i_z, "
-     "h, caster_K_FIELD, wheel_J_FIELD, trail_ROW, drive_x) propagates the linear growth rates and the static stability; the critical "
-     "impulse and the equal-instability speed are a simulator search per draw and are not propagated."),
+     "h, caster_K_FIELD, wheel_J_FIELD, trail_ROW, drive_x) propagates the linear growth rates and the static "
+     "stability; the critical impulse and the equal-instability speed are a simulator search per draw and are not "
+     "propagated."),
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
     ("The driver", "--reaction-time S (or the file's [user]) adds the speed up to which that driver holds the "
