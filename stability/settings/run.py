@@ -42,6 +42,7 @@ ValueError: speed=25.0 is invalid; valid range: 0.01 <= |speed| <= 20 m/s (negat
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -351,9 +352,12 @@ class RunSpec:
         ValueError
             An unknown field (named, with the valid ones) or an invalid value.
         """
-        unknown = sorted(set(changes) - set(names()))
+        unknown = sorted(set(changes) - set(_names()))
         if unknown:
             raise ValueError(f"unknown run setting(s) {unknown}; valid: {names()}")
+        if all(type(v) is float and v == getattr(self, k) and type(getattr(self, k)) is float
+               for k, v in changes.items()):
+            return self           # the same floats (a checked spec is immutable): not checked again
         return dataclasses.replace(self, **changes)
 
     def to_dict(self) -> dict[str, Any]:
@@ -405,7 +409,12 @@ def names() -> list[str]:
     -------
     list of str
     """
-    return [f.name for f in dataclasses.fields(RunSpec)]
+    return list(_names())
+
+
+@functools.cache
+def _names() -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(RunSpec))
 
 
 def setting(name: str) -> Setting:
