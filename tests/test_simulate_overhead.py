@@ -124,3 +124,10 @@ def test_replace_with_the_same_floats_is_the_spec_itself_and_other_values_are_ch
         run.replace(speed=float("nan"))
     with pytest.raises(ValueError, match="unknown run setting"):
         run.replace(sped=0.75)
+
+
+def test_kernel_only_is_the_run_packed_afresh():
+    """engine.kernel_only (the baseline of the Python-share measurements) runs exactly the run: every column."""
+    run = RunSpec(horizon=1.0)
+    rec = engine.kernel_only(ODD, 0.9, make_options(run))()
+    np.testing.assert_array_equal(rec, _direct(ODD, 0.9, run)[0])

@@ -98,47 +98,18 @@ def test_bench_single_run_step_check_cached(bench):
           f"-> x{cold_best / warm_best:.2f}")
 
 
-def _bare_kernel(chair, speed, run):
-    """A call of the compiled kernel alone on arrays packed once (fresh output arrays per call, one thread as
-    the engine runs one run): the baseline of :func:`test_bench_single_run_python_share`."""
-    from stability.simulate import engine
-    from stability.simulate.controller import SampledController
-    from stability.simulate.options import make_options, n_steps
-    from stability.simulate.packing import Packed
-
-    k = engine._kernel()
-    opts = make_options(run)
-    pk = Packed([chair], np.array([speed]), opts, None)
-    ctl = SampledController.none().arrays()
-    steps = n_steps(opts)
-    nrec = (steps - 1) // opts.stride + 1
-    fixed = (0, steps, pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK,
-             engine._config(opts, 0, -1), np.array(engine.STATS_LEVELS), *ctl)
-    state0 = engine.initial_state(pk.S, ctl[3].shape[0])
-
-    def call():
-        rec = np.empty((1, k.NREC_ALL, nrec))
-        before = k.get_num_threads()
-        k.set_num_threads(1)
-        try:
-            k.run_batch(*fixed, state0.copy(), rec, np.full((1, 2 + len(engine.STATS_LEVELS) + 1), np.nan),
-                        np.zeros((1, 3, 3)), np.zeros((1, 6)), np.zeros(1, dtype=np.int64))
-        finally:
-            k.set_num_threads(before)
-        return rec[0]
-
-    return call
-
-
 @pytest.mark.parametrize("horizon", [10.0, 0.002], ids=["10s", "2ms"])
 def test_bench_single_run_python_share(bench, horizon):
     """``simulate`` against the compiled kernel called alone on the same run, alternately in this process
     (process CPU, best and median of the repeats): the ratio is the figure (the machine is shared); the 2 ms run
     is almost all Python.  The work asserted: the same run, bit for bit."""
+    from stability.simulate import engine
+    from stability.simulate.options import make_options
+
     run = RunSpec(stop_on_warnings=False, horizon=horizon)
-    bare = _bare_kernel(EJ, 0.75, run)
+    bare = engine.kernel_only(EJ, 0.75, make_options(run))
     res = simulate(EJ, 0.75, run=run)
-    np.testing.assert_array_equal(bare()[3, :len(res.t)], res.yaw_rate)     # row 3: the yaw rate
+    np.testing.assert_array_equal(bare()[3], res.yaw_rate)     # row 3: the yaw rate
     inner = max(1, int(round(0.02 / horizon)))        # short runs timed in groups (the clock's resolution)
     cpu: dict[str, list[float]] = {"simulate": [], "kernel": []}
     for _ in range(60):
