@@ -13,7 +13,7 @@ from stability import tires
 from stability.chair import preset
 from stability.models.params import parameters
 from stability.settings.run import RunSpec
-from stability.simulate import engine, packing, simulate, simulate_batch
+from stability.simulate import baseline, engine, packing, simulate, simulate_batch
 from stability.simulate.controller import SampledController
 from stability.simulate.options import initial_velocities, make_options, n_steps
 from stability.simulate.results import COLUMNS
@@ -127,7 +127,7 @@ def test_replace_with_the_same_floats_is_the_spec_itself_and_other_values_are_ch
 
 
 def test_kernel_only_is_the_run_packed_afresh():
-    """engine.kernel_only (the baseline of the Python-share measurements) runs exactly the run: every column."""
+    """baseline.kernel_only (the baseline of the Python-share measurements) runs exactly the run: every column."""
     run = RunSpec(horizon=1.0)
-    rec = engine.kernel_only(ODD, 0.9, make_options(run))()
+    rec = baseline.kernel_only(ODD, 0.9, make_options(run))()
     np.testing.assert_array_equal(rec, _direct(ODD, 0.9, run)[0])

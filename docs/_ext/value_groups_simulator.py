@@ -166,7 +166,7 @@ SHORT_HORIZON = 0.002
 
 
 @group("single_run_python", "simulate(ej-premier, 0.75, RunSpec(stop_on_warnings=False, horizon=h)) against "
-       "engine.kernel_only on the same run (the compiled kernel alone on arrays packed once), alternately 60 times "
+       "baseline.kernel_only on the same run (the compiled kernel alone on arrays packed once), alternately 60 times "
        "in one process for h = 10 s and 2 ms; time.process_time, median")
 def single_run_python() -> dict:
     """The Python around one run: simulate's CPU against the compiled kernel's alone on the same run, as a ratio
@@ -177,14 +177,14 @@ def single_run_python() -> dict:
 
     from stability.chair import preset
     from stability.settings.run import RunSpec
-    from stability.simulate import engine, simulate
+    from stability.simulate import baseline, simulate
     from stability.simulate.options import make_options
 
     ej = preset("ej-premier")
     out = {"short_horizon_ms": sig(SHORT_HORIZON * 1e3, 1)}
     for label, horizon, inner in (("long", 10.0, 1), ("short", SHORT_HORIZON, 10)):
         run = RunSpec(stop_on_warnings=False, horizon=horizon)
-        bare = engine.kernel_only(ej, 0.75, make_options(run))
+        bare = baseline.kernel_only(ej, 0.75, make_options(run))
         simulate(ej, 0.75, run=run)
         cpu: dict[str, list[float]] = {"simulate": [], "kernel": []}
         for _ in range(60):

@@ -12,7 +12,7 @@ import functools
 import math
 import threading
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator, Sequence
 from contextlib import AbstractContextManager, nullcontext
 from typing import Any
 
@@ -28,7 +28,7 @@ from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIM
 from stability.simulate.packing import Packed, policy_code, slope_slots
 from stability.simulate.results import ChairState, RunStats, SimulationResult, warning_table
 
-__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "kernel_only", "run_compiled", "run_summaries", "raise_non_finite",
+__all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
            "use_kernel"]
 
 #: the kernel choice (tests, benchmarks): :func:`stability.simulate.kernel_choice.use_kernel`
@@ -291,50 +291,6 @@ def initial_state(S: np.ndarray, nz: int) -> np.ndarray:
     state[:, 3], state[:, 4], state[:, 6], state[:, 8] = S[:, k.U0], S[:, k.V0], S[:, k.ETA0], S[:, k.BETA0]
     state[:, k.ST_TRACK] = -1.0
     return state
-
-
-def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.ndarray]:
-    """The compiled kernel alone on one run packed once: what the Python around a run is measured against.
-
-    Parameters
-    ----------
-    chair : Chair
-    speed : float
-        Initial forward speed, m/s.
-    opts : Options
-        Checked options, ``scheme="wchair"``, no Python ``yaw_moment``.
-
-    Returns
-    -------
-    callable
-        Runs the kernel on fresh output arrays (on one thread, as :func:`run_compiled` runs one run) and returns
-        the recorded columns, shape (31, n) (the rows of :data:`stability.simulate.results.COLUMNS` after ``t``).
-    """
-    k = _kernel()
-    pk = Packed([chair], np.array([float(speed)]), opts, None)
-    ctl = SampledController.none().arrays()
-    steps = n_steps(opts)
-    nrec = (steps - 1) // opts.stride + 1
-    levels = np.array(STATS_LEVELS, dtype=float)
-    fixed = (0, steps, pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK,
-             _config(opts, 0, -1), levels, *ctl)
-    state0 = initial_state(pk.S, ctl[3].shape[0])
-
-    def call() -> np.ndarray:
-        rec = np.empty((1, k.NREC_ALL, nrec))
-        counts = np.zeros(1, dtype=np.int64)
-        args = (*fixed, state0.copy(), rec, np.full((1, 3 + len(levels)), np.nan), np.zeros((1, 3, 3)),
-                np.zeros((1, 6)), counts)
-        with kernel_entry_guard():
-            before = k.get_num_threads()
-            k.set_num_threads(1)
-            try:
-                k.run_batch(*args)
-            finally:
-                k.set_num_threads(before)
-        return rec[0, :, :int(counts[0])]
-
-    return call
 
 
 def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, forces: np.ndarray | None,

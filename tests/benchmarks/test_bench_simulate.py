@@ -103,11 +103,11 @@ def test_bench_single_run_python_share(bench, horizon):
     """``simulate`` against the compiled kernel called alone on the same run, alternately in this process
     (process CPU, best and median of the repeats): the ratio is the figure (the machine is shared); the 2 ms run
     is almost all Python.  The work asserted: the same run, bit for bit."""
-    from stability.simulate import engine
+    from stability.simulate import baseline
     from stability.simulate.options import make_options
 
     run = RunSpec(stop_on_warnings=False, horizon=horizon)
-    bare = engine.kernel_only(EJ, 0.75, make_options(run))
+    bare = baseline.kernel_only(EJ, 0.75, make_options(run))
     res = simulate(EJ, 0.75, run=run)
     np.testing.assert_array_equal(bare()[3], res.yaw_rate)     # row 3: the yaw rate
     inner = max(1, int(round(0.02 / horizon)))        # short runs timed in groups (the clock's resolution)
