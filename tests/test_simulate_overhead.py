@@ -131,3 +131,20 @@ def test_kernel_only_is_the_run_packed_afresh():
     run = RunSpec(horizon=1.0)
     rec = baseline.kernel_only(ODD, 0.9, make_options(run))()
     np.testing.assert_array_equal(rec, _direct(ODD, 0.9, run)[0])
+
+
+def test_replace_checks_the_changed_settings_and_all_together_as_the_constructor_does():
+    """replace checks only the changed settings (the others were checked) but every joint rule: each result equals
+    the spec built from scratch with the same values, and each refusal is the constructor's."""
+    run = RunSpec(horizon=2.0, sample=0.01)
+    for changes in ({"speed": 1}, {"speed": -0.5}, {"push_force": 10, "model": "thesis"}, {"horizon": 3},
+                    {"dt": "auto"}, {"sample": None}, {"stop_on_warnings": False}):
+        fields = {**{n: getattr(run, n) for n in ("horizon", "sample")}, **changes}
+        assert run.replace(**changes) == RunSpec(**fields), changes
+    for changes in ({"horizon": 0.001}, {"dt": 0.5}, {"sample": 0.0015}, {"speed": -1.0, "reverse": True},
+                    {"model": "linear"}, {"push_force": float("inf")}):
+        with pytest.raises(ValueError) as replaced:
+            run.replace(**changes)
+        with pytest.raises(ValueError) as built:
+            RunSpec(**{"horizon": 2.0, "sample": 0.01, **changes})
+        assert str(replaced.value) == str(built.value), changes
