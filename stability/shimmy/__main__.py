@@ -23,6 +23,16 @@ LAYOUT_MODELS = ("caster row as a towed wheel at its own static load (shimmy); l
                  "divergence)")
 
 
+def _check_chart_speeds(args, speeds: np.ndarray) -> None:
+    """-o draws a trail x speed chart per direction: at least two speeds in each direction given."""
+    if not args.output:
+        return
+    for name, u in (("forwards", speeds[speeds > 0]), ("backwards", speeds[speeds < 0])):
+        if u.size == 1:
+            raise ValueError(f"--speeds {args.speeds!r} gives 1 speed {name}; -o draws a trail x speed chart, "
+                             "valid: at least 2 speeds in each direction (e.g. --speeds 0.5:2:0.5)")
+
+
 def build_parser() -> cli.OneLineErrorParser:
     p = cli.OneLineErrorParser(prog="python -m stability.shimmy", description=__doc__)
     cli.add_chair_options(p)
@@ -68,6 +78,7 @@ def _body(args) -> int:
     chair = cli.load_chair(args.chair, args.set)
     cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
     speeds = cli.parse_speeds(args.speeds, signed=True)
+    _check_chart_speeds(args, speeds)
     if np.any(speeds < 0):
         # reverse: the casters swing round and carry the reversed statics' loads, which the layout form computes
         if args.chair_model:
@@ -150,7 +161,9 @@ def _body_layout(args) -> int:
                          "row as towed wheels at their own static loads; valid: --chair-model with a short-form "
                          "chair (e.g. --chair ej-premier)")
     cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
-    return _layout_answer(args, resolve_layout(args.chair), cli.parse_speeds(args.speeds, signed=True))
+    speeds = cli.parse_speeds(args.speeds, signed=True)
+    _check_chart_speeds(args, speeds)
+    return _layout_answer(args, resolve_layout(args.chair), speeds)
 
 
 def _rows(layout, reverse: bool) -> list:
