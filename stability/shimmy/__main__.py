@@ -14,7 +14,6 @@ from stability.shimmy.band import ShimmyBand, shimmy_band
 from stability.shimmy.chair import SECONDS_PER_SPEED, CasterCompliance, caster_summary, check_speed_count, trail_chart
 from stability.shimmy.chair_modes import chair_shimmy
 
-
 #: Trails of the PDF's trail x speed chart, m.
 CHART_TRAILS_M = np.linspace(0.02, 0.12, 26)
 #: The models of the charts, for their titles.

@@ -14,7 +14,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from stability.chair import Chair
 from stability.shimmy import describing
 from stability.shimmy.compliance import ESTIMATE_NOTE, CasterCompliance
 from stability.shimmy.layout_caster import CasterSource, LayoutCaster
