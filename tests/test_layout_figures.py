@@ -268,6 +268,9 @@ def test_the_shimmy_command_draws_every_caster_row(tmp_path, capsys):
     assert f"wrote {out}" in capsys.readouterr().err
     data = out.read_bytes()
     assert data.startswith(b"%PDF") and len(re.findall(rb"/Type\s*/Page(?![a-zA-Z])", data)) == 8
+    ej = tmp_path / "ej.pdf"                                # the short form: two pages, as before
+    assert main(["--chair", "ej-premier", "--speeds", "1,2", "-o", str(ej)]) == 0
+    assert len(re.findall(rb"/Type\s*/Page(?![a-zA-Z])", ej.read_bytes())) == 2
     chart = trail_chart(LayoutCaster(layout_preset("mid-wheel-drive"), 2, reverse=True), TRAILS, [1.0, 1.5])
     pages = trail_chart_pages(chart, LAYOUT_MODELS)
     assert len(pages) == 2
