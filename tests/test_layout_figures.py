@@ -305,3 +305,34 @@ def test_the_full_chair_shimmy_model_is_refused_for_a_layout_with_the_reason(cap
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and "--chair-model" in err and "valid: --chair-model with" in err
         assert "caster" in err
+
+
+def test_set_on_a_layout_file_is_set_on_the_short_form(ej_file, tmp_path, capsys):
+    """``--set`` by the advisor's names on the E&J written as a ``[[wheel]]`` file is the short form's ``--set``:
+    both casters' trail (the short form's one ``trail``) through the slope command's held line (the short form's
+    generated statics; 1.4e-14 N m observed above, asserted 2e-12), and the mass through the simulate command's
+    CSV (the thesis engine; the error model of the CSV test above, 1e-12 of a column's largest value)."""
+    import json
+
+    from stability.simulate.__main__ import main as simulate_main
+    from stability.slope.__main__ import main as slope_main
+
+    common = ["--cross-slope", "2", "--speed", "1", "--json"]
+    assert slope_main(["--chair", str(ej_file), "--set", "caster_1_trail=0.06", "--set", "caster_2_trail=0.06",
+                       *common]) == 0
+    lay = json.loads(capsys.readouterr().out)
+    assert slope_main(["--chair", "ej-premier", "--set", "trail=0.06", *common]) == 0
+    short = json.loads(capsys.readouterr().out)
+    assert slope_main(["--chair", "ej-premier", *common]) == 0
+    unset = json.loads(capsys.readouterr().out)
+    key = "holding_yaw_moment_signed_N_m"
+    assert abs(short[key] - unset[key]) > 1e-3                       # the trail matters to the held line
+    assert lay[key] == pytest.approx(short[key], abs=2e-12)
+    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+    assert simulate_main(["--chair", str(ej_file), "--set", "m=100", "--horizon", "1", "--csv", str(a)]) == 0
+    assert simulate_main(["--chair", "ej-premier", "--set", "m=100", "--horizon", "1", "--csv", str(b)]) == 0
+    capsys.readouterr()
+    x, y = _read_csv(a), _read_csv(b)
+    assert len(x["t"]) == len(y["t"])
+    for name, theirs in (("heading", "heading"), ("y", "y"), ("delta_caster_1_rear_left", "eta")):
+        assert np.abs(x[name] - y[theirs]).max() <= 1e-12 * np.abs(y[theirs]).max()

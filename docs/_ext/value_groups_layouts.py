@@ -223,6 +223,7 @@ def layout_files() -> dict:
                         for a in r.caster_angle_rad)
             rows.append((name, "forward" if speed > 0 else "reverse", signed(r.final_heading_deg, 2),
                          signed(float(r.y_m[-1]), 3), fixed(swing, 1)))
-    return {"csv_rel": f"{csv_rel:.0e}", "csv_horizon": f"{run.horizon:g}", "slope_diff": f"{slope_diff:.0e}", "chart_diff": f"{chart_diff:.0e}",
+    return {"csv_rel": f"{csv_rel:.0e}", "csv_horizon": f"{run.horizon:g}", "slope_diff": f"{slope_diff:.0e}",
+            "chart_diff": f"{chart_diff:.0e}",
             "table": Table(("layout (0.75 m/s, reference push, 3 s)", "direction", "heading at 3 s deg",
                             "lateral offset m", "largest caster swing deg"), tuple(rows))}

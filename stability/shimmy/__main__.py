@@ -149,10 +149,6 @@ def _print_table(s, band: ShimmyBand, amplitude_deg: float, speeds: np.ndarray |
 
 def _body_layout(args) -> int:
     """Every caster row of a wheel layout: the towed-wheel summary and band at the caster's own static load."""
-    from stability.layout.io import resolve_layout
-
-    if args.set:
-        raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
     if args.chair_model:
         raise ValueError(f"--chair-model with --chair {args.chair!r} is invalid: the full-chair shimmy model's "
                          "equations (relaxation-length caster tires, compliant pins, coupled to the body) are "
@@ -162,7 +158,7 @@ def _body_layout(args) -> int:
     cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
     speeds = cli.parse_speeds(args.speeds, signed=True)
     _check_chart_speeds(args, speeds)
-    return _layout_answer(args, resolve_layout(args.chair), speeds)
+    return _layout_answer(args, cli.load_layout(args.chair, args.set), speeds)
 
 
 def _rows(layout, reverse: bool) -> list:
