@@ -227,3 +227,55 @@ def layout_files() -> dict:
             "chart_diff": f"{chart_diff:.0e}",
             "table": Table(("layout (0.75 m/s, reference push, 3 s)", "direction", "heading at 3 s deg",
                             "lateral offset m", "largest caster swing deg"), tuple(rows))}
+
+
+@group("layout_every_command", "python -m stability.advise|compare|report --chair NAME --uncertainty "
+       "docs/examples/mid_wheel_drive.uncertainty.toml / --reaction-time 0.6 (stability.advise.uncertain.tip_interval, "
+       "stability.compare.layouts.compare_layouts, stability.advise.layout_measures.layout_shimmy_rows, "
+       "layout_rule_speed)")
+def layout_every_command() -> dict:
+    """Issue 38: the mid-wheel-drive base's intervals over the docs' uncertainty file (advise's static stability,
+    compare's growth rates both ways), each drive layout's shimmy margin per row forwards and backwards, and the
+    divergence rule's speed of a 0.6 s driver both ways."""
+    from pathlib import Path
+
+    from stability.advise.layout_axes import load_layout_uncertainty
+    from stability.advise.layout_measures import layout_rule_speed, layout_shimmy_rows
+    from stability.advise.uncertain import SAMPLES, tip_interval
+    from stability.compare.layouts import compare_layouts
+    from stability.layout.linear import SEARCH_SPEEDS_M_S
+    from stability.layout.presets import layout_preset
+
+    root = Path(__file__).resolve().parents[2]
+    mwd = layout_preset("mid-wheel-drive")
+    unc = load_layout_uncertainty(root / "docs" / "examples" / "mid_wheel_drive.uncertainty.toml", mwd)
+    out: dict = {}
+    lo, hi = tip_interval(mwd, unc)
+    out["tip_low"], out["tip_high"], out["tip_samples"] = fixed(lo, 1), fixed(hi, 1), str(SAMPLES)
+    c = compare_layouts([mwd, layout_preset("power-fwd-base")], speeds=[0.75, -0.75], uncertainties=[unc, None])
+    for u, key in ((0.75, "fwd"), (-0.75, "rev")):
+        q = c.quantity(f"growth_rate_1_s@{u:g}")
+        a, b = q.intervals[0]
+        out[f"rate_{key}"] = signed(q.values[0], 3)
+        out[f"rate_{key}_interval"] = f"{signed(a, 3)} to {signed(b, 3)}"
+    rows, speeds = [], (0.5, 0.75, 1.0)
+    for name in DRIVE_LAYOUTS:
+        lay = layout_preset(name)
+        fwd = layout_shimmy_rows(lay, speeds)
+        rev = layout_shimmy_rows(lay, tuple(-u for u in speeds))
+        for (row, _, f), (_, _, r) in zip(fwd, rev, strict=True):
+            rows.append((name, row, signed(100 * f.shimmy_margin_m, 2), signed(100 * r.shimmy_margin_m, 2)))
+        if name == "mid-wheel-drive":
+            out["mwd_front_fwd"], out["mwd_front_rev"] = rows[-2][2], rows[-2][3]
+    out["shimmy_table"] = Table(("layout", "caster row", "margin forwards cm", "margin backwards cm"), tuple(rows))
+    drv, tau = [], 0.6
+    for name in DRIVE_LAYOUTS:
+        cells = []
+        for reverse in (False, True):
+            u, side = layout_rule_speed(layout_preset(name), tau, reverse)
+            cells.append(("" if side == "=" else f"{side} ") + sig(u, 3))
+        drv.append((name, *cells))
+    out["driver_table"] = Table(("layout", f"{tau:g} s driver holds forwards m/s", "backwards m/s"), tuple(drv))
+    out["speeds"] = ", ".join(f"{u:g}" for u in speeds)
+    out["tau"], out["search_top"] = f"{tau:g}", f"{SEARCH_SPEEDS_M_S[-1]:g}"
+    return out

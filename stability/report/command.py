@@ -166,6 +166,11 @@ def _layout(args: argparse.Namespace) -> int:
     if args.clinician:
         from stability.report.layout_clinician import layout_clinician_sheet
 
+        if args.reaction_time is not None:
+            raise ValueError("--reaction-time is not available with --clinician for a wheel layout: the layout's "
+                             "sheet has no driver line yet; valid: drop --clinician (the full report's driver "
+                             "section gives the speed this driver holds, forwards and backwards)")
+
         return _clinician(args, layout, outputs, lambda speeds: layout_clinician_sheet(layout, speeds),
                           signed=True)
     if args.speeds != D.ADVISE_SPEEDS:
@@ -173,11 +178,12 @@ def _layout(args: argparse.Namespace) -> int:
     baseline = None if args.compare is None else _layout_baseline(args.compare)
     unc = None
     if args.uncertainty is not None:
-        from stability.report.layout_uncertainty import load_layout_uncertainty
+        from stability.advise.layout_axes import load_layout_uncertainty
 
         unc = load_layout_uncertainty(args.uncertainty, layout)
+    driver = driver_from_args(args)       # --reaction-time or the file's [user]: the layout's driver limit
     r = compute_layout_report(layout, progress=not args.no_progress, quick=args.quick, baseline=baseline,
-                              uncertainty=unc, samples=args.samples, seed=args.seed)
+                              uncertainty=unc, samples=args.samples, seed=args.seed, driver=driver)
     n = 0
     with output_files(outputs) as tmp:
         if args.output:
@@ -192,7 +198,8 @@ def _layout(args: argparse.Namespace) -> int:
                     "chair_parameters": dataclasses.asdict(layout), "model": "exact",
                     "options": {"output": args.output, "quick": bool(args.quick), "compare": args.compare,
                                 "uncertainty": args.uncertainty, "samples": args.samples if unc else None,
-                                "seed": args.seed if unc else None},
+                                "seed": args.seed if unc else None,
+                                "reaction_time_s": None if driver is None else driver.reaction_time_s},
                     "schema": "stability.report.layout/1"}
             emit_json({**head, **r.data}, args, write_to=tmp.get("--json-file"))
     if args.output:
@@ -207,11 +214,12 @@ def _check_layout_args(args: argparse.Namespace) -> dict:
         raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
     outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair, "--uncertainty": args.uncertainty, "--compare": args.compare})
-    for flag, given, valid in (("--set", args.set, "edit the layout file's [[wheel]] tables"),
-                               ("--reaction-time", args.reaction_time, "a short-form chair (the driver's model is "
-                                                                       "the short form's)")):
-        if given:
-            raise ValueError(f"{flag} is not available for a wheel layout; valid: {valid}")
+    if args.set:
+        # stability.cli.load_layout takes --set for a short-form chair only: no layout command sets a wheel's field
+        # from the command line (the names would be the layout's axes, caster_K_FIELD ..., not the chair's)
+        raise ValueError("--set is not available for a wheel layout: a layout's numbers live in its [[wheel]] "
+                         "tables and no layout command sets them from the command line; valid: edit the layout "
+                         "file's [[wheel]] tables")
     if args.model != "exact":
         raise ValueError(f"--model {args.model} is invalid for a wheel layout; valid values: exact (the layout's "
                          "equations are the exact model's)")
