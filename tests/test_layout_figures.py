@@ -27,6 +27,7 @@ from stability.layout.io import dumps, load_layout
 from stability.layout.presets import layout_preset
 
 EJ = preset("ej-premier")
+TRAILS = np.linspace(0.03, 0.09, 4)
 
 
 def _read_csv(path) -> dict[str, np.ndarray]:
@@ -130,18 +131,30 @@ def test_the_layout_run_figure_holds_the_run(tmp_path):
 
 
 def test_a_layout_name_from_a_file_is_never_markup():
-    """A dollar in a user's layout name is drawn as typed (escaped), not as mathtext."""
+    """A dollar in a user's layout name is drawn as typed in every figure (no text of the figure parses
+    mathtext), and the figure renders."""
     import dataclasses
 
+    from matplotlib.text import Text
+
     from stability.plotting.responses import plot_layout_run
+    from stability.report.slope_figure import layout_slope_figure
     from stability.settings.run import RunSpec
+    from stability.shimmy.chair import trail_chart
+    from stability.shimmy.layout_caster import LayoutCaster
+    from stability.shimmy.plots import trail_chart_pages
     from stability.simulate.layout import simulate_layout
 
     layout = dataclasses.replace(layout_preset("power-fwd-base"), name="my $x^2$ chair")
     run = simulate_layout(layout, 0.75, RunSpec(horizon=0.2))
-    fig = plot_layout_run(run, layout.caster_labels)
-    assert fig.get_suptitle().startswith(r"my \$x^2\$ chair")
-    fig.canvas.draw()                         # renders (an unbalanced or bad mathtext would raise)
+    figures = [plot_layout_run(run, layout.caster_labels), layout_slope_figure(layout, 2.0, 1.0, sim_time=0.2),
+               *trail_chart_pages(trail_chart(LayoutCaster(layout, 0), TRAILS, [1.0, 1.5]), "towed wheel")]
+    for fig in figures:
+        assert fig.get_suptitle().startswith("my $x^2$ chair")
+        texts = fig.findobj(Text)
+        assert any("$x^2$" in t.get_text() for t in texts)
+        assert not any(t.get_parse_math() for t in texts)
+        fig.canvas.draw()
 
 
 @pytest.mark.parametrize("speed", [0.75, 1.5])
@@ -216,9 +229,6 @@ def test_the_slope_command_draws_a_layout_and_reverse(fmt, tmp_path, capsys):
     assert "mid-wheel-drive" in title and "layout model" in title and "backwards" in title
     assert ax_hold.get_xlabel() == "cross slope (deg, falling to the left)"
     assert any("What to conclude" in t.get_text() for t in fig.texts)
-
-
-TRAILS = np.linspace(0.03, 0.09, 4)
 
 
 def test_the_trail_chart_of_the_thesis_chair_as_a_layout_is_the_short_forms():

@@ -22,7 +22,17 @@ from stability.plotting.loci import (
     speed_loci_figure,
     speed_locus,
 )
-from stability.plotting.pages import PAGE_SIZE, finish, page, panels_page, table_axes, table_page, text_page, wrap_text
+from stability.plotting.pages import (
+    PAGE_SIZE,
+    finish,
+    page,
+    panels_page,
+    plain_text,
+    table_axes,
+    table_page,
+    text_page,
+    wrap_text,
+)
 from stability.plotting.responses import trajectories, yaw_rate_responses
 from stability.plotting.sections import drive_difference, growth_rate_band, uncorrected_heading, variance_shares
 from stability.plotting.studies import (

@@ -284,12 +284,10 @@ def plot_layout_run(run: LayoutRun, caster_labels: Sequence[str], path: Any = No
     -------
     Figure or Path
     """
-    from stability.plotting.pages import finish, page, wrap_text
+    from stability.plotting.pages import finish, page, plain_text, wrap_text
 
     direction = "backwards" if run.speed_m_s < 0 else "forwards"
-    # the name may come from a user's file: an escaped dollar is drawn as typed, never as mathtext
-    name = run.layout.replace("$", r"\$")
-    title = (f"{name} | layout model (exact equations, wchair scheme) | {abs(run.speed_m_s):g} m/s "
+    title = (f"{run.layout} | layout model (exact equations, wchair scheme) | {abs(run.speed_m_s):g} m/s "
              f"{direction}")
     f, d = run.settings.get("push_force_N", 0.0), run.settings.get("push_duration_s", 0.0)
     fig, axes = page(title, f"a push of {f:g} N for {d:g} s at the c.g. to the right; casters start at "
@@ -324,6 +322,7 @@ def plot_layout_run(run: LayoutRun, caster_labels: Sequence[str], path: Any = No
     fig.text(0.5, 0.015, "\n".join(lines), ha="center", va="bottom", fontsize=8.5, fontweight="bold", color="0.1",
              linespacing=1.4)
     finish(fig, top=0.88, left=0.09, bottom=0.10 + 0.03 * len(lines), hspace=0.4)
+    plain_text(fig)                                  # the layout's name may come from a user's file
     if path is None:
         return fig
     return save_figure(fig, path, title=f"stability simulate: {run.layout}")

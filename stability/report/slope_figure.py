@@ -66,7 +66,7 @@ def _page(title: str, name: str, phi: float, speed_words: str, s: Any, path: _Pa
           side_words: str = "") -> Any:
     """The slope page: holding moment, drive difference, uncorrected heading and the caption (``s``: a
     :class:`~stability.report.slope_data.SlopeSection` or :class:`~stability.report.slope_data.LayoutSlopeSection`)."""
-    fig, axes = P.page(title.replace("$", r"\$"),
+    fig, axes = P.page(title,
                        "steady straight running across a slope: what holds the line, and what happens without it",
                        nrows=1, ncols=3, size=(13.0, 5.6))
     plot_holding([s.curve], axes[0, 0], published=TREADMILL)
@@ -98,7 +98,8 @@ def _page(title: str, name: str, phi: float, speed_words: str, s: Any, path: _Pa
     lines = P.wrap_text("".join(words), 170)
     fig.text(0.5, 0.02, "\n".join(lines), ha="center", va="bottom", fontsize=8.5, fontweight="bold", color="0.1",
              linespacing=1.4)
-    return P.finish(fig, top=0.82, bottom=0.16 + 0.035 * (len(lines) - 1))
+    P.finish(fig, top=0.82, bottom=0.16 + 0.035 * (len(lines) - 1))
+    return P.plain_text(fig)                          # a name from a user's file is never markup
 
 
 def layout_slope_figure(layout: Any, cross_slope: float, speed: float, grade: float = 0.0, drive: str = "auto",

@@ -135,19 +135,18 @@ def trail_chart_pages(chart: TrailChart, model: str, trails_cm=(3, 4, 5, 6, 8)) 
     """
     from matplotlib.figure import Figure
 
-    from stability.plotting.pages import wrap_text
+    from stability.plotting.pages import plain_text, wrap_text
 
     caption = wrap_text(trail_chart_caption(chart), 120)
-    name = chart.chair_name.replace("$", r"\$")        # a user's name is never mathtext
     pages = []
     for draw, size in ((lambda ax: plot_trail_chart(chart, ax), (8.5, 7.2)),
                        (lambda ax: plot_friction_needed(chart, ax, trails_cm=list(trails_cm)), (8.5, 6.4))):
         fig = Figure(figsize=size)
         ax = fig.subplots()
         draw(ax)
-        fig.suptitle(f"{name}\n" + "\n".join(wrap_text(model, 100)), fontsize=9.5, fontweight="bold")
+        fig.suptitle(f"{chart.chair_name}\n" + "\n".join(wrap_text(model, 100)), fontsize=9.5, fontweight="bold")
         fig.text(0.5, 0.01, "\n".join(caption), ha="center", va="bottom", fontsize=8, fontweight="bold",
                  color="0.1", linespacing=1.35)
         fig.subplots_adjust(top=0.84, bottom=0.13 + 0.028 * len(caption))
-        pages.append(fig)
+        pages.append(plain_text(fig))                  # a name from a user's file is never markup
     return pages
