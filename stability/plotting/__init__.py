@@ -45,7 +45,7 @@ from stability.plotting.studies import (
 from stability.plotting.tires import cornering_stiffness_curves, tire_curves
 
 __all__ = [
-    "PAGE_SIZE", "page", "finish", "panels_page", "text_page", "table_page", "table_axes", "wrap_text",
+    "PAGE_SIZE", "page", "finish", "panels_page", "text_page", "table_page", "table_axes", "wrap_text", "plain_text",
     "chair_geometry", "parameter_table",
     "tire_curves", "cornering_stiffness_curves",
     "speed_locus", "speed_loci_figure", "eigenvalues_vs_speed", "parameter_locus", "parameter_loci_figure",
