@@ -204,7 +204,7 @@ def test_the_command_answers_a_layout(monkeypatch, capsys):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["--chair", "mid-wheel-drive", "--set", "m=100"], "--set is for the short form"),
+    (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], "'trail' is not a field of layout"),
     (["--chair", "mid-wheel-drive", "--reaction-time", "99"], "--reaction-time 99 is invalid; valid range"),
     (["--chair", "mid-wheel-drive", "--intended-speed", "1"], "--intended-speed needs --reaction-time"),
     (["--chair", "mid-wheel-drive", "--cross-slope", "9"], "--cross-slope 9.0 is invalid; valid range: 0 to 8"),

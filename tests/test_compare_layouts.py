@@ -115,7 +115,7 @@ def test_the_command_compares_any_form_forward_and_in_reverse(capsys):
 
 @pytest.mark.parametrize("argv, words", [
     (["ej-premier", "mid-wheel-drive", "--model", "thesis"], "--model thesis is invalid for wheel layouts"),
-    (["ej-premier", "mid-wheel-drive", "--set", "2:m=100"], "--set is for the short form"),
+    (["ej-premier", "mid-wheel-drive", "--set", "2:trail=0.06"], "'trail' is not a field of layout"),
     (["ej-premier", "revised", "--speeds", "-0.75", "--uncertainty", "-"],
      "--uncertainty given 1 times for 2 chairs"),
     (["mid-wheel-drive", "revised", "--uncertainty", "-", "--uncertainty", "-", "--samples", "0"],
