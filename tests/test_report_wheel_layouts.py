@@ -83,8 +83,8 @@ def test_the_command_writes_a_layout_report(tmp_path, capsys):
     (["--chair", "mid-wheel-drive", "--json", "--quick", "--compare", "ej-premier"],
      "--compare needs the full report"),
     (["--chair", "mid-wheel-drive", "--json", "--model", "thesis"], "--model thesis is invalid for a wheel layout"),
-    (["--chair", "mid-wheel-drive", "--json", "--set", "m=90"],
-     "--set is not available for a wheel layout: a layout's numbers live in its [[wheel]] tables"),
+    (["--chair", "mid-wheel-drive", "--json", "--set", "zz=90"],
+     "--set 'zz=90': 'zz' is not a field of layout"),
     (["--chair", "mid-wheel-drive", "--clinician", "-o", "x.pdf", "--reaction-time", "0.6"],
      "--reaction-time is not available with --clinician for a wheel layout"),
     (["--chair", "mid-wheel-drive", "--json", "--reaction-time", "9"], "--reaction-time 9 is invalid; valid range"),
@@ -206,3 +206,29 @@ def test_the_command_takes_a_reaction_time_for_a_layout(monkeypatch, capsys):
     assert d["options"]["reaction_time_s"] == 0.6 and seen["driver"].reaction_time_s == 0.6
     assert d["driver"]["reaction_time_s"] == 0.6 and [x["direction"] for x in d["driver"]["limits"]] == [
         "forward", "reverse"]
+
+
+def test_set_on_a_layout_file_reaches_the_report_as_the_short_forms_set(monkeypatch, capsys, tmp_path):
+    """``report --chair EJ-AS-[[wheel]]-FILE --set m=100``: the report's forward growth rates are the short form's
+    linear model of the E&J with ``--set m=100`` (a separate code path), to 1e-9 relative as in the test above
+    (two numeric eigenvalue solves of the same 8-state matrix rounded differently: observed below 1e-12), and
+    they differ from the unset chair's by far more, so an ignored ``--set`` fails."""
+    import stability.report.layout_report as lr
+    from stability.cli import load_chair
+    from stability.layout.io import dumps
+
+    path = tmp_path / "ej-layout.toml"
+    path.write_text(dumps(Layout.from_chair(resolve("ej-premier"))))
+    real = lr.compute_layout_report
+    monkeypatch.setattr(lr, "compute_layout_report", lambda layout, **kw: real(layout, nonlinear=_fake))
+    assert main(["--chair", str(path), "--set", "m=100", "--json", "--no-progress"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    g = d["growth_rates"]
+    fwd = [(u, x) for u, x in zip(g["speeds_m_s"], g["growth_rate_1_s"], strict=True) if u > 0]
+    speeds = [u for u, _ in fwd]
+    heavy = eigenvalues_vs_speed(load_chair("ej-premier", ["m=100"]), speeds, track=False).real.max(axis=1)
+    plain = eigenvalues_vs_speed(resolve("ej-premier"), speeds, track=False).real.max(axis=1)
+    for (_, x), y, z in zip(fwd, heavy, plain, strict=True):
+        assert x == pytest.approx(float(y), rel=1e-9)
+        assert abs(x - float(z)) > 1e-3 * abs(float(z))
+    assert d["chair_parameters"]["m"] == 100.0

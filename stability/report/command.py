@@ -18,6 +18,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     output_files,
     parse_speeds,
     run,
@@ -158,11 +159,10 @@ def _layout(args: argparse.Namespace) -> int:
     sheet, with ``--compare`` a comparison page (the baseline a layout or a short-form chair as a layout), with
     ``--uncertainty`` a page of the linear results' intervals over the file's layout fields."""
     from stability import __version__
-    from stability.layout.io import resolve_layout
     from stability.report.layout_report import compute_layout_report, write_layout_report
 
     outputs = _check_layout_args(args)
-    layout = resolve_layout(args.chair)
+    layout = load_layout(args.chair, args.set)
     if args.clinician:
         from stability.report.layout_clinician import layout_clinician_sheet
 
@@ -214,12 +214,6 @@ def _check_layout_args(args: argparse.Namespace) -> dict:
         raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
     outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair, "--uncertainty": args.uncertainty, "--compare": args.compare})
-    if args.set:
-        # stability.cli.load_layout takes --set for a short-form chair only: no layout command sets a wheel's field
-        # from the command line (the names would be the layout's axes, caster_K_FIELD ..., not the chair's)
-        raise ValueError("--set is not available for a wheel layout: a layout's numbers live in its [[wheel]] "
-                         "tables and no layout command sets them from the command line; valid: edit the layout "
-                         "file's [[wheel]] tables")
     if args.model != "exact":
         raise ValueError(f"--model {args.model} is invalid for a wheel layout; valid values: exact (the layout's "
                          "equations are the exact model's)")
