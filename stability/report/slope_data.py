@@ -15,7 +15,7 @@ import numpy as np
 from stability.chair import Chair
 from stability.settings.reference import CROSS_SLOPE_STUDY, REFERENCE_SPEED
 from stability.slope import HandRim, Plane, drive_report, holding_moment_closed_form, solve
-from stability.slope.plots import HoldingCurve
+from stability.slope.plots import HoldingCurve, magnitude_band
 from stability.study.veer import UncorrectedPath, uncorrected_path
 
 __all__ = ["TREADMILL", "SLOPES", "PATH_SLOPE", "SlopeSection", "drive_kind", "slope_section", "difference_of",
@@ -234,7 +234,7 @@ def layout_slope_section(layout: Any, speed: float, slopes=SLOPES, path_slope: f
             continue
         ok.append(float(phi))
     reports = [layout_drive_report(e, kind) for e in eqs]
-    fr = np.array([sorted(abs(x) for x in e.friction_range_N_m) for e in eqs]).reshape(-1, 2)
+    fr = np.array([magnitude_band(e.friction_range_N_m) for e in eqs]).reshape(-1, 2)
     curve = HoldingCurve(layout.name, np.array(ok), np.array([abs(e.holding_moment_N_m) for e in eqs]), fr[:, 0],
                          fr[:, 1], np.array([difference_of(layout_drive_report(e, "handrim"))[0] for e in eqs]))
     p_path = max((p for p in ok if 0 < p <= path_slope), default=None)
@@ -279,7 +279,7 @@ def slope_section(chair: Chair, speed: float = REFERENCE_SPEED, slopes=SLOPES,
         ok.append(float(phi))
         eqs.append(e)
     sides = tuple(drive_report(chair, e, kind)["harder_side"] for e in eqs)
-    fr = np.array([sorted(abs(x) for x in e.friction_range) for e in eqs]).reshape(-1, 2)
+    fr = np.array([magnitude_band(e.friction_range) for e in eqs]).reshape(-1, 2)
     curve = HoldingCurve(chair.name, np.array(ok), np.array([abs(e.holding_moment) for e in eqs]),
                          fr[:, 0], fr[:, 1], np.array([_difference(chair, e, "handrim")[0] for e in eqs]))
     diffs = [_difference(chair, e, kind) for e in eqs]
