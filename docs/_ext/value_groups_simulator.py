@@ -233,11 +233,11 @@ def simulator_kinetic() -> dict:
     """Program WCHAIR's kinetic law against the step: |lambda| dt of the fastest mode, the E&J Premier's error at
     1.0 m/s, the thesis's cases' spread, power-fwd at 1.5 m/s at four steps."""
     import numpy as np
+    from value_groups_pages import _preset
 
     from stability.linear import eigenvalues_vs_speed
     from stability.settings.run import RunSpec
     from stability.study import equal_instability_speeds
-    from value_groups_pages import _preset
 
     ej, pf, rv = _preset("ej-premier"), _preset("power-fwd"), _preset("revised")
 
