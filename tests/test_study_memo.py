@@ -12,9 +12,8 @@ import contextlib
 import dataclasses
 from pathlib import Path
 
-import numpy as np
 import pytest
-from test_advise import _plausible
+from test_advise_pruning import _random_chairs
 
 from stability.advise import advise
 from stability.advise.decision import decide
@@ -92,51 +91,6 @@ def test_a_jobs_result_does_not_depend_on_its_batch():
     assert _bisect([ej], [t]) == _bisect([other, ej], [0.5 * t, t])[1:2]
 
 
-def test_inside_a_memo_the_results_are_the_same_and_fewer_runs_are_made(monkeypatch):
-    from stability.simulate import engine
-
-    n = [0]
-    inner = engine._launch
-
-    def counting(k, threads, n_runs, args):
-        n[0] += int(n_runs)
-        return inner(k, threads, n_runs, args)
-
-    monkeypatch.setattr(engine, "_launch", counting)
-    ej = preset("ej-premier")
-    plain = _ci([ej, ej.replace(trail=0.06, name="t6")])
-    first = n[0]
-    with memo.search_memo():
-        assert _ci([ej, ej.replace(trail=0.06, name="t6")]) == plain
-        again = n[0]
-        assert _ci([ej.replace(trail=0.06, name="t6")]) == plain[1:]
-        assert n[0] == again                       # nothing run again
-    assert again - first == first
-
-
-def _everything(a) -> tuple:
-    """The whole advice: decision, recommendations, blocked, every candidate and combination with its measures."""
-    d = advice_mapping(a)
-    return (decide(a).to_mapping(), d, [(c.label, c.bounded, c.gains, c.measures.to_mapping())
-                                       for c in a.candidates + a.combinations], a.intervals_computed)
-
-
-def _committed_chairs() -> list:
-    """The chairs of the committed reports (tests/test_committed_reports.py): three presets and the measured chair."""
-    return [preset("ej-premier"), preset("revised"), preset("ej-premier-front-caster"),
-            chair_io.load(ROOT / "docs" / "examples" / "measured_chair.toml")]
-
-
-def _random_chairs(n: int, seed: int) -> list:
-    rng = np.random.default_rng(seed)
-    out: list = []
-    while len(out) < n:
-        c = _plausible(rng)
-        if c is not None:
-            out.append(c)
-    return out
-
-
 def _runs_of(fn, monkeypatch) -> tuple[int, object]:
     from stability.simulate import engine
 
@@ -151,6 +105,29 @@ def _runs_of(fn, monkeypatch) -> tuple[int, object]:
     out = fn()
     monkeypatch.setattr(engine, "_launch", inner)
     return n[0], out
+
+
+def test_inside_a_memo_the_results_are_the_same_and_fewer_runs_are_made(monkeypatch):
+    ej = preset("ej-premier")
+    t6 = ej.replace(trail=0.06, name="t6")
+    first, plain = _runs_of(lambda: _ci([ej, t6]), monkeypatch)
+    with memo.search_memo():
+        again, found = _runs_of(lambda: _ci([ej, t6]), monkeypatch)
+        assert found == plain and again == first
+        assert _runs_of(lambda: _ci([t6]), monkeypatch) == (0, plain[1:])      # nothing run again
+
+
+def _everything(a) -> tuple:
+    """The whole advice: decision, recommendations, blocked, every candidate and combination with its measures."""
+    d = advice_mapping(a)
+    return (decide(a).to_mapping(), d, [(c.label, c.bounded, c.gains, c.measures.to_mapping())
+                                       for c in a.candidates + a.combinations], a.intervals_computed)
+
+
+def _committed_chairs() -> list:
+    """The chairs of the committed reports (tests/test_committed_reports.py): three presets and the measured chair."""
+    return [preset("ej-premier"), preset("revised"), preset("ej-premier-front-caster"),
+            chair_io.load(ROOT / "docs" / "examples" / "measured_chair.toml")]
 
 
 _CHAIRS = _committed_chairs()
