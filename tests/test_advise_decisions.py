@@ -621,6 +621,8 @@ def test_the_advisors_records_are_frozen_and_their_defaults_empty():
         with pytest.raises(dc.FrozenInstanceError):
             setattr(obj, field, 1)
     a = Advice(None, (), 0.0, 0.0, "", None, (), (), (), (), (), "")
+    with pytest.raises(dc.FrozenInstanceError):
+        a.reason = "changed"
     assert (a.blocked, a.shimmy_hold, a.pairs_screened, a.pairs_measured, a.own_constraints, a.driver,
             a.intended_speed_m_s, a.intervals_computed) == ((), None, 0, 0, (), None, None, 0)
     assert isinstance(a.intervals_computed, int)
