@@ -43,7 +43,17 @@ def search_memo() -> Iterator[dict]:
 
 
 def memo_searches(fn: Callable[..., T]) -> Callable[..., T]:
-    """Decorator: ``fn`` runs inside :func:`search_memo` (its searches asked again are not run again)."""
+    """Decorator: ``fn`` runs inside :func:`search_memo` (its searches asked again are not run again).
+
+    Parameters
+    ----------
+    fn : callable
+
+    Returns
+    -------
+    callable
+        ``fn`` with the memo open around each call.
+    """
     @functools.wraps(fn)
     def wrapped(*args: Any, **kwargs: Any) -> T:
         with search_memo():
