@@ -595,3 +595,54 @@ def test_the_geometry_levers_are_the_steps_docs_advise_lists():
     # every lever of the advisor is a row of the table
     listed = {m for line in page.splitlines() for m in re.findall(r"^\| `([a-z0-9_]+)`", line)}
     assert set(LEVERS) <= listed
+
+
+# --- the advisor's constants, records and explanations, without simulation (mutation survivors of issue 35) ------
+
+def test_default_speeds_are_the_settings_range():
+    """0.5:1:0.25 of the settings table (start:stop:step, stop included), independently parsed."""
+    from stability.advise.advisor import DEFAULT_SPEEDS
+    from stability.settings import defaults as D
+
+    start, stop, step = (float(x) for x in D.ADVISE_SPEEDS.split(":"))
+    assert DEFAULT_SPEEDS == tuple(start + k * step for k in range(int(round((stop - start) / step)) + 1))
+    assert DEFAULT_SPEEDS == (0.5, 0.75, 1.0)
+
+
+def test_the_advisors_records_are_frozen_and_their_defaults_empty():
+    import dataclasses as dc
+
+    from stability.advise.advisor import Advice, Blocked, Candidate, Recommendation
+
+    keep = Candidate((), None, 0.0, {}, ())
+    assert keep.label == "no change" and keep.fields == {} and not keep.bounded
+    rec, blk = Recommendation(1, keep, (), ()), Blocked(keep, (), (), "")
+    for obj, field in ((keep, "gain"), (rec, "rank"), (blk, "allow")):
+        with pytest.raises(dc.FrozenInstanceError):
+            setattr(obj, field, 1)
+    a = Advice(None, (), 0.0, 0.0, "", None, (), (), (), (), (), "")
+    with pytest.raises(dc.FrozenInstanceError):
+        a.reason = "changed"
+    assert (a.blocked, a.shimmy_hold, a.pairs_screened, a.pairs_measured, a.own_constraints, a.driver,
+            a.intended_speed_m_s, a.intervals_computed) == ((), None, 0, 0, (), None, None, 0)
+    assert isinstance(a.intervals_computed, int)
+
+
+def test_a_chair_that_breaks_a_limit_nothing_fixes_cheaply_says_so():
+    """The keep-and-measure explanation: the cost limit in per cent (MAX_FIX_COST = 0.25: '25 %') and, with no
+    runner-up and nothing blocked, that no change meets every limit."""
+    from stability.advise.advisor import Candidate, Recommendation, _explain
+
+    keep = Candidate((), None, 0.0, {}, ())
+    notes = _explain([Recommendation(1, keep, (), ())], {"shimmy_margin_m"}, [], None)[0].notes
+    text = " ".join(notes)
+    assert "no change fixes it for less than 25 % of the robust measures; no change meets every limit." in text
+    assert "measure them first" in text
+
+
+def test_the_min_tip_source_names_the_chairs_own_angle():
+    from test_advise import _proxy
+
+    a = advise(chair_mod.preset("ej-premier"), nonlinear=_proxy, time_to_correct=False)
+    assert a.min_tip_source == "the chair's own smallest angle (no citable standard minimum found; docs/tipping.md)"
+    assert a.min_tip_deg == a.verdict.static_stability_deg.value

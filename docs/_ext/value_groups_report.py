@@ -100,3 +100,65 @@ def report_span() -> dict:
 
     return {"fc_hi": f"{_cg_ratio_span(_preset('ej-premier-front-caster'))[1]:.3f}",
             "default_hi": f"{CG_RATIO_SPAN[1]:.2f}"}
+
+
+@group("report_quick", "simulated runs counted at stability.simulate.engine._launch: "
+       "stability.report.brief.compute_brief(ej_premier), stability.advise.advise(ej_premier) (with its memo, "
+       "without it, prune=False), stability.report.compute.compute(ej_premier); CPU time (user + sys of the child) "
+       "of python -m stability.report --chair ej-premier [--quick] --no-progress -o FILE, once each, on the build "
+       "machine")
+def report_quick() -> dict:
+    """The quick report's work against the full report's, and their CPU time on the machine that built the page."""
+    import contextlib
+    import os
+    import resource
+    import subprocess
+    import sys
+    import tempfile
+
+    from value_groups import ROOT
+
+    from stability.advise import advise
+    from stability.report.brief import compute_brief
+    from stability.report.compute import compute
+    from stability.simulate import engine
+    from stability.study import memo
+
+    c = _preset("ej-premier")
+    n = [0]
+    inner = engine._launch
+
+    def counting(k, threads, n_runs, args):
+        n[0] += int(n_runs)
+        return inner(k, threads, n_runs, args)
+
+    def runs(fn) -> int:
+        start = n[0]
+        fn()
+        return n[0] - start
+
+    engine._launch = counting
+    orig = memo.search_memo
+    try:
+        out = {"runs_quick": runs(lambda: compute_brief(c, progress=False)),
+               "runs_advisor": runs(lambda: advise(c)),
+               "runs_every": runs(lambda: advise(c, prune=False)),
+               "runs_full": runs(lambda: compute(c, progress=False))}
+        memo.search_memo = contextlib.nullcontext            # type: ignore[assignment]
+        out["runs_no_memo"] = runs(lambda: advise(c))
+    finally:
+        memo.search_memo = orig
+        engine._launch = inner
+
+    def child_cpu(args: list[str]) -> float:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        subprocess.run([sys.executable, "-m", "stability.report", "--chair", "ej-premier", *args, "--no-progress",
+                        "-o", os.path.join(tmp, "r.pdf")], cwd=ROOT, check=True, capture_output=True,
+                       env={**os.environ, "PYTHONPATH": str(ROOT)})
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        quick, full = child_cpu(["--quick"]), child_cpu([])
+    return {**{k: f"{v:,}" for k, v in out.items()}, "quick_cpu_s": sig(quick, 2), "full_cpu_s": sig(full, 2),
+            "ratio": fixed(quick / full, 2)}

@@ -198,3 +198,173 @@ def single_run_python() -> dict:
         out[f"{label}_python_ms"] = sig(max(med["simulate"] - med["kernel"], 0.0) * 1e3, 2)
         out[f"{label}_kernel_ms"] = sig(med["kernel"] * 1e3, 2)
     return out
+
+
+def _test_module(name: str):
+    """A module of ``tests/`` (its cases and helpers are the inputs of a check this page quotes), imported by path
+    with ``tests/`` on the path for its helpers (``numerics``)."""
+    import importlib.util
+    import sys
+
+    from value_groups import ROOT
+
+    if str(ROOT / "tests") not in sys.path:
+        sys.path.insert(0, str(ROOT / "tests"))
+    spec = importlib.util.spec_from_file_location(f"_docs_{name}", ROOT / "tests" / f"{name}.py")
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+#: docs/simulator.md's lanemath check: random inputs per range, below this size of angle "small" (rad), the seed
+LANEMATH_N, LANEMATH_SMALL_RAD, LANEMATH_SEED = 400_000, 100.0, 7
+#: CPython's ``r**2`` against ``r*r``: inputs drawn uniformly from +-POW_SPAN, POW_N of them, seed 0
+POW_N, POW_SPAN = 200_000, 10.0
+
+
+@group("simulator_lanemath", "stability.simulate.lanemath.sin_cos / atan2_pos (numba loops as "
+       "tests/test_lanemath.py) against numpy on 400,000 uniform random inputs per range (seeds 7 and 11); "
+       "CPython x**2 against x*x on 200,000 uniform inputs in +-10")
+def simulator_lanemath() -> dict:
+    """Largest observed ulp differences of the lanes kernel's polynomials from numpy (glibc), and how often
+    CPython's ``x**2`` differs from ``x*x``."""
+    import math
+    import random
+
+    import numpy as np
+
+    from stability.simulate import lanemath as lm
+
+    t = _test_module("test_lanemath")
+    worst_small = worst_all = 0.0
+    for span in (math.pi, 4 * math.pi, 1e3, lm.REDUCTION_LIMIT):
+        x = np.random.default_rng(LANEMATH_SEED).uniform(-span, span, LANEMATH_N)
+        s, c = t._sin_cos(x)
+        for got, ref in ((s, np.sin(x)), (c, np.cos(x))):
+            u = t._ulps(got, ref)
+            worst_all = max(worst_all, float(u.max()))
+            small = np.abs(x) < LANEMATH_SMALL_RAD
+            worst_small = max(worst_small, float(u[small].max(initial=0.0)))
+    worst_atan = 0.0
+    rng = np.random.default_rng(11)
+    for scale in (1e-6, 1e-2, 1.0, 1e2):
+        y = rng.standard_normal(LANEMATH_N) * scale * np.exp(rng.uniform(-14, 14, LANEMATH_N))
+        x = np.abs(rng.standard_normal(LANEMATH_N)) * scale * np.exp(rng.uniform(-14, 14, LANEMATH_N))
+        worst_atan = max(worst_atan, float(t._ulps(t._atan2(y, x), np.arctan2(y, x)).max()))
+    r = random.Random(0)
+    xs = [r.uniform(-POW_SPAN, POW_SPAN) for _ in range(POW_N)]
+    differ = sum(1 for v in xs if v ** 2 != v * v) / POW_N
+    return {"ulp_small": f"{math.ceil(worst_small - 1e-9):d}", "ulp_all": f"{math.ceil(worst_all - 1e-9):d}",
+            "ulp_atan": f"{math.ceil(worst_atan - 1e-9):d}", "small_rad": f"{LANEMATH_SMALL_RAD:g}",
+            "n": f"{LANEMATH_N:,}", "pow_pct": sig(100 * differ, 1)}
+
+
+@group("simulator_lanes_bound", "tests/test_lanes_kernel.py's 8 cases over 3 s, lanes against scalar "
+       "(simulate_batch under engine.use_kernel), largest |difference| / bound over the recorded quantities; "
+       "the E&J Premier on a 4 deg cross slope, 1 N s push at 0.75 m/s, 0.1 s")
+def simulator_lanes_bound() -> dict:
+    """The largest observed fraction of the rounding bound per case (the range over the cases) and on a slope."""
+    import dataclasses
+
+    import numpy as np
+
+    from stability.settings.run import RunSpec
+    from stability.simulate import engine
+
+    t = _test_module("test_lanes_kernel")
+
+    def worst(chair, speed, run) -> float:
+        with engine.use_kernel("lanes"):
+            lanes, scalar = t._both(chair, speed, run)
+        n, out = len(lanes.t), 0.0
+        for name in t.FIELDS:
+            a, b = np.asarray(getattr(lanes, name), float), np.asarray(getattr(scalar, name), float)
+            if a.ndim == 1:
+                a, b = a[:, None], b[:, None]
+            for j in range(a.shape[1]):
+                out = max(out, float(np.nanmax(np.abs(a[:, j] - b[:, j]))) / t._bound(n, b[:, j]))
+        return out
+
+    fr = [worst(c, u, dataclasses.replace(run, horizon=min(run.horizon, 3.0))) for c, u, run in t.CASES.values()]
+    slope = worst(t.EJ, 0.75, RunSpec(horizon=0.1, cross_slope_deg=4.0, push_force=10.0, push_duration=0.1))
+    return {"cases": f"{len(fr)}", "most": f"1/{sig(1 / max(fr), 2)}", "least": f"1/{sig(1 / min(fr), 2)}",
+            "slope": sig(slope, 2)}
+
+
+def _kinetic_impulse(chair, speed: float, dt: float | None):
+    from stability.settings.run import RunSpec
+    from stability.study import critical_impulses
+
+    run = RunSpec(scheme="adaptive") if dt is None else RunSpec(dt=dt, friction_law="kinetic")
+    return critical_impulses(chair, [speed], run)[0]
+
+
+@group("simulator_kinetic", "stability.linear.eigenvalues_vs_speed (largest |lambda| x 1 ms); "
+       "stability.study.critical_impulses with RunSpec(dt=DT, friction_law='kinetic') and RunSpec(scheme='adaptive')")
+def simulator_kinetic() -> dict:
+    """Program WCHAIR's kinetic law against the step: |lambda| dt of the fastest mode, the E&J Premier's error at
+    1.0 m/s, the thesis's cases' spread, power-fwd at 1.5 m/s at four steps."""
+    import numpy as np
+    from value_groups_pages import _preset
+
+    from stability.linear import eigenvalues_vs_speed
+    from stability.settings.run import RunSpec
+    from stability.study import equal_instability_speeds
+
+    ej, pf, rv = _preset("ej-premier"), _preset("power-fwd"), _preset("revised")
+
+    def lam_dt(chair, speed):
+        return float(np.abs(eigenvalues_vs_speed(chair, [speed], track=False)).max()) * 1e-3
+
+    steps = (1e-3, 5e-4, 2.5e-4)
+    ej1 = {dt: _kinetic_impulse(ej, 1.0, dt).impulse_Ns for dt in (1e-3, None)}
+    ej075 = [_kinetic_impulse(ej, 0.75, dt).impulse_Ns for dt in steps]
+    rv_eis = [equal_instability_speeds([rv], RunSpec(dt=dt, friction_law="kinetic", model="thesis"),
+                                       progress=False)[0].speed for dt in steps]
+    spread = max(max(v) / min(v) - 1.0 for v in (ej075, rv_eis))
+    pf15 = {}
+    for dt in (1e-3, 5e-4, 2.5e-4, 1.25e-4):
+        r = _kinetic_impulse(pf, 1.5, dt)
+        pf15[dt] = f"below {r.bound_Ns:.0e}" if r.status == "below" else f"{r.impulse_Ns:.2g}"
+    return {"pf_lam_dt": fixed(lam_dt(pf, 1.5), 2), "ej_lam_dt": fixed(lam_dt(ej, 1.0), 2),
+            "ej_1_off_pct": f"{100 * abs(ej1[1e-3] / ej1[None] - 1):.0f}", "thesis_spread_pct": sig(100 * spread, 1),
+            "ej_075": sig(ej075[0], 3), "pf_1": pf15[1e-3], "pf_05": pf15[5e-4], "pf_025": pf15[2.5e-4],
+            "pf_0125": pf15[1.25e-4]}
+
+
+@group("simulator_stick_slip", "tests/test_stick_slip.py's convergence case: simulate(ej-premier, 0.75, "
+       "RunSpec(push_force=20, push_duration=0.1, horizon=3, sample=0.01, dt=DT, friction_law=LAW)) against "
+       "RunSpec(scheme='adaptive'); CPU time of simulate(ej-premier, 0.75, RunSpec(stop_on_warnings=False)) with "
+       "each law (best of 10, time.process_time), measured on the build machine")
+def simulator_stick_slip() -> dict:
+    """The stick-slip law's distance from the event-located solution at three steps, the kinetic law's at 1 ms,
+    and the CPU time of a 10 s run with each law."""
+    import time
+
+    import numpy as np
+
+    from stability.settings.run import RunSpec
+    from stability.simulate import simulate
+
+    t = _test_module("test_stick_slip")
+    chair = t.preset("ej-premier")
+    ref = np.asarray(simulate(chair, 0.75, RunSpec(scheme="adaptive", **t.PUSH, horizon=3.0, sample=0.01)).yaw_rate)
+    err = [float(np.abs(t._yaw(chair, 0.75, dt=dt, friction_law="stick-slip") - ref).max())
+           for dt in (1e-3, 5e-4, 2.5e-4)]
+    kinetic = float(np.abs(t._yaw(chair, 0.75) - ref).max())
+    peak = float(np.abs(ref).max())
+
+    def cpu(law: str) -> float:
+        run = RunSpec(stop_on_warnings=False, friction_law=law)
+        simulate(chair, 0.75, run=run)
+        best = float("inf")
+        for _ in range(10):
+            c0 = time.process_time()
+            simulate(chair, 0.75, run=run)
+            best = min(best, time.process_time() - c0)
+        return best
+
+    return {"err_1": f"{err[0]:.1e}", "err_05": f"{err[1]:.1e}", "err_025": f"{err[2]:.1e}",
+            "kinetic": f"{kinetic:.1e}", "kinetic_pct": f"{100 * kinetic / peak:.0f}",
+            "time_ratio": fixed(cpu("stick-slip") / cpu("kinetic"), 1)}

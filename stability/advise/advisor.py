@@ -54,6 +54,7 @@ from stability.driver.model import Driver
 from stability.layout.model import Layout
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
+from stability.study.memo import memo_searches
 from stability.tires import summarised_warnings
 
 __all__ = ["Constraint", "Candidate", "Recommendation", "Blocked", "ShimmyHold", "Advice", "advise",
@@ -304,6 +305,7 @@ def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Bloc
 
 
 @summarised_warnings
+@memo_searches
 def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
            cross_slope_deg: float = DEFAULT_CROSS_SLOPE_DEG, progress: bool = False,
            nonlinear: Callable | None = None, time_to_correct: bool = True, driver: Driver | None = None,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -16,6 +17,7 @@ from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
+from stability.study.memo import memoised
 from stability.study.summaries import Summaries, run_summaries
 
 __all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds", "bisect_speeds",
@@ -293,6 +295,26 @@ def bisect_speeds(chairs: Sequence[Chair | Layout], targets: Sequence[float], fo
     -------
     list of EqualInstability
     """
+    def batch(idx: list[int]) -> list[EqualInstability]:
+        return _bisect([chairs[i] for i in idx], [targets[i] for i in idx], [forces[i] for i in idx], run,
+                       criterion=criterion, bracket=bracket, tol=tol, candidates=candidates, max_rounds=max_rounds,
+                       progress=progress, reference_text=reference_text, summarise=summarise)
+
+    # a chair's bisection does not depend on its batch (each run counts only up to its own horizon) nor on the
+    # reference case's name (only its time): inside an open memo (the advisor's) a job asked again takes the result
+    # already found (stability.study.memo), with this call's words for the reference
+    keys = [None if summarise is not None else
+            (c, float(t), float(f), run, criterion, tuple(bracket), float(tol), int(candidates), int(max_rounds))
+            for c, t, f in zip(chairs, targets, forces, strict=True)]
+    return [r if r.reference == reference_text else dataclasses.replace(r, reference=reference_text)
+            for r in memoised("equal_instability", keys, batch)]
+
+
+def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: Sequence[float], run: RunSpec, *,
+            criterion: Criterion, bracket: tuple[float, float], tol: float, candidates: int, max_rounds: int,
+            progress: bool, reference_text: str,
+            summarise: Callable[..., Summaries] | None = None) -> list[EqualInstability]:
+    """:func:`bisect_speeds` for one batch (every job computed)."""
     summ_fn: Callable[..., Summaries] = run_summaries if summarise is None else summarise
     lo0, hi0 = bracket
     n = len(chairs)

@@ -20,6 +20,7 @@ from stability.runtime.checks import check_positive, check_speeds
 from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
 from stability.settings.run import RunSpec
 from stability.simulate.stepcheck import step_limits_and_growth
+from stability.study.memo import memoised
 from stability.study.runs import study_run
 from stability.study.search import bracket_search
 from stability.study.summaries import SummaryRunner, run_steps
@@ -353,13 +354,26 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec
                                                                                                               dtype=object)
     chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
+
+    def batch(idx: list[int]) -> list[CriticalImpulse]:
+        return _searches([run_list[i] for i in idx], run, level, max_impulse, min_impulse, rel_tol, max_rounds)
+
+    # a job asked again inside an open memo (the advisor's) takes the result already found (stability.study.memo)
+    return memoised("critical_impulse", [(c, s, run, level, max_impulse, min_impulse, rel_tol, max_rounds)
+                                         for c, s in run_list], batch)
+
+
+def _searches(run_list: list[tuple[Chair, float]], run: RunSpec, level: float, max_impulse: float,
+              min_impulse: float, rel_tol: float, max_rounds: int) -> list[CriticalImpulse]:
+    """The searches of :func:`critical_impulses` for ``(chair, speed)`` pairs, one batch."""
     model, scheme, duration, horizon = run.model, run.scheme, run.push_duration, run.horizon
     dt = 0.001 if run.dt == "auto" else float(run.dt)
     pair_steps = None
-    limits, rates = step_limits_and_growth(list(chair_b.ravel()), speed_b.ravel(), model, run.casters)
+    chairs_l, speeds_a = [c for c, _ in run_list], np.array([s for _, s in run_list], dtype=float)
+    limits, rates = step_limits_and_growth(chairs_l, speeds_a, model, run.casters)
     if scheme == "wchair":
         free = limits if run.casters == "free" else None       # the work check is stated for free casters
-        check_study_work(list(chair_b.ravel()), speed_b.ravel(), model, horizon, dt,
+        check_study_work(chairs_l, speeds_a, model, horizon, dt,
                          runs_per_speed(min_impulse, max_impulse, max_rounds), limits=free)
         pair_steps = run_steps([c for c, _ in run_list], [s for _, s in run_list], dt, model, run.casters,
                                limits=limits)

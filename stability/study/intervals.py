@@ -16,6 +16,7 @@ from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion
 from stability.study.equal_instability import EqualInstability, bisect_speeds
+from stability.study.memo import memoised
 
 __all__ = ["Variant", "FactorRange", "EqualInstabilityInterval", "scale_friction", "reference_times",
            "equal_instability_interval", "equal_instability_intervals", "PUSH_FACTORS", "FRICTION_FACTORS",
@@ -217,8 +218,15 @@ def reference_times(reference: Chair | Sequence[Chair], speed: float, forces: Se
     forces = [float(f) for f in forces]
     chairs = [reference] * len(forces) if isinstance(reference, Chair) else list(reference)
     spec = runs.study_run(run).replace(horizon=criterion.duration)
-    res = runs.simulate_runs(chairs, [speed] * len(forces), spec, push_forces=forces)
-    return np.array([criterion.time(r) for r in res])
+
+    def batch(idx: list[int]) -> list[float]:
+        res = runs.simulate_runs([chairs[i] for i in idx], [speed] * len(idx), spec,
+                                 push_forces=[forces[i] for i in idx])
+        return [criterion.time(r) for r in res]
+
+    # each run is its own: inside an open memo (the advisor's) a reference case asked again is not run again
+    return np.array(memoised("reference_time", [(c, float(speed), f, spec, criterion)
+                                                for c, f in zip(chairs, forces, strict=True)], batch), dtype=float)
 
 
 def _variants(model: str, force: float, force_factors: Sequence[float], friction_factors: Sequence[float],

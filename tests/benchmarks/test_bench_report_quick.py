@@ -11,12 +11,15 @@ the compiled kernel, counted in-process at :func:`stability.simulate.engine._lau
 advisor's runs (the same in both reports: the decision on page 1 is computed once, the same way), the
 reference chair's measures and the clinician sheet's runs, and nothing else; the page-1 decision paragraphs of the
 two reports are identical.  The advisor's screening (:mod:`stability.advise.pruning`) launches fewer runs than the
-advisor that computes every interval (``prune=False``), with the same decision.  Skipped unless
-``--benchmark-enable``.
+advisor that computes every interval (``prune=False``), with the same decision; and the advisor's memo
+(:mod:`stability.study.memo`: a search asked again inside one ``advise``, the x0.5 screening variant or the reference
+chair's times, is not run again) launches fewer runs than the same advisor without it, with the same advice.
+Skipped unless ``--benchmark-enable``.
 """
 
 from __future__ import annotations
 
+import contextlib
 import resource
 import subprocess
 import sys
@@ -77,15 +80,23 @@ class _Runs:
 def test_bench_quick_report(bench, monkeypatch, tmp_path):
     from stability.advise import advise
     from stability.advise.measures import measure_chairs
+    from stability.advise.text import advice_mapping
     from stability.report.brief import compute_brief
     from stability.report.clinician_sheet import clinician_sheet
     from stability.report.compute import compute
     from stability.report.decision import decision_paragraphs
+    from stability.study import memo
 
     c, ref = preset(CHAIR), preset("ej-premier")
     runs = _Runs(monkeypatch)
     n_advice, advice = runs.during(lambda: advise(c))
     n_every, every = runs.during(lambda: advise(c, prune=False))
+    with monkeypatch.context() as m:
+        m.setattr(memo, "search_memo", contextlib.nullcontext)      # the advisor without its memo
+        n_no_memo, no_memo = runs.during(lambda: advise(c))
+    # the memo: fewer runs, the same advice
+    assert n_advice < n_no_memo
+    assert advice_mapping(advice) == advice_mapping(no_memo)
     # the screening: fewer runs, the same decision
     assert n_advice < n_every
     assert [r.to_mapping() for r in advice.recommendations] == [r.to_mapping() for r in every.recommendations]
@@ -106,9 +117,9 @@ def test_bench_quick_report(bench, monkeypatch, tmp_path):
     bench.pedantic(lambda: None, rounds=1, iterations=1)
     bench.extra_info.update({"quick_cpu_s": quick_cpu, "full_cpu_s": full_cpu, "cpu_ratio": quick_cpu / full_cpu,
                              "runs_quick": n_quick, "runs_full": n_full, "runs_advisor": n_advice,
-                             "runs_advisor_every_interval": n_every,
+                             "runs_advisor_every_interval": n_every, "runs_advisor_without_memo": n_no_memo,
                              "runs_ratio": n_quick / n_full})
     print(f"\nreport --quick: {quick_cpu:.2f} s CPU, full report {full_cpu:.2f} s CPU, ratio {quick_cpu / full_cpu:.2f} "
-          f"(target <= 0.25); simulated runs {n_quick} vs {n_full} (advisor {n_advice}, {n_every} with every "
-          f"interval), ratio "
+          f"(target <= 0.25); simulated runs {n_quick} vs {n_full} (advisor {n_advice}, {n_no_memo} without its memo, "
+          f"{n_every} with every interval), ratio "
           f"{n_quick / n_full:.2f}")
