@@ -7,6 +7,7 @@ import math
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,7 +28,7 @@ from stability.assist.driving import (
 from stability.assist.export_run import check_export, run_export
 from stability.assist.faults import FaultRow, fault_runs, format_faults
 from stability.assist.firmware import Q_FORMATS
-from stability.assist.recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
+from stability.assist.recovery import STRONG_FORCE, decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from stability.assist.robustness import Robustness, robustness
 from stability.assist.schedule import Schedule, schedule
 from stability.assist.tables import (
@@ -62,6 +63,10 @@ from stability.cli import (
 from stability.runtime.files import write_pdf
 from stability.settings import defaults as D
 from stability.settings.reference import THESIS_PUSH
+
+if TYPE_CHECKING:
+    from stability.assist.layout import LayoutAssist
+    from stability.layout.model import Layout
 
 __all__ = ["build_parser", "main"]
 
@@ -197,11 +202,15 @@ def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, 
     from stability import __version__
     from stability.assist.layout import format_layout_assist, layout_assist
 
-    for flag, given in (("-o", args.output), ("--export-c", args.export_c), ("--faults", args.faults),
-                        ("--min-torque", args.min_torque), ("--model thesis", args.model == "thesis")):
+    if args.model == "thesis":
+        raise ValueError("--model thesis is invalid for a layout or reverse speeds: it is program WCHAIR's printed "
+                         "equations of the thesis's two-caster chair driven forwards (caster slip from the relative "
+                         "swivel rate alone, I_zp eta_ddot), while a layout's, and any chair's in reverse, are derived "
+                         "from first principles only; valid: --model exact")
+    for flag, given in (("-o", args.output), ("--export-c", args.export_c), ("--faults", args.faults)):
         if given:
             raise ValueError(f"{flag} is not available for a layout or reverse speeds yet; valid: the design, weight, "
-                             "drive and gyro options, --reverse, --no-check, --json, --json-file")
+                             "drive and gyro options, --reverse, --no-check, --min-torque, --json, --json-file")
     if np.any(np.abs(speeds) > 20.0):
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
                          "0.01 <= |U| <= 20 m/s (negative: reverse)")
@@ -210,20 +219,45 @@ def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, 
     simulable = args.design == "gyro" or drive.motor_time_constant == 0
     res = layout_assist(layout, [float(u) for u in speeds], args.design, reverse=args.reverse, weights=weights,
                         drive=drive, gyro=gyro, check=not args.no_check and simulable)
+    least = _layout_min_torque(layout, res, weights, drive, gyro) if args.min_torque else None
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(u) for u in speeds], "design": args.design, "reverse": args.reverse,
                    "wheel_radius_m": drive.wheel_radius, "torque_limit_N_m": drive.torque_limit,
                    "motor_lag_s": drive.motor_time_constant, "sample_rate_hz": gyro.sample_rate_hz,
-                   "no_check": args.no_check}
+                   "no_check": args.no_check, "min_torque": args.min_torque}
+        extra = {} if least is None else {"minimum_torque_limits": [
+            {"speed_m_s": u, "push_N": STRONG_FORCE, "minimum_torque_limit_N_m": t} for u, t in least]}
         emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
-                   **res.to_mapping()}, args)
+                   **res.to_mapping(), **extra}, args)
     if not args.json:
         print(format_layout_assist(res))
+        for u, t in least or []:
+            least_words = (f"{t:.1f} N m per wheel" if math.isfinite(t) else
+                           f"none up to the drive's {drive.torque_limit:g} N m per wheel (the heading does not settle "
+                           "within 10 deg)")
+            print(f"smallest torque limit that recovers from {STRONG_FORCE:g} N x {THESIS_PUSH.duration:g} s at "
+                  f"{abs(u):g} m/s {'backwards' if u < 0 else 'forwards'}: {least_words} (layout simulator, "
+                  "noise-free, same gains)")
         if not args.no_check and not simulable:
             print(f"nonlinear checks: not run for --design full-state with a motor lag ({drive.motor_time_constant:g} "
                   "s; the controller would measure the motor's applied moment, which the layout simulator does not "
                   "give it): --design gyro or --motor-lag 0 runs them")
     return 0
+
+
+def _layout_min_torque(layout: Layout, res: LayoutAssist, weights: Weights, drive: DriveTrain,
+                       gyro: GyroSensor) -> list[tuple[float, float]]:
+    """``--min-torque`` on a layout: :func:`~stability.assist.layout_checks.layout_minimum_torque_limit` at each
+    direction's check speeds (:func:`~stability.assist.layout_checks.check_speeds`), signed m/s and N m per wheel."""
+    from stability.assist.layout import layout_design
+    from stability.assist.layout_checks import check_speeds, layout_minimum_torque_limit
+
+    out = []
+    for rows in (res.forward, res.reverse):
+        for u in check_speeds([r.speed_m_s for r in rows]):
+            d = layout_design(layout, u, res.kind, weights=weights, drive=drive, gyro=gyro)
+            out.append((u, layout_minimum_torque_limit(layout, d, drive)))
+    return out
 
 
 def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weights, drive: DriveTrain, gyro: GyroSensor,

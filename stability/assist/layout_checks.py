@@ -44,7 +44,8 @@ from stability.simulate.signals import time_to_level
 from stability.study.layout_impulse import trailing_angles
 
 __all__ = ["layout_controller", "LayoutRecovery", "layout_recovery", "layout_decay_agreement", "TORQUE_WINDOW_S",
-           "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks"]
+           "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks",
+           "layout_minimum_torque_limit"]
 
 #: The window of the peak and RMS torque after the push, s (the short form's push recovery window).
 TORQUE_WINDOW_S = 2.0
@@ -346,3 +347,44 @@ def layout_checks(layout: Layout, designs: Sequence[Design], drive: DriveTrain) 
     dec = tuple(layout_decay_agreement(layout, d, drive) for d in designs)
     reverse = bool(designs) and designs[0].speed < 0
     return LayoutChecks(rec, dec, layout_traction_limit(layout, drive, reverse), float(drive.torque_limit))
+
+
+def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *, impulse_force: float | None = None,
+                                max_heading_deg: float = 10.0, tol: float = 0.25,
+                                duration: float = HORIZON) -> float:
+    """Smallest per-wheel torque limit with which the design still recovers on the layout simulator (N m).
+
+    The short form's :func:`stability.assist.recovery.minimum_torque_limit` for a layout: the design's gains are
+    kept, only the controller's saturation changes; "recovers": the heading after the push settles
+    (:func:`stability.assist.recovery.settle_time`) and stays within ``max_heading_deg``; noise-free; bisection
+    (:func:`stability.assist.recovery.bisect_limit`) to ``tol`` between 0 and ``drive.torque_limit``.
+
+    Parameters
+    ----------
+    layout : Layout
+    d : Design
+        At the run's signed speed (negative: reverse).
+    drive : DriveTrain
+    impulse_force : float, optional
+        N for :data:`~stability.settings.reference.THESIS_PUSH`'s duration (default the strong push,
+        :data:`stability.assist.recovery.STRONG_FORCE`).
+    max_heading_deg, tol, duration : float
+        deg, N m, s.
+
+    Returns
+    -------
+    float
+        N m per wheel; ``inf`` if even the full limit does not recover.
+    """
+    from stability.assist.recovery import STRONG_FORCE, bisect_limit, settle_time
+
+    push = STRONG_FORCE if impulse_force is None else float(impulse_force)
+
+    def ok(limit: float) -> bool:
+        lim = dataclasses.replace(drive, torque_limit=limit)
+        run = _run(layout, float(d.speed), push, duration, layout_controller(d, layout, lim),
+                   drive.motor_time_constant)
+        head = np.degrees(np.asarray(run.heading_rad))
+        return settle_time(np.asarray(run.t_s), head) is not None and float(np.max(np.abs(head))) <= max_heading_deg
+
+    return bisect_limit(ok, float(drive.torque_limit), tol)
