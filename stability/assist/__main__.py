@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from stability.assist._format import fmt
+from stability.assist._format import fmt, json_float
 from stability.assist.destabilising import destabilising_moment, destabilising_summary, valid_until
 from stability.assist.digital import margin_curves
 from stability.assist.driving import (
@@ -226,7 +226,7 @@ def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, 
                    "motor_lag_s": drive.motor_time_constant, "sample_rate_hz": gyro.sample_rate_hz,
                    "no_check": args.no_check, "min_torque": args.min_torque}
         extra = {} if least is None else {"minimum_torque_limits": [
-            {"speed_m_s": u, "push_N": STRONG_FORCE, "minimum_torque_limit_N_m": t} for u, t in least]}
+            {"speed_m_s": u, "push_N": STRONG_FORCE, "minimum_torque_limit_N_m": json_float(t)} for u, t in least]}
         emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
                    **res.to_mapping(), **extra}, args)
     if not args.json:
