@@ -45,7 +45,7 @@ from stability.study.layout_impulse import trailing_angles
 
 __all__ = ["layout_controller", "LayoutRecovery", "layout_recovery", "layout_decay_agreement", "TORQUE_WINDOW_S",
            "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks",
-           "layout_minimum_torque_limit"]
+           "layout_minimum_torque_limit", "layout_vector_loop"]
 
 #: The window of the peak and RMS torque after the push, s (the short form's push recovery window).
 TORQUE_WINDOW_S = 2.0
@@ -388,3 +388,43 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
         return settle_time(np.asarray(run.t_s), head) is not None and float(np.max(np.abs(head))) <= max_heading_deg
 
     return bisect_limit(ok, float(drive.torque_limit), tol)
+
+
+@dataclass(frozen=True)
+class _YawRate:
+    """What the gyro design's sampled controller reads of the chair: its yaw rate, rad/s."""
+
+    yaw_rate: float
+
+
+def layout_vector_loop(layout: Layout, sched: Any) -> Any:
+    """The closed loop the firmware's test vectors are recorded in, for a layout
+    (:data:`stability.assist.export_c.ClosedLoop`).
+
+    The layout simulator runs the design's sampled controller compiled (:func:`layout_controller`: no yaw-rate
+    command path, no gyro bias or noise), so each case is the layout's closed loop after its push at the grid
+    speed, and the Python controller (:class:`~stability.assist.controller.DigitalController`, with the case's
+    command, the gyro's bias and seeded noise) reads that run's yaw rate at its samples: an open-loop replay, in
+    which the command cases' turns are not followed (the controller's integrator winds up against a chair that
+    goes straight, which exercises the saturation and the anti-windup).
+
+    Parameters
+    ----------
+    layout : Layout
+    sched : stability.assist.layout.LayoutSchedule
+        A gyro schedule of the layout.
+
+    Returns
+    -------
+    callable
+        ``loop(speed, push_force, duration, controller)``.
+    """
+    def loop(speed: float, force: float, duration: float, ctl: Any) -> None:
+        d = sched.at(speed)
+        run = _run(layout, float(speed), force, duration, layout_controller(d, layout, sched.drive),
+                   sched.drive.motor_time_constant)
+        t, r = np.asarray(run.t_s), np.asarray(run.yaw_rate_rad_s)
+        for k in range(int(math.floor(duration / ctl.Ts + 1e-9)) + 1):
+            ctl(k * ctl.Ts, _YawRate(float(np.interp(k * ctl.Ts, t, r))))
+
+    return loop
