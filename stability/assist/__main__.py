@@ -205,11 +205,11 @@ def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, 
                          "equations of the thesis's two-caster chair driven forwards (caster slip from the relative "
                          "swivel rate alone, I_zp eta_ddot), while a layout's, and any chair's in reverse, are derived "
                          "from first principles only; valid: --model exact")
-    for flag, given in (("-o", args.output), ("--faults", args.faults)):
-        if given:
-            raise ValueError(f"{flag} is not available for a layout or reverse speeds yet; valid: the design, weight, "
-                             "drive and gyro options, --reverse, --no-check, --min-torque, --export-c, --json, "
-                             "--json-file")
+    if args.faults:
+        raise ValueError("--faults is not available for a layout or reverse speeds yet (the fault runs step the "
+                         "firmware with its sensor monitor at every sample, which the layout simulator's compiled "
+                         "controller does not carry); valid: the design, weight, drive and gyro options, --reverse, "
+                         "--no-check, --min-torque, --export-c, -o, --json, --json-file")
     if np.any(np.abs(speeds) > 20.0):
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
                          "0.01 <= |U| <= 20 m/s (negative: reverse)")
@@ -261,10 +261,37 @@ def _layout_work(args: argparse.Namespace, layout: Layout, speeds: np.ndarray, w
             print(f"nonlinear checks: not run for --design full-state with a motor lag ({drive.motor_time_constant:g} "
                   "s; the controller would measure the motor's applied moment, which the layout simulator does not "
                   "give it): --design gyro or --motor-lag 0 runs them")
+    if args.output:
+        _write_layout_pdf(layout, res, weights, drive, gyro, tmp["-o"])
     for option, path in (("--json-file", args.json_file), ("-o", args.output)):
         if option in tmp:
             print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
     return 0
+
+
+def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
+                      path: str) -> None:
+    """``-o`` on a layout: the gains and growth rates of both directions, then per direction the short form's
+    continuous-vs-sampled margins and safe-top-speed pages on the direction's schedule, then the recoveries."""
+    from stability.assist import figures
+    from stability.assist.figures_layout import figure_layout_gains, figure_layout_recovery
+    from stability.assist.figures_safety import figure_top_speed
+    from stability.assist.layout import layout_schedule
+
+    figs = [figure_layout_gains(res)]
+    for rows, top in ((res.forward, res.forward_top), (res.reverse, res.reverse_top)):
+        if not rows:
+            continue
+        sched = layout_schedule(layout, [r.speed_m_s for r in rows], res.kind, weights=weights, drive=drive,
+                                gyro=gyro)
+        figs.append(figures.figure_margin_pair(sched, margin_curves([r.speed_m_s for r in rows],
+                                                                    [r.margin_pair for r in rows])))
+        if top is not None:
+            figs.append(figure_top_speed(sched, top))
+    rec = figure_layout_recovery(res)
+    if rec is not None:
+        figs.append(rec)
+    write_pdf(figs, path, title=f"stability.assist: {res.kind} LQR for {layout.name}")
 
 
 def _layout_firmware(args: argparse.Namespace, layout: Layout, res: LayoutAssist, weights: Weights,

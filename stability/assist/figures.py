@@ -27,12 +27,26 @@ from stability.settings.reference import THESIS_PUSH
 
 __all__ = ["figure_gains", "figure_poles", "figure_margins", "figure_robustness", "figure_destabilising",
            "figure_recovery", "figure_recovery_table", "figure_tracking", "figure_drift", "figure_margin_pair",
-           "figure_torque"]
+           "figure_torque", "flat_axis"]
 
 
 def _finish(fig: Figure) -> Figure:
     fig.tight_layout(rect=(0.0, 0.0, 1.0, 0.93))
     return fig
+
+
+def flat_axis(a: Any, values: Any) -> None:
+    """No offset on the y axis, and +/-10 % around values that are constant to 1e-3 (not round-off magnified).
+
+    Parameters
+    ----------
+    a : matplotlib.axes.Axes
+    values : array_like
+    """
+    a.ticklabel_format(axis="y", useOffset=False)
+    lo, hi = float(np.min(values)), float(np.max(values))
+    if hi - lo < 1e-3 * max(abs(lo), abs(hi), 1e-12):
+        a.set_ylim(min(0.9 * lo, 1.1 * lo), max(0.9 * hi, 1.1 * hi))
 
 
 def figure_gains(sched: Schedule, rows: Sequence[GainRow]) -> Figure:
@@ -55,10 +69,7 @@ def figure_gains(sched: Schedule, rows: Sequence[GainRow]) -> Figure:
     for j, (s, u) in enumerate(zip(STATES, units, strict=True)):
         a = ax.flat[j]
         a.plot(U, K[:, j], "o-", ms=3)
-        a.ticklabel_format(axis="y", useOffset=False)
-        lo, hi = float(K[:, j].min()), float(K[:, j].max())
-        if hi - lo < 1e-3 * max(abs(lo), abs(hi), 1e-12):
-            a.set_ylim(min(0.9 * lo, 1.1 * lo), max(0.9 * hi, 1.1 * hi))
+        flat_axis(a, K[:, j])
         a.set_title(f"k_{s}")
         a.set_xlabel("speed (m/s)")
         a.set_ylabel(u)

@@ -209,8 +209,12 @@ def layout_schedule(layout: Layout, speeds: Sequence[float], kind: str = "gyro",
     drive = drive or DriveTrain()
     ds = tuple(layout_design(layout, float(u), kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
                for u in U)
-    # the drive axle stands in for the short form's chair: the name and the lever d1 + d2 the drive train reads
-    return LayoutSchedule(drive_axle(layout), kind, U, ds, drive, weights, gyro, estimator,  # type: ignore[arg-type]
+    # the drive axle stands in for the short form's chair: the name (the titles': "... in reverse" for a reverse
+    # grid) and the lever d1 + d2 the drive train reads
+    axle = drive_axle(layout)
+    if U[0] < 0:
+        axle = replace(axle, name=f"{layout.name} in reverse")
+    return LayoutSchedule(axle, kind, U, ds, drive, weights, gyro, estimator,  # type: ignore[arg-type]
                           "exact", None, layout)
 
 
