@@ -42,7 +42,8 @@ from stability.settings.reference import THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.simulate import simulate
 
-__all__ = ["VectorCase", "ClosedLoop", "short_form_loop", "vector_speeds", "vector_cases", "c_sources", "readme", "export_c", "VECTOR_DURATION"]
+__all__ = ["VectorCase", "ClosedLoop", "short_form_loop", "vector_speeds", "vector_cases", "c_sources", "readme",
+           "export_c", "VECTOR_DURATION"]
 
 #: Length of each test-vector case (s).
 VECTOR_DURATION = 2.0

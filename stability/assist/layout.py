@@ -45,8 +45,8 @@ from stability.layout.model import Layout
 from stability.runtime.checks import check_choice, check_nonnegative
 from stability.study.layout_slope import drive_wheels
 
-__all__ = ["drive_lever", "drive_axle", "layout_plant", "layout_design", "LayoutSchedule", "layout_schedule", "LayoutAssistRow", "LayoutAssist", "layout_assist",
-           "format_layout_assist"]
+__all__ = ["drive_lever", "drive_axle", "layout_plant", "layout_design", "LayoutSchedule", "layout_schedule",
+           "LayoutAssistRow", "LayoutAssist", "layout_assist", "format_layout_assist"]
 
 
 def drive_lever(layout: Layout) -> float:

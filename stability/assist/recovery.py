@@ -24,7 +24,8 @@ from stability.simulate.signals import settle_time as _settle_time
 from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
-           "recovery_runs", "recovery_table", "minimum_torque_limit", "bisect_limit", "DecayAgreement", "decay_agreement",
+           "recovery_runs", "recovery_table", "minimum_torque_limit", "bisect_limit", "DecayAgreement",
+           "decay_agreement",
            "decay_window", "fit_decay_rate"]
 
 #: The ten-times push of the strong-disturbance check (N): 400 N for 0.1 s.

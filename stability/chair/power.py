@@ -15,7 +15,8 @@ from stability.chair import Chair, preset
 from stability.runtime.checks import check_nonnegative, check_positive
 from stability.settings import defaults as D
 
-__all__ = ["DriveAxle", "DriveTrain", "power_fwd", "drive_train", "drive_kind", "COMPONENTS", "LumpedEstimate", "lumped_estimate"]
+__all__ = ["DriveAxle", "DriveTrain", "power_fwd", "drive_train", "drive_kind", "COMPONENTS", "LumpedEstimate",
+           "lumped_estimate"]
 
 #: Lumped masses behind the estimates of ``m``, ``s1``, ``h`` and ``i_z``:
 #: (name, mass kg, x from the drive axle m (forward +), |y| of a symmetric pair m,
