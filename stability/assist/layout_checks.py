@@ -28,11 +28,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import control
 import numpy as np
 
+from stability.assist.commands import COMMAND_FILTER
 from stability.assist.design import Design, closed_loop_poles
 from stability.assist.digital import discrete_controller
 from stability.assist.recovery import DecayAgreement, decay_window, fit_decay_rate
+from stability.assist.tracking import closed_loop
 from stability.chair.power import DriveTrain
 from stability.layout.model import Layout
 from stability.settings.defaults import STEADY_YAW_RATE
@@ -402,11 +405,13 @@ def layout_vector_loop(layout: Layout, sched: Any) -> Any:
     (:data:`stability.assist.export_c.ClosedLoop`).
 
     The layout simulator runs the design's sampled controller compiled (:func:`layout_controller`: no yaw-rate
-    command path, no gyro bias or noise), so each case is the layout's closed loop after its push at the grid
-    speed, and the Python controller (:class:`~stability.assist.controller.DigitalController`, with the case's
-    command, the gyro's bias and seeded noise) reads that run's yaw rate at its samples: an open-loop replay, in
-    which the command cases' turns are not followed (the controller's integrator winds up against a chair that
-    goes straight, which exercises the saturation and the anti-windup).
+    command path, no gyro bias or noise), so the Python controller
+    (:class:`~stability.assist.controller.DigitalController`, with the case's command, the gyro's bias and seeded
+    noise) reads, at its samples, the yaw rate of a closed loop run beforehand: after a push, the layout
+    simulator's with the design's sampled controller; for a commanded turn, the linear closed loop's
+    (:func:`stability.assist.tracking.closed_loop`, the reference model of
+    :data:`~stability.assist.commands.COMMAND_FILTER`), which follows the command without the torque limit (a
+    replay: the torques the Python controller computes do not act back on that run).
 
     Parameters
     ----------
@@ -421,9 +426,15 @@ def layout_vector_loop(layout: Layout, sched: Any) -> Any:
     """
     def loop(speed: float, force: float, duration: float, ctl: Any) -> None:
         d = sched.at(speed)
-        run = _run(layout, float(speed), force, duration, layout_controller(d, layout, sched.drive),
-                   sched.drive.motor_time_constant)
-        t, r = np.asarray(run.t_s), np.asarray(run.yaw_rate_rad_s)
+        if force or ctl.command is None:
+            run = _run(layout, float(speed), force, duration, layout_controller(d, layout, sched.drive),
+                       sched.drive.motor_time_constant)
+            t, r = np.asarray(run.t_s), np.asarray(run.yaw_rate_rad_s)
+        else:       # a commanded turn: the linear closed loop's yaw rate (the layout simulator has no command path)
+            t = np.linspace(0.0, duration, int(round(duration / 1e-3)) + 1)
+            cmd = np.array([float(ctl.command(x)) for x in t])
+            r = np.asarray(control.forced_response(closed_loop(d, command_filter=COMMAND_FILTER), t,
+                                                   np.vstack([cmd, np.zeros_like(t), np.zeros_like(t)])).outputs[0])
         for k in range(int(math.floor(duration / ctl.Ts + 1e-9)) + 1):
             ctl(k * ctl.Ts, _YawRate(float(np.interp(k * ctl.Ts, t, r))))
 
