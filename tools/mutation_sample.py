@@ -98,8 +98,8 @@ MODULES = {
     "stability/sweep/run.py": ["tests/test_sweep.py"],
     "stability/uncertainty/propagation.py": ["tests/test_uncertainty.py"],
     "stability/measure/sheet.py": ["tests/test_measure.py"],
-    "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py"],
-    "stability/assist/export_c.py": ["tests/test_assist_export.py"],
+    "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py", "tests/test_assist_layout_options.py"],
+    "stability/assist/export_c.py": ["tests/test_assist_export.py", "tests/test_assist_layout_options.py"],
     "stability/models/full_width.py": ["tests/test_linear.py", "tests/test_simulate.py"],
 }
 
