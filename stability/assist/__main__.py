@@ -250,8 +250,8 @@ def _layout_work(args: argparse.Namespace, layout: Layout, speeds: np.ndarray, w
         print(format_layout_assist(res))
         for u, t in least or []:
             least_words = (f"{t:.1f} N m per wheel" if math.isfinite(t) else
-                           f"none up to the drive's {drive.torque_limit:g} N m per wheel (the heading does not settle "
-                           "within 10 deg)")
+                           f"none up to the drive's {drive.torque_limit:g} N m per wheel (at the full limit the "
+                           "heading leaves 10 deg or does not settle to within 5 % of its peak about zero)")
             print(f"smallest torque limit that recovers from {STRONG_FORCE:g} N x {THESIS_PUSH.duration:g} s at "
                   f"{abs(u):g} m/s {'backwards' if u < 0 else 'forwards'}: {least_words} (layout simulator, "
                   "noise-free, same gains)")
