@@ -206,3 +206,21 @@ def test_what_a_layout_cannot_answer_is_refused_in_one_line(argv, words, tmp_pat
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1
     assert not (tmp_path / "fw").exists()
+
+
+def test_the_layouts_json_matches_its_schema(tmp_path, capsys):
+    """The layout's output (forward with the checks and --min-torque; reverse alone with the firmware) against
+    stability/schemas/assist_layout.json; a renamed key is refused."""
+    from stability import schemas
+
+    assert main(["--chair", "power-fwd-base", "--speeds", "1", "--reverse", "--min-torque", "--json"]) == 0
+    a = json.loads(capsys.readouterr().out)
+    assert main(["--chair", "power-fwd", "--speeds=-1.5,-0.5", "--no-check", "--json", "--export-c",
+                 str(tmp_path / "fw")]) == 0
+    b = json.loads(capsys.readouterr().out)
+    assert "minimum_torque_limits" in a and "firmware" in b and b["forward"] == []
+    for data in (a, b):
+        schemas.validate("assist_layout", data)
+    b["minimum_torque_N_m"] = b.pop("firmware")
+    with pytest.raises(ValueError, match="minimum_torque_N_m"):
+        schemas.validate("assist_layout", b)

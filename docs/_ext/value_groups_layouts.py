@@ -189,6 +189,7 @@ def layout_assist_options() -> dict:
     the order of the exported estimator; the power chair as a layout against the short form (its smallest torque
     at 2 m/s, its firmware tables)."""
     import math
+    from inspect import signature
 
     import numpy as np
 
@@ -196,7 +197,7 @@ def layout_assist_options() -> dict:
     from stability.assist.firmware import firmware_tables
     from stability.assist.layout import layout_design, layout_schedule
     from stability.assist.layout_checks import layout_minimum_torque_limit
-    from stability.assist.recovery import minimum_torque_limit
+    from stability.assist.recovery import SETTLE_FRACTION, minimum_torque_limit
     from stability.assist.schedule import schedule
     from stability.chair import preset
     from stability.chair.power import DriveTrain
@@ -225,4 +226,6 @@ def layout_assist_options() -> dict:
     worst = max(float(np.abs(getattr(a, k) - getattr(b, k)).max() / np.abs(getattr(b, k)).max()) for k in b.TABLES)
     return {"table": Table(("layout (1 m/s)", "direction", "smallest torque limit N m per wheel, strong push",
                             "estimator order of the firmware"), tuple(rows)),
-            "short_torque": torque(short_t), "layout_torque": torque(mine_t), "table_agreement": f"{worst:.0e}"}
+            "short_torque": torque(short_t), "layout_torque": torque(mine_t), "table_agreement": f"{worst:.0e}",
+            "settle_pct": f"{100 * SETTLE_FRACTION:g}",
+            "max_heading": f"{signature(layout_minimum_torque_limit).parameters['max_heading_deg'].default:g}"}

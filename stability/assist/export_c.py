@@ -183,7 +183,7 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
     loop = closed_loop or short_form_loop(sched)
     out = []
     for i, s in enumerate(vector_speeds(sched)):
-        ref = reference_command(s)
+        ref = reference_command(abs(s))       # a reverse grid (a layout's): the same turn rate
         cases: list[tuple[str, Callable[[float], float], float]] = [
             ("step", step_command(ref, 0.1), 0.0), ("ramp", ramp_command(ref, ref), 0.0),
             ("push", step_command(0.0), 10 * THESIS_PUSH.force),
