@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from stability.assist.figures import flat_axis
+from stability.assist.figures import flat_axis, label_axes
 from stability.plotting import page
 from stability.plotting.style import colour
 from stability.settings.reference import THESIS_PUSH
@@ -56,10 +56,7 @@ def figure_layout_gains(a: Any) -> Figure:
                    color=colour(i), ms=4, label=what)
         flat_axis(b, [r.wheel_torque_gains[state] for _, rows in dirs for r in rows])
         b.set_title(f"k_{state}")
-        b.set_xlabel("|speed| (m/s)")
-        b.set_ylabel(f"gain per wheel ({unit})")
-        b.grid(alpha=0.3)
-        b.legend(fontsize=8)
+        label_axes(b, "|speed| (m/s)", f"gain per wheel ({unit})")
     c = ax[0, len(_GAINS)]
     for i, (what, rows) in enumerate(dirs):
         s = [abs(r.speed_m_s) for r in rows]
@@ -69,10 +66,7 @@ def figure_layout_gains(a: Any) -> Figure:
                label=f"{what}, assisted")
     c.axhline(0.0, color="k", lw=0.8)
     c.set_title("growth rate")
-    c.set_xlabel("|speed| (m/s)")
-    c.set_ylabel("growth rate (1/s)")
-    c.grid(alpha=0.3)
-    c.legend(fontsize=7)
+    label_axes(c, "|speed| (m/s)", "growth rate (1/s)")
     fig.tight_layout(rect=(0.0, 0.0, 1.0, 0.9))
     return fig
 
@@ -108,9 +102,6 @@ def figure_layout_recovery(a: Any) -> Figure | None:
                     b.plot(np.asarray(run.t_s), np.degrees(np.asarray(run.heading_rad)), ls, color=colour(i),
                            label=f"{abs(r.speed_m_s):g} m/s {way}, {what}")
         b.set_title(f"{push:g} N x {THESIS_PUSH.duration:g} s")
-        b.set_xlabel("time (s)")
-        b.set_ylabel("heading (deg)")
-        b.grid(alpha=0.3)
-        b.legend(fontsize=7)
+        label_axes(b, "time (s)", "heading (deg)")
     fig.tight_layout(rect=(0.0, 0.0, 1.0, 0.9))
     return fig
