@@ -181,7 +181,7 @@ def _run(args: argparse.Namespace) -> int:
 
     signed = parse_speeds(args.speeds, max_count=50, signed=True)
     if is_layout_spec(args.chair) or np.any(signed < 0):
-        from stability.assist.layout_command import run_layout
+        from stability.assist.command import run_layout
 
         return run_layout(args, signed, *_options(args))
     speeds = parse_speeds(args.speeds, increasing=True, max_count=50)
