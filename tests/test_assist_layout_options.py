@@ -91,8 +91,9 @@ def test_reversing_firmware_is_the_turned_layouts_driven_forwards(name):
 def mid_wheel():
     lay = layout_preset("mid-wheel-drive")
     sched = layout_schedule(lay, [0.5, 1.5, 2.5])
-    # the command line's 2 s cases: the reversing command saturates only after its reversal's transient
-    return lay, sched, vector_cases(sched, closed_loop=layout_vector_loop(lay, sched)), \
+    # the command line's 2 s cases (docs/assist.md): the reversing command saturates only after its reversal's
+    # transient
+    return lay, sched, vector_cases(sched, duration=2.0, closed_loop=layout_vector_loop(lay, sched)), \
         firmware_tables(sched, command_filter_s=COMMAND_FILTER)
 
 
@@ -176,7 +177,9 @@ def test_the_command_exports_a_layout_and_writes_its_figures(tmp_path, capsys):
     data = json.loads(js.read_text())
     assert data["firmware"]["q_format"] == "float" and data["options"]["export_c"] == str(fw)
     exe = c_harness.compile_replay(str(fw), str(tmp_path / "replay"))
-    for case in json.loads((fw / "assist_vectors.json").read_text())["cases"]:
+    cases = json.loads((fw / "assist_vectors.json").read_text())["cases"]
+    assert {len(c["inputs"]) for c in cases} == {2 * 200 + 1}     # docs/assist.md: 2 s each at 200 Hz
+    for case in cases:
         assert np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))) \
             <= case["tolerance_N_m"]
 
