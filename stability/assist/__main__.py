@@ -102,7 +102,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="skip the nonlinear simulations (the safe top speed is then checked on the margins alone)")
     p.add_argument("--min-torque", action="store_true",
                    help="also find the smallest torque limit that recovers from the 400 N disturbance "
-                        "at 1, 2, 3 m/s (bisection, ~1 min)")
+                        "at 1, 2, 3 m/s (a layout: at each direction's check speeds; bisection, ~1 min)")
     p.add_argument("--bias-time-constant", type=float, default=GyroSensor.bias_time_constant_s, metavar="S",
                    help="time constant of the gyro-bias estimate from the wheel speeds (s, default 1; 0: off)")
     p.add_argument("--motor-lag", type=float, default=DriveTrain.motor_time_constant, metavar="S",
