@@ -154,6 +154,19 @@ class LayoutSchedule(Schedule):
 
     Attributes
     ----------
+    chair : DriveAxle
+        The layout's drive wheels and its name (``"... in reverse"`` for a reverse grid).
+    kind : {"full-state", "gyro"}
+    speeds : ndarray (N,)
+        Signed, increasing design speeds, m/s.
+    designs : tuple of Design
+        :func:`layout_design` at each speed.
+    drive, weights, gyro, estimator
+        The design options.
+    model : str
+        ``"exact"`` (a layout's equations are derived from first principles only).
+    standstill : None
+        No standstill design.
     layout : Layout
     """
 
