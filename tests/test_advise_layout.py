@@ -204,7 +204,7 @@ def test_the_command_answers_a_layout(monkeypatch, capsys):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["--chair", "mid-wheel-drive", "--set", "m=100"], "--set is for the short form"),
+    (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], "'trail' is not a field of layout"),
     (["--chair", "mid-wheel-drive", "--reaction-time", "99"], "--reaction-time 99 is invalid; valid range"),
     (["--chair", "mid-wheel-drive", "--intended-speed", "1"], "--intended-speed needs --reaction-time"),
     (["--chair", "mid-wheel-drive", "--cross-slope", "9"], "--cross-slope 9.0 is invalid; valid range: 0 to 8"),
@@ -359,3 +359,87 @@ def test_the_command_takes_the_driver_and_cross_slope_for_a_layout(monkeypatch, 
     from stability import schemas
 
     schemas.validate("advise", d)
+
+
+_UNC = ('[m]\ndistribution = "normal"\nstd = 0.05\nrelative = true\n'
+        '[h]\ndistribution = "uniform"\nlow = -0.03\nhigh = 0.03\nrelative = true\n'
+        '[trail]\nfields = ["{trail}"]\ndistribution = "uniform"\nlow = -0.2\nhigh = 0.2\nrelative = true\n')
+
+
+def test_the_thesis_chair_as_a_layout_has_the_short_forms_static_stability_interval():
+    """The E&J Premier's uncertainty (mass, c.g. height, trail) drawn for the short form and for the chair expanded
+    as a layout (the same table names, so the same seeded draws; the short form's ``trail`` is the layout's one
+    caster row's axis ``trail_ROW``): the two 2.5-97.5 % intervals of the smallest tip angle agree to rounding.  Error model: the
+    angles agree to 1e-9 relative per chair (test_compare_layouts), the percentiles are of the same draws; 1e-9."""
+    import tomllib
+
+    from stability.advise.uncertain import tip_interval
+    from stability.uncertainty import loads_uncertainty
+    from stability.uncertainty.io import from_mapping
+
+    chair = resolve("ej-premier")
+    short = loads_uncertainty(_UNC.format(trail="trail"))
+    lay = Layout.from_chair(chair)
+    from stability.advise.layout_axes import layout_axes
+
+    (row,) = [a for a in layout_axes(lay) if a.startswith("trail_")]
+    mine = from_mapping(tomllib.loads(_UNC.format(trail=row)), layout_axes(lay))
+    a, b = tip_interval(chair, short), tip_interval(lay, mine)
+    assert a[0] < a[1]
+    assert b == pytest.approx(a, rel=1e-9)
+
+
+def test_a_mirrored_layout_has_the_same_interval_and_a_higher_cg_lowers_it():
+    """Mirror symmetry: the layout reflected left to right (every y negated) has the same smallest tip angle in
+    every draw, so the same interval (1e-12 relative: the same arithmetic on mirrored numbers).  Monotonicity: a c.g.
+    drawn only higher (h + 10 to 20 %) gives an interval wholly below the nominal angle (a higher c.g. tips sooner)."""
+    from stability.advise.layout_axes import layout_axes
+    from stability.advise.uncertain import tip_interval
+    from stability.layout.statics import tip_angles
+    from stability.uncertainty.io import from_mapping
+
+    lay = layout_preset("mid-wheel-drive")
+    mirror = dc.replace(lay, wheels=tuple(dc.replace(w, y=-w.y) for w in lay.wheels),
+                        casters=tuple(dc.replace(c, y=-c.y) for c in lay.casters))
+    spec = {"m": {"distribution": "normal", "std": 0.05, "relative": True},
+            "caster_1_trail": {"distribution": "uniform", "low": -0.2, "high": 0.2, "relative": True}}
+    a = tip_interval(lay, from_mapping(spec, layout_axes(lay)))
+    b = tip_interval(mirror, from_mapping(spec, layout_axes(mirror)))
+    assert b == pytest.approx(a, rel=1e-12)
+    up = from_mapping({"h": {"distribution": "uniform", "low": 0.1, "high": 0.2, "relative": True}},
+                      layout_axes(lay))
+    lo, hi = tip_interval(lay, up)
+    assert lo < hi < min(tip_angles(lay).values())
+
+
+def test_the_command_gives_a_layouts_static_stability_interval(monkeypatch, capsys, tmp_path):
+    """``advise --uncertainty`` on a wheel layout in reverse (issue 38): the file's tables name the layout's axes,
+    the verdict carries the interval and where it came from, the text says it, the JSON matches its schema; a
+    short-form field name is refused in one line naming the layout's fields."""
+    import tomllib
+
+    import stability.advise.layout_measures as lm
+    from stability.advise.layout_axes import layout_axes
+    from stability.advise.uncertain import tip_interval
+    from stability.uncertainty.io import from_mapping
+
+    monkeypatch.setattr(lm, "layout_nonlinear_measures", lambda layouts, reverse=False: _fake(layouts))
+    f = tmp_path / "u.toml"
+    f.write_text(_UNC.format(trail="trail_rear"))
+    assert main(["--chair", "power-fwd-base", "--speeds", "-0.5:1", "--uncertainty", str(f), "--no-progress",
+                 "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    lay = layout_preset("power-fwd-base")
+    want = tip_interval(lay, from_mapping(tomllib.loads(f.read_text()), layout_axes(lay)))
+    assert d["verdict"]["static_stability_deg"]["interval"] == list(want)
+    assert d["verdict"]["static_stability_interval_source"].startswith(str(f))
+    assert d["options"]["uncertainty"] == str(f)
+    pytest.importorskip("jsonschema")
+    from stability import schemas
+
+    schemas.validate("advise", d)
+    bad = tmp_path / "s.toml"
+    bad.write_text('[s1]\ndistribution = "normal"\nstd = 0.01\n')
+    assert main(["--chair", "power-fwd-base", "--uncertainty", str(bad), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "s1" in err and "numeric layout field" in err and "\n" not in err

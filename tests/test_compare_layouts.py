@@ -63,10 +63,35 @@ def test_a_frame_turned_round_compares_backwards_as_it_does_forwards():
 
 
 def test_a_chair_compared_with_itself_is_equal_on_every_measure():
+    """Equal on every measured value; where both values are the same search's bound (the base is stable forwards
+    up to the searched 20 m/s), 'not separable': a bound is not a tie."""
     lay = layout_preset("mid-wheel-drive")
     c = compare_layouts([lay, dc.replace(lay, name="again")], speeds=[0.75, -0.75])
-    assert c.differences and all(d.more_stable == "equal" for d in c.differences)
+    bounds = {q.key for q in c.quantities if all(math.isinf(v) for v in q.values)}
+    assert bounds == {"stable_up_to_forward_m_s"}
+    assert c.differences and all(d.more_stable == ("not separable" if d.key in bounds else "equal")
+                                 for d in c.differences)
     assert all(d.absolute in (0.0, None) for d in c.differences)
+
+
+def test_two_bounds_are_not_separable_and_a_bound_ranks_above_a_smaller_value():
+    """Two critical impulses whose level no push up to 40 N s reached (both stored as inf, the search's bound) are
+    not 'equal': each is somewhere above 40 N s, so the verdict says the two cannot be separated and names the
+    bound; a bound against a value below it still ranks (the bound is the larger)."""
+    from stability.compare.compute import Quantity, _difference
+    from stability.compare.text import _verdict
+
+    words = "level not reached with pushes up to 40 N s"
+    both = Quantity("critical_impulse_Ns@0.75", "critical impulse at 0.75 m/s", "N s", True,
+                    (math.inf, math.inf), (None, None), words)
+    d = _difference(both, 1, "b", "a", None, 0.95)
+    assert d.more_stable == "not separable" and d.absolute is None
+    assert _verdict(d, both) == f"not separable (both bounds: {words})"
+    one = dc.replace(both, values=(math.inf, 12.5))
+    assert _difference(one, 1, "b", "a", None, 0.95).more_stable == "a"
+    # a quantity whose infinity is not a search's bound keeps the plain comparison
+    plain = dc.replace(both, none_means="")
+    assert _difference(plain, 1, "b", "a", None, 0.95).more_stable == "equal"
 
 
 def test_stable_up_to_is_the_critical_speed_or_its_bounds():
@@ -90,9 +115,11 @@ def test_the_command_compares_any_form_forward_and_in_reverse(capsys):
 
 @pytest.mark.parametrize("argv, words", [
     (["ej-premier", "mid-wheel-drive", "--model", "thesis"], "--model thesis is invalid for wheel layouts"),
-    (["ej-premier", "mid-wheel-drive", "--set", "2:m=100"], "--set is for the short form"),
-    (["ej-premier", "revised", "--speeds", "-0.75", "--uncertainty", "-", "--uncertainty", "-"],
-     "--uncertainty is not available"),
+    (["ej-premier", "mid-wheel-drive", "--set", "2:trail=0.06"], "'trail' is not a field of layout"),
+    (["ej-premier", "revised", "--speeds", "-0.75", "--uncertainty", "-"],
+     "--uncertainty given 1 times for 2 chairs"),
+    (["mid-wheel-drive", "revised", "--uncertainty", "-", "--uncertainty", "-", "--samples", "0"],
+     "--samples 0 is invalid; valid range: 1 <= value <="),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):
     assert main(argv) == 2
@@ -116,3 +143,111 @@ def test_a_push_search_that_never_reaches_the_level_compares_as_a_bound():
     assert "pushes up to 40 N s" in q.none_means
     d = next(d for d in c.differences if d.key == q.key)
     assert d.more_stable == c.labels[0]
+    # a heavier base that no push spins either: two bounds, not separable (not "equal", issue 38)
+    heavy = dc.replace(mwd, name="heavier", m=1.1 * mwd.m)
+    assert layout_critical_impulses(heavy, 0.75)[0].status == "never"
+    c2 = compare_layouts([mwd, heavy], speeds=[0.75], nonlinear=True)
+    d2 = next(d for d in c2.differences if d.key == q.key)
+    assert d2.more_stable == "not separable" and d2.absolute is None
+
+
+_UNC = ('[m]\ndistribution = "normal"\nstd = 0.05\nrelative = true\n'
+        '[i_z]\ndistribution = "uniform"\nlow = -0.1\nhigh = 0.1\nrelative = true\n'
+        '[trail]\nfields = ["{trail}"]\ndistribution = "uniform"\nlow = -0.2\nhigh = 0.2\nrelative = true\n')
+
+
+def _layout_unc(lay: Layout, text: str):
+    import tomllib
+
+    from stability.advise.layout_axes import layout_axes
+    from stability.uncertainty.io import from_mapping
+
+    return from_mapping(tomllib.loads(text), layout_axes(lay))
+
+
+def test_the_thesis_chair_as_a_layout_gets_the_short_forms_intervals_and_difference_intervals():
+    """The E&J Premier with an uncertain mass, yaw inertia and trail against the exact revised chair, compared by
+    the short form and as layouts (the same table names: the same seeded draws; the short form's ``trail`` is the
+    layout's one caster row ``trail_ROW``): each growth rate's interval and each difference's interval agree.  Error
+    model: the two linear models agree to ~1e-13 relative per draw (observed: intervals 1e-13 relative, difference
+    ends 1.3e-13 1/s); tolerances 1e-11 relative and 1e-10 1/s (a margin of ~100)."""
+    from stability.uncertainty import loads_uncertainty
+
+    a, b = resolve("ej-premier"), resolve("revised")
+    la, lb = Layout.from_chair(a), Layout.from_chair(b)
+    (row,) = [x for x in __import__("stability.advise.layout_axes", fromlist=["x"]).layout_axes(la)
+              if x.startswith("trail_")]
+    speeds = [0.5, 0.75, 1.0]
+    short = compare([a, b], speeds=speeds, uncertainties=[loads_uncertainty(_UNC.format(trail="trail")), None],
+                    samples=300)
+    mine = compare_layouts([la, lb], speeds=speeds, uncertainties=[_layout_unc(la, _UNC.format(trail=row)), None],
+                           samples=300)
+    assert mine.uncertainty == short.uncertainty
+    for u in speeds:
+        key = f"growth_rate_1_s@{u:g}"
+        (lo, hi), none = mine.quantity(key).intervals
+        assert none is None and (lo, hi) == pytest.approx(short.quantity(key).intervals[0], rel=1e-11)
+        da = next(d for d in mine.differences if d.key == key)
+        db = next(d for d in short.differences if d.key == key)
+        assert da.interval == pytest.approx(db.interval, abs=1e-10)
+        assert da.distinguishable == db.distinguishable
+
+
+def test_a_mirrored_layout_is_not_distinguishable_and_a_higher_cg_tips_sooner():
+    """Mirror symmetry: the mid-wheel-drive base against itself reflected left to right, both with the same
+    uncertainty (shared draws): the same intervals (1e-12 relative: mirrored arithmetic) and every difference
+    interval [0, 0], so not distinguishable.  Monotonicity: a c.g. drawn only higher (h + 10 to 20 %) gives a
+    static stability interval wholly below the nominal angle."""
+    lay = layout_preset("mid-wheel-drive")
+    mirror = dc.replace(lay, name="mirrored", wheels=tuple(dc.replace(w, y=-w.y) for w in lay.wheels),
+                        casters=tuple(dc.replace(k, y=-k.y) for k in lay.casters))
+    text = _UNC.format(trail="trail_front")
+    c = compare_layouts([lay, mirror], speeds=[0.75, -0.75], uncertainties=[_layout_unc(lay, text),
+                                                                           _layout_unc(mirror, text)], samples=200)
+    for q in c.quantities:
+        if q.intervals[0] is not None:
+            assert q.intervals[1] == pytest.approx(q.intervals[0], rel=1e-12)
+    for d in c.differences:
+        if d.interval is not None:
+            assert d.interval == pytest.approx((0.0, 0.0), abs=1e-12) and d.distinguishable is False
+    up = '[h]\ndistribution = "uniform"\nlow = 0.1\nhigh = 0.2\nrelative = true\n'
+    c = compare_layouts([lay, mirror], speeds=[0.75], uncertainties=[_layout_unc(lay, up), None], samples=200)
+    q = c.quantity("static_stability_deg")
+    assert q.intervals[0][0] < q.intervals[0][1] < q.values[0]
+
+
+def test_the_command_draws_the_layouts_figure_and_their_intervals(tmp_path, capsys):
+    """``compare`` with a layout, reverse speeds, ``--uncertainty`` and ``-o`` (issue 38): the JSON carries the
+    intervals and matches its schema, the PDF and the PNG are written (titles naming the chairs and the model, the
+    0.75 m/s lines labelled); a file naming a short-form field is refused in one line naming the layout's."""
+    pytest.importorskip("matplotlib")
+    from stability.compare.plots import comparison_figures
+
+    f = tmp_path / "u.toml"
+    f.write_text(_UNC.format(trail="trail_front"))
+    pdf, png = tmp_path / "c.pdf", tmp_path / "c.png"
+    argv = ["mid-wheel-drive", "power-fwd-base", "--speeds", "0.75,-0.75", "--uncertainty", str(f),
+            "--uncertainty", "-", "--samples", "200"]
+    assert main([*argv, "--json", "-o", str(pdf)]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert pdf.stat().st_size > 0
+    assert d["options"]["uncertainty"] == [str(f), "-"] and d["uncertainty"]["samples"] == 200
+    rate = next(m for m in d["measures"] if m["measure"] == "growth_rate_1_s" and m["speed_m_s"] == -0.75)
+    lo, hi = rate["chairs"][0]["interval"]
+    assert lo < rate["chairs"][0]["value"] < hi and "interval" not in rate["chairs"][1]
+    pytest.importorskip("jsonschema")
+    from stability import schemas
+
+    schemas.validate("compare", d)
+    assert main([*argv, "-o", str(png)]) == 0
+    assert png.stat().st_size > 0 and "not propagated" in capsys.readouterr().out
+    c = compare_layouts([layout_preset("mid-wheel-drive"), layout_preset("power-fwd-base")], speeds=[0.75, -0.75])
+    ax = comparison_figures(c)[0].axes[0]
+    assert "mid-wheel-drive vs power-fwd-base" in ax.get_title() and "linear model" in ax.get_title()
+    labels = ax.get_legend_handles_labels()[1]
+    assert any(lab.startswith("0.75 m/s") for lab in labels) and any(lab.startswith("-0.75 m/s") for lab in labels)
+    bad = tmp_path / "s.toml"
+    bad.write_text('[s1]\ndistribution = "normal"\nstd = 0.01\n')
+    assert main(["mid-wheel-drive", "power-fwd-base", "--uncertainty", str(bad), "--uncertainty", "-"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "--uncertainty 1" in err and "numeric layout field" in err

@@ -260,8 +260,14 @@ def test_the_tipping_command_answers_a_layout(capsys):
     want = layout_tips(layout_preset("mid-wheel-drive"))
     assert {k: doc[k] for k in want} == pytest.approx(want, abs=0)
     assert doc["slope"]["tip_deg"] == pytest.approx(want["right_deg"], abs=1e-9)
-    assert main(["--chair", "mid-wheel-drive", "--set", "h=0.5"]) == 2
-    assert "--set is for the short form" in capsys.readouterr().err
+    # --set on a layout by the advisor's names: a higher c.g. tips at the angles of the layout with that c.g.
+    assert main(["--chair", "mid-wheel-drive", "--set", "h=0.6", "--json"]) == 0
+    high = json.loads(capsys.readouterr().out)
+    want_high = layout_tips(dataclasses.replace(layout_preset("mid-wheel-drive"), h=0.6))
+    assert {k: high[k] for k in want_high} == pytest.approx(want_high, abs=0)
+    assert want_high["forward_deg"] < want["forward_deg"]
+    assert main(["--chair", "mid-wheel-drive", "--set", "trail=0.06"]) == 2
+    assert "'trail' is not a field of layout 'mid-wheel-drive'" in capsys.readouterr().err
 
 
 def test_a_short_form_command_refuses_a_layout_by_name():

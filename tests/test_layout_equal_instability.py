@@ -118,7 +118,7 @@ def test_the_command_answers_a_layout_and_reverse(capsys):
 
 @pytest.mark.parametrize("argv, words", [
     (["--chair", "mid-wheel-drive", "--model", "thesis"], "--model thesis is invalid for a layout"),
-    (["--chair", "mid-wheel-drive", "--set", "m=100"], "--set is for the short form"),
+    (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], "'trail' is not a field of layout"),
     (["--chair", "ej-premier", "--reverse", "--model", "thesis"], "valid values: exact"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):

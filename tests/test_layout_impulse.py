@@ -173,7 +173,7 @@ def test_a_short_form_chair_at_a_negative_speed_runs_as_its_layout(capsys):
 @pytest.mark.parametrize(("argv", "words"), [
     (["--chair", "mid-wheel-drive", "--speeds", "0.75,25"], ["--speeds '0.75,25'", "0.01 to 20 m/s"]),
     (["--chair", "mid-wheel-drive", "--speeds", "0"], ["--speeds '0'", "|speed| 0.01 to 100 m/s"]),
-    (["--chair", "mid-wheel-drive", "--set", "h=0.5"], ["--set", "[[wheel]] file"]),
+    (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], ["--set", "caster_K_FIELD"]),
     (["--chair", "mid-wheel-drive", "--interval"], ["--interval", "short-form chair at positive speeds"]),
     (["--chair", "mid-wheel-drive", "--model", "thesis"], ["--model thesis", "valid values: exact"]),
     (["--chair", "ej-premier", "--speeds", "-0.75", "--model", "thesis"], ["--model thesis", "exact"]),

@@ -213,8 +213,9 @@ def test_the_simulate_command_runs_a_layout_in_reverse(capsys):
     assert d["settings"]["caster_angles_deg"] == [180.0] * 4
     assert main(["--chair", "power-fwd-base", "--horizon", "1"]) == 0
     assert "power-fwd-base: 0.75 m/s forwards" in capsys.readouterr().out
-    assert main(["--chair", "mid-wheel-drive", "--csv", "x.csv"]) == 2
-    assert "--csv is not available for a layout" in capsys.readouterr().err
+    assert main(["--chair", "mid-wheel-drive", "--set", "caster_5_trail=0.06"]) == 2     # it has four casters
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "caster_K_FIELD (K 1-4)" in err
 
 
 @pytest.mark.slow

@@ -143,8 +143,9 @@ def test_the_slope_command_answers_a_layout_and_reverse(capsys):
 
 @pytest.mark.parametrize("argv,words", [
     (["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "0"], "--speed 0 is invalid; valid range: 0.01 <= |value| <= 20 m/s"),
-    (["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1", "--set", "h=0.5"], "--set is for the "),
-    (["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1", "-o", "x.pdf"], "-o is not available"),
+    (["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1", "--set", "trail=0.06"],
+     "'trail' is not a field of layout"),
+    (["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1", "-o", "x.txt"], "x.txt"),
     (["--chair", "ej-premier", "--cross-slope", "2", "--speed", "-25"], "--speed -25"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):

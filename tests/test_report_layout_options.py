@@ -73,7 +73,10 @@ def test_bad_layout_options_are_refused_in_one_line(tmp_path, capsys):
               "docs/examples/mid_wheel_drive.uncertainty.toml"], "--uncertainty needs the full report"),
             (["--chair", "mid-wheel-drive", "--json", "--samples", "0", "--uncertainty",
               "docs/examples/mid_wheel_drive.uncertainty.toml"], "--samples 0 is invalid"),
-            (["--chair", "mid-wheel-drive", "--json", "--reaction-time", "0.5"], "--reaction-time")):
+            (["--chair", "mid-wheel-drive", "--json", "--set", "caster_9_trail=0.05"],
+             "is not a field of layout"),
+            (["--chair", "mid-wheel-drive", "--clinician", "-o", str(tmp_path / "b.pdf"), "--reaction-time", "0.5"],
+             "--reaction-time is not available with --clinician")):
         assert main(argv) == 2, argv
         err = capsys.readouterr().err.strip()
         assert words in err and "\n" not in err, err
@@ -126,14 +129,39 @@ def test_the_clinician_command_on_a_layout(tmp_path, capsys):
 
 
 def test_layout_uncertainty_fields_are_the_layouts_and_a_bad_one_is_named(tmp_path):
-    from stability.report.layout_uncertainty import layout_fields, load_layout_uncertainty
+    """One set of uncertain layout fields for every command (the sweep's axes): the body's, every wheel's numeric
+    fields, a caster row's trail and the drive axle; a short-form name, or a field with no value of its own (a
+    camber coefficient left to the tire), is refused in one line naming it."""
+    from stability.advise.layout_axes import layout_axes, load_layout_uncertainty
 
     lay = layout_preset("mid-wheel-drive")
-    assert {"m", "i_z", "h", "caster_1_trail", "wheel_2_x"} <= layout_fields(lay)
+    assert {"m", "i_z", "h", "caster_1_trail", "wheel_2_x", "trail_front", "trail_rear", "drive_x"} <= \
+        layout_axes(lay)
+    assert not {"caster_1_tire", "wheel_1_driven"} & layout_axes(lay)
     bad = tmp_path / "u.toml"
     bad.write_text('[s1]\ndistribution = "normal"\nstd = 0.01\n')
     with pytest.raises(ValueError, match="s1.*numeric layout field"):
         load_layout_uncertainty(bad, lay)
+    none = tmp_path / "n.toml"
+    none.write_text('[wheel_1_camber_coefficient]\ndistribution = "normal"\nstd = 0.01\n')
+    with pytest.raises(ValueError, match="wheel_1_camber_coefficient.*a value of its own"):
+        load_layout_uncertainty(none, lay)
+
+
+def test_a_row_trail_draw_moves_every_caster_of_the_row():
+    """``trail_front`` (a row axis, once only the sweep's) drawn in the report's propagation: both front casters
+    get the one draw, so every draw has them equal and within the uniform's bounds."""
+    from stability.advise.layout_axes import LayoutDraw
+    from stability.uncertainty import Distribution, Uncertainty
+
+    lay = layout_preset("mid-wheel-drive")
+    front = [k for k, c in enumerate(lay.casters) if c.x > 0]
+    t0 = lay.casters[front[0]].trail
+    unc = Uncertainty((Distribution("trail_front", ("trail_front",), "uniform", low=t0 - 0.01, high=t0 + 0.01,
+                                    valid_fields=frozenset({"trail_front"})),))
+    for d in unc.sample(LayoutDraw(lay), 20, seed=1):  # type: ignore[arg-type]
+        trails = {d.layout.casters[k].trail for k in front}
+        assert len(trails) == 1 and t0 - 0.01 <= trails.pop() <= t0 + 0.01
 
 
 def test_layout_uncertainty_interval_follows_the_parameter_it_draws():

@@ -67,7 +67,7 @@ def test_sections_that_do_not_apply_say_so_in_one_line(ej):
 def test_the_shimmy_rows_of_a_mid_wheel_drive_base():
     """Two rows with their own margins (the shimmy command's rows; docs/layouts.md)."""
     r = compute_layout_report(layout_preset("mid-wheel-drive"), nonlinear=_fake)
-    rows = r.data["shimmy_rows"]
+    rows = [x for x in r.data["shimmy_rows"] if x["direction"] == "forward"]
     assert [x["row"] for x in rows] == ["front", "rear"] and rows[0]["shimmy_margin_m"] != rows[1]["shimmy_margin_m"]
     assert r.data["bench"] is not None
 
@@ -83,7 +83,11 @@ def test_the_command_writes_a_layout_report(tmp_path, capsys):
     (["--chair", "mid-wheel-drive", "--json", "--quick", "--compare", "ej-premier"],
      "--compare needs the full report"),
     (["--chair", "mid-wheel-drive", "--json", "--model", "thesis"], "--model thesis is invalid for a wheel layout"),
-    (["--chair", "mid-wheel-drive", "--json", "--set", "m=90"], "--set is not available for a wheel layout"),
+    (["--chair", "mid-wheel-drive", "--json", "--set", "zz=90"],
+     "--set 'zz=90': 'zz' is not a field of layout"),
+    (["--chair", "mid-wheel-drive", "--clinician", "-o", "x.pdf", "--reaction-time", "0.6"],
+     "--reaction-time is not available with --clinician for a wheel layout"),
+    (["--chair", "mid-wheel-drive", "--json", "--reaction-time", "9"], "--reaction-time 9 is invalid; valid range"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):
     assert main(argv) == 2
@@ -101,3 +105,130 @@ def test_the_json_of_a_layout_report(monkeypatch, capsys):
     d = json.loads(capsys.readouterr().out)
     assert d["schema"] == "stability.report.layout/1" and d["chair"] == "power-fwd-base"
     assert [x["section"] for x in d["not_applicable"]] == [t for t, _ in NOT_APPLICABLE]
+
+
+def test_the_reverse_shimmy_rows_are_the_reverse_computation():
+    """The mid-wheel-drive base's rows carry different loads backwards (its casters swung round, the reversed
+    statics): the report's reverse margins are the towed wheel's with ``reverse=True`` computed directly
+    (stability.shimmy: the same band, so equal), they differ from the forward ones, and the text prints them under
+    'Backwards' (never 'the same answer')."""
+    import math
+
+    from stability.advise.layout_levers import caster_rows
+    from stability.report.layout_report import _shimmy
+    from stability.shimmy.band import shimmy_band
+    from stability.shimmy.layout_caster import LayoutCaster
+
+    lay = layout_preset("mid-wheel-drive")
+    speeds = (0.5, 0.75, 1.0)
+    lines, data = _shimmy(lay, speeds)
+    for reverse, way in ((False, "forward"), (True, "reverse")):
+        mine = [x["shimmy_margin_m"] for x in data if x["direction"] == way]
+        direct = [float(shimmy_band(LayoutCaster(lay, r[0], reverse), list(speeds)).shimmy_margin_m)
+                  for r in caster_rows(lay)]
+        assert mine == direct
+    fwd = [x["shimmy_margin_m"] for x in data if x["direction"] == "forward"]
+    rev = [x["shimmy_margin_m"] for x in data if x["direction"] == "reverse"]
+    assert all(math.isfinite(x) for x in fwd + rev) and fwd != rev
+    text = "\n".join(lines)
+    assert "the same answer" not in text
+    back = text.split("Backwards:")[1]
+    assert f"{rev[0] * 100:+.2f} cm" in back and f"{rev[1] * 100:+.2f} cm" in back
+
+
+def test_a_frame_turned_round_has_its_shimmy_rows_swapped_between_directions():
+    """Mirror front to back: the front-wheel-drive base (casters' mass at their pins) driven backwards is the
+    rear-wheel-drive base driven forwards, so the reverse row of one is the forward row of the other (the same
+    towed wheel at the same load: equal to 1e-12 relative, mirrored arithmetic) and vice versa."""
+    import dataclasses as dc
+
+    from stability.report.layout_report import _shimmy
+
+    def pinned(name):
+        lay = layout_preset(name)
+        return dc.replace(lay, casters=tuple(dc.replace(c, l=0.0) for c in lay.casters))
+
+    a = {x["direction"]: x for x in _shimmy(pinned("power-fwd-base"), (0.5, 0.75, 1.0))[1]}
+    b = {x["direction"]: x for x in _shimmy(pinned("power-rwd-base"), (0.5, 0.75, 1.0))[1]}
+    assert a["reverse"]["interval_m"][1] != a["forward"]["interval_m"][1]
+    for one, other in (("reverse", "forward"), ("forward", "reverse")):
+        assert a[one]["interval_m"][1] == pytest.approx(b[other]["interval_m"][1], rel=1e-12)
+        assert a[one]["shimmy_margin_m"] == b[other]["shimmy_margin_m"]
+
+
+def test_the_driver_section_is_the_short_forms_rule_for_the_thesis_chair_and_mirrors_for_a_turned_frame():
+    """``report --reaction-time`` on a layout: the divergence rule on the layout's linear model.  The E&J Premier
+    as a layout gets the short form's rule speed forwards (stability.driver.human_limit on the chair, a separate
+    linear model: its rates agree to ~1e-13 relative and the same bisection returns the same point, observed
+    identical; 1e-9 relative).  The front-wheel-drive base (casters' mass at their pins) backwards is the
+    rear-wheel-drive base forwards: the same speed and side (1e-9 relative, mirrored arithmetic)."""
+    import dataclasses as dc
+
+    from stability.driver import human_limit
+    from stability.driver.model import Driver
+    from stability.report.layout_report import _driver
+
+    drv = Driver(0.6, source="--reaction-time")
+    chair = resolve("ej-premier")
+    lines, data = _driver(Layout.from_chair(chair), drv)
+    h = human_limit(chair, drv)
+    fwd = data["limits"][0]
+    assert fwd["direction"] == "forward" and fwd["side"] == h.rule_side == "="
+    assert fwd["rule_speed_m_s"] == pytest.approx(h.rule_speed_m_s, rel=1e-9)
+    assert f"forwards: {h.rule_speed_m_s:.3g} m/s" in "\n".join(lines)
+
+    def pinned(name):
+        lay = layout_preset(name)
+        return dc.replace(lay, casters=tuple(dc.replace(c, l=0.0) for c in lay.casters))
+
+    a = {x["direction"]: x for x in _driver(pinned("power-fwd-base"), drv)[1]["limits"]}
+    b = {x["direction"]: x for x in _driver(pinned("power-rwd-base"), drv)[1]["limits"]}
+    assert a["reverse"]["side"] == b["forward"]["side"] and a["forward"]["side"] == b["reverse"]["side"]
+    assert a["reverse"]["rule_speed_m_s"] == pytest.approx(b["forward"]["rule_speed_m_s"], rel=1e-9)
+    assert a["forward"]["rule_speed_m_s"] == pytest.approx(b["reverse"]["rule_speed_m_s"], rel=1e-9)
+
+
+def test_the_command_takes_a_reaction_time_for_a_layout(monkeypatch, capsys):
+    """``report --chair power-fwd-base --reaction-time 0.6 --json``: the option is in the JSON, the driver section's
+    numbers are there, and the advisor's decision saw the driver (issue 38)."""
+    import stability.report.layout_report as lr
+
+    real = lr.compute_layout_report
+    seen = {}
+
+    def compute(layout, **kw):
+        seen.update(kw)
+        return real(layout, **{**kw, "nonlinear": _fake})
+
+    monkeypatch.setattr(lr, "compute_layout_report", compute)
+    assert main(["--chair", "power-fwd-base", "--json", "--no-progress", "--reaction-time", "0.6"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["options"]["reaction_time_s"] == 0.6 and seen["driver"].reaction_time_s == 0.6
+    assert d["driver"]["reaction_time_s"] == 0.6 and [x["direction"] for x in d["driver"]["limits"]] == [
+        "forward", "reverse"]
+
+
+def test_set_on_a_layout_file_reaches_the_report_as_the_short_forms_set(monkeypatch, capsys, tmp_path):
+    """``report --chair EJ-AS-[[wheel]]-FILE --set m=100``: the report's forward growth rates are the short form's
+    linear model of the E&J with ``--set m=100`` (a separate code path), to 1e-9 relative as in the test above
+    (two numeric eigenvalue solves of the same 8-state matrix rounded differently: observed below 1e-12), and
+    they differ from the unset chair's by far more, so an ignored ``--set`` fails."""
+    import stability.report.layout_report as lr
+    from stability.cli import load_chair
+    from stability.layout.io import dumps
+
+    path = tmp_path / "ej-layout.toml"
+    path.write_text(dumps(Layout.from_chair(resolve("ej-premier"))))
+    real = lr.compute_layout_report
+    monkeypatch.setattr(lr, "compute_layout_report", lambda layout, **kw: real(layout, nonlinear=_fake))
+    assert main(["--chair", str(path), "--set", "m=100", "--json", "--no-progress"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    g = d["growth_rates"]
+    fwd = [(u, x) for u, x in zip(g["speeds_m_s"], g["growth_rate_1_s"], strict=True) if u > 0]
+    speeds = [u for u, _ in fwd]
+    heavy = eigenvalues_vs_speed(load_chair("ej-premier", ["m=100"]), speeds, track=False).real.max(axis=1)
+    plain = eigenvalues_vs_speed(resolve("ej-premier"), speeds, track=False).real.max(axis=1)
+    for (_, x), y, z in zip(fwd, heavy, plain, strict=True):
+        assert x == pytest.approx(float(y), rel=1e-9)
+        assert abs(x - float(z)) > 1e-3 * abs(float(z))
+    assert d["chair_parameters"]["m"] == 100.0

@@ -241,3 +241,29 @@ def test_max_cross_slope_is_the_edge_of_the_tire_data():
     assert 0.0 < best < 1.0
     assert not eqm.solve(c, best, 0.75, 6.0, strict=False).problems
     assert eqm.solve(c, best + 20.0 / 2**14, 0.75, 6.0, strict=False).problems
+
+
+def test_the_holding_band_of_magnitudes_includes_zero_when_the_pins_alone_hold():
+    """The figure's band is ``{|m| : m in the signed pin-friction range}`` (an interval's image under abs, exact
+    arithmetic on the two ends): from 0 when the signed range holds zero, as for the mid-wheel-drive base at 0 and
+    2 deg (its signed range -6.15..1.65 N m at 2 deg: no drive moment needed); the two magnitudes otherwise.
+    Taking the magnitudes of the two ends alone had drawn 1.65-6.15 N m there, and a zero-width band at 0 deg."""
+    from stability.layout.presets import layout_preset
+    from stability.report.slope_data import layout_slope_section
+    from stability.slope.plots import magnitude_band
+    from stability.study.layout_slope import layout_equilibrium
+
+    assert magnitude_band((-6.0, 1.5)) == (0.0, 6.0) and magnitude_band((-1.5, 6.0)) == (0.0, 6.0)
+    assert magnitude_band((1.5, 6.0)) == (1.5, 6.0) and magnitude_band((-6.0, -1.5)) == (1.5, 6.0)
+    assert magnitude_band((6.0, 1.5)) == (1.5, 6.0) and magnitude_band((0.0, 0.0)) == (0.0, 0.0)
+    layout = layout_preset("mid-wheel-drive")
+    curve = layout_slope_section(layout, 0.9, (0.0, 2.0, 6.0), 2.0).curve
+    for k, phi in enumerate((0.0, 2.0, 6.0)):
+        lo, hi = layout_equilibrium(layout, phi, 0.9).friction_range_N_m
+        assert lo <= -abs(curve.holding_moment[k]) <= hi or lo <= abs(curve.holding_moment[k]) <= hi
+        if lo <= 0.0 <= hi:
+            assert curve.friction_low[k] == 0.0 and curve.friction_high[k] == max(-lo, hi)
+        else:
+            assert curve.friction_low[k] == min(abs(lo), abs(hi)) > 0.0
+    assert curve.friction_low[1] == 0.0 and curve.friction_high[1] > 6.0    # 2 deg: the pins alone hold
+    assert curve.friction_low[2] > 2.0                                      # 6 deg: the drive must help

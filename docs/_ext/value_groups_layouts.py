@@ -229,3 +229,103 @@ def layout_assist_options() -> dict:
             "short_torque": torque(short_t), "layout_torque": torque(mine_t), "table_agreement": f"{worst:.0e}",
             "settle_pct": f"{100 * SETTLE_FRACTION:g}",
             "max_heading": f"{signature(layout_minimum_torque_limit).parameters['max_heading_deg'].default:g}"}
+
+
+@group("layout_files", "python -m stability.simulate --chair NAME --csv FILE -o FILE; python -m stability.slope "
+       "--chair NAME -o FILE; python -m stability.shimmy --chair NAME -o FILE (stability.simulate.layout, "
+       "stability.report.slope_data.layout_slope_section, stability.shimmy.chair.trail_chart)")
+def layout_files() -> dict:
+    """The E&J Premier as a layout against the short form in the three commands' files (largest relative
+    difference of the CSV columns, largest difference of the slope figure's curves and of the trail chart's yaw
+    divergence), and per drive layout the simulate figure's caption numbers after the reference push."""
+    import numpy as np
+
+    from stability.chair import preset
+    from stability.layout import Layout
+    from stability.layout.presets import layout_preset
+    from stability.report.slope_data import layout_slope_section, slope_section
+    from stability.settings.run import RunSpec
+    from stability.shimmy.chair import trail_chart
+    from stability.shimmy.layout_caster import LayoutCaster
+    from stability.simulate import simulate
+    from stability.simulate.layout import simulate_layout
+
+    ej = preset("ej-premier")
+    run = RunSpec(horizon=2.0)
+    lay, short = simulate_layout(Layout.from_chair(ej), None, run), simulate(ej, run=run)
+    pairs = ((lay.heading_rad, short.heading), (lay.yaw_rate_rad_s, short.yaw_rate), (lay.y_m, short.y),
+             (lay.caster_angle_rad[0], short.eta), (lay.caster_angle_rad[1], short.beta))
+    csv_rel = max(float(np.abs(a - np.asarray(b)).max() / np.abs(np.asarray(b)).max()) for a, b in pairs)
+    slopes = (0.0, 1.0, 2.0, 4.0)
+    s_short = slope_section(ej, speed=1.0, slopes=slopes, path_slope=2.0)
+    s_lay = layout_slope_section(Layout.from_chair(ej), 1.0, slopes, 2.0)
+    slope_diff = float(np.abs(s_lay.curve.holding_moment - s_short.curve.holding_moment).max())
+    trails = np.linspace(0.03, 0.09, 4)
+    c_short = trail_chart(ej, trails, [0.5, 2.0])
+    c_lay = trail_chart(LayoutCaster(Layout.from_chair(ej), 0), trails, [0.5, 2.0])
+    chart_diff = float(np.abs(c_lay.divergence_rate - c_short.divergence_rate).max())
+    rows = []
+    for name in DRIVE_LAYOUTS:
+        layout = layout_preset(name)
+        for speed, angle in ((0.75, 0.0), (-0.75, 180.0)):
+            r = simulate_layout(layout, speed, RunSpec(horizon=3.0), caster_angles_deg=[angle] * len(layout.casters))
+            swing = max(float(np.degrees(np.abs(np.angle(np.exp(1j * (a - a[0])))).max()))
+                        for a in r.caster_angle_rad)
+            rows.append((name, "forward" if speed > 0 else "reverse", signed(r.final_heading_deg, 2),
+                         signed(float(r.y_m[-1]), 3), fixed(swing, 1)))
+    return {"csv_rel": f"{csv_rel:.0e}", "csv_horizon": f"{run.horizon:g}", "slope_diff": f"{slope_diff:.0e}",
+            "chart_diff": f"{chart_diff:.0e}",
+            "table": Table(("layout (0.75 m/s, reference push, 3 s)", "direction", "heading at 3 s deg",
+                            "lateral offset m", "largest caster swing deg"), tuple(rows))}
+
+
+@group("layout_every_command", "python -m stability.advise|compare|report --chair NAME --uncertainty "
+       "docs/examples/mid_wheel_drive.uncertainty.toml / --reaction-time 0.6 (stability.advise.uncertain.tip_interval, "
+       "stability.compare.layouts.compare_layouts, stability.advise.layout_measures.layout_shimmy_rows, "
+       "layout_rule_speed)")
+def layout_every_command() -> dict:
+    """Issue 38: the mid-wheel-drive base's intervals over the docs' uncertainty file (advise's static stability,
+    compare's growth rates both ways), each drive layout's shimmy margin per row forwards and backwards, and the
+    divergence rule's speed of a 0.6 s driver both ways."""
+    from pathlib import Path
+
+    from stability.advise.layout_axes import load_layout_uncertainty
+    from stability.advise.layout_measures import layout_rule_speed, layout_shimmy_rows
+    from stability.advise.uncertain import SAMPLES, tip_interval
+    from stability.compare.layouts import compare_layouts
+    from stability.layout.linear import SEARCH_SPEEDS_M_S
+    from stability.layout.presets import layout_preset
+
+    root = Path(__file__).resolve().parents[2]
+    mwd = layout_preset("mid-wheel-drive")
+    unc = load_layout_uncertainty(root / "docs" / "examples" / "mid_wheel_drive.uncertainty.toml", mwd)
+    out: dict = {}
+    lo, hi = tip_interval(mwd, unc)
+    out["tip_low"], out["tip_high"], out["tip_samples"] = fixed(lo, 1), fixed(hi, 1), str(SAMPLES)
+    c = compare_layouts([mwd, layout_preset("power-fwd-base")], speeds=[0.75, -0.75], uncertainties=[unc, None])
+    for u, key in ((0.75, "fwd"), (-0.75, "rev")):
+        q = c.quantity(f"growth_rate_1_s@{u:g}")
+        a, b = q.intervals[0]
+        out[f"rate_{key}"] = signed(q.values[0], 3)
+        out[f"rate_{key}_interval"] = f"{signed(a, 3)} to {signed(b, 3)}"
+    rows, speeds = [], (0.5, 0.75, 1.0)
+    for name in DRIVE_LAYOUTS:
+        lay = layout_preset(name)
+        fwd = layout_shimmy_rows(lay, speeds)
+        rev = layout_shimmy_rows(lay, tuple(-u for u in speeds))
+        for (row, _, f), (_, _, r) in zip(fwd, rev, strict=True):
+            rows.append((name, row, signed(100 * f.shimmy_margin_m, 2), signed(100 * r.shimmy_margin_m, 2)))
+        if name == "mid-wheel-drive":
+            out["mwd_front_fwd"], out["mwd_front_rev"] = rows[-2][2], rows[-2][3]
+    out["shimmy_table"] = Table(("layout", "caster row", "margin forwards cm", "margin backwards cm"), tuple(rows))
+    drv, tau = [], 0.6
+    for name in DRIVE_LAYOUTS:
+        cells = []
+        for reverse in (False, True):
+            u, side = layout_rule_speed(layout_preset(name), tau, reverse)
+            cells.append(("" if side == "=" else f"{side} ") + sig(u, 3))
+        drv.append((name, *cells))
+    out["driver_table"] = Table(("layout", f"{tau:g} s driver holds forwards m/s", "backwards m/s"), tuple(drv))
+    out["speeds"] = ", ".join(f"{u:g}" for u in speeds)
+    out["tau"], out["search_top"] = f"{tau:g}", f"{SEARCH_SPEEDS_M_S[-1]:g}"
+    return out

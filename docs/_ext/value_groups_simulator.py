@@ -8,7 +8,7 @@ ratio is the figure to trust; the load average before and after is stated with t
 
 from __future__ import annotations
 
-from value_groups import fixed, group, sig
+from value_groups import fixed, group, pct, sig
 
 #: the speed study of issue 10: the E&J Premier at 2,000 speeds 0.3-1.5 m/s, default settings, record="final"
 STUDY_RUNS, STUDY_LO, STUDY_HI = 2000, 0.3, 1.5
@@ -93,9 +93,38 @@ def kernel_speed() -> dict:
             "load_before": fixed(load0, 1), "load_after": fixed(load1, 1)}
 
 
+#: a first scalar simulate with an empty cache, timing numba's two LLVM stages per code library (the final
+#: module's optimisation, its machine code) and counting the libraries whose code holds the step ``run_one``
+#: (numba internals: ``numba.core.codegen``); prints process CPU, the LLVM part and that count
+_LLVM_CHILD = r"""
+import time
+from numba.core import codegen as cg
+llvm, holders = [0.0], set()
+def timed(meth):
+    f = getattr(cg.CPUCodeLibrary, meth)
+    def w(self, *a, **k):
+        t0 = time.process_time()
+        try:
+            return f(self, *a, **k)
+        finally:
+            llvm[0] += time.process_time() - t0
+            if any("run_one" in fn.name and not fn.is_declaration for fn in self._final_module.functions):
+                holders.add(id(self))
+    setattr(cg.CPUCodeLibrary, meth, w)
+timed("_optimize_final_module")
+timed("_finalize_final_module")
+t0 = time.process_time()
+from stability.chair import preset
+from stability.settings.run import RunSpec
+from stability.simulate import simulate
+simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
+print(time.process_time() - t0, llvm[0], len(holders))
+"""
+
+
 @group("kernel_first_use", "simulate(ej-premier, 0.75, RunSpec(horizon=0.01)) in a fresh process with an empty "
        "NUMBA_CACHE_DIR, then again with that cache, under engine.use_kernel('scalar'|'lanes') (CPU time of the "
-       "child: user + sys)")
+       "child: user + sys); a scalar one timing numba's LLVM stages per code library (numba.core.codegen)")
 def kernel_first_use() -> dict:
     """CPU time of a fresh process's first simulation on each kernel with an empty numba cache and with the cache."""
     import os
@@ -118,10 +147,54 @@ def kernel_first_use() -> dict:
         return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
     out = {"load_before": fixed(os.getloadavg()[0], 1)}
+    with tempfile.TemporaryDirectory() as cache:
+        llvm = subprocess.run([sys.executable, "-c", _LLVM_CHILD], cwd=ROOT, check=True, capture_output=True,
+                              text=True, env={**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)})
+    total, llvm_s, copies = (float(x) for x in llvm.stdout.split()[-3:])
+    out.update(llvm_pct=pct(llvm_s / total), run_one_copies=f"{int(copies)}")
     for kernel in ("scalar", "lanes"):
         with tempfile.TemporaryDirectory() as cache:
             first = child_cpu(kernel, cache)
             cached = child_cpu(kernel, cache)
         out[f"{kernel}_first_s"], out[f"{kernel}_cached_s"] = sig(first, 2), sig(cached, 2)
     out["load_after"] = fixed(os.getloadavg()[0], 1)
+    return out
+
+
+#: the short run of :func:`single_run_python`, s: almost all of its cost is the Python around the kernel
+SHORT_HORIZON = 0.002
+
+
+@group("single_run_python", "simulate(ej-premier, 0.75, RunSpec(stop_on_warnings=False, horizon=h)) against "
+       "baseline.kernel_only on the same run (the compiled kernel alone on arrays packed once), alternately 60 times "
+       "in one process for h = 10 s and 2 ms; time.process_time, median")
+def single_run_python() -> dict:
+    """The Python around one run: simulate's CPU against the compiled kernel's alone on the same run, as a ratio
+    (10 s run) and as the difference (10 s and 2 ms runs; a 2 ms run is almost all Python)."""
+    import time
+
+    import numpy as np
+
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import baseline, simulate
+    from stability.simulate.options import make_options
+
+    ej = preset("ej-premier")
+    out = {"short_horizon_ms": sig(SHORT_HORIZON * 1e3, 1)}
+    for label, horizon, inner in (("long", 10.0, 1), ("short", SHORT_HORIZON, 10)):
+        run = RunSpec(stop_on_warnings=False, horizon=horizon)
+        bare = baseline.kernel_only(ej, 0.75, make_options(run))
+        simulate(ej, 0.75, run=run)
+        cpu: dict[str, list[float]] = {"simulate": [], "kernel": []}
+        for _ in range(60):
+            for name, fn in (("simulate", lambda run=run: simulate(ej, 0.75, run=run)), ("kernel", bare)):
+                c0 = time.process_time()
+                for _ in range(inner):
+                    fn()
+                cpu[name].append((time.process_time() - c0) / inner)
+        med = {k: float(np.median(v)) for k, v in cpu.items()}
+        out[f"{label}_ratio"] = fixed(med["simulate"] / med["kernel"], 2)
+        out[f"{label}_python_ms"] = sig(max(med["simulate"] - med["kernel"], 0.0) * 1e3, 2)
+        out[f"{label}_kernel_ms"] = sig(med["kernel"] * 1e3, 2)
     return out

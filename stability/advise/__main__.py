@@ -9,6 +9,7 @@ from collections.abc import Sequence
 from stability import cli
 from stability.advise.advisor import advise
 from stability.advise.text import advice_mapping, advice_text
+from stability.advise.uncertain import tip_interval
 from stability.settings import defaults as D
 
 
@@ -19,7 +20,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help=f"use speeds, m/s: START:STOP:STEP, a list, or a range A:B (its ends and middle); "
                         f"default {D.ADVISE_SPEEDS}")
     p.add_argument("--uncertainty", metavar="FILE",
-                   help="uncertainty file (measure's): adds the interval of the chair's static stability angle")
+                   help="uncertainty file (measure's): adds the interval of the chair's static stability angle; for a "
+                        "wheel layout or reverse speeds its tables name the layout's axes (m, i_z, h, caster_K_FIELD, "
+                        "wheel_J_FIELD, trail_ROW, drive_x; docs/layouts.md)")
     p.add_argument("--min-tip-deg", type=float, default=None, metavar="D",
                    help="smallest acceptable static stability angle, deg (default: the chair's own; no citable "
                         "standard minimum was found, docs/tipping.md)")
@@ -90,14 +93,12 @@ def _body(a: argparse.Namespace) -> int:
     if a.uncertainty:
         from stability.uncertainty import load_uncertainty
         unc = load_uncertainty(a.uncertainty)
+    tips = None if unc is None else tip_interval(chair, unc)    # before the advice: a bad file fails at once
     advice = advise(chair, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=a.cross_slope,
                     progress=not a.no_progress, driver=driver, intended_speed=a.intended_speed)
     data = advice_mapping(advice)
-    if unc is not None:
-        from stability.advise.uncertain import tip_interval
-        lo, hi = tip_interval(chair, unc)
-        data["verdict"]["static_stability_deg"]["interval"] = [lo, hi]
-        data["verdict"]["static_stability_interval_source"] = f"{a.uncertainty} (2.5-97.5 % of 200 draws)"
+    if tips is not None:
+        _add_tip_interval(data, tips, a.uncertainty)
     if a.json or a.json_file:
         options = {"speeds_m_s": list(speeds), "uncertainty": a.uncertainty, "min_tip_deg": a.min_tip_deg,
                    "cross_slope_deg": a.cross_slope,
@@ -108,8 +109,7 @@ def _body(a: argparse.Namespace) -> int:
             return 0
     print(data["text"])
     if unc is not None:
-        lo, hi = data["verdict"]["static_stability_deg"]["interval"]
-        print(f"Static stability over {a.uncertainty}: {lo:.1f}-{hi:.1f} deg (2.5-97.5 % of 200 draws).")
+        print(_tip_interval_line(data, a.uncertainty))
     return 0
 
 
@@ -120,15 +120,19 @@ def _body_layout(a: argparse.Namespace, speeds: tuple[float, ...]) -> int:
     from stability import __version__
 
     layout = cli.load_layout(a.chair, a.set)
-    if a.uncertainty is not None:
-        raise ValueError("--uncertainty is not available for a wheel layout or reverse speeds yet; valid: the "
-                         "short-form chair at forward speeds")
+    unc = None
+    if a.uncertainty is not None:      # tables naming the layout's axes (a short-form chair's expanded layout's)
+        from stability.advise.layout_axes import load_layout_uncertainty
+        unc = load_layout_uncertainty(a.uncertainty, layout)
     driver = _driver(a)
+    tips = None if unc is None else tip_interval(layout, unc)   # before the advice: a bad file fails at once
     advice = advise(layout, speeds=speeds, min_tip_deg=a.min_tip_deg, cross_slope_deg=a.cross_slope,
                     progress=not a.no_progress, driver=driver, intended_speed=a.intended_speed)
     data = advice_mapping(advice)
+    if tips is not None:
+        _add_tip_interval(data, tips, a.uncertainty)
     if a.json or a.json_file:
-        options = {"speeds_m_s": list(speeds), "uncertainty": None, "min_tip_deg": a.min_tip_deg,
+        options = {"speeds_m_s": list(speeds), "uncertainty": a.uncertainty, "min_tip_deg": a.min_tip_deg,
                    "cross_slope_deg": a.cross_slope,
                    "reaction_time_s": None if driver is None else driver.reaction_time_s,
                    "intended_speed_m_s": advice.intended_speed_m_s,
@@ -139,7 +143,25 @@ def _body_layout(a: argparse.Namespace, speeds: tuple[float, ...]) -> int:
         if a.json:
             return 0
     print(data["text"])
+    if unc is not None:
+        print(_tip_interval_line(data, a.uncertainty))
     return 0
+
+
+def _add_tip_interval(data: dict, interval: tuple[float, float], path: str) -> None:
+    """The static stability's interval over the uncertainty file's draws, into the advice's JSON verdict."""
+    from stability.advise.uncertain import SAMPLES
+
+    lo, hi = interval
+    data["verdict"]["static_stability_deg"]["interval"] = [lo, hi]
+    data["verdict"]["static_stability_interval_source"] = f"{path} (2.5-97.5 % of {SAMPLES} draws)"
+
+
+def _tip_interval_line(data: dict, path: str) -> str:
+    from stability.advise.uncertain import SAMPLES
+
+    lo, hi = data["verdict"]["static_stability_deg"]["interval"]
+    return f"Static stability over {path}: {lo:.1f}-{hi:.1f} deg (2.5-97.5 % of {SAMPLES} draws)."
 
 
 def main(argv: Sequence[str] | None = None) -> int:

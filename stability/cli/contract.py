@@ -60,7 +60,8 @@ from stability.runtime.files import distinct_notes, json_text, with_tire_range
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
            "add_driver_options", "driver_from_args",
            "add_run_options", "run_from_args", "run_flag", "add_json_options",
-           "load_chair", "load_layout", "apply_assignments", "parse_speeds", "check_directory", "check_outputs",
+           "load_chair", "load_layout", "apply_layout_assignments", "apply_assignments", "parse_speeds",
+           "check_directory", "check_outputs",
            "output_files",
            "json_header", "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
            "add_uncertainty_option", "FIGURE_FORMATS", "Bound", "OPTION_BOUNDS", "number", "bound_for",
@@ -121,7 +122,8 @@ def load_layout(spec: str, assignments: Sequence[str]) -> Any:
         ``--chair`` value: a layout preset or ``[[wheel]]`` file, taken as it is, or a short-form chair
         (:func:`load_chair`) expanded into its layout (:meth:`stability.layout.Layout.from_chair`).
     assignments : sequence of str
-        ``--set`` values, for a short-form chair only.
+        ``--set`` values: the short form's (:func:`load_chair`) for a short-form chair, the layout's fields by the
+        advisor's names for a layout (:func:`apply_layout_assignments`).
 
     Returns
     -------
@@ -130,16 +132,86 @@ def load_layout(spec: str, assignments: Sequence[str]) -> Any:
     Raises
     ------
     ValueError
-        ``--set`` given with a layout, or as :func:`load_chair`.
+        As :func:`load_chair` or :func:`apply_layout_assignments`.
     """
     from stability.layout import Layout
     from stability.layout.io import is_layout_spec, resolve_layout
 
     if not is_layout_spec(spec):
         return Layout.from_chair(load_chair(spec, assignments))
-    if assignments:
-        raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-    return resolve_layout(spec)
+    return apply_layout_assignments(resolve_layout(spec), assignments)
+
+
+#: The body's fields ``--set`` may change on a layout (the names of a layout uncertainty file's tables).
+LAYOUT_BODY_FIELDS = ("m", "i_z", "h")
+
+
+def apply_layout_assignments(layout: Any, assignments: Sequence[str]) -> Any:
+    """``layout`` with ``--set`` assignments applied, in order, by the advisor's names.
+
+    Parameters
+    ----------
+    layout : Layout
+    assignments : sequence of str
+        Each ``NAME=VALUE``: NAME one of :data:`LAYOUT_BODY_FIELDS` or ``caster_K_FIELD`` / ``wheel_J_FIELD`` (K and
+        J from 1, in the order of the ``[[wheel]]`` file; FIELD a field of :class:`stability.layout.Caster` or
+        :class:`stability.layout.FixedWheel`, e.g. ``caster_1_trail=0.06``); VALUE a number in the field's SI unit,
+        or the text of a text field (``caster_2_tire=ER``).
+
+    Returns
+    -------
+    Layout
+        Validated as the advisor's changes are (each field's range, a generated shape, every wheel loaded).
+
+    Raises
+    ------
+    ValueError
+        One line naming the assignment at fault and what is valid.
+    """
+    import dataclasses
+
+    from stability.advise.layout_levers import apply_layout
+
+    if not assignments:
+        return layout
+    valid = (f"valid names: {', '.join(LAYOUT_BODY_FIELDS)}, caster_K_FIELD (K 1-{len(layout.casters)}), "
+             f"wheel_J_FIELD (J 1-{len(layout.wheels)})")
+    body: dict[str, float] = {}
+    wheels: list[tuple[str, Any]] = []
+    for text in assignments:
+        name, eq, raw = (part.strip() for part in str(text).partition("="))
+        if not eq:
+            raise ValueError(f"--set expects NAME=VALUE, got {text!r}")
+        group, _, rest = name.partition("_")
+        k, _, field = rest.partition("_")
+        seq = {"caster": layout.casters, "wheel": layout.wheels}.get(group)
+        current: Any = None
+        if name in LAYOUT_BODY_FIELDS:
+            current = getattr(layout, name)
+        elif seq is not None and k.isdigit() and 1 <= int(k) <= len(seq) and field in {
+                f.name for f in dataclasses.fields(seq[int(k) - 1])}:
+            current = getattr(seq[int(k) - 1], field)
+        else:
+            raise ValueError(f"--set {text!r}: {name!r} is not a field of layout {layout.name!r}; {valid}")
+        value: Any = raw
+        if isinstance(current, bool):
+            if raw.lower() not in ("true", "false"):
+                raise ValueError(f"--set {text!r}: {raw!r} is invalid; valid: true, false")
+            value = raw.lower() == "true"
+        elif not isinstance(current, str):
+            try:
+                value = float(raw)
+            except ValueError:
+                raise ValueError(f"--set {text!r}: {raw!r} is not a number; valid: a number in the field's SI "
+                                 "unit") from None
+        if name in LAYOUT_BODY_FIELDS:
+            body[name] = value
+        else:
+            wheels.append((name, value))
+    try:
+        return apply_layout(dataclasses.replace(layout, **body) if body else layout, wheels)
+    except TypeError as exc:
+        raise ValueError(f"--set: {exc}") from None
 
 
 def apply_assignments(c: chair_mod.Chair, assignments: Sequence[str]) -> chair_mod.Chair:

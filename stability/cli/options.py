@@ -109,7 +109,8 @@ def add_chair_options(parser: argparse.ArgumentParser, default: str = defaults.C
     parser.add_argument("--chair", default=default,
                         help=f"preset name ({', '.join(chair_mod.preset_names())}) or TOML file (default {default})")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                        help="override a chair field (repeatable; fields listed below)")
+                        help="override a chair field (repeatable; fields listed below; a wheel layout: m, i_z, h, "
+                             "caster_K_FIELD or wheel_J_FIELD, K and J from 1, SI units)")
     parser.add_argument("--tire-range", choices=tires.RANGE_POLICIES, default=defaults.TIRE_RANGE,
                         help="tire data outside the fitted slip and load range: warn (compute by extrapolation "
                              "and note it in the output; default), clamp (hold the force at the range's edge) "

@@ -134,18 +134,7 @@ def _run(args: argparse.Namespace) -> int:
                      max_speed=args.max_speed, uncertainties=uncs, samples=args.samples, seed=args.seed,
                      level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)
     if args.output:
-        from stability.compare.plots import comparison_figures
-        from stability.runtime.files import save_figure, write_pdf  # matplotlib only when figures are asked for
-
-        figs = comparison_figures(result)
-        title = f"stability compare: {' vs '.join(result.labels)}"
-        if args.output.lower().endswith(".pdf"):
-            write_pdf(figs, args.output, title=title, close=False)
-            print(f"wrote {args.output}", file=sys.stderr)
-        else:
-            save_figure(figs[0], args.output, title=title)
-            print(f"wrote {args.output} (the growth rates; the effects figures are in the PDF: -o FILE.pdf)",
-                  file=sys.stderr)
+        _write_figures(result, args.output)
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed, "set": args.set,
                    "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,
@@ -156,6 +145,22 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _write_figures(result, output: str) -> None:
+    """The comparison's figures into ``-o`` (a PDF: every figure; a .png or .svg: the growth rates)."""
+    from stability.compare.plots import comparison_figures
+    from stability.runtime.files import save_figure, write_pdf  # matplotlib only when figures are asked for
+
+    figs = comparison_figures(result)
+    title = f"stability compare: {' vs '.join(result.labels)}"
+    if output.lower().endswith(".pdf"):
+        write_pdf(figs, output, title=title, close=False)
+        print(f"wrote {output}", file=sys.stderr)
+        return
+    save_figure(figs[0], output, title=title)
+    print(f"wrote {output}" + (" (the growth rates; the effects figures are in the PDF: -o FILE.pdf)"
+                               if len(figs) > 1 else ""), file=sys.stderr)
+
+
 def _run_layouts(args: argparse.Namespace, speeds) -> int:
     """Any chair a wheel layout, or a negative speed: every chair compared as a layout
     (:func:`stability.compare.layouts.compare_layouts`)."""
@@ -164,10 +169,6 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
     from stability import __version__
     from stability.compare.layouts import compare_layouts
 
-    for flag, given in (("--uncertainty", args.uncertainty), ("-o", args.output)):
-        if given:
-            raise ValueError(f"{flag} is not available when comparing wheel layouts (or at reverse speeds) yet; "
-                             "valid: short-form chairs at forward speeds")
     if args.model != "exact":
         raise ValueError(f"--model {args.model} is invalid for wheel layouts; valid values: exact (the layout's "
                          "equations are the exact model's)")
@@ -188,12 +189,27 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
         except ValueError as exc:
             raise ValueError(f"chair {i + 1} ({spec!r}): {str(exc).splitlines()[0]}") from None
         names.append(layouts[-1].name + (f" ({', '.join(sets)})" if sets else ""))
+    uncs = None
+    if args.uncertainty:                  # each file's tables name that layout's axes (stability.advise.layout_axes)
+        from stability.advise.layout_axes import load_layout_uncertainty
+
+        uncs = []
+        for i, (f, lay) in enumerate(zip(args.uncertainty, layouts, strict=True)):
+            try:
+                uncs.append(None if f == "-" else load_layout_uncertainty(f, lay))
+            except ValueError as exc:
+                raise ValueError(f"--uncertainty {i + 1} ({f!r}): {str(exc).splitlines()[0]}") from None
     result = compare_layouts(layouts, labels=unique_labels(names), speeds=[float(u) for u in speeds],
-                             nonlinear=args.nonlinear)
+                             nonlinear=args.nonlinear, uncertainties=uncs, samples=args.samples, seed=args.seed,
+                             level=args.level, pairing=args.pairing)
+    if args.output:
+        _write_figures(result, args.output)
     if args.json or args.json_file:
+        given = uncs is not None
         options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": result.max_speed, "set": args.set,
-                   "uncertainty": [], "samples": None, "seed": None, "level": None, "pairing": None,
-                   "nonlinear": args.nonlinear, "layouts": True}
+                   "uncertainty": args.uncertainty, "samples": args.samples if given else None,
+                   "seed": args.seed if given else None, "level": args.level if given else None,
+                   "pairing": args.pairing if given else None, "nonlinear": args.nonlinear, "layouts": True}
         header = {"stability_version": __version__, "chair": layouts[0].name,
                   "chair_parameters": dataclasses.asdict(layouts[0]), "model": "layout", "options": options}
         emit_json(comparison_dict(result, header), args)

@@ -34,10 +34,12 @@ from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.uncertainty import Uncertainty
 
-__all__ = ["Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare", "DEFAULT_SPEEDS",
-           "single_effects", "growth_curves"]
+__all__ = ["NOT_SEPARABLE", "Quantity", "Difference", "SingleEffect", "EffectSet", "Comparison", "compare",
+           "DEFAULT_SPEEDS", "single_effects", "growth_curves"]
 
 DEFAULT_SPEEDS = SUMMARY_SPEEDS
+#: ``Difference.more_stable`` when both values are bounds of the same search (both beyond what it reached).
+NOT_SEPARABLE = "not separable"
 #: Speeds of the growth-rate curves in the figure, m/s.
 CURVE_SPEEDS = tuple(float(x) for x in np.linspace(0.05, 3.0, 60))
 
@@ -90,7 +92,8 @@ class Difference:
         values have opposite signs (a stable and an unstable growth rate, an understeering and an oversteering
         chair: a percentage of a quantity that crosses zero says nothing).
     more_stable : str
-        Label of the more stable chair, or ``"equal"``, or ``"undetermined"``.
+        Label of the more stable chair, ``"equal"``, ``"undetermined"`` or ``"not separable"`` (both values are
+        bounds of the quantity's search, :attr:`Quantity.none_means`).
     interval : (float, float) or None
         Central interval of the difference from paired draws (see :func:`compare`), or None.
     distinguishable : bool or None
@@ -249,9 +252,11 @@ def _measures(chairs: Sequence[Chair], model: str, speeds: np.ndarray, grid: np.
     return np.column_stack([b.growth_rates(speeds.tolist()), _locked(b, grid), kus, zcrit])
 
 
-def _more_stable(a: float, b: float, higher: bool, la: str, lb: str) -> str:
+def _more_stable(a: float, b: float, higher: bool, la: str, lb: str, bounds: bool = False) -> str:
     if math.isnan(a) or math.isnan(b):
         return "undetermined"
+    if bounds and math.isinf(a) and math.isinf(b) and a > 0 and b > 0:
+        return NOT_SEPARABLE        # each somewhere above the search's bound: a bound is a value, not a tie
     if a == b:
         return "equal"
     return la if (a > b) == higher else lb
@@ -271,8 +276,8 @@ def _difference(q: Quantity, i: int, label: str, ref_label: str, samples: np.nda
             interval, dist = (float(lo), float(hi)), bool(lo > 0 or hi < 0)
         else:  # the measure is undefined or infinite in most draws: no interval of the difference
             dist = None
-    return Difference(q.key, label, absolute, percent, _more_stable(a, r, q.higher_is_more_stable, label, ref_label),
-                      interval, dist)
+    more = _more_stable(a, r, q.higher_is_more_stable, label, ref_label, bool(q.none_means))
+    return Difference(q.key, label, absolute, percent, more, interval, dist)
 
 
 def single_effects(reference: Chair, other: Chair, label: str, *, model: str = "exact",

@@ -26,14 +26,17 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from stability.advise.layout_axes import LayoutDraw
 from stability.compare.compute import CURVE_SPEEDS, Comparison, Quantity, _difference
 from stability.layout.linear import SEARCH_SPEEDS_M_S, critical_speed, growth_rates
 from stability.layout.model import Layout
 from stability.layout.statics import tip_angles
+from stability.linear.intervals import MAX_SAMPLES
 from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
 from stability.study.layout_impulse import layout_critical_impulses
+from stability.uncertainty import Uncertainty, propagate
 
-__all__ = ["compare_layouts", "stable_up_to", "LAYOUT_NOTE"]
+__all__ = ["compare_layouts", "stable_up_to", "linear_rows", "LAYOUT_NOTE"]
 
 #: What a layout comparison leaves out, in one line.
 LAYOUT_NOTE = ("Compared as wheel layouts: the short form's zero-width and locked-caster measures and its "
@@ -60,8 +63,59 @@ def stable_up_to(layout: Layout, reverse: bool = False) -> float:
     return math.inf if kind == "none-stable" else 0.0
 
 
+def linear_rows(layouts: Sequence[Layout], speeds: Sequence[float] | np.ndarray) -> np.ndarray:
+    """The propagated measures of each layout: its growth rates at ``speeds``, then its static stability.
+
+    Parameters
+    ----------
+    layouts : sequence of Layout
+    speeds : sequence of float
+        Signed speeds, m/s.
+
+    Returns
+    -------
+    ndarray
+        Shape ``(layouts, len(speeds) + 1)``: growth rates (1/s, the layout's linear model, free frictionless
+        casters), then the smallest ISO 7176-1 tip angle (deg).
+    """
+    u = [float(x) for x in speeds]
+    out = np.empty((len(layouts), len(u) + 1))
+    for i, lay in enumerate(layouts):
+        out[i, :len(u)] = growth_rates(lay, u)
+        out[i, -1] = min(tip_angles(lay).values())
+    return out
+
+
+def _propagated(layouts: Sequence[Layout], uncertainties: Sequence[Uncertainty | None], speeds: np.ndarray,
+                samples: int, seed: int, level: float, pairing: str) -> tuple[list, list[np.ndarray]]:
+    """Each uncertain layout's propagation (:func:`stability.uncertainty.propagate` of :func:`linear_rows`) and
+    every layout's rows of draws, shape ``(samples, speeds + 1)`` (a layout without uncertainty repeats its own)."""
+    results: list = []
+    draws: list[np.ndarray] = []
+    for i, (lay, unc) in enumerate(zip(layouts, uncertainties, strict=True)):
+        if unc is None:
+            results.append(None)
+            draws.append(np.repeat(linear_rows([lay], speeds), samples, axis=0))
+            continue
+        seen: list[np.ndarray] = []
+
+        def fn(ds: list, seen: list = seen) -> np.ndarray:
+            seen.append(linear_rows([d.layout for d in ds], speeds))
+            return seen[-1]
+
+        # "shared": the same seed for every layout, so a table of one name is the same unknown in each (the short
+        # form's pairing, stability.compare.compute.compare); "independent": separate seeds
+        res = propagate(LayoutDraw(lay), unc, fn, samples=samples,  # type: ignore[arg-type]
+                        seed=seed if pairing == "shared" else seed + 1009 * i, level=level)
+        results.append(res)
+        draws.append(seen[-1])                       # propagate's second call: the draws
+    return results, draws
+
+
 def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None = None,
-                    speeds: Sequence[float] = (0.5, 0.75, 1.0, 1.5), nonlinear: bool = False) -> Comparison:
+                    speeds: Sequence[float] = (0.5, 0.75, 1.0, 1.5), nonlinear: bool = False,
+                    uncertainties: Sequence[Uncertainty | None] | None = None, samples: int = 1000, seed: int = 0,
+                    level: float = 0.95, pairing: str = "shared") -> Comparison:
     """Compare layouts; the first is the reference.
 
     Parameters
@@ -75,11 +129,24 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
     nonlinear : bool
         Also the critical impulse at :data:`~stability.settings.reference.REFERENCE_SPEED` (and at its negative
         when a speed is negative): the layout simulator's search.
+    uncertainties : sequence of (Uncertainty or None), optional
+        One per layout, tables naming its axes (:func:`stability.advise.layout_axes.load_layout_uncertainty`;
+        None: taken as exact).  The growth rates and the static stability get central intervals
+        (:func:`stability.uncertainty.propagate` of :func:`linear_rows`) and each difference from the reference
+        an interval from the draws, as the short form's comparison; the speeds up to which a layout is stable and
+        the critical impulse are not propagated (a search per draw).
+    samples, seed : int
+        Draws per uncertain layout (1 to :data:`stability.linear.intervals.MAX_SAMPLES`) and their seed.
+    level : float
+        Interval coverage, 0 < level < 1.
+    pairing : {"shared", "independent"}
+        As :func:`stability.compare.compute.compare`.
 
     Returns
     -------
     Comparison
-        ``chairs`` are the layouts; ``effects`` empty; ``model`` ``"layout"``; ``max_speed`` the searched 20 m/s.
+        ``chairs`` are the layouts; ``effects`` empty; ``model`` ``"layout"``; ``max_speed`` the searched 20 m/s;
+        ``curve_speeds`` the forward curve's speeds, and in reverse their negatives too when a speed is negative.
     """
     layouts = list(layouts)
     if len(layouts) < 2:
@@ -87,10 +154,25 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
     labels = tuple(labels) if labels is not None else tuple(lay.name for lay in layouts)
     if len(labels) != len(layouts) or len(set(labels)) != len(labels):
         raise ValueError(f"labels={labels!r} is invalid; valid: one unique label per layout")
+    if pairing not in ("shared", "independent"):
+        raise ValueError(f"pairing={pairing!r} is invalid; valid: 'shared' or 'independent'")
+    if not 1 <= int(samples) <= MAX_SAMPLES:
+        raise ValueError(f"samples={samples!r} is invalid; valid range: 1 to {MAX_SAMPLES}")
+    if not 0 < level < 1:
+        raise ValueError(f"level={level!r} is invalid; valid range: 0 < level < 1")
+    uncs = list(uncertainties) if uncertainties is not None else [None] * len(layouts)
+    if len(uncs) != len(layouts):
+        raise ValueError(f"uncertainties: {len(uncs)} given for {len(layouts)} layouts; valid: one per layout")
     u = np.asarray(speeds, dtype=float)
-    rates = np.array([growth_rates(lay, u) for lay in layouts])          # (layouts, speeds)
+    rows = linear_rows(layouts, u)                                       # (layouts, speeds + 1)
+    results, draws = (_propagated(layouts, uncs, u, int(samples), int(seed), level, pairing)
+                      if any(x is not None for x in uncs) else ([None] * len(layouts), None))
+
+    def ivs(col: int) -> tuple[tuple[float, float] | None, ...]:
+        return tuple(None if r is None else (float(r.low[col]), float(r.high[col])) for r in results)
+
     qs = [Quantity(f"growth_rate_1_s@{s:g}", f"growth rate at {s:g} m/s" + (" (reverse)" if s < 0 else ""), "1/s",
-                   False, tuple(float(x) for x in rates[:, k]), (None,) * len(layouts))
+                   False, tuple(float(x) for x in rows[:, k]), ivs(k))
           for k, s in enumerate(u)]
     top = float(SEARCH_SPEEDS_M_S[-1])
     for reverse in (False, True):
@@ -99,7 +181,8 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
                            tuple(stable_up_to(lay, reverse) for lay in layouts), (None,) * len(layouts),
                            f"stable up to {top:g} m/s"))
     qs.append(Quantity("static_stability_deg", "static stability (ISO 7176-1, smallest)", "deg", True,
-                       tuple(float(min(tip_angles(lay).values())) for lay in layouts), (None,) * len(layouts)))
+                       tuple(float(x) for x in rows[:, -1]), ivs(len(u))))
+    column = {q.key: j for j, q in enumerate(qs[:len(u)])} | {"static_stability_deg": len(u)}
     push = None
     if nonlinear:
         signs = [1.0] + ([-1.0] if bool(np.any(u < 0)) else [])
@@ -115,7 +198,13 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
                                (None,) * len(layouts), f"level not reached with pushes up to {largest:.3g} N s"))
         push = (f"{THESIS_PUSH.force:g} N lateral at the c.g. for {THESIS_PUSH.duration:g} s, scaled; every caster "
                 "trailing the direction of travel at the start (the layout simulator)")
-    diffs = tuple(_difference(q, i, labels[i], labels[0], None, 0.0) for i in range(1, len(layouts)) for q in qs)
-    curves = tuple(tuple(float(x) for x in growth_rates(lay, CURVE_SPEEDS)) for lay in layouts)
+    diffs = tuple(_difference(q, i, labels[i], labels[0],
+                              None if draws is None or q.key not in column
+                              else draws[i][:, column[q.key]] - draws[0][:, column[q.key]], level)
+                  for i in range(1, len(layouts)) for q in qs)
+    curve_speeds = (tuple(-x for x in reversed(CURVE_SPEEDS)) if bool(np.any(u < 0)) else ()) + tuple(CURVE_SPEEDS)
+    curves = tuple(tuple(float(x) for x in growth_rates(lay, curve_speeds)) for lay in layouts)
+    unc_info = None if draws is None else {"samples": int(samples), "seed": int(seed), "level": float(level),
+                                           "pairing": pairing}
     return Comparison(tuple(layouts), labels, "layout", tuple(float(s) for s in u), top, tuple(qs), diffs, (),
-                      CURVE_SPEEDS, curves, None, (None,) * len(layouts), push)
+                      curve_speeds, curves, unc_info, (None,) * len(layouts), push)

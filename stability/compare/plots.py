@@ -10,7 +10,7 @@ from stability.compare.compute import Comparison, EffectSet
 from stability.plotting.style import OKABE_ITO, UNSTABLE
 from stability.settings.reference import REFERENCE_SPEED
 
-__all__ = ["plot_growth_rates", "plot_effects", "comparison_figures"]
+__all__ = ["plot_growth_rates", "plot_effects", "comparison_figures", "growth_caption"]
 
 
 def plot_growth_rates(ax: Any, c: Comparison) -> Any:
@@ -27,21 +27,29 @@ def plot_growth_rates(ax: Any, c: Comparison) -> Any:
     matplotlib.axes.Axes
     """
     styles = ("-", "--", "-.", ":")
+    rates = [q for q in c.quantities if q.key.startswith("growth_rate_1_s@")]
+    layout = c.model == "layout"
     for i, (label, row) in enumerate(zip(c.labels, c.curves, strict=True)):
         colour = OKABE_ITO[i % len(OKABE_ITO)]
         ax.plot(c.curve_speeds, row, color=colour, ls=styles[i % len(styles)], label=label)
-        iv = c.intervals[i]
-        if iv is not None:
-            lo = np.array([r[0] for r in iv.rate])
-            hi = np.array([r[1] for r in iv.rate])
+        # the table speeds' intervals (with uncertainty files): the quantities' own, short form and layouts alike
+        bars = [(float(q.key.split("@")[1]), iv) for q in rates if (iv := q.intervals[i]) is not None]
+        if bars:
+            lo = np.array([b[0] for _, b in bars])
+            hi = np.array([b[1] for _, b in bars])
             mid = 0.5 * (lo + hi)
-            ax.errorbar(iv.speeds, mid, yerr=[mid - lo, hi - mid], fmt="none", ecolor=colour, capsize=3)
+            ax.errorbar([u for u, _ in bars], mid, yerr=[mid - lo, hi - mid], fmt="none", ecolor=colour, capsize=3)
     ax.axhline(0.0, color="black", lw=0.8)
     ax.axvline(REFERENCE_SPEED, color=UNSTABLE, lw=0.8, ls=":",
                label=f"{REFERENCE_SPEED:g} m/s, the thesis's reference speed")
-    ax.set_xlabel("forward speed U (m/s)")
+    if min(c.curve_speeds) < 0:
+        ax.axvline(-REFERENCE_SPEED, color=UNSTABLE, lw=0.8, ls="-.",
+                   label=f"{-REFERENCE_SPEED:g} m/s, the reference speed in reverse")
+    ax.set_xlabel("speed U (m/s; negative: in reverse, the casters trailing backwards)" if min(c.curve_speeds) < 0
+                  else "forward speed U (m/s)")
     ax.set_ylabel("growth rate of least stable mode (1/s)\n(> 0: the heading error grows by itself)")
-    ax.set_title(f"Free-caster growth rate: {' vs '.join(c.labels)} ({c.model} model)")
+    model = "the layouts' linear model, free frictionless casters" if layout else f"{c.model} model"
+    ax.set_title(f"Free-caster growth rate: {' vs '.join(c.labels)}\n({model})", fontsize="medium")
     ax.legend(loc="best", fontsize="small")
     ax.grid(True, alpha=0.3)
     return ax
@@ -88,6 +96,28 @@ def plot_effects(axes: Any, e: EffectSet, reference: str, model: str) -> Any:
     return axes
 
 
+def growth_caption(c: Comparison) -> str:
+    """What to conclude from the growth-rate figure, in one or two sentences (the figure's caption).
+
+    Parameters
+    ----------
+    c : Comparison
+
+    Returns
+    -------
+    str
+    """
+    q = next((q for q in c.quantities if q.key == f"growth_rate_1_s@{REFERENCE_SPEED:g}"), None)
+    text = ("Below the zero line a heading error dies out by itself, above it grows; at any speed the lower curve is "
+            "the more stable chair.")
+    if q is not None and all(np.isfinite(q.values)):
+        best = c.labels[int(np.argmin(q.values))]
+        text += f" At {REFERENCE_SPEED:g} m/s the lowest is {best}."
+    if any(iv is not None for q2 in c.quantities for iv in q2.intervals):
+        text += " Bars: central intervals over the uncertainty files' draws."
+    return text
+
+
 def comparison_figures(c: Comparison) -> list[Any]:
     """The figures of a comparison: the growth-rate curves, then one effects figure per compared chair.
 
@@ -101,8 +131,9 @@ def comparison_figures(c: Comparison) -> list[Any]:
     """
     from matplotlib.figure import Figure  # matplotlib is imported only when figures are asked for
 
-    fig = Figure(figsize=(8.27, 5.8))
+    fig = Figure(figsize=(8.27, 5.8), layout="constrained")
     plot_growth_rates(fig.add_subplot(1, 1, 1), c)
+    fig.supxlabel(growth_caption(c), fontsize="small", wrap=True)
     figs = [fig]
     for e in c.effects:
         f = Figure(figsize=(8.27, 2.0 + 0.35 * (len(e.effects) + 3)), layout="constrained")

@@ -7,7 +7,7 @@ import math
 from typing import Any
 
 from stability.chair import to_mapping
-from stability.compare.compute import Comparison, Difference, Quantity
+from stability.compare.compute import NOT_SEPARABLE, Comparison, Difference, Quantity
 from stability.compare.layouts import LAYOUT_NOTE
 from stability.layout.model import Layout
 from stability.settings.reference import REFERENCE_SPEED
@@ -42,6 +42,8 @@ def _verdict(d: Difference, q: Quantity) -> str:
         text = "equal"
     elif d.more_stable == "undetermined":
         text = "undetermined"
+    elif d.more_stable == NOT_SEPARABLE:
+        text = f"not separable (both bounds: {q.none_means})"
     else:
         text = f"{d.more_stable} more stable"
     if d.absolute is not None:
@@ -68,6 +70,10 @@ def _describe(ch) -> str:
 def _layout_tail(c: Comparison) -> list[str]:
     """The end of a comparison of layouts: what does not apply, the push, the linear model's limit."""
     out = ["", LAYOUT_NOTE]
+    if c.uncertainty:
+        out += ["", "Intervals: the growth rates and the static stability over the uncertainty files' draws (the "
+                "layouts' axes); the speeds up to which a layout is stable and the critical impulse are its own "
+                "values, not propagated (a search per draw)."]
     if c.push:
         out += ["", f"Critical impulse: push convention {c.push}."]
     return out + ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "

@@ -178,6 +178,12 @@ class Caster:
         """x of the contact with the caster trailing forward, m."""
         return self.x - self.trail
 
+    @property
+    def place(self) -> str:
+        """Where the pin sits: ``"front"`` or ``"rear"`` of the c.g. (``x > 0``: front), then ``" left"``
+        (``y < 0``), ``" right"`` (``y > 0``) or nothing on the centre line."""
+        return ("front" if self.x > 0 else "rear") + (" left" if self.y < 0 else " right" if self.y > 0 else "")
+
 
 @dataclass(frozen=True)
 class Layout:
@@ -229,6 +235,12 @@ class Layout:
                              "least 3 (a chair stands on three or more)")
         if sum(c.m_c for c in self.casters) >= self.m:
             raise ValueError(f"layout {self.name!r}: the casters' mass is not less than the chair's m={self.m:g} kg")
+
+    @property
+    def caster_labels(self) -> tuple[str, ...]:
+        """Each caster's label, ``"caster k (front left)"`` with ``k`` from 1 in ``casters`` order (unique: the
+        number tells apart two casters at the same place)."""
+        return tuple(f"caster {k + 1} ({c.place})" for k, c in enumerate(self.casters))
 
     @property
     def shape(self) -> tuple[int, int]:

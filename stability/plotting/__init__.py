@@ -22,7 +22,17 @@ from stability.plotting.loci import (
     speed_loci_figure,
     speed_locus,
 )
-from stability.plotting.pages import PAGE_SIZE, finish, page, panels_page, table_axes, table_page, text_page, wrap_text
+from stability.plotting.pages import (
+    PAGE_SIZE,
+    finish,
+    page,
+    panels_page,
+    plain_text,
+    table_axes,
+    table_page,
+    text_page,
+    wrap_text,
+)
 from stability.plotting.responses import trajectories, yaw_rate_responses
 from stability.plotting.sections import drive_difference, growth_rate_band, uncorrected_heading, variance_shares
 from stability.plotting.studies import (
@@ -35,7 +45,7 @@ from stability.plotting.studies import (
 from stability.plotting.tires import cornering_stiffness_curves, tire_curves
 
 __all__ = [
-    "PAGE_SIZE", "page", "finish", "panels_page", "text_page", "table_page", "table_axes", "wrap_text",
+    "PAGE_SIZE", "page", "finish", "panels_page", "text_page", "table_page", "table_axes", "wrap_text", "plain_text",
     "chair_geometry", "parameter_table",
     "tire_curves", "cornering_stiffness_curves",
     "speed_locus", "speed_loci_figure", "eigenvalues_vs_speed", "parameter_locus", "parameter_loci_figure",

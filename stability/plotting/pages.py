@@ -13,7 +13,8 @@ from typing import Any
 
 from matplotlib.figure import Figure
 
-__all__ = ["PAGE_SIZE", "page", "finish", "wrap_text", "text_page", "table_page", "table_axes", "panels_page"]
+__all__ = ["PAGE_SIZE", "page", "finish", "wrap_text", "text_page", "table_page", "table_axes", "panels_page",
+           "plain_text"]
 
 #: A4 landscape (inches).
 PAGE_SIZE = (11.69, 8.27)
@@ -92,6 +93,27 @@ def finish(fig: Figure, top: float = 0.90, *, left: float = 0.065, right: float 
     fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top,
                         wspace=0.32 if wspace is None else wspace,
                         hspace=(0.45 if nrows > 1 else 0.2) if hspace is None else hspace)
+    return fig
+
+
+def plain_text(fig: Figure) -> Figure:
+    """Draw every text of ``fig`` as typed, never as mathtext (a name from a user's file is never markup).
+
+    Call it once the figure is drawn (titles, labels, legends and captions made).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        ``fig``.
+    """
+    from matplotlib.text import Text
+
+    for t in fig.findobj(Text):
+        t.set_parse_math(False)
     return fig
 
 

@@ -13,9 +13,10 @@ from stability.plotting.style import colour
 from stability.runtime.files import save_figure
 
 if TYPE_CHECKING:
+    from stability.simulate.layout import LayoutRun
     from stability.simulate.results import SimulationResult
 
-__all__ = ["yaw_rate_responses", "trajectories", "plot_result"]
+__all__ = ["yaw_rate_responses", "trajectories", "plot_result", "plot_layout_run", "layout_run_caption"]
 
 def _response_sign(rs) -> float:
     """+1 or -1: the sign that makes the first run's largest yaw rate positive."""
@@ -232,3 +233,96 @@ def plot_result(result: SimulationResult, path_or_ax: Any = None, *, title: str 
     if path_or_ax is None:
         return fig
     return save_figure(fig, path_or_ax, title=title)
+
+
+def layout_run_caption(run: LayoutRun, caster_labels: Sequence[str]) -> str:
+    """What to conclude from a layout's run (:func:`plot_layout_run`'s caption), from the run's own numbers.
+
+    Parameters
+    ----------
+    run : LayoutRun
+    caster_labels : sequence of str
+        One per caster (:attr:`stability.layout.Layout.caster_labels`).
+
+    Returns
+    -------
+    str
+    """
+    f, d = run.settings.get("push_force_N", 0.0), run.settings.get("push_duration_s", 0.0)
+    swing = [float(np.degrees(np.abs(np.angle(np.exp(1j * (a - a[0])))).max())) for a in run.caster_angle_rad]
+    round_ = [lab for lab, w in zip(caster_labels, swing, strict=True) if w > 90.0]
+    words = [f"What to conclude: after the push of {f:g} N for {d:g} s the chair's heading ends "
+             f"{run.final_heading_deg:+.1f} deg from its start (peak {np.abs(run.heading_deg).max():.1f} deg) and its "
+             f"path {run.y_m[-1]:+.3f} m to the side after {abs(run.x_m[-1]):.2f} m of travel: the smaller these, the "
+             "better this layout holds its line at this speed and push."]
+    if round_:
+        words.append(f" The casters that swing more than 90 deg from where they started ({', '.join(round_)}) "
+                     "turned round to trail: while they swing the chair is pulled off its line.")
+    else:
+        words.append(f" No caster swings more than 90 deg (largest {max(swing, default=0.0):.1f} deg): they stay "
+                     "near the trailing angle they started at.")
+    if run.ended != "horizon":
+        words.append(f" The run ended early at {run.end_time_s:.2f} s ({run.ended}): read nothing after it.")
+    return "".join(words)
+
+
+def plot_layout_run(run: LayoutRun, caster_labels: Sequence[str], path: Any = None) -> Any:
+    """A layout's run on one page: the path, the heading, the yaw rate and every caster's angle against time.
+
+    Draws what it is given and computes nothing but the caption's maxima (:func:`layout_run_caption`).
+
+    Parameters
+    ----------
+    run : LayoutRun
+        The run (:func:`stability.simulate.layout.simulate_layout`).
+    caster_labels : sequence of str
+        One per caster (:attr:`stability.layout.Layout.caster_labels`), the legend's names.
+    path : path-like, optional
+        File to write (the suffix names the format: png, svg, pdf); None returns the figure.
+
+    Returns
+    -------
+    Figure or Path
+    """
+    from stability.plotting.pages import finish, page, plain_text, wrap_text
+
+    direction = "backwards" if run.speed_m_s < 0 else "forwards"
+    title = (f"{run.layout} | layout model (exact equations, wchair scheme) | {abs(run.speed_m_s):g} m/s "
+             f"{direction}")
+    f, d = run.settings.get("push_force_N", 0.0), run.settings.get("push_duration_s", 0.0)
+    fig, axes = page(title, f"a push of {f:g} N for {d:g} s at the c.g. to the right; casters start at "
+                     + ", ".join(f"{a:g}" for a in run.settings.get("caster_angles_deg", []))
+                     + " deg (0: trailing for forward driving, 180: for reversing)", nrows=2, ncols=2,
+                     size=(11.0, 8.5))
+    (ax_path, ax_head), (ax_rate, ax_caster) = axes
+    ax_path.plot(run.x_m, run.y_m, color=colour(0), lw=1.6, label="c.g. path")
+    ax_path.plot(run.x_m[:1], run.y_m[:1], "o", color="k", ms=4, label="start")
+    ax_path.set_xlabel("distance along the initial heading X (m)")
+    ax_path.set_ylabel("lateral displacement Y (m, to the right)")
+    ax_path.invert_yaxis()
+    ax_path.set_title("path of the c.g.", fontsize=9)
+    ax_head.plot(run.t_s, run.heading_deg, color=colour(0), lw=1.6, label="heading")
+    ax_head.set_ylabel("heading (deg, clockwise +)")
+    ax_head.set_title("heading", fontsize=9)
+    ax_rate.plot(run.t_s, run.yaw_rate_rad_s, color=colour(0), lw=1.6, label="yaw rate")
+    ax_rate.set_ylabel("yaw rate (rad/s, clockwise +)")
+    ax_rate.set_title("yaw rate", fontsize=9)
+    for k, (a, lab) in enumerate(zip(run.caster_angle_rad, caster_labels, strict=True)):
+        ax_caster.plot(run.t_s, np.degrees(a), color=colour(k + 1), lw=1.4, ls=("-", "--", "-.", ":")[k % 4],
+                       label=lab)
+    ax_caster.set_ylabel("caster angle (deg, 0 trailing forward)")
+    ax_caster.set_title("caster swivel angles", fontsize=9)
+    for ax in (ax_head, ax_rate, ax_caster):
+        ax.set_xlabel("time t (s)")
+        ax.axhline(0.0, color="0.5", lw=0.6)
+    for ax in (ax_path, ax_head, ax_rate, ax_caster):
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7, loc="best")
+    lines = wrap_text(layout_run_caption(run, caster_labels), 150)
+    fig.text(0.5, 0.015, "\n".join(lines), ha="center", va="bottom", fontsize=8.5, fontweight="bold", color="0.1",
+             linespacing=1.4)
+    finish(fig, top=0.88, left=0.09, bottom=0.10 + 0.03 * len(lines), hspace=0.4)
+    plain_text(fig)                                  # the layout's name may come from a user's file
+    if path is None:
+        return fig
+    return save_figure(fig, path, title=f"stability simulate: {run.layout}")

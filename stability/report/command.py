@@ -18,6 +18,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     output_files,
     parse_speeds,
     run,
@@ -158,13 +159,17 @@ def _layout(args: argparse.Namespace) -> int:
     sheet, with ``--compare`` a comparison page (the baseline a layout or a short-form chair as a layout), with
     ``--uncertainty`` a page of the linear results' intervals over the file's layout fields."""
     from stability import __version__
-    from stability.layout.io import resolve_layout
     from stability.report.layout_report import compute_layout_report, write_layout_report
 
     outputs = _check_layout_args(args)
-    layout = resolve_layout(args.chair)
+    layout = load_layout(args.chair, args.set)
     if args.clinician:
         from stability.report.layout_clinician import layout_clinician_sheet
+
+        if args.reaction_time is not None:
+            raise ValueError("--reaction-time is not available with --clinician for a wheel layout: the layout's "
+                             "sheet has no driver line yet; valid: drop --clinician (the full report's driver "
+                             "section gives the speed this driver holds, forwards and backwards)")
 
         return _clinician(args, layout, outputs, lambda speeds: layout_clinician_sheet(layout, speeds),
                           signed=True)
@@ -173,11 +178,12 @@ def _layout(args: argparse.Namespace) -> int:
     baseline = None if args.compare is None else _layout_baseline(args.compare)
     unc = None
     if args.uncertainty is not None:
-        from stability.report.layout_uncertainty import load_layout_uncertainty
+        from stability.advise.layout_axes import load_layout_uncertainty
 
         unc = load_layout_uncertainty(args.uncertainty, layout)
+    driver = driver_from_args(args)       # --reaction-time or the file's [user]: the layout's driver limit
     r = compute_layout_report(layout, progress=not args.no_progress, quick=args.quick, baseline=baseline,
-                              uncertainty=unc, samples=args.samples, seed=args.seed)
+                              uncertainty=unc, samples=args.samples, seed=args.seed, driver=driver)
     n = 0
     with output_files(outputs) as tmp:
         if args.output:
@@ -192,7 +198,8 @@ def _layout(args: argparse.Namespace) -> int:
                     "chair_parameters": dataclasses.asdict(layout), "model": "exact",
                     "options": {"output": args.output, "quick": bool(args.quick), "compare": args.compare,
                                 "uncertainty": args.uncertainty, "samples": args.samples if unc else None,
-                                "seed": args.seed if unc else None},
+                                "seed": args.seed if unc else None,
+                                "reaction_time_s": None if driver is None else driver.reaction_time_s},
                     "schema": "stability.report.layout/1"}
             emit_json({**head, **r.data}, args, write_to=tmp.get("--json-file"))
     if args.output:
@@ -207,11 +214,6 @@ def _check_layout_args(args: argparse.Namespace) -> dict:
         raise ValueError(f"--text {args.text!r} needs -o FILE.pdf (the text is that of the PDF's pages)")
     outputs = {"-o": args.output, "--text": args.text, "--json-file": args.json_file}
     check_outputs(outputs, {"--chair": args.chair, "--uncertainty": args.uncertainty, "--compare": args.compare})
-    for flag, given, valid in (("--set", args.set, "edit the layout file's [[wheel]] tables"),
-                               ("--reaction-time", args.reaction_time, "a short-form chair (the driver's model is "
-                                                                       "the short form's)")):
-        if given:
-            raise ValueError(f"{flag} is not available for a wheel layout; valid: {valid}")
     if args.model != "exact":
         raise ValueError(f"--model {args.model} is invalid for a wheel layout; valid values: exact (the layout's "
                          "equations are the exact model's)")

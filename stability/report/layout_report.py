@@ -55,12 +55,15 @@ NOT_APPLICABLE = (
      "short form's fields; a layout's levers are the advisor's (caster trail per row, drive-axle position, "
      "suspension), whose effects the decision lists."),
     ("Thesis model against the exact model", "a layout's equations are the exact model's only."),
-    ("Parameter uncertainty (nonlinear measures)", "--uncertainty FILE (tables naming the layout's fields: m, i_z, "
-     "h, caster_K_FIELD, wheel_J_FIELD) propagates the linear growth rates and the static stability; the critical "
-     "impulse and the equal-instability speed are a simulator search per draw and are not propagated."),
+    ("Parameter uncertainty (nonlinear measures)", "--uncertainty FILE (tables naming the layout's axes: m, i_z, "
+     "h, caster_K_FIELD, wheel_J_FIELD, trail_ROW, drive_x) propagates the linear growth rates and the static "
+     "stability; the critical impulse and the equal-instability speed are a simulator search per draw and are not "
+     "propagated."),
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
-    ("The driver", "the driver's linear model is the short form's (docs/driver.md)."),
+    ("The driver", "--reaction-time S (or the file's [user]) adds the speed up to which that driver holds the "
+     "layout, forwards and backwards (the divergence rule on the layout's linear model); the delayed-loop and lane "
+     "limits are the short form's only (docs/driver.md)."),
 )
 
 
@@ -159,7 +162,8 @@ def comparison_caption(c: Comparison) -> str:
         parts.append(f"stable {way} up to " + ", ".join(
             f"{lab} " + _up_to(x) for lab, x in zip(c.labels, s.values, strict=True)))
     return ("Linear model, free frictionless casters: " + "; ".join(parts)
-            + ". The figure draws the forward speeds; the table on the page before has the reverse ones.")
+            + (". The figure draws both directions (negative speeds: in reverse)." if min(c.curve_speeds) < 0
+               else ". The figure draws the forward speeds; the table on the page before has the reverse ones."))
 
 
 def _impulses(layout: Layout) -> tuple[list[str], list[dict]]:
@@ -190,28 +194,59 @@ def _equal(layout: Layout) -> tuple[list[str], list[dict]]:
 
 
 def _shimmy(layout: Layout, speeds: tuple) -> tuple[list[str], list[dict]]:
-    rows = layout_shimmy_rows(layout, speeds)
-    if not rows:
+    """Each caster row's shimmy margin forwards and in reverse: the reverse rows are their own computation
+    (:func:`stability.advise.layout_measures.layout_shimmy_rows` at the negated speeds: every caster swung round,
+    trailing the other way, at the reversed statics' load), which differs from forwards wherever the rows carry
+    different loads backwards."""
+    sizes = tuple(abs(float(u)) for u in speeds)
+    both = [(way, layout_shimmy_rows(layout, tuple(sign * u for u in sizes)))
+            for way, sign in (("forward", 1.0), ("reverse", -1.0))]
+    if not both[0][1]:
         return ["The layout has no casters."], []
-    lines = [f"Each caster row as a towed wheel on its pin at its own static load, at {', '.join(map(str, speeds))} "
-             "m/s (in reverse a caster swings round and trails the other way: the same answer):"]
+    at = ", ".join(f"{u:g}" for u in sizes)
+    lines = [f"Each caster row as a towed wheel on its pin at its own static load, at {at} m/s; in reverse each "
+             "caster has swung round and trails the other way, its load from the statics of the casters trailing "
+             "backwards (python -m stability.shimmy --chair NAME --speeds -U):"]
     data = []
-    for name, trail, band in rows:
-        lo, hi = band.shimmy_margin_interval_m
-        lines.append(f"  {name} casters, trail {trail * 100:g} cm: margin {band.shimmy_margin_m * 100:+.2f} cm to the "
-                     f"nearest shimmy boundary (over the estimate ranges {lo * 100:+.2f} to {hi * 100:+.2f} cm"
-                     + ("; it straddles a boundary: measure pin stiffness and relaxation length" if band.straddles
-                        else "") + ")")
-        data.append({"row": name, "trail_m": trail, "shimmy_margin_m": band.shimmy_margin_m,
-                     "interval_m": [lo if math.isfinite(lo) else None, hi if math.isfinite(hi) else None],
-                     "straddles": band.straddles})
+    for way, rows in both:
+        lines.append(f"  {'Forwards' if way == 'forward' else 'Backwards'}:")
+        for name, trail, band in rows:
+            lo, hi = band.shimmy_margin_interval_m
+            lines.append(f"    {name} casters, trail {trail * 100:g} cm: margin {band.shimmy_margin_m * 100:+.2f} cm "
+                         f"to the nearest shimmy boundary (over the estimate ranges {lo * 100:+.2f} to "
+                         f"{hi * 100:+.2f} cm"
+                         + ("; it straddles a boundary: measure pin stiffness and relaxation length" if band.straddles
+                            else "") + ")")
+            data.append({"row": name, "direction": way, "trail_m": trail, "shimmy_margin_m": band.shimmy_margin_m,
+                         "interval_m": [lo if math.isfinite(lo) else None, hi if math.isfinite(hi) else None],
+                         "straddles": band.straddles})
     return lines, data
+
+
+def _driver(layout: Layout, driver: Any) -> tuple[tuple[str, ...], dict]:
+    """The speed up to which the driver holds the layout, forwards and backwards: the divergence rule on the layout's
+    linear model (:func:`stability.advise.layout_measures.layout_rule_speed`, the advisor's driver limit)."""
+    from stability.advise.layout_measures import layout_rule_speed
+
+    tau = float(driver.reaction_time_s)
+    lines = [f"A driver with an effective delay of {tau:g} s (from {driver.source}): the speed up to which the "
+             f"layout's own divergence is slow enough for them (its largest growth rate reaches 1/{tau:g} s, the "
+             "divergence rule on the layout's linear model, free frictionless casters):"]
+    rows = []
+    for reverse in (False, True):
+        u, side = layout_rule_speed(layout, tau, reverse)
+        way = "backwards" if reverse else "forwards"
+        lines.append(f"  {way}: " + ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s")
+        rows.append({"direction": "reverse" if reverse else "forward", "rule_speed_m_s": float(u), "side": side})
+    lines.append("It leaves out pin friction and the driver's own heading loop (the delayed-loop and lane limits are "
+                 "the short form's: python -m stability.critical_speed --reaction-time on a short-form chair).")
+    return tuple(lines), {"reaction_time_s": tau, "source": driver.source, "limits": rows}
 
 
 def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), progress: bool = False,
                           nonlinear: Callable | None = None, quick: bool = False,
                           baseline: Layout | None = None, uncertainty: Any = None, samples: int = D.SAMPLES,
-                          seed: int = D.SEED) -> LayoutReport:
+                          seed: int = D.SEED, driver: Any = None) -> LayoutReport:
     """Every section of the layout's report.
 
     Parameters
@@ -227,9 +262,12 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     baseline : Layout, optional
         Compare with this layout (a short-form chair as :meth:`Layout.from_chair`).
     uncertainty : stability.uncertainty.Uncertainty, optional
-        Distributions of the layout's fields (:func:`stability.report.layout_uncertainty.load_layout_uncertainty`).
+        Distributions of the layout's axes (:func:`stability.advise.layout_axes.load_layout_uncertainty`).
     samples, seed : int
         Monte Carlo draws and their seed with ``uncertainty``.
+    driver : stability.driver.Driver, optional
+        The user (``--reaction-time`` or the file's ``[user]``): the advisor's decision weighs the speed this driver
+        holds (:func:`stability.advise.advise`'s ``driver``) and a section gives that speed both ways.
 
     Returns
     -------
@@ -238,7 +276,7 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     if quick and (baseline is not None or uncertainty is not None):
         raise ValueError("baseline, uncertainty: the quick report is the decision and the clinician sheet; drop quick "
                          "to compare or to propagate an uncertainty")
-    a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear)
+    a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear, driver=driver)
     d = decide(a)
     decision = ("The decision (forward driving)", tuple(d.paragraphs()) + (
         f"For the advice on reversing: python -m stability.advise --chair {layout.name} --speeds -0.5:1.",))
@@ -269,9 +307,13 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
             "quasi-static; python -m stability.bench gives every case).",)))
     else:
         sections.append(("The virtual ISO 7176-2/-3 bench", ("Not applicable: the layout has no driven wheel.",)))
+    drv = None
+    if driver is not None:
+        drv_lines, drv = _driver(layout, driver)
+        sections.append(("The driver: the speed this user holds, forwards and backwards", drv_lines))
     data = {"layout": layout.name, "growth_rates": summary.to_mapping(), "critical_impulse": imp,
             "equal_instability": eq, "shimmy_rows": sh, "bench": bench, "decision": d.to_mapping(),
-            "not_applicable": [{"section": t, "why": w} for t, w in NOT_APPLICABLE]}
+            "driver": drv, "not_applicable": [{"section": t, "why": w} for t, w in NOT_APPLICABLE]}
     comparison = None
     if baseline is not None:
         from stability.compare.compute import unique_labels

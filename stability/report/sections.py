@@ -45,8 +45,11 @@ def slope_text(d: ReportData) -> list[str]:
     per = (f"{s.per_degree:.3g} N m per deg (at 1 deg)" if s.per_degree is not None else "not defined at 1 deg")
     out.append(f"Holding a straight line at {s.speed:g} m/s needs a yaw moment from the drive of {per}; "
                f"closed form (frictionless pins, casters straight) {s.closed_form_per_degree:.3g} N m/deg. At "
-               f"{top:g} deg: {cv.holding_moment[k]:.3g} N m, and with Coulomb pin friction any moment in "
-               f"{cv.friction_low[k]:.3g}-{cv.friction_high[k]:.3g} N m holds (the band).")
+               f"{top:g} deg: {cv.holding_moment[k]:.3g} N m, and " + (
+                   f"with Coulomb pin friction any moment in {cv.friction_low[k]:.3g}-{cv.friction_high[k]:.3g} "
+                   "N m holds (the band)." if cv.friction_low[k] > 0 else
+                   "with Coulomb pin friction the pins alone can hold the line (no drive moment needed); up to "
+                   f"{cv.friction_high[k]:.3g} N m in the holding direction still holds (the band)."))
     sides = sorted(set(s.harder_side[1:] if len(s.harder_side) > 1 else s.harder_side) - {"neither"})
     side = (f"the {sides[0]} wheel works harder at every slope shown" if len(sides) == 1 else
             "the harder-working side changes with the slope: " + ", ".join(

@@ -41,7 +41,9 @@ ValueError: speed=25.0 is invalid; valid range: 0.01 <= |speed| <= 20 m/s (negat
 
 from __future__ import annotations
 
+import copy
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -250,7 +252,11 @@ class RunSpec:
     grade_deg: float = _s(0.0, "deg", "grade: the plane rises ahead (+)", Bound(-15.0, 15.0, "deg"), flag="--grade")
 
     def __post_init__(self) -> None:
-        for f in dataclasses.fields(self):
+        self._check(dataclasses.fields(self))
+
+    def _check(self, fields: Any) -> None:
+        """Check ``fields`` (each alone: floats stored as floats), the reverse shorthand, the settings together."""
+        for f in fields:
             s: Setting = f.metadata["setting"]
             value = getattr(self, f.name)
             if any(value is sp or (isinstance(sp, (str, float)) and isinstance(value, type(sp)) and value == sp)
@@ -351,10 +357,17 @@ class RunSpec:
         ValueError
             An unknown field (named, with the valid ones) or an invalid value.
         """
-        unknown = sorted(set(changes) - set(names()))
+        unknown = sorted(set(changes) - set(_names()))
         if unknown:
             raise ValueError(f"unknown run setting(s) {unknown}; valid: {names()}")
-        return dataclasses.replace(self, **changes)
+        if all(type(v) is float and v == getattr(self, k) and type(getattr(self, k)) is float
+               for k, v in changes.items()):
+            return self           # the same floats (a checked spec is immutable): not checked again
+        new = copy.copy(self)     # the other settings were checked: only the changed ones are, and all together
+        for k, v in changes.items():
+            object.__setattr__(new, k, v)
+        new._check([_fields()[k] for k in changes])
+        return new
 
     def to_dict(self) -> dict[str, Any]:
         """The settings under their JSON keys (snake_case, unit last: ``speed_m_s``, ``horizon_s``).
@@ -405,7 +418,17 @@ def names() -> list[str]:
     -------
     list of str
     """
-    return [f.name for f in dataclasses.fields(RunSpec)]
+    return list(_names())
+
+
+@functools.cache
+def _names() -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(RunSpec))
+
+
+@functools.cache
+def _fields() -> dict[str, dataclasses.Field]:
+    return {f.name: f for f in dataclasses.fields(RunSpec)}
 
 
 def setting(name: str) -> Setting:

@@ -14,6 +14,23 @@ from stability.shimmy.band import ShimmyBand, shimmy_band
 from stability.shimmy.chair import SECONDS_PER_SPEED, CasterCompliance, caster_summary, check_speed_count, trail_chart
 from stability.shimmy.chair_modes import chair_shimmy
 
+#: Trails of the PDF's trail x speed chart, m.
+CHART_TRAILS_M = np.linspace(0.02, 0.12, 26)
+#: The models of the charts, for their titles.
+SHORT_FORM_MODELS = "left caster as a towed wheel (shimmy); exact linear model (yaw divergence)"
+LAYOUT_MODELS = ("caster row as a towed wheel at its own static load (shimmy); layout linear model (yaw "
+                 "divergence)")
+
+
+def _check_chart_speeds(args, speeds: np.ndarray) -> None:
+    """-o draws a trail x speed chart per direction: at least two speeds in each direction given."""
+    if not args.output:
+        return
+    for name, u in (("forwards", speeds[speeds > 0]), ("backwards", speeds[speeds < 0])):
+        if u.size == 1:
+            raise ValueError(f"--speeds {args.speeds!r} gives 1 speed {name}; -o draws a trail x speed chart, "
+                             "valid: at least 2 speeds in each direction (e.g. --speeds 0.5:2:0.5)")
+
 
 def build_parser() -> cli.OneLineErrorParser:
     p = cli.OneLineErrorParser(prog="python -m stability.shimmy", description=__doc__)
@@ -27,7 +44,7 @@ def build_parser() -> cli.OneLineErrorParser:
                    help=f"shimmy amplitude for the friction estimate, deg (default {D.SHIMMY_AMPLITUDE_DEG:g})")
     cli.add_json_options(p)
     cli.add_output_option(p, ("pdf",), what="the trail x speed design chart and the friction needed (a PDF, "
-                          "one figure a page)", aliases=("--pdf",))
+                          "one figure a page; a layout: two pages per caster row and direction)", aliases=("--pdf",))
     p.add_argument("--chair-model", action="store_true",
                    help="also give the shimmy mode of the full chair model with relaxation-length caster tires "
                         "(rigid and compliant pins)")
@@ -60,12 +77,14 @@ def _body(args) -> int:
     chair = cli.load_chair(args.chair, args.set)
     cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
     speeds = cli.parse_speeds(args.speeds, signed=True)
+    _check_chart_speeds(args, speeds)
     if np.any(speeds < 0):
         # reverse: the casters swing round and carry the reversed statics' loads, which the layout form computes
-        for flag, given in (("-o", args.output), ("--chair-model", args.chair_model)):
-            if given:
-                raise ValueError(f"{flag} with --speeds {args.speeds!r} is not available in reverse; valid: speeds "
-                                 "> 0 (the trail chart and the full-chair shimmy model are forward only)")
+        if args.chair_model:
+            raise ValueError(f"--chair-model with --speeds {args.speeds!r} is invalid: the full-chair shimmy model "
+                             "is linearised about casters trailing behind their pins in forward motion, and in "
+                             "reverse they lead them (an unstable state the casters swing out of); valid: "
+                             "--chair-model with speeds > 0")
         from stability.layout import Layout
 
         return _layout_answer(args, Layout.from_chair(chair), speeds)
@@ -100,16 +119,11 @@ def _body(args) -> int:
             for pin, m in modes.items():
                 _print_chair_model(pin, m)
         if args.output:
-            from stability.runtime.files import _pyplot, write_pdf
-            from stability.shimmy.plots import plot_friction_needed, plot_trail_chart
+            from stability.runtime.files import write_pdf
+            from stability.shimmy.plots import trail_chart_pages
 
-            plt = _pyplot()
-            chart = trail_chart(chair, np.linspace(0.02, 0.12, 26), speeds, comp, math.radians(args.amplitude_deg))
-            fig1, ax1 = plt.subplots(figsize=(8, 6))
-            plot_trail_chart(chart, ax1)
-            fig2, ax2 = plt.subplots(figsize=(8, 5))
-            plot_friction_needed(chart, ax2, trails_cm=[3, 4, 5, 6, 8])
-            write_pdf([fig1, fig2], tmp["-o"], title=f"caster shimmy: {chair.name}")
+            chart = trail_chart(chair, CHART_TRAILS_M, speeds, comp, math.radians(args.amplitude_deg))
+            write_pdf(trail_chart_pages(chart, SHORT_FORM_MODELS), tmp["-o"], title=f"caster shimmy: {chair.name}")
     for path in outputs.values():
         if path:
             print(f"wrote {path}", file=sys.stderr)
@@ -135,16 +149,16 @@ def _print_table(s, band: ShimmyBand, amplitude_deg: float, speeds: np.ndarray |
 
 def _body_layout(args) -> int:
     """Every caster row of a wheel layout: the towed-wheel summary and band at the caster's own static load."""
-    from stability.layout.io import resolve_layout
-
-    if args.set:
-        raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-    for flag, given in (("-o", args.output), ("--chair-model", args.chair_model)):
-        if given:
-            raise ValueError(f"{flag} is not available for a wheel layout yet; valid: the short-form chair "
-                             "(the trail chart and the full-chair shimmy model are the thesis chair's)")
-    cli.check_outputs({"--json-file": args.json_file}, {"--chair": args.chair})
-    return _layout_answer(args, resolve_layout(args.chair), cli.parse_speeds(args.speeds, signed=True))
+    if args.chair_model:
+        raise ValueError(f"--chair-model with --chair {args.chair!r} is invalid: the full-chair shimmy model's "
+                         "equations (relaxation-length caster tires, compliant pins, coupled to the body) are "
+                         "derived for two main wheels and one caster pair; a layout's casters are answered row by "
+                         "row as towed wheels at their own static loads; valid: --chair-model with a short-form "
+                         "chair (e.g. --chair ej-premier)")
+    cli.check_outputs({"--json-file": args.json_file, "-o": args.output}, {"--chair": args.chair})
+    speeds = cli.parse_speeds(args.speeds, signed=True)
+    _check_chart_speeds(args, speeds)
+    return _layout_answer(args, cli.load_layout(args.chair, args.set), speeds)
 
 
 def _rows(layout, reverse: bool) -> list:
@@ -172,10 +186,20 @@ def _layout_answer(args, layout, speeds: np.ndarray) -> int:
     rows = [(c, u) for rev, u in groups for c in _rows(layout, rev)]
     if not rows:
         raise ValueError(f"--chair {args.chair!r}: the layout has no casters; valid: a layout with casters")
-    check_speed_count("--speeds", sum(u.size for _, u in rows), SECONDS_PER_SPEED["summary"])
+    check_speed_count("--speeds", sum(u.size for _, u in rows), SECONDS_PER_SPEED["summary"]
+                      + (SECONDS_PER_SPEED["chart"] if args.output else 0.0))
     amp = math.radians(args.amplitude_deg)
     results = [(c, u, caster_summary(c, np.abs(u), comp, amp), shimmy_band(c, np.abs(u), comp)) for c, u in rows]
-    with cli.output_files({"--json-file": args.json_file}) as tmp:
+    with cli.output_files({"--json-file": args.json_file, "-o": args.output}) as tmp:
+        if args.output:
+            from stability.runtime.files import write_pdf
+            from stability.shimmy.plots import trail_chart_pages
+
+            write_pdf([fig for c, u, *_ in results
+                       for fig in trail_chart_pages(trail_chart(c, CHART_TRAILS_M, np.abs(u), comp, amp),
+                                                    LAYOUT_MODELS + (" | reverse: speeds backwards, casters swung "
+                                                                     "round" if c.reverse else ""))],
+                      tmp["-o"], title=f"caster shimmy: {layout.name}")
         if args.json or args.json_file:
             casters = []
             for c, u, s, b in results:
@@ -211,8 +235,9 @@ def _layout_answer(args, layout, speeds: np.ndarray) -> int:
                     print("leading 1/s: " + ", ".join(f"{x:g} m/s: {r:.1f}" for x, r in zip(u, rate, strict=True)))
                 _print_table(s, band, args.amplitude_deg, u)
                 _print_band(band, u)
-    if args.json_file:
-        print(f"wrote {args.json_file}", file=sys.stderr)
+    for path in (args.json_file, args.output):
+        if path:
+            print(f"wrote {path}", file=sys.stderr)
     return 0
 
 

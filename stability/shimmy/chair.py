@@ -14,7 +14,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from stability.chair import Chair
 from stability.shimmy import describing
 from stability.shimmy.compliance import ESTIMATE_NOTE, CasterCompliance
 from stability.shimmy.layout_caster import CasterSource, LayoutCaster
@@ -244,14 +243,28 @@ class TrailChart:
     note: str = ESTIMATE_NOTE
 
 
-def trail_chart(chair: Chair, trails, speeds, compliance: CasterCompliance | None = None,
+def _divergence(chair: CasterSource, speeds: np.ndarray) -> np.ndarray:
+    """Largest real part of the whole chair's linear eigenvalues at each speed, 1/s: the short form's exact model,
+    or for a layout's caster its layout's linear model (in reverse at ``-speeds``)."""
+    if isinstance(chair, LayoutCaster):
+        from stability.layout.linear import growth_rates
+
+        return growth_rates(chair.layout, -speeds if chair.reverse else speeds)
+    from stability.linear import eigenvalues_vs_speed
+
+    return eigenvalues_vs_speed(chair, speeds, track=False).real.max(axis=-1)
+
+
+def trail_chart(chair: CasterSource, trails, speeds, compliance: CasterCompliance | None = None,
                 amplitude: float = math.radians(5.0)) -> TrailChart:
     """Yaw divergence rate and caster shimmy over trail x speed (see :class:`TrailChart`).
 
     Parameters
     ----------
-    chair : Chair
-        The chair; its trail is replaced by each grid value.
+    chair : Chair or LayoutCaster
+        The chair (its left caster), or one caster of a layout (at its own static load, recomputed at each trail;
+        its row's trail is what changes, :meth:`LayoutCaster.replace`); the trail is replaced by each grid
+        value.
     trails : array_like
         Trails, m (> 0).
     speeds : array_like
@@ -268,8 +281,6 @@ def trail_chart(chair: Chair, trails, speeds, compliance: CasterCompliance | Non
         and friction trails per speed (m), with the critical trail's range over
         the compliance range corners.
     """
-    from stability.linear import eigenvalues_vs_speed
-
     comp = compliance or CasterCompliance()
     trails = np.asarray(trails, dtype=float)
     speeds = np.asarray(speeds, dtype=float)
@@ -278,7 +289,7 @@ def trail_chart(chair: Chair, trails, speeds, compliance: CasterCompliance | Non
     need = np.empty_like(div)
     for i, t in enumerate(trails):
         c = chair.replace(trail=float(t))
-        div[i] = eigenvalues_vs_speed(c, speeds, track=False).real.max(axis=-1)
+        div[i] = _divergence(c, speeds)
         w = caster_wheel(c, comp)
         need[i] = [describing.suppressing_friction(w, u, amplitude).friction for u in speeds]
     crit = np.array([critical_trail(chair, u, comp) for u in speeds])

@@ -61,9 +61,7 @@ class LayoutCaster:
     @property
     def name(self) -> str:
         """``"<layout> caster k (front left)"``, k from 1 (``", reverse"`` appended in reverse)."""
-        c = self._c
-        where = ("front" if c.x > 0 else "rear") + (" left" if c.y < 0 else " right" if c.y > 0 else "")
-        return f"{self.layout.name} caster {self.index + 1} ({where}{', reverse' if self.reverse else ''})"
+        return f"{self.layout.name} caster {self.index + 1} ({self._c.place}{', reverse' if self.reverse else ''})"
 
     @property
     def trail(self) -> float:

@@ -8,7 +8,7 @@ import numpy as np
 
 from stability.shimmy.chair import TrailChart
 
-__all__ = ["plot_trail_chart", "plot_friction_needed"]
+__all__ = ["plot_trail_chart", "plot_friction_needed", "trail_chart_caption", "trail_chart_pages"]
 
 # Okabe-Ito colour-blind-safe palette
 _BLACK, _ORANGE, _BLUE, _VERMILION = "#000000", "#E69F00", "#0072B2", "#D55E00"
@@ -82,3 +82,71 @@ def plot_friction_needed(chart: TrailChart, ax, trails_cm=None):
     ax.set_title(f"{chart.chair_name}: Coulomb pin friction against caster shimmy (towed-wheel caster)", fontsize=10)
     ax.legend(fontsize=7)
     return ax
+
+
+def _speeds_words(speeds: np.ndarray) -> str:
+    return ", ".join(f"{u:g}" for u in speeds) + " m/s"
+
+
+def trail_chart_caption(chart: TrailChart) -> str:
+    """What to conclude from a trail chart, at the caster's own trail, from the chart's own numbers.
+
+    Parameters
+    ----------
+    chart : TrailChart
+
+    Returns
+    -------
+    str
+    """
+    U, trail = chart.speeds, chart.chair_trail
+    linear = U[trail < chart.critical_trail]
+    held = U[trail < chart.friction_trail]
+    words = [f"What to conclude: at its trail of {trail * 100:g} cm (dotted line) this caster "]
+    words.append("is clear of the linear shimmy boundary at every speed shown" if not linear.size else
+                 f"lies below the linear shimmy boundary (it shimmies without pin friction) at {_speeds_words(linear)}")
+    words.append(f"; its pin friction of {chart.pin_friction:g} N m ")
+    words.append(f"holds {math.degrees(chart.amplitude):g} deg shimmy at every speed shown" if not held.size else
+                 f"does not hold {math.degrees(chart.amplitude):g} deg shimmy at {_speeds_words(held)}")
+    k = int(np.argmin(np.abs(chart.trails - trail)))
+    peak = float(np.max(chart.divergence_rate[k]))
+    words.append(f". The whole chair's yaw divergence at this trail peaks at {peak:.2f} 1/s "
+                 + ("(> 0: a yaw disturbance grows at this rate until the user steers)" if peak > 0
+                    else "(<= 0: no yaw divergence)")
+                 + ". Compliance values are estimates: read the hatched band, not the dashed line alone.")
+    return "".join(words)
+
+
+def trail_chart_pages(chart: TrailChart, model: str, trails_cm=(3, 4, 5, 6, 8)) -> list:
+    """The shimmy command's two pages of one caster: the trail x speed chart and the friction needed, each with
+    a title naming the caster and the models and a caption (:func:`trail_chart_caption`).
+
+    Parameters
+    ----------
+    chart : TrailChart
+    model : str
+        The models' words for the title (which linear model gives the yaw divergence).
+    trails_cm : sequence of float
+        Trails of the friction page, cm.
+
+    Returns
+    -------
+    list of matplotlib.figure.Figure
+    """
+    from matplotlib.figure import Figure
+
+    from stability.plotting.pages import plain_text, wrap_text
+
+    caption = wrap_text(trail_chart_caption(chart), 120)
+    pages = []
+    for draw, size in ((lambda ax: plot_trail_chart(chart, ax), (8.5, 7.2)),
+                       (lambda ax: plot_friction_needed(chart, ax, trails_cm=list(trails_cm)), (8.5, 6.4))):
+        fig = Figure(figsize=size)
+        ax = fig.subplots()
+        draw(ax)
+        fig.suptitle(f"{chart.chair_name}\n" + "\n".join(wrap_text(model, 100)), fontsize=9.5, fontweight="bold")
+        fig.text(0.5, 0.01, "\n".join(caption), ha="center", va="bottom", fontsize=8, fontweight="bold",
+                 color="0.1", linespacing=1.35)
+        fig.subplots_adjust(top=0.84, bottom=0.13 + 0.028 * len(caption))
+        pages.append(plain_text(fig))                  # a name from a user's file is never markup
+    return pages

@@ -23,6 +23,7 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
+    load_layout,
     output_files,
     run,
     run_from_args,
@@ -69,21 +70,28 @@ def _check_output(args: argparse.Namespace, run: RunSpec) -> None:
 
 def _run_layout(args: argparse.Namespace, run_spec: RunSpec) -> int:
     """A chair in the ``[[wheel]]`` form or a layout preset: :func:`stability.simulate.layout.simulate_layout`
-    (casters on the left start at ``--eta0``, on the right at ``--beta0``)."""
+    (casters on the left start at ``--eta0``, on the right at ``--beta0``); ``--csv`` and ``-o`` as the short
+    form's (the casters named by :attr:`stability.layout.Layout.caster_labels`)."""
     from stability import __version__
-    from stability.layout.io import resolve_layout
+    from stability.plotting.responses import plot_layout_run
     from stability.simulate.layout import simulate_layout
 
-    for flag, value in (("--set", args.set), ("--csv", args.csv), ("-o", args.output)):
-        if value:
-            raise ValueError(f"{flag} is not available for a layout yet; valid: --json, --json-file and the run "
-                             "settings (a layout's wheels are set in its [[wheel]] file)")
-    res = simulate_layout(resolve_layout(args.chair), None, run_spec)
+    layout = load_layout(args.chair, args.set)      # --set: the short form's only (the one line says so)
+    res = simulate_layout(layout, None, run_spec)
+    labels = layout.caster_labels
+    with output_files({"--csv": args.csv, "-o": args.output}) as tmp:
+        if args.csv:
+            res.to_csv(tmp["--csv"], labels)
+        if args.output:
+            plot_layout_run(res, labels, tmp["-o"])
     if args.json or args.json_file:
         emit_json({"stability_version": __version__, "chair": res.layout, "model": "exact",
                    "options": run_spec.to_dict(), **res.to_mapping()}, args)
     if not args.json:
         print(res.summary())
+        for path in (args.csv, args.output):
+            if path:
+                print(f"wrote {path}")
     return 0
 
 

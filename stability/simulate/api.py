@@ -198,20 +198,19 @@ def _run(chairs: list[Chair], speeds: np.ndarray, run: RunSpec, forces: np.ndarr
     if auto:
         opts = make_options(run, yaw_moment=yaw_moment, batch=batch, dt=auto_step(float(limits.min())))
     out = run_compiled(chairs, speeds, opts, forces=forces, controller=controller, record=record, threads=threads,
-                       batch=batch)
-    return _flag_steps(out, opts.dt, limits, auto, speeds)
+                       batch=batch, step_limits=limits, dt_auto=auto)
+    _warn_steps(out, opts.dt, limits, speeds)
+    return out
 
 
-def _flag_steps(out: list[SimulationResult], dt: float, limits: np.ndarray, auto: bool,
-                speeds: np.ndarray) -> list[SimulationResult]:
-    bad = dt > limits * (1.0 + 1e-12)
-    if bad.any():
+def _warn_steps(out: list[SimulationResult], dt: float, limits: np.ndarray, speeds: np.ndarray) -> None:
+    """Warn when ``dt`` exceeds a run's stability limit (the runs are flagged ``step_unstable`` by the engine)."""
+    bad = [r.step_unstable for r in out]
+    if any(bad):
         i = int(np.argmin(limits))
-        warnings.warn(f"dt={dt:g} s exceeds the WCHAIR scheme's stability limit in {int(bad.sum())} of {len(out)} "
+        warnings.warn(f"dt={dt:g} s exceeds the WCHAIR scheme's stability limit in {sum(bad)} of {len(out)} "
                       f"run(s) (largest safe step {limits[i]:.3g} s at {speeds[i]:g} m/s): flagged step_unstable; "
                       "use dt='auto', a smaller dt or scheme='adaptive'", StepStabilityWarning, stacklevel=4)
-    return [dataclasses.replace(r, step_unstable=bool(b), settings=dict(r.settings, stable_dt=float(lim), dt_auto=auto))
-            for r, b, lim in zip(out, bad, limits, strict=True)]
 
 
 def _adaptive_runs(chairs, speeds, opts, forces, progress) -> list[SimulationResult]:

@@ -8,6 +8,7 @@ with the same kernel, so the same run gives the same numbers either way.
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
 import threading
 import time
@@ -63,16 +64,30 @@ def first_use(scheme: str) -> Iterator[None]:
         _FIRST_USE["noticed"] = True
 
 
-def _kernel():
-    with first_use("wchair_load"):
-        from stability.simulate import kernel  # numba and the compiled code load on first use (start-up of the CLIs)
+_LOADED: dict[str, Any] = {}
 
-    return kernel
+
+def _kernel():
+    k = _LOADED.get("kernel")
+    if k is None:
+        with first_use("wchair_load"):
+            from stability.simulate import kernel as k  # numba and the compiled code load on first use (CLI start-up)
+        _LOADED["kernel"] = k
+    return k
+
+
+@functools.lru_cache(maxsize=16)
+def _times(nrec: int, stride: int, dt: float) -> np.ndarray:
+    """The recorded rows' times, s (read-only; the results hold views of it)."""
+    t = np.arange(nrec) * float(stride) * dt
+    t.flags.writeable = False
+    return t
 
 
 def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
                  controller: SampledController | None = None, record: str = "all",
-                 threads: int | None = None, batch: bool = True) -> list[SimulationResult]:
+                 threads: int | None = None, batch: bool = True, step_limits: np.ndarray | None = None,
+                 dt_auto: bool = False) -> list[SimulationResult]:
     """Run the WCHAIR scheme compiled for every (chair, speed) pair; one result per run.
 
     A Python ``opts.yaw_moment(t, state)`` input is sampled at every step and
@@ -104,6 +119,12 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
         not depend on it.
     batch : bool
         How a Python ``yaw_moment`` sees the state: arrays (True) or floats.
+    step_limits : ndarray, optional
+        Each run's largest stable step, s (:func:`stability.simulate.stepcheck.stable_steps`): a run whose
+        ``opts.dt`` exceeds it is flagged ``step_unstable``, and ``settings`` record it as ``stable_dt`` with
+        ``dt_auto``.  None: nothing flagged or recorded.
+    dt_auto : bool
+        Whether ``opts.dt`` was chosen by ``dt="auto"`` (recorded with ``step_limits``).
 
     Returns
     -------
@@ -128,14 +149,17 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
                                                     -1, threads, batch)
     _raise_refused(chairs, opts, status)
     raise_non_finite(chairs, speeds, status)
-    times = np.arange(nrec) * float(opts.stride) * opts.dt
+    times = _times(nrec, opts.stride, opts.dt)
     settings = opts.settings()
     settings.update(engine="compiled", record=record)
     if controller is not None:
         settings["controller"] = controller.name
+    unstable = np.zeros(n_runs, dtype=bool) if step_limits is None else opts.dt > step_limits * (1.0 + 1e-12)
     out = []
     for i in range(n_runs):
         s = settings if forces is None else dict(settings, impulse_force=float(forces[i]))
+        if step_limits is not None:
+            s = dict(s, stable_dt=float(step_limits[i]), dt_auto=dt_auto)
         w = warning_table(warn[i])
         m = int(counts[i])
         t = times[:m] if mode != 2 else np.array([_last_time(opts, status[i], steps)])
@@ -144,7 +168,8 @@ def run_compiled(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, 
                              peak_abs_yaw_rate=float(stats[i, 0]), peak_time=float(stats[i, 1]))
         out.append(SimulationResult.from_columns(
             t, rec[i, :, :m], warnings=w, stopped=bool(status[i, 0]), stop_time=float(status[i, 1]) if status[i, 0]
-            else None, chair=chairs[i], speed=float(speeds[i]), settings=s, stats=run_stats))
+            else None, chair=chairs[i], speed=float(speeds[i]), settings=s, stats=run_stats,
+            step_unstable=bool(unstable[i])))
     return out
 
 

@@ -26,9 +26,12 @@ thesis engine, not at the system's c.g. with the casters swivelled.
 
 from __future__ import annotations
 
+import json
 import math
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -38,6 +41,7 @@ from stability.layout.model import Layout
 from stability.layout.statics import load_rule
 from stability.models.layout import nonlinear as _gn
 from stability.models.layout import shape_index
+from stability.runtime.files import atomic_write_text
 from stability.settings.run import RunSpec
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
 from stability.simulate.packing import _rolling_slot, _tire_slot, policy_code, slope_slots
@@ -135,6 +139,56 @@ class LayoutRun:
             "  slip warnings {slip}, load warnings {load}, lift-off {lift}".format(
                 slip=self.warnings["slip"]["count"], load=self.warnings["load"]["count"],
                 lift=self.warnings["lift_off"]["count"])])
+
+    def csv_columns(self, caster_labels: Sequence[str]) -> tuple[str, ...]:
+        """The CSV's column names: the short form's (:data:`stability.simulate.results.COLUMNS`) for the body, then
+        ``delta_<label>``, ``delta_dot_<label>`` per caster, ``<label>`` the layout's caster label
+        (:attr:`stability.layout.Layout.caster_labels`) in snake case, e.g. ``delta_caster_1_front_left``.
+
+        Parameters
+        ----------
+        caster_labels : sequence of str
+            One per caster, in order.
+
+        Returns
+        -------
+        tuple of str
+        """
+        if len(caster_labels) != len(self.caster_angle_rad):
+            raise ValueError(f"caster_labels={list(caster_labels)!r} is invalid; valid: {len(self.caster_angle_rad)} "
+                             "labels (one per caster)")
+        keys = ["_".join("".join(ch if ch.isalnum() else " " for ch in lab.lower()).split()) for lab in caster_labels]
+        return ("t", "x", "y", "heading", "yaw_rate", "u", "v") + tuple(
+            f"{kind}_{key}" for key in keys for kind in ("delta", "delta_dot"))
+
+    def to_csv(self, path: str | os.PathLike[str], caster_labels: Sequence[str]) -> Path:
+        """Write the time histories to a CSV file atomically, in the short form's convention.
+
+        ``#`` comment lines (layout, speed, settings, warnings, units) precede the header row
+        (:meth:`csv_columns`); every column is in SI units (s, m, rad, m/s, rad/s).
+
+        Parameters
+        ----------
+        path : path-like
+        caster_labels : sequence of str
+            The layout's :attr:`~stability.layout.Layout.caster_labels`.
+
+        Returns
+        -------
+        pathlib.Path
+        """
+        names = self.csv_columns(caster_labels)
+        body = [self.t_s, self.x_m, self.y_m, self.heading_rad, self.yaw_rate_rad_s, self.u_m_s, self.v_m_s]
+        for a, r in zip(self.caster_angle_rad, self.caster_rate_rad_s, strict=True):
+            body += [a, r]
+        meta = [f"# stability.simulate: layout={self.layout} speed={self.speed_m_s!r} m/s model=exact scheme=wchair",
+                "# settings: " + json.dumps(self.settings, sort_keys=True),
+                "# warnings: " + json.dumps(self.warnings, sort_keys=True) + f" ended={self.ended}"
+                f" end_time_s={self.end_time_s!r}",
+                "# units: s, m, rad, m/s, rad/s; delta_*: caster swivel angle from the body's forward axis (0: "
+                "trailing for forward driving, pi: for reversing), casters " + "; ".join(caster_labels)]
+        rows = [",".join(repr(float(x)) for x in row) for row in np.column_stack(body)]
+        return atomic_write_text(path, "\n".join(meta + [",".join(names)] + rows) + "\n")
 
     def to_mapping(self) -> dict:
         """JSON-ready summary (unit last): the final heading, lateral offset and caster angles, the ending."""

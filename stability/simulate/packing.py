@@ -11,6 +11,7 @@ fitted range.
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Sequence
 from typing import Any
 
@@ -21,7 +22,7 @@ from stability.chair import Chair
 from stability.models.params import parameters
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, Options, initial_velocities
 
-__all__ = ["Packed", "slope_slots", "policy_code"]
+__all__ = ["Packed", "chair_rows", "slope_slots", "policy_code", "ROWS_CACHE_SIZE"]
 
 
 def policy_code(opts: Options) -> int:
@@ -86,25 +87,22 @@ class Packed:
         self.RS = np.zeros((n, 2))
         self.CAM = np.zeros((n, 2))
         self.CHK = np.zeros((n, 4), dtype=np.bool_)
-        cache: dict = {}
         u0, v0 = initial_velocities(opts, 1.0)
+        seen: dict[int, tuple] = {}                   # a batch's runs of one chair: looked up once
         for i, c in enumerate(chairs):
-            self.P[i] = np.array(parameters(c), dtype=float)
-            toe = math.radians(c.toe_deg)
+            rows = seen.get(id(c))
+            if rows is None:
+                rows = seen[id(c)] = chair_rows(c, opts.scheme)
+            self.P[i], toe_row, tire_rows = rows
             force = opts.impulse_force if forces is None else float(forces[i])
-            self.S[i, :8] = (float(speeds[i]) * u0, v0, opts.eta0, opts.beta0, force, math.cos(toe), math.sin(toe),
-                         1.0 if toe != 0 else 0.0)
-            key = (c.main_tire, c.main_lateral_scale, c.main_rolling_scale, c.caster_tire, c.caster_lateral_scale,
-                   c.caster_rolling_scale, c.camber_deg, c.camber_coefficient)
-            if key not in cache:
-                cache[key] = self._tire_arrays(c, opts)
+            self.S[i, :8] = (float(speeds[i]) * u0, v0, opts.eta0, opts.beta0, force, *toe_row)
             (self.TK[i], self.TS[i], self.TL[i], self.LIM[i], self.RK[i], self.RC[i], self.RS[i], self.CAM[i],
-             self.CHK[i]) = cache[key]
+             self.CHK[i]) = tire_rows
 
     @staticmethod
-    def _tire_arrays(c: Chair, opts: Options) -> tuple:
+    def _tire_arrays(c: Chair, scheme: str) -> tuple:
         main, caster = c.main_tire_model(), c.caster_tire_model()
-        if opts.scheme == "wchair":   # MECHAN: CAMCOF*POLYFT(TIRY, INT(CAMANG), FZ), the unscaled tire
+        if scheme == "wchair":   # MECHAN: CAMCOF*POLYFT(TIRY, INT(CAMANG), FZ), the unscaled tire
             cam_tire, cam_deg = _tires.get(c.main_tire), float(math.trunc(c.camber_deg))
         else:
             cam_tire, cam_deg = main, float(c.camber_deg)
@@ -114,9 +112,56 @@ class Packed:
             fc = cam_tire.camber_coefficient if c.camber_coefficient is None else float(c.camber_coefficient)
         rolls = [_rolling_slot(caster, c.caster_rolling_scale != 0), _rolling_slot(main, c.main_rolling_scale != 0)]
         chk_c, chk_m = isinstance(caster, _tires.Tire), isinstance(main, _tires.Tire)
-        return ([s[0] for s in slots], [s[1] for s in slots], [s[2] for s in slots], [s[3] for s in slots],
-                [r[0] for r in rolls], [r[1] for r in rolls], [r[2] for r in rolls], (cam_deg, fc),
-                (chk_c, chk_c, chk_m, chk_m))
+        return (np.array([s[0] for s in slots], dtype=np.int64), np.array([s[1] for s in slots]),
+                np.array([s[2] for s in slots]), np.array([s[3] for s in slots]),
+                np.array([r[0] for r in rolls], dtype=np.int64), np.array([r[1] for r in rolls]),
+                np.array([r[2] for r in rolls]), np.array((cam_deg, fc)), np.array((chk_c, chk_c, chk_m, chk_m)))
+
+
+#: chairs whose packed rows :func:`chair_rows` keeps (the oldest dropped): a run's packing cost about a tenth of a
+#: single run's Python time before (the scaled tire models are rebuilt on every call), and the searches, the explorer
+#: and repeated runs pack the same chairs again
+ROWS_CACHE_SIZE = 256
+_ROWS: dict[tuple, tuple] = {}
+_ROWS_LOCK = threading.Lock()
+
+
+def chair_rows(chair: Chair, scheme: str) -> tuple[np.ndarray, tuple[float, float, float], tuple[np.ndarray, ...]]:
+    """One chair's packed rows: its parameters, its toe slots and its tire, rolling and camber slots (read-only).
+
+    Kept per (chair, scheme, the chair's two tires as :func:`stability.tires.get` gives them now): a tire
+    registered again under the same name, or a tire file that changed, is packed anew.
+
+    Parameters
+    ----------
+    chair : Chair
+    scheme : str
+        The run's scheme (the camber tire differs: see :meth:`Packed._tire_arrays`).
+
+    Returns
+    -------
+    params : ndarray, shape (18,)
+        :func:`stability.models.params.parameters` of the chair.
+    toe : tuple of float
+        ``(cos(toe), sin(toe), 1.0 if toe else 0.0)``.
+    tires : tuple of ndarray
+        The rows of ``TK, TS, TL, LIM, RK, RC, RS, CAM, CHK`` (:class:`Packed`).
+    """
+    key = (chair, scheme, _tires.get(chair.main_tire), _tires.get(chair.caster_tire))
+    hit = _ROWS.get(key)
+    if hit is not None:
+        return hit
+    params = np.array(parameters(chair), dtype=float)
+    toe = math.radians(chair.toe_deg)
+    rows = Packed._tire_arrays(chair, scheme)
+    for a in (params, *rows):
+        a.flags.writeable = False
+    out = (params, (math.cos(toe), math.sin(toe), 1.0 if toe != 0 else 0.0), rows)
+    with _ROWS_LOCK:
+        _ROWS[key] = out
+        while len(_ROWS) > ROWS_CACHE_SIZE:
+            del _ROWS[next(iter(_ROWS))]
+    return out
 
 
 def slope_slots(opts: Options) -> tuple[float, float, float, float, float]:

@@ -100,11 +100,17 @@ def _run_layout(a: argparse.Namespace) -> int:
     from stability import __version__
     from stability.study.layout_slope import layout_slope_report
 
-    if a.output:
-        raise ValueError("-o is not available for a layout or a reverse speed yet; valid: --json, --json-file")
     layout = load_layout(a.chair, a.set)
     data, lines = layout_slope_report(layout, a.cross_slope, a.speed, a.grade, a.sim_time, a.drive,
                                       HandRim(a.wheel_radius, a.handrim_radius))
+    if a.output:
+        from stability.report.slope_figure import layout_slope_figure
+        from stability.runtime.files import save_figure
+
+        with output_files({"-o": a.output}) as tmp:
+            save_figure(layout_slope_figure(layout, a.cross_slope, a.speed, a.grade, a.drive, a.sim_time), tmp["-o"],
+                        title=f"stability slope: {layout.name}, {a.cross_slope:g} deg")
+        print(f"wrote {a.output}", file=sys.stderr)
     if a.json or a.json_file:
         options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade, "speed_m_s": a.speed, "drive": a.drive,
                    "sim_time_s": a.sim_time}

@@ -36,6 +36,26 @@ class HoldingCurve:
     handrim_difference: np.ndarray
 
 
+def magnitude_band(friction_range) -> tuple[float, float]:
+    """The holding-moment magnitudes that some moment of a signed pin-friction range gives, N m.
+
+    Parameters
+    ----------
+    friction_range : pair of float
+        The signed range of yaw moments that hold the line with Coulomb pin friction, N m (low, high).
+
+    Returns
+    -------
+    tuple of float
+        ``(low, high)`` of ``{|m| : m in friction_range}``: from 0 when the range holds zero (the pins' friction
+        alone holds the line, no drive moment needed), else the smaller and the larger of the two magnitudes.
+    """
+    lo, hi = sorted(float(x) for x in friction_range)
+    if lo <= 0.0 <= hi:
+        return 0.0, max(-lo, hi)
+    return min(abs(lo), abs(hi)), max(abs(lo), abs(hi))
+
+
 def holding_curve(chair, cross_slopes_deg: Sequence[float] = (0.5, 1, 2, 3, 4, 5, 6), speed: float = 0.9,
                   handrim=None) -> HoldingCurve:
     """Compute a :class:`HoldingCurve` (equilibria of :func:`stability.slope.equilibrium.solve`).
@@ -60,7 +80,7 @@ def holding_curve(chair, cross_slopes_deg: Sequence[float] = (0.5, 1, 2, 3, 4, 5
     from stability.slope.equilibrium import drive_report, solve
 
     eqs = [solve(chair, float(p), speed) for p in cross_slopes_deg]
-    fr = np.array([sorted(abs(x) for x in e.friction_range) for e in eqs])
+    fr = np.array([magnitude_band(e.friction_range) for e in eqs])
     return HoldingCurve(
         chair=chair.name, cross_slopes_deg=np.asarray(cross_slopes_deg, dtype=float),
         holding_moment=np.array([abs(e.holding_moment) for e in eqs]), friction_low=fr[:, 0], friction_high=fr[:, 1],

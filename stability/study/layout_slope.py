@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any
 
@@ -38,7 +38,7 @@ from stability.slope.model import Plane
 from stability.study.veer import MAX_CASTER_SWING_DEG, plane_seen_from
 
 __all__ = ["LayoutEquilibrium", "layout_equilibrium", "drive_wheels", "LayoutPath", "layout_uncorrected_path",
-           "layout_slope_report"]
+           "layout_slope_report", "layout_drive_kind", "layout_drive_report"]
 
 #: Largest |speed| of the statics, m/s (the layout simulator's range).
 MAX_SPEED_M_S = 20.0
@@ -295,6 +295,10 @@ class LayoutPath:
         ``"horizon"``, ``"heading past 45 deg"``, ``"a caster swung 30 deg"`` or the simulator's stop.
     caster_angles_deg : tuple of float
         Where the casters started (the held angles), deg.
+    t_s : ndarray
+        Times of the run up to where the path ends, s (the time history behind the summary).
+    heading_change_history_deg : ndarray
+        Heading change from the held heading at ``t_s``, deg (downhill +).
     """
 
     turn: str
@@ -304,6 +308,8 @@ class LayoutPath:
     lateral_offset_m: float
     ended: str
     caster_angles_deg: tuple
+    t_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    heading_change_history_deg: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def to_mapping(self) -> dict:
         """JSON-ready dict."""
@@ -365,7 +371,46 @@ def layout_uncorrected_path(layout: Layout, eq: LayoutEquilibrium, report_time: 
     change = at(dpsi) * side
     return LayoutPath("downhill" if change > 0 else ("uphill" if change < 0 else "none"), t_rep,
                       math.degrees(change), math.degrees(at(res.yaw_rate_rad_s) * side), at(y_path) * side, ended,
-                      tuple(eq.caster_angles_deg))
+                      tuple(eq.caster_angles_deg), t[:n], np.degrees(dpsi[:n] * side))
+
+
+def layout_drive_kind(layout: Layout, drive: str = "auto") -> str:
+    """``drive``, or for ``"auto"`` ``"motor"`` when the layout has driven wheels, else ``"handrim"``.
+
+    Parameters
+    ----------
+    layout : Layout
+    drive : {"auto", "handrim", "motor"}
+
+    Returns
+    -------
+    str
+    """
+    return drive if drive != "auto" else ("motor" if any(w.driven for w in layout.wheels) else "handrim")
+
+
+def layout_drive_report(eq: LayoutEquilibrium, kind: str, handrim: Any = None) -> dict:
+    """The drive quantities of a layout's held line: :func:`stability.slope.equilibrium.drive_report` of its two
+    drive wheels' forces.
+
+    Parameters
+    ----------
+    eq : LayoutEquilibrium
+    kind : {"handrim", "motor"}
+    handrim : HandRim, optional
+        Radii of the hand-rim drive (default :class:`stability.slope.equilibrium.HandRim`).
+
+    Returns
+    -------
+    dict
+        As :func:`~stability.slope.equilibrium.drive_report`.
+    """
+    from typing import cast
+
+    from stability.slope.equilibrium import Equilibrium, HandRim, drive_report
+
+    shim = cast(Equilibrium, SimpleNamespace(drive_forces=eq.drive_forces_N, cross_slope_deg=eq.cross_slope_deg))
+    return drive_report(cast(Any, None), shim, kind, (handrim or HandRim()) if kind == "handrim" else None)
 
 
 def layout_slope_report(layout: Layout, cross_slope_deg: float, speed: float, grade_deg: float = 0.0,
@@ -389,14 +434,9 @@ def layout_slope_report(layout: Layout, cross_slope_deg: float, speed: float, gr
     (dict, list of str)
         The JSON keys (unit last) and the text lines.
     """
-    from typing import cast
-
-    from stability.slope.equilibrium import Equilibrium, HandRim, drive_report
-
     eq = layout_equilibrium(layout, cross_slope_deg, speed, grade_deg)
-    kind = drive if drive != "auto" else ("motor" if any(w.driven for w in layout.wheels) else "handrim")
-    shim = cast(Equilibrium, SimpleNamespace(drive_forces=eq.drive_forces_N, cross_slope_deg=eq.cross_slope_deg))
-    drive_q = drive_report(cast(Any, None), shim, kind, (handrim or HandRim()) if kind == "handrim" else None)
+    kind = layout_drive_kind(layout, drive)
+    drive_q = layout_drive_report(eq, kind, handrim)
     paths: dict = {}
     if cross_slope_deg != 0:
         for friction in (True, False):

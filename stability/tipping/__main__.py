@@ -69,11 +69,8 @@ _LAYOUT_WORDS = {"forward": "forward", "backward": "backward", "left": "over the
 def _layout(a: argparse.Namespace) -> int:
     """A chair in the ``[[wheel]]`` form or a layout preset: the tip angles over its outermost contacts."""
     from stability.layout import statics
-    from stability.layout.io import resolve_layout
 
-    if a.set:
-        raise ValueError("--set is for the short form; a layout's wheels are set in its [[wheel]] file")
-    layout = resolve_layout(a.chair)
+    layout = cli.load_layout(a.chair, a.set)
     t = statics.tip_angles(layout)
     s = statics.slope_tip(layout, a.cross_slope, a.grade)
     smallest = min(t, key=lambda k: t[k])

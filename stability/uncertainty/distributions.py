@@ -56,7 +56,7 @@ class Distribution:
     relative : bool
     valid_fields : frozenset of str, optional
         The fields a table may name (default: the short form's numeric chair fields; a wheel layout's are
-        :func:`stability.report.layout_uncertainty.layout_fields`).
+        :func:`stability.advise.layout_axes.layout_axes`).
     """
 
     name: str

@@ -98,6 +98,37 @@ def test_bench_single_run_step_check_cached(bench):
           f"-> x{cold_best / warm_best:.2f}")
 
 
+@pytest.mark.parametrize("horizon", [10.0, 0.002], ids=["10s", "2ms"])
+def test_bench_single_run_python_share(bench, horizon):
+    """``simulate`` against the compiled kernel called alone on the same run, alternately in this process
+    (process CPU, best and median of the repeats): the ratio is the figure (the machine is shared); the 2 ms run
+    is almost all Python.  The work asserted: the same run, bit for bit."""
+    from stability.simulate import baseline
+    from stability.simulate.options import make_options
+
+    run = RunSpec(stop_on_warnings=False, horizon=horizon)
+    bare = baseline.kernel_only(EJ, 0.75, make_options(run))
+    res = simulate(EJ, 0.75, run=run)
+    np.testing.assert_array_equal(bare()[3], res.yaw_rate)     # row 3: the yaw rate
+    inner = max(1, int(round(0.02 / horizon)))        # short runs timed in groups (the clock's resolution)
+    cpu: dict[str, list[float]] = {"simulate": [], "kernel": []}
+    for _ in range(60):
+        for name, fn in (("simulate", lambda: simulate(EJ, 0.75, run=run)), ("kernel", bare)):
+            c0 = time.process_time()
+            for _ in range(inner):
+                fn()
+            cpu[name].append((time.process_time() - c0) / inner)
+    bench.pedantic(lambda: None, rounds=1)
+    best = {k: min(v) for k, v in cpu.items()}
+    med = {k: float(np.median(v)) for k, v in cpu.items()}
+    bench.extra_info.update(simulate_cpu_ms=med["simulate"] * 1e3, kernel_cpu_ms=med["kernel"] * 1e3,
+                            ratio_median=med["simulate"] / med["kernel"], ratio_best=best["simulate"] / best["kernel"],
+                            python_ms=(med["simulate"] - med["kernel"]) * 1e3)
+    print(f"\none {horizon:g} s run, CPU (median): simulate {med['simulate'] * 1e3:.3f} ms, the kernel alone "
+          f"{med['kernel'] * 1e3:.3f} ms -> x{med['simulate'] / med['kernel']:.3f} (best x"
+          f"{best['simulate'] / best['kernel']:.3f}); Python {(med['simulate'] - med['kernel']) * 1e3:.3f} ms")
+
+
 def test_bench_batch_2000(bench):
     simulate_batch(EJ, STUDY_SPEEDS[:4], run=RunSpec(horizon=0.1), progress=False)
     kw = dict(progress=False, record="final")
