@@ -806,3 +806,22 @@ def test_a_schedule_built_without_a_standstill_design_starts_at_its_first_speed(
 def test_a_schedule_of_no_speed_is_refused_in_one_line():
     with pytest.raises(ValueError, match="^speeds: expected at least one speed$"):
         assist.schedule(chair_mod.preset("power-fwd"), [], "gyro")
+
+
+def test_schedule_gains_and_their_interpolation():
+    """``gains`` stacks the designs' LQR rows; ``gains_at`` is the straight line between two grid designs (the
+    midpoint their mean, to round-off of one addition: 1e-12 relative) and holds beyond the grid; a one-speed
+    schedule holds its design everywhere; without a standstill design 0 m/s is refused by name."""
+    from stability.assist.schedule import schedule as make
+
+    c = chair_mod.preset("power-fwd")
+    s = make(c, [1.0, 2.0], "gyro", standstill=False)
+    assert s.gains.shape == (2, s.designs[0].K.shape[1])
+    assert np.array_equal(s.gains[1], s.designs[1].K[0])
+    mid = 0.5 * (s.designs[0].K + s.designs[1].K)
+    assert np.allclose(s.gains_at(1.5), mid, rtol=1e-12, atol=0)
+    assert np.array_equal(s.gains_at(5.0), s.designs[1].K)
+    one = make(c, [1.5], "gyro", standstill=False)
+    assert np.array_equal(one.gains_at(3.0), one.designs[0].K)
+    with pytest.raises(ValueError, match="^speed=0 is invalid without a standstill design"):
+        s.at(0.0)

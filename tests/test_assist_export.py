@@ -227,3 +227,28 @@ def test_c_source_states_the_torque_limit_and_an_unlimited_one_as_float_max_scal
     assert float(line.split("= ")[1].split("f;")[0]) == q.torque_limit
     _, c_inf = c_sources(dataclasses.replace(q, torque_limit=math.inf), ints)
     assert "static const float TORQUE_LIMIT = 1e30f;" in c_inf
+
+
+def test_c_literals_sample_rate_and_anti_windup_scheme(tables):
+    """The header's sample rate is the tables' (1 / T, 200 Hz here); the anti-windup scheme's switch is the one
+    named; the most negative 32-bit integer is written as an expression (a bare -2147483648 is the negation of a
+    long in C), every other integer as itself."""
+    import dataclasses
+
+    from stability.assist.export_c import _c_int, c_sources
+
+    q, ints = quantise(tables, "float")
+    h, c = c_sources(q, ints)
+    line = next(x for x in h.splitlines() if x.startswith("#define ASSIST_SAMPLE_RATE_HZ "))
+    assert float(line.split()[-1].rstrip("f")) == pytest.approx(1.0 / tables.sample_time, rel=1e-12)
+    assert "#define ANTI_WINDUP 2 " in c
+    for scheme, switch in (("conditional", 1), ("none", 0)):
+        assert f"#define ANTI_WINDUP {switch} " in c_sources(dataclasses.replace(q, anti_windup=scheme), ints)[1]
+    assert _c_int(-2 ** 31) == "(-2147483647 - 1)"
+    assert _c_int(-2 ** 31 + 1) == "-2147483647" and _c_int(2 ** 31 - 1) == "2147483647" and _c_int(0) == "0"
+
+
+def test_export_reports_what_it_wrote(tmp_path, sched, vectors):
+    info = export_c(sched, str(tmp_path / "fw"), "Q31", vectors=vectors)
+    assert info["q_format"] == "Q31" and info["directory"] == str(tmp_path / "fw")
+    assert info["files"] == ["README.txt", "assist.c", "assist.h", "assist_vectors.json"]

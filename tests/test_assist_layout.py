@@ -142,7 +142,7 @@ def test_the_assist_command_answers_every_drive_layout(name, capsys):
     (["--chair", "mid-wheel-drive", "--faults"], "--faults is not available for a layout"),
     (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], "'trail' is not a field of layout"),
     (["--chair", "mid-wheel-drive", "--speeds", "0,1"], "--speeds '0,1' is invalid"),
-    (["--chair", "mid-wheel-drive", "--model", "thesis"], "--model thesis is not available"),
+    (["--chair", "mid-wheel-drive", "--model", "thesis"], "--model thesis is invalid for a layout"),
     (["--chair", "mid-wheel-drive", "--speeds", "1,25"], "--speeds '1,25' is invalid for a layout"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):

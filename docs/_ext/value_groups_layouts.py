@@ -181,6 +181,56 @@ def layout_assist_checks() -> dict:
             "decay_tolerance": f"{100 * DECAY_TOLERANCE:g}"}
 
 
+@group("layout_assist_options", "python -m stability.assist --chair NAME --speeds 1 --reverse --min-torque; "
+       "--export-c (stability.assist.layout_checks.layout_minimum_torque_limit, "
+       "stability.assist.layout.layout_schedule)")
+def layout_assist_options() -> dict:
+    """Per drive layout and direction at 1 m/s: the smallest torque limit that recovers from the strong push and
+    the order of the exported estimator; the power chair as a layout against the short form (its smallest torque
+    at 2 m/s, its firmware tables)."""
+    import math
+    from inspect import signature
+
+    import numpy as np
+
+    from stability.assist.commands import COMMAND_FILTER
+    from stability.assist.firmware import firmware_tables
+    from stability.assist.layout import layout_design, layout_schedule
+    from stability.assist.layout_checks import layout_minimum_torque_limit
+    from stability.assist.recovery import SETTLE_FRACTION, minimum_torque_limit
+    from stability.assist.schedule import schedule
+    from stability.chair import preset
+    from stability.chair.power import DriveTrain
+    from stability.layout import Layout
+    from stability.layout.presets import layout_preset
+
+    drive, rows = DriveTrain(), []
+
+    def torque(x: float) -> str:
+        return fixed(x, 1) if math.isfinite(x) else f"none up to {drive.torque_limit:g}"
+
+    for name in DRIVE_LAYOUTS:
+        lay = layout_preset(name)
+        for speed in (1.0, -1.0):
+            least = layout_minimum_torque_limit(lay, layout_design(lay, speed, "gyro", drive=drive), drive)
+            order = firmware_tables(layout_schedule(lay, [speed]), command_filter_s=COMMAND_FILTER).n
+            rows.append((name, "forward" if speed > 0 else "reverse", torque(least), str(order)))
+    c = preset("power-fwd")
+    sched = schedule(c, np.array([1.0, 2.0, 3.0]), "gyro", standstill=False)
+    lay = Layout.from_chair(c)
+    short_t = minimum_torque_limit(sched, 2.0)
+    mine_t = layout_minimum_torque_limit(lay, layout_design(lay, 2.0, "gyro", drive=sched.drive, gyro=sched.gyro),
+                                         sched.drive)
+    a = firmware_tables(layout_schedule(lay, [1.0, 2.0, 3.0]), command_filter_s=COMMAND_FILTER)
+    b = firmware_tables(sched, command_filter_s=COMMAND_FILTER)
+    worst = max(float(np.abs(getattr(a, k) - getattr(b, k)).max() / np.abs(getattr(b, k)).max()) for k in b.TABLES)
+    return {"table": Table(("layout (1 m/s)", "direction", "smallest torque limit N m per wheel, strong push",
+                            "estimator order of the firmware"), tuple(rows)),
+            "short_torque": torque(short_t), "layout_torque": torque(mine_t), "table_agreement": f"{worst:.0e}",
+            "settle_pct": f"{100 * SETTLE_FRACTION:g}",
+            "max_heading": f"{signature(layout_minimum_torque_limit).parameters['max_heading_deg'].default:g}"}
+
+
 @group("layout_files", "python -m stability.simulate --chair NAME --csv FILE -o FILE; python -m stability.slope "
        "--chair NAME -o FILE; python -m stability.shimmy --chair NAME -o FILE (stability.simulate.layout, "
        "stability.report.slope_data.layout_slope_section, stability.shimmy.chair.trail_chart)")

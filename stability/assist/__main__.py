@@ -54,7 +54,6 @@ from stability.cli import (
     emit_json,
     json_header,
     load_chair,
-    load_layout,
     output_files,
     parse_speeds,
     run,
@@ -103,7 +102,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="skip the nonlinear simulations (the safe top speed is then checked on the margins alone)")
     p.add_argument("--min-torque", action="store_true",
                    help="also find the smallest torque limit that recovers from the 400 N disturbance "
-                        "at 1, 2, 3 m/s (bisection, ~1 min)")
+                        "at 1, 2, 3 m/s (a layout: at each direction's check speeds; bisection, ~1 min)")
     p.add_argument("--bias-time-constant", type=float, default=GyroSensor.bias_time_constant_s, metavar="S",
                    help="time constant of the gyro-bias estimate from the wheel speeds (s, default 1; 0: off)")
     p.add_argument("--motor-lag", type=float, default=DriveTrain.motor_time_constant, metavar="S",
@@ -182,48 +181,14 @@ def _run(args: argparse.Namespace) -> int:
 
     signed = parse_speeds(args.speeds, max_count=50, signed=True)
     if is_layout_spec(args.chair) or np.any(signed < 0):
-        return _run_layout(args, signed, *_options(args))
+        from stability.assist.command import run_layout
+
+        return run_layout(args, signed, *_options(args))
     speeds = parse_speeds(args.speeds, increasing=True, max_count=50)
     weights, drive, gyro = _options(args)
     c = load_chair(args.chair, args.set)
     with output_files({"--json-file": args.json_file, "-o": args.output}) as tmp:
         return _work(args, c, speeds, weights, drive, gyro, tmp)
-
-
-def _run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, drive: DriveTrain,
-                gyro: GyroSensor) -> int:
-    """A wheel layout, or any chair at negative (reverse) speeds: :func:`stability.assist.layout.layout_assist`
-    (the layout's linear model; the margins' safe top speed, forward and in reverse)."""
-    from stability import __version__
-    from stability.assist.layout import format_layout_assist, layout_assist
-
-    for flag, given in (("-o", args.output), ("--export-c", args.export_c), ("--faults", args.faults),
-                        ("--min-torque", args.min_torque), ("--model thesis", args.model == "thesis")):
-        if given:
-            raise ValueError(f"{flag} is not available for a layout or reverse speeds yet; valid: the design, weight, "
-                             "drive and gyro options, --reverse, --no-check, --json, --json-file")
-    if np.any(np.abs(speeds) > 20.0):
-        raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
-                         "0.01 <= |U| <= 20 m/s (negative: reverse)")
-    layout = load_layout(args.chair, args.set)
-    # the full-state controller measures the motor's applied moment, which the layout simulator does not give it
-    simulable = args.design == "gyro" or drive.motor_time_constant == 0
-    res = layout_assist(layout, [float(u) for u in speeds], args.design, reverse=args.reverse, weights=weights,
-                        drive=drive, gyro=gyro, check=not args.no_check and simulable)
-    if args.json or args.json_file:
-        options = {"speeds_m_s": [float(u) for u in speeds], "design": args.design, "reverse": args.reverse,
-                   "wheel_radius_m": drive.wheel_radius, "torque_limit_N_m": drive.torque_limit,
-                   "motor_lag_s": drive.motor_time_constant, "sample_rate_hz": gyro.sample_rate_hz,
-                   "no_check": args.no_check}
-        emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
-                   **res.to_mapping()}, args)
-    if not args.json:
-        print(format_layout_assist(res))
-        if not args.no_check and not simulable:
-            print(f"nonlinear checks: not run for --design full-state with a motor lag ({drive.motor_time_constant:g} "
-                  "s; the controller would measure the motor's applied moment, which the layout simulator does not "
-                  "give it): --design gyro or --motor-lag 0 runs them")
-    return 0
 
 
 def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weights, drive: DriveTrain, gyro: GyroSensor,

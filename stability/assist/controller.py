@@ -115,7 +115,7 @@ class DigitalController:
         self.__name__ = f"{d.kind} LQR"
         p = d.plant
         self._idx = p.internal
-        self._motor = p.n == 8
+        self._motor = p.has_motor
         self._tau = p.motor_time_constant
         self._decay = math.exp(-self.Ts / self._tau) if self._tau > 0 else 0.0
         tb = gyro.bias_time_constant_s
@@ -123,14 +123,14 @@ class DigitalController:
         ff = feedforward(d.plant)
         Kint = d.K[0, self._idx]
         self._Kint = Kint
-        self._Kpsi = float(d.K[0, 6])
+        self._Kpsi = float(d.K[0, p.psi])
         self._F = ff.Nu + float(Kint @ ff.Nx)
         if d.kind == "gyro":
             assert d.model_A is not None and d.model_B is not None and d.L is not None
             n = len(self._idx)
             C = np.zeros((1, n))
             C[0, 1] = 1.0
-            Le = np.vstack([d.L, np.zeros((n - 6, 1))])
+            Le = np.vstack([d.L, np.zeros((n - p.psi, 1))])
             M = np.zeros((n + 2, n + 2))
             M[:n, :n] = d.model_A - Le @ C       # the estimator's own model (interpolated if scheduled)
             M[:n, n:n + 1] = d.model_B
@@ -179,8 +179,9 @@ class DigitalController:
         # the bias estimate: gyro minus the drive wheels' yaw rate (the true yaw rate: no wheel slip)
         bhat = bhat + self._bias_gain * ((r_gyro - float(state.yaw_rate)) - bhat)
         r_corr = r_gyro - bhat
+        # the full-state design's measurement (the short form's states; a gyro design reads the gyro alone)
         x = np.array([state.v, r_corr, state.eta, state.eta_dot, state.beta, state.beta_dot]
-                     + ([m] if self._motor else []), dtype=float)
+                     + ([m] if self._motor else []), dtype=float) if self.design.kind == "full-state" else None
         rc_prev_cmd = self._hist[k - 1][8] if k > 0 else 0.0
         if k == 0:
             mz, u, tau = 0.0, 0.0, 0.0

@@ -42,7 +42,8 @@ from stability.settings.reference import THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.simulate import simulate
 
-__all__ = ["VectorCase", "vector_speeds", "vector_cases", "c_sources", "readme", "export_c", "VECTOR_DURATION"]
+__all__ = ["VectorCase", "ClosedLoop", "short_form_loop", "vector_speeds", "vector_cases", "c_sources", "readme",
+           "export_c", "VECTOR_DURATION"]
 
 #: Length of each test-vector case (s).
 VECTOR_DURATION = 2.0
@@ -118,7 +119,33 @@ def vector_speeds(sched: Schedule) -> tuple[float, ...]:
     return tuple(dict.fromkeys([s[0], s[len(s) // 2], s[-1]]))
 
 
-def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DURATION) -> list[VectorCase]:
+#: A closed loop the vectors are recorded in: ``loop(speed, push_force, duration, controller)`` runs the controller
+#: (a :class:`DigitalController`, called as the simulator's ``yaw_moment(t, state)`` hook) for ``duration`` s
+#: after a push of ``push_force`` N (for :data:`~stability.settings.reference.THESIS_PUSH`'s duration).
+ClosedLoop = Callable[[float, float, float, DigitalController], None]
+
+
+def short_form_loop(sched: Schedule) -> ClosedLoop:
+    """The schedule's chair in the nonlinear simulator (:func:`stability.simulate.simulate`, its model).
+
+    Parameters
+    ----------
+    sched : Schedule
+
+    Returns
+    -------
+    ClosedLoop
+    """
+    def loop(speed: float, force: float, duration: float, ctl: DigitalController) -> None:
+        simulate(sched.chair, speed, RunSpec(horizon=duration, model=sched.model, push_force=force,
+                                             push_duration=THESIS_PUSH.duration, stop_on_warnings=False),
+                 yaw_moment=ctl)
+
+    return loop
+
+
+def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DURATION,
+                 closed_loop: ClosedLoop | None = None) -> list[VectorCase]:
     """Inputs and outputs of the Python sampled controller in the nonlinear closed loop.
 
     At each of :func:`vector_speeds`: a yaw-rate step (the reference turn),
@@ -143,6 +170,9 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
         Noise seed.
     duration : float
         s per case.
+    closed_loop : ClosedLoop, optional
+        Where the controller runs (default :func:`short_form_loop`; a wheel layout's:
+        :func:`stability.assist.layout_checks.layout_vector_loop`).
 
     Returns
     -------
@@ -150,9 +180,10 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
     """
     gyro = replace(sched.gyro, bias_deg_s=VECTOR_BIAS_DEG_S)
     tables = firmware_tables(sched, command_filter_s=COMMAND_FILTER)
+    loop = closed_loop or short_form_loop(sched)
     out = []
     for i, s in enumerate(vector_speeds(sched)):
-        ref = reference_command(s)
+        ref = reference_command(abs(s))       # a reverse grid (a layout's): the same turn rate
         cases: list[tuple[str, Callable[[float], float], float]] = [
             ("step", step_command(ref, 0.1), 0.0), ("ramp", ramp_command(ref, ref), 0.0),
             ("push", step_command(0.0), 10 * THESIS_PUSH.force),
@@ -160,9 +191,7 @@ def vector_cases(sched: Schedule, *, seed: int = 0, duration: float = VECTOR_DUR
         for name, cmd, force in cases:
             ctl = _Recorder(sched.at(s), sched.chair, sched.drive, gyro=gyro, seed=seed + i, command=cmd,
                             command_filter_s=COMMAND_FILTER)
-            simulate(sched.chair, s, RunSpec(horizon=duration, model=sched.model, push_force=force,
-                                             push_duration=THESIS_PUSH.duration, stop_on_warnings=False),
-                     yaw_moment=ctl)
+            loop(s, force, duration, ctl)
             nk = len(ctl.read)
             tau = np.array([h[3] for h in ctl._hist[:nk]])
             inputs = np.array([[s, float(cmd(k * ctl.Ts)), g, w] for k, (g, w) in enumerate(ctl.read)])

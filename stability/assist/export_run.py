@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from stability.assist.commands import COMMAND_FILTER
-from stability.assist.export_c import export_c, vector_cases
+from stability.assist.export_c import ClosedLoop, export_c, vector_cases
 from stability.assist.firmware import firmware_tables
 from stability.assist.quantisation import MarginRow, margin_rows, worst_change
 from stability.assist.schedule import Schedule
@@ -110,7 +110,7 @@ class FirmwareReport:
 
 
 def run_export(sched: Schedule, directory: str, q_format: str, *, seed: int = 0,
-               top: TopSpeed | None = None) -> FirmwareReport:
+               top: TopSpeed | None = None, closed_loop: ClosedLoop | None = None) -> FirmwareReport:
     """Write the firmware (:func:`~stability.assist.export_c.export_c`) and the margins of its tables.
 
     Parameters
@@ -124,12 +124,16 @@ def run_export(sched: Schedule, directory: str, q_format: str, *, seed: int = 0,
     top : TopSpeed, optional
         The schedule's safe top speed (default: checked on the sampled margins alone,
         :func:`~stability.assist.export_c.margin_top_speed`).
+    closed_loop : ClosedLoop, optional
+        Where the vectors are recorded (:func:`~stability.assist.export_c.vector_cases`; default the short form's
+        simulator).
 
     Returns
     -------
     FirmwareReport
     """
-    info = export_c(sched, directory, q_format, vectors=vector_cases(sched, seed=seed), top=top)
+    vectors = vector_cases(sched, seed=seed, closed_loop=closed_loop)
+    info = export_c(sched, directory, q_format, vectors=vectors, top=top)
     rows = margin_rows(sched, firmware_tables(sched, command_filter_s=COMMAND_FILTER))
     t = info["top_speed"]
     return FirmwareReport(directory, q_format, sched.gyro.sample_rate_hz, info["tolerance_N_m"], rows,

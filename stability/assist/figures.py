@@ -27,12 +27,26 @@ from stability.settings.reference import THESIS_PUSH
 
 __all__ = ["figure_gains", "figure_poles", "figure_margins", "figure_robustness", "figure_destabilising",
            "figure_recovery", "figure_recovery_table", "figure_tracking", "figure_drift", "figure_margin_pair",
-           "figure_torque"]
+           "figure_torque", "flat_axis", "label_axes"]
 
 
 def _finish(fig: Figure) -> Figure:
     fig.tight_layout(rect=(0.0, 0.0, 1.0, 0.93))
     return fig
+
+
+def flat_axis(a: Any, values: Any) -> None:
+    """No offset on the y axis, and +/-10 % around values that are constant to 1e-3 (not round-off magnified).
+
+    Parameters
+    ----------
+    a : matplotlib.axes.Axes
+    values : array_like
+    """
+    a.ticklabel_format(axis="y", useOffset=False)
+    lo, hi = float(np.min(values)), float(np.max(values))
+    if hi - lo < 1e-3 * max(abs(lo), abs(hi), 1e-12):
+        a.set_ylim(min(0.9 * lo, 1.1 * lo), max(0.9 * hi, 1.1 * hi))
 
 
 def figure_gains(sched: Schedule, rows: Sequence[GainRow]) -> Figure:
@@ -55,10 +69,7 @@ def figure_gains(sched: Schedule, rows: Sequence[GainRow]) -> Figure:
     for j, (s, u) in enumerate(zip(STATES, units, strict=True)):
         a = ax.flat[j]
         a.plot(U, K[:, j], "o-", ms=3)
-        a.ticklabel_format(axis="y", useOffset=False)
-        lo, hi = float(K[:, j].min()), float(K[:, j].max())
-        if hi - lo < 1e-3 * max(abs(lo), abs(hi), 1e-12):
-            a.set_ylim(min(0.9 * lo, 1.1 * lo), max(0.9 * hi, 1.1 * hi))
+        flat_axis(a, K[:, j])
         a.set_title(f"k_{s}")
         a.set_xlabel("speed (m/s)")
         a.set_ylabel(u)
@@ -332,7 +343,15 @@ def figure_recovery_table(runs: Sequence[RecoveryPair], sched: Schedule) -> Figu
                             "2 s.")
 
 
-def _labels(a: Any, xlabel: str, ylabel: str, legend: bool = True) -> None:
+def label_axes(a: Any, xlabel: str, ylabel: str, legend: bool = True) -> None:
+    """Axis labels, a light grid and (with ``legend``) a small legend.
+
+    Parameters
+    ----------
+    a : matplotlib.axes.Axes
+    xlabel, ylabel : str
+    legend : bool
+    """
     a.set_xlabel(xlabel)
     a.set_ylabel(ylabel)
     a.grid(alpha=0.3)
@@ -365,8 +384,8 @@ def figure_tracking(sched: Schedule, runs: TrackingRuns) -> Figure:
                   label=f"motor limit +/-{runs.torque_limit_N_m:g} N m" if sign > 0 else None)
     a.set_title("yaw rate")
     b.set_title("differential torque per wheel (commanded, held)")
-    _labels(a, "time (s)", "yaw rate (rad/s)")
-    _labels(b, "time (s)", "torque per wheel (N m)")
+    label_axes(a, "time (s)", "yaw rate (rad/s)")
+    label_axes(b, "time (s)", "torque per wheel (N m)")
     return _finish(fig)
 
 
@@ -391,7 +410,7 @@ def figure_drift(sched: Schedule, curves: DriftCurves) -> Figure:
         a.plot(curves.t, curves.handled[i], color=colour(i), lw=1.8,
                label=f"{b:g} deg/s bias, estimated from the wheel speeds (T_b = {curves.bias_time_constant_s:g} s)")
     a.axhline(0, color="k", lw=0.8)
-    _labels(a, "time (s)", "true heading (deg)")
+    label_axes(a, "time (s)", "true heading (deg)")
     return _finish(fig)
 
 
@@ -426,7 +445,7 @@ def figure_margin_pair(sched: Schedule, curves: MarginCurves) -> Figure:
                 a.plot(curves.speeds, disk[i], color=colour(i), marker="os"[i], ms=3, mfc="none", ls=":",
                        label=f"{name}, disk")
         a.set_title(what)
-        _labels(a, "speed (m/s)", f"{what.split(' (')[0]} ({unit})", legend=False)
+        label_axes(a, "speed (m/s)", f"{what.split(' (')[0]} ({unit})", legend=False)
         a.legend(fontsize=7, loc="upper right")
     return _finish(fig)
 
@@ -460,5 +479,5 @@ def figure_torque(sched: Schedule, rows: Sequence[TorqueRow]) -> Figure:
                   label=f"traction limit mu N r = {rows[0].traction_limit_N_m:.0f} N m "
                         f"(mu = {sched.drive.traction_coefficient:g})")
     a.axhline(0, color="k", lw=0.6)
-    _labels(a, "speed (m/s)", "differential torque per wheel (N m)")
+    label_axes(a, "speed (m/s)", "differential torque per wheel (N m)")
     return _finish(fig)

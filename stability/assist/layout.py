@@ -28,6 +28,7 @@ import numpy as np
 from stability.assist.design import Design, _kalman, closed_loop_poles, realise
 from stability.assist.digital import MarginPair, margin_pair
 from stability.assist.plant import MOTOR_STATE, Plant
+from stability.assist.schedule import Schedule
 from stability.assist.top_speed import TopSpeed, top_speed
 from stability.assist.weights import (
     DEFAULT_ESTIMATOR,
@@ -38,14 +39,14 @@ from stability.assist.weights import (
     GyroSensor,
     Weights,
 )
-from stability.chair.power import DriveTrain
+from stability.chair.power import DriveAxle, DriveTrain
 from stability.layout.linear import input_matrices, state_matrices, states
 from stability.layout.model import Layout
 from stability.runtime.checks import check_choice, check_nonnegative
 from stability.study.layout_slope import drive_wheels
 
-__all__ = ["drive_lever", "layout_plant", "layout_design", "LayoutAssistRow", "LayoutAssist", "layout_assist",
-           "format_layout_assist"]
+__all__ = ["drive_lever", "drive_axle", "layout_plant", "layout_design", "LayoutSchedule", "layout_schedule",
+           "LayoutAssistRow", "LayoutAssist", "layout_assist", "format_layout_assist"]
 
 
 def drive_lever(layout: Layout) -> float:
@@ -61,6 +62,22 @@ def drive_lever(layout: Layout) -> float:
     """
     left, right = drive_wheels(layout)
     return float(layout.wheels[right].y - layout.wheels[left].y)
+
+
+def drive_axle(layout: Layout) -> DriveAxle:
+    """The layout's drive wheels as the drive train reads them: ``d1``, ``d2`` the left and right wheels'
+    distances from the centre line (``d1 + d2``: :func:`drive_lever`).
+
+    Parameters
+    ----------
+    layout : Layout
+
+    Returns
+    -------
+    DriveAxle
+    """
+    left, right = drive_wheels(layout)
+    return DriveAxle(layout.name, -float(layout.wheels[left].y), float(layout.wheels[right].y))
 
 
 def layout_plant(layout: Layout, speed: float, motor_time_constant: float = 0.0) -> Plant:
@@ -123,6 +140,95 @@ def layout_design(layout: Layout, speed: float, kind: str = "gyro", *, weights: 
     d = realise(kind, p, K, None if kind == "full-state" else _kalman(p, gyro, estimator))
     return replace(d, sample_time=1.0 / gyro.sample_rate_hz, wheel_radius=float(drive.wheel_radius),
                    track_width=lever)
+
+
+@dataclass(frozen=True, eq=False)
+class LayoutSchedule(Schedule):
+    """A layout's gain schedule over one direction's grid: the short form's :class:`Schedule` (interpolation,
+    firmware tables, margins of the tables) on the layout's linear model.
+
+    ``speeds`` are signed and increasing (a reverse grid is negative, e.g. ``-3, -2, -1``); there is no
+    standstill design (a layout's casters have no linear model at 0 m/s, where they swing round), so the end
+    designs hold beyond the grid.  ``chair`` is the layout's :class:`~stability.chair.power.DriveAxle` (the
+    name and the drive wheels' lever the drive train reads), ``model`` ``"exact"``.
+
+    Attributes
+    ----------
+    chair : DriveAxle
+        The layout's drive wheels and its name (``"... in reverse"`` for a reverse grid).
+    kind : {"full-state", "gyro"}
+    speeds : ndarray (N,)
+        Signed, increasing design speeds, m/s.
+    designs : tuple of Design
+        :func:`layout_design` at each speed.
+    drive, weights, gyro, estimator
+        The design options.
+    model : str
+        ``"exact"`` (a layout's equations are derived from first principles only).
+    standstill : None
+        No standstill design.
+    layout : Layout
+    """
+
+    layout: Layout | None = None
+
+    def _check_speed(self, speed: float) -> float:
+        u = float(speed)
+        sign = math.copysign(1.0, float(self.speeds[0]))
+        if not (math.isfinite(u) and u * sign > 0):
+            raise ValueError(f"speed={speed!r} is invalid for this schedule; valid range: "
+                             f"{'> 0' if sign > 0 else '< 0'} m/s (the direction of its grid)")
+        return u
+
+    def true_plant(self, speed: float) -> Plant:
+        """The layout's linear plant at the signed ``speed`` (m/s) (:func:`layout_plant`).
+
+        Parameters
+        ----------
+        speed : float
+
+        Returns
+        -------
+        Plant
+        """
+        assert self.layout is not None
+        return layout_plant(self.layout, speed, self.drive.motor_time_constant)
+
+
+def layout_schedule(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *,
+                    weights: Weights = DEFAULT_WEIGHTS, drive: DriveTrain | None = None,
+                    gyro: GyroSensor = DEFAULT_GYRO, estimator: EstimatorWeights = DEFAULT_ESTIMATOR
+                    ) -> LayoutSchedule:
+    """:func:`layout_design` at every speed of one direction's grid.
+
+    Parameters
+    ----------
+    layout : Layout
+    speeds : sequence of float
+        m/s, all of one sign (negative: reverse), 0.01 <= |U| <= 20; sorted here.
+    kind, weights, drive, gyro, estimator
+        As :func:`layout_design`.
+
+    Returns
+    -------
+    LayoutSchedule
+    """
+    U = np.sort(np.asarray(speeds, dtype=float).reshape(-1))
+    if U.size == 0 or not np.all(np.isfinite(U)) or np.any(np.abs(U) < 0.01) or np.any(np.abs(U) > 20.0) \
+            or (U[0] < 0 < U[-1]) or np.any(np.diff(U) <= 0):
+        raise ValueError(f"speeds={list(map(float, U))!r} is invalid for a schedule; valid range: distinct speeds "
+                         "of one sign (one direction: a table over speed cannot pass 0 m/s, where the casters swing "
+                         "round), each 0.01 <= |U| <= 20 m/s")
+    drive = drive or DriveTrain()
+    ds = tuple(layout_design(layout, float(u), kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
+               for u in U)
+    # the drive axle stands in for the short form's chair: the name (the titles': "... in reverse" for a reverse
+    # grid) and the lever d1 + d2 the drive train reads
+    axle = drive_axle(layout)
+    if U[0] < 0:
+        axle = replace(axle, name=f"{layout.name} in reverse")
+    return LayoutSchedule(axle, kind, U, ds, drive, weights, gyro, estimator,  # type: ignore[arg-type]
+                          "exact", None, layout)
 
 
 @dataclass(frozen=True)

@@ -28,11 +28,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import control
 import numpy as np
 
+from stability.assist.commands import COMMAND_FILTER
 from stability.assist.design import Design, closed_loop_poles
 from stability.assist.digital import discrete_controller
 from stability.assist.recovery import DecayAgreement, decay_window, fit_decay_rate
+from stability.assist.tracking import closed_loop
 from stability.chair.power import DriveTrain
 from stability.layout.model import Layout
 from stability.settings.defaults import STEADY_YAW_RATE
@@ -44,7 +47,8 @@ from stability.simulate.signals import time_to_level
 from stability.study.layout_impulse import trailing_angles
 
 __all__ = ["layout_controller", "LayoutRecovery", "layout_recovery", "layout_decay_agreement", "TORQUE_WINDOW_S",
-           "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks"]
+           "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks",
+           "layout_minimum_torque_limit", "layout_vector_loop"]
 
 #: The window of the peak and RMS torque after the push, s (the short form's push recovery window).
 TORQUE_WINDOW_S = 2.0
@@ -346,3 +350,92 @@ def layout_checks(layout: Layout, designs: Sequence[Design], drive: DriveTrain) 
     dec = tuple(layout_decay_agreement(layout, d, drive) for d in designs)
     reverse = bool(designs) and designs[0].speed < 0
     return LayoutChecks(rec, dec, layout_traction_limit(layout, drive, reverse), float(drive.torque_limit))
+
+
+def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *, impulse_force: float | None = None,
+                                max_heading_deg: float = 10.0, tol: float = 0.25,
+                                duration: float = HORIZON) -> float:
+    """Smallest per-wheel torque limit with which the design still recovers on the layout simulator (N m).
+
+    The short form's :func:`stability.assist.recovery.minimum_torque_limit` for a layout: the design's gains are
+    kept, only the controller's saturation changes; "recovers": the heading after the push settles
+    (:func:`stability.assist.recovery.settle_time`) and stays within ``max_heading_deg``; noise-free; bisection
+    (:func:`stability.assist.recovery.bisect_limit`) to ``tol`` between 0 and ``drive.torque_limit``.
+
+    Parameters
+    ----------
+    layout : Layout
+    d : Design
+        At the run's signed speed (negative: reverse).
+    drive : DriveTrain
+    impulse_force : float, optional
+        N for :data:`~stability.settings.reference.THESIS_PUSH`'s duration (default the strong push,
+        :data:`stability.assist.recovery.STRONG_FORCE`).
+    max_heading_deg, tol, duration : float
+        deg, N m, s.
+
+    Returns
+    -------
+    float
+        N m per wheel; ``inf`` if even the full limit does not recover.
+    """
+    from stability.assist.recovery import STRONG_FORCE, bisect_limit, settle_time
+
+    push = STRONG_FORCE if impulse_force is None else float(impulse_force)
+
+    def ok(limit: float) -> bool:
+        lim = dataclasses.replace(drive, torque_limit=limit)
+        run = _run(layout, float(d.speed), push, duration, layout_controller(d, layout, lim),
+                   drive.motor_time_constant)
+        head = np.degrees(np.asarray(run.heading_rad))
+        return settle_time(np.asarray(run.t_s), head) is not None and float(np.max(np.abs(head))) <= max_heading_deg
+
+    return bisect_limit(ok, float(drive.torque_limit), tol)
+
+
+@dataclass(frozen=True)
+class _YawRate:
+    """What the gyro design's sampled controller reads of the chair: its yaw rate, rad/s."""
+
+    yaw_rate: float
+
+
+def layout_vector_loop(layout: Layout, sched: Any) -> Any:
+    """The closed loop the firmware's test vectors are recorded in, for a layout
+    (:data:`stability.assist.export_c.ClosedLoop`).
+
+    The layout simulator runs the design's sampled controller compiled (:func:`layout_controller`: no yaw-rate
+    command path, no gyro bias or noise), so the Python controller
+    (:class:`~stability.assist.controller.DigitalController`, with the case's command, the gyro's bias and seeded
+    noise) reads, at its samples, the yaw rate of a closed loop run beforehand: after a push, the layout
+    simulator's with the design's sampled controller; for a commanded turn, the linear closed loop's
+    (:func:`stability.assist.tracking.closed_loop`, the reference model of
+    :data:`~stability.assist.commands.COMMAND_FILTER`), which follows the command without the torque limit (a
+    replay: the torques the Python controller computes do not act back on that run).
+
+    Parameters
+    ----------
+    layout : Layout
+    sched : stability.assist.layout.LayoutSchedule
+        A gyro schedule of the layout.
+
+    Returns
+    -------
+    callable
+        ``loop(speed, push_force, duration, controller)``.
+    """
+    def loop(speed: float, force: float, duration: float, ctl: Any) -> None:
+        d = sched.at(speed)
+        if force or ctl.command is None:
+            run = _run(layout, float(speed), force, duration, layout_controller(d, layout, sched.drive),
+                       sched.drive.motor_time_constant)
+            t, r = np.asarray(run.t_s), np.asarray(run.yaw_rate_rad_s)
+        else:       # a commanded turn: the linear closed loop's yaw rate (the layout simulator has no command path)
+            t = np.linspace(0.0, duration, int(round(duration / 1e-3)) + 1)
+            cmd = np.array([float(ctl.command(x)) for x in t])
+            r = np.asarray(control.forced_response(closed_loop(d, command_filter=COMMAND_FILTER), t,
+                                                   np.vstack([cmd, np.zeros_like(t), np.zeros_like(t)])).outputs[0])
+        for k in range(int(math.floor(duration / ctl.Ts + 1e-9)) + 1):
+            ctl(k * ctl.Ts, _YawRate(float(np.interp(k * ctl.Ts, t, r))))
+
+    return loop

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, NamedTuple
 
@@ -24,7 +24,8 @@ from stability.simulate.signals import settle_time as _settle_time
 from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
-           "recovery_runs", "recovery_table", "minimum_torque_limit", "DecayAgreement", "decay_agreement",
+           "recovery_runs", "recovery_table", "minimum_torque_limit", "bisect_limit", "DecayAgreement",
+           "decay_agreement",
            "decay_window", "fit_decay_rate"]
 
 #: The ten-times push of the strong-disturbance check (N): 400 N for 0.1 s.
@@ -322,7 +323,26 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
         run = recovery(sched.chair, speed, ctl, impulse_force=impulse_force, duration=duration, model=sched.model)
         return run.settle_time_s is not None and run.peak_heading_error_deg <= max_heading_deg
 
-    hi = float(sched.drive.torque_limit)
+    return bisect_limit(ok, float(sched.drive.torque_limit), tol)
+
+
+def bisect_limit(ok: Callable[[float], bool], hi: float, tol: float) -> float:
+    """The smallest limit in ``(0, hi]`` for which ``ok`` holds, by bisection to ``tol`` (``ok`` taken monotone).
+
+    Parameters
+    ----------
+    ok : callable
+        ``ok(limit)``: does the controller with this torque limit (N m per wheel) recover?
+    hi : float
+        The drive train's limit, N m per wheel.
+    tol : float
+        N m.
+
+    Returns
+    -------
+    float
+        N m per wheel (the upper end of the last bracket); ``inf`` if ``ok(hi)`` fails.
+    """
     if not ok(hi):
         return math.inf
     lo = 0.0

@@ -97,6 +97,24 @@ class Schedule:
         """
         return self._interp(check_nonnegative("speed", speed), lambda d: d.K)
 
+    def _check_speed(self, speed: float) -> float:
+        """A speed of :meth:`at` (m/s, >= 0)."""
+        return check_nonnegative("speed", speed)
+
+    def true_plant(self, speed: float) -> Plant:
+        """The true linear plant at ``speed`` (m/s): the chair's, with the drive's motor lag.
+
+        Parameters
+        ----------
+        speed : float
+            m/s.
+
+        Returns
+        -------
+        Plant
+        """
+        return plant(self.chair, speed, self.model, self.drive.motor_time_constant)
+
     def at(self, speed: float) -> Design:
         """The scheduled controller at ``speed`` (m/s).
 
@@ -115,7 +133,7 @@ class Schedule:
         -------
         Design
         """
-        speed = check_nonnegative("speed", speed)
+        speed = self._check_speed(speed)
         speeds, designs = self.grid
         hit = np.flatnonzero(np.isclose(speeds, speed, rtol=0, atol=1e-12))
         if hit.size:
@@ -123,13 +141,13 @@ class Schedule:
         if speed == 0:
             raise ValueError("speed=0 is invalid without a standstill design; valid range: > 0 m/s")
         K = self._interp(speed, lambda d: d.K)
-        true_p = plant(self.chair, speed, self.model, self.drive.motor_time_constant)
+        true_p = self.true_plant(speed)
         if self.kind == "full-state":
             return on_drive(realise(self.kind, true_p, K, None), self.gyro, self.drive, self.chair)
         L = self._interp(speed, lambda d: d.L)
         A = self._interp(speed, lambda d: d.plant.A)
         B = self._interp(speed, lambda d: d.plant.B)
-        p_model = Plant(speed, A, B, true_p.Bf, true_p.motor_time_constant)
+        p_model = Plant(speed, A, B, true_p.Bf, true_p.motor_time_constant, true_p.chair_states)
         d = realise(self.kind, p_model, K, L)
         return on_drive(replace(d, plant=true_p), self.gyro, self.drive, self.chair)
 

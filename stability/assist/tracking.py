@@ -137,7 +137,7 @@ def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: 
     rz[1] = 1.0
     if handle:
         rz[BH] = -1.0
-    Kint, Kpsi = d.K[0, idx], float(d.K[0, 6])
+    Kint, Kpsi = d.K[0, idx], float(d.K[0, p.psi])
     mz_z, mz_u = np.zeros(N), np.zeros(3)
     mz_z[E] = -Kpsi
     mz_u[0] = ff.Nu + float(Kint @ ff.Nx)
@@ -158,7 +158,7 @@ def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: 
     Bu[E] = ru - np.array([1.0, 0.0, 0.0])
     if gyro:
         assert d.model_A is not None and d.model_B is not None and d.L is not None
-        Le = np.vstack([d.L, np.zeros((ni - 6, 1))])
+        Le = np.vstack([d.L, np.zeros((ni - p.psi, 1))])
         A[XH:XH + ni, XH:XH + ni] = d.model_A - Le @ np.eye(ni)[1:2]
         A[XH:XH + ni] += d.model_B @ mz_z[None, :] + Le @ rz[None, :]
         Bu[XH:XH + ni] += d.model_B @ mz_u[None, :] + Le @ ru[None, :]
@@ -167,13 +167,13 @@ def closed_loop(d: Design, true_plant: Plant | None = None, *, use_feedforward: 
         Bu[BH, 1] = 1.0 / bias_time_constant
     C = np.zeros((4, N))
     D = np.zeros((4, 3))
-    C[0, 1] = C[1, 6] = C[3, E] = 1.0
+    C[0, 1] = C[1, p.psi] = C[3, E] = 1.0
     C[2], D[2] = mz_z, mz_u
     names = list(p.states) + ["e"] + ([f"{p.states[i]}_hat" for i in idx] if gyro else []) \
         + (["b_hat"] if handle else [])
     outputs = ["r", "psi", "Mz", "e"]
     if not heading:      # nothing depends on the true heading: drop its integrator (for DC gains)
-        keep = [i for i in range(N) if i != 6]
+        keep = [i for i in range(N) if i != p.psi]
         A, Bu, C, D = A[np.ix_(keep, keep)], Bu[keep], C[np.ix_([0, 2, 3], keep)], D[[0, 2, 3]]
         names = [names[i] for i in keep]
         outputs = ["r", "Mz", "e"]

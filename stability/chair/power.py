@@ -15,7 +15,8 @@ from stability.chair import Chair, preset
 from stability.runtime.checks import check_nonnegative, check_positive
 from stability.settings import defaults as D
 
-__all__ = ["DriveTrain", "power_fwd", "drive_train", "drive_kind", "COMPONENTS", "LumpedEstimate", "lumped_estimate"]
+__all__ = ["DriveAxle", "DriveTrain", "power_fwd", "drive_train", "drive_kind", "COMPONENTS", "LumpedEstimate",
+           "lumped_estimate"]
 
 #: Lumped masses behind the estimates of ``m``, ``s1``, ``h`` and ``i_z``:
 #: (name, mass kg, x from the drive axle m (forward +), |y| of a symmetric pair m,
@@ -73,6 +74,24 @@ def lumped_estimate(components: Sequence[Sequence[Any]] = COMPONENTS) -> LumpedE
 
 
 @dataclass(frozen=True)
+class DriveAxle:
+    """The two drive wheels as the drive train reads them, for a chair given as a wheel layout.
+
+    Attributes
+    ----------
+    name : str
+        The chair's (or layout's) name.
+    d1, d2 : float
+        Lateral distances of the left and right drive wheels' contact points from the chair's centre line, m;
+        ``d1 + d2`` is the lever of their forces' couple (:meth:`DriveTrain.lever`), as the short form's.
+    """
+
+    name: str
+    d1: float
+    d2: float
+
+
+@dataclass(frozen=True)
 class DriveTrain:
     """Drive wheels and motors of a differential-drive (power) chair.
 
@@ -113,12 +132,12 @@ class DriveTrain:
                              "valid range: 0 < wheel_radius <= 0.5 m")
 
     @staticmethod
-    def lever(chair: Chair) -> float:
+    def lever(chair: Chair | DriveAxle) -> float:
         """``(d1 + d2)``: the arm of the couple formed by the two drive-wheel forces (m).
 
         Parameters
         ----------
-        chair : Chair
+        chair : Chair or DriveAxle
 
         Returns
         -------
@@ -126,7 +145,7 @@ class DriveTrain:
         """
         return chair.d1 + chair.d2
 
-    def yaw_moment(self, chair: Chair, tau: Any) -> Any:
+    def yaw_moment(self, chair: Chair | DriveAxle, tau: Any) -> Any:
         """Yaw moment ``Mz = tau (d1 + d2) / r`` (N m) of a differential torque ``tau`` per wheel (N m).
 
         Positive ``tau`` drives the left wheel forward and the right wheel
@@ -134,7 +153,7 @@ class DriveTrain:
 
         Parameters
         ----------
-        chair : Chair
+        chair : Chair or DriveAxle
         tau : float or ndarray
             N m per wheel.
 
@@ -145,12 +164,12 @@ class DriveTrain:
         """
         return tau * self.lever(chair) / self.wheel_radius
 
-    def wheel_torque(self, chair: Chair, mz: Any) -> Any:
+    def wheel_torque(self, chair: Chair | DriveAxle, mz: Any) -> Any:
         """Differential torque per wheel (N m) that produces the yaw moment ``mz`` (N m).
 
         Parameters
         ----------
-        chair : Chair
+        chair : Chair or DriveAxle
         mz : float or ndarray
             N m.
 
@@ -161,12 +180,12 @@ class DriveTrain:
         """
         return mz * self.wheel_radius / self.lever(chair)
 
-    def max_yaw_moment(self, chair: Chair) -> float:
+    def max_yaw_moment(self, chair: Chair | DriveAxle) -> float:
         """Yaw moment at the torque limit (N m).
 
         Parameters
         ----------
-        chair : Chair
+        chair : Chair or DriveAxle
 
         Returns
         -------
@@ -179,7 +198,7 @@ class DriveTrain:
 
         Parameters
         ----------
-        chair : Chair
+        chair : Chair or DriveAxle
         tau, tau_common : float or ndarray
             Differential and common-mode torque per wheel (N m).
 
