@@ -240,7 +240,7 @@ def test_c_literals_sample_rate_and_anti_windup_scheme(tables):
     q, ints = quantise(tables, "float")
     h, c = c_sources(q, ints)
     line = next(x for x in h.splitlines() if x.startswith("#define ASSIST_SAMPLE_RATE_HZ "))
-    assert float(line.split()[-1].rstrip("f")) == pytest.approx(1.0 / tables.sample_time, rel=1e-12)
+    assert float(line.split()[-1].rstrip("f")) == pytest.approx(1.0 / tables.sample_time, rel=1e-12)  # rounding: repr
     assert "#define ANTI_WINDUP 2 " in c
     for scheme, switch in (("conditional", 1), ("none", 0)):
         assert f"#define ANTI_WINDUP {switch} " in c_sources(dataclasses.replace(q, anti_windup=scheme), ints)[1]

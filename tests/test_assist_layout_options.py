@@ -50,9 +50,9 @@ def test_the_power_chair_as_a_layout_has_the_short_forms_firmware_tables():
     for name in short.TABLES:
         a, b = np.asarray(getattr(mine, name)), np.asarray(getattr(short, name))
         assert a.shape == b.shape
-        assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max(), name
+        assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max(), name   # error model: two derivations' rounding (docstring)
     for name in ("track", "torque_per_moment", "torque_limit", "bias_gain", "command_gain", "windup_gain"):
-        assert getattr(mine, name) == pytest.approx(getattr(short, name), rel=1e-12), name
+        assert getattr(mine, name) == pytest.approx(getattr(short, name), rel=1e-12), name   # rounding: a few eps
 
 
 def _replay(t_a, t_b, sign: float) -> tuple[float, float]:
@@ -82,7 +82,7 @@ def test_reversing_firmware_is_the_turned_layouts_driven_forwards(name):
     for est, rel in ((EstimatorWeights(lateral_force=1e-9), 1e-7), (EstimatorWeights(), 1e-2)):
         rev = firmware_tables(layout_schedule(lay, [-2.5, -1.5, -0.5], estimator=est), command_filter_s=COMMAND_FILTER)
         fwd = firmware_tables(layout_schedule(turned, [0.5, 1.5, 2.5], estimator=est), command_filter_s=COMMAND_FILTER)
-        assert rev.track == pytest.approx(fwd.track, rel=1e-12)
+        assert rev.track == pytest.approx(fwd.track, rel=1e-12)     # rounding: the same sum, a few eps
         err, top = _replay(rev, fwd, -1.0)
         assert err <= rel * top, (est, err, top)
 
@@ -106,6 +106,7 @@ def test_the_layouts_firmware_is_its_sampled_controller(mid_wheel):
     _, sched, vectors, tables = mid_wheel
     for v in vectors:
         if not v.name.startswith("fault_"):
+            # error model: round-off ~ eps * steps * |terms| (docstring), observed ~1e-13 N m
             assert np.max(np.abs(mirror_outputs(tables, v.controller_inputs) - v.controller_tau)) < 1e-10, v.name
         assert bool(np.any(np.abs(v.outputs[:, 0]) >= tables.torque_limit)) == v.name.startswith("saturating")
         fc = FirmwareController(tables)
@@ -115,6 +116,7 @@ def test_the_layouts_firmware_is_its_sampled_controller(mid_wheel):
     for s in (0.5, 2.5):
         a, b = table_controller(tables, s), digital.discrete_controller(sched.at(s), tables.sample_time)
         for x, y in ((a.A, b.A), (a.B, b.B), (a.C, b.C)):
+            # error model: two discretisations' rounding, observed 1e-15 of the largest entry
             assert np.max(np.abs(np.asarray(x) - np.asarray(y))) <= 1e-10 * np.max(np.abs(np.asarray(y)))
 
 
@@ -134,6 +136,7 @@ def test_the_layouts_c_compiles_and_reproduces_the_controller(tmp_path, mid_whee
         err = float(np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))))
         assert err <= case["tolerance_N_m"], (case["name"], err)
     if q == "float":
+        # rounding: the exporter's stated tolerance is this product, computed the same way
         assert all(t == pytest.approx(FLOAT_RELATIVE * sched.drive.torque_limit) for t in info["tolerance_N_m"].values())
 
 
@@ -147,7 +150,7 @@ def test_the_power_chair_as_a_layout_needs_the_short_forms_smallest_torque():
     lay = Layout.from_chair(c)
     mine = layout_minimum_torque_limit(lay, layout_design(lay, 2.0, "gyro", drive=sched.drive, gyro=sched.gyro),
                                        sched.drive)
-    assert abs(mine - short) <= 0.25 + 0.01 * short
+    assert abs(mine - short) <= 0.25 + 0.01 * short     # error model: one bisection bracket plus 1 % (docstring)
     assert 1.0 < short < sched.drive.torque_limit
 
 
@@ -161,7 +164,7 @@ def test_reversing_needs_the_turned_layouts_smallest_torque(name):
     turned = _turned(lay)
     rev = layout_minimum_torque_limit(lay, layout_design(lay, -1.0, "full-state", drive=drive), drive)
     fwd = layout_minimum_torque_limit(turned, layout_design(turned, 1.0, "full-state", drive=drive), drive)
-    assert abs(rev - fwd) <= 0.25 + 0.01 * fwd
+    assert abs(rev - fwd) <= 0.25 + 0.01 * fwd     # error model: one bisection bracket plus 1 % (docstring)
 
 
 @needs_cc
@@ -180,6 +183,7 @@ def test_the_command_exports_a_layout_and_writes_its_figures(tmp_path, capsys):
     cases = json.loads((fw / "assist_vectors.json").read_text())["cases"]
     assert {len(c["inputs"]) for c in cases} == {2 * 200 + 1}     # docs/assist.md: 2 s each at 200 Hz
     for case in cases:
+        # error model: the exporter's derived float/Q15 rounding tolerance per case
         assert np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))) \
             <= case["tolerance_N_m"]
 
