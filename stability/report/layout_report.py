@@ -391,7 +391,7 @@ def _curves_page(c: Comparison, sub: str) -> Figure:
 
     fig, axes = P.page(CURVES_TITLE, sub)
     plot_growth_rates(axes[0, 0], c)
-    P.finish(fig)
+    P.finish(fig, top=0.86)             # the axes title is two lines (chairs, then the model): below the subtitle
     add_caption(fig, comparison_caption(c))
     return fig
 
