@@ -288,5 +288,6 @@ def test_the_holding_band_of_magnitudes_includes_zero_when_the_pins_alone_hold()
             assert curve.friction_low[k] == 0.0 and curve.friction_high[k] == max(-lo, hi)
         else:
             assert curve.friction_low[k] == min(abs(lo), abs(hi)) > 0.0
-    assert curve.friction_low[1] == 0.0 and curve.friction_high[1] > 6.0    # 2 deg: the pins alone hold
-    assert curve.friction_low[2] > 2.0                                      # 6 deg: the drive must help
+    # which case each slope is (not a pinned value): at 2 deg the signed range holds zero, at 6 deg it does not
+    assert curve.friction_low[1] == 0.0 and curve.friction_high[1] > 0.0
+    assert curve.friction_low[2] > 0.0
