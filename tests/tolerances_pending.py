@@ -8,80 +8,9 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 217
+PENDING_LIMIT = 166
 
 PENDING: dict[str, list[tuple[str, str]]] = {
-    'tests/test_app_state.py': [
-        ('test_critical_speeds_shown_are_the_command_lines', 'pytest.approx([x.speed for x in want], abs=1e-8)'),
-        ('test_trail_chart_crosses_zero_at_the_bands_boundary', 'np.allclose(tw.chart.critical_trail, lower, atol=2e-5)'),
-    ],
-    'tests/test_assist.py': [
-        ('test_discrete_delay_margin_is_the_continuous_one_less_the_sampling_delays', 'pytest.approx(m.continuous.delay_margin_s - 1.5 * T, abs=0.15 * T)'),
-        ('test_discrete_delay_margin_is_the_continuous_one_less_the_sampling_delays', 'pytest.approx(g.continuous.delay_margin_s - T, abs=0.2 * T)'),
-        ('test_reversing_front_wheel_drive_chair_is_stable', 'pytest.approx(lam, rel=0.03)'),
-        ('test_nonlinear_tracking_step_and_slalom', 'pytest.approx(0.8)'),
-        ('test_nonlinear_tracking_step_and_slalom', 'np.abs(run.yaw_rate - run.command)[run.t > 1.0].max() < 0.05'),
-        ('test_nonlinear_bias_handling', 'pytest.approx(-10.0, abs=0.3)'),
-        ('test_nonlinear_bias_handling', 'pytest.approx(-1.0, abs=0.2)'),
-        ('test_schedule_from_standstill', 'pytest.approx(-U / chair.trail, rel=0.03)'),
-        ('test_schedule_from_standstill', 'pytest.approx(0.8, rel=0.005)'),
-        ('test_nonlinear_ramp_saturation_and_noise', 'pytest.approx(0.8, rel=0.01)'),
-        ('test_nonlinear_ramp_saturation_and_noise', 'pytest.approx(0.8, rel=0.005)'),
-        ('test_driving_figures_have_units_legends_and_titles', 'pytest.approx([-0.1 * 20, -1.0 * 20], rel=0.01)'),
-        ('test_driving_figures_have_units_legends_and_titles', 'pytest.approx([-0.1, -1.0], rel=100 * math.exp(-20.0))'),
-        ('test_driving_figures_have_units_legends_and_titles', 'pytest.approx(curves.handled[0, -1])'),
-        ('test_slope_hold_steady_torque_is_the_statics_holding_moment', 'abs(free.steady_torque_N_m / free.holding_torque_N_m - 1) < driving.HOLD_TOLERANCE'),
-        ('test_slope_hold_open_loop_veers_uphill_closed_loop_holds', 'pytest.approx(h.crab_deg, abs=0.2)'),
-        ('test_slope_hold_open_loop_veers_uphill_closed_loop_holds', 'pytest.approx(h.crab_deg, abs=0.1)'),
-        ('test_slope_hold_figure_and_text', 'pytest.approx(holds[0].holding_torque_N_m)'),
-    ],
-    'tests/test_assist_export.py': [
-        ('test_cli_export_end_to_end', 'np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))'),
-        ('test_documented_export_numbers', 'abs(f["gain_db"]) < 1e-12'),
-        ('test_documented_export_numbers', 'abs(q15[k] - f[k]) < 5e-4'),
-        ('test_documented_export_numbers', 'abs(q31[k] - f[k]) < 1e-8'),
-    ],
-    'tests/test_assist_faults.py': [
-        ('test_bias_step_detection_time_is_the_monitors_closed_form', 'abs(r.detection_time_s - _closed_form_detection(b, T)) <= 2 * T + 1e-12'),
-        ('test_documented_fault_table_and_top_speed', 'pytest.approx(turn[5.0])'),
-    ],
-    'tests/test_assist_layout_checks.py': [
-        ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(short.peak_heading_error_deg, rel=0.05)'),
-        ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(short.peak_torque_N_m, rel=0.05)'),
-        ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(a.predicted_1_s, rel=1e-9)'),
-        ('test_the_power_chair_as_a_layout_recovers_as_the_short_form', 'pytest.approx(a.fitted_1_s, rel=1e-6)'),
-    ],
-    'tests/test_assist_top_speed.py': [
-        ('test_delay_margin_is_the_exact_sampled_data_boundary', 'pytest.approx(dm, abs=0.025 * d.sample_time)'),
-        ('test_export_warns_beyond_the_safe_top_speed', 'pytest.approx(1e3 * digital.discrete_margins(d).delay_margin_s, abs=0.05)'),
-        ('test_export_warns_beyond_the_safe_top_speed', 'pytest.approx(35.0)'),
-        ('test_disk_margin_closed_forms', 'pytest.approx(2 / r5, rel=1e-7)'),
-        ('test_disk_margin_closed_forms', 'pytest.approx(20 * math.log10((3 + r5) / 2), rel=1e-7)'),
-        ('test_disk_margin_closed_forms', 'pytest.approx(math.degrees(2 * math.atan(1 / r5)), rel=1e-7)'),
-        ('test_disk_margin_closed_forms', 'pytest.approx(1.0, rel=1e-4)'),
-        ('test_disk_margins_of_the_assist_loops', 'pytest.approx(best.fun, rel=1e-5)'),
-        ('test_per_wheel_gains_are_the_command_lines_and_make_the_yaw_moment', 'pytest.approx(list(k), rel=5e-4)'),
-    ],
-    'tests/test_chair.py': [
-        ('test_default_chair_is_wchair_block_data', 'pytest.approx(0.66, abs=0.005)'),
-    ],
-    'tests/test_cli_catalogue.py': [
-        ('test_the_smallest_caster_swivel_inertia_answers_the_massless_caster_limit', 'np.testing.assert_allclose(r1, limit, rtol=1e-4)'),
-        ('test_small_speed_limit_rates_are_proportional_to_speed_and_below_it_refused', 'abs(mu[0] - mu[1]) < 1e-3 * abs(mu[0])'),
-        ('test_slope_answers_a_heavy_chair_under_the_clamp_and_warn_policies', 'pytest.approx(v, abs=1.0)'),
-    ],
-    'tests/test_compare.py': [
-        ('test_numbers_equal_stability_linear', 'np.abs(np.asarray(got) - rates) <= tol'),
-        ('test_numbers_equal_stability_linear', 'pytest.approx(locked[0], abs=2e-6)'),
-        ('test_locked_critical_speed_matches_eq_5_15_by_hand', 'pytest.approx(expected, rel=1e-5)'),
-    ],
-    'tests/test_compare_layouts.py': [
-        ('test_the_thesis_chairs_as_layouts_get_the_short_forms_growth_rates_and_tip_angles', 'pytest.approx(y, rel=1e-9)'),
-        ('test_the_thesis_chair_as_a_layout_gets_the_short_forms_intervals_and_difference_intervals', 'pytest.approx(short.quantity(key).intervals[0], rel=1e-11)'),
-        ('test_the_thesis_chair_as_a_layout_gets_the_short_forms_intervals_and_difference_intervals', 'pytest.approx(db.interval, abs=1e-10)'),
-        ('test_a_mirrored_layout_is_not_distinguishable_and_a_higher_cg_tips_sooner', 'pytest.approx(q.intervals[0], rel=1e-12)'),
-        ('test_a_mirrored_layout_is_not_distinguishable_and_a_higher_cg_tips_sooner', 'pytest.approx((0.0, 0.0), abs=1e-12)'),
-    ],
     'tests/test_derivations.py': [
         ('test_exact_conserves_energy_without_forces', 'abs(ke(y1) - ke(y0)) / ke(y0) < 1e-9'),
         ('test_generation_reproduces_committed_files', 'np.allclose(_flat(fa(*args)), _flat(fb(*args)), rtol=1e-10)'),
