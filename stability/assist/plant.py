@@ -269,11 +269,18 @@ def reversed_chair(chair: Chair) -> Chair:
     """The chair as seen when it drives backwards: casters and main wheels swap ends.
 
     Body axes turned by 180 deg about z (x and y flip, z stays down): the
-    main axle is ``s1`` on the other side of the c.g., the caster pins
-    ``s2`` on the other side, so ``caster_position`` swaps; left and right
-    swap (``d1 <-> d2``, ``t1 <-> t2``, the pin frictions); the free casters
-    swing round to trail in the new direction of travel, so ``trail`` and
-    the caster properties are unchanged.  Mass, inertia and tires stay.
+    main axle is on the other side of the c.g., the caster pins on the other
+    side, so ``caster_position`` swaps; left and right swap (``d1 <-> d2``,
+    ``t1 <-> t2``, the pin frictions); the free casters swing round to trail in
+    the new direction of travel, so ``trail`` and the caster properties are
+    unchanged.  Each caster's c.g. (``l1`` from its pin) swings with it, by
+    ``2 l1`` towards the old front: the system c.g. moves by
+    ``dx = 2 m_c 2 l1 / m`` that way (``s1`` and ``s2`` change by ``dx``) and
+    the yaw inertia about the new c.g. is ``i_z + sum m_c ((x_pin + l1)^2 -
+    (x_pin - l1)^2) - m dx^2`` (parallel axes; ``x_pin`` the pins' signed
+    position).  Mass and tires stay.  Its forward linear model is the chair's
+    at the negative speed (:func:`stability.layout.linear.state_matrices`, which
+    derives the reverse from first principles; tested).
 
     Parameters
     ----------
@@ -283,7 +290,11 @@ def reversed_chair(chair: Chair) -> Chair:
     -------
     Chair
     """
+    dx = 2.0 * chair.m_c * 2.0 * chair.l1 / chair.m        # m, towards the old front (+x)
+    i_z = chair.i_z + 2.0 * chair.m_c * 4.0 * chair.x_pin * chair.l1 - chair.m * dx * dx   # kg m^2
+    sigma = 1.0 if chair.caster_position == "rear" else -1.0   # the main axle ahead of the c.g. (rear casters)
     return chair.replace(caster_position="front" if chair.caster_position == "rear" else "rear",
+                         s1=chair.s1 - sigma * dx, s2=chair.s2 + sigma * dx, i_z=i_z,
                          d1=chair.d2, d2=chair.d1, t1=chair.t2, t2=chair.t1,
                          pin_friction_left=chair.pin_friction_right, pin_friction_right=chair.pin_friction_left,
                          name=f"{chair.name} (reversing)")
