@@ -114,6 +114,58 @@ def _decode(d: dict) -> dict:
             if isinstance(v, dict) and v.get("table") else v for k, v in d.items()}
 
 
+def child_cpu(argv: list[str], env: dict | None = None) -> float:
+    """CPU seconds (user + system, its threads included) of one child ``python argv...`` run from the repository's
+    root, with this repository on ``PYTHONPATH``; its output discarded.
+
+    Parameters
+    ----------
+    argv : list of str
+        The interpreter's arguments (``["-m", "stability.report", ...]``).
+    env : dict, optional
+        Extra environment variables.
+
+    Returns
+    -------
+    float
+        s.
+    """
+    import resource
+    import subprocess
+
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([sys.executable, *argv], cwd=ROOT, check=True, capture_output=True,
+                   env={**os.environ, "PYTHONPATH": str(ROOT), **(env or {})})
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def best_alternating(commands: dict[str, list[str]], repeat: int) -> dict[str, float]:
+    """The smallest CPU time of each command over ``repeat`` rounds, the commands run in turn in every round (so a
+    busy spell on the shared machine falls on all of them), after one round that is not counted (numba's cache and
+    the file cache warmed).
+
+    Parameters
+    ----------
+    commands : dict of str to list of str
+        Name -> the interpreter's arguments (:func:`child_cpu`).
+    repeat : int
+        Counted rounds (>= 1).
+
+    Returns
+    -------
+    dict of str to float
+        Name -> the best CPU time, s.
+    """
+    for argv in commands.values():
+        child_cpu(argv)
+    best = {k: math.inf for k in commands}
+    for _ in range(repeat):
+        for k, argv in commands.items():
+            best[k] = min(best[k], child_cpu(argv))
+    return best
+
+
 def _cpu() -> float:
     """CPU seconds of this process and of its finished children (a group may run a command)."""
     import resource
