@@ -8,7 +8,7 @@ and remove the entry; ``PENDING_LIMIT`` falls with them and may never rise.  ``t
 fails on an unstated tolerance not listed here and on an entry no longer in the tests.
 """
 
-PENDING_LIMIT = 220
+PENDING_LIMIT = 190
 
 PENDING: dict[str, list[tuple[str, str]]] = {
     'tests/benchmarks/test_bench_lanes.py': [
@@ -195,48 +195,6 @@ PENDING: dict[str, list[tuple[str, str]]] = {
         ('test_the_shimmy_command_draws_every_caster_row', 'np.testing.assert_allclose(boundary[0].get_ydata(), np.clip(chart.critical_trail, 0, TRAIL'),
         ('test_set_on_a_layout_file_is_set_on_the_short_form', 'pytest.approx(short[key], abs=2e-12)'),
         ('test_set_on_a_layout_file_is_set_on_the_short_form', 'np.abs(x[name] - y[theirs]).max() <= 1e-12 * np.abs(y[theirs]).max()'),
-    ],
-    'tests/test_report.py': [
-        ('test_tire_page_stiffness_equals_critical_speed', 'pytest.approx(printed["main"], rel=1e-12)'),
-        ('test_tire_page_stiffness_equals_critical_speed', 'pytest.approx(printed["caster"], rel=1e-12)'),
-        ('test_tire_page_stiffness_equals_critical_speed', 'pytest.approx( np.interp(main.load, curves.fz, curves.stiffness[curves.names.index(c.main_'),
-        ('test_findings_numbers_match_the_analysis', 'pytest.approx(d.thesis.reference_time, abs=1e-12)'),
-        ('test_findings_numbers_match_the_analysis', 'pytest.approx(0.05)'),
-        ('test_findings_numbers_match_the_analysis', 'pytest.approx(0.15)'),
-        ('test_conclusions_under_the_thesis_conditions', 'pytest.approx(0.60)'),
-        ('test_conclusions_under_the_thesis_conditions', 'pytest.approx(0.62)'),
-        ('test_reference_chair_rates_itself_at_the_reference_speed', 'pytest.approx(0.75, abs=0.05)'),
-        ('test_summary_numbers_come_from_the_data', 'pytest.approx([f * THESIS_PUSH.force for f in study.PUSH_FACTORS])'),
-        ('test_slope_numbers_equal_the_analysis', 'pytest.approx(statics, rel=0.002)'),
-        ('test_shimmy_numbers_equal_the_analysis', 'pytest.approx(rigid.relaxation_length, rel=1e-3)'),
-        ('test_zero_spread_gives_exactly_the_point_values', 'pytest.approx(point, rel=1e-12)'),
-        ('test_cg_ratio_span_keeps_static_loads_positive', 'pytest.approx(0.02, abs=1e-9)'),
-        ('test_cg_ratio_span_keeps_static_loads_positive', 'pytest.approx(p.span(fc)[1])'),
-        ('test_cg_ratio_span_keeps_static_loads_positive', 'pytest.approx(0.02, abs=1e-9)'),
-        ('test_trail_window_and_tip_limits', 'pytest.approx(LOANE_KIRBY_REAR_DEG, abs=1e-3)'),
-    ],
-    'tests/test_report_clinician.py': [
-        ('test_bump_times_are_the_simulators', 'pytest.approx(t_level, abs=2e-3)'),
-    ],
-    'tests/test_report_layout_options.py': [
-        ('test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms', 'pytest.approx(m.time_to_level, rel=5e-4)'),
-        ('test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms', 'pytest.approx(x, rel=1e-9)'),
-        ('test_a_reverse_bump_run_is_valid_while_it_backs', 'pytest.approx(10.0, abs=0.01)'),
-        ('test_a_reverse_bump_run_is_valid_while_it_backs', 'pytest.approx(7.5, rel=0.05)'),
-    ],
-    'tests/test_report_wheel_layouts.py': [
-        ('test_the_thesis_chair_as_a_layout_reports_the_short_forms_growth_rates_and_tip_angles', 'pytest.approx(float(y), rel=1e-9)'),
-        ('test_a_frame_turned_round_has_its_shimmy_rows_swapped_between_directions', 'pytest.approx(b[other]["interval_m"][1], rel=1e-12)'),
-        ('test_the_driver_section_is_the_short_forms_rule_for_the_thesis_chair_and_mirrors_for_a_turned_frame', 'pytest.approx(h.rule_speed_m_s, rel=1e-9)'),
-        ('test_the_driver_section_is_the_short_forms_rule_for_the_thesis_chair_and_mirrors_for_a_turned_frame', 'pytest.approx(b["forward"]["rule_speed_m_s"], rel=1e-9)'),
-        ('test_the_driver_section_is_the_short_forms_rule_for_the_thesis_chair_and_mirrors_for_a_turned_frame', 'pytest.approx(b["reverse"]["rule_speed_m_s"], rel=1e-9)'),
-        ('test_set_on_a_layout_file_reaches_the_report_as_the_short_forms_set', 'pytest.approx(float(y), rel=1e-9)'),
-    ],
-    'tests/test_report_words.py': [
-        ('test_steady_turn_is_read_from_the_valid_part_only', 'pytest.approx(u * 3.0, rel=1e-6)'),
-    ],
-    'tests/test_rootlocus.py': [
-        ('test_branches_are_continuous', 'np.abs(np.diff(eig, axis=0)).sum() <= np.abs(np.diff(raw, axis=0)).sum() + 1e-9'),
     ],
     'tests/test_search.py': [
         ('test_stop_at_level_changes_nothing_before_the_stop', 'np.abs(st_stop[hit, 1] - full[hit, 3]) <= 0.001 + 1e-12'),
