@@ -88,7 +88,9 @@ def test_note_reconciles_a_worse_linear_rate():
     worse = Candidate((), _measures((4.0, 3.0, 5.0), (1.1, 0.9, 1.2), rate=1.54), 0.1, {}, ())
     notes = _notes(worse, base, ej)
     assert any(f"sqrt(I_z/m) = {math.sqrt(ej.i_z / ej.m):.3g} m" in n for n in notes)
-    assert abs(rev.s1 - math.sqrt(ej.i_z / ej.m)) < 0.01      # the revised chair sits at that peak
+    # the revised chair sits at that peak; error model: rounding: the thesis moves the axle a round 10 cm
+    # (0.345 -> 0.245 m, a 5 mm grid), within half a grid step, 2.5 mm, of sqrt(I_z/m) = 0.2428 m (observed 2.2 mm)
+    assert abs(rev.s1 - math.sqrt(ej.i_z / ej.m)) <= 2.5e-3
 
 
 def test_note_names_a_critical_impulse_that_moves_with_the_step():

@@ -154,6 +154,7 @@ def test_the_note_on_a_fix_gives_its_recomputed_gain_or_cost():
             note = next(n for n in r.notes if n.startswith("The chair as it is breaks the limit on shimmy margin"))
             words, pct = re.search(r"\((and gains|at a cost of) (\d+) % on the robust measures\)", note).groups()
             assert words == ("and gains" if g > 0 else "at a cost of"), note
+            # error model: rounding to whole percent (half a unit, 0.5: a strict bound), plus the gain's round-off
             assert abs(int(pct) - 100 * abs(g)) <= 0.5 + 1e-9, (note, g)
             seen += 1
         assert seen, kind

@@ -61,8 +61,11 @@ def test_the_thesis_chair_as_a_layout_has_the_short_forms_trail_and_axle_changes
         for w, v in zip(a.wheels + a.casters, b.wheels + b.casters, strict=True):
             for f in dc.fields(w):
                 x, y = getattr(w, f.name), getattr(v, f.name)
-                assert x == pytest.approx(y, abs=1e-9) if isinstance(x, float) else x == y
-        np.testing.assert_allclose(growth_rates(a, [0.75, -0.75]), growth_rates(b, [0.75, -0.75]), rtol=1e-9)
+                # error model: rounding: the same geometry by two paths, a few ulp of each field (observed 0)
+                assert x == pytest.approx(y, rel=1e-13, abs=1e-14) if isinstance(x, float) else x == y
+        # error model: rounding: one linear model on geometry equal to a few ulp (observed 0; the layout's model
+        # against the short form's differs by 5e-14 relative, below)
+        np.testing.assert_allclose(growth_rates(a, [0.75, -0.75]), growth_rates(b, [0.75, -0.75]), rtol=1e-11)
 
 
 def test_the_thesis_chair_as_a_layout_has_the_short_forms_linear_measures():
@@ -76,13 +79,17 @@ def test_the_thesis_chair_as_a_layout_has_the_short_forms_linear_measures():
     short = linear_measures(chairs, speeds=SPEEDS, cross_slope_deg=0.0)
     mine = layout_linear_measures([Layout.from_chair(c) for c in chairs], speeds=SPEEDS)
     for s, m in zip(short, mine, strict=True):
-        assert m.static_stability_deg.value == pytest.approx(s.static_stability_deg.value, rel=1e-9)
+        # error model: rounding: two paths to the tip angle (tip lines and atan), a few ulp (observed 0)
+        assert m.static_stability_deg.value == pytest.approx(s.static_stability_deg.value, rel=1e-12)
         for a, b in ((m.shimmy_margin_m.value, s.shimmy_margin_m.value), (m.shimmy_margin_m.low, s.shimmy_margin_m.low),
                      (m.shimmy_margin_m.high, s.shimmy_margin_m.high)):
-            assert a == pytest.approx(b, abs=1e-9)
+            # error model: bisection bracket: each band edge is bisected to 1e-9 m, two answers in brackets round
+            # the same root differ by at most two widths (observed 0)
+            assert a == pytest.approx(b, abs=2e-9)
         assert m.shimmy_straddles == s.shimmy_straddles
         assert m.turning_effort_N_m == s.turning_effort_N_m
-        assert m.growth_rate_1_s == pytest.approx(s.growth_rate_1_s, rel=1e-9)
+        # error model: rounding: the eigenvalue of two state matrices equal to rounding (observed 5e-14 relative)
+        assert m.growth_rate_1_s == pytest.approx(s.growth_rate_1_s, rel=1e-11)
         assert m.shimmy_row == "rear" and m.shimmy_trail_m == chairs[mine.index(m)].trail
 
 
@@ -93,6 +100,8 @@ def test_the_shimmy_margin_is_the_smallest_of_the_shimmy_commands_rows(capsys):
     rows = json.loads(capsys.readouterr().out)["casters"]
     margins = {r["caster"]: r["shimmy_band"]["shimmy_margin_m"] for r in rows}
     m = layout_linear_measures([layout_preset("mid-wheel-drive")], speeds=SPEEDS)[0]
+    # wiring check; error model: rounding: the same band search on the same row, JSON's float repr round-trips
+    # exactly (observed 0)
     assert m.shimmy_margin_m.value == pytest.approx(min(margins.values()), abs=1e-12)
     assert m.shimmy_row in min(margins, key=margins.get)
 
@@ -111,7 +120,8 @@ def test_a_suspension_change_keeps_the_weight_and_moves_load_off_the_softened_ro
             continue
         seen += 1
         loads = static_loads(changed)
-        assert loads.sum() == pytest.approx(lay.m * lay.g, rel=1e-12)
+        # error model: round-off of the statics solve and the sum (observed 2.2e-16; 1e-13 is ~450 eps)
+        assert loads.sum() == pytest.approx(lay.m * lay.g, rel=1e-13)
         share = sum(loads[nw + k] for k in front) / (lay.m * lay.g)
         factor = dict(ch.fields)[f"caster_{front[0] + 1}_vertical_stiffness"] / lay.casters[front[0]].vertical_stiffness
         assert (share < share0) if factor < 1 else (share > share0)
@@ -162,10 +172,12 @@ def test_reverse_speeds_advise_the_chair_as_its_layout_backwards():
     a = advise(chair, speeds=(-0.5, -0.75), nonlinear=_fake, time_to_correct=False)
     assert isinstance(a.chair, Layout) and a.speeds_m_s == (-0.5, -0.75)
     lay = Layout.from_chair(chair)
+    # wiring checks; error model: rounding: the same linear model and band search on the same layout (observed 0)
     assert a.verdict.growth_rate_1_s == pytest.approx(float(growth_rates(lay, [-IMPULSE_SPEED])[0]), rel=1e-12)
     band = shimmy_band(LayoutCaster(lay, 0, reverse=True), (0.5, 0.75))
     assert a.verdict.shimmy_margin_m.value == pytest.approx(band.shimmy_margin_m, rel=1e-12)
     fwd = layout_linear_measures([lay], speeds=(0.5, 0.75))[0]
+    # error model: bisection bracket 1e-9 m (3e-8 of the margin); forwards the margin differs by 1.4 % (observed)
     assert a.verdict.shimmy_margin_m.value != pytest.approx(fwd.shimmy_margin_m.value, rel=1e-6)
     with pytest.raises(ValueError, match="all forward"):
         advise(lay, speeds=(-0.5, 0.75), nonlinear=_fake, time_to_correct=False)
@@ -180,6 +192,7 @@ def test_the_thesis_chair_as_a_layout_has_the_short_forms_nonlinear_measures():
 
     lay = Layout.from_chair(resolve("ej-premier"))
     imp, eq, status, ci_status, half = layout_nonlinear_measures([lay])[0]
+    # wiring checks; error model: rounding: the same deterministic searches on the same layout (expected 0)
     assert imp.value == pytest.approx(layout_critical_impulses(lay, IMPULSE_SPEED)[0].bound_Ns, rel=1e-12)
     assert half == pytest.approx(layout_critical_impulses(lay, IMPULSE_SPEED, __import__(
         "stability.settings.run", fromlist=["RunSpec"]).RunSpec(dt=0.0005))[0].bound_Ns, rel=1e-12)
@@ -292,21 +305,23 @@ def test_a_layouts_drive_and_suspension_levers_offer_the_steps_docs_layouts_list
             ratios = {round(v / lay.casters[int(k.split("_")[1]) - 1].vertical_stiffness, 9) for k, v in ch.fields}
             assert len(ratios) == 1 and all(k.endswith("_vertical_stiffness") for k, _ in ch.fields)
             seen.append(ratios.pop())
-        assert sorted(seen) == pytest.approx(sorted(float(x) for x in factors), rel=1e-6)
+        # error model: rounding of the ratios to 9 decimals (half a unit, 5e-10, of factors 0.5-2; observed 0)
+        assert sorted(seen) == pytest.approx(sorted(float(x) for x in factors), rel=1e-8)
 
 
 def test_the_thesis_chair_as_a_layout_has_the_short_forms_cross_slope_and_driver_measures():
     """The drive difference on a cross slope (the layout slope statics against the short form's own slope solver)
     and the speed a driver who corrects 0.6 s late holds (the divergence rule on the layout's linear model against
-    the short form's): the same chair, so the same answers to the solvers' rounding (observed 1e-13 relative and
-    0 m/s; asserted 1e-9)."""
+    the short form's): the same chair, so the same answers to the solvers' rounding (observed 3e-16 relative and
+    0 m/s; asserted 1e-13)."""
     chair = resolve("ej-premier")
     short = linear_measures([chair], speeds=SPEEDS, cross_slope_deg=2.0, reaction_time=0.6)[0]
     mine = layout_linear_measures([Layout.from_chair(chair)], speeds=SPEEDS, cross_slope_deg=2.0,
                                   reaction_time=0.6)[0]
     assert short.cross_slope_effort is not None and abs(short.cross_slope_effort) > 1.0
-    assert mine.cross_slope_effort == pytest.approx(short.cross_slope_effort, rel=1e-9)
-    assert (mine.human_speed_m_s, mine.human_side) == (pytest.approx(short.human_speed_m_s, rel=1e-9),
+    # error model: rounding: two statics solvers and the same divergence rule (observed 3.0e-16 relative and 0)
+    assert mine.cross_slope_effort == pytest.approx(short.cross_slope_effort, rel=1e-13)
+    assert (mine.human_speed_m_s, mine.human_side) == (pytest.approx(short.human_speed_m_s, rel=1e-13),
                                                         short.human_side)
 
 
@@ -317,7 +332,7 @@ def test_the_cross_slope_and_driver_limits_bind_on_the_front_wheel_drive_base():
     speed the driver holds, so both limits block it and it is not recommended.  Independent checks: the rule's
     speed is where the growth rate times the delay crosses 1 (the layout's linear model, evaluated here either side
     of it); the torque difference balances the statics' holding moment, ``r (F_R - F_L) = -r M / d`` with the drive
-    wheels at ``y = -+d`` (1e-9 relative)."""
+    wheels at ``y = -+d`` (1e-12 relative: rounding)."""
     from stability.advise.layout_measures import layout_cross_slope_effort
     from stability.chair.power import DriveTrain
     from stability.driver.model import Driver
@@ -334,12 +349,14 @@ def test_the_cross_slope_and_driver_limits_bind_on_the_front_wheel_drive_base():
     eq = layout_equilibrium(lay, a.cross_slope_deg, IMPULSE_SPEED)
     d = abs(lay.wheels[eq.drive_wheels[0]].y)
     r = DriveTrain().wheel_radius
-    assert torque.value == pytest.approx(abs(-r * eq.holding_moment_N_m / d), rel=1e-9)
+    # error model: rounding: a product and a quotient of the statics' values, a few ulp (observed 0)
+    assert torque.value == pytest.approx(abs(-r * eq.holding_moment_N_m / d), rel=1e-12)
     fwd = [c for c in a.candidates if c.label.startswith("drive axle 10 cm forward")]
     assert len(fwd) == 1
     broken = {k.name: k for k in fwd[0].constraints if not k.met}
     assert {"motor_torque_difference_N_m", "human_limited_speed_m_s"} <= set(broken)
     moved = apply_layout(lay, [(f"wheel_{j + 1}_x", w.x + 0.10) for j, w in enumerate(lay.wheels)])
+    # wiring check; error model: rounding: the same statics on the same moved layout (observed 0)
     assert broken["motor_torque_difference_N_m"].value == pytest.approx(
         abs(layout_cross_slope_effort(moved, a.cross_slope_deg)), rel=1e-12)
     assert broken["motor_torque_difference_N_m"].value > 1.1 * torque.value
@@ -370,7 +387,7 @@ def test_the_thesis_chair_as_a_layout_has_the_short_forms_static_stability_inter
     """The E&J Premier's uncertainty (mass, c.g. height, trail) drawn for the short form and for the chair expanded
     as a layout (the same table names, so the same seeded draws; the short form's ``trail`` is the layout's one
     caster row's axis ``trail_ROW``): the two 2.5-97.5 % intervals of the smallest tip angle agree to rounding.  Error model: the
-    angles agree to 1e-9 relative per chair (test_compare_layouts), the percentiles are of the same draws; 1e-9."""
+    angles agree to a few ulp per chair (test_compare_layouts), the percentiles are of the same draws; 1e-12."""
     import tomllib
 
     from stability.advise.uncertain import tip_interval
@@ -386,7 +403,9 @@ def test_the_thesis_chair_as_a_layout_has_the_short_forms_static_stability_inter
     mine = from_mapping(tomllib.loads(_UNC.format(trail=row)), layout_axes(lay))
     a, b = tip_interval(chair, short), tip_interval(lay, mine)
     assert a[0] < a[1]
-    assert b == pytest.approx(a, rel=1e-9)
+    # error model: rounding: per draw the two tip-angle paths agree to a few ulp, and the percentiles are of the
+    # same draws (observed 0)
+    assert b == pytest.approx(a, rel=1e-12)
 
 
 def test_a_mirrored_layout_has_the_same_interval_and_a_higher_cg_lowers_it():
@@ -405,7 +424,7 @@ def test_a_mirrored_layout_has_the_same_interval_and_a_higher_cg_lowers_it():
             "caster_1_trail": {"distribution": "uniform", "low": -0.2, "high": 0.2, "relative": True}}
     a = tip_interval(lay, from_mapping(spec, layout_axes(lay)))
     b = tip_interval(mirror, from_mapping(spec, layout_axes(mirror)))
-    assert b == pytest.approx(a, rel=1e-12)
+    assert b == pytest.approx(a, rel=1e-12)    # rounding: the same arithmetic on mirrored numbers (observed 0)
     up = from_mapping({"h": {"distribution": "uniform", "low": 0.1, "high": 0.2, "relative": True}},
                       layout_axes(lay))
     lo, hi = tip_interval(lay, up)

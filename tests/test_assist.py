@@ -405,6 +405,9 @@ def test_discrete_delay_margin_is_the_continuous_one_less_the_sampling_delays(ch
         for rate in (100.0, 200.0, 400.0):
             T = 1.0 / rate
             m = digital.margin_pair(dfs, T)
+            # error model: the hold's T/2 and the computation's T are the first order in T; the next order is the
+            # sampled plant's aliasing, -0.07 to -0.10 T observed (0.093 T at most); the Kalman predictor's half
+            # sample likewise (0.06 T observed)
             assert m.discrete.delay_margin_s == pytest.approx(m.continuous.delay_margin_s - 1.5 * T, abs=0.15 * T)
             g = digital.margin_pair(dgy, T)
             assert g.discrete.delay_margin_s == pytest.approx(g.continuous.delay_margin_s - T, abs=0.2 * T)
@@ -430,6 +433,11 @@ def test_reversing_front_wheel_drive_chair_is_stable(chair):
     for s in (0.5, 2.0):
         lam = np.linalg.eigvals(state_matrices(assist.reversed_chair(free), s)[0]).real.max()
         res = simulate(free, s, run=RunSpec(reverse=True, eta0_deg=180.0, beta0_deg=180.0, push_force=4.0, horizon=5.0, model="exact", stop_on_warnings=False, friction_law="kinetic"))
+        # error model: truncation: first order in the 1 ms step (the step's part halves with the step: 1.1e-3 at
+        # 2 m/s), plus a step-, push- and window-independent remainder first order in the casters' mass: the
+        # reversed chair's linear model keeps the c.g. and I_z while the swung casters' c.g.s move by 2 l (0.57 % at
+        # 0.5 m/s, 0.63 % at 2 m/s extrapolated to dt = 0; a tenth of m_c leaves 0.07-0.12 % at 0.25 ms); observed
+        # 0.61 % and 0.85 % in all
         assert envelope_rate(np.asarray(res.t), np.asarray(res.yaw_rate), 1.0, 4.0) == pytest.approx(lam, rel=0.03)
     fc = chair_mod.preset("ej-premier-front-caster")
     assert np.linalg.eigvals(state_matrices(assist.reversed_chair(fc), 1.5)[0]).real.max() > 0
@@ -442,11 +450,13 @@ def test_nonlinear_tracking_step_and_slalom(schedules):
     is followed within 0.05 rad/s after the first second."""
     sched = schedules["gyro"]
     m = driving.tracking_step(sched, 1.0)
-    assert m.command_rad_s == pytest.approx(0.8)
+    assert m.command_rad_s == pytest.approx(0.8, rel=1e-12)      # rounding: the command passed through (observed 0)
     assert abs(m.steady_state_error_pct) < 1.0 and m.overshoot_pct < 1.0
     assert m.settling_time_s is not None and m.settling_time_s < 1.0
     assert m.peak_torque_N_m < 0.5 * sched.drive.torque_limit
     run = driving.command_run(sched, 1.0, driving.slalom_command(0.5, 3.0), duration=6.0)
+    # error model: the loop's lag tau: a sine of amplitude A at w = 2 pi / 3 s is followed within A w tau (observed
+    # 0.035 rad/s, tau = 33 ms with the sample delays); the bound is a lag of 48 ms (a requirement, not a rounding)
     assert np.abs(run.yaw_rate - run.command)[run.t > 1.0].max() < 0.05
 
 
@@ -462,6 +472,8 @@ def test_nonlinear_bias_handling(schedules, chair):
         ctl = assist.DigitalController(d, chair, DriveTrain(), gyro=g)
         run = assist.recovery(chair, 1.0, ctl, impulse_force=0.0)
         out[tb] = float(np.degrees(run.result.heading[-1]))
+    # error model: the linear closed forms' next order: the nonlinear loop's lag and tire nonlinearity (observed
+    # 0.054 deg without the estimate, 0.090 deg with it; exp(-10 s / T_b) = 4.5e-5 of the estimate's approach)
     assert out[0.0] == pytest.approx(-10.0, abs=0.3)
     assert out[1.0] == pytest.approx(-1.0, abs=0.2)
 
@@ -528,13 +540,16 @@ def test_schedule_from_standstill(chair, kind):
     assert sched.standstill is not None and sched.at(0.0) is sched.standstill
     for U in (0.02, 0.1, 0.25):
         lam = assist.closed_loop_poles(sched.at(U))
+        # error model: first order in the coupling of the casters' swivel to the controlled chair (observed 1.3 %)
         assert lam.real.max() == pytest.approx(-U / chair.trail, rel=0.03), (U, lam[:3])
     sys = tracking.closed_loop(sched.at(0.0))
     t = np.linspace(0.0, 2.0, 2001)
     u = np.zeros((3, t.size))
     u[0] = 0.8
     r = np.asarray(control_forced(sys, t, u))[0]
-    assert r[-1] == pytest.approx(0.8, rel=0.005)
+    # error model: truncation of the transient: the slowest closed-loop mode's remainder after 2 s (observed
+    # 2.9e-5 relative), x100
+    assert r[-1] == pytest.approx(0.8, rel=3e-3)
 
 
 def control_forced(sys, t, u):
@@ -576,9 +591,13 @@ def test_nonlinear_ramp_saturation_and_noise(chair):
     run = driving.command_run(weak, 1.0, driving.step_command(0.8), duration=4.0,
                               command_filter_s=driving.COMMAND_FILTER)
     assert run.saturated_fraction > 0.01 and run.peak_torque_N_m <= 15.0 + 1e-9
+    # error model: the gyro's 0.1 deg/s bias (1.7e-3 rad/s, 0.22 % of the command) and the residual settling
+    # (observed 0.17 %)
     assert run.yaw_rate[-1] == pytest.approx(0.8, rel=0.01)
     run = driving.command_run(sched, 1.0, driving.step_command(0.8), duration=4.0, noise=True, seed=2,
                               command_filter_s=driving.COMMAND_FILTER)
+    # error model: the gyro's 0.1 deg/s bias (0.22 % of the command) plus the noise's standard error over 2 s
+    # (observed 0.20 %)
     assert np.mean(run.yaw_rate[run.t > 2.0]) == pytest.approx(0.8, rel=0.005)
 
 
@@ -655,8 +674,8 @@ def test_driving_figures_have_units_legends_and_titles(chair):
     sched = assist.schedule(chair, [0.5, 1.0], "gyro")
     pairs = [digital.margin_pair(d, 1.0 / sched.gyro.sample_rate_hz) for d in sched.designs]
     curves = tracking.drift_curves(sched.at(1.0))
-    # error models as in test_gyro_bias_handling_closed_forms: the loop's lag (7.4e-4 relative observed, gyro
-    # design) without the estimate; exp(-20 s / T_b) with it (2.0e-9 observed), margin 100
+    # error model as in test_gyro_bias_handling_closed_forms: the loop's lag (9.2e-4 relative observed, gyro
+    # design; 1 % bounds a 0.2 s lag) without the estimate; exp(-20 s / T_b) with it (2.0e-9 observed), margin 100
     assert curves.without[:, -1] == pytest.approx([-0.1 * 20, -1.0 * 20], rel=0.01)
     assert curves.handled[:, -1] == pytest.approx([-0.1, -1.0], rel=100 * math.exp(-20.0))
     figs = [figures.figure_tracking(sched, driving.tracking_runs(sched, duration=2.0)),
@@ -671,7 +690,7 @@ def test_driving_figures_have_units_legends_and_titles(chair):
             leg = a.get_legend()
             assert leg is not None and all(t.get_text() for t in leg.get_texts())
     line = figs[1].axes[0].get_lines()[1]
-    assert line.get_ydata()[-1] == pytest.approx(curves.handled[0, -1])
+    assert line.get_ydata()[-1] == pytest.approx(curves.handled[0, -1], rel=1e-12)   # rounding: the plotted result
 
 
 @pytest.mark.slow
@@ -723,6 +742,7 @@ def test_slope_hold_steady_torque_is_the_statics_holding_moment(schedules, slope
             assert np.max(np.abs(closed.yaw_rate[last])) < math.radians(0.01)
             assert h.within_limits and h.peak_torque_N_m < h.motor_limit_N_m
         free = frictionless_holds[phi]
+        # error model: the run's residual settling after 10 s (observed 3.4e-5 at 2 deg, 1.4e-4 at 4 deg: ~75x)
         assert abs(free.steady_torque_N_m / free.holding_torque_N_m - 1) < driving.HOLD_TOLERANCE
         cf = holding_moment_closed_form(c, Plane(phi, 0.0)) * sched.drive.wheel_radius / (c.d1 + c.d2)
         # error model: the closed form's second order in phi (test_slope: <= 0.032 phi^2, 1.6e-4 at 4 deg) and the
@@ -761,9 +781,12 @@ def test_slope_hold_open_loop_veers_uphill_closed_loop_holds(slope_holds, fricti
         assert h.open_turn == "uphill" and h.open_heading_deg * math.copysign(1, phi) < -10.0
         assert h.open_end_s < 1.0
         assert abs(h.closed_heading_deg) < 1.0 and h.closed_heading_deg * math.copysign(1, phi) < 0
+        # error model: the stick-slip pins hold the casters anywhere in their friction band (observed 0.125 deg)
         assert h.closed_heading_deg == pytest.approx(h.crab_deg, abs=0.2)
         assert abs(h.closed_offset_m) < 0.02
     for h in frictionless_holds.values():
+        # error model: first order in the slope: the loop's steady heading differs from the statics' crab angle by
+        # -0.029 deg at 2 deg and -0.059 deg at 4 deg (observed; not explained here), so 0.1 deg at 4 deg
         assert h.closed_heading_deg == pytest.approx(h.crab_deg, abs=0.1)
         assert abs(h.closed_offset_m) < 0.01
 
@@ -782,7 +805,8 @@ def test_slope_hold_figure_and_text(schedules, slope_holds):
     for a in fig.axes:
         assert re.search(_UNIT, a.get_xlabel()) and re.search(_UNIT, a.get_ylabel())
         assert a.get_legend() is not None
-    assert fig.axes[2].get_lines()[1].get_ydata()[0] == pytest.approx(holds[0].holding_torque_N_m)
+    # rounding: the plotted value is the result's (observed 0)
+    assert fig.axes[2].get_lines()[1].get_ydata()[0] == pytest.approx(holds[0].holding_torque_N_m, rel=1e-12)
     text = tables.format_slope_holds(holds + [{"cross_slope_deg": 9.0, "skipped": "no equilibrium"}])
     assert "Cross slope" in text and (f"{holds[1].steady_torque_N_m:.2f} ({holds[1].harder_side} wheel harder) vs "
                                       f"{holds[1].holding_torque_N_m:.2f}") in text

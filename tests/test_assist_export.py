@@ -166,6 +166,8 @@ def test_cli_export_end_to_end(tmp_path, capsys):
     assert fw["q_format"] == "Q31" and len(fw["margins"]) == 5
     exe = c_harness.compile_replay(str(d), str(tmp_path / "replay"))
     doc = json.loads((d / "assist_vectors.json").read_text())
+    # error model: the export's derived per-case bound (quantisation.vector_tolerances: the Q format's rounding
+    # propagated through the loop, plus FLOAT_RELATIVE of the torque limit for single precision)
     for case in doc["cases"]:
         assert np.max(np.abs(c_harness.replay(exe, np.array(case["inputs"])) - np.array(case["outputs"]))) \
             <= case["tolerance_N_m"]
@@ -194,9 +196,15 @@ def test_documented_export_numbers(tmp_path):
     rows = margin_rows(full, firmware_tables(full, command_filter_s=COMMAND_FILTER))
     assert len(rows) == 21
     f, q15, q31 = (worst_change(rows, v) for v in ("float", "Q15", "Q31"))
+    # error model: rounding: at the grid speeds the float tables are the design, so the gain margin moves by
+    # rounding only (observed 8.9e-15 dB)
     assert f["phase_deg"] < 0.015 and f["delay_ms"] < 0.011 and abs(f["gain_db"]) < 1e-12
+    # error model: rounding of the tables to Q15 (half a unit, 2^-16 of each entry's full scale) moves the phase and
+    # delay margins by 4.4e-4 deg and 8.9e-5 ms (observed): the bound is the size of that effect, as documented
     assert q15["gain_db"] < 3.5e-4 and all(abs(q15[k] - f[k]) < 5e-4 for k in ("phase_deg", "delay_ms"))
-    assert all(abs(q31[k] - f[k]) < 1e-8 for k in q31)
+    # error model: rounding: Q31 entries convert to single precision with 24 bits, as exact as the float tables
+    # (2^-24 of an entry); observed 3.1e-9 dB, 1.5e-9 deg, 9.8e-9 ms; 1e-6 is 100x
+    assert all(abs(q31[k] - f[k]) < 1e-6 for k in q31)
 
 
 @pytest.mark.slow

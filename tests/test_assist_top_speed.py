@@ -138,6 +138,7 @@ def test_delay_margin_is_the_exact_sampled_data_boundary(chair, rate):
     for s in (0.5, 1.75, 3.0):
         d = assist.design(chair, s, "gyro", gyro=assist.GyroSensor(sample_rate_hz=rate))
         dm = digital.discrete_margins(d).delay_margin_s
+        # error model: the docstring's, second order in w T (observed 1.5e-4 T at most)
         assert _exact_delay_margin(d, dm) == pytest.approx(dm, abs=0.025 * d.sample_time), (rate, s)
 
 
@@ -209,6 +210,7 @@ def test_export_warns_beyond_the_safe_top_speed(tmp_path, capsys):
                      r"faults \(add --faults\)\)", warn[0])
     assert m, warn[0]
     d = assist.design(chair_mod.preset("power-fwd"), 1.75, "gyro", gyro=assist.GyroSensor(sample_rate_hz=100.0))
+    # error model: rounding of the printed 3 significant digits (34.8 ms: half a unit, 0.05 ms; observed 0.0195)
     assert float(m.group(1)) == pytest.approx(1e3 * digital.discrete_margins(d).delay_margin_s, abs=0.05)
     readme = (out / "README.txt").read_text()
     assert readme.splitlines()[2].startswith("WARNING: " + warn[0].split("--export-c: ", 1)[1])
@@ -216,8 +218,9 @@ def test_export_warns_beyond_the_safe_top_speed(tmp_path, capsys):
     data = json.loads(js.read_text())
     assert data["firmware"]["warning"] == warn[0].split("--export-c: ", 1)[1]
     assert data["safe_top_speed_m_s"] == 1.5 and data["limited_by"] == "delay_margin"
+    # rounding: 1e3 (1.5 T + motor lag), a few ulp (observed 0)
     assert data["top_speed_limits"][0]["constraint"] == "delay_margin" and data["top_speed_limits"][0]["limit"] == \
-        pytest.approx(35.0)
+        pytest.approx(35.0, rel=1e-12)
     lines = cap.out.splitlines()
     assert any(x.startswith("  WARNING (also in README.txt): the exported schedule runs to 1.75 m/s") for x in lines)
     assert lines[-2].startswith("Safe top speed 1.5 m/s: at 1.75 m/s the sampled delay margin") and \
@@ -234,17 +237,19 @@ def test_disk_margin_closed_forms():
     ``L = 1/(s(s+1))``: ``|1+L|^2/|1-L|^2 = (x^2 - x + 1)/(x^2 + 3x + 1)`` with ``x = w^2``, least at x = 1, so
     alpha = 2/sqrt(5) at 1 rad/s, gain margin ``(3 + sqrt 5)/2`` (8.36 dB), phase ``2 atan(1/sqrt 5)``.  Error
     model: the minimum is refined on 401 points between the grid's neighbours (spacing 2e-5 relative), so alpha
-    is off by the square of that (< 1e-9); tolerance 1e-7.
+    is off by the square of that (< 1e-9; observed 3.6e-11); tolerance 1e-8.  The frequency is found to the
+    refinement's bracket, 2e-5 relative (observed 4.7e-6); tolerance 1e-4.
 
     Discrete integrator ``K/(z - 1)``: ``alpha(w) = 2 |z - 1 + K| / |z - 1 - K|`` grows with ``cos(wT)``, least at
     the Nyquist frequency: ``alpha = 2 (2 - K)/(2 + K)``; the grid ends 1e-9 short of it, where the slope is 0."""
     L = control.ss(control.tf([1.0], [1.0, 1.0, 0.0]))
     dk = disk_margins(L, np.geomspace(1e-3, 1e4, 2000))
     r5 = math.sqrt(5.0)
-    assert dk.alpha == pytest.approx(2 / r5, rel=1e-7)
-    assert dk.gain_db == pytest.approx(20 * math.log10((3 + r5) / 2), rel=1e-7)
-    assert dk.phase_deg == pytest.approx(math.degrees(2 * math.atan(1 / r5)), rel=1e-7)
-    assert dk.frequency_rad_s == pytest.approx(1.0, rel=1e-4)
+    # error model: second order in the refinement's spacing (docstring; observed 3.6e-11, 4.2e-11, 3.2e-11)
+    assert dk.alpha == pytest.approx(2 / r5, rel=1e-8)
+    assert dk.gain_db == pytest.approx(20 * math.log10((3 + r5) / 2), rel=1e-8)
+    assert dk.phase_deg == pytest.approx(math.degrees(2 * math.atan(1 / r5)), rel=1e-8)
+    assert dk.frequency_rad_s == pytest.approx(1.0, rel=1e-4)     # the refinement's bracket (docstring)
     T = 0.01
     for K in (0.5, 1.0, 1.5):
         dk = disk_margins(control.ss(control.tf([K], [1.0, -1.0], T)), np.geomspace(1e-3, math.pi / T * (1 - 1e-9),
@@ -256,7 +261,7 @@ def test_disk_margin_closed_forms():
 def test_disk_margins_of_the_assist_loops(chair, rate):
     """On the sampled loop (and the continuous one): alpha equals ``min 2|1 + L|/|1 - L|`` evaluated from the
     loop's own state-space matrices (resolvent, dense grid then bounded minimisation: the two minimisations agree
-    to 1e-6 relative, tolerance 1e-5); the critical gain ``f = -1/L`` at the worst frequency lies on the disk's
+    to second order in their brackets, observed 5.2e-11 relative, tolerance 1e-8); the critical gain ``f = -1/L`` at the worst frequency lies on the disk's
     edge ``|2 (f - 1)/(f + 1)| = alpha``; and the disk's gain and phase are inside the classical margins (the
     disk contains the real-gain and unit-circle perturbations the classical margins take one at a time)."""
     d = assist.design(chair, 2.0, "gyro", gyro=assist.GyroSensor(sample_rate_hz=rate))
@@ -279,7 +284,8 @@ def test_disk_margins_of_the_assist_loops(chair, rate):
         i = int(np.argmin(a))
         best = minimize_scalar(alpha, bounds=(w[max(i - 1, 0)], w[min(i + 1, len(w) - 1)]), method="bounded",
                                options={"xatol": 1e-10 * w[i]})
-        assert m.disk_margin == pytest.approx(best.fun, rel=1e-5)
+        # error model: second order in each minimisation's bracket (docstring; observed 5.2e-11)
+        assert m.disk_margin == pytest.approx(best.fun, rel=1e-8)
         f = -1.0 / resp(m.disk_frequency_rad_s)
         assert abs(2 * (f - 1) / (f + 1)) == pytest.approx(m.disk_margin, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 4.3e-16)
         gm_classical = min(20 * math.log10(m.gain_margin_upper), -20 * math.log10(m.gain_margin_lower))
@@ -317,7 +323,7 @@ def test_per_wheel_gains_are_the_command_lines_and_make_the_yaw_moment(chair, tm
         assert row["gains"] == pytest.approx(list(d.K[0]), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
         line = next(x for x in text.splitlines() if x.startswith(f"{row['speed_m_s']:5.2f} ") and "|" in x)
         printed = [float(v) for v in line.split("|")[0].split()[1:]]
-        assert printed == pytest.approx(list(k), rel=5e-4)          # %8.4g: half a unit in the 4th digit
+        assert printed == pytest.approx(list(k), rel=5e-4)   # rounding to %8.4g: half a unit in the 4th digit
         assert d.gains_dict(per_wheel=True) == pytest.approx(dict(zip(d.plant.states, k, strict=True)), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert set(GAIN_UNITS) == set(assist.design(chair, 1.0).plant.states)
 

@@ -28,7 +28,10 @@ def test_the_fixed_step_answer_converges_to_the_adaptive_one():
     coarse = critical_impulses(c, [1.0], run=RunSpec(dt=0.001, friction_law="kinetic"))[0].impulse_Ns
     fine = critical_impulses(c, [1.0], run=RunSpec(dt=0.000125, friction_law="kinetic"))[0].impulse_Ns
     assert abs(coarse - ref) / ref > 0.05                  # the step matters here ...
-    assert abs(fine - ref) / ref < 0.02                    # ... and the fixed-step answer converges to it
+    # ... and the fixed-step answer converges to it; error model: truncation, first order in dt (observed -17, -5.6,
+    # -2.7 and -0.47 % at 1, 0.5, 0.25 and 0.125 ms: about halving with the step, so 1.3 % predicted at 0.125 ms)
+    # plus the two searches' 0.5 % brackets; the step's factor 8 less those brackets gives the factor 5
+    assert abs(fine - ref) / ref < 0.02
     assert abs(fine - ref) < abs(coarse - ref) / 5
 
 

@@ -74,7 +74,7 @@ def test_set_groups_and_units():
     assert c.trail == pytest.approx(0.05, rel=1e-15) and c.m == pytest.approx(210 * 0.45359237, rel=1e-15)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert c.d1 == c.d2 == pytest.approx(0.27, rel=1e-15)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert chair_mod.parse_assignments(["pin_friction_left=0.1 ft lbf"])["pin_friction_left"] == \
-        pytest.approx(0.1 * 0.3048 * 0.45359237 * 9.80665, rel=1e-15)
+        pytest.approx(0.1 * 0.3048 * 0.45359237 * 9.80665, rel=1e-15)   # rounding: 3 products each side, 6 eps/2
     with pytest.raises(ValueError, match="trail is in m; 'kg' is not a unit of that kind"):
         load_chair("ej-premier", ["trail=5kg"])
     with pytest.raises(ValueError, match="pin_friction \\(pin_friction_left and pin_friction_right\\)"):

@@ -98,6 +98,10 @@ class Difference:
         Central interval of the difference from paired draws (see :func:`compare`), or None.
     distinguishable : bool or None
         With uncertainty: whether the interval of the difference excludes 0 (None without uncertainty).
+    interval_sides : (str, str)
+        Each end of ``interval`` a value (``"="``) or a bound (``">"``: the end lies above its value, ``"<"``:
+        below; :mod:`stability.study.censored`), as a difference of measures found only as bounds of their search
+        can be.
     """
 
     key: str
@@ -107,6 +111,7 @@ class Difference:
     more_stable: str
     interval: tuple[float, float] | None
     distinguishable: bool | None
+    interval_sides: tuple[str, str] = ("=", "=")
 
 
 @dataclass(frozen=True)

@@ -21,22 +21,26 @@ have no layout counterpart here: the comparison says so in one line.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 
 import numpy as np
 
 from stability.advise.layout_axes import LayoutDraw
-from stability.compare.compute import CURVE_SPEEDS, Comparison, Quantity, _difference
+from stability.compare.compute import CURVE_SPEEDS, Comparison, Difference, Quantity, _difference
 from stability.layout.linear import SEARCH_SPEEDS_M_S, critical_speed, growth_rates
 from stability.layout.model import Layout
 from stability.layout.statics import tip_angles
-from stability.linear.intervals import MAX_SAMPLES
+from stability.linear.batch import check_eigen_work
+from stability.linear.intervals import MAX_SAMPLES, solves_per_draw
 from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
+from stability.study.censored import quantile
 from stability.study.layout_impulse import layout_critical_impulses
 from stability.uncertainty import Uncertainty, propagate
 
-__all__ = ["compare_layouts", "stable_up_to", "linear_rows", "LAYOUT_NOTE"]
+__all__ = ["compare_layouts", "stable_up_to", "stable_up_to_rows", "bounded_interval",
+           "bounded_difference", "linear_rows", "LAYOUT_NOTE"]
 
 #: What a layout comparison leaves out, in one line.
 LAYOUT_NOTE = ("Compared as wheel layouts: the short form's zero-width and locked-caster measures and its "
@@ -86,6 +90,70 @@ def linear_rows(layouts: Sequence[Layout], speeds: Sequence[float] | np.ndarray)
     return out
 
 
+def stable_up_to_rows(layouts: Sequence[Layout]) -> np.ndarray:
+    """:func:`stable_up_to` of each layout, forward then in reverse, m/s; shape ``(layouts, 2)``."""
+    return np.array([[stable_up_to(lay), stable_up_to(lay, reverse=True)] for lay in layouts]).reshape(-1, 2)
+
+
+def bounded_interval(draws: np.ndarray, level: float, top: float) -> tuple[float, float]:
+    """The central interval of draws of :func:`stable_up_to`, a draw stable up to the searched ``top`` being that
+    bound (:func:`stability.study.censored.quantile`); an end that is such a bound is ``inf``.
+
+    Parameters
+    ----------
+    draws : ndarray
+        The draws' speeds, m/s (``inf``: stable up to ``top``).
+    level : float
+        Coverage, 0 < level < 1.
+    top : float
+        The searched range's end, m/s.
+
+    Returns
+    -------
+    (float, float)
+        The interval's ends, m/s.
+    """
+    bound = np.isinf(draws)
+    values = np.where(bound, top, draws)
+    sides = np.where(bound, ">", "=")
+    ends = (quantile(values.tolist(), sides.tolist(), q) for q in ((1 - level) / 2, (1 + level) / 2))
+    lo, hi = ((math.inf if side == ">" else v) for v, side in ends)
+    return float(lo), float(hi)
+
+
+def bounded_difference(a: np.ndarray, r: np.ndarray, level: float,
+                       top: float) -> tuple[tuple[float, float], tuple[str, str]] | None:
+    """The central interval of paired differences ``a - r`` of :func:`stable_up_to` draws, a draw stable up to the
+    searched ``top`` counting as that bound (:func:`stability.study.censored.quantile`).
+
+    A pair with ``a`` a bound and ``r`` a value differs by at least ``top - r`` (a lower bound), the reverse by at
+    most ``a - top`` (an upper bound); a pair of two bounds says nothing and is left out.
+
+    Parameters
+    ----------
+    a, r : ndarray
+        Paired draws of the compared and the reference layout, m/s (``inf``: stable up to ``top``).
+    level : float
+        Coverage, 0 < level < 1.
+    top : float
+        The searched range's end, m/s.
+
+    Returns
+    -------
+    ((float, float), (str, str)) or None
+        The interval's ends, m/s, and each end's side (``"="`` a value, ``">"``/``"<"`` a bound); None when fewer
+        than half the pairs say something (both bounds).
+    """
+    ba, br = np.isinf(a), np.isinf(r)
+    keep = ~(ba & br)
+    if keep.sum() < 0.5 * a.size:
+        return None
+    d = np.where(ba, top, a)[keep] - np.where(br, top, r)[keep]
+    sides = np.where(ba[keep], ">", np.where(br[keep], "<", "="))
+    (lo, s_lo), (hi, s_hi) = (quantile(d.tolist(), sides.tolist(), q) for q in ((1 - level) / 2, (1 + level) / 2))
+    return (float(lo), float(hi)), (s_lo, s_hi)
+
+
 def _propagated(layouts: Sequence[Layout], uncertainties: Sequence[Uncertainty | None], speeds: np.ndarray,
                 samples: int, seed: int, level: float, pairing: str) -> tuple[list, list[np.ndarray]]:
     """Each uncertain layout's propagation (:func:`stability.uncertainty.propagate` of :func:`linear_rows`) and
@@ -95,12 +163,14 @@ def _propagated(layouts: Sequence[Layout], uncertainties: Sequence[Uncertainty |
     for i, (lay, unc) in enumerate(zip(layouts, uncertainties, strict=True)):
         if unc is None:
             results.append(None)
-            draws.append(np.repeat(linear_rows([lay], speeds), samples, axis=0))
+            row = np.column_stack([linear_rows([lay], speeds), stable_up_to_rows([lay])])
+            draws.append(np.repeat(row, samples, axis=0))
             continue
         seen: list[np.ndarray] = []
 
         def fn(ds: list, seen: list = seen) -> np.ndarray:
-            seen.append(linear_rows([d.layout for d in ds], speeds))
+            lays = [d.layout for d in ds]
+            seen.append(np.column_stack([linear_rows(lays, speeds), stable_up_to_rows(lays)]))
             return seen[-1]
 
         # "shared": the same seed for every layout, so a table of one name is the same unknown in each (the short
@@ -133,8 +203,11 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
         One per layout, tables naming its axes (:func:`stability.advise.layout_axes.load_layout_uncertainty`;
         None: taken as exact).  The growth rates and the static stability get central intervals
         (:func:`stability.uncertainty.propagate` of :func:`linear_rows`) and each difference from the reference
-        an interval from the draws, as the short form's comparison; the speeds up to which a layout is stable and
-        the critical impulse are not propagated (a search per draw).
+        an interval from the draws, as the short form's comparison; so do the speeds up to which a layout is
+        stable, forward and in reverse (a critical-speed search per draw, as the short form's critical speeds; a
+        draw stable up to the searched 20 m/s counts as that bound, :func:`stability.study.censored.quantile`, and
+        an interval end that is such a bound is infinite).  The critical impulse is not propagated (a push search
+        per draw; the short form's comparison does not either).
     samples, seed : int
         Draws per uncertain layout (1 to :data:`stability.linear.intervals.MAX_SAMPLES`) and their seed.
     level : float
@@ -164,6 +237,10 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
     if len(uncs) != len(layouts):
         raise ValueError(f"uncertainties: {len(uncs)} given for {len(layouts)} layouts; valid: one per layout")
     u = np.asarray(speeds, dtype=float)
+    # each uncertain draw: the rates at the speeds, then a critical-speed search forward and in reverse (the grid
+    # and its bisection), the short form's count (stability.linear.intervals.solves_per_draw)
+    check_eigen_work("samples", int(samples) * sum(x is not None for x in uncs),
+                     solves_per_draw(len(u), len(SEARCH_SPEEDS_M_S)))
     rows = linear_rows(layouts, u)                                       # (layouts, speeds + 1)
     results, draws = (_propagated(layouts, uncs, u, int(samples), int(seed), level, pairing)
                       if any(x is not None for x in uncs) else ([None] * len(layouts), None))
@@ -175,14 +252,18 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
                    False, tuple(float(x) for x in rows[:, k]), ivs(k))
           for k, s in enumerate(u)]
     top = float(SEARCH_SPEEDS_M_S[-1])
-    for reverse in (False, True):
-        way = "reverse" if reverse else "forward"
+    for j, way in enumerate(("forward", "reverse")):
+        col = len(u) + 1 + j                          # the draws' columns: rates, static stability, fwd, rev
         qs.append(Quantity(f"stable_up_to_{way}_m_s", f"stable up to ({way}, linear)", "m/s", True,
-                           tuple(stable_up_to(lay, reverse) for lay in layouts), (None,) * len(layouts),
+                           tuple(stable_up_to(lay, way == "reverse") for lay in layouts),
+                           tuple(None if r is None or draws is None else bounded_interval(draws[i][:, col], level, top)
+                                 for i, r in enumerate(results)),
                            f"stable up to {top:g} m/s"))
     qs.append(Quantity("static_stability_deg", "static stability (ISO 7176-1, smallest)", "deg", True,
                        tuple(float(x) for x in rows[:, -1]), ivs(len(u))))
-    column = {q.key: j for j, q in enumerate(qs[:len(u)])} | {"static_stability_deg": len(u)}
+    column = ({q.key: j for j, q in enumerate(qs[:len(u)])}
+              | {"static_stability_deg": len(u), "stable_up_to_forward_m_s": len(u) + 1,
+                 "stable_up_to_reverse_m_s": len(u) + 2})
     push = None
     if nonlinear:
         signs = [1.0] + ([-1.0] if bool(np.any(u < 0)) else [])
@@ -198,10 +279,23 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
                                (None,) * len(layouts), f"level not reached with pushes up to {largest:.3g} N s"))
         push = (f"{THESIS_PUSH.force:g} N lateral at the c.g. for {THESIS_PUSH.duration:g} s, scaled; every caster "
                 "trailing the direction of travel at the start (the layout simulator)")
-    diffs = tuple(_difference(q, i, labels[i], labels[0],
-                              None if draws is None or q.key not in column
-                              else draws[i][:, column[q.key]] - draws[0][:, column[q.key]], level)
-                  for i in range(1, len(layouts)) for q in qs)
+    bounded = ("stable_up_to_forward_m_s", "stable_up_to_reverse_m_s")
+
+    def difference(q: Quantity, i: int) -> Difference:
+        if draws is None or q.key not in column:
+            return _difference(q, i, labels[i], labels[0], None, level)
+        a, r = draws[i][:, column[q.key]], draws[0][:, column[q.key]]
+        if q.key not in bounded:
+            return _difference(q, i, labels[i], labels[0], a - r, level)
+        d = _difference(q, i, labels[i], labels[0], None, level)
+        found = bounded_difference(a, r, level, top)
+        if found is None:
+            return d
+        (lo, hi), sides = found
+        # a bound end counts at its value, the conservative position (stability.study.censored)
+        return dataclasses.replace(d, interval=(lo, hi), interval_sides=sides, distinguishable=bool(lo > 0 or hi < 0))
+
+    diffs = tuple(difference(q, i) for i in range(1, len(layouts)) for q in qs)
     curve_speeds = (tuple(-x for x in reversed(CURVE_SPEEDS)) if bool(np.any(u < 0)) else ()) + tuple(CURVE_SPEEDS)
     curves = tuple(tuple(float(x) for x in growth_rates(lay, curve_speeds)) for lay in layouts)
     unc_info = None if draws is None else {"samples": int(samples), "seed": int(seed), "level": float(level),

@@ -23,6 +23,11 @@ def _num(x: float | None, unit: str = "", digits: int = 4) -> str:
     return f"{x:.{digits}g}" + (f" {unit}" if unit else "")
 
 
+def _end(x: float, max_speed: float) -> str:
+    """An interval's end: a bound beyond the searched range (``inf``) as ``"> max_speed"``."""
+    return f"> {max_speed:g}" if math.isinf(x) and x > 0 else _num(x)
+
+
 def _value(q: Quantity, v: float, max_speed: float) -> str:
     if math.isinf(v) and v > 0:
         if q.none_means:
@@ -35,6 +40,11 @@ def _value(q: Quantity, v: float, max_speed: float) -> str:
 
 def _time_to_double(rate: float) -> str:
     return f"{math.log(2) / rate:.3g} s" if rate > 0 else "never"
+
+
+def _signed_end(x: float, side: str) -> str:
+    """A difference interval's end; a bound (``side`` ``">"`` or ``"<"``) as ``">= x"`` or ``"<= x"``."""
+    return {">": ">= ", "<": "<= "}.get(side, "") + f"{x:+.3g}"
 
 
 def _verdict(d: Difference, q: Quantity) -> str:
@@ -51,7 +61,8 @@ def _verdict(d: Difference, q: Quantity) -> str:
                                                                else "") + ")"
     if d.interval is not None:
         lo, hi = d.interval
-        text += f"; difference interval [{lo:+.3g}, {hi:+.3g}] {q.unit}: "
+        sl, sh = d.interval_sides
+        text += f"; difference interval [{_signed_end(lo, sl)}, {_signed_end(hi, sh)}] {q.unit}: "
         text += "distinguishable" if d.distinguishable else "NOT distinguishable with these uncertainties"
     return text
 
@@ -71,9 +82,10 @@ def _layout_tail(c: Comparison) -> list[str]:
     """The end of a comparison of layouts: what does not apply, the push, the linear model's limit."""
     out = ["", LAYOUT_NOTE]
     if c.uncertainty:
-        out += ["", "Intervals: the growth rates and the static stability over the uncertainty files' draws (the "
-                "layouts' axes); the speeds up to which a layout is stable and the critical impulse are its own "
-                "values, not propagated (a search per draw)."]
+        out += ["", "Intervals: the growth rates, the speeds up to which a layout is stable and the static stability "
+                "over the uncertainty files' draws (the layouts' axes; a draw stable up to the searched "
+                f"{c.max_speed:g} m/s counts as that bound, and an end that is one prints as \"> {c.max_speed:g}\"); "
+                "the critical impulse is its own value, not propagated (a push search per draw)."]
     if c.push:
         out += ["", f"Critical impulse: push convention {c.push}."]
     return out + ["", "The linear growth rates have no pin friction (Coulomb friction has no linearisation); the "
@@ -135,8 +147,10 @@ def format_comparison(c: Comparison) -> str:
             cell = _value(q, v, c.max_speed)
             if q.key.startswith("growth_rate"):
                 cell += f" (doubles {_time_to_double(v)})"
-            if iv is not None:
-                cell += f" [{_num(iv[0])}, {_num(iv[1])}]"
+            if iv is not None and iv[0] == iv[1]:       # a degenerate range says nothing but that it is one value
+                cell += " [the same over the interval]"
+            elif iv is not None:
+                cell += f" [{_end(iv[0], c.max_speed)}, {_end(iv[1], c.max_speed)}]"
             cells.append(cell)
         lines.append(f"  {q.label:<{width}}" + " | ".join(cells))
     lines += ["", f"Against the reference {ref} (lower growth rate, higher critical speed, "
@@ -224,6 +238,7 @@ def comparison_dict(c: Comparison, header: dict[str, Any]) -> dict[str, Any]:
     out["verdicts"] = [{**_measure(d.key), "chair": d.chair, "reference": c.labels[0], "more_stable": d.more_stable,
                         "difference": d.absolute, "unit": units.get(d.key), "difference_percent": d.percent,
                         "difference_interval": list(d.interval) if d.interval else None,
+                        "difference_interval_sides": list(d.interval_sides) if d.interval else None,
                         "distinguishable": d.distinguishable} for d in c.differences]
     out["single_effects"] = [
         {"chair": e.chair, "reference": c.labels[0], "speed_m_s": REFERENCE_SPEED,

@@ -95,7 +95,9 @@ def test_bench_critical_impulse_single(bench):
     bench.extra_info.update(old_s=t_old, new_s=t_new, speedup=ratio, runs_old=a[0].runs, runs_new=b[0].runs)
     print(f"\ncritical impulse, E&J Premier 0.75 m/s: old {t_old:.3f} s ({a[0].runs} runs, {a[0].describe()}), "
           f"new {t_new:.3f} s ({b[0].runs} runs, {b[0].describe()}), x{ratio:.1f}")
-    assert abs(math.log(b[0].impulse_Ns / a[0].impulse_Ns)) < 0.02    # inside the flip band (test_search.py)
+    # error model: bisection bracket: both answers are middles of brackets inside the outcome's flip band (about 1 %
+    # wide, tests/test_search.py) widened by the searches' rel_tol 0.5 %: within 2 % (observed 1.6e-4)
+    assert abs(math.log(b[0].impulse_Ns / a[0].impulse_Ns)) < 0.02
     assert b[0].runs <= RUN_FRACTION * a[0].runs
 
 

@@ -146,7 +146,7 @@ def test_bench_batch_2000(bench):
 def test_bench_adaptive_run(bench):
     simulate(EJ, 0.75, run=RunSpec(horizon=0.1, scheme="adaptive"))
     res = bench.pedantic(simulate, args=(EJ, 0.75), kwargs=dict(run=RunSpec(scheme="adaptive")), rounds=5, iterations=1)
-    assert res.t[-1] == pytest.approx(10.0)
+    assert res.t[-1] == pytest.approx(10.0, rel=1e-13)    # rounding of the sample grid's times, a few ulp (observed 0)
     best = bench.stats.stats.min
     pw, pc, py = _timed(lambda: simulate(EJ, 0.75, run=RunSpec(scheme="adaptive"), yaw_moment=_zero), repeat=2)
     np.testing.assert_array_equal(res.yaw_rate, py.yaw_rate)

@@ -61,7 +61,9 @@ def test_bench_equal_instability_speed(bench, monkeypatch):
     bench.extra_info.update(summaries_s=t_fast, full_results_s=t_full, ratio=ratio)
     print(f"\nequal_instability_speed(revised): packed summaries {t_fast:.3f} s, full results {t_full:.2f} s "
           f"(x{ratio:.1f})")
-    assert fast.speed == pytest.approx(full.speed, rel=1e-6)    # same answer either way
+    # same answer either way; wiring check; error model: rounding: the criterion times of the packed summaries and of
+    # the full results differ by a few ulp, so the search takes the same brackets to the same speed (observed 0)
+    assert fast.speed == pytest.approx(full.speed, rel=1e-12)
 
 
 @pytest.mark.parametrize("quick", [True, False], ids=["quick", "full"])
