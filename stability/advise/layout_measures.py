@@ -36,6 +36,7 @@ from collections.abc import Callable, Sequence
 from stability.advise.layout_levers import caster_rows, row_name
 from stability.advise.measures import IMPULSE_SPEED, Interval, Linear, Measures
 from stability.bench import run_bench
+from stability.driver.layout import layout_rule_speed
 from stability.layout.linear import growth_rates
 from stability.layout.model import Layout
 from stability.layout.statics import tip_angles
@@ -157,33 +158,6 @@ def layout_cross_slope_effort(layout: Layout, cross_slope_deg: float, reverse: b
     if kind == "handrim":
         return float(rep["handrim_force_difference_N"])
     return float(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
-
-
-def layout_rule_speed(layout: Layout, reaction_time: float, reverse: bool = False) -> tuple[float, str]:
-    """The divergence rule's speed of a layout: where its largest growth rate reaches ``1 / reaction_time``.
-
-    :func:`stability.driver.linear.rule_speed` (its speed grid and refinement) on the layout's linear model,
-    forward or in reverse.
-
-    Parameters
-    ----------
-    layout : Layout
-    reaction_time : float
-        s (:class:`stability.driver.model.Driver`'s range).
-    reverse : bool
-        Backwards: the rates at ``-U``.
-
-    Returns
-    -------
-    (float, str)
-        The speed's size (m/s) and side (``"="``; ``">"``: beyond the speeds checked; ``"<"``: below them).
-    """
-    from stability.driver.linear import _GRID, _first_crossing
-    from stability.driver.model import Driver
-
-    tau = Driver(reaction_time).reaction_time_s
-    sign = -1.0 if reverse else 1.0
-    return _first_crossing(lambda u: float(growth_rates(layout, [sign * u])[0]) * tau - 1.0, _GRID)
 
 
 def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float], cores: dict | None = None,
