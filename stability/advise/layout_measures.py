@@ -46,13 +46,11 @@ from stability.settings.run import RunSpec
 from stability.shimmy.band import ShimmyBand, band_core, shimmy_band
 from stability.shimmy.layout_caster import LayoutCaster
 from stability.simulate.options import WCHAIR_DT
-from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS
 from stability.study.layout_equal_instability import (
     layout_equal_instability_interval,
     layout_summaries,
-    scale_layout_friction,
 )
-from stability.study.layout_impulse import layout_critical_impulses
+from stability.study.layout_impulse_intervals import layout_critical_impulse_intervals
 from stability.study.runs import study_run
 
 __all__ = ["direction_of", "layout_linear_measures", "layout_nonlinear_measures", "measure_layouts",
@@ -208,15 +206,13 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
 
 
 def _critical(layouts: list[Layout], speed: float) -> list[tuple[Interval, str, float | None]]:
-    """Critical impulse with its range over pin friction and half the step (the short form's, less the model)."""
-    specs = [("nominal", 1.0, WCHAIR_DT)] + [(f"x{f:g} pin friction", f, WCHAIR_DT) for f in FRICTION_FACTORS]
-    specs += [(f"{WCHAIR_DT * f * 1e3:g} ms step", 1.0, WCHAIR_DT * f) for f in STEP_FACTORS]
+    """Critical impulse with its range over pin friction and half the step (the short form's, less the model:
+    :func:`stability.study.layout_impulse_intervals.layout_critical_impulse_intervals`)."""
     out = []
     for lay in layouts:
-        res = [layout_critical_impulses(scale_layout_friction(lay, f), speed, RunSpec(dt=h))[0] for _, f, h in specs]
-        bounds = [r.bound_Ns for r in res]
-        half = [r.bound_Ns for (label, _, _), r in zip(specs, res, strict=True) if label.endswith(" ms step")]
-        out.append((Interval(float(res[0].bound_Ns), float(min(bounds)), float(max(bounds))), res[0].status,
+        iv = layout_critical_impulse_intervals(lay, speed, RunSpec(dt=WCHAIR_DT))[0]
+        half = [r.bound_Ns for label, r in iv.variants if label.endswith(" ms step")]
+        out.append((Interval(float(iv.point.bound_Ns), iv.low_Ns, iv.high_Ns), iv.point.status,
                     float(half[0]) if half else None))
     return out
 

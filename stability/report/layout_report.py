@@ -283,7 +283,7 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     if quick:
         from stability.report.layout_clinician import layout_clinician_sheet
 
-        sheet = layout_clinician_sheet(layout, tuple(a.speeds_m_s))
+        sheet = layout_clinician_sheet(layout, tuple(a.speeds_m_s), driver)
         data = {"layout": layout.name, "quick": True, "decision": d.to_mapping(), "clinician": _sheet_data(sheet)}
         return LayoutReport(layout, (decision,), (), data, sheet=sheet)
     summary = analyse_layout(layout)
