@@ -97,7 +97,7 @@ class LayoutUncertainty:
         return {"samples": r.samples, "seed": r.seed, "level": r.level, "parameters": list(self.parameters),
                 "rejected": r.rejected,
                 "measures": [{"measure": k.split("@")[0], "speed_m_s": float(k.split("@")[1]) if "@" in k else None,
-                              "nominal": nom, "low": lo if math.isfinite(lo) else None,
+                              "nominal": nom if math.isfinite(nom) else None, "low": lo if math.isfinite(lo) else None,
                               "high": hi if math.isfinite(hi) else None, "finite_fraction": fin}
                              for k, _, nom, lo, hi, fin in self.rows()],
                 "dominant_parameters": [{"parameter": n, "share": s} for n, s in r.dominant_parameters]}

@@ -103,13 +103,21 @@ def _critical(args: argparse.Namespace) -> None:
                                       max_impulse=args.max_impulse)[0] for u in speeds] if args.interval else []
     for k, p in enumerate(curve.points):
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
-        rng = (f"  range {ivs[k].low_Ns:.3g}-{ivs[k].high_Ns:.3g} N s over "
-               + ", ".join(label for label, _ in ivs[k].variants)) if ivs else ""
+        rng = _range_words(ivs[k]) if ivs else ""
         lines.append(f"  {p.speed:6.3g} m/s  {p.describe():>12s}  (kick {kick}){rng}")
     data = curve.to_dict()
     if ivs:
         data["intervals"] = [iv.to_dict() for iv in ivs]
     _emit(args, data, "\n".join(lines), chair)
+
+
+def _range_words(iv) -> str:
+    """A critical impulse's range over its variants; the same value in every variant (a bound at the search's end)
+    says so, not "range 40-40" (issue 35: degenerate ranges are not printed)."""
+    labels = ", ".join(label for label, _ in iv.variants)
+    if iv.low_Ns == iv.high_Ns:
+        return f"  the same in every variant ({labels})"
+    return f"  range {iv.low_Ns:.3g}-{iv.high_Ns:.3g} N s over {labels}"
 
 
 def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
@@ -158,8 +166,7 @@ def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
     for k, p in enumerate(curve.points):
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
         way = "reverse" if p.speed < 0 else "forward"
-        rng = (f"  range {ivs[k].low_Ns:.3g}-{ivs[k].high_Ns:.3g} N s over "
-               + ", ".join(label for label, _ in ivs[k].variants)) if ivs else ""
+        rng = _range_words(ivs[k]) if ivs else ""
         lines.append(f"  {p.speed:+6.3g} m/s {way:7s}  {p.describe():>12s}  (kick {kick}){rng}")
     slow = slow_divergences(layout, curve.points, run_spec)
     lines += [f"note: {d.text()}" for d in slow]
