@@ -198,7 +198,7 @@ def test_the_layout_figure_names_chair_model_and_units(tmp_path, capsys):
     (["--chair", "mid-wheel-drive", "--uncertainty", "docs/examples/measured_chair.uncertainty.toml"],
      "numeric layout field"),
     (["--chair", "mid-wheel-drive", "--uncertainty", "docs/examples/mid_wheel_drive.uncertainty.toml", "--samples",
-      "0"], "--samples 0 is invalid; valid range: 1 to 20000"),
+      "0"], "--samples 0 is invalid; valid range"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):
     from stability.critical_speed.command import main

@@ -191,21 +191,8 @@ def heading_plant(chair: Chair, speed: float, model: str = "exact") -> tuple[np.
 
 
 def with_heading(A0: np.ndarray, B0: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """A free-caster linear model ``x' = A0 x + B0 Mz`` (states ``[v, r, ...]``) with the heading ``psi`` appended
-    (``psi' = r``) and the driver's outputs ``psi`` and ``r``.
-
-    Parameters
-    ----------
-    A0 : ndarray
-        ``(n, n)`` state matrix (SI, 1/s and ratios), ``r`` (rad/s) its second state.
-    B0 : ndarray
-        ``(n, 1)`` column of the yaw moment (per N m).
-
-    Returns
-    -------
-    (A, B, C)
-        ``(n+1, n+1)``, ``(n+1, 1)`` and ``(2, n+1)``; outputs ``psi`` (rad) and ``r`` (rad/s).
-    """
+    """``x' = A0 x + B0 Mz`` (states ``[v, r, ...]``, SI; ``B0`` per N m) with the heading ``psi`` appended
+    (``psi' = r``): ``(A, B, C)`` of order n+1, the outputs ``psi`` (rad) and ``r`` (rad/s)."""
     n = A0.shape[0]
     A = np.zeros((n + 1, n + 1))
     A[:n, :n] = A0
@@ -449,7 +436,7 @@ def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray
         The loop limit's Pade error is estimated from the abscissa at the limit with twice the order, divided
         by the abscissa's slope in speed there.
     """
-    rule, rule_side = _first_crossing(lambda u: rate(u) * tau - 1.0, _GRID)
+    rule, rule_side = rule_crossing(rate, tau)
     f = _LoopAbscissa(plant, tau, order)
     speed, side = _first_crossing(f, _GRID)
     err = 0.0

@@ -61,7 +61,8 @@ def layout_text(layout: Layout, s: LayoutSummary) -> str:
     for u, g in zip(s.speeds_m_s, s.growth_rate_1_s, strict=True):
         t2 = f"{math.log(2) / g:8.2f}" if g > 0 else "  stable"
         lines.append(f"  {u:+10.2f}   {g:+17.4f}   {t2}")
-    lines += ["", critical_words(s.forward_critical, "Forward") + "; " + critical_words(s.reverse_critical, "in reverse") + "."]
+    lines += ["", critical_words(s.forward_critical, "Forward") + "; "
+              + critical_words(s.reverse_critical, "in reverse") + "."]
     return "\n".join(lines)
 
 
