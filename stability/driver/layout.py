@@ -79,7 +79,8 @@ def layout_human_limit(layout: Layout, driver: Driver | None = None, reverse: bo
     Returns
     -------
     HumanLimit
-        Model ``"exact"`` (a layout's equations are the exact model's); speeds are sizes, m/s.
+        :func:`stability.driver.linear.plant_limit` on :func:`layout_heading_plant`; model ``"exact"`` (a layout's
+        equations are the exact model's), speeds are sizes (m/s).
     """
     d = driver or Driver()
     sign = -1.0 if reverse else 1.0

@@ -485,8 +485,7 @@ def human_limit(chair: Chair, driver: Driver | None = None, model: str = "exact"
     Returns
     -------
     HumanLimit
-        The loop limit's Pade error is estimated from the abscissa at the limit with twice the order, divided
-        by the abscissa's slope in speed there.
+        :func:`plant_limit` on the chair's :func:`heading_plant` and :func:`divergence_rate`.
     """
     d = driver or Driver()
     check_model(model)
