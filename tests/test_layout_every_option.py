@@ -224,7 +224,6 @@ def test_the_clinician_sheet_of_a_layout_has_the_drivers_line(tmp_path, capsys):
     assert "backwards" in text and "at 7.2 km/h this user cannot hold it" in text
 
 
-@pytest.mark.slow
 def test_the_e_and_j_as_a_layout_has_the_short_forms_critical_impulse_interval():
     """``study critical-impulse --interval`` on a layout is the short form's interval less the model variant: for the
     E&J Premier at 0.75 m/s the nominal bracket is the short form's to rounding (tests/test_layout_impulse.py) and
