@@ -191,8 +191,18 @@ def heading_plant(chair: Chair, speed: float, model: str = "exact") -> tuple[np.
 
 
 def with_heading(A0: np.ndarray, B0: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``x' = A0 x + B0 Mz`` (states ``[v, r, ...]``, SI; ``B0`` per N m) with the heading ``psi`` appended
-    (``psi' = r``): ``(A, B, C)`` of order n+1, the outputs ``psi`` (rad) and ``r`` (rad/s)."""
+    """``x' = A0 x + B0 Mz`` with the heading ``psi`` appended (``psi' = r``).
+
+    Parameters
+    ----------
+    A0, B0 : ndarray
+        ``(n, n)`` states ``[v, r, ...]`` (SI) and ``(n, 1)`` yaw-moment column (per N m).
+
+    Returns
+    -------
+    (A, B, C)
+        Order n+1; outputs ``psi`` (rad) and ``r`` (rad/s).
+    """
     n = A0.shape[0]
     A = np.zeros((n + 1, n + 1))
     A[:n, :n] = A0
@@ -388,8 +398,7 @@ def rule_speed(chair: Chair, reaction_time: float, model: str = "exact") -> tupl
 
 
 class _LoopAbscissa:
-    """``U -> best abscissa`` of the delayed loop on ``plant(U)``, warm-started from the best gains at the last
-    speed."""
+    """``U -> best abscissa`` of the delayed loop on ``plant(U)``, warm-started from the last speed's gains."""
 
     def __init__(self, plant: Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]], tau: float,
                  order: int) -> None:
@@ -419,12 +428,10 @@ def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray
     Parameters
     ----------
     name, model : str
-        The chair's name and model (recorded in the result).
     plant : callable
-        ``U -> (A, B, C)`` at a speed's size ``U`` (m/s): the free-caster linear model with the heading added,
-        driven by a yaw moment (N m), observed as heading (rad) and yaw rate (rad/s), as :func:`heading_plant`.
+        ``U -> (A, B, C)`` at a speed's size ``U`` (m/s), as :func:`heading_plant`'s.
     rate : callable
-        ``U -> `` the divergence rate at ``U`` (1/s): the largest real part of the free-caster model.
+        ``U -> `` the divergence rate at ``U`` (1/s), as :func:`divergence_rate`'s.
     tau : float
         The driver's effective delay, s.
     order : int
@@ -456,14 +463,14 @@ def rule_crossing(rate: Callable[[float], float], reaction_time: float) -> tuple
     Parameters
     ----------
     rate : callable
-        ``U -> `` divergence rate at the speed's size ``U`` (m/s), 1/s.
+        ``U -> `` divergence rate (1/s) at the speed's size ``U`` (m/s).
     reaction_time : float
         s (:class:`Driver`'s range).
 
     Returns
     -------
     (float, str)
-        Speed (m/s) and side (``"="``; ``">"``: beyond :data:`SPEED_RANGE_M_S`; ``"<"``: below it).
+        Speed (m/s) and side, as :func:`rule_speed`'s.
     """
     tau = Driver(reaction_time).reaction_time_s
     return _first_crossing(lambda u: rate(u) * tau - 1.0, _GRID)
