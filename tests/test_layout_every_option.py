@@ -252,3 +252,20 @@ def test_study_interval_on_a_layout_prints_its_range(capsys):
     assert [v["label"] for v in iv["variants"]] == ["x0.5 pin friction", "x1.5 pin friction", "0.5 ms step"]
     bounds = [iv["impulse_Ns"] if iv["status"] == "found" else None] + [v["bound_Ns"] for v in iv["variants"]]
     assert iv["low_Ns"] == min(b for b in bounds[1:] + [iv["low_Ns"]]) and iv["low_Ns"] <= iv["high_Ns"]
+
+
+def test_a_wheel_file_with_a_user_table_gets_that_users_limits(tmp_path, capsys):
+    """A ``[[wheel]]`` file (the front-wheel-drive base exported) with ``[user] reaction_time_s = 0.4``: critical_speed
+    uses the file's driver, and its limit forwards is the base's for a 0.4 s driver (the same layout read back)."""
+    from stability.chair.__main__ import main as chair_main
+    from stability.critical_speed.command import main
+
+    path = tmp_path / "fwd.toml"
+    assert chair_main(["export", "power-fwd-base"]) == 0
+    path.write_text(capsys.readouterr().out + '\n[user]\nreaction_time_s = 0.4\n')
+    assert main(["--chair", str(path), "--json"]) == 0
+    h = json.loads(capsys.readouterr().out)["human_limit"]
+    assert h["driver"]["reaction_time_s"] == 0.4 and h["driver"]["source"].endswith("[user]")
+    expected = layout_human_limit(layout_preset("power-fwd-base"), Driver(0.4))
+    assert h["speed_m_s"] == pytest.approx(expected.speed_m_s, abs=SAME_DECISIONS_M_S)
+    assert h["limited_by"] == expected.limited_by
