@@ -177,7 +177,9 @@ def test_a_short_form_chair_at_a_negative_speed_runs_as_its_layout(capsys):
     (["--chair", "mid-wheel-drive", "--speeds", "0.75,25"], ["--speeds '0.75,25'", "0.01 to 20 m/s"]),
     (["--chair", "mid-wheel-drive", "--speeds", "0"], ["--speeds '0'", "|speed| 0.01 to 100 m/s"]),
     (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], ["--set", "caster_K_FIELD"]),
-    (["--chair", "mid-wheel-drive", "--interval"], ["--interval", "short-form chair at positive speeds"]),
+    # --interval runs every case again (pin friction x0.5 and x1.5, half the step): a horizon allowed without it
+    # (up to 250 s here) is refused with it, before any run
+    (["--chair", "mid-wheel-drive", "--interval", "--horizon", "100"], ["--horizon=100 s", "largest allowed --horizon"]),
     (["--chair", "mid-wheel-drive", "--model", "thesis"], ["--model thesis", "valid values: exact"]),
     (["--chair", "ej-premier", "--speeds", "-0.75", "--model", "thesis"], ["--model thesis", "exact"]),
     (["--chair", "mid-wheel-drive", "--horizon", "1000"], ["--horizon=1000 s", "largest allowed --horizon"]),

@@ -79,8 +79,8 @@ def test_bad_layout_options_are_refused_in_one_line(tmp_path, capsys):
               "docs/examples/mid_wheel_drive.uncertainty.toml"], "--samples 0 is invalid"),
             (["--chair", "mid-wheel-drive", "--json", "--set", "caster_9_trail=0.05"],
              "is not a field of layout"),
-            (["--chair", "mid-wheel-drive", "--clinician", "-o", str(tmp_path / "b.pdf"), "--reaction-time", "0.5"],
-             "--reaction-time is not available with --clinician")):
+            (["--chair", "mid-wheel-drive", "--clinician", "-o", str(tmp_path / "b.pdf"), "--reaction-time", "3"],
+             "--reaction-time 3 is invalid; valid range")):
         assert main(argv) == 2, argv
         err = capsys.readouterr().err.strip()
         assert words in err and "\n" not in err, err

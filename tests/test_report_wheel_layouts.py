@@ -87,8 +87,8 @@ def test_the_command_writes_a_layout_report(tmp_path, capsys):
     (["--chair", "mid-wheel-drive", "--json", "--model", "thesis"], "--model thesis is invalid for a wheel layout"),
     (["--chair", "mid-wheel-drive", "--json", "--set", "zz=90"],
      "--set 'zz=90': 'zz' is not a field of layout"),
-    (["--chair", "mid-wheel-drive", "--clinician", "-o", "x.pdf", "--reaction-time", "0.6"],
-     "--reaction-time is not available with --clinician for a wheel layout"),
+    (["--chair", "mid-wheel-drive", "--clinician", "-o", "x.pdf", "--reaction-time", "0.01"],
+     "--reaction-time 0.01 is invalid; valid range"),
     (["--chair", "mid-wheel-drive", "--json", "--reaction-time", "9"], "--reaction-time 9 is invalid; valid range"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):

@@ -329,3 +329,50 @@ def layout_every_command() -> dict:
     out["speeds"] = ", ".join(f"{u:g}" for u in speeds)
     out["tau"], out["search_top"] = f"{tau:g}", f"{SEARCH_SPEEDS_M_S[-1]:g}"
     return out
+
+
+@group("layout_critical_options", "python -m stability.critical_speed --chair NAME --reaction-time 0.3 / "
+       "--uncertainty docs/examples/mid_wheel_drive.uncertainty.toml (stability.driver.layout.layout_human_limit, "
+       "stability.driver.human_limit, stability.report.layout_uncertainty.layout_uncertainty)")
+def layout_critical_options() -> dict:
+    """Issue 38, critical_speed on a layout: a 0.3 s driver's two limits per drive layout forwards and backwards, the
+    E&J Premier as a layout against the short form, and the mid-wheel-drive base's growth-rate intervals at the
+    reference speed both ways over the docs' uncertainty file (the command's default draws and seed)."""
+    from pathlib import Path
+
+    from stability.advise.layout_axes import load_layout_uncertainty
+    from stability.chair import resolve
+    from stability.driver import Driver, human_limit
+    from stability.driver.layout import layout_human_limit
+    from stability.layout.model import Layout
+    from stability.layout.presets import layout_preset
+    from stability.report.layout_uncertainty import layout_uncertainty
+    from stability.settings import defaults as D
+
+    tau = 0.3
+
+    def bound(u: float, side: str) -> str:
+        return ("" if side == "=" else f"{side} ") + sig(u, 3)
+
+    rows = []
+    for name in DRIVE_LAYOUTS:
+        for reverse in (False, True):
+            h = layout_human_limit(layout_preset(name), Driver(tau), reverse)
+            rows.append((name, "backwards" if reverse else "forwards", bound(h.rule_speed_m_s, h.rule_side),
+                         bound(h.loop_speed_m_s, h.loop_side)))
+    ej = resolve("ej-premier")
+    short, lay = human_limit(ej, Driver(tau)), layout_human_limit(Layout.from_chair(ej), Driver(tau))
+    root = Path(__file__).resolve().parents[2]
+    mwd = layout_preset("mid-wheel-drive")
+    unc = load_layout_uncertainty(root / "docs" / "examples" / "mid_wheel_drive.uncertainty.toml", mwd)
+    r = layout_uncertainty(mwd, unc, [0.75, -0.75], samples=D.SAMPLES, seed=D.SEED, critical=True)
+    rs = {k: (nom, lo, hi, fin) for k, _, nom, lo, hi, fin in r.rows()}
+    out = {"tau": f"{tau:g}", "samples": str(D.SAMPLES),
+           "table": Table(("layout", "direction", "divergence rule m/s", "delayed loop m/s"), tuple(rows)),
+           "ej_rule_short": sig(short.rule_speed_m_s, 3), "ej_loop_short": sig(short.loop_speed_m_s, 3),
+           "ej_rule_layout": sig(lay.rule_speed_m_s, 3), "ej_loop_layout": sig(lay.loop_speed_m_s, 3),
+           "crit_defined_pct": f"{100 * rs['critical_speed_forward_m_s'][3]:.0f}"}
+    for key, u in (("fwd", 0.75), ("rev", -0.75)):
+        nom, lo, hi, _ = rs[f"growth_rate_1_s@{u:g}"]
+        out[f"rate_{key}"], out[f"rate_{key}_interval"] = signed(nom, 3), f"{signed(lo, 3)} to {signed(hi, 3)}"
+    return out
