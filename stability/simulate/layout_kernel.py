@@ -329,6 +329,19 @@ def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, 
                     states[r], recs[r], status[r], warn[r], ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec[r])
 
 
+@_inl
+def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """The sampled controller's samples due by ``t``: the next sample's index and the held command."""
+    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+    while next_k <= ks:
+        sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
+        for kk in range(D.shape[0]):
+            sv[6 + 2 * kk], sv[7 + 2 * kk] = D[kk], DD[kk]
+        cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        next_k += 1
+    return next_k, cmd
+
+
 @njit(cache=True, nogil=True)
 def advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, state, rec,
             status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
@@ -366,13 +379,8 @@ def advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, l
     for k in range(k0, k1):
         t = k * dt
         if use_ctl:
-            ks = int(math.floor(t / ctl_f[0] + 1e-9))
-            while next_k <= ks:
-                sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
-                for kk in range(nc):
-                    sv[6 + 2 * kk], sv[7 + 2 * kk] = D[kk], DD[kk]
-                cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-                next_k += 1
+            next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az,
+                                   Bu, By, Cz, noise)
         if lag <= 0.0:
             mz = cmd
         _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
