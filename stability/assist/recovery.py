@@ -196,20 +196,21 @@ def settled_value(t: np.ndarray, response_deg: np.ndarray) -> float | None:
     return float(np.mean(np.asarray(response_deg, dtype=float)[t >= t[-1] - SETTLE_FINAL_WINDOW * (t[-1] - t[0])]))
 
 
-def recovery_rule(max_heading_deg: float = 10.0) -> str:
+def recovery_rule(max_heading_deg: float | None = 10.0) -> str:
     """The recovery criterion in words, for the text of both forms (:func:`minimum_torque_limit`).
 
     Parameters
     ----------
-    max_heading_deg : float
+    max_heading_deg : float or None
+        deg; None: the settling rule alone (:func:`settle_time`).
 
     Returns
     -------
     str
     """
-    return (f"the heading stays within {max_heading_deg:g} deg and settles to within {100 * SETTLE_FRACTION:g} % "
-            f"of its peak departure (at least {SETTLE_FLOOR_DEG:g} deg) about its final value, the mean over the "
-            f"last {100 * SETTLE_FINAL_WINDOW:g} % of the run")
+    settle = (f"settles to within {100 * SETTLE_FRACTION:g} % of its peak departure (at least {SETTLE_FLOOR_DEG:g} "
+              f"deg) about its final value, the mean over the last {100 * SETTLE_FINAL_WINDOW:g} % of the run")
+    return settle if max_heading_deg is None else f"the heading stays within {max_heading_deg:g} deg and {settle}"
 
 
 def _simulate(chair: Chair, speed: float, controller: DigitalController | None, impulse_force: float,

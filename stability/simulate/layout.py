@@ -500,7 +500,7 @@ def simulate_layout_batch(layout: Layout, speeds: Sequence[float], run: RunSpec 
         states[going, k.S_CMD] = np.broadcast_to(np.asarray(yaw_moment(step * float(cfg[0]), LayoutState(
             st[:, 0], st[:, 1], st[:, 2], st[:, 4], st[:, 5], st[:, 3], st[:, k.NSTATE:k.NSTATE + nc].T,
             st[:, k.NSTATE + nc:k.NSTATE + 2 * nc].T, going)), dtype=float), going.shape)
-        k.step_layouts(step, step + 1, cfg, *consts, states, recs, status, warn, *ctl, mzrec)
+        k.step_layouts(step, step + 1, cfg, *consts, states, recs, status, warn, *ctl, mzrec)  # type: ignore[call-arg]
     out = []
     for i, ((_, signed, r), d) in enumerate(zip(checked, deltas, strict=True)):
         settings = dict(r.to_dict(), caster_angles_deg=[float(x) for x in np.degrees(d)], dt_s=float(cfg[0]),
