@@ -390,9 +390,11 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
                        int(cfg[2]), float(cfg[0]))
 
 
-def _kernel_inputs(layout: Layout, run: RunSpec, motor_lag_s: float) -> tuple[np.ndarray, int, tuple]:
-    """The kernel's configuration row, the rows it records, and its layout arguments (``p`` to ``cpin``)."""
-    opts = make_options(run)
+def _kernel_inputs(layout: Layout, run: RunSpec, motor_lag_s: float, batch: bool = False
+                   ) -> tuple[np.ndarray, int, tuple]:
+    """The kernel's configuration row, the rows it records (a batch's every 0.01 s unless ``run.sample``), and its
+    layout arguments (``p`` to ``cpin``)."""
+    opts = make_options(run, batch=batch)
     steps = n_steps(opts)
     rule = load_rule(layout)
     nw, nc = layout.shape
@@ -450,8 +452,9 @@ def simulate_layout_batch(layout: Layout, speeds: Sequence[float], run: RunSpec 
     The thesis engine's :func:`stability.simulate.simulate_batch` with a ``yaw_moment`` input, for a layout: every
     step, ``yaw_moment(t, state)`` (:class:`LayoutState` of the runs still going) returns the yaw moment of each
     (N m), which acts over the step through ``motor_lag_s``; then the compiled kernel advances every run one step
-    (:func:`stability.simulate.layout_kernel.step_layouts`, the arithmetic of :func:`simulate_layout`).  A run
-    that leaves the finite numbers ends there (``ended == "non-finite"``) instead of raising.
+    (:func:`stability.simulate.layout_kernel.step_layouts`, the arithmetic of :func:`simulate_layout`).  Rows
+    are recorded as a batch's, every 0.01 s unless ``run.sample``.  A run that leaves the finite numbers ends
+    there (``ended == "non-finite"``) instead of raising.
 
     Parameters
     ----------
@@ -483,7 +486,7 @@ def simulate_layout_batch(layout: Layout, speeds: Sequence[float], run: RunSpec 
     checked = [_check_run(layout, u, run) for u in U]
     deltas = [_caster_angles(layout, r, None if caster_angles_deg is None else caster_angles_deg[i])
               for i, (_, _, r) in enumerate(checked)]
-    cfg, nrec, consts = _kernel_inputs(layout, checked[0][2], motor_lag_s)
+    cfg, nrec, consts = _kernel_inputs(layout, checked[0][2], motor_lag_s, batch=True)
     from stability.simulate import layout_kernel as k
 
     nc, R = len(layout.casters), len(U)
