@@ -259,9 +259,10 @@ def layout_assist_faults() -> dict:
     c = preset("power-fwd")
     short = fault_runs(schedule(c, [1.0, 2.0], standstill=False))
     mine = fault_runs(layout_schedule(Layout.from_chair(c), [1.0, 2.0]))
-    worst = max(float(np.max(np.abs([a.peak_heading_error_deg - b.peak_heading_error_deg,
-                                     a.peak_yaw_rate_deg_s - b.peak_yaw_rate_deg_s]))) for a, b in zip(short, mine, strict=True))
-    same = all((a.detected, a.outcome) == (b.detected, b.outcome) for a, b in zip(short, mine, strict=True))
+    pairs = list(zip(short, mine, strict=True))
+    worst = max(max(abs(a.peak_heading_error_deg - b.peak_heading_error_deg),
+                    abs(a.peak_yaw_rate_deg_s - b.peak_yaw_rate_deg_s)) for a, b in pairs)
+    same = all((a.detected, a.outcome) == (b.detected, b.outcome) for a, b in pairs)
     return {"table": Table(("layout", "direction", f"safe top speed m/s ({grid[0]:g} to {grid[-1]:g} m/s)",
                             "limited by", "unsafe fault runs (speed, cross slope)"), tuple(rows)),
             "short_agreement": f"{worst:.0e}", "short_same": "the same" if same else "NOT the same",
