@@ -236,7 +236,6 @@ def layout_assist_options() -> dict:
 def layout_assist_faults() -> dict:
     """Per drive layout and direction: the safe top speed with the single sensor faults (speeds 1 to 3 m/s), what
     limits it, the unsafe fault runs; the power chair as a layout against the short form's fault rows."""
-    import numpy as np
 
     from stability.assist.faults import fault_runs
     from stability.assist.layout import layout_assist, layout_schedule
