@@ -34,7 +34,8 @@ from stability.layout.presets import layout_preset
 from stability.settings.reference import THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.simulate.controller import SampledController
-from stability.simulate.layout import layout_state_order, simulate_layout, simulate_layout_batch
+from stability.simulate.layout import layout_state_order, simulate_layout
+from stability.simulate.layout_batch import simulate_layout_batch
 from stability.study.layout_impulse import trailing_angles
 
 

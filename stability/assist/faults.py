@@ -230,7 +230,7 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
     """Each fault at each speed and slope, with the unassisted chair as reference (one batch per slope).
 
     A layout's schedule (:class:`stability.assist.layout.LayoutSchedule`, signed speeds) runs in the layout
-    simulator (:func:`stability.simulate.layout.simulate_layout_batch`: the same hook at every step, the casters
+    simulator (:func:`stability.simulate.layout_batch.simulate_layout_batch`: the same hook at every step, the casters
     starting trailing for the direction, :func:`stability.study.layout_impulse.trailing_angles`), the slipping
     wheel capped at half the layout's traction limit (:func:`stability.assist.layout_checks.layout_traction_limit`).
 
@@ -300,7 +300,7 @@ def _layout_batch(layout: Any, speeds: np.ndarray, spec: RunSpec, hook: FaultHoo
     """The batch in the layout simulator, each run as :func:`_measures` reads it."""
     from types import SimpleNamespace
 
-    from stability.simulate.layout import simulate_layout_batch
+    from stability.simulate.layout_batch import simulate_layout_batch
     from stability.study.layout_impulse import trailing_angles
 
     runs = simulate_layout_batch(layout, [float(u) for u in speeds], spec, yaw_moment=hook,
