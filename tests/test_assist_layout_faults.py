@@ -25,8 +25,9 @@ from stability.assist.__main__ import main
 from stability.assist.faults import FAULTS, fault_runs
 from stability.assist.layout import layout_design, layout_schedule
 from stability.assist.layout_checks import layout_minimum_torque_limit, layout_recovery
-from stability.assist.recovery import SETTLE_FRACTION, STRONG_FORCE, settle_time, settled_value
+from stability.assist.recovery import STRONG_FORCE
 from stability.assist.schedule import schedule
+from stability.assist.settling import SETTLE_FRACTION, settle_time, settled_value
 from stability.chair import preset
 from stability.chair.power import DriveTrain
 from stability.layout import Layout

@@ -27,15 +27,10 @@ from stability.assist.driving import (
 from stability.assist.export_run import check_export, run_export
 from stability.assist.faults import FaultRow, fault_runs, format_faults
 from stability.assist.firmware import Q_FORMATS
-from stability.assist.recovery import (
-    decay_agreement,
-    minimum_torque_limit,
-    recovery,
-    recovery_rule,
-    recovery_runs,
-)
+from stability.assist.recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from stability.assist.robustness import Robustness, robustness
 from stability.assist.schedule import Schedule, schedule
+from stability.assist.settling import recovery_rule
 from stability.assist.tables import (
     format_margins,
     format_recovery,

@@ -22,7 +22,8 @@ from stability.assist._format import json_float
 from stability.assist.digital import margin_curves
 from stability.assist.export_run import FirmwareReport, run_export
 from stability.assist.layout import LayoutAssist
-from stability.assist.recovery import STRONG_FORCE, recovery_rule
+from stability.assist.recovery import STRONG_FORCE
+from stability.assist.settling import recovery_rule
 from stability.assist.weights import GyroSensor, Weights
 from stability.chair.power import DriveTrain
 from stability.cli import emit_json, load_layout, output_files

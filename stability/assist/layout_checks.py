@@ -358,7 +358,7 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
     """Smallest per-wheel torque limit with which the design still recovers on the layout simulator (N m).
 
     The short form's :func:`stability.assist.recovery.minimum_torque_limit` for a layout: the design's gains are
-    kept, only the controller's saturation changes; "recovers" (:func:`stability.assist.recovery.recovery_rule`):
+    kept, only the controller's saturation changes; "recovers" (:func:`stability.assist.settling.recovery_rule`):
     the heading after the push settles about its final value (:func:`stability.assist.recovery.settle_time`) and
     stays within ``max_heading_deg``; noise-free; bisection (:func:`stability.assist.recovery.bisect_limit`) to
     ``tol`` between 0 (the chair unassisted) and ``drive.torque_limit``.

@@ -14,14 +14,7 @@ from stability.assist._format import json_float
 from stability.assist.controller import DigitalController
 from stability.assist.design import closed_loop_poles
 from stability.assist.schedule import Schedule
-from stability.assist.settling import (
-    SETTLE_FINAL_WINDOW,
-    SETTLE_FLOOR_DEG,
-    SETTLE_FRACTION,
-    recovery_rule,
-    settle_time,
-    settled_value,
-)
+from stability.assist.settling import SETTLE_FLOOR_DEG, SETTLE_FRACTION, settle_time, settled_value
 from stability.chair import Chair
 from stability.runtime.checks import check_speed
 from stability.settings.reference import HORIZON, THESIS_PUSH
@@ -30,10 +23,9 @@ from stability.simulate import simulate
 from stability.simulate.signals import envelope_rate
 from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
-__all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "SETTLE_FINAL_WINDOW", "recovery_rule", "RecoveryRun",
-           "RecoveryPair", "settle_time", "settled_value", "recovery", "recovery_runs", "recovery_table",
-           "minimum_torque_limit", "bisect_limit", "DecayAgreement", "decay_agreement", "decay_window",
-           "fit_decay_rate"]
+__all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
+           "recovery_runs", "recovery_table", "minimum_torque_limit", "bisect_limit", "DecayAgreement",
+           "decay_agreement", "decay_window", "fit_decay_rate"]
 
 #: The ten-times push of the strong-disturbance check (N): 400 N for 0.1 s.
 STRONG_FORCE = 10.0 * THESIS_PUSH.force
@@ -280,7 +272,7 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
     The thesis's question (chapter 9, "Future work"): what motor torque is
     needed to stabilise the chair against a disturbance.  The design (its
     gains) is kept; only the saturation of the digital controller changes.
-    "Recovers" (:func:`recovery_rule`): the disturbance response settles
+    "Recovers" (:func:`stability.assist.settling.recovery_rule`): the disturbance response settles
     about its final value (:func:`settle_time`) and the heading stays
     within ``max_heading_deg``; 0 when the chair recovers unassisted.  Noise-free sensors
     (the bias and noise would blur the threshold); bisection to ``tol``

@@ -15,8 +15,9 @@ from stability.assist.design import GAIN_UNITS, LoopMargins, closed_loop_poles, 
 from stability.assist.digital import MarginPair, margin_pair
 from stability.assist.driving import HOLD_TOLERANCE, SlopeHold, tracking_step
 from stability.assist.plant import plant, reversed_chair
-from stability.assist.recovery import RecoveryPair, recovery, recovery_rule
+from stability.assist.recovery import RecoveryPair, recovery
 from stability.assist.schedule import Schedule
+from stability.assist.settling import recovery_rule
 from stability.assist.tracking import TrackingMetrics
 from stability.settings.reference import HORIZON, THESIS_PUSH
 
@@ -62,7 +63,7 @@ class GainRow:
     final_drift_deg_s : float or None
         Nonlinear closed loop after the push (None when not checked).
     settled_response_deg : float or None
-        The final value the response settles about (:func:`stability.assist.recovery.settled_value`; None when
+        The final value the response settles about (:func:`stability.assist.settling.settled_value`; None when
         not checked or not settled).
     checked : bool
         The nonlinear check was run.
