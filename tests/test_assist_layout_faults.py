@@ -126,13 +126,15 @@ def test_the_mid_wheel_drive_base_in_reverse_recovers_within_its_unsaturated_pea
 
 def test_the_command_counts_the_faults_in_a_layouts_top_speed(tmp_path, capsys):
     """--faults on a layout in reverse: the JSON's fault rows (validated against the schema) set the safe top
-    speed: the highest design speed with every fault safe there and below (counted here from the rows)."""
+    speed: the highest design speed with every fault safe there and below (counted here from the rows); the PDF
+    (with its fault panel) is written."""
     from stability import schemas
 
-    js = tmp_path / "a.json"
+    js, pdf = tmp_path / "a.json", tmp_path / "a.pdf"
     assert main(["--chair", "power-fwd-base", "--speeds=-2,-2.25,-2.5", "--no-check", "--faults",
-                 "--json-file", str(js)]) == 0
+                 "--json-file", str(js), "-o", str(pdf)]) == 0
     out = capsys.readouterr().out
+    assert pdf.read_bytes().startswith(b"%PDF")
     assert "reverse, Single sensor faults" in out and "from the margins and the single sensor faults" in out
     data = json.loads(js.read_text())
     schemas.validate("assist_layout", data)

@@ -33,6 +33,10 @@ from stability.settings.reference import THESIS_PUSH
 
 __all__ = ["run_layout"]
 
+#: How a layout's unchecked top-speed constraints are checked (the caption of its top-speed page).
+_LAYOUT_ENABLE = {"torque": "the torque (not yet for a layout: the layout's push torque is reported beside it, not "
+                            "counted)", "faults": "the single sensor faults (add --faults)"}
+
 
 def run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, drive: DriveTrain,
                 gyro: GyroSensor) -> int:
@@ -136,7 +140,7 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
                                                                     [r.margin_pair for r in rows])))
         if top is not None:
             figs.append(figure_top_speed(sched, top, None if bad is None else
-                                         [replace(f, speed_m_s=abs(f.speed_m_s)) for f in bad]))
+                                         [replace(f, speed_m_s=abs(f.speed_m_s)) for f in bad], _LAYOUT_ENABLE))
     rec = figure_layout_recovery(res)
     if rec is not None:
         figs.append(rec)
