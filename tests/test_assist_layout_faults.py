@@ -155,3 +155,40 @@ def test_the_command_counts_the_faults_in_a_layouts_top_speed(tmp_path, capsys):
     for c in top["checks"]:
         bad = sum(1 for r in rows if abs(r["speed_m_s"]) == c["speed_m_s"] and r["outcome"] != "safe")
         assert c["unsafe_fault_count"]["value"] == bad
+
+
+@pytest.mark.parametrize("name", ["power-fwd-base", "mid-wheel-drive", "power-rwd-base"])
+def test_a_gyro_bias_turns_every_layout_by_the_bias_estimators_closed_form(name):
+    """A 1 deg/s gyro bias from the fault time, below the monitor's threshold (not detected), noise-free gyro, pins
+    without friction, forward and in reverse: the firmware's bias estimate learns it from the wheel speeds exactly,
+    ``b_k = b (1 - (1 - g_b)^k)`` (the wheel-speed yaw rate is the chair's), and the integral action drives the
+    running sum of the corrected gyro back to zero, so the chair turns by ``-T sum_k (b - b_k) = -b T (1 - (1 -
+    g_b)^N) / g_b`` over the N samples of the window, whatever the layout (-0.996 deg).  Error model (a derived
+    bound, not a fitted one): the sum counts the rate at the samples while the heading integrates it (at most
+    ``b T`` for a rate that changes sign at most once) plus the one sample of computation delay (``b T``):
+    ``2 b T`` = 0.01 deg; observed 0.0046-0.0051 deg.  With Coulomb pin friction the stuck casters' holding moment
+    leaves the heading within the friction's band instead (0.07 deg for the two unstable directions)."""
+    import dataclasses
+
+    from stability.assist.commands import COMMAND_FILTER
+    from stability.assist.faults import FAULT_TIME, WINDOW, FaultHook
+    from stability.assist.firmware import firmware_tables
+    from stability.assist.layout_checks import layout_traction_limit
+    from stability.assist.weights import GyroSensor
+
+    lay = layout_preset(name)
+    lay = dataclasses.replace(lay, casters=tuple(dataclasses.replace(c, pin_friction=0.0) for c in lay.casters))
+    b = 1.0
+    for u in (2.0, -2.0):
+        sched = layout_schedule(lay, [u], gyro=GyroSensor(noise_density_deg_s=0.0, bias_deg_s=0.0))
+        tab = firmware_tables(sched, command_filter_s=COMMAND_FILTER)
+        T, gb = tab.sample_time, tab.bias_gain
+        hook = FaultHook(tab, sched, np.array([u, u]), ["bias", ""], np.array([b, 0.0]),
+                         traction_limit_N_m=layout_traction_limit(lay, sched.drive, u < 0))
+        spec = RunSpec(horizon=FAULT_TIME + WINDOW, stop_on_warnings=False, push_force=0.0)
+        biased, healthy = simulate_layout_batch(lay, [u, u], spec, yaw_moment=hook,
+                                                caster_angles_deg=[trailing_angles(lay, u)] * 2)
+        want = -b * T / gb * (1.0 - (1.0 - gb) ** int(round(WINDOW / T)))
+        got = math.degrees(biased.heading_rad[-1] - healthy.heading_rad[-1])
+        assert int(hook.detect_k[0]) < 0 and abs(math.degrees(healthy.heading_rad[-1])) < 1e-9
+        assert got == pytest.approx(want, abs=2 * b * T)          # derived bound 2 b T (docstring)
