@@ -231,6 +231,43 @@ def layout_assist_options() -> dict:
             "max_heading": f"{signature(layout_minimum_torque_limit).parameters['max_heading_deg'].default:g}"}
 
 
+@group("layout_assist_faults", "python -m stability.assist --chair NAME --speeds 1:3:0.5 --reverse --no-check "
+       "--faults (stability.assist.layout.layout_assist, stability.assist.faults.fault_runs)")
+def layout_assist_faults() -> dict:
+    """Per drive layout and direction: the safe top speed with the single sensor faults (speeds 1 to 3 m/s), what
+    limits it, the unsafe fault runs; the power chair as a layout against the short form's fault rows."""
+
+    from stability.assist.faults import fault_runs
+    from stability.assist.layout import layout_assist, layout_schedule
+    from stability.assist.schedule import schedule
+    from stability.chair import preset
+    from stability.layout import Layout
+    from stability.layout.presets import layout_preset
+
+    grid = [1.0, 1.5, 2.0, 2.5, 3.0]
+    rows = []
+    for name in DRIVE_LAYOUTS:
+        res = layout_assist(layout_preset(name), grid, "gyro", reverse=True, faults=True)
+        for what, top, bad in (("forward", res.forward_top, res.forward_faults),
+                               ("reverse", res.reverse_top, res.reverse_faults)):
+            unsafe = sorted({f"{f.fault} ({abs(f.speed_m_s):g} m/s, {f.slope_deg:g} deg)" for f in bad
+                             if f.outcome != "safe"})
+            speed = "none" if top.safe_top_speed_m_s is None else f"{top.safe_top_speed_m_s:g}"
+            rows.append((name, what, speed, top.limited_by.replace("_", " "), "; ".join(unsafe[:3]) +
+                         (f"; and {len(unsafe) - 3} more" if len(unsafe) > 3 else "") or "none"))
+    c = preset("power-fwd")
+    short = fault_runs(schedule(c, [1.0, 2.0], standstill=False))
+    mine = fault_runs(layout_schedule(Layout.from_chair(c), [1.0, 2.0]))
+    pairs = list(zip(short, mine, strict=True))
+    worst = max(max(abs(a.peak_heading_error_deg - b.peak_heading_error_deg),
+                    abs(a.peak_yaw_rate_deg_s - b.peak_yaw_rate_deg_s)) for a, b in pairs)
+    same = all((a.detected, a.outcome) == (b.detected, b.outcome) for a, b in pairs)
+    return {"table": Table(("layout", "direction", f"safe top speed m/s ({grid[0]:g} to {grid[-1]:g} m/s)",
+                            "limited by", "unsafe fault runs (speed, cross slope)"), tuple(rows)),
+            "short_agreement": f"{worst:.0e}", "short_same": "the same" if same else "NOT the same",
+            "short_runs": f"{len(short)}", "grid": f"{grid[0]:g} to {grid[-1]:g}"}
+
+
 @group("layout_files", "python -m stability.simulate --chair NAME --csv FILE -o FILE; python -m stability.slope "
        "--chair NAME -o FILE; python -m stability.shimmy --chair NAME -o FILE (stability.simulate.layout, "
        "stability.report.slope_data.layout_slope_section, stability.shimmy.chair.trail_chart)")
