@@ -126,7 +126,7 @@ def test_the_assist_command_answers_a_layout_and_reverse(capsys):
         assert rows[0]["wheel_torque_gains"]["psi"] == pytest.approx(per_wheel, rel=1e-11)  # Riccati rounding (observed 9.7e-14), margin 100
         assert rows[0]["closed_loop_growth_rate_1_s"] < 0
     assert [r["speed_m_s"] for r in d["reverse"]] == [-1.0]
-    assert d["forward_top_speed"]["constraints_checked"] == ["gain_margin", "phase_margin", "delay_margin"]
+    assert d["forward_top_speed"]["constraints_checked"] == ["gain_margin", "phase_margin", "delay_margin", "torque"]
     assert main(["--chair", "power-fwd", "--speeds=-1", "--design", "full-state"]) == 0
     out = capsys.readouterr().out
     assert "power-fwd: motor assist (full-state design)" in out and "reverse: safe top speed" in out

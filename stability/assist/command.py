@@ -6,7 +6,8 @@ answers: ``--min-torque`` (:func:`stability.assist.layout_checks.layout_minimum_
 (one direction's :func:`stability.assist.layout.layout_schedule` through the short form's exporter) and ``-o``
 (:mod:`stability.assist.figures_layout` and the short form's margin and top-speed pages) and ``--faults`` (the
 single sensor faults at every design speed of each direction in the layout simulator, counted in its safe top
-speed: :func:`stability.assist.layout.layout_assist`).  ``--model thesis`` is refused in one line saying why.
+speed: :func:`stability.assist.layout.layout_assist`).  Without ``--no-check`` the safe top speed counts the
+torque too (the reference push's peak torque per drive wheel at every design speed, in the layout simulator).  ``--model thesis`` is refused in one line saying why.
 """
 
 from __future__ import annotations
@@ -34,8 +35,8 @@ from stability.settings.reference import THESIS_PUSH
 __all__ = ["run_layout"]
 
 #: How a layout's unchecked top-speed constraints are checked (the caption of its top-speed page).
-_LAYOUT_ENABLE = {"torque": "the torque (not yet for a layout: the layout's push torque is reported beside it, not "
-                            "counted)", "faults": "the single sensor faults (add --faults)"}
+_LAYOUT_ENABLE = {"torque": "the torque (run without --no-check; with --design full-state, --motor-lag 0)",
+                  "faults": "the single sensor faults (add --faults)"}
 
 
 def run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, drive: DriveTrain,
@@ -128,6 +129,7 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
     from stability.assist.figures_layout import figure_layout_gains, figure_layout_recovery
     from stability.assist.figures_safety import figure_top_speed
     from stability.assist.layout import layout_schedule
+    from stability.assist.layout_checks import LAYOUT_TORQUE_WORDS
 
     figs = [figure_layout_gains(res)]
     for rows, top, bad in ((res.forward, res.forward_top, res.forward_faults),
@@ -140,7 +142,8 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
                                                                     [r.margin_pair for r in rows])))
         if top is not None:
             figs.append(figure_top_speed(sched, top, None if bad is None else
-                                         [replace(f, speed_m_s=abs(f.speed_m_s)) for f in bad], _LAYOUT_ENABLE))
+                                         [replace(f, speed_m_s=abs(f.speed_m_s)) for f in bad], _LAYOUT_ENABLE,
+                                         LAYOUT_TORQUE_WORDS))
     rec = figure_layout_recovery(res)
     if rec is not None:
         figs.append(rec)

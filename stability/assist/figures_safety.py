@@ -18,7 +18,7 @@ __all__ = ["figure_top_speed"]
 
 
 def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] | None = None,
-                     enable: Mapping[str, str] = ENABLE) -> Figure:
+                     enable: Mapping[str, str] = ENABLE, torque_words: str = "") -> Figure:
     """Constraint ratios against speed with the safe top speed, and (with faults) the worst fault response per speed.
 
     Parameters
@@ -30,6 +30,9 @@ def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] |
     enable : mapping
         Constraint -> how to check it, for the caption's "not checked" (default the short form's
         :data:`~stability.assist.top_speed.ENABLE`).
+    torque_words : str
+        What the torque constraint counts, added to the caption when it was checked (a layout's:
+        :data:`stability.assist.layout_checks.LAYOUT_TORQUE_WORDS`; empty: the short form's, named in its rule).
 
     Returns
     -------
@@ -43,7 +46,9 @@ def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] |
     why = "; ".join(x.describe() for x in lim) if lim else "every checked constraint holds on the design grid"
     caption = (f"{why}. A constraint holds above ratio 1; the top speed is the highest design speed where all hold "
                "there and below" + (". Not checked: " + ", ".join(enable[k] for k in ts.not_checked)
-                                    if ts.not_checked else ""))
+                                    if ts.not_checked else "")
+               + (f". {torque_words[0].upper()}{torque_words[1:]}" if torque_words and "torque" in ts.checked
+                  else ""))
     if faults is not None:
         caption += (". Right: worst single sensor fault (injected at 1 s, straight command) per speed, against the "
                     "stated bounds")

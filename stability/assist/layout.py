@@ -9,9 +9,11 @@ wheels (:func:`stability.study.layout_slope.drive_wheels`) and ``r`` their radiu
 (:class:`.weights.Weights`), the gyro design's estimator the same Kalman filter on the chair's states, the margins
 those of the continuous and the sampled loop (:func:`.digital.margin_pair`), and the safe top speed the highest
 design speed at which the sampled loop's margins hold there and below (:func:`.top_speed.top_speed` with the
-margins and, with ``faults``, every single sensor fault safe: :func:`.faults.fault_runs` on the direction's
-:func:`layout_schedule`, the firmware with its sensor monitor stepped at every step of the layout simulator; the
-torque constraint is named as not checked).
+margins, with ``check`` the torque (the reference push's peak torque per drive wheel at every design speed in the
+layout simulator within the motor and traction limits; the commanded turns the short form also counts are not run:
+the layout simulator has no command path) and, with ``faults``, every single sensor fault safe:
+:func:`.faults.fault_runs` on the direction's :func:`layout_schedule`, the firmware with its sensor monitor
+stepped at every step of the layout simulator).
 Forward and reverse each have their own grid and top speed.  With ``check`` the closed loop is simulated with the
 layout simulator in each direction (:mod:`.layout_checks`: recovery after a push, the torque it takes, the decay
 against the linear prediction).  See ``docs/assist.md``.
@@ -328,19 +330,25 @@ class LayoutAssist:
 
 
 def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
-          estimator: EstimatorWeights, faults: Sequence[Any] | None = None
+          estimator: EstimatorWeights, faults: Sequence[Any] | None = None, torque: bool = False
           ) -> tuple[tuple[LayoutAssistRow, ...], TopSpeed | None]:
-    rows = []
+    rows, designs = [], []
     for s in speeds:
         d = layout_design(layout, s, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
+        designs.append(d)
         open_g = float(np.linalg.eigvals(d.plant.A6).real.max())
         closed = float(closed_loop_poles(d).real.max())
         gains = {k: v for k, v in d.gains_dict(per_wheel=True).items() if k != MOTOR_STATE}
         rows.append(LayoutAssistRow(float(s), open_g, closed, gains, margin_pair(d, d.sample_time)))
     if not rows:
         return (), None
+    torques = None
+    if torque:
+        from stability.assist.layout_checks import layout_push_torques
+
+        torques = [replace(t, speed_m_s=abs(t.speed_m_s)) for t in layout_push_torques(layout, designs, drive)]
     ts = top_speed(_Grid(gyro, drive), [_MarginRow(abs(r.speed_m_s), r.margin_pair) for r in rows],  # type: ignore[arg-type]
-                   None, None if faults is None else [replace(f, speed_m_s=abs(f.speed_m_s)) for f in faults])
+                   torques, None if faults is None else [replace(f, speed_m_s=abs(f.speed_m_s)) for f in faults])
     return tuple(rows), ts
 
 
@@ -363,7 +371,11 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
         As :func:`layout_design`.
     check : bool
         Also the nonlinear checks of each direction with the layout simulator
-        (:func:`stability.assist.layout_checks.layout_checks` at :func:`~stability.assist.layout_checks.check_speeds`).
+        (:func:`stability.assist.layout_checks.layout_checks` at :func:`~stability.assist.layout_checks.check_speeds`),
+        and the torque constraint of each direction's safe top speed: the reference push's peak torque per drive
+        wheel at every design speed (:func:`stability.assist.layout_checks.layout_push_torques`) within the motor
+        and traction limits (the short form's rule, :func:`stability.assist.top_speed.top_speed`; no commanded
+        turn: the layout simulator has no command path).
     faults : bool
         Also the single sensor faults at every design speed of each direction on level ground and the cross slope
         (:func:`stability.assist.faults.fault_runs` on the direction's :func:`layout_schedule`, in the layout
@@ -393,8 +405,8 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
             if grid:
                 bad[i] = tuple(fault_runs(layout_schedule(layout, grid, kind, weights=weights, drive=drive, gyro=gyro,
                                                           estimator=estimator), seed=seed))
-    f_rows, f_top = _rows(layout, fwd, kind, weights, drive, gyro, estimator, bad[0])
-    r_rows, r_top = _rows(layout, rev, kind, weights, drive, gyro, estimator, bad[1])
+    f_rows, f_top = _rows(layout, fwd, kind, weights, drive, gyro, estimator, bad[0], check)
+    r_rows, r_top = _rows(layout, rev, kind, weights, drive, gyro, estimator, bad[1], check)
     checks: list[Any] = [None, None]
     if check:
         from stability.assist.layout_checks import check_speeds, layout_checks
@@ -441,10 +453,17 @@ def format_layout_assist(a: LayoutAssist) -> str:
         if bad is not None:
             lines.append(f"{what}, " + format_faults(bad))
         if top is not None:
+            from stability.assist.layout_checks import LAYOUT_TORQUE_WORDS
+
             words = top.sentence().split(" (not checked:")[0]
-            scope = ("the margins and the single sensor faults" if bad is not None else
-                     "the margins; the single sensor faults not checked: add --faults")
-            lines.append(f"{what}: {words} (from {scope}; the push torque below is not counted in it)")
+            done = ["the margins"] + [k for k, on in (("the push torque", "torque" in top.checked),
+                                                      ("the single sensor faults", bad is not None)) if on]
+            off = [k for k, on in (("the torque: run without --no-check", "torque" not in top.checked),
+                                   ("the single sensor faults: add --faults", bad is None)) if on]
+            scope = " and ".join(done) + ("; not checked: " + "; ".join(off) if off else "")
+            lines.append(f"{what}: {words} (from {scope})")
+            if "torque" in top.checked:
+                lines.append(f"{what}: {LAYOUT_TORQUE_WORDS}")
         if chk is not None:
             lines.append(f"{what}, nonlinear checks (layout simulator, the sampled controller compiled in, torque "
                          "limit, motor lag, noise-free; no --no-check):")

@@ -48,7 +48,8 @@ from stability.study.layout_impulse import trailing_angles
 
 __all__ = ["layout_controller", "LayoutRecovery", "layout_recovery", "layout_decay_agreement", "TORQUE_WINDOW_S",
            "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks",
-           "layout_minimum_torque_limit", "layout_vector_loop"]
+           "layout_minimum_torque_limit", "layout_vector_loop", "LAYOUT_TORQUE_WORDS", "LayoutPushTorque",
+           "layout_push_torques"]
 
 #: The window of the peak and RMS torque after the push, s (the short form's push recovery window).
 TORQUE_WINDOW_S = 2.0
@@ -391,6 +392,69 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
         return settle_time(np.asarray(run.t_s), head) is not None and float(np.max(np.abs(head))) <= max_heading_deg
 
     return bisect_limit(ok, float(drive.torque_limit), tol)
+
+
+#: What a layout's torque constraint counts (the caption's and the text's words).
+LAYOUT_TORQUE_WORDS = ("the torque counts the reference push's peak per wheel at every design speed (layout "
+                       "simulator, noise-free, torque limit); the commanded turns are not run on a layout (the layout "
+                       "simulator has no command path)")
+
+
+@dataclass(frozen=True)
+class LayoutPushTorque:
+    """The torque a layout needs at one design speed, as :func:`stability.assist.top_speed.top_speed` reads a
+    :class:`~stability.assist.driving.TorqueRow`.
+
+    Attributes
+    ----------
+    speed_m_s : float
+        Design speed, m/s (signed: negative in reverse).
+    push_peak_N_m, push_rms_N_m : float
+        After the reference push, over :data:`TORQUE_WINDOW_S` s, per drive wheel, N m (saturated at the motor
+        limit: a run reaching the limit fails the torque constraint, as the short form's).
+    motor_limit_N_m, traction_limit_N_m : float
+        Per drive wheel, N m.
+    """
+
+    speed_m_s: float
+    push_peak_N_m: float
+    push_rms_N_m: float
+    motor_limit_N_m: float
+    traction_limit_N_m: float
+
+    @property
+    def turn_peak_N_m(self) -> float:
+        """0: no commanded turn is run on a layout (the layout simulator has no command path)."""
+        return 0.0
+
+
+def layout_push_torques(layout: Layout, designs: Sequence[Design], drive: DriveTrain) -> list[LayoutPushTorque]:
+    """The reference push's peak and RMS torque per drive wheel at each design's speed, closed loop only, over the
+    push and :data:`TORQUE_WINDOW_S` s after it (the short form's push run of
+    :func:`stability.assist.driving.torque_requirement`).
+
+    Parameters
+    ----------
+    layout : Layout
+    designs : sequence of Design
+        One direction's (the sign of their speeds).
+    drive : DriveTrain
+
+    Returns
+    -------
+    list of LayoutPushTorque
+    """
+    if not designs:
+        return []
+    trac = layout_traction_limit(layout, drive, float(designs[0].speed) < 0)
+    out = []
+    for d in designs:
+        run = _run(layout, float(d.speed), THESIS_PUSH.force, THESIS_PUSH.duration + TORQUE_WINDOW_S,
+                   layout_controller(d, layout, drive), drive.motor_time_constant)
+        per_wheel = np.abs(np.asarray(run.yaw_moment_N_m)) * drive.wheel_radius / d.track_width
+        out.append(LayoutPushTorque(float(d.speed), float(np.max(per_wheel)), float(np.sqrt(np.mean(per_wheel ** 2))),
+                                    float(drive.torque_limit), trac))
+    return out
 
 
 @dataclass(frozen=True)
