@@ -7,7 +7,8 @@ answers: ``--min-torque`` (:func:`stability.assist.layout_checks.layout_minimum_
 (:mod:`stability.assist.figures_layout` and the short form's margin and top-speed pages) and ``--faults`` (the
 single sensor faults at every design speed of each direction in the layout simulator, counted in its safe top
 speed: :func:`stability.assist.layout.layout_assist`).  Without ``--no-check`` the safe top speed counts the
-torque too (the reference push's peak torque per drive wheel at every design speed, in the layout simulator).  ``--model thesis`` is refused in one line saying why.
+torque too (the reference push's peak torque per drive wheel at every design speed, in the layout simulator).
+``--model thesis`` is refused in one line saying why.
 """
 
 from __future__ import annotations
@@ -128,8 +129,7 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
     from stability.assist import figures
     from stability.assist.figures_layout import figure_layout_gains, figure_layout_recovery
     from stability.assist.figures_safety import figure_top_speed
-    from stability.assist.layout import layout_schedule
-    from stability.assist.layout_checks import LAYOUT_TORQUE_WORDS
+    from stability.assist.layout import LAYOUT_TORQUE_WORDS, layout_schedule
 
     figs = [figure_layout_gains(res)]
     for rows, top, bad in ((res.forward, res.forward_top, res.forward_faults),

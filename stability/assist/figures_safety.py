@@ -32,7 +32,7 @@ def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] |
         :data:`~stability.assist.top_speed.ENABLE`).
     torque_words : str
         What the torque constraint counts, added to the caption when it was checked (a layout's:
-        :data:`stability.assist.layout_checks.LAYOUT_TORQUE_WORDS`; empty: the short form's, named in its rule).
+        :data:`stability.assist.layout.LAYOUT_TORQUE_WORDS`; empty: the short form's, named in its rule).
 
     Returns
     -------

@@ -50,7 +50,12 @@ from stability.runtime.checks import check_choice, check_nonnegative
 from stability.study.layout_slope import drive_wheels
 
 __all__ = ["drive_lever", "drive_axle", "layout_plant", "layout_design", "LayoutSchedule", "layout_schedule",
-           "LayoutAssistRow", "LayoutAssist", "layout_assist", "format_layout_assist"]
+           "LayoutAssistRow", "LayoutAssist", "layout_assist", "format_layout_assist", "LAYOUT_TORQUE_WORDS"]
+
+#: What a layout's torque constraint counts (the words of its text and its top-speed page's caption).
+LAYOUT_TORQUE_WORDS = ("the torque counts the reference push's peak per wheel at every design speed (layout "
+                       "simulator, noise-free, torque limit); the commanded turns are not run on a layout (the layout "
+                       "simulator has no command path)")
 
 
 def drive_lever(layout: Layout) -> float:
@@ -453,8 +458,6 @@ def format_layout_assist(a: LayoutAssist) -> str:
         if bad is not None:
             lines.append(f"{what}, " + format_faults(bad))
         if top is not None:
-            from stability.assist.layout_checks import LAYOUT_TORQUE_WORDS
-
             words = top.sentence().split(" (not checked:")[0]
             done = ["the margins"] + [k for k, on in (("the push torque", "torque" in top.checked),
                                                       ("the single sensor faults", bad is not None)) if on]

@@ -48,8 +48,7 @@ from stability.study.layout_impulse import trailing_angles
 
 __all__ = ["layout_controller", "LayoutRecovery", "layout_recovery", "layout_decay_agreement", "TORQUE_WINDOW_S",
            "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks",
-           "layout_minimum_torque_limit", "layout_vector_loop", "LAYOUT_TORQUE_WORDS", "LayoutPushTorque",
-           "layout_push_torques"]
+           "layout_minimum_torque_limit", "layout_vector_loop", "LayoutPushTorque", "layout_push_torques"]
 
 #: The window of the peak and RMS torque after the push, s (the short form's push recovery window).
 TORQUE_WINDOW_S = 2.0
@@ -394,12 +393,6 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
     return bisect_limit(ok, float(drive.torque_limit), tol)
 
 
-#: What a layout's torque constraint counts (the caption's and the text's words).
-LAYOUT_TORQUE_WORDS = ("the torque counts the reference push's peak per wheel at every design speed (layout "
-                       "simulator, noise-free, torque limit); the commanded turns are not run on a layout (the layout "
-                       "simulator has no command path)")
-
-
 @dataclass(frozen=True)
 class LayoutPushTorque:
     """The torque a layout needs at one design speed, as :func:`stability.assist.top_speed.top_speed` reads a
@@ -408,7 +401,7 @@ class LayoutPushTorque:
     Attributes
     ----------
     speed_m_s : float
-        Design speed, m/s (signed: negative in reverse).
+        Design speed, m/s (negative in reverse).
     push_peak_N_m, push_rms_N_m : float
         After the reference push, over :data:`TORQUE_WINDOW_S` s, per drive wheel, N m (saturated at the motor
         limit: a run reaching the limit fails the torque constraint, as the short form's).
