@@ -90,6 +90,10 @@ def assist_slope() -> dict:
                                           lambda x: fixed(x, 3)) for p in CROSS_SLOPES)
     out["speed_fall"] = _span([100 * (1 - float(h.closed.result.u[-1]) / h.speed_m_s) for h in hs],
                               lambda x: fixed(x, 0))
+    free1 = {phi: frees[1.0, phi] for phi in CROSS_SLOPES}
+    out["hold_rel"] = sig(100 * max(abs(f.closed_heading_deg / f.hold_heading_deg - 1) for f in free1.values()), 2)
+    out.update({"hold_2": signed(free1[2.0].hold_heading_deg, 3), "crab_2": signed(free1[2.0].crab_deg, 3)})
+    out.update({f"course_free_{p:g}": signed(free1[p].course_deg, 3) for p in CROSS_SLOPES})
     out["course"] = _span([abs(h.closed_heading_deg - h.crab_deg) for h in hs], lambda x: fixed(x, 2))
     out["offset"] = _span([1e3 * abs(h.closed_offset_m) for h in hs], lambda x: fixed(x, 0))
     out["offset_side"] = "/".join(sorted({"uphill" if h.closed_offset_m * math.copysign(1, h.cross_slope_deg) < 0

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -139,6 +139,48 @@ class DigitalController:
             self._Phi = E[:n, :n]
             self._Gam = E[:n, n:n + 2]
         self.reset()
+
+    def holding_heading(self, mz: float, states: Sequence[float] | None = None) -> float:
+        """The heading (rad, clockwise +) at which the loop, commanded straight, holds the yaw moment ``mz``.
+
+        In a steady state (noise-free, unsaturated, straight command) the yaw rate is zero, the motor has reached
+        its command and the estimate is still, so the law ``Mz = -K_int x - K_psi e`` gives
+        ``e = -(mz + K_int x) / K_psi``: the heading is wherever the heading-error integrator has to sit for the
+        law to deliver ``mz``.  It is not the path's direction: the loop holds the integral of the gyro, so with
+        a disturbance that needs a holding moment (a cross slope) the course ends ``e`` minus the crab angle.
+
+        Gyro design: ``x`` is the estimator's fixed point ``x = Phi x + Gam [mz, 0]``, its level-ground model
+        driven by ``mz`` with the gyro reading zero (biased: no model of the disturbance explains a constant
+        moment without a yaw rate).  Full-state design: ``x`` is the measured steady states ``states``.
+
+        Parameters
+        ----------
+        mz : float
+            The steady applied yaw moment (N m, clockwise +).
+        states : sequence of float, optional
+            Full-state design only: the chair's steady states ``[v, r, eta, eta_dot, beta, beta_dot]``
+            (m/s, rad/s, rad, rad/s, rad, rad/s; the simulator's convention).
+
+        Returns
+        -------
+        float
+            The heading-error integrator's steady value, rad: the loop's settled heading from its start.
+
+        Raises
+        ------
+        ValueError
+            A full-state design without ``states``, or ``states`` of the wrong length.
+        """
+        n = len(self._idx)
+        if self.design.kind == "gyro":
+            x = np.linalg.solve(np.eye(n) - self._Phi, self._Gam @ np.array([float(mz), 0.0]))
+        else:
+            chair = n - (1 if self._motor else 0)
+            if states is None or len(states) != chair:
+                raise ValueError(f"states={states!r} is invalid; valid: the full-state design's {chair} chair "
+                                 f"states")
+            x = np.array([*states, *([float(mz)] if self._motor else [])], dtype=float)
+        return -(float(mz) + float(self._Kint @ x)) / self._Kpsi
 
     def reset(self) -> None:
         """Forget the run: estimate, heading, bias estimate, motor and history back to zero."""

@@ -27,6 +27,7 @@ from stability.assist.commands import (
     slalom_command,
     step_command,
 )
+from stability.assist.controller import DigitalController
 from stability.assist.schedule import Schedule
 from stability.assist.tracking import TrackingMetrics, step_metrics
 from stability.models.statics import static_loads
@@ -215,6 +216,13 @@ class SlopeHold:
         ``"uphill"`` or ``"downhill"``.
     crab_deg : float
         Heading from the path of the statics' equilibrium (deg).
+    hold_heading_deg : float
+        The loop's predicted settled heading from its start (deg):
+        :meth:`~stability.assist.controller.DigitalController.holding_heading` of the statics' frictionless
+        holding moment (the full-state design measures the statics' states, its lateral velocity
+        ``-u tan(crab)`` at the run's final forward speed ``u``: the simulator coasts).  The loop holds the
+        integral of the gyro, not the path, so its course ends ``hold_heading_deg - crab_deg`` from the start
+        line (:attr:`course_deg`); without pin friction the run settles on it.
     steady_torque_N_m, peak_torque_N_m : float
         Commanded differential torque per wheel: mean over the last second, and peak (N m).
     holding_torque_N_m : float
@@ -241,6 +249,7 @@ class SlopeHold:
     open_end_s: float
     open_turn: str
     crab_deg: float
+    hold_heading_deg: float
     steady_torque_N_m: float
     peak_torque_N_m: float
     holding_torque_N_m: float
@@ -261,6 +270,12 @@ class SlopeHold:
         return equilibrium.harder_side(-2.0 * self.steady_torque_N_m, self.cross_slope_deg)
 
     @property
+    def course_deg(self) -> float:
+        """Predicted course of the settled loop from the start line (deg, clockwise +): its heading minus the
+        statics' crab angle, ``hold_heading_deg - crab_deg``; the c.g. drifts sideways at ``u sin(course)``."""
+        return self.hold_heading_deg - self.crab_deg
+
+    @property
     def within_limits(self) -> bool:
         """Peak torque within the motor and traction limits and the drive tires below full friction."""
         return self.peak_torque_N_m <= min(self.motor_limit_N_m, self.traction_limit_N_m) and self.friction_use < 1
@@ -272,6 +287,7 @@ class SlopeHold:
         d["holding_band_N_m"] = list(self.holding_band_N_m)
         d["within_limits"] = self.within_limits
         d["harder_side"] = self.harder_side
+        d["course_deg"] = self.course_deg
         return d
 
 
@@ -315,6 +331,11 @@ def slope_hold(sched: Schedule, speed: float, cross_slope_deg: float, *, duratio
                                                                       > math.radians(MAX_CASTER_SWING_DEG)))
     n = int(cut[0]) + 1 if cut.size else len(ol.t)
     side = math.copysign(1.0, slope[0])
+    crab = math.radians(eq.heading_deg)
+    ctl = DigitalController(sched.at(speed), sched.chair, sched.drive, gyro=sched.gyro, noise=False)
+    states = (-float(run.result.u[-1]) * math.tan(crab), 0.0, math.radians(eq.eta_deg), 0.0,
+              math.radians(eq.beta_deg), 0.0)
+    held = math.degrees(ctl.holding_heading(eq.holding_moment, states if sched.kind == "full-state" else None))
     tail = run.torque[run.torque_t >= run.torque_t[-1] - window]
     steady = float(np.mean(tail))
     wt = sched.drive.wheel_torque
@@ -325,6 +346,6 @@ def slope_hold(sched: Schedule, speed: float, cross_slope_deg: float, *, duratio
     return SlopeHold(speed, slope[0], float(duration), run, np.asarray(ol.t[:n]), np.asarray(ol.heading[:n]),
                      math.degrees(run.heading[-1]), float(run.result.y[-1]), math.degrees(ol.heading[n - 1]),
                      float(ol.t[n - 1]), "downhill" if ol.heading[n - 1] * side > 0 else "uphill", eq.heading_deg,
-                     steady, run.peak_torque_N_m, hold,
+                     held, steady, run.peak_torque_N_m, hold,
                      (float(wt(sched.chair, eq.friction_range[0])), float(wt(sched.chair, eq.friction_range[1]))),
                      steady / hold - 1.0, sched.drive.torque_limit, mu * min(eq.loads[2:]) * r, use)

@@ -27,7 +27,8 @@ def figure_slope_hold(sched: Schedule, holds: Sequence[SlopeHold]) -> Figure:
     Returns
     -------
     Figure
-        Three panels: closed-loop heading (deg), open-loop heading up to the end of its valid run (deg),
+        Three panels: closed-loop heading (deg) with the statics' crab angle and the controller's holding
+        heading (its settled heading without pin friction), open-loop heading up to the end of its valid run (deg),
         commanded differential torque per wheel with the statics' holding torque and its pin-friction band (N m).
     """
     speed = holds[0].speed_m_s if holds else float("nan")
@@ -42,6 +43,8 @@ def figure_slope_hold(sched: Schedule, holds: Sequence[SlopeHold]) -> Figure:
         lab = f"{h.cross_slope_deg:g} deg cross slope"
         a.plot(h.closed.t, np.degrees(h.closed.heading), color=colour(i), lw=1.6, label=lab)
         a.axhline(h.crab_deg, color=colour(i), ls=":", lw=0.9, label=f"{lab}: statics' crab angle")
+        a.axhline(h.hold_heading_deg, color=colour(i), ls="--", lw=0.9,
+                  label=f"{lab}: loop's holding heading (course {h.course_deg:+.3f} deg)")
         b.plot(h.open_t, np.degrees(h.open_heading), color=colour(i), lw=1.6, label=f"{lab} ({h.open_turn})")
         c.step(h.closed.torque_t, h.closed.torque, where="post", color=colour(i), lw=1.0, label=f"{lab}: commanded")
         c.axhline(h.holding_torque_N_m, color=colour(i), ls="--", lw=0.9,
