@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 
 import pytest
-from json_outputs import CASES, LAYOUT_CASES, SLOW, output
+from json_outputs import CASES, LAYOUT_CASES, SLOW, SLOW_LAYOUT, output
 
 from stability import schemas
 from stability.cli import commands
@@ -111,9 +111,9 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
 
 # hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export", "sweep", "compare")
+                "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
-SUFFIX_UNITS = [("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
+SUFFIX_UNITS = [("_N_m_per_deg", "N m/deg"), ("_kg_m", "kg m"), ("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
                 ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
                 ("_m_s", "m/s"), ("_1_s", "1/s"), ("_rad", "rad"), ("_deg", "deg"), ("_Ns", "N s"), ("_N", "N"),
                 ("_m", "m"), ("_s", "s")]
@@ -126,10 +126,11 @@ def _numbers(node, path=""):
     for form in ("then", "else"):
         if form in node:
             yield from _numbers(node[form], path)
-    if node.get("type") == "object" and "properties" in node:
+    types = node.get("type") if isinstance(node.get("type"), list) else [node.get("type")]
+    if "object" in types and "properties" in node:           # an object, or an object or null
         for k, v in node["properties"].items():
             yield from _numbers(v, f"{path}.{k}")
-    elif node.get("type") == "array":
+    elif "array" in types:
         yield from _numbers(node.get("items", {}), path + "[]")
     elif "number" in str(node.get("type")) or "integer" in str(node.get("type")):
         keys = [k.rstrip("[]") for k in path.split(".") if k]
@@ -180,6 +181,11 @@ def _option_bounds():
             "compare": {".options.speeds_m_s[]": o["slope:--speed"], ".options.max_speed_m_s": o["--max-speed"],
                         ".options.samples": o["--samples"], ".options.seed": o["--seed"],
                         ".options.level": o["--level"], ".speeds_m_s[]": o["slope:--speed"]},   # signed: reverse      # the same signed range (the spec's check)
+            "report": {".options.samples": o["--samples"], ".options.seed": o["--seed"],
+                       ".options.reaction_time_s": o["--reaction-time"], ".driver.reaction_time_s": o["--reaction-time"],
+                       ".summary.uncertainty.samples": o["--samples"], ".summary.uncertainty.seed": o["--seed"],
+                       ".summary.uncertainty.nonlinear.samples": o["--samples"], ".uncertainty.samples": o["--samples"],
+                       ".uncertainty.seed": o["--seed"], ".decision.limits.min_tip_deg": o["--min-tip-deg"]},
             "advise": {".options.speeds_m_s[]": RUN_SETTINGS["speed"].bound, ".options.cross_slope_deg": o["--cross-slope"],
                        ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
 
@@ -256,7 +262,8 @@ def test_the_layout_form_states_every_numbers_unit(name):
             assert desc.split("; unit: ")[1].split(";")[0] == unit, (name, path, desc)
 
 
-@pytest.mark.parametrize("name", sorted(LAYOUT_CASES))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW_LAYOUT else n
+                                  for n in sorted(LAYOUT_CASES)])
 def test_the_layout_form_of_a_command_matches_its_schema(name, tmp_path):
     """The wheel-layout form of a command (``--chair mid-wheel-drive`` etc.) validates against the command's schema."""
     schemas.validate(name, output(name, str(tmp_path), layout=True))
