@@ -297,10 +297,20 @@ OUT_OF_RANGE = [
     ("study_critical_impulse", "layout", ("points", 0, "runs"), 1.5, "runs.*integer"),
     ("measure", "chair", ("fields", 0, "std"), -0.1, "std.*minimum"),
     ("measure", "chair", ("uncertain_parameters",), -1, "uncertain_parameters.*minimum"),
+    ("report", "chair", ("options", "samples"), 0, "options/samples.*minimum"),
+    ("report", "chair", ("decision", "verdict", "critical_impulse_Ns", "value"), 1001.0, "critical_impulse_Ns/value.*maximum"),
+    ("report", "chair", ("decision", "clinician", "speeds_m_s", 0), 0.0, "clinician/speeds_m_s/0.*minimum"),
+    ("report", "chair", ("summary", "shimmy", "critical_trail_m"), -0.01, "critical_trail_m.*minimum"),
+    ("report", "layout", ("options", "reaction_time_s"), 2.5, "options/reaction_time_s.*maximum"),
+    ("report", "layout", ("clinician", "tip_angles_deg", "left"), 91.0, "tip_angles_deg/left.*maximum"),
+    ("report", "layout", ("clinician", "bump", 0, "travel_m"), -1.0, "bump/0/travel_m.*minimum"),
+    ("report", "layout", ("clinician", "pin_friction_N_m", 0), -0.1, "pin_friction_N_m/0.*minimum"),
 ]
 
 
-@pytest.mark.parametrize("name, form, path, value, message", OUT_OF_RANGE,
+@pytest.mark.parametrize("name, form, path, value, message",
+                         [pytest.param(*c, marks=pytest.mark.slow) if c[0] in SLOW | SLOW_LAYOUT else c
+                          for c in OUT_OF_RANGE],
                          ids=[f"{n}-{f}-{'.'.join(map(str, p))}" for n, f, p, _, _ in OUT_OF_RANGE])
 def test_hand_written_schemas_refuse_a_number_outside_its_stated_range(name, form, path, value, message, tmp_path):
     """A real output passes; the same output with one number moved beyond its stated range is refused, naming it."""
@@ -314,3 +324,30 @@ def test_hand_written_schemas_refuse_a_number_outside_its_stated_range(name, for
         node = node[key]
     node[path[-1]] = value
     _refused(name, bad, message)
+
+
+@pytest.mark.slow
+def test_every_form_of_the_layout_report_matches_its_schema(tmp_path):
+    """The wheel-layout report's JSON in full, with --compare, --uncertainty and a driver (--reaction-time) at once
+    (several minutes of CPU), and its two forms kept apart: a quick report's keys in a full one are refused."""
+    import contextlib
+    import io
+    import json
+
+    from json_outputs import ROOT
+
+    from stability.report.command import main
+
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        assert main(["--chair", "mid-wheel-drive", "--compare", "power-fwd-base", "--reaction-time", "0.3",
+                     "--uncertainty", str(ROOT / "docs" / "examples" / "mid_wheel_drive.uncertainty.toml"),
+                     "--no-progress", "--json", "--quiet"]) == 0
+    data = json.loads(buf.getvalue())
+    assert {"comparison", "uncertainty", "driver"} <= set(data) and data["driver"]["reaction_time_s"] == 0.3
+    schemas.validate("report", data)
+    quick = output("report", str(tmp_path), layout=True)
+    _refused("report", {**data, "clinician": quick["clinician"]}, "not valid under any")
+    _refused("report", {**data, "uncertainty": {**data["uncertainty"], "level": 1.0}}, "uncertainty/level.*maximum")
+    _refused("report", {**data, "driver": {**data["driver"], "reaction_time_s": 0.01}},
+             "driver/reaction_time_s.*minimum")
