@@ -223,14 +223,16 @@ def test_recovery_within_the_torque_limit(schedules, chair):
     """Gyro design in the nonlinear simulator (WCHAIR scheme, exact model, Coulomb pin friction,
     gyro noise and bias, 200 Hz, saturation) at 3 m/s after ten times the thesis's 4 N s impulse:
     the torque stays within the motor limit, the disturbance response settles within 2 s and the
-    heading error stays under 2 deg, while the open-loop chair passes 10 deg within 0.5 s."""
+    heading error stays under 2 deg, while the open-loop chair passes 10 deg within 0.5 s and does not recover:
+    it spins out, and where its heading comes to rest (the settling rule is about the final value) it is far beyond
+    the recovery criterion's 10 deg."""
     sched = schedules["gyro"]
     (closed, opened), = assist.recovery_runs(sched, speeds=(3.0,), impulses=(400.0,), seed=1)
     assert 0 < closed.peak_torque_N_m <= sched.drive.torque_limit
     assert closed.settle_time_s is not None and closed.settle_time_s < 2.0
     assert closed.peak_heading_error_deg < 2.0
     assert opened.time_to_10deg_s is not None and opened.time_to_10deg_s < 0.5
-    assert opened.settle_time_s is None
+    assert opened.settle_time_s is None or abs(opened.settled_response_deg) > 90.0
 
 
 def test_recovery_through_saturation(schedules, chair):

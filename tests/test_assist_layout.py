@@ -139,7 +139,7 @@ def test_the_assist_command_answers_every_drive_layout(name, capsys):
 
 
 @pytest.mark.parametrize("argv,words", [
-    (["--chair", "mid-wheel-drive", "--faults"], "--faults is not available for a layout"),
+    (["--chair", "mid-wheel-drive", "--faults", "--design", "full-state"], "--faults needs --design gyro"),
     (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], "'trail' is not a field of layout"),
     (["--chair", "mid-wheel-drive", "--speeds", "0,1"], "--speeds '0,1' is invalid"),
     (["--chair", "mid-wheel-drive", "--model", "thesis"], "--model thesis is invalid for a layout"),

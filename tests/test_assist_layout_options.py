@@ -202,7 +202,6 @@ def test_the_command_gives_the_smallest_torque_each_way(capsys):
 
 
 @pytest.mark.parametrize("argv,words", [
-    (["--faults"], "--faults is not available for a layout or reverse speeds yet (the fault runs step the firmware"),
     (["--model", "thesis"], "--model thesis is invalid for a layout or reverse speeds: it is program WCHAIR's"),
     (["--export-c", "fw", "--reverse"], "a table over speed cannot pass through 0 m/s"),
     (["--export-c", "fw", "--speeds=-1,1"], "a table over speed cannot pass through 0 m/s"),

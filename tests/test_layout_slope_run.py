@@ -62,6 +62,8 @@ def test_the_thesis_chair_as_a_layout_is_the_thesis_engine_on_a_slope(law, cross
     assert abs(ours.u_m_s[n - 1] - ours.u_m_s[0]) > 1e-3           # rolling resistance and the grade act
     for mine, ref in ((ours.heading_rad, theirs.heading), (ours.u_m_s, theirs.u), (ours.v_m_s, theirs.v),
                       (ours.caster_angle_rad[0], theirs.eta), (ours.caster_angle_rad[1], theirs.beta)):
+        # error model: rounding: ~eps per step grown by e^4.5 over 3 s (observed at most 2.6e-12, the lateral
+        # speed at 2 deg cross and 1 deg grade), x400
         assert np.abs(mine[:n] - np.asarray(ref)[:n]).max() <= 1e-9
 
 
@@ -78,6 +80,8 @@ def test_on_a_grade_alone_the_speed_changes_at_g_sin_theta(name, speed):
     r = simulate_layout(layout, speed, RunSpec(horizon=1.0, push_force=0.0, grade_deg=theta),
                         caster_angles_deg=angles)
     expected = speed - layout.g * math.sin(math.radians(theta)) * r.t_s
+    # error model: rounding of 1000 additions of a constant acceleration, ~1000 eps |u| (observed 1.1e-13 m/s), x100;
+    # heading and casters: rounding of a straight run's zero side forces (observed 5.3e-17 rad and 0)
     assert np.abs(r.u_m_s - expected).max() <= 1e-11
     assert np.abs(r.heading_rad).max() <= 1e-12
     assert np.abs(r.caster_angle_rad - np.radians(angles)[:, None]).max() <= 1e-12

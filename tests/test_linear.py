@@ -44,7 +44,10 @@ def test_eq_8_5_with_the_tire_fits():
     # Table 4-1 brackets: EJA 25.4 (150 N) .. 35.1 (225 N); ER 26.9 (225 N), 23.2 (150 N)
     assert 25.4 < zw.stiffness_main * math.pi / 180 < 35.1
     assert 23.2 < zw.stiffness_caster * math.pi / 180 < 26.9
-    assert zw.critical_speed == pytest.approx(12, rel=0.15)
+    # error model: rounding of the thesis's printed 12 m/s (half a unit, 0.5 m/s) plus the stiffnesses' change from
+    # the 25 N/deg read off Figure 4-2 to the fits' 26.9 and 26.6 N/deg (it moves u_crit from 12.26 to 12.39 m/s,
+    # allowed twice); observed 0.39 m/s
+    assert zw.critical_speed == pytest.approx(12, abs=0.8)
 
 
 def test_front_caster_zero_width_is_understeer():
@@ -150,7 +153,9 @@ def test_state_space_object():
     assert sys.state_labels == ["v", "r", "eta", "eta_dot", "beta", "beta_dot"]     # the documented order
     assert sys.input_labels == ["Mz"] and sys.output_labels == ["v", "r"]
     np.testing.assert_array_equal(sys.A, linear.state_matrices(c, 0.75)[0])   # the same matrix, not recomputed
-    np.testing.assert_allclose(sys.B[1, 0], 1 / c.i_z, rtol=0.05)  # yaw moment mostly drives yaw rate
+    # yaw moment mostly drives yaw rate. error model: first order in the casters' share of the yaw inertia (their
+    # mass and pin inertia couple into the mass matrix; observed 1.9 %)
+    np.testing.assert_allclose(sys.B[1, 0], 1 / c.i_z, rtol=0.05)
     np.testing.assert_array_equal(sys.C, np.eye(2, 6))                 # the outputs are the states v and r
     assert not sys.D.any() and sys.name == "ej-premier (exact, free casters, U=0p75 m per s)"
     locked = linear.state_space(c, 0.75, casters="locked")

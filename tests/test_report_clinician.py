@@ -34,7 +34,8 @@ def test_bump_times_are_the_simulators(sheet):
     t_level = t[k - 1] + (1.0 - r[k - 1]) / (r[k] - r[k - 1]) * (t[k] - t[k - 1])
     m = sheet.motions[1]
     assert m.kind == "spins up"
-    assert m.time_to_level == pytest.approx(t_level, abs=2e-3)      # two 1 ms steps
+    # error model: the linear interpolation between samples, within one 1 ms step (observed 6.3e-6 s), x160
+    assert m.time_to_level == pytest.approx(t_level, abs=1e-3)
     rows = sheet_lines(sheet)["bump_rows"]
     assert f"{float(f'{m.time_to_level:.3g}'):g} s to 1 rad/s" in rows[1][2]
 

@@ -39,8 +39,12 @@ def test_the_thesis_chairs_sheet_as_a_layout_is_the_short_forms(name):
     assert [m.kind for m in a.motions] == [m.kind for m in b.motions]
     for m, n in zip(a.motions, b.motions, strict=True):
         if m.time_to_level != float("inf"):
+            # error model: rounding: the two engines' (mass matrix solved vs closed form) grown over the run and
+            # shifted by stick-slip switches (observed 2.2e-6 and 7.5e-6 relative), x66
             assert n.time_to_level == pytest.approx(m.time_to_level, rel=5e-4)
     for x, y in zip(a.doubling, b.doubling, strict=True):
+        # error model: the eigenvalues' rounding, n eps ||A|| kappa ~ 2.4e-10 of the rate per computation
+        # (tests/numerics.py without its margin; observed 2.6e-13)
         assert (x is None and y is None) or y == pytest.approx(x, rel=1e-9)
     t = a.tipping
     fwd, bwd = ((t.toward_main_wheels_deg, t.toward_casters_deg) if c.caster_position == "rear"
@@ -75,8 +79,8 @@ def test_bad_layout_options_are_refused_in_one_line(tmp_path, capsys):
               "docs/examples/mid_wheel_drive.uncertainty.toml"], "--samples 0 is invalid"),
             (["--chair", "mid-wheel-drive", "--json", "--set", "caster_9_trail=0.05"],
              "is not a field of layout"),
-            (["--chair", "mid-wheel-drive", "--clinician", "-o", str(tmp_path / "b.pdf"), "--reaction-time", "0.5"],
-             "--reaction-time is not available with --clinician")):
+            (["--chair", "mid-wheel-drive", "--clinician", "-o", str(tmp_path / "b.pdf"), "--reaction-time", "3"],
+             "--reaction-time 3 is invalid; valid range")):
         assert main(argv) == 2, argv
         err = capsys.readouterr().err.strip()
         assert words in err and "\n" not in err, err
@@ -213,4 +217,7 @@ def test_a_reverse_bump_run_is_valid_while_it_backs():
     direction of travel): it travels about 7.5 m in 10 s, not 0."""
     s = layout_clinician_sheet(layout_preset("power-fwd-base"), (-0.75,))
     m = s.motions[0]
-    assert m.until == pytest.approx(10.0, abs=0.01) and m.travel == pytest.approx(7.5, rel=0.05)
+    # error model: the step grid: the run's last sample is within one 1 ms step past 10 s (observed 1.0e-3 s); the
+    # travel is 0.75 m/s x 10 s up to the heading's cosine and that step, first order in the step (observed 1.3e-4
+    # relative), x77
+    assert m.until == pytest.approx(10.0, abs=2e-3) and m.travel == pytest.approx(7.5, rel=0.01)

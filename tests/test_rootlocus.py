@@ -77,7 +77,9 @@ def test_branches_are_continuous(ej, name):
     assert jumps < 0.05 * spread
     # and tracking does at least as well as the raw order of eigvals
     raw = np.linalg.eigvals(linear.state_matrices(list(loc.chairs), np.full(len(loc.chairs), 0.75)))
-    assert np.abs(np.diff(eig, axis=0)).sum() <= np.abs(np.diff(raw, axis=0)).sum() + 1e-9
+    # error model: rounding: the tracked rows are the raw eigenvalues reordered (observed identical sets); where both
+    # orders coincide the sums may differ by n eps of the sum (1446 terms: 3.2e-13 of it), x300
+    assert np.abs(np.diff(eig, axis=0)).sum() <= np.abs(np.diff(raw, axis=0)).sum() * (1 + 1e-10)
 
 
 def mirror(c):

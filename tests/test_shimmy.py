@@ -278,7 +278,9 @@ def test_describing_function_threshold_matches_simulation(rigid_pivot):
         a_star = 4 * w.pin_friction / (math.pi * omega * c_crit)      # DF amplitude of the limit cycle
         lo, hi = df.simulated_threshold(w, speed, a_star / 2, a_star * 2, iterations=9)
         assert hi / lo < 1.01
-        # the stated tolerance: the simulated threshold lies within 3 % of the describing function
+        # the stated tolerance: the simulated threshold lies within 3 % of the describing function. error model: the
+        # describing function keeps the first harmonic only (the next order: the square wave's third harmonic) and
+        # the bisection bracket is 0.27 %; observed 0.14-0.94 %
         assert abs(math.sqrt(lo * hi) / a_star - 1) < 0.03
         # consistency: the friction that suppresses shimmy at a_star is the wheel's own friction
         est = df.suppressing_friction(w, speed, a_star)

@@ -67,7 +67,8 @@ def test_sigma_to_zero_recovers_rigid_tire_eigenvalues():
         ev = np.linalg.eigvals(relaxed_state_matrices(EJ, U, CasterCompliance(relaxation_length=sigma))[0])
         ev = ev[np.argsort(ev.real)]
         fast, slow = ev[:2], ev[2:]
-        # singular perturbation: fast roots -U/sigma (1 + O(sigma)), here within 1 %
+        # singular perturbation: fast roots -U/sigma (1 + O(sigma)), here within 1 %. error model: first order in
+        # sigma (observed 5.3e-4 at 1e-6 m and 5.3e-5 at 1e-7 m)
         np.testing.assert_allclose(fast.real, -U / sigma, rtol=1e-2)
         r, c = match_eigenvalues(slow, ref)                  # paired by matching, not by sorting
         errs.append(np.max(np.abs(slow[r] - ref[c]) / np.abs(ref[c])))
@@ -125,6 +126,7 @@ def test_real_chair_critical_trail_close_to_towed_wheel():
     the towed wheel's closed form L = sigma (rigid pivot, no damping; docs/shimmy.md table)."""
     comp = CasterCompliance(relaxation_length=0.03)
     crit = chair_critical_trail(EJ, [0.5, 2.0], comp)
+    # error model: first order in the caster-to-chair mass ratio, the coupling (observed 2.4e-6 m), x400
     np.testing.assert_allclose(crit, comp.relaxation_length, atol=1e-3)
 
 
@@ -139,7 +141,9 @@ def test_mirror_symmetry(pin):
     U = np.array([0.4, 1.5, 3.0])
     A1 = relaxed_state_matrices(chair, U, pin=pin)
     A2 = relaxed_state_matrices(_mirror(chair), U, pin=pin)
-    assert not np.allclose(A1, A2)  # the two models differ; only their spectra agree
+    # the two models differ; only their spectra agree. error model: rounding: equal matrices would agree to a few
+    # ulp; these differ by 3.1e3 in entries up to 2.4e5 (observed), far beyond allclose's 1e-5 relative
+    assert not np.allclose(A1, A2)
     for a1, a2 in zip(A1, A2, strict=True):
         # a1, a2 are similar (a permutation with sign changes) up to the rounding of their entries:
         # each set within n eps ||A|| kappa_i of the exact spectrum
@@ -219,7 +223,10 @@ def test_characteristic_polynomial_against_newton_euler(pin):
     # scale each coefficient by the size of the terms that build it: prod of the largest |eigenvalues|
     lam = np.sort(np.abs(np.linalg.eigvals(A)))[::-1]
     scale = [np.prod(lam[:j]) for j in range(len(exact))]
-    np.testing.assert_allclose(np.array(ours) / scale, np.array(exact) / scale, rtol=0, atol=1e-9)
+    # error model: rounding of the characteristic polynomials of float matrices (Berkowitz's sums of products,
+    # cancelling terms larger than the scale where the stiff pin spreads the entries); observed 7.2e-14 (rigid),
+    # 7.6e-11 (compliant), x130
+    np.testing.assert_allclose(np.array(ours) / scale, np.array(exact) / scale, rtol=0, atol=1e-8)
 
 
 def test_state_space_names_and_matrices():
@@ -260,6 +267,8 @@ def test_generation_reproduces_committed_file(tmp_path):
             continue
         fa, fb = getattr(a, name), getattr(b, name)
         args = rng.uniform(0.1, 2.0, fa.__code__.co_argcount)
+        # error model: rounding: another sympy's expression forms are the same arithmetic reordered, a few eps times
+        # the expressions' cancellation (not observable here: an equal sympy version compares the text exactly)
         assert np.allclose(_flat(fa(*args)), _flat(fb(*args)), rtol=1e-10), name
 
 
@@ -280,6 +289,7 @@ def test_cli_chair_model_option(capsys):
     out = json.loads(capsys.readouterr().out)
     cm = out["chair_model"]
     assert set(cm) == {"rigid_pin", "compliant_pin"}
+    # error model: first order in the caster-to-chair mass ratio (observed 2.5e-6 m), x40
     np.testing.assert_allclose(cm["compliant_pin"]["critical_trail_m"], out["critical_trail_m"], atol=1e-4)
     np.testing.assert_allclose(cm["compliant_pin"]["shimmy_frequency_hz"], out["shimmy_frequency_hz"], rtol=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 5.5e-16)
     assert main(["--chair", "revised", "--speeds", "1", "--json"]) == 0

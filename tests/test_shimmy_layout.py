@@ -66,6 +66,7 @@ def test_a_row_changes_its_trail_together():
     lay = layout_preset("mid-wheel-drive")
     c0 = LayoutCaster(lay, 0).replace(trail=0.08)
     xs = [(c.x, c.trail) for c in c0.layout.casters]
+    # error model: rounding: a row's casters keep the pin x as given, to a few ulp (rows lie centimetres apart)
     same_row = [t for x, t in xs if abs(x - lay.casters[0].x) < 1e-9]
     assert same_row == [0.08, 0.08]
     assert c0.static_load() == pytest.approx(LayoutCaster(c0.layout, 1).static_load(), rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)

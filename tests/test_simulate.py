@@ -446,13 +446,15 @@ def adaptive_pair():
 
 
 def test_adaptive_converges_when_tolerances_are_halved(adaptive_pair):
-    """Halving rtol/atol changes the reported quantities by less than 0.5 %."""
+    """Halving rtol/atol changes the reported quantities by less than 1e-4 relative."""
     a, b = adaptive_pair
+    # error model: the integrator's global error, proportional to its rtol (1e-6) grown over the run: halving the
+    # tolerances moves the values by about that (observed 9.4e-8 and 7.6e-7 for the times, 9.4e-7 for the rate), x100
     for v in (0.5, 1.0):
         ta, tb = a.first_time_abs_yaw_rate(v), b.first_time_abs_yaw_rate(v)
-        assert ta is not None and abs(ta - tb) < 0.005 * tb
+        assert ta is not None and abs(ta - tb) < 1e-4 * tb
     ra, rb = a.at(3.0)["yaw_rate"], b.at(3.0)["yaw_rate"]
-    assert abs(ra - rb) < 0.005 * abs(rb)
+    assert abs(ra - rb) < 1e-4 * abs(rb)
 
 
 def test_adaptive_stick_slip(adaptive_pair):
@@ -461,13 +463,28 @@ def test_adaptive_stick_slip(adaptive_pair):
     for side, rate in ((0, r.eta_dot), (1, r.beta_dot)):
         m = r.pin_moment[:, side]
         stuck = rate == 0.0
-        assert stuck[0]                                        # at rest at t = 0: stuck
-        assert np.all(np.abs(m[stuck]) <= 0.1 * (1 + 1e-6))
+        assert stuck[0] and m[0] == 0.0                        # at rest at t = 0, nothing to hold: stuck
         slipping = ~stuck
         assert slipping.any()
         np.testing.assert_allclose(m[slipping], -0.1 * np.sign(rate[slipping]), rtol=1e-12)    # rounding (0)
     assert r.settings["switches"] >= 2
-    # close to the WCHAIR scheme (different load lag and friction model: a few per cent)
+    # at 0.1 N m the pins stick only at the start; at 0.3 N m they stick for most of the run (380 of 400 samples
+    # after t = 0), holding moments up to 90 % of the limit: the recorded moment of a stuck pin is its holding
+    # reaction, within the limit, and of a turning one the friction against its rate
+    sticky = EJ.replace(pin_friction_left=0.3, pin_friction_right=0.3)
+    h = simulate(sticky, 0.75, RunSpec(rtol=1e-6, atol=1e-9, horizon=4.0, scheme="adaptive", model="thesis"))
+    t = np.asarray(h.t)
+    for side, rate in ((0, np.asarray(h.eta_dot)), (1, np.asarray(h.beta_dot))):
+        m = np.asarray(h.pin_moment)[:, side]
+        held = (rate == 0.0) & (t > 0)
+        assert held.sum() > 0.5 * t.size and np.abs(m[held]).max() > 0.5 * 0.3
+        # error model: the stick event fires where |holding| reaches the limit, to the event solver's 1e-6 relative
+        # rounding of that root; observed at most 0.90 of the limit
+        assert np.all(np.abs(m[held]) <= 0.3 * (1 + 1e-6))
+        np.testing.assert_allclose(m[rate != 0.0], -0.3 * np.sign(rate[rate != 0.0]), rtol=1e-12)   # rounding (0)
+    # close to the WCHAIR scheme (different load lag and friction model: a few per cent). error model: truncation:
+    # the WCHAIR scheme's first-order step error and one-step load lag, and its kinetic against the adaptive's
+    # stick-slip friction (observed 1.45 %)
     w = simulate(EJ, 0.75, run=RunSpec(horizon=4.0, friction_law="kinetic", model="thesis"))
     assert r.first_time_abs_yaw_rate(1.0) == pytest.approx(w.first_time_abs_yaw_rate(1.0), rel=0.05)
 
@@ -761,6 +778,8 @@ def test_step_stability_limit_against_the_adaptive_scheme(speed):
     auto = simulate(EJ, speed, RunSpec(dt="auto", friction_law="kinetic", **kw))
     assert not auto.step_unstable and auto.settings["dt"] <= auto.settings["stable_dt"]
     peak_ada = np.max(np.abs(ada.yaw_rate))
+    # error model: truncation, first order in the auto step (0.25-0.5 ms), and kinetic against stick-slip friction
+    # (observed 0.65-1.0 %)
     assert np.max(np.abs(auto.yaw_rate)) == pytest.approx(peak_ada, rel=0.08)
     if speed < 0.27:
         with pytest.warns(StepStabilityWarning, match=r"dt=0\.001 s exceeds .*largest safe step"):

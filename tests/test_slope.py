@@ -166,7 +166,9 @@ def test_front_caster_turn_rate_near_free_caster_closed_form():
     r = msl.zero_width_turn(U, c.m, g2, c.s1, c.s2, 0.0, 5000.0)[1]
     assert r == pytest.approx(g2 / U, rel=1e-12)      # rounding: one division in the closed form (observed 0)
     path = uncorrected_path(c, eqm.solve(c, phi, U), duration=4.0)
-    # after the transient (~1/1.5 s) the yaw rate is within 10 % of g2/U (heading change < 10 deg)
+    # after the transient (~1/1.5 s) the yaw rate is within 10 % of g2/U (heading change < 10 deg). error model:
+    # next order of the zero-width model: the track, the casters' own dynamics and the transient's remainder
+    # (observed 4.5 %)
     assert math.radians(path.yaw_rate_deg_s) == pytest.approx(g2 / U, rel=0.1)
 
 

@@ -40,7 +40,10 @@ def test_the_thesis_chair_swept_as_a_layout_gives_the_short_forms_rows():
     for a, b in zip(fwd, short, strict=True):
         assert a["grid_trail_rear"] == b["grid_trail"] and a["error"] == b["error"] == ""
         for col in ("growth_rate_1_s", "static_stability_deg", "tip_lateral_deg", "shimmy_margin_m"):
-            assert a[col] == pytest.approx(b[col], rel=1e-9, abs=1e-12), col
+            # error model: rounding: the eigenvalues' n eps ||A|| kappa (~2.4e-10 relative; observed 9.4e-14) and the
+            # statics' few ulp (observed 0); the shimmy margins within the band's bisection bracket, 1.5e-10 m
+            # (observed 0: the same decisions)
+            assert a[col] == pytest.approx(b[col], rel=1e-9, abs=1e-9), col
         assert a["critical_impulse_Ns"] == pytest.approx(b["critical_impulse_Ns"], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 2.9e-15)
         assert a["critical_impulse_status"] == b["critical_impulse_status"]
         assert math.isnan(a["tip_toward_casters_deg"])          # no such direction on a layout
@@ -60,7 +63,8 @@ def test_a_frame_turned_round_sweeps_backwards_as_it_does_forwards():
         assert a["growth_rate_1_s"] == pytest.approx(b["growth_rate_1_s"], rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 0)
         assert a["critical_speed_m_s"] == b["critical_speed_m_s"]
         assert a["static_stability_deg"] == pytest.approx(b["static_stability_deg"], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
-    assert fwd[0]["growth_rate_1_s"] != pytest.approx(fwd[1]["growth_rate_1_s"], rel=1e-3)   # the axis reaches it
+    # the axis reaches it. error model: rounding moves a rate by ~1e-13 of it; the 5 cm axle move far more than 1e-3
+    assert fwd[0]["growth_rate_1_s"] != pytest.approx(fwd[1]["growth_rate_1_s"], rel=1e-3)
 
 
 def test_a_grid_axis_is_the_layout_changed():
@@ -131,7 +135,8 @@ def test_random_draws_of_a_layout_are_the_short_forms_draws(tmp_path):
     for a, b in zip(fwd, short, strict=True):
         assert (a["design"], a["draw"], a["error"]) == (b["design"], b["draw"], b["error"])
         for col in ("growth_rate_1_s", "static_stability_deg", "shimmy_margin_m"):
-            assert a[col] == pytest.approx(b[col], rel=1e-9, abs=1e-12), col
+            # error model: rounding and the band's bisection bracket, as in the grid test above
+            assert a[col] == pytest.approx(b[col], rel=1e-9, abs=1e-9), col
     trail_of = {(r["design"], r["draw"]): r["trail"] for r in short}
     assert len({v for v in trail_of.values()}) == 8                 # every draw moves the trail
     for k in range(4):                                              # common random numbers: the same offset

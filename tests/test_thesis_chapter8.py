@@ -121,7 +121,10 @@ def test_initial_lateral_velocity_equivalent_to_the_impulse(speed_study):
     vel = simulate(EJ, 0.75, run=RunSpec(push_force=0.0, lateral_velocity=0.04, friction_law="kinetic", model="thesis"))
     ti, tv = imp.first_time_abs_yaw_rate(1.0), vel.first_time_abs_yaw_rate(1.0)
     _report("Figure 8-2, time to 1 rad/s (impulse, 0.04 m/s)", (round(ti, 3), round(tv, 3)), "about equal")
-    assert tv == pytest.approx(ti, rel=0.10)
+    # error model: rounding of the thesis's .04 m/s to one figure (half a unit: 12.5 % of the kick): the yaw rates
+    # scale with it (12.5 %, allowed twice), the time by ln(1.125) / 1.45 1/s = 0.08 s (2.7 %, allowed 5 %);
+    # observed 1.1 % for the time, 2.2-4.2 % for the rates
+    assert tv == pytest.approx(ti, rel=0.05)
     for t in (1.0, 2.0, 3.0):
         assert vel.at(t)["yaw_rate"] == pytest.approx(imp.at(t)["yaw_rate"], rel=0.25)
     assert vel.warnings["load"]["first_time"] is not None and vel.warnings["load"]["first_time"] < 0.01
@@ -155,6 +158,8 @@ def test_front_caster_chair_under_a_constant_side_force_turns_steadily():
     rates = {t: r.at(t)["yaw_rate"] for t in (0.5, 1.0, 2.0, 4.0, 6.0, 8.0)}
     _report("Figure 8-5 constant force, yaw rate at t", {t: round(v, 3) for t, v in rates.items()}, "approaches a constant")
     assert rates[1.0] > 0.5 * rates[6.0] > 0.1          # sharp initial rise
+    # error model: first order in the transient's remainder: the rate still approaches its steady value (observed
+    # 5.9 % at 4 s and 5.2 % at 8 s from the 6 s value)
     for t in (4.0, 8.0):
         assert rates[t] == pytest.approx(rates[6.0], rel=0.15)
     assert not r.stopped_by_warnings
@@ -194,6 +199,8 @@ def test_front_caster_chair_equals_the_thesis_trick(friction):
         assert err < 0.02 * peak
         a = simulate(front, 0.75, run=RunSpec(scheme="adaptive", **kw))
         b = simulate(trick, 0.75, run=RunSpec(scheme="adaptive", reverse=True, eta0_deg=180.0, beta0_deg=180.0, **kw))
+        # error model: two error-controlled runs whose step decisions may differ, each within its global error
+        # (rtol x steps, tests/numerics.py adaptive_run_tolerance); observed 1.3e-8 of the peak
         assert np.max(np.abs(a.yaw_rate + b.yaw_rate)) < 1e-4 * peak
 
 
@@ -266,5 +273,7 @@ def test_chapter9_revised_design_and_friction(speed_study):
     _report("Figures 9-2/9-3, time to 1 rad/s: reference, revised 1.10, 1.15, (.05 N m, .65), (.15 N m, 1.65)",
             tuple(round(x, 2) for x in (t_ref, t110, t115, t_half, t_more)), "t110 > ref > t115; the last two ~ ref")
     assert t110 > t_ref > t115
+    # error model: rounding of the thesis's "about .65" and "about 1.65 m/s" read off Figure 9-3 (+-0.025 m/s), the
+    # time falling ~10 % per such step; observed 0.2 % and 5.3 %
     assert t_half == pytest.approx(t_ref, rel=0.15)
     assert t_more == pytest.approx(t_ref, rel=0.15)

@@ -38,7 +38,8 @@ def test_zero_spread_gives_exactly_the_nominal_values():
     assert (e.nominal, e.low, e.median, e.high) == (eq.speed,) * 4
     assert k.finite_fraction == e.finite_fraction == 1.0
     assert k.dominant is None and e.dominant is None
-    # the reference is this chair's own nominal case: equal instability at the reference speed, to the tolerance
+    # the reference is this chair's own nominal case: equal instability at the reference speed, to the tolerance.
+    # error model: bisection bracket: the search's tol (observed 1.3e-4 m/s)
     assert abs(eq.speed - REFERENCE_SPEED) < FAST["tol"]
     assert iv.push == THESIS_PUSH.describe(0.001) and "fixed" in iv.reference
 
@@ -66,7 +67,9 @@ def test_small_spread_lies_between_the_end_chairs_and_widens_with_the_spread():
     wide = nonlinear_intervals(EJ, loads_uncertainty(friction(0.1)), samples=10, equal_instability=False,
                                **tight).critical_impulse
     assert ends[0] - slack <= wide.low < wide.high <= ends[1] + slack
-    assert abs(narrow.median - nominal) < 0.05 * nominal
+    # error model: first order in the friction: a +-5 % spread spans about half the +-10 % end chairs' range around
+    # the nominal chair, plus two bisection brackets (observed 0.090 N s against 0.175 N s allowed)
+    assert abs(narrow.median - nominal) <= (ends[1] - ends[0]) / 4 + slack
     w1, w2 = narrow.high - narrow.low, wide.high - wide.low
     assert w1 > 4 * slack                                         # resolved, not bisection noise
     assert 1.5 * w1 < w2 < 2.5 * w1                               # same seed: the draws scale with the spread

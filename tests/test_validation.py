@@ -83,7 +83,9 @@ def test_measured_rate_on_known_signals():
     t = np.linspace(0, 10, 2001)
     assert measured_rate(t, 3e-4 * np.exp(0.7 * t), False, (1, 9)) == pytest.approx(0.7, rel=1e-9)  # rounding: equivalent arithmetic, a few ulp (observed 6.3e-16)
     y = np.exp(-0.4 * t) * np.cos(5 * t + 0.3)
-    assert measured_rate(t, y, True, (1, 9)) == pytest.approx(-0.4, rel=1e-6)
+    # error model: rounding: a damped cosine is exactly two exponentials, which the fit recovers up to rounding
+    # amplified by its conditioning (observed 1.3e-13), x80
+    assert measured_rate(t, y, True, (1, 9)) == pytest.approx(-0.4, rel=1e-11)
     with pytest.raises(ValueError, match="sign"):
         measured_rate(t, y, False, (1, 9))
 
@@ -130,9 +132,12 @@ def test_caster_drag_acts_as_rear_cornering_stiffness():
     speeds = np.array([0.5, 0.75, 1.0, 2.0])
     sim = np.array([linearisation_check(c, u).eigenvalue_simulator.real for u in speeds])
     closed = linear.massless_caster_rate(c, speeds, caster_drag=drag)
+    # error model: first order in the casters' mass and pin inertia (0.7 %, below) plus the drag's coupling the
+    # closed form leaves out, growing at low speed (observed 0.24-2.1 %)
     np.testing.assert_allclose(sim, closed, rtol=0.025)
     no_drag = np.array([linearisation_check(c.replace(caster_rolling_scale=0.0), u).eigenvalue_simulator.real
                         for u in speeds])
+    # error model: first order in the casters' mass and pin inertia (observed 0.69-0.70 %, as tests/test_linear.py)
     np.testing.assert_allclose(no_drag, linear.massless_caster_rate(c, speeds), rtol=0.01)
     assert np.all(sim < no_drag)                  # the drag stabilises (38 % slower growth at 0.5 m/s)
     # below U^2 = C_r (x_m - x_c)^2 / (m x_m) the closed form says stable, and so does the simulator

@@ -231,6 +231,43 @@ def layout_assist_options() -> dict:
             "max_heading": f"{signature(layout_minimum_torque_limit).parameters['max_heading_deg'].default:g}"}
 
 
+@group("layout_assist_faults", "python -m stability.assist --chair NAME --speeds 1:3:0.5 --reverse --no-check "
+       "--faults (stability.assist.layout.layout_assist, stability.assist.faults.fault_runs)")
+def layout_assist_faults() -> dict:
+    """Per drive layout and direction: the safe top speed with the single sensor faults (speeds 1 to 3 m/s), what
+    limits it, the unsafe fault runs; the power chair as a layout against the short form's fault rows."""
+
+    from stability.assist.faults import fault_runs
+    from stability.assist.layout import layout_assist, layout_schedule
+    from stability.assist.schedule import schedule
+    from stability.chair import preset
+    from stability.layout import Layout
+    from stability.layout.presets import layout_preset
+
+    grid = [1.0, 1.5, 2.0, 2.5, 3.0]
+    rows = []
+    for name in DRIVE_LAYOUTS:
+        res = layout_assist(layout_preset(name), grid, "gyro", reverse=True, faults=True)
+        for what, top, bad in (("forward", res.forward_top, res.forward_faults),
+                               ("reverse", res.reverse_top, res.reverse_faults)):
+            unsafe = sorted({f"{f.fault} ({abs(f.speed_m_s):g} m/s, {f.slope_deg:g} deg)" for f in bad
+                             if f.outcome != "safe"})
+            speed = "none" if top.safe_top_speed_m_s is None else f"{top.safe_top_speed_m_s:g}"
+            rows.append((name, what, speed, top.limited_by.replace("_", " "), "; ".join(unsafe[:3]) +
+                         (f"; and {len(unsafe) - 3} more" if len(unsafe) > 3 else "") or "none"))
+    c = preset("power-fwd")
+    short = fault_runs(schedule(c, [1.0, 2.0], standstill=False))
+    mine = fault_runs(layout_schedule(Layout.from_chair(c), [1.0, 2.0]))
+    pairs = list(zip(short, mine, strict=True))
+    worst = max(max(abs(a.peak_heading_error_deg - b.peak_heading_error_deg),
+                    abs(a.peak_yaw_rate_deg_s - b.peak_yaw_rate_deg_s)) for a, b in pairs)
+    same = all((a.detected, a.outcome) == (b.detected, b.outcome) for a, b in pairs)
+    return {"table": Table(("layout", "direction", f"safe top speed m/s ({grid[0]:g} to {grid[-1]:g} m/s)",
+                            "limited by", "unsafe fault runs (speed, cross slope)"), tuple(rows)),
+            "short_agreement": f"{worst:.0e}", "short_same": "the same" if same else "NOT the same",
+            "short_runs": f"{len(short)}", "grid": f"{grid[0]:g} to {grid[-1]:g}"}
+
+
 @group("layout_files", "python -m stability.simulate --chair NAME --csv FILE -o FILE; python -m stability.slope "
        "--chair NAME -o FILE; python -m stability.shimmy --chair NAME -o FILE (stability.simulate.layout, "
        "stability.report.slope_data.layout_slope_section, stability.shimmy.chair.trail_chart)")
@@ -328,4 +365,51 @@ def layout_every_command() -> dict:
     out["driver_table"] = Table(("layout", f"{tau:g} s driver holds forwards m/s", "backwards m/s"), tuple(drv))
     out["speeds"] = ", ".join(f"{u:g}" for u in speeds)
     out["tau"], out["search_top"] = f"{tau:g}", f"{SEARCH_SPEEDS_M_S[-1]:g}"
+    return out
+
+
+@group("layout_critical_options", "python -m stability.critical_speed --chair NAME --reaction-time 0.3 / "
+       "--uncertainty docs/examples/mid_wheel_drive.uncertainty.toml (stability.driver.layout.layout_human_limit, "
+       "stability.driver.human_limit, stability.report.layout_uncertainty.layout_uncertainty)")
+def layout_critical_options() -> dict:
+    """Issue 38, critical_speed on a layout: a 0.3 s driver's two limits per drive layout forwards and backwards, the
+    E&J Premier as a layout against the short form, and the mid-wheel-drive base's growth-rate intervals at the
+    reference speed both ways over the docs' uncertainty file (the command's default draws and seed)."""
+    from pathlib import Path
+
+    from stability.advise.layout_axes import load_layout_uncertainty
+    from stability.chair import resolve
+    from stability.driver import Driver, human_limit
+    from stability.driver.layout import layout_human_limit
+    from stability.layout.model import Layout
+    from stability.layout.presets import layout_preset
+    from stability.report.layout_uncertainty import layout_uncertainty
+    from stability.settings import defaults as D
+
+    tau = 0.3
+
+    def bound(u: float, side: str) -> str:
+        return ("" if side == "=" else f"{side} ") + sig(u, 3)
+
+    rows = []
+    for name in DRIVE_LAYOUTS:
+        for reverse in (False, True):
+            h = layout_human_limit(layout_preset(name), Driver(tau), reverse)
+            rows.append((name, "backwards" if reverse else "forwards", bound(h.rule_speed_m_s, h.rule_side),
+                         bound(h.loop_speed_m_s, h.loop_side)))
+    ej = resolve("ej-premier")
+    short, lay = human_limit(ej, Driver(tau)), layout_human_limit(Layout.from_chair(ej), Driver(tau))
+    root = Path(__file__).resolve().parents[2]
+    mwd = layout_preset("mid-wheel-drive")
+    unc = load_layout_uncertainty(root / "docs" / "examples" / "mid_wheel_drive.uncertainty.toml", mwd)
+    r = layout_uncertainty(mwd, unc, [0.75, -0.75], samples=D.SAMPLES, seed=D.SEED, critical=True)
+    rs = {k: (nom, lo, hi, fin) for k, _, nom, lo, hi, fin in r.rows()}
+    out = {"tau": f"{tau:g}", "samples": str(D.SAMPLES),
+           "table": Table(("layout", "direction", "divergence rule m/s", "delayed loop m/s"), tuple(rows)),
+           "ej_rule_short": sig(short.rule_speed_m_s, 3), "ej_loop_short": sig(short.loop_speed_m_s, 3),
+           "ej_rule_layout": sig(lay.rule_speed_m_s, 3), "ej_loop_layout": sig(lay.loop_speed_m_s, 3),
+           "crit_defined_pct": f"{100 * rs['critical_speed_forward_m_s'][3]:.0f}"}
+    for key, u in (("fwd", 0.75), ("rev", -0.75)):
+        nom, lo, hi, _ = rs[f"growth_rate_1_s@{u:g}"]
+        out[f"rate_{key}"], out[f"rate_{key}_interval"] = signed(nom, 3), f"{signed(lo, 3)} to {signed(hi, 3)}"
     return out

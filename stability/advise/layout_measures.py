@@ -36,6 +36,7 @@ from collections.abc import Callable, Sequence
 from stability.advise.layout_levers import caster_rows, row_name
 from stability.advise.measures import IMPULSE_SPEED, Interval, Linear, Measures
 from stability.bench import run_bench
+from stability.driver.layout import layout_rule_speed
 from stability.layout.linear import growth_rates
 from stability.layout.model import Layout
 from stability.layout.statics import tip_angles
@@ -45,13 +46,11 @@ from stability.settings.run import RunSpec
 from stability.shimmy.band import ShimmyBand, band_core, shimmy_band
 from stability.shimmy.layout_caster import LayoutCaster
 from stability.simulate.options import WCHAIR_DT
-from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS
 from stability.study.layout_equal_instability import (
     layout_equal_instability_interval,
     layout_summaries,
-    scale_layout_friction,
 )
-from stability.study.layout_impulse import layout_critical_impulses
+from stability.study.layout_impulse_intervals import layout_critical_impulse_intervals
 from stability.study.runs import study_run
 
 __all__ = ["direction_of", "layout_linear_measures", "layout_nonlinear_measures", "measure_layouts",
@@ -159,33 +158,6 @@ def layout_cross_slope_effort(layout: Layout, cross_slope_deg: float, reverse: b
     return float(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
 
 
-def layout_rule_speed(layout: Layout, reaction_time: float, reverse: bool = False) -> tuple[float, str]:
-    """The divergence rule's speed of a layout: where its largest growth rate reaches ``1 / reaction_time``.
-
-    :func:`stability.driver.linear.rule_speed` (its speed grid and refinement) on the layout's linear model,
-    forward or in reverse.
-
-    Parameters
-    ----------
-    layout : Layout
-    reaction_time : float
-        s (:class:`stability.driver.model.Driver`'s range).
-    reverse : bool
-        Backwards: the rates at ``-U``.
-
-    Returns
-    -------
-    (float, str)
-        The speed's size (m/s) and side (``"="``; ``">"``: beyond the speeds checked; ``"<"``: below them).
-    """
-    from stability.driver.linear import _GRID, _first_crossing
-    from stability.driver.model import Driver
-
-    tau = Driver(reaction_time).reaction_time_s
-    sign = -1.0 if reverse else 1.0
-    return _first_crossing(lambda u: float(growth_rates(layout, [sign * u])[0]) * tau - 1.0, _GRID)
-
-
 def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float], cores: dict | None = None,
                            cross_slope_deg: float = 0.0, reaction_time: float | None = None) -> list[Linear]:
     """The measures that need no simulation, for every layout (the constraints of the advisor).
@@ -234,15 +206,13 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
 
 
 def _critical(layouts: list[Layout], speed: float) -> list[tuple[Interval, str, float | None]]:
-    """Critical impulse with its range over pin friction and half the step (the short form's, less the model)."""
-    specs = [("nominal", 1.0, WCHAIR_DT)] + [(f"x{f:g} pin friction", f, WCHAIR_DT) for f in FRICTION_FACTORS]
-    specs += [(f"{WCHAIR_DT * f * 1e3:g} ms step", 1.0, WCHAIR_DT * f) for f in STEP_FACTORS]
+    """Critical impulse with its range over pin friction and half the step (the short form's, less the model:
+    :func:`stability.study.layout_impulse_intervals.layout_critical_impulse_intervals`)."""
     out = []
     for lay in layouts:
-        res = [layout_critical_impulses(scale_layout_friction(lay, f), speed, RunSpec(dt=h))[0] for _, f, h in specs]
-        bounds = [r.bound_Ns for r in res]
-        half = [r.bound_Ns for (label, _, _), r in zip(specs, res, strict=True) if label.endswith(" ms step")]
-        out.append((Interval(float(res[0].bound_Ns), float(min(bounds)), float(max(bounds))), res[0].status,
+        iv = layout_critical_impulse_intervals(lay, speed, RunSpec(dt=WCHAIR_DT))[0]
+        half = [r.bound_Ns for label, r in iv.variants if label.endswith(" ms step")]
+        out.append((Interval(float(iv.point.bound_Ns), iv.low_Ns, iv.high_Ns), iv.point.status,
                     float(half[0]) if half else None))
     return out
 

@@ -30,6 +30,7 @@ from stability.assist.firmware import Q_FORMATS
 from stability.assist.recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
 from stability.assist.robustness import Robustness, robustness
 from stability.assist.schedule import Schedule, schedule
+from stability.assist.settling import recovery_rule
 from stability.assist.tables import (
     format_margins,
     format_recovery,
@@ -278,7 +279,7 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
         for s_ in (1.0, 2.0, 3.0):
             mt = minimum_torque_limit(sched, s_)
             print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
-                  f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains)")
+                  f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains; recovers: {recovery_rule()})")
     print("\n" + format_top_speed(top))
     if args.output:
         _write_pdf(sched, rows, rob, runs, tmp["-o"], [h for h in holds if isinstance(h, SlopeHold)], top, faults,

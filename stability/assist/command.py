@@ -4,8 +4,9 @@ The layout's linear model (:func:`stability.assist.layout.layout_assist`: design
 forward and in reverse, the nonlinear checks with the layout simulator) and the options the layout simulator
 answers: ``--min-torque`` (:func:`stability.assist.layout_checks.layout_minimum_torque_limit`), ``--export-c``
 (one direction's :func:`stability.assist.layout.layout_schedule` through the short form's exporter) and ``-o``
-(:mod:`stability.assist.figures_layout` and the short form's margin and top-speed pages).  ``--faults`` and
-``--model thesis`` are refused in one line saying why.
+(:mod:`stability.assist.figures_layout` and the short form's margin and top-speed pages) and ``--faults`` (the
+single sensor faults at every design speed of each direction in the layout simulator, counted in its safe top
+speed: :func:`stability.assist.layout.layout_assist`).  ``--model thesis`` is refused in one line saying why.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from dataclasses import replace
 
 import numpy as np
 
@@ -21,6 +23,7 @@ from stability.assist.digital import margin_curves
 from stability.assist.export_run import FirmwareReport, run_export
 from stability.assist.layout import LayoutAssist
 from stability.assist.recovery import STRONG_FORCE
+from stability.assist.settling import recovery_rule
 from stability.assist.weights import GyroSensor, Weights
 from stability.chair.power import DriveTrain
 from stability.cli import emit_json, load_layout, output_files
@@ -29,6 +32,10 @@ from stability.runtime.files import write_pdf
 from stability.settings.reference import THESIS_PUSH
 
 __all__ = ["run_layout"]
+
+#: How a layout's unchecked top-speed constraints are checked (the caption of its top-speed page).
+_LAYOUT_ENABLE = {"torque": "the torque (not yet for a layout: the layout's push torque is reported beside it, not "
+                            "counted)", "faults": "the single sensor faults (add --faults)"}
 
 
 def run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, drive: DriveTrain,
@@ -54,11 +61,6 @@ def run_layout(args: argparse.Namespace, speeds: np.ndarray, weights: Weights, d
                          "equations of the thesis's two-caster chair driven forwards (caster slip from the relative "
                          "swivel rate alone, I_zp eta_ddot), while a layout's, and any chair's in reverse, are derived "
                          "from first principles only; valid: --model exact")
-    if args.faults:
-        raise ValueError("--faults is not available for a layout or reverse speeds yet (the fault runs step the "
-                         "firmware with its sensor monitor at every sample, which the layout simulator's compiled "
-                         "controller does not carry); valid: the design, weight, drive and gyro options, --reverse, "
-                         "--no-check, --min-torque, --export-c, -o, --json, --json-file")
     if np.any(np.abs(speeds) > 20.0):
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
                          "0.01 <= |U| <= 20 m/s (negative: reverse)")
@@ -80,7 +82,8 @@ def _layout_work(args: argparse.Namespace, layout: Layout, speeds: np.ndarray, w
     # the full-state controller measures the motor's applied moment, which the layout simulator does not give it
     simulable = args.design == "gyro" or drive.motor_time_constant == 0
     res = layout_assist(layout, [float(u) for u in speeds], args.design, reverse=args.reverse, weights=weights,
-                        drive=drive, gyro=gyro, check=not args.no_check and simulable)
+                        drive=drive, gyro=gyro, check=not args.no_check and simulable, faults=args.faults,
+                        seed=args.seed)
     least = _layout_min_torque(layout, res, weights, drive, gyro) if args.min_torque else None
     fw = _layout_firmware(args, layout, res, weights, drive, gyro) if args.export_c else None
     if args.json or args.json_file:
@@ -88,7 +91,7 @@ def _layout_work(args: argparse.Namespace, layout: Layout, speeds: np.ndarray, w
                    "wheel_radius_m": drive.wheel_radius, "torque_limit_N_m": drive.torque_limit,
                    "motor_lag_s": drive.motor_time_constant, "sample_rate_hz": gyro.sample_rate_hz,
                    "no_check": args.no_check, "min_torque": args.min_torque, "export_c": args.export_c,
-                   "q_format": args.q_format, "seed": args.seed}
+                   "q_format": args.q_format, "seed": args.seed, "faults": args.faults}
         extra: dict = {} if least is None else {"minimum_torque_limits": [
             {"speed_m_s": u, "push_N": STRONG_FORCE, "minimum_torque_limit_N_m": json_float(t)} for u, t in least]}
         if fw is not None:
@@ -99,11 +102,10 @@ def _layout_work(args: argparse.Namespace, layout: Layout, speeds: np.ndarray, w
         print(format_layout_assist(res))
         for u, t in least or []:
             least_words = (f"{t:.1f} N m per wheel" if math.isfinite(t) else
-                           f"none up to the drive's {drive.torque_limit:g} N m per wheel (at the full limit the "
-                           "heading leaves 10 deg or does not settle to within 5 % of its peak about zero)")
+                           f"none up to the drive's {drive.torque_limit:g} N m per wheel")
             print(f"smallest torque limit that recovers from {STRONG_FORCE:g} N x {THESIS_PUSH.duration:g} s at "
                   f"{abs(u):g} m/s {'backwards' if u < 0 else 'forwards'}: {least_words} (layout simulator, "
-                  "noise-free, same gains)")
+                  f"noise-free, same gains; recovers: {recovery_rule()})")
         if fw is not None:
             print(fw.format())
         if not args.no_check and not simulable:
@@ -128,7 +130,8 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
     from stability.assist.layout import layout_schedule
 
     figs = [figure_layout_gains(res)]
-    for rows, top in ((res.forward, res.forward_top), (res.reverse, res.reverse_top)):
+    for rows, top, bad in ((res.forward, res.forward_top, res.forward_faults),
+                           (res.reverse, res.reverse_top, res.reverse_faults)):
         if not rows:
             continue
         sched = layout_schedule(layout, [r.speed_m_s for r in rows], res.kind, weights=weights, drive=drive,
@@ -136,7 +139,8 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
         figs.append(figures.figure_margin_pair(sched, margin_curves([r.speed_m_s for r in rows],
                                                                     [r.margin_pair for r in rows])))
         if top is not None:
-            figs.append(figure_top_speed(sched, top))
+            figs.append(figure_top_speed(sched, top, None if bad is None else
+                                         [replace(f, speed_m_s=abs(f.speed_m_s)) for f in bad], _LAYOUT_ENABLE))
     rec = figure_layout_recovery(res)
     if rec is not None:
         figs.append(rec)

@@ -132,10 +132,13 @@ class FaultHook:
         Fault kind per run (:data:`FAULTS` values; "" none; "open" no assist).
     values : ndarray (runs,)
     seed : int
+    traction_limit_N_m : float, optional
+        The drive wheels' traction limit ``mu N r`` (N m per wheel; default the short form's,
+        :func:`~stability.assist.driving.traction_limit`): a slipping wheel passes half of it.
     """
 
     def __init__(self, tables: FirmwareTables, sched: Schedule, speeds: np.ndarray, kinds: Sequence[str],
-                 values: np.ndarray, seed: int = 0) -> None:
+                 values: np.ndarray, seed: int = 0, traction_limit_N_m: float | None = None) -> None:
         R = len(speeds)
         self.fc = FirmwareController(tables, runs=R)
         self.T = tables.sample_time
@@ -144,10 +147,10 @@ class FaultHook:
         self.values = np.asarray(values, dtype=float)
         self.k = -1
         self.kf = int(round(FAULT_TIME / self.T))
-        # each run's noise from its own stream (seed, speed in mm/s, fault kind and value): a run's result does
-        # not depend on the other runs of its batch
+        # each run's noise from its own stream (seed, speed in mm/s modulo 2^32 (a reverse speed's stream is not
+        # the forward one's), fault kind and value): a run's result does not depend on the other runs of its batch
         nk = int(math.ceil((FAULT_TIME + WINDOW) / self.T)) + 2
-        self.noise = np.array([np.random.default_rng([seed, int(round(1e3 * u)), sum(map(ord, kd)),
+        self.noise = np.array([np.random.default_rng([seed, int(round(1e3 * u)) % 2 ** 32, sum(map(ord, kd)),
                                                       int(round(1e3 * v))]).standard_normal(nk)
                                for u, kd, v in zip(self.speeds, kinds, self.values, strict=True)])
         self.sigma = sched.gyro.sample_std
@@ -155,7 +158,7 @@ class FaultHook:
         self.track = tables.track
         self.d1 = sched.chair.d1
         self.mz_per_tau = float(sched.drive.yaw_moment(sched.chair, 1.0))
-        self.slip_cap = traction_limit(sched) * 0.5
+        self.slip_cap = (traction_limit(sched) if traction_limit_N_m is None else float(traction_limit_N_m)) * 0.5
         self.lag = sched.drive.motor_time_constant
         self.decay = math.exp(-self.T / self.lag) if self.lag > 0 else 0.0
         self.u = np.zeros(R)          # held yaw moment
@@ -226,10 +229,15 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
                progress: bool = False, window: float = WINDOW) -> list[FaultRow]:
     """Each fault at each speed and slope, with the unassisted chair as reference (one batch per slope).
 
+    A layout's schedule (:class:`stability.assist.layout.LayoutSchedule`, signed speeds) runs in the layout
+    simulator (:func:`stability.simulate.layout_batch.simulate_layout_batch`: the same hook at every step, the casters
+    starting trailing for the direction, :func:`stability.study.layout_impulse.trailing_angles`), the slipping
+    wheel capped at half the layout's traction limit (:func:`stability.assist.layout_checks.layout_traction_limit`).
+
     Parameters
     ----------
     sched : Schedule
-        Gyro schedule.
+        Gyro schedule (the short form's or a layout's).
     speeds : sequence of float, optional
         m/s; default the schedule's grid.
     slopes : sequence of float
@@ -254,16 +262,26 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
             raise ValueError(f"fault={n!r} is invalid; valid: {', '.join(FAULTS)}")
     U = np.asarray(sched.speeds if speeds is None else speeds, dtype=float)
     tables = firmware_tables(sched, command_filter_s=COMMAND_FILTER)
+    layout = getattr(sched, "layout", None)
+    traction: float | None = None
+    if layout is not None:
+        from stability.assist.layout_checks import layout_traction_limit
+
+        traction = layout_traction_limit(layout, sched.drive, bool(U[0] < 0))
     rows: list[FaultRow] = []
     cases = [("open", "open", 0.0), *((n, *FAULTS[n]) for n in names)]
     for phi in slopes:
         run_speeds = np.repeat(U, len(cases))
         kinds = [c[1] for _ in U for c in cases]
         vals = np.array([c[2] for _ in U for c in cases])
-        hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed)
-        res = simulate_batch(sched.chair, run_speeds, RunSpec(horizon=FAULT_TIME + window, dt=dt,
-                                                              stop_on_warnings=False, cross_slope_deg=float(phi),
-                                                              model="exact"), yaw_moment=hook, progress=progress)
+        spec = RunSpec(horizon=FAULT_TIME + window, dt=dt, stop_on_warnings=False, cross_slope_deg=float(phi),
+                       model="exact")
+        if layout is None:
+            hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed)
+            res = simulate_batch(sched.chair, run_speeds, spec, yaw_moment=hook, progress=progress)
+        else:
+            hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed, traction_limit_N_m=traction)
+            res = _layout_batch(layout, run_speeds, spec, hook)
         for i, s in enumerate(U):
             base = i * len(cases)
             he0, _, dr0 = _measures(res[base], window)
@@ -276,6 +294,19 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
                                      (dk - hook.kf) * hook.T if det else None, he, pr, dr, he0, dr0,
                                      "safe" if ok else "unsafe"))
     return rows
+
+
+def _layout_batch(layout: Any, speeds: np.ndarray, spec: RunSpec, hook: FaultHook) -> list[Any]:
+    """The batch in the layout simulator, each run as :func:`_measures` reads it."""
+    from types import SimpleNamespace
+
+    from stability.simulate.layout_batch import simulate_layout_batch
+    from stability.study.layout_impulse import trailing_angles
+
+    runs = simulate_layout_batch(layout, [float(u) for u in speeds], spec, yaw_moment=hook,
+                                 caster_angles_deg=[trailing_angles(layout, float(u)) for u in speeds])
+    return [SimpleNamespace(t=r.t_s, heading=r.heading_rad, x=r.x_m, y=r.y_m, yaw_rate=r.yaw_rate_rad_s,
+                            stopped_by_warnings=r.ended != "horizon") for r in runs]
 
 
 def format_faults(rows: Sequence[FaultRow]) -> str:

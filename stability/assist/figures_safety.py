@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -17,7 +17,8 @@ from stability.plotting.style import colour
 __all__ = ["figure_top_speed"]
 
 
-def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] | None = None) -> Figure:
+def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] | None = None,
+                     enable: Mapping[str, str] = ENABLE) -> Figure:
     """Constraint ratios against speed with the safe top speed, and (with faults) the worst fault response per speed.
 
     Parameters
@@ -26,6 +27,9 @@ def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] |
     ts : TopSpeed
     faults : sequence of FaultRow, optional
         ``--faults``'s runs (None: one panel).
+    enable : mapping
+        Constraint -> how to check it, for the caption's "not checked" (default the short form's
+        :data:`~stability.assist.top_speed.ENABLE`).
 
     Returns
     -------
@@ -38,7 +42,7 @@ def figure_top_speed(sched: Schedule, ts: TopSpeed, faults: Sequence[FaultRow] |
     lim = ts.limits()
     why = "; ".join(x.describe() for x in lim) if lim else "every checked constraint holds on the design grid"
     caption = (f"{why}. A constraint holds above ratio 1; the top speed is the highest design speed where all hold "
-               "there and below" + (". Not checked: " + ", ".join(ENABLE[k] for k in ts.not_checked)
+               "there and below" + (". Not checked: " + ", ".join(enable[k] for k in ts.not_checked)
                                     if ts.not_checked else ""))
     if faults is not None:
         caption += (". Right: worst single sensor fault (injected at 1 s, straight command) per speed, against the "

@@ -9,7 +9,9 @@ wheels (:func:`stability.study.layout_slope.drive_wheels`) and ``r`` their radiu
 (:class:`.weights.Weights`), the gyro design's estimator the same Kalman filter on the chair's states, the margins
 those of the continuous and the sampled loop (:func:`.digital.margin_pair`), and the safe top speed the highest
 design speed at which the sampled loop's margins hold there and below (:func:`.top_speed.top_speed` with the
-margins: the torque and fault constraints need the short form's simulations and are named as not checked).
+margins and, with ``faults``, every single sensor fault safe: :func:`.faults.fault_runs` on the direction's
+:func:`layout_schedule`, the firmware with its sensor monitor stepped at every step of the layout simulator; the
+torque constraint is named as not checked).
 Forward and reverse each have their own grid and top speed.  With ``check`` the closed loop is simulated with the
 layout simulator in each direction (:mod:`.layout_checks`: recovery after a push, the torque it takes, the decay
 against the linear prediction).  See ``docs/assist.md``.
@@ -292,6 +294,9 @@ class LayoutAssist:
         Drive-wheel lever and radius, m.
     forward_checks, reverse_checks : stability.assist.layout_checks.LayoutChecks or None
         The nonlinear checks of each direction (None: not asked or no rows).
+    forward_faults, reverse_faults : tuple of stability.assist.faults.FaultRow or None
+        The single sensor faults of each direction at every design speed (signed), counted in its safe top speed
+        (None: not asked or no rows).
     """
 
     layout: str
@@ -304,6 +309,8 @@ class LayoutAssist:
     wheel_radius_m: float
     forward_checks: Any = None
     reverse_checks: Any = None
+    forward_faults: Any = None
+    reverse_faults: Any = None
 
     def to_mapping(self) -> dict:
         """JSON-ready dict."""
@@ -315,11 +322,14 @@ class LayoutAssist:
                 "reverse": [r.to_mapping() for r in self.reverse], "forward_top_speed": top(self.forward_top),
                 "reverse_top_speed": top(self.reverse_top),
                 "forward_checks": None if self.forward_checks is None else self.forward_checks.to_mapping(),
-                "reverse_checks": None if self.reverse_checks is None else self.reverse_checks.to_mapping()}
+                "reverse_checks": None if self.reverse_checks is None else self.reverse_checks.to_mapping(),
+                "forward_faults": None if self.forward_faults is None else [f.to_dict() for f in self.forward_faults],
+                "reverse_faults": None if self.reverse_faults is None else [f.to_dict() for f in self.reverse_faults]}
 
 
 def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
-          estimator: EstimatorWeights) -> tuple[tuple[LayoutAssistRow, ...], TopSpeed | None]:
+          estimator: EstimatorWeights, faults: Sequence[Any] | None = None
+          ) -> tuple[tuple[LayoutAssistRow, ...], TopSpeed | None]:
     rows = []
     for s in speeds:
         d = layout_design(layout, s, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
@@ -330,13 +340,14 @@ def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, 
     if not rows:
         return (), None
     ts = top_speed(_Grid(gyro, drive), [_MarginRow(abs(r.speed_m_s), r.margin_pair) for r in rows],  # type: ignore[arg-type]
-                   None, None)
+                   None, None if faults is None else [replace(f, speed_m_s=abs(f.speed_m_s)) for f in faults])
     return tuple(rows), ts
 
 
 def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *, reverse: bool = False,
                   weights: Weights = DEFAULT_WEIGHTS, drive: DriveTrain | None = None, gyro: GyroSensor = DEFAULT_GYRO,
-                  estimator: EstimatorWeights = DEFAULT_ESTIMATOR, check: bool = False) -> LayoutAssist:
+                  estimator: EstimatorWeights = DEFAULT_ESTIMATOR, check: bool = False, faults: bool = False,
+                  seed: int = 0) -> LayoutAssist:
     """Designs, margins and the safe top speed of a layout's assist, forward and (optionally) in reverse.
 
     Parameters
@@ -353,6 +364,12 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
     check : bool
         Also the nonlinear checks of each direction with the layout simulator
         (:func:`stability.assist.layout_checks.layout_checks` at :func:`~stability.assist.layout_checks.check_speeds`).
+    faults : bool
+        Also the single sensor faults at every design speed of each direction on level ground and the cross slope
+        (:func:`stability.assist.faults.fault_runs` on the direction's :func:`layout_schedule`, in the layout
+        simulator), counted in the direction's safe top speed; the gyro design only.
+    seed : int
+        Of the fault runs' gyro noise.
 
     Returns
     -------
@@ -362,11 +379,22 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
     if U.size == 0 or not np.all(np.isfinite(U)) or np.any(np.abs(U) < 0.01) or np.any(np.abs(U) > 20.0):
         raise ValueError(f"speeds={list(map(float, U))!r} is invalid; valid range: at least one speed, each "
                          "0.01 <= |U| <= 20 m/s (negative: reverse)")
+    if faults and kind != "gyro":
+        raise ValueError(f"faults=True with design={kind!r} is invalid; valid: design 'gyro' (the faults are those of "
+                         "the gyro and wheel-speed sensors the gyro design's firmware reads)")
     drive = drive or DriveTrain()
     fwd = sorted(set(float(u) for u in U if u > 0))
     rev = sorted(set(float(u) for u in U if u < 0) | ({-u for u in fwd} if reverse else set()), key=abs)
-    f_rows, f_top = _rows(layout, fwd, kind, weights, drive, gyro, estimator)
-    r_rows, r_top = _rows(layout, rev, kind, weights, drive, gyro, estimator)
+    bad: list[Any] = [None, None]
+    if faults:
+        from stability.assist.faults import fault_runs
+
+        for i, grid in enumerate((fwd, rev)):
+            if grid:
+                bad[i] = tuple(fault_runs(layout_schedule(layout, grid, kind, weights=weights, drive=drive, gyro=gyro,
+                                                          estimator=estimator), seed=seed))
+    f_rows, f_top = _rows(layout, fwd, kind, weights, drive, gyro, estimator, bad[0])
+    r_rows, r_top = _rows(layout, rev, kind, weights, drive, gyro, estimator, bad[1])
     checks: list[Any] = [None, None]
     if check:
         from stability.assist.layout_checks import check_speeds, layout_checks
@@ -377,7 +405,7 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
                            for u in check_speeds(grid)]
                 checks[i] = layout_checks(layout, designs, drive)
     return LayoutAssist(layout.name, kind, f_rows, r_rows, f_top, r_top, drive_lever(layout),
-                        float(drive.wheel_radius), checks[0], checks[1])
+                        float(drive.wheel_radius), checks[0], checks[1], bad[0], bad[1])
 
 
 def format_layout_assist(a: LayoutAssist) -> str:
@@ -401,17 +429,22 @@ def format_layout_assist(a: LayoutAssist) -> str:
     def fmt(x: Any) -> str:
         return "inf" if x == "inf" or (isinstance(x, float) and math.isinf(x)) else f"{float(x):.3g}"
 
-    for rows, top, what, chk in ((a.forward, a.forward_top, "forward", a.forward_checks),
-                                 (a.reverse, a.reverse_top, "reverse", a.reverse_checks)):
+    from stability.assist.faults import format_faults
+
+    for rows, top, what, chk, bad in ((a.forward, a.forward_top, "forward", a.forward_checks, a.forward_faults),
+                                      (a.reverse, a.reverse_top, "reverse", a.reverse_checks, a.reverse_faults)):
         for r in rows:
             d = r.margin_pair.to_dict()["discrete"]
             lines.append(f"{r.speed_m_s:7.2f} {r.open_loop_growth_1_s:9.3f} {r.closed_loop_growth_1_s:10.3f} "
                          f"{r.wheel_torque_gains['psi']:14.4g} {r.wheel_torque_gains['r']:14.4g} "
                          f"{fmt(d['gain_db']):>8s} {fmt(d['phase_deg']):>9s} {fmt(d['delay_ms']):>9s}")
+        if bad is not None:
+            lines.append(f"{what}, " + format_faults(bad))
         if top is not None:
             words = top.sentence().split(" (not checked:")[0]
-            lines.append(f"{what}: {words} (from the margins; the sensor faults are not checked for a layout, the "
-                         "push torque below is not counted in it)")
+            scope = ("the margins and the single sensor faults" if bad is not None else
+                     "the margins; the single sensor faults not checked: add --faults")
+            lines.append(f"{what}: {words} (from {scope}; the push torque below is not counted in it)")
         if chk is not None:
             lines.append(f"{what}, nonlinear checks (layout simulator, the sampled controller compiled in, torque "
                          "limit, motor lag, noise-free; no --no-check):")

@@ -358,9 +358,10 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
     """Smallest per-wheel torque limit with which the design still recovers on the layout simulator (N m).
 
     The short form's :func:`stability.assist.recovery.minimum_torque_limit` for a layout: the design's gains are
-    kept, only the controller's saturation changes; "recovers": the heading after the push settles
-    (:func:`stability.assist.recovery.settle_time`) and stays within ``max_heading_deg``; noise-free; bisection
-    (:func:`stability.assist.recovery.bisect_limit`) to ``tol`` between 0 and ``drive.torque_limit``.
+    kept, only the controller's saturation changes; "recovers" (:func:`stability.assist.settling.recovery_rule`):
+    the heading after the push settles about its final value (:func:`stability.assist.recovery.settle_time`) and
+    stays within ``max_heading_deg``; noise-free; bisection (:func:`stability.assist.recovery.bisect_limit`) to
+    ``tol`` between 0 (the chair unassisted) and ``drive.torque_limit``.
 
     Parameters
     ----------
@@ -377,16 +378,15 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
     Returns
     -------
     float
-        N m per wheel; ``inf`` if even the full limit does not recover.
+        N m per wheel; ``inf`` if even the full limit does not recover, 0 if the chair recovers unassisted.
     """
     from stability.assist.recovery import STRONG_FORCE, bisect_limit, settle_time
 
     push = STRONG_FORCE if impulse_force is None else float(impulse_force)
 
     def ok(limit: float) -> bool:
-        lim = dataclasses.replace(drive, torque_limit=limit)
-        run = _run(layout, float(d.speed), push, duration, layout_controller(d, layout, lim),
-                   drive.motor_time_constant)
+        ctl = None if limit == 0 else layout_controller(d, layout, dataclasses.replace(drive, torque_limit=limit))
+        run = _run(layout, float(d.speed), push, duration, ctl, drive.motor_time_constant)
         head = np.degrees(np.asarray(run.heading_rad))
         return settle_time(np.asarray(run.t_s), head) is not None and float(np.max(np.abs(head))) <= max_heading_deg
 

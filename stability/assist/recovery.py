@@ -14,32 +14,21 @@ from stability.assist._format import json_float
 from stability.assist.controller import DigitalController
 from stability.assist.design import closed_loop_poles
 from stability.assist.schedule import Schedule
+from stability.assist.settling import SETTLE_FLOOR_DEG, SETTLE_FRACTION, settle_time, settled_value
 from stability.chair import Chair
 from stability.runtime.checks import check_speed
 from stability.settings.reference import HORIZON, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.simulate import simulate
 from stability.simulate.signals import envelope_rate
-from stability.simulate.signals import settle_time as _settle_time
 from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
            "recovery_runs", "recovery_table", "minimum_torque_limit", "bisect_limit", "DecayAgreement",
-           "decay_agreement",
-           "decay_window", "fit_decay_rate"]
+           "decay_agreement", "decay_window", "fit_decay_rate"]
 
 #: The ten-times push of the strong-disturbance check (N): 400 N for 0.1 s.
 STRONG_FORCE = 10.0 * THESIS_PUSH.force
-
-#: Settling: the disturbance's effect on the heading stays within this fraction of its peak ...
-SETTLE_FRACTION = 0.05
-#: ... or within this many degrees, whichever is larger: the dead band Coulomb pin friction leaves.  With the
-#: stick-slip law the casters stop wherever the holding moment falls within the friction limit, and the closed
-#: loop's heading then wanders inside a band of a tenth of a degree (power-fwd at 3 m/s after a 40 N s push:
-#: 0.05-0.09 deg from 1 s on, gyro noise included); program WCHAIR's kinetic law, which switches the pin
-#: moment every step and so averages it away, hid that band.
-SETTLE_FLOOR_DEG = 0.1
-
 
 @dataclass(frozen=True, eq=False)
 class RecoveryRun:
@@ -69,8 +58,12 @@ class RecoveryRun:
         Share of the controller samples at the torque limit.
     settle_time_s : float or None
         Time after which the disturbance response stays within the larger of
-        5 % of its peak and 0.01 deg; None if it never does before the end
-        of the run (a diverging open-loop chair).
+        5 % of its peak departure from its final value and 0.1 deg of that
+        final value (:func:`settle_time`); None if it never does before the
+        end of the run or still departs in its last fifth (a diverging
+        open-loop chair, a drifting heading).
+    settled_response_deg : float or None
+        The final value it settles about (deg; None when it does not settle).
     final_drift_deg_s : float
         Slope of the heading over the last 20 % of the run (deg/s): in
         closed loop the drift a gyro bias imposes (minus the bias).
@@ -105,6 +98,7 @@ class RecoveryRun:
     stopped_by_warnings: bool
     result: Any = field(repr=False)
     response: Any = field(repr=False, default=None)
+    settled_response_deg: float | None = None
 
     def row(self) -> dict[str, Any]:
         """JSON-ready summary (the fields without ``result`` and ``response``)."""
@@ -113,7 +107,8 @@ class RecoveryRun:
             "controlled": self.controlled, "peak_heading_error_deg": self.peak_heading_error_deg,
             "peak_response_deg": self.peak_response_deg,
             "peak_torque_N_m": self.peak_torque_N_m, "saturated_fraction": self.saturated_fraction,
-            "settle_time_s": self.settle_time_s, "final_drift_deg_s": json_float(self.final_drift_deg_s),
+            "settle_time_s": self.settle_time_s, "settled_response_deg": self.settled_response_deg,
+            "final_drift_deg_s": json_float(self.final_drift_deg_s),
             "max_yaw_rate_deg_s": self.max_yaw_rate_deg_s, "time_to_10deg_s": self.time_to_10deg_s,
             "caster_out_of_range_steps": self.caster_out_of_range, "stopped_by_warnings": self.stopped_by_warnings,
         }
@@ -141,24 +136,6 @@ class RecoveryPair(NamedTuple):
         if self.open is not None:
             row["open"] = self.open.row()
         return row
-
-
-def settle_time(t: np.ndarray, response_deg: np.ndarray) -> float | None:
-    """First time after which ``|response|`` stays within max(5 % of its peak, 0.01 deg).
-
-    Parameters
-    ----------
-    t : ndarray
-        Time (s).
-    response_deg : ndarray
-        Disturbance response (deg).
-
-    Returns
-    -------
-    float or None
-        Seconds; None if it never settles.
-    """
-    return _settle_time(t, response_deg, SETTLE_FRACTION, SETTLE_FLOOR_DEG)
 
 
 def _simulate(chair: Chair, speed: float, controller: DigitalController | None, impulse_force: float,
@@ -229,6 +206,7 @@ def recovery(chair: Chair, speed: float, controller: DigitalController | None, *
         controlled=controller is not None, peak_heading_error_deg=float(np.max(np.abs(head))),
         peak_response_deg=float(np.max(np.abs(resp))), peak_torque_N_m=peak_tau, saturated_fraction=sat,
         settle_time_s=settle_time(t[:len(resp)], resp), final_drift_deg_s=drift,
+        settled_response_deg=settled_value(t[:len(resp)], resp),
         max_yaw_rate_deg_s=float(np.degrees(np.max(np.abs(res.yaw_rate)))),
         time_to_10deg_s=float(t[big[0]]) if big.size else None, caster_out_of_range=oor,
         stopped_by_warnings=bool(res.stopped_by_warnings), result=res, response=resp,
@@ -294,8 +272,9 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
     The thesis's question (chapter 9, "Future work"): what motor torque is
     needed to stabilise the chair against a disturbance.  The design (its
     gains) is kept; only the saturation of the digital controller changes.
-    "Recovers": the disturbance response settles (:func:`settle_time`)
-    and the heading stays within ``max_heading_deg``.  Noise-free sensors
+    "Recovers" (:func:`stability.assist.settling.recovery_rule`): the disturbance response settles
+    about its final value (:func:`settle_time`) and the heading stays
+    within ``max_heading_deg``; 0 when the chair recovers unassisted.  Noise-free sensors
     (the bias and noise would blur the threshold); bisection to ``tol``
     N m between 0 and the drive train's limit.
 
@@ -318,8 +297,8 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
     d = sched.at(speed)
 
     def ok(limit: float) -> bool:
-        drive = replace(sched.drive, torque_limit=limit)
-        ctl = DigitalController(d, sched.chair, drive, gyro=sched.gyro, noise=False)
+        ctl = None if limit == 0 else DigitalController(d, sched.chair, replace(sched.drive, torque_limit=limit),
+                                                        gyro=sched.gyro, noise=False)
         run = recovery(sched.chair, speed, ctl, impulse_force=impulse_force, duration=duration, model=sched.model)
         return run.settle_time_s is not None and run.peak_heading_error_deg <= max_heading_deg
 
@@ -327,12 +306,13 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
 
 
 def bisect_limit(ok: Callable[[float], bool], hi: float, tol: float) -> float:
-    """The smallest limit in ``(0, hi]`` for which ``ok`` holds, by bisection to ``tol`` (``ok`` taken monotone).
+    """The smallest limit in ``[0, hi]`` for which ``ok`` holds, by bisection to ``tol`` (``ok`` taken monotone).
 
     Parameters
     ----------
     ok : callable
-        ``ok(limit)``: does the controller with this torque limit (N m per wheel) recover?
+        ``ok(limit)``: does the controller with this torque limit (N m per wheel; 0: the chair unassisted)
+        recover?
     hi : float
         The drive train's limit, N m per wheel.
     tol : float
@@ -341,10 +321,12 @@ def bisect_limit(ok: Callable[[float], bool], hi: float, tol: float) -> float:
     Returns
     -------
     float
-        N m per wheel (the upper end of the last bracket); ``inf`` if ``ok(hi)`` fails.
+        N m per wheel (the upper end of the last bracket); ``inf`` if ``ok(hi)`` fails, 0 if ``ok(0)`` holds.
     """
     if not ok(hi):
         return math.inf
+    if ok(0.0):
+        return 0.0
     lo = 0.0
     while hi - lo > tol:
         mid = 0.5 * (lo + hi)

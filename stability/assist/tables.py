@@ -17,6 +17,7 @@ from stability.assist.driving import HOLD_TOLERANCE, SlopeHold, tracking_step
 from stability.assist.plant import plant, reversed_chair
 from stability.assist.recovery import RecoveryPair, recovery
 from stability.assist.schedule import Schedule
+from stability.assist.settling import recovery_rule
 from stability.assist.tracking import TrackingMetrics
 from stability.settings.reference import HORIZON, THESIS_PUSH
 
@@ -61,6 +62,9 @@ class GainRow:
     peak_torque_N_m, peak_heading_error_deg, settle_time_s, peak_response_deg, saturated_fraction,
     final_drift_deg_s : float or None
         Nonlinear closed loop after the push (None when not checked).
+    settled_response_deg : float or None
+        The final value the response settles about (:func:`stability.assist.settling.settled_value`; None when
+        not checked or not settled).
     checked : bool
         The nonlinear check was run.
     """
@@ -83,6 +87,7 @@ class GainRow:
     saturated_fraction: float | None = None
     final_drift_deg_s: float | None = None
     checked: bool = False
+    settled_response_deg: float | None = None
 
     @property
     def closed_loop_max_real_1_s(self) -> float:
@@ -118,7 +123,8 @@ class GainRow:
         }
         if self.checked:
             row.update(peak_response_deg=self.peak_response_deg, saturated_fraction=self.saturated_fraction,
-                       final_drift_deg_s=json_float(self.final_drift_deg_s))
+                       final_drift_deg_s=json_float(self.final_drift_deg_s),
+                       settled_response_deg=self.settled_response_deg)
         return row
 
 
@@ -154,7 +160,7 @@ def gain_table(sched: Schedule, *, check: bool = True, impulse_force: float = TH
             kw = dict(peak_torque_N_m=run.peak_torque_N_m, peak_heading_error_deg=run.peak_heading_error_deg,
                       peak_response_deg=run.peak_response_deg, settle_time_s=run.settle_time_s,
                       saturated_fraction=run.saturated_fraction, final_drift_deg_s=run.final_drift_deg_s,
-                      checked=True, tracking=tracking_step(sched, s))
+                      settled_response_deg=run.settled_response_deg, checked=True, tracking=tracking_step(sched, s))
         rows.append(GainRow(
             speed_m_s=float(s), design=sched.kind, gain_states=d.plant.states, gains=tuple(float(k) for k in d.K[0]),
             wheel_torque_gains=tuple(float(sched.drive.wheel_torque(sched.chair, k)) for k in d.K[0]),
@@ -272,16 +278,18 @@ def format_recovery(runs: Sequence[RecoveryPair]) -> str:
     str
     """
     lines = [f"{'U m/s':>6s} {'impulse':>8s} {'psi pk CL':>10s} {'resp pk':>8s} {'psi pk OL':>10s} {'tau pk':>7s} "
-             f"{'sat':>6s} {'settle s':>9s} {'drift':>7s} {'OL 10deg s':>10s}",
+             f"{'sat':>6s} {'settle s':>9s} {'about':>7s} {'drift':>7s} {'OL 10deg s':>10s}",
              f"{'':>6s} {'':>8s} {'deg':>10s} {'deg':>8s} {'deg':>10s} {'N m':>7s} {'':>6s} {'':>9s} "
-             f"{'deg/s':>7s} {'':>10s}"]
+             f"{'deg':>7s} {'deg/s':>7s} {'':>10s}"]
     for cl, ol in runs:
         lines.append(
             f"{cl.speed:6.2f} {cl.impulse_force:7.0f}N {cl.peak_heading_error_deg:10.2f} "
             f"{cl.peak_response_deg:8.3f} {fmt(ol.peak_heading_error_deg if ol else None, '.1f'):>10s} "
             f"{cl.peak_torque_N_m:7.1f} {cl.saturated_fraction:6.1%} "
-            f"{fmt(cl.settle_time_s, '.2f', 'no'):>9s} {fmt(json_float(cl.final_drift_deg_s), '.3f'):>7s} "
+            f"{fmt(cl.settle_time_s, '.2f', 'no'):>9s} {fmt(cl.settled_response_deg, '+.3f', '-'):>7s} "
+            f"{fmt(json_float(cl.final_drift_deg_s), '.3f'):>7s} "
             f"{fmt(ol.time_to_10deg_s if ol else None, '.2f', 'never'):>10s}")
+    lines.append(f"settle s: when the disturbance response {recovery_rule(None)} ('about')")
     return "\n".join(lines)
 
 

@@ -91,7 +91,17 @@ def linear_rows(layouts: Sequence[Layout], speeds: Sequence[float] | np.ndarray)
 
 
 def stable_up_to_rows(layouts: Sequence[Layout]) -> np.ndarray:
-    """:func:`stable_up_to` of each layout, forward then in reverse, m/s; shape ``(layouts, 2)``."""
+    """:func:`stable_up_to` of each layout, forward then in reverse.
+
+    Parameters
+    ----------
+    layouts : sequence of Layout
+
+    Returns
+    -------
+    ndarray
+        Shape ``(layouts, 2)``, m/s (``inf``: stable up to the searched range's end).
+    """
     return np.array([[stable_up_to(lay), stable_up_to(lay, reverse=True)] for lay in layouts]).reshape(-1, 2)
 
 

@@ -54,7 +54,7 @@ if TYPE_CHECKING:
     from stability.linear.intervals import LinearIntervals
     from stability.study.uncertain import NonlinearIntervals
 
-__all__ = ["main", "build_parser", "document", "layout_summary", "layout_document"]
+__all__ = ["main", "build_parser", "document", "layout_summary", "layout_document", "layout_figure"]
 
 #: Largest --samples (bounded work: about 1 ms per drawn chair); equals stability.linear.intervals.MAX_SAMPLES.
 MAX_SAMPLES = 20_000
@@ -285,25 +285,123 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _run_layout(args: argparse.Namespace) -> int:
-    """Any wheel layout, forward and in reverse: the layout's linear model (:mod:`stability.layout`)."""
+    """Any wheel layout, forward and in reverse: the layout's linear model (:mod:`stability.layout`), with the driver's
+    limits both ways (:func:`stability.driver.layout.layout_human_limit`), the intervals over an uncertainty file's
+    layout fields (:func:`stability.report.layout_uncertainty.layout_uncertainty`) and the figure of ``-o``
+    (:func:`layout_figure`)."""
+    from stability.layout.linear import SEARCH_SPEEDS_M_S
     from stability.layout.text import layout_text
 
+    if args.model != "exact":
+        raise ValueError(f"--model {args.model} is invalid for a layout or reverse speeds; valid values: exact (the "
+                         "layout's equations are the exact model's)")
+    if args.nonlinear:
+        raise ValueError("--nonlinear is not available for a layout or reverse speeds: the critical impulse and the "
+                         "equal-instability speed are a simulator search per draw; valid: drop --nonlinear (python -m "
+                         "stability.study critical-impulse --chair LAYOUT --interval gives their range)")
+    if not (0.05 < args.max_speed <= 100.0):
+        raise ValueError(f"--max-speed {args.max_speed!r} is invalid for a layout; valid range: 0.05 < value <= 100 "
+                         "m/s (the figure draws up to 20 m/s)")
     layout = load_layout(args.chair, args.set)
-    for name in ("uncertainty", "output", "reaction_time"):
-        if getattr(args, name, None):
-            raise ValueError(f"--{name.replace('_', '-')} is not available for a layout or reverse speeds yet; "
-                             "valid: the short-form chair at positive speeds")
     try:
         speeds = [float(x) for x in args.speeds.split(",")]
     except ValueError:
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout; valid: a list of signed speeds, m/s "
                          "(negative: reverse), 0.01 <= |U| <= 20") from None
+    unc = None
+    if args.uncertainty:
+        from stability.advise.layout_axes import load_layout_uncertainty
+
+        table = speeds if any(u < 0 for u in speeds) else [-u for u in reversed(speeds)] + speeds
+        check_eigen_work("--samples", args.samples, len(table) + 2 * (len(SEARCH_SPEEDS_M_S) + 50))
+        unc = load_layout_uncertainty(args.uncertainty, layout)      # a bad file is refused before any work
+    driver = driver_from_args(args)
     summary = layout_summary(layout, speeds)
+    human = None
+    if driver is not None:
+        from stability.driver.layout import layout_human_limit
+
+        human = tuple(layout_human_limit(layout, driver, reverse) for reverse in (False, True))
+    intervals = None
+    if unc is not None:
+        from stability.report.layout_uncertainty import layout_uncertainty
+
+        intervals = layout_uncertainty(layout, unc, [float(u) for u in summary.speeds_m_s], samples=args.samples,
+                                       seed=args.seed, critical=True, level=args.level)
+    if args.output:
+        from stability.runtime.files import save_figure
+
+        with output_files({"-o": args.output}) as tmp:
+            save_figure(layout_figure(layout, summary, min(args.max_speed, 20.0)), tmp["-o"],
+                        title=f"stability critical_speed: {layout.name}, layout model")
+        print(f"wrote {args.output}", file=sys.stderr)
     if args.json or args.json_file:
-        emit_json(layout_document(layout, summary, speeds), args)
+        doc = layout_document(layout, summary, speeds)
+        doc["options"].update({"uncertainty": args.uncertainty, "samples": args.samples if unc else None,
+                               "seed": args.seed if unc else None, "level": args.level if unc else None,
+                               "reaction_time_s": None if driver is None else driver.reaction_time_s})
+        doc["human_limit"] = None if human is None or driver is None else {
+            **human[0].to_mapping(), "driver": driver.to_mapping(), "reverse": human[1].to_mapping()}
+        doc["uncertainty"] = None if intervals is None else intervals.to_mapping()
+        emit_json(doc, args)
     if not args.json:
         print(layout_text(layout, summary))
+        if intervals is not None:
+            print("\nParameter uncertainty: " + "\n".join(intervals.lines()))
+        if human is not None and driver is not None:
+            from stability.driver.text import layout_human_text
+
+            print(layout_human_text(human[0], human[1], driver))
     return 0
+
+
+def layout_figure(layout: Any, summary: Any, max_speed: float = 20.0, n: int = 400) -> Any:
+    """The figure of ``-o`` for a wheel layout: real and imaginary parts of the eigenvalues against the speed's size,
+    forwards and in reverse.
+
+    Drawn by :func:`stability.plotting.eigenvalues_vs_speed` from
+    :func:`stability.rootlocus.speed.layout_speed_locus` (``n`` speeds from 0.05 m/s to ``max_speed`` each way),
+    with a caption from the summary's critical speeds.
+
+    Parameters
+    ----------
+    layout : stability.layout.Layout
+    summary : stability.layout.LayoutSummary
+        :func:`layout_summary`'s.
+    max_speed : float
+        Largest speed drawn, m/s (at most 20).
+    n : int
+        Speeds per locus.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from stability import plotting as P
+    from stability.layout.text import critical_words
+    from stability.rootlocus.speed import layout_speed_locus
+
+    fig, axes = P.page(f"{layout.name} | layout model | eigenvalues against speed, forwards and in reverse "
+                       "(shaded: unstable)",
+                       f"linear model of the wheel layout ({layout.shape[0]} fixed wheels, {layout.shape[1]} casters), "
+                       f"free frictionless casters, straight running; 0.05 to {max_speed:g} m/s each way",
+                       nrows=2, ncols=2, size=(12.0, 8.0))
+    for j, reverse in enumerate((False, True)):
+        locus = layout_speed_locus(layout, reverse=reverse, max_speed=max_speed, n=n)
+        way = ("in reverse (casters trailing at 180 deg)" if reverse else "forwards (casters trailing at 0 deg)")
+        P.eigenvalues_vs_speed(locus, [axes[0, j], axes[1, j]],
+                               title=f"free casters, {way}")
+        for ax in axes[:, j]:
+            ax.set_xlabel(f"{'reverse' if reverse else 'forward'} speed |U| (m/s)", fontsize=8.5)
+    text = ("What to conclude: " + critical_words(summary.forward_critical, "forwards") + "; "
+            + critical_words(summary.reverse_critical, "in reverse") + ". Where a real part is above zero (shaded) a "
+            "heading error grows by itself at that rate (1/s); Coulomb pin friction, which has no linearisation, can "
+            "hold the casters (python -m stability.study critical-impulse --chair "
+            f"{layout.name} for the nonlinear measure).")
+    lines = P.wrap_text(text, 175)
+    fig.text(0.5, 0.015, "\n".join(lines), ha="center", va="bottom", fontsize=8.5, fontweight="bold", color="0.1",
+             linespacing=1.4)
+    return P.finish(fig, top=0.86, bottom=0.1 + 0.026 * (len(lines) - 1), hspace=0.35)
 
 
 def layout_summary(layout: Any, speeds: Sequence[float]) -> Any:

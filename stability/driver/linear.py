@@ -17,6 +17,7 @@ Everything here is linear and frictionless (free casters): docs/driver.md says w
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from math import factorial
 
@@ -29,7 +30,8 @@ from stability.linear import input_matrices, state_matrices
 from stability.runtime.checks import check_model, check_speed
 
 __all__ = ["PADE_ORDER", "SPEED_RANGE_M_S", "pade", "closed_loop_matrix", "abscissa", "best_gains", "heading_plant",
-           "OperatorFit", "operator_fit", "divergence_rate", "HumanLimit", "human_limit", "rule_speed"]
+           "OperatorFit", "operator_fit", "divergence_rate", "HumanLimit", "human_limit", "rule_speed", "plant_limit",
+           "rule_crossing", "with_heading"]
 
 #: Order of the Pade approximant of the driver's delay (numerator and denominator degree).
 PADE_ORDER = 8
@@ -185,15 +187,30 @@ def heading_plant(chair: Chair, speed: float, model: str = "exact") -> tuple[np.
         States ``[v, r, eta, eta_dot, beta, beta_dot, psi]``; input the yaw moment (N m); outputs ``psi`` (rad)
         and ``r`` (rad/s).
     """
-    A6 = state_matrices(chair, speed, model)[0]
-    B6 = input_matrices(chair, speed, model)[0]
-    A = np.zeros((7, 7))
-    A[:6, :6] = A6
-    A[6, 1] = 1.0                                      # psi' = r
-    B = np.zeros((7, 1))
-    B[:6] = B6
-    C = np.zeros((2, 7))
-    C[0, 6] = 1.0
+    return with_heading(state_matrices(chair, speed, model)[0], input_matrices(chair, speed, model)[0])
+
+
+def with_heading(A0: np.ndarray, B0: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``x' = A0 x + B0 Mz`` with the heading ``psi`` appended (``psi' = r``).
+
+    Parameters
+    ----------
+    A0, B0 : ndarray
+        ``(n, n)`` states ``[v, r, ...]`` (SI) and ``(n, 1)`` yaw-moment column (per N m).
+
+    Returns
+    -------
+    (A, B, C)
+        Order n+1; outputs ``psi`` (rad) and ``r`` (rad/s).
+    """
+    n = A0.shape[0]
+    A = np.zeros((n + 1, n + 1))
+    A[:n, :n] = A0
+    A[n, 1] = 1.0                                      # psi' = r
+    B = np.zeros((n + 1, 1))
+    B[:n] = np.reshape(B0, (n, 1))
+    C = np.zeros((2, n + 1))
+    C[0, n] = 1.0
     C[1, 1] = 1.0
     return A, B, C
 
@@ -377,19 +394,19 @@ def rule_speed(chair: Chair, reaction_time: float, model: str = "exact") -> tupl
         Speed (m/s) and side (``"="``; ``">"``: beyond :data:`SPEED_RANGE_M_S`; ``"<"``: below it).
     """
     check_model(model)
-    tau = Driver(reaction_time).reaction_time_s
-    return _first_crossing(lambda u: divergence_rate(chair, u, model) * tau - 1.0, _GRID)
+    return rule_crossing(lambda u: divergence_rate(chair, u, model), reaction_time)
 
 
 class _LoopAbscissa:
-    """``U -> best abscissa`` of the delayed loop, warm-started from the best gains at the last speed."""
+    """``U -> best abscissa`` of the delayed loop on ``plant(U)``, warm-started from the last speed's gains."""
 
-    def __init__(self, chair: Chair, tau: float, model: str, order: int) -> None:
-        self.chair, self.tau, self.model, self.order = chair, tau, model, order
+    def __init__(self, plant: Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]], tau: float,
+                 order: int) -> None:
+        self.plant, self.tau, self.order = plant, tau, order
         self.gains: np.ndarray | None = None
 
     def __call__(self, u: float) -> float:
-        A, B, C = heading_plant(self.chair, u, self.model)
+        A, B, C = self.plant(u)
         if self.gains is not None:          # the optimum moves smoothly with speed: start from the last one's
             g, a = best_gains(A, B, C, self.tau, self.order, start=self.gains)
             if a < 0:
@@ -402,6 +419,61 @@ class _LoopAbscissa:
                 g, a = g2, a2
         self.gains = g
         return a
+
+
+def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]],
+                rate: Callable[[float], float], tau: float, order: int = PADE_ORDER) -> HumanLimit:
+    """Both limits of a driver with delay ``tau`` on any linear heading plant (the short form's or a layout's).
+
+    Parameters
+    ----------
+    name, model : str
+    plant : callable
+        ``U -> (A, B, C)`` at a speed's size ``U`` (m/s), as :func:`heading_plant`'s.
+    rate : callable
+        ``U -> `` the divergence rate at ``U`` (1/s), as :func:`divergence_rate`'s.
+    tau : float
+        The driver's effective delay, s.
+    order : int
+        Pade order of the delay.
+
+    Returns
+    -------
+    HumanLimit
+        The loop limit's Pade error is estimated from the abscissa at the limit with twice the order, divided
+        by the abscissa's slope in speed there.
+    """
+    rule, rule_side = rule_crossing(rate, tau)
+    f = _LoopAbscissa(plant, tau, order)
+    speed, side = _first_crossing(f, _GRID)
+    err = 0.0
+    if side == "=":
+        A, B, C = plant(speed)
+        g, a = best_gains(A, B, C, tau, order)
+        a2 = best_gains(A, B, C, tau, 2 * order, start=g)[1]
+        h = 0.01
+        slope = (f(speed + h) - f(speed - h)) / (2 * h)
+        err = abs(a2 - a) / abs(slope) if slope else math.inf
+    return HumanLimit(name, model, tau, rule, rule_side, speed, side, order, float(err))
+
+
+def rule_crossing(rate: Callable[[float], float], reaction_time: float) -> tuple[float, str]:
+    """The divergence rule's speed of any divergence rate: where ``rate(U) * reaction_time`` reaches 1.
+
+    Parameters
+    ----------
+    rate : callable
+        ``U -> `` divergence rate (1/s) at the speed's size ``U`` (m/s).
+    reaction_time : float
+        s (:class:`Driver`'s range).
+
+    Returns
+    -------
+    (float, str)
+        Speed (m/s) and side, as :func:`rule_speed`'s.
+    """
+    tau = Driver(reaction_time).reaction_time_s
+    return _first_crossing(lambda u: rate(u) * tau - 1.0, _GRID)
 
 
 def human_limit(chair: Chair, driver: Driver | None = None, model: str = "exact",
@@ -420,21 +492,9 @@ def human_limit(chair: Chair, driver: Driver | None = None, model: str = "exact"
     Returns
     -------
     HumanLimit
-        The loop limit's Pade error is estimated from the abscissa at the limit with twice the order, divided
-        by the abscissa's slope in speed there.
+        :func:`plant_limit` on the chair's :func:`heading_plant` and :func:`divergence_rate`.
     """
     d = driver or Driver()
     check_model(model)
-    tau = d.reaction_time_s
-    rule, rule_side = rule_speed(chair, tau, model)
-    f = _LoopAbscissa(chair, tau, model, order)
-    speed, side = _first_crossing(f, _GRID)
-    err = 0.0
-    if side == "=":
-        A, B, C = heading_plant(chair, speed, model)
-        g, a = best_gains(A, B, C, tau, order)
-        a2 = best_gains(A, B, C, tau, 2 * order, start=g)[1]
-        h = 0.01
-        slope = (f(speed + h) - f(speed - h)) / (2 * h)
-        err = abs(a2 - a) / abs(slope) if slope else math.inf
-    return HumanLimit(chair.name, model, tau, rule, rule_side, speed, side, order, float(err))
+    return plant_limit(chair.name, model, lambda u: heading_plant(chair, u, model),
+                       lambda u: divergence_rate(chair, u, model), d.reaction_time_s, order)

@@ -5,7 +5,7 @@ from __future__ import annotations
 from stability.driver.linear import HumanLimit
 from stability.driver.model import Driver
 
-__all__ = ["human_text", "human_sentence", "held_where"]
+__all__ = ["human_text", "human_sentence", "held_where", "layout_human_text"]
 
 
 def human_sentence(h: HumanLimit, driver: Driver) -> str:
@@ -60,16 +60,45 @@ def human_text(h: HumanLimit, driver: Driver, lane_line: str | None = None) -> s
     -------
     str
     """
-    def bound(u: float, side: str) -> str:       # a bound is a value: "> 6 m/s" (stability.study.censored)
-        return ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s"
-
-    rule, loop = bound(h.rule_speed_m_s, h.rule_side), bound(h.loop_speed_m_s, h.loop_side)
     return (f"Driver (reaction time {driver.reaction_time_s:g} s, from {driver.source}):\n"
             f"  {human_sentence(h, driver)} ({h.model} model, free frictionless casters).\n"
-            f"  divergence rule (the chair's divergence rate reaches 1/tau): {rule}\n"
-            f"  delayed loop (the driver's best delayed heading correction on the full linear chair): {loop}\n"
+            + _limits(h, "  ")
             + ("" if lane_line is None else f"  {lane_line}\n")
             + "  The linear limits leave out pin friction, which can hold the casters after a small push or trap the "
             "driver in a slow stick-slip weave (the nonlinear line has it); no model here has fatigue, preview or "
             "learning (docs/driver.md).")
 
+
+
+def _limits(h: HumanLimit, indent: str) -> str:
+    """The divergence rule's and the delayed loop's lines."""
+    def bound(u: float, side: str) -> str:       # a bound is a value: "> 6 m/s" (stability.study.censored)
+        return ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s"
+
+    rule, loop = bound(h.rule_speed_m_s, h.rule_side), bound(h.loop_speed_m_s, h.loop_side)
+    return (f"{indent}divergence rule (the chair's divergence rate reaches 1/tau): {rule}\n"
+            f"{indent}delayed loop (the driver's best delayed heading correction on the full linear chair): {loop}\n")
+
+
+def layout_human_text(forward: HumanLimit, reverse: HumanLimit, driver: Driver) -> str:
+    """A wheel layout's human-limited speeds forwards and backwards, as :func:`human_text` prints the short form's.
+
+    Parameters
+    ----------
+    forward, reverse : HumanLimit
+        :func:`stability.driver.layout.layout_human_limit` forward and in reverse (speeds are sizes).
+    driver : Driver
+
+    Returns
+    -------
+    str
+    """
+    out = [f"Driver (reaction time {driver.reaction_time_s:g} s, from {driver.source}; the layout's linear model, "
+           "free frictionless casters trailing the direction of travel):"]
+    for way, h in (("forwards", forward), ("backwards", reverse)):
+        out.append(f"  {way}: {human_sentence(h, driver)}.")
+        out.append(_limits(h, "    ").rstrip("\n"))
+    out.append("  The linear limits leave out pin friction, which can hold the casters after a small push or trap the "
+               "driver in a slow stick-slip weave; the nonlinear lane limit and the limit with the assist on are the "
+               "short form's (docs/driver.md).")
+    return "\n".join(out)

@@ -8,10 +8,23 @@ from stability.layout.linear import LayoutSummary
 from stability.layout.model import Layout
 from stability.layout.statics import contacts, static_loads, tip_angles
 
-__all__ = ["layout_text", "layout_mapping"]
+__all__ = ["layout_text", "layout_mapping", "critical_words"]
 
 
-def _crit(c: tuple, direction: str) -> str:
+def critical_words(c: tuple, direction: str) -> str:
+    """A :func:`stability.layout.linear.critical_speed` in words: ``"Forward: stable below 1.2 m/s, unstable above"``.
+
+    Parameters
+    ----------
+    c : tuple
+        ``(speed m/s, kind)``.
+    direction : str
+        The words before the colon.
+
+    Returns
+    -------
+    str
+    """
     speed, kind = c
     if kind == "none-stable":
         return f"{direction}: stable at every speed up to {speed:g} m/s"
@@ -48,7 +61,8 @@ def layout_text(layout: Layout, s: LayoutSummary) -> str:
     for u, g in zip(s.speeds_m_s, s.growth_rate_1_s, strict=True):
         t2 = f"{math.log(2) / g:8.2f}" if g > 0 else "  stable"
         lines.append(f"  {u:+10.2f}   {g:+17.4f}   {t2}")
-    lines += ["", _crit(s.forward_critical, "Forward") + "; " + _crit(s.reverse_critical, "in reverse") + "."]
+    lines += ["", critical_words(s.forward_critical, "Forward") + "; "
+              + critical_words(s.reverse_critical, "in reverse") + "."]
     return "\n".join(lines)
 
 

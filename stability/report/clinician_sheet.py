@@ -89,10 +89,13 @@ class ClinicianSheet:
     driver : stability.driver.Driver or None
         The user's reaction time, when given.
     human : stability.driver.HumanLimit or None
-        Up to which speed that user holds the chair (None without a driver).
+        Up to which speed that user holds the chair (None without a driver); a wheel layout's forwards.
     effort : SlopeEffort or None
         A wheel layout's cross-slope numbers (:mod:`stability.report.layout_clinician`); a chair's come from
         ``slope``.
+    human_reverse : stability.driver.HumanLimit or None
+        A wheel layout's limit backwards (:func:`stability.driver.layout.layout_human_limit`; None for a short-form
+        chair, which the short form models forwards only).
     """
 
     chair: Any
@@ -106,6 +109,7 @@ class ClinicianSheet:
     driver: Any = None
     human: Any = None
     effort: SlopeEffort | None = None
+    human_reverse: Any = None
 
 
 def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact", driver: Any = None) -> ClinicianSheet:
@@ -142,6 +146,11 @@ def clinician_sheet(c: Chair, speeds: tuple, model: str = "exact", driver: Any =
 
 def _kmh(u: float) -> str:
     return f"{3.6 * u:.1f} km/h"
+
+
+def _speed_words(u: float) -> str:
+    """A user's speed in km/h, ``"2.7 km/h backwards"`` for a negative one."""
+    return _kmh(abs(u)) + (" backwards" if u < 0 else "")
 
 
 def _bump_row(u: float, m: Motion, dbl: float | None) -> list[str]:
@@ -190,12 +199,18 @@ def sheet_lines(s: ClinicianSheet) -> dict[str, Any]:
                                           for u, t in TABLE_8_2.items()) + ").")
     paras.append(bump)
     if s.human is not None and s.driver is not None:
-        from stability.driver.text import human_sentence
+        from stability.driver.text import held_where, human_sentence
 
-        over = [u for u in s.speeds if s.human.side != ">" and u > s.human.speed_m_s]
-        paras.append(f"THE USER. {human_sentence(s.human, s.driver)} (reaction time from {s.driver.source}; linear "
-                     "model without pin friction: docs/driver.md)"
-                     + (f"; at {', '.join(_kmh(u) for u in over)} this user cannot hold it." if over else "."))
+        def over(h: Any, u: float) -> bool:
+            return h is not None and h.side != ">" and abs(u) > h.speed_m_s
+
+        back = s.human_reverse
+        out = [u for u in s.speeds if over(s.human if u > 0 else back, u)]
+        both = "" if back is None else (f" forwards and {held_where(back.speed_m_s, back.side)} backwards (the "
+                                        "layout's linear model, casters trailing the direction of travel)")
+        paras.append(f"THE USER. {human_sentence(s.human, s.driver)}{both} (reaction time from {s.driver.source}; "
+                     "linear model without pin friction: docs/driver.md)"
+                     + (f"; at {', '.join(_speed_words(u) for u in out)} this user cannot hold it." if out else "."))
     if getattr(c, "caster_position", None) == "rear":
         paras.append("USE. The thesis advises rear-caster chairs primarily indoors, inclines only with another "
                      "person's help, and not above about 2 m/s (7 km/h).")

@@ -166,12 +166,8 @@ def _layout(args: argparse.Namespace) -> int:
     if args.clinician:
         from stability.report.layout_clinician import layout_clinician_sheet
 
-        if args.reaction_time is not None:
-            raise ValueError("--reaction-time is not available with --clinician for a wheel layout: the layout's "
-                             "sheet has no driver line yet; valid: drop --clinician (the full report's driver "
-                             "section gives the speed this driver holds, forwards and backwards)")
-
-        return _clinician(args, layout, outputs, lambda speeds: layout_clinician_sheet(layout, speeds),
+        driver = driver_from_args(args)      # --reaction-time or the file's [user]: the sheet's driver line
+        return _clinician(args, layout, outputs, lambda speeds: layout_clinician_sheet(layout, speeds, driver),
                           signed=True)
     if args.speeds != D.ADVISE_SPEEDS:
         raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")

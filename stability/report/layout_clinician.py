@@ -15,7 +15,10 @@ The sheet's words and drawing are the short form's (:func:`stability.report.clin
   (:func:`stability.study.layout_slope.layout_slope_report`) at the reference speed, the uncorrected turn with
   frictionless pins as the short form's;
 - the pins: every caster's pin friction, row by row; the tip angles: the layout's ISO 7176-1 angles by direction
-  (:func:`stability.layout.statics.tip_angles`).
+  (:func:`stability.layout.statics.tip_angles`);
+- the user (``--reaction-time`` or the file's ``[user]``): the speed up to which that driver holds the layout,
+  forwards and backwards (:func:`stability.driver.layout.layout_human_limit`: the short form's divergence rule and
+  delayed loop on the layout's linear model).
 """
 
 from __future__ import annotations
@@ -104,26 +107,35 @@ def layout_slope_effort(layout: Layout, speed: float = REFERENCE_SPEED) -> Slope
     return SlopeEffort(d["drive"], diff, d["harder_side"], float(speed), path.get("uncorrected_turn"))
 
 
-def layout_clinician_sheet(layout: Layout, speeds: tuple) -> ClinicianSheet:
-    """The clinician sheet of a wheel layout at the user's ``speeds`` (m/s, forwards).
+def layout_clinician_sheet(layout: Layout, speeds: tuple, driver: Any = None) -> ClinicianSheet:
+    """The clinician sheet of a wheel layout at the user's ``speeds`` (m/s, negative: backwards).
 
     Parameters
     ----------
     layout : Layout
     speeds : tuple of float
         m/s.
+    driver : stability.driver.Driver, optional
+        The user's reaction time: the sheet then says up to which speed this user holds the layout straight,
+        forwards and backwards.
 
     Returns
     -------
     ClinicianSheet
-        ``chair`` is the layout, ``slope`` None and ``effort`` the cross-slope numbers; no driver (the driver's
-        model is the short form's).
+        ``chair`` is the layout, ``slope`` None and ``effort`` the cross-slope numbers; with a driver ``human`` the
+        limit forwards and ``human_reverse`` backwards.
     """
     from stability.report.behaviour import motion
+
+    human = back = None
+    if driver is not None:
+        from stability.driver.layout import layout_human_limit
+
+        human, back = (layout_human_limit(layout, driver, reverse) for reverse in (False, True))
 
     pairs = [layout_response(layout, float(u)) for u in speeds]
     motions = tuple(motion(r, v) for r, v in pairs)
     dbl = tuple(math.log(2) / g if g > 0 else None for g in (float(x) for x in growth_rates(layout, list(speeds))))
     return ClinicianSheet(layout, tuple(float(u) for u in speeds), motions, dbl, None, tip_angles(layout),
-                          tuple(r for r, _ in pairs), tuple(v for _, v in pairs), None, None,
-                          layout_slope_effort(layout))
+                          tuple(r for r, _ in pairs), tuple(v for _, v in pairs), driver, human,
+                          layout_slope_effort(layout), back)

@@ -62,8 +62,9 @@ NOT_APPLICABLE = (
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
     ("The driver", "--reaction-time S (or the file's [user]) adds the speed up to which that driver holds the "
-     "layout, forwards and backwards (the divergence rule on the layout's linear model); the delayed-loop and lane "
-     "limits are the short form's only (docs/driver.md)."),
+     "layout, forwards and backwards (the divergence rule on the layout's linear model); the delayed-loop limit of "
+     "a layout both ways: python -m stability.critical_speed --chair NAME --reaction-time S; the nonlinear lane "
+     "limit is the short form's only (docs/driver.md)."),
 )
 
 
@@ -238,8 +239,9 @@ def _driver(layout: Layout, driver: Any) -> tuple[tuple[str, ...], dict]:
         way = "backwards" if reverse else "forwards"
         lines.append(f"  {way}: " + ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s")
         rows.append({"direction": "reverse" if reverse else "forward", "rule_speed_m_s": float(u), "side": side})
-    lines.append("It leaves out pin friction and the driver's own heading loop (the delayed-loop and lane limits are "
-                 "the short form's: python -m stability.critical_speed --reaction-time on a short-form chair).")
+    lines.append("It leaves out pin friction and the driver's own heading loop (the delayed-loop limit both ways: "
+                 f"python -m stability.critical_speed --chair {layout.name} --reaction-time {tau:g}; the lane limit is "
+                 "the short form's).")
     return tuple(lines), {"reaction_time_s": tau, "source": driver.source, "limits": rows}
 
 
@@ -283,7 +285,7 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     if quick:
         from stability.report.layout_clinician import layout_clinician_sheet
 
-        sheet = layout_clinician_sheet(layout, tuple(a.speeds_m_s))
+        sheet = layout_clinician_sheet(layout, tuple(a.speeds_m_s), driver)
         data = {"layout": layout.name, "quick": True, "decision": d.to_mapping(), "clinician": _sheet_data(sheet)}
         return LayoutReport(layout, (decision,), (), data, sheet=sheet)
     summary = analyse_layout(layout)

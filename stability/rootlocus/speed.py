@@ -11,7 +11,7 @@ from stability.chair import Chair
 from stability.linear import STATES_FREE, STATES_LOCKED, critical_speeds, state_matrices, track_modes
 from stability.runtime.checks import check_casters, check_model
 
-__all__ = ["SpeedLocus", "speed_locus", "readonly"]
+__all__ = ["SpeedLocus", "speed_locus", "layout_speed_locus", "readonly"]
 
 
 def readonly(a) -> np.ndarray:
@@ -136,3 +136,39 @@ def speed_locus(chair: Chair, speeds=None, *, model: str = "exact", casters: str
     crossings = critical_speeds(lambda s: state_matrices(chair, s, model, casters), U)
     states = STATES_FREE if casters == "free" else STATES_LOCKED
     return SpeedLocus(chair, model, casters, readonly(U), readonly(eig), list(crossings), tuple(states))
+
+
+def layout_speed_locus(layout, *, reverse: bool = False, max_speed: float = 15.0, n: int = 600) -> SpeedLocus:
+    """Eigenvalues of a wheel layout's linear model against the speed's size, forward or in reverse, tracked.
+
+    :func:`speed_locus` on :func:`stability.layout.linear.state_matrices` (free frictionless casters, trailing at
+    0 deg forwards and at 180 deg in reverse), with the same tracking and crossing search.
+
+    Parameters
+    ----------
+    layout : stability.layout.Layout
+    reverse : bool
+        Backwards: the matrices at ``-U``.
+    max_speed : float
+        Upper end of the speeds' sizes, m/s (0.05 < value <= 20, the layout model's range).
+    n : int
+        Number of speeds (geometric from 0.05 m/s).
+
+    Returns
+    -------
+    SpeedLocus
+        ``chair`` the layout, ``model`` ``"layout"``, ``casters`` ``"free"``; ``speeds`` the sizes (m/s).
+    """
+    from stability.layout.linear import state_matrices as layout_matrices
+    from stability.layout.linear import states
+
+    if not (math.isfinite(max_speed) and 0.05 < max_speed <= 20.0):
+        raise ValueError(f"max_speed={max_speed!r} is invalid; valid range: 0.05 < value <= 20 m/s")
+    sign = -1.0 if reverse else 1.0
+    U = np.geomspace(0.05, max_speed, int(n))
+    eig = track_modes(np.linalg.eigvals(layout_matrices(layout, sign * U)))
+    # the crossing search's slope probe steps 1e-6 U past the grid's end: held at the model's 20 m/s there (the
+    # probe only guards against hidden double crossings; the crossings themselves are refined inside the grid)
+    crossings = critical_speeds(lambda s: layout_matrices(layout, sign * np.minimum(np.asarray(s, dtype=float),
+                                                                                     20.0)), U)
+    return SpeedLocus(layout, "layout", "free", readonly(U), readonly(eig), list(crossings), states(layout))

@@ -368,45 +368,61 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
         with fewer than three contacts on the ground.
     """
     layout, signed, run = _check_run(layout, speed, run)
-    shape = shape_index(layout.shape)
     delta0 = _caster_angles(layout, run, caster_angles_deg)
-    opts = make_options(run)
+    cfg, nrec, consts = _kernel_inputs(layout, run, motor_lag_s)
+    ctl = _controller_arrays(layout, controller)
+    from stability.simulate import layout_kernel as k  # numba loads on first use
+
+    nc = len(layout.casters)
+    rec = np.full((k.NREC + 2 * nc, nrec), np.nan)
+    status = np.zeros(2)
+    warn = np.zeros((3, 3))
+    mzrec = np.zeros(nrec)
+    m = k.run_layout(cfg, *consts, signed, run.lateral_velocity, delta0, rec, status, warn,  # type: ignore[call-arg]
+                     *ctl, mzrec)
+    if status[0] == k.STOPPED_NONFINITE:
+        raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
+                                 f"numbers at t = {status[1]:g} s")
+    settings = dict(run.to_dict(), caster_angles_deg=[float(x) for x in np.degrees(delta0)], dt_s=float(cfg[0]))
+    if controller is not None:
+        settings.update(controller=controller.name, motor_lag_s=float(motor_lag_s))
+    return _layout_run(layout, signed, rec, m, status, warn, settings, mzrec if controller is not None else None,
+                       int(cfg[2]), float(cfg[0]))
+
+
+def _kernel_inputs(layout: Layout, run: RunSpec, motor_lag_s: float, batch: bool = False
+                   ) -> tuple[np.ndarray, int, tuple]:
+    """The kernel's configuration row, the rows it records (a batch's every 0.01 s unless ``run.sample``), and its
+    layout arguments (``p`` to ``cpin``)."""
+    opts = make_options(run, batch=batch)
     steps = n_steps(opts)
     rule = load_rule(layout)
     nw, nc = layout.shape
     cfg = np.array([opts.dt, steps, opts.stride, opts.impulse_duration, opts.impulse_force, opts.tire_impulse,
                     opts.pin_mode, float(opts.stop_on_warnings), policy_code(opts), SLIP_LIMIT_DEG, LOAD_LIMIT_N,
-                    WARNING_LIMIT, shape, layout.m * layout.g, layout.h, rule.mode, *slope_slots(opts), layout.g,
-                    _check_lag(motor_lag_s)], dtype=float)
-    ctl = _controller_arrays(layout, controller)
-    TK, TS, TL, LIM, CHK, RK, RC, RS, CAM = tire_slots(layout)
+                    WARNING_LIMIT, shape_index(layout.shape), layout.m * layout.g, layout.h, rule.mode,
+                    *slope_slots(opts), layout.g, _check_lag(motor_lag_s)], dtype=float)
     mf = np.array([c.pin_friction for c in layout.casters], dtype=float)
     cpin = np.array([c.pin_damping for c in layout.casters], dtype=float)
-    from stability.simulate import layout_kernel as k  # numba loads on first use
+    consts = (parameter_vector(layout), nw, nc, *tire_slots(layout), rule.stiffness, rule.line, rule.roll_share, mf,
+              cpin)
+    return cfg, (steps - 1) // opts.stride + 1, consts
 
-    nrec = (steps - 1) // opts.stride + 1
-    rec = np.full((k.NREC + 2 * nc, nrec), np.nan)
-    status = np.zeros(2)
-    warn = np.zeros((3, 3))
-    mzrec = np.zeros(nrec)
-    m = k.run_layout(cfg, parameter_vector(layout), nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, rule.stiffness,
-                     rule.line, rule.roll_share, mf, cpin, signed, run.lateral_velocity, delta0, rec, status, warn,
-                     *ctl, mzrec)  # type: ignore[call-arg]
-    if status[0] == k.STOPPED_NONFINITE:
-        raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
-                                 f"numbers at t = {status[1]:g} s")
+
+def _layout_run(layout: Layout, signed: float, rec: np.ndarray, m: int, status: np.ndarray, warn: np.ndarray,
+                settings: dict, mzrec: np.ndarray | None, stride: int, dt: float) -> LayoutRun:
+    """A :class:`LayoutRun` of the kernel's arrays (``m`` rows recorded, every ``stride`` steps of ``dt`` s)."""
+    from stability.simulate import layout_kernel as k
+
     rec = rec[:, :m].copy()
     rec.flags.writeable = False
-    t = np.arange(m) * opts.stride * opts.dt
+    t = np.arange(m) * stride * dt
     t.flags.writeable = False
     end = float(status[1]) if status[0] else float(t[-1])
     w = {kind: {"count": int(warn[j, 0]), "first_time_s": None if warn[j, 0] == 0 else float(warn[j, 1]),
                 "max": None if warn[j, 0] == 0 else float(warn[j, 2])}
          for j, kind in enumerate(("slip", "load", "lift_off"))}
-    settings = dict(run.to_dict(), caster_angles_deg=[float(x) for x in np.degrees(delta0)], dt_s=opts.dt)
-    if controller is not None:
-        settings.update(controller=controller.name, motor_lag_s=float(motor_lag_s))
-    mz = mzrec[:m].copy() if controller is not None else np.zeros(0)
+    mz = mzrec[:m].copy() if mzrec is not None else np.zeros(0)
     mz.flags.writeable = False
     return LayoutRun(layout.name, signed, t, rec[2], rec[3], rec[0], rec[1], rec[4], rec[5], rec[k.NREC::2],
                      rec[k.NREC + 1::2], ENDINGS[float(status[0])], end, w, settings, mz)

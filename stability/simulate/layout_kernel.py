@@ -44,7 +44,8 @@ from stability.simulate.kernel_equations import (
     slip_angle,
 )
 
-__all__ = ["run_layout", "layout_loads", "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
+__all__ = ["run_layout", "step_layouts", "advance", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
+           "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
 
 _eq = compiled(_gn, tuple(_gn.__all__), _inl)
 equations = _eq.equations
@@ -275,6 +276,26 @@ def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
         rec[NREC + 2 * kk, row], rec[NREC + 2 * kk + 1, row] = D[kk], DD[kk]
 
 
+#: the length of the head of a run's ``state`` between :func:`advance` calls, and its command and rows slots:
+#: the slots between :func:`advance` calls: x, y, heading, yaw rate, u, v, the last step's tire-force
+#: sums (x, y), the controller's next sample, its held command (or the caller's, :func:`step_layouts`), the applied
+#: moment after the motor lag, the rows recorded; then each caster's angle, each caster's rate, the controller state
+NSTATE = 12
+S_CMD, S_NREC = 9, 11
+
+
+@njit(cache=True, nogil=True)
+def initial_state(u0, v0, delta0, nz):
+    """A run's :data:`NSTATE` + 2 nc + nz state at ``t = 0``: at rest in the plane, speeds ``u0``, ``v0`` (m/s), the
+    casters at ``delta0`` (rad), not swivelling, no command."""
+    nc = delta0.shape[0]
+    state = np.zeros(NSTATE + 2 * nc + nz)
+    state[4], state[5] = u0, v0
+    for kk in range(nc):
+        state[NSTATE + kk] = delta0[kk]
+    return state
+
+
 @njit(cache=True, nogil=True)
 def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, u0, v0, delta0, rec,
                status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
@@ -289,7 +310,46 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
     measures is ``[x, y, heading, u, v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at
     each sample, held until the next, through a first-order motor lag (``cfg[22]``, exact over each step); the
     commanded (saturated) moment is recorded in ``mzrec`` (N m)."""
-    dt, nsteps, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[1]), int(cfg[2]), cfg[3], cfg[4], cfg[5]
+    state = initial_state(u0, v0, delta0, Az.shape[0])
+    advance(0, int(cfg[1]), cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, state,
+            rec, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec)
+    return int(state[S_NREC])
+
+
+@njit(cache=True, nogil=True)
+def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, states,
+                 recs, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
+    """Steps ``k0 .. k1 - 1`` of a batch of runs of one layout (:func:`run_layout`'s arguments, one row of
+    ``states`` (:func:`initial_state`), ``recs``, ``status``, ``warn`` and ``mzrec`` per run): each run still going
+    (``status[r, 0] == 0``) advances; without a sampled controller the yaw moment each run's command slot holds
+    (set by the caller between calls, N m) acts through the motor lag."""
+    for r in range(states.shape[0]):
+        if status[r, 0] == 0.0:
+            advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin,
+                    states[r], recs[r], status[r], warn[r], ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec[r])
+
+
+@_inl
+def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """The sampled controller's samples due by ``t``: the next sample's index and the held command."""
+    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+    while next_k <= ks:
+        sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
+        for kk in range(D.shape[0]):
+            sv[6 + 2 * kk], sv[7 + 2 * kk] = D[kk], DD[kk]
+        cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        next_k += 1
+    return next_k, cmd
+
+
+@njit(cache=True, nogil=True)
+def advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, state, rec,
+            status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
+    """Steps ``k0 .. k1 - 1`` of one run (:func:`run_layout`'s arguments) from its ``state``
+    (:func:`initial_state`, updated in place); nothing when the run has stopped (``status[0] != 0``)."""
+    if status[0] != 0.0:
+        return
+    dt, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[2]), cfg[3], cfg[4], cfg[5]
     pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
     maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
                                                              cfg[14], int(cfg[15]))
@@ -298,9 +358,12 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
     wn = weight
     nt, n = nw + nc, 3 + nc
     half_dt2 = 0.5 * dt * dt
-    X = Y = THE = THED = 0.0
-    UD, VD = u0, v0
-    D, DD = delta0.copy(), np.zeros(nc)
+    X, Y, THE, THED, UD, VD = state[0], state[1], state[2], state[3], state[4], state[5]
+    FC1, FC2 = state[6], state[7]
+    next_k, cmd, mz, nrec = int(state[8]), state[S_CMD], state[10], int(state[S_NREC])
+    D, DD = state[NSTATE:NSTATE + nc].copy(), state[NSTATE + nc:NSTATE + 2 * nc].copy()
+    nz, ny = Az.shape[0], Cy.shape[0]
+    z = state[NSTATE + 2 * nc:NSTATE + 2 * nc + nz]          # a view: advanced in place
     cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
     held = np.zeros(nc, dtype=np.bool_)
     rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
@@ -309,26 +372,17 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
     Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
     for j in range(nw):
         xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
-    FC1 = FC2 = 0.0
-    nrec = 0
     use_ctl = ctl_f[0] > 0.0
     lag = cfg[22]
     keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
-    nz, ny = Az.shape[0], Cy.shape[0]
-    z, znew, y, sv = np.zeros(nz), np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
-    next_k, cmd, mz = 0, 0.0, 0.0
-    for k in range(nsteps):
+    znew, y, sv = np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
+    for k in range(k0, k1):
         t = k * dt
         if use_ctl:
-            ks = int(math.floor(t / ctl_f[0] + 1e-9))
-            while next_k <= ks:
-                sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
-                for kk in range(nc):
-                    sv[6 + 2 * kk], sv[7 + 2 * kk] = D[kk], DD[kk]
-                cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-                next_k += 1
-            if lag <= 0.0:
-                mz = cmd
+            next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az,
+                                   Bu, By, Cz, noise)
+        if lag <= 0.0:
+            mz = cmd
         _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
         if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
             g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
@@ -349,8 +403,7 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
             break
         if k % stride == 0:
             _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
-            if use_ctl:
-                mzrec[k // stride] = cmd
+            mzrec[k // stride] = cmd
             nrec = k // stride + 1
         # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
         FC1, FC2 = sum_fx, sum_fy + fy_ext
@@ -367,9 +420,12 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
                 DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
         THE += THED * dt + acc[2] * half_dt2
         THED += acc[2] * dt
-        if use_ctl and lag > 0.0:     # the motor lag, exact over the step for the held command
+        if lag > 0.0:     # the motor lag, exact over the step for the held command
             mz = cmd + (mz - cmd) * keep
-    return nrec
+    state[0], state[1], state[2], state[3], state[4], state[5] = X, Y, THE, THED, UD, VD
+    state[6], state[7], state[8], state[S_CMD], state[10], state[S_NREC] = FC1, FC2, next_k, cmd, mz, nrec
+    for kk in range(nc):
+        state[NSTATE + kk], state[NSTATE + nc + kk] = D[kk], DD[kk]
 
 
 @_inl

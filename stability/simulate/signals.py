@@ -121,31 +121,40 @@ def envelope_rate(t, y, t_start: float, t_end: float) -> float:
     return float(np.polyfit(tw, np.log(aw), 1)[0])
 
 
-def settle_time(t, y, fraction: float = 0.05, floor: float = 0.0) -> float | None:
-    """First time after which ``|y|`` stays within ``max(fraction * peak, floor)`` (s).
+def settle_time(t, y, fraction: float = 0.05, floor: float = 0.0, final_window: float = 0.0) -> float | None:
+    """First time after which ``y`` stays within ``max(fraction * peak, floor)`` of its final value (s).
+
+    The final value is 0 with ``final_window = 0`` (settling to zero), else the mean of ``y`` over the last
+    ``final_window`` of the run (a fraction of its duration), and then ``y`` must stay within the band over that
+    whole window: a response still drifting at the end has no final value and does not settle.  ``peak`` is the
+    largest ``|y - final value|``.
 
     Parameters
     ----------
     t, y : array_like
         Sample times (s) and signal.
     fraction : float
-        Band as a fraction of the peak of ``|y|``.
+        Band as a fraction of the peak departure from the final value.
     floor : float
         Smallest band, in the unit of ``y``.
+    final_window : float
+        Share of the run (0 to 1) whose mean is the final value (0: the final value is 0).
 
     Returns
     -------
     float or None
-        The settling time, s; 0 when ``|y|`` never leaves the band; None when it
-        is still outside the band at the last sample.
+        The settling time, s; 0 when ``y`` never leaves the band; None when it is still outside the band at the last
+        sample, or (``final_window > 0``) within the final window.
     """
     t = np.asarray(t, dtype=float)
-    a = np.abs(np.asarray(y, dtype=float))
-    if a.size == 0:
+    y = np.asarray(y, dtype=float)
+    if y.size == 0:
         return None
+    tail = t >= t[-1] - final_window * (t[-1] - t[0]) if final_window > 0 else np.zeros(t.size, dtype=bool)
+    a = np.abs(y - float(np.mean(y[tail]))) if final_window > 0 else np.abs(y)
     band = max(fraction * float(a.max()), floor)
     out = np.flatnonzero(a > band)
     if out.size == 0:
         return 0.0
     i = int(out[-1]) + 1
-    return float(t[i]) if i < t.size else None
+    return float(t[i]) if i < t.size and not tail[i - 1] else None

@@ -52,7 +52,8 @@ def build_parser() -> argparse.ArgumentParser:
     ci.add_argument("--max-impulse", type=float, default=D.MAX_IMPULSE,
                     help=f"largest push tried, N s (default {D.MAX_IMPULSE:g})")
     ci.add_argument("--interval", action="store_true",
-                    help="also the range over pin friction x0.5 and x1.5 and the other model")
+                    help="also the range over pin friction x0.5 and x1.5, half the step and the other model (a "
+                         "layout or reverse speeds: no model variant, the layout's equations are the exact model's)")
     ei.add_argument("--chair-friction-only", action="store_true",
                     help="apply the pin-friction factors to the chair only (default: to the reference chair too)")
     return p
@@ -102,13 +103,21 @@ def _critical(args: argparse.Namespace) -> None:
                                       max_impulse=args.max_impulse)[0] for u in speeds] if args.interval else []
     for k, p in enumerate(curve.points):
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
-        rng = (f"  range {ivs[k].low_Ns:.3g}-{ivs[k].high_Ns:.3g} N s over "
-               + ", ".join(label for label, _ in ivs[k].variants)) if ivs else ""
+        rng = _range_words(ivs[k]) if ivs else ""
         lines.append(f"  {p.speed:6.3g} m/s  {p.describe():>12s}  (kick {kick}){rng}")
     data = curve.to_dict()
     if ivs:
         data["intervals"] = [iv.to_dict() for iv in ivs]
     _emit(args, data, "\n".join(lines), chair)
+
+
+def _range_words(iv) -> str:
+    """A critical impulse's range over its variants; the same value in every variant (a bound at the search's end)
+    says so, not "range 40-40" (issue 35: degenerate ranges are not printed)."""
+    labels = ", ".join(label for label, _ in iv.variants)
+    if iv.low_Ns == iv.high_Ns:
+        return f"  the same in every variant ({labels})"
+    return f"  range {iv.low_Ns:.3g}-{iv.high_Ns:.3g} N s over {labels}"
 
 
 def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
@@ -129,33 +138,45 @@ def _critical_layout(args: argparse.Namespace, speeds: np.ndarray) -> None:
     if np.any(np.abs(speeds) > hi):
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout; valid range: every |speed| {lo:g} to "
                          f"{hi:g} m/s (negative: reverse)")
-    if args.interval:
-        raise ValueError("--interval is not available for a layout or reverse speeds yet; valid: the short-form "
-                         "chair at positive speeds")
     run_spec = run_from_args(args, CRITICAL_RUN)
     if run_spec.model != "exact":
         raise ValueError(f"--model {run_spec.model} is invalid for a layout or reverse speeds; valid values: exact "
                          "(the layout's equations are the exact model's)")
     dt = 0.001 if run_spec.dt == "auto" else float(run_spec.dt)
     limits, _ = layout_step_limits_and_growth(layout, speeds)
-    check_layout_work([float(h) for h in run_steps([], speeds, dt, "exact", "free", limits=limits)],
-                      run_spec.horizon, runs_per_speed(max_impulse=args.max_impulse), "--horizon")
+    # with --interval every case again: the friction factors at the step, the step factors at theirs
+    steps = [float(h) for h in run_steps([], speeds, dt, "exact", "free", limits=limits)]
+    if args.interval:
+        from stability.study.layout_impulse_intervals import layout_interval_specs
+
+        steps = [h * step / dt for _, _, step in layout_interval_specs(run_spec) for h in steps]
+    check_layout_work(steps, run_spec.horizon, runs_per_speed(max_impulse=args.max_impulse), "--horizon")
     curve = layout_critical_impulse_curve(layout, speeds, run_spec, level=args.level, max_impulse=args.max_impulse)
+    ivs = []
+    if args.interval:
+        from stability.study.layout_impulse_intervals import layout_critical_impulse_intervals
+
+        ivs = layout_critical_impulse_intervals(layout, speeds, run_spec, level=args.level,
+                                                max_impulse=args.max_impulse)
     lines = [f"{layout.name} (layout: {layout.shape[0]} fixed wheels, {layout.shape[1]} casters), layout model, "
              f"{run_spec.friction_law} pin friction: critical impulse for |yaw rate| >= {args.level:g} rad/s within "
              f"{run_spec.horizon:g} s", f"push: {curve.points[0].push}",
              "casters start trailing the direction of travel (0 deg forward, 180 deg in reverse)",
              "kick: the sideways speed the push gives the chair (impulse / mass)"]
-    for p in curve.points:
+    for k, p in enumerate(curve.points):
         kick = f"{p.kick_m_s:.3g} m/s" if p.kick_m_s is not None else "-"
         way = "reverse" if p.speed < 0 else "forward"
-        lines.append(f"  {p.speed:+6.3g} m/s {way:7s}  {p.describe():>12s}  (kick {kick})")
+        rng = _range_words(ivs[k]) if ivs else ""
+        lines.append(f"  {p.speed:+6.3g} m/s {way:7s}  {p.describe():>12s}  (kick {kick}){rng}")
     slow = slow_divergences(layout, curve.points, run_spec)
     lines += [f"note: {d.text()}" for d in slow]
     header = {"stability_version": __version__, "chair": layout.name,
               "chair_parameters": dataclasses.asdict(layout), "model": "exact"}
-    _emit(args, {**curve.to_dict(), "caster_start": "trailing the direction of travel (0 deg forward, 180 deg in "
-                 "reverse)", "slow_divergences": [d.to_dict() for d in slow]}, "\n".join(lines), None, header)
+    data = {**curve.to_dict(), "caster_start": "trailing the direction of travel (0 deg forward, 180 deg in "
+            "reverse)", "slow_divergences": [d.to_dict() for d in slow]}
+    if ivs:
+        data["intervals"] = [iv.to_dict() for iv in ivs]
+    _emit(args, data, "\n".join(lines), None, header)
 
 
 def _interval(args: argparse.Namespace) -> None:

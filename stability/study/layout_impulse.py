@@ -123,7 +123,7 @@ def check_layout_work(steps: Sequence[float], horizon: float, runs: int, name: s
     Parameters
     ----------
     steps : sequence of float
-        Each speed's step, s.
+        Each search's step, s (one search per speed, and per speed and variant with ``--interval``).
     horizon : float
         s.
     runs : int
@@ -138,7 +138,7 @@ def check_layout_work(steps: Sequence[float], horizon: float, runs: int, name: s
     """
     seconds = runs * sum(horizon / h for h in steps) * LAYOUT_STEP_SECONDS
     if seconds > WORK_BUDGET_S:
-        raise ValueError(f"{name}={horizon:g} s is invalid here: {len(steps)} speed(s) x {runs} layout runs of up to "
+        raise ValueError(f"{name}={horizon:g} s is invalid here: {len(steps)} search(es) x {runs} layout runs of up to "
                          f"{horizon:g} s at steps down to {min(steps):.2g} s would take about {seconds / 60:.0f} min; "
                          f"the largest allowed {name} is {horizon * WORK_BUDGET_S / seconds:.3g} s (or fewer speeds)")
 

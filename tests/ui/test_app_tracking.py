@@ -89,6 +89,8 @@ def test_a_scripted_operator_of_known_delay_is_measured(page, explorer, artifact
     assert m, text
     measured, spread = float(m.group(1)), float(m.group(2))
     print(f"\ntau {tau}: measured {measured} +/- {spread} s")
+    # error model (the module docstring's): the five scored trials' mean has a standard error of about 4.5 %, the
+    # calibration population's offset 3 %, frame timing up to 6 % of 0.3 s; 10 % is the brief's requirement
     assert measured == pytest.approx(tau, rel=0.10), text
     assert 0 < spread < 0.5 * measured
     rows = page.locator(".tracking-trials tr").all_inner_texts()
