@@ -43,7 +43,7 @@ FILES = {
 #: Schemas written by hand (units in each number's description, the settings tables' ranges as minimum/maximum,
 #: issue 34): ``--write-schemas`` leaves them alone; edit stability/schemas/NAME.json itself.
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export", "sweep", "compare")
+                "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report")
 #: The layout forms of commands (a wheel layout instead of the thesis's chair), validated against the same schema.
 LAYOUT_CASES = {
     "compare": ("compare", ["ej-premier", "mid-wheel-drive", "--speeds", "0.75"]),
@@ -54,15 +54,22 @@ LAYOUT_CASES = {
     "study_critical_impulse": ("study", ["critical-impulse", "--chair", "mid-wheel-drive", "--speeds", "0.75",
                                          "--horizon", "4"]),
     "bench": ("bench", ["--chair", "ej-premier"]),
+    "report": ("report", ["--chair", "mid-wheel-drive", "--quick", "--no-progress"]),
 }
 #: The cases too slow for the default test run (simulations of a study).
 SLOW = {"study_equal_instability", "advise", "report"}
+#: The layout cases too slow for the default test run (the report's advisor: about 20 s even with --quick).
+SLOW_LAYOUT = {"report"}
+#: Outputs already computed in this process ((name, layout) -> JSON text): the slow cases run once per worker.
+_DONE: dict[tuple[str, bool], str] = {}
 
 
 def output(name: str, tmp: str, layout: bool = False) -> dict:
     """Run case ``name`` (of :data:`LAYOUT_CASES` with ``layout``) in-process with ``--json``; the decoded JSON."""
     from stability.cli.commands import command_module
 
+    if (name, layout) in _DONE:                 # a fresh copy: callers may change it
+        return json.loads(_DONE[name, layout])
     command, argv = (LAYOUT_CASES if layout else CASES)[name]
     for file, text in FILES.get(name, {}).items():
         Path(tmp, file).write_text(text, encoding="utf-8")
@@ -71,6 +78,8 @@ def output(name: str, tmp: str, layout: bool = False) -> dict:
     with contextlib.redirect_stdout(buf):
         status = command_module(command).main(argv)
     assert status == 0, (name, status)
+    if not FILES.get(name) and not any("{tmp}" in a for a in (LAYOUT_CASES if layout else CASES)[name][1]):
+        _DONE[name, layout] = buf.getvalue()     # depends on its options only, not on the temporary directory
     return json.loads(buf.getvalue())
 
 

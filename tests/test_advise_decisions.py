@@ -404,6 +404,8 @@ def _cost_checks(d, chair, after_chair, min_tip: float) -> None:
     k = costs["shimmy_margin_m"]
     margin = 100 * shimmy_band(after_chair, SPEEDS).shimmy_margin_m
     assert k.after == pytest.approx(margin, abs=1e-9) and k.met == (margin >= 100 * MIN_SHIMMY_MARGIN_M), k  # rounding: equivalent arithmetic, a few ulp (observed 0)
+    # the JSON's margin in the name's unit (metres), as the shimmy band gives it; rounding: x 100 / 100 (observed 0)
+    assert k.to_mapping()["after"] == pytest.approx(margin / 100, abs=1e-11), k
     k = costs["turning_effort_N_m"]
     e0 = max(chair.pin_friction_left, chair.pin_friction_right)
     e1 = max(after_chair.pin_friction_left, after_chair.pin_friction_right)

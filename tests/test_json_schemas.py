@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 
 import pytest
-from json_outputs import CASES, LAYOUT_CASES, SLOW, output
+from json_outputs import CASES, LAYOUT_CASES, SLOW, SLOW_LAYOUT, output
 
 from stability import schemas
 from stability.cli import commands
@@ -111,9 +111,9 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
 
 # hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export", "sweep", "compare")
+                "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
-SUFFIX_UNITS = [("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
+SUFFIX_UNITS = [("_N_m_per_deg", "N m/deg"), ("_kg_m", "kg m"), ("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
                 ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
                 ("_m_s", "m/s"), ("_1_s", "1/s"), ("_rad", "rad"), ("_deg", "deg"), ("_Ns", "N s"), ("_N", "N"),
                 ("_m", "m"), ("_s", "s")]
@@ -126,10 +126,11 @@ def _numbers(node, path=""):
     for form in ("then", "else"):
         if form in node:
             yield from _numbers(node[form], path)
-    if node.get("type") == "object" and "properties" in node:
+    types = node.get("type") if isinstance(node.get("type"), list) else [node.get("type")]
+    if "object" in types and "properties" in node:           # an object, or an object or null
         for k, v in node["properties"].items():
             yield from _numbers(v, f"{path}.{k}")
-    elif node.get("type") == "array":
+    elif "array" in types:
         yield from _numbers(node.get("items", {}), path + "[]")
     elif "number" in str(node.get("type")) or "integer" in str(node.get("type")):
         keys = [k.rstrip("[]") for k in path.split(".") if k]
@@ -180,6 +181,11 @@ def _option_bounds():
             "compare": {".options.speeds_m_s[]": o["slope:--speed"], ".options.max_speed_m_s": o["--max-speed"],
                         ".options.samples": o["--samples"], ".options.seed": o["--seed"],
                         ".options.level": o["--level"], ".speeds_m_s[]": o["slope:--speed"]},   # signed: reverse      # the same signed range (the spec's check)
+            "report": {".options.samples": o["--samples"], ".options.seed": o["--seed"],
+                       ".options.reaction_time_s": o["--reaction-time"], ".driver.reaction_time_s": o["--reaction-time"],
+                       ".summary.uncertainty.samples": o["--samples"], ".summary.uncertainty.seed": o["--seed"],
+                       ".summary.uncertainty.nonlinear.samples": o["--samples"], ".uncertainty.samples": o["--samples"],
+                       ".uncertainty.seed": o["--seed"], ".decision.limits.min_tip_deg": o["--min-tip-deg"]},
             "advise": {".options.speeds_m_s[]": RUN_SETTINGS["speed"].bound, ".options.cross_slope_deg": o["--cross-slope"],
                        ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
 
@@ -256,7 +262,8 @@ def test_the_layout_form_states_every_numbers_unit(name):
             assert desc.split("; unit: ")[1].split(";")[0] == unit, (name, path, desc)
 
 
-@pytest.mark.parametrize("name", sorted(LAYOUT_CASES))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW_LAYOUT else n
+                                  for n in sorted(LAYOUT_CASES)])
 def test_the_layout_form_of_a_command_matches_its_schema(name, tmp_path):
     """The wheel-layout form of a command (``--chair mid-wheel-drive`` etc.) validates against the command's schema."""
     schemas.validate(name, output(name, str(tmp_path), layout=True))
@@ -290,10 +297,20 @@ OUT_OF_RANGE = [
     ("study_critical_impulse", "layout", ("points", 0, "runs"), 1.5, "runs.*integer"),
     ("measure", "chair", ("fields", 0, "std"), -0.1, "std.*minimum"),
     ("measure", "chair", ("uncertain_parameters",), -1, "uncertain_parameters.*minimum"),
+    ("report", "chair", ("options", "samples"), 0, "options/samples.*minimum"),
+    ("report", "chair", ("decision", "verdict", "critical_impulse_Ns", "value"), 1001.0, "critical_impulse_Ns/value.*maximum"),
+    ("report", "chair", ("decision", "clinician", "speeds_m_s", 0), 0.0, "clinician/speeds_m_s/0.*minimum"),
+    ("report", "chair", ("summary", "shimmy", "critical_trail_m"), -0.01, "critical_trail_m.*minimum"),
+    ("report", "layout", ("options", "reaction_time_s"), 2.5, "options/reaction_time_s.*maximum"),
+    ("report", "layout", ("clinician", "tip_angles_deg", "left"), 91.0, "tip_angles_deg/left.*maximum"),
+    ("report", "layout", ("clinician", "bump", 0, "travel_m"), -1.0, "bump/0/travel_m.*minimum"),
+    ("report", "layout", ("clinician", "pin_friction_N_m", 0), -0.1, "pin_friction_N_m/0.*minimum"),
 ]
 
 
-@pytest.mark.parametrize("name, form, path, value, message", OUT_OF_RANGE,
+@pytest.mark.parametrize("name, form, path, value, message",
+                         [pytest.param(*c, marks=pytest.mark.slow) if c[0] in SLOW | SLOW_LAYOUT else c
+                          for c in OUT_OF_RANGE],
                          ids=[f"{n}-{f}-{'.'.join(map(str, p))}" for n, f, p, _, _ in OUT_OF_RANGE])
 def test_hand_written_schemas_refuse_a_number_outside_its_stated_range(name, form, path, value, message, tmp_path):
     """A real output passes; the same output with one number moved beyond its stated range is refused, naming it."""
@@ -307,3 +324,30 @@ def test_hand_written_schemas_refuse_a_number_outside_its_stated_range(name, for
         node = node[key]
     node[path[-1]] = value
     _refused(name, bad, message)
+
+
+@pytest.mark.slow
+def test_every_form_of_the_layout_report_matches_its_schema(tmp_path):
+    """The wheel-layout report's JSON in full, with --compare, --uncertainty and a driver (--reaction-time) at once
+    (several minutes of CPU), and its two forms kept apart: a quick report's keys in a full one are refused."""
+    import contextlib
+    import io
+    import json
+
+    from json_outputs import ROOT
+
+    from stability.report.command import main
+
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        assert main(["--chair", "mid-wheel-drive", "--compare", "power-fwd-base", "--reaction-time", "0.3",
+                     "--uncertainty", str(ROOT / "docs" / "examples" / "mid_wheel_drive.uncertainty.toml"),
+                     "--no-progress", "--json", "--quiet"]) == 0
+    data = json.loads(buf.getvalue())
+    assert {"comparison", "uncertainty", "driver"} <= set(data) and data["driver"]["reaction_time_s"] == 0.3
+    schemas.validate("report", data)
+    quick = output("report", str(tmp_path), layout=True)
+    _refused("report", {**data, "clinician": quick["clinician"]}, "not valid under any")
+    _refused("report", {**data, "uncertainty": {**data["uncertainty"], "level": 1.0}}, "uncertainty/level.*maximum")
+    _refused("report", {**data, "driver": {**data["driver"], "reaction_time_s": 0.01}},
+             "driver/reaction_time_s.*minimum")

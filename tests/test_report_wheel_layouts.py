@@ -107,6 +107,10 @@ def test_the_json_of_a_layout_report(monkeypatch, capsys):
     d = json.loads(capsys.readouterr().out)
     assert d["schema"] == "stability.report.layout/1" and d["chair"] == "power-fwd-base"
     assert [x["section"] for x in d["not_applicable"]] == [t for t, _ in NOT_APPLICABLE]
+    pytest.importorskip("jsonschema")
+    from stability import schemas
+
+    schemas.validate("report", d)           # a front-wheel-drive base: the layout form of the report's schema
 
 
 def test_the_reverse_shimmy_rows_are_the_reverse_computation():

@@ -96,8 +96,13 @@ class Cost:
         return f"{self.words} {change}{' ' + self.unit if self.unit else ''}{lim}"
 
     def to_mapping(self) -> dict:
-        """JSON-ready dict."""
-        return {"name": self.name, "before": self.before, "after": self.after, "limit": self.limit or None,
+        """JSON-ready dict: ``before`` and ``after`` in the unit of the name's suffix (a shimmy margin in m, not cm)."""
+        scale = 0.01 if self.unit == "cm" else 1.0
+
+        def si(x: float | None) -> float | None:
+            return None if x is None else scale * x
+
+        return {"name": self.name, "before": si(self.before), "after": si(self.after), "limit": self.limit or None,
                 "met": self.met}
 
 

@@ -30,7 +30,7 @@ __all__ = ["UNIT_SUFFIXES", "KEY_PATTERN", "bad_keys", "schema", "validate", "sc
 
 #: Unit suffixes a key may end with (the upper-case ones are the only upper case allowed in a key).
 UNIT_SUFFIXES = ("m", "m_s", "m_s2", "N", "N_m", "N_per_m", "N_m_s", "1_s", "deg", "deg_s", "rad", "rad_s", "Ns",
-                 "s", "kg", "kg_m2", "hz", "db", "ms", "pct", "N_m_per_deg", "deg_per_m", "N_per_deg")
+                 "s", "kg", "kg_m", "kg_m2", "hz", "db", "ms", "pct", "N_m_per_deg", "deg_per_m", "N_per_deg")
 _UPPER = sorted({tok for u in UNIT_SUFFIXES for tok in u.split("_") if not tok.islower() and not tok.isdigit()},
                 key=len, reverse=True)
 #: A key: lower-case snake_case words; upper-case tokens only from the unit suffixes.
