@@ -56,7 +56,7 @@ def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.nd
             before = k.get_num_threads()
             k.set_num_threads(1)
             try:
-                k.run_batch(*args)
+                k.call_model(k.run_batch, k.model_code(args[13]), *args)
             finally:
                 k.set_num_threads(before)
         return rec[0, :, :int(counts[0])]

@@ -13,10 +13,14 @@ yaw moment, slip angles, pin friction) and the tire force law
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
-from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
+from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads, typeof
+from numba._dispatcher import compute_fingerprint
+from numba.core import types as _nbtypes
 from numba.core import config as _config
+from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
 from stability.simulate.kernel_controller import controller_output
@@ -30,9 +34,59 @@ from stability.simulate.kernel_equations import _NOWRAP, _inl, _inl_py, _int  # 
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
-__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch",
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "model_code", "call_model", "run_batch",
            "run_serial", "run_one", "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations",
            "held_pins", "stick_slip", "tire_yaw_moment", "plane"]
+
+def model_code(cfg: np.ndarray) -> int:
+    """The model a configuration row runs (the first argument of :func:`run_batch` and :func:`run_serial`).
+
+    Parameters
+    ----------
+    cfg : ndarray
+        The kernel's configuration row (``engine._config``).
+
+    Returns
+    -------
+    int
+        0 thesis, 1 exact, :data:`SLOPE_MODEL` the exact model on a plane (``cfg[SLOPE]`` set).
+    """
+    return SLOPE_MODEL if cfg[SLOPE] != 0.0 else int(cfg[5])
+
+
+#: the compiled specialisations :func:`call_model` found, by entry point, model and the arguments' type fingerprints
+_ENTRIES: dict[tuple, Any] = {}
+
+
+def call_model(entry: Any, model: int, *args: Any) -> None:
+    """``entry(model, *args)`` (:func:`run_batch` or :func:`run_serial`) through its specialisation for ``model``.
+
+    The entry points take the model as a numba literal (``literally``), so a
+    Python int does not match their compiled signatures by type: numba's
+    dispatch would type the call again every time (about 8 ms) before it
+    finds the literal one.  The first call for a model and argument types goes
+    through numba (which compiles the specialisation or loads it from the
+    cache); later ones call that specialisation directly, found by the
+    arguments' type fingerprints (numba's own dispatch key, about 2 us for
+    all of them; ``numba.typeof`` would cost 0.2 ms).
+
+    Parameters
+    ----------
+    entry : numba dispatcher
+        :func:`run_batch` or :func:`run_serial`.
+    model : int
+        :func:`model_code` of the run's configuration row.
+    *args
+        The entry point's other arguments.
+    """
+    key = (entry, model, tuple(map(compute_fingerprint, args)))
+    fn = _ENTRIES.get(key)
+    if fn is None:
+        entry(model, *args)
+        _ENTRIES[key] = entry.get_overload((_nbtypes.literal(model), *(typeof(a) for a in args)))
+        return
+    fn(model, *args)
+
 
 @_inl
 def plane(P, cfg, psi):
@@ -54,14 +108,41 @@ def tire_yaw_moment(P, F, ce, se, cb, sb):
 
 
 @_inl
+def _cv_thesis(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    return cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+
+
+@_inl
+def _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    return cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+
+
+@_inl
+def _cv_any(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    if model == 0:
+        return _cv_thesis(model, P, u, v, r, ce, se, cb, sb, ed, bd)
+    return _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd)
+
+
+def model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    """The contact velocities of ``model`` (generated), for compiled code only: a numba literal ``model`` compiles
+    its model's alone (:func:`~stability.simulate.kernel_equations.model_accelerations`)."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(model_velocities, prefer_literal=True)
+def _model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    f = by_model(model, (_cv_thesis, _cv_exact, _cv_exact), _cv_any)
+
+    def impl(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+        return f(model, P, u, v, r, ce, se, cb, sb, ed, bd)
+    return impl
+
+
+@_inl
 def kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd):
     """Contact velocities (SLIP), main wheels in their toed frames."""
-    if model == 0:
-        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P],
-                                                           P[D1], P[D2], P[T1], P[T2], P[TRAIL])
-    else:
-        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P],
-                                                          P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+    vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd)
     if S[TOE] != 0.0:
         ct, st = S[CT], S[ST]
         vEx, vEy = vEx * ct + vEy * st, -vEx * st + vEy * ct
@@ -203,17 +284,17 @@ def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, B
 
 
 @_int
-def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
-            state, rec, stats, warn, status):
+def run_one(model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+            noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
     controller's states); writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
-    recorded so far.  A stopped run (``status``) does nothing.  ``cfg[EXTERNAL_MZ]``: the yaw moment is
+    recorded so far.  A stopped run (``status``) does nothing.  ``model``: :func:`model_code` of ``cfg``, a
+    compile-time constant (numba literal) from the entry points, so that a run compiles its model's equations only.  ``cfg[EXTERNAL_MZ]``: the yaw moment is
     ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
     if status[0] != 0.0 or status[2] != 0.0:
         return int(state[ST_NREC])
-    dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
-        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
-        int(cfg[8]), int(cfg[9]))
+    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
+        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0, int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
     settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
     track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
@@ -221,9 +302,6 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
     use_ctl = ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
-    slope = cfg[SLOPE] != 0.0
-    if slope:
-        model = SLOPE_MODEL
     g1 = g2 = 0.0
     gn = P[G]
     z = state[NSTATE:NSTATE + Az.shape[0]]
@@ -244,7 +322,7 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
         slips = slip_angles(vel)
-        if slope:   # gravity in body axes at the heading of the step; loads with the normal weight
+        if model == SLOPE_MODEL:   # gravity in body axes at the heading of the step; loads with the normal weight
             g1, g2, gn = plane(P, cfg, THE)
         loads = contact_loads(P, FC1, FC2, gn, ce, se, cb, sb)
         if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
@@ -331,20 +409,23 @@ def _note(warn, kind, t, value):
 
 
 @njit(cache=True, parallel=True)
-def run_batch(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+def run_batch(model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
               noise, state, rec, stats, warn, status, nrec):
-    """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis."""
+    """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis.
+    ``model``: :func:`model_code` of ``cfg``, compiled as a constant (one specialisation per model)."""
+    literally(model)
     for i in prange(P.shape[0]):
-        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+        nrec[i] = run_one(model, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
                           levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
 
 
 @njit(cache=True, nogil=True)
-def run_serial(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+def run_serial(model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
                noise, state, rec, stats, warn, status, nrec):
     """:func:`run_batch` on the calling thread: the step-by-step calls of a Python yaw-moment input."""
+    literally(model)
     for i in range(P.shape[0]):
-        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+        nrec[i] = run_one(model, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
                           levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
 
 

@@ -15,13 +15,15 @@ import types
 from typing import Any
 
 from numba import njit
+from numba.core import types as _nbtypes
+from numba.extending import overload
 
 from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.tires import law as _tire_law
 
-__all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
+__all__ = ["accelerations", "model_accelerations", "by_model", "held_pins", "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
            "tire_resultant", "tire_moment", "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment",
            "rest_rate", "lateral_force", "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE",
            "SETTLE_WINDOW", "EXTERNAL_MZ", "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK",
@@ -206,18 +208,70 @@ def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     """The generated accelerations of the model.
 
     0 thesis (with the lagged yaw acceleration ``rdc``), 1 exact, 2 exact on a
-    plane with the in-plane gravity ``g1, g2`` (m/s^2) on every body.
+    plane with the in-plane gravity ``g1, g2`` (m/s^2) on every body.  A
+    ``model`` known when compiling (a numba literal: the WCHAIR kernel's entry
+    points) compiles that model's equations only (:func:`model_accelerations`).
     """
+    return model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+
+
+@_inl
+def _acc_thesis(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     u, v, r, ce, se, cb, sb, ed, bd = s
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    if model == SLOPE_MODEL:
-        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                         P[M_C], P[I_Z], P[I_ZP])
-    if model == 0:
-        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                          P[M_C], P[I_Z], P[I_ZP], rdc)
+    return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                      fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                      P[M_C], P[I_Z], P[I_ZP], rdc)
+
+
+@_inl
+def _acc_exact(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
     return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
                      fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
                      P[M_C], P[I_Z], P[I_ZP])
+
+
+@_inl
+def _acc_slope(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                     fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                     P[M_C], P[I_Z], P[I_ZP])
+
+
+@_inl
+def _acc_any(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    if model == SLOPE_MODEL:
+        return _acc_slope(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+    if model == 0:
+        return _acc_thesis(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+    return _acc_exact(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+
+
+def model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    """:func:`accelerations` for compiled code only (numba chooses the implementation when compiling the caller).
+
+    With ``model`` a numba integer literal the call compiles that model's
+    generated accelerations alone; with a runtime integer, all three behind
+    a branch.
+    """
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+def by_model(model: Any, impls: tuple[Any, Any, Any], generic: Any) -> Any:
+    """numba overload helper: ``impls[code]`` (thesis, exact, slope) for a literal model code, else ``generic``."""
+    if isinstance(model, _nbtypes.IntegerLiteral):
+        return impls[model.literal_value]
+    return generic
+
+
+@overload(model_accelerations, prefer_literal=True)
+def _model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    f = by_model(model, (_acc_thesis, _acc_exact, _acc_slope), _acc_any)
+
+    def impl(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+        return f(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+    return impl
