@@ -108,6 +108,15 @@ def tire_yaw_moment(P, F, ce, se, cb, sb):
 
 
 @_inl
+def velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    """Contact velocities of the model chosen at run time (0 thesis, else exact; generated): SLIP's, wheel frames
+    untoed.  Compiled code calls :func:`model_velocities`."""
+    if model == 0:
+        return cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+    return cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+
+
+@_inl
 def _cv_thesis(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     return cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
 
@@ -117,22 +126,15 @@ def _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     return cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
 
 
-@_inl
-def _cv_any(model, P, u, v, r, ce, se, cb, sb, ed, bd):
-    if model == 0:
-        return _cv_thesis(model, P, u, v, r, ce, se, cb, sb, ed, bd)
-    return _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd)
-
-
 def model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
-    """The contact velocities of ``model`` (generated), for compiled code only: a numba literal ``model`` compiles
-    its model's alone (:func:`~stability.simulate.kernel_equations.model_accelerations`)."""
+    """:func:`velocities` for compiled code only: a numba literal ``model`` compiles its model's alone
+    (:func:`~stability.simulate.kernel_equations.model_accelerations`)."""
     raise NotImplementedError("compiled code only (numba overload)")
 
 
 @overload(model_velocities, prefer_literal=True)
 def _model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
-    f = by_model(model, (_cv_thesis, _cv_exact, _cv_exact), _cv_any)
+    f = by_model(model, (_cv_thesis, _cv_exact, _cv_exact), velocities)
 
     def impl(model, P, u, v, r, ce, se, cb, sb, ed, bd):
         return f(model, P, u, v, r, ce, se, cb, sb, ed, bd)
@@ -284,15 +286,23 @@ def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, B
 
 
 @_int
-def run_one(model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+def run_one(model, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
             noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
-    controller's states); writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
+    controller's states) with the chair's parameters ``prow``; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
     recorded so far.  A stopped run (``status``) does nothing.  ``model``: :func:`model_code` of ``cfg``, a
     compile-time constant (numba literal) from the entry points, so that a run compiles its model's equations only.  ``cfg[EXTERNAL_MZ]``: the yaw moment is
     ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
     if status[0] != 0.0 or status[2] != 0.0:
         return int(state[ST_NREC])
+    # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
+    P = param_tuple(prow)
+    S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK = (borrowed(S), borrowed(TK), borrowed(TS), borrowed(TL), borrowed(LIM),
+                                                borrowed(RK), borrowed(RC), borrowed(RS), borrowed(CAM), borrowed(CHK))
+    cfg, levels, state, rec, stats, warn, status = (borrowed(cfg), borrowed(levels), borrowed(state), borrowed(rec),
+                                                    borrowed(stats), borrowed(warn), borrowed(status))
+    ctl_f, Cy, Dy, Az, Bu, By, Cz, noise = (borrowed(ctl_f), borrowed(Cy), borrowed(Dy), borrowed(Az), borrowed(Bu),
+                                            borrowed(By), borrowed(Cz), borrowed(noise))
     dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
         cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0, int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
@@ -352,7 +362,7 @@ def run_one(model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
         else:
             MA = kinetic_pin_moment(ED, P[MAF])
             MB = kinetic_pin_moment(BD, P[MBF])
-            acc = accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
+            acc = model_accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
         UDD, VDD, THEDD, EDD, BDD = acc
         if locked:
             EDD = BDD = 0.0
