@@ -33,7 +33,7 @@ def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.nd
     Returns
     -------
     callable
-        Runs the kernel on fresh output arrays (on one thread, as
+        Runs the kernel on fresh output arrays (its serial entry, as
         :func:`~stability.simulate.engine.run_compiled` runs one run) and returns the recorded columns, shape
         (31, n) (the rows of :data:`stability.simulate.results.COLUMNS` after ``t``).
     """
@@ -53,12 +53,7 @@ def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.nd
         args = (*fixed, state0.copy(), rec, np.full((1, 3 + len(levels)), np.nan), np.zeros((1, 3, 3)),
                 np.zeros((1, 6)), counts)
         with engine.kernel_entry_guard():
-            before = k.get_num_threads()
-            k.set_num_threads(1)
-            try:
-                k.call_model(k.run_batch, k.model_code(args[13]), *args)
-            finally:
-                k.set_num_threads(before)
+            k.run_single(k.model_code(args[13]), args)
         return rec[0, :, :int(counts[0])]
 
     return call

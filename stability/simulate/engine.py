@@ -424,12 +424,8 @@ def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthread
             lk.run_lanes(*args, lanes)
         return
     model = k.model_code(args[13])      # the model's own specialisation of the kernel (numba literal)
-    if n_runs == 1 and nthreads > 1:
-        k.set_num_threads(1)
-        try:
-            k.call_model(k.run_batch, model, *args)
-        finally:
-            k.set_num_threads(nthreads)
+    if n_runs == 1:     # on this thread, without the parallel entry (whose compile a first run need not wait for)
+        k.run_single(model, args)
         return
     with k.parallel_chunksize(max(1, n_runs // (16 * nthreads))):
         k.call_model(k.run_batch, model, *args)

@@ -34,7 +34,7 @@ from stability.simulate.kernel_equations import _NOWRAP, _inl, _inl_py, _int  # 
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
-__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "model_code", "call_model", "run_batch",
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "model_code", "call_model", "run_single", "PER_RUN_ARGS", "run_batch",
            "run_serial", "run_one", "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations",
            "held_pins", "stick_slip", "tire_yaw_moment", "plane"]
 
@@ -58,34 +58,38 @@ def model_code(cfg: np.ndarray) -> int:
 _ENTRIES: dict[tuple, Any] = {}
 
 
-def call_model(entry: Any, model: int, *args: Any) -> None:
-    """``entry(model, *args)`` (:func:`run_batch` or :func:`run_serial`) through its specialisation for ``model``.
+def call_model(entry: Any, model: int, *args: Any) -> Any:
+    """``entry(model, *args)`` (:func:`run_batch`, :func:`run_serial`, :func:`run_one`) through its specialisation
+    for ``model``.
 
     The entry points take the model as a numba literal (``literally``), so a
     Python int does not match their compiled signatures by type: numba's
     dispatch would type the call again every time (about 8 ms) before it
-    finds the literal one.  The first call for a model and argument types goes
-    through numba (which compiles the specialisation or loads it from the
-    cache); later ones call that specialisation directly, found by the
-    arguments' type fingerprints (numba's own dispatch key, about 2 us for
+    finds the literal one.  The first call for a model and argument types
+    compiles the specialisation (or loads it from the cache) for the literal
+    model directly; later ones call it directly, found by the arguments' type
+    fingerprints (numba's own dispatch key, about 2 us for
     all of them; ``numba.typeof`` would cost 0.2 ms).
 
     Parameters
     ----------
     entry : numba dispatcher
-        :func:`run_batch` or :func:`run_serial`.
+        :func:`run_batch`, :func:`run_serial` or :func:`run_one`.
     model : int
         :func:`model_code` of the run's configuration row.
     *args
         The entry point's other arguments.
+
+    Returns
+    -------
+    object
+        What the entry point returns.
     """
     key = (entry, model, tuple(map(compute_fingerprint, args)))
     fn = _ENTRIES.get(key)
-    if fn is None:
-        entry(model, *args)
-        _ENTRIES[key] = entry.get_overload((_nbtypes.literal(model), *(typeof(a) for a in args)))
-        return
-    fn(model, *args)
+    if fn is None:      # compiled, or loaded from the cache, for the literal model directly
+        fn = _ENTRIES[key] = entry.compile((_nbtypes.literal(model), *(typeof(a) for a in args)))
+    return fn(model, *args)
 
 
 @_inl
@@ -285,14 +289,16 @@ def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, B
     return held, next_k
 
 
-@_int
+@njit(cache=True, nogil=True)
 def run_one(model, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
             noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
     controller's states) with the chair's parameters ``prow``; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
     recorded so far.  A stopped run (``status``) does nothing.  ``model``: :func:`model_code` of ``cfg``, a
-    compile-time constant (numba literal) from the entry points, so that a run compiles its model's equations only.  ``cfg[EXTERNAL_MZ]``: the yaw moment is
+    compile-time constant (numba literal: :func:`call_model`, or the entry points), so that a run compiles its
+    model's equations only.  One run is called from Python directly (:func:`run_single`).  ``cfg[EXTERNAL_MZ]``: the yaw moment is
     ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
+    literally(model)
     if status[0] != 0.0 or status[2] != 0.0:
         return int(state[ST_NREC])
     # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
@@ -416,6 +422,19 @@ def _note(warn, kind, t, value):
     if warn[kind, 0] == 0.0:
         warn[kind, 1] = t
     warn[kind, 0] += 1.0
+
+
+#: the arguments of :func:`run_batch` (after the model and the steps) that hold one row per run
+PER_RUN_ARGS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 21, 22, 23, 24, 25)
+
+
+def run_single(model: int, args: tuple) -> None:
+    """One run with :func:`run_batch`'s arguments (the model, then the rest): :func:`run_one` called from Python
+    (no parallel entry to compile for it, nor to re-optimise the step in); writes ``args[-1][0]``, the rows
+    recorded."""
+    k0, k1, rest = args[0], args[1], args[2:]
+    row = [a[0] if i in PER_RUN_ARGS else a for i, a in enumerate(rest[:-1])]
+    rest[-1][0] = call_model(run_one, model, k0, k1, *row)
 
 
 @njit(cache=True, parallel=True)
