@@ -53,7 +53,7 @@ def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.nd
         args = (*fixed, state0.copy(), rec, np.full((1, 3 + len(levels)), np.nan), np.zeros((1, 3, 3)),
                 np.zeros((1, 6)), counts)
         with engine.kernel_entry_guard():
-            k.run_single(k.model_code(args[13]), args)
+            k.run_single(k.variant(args[13], args[15]), args)
         return rec[0, :, :int(counts[0])]
 
     return call

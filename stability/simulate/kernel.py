@@ -34,49 +34,55 @@ from stability.simulate.kernel_equations import _NOWRAP, _inl, _inl_py, _int  # 
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
-__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "model_code", "call_model", "run_single", "PER_RUN_ARGS", "run_batch",
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "variant", "call_model", "run_single", "PER_RUN_ARGS", "run_batch",
            "run_serial", "run_one", "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations",
            "held_pins", "stick_slip", "tire_yaw_moment", "plane"]
 
-def model_code(cfg: np.ndarray) -> int:
-    """The model a configuration row runs (the first argument of :func:`run_batch` and :func:`run_serial`).
+def variant(cfg: np.ndarray, ctl_f: np.ndarray) -> tuple[int, int]:
+    """The kernel variant a configuration row runs: the first two arguments of :func:`run_one`, :func:`run_batch`
+    and :func:`run_serial`, compiled as constants (numba literals, :func:`call_model`).
 
     Parameters
     ----------
     cfg : ndarray
         The kernel's configuration row (``engine._config``).
+    ctl_f : ndarray
+        The sampled controller's scalars (:meth:`SampledController.arrays`; sample time first, 0 for none).
 
     Returns
     -------
-    int
+    model : int
         0 thesis, 1 exact, :data:`SLOPE_MODEL` the exact model on a plane (``cfg[SLOPE]`` set).
+    ctl : int
+        1 when a sampled controller gives the yaw moment, else 0 (its code is not compiled).
     """
-    return SLOPE_MODEL if cfg[SLOPE] != 0.0 else int(cfg[5])
+    model = SLOPE_MODEL if cfg[SLOPE] != 0.0 else int(cfg[5])
+    return model, int(ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0)
 
 
-#: the compiled specialisations :func:`call_model` found, by entry point, model and the arguments' type fingerprints
+#: the compiled specialisations :func:`call_model` found, by entry point, variant and the arguments' type fingerprints
 _ENTRIES: dict[tuple, Any] = {}
 
 
-def call_model(entry: Any, model: int, *args: Any) -> Any:
-    """``entry(model, *args)`` (:func:`run_batch`, :func:`run_serial`, :func:`run_one`) through its specialisation
-    for ``model``.
+def call_model(entry: Any, var: tuple[int, int], *args: Any) -> Any:
+    """``entry(*var, *args)`` (:func:`run_batch`, :func:`run_serial`, :func:`run_one`) through its specialisation
+    for the variant ``var``.
 
-    The entry points take the model as a numba literal (``literally``), so a
-    Python int does not match their compiled signatures by type: numba's
+    The entry points take the variant as numba literals (``literally``), so
+    Python ints do not match their compiled signatures by type: numba's
     dispatch would type the call again every time (about 8 ms) before it
-    finds the literal one.  The first call for a model and argument types
-    compiles the specialisation (or loads it from the cache) for the literal
-    model directly; later ones call it directly, found by the arguments' type
-    fingerprints (numba's own dispatch key, about 2 us for
-    all of them; ``numba.typeof`` would cost 0.2 ms).
+    finds the literal one.  The first call for a variant and argument types
+    compiles the specialisation (or loads it from the cache) for the literals
+    directly; later ones call it directly, found by the arguments' type
+    fingerprints (numba's own dispatch key, about 2 us for all of them;
+    ``numba.typeof`` would cost 0.2 ms).
 
     Parameters
     ----------
     entry : numba dispatcher
         :func:`run_batch`, :func:`run_serial` or :func:`run_one`.
-    model : int
-        :func:`model_code` of the run's configuration row.
+    var : tuple of int
+        :func:`variant` of the runs.
     *args
         The entry point's other arguments.
 
@@ -85,11 +91,11 @@ def call_model(entry: Any, model: int, *args: Any) -> Any:
     object
         What the entry point returns.
     """
-    key = (entry, model, tuple(map(compute_fingerprint, args)))
+    key = (entry, var, tuple(map(compute_fingerprint, args)))
     fn = _ENTRIES.get(key)
-    if fn is None:      # compiled, or loaded from the cache, for the literal model directly
-        fn = _ENTRIES[key] = entry.compile((_nbtypes.literal(model), *(typeof(a) for a in args)))
-    return fn(model, *args)
+    if fn is None:      # compiled, or loaded from the cache, for the literals directly
+        fn = _ENTRIES[key] = entry.compile((*map(_nbtypes.literal, var), *(typeof(a) for a in args)))
+    return fn(*var, *args)
 
 
 @_inl
@@ -218,13 +224,13 @@ def range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit)
             nmax = max(nmax, loads[w])
             smax = max(smax, abs(slips[w]))
     if nmax > maxload:
-        _note(warn, 1, t, nmax)
+        _note(warn[1], t, nmax)
         if stop and warn[1, 0] > nwarn_limit:
             return True
     if nmin < 0.0:
-        _note(warn, 2, t, nmin)
+        _note(warn[2], t, nmin)
     if smax > maxslip:
-        _note(warn, 0, t, smax)
+        _note(warn[0], t, smax)
         if stop and warn[0, 0] > nwarn_limit:
             return True
     return False
@@ -289,8 +295,26 @@ def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, B
     return held, next_k
 
 
+def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """:func:`controlled` where the variant has a controller (``ctl`` a numba literal 1), else nothing (``(held,
+    next_k)``: the controller's code is not compiled); compiled code only."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(controller_step, prefer_literal=True)
+def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
+        def none(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+            return held, next_k
+        return none
+
+    def impl(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+        return controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+    return impl
+
+
 @njit(cache=True, nogil=True)
-def run_one(model, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
             noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
     controller's states) with the chair's parameters ``prow``; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
@@ -299,6 +323,7 @@ def run_one(model, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, 
     model's equations only.  One run is called from Python directly (:func:`run_single`).  ``cfg[EXTERNAL_MZ]``: the yaw moment is
     ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
     literally(model)
+    literally(ctl)
     if status[0] != 0.0 or status[2] != 0.0:
         return int(state[ST_NREC])
     # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
@@ -321,9 +346,9 @@ def run_one(model, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, 
     g1 = g2 = 0.0
     gn = P[G]
     z = state[NSTATE:NSTATE + Az.shape[0]]
-    znew = np.zeros(Az.shape[0])
-    y = np.zeros(Cy.shape[0])
-    sv = np.zeros(10)
+    znew = np.empty(Az.shape[0])     # the controller's scratch, written before it is read
+    y = np.empty(Cy.shape[0])
+    sv = np.empty(10)
     X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
                                             state[7], state[8], state[9])
     THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]
@@ -356,7 +381,8 @@ def run_one(model, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, 
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
         mz = mz_held if cfg[EXTERNAL_MZ] != 0.0 else 0.0
         if use_ctl:
-            mz_held, next_k = controlled(t, next_k, mz_held, z, znew, y, sv, (X, Y, THE, UD, VD, THED, E, ED, B, BD),
+            mz_held, next_k = controller_step(ctl, t, next_k, mz_held, z, znew, y, sv,
+                                              (X, Y, THE, UD, VD, THED, E, ED, B, BD),
                                          ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
             mz = mz_held
         st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
@@ -416,45 +442,49 @@ def run_one(model, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, 
 
 
 @_inl
-def _note(warn, kind, t, value):
-    if warn[kind, 0] == 0.0 or abs(value) > abs(warn[kind, 2]):
-        warn[kind, 2] = value
-    if warn[kind, 0] == 0.0:
-        warn[kind, 1] = t
-    warn[kind, 0] += 1.0
+def _note(w, t, value):
+    """One warning of a kind, ``w`` its row of ``warn``: count, first time, largest value (a row rather than the
+    kind's index, which numba would compile once per literal kind)."""
+    if w[0] == 0.0 or abs(value) > abs(w[2]):
+        w[2] = value
+    if w[0] == 0.0:
+        w[1] = t
+    w[0] += 1.0
 
 
-#: the arguments of :func:`run_batch` (after the model and the steps) that hold one row per run
+#: the arguments of :func:`run_batch` (after the variant and the steps) that hold one row per run
 PER_RUN_ARGS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 21, 22, 23, 24, 25)
 
 
-def run_single(model: int, args: tuple) -> None:
-    """One run with :func:`run_batch`'s arguments (the model, then the rest): :func:`run_one` called from Python
+def run_single(var: tuple[int, int], args: tuple) -> None:
+    """One run of the variant ``var`` with :func:`run_batch`'s other arguments: :func:`run_one` called from Python
     (no parallel entry to compile for it, nor to re-optimise the step in); writes ``args[-1][0]``, the rows
     recorded."""
     k0, k1, rest = args[0], args[1], args[2:]
     row = [a[0] if i in PER_RUN_ARGS else a for i, a in enumerate(rest[:-1])]
-    rest[-1][0] = call_model(run_one, model, k0, k1, *row)
+    rest[-1][0] = call_model(run_one, var, k0, k1, *row)
 
 
 @njit(cache=True, parallel=True)
-def run_batch(model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+def run_batch(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
               noise, state, rec, stats, warn, status, nrec):
     """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis.
     ``model``: :func:`model_code` of ``cfg``, compiled as a constant (one specialisation per model)."""
     literally(model)
+    literally(ctl)
     for i in prange(P.shape[0]):
-        nrec[i] = run_one(model, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
                           levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
 
 
 @njit(cache=True, nogil=True)
-def run_serial(model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
+def run_serial(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
                noise, state, rec, stats, warn, status, nrec):
     """:func:`run_batch` on the calling thread: the step-by-step calls of a Python yaw-moment input."""
     literally(model)
+    literally(ctl)
     for i in range(P.shape[0]):
-        nrec[i] = run_one(model, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
+        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
                           levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
 
 
