@@ -301,6 +301,24 @@ def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy,
     raise NotImplementedError("compiled code only (numba overload)")
 
 
+def controller_scratch(ctl, Az, Cy, ctl_f):
+    """The controller's scratch arrays ``(znew, y, sv)`` where the variant has a controller (uninitialised: written
+    before they are read), else empty views (nothing allocated or compiled); compiled code only."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(controller_scratch, prefer_literal=True)
+def _controller_scratch(ctl, Az, Cy, ctl_f):
+    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
+        def none(ctl, Az, Cy, ctl_f):
+            return ctl_f[:0], ctl_f[:0], ctl_f[:0]
+        return none
+
+    def impl(ctl, Az, Cy, ctl_f):
+        return np.empty(Az.shape[0]), np.empty(Cy.shape[0]), np.empty(10)
+    return impl
+
+
 @overload(controller_step, prefer_literal=True)
 def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
@@ -346,9 +364,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     g1 = g2 = 0.0
     gn = P[G]
     z = state[NSTATE:NSTATE + Az.shape[0]]
-    znew = np.empty(Az.shape[0])     # the controller's scratch, written before it is read
-    y = np.empty(Cy.shape[0])
-    sv = np.empty(10)
+    znew, y, sv = controller_scratch(ctl, Az, Cy, ctl_f)
     X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
                                             state[7], state[8], state[9])
     THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]

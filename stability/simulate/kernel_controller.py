@@ -14,12 +14,11 @@ from numba import njit
 __all__ = ["controller_output"]
 
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # as the kernel's helpers
-_F1, _F2 = "float64[::1]", "float64[:, ::1]"
 
 
-# an explicit signature: type inference would also compile it for the literal first sample index 0
-@njit(f"float64(int64, {_F1}, {_F1}, {_F1}, {_F1}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2})", cache=True,
-      nogil=True, **_NOWRAP)
+# compiled when a run with a controller first calls it (no explicit signature: that compiled it at import, for
+# every first use); its callers pass a run-time sample index (a literal one would compile it a second time)
+@njit(cache=True, nogil=True, **_NOWRAP)
 def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """Sample ``k`` of the linear sampled controller: measure, output, advance ``z`` (see controller.py)."""
     ny = Cy.shape[0]

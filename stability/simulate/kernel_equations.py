@@ -14,7 +14,8 @@ from __future__ import annotations
 import types
 from typing import Any
 
-from numba import carray, njit
+from numba import njit
+from numba.core import cgutils
 from numba.core import types as _nbtypes
 from numba.extending import intrinsic, overload
 
@@ -137,28 +138,26 @@ NREC_ALL, NREC_STATES = 31, 10
 
 
 @intrinsic
-def _data(typingctx, arr):
-    """The data pointer of a C-contiguous array (for :func:`borrowed`)."""
-    if not (isinstance(arr, _nbtypes.Array) and arr.layout == "C"):
-        return None
-
-    def codegen(context, builder, sig, args):
-        return context.make_array(sig.args[0])(context, builder, value=args[0]).data
-
-    return _nbtypes.CPointer(arr.dtype)(arr), codegen
-
-
-@_inl
-def borrowed(a):
-    """A view of the C-contiguous array ``a`` without a reference count (``a`` must outlive it).
+def borrowed(typingctx, arr):
+    """A view of the array ``arr`` without a reference count (``arr`` must outlive it): the same array with no
+    meminfo (nor parent object).
 
     numba counts references to an array passed into a function with atomic operations that LLVM cannot remove, a
     pair per call: the step's helpers (MECHAN and the tire law, with their tables) took one pair per array and call,
     every step, which cost about a fifth of a run where the arrays are counted (a run called from Python; the
     parallel loop's runs are views without a count).  They also kept the lanes kernel's tire law from being
-    vectorised.  A view made by ``carray`` has no count to keep.
+    vectorised.  A view without a meminfo has no count to keep.  An intrinsic, so that nothing is compiled for it.
     """
-    return carray(_data(a), a.shape)
+    if not isinstance(arr, _nbtypes.Array):
+        return None
+
+    def codegen(context, builder, sig, args):
+        ary = context.make_array(sig.args[0])(context, builder, value=args[0])
+        ary.meminfo = cgutils.get_null_value(ary.meminfo.type)
+        ary.parent = cgutils.get_null_value(ary.parent.type)
+        return ary._getvalue()
+
+    return arr(arr), codegen
 
 
 @_inl

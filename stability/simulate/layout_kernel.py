@@ -316,7 +316,7 @@ def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, 
     keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
     nz, ny = Az.shape[0], Cy.shape[0]
     z, znew, y, sv = np.zeros(nz), np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
-    next_k, cmd, mz = 0, 0.0, 0.0
+    next_k, cmd, mz = np.int64(0), 0.0, 0.0     # a run-time index (a literal 0 compiles controller_output again)
     for k in range(nsteps):
         t = k * dt
         if use_ctl:
