@@ -136,6 +136,27 @@ def _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     return cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
 
 
+def step_gravity(model, P, cfg, psi, g1, g2, gn):
+    """Gravity ``(g1, g2, gn)`` of the step: on a plane (``model`` :data:`SLOPE_MODEL`) in body axes at the heading
+    ``psi`` with the normal weight (:func:`plane`), else ``(g1, g2, gn)`` as given (level: 0, 0, ``P[G]``); a literal
+    model compiles its case only.  Compiled code only."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(step_gravity, prefer_literal=True)
+def _step_gravity(model, P, cfg, psi, g1, g2, gn):
+    if isinstance(model, _nbtypes.IntegerLiteral) and model.literal_value != SLOPE_MODEL:
+        def level(model, P, cfg, psi, g1, g2, gn):
+            return g1, g2, gn
+        return level
+
+    def impl(model, P, cfg, psi, g1, g2, gn):
+        if model == SLOPE_MODEL:
+            return plane(P, cfg, psi)
+        return g1, g2, gn
+    return impl
+
+
 def model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     """:func:`velocities` for compiled code only: a numba literal ``model`` compiles its model's alone
     (:func:`~stability.simulate.kernel_equations.model_accelerations`)."""
@@ -379,8 +400,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
         slips = slip_angles(vel)
-        if model == SLOPE_MODEL:   # gravity in body axes at the heading of the step; loads with the normal weight
-            g1, g2, gn = plane(P, cfg, THE)
+        g1, g2, gn = step_gravity(model, P, cfg, THE, g1, g2, gn)
         loads = contact_loads(P, FC1, FC2, gn, ce, se, cb, sb)
         if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
             status[0], status[1] = STOPPED_WARNINGS, t
