@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads, typeof
 from numba._dispatcher import compute_fingerprint
-from numba.core import types as _nbtypes
 from numba.core import config as _config
+from numba.core import types as _nbtypes
 from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
@@ -34,7 +34,8 @@ from stability.simulate.kernel_equations import _NOWRAP, _inl, _inl_py, _int  # 
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
-__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "variant", "call_model", "run_single", "PER_RUN_ARGS", "run_batch",
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "variant", "call_model",
+           "run_single", "PER_RUN_ARGS", "run_batch",
            "run_serial", "run_one", "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations",
            "held_pins", "stick_slip", "tire_yaw_moment", "plane"]
 
@@ -353,14 +354,17 @@ def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy
 
 
 @njit(cache=True, nogil=True)
-def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-            noise, state, rec, stats, warn, status):
+def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu,
+            By, Cz, noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
-    controller's states) with the chair's parameters ``prow``; writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
-    recorded so far.  A stopped run (``status``) does nothing.  ``model``: :func:`model_code` of ``cfg``, a
-    compile-time constant (numba literal: :func:`call_model`, or the entry points), so that a run compiles its
-    model's equations only.  One run is called from Python directly (:func:`run_single`).  ``cfg[EXTERNAL_MZ]``: the yaw moment is
-    ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
+    controller's states), with the chair's parameters ``prow``; writes ``rec`` (ncol, nrec), ``stats``, ``warn``
+    (3, 3), ``status``; returns the rows recorded so far.  A stopped run (``status``) does nothing.
+
+    ``model, ctl``: the run's :func:`variant`, compile-time constants (numba literals: :func:`call_model`, or the
+    entry points), so that a run compiles its model's equations only, and the controller's step only with a
+    controller.  One run is called from Python directly (:func:`run_single`).  ``cfg[EXTERNAL_MZ]``: the yaw
+    moment is ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the
+    controller's."""
     literally(model)
     literally(ctl)
     if status[0] != 0.0 or status[2] != 0.0:
@@ -502,26 +506,28 @@ def run_single(var: tuple[int, int], args: tuple) -> None:
 
 
 @njit(cache=True, parallel=True)
-def run_batch(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-              noise, state, rec, stats, warn, status, nrec):
+def run_batch(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
+              Cz, noise, state, rec, stats, warn, status, nrec):
     """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis.
-    ``model``: :func:`model_code` of ``cfg``, compiled as a constant (one specialisation per model)."""
+    ``model, ctl``: the runs' :func:`variant`, compiled as constants (one specialisation per variant)."""
     literally(model)
     literally(ctl)
     for i in prange(P.shape[0]):
-        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
-                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
+        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i],
+                          CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i],
+                          warn[i], status[i])
 
 
 @njit(cache=True, nogil=True)
-def run_serial(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-               noise, state, rec, stats, warn, status, nrec):
+def run_serial(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
+               Cz, noise, state, rec, stats, warn, status, nrec):
     """:func:`run_batch` on the calling thread: the step-by-step calls of a Python yaw-moment input."""
     literally(model)
     literally(ctl)
     for i in range(P.shape[0]):
-        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
-                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
+        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i],
+                          CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i],
+                          warn[i], status[i])
 
 
 invalidate_stale_cache(globals(), "kernel.equations.sha256")

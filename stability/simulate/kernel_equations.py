@@ -24,7 +24,8 @@ from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.tires import law as _tire_law
 
-__all__ = ["accelerations", "model_accelerations", "by_model", "param_tuple", "borrowed", "held_pins", "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
+__all__ = ["accelerations", "model_accelerations", "by_model", "param_tuple", "borrowed", "held_pins",
+           "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
            "tire_resultant", "tire_moment", "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment",
            "rest_rate", "lateral_force", "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE",
            "SETTLE_WINDOW", "EXTERNAL_MZ", "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK",
