@@ -23,7 +23,7 @@ from numba.core import types as _nbtypes
 from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
-from stability.simulate.kernel_controller import controller_output
+from stability.simulate.kernel_controller import controlled, controller_scratch, controller_step  # noqa: F401
 
 # the layouts and the compiled physics as this module's globals, where numba resolves them (the engine, the adaptive
 # and lanes kernels and the tests read them here too)
@@ -302,55 +302,6 @@ def settled(track, t, held, a, ma, mb):
     elif track[1] != 0.0 and t >= track[0] + SETTLE_WINDOW:
         return a <= track[2] and ma <= track[3] and mb <= track[4]
     return False
-
-
-@_inl
-def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    """The sampled controller at ``t``: ``(yaw moment, next sample)`` after the samples ``next_k`` .. up to ``t`` are
-    taken (``z`` advanced); the last one's output is held (``held`` when no sample falls due)."""
-    ks = int(math.floor(t / ctl_f[0] + 1e-9))
-    while next_k <= ks:
-        for c in range(10):
-            sv[c] = states[c]
-        held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-        next_k += 1
-    return held, next_k
-
-
-def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    """:func:`controlled` where the variant has a controller (``ctl`` a numba literal 1), else nothing (``(held,
-    next_k)``: the controller's code is not compiled); compiled code only."""
-    raise NotImplementedError("compiled code only (numba overload)")
-
-
-def controller_scratch(ctl, Az, Cy, ctl_f):
-    """The controller's scratch arrays ``(znew, y, sv)`` where the variant has a controller (uninitialised: written
-    before they are read), else empty views (nothing allocated or compiled); compiled code only."""
-    raise NotImplementedError("compiled code only (numba overload)")
-
-
-@overload(controller_scratch, prefer_literal=True)
-def _controller_scratch(ctl, Az, Cy, ctl_f):
-    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
-        def none(ctl, Az, Cy, ctl_f):
-            return ctl_f[:0], ctl_f[:0], ctl_f[:0]
-        return none
-
-    def impl(ctl, Az, Cy, ctl_f):
-        return np.empty(Az.shape[0]), np.empty(Cy.shape[0]), np.empty(10)
-    return impl
-
-
-@overload(controller_step, prefer_literal=True)
-def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
-        def none(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-            return held, next_k
-        return none
-
-    def impl(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-        return controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-    return impl
 
 
 @njit(cache=True, nogil=True)

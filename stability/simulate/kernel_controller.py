@@ -1,17 +1,23 @@
 """The sampled linear yaw-moment controller of the compiled WCHAIR kernel (numba), one sample at a time.
 
-Called by :func:`stability.simulate.kernel.run_one` (see :mod:`stability.simulate.controller` for the
-controller's arrays).  Its compiled code is flushed with the kernels' when any kernel source changes
-(:mod:`stability.simulate.cache_stamp`).
+Called by :func:`stability.simulate.kernel.run_one` through :func:`controller_step` (compiled only for a run with
+a controller; see :mod:`stability.simulate.controller` for the controller's arrays).  Its compiled code is
+flushed with the kernels' when any kernel source changes (:mod:`stability.simulate.cache_stamp`).
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
+import numpy as np
 from numba import njit
+from numba.core import types as _nbtypes
+from numba.extending import overload
 
-__all__ = ["controller_output"]
+from stability.simulate.kernel_equations import _inl
+
+__all__ = ["controller_output", "controlled", "controller_step", "controller_scratch"]
 
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # as the kernel's helpers
 
@@ -50,3 +56,52 @@ def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     for i in range(nz):
         z[i] = znew[i]
     return out
+
+
+@_inl
+def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """The sampled controller at ``t``: ``(yaw moment, next sample)`` after the samples ``next_k`` .. up to ``t`` are
+    taken (``z`` advanced); the last one's output is held (``held`` when no sample falls due)."""
+    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+    while next_k <= ks:
+        for c in range(10):
+            sv[c] = states[c]
+        held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        next_k += 1
+    return held, next_k
+
+
+def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """:func:`controlled` where the variant has a controller (``ctl`` a numba literal 1), else nothing (``(held,
+    next_k)``: the controller's code is not compiled); compiled code only."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+def controller_scratch(ctl, Az, Cy, ctl_f):
+    """The controller's scratch arrays ``(znew, y, sv)`` where the variant has a controller (uninitialised: written
+    before they are read), else empty views (nothing allocated or compiled); compiled code only."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(controller_scratch, prefer_literal=True)
+def _controller_scratch(ctl, Az, Cy, ctl_f):
+    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
+        def none(ctl, Az, Cy, ctl_f):
+            return ctl_f[:0], ctl_f[:0], ctl_f[:0]
+        return none
+
+    def impl(ctl, Az, Cy, ctl_f):
+        return np.empty(Az.shape[0]), np.empty(Cy.shape[0]), np.empty(10)
+    return impl
+
+
+@overload(controller_step, prefer_literal=True)
+def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
+        def none(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+            return held, next_k
+        return none
+
+    def impl(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+        return controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+    return impl
