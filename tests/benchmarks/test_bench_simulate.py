@@ -109,7 +109,7 @@ def test_bench_single_run_entries(bench):
     fns = {name: baseline.kernel_only(EJ, 0.75, opts, entry=name) for name in ("single", "batch")}
     out = {name: fn() for name, fn in fns.items()}
     np.testing.assert_array_equal(out["single"], out["batch"])
-    assert out["single"].shape == (31, 10001)
+    assert out["single"].shape == (31, 10002)      # 10 s at 1 ms: the rows of simulate()'s 10,002 times
     best = {name: float("inf") for name in fns}
     for _ in range(30):
         for name, fn in fns.items():
