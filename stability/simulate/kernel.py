@@ -123,8 +123,8 @@ def velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     """Contact velocities of the model chosen at run time (0 thesis, else exact; generated): SLIP's, wheel frames
     untoed.  Compiled code calls :func:`model_velocities`."""
     if model == 0:
-        return cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
-    return cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+        return _cv_thesis(model, P, u, v, r, ce, se, cb, sb, ed, bd)
+    return _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd)
 
 
 @_inl
@@ -166,11 +166,7 @@ def model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
 
 @overload(model_velocities, prefer_literal=True)
 def _model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
-    f = by_model(model, (_cv_thesis, _cv_exact, _cv_exact), velocities)
-
-    def impl(model, P, u, v, r, ce, se, cb, sb, ed, bd):
-        return f(model, P, u, v, r, ce, se, cb, sb, ed, bd)
-    return impl
+    return by_model(model, (_cv_thesis, _cv_exact, _cv_exact), velocities)
 
 
 @_inl

@@ -249,19 +249,11 @@ def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     :func:`model_accelerations`, which compiles only the model a literal
     ``model`` names.
     """
-    u, v, r, ce, se, cb, sb, ed, bd = s
-    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
     if model == SLOPE_MODEL:
-        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                         P[M_C], P[I_Z], P[I_ZP])
+        return _acc_slope(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
     if model == 0:
-        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                          P[M_C], P[I_Z], P[I_ZP], rdc)
-    return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                     fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                     P[M_C], P[I_Z], P[I_ZP])
+        return _acc_thesis(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+    return _acc_exact(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
 
 
 @_inl
@@ -302,16 +294,13 @@ def model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
 
 
 def by_model(model: Any, impls: tuple[Any, Any, Any], generic: Any) -> Any:
-    """numba overload helper: ``impls[code]`` (thesis, exact, slope) for a literal model code, else ``generic``."""
-    if isinstance(model, _nbtypes.IntegerLiteral):
-        return impls[model.literal_value]
-    return generic
+    """numba overload helper: the Python function of ``impls[code]`` (thesis, exact, slope) for a literal model
+    code, else of ``generic`` (each with the overloaded function's parameters), compiled as the call's
+    implementation."""
+    chosen = impls[model.literal_value] if isinstance(model, _nbtypes.IntegerLiteral) else generic
+    return chosen.py_func
 
 
 @overload(model_accelerations, prefer_literal=True)
 def _model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
-    f = by_model(model, (_acc_thesis, _acc_exact, _acc_slope), accelerations)
-
-    def impl(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
-        return f(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
-    return impl
+    return by_model(model, (_acc_thesis, _acc_exact, _acc_slope), accelerations)

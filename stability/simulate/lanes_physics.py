@@ -34,11 +34,11 @@ _lfw = compiled(_fw, ("contact_velocities_exact", "contact_velocities_thesis", "
                       "accelerations_thesis"), _lane, {"math": LANE_MATH})
 _lsl = compiled(_sl, ("accelerations_slope_exact", "gravity_body"), _lane, {"math": LANE_MATH})
 #: the scalar kernel's helpers of the step's arithmetic, calling the lane physics
-_lke = compiled(_ke, ("accelerations",), _lane, {
+_lke = compiled(_ke, ("accelerations", "_acc_thesis", "_acc_exact", "_acc_slope"), _lane, {
     "math": LANE_MATH, "acc_exact": _lfw.accelerations_exact, "acc_thesis": _lfw.accelerations_thesis,
     "acc_slope": _lsl.accelerations_slope_exact})
-_lcv = compiled(_k, ("velocities",), _lane, {"math": LANE_MATH, "cv_thesis": _lfw.contact_velocities_thesis,
-                                              "cv_exact": _lfw.contact_velocities_exact})
+_lcv = compiled(_k, ("velocities", "_cv_thesis", "_cv_exact"), _lane, {
+    "math": LANE_MATH, "cv_thesis": _lfw.contact_velocities_thesis, "cv_exact": _lfw.contact_velocities_exact})
 _lk = compiled(_k, ("plane", "contact_loads", "kinematics", "slip_angles"), _lane, {
     "math": LANE_MATH, "gravity_body": _lsl.gravity_body, "normal_loads": _lfo.normal_loads,
     "model_velocities": _lcv.velocities, "slip_angle": _lfo.slip_angle})
