@@ -444,9 +444,17 @@ PER_RUN_ARGS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 21, 22, 23, 24, 25)
 
 
 def run_single(var: tuple[int, int], args: tuple) -> None:
-    """One run of the variant ``var`` with :func:`run_batch`'s other arguments: :func:`run_one` called from Python
-    (no parallel entry to compile for it, nor to re-optimise the step in); writes ``args[-1][0]``, the rows
-    recorded."""
+    """One run of the variant ``var``: :func:`run_one` called from Python (no parallel entry to compile for it,
+    nor to re-optimise the step in).
+
+    Parameters
+    ----------
+    var : tuple of int
+        :func:`variant` of the run.
+    args : tuple
+        :func:`run_batch`'s arguments after the variant, each per-run array with one row; ``args[-1][0]`` is
+        set to the rows recorded.
+    """
     k0, k1, rest = args[0], args[1], args[2:]
     row = [a[0] if i in PER_RUN_ARGS else a for i, a in enumerate(rest[:-1])]
     rest[-1][0] = call_model(run_one, var, k0, k1, *row)

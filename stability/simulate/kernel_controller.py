@@ -72,14 +72,39 @@ def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, B
 
 
 def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    """:func:`controlled` where the variant has a controller (``ctl`` a numba literal 1), else nothing (``(held,
-    next_k)``: the controller's code is not compiled); compiled code only."""
+    """:func:`controlled` where the variant has a controller, else nothing; compiled code only (numba overload).
+
+    Parameters
+    ----------
+    ctl : int
+        1 with a controller (a numba literal: 0 compiles none of the controller's code).
+    t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise
+        As :func:`controlled`'s (t in s, held in N m).
+
+    Returns
+    -------
+    tuple
+        ``(yaw moment N m, next sample)``; ``(held, next_k)`` without a controller.
+    """
     raise NotImplementedError("compiled code only (numba overload)")
 
 
 def controller_scratch(ctl, Az, Cy, ctl_f):
-    """The controller's scratch arrays ``(znew, y, sv)`` where the variant has a controller (uninitialised: written
-    before they are read), else empty views (nothing allocated or compiled); compiled code only."""
+    """The controller's scratch arrays; compiled code only (numba overload).
+
+    Parameters
+    ----------
+    ctl : int
+        1 with a controller (a numba literal).
+    Az, Cy, ctl_f : ndarray
+        The controller's arrays (sizes of ``z`` and ``y``; ``ctl_f`` gives the empty views).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(znew, y, sv)``: uninitialised (written before they are read) with a controller, else empty views
+        (nothing allocated or compiled).
+    """
     raise NotImplementedError("compiled code only (numba overload)")
 
 

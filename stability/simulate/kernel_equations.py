@@ -289,14 +289,40 @@ def model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     With ``model`` a numba integer literal (the WCHAIR kernel's entry points)
     the call compiles that model's generated accelerations alone; with a
     run-time integer it is :func:`accelerations`, all three behind a branch.
+
+    Parameters
+    ----------
+    model : int
+        0 thesis, 1 exact, :data:`SLOPE_MODEL`.
+    s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2
+        As :func:`accelerations`'s (moments N m, forces N, gravity m/s^2).
+
+    Returns
+    -------
+    tuple of float
+        The accelerations (m/s^2, rad/s^2).
     """
     raise NotImplementedError("compiled code only (numba overload)")
 
 
 def by_model(model: Any, impls: tuple[Any, Any, Any], generic: Any) -> Any:
-    """numba overload helper: the Python function of ``impls[code]`` (thesis, exact, slope) for a literal model
-    code, else of ``generic`` (each with the overloaded function's parameters), compiled as the call's
-    implementation."""
+    """numba overload helper: the implementation of a call for its model.
+
+    Parameters
+    ----------
+    model : numba type
+        The call's model argument's type.
+    impls : tuple of numba dispatcher
+        Thesis, exact, slope: each with the overloaded function's parameters.
+    generic : numba dispatcher
+        The run-time branching version.
+
+    Returns
+    -------
+    function
+        The Python function of ``impls[code]`` for a literal model code, else of ``generic``, compiled as the
+        call's implementation.
+    """
     chosen = impls[model.literal_value] if isinstance(model, _nbtypes.IntegerLiteral) else generic
     return chosen.py_func
 
