@@ -40,7 +40,8 @@ def _direct(chair, speed, run):
     rec = np.full((1, k.NREC_ALL, nrec), np.nan)
     stats = np.full((1, 2 + len(engine.STATS_LEVELS) + 1), np.nan)
     warn, status, counts = np.zeros((1, 3, 3)), np.zeros((1, 6)), np.zeros(1, dtype=np.int64)
-    k.run_batch(0, steps, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, engine._config(opts, 0, -1),
+    cfg = engine._config(opts, 0, -1)
+    k.call_model(k.run_batch, k.variant(cfg, ctl[0]), 0, steps, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg,
                 np.array(engine.STATS_LEVELS), *ctl, engine.initial_state(S, ctl[3].shape[0]), rec, stats, warn,
                 status, counts)
     m = int(counts[0])

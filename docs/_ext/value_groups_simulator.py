@@ -94,8 +94,9 @@ def kernel_speed() -> dict:
 
 
 #: a first scalar simulate with an empty cache, timing numba's two LLVM stages per code library (the final
-#: module's optimisation, its machine code) and counting the libraries whose code holds the step ``run_one``
-#: (numba internals: ``numba.core.codegen``); prints process CPU, the LLVM part and that count
+#: module's optimisation, its machine code), counting the libraries whose code holds the step ``run_one``
+#: (numba internals: ``numba.core.codegen``) and the package's functions compiled (numba's compile events); prints
+#: process CPU, the LLVM part and those counts
 _LLVM_CHILD = r"""
 import time
 from numba.core import codegen as cg
@@ -114,17 +115,22 @@ def timed(meth):
 timed("_optimize_final_module")
 timed("_finalize_final_module")
 t0 = time.process_time()
-from stability.chair import preset
-from stability.settings.run import RunSpec
-from stability.simulate import simulate
-simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
-print(time.process_time() - t0, llvm[0], len(holders))
+from numba.core import event
+with event.install_recorder("numba:compile") as rec:
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import simulate
+    simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
+ours = [ev for _, ev in rec.buffer if ev.is_start
+        and getattr(getattr(ev.data.get("dispatcher"), "py_func", None), "__module__", "").startswith("stability.")]
+print(time.process_time() - t0, llvm[0], len(holders), len(ours))
 """
 
 
 @group("kernel_first_use", "simulate(ej-premier, 0.75, RunSpec(horizon=0.01)) in a fresh process with an empty "
        "NUMBA_CACHE_DIR, then again with that cache, under engine.use_kernel('scalar'|'lanes') (CPU time of the "
-       "child: user + sys); a scalar one timing numba's LLVM stages per code library (numba.core.codegen)")
+       "child: user + sys); a scalar one timing numba's LLVM stages per code library (numba.core.codegen) and counting "
+       "the package's compiles (numba.core.event)")
 def kernel_first_use() -> dict:
     """CPU time of a fresh process's first simulation on each kernel with an empty numba cache and with the cache."""
     import os
@@ -150,8 +156,8 @@ def kernel_first_use() -> dict:
     with tempfile.TemporaryDirectory() as cache:
         llvm = subprocess.run([sys.executable, "-c", _LLVM_CHILD], cwd=ROOT, check=True, capture_output=True,
                               text=True, env={**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)})
-    total, llvm_s, copies = (float(x) for x in llvm.stdout.split()[-3:])
-    out.update(llvm_pct=pct(llvm_s / total), run_one_copies=f"{int(copies)}")
+    total, llvm_s, copies, compiles = (float(x) for x in llvm.stdout.split()[-4:])
+    out.update(llvm_pct=pct(llvm_s / total), run_one_copies=f"{int(copies)}", compiles=f"{int(compiles)}")
     for kernel in ("scalar", "lanes"):
         with tempfile.TemporaryDirectory() as cache:
             first = child_cpu(kernel, cache)
@@ -368,3 +374,29 @@ def simulator_stick_slip() -> dict:
     return {"err_1": f"{err[0]:.1e}", "err_05": f"{err[1]:.1e}", "err_025": f"{err[2]:.1e}",
             "kinetic": f"{kinetic:.1e}", "kinetic_pct": f"{100 * kinetic / peak:.0f}",
             "time_ratio": fixed(cpu("stick-slip") / cpu("kinetic"), 1)}
+
+
+@group("single_run_entries", "baseline.kernel_only(ej-premier, 0.75, RunSpec(stop_on_warnings=False), entry='single'"
+       "|'batch'): run_one called from Python against run_batch on one thread, alternately 30 times in one process; "
+       "time.process_time, best")
+def single_run_entries() -> dict:
+    """One 10 s run's kernel CPU through the entry for one run and through the parallel entry, and their ratio."""
+    import time
+
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import baseline
+    from stability.simulate.options import make_options
+
+    opts = make_options(RunSpec(stop_on_warnings=False))
+    fns = {name: baseline.kernel_only(preset("ej-premier"), 0.75, opts, entry=name) for name in ("single", "batch")}
+    best = dict.fromkeys(fns, float("inf"))
+    for fn in fns.values():
+        fn()
+    for _ in range(30):
+        for name, fn in fns.items():
+            c0 = time.process_time()
+            fn()
+            best[name] = min(best[name], time.process_time() - c0)
+    return {"single_ms": sig(best["single"] * 1e3, 2), "batch_ms": sig(best["batch"] * 1e3, 2),
+            "ratio": fixed(best["batch"] / best["single"], 2)}

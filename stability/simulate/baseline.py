@@ -19,7 +19,7 @@ from stability.simulate.packing import Packed
 __all__ = ["kernel_only"]
 
 
-def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.ndarray]:
+def kernel_only(chair: Chair, speed: float, opts: Options, entry: str = "single") -> Callable[[], np.ndarray]:
     """The compiled kernel alone on one run packed once: what the Python around a run is measured against.
 
     Parameters
@@ -29,14 +29,19 @@ def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.nd
         Initial forward speed, m/s.
     opts : Options
         Checked options, ``scheme="wchair"``, no Python ``yaw_moment``.
+    entry : {"single", "batch"}
+        The kernel's entry: ``"single"`` :func:`~stability.simulate.kernel.run_one` called from Python (how
+        :func:`~stability.simulate.engine.run_compiled` runs one run), ``"batch"`` the parallel entry
+        :func:`~stability.simulate.kernel.run_batch` on one thread (how one run was run before issue 36).
 
     Returns
     -------
     callable
-        Runs the kernel on fresh output arrays (on one thread, as
-        :func:`~stability.simulate.engine.run_compiled` runs one run) and returns the recorded columns, shape
+        Runs the kernel on fresh output arrays and returns the recorded columns, shape
         (31, n) (the rows of :data:`stability.simulate.results.COLUMNS` after ``t``).
     """
+    if entry not in ("single", "batch"):
+        raise ValueError(f"entry={entry!r} is invalid; valid values: 'single', 'batch'")
     k = engine._kernel()
     pk = Packed([chair], np.array([float(speed)]), opts, None)
     ctl = SampledController.none().arrays()
@@ -52,13 +57,17 @@ def kernel_only(chair: Chair, speed: float, opts: Options) -> Callable[[], np.nd
         counts = np.zeros(1, dtype=np.int64)
         args = (*fixed, state0.copy(), rec, np.full((1, 3 + len(levels)), np.nan), np.zeros((1, 3, 3)),
                 np.zeros((1, 6)), counts)
+        var = k.variant(args[13], args[15])
         with engine.kernel_entry_guard():
-            before = k.get_num_threads()
-            k.set_num_threads(1)
-            try:
-                k.run_batch(*args)
-            finally:
-                k.set_num_threads(before)
+            if entry == "single":
+                k.run_single(var, args)
+            else:
+                before = k.get_num_threads()
+                k.set_num_threads(1)
+                try:
+                    k.call_model(k.run_batch, var, *args)
+                finally:
+                    k.set_num_threads(before)
         return rec[0, :, :int(counts[0])]
 
     return call

@@ -331,7 +331,7 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
             else:
                 state[0, k.ST_MZ] = float(hook(step * dt, ChairState._make([*(float(x) for x in st[0]), 0])))
             if _kc.choice() == "scalar":
-                k.run_serial(step, step + 1, *args)
+                k.call_model(k.run_serial, k.variant(cfg, ctl[0]), step, step + 1, *args)
             else:
                 with kernel_entry_guard():
                     _kc.run_lanes(step, step + 1, args, 1, n_runs)
@@ -423,15 +423,12 @@ def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthread
         with lk.parallel_chunksize(1):
             lk.run_lanes(*args, lanes)
         return
-    if n_runs == 1 and nthreads > 1:
-        k.set_num_threads(1)
-        try:
-            k.run_batch(*args)
-        finally:
-            k.set_num_threads(nthreads)
+    var = k.variant(args[13], args[15])     # the model's (and controller's) own specialisation of the kernel
+    if n_runs == 1:     # on this thread, without the parallel entry (whose compile a first run need not wait for)
+        k.run_single(var, args)
         return
     with k.parallel_chunksize(max(1, n_runs // (16 * nthreads))):
-        k.run_batch(*args)
+        k.call_model(k.run_batch, var, *args)
 
 
 def _last_time(opts: Options, status: np.ndarray, steps: int) -> float:

@@ -13,13 +13,17 @@ yaw moment, slip angles, pin friction) and the tire force law
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
-from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
+from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads, typeof
+from numba._dispatcher import compute_fingerprint
 from numba.core import config as _config
+from numba.core import types as _nbtypes
+from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
-from stability.simulate.kernel_controller import controller_output
+from stability.simulate.kernel_controller import controlled, controller_scratch, controller_step  # noqa: F401
 
 # the layouts and the compiled physics as this module's globals, where numba resolves them (the engine, the adaptive
 # and lanes kernels and the tests read them here too)
@@ -30,9 +34,70 @@ from stability.simulate.kernel_equations import _NOWRAP, _inl, _inl_py, _int  # 
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
 
 #: the thread controls re-exported for :mod:`.engine` (which imports this module lazily)
-__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "run_batch",
+__all__ = ["NUMBA_NUM_THREADS", "get_num_threads", "parallel_chunksize", "set_num_threads", "variant", "call_model",
+           "run_single", "PER_RUN_ARGS", "run_batch",
            "run_serial", "run_one", "mechan", "kinematics", "contact_loads", "lateral_force", "accelerations",
            "held_pins", "stick_slip", "tire_yaw_moment", "plane"]
+
+def variant(cfg: np.ndarray, ctl_f: np.ndarray) -> tuple[int, int]:
+    """The kernel variant a configuration row runs: the first two arguments of :func:`run_one`, :func:`run_batch`
+    and :func:`run_serial`, compiled as constants (numba literals, :func:`call_model`).
+
+    Parameters
+    ----------
+    cfg : ndarray
+        The kernel's configuration row (``engine._config``).
+    ctl_f : ndarray
+        The sampled controller's scalars (:meth:`SampledController.arrays`; sample time first, 0 for none).
+
+    Returns
+    -------
+    model : int
+        0 thesis, 1 exact, :data:`SLOPE_MODEL` the exact model on a plane (``cfg[SLOPE]`` set).
+    ctl : int
+        1 when a sampled controller gives the yaw moment, else 0 (its code is not compiled).
+    """
+    model = SLOPE_MODEL if cfg[SLOPE] != 0.0 else int(cfg[5])
+    return model, int(ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0)
+
+
+#: the compiled specialisations :func:`call_model` found, by entry point, variant and the arguments' type fingerprints
+_ENTRIES: dict[tuple, Any] = {}
+
+
+def call_model(entry: Any, var: tuple[int, int], *args: Any) -> Any:
+    """``entry(*var, *args)`` (:func:`run_batch`, :func:`run_serial`, :func:`run_one`) through its specialisation
+    for the variant ``var``.
+
+    The entry points take the variant as numba literals (``literally``), so
+    Python ints do not match their compiled signatures by type: numba's
+    dispatch would type the call again every time (about 8 ms) before it
+    finds the literal one.  The first call for a variant and argument types
+    compiles the specialisation (or loads it from the cache) for the literals
+    directly; later ones call it directly, found by the arguments' type
+    fingerprints (numba's own dispatch key, about 2 us for all of them;
+    ``numba.typeof`` would cost 0.2 ms).
+
+    Parameters
+    ----------
+    entry : numba dispatcher
+        :func:`run_batch`, :func:`run_serial` or :func:`run_one`.
+    var : tuple of int
+        :func:`variant` of the runs.
+    *args
+        The entry point's other arguments.
+
+    Returns
+    -------
+    object
+        What the entry point returns.
+    """
+    key = (entry, var, tuple(map(compute_fingerprint, args)))
+    fn = _ENTRIES.get(key)
+    if fn is None:      # compiled, or loaded from the cache, for the literals directly
+        fn = _ENTRIES[key] = entry.compile((*map(_nbtypes.literal, var), *(typeof(a) for a in args)))
+    return fn(*var, *args)
+
 
 @_inl
 def plane(P, cfg, psi):
@@ -54,14 +119,60 @@ def tire_yaw_moment(P, F, ce, se, cb, sb):
 
 
 @_inl
+def velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    """Contact velocities of the model chosen at run time (0 thesis, else exact; generated): SLIP's, wheel frames
+    untoed.  Compiled code calls :func:`model_velocities`."""
+    if model == 0:
+        return _cv_thesis(model, P, u, v, r, ce, se, cb, sb, ed, bd)
+    return _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd)
+
+
+@_inl
+def _cv_thesis(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    return cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+
+
+@_inl
+def _cv_exact(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    return cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+
+
+def step_gravity(model, P, cfg, psi, g1, g2, gn):
+    """Gravity ``(g1, g2, gn)`` of the step: on a plane (``model`` :data:`SLOPE_MODEL`) in body axes at the heading
+    ``psi`` with the normal weight (:func:`plane`), else ``(g1, g2, gn)`` as given (level: 0, 0, ``P[G]``); a literal
+    model compiles its case only.  Compiled code only."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(step_gravity, prefer_literal=True)
+def _step_gravity(model, P, cfg, psi, g1, g2, gn):
+    if isinstance(model, _nbtypes.IntegerLiteral) and model.literal_value != SLOPE_MODEL:
+        def level(model, P, cfg, psi, g1, g2, gn):
+            return g1, g2, gn
+        return level
+
+    def impl(model, P, cfg, psi, g1, g2, gn):
+        if model == SLOPE_MODEL:
+            return plane(P, cfg, psi)
+        return g1, g2, gn
+    return impl
+
+
+def model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    """:func:`velocities` for compiled code only: a numba literal ``model`` compiles its model's alone
+    (:func:`~stability.simulate.kernel_equations.model_accelerations`)."""
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(model_velocities, prefer_literal=True)
+def _model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
+    return by_model(model, (_cv_thesis, _cv_exact, _cv_exact), velocities)
+
+
+@_inl
 def kinematics(model, P, S, u, v, r, ce, se, cb, sb, ed, bd):
     """Contact velocities (SLIP), main wheels in their toed frames."""
-    if model == 0:
-        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = cv_thesis(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P],
-                                                           P[D1], P[D2], P[T1], P[T2], P[TRAIL])
-    else:
-        vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = cv_exact(u, v, r, ce, se, cb, sb, ed, bd, P[X_M], P[X_P],
-                                                          P[D1], P[D2], P[T1], P[T2], P[TRAIL])
+    vAx, vAy, vBx, vBy, vDx, vDy, vEx, vEy = model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd)
     if S[TOE] != 0.0:
         ct, st = S[CT], S[ST]
         vEx, vEy = vEx * ct + vEy * st, -vEx * st + vEy * ct
@@ -131,13 +242,13 @@ def range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit)
             nmax = max(nmax, loads[w])
             smax = max(smax, abs(slips[w]))
     if nmax > maxload:
-        _note(warn, 1, t, nmax)
+        _note(warn[1], t, nmax)
         if stop and warn[1, 0] > nwarn_limit:
             return True
     if nmin < 0.0:
-        _note(warn, 2, t, nmin)
+        _note(warn[2], t, nmin)
     if smax > maxslip:
-        _note(warn, 0, t, smax)
+        _note(warn[0], t, smax)
         if stop and warn[0, 0] > nwarn_limit:
             return True
     return False
@@ -189,31 +300,32 @@ def settled(track, t, held, a, ma, mb):
     return False
 
 
-@_inl
-def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    """The sampled controller at ``t``: ``(yaw moment, next sample)`` after the samples ``next_k`` .. up to ``t`` are
-    taken (``z`` advanced); the last one's output is held (``held`` when no sample falls due)."""
-    ks = int(math.floor(t / ctl_f[0] + 1e-9))
-    while next_k <= ks:
-        for c in range(10):
-            sv[c] = states[c]
-        held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
-        next_k += 1
-    return held, next_k
-
-
-@_int
-def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise,
-            state, rec, stats, warn, status):
+@njit(cache=True, nogil=True)
+def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu,
+            By, Cz, noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
-    controller's states); writes ``rec`` (ncol, nrec), ``stats``, ``warn`` (3, 3), ``status``; returns the rows
-    recorded so far.  A stopped run (``status``) does nothing.  ``cfg[EXTERNAL_MZ]``: the yaw moment is
-    ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the controller's."""
+    controller's states), with the chair's parameters ``prow``; writes ``rec`` (ncol, nrec), ``stats``, ``warn``
+    (3, 3), ``status``; returns the rows recorded so far.  A stopped run (``status``) does nothing.
+
+    ``model, ctl``: the run's :func:`variant`, compile-time constants (numba literals: :func:`call_model`, or the
+    entry points), so that a run compiles its model's equations only, and the controller's step only with a
+    controller.  One run is called from Python directly (:func:`run_single`).  ``cfg[EXTERNAL_MZ]``: the yaw
+    moment is ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the
+    controller's."""
+    literally(model)
+    literally(ctl)
     if status[0] != 0.0 or status[2] != 0.0:
         return int(state[ST_NREC])
-    dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
-        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
-        int(cfg[8]), int(cfg[9]))
+    # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
+    P = param_tuple(prow)
+    S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK = (borrowed(S), borrowed(TK), borrowed(TS), borrowed(TL), borrowed(LIM),
+                                                borrowed(RK), borrowed(RC), borrowed(RS), borrowed(CAM), borrowed(CHK))
+    cfg, levels, state, rec, stats, warn, status = (borrowed(cfg), borrowed(levels), borrowed(state), borrowed(rec),
+                                                    borrowed(stats), borrowed(warn), borrowed(status))
+    ctl_f, Cy, Dy, Az, Bu, By, Cz, noise = (borrowed(ctl_f), borrowed(Cy), borrowed(Dy), borrowed(Az), borrowed(Bu),
+                                            borrowed(By), borrowed(Cz), borrowed(noise))
+    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
+        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0, int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
     settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
     track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
@@ -221,15 +333,10 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
     use_ctl = ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
-    slope = cfg[SLOPE] != 0.0
-    if slope:
-        model = SLOPE_MODEL
     g1 = g2 = 0.0
     gn = P[G]
     z = state[NSTATE:NSTATE + Az.shape[0]]
-    znew = np.zeros(Az.shape[0])
-    y = np.zeros(Cy.shape[0])
-    sv = np.zeros(10)
+    znew, y, sv = controller_scratch(ctl, Az, Cy, ctl_f)
     X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
                                             state[7], state[8], state[9])
     THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]
@@ -244,8 +351,7 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
         slips = slip_angles(vel)
-        if slope:   # gravity in body axes at the heading of the step; loads with the normal weight
-            g1, g2, gn = plane(P, cfg, THE)
+        g1, g2, gn = step_gravity(model, P, cfg, THE, g1, g2, gn)
         loads = contact_loads(P, FC1, FC2, gn, ce, se, cb, sb)
         if range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit):
             status[0], status[1] = STOPPED_WARNINGS, t
@@ -262,7 +368,8 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
         mz = mz_held if cfg[EXTERNAL_MZ] != 0.0 else 0.0
         if use_ctl:
-            mz_held, next_k = controlled(t, next_k, mz_held, z, znew, y, sv, (X, Y, THE, UD, VD, THED, E, ED, B, BD),
+            mz_held, next_k = controller_step(ctl, t, next_k, mz_held, z, znew, y, sv,
+                                              (X, Y, THE, UD, VD, THED, E, ED, B, BD),
                                          ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
             mz = mz_held
         st_ = (UD, VD, THED, ce, se, cb, sb, ED, BD)
@@ -274,7 +381,7 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
         else:
             MA = kinetic_pin_moment(ED, P[MAF])
             MB = kinetic_pin_moment(BD, P[MBF])
-            acc = accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
+            acc = model_accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
         UDD, VDD, THEDD, EDD, BDD = acc
         if locked:
             EDD = BDD = 0.0
@@ -322,30 +429,60 @@ def run_one(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ct
 
 
 @_inl
-def _note(warn, kind, t, value):
-    if warn[kind, 0] == 0.0 or abs(value) > abs(warn[kind, 2]):
-        warn[kind, 2] = value
-    if warn[kind, 0] == 0.0:
-        warn[kind, 1] = t
-    warn[kind, 0] += 1.0
+def _note(w, t, value):
+    """One warning of a kind, ``w`` its row of ``warn``: count, first time, largest value (a row rather than the
+    kind's index, which numba would compile once per literal kind)."""
+    if w[0] == 0.0 or abs(value) > abs(w[2]):
+        w[2] = value
+    if w[0] == 0.0:
+        w[1] = t
+    w[0] += 1.0
+
+
+#: the arguments of :func:`run_batch` (after the variant and the steps) that hold one row per run
+PER_RUN_ARGS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 21, 22, 23, 24, 25)
+
+
+def run_single(var: tuple[int, int], args: tuple) -> None:
+    """One run of the variant ``var``: :func:`run_one` called from Python (no parallel entry to compile for it,
+    nor to re-optimise the step in).
+
+    Parameters
+    ----------
+    var : tuple of int
+        :func:`variant` of the run.
+    args : tuple
+        :func:`run_batch`'s arguments after the variant, each per-run array with one row; ``args[-1][0]`` is
+        set to the rows recorded.
+    """
+    k0, k1, rest = args[0], args[1], args[2:]
+    row = [a[0] if i in PER_RUN_ARGS else a for i, a in enumerate(rest[:-1])]
+    rest[-1][0] = call_model(run_one, var, k0, k1, *row)
 
 
 @njit(cache=True, parallel=True)
-def run_batch(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-              noise, state, rec, stats, warn, status, nrec):
-    """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis."""
+def run_batch(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
+              Cz, noise, state, rec, stats, warn, status, nrec):
+    """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis.
+    ``model, ctl``: the runs' :func:`variant`, compiled as constants (one specialisation per variant)."""
+    literally(model)
+    literally(ctl)
     for i in prange(P.shape[0]):
-        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
-                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
+        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i],
+                          CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i],
+                          warn[i], status[i])
 
 
 @njit(cache=True, nogil=True)
-def run_serial(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-               noise, state, rec, stats, warn, status, nrec):
+def run_serial(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
+               Cz, noise, state, rec, stats, warn, status, nrec):
     """:func:`run_batch` on the calling thread: the step-by-step calls of a Python yaw-moment input."""
+    literally(model)
+    literally(ctl)
     for i in range(P.shape[0]):
-        nrec[i] = run_one(k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i], CHK[i], cfg,
-                          levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i], warn[i], status[i])
+        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i],
+                          CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i],
+                          warn[i], status[i])
 
 
 invalidate_stale_cache(globals(), "kernel.equations.sha256")

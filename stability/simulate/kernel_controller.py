@@ -1,25 +1,30 @@
 """The sampled linear yaw-moment controller of the compiled WCHAIR kernel (numba), one sample at a time.
 
-Called by :func:`stability.simulate.kernel.run_one` (see :mod:`stability.simulate.controller` for the
-controller's arrays).  Its compiled code is flushed with the kernels' when any kernel source changes
-(:mod:`stability.simulate.cache_stamp`).
+Called by :func:`stability.simulate.kernel.run_one` through :func:`controller_step` (compiled only for a run with
+a controller; see :mod:`stability.simulate.controller` for the controller's arrays).  Its compiled code is
+flushed with the kernels' when any kernel source changes (:mod:`stability.simulate.cache_stamp`).
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
+import numpy as np
 from numba import njit
+from numba.core import types as _nbtypes
+from numba.extending import overload
 
-__all__ = ["controller_output"]
+from stability.simulate.kernel_equations import _inl
+
+__all__ = ["controller_output", "controlled", "controller_step", "controller_scratch"]
 
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # as the kernel's helpers
-_F1, _F2 = "float64[::1]", "float64[:, ::1]"
 
 
-# an explicit signature: type inference would also compile it for the literal first sample index 0
-@njit(f"float64(int64, {_F1}, {_F1}, {_F1}, {_F1}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2}, {_F1}, {_F2})", cache=True,
-      nogil=True, **_NOWRAP)
+# compiled when a run with a controller first calls it (no explicit signature: that compiled it at import, for
+# every first use); its callers pass a run-time sample index (a literal one would compile it a second time)
+@njit(cache=True, nogil=True, **_NOWRAP)
 def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """Sample ``k`` of the linear sampled controller: measure, output, advance ``z`` (see controller.py)."""
     ny = Cy.shape[0]
@@ -51,3 +56,77 @@ def controller_output(k, z, znew, y, s, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     for i in range(nz):
         z[i] = znew[i]
     return out
+
+
+@_inl
+def controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """The sampled controller at ``t``: ``(yaw moment, next sample)`` after the samples ``next_k`` .. up to ``t`` are
+    taken (``z`` advanced); the last one's output is held (``held`` when no sample falls due)."""
+    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+    while next_k <= ks:
+        for c in range(10):
+            sv[c] = states[c]
+        held = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        next_k += 1
+    return held, next_k
+
+
+def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    """:func:`controlled` where the variant has a controller, else nothing; compiled code only (numba overload).
+
+    Parameters
+    ----------
+    ctl : int
+        1 with a controller (a numba literal: 0 compiles none of the controller's code).
+    t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise
+        As :func:`controlled`'s (t in s, held in N m).
+
+    Returns
+    -------
+    tuple
+        ``(yaw moment N m, next sample)``; ``(held, next_k)`` without a controller.
+    """
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+def controller_scratch(ctl, Az, Cy, ctl_f):
+    """The controller's scratch arrays; compiled code only (numba overload).
+
+    Parameters
+    ----------
+    ctl : int
+        1 with a controller (a numba literal).
+    Az, Cy, ctl_f : ndarray
+        The controller's arrays (sizes of ``z`` and ``y``; ``ctl_f`` gives the empty views).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(znew, y, sv)``: uninitialised (written before they are read) with a controller, else empty views
+        (nothing allocated or compiled).
+    """
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+@overload(controller_scratch, prefer_literal=True)
+def _controller_scratch(ctl, Az, Cy, ctl_f):
+    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
+        def none(ctl, Az, Cy, ctl_f):
+            return ctl_f[:0], ctl_f[:0], ctl_f[:0]
+        return none
+
+    def impl(ctl, Az, Cy, ctl_f):
+        return np.empty(Az.shape[0]), np.empty(Cy.shape[0]), np.empty(10)
+    return impl
+
+
+@overload(controller_step, prefer_literal=True)
+def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
+        def none(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+            return held, next_k
+        return none
+
+    def impl(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
+        return controlled(t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+    return impl

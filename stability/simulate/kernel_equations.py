@@ -15,13 +15,17 @@ import types
 from typing import Any
 
 from numba import njit
+from numba.core import cgutils
+from numba.core import types as _nbtypes
+from numba.extending import intrinsic, overload
 
 from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.tires import law as _tire_law
 
-__all__ = ["accelerations", "held_pins", "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
+__all__ = ["accelerations", "model_accelerations", "by_model", "param_tuple", "borrowed", "held_pins",
+           "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
            "tire_resultant", "tire_moment", "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment",
            "rest_rate", "lateral_force", "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE",
            "SETTLE_WINDOW", "EXTERNAL_MZ", "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK",
@@ -134,6 +138,40 @@ SLOPE_MODEL = 2
 NREC_ALL, NREC_STATES = 31, 10
 
 
+@intrinsic
+def borrowed(typingctx, arr):
+    """A view of the array ``arr`` without a reference count (``arr`` must outlive it): the same array with no
+    meminfo (nor parent object).
+
+    numba counts references to an array passed into a function with atomic operations that LLVM cannot remove, a
+    pair per call: the step's helpers (MECHAN and the tire law, with their tables) took one pair per array and call,
+    every step, which cost about a fifth of a run where the arrays are counted (a run called from Python; the
+    parallel loop's runs are views without a count).  They also kept the lanes kernel's tire law from being
+    vectorised.  A view without a meminfo has no count to keep.  An intrinsic, so that nothing is compiled for it.
+    """
+    if not isinstance(arr, _nbtypes.Array):
+        return None
+
+    def codegen(context, builder, sig, args):
+        ary = context.make_array(sig.args[0])(context, builder, value=args[0])
+        ary.meminfo = cgutils.get_null_value(ary.meminfo.type)
+        ary.parent = cgutils.get_null_value(ary.parent.type)
+        return ary._getvalue()
+
+    return arr(arr), codegen
+
+
+@_inl
+def param_tuple(P):
+    """A run's parameter row (:data:`X_M` .. :data:`MBF`) as a tuple, indexed as the row.
+
+    numba passes an array into a function it does not inline with a reference count kept by atomic operations,
+    a pair per call (the step's held-caster solve and the accelerations, every step); a tuple has none.
+    """
+    return (P[0], P[1], P[2], P[3], P[4], P[5], P[6], P[7], P[8], P[9], P[10], P[11], P[12], P[13], P[14], P[15],
+            P[16], P[17])
+
+
 @_int
 def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
     """Accelerations with the casters flagged ``hold_*`` held (locked or stuck): ``(acc, M_A, M_B)``.
@@ -144,11 +182,11 @@ def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
     yaw acceleration (WCHAIR scheme), or None (adaptive scheme).
     """
     if not (hold_a or hold_b):
-        return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
+        return model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
     if hold_a and hold_b:
-        a0 = accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
-        a1 = accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
-        a2 = accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P, g1, g2)
+        a0 = model_accelerations(model, s, F, 0.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+        a1 = model_accelerations(model, s, F, 1.0, 0.0, fy_ext, mz, rdc, P, g1, g2)
+        a2 = model_accelerations(model, s, F, 0.0, 1.0, fy_ext, mz, rdc, P, g1, g2)
         k11, k21 = a1[3] - a0[3], a1[4] - a0[4]
         k12, k22 = a2[3] - a0[3], a2[4] - a0[4]
         det = k11 * k22 - k12 * k21
@@ -159,13 +197,13 @@ def held_pins(model, s, F, ma, mb, hold_a, hold_b, fy_ext, mz, rdc, P, g1, g2):
         rd = a0[2] + ma * (a1[2] - a0[2]) + mb * (a2[2] - a0[2])
         return (ud, vd, rd, 0.0, 0.0), ma, mb
     if hold_a:
-        a0 = accelerations(model, s, F, 0.0, mb, fy_ext, mz, rdc, P, g1, g2)
-        a1 = accelerations(model, s, F, 1.0, mb, fy_ext, mz, rdc, P, g1, g2)
+        a0 = model_accelerations(model, s, F, 0.0, mb, fy_ext, mz, rdc, P, g1, g2)
+        a1 = model_accelerations(model, s, F, 1.0, mb, fy_ext, mz, rdc, P, g1, g2)
         r = -a0[3] / (a1[3] - a0[3])
         return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]), 0.0,
                  a0[4] + r * (a1[4] - a0[4])), r, mb)
-    a0 = accelerations(model, s, F, ma, 0.0, fy_ext, mz, rdc, P, g1, g2)
-    a1 = accelerations(model, s, F, ma, 1.0, fy_ext, mz, rdc, P, g1, g2)
+    a0 = model_accelerations(model, s, F, ma, 0.0, fy_ext, mz, rdc, P, g1, g2)
+    a1 = model_accelerations(model, s, F, ma, 1.0, fy_ext, mz, rdc, P, g1, g2)
     r = -a0[4] / (a1[4] - a0[4])
     return ((a0[0] + r * (a1[0] - a0[0]), a0[1] + r * (a1[1] - a0[1]), a0[2] + r * (a1[2] - a0[2]),
              a0[3] + r * (a1[3] - a0[3]), 0.0), ma, r)
@@ -198,7 +236,7 @@ def stick_slip(model, s, F, fy_ext, mz, rdc, P, g1, g2):
             ma, ha = break_away_moment(ra, P[MAF]), False
         if free_b:
             mb, hb = break_away_moment(rb, P[MBF]), False
-    return accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
+    return model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2), ma, mb
 
 
 @_int
@@ -206,18 +244,89 @@ def accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     """The generated accelerations of the model.
 
     0 thesis (with the lagged yaw acceleration ``rdc``), 1 exact, 2 exact on a
-    plane with the in-plane gravity ``g1, g2`` (m/s^2) on every body.
+    plane with the in-plane gravity ``g1, g2`` (m/s^2) on every body.  The
+    model is chosen at run time; compiled code calls
+    :func:`model_accelerations`, which compiles only the model a literal
+    ``model`` names.
     """
+    if model == SLOPE_MODEL:
+        return _acc_slope(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+    if model == 0:
+        return _acc_thesis(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+    return _acc_exact(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2)
+
+
+@_inl
+def _acc_thesis(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     u, v, r, ce, se, cb, sb, ed, bd = s
     FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
-    if model == SLOPE_MODEL:
-        return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                         fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                         P[M_C], P[I_Z], P[I_ZP])
-    if model == 0:
-        return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
-                          fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
-                          P[M_C], P[I_Z], P[I_ZP], rdc)
+    return acc_thesis(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                      fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                      P[M_C], P[I_Z], P[I_ZP], rdc)
+
+
+@_inl
+def _acc_exact(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
     return acc_exact(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
                      fy_ext, mz, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
                      P[M_C], P[I_Z], P[I_ZP])
+
+
+@_inl
+def _acc_slope(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    u, v, r, ce, se, cb, sb, ed, bd = s
+    FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy = F
+    return acc_slope(u, v, r, ce, se, cb, sb, ed, bd, FAx, FAy, FBx, FBy, FDx, FDy, FEx, FEy, ma, mb,
+                     fy_ext, mz, g1, g2, P[X_M], P[X_P], P[D1], P[D2], P[T1], P[T2], P[TRAIL], P[L1], P[M],
+                     P[M_C], P[I_Z], P[I_ZP])
+
+
+def model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    """:func:`accelerations` for compiled code only (numba chooses the implementation when compiling the caller).
+
+    With ``model`` a numba integer literal (the WCHAIR kernel's entry points)
+    the call compiles that model's generated accelerations alone; with a
+    run-time integer it is :func:`accelerations`, all three behind a branch.
+
+    Parameters
+    ----------
+    model : int
+        0 thesis, 1 exact, :data:`SLOPE_MODEL`.
+    s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2
+        As :func:`accelerations`'s (moments N m, forces N, gravity m/s^2).
+
+    Returns
+    -------
+    tuple of float
+        The accelerations (m/s^2, rad/s^2).
+    """
+    raise NotImplementedError("compiled code only (numba overload)")
+
+
+def by_model(model: Any, impls: tuple[Any, Any, Any], generic: Any) -> Any:
+    """numba overload helper: the implementation of a call for its model.
+
+    Parameters
+    ----------
+    model : numba type
+        The call's model argument's type.
+    impls : tuple of numba dispatcher
+        Thesis, exact, slope: each with the overloaded function's parameters.
+    generic : numba dispatcher
+        The run-time branching version.
+
+    Returns
+    -------
+    function
+        The Python function of ``impls[code]`` for a literal model code, else of ``generic``, compiled as the
+        call's implementation.
+    """
+    chosen = impls[model.literal_value] if isinstance(model, _nbtypes.IntegerLiteral) else generic
+    return chosen.py_func
+
+
+@overload(model_accelerations, prefer_literal=True)
+def _model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
+    return by_model(model, (_acc_thesis, _acc_exact, _acc_slope), accelerations)

@@ -50,8 +50,8 @@ from stability.simulate.kernel import (
     ST_TRACK,
     STOP_LEVEL,
 )
-from stability.simulate.kernel_equations import _NOWRAP
-from stability.simulate.lanes_physics import _borrowed, lane_physics
+from stability.simulate.kernel_equations import _NOWRAP, borrowed
+from stability.simulate.lanes_physics import lane_physics
 from stability.simulate.lanes_step import (
     _ACT,
     _CAM,
@@ -181,7 +181,7 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
     vec_held = (sticks or locked) and L >= VEC_HELD_MIN
     lv = padded_levels(levels)
     _load(W, TSB, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks)
-    seg_c, seg_m, seg_k = _borrowed(TSB[0]), _borrowed(TSB[1]), _borrowed(TSB[2])
+    seg_c, seg_m, seg_k = borrowed(TSB[0]), borrowed(TSB[1]), borrowed(TSB[2])
     for k in range(k0, min(k1, n)):
         if W[_ACT, :L].sum() == 0.0:
             break

@@ -12,8 +12,7 @@ re-typed.  Used by :mod:`stability.simulate.lanes_step`.
 
 from __future__ import annotations
 
-from numba import carray, njit, types
-from numba.extending import intrinsic
+from numba import njit
 
 from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
@@ -35,13 +34,14 @@ _lfw = compiled(_fw, ("contact_velocities_exact", "contact_velocities_thesis", "
                       "accelerations_thesis"), _lane, {"math": LANE_MATH})
 _lsl = compiled(_sl, ("accelerations_slope_exact", "gravity_body"), _lane, {"math": LANE_MATH})
 #: the scalar kernel's helpers of the step's arithmetic, calling the lane physics
-_lke = compiled(_ke, ("accelerations",), _lane, {
+_lke = compiled(_ke, ("accelerations", "_acc_thesis", "_acc_exact", "_acc_slope"), _lane, {
     "math": LANE_MATH, "acc_exact": _lfw.accelerations_exact, "acc_thesis": _lfw.accelerations_thesis,
     "acc_slope": _lsl.accelerations_slope_exact})
+_lcv = compiled(_k, ("velocities", "_cv_thesis", "_cv_exact"), _lane, {
+    "math": LANE_MATH, "cv_thesis": _lfw.contact_velocities_thesis, "cv_exact": _lfw.contact_velocities_exact})
 _lk = compiled(_k, ("plane", "contact_loads", "kinematics", "slip_angles"), _lane, {
     "math": LANE_MATH, "gravity_body": _lsl.gravity_body, "normal_loads": _lfo.normal_loads,
-    "cv_thesis": _lfw.contact_velocities_thesis, "cv_exact": _lfw.contact_velocities_exact,
-    "slip_angle": _lfo.slip_angle})
+    "model_velocities": _lcv.velocities, "slip_angle": _lfo.slip_angle})
 l_accelerations = _lke.accelerations
 l_plane, l_contact_loads, l_kinematics, l_slip_angles = _lk.plane, _lk.contact_loads, _lk.kinematics, _lk.slip_angles
 l_tire_resultant, l_kinetic, l_rest_rate = _lfo.tire_resultant, _lfo.kinetic_pin_moment, _lfo.rest_rate
@@ -52,29 +52,6 @@ _law = compiled(_tire_law, ("cubic", "segment_force", "lateral_force", "camber_f
 l_mechan = compiled(_k, ("mechan",), _lane, {"math": LANE_MATH, "lateral_force": _law.lateral_force,
                                               "rolling_force": _law.rolling_force,
                                               "camber_force": _law.camber_force}).mechan
-
-
-@intrinsic
-def _data(typingctx, arr):
-    """The data pointer of a C-contiguous float64 array (for :func:`_borrowed`)."""
-    if not (isinstance(arr, types.Array) and arr.dtype == types.float64 and arr.layout == "C"):
-        return None
-
-    def codegen(context, builder, sig, args):
-        return context.make_array(sig.args[0])(context, builder, value=args[0]).data
-
-    return types.CPointer(types.float64)(arr), codegen
-
-
-@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
-def _borrowed(a):
-    """A 2-D view of ``a`` without a reference count: the tire tables passed into MECHAN once per lane and step.
-
-    numba counts references to an array passed into a function with branches (the tire law) with atomic operations
-    that LLVM cannot remove, one pair per call, which cost more than the tire law itself and keep the loop from
-    being vectorised; a view made by ``carray`` has no count to keep (``a`` must outlive it: the block's tables).
-    """
-    return carray(_data(a), a.shape)
 
 
 @_lane

@@ -15,8 +15,17 @@ import sys
 import pytest
 
 #: compiled for more than one signature by design (docs/simulator.md): the thesis accelerations with and without
-#: the lagged yaw acceleration, the range rules' note for its three literal kinds
-MANY_SIGNATURES = {"stability._generated.full_width.accelerations_thesis", "stability.simulate.kernel._note"}
+#: the lagged yaw acceleration
+MANY_SIGNATURES = {"stability._generated.full_width.accelerations_thesis"}
+#: what a first scalar ``simulate`` (the exact model, level, no controller, one run) does not run, so must not compile
+#: (docs/simulator.md, "Compile time"): the batch and step-by-step entry points, the controller, the other models'
+#: equations, the plane's gravity
+NOT_FIRST = {"stability.simulate.kernel.run_batch", "stability.simulate.kernel.run_serial",
+             "stability.simulate.kernel.controlled", "stability.simulate.kernel_controller.controller_output",
+             "stability._generated.full_width.accelerations_thesis",
+             "stability._generated.full_width.contact_velocities_thesis",
+             "stability._generated.slope.accelerations_slope_exact", "stability._generated.slope.gravity_body",
+             "stability.simulate.kernel.plane"}
 
 _CHILD = r"""
 import json, sys, time
@@ -72,3 +81,7 @@ def test_bench_what_first_use_compiles(bench, tmp_path, kernel):
     for n, s in top:
         print(f"  {s:6.2f}  {n.split('#')[0]} (x{count[n]})")
     assert not many, f"compiled for more than one signature: {many}"
+    if kernel == "scalar":
+        compiled = {n.split("#")[0] for n in ours}
+        assert "stability.simulate.kernel.run_one" in compiled
+        assert not compiled & NOT_FIRST, f"compiled though the first run does not run it: {compiled & NOT_FIRST}"

@@ -98,6 +98,31 @@ def test_bench_single_run_step_check_cached(bench):
           f"-> x{cold_best / warm_best:.2f}")
 
 
+def test_bench_single_run_entries(bench):
+    """One 10 s run through the kernel's entry for one run (``run_one`` called from Python, its arrays without
+    reference counts) against the parallel entry on one thread (how one run was run before issue 36), alternately
+    in this process (process CPU, best of the repeats).  The work asserted: the same run, bit for bit."""
+    from stability.simulate import baseline
+    from stability.simulate.options import make_options
+
+    opts = make_options(RunSpec(stop_on_warnings=False))
+    fns = {name: baseline.kernel_only(EJ, 0.75, opts, entry=name) for name in ("single", "batch")}
+    out = {name: fn() for name, fn in fns.items()}
+    np.testing.assert_array_equal(out["single"], out["batch"])
+    assert out["single"].shape == (31, 10002)      # 10 s at 1 ms: the rows of simulate()'s 10,002 times
+    best = {name: float("inf") for name in fns}
+    for _ in range(30):
+        for name, fn in fns.items():
+            c0 = time.process_time()
+            fn()
+            best[name] = min(best[name], time.process_time() - c0)
+    bench.pedantic(lambda: None, rounds=1)
+    bench.extra_info.update(single_cpu_ms=best["single"] * 1e3, batch_cpu_ms=best["batch"] * 1e3,
+                            ratio=best["batch"] / best["single"])
+    print(f"\none 10 s run, kernel CPU: run_one from Python {best['single'] * 1e3:.3f} ms, the parallel entry "
+          f"{best['batch'] * 1e3:.3f} ms -> x{best['batch'] / best['single']:.3f}")
+
+
 @pytest.mark.parametrize("horizon", [10.0, 0.002], ids=["10s", "2ms"])
 def test_bench_single_run_python_share(bench, horizon):
     """``simulate`` against the compiled kernel called alone on the same run, alternately in this process
