@@ -437,12 +437,16 @@ def layout_document(layout: Any, summary: Any, speeds: Sequence[float]) -> dict:
     Returns
     -------
     dict
+        Without ``--uncertainty`` or ``--reaction-time``: their options, ``human_limit`` and ``uncertainty`` null
+        (the command fills them in when given; the explorer's download is this document).
     """
     from stability import __version__
     from stability.layout.text import layout_mapping
 
-    return {"stability_version": __version__, "chair": layout.name, "model": "exact",
-            "options": {"speeds_m_s": list(speeds)}, **layout_mapping(layout, summary)}
+    options = {"speeds_m_s": list(speeds), "uncertainty": None, "samples": None, "seed": None, "level": None,
+               "reaction_time_s": None}
+    return {"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
+            **layout_mapping(layout, summary), "human_limit": None, "uncertainty": None}
 
 
 def main(argv: Sequence[str] | None = None) -> int:
