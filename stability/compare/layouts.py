@@ -165,16 +165,17 @@ def bounded_difference(a: np.ndarray, r: np.ndarray, level: float,
 
 
 def _propagated(layouts: Sequence[Layout], uncertainties: Sequence[Uncertainty | None], speeds: np.ndarray,
-                samples: int, seed: int, level: float, pairing: str) -> tuple[list, list[np.ndarray]]:
-    """Each uncertain layout's propagation (:func:`stability.uncertainty.propagate` of :func:`linear_rows`) and
-    every layout's rows of draws, shape ``(samples, speeds + 1)`` (a layout without uncertainty repeats its own)."""
+                samples: int, seed: int, level: float, pairing: str,
+                nominal: np.ndarray) -> tuple[list, list[np.ndarray]]:
+    """Each uncertain layout's propagation (:func:`stability.uncertainty.propagate` of :func:`linear_rows` and
+    :func:`stable_up_to_rows`) and every layout's rows of draws, shape ``(samples, speeds + 3)`` (a layout without
+    uncertainty repeats its own row of ``nominal``)."""
     results: list = []
     draws: list[np.ndarray] = []
     for i, (lay, unc) in enumerate(zip(layouts, uncertainties, strict=True)):
         if unc is None:
             results.append(None)
-            row = np.column_stack([linear_rows([lay], speeds), stable_up_to_rows([lay])])
-            draws.append(np.repeat(row, samples, axis=0))
+            draws.append(np.repeat(nominal[i:i + 1], samples, axis=0))
             continue
         seen: list[np.ndarray] = []
 
@@ -251,8 +252,9 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
     # and its bisection), the short form's count (stability.linear.intervals.solves_per_draw)
     check_eigen_work("samples", int(samples) * sum(x is not None for x in uncs),
                      solves_per_draw(len(u), len(SEARCH_SPEEDS_M_S)))
-    rows = linear_rows(layouts, u)                                       # (layouts, speeds + 1)
-    results, draws = (_propagated(layouts, uncs, u, int(samples), int(seed), level, pairing)
+    # (layouts, speeds + 3): the growth rates, the static stability, stable up to forward and in reverse
+    rows = np.column_stack([linear_rows(layouts, u), stable_up_to_rows(layouts)])
+    results, draws = (_propagated(layouts, uncs, u, int(samples), int(seed), level, pairing, rows)
                       if any(x is not None for x in uncs) else ([None] * len(layouts), None))
 
     def ivs(col: int) -> tuple[tuple[float, float] | None, ...]:
@@ -265,12 +267,12 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
     for j, way in enumerate(("forward", "reverse")):
         col = len(u) + 1 + j                          # the draws' columns: rates, static stability, fwd, rev
         qs.append(Quantity(f"stable_up_to_{way}_m_s", f"stable up to ({way}, linear)", "m/s", True,
-                           tuple(stable_up_to(lay, way == "reverse") for lay in layouts),
+                           tuple(float(x) for x in rows[:, col]),
                            tuple(None if r is None or draws is None else bounded_interval(draws[i][:, col], level, top)
                                  for i, r in enumerate(results)),
                            f"stable up to {top:g} m/s"))
     qs.append(Quantity("static_stability_deg", "static stability (ISO 7176-1, smallest)", "deg", True,
-                       tuple(float(x) for x in rows[:, -1]), ivs(len(u))))
+                       tuple(float(x) for x in rows[:, len(u)]), ivs(len(u))))
     column = ({q.key: j for j, q in enumerate(qs[:len(u)])}
               | {"static_stability_deg": len(u), "stable_up_to_forward_m_s": len(u) + 1,
                  "stable_up_to_reverse_m_s": len(u) + 2})
