@@ -65,7 +65,7 @@ def test_schema_refuses_a_renamed_key(tmp_path):
         schemas.validate("slope", data)
 
 
-ASSIST_OPTIONAL = ("firmware", "faults")
+ASSIST_OPTIONAL = ("firmware", "faults", "minimum_torque_limits")
 #: The safe top speed is in every assist output (issue 33), not only with --faults.
 ASSIST_TOP_SPEED = ("safe_top_speed_m_s", "limited_by", "top_speed_constraints", "top_speed_limits", "top_speed_checks")
 
@@ -103,15 +103,16 @@ def test_assist_firmware_output_matches_its_schema(tmp_path):
 
 @pytest.mark.slow
 def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
-    """--faults and --export-c together (about 10 s): every optional key present and valid."""
-    data = _assist_json(["--speeds", "1,2", "--no-check", "--faults", "--export-c", str(tmp_path / "fw")])
+    """--faults, --export-c and --min-torque together (about 15 s): every optional key present and valid."""
+    data = _assist_json(["--speeds", "1,2", "--no-check", "--faults", "--min-torque", "--export-c",
+                         str(tmp_path / "fw")])
     assert set(ASSIST_OPTIONAL) <= set(data)
     schemas.validate("assist", data)
 
 
 # hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report")
+                "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report", "assist")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
 SUFFIX_UNITS = [("_N_m_per_deg", "N m/deg"), ("_kg_m", "kg m"), ("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
                 ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
@@ -126,6 +127,8 @@ def _numbers(node, path=""):
     for form in ("then", "else"):
         if form in node:
             yield from _numbers(node[form], path)
+    for alternative in node.get("anyOf", []):      # an entry of one of several shapes (a slope held or skipped)
+        yield from _numbers(alternative, path)
     types = node.get("type") if isinstance(node.get("type"), list) else [node.get("type")]
     if "object" in types and "properties" in node:           # an object, or an object or null
         for k, v in node["properties"].items():
@@ -186,6 +189,13 @@ def _option_bounds():
                        ".summary.uncertainty.samples": o["--samples"], ".summary.uncertainty.seed": o["--seed"],
                        ".summary.uncertainty.nonlinear.samples": o["--samples"], ".uncertainty.samples": o["--samples"],
                        ".uncertainty.seed": o["--seed"], ".decision.limits.min_tip_deg": o["--min-tip-deg"]},
+            "assist": {".options.speeds_m_s[]": o["--speed"], ".options.max_heading_error_deg": o["--max-heading-error"],
+                       ".options.max_yaw_rate_deg_s": o["--max-yaw-rate"], ".options.torque_limit_N_m": o["--torque-limit"],
+                       ".options.torque_budget_N_m": o["--torque-budget"], ".options.wheel_radius_m": o["--wheel-radius"],
+                       ".options.gyro_noise_deg_s_rthz": o["--gyro-noise"], ".options.gyro_bias_deg_s": o["--gyro-bias"],
+                       ".options.sample_rate_hz": o["--sample-rate"], ".options.seed": o["--seed"],
+                       ".options.motor_lag_s": o["--motor-lag"],
+                       ".options.bias_time_constant_s": o["--bias-time-constant"]},
             "advise": {".options.speeds_m_s[]": RUN_SETTINGS["speed"].bound, ".options.cross_slope_deg": o["--cross-slope"],
                        ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
 
@@ -297,6 +307,10 @@ OUT_OF_RANGE = [
     ("study_critical_impulse", "layout", ("points", 0, "runs"), 1.5, "runs.*integer"),
     ("measure", "chair", ("fields", 0, "std"), -0.1, "std.*minimum"),
     ("measure", "chair", ("uncertain_parameters",), -1, "uncertain_parameters.*minimum"),
+    ("assist", "chair", ("options", "sample_rate_hz"), 5.0, "options/sample_rate_hz.*minimum"),
+    ("assist", "chair", ("options", "torque_budget_N_m"), 2000.0, "options/torque_budget_N_m.*maximum"),
+    ("assist", "chair", ("rows", 0, "speed_m_s"), 0.0, "rows/0/speed_m_s.*less than or equal to the minimum"),
+    ("assist", "chair", ("top_speed_checks", 0, "gain_margin_db", "value"), "infinite", "value.*does not match"),
     ("report", "chair", ("options", "samples"), 0, "options/samples.*minimum"),
     ("report", "chair", ("decision", "verdict", "critical_impulse_Ns", "value"), 1001.0, "critical_impulse_Ns/value.*maximum"),
     ("report", "chair", ("decision", "clinician", "speeds_m_s", 0), 0.0, "clinician/speeds_m_s/0.*minimum"),

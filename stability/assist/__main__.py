@@ -27,7 +27,15 @@ from stability.assist.driving import (
 from stability.assist.export_run import check_export, run_export
 from stability.assist.faults import FaultRow, fault_runs, format_faults
 from stability.assist.firmware import Q_FORMATS
-from stability.assist.recovery import decay_agreement, minimum_torque_limit, recovery, recovery_runs
+from stability.assist.recovery import (
+    MIN_TORQUE_SPEEDS,
+    STRONG_FORCE,
+    decay_agreement,
+    minimum_torque_json,
+    minimum_torque_limit,
+    recovery,
+    recovery_runs,
+)
 from stability.assist.robustness import Robustness, robustness
 from stability.assist.schedule import Schedule, schedule
 from stability.assist.settling import recovery_rule
@@ -207,6 +215,8 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     fw_json.update(_top_speed_json(top, faults))
     rob = robustness(sched)
     checks = None if args.no_check else _nonlinear_checks(sched, args.seed, torques or [])
+    # --min-torque: the thesis's chapter-9 question at 1, 2, 3 m/s, computed once for the text and the JSON
+    least = [(s_, minimum_torque_limit(sched, s_)) for s_ in MIN_TORQUE_SPEEDS] if args.min_torque else None
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(s) for s in speeds], "design": args.design,
                    "max_heading_error_deg": args.max_heading_error, "max_yaw_rate_deg_s": args.max_yaw_rate,
@@ -215,7 +225,7 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
                    "gyro_bias_deg_s": args.gyro_bias, "sample_rate_hz": args.sample_rate, "seed": args.seed,
                    "no_check": args.no_check, "reverse": args.reverse, "motor_lag_s": args.motor_lag,
                    "bias_time_constant_s": args.bias_time_constant, "export_c": args.export_c,
-                   "q_format": args.q_format, "faults": args.faults}
+                   "q_format": args.q_format, "faults": args.faults, "min_torque": args.min_torque}
         w = rob.worst
         data = {**json_header(c, args.model, options), "rows": [r.to_dict() for r in rows],
                 "reverse": [r.to_dict() for r in rev],
@@ -225,7 +235,8 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
                 "cross_slope": [h.to_dict() if isinstance(h, SlopeHold) else h for h in holds],
                 **(checks.to_dict() if checks else {"recovery": [], "figure_9_4": [], "torque_requirement": None,
                                                     "decay": []}),
-                **fw_json}
+                **fw_json,
+                **({} if least is None else {"minimum_torque_limits": minimum_torque_json(least)})}
         # the shared writer: NaN or infinity refused (error: could not compute), tire-range notes, atomic file
         emit_json(data, args, write_to=tmp["--json-file"] if args.json_file else None)
         if args.json and not args.output:
@@ -275,11 +286,9 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     sys.stdout.write(fw_text)
     if faults is not None:
         print("\n" + format_faults(faults))
-    if args.min_torque:
-        for s_ in (1.0, 2.0, 3.0):
-            mt = minimum_torque_limit(sched, s_)
-            print(f"smallest torque limit that recovers from 400 N x 0.1 s at {s_:g} m/s: "
-                  f"{fmt(mt, '.1f')} N m per wheel (noise-free, same gains; recovers: {recovery_rule()})")
+    for s_, mt in least or []:
+        print(f"smallest torque limit that recovers from {STRONG_FORCE:g} N x {THESIS_PUSH.duration:g} s at {s_:g} "
+              f"m/s: {fmt(mt, '.1f')} N m per wheel (noise-free, same gains; recovers: {recovery_rule()})")
     print("\n" + format_top_speed(top))
     if args.output:
         _write_pdf(sched, rows, rob, runs, tmp["-o"], [h for h in holds if isinstance(h, SlopeHold)], top, faults,

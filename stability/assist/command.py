@@ -20,11 +20,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from stability.assist._format import json_float
 from stability.assist.digital import margin_curves
 from stability.assist.export_run import FirmwareReport, run_export
 from stability.assist.layout import LayoutAssist
-from stability.assist.recovery import STRONG_FORCE
+from stability.assist.recovery import STRONG_FORCE, minimum_torque_json
 from stability.assist.settling import recovery_rule
 from stability.assist.weights import GyroSensor, Weights
 from stability.chair.power import DriveTrain
@@ -94,8 +93,7 @@ def _layout_work(args: argparse.Namespace, layout: Layout, speeds: np.ndarray, w
                    "motor_lag_s": drive.motor_time_constant, "sample_rate_hz": gyro.sample_rate_hz,
                    "no_check": args.no_check, "min_torque": args.min_torque, "export_c": args.export_c,
                    "q_format": args.q_format, "seed": args.seed, "faults": args.faults}
-        extra: dict = {} if least is None else {"minimum_torque_limits": [
-            {"speed_m_s": u, "push_N": STRONG_FORCE, "minimum_torque_limit_N_m": json_float(t)} for u, t in least]}
+        extra: dict = {} if least is None else {"minimum_torque_limits": minimum_torque_json(least)}
         if fw is not None:
             extra["firmware"] = fw.to_dict()
         emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,

@@ -305,6 +305,30 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
     return bisect_limit(ok, float(sched.drive.torque_limit), tol)
 
 
+#: Speeds of ``assist --min-torque`` on the thesis's chair form (m/s): the recovery runs' speeds.
+MIN_TORQUE_SPEEDS = (1.0, 2.0, 3.0)
+
+
+def minimum_torque_json(least: Sequence[tuple[float, float]], push: float = STRONG_FORCE) -> list[dict[str, Any]]:
+    """The JSON rows of ``assist --min-torque`` (both forms): one per speed, ``inf`` as ``"inf"`` (no limit up to
+    the drive's recovers).
+
+    Parameters
+    ----------
+    least : sequence of (float, float)
+        (speed in m/s, negative in reverse; smallest torque limit per wheel in N m) pairs.
+    push : float
+        Lateral push force of the disturbance, N for :data:`~stability.settings.reference.THESIS_PUSH`'s duration.
+
+    Returns
+    -------
+    list of dict
+        ``speed_m_s``, ``push_N``, ``minimum_torque_limit_N_m`` per speed.
+    """
+    return [{"speed_m_s": float(u), "push_N": float(push), "minimum_torque_limit_N_m": json_float(t)}
+            for u, t in least]
+
+
 def bisect_limit(ok: Callable[[float], bool], hi: float, tol: float) -> float:
     """The smallest limit in ``[0, hi]`` for which ``ok`` holds, by bisection to ``tol`` (``ok`` taken monotone).
 
