@@ -112,7 +112,8 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
 
 # hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
-                "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report", "assist")
+                "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report", "assist",
+                "shimmy", "slope")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
 SUFFIX_UNITS = [("_N_m_per_deg", "N m/deg"), ("_kg_m", "kg m"), ("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
                 ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
@@ -196,6 +197,12 @@ def _option_bounds():
                        ".options.sample_rate_hz": o["--sample-rate"], ".options.seed": o["--seed"],
                        ".options.motor_lag_s": o["--motor-lag"],
                        ".options.bias_time_constant_s": o["--bias-time-constant"]},
+            "shimmy": {".options.speeds_m_s[]": o["--speed"], ".options.relaxation_length_m": o["--relaxation-length"],
+                       ".options.lateral_stiffness_N_per_m": o["--lateral-stiffness"],
+                       ".options.amplitude_deg": o["--amplitude-deg"]},
+            "slope": {".options.cross_slope_deg": o["--cross-slope"], ".options.grade_deg": o["--grade"],
+                      ".options.speed_m_s": o["--speed"], ".options.wheel_radius_m": o["--wheel-radius"],
+                      ".options.handrim_radius_m": o["--handrim-radius"], ".options.sim_time_s": o["slope:--sim-time"]},
             "advise": {".options.speeds_m_s[]": RUN_SETTINGS["speed"].bound, ".options.cross_slope_deg": o["--cross-slope"],
                        ".limits.min_tip_deg": o["--min-tip-deg"], ".shimmy_hold.amplitude_deg": o["--amplitude-deg"]}}
 
@@ -291,6 +298,11 @@ OUT_OF_RANGE = [
     ("shimmy", "layout", ("casters", 0, "critical_trail_m", 0), 0.25, "critical_trail_m/0.*maximum"),
     ("shimmy", "layout", ("options", "amplitude_deg"), 45.0, "amplitude_deg.*maximum"),
     ("slope", "layout", ("loads_N", 0), -1.0, "loads_N/0.*minimum"),
+    ("slope", "chair", ("normal_loads_N", "main_left"), -1.0, "normal_loads_N/main_left.*minimum"),
+    ("slope", "chair", ("options", "handrim_radius_m"), 1.5, "options/handrim_radius_m.*maximum"),
+    ("slope", "chair", ("drive_forces", "harder_side"), "left", "harder_side.*is not one of"),
+    ("shimmy", "chair", ("critical_trail_m", 0), 0.25, "critical_trail_m/0.*maximum"),
+    ("shimmy", "chair", ("chair_model", "rigid_pin", "shimmy_frequency_hz", 0), -1.0, "shimmy_frequency_hz/0.*minimum"),
     ("slope", "layout", ("options", "sim_time_s"), 11.0, "sim_time_s.*maximum"),
     ("critical_speed", "layout", ("speeds_m_s", 0), 0.005, "speeds_m_s/0.*should not be valid"),
     ("critical_speed", "layout", ("forward_critical", "speed_m_s"), 25.0, "forward_critical/speed_m_s.*maximum"),
