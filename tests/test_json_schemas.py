@@ -121,21 +121,37 @@ SUFFIX_UNITS = [("_N_m_per_deg", "N m/deg"), ("_kg_m", "kg m"), ("_rad_s2", "rad
                 ("_m", "m"), ("_s", "s")]
 
 
-def _numbers(node, path=""):
+def _resolve(ref, root):
+    """The node a ``$ref`` names (``#/$defs/x`` in ``root``, or ``advise.json#/$defs/x`` in another shipped
+    schema) and the document it sits in."""
+    file, _, pointer = ref.partition("#")
+    doc = schemas.schema(file.removesuffix(".json")) if file else root
+    node = doc
+    for part in pointer.strip("/").split("/"):
+        node = node[part] if part else node
+    return node, doc
+
+
+def _numbers(node, path="", root=None):
     """(path, key carrying the unit, schema node) of every number in a schema; items of an array and the
     ``value``/``interval`` of a quantity take their unit from the enclosing key; the forms of a schema with
-    ``if``/``then``/``else`` (a chair or a wheel layout) are walked both."""
+    ``if``/``then``/``else`` (a chair or a wheel layout) are walked both, and a ``$ref`` (to this schema's
+    ``$defs`` or another schema's) is followed."""
+    root = node if root is None else root
+    if "$ref" in node:
+        target, doc = _resolve(node["$ref"], root)
+        yield from _numbers(target, path, doc)
     for form in ("then", "else"):
         if form in node:
-            yield from _numbers(node[form], path)
+            yield from _numbers(node[form], path, root)
     for alternative in node.get("anyOf", []):      # an entry of one of several shapes (a slope held or skipped)
-        yield from _numbers(alternative, path)
+        yield from _numbers(alternative, path, root)
     types = node.get("type") if isinstance(node.get("type"), list) else [node.get("type")]
-    if "object" in types and "properties" in node:           # an object, or an object or null
+    if ("object" in types or "$ref" in node) and "properties" in node:  # an object, or null, or a $ref extended
         for k, v in node["properties"].items():
-            yield from _numbers(v, f"{path}.{k}")
+            yield from _numbers(v, f"{path}.{k}", root)
     elif "array" in types:
-        yield from _numbers(node.get("items", {}), path + "[]")
+        yield from _numbers(node.get("items", {}), path + "[]", root)
     elif "number" in str(node.get("type")) or "integer" in str(node.get("type")):
         keys = [k.rstrip("[]") for k in path.split(".") if k]
         unit_key = keys[-2] if keys[-1] in ("value", "interval", "main", "caster") and len(keys) > 1 else keys[-1]

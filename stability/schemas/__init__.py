@@ -100,6 +100,16 @@ def schema(command: str) -> dict[str, Any]:
     return json.loads(_load(command))
 
 
+@cache
+def _registry() -> Any:
+    """The shipped schemas as one ``referencing`` registry, each under its ``$id``: a schema may refer to another's
+    definitions (report.json to advise.json's measures, recommendation and decision)."""
+    from referencing import Registry, Resource
+
+    docs = [json.loads(_load(name)) for name in schema_names()]
+    return Registry().with_resources((doc["$id"], Resource.from_contents(doc)) for doc in docs)
+
+
 def validate(command: str, data: Any) -> None:
     """Check ``data`` against the command's schema and the key convention.
 
@@ -118,7 +128,7 @@ def validate(command: str, data: Any) -> None:
     import jsonschema
 
     try:
-        jsonschema.validate(data, schema(command))
+        jsonschema.validate(data, schema(command), registry=_registry())
     except jsonschema.ValidationError as exc:
         where = "/".join(str(p) for p in exc.absolute_path)
         raise ValueError(f"{command} JSON at {where or 'top level'}: {exc.message}") from None
