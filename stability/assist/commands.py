@@ -196,7 +196,7 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
     if layout is not None:
         from stability.assist.layout_command import layout_command_result
 
-        t, yaw, head, res = layout_command_result(sched, speed, command, ctl, duration=duration,
+        t, yaw, head, res = layout_command_result(sched, speed, ctl, duration=duration,
                                                   impulse_force=impulse_force, dt=dt, slope=slope)
     else:
         res = simulate(sched.chair, speed, RunSpec(horizon=duration, model=model or sched.model, dt=dt,

@@ -13,7 +13,6 @@ of travel, :func:`stability.study.layout_impulse.trailing_angles`).  The full-st
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -48,7 +47,7 @@ class LayoutReading:
         self.chair_states = [self.v, self.yaw_rate] + [x for pair in zip(deltas, rates, strict=True) for x in pair]
 
 
-def layout_command_result(sched: Any, speed: float, command: Callable[[float], float], ctl: DigitalController, *,
+def layout_command_result(sched: Any, speed: float, ctl: DigitalController, *,
                           duration: float, impulse_force: float, dt: float | str,
                           slope: tuple[float, float]) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]:
     """One commanded run of a layout schedule's controller in the layout simulator.
@@ -58,10 +57,9 @@ def layout_command_result(sched: Any, speed: float, command: Callable[[float], f
     sched : stability.assist.layout.LayoutSchedule
     speed : float
         Signed speed, m/s (the direction of the schedule's grid).
-    command : callable
-        ``r_cmd(t)``, rad/s (clockwise +, in either direction of travel).
     ctl : DigitalController
-        The controller (its ``command`` is ``command``).
+        The controller, with its yaw-rate command ``r_cmd(t)`` (rad/s, clockwise + in either direction of travel;
+        None: straight).
     duration, impulse_force : float
         s; N for :data:`~stability.settings.reference.THESIS_PUSH`'s duration.
     dt : float or "auto"
