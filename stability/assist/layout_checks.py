@@ -28,11 +28,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import control
 import numpy as np
 
+from stability.assist.commands import COMMAND_FILTER
 from stability.assist.design import Design, closed_loop_poles
 from stability.assist.digital import discrete_controller
 from stability.assist.recovery import DecayAgreement, decay_window, fit_decay_rate
+from stability.assist.tracking import closed_loop
 from stability.chair.power import DriveTrain
 from stability.layout.model import Layout
 from stability.settings.defaults import STEADY_YAW_RATE
@@ -390,12 +393,25 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
     return bisect_limit(ok, float(drive.torque_limit), tol)
 
 
+@dataclass(frozen=True)
+class _YawRate:
+    """What the gyro design's sampled controller reads of the chair: its yaw rate, rad/s."""
+
+    yaw_rate: float
+
+
 def layout_vector_loop(layout: Layout, sched: Any) -> Any:
     """The closed loop the firmware's test vectors are recorded in, for a layout
-    (:data:`stability.assist.export_c.ClosedLoop`): the Python controller
+    (:data:`stability.assist.export_c.ClosedLoop`).
+
+    As recorded before the layout simulator had a command path
+    (:func:`stability.assist.layout_command.layout_command_result`), kept so: the Python controller
     (:class:`~stability.assist.controller.DigitalController`, with the case's command, the gyro's bias and seeded
-    noise) as the layout simulator's yaw-moment hook (:func:`stability.assist.layout_command.layout_command_result`,
-    the short form's :func:`~stability.assist.export_c.short_form_loop` for a layout).
+    noise) reads, at its samples, the yaw rate of a closed loop run beforehand: after a push, the layout
+    simulator's with the design's sampled controller; for a commanded turn, the linear closed loop's
+    (:func:`stability.assist.tracking.closed_loop`, the reference model of
+    :data:`~stability.assist.commands.COMMAND_FILTER`), which follows the command without the torque limit (a
+    replay: the torques the Python controller computes do not act back on that run).
 
     Parameters
     ----------
@@ -408,13 +424,19 @@ def layout_vector_loop(layout: Layout, sched: Any) -> Any:
     callable
         ``loop(speed, push_force, duration, controller)``.
     """
-    from stability.assist.layout_command import layout_command_result
-
-    if sched.layout is not layout:
-        raise ValueError(f"sched is invalid here; valid: a schedule of layout {layout.name!r}")
-
     def loop(speed: float, force: float, duration: float, ctl: Any) -> None:
-        layout_command_result(sched, float(speed), ctl, duration=duration, impulse_force=force, dt="auto",
-                              slope=(0.0, 0.0))
+        d = sched.at(speed)
+        if force or ctl.command is None:
+            run = _run(layout, float(speed), force, duration, layout_controller(d, layout, sched.drive),
+                       sched.drive.motor_time_constant)
+            t, r = np.asarray(run.t_s), np.asarray(run.yaw_rate_rad_s)
+        else:       # a commanded turn: the linear closed loop's yaw rate (kept: in the layout simulator's closed loop
+            # the mid-wheel-drive base's 2 s saturating case peaks at 64-69 N m, below its 70 N m limit)
+            t = np.linspace(0.0, duration, int(round(duration / 1e-3)) + 1)
+            cmd = np.array([float(ctl.command(x)) for x in t])
+            r = np.asarray(control.forced_response(closed_loop(d, command_filter=COMMAND_FILTER), t,
+                                                   np.vstack([cmd, np.zeros_like(t), np.zeros_like(t)])).outputs[0])
+        for k in range(int(math.floor(duration / ctl.Ts + 1e-9)) + 1):
+            ctl(k * ctl.Ts, _YawRate(float(np.interp(k * ctl.Ts, t, r))))
 
     return loop
