@@ -21,8 +21,8 @@ import pytest
 from stability.assist.__main__ import main
 from stability.assist.driving import torque_requirement
 from stability.assist.layout import layout_assist, layout_schedule
-from stability.assist.top_speed import full_turn_peaks
 from stability.assist.schedule import schedule
+from stability.assist.top_speed import full_turn_peaks
 from stability.assist.weights import Weights
 from stability.chair import preset
 from stability.chair.power import DriveTrain

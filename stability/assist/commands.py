@@ -101,7 +101,7 @@ class CommandRun:
     Attributes
     ----------
     speed : float
-        m/s.
+        m/s (signed for a wheel layout's schedule: negative in reverse).
     t, yaw_rate, command, heading : ndarray
         s, rad/s, rad/s, rad.
     torque : ndarray
@@ -112,7 +112,8 @@ class CommandRun:
         Of ``torque``.
     saturated_fraction : float
         Share of samples at the torque limit.
-    result : SimulationResult
+    result : SimulationResult or LayoutRun
+        The simulator's run (a wheel layout's: :class:`stability.simulate.layout.LayoutRun`).
     """
 
     speed: float
@@ -147,7 +148,7 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
     ----------
     sched : Schedule
     speed : float
-        m/s.
+        m/s (a layout's schedule: signed, the direction of its grid).
     command : callable
         ``r_cmd(t)`` (rad/s).
     duration : float
