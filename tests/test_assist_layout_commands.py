@@ -73,7 +73,8 @@ def test_a_left_turn_is_the_mirrored_right_turn(name, speed):
     mirrored = 2.0 * trail - left.result.caster_angle_rad[_mirror_partner(lay)]
     assert np.max(np.abs(right.result.caster_angle_rad - mirrored)) <= 1e-12   # rounding (docstring)
     assert right.peak_torque_N_m == pytest.approx(left.peak_torque_N_m, rel=1e-12)   # rounding (docstring)
-    assert right.yaw_rate[-1] == pytest.approx(0.5, abs=5e-3)      # it turns as commanded (settled to 0.1 %)
+    # it turns as commanded; error model: the loop still settling at 3 s (observed 8e-4 rad/s at most)
+    assert right.yaw_rate[-1] == pytest.approx(0.5, abs=5e-3)
 
 
 def _massless(layout: Layout) -> Layout:
@@ -92,8 +93,9 @@ def test_the_rear_wheel_drive_base_backwards_is_the_front_wheel_drive_base_forwa
     b = _turn(layout_schedule(rwd, [-speed], kind), -speed, r)
     assert np.max(np.abs(a.yaw_rate - b.yaw_rate)) <= 1e-9                      # rounding (docstring)
     assert b.peak_torque_N_m == pytest.approx(a.peak_torque_N_m, rel=1e-9)       # rounding (docstring)
-    assert np.max(np.abs(a.result.y_m + b.result.y_m)) <= 1e-9                  # x and y negated (docstring)
-    assert np.max(np.abs(a.result.x_m + b.result.x_m)) <= 1e-9
+    # x and y negated; error model: rounding through the design and the steps (docstring), observed 1e-13 m
+    assert np.max(np.abs(a.result.y_m + b.result.y_m)) <= 1e-9
+    assert np.max(np.abs(a.result.x_m + b.result.x_m)) <= 1e-9   # error model: as the line above
 
 
 @pytest.mark.parametrize("name", layout_preset_names())
