@@ -165,8 +165,8 @@ def test_a_frame_turned_round_has_its_shimmy_rows_swapped_between_directions():
 
 
 def test_the_driver_section_is_the_short_forms_rule_for_the_thesis_chair_and_mirrors_for_a_turned_frame():
-    """``report --reaction-time`` on a layout: the divergence rule on the layout's linear model.  The E&J Premier
-    as a layout gets the short form's rule speed forwards (stability.driver.human_limit on the chair, a separate
+    """``report --reaction-time`` on a layout: the divergence rule and the delayed loop on the layout's linear model.
+    The E&J Premier as a layout gets the short form's rule speed, delayed-loop speed and limiting rule forwards (stability.driver.human_limit on the chair, a separate
     linear model: its rates agree to ~1e-13 relative and the same bisection returns the same point, observed
     identical; within the bisection's 1e-3 m/s).  The front-wheel-drive base (casters' mass at their pins) backwards is the
     rear-wheel-drive base forwards: the same speed and side (mirrored arithmetic, within the bisection's 1e-3 m/s)."""
@@ -186,7 +186,12 @@ def test_the_driver_section_is_the_short_forms_rule_for_the_thesis_chair_and_mir
     # error model: bisection bracket: both bisect to SPEED_TOL_M_S on rates equal to rounding (observed identical;
     # a rounding-level difference could flip one step, within the final bracket)
     assert fwd["rule_speed_m_s"] == pytest.approx(h.rule_speed_m_s, rel=0, abs=SPEED_TOL_M_S)
-    assert f"forwards: {h.rule_speed_m_s:.3g} m/s" in "\n".join(lines)
+    # the delayed loop: the same heading plant from another derivation, the same gain search and bisection
+    # (error model: the bisection's bracket, as above)
+    assert fwd["delayed_loop_side"] == h.loop_side and fwd["limited_by"] == h.limited_by
+    assert fwd["delayed_loop_speed_m_s"] == pytest.approx(h.loop_speed_m_s, rel=0, abs=SPEED_TOL_M_S)
+    assert fwd["speed_m_s"] == min(fwd["rule_speed_m_s"], fwd["delayed_loop_speed_m_s"])
+    assert f"forwards: {fwd['speed_m_s']:.3g} m/s, limited by the {h.limited_by}" in "\n".join(lines)
 
     def pinned(name):
         lay = layout_preset(name)

@@ -12,6 +12,8 @@ DRIVE_LAYOUTS = ("power-fwd-base", "mid-wheel-drive", "power-rwd-base")
 #: The relative error within which tests/test_assist.py and tests/test_assist_layout_checks.py hold the decay.
 DECAY_TOLERANCE = 0.05
 SLOPE_DEG, SLOPE_SPEED = 2.0, 1.0
+#: The speed of the commanded turns' table (m/s): the reference turn (1 m/s^2 lateral) below the full joystick turn.
+TURN_SPEED = 2.0
 
 
 @group("layout_slope", "python -m stability.slope --chair NAME --cross-slope 2 --speed 1|-1 "
@@ -126,6 +128,30 @@ def layout_sheet() -> dict:
     return {"table": Table(("layout", "after the bump at " + ", ".join(f"{u:g}" for u in speeds) + " m/s",
                             f"drive difference on {CLINIC_SLOPE_DEG:g} deg", "smallest tip angle deg"), tuple(rows)),
             "speeds": ", ".join(f"{u:g}" for u in speeds), "ej_time_agreement": f"{worst:.0e}"}
+
+
+@group("layout_turns", "python -m stability.assist --chair NAME --speeds 2 --reverse --json (its torque check: "
+       "stability.assist.driving.torque_requirement, stability.assist.top_speed.full_turn_peaks on a layout schedule)")
+def layout_turns() -> dict:
+    """Per drive layout and direction at 2 m/s: the peak torque per wheel of the reference push, the reference turn
+    (its steady torque) and the full joystick turn, in the layout simulator (the short form's commanded runs)."""
+    from stability.assist.commands import MAX_YAW_RATE, reference_command
+    from stability.assist.driving import torque_requirement
+    from stability.assist.layout import layout_schedule
+    from stability.assist.top_speed import full_turn_peaks
+    from stability.layout.presets import layout_preset
+
+    rows = []
+    for name in DRIVE_LAYOUTS:
+        for speed in (TURN_SPEED, -TURN_SPEED):
+            sched = layout_schedule(layout_preset(name), [speed])
+            (t,) = torque_requirement(sched, (speed,))
+            full = full_turn_peaks(sched, [speed])[speed]
+            rows.append((name, "forward" if speed > 0 else "reverse", fixed(t.push_peak_N_m, 1),
+                         fixed(t.turn_peak_N_m, 1), signed(t.steady_turn_N_m, 1), fixed(full, 1)))
+    return {"table": Table((f"layout ({TURN_SPEED:g} m/s)", "direction", "push peak N m", "reference turn peak N m",
+                            "steady turn N m", "full joystick turn peak N m"), tuple(rows)),
+            "reference": f"{reference_command(TURN_SPEED):g}", "speed": f"{TURN_SPEED:g}", "full": f"{MAX_YAW_RATE:g}"}
 
 
 @group("layout_assist_checks", "python -m stability.assist --chair NAME --speeds 1 --reverse "

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -101,7 +101,7 @@ class CommandRun:
     Attributes
     ----------
     speed : float
-        m/s.
+        m/s (signed for a wheel layout's schedule: negative in reverse).
     t, yaw_rate, command, heading : ndarray
         s, rad/s, rad/s, rad.
     torque : ndarray
@@ -112,7 +112,8 @@ class CommandRun:
         Of ``torque``.
     saturated_fraction : float
         Share of samples at the torque limit.
-    result : SimulationResult
+    result : SimulationResult or LayoutRun
+        The simulator's run (a wheel layout's: :class:`stability.simulate.layout.LayoutRun`).
     """
 
     speed: float
@@ -132,14 +133,22 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
                 impulse_force: float = 0.0, noise: bool = False, seed: int = 0, saturate: bool = True,
                 dt: float | str = "auto", command_filter_s: float = 0.0,
                 anti_windup: str = "back-calculation", tracking_time_s: float = TRACKING_TIME,
-                slope: tuple[float, float] = (0.0, 0.0), model: str | None = None) -> CommandRun:
+                slope: tuple[float, float] = (0.0, 0.0), model: str | None = None,
+                assisted: bool = True) -> CommandRun:
     """Simulate the scheduled controller following ``command`` (WCHAIR scheme, the schedule's model by default).
+
+    A wheel layout's schedule (:class:`stability.assist.layout.LayoutSchedule`, signed speeds: negative in reverse)
+    runs in the layout simulator (:func:`stability.assist.layout_command.layout_command_result`, exact model, the
+    casters starting trailing the direction of travel, every step recorded); ``model`` must then be None or
+    ``"exact"``.  Unassisted (``assisted=False``) the same controller runs with its feedback gains zeroed: the
+    joystick's command through the reference model times the linear model's steady-turn moment
+    (:func:`~stability.assist.tracking.feedforward`), saturated and lagged as the assisted one's, no gyro feedback.
 
     Parameters
     ----------
     sched : Schedule
     speed : float
-        m/s.
+        m/s (a layout's schedule: signed, the direction of its grid).
     command : callable
         ``r_cmd(t)`` (rad/s).
     duration : float
@@ -166,25 +175,41 @@ def command_run(sched: Schedule, speed: float, command: Callable[[float], float]
         ``(cross_slope_deg, grade_deg)`` of the simulator (deg; a slope needs the exact model).
     model : str, optional
         Equations of motion of the simulator (default the schedule's).
+    assisted : bool
+        False: the feedback gains zeroed (the command fed forward only, the chair on its own).
 
     Returns
     -------
     CommandRun
     """
-    speed = check_speed(speed)
-    ctl = DigitalController(sched.at(speed), sched.chair, sched.drive, gyro=sched.gyro, seed=seed, noise=noise,
+    layout = getattr(sched, "layout", None)
+    if layout is not None and model not in (None, "exact"):
+        raise ValueError(f"model={model!r} is invalid for a wheel layout; valid values: None, 'exact' (a layout's "
+                         "equations are derived from first principles only)")
+    speed = float(sched._check_speed(speed)) if layout is not None else check_speed(speed)
+    d = sched.at(speed)
+    if not assisted:
+        d = replace(d, K=np.zeros_like(d.K))
+        anti_windup = "none"                 # no heading-error gain to wind back through
+    ctl = DigitalController(d, sched.chair, sched.drive, gyro=sched.gyro, seed=seed, noise=noise,
                             saturate=saturate, command=command, command_filter_s=command_filter_s,
                             anti_windup=anti_windup, tracking_time_s=tracking_time_s)
-    res = simulate(sched.chair, speed, RunSpec(horizon=duration, model=model or sched.model, dt=dt,
-                                               push_force=impulse_force, push_duration=THESIS_PUSH.duration,
-                                               stop_on_warnings=False, cross_slope_deg=slope[0], grade_deg=slope[1]),
-                   yaw_moment=ctl)
-    t = np.asarray(res.t)
+    if layout is not None:
+        from stability.assist.layout_command import layout_command_result
+
+        t, yaw, head, res = layout_command_result(sched, speed, ctl, duration=duration,
+                                                  impulse_force=impulse_force, dt=dt, slope=slope)
+    else:
+        res = simulate(sched.chair, speed, RunSpec(horizon=duration, model=model or sched.model, dt=dt,
+                                                   push_force=impulse_force, push_duration=THESIS_PUSH.duration,
+                                                   stop_on_warnings=False, cross_slope_deg=slope[0],
+                                                   grade_deg=slope[1]),
+                       yaw_moment=ctl)
+        t, yaw, head = np.asarray(res.t), np.asarray(res.yaw_rate), np.asarray(res.heading)
     samples = [s for s in ctl.samples if s[0] <= t[-1] + 1e-9]
     tau = np.array([s[1] for s in samples])
     lim = sched.drive.torque_limit
-    return CommandRun(speed, t, np.asarray(res.yaw_rate), np.array([command(x) for x in t]),
-                      np.asarray(res.heading), tau, np.array([s[0] for s in samples]),
+    return CommandRun(speed, t, yaw, np.array([command(x) for x in t]), head, tau, np.array([s[0] for s in samples]),
                       float(np.max(np.abs(tau))) if tau.size else 0.0,
                       float(np.sqrt(np.mean(tau ** 2))) if tau.size else 0.0,
                       float(np.mean(np.abs(tau) >= lim * (1 - 1e-9))) if tau.size else 0.0, res)

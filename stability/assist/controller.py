@@ -222,8 +222,9 @@ class DigitalController:
         bhat = bhat + self._bias_gain * ((r_gyro - float(state.yaw_rate)) - bhat)
         r_corr = r_gyro - bhat
         # the full-state design's measurement (the short form's states; a gyro design reads the gyro alone)
-        x = np.array([state.v, r_corr, state.eta, state.eta_dot, state.beta, state.beta_dot]
-                     + ([m] if self._motor else []), dtype=float) if self.design.kind == "full-state" else None
+        # (a layout's reading gives its own: v, r, then each caster's angle from its trailing angle and rate)
+        x = np.array(self._chair_states(state, r_corr) + ([m] if self._motor else []), dtype=float) \
+            if self.design.kind == "full-state" else None
         rc_prev_cmd = self._hist[k - 1][8] if k > 0 else 0.0
         if k == 0:
             mz, u, tau = 0.0, 0.0, 0.0
@@ -235,6 +236,16 @@ class DigitalController:
             # the excess is exactly 0 unless the torque is at its limit (no round-off from the unit conversion)
             mz = mz if self.saturate and abs(tau) >= self.drive.torque_limit else u
         self._hist.append((xhat, e, u, tau, r_corr, m, x, bhat, self._cmd(k), mz))
+
+    @staticmethod
+    def _chair_states(state: Any, r_corr: float) -> list[float]:
+        """The full-state design's chair states, the yaw rate the corrected gyro's: the short form's ``v, r, eta,
+        eta_dot, beta, beta_dot``, or a wheel layout's ``state.chair_states`` (``v, r``, then per caster its angle
+        from its trailing angle and its rate; :class:`stability.assist.layout_command.LayoutReading`)."""
+        own = getattr(state, "chair_states", None)
+        if own is not None:
+            return [float(own[0]), r_corr, *(float(x) for x in own[2:])]
+        return [state.v, r_corr, state.eta, state.eta_dot, state.beta, state.beta_dot]
 
     def _integrate(self, err: float, excess: float) -> float:
         """Increment of the heading-error integrator over one sample (rad).

@@ -72,6 +72,9 @@ def tracking_step(sched: Schedule, speed: float, command: float | None = None, *
 def traction_limit(sched: Schedule) -> float:
     """Largest wheel torque the drive tire can pass to the floor: ``mu N r`` (N m per wheel, static load).
 
+    A wheel layout's schedule: the less loaded drive wheel's, in the direction of its grid
+    (:func:`stability.assist.layout_checks.layout_traction_limit`).
+
     Parameters
     ----------
     sched : Schedule
@@ -80,6 +83,11 @@ def traction_limit(sched: Schedule) -> float:
     -------
     float
     """
+    layout = getattr(sched, "layout", None)
+    if layout is not None:
+        from stability.assist.layout_checks import layout_traction_limit
+
+        return layout_traction_limit(layout, sched.drive, bool(sched.speeds[0] < 0))
     n = static_loads(sched.chair)["main"]
     return sched.drive.traction_coefficient * n * sched.drive.wheel_radius
 
@@ -118,11 +126,14 @@ class TorqueRow:
 def torque_requirement(sched: Schedule, speeds: tuple[float, ...] = (0.5, 1.0, 2.0, 3.0)) -> list[TorqueRow]:
     """Peak and RMS differential torque for the reference push and a commanded turn, against speed.
 
+    A wheel layout's schedule runs in the layout simulator (:func:`~stability.assist.commands.command_run`), at
+    signed speeds (negative in reverse: the turn's command is that of the speed's magnitude).
+
     Parameters
     ----------
     sched : Schedule
     speeds : tuple of float
-        m/s.
+        m/s (signed for a layout's schedule).
 
     Returns
     -------
@@ -132,7 +143,7 @@ def torque_requirement(sched: Schedule, speeds: tuple[float, ...] = (0.5, 1.0, 2
     trac = traction_limit(sched)
     for s in speeds:
         push = command_run(sched, s, step_command(0.0), duration=2.0, impulse_force=THESIS_PUSH.force)
-        turn = command_run(sched, s, step_command(reference_command(s)), duration=3.0,
+        turn = command_run(sched, s, step_command(reference_command(abs(s))), duration=3.0,
                            command_filter_s=COMMAND_FILTER)
         rows.append(TorqueRow(float(s), push.peak_torque_N_m, push.rms_torque_N_m, turn.peak_torque_N_m,
                               turn.rms_torque_N_m, float(turn.torque[-1]), sched.drive.torque_limit, trac))

@@ -133,8 +133,8 @@ class FaultHook:
     values : ndarray (runs,)
     seed : int
     traction_limit_N_m : float, optional
-        The drive wheels' traction limit ``mu N r`` (N m per wheel; default the short form's,
-        :func:`~stability.assist.driving.traction_limit`): a slipping wheel passes half of it.
+        The drive wheels' traction limit ``mu N r`` (N m per wheel; default the schedule's,
+        :func:`~stability.assist.driving.traction_limit`, a layout's too): a slipping wheel passes half of it.
     """
 
     def __init__(self, tables: FirmwareTables, sched: Schedule, speeds: np.ndarray, kinds: Sequence[str],
@@ -263,11 +263,6 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
     U = np.asarray(sched.speeds if speeds is None else speeds, dtype=float)
     tables = firmware_tables(sched, command_filter_s=COMMAND_FILTER)
     layout = getattr(sched, "layout", None)
-    traction: float | None = None
-    if layout is not None:
-        from stability.assist.layout_checks import layout_traction_limit
-
-        traction = layout_traction_limit(layout, sched.drive, bool(U[0] < 0))
     rows: list[FaultRow] = []
     cases = [("open", "open", 0.0), *((n, *FAULTS[n]) for n in names)]
     for phi in slopes:
@@ -276,11 +271,10 @@ def fault_runs(sched: Schedule, *, speeds: Sequence[float] | None = None, slopes
         vals = np.array([c[2] for _ in U for c in cases])
         spec = RunSpec(horizon=FAULT_TIME + window, dt=dt, stop_on_warnings=False, cross_slope_deg=float(phi),
                        model="exact")
+        hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed)     # traction_limit: a layout's too
         if layout is None:
-            hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed)
             res = simulate_batch(sched.chair, run_speeds, spec, yaw_moment=hook, progress=progress)
         else:
-            hook = FaultHook(tables, sched, run_speeds, kinds, vals, seed=seed, traction_limit_N_m=traction)
             res = _layout_batch(layout, run_speeds, spec, hook)
         for i, s in enumerate(U):
             base = i * len(cases)

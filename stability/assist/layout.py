@@ -9,9 +9,10 @@ wheels (:func:`stability.study.layout_slope.drive_wheels`) and ``r`` their radiu
 (:class:`.weights.Weights`), the gyro design's estimator the same Kalman filter on the chair's states, the margins
 those of the continuous and the sampled loop (:func:`.digital.margin_pair`), and the safe top speed the highest
 design speed at which the sampled loop's margins hold there and below (:func:`.top_speed.top_speed` with the
-margins, with ``check`` the torque (the reference push's peak torque per drive wheel at every design speed in the
-layout simulator within the motor and traction limits; the commanded turns the short form also counts are not run:
-the layout simulator has no command path) and, with ``faults``, every single sensor fault safe:
+margins, with ``check`` the torque (the short form's: the peak torque per drive wheel for the reference push, the
+reference turn and a full joystick turn at every design speed, :func:`.driving.torque_requirement` and
+:func:`.top_speed.full_turn_peaks` run in the layout simulator, within the motor and traction limits) and, with
+``faults``, every single sensor fault safe:
 :func:`.faults.fault_runs` on the direction's :func:`layout_schedule`, the firmware with its sensor monitor
 stepped at every step of the layout simulator).
 Forward and reverse each have their own grid and top speed.  With ``check`` the closed loop is simulated with the
@@ -53,9 +54,9 @@ __all__ = ["drive_lever", "drive_axle", "layout_plant", "layout_design", "Layout
            "LayoutAssistRow", "LayoutAssist", "layout_assist", "format_layout_assist", "LAYOUT_TORQUE_WORDS"]
 
 #: What a layout's torque constraint counts (the words of its text and its top-speed page's caption).
-LAYOUT_TORQUE_WORDS = ("the torque counts the reference push's peak per wheel at every design speed (layout "
-                       "simulator, noise-free, torque limit); the commanded turns are not run on a layout (the layout "
-                       "simulator has no command path)")
+LAYOUT_TORQUE_WORDS = ("the torque counts the peak per wheel of the reference push, the reference turn and a full "
+                       "joystick turn at every design speed, as the short form's (layout simulator, noise-free, "
+                       "torque limit; in reverse the same yaw-rate commands)")
 
 
 def drive_lever(layout: Layout) -> float:
@@ -337,23 +338,26 @@ class LayoutAssist:
 def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
           estimator: EstimatorWeights, faults: Sequence[Any] | None = None, torque: bool = False
           ) -> tuple[tuple[LayoutAssistRow, ...], TopSpeed | None]:
-    rows, designs = [], []
+    if not speeds:
+        return (), None
+    sched = layout_schedule(layout, speeds, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
+    by_speed = dict(zip((float(u) for u in sched.speeds), sched.designs, strict=True))
+    rows = []
     for s in speeds:
-        d = layout_design(layout, s, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
-        designs.append(d)
+        d = by_speed[float(s)]
         open_g = float(np.linalg.eigvals(d.plant.A6).real.max())
         closed = float(closed_loop_poles(d).real.max())
         gains = {k: v for k, v in d.gains_dict(per_wheel=True).items() if k != MOTOR_STATE}
         rows.append(LayoutAssistRow(float(s), open_g, closed, gains, margin_pair(d, d.sample_time)))
-    if not rows:
-        return (), None
-    torques = None
-    if torque:
-        from stability.assist.layout_checks import layout_push_torques
+    torques, full = None, None
+    if torque:      # the short form's torque rows and full joystick turns, in the layout simulator
+        from stability.assist.driving import torque_requirement
+        from stability.assist.top_speed import full_turn_peaks
 
-        torques = [replace(t, speed_m_s=abs(t.speed_m_s)) for t in layout_push_torques(layout, designs, drive)]
+        torques = [replace(t, speed_m_s=abs(t.speed_m_s)) for t in torque_requirement(sched, tuple(speeds))]
+        full = {abs(u): v for u, v in full_turn_peaks(sched, speeds).items()}
     ts = top_speed(_Grid(gyro, drive), [_MarginRow(abs(r.speed_m_s), r.margin_pair) for r in rows],  # type: ignore[arg-type]
-                   torques, None if faults is None else [replace(f, speed_m_s=abs(f.speed_m_s)) for f in faults])
+                   torques, None if faults is None else [replace(f, speed_m_s=abs(f.speed_m_s)) for f in faults], full)
     return tuple(rows), ts
 
 
@@ -377,10 +381,11 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
     check : bool
         Also the nonlinear checks of each direction with the layout simulator
         (:func:`stability.assist.layout_checks.layout_checks` at :func:`~stability.assist.layout_checks.check_speeds`),
-        and the torque constraint of each direction's safe top speed: the reference push's peak torque per drive
-        wheel at every design speed (:func:`stability.assist.layout_checks.layout_push_torques`) within the motor
-        and traction limits (the short form's rule, :func:`stability.assist.top_speed.top_speed`; no commanded
-        turn: the layout simulator has no command path).
+        and the torque constraint of each direction's safe top speed: the peak torque per drive wheel of the
+        reference push, the reference turn and a full joystick turn at every design speed
+        (:func:`stability.assist.driving.torque_requirement` and :func:`stability.assist.top_speed.full_turn_peaks`
+        on the direction's :func:`layout_schedule`, in the layout simulator) within the motor and traction limits
+        (the short form's rule, :func:`stability.assist.top_speed.top_speed`).
     faults : bool
         Also the single sensor faults at every design speed of each direction on level ground and the cross slope
         (:func:`stability.assist.faults.fault_runs` on the direction's :func:`layout_schedule`, in the layout
@@ -459,7 +464,7 @@ def format_layout_assist(a: LayoutAssist) -> str:
             lines.append(f"{what}, " + format_faults(bad))
         if top is not None:
             words = top.sentence().split(" (not checked:")[0]
-            done = ["the margins"] + [k for k, on in (("the push torque", "torque" in top.checked),
+            done = ["the margins"] + [k for k, on in (("the torque (push and turns)", "torque" in top.checked),
                                                       ("the single sensor faults", bad is not None)) if on]
             off = [k for k, on in (("the torque: run without --no-check", "torque" not in top.checked),
                                    ("the single sensor faults: add --faults", bad is None)) if on]

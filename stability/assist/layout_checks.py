@@ -48,7 +48,7 @@ from stability.study.layout_impulse import trailing_angles
 
 __all__ = ["layout_controller", "LayoutRecovery", "layout_recovery", "layout_decay_agreement", "TORQUE_WINDOW_S",
            "CHECK_SPEEDS", "check_speeds", "layout_traction_limit", "LayoutChecks", "layout_checks",
-           "layout_minimum_torque_limit", "layout_vector_loop", "LayoutPushTorque", "layout_push_torques"]
+           "layout_minimum_torque_limit", "layout_vector_loop"]
 
 #: The window of the peak and RMS torque after the push, s (the short form's push recovery window).
 TORQUE_WINDOW_S = 2.0
@@ -394,63 +394,6 @@ def layout_minimum_torque_limit(layout: Layout, d: Design, drive: DriveTrain, *,
 
 
 @dataclass(frozen=True)
-class LayoutPushTorque:
-    """The torque a layout needs at one design speed, as :func:`stability.assist.top_speed.top_speed` reads a
-    :class:`~stability.assist.driving.TorqueRow`.
-
-    Attributes
-    ----------
-    speed_m_s : float
-        Design speed, m/s (negative in reverse).
-    push_peak_N_m, push_rms_N_m : float
-        After the reference push, over :data:`TORQUE_WINDOW_S` s, per drive wheel, N m (saturated at the motor
-        limit: a run reaching the limit fails the torque constraint, as the short form's).
-    motor_limit_N_m, traction_limit_N_m : float
-        Per drive wheel, N m.
-    """
-
-    speed_m_s: float
-    push_peak_N_m: float
-    push_rms_N_m: float
-    motor_limit_N_m: float
-    traction_limit_N_m: float
-
-    @property
-    def turn_peak_N_m(self) -> float:
-        """0: no commanded turn is run on a layout (the layout simulator has no command path)."""
-        return 0.0
-
-
-def layout_push_torques(layout: Layout, designs: Sequence[Design], drive: DriveTrain) -> list[LayoutPushTorque]:
-    """The reference push's peak and RMS torque per drive wheel at each design's speed, closed loop only, over the
-    push and :data:`TORQUE_WINDOW_S` s after it (the short form's push run of
-    :func:`stability.assist.driving.torque_requirement`).
-
-    Parameters
-    ----------
-    layout : Layout
-    designs : sequence of Design
-        One direction's (the sign of their speeds).
-    drive : DriveTrain
-
-    Returns
-    -------
-    list of LayoutPushTorque
-    """
-    if not designs:
-        return []
-    trac = layout_traction_limit(layout, drive, float(designs[0].speed) < 0)
-    out = []
-    for d in designs:
-        run = _run(layout, float(d.speed), THESIS_PUSH.force, THESIS_PUSH.duration + TORQUE_WINDOW_S,
-                   layout_controller(d, layout, drive), drive.motor_time_constant)
-        per_wheel = np.abs(np.asarray(run.yaw_moment_N_m)) * drive.wheel_radius / d.track_width
-        out.append(LayoutPushTorque(float(d.speed), float(np.max(per_wheel)), float(np.sqrt(np.mean(per_wheel ** 2))),
-                                    float(drive.torque_limit), trac))
-    return out
-
-
-@dataclass(frozen=True)
 class _YawRate:
     """What the gyro design's sampled controller reads of the chair: its yaw rate, rad/s."""
 
@@ -461,8 +404,8 @@ def layout_vector_loop(layout: Layout, sched: Any) -> Any:
     """The closed loop the firmware's test vectors are recorded in, for a layout
     (:data:`stability.assist.export_c.ClosedLoop`).
 
-    The layout simulator runs the design's sampled controller compiled (:func:`layout_controller`: no yaw-rate
-    command path, no gyro bias or noise), so the Python controller
+    As recorded before the layout simulator had a command path
+    (:func:`stability.assist.layout_command.layout_command_result`), kept so: the Python controller
     (:class:`~stability.assist.controller.DigitalController`, with the case's command, the gyro's bias and seeded
     noise) reads, at its samples, the yaw rate of a closed loop run beforehand: after a push, the layout
     simulator's with the design's sampled controller; for a commanded turn, the linear closed loop's
@@ -487,7 +430,8 @@ def layout_vector_loop(layout: Layout, sched: Any) -> Any:
             run = _run(layout, float(speed), force, duration, layout_controller(d, layout, sched.drive),
                        sched.drive.motor_time_constant)
             t, r = np.asarray(run.t_s), np.asarray(run.yaw_rate_rad_s)
-        else:       # a commanded turn: the linear closed loop's yaw rate (the layout simulator has no command path)
+        else:       # a commanded turn: the linear closed loop's yaw rate (kept: in the layout simulator's closed loop
+            # the mid-wheel-drive base's 2 s saturating case peaks at 64-69 N m, below its 70 N m limit)
             t = np.linspace(0.0, duration, int(round(duration / 1e-3)) + 1)
             cmd = np.array([float(ctl.command(x)) for x in t])
             r = np.asarray(control.forced_response(closed_loop(d, command_filter=COMMAND_FILTER), t,

@@ -62,9 +62,8 @@ NOT_APPLICABLE = (
     ("Tire data", "each wheel's tire is named in the layout; the treadmill tables are the short form's report's "
      "(python -m stability.critical_speed --chair NAME prints every contact's static load)."),
     ("The driver", "--reaction-time S (or the file's [user]) adds the speed up to which that driver holds the "
-     "layout, forwards and backwards (the divergence rule on the layout's linear model); the delayed-loop limit of "
-     "a layout both ways: python -m stability.critical_speed --chair NAME --reaction-time S; the nonlinear lane "
-     "limit is the short form's only (docs/driver.md)."),
+     "layout, forwards and backwards (the divergence rule and the delayed loop on the layout's linear model); the "
+     "nonlinear lane limit is the short form's only (docs/driver.md)."),
 )
 
 
@@ -225,22 +224,32 @@ def _shimmy(layout: Layout, speeds: tuple) -> tuple[list[str], list[dict]]:
 
 
 def _driver(layout: Layout, driver: Any) -> tuple[tuple[str, ...], dict]:
-    """The speed up to which the driver holds the layout, forwards and backwards: the divergence rule on the layout's
-    linear model (:func:`stability.advise.layout_measures.layout_rule_speed`, the advisor's driver limit)."""
-    from stability.advise.layout_measures import layout_rule_speed
+    """The speed up to which the driver holds the layout, forwards and backwards: the short form's two limits on the
+    layout's linear model (:func:`stability.driver.layout.layout_human_limit`: the divergence rule and the best
+    delayed PD heading loop), the lower of them the driver's."""
+    from stability.driver.layout import layout_human_limit
 
     tau = float(driver.reaction_time_s)
-    lines = [f"A driver with an effective delay of {tau:g} s (from {driver.source}): the speed up to which the "
-             f"layout's own divergence is slow enough for them (its largest growth rate reaches 1/{tau:g} s, the "
-             "divergence rule on the layout's linear model, free frictionless casters):"]
+    lines = [f"A driver with an effective delay of {tau:g} s (from {driver.source}): the speed up to which they hold "
+             "the layout, the lower of the divergence rule (its largest growth rate reaches 1/delay) and the delayed "
+             "loop (the best delayed PD heading loop stops being stable), on the layout's linear model with free "
+             "frictionless casters:"]
     rows = []
+
+    def at(u: float, side: str) -> str:
+        return ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s"
+
     for reverse in (False, True):
-        u, side = layout_rule_speed(layout, tau, reverse)
+        h = layout_human_limit(layout, driver, reverse)
         way = "backwards" if reverse else "forwards"
-        lines.append(f"  {way}: " + ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s")
-        rows.append({"direction": "reverse" if reverse else "forward", "rule_speed_m_s": float(u), "side": side})
-    lines.append("It leaves out pin friction and the driver's own heading loop (the delayed-loop limit both ways: "
-                 f"python -m stability.critical_speed --chair {layout.name} --reaction-time {tau:g}; the lane limit is "
+        lines.append(f"  {way}: {at(h.speed_m_s, h.side)}, limited by the {h.limited_by} (divergence rule "
+                     f"{at(h.rule_speed_m_s, h.rule_side)}, delayed loop {at(h.loop_speed_m_s, h.loop_side)})")
+        rows.append({"direction": "reverse" if reverse else "forward", "rule_speed_m_s": float(h.rule_speed_m_s),
+                     "side": h.rule_side, "delayed_loop_speed_m_s": float(h.loop_speed_m_s),
+                     "delayed_loop_side": h.loop_side, "speed_m_s": float(h.speed_m_s), "limited_by": h.limited_by,
+                     "pade_error_m_s": float(h.pade_error_m_s)})
+    lines.append("It leaves out pin friction (python -m stability.critical_speed --chair "
+                 f"{layout.name} --reaction-time {tau:g} gives both limits with their Pade check; the lane limit is "
                  "the short form's).")
     return tuple(lines), {"reaction_time_s": tau, "source": driver.source, "limits": rows}
 
