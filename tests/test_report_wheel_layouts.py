@@ -78,7 +78,7 @@ def test_the_shimmy_rows_of_a_mid_wheel_drive_base():
 def test_the_command_writes_a_layout_report(tmp_path, capsys):
     out, txt = tmp_path / "r.pdf", tmp_path / "r.txt"
     assert main(["--chair", "power-rwd-base", "-o", str(out), "--text", str(txt), "--no-progress"]) == 0
-    assert out.read_bytes().startswith(b"%PDF") and "Not applicable to a wheel layout" in txt.read_text()
+    assert out.read_bytes().startswith(b"%PDF") and "Appendix: not applicable to a wheel layout" in txt.read_text()
 
 
 @pytest.mark.parametrize("argv, words", [
