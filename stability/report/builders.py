@@ -207,9 +207,9 @@ def _p_linear(d: ReportData) -> Figure:
         locus = d.speed_loci[(d.model, cs)]
         if stable_everywhere(locus):       # no critical speed: the locus has nothing to locate, one line instead
             ax.axis("off")
-            ax.text(0.5, 0.6, f"{cs.capitalize()} casters: every eigenvalue has a negative real part at every speed "
-                    f"searched ({locus.speeds[0]:g}-{locus.speeds[-1]:g} m/s),\nso there is no critical speed and "
-                    "no locus to draw.", ha="center", va="center", fontsize=8.5, transform=ax.transAxes)
+            ax.text(0.5, 0.6, f"{cs.capitalize()} casters: every eigenvalue has a negative real part at every speed"
+                    f"\nsearched ({locus.speeds[0]:g}-{locus.speeds[-1]:g} m/s), so there is no critical speed\nand no "
+                    "locus to draw.", ha="center", va="center", fontsize=8.5, transform=ax.transAxes)
             continue
         P.speed_locus(locus, ax, scale="linear", keep=0.6, marks=(0.25, 0.75, 2.0, 5.0, 10.0))
     bottom = _footer(fig, "Root loci: linear axes around the slow modes, which decide directional stability; the fast "

@@ -74,10 +74,14 @@ def contents_line(titles: Sequence[str]) -> str:
             f"concludes, on p. {appendix[0]}.")
 
 
+#: A contents line quotes a caption up to its first ". ", ": " or "; " after at least this many characters.
+_MIN_HEAD = 40
+
+
 def _first_sentence(text: str) -> str:
     head = text.removeprefix("What to conclude: ")
-    cut = head.find(". ")
-    return head if cut < 0 else head[:cut + 1]
+    cuts = [k for k in (head.find(s, _MIN_HEAD) for s in (". ", ": ", "; ")) if k >= 0]
+    return head if not cuts else head[:min(cuts)] + ("." if head[min(cuts)] == "." else " ...")
 
 
 def contents_text(d: ReportData, titles: Sequence[str]) -> list[str]:
