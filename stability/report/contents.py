@@ -69,9 +69,7 @@ def contents_line(titles: Sequence[str]) -> str:
     results, appendix = parts(titles)
     if not appendix:
         return f"CONTENTS. Results: {_span(results)}."
-    return (f"CONTENTS. Results: {_span(results)}. Appendix (method, parameters, findings in detail, the linear "
-            f"analysis, tables, glossary and references): {_span(appendix)}; every page is listed, with what it "
-            f"concludes, on p. {appendix[0]}.")
+    return f"CONTENTS. Results: {_span(results)}. Appendix: {_span(appendix)} (every page listed on p. {appendix[0]})."
 
 
 #: A contents line quotes a caption up to its first ". ", ": " or "; " after at least this many characters.

@@ -36,8 +36,8 @@ from stability.settings.reference import REFERENCE_SPEED
 from stability.study.layout_equal_instability import layout_equal_instability_interval
 from stability.study.layout_impulse import layout_critical_impulses, slow_divergences
 
-__all__ = ["LayoutReport", "NOT_APPLICABLE", "COMPARE_SPEEDS", "compute_layout_report", "layout_report_pages",
-           "write_layout_report", "comparison_caption"]
+__all__ = ["LayoutReport", "NOT_APPLICABLE", "NO_BENCH", "WHEELS_TITLE", "COMPARE_SPEEDS", "compute_layout_report",
+           "layout_report_pages", "write_layout_report", "comparison_caption"]
 
 #: Signed speeds of a comparison's growth-rate rows, m/s: the use range forwards and the reference speed backwards.
 COMPARE_SPEEDS = (0.5, REFERENCE_SPEED, 1.0, 1.5, -REFERENCE_SPEED)
