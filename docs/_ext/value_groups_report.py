@@ -183,7 +183,7 @@ def report_pages() -> dict:
 
     from value_groups import Table
 
-    from stability.report.contents import parts
+    from stability.report.contents import RESULTS_LIMIT, parts
 
     root = Path(__file__).resolve().parents[2]
     out: dict = {}
@@ -204,4 +204,5 @@ def report_pages() -> dict:
                          tuple(rows))
     counts = [int(out[f"{r[0]}.results"]) for r in rows]
     out["min_results"], out["max_results"] = str(min(counts)), str(max(counts))
+    out["results_limit"] = str(RESULTS_LIMIT)
     return out

@@ -94,6 +94,8 @@ class LayoutReport:
         The comparison with the baseline (``--compare``).
     uncertainty : stability.report.layout_uncertainty.LayoutUncertainty or None
         The propagated intervals (``--uncertainty``).
+    appendix : tuple of (str, tuple of str)
+        Title and paragraphs of each appendix page (after every result, before :data:`NOT_APPLICABLE`'s page).
     """
 
     layout: Layout
