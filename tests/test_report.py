@@ -31,8 +31,8 @@ EXPECTED_PAGES = [
     "decision", "summary", "eigenvalues against speed",
     "nonlinear yaw-rate responses", "paths", "equal-instability speeds", "parametric study", "stability maps",
     "trail design chart", "caster shimmy", "cross slope", "parameter uncertainty", "thesis conclusions",
-    # appendix
-    "method", "chair parameters and geometry", "findings", "linear stability: critical speeds", "tires",
+    # appendix (after its own contents page)
+    "appendix: contents", "method", "chair parameters and geometry", "findings", "linear stability: critical speeds", "tires",
     "growth rate against design parameters", "parametric study table",
     "glossary and references",
 ]
@@ -97,6 +97,39 @@ def test_page_count_and_order(quick):
     data = quick.path.read_bytes()
     assert data.startswith(b"%PDF")
     assert len(re.findall(rb"/Type\s*/Page\b", data)) == len(EXPECTED_PAGES)
+
+
+def test_results_then_appendix_from_the_chairs_data(quick):
+    """Issue 35: at most about 14 pages of results, then the appendix after its contents page; page 1 says where
+    the parts are; the pages that cannot apply are decided from the chair's data (a manual chair: no feedback
+    locus; the linear page's loci drawn only where the linear model has a critical speed; tests/report_structure)."""
+    from report_structure import check_structure
+
+    pages = [(p.title, "\n".join(p.texts)) for p in quick.pages]
+    check_structure(pages, quick.data.chair, manual=True, compare=False, uncertainty=True)
+
+
+def test_stable_everywhere_matches_an_independent_eigenvalue_scan():
+    """The linear page's rule (no locus for a caster setting stable at every speed) against the eigenvalues of the
+    state matrices scanned here: the front-caster E&J is stable free and locked, the rear-caster one is not."""
+    from report_structure import stable_at_every_speed
+
+    from stability.report.panels import stable_everywhere
+
+    for name in ("ej-premier", "ej-premier-front-caster", "revised"):
+        for cs in ("free", "locked"):
+            c = preset(name)
+            assert stable_everywhere(rootlocus.speed_locus(c, casters=cs)) == stable_at_every_speed(c, cs), (name, cs)
+    assert stable_at_every_speed(preset("ej-premier-front-caster"), "free")
+    assert not stable_at_every_speed(preset("ej-premier"), "free")
+
+
+def test_a_result_after_the_appendix_is_refused():
+    from stability.report.contents import parts
+
+    assert parts(["decision", "summary", "method", "tires"]) == ([1, 2], [3, 4])
+    with pytest.raises(ValueError, match="page 3 .'summary'. is a result after the appendix"):
+        parts(["decision", "method", "summary"])
 
 
 def test_every_page_is_titled_with_chair_and_model(quick):
@@ -491,8 +524,11 @@ def test_pages_without_information_are_dropped_with_a_reason(quick):
     d2 = dataclasses.replace(d, chair_sweeps=table, chair_speed=above(d.chair_speed))
     titles = [t for t, _ in report.page_builders(d2)]
     assert "parametric study" not in titles and "parametric study table" not in titles
-    method = "\n".join(method_text(d2))
-    assert "no parameter can be ranked" in method and "Pages left out" in method
+    from stability.report.contents import contents_text
+
+    left_out = "\n".join(contents_text(d2, titles))          # the appendix's contents page says why
+    assert "no parameter can be ranked" in left_out and "Pages left out" in left_out
+    assert "Pages left out" not in "\n".join(method_text(d2))
 
 
 def test_summary_numbers_come_from_the_data(quick):
@@ -597,10 +633,11 @@ def test_shimmy_page_dropped_with_a_reason(quick):
     why = shimmy_unavailable(bad)
     assert why and "i_zp" in why and shimmy_unavailable(c) is None
     d2 = dataclasses.replace(quick.data, shimmy=None, shimmy_note=why)
-    assert "caster shimmy" not in [t for t, _ in report.page_builders(d2)]
-    from stability.report.appendix import method_text
+    titles = [t for t, _ in report.page_builders(d2)]
+    assert "caster shimmy" not in titles
+    from stability.report.contents import contents_text
 
-    assert f"caster shimmy: {why}" in "\n".join(method_text(d2))
+    assert f"caster shimmy: {why}" in "\n".join(contents_text(d2, titles))     # the appendix's contents page
 
 
 def test_uncertainty_intervals_equal_linear_intervals(quick, unc_file):

@@ -78,8 +78,13 @@ def test_random_chair_report_layout(caster_position, extra, tmp_path):
 
     toml = tmp_path / "chair.toml"
     toml.write_text(dumps(c))
-    out = tmp_path / "r.pdf"
+    out, txt = tmp_path / "r.pdf", tmp_path / "r.txt"
     subprocess.run([sys.executable, "-m", "stability.report", "--chair", str(toml), "--no-progress", "-o", str(out),
-                    *extra], cwd=ROOT, check=True, capture_output=True)
+                    *extra, *([] if extra in (["--quick"], ["--clinician"]) else ["--text", str(txt)])], cwd=ROOT,
+                   check=True, capture_output=True)
     problems = layout_problems(out)
     assert not problems, "\n".join(problems[:30])
+    if txt.exists():         # the full report's structure from the chair's data (issue 35; a manual chair)
+        from report_structure import check_structure, read_text_dump
+
+        check_structure(read_text_dump(txt), c, manual=True, compare="--compare" in extra, uncertainty=False)

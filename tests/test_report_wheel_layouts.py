@@ -17,7 +17,7 @@ from stability.layout.model import Layout
 from stability.layout.presets import layout_preset
 from stability.linear import eigenvalues_vs_speed
 from stability.report.__main__ import main
-from stability.report.layout_report import NOT_APPLICABLE, compute_layout_report
+from stability.report.layout_report import NA_TITLE, NO_BENCH, NOT_APPLICABLE, WHEELS_TITLE, compute_layout_report
 from stability.study.layout_impulse import layout_critical_impulses
 from stability.tipping import tip_angles
 
@@ -57,12 +57,24 @@ def test_the_report_quotes_the_layout_studies_both_ways(ej):
 
 
 def test_sections_that_do_not_apply_say_so_in_one_line(ej):
-    assert ej.not_applicable == NOT_APPLICABLE
-    for title, why in NOT_APPLICABLE:
+    # the thesis chair is pushed on its hand rims: no driven wheel, so the bench cannot apply (issue 35: a page
+    # that cannot apply becomes one line among the others, not a page of its own)
+    assert ej.not_applicable == (*NOT_APPLICABLE, NO_BENCH)
+    for title, why in ej.not_applicable:
         assert "\n" not in why and f"{title}: {why}" in ej.text()
-    assert len({t for t, _ in NOT_APPLICABLE}) == len(NOT_APPLICABLE)
-    # a chair pushed on its hand rims has no bench section but a line saying why
+    assert len({t for t, _ in ej.not_applicable}) == len(ej.not_applicable)
     assert "no driven wheel" in ej.text()
+    assert NO_BENCH[0] not in [t for t, _ in ej.sections]
+    assert [x["section"] for x in ej.data["not_applicable"]] == [t for t, _ in ej.not_applicable]
+
+
+def test_results_then_the_appendix(ej):
+    """Issue 35: the results first, then the appendix (the wheels and the linear model, then what does not
+    apply); every appendix page says so in its title."""
+    titles = [t for t, _ in ej.page_texts()]
+    appendix = [i for i, t in enumerate(titles) if t.startswith("Appendix")]
+    assert appendix == list(range(len(titles) - 2, len(titles))), titles
+    assert titles[0].startswith("The decision") and titles[-1] == NA_TITLE and titles[-2] == WHEELS_TITLE
 
 
 @pytest.mark.slow
@@ -72,13 +84,15 @@ def test_the_shimmy_rows_of_a_mid_wheel_drive_base():
     rows = [x for x in r.data["shimmy_rows"] if x["direction"] == "forward"]
     assert [x["row"] for x in rows] == ["front", "rear"] and rows[0]["shimmy_margin_m"] != rows[1]["shimmy_margin_m"]
     assert r.data["bench"] is not None
+    assert r.not_applicable == NOT_APPLICABLE              # its wheels are driven: the bench is a result page
+    assert NO_BENCH[0] in [t for t, _ in r.sections]
 
 
 @pytest.mark.slow
 def test_the_command_writes_a_layout_report(tmp_path, capsys):
     out, txt = tmp_path / "r.pdf", tmp_path / "r.txt"
     assert main(["--chair", "power-rwd-base", "-o", str(out), "--text", str(txt), "--no-progress"]) == 0
-    assert out.read_bytes().startswith(b"%PDF") and "Not applicable to a wheel layout" in txt.read_text()
+    assert out.read_bytes().startswith(b"%PDF") and "Appendix: not applicable to a wheel layout" in txt.read_text()
 
 
 @pytest.mark.parametrize("argv, words", [

@@ -171,3 +171,38 @@ def report_quick() -> dict:
     return {**{k: f"{v:,}" for k, v in out.items()}, "quick_cpu_s": sig(quick, 2), "full_cpu_s": sig(full, 2),
             "ratio": fixed(quick / full, 2), "advisor_cpu_s": sig(adv, 2), "rest_cpu_s": sig(quick - adv, 2),
             "ratio_without_advisor": fixed((quick - adv) / (full - adv), 2), "rounds": f"{QUICK_CPU_ROUNDS}"}
+
+
+@group("report_pages", "the committed reports' page lists (reports/NAME.txt, written by python "
+       "tests/test_committed_reports.py, which the slow test keeps equal to what the code builds) split by "
+       "stability.report.contents.parts", cheap=True)
+def report_pages() -> dict:
+    """Each committed report's pages: how many, the results and the appendix, and the pages left out."""
+    import re
+    from pathlib import Path
+
+    from value_groups import Table
+
+    from stability.report.contents import RESULTS_LIMIT, parts
+
+    root = Path(__file__).resolve().parents[2]
+    out: dict = {}
+    rows = []
+    for name in ("ej-premier", "revised", "ej-premier-front-caster", "measured-chair"):
+        text = (root / "reports" / f"{name}.txt").read_text(encoding="utf-8")
+        titles = re.findall(r"^=== page \d+: (.*)$", text, flags=re.M)
+        results, appendix = parts(titles)
+        left = re.search(r"Pages left out of this report, and why[^\n]*\n((?:- [^\n]*\n(?:  [^\n]*\n)*)*)", text)
+        gone = [] if left is None else [ln[2:].split(":", 1)[0] for ln in left.group(1).splitlines()
+                                        if ln.startswith("- ")]
+        out[f"{name}.pages"] = str(len(titles))
+        out[f"{name}.results"] = str(len(results))
+        out[f"{name}.appendix"] = str(len(appendix))
+        rows.append((name, str(len(titles)), f"{len(results)} (pp. 1-{results[-1]})",
+                     f"{len(appendix)} (pp. {appendix[0]}-{appendix[-1]})", "; ".join(gone) or "none"))
+    out["table"] = Table(("report", "pages", "results", "appendix", "left out (cannot apply to the chair)"),
+                         tuple(rows))
+    counts = [int(out[f"{r[0]}.results"]) for r in rows]
+    out["min_results"], out["max_results"] = str(min(counts)), str(max(counts))
+    out["results_limit"] = str(RESULTS_LIMIT)
+    return out

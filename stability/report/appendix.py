@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from stability.report.compute import ReportData
 from stability.report.quick import coarsened_text
-from stability.report.summary import dropped_text, model_gap
+from stability.report.summary import model_gap
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.study.facts import PROPORTIONAL_RANGE
 
@@ -60,7 +60,7 @@ def method_text(d: ReportData) -> list[str]:
         "a load outside the tire data, heading past 90 deg or the speed reversing. Caster shimmy uses two "
         "estimated inputs (the caster tire's relaxation length and the frame's lateral stiffness at the pin), "
         "which the thesis does not give.",
-    ] + (["Pages left out of this report:\n" + "\n".join(dropped_text(d))] if dropped_text(d) else [])
+    ]
 
 
 #: The thesis's title exactly as its title page prints it (the seed's first line).

@@ -15,16 +15,24 @@ from stability.report.appendix import glossary_text, method_text
 from stability.report.clinician import clinician_text
 from stability.report.comparison import comparison_rows, report_key_numbers
 from stability.report.compute import ReportData
+from stability.report.contents import CONTENTS_TITLE, contents_line, contents_text
 from stability.report.decision import decision_bars, decision_beyond, decision_paragraphs, decision_rows
-from stability.report.findings import _first, conclusion_rows, findings
-from stability.report.panels import FLAT_GROWTH, NON_OSCILLATORY, columns, flat_growth, no_effect, no_effect_line
+from stability.report.findings import conclusion_rows, findings
+from stability.report.linear_page import linear_page
+from stability.report.panels import (
+    FLAT_GROWTH,
+    NON_OSCILLATORY,
+    columns,
+    flat_growth,
+    no_effect,
+    no_effect_line,
+)
 from stability.report.quick import MARK
 from stability.report.sections import footer as _footer
 from stability.report.sections import shimmy_page, slope_page, uncertainty_page
 from stability.report.summary import dropped_pages, interval_text, push_text, summary_text
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.study import FRICTION_FACTORS, PUSH_FACTORS, RANGE_DEFINITION, THESIS
-from stability.study.summary_text import format_summary
 
 __all__ = ["page_builders", "VALIDITY_NOTE"]
 
@@ -63,7 +71,7 @@ def _title(d: ReportData, what: str) -> str:
     return f"{name} | {d.model} model | {what}"
 
 
-def _p_decision(d: ReportData) -> Figure:
+def _p_decision(d: ReportData, contents: str = "") -> Figure:
     fig, _ = P.page(_title(d, "the decision"), _subtitle(d), nrows=0, ncols=0)
     gs = fig.add_gridspec(2, 2, width_ratios=[1.15, 1], height_ratios=[1, 1], left=0.03, right=0.98, top=0.89,
                           bottom=0.08, wspace=0.12, hspace=0.3)
@@ -71,7 +79,7 @@ def _p_decision(d: ReportData) -> Figure:
     ax_text.axis("off")
     y = 1.0
     paras = (decision_paragraphs(d) + [clinician_text(d)] + ([QUICK_NOTE] if d.settings.quick else [])
-             + ([BRIEF_NOTE] if d.brief else []))
+             + ([BRIEF_NOTE] if d.brief else []) + ([contents] if contents else []))
     pos = ax_text.get_position()
     w_pt, h_pt = pos.width * fig.get_figwidth() * 72.0, pos.height * fig.get_figheight() * 72.0
     for fs in np.arange(9.3, 6.99, -0.1):        # shrink the text until it fits its column, never below 7 pt
@@ -166,41 +174,9 @@ def _p_tires(d: ReportData) -> Figure:
     return P.finish(fig)
 
 
-def _linear_text(d: ReportData) -> str:
-    c = d.chair
-    txt = format_summary(d.summary)
-    so = d.summary_other
-    txt += ("\n\nOther model variant (" + so.model + "): free casters "
-            + ("unstable at all speeds searched" if so.free_unstable_at_all_speeds else
-               "stable at all speeds searched" if so.free_stable_at_all_speeds else
-               "critical speeds " + ", ".join(f"{x.speed:.4g} m/s ({x.direction})" for x in so.free_crossings))
-            + "; locked casters critical speed "
-            + (f"{_first(so.locked_crossings):.4g} m/s" if _first(so.locked_crossings) is not None else "none in range")
-            + ".\n\nLinear models: straight-line motion, tire forces linear in slip with the cornering stiffness "
-              "at the static load (Table 4-1 method), viscous pin damping "
-              f"{c.pin_damping:g} N m s/rad; Coulomb pin friction has no linearisation (it appears only in the "
-              "nonlinear simulations of the later pages).")
-    return txt
-
-
 def _p_linear(d: ReportData) -> Figure:
-    """The linear analysis in one appendix page: the critical speeds and the least stable mode (text, top) and
-    the eigenvalues as speed varies, free and locked casters (parametric root loci, bottom)."""
-    sub = _subtitle(d)
-    fig, axes = P.page(_title(d, "appendix: linear stability: critical speeds and eigenvalues as speed varies"), sub,
-                       nrows=1, ncols=2)
-    fs = 7.5
-    y, step = 0.905, 0.0215 * fs / 9.5
-    for line in P.wrap_text(_linear_text(d), 150):
-        fig.text(0.05, y, line, ha="left", va="top", fontsize=fs, fontfamily="monospace")
-        y -= step
-    for ax, cs in zip(axes[0], ("free", "locked"), strict=True):
-        P.speed_locus(d.speed_loci[(d.model, cs)], ax, scale="linear", keep=0.6,
-                      marks=(0.25, 0.75, 2.0, 5.0, 10.0))
-    bottom = _footer(fig, "Root loci: linear axes around the slow modes, which decide directional stability; the fast "
-                     "caster modes (large negative real parts) leave the frame. The other model variant is compared "
-                     "in the method appendix.")
-    return P.finish(fig, top=y - 0.05, bottom=bottom)
+    return linear_page(d, _title(d, "appendix: linear stability: critical speeds and eigenvalues as speed varies"),
+                       _subtitle(d))
 
 
 def _p_re_im(d: ReportData) -> Figure:
@@ -413,6 +389,11 @@ def _p_summary_page(d: ReportData) -> Figure:
                        width=150)
 
 
+def _p_contents(d: ReportData, titles: list[str]) -> Figure:
+    return P.text_page(_title(d, "appendix: contents of this report (the results, then the appendix)"),
+                       contents_text(d, titles), _subtitle(d), fontsize=9.5, width=150)
+
+
 def _p_method(d: ReportData) -> Figure:
     return P.text_page(_title(d, "appendix: method"), "\n\n".join(method_text(d)), _subtitle(d), fontsize=10,
                        width=140)
@@ -459,7 +440,7 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         return [("decision", partial(_p_decision, d)), ("for the clinician", partial(_p_sheet, d)),
                 ("glossary and references", partial(_p_glossary, d))]
     drop = dropped_pages(d)
-    pages = [
+    pages: list[tuple[str, Callable[[], Figure]]] = [
         # main body: the decision and the evidence
         ("decision", partial(_p_decision, d)),
         ("summary", partial(_p_summary_page, d)),
@@ -475,7 +456,8 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("cross slope", partial(_p_slope, d)),
         ("parameter uncertainty", partial(_p_uncertainty, d)),
         ("thesis conclusions", partial(_p_conclusions, d)),
-        # appendix: method, validation and the linear analysis in full
+        # appendix (contents.APPENDIX_PAGES): its contents, method, validation and the linear analysis in full
+        (CONTENTS_TITLE, lambda: Figure()),
         ("method", partial(_p_method, d)),
         ("chair parameters and geometry", partial(_p_chair, d)),
         ("findings", partial(_p_findings, d)),
@@ -486,4 +468,8 @@ def page_builders(d: ReportData) -> list[tuple[str, Callable[[], Figure]]]:
         ("parametric study table", partial(_p_sweep_table, d)),
         ("glossary and references", partial(_p_glossary, d)),
     ]
-    return [(t, b) for t, b in pages if t not in drop]
+    kept = [(t, b) for t, b in pages if t not in drop]
+    titles = [t for t, _ in kept]
+    bind = {"decision": partial(_p_decision, d, contents_line(titles)),
+            CONTENTS_TITLE: partial(_p_contents, d, titles)}
+    return [(t, bind.get(t, b)) for t, b in kept]

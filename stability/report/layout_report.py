@@ -36,16 +36,21 @@ from stability.settings.reference import REFERENCE_SPEED
 from stability.study.layout_equal_instability import layout_equal_instability_interval
 from stability.study.layout_impulse import layout_critical_impulses, slow_divergences
 
-__all__ = ["LayoutReport", "NOT_APPLICABLE", "COMPARE_SPEEDS", "compute_layout_report", "layout_report_pages",
-           "write_layout_report", "comparison_caption"]
+__all__ = ["LayoutReport", "NOT_APPLICABLE", "NO_BENCH", "WHEELS_TITLE", "COMPARE_SPEEDS", "compute_layout_report",
+           "layout_report_pages", "write_layout_report", "comparison_caption"]
 
 #: Signed speeds of a comparison's growth-rate rows, m/s: the use range forwards and the reference speed backwards.
 COMPARE_SPEEDS = (0.5, REFERENCE_SPEED, 1.0, 1.5, -REFERENCE_SPEED)
 #: The page titles of the optional pages.
 SHEET_TITLE, COMPARE_TITLE, CURVES_TITLE, NA_TITLE = ("For the clinician", "Compared with the baseline",
                                                       "Growth rates against speed, both chairs",
-                                                      "Not applicable to a wheel layout")
+                                                      "Appendix: not applicable to a wheel layout")
 UNCERTAINTY_TITLE = "Parameter uncertainty: the linear results' intervals"
+#: The appendix's pages (after every result): the layout's wheels and linear model, then what does not apply.
+WHEELS_TITLE = "Appendix: wheels, static loads, tip angles and the linear model"
+#: The bench's line when the layout has no driven wheel (the bench drives the wheels: nothing to test).
+NO_BENCH = ("The virtual ISO 7176-2/-3 bench", "the layout has no driven wheel, so there is no drive to test "
+            "(the bench accelerates, brakes and turns on its driven wheels).")
 
 #: The short form's report sections that do not apply to a layout, each with why, in one line.
 NOT_APPLICABLE = (
@@ -88,6 +93,8 @@ class LayoutReport:
         The comparison with the baseline (``--compare``).
     uncertainty : stability.report.layout_uncertainty.LayoutUncertainty or None
         The propagated intervals (``--uncertainty``).
+    appendix : tuple of (str, tuple of str)
+        Title and paragraphs of each appendix page (after every result, before :data:`NOT_APPLICABLE`'s page).
     """
 
     layout: Layout
@@ -97,6 +104,7 @@ class LayoutReport:
     sheet: ClinicianSheet | None = None
     comparison: Comparison | None = None
     uncertainty: Any = None
+    appendix: tuple = ()
 
     def page_texts(self) -> list[tuple[str, list[str]]]:
         """Each page's title and text lines, in page order (what :func:`layout_report_pages` draws)."""
@@ -114,6 +122,7 @@ class LayoutReport:
             out.append((CURVES_TITLE, [comparison_caption(self.comparison)]))
         if self.uncertainty is not None:
             out.append((UNCERTAINTY_TITLE, self.uncertainty.lines()))
+        out += [(t, list(lines)) for t, lines in self.appendix]
         if self.not_applicable:
             out.append((NA_TITLE, [f"{t}: {w}" for t, w in self.not_applicable]))
         return out
@@ -304,7 +313,6 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     sh_lines, sh = _shimmy(layout, speeds)
     sections: list[tuple[str, tuple]] = [
         decision,
-        ("Wheels, static loads, tip angles and the linear model", tuple(text)),
         ("After a push: the critical impulse, forwards and backwards", tuple(imp_lines)),
         ("The equal-instability speed, forwards and backwards", tuple(eq_lines)),
         ("Caster shimmy, row by row", tuple(sh_lines)),
@@ -316,15 +324,14 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
         sections.append(("The virtual ISO 7176-2/-3 bench", (
             f"Worst wheel-lift score {b.worst_score}: {SCORE_WORDS[b.worst_score]} (default drive settings, "
             "quasi-static; python -m stability.bench gives every case).",)))
-    else:
-        sections.append(("The virtual ISO 7176-2/-3 bench", ("Not applicable: the layout has no driven wheel.",)))
+    not_applicable = NOT_APPLICABLE if bench is not None else (*NOT_APPLICABLE, NO_BENCH)
     drv = None
     if driver is not None:
         drv_lines, drv = _driver(layout, driver)
         sections.append(("The driver: the speed this user holds, forwards and backwards", drv_lines))
     data = {"layout": layout.name, "growth_rates": summary.to_mapping(), "critical_impulse": imp,
             "equal_instability": eq, "shimmy_rows": sh, "bench": bench, "decision": d.to_mapping(),
-            "driver": drv, "not_applicable": [{"section": t, "why": w} for t, w in NOT_APPLICABLE]}
+            "driver": drv, "not_applicable": [{"section": t, "why": w} for t, w in not_applicable]}
     comparison = None
     if baseline is not None:
         from stability.compare.compute import unique_labels
@@ -342,7 +349,8 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
 
         unc = layout_uncertainty(layout, uncertainty, COMPARE_SPEEDS, samples=samples, seed=seed)
         data["uncertainty"] = unc.to_mapping()
-    return LayoutReport(layout, tuple(sections), NOT_APPLICABLE, data, comparison=comparison, uncertainty=unc)
+    return LayoutReport(layout, tuple(sections), not_applicable, data, comparison=comparison, uncertainty=unc,
+                        appendix=((WHEELS_TITLE, tuple(text)),))
 
 
 def _sheet_data(s: ClinicianSheet) -> dict:
@@ -379,7 +387,7 @@ def layout_report_pages(r: LayoutReport) -> Iterator[Figure]:
     """
     sub = f"wheel layout {r.layout.name}: {r.layout.shape[0]} fixed wheels, {r.layout.shape[1]} casters"
     for title, lines in r.sections:
-        yield P.text_page(title, list(lines), sub, monospace=title.startswith("Wheels"))
+        yield P.text_page(title, list(lines), sub)
     if r.sheet is not None:
         from stability.report.clinician_sheet import sheet_figure
 
@@ -392,6 +400,8 @@ def layout_report_pages(r: LayoutReport) -> Iterator[Figure]:
         yield _curves_page(r.comparison, sub)
     if r.uncertainty is not None:
         yield P.text_page(UNCERTAINTY_TITLE, r.uncertainty.lines(), sub)
+    for title, lines in r.appendix:       # reference material: after the results
+        yield P.text_page(title, list(lines), sub, monospace=True)
     if r.not_applicable:
         yield P.text_page(NA_TITLE, [f"{t}: {w}" for t, w in r.not_applicable], sub)
 

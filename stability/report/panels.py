@@ -7,7 +7,8 @@ import numpy as np
 
 from stability.report.compute import ReportData
 
-__all__ = ["NON_OSCILLATORY", "FLAT_GROWTH", "columns", "flat_growth", "no_effect", "no_effect_line"]
+__all__ = ["NON_OSCILLATORY", "FLAT_GROWTH", "columns", "flat_growth", "no_effect", "no_effect_line",
+           "stable_everywhere"]
 
 #: Below this |imaginary part| (rad/s) at every speed a mode set is non-oscillatory: its frequency panel is
 #: one line (numpy returns exactly 0 for a real eigenvalue of a real matrix; the margin covers rounding).
@@ -17,6 +18,20 @@ NON_OSCILLATORY = 1e-9
 #: A growth-rate panel whose largest real part moves by less than this fraction of its size over the parameter's
 #: whole span is one line instead of a panel (the doubling time, ln 2 / rate, then moves by less than 1 % too).
 FLAT_GROWTH = 0.01
+
+
+def stable_everywhere(locus) -> bool:
+    """True when every eigenvalue of a speed locus has a negative real part at every speed: no critical speed.
+
+    Parameters
+    ----------
+    locus : stability.rootlocus.SpeedLocus
+
+    Returns
+    -------
+    bool
+    """
+    return bool(np.all(np.asarray(locus.eigenvalues).real < 0.0))
 
 
 def flat_growth(loc) -> bool:
