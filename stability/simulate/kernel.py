@@ -376,9 +376,10 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
         if locked:
             # the flags as variables (True here): literal True would compile held_pins for a second signature
             acc, MA, MB = held_pins(model, st_, F, 0.0, 0.0, locked, locked, fy_ext, mz, THEDD, P, g1, g2)
-        elif sticks:
+        elif sticks and (ED == 0.0 or BD == 0.0):
             acc, MA, MB = stick_slip(model, st_, F, fy_ext, mz, THEDD, P, g1, g2)
-        else:
+        else:   # the kinetic law, or stick-slip with both casters swivelling (stick_slip's own first case, here
+            # without the call: its arguments and result passed through memory cost about a tenth of a run)
             MA = kinetic_pin_moment(ED, P[MAF])
             MB = kinetic_pin_moment(BD, P[MBF])
             acc = model_accelerations(model, st_, F, MA, MB, fy_ext, mz, THEDD, P, g1, g2)
