@@ -112,8 +112,10 @@ QUICK_CPU_ROUNDS = 3
        "stability.report.brief.compute_brief(ej_premier), stability.advise.advise(ej_premier) (with its memo, "
        "without it, prune=False), stability.report.compute.compute(ej_premier); CPU time (user + sys of the child) "
        "of python -m stability.report --chair ej-premier [--quick] --no-progress -o FILE, the two run in turn, "
-       "best of 3 rounds after one uncounted, on the build machine; the advisor's CPU time "
-       "(time.process_time around advise(ej_premier) in this process, best of 2)")
+       "best of 3 rounds after one uncounted, on the build machine, with python -c 'import stability.report.__main__' "
+       "(the imports) in the same rounds; the advisor's CPU time (time.process_time around advise(ej_premier) in "
+       "this process, best of 2); the three pages' CPU time (time.process_time around "
+       "stability.report.document.build(ej_premier, FILE, data=the brief's data) in this process, best of 2)")
 def report_quick() -> dict:
     """The quick report's work against the full report's, their CPU time on the machine that built the page, and
     the advisor's share of both."""
@@ -127,6 +129,7 @@ def report_quick() -> dict:
     from stability.advise import advise
     from stability.report.brief import compute_brief
     from stability.report.compute import compute
+    from stability.report.document import build
     from stability.simulate import engine
     from stability.study import memo
 
@@ -152,7 +155,8 @@ def report_quick() -> dict:
     engine._launch = counting
     orig = memo.search_memo
     try:
-        out = {"runs_quick": runs(lambda: compute_brief(c, progress=False)),
+        brief = []
+        out = {"runs_quick": runs(lambda: brief.append(compute_brief(c, progress=False))),
                "runs_advisor": runs(timed_advice),
                "runs_every": runs(lambda: advise(c, prune=False)),
                "runs_full": runs(lambda: compute(c, progress=False))}
@@ -165,12 +169,21 @@ def report_quick() -> dict:
 
     with tempfile.TemporaryDirectory() as tmp:
         pdf = os.path.join(tmp, "r.pdf")
+        pages_cpu = math.inf
+        for _ in range(2):                      # the pages of the quick report, its data already computed
+            t0 = time.process_time()
+            build(c, pdf, data=brief[0], progress=False)
+            pages_cpu = min(pages_cpu, time.process_time() - t0)
         base = ["-m", "stability.report", "--chair", "ej-premier", "--no-progress", "-o", pdf]
-        cpu = best_alternating({"quick": [*base, "--quick"], "full": base}, QUICK_CPU_ROUNDS)
-    quick, full, adv = cpu["quick"], cpu["full"], advisor_cpu[0]
+        cpu = best_alternating({"quick": [*base, "--quick"], "full": base,
+                                "imports": ["-c", "import stability.report.__main__"]}, QUICK_CPU_ROUNDS)
+    quick, full, adv, imports = cpu["quick"], cpu["full"], advisor_cpu[0], cpu["imports"]
     return {**{k: f"{v:,}" for k, v in out.items()}, "quick_cpu_s": sig(quick, 2), "full_cpu_s": sig(full, 2),
             "ratio": fixed(quick / full, 2), "advisor_cpu_s": sig(adv, 2), "rest_cpu_s": sig(quick - adv, 2),
-            "ratio_without_advisor": fixed((quick - adv) / (full - adv), 2), "rounds": f"{QUICK_CPU_ROUNDS}"}
+            "ratio_without_advisor": fixed((quick - adv) / (full - adv), 2), "rounds": f"{QUICK_CPU_ROUNDS}",
+            "imports_cpu_s": sig(imports, 2), "pages_cpu_s": sig(pages_cpu, 2),
+            "other_cpu_s": sig(quick - adv - imports - pages_cpu, 2),
+            "ratio_floor": fixed((imports + pages_cpu) / full, 2)}
 
 
 @group("report_pages", "the committed reports' page lists (reports/NAME.txt, written by python "
