@@ -11,10 +11,15 @@ generated physics (:mod:`stability.models`), compiled again in a namespace
 whose :mod:`math` is :data:`stability.simulate.lanemath.LANE_MATH`
 (polynomial ``sin``, ``cos``, ``atan2`` that LLVM can vectorise; pip's numba
 has no vector libm) and with numpy's error model (a division by zero gives
-inf instead of raising, so the loops have no exits).  The decisions that
-differ from run to run (the range rules and MECHAN's tire tables, the
-stick-slip holding solve, the controller, the summaries and the stop rules)
-run lane by lane through the scalar kernel's functions, unchanged.
+inf instead of raising, so the loops have no exits).  MECHAN is vectorised
+too: a block's tire tables are rows of its work array, read per lane
+unconditionally and looked up by selects
+(:func:`stability.simulate.lanes_physics.l_segment_force`), since a gather
+at an index read from the data, or a load under a condition, keeps LLVM from
+vectorising the loop.  The holding solve is vectorised where a caster is
+held (its three evaluations); a caster breaking away, the range rules'
+counting, the controller and the summaries and stop rules of a lane with an
+event run lane by lane through the scalar kernel's functions, unchanged.
 
 So a run's numbers differ from the scalar kernel's only through the
 polynomials' rounding (:mod:`stability.simulate.lanemath`: within 2 ulp for
