@@ -1,11 +1,9 @@
 """The lanes kernel's step, phase by phase: each phase one loop over a block's runs on its work array ``W``.
 
-The vectorised phases (:func:`slip_statics`, :func:`dynam`, :func:`final_row`, :func:`update`, the masks of
-:func:`checks` and :func:`stops`) are arithmetic on ``W``'s rows (the lane physics of
-:mod:`stability.simulate.lanes_physics`); MECHAN (:func:`tire_forces`) and the lanes a mask picks go lane by lane
-through the scalar kernel's functions.  All are inlined into :func:`stability.simulate.lanes_kernel.run_lanes`'s
-block, where ``W`` has a constant shape: the rows' distances are constants, and LLVM vectorises without aliasing checks.
-"""
+The vectorised phases (:func:`slip_statics`, :func:`tire_forces`, :func:`dynam`, :func:`final_row`, :func:`update`,
+the masks of :func:`checks` and :func:`stops`) are arithmetic on ``W``'s rows (:mod:`.lanes_physics`); the lanes a
+mask picks go lane by lane through the scalar kernel's functions.  All are inlined into the lanes kernel's block,
+where ``W`` has a constant shape: the rows' distances are constants, and LLVM vectorises without aliasing checks."""
 
 from __future__ import annotations
 
@@ -82,10 +80,7 @@ _REC, _RECF, _RECANY = 133, 164, 165
 #: a lane whose held caster breaks away this step (its stick-slip solve is the scalar kernel's, lane by lane)
 _HELD = 166
 _ATTN, _EVT = 167, 168        # the masks of checks and stops: a lane they take lane by lane this step
-#: the three tire tables (casters, main wheels, camber): 48 rows each, row ``8 r + q`` coefficient ``r`` of segment
-#: ``q`` (:func:`stability.simulate.lanes_physics.l_segment_force`)
-_TAB = 169
-NROWS = _TAB + 3 * 48
+_TAB, NROWS = 169, 169 + 3 * 48     # the tire tables (casters, main wheels, camber), 48 rows each (l_table)
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
@@ -163,8 +158,7 @@ def slip_statics(W, L, model, slope, cfg):
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 def tire_forces(W, L, ftimp, imp, policy):
-    """MECHAN, vectorised: the tire forces (each lane's three tire tables, rows :data:`_TAB` on of ``W``, read as
-    tuples: :func:`stability.simulate.lanes_physics.l_table`)."""
+    """MECHAN, vectorised: the tire forces (the lane's tables read as tuples, :func:`.lanes_physics.l_table`)."""
     tire_imp = ftimp != 0.0 and imp
     for j in range(L):
         f8, refused, w = l_mechan(
