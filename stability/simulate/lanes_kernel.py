@@ -11,10 +11,15 @@ generated physics (:mod:`stability.models`), compiled again in a namespace
 whose :mod:`math` is :data:`stability.simulate.lanemath.LANE_MATH`
 (polynomial ``sin``, ``cos``, ``atan2`` that LLVM can vectorise; pip's numba
 has no vector libm) and with numpy's error model (a division by zero gives
-inf instead of raising, so the loops have no exits).  The decisions that
-differ from run to run (the range rules and MECHAN's tire tables, the
-stick-slip holding solve, the controller, the summaries and the stop rules)
-run lane by lane through the scalar kernel's functions, unchanged.
+inf instead of raising, so the loops have no exits).  MECHAN is vectorised
+too: a block's tire tables are rows of its work array, read per lane
+unconditionally and looked up by selects
+(:func:`stability.simulate.lanes_physics.l_segment_force`), since a gather
+at an index read from the data, or a load under a condition, keeps LLVM from
+vectorising the loop.  The holding solve is vectorised where a caster is
+held (its three evaluations); a caster breaking away, the range rules'
+counting, the controller and the summaries and stop rules of a lane with an
+event run lane by lane through the scalar kernel's functions, unchanged.
 
 So a run's numbers differ from the scalar kernel's only through the
 polynomials' rounding (:mod:`stability.simulate.lanemath`: within 2 ulp for
@@ -50,7 +55,7 @@ from stability.simulate.kernel import (
     ST_TRACK,
     STOP_LEVEL,
 )
-from stability.simulate.kernel_equations import _NOWRAP, borrowed
+from stability.simulate.kernel_equations import _NOWRAP
 from stability.simulate.lanes_physics import lane_physics
 from stability.simulate.lanes_step import (
     _ACT,
@@ -71,6 +76,7 @@ from stability.simulate.lanes_step import (
     _RS,
     _SR,
     _STT,
+    _TAB,
     _THEDD,
     _TK,
     _TL,
@@ -101,8 +107,8 @@ VEC_HELD_MIN = 4
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
-def _load(W, TSB, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks):
-    """The block's runs into ``W`` (rows) and ``TSB`` (the tire tables side by side)."""
+def _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks):
+    """The block's runs into ``W``'s rows (the tire tables too: row ``_TAB + 48 c + 8 r + q``)."""
     for j in range(L):
         i = lo + j
         for c in range(18):
@@ -120,7 +126,7 @@ def _load(W, TSB, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CH
             W[_LIM + 2 * c, j], W[_LIM + 2 * c + 1, j] = LIM[i, c, 0], LIM[i, c, 1]
             for r in range(6):
                 for q in range(8):
-                    TSB[c, r, 8 * j + q] = TS[i, c, r, q]
+                    W[_TAB + 48 * c + 8 * r + q, j] = TS[i, c, r, q]
         for c in range(2):
             W[_RK + c, j], W[_RS + c, j], W[_CAM + c, j] = RK[i, c], RS[i, c], CAM[i, c]
             W[_RC + 3 * c, j], W[_RC + 3 * c + 1, j], W[_RC + 3 * c + 2, j] = RC[i, c, 0], RC[i, c, 1], RC[i, c, 2]
@@ -175,20 +181,18 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
     nz = Az.shape[0]
     znew, y, sv = np.zeros(nz), np.zeros(Cy.shape[0]), np.zeros(10)
     W = np.zeros((NROWS, LANES))              # constant shape: LLVM sees the rows' distances (no aliasing checks)
-    TSB = np.zeros((3, 6, 8 * LANES))
     next_k = np.zeros(LANES, dtype=np.int64)
     nrc = np.zeros(LANES, dtype=np.int64)
     vec_held = (sticks or locked) and L >= VEC_HELD_MIN
     lv = padded_levels(levels)
-    _load(W, TSB, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks)
-    seg_c, seg_m, seg_k = borrowed(TSB[0]), borrowed(TSB[1]), borrowed(TSB[2])
+    _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks)
     for k in range(k0, min(k1, n)):
         if W[_ACT, :L].sum() == 0.0:
             break
         t = k * dt
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
         slip_statics(W, L, model, slope, cfg)
-        tire_forces(W, L, ftimp, imp, policy, seg_c, seg_m, seg_k)
+        tire_forces(W, L, ftimp, imp, policy)
         checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
                znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         dynam(W, L, model, imp, sticks, locked, vec_held)

@@ -12,6 +12,8 @@ re-typed.  Used by :mod:`stability.simulate.lanes_step`.
 
 from __future__ import annotations
 
+import math
+
 from numba import njit
 
 from stability.models.forces import generated as _fo
@@ -24,7 +26,7 @@ from stability.simulate.lanemath import LANE_MATH
 from stability.tires import law as _tire_law
 
 __all__ = ["lane_physics", "l_accelerations", "l_plane", "l_contact_loads", "l_kinematics", "l_slip_angles",
-           "l_tire_resultant", "l_kinetic", "l_rest_rate", "l_tire_moment", "l_mechan"]
+           "l_tire_resultant", "l_kinetic", "l_rest_rate", "l_tire_moment", "l_mechan", "l_segment_force", "l_table"]
 
 _lane = njit(cache=False, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 
@@ -46,9 +48,57 @@ l_accelerations = _lke.accelerations
 l_plane, l_contact_loads, l_kinematics, l_slip_angles = _lk.plane, _lk.contact_loads, _lk.kinematics, _lk.slip_angles
 l_tire_resultant, l_kinetic, l_rest_rate = _lfo.tire_resultant, _lfo.kinetic_pin_moment, _lfo.rest_rate
 l_tire_moment = _lfo.tire_yaw_moment
-#: the tire law and MECHAN (the tables of a block side by side: a run's first column is ``8 j``)
-_law = compiled(_tire_law, ("cubic", "segment_force", "lateral_force", "camber_force", "rolling_resistance",
-                            "rolling_force"), _lane, {"math": LANE_MATH})
+_cubic = compiled(_tire_law, ("cubic",), _lane, {"math": LANE_MATH}).cubic
+
+
+@_lane
+def _pick(i, w0, w1, w2, w3, w4, w5, w6, w7):
+    """``w[int(i)]`` for ``i`` in 0 .. 7 by seven selects."""
+    v = w1 if i >= 1.0 else w0
+    v = w2 if i >= 2.0 else v
+    v = w3 if i >= 3.0 else v
+    v = w4 if i >= 4.0 else v
+    v = w5 if i >= 5.0 else v
+    v = w6 if i >= 6.0 else v
+    return w7 if i >= 7.0 else v
+
+
+@_lane
+def l_table(W, r, j):
+    """Lane ``j``'s tire table (rows ``r .. r + 47`` of ``W``: row ``r + 8 k + q`` coefficient ``k`` of segment
+    ``q``) as a tuple of 48, read unconditionally: the lookups that use it (:func:`l_segment_force`, under MECHAN's
+    conditions) then load nothing, which LLVM's vectoriser requires (a load under a condition, or at an index read
+    from the data, keeps it from vectorising the loop)."""
+    return (W[r + 0, j], W[r + 1, j], W[r + 2, j], W[r + 3, j], W[r + 4, j], W[r + 5, j],
+            W[r + 6, j], W[r + 7, j], W[r + 8, j], W[r + 9, j], W[r + 10, j], W[r + 11, j],
+            W[r + 12, j], W[r + 13, j], W[r + 14, j], W[r + 15, j], W[r + 16, j], W[r + 17, j],
+            W[r + 18, j], W[r + 19, j], W[r + 20, j], W[r + 21, j], W[r + 22, j], W[r + 23, j],
+            W[r + 24, j], W[r + 25, j], W[r + 26, j], W[r + 27, j], W[r + 28, j], W[r + 29, j],
+            W[r + 30, j], W[r + 31, j], W[r + 32, j], W[r + 33, j], W[r + 34, j], W[r + 35, j],
+            W[r + 36, j], W[r + 37, j], W[r + 38, j], W[r + 39, j], W[r + 40, j], W[r + 41, j],
+            W[r + 42, j], W[r + 43, j], W[r + 44, j], W[r + 45, j], W[r + 46, j], W[r + 47, j])
+
+
+@_lane
+def l_segment_force(seg, s, fz, col=0):
+    """:func:`stability.tires.law.segment_force` on a lane's table ``seg`` (:func:`l_table`; ``col`` unused): the
+    same arithmetic, the segment ``min(floor(s), 7)``'s six coefficients picked by selects (:func:`_pick`) where
+    the law indexes (``s >= 0`` or NaN: the law takes ``|slip|``; NaN picks segment 7 as the law does)."""
+    fzp = max(fz, 0.0) if fz == fz else fz
+    i = float(math.floor(s)) if s < 8.0 else 7.0    # min(floor(s), 7); NaN -> 7 (t stays NaN: NaN force)
+    t = s - i
+    g = seg
+    return _cubic(_pick(i, g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7])
+                  + t * _pick(i, g[24], g[25], g[26], g[27], g[28], g[29], g[30], g[31]),
+                  _pick(i, g[8], g[9], g[10], g[11], g[12], g[13], g[14], g[15])
+                  + t * _pick(i, g[32], g[33], g[34], g[35], g[36], g[37], g[38], g[39]),
+                  _pick(i, g[16], g[17], g[18], g[19], g[20], g[21], g[22], g[23])
+                  + t * _pick(i, g[40], g[41], g[42], g[43], g[44], g[45], g[46], g[47]), fzp)
+
+
+#: the tire law and MECHAN (a block's tables are rows of its work array: :func:`l_segment_force`)
+_law = compiled(_tire_law, ("lateral_force", "camber_force", "rolling_resistance", "rolling_force"), _lane,
+                {"math": LANE_MATH, "segment_force": l_segment_force, "cubic": _cubic})
 l_mechan = compiled(_k, ("mechan",), _lane, {"math": LANE_MATH, "lateral_force": _law.lateral_force,
                                               "rolling_force": _law.rolling_force,
                                               "camber_force": _law.camber_force}).mechan

@@ -1,11 +1,9 @@
 """The lanes kernel's step, phase by phase: each phase one loop over a block's runs on its work array ``W``.
 
-The vectorised phases (:func:`slip_statics`, :func:`dynam`, :func:`final_row`, :func:`update`, the masks of
-:func:`checks` and :func:`stops`) are arithmetic on ``W``'s rows (the lane physics of
-:mod:`stability.simulate.lanes_physics`); MECHAN (:func:`tire_forces`) and the lanes a mask picks go lane by lane
-through the scalar kernel's functions.  All are inlined into :func:`stability.simulate.lanes_kernel.run_lanes`'s
-block, where ``W`` has a constant shape: the rows' distances are constants, and LLVM vectorises without aliasing checks.
-"""
+The vectorised phases (:func:`slip_statics`, :func:`tire_forces`, :func:`dynam`, :func:`final_row`, :func:`update`,
+the masks of :func:`checks` and :func:`stops`) are arithmetic on ``W``'s rows (:mod:`.lanes_physics`); the lanes a
+mask picks go lane by lane through the scalar kernel's functions.  All are inlined into the lanes kernel's block,
+where ``W`` has a constant shape: the rows' distances are constants, and LLVM vectorises without aliasing checks."""
 
 from __future__ import annotations
 
@@ -50,6 +48,7 @@ from stability.simulate.lanes_physics import (
     l_plane,
     l_rest_rate,
     l_slip_angles,
+    l_table,
     l_tire_moment,
     l_tire_resultant,
 )
@@ -81,7 +80,7 @@ _REC, _RECF, _RECANY = 133, 164, 165
 #: a lane whose held caster breaks away this step (its stick-slip solve is the scalar kernel's, lane by lane)
 _HELD = 166
 _ATTN, _EVT = 167, 168        # the masks of checks and stops: a lane they take lane by lane this step
-NROWS = 169
+_TAB, NROWS = 169, 169 + 3 * 48     # the tire tables (casters, main wheels, camber), 48 rows each (l_table)
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
@@ -158,19 +157,20 @@ def slip_statics(W, L, model, slope, cfg):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def tire_forces(W, L, ftimp, imp, policy, seg_c, seg_m, seg_k):
-    """MECHAN, vectorised: the tire forces (the block's tire tables side by side: run ``j`` at column ``8 j``)."""
+def tire_forces(W, L, ftimp, imp, policy):
+    """MECHAN, vectorised: the tire forces (the lane's tables read as tuples, :func:`.lanes_physics.l_table`)."""
     tire_imp = ftimp != 0.0 and imp
     for j in range(L):
         f8, refused, w = l_mechan(
             (W[_VEL, j], W[_VEL + 1, j], W[_VEL + 2, j], W[_VEL + 3, j], W[_VEL + 4, j], W[_VEL + 5, j],
              W[_VEL + 6, j], W[_VEL + 7, j]), (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j]),
             (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy,
-            (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), seg_c, seg_m, seg_k, (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
+            (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), l_table(W, _TAB, j), l_table(W, _TAB + 48, j),
+            l_table(W, _TAB + 96, j), (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
             (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
             (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
             (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
-            _s(W, j), 8 * j)   # the rows as tuples here: a helper taking the row offset compiled once per offset
+            _s(W, j), 0)   # the rows as tuples here: a helper taking the row offset compiled once per offset
         W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], \
             W[_F + 7, j] = f8
         W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
