@@ -28,7 +28,7 @@ from stability.assist.export_run import check_export, run_export
 from stability.assist.faults import FaultRow, fault_runs, format_faults
 from stability.assist.firmware import Q_FORMATS
 from stability.assist.recovery import (
-    MIN_TORQUE_SPEEDS,
+    CHECK_SPEEDS,
     STRONG_FORCE,
     decay_agreement,
     minimum_torque_json,
@@ -216,7 +216,7 @@ def _work(args: argparse.Namespace, c: Chair, speeds: np.ndarray, weights: Weigh
     rob = robustness(sched)
     checks = None if args.no_check else _nonlinear_checks(sched, args.seed, torques or [])
     # --min-torque: the thesis's chapter-9 question at 1, 2, 3 m/s, computed once for the text and the JSON
-    least = [(s_, minimum_torque_limit(sched, s_)) for s_ in MIN_TORQUE_SPEEDS] if args.min_torque else None
+    least = [(s_, minimum_torque_limit(sched, s_)) for s_ in CHECK_SPEEDS] if args.min_torque else None
     if args.json or args.json_file:
         options = {"speeds_m_s": [float(s) for s in speeds], "design": args.design,
                    "max_heading_error_deg": args.max_heading_error, "max_yaw_rate_deg_s": args.max_yaw_rate,
@@ -346,7 +346,7 @@ def _nonlinear_checks(sched: Schedule, seed: int, torques: list[TorqueRow]) -> _
     runs = recovery_runs(sched, seed=seed)
     fig = [(closed, destabilising_summary(opened.result, sched.drive, sched.chair))
            for closed, opened in runs if opened is not None]
-    return _Checks(runs, fig, torques, traction_limit(sched), [decay_agreement(sched, s) for s in (1.0, 2.0, 3.0)])
+    return _Checks(runs, fig, torques, traction_limit(sched), [decay_agreement(sched, s) for s in CHECK_SPEEDS])
 
 
 def _slope_holds(sched: Schedule) -> list[SlopeHold | dict]:
@@ -373,7 +373,7 @@ def _write_pdf(sched: Schedule, rows: list, rob: Robustness, runs: list | None, 
             figures.figure_margins(sched, rows), figures.figure_robustness(rob, sched)]
     ref = destabilising_moment()
     ol = [r.open for r in runs if r.open is not None and r.open.impulse_force == THESIS_PUSH.force] if runs \
-        else [recovery(sched.chair, s, None, model=sched.model) for s in (1.0, 2.0, 3.0)]
+        else [recovery(sched.chair, s, None, model=sched.model) for s in CHECK_SPEEDS]
     summ = [destabilising_summary(o.result, sched.drive, sched.chair) for o in ol]
     figs.append(figures.figure_destabilising(
         ref, valid_until(ref, max_heading_deg=math.inf), ol, summ, [valid_until(o.result) for o in ol],

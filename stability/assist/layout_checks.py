@@ -34,7 +34,7 @@ import numpy as np
 from stability.assist.commands import COMMAND_FILTER
 from stability.assist.design import Design, closed_loop_poles
 from stability.assist.digital import discrete_controller
-from stability.assist.recovery import DecayAgreement, decay_window, fit_decay_rate
+from stability.assist.recovery import CHECK_SPEEDS, DecayAgreement, decay_window, fit_decay_rate
 from stability.assist.tracking import closed_loop
 from stability.chair.power import DriveTrain
 from stability.layout.model import Layout
@@ -233,11 +233,6 @@ def layout_decay_agreement(layout: Layout, d: Design, drive: DriveTrain, *,
     fitted = fit_decay_rate(np.asarray(r.t_s), np.asarray(r.yaw_rate_rad_s), t0, t1)
     return DecayAgreement(float(d.speed), float(slow.real), fitted, abs(fitted - slow.real) / abs(slow.real),
                           (t0, t1), float(abs(slow.imag)))
-
-
-#: The speeds of the nonlinear checks, m/s (the short form's :func:`stability.assist.recovery.recovery_runs` and
-#: decay checks), in each direction those inside its design grid.
-CHECK_SPEEDS = (1.0, 2.0, 3.0)
 
 
 def check_speeds(grid: Sequence[float]) -> tuple[float, ...]:

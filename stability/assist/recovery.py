@@ -25,7 +25,7 @@ from stability.tires.data import FZ_MAX_N, SLIP_MAX_DEG
 
 __all__ = ["SETTLE_FRACTION", "SETTLE_FLOOR_DEG", "RecoveryRun", "RecoveryPair", "settle_time", "recovery",
            "recovery_runs", "recovery_table", "minimum_torque_limit", "bisect_limit", "DecayAgreement",
-           "decay_agreement", "decay_window", "fit_decay_rate"]
+           "decay_agreement", "decay_window", "fit_decay_rate", "CHECK_SPEEDS", "minimum_torque_json"]
 
 #: The ten-times push of the strong-disturbance check (N): 400 N for 0.1 s.
 STRONG_FORCE = 10.0 * THESIS_PUSH.force
@@ -213,7 +213,12 @@ def recovery(chair: Chair, speed: float, controller: DigitalController | None, *
     )
 
 
-def recovery_runs(sched: Schedule, speeds: Sequence[float] = (1.0, 2.0, 3.0),
+#: The speeds of the nonlinear checks, m/s: the recovery runs, the decay checks, ``assist --min-torque`` and the
+#: open-loop runs of the destabilising-moment figure (the layout form takes those inside each direction's grid).
+CHECK_SPEEDS = (1.0, 2.0, 3.0)
+
+
+def recovery_runs(sched: Schedule, speeds: Sequence[float] = CHECK_SPEEDS,
                   impulses: Sequence[float] = (THESIS_PUSH.force, STRONG_FORCE), *, seed: int = 0,
                   duration: float = HORIZON, noise: bool = True, open_loop: bool = True) -> list[RecoveryPair]:
     """Closed- and open-loop :class:`RecoveryRun` for every speed and impulse.
@@ -303,10 +308,6 @@ def minimum_torque_limit(sched: Schedule, speed: float, impulse_force: float = S
         return run.settle_time_s is not None and run.peak_heading_error_deg <= max_heading_deg
 
     return bisect_limit(ok, float(sched.drive.torque_limit), tol)
-
-
-#: Speeds of ``assist --min-torque`` on the thesis's chair form (m/s): the recovery runs' speeds.
-MIN_TORQUE_SPEEDS = (1.0, 2.0, 3.0)
 
 
 def minimum_torque_json(least: Sequence[tuple[float, float]], push: float = STRONG_FORCE) -> list[dict[str, Any]]:
