@@ -44,7 +44,7 @@ FILES = {
 #: issue 34): ``--write-schemas`` leaves them alone; edit stability/schemas/NAME.json itself.
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
                 "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report", "assist",
-                "shimmy", "slope")
+                "shimmy", "slope", "assist_layout")
 #: The layout forms of commands (a wheel layout instead of the thesis's chair), validated against the same schema.
 LAYOUT_CASES = {
     "compare": ("compare", ["ej-premier", "mid-wheel-drive", "--speeds", "0.75"]),
@@ -56,6 +56,7 @@ LAYOUT_CASES = {
                                          "--horizon", "4"]),
     "bench": ("bench", ["--chair", "ej-premier"]),
     "report": ("report", ["--chair", "mid-wheel-drive", "--quick", "--no-progress"]),
+    "assist_layout": ("assist", ["--chair", "power-fwd-base", "--speeds=-1,1", "--no-check"]),
 }
 #: The cases too slow for the default test run (simulations of a study).
 SLOW = {"study_equal_instability", "advise", "report"}

@@ -113,7 +113,7 @@ def test_assist_output_with_every_optional_key_matches_its_schema(tmp_path):
 # hand-written schemas (issue 34): the unit of every number in words, the settings tables' ranges as bounds
 HAND_WRITTEN = ("critical_speed", "simulate", "advise", "tipping", "bench", "study_critical_impulse",
                 "study_equal_instability", "measure", "chair_export", "sweep", "compare", "report", "assist",
-                "shimmy", "slope")
+                "shimmy", "slope", "assist_layout")
 #: Key suffix -> the unit a description must name (longest suffix first); written here, not read from the schemas.
 SUFFIX_UNITS = [("_N_m_per_deg", "N m/deg"), ("_kg_m", "kg m"), ("_rad_s2", "rad/s^2"), ("_m_s2", "m/s^2"), ("_kg", "kg"), ("_deg_s", "deg/s"), ("_hz", "Hz"),
                 ("_N_per_m", "N/m"), ("_N_per_deg", "N/deg"), ("_rad_s", "rad/s"), ("_N_m", "N m"),
@@ -213,6 +213,9 @@ def _option_bounds():
                        ".options.sample_rate_hz": o["--sample-rate"], ".options.seed": o["--seed"],
                        ".options.motor_lag_s": o["--motor-lag"],
                        ".options.bias_time_constant_s": o["--bias-time-constant"]},
+            "assist_layout": {".options.speeds_m_s[]": o["slope:--speed"], ".options.torque_limit_N_m": o["--torque-limit"],
+                              ".options.wheel_radius_m": o["--wheel-radius"], ".options.sample_rate_hz": o["--sample-rate"],
+                              ".options.seed": o["--seed"], ".options.motor_lag_s": o["--motor-lag"]},
             "shimmy": {".options.speeds_m_s[]": o["--speed"], ".options.relaxation_length_m": o["--relaxation-length"],
                        ".options.lateral_stiffness_N_per_m": o["--lateral-stiffness"],
                        ".options.amplitude_deg": o["--amplitude-deg"]},
@@ -339,6 +342,12 @@ OUT_OF_RANGE = [
     ("assist", "chair", ("options", "torque_budget_N_m"), 2000.0, "options/torque_budget_N_m.*maximum"),
     ("assist", "chair", ("rows", 0, "speed_m_s"), 0.0, "rows/0/speed_m_s.*less than or equal to the minimum"),
     ("assist", "chair", ("top_speed_checks", 0, "gain_margin_db", "value"), "infinite", "value.*does not match"),
+    ("assist_layout", "layout", ("options", "speeds_m_s", 0), 0.005, "speeds_m_s/0.*should not be valid"),
+    ("assist_layout", "layout", ("options", "sample_rate_hz"), 5.0, "options/sample_rate_hz.*minimum"),
+    ("assist_layout", "layout", ("reverse", 0, "speed_m_s"), -25.0, "reverse/0/speed_m_s.*minimum"),
+    ("assist_layout", "layout", ("forward", 0, "margins", "discrete", "gain_db"), "infinite", "gain_db.*does not match"),
+    ("assist_layout", "layout", ("forward", 0, "wheel_torque_gains", "eta"), 1.0, "wheel_torque_gains.*eta"),
+    ("assist_layout", "layout", ("reverse_top_speed", "checks", 0, "speed_m_s"), -1.0, "checks/0/speed_m_s.*minimum"),
     ("report", "chair", ("options", "samples"), 0, "options/samples.*minimum"),
     ("report", "chair", ("decision", "verdict", "critical_impulse_Ns", "value"), 1001.0, "critical_impulse_Ns/value.*maximum"),
     ("report", "chair", ("decision", "clinician", "speeds_m_s", 0), 0.0, "clinician/speeds_m_s/0.*minimum"),
