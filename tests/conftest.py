@@ -43,11 +43,18 @@ def pytest_sessionstart(session):
         return
     if os.environ.get("STABILITY_TEST_WARMUP", "1") == "0":
         return
+    import importlib.util
+
     from kernel_warmup import GROUPS
 
+    spec = importlib.util.find_spec("stability")       # the copy the workers import (a worktree's, not the venv's)
+    if spec is None or spec.origin is None:
+        return
+    path = [str(Path(spec.origin).parents[1]), *filter(None, [os.environ.get("PYTHONPATH")])]
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(path)}
     script = str(Path(__file__).with_name("kernel_warmup.py"))
     procs = [subprocess.Popen([sys.executable, script, group], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                              text=True) for group in GROUPS]
+                              text=True, env=env) for group in GROUPS]
     for group, proc in zip(GROUPS, procs, strict=True):
         _, err = proc.communicate()
         if proc.returncode:
