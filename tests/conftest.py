@@ -1,4 +1,5 @@
-"""Suite-wide settings: how many pytest-xdist workers ``-n auto`` (pyproject's addopts) starts.
+"""Suite-wide settings: how many pytest-xdist workers ``-n auto`` (pyproject's addopts) starts, and the kernels
+compiled once before they start (:func:`pytest_sessionstart`).
 
 Every worker compiles the numba kernels once on a cold cache (about 10-15 s of CPU each) and holds its own
 copy of the imported stack (about 0.3 GB), so more workers than four buy little and cost memory; on the 2-core
@@ -9,6 +10,11 @@ everything in one process.
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
 
 #: Largest number of workers ``-n auto`` starts.
 MAX_AUTO_WORKERS = 4
@@ -20,3 +26,37 @@ def pytest_xdist_auto_num_workers(config):
         return None
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     return max(1, min(cores, MAX_AUTO_WORKERS))
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_sessionstart(session):
+    """Before pytest-xdist starts its workers: compile the kernels once (tests/kernel_warmup.py).
+
+    Each worker would otherwise compile, on a cold cache, every kernel variant it meets: about 50 s of CPU per
+    worker.  The warm-up's groups run in parallel subprocesses; on a warm cache they only load the kernels (about
+    2 s of CPU each).  Not in a worker, not with ``-n 0`` or one worker (nothing compiles twice), nor with
+    ``STABILITY_TEST_WARMUP=0``.  A failing warm-up is only noted: the tests that use the kernel will fail on it.
+    """
+    config = session.config
+    workers = getattr(config.option, "numprocesses", None) or 0
+    if hasattr(config, "workerinput") or not isinstance(workers, int) or workers < 2:
+        return
+    if os.environ.get("STABILITY_TEST_WARMUP", "1") == "0":
+        return
+    import importlib.util
+
+    from kernel_warmup import GROUPS
+
+    spec = importlib.util.find_spec("stability")       # the copy the workers import (a worktree's, not the venv's)
+    if spec is None or spec.origin is None:
+        return
+    path = [str(Path(spec.origin).parents[1]), *filter(None, [os.environ.get("PYTHONPATH")])]
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(path)}
+    script = str(Path(__file__).with_name("kernel_warmup.py"))
+    procs = [subprocess.Popen([sys.executable, script, group], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                              text=True, env=env) for group in GROUPS]
+    for group, proc in zip(GROUPS, procs, strict=True):
+        _, err = proc.communicate()
+        if proc.returncode:
+            tail = err.strip().splitlines()[-1:] or ["(no message)"]
+            sys.stderr.write(f"kernel warm-up {group!r} failed (status {proc.returncode}): {tail[0]}\n")

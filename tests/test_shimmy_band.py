@@ -102,7 +102,10 @@ def _shimmy(*args: str) -> subprocess.CompletedProcess:
                           timeout=300, cwd=ROOT)
 
 
-def test_cli_prints_the_band_and_the_margin():
+def test_cli_prints_the_band_and_the_margin(capsys):
+    """The entry point for the text (status 0 from the interpreter); the JSON in this process."""
+    from stability.shimmy.__main__ import main
+
     chair = str(ROOT / "docs" / "examples" / "measured_chair.toml")
     r = _shimmy("--chair", chair, "--set", "trail=0.05", "--speeds", "1")
     assert r.returncode == 0, r.stderr
@@ -110,8 +113,8 @@ def test_cli_prints_the_band_and_the_margin():
     assert band.describe(0) in r.stdout and ">20" not in r.stdout and "inf" not in r.stdout
     assert f"{band.shimmy_margin_m * 100:.2f} cm inside the shimmy-free band" in r.stdout
     assert "measure pin lateral stiffness and caster relaxation length first" in r.stdout
-    j = _shimmy("--chair", chair, "--speeds", "0.5,1", "--json")
-    d = json.loads(j.stdout)["shimmy_band"]
+    assert main(["--chair", chair, "--speeds", "0.5,1", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)["shimmy_band"]
     ref = shimmy_band(MEASURED, [0.5, 1.0])
     assert d["shimmy_margin_m"] == pytest.approx(ref.shimmy_margin_m, abs=1e-15)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert d["shimmy_free_intervals_m"][0] == [list(iv) for iv in ref.intervals_m[0]]

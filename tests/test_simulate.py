@@ -632,11 +632,20 @@ def test_cli_json(tmp_path):
     assert (tmp_path / "a.csv").exists() and (tmp_path / "a.pdf").exists()
 
 
-def test_cli_summary_and_set(tmp_path):
-    p = _cli("--chair", "ej-premier", "--set", "pin_friction_left=0.2", "--set", "pin_friction_right=0.2",
-             "--horizon", "1", "--scheme", "adaptive")
-    assert p.returncode == 0, p.stderr
-    assert "ej-premier" in p.stdout and "adaptive" in p.stdout
+def _main(capsys, *args):
+    """The command in this process (its answer, not its entry point: test_cli_json runs that): status, out, err."""
+    from stability.simulate.__main__ import main
+
+    status = main(list(args))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def test_cli_summary_and_set(capsys):
+    status, out, err = _main(capsys, "--chair", "ej-premier", "--set", "pin_friction_left=0.2", "--set",
+                             "pin_friction_right=0.2", "--horizon", "1", "--scheme", "adaptive")
+    assert status == 0, err
+    assert "ej-premier" in out and "adaptive" in out
 
 
 @pytest.mark.parametrize("args, words", [
@@ -648,11 +657,19 @@ def test_cli_summary_and_set(tmp_path):
     (("--speed", "fast"), "--speed 'fast' is invalid; expected a number (or a number with a unit of m/s); valid range: 0.01 <= |value| <= 20 m/s (negative: reverse)"),
     (("--csv", "/nonexistent/dir/x.csv"), "does not exist"),
 ])
-def test_cli_bad_input_one_line_status_2(args, words):
-    p = _cli(*args, "--horizon", "0.1")
+def test_cli_bad_input_one_line_status_2(args, words, capsys):
+    status, _, err = _main(capsys, *args, "--horizon", "0.1")
+    assert status == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and words in lines[0] and "Traceback" not in err
+
+
+def test_cli_bad_input_exits_2_from_the_entry_point():
+    """``python -m stability.simulate`` itself: bad input leaves the interpreter with status 2 and one line."""
+    p = _cli("--speed", "-21", "--horizon", "0.1")
     assert p.returncode == 2
     lines = p.stderr.strip().splitlines()
-    assert len(lines) == 1 and words in lines[0] and "Traceback" not in p.stderr
+    assert len(lines) == 1 and "--speed -21 is invalid" in lines[0] and "Traceback" not in p.stderr
 
 
 # ---------------------------------------------------------------------------

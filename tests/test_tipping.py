@@ -201,7 +201,10 @@ def _run(*args: str) -> subprocess.CompletedProcess:
                           timeout=120)
 
 
-def test_cli_json_and_errors():
+def test_cli_json_and_errors(capsys):
+    """The entry point for the JSON (status 0 from the interpreter); the error and the text in this process."""
+    from stability.tipping.__main__ import main
+
     r = _run("--chair", "revised", "--cross-slope", "6", "--grade", "2", "--json")
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
@@ -212,10 +215,12 @@ def test_cli_json_and_errors():
         assert d[k + "_deg"] == pytest.approx(getattr(t, k + "_deg"), rel=1e-12)   # exact: JSON round trip
     assert d["static_stability_deg"] == t.smallest_deg                                 # (repr is exact)
     assert d["slope"]["tip_deg"] == slope_tip(chair_mod.preset("revised"), 6, 2).tip_deg
-    bad = _run("--cross-slope", "60")
-    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "--cross-slope" in bad.stderr
-    text = _run("--chair", "ej-premier")
-    assert text.returncode == 0 and "toward the casters" in text.stdout and "8.9 deg" in text.stdout
+    assert main(["--cross-slope", "60"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--cross-slope" in err
+    assert main(["--chair", "ej-premier"]) == 0
+    out = capsys.readouterr().out
+    assert "toward the casters" in out and "8.9 deg" in out
 
 
 def test_derivation_statements_and_the_anti_tip_closed_form():

@@ -31,6 +31,7 @@ for the allow-list's text.
 from __future__ import annotations
 
 import ast
+import functools
 import io
 import re
 import sys
@@ -200,7 +201,7 @@ class _FileScan:
         for row in range(first, last + 1):
             if row in self.comments and states_model(self.comments[row][0]):
                 return True
-        lines = self.src.splitlines()
+        lines = self.lines
         row = first - 1
         while row >= max(1, first - ABOVE) and lines[row - 1].strip():
             if row in self.comments and self.comments[row][1] and states_model(self.comments[row][0]):
@@ -211,6 +212,28 @@ class _FileScan:
                 return True
             row -= 1
         return False
+
+    @functools.cached_property
+    def lines(self) -> list[str]:
+        """The source's lines, split once (splitting it per tolerance was most of a scan's time)."""
+        return self.src.splitlines()
+
+    @functools.cached_property
+    def _rows(self) -> list[bytes] | None:
+        """The source's rows as ast splits them (at newlines only), UTF-8; None if it has a carriage return."""
+        return None if "\r" in self.src else [r.encode("utf-8") for r in self.src.split("\n")]
+
+    def _segment(self, node: ast.AST) -> str:
+        """``ast.get_source_segment(self.src, node)``, without splitting the whole source again for each node."""
+        rows = self._rows
+        if rows is None:
+            return ast.get_source_segment(self.src, node) or ""
+        first, last = node.lineno - 1, (node.end_lineno or node.lineno) - 1      # type: ignore[attr-defined]
+        start, end = node.col_offset, node.end_col_offset                          # type: ignore[attr-defined]
+        if first == last:
+            return rows[first][start:end].decode("utf-8")
+        parts = [rows[first][start:], *rows[first + 1:last], rows[last][:end]]
+        return b"\n".join(parts).decode("utf-8")
 
     def _statement(self, node: ast.AST) -> tuple[int, int]:
         """Lines of the simple statement holding ``node`` (of ``node`` itself inside a compound header)."""
@@ -280,7 +303,7 @@ class _FileScan:
                 continue
             first, last = self._statement(node)
             stated = self._window_stated(first, last) or self._by_name(exprs)
-            text = " ".join((ast.get_source_segment(self.src, node) or "").split())
+            text = " ".join(self._segment(node).split())
             out.append(Tolerance(self.rel, node.lineno, self._function(node), text[:90], stated))
         return sorted(out, key=lambda t: (t.path, t.line, t.snippet))
 

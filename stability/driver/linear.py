@@ -16,6 +16,7 @@ Everything here is linear and frictionless (free casters): docs/driver.md says w
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -60,18 +61,32 @@ def pade(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, n
     (Ad, Bd, Cd, Dd)
         Shapes ``(n, n)``, ``(n, 1)``, ``(1, n)``, ``(1, 1)``: ``z' = Ad z + Bd w``, ``w(t - tau) ~ Cd z + Dd w``.
     """
+    Ad, Bd, Cd, Dd = _pade(*_checked(tau, order))
+    return Ad.copy(), Bd.copy(), Cd.copy(), Dd.copy()
+
+
+def _checked(tau: float, order: int) -> tuple[float, int]:
+    """``(tau, order)`` as a float and an int, or ValueError naming the bad one."""
     if not (math.isfinite(tau) and tau > 0):
         raise ValueError(f"tau={tau!r} is invalid; valid range: > 0 s")
     if int(order) != order or order < 1:
         raise ValueError(f"order={order!r} is invalid; valid range: an integer >= 1")
-    n = int(order)
+    return float(tau), int(order)
+
+
+@functools.lru_cache(maxsize=64)
+def _pade(tau: float, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`pade`'s matrices, read-only, kept per (delay, order): a limit search evaluates thousands of closed
+    loops with one delay, and ``tf2ss`` was half of each evaluation's time."""
     c = [factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
          for k in range(n + 1)]
     num = [c[k] * (-tau) ** k for k in range(n, -1, -1)]
     den = [c[k] * tau**k for k in range(n, -1, -1)]
     from scipy.signal import tf2ss  # imported here: scipy.signal costs ~0.5 s CPU to import (every CLI)
 
-    Ad, Bd, Cd, Dd = tf2ss(num, den)
+    Ad, Bd, Cd, Dd = (np.asarray(a, dtype=float) for a in tf2ss(num, den))
+    for a in (Ad, Bd, Cd, Dd):
+        a.flags.writeable = False
     return Ad, Bd, Cd, Dd
 
 
@@ -96,7 +111,7 @@ def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.nd
     -------
     ndarray (..., n + order, n + order)
     """
-    Ad, Bd, Cd, Dd = pade(tau, order)
+    Ad, Bd, Cd, Dd = _pade(*_checked(tau, order))
     g = np.asarray(gains, dtype=float)
     Kc = g @ C                                          # (..., n): the operator's combination of the states
     n, m = A.shape[0], Ad.shape[0]

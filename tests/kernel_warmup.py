@@ -1,0 +1,65 @@
+"""Compile the numba kernels the default tests use, once, before pytest-xdist starts its workers.
+
+On a cold cache every worker compiled each kernel variant it met (the layout kernel about 30 s of CPU, each
+WCHAIR variant 5-15 s), so two workers compiled most of them twice.  :func:`warm` runs a few very short runs that
+reach every variant the default tests compile; ``tests/conftest.py`` runs the :data:`GROUPS` in parallel
+subprocesses (``python tests/kernel_warmup.py GROUP``) and the workers then load the kernels from the cache.  On a
+warm cache each group only loads them (about 2 s of CPU).  The runs' results are not checked: this is not a test.
+"""
+
+from __future__ import annotations
+
+import sys
+
+
+def _layout() -> None:
+    """The layout kernel: one run (run_layout) and a stepped batch with a Python hook (step_layouts)."""
+    import numpy as np
+
+    from stability.layout.presets import layout_preset
+    from stability.settings.run import RunSpec
+    from stability.simulate.layout import simulate_layout
+    from stability.simulate.layout_batch import simulate_layout_batch
+
+    lay = layout_preset("mid-wheel-drive")
+    spec = RunSpec(horizon=0.01, stop_on_warnings=False)
+    simulate_layout(lay, 1.0, spec)
+    simulate_layout_batch(lay, [1.0, -1.0], spec, yaw_moment=lambda t, s: np.zeros(len(s.run)))
+
+
+def _wchair() -> None:
+    """The WCHAIR kernel's variants the default tests use (thesis, exact and slope models, one run and a batch;
+    thesis and exact with a sampled controller; stepped with a Python hook) and the adaptive scheme."""
+    import numpy as np
+
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import SampledController, simulate, simulate_batch
+
+    chair = preset("ej-premier")
+    ctl = SampledController.state_feedback(np.zeros(7), 0.001)
+    for model in ("thesis", "exact"):
+        run = RunSpec(horizon=0.01, model=model)
+        simulate(chair, 0.75, run)
+        simulate(chair, 0.75, run, controller=ctl)
+        simulate(chair, 0.75, run, yaw_moment=lambda t, s: 0.0)
+        simulate_batch(chair, [0.5, 0.75], run, progress=False)
+    slope = RunSpec(horizon=0.01, cross_slope_deg=2.0)
+    simulate(chair, 0.75, slope)
+    simulate(chair, 0.75, slope, yaw_moment=lambda t, s: 0.0)
+    simulate_batch(chair, [0.5, 0.75], slope, progress=False)
+    simulate(chair, 0.75, RunSpec(horizon=0.01, scheme="adaptive"))
+
+
+#: Groups of about equal compile cost, one subprocess each.
+GROUPS = {"layout": _layout, "wchair": _wchair}
+
+
+def warm(group: str) -> None:
+    """Run group ``group``'s short runs (compiling, or loading from the cache, what they use)."""
+    GROUPS[group]()
+
+
+if __name__ == "__main__":
+    for name in sys.argv[1:]:
+        warm(name)
