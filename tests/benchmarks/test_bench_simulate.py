@@ -47,6 +47,17 @@ def _timed(fn, repeat=1):
     return wall, cpu, out
 
 
+def _alternate_cpu(fns, repeat=30):
+    """Best process CPU seconds of each of ``fns`` (name: callable), called alternately ``repeat`` times."""
+    best = {name: float("inf") for name in fns}
+    for _ in range(repeat):
+        for name, fn in fns.items():
+            c0 = time.process_time()
+            fn()
+            best[name] = min(best[name], time.process_time() - c0)
+    return best
+
+
 @pytest.fixture(autouse=True)
 def _quiet():
     with warnings.catch_warnings():
@@ -110,12 +121,7 @@ def test_bench_single_run_entries(bench):
     out = {name: fn() for name, fn in fns.items()}
     np.testing.assert_array_equal(out["single"], out["batch"])
     assert out["single"].shape == (31, 10002)      # 10 s at 1 ms: the rows of simulate()'s 10,002 times
-    best = {name: float("inf") for name in fns}
-    for _ in range(30):
-        for name, fn in fns.items():
-            c0 = time.process_time()
-            fn()
-            best[name] = min(best[name], time.process_time() - c0)
+    best = _alternate_cpu(fns)
     bench.pedantic(lambda: None, rounds=1)
     bench.extra_info.update(single_cpu_ms=best["single"] * 1e3, batch_cpu_ms=best["batch"] * 1e3,
                             ratio=best["batch"] / best["single"])
@@ -146,12 +152,7 @@ def test_bench_scalar_step_trigonometry(bench):
     for c in range(libm.shape[0]):
         a, b = libm[c, :n + 1], poly[c, :n + 1]
         assert np.nanmax(np.abs(a - b)) <= n * per_step * max(float(np.nanmax(np.abs(a))), 1e-300), c
-    best = {name: float("inf") for name in fns}
-    for _ in range(30):
-        for name, fn in fns.items():
-            c0 = time.process_time()
-            fn()
-            best[name] = min(best[name], time.process_time() - c0)
+    best = _alternate_cpu(fns)
     bench.pedantic(lambda: None, rounds=1)
     bench.extra_info.update(libm_cpu_ms=best["single"] * 1e3, polynomial_cpu_ms=best["polynomial_trig"] * 1e3,
                             ratio=best["single"] / best["polynomial_trig"])
