@@ -544,7 +544,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('python -m stability.simulate --chair ej-premier --speed 0.75 --push-force 40 --push-duration 0.1 --json', 'example'),
         ('`LANES` = 64 (`kernel_choice.lane_block`: at least 8,', 'parameter'),
         ('(4 doubles per AVX2/AVX-512 instruction here)', 'structure'),
-        ('default 0),', 'parameter'),
         ('for 8 cases over 3 s', 'parameter'),
         ('pushes of 0.5-4 N s;', 'parameter'),
         ('place of a 70-run batch and with blocks of 1, 8 and 64 (tested).', 'parameter'),
