@@ -134,6 +134,13 @@ def test_kernel_only_is_the_run_packed_afresh():
     np.testing.assert_array_equal(rec, _direct(ODD, 0.9, run)[0])
 
 
+def test_kernel_only_refuses_an_unknown_entry_naming_the_valid_ones():
+    """baseline.kernel_only's entry is checked before anything is packed or compiled: one message naming it."""
+    with pytest.raises(ValueError, match=r"entry='lanes' is invalid; valid values: 'single', 'batch', "
+                                         r"'polynomial_trig'"):
+        baseline.kernel_only(ODD, 0.9, make_options(RunSpec(horizon=1.0)), entry="lanes")
+
+
 def test_replace_checks_the_changed_settings_and_all_together_as_the_constructor_does():
     """replace checks only the changed settings (the others were checked) but every joint rule: each result equals
     the spec built from scratch with the same values, and each refusal is the constructor's."""

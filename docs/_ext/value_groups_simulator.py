@@ -93,6 +93,45 @@ def kernel_speed() -> dict:
             "load_before": fixed(load0, 1), "load_after": fixed(load1, 1)}
 
 
+@group("kernel_trig", "baseline.kernel_only(ej-premier, 0.75, make_options(RunSpec(stop_on_warnings=False))) with "
+       "entry='single' (libm's sincos and atan2) and entry='polynomial_trig' (lanemath's polynomials), alternately "
+       "30 times in one process; time.process_time, best; the recorded columns compared step by step against "
+       "lanemath's rounding bound")
+def kernel_trig() -> dict:
+    """The scalar step with libm's trigonometry against a copy with the lanes kernel's polynomials: CPU of one 10 s
+    run on each, the ratio, and the time at which the two runs first differ by more than the rounding bound."""
+    import time
+
+    import numpy as np
+
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import baseline, lanemath
+    from stability.simulate.options import make_options
+
+    opts = make_options(RunSpec(stop_on_warnings=False))
+    fns = {e: baseline.kernel_only(preset("ej-premier"), 0.75, opts, entry=e) for e in ("single", "polynomial_trig")}
+    out = {e: fn() for e, fn in fns.items()}
+    best = dict.fromkeys(fns, float("inf"))
+    for _ in range(30):
+        for e, fn in fns.items():
+            c0 = time.process_time()
+            fn()
+            best[e] = min(best[e], time.process_time() - c0)
+    libm, poly = out["single"], out["polynomial_trig"]
+    # the linear rounding bound of tests/test_lanes_kernel.py: n (SIN_COS_ULP + ATAN2_ULP + 2) eps max|column|
+    per_step = (lanemath.SIN_COS_ULP + lanemath.ATAN2_ULP + 2.0) * np.finfo(float).eps
+    n = np.arange(libm.shape[1])
+    bound = n * per_step * np.maximum(np.fmax.accumulate(np.abs(libm), axis=1), 1e-300)
+    over = np.any(np.abs(libm - poly) > bound, axis=0)
+    first = int(np.argmax(over)) if over.any() else None
+    return {"libm_ms": sig(best["single"] * 1e3, 2), "poly_ms": sig(best["polynomial_trig"] * 1e3, 2),
+            "ratio": fixed(best["single"] / best["polynomial_trig"], 2),
+            "saved_pct": pct(1.0 - best["polynomial_trig"] / best["single"]),
+            "departs_s": "never" if first is None else sig(first * opts.dt, 2),
+            "yaw_rate_diff": f"{float(np.nanmax(np.abs(libm[3] - poly[3]))):.0e}"}
+
+
 #: a first scalar simulate with an empty cache, timing numba's two LLVM stages per code library (the final
 #: module's optimisation, its machine code), counting the libraries whose code holds the step ``run_one``
 #: (numba internals: ``numba.core.codegen``) and the package's functions compiled (numba's compile events); prints
@@ -100,7 +139,7 @@ def kernel_speed() -> dict:
 _LLVM_CHILD = r"""
 import time
 from numba.core import codegen as cg
-llvm, holders = [0.0], set()
+llvm, holders = [0.0, 0.0], set()
 def timed(meth):
     f = getattr(cg.CPUCodeLibrary, meth)
     def w(self, *a, **k):
@@ -111,6 +150,8 @@ def timed(meth):
             llvm[0] += time.process_time() - t0
             if any("run_one" in fn.name and not fn.is_declaration for fn in self._final_module.functions):
                 holders.add(id(self))
+            else:
+                llvm[1] += time.process_time() - t0
     setattr(cg.CPUCodeLibrary, meth, w)
 timed("_optimize_final_module")
 timed("_finalize_final_module")
@@ -123,7 +164,7 @@ with event.install_recorder("numba:compile") as rec:
     simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
 ours = [ev for _, ev in rec.buffer if ev.is_start
         and getattr(getattr(ev.data.get("dispatcher"), "py_func", None), "__module__", "").startswith("stability.")]
-print(time.process_time() - t0, llvm[0], len(holders), len(ours))
+print(time.process_time() - t0, llvm[0], llvm[1], len(holders), len(ours))
 """
 
 
@@ -156,8 +197,9 @@ def kernel_first_use() -> dict:
     with tempfile.TemporaryDirectory() as cache:
         llvm = subprocess.run([sys.executable, "-c", _LLVM_CHILD], cwd=ROOT, check=True, capture_output=True,
                               text=True, env={**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)})
-    total, llvm_s, copies, compiles = (float(x) for x in llvm.stdout.split()[-4:])
-    out.update(llvm_pct=pct(llvm_s / total), run_one_copies=f"{int(copies)}", compiles=f"{int(compiles)}")
+    total, llvm_s, helpers_s, copies, compiles = (float(x) for x in llvm.stdout.split()[-5:])
+    out.update(llvm_pct=pct(llvm_s / total), llvm_helpers_pct=pct(helpers_s / total), run_one_copies=f"{int(copies)}",
+               compiles=f"{int(compiles)}")
     for kernel in ("scalar", "lanes"):
         with tempfile.TemporaryDirectory() as cache:
             first = child_cpu(kernel, cache)

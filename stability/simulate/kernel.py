@@ -444,7 +444,7 @@ def _note(w, t, value):
 PER_RUN_ARGS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 21, 22, 23, 24, 25)
 
 
-def run_single(var: tuple[int, int], args: tuple) -> None:
+def run_single(var: tuple[int, int], args: tuple, step: Any = None) -> None:
     """One run of the variant ``var``: :func:`run_one` called from Python (no parallel entry to compile for it,
     nor to re-optimise the step in).
 
@@ -455,10 +455,13 @@ def run_single(var: tuple[int, int], args: tuple) -> None:
     args : tuple
         :func:`run_batch`'s arguments after the variant, each per-run array with one row; ``args[-1][0]`` is
         set to the rows recorded.
+    step : numba dispatcher, optional
+        :func:`run_one` (the default) or a copy of it compiled with other functions
+        (:func:`stability.simulate.baseline.polynomial_trig_step`, a measurement).
     """
     k0, k1, rest = args[0], args[1], args[2:]
     row = [a[0] if i in PER_RUN_ARGS else a for i, a in enumerate(rest[:-1])]
-    rest[-1][0] = call_model(run_one, var, k0, k1, *row)
+    rest[-1][0] = call_model(run_one if step is None else step, var, k0, k1, *row)
 
 
 @njit(cache=True, parallel=True)

@@ -47,6 +47,17 @@ def _timed(fn, repeat=1):
     return wall, cpu, out
 
 
+def _alternate_cpu(fns, repeat=30):
+    """Best process CPU seconds of each of ``fns`` (name: callable), called alternately ``repeat`` times."""
+    best = {name: float("inf") for name in fns}
+    for _ in range(repeat):
+        for name, fn in fns.items():
+            c0 = time.process_time()
+            fn()
+            best[name] = min(best[name], time.process_time() - c0)
+    return best
+
+
 @pytest.fixture(autouse=True)
 def _quiet():
     with warnings.catch_warnings():
@@ -110,17 +121,43 @@ def test_bench_single_run_entries(bench):
     out = {name: fn() for name, fn in fns.items()}
     np.testing.assert_array_equal(out["single"], out["batch"])
     assert out["single"].shape == (31, 10002)      # 10 s at 1 ms: the rows of simulate()'s 10,002 times
-    best = {name: float("inf") for name in fns}
-    for _ in range(30):
-        for name, fn in fns.items():
-            c0 = time.process_time()
-            fn()
-            best[name] = min(best[name], time.process_time() - c0)
+    best = _alternate_cpu(fns)
     bench.pedantic(lambda: None, rounds=1)
     bench.extra_info.update(single_cpu_ms=best["single"] * 1e3, batch_cpu_ms=best["batch"] * 1e3,
                             ratio=best["batch"] / best["single"])
     print(f"\none 10 s run, kernel CPU: run_one from Python {best['single'] * 1e3:.3f} ms, the parallel entry "
           f"{best['batch'] * 1e3:.3f} ms -> x{best['batch'] / best['single']:.3f}")
+
+
+def test_bench_scalar_step_trigonometry(bench):
+    """One 10 s run through the scalar step as it is (libm's ``sincos`` and ``atan2``) against a copy compiled with
+    the lanes kernel's polynomial trigonometry (``baseline.polynomial_trig_step``), alternately in this process
+    (process CPU, best of the repeats): what replacing libm would gain (issue 36).  The work asserted: the same
+    rows, and the same run within the polynomials' rounding bound for the first second (the run later spins out
+    and a step-unstable phase amplifies any rounding difference, as ``docs/simulator.md`` says)."""
+    from stability.simulate import baseline, lanemath
+    from stability.simulate.options import make_options
+
+    opts = make_options(RunSpec(stop_on_warnings=False))
+    fns = {name: baseline.kernel_only(EJ, 0.75, opts, entry=name) for name in ("single", "polynomial_trig")}
+    out = {name: fn() for name, fn in fns.items()}
+    libm, poly = out["single"], out["polynomial_trig"]
+    assert libm.shape == poly.shape == (31, 10002)
+    # error model: a step perturbs the state by at most (SIN_COS_ULP + ATAN2_ULP + 2) eps relative (the polynomials'
+    # bounds and libm's own ulp), adding at most linearly while the run neither grows nor crosses a discontinuity:
+    # after n steps a column differs by at most n times that times its largest magnitude (observed about 1/70 of
+    # it over the first 1,000 steps)
+    n = 1000
+    per_step = (lanemath.SIN_COS_ULP + lanemath.ATAN2_ULP + 2.0) * np.finfo(float).eps
+    for c in range(libm.shape[0]):
+        a, b = libm[c, :n + 1], poly[c, :n + 1]
+        assert np.nanmax(np.abs(a - b)) <= n * per_step * max(float(np.nanmax(np.abs(a))), 1e-300), c
+    best = _alternate_cpu(fns)
+    bench.pedantic(lambda: None, rounds=1)
+    bench.extra_info.update(libm_cpu_ms=best["single"] * 1e3, polynomial_cpu_ms=best["polynomial_trig"] * 1e3,
+                            ratio=best["single"] / best["polynomial_trig"])
+    print(f"\none 10 s run, kernel CPU: libm trigonometry {best['single'] * 1e3:.3f} ms, polynomial "
+          f"{best['polynomial_trig'] * 1e3:.3f} ms -> x{best['single'] / best['polynomial_trig']:.3f}")
 
 
 @pytest.mark.parametrize("horizon", [10.0, 0.002], ids=["10s", "2ms"])
