@@ -48,6 +48,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from stability.runtime.checks import real_value, value_text
 from stability.settings.bounds import Bound
 from stability.settings.reference import HORIZON, REFERENCE_SPEED, THESIS_PUSH, Push
 
@@ -142,12 +143,13 @@ def json_key(name: str, unit: str) -> str:
 
 
 def _as_float(name: str, value: Any) -> float:
+    """``value`` as a float (an integer beyond the float range as +-inf, refused by its bound)."""
     if isinstance(value, bool):
         raise TypeError(f"{name}={value!r} is invalid; expected a number")
     try:
-        return float(value.item() if hasattr(value, "item") else value)
-    except (TypeError, ValueError, OverflowError):
-        raise TypeError(f"{name}={value!r} is invalid; expected a number") from None
+        return real_value(value.item() if hasattr(value, "item") else value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}={value_text(value)} is invalid; expected a number") from None
 
 
 @dataclass(frozen=True)
@@ -266,10 +268,10 @@ class RunSpec:
                 if isinstance(value, (bool, str)) or value is None:
                     if value in s.choices and type(value) is type(s.choices[s.choices.index(value)]):
                         continue
-                raise ValueError(f"{f.name}={value!r} is invalid; valid values: {s.range_text(f.name)}")
+                raise ValueError(f"{f.name}={value_text(value)} is invalid; valid values: {s.range_text(f.name)}")
             x = _as_float(f.name, value)
             if math.isnan(x) or (s.bound is not None and not s.bound.holds(x)):
-                raise ValueError(f"{f.name}={value!r} is invalid; valid range: {s.range_text(f.name)}")
+                raise ValueError(f"{f.name}={value_text(value)} is invalid; valid range: {s.range_text(f.name)}")
             object.__setattr__(self, f.name, x + 0.0)          # numpy scalars, ints and -0.0 as floats
         if self.speed < 0:                                      # a negative speed is the reverse flag's shorthand
             if self.reverse:

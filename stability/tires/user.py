@@ -137,6 +137,12 @@ def tire_from_data(slip_deg: ArrayLike, fz: ArrayLike, fy: ArrayLike, *, name: s
         if n < MIN_POINTS_PER_ANGLE:
             raise ValueError(f"tire {name!r}: slip angle {ang:g} deg has {n} measurement(s); "
                              f"at least {MIN_POINTS_PER_ANGLE} are needed for the cubic (4-1)")
+        if not np.any(y[s == ang]):          # the fit's R has no spread to measure and the tire no cornering force
+            raise ValueError(f"tire {name!r}: slip angle {ang:g} deg has a lateral force of 0 N at every load; "
+                             "valid: measured forces, some nonzero at every slip angle (a tire at a slip angle "
+                             "corners)")
+    if not (np.all(np.isfinite(f)) and np.all(np.isfinite(y))):
+        raise ValueError(f"tire {name!r}: fz and fy must be finite numbers, N")
     for label, value, hi in (("camber_coefficient", camber_coefficient, 1.0),
                              ("rolling_coefficient", rolling_coefficient, 1.0)):
         if value is not None and not (math.isfinite(value) and 0.0 <= value <= hi):
@@ -216,6 +222,9 @@ def _parse(path: Path, text: str) -> tuple[dict[str, str], list[tuple[int, dict[
         raise _bad(path, 1, "-", "no header row and no data (expected columns slip_deg, Fz_N, Fy_N)")
     header_line, header_text = body[0]
     header = [h.strip().lower() for h in next(csv.reader([header_text]))]
+    twice = sorted({h for h in header if h and header.count(h) > 1})
+    if twice:                                # which of the two would be read is a guess: refuse it
+        raise _bad(path, header_line, twice[0], "named twice in the header; valid: each column once")
     rows = []
     for number, line in body[1:]:
         cells = next(csv.reader([line]))
