@@ -77,20 +77,20 @@ class Bound(NamedTuple):
                 f"{number_text(self.hi)}{unit}")
 
     def holds(self, value: float) -> bool:
-        """True when ``value`` lies in the range (NaN never does).
+        """True when ``value`` lies in the range (NaN never does); element by element for an array.
 
         Parameters
         ----------
-        value : float
+        value : float or ndarray
 
         Returns
         -------
-        bool
+        bool or ndarray of bool
         """
         if self.signed:
             value = abs(value)
         return ((self.lo < value if self.open_lo else self.lo <= value)
-                and (value < self.hi if self.open_hi else value <= self.hi))
+                & (value < self.hi if self.open_hi else value <= self.hi))
 
     def check(self, name: str, value: Any, *, integer: bool = False) -> float:
         """``value`` as a float (an int when ``integer``) if it lies in the range, else raise naming ``name``.

@@ -9,10 +9,10 @@ from typing import Any
 
 import numpy as np
 
-from stability.chair import Chair
-from stability.runtime.checks import check_choice
+from stability.chair import Chair, check_chair
+from stability.runtime.checks import check_choice, real_value, value_text
 from stability.runtime.progress import ProgressBar
-from stability.settings.run import RunSpec
+from stability.settings.run import RUN_SETTINGS, RunSpec, check_batch_work
 from stability.simulate.adaptive import adaptive_single
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, run_compiled
@@ -22,18 +22,11 @@ from stability.simulate.stepcheck import StepStabilityWarning, auto_step, stable
 
 __all__ = ["simulate", "simulate_batch"]
 
-def _check_chair(chair: Any) -> Chair:
-    if not isinstance(chair, Chair):
-        raise ValueError(f"chair={chair!r} is invalid; expected a stability.chair.Chair "
-                         "(see stability.chair.preset / resolve)")
-    return chair
-
-
 def _spec(speed: Any, run: RunSpec | None) -> RunSpec:
     if run is None:
         run = RunSpec()
     elif not isinstance(run, RunSpec):
-        raise TypeError(f"run={run!r} is invalid; expected a stability.settings.run.RunSpec")
+        raise TypeError(f"run={value_text(run)} is invalid; expected a stability.settings.run.RunSpec")
     return run if speed is None else run.replace(speed=speed)
 
 
@@ -75,9 +68,9 @@ def simulate(chair: Chair, speed: float | None = None, run: RunSpec | None = Non
     ValueError
         A bad argument (the message names it, its value and the valid range).
     TypeError
-        ``run`` is not a RunSpec, or a setting of the wrong type.
+        ``chair`` is not a Chair, ``run`` not a RunSpec, or a setting of the wrong type.
     """
-    chair = _check_chair(chair)
+    chair = check_chair(chair)
     spec = _spec(speed, run)
     return _run([chair], np.array([spec.speed]), spec, None, yaw_moment, controller, record, progress=False,
                 threads=None, batch=False)[0]
@@ -136,28 +129,21 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     """
     spec = _spec(None, run)
     one = isinstance(chairs, Chair)
-    chair_list = [_check_chair(c) for c in ([chairs] if isinstance(chairs, Chair) else chairs)]
+    if not one and (isinstance(chairs, (str, bytes)) or not isinstance(chairs, Sequence)):
+        raise TypeError(f"chairs={value_text(chairs)} is invalid; valid values: a stability.Chair or a non-empty "
+                        "sequence of them (stability.preset(name), stability.load_chair(spec))")
+    chair_list = [check_chair(c, "chairs[]") for c in ([chairs] if one else chairs)]
     if not chair_list:
         raise ValueError("chairs=[] is invalid; expected a Chair or a non-empty sequence of Chair")
-    sp = np.asarray(spec.speed if speeds is None else speeds, dtype=float)
-    if sp.ndim > 1:
-        raise ValueError(f"speeds has shape {sp.shape}; expected a number or a 1-D array")
-    if sp.size == 0:
-        raise ValueError("speeds=[] is invalid; expected at least one speed > 0 m/s")
-    for s in np.atleast_1d(sp).tolist():
-        spec.replace(speed=s)                               # each speed within the run settings' range
+    sp = _array("speeds", spec.speed if speeds is None else speeds, "m/s")
+    _within(spec, "speed", sp, "speeds")
     fa = None
     if push_forces is not None:
-        try:
-            fa = np.asarray(push_forces, dtype=float)
-        except (TypeError, ValueError):
-            raise ValueError(f"push_forces={push_forces!r} is invalid; expected a 1-D array of finite forces "
-                             "(N)") from None
-        if fa.ndim != 1 or fa.size == 0 or not np.all(np.isfinite(fa)):
-            raise ValueError(f"push_forces={push_forces!r} is invalid; expected a non-empty 1-D array of finite "
-                             "forces (N)")
-        for f in (float(fa.min()), float(fa.max())):
-            spec.replace(push_force=f)                      # within the push's range
+        fa = _array("push_forces", push_forces, "N")
+        if fa.ndim != 1:
+            raise ValueError(f"push_forces={value_text(push_forces)} is invalid; expected a non-empty 1-D array "
+                             "of finite forces (N)")
+        _within(spec, "push_force", fa, "push_forces")
     try:
         shape = np.broadcast_shapes(() if one else (len(chair_list),), sp.shape, () if fa is None else fa.shape)
     except ValueError:
@@ -169,8 +155,39 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     run_chairs = [chair_list[int(i)] for i in chair_idx]
     forces = None if fa is None else np.broadcast_to(fa, shape).reshape(-1).astype(float)
     threads = None if workers is None else _check_workers(workers)
+    check_choice("record", record, RECORDS)
+    check_batch_work(len(speed_arr), spec, record, "speeds" if one else "chairs and speeds")
     return _run(run_chairs, speed_arr, spec, forces, yaw_moment, controller, record, progress=progress,
                 threads=threads, batch=True)
+
+
+def _array(name: str, values: Any, unit: str) -> np.ndarray:
+    """``values`` as a non-empty float array of at most one dimension (an integer beyond the float range as
+    +-inf, refused by the setting's range), or a ValueError naming ``name``."""
+    try:
+        a = np.asarray(values, dtype=float)
+    except OverflowError:
+        a = np.asarray([real_value(v) for v in np.ravel(np.asarray(values, dtype=object))], dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value_text(values)} is invalid; expected a number or a 1-D array of numbers "
+                         f"({unit})") from None
+    if a.ndim > 1:
+        raise ValueError(f"{name} has shape {a.shape}; expected a number or a 1-D array")
+    if a.size == 0:
+        raise ValueError(f"{name}=[] is invalid; expected at least one value ({unit})")
+    return a
+
+
+def _within(spec: RunSpec, setting: str, values: np.ndarray, name: str) -> None:
+    """Every one of ``values`` valid as ``spec``'s ``setting``: the RunSpec's range, the first invalid one named."""
+    bound = RUN_SETTINGS[setting].bound
+    assert bound is not None
+    bad = np.flatnonzero(~bound.holds(values))
+    for v in ([values.flat[bad[0]]] if bad.size else []) + [values.min(), values.max()]:
+        try:
+            spec.replace(**{setting: float(v)})             # the RunSpec's own message (and its checks together)
+        except ValueError as exc:
+            raise ValueError(f"{name}: {exc}") from None
 
 
 def _check_workers(workers: Any) -> int:

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from stability.runtime import readfiles
+from stability.runtime.checks import value_text
 from stability.tires.cart import CartGeometry, cart_forces
 from stability.tires.data import _ALL, SLIP_MAX_DEG
 from stability.tires.fit import fit_per_angle
@@ -274,8 +275,14 @@ def read_tire_csv(path: str | os.PathLike[str], cart: CartGeometry | None = None
     Raises
     ------
     ValueError
-        One line naming the file, the line and the column of the problem.
+        One line naming the file, the line and the column of the problem, or a file larger than
+        :data:`stability.runtime.readfiles.MAX_INPUT_BYTES`.
+    TypeError
+        ``path`` is not a path.
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path={value_text(path)} is invalid; valid values: the path of a tire CSV (str or "
+                        "path-like)")
     p = Path(path)
     try:
         text = readfiles.read_text(p)
@@ -337,7 +344,10 @@ def load_tire_data(path: str | os.PathLike[str], *, name: str | None = None, car
     Raises
     ------
     ValueError
-        One line naming the file (and line and column where there is one).
+        One line naming the file (and line and column where there is one), or a file larger than
+        :data:`stability.runtime.readfiles.MAX_INPUT_BYTES`.
+    TypeError
+        ``path`` is not a path.
     """
     p = Path(path)
     data = read_tire_csv(p, cart)
