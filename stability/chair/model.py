@@ -338,7 +338,7 @@ def _check_types(c: Chair) -> None:
         if not is_real(value):
             raise bad(f.name, value, "a real number" + (f", {valid_range(f.name)}" if f.name in LIMITS else ""))
         if not math.isfinite(real_value(value)):             # NaN, inf, or an integer beyond the float range
-            raise bad(f.name, value, valid_range(f.name) if f.name in LIMITS else "a finite number")
+            raise bad(f.name, value, "a finite number" + (f", {valid_range(f.name)}" if f.name in LIMITS else ""))
         if type(value) not in (int, float):        # numpy scalars (np.float32(95), np.int64(2)) as Python floats
             object.__setattr__(c, f.name, float(value))
 
