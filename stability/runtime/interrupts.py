@@ -27,7 +27,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["SIGNALS", "EXIT_STATUS", "MESSAGE", "install_early", "interruptible", "pending", "check"]
+__all__ = ["SIGNALS", "EXIT_STATUS", "MESSAGE", "install_early", "interruptible", "pending", "check", "held"]
 
 #: The signals that interrupt a command: Ctrl-C, ``kill`` and a closed terminal (where the platform has them).
 SIGNALS: tuple[signal.Signals, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP")
@@ -103,3 +103,34 @@ def interruptible() -> Iterator[None]:
         for sig, handler in previous.items():
             signal.signal(sig, handler)
         _state["pending"] = False
+
+
+@contextlib.contextmanager
+def held() -> Iterator[None]:
+    """Inside: :data:`SIGNALS` wait until the end (several outputs renamed into place all or none).
+
+    On entry a signal that already came (or is waiting) raises :class:`KeyboardInterrupt`, so nothing inside
+    runs; one that comes inside is delivered on leaving, after the block has finished.
+
+    Yields
+    ------
+    None
+
+    Raises
+    ------
+    KeyboardInterrupt
+        A signal came before the block.
+    """
+    if not _main_thread() or not hasattr(signal, "pthread_sigmask"):
+        check()
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, SIGNALS)
+    if _state["pending"] or set(signal.sigpending()) & set(SIGNALS):
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)     # a waiting signal is delivered now (its handler runs)
+        check()
+        raise KeyboardInterrupt
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
