@@ -121,16 +121,22 @@ def held() -> Iterator[None]:
     KeyboardInterrupt
         A signal came before the block.
     """
-    if not _main_thread() or not hasattr(signal, "pthread_sigmask"):
-        check()
+    check()
+    if not _main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, SIGNALS)
-    if _state["pending"] or set(signal.sigpending()) & set(SIGNALS):
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)     # a waiting signal is delivered now (its handler runs)
-        check()
-        raise KeyboardInterrupt
+    previous = {sig: signal.getsignal(sig) for sig in SIGNALS}
+    came: list[int] = []
+    for sig in SIGNALS:          # Python handlers run in the main thread whichever thread the kernel picks
+        signal.signal(sig, lambda signum, frame: came.append(signum))
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        if came:                 # delivered now, to the handler it was meant for
+            handler = previous[signal.Signals(came[0])]
+            if callable(handler):
+                handler(came[0], None)
+            else:
+                raise KeyboardInterrupt

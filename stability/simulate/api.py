@@ -72,6 +72,7 @@ def simulate(chair: Chair, speed: float | None = None, run: RunSpec | None = Non
     """
     chair = check_chair(chair)
     spec = _spec(speed, run)
+    check_choice("record", record, RECORDS)
     return _run([chair], np.array([spec.speed]), spec, None, yaw_moment, controller, record, progress=False,
                 threads=None, batch=False)[0]
 

@@ -208,6 +208,13 @@ def _bad(path: Path, line: int, column: str, problem: str) -> ValueError:
     return ValueError(f"tire data {str(path)!r}, line {line}, column {column!r}: {problem}")
 
 
+def _path(path: Any) -> Path:
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path={value_text(path)} is invalid; valid values: the path of a tire CSV (str or "
+                        "path-like)")
+    return Path(path)
+
+
 def _parse(path: Path, text: str) -> tuple[dict[str, str], list[tuple[int, dict[str, str]]], list[str]]:
     meta: dict[str, str] = {}
     body: list[tuple[int, str]] = []
@@ -280,10 +287,7 @@ def read_tire_csv(path: str | os.PathLike[str], cart: CartGeometry | None = None
     TypeError
         ``path`` is not a path.
     """
-    if not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"path={value_text(path)} is invalid; valid values: the path of a tire CSV (str or "
-                        "path-like)")
-    p = Path(path)
+    p = _path(path)
     try:
         text = readfiles.read_text(p)
     except (OSError, UnicodeDecodeError) as exc:
@@ -349,7 +353,7 @@ def load_tire_data(path: str | os.PathLike[str], *, name: str | None = None, car
     TypeError
         ``path`` is not a path.
     """
-    p = Path(path)
+    p = _path(path)
     data = read_tire_csv(p, cart)
     unknown = sorted(k for k in data.meta if k not in _META_KEYS and not k.startswith("cart."))
     if unknown:
