@@ -76,7 +76,7 @@ class Bound(NamedTuple):
         return (f"{number_text(self.lo)} {'<' if self.open_lo else '<='} {name} {'<' if self.open_hi else '<='} "
                 f"{number_text(self.hi)}{unit}")
 
-    def holds(self, value: float) -> bool:
+    def holds(self, value: Any) -> Any:
         """True when ``value`` lies in the range (NaN never does); element by element for an array.
 
         Parameters

@@ -54,7 +54,7 @@ from stability.settings.reference import HORIZON, REFERENCE_SPEED, THESIS_PUSH, 
 
 __all__ = ["RunSpec", "Setting", "RUN_SETTINGS", "SCHEMES", "MODELS", "CASTERS", "FRICTION_LAWS",
            "OUT_OF_RANGE_POLICIES", "MAX_STEPS", "MAX_ROWS", "ROW_BYTES", "WCHAIR_DT", "json_key", "STEP_SECONDS",
-           "WORK_BUDGET_S", "RUN_BYTES", "MAX_BATCH_BYTES", "check_batch_work"]
+           "WORK_BUDGET_S", "RUN_BYTES", "MAX_BATCH_BYTES"]
 
 SCHEMES = ("wchair", "adaptive")
 MODELS = ("exact", "thesis")
@@ -462,43 +462,3 @@ def setting(name: str) -> Setting:
 #: Name -> :class:`Setting` of every RunSpec field, in order (the one table of the run settings).
 RUN_SETTINGS: dict[str, Setting] = {f.name: f.metadata["setting"] for f in dataclasses.fields(RunSpec)}
 
-
-def check_batch_work(runs: int, run: RunSpec, record: str, name: str = "speeds") -> None:
-    """Refuse a batch of ``runs`` runs whose steps or kept results exceed the bounds, before any run.
-
-    The steps are ``runs x horizon / dt`` (dt ``"auto"`` taken at :data:`WCHAIR_DT`; the adaptive scheme's are
-    not known before it runs), at most :data:`WORK_BUDGET_S` / :data:`STEP_SECONDS`; the memory is ``runs x
-    (RUN_BYTES + rows x ROW_BYTES)`` with one row per run for ``record="final"``, else one per sample (0.01 s
-    when ``run.sample`` is None), at most :data:`MAX_BATCH_BYTES`.
-
-    Parameters
-    ----------
-    runs : int
-        Runs asked for (after broadcasting).
-    run : RunSpec
-        Their settings.
-    record : str
-        ``"all"``, ``"states"`` or ``"final"``.
-    name : str
-        The argument to name (default ``"speeds"``).
-
-    Raises
-    ------
-    ValueError
-        Naming ``name``, the number of runs, the estimate and the largest allowed number of runs.
-    """
-    rows = 1.0 if record == "final" else run.horizon / (run.sample if run.sample is not None else 0.01) + 1.0
-    per_run = RUN_BYTES + rows * ROW_BYTES
-    largest = int(MAX_BATCH_BYTES // per_run)
-    if runs > largest:
-        raise ValueError(f"{name} asks for {runs} runs keeping about {runs * per_run / 2**30:.3g} GiB of results "
-                         f"(record={record!r}, {rows:.0f} row(s) each); at most {MAX_BATCH_BYTES / 2**30:.3g} GiB: "
-                         f"the largest allowed is {largest} runs"
-                         + ("" if record == "final" else " (or record='final', or a longer sample)"))
-    if run.scheme == "wchair":
-        steps = run.horizon / (WCHAIR_DT if run.dt == "auto" else float(run.dt))
-        largest = int(WORK_BUDGET_S / STEP_SECONDS // steps)
-        if runs > largest:
-            raise ValueError(f"{name} asks for {runs} runs of {steps:.3g} steps (about "
-                             f"{runs * steps * STEP_SECONDS / 60:.0f} min); the largest allowed is {largest} runs "
-                             f"(or a shorter horizon)")

@@ -12,7 +12,16 @@ import numpy as np
 from stability.chair import Chair, check_chair
 from stability.runtime.checks import check_choice, real_value, value_text
 from stability.runtime.progress import ProgressBar
-from stability.settings.run import RUN_SETTINGS, RunSpec, check_batch_work
+from stability.settings.run import (
+    MAX_BATCH_BYTES,
+    ROW_BYTES,
+    RUN_BYTES,
+    RUN_SETTINGS,
+    STEP_SECONDS,
+    WCHAIR_DT,
+    WORK_BUDGET_S,
+    RunSpec,
+)
 from stability.simulate.adaptive import adaptive_single
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, run_compiled
@@ -133,7 +142,7 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     if not one and (isinstance(chairs, (str, bytes)) or not isinstance(chairs, Sequence)):
         raise TypeError(f"chairs={value_text(chairs)} is invalid; valid values: a stability.Chair or a non-empty "
                         "sequence of them (stability.preset(name), stability.load_chair(spec))")
-    chair_list = [check_chair(c, "chairs[]") for c in ([chairs] if one else chairs)]
+    chair_list = [check_chair(c, "chairs[]") for c in ([chairs] if isinstance(chairs, Chair) else chairs)]
     if not chair_list:
         raise ValueError("chairs=[] is invalid; expected a Chair or a non-empty sequence of Chair")
     sp = _array("speeds", spec.speed if speeds is None else speeds, "m/s")
@@ -157,7 +166,7 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     forces = None if fa is None else np.broadcast_to(fa, shape).reshape(-1).astype(float)
     threads = None if workers is None else _check_workers(workers)
     check_choice("record", record, RECORDS)
-    check_batch_work(len(speed_arr), spec, record, "speeds" if one else "chairs and speeds")
+    _check_batch_work(len(speed_arr), spec, record, "speeds" if one else "chairs and speeds")
     return _run(run_chairs, speed_arr, spec, forces, yaw_moment, controller, record, progress=progress,
                 threads=threads, batch=True)
 
@@ -239,3 +248,44 @@ def _adaptive_runs(chairs, speeds, opts, forces, progress) -> list[SimulationRes
             out.append(adaptive_single(c, float(s), o))
             bar.update()
     return out
+
+
+def _check_batch_work(runs: int, run: RunSpec, record: str, name: str = "speeds") -> None:
+    """Refuse a batch of ``runs`` runs whose steps or kept results exceed the bounds, before any run.
+
+    The steps are ``runs x horizon / dt`` (dt ``"auto"`` taken at :data:`WCHAIR_DT`; the adaptive scheme's are
+    not known before it runs), at most :data:`WORK_BUDGET_S` / :data:`STEP_SECONDS`; the memory is ``runs x
+    (RUN_BYTES + rows x ROW_BYTES)`` with one row per run for ``record="final"``, else one per sample (0.01 s
+    when ``run.sample`` is None), at most :data:`MAX_BATCH_BYTES`.
+
+    Parameters
+    ----------
+    runs : int
+        Runs asked for (after broadcasting).
+    run : RunSpec
+        Their settings.
+    record : str
+        ``"all"``, ``"states"`` or ``"final"``.
+    name : str
+        The argument to name (default ``"speeds"``).
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``, the number of runs, the estimate and the largest allowed number of runs.
+    """
+    rows = 1.0 if record == "final" else run.horizon / (run.sample if run.sample is not None else 0.01) + 1.0
+    per_run = RUN_BYTES + rows * ROW_BYTES
+    largest = int(MAX_BATCH_BYTES // per_run)
+    if runs > largest:
+        raise ValueError(f"{name} asks for {runs} runs keeping about {runs * per_run / 2**30:.3g} GiB of results "
+                         f"(record={record!r}, {rows:.0f} row(s) each); at most {MAX_BATCH_BYTES / 2**30:.3g} GiB: "
+                         f"the largest allowed is {largest} runs"
+                         + ("" if record == "final" else " (or record='final', or a longer sample)"))
+    if run.scheme == "wchair":
+        steps = run.horizon / (WCHAIR_DT if run.dt == "auto" else float(run.dt))
+        largest = int(WORK_BUDGET_S / STEP_SECONDS // steps)
+        if runs > largest:
+            raise ValueError(f"{name} asks for {runs} runs of {steps:.3g} steps (about "
+                             f"{runs * steps * STEP_SECONDS / 60:.0f} min); the largest allowed is {largest} runs "
+                             f"(or a shorter horizon)")
