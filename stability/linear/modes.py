@@ -82,7 +82,7 @@ def eigenvalues_vs_speed(chair, speeds, model: str = "exact", casters: str = "fr
         unknown ``model`` or ``casters`` (the message names the argument, its value and the valid range).
     """
     chair = check_chair(chair)
-    speeds = check_speeds(speeds, "speeds", max_count=MAX_MATRICES)     # memory: one batched call
+    speeds = check_speeds(speeds, "speeds", max_count=MAX_MATRICES, one_dim=True)     # memory: one batched call
     model, casters = check_model(model), check_casters(casters)
     if not isinstance(track, (bool, np.bool_)):
         raise TypeError(f"track={value_text(track)} is invalid; valid values: True or False")

@@ -191,7 +191,7 @@ def check_speed(speed: Any, name: str = "speed", floor: float = MIN_SPEED) -> fl
 
 
 def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED,
-                 max_count: int | None = None) -> np.ndarray:
+                 max_count: int | None = None, one_dim: bool = False) -> np.ndarray:
     """Check forward speeds and return them as a float array of at least one dimension.
 
     Parameters
@@ -204,6 +204,9 @@ def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED,
         Slowest speed allowed, m/s (default :data:`MIN_SPEED`); 0: any speed > 0.
     max_count : int, optional
         Most speeds allowed (the caller's work bound); default any number.
+    one_dim : bool, optional
+        Refuse more than one dimension (a public function's list of speeds); default: any shape (internal
+        batches broadcast speeds against chairs).
 
     Returns
     -------
@@ -214,7 +217,7 @@ def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED,
     ------
     ValueError
         If any speed is not a number, not finite or not > 0 (the message names the first offending value), if
-        ``speeds`` has more than one dimension or none, or more than ``max_count`` speeds.
+        ``speeds`` is empty (or has more than one dimension with ``one_dim``), or more than ``max_count`` speeds.
     """
     size = np.size(speeds) if isinstance(speeds, np.ndarray) else None
     if max_count is not None and size is not None and size > max_count:      # before any copy of a huge array
@@ -226,7 +229,7 @@ def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED,
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value_text(speeds)} is invalid; valid range: every speed a number, "
                          f"{_SPEED_RANGE}") from None
-    if U.ndim != 1 or U.size == 0:
+    if (one_dim and U.ndim != 1) or U.size == 0:
         raise ValueError(f"{name}={value_text(speeds)} is invalid; valid values: a speed or a non-empty 1-D "
                          f"sequence of speeds, {_SPEED_RANGE}")
     if max_count is not None and U.size > max_count:
