@@ -287,7 +287,7 @@ def analyse(chair: Chair, model: str = "exact", speeds=(0.25, 0.5, 0.75, 1.0, 1.
     model = check_model(model)
     max_speed = SEARCH_MAX_SPEED.check("max_speed", max_speed)
     n_grid = int(N_GRID.check("n_grid", n_grid, integer=True))
-    speeds = check_speeds(speeds, "speeds", max_count=MAX_MATRICES, one_dim=True)   # >= MIN_SPEED: rates lost in round-off below
+    speeds = check_speeds(speeds, "speeds", max_count=MAX_MATRICES, one_dim=True)  # >= MIN_SPEED (round-off)
     loads = static_loads(chair)
     st = static_stiffness(chair)
     per_deg = math.pi / 180.0
