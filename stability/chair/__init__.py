@@ -33,12 +33,13 @@ from stability.chair.io import (
     to_mapping,
     user_table,
 )
-from stability.chair.model import LIMITS, Chair, field_names, valid_range
+from stability.chair.model import LIMITS, Chair, check_chair, field_names, valid_range
 from stability.chair.presets import POWER_FWD_FIELDS, all_preset_names, preset, preset_names
 
 __all__ = ["user_table",
     "Chair",
     "LIMITS",
+    "check_chair",
     "valid_range",
     "field_names",
     "POWER_FWD_FIELDS",

@@ -14,6 +14,7 @@ from stability.chair.model import Chair, field_names
 from stability.chair.presets import all_preset_names, preset
 from stability.chair.units import parse_unit
 from stability.runtime import readfiles
+from stability.runtime.checks import value_text
 from stability.runtime.files import atomic_write_text
 
 if sys.version_info >= (3, 11):
@@ -203,7 +204,7 @@ def resolve(spec: str) -> Chair:
 
     Parameters
     ----------
-    spec : str
+    spec : str or path-like
         A name from :func:`~stability.chair.preset_names` or a path to a chair file.
 
     Returns
@@ -214,7 +215,13 @@ def resolve(spec: str) -> Chair:
     ------
     ValueError
         Naming ``spec`` when it is neither (one line).
+    TypeError
+        Naming ``spec`` when it is not a string or a path.
     """
+    if not isinstance(spec, (str, os.PathLike)):
+        raise TypeError(f"spec={value_text(spec)} is invalid; valid values: a preset name {list(all_preset_names())} "
+                        "or the path of a chair file (.toml)")
+    spec = os.fspath(spec)
     if spec in all_preset_names():
         return preset(spec)
     if spec.endswith(".toml") or os.path.exists(spec):

@@ -14,9 +14,9 @@ from dataclasses import dataclass, field, fields
 from typing import Any
 
 from stability import tires
-from stability.runtime.checks import is_real
+from stability.runtime.checks import is_real, real_value, value_text
 
-__all__ = ["Chair", "LIMITS", "valid_range", "field_names"]
+__all__ = ["Chair", "LIMITS", "valid_range", "field_names", "check_chair"]
 
 
 
@@ -291,7 +291,38 @@ def field_names() -> list[str]:
 
 
 def _bad(name: str, value: Any, valid: str) -> ValueError:
-    return ValueError(f"chair parameter {name}={value!r} is invalid; valid range: {valid}")
+    return ValueError(f"chair parameter {name}={value_text(value)} is invalid; valid range: {valid}")
+
+
+def check_chair(chair: Any, name: str = "chair") -> Chair:
+    """Return ``chair`` if it is a :class:`Chair`, else raise :class:`TypeError` naming the argument.
+
+    The public functions take a Chair, not a preset name or a file: ``stability.preset(name)`` and
+    ``stability.load_chair(spec)`` make one.
+
+    Parameters
+    ----------
+    chair : Any
+        The argument to check.
+    name : str, optional
+        Its name in the message (default ``"chair"``).
+
+    Returns
+    -------
+    Chair
+        ``chair`` itself.
+
+    Raises
+    ------
+    TypeError
+        Naming ``name``, the value and what is accepted.
+    """
+    if not isinstance(chair, Chair):
+        hint = (f" (a preset name: use stability.preset({chair!r}) or stability.load_chair({chair!r}))"
+                if isinstance(chair, str) and len(chair) <= 200 else "")
+        raise TypeError(f"{name}={value_text(chair)} is invalid; valid values: a stability.Chair, made by "
+                        f"stability.preset(name), stability.load_chair(spec) or stability.Chair(...){hint}")
+    return chair
 
 
 def _check_types(c: Chair) -> None:
@@ -305,9 +336,9 @@ def _check_types(c: Chair) -> None:
         if f.name == "camber_coefficient" and value is None:
             continue
         if not is_real(value):
-            raise bad(f.name, value, "a real number")
-        if not math.isfinite(value):
-            raise bad(f.name, value, "a finite number")
+            raise bad(f.name, value, "a real number" + (f", {valid_range(f.name)}" if f.name in LIMITS else ""))
+        if not math.isfinite(real_value(value)):             # NaN, inf, or an integer beyond the float range
+            raise bad(f.name, value, "a finite number" + (f", {valid_range(f.name)}" if f.name in LIMITS else ""))
         if type(value) not in (int, float):        # numpy scalars (np.float32(95), np.int64(2)) as Python floats
             object.__setattr__(c, f.name, float(value))
 

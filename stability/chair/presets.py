@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from stability.chair.model import Chair
+from stability.runtime.checks import value_text
 
 __all__ = ["POWER_FWD_FIELDS", "preset_names", "preset", "all_preset_names"]
 
@@ -93,11 +94,15 @@ def preset(name: str) -> Chair:
     ------
     ValueError
         If ``name`` is not a preset; the message lists the valid names.
+    TypeError
+        If ``name`` is not a string (the message names it and lists the valid names).
     """
     table = _presets()
+    if not isinstance(name, str):
+        raise TypeError(f"name={value_text(name)} is invalid; valid values: a preset name, one of {list(table)}")
     if name in table:
         return Chair(**table[name])
-    raise ValueError(f"unknown chair preset {name!r}; valid presets: {list(table)}")
+    raise ValueError(f"unknown chair preset {value_text(name)}; valid presets: {list(table)}")
 
 
 def all_preset_names() -> tuple[str, ...]:

@@ -128,12 +128,12 @@ def output_files(outputs: Mapping[str, str | None]) -> Iterator[dict[str, str]]:
                 first = next(p for p in outputs.values() if p)
                 raise write_error(failed, str(named.get(failed.filename) or first)) from exc
             raise
-        interrupts.check()
         umask = os.umask(0)
         os.umask(umask)
-        for option, tmp in temps.items():
-            os.chmod(tmp, 0o666 & ~umask)
-            os.replace(tmp, str(outputs[option]))
+        with interrupts.held():          # after a signal none is renamed; one that comes now waits until all are
+            for option, tmp in temps.items():
+                os.chmod(tmp, 0o666 & ~umask)
+                os.replace(tmp, str(outputs[option]))
     finally:
         for tmp in temps.values():
             with contextlib.suppress(OSError):

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from stability.settings.bounds import Bound
+from stability.settings.bounds import SEARCH_MAX_SPEED, Bound
 from stability.settings.drive import DRIVE_SETTINGS, drive_flag
 from stability.settings.run import RUN_SETTINGS
 
@@ -35,7 +35,7 @@ __all__ = ["Bound", "OPTION_BOUNDS", "bound_for", "number", "NonFiniteResult", "
 OPTION_BOUNDS: dict[str, Bound] = {
     # speeds: a wheelchair, powered or pushed, does not exceed 20 m/s (72 km/h)
     "--speed": Bound(0.01, 20.0, "m/s"),       # 0.01: stability.runtime.checks.MIN_SPEED (round-off below)
-    "--max-speed": Bound(0.01, 100.0, "m/s", open_lo=True),
+    "--max-speed": SEARCH_MAX_SPEED,          # the API's stability.analyse(max_speed=)
     # the slope command answers reverse (negative speeds) with the layout model, as RunSpec's speed
     "slope:--speed": Bound(0.01, 20.0, "m/s", signed=True),
     # counts and seeds

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from stability.chair import Chair
+from stability.chair import Chair, check_chair
 from stability.models import accelerations, linear_matrices
 from stability.models.params import parameters
 from stability.models.statics import static_stiffness
@@ -136,10 +136,19 @@ def state_space(chair: Chair, speed: float, model: str = "exact", casters: str =
         States ``[v, r, eta, eta_dot, beta, beta_dot]`` (free) or ``[v, r]``
         (locked), input ``Mz`` (yaw moment on the chair, N m), outputs ``v``
         (m/s) and ``r`` (rad/s).
+
+    Raises
+    ------
+    TypeError
+        ``chair`` is not a Chair.
+    ValueError
+        ``speed`` outside 0.01-100 m/s, or an unknown ``model`` or ``casters`` (named, with the valid values).
     """
+    chair = check_chair(chair)
+    speed = check_speed(speed)
+    model, casters = check_model(model), check_casters(casters)
     import control  # python-control costs ~0.3 s to import; only this function needs it
 
-    speed = check_speed(speed)
     A, B = _matrices(chair, speed, model, casters)
     A, B = A[0], B[0]
     states = list(STATES_FREE if casters == "free" else STATES_LOCKED)

@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from stability.chair import check_chair
+from stability.linear.batch import MAX_MATRICES
 from stability.linear.model import state_matrices
+from stability.runtime.checks import check_casters, check_model, check_speeds, value_text
 
 __all__ = ["track_modes", "eigenvalues_vs_speed"]
 
@@ -69,6 +72,19 @@ def eigenvalues_vs_speed(chair, speeds, model: str = "exact", casters: str = "fr
     -------
     ndarray
         Shape (N, n), complex, 1/s.
+
+    Raises
+    ------
+    TypeError
+        ``chair`` is not a Chair, or ``track`` not a bool.
+    ValueError
+        A speed outside 0.01-100 m/s, more than :data:`~stability.linear.batch.MAX_MATRICES` speeds, or an
+        unknown ``model`` or ``casters`` (the message names the argument, its value and the valid range).
     """
+    chair = check_chair(chair)
+    speeds = check_speeds(speeds, "speeds", max_count=MAX_MATRICES, one_dim=True)     # memory: one batched call
+    model, casters = check_model(model), check_casters(casters)
+    if not isinstance(track, (bool, np.bool_)):
+        raise TypeError(f"track={value_text(track)} is invalid; valid values: True or False")
     eigs = np.linalg.eigvals(state_matrices(chair, speeds, model, casters))
     return track_modes(eigs) if track else eigs

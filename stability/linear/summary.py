@@ -7,16 +7,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from stability.chair import Chair
+from stability.chair import Chair, check_chair
+from stability.linear.batch import MAX_MATRICES
 from stability.linear.critical import critical_speeds, max_real_part
 from stability.linear.model import state_matrices
 from stability.models import zero_width as zw
 from stability.models.params import parameters
 from stability.models.statics import static_loads, static_stiffness
-from stability.runtime.checks import check_speeds
+from stability.runtime.checks import check_model, check_speeds
+from stability.settings.bounds import SEARCH_MAX_SPEED, Bound
 
 __all__ = ["ZeroWidthResult", "zero_width", "Divergence", "divergence", "massless_caster_rate",
-           "StabilitySummary", "analyse"]
+           "StabilitySummary", "analyse", "N_GRID"]
+
+#: Valid ``n_grid`` of :func:`analyse`: at least two speeds to search between, at most the matrices of one
+#: batched call (:data:`~stability.linear.batch.MAX_MATRICES`: memory bounded).
+N_GRID = Bound(2, MAX_MATRICES, "")
 
 
 @dataclass(frozen=True)
@@ -257,10 +263,10 @@ def analyse(chair: Chair, model: str = "exact", speeds=(0.25, 0.5, 0.75, 1.0, 1.
     speeds : sequence of float, optional
         Speeds of the divergence table, m/s (> 0).
     max_speed : float, optional
-        Upper end of the critical-speed search, m/s; valid range > 0.01 (default 30).
+        Upper end of the critical-speed search, m/s; valid range 0.01 < max_speed <= 100 (default 30).
     n_grid : int, optional
         Number of geometrically spaced grid speeds from 0.01 m/s to ``max_speed``
-        (default 600); crossings are refined between grid points.
+        (default 600; valid range :data:`N_GRID`); crossings are refined between grid points.
 
     Returns
     -------
@@ -270,12 +276,18 @@ def analyse(chair: Chair, model: str = "exact", speeds=(0.25, 0.5, 0.75, 1.0, 1.
 
     Raises
     ------
+    TypeError
+        ``chair`` is not a Chair, ``max_speed`` not a number or ``n_grid`` not an integer.
     ValueError
-        If ``max_speed`` is not a finite number > 0.01.
+        An argument outside its range (named, with its value and the range): ``max_speed``
+        (:data:`stability.settings.bounds.SEARCH_MAX_SPEED`), ``n_grid`` (:data:`N_GRID`), ``speeds``
+        (0.01-100 m/s, at most :data:`~stability.linear.batch.MAX_MATRICES`), ``model``.
     """
-    if not (isinstance(max_speed, (int, float)) and max_speed > 0.01 and math.isfinite(max_speed)):
-        raise ValueError(f"max_speed={max_speed!r} is invalid; valid range: 0.01 < max_speed < inf m/s")
-    speeds = check_speeds(speeds, "speeds")        # >= MIN_SPEED: the rates are lost in round-off below
+    chair = check_chair(chair)
+    model = check_model(model)
+    max_speed = SEARCH_MAX_SPEED.check("max_speed", max_speed)
+    n_grid = int(N_GRID.check("n_grid", n_grid, integer=True))
+    speeds = check_speeds(speeds, "speeds", max_count=MAX_MATRICES, one_dim=True)  # >= MIN_SPEED (round-off)
     loads = static_loads(chair)
     st = static_stiffness(chair)
     per_deg = math.pi / 180.0

@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 
 __all__ = ["VARIANTS", "CASTERS", "check_choice", "check_model", "check_casters", "check_speed",
-           "check_speeds", "check_positive", "check_nonnegative", "check_finite", "is_real", "MIN_SPEED",
-           "MAX_SPEED"]
+           "check_speeds", "check_positive", "check_nonnegative", "check_finite", "is_real", "real_value",
+           "value_text", "MIN_SPEED", "MAX_SPEED"]
 
 VARIANTS = ("exact", "thesis")
 CASTERS = ("free", "locked")
@@ -30,6 +30,58 @@ MIN_SPEED = 0.01
 MAX_SPEED = 100.0
 _SPEED_RANGE = (f"{MIN_SPEED:g} <= speed <= {MAX_SPEED:g} m/s (forward motion; below {MIN_SPEED:g} m/s the rates, "
                 "proportional to speed there, are lost in round-off)")
+
+
+#: Longest value quoted in a refusal, characters: an argument's value is named, never dumped (a 400-digit integer,
+#: a million-element array).
+MAX_VALUE_TEXT = 60
+
+
+def value_text(value: Any) -> str:
+    """``repr(value)`` as a refusal quotes it: at most :data:`MAX_VALUE_TEXT` characters.
+
+    An integer too long to show is written in scientific notation (``10**400`` as ``1.000e+400``); any other
+    long repr (an array, a long string) is cut, with its length said.
+
+    Parameters
+    ----------
+    value : Any
+
+    Returns
+    -------
+    str
+    """
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**21:
+        digits = str(abs(value))
+        sign = "-" if value < 0 else ""
+        return f"{sign}{digits[0]}.{digits[1:4]}e+{len(digits) - 1}"
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001  (a repr that fails still names the type)
+        text = f"<{type(value).__name__}>"
+    text = " ".join(text.split())                  # one line: an array's repr spans several
+    if len(text) > MAX_VALUE_TEXT:
+        text = f"{text[:MAX_VALUE_TEXT - 20]}... ({len(text)} characters)"
+    return text
+
+
+def real_value(value: Any) -> float:
+    """A real number as a float: an integer too large for a float is +-inf (outside every bound), not an error.
+
+    Parameters
+    ----------
+    value : Any
+        A real number (:func:`is_real`).
+
+    Returns
+    -------
+    float
+        ``float(value)``; ``+-inf`` for an integer beyond the float range.
+    """
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
 
 
 def check_choice(name: str, value: Any, choices: Sequence) -> Any:
@@ -54,8 +106,12 @@ def check_choice(name: str, value: Any, choices: Sequence) -> Any:
     ValueError
         If ``value`` is not in ``choices``; the message lists the valid choices.
     """
-    if value not in choices:
-        raise ValueError(f"{name}={value!r} is invalid; valid choices: {list(choices)}")
+    try:
+        ok = value in choices
+    except Exception:  # noqa: BLE001  (an array or an object whose == is not a truth value)
+        ok = False
+    if not ok:
+        raise ValueError(f"{name}={value_text(value)} is invalid; valid choices: {list(choices)}")
     return value
 
 
@@ -126,15 +182,16 @@ def check_speed(speed: Any, name: str = "speed", floor: float = MIN_SPEED) -> fl
         If ``speed`` is not a number, not finite or not > 0.
     """
     try:
-        s = float(speed)
+        s = real_value(speed)
     except (TypeError, ValueError):
-        raise ValueError(f"{name}={speed!r} is invalid; valid range: {_SPEED_RANGE}") from None
+        raise ValueError(f"{name}={value_text(speed)} is invalid; valid range: {_SPEED_RANGE}") from None
     if not (math.isfinite(s) and (floor <= s if floor > 0 else s > 0) and s <= MAX_SPEED):
-        raise ValueError(f"{name}={speed!r} is invalid; valid range: {_SPEED_RANGE}")
+        raise ValueError(f"{name}={value_text(speed)} is invalid; valid range: {_SPEED_RANGE}")
     return s
 
 
-def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED) -> np.ndarray:
+def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED,
+                 max_count: int | None = None, one_dim: bool = False) -> np.ndarray:
     """Check forward speeds and return them as a float array of at least one dimension.
 
     Parameters
@@ -145,6 +202,11 @@ def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED) -> 
         Parameter name used in the error message (default ``"speed"``).
     floor : float, optional
         Slowest speed allowed, m/s (default :data:`MIN_SPEED`); 0: any speed > 0.
+    max_count : int, optional
+        Most speeds allowed (the caller's work bound); default any number.
+    one_dim : bool, optional
+        Refuse more than one dimension (a public function's list of speeds); default: any shape (internal
+        batches broadcast speeds against chairs).
 
     Returns
     -------
@@ -154,9 +216,24 @@ def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED) -> 
     Raises
     ------
     ValueError
-        If any speed is not finite or not > 0; the message names the first offending value.
+        If any speed is not a number, not finite or not > 0 (the message names the first offending value), if
+        ``speeds`` is empty (or has more than one dimension with ``one_dim``), or more than ``max_count`` speeds.
     """
-    U = np.atleast_1d(np.asarray(speeds, dtype=float))
+    size = np.size(speeds) if isinstance(speeds, np.ndarray) else None
+    if max_count is not None and size is not None and size > max_count:      # before any copy of a huge array
+        raise ValueError(f"{name} has {size} values; at most {max_count} are allowed here")
+    try:
+        U = np.atleast_1d(np.asarray(speeds, dtype=float))
+    except OverflowError:                                       # an integer beyond the float range
+        U = np.atleast_1d(np.asarray([real_value(s) for s in np.ravel(np.asarray(speeds, dtype=object))]))
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value_text(speeds)} is invalid; valid range: every speed a number, "
+                         f"{_SPEED_RANGE}") from None
+    if (one_dim and U.ndim != 1) or U.size == 0:
+        raise ValueError(f"{name}={value_text(speeds)} is invalid; valid values: a speed or a non-empty 1-D "
+                         f"sequence of speeds, {_SPEED_RANGE}")
+    if max_count is not None and U.size > max_count:
+        raise ValueError(f"{name} has {U.size} values; at most {max_count} are allowed here")
     ok = np.isfinite(U) & ((U >= floor) if floor > 0 else (U > 0)) & (U <= MAX_SPEED)
     if not np.all(ok):
         raise ValueError(f"{name}={float(U[~ok][0])!r} is invalid; valid range: {_SPEED_RANGE}")
@@ -178,8 +255,8 @@ def is_real(value: Any) -> bool:
 
 
 def _number(name: str, value: Any, valid: str, prefix: str) -> float:
-    if not is_real(value) or not math.isfinite(value):
-        raise ValueError(f"{prefix}{name}={value!r} is invalid; valid range: {valid}")
+    if not is_real(value) or not math.isfinite(real_value(value)):
+        raise ValueError(f"{prefix}{name}={value_text(value)} is invalid; valid range: {valid}")
     return float(value)
 
 
@@ -207,7 +284,7 @@ def check_positive(name: str, value: Any, *, prefix: str = "") -> float:
     """
     v = _number(name, value, "> 0 (finite)", prefix)
     if v <= 0:
-        raise ValueError(f"{prefix}{name}={value!r} is invalid; valid range: > 0 (finite)")
+        raise ValueError(f"{prefix}{name}={value_text(value)} is invalid; valid range: > 0 (finite)")
     return v
 
 
@@ -235,7 +312,7 @@ def check_nonnegative(name: str, value: Any, *, prefix: str = "") -> float:
     """
     v = _number(name, value, ">= 0 (finite)", prefix)
     if v < 0:
-        raise ValueError(f"{prefix}{name}={value!r} is invalid; valid range: >= 0 (finite)")
+        raise ValueError(f"{prefix}{name}={value_text(value)} is invalid; valid range: >= 0 (finite)")
     return v
 
 

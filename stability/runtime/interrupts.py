@@ -27,7 +27,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["SIGNALS", "EXIT_STATUS", "MESSAGE", "install_early", "interruptible", "pending", "check"]
+__all__ = ["SIGNALS", "EXIT_STATUS", "MESSAGE", "install_early", "interruptible", "pending", "check", "held"]
 
 #: The signals that interrupt a command: Ctrl-C, ``kill`` and a closed terminal (where the platform has them).
 SIGNALS: tuple[signal.Signals, ...] = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP")
@@ -103,3 +103,40 @@ def interruptible() -> Iterator[None]:
         for sig, handler in previous.items():
             signal.signal(sig, handler)
         _state["pending"] = False
+
+
+@contextlib.contextmanager
+def held() -> Iterator[None]:
+    """Inside: :data:`SIGNALS` wait until the end (several outputs renamed into place all or none).
+
+    On entry a signal that already came (or is waiting) raises :class:`KeyboardInterrupt`, so nothing inside
+    runs; one that comes inside is delivered on leaving, after the block has finished.
+
+    Yields
+    ------
+    None
+
+    Raises
+    ------
+    KeyboardInterrupt
+        A signal came before the block.
+    """
+    check()
+    if not _main_thread():
+        yield
+        return
+    previous = {sig: signal.getsignal(sig) for sig in SIGNALS}
+    came: list[int] = []
+    for sig in SIGNALS:          # Python handlers run in the main thread whichever thread the kernel picks
+        signal.signal(sig, lambda signum, frame: came.append(signum))
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        if came:                 # delivered now, to the handler it was meant for
+            handler = previous[signal.Signals(came[0])]
+            if callable(handler):
+                handler(came[0], None)
+            else:
+                raise KeyboardInterrupt

@@ -135,11 +135,22 @@ def paths() -> frozenset[str]:
     return frozenset(_READ)
 
 
-def _check_size(path: PathLike) -> None:
+def _too_large(path: PathLike, size: int | str) -> ValueError:
+    return ValueError(f"input file {os.fspath(path)!r} has {size} bytes; at most {MAX_INPUT_BYTES} are allowed "
+                      "(a chair file, tire CSV or sheet has a few kB)")
+
+
+def _read_bytes(path: PathLike) -> bytes:
+    """The bytes of ``path``, at most :data:`MAX_INPUT_BYTES`: the size is checked before the read (a regular
+    file) and the read stops one byte past the bound (a device or pipe that states no size: /dev/zero)."""
     size = os.stat(path).st_size
     if size > MAX_INPUT_BYTES:
-        raise ValueError(f"input file {os.fspath(path)!r} has {size} bytes; at most {MAX_INPUT_BYTES} are allowed "
-                         "(a chair file, tire CSV or sheet has a few kB)")
+        raise _too_large(path, size)
+    with open(path, "rb") as fh:
+        data = fh.read(MAX_INPUT_BYTES + 1)
+    if len(data) > MAX_INPUT_BYTES:
+        raise _too_large(path, "more than " + str(MAX_INPUT_BYTES))
+    return data
 
 
 def read_text(path: PathLike) -> str:
@@ -160,11 +171,12 @@ def read_text(path: PathLike) -> str:
         The file cannot be read.
     UnicodeDecodeError
         The file is not UTF-8 text.
+    ValueError
+        The file is larger than :data:`MAX_INPUT_BYTES`.
     """
     note(path)
-    _check_size(path)
-    with open(path, encoding="utf-8-sig") as fh:
-        return fh.read()
+    text = _read_bytes(path).decode("utf-8-sig")
+    return text.replace("\r\n", "\n").replace("\r", "\n")      # universal newlines, as text-mode open()
 
 
 def load_toml(path: PathLike) -> dict[str, Any]:
@@ -184,11 +196,11 @@ def load_toml(path: PathLike) -> dict[str, Any]:
         The file cannot be read.
     tomllib.TOMLDecodeError
         The file is not valid TOML (not UTF-8 text included).
+    ValueError
+        The file is larger than :data:`MAX_INPUT_BYTES`.
     """
     note(path)
-    _check_size(path)
-    with open(path, "rb") as fh:
-        data = fh.read()
+    data = _read_bytes(path)
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

@@ -10,9 +10,11 @@ parameter, its value and :meth:`Bound.text`.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
-__all__ = ["Bound", "number_text"]
+from stability.runtime.checks import MAX_SPEED, MIN_SPEED, is_real, real_value, value_text
+
+__all__ = ["Bound", "number_text", "SEARCH_MAX_SPEED"]
 
 
 def number_text(x: float) -> str:
@@ -74,18 +76,56 @@ class Bound(NamedTuple):
         return (f"{number_text(self.lo)} {'<' if self.open_lo else '<='} {name} {'<' if self.open_hi else '<='} "
                 f"{number_text(self.hi)}{unit}")
 
-    def holds(self, value: float) -> bool:
-        """True when ``value`` lies in the range (NaN never does).
+    def holds(self, value: Any) -> Any:
+        """True when ``value`` lies in the range (NaN never does); element by element for an array.
 
         Parameters
         ----------
-        value : float
+        value : float or ndarray
 
         Returns
         -------
-        bool
+        bool or ndarray of bool
         """
         if self.signed:
             value = abs(value)
         return ((self.lo < value if self.open_lo else self.lo <= value)
-                and (value < self.hi if self.open_hi else value <= self.hi))
+                & (value < self.hi if self.open_hi else value <= self.hi))
+
+    def check(self, name: str, value: Any, *, integer: bool = False) -> float:
+        """``value`` as a float (an int when ``integer``) if it lies in the range, else raise naming ``name``.
+
+        Parameters
+        ----------
+        name : str
+            The argument's name in the message.
+        value : Any
+            A real number (an integer when ``integer``; booleans and strings are refused).
+        integer : bool, optional
+            Only whole numbers (a count).
+
+        Returns
+        -------
+        float or int
+            In the bound's unit.
+
+        Raises
+        ------
+        TypeError
+            ``value`` is not a real number (an integer when ``integer``).
+        ValueError
+            ``value`` is NaN, infinite or outside the range; the message names ``name``, the value and
+            :meth:`text`.
+        """
+        kind = "an integer" if integer else "a number"
+        x = real_value(value) if is_real(value) else math.nan
+        if not is_real(value) or (integer and math.isfinite(x) and not x.is_integer()):
+            raise TypeError(f"{name}={value_text(value)} is invalid; valid values: {kind}, {self.text(name)}")
+        if math.isnan(x) or not self.holds(x):
+            raise ValueError(f"{name}={value_text(value)} is invalid; valid range: {self.text(name)}")
+        return int(value) if integer else x
+
+
+#: The critical-speed search's upper end, m/s (``stability.analyse(max_speed=)``, ``--max-speed``): above the
+#: slowest speed whose rates are not lost in round-off, up to the fastest speed searched.
+SEARCH_MAX_SPEED = Bound(MIN_SPEED, MAX_SPEED, "m/s", open_lo=True)

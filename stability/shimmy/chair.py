@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from stability.settings.run import WORK_BUDGET_S  # ten minutes: the one budget of every command and API call
 from stability.shimmy import describing
 from stability.shimmy.compliance import ESTIMATE_NOTE, CasterCompliance
 from stability.shimmy.layout_caster import CasterSource, LayoutCaster
@@ -28,9 +29,6 @@ __all__ = ["SECONDS_PER_SPEED", "WORK_BUDGET_S", "check_speed_count", "CasterCom
 #: average 20; a quiet machine is several times faster): the summary (critical and friction trails by root
 #: finding on the towed-wheel model) and the PDF's trail chart (26 trails).
 SECONDS_PER_SPEED = {"summary": 1.7, "chart": 2.5}
-#: Work one call may ask for, s (ten minutes at the costs above).
-WORK_BUDGET_S = 600.0
-
 
 def check_speed_count(name: str, n_speeds: int, seconds_per_speed: float) -> None:
     """Refuse ``n_speeds`` speeds costing ``seconds_per_speed`` each beyond :data:`WORK_BUDGET_S`.

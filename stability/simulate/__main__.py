@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Sequence
+from typing import Any
 
 from stability.cli import (
     FIGURE_FORMATS,
@@ -79,20 +80,27 @@ def _run_layout(args: argparse.Namespace, run_spec: RunSpec) -> int:
     layout = load_layout(args.chair, args.set)      # --set: the short form's only (the one line says so)
     res = simulate_layout(layout, None, run_spec)
     labels = layout.caster_labels
-    with output_files({"--csv": args.csv, "-o": args.output}) as tmp:
+    with output_files({"--csv": args.csv, "-o": args.output, "--json-file": args.json_file}) as tmp:
         if args.csv:
             res.to_csv(tmp["--csv"], labels)
         if args.output:
             plot_layout_run(res, labels, tmp["-o"])
-    if args.json or args.json_file:
-        emit_json({"stability_version": __version__, "chair": res.layout, "model": "exact",
-                   "options": run_spec.to_dict(), **res.to_mapping()}, args)
+        if args.json or args.json_file:
+            emit_json({"stability_version": __version__, "chair": res.layout, "model": "exact",
+                       "options": run_spec.to_dict(), **res.to_mapping()}, args, write_to=tmp.get("--json-file"))
+    _announce(args, res)
+    return 0
+
+
+def _announce(args: argparse.Namespace, res: Any) -> None:
+    """The summary and the outputs written (all renamed together by :func:`output_files`)."""
+    if args.json_file:
+        print(f"wrote {args.json_file}", file=sys.stderr)
     if not args.json:
         print(res.summary())
         for path in (args.csv, args.output):
             if path:
                 print(f"wrote {path}")
-    return 0
 
 
 def _run_cli(args: argparse.Namespace) -> int:
@@ -112,21 +120,17 @@ def _run_cli(args: argparse.Namespace) -> int:
     levels = (0.5, 1.0)
     times = [res.first_time_abs_yaw_rate(v) for v in levels]
     out = res.resample(run_spec.sample) if run_spec.sample is not None else res
-    with output_files({"--csv": args.csv, "-o": args.output}) as tmp:
+    with output_files({"--csv": args.csv, "-o": args.output, "--json-file": args.json_file}) as tmp:
         if args.csv:
             out.to_csv(tmp["--csv"])
         if args.output:
             plot_result(res, tmp["-o"])
-    if args.json or args.json_file:
-        d = {**json_header(c, run_spec.model, run_spec.to_dict()), **out.to_dict()}
-        d["yaw_rate_levels_rad_s"] = list(levels)
-        d["first_time_at_level_s"] = times
-        emit_json(d, args)
-    if not args.json:
-        print(res.summary())
-        for path in (args.csv, args.output):
-            if path:
-                print(f"wrote {path}")
+        if args.json or args.json_file:
+            d = {**json_header(c, run_spec.model, run_spec.to_dict()), **out.to_dict()}
+            d["yaw_rate_levels_rad_s"] = list(levels)
+            d["first_time_at_level_s"] = times
+            emit_json(d, args, write_to=tmp.get("--json-file"))
+    _announce(args, res)
     return 0
 
 

@@ -9,10 +9,19 @@ from typing import Any
 
 import numpy as np
 
-from stability.chair import Chair
-from stability.runtime.checks import check_choice
+from stability.chair import Chair, check_chair
+from stability.runtime.checks import check_choice, real_value, value_text
 from stability.runtime.progress import ProgressBar
-from stability.settings.run import RunSpec
+from stability.settings.run import (
+    MAX_BATCH_BYTES,
+    ROW_BYTES,
+    RUN_BYTES,
+    RUN_SETTINGS,
+    STEP_SECONDS,
+    WCHAIR_DT,
+    WORK_BUDGET_S,
+    RunSpec,
+)
 from stability.simulate.adaptive import adaptive_single
 from stability.simulate.controller import SampledController
 from stability.simulate.engine import RECORDS, run_compiled
@@ -22,18 +31,11 @@ from stability.simulate.stepcheck import StepStabilityWarning, auto_step, stable
 
 __all__ = ["simulate", "simulate_batch"]
 
-def _check_chair(chair: Any) -> Chair:
-    if not isinstance(chair, Chair):
-        raise ValueError(f"chair={chair!r} is invalid; expected a stability.chair.Chair "
-                         "(see stability.chair.preset / resolve)")
-    return chair
-
-
 def _spec(speed: Any, run: RunSpec | None) -> RunSpec:
     if run is None:
         run = RunSpec()
     elif not isinstance(run, RunSpec):
-        raise TypeError(f"run={run!r} is invalid; expected a stability.settings.run.RunSpec")
+        raise TypeError(f"run={value_text(run)} is invalid; expected a stability.settings.run.RunSpec")
     return run if speed is None else run.replace(speed=speed)
 
 
@@ -75,10 +77,11 @@ def simulate(chair: Chair, speed: float | None = None, run: RunSpec | None = Non
     ValueError
         A bad argument (the message names it, its value and the valid range).
     TypeError
-        ``run`` is not a RunSpec, or a setting of the wrong type.
+        ``chair`` is not a Chair, ``run`` not a RunSpec, or a setting of the wrong type.
     """
-    chair = _check_chair(chair)
+    chair = check_chair(chair)
     spec = _spec(speed, run)
+    check_choice("record", record, RECORDS)
     return _run([chair], np.array([spec.speed]), spec, None, yaw_moment, controller, record, progress=False,
                 threads=None, batch=False)[0]
 
@@ -136,28 +139,21 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     """
     spec = _spec(None, run)
     one = isinstance(chairs, Chair)
-    chair_list = [_check_chair(c) for c in ([chairs] if isinstance(chairs, Chair) else chairs)]
+    if not one and (isinstance(chairs, (str, bytes)) or not isinstance(chairs, Sequence)):
+        raise TypeError(f"chairs={value_text(chairs)} is invalid; valid values: a stability.Chair or a non-empty "
+                        "sequence of them (stability.preset(name), stability.load_chair(spec))")
+    chair_list = [check_chair(c, "chairs[]") for c in ([chairs] if isinstance(chairs, Chair) else chairs)]
     if not chair_list:
         raise ValueError("chairs=[] is invalid; expected a Chair or a non-empty sequence of Chair")
-    sp = np.asarray(spec.speed if speeds is None else speeds, dtype=float)
-    if sp.ndim > 1:
-        raise ValueError(f"speeds has shape {sp.shape}; expected a number or a 1-D array")
-    if sp.size == 0:
-        raise ValueError("speeds=[] is invalid; expected at least one speed > 0 m/s")
-    for s in np.atleast_1d(sp).tolist():
-        spec.replace(speed=s)                               # each speed within the run settings' range
+    sp = _array("speeds", spec.speed if speeds is None else speeds, "m/s")
+    _within(spec, "speed", sp, "speeds")
     fa = None
     if push_forces is not None:
-        try:
-            fa = np.asarray(push_forces, dtype=float)
-        except (TypeError, ValueError):
-            raise ValueError(f"push_forces={push_forces!r} is invalid; expected a 1-D array of finite forces "
-                             "(N)") from None
-        if fa.ndim != 1 or fa.size == 0 or not np.all(np.isfinite(fa)):
-            raise ValueError(f"push_forces={push_forces!r} is invalid; expected a non-empty 1-D array of finite "
-                             "forces (N)")
-        for f in (float(fa.min()), float(fa.max())):
-            spec.replace(push_force=f)                      # within the push's range
+        fa = _array("push_forces", push_forces, "N")
+        if fa.ndim != 1:
+            raise ValueError(f"push_forces={value_text(push_forces)} is invalid; expected a non-empty 1-D array "
+                             "of finite forces (N)")
+        _within(spec, "push_force", fa, "push_forces")
     try:
         shape = np.broadcast_shapes(() if one else (len(chair_list),), sp.shape, () if fa is None else fa.shape)
     except ValueError:
@@ -169,8 +165,39 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     run_chairs = [chair_list[int(i)] for i in chair_idx]
     forces = None if fa is None else np.broadcast_to(fa, shape).reshape(-1).astype(float)
     threads = None if workers is None else _check_workers(workers)
+    check_choice("record", record, RECORDS)
+    _check_batch_work(len(speed_arr), spec, record, "speeds" if one else "chairs and speeds")
     return _run(run_chairs, speed_arr, spec, forces, yaw_moment, controller, record, progress=progress,
                 threads=threads, batch=True)
+
+
+def _array(name: str, values: Any, unit: str) -> np.ndarray:
+    """``values`` as a non-empty float array of at most one dimension (an integer beyond the float range as
+    +-inf, refused by the setting's range), or a ValueError naming ``name``."""
+    try:
+        a = np.asarray(values, dtype=float)
+    except OverflowError:
+        a = np.asarray([real_value(v) for v in np.ravel(np.asarray(values, dtype=object))], dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value_text(values)} is invalid; expected a number or a 1-D array of numbers "
+                         f"({unit})") from None
+    if a.ndim > 1:
+        raise ValueError(f"{name} has shape {a.shape}; expected a number or a 1-D array")
+    if a.size == 0:
+        raise ValueError(f"{name}=[] is invalid; expected at least one value ({unit})")
+    return a
+
+
+def _within(spec: RunSpec, setting: str, values: np.ndarray, name: str) -> None:
+    """Every one of ``values`` valid as ``spec``'s ``setting``: the RunSpec's range, the first invalid one named."""
+    bound = RUN_SETTINGS[setting].bound
+    assert bound is not None
+    bad = np.flatnonzero(~bound.holds(values))
+    for v in ([values.flat[bad[0]]] if bad.size else []) + [values.min(), values.max()]:
+        try:
+            spec.replace(**{setting: float(v)})             # the RunSpec's own message (and its checks together)
+        except ValueError as exc:
+            raise ValueError(f"{name}: {exc}") from None
 
 
 def _check_workers(workers: Any) -> int:
@@ -221,3 +248,44 @@ def _adaptive_runs(chairs, speeds, opts, forces, progress) -> list[SimulationRes
             out.append(adaptive_single(c, float(s), o))
             bar.update()
     return out
+
+
+def _check_batch_work(runs: int, run: RunSpec, record: str, name: str = "speeds") -> None:
+    """Refuse a batch of ``runs`` runs whose steps or kept results exceed the bounds, before any run.
+
+    The steps are ``runs x horizon / dt`` (dt ``"auto"`` taken at :data:`WCHAIR_DT`; the adaptive scheme's are
+    not known before it runs), at most :data:`WORK_BUDGET_S` / :data:`STEP_SECONDS`; the memory is ``runs x
+    (RUN_BYTES + rows x ROW_BYTES)`` with one row per run for ``record="final"``, else one per sample (0.01 s
+    when ``run.sample`` is None), at most :data:`MAX_BATCH_BYTES`.
+
+    Parameters
+    ----------
+    runs : int
+        Runs asked for (after broadcasting).
+    run : RunSpec
+        Their settings.
+    record : str
+        ``"all"``, ``"states"`` or ``"final"``.
+    name : str
+        The argument to name (default ``"speeds"``).
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``, the number of runs, the estimate and the largest allowed number of runs.
+    """
+    rows = 1.0 if record == "final" else run.horizon / (run.sample if run.sample is not None else 0.01) + 1.0
+    per_run = RUN_BYTES + rows * ROW_BYTES
+    largest = int(MAX_BATCH_BYTES // per_run)
+    if runs > largest:
+        raise ValueError(f"{name} asks for {runs} runs keeping about {runs * per_run / 2**30:.3g} GiB of results "
+                         f"(record={record!r}, {rows:.0f} row(s) each); at most {MAX_BATCH_BYTES / 2**30:.3g} GiB: "
+                         f"the largest allowed is {largest} runs"
+                         + ("" if record == "final" else " (or record='final', or a longer sample)"))
+    if run.scheme == "wchair":
+        steps = run.horizon / (WCHAIR_DT if run.dt == "auto" else float(run.dt))
+        largest = int(WORK_BUDGET_S / STEP_SECONDS // steps)
+        if runs > largest:
+            raise ValueError(f"{name} asks for {runs} runs of {steps:.3g} steps (about "
+                             f"{runs * steps * STEP_SECONDS / 60:.0f} min); the largest allowed is {largest} runs "
+                             f"(or a shorter horizon)")

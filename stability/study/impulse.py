@@ -18,7 +18,7 @@ import numpy as np
 from stability.chair import Chair
 from stability.runtime.checks import check_positive, check_speeds
 from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
-from stability.settings.run import RunSpec
+from stability.settings.run import STEP_SECONDS, WORK_BUDGET_S, RunSpec
 from stability.simulate.stepcheck import step_limits_and_growth
 from stability.study.memo import memoised
 from stability.study.runs import study_run
@@ -216,11 +216,6 @@ def _start(chair: Chair, speed: float, model: str, duration: float, level: float
     return math.log(hi)
 
 
-#: Cost of one compiled WCHAIR step in a batch, s: 0.2 us measured on a quiet machine (a 10 s run in 2 ms),
-#: taken five times over for a loaded one (both cores shared).
-STEP_SECONDS = 1e-6
-#: Simulation one call may ask for, s (ten minutes at :data:`STEP_SECONDS`).
-WORK_BUDGET_S = 600.0
 
 
 def runs_per_speed(min_impulse: float = 1e-6, max_impulse: float = 40.0, max_rounds: int = 40) -> int:

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from stability.runtime import readfiles
+from stability.runtime.checks import value_text
 from stability.tires.cart import CartGeometry, cart_forces
 from stability.tires.data import _ALL, SLIP_MAX_DEG
 from stability.tires.fit import fit_per_angle
@@ -137,6 +138,12 @@ def tire_from_data(slip_deg: ArrayLike, fz: ArrayLike, fy: ArrayLike, *, name: s
         if n < MIN_POINTS_PER_ANGLE:
             raise ValueError(f"tire {name!r}: slip angle {ang:g} deg has {n} measurement(s); "
                              f"at least {MIN_POINTS_PER_ANGLE} are needed for the cubic (4-1)")
+        if not np.any(y[s == ang]):          # the fit's R has no spread to measure and the tire no cornering force
+            raise ValueError(f"tire {name!r}: slip angle {ang:g} deg has a lateral force of 0 N at every load; "
+                             "valid: measured forces, some nonzero at every slip angle (a tire at a slip angle "
+                             "corners)")
+    if not (np.all(np.isfinite(f)) and np.all(np.isfinite(y))):
+        raise ValueError(f"tire {name!r}: fz and fy must be finite numbers, N")
     for label, value, hi in (("camber_coefficient", camber_coefficient, 1.0),
                              ("rolling_coefficient", rolling_coefficient, 1.0)):
         if value is not None and not (math.isfinite(value) and 0.0 <= value <= hi):
@@ -201,6 +208,13 @@ def _bad(path: Path, line: int, column: str, problem: str) -> ValueError:
     return ValueError(f"tire data {str(path)!r}, line {line}, column {column!r}: {problem}")
 
 
+def _path(path: Any) -> Path:
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path={value_text(path)} is invalid; valid values: the path of a tire CSV (str or "
+                        "path-like)")
+    return Path(path)
+
+
 def _parse(path: Path, text: str) -> tuple[dict[str, str], list[tuple[int, dict[str, str]]], list[str]]:
     meta: dict[str, str] = {}
     body: list[tuple[int, str]] = []
@@ -216,6 +230,9 @@ def _parse(path: Path, text: str) -> tuple[dict[str, str], list[tuple[int, dict[
         raise _bad(path, 1, "-", "no header row and no data (expected columns slip_deg, Fz_N, Fy_N)")
     header_line, header_text = body[0]
     header = [h.strip().lower() for h in next(csv.reader([header_text]))]
+    twice = sorted({h for h in header if h and header.count(h) > 1})
+    if twice:                                # which of the two would be read is a guess: refuse it
+        raise _bad(path, header_line, twice[0], "named twice in the header; valid: each column once")
     rows = []
     for number, line in body[1:]:
         cells = next(csv.reader([line]))
@@ -265,9 +282,12 @@ def read_tire_csv(path: str | os.PathLike[str], cart: CartGeometry | None = None
     Raises
     ------
     ValueError
-        One line naming the file, the line and the column of the problem.
+        One line naming the file, the line and the column of the problem, or a file larger than
+        :data:`stability.runtime.readfiles.MAX_INPUT_BYTES`.
+    TypeError
+        ``path`` is not a path.
     """
-    p = Path(path)
+    p = _path(path)
     try:
         text = readfiles.read_text(p)
     except (OSError, UnicodeDecodeError) as exc:
@@ -328,9 +348,12 @@ def load_tire_data(path: str | os.PathLike[str], *, name: str | None = None, car
     Raises
     ------
     ValueError
-        One line naming the file (and line and column where there is one).
+        One line naming the file (and line and column where there is one), or a file larger than
+        :data:`stability.runtime.readfiles.MAX_INPUT_BYTES`.
+    TypeError
+        ``path`` is not a path.
     """
-    p = Path(path)
+    p = _path(path)
     data = read_tire_csv(p, cart)
     unknown = sorted(k for k in data.meta if k not in _META_KEYS and not k.startswith("cart."))
     if unknown:
