@@ -16,16 +16,15 @@ Everything here is linear and frictionless (free casters): docs/driver.md says w
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from math import factorial
 
 import numpy as np
 from scipy.optimize import minimize
 
 from stability.chair import Chair
+from stability.driver.delay import PADE_ORDER, pade, pade_matrices
 from stability.driver.model import Driver
 from stability.linear import input_matrices, state_matrices
 from stability.runtime.checks import check_model, check_speed
@@ -34,8 +33,6 @@ __all__ = ["PADE_ORDER", "SPEED_RANGE_M_S", "pade", "closed_loop_matrix", "absci
            "OperatorFit", "operator_fit", "divergence_rate", "HumanLimit", "human_limit", "rule_speed", "plant_limit",
            "rule_crossing", "with_heading"]
 
-#: Order of the Pade approximant of the driver's delay (numerator and denominator degree).
-PADE_ORDER = 8
 #: Speeds searched for the limit, m/s: a limit outside is reported as a bound (``> 6 m/s``).
 SPEED_RANGE_M_S = (0.1, 6.0)
 #: Speed grid of the search (the limit is then refined between two grid speeds).
@@ -44,50 +41,6 @@ _GRID = np.round(np.linspace(SPEED_RANGE_M_S[0], SPEED_RANGE_M_S[1], 25), 4)
 _LOG_KP, _LOG_KD = (-1.0, 4.5), (-2.0, 3.5)
 #: Limit speeds are refined to this, m/s.
 SPEED_TOL_M_S = 1e-3
-
-
-def pade(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """State-space form of the ``[order/order]`` Pade approximant of the delay ``exp(-s tau)``.
-
-    Parameters
-    ----------
-    tau : float
-        Delay, s (> 0).
-    order : int
-        Degree of numerator and denominator (>= 1).
-
-    Returns
-    -------
-    (Ad, Bd, Cd, Dd)
-        Shapes ``(n, n)``, ``(n, 1)``, ``(1, n)``, ``(1, 1)``: ``z' = Ad z + Bd w``, ``w(t - tau) ~ Cd z + Dd w``.
-    """
-    Ad, Bd, Cd, Dd = _pade(*_checked(tau, order))
-    return Ad.copy(), Bd.copy(), Cd.copy(), Dd.copy()
-
-
-def _checked(tau: float, order: int) -> tuple[float, int]:
-    """``(tau, order)`` as a float and an int, or ValueError naming the bad one."""
-    if not (math.isfinite(tau) and tau > 0):
-        raise ValueError(f"tau={tau!r} is invalid; valid range: > 0 s")
-    if int(order) != order or order < 1:
-        raise ValueError(f"order={order!r} is invalid; valid range: an integer >= 1")
-    return float(tau), int(order)
-
-
-@functools.lru_cache(maxsize=64)
-def _pade(tau: float, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`pade`'s matrices, read-only, kept per (delay, order): a limit search evaluates thousands of closed
-    loops with one delay, and ``tf2ss`` was half of each evaluation's time."""
-    c = [factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k))
-         for k in range(n + 1)]
-    num = [c[k] * (-tau) ** k for k in range(n, -1, -1)]
-    den = [c[k] * tau**k for k in range(n, -1, -1)]
-    from scipy.signal import tf2ss  # imported here: scipy.signal costs ~0.5 s CPU to import (every CLI)
-
-    Ad, Bd, Cd, Dd = (np.asarray(a, dtype=float) for a in tf2ss(num, den))
-    for a in (Ad, Bd, Cd, Dd):
-        a.flags.writeable = False
-    return Ad, Bd, Cd, Dd
 
 
 def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
@@ -111,7 +64,7 @@ def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.nd
     -------
     ndarray (..., n + order, n + order)
     """
-    Ad, Bd, Cd, Dd = _pade(*_checked(tau, order))
+    Ad, Bd, Cd, Dd = pade_matrices(tau, order)
     g = np.asarray(gains, dtype=float)
     Kc = g @ C                                          # (..., n): the operator's combination of the states
     n, m = A.shape[0], Ad.shape[0]
