@@ -210,3 +210,30 @@ def test_outputs_renamed_together_under_a_signal(tmp_path):
                 Path(t).write_text("done")
             os.kill(os.getpid(), signal.SIGTERM)
     assert list(fresh.iterdir()) == []
+
+
+@pytest.mark.parametrize("module, argv", [
+    ("stability.slope.__main__", ["--cross-slope", "2", "--speed", "1"]),
+    ("stability.slope.__main__", ["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1"]),
+    ("stability.critical_speed.command", ["--speeds", "0.5,1"]),
+    ("stability.critical_speed.command", ["--chair", "mid-wheel-drive", "--speeds", "0.5,1"]),
+])
+def test_the_figure_and_the_json_file_are_written_all_or_none(module, argv, tmp_path, monkeypatch):
+    """-o and --json-file are renamed together: when the JSON fails after the figure was drawn, neither appears
+    (the figure used to be renamed into place before the JSON was written); without the failure both do."""
+    import importlib
+
+    mod = importlib.import_module(module)
+    main = importlib.import_module(module.rsplit(".", 1)[0] + ".__main__").main
+    png, js = tmp_path / "f.png", tmp_path / "f.json"
+    argv = [*argv, "-o", str(png), "--json-file", str(js)]
+
+    def fail(*_a, **_k):
+        raise OSError(28, "No space left on device")
+
+    with monkeypatch.context() as m:
+        m.setattr(mod, "emit_json", fail)
+        assert main(argv) != 0
+    assert not png.exists() and not js.exists() and not list(tmp_path.iterdir())
+    assert main(argv) == 0
+    assert png.stat().st_size > 0 and js.read_text().startswith("{")

@@ -25,7 +25,7 @@ import numpy as np
 
 from stability import __version__, tires
 from stability import chair as chair_mod
-from stability.cli.files import check_directory, check_outputs, output_files
+from stability.cli.files import announce_written, check_directory, check_outputs, output_files
 from stability.cli.numbers import (
     OPTION_BOUNDS,
     Bound,
@@ -62,7 +62,7 @@ __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add
            "add_run_options", "run_from_args", "run_flag", "add_json_options",
            "load_chair", "load_layout", "apply_layout_assignments", "apply_assignments", "parse_speeds",
            "check_directory", "check_outputs",
-           "output_files",
+           "output_files", "announce_written",
            "json_header", "emit_json", "error", "run", "MAX_SPEEDS", "check_work", "add_output_option", "check_format",
            "add_uncertainty_option", "FIGURE_FORMATS", "Bound", "OPTION_BOUNDS", "number", "bound_for",
            "check_finite_text", "NonFiniteResult"]

@@ -16,7 +16,7 @@ from collections.abc import Iterator, Mapping
 
 from stability.runtime import interrupts, readfiles
 
-__all__ = ["check_directory", "check_outputs", "output_files"]
+__all__ = ["check_directory", "check_outputs", "output_files", "announce_written"]
 
 _FORBIDDEN_ROOTS = ("/proc", "/sys", "/dev")
 
@@ -138,3 +138,18 @@ def output_files(outputs: Mapping[str, str | None]) -> Iterator[dict[str, str]]:
         for tmp in temps.values():
             with contextlib.suppress(OSError):
                 os.unlink(tmp)
+
+
+def announce_written(*paths: str | None) -> None:
+    """Say on standard error which of ``paths`` were written (after :func:`output_files` renamed them together).
+
+    Parameters
+    ----------
+    *paths : str or None
+        The outputs' final paths; None (not asked for) is skipped.
+    """
+    import sys
+
+    for path in paths:
+        if path:
+            print(f"wrote {path}", file=sys.stderr)

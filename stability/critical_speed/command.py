@@ -17,7 +17,6 @@ Examples
 from __future__ import annotations
 
 import argparse
-import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -32,6 +31,7 @@ from stability.cli import (
     add_json_options,
     add_model_option,
     add_output_option,
+    announce_written,
     check_outputs,
     driver_from_args,
     emit_json,
@@ -269,15 +269,15 @@ def _run(args: argparse.Namespace) -> int:
 
             nonlinear = nonlinear_intervals(c, unc, RunSpec(model=args.model), samples=args.nonlinear_samples,
                                             seed=args.seed, level=args.level)
-    if args.output:
-        from stability.runtime.files import save_figure
+    with output_files({"-o": args.output, "--json-file": args.json_file}) as tmp:   # renamed together: all or none
+        if args.output:
+            from stability.runtime.files import save_figure
 
-        with output_files({"-o": args.output}) as tmp:
             save_figure(figure(summary), tmp["-o"], title=f"stability critical_speed: {c.name}, {args.model} model")
-        print(f"wrote {args.output}", file=sys.stderr)
-    if args.json or args.json_file:
-        doc = document(summary, checks, args, speeds, intervals, nonlinear, human, driver)
-        emit_json(_with_assist(doc, assisted), args)
+        if args.json or args.json_file:
+            doc = document(summary, checks, args, speeds, intervals, nonlinear, human, driver)
+            emit_json(_with_assist(doc, assisted), args, write_to=tmp.get("--json-file"))
+    announce_written(args.output, args.json_file)
     if not args.json:
         print(format_summary(summary, checks, intervals, nonlinear))
         _print_driver(human, driver, assisted)
@@ -328,22 +328,22 @@ def _run_layout(args: argparse.Namespace) -> int:
 
         intervals = layout_uncertainty(layout, unc, [float(u) for u in summary.speeds_m_s], samples=args.samples,
                                        seed=args.seed, critical=True, level=args.level)
-    if args.output:
-        from stability.runtime.files import save_figure
+    with output_files({"-o": args.output, "--json-file": args.json_file}) as tmp:   # renamed together: all or none
+        if args.output:
+            from stability.runtime.files import save_figure
 
-        with output_files({"-o": args.output}) as tmp:
             save_figure(layout_figure(layout, summary, min(args.max_speed, 20.0)), tmp["-o"],
                         title=f"stability critical_speed: {layout.name}, layout model")
-        print(f"wrote {args.output}", file=sys.stderr)
-    if args.json or args.json_file:
-        doc = layout_document(layout, summary, speeds)
-        doc["options"].update({"uncertainty": args.uncertainty, "samples": args.samples if unc else None,
-                               "seed": args.seed if unc else None, "level": args.level if unc else None,
-                               "reaction_time_s": None if driver is None else driver.reaction_time_s})
-        doc["human_limit"] = None if human is None or driver is None else {
-            **human[0].to_mapping(), "driver": driver.to_mapping(), "reverse": human[1].to_mapping()}
-        doc["uncertainty"] = None if intervals is None else intervals.to_mapping()
-        emit_json(doc, args)
+        if args.json or args.json_file:
+            doc = layout_document(layout, summary, speeds)
+            doc["options"].update({"uncertainty": args.uncertainty, "samples": args.samples if unc else None,
+                                   "seed": args.seed if unc else None, "level": args.level if unc else None,
+                                   "reaction_time_s": None if driver is None else driver.reaction_time_s})
+            doc["human_limit"] = None if human is None or driver is None else {
+                **human[0].to_mapping(), "driver": driver.to_mapping(), "reverse": human[1].to_mapping()}
+            doc["uncertainty"] = None if intervals is None else intervals.to_mapping()
+            emit_json(doc, args, write_to=tmp.get("--json-file"))
+    announce_written(args.output, args.json_file)
     if not args.json:
         print(layout_text(layout, summary))
         if intervals is not None:

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 from collections.abc import Sequence
 
 from stability.chair.power import drive_kind
@@ -18,6 +17,7 @@ from stability.cli import (
     add_chair_options,
     add_json_options,
     add_output_option,
+    announce_written,
     check_outputs,
     emit_json,
     json_header,
@@ -103,19 +103,19 @@ def _run_layout(a: argparse.Namespace) -> int:
     layout = load_layout(a.chair, a.set)
     data, lines = layout_slope_report(layout, a.cross_slope, a.speed, a.grade, a.sim_time, a.drive,
                                       HandRim(a.wheel_radius, a.handrim_radius))
-    if a.output:
-        from stability.report.slope_figure import layout_slope_figure
-        from stability.runtime.files import save_figure
+    with output_files({"-o": a.output, "--json-file": a.json_file}) as tmp:    # renamed together: all or none
+        if a.output:
+            from stability.report.slope_figure import layout_slope_figure
+            from stability.runtime.files import save_figure
 
-        with output_files({"-o": a.output}) as tmp:
             save_figure(layout_slope_figure(layout, a.cross_slope, a.speed, a.grade, a.drive, a.sim_time), tmp["-o"],
                         title=f"stability slope: {layout.name}, {a.cross_slope:g} deg")
-        print(f"wrote {a.output}", file=sys.stderr)
-    if a.json or a.json_file:
-        options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade, "speed_m_s": a.speed, "drive": a.drive,
-                   "sim_time_s": a.sim_time}
-        emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
-                   **_finite(data)}, a)
+        if a.json or a.json_file:
+            options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade, "speed_m_s": a.speed, "drive": a.drive,
+                       "sim_time_s": a.sim_time}
+            emit_json({"stability_version": __version__, "chair": layout.name, "model": "exact", "options": options,
+                       **_finite(data)}, a, write_to=tmp.get("--json-file"))
+    announce_written(a.output, a.json_file)
     if not a.json:
         print("\n".join(lines))
     return 0
@@ -158,20 +158,21 @@ def _body(a: argparse.Namespace) -> int:
         "problems": list(eq.problems),
     }
     data = _finite(data)
-    if a.output:
-        from stability.report.slope_figure import slope_figure
-        from stability.runtime.files import save_figure
+    with output_files({"-o": a.output, "--json-file": a.json_file}) as tmp:    # renamed together: all or none
+        if a.output:
+            from stability.report.slope_figure import slope_figure
+            from stability.runtime.files import save_figure
 
-        with output_files({"-o": a.output}) as tmp:
             save_figure(slope_figure(chair, a.cross_slope, a.speed), tmp["-o"],
                         title=f"stability slope: {chair.name}, {a.cross_slope:g} deg")
-        print(f"wrote {a.output}", file=sys.stderr)
-    if a.json or a.json_file:
-        options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade, "speed_m_s": a.speed, "drive": kind,
-                   "wheel_radius_m": a.wheel_radius, "handrim_radius_m": a.handrim_radius, "sim_time_s": a.sim_time}
-        emit_json({**json_header(chair, "exact", options), **data}, a)
-        if a.json:
-            return 0
+        if a.json or a.json_file:
+            options = {"cross_slope_deg": a.cross_slope, "grade_deg": a.grade, "speed_m_s": a.speed, "drive": kind,
+                       "wheel_radius_m": a.wheel_radius, "handrim_radius_m": a.handrim_radius,
+                       "sim_time_s": a.sim_time}
+            emit_json({**json_header(chair, "exact", options), **data}, a, write_to=tmp.get("--json-file"))
+    announce_written(a.output, a.json_file)
+    if a.json:
+        return 0
     turn = data["uncorrected_turn"]
     print(f"{chair.name}: cross slope {eq.cross_slope_deg:g} deg, grade {eq.grade_deg:g} deg, {eq.speed:g} m/s")
     print(f"  holding yaw moment {abs(eq.holding_moment):.3f} N m ({per_deg:.3f} N m/deg); with Coulomb pin "
