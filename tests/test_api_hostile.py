@@ -213,20 +213,25 @@ def test_outputs_renamed_together_under_a_signal(tmp_path):
 
 
 @pytest.mark.parametrize("module, argv", [
-    ("stability.slope.__main__", ["--cross-slope", "2", "--speed", "1"]),
-    ("stability.slope.__main__", ["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1"]),
-    ("stability.critical_speed.command", ["--speeds", "0.5,1"]),
-    ("stability.critical_speed.command", ["--chair", "mid-wheel-drive", "--speeds", "0.5,1"]),
+    ("stability.slope.__main__", ["--cross-slope", "2", "--speed", "1", "-o", "f.png"]),
+    ("stability.slope.__main__", ["--chair", "mid-wheel-drive", "--cross-slope", "2", "--speed", "1", "-o", "f.png"]),
+    ("stability.critical_speed.command", ["--speeds", "0.5,1", "-o", "f.png"]),
+    ("stability.critical_speed.command", ["--chair", "mid-wheel-drive", "--speeds", "0.5,1", "-o", "f.png"]),
+    ("stability.compare.__main__", ["ej-premier", "revised", "--speeds", "0.75", "-o", "f.png"]),
+    ("stability.compare.__main__", ["ej-premier", "mid-wheel-drive", "--speeds", "0.75", "-o", "f.pdf"]),
+    ("stability.sweep.__main__", ["g.toml", "-o", "g.csv"]),
 ])
-def test_the_figure_and_the_json_file_are_written_all_or_none(module, argv, tmp_path, monkeypatch):
-    """-o and --json-file are renamed together: when the JSON fails after the figure was drawn, neither appears
-    (the figure used to be renamed into place before the JSON was written); without the failure both do."""
+def test_the_figures_and_the_json_file_are_written_all_or_none(module, argv, tmp_path, monkeypatch):
+    """A command's figures (-o; the sweep's summary and PDF) and --json-file are renamed together: when the JSON
+    fails after the figures were drawn, none appears (the figures used to be renamed into place before the JSON was
+    written); without the failure all do.  The sweep's rows file is written chunk by chunk for --resume and stays."""
     import importlib
 
     mod = importlib.import_module(module)
     main = importlib.import_module(module.rsplit(".", 1)[0] + ".__main__").main
-    png, js = tmp_path / "f.png", tmp_path / "f.json"
-    argv = [*argv, "-o", str(png), "--json-file", str(js)]
+    monkeypatch.chdir(tmp_path)
+    Path("g.toml").write_text('speeds = [0.5]\nmeasures = ["growth_rate"]\n[grid]\ntrail = [0.05, 0.07]\n')
+    argv = [*argv, "--json-file", "f.json"]
 
     def fail(*_a, **_k):
         raise OSError(28, "No space left on device")
@@ -234,6 +239,8 @@ def test_the_figure_and_the_json_file_are_written_all_or_none(module, argv, tmp_
     with monkeypatch.context() as m:
         m.setattr(mod, "emit_json", fail)
         assert main(argv) != 0
-    assert not png.exists() and not js.exists() and not list(tmp_path.iterdir())
+    assert sorted(p.name for p in tmp_path.iterdir()) == (["g.csv", "g.toml"] if "g.csv" in argv else ["g.toml"])
     assert main(argv) == 0
-    assert png.stat().st_size > 0 and js.read_text().startswith("{")
+    made = {p.name: p.stat().st_size for p in tmp_path.iterdir()}
+    want = {"f.json"} | ({"g.csv", "g.summary.json", "g.pdf"} if "g.csv" in argv else {argv[argv.index("-o") + 1]})
+    assert want <= set(made) and all(made[n] > 0 for n in want)

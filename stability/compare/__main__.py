@@ -28,11 +28,13 @@ from stability.cli import (
     add_json_options,
     add_model_option,
     add_output_option,
+    announce_written,
     check_outputs,
     emit_json,
     json_header,
     load_chair,
     load_layout,
+    output_files,
     parse_speeds,
     run,
 )
@@ -133,32 +135,38 @@ def _run(args: argparse.Namespace) -> int:
     result = compare(chairs, labels=unique_labels(names), model=args.model, speeds=speeds.tolist(),
                      max_speed=args.max_speed, uncertainties=uncs, samples=args.samples, seed=args.seed,
                      level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)
-    if args.output:
-        _write_figures(result, args.output)
-    if args.json or args.json_file:
-        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed, "set": args.set,
-                   "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,
-                   "level": args.level, "pairing": args.pairing, "nonlinear": args.nonlinear}
-        emit_json(comparison_dict(result, json_header(chairs[0], args.model, options)), args)
+    options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed, "set": args.set,
+               "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,
+               "level": args.level, "pairing": args.pairing, "nonlinear": args.nonlinear}
+    _write_outputs(result, args, lambda: comparison_dict(result, json_header(chairs[0], args.model, options)))
     if not args.json:
         print(format_comparison(result))
     return 0
 
 
-def _write_figures(result, output: str) -> None:
-    """The comparison's figures into ``-o`` (a PDF: every figure; a .png or .svg: the growth rates)."""
-    from stability.compare.plots import comparison_figures
-    from stability.runtime.files import save_figure, write_pdf  # matplotlib only when figures are asked for
+def _write_outputs(result, args: argparse.Namespace, document) -> None:
+    """The comparison's figures into ``-o`` (a PDF: every figure; a .png or .svg: the growth rates) and its JSON
+    (``document()``, built only when asked), renamed together: all or none."""
+    with output_files({"-o": args.output, "--json-file": args.json_file}) as tmp:
+        n_figs = 0
+        if args.output:
+            from stability.compare.plots import comparison_figures
+            from stability.runtime.files import save_figure, write_pdf  # matplotlib only when figures are asked for
 
-    figs = comparison_figures(result)
-    title = f"stability compare: {' vs '.join(result.labels)}"
-    if output.lower().endswith(".pdf"):
-        write_pdf(figs, output, title=title, close=False)
-        print(f"wrote {output}", file=sys.stderr)
-        return
-    save_figure(figs[0], output, title=title)
-    print(f"wrote {output}" + (" (the growth rates; the effects figures are in the PDF: -o FILE.pdf)"
-                               if len(figs) > 1 else ""), file=sys.stderr)
+            figs = comparison_figures(result)
+            n_figs = len(figs)
+            title = f"stability compare: {' vs '.join(result.labels)}"
+            if args.output.lower().endswith(".pdf"):
+                write_pdf(figs, tmp["-o"], title=title, close=False)
+            else:
+                save_figure(figs[0], tmp["-o"], title=title)
+        if args.json or args.json_file:
+            emit_json(document(), args, write_to=tmp.get("--json-file"))
+    if args.output:
+        only_first = n_figs > 1 and not args.output.lower().endswith(".pdf")
+        print(f"wrote {args.output}" + (" (the growth rates; the effects figures are in the PDF: -o FILE.pdf)"
+                                        if only_first else ""), file=sys.stderr)
+    announce_written(args.json_file)
 
 
 def _run_layouts(args: argparse.Namespace, speeds) -> int:
@@ -202,17 +210,14 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
     result = compare_layouts(layouts, labels=unique_labels(names), speeds=[float(u) for u in speeds],
                              nonlinear=args.nonlinear, uncertainties=uncs, samples=args.samples, seed=args.seed,
                              level=args.level, pairing=args.pairing)
-    if args.output:
-        _write_figures(result, args.output)
-    if args.json or args.json_file:
-        given = uncs is not None
-        options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": result.max_speed, "set": args.set,
-                   "uncertainty": args.uncertainty, "samples": args.samples if given else None,
-                   "seed": args.seed if given else None, "level": args.level if given else None,
-                   "pairing": args.pairing if given else None, "nonlinear": args.nonlinear, "layouts": True}
-        header = {"stability_version": __version__, "chair": layouts[0].name,
-                  "chair_parameters": dataclasses.asdict(layouts[0]), "model": "layout", "options": options}
-        emit_json(comparison_dict(result, header), args)
+    given = uncs is not None
+    options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": result.max_speed, "set": args.set,
+               "uncertainty": args.uncertainty, "samples": args.samples if given else None,
+               "seed": args.seed if given else None, "level": args.level if given else None,
+               "pairing": args.pairing if given else None, "nonlinear": args.nonlinear, "layouts": True}
+    header = {"stability_version": __version__, "chair": layouts[0].name,
+              "chair_parameters": dataclasses.asdict(layouts[0]), "model": "layout", "options": options}
+    _write_outputs(result, args, lambda: comparison_dict(result, header))
     if not args.json:
         print(format_comparison(result))
     return 0

@@ -27,7 +27,15 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from stability.cli import OneLineErrorParser, add_json_options, check_outputs, emit_json, run
+from stability.cli import (
+    OneLineErrorParser,
+    add_json_options,
+    announce_written,
+    check_outputs,
+    emit_json,
+    output_files,
+    run,
+)
 from stability.runtime.files import atomic_write_text, write_pdf
 from stability.runtime.progress import is_quiet
 from stability.sweep.cluster import dask_mapper, parse_dask
@@ -89,10 +97,14 @@ def _run(args: argparse.Namespace) -> int:
     data = _read(out)
     s = summary(spec, data)
     doc = {"spec": spec.to_dict(), **s}
-    atomic_write_text(summary_path, json.dumps(doc, indent=2) + "\n")
-    write_pdf(measure_figures(spec, data), pdf_path, title=f"sweep of {spec.chair.name}")
-    if args.json or args.json_file:
-        emit_json(doc, args)
+    # the summary, the figures and --json-file renamed together (all or none); the rows file is written chunk by
+    # chunk, so that --resume can go on after an interruption
+    with output_files({"summary": str(summary_path), "figures": str(pdf_path), "--json-file": args.json_file}) as tmp:
+        atomic_write_text(tmp["summary"], json.dumps(doc, indent=2) + "\n")
+        write_pdf(measure_figures(spec, data), tmp["figures"], title=f"sweep of {spec.chair.name}")
+        if args.json or args.json_file:
+            emit_json(doc, args, write_to=tmp.get("--json-file"))
+    announce_written(args.json_file)
     if not args.json:
         print(summary_text(spec, s))
     print(f"wrote {out}, {summary_path}, {pdf_path}", file=sys.stderr)
