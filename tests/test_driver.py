@@ -68,6 +68,19 @@ def test_pade_is_python_controls_and_the_delay():
         pade(0.0)
 
 
+def test_pade_copies_are_the_callers_and_the_cached_matrices_are_read_only():
+    """The cache behind pade (a limit search closes thousands of loops with one delay) cannot be changed through
+    what it hands out: a default result is a fresh writeable copy, the shared one (copy=False) is read-only."""
+    Ad, *_ = pade(0.3, 8)
+    Ad[0, 0] += 1.0
+    shared = pade(0.3, 8, copy=False)
+    assert shared[0][0, 0] == Ad[0, 0] - 1.0 and not any(a.flags.writeable for a in shared)
+    with pytest.raises(ValueError, match="read-only"):
+        shared[1][0, 0] = 0.0
+    with pytest.raises(ValueError, match="order"):
+        pade(0.3, 0, copy=False)
+
+
 def test_closed_loop_without_delay_effect_at_zero_gain_is_the_plant():
     """At zero gains the closed loop's eigenvalues are the plant's and the Pade block's own poles."""
     A, B, C = heading_plant(preset("ej-premier"), 1.0)

@@ -9,13 +9,14 @@ from math import factorial
 
 import numpy as np
 
-__all__ = ["PADE_ORDER", "pade", "pade_matrices"]
+__all__ = ["PADE_ORDER", "pade"]
 
 #: Order of the Pade approximant of the driver's delay (numerator and denominator degree).
 PADE_ORDER = 8
 
 
-def pade(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def pade(tau: float, order: int = PADE_ORDER, *, copy: bool = True
+         ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """State-space form of the ``[order/order]`` Pade approximant of the delay ``exp(-s tau)``.
 
     Parameters
@@ -24,31 +25,16 @@ def pade(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, n
         Delay, s (> 0).
     order : int
         Degree of numerator and denominator (>= 1).
+    copy : bool
+        Fresh writeable arrays (default), or the cached ones, shared and read-only (for loops that only read them).
 
     Returns
     -------
     (Ad, Bd, Cd, Dd)
         Shapes ``(n, n)``, ``(n, 1)``, ``(1, n)``, ``(1, 1)``: ``z' = Ad z + Bd w``, ``w(t - tau) ~ Cd z + Dd w``.
     """
-    return tuple(a.copy() for a in pade_matrices(tau, order))  # type: ignore[return-value]
-
-
-def pade_matrices(tau: float, order: int = PADE_ORDER) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`pade`'s matrices without the copies: shared and read-only (for the loops that only read them).
-
-    Parameters
-    ----------
-    tau : float
-        Delay, s (> 0).
-    order : int
-        Degree of numerator and denominator (>= 1).
-
-    Returns
-    -------
-    (Ad, Bd, Cd, Dd)
-        As :func:`pade`, not writeable.
-    """
-    return _pade(*_checked(tau, order))
+    mats = _pade(*_checked(tau, order))
+    return tuple(a.copy() for a in mats) if copy else mats  # type: ignore[return-value]
 
 
 def _checked(tau: float, order: int) -> tuple[float, int]:

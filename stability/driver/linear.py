@@ -24,7 +24,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from stability.chair import Chair
-from stability.driver.delay import PADE_ORDER, pade, pade_matrices
+from stability.driver.delay import PADE_ORDER, pade
 from stability.driver.model import Driver
 from stability.linear import input_matrices, state_matrices
 from stability.runtime.checks import check_model, check_speed
@@ -64,7 +64,7 @@ def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.nd
     -------
     ndarray (..., n + order, n + order)
     """
-    Ad, Bd, Cd, Dd = pade_matrices(tau, order)
+    Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
     g = np.asarray(gains, dtype=float)
     Kc = g @ C                                          # (..., n): the operator's combination of the states
     n, m = A.shape[0], Ad.shape[0]
