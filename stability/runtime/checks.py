@@ -15,7 +15,7 @@ import numpy as np
 
 __all__ = ["VARIANTS", "CASTERS", "check_choice", "check_model", "check_casters", "check_speed",
            "check_speeds", "check_positive", "check_nonnegative", "check_finite", "is_real", "real_value",
-           "value_text", "MIN_SPEED", "MAX_SPEED"]
+           "real_array", "value_text", "MIN_SPEED", "MAX_SPEED"]
 
 VARIANTS = ("exact", "thesis")
 CASTERS = ("free", "locked")
@@ -82,6 +82,32 @@ def real_value(value: Any) -> float:
         return float(value)
     except OverflowError:
         return math.inf if value > 0 else -math.inf
+
+
+def real_array(values: Any) -> np.ndarray:
+    """``values`` as a float array; an integer beyond the float range becomes +-inf (:func:`real_value`), outside
+    every bound, rather than an OverflowError.
+
+    Parameters
+    ----------
+    values : Any
+        A number or a (nested) sequence or array of numbers.
+
+    Returns
+    -------
+    ndarray of float
+        The shape of ``np.asarray(values)``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        ``values`` is not numeric (numpy's own refusal, for the caller to name the argument).
+    """
+    try:
+        return np.asarray(values, dtype=float)
+    except OverflowError:
+        obj = np.asarray(values, dtype=object)
+        return np.array([real_value(v) for v in obj.ravel()], dtype=float).reshape(obj.shape)
 
 
 def check_choice(name: str, value: Any, choices: Sequence) -> Any:
@@ -223,9 +249,7 @@ def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED,
     if max_count is not None and size is not None and size > max_count:      # before any copy of a huge array
         raise ValueError(f"{name} has {size} values; at most {max_count} are allowed here")
     try:
-        U = np.atleast_1d(np.asarray(speeds, dtype=float))
-    except OverflowError:                                       # an integer beyond the float range
-        U = np.atleast_1d(np.asarray([real_value(s) for s in np.ravel(np.asarray(speeds, dtype=object))]))
+        U = np.atleast_1d(real_array(speeds))
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value_text(speeds)} is invalid; valid range: every speed a number, "
                          f"{_SPEED_RANGE}") from None

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair, check_chair
-from stability.runtime.checks import check_choice, real_value, value_text
+from stability.runtime.checks import check_choice, real_array, value_text
 from stability.runtime.progress import ProgressBar
 from stability.settings.run import (
     MAX_BATCH_BYTES,
@@ -175,9 +175,7 @@ def _array(name: str, values: Any, unit: str) -> np.ndarray:
     """``values`` as a non-empty float array of at most one dimension (an integer beyond the float range as
     +-inf, refused by the setting's range), or a ValueError naming ``name``."""
     try:
-        a = np.asarray(values, dtype=float)
-    except OverflowError:
-        a = np.asarray([real_value(v) for v in np.ravel(np.asarray(values, dtype=object))], dtype=float)
+        a = real_array(values)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value_text(values)} is invalid; expected a number or a 1-D array of numbers "
                          f"({unit})") from None
@@ -255,8 +253,9 @@ def _check_batch_work(runs: int, run: RunSpec, record: str, name: str = "speeds"
 
     The steps are ``runs x horizon / dt`` (dt ``"auto"`` taken at :data:`WCHAIR_DT`; the adaptive scheme's are
     not known before it runs), at most :data:`WORK_BUDGET_S` / :data:`STEP_SECONDS`; the memory is ``runs x
-    (RUN_BYTES + rows x ROW_BYTES)`` with one row per run for ``record="final"``, else one per sample (0.01 s
-    when ``run.sample`` is None), at most :data:`MAX_BATCH_BYTES`.
+    (RUN_BYTES + rows x ROW_BYTES)`` with one row per run for ``record="final"``, else one per output interval
+    (the batch's default, :data:`stability.simulate.options.BATCH_SAMPLE`, when ``run.sample`` is None), at most
+    :data:`MAX_BATCH_BYTES`.
 
     Parameters
     ----------
@@ -274,7 +273,10 @@ def _check_batch_work(runs: int, run: RunSpec, record: str, name: str = "speeds"
     ValueError
         Naming ``name``, the number of runs, the estimate and the largest allowed number of runs.
     """
-    rows = 1.0 if record == "final" else run.horizon / (run.sample if run.sample is not None else 0.01) + 1.0
+    interval = make_options(run, batch=True).sample       # the batch's own output interval (None: every step)
+    if interval is None:
+        interval = WCHAIR_DT if run.dt == "auto" else float(run.dt)
+    rows = 1.0 if record == "final" else run.horizon / interval + 1.0
     per_run = RUN_BYTES + rows * ROW_BYTES
     largest = int(MAX_BATCH_BYTES // per_run)
     if runs > largest:
