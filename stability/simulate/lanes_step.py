@@ -165,12 +165,14 @@ def tire_forces(W, L, ftimp, imp, policy):
             (W[_VEL, j], W[_VEL + 1, j], W[_VEL + 2, j], W[_VEL + 3, j], W[_VEL + 4, j], W[_VEL + 5, j],
              W[_VEL + 6, j], W[_VEL + 7, j]), (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j]),
             (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy,
-            (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), l_table(W, _TAB, j), l_table(W, _TAB + 48, j),
+            (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), l_table(W, _TAB + 0, j), l_table(W, _TAB + 48, j),
             l_table(W, _TAB + 96, j), (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
             (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
             (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
             (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
             _s(W, j), 0)   # the rows as tuples here: a helper taking the row offset compiled once per offset
+    # (_TAB + 0: an int64 like the other two offsets; the bare global is a literal, typed apart, which compiled
+    # l_table a second time)
         W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], \
             W[_F + 7, j] = f8
         W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
