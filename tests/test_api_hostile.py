@@ -24,6 +24,7 @@ from stability.linear.batch import MAX_MATRICES
 from stability.runtime.readfiles import MAX_INPUT_BYTES
 from stability.settings.bounds import SEARCH_MAX_SPEED
 from stability.settings.run import RUN_SETTINGS
+from stability.simulate.api import MAX_WORKERS
 
 
 class WorkStarted(AssertionError):
@@ -111,6 +112,10 @@ CASES = [
                                                              run=stability.RunSpec(horizon=0.01)),
      ValueError, ["speeds asks for 1000000 runs", "the largest allowed is"]),
     ("run_batch workers", lambda: stability.run_batch(_c(), [0.75], workers=-1), ValueError, ["workers=-1"]),
+    ("run_batch workers huge", lambda: stability.run_batch(_c(), [0.75], workers=10**400), ValueError,
+     ["workers=1.000e+400", f"1 to {MAX_WORKERS}"]),
+    ("run_batch workers float", lambda: stability.run_batch(_c(), [0.75], workers=2.0), ValueError,
+     ["workers=2.0", f"1 to {MAX_WORKERS}"]),
     ("load_tire_data type", lambda: tires.load_tire_data(None), TypeError, ["path=None"]),
 ]
 

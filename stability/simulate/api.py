@@ -124,7 +124,8 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     progress : bool
         Show a progress bar on a terminal (default True).
     workers : int, optional
-        Threads of the compiled kernel (>= 1); None: numba's default.
+        Threads of the compiled kernel, 1 to :data:`MAX_WORKERS` (more than numba's pool, ``NUMBA_NUM_THREADS``,
+        run as many as the pool has); None: numba's default.
 
     Returns
     -------
@@ -198,9 +199,16 @@ def _within(spec: RunSpec, setting: str, values: np.ndarray, name: str) -> None:
             raise ValueError(f"{name}: {exc}") from None
 
 
+#: Most threads a batch may ask for: far above any machine this runs on (numba's pool, ``NUMBA_NUM_THREADS``, caps
+#: a request between its size and this), low enough that an absurd integer is named as bad input, not obeyed.
+MAX_WORKERS = 1024
+
+
 def _check_workers(workers: Any) -> int:
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers={workers!r} is invalid; valid range: an integer >= 1, or None (automatic)")
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or not 1 <= workers <= MAX_WORKERS:
+        shown = value_text(workers) if isinstance(workers, (int, np.integer)) else repr(workers)
+        raise ValueError(f"workers={shown} is invalid; valid range: an integer 1 to {MAX_WORKERS}, or None "
+                         "(automatic)")
     return int(workers)
 
 
