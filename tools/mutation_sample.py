@@ -80,25 +80,25 @@ ROOT = Path(__file__).resolve().parents[1]       # the source mutated (and, with
 
 #: The fast tests that judge each module's mutants (the default marker selection; slow tests excluded).
 ADVISE = ["tests/test_advise.py", "tests/test_advise_decisions.py", "tests/test_advise_combinations.py",
-          "tests/test_advise_pruning.py"]
+          "tests/test_advise_pruning.py", "tests/test_api_hostile_modules.py"]
 MODULES = {
     "stability/linear/critical.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
-    "stability/linear/model.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
+    "stability/linear/model.py": ["tests/test_linear.py", "tests/test_rootlocus.py", "tests/test_api_hostile_modules.py"],
     "stability/advise/advisor.py": ADVISE,
     "stability/advise/levers.py": ADVISE,
     "stability/advise/limits.py": ADVISE,
     "stability/study/search.py": ["tests/test_search.py", "tests/test_search_rate_fit.py", "tests/test_impulse_fast.py"],
-    "stability/study/intervals.py": ["tests/test_study_measures.py", "tests/test_impulse_step.py"],
-    "stability/study/impulse.py": ["tests/test_impulse_fast.py", "tests/test_impulse_step.py"],
-    "stability/study/impulse_intervals.py": ["tests/test_impulse_step.py", "tests/test_intervals.py"],
+    "stability/study/intervals.py": ["tests/test_study_measures.py", "tests/test_impulse_step.py", "tests/test_api_hostile_modules.py"],
+    "stability/study/impulse.py": ["tests/test_impulse_fast.py", "tests/test_impulse_step.py", "tests/test_api_hostile_modules.py"],
+    "stability/study/impulse_intervals.py": ["tests/test_impulse_step.py", "tests/test_intervals.py", "tests/test_api_hostile_modules.py"],
     "stability/study/censored.py": ["tests/test_sweep.py", "tests/test_study.py"],
-    "stability/tipping/angles.py": ["tests/test_tipping.py"],
+    "stability/tipping/angles.py": ["tests/test_tipping.py", "tests/test_api_hostile_modules.py"],
     "stability/shimmy/band.py": ["tests/test_shimmy_band.py"],
-    "stability/slope/equilibrium.py": ["tests/test_slope.py"],
+    "stability/slope/equilibrium.py": ["tests/test_slope.py", "tests/test_api_hostile_modules.py"],
     "stability/sweep/run.py": ["tests/test_sweep.py"],
     "stability/uncertainty/propagation.py": ["tests/test_uncertainty.py"],
     "stability/measure/sheet.py": ["tests/test_measure.py"],
-    "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py", "tests/test_assist_layout_options.py"],
+    "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py", "tests/test_assist_layout_options.py", "tests/test_api_hostile_modules.py"],
     "stability/assist/export_c.py": ["tests/test_assist_export.py", "tests/test_assist_layout_options.py"],
     "stability/models/full_width.py": ["tests/test_linear.py", "tests/test_simulate.py"],
 }

@@ -50,8 +50,10 @@ from stability.advise.pruning import Pool, screening_of
 from stability.advise.subject import lever_changes, measure_chairs, shimmy_hold
 from stability.advise.subject import time_to_correct as correct_time
 from stability.chair import Chair
+from stability.chair.model import check_chair
 from stability.driver.model import Driver
 from stability.layout.model import Layout
+from stability.runtime.checks import first_argument
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
 from stability.study.memo import memo_searches
@@ -304,8 +306,15 @@ def _blocked(cands: list[Candidate], broken: set, best_gain: float) -> list[Bloc
     return sorted(out, key=lambda b: (-len(b.fixes), len(b.limits), -b.candidate.gain))[:3]
 
 
+def _chair_or_layout(value: object, name: str) -> None:
+    """A Layout, or what :func:`check_chair` accepts (its TypeError names ``name`` otherwise)."""
+    if not isinstance(value, Layout):
+        check_chair(value, name)
+
+
 @summarised_warnings
 @memo_searches
+@first_argument(_chair_or_layout)
 def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float | None = None,
            cross_slope_deg: float = DEFAULT_CROSS_SLOPE_DEG, progress: bool = False,
            nonlinear: Callable | None = None, time_to_correct: bool = True, driver: Driver | None = None,

@@ -11,6 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.models.statics import check_static_loads
 from stability.tires import CASTER_TIRES
 
@@ -131,6 +132,7 @@ LEVERS: dict[str, tuple[str, Callable[[Chair], list[Change]]]] = {
 }
 
 
+@takes_chair
 def lever_changes(chair: Chair) -> tuple[list[tuple[Change, Chair]], list[tuple[Change, str]]]:
     """Every single change of every lever: the feasible ones with their chairs, the others with why not.
 

@@ -29,6 +29,7 @@ import numpy as np
 
 from stability.bench import run_bench
 from stability.chair import Chair, preset
+from stability.chair.model import takes_chairs
 from stability.chair.power import drive_kind
 from stability.driver.linear import rule_speed
 from stability.layout.model import Layout
@@ -382,6 +383,7 @@ def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_s
     return out
 
 
+@takes_chairs
 def measure_chairs(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_slope_deg: float,
                    progress: bool = False, nonlinear: Callable | None = None,
                    cores: dict | None = None, reaction_time: float | None = None) -> list[Measures]:

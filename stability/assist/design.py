@@ -26,6 +26,7 @@ from stability.assist.weights import (
     Weights,
 )
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.chair.power import DriveTrain
 from stability.runtime.checks import check_choice
 from stability.settings.defaults import SAMPLE_RATE_HZ
@@ -206,6 +207,7 @@ class Design:
         return {s: float(x) for s, x in zip(self.plant.states, k[0], strict=True)}
 
 
+@takes_chair
 def design(chair: Chair, speed: float, kind: str = "gyro", *, weights: Weights = DEFAULT_WEIGHTS,
            drive: DriveTrain | None = None, gyro: GyroSensor = DEFAULT_GYRO,
            estimator: EstimatorWeights = DEFAULT_ESTIMATOR, model: str = "exact") -> Design:

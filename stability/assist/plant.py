@@ -13,6 +13,7 @@ import control
 import numpy as np
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.linear import input_matrices, lateral_force_input, state_matrices
 from stability.runtime.checks import check_model, check_nonnegative, check_speed
 
@@ -159,6 +160,7 @@ def measurement_matrix(kind: str, n: int = 7, psi: int = 6) -> np.ndarray:
     return C
 
 
+@takes_chair
 def plant(chair: Chair, speed: float, model: str = "exact", motor_time_constant: float = 0.0) -> Plant:
     """Linear plant of ``chair`` at ``speed``, augmented with the heading and, optionally, a motor lag.
 
@@ -201,6 +203,7 @@ def plant(chair: Chair, speed: float, model: str = "exact", motor_time_constant:
     return Plant(speed, A, B, Bf, tau)
 
 
+@takes_chair
 def pivot_inertia(chair: Chair) -> float:
     """Yaw inertia about the midpoint of the drive axle, ``J = I_z + m s1^2`` (kg m^2; parallel axes).
 
@@ -215,6 +218,7 @@ def pivot_inertia(chair: Chair) -> float:
     return float(chair.i_z + chair.m * chair.x_main ** 2)
 
 
+@takes_chair
 def standstill_plant(chair: Chair, motor_time_constant: float = 0.0, yaw_damping: float = 0.0) -> Plant:
     """The kinematic differential-drive plant, valid at standstill and in the low-speed limit.
 
@@ -265,6 +269,7 @@ def standstill_plant(chair: Chair, motor_time_constant: float = 0.0, yaw_damping
     return Plant(0.0, A, B, Bf, tau)
 
 
+@takes_chair
 def reversed_chair(chair: Chair) -> Chair:
     """The chair as seen when it drives backwards: casters and main wheels swap ends.
 

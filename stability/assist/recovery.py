@@ -16,6 +16,7 @@ from stability.assist.design import closed_loop_poles
 from stability.assist.schedule import Schedule
 from stability.assist.settling import SETTLE_FLOOR_DEG, SETTLE_FRACTION, settle_time, settled_value
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.runtime.checks import check_speed
 from stability.settings.reference import HORIZON, THESIS_PUSH
 from stability.settings.run import RunSpec
@@ -147,6 +148,7 @@ def _simulate(chair: Chair, speed: float, controller: DigitalController | None, 
                     yaw_moment=controller)
 
 
+@takes_chair
 def recovery(chair: Chair, speed: float, controller: DigitalController | None, *,
              impulse_force: float = THESIS_PUSH.force, impulse_duration: float = THESIS_PUSH.duration,
              duration: float = HORIZON, dt: float = 0.001, model: str = "exact",

@@ -19,6 +19,7 @@ from stability.assist.weights import (
     Weights,
 )
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.chair.power import DriveTrain
 from stability.runtime.checks import check_choice, check_nonnegative, check_speeds
 
@@ -152,6 +153,7 @@ class Schedule:
         return on_drive(replace(d, plant=true_p), self.gyro, self.drive, self.chair)
 
 
+@takes_chair
 def schedule(chair: Chair, speeds: Sequence[float] | np.ndarray, kind: str = "gyro", *,
              weights: Weights = DEFAULT_WEIGHTS, drive: DriveTrain | None = None, gyro: GyroSensor = DEFAULT_GYRO,
              estimator: EstimatorWeights = DEFAULT_ESTIMATOR, model: str = "exact",

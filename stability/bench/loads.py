@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stability.layout.model import Layout
+from stability.layout.model import Layout, takes_layout
 from stability.layout.statics import centre_of_mass, contacts, distribute
 from stability.models import slope as slope_model
 
@@ -146,6 +146,7 @@ def _distance_to_polygon(hull: np.ndarray, c: np.ndarray) -> float:
     return best
 
 
+@takes_layout
 def case_loads(layout: Layout, ax: float = 0.0, ay: float = 0.0, grade_deg: float = 0.0, cross_deg: float = 0.0,
                reverse: bool = False) -> LoadCase:
     """Wheel loads, lift and the score of one quasi-static state.

@@ -26,7 +26,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from stability.bench.loads import SCORE_WORDS, LoadCase, case_loads
-from stability.layout.model import Layout
+from stability.layout.model import Layout, takes_layout
 from stability.layout.statics import contacts
 from stability.models import slope as slope_model
 from stability.settings.drive import DRIVE_SETTINGS
@@ -233,6 +233,7 @@ def _why(layout: Layout, c: LoadCase) -> str:
     return "tips over the edge of its support" + (" onto its anti-tip devices" if c.score == 2 else "")
 
 
+@takes_layout
 def run_bench(layout: Layout, drive: Drive | None = None) -> BenchResult:
     """Every case of the matrix for one chair.
 

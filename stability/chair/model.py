@@ -9,14 +9,15 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Any
 
 from stability import tires
-from stability.runtime.checks import is_real, real_value, value_text
+from stability.runtime.checks import first_argument, is_real, real_value, value_text
 
-__all__ = ["Chair", "LIMITS", "valid_range", "field_names", "check_chair"]
+__all__ = ["Chair", "LIMITS", "valid_range", "field_names", "check_chair", "check_chairs", "takes_chair",
+           "takes_chairs"]
 
 
 
@@ -323,6 +324,43 @@ def check_chair(chair: Any, name: str = "chair") -> Chair:
         raise TypeError(f"{name}={value_text(chair)} is invalid; valid values: a stability.Chair, made by "
                         f"stability.preset(name), stability.load_chair(spec) or stability.Chair(...){hint}")
     return chair
+
+
+def check_chairs(chairs: Any, name: str = "chairs") -> Any:
+    """Return ``chairs`` if it is a Chair or a sequence of Chairs, else raise :class:`TypeError` naming it.
+
+    Parameters
+    ----------
+    chairs : Any
+        The argument to check: a :class:`Chair`, or a list, tuple or array of them.
+    name : str, optional
+        Its name in the message (default ``"chairs"``); an element is named ``chairs[i]`` after it.
+
+    Returns
+    -------
+    Chair or sequence of Chair
+        ``chairs`` itself.
+
+    Raises
+    ------
+    TypeError
+        Naming ``name`` (or its first wrong element), the value and what is accepted.
+    """
+    if isinstance(chairs, Chair):
+        return chairs
+    if isinstance(chairs, (str, bytes)) or not isinstance(chairs, Sequence) and not hasattr(chairs, "__array__"):
+        raise TypeError(f"{name}={value_text(chairs)} is invalid; valid values: a stability.Chair or a sequence of "
+                        "them (stability.preset(name), stability.load_chair(spec))")
+    for i, chair in enumerate(chairs):
+        check_chair(chair, f"{name}[{i}]")
+    return chairs
+
+
+#: Decorator: the public function's first argument ``chair`` passes :func:`check_chair` before the body runs.
+takes_chair = first_argument(check_chair)
+#: Decorator: the first argument (``chairs``, or ``chair`` where one chair or several are taken) passes
+#: :func:`check_chairs` before the body runs.
+takes_chairs = first_argument(check_chairs)
 
 
 def _check_types(c: Chair) -> None:

@@ -15,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from stability.chair import Chair, to_mapping
+from stability.chair.model import takes_chairs
 from stability.compare.results import Comparison, Difference, EffectSet, Quantity, SingleEffect
 from stability.linear import zero_width
 from stability.linear.batch import ChairBatch, check_eigen_work
@@ -166,6 +167,7 @@ def single_effects(reference: Chair, other: Chair, label: str, *, model: str = "
                      remainder(total_l, [e.locked_critical_speed for e in effects]))
 
 
+@takes_chairs
 def growth_curves(chairs: Sequence[Chair], model: str = "exact",
                   speeds: Sequence[float] = CURVE_SPEEDS) -> np.ndarray:
     """Growth rate of the least stable free-caster mode of each chair at each speed.
@@ -238,6 +240,7 @@ def _nonlinear(chairs: Sequence[Chair], model: str, nonlinear_speeds: Sequence[f
     return qs, push
 
 
+@takes_chairs
 def compare(chairs: Sequence[Chair], *, labels: Sequence[str] | None = None, model: str = "exact",
             speeds: Sequence[float] = DEFAULT_SPEEDS, max_speed: float = 30.0,
             uncertainties: Sequence[Uncertainty | None] | None = None, samples: int = 1000, seed: int = 0,

@@ -24,6 +24,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.driver.delay import PADE_ORDER, pade
 from stability.driver.model import Driver
 from stability.linear import input_matrices, state_matrices
@@ -243,6 +244,7 @@ def _crossover(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray) -
     return float(math.exp(math.log(w[k]) + f * (math.log(w[k + 1]) - math.log(w[k]))))
 
 
+@takes_chair
 def operator_fit(chair: Chair, speed: float, driver: Driver | None = None, model: str = "exact",
                  order: int = PADE_ORDER) -> OperatorFit:
     """The driver's best gains at ``speed`` and how stable they make the chair.
@@ -444,6 +446,7 @@ def rule_crossing(rate: Callable[[float], float], reaction_time: float) -> tuple
     return _first_crossing(lambda u: rate(u) * tau - 1.0, _GRID)
 
 
+@takes_chair
 def human_limit(chair: Chair, driver: Driver | None = None, model: str = "exact",
                 order: int = PADE_ORDER) -> HumanLimit:
     """The speeds above which this driver cannot hold this chair straight (linear, frictionless casters).

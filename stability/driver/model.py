@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.chair.power import drive_kind
 from stability.settings import defaults as D
 
@@ -111,6 +112,7 @@ class Driver:
         return {"reaction_time_s": self.reaction_time_s, "hand_force_N": self.hand_force_N, "source": self.source}
 
 
+@takes_chair
 def yaw_moment_limit(chair: Chair, driver: Driver) -> float:
     """The largest corrective yaw moment the driver can apply, N m.
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stability.layout.model import Layout
+from stability.layout.model import Layout, takes_layout
 from stability.layout.statics import cornering_stiffnesses
 from stability.models.layout import linear_layout_matrices, supported_shapes
 
@@ -79,6 +79,7 @@ def _matrices(layout: Layout, speeds) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return A, B[..., :1], B[..., 1:], U
 
 
+@takes_layout
 def state_matrices(layout: Layout, speeds) -> np.ndarray:
     """State matrices of the layout's linear model at each speed.
 
@@ -96,6 +97,7 @@ def state_matrices(layout: Layout, speeds) -> np.ndarray:
     return _matrices(layout, speeds)[0]
 
 
+@takes_layout
 def input_matrices(layout: Layout, speeds) -> tuple[np.ndarray, np.ndarray]:
     """Input columns of a yaw moment on the body (per N m) and a lateral force at the c.g. (per N).
 
@@ -113,6 +115,7 @@ def input_matrices(layout: Layout, speeds) -> tuple[np.ndarray, np.ndarray]:
     return Bm, Bf
 
 
+@takes_layout
 def growth_rates(layout: Layout, speeds) -> np.ndarray:
     """Largest real part of the eigenvalues at each speed, 1/s.
 
@@ -201,6 +204,7 @@ class LayoutSummary:
                 "forward_critical": crit(self.forward_critical), "reverse_critical": crit(self.reverse_critical)}
 
 
+@takes_layout
 def analyse_layout(layout: Layout, speeds=(-1.5, -1.0, -0.5, 0.5, 1.0, 1.5, 2.0, 3.0)) -> LayoutSummary:
     """Growth rates of a layout at signed speeds (forward and reverse).
 

@@ -15,8 +15,9 @@ from dataclasses import dataclass, field
 from stability import tires
 from stability.chair import Chair
 from stability.chair.model import LIMITS
+from stability.runtime.checks import first_argument, value_text
 
-__all__ = ["FixedWheel", "Caster", "Layout"]
+__all__ = ["FixedWheel", "Caster", "Layout", "check_layout", "takes_layout"]
 
 
 def _check(name: str, value: float, lo: float, hi: float, unit: str) -> float:
@@ -282,3 +283,34 @@ class Layout:
             x = chair.x_main + (1.0 if chair.x_main > chair.x_pin else -1.0) * chair.anti_tip_reach
             anti = ((x, -chair.d1), (x, chair.d2))
         return cls(chair.name, chair.m, chair.i_z, chair.h, wheels, casters, chair.g, anti)
+
+
+def check_layout(layout: object, name: str = "layout") -> Layout:
+    """Return ``layout`` if it is a :class:`Layout`, else raise :class:`TypeError` naming the argument.
+
+    Parameters
+    ----------
+    layout : object
+        The argument to check.
+    name : str, optional
+        Its name in the message (default ``"layout"``).
+
+    Returns
+    -------
+    Layout
+        ``layout`` itself.
+
+    Raises
+    ------
+    TypeError
+        Naming ``name``, the value and what is accepted.
+    """
+    if not isinstance(layout, Layout):
+        raise TypeError(f"{name}={value_text(layout)} is invalid; valid values: a stability.layout.Layout "
+                        "(stability.layout.presets.layout_preset(name), stability.layout.io.load_layout(path) or "
+                        "Layout.from_chair(chair))")
+    return layout
+
+
+#: Decorator: the public function's first argument ``layout`` passes :func:`check_layout` before the body runs.
+takes_layout = first_argument(check_layout)

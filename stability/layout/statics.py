@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from stability.layout.model import Layout
+from stability.layout.model import Layout, takes_layout
 
 if TYPE_CHECKING:
     from stability.tipping.angles import SlopeTip
@@ -135,6 +135,7 @@ def distribute(points: list[tuple[str, float, float, float]], weight: float, cen
     return k * (z @ basis)
 
 
+@takes_layout
 def static_loads(layout: Layout, reverse: bool = False) -> np.ndarray:
     """Static normal load on every contact (fixed wheels, then casters), N.
 

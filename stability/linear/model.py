@@ -15,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from stability.chair import Chair, check_chair
+from stability.chair.model import takes_chair, takes_chairs
 from stability.models import accelerations, linear_matrices
 from stability.models.params import parameters
 from stability.models.statics import static_stiffness
@@ -75,6 +76,7 @@ def _matrices(chairs, speeds, model: str, casters: str):
     return _assemble(M, K, Bm, casters)
 
 
+@takes_chairs
 def state_matrices(chair: Chair | Sequence[Chair], speeds, model: str = "exact",
                    casters: str = "free") -> np.ndarray:
     """State matrices for many speeds (and chairs) in one batched call.
@@ -99,6 +101,7 @@ def state_matrices(chair: Chair | Sequence[Chair], speeds, model: str = "exact",
     return _matrices(chair, speeds, model, casters)[0]
 
 
+@takes_chairs
 def input_matrices(chair: Chair | Sequence[Chair], speeds, model: str = "exact",
                    casters: str = "free") -> np.ndarray:
     """Input matrices for a yaw moment on the chair.
@@ -119,6 +122,7 @@ def input_matrices(chair: Chair | Sequence[Chair], speeds, model: str = "exact",
     return _matrices(chair, speeds, model, casters)[1]
 
 
+@takes_chair
 def state_space(chair: Chair, speed: float, model: str = "exact", casters: str = "free"):
     """Linearised model at one speed as a :class:`control.StateSpace`.
 
@@ -160,6 +164,7 @@ def state_space(chair: Chair, speed: float, model: str = "exact", casters: str =
     return control.ss(A, B, C, D, states=states, inputs=["Mz"], outputs=["v", "r"], name=name)
 
 
+@takes_chair
 def lateral_force_input(chair: Chair, speed: float, model: str = "exact", casters: str = "free") -> np.ndarray:
     """Input column of the linear model for a lateral force at the c.g. (state derivatives per N).
 
@@ -183,11 +188,12 @@ def lateral_force_input(chair: Chair, speed: float, model: str = "exact", caster
     """
     check_model(model)
     check_casters(casters)
+    U = check_speed(speed)
     if casters == "locked":
         return np.array([1.0 / chair.m, 0.0])
     p = parameters(chair)
     z = 0.0
-    args = (p, float(speed), z, z, 1.0, z, 1.0, z, z, z) + (z,) * 10
+    args = (p, U, z, z, 1.0, z, 1.0, z, z, z) + (z,) * 10
     a1 = accelerations(*args, Fy_ext=1.0, Mz_ext=0.0, variant=model)
     a0 = accelerations(*args, Fy_ext=0.0, Mz_ext=0.0, variant=model)
     d = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd

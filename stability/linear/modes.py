@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from stability.chair import check_chair
+from stability.chair.model import takes_chair
 from stability.linear.batch import MAX_MATRICES
 from stability.linear.model import state_matrices
 from stability.runtime.checks import check_casters, check_model, check_speeds, value_text
@@ -54,6 +55,7 @@ def track_modes(eigs: np.ndarray) -> np.ndarray:
 
 
 
+@takes_chair
 def eigenvalues_vs_speed(chair, speeds, model: str = "exact", casters: str = "free",
                          track: bool = True) -> np.ndarray:
     """Eigenvalues of the linear model at many speeds in one batched call.

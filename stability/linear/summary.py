@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from stability.chair import Chair, check_chair
+from stability.chair.model import takes_chair
 from stability.linear.batch import MAX_MATRICES
 from stability.linear.critical import critical_speeds, max_real_part
 from stability.linear.model import state_matrices
@@ -54,6 +55,7 @@ class ZeroWidthResult:
     wheelbase: float
 
 
+@takes_chair
 def zero_width(chair: Chair) -> ZeroWidthResult:
     """Zero-width locked-caster understeer coefficient and critical speed (eqs 5-13..5-16).
 
@@ -117,6 +119,7 @@ class Divergence:
                 "frequency_rad_s": self.frequency}
 
 
+@takes_chair
 def divergence(chair: Chair, speeds, model: str = "exact", casters: str = "free") -> list[Divergence]:
     """Growth rate of the least stable mode and its time to double, at each speed.
 
@@ -144,6 +147,7 @@ def divergence(chair: Chair, speeds, model: str = "exact", casters: str = "free"
     return rows
 
 
+@takes_chair
 def massless_caster_rate(chair: Chair, speed, caster_drag: float = 0.0):
     """Closed-form growth rate of the free-caster chair in the massless-caster limit (1/s).
 
@@ -188,6 +192,7 @@ def massless_caster_rate(chair: Chair, speed, caster_drag: float = 0.0):
     float or ndarray
         The larger real part of the two roots (1/s).
     """
+    check_speeds(speed)
     U = np.asarray(speed, dtype=float)
     drag = float(caster_drag)
     if not (math.isfinite(drag) and drag >= 0.0):

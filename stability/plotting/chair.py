@@ -8,11 +8,13 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrow, Rectangle
 
+from stability.chair.model import takes_chair
 from stability.plotting.pages import table_axes
 from stability.plotting.style import MARK, colour
 
 __all__ = ["chair_geometry", "parameter_table"]
 
+@takes_chair
 def chair_geometry(chair, ax=None, *, title: str | None = None, overlay=None):
     """Top view of the chair: main wheels, caster pins and casters (trailing), c.g., dimensions.
 
@@ -106,6 +108,7 @@ def chair_geometry(chair, ax=None, *, title: str | None = None, overlay=None):
     return ax
 
 
+@takes_chair
 def parameter_table(chair, ax=None, *, fontsize: float = 8.0):
     """The chair's parameters (name, symbol, value, unit, meaning) as a table in ``ax``.
 

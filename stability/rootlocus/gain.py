@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.linear import input_matrices, state_matrices, state_space, track_modes
 from stability.rootlocus.speed import readonly
 from stability.runtime.checks import check_casters, check_model, check_speed
@@ -50,6 +51,7 @@ class GainLocus:
         return f"{self.chair.name}, {self.model} model, {self.casters} casters, U = {self.speed:g} m/s"
 
 
+@takes_chair
 def closed_loop_matrices(chair: Chair, speed: float, gains, *, model: str = "exact",
                          casters: str = "free") -> np.ndarray:
     """Closed-loop state matrices ``A - K B C_r`` of yaw-rate feedback ``Mz = -K r``, one per gain.
@@ -98,6 +100,7 @@ def _stabilising_gain(chair, speed, model, casters, gains) -> float | None:
     return float(brentq(alpha, gains[k - 1], gains[k], xtol=1e-10 * max(1.0, gains[k])))
 
 
+@takes_chair
 def gain_locus(chair: Chair, speed: float = REFERENCE_SPEED, gains=None, *, model: str = "exact",
                casters: str = "free", max_gain: float = 300.0, n: int = 400) -> GainLocus:
     """Root locus of yaw-rate feedback through the yaw-moment input, with :func:`control.root_locus_map`.

@@ -10,6 +10,7 @@ import numpy as np
 
 from stability.chair import Chair
 from stability.chair.design import LOCUS_PARAMETERS, Parameter, get_parameter, main_tires
+from stability.chair.model import takes_chair
 from stability.linear import state_matrices, track_modes
 from stability.rootlocus.speed import readonly
 from stability.runtime.checks import check_casters, check_model, check_speed
@@ -102,6 +103,7 @@ def _locus_values(chair: Chair, p: Parameter, values, n: int) -> np.ndarray:
     return vals
 
 
+@takes_chair
 def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float = REFERENCE_SPEED,
                     model: str = "exact", casters: str = "free", n: int = 121) -> ParameterLocus:
     """Root locus against a design parameter at fixed speed.
@@ -163,6 +165,7 @@ def parameter_locus(chair: Chair, parameter: str, values=None, *, speed: float =
                           casters, float(p.current(chair)), labels, chairs)
 
 
+@takes_chair
 def parameter_loci(chair: Chair, parameters: Sequence[str] = LOCUS_PARAMETERS, *, speed: float = REFERENCE_SPEED,
                    model: str = "exact", casters: str = "free", n: int = 121) -> list[ParameterLocus]:
     """:func:`parameter_locus` for several parameters.

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.linear import STATES_FREE, STATES_LOCKED, critical_speeds, state_matrices, track_modes
 from stability.runtime.checks import check_casters, check_model
 
@@ -91,6 +92,7 @@ class SpeedLocus:
         return f"{self.chair.name}, {self.model} model, {self.casters} casters"
 
 
+@takes_chair
 def speed_locus(chair: Chair, speeds=None, *, model: str = "exact", casters: str = "free",
                 max_speed: float = 15.0, n: int = 600) -> SpeedLocus:
     """Eigenvalues against forward speed, tracked, and the critical speeds.

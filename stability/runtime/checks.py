@@ -7,15 +7,19 @@ parameter, its value and the valid range or choices, e.g.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Callable, Sequence
+from typing import Any, TypeVar, cast
 
 import numpy as np
 
 __all__ = ["VARIANTS", "CASTERS", "check_choice", "check_model", "check_casters", "check_speed",
            "check_speeds", "check_positive", "check_nonnegative", "check_finite", "is_real", "real_value",
-           "real_array", "value_text", "MIN_SPEED", "MAX_SPEED"]
+           "real_array", "value_text", "first_argument", "MIN_SPEED", "MAX_SPEED"]
+
+F = TypeVar("F", bound=Callable[..., Any])
 
 VARIANTS = ("exact", "thesis")
 CASTERS = ("free", "locked")
@@ -365,3 +369,38 @@ def check_finite(name: str, value: Any, *, unit: str = "", prefix: str = "") -> 
         If ``value`` is not a finite real number.
     """
     return _number(name, value, "a finite number" + (f" ({unit})" if unit else ""), prefix)
+
+
+_ABSENT = object()
+
+
+def first_argument(check: Callable[[Any, str], Any], optional: bool = False) -> Callable[[F], F]:
+    """Decorator: ``check(value, name)`` on a public function's first argument before its body runs.
+
+    The check raises the one-line TypeError or ValueError of the API's contract (``chair='ej-premier' is
+    invalid; ...``) where the body would fail later with an AttributeError on the wrong object, or compute.
+
+    Parameters
+    ----------
+    check : callable
+        ``check(value, name)``, raising TypeError or ValueError naming ``name``, the first parameter's name (read
+        from the function's signature); its return value is ignored.
+    optional : bool, optional
+        Skip the check for ``None`` (a parameter whose default is None).
+
+    Returns
+    -------
+    callable
+        The decorator; the decorated function keeps its name, signature and docstring (``functools.wraps``).
+    """
+    def decorate(func: F) -> F:
+        name = next(iter(inspect.signature(func).parameters))
+
+        @functools.wraps(func)
+        def checked(*args: Any, **kwargs: Any) -> Any:
+            value = args[0] if args else kwargs.get(name, _ABSENT)
+            if value is not _ABSENT and not (optional and value is None):
+                check(value, name)
+            return func(*args, **kwargs)
+        return cast(F, checked)
+    return decorate

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair, takes_chairs
 from stability.linear import state_matrices
 from stability.models.params import Params, parameters
 from stability.models.relaxed import STATES, relaxed_matrices
@@ -63,6 +64,7 @@ def _assemble(M: np.ndarray, K: np.ndarray, T: np.ndarray) -> np.ndarray:
     return A
 
 
+@takes_chairs
 def relaxed_state_matrices(chair: Chair | Sequence[Chair], speeds: Any, compliance: CasterCompliance | None = None,
                            model: str = "exact", pin: str = "rigid") -> np.ndarray:
     """State matrices of the chair with relaxation-length caster tires, batched over speeds (and chairs).
@@ -97,6 +99,7 @@ def _matrices(p: Params, st: dict[str, Any], U: np.ndarray, comp: CasterComplian
     return _assemble(M, K, T)
 
 
+@takes_chair
 def relaxed_state_space(chair: Chair, speed: float, compliance: CasterCompliance | None = None,
                         model: str = "exact", pin: str = "rigid"):
     """The relaxed model at one speed as a :class:`control.StateSpace` with named states.
@@ -174,6 +177,7 @@ def _grid_eigenvalues(chair: Chair, trails: np.ndarray, speeds: np.ndarray, comp
     return np.linalg.eigvals(A.reshape(len(trails), len(speeds), *A.shape[-2:]))
 
 
+@takes_chair
 def chair_critical_trail(chair: Chair, speeds: Any, compliance: CasterCompliance | None = None,
                          model: str = "exact", pin: str = "rigid", xtol: float = 1e-5) -> np.ndarray:
     """Largest trail (m) below which the chair model's shimmy mode is unstable, per speed.
@@ -284,6 +288,7 @@ class ChairShimmy:
         }
 
 
+@takes_chair
 def chair_shimmy(chair: Chair, speeds: Any, compliance: CasterCompliance | None = None, model: str = "exact",
                  pin: str = "rigid") -> ChairShimmy:
     """Shimmy mode, yaw divergence and critical trail of the chair model at ``speeds`` (see :class:`ChairShimmy`).
@@ -347,6 +352,7 @@ class ChairTrailChart:
     note: str = ESTIMATE_NOTE
 
 
+@takes_chair
 def chair_trail_chart(chair: Chair, trails: Any, speeds: Any, compliance: CasterCompliance | None = None,
                       model: str = "exact", pin: str = "rigid") -> ChairTrailChart:
     """Yaw divergence and shimmy over trail x speed from the chair model (see :class:`ChairTrailChart`).

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair, check_chair
+from stability.chair.model import check_chairs
 from stability.runtime.checks import check_choice, real_array, value_text
 from stability.runtime.progress import ProgressBar
 from stability.settings.run import (
@@ -140,10 +141,7 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     """
     spec = _spec(None, run)
     one = isinstance(chairs, Chair)
-    if not one and (isinstance(chairs, (str, bytes)) or not isinstance(chairs, Sequence)):
-        raise TypeError(f"chairs={value_text(chairs)} is invalid; valid values: a stability.Chair or a non-empty "
-                        "sequence of them (stability.preset(name), stability.load_chair(spec))")
-    chair_list = [check_chair(c, "chairs[]") for c in ([chairs] if isinstance(chairs, Chair) else chairs)]
+    chair_list = [chairs] if one else list(check_chairs(chairs))
     if not chair_list:
         raise ValueError("chairs=[] is invalid; expected a Chair or a non-empty sequence of Chair")
     sp = _array("speeds", spec.speed if speeds is None else speeds, "m/s")

@@ -170,9 +170,7 @@ def tire_forces(W, L, ftimp, imp, policy):
             (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
             (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
             (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
-            _s(W, j), 0)   # the rows as tuples here: a helper taking the row offset compiled once per offset
-    # (_TAB + 0: an int64 like the other two offsets; the bare global is a literal, typed apart, which compiled
-    # l_table a second time)
+            _s(W, j), 0)   # rows as tuples: a helper taking the offset compiles once per offset (_TAB + 0: int64)
         W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], \
             W[_F + 7, j] = f8
         W[_REF, j], W[_REF + 1, j] = float(refused), float(w)

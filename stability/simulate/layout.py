@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from stability import tires as _tires
-from stability.layout.model import Layout
+from stability.layout.model import Layout, check_layout
 from stability.layout.statics import load_rule
 from stability.models.layout import nonlinear as _gn
 from stability.models.layout import shape_index
@@ -200,8 +200,7 @@ class LayoutRun:
 
 
 def _check_run(layout: Any, speed: Any, run: RunSpec | None) -> tuple[Layout, float, RunSpec]:
-    if not isinstance(layout, Layout):
-        raise ValueError(f"layout={layout!r} is invalid; expected a stability.layout.Layout")
+    check_layout(layout)
     if run is None:
         run = RunSpec()
     elif not isinstance(run, RunSpec):

@@ -13,6 +13,7 @@ import numpy as np
 
 from stability import tires
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.runtime.checks import check_positive, check_speed
 from stability.settings.run import RunSpec
 from stability.simulate.adaptive import FREE_POS, LOCKED, AdaptiveModel
@@ -65,6 +66,7 @@ def forward_acceleration(chair: Chair, speed: float, *, model: str = "exact",
     return float(f(np.zeros(6))[3])
 
 
+@takes_chair
 def linearise(chair: Chair, speed: float, *, model: str = "exact", casters: str = "free",
               step: float = 1e-6, slope: tuple[float, float] = (0.0, 0.0),
               at: tuple[float, float, float] = (0.0, 0.0, 0.0), drive: tuple[float, float] = (0.0, 0.0)) -> Any:

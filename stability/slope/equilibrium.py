@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.chair.power import DriveTrain
 from stability.models import slope as sl
 from stability.runtime.checks import check_positive, check_speed
@@ -181,6 +182,7 @@ def operating_point(chair: Chair, plane: Plane, speed: float) -> tuple[float, fl
     return float(z[0]), float(z[1]), float(z[2]), (float(drive[0]), float(drive[1]))
 
 
+@takes_chair
 def holding_moment_closed_form(chair: Chair, plane: Plane) -> float:
     """Frictionless holding moment with the casters straight and no crab angle (N m, clockwise +).
 
@@ -227,6 +229,7 @@ def _solve_once(chair: Chair, plane: Plane, speed: float, friction_range: bool =
         closed_form=holding_moment_closed_form(chair, plane), problems=tuple(model.range_problems(f)))
 
 
+@takes_chair
 def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 1.0, hi: float = 20.0) -> float:
     """Largest cross slope with an equilibrium inside the tire data, by bisection.
 
@@ -260,6 +263,7 @@ def max_cross_slope(chair: Chair, grade_deg: float, speed: float, sign: float = 
     return lo
 
 
+@takes_chair
 def solve(chair: Chair, cross_slope_deg: float, speed: float, grade_deg: float = 0.0,
           strict: bool = True, friction_range: bool = True) -> Equilibrium:
     """Steady straight running along the path on a plane.

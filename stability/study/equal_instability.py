@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair, preset
+from stability.chair.model import takes_chair, takes_chairs
 from stability.layout.model import Layout
 from stability.runtime.progress import ProgressBar
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
@@ -202,6 +203,7 @@ def _narrow(pts: list[tuple[float, float]], lo: float, hi: float, target: float,
     return "open", inside[k - 1][0], inside[k][0]
 
 
+@takes_chairs
 def equal_instability_speeds(chairs: Sequence[Chair], run: RunSpec | None = None, *,
                              reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
                              criterion: Criterion = DEFAULT_CRITERION, bracket: tuple = (0.2, 3.0),
@@ -378,6 +380,7 @@ def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: 
     return out
 
 
+@takes_chair
 def equal_instability_speed(chair: Chair, run: RunSpec | None = None, **options: Any) -> EqualInstability:
     """Forward speed at which ``chair`` is as unstable as the reference case (Figures 9-2, 9-3).
 

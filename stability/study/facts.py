@@ -10,7 +10,9 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair, preset
+from stability.chair.model import check_chair, takes_chair
 from stability.linear import state_matrices
+from stability.runtime.checks import first_argument
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.study import runs
@@ -27,6 +29,7 @@ __all__ = ["EqualFrictionRow", "EqualFrictionComparison", "equal_friction_compar
 PROPORTIONAL_RANGE = (0.8, 1.2)
 
 
+@takes_chair
 def growth_rate(chair: Chair, speed: float, model: str = "exact") -> float:
     """Largest real part of the linear model's eigenvalues (free frictionless casters), 1/s.
 
@@ -95,6 +98,7 @@ class EqualFrictionComparison:
     push: str
 
 
+@first_argument(check_chair, optional=True)
 def equal_friction_comparison(chair: Chair | None = None, run: RunSpec | None = None, *,
                               reference_chair: Chair | None = None,
                               frictions: Sequence[float] = (0.0, 0.02, 0.05, 0.1),
@@ -192,6 +196,7 @@ class FrictionExponent:
                 f"not proportional (k = {self.exponent:.2f}; rule {lo:g}-{hi:g})")
 
 
+@takes_chair
 def friction_exponent(chair: Chair, factors: Sequence[float] = (0.5, 0.75, 1.0, 1.25, 1.5),
                       run: RunSpec | None = None, *, reference: float | None = None,
                       **options: Any) -> FrictionExponent:
@@ -253,6 +258,7 @@ class SteadyTurn:
     push: str
 
 
+@takes_chair
 def steady_turn(chair: Chair, speeds: Sequence[float] = (0.3, 0.5), run: RunSpec | None = None) -> list[SteadyTurn]:
     """Final yaw rate and heading change after a push, at speeds where the chair does not diverge (one batch).
 

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair, takes_chairs
 from stability.runtime.checks import check_positive, check_speeds
 from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
 from stability.settings.run import STEP_SECONDS, WORK_BUDGET_S, RunSpec
@@ -304,6 +305,7 @@ def check_search(run: RunSpec | None, level: float, max_impulse: float, min_impu
         raise ValueError(f"min_impulse={min_impulse!r} is invalid; valid range: < max_impulse={max_impulse!r} N s")
     return run
 
+@takes_chairs
 def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec | None = None, *,
                       level: float = LEVEL, max_impulse: float = 40.0, min_impulse: float = 1e-6,
                       rel_tol: float = 0.005, max_rounds: int = 40) -> list[CriticalImpulse]:
@@ -442,6 +444,7 @@ def outcomes(pairs: Sequence[tuple[str, float, float]], probs: Sequence[Any], pa
     return out
 
 
+@takes_chair
 def critical_impulse(chair: Chair, speed: float, run: RunSpec | None = None, **search: Any) -> CriticalImpulse:
     """Smallest lateral impulse at the c.g. after which ``|yaw rate|`` reaches ``level`` within the horizon.
 
@@ -470,6 +473,7 @@ def critical_impulse(chair: Chair, speed: float, run: RunSpec | None = None, **s
     return critical_impulses(chair, speed, run, **search)[0]
 
 
+@takes_chair
 def critical_impulse_curve(chair: Chair, speeds: Any, run: RunSpec | None = None,
                            **search: Any) -> CriticalImpulseCurve:
     """:func:`critical_impulse` over speeds, every search round one batch for all speeds.

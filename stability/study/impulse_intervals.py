@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from stability.chair import Chair
+from stability.chair.model import takes_chairs
 from stability.runtime.checks import VARIANTS
 from stability.settings.run import RunSpec
 from stability.simulate.options import WCHAIR_DT as DT
@@ -72,6 +73,7 @@ class CriticalImpulseInterval:
                              for label, r in self.variants]}
 
 
+@takes_chairs
 def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, run: RunSpec | None = None, *,
                                friction_factors: Sequence[float] = FRICTION_FACTORS,
                                models: Sequence[str] = VARIANTS, step_factors: Sequence[float] = STEP_FACTORS,

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stability.chair import Chair, preset
+from stability.chair.model import takes_chair, takes_chairs
 from stability.layout.model import Layout
 from stability.runtime.checks import VARIANTS, check_model
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, Push
@@ -242,6 +243,7 @@ def _variants(model: str, force: float, force_factors: Sequence[float], friction
     return out
 
 
+@takes_chair
 def equal_instability_interval(chair: Chair, run: RunSpec | None = None, *,
                                force_factors: Sequence[float] = PUSH_FACTORS,
                                friction_factors: Sequence[float] = FRICTION_FACTORS, models: Sequence[str] = VARIANTS,
@@ -297,6 +299,7 @@ def equal_instability_interval(chair: Chair, run: RunSpec | None = None, *,
         progress=progress, step_factors=step_factors)[0]
 
 
+@takes_chairs
 def equal_instability_intervals(chairs: Sequence[Chair], run: RunSpec | None = None, *,
                                 force_factors: Sequence[float] = PUSH_FACTORS,
                                 friction_factors: Sequence[float] = FRICTION_FACTORS, models: Sequence[str] = VARIANTS,

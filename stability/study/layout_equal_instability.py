@@ -27,7 +27,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from stability.chair import Chair, preset
-from stability.layout.model import Layout
+from stability.layout.model import Layout, check_layout
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.simulate.layout import check_layout_run, simulate_layout
@@ -142,8 +142,7 @@ def layout_summaries(layouts: Sequence[Layout], speeds: Sequence[float] | np.nda
 
 
 def _check(layout: Layout, run: RunSpec | None) -> RunSpec:
-    if not isinstance(layout, Layout):
-        raise ValueError(f"layout={layout!r} is invalid; expected a stability.layout.Layout")
+    check_layout(layout)
     run = runs.study_run(run)
     check_layout_run(run)
     check_impulse((run.push_force, run.push_duration))

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from stability.layout.linear import state_matrices
-from stability.layout.model import Layout
+from stability.layout.model import Layout, check_layout, takes_layout
 from stability.settings.reference import LEVEL
 from stability.settings.run import RunSpec
 from stability.simulate.layout import check_layout_run, simulate_layout
@@ -156,6 +156,7 @@ def _summaries(layout: Layout, speed: float, angles: list[float], run: RunSpec, 
     return float(np.max(np.abs(y))), time_to_level(t, y, 0.5 * level), t_level, float(t[-1])
 
 
+@takes_layout
 def layout_critical_impulses(layout: Layout, speeds: Any, run: RunSpec | None = None, *, level: float = LEVEL,
                              max_impulse: float = 40.0, min_impulse: float = 1e-6, rel_tol: float = 0.005,
                              max_rounds: int = 40, side: str = "right") -> list[CriticalImpulse]:
@@ -191,8 +192,7 @@ def layout_critical_impulses(layout: Layout, speeds: Any, run: RunSpec | None = 
     ValueError
         A bad argument, named with its value and the valid range (before any run).
     """
-    if not isinstance(layout, Layout):
-        raise ValueError(f"layout={layout!r} is invalid; expected a stability.layout.Layout")
+    check_layout(layout)
     run = check_search(run, level, max_impulse, min_impulse, rel_tol)
     if side not in SIDES:
         raise ValueError(f"side={side!r} is invalid; valid values: {', '.join(map(repr, SIDES))}")
@@ -225,6 +225,7 @@ def layout_critical_impulses(layout: Layout, speeds: Any, run: RunSpec | None = 
     return outcomes([(layout.name, layout.m, float(s)) for s in u], probs, steps, units, run, level, toward)
 
 
+@takes_layout
 def layout_critical_impulse_curve(layout: Layout, speeds: Any, run: RunSpec | None = None,
                                   **search: Any) -> CriticalImpulseCurve:
     """:func:`layout_critical_impulses` as a :class:`~stability.study.impulse.CriticalImpulseCurve`.

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from stability.layout.model import Layout
+from stability.layout.model import Layout, check_layout
 from stability.layout.statics import load_rule
 from stability.models.forces import slip_angle
 from stability.models.layout import nonlinear as _gn
@@ -233,8 +233,7 @@ def layout_equilibrium(layout: Layout, cross_slope_deg: float, speed: float, gra
     ValueError
         A bad argument (named, with its value and the valid range), or no equilibrium found.
     """
-    if not isinstance(layout, Layout):
-        raise ValueError(f"layout={layout!r} is invalid; expected a stability.layout.Layout")
+    check_layout(layout)
     if isinstance(speed, bool) or not isinstance(speed, (int, float)) or not (
             math.isfinite(speed) and 0.01 <= abs(speed) <= MAX_SPEED_M_S):
         raise ValueError(f"speed={speed!r} is invalid; valid range: 0.01 <= |speed| <= {MAX_SPEED_M_S:g} m/s "

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.settings.reference import REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.study import runs
@@ -90,6 +91,7 @@ def _map(chair: Chair, speeds: Any, y_name: str, y_label: str, y_unit: str, y_va
                         spec.model, spec.scheme, (float(forces[0]), float(length)))
 
 
+@takes_chair
 def stability_map(chair: Chair, speeds: Sequence[float] | None = None, frictions: Sequence[float] | None = None,
                   run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION,
                   reference: float | None = None, progress: bool = True) -> StabilityMap:
@@ -125,6 +127,7 @@ def stability_map(chair: Chair, speeds: Sequence[float] | None = None, frictions
                 lambda f: impulse, run, criterion=criterion, reference=reference, progress=progress)
 
 
+@takes_chair
 def disturbance_map(chair: Chair, speeds: Sequence[float] | None = None, impulses: Sequence[float] | None = None,
                     run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION,
                     reference: float | None = None, progress: bool = True) -> StabilityMap:

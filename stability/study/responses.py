@@ -11,7 +11,9 @@ import numpy as np
 from scipy.linalg import expm
 
 from stability.chair import Chair, preset
+from stability.chair.model import check_chairs, takes_chair
 from stability.linear import lateral_force_input, state_matrices
+from stability.runtime.checks import first_argument
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.study import runs
@@ -48,6 +50,7 @@ class LinearResponse:
     y: np.ndarray
 
 
+@takes_chair
 def linear_impulse_response(chair: Chair, speed: float, t_end: float = 10.0, *,
                             impulse: Any = THESIS_PUSH.as_tuple, model: str = "exact", casters: str = "free",
                             step: float = 0.01) -> LinearResponse:
@@ -247,6 +250,7 @@ def _responses(chairs: Sequence[Chair], speeds: Sequence[float], run: RunSpec | 
     return ResponseSet(tuple(out), model, scheme, impulse, criterion, model if linear else "", note if linear else "")
 
 
+@takes_chair
 def yaw_rate_responses(chair: Chair, speeds: Sequence[float] = (0.55, 0.65, 0.75, 0.85, 0.95),
                        run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION, linear: bool = True,
                        linear_casters: str = "free", progress: bool = True) -> ResponseSet:
@@ -276,6 +280,7 @@ def yaw_rate_responses(chair: Chair, speeds: Sequence[float] = (0.55, 0.65, 0.75
                       linear_casters=linear_casters, progress=progress)
 
 
+@first_argument(check_chairs, optional=True)
 def trajectories(chairs: Sequence[Chair] | None = None, speed: float = REFERENCE_SPEED, run: RunSpec | None = None,
                  *, criterion: Criterion = PATHS_CRITERION, linear: bool = True,
                  progress: bool = True) -> ResponseSet:

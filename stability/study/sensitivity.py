@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.rootlocus import get_parameter
 from stability.settings.reference import REFERENCE_SPEED
 from stability.settings.run import RunSpec
@@ -113,6 +114,7 @@ def _elasticity(lo: float | None, hi: float | None, step: float) -> float | None
     return (math.log(hi) - math.log(lo)) / (math.log1p(step) - math.log1p(-step))
 
 
+@takes_chair
 def elasticities(chair: Chair, speed: float = REFERENCE_SPEED, run: RunSpec | None = None, *,
                  parameters: Sequence[str] = ELASTICITY_PARAMETERS, step: float = 0.1,
                  rel_tol: float = 0.001, **impulse_options: Any) -> Sensitivity:

@@ -10,6 +10,7 @@ import numpy as np
 
 from stability.chair import Chair, preset
 from stability.chair.design import DESIGN_PARAMETERS, get_parameter, main_tires
+from stability.chair.model import takes_chair
 from stability.settings.reference import REFERENCE_CHAIR
 from stability.study.equal_instability import EqualInstability, equal_instability_speeds
 
@@ -182,6 +183,7 @@ _MULTIPLICATIVE = ("pin_friction", "roll_k", "caster_mass_factor", "mass_factor"
                    "main_lateral_scale", "pin_damping")
 
 
+@takes_chair
 def plan_for(chair: Chair, plan: dict | None = None, base: Chair | None = None) -> dict:
     """A plan (written for ``base``, default the E&J Premier) moved to ``chair``'s own values.
 
@@ -298,6 +300,7 @@ def collect_sweeps(chair: Chair, groups: list, results: Sequence[EqualInstabilit
     return SweepTable(chair, nominal, tuple(sweeps)), k
 
 
+@takes_chair
 def parameter_sweeps(chair: Chair, plan: dict | None = None, *, extra_chairs: Sequence[Chair] = (),
                      progress: bool = True, **options: Any) -> tuple[SweepTable, list[EqualInstability]]:
     """Equal-instability speed for each value of each parameter in ``plan`` (one vectorised bisection).

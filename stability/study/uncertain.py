@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from stability.chair import Chair, preset
+from stability.chair.model import takes_chair
 from stability.runtime.checks import check_speed
 from stability.settings.reference import LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
@@ -158,6 +159,7 @@ def _measure(mc: Any, j: int, statuses: list[str], outside: Sequence[str], unit:
                            shares=tuple(ranked), r_squared=at(mc.r_squared), unit=unit)
 
 
+@takes_chair
 def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, run: RunSpec | None = None, *,
                         speed: float = REFERENCE_SPEED, samples: int = 200, seed: int = 0, level: float = 0.95,
                         reference_chair: Chair | None = None, equal_instability: bool = True,

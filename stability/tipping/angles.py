@@ -33,6 +33,7 @@ import math
 from dataclasses import dataclass
 
 from stability.chair import Chair
+from stability.chair.model import takes_chair
 from stability.models import slope as slope_model
 from stability.models.params import Params, parameters
 
@@ -247,6 +248,7 @@ def support_fall_distance(points, h: float, ex: float, ey: float) -> FallLine:
                     caster_angles_deg=tuple(angles))
 
 
+@takes_chair
 def anti_tip_angle(chair: Chair) -> float | None:
     """Plane angle (deg) at which the chair tips over its anti-tip devices toward the main wheels.
 
@@ -274,6 +276,7 @@ def anti_tip_angle(chair: Chair) -> float | None:
     return max(over, math.degrees(math.atan2(s1, h)))
 
 
+@takes_chair
 def tip_angles(chair: Chair) -> TipAngles:
     """The four ISO 7176-1 static stability angles of ``chair`` (rigid, brakes locked).
 
@@ -291,6 +294,7 @@ def tip_angles(chair: Chair) -> TipAngles:
                      **{k + "_deg": lines[k].angle_deg for k in DIRECTIONS})
 
 
+@takes_chair
 def slope_tip(chair: Chair, cross_slope_deg: float, grade_deg: float = 0.0) -> SlopeTip:
     """Tipping on a combined cross slope and grade, the chair heading along the path.
 

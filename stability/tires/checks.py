@@ -8,6 +8,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
+from stability.runtime.checks import first_argument, value_text
 from stability.tires.ranges import RangeNote, record, resolve
 
 if TYPE_CHECKING:
@@ -15,12 +16,19 @@ if TYPE_CHECKING:
 
 __all__ = ["WHEELS", "check_chair_tires", "range_check"]
 
+
+def _chair_like(chair: object, name: str) -> None:
+    """A chair, read by what this module uses of it (the chair package imports this one, so not by its class)."""
+    if not callable(getattr(chair, "main_tire_model", None)):
+        raise TypeError(f"{name}={value_text(chair)} is invalid; valid values: a stability.Chair")
+
 #: Wheels of a chair: keys of :func:`stability.models.statics.static_loads` and which tire each carries.
 WHEELS: tuple[tuple[str, str], ...] = (
     ("caster_left", "caster"), ("caster_right", "caster"), ("main_left", "main"), ("main_right", "main"),
 )
 
 
+@first_argument(_chair_like)
 def check_chair_tires(chair: Chair) -> None:
     """Refuse, in one line, a chair whose tires lack data the chair's settings need.
 
@@ -37,6 +45,8 @@ def check_chair_tires(chair: Chair) -> None:
     ------
     ValueError
         Naming the chair field, the tire and the missing data, and how to fix it.
+    TypeError
+        If ``chair`` is not a chair (no tire models to read).
     """
     main = chair.main_tire_model().capabilities
     caster = chair.caster_tire_model().capabilities
@@ -53,6 +63,7 @@ def check_chair_tires(chair: Chair) -> None:
                 f"set {role}_rolling_scale=0 or choose a tire with rolling data (e.g. ER)")
 
 
+@first_argument(_chair_like)
 def range_check(chair: Chair, loads: Mapping[str, float], *, policy: str | None = None) -> list[RangeNote]:
     """Which static loads of ``chair`` lie outside its tires' fitted load range.
 
