@@ -141,7 +141,7 @@ def simulate_batch(chairs: Chair | Sequence[Chair], speeds: Any = None, run: Run
     """
     spec = _spec(None, run)
     one = isinstance(chairs, Chair)
-    chair_list = [chairs] if one else list(check_chairs(chairs))
+    chair_list: list[Chair] = [chairs] if isinstance(chairs, Chair) else list(check_chairs(chairs))
     if not chair_list:
         raise ValueError("chairs=[] is invalid; expected a Chair or a non-empty sequence of Chair")
     sp = _array("speeds", spec.speed if speeds is None else speeds, "m/s")
