@@ -346,3 +346,39 @@ def test_cli_json_and_errors(capsys):
     assert main(["--relaxation-length", "-1"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--relaxation-length -1 is invalid" in err[0]
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "power-fwd"])
+def test_the_trail_charts_compliance_band_is_drawn_where_the_legend_and_caption_say(name):
+    """The compliance range's boundary band (issue 35: its legend entry named a hatched band nobody could see,
+    and the caption told the reader to read it): each edge is a line inside the axes, or the legend says it lies
+    above or below the chart and nothing is drawn; the caption's band words follow the chart's own edges (the
+    E&J's highest edge is infinite at the default compliance: no trail is shimmy-free at one corner)."""
+    import matplotlib.pyplot as plt
+
+    from stability.chair import preset
+    from stability.shimmy.band import CasterCompliance
+    from stability.shimmy.chair import trail_chart
+    from stability.shimmy.plots import plot_trail_chart, trail_chart_caption
+
+    trails = np.linspace(0.02, 0.12, 6)
+    chart = trail_chart(preset(name), trails, [0.5, 1.5, 3.0], CasterCompliance(), math.radians(5))
+    fig, ax = plt.subplots()
+    plot_trail_chart(chart, ax)
+    lines = {ln.get_label(): ln for ln in ax.get_lines()}
+    lo_y, hi_y = ax.get_ylim()
+    for edge, words in ((0, "lowest"), (1, "highest")):
+        t = chart.critical_trail_range[edge] * 100
+        (label,) = [k for k in lines if f"{words} over the compliance range" in k]
+        if np.all(t > trails.max() * 100):
+            assert label.endswith("above the chart") and len(lines[label].get_xdata()) == 0
+        elif np.all(t < trails.min() * 100):
+            assert label.endswith("below the chart") and len(lines[label].get_xdata()) == 0
+        else:
+            y = np.asarray(lines[label].get_ydata(), dtype=float)
+            assert np.all((lo_y <= y) & (y <= hi_y)) and np.any((t > lo_y) & (t < hi_y))
+    caption = trail_chart_caption(chart)
+    hi = chart.critical_trail_range[1]
+    assert ("above every trail shown" in caption) == bool(np.all(hi > trails.max()))
+    assert "hatched" not in caption
+    plt.close(fig)

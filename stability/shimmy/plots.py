@@ -38,10 +38,14 @@ def plot_trail_chart(chart: TrailChart, ax):
                   f"{math.degrees(chart.amplitude):g} deg (describing fn.)")
     ax.plot(U, np.clip(chart.critical_trail, 0, T.max() / 100) * 100, color=_VERMILION, ls="--", lw=2,
             label="linear shimmy boundary, no pin friction (nominal compliance)")
-    lo = np.clip(chart.critical_trail_range[0], 0, T.max() / 100) * 100
-    hi = np.clip(chart.critical_trail_range[1], 0, T.max() / 100) * 100
-    ax.fill_between(U, lo, hi, color=_VERMILION, alpha=0.15, hatch="//",
-                    label="linear boundary over the compliance range (estimates)")
+    for edge, words, style in ((0, "lowest", "-."), (1, "highest", ":")):
+        t = chart.critical_trail_range[edge] * 100
+        where = "above the chart" if np.all(t > T.max()) else "below the chart" if np.all(t < T.min()) else ""
+        if where:                            # an edge outside the trails shown is named in the legend, not drawn
+            ax.plot([], [], ls="none", label=f"linear boundary, {words} over the compliance range: {where}")
+        else:
+            ax.plot(U, np.clip(t, T.min(), T.max()), color=_VERMILION, ls=style, lw=1.3,
+                    label=f"linear boundary, {words} over the compliance range (estimates)")
     ax.axhline(chart.chair_trail * 100, color=_BLACK, ls=":", lw=1.5,
                label=f"chair's trail {chart.chair_trail * 100:g} cm")
     ax.set_xlabel("speed (m/s)")
@@ -113,8 +117,25 @@ def trail_chart_caption(chart: TrailChart) -> str:
     words.append(f". The whole chair's yaw divergence at this trail peaks at {peak:.2f} 1/s "
                  + ("(> 0: a yaw disturbance grows at this rate until the user steers)" if peak > 0
                     else "(<= 0: no yaw divergence)")
-                 + ". Compliance values are estimates: read the hatched band, not the dashed line alone.")
+                 + ". ")
+    words.append(_range_words(chart))
     return "".join(words)
+
+
+def _range_words(chart: TrailChart) -> str:
+    """The caption's sentence on the compliance range: where its boundary band lies against the chair's trail."""
+    lo, hi = chart.critical_trail_range
+    trail, U = chart.chair_trail, chart.speeds
+    top = "above every trail shown" if np.all(hi > chart.trails.max()) else f"up to {np.nanmax(hi) * 100:.3g} cm"
+    band = (f"Compliance values are estimates: over their range the linear boundary lies from "
+            f"{np.nanmin(lo) * 100:.3g} cm {top}")
+    inside = U[(trail >= lo) & (trail < hi)]
+    if not inside.size:
+        return band + ", so the trail's verdict holds over the whole range."
+    at = "every speed shown" if inside.size == U.size else _speeds_words(inside)
+    return band + (f"; the chair's trail lies inside that band at {at}: whether it shimmies "
+                   "without pin friction there depends on the caster's compliance, so measure it or rely on the pin "
+                   "friction.")
 
 
 def trail_chart_pages(chart: TrailChart, model: str, trails_cm=(3, 4, 5, 6, 8)) -> list:
