@@ -264,7 +264,12 @@ def check_speeds(speeds: Any, name: str = "speed", floor: float = MIN_SPEED,
         raise ValueError(f"{name} has {U.size} values; at most {max_count} are allowed here")
     ok = np.isfinite(U) & ((U >= floor) if floor > 0 else (U > 0)) & (U <= MAX_SPEED)
     if not np.all(ok):
-        raise ValueError(f"{name}={float(U[~ok][0])!r} is invalid; valid range: {_SPEED_RANGE}")
+        i = int(np.flatnonzero(~ok.ravel())[0])
+        raw = speeds if isinstance(speeds, np.ndarray) else np.asarray(speeds, dtype=object)
+        given = raw.ravel()[i] if raw.size == U.size else None
+        shown = (value_text(given) if isinstance(given, (int, np.integer)) and not isinstance(given, bool)
+                 else repr(float(U.ravel()[i])))      # an integer as given (10**400, not the inf it maps to)
+        raise ValueError(f"{name}={shown} is invalid; valid range: {_SPEED_RANGE}")
     return U
 
 
