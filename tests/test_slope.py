@@ -258,6 +258,33 @@ def test_handrim_force_difference_is_the_statics_moment_over_track_and_rim(name,
     assert rim["handrim_force_difference_N"] == pytest.approx(-ratio * e.closed_form / c.d1, rel=2e-3)
 
 
+@pytest.mark.parametrize("phi", (2.0, 6.0))
+def test_motor_torques_are_the_statics_moment_over_track_times_the_wheel_radius(phi):
+    """A power chair's wheel motors supply the same holding moment M as opposite contact forces +-M / d at
+    half-track d, each times the drive wheel's radius: the two torques differ by -r M / d (right minus left), and
+    the differential torque per wheel is half of it.  Error model: the closed form's straight-caster neglect, as
+    the hand-rim test above (rel 2e-3; observed 4e-4)."""
+    from stability.chair.power import DriveTrain
+    from stability.slope import drive_report
+
+    c = chair_mod.preset("power-fwd").replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    assert c.d1 == c.d2
+    e = eqm.solve(c, phi, 0.75)
+    train = DriveTrain(wheel_radius=0.17)
+    motor = drive_report(c, e, "motor", drive_train=train)
+    assert motor["wheel_radius_m"] == 0.17
+    difference = motor["motor_torque_right_N_m"] - motor["motor_torque_left_N_m"]
+    # error model: the closed form's second order in phi (as above)
+    assert difference == pytest.approx(-0.17 * e.closed_form / c.d1, rel=2e-3)
+    assert motor["differential_torque_N_m"] == pytest.approx(-difference / 2, rel=1e-15)
+
+
+@pytest.mark.parametrize("field", ("wheel_radius", "handrim_radius"))
+def test_a_bad_hand_rim_radius_is_named(field):
+    with pytest.raises(ValueError, match=rf"^hand-rim parameter {field}=-0.1 is invalid"):
+        eqm.HandRim(**{field: -0.1})
+
+
 def test_max_cross_slope_is_the_edge_of_the_tire_data():
     """manual-front-caster on a 6 deg grade keeps its equilibrium inside the tire data only below a fraction of a
     degree of cross slope: the answer is inside, one resolution step (hi / 2^14) beyond it is outside."""
