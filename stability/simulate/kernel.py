@@ -309,11 +309,11 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
 
     ``model, ctl``: the run's :func:`variant`, compile-time constants (numba literals: :func:`call_model`, or the
     entry points), so that a run compiles its model's equations only, and the controller's step only with a
-    controller.  One run is called from Python directly (:func:`run_single`).  ``cfg[EXTERNAL_MZ]``: the yaw
+    controller.  One run is called from Python directly (:func:`run_single`).  It calls no ``literally``:
+    :func:`call_model`, :func:`run_batch` and :func:`run_serial` pass the variant as literals already (a
+    ``literally`` here compiled numba's overload of it twice on the first use).  ``cfg[EXTERNAL_MZ]``: the yaw
     moment is ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the
     controller's."""
-    literally(model)
-    literally(ctl)
     if status[0] != 0.0 or status[2] != 0.0:
         return int(state[ST_NREC])
     # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
