@@ -23,6 +23,7 @@ import json
 
 import numpy as np
 import pytest
+from slow_cases import one_default
 
 from stability.assist.__main__ import main
 from stability.assist.commands import COMMAND_FILTER, command_run, reference_command, step_command
@@ -38,7 +39,7 @@ def _turn(sched, speed, rate, duration=3.0, **kw):
     return command_run(sched, speed, step_command(rate), duration=duration, command_filter_s=COMMAND_FILTER, **kw)
 
 
-@pytest.mark.parametrize("name", ["ej-premier", "power-fwd"])
+@pytest.mark.parametrize("name", one_default(["ej-premier", "power-fwd"], "ej-premier"))
 @pytest.mark.parametrize("kind", ["gyro", "full-state"])
 def test_the_short_forms_chairs_as_layouts_turn_as_the_short_form(name, kind):
     """The reference turn at 1 and 1.5 m/s: observed 9e-13 rad/s of yaw rate and 6e-13 relative peak torque at
@@ -58,7 +59,7 @@ def _mirror_partner(layout: Layout) -> list[int]:
     return [next(j for j, d in enumerate(layout.casters) if d.x == c.x and d.y == -c.y) for c in layout.casters]
 
 
-@pytest.mark.parametrize("name", layout_preset_names())
+@pytest.mark.parametrize("name", one_default(layout_preset_names(), "mid-wheel-drive"))
 @pytest.mark.parametrize("speed", [1.0, -1.0])
 def test_a_left_turn_is_the_mirrored_right_turn(name, speed):
     """Symmetric presets: the same arithmetic on negated values up to the order of sums; observed 4e-16 at most
@@ -82,7 +83,7 @@ def _massless(layout: Layout) -> Layout:
 
 
 @pytest.mark.parametrize("kind", ["gyro", "full-state"])
-@pytest.mark.parametrize("speed", [0.5, 1.0, 2.0])
+@pytest.mark.parametrize("speed", one_default([0.5, 1.0, 2.0], 1.0))
 def test_the_rear_wheel_drive_base_backwards_is_the_front_wheel_drive_base_forwards(kind, speed):
     """Massless casters: the same chair seen from behind, another coordinate frame for the equations, the design
     and the simulator: observed 2e-12 rad/s, 3e-12 N m and 1e-13 m at most; asserted 1e-9 rad/s, 1e-9 relative
@@ -98,7 +99,7 @@ def test_the_rear_wheel_drive_base_backwards_is_the_front_wheel_drive_base_forwa
     assert np.max(np.abs(a.result.x_m + b.result.x_m)) <= 1e-9   # error model: as the line above
 
 
-@pytest.mark.parametrize("name", layout_preset_names())
+@pytest.mark.parametrize("name", one_default(layout_preset_names(), "mid-wheel-drive"))
 @pytest.mark.parametrize("speed", [0.5, -0.5])
 def test_a_slow_steady_turn_is_the_drive_axles_rolling(name, speed):
     """0.2 rad/s at 0.5 m/s for 10 s, pin friction off.  Yaw rate: the command, the loop's residual from the
@@ -134,7 +135,7 @@ def test_an_unassisted_turn_is_the_feedforward_alone():
     assert np.all(np.diff(np.abs(open_.torque[open_.torque_t > 0.05])) >= -1e-12)   # rises to it, no feedback
 
 
-@pytest.mark.parametrize("name", layout_preset_names())
+@pytest.mark.parametrize("name", one_default(layout_preset_names(), "mid-wheel-drive"))
 def test_the_command_counts_the_turns_on_every_layout_and_in_reverse(name, capsys):
     """Every preset, forwards and in reverse: the torque check of each direction's top speed is the largest of
     the push's, the reference turn's and the full joystick turn's peaks, above the push's alone."""

@@ -17,6 +17,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from slow_cases import one_default
 
 from stability.assist.__main__ import main
 from stability.assist.driving import torque_requirement
@@ -30,7 +31,7 @@ from stability.layout import Layout
 from stability.layout.presets import layout_preset
 
 
-@pytest.mark.parametrize("name", ["ej-premier", "power-fwd"])
+@pytest.mark.parametrize("name", one_default(["ej-premier", "power-fwd"], "ej-premier"))
 @pytest.mark.parametrize("kind", ["gyro", "full-state"])
 def test_the_short_forms_chairs_as_layouts_need_the_short_forms_torques(name, kind):
     """The push, the reference turn, its steady torque and the full joystick turn: same equations (another

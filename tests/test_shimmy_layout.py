@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from slow_cases import one_default
 
 from stability import chair as chair_mod
 from stability.layout import Layout
@@ -114,7 +115,7 @@ def _turned(lay: Layout) -> Layout:
                    anti_tip=tuple((-x + e, -y) for x, y in lay.anti_tip))
 
 
-@pytest.mark.parametrize("name", ["mid-wheel-drive", "ej-premier"])
+@pytest.mark.parametrize("name", one_default(["mid-wheel-drive", "ej-premier"], "mid-wheel-drive"))
 def test_reversing_the_turned_chair_is_driving_it_forwards(name):
     """Invariant: a chair turned round and driven backwards is the chair driven forwards.  Every caster of the
     turned layout in reverse has the forward caster's static load and so its whole shimmy answer (band, margin,
@@ -179,3 +180,19 @@ def test_shimmy_command_answers_reverse(capsys):
     assert main(["--chair", "ej-premier", "--speeds", "-1", "--chair-model"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "reverse" in err and "valid: --chair-model with speeds > 0" in err
+
+
+def test_the_memoised_loads_are_each_casters_own_statics():
+    """``LayoutCaster.loads`` memoises each (caster, trail) by value: after one layout was asked, another (a heavier
+    chair, the next caster, the reverse) still gets its own statics, each equal to its row's trail replaced and the
+    statics solved afresh (exact: the same arithmetic), asked twice (the second answer from the memo)."""
+    from dataclasses import replace
+
+    lay = layout_preset("mid-wheel-drive")
+    heavy = replace(lay, m=lay.m * 1.2)
+    trails = np.array([0.03, 0.05, 0.03])
+    for c in (LayoutCaster(lay, 0), LayoutCaster(heavy, 0), LayoutCaster(lay, 2), LayoutCaster(lay, 0, reverse=True)):
+        want = [c.replace(trail=float(t)).static_load() for t in trails]
+        assert np.array_equal(c.loads(trails), want) and np.array_equal(c.loads(trails), want)
+    # the heavier chair's casters carry 1.2 times the load: rounding of one product (a few ulp), asserted 1e-12
+    assert LayoutCaster(heavy, 0).loads(trails) == pytest.approx(1.2 * LayoutCaster(lay, 0).loads(trails), rel=1e-12)

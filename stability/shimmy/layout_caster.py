@@ -21,6 +21,7 @@ than forwards.  ``LayoutCaster(layout, k, reverse=True)`` is that caster.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -142,13 +143,32 @@ class LayoutCaster:
         """
         t = np.asarray(trails, dtype=float)
         uniq, inv = np.unique(t, return_inverse=True)
-        out = np.empty(uniq.size)
-        for i, tr in enumerate(uniq):
-            try:
-                out[i] = self.replace(trail=float(tr)).static_load()
-            except ValueError:                    # out of the caster's range, or the layout no longer stands
-                out[i] = np.nan
+        out = np.array([_load_at_trail(self, float(tr)) for tr in uniq], dtype=float)
         return out[inv].reshape(t.shape)
+
+
+@lru_cache(maxsize=8192)
+def _load_at_trail(caster: LayoutCaster, trail: float) -> float:
+    """Static load of ``caster`` with its row's trail set to ``trail`` (m), N; NaN where the layout would not stand.
+
+    Memoised: a band, a chart or a summary asks for the same trails of the same (frozen, hashable) caster many
+    times over (once per speed and per estimate corner), and each answer is a statics solve of the whole layout.
+    The key is the caster by value (its layout's every field, its index and direction) and the trail.
+
+    Parameters
+    ----------
+    caster : LayoutCaster
+    trail : float
+        m.
+
+    Returns
+    -------
+    float
+    """
+    try:
+        return caster.replace(trail=trail).static_load()
+    except ValueError:                    # out of the caster's range, or the layout no longer stands
+        return float("nan")
 
 
 def layout_casters(layout: Layout, reverse: bool = False) -> list[LayoutCaster]:
