@@ -1,0 +1,47 @@
+"""The equal-instability speed on the signed speed axis (issue 38: negative = reverse, as every command reports it).
+
+:meth:`EqualInstabilityInterval.signed` maps a reverse search's ``|U|`` results onto negative speeds: an involution
+that keeps every interval ordered (low <= high) and turns "beyond the fast end" into "below" the signed bracket.
+"""
+
+from __future__ import annotations
+
+from stability.study.criteria import DEFAULT_CRITERION
+from stability.study.equal_instability import EqualInstability
+from stability.study.intervals import EqualInstabilityInterval, FactorRange, Variant
+
+
+def _point(speed, status="found"):
+    return EqualInstability(chair=None, speed=speed, status=status, low=0.8, high=0.9, reference_time=3.1,
+                            evaluations=((0.5, 4.0), (0.9, 2.9)), bracket=(0.1, 3.0), criterion=DEFAULT_CRITERION,
+                            model="exact", scheme="wchair", impulse=(40.0, 0.5))
+
+
+def _interval():
+    above = Variant("push force", "80 N", "exact", 80.0, 1.0, 2.0, _point(None, "above"))
+    found = Variant("pin friction", "x0.5", "exact", 40.0, 0.5, 3.0, _point(0.85))
+    return EqualInstabilityInterval("c", _point(0.85), 0.85, 3.0, (FactorRange("push force", 0.85, 3.0, ("80 N",)),),
+                                    "push force", (above, found, Variant("m", "l", "exact", 1.0, 1.0, 9.9, None)),
+                                    "thesis")
+
+
+def test_forward_is_unchanged_and_reverse_is_an_involution():
+    r = _interval()
+    assert r.signed(False) is r
+    twice = r.signed(True).signed(True)
+    assert twice.to_dict() == r.to_dict() and twice.describe() == r.describe()
+    assert twice.point.evaluations == r.point.evaluations and twice.point.bracket == r.point.bracket
+
+
+def test_reverse_negates_every_speed_and_keeps_the_intervals_ordered():
+    s = _interval().signed(True)
+    d = s.to_dict()
+    assert d["speed_m_s"] == -0.85 and (d["low_m_s"], d["high_m_s"]) == (-3.0, -0.85)
+    assert (d["factors"][0]["low_m_s"], d["factors"][0]["high_m_s"]) == (-3.0, -0.85)
+    assert [v["speed_m_s"] for v in d["variants"]] == [None, -0.85, None]
+    assert [v["status"] for v in d["variants"]] == ["below", "found", None]   # beyond the fast end: below -3 m/s
+    p = s.point
+    assert (p.low, p.high, p.bracket) == (-0.9, -0.8, (-3.0, -0.1))
+    assert p.evaluations == ((-0.9, 2.9), (-0.5, 4.0))
+    assert s.variants[0].result.describe() == "< -3 m/s"
+    assert "range below -3 to -0.85 m/s" in s.describe()
