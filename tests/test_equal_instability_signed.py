@@ -45,3 +45,13 @@ def test_reverse_negates_every_speed_and_keeps_the_intervals_ordered():
     assert p.evaluations == ((-0.9, 2.9), (-0.5, 4.0))
     assert s.variants[0].result.describe() == "< -3 m/s"
     assert "range below -3 to -0.85 m/s" in s.describe()
+
+
+def test_a_reverse_range_with_both_ends_found_reads_from_to():
+    """Two negative ends joined by "-" would read "-1.1--0.85": a reverse range says "to"; a forward one keeps "-"."""
+    r = _interval()
+    both = EqualInstabilityInterval("c", _point(0.85), 0.85, 1.1, (), "pin friction", r.variants[1:], "thesis")
+    assert both.range_text() == "range 0.85-1.1 m/s"
+    assert both.signed(True).range_text() == "range -1.1 to -0.85 m/s"
+    assert EqualInstabilityInterval("c", _point(None, "above"), None, None, (), "", (), "thesis").signed(
+        True).range_text() == "no range: every variant is undefined"

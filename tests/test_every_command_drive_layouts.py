@@ -72,17 +72,25 @@ def test_the_catalogue_covers_every_command():
 
 
 def _speeds(d: dict) -> list[float]:
-    """The speeds the answer is about: its ``speeds_m_s`` / ``speed_m_s`` (top level or its options)."""
-    out: list[float] = []
-    for where in (d, d.get("options") or {}):
-        if not isinstance(where, dict):
-            continue
+    """The signed speeds the answer is about: its top-level ``speeds_m_s`` / ``speed_m_s`` and its ``forward`` /
+    ``reverse`` rows' (the assist's); else its options' (an options block echoes the run's settings, which hold
+    ``|U|`` and a ``reverse`` flag: :class:`stability.settings.run.RunSpec`)."""
+    def of(where: dict) -> list[float]:
         v = where.get("speeds_m_s", where.get("speed_m_s"))
         if isinstance(v, list):
-            out += [float(x) for x in v if x is not None]
-        elif isinstance(v, (int, float)) and not isinstance(v, bool):
-            out.append(float(v))
-    return out
+            return [float(x) for x in v if x is not None]
+        return [float(v)] if isinstance(v, (int, float)) and not isinstance(v, bool) else []
+
+    out = of(d)
+    for rows in (d.get("forward"), d.get("reverse")):
+        if isinstance(rows, list):
+            out += [u for row in rows if isinstance(row, dict) for u in of(row)]
+    return out or of(d.get("options") or {})
+
+
+#: Commands whose one answer holds both directions (a layout's critical speeds; the assist's forward rows with
+#: ``--reverse``'s reverse rows): the asked direction's speeds must be there, the other's may be too.
+BOTH_WAYS = {"critical_speed", "assist"}
 
 
 def _answer(key: tuple[str, str], layout: str, reverse: bool, tmp_path, capsys) -> dict:
@@ -116,9 +124,9 @@ def _check(key: tuple[str, str], layout: str, reverse: bool, tmp_path, capsys) -
         assert speeds, f"{key}: no speed in the answer"
     if not speeds:
         return                                           # beyond the searched bracket: no speed to sign (its status)
-    # the asked direction's signed speeds are there (a layout's critical_speed adds the other direction's rows)
+    # the asked direction's signed speeds are there (BOTH_WAYS add the other direction)
     assert any((s < 0) == reverse for s in speeds if s != 0), f"{key} {layout} reverse={reverse}: speeds {speeds}"
-    if key[0] != "critical_speed":
+    if key[0] not in BOTH_WAYS:
         assert all((s < 0) == reverse for s in speeds if s != 0), f"{key} {layout} reverse={reverse}: {speeds}"
 
 
