@@ -55,3 +55,22 @@ def test_a_reverse_range_with_both_ends_found_reads_from_to():
     assert both.signed(True).range_text() == "range -1.1 to -0.85 m/s"
     assert EqualInstabilityInterval("c", _point(None, "above"), None, None, (), "", (), "thesis").signed(
         True).range_text() == "no range: every variant is undefined"
+
+
+def test_the_json_and_the_line_of_an_interval():
+    """The JSON's keys (snake_case, unit last), the line naming every factor, and the results are immutable."""
+    import dataclasses
+
+    import pytest
+
+    r = _interval()
+    two = EqualInstabilityInterval("c", r.point, 0.85, 3.0, r.factors + (FactorRange("pin friction", 0.85, 0.85, ()),),
+                                   "push force", r.variants, "thesis")
+    d = two.signed(True).to_dict()
+    assert set(d) == {"chair", "speed_m_s", "status", "low_m_s", "high_m_s", "dominant", "push", "friction_scope",
+                      "factors", "variants"}
+    assert (d["chair"], d["dominant"], d["push"]) == ("c", "push force", "thesis")
+    assert d["factors"][0] == {"factor": "push force", "low_m_s": -3.0, "high_m_s": -0.85, "undefined": ["80 N"]}
+    assert "over push force, pin friction; moved most by push force)" in two.describe()
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        two.factors[0].low = 1.0                                      # type: ignore[misc]
