@@ -38,9 +38,17 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _speeds(text: str) -> tuple[float, ...]:
-    """Use speeds: all forward, or all backwards (a leading ``-`` on a range ``-A:B`` or every value negative)."""
+    """Use speeds: all forward, or all backwards (a leading ``-`` on a range ``-A:B``, a range of two negative ends
+    ``-B:-A`` or every value negative)."""
     if text.startswith("-") and text.count(":") == 1 and not text.split(":")[1].startswith("-"):
         return tuple(-u for u in _speeds(text[1:]))             # -A:B: the range A:B backwards
+    if text.count(":") == 1 and all(x.strip().startswith("-") for x in text.split(":")):
+        a, b = (x.strip()[1:] for x in text.split(":"))
+        try:
+            return tuple(-u for u in _speeds(f"{b}:{a}"))      # -B:-A (signed, B >= A): the range A:B backwards
+        except ValueError:
+            raise ValueError(f"--speeds {text!r} is invalid; valid: -B:-A with 0 < A <= B (m/s), in reverse; "
+                             "speeds 0.1 to 3 m/s in size") from None
     if "," in text and all(x.strip().startswith("-") for x in text.split(",")):
         return tuple(-u for u in _speeds(",".join(x.strip()[1:] for x in text.split(","))))
     if text.startswith("-") and ":" not in text and "," not in text:
@@ -54,7 +62,7 @@ def _speeds(text: str) -> tuple[float, ...]:
             lo = hi = math.nan
         if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
             raise ValueError(f"--speeds {text!r} is invalid; valid: A:B with 0 < A <= B (m/s), START:STOP:STEP "
-                             "or a list")
+                             "or a list (in reverse: -A:B, -B:-A or every value negative)")
         speeds = (lo, 0.5 * (lo + hi), hi) if hi > lo else (lo,)
     else:
         speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=12))

@@ -237,8 +237,8 @@ def _run(args: argparse.Namespace) -> int:
         raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
     from stability.layout.io import is_layout_spec
 
-    try:
-        raw_speeds = [float(x) for x in args.speeds.split(",")] if ":" not in args.speeds else None
+    try:                                        # a list or a START:STOP:STEP range, either direction
+        raw_speeds = [float(u) for u in parse_speeds(args.speeds, signed=True)]
     except ValueError:
         raw_speeds = None                       # parse_speeds below says what is wrong
     if is_layout_spec(args.chair) or (raw_speeds is not None and any(u < 0 for u in raw_speeds)):
@@ -303,11 +303,11 @@ def _run_layout(args: argparse.Namespace) -> int:
         raise ValueError(f"--max-speed {args.max_speed!r} is invalid for a layout; valid range: 0.05 < value <= 100 "
                          "m/s (the figure draws up to 20 m/s)")
     layout = load_layout(args.chair, args.set)
-    try:
-        speeds = [float(x) for x in args.speeds.split(",")]
-    except ValueError:
-        raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout; valid: a list of signed speeds, m/s "
-                         "(negative: reverse), 0.01 <= |U| <= 20") from None
+    speeds = [float(u) for u in parse_speeds(args.speeds, signed=True)]
+    top = float(SEARCH_SPEEDS_M_S[-1])                                    # the layout model's fastest speed
+    if max(abs(u) for u in speeds) > top:
+        raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
+                         f"|speed| 0.01 to {top:g} m/s (negative: reverse)")
     unc = None
     if args.uncertainty:
         from stability.advise.layout_axes import load_layout_uncertainty

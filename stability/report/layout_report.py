@@ -196,7 +196,7 @@ def _equal(layout: Layout) -> tuple[list[str], list[dict]]:
              "reference:"]
     data = []
     for reverse in (False, True):
-        r = layout_equal_instability_interval(layout, reverse=reverse)
+        r = layout_equal_instability_interval(layout, reverse=reverse).signed(reverse)
         lines.append(f"  {'backwards' if reverse else 'forwards'}: {r.describe()}")
         data.append({"direction": "reverse" if reverse else "forward", **r.to_dict()})
     return lines, data

@@ -216,7 +216,7 @@ def _interval_layout(args: argparse.Namespace, run_spec) -> None:
                          "(the layout's equations are the exact model's)")
     reverse = run_spec.reverse
     r = layout_equal_instability_interval(layout, run_spec.replace(reverse=False), reverse=reverse,
-                                          friction_on_reference=not args.chair_friction_only)
+                                          friction_on_reference=not args.chair_friction_only).signed(reverse)
     way = direction_words(reverse)
     definition = (_EQUAL_INSTABILITY.format(level=D.YAW_RATE_LEVEL, speed=D.SPEED)
                   + ("driving backwards, every caster starting trailing (180 deg), against the reference case "
@@ -225,7 +225,7 @@ def _interval_layout(args: argparse.Namespace, run_spec) -> None:
         definition = definition.replace("(on both the layout's casters and the reference chair)",
                                         "(on the layout only: --chair-friction-only)")
     lines = [f"{layout.name} (layout: {layout.shape[0]} fixed wheels, {layout.shape[1]} casters) {way}: "
-             f"equal-instability speed {r.describe()}" + (" backwards" if reverse else ""),
+             f"equal-instability speed {r.describe()}" + (" (negative: backwards)" if reverse else ""),
              f"push: {r.push}; pin friction factors applied to {r.friction_scope}; {run_spec.friction_law} pin "
              "friction; layout model", definition]
     for v in r.variants:

@@ -86,6 +86,29 @@ class EqualInstability:
             return self.speed
         return self.bracket[1] if self.status == "above" else self.bracket[0]
 
+    def signed(self, reverse: bool) -> EqualInstability:
+        """This result on the signed speed axis (negative: reverse), as every command reports a speed.
+
+        The reverse searches run on ``|U|`` (:mod:`stability.study.layout_equal_instability`); in reverse every speed
+        is negated, the brackets' ends swap (so ``low <= high`` still holds on the signed axis) and "above"/"below"
+        (beyond the bracket's fast/slow end) become "below"/"above".
+
+        Parameters
+        ----------
+        reverse : bool
+            True: the search ran backwards (the speeds are ``|U|``); False returns ``self``.
+
+        Returns
+        -------
+        EqualInstability
+        """
+        if not reverse:
+            return self
+        status = {"above": "below", "below": "above"}.get(self.status, self.status)
+        return dataclasses.replace(self, speed=None if self.speed is None else -self.speed, status=status,
+                                   low=-self.high, high=-self.low, bracket=(-self.bracket[1], -self.bracket[0]),
+                                   evaluations=tuple((-u, t) for u, t in reversed(self.evaluations)))
+
 
 def reference_time(reference_chair: Chair | None = None, reference_speed: float = REFERENCE_SPEED,
                    run: RunSpec | None = None, *, criterion: Criterion = DEFAULT_CRITERION) -> float:

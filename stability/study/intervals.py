@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -148,7 +148,7 @@ class EqualInstabilityInterval:
         below = "below" in bound and self.low == min(v.result.value_or_bound for v in self.variants
                                                         if v.result is not None)
         if not (above or below):
-            return f"range {self.low:.3g}-{self.high:.3g} m/s"
+            return f"range {self.low:.3g}{' to ' if self.low < 0 else '-'}{self.high:.3g} m/s"
         lo = f"below {self.low:.3g}" if below else f"{self.low:.3g}"
         hi = f"above {self.high:.3g}" if above else f"{self.high:.3g}"
         return f"range {lo} to {hi} m/s" if self.low != self.high else f"range {hi} m/s"
@@ -159,6 +159,30 @@ class EqualInstabilityInterval:
             return f"{self.point.describe()} (no interval: no variant defined)"
         return (f"{self.point.describe()} ({self.range_text()} over "
                 + ", ".join(f.factor for f in self.factors) + f"; moved most by {self.dominant})")
+
+    def signed(self, reverse: bool) -> EqualInstabilityInterval:
+        """This interval on the signed speed axis (negative: reverse), as every command reports a speed.
+
+        Parameters
+        ----------
+        reverse : bool
+            True: the searches ran backwards (speeds ``|U|``): every speed is negated and each interval's ends swap
+            (:meth:`stability.study.equal_instability.EqualInstability.signed`); False returns ``self``.
+
+        Returns
+        -------
+        EqualInstabilityInterval
+        """
+        if not reverse:
+            return self
+
+        def neg(x: float | None) -> float | None:
+            return None if x is None else -x
+
+        return replace(self, point=self.point.signed(True), low=neg(self.high), high=neg(self.low),
+                       factors=tuple(replace(f, low=neg(f.high), high=neg(f.low)) for f in self.factors),
+                       variants=tuple(v if v.result is None else replace(v, result=v.result.signed(True))
+                                      for v in self.variants))
 
     def to_dict(self) -> dict:
         """JSON-ready dict."""
