@@ -316,6 +316,8 @@ def test_the_tipping_distance_is_the_minimum_over_every_tipping_line_by_brute_fo
                           options={"xatol": 1e-12})
     brute = min(float(res.fun), float(values[k]))
     got = support_fall_distance(points, 0.5, ex, ey)
+    # error model: the brute-force bracket (Brent's xatol 1e-12 on t, f Lipschitz < 2 m: 1e-11 m; observed
+    # 1e-16-1e-13 m), x100
     assert got.distance_m == pytest.approx(brute, abs=1e-9)
 
 
@@ -326,6 +328,7 @@ def test_contacts_on_the_fall_line_alone_tip_about_the_line_normal_to_it():
     from stability.tipping.angles import support_fall_distance
 
     got = support_fall_distance([(0.3, 0.0, 0.0), (-0.2, 0.0, 0.0)], 0.5, 1.0, 0.0)
+    # error model: exact: t = 0 gives these values with no rounding but the final atan2/degrees (a few ulp)
     assert got.distance_m == pytest.approx(0.3, abs=1e-15)
     assert got.normal == pytest.approx((1.0, 0.0), abs=1e-15)
     assert got.angle_deg == pytest.approx(math.degrees(math.atan2(0.3, 0.5)), abs=1e-12)
