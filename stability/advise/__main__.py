@@ -37,6 +37,11 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+#: The advisor's speeds in size, m/s (the --speeds check and its messages).
+SPEED_RANGE_M_S = (0.1, 3.0)
+_RANGE_TEXT = f"{SPEED_RANGE_M_S[0]:g} to {SPEED_RANGE_M_S[1]:g} m/s"
+
+
 def _speeds(text: str) -> tuple[float, ...]:
     """Use speeds: all forward, or all backwards (a leading ``-`` on a range ``-A:B``, a range of two negative ends
     ``-B:-A`` or every value negative)."""
@@ -48,7 +53,7 @@ def _speeds(text: str) -> tuple[float, ...]:
             return tuple(-u for u in _speeds(f"{b}:{a}"))      # -B:-A (signed, B >= A): the range A:B backwards
         except ValueError:
             raise ValueError(f"--speeds {text!r} is invalid; valid: -B:-A with 0 < A <= B (m/s), in reverse; "
-                             "speeds 0.1 to 3 m/s in size") from None
+                             f"speeds {_RANGE_TEXT} in size") from None
     if "," in text and all(x.strip().startswith("-") for x in text.split(",")):
         return tuple(-u for u in _speeds(",".join(x.strip()[1:] for x in text.split(","))))
     if text.startswith("-") and ":" not in text and "," not in text:
@@ -66,8 +71,8 @@ def _speeds(text: str) -> tuple[float, ...]:
         speeds = (lo, 0.5 * (lo + hi), hi) if hi > lo else (lo,)
     else:
         speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=12))
-    if max(speeds) > 3.0 or min(speeds) < 0.1:
-        raise ValueError(f"--speeds {text!r} is invalid; valid range: 0.1 to 3 m/s (all negative: in reverse, "
+    if max(speeds) > SPEED_RANGE_M_S[1] or min(speeds) < SPEED_RANGE_M_S[0]:
+        raise ValueError(f"--speeds {text!r} is invalid; valid range: {_RANGE_TEXT} (all negative: in reverse, "
                          "e.g. -0.5,-0.75 or -0.5:1)")
     return speeds
 

@@ -47,6 +47,7 @@ from stability.driver.text import human_text
 from stability.linear import StabilitySummary, analyse
 from stability.linear.batch import check_eigen_work
 from stability.linear.intervals import GRID_POINTS, solves_per_draw
+from stability.runtime.checks import MIN_SPEED
 from stability.settings import defaults as D
 from stability.study.summary_text import format_summary, simulator_checks, summary_dict
 
@@ -307,7 +308,7 @@ def _run_layout(args: argparse.Namespace) -> int:
     top = float(SEARCH_SPEEDS_M_S[-1])                                    # the layout model's fastest speed
     if max(abs(u) for u in speeds) > top:
         raise ValueError(f"--speeds {args.speeds!r} is invalid for a layout or reverse speeds; valid range: every "
-                         f"|speed| 0.01 to {top:g} m/s (negative: reverse)")
+                         f"|speed| {MIN_SPEED:g} to {top:g} m/s (negative: reverse)")
     unc = None
     if args.uncertainty:
         from stability.advise.layout_axes import load_layout_uncertainty
