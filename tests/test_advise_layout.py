@@ -220,7 +220,7 @@ def test_the_command_answers_a_layout(monkeypatch, capsys):
     (["--chair", "mid-wheel-drive", "--set", "trail=0.06"], "'trail' is not a field of layout"),
     (["--chair", "mid-wheel-drive", "--reaction-time", "99"], "--reaction-time 99 is invalid; valid range"),
     (["--chair", "mid-wheel-drive", "--intended-speed", "1"], "--intended-speed needs --reaction-time"),
-    (["--chair", "mid-wheel-drive", "--cross-slope", "9"], "--cross-slope 9.0 is invalid; valid range: 0 to 8"),
+    (["--chair", "mid-wheel-drive", "--cross-slope", "9"], "--cross-slope 9 is invalid; valid range: 0 <= value <= 8 deg"),
     (["--chair", "ej-premier", "--speeds", "-0.5,0.75"], "--speeds '-0.5,0.75' is invalid"),
 ])
 def test_bad_input_is_refused_in_one_line(argv, words, capsys):

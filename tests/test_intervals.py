@@ -98,10 +98,3 @@ def test_cli_refuses_too_many_samples(tmp_path, capsys):
     assert main(["--uncertainty", str(f), "--samples", "10000000"]) == 2
     err = capsys.readouterr().err
     assert "--samples" in err and len(err.strip().splitlines()) == 1
-
-
-def test_cli_sample_bound_is_the_analysis_bound():
-    from stability.critical_speed import command
-    from stability.linear import intervals
-
-    assert command.MAX_SAMPLES == intervals.MAX_SAMPLES

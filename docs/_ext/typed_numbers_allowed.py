@@ -450,8 +450,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('Richter et al. 2007 (0.87 N m/deg, 0.25-1.80)', 'cited'),
         ('(1.5-10 kg m).', 'cited'),
         ('on trail 2-12 cm x speed 0.25-3 m/s', 'parameter'),
-        ('and N (1 to', 'parameter'),
-        ('and S (>= 0)', 'parameter'),
         ('at 12 speeds (5 with', 'parameter'),
         ('at most 200', 'parameter'),
         ('draws, 40 with `--quick`,', 'parameter'),

@@ -55,6 +55,7 @@ from stability.driver.model import Driver
 from stability.layout.model import Layout
 from stability.runtime.checks import first_argument
 from stability.settings import defaults as D
+from stability.settings.bounds import ADVISE_CROSS_SLOPE, HUMAN_SPEED, MIN_TIP_ANGLE
 from stability.settings.reference import REFERENCE_SPEED
 from stability.study.memo import memo_searches
 from stability.tires import summarised_warnings
@@ -364,8 +365,11 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     # the speed's size (in reverse too: the human-limited speed of a layout backwards is a size)
     intended = None if driver is None else float(max(abs(u) for u in use) if intended_speed is None
                                                  else intended_speed)
-    if intended is not None and not (math.isfinite(intended) and 0.01 <= intended <= 20.0):
-        raise ValueError(f"intended_speed={intended_speed!r} is invalid; valid range: 0.01 to 20 m/s")
+    if intended_speed is not None:
+        HUMAN_SPEED.check("intended_speed", intended_speed)
+    if min_tip_deg is not None:
+        MIN_TIP_ANGLE.check("min_tip_deg", min_tip_deg)
+    ADVISE_CROSS_SLOPE.check("cross_slope_deg", cross_slope_deg)
     singles, refused = lever_changes(chair)
     cores: dict = {}
     prune = prune and isinstance(chair, Chair)

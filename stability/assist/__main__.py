@@ -132,29 +132,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _options(args: argparse.Namespace) -> tuple[Weights, DriveTrain, GyroSensor]:
-    if not (math.isfinite(args.max_heading_error) and args.max_heading_error > 0):
-        raise ValueError(f"--max-heading-error {args.max_heading_error!r} is invalid; valid range: > 0 deg")
-    if not (math.isfinite(args.max_yaw_rate) and args.max_yaw_rate >= 0):
-        raise ValueError(f"--max-yaw-rate {args.max_yaw_rate!r} is invalid; valid range: >= 0 deg/s (0: unweighted)")
-    # a wheelchair drive delivers somewhere between 1 and 1000 N m at the wheel; outside that range the
-    # design (and its saturated nonlinear checks) would be meaningless and could run without bound
-    if not (math.isfinite(args.torque_limit) and 1.0 <= args.torque_limit <= 1000.0):
-        raise ValueError(f"--torque-limit {args.torque_limit!r} is invalid; valid range: 1 to 1000 N m per wheel")
-    if args.torque_budget is not None and not (math.isfinite(args.torque_budget)
-                                               and 0.1 <= args.torque_budget <= 1000.0):
-        raise ValueError(f"--torque-budget {args.torque_budget!r} is invalid; valid range: 0.1 to 1000 N m per wheel")
-    if not (math.isfinite(args.wheel_radius) and 0 < args.wheel_radius <= 0.5):
-        raise ValueError(f"--wheel-radius {args.wheel_radius!r} is invalid; valid range: 0 < r <= 0.5 m")
-    if not (math.isfinite(args.sample_rate) and args.sample_rate >= 10):
-        raise ValueError(f"--sample-rate {args.sample_rate!r} is invalid; valid range: >= 10 Hz")
-    if not (math.isfinite(args.bias_time_constant) and args.bias_time_constant >= 0):
-        raise ValueError(f"--bias-time-constant {args.bias_time_constant!r} is invalid; valid range: >= 0 s")
-    if not (math.isfinite(args.motor_lag) and 0 <= args.motor_lag <= 0.5):
-        raise ValueError(f"--motor-lag {args.motor_lag!r} is invalid; valid range: 0 <= lag <= 0.5 s")
-    for name in ("gyro_noise", "gyro_bias"):
-        v = getattr(args, name)
-        if not (math.isfinite(v) and v >= 0):
-            raise ValueError(f"--{name.replace('_', '-')} {v!r} is invalid; valid range: >= 0 deg/s")
+    # every number was parsed within its range by the parser (stability.cli.numbers.OPTION_BOUNDS)
     w = Weights(max_heading_error_deg=args.max_heading_error,
                 max_yaw_rate_deg_s=args.max_yaw_rate or None, torque_budget_nm=args.torque_budget)
     drive = DriveTrain(wheel_radius=args.wheel_radius, torque_limit=args.torque_limit,

@@ -14,6 +14,7 @@ from typing import Any
 from stability.chair import Chair, preset
 from stability.runtime.checks import check_nonnegative, check_positive
 from stability.settings import defaults as D
+from stability.settings.bounds import DRIVE_WHEEL_RADIUS
 
 __all__ = ["DriveAxle", "DriveTrain", "power_fwd", "drive_train", "drive_kind", "COMPONENTS", "LumpedEstimate",
            "lumped_estimate"]
@@ -127,9 +128,9 @@ class DriveTrain:
             check_positive(name, getattr(self, name), prefix="drive-train parameter ")
         check_nonnegative("motor_time_constant", self.motor_time_constant, prefix="drive-train parameter ")
         check_nonnegative("yaw_damping", self.yaw_damping, prefix="drive-train parameter ")
-        if self.wheel_radius > 0.5:
+        if not DRIVE_WHEEL_RADIUS.holds(self.wheel_radius):
             raise ValueError(f"drive-train parameter wheel_radius={self.wheel_radius!r} is invalid; "
-                             "valid range: 0 < wheel_radius <= 0.5 m")
+                             f"valid range: {DRIVE_WHEEL_RADIUS.text('wheel_radius')}")
 
     @staticmethod
     def lever(chair: Chair | DriveAxle) -> float:

@@ -19,7 +19,20 @@ from typing import Any
 
 import numpy as np
 
-from stability.settings.bounds import SEARCH_MAX_SPEED, Bound
+from stability.settings.bounds import (
+    ADVISE_CROSS_SLOPE,
+    CONFIDENCE_LEVEL,
+    DRIVE_WHEEL_RADIUS,
+    HUMAN_SPEED,
+    MIN_TIP_ANGLE,
+    NONLINEAR_SAMPLES,
+    SAMPLES,
+    SEARCH_MAX_SPEED,
+    SEED,
+    SIGNED_SPEED,
+    SPEED,
+    Bound,
+)
 from stability.settings.drive import DRIVE_SETTINGS, drive_flag
 from stability.settings.run import RUN_SETTINGS
 
@@ -34,28 +47,29 @@ __all__ = ["Bound", "OPTION_BOUNDS", "bound_for", "number", "NonFiniteResult", "
 #: each command's estimate of time and memory (count x cost).
 OPTION_BOUNDS: dict[str, Bound] = {
     # speeds: a wheelchair, powered or pushed, does not exceed 20 m/s (72 km/h)
-    "--speed": Bound(0.01, 20.0, "m/s"),       # 0.01: stability.runtime.checks.MIN_SPEED (round-off below)
+    "--speed": SPEED,
     "--max-speed": SEARCH_MAX_SPEED,          # the API's stability.analyse(max_speed=)
     # the slope command answers reverse (negative speeds) with the layout model, as RunSpec's speed
-    "slope:--speed": Bound(0.01, 20.0, "m/s", signed=True),
+    "slope:--speed": SIGNED_SPEED,
     # counts and seeds
-    "--samples": Bound(1, 20_000, ""),
-    "--nonlinear-samples": Bound(1, 20_000, ""),
-    "--seed": Bound(0, 2**32 - 1, ""),
-    "--level": Bound(0.0, 1.0, "", open_lo=True, open_hi=True),          # a probability (confidence level)
+    "--samples": SAMPLES,
+    "--nonlinear-samples": NONLINEAR_SAMPLES,
+    "--seed": SEED,
+    "--level": CONFIDENCE_LEVEL,                                # a probability (confidence level)
     "study:--level": Bound(0.0, 50.0, "rad/s", open_lo=True),   # a yaw-rate level
     # pushes: a person pushes with a few hundred N; 10 kN is a collision
     "--max-impulse": Bound(0.0, 1_000.0, "N s", open_lo=True),
     "--force": Bound(0.0, 10_000.0, "N", open_lo=True),
     # roads: no wheelchair ramp or road is steeper than 45 deg (commands bound it further)
     "--cross-slope": Bound(-45.0, 45.0, "deg"),
+    "advise:--cross-slope": ADVISE_CROSS_SLOPE,                 # the advisor's drive constraint: everyday slopes
     "--grade": Bound(-45.0, 45.0, "deg"),
     # times: an hour of simulated motion; a push of at most 10 s; sample intervals from 1 us
     "--sim-time": Bound(0.0, 3600.0, "s", open_lo=True),
     "slope:--sim-time": Bound(0.0, 10.0, "s", open_lo=True),      # the slope command's uncorrected turn
     # the driver's effective delay: stability.driver.model.REACTION_TIME_RANGE_S (a reflex to a slow correction)
     "--reaction-time": Bound(0.05, 2.0, "s"),
-    "--intended-speed": Bound(0.1, 6.0, "m/s"),                 # the human-limited speed's search range
+    "--intended-speed": HUMAN_SPEED,                            # the human-limited speed's search range
     # integrator tolerances: below 1e-12 (relative) or 1e-14 (absolute, states of order 1) double precision
     # (eps 2.2e-16) cannot meet them and the step size collapses
     # assist: drive train, gyro and controller
@@ -64,14 +78,15 @@ OPTION_BOUNDS: dict[str, Bound] = {
     "--torque-limit": Bound(1.0, 1000.0, "N m"),
     "--torque-budget": Bound(0.1, 1000.0, "N m"),
     "--wheel-radius": Bound(0.05, 1.0, "m"),                # a caster's radius to a 2 m (78 in) wheel
+    "assist:--wheel-radius": DRIVE_WHEEL_RADIUS,            # a drive wheel (stability.chair.power.DriveTrain)
     "--handrim-radius": Bound(0.05, 1.0, "m"),
     "--gyro-noise": Bound(0.0, 100.0, "deg/s/sqrt(Hz)"),
-    "--gyro-bias": Bound(-100.0, 100.0, "deg/s"),
+    "--gyro-bias": Bound(0.0, 100.0, "deg/s"),     # its size (GyroSensor): the chair is mirror symmetric
     "--sample-rate": Bound(10.0, 2_000.0, "Hz"),            # controller rates in use: 50 Hz to 1 kHz
     "--bias-time-constant": Bound(0.0, 1000.0, "s"),
     "--motor-lag": Bound(0.0, 0.5, "s"),
     # advise: a static stability (tip) angle; a chair tips over at 0 deg and none is stable beyond 60 deg
-    "--min-tip-deg": Bound(0.0, 60.0, "deg", open_lo=True),
+    "--min-tip-deg": MIN_TIP_ANGLE,
     # shimmy: caster tire and frame
     "--relaxation-length": Bound(0.0, 1.0, "m", open_lo=True),
     "--lateral-stiffness": Bound(0.0, 1e8, "N/m", open_lo=True),

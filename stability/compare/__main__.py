@@ -41,8 +41,8 @@ from stability.cli import (
 from stability.compare.compute import DEFAULT_SPEEDS, compare, solves_per_sample, unique_labels
 from stability.compare.text import comparison_dict, format_comparison
 from stability.linear.batch import check_eigen_work
-from stability.linear.intervals import MAX_SAMPLES
 from stability.settings import defaults as D
+from stability.settings.bounds import SIGNED_SPEED
 from stability.uncertainty import Uncertainty, load_uncertainty
 
 __all__ = ["main", "build_parser"]
@@ -116,12 +116,6 @@ def _run(args: argparse.Namespace) -> int:
     if args.uncertainty and len(args.uncertainty) != len(args.chairs):
         raise ValueError(f"--uncertainty given {len(args.uncertainty)} times for {len(args.chairs)} chairs; "
                          "valid: once per chair in order ('-' for a chair without one)")
-    if not 1 <= args.samples <= MAX_SAMPLES:
-        raise ValueError(f"--samples {args.samples} is invalid; valid range: 1 to {MAX_SAMPLES}")
-    if not 0 < args.level < 1:
-        raise ValueError(f"--level {args.level!r} is invalid; valid range: 0 < level < 1")
-    if not (0.01 < args.max_speed <= 100.0):
-        raise ValueError(f"--max-speed {args.max_speed!r} is invalid; valid range: 0.01 < value <= 100 m/s")
     from stability.layout.io import is_layout_spec
 
     signed = parse_speeds(args.speeds, max_count=200, signed=True)
@@ -180,9 +174,9 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
     if args.model != "exact":
         raise ValueError(f"--model {args.model} is invalid for wheel layouts; valid values: exact (the layout's "
                          "equations are the exact model's)")
-    if any(abs(u) < 0.01 or abs(u) > 20.0 for u in speeds):
-        raise ValueError(f"--speeds {args.speeds!r} is invalid for wheel layouts; valid range: 0.01 <= |speed| <= 20 "
-                         "m/s (negative: reverse)")
+    if not all(SIGNED_SPEED.holds(u) for u in speeds):
+        raise ValueError(f"--speeds {args.speeds!r} is invalid for wheel layouts; valid range: "
+                         f"{SIGNED_SPEED.text('speed')} (negative: reverse)")
     per: list[list[str]] = [[] for _ in args.chairs]
     for a in args.set:
         k, sep, rest = a.partition(":")

@@ -22,12 +22,12 @@ from stability.linear.batch import ChairBatch, check_eigen_work
 from stability.linear.intervals import (
     BISECTION_STEPS,
     GRID_POINTS,
-    MAX_SAMPLES,
     LinearIntervals,
     linear_intervals,
     solves_per_draw,
 )
 from stability.runtime.checks import check_model
+from stability.settings.bounds import SAMPLES
 from stability.settings.defaults import SUMMARY_SPEEDS
 from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
@@ -285,8 +285,7 @@ def compare(chairs: Sequence[Chair], *, labels: Sequence[str] | None = None, mod
     model = check_model(model)
     if pairing not in ("shared", "independent"):
         raise ValueError(f"pairing={pairing!r} is invalid; valid: 'shared' or 'independent'")
-    if not 1 <= int(samples) <= MAX_SAMPLES:
-        raise ValueError(f"samples={samples!r} is invalid; valid range: 1 to {MAX_SAMPLES}")
+    samples = int(SAMPLES.check("samples", samples, integer=True))
     labels = tuple(labels) if labels is not None else unique_labels([c.name for c in chairs])
     if len(labels) != len(chairs) or len(set(labels)) != len(labels):
         raise ValueError(f"labels={list(labels)!r} is invalid; valid: one unique label per chair")

@@ -33,7 +33,8 @@ from stability.layout.linear import SEARCH_SPEEDS_M_S, critical_speed, growth_ra
 from stability.layout.model import Layout
 from stability.layout.statics import tip_angles
 from stability.linear.batch import check_eigen_work
-from stability.linear.intervals import MAX_SAMPLES, solves_per_draw
+from stability.linear.intervals import solves_per_draw
+from stability.settings.bounds import CONFIDENCE_LEVEL, SAMPLES
 from stability.settings.reference import REFERENCE_SPEED, THESIS_PUSH
 from stability.study.censored import quantile
 from stability.study.layout_impulse import layout_critical_impulses
@@ -220,7 +221,7 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
         an interval end that is such a bound is infinite).  The critical impulse is not propagated (a push search
         per draw; the short form's comparison does not either).
     samples, seed : int
-        Draws per uncertain layout (1 to :data:`stability.linear.intervals.MAX_SAMPLES`) and their seed.
+        Draws per uncertain layout (:data:`stability.settings.bounds.SAMPLES`) and their seed.
     level : float
         Interval coverage, 0 < level < 1.
     pairing : {"shared", "independent"}
@@ -240,10 +241,8 @@ def compare_layouts(layouts: Sequence[Layout], *, labels: Sequence[str] | None =
         raise ValueError(f"labels={labels!r} is invalid; valid: one unique label per layout")
     if pairing not in ("shared", "independent"):
         raise ValueError(f"pairing={pairing!r} is invalid; valid: 'shared' or 'independent'")
-    if not 1 <= int(samples) <= MAX_SAMPLES:
-        raise ValueError(f"samples={samples!r} is invalid; valid range: 1 to {MAX_SAMPLES}")
-    if not 0 < level < 1:
-        raise ValueError(f"level={level!r} is invalid; valid range: 0 < level < 1")
+    samples = int(SAMPLES.check("samples", samples, integer=True))
+    level = CONFIDENCE_LEVEL.check("level", level)
     uncs = list(uncertainties) if uncertainties is not None else [None] * len(layouts)
     if len(uncs) != len(layouts):
         raise ValueError(f"uncertainties: {len(uncs)} given for {len(layouts)} layouts; valid: one per layout")

@@ -29,13 +29,14 @@ from stability.driver.delay import PADE_ORDER, pade
 from stability.driver.model import Driver
 from stability.linear import input_matrices, state_matrices
 from stability.runtime.checks import check_model, check_speed
+from stability.settings.bounds import HUMAN_SPEED
 
 __all__ = ["PADE_ORDER", "SPEED_RANGE_M_S", "pade", "closed_loop_matrix", "abscissa", "best_gains", "heading_plant",
            "OperatorFit", "operator_fit", "divergence_rate", "HumanLimit", "human_limit", "rule_speed", "plant_limit",
            "rule_crossing", "with_heading"]
 
 #: Speeds searched for the limit, m/s: a limit outside is reported as a bound (``> 6 m/s``).
-SPEED_RANGE_M_S = (0.1, 6.0)
+SPEED_RANGE_M_S = (HUMAN_SPEED.lo, HUMAN_SPEED.hi)
 #: Speed grid of the search (the limit is then refined between two grid speeds).
 _GRID = np.round(np.linspace(SPEED_RANGE_M_S[0], SPEED_RANGE_M_S[1], 25), 4)
 #: Operator gain search box (log10): k_p in N m/rad, k_d in N m s/rad.

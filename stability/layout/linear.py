@@ -20,6 +20,7 @@ import numpy as np
 from stability.layout.model import Layout, takes_layout
 from stability.layout.statics import cornering_stiffnesses
 from stability.models.layout import linear_layout_matrices, supported_shapes
+from stability.settings.bounds import SIGNED_SPEED
 
 __all__ = ["state_matrices", "input_matrices", "growth_rates", "LayoutSummary", "analyse_layout", "states",
            "critical_speed", "SEARCH_SPEEDS_M_S"]
@@ -55,8 +56,8 @@ def _args(layout: Layout, reverse: bool) -> tuple[float, ...]:
 
 def _matrices(layout: Layout, speeds) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     U = np.atleast_1d(np.asarray(speeds, dtype=float))
-    if not np.all(np.isfinite(U)) or np.any(np.abs(U) < 0.01) or np.any(np.abs(U) > 20.0):
-        raise ValueError(f"speeds={speeds!r} is invalid; valid range: 0.01 <= |U| <= 20 m/s (negative: reverse)")
+    if not np.all(SIGNED_SPEED.holds(U)):
+        raise ValueError(f"speeds={speeds!r} is invalid; valid range: {SIGNED_SPEED.text('U')} (negative: reverse)")
     if layout.shape not in supported_shapes():
         raise ValueError(f"layout {layout.name!r} has {layout.shape[0]} fixed wheels and {layout.shape[1]} casters; "
                          f"valid shapes: {supported_shapes()} (add one to derivations/layout.py SHAPES)")

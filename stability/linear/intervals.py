@@ -10,13 +10,14 @@ import numpy as np
 from stability.chair import Chair
 from stability.linear.batch import ChairBatch, check_eigen_work
 from stability.linear.summary import zero_width
+from stability.settings.bounds import CONFIDENCE_LEVEL, SAMPLES
 from stability.uncertainty import Uncertainty, delta_method, propagate
 
 __all__ = ["LinearIntervals", "linear_intervals", "MAX_SAMPLES", "solves_per_draw", "GRID_POINTS",
            "BISECTION_STEPS"]
 
-#: Largest Monte Carlo sample a command line accepts (bounded work: ~1 ms per chair).
-MAX_SAMPLES = 20_000
+#: Largest Monte Carlo sample (:data:`stability.settings.bounds.SAMPLES`'s upper end; bounded work: ~1 ms per chair).
+MAX_SAMPLES = int(SAMPLES.hi)
 
 
 #: Speeds of the critical-speed search grid (geometric from 0.01 m/s to ``max_speed``).
@@ -112,8 +113,8 @@ def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "ex
     -------
     LinearIntervals
     """
-    if not 1 <= int(samples) <= MAX_SAMPLES:
-        raise ValueError(f"samples={samples!r} is invalid; valid range: 1 to {MAX_SAMPLES}")
+    samples = int(SAMPLES.check("samples", samples, integer=True))
+    level = CONFIDENCE_LEVEL.check("level", level)
     U = np.asarray(speeds, dtype=float)
     grid = np.geomspace(0.01, max_speed, GRID_POINTS)
     k = len(U)

@@ -13,8 +13,9 @@ import numpy as np
 
 from stability.chair import Chair
 from stability.linear.batch import ChairBatch
-from stability.linear.intervals import MAX_SAMPLES, LinearIntervals, linear_intervals
+from stability.linear.intervals import LinearIntervals, linear_intervals
 from stability.report.settings import Settings
+from stability.settings.bounds import SAMPLES, SEED
 from stability.settings.reference import REFERENCE_SPEED
 from stability.settings.run import RunSpec
 from stability.study.uncertain import NonlinearIntervals, nonlinear_intervals
@@ -44,9 +45,9 @@ class UncertaintySpec:
     uncertainty : Uncertainty
         Its distributions.
     samples : int
-        Monte Carlo draws, 1 to :data:`stability.linear.intervals.MAX_SAMPLES`.
+        Monte Carlo draws (:data:`stability.settings.bounds.SAMPLES`).
     seed : int
-        Seed of the draws (>= 0).
+        Seed of the draws (:data:`stability.settings.bounds.SEED`).
     """
 
     source: str
@@ -55,10 +56,8 @@ class UncertaintySpec:
     seed: int = 0
 
     def __post_init__(self) -> None:
-        if not 1 <= int(self.samples) <= MAX_SAMPLES:
-            raise ValueError(f"--samples {self.samples!r} is invalid; valid range: 1 to {MAX_SAMPLES}")
-        if int(self.seed) < 0:
-            raise ValueError(f"--seed {self.seed!r} is invalid; valid range: >= 0")
+        SAMPLES.check("--samples", self.samples, integer=True)
+        SEED.check("--seed", self.seed, integer=True)
 
 
 @dataclass(frozen=True, eq=False)

@@ -14,7 +14,8 @@ from typing import Any, NamedTuple
 
 from stability.runtime.checks import MAX_SPEED, MIN_SPEED, is_real, real_value, value_text
 
-__all__ = ["Bound", "number_text", "SEARCH_MAX_SPEED"]
+__all__ = ["Bound", "number_text", "SEARCH_MAX_SPEED", "SPEED", "SIGNED_SPEED", "SAMPLES", "NONLINEAR_SAMPLES",
+           "SEED", "CONFIDENCE_LEVEL", "HUMAN_SPEED", "ADVISE_CROSS_SLOPE", "MIN_TIP_ANGLE", "DRIVE_WHEEL_RADIUS"]
 
 
 def number_text(x: float) -> str:
@@ -129,3 +130,42 @@ class Bound(NamedTuple):
 #: The critical-speed search's upper end, m/s (``stability.analyse(max_speed=)``, ``--max-speed``): above the
 #: slowest speed whose rates are not lost in round-off, up to the fastest speed searched.
 SEARCH_MAX_SPEED = Bound(MIN_SPEED, MAX_SPEED, "m/s", open_lo=True)
+
+#: A wheelchair's speed, m/s (``--speed``, a run's speed): from the slowest whose growth rates are not lost in
+#: round-off (:data:`stability.runtime.checks.MIN_SPEED`) to 20 m/s (72 km/h), faster than any wheelchair.
+SPEED = Bound(MIN_SPEED, 20.0, "m/s")
+
+#: :data:`SPEED` as a signed speed, negative in reverse (:class:`stability.settings.run.RunSpec`'s ``speed``, the
+#: wheel layouts' speeds).
+SIGNED_SPEED = SPEED._replace(signed=True)
+
+#: Monte Carlo draws of a linear uncertainty interval (``samples=``, ``--samples``): about 1 ms of eigenvalues per
+#: draw, so the largest is about 20 s of work.
+SAMPLES = Bound(1, 20_000, "")
+
+#: Simulated draws of the nonlinear uncertainty check (``nonlinear_intervals(samples=)``,
+#: ``--nonlinear-samples``): each draw is a critical-impulse search of tens of runs, so a tenth of :data:`SAMPLES`.
+NONLINEAR_SAMPLES = Bound(1, 2_000, "")
+
+#: Seed of the Monte Carlo draws (``seed=``, ``--seed``): numpy's legacy seeds, 32 bits.
+SEED = Bound(0, 2**32 - 1, "")
+
+#: A confidence level (``level=``, ``--level``): a probability strictly between 0 and 1.
+CONFIDENCE_LEVEL = Bound(0.0, 1.0, "", open_lo=True, open_hi=True)
+
+#: The human-limited speed's search range, m/s (:mod:`stability.driver.linear`, the advisor's ``intended_speed``,
+#: ``--intended-speed``): a slow walk to a fast power chair, as a size (in reverse too).
+HUMAN_SPEED = Bound(0.1, 6.0, "m/s")
+
+#: The advisor's cross slope for its drive constraint, deg (``advise(cross_slope_deg=)``, ``--cross-slope``):
+#: level ground to 8 deg, steeper than an accessible route's running slope (1:12, 4.8 deg) and far above its
+#: cross slope (1:48, 1.2 deg).
+ADVISE_CROSS_SLOPE = Bound(0.0, 8.0, "deg")
+
+#: A drive wheel's radius, m (:class:`stability.chair.power.DriveTrain`, the assist's ``--wheel-radius``): up to a
+#: 1 m (39 in) wheel, larger than any wheelchair's.
+DRIVE_WHEEL_RADIUS = Bound(0.0, 0.5, "m", open_lo=True)
+
+#: The smallest acceptable static stability angle, deg (``advise(min_tip_deg=)``, ``--min-tip-deg``): 0 sets no
+#: tip-angle limit (a chair tips over at 0 deg) and none is stable beyond 60 deg.
+MIN_TIP_ANGLE = Bound(0.0, 60.0, "deg")

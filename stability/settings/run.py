@@ -49,7 +49,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from stability.runtime.checks import real_value, value_text
-from stability.settings.bounds import Bound
+from stability.settings.bounds import SIGNED_SPEED, Bound
 from stability.settings.reference import HORIZON, REFERENCE_SPEED, THESIS_PUSH, Push
 
 __all__ = ["RunSpec", "Setting", "RUN_SETTINGS", "SCHEMES", "MODELS", "CASTERS", "FRICTION_LAWS",
@@ -236,7 +236,7 @@ class RunSpec:
     """
 
     speed: float = _s(REFERENCE_SPEED, "m/s", "initial forward speed (negative: reverse)",
-                      Bound(0.01, 20.0, "m/s", signed=True), special_help="negative: reverse")
+                      SIGNED_SPEED, special_help="negative: reverse")
     push_force: float = _s(THESIS_PUSH.force, "N", "lateral push at the c.g., positive to the right",
                            Bound(-10_000.0, 10_000.0, "N"))
     push_duration: float = _s(THESIS_PUSH.duration, "s", "how long the push acts (while t <= push_duration)",

@@ -59,13 +59,9 @@ def _compliance(args) -> CasterCompliance:
     comp = CasterCompliance()
     for name in ("relaxation_length", "lateral_stiffness"):
         v = getattr(args, name)
-        if v is not None:
-            if not (math.isfinite(v) and v > 0):
-                raise ValueError(f"--{name.replace('_', '-')}={v!r} is invalid; valid range: > 0 (finite)")
+        if v is not None:                       # parsed within its range (OPTION_BOUNDS)
             lo, hi = getattr(comp, name + "_range")
             comp = comp.__class__(**{**comp.__dict__, name: v, name + "_range": (min(lo, v), max(hi, v))})
-    if not (0 < args.amplitude_deg < 45):
-        raise ValueError(f"--amplitude-deg={args.amplitude_deg!r} is invalid; valid range: 0 < value < 45 deg")
     return comp
 
 

@@ -42,6 +42,7 @@ from stability.layout.statics import load_rule
 from stability.models.layout import nonlinear as _gn
 from stability.models.layout import shape_index
 from stability.runtime.files import atomic_write_text
+from stability.settings.bounds import SIGNED_SPEED
 from stability.settings.run import RunSpec
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
 from stability.simulate.packing import _rolling_slot, _tire_slot, policy_code, slope_slots
@@ -211,8 +212,8 @@ def _check_run(layout: Any, speed: Any, run: RunSpec | None) -> tuple[Layout, fl
         if isinstance(speed, bool) or not isinstance(speed, (int, float, np.floating, np.integer)):
             raise TypeError(f"speed={speed!r} is invalid; expected a number (m/s, negative: reverse)")
         signed = float(speed)
-        if not (math.isfinite(signed) and 0.01 <= abs(signed) <= 20.0):
-            raise ValueError(f"speed={speed!r} is invalid; valid range: 0.01 <= |speed| <= 20 m/s (negative: "
+        if not SIGNED_SPEED.holds(signed):
+            raise ValueError(f"speed={speed!r} is invalid; valid range: {SIGNED_SPEED.text('speed')} (negative: "
                              "reverse)")
         run = run.replace(speed=abs(signed), reverse=signed < 0)
     check_layout_run(run)

@@ -30,6 +30,7 @@ from stability.layout.statics import load_rule
 from stability.models.forces import slip_angle
 from stability.models.layout import nonlinear as _gn
 from stability.models.layout import shape_index
+from stability.settings.bounds import SIGNED_SPEED
 from stability.settings.run import RunSpec
 from stability.simulate.layout import check_layout_run, parameter_vector, simulate_layout, tire_slots
 from stability.simulate.layout_forces import tire_forces
@@ -39,10 +40,6 @@ from stability.study.veer import MAX_CASTER_SWING_DEG, plane_seen_from
 
 __all__ = ["LayoutEquilibrium", "layout_equilibrium", "drive_wheels", "LayoutPath", "layout_uncorrected_path",
            "layout_slope_report", "layout_drive_kind", "layout_drive_report"]
-
-#: Largest |speed| of the statics, m/s (the layout simulator's range).
-MAX_SPEED_M_S = 20.0
-
 
 def drive_wheels(layout: Layout) -> tuple[int, int]:
     """The two fixed wheels whose longitudinal forces hold the line: the driven ones, else every fixed wheel.
@@ -235,9 +232,8 @@ def layout_equilibrium(layout: Layout, cross_slope_deg: float, speed: float, gra
     """
     check_layout(layout)
     if isinstance(speed, bool) or not isinstance(speed, (int, float)) or not (
-            math.isfinite(speed) and 0.01 <= abs(speed) <= MAX_SPEED_M_S):
-        raise ValueError(f"speed={speed!r} is invalid; valid range: 0.01 <= |speed| <= {MAX_SPEED_M_S:g} m/s "
-                         "(negative: reverse)")
+            SIGNED_SPEED.holds(speed)):
+        raise ValueError(f"speed={speed!r} is invalid; valid range: {SIGNED_SPEED.text('speed')} (negative: reverse)")
     check_layout_run(RunSpec(cross_slope_deg=cross_slope_deg, grade_deg=grade_deg))   # the plane's range
     plane = Plane(cross_slope_deg, grade_deg)
     st = _Statics(layout, plane, float(speed))

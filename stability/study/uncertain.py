@@ -18,6 +18,7 @@ import numpy as np
 from stability.chair import Chair, preset
 from stability.chair.model import takes_chair
 from stability.runtime.checks import check_speed
+from stability.settings.bounds import CONFIDENCE_LEVEL, NONLINEAR_SAMPLES
 from stability.settings.reference import LEVEL, REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
 from stability.settings.run import RunSpec
 from stability.study.criteria import Criterion
@@ -28,8 +29,9 @@ from stability.uncertainty import Uncertainty, propagate
 
 __all__ = ["MeasureInterval", "NonlinearIntervals", "nonlinear_intervals", "MAX_NONLINEAR_SAMPLES"]
 
-#: Largest Monte Carlo sample (bounded work: 200 draws of both measures take 11-17 s on two cores).
-MAX_NONLINEAR_SAMPLES = 2000
+#: Largest Monte Carlo sample (:data:`stability.settings.bounds.NONLINEAR_SAMPLES`'s upper end; bounded work: 200
+#: draws of both measures take 11-17 s on two cores).
+MAX_NONLINEAR_SAMPLES = int(NONLINEAR_SAMPLES.hi)
 
 
 @dataclass(frozen=True)
@@ -221,8 +223,8 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, run: RunSpec | N
     model, scheme, horizon = run.model, run.scheme, run.horizon
     dt = 0.001 if run.dt == "auto" else float(run.dt)
     check_speed(speed)
-    if not 1 <= int(samples) <= MAX_NONLINEAR_SAMPLES:
-        raise ValueError(f"samples={samples!r} is invalid; valid range: 1 to {MAX_NONLINEAR_SAMPLES}")
+    samples = int(NONLINEAR_SAMPLES.check("samples", samples, integer=True))
+    level = CONFIDENCE_LEVEL.check("level", level)
     crit = Criterion(LEVEL, horizon)
     ref_chair = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
     t_ref = math.nan

@@ -38,6 +38,7 @@ from stability.chair import Chair, design
 from stability.driver.model import REACTION_TIME_RANGE_S, REACTION_TIME_S
 from stability.layout.io import is_layout_spec, resolve_layout
 from stability.layout.model import Layout
+from stability.settings.bounds import SIGNED_SPEED
 from stability.settings.run import FRICTION_LAWS, MODELS, RunSpec
 from stability.sweep.layouts import LAYOUT_MEASURES, check_layout_axis, check_layout_uncertainty, layout_axes
 from stability.uncertainty import Uncertainty, load_uncertainty
@@ -274,8 +275,8 @@ def _speeds(value: Any, chair: Chair | Layout, layout_form: bool) -> tuple[Chair
     """The speeds, and the base chair as a layout when it is one or a speed is negative (reverse)."""
     speeds = _numbers("speeds", value)
     if layout_form or any(u < 0 for u in speeds):       # a layout, or reverse: the layout sweep (sweep.layouts)
-        if any(not 0.01 <= abs(u) <= 20.0 for u in speeds):
-            raise _bad("speeds", value, "numbers with 0.01 <= |speed| <= 20 m/s (negative: reverse)")
+        if not all(SIGNED_SPEED.holds(u) for u in speeds):
+            raise _bad("speeds", value, f"numbers with {SIGNED_SPEED.text('speed')} (negative: reverse)")
         return (chair if isinstance(chair, Layout) else Layout.from_chair(chair)), speeds
     if any(u <= 0 for u in speeds):
         raise _bad("speeds", value, "numbers > 0 (or a negative one: the layout sweep in reverse)")
