@@ -525,3 +525,54 @@ def test_critical_speed_guard_maximises_only_where_the_cubic_is_suspicious():
                  if grid[k] < x < grid[k + 1] and np.sign(alpha(grid[k])) == np.sign(alpha(grid[k + 1]))}
     assert expected == {2}
     assert maximised == expected
+
+
+# ---------------------------------------------------------------------------
+# the full-width model's defaults (mutation survivors, seed 42: the default variant, casters and yaw moment)
+# ---------------------------------------------------------------------------
+def test_full_width_defaults_are_the_exact_model_free_casters_and_no_moment():
+    """Called without ``variant``, ``casters`` or ``Mz_ext``: the exact model, free casters, no external moment.
+
+    Straight running at U with trailing casters is a rigid translation: every contact moves at (U, 0) in its own
+    frame (casters at 0 deg are aligned with the body), and with no tire force and no moment nothing accelerates.
+    The linearised free-caster model has k = 4 accelerations of n = 6 states (eq 6-22's order).
+    """
+    from stability.models.full_width import accelerations, contact_velocities, linear_matrices
+    from stability.models.params import parameters
+    from stability.models.statics import static_stiffness
+
+    c = chair_mod.preset("ej-premier")
+    p = parameters(c)
+    U = 0.75
+    vel = contact_velocities(p, U, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0)
+    # error model: a translation's velocities are U and 0 up to the products' rounding, a few ulp of U
+    np.testing.assert_allclose(vel, [U, 0.0] * 4, rtol=0, atol=100 * EPS * U)
+    acc = accelerations(p, U, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, *([0.0] * 10))
+    assert np.all(np.asarray(acc, dtype=float) == 0.0)    # exactly: every term is a product with a zero
+    M, K, Bm = linear_matrices(p, [U], static_stiffness(c))
+    assert M.shape[-2:] == (4, 4) and K.shape == (1, 4, 6) and Bm.shape == (1, 4)
+
+
+def test_eigenvalue_slope_is_the_analytic_derivative_at_the_top_speed():
+    """``_slopes`` (eigenvalue perturbation with a central difference of A(U)) against the exact derivative.
+
+    A(U) = T diag(-1 + 0.02 U, -3) T^-1 with a fixed well-conditioned T: the largest eigenvalue's slope is 0.02
+    at every speed.  Error model: the central difference of a linear A is exact but for the rounding of A's
+    entries, about cond(T) eps max|A| / h with the step h = 1e-6 max(1, U); at U = 100 m/s that is
+    1.3 * 2.2e-16 * 3 / 1e-4 = 8.6e-12 (observed 1.2e-12; 2e-11 at 0.5 and 2 m/s, model 8.4e-10); allowed 100
+    times the model (a step of 1e-6 / U instead gives 8.6e-8 at 100 m/s and fails).
+    """
+    from stability.linear.critical import _slopes
+
+    T = np.array([[1.0, 0.5], [-0.3, 1.2]])
+    Ti = np.linalg.inv(T)
+
+    def state_matrix(speeds):
+        return np.array([T @ np.diag([-1 + 0.02 * u, -3.0]) @ Ti for u in np.atleast_1d(speeds)])
+
+    U = np.array([0.5, 2.0, 30.0, 100.0])
+    alpha = -1 + 0.02 * U
+    slopes = _slopes(state_matrix, U, alpha)
+    cond = np.linalg.cond(T)
+    tol = 100 * cond * EPS * 3.0 / (1e-6 * np.maximum(1.0, U))
+    assert np.all(np.abs(slopes - 0.02) <= tol), (slopes - 0.02, tol)
