@@ -212,6 +212,22 @@ def test_a_chair_inside_a_shimmy_zone_gets_a_fix_or_a_named_blocked_fix():
     assert "inside a shimmy zone" in verdict and "clear of the nearest shimmy zone" not in verdict
 
 
+@pytest.mark.parametrize("name", ["revised", "ej-premier"])
+def test_a_recommendations_shimmy_note_names_the_changed_chair_and_gives_the_chairs_own_margin(name):
+    """Page 1 of the revised chair's report printed "the 6 cm trail is clear of the nearest shimmy zone by 1.23 cm"
+    in the verdict and "... by 1.43 cm" under WHY without saying that the second is the recommended chair's: the
+    note says "with the change" and ends with the chair's own margin, recomputed here by the shimmy band."""
+    chair = chair_mod.preset(name)
+    base_margin = shimmy_band(chair, SPEEDS).shimmy_margin_m
+    a = advise(chair, speeds=SPEEDS, nonlinear=_closed_form, time_to_correct=False)
+    straddling = [r for r in a.recommendations if r.candidate.changes and r.candidate.measures.shimmy_straddles]
+    notes = [n for r in a.recommendations for n in r.notes if n.startswith("Shimmy")]
+    assert straddling and len(notes) == len(straddling)     # the premise: the margin's range straddles zero
+    for n in notes:
+        assert n.startswith("Shimmy with the change: the ") and n.endswith(
+            f"As it is, the margin is {100 * base_margin:+.2f} cm."), n
+
+
 def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
     _, a, _, _ = case
     d = advice_mapping(a)

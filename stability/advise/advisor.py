@@ -290,7 +290,9 @@ def _notes(c: Candidate, base: Measures, chair: Chair | Layout) -> tuple:
     if m.shimmy_straddles and c.changes:
         own = m.shimmy_trail_m if m.shimmy_trail_m is not None or not isinstance(chair, Chair) else chair.trail
         trail = float(dict(c.fields).get("trail", own) or 0.0)
-        notes.append(f"Shimmy: {shimmy_sentence(m, trail)}.")
+        now = base.shimmy_margin_m.value             # the chair as it is (the verdict's margin), so the two differ
+        was = "" if now is None else f" As it is, the margin is {100 * now:+.2f} cm."
+        notes.append(f"Shimmy with the change: {shimmy_sentence(m, trail)}.{was}")
     return tuple(notes)
 
 
