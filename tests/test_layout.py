@@ -281,8 +281,8 @@ def test_a_short_form_command_refuses_a_layout_by_name():
     """A command that answers the short form only (its chair from ``cli.load_chair``) refuses a layout with one line
     naming it and the commands that answer layouts (not 'unknown chair'); every command listed answers one."""
     from stability.cli import load_chair
+    from stability.cli.chairs import LAYOUT_COMMANDS
     from stability.cli.commands import COMMANDS
-    from stability.cli.contract import LAYOUT_COMMANDS
 
     with pytest.raises(ValueError) as exc:
         load_chair("mid-wheel-drive", [])

@@ -28,7 +28,7 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('million speeds, 1e10 time steps, a 1e-6 N m', 'example'),
     ],
     'docs/advise.md': [
-        ('(default 0.5:1:0.25),', 'parameter'),
+        ('(default 0.5:1:0.25).', 'parameter'),
         ('| `trail` | -3, -2, -1, +1 cm |', 'parameter'),
         ('| s1 -10, -5, +5 cm |', 'parameter'),
         ('| s1 -5, +5 cm |', 'parameter'),

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 from collections.abc import Sequence
 
 from stability import cli
@@ -58,19 +57,7 @@ def _speeds(text: str) -> tuple[float, ...]:
         return tuple(-u for u in _speeds(",".join(x.strip()[1:] for x in text.split(","))))
     if text.startswith("-") and ":" not in text and "," not in text:
         return tuple(-u for u in _speeds(text[1:]))
-    speeds: tuple[float, ...]
-    parts = text.split(":")
-    if len(parts) == 2:                                    # a range A:B: its ends and middle
-        try:
-            lo, hi = (float(x) for x in parts)
-        except ValueError:
-            lo = hi = math.nan
-        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
-            raise ValueError(f"--speeds {text!r} is invalid; valid: A:B with 0 < A <= B (m/s), START:STOP:STEP "
-                             "or a list (in reverse: -A:B, -B:-A or every value negative)")
-        speeds = (lo, 0.5 * (lo + hi), hi) if hi > lo else (lo,)
-    else:
-        speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=12))
+    speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=12))    # A:B: its ends and middle
     if max(speeds) > SPEED_RANGE_M_S[1] or min(speeds) < SPEED_RANGE_M_S[0]:
         raise ValueError(f"--speeds {text!r} is invalid; valid range: {_RANGE_TEXT} (all negative: in reverse, "
                          "e.g. -0.5,-0.75 or -0.5:1)")

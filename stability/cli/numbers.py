@@ -36,8 +36,8 @@ from stability.settings.bounds import (
 from stability.settings.drive import DRIVE_SETTINGS, drive_flag
 from stability.settings.run import RUN_SETTINGS
 
-__all__ = ["Bound", "OPTION_BOUNDS", "bound_for", "number", "NonFiniteResult", "first_non_finite",
-           "check_finite_text"]
+__all__ = ["Bound", "OPTION_BOUNDS", "bound_for", "number", "with_unit", "slope_angle", "SLOPE_OPTIONS",
+           "NonFiniteResult", "first_non_finite", "check_finite_text"]
 
 
 #: Plausibility bound of every numeric option of every command, by option name; ``"command:--option"``
@@ -127,8 +127,90 @@ def bound_for(prog: str | None, option: str) -> Bound | None:
     return None
 
 
+_QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)\s*$")
+
+
+def with_unit(option: str, text: str, unit: str, rng: str) -> float:
+    """A number with a unit (``3.6 km/h``, ``100 ms``, ``2deg``) in the option's own ``unit``.
+
+    Parameters
+    ----------
+    option : str
+        The option, named in a refusal.
+    text : str
+        What was given.
+    unit : str
+        The option's unit (:func:`stability.chair.units.parse_unit`'s grammar, e.g. ``"m/s"``).
+    rng : str
+        The valid range's words appended to a refusal (``"; valid range: ..."``).
+
+    Returns
+    -------
+    float
+        The value in ``unit``.
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+        Not a number with a unit of the same dimension as ``unit``; one line naming the option and the value.
+    """
+    from stability.chair.units import dimension_name, parse_unit
+
+    m = _QUANTITY.match(text or "")
+    try:
+        own, own_dims = parse_unit(unit) if unit else (1.0, None)
+    except ValueError:                      # an option whose unit the parser does not write (deg/s/sqrt(Hz))
+        own, own_dims = 1.0, None
+    if not m or own_dims is None:
+        raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; expected a finite number"
+                                         + (f" (or a number with a unit of {unit})" if own_dims else "") + rng)
+    try:
+        factor, dims = parse_unit(m.group(2))
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; {exc}{rng}") from None
+    if dims != own_dims:
+        want = dimension_name(own_dims)
+        raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid: {m.group(2)!r} is a {dimension_name(dims)}"
+                                         f" unit; expected a{'n' if want[0] in 'aeiou' else ''} {want} ({unit}){rng}")
+    return float(m.group(1)) * factor / own
+
+
+#: Options that are the angle of a surface (deg), which also take a road's and a ramp's notation: a percentage
+#: (``8%``: rise over run, 4.57 deg) or a ratio ``1:12`` (rise:run, 4.76 deg, an accessible ramp's limit).
+SLOPE_OPTIONS = ("--grade", "--cross-slope")
+
+_SLOPE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+))\s*(?:(%)|:\s*(\d+\.?\d*|\.\d+))\s*$")
+
+
+def slope_angle(text: str) -> float | None:
+    """The angle (deg) of a slope written as a percentage (``8%``) or a rise:run ratio (``1:12``), else None.
+
+    Parameters
+    ----------
+    text : str
+        E.g. ``"8%"``, ``"-2 %"``, ``"1:12"``.
+
+    Returns
+    -------
+    float or None
+        ``atan(rise / run)`` in degrees (negative for a negative rise); None when ``text`` is neither notation
+        (or the run is 0).
+    """
+    m = _SLOPE.match(text or "")
+    if not m:
+        return None
+    rise = float(m.group(1))
+    run = 100.0 if m.group(2) else float(m.group(3))
+    return math.degrees(math.atan2(rise, run)) if run > 0 else None
+
+
 def number(option: str, kind: type = float, bound: Bound | None = None) -> Callable[[str], float]:
     """An argparse ``type`` that parses one number of option ``option``, finite and inside ``bound``.
+
+    A float may carry a unit of the bound's dimension (``--speed 3.6km/h``, ``--sample-rate 100Hz``,
+    ``stability.cli.numbers.with_unit``), converted to the bound's unit; a grade or cross slope
+    (``stability.cli.numbers.SLOPE_OPTIONS``) may also be a percentage or a rise:run ratio (``8%``, ``1:12``,
+    ``stability.cli.numbers.slope_angle``).
 
     Every numeric option of every command is parsed by one of these (the
     parser installs it for ``type=float`` and ``type=int``), so a refusal
@@ -155,7 +237,13 @@ def number(option: str, kind: type = float, bound: Bound | None = None) -> Calla
         try:
             value = kind(text)
         except (TypeError, ValueError, OverflowError):
-            raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; expected {expected}{rng}") from None
+            if kind is not float:
+                raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; expected {expected}{rng}") from None
+            angle = slope_angle(text) if option in SLOPE_OPTIONS else None
+            if angle is None and option in SLOPE_OPTIONS and (":" in text or "%" in text):
+                raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; expected an angle (deg), a percentage "
+                                                 f"(8%) or a rise:run ratio with run > 0 (1:12){rng}") from None
+            value = angle if angle is not None else with_unit(option, text, bound.unit if bound else "", rng)
         if kind is float and not math.isfinite(value):
             raise argparse.ArgumentTypeError(f"{option} {text!r} is invalid; expected {expected}{rng}")
         if bound is not None and not bound.holds(value):

@@ -18,7 +18,7 @@ from typing import Any, NoReturn
 
 from stability import chair as chair_mod
 from stability import tires
-from stability.cli.numbers import bound_for, number
+from stability.cli.numbers import bound_for, number, with_unit
 from stability.settings import defaults
 from stability.settings.run import RUN_SETTINGS, Setting
 
@@ -170,28 +170,6 @@ def run_flag(name: str) -> str:
     return RUN_SETTINGS[name].flag or "--" + name.replace("_", "-")
 
 
-_QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)\s*$")
-
-
-def _with_unit(flag: str, text: str, unit: str, rng: str) -> float:
-    """A number with a unit (``3.6 km/h``, ``100 ms``) in the setting's own ``unit``; the error names the flag."""
-    from stability.chair.units import dimension_name, parse_unit
-
-    m = _QUANTITY.match(text or "")
-    if not m or not unit:
-        raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid; expected a number"
-                                         + (f" (or a number with a unit of {unit})" if unit else "") + rng)
-    try:
-        factor, dims = parse_unit(m.group(2))
-        own, own_dims = parse_unit(unit)
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid; {exc}{rng}") from None
-    if dims != own_dims:
-        raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid: {m.group(2)!r} is a {dimension_name(dims)}"
-                                         f" unit; expected a {dimension_name(own_dims)} ({unit}){rng}")
-    return float(m.group(1)) * factor / own
-
-
 def _run_value(flag: str, setting: Setting) -> Any:
     """The argparse ``type`` of one numeric run setting: a finite number within its bound, or a special word."""
     bound = setting.bound
@@ -204,7 +182,7 @@ def _run_value(flag: str, setting: Setting) -> Any:
         try:
             value = float(text)
         except (TypeError, ValueError, OverflowError):
-            value = _with_unit(flag, text, setting.unit, rng)
+            value = with_unit(flag, text, setting.unit, rng)
         if value != value or value in (float("inf"), float("-inf")):
             raise argparse.ArgumentTypeError(f"{flag} {text!r} is invalid; expected a finite number{rng}")
         if bound is not None and not bound.holds(value):

@@ -36,8 +36,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = OneLineErrorParser(prog="python -m stability.slope", description=__doc__)
     add_chair_options(p)
     p.add_argument("--cross-slope", type=float, required=True, metavar="DEG",
-                   help="cross slope (deg), positive falling to the right")
-    p.add_argument("--grade", type=float, default=0.0, metavar="DEG", help="grade (deg), uphill + (default 0)")
+                   help="cross slope (deg, or 2%%, 1:50), positive falling to the right")
+    p.add_argument("--grade", type=float, default=0.0, metavar="DEG",
+                   help="grade (deg, or 8%%, 1:12), uphill + (default 0)")
     p.add_argument("--speed", type=float, required=True, metavar="U",
                    help="speed along the path (m/s; negative: reverse, answered by the layout model)")
     p.add_argument("--sim-time", type=float, default=D.SLOPE_SIM_TIME, metavar="T",
@@ -174,7 +175,7 @@ def _body(a: argparse.Namespace) -> int:
     if a.json:
         return 0
     turn = data["uncorrected_turn"]
-    print(f"{chair.name}: cross slope {eq.cross_slope_deg:g} deg, grade {eq.grade_deg:g} deg, {eq.speed:g} m/s")
+    print(f"{chair.name}: cross slope {eq.cross_slope_deg:.3g} deg, grade {eq.grade_deg:.3g} deg, {eq.speed:g} m/s")
     print(f"  holding yaw moment {abs(eq.holding_moment):.3f} N m ({per_deg:.3f} N m/deg); with Coulomb pin "
           f"friction any of {eq.friction_range[0]:.3f} .. {eq.friction_range[1]:.3f} N m (signed, clockwise +)")
     extra = (f", heading {path.heading_change_deg:+.1f} deg (downhill +) after {path.report_time:.2f} s"

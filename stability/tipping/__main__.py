@@ -16,11 +16,18 @@ def build_parser() -> argparse.ArgumentParser:
     p = cli.OneLineErrorParser(prog="python -m stability.tipping", description=__doc__)
     cli.add_chair_options(p)
     p.add_argument("--cross-slope", type=float, default=0.0, metavar="DEG",
-                   help="cross slope (deg), positive falling to the right; with --grade: tipping on that slope "
-                        "(default 0)")
-    p.add_argument("--grade", type=float, default=0.0, metavar="DEG", help="grade (deg), uphill + (default 0)")
+                   help="cross slope (deg, or 2%%, 1:50), positive falling to the right; with --grade: tipping on "
+                        "that slope (default 0)")
+    p.add_argument("--grade", type=float, default=0.0, metavar="DEG",
+                   help="grade (deg, or 8%%, 1:12), uphill + (default 0)")
     cli.add_json_options(p)
     return p
+
+
+def _slope_line(s) -> str:
+    """The tipping on the given slope in one line (the chair and the layout forms alike)."""
+    return (f"  on cross slope {s.cross_slope_deg:.3g} deg + grade {s.grade_deg:.3g} deg (tilt {s.tilt_deg:.2f} deg): "
+            f"tips at a tilt of {s.tip_deg:.1f} deg along the same fall line, margin {s.margin_deg:+.1f} deg")
 
 
 def _body(a: argparse.Namespace) -> int:
@@ -51,8 +58,7 @@ def _body(a: argparse.Namespace) -> int:
         print(f"  over the anti-tip devices {t.anti_tip_deg:6.1f} deg")
     print(f"  smallest: {t.smallest_deg:.1f} deg ({_WORDS[t.smallest_direction]})")
     if a.cross_slope or a.grade:
-        print(f"  on cross slope {s.cross_slope_deg:g} deg + grade {s.grade_deg:g} deg (tilt {s.tilt_deg:.2f} deg): "
-              f"tips at a tilt of {s.tip_deg:.1f} deg along the same fall line, margin {s.margin_deg:+.1f} deg")
+        print(_slope_line(s))
     print(f"  for scale: Loane & Kirby (1985) measured {LOANE_KIRBY_REAR_DEG} deg mean rear stability of an occupied "
           "conventional manual chair (brakes unlocked); no numeric minimum of EN 12183/12184 was found to cite")
     return 0
@@ -84,8 +90,7 @@ def _layout(a: argparse.Namespace) -> int:
         print(f"  {_LAYOUT_WORDS[k.removesuffix('_deg')]:<24} {v:6.1f} deg")
     print(f"  smallest: {t[smallest]:.1f} deg ({_LAYOUT_WORDS[smallest.removesuffix('_deg')]})")
     if a.cross_slope or a.grade:
-        print(f"  on cross slope {s.cross_slope_deg:g} deg + grade {s.grade_deg:g} deg (tilt {s.tilt_deg:.2f} deg): "
-              f"tips at a tilt of {s.tip_deg:.1f} deg along the same fall line, margin {s.margin_deg:+.1f} deg")
+        print(_slope_line(s))
     return 0
 
 
