@@ -574,5 +574,6 @@ def test_eigenvalue_slope_is_the_analytic_derivative_at_the_top_speed():
     alpha = -1 + 0.02 * U
     slopes = _slopes(state_matrix, U, alpha)
     cond = np.linalg.cond(T)
+    # error model: cond(T) eps max|A| / h, the rounding of A's entries over the difference step (docstring); 100x
     tol = 100 * cond * EPS * 3.0 / (1e-6 * np.maximum(1.0, U))
     assert np.all(np.abs(slopes - 0.02) <= tol), (slopes - 0.02, tol)

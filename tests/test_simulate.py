@@ -654,7 +654,7 @@ def test_cli_summary_and_set(capsys):
     (("--chair", "nope"), "unknown chair 'nope'"),
     (("--set", "s9=1"), "unknown chair parameter 's9'"),
     (("--scheme", "rk4"), "invalid choice: 'rk4' (choose from 'wchair', 'adaptive')"),
-    (("--speed", "fast"), "--speed 'fast' is invalid; expected a number (or a number with a unit of m/s); valid range: 0.01 <= |value| <= 20 m/s (negative: reverse)"),
+    (("--speed", "fast"), "--speed 'fast' is invalid; expected a finite number (or a number with a unit of m/s); valid range: 0.01 <= |value| <= 20 m/s (negative: reverse)"),
     (("--csv", "/nonexistent/dir/x.csv"), "does not exist"),
 ])
 def test_cli_bad_input_one_line_status_2(args, words, capsys):

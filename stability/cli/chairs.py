@@ -34,7 +34,7 @@ def _check_known(spec: str) -> None:
         return
     close = difflib.get_close_matches(spec, names + layouts, n=1)
     hint = f"did you mean {close[0]!r}? " if close else ""
-    raise ValueError(f"--chair {spec!r} is not a preset nor a file; {hint}valid: a chair preset {names}, a "
+    raise ValueError(f"unknown chair {spec!r}: not a preset nor a file; {hint}valid: a chair preset {names}, a "
                      f"wheel-layout preset {layouts} (python -m stability.{{{','.join(LAYOUT_COMMANDS)}}}) or a "
                      "chair file (.toml)")
 
