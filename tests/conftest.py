@@ -9,6 +9,8 @@ everything in one process.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import subprocess
 import sys
@@ -60,3 +62,28 @@ def pytest_sessionstart(session):
         if proc.returncode:
             tail = err.strip().splitlines()[-1:] or ["(no message)"]
             sys.stderr.write(f"kernel warm-up {group!r} failed (status {proc.returncode}): {tail[0]}\n")
+
+
+@pytest.fixture(scope="session")
+def shared_run():
+    """``run(command, argv)``: one in-process run of ``python -m stability.COMMAND ARGV`` per session, shared by
+    the tests (in any file) that read different parts of the same output; ``(status, stdout, stderr)``.
+
+    Only for runs whose output depends on ``argv`` alone (no temporary paths, no files written, no patched
+    functions): a test that checks a side effect or patches the computation runs the command itself.  The strings
+    are immutable, so a test cannot change what another reads.
+    """
+    from stability.cli.commands import command_module
+
+    done: dict[tuple[str, tuple[str, ...]], tuple[int, str, str]] = {}
+
+    def run(command: str, argv: list[str]) -> tuple[int, str, str]:
+        key = (command, tuple(argv))
+        if key not in done:
+            out, err = io.StringIO(), io.StringIO()
+            with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+                status = command_module(command).main(list(argv))
+            done[key] = (status, out.getvalue(), err.getvalue())
+        return done[key]
+
+    return run

@@ -116,10 +116,12 @@ def _command_matches_api(name: str, speeds: list[float], capsys) -> None:
     assert d["reverse"][0]["wheel_torque_gains"]["r"] == direct.reverse[0].wheel_torque_gains["r"]
 
 
-def test_the_assist_command_answers_a_layout_and_reverse(capsys):
-    """The command's gains are the design's: the heading gain per wheel is Bryson's ratio (1e-9 as above)."""
-    assert main(["--chair", "mid-wheel-drive", "--speeds", "1", "--reverse", "--json"]) == 0
-    d = json.loads(capsys.readouterr().out)
+def test_the_assist_command_answers_a_layout_and_reverse(capsys, shared_run):
+    """The command's gains are the design's: the heading gain per wheel is Bryson's ratio (1e-9 as above).  The
+    --json run is shared with test_assist_layout_commands (tests/conftest.py's shared_run)."""
+    status, out, _ = shared_run("assist", ["--chair", "mid-wheel-drive", "--speeds", "1", "--reverse", "--json"])
+    assert status == 0
+    d = json.loads(out)
     drive = DriveTrain()
     per_wheel = (DEFAULT_WEIGHTS.budget(drive) / math.radians(DEFAULT_WEIGHTS.max_heading_error_deg))
     for rows in (d["forward"], d["reverse"]):

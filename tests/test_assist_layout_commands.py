@@ -25,7 +25,6 @@ import numpy as np
 import pytest
 from slow_cases import one_default
 
-from stability.assist.__main__ import main
 from stability.assist.commands import COMMAND_FILTER, command_run, reference_command, step_command
 from stability.assist.layout import layout_schedule
 from stability.assist.schedule import schedule
@@ -136,11 +135,13 @@ def test_an_unassisted_turn_is_the_feedforward_alone():
 
 
 @pytest.mark.parametrize("name", one_default(layout_preset_names(), "mid-wheel-drive"))
-def test_the_command_counts_the_turns_on_every_layout_and_in_reverse(name, capsys):
+def test_the_command_counts_the_turns_on_every_layout_and_in_reverse(name, shared_run):
     """Every preset, forwards and in reverse: the torque check of each direction's top speed is the largest of
-    the push's, the reference turn's and the full joystick turn's peaks, above the push's alone."""
-    assert main(["--chair", name, "--speeds", "1", "--reverse", "--json"]) == 0
-    d = json.loads(capsys.readouterr().out)
+    the push's, the reference turn's and the full joystick turn's peaks, above the push's alone.  The --json run
+    is shared (tests/conftest.py's shared_run) with test_assist_layout's, which reads other parts of it."""
+    status, out, _ = shared_run("assist", ["--chair", name, "--speeds", "1", "--reverse", "--json"])
+    assert status == 0
+    d = json.loads(out)
     for key, checks in (("forward_top_speed", "forward_checks"), ("reverse_top_speed", "reverse_checks")):
         (c,) = d[key]["checks"]
         t = c["torque_N_m"]

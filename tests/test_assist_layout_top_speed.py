@@ -83,13 +83,16 @@ def test_a_torque_limit_below_the_needed_peak_sets_the_top_speed():
     assert free is not None and all(c.values["torque"][2] for c in free.checks)
 
 
-def test_the_command_counts_the_torque_in_a_layouts_top_speed(capsys):
-    """The default run counts the torque in each direction's top speed (text and JSON, schema-checked);
-    --no-check names it as not checked."""
+def test_the_command_counts_the_torque_in_a_layouts_top_speed(capsys, tmp_path):
+    """The default run counts the torque in each direction's top speed (text and JSON, schema-checked: one run
+    prints the text and writes the JSON with --json-file); --no-check names it as not checked."""
     from stability import schemas
 
-    assert main(["--chair", "power-fwd-base", "--speeds", "1,2", "--reverse", "--json"]) == 0
-    d = json.loads(capsys.readouterr().out)
+    js = tmp_path / "a.json"
+    assert main(["--chair", "power-fwd-base", "--speeds", "1,2", "--reverse", "--json-file", str(js)]) == 0
+    out = capsys.readouterr().out
+    assert "from the margins and the torque (push and turns)" in out and "a full joystick turn" in out
+    d = json.loads(js.read_text())
     schemas.validate("assist_layout", d)
     for key in ("forward_top_speed", "reverse_top_speed"):
         top = d[key]
@@ -97,9 +100,6 @@ def test_the_command_counts_the_torque_in_a_layouts_top_speed(capsys):
         for c in top["checks"]:
             t = c["torque_N_m"]
             assert 0 < t["value"] < t["limit"] and t["ok"]
-    assert main(["--chair", "power-fwd-base", "--speeds", "1,2"]) == 0
-    out = capsys.readouterr().out
-    assert "from the margins and the torque (push and turns)" in out and "a full joystick turn" in out
     assert main(["--chair", "power-fwd-base", "--speeds", "1,2", "--no-check"]) == 0
     out = capsys.readouterr().out
     assert "not checked: the torque: run without --no-check" in out

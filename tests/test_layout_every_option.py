@@ -12,6 +12,7 @@ uncertain parameter.
 from __future__ import annotations
 
 import dataclasses as dc
+import functools
 import json
 
 import numpy as np
@@ -30,6 +31,20 @@ from stability.layout.presets import layout_preset
 SAME_DECISIONS_M_S = 1e-9
 
 
+@functools.cache
+def _short_limit(name: str, reaction_time: float):
+    """The short form's driver limits of preset ``name`` (the reference several tests compare with; computed once,
+    a frozen HumanLimit)."""
+    return human_limit(resolve(name), Driver(reaction_time))
+
+
+@functools.cache
+def _layout_limit(layout: Layout, reaction_time: float):
+    """The layout's forward driver limits (a reference several tests compare with; computed once per frozen
+    layout and reaction time)."""
+    return layout_human_limit(layout, Driver(reaction_time))
+
+
 def _limits(h) -> tuple[float, str, float, str]:
     return h.rule_speed_m_s, h.rule_side, h.loop_speed_m_s, h.loop_side
 
@@ -44,7 +59,7 @@ def test_the_e_and_j_premier_as_a_layout_has_the_short_forms_driver_limits():
     """The short form's engine (its own linear model) and the layout's give the same divergence rule and delayed-loop
     speeds for a 0.3 s driver: 1.79 and 1.97 m/s (docs/driver.md's)."""
     chair = resolve("ej-premier")
-    short = human_limit(chair, Driver(0.3))
+    short = _short_limit("ej-premier", 0.3)
     lay = layout_human_limit(Layout.from_chair(chair), Driver(0.3))
     _assert_same(_limits(lay), _limits(short))
     assert short.rule_side == short.loop_side == "="
@@ -101,7 +116,7 @@ def test_critical_speed_prints_the_drivers_limits_of_a_layout_both_ways(capsys):
 
     assert main(["--chair", "ej-premier", "--speeds=-0.5,0.5", "--reaction-time", "0.3", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    short = human_limit(resolve("ej-premier"), Driver(0.3)).to_mapping()
+    short = _short_limit("ej-premier", 0.3).to_mapping()
     h = d["human_limit"]
     for key in ("divergence_rule_speed_m_s", "delayed_loop_speed_m_s", "speed_m_s"):
         assert h[key] == pytest.approx(short[key], abs=SAME_DECISIONS_M_S)
@@ -114,7 +129,7 @@ def test_critical_speed_prints_the_drivers_limits_of_a_layout_both_ways(capsys):
     schemas.validate("critical_speed", d)
     assert main(["--chair", "power-fwd-base", "--reaction-time", "0.3"]) == 0
     out = capsys.readouterr().out
-    fwd = layout_human_limit(layout_preset("power-fwd-base"), Driver(0.3))
+    fwd = _layout_limit(layout_preset("power-fwd-base"), 0.3)
     assert f"forwards: A driver who corrects the heading 0.3 s late can hold this chair straight up to " \
            f"{fwd.speed_m_s:.3g} m/s" in out and "backwards: " in out
 
@@ -218,7 +233,7 @@ def test_the_clinician_sheet_of_a_layout_has_the_drivers_line(tmp_path, capsys):
     assert main(["--chair", "power-fwd-base", "--clinician", "--reaction-time", "0.3", "--speeds=0.75,2,-2",
                  "-o", str(pdf), "--text", str(txt)]) == 0
     text = " ".join(txt.read_text().split())
-    fwd = layout_human_limit(layout_preset("power-fwd-base"), Driver(0.3))
+    fwd = _layout_limit(layout_preset("power-fwd-base"), 0.3)
     assert fwd.speed_m_s < 2.0
     assert (f"THE USER. A driver who corrects the heading 0.3 s late can hold this chair straight up to "
             f"{fwd.speed_m_s:.3g} m/s") in text
