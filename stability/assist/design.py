@@ -14,7 +14,7 @@ import control
 import numpy as np
 
 from stability.assist._format import json_float
-from stability.assist.disk import disk_margins
+from stability.assist.disk import disk_margins, frequency_response
 from stability.assist.plant import Plant, measurement_matrix, plant, standstill_plant, system_name
 from stability.assist.weights import (
     DEFAULT_ESTIMATOR,
@@ -442,7 +442,7 @@ def _margins(L: Any, gm: Any, pm: Any, sm: Any, wgc: Any, *, continuous: bool, d
     delay = (np.mod(pm[ok], 360.0) * _DEG / wgc[ok]) if ok.any() else np.array([np.inf])
     rd = return_difference
     if rd is None:
-        resp = np.asarray(L(1j * w if continuous else np.exp(1j * w * dt))).reshape(-1)
+        resp = frequency_response(L, w)
         rd = float(np.min(np.abs(1.0 + resp)))
     sm_c = np.atleast_1d(np.asarray(sm, dtype=float))
     dk = disk_margins(L, w[::3])      # 2000 frequencies, the worst one refined

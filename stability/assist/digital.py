@@ -18,6 +18,7 @@ import numpy as np
 from scipy.linalg import expm
 
 from stability.assist.design import LOOP_INPUT, LOOP_OUTPUT, Design, LoopMargins, _margins, loop_margins
+from stability.assist.disk import frequency_response
 from stability.assist.plant import system_name
 
 __all__ = ["discrete_controller", "discrete_loop", "discrete_margins", "MarginPair", "margin_pair", "MarginCurves",
@@ -119,12 +120,9 @@ def discrete_margins(d: Design, sample_time: float | None = None,
     L = discrete_loop(d, sample_time, controller)
     T = float(L.dt)
     A, B, C = np.asarray(L.A), np.asarray(L.B)[:, 0], np.asarray(L.C)[0]
-    n = A.shape[0]
 
     def resp(w: Any) -> np.ndarray:
-        z = np.exp(1j * np.atleast_1d(np.asarray(w, dtype=float)) * T)
-        M = z[:, None, None] * np.eye(n) - A
-        return np.linalg.solve(M, np.broadcast_to(B, (z.size, n))[..., None])[..., 0] @ C
+        return frequency_response(L, w)
 
     w = np.geomspace(1e-3, math.pi / T * (1 - 1e-9), 2000)
     Lw = resp(w)
