@@ -648,3 +648,33 @@ def test_the_min_tip_source_names_the_chairs_own_angle():
     a = advise(chair_mod.preset("ej-premier"), nonlinear=_proxy, time_to_correct=False)
     assert a.min_tip_source == "the chair's own smallest angle (no citable standard minimum found; docs/tipping.md)"
     assert a.min_tip_deg == a.verdict.static_stability_deg.value
+
+
+def test_each_blocked_change_in_the_json_rebuilds_the_blocked_chair(case):
+    """The JSON's ``change`` of each blocked fix, applied to the chair, gives a chair whose robust gain recomputed
+    from the stand-in's low ends is the gain printed, and that breaks (recomputed with the analysis functions) every
+    limit the fix is named as blocked by: a reader can rebuild the chair the advice refers to."""
+    chair, a, _, slope = case
+    d = advice_mapping(a)
+    assert d["blocked"]                                            # the premise: a limit blocks something
+    for b_json in d["blocked"]:
+        changed = apply(chair, list(b_json["change"].items()))
+        # the same closed form evaluated twice, once here and once in the advisor: ratios of identical products,
+        # equal to a few ulps; 1e-12 is ~100 times that
+        assert math.isclose(_robust_gain(changed, chair), b_json["robust_gain"], rel_tol=1e-12, abs_tol=1e-12)
+        met = _limits_met(changed, chair, slope)
+        for k in b_json["blocked_by"]:
+            if k["name"] in met:
+                assert not met[k["name"]], (b_json["label"], k["name"])
+
+
+def test_a_chair_breaking_a_limit_other_than_shimmy_gets_no_advice_to_measure_the_pins():
+    """The keep-and-measure explanation when the chair breaks the tip limit only, with no runner-up and nothing
+    blocked: the one sentence names the limit and the cost limit (MAX_FIX_COST = 0.25: '25 %'), ends there, and says
+    nothing of the shimmy inputs (pin stiffness, relaxation length), which bear on the shimmy margin only."""
+    from stability.advise.advisor import Candidate, Recommendation, _explain
+
+    keep = Candidate((), None, 0.0, {}, ())
+    notes = _explain([Recommendation(1, keep, (), ())], {"static_stability_deg"}, [], None)[0].notes
+    assert notes == ("The chair as it is breaks the limit on static stability, and no change "
+                     "fixes it for less than 25 % of the robust measures; no change meets every limit.",)
