@@ -678,3 +678,44 @@ def test_a_chair_breaking_a_limit_other_than_shimmy_gets_no_advice_to_measure_th
     notes = _explain([Recommendation(1, keep, (), ())], {"static_stability_deg"}, [], None)[0].notes
     assert notes == ("The chair as it is breaks the limit on static stability, and no change "
                      "fixes it for less than 25 % of the robust measures; no change meets every limit.",)
+
+
+@pytest.mark.parametrize("name", chair_mod.preset_names())
+def test_every_geometry_label_reads_the_changed_chairs_own_fields(name):
+    """Each geometry change's label, read back whole (nothing before or after its pattern), states the chair's
+    fields before and the changed chair's fields after, in cm, and the axle's move in size and direction ('toward
+    the c.g.' when s1 shrinks): what a user reads is what the changed chair is."""
+    import re
+
+    chair = chair_mod.preset(name)
+    singles, _ = lever_changes(chair)
+    num = r"(-?\d+(?:\.\d+)?)"
+    forms = {"trail": rf"trail {num} -> {num} cm",
+             "s1_fixed_wheelbase": rf"axle {num} cm (toward|away from) the c\.g\. at fixed s1\+s2 \(s1 {num} -> {num} cm\)",
+             "s1_fixed_s2": rf"axle {num} cm (toward|away from) the c\.g\. at fixed s2 \(s1 {num} -> {num} cm\)",
+             "wheelbase": rf"wheelbase x{num} at a fixed c\.g\. ratio \(s1 {num} -> {num}, s2 {num} -> {num} cm\)"}
+    seen = set()
+    for ch, c in singles:
+        if ch.lever not in forms:
+            continue
+        seen.add(ch.lever)
+        m = re.fullmatch(forms[ch.lever], ch.label)
+        assert m, ch.label
+        g = m.groups()
+
+        def cm(x: float, shown: str) -> bool:
+            # the label rounds to 0.1 cm (':.1f') or to 6 significant digits (':g'), the fields to 1e-6 m (_r):
+            # within half a display step (0.05 cm) plus the fields' rounding (1e-4 cm)
+            return abs(float(shown) - 100 * x) <= 0.05 + 1e-4
+
+        if ch.lever == "trail":
+            assert cm(chair.trail, g[0]) and cm(c.trail, g[1]), ch.label
+        elif ch.lever == "wheelbase":
+            k = float(g[0])
+            assert cm(chair.s1, g[1]) and cm(c.s1, g[2]) and cm(chair.s2, g[3]) and cm(c.s2, g[4]), ch.label
+            assert cm(chair.s1 * k, g[2]) and cm(chair.s2 * k, g[4]), ch.label
+        else:
+            assert cm(abs(c.s1 - chair.s1), g[0]), ch.label
+            assert g[1] == ("toward" if c.s1 < chair.s1 else "away from"), ch.label
+            assert cm(chair.s1, g[2]) and cm(c.s1, g[3]), ch.label
+    assert seen == set(forms), seen                       # the premise: every geometry lever offers a change
