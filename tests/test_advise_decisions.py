@@ -719,3 +719,14 @@ def test_every_geometry_label_reads_the_changed_chairs_own_fields(name):
             assert g[1] == ("toward" if c.s1 < chair.s1 else "away from"), ch.label
             assert cm(chair.s1, g[2]) and cm(c.s1, g[3]), ch.label
     assert seen == set(forms), seen                       # the premise: every geometry lever offers a change
+
+
+def test_a_constraint_built_without_a_note_has_an_empty_text_note():
+    """Constraint's one default: a note is text (the attribute's declared ``str``), empty when none is given, and the
+    JSON carries that empty text; every other field is as given."""
+    from stability.advise.limits import Constraint
+
+    k = Constraint("turning_effort_N_m", 0.2, 0.3, "<=", True)
+    assert k.note == "" and isinstance(k.note, str)
+    assert k.to_mapping() == {"name": "turning_effort_N_m", "value": 0.2, "limit": 0.3, "kind": "<=", "met": True,
+                              "note": ""}
