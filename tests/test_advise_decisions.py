@@ -730,3 +730,18 @@ def test_a_constraint_built_without_a_note_has_an_empty_text_note():
     assert k.note == "" and isinstance(k.note, str)
     assert k.to_mapping() == {"name": "turning_effort_N_m", "value": 0.2, "limit": 0.3, "kind": "<=", "met": True,
                               "note": ""}
+
+
+def test_the_turning_effort_limit_cites_the_thesis_estimate_it_applies(tip_case):
+    """The turning-effort constraint's note, read whole, cites Collins 1987's conclusion 6 ('a reasonable estimate
+    [of the tolerable pin friction] is 0.3 N-m') with the number the limit applies: on this chair (pins at 0.1 N m,
+    below the estimate) the limit is that estimate."""
+    import re
+
+    chair, a, _, _ = tip_case
+    assert max(chair.pin_friction_left, chair.pin_friction_right) < 0.3      # the premise: the thesis's limit applies
+    for c in a.candidates:
+        k = next(k for k in c.constraints if k.name == "turning_effort_N_m")
+        m = re.fullmatch(r"tolerable pin friction ~(\d+(?:\.\d+)?) N m \(Collins 1987, conclusion 6\)", k.note)
+        assert m, k.note
+        assert float(m.group(1)) == k.limit == 0.3, (k.note, k.limit)
