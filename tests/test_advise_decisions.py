@@ -745,3 +745,18 @@ def test_the_turning_effort_limit_cites_the_thesis_estimate_it_applies(tip_case)
         m = re.fullmatch(r"tolerable pin friction ~(\d+(?:\.\d+)?) N m \(Collins 1987, conclusion 6\)", k.note)
         assert m, k.note
         assert float(m.group(1)) == k.limit == 0.3, (k.note, k.limit)
+
+
+def test_the_shimmy_sentence_gives_the_trail_the_pin_friction_holds_in_cm():
+    """What the pin friction buys, m -> cm (2 significant figures): a 5.7 cm hold trail (5.757 cm would print 5.8),
+    with 'also' at a 6 cm trail that is at least it and 'not' at a 5 cm one below it."""
+    from types import SimpleNamespace
+
+    from stability.advise.limits import ShimmyHold, shimmy_sentence
+
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=None, low=None, high=None), shimmy_straddles=False)
+    for trail, word in ((0.06, "also"), (0.05, "not")):
+        hold = ShimmyHold(amplitude_deg=5.0, pin_friction_N_m=0.118, hold_trail_m=0.057, trail_m=trail)
+        assert shimmy_sentence(m, trail, hold) == (
+            "no shimmy boundary found; its 0.118 N m pin friction holds a shimmy of up to 5 deg at trails from "
+            f"5.7 cm, so {word} at this one (describing function)")
