@@ -204,3 +204,17 @@ def test_shares_of_an_output_that_jumps_by_one_and_of_a_constant_output():
     assert jump["pin_friction_left"] > 0.9 and sum(jump.values()) == pytest.approx(1.0, rel=1e-12), jump  # shares normalised: rounding of a 3-term sum, ~1e-16
     assert 0 < float(np.asarray(r.r_squared)[0]) < 1
     assert all(float(s[1]) == 0.0 for s in r.shares.values()) and math.isnan(float(np.asarray(r.r_squared)[1]))
+
+
+def test_delta_method_ranks_parameters_by_their_share_averaged_over_the_outputs():
+    """Two outputs: one linear in the pin friction alone (all its variance from it: share 1), one constant (no
+    variance: share 0 for every parameter).  Averaged over the two, the pin friction's share is 1/2 and the other
+    parameters' 0."""
+    u = loads_uncertainty(LINEAR_U)
+
+    def fn(chairs):
+        return np.array([[3.0 * c.pin_friction_left, 7.0] for c in chairs])
+
+    ranked = dict(delta_method(C, u, fn).dominant_parameters)
+    assert ranked == pytest.approx({"pin_friction_left": 0.5, "s1": 0.0, "i_z": 0.0}, abs=1e-12)  # shares of exact zeros and one term over itself: rounding only
+    assert list(ranked)[0] == "pin_friction_left"
