@@ -500,3 +500,17 @@ def test_progress_counts_the_rows_written_chunk_by_chunk(spec_dir):
     out = run_sweep(spec, spec_dir / "p.csv", progress=lambda k, n, rows, t: seen.append((k, n, rows)))
     assert seen == [(1, 5, 8), (2, 5, 16), (3, 5, 24), (4, 5, 32), (5, 5, 36)]
     assert len(read_rows(out.read_text())["design"]) == 36
+
+
+def test_censored_quantile_at_the_ends_of_draws_tied_with_a_bound():
+    """Two draws at 3, one found and one a bound: '< 3' lies below every value it is tied with and '> 3' above, so
+    the smallest draw (q = 0) of '3' and '< 3' is '< 3', the largest (q = 1) of '3' and '> 3' is '> 3', whatever
+    order the draws come in."""
+    from stability.study.censored import quantile
+
+    for sides in (["=", "<"], ["<", "="]):
+        assert quantile([3.0, 3.0], sides, 0.0) == (3.0, "<"), sides
+        assert quantile([3.0, 3.0], sides, 1.0) == (3.0, "="), sides
+    for sides in ([">", "="], ["=", ">"]):
+        assert quantile([3.0, 3.0], sides, 1.0) == (3.0, ">"), sides
+        assert quantile([3.0, 3.0], sides, 0.0) == (3.0, "="), sides

@@ -203,6 +203,14 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'specs: list[tuple[str, str, float, float]] = [("nominal", model, 1.0, dt)]',
      'specs: list[tuple[str, str, float, float]] = [("XXnominalXX", model, 1.0, dt)]'):
         "the nominal case's label is never shown: the point is taken by its index, the variants are the specs after it",
+    ('stability/study/censored.py',
+     'beyond = {"=": 0, ">": -1 if higher_is_better else 1, "<": 1 if higher_is_better else -1}[side]',
+     'beyond = {"=": 0, ">": -2 if higher_is_better else 1, "<": 1 if higher_is_better else -1}[side]'):
+        "the key's second entry only orders a bound against the value it is tied with, and every caller compares keys (sorts, `<`): `-2` or `-1`, then `0`, then `1` is the same order; checked on every pair of eight values (with infinities and NaN) on each side in both directions: the same comparisons",
+    ('stability/study/censored.py',
+     'beyond = {"=": 0, ">": -1 if higher_is_better else 1, "<": 1 if higher_is_better else -1}[side]',
+     'beyond = {"=": 0, ">": -1 if higher_is_better else 1, "<": 1 if higher_is_better else -2}[side]'):
+        "the key's second entry only orders a bound against the value it is tied with, and every caller compares keys (sorts, `<`): `-2` or `-1`, then `0`, then `1` is the same order; checked on every pair of eight values (with infinities and NaN) on each side in both directions: the same comparisons",
     ('stability/assist/export_c.py',
      'VECTOR_BIAS_DEG_S = 2.0',
      'VECTOR_BIAS_DEG_S = 3.0'):
