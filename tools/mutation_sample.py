@@ -215,6 +215,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'VECTOR_BIAS_DEG_S = 2.0',
      'VECTOR_BIAS_DEG_S = 3.0'):
         'an input of the exported test vectors (the gyro bias they carry), not an answer: the exported C is checked against the Python controller on whatever vectors are written, and any bias the estimator tracks serves',
+    ('stability/assist/export_c.py',
+     'ClosedLoop = Callable[[float, float, float, DigitalController], None]',
+     'ClosedLoop = None'):
+        'a type alias read only in annotations: both modules that use it (`export_c`, `export_run`) have `from __future__ import annotations`, so they are strings nobody evaluates (the docs take types from numpydoc, `autodoc_typehints = "none"`); mypy, not a test, is what checks it',
     ('stability/assist/schedule.py',
      'standstill: Design | None = None',
      'standstill: Design & None = None'):
