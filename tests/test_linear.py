@@ -525,3 +525,24 @@ def test_critical_speed_guard_maximises_only_where_the_cubic_is_suspicious():
                  if grid[k] < x < grid[k + 1] and np.sign(alpha(grid[k])) == np.sign(alpha(grid[k + 1]))}
     assert expected == {2}
     assert maximised == expected
+
+
+def test_the_full_width_doors_defaults_in_straight_running_without_forces():
+    """The documented defaults of the full-width model's doors (variant "exact", no yaw moment, free casters),
+    against closed forms.  A chair rolling straight at U with its casters trailing straight and no swivel: every
+    tire contact moves at (U, 0) in its own frame (a rigid translation); with no tire force, pin moment or push the
+    chair and casters do not accelerate (Newton: no force, no acceleration); linearised with free casters, the
+    mass matrix is 4 x 4 (v_dot, r_dot and the two caster accelerations) and the stiffness 4 x 6 (the states v, r
+    and each caster's angle and rate)."""
+    from stability.models import accelerations, contact_velocities, linear_matrices
+    from stability.models.params import parameters
+    from stability.models.statics import static_stiffness
+
+    c = chair_mod.preset("ej-premier")
+    p, u, z = parameters(c), 0.75, 0.0
+    straight = (p, u, z, z, 1.0, z, 1.0, z, z, z)
+    # exact: every term is a product with 1 or 0 (cos and sin of a zero caster angle, zero rates and forces)
+    assert contact_velocities(*straight) == (u, z) * 4
+    assert accelerations(*straight, *(z,) * 10) == (z,) * 5
+    M, K, Bm = linear_matrices(p, [u], static_stiffness(c))
+    assert M.shape[-2:] == (4, 4) and K.shape == (1, 4, 6) and Bm.shape == (1, 4)

@@ -142,7 +142,7 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
     ('stability/linear/critical.py',
      'h = 1e-6 * np.maximum(1.0, np.abs(speeds))',
      'h = 1e-6 / np.maximum(1.0, np.abs(speeds))'):
-        "the finite-difference step of the eigenvalue slope shrinks above `1 m/s` instead of growing: the slope moves by rounding and `O(h^2)` (at most `8e-6` relative measured), and only shapes the guard's interpolant; the crossings (speed, kind, direction) measured identical on every preset and three variants of each (frictionless pins, random trails), both models, free and locked casters, on three speed grids",
+        "the finite-difference step of the eigenvalue slope shrinks above `1 m/s` instead of growing: the slope moves by rounding and `O(h^2)` (about `8e-6` relative measured), and only shapes the guard's interpolant; the crossings (speed, kind, direction) measured identical on every preset and three variants of each (frictionless pins, random trails), both models, free and locked casters, on three speed grids",
     ('stability/linear/critical.py',
      'ok = np.abs(den) > 1e-14',
      'ok = np.abs(den) >= 1e-14'):
