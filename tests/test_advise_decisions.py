@@ -664,3 +664,115 @@ def test_the_min_tip_source_names_the_chairs_own_angle():
     a = advise(chair_mod.preset("ej-premier"), nonlinear=_proxy, time_to_correct=False)
     assert a.min_tip_source == "the chair's own smallest angle (no citable standard minimum found; docs/tipping.md)"
     assert a.min_tip_deg == a.verdict.static_stability_deg.value
+
+
+def test_each_blocked_change_in_the_json_rebuilds_the_blocked_chair(case):
+    """The JSON's ``change`` of each blocked fix, applied to the chair, gives a chair whose robust gain recomputed
+    from the stand-in's low ends is the gain printed, and that breaks (recomputed with the analysis functions) every
+    limit the fix is named as blocked by: a reader can rebuild the chair the advice refers to."""
+    chair, a, _, slope = case
+    d = advice_mapping(a)
+    assert d["blocked"]                                            # the premise: a limit blocks something
+    for b_json in d["blocked"]:
+        changed = apply(chair, list(b_json["change"].items()))
+        # the same closed form evaluated twice, once here and once in the advisor: ratios of identical products,
+        # equal to a few ulps; 1e-12 is ~100 times that
+        assert math.isclose(_robust_gain(changed, chair), b_json["robust_gain"], rel_tol=1e-12, abs_tol=1e-12)
+        met = _limits_met(changed, chair, slope)
+        for k in b_json["blocked_by"]:
+            if k["name"] in met:
+                assert not met[k["name"]], (b_json["label"], k["name"])
+
+
+def test_a_chair_breaking_a_limit_other_than_shimmy_gets_no_advice_to_measure_the_pins():
+    """The keep-and-measure explanation when the chair breaks the tip limit only, with no runner-up and nothing
+    blocked: the one sentence names the limit and the cost limit (MAX_FIX_COST = 0.25: '25 %'), ends there, and says
+    nothing of the shimmy inputs (pin stiffness, relaxation length), which bear on the shimmy margin only."""
+    from stability.advise.advisor import Candidate, Recommendation, _explain
+
+    keep = Candidate((), None, 0.0, {}, ())
+    notes = _explain([Recommendation(1, keep, (), ())], {"static_stability_deg"}, [], None)[0].notes
+    assert notes == ("The chair as it is breaks the limit on static stability, and no change "
+                     "fixes it for less than 25 % of the robust measures; no change meets every limit.",)
+
+
+@pytest.mark.parametrize("name", chair_mod.preset_names())
+def test_every_geometry_label_reads_the_changed_chairs_own_fields(name):
+    """Each geometry change's label, read back whole (nothing before or after its pattern), states the chair's
+    fields before and the changed chair's fields after, in cm, and the axle's move in size and direction ('toward
+    the c.g.' when s1 shrinks): what a user reads is what the changed chair is."""
+    import re
+
+    chair = chair_mod.preset(name)
+    singles, _ = lever_changes(chair)
+    num = r"(-?\d+(?:\.\d+)?)"
+    forms = {"trail": rf"trail {num} -> {num} cm",
+             "s1_fixed_wheelbase": rf"axle {num} cm (toward|away from) the c\.g\. at fixed s1\+s2 \(s1 {num} -> {num} cm\)",
+             "s1_fixed_s2": rf"axle {num} cm (toward|away from) the c\.g\. at fixed s2 \(s1 {num} -> {num} cm\)",
+             "wheelbase": rf"wheelbase x{num} at a fixed c\.g\. ratio \(s1 {num} -> {num}, s2 {num} -> {num} cm\)"}
+    seen = set()
+    for ch, c in singles:
+        if ch.lever not in forms:
+            continue
+        seen.add(ch.lever)
+        m = re.fullmatch(forms[ch.lever], ch.label)
+        assert m, ch.label
+        g = m.groups()
+
+        def cm(x: float, shown: str) -> bool:
+            # the label rounds to 0.1 cm (':.1f') or to 6 significant digits (':g'), the fields to 1e-6 m (_r):
+            # within half a display step (0.05 cm) plus the fields' rounding (1e-4 cm)
+            return abs(float(shown) - 100 * x) <= 0.05 + 1e-4
+
+        if ch.lever == "trail":
+            assert cm(chair.trail, g[0]) and cm(c.trail, g[1]), ch.label
+        elif ch.lever == "wheelbase":
+            k = float(g[0])
+            assert cm(chair.s1, g[1]) and cm(c.s1, g[2]) and cm(chair.s2, g[3]) and cm(c.s2, g[4]), ch.label
+            assert cm(chair.s1 * k, g[2]) and cm(chair.s2 * k, g[4]), ch.label
+        else:
+            assert cm(abs(c.s1 - chair.s1), g[0]), ch.label
+            assert g[1] == ("toward" if c.s1 < chair.s1 else "away from"), ch.label
+            assert cm(chair.s1, g[2]) and cm(c.s1, g[3]), ch.label
+    assert seen == set(forms), seen                       # the premise: every geometry lever offers a change
+
+
+def test_a_constraint_built_without_a_note_has_an_empty_text_note():
+    """Constraint's one default: a note is text (the attribute's declared ``str``), empty when none is given, and the
+    JSON carries that empty text; every other field is as given."""
+    from stability.advise.limits import Constraint
+
+    k = Constraint("turning_effort_N_m", 0.2, 0.3, "<=", True)
+    assert k.note == "" and isinstance(k.note, str)
+    assert k.to_mapping() == {"name": "turning_effort_N_m", "value": 0.2, "limit": 0.3, "kind": "<=", "met": True,
+                              "note": ""}
+
+
+def test_the_turning_effort_limit_cites_the_thesis_estimate_it_applies(tip_case):
+    """The turning-effort constraint's note, read whole, cites Collins 1987's conclusion 6 ('a reasonable estimate
+    [of the tolerable pin friction] is 0.3 N-m') with the number the limit applies: on this chair (pins at 0.1 N m,
+    below the estimate) the limit is that estimate."""
+    import re
+
+    chair, a, _, _ = tip_case
+    assert max(chair.pin_friction_left, chair.pin_friction_right) < 0.3      # the premise: the thesis's limit applies
+    for c in a.candidates:
+        k = next(k for k in c.constraints if k.name == "turning_effort_N_m")
+        m = re.fullmatch(r"tolerable pin friction ~(\d+(?:\.\d+)?) N m \(Collins 1987, conclusion 6\)", k.note)
+        assert m, k.note
+        assert float(m.group(1)) == k.limit == 0.3, (k.note, k.limit)
+
+
+def test_the_shimmy_sentence_gives_the_trail_the_pin_friction_holds_in_cm():
+    """What the pin friction buys, m -> cm (2 significant figures): a 5.7 cm hold trail (5.757 cm would print 5.8),
+    with 'also' at a 6 cm trail that is at least it and 'not' at a 5 cm one below it."""
+    from types import SimpleNamespace
+
+    from stability.advise.limits import ShimmyHold, shimmy_sentence
+
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=None, low=None, high=None), shimmy_straddles=False)
+    for trail, word in ((0.06, "also"), (0.05, "not")):
+        hold = ShimmyHold(amplitude_deg=5.0, pin_friction_N_m=0.118, hold_trail_m=0.057, trail_m=trail)
+        assert shimmy_sentence(m, trail, hold) == (
+            "no shimmy boundary found; its 0.118 N m pin friction holds a shimmy of up to 5 deg at trails from "
+            f"5.7 cm, so {word} at this one (describing function)")

@@ -950,3 +950,15 @@ def test_schedule_gains_and_their_interpolation():
     assert np.array_equal(one.gains_at(3.0), one.designs[0].K)
     with pytest.raises(ValueError, match="^speed=0 is invalid without a standstill design"):
         s.at(0.0)
+
+
+@pytest.mark.parametrize("bad", [-0.5, math.nan, "1"])
+def test_a_schedule_refuses_a_bad_speed_in_one_line_naming_it(schedules, bad):
+    """The design and the gains at a speed below 0, not a number, or text: one line naming the parameter
+    ``speed``, its value and the valid range (the project's rule for bad input)."""
+    sched = schedules["full-state"]
+    for method in (sched.at, sched.gains_at):
+        with pytest.raises(ValueError) as err:
+            method(bad)
+        msg = str(err.value)
+        assert "\n" not in msg and msg.startswith("speed=") and "valid range: >= 0 (finite)" in msg, msg

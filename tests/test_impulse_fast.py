@@ -222,3 +222,23 @@ def test_search_arguments_are_refused_by_name():
             check_search(None, **dict(good, **{name: -1.0}))
     with pytest.raises(ValueError, match=r"^min_impulse=50\.0 is invalid; valid range: < max_impulse=40\.0 N s$"):
         check_search(None, **dict(good, min_impulse=50.0))
+
+
+def test_study_work_check_computes_the_free_caster_steps_itself():
+    """Without the stable steps given (a study of locked casters passes none: the check is stated for free casters),
+    the work check finds them itself.  The E&J at 0.75 m/s: its free-caster stable step, from the linear model's
+    eigenvalues directly (``min -2 Re(lambda)/|lambda|^2`` over the decaying modes), is above 1 ms, so the budget is
+    runs x horizon / 1 ms x STEP_SECONDS: accepted just below the largest allowed horizon, refused just above it."""
+    import re
+
+    from stability.study.impulse import STEP_SECONDS, WORK_BUDGET_S, check_study_work
+
+    ej = preset("ej-premier")
+    lam = np.linalg.eigvals(state_matrices(ej, 0.75))
+    decaying = lam[lam.real < 0]
+    assert np.min(-2.0 * decaying.real / np.abs(decaying) ** 2) > 0.001             # the premise
+    runs, dt = 40, 0.001
+    allowed = WORK_BUDGET_S / (runs * STEP_SECONDS) * dt
+    check_study_work([ej], np.array([0.75]), "exact", allowed * 0.99, dt, runs)
+    with pytest.raises(ValueError, match=re.escape(f"the largest allowed horizon is {allowed:.3g} s")):
+        check_study_work([ej], np.array([0.75]), "exact", allowed * 1.01, dt, runs)

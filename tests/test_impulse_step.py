@@ -101,3 +101,16 @@ def test_critical_impulse_interval_words_and_json_from_its_variants():
                                           "bound_Ns": 2.3012},
                                          {"label": "thesis model", "impulse_Ns": None, "status": "never",
                                           "bound_Ns": 40.0}]}
+
+
+def test_a_critical_impulse_as_json_has_every_field_under_its_unit_key():
+    """Every attribute of a critical impulse under its snake_case key with the unit suffix, and the kick, the
+    impulse per unit mass (12 N s on 80 kg: 0.15 m/s)."""
+    from stability.study.impulse import CriticalImpulse
+
+    ci = CriticalImpulse("c", 80.0, 0.75, 12.0, "found", 11.0, 13.0, 40.0, 0.5, "push", "exact", "wchair", 1.0, 3.0,
+                         17)
+    assert ci.to_dict() == {"chair": "c", "mass_kg": 80.0, "speed_m_s": 0.75, "impulse_Ns": 12.0, "kick_m_s": 0.15,
+                            "status": "found", "low_Ns": 11.0, "high_Ns": 13.0, "largest_tried_Ns": 40.0,
+                            "smallest_tried_Ns": 0.5, "push": "push", "model": "exact", "scheme": "wchair",
+                            "level_rad_s": 1.0, "horizon_s": 3.0, "runs": 17}

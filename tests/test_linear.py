@@ -527,29 +527,24 @@ def test_critical_speed_guard_maximises_only_where_the_cubic_is_suspicious():
     assert maximised == expected
 
 
-# ---------------------------------------------------------------------------
-# the full-width model's defaults (mutation survivors, seed 42: the default variant, casters and yaw moment)
-# ---------------------------------------------------------------------------
-def test_full_width_defaults_are_the_exact_model_free_casters_and_no_moment():
-    """Called without ``variant``, ``casters`` or ``Mz_ext``: the exact model, free casters, no external moment.
-
-    Straight running at U with trailing casters is a rigid translation: every contact moves at (U, 0) in its own
-    frame (casters at 0 deg are aligned with the body), and with no tire force and no moment nothing accelerates.
-    The linearised free-caster model has k = 4 accelerations of n = 6 states (eq 6-22's order).
-    """
-    from stability.models.full_width import accelerations, contact_velocities, linear_matrices
+def test_the_full_width_doors_defaults_in_straight_running_without_forces():
+    """The documented defaults of the full-width model's doors (variant "exact", no yaw moment, free casters),
+    against closed forms.  A chair rolling straight at U with its casters trailing straight and no swivel: every
+    tire contact moves at (U, 0) in its own frame (a rigid translation); with no tire force, pin moment or push the
+    chair and casters do not accelerate (Newton: no force, no acceleration); linearised with free casters, the
+    mass matrix is 4 x 4 (v_dot, r_dot and the two caster accelerations) and the stiffness 4 x 6 (the states v, r
+    and each caster's angle and rate)."""
+    from stability.models import accelerations, contact_velocities, linear_matrices
     from stability.models.params import parameters
     from stability.models.statics import static_stiffness
 
     c = chair_mod.preset("ej-premier")
-    p = parameters(c)
-    U = 0.75
-    vel = contact_velocities(p, U, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0)
-    # error model: a translation's velocities are U and 0 up to the products' rounding, a few ulp of U
-    np.testing.assert_allclose(vel, [U, 0.0] * 4, rtol=0, atol=100 * EPS * U)
-    acc = accelerations(p, U, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, *([0.0] * 10))
-    assert np.all(np.asarray(acc, dtype=float) == 0.0)    # exactly: every term is a product with a zero
-    M, K, Bm = linear_matrices(p, [U], static_stiffness(c))
+    p, u, z = parameters(c), 0.75, 0.0
+    straight = (p, u, z, z, 1.0, z, 1.0, z, z, z)
+    # exact: every term is a product with 1 or 0 (cos and sin of a zero caster angle, zero rates and forces)
+    assert contact_velocities(*straight) == (u, z) * 4
+    assert accelerations(*straight, *(z,) * 10) == (z,) * 5
+    M, K, Bm = linear_matrices(p, [u], static_stiffness(c))
     assert M.shape[-2:] == (4, 4) and K.shape == (1, 4, 6) and Bm.shape == (1, 4)
 
 

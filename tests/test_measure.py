@@ -359,3 +359,28 @@ def test_the_wheel_readings_descriptions_name_the_wheel_and_who_sits_in_the_chai
         for kind, load in (("loaded", "with user"), ("empty", "chair alone")):
             description = sheet.READINGS[f"scales.{kind}.{wheel}"][4]
             assert description.startswith(f"{wheel} wheel") and description.endswith(load), description
+
+
+def test_a_reading_is_shown_as_written_with_its_std_only_when_given():
+    """The provenance shows each reading as the sheet writes it: the example's trail '7.5 cm' with 'std = 0.2',
+    its caster release amplitude '10 deg' with no std (so nothing appended, and a zero standard uncertainty)."""
+    r = sheet.load_sheet(EXAMPLE).readings
+    assert r["geometry.trail"].shown == "7.5 cm +- 0.2"
+    assert r["caster.amplitude"].shown == "10 deg" and r["caster.amplitude"].std == 0.0
+    assert r["caster.amplitude"].value == pytest.approx(math.radians(10.0), rel=1e-15)  # deg -> rad: one product, 1 ulp
+
+
+def test_a_unit_of_the_wrong_dimension_and_a_lever_arm_beyond_a_metre_are_refused_in_one_line(tmp_path):
+    """A trail in kg is refused naming the dimension it needs and the one it got; a spring-scale lever arm of
+    1.5 m is beyond the sheet's range for it (> 0 and <= 1 m: READINGS, docs/measure.md's table)."""
+    import re
+
+    for old, new, message in (
+            ('trail = { value = 7.5, unit = "cm"', 'trail = { value = 7.5, unit = "kg"',
+             "sheet reading geometry.trail=7.5 kg is invalid; valid range: a length unit, not a mass unit"),
+            ('lever_arm = { value = 10.0, unit = "cm"', 'lever_arm = { value = 150.0, unit = "cm"',
+             "sheet reading pin_friction.lever_arm=150 cm is invalid; valid range: > 0 and <= 1 (SI: length)")):
+        bad = tmp_path / "s.toml"
+        bad.write_text(_sheet_text(**{old: new}))
+        with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
+            sheet.load_sheet(bad)

@@ -489,3 +489,28 @@ def test_unfinished_chunks_are_refused_naming_both_ways_on(spec_dir):
     with pytest.raises(ValueError, match=rf"^--resume: the chunks in {re.escape(repr(str(chunk_dir(out))))} come "
                                          r"from another spec; valid: the same spec, or remove that directory$"):
         run_sweep(spec, out, resume=True)
+
+
+def test_progress_counts_the_rows_written_chunk_by_chunk(spec_dir):
+    """The progress callback's counts, against the spec's arithmetic: 3 trails x 2 pin frictions = 6 designs, 3
+    draws, 2 speeds: 36 rows; 8 rows a chunk = 4 (design, draw) pairs at 2 speeds, so 5 chunks of 8, 8, 8, 8 and 4
+    rows.  The rows reported after the last chunk are the rows of the file."""
+    spec = loads_spec(LINEAR, spec_dir)
+    seen = []
+    out = run_sweep(spec, spec_dir / "p.csv", progress=lambda k, n, rows, t: seen.append((k, n, rows)))
+    assert seen == [(1, 5, 8), (2, 5, 16), (3, 5, 24), (4, 5, 32), (5, 5, 36)]
+    assert len(read_rows(out.read_text())["design"]) == 36
+
+
+def test_censored_quantile_at_the_ends_of_draws_tied_with_a_bound():
+    """Two draws at 3, one found and one a bound: '< 3' lies below every value it is tied with and '> 3' above, so
+    the smallest draw (q = 0) of '3' and '< 3' is '< 3', the largest (q = 1) of '3' and '> 3' is '> 3', whatever
+    order the draws come in."""
+    from stability.study.censored import quantile
+
+    for sides in (["=", "<"], ["<", "="]):
+        assert quantile([3.0, 3.0], sides, 0.0) == (3.0, "<"), sides
+        assert quantile([3.0, 3.0], sides, 1.0) == (3.0, "="), sides
+    for sides in ([">", "="], ["=", ">"]):
+        assert quantile([3.0, 3.0], sides, 1.0) == (3.0, ">"), sides
+        assert quantile([3.0, 3.0], sides, 0.0) == (3.0, "="), sides

@@ -185,3 +185,36 @@ def test_propagate_refuses_an_fn_without_one_row_per_chair_naming_the_shape():
         propagate(C, u, lambda chairs: np.zeros(3), samples=20, seed=1)
     with pytest.raises(ValueError, match=r"^fn returned shape \(\); valid: first axis of length 1"):
         propagate(C, u, lambda chairs: 1.0, samples=20, seed=1)
+
+
+def test_shares_of_an_output_that_jumps_by_one_and_of_a_constant_output():
+    """Variance shares column by column: an output that is 0 or 1 (a pass/fail, range exactly 1) driven by the pin
+    friction alone is ascribed to it by the regression (the two other parameters, independent of it, take what
+    their sample correlation gives: SRC^2 of a sampling noise ~1/n each); a constant output has no variance to share
+    (every share 0, R^2 undefined)."""
+    u = loads_uncertainty(LINEAR_U)
+
+    def fn(chairs):
+        return np.array([[1.0 if c.pin_friction_left > 0.1 else 0.0, 7.0] for c in chairs])
+
+    r = propagate(C, u, fn, samples=400, seed=3)
+    jump = {n: float(s[0]) for n, s in r.shares.items()}
+    # the other parameters' SRC^2 is a squared sample correlation, ~1/400 each (observed 0.0019 together): 0.9
+    # leaves a margin of ~50
+    assert jump["pin_friction_left"] > 0.9 and sum(jump.values()) == pytest.approx(1.0, rel=1e-12), jump  # shares normalised: rounding of a 3-term sum, ~1e-16
+    assert 0 < float(np.asarray(r.r_squared)[0]) < 1
+    assert all(float(s[1]) == 0.0 for s in r.shares.values()) and math.isnan(float(np.asarray(r.r_squared)[1]))
+
+
+def test_delta_method_ranks_parameters_by_their_share_averaged_over_the_outputs():
+    """Two outputs: one linear in the pin friction alone (all its variance from it: share 1), one constant (no
+    variance: share 0 for every parameter).  Averaged over the two, the pin friction's share is 1/2 and the other
+    parameters' 0."""
+    u = loads_uncertainty(LINEAR_U)
+
+    def fn(chairs):
+        return np.array([[3.0 * c.pin_friction_left, 7.0] for c in chairs])
+
+    ranked = dict(delta_method(C, u, fn).dominant_parameters)
+    assert ranked == pytest.approx({"pin_friction_left": 0.5, "s1": 0.0, "i_z": 0.0}, abs=1e-12)  # shares of exact zeros and one term over itself: rounding only
+    assert list(ranked)[0] == "pin_friction_left"
