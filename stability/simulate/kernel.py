@@ -28,7 +28,7 @@ from stability.simulate.kernel_controller import controlled, controller_scratch,
 # the layouts and the compiled physics as this module's globals, where numba resolves them (the engine, the adaptive
 # and lanes kernels and the tests read them here too)
 from stability.simulate.kernel_equations import *  # noqa: F403
-from stability.simulate.kernel_equations import _NOWRAP, _inl, _inl_py, _int  # noqa: F401
+from stability.simulate.kernel_equations import _NOWRAP, _OVERLOAD, _inl, _inl_py, _int  # noqa: F401
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
@@ -144,7 +144,7 @@ def step_gravity(model, P, cfg, psi, g1, g2, gn):
     raise NotImplementedError("compiled code only (numba overload)")
 
 
-@overload(step_gravity, prefer_literal=True)
+@overload(step_gravity, **_OVERLOAD)
 def _step_gravity(model, P, cfg, psi, g1, g2, gn):
     if isinstance(model, _nbtypes.IntegerLiteral) and model.literal_value != SLOPE_MODEL:
         def level(model, P, cfg, psi, g1, g2, gn):
@@ -164,7 +164,7 @@ def model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     raise NotImplementedError("compiled code only (numba overload)")
 
 
-@overload(model_velocities, prefer_literal=True)
+@overload(model_velocities, **_OVERLOAD)
 def _model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     return by_model(model, (_cv_thesis, _cv_exact, _cv_exact), velocities)
 
@@ -300,7 +300,7 @@ def settled(track, t, held, a, ma, mb):
     return False
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, **dict(_NOWRAP, no_cpython_wrapper=False))   # Python wrapper only: run_single
 def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu,
             By, Cz, noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the

@@ -15,7 +15,7 @@ from numba import njit
 from numba.core import types as _nbtypes
 from numba.extending import overload
 
-from stability.simulate.kernel_equations import _inl
+from stability.simulate.kernel_equations import _OVERLOAD, _inl
 
 __all__ = ["controller_output", "controlled", "controller_step", "controller_scratch"]
 
@@ -108,7 +108,7 @@ def controller_scratch(ctl, Az, Cy, ctl_f):
     raise NotImplementedError("compiled code only (numba overload)")
 
 
-@overload(controller_scratch, prefer_literal=True)
+@overload(controller_scratch, **_OVERLOAD)
 def _controller_scratch(ctl, Az, Cy, ctl_f):
     if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
         def none(ctl, Az, Cy, ctl_f):
@@ -120,7 +120,7 @@ def _controller_scratch(ctl, Az, Cy, ctl_f):
     return impl
 
 
-@overload(controller_step, prefer_literal=True)
+@overload(controller_step, **_OVERLOAD)
 def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
         def none(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):

@@ -42,6 +42,9 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 _int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
 _inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
+#: the per-model overloads' options: literal dispatch, and no wrappers for their implementations (numba's default
+#: gives each a C-callable wrapper that LLVM optimises and emits though nothing calls it)
+_OVERLOAD: dict[str, Any] = dict(prefer_literal=True, jit_options=_NOWRAP)
 
 
 def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any,
@@ -327,6 +330,6 @@ def by_model(model: Any, impls: tuple[Any, Any, Any], generic: Any) -> Any:
     return chosen.py_func
 
 
-@overload(model_accelerations, prefer_literal=True)
+@overload(model_accelerations, **_OVERLOAD)
 def _model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     return by_model(model, (_acc_thesis, _acc_exact, _acc_slope), accelerations)
