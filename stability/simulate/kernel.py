@@ -23,12 +23,17 @@ from numba.core import types as _nbtypes
 from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
-from stability.simulate.kernel_controller import controlled, controller_scratch, controller_step  # noqa: F401
+from stability.simulate.kernel_controller import (  # noqa: F401
+    controlled,
+    controller_scratch,
+    controller_step,
+    scratch_columns,
+)
 
 # the layouts and the compiled physics as this module's globals, where numba resolves them (the engine, the adaptive
 # and lanes kernels and the tests read them here too)
 from stability.simulate.kernel_equations import *  # noqa: F403
-from stability.simulate.kernel_equations import _NOWRAP, _OVERLOAD, _inl, _inl_py, _int  # noqa: F401
+from stability.simulate.kernel_equations import _NOREF, _NOWRAP, _OVERLOAD, _inl, _inl_py, _int  # noqa: F401
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
@@ -300,7 +305,7 @@ def settled(track, t, held, a, ma, mb):
     return False
 
 
-@njit(cache=True, nogil=True, **dict(_NOWRAP, no_cpython_wrapper=False))   # Python wrapper only: run_single
+@njit(cache=True, nogil=True, **dict(_NOWRAP, no_cpython_wrapper=False), **_NOREF)   # Python wrapper: run_single
 def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu,
             By, Cz, noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
@@ -336,7 +341,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     g1 = g2 = 0.0
     gn = P[G]
     z = state[NSTATE:NSTATE + Az.shape[0]]
-    znew, y, sv = controller_scratch(ctl, Az, Cy, ctl_f)
+    znew, y, sv = controller_scratch(ctl, state, Az.shape[0], Cy.shape[0])
     X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
                                             state[7], state[8], state[9])
     THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]

@@ -42,9 +42,14 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 _int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
 _inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
+#: no reference counting (numba's NRT off): for the step's entry and the functions it alone calls, which allocate no
+#: array, return none and are passed views without a count (:func:`borrowed`).  numba otherwise emits an increment
+#: and a decrement for every assignment of a variable, walking each member of a tuple (the parameter tuple's 18): a
+#: fifth of :func:`~stability.simulate.kernel.run_one`'s compile, for code that does nothing on such views
+_NOREF: dict[str, Any] = dict(_nrt=False)
 #: the per-model overloads' options: literal dispatch, and no wrappers for their implementations (numba's default
-#: gives each a C-callable wrapper that LLVM optimises and emits though nothing calls it)
-_OVERLOAD: dict[str, Any] = dict(prefer_literal=True, jit_options=_NOWRAP)
+#: gives each a C-callable wrapper that LLVM optimises and emits though nothing calls it), nor reference counts
+_OVERLOAD: dict[str, Any] = dict(prefer_literal=True, jit_options=dict(_NOWRAP, **_NOREF))
 
 
 def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any,
