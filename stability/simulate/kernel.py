@@ -241,11 +241,15 @@ def range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit)
     """STATICS / MECHAN range rules (tested tires only): count warnings; True when the run stops here."""
     nmax = -math.inf
     smax = 0.0
-    nmin = min(min(loads[0], loads[1]), min(loads[2], loads[3]))
+    # min/max as numba's (Python's) selects, NaN included, without compiling numba's functions for them
+    n01 = loads[1] if loads[1] < loads[0] else loads[0]
+    n23 = loads[3] if loads[3] < loads[2] else loads[2]
+    nmin = n23 if n23 < n01 else n01
     for w in range(4):
         if CHK[w]:
-            nmax = max(nmax, loads[w])
-            smax = max(smax, abs(slips[w]))
+            nmax = loads[w] if loads[w] > nmax else nmax
+            sw = abs(slips[w])
+            smax = sw if sw > smax else smax
     if nmax > maxload:
         _note(warn[1], t, nmax)
         if stop and warn[1, 0] > nwarn_limit:
@@ -272,7 +276,7 @@ def summaries(stats, levels, k, t, a, prev_abs, t_prev):
 @_inl
 def record_row(rec, row, states, F, loads, slips, P, trig, extra):
     """One recorded step: the ten states, then (``record="all"``) forces, loads, slips, moments."""
-    for c in range(min(rec.shape[0], 10)):
+    for c in range(10 if rec.shape[0] > 10 else rec.shape[0]):
         rec[c, row] = states[c]
     if rec.shape[0] > 10:
         for c in range(8):
@@ -320,7 +324,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     moment is ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the
     controller's."""
     if status[0] != 0.0 or status[2] != 0.0:
-        return int(state[ST_NREC])
+        return np.int64(state[ST_NREC])
     # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
     P = param_tuple(prow)
     S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK = (borrowed(S), borrowed(TK), borrowed(TS), borrowed(TL), borrowed(LIM),
@@ -329,15 +333,17 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
                                                     borrowed(stats), borrowed(warn), borrowed(status))
     ctl_f, Cy, Dy, Az, Bu, By, Cz, noise = (borrowed(ctl_f), borrowed(Cy), borrowed(Dy), borrowed(Az), borrowed(Bu),
                                             borrowed(By), borrowed(Cz), borrowed(noise))
-    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
-        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0, int(cfg[8]), int(cfg[9]))
+    # integers as np.int64 (a cast), not int(): numba compiles a function of its own for int()
+    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (cfg[0], cfg[1], cfg[2], np.int64(cfg[3]),
+                                                               np.int64(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0,
+                                                               np.int64(cfg[8]), np.int64(cfg[9]))
     sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
-    settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
+    settle = sticks and np.int64(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
     track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
     rest_a, rest_b = (P[MAF], P[MBF]) if sticks else (0.0, 0.0)   # stick-slip: a reversing rate comes to rest
     use_ctl = ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0
     half_dt2 = 0.5 * dt * dt
-    maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
+    maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], np.int64(cfg[STOP_LEVEL])
     g1 = g2 = 0.0
     gn = P[G]
     z = state[NSTATE:NSTATE + Az.shape[0]]
@@ -345,13 +351,13 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
                                             state[7], state[8], state[9])
     THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]
-    prev_abs, t_prev, next_k, mz_held = state[ST_PREV], state[ST_TPREV], int(state[ST_NEXTK]), state[ST_MZ]
-    nrec = int(state[ST_NREC])
+    prev_abs, t_prev, next_k, mz_held = state[ST_PREV], state[ST_TPREV], np.int64(state[ST_NEXTK]), state[ST_MZ]
+    nrec = np.int64(state[ST_NREC])
     fcimp = S[FCIMP]
     seg_c, seg_m, seg_k = TS[0], TS[1], TS[2]      # per-run views made once (no per-step array views)
     lim_c, lim_m, lim_k = LIM[0], LIM[1], LIM[2]
     rc_c, rc_m = RC[0], RC[1]
-    for k in range(k0, min(k1, n)):
+    for k in range(k0, n if n < k1 else k1):     # min(k1, n)
         t = k * dt
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
