@@ -39,14 +39,17 @@ __all__ = ["accelerations", "model_accelerations", "by_model", "param_tuple", "b
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
 # which made inline="always" cost about 3x the compile time); no Python wrapper unless Python calls it.
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
-_int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
-_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
-_inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
-#: no reference counting (numba's NRT off): for the step's entry and the functions it alone calls, which allocate no
-#: array, return none and are passed views without a count (:func:`borrowed`).  numba otherwise emits an increment
-#: and a decrement for every assignment of a variable, walking each member of a tuple (the parameter tuple's 18): a
-#: fifth of :func:`~stability.simulate.kernel.run_one`'s compile, for code that does nothing on such views
+#: no reference counting (numba's NRT off, a jit option): for the step's entry and helpers, which allocate no array
+#: and return none (their callers hold the arrays; the step's are views without a count, :func:`borrowed`).  numba
+#: otherwise emits an increment and a decrement for every assignment of a variable, walking each member of a tuple
+#: (the parameter tuple's 18): about a fifth of the first use's compile, for code that does nothing on such views.
+#: A function that allocates cannot be compiled so (numba refuses); one that returned an array would hand its
+#: caller a reference it never counted
 _NOREF: dict[str, Any] = dict(_nrt=False)
+_int = njit(cache=True, nogil=True, **_NOWRAP, **_NOREF)                      # called from compiled code only
+_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_NOREF)    # inlined into the step by LLVM
+_inl_rc = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)  # the same, counted: allocates (layout kernel)
+_inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
 #: the per-model overloads' options: literal dispatch, and no wrappers for their implementations (numba's default
 #: gives each a C-callable wrapper that LLVM optimises and emits though nothing calls it), nor reference counts
 _OVERLOAD: dict[str, Any] = dict(prefer_literal=True, jit_options=dict(_NOWRAP, **_NOREF))
