@@ -23,12 +23,7 @@ from numba.core import types as _nbtypes
 from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
-from stability.simulate.kernel_controller import (  # noqa: F401
-    controlled,
-    controller_scratch,
-    controller_step,
-    scratch_columns,
-)
+from stability.simulate.kernel_controller import controlled, controller_step, scratch_columns  # noqa: F401
 
 # the layouts and the compiled physics as this module's globals, where numba resolves them (the engine, the adaptive
 # and lanes kernels and the tests read them here too)
@@ -346,8 +341,11 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], np.int64(cfg[STOP_LEVEL])
     g1 = g2 = 0.0
     gn = P[G]
-    z = state[NSTATE:NSTATE + Az.shape[0]]
-    znew, y, sv = controller_scratch(ctl, state, Az.shape[0], Cy.shape[0])
+    # the controller's states, then its scratch (:func:`scratch_columns`: the next states, the measurements, the ten
+    # states), views of the run's state: the step allocates nothing (empty views without a controller)
+    nz, ny = Az.shape[0], Cy.shape[0]
+    z, znew = state[NSTATE:NSTATE + nz], state[NSTATE + nz:NSTATE + 2 * nz]
+    y, sv = state[NSTATE + 2 * nz:NSTATE + 2 * nz + ny], state[NSTATE + 2 * nz + ny:NSTATE + 2 * nz + ny + 10]
     X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
                                             state[7], state[8], state[9])
     THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]

@@ -15,9 +15,9 @@ from numba import njit
 from numba.core import types as _nbtypes
 from numba.extending import overload
 
-from stability.simulate.kernel_equations import _OVERLOAD, NSTATE, _inl
+from stability.simulate.kernel_equations import _OVERLOAD, _inl
 
-__all__ = ["controller_output", "controlled", "controller_step", "controller_scratch", "scratch_columns"]
+__all__ = ["controller_output", "controlled", "controller_step", "scratch_columns"]
 
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # as the kernel's helpers
 
@@ -89,32 +89,12 @@ def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy,
     raise NotImplementedError("compiled code only (numba overload)")
 
 
-def controller_scratch(ctl, state, nz, ny):
-    """The controller's scratch arrays: views of the run's ``state`` after the controller's ``nz`` states; compiled
-    code only (numba overload).
-
-    Parameters
-    ----------
-    ctl : int
-        1 with a controller (a numba literal).
-    state : ndarray
-        The run's state, with :func:`scratch_columns` columns after the controller's states.
-    nz, ny : int
-        The controller's states and measurements.
-
-    Returns
-    -------
-    tuple of ndarray
-        ``(znew, y, sv)``: the next states, the measurements and the ten states (written before they are read)
-        with a controller, else empty views (nothing compiled for them).  Views rather than new arrays: the step
-        keeps no reference counts (:data:`~stability.simulate.kernel_equations._NOREF`), so an array it was given
-        would never be freed.
-    """
-    raise NotImplementedError("compiled code only (numba overload)")
-
-
 def scratch_columns(ctl_f: np.ndarray, Az: np.ndarray, Cy: np.ndarray) -> int:
-    """The columns of a run's kernel state that hold the controller's scratch (:func:`controller_scratch`).
+    """The columns of a run's kernel state after the controller's states that hold its scratch.
+
+    :func:`stability.simulate.kernel.run_one` takes the arrays :func:`controlled` writes as views of them, in this
+    order, rather than having them allocated: the step keeps no reference counts
+    (:data:`~stability.simulate.kernel_equations._NOREF`), so an array allocated for it would never be freed.
 
     Parameters
     ----------
@@ -127,19 +107,6 @@ def scratch_columns(ctl_f: np.ndarray, Az: np.ndarray, Cy: np.ndarray) -> int:
         ``nz`` next states, ``ny`` measurements and the ten states with a controller, else 0.
     """
     return Az.shape[0] + Cy.shape[0] + 10 if ctl_f[0] > 0.0 else 0
-
-
-@overload(controller_scratch, **_OVERLOAD)
-def _controller_scratch(ctl, state, nz, ny):
-    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
-        def none(ctl, state, nz, ny):
-            return state[:0], state[:0], state[:0]
-        return none
-
-    def impl(ctl, state, nz, ny):
-        o = NSTATE + nz
-        return state[o:o + nz], state[o + nz:o + nz + ny], state[o + nz + ny:o + nz + ny + 10]
-    return impl
 
 
 @overload(controller_step, **_OVERLOAD)
