@@ -321,7 +321,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     if status[0] != 0.0 or status[2] != 0.0:
         return np.int64(state[ST_NREC])
     # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
-    P = param_tuple(prow)
+    P = leading(prow, NPARAM)
     S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK = (borrowed(S), borrowed(TK), borrowed(TS), borrowed(TL), borrowed(LIM),
                                                 borrowed(RK), borrowed(RC), borrowed(RS), borrowed(CAM), borrowed(CHK))
     cfg, levels, state, rec, stats, warn, status = (borrowed(cfg), borrowed(levels), borrowed(state), borrowed(rec),
@@ -329,16 +329,17 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     ctl_f, Cy, Dy, Az, Bu, By, Cz, noise = (borrowed(ctl_f), borrowed(Cy), borrowed(Dy), borrowed(Az), borrowed(Bu),
                                             borrowed(By), borrowed(Cz), borrowed(noise))
     # integers as np.int64 (a cast), not int(): numba compiles a function of its own for int()
-    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (cfg[0], cfg[1], cfg[2], np.int64(cfg[3]),
-                                                               np.int64(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0,
-                                                               np.int64(cfg[8]), np.int64(cfg[9]))
-    sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
-    settle = sticks and np.int64(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
+    c = leading(cfg, NCFG)        # the configuration row as a tuple (read once)
+    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (c[0], c[1], c[2], np.int64(c[3]), np.int64(c[4]),
+                                                               c[6] == 1.0, c[7] != 0.0, np.int64(c[8]),
+                                                               np.int64(c[9]))
+    sticks = c[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
+    settle = sticks and np.int64(c[STOP_LEVEL]) >= 0 and c[SETTLE] != 0.0
     track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
     rest_a, rest_b = (P[MAF], P[MBF]) if sticks else (0.0, 0.0)   # stick-slip: a reversing rate comes to rest
-    use_ctl = ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0
+    use_ctl = ctl_f[0] > 0.0 and c[EXTERNAL_MZ] == 0.0
     half_dt2 = 0.5 * dt * dt
-    maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], np.int64(cfg[STOP_LEVEL])
+    maxslip, maxload, nwarn_limit, stop_lvl = c[10], c[11], c[12], np.int64(c[STOP_LEVEL])
     g1 = g2 = 0.0
     gn = P[G]
     # the controller's states, then its scratch (:func:`scratch_columns`: the next states, the measurements, the ten
@@ -346,11 +347,11 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     nz, ny = Az.shape[0], Cy.shape[0]
     z, znew = state[NSTATE:NSTATE + nz], state[NSTATE + nz:NSTATE + 2 * nz]
     y, sv = state[NSTATE + 2 * nz:NSTATE + 2 * nz + ny], state[NSTATE + 2 * nz + ny:NSTATE + 2 * nz + ny + 10]
-    X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
-                                            state[7], state[8], state[9])
-    THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]
-    prev_abs, t_prev, next_k, mz_held = state[ST_PREV], state[ST_TPREV], np.int64(state[ST_NEXTK]), state[ST_MZ]
-    nrec = np.int64(state[ST_NREC])
+    s0 = leading(state, ST_TRACK)     # the run's state before the settle tracker, as a tuple
+    X, Y, THE, UD, VD, THED, E, ED, B, BD = s0[:10]
+    THEDD, FC1, FC2 = s0[ST_THEDD], s0[ST_FC1], s0[ST_FC2]
+    prev_abs, t_prev, next_k, mz_held = s0[ST_PREV], s0[ST_TPREV], np.int64(s0[ST_NEXTK]), s0[ST_MZ]
+    nrec = np.int64(s0[ST_NREC])
     fcimp = S[FCIMP]
     seg_c, seg_m, seg_k = TS[0], TS[1], TS[2]      # per-run views made once (no per-step array views)
     lim_c, lim_m, lim_k = LIM[0], LIM[1], LIM[2]
@@ -375,7 +376,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
         # DYNAM
         fc1, fc2 = tire_resultant(*F, ce, se, cb, sb)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        mz = mz_held if cfg[EXTERNAL_MZ] != 0.0 else 0.0
+        mz = mz_held if c[EXTERNAL_MZ] != 0.0 else 0.0
         if use_ctl:
             mz_held, next_k = controller_step(ctl, t, next_k, mz_held, z, znew, y, sv,
                                               (X, Y, THE, UD, VD, THED, E, ED, B, BD),
