@@ -328,11 +328,9 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
                                                     borrowed(stats), borrowed(warn), borrowed(status))
     ctl_f, Cy, Dy, Az, Bu, By, Cz, noise = (borrowed(ctl_f), borrowed(Cy), borrowed(Dy), borrowed(Az), borrowed(Bu),
                                             borrowed(By), borrowed(Cz), borrowed(noise))
-    # integers as np.int64 (a cast), not int(): numba compiles a function of its own for int()
-    c = leading(cfg, NCFG)        # the configuration row as a tuple (read once)
-    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (c[0], c[1], c[2], np.int64(c[3]), np.int64(c[4]),
-                                                               c[6] == 1.0, c[7] != 0.0, np.int64(c[8]),
-                                                               np.int64(c[9]))
+    c = leading(cfg, NCFG)    # the configuration row as a tuple; integers cast (numba compiles int() on its own)
+    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
+        c[0], c[1], c[2], np.int64(c[3]), np.int64(c[4]), c[6] == 1.0, c[7] != 0.0, np.int64(c[8]), np.int64(c[9]))
     sticks = c[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
     settle = sticks and np.int64(c[STOP_LEVEL]) >= 0 and c[SETTLE] != 0.0
     track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
@@ -342,8 +340,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     maxslip, maxload, nwarn_limit, stop_lvl = c[10], c[11], c[12], np.int64(c[STOP_LEVEL])
     g1 = g2 = 0.0
     gn = P[G]
-    # the controller's states, then its scratch (:func:`scratch_columns`: the next states, the measurements, the ten
-    # states), views of the run's state: the step allocates nothing (empty views without a controller)
+    # the controller's states, then its scratch (scratch_columns), views of the state: the step allocates nothing
     nz, ny = Az.shape[0], Cy.shape[0]
     z, znew = state[NSTATE:NSTATE + nz], state[NSTATE + nz:NSTATE + 2 * nz]
     y, sv = state[NSTATE + 2 * nz:NSTATE + 2 * nz + ny], state[NSTATE + 2 * nz + ny:NSTATE + 2 * nz + ny + 10]
