@@ -41,8 +41,8 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 #: no reference counting (numba's NRT off, a jit option): for the step's entry and helpers, which allocate no array
 #: and return none (their callers hold the arrays; the step's are views without a count, :func:`borrowed`).  numba
 #: otherwise emits an increment and a decrement for every assignment of a variable, walking each member of a tuple
-#: (the parameter tuple's 18): about a fifth of the first use's compile, for code that does nothing on such views.
-#: A function that allocates cannot be compiled so (numba refuses); one that returned an array would hand its
+#: (the parameter tuple's 18): about a tenth of the first use's CPU (measured), for code that does nothing on such
+#: views.  A function that allocates cannot be compiled so (numba refuses); one that returned an array would hand its
 #: caller a reference it never counted
 _NOREF: dict[str, Any] = dict(_nrt=False)
 _int = njit(cache=True, nogil=True, **_NOWRAP, **_NOREF)                      # called from compiled code only
