@@ -42,7 +42,7 @@ def _direct(chair, speed, run):
     warn, status, counts = np.zeros((1, 3, 3)), np.zeros((1, 6)), np.zeros(1, dtype=np.int64)
     cfg = engine._config(opts, 0, -1)
     k.call_model(k.run_batch, k.variant(cfg, ctl[0]), 0, steps, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg,
-                np.array(engine.STATS_LEVELS), *ctl, engine.initial_state(S, ctl[3].shape[0]), rec, stats, warn,
+                np.array(engine.STATS_LEVELS), *ctl, engine.initial_state(S, ctl), rec, stats, warn,
                 status, counts)
     m = int(counts[0])
     return rec[0, :, :m], stats[0], status[0], np.arange(m) * float(opts.stride) * opts.dt

@@ -59,7 +59,7 @@ def kernel_only(chair: Chair, speed: float, opts: Options, entry: str = "single"
     levels = np.array(engine.STATS_LEVELS, dtype=float)
     fixed = (0, steps, pk.P, pk.S, pk.TK, pk.TS, pk.TL, pk.LIM, pk.RK, pk.RC, pk.RS, pk.CAM, pk.CHK,
              engine._config(opts, 0, -1), levels, *ctl)
-    state0 = engine.initial_state(pk.S, ctl[3].shape[0])
+    state0 = engine.initial_state(pk.S, ctl)
 
     def call() -> np.ndarray:
         rec = np.empty((1, k.NREC_ALL, nrec))

@@ -275,7 +275,7 @@ class PackedRuns:
             _launch(self.k, threads, m, (0, n_steps(self.opts[float(h)]), pk.P[idx], S,
                                          pk.TK[idx], pk.TS[idx], pk.TL[idx], pk.LIM[idx], pk.RK[idx], pk.RC[idx],
                                          pk.RS[idx], pk.CAM[idx], pk.CHK[idx], self.cfg[float(h)], self.levels,
-                                         *self.ctl, initial_state(S, 0), rec, st, warn, stat, counts))
+                                         *self.ctl, initial_state(S, self.ctl), rec, st, warn, stat, counts))
             batch = [self.chairs[int(i)] for i in idx]
             _raise_refused(batch, self.opts[float(h)], stat)
             raise_non_finite(batch, self.speeds[idx], stat)     # a NaN run is an error, never "did not reach"
@@ -283,11 +283,12 @@ class PackedRuns:
         return stats, status
 
 
-def initial_state(S: np.ndarray, nz: int) -> np.ndarray:
-    """The kernels' per-run state at ``t = 0``, shape (n, NSTATE + ``nz``) (``nz``: the controller's states): the
-    ten states (u, v and the caster angles from the packed scalars ``S``), the rest zero, the settle tracker unset."""
+def initial_state(S: np.ndarray, ctl: tuple[np.ndarray, ...]) -> np.ndarray:
+    """The kernels' per-run state at ``t = 0``, shape (n, NSTATE + ``nz`` + the controller's scratch) (``nz``: the
+    controller's states; ``ctl``: its kernel arrays, :meth:`SampledController.arrays`): the ten states (u, v and the
+    caster angles from the packed scalars ``S``), the rest zero, the settle tracker unset."""
     k = _kernel()
-    state = np.zeros((S.shape[0], k.NSTATE + nz))
+    state = np.zeros((S.shape[0], k.NSTATE + ctl[3].shape[0] + k.scratch_columns(ctl[0], ctl[3], ctl[1])))
     state[:, 3], state[:, 4], state[:, 6], state[:, 8] = S[:, k.U0], S[:, k.V0], S[:, k.ETA0], S[:, k.BETA0]
     state[:, k.ST_TRACK] = -1.0
     return state
@@ -306,7 +307,7 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
     ncol = (k.NREC_ALL, k.NREC_STATES, k.NREC_ALL)[mode]
     cfg = _config(opts, mode, stop_level)
     ctl = (controller or SampledController.none()).arrays()
-    state = initial_state(pk.S, ctl[3].shape[0])
+    state = initial_state(pk.S, ctl)
     rec = np.empty((n_runs, ncol, nrec))
     stats = np.full((n_runs, 3 + len(levels)), np.nan)
     warn = np.zeros((n_runs, 3, 3))

@@ -23,12 +23,12 @@ from numba.core import types as _nbtypes
 from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
-from stability.simulate.kernel_controller import controlled, controller_scratch, controller_step  # noqa: F401
+from stability.simulate.kernel_controller import controlled, controller_step, scratch_columns  # noqa: F401
 
 # the layouts and the compiled physics as this module's globals, where numba resolves them (the engine, the adaptive
 # and lanes kernels and the tests read them here too)
 from stability.simulate.kernel_equations import *  # noqa: F403
-from stability.simulate.kernel_equations import _NOWRAP, _inl, _inl_py, _int  # noqa: F401
+from stability.simulate.kernel_equations import _NOREF, _NOWRAP, _OVERLOAD, _inl, _inl_py, _int  # noqa: F401
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
@@ -144,7 +144,7 @@ def step_gravity(model, P, cfg, psi, g1, g2, gn):
     raise NotImplementedError("compiled code only (numba overload)")
 
 
-@overload(step_gravity, prefer_literal=True)
+@overload(step_gravity, **_OVERLOAD)
 def _step_gravity(model, P, cfg, psi, g1, g2, gn):
     if isinstance(model, _nbtypes.IntegerLiteral) and model.literal_value != SLOPE_MODEL:
         def level(model, P, cfg, psi, g1, g2, gn):
@@ -164,7 +164,7 @@ def model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     raise NotImplementedError("compiled code only (numba overload)")
 
 
-@overload(model_velocities, prefer_literal=True)
+@overload(model_velocities, **_OVERLOAD)
 def _model_velocities(model, P, u, v, r, ce, se, cb, sb, ed, bd):
     return by_model(model, (_cv_thesis, _cv_exact, _cv_exact), velocities)
 
@@ -236,11 +236,15 @@ def range_check(warn, t, loads, slips, CHK, maxload, maxslip, stop, nwarn_limit)
     """STATICS / MECHAN range rules (tested tires only): count warnings; True when the run stops here."""
     nmax = -math.inf
     smax = 0.0
-    nmin = min(min(loads[0], loads[1]), min(loads[2], loads[3]))
+    # min/max as numba's (Python's) selects, NaN included, without compiling numba's functions for them
+    n01 = loads[1] if loads[1] < loads[0] else loads[0]
+    n23 = loads[3] if loads[3] < loads[2] else loads[2]
+    nmin = n23 if n23 < n01 else n01
     for w in range(4):
         if CHK[w]:
-            nmax = max(nmax, loads[w])
-            smax = max(smax, abs(slips[w]))
+            nmax = loads[w] if loads[w] > nmax else nmax
+            sw = abs(slips[w])
+            smax = sw if sw > smax else smax
     if nmax > maxload:
         _note(warn[1], t, nmax)
         if stop and warn[1, 0] > nwarn_limit:
@@ -267,7 +271,7 @@ def summaries(stats, levels, k, t, a, prev_abs, t_prev):
 @_inl
 def record_row(rec, row, states, F, loads, slips, P, trig, extra):
     """One recorded step: the ten states, then (``record="all"``) forces, loads, slips, moments."""
-    for c in range(min(rec.shape[0], 10)):
+    for c in range(10 if rec.shape[0] > 10 else rec.shape[0]):
         rec[c, row] = states[c]
     if rec.shape[0] > 10:
         for c in range(8):
@@ -300,7 +304,7 @@ def settled(track, t, held, a, ma, mb):
     return False
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, **dict(_NOWRAP, no_cpython_wrapper=False), **_NOREF)   # Python wrapper: run_single
 def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu,
             By, Cz, noise, state, rec, stats, warn, status):
     """Steps ``k0 .. k1 - 1`` of one run of the WCHAIR scheme, from and back to ``state`` (:data:`NSTATE` + the
@@ -315,38 +319,41 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     moment is ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the
     controller's."""
     if status[0] != 0.0 or status[2] != 0.0:
-        return int(state[ST_NREC])
+        return np.int64(state[ST_NREC])
     # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
-    P = param_tuple(prow)
+    P = leading(prow, NPARAM)
     S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK = (borrowed(S), borrowed(TK), borrowed(TS), borrowed(TL), borrowed(LIM),
                                                 borrowed(RK), borrowed(RC), borrowed(RS), borrowed(CAM), borrowed(CHK))
     cfg, levels, state, rec, stats, warn, status = (borrowed(cfg), borrowed(levels), borrowed(state), borrowed(rec),
                                                     borrowed(stats), borrowed(warn), borrowed(status))
     ctl_f, Cy, Dy, Az, Bu, By, Cz, noise = (borrowed(ctl_f), borrowed(Cy), borrowed(Dy), borrowed(Az), borrowed(Bu),
                                             borrowed(By), borrowed(Cz), borrowed(noise))
+    c = leading(cfg, NCFG)    # the configuration row as a tuple; integers cast (numba compiles int() on its own)
     dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
-        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0, int(cfg[8]), int(cfg[9]))
-    sticks = cfg[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
-    settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
+        c[0], c[1], c[2], np.int64(c[3]), np.int64(c[4]), c[6] == 1.0, c[7] != 0.0, np.int64(c[8]), np.int64(c[9]))
+    sticks = c[6] == 2.0            # free casters with stick-slip pin friction (else WCHAIR's kinetic law)
+    settle = sticks and np.int64(c[STOP_LEVEL]) >= 0 and c[SETTLE] != 0.0
     track = state[ST_TRACK:ST_TRACK + 5]           # settled(): since when both held, mid-window values
     rest_a, rest_b = (P[MAF], P[MBF]) if sticks else (0.0, 0.0)   # stick-slip: a reversing rate comes to rest
-    use_ctl = ctl_f[0] > 0.0 and cfg[EXTERNAL_MZ] == 0.0
+    use_ctl = ctl_f[0] > 0.0 and c[EXTERNAL_MZ] == 0.0
     half_dt2 = 0.5 * dt * dt
-    maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
+    maxslip, maxload, nwarn_limit, stop_lvl = c[10], c[11], c[12], np.int64(c[STOP_LEVEL])
     g1 = g2 = 0.0
     gn = P[G]
-    z = state[NSTATE:NSTATE + Az.shape[0]]
-    znew, y, sv = controller_scratch(ctl, Az, Cy, ctl_f)
-    X, Y, THE, UD, VD, THED, E, ED, B, BD = (state[0], state[1], state[2], state[3], state[4], state[5], state[6],
-                                            state[7], state[8], state[9])
-    THEDD, FC1, FC2 = state[ST_THEDD], state[ST_FC1], state[ST_FC2]
-    prev_abs, t_prev, next_k, mz_held = state[ST_PREV], state[ST_TPREV], int(state[ST_NEXTK]), state[ST_MZ]
-    nrec = int(state[ST_NREC])
+    # the controller's states, then its scratch (scratch_columns), views of the state: the step allocates nothing
+    nz, ny = Az.shape[0], Cy.shape[0]
+    z, znew = state[NSTATE:NSTATE + nz], state[NSTATE + nz:NSTATE + 2 * nz]
+    y, sv = state[NSTATE + 2 * nz:NSTATE + 2 * nz + ny], state[NSTATE + 2 * nz + ny:NSTATE + 2 * nz + ny + 10]
+    s0 = leading(state, ST_TRACK)     # the run's state before the settle tracker, as a tuple
+    X, Y, THE, UD, VD, THED, E, ED, B, BD = s0[:10]
+    THEDD, FC1, FC2 = s0[ST_THEDD], s0[ST_FC1], s0[ST_FC2]
+    prev_abs, t_prev, next_k, mz_held = s0[ST_PREV], s0[ST_TPREV], np.int64(s0[ST_NEXTK]), s0[ST_MZ]
+    nrec = np.int64(s0[ST_NREC])
     fcimp = S[FCIMP]
     seg_c, seg_m, seg_k = TS[0], TS[1], TS[2]      # per-run views made once (no per-step array views)
     lim_c, lim_m, lim_k = LIM[0], LIM[1], LIM[2]
     rc_c, rc_m = RC[0], RC[1]
-    for k in range(k0, min(k1, n)):
+    for k in range(k0, n if n < k1 else k1):     # min(k1, n)
         t = k * dt
         ce, se, cb, sb = math.cos(E), math.sin(E), math.cos(B), math.sin(B)
         vel = kinematics(model, P, S, UD, VD, THED, ce, se, cb, sb, ED, BD)
@@ -366,7 +373,7 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
         # DYNAM
         fc1, fc2 = tire_resultant(*F, ce, se, cb, sb)
         fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        mz = mz_held if cfg[EXTERNAL_MZ] != 0.0 else 0.0
+        mz = mz_held if c[EXTERNAL_MZ] != 0.0 else 0.0
         if use_ctl:
             mz_held, next_k = controller_step(ctl, t, next_k, mz_held, z, znew, y, sv,
                                               (X, Y, THE, UD, VD, THED, E, ED, B, BD),

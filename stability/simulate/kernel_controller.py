@@ -15,9 +15,9 @@ from numba import njit
 from numba.core import types as _nbtypes
 from numba.extending import overload
 
-from stability.simulate.kernel_equations import _inl
+from stability.simulate.kernel_equations import _OVERLOAD, _inl
 
-__all__ = ["controller_output", "controlled", "controller_step", "controller_scratch"]
+__all__ = ["controller_output", "controlled", "controller_step", "scratch_columns"]
 
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # as the kernel's helpers
 
@@ -89,38 +89,27 @@ def controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy,
     raise NotImplementedError("compiled code only (numba overload)")
 
 
-def controller_scratch(ctl, Az, Cy, ctl_f):
-    """The controller's scratch arrays; compiled code only (numba overload).
+def scratch_columns(ctl_f: np.ndarray, Az: np.ndarray, Cy: np.ndarray) -> int:
+    """The columns of a run's kernel state after the controller's states that hold its scratch.
+
+    :func:`stability.simulate.kernel.run_one` takes the arrays :func:`controlled` writes as views of them, in this
+    order, rather than having them allocated: the step keeps no reference counts
+    (:data:`~stability.simulate.kernel_equations._NOREF`), so an array allocated for it would never be freed.
 
     Parameters
     ----------
-    ctl : int
-        1 with a controller (a numba literal).
-    Az, Cy, ctl_f : ndarray
-        The controller's arrays (sizes of ``z`` and ``y``; ``ctl_f`` gives the empty views).
+    ctl_f, Az, Cy : ndarray
+        The controller's arrays (:meth:`SampledController.arrays`; sample time first, 0 for none).
 
     Returns
     -------
-    tuple of ndarray
-        ``(znew, y, sv)``: uninitialised (written before they are read) with a controller, else empty views
-        (nothing allocated or compiled).
+    int
+        ``nz`` next states, ``ny`` measurements and the ten states with a controller, else 0.
     """
-    raise NotImplementedError("compiled code only (numba overload)")
+    return Az.shape[0] + Cy.shape[0] + 10 if ctl_f[0] > 0.0 else 0
 
 
-@overload(controller_scratch, prefer_literal=True)
-def _controller_scratch(ctl, Az, Cy, ctl_f):
-    if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
-        def none(ctl, Az, Cy, ctl_f):
-            return ctl_f[:0], ctl_f[:0], ctl_f[:0]
-        return none
-
-    def impl(ctl, Az, Cy, ctl_f):
-        return np.empty(Az.shape[0]), np.empty(Cy.shape[0]), np.empty(10)
-    return impl
-
-
-@overload(controller_step, prefer_literal=True)
+@overload(controller_step, **_OVERLOAD)
 def _controller_step(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     if isinstance(ctl, _nbtypes.IntegerLiteral) and ctl.literal_value == 0:
         def none(ctl, t, next_k, held, z, znew, y, sv, states, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):

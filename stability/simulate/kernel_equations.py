@@ -24,24 +24,34 @@ from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.tires import law as _tire_law
 
-__all__ = ["accelerations", "model_accelerations", "by_model", "param_tuple", "borrowed", "held_pins",
-           "stick_slip", "compiled", "DRIVE_D", "DRIVE_E", "normal_loads",
-           "tire_resultant", "tire_moment", "slip_angle", "kinetic_pin_moment", "pin_holds", "break_away_moment",
-           "rest_rate", "lateral_force", "camber_force", "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE",
-           "SETTLE_WINDOW", "EXTERNAL_MZ", "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK",
-           "ST_MZ", "ST_NREC", "ST_TRACK", "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED",
-           "X_M", "X_P", "D1", "D2", "T1", "T2", "TRAIL", "L1", "H", "M", "M_C", "I_Z", "I_ZP", "G", "ROLL_K",
-           "PIN_DAMP", "MAF", "MBF", "U0", "V0", "ETA0", "BETA0", "FCIMP", "CT", "ST", "TOE", "SLOPE", "C_PHI",
-           "S_PHI", "C_THETA", "S_THETA", "NREC_ALL", "NREC_STATES", "cv_exact", "cv_thesis", "acc_exact",
-           "acc_thesis", "acc_slope", "gravity_body"]
+__all__ = ["accelerations", "model_accelerations", "by_model", "leading", "borrowed", "held_pins", "stick_slip",
+           "compiled", "DRIVE_D", "DRIVE_E", "normal_loads", "tire_resultant", "tire_moment", "slip_angle",
+           "kinetic_pin_moment", "pin_holds", "break_away_moment", "rest_rate", "lateral_force", "camber_force",
+           "rolling_force", "SLOPE_MODEL", "STOP_LEVEL", "SETTLE", "SETTLE_WINDOW", "EXTERNAL_MZ", "NCFG", "NPARAM",
+           "NSTATE", "ST_THEDD", "ST_FC1", "ST_FC2", "ST_PREV", "ST_TPREV", "ST_NEXTK", "ST_MZ", "ST_NREC", "ST_TRACK",
+           "STOPPED_WARNINGS", "STOPPED_LEVEL", "STOPPED_NONFINITE", "STOPPED_SETTLED", "X_M", "X_P", "D1", "D2", "T1",
+           "T2", "TRAIL", "L1", "H", "M", "M_C", "I_Z", "I_ZP", "G", "ROLL_K", "PIN_DAMP", "MAF", "MBF", "U0", "V0",
+           "ETA0", "BETA0", "FCIMP", "CT", "ST", "TOE", "SLOPE", "C_PHI", "S_PHI", "C_THETA", "S_THETA", "NREC_ALL",
+           "NREC_STATES", "cv_exact", "cv_thesis", "acc_exact", "acc_thesis", "acc_slope", "gravity_body"]
 
 # Every helper is its own numba function, compiled once and shared by both kernels. The step's helpers are
 # inlined by LLVM (forceinline: as fast as numba-IR inlining, without a copy of the callee's IR per call site,
 # which made inline="always" cost about 3x the compile time); no Python wrapper unless Python calls it.
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
-_int = njit(cache=True, nogil=True, **_NOWRAP)                       # called from compiled code only
-_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)     # inlined into the step by LLVM
+#: no reference counting (numba's NRT off, a jit option): for the step's entry and helpers, which allocate no array
+#: and return none (their callers hold the arrays; the step's are views without a count, :func:`borrowed`).  numba
+#: otherwise emits an increment and a decrement for every assignment of a variable, walking each member of a tuple
+#: (the parameter tuple's 18): about a tenth of the first use's CPU (measured), for code that does nothing on such
+#: views.  A function that allocates cannot be compiled so (numba refuses); one that returned an array would hand its
+#: caller a reference it never counted
+_NOREF: dict[str, Any] = dict(_nrt=False)
+_int = njit(cache=True, nogil=True, **_NOWRAP, **_NOREF)                      # called from compiled code only
+_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_NOREF)    # inlined into the step by LLVM
+_inl_rc = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)  # the same, counted: allocates (layout kernel)
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
+#: the per-model overloads' options: literal dispatch, and no wrappers for their implementations (numba's default
+#: gives each a C-callable wrapper that LLVM optimises and emits though nothing calls it), nor reference counts
+_OVERLOAD: dict[str, Any] = dict(prefer_literal=True, jit_options=dict(_NOWRAP, **_NOREF))
 
 
 def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any,
@@ -110,6 +120,8 @@ rest_rate = _forces.rest_rate
 
 # Params vector layout (stability.models.params.Params order)
 X_M, X_P, D1, D2, T1, T2, TRAIL, L1, H, M, M_C, I_Z, I_ZP, G, ROLL_K, PIN_DAMP, MAF, MBF = range(18)
+#: a run's parameters (the row's length)
+NPARAM = MBF + 1
 # per-run scalars: u0, v0, eta0, beta0, impulse force, cos(toe), sin(toe), toe flag
 U0, V0, ETA0, BETA0, FCIMP, CT, ST, TOE = range(8)
 #: per-run slots: constant drive forces on the left and right main wheels along their headings, N (0 in
@@ -126,6 +138,8 @@ STOP_LEVEL, STOPPED_WARNINGS, STOPPED_LEVEL, STOPPED_NONFINITE = 18, 1.0, 2.0, 3
 SETTLE, STOPPED_SETTLED, SETTLE_WINDOW = 19, 4.0, 0.5
 #: cfg slot: 1.0 when the yaw moment is the caller's (``state[ST_MZ]``, a Python input set between steps)
 EXTERNAL_MZ = 20
+#: the configuration row's length (``engine._config``)
+NCFG = EXTERNAL_MZ + 1
 #: a run's state between kernel calls: the ten states in :class:`~stability.simulate.results.ChairState`'s order
 #: (0-9), the lagged yaw acceleration, the previous step's force sums, the summaries' previous sample (|yaw rate|,
 #: time), the controller's next sample and held output (or the caller's yaw moment), the rows recorded, the settle
@@ -161,15 +175,28 @@ def borrowed(typingctx, arr):
     return arr(arr), codegen
 
 
-@_inl
-def param_tuple(P):
-    """A run's parameter row (:data:`X_M` .. :data:`MBF`) as a tuple, indexed as the row.
+@intrinsic
+def leading(typingctx, arr, n):
+    """The first ``n`` elements of the 1-D array ``arr`` as a tuple (``n`` a compile-time constant, at most the
+    array's length; read without a bounds check, as numba's indexing).
 
-    numba passes an array into a function it does not inline with a reference count kept by atomic operations,
-    a pair per call (the step's held-caster solve and the accelerations, every step); a tuple has none.
+    The step reads its parameter row (:data:`NPARAM`: P as a tuple, indexed as the row), its configuration row
+    (:data:`NCFG`) and a run's state (the ten states and the slots before :data:`ST_TRACK`) so.  A tuple has no
+    reference count to keep when passed to a helper, and each of numba's array reads is typed and lowered on its
+    own (about 1.5 ms of the first use's compile each, 40 in the step); an intrinsic compiles nothing of its own.
     """
-    return (P[0], P[1], P[2], P[3], P[4], P[5], P[6], P[7], P[8], P[9], P[10], P[11], P[12], P[13], P[14], P[15],
-            P[16], P[17])
+    if not (isinstance(arr, _nbtypes.Array) and arr.ndim == 1 and isinstance(n, _nbtypes.IntegerLiteral)):
+        return None
+    tup = _nbtypes.UniTuple(arr.dtype, n.literal_value)
+
+    def codegen(context, builder, sig, args):
+        aryty = sig.args[0]
+        ary = context.make_array(aryty)(context, builder, value=args[0])
+        return context.make_tuple(builder, tup, [context.unpack_value(builder, aryty.dtype, cgutils.get_item_pointer(
+            context, builder, aryty, ary, [context.get_constant(_nbtypes.intp, i)], wraparound=False))
+            for i in range(tup.count)])
+
+    return tup(arr, n), codegen
 
 
 @_int
@@ -327,6 +354,6 @@ def by_model(model: Any, impls: tuple[Any, Any, Any], generic: Any) -> Any:
     return chosen.py_func
 
 
-@overload(model_accelerations, prefer_literal=True)
+@overload(model_accelerations, **_OVERLOAD)
 def _model_accelerations(model, s, F, ma, mb, fy_ext, mz, rdc, P, g1, g2):
     return by_model(model, (_acc_thesis, _acc_exact, _acc_slope), accelerations)

@@ -30,8 +30,8 @@ from stability.simulate import layout_forces as _lf
 from stability.simulate.cache_stamp import invalidate_stale_cache
 from stability.simulate.kernel_controller import controller_output
 from stability.simulate.kernel_equations import (
-    _inl,
     _inl_py,
+    _inl_rc,
     break_away_moment,
     camber_force,
     compiled,
@@ -47,14 +47,14 @@ from stability.simulate.kernel_equations import (
 __all__ = ["run_layout", "step_layouts", "advance", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
            "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
 
-_eq = compiled(_gn, tuple(_gn.__all__), _inl)
+_eq = compiled(_gn, tuple(_gn.__all__), _inl_rc)
 equations = _eq.equations
 contact_velocities = _eq.contact_velocities
 #: MECHAN for any layout (:mod:`.layout_forces`, plain Python that the statics call too), compiled with the
 #: thesis engine's compiled tire law
-_lfc = compiled(_lf, ("tire_forces", "wheel_frames"), _inl, {"lateral_force": lateral_force,
-                                                              "rolling_force": rolling_force,
-                                                              "camber_force": camber_force})
+_lfc = compiled(_lf, ("tire_forces", "wheel_frames"), _inl_rc, {"lateral_force": lateral_force,
+                                                                 "rolling_force": rolling_force,
+                                                                 "camber_force": camber_force})
 _tire_forces, _wheel_frames = _lfc.tire_forces, _lfc.wheel_frames
 
 #: ``status[0]``: 0 ran to the horizon, 1 the eleventh slip warning, 2 the eleventh load warning, 3 non-finite
@@ -70,7 +70,7 @@ NREC = 6
 _LEVER, _THREE = 0, 1
 
 
-@_inl
+@_inl_rc
 def _solve(A, b, n, x):
     """Solve the leading ``n x n`` system ``A x = b`` by Gaussian elimination with partial pivoting (``A``, ``b``
     overwritten)."""
@@ -153,7 +153,7 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
         out[i] = k[i] * (q[0] + q[1] * xs[i] + q[2] * ys[i])
 
 
-@_inl
+@_inl_rc
 def _accelerations(Mm, F0, nc, mom, held, W, w, acc):
     """Accelerations with the pin moments ``mom`` on the free casters and the ``held`` casters' swivel
     accelerations zero: the free rows of ``M acc = F0 + sum_k M_k e_(3+k)``; each held caster's moment (written
@@ -183,7 +183,7 @@ def _accelerations(Mm, F0, nc, mom, held, W, w, acc):
             mom[kk] = s
 
 
-@_inl
+@_inl_rc
 def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
     """Stick-slip Coulomb pins (the thesis engine's ``stick_slip`` for any number of casters): a swivelling caster
     gets the kinetic moment (plus its viscous part), a caster at rest is held while its holding moment is within
@@ -212,7 +212,7 @@ def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
     _accelerations(Mm, F0, nc, mom, held, W, w, acc)
 
 
-@_inl
+@_inl_rc
 def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit):
     """Program WCHAIR's STATICS / MECHAN range rules on the tested tires on the ground: count the warnings;
     the stop code when a kind reaches its limit (``stop``), else 0."""
@@ -236,7 +236,7 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
     return 0.0
 
 
-@_inl
+@_inl_rc
 def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
     """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
     with the viscous part ``-c_pin rate``)."""
@@ -253,7 +253,7 @@ def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
         _accelerations(Mm, F0, nc, mom, held, W, w, acc)
 
 
-@_inl
+@_inl_rc
 def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM):
     """The caster angles' cosines and sines, the contact velocities (the fixed wheels' in their turned frames) and
     slip angles (deg), the caster contacts."""
@@ -269,7 +269,7 @@ def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, y
         ys[nw + kk] = p[base + 1] - p[base + 2] * sn[kk]
 
 
-@_inl
+@_inl_rc
 def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
     rec[0, row], rec[1, row], rec[2, row], rec[3, row], rec[4, row], rec[5, row] = X, Y, THE, THED, UD, VD
     for kk in range(D.shape[0]):
@@ -329,7 +329,7 @@ def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, 
                     states[r], recs[r], status[r], warn[r], ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec[r])
 
 
-@_inl
+@_inl_rc
 def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """The sampled controller's samples due by ``t``: the next sample's index and the held command."""
     ks = int(math.floor(t / ctl_f[0] + 1e-9))
@@ -428,7 +428,7 @@ def advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, l
         state[NSTATE + kk], state[NSTATE + nc + kk] = D[kk], DD[kk]
 
 
-@_inl
+@_inl_rc
 def _note(warn, kind, t, value):
     if warn[kind, 0] == 0.0 or abs(value) > abs(warn[kind, 2]):
         warn[kind, 2] = value

@@ -71,10 +71,12 @@ def segment_force(seg, s, fz, col=0):
     float
         Force magnitude before the lateral scale, N.
     """
-    fzp = max(fz, 0.0) if fz == fz else fz
-    i = float(math.floor(s)) if s < 8.0 else 7.0    # min(floor(s), 7); NaN -> 7 (t stays NaN: NaN force)
+    # max(fz, 0) with NaN kept, and I an integer from floor (written so, not with max/int: compiled, those are
+    # numba functions of their own, compiled on a first use; the same values, -0.0 and NaN included)
+    fzp = 0.0 if fz < 0.0 else fz
+    i = math.floor(s) if s < 8.0 else 7    # min(floor(s), 7); NaN -> 7 (t stays NaN: NaN force)
     t = s - i
-    k = int(i) + col
+    k = i + col
     return cubic(seg[0, k] + t * seg[3, k], seg[1, k] + t * seg[4, k], seg[2, k] + t * seg[5, k], fzp)
 
 
