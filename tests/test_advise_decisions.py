@@ -675,8 +675,8 @@ def test_each_blocked_change_in_the_json_rebuilds_the_blocked_chair(case):
     assert d["blocked"]                                            # the premise: a limit blocks something
     for b_json in d["blocked"]:
         changed = apply(chair, list(b_json["change"].items()))
-        # the same closed form evaluated twice, once here and once in the advisor: ratios of identical products,
-        # equal to a few ulps; 1e-12 is ~100 times that
+        # error model: the same closed form evaluated twice, once here and once in the advisor: ratios of identical products,
+        # equal to a few ulp; 1e-12 is ~100 times that
         assert math.isclose(_robust_gain(changed, chair), b_json["robust_gain"], rel_tol=1e-12, abs_tol=1e-12)
         met = _limits_met(changed, chair, slope)
         for k in b_json["blocked_by"]:
