@@ -10,6 +10,7 @@ from stability.advise.advisor import advise
 from stability.advise.text import advice_mapping, advice_text
 from stability.advise.uncertain import tip_interval
 from stability.settings import defaults as D
+from stability.settings.bounds import ADVISE_SPEED
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -37,7 +38,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: The advisor's speeds in size, m/s (the --speeds check and its messages).
-SPEED_RANGE_M_S = (0.1, 3.0)
+SPEED_RANGE_M_S = (ADVISE_SPEED.lo, ADVISE_SPEED.hi)
 _RANGE_TEXT = f"{SPEED_RANGE_M_S[0]:g} to {SPEED_RANGE_M_S[1]:g} m/s"
 
 

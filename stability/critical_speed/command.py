@@ -49,6 +49,7 @@ from stability.linear.batch import check_eigen_work
 from stability.linear.intervals import GRID_POINTS, solves_per_draw
 from stability.runtime.checks import MIN_SPEED
 from stability.settings import defaults as D
+from stability.settings.bounds import LAYOUT_MAX_SPEED
 from stability.study.summary_text import format_summary, simulator_checks, summary_dict
 
 if TYPE_CHECKING:
@@ -287,9 +288,9 @@ def _run_layout(args: argparse.Namespace) -> int:
         raise ValueError("--nonlinear is not available for a layout or reverse speeds: the critical impulse and the "
                          "equal-instability speed are a simulator search per draw; valid: drop --nonlinear (python -m "
                          "stability.study critical-impulse --chair LAYOUT --interval gives their range)")
-    if not (0.05 < args.max_speed <= 100.0):
-        raise ValueError(f"--max-speed {args.max_speed!r} is invalid for a layout; valid range: 0.05 < value <= 100 "
-                         "m/s (the figure draws up to 20 m/s)")
+    if not LAYOUT_MAX_SPEED.holds(args.max_speed):
+        raise ValueError(f"--max-speed {args.max_speed!r} is invalid for a layout; valid range: "
+                         f"{LAYOUT_MAX_SPEED.text()} (the figure draws up to 20 m/s)")
     layout = load_layout(args.chair, args.set)
     speeds = [float(u) for u in parse_speeds(args.speeds, signed=True)]
     top = float(SEARCH_SPEEDS_M_S[-1])                                    # the layout model's fastest speed

@@ -15,7 +15,8 @@ from typing import Any, NamedTuple
 from stability.runtime.checks import MAX_SPEED, MIN_SPEED, is_real, real_value, value_text
 
 __all__ = ["Bound", "number_text", "SEARCH_MAX_SPEED", "SPEED", "SIGNED_SPEED", "SAMPLES", "NONLINEAR_SAMPLES",
-           "SEED", "CONFIDENCE_LEVEL", "HUMAN_SPEED", "ADVISE_CROSS_SLOPE", "MIN_TIP_ANGLE", "DRIVE_WHEEL_RADIUS"]
+           "SEED", "CONFIDENCE_LEVEL", "HUMAN_SPEED", "ADVISE_CROSS_SLOPE", "MIN_TIP_ANGLE", "DRIVE_WHEEL_RADIUS",
+           "ADVISE_SPEED", "LAYOUT_MAX_SPEED"]
 
 
 def number_text(x: float) -> str:
@@ -165,6 +166,14 @@ ADVISE_CROSS_SLOPE = Bound(0.0, 8.0, "deg")
 #: A drive wheel's radius, m (:class:`stability.chair.power.DriveTrain`, the assist's ``--wheel-radius``): up to a
 #: 1 m (39 in) wheel, larger than any wheelchair's.
 DRIVE_WHEEL_RADIUS = Bound(0.0, 0.5, "m", open_lo=True)
+
+#: The advisor's use speeds, their size in m/s (``--speeds`` of ``python -m stability.advise``; in reverse too):
+#: the thesis's indoor range around 0.75 m/s, up to a brisk walk.
+ADVISE_SPEED = Bound(0.1, 3.0, "m/s")
+
+#: The top of a wheel layout's critical-speed search and root locus, m/s (``critical_speed --max-speed`` for a
+#: layout): above the locus's first speed (0.05 m/s) up to :data:`SEARCH_MAX_SPEED`'s end.
+LAYOUT_MAX_SPEED = Bound(0.05, MAX_SPEED, "m/s", open_lo=True)
 
 #: The smallest acceptable static stability angle, deg (``advise(min_tip_deg=)``, ``--min-tip-deg``): 0 sets no
 #: tip-angle limit (a chair tips over at 0 deg) and none is stable beyond 60 deg.
