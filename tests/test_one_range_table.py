@@ -129,6 +129,49 @@ def test_advise_api_refuses_before_any_work(keyword, value, bound, monkeypatch):
     assert str(e.value).startswith(f"{keyword}=")
 
 
+@pytest.mark.parametrize(("speeds", "named", "says"), [
+    ([], "speeds", "has no values"),
+    ([0.5] * (bounds.ADVISE_SPEED_COUNT + 1), "speeds", f"more than {bounds.ADVISE_SPEED_COUNT} values"),
+    (iter([0.5] * 10**7), "speeds", f"more than {bounds.ADVISE_SPEED_COUNT} values"),    # not copied whole
+    ([0.5, bounds.ADVISE_SPEED.hi + 0.01], "speeds[1]", "valid range: 0.1 <= speed <= 3 m/s in size"),
+    ([bounds.ADVISE_SPEED.lo - 0.01], "speeds[0]", "valid range: 0.1 <= speed <= 3 m/s in size"),
+    ([-(bounds.ADVISE_SPEED.hi + 0.01)], "speeds[0]", "valid range"),
+    ([float("nan")], "speeds[0]", "valid range"),
+    (["0.5"], "speeds[0]", "valid range"),
+    ([True], "speeds[0]", "valid range"),
+    ([0.5, -0.5], "speeds", "all forward (> 0) or all in reverse (< 0)"),
+    (0.5, "speeds", "valid values: a sequence of 1 to 12 speeds"),
+    ("0.5", "speeds", "valid values: a sequence"),
+])
+def test_advise_api_refuses_use_speeds_with_the_command_range(speeds, named, says, monkeypatch):
+    """``advise(speeds=)`` keeps ``--speeds``' range (0.1-3 m/s in size, 1-12 of them, one sign) and refuses before
+    any work, naming the element; before, 5 m/s and 0 m/s were advised on, an empty list measured for 7 s and then
+    failed in ``min()``, NaN reached the eigenvalue solver."""
+    import stability.advise.advisor as advisor
+    from stability.chair import preset
+
+    def no_work(*a, **k):
+        raise AssertionError("measured a chair before checking the arguments")
+
+    monkeypatch.setattr(advisor, "measure_chairs", no_work)
+    monkeypatch.setattr(advisor, "lever_changes", no_work)
+    with pytest.raises(ValueError, match=re.escape(says)) as e:
+        advisor.advise(preset("ej-premier"), speeds=speeds)
+    assert re.match(re.escape(named) + "[= ]", str(e.value)), str(e.value)     # the argument or its element first
+
+
+def test_advise_use_speeds_at_the_range_ends_are_accepted():
+    """Both ends of the range, either sign, and numpy scalars pass the check unchanged (order kept)."""
+    import numpy as np
+
+    from stability.advise.subject import use_speeds
+    lo, hi = bounds.ADVISE_SPEED.lo, bounds.ADVISE_SPEED.hi
+    assert use_speeds([hi, lo]) == (hi, lo)
+    assert use_speeds((-lo, -hi)) == (-lo, -hi)
+    assert use_speeds(np.array([0.5, 1.0])) == (0.5, 1.0)
+    assert use_speeds([np.float32(0.5)] * bounds.ADVISE_SPEED_COUNT) == (0.5,) * bounds.ADVISE_SPEED_COUNT
+
+
 @pytest.mark.parametrize(("call", "bound"), [
     ("linear_intervals", bounds.SAMPLES), ("nonlinear_intervals", bounds.NONLINEAR_SAMPLES)])
 def test_interval_apis_refuse_samples_with_the_command_range(call, bound):

@@ -10,7 +10,7 @@ from stability.advise.advisor import advise
 from stability.advise.text import advice_mapping, advice_text
 from stability.advise.uncertain import tip_interval
 from stability.settings import defaults as D
-from stability.settings.bounds import ADVISE_SPEED
+from stability.settings.bounds import ADVISE_SPEED, ADVISE_SPEED_COUNT
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -58,7 +58,7 @@ def _speeds(text: str) -> tuple[float, ...]:
         return tuple(-u for u in _speeds(",".join(x.strip()[1:] for x in text.split(","))))
     if text.startswith("-") and ":" not in text and "," not in text:
         return tuple(-u for u in _speeds(text[1:]))
-    speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=12))    # A:B: its ends and middle
+    speeds = tuple(float(u) for u in cli.parse_speeds(text, max_count=ADVISE_SPEED_COUNT))    # A:B: its ends and middle
     if max(speeds) > SPEED_RANGE_M_S[1] or min(speeds) < SPEED_RANGE_M_S[0]:
         raise ValueError(f"--speeds {text!r} is invalid; valid range: {_RANGE_TEXT} (all negative: in reverse, "
                          "e.g. -0.5,-0.75 or -0.5:1)")

@@ -47,7 +47,7 @@ from stability.advise.limits import (
 from stability.advise.limits import constraints as constraints_of
 from stability.advise.measures import Linear, Measures, nonlinear_measures, screening_measures
 from stability.advise.pruning import Pool, screening_of
-from stability.advise.subject import lever_changes, measure_chairs, shimmy_hold
+from stability.advise.subject import lever_changes, measure_chairs, shimmy_hold, use_speeds
 from stability.advise.subject import time_to_correct as correct_time
 from stability.chair import Chair
 from stability.chair.model import check_chair
@@ -358,7 +358,7 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     -------
     Advice
     """
-    use = tuple(float(u) for u in speeds)
+    use = use_speeds(speeds)
     if isinstance(chair, Chair) and any(u < 0 for u in use):
         chair = Layout.from_chair(chair)
     tau = None if driver is None else driver.reaction_time_s

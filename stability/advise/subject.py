@@ -10,7 +10,9 @@ it stands for, so the advisor calls them unchanged.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import itertools
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
 
 from stability.advise.layout_levers import apply_layout, caster_rows, layout_lever_changes, layout_levers
 from stability.advise.layout_measures import (
@@ -28,11 +30,54 @@ from stability.advise.measures import linear_measures as chair_linear_measures
 from stability.advise.measures import measure_chairs as chair_measures
 from stability.chair import Chair
 from stability.layout.model import Layout
+from stability.runtime.checks import is_real, real_value, value_text
+from stability.settings.bounds import ADVISE_SPEED, ADVISE_SPEED_COUNT
 from stability.settings.run import RunSpec
 from stability.study import reference_time
 
-__all__ = ["lever_changes", "apply", "levers_of", "measure_chairs", "linear_measures", "shimmy_hold",
+__all__ = ["use_speeds", "lever_changes", "apply", "levers_of", "measure_chairs", "linear_measures", "shimmy_hold",
            "time_to_correct", "is_layout"]
+
+
+def use_speeds(speeds: Any, name: str = "speeds") -> tuple[float, ...]:
+    """The advisor's use speeds, checked before any work: the API's form of the commands' ``--speeds`` check.
+
+    Parameters
+    ----------
+    speeds : sequence of float
+        Use speeds, m/s: 1 to :data:`~stability.settings.bounds.ADVISE_SPEED_COUNT` real numbers whose sizes lie in
+        :data:`~stability.settings.bounds.ADVISE_SPEED` (0.1 to 3 m/s), all positive (forward) or all negative (in
+        reverse).
+    name : str, optional
+        The argument's name in a refusal (default ``"speeds"``).
+
+    Returns
+    -------
+    tuple of float
+        The speeds, m/s, in the order given.
+
+    Raises
+    ------
+    ValueError
+        Naming ``name`` (or the offending element ``name[i]``), its value and the valid range: not a sequence of
+        numbers, empty, too many, a size outside the range, or mixed signs.
+    """
+    count = f"1 to {ADVISE_SPEED_COUNT} speeds, {ADVISE_SPEED.text('speed')} in size, all negative: in reverse"
+    if isinstance(speeds, (str, bytes)) or not isinstance(speeds, Iterable):
+        raise ValueError(f"{name}={value_text(speeds)} is invalid; valid values: a sequence of {count}")
+    given = list(itertools.islice(speeds, ADVISE_SPEED_COUNT + 1))      # bounded: a huge iterable is not copied
+    if not 1 <= len(given) <= ADVISE_SPEED_COUNT:
+        raise ValueError(f"{name} has {'no' if not given else 'more than ' + str(ADVISE_SPEED_COUNT)} values; "
+                         f"valid values: {count}")
+    use = []
+    for i, u in enumerate(given):
+        if not (is_real(u) and bool(ADVISE_SPEED.holds(abs(real_value(u))))):
+            raise ValueError(f"{name}[{i}]={value_text(u)} is invalid; valid range: {ADVISE_SPEED.text('speed')} "
+                             "in size (all negative: in reverse)")
+        use.append(real_value(u))
+    if len({u < 0 for u in use}) > 1:
+        raise ValueError(f"{name}={tuple(use)!r} is invalid; valid: all forward (> 0) or all in reverse (< 0)")
+    return tuple(use)
 
 
 def is_layout(subject: object) -> bool:

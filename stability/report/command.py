@@ -28,7 +28,7 @@ from stability.report.compute import compute
 from stability.report.json_data import report_mapping
 from stability.report.uncertainty_data import UncertaintySpec
 from stability.settings import defaults as D
-from stability.settings.bounds import SAMPLES
+from stability.settings.bounds import ADVISE_SPEED_COUNT, SAMPLES
 from stability.uncertainty import load_uncertainty
 
 __all__ = ["build_parser", "main"]
@@ -256,7 +256,7 @@ def _clinician(args: argparse.Namespace, c, outputs: dict, make_sheet=None, sign
             raise ValueError(f"{flag} cannot be combined with --clinician (a one-page sheet at full resolution)")
     if not args.output:
         raise ValueError("--clinician needs -o FILE.pdf")
-    speeds = tuple(float(u) for u in parse_speeds(args.speeds, max_count=12, signed=signed))
+    speeds = tuple(float(u) for u in parse_speeds(args.speeds, max_count=ADVISE_SPEED_COUNT, signed=signed))
     mags = [abs(u) for u in speeds]
     if not speeds or min(mags) < 0.1 or max(mags) > 3.0:
         raise ValueError(f"--speeds {args.speeds!r} is invalid; valid range: "

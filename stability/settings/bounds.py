@@ -16,7 +16,7 @@ from stability.runtime.checks import MAX_SPEED, MIN_SPEED, is_real, real_value, 
 
 __all__ = ["Bound", "number_text", "SEARCH_MAX_SPEED", "SPEED", "SIGNED_SPEED", "SAMPLES", "NONLINEAR_SAMPLES",
            "SEED", "CONFIDENCE_LEVEL", "HUMAN_SPEED", "ADVISE_CROSS_SLOPE", "MIN_TIP_ANGLE", "DRIVE_WHEEL_RADIUS",
-           "ADVISE_SPEED", "LAYOUT_MAX_SPEED"]
+           "ADVISE_SPEED", "ADVISE_SPEED_COUNT", "LAYOUT_MAX_SPEED"]
 
 
 def number_text(x: float) -> str:
@@ -170,6 +170,10 @@ DRIVE_WHEEL_RADIUS = Bound(0.0, 0.5, "m", open_lo=True)
 #: The advisor's use speeds, their size in m/s (``--speeds`` of ``python -m stability.advise``; in reverse too):
 #: the thesis's indoor range around 0.75 m/s, up to a brisk walk.
 ADVISE_SPEED = Bound(0.1, 3.0, "m/s")
+
+#: Most use speeds the advisor measures at (``advise(speeds=)``, ``--speeds`` of the advisor and the report): every
+#: one costs each candidate its simulations, so twelve keep a call within the work budget.
+ADVISE_SPEED_COUNT = 12
 
 #: The top of a wheel layout's critical-speed search and root locus, m/s (``critical_speed --max-speed`` for a
 #: layout): above the locus's first speed (0.05 m/s) up to :data:`SEARCH_MAX_SPEED`'s end.
