@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 
 import pytest
 
@@ -139,3 +140,40 @@ def test_a_mistyped_preset_is_named_with_the_closest_preset(capsys):
     assert main(["--chair", "mid-wheel-drve"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "did you mean 'mid-wheel-drive'?" in err and "'ej-premier'" in err
+
+
+# exact unit definitions (SI brochure; the international pound and foot, 1959): the conversions must give them
+_LB_KG, _FT_M, _LBF_N = 0.45359237, 0.3048, 0.45359237 * 9.80665
+
+
+@pytest.mark.parametrize(("assignment", "read", "want"), [
+    ("caster_1_trail=6cm", lambda L: L.casters[0].trail, 6 * 0.01),
+    ("m=210 lb", lambda L: L.m, 210 * _LB_KG),
+    ("caster_1_pin_friction=0.1 ft lbf", lambda L: L.casters[0].pin_friction, 0.1 * _FT_M * _LBF_N),
+    ("h=50cm", lambda L: L.h, 50 * 0.01),
+    ("wheel_1_camber_deg=0.05rad", lambda L: L.wheels[0].camber_deg, math.degrees(0.05)),
+    ("caster_2_trail=0.07", lambda L: L.casters[1].trail, 0.07),
+])
+def test_a_layout_set_takes_a_unit_of_its_field(assignment, read, want):
+    """``--set`` on a layout converts a unit of the field's kind to the field's unit (layout.model.FIELD_UNITS),
+    as a chair's ``--set`` does; before, only SI numbers were taken."""
+    from stability.cli.chairs import load_layout
+
+    got = read(load_layout("mid-wheel-drive", [assignment]))
+    # error model: the unit factor's and the field factor's rounding, one product and one quotient: a few ulp;
+    # 100 times that margin is 1e-13 relative
+    assert got == pytest.approx(want, rel=1e-13, abs=0)
+
+
+@pytest.mark.parametrize(("assignment", "words"), [
+    ("caster_1_trail=6 kg", "layout field caster_1_trail is in m; 'kg' is not a unit of that kind"),
+    ("caster_1_lateral_scale=2 m", "layout field caster_1_lateral_scale has no unit"),
+    ("caster_1_trail=abc", "needs a number in m or a number with a unit of the same kind"),
+    ("i_z=3 furlong", "needs a number in kg m^2"),
+])
+def test_a_layout_set_with_a_wrong_unit_is_refused_in_one_line(assignment, words):
+    from stability.cli.chairs import load_layout
+
+    with pytest.raises(ValueError, match=re.escape(words)) as e:
+        load_layout("mid-wheel-drive", [assignment])
+    assert str(e.value).startswith(f"--set {assignment!r}: ") and "\n" not in str(e.value)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import re
 import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import fields
@@ -12,7 +11,7 @@ from typing import Any
 from stability import tires
 from stability.chair.model import Chair, field_names
 from stability.chair.presets import all_preset_names, preset
-from stability.chair.units import parse_unit
+from stability.chair.units import number_with_unit
 from stability.runtime import readfiles
 from stability.runtime.checks import value_text
 from stability.runtime.files import atomic_write_text
@@ -307,30 +306,5 @@ def parse_assignment(text: str) -> tuple[str, Any]:
     try:
         value = float(raw)
     except ValueError:
-        value = _with_unit(name, raw, kinds[name].metadata["unit"])
+        value = number_with_unit(name, raw, kinds[name].metadata["unit"])
     return name, value
-
-
-_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.+?)\s*$")
-
-
-def _with_unit(name: str, raw: str, field_unit: str) -> float:
-    """``raw`` = number and unit (``5cm``), converted to ``field_unit``; one-line ValueError otherwise."""
-
-    m = _NUMBER_UNIT.match(raw)
-    bad = (f"chair parameter {name} needs a number (it has no unit), got {raw!r}" if field_unit == "-" else
-           f"chair parameter {name} needs a number in {field_unit} or a number with a unit of the same kind "
-           f"(e.g. {name}=5cm), got {raw!r}")
-    if not m:
-        raise ValueError(bad)
-    try:
-        factor, dims = parse_unit(m.group(2))
-        field_factor, field_dims = parse_unit("1" if field_unit == "-" else field_unit)
-    except ValueError as exc:
-        raise ValueError(f"{bad}: {exc}") from None
-    if dims != field_dims:
-        if field_unit == "-":
-            raise ValueError(f"chair parameter {name} has no unit; give a plain number (got {raw!r})")
-        raise ValueError(f"chair parameter {name} is in {field_unit}; {m.group(2)!r} is not a unit of that kind "
-                         f"(got {raw!r})")
-    return float(m.group(1)) * factor / field_factor

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 import re
 
-__all__ = ["STANDARD_GRAVITY", "quantity", "parse_unit", "dimension_name", "DIMENSIONS"]
+__all__ = ["STANDARD_GRAVITY", "quantity", "parse_unit", "dimension_name", "DIMENSIONS", "number_with_unit"]
 
 #: standard acceleration of gravity (m/s^2, exact by definition; CGPM 1901)
 STANDARD_GRAVITY = 9.80665
@@ -140,3 +140,55 @@ def quantity(value: float, unit: str, expect: str | None = None) -> float:
     if expect is not None and dimension_name(dims) != expect:
         raise ValueError(f"unit {unit!r} is a {dimension_name(dims)}, not a {expect}")
     return float(value) * factor
+
+
+_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.+?)\s*$")
+
+
+def number_with_unit(name: str, raw: str, field_unit: str, what: str = "chair parameter") -> float:
+    """A ``--set`` value written as a number and a unit (``5cm``, ``210 lb``), converted to its field's unit.
+
+    Parameters
+    ----------
+    name : str
+        The field's name (in a refusal).
+    raw : str
+        The value as typed: a number followed by a unit of :func:`parse_unit`.
+    field_unit : str
+        The field's own unit (``"m"``, ``"N m"``, ``"kg m^2"``); ``"-"`` or ``""``: dimensionless.
+    what : str, optional
+        What the field belongs to, in a refusal (default ``"chair parameter"``; ``"layout field"``).
+
+    Returns
+    -------
+    float
+        The value in ``field_unit``.
+
+    Raises
+    ------
+    ValueError
+        One line naming ``name`` and ``raw``: no number and unit, an unknown unit, or a unit of another kind.
+
+    Examples
+    --------
+    >>> number_with_unit("trail", "5cm", "m")
+    0.05
+    """
+    plain = field_unit in ("-", "")
+    m = _NUMBER_UNIT.match(raw)
+    bad = (f"{what} {name} needs a number (it has no unit), got {raw!r}" if plain else
+           f"{what} {name} needs a number in {field_unit} or a number with a unit of the same kind "
+           f"(e.g. {name}=5cm), got {raw!r}")
+    if not m:
+        raise ValueError(bad)
+    try:
+        factor, dims = parse_unit(m.group(2))
+        field_factor, field_dims = parse_unit("1" if plain else field_unit)
+    except ValueError as exc:
+        raise ValueError(f"{bad}: {exc}") from None
+    if dims != field_dims:
+        if plain:
+            raise ValueError(f"{what} {name} has no unit; give a plain number (got {raw!r})")
+        raise ValueError(f"{what} {name} is in {field_unit}; {m.group(2)!r} is not a unit of that kind "
+                         f"(got {raw!r})")
+    return float(m.group(1)) * factor / field_factor

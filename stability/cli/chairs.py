@@ -120,8 +120,9 @@ def apply_layout_assignments(layout: Any, assignments: Sequence[str]) -> Any:
     assignments : sequence of str
         Each ``NAME=VALUE``: NAME one of :data:`LAYOUT_BODY_FIELDS` or ``caster_K_FIELD`` / ``wheel_J_FIELD`` (K and
         J from 1, in the order of the ``[[wheel]]`` file; FIELD a field of :class:`stability.layout.Caster` or
-        :class:`stability.layout.FixedWheel`, e.g. ``caster_1_trail=0.06``); VALUE a number in the field's SI unit,
-        or the text of a text field (``caster_2_tire=ER``).
+        :class:`stability.layout.FixedWheel`, e.g. ``caster_1_trail=0.06``); VALUE a number in the field's SI unit
+        (:data:`stability.layout.model.FIELD_UNITS`) or with a unit of its kind (``caster_1_trail=6cm``,
+        ``m=210 lb``), or the text of a text field (``caster_2_tire=ER``).
 
     Returns
     -------
@@ -136,6 +137,8 @@ def apply_layout_assignments(layout: Any, assignments: Sequence[str]) -> Any:
     import dataclasses
 
     from stability.advise.layout_levers import apply_layout
+    from stability.chair.units import number_with_unit
+    from stability.layout.model import FIELD_UNITS
 
     if not assignments:
         return layout
@@ -164,11 +167,15 @@ def apply_layout_assignments(layout: Any, assignments: Sequence[str]) -> Any:
                 raise ValueError(f"--set {text!r}: {raw!r} is invalid; valid: true, false")
             value = raw.lower() == "true"
         elif not isinstance(current, str):
+            owner = "Layout" if name in LAYOUT_BODY_FIELDS else type(seq[int(k) - 1]).__name__  # type: ignore[index]
+            unit = FIELD_UNITS[owner][name if owner == "Layout" else field]
             try:
                 value = float(raw)
             except ValueError:
-                raise ValueError(f"--set {text!r}: {raw!r} is not a number; valid: a number in the field's SI "
-                                 "unit") from None
+                try:
+                    value = number_with_unit(name, raw, unit, what="layout field")
+                except ValueError as exc:
+                    raise ValueError(f"--set {text!r}: {exc}") from None
         if name in LAYOUT_BODY_FIELDS:
             body[name] = value
         else:

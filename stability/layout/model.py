@@ -17,7 +17,19 @@ from stability.chair import Chair
 from stability.chair.model import LIMITS
 from stability.runtime.checks import first_argument, value_text
 
-__all__ = ["FixedWheel", "Caster", "Layout", "check_layout", "takes_layout"]
+__all__ = ["FixedWheel", "Caster", "Layout", "check_layout", "takes_layout", "FIELD_UNITS"]
+
+#: Unit of every numeric field, by class (``""``: dimensionless): the field checks' messages and the command lines'
+#: ``--set caster_1_trail=6cm`` conversions read them here.
+FIELD_UNITS: dict[str, dict[str, str]] = {
+    "FixedWheel": {"x": "m", "y": "m", "lateral_scale": "", "vertical_stiffness": "N/m", "rolling_scale": "",
+                   "camber_deg": "deg", "camber_coefficient": "", "angle_deg": "deg"},
+    "Caster": {"x": "m", "y": "m", "trail": "m", "l": "m", "m_c": "kg", "i_zp": "kg m^2",
+               "pin_damping": "N m s/rad", "pin_friction": "N m", "lateral_scale": "", "vertical_stiffness": "N/m",
+               "rolling_scale": ""},
+    "Layout": {"m": "kg", "i_z": "kg m^2", "h": "m", "g": "m/s^2"},
+}
+_W, _C, _L = FIELD_UNITS["FixedWheel"], FIELD_UNITS["Caster"], FIELD_UNITS["Layout"]
 
 
 def _check(name: str, value: float, lo: float, hi: float, unit: str) -> float:
@@ -93,20 +105,23 @@ class FixedWheel:
     angle_deg: float = 0.0
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "x", _check("x", self.x, -2.0, 2.0, "m"))
-        object.__setattr__(self, "angle_deg", _check("angle_deg", self.angle_deg, *_chair("toe_deg"), "deg"))
-        object.__setattr__(self, "y", _check("y", self.y, -1.0, 1.0, "m"))
-        object.__setattr__(self, "lateral_scale", _check("lateral_scale", self.lateral_scale, 0.0, 10.0, ""))
+        object.__setattr__(self, "x", _check("x", self.x, -2.0, 2.0, _W["x"]))
+        object.__setattr__(self, "angle_deg", _check("angle_deg", self.angle_deg, *_chair("toe_deg"), _W["angle_deg"]))
+        object.__setattr__(self, "y", _check("y", self.y, -1.0, 1.0, _W["y"]))
+        object.__setattr__(self, "lateral_scale", _check("lateral_scale", self.lateral_scale, 0.0, 10.0,
+                                                                 _W["lateral_scale"]))
         object.__setattr__(self, "rolling_scale", _check("rolling_scale", self.rolling_scale,
-                                                         *_chair("main_rolling_scale"), ""))
-        object.__setattr__(self, "camber_deg", _check("camber_deg", self.camber_deg, *_chair("camber_deg"), "deg"))
+                                                         *_chair("main_rolling_scale"), _W["rolling_scale"]))
+        object.__setattr__(self, "camber_deg", _check("camber_deg", self.camber_deg, *_chair("camber_deg"),
+                                                              _W["camber_deg"]))
         if self.camber_deg != 0.0 and self.y == 0.0:
             raise ValueError(f"camber_deg={self.camber_deg!r} is invalid for a wheel on the centre line (y = 0); "
                              "valid: 0")
         if self.camber_coefficient is not None:
             object.__setattr__(self, "camber_coefficient", _check("camber_coefficient", self.camber_coefficient,
-                                                                  *_chair("camber_coefficient"), ""))
-        k = _check("vertical_stiffness", self.vertical_stiffness, 0.0, 1e9, "N/m")
+                                                                  *_chair("camber_coefficient"),
+                                                                  _W["camber_coefficient"]))
+        k = _check("vertical_stiffness", self.vertical_stiffness, 0.0, 1e9, _W["vertical_stiffness"])
         if 0.0 < k < 1e3:
             raise ValueError(f"vertical_stiffness={k!r} is invalid; valid range: 0 (off the ground) or 1000 to 1e9 N/m")
         object.__setattr__(self, "vertical_stiffness", k)
@@ -158,14 +173,12 @@ class Caster:
     def __post_init__(self) -> None:
         # the short form's ranges where the quantity is the same (stability.chair.model.LIMITS): a valid chair
         # expands into a valid layout
-        for name, lo, hi, unit in (("x", -2.0, 2.0, "m"), ("y", -1.0, 1.0, "m"), ("trail", *_chair("trail"), "m"),
-                                   ("l", *_chair("l1"), "m"), ("m_c", *_chair("m_c"), "kg"),
-                                   ("i_zp", 0.0, LIMITS["i_zp"][1], "kg m^2"),
-                                   ("pin_damping", *_chair("pin_damping"), "N m s/rad"),
-                                   ("pin_friction", *_chair("pin_friction_left"), "N m"),
-                                   ("lateral_scale", 0.0, 10.0, ""), ("vertical_stiffness", 0.0, 1e9, "N/m"),
-                                   ("rolling_scale", *_chair("caster_rolling_scale"), "")):
-            object.__setattr__(self, name, _check(name, getattr(self, name), lo, hi, unit))
+        for name, lo, hi in (("x", -2.0, 2.0), ("y", -1.0, 1.0), ("trail", *_chair("trail")), ("l", *_chair("l1")),
+                             ("m_c", *_chair("m_c")), ("i_zp", 0.0, LIMITS["i_zp"][1]),
+                             ("pin_damping", *_chair("pin_damping")), ("pin_friction", *_chair("pin_friction_left")),
+                             ("lateral_scale", 0.0, 10.0), ("vertical_stiffness", 0.0, 1e9),
+                             ("rolling_scale", *_chair("caster_rolling_scale"))):
+            object.__setattr__(self, name, _check(name, getattr(self, name), lo, hi, _C[name]))
         if 0.0 < self.vertical_stiffness < 1e3:
             raise ValueError(f"vertical_stiffness={self.vertical_stiffness!r} is invalid; valid range: 0 (off the "
                              "ground) or 1000 to 1e9 N/m")
@@ -218,10 +231,10 @@ class Layout:
     anti_tip: tuple = field(default_factory=tuple)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "m", _check("m", self.m, *_chair("m"), "kg"))
-        object.__setattr__(self, "i_z", _check("i_z", self.i_z, *_chair("i_z"), "kg m^2"))
-        object.__setattr__(self, "h", _check("h", self.h, *_chair("h"), "m"))
-        object.__setattr__(self, "g", _check("g", self.g, *_chair("g"), "m/s^2"))
+        object.__setattr__(self, "m", _check("m", self.m, *_chair("m"), _L["m"]))
+        object.__setattr__(self, "i_z", _check("i_z", self.i_z, *_chair("i_z"), _L["i_z"]))
+        object.__setattr__(self, "h", _check("h", self.h, *_chair("h"), _L["h"]))
+        object.__setattr__(self, "g", _check("g", self.g, *_chair("g"), _L["g"]))
         object.__setattr__(self, "wheels", tuple(self.wheels))
         object.__setattr__(self, "casters", tuple(self.casters))
         object.__setattr__(self, "anti_tip", tuple((_check("anti_tip x", float(x), -2.0, 2.0, "m"),
