@@ -54,7 +54,10 @@ def _args(layout: Layout, reverse: bool) -> tuple[float, ...]:
     return tuple(out)
 
 
-def _matrices(layout: Layout, speeds) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _matrices(layout: Layout, speeds, args: dict[bool, tuple[float, ...]] | None = None
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(A, B_moment, B_force, U)`` at ``speeds``; ``args``: the generated functions' arguments by direction
+    (:func:`_args`, which depend on the layout alone), when a search asks at many speeds one by one."""
     U = np.atleast_1d(np.asarray(speeds, dtype=float))
     if not np.all(SIGNED_SPEED.holds(U)):
         raise ValueError(f"speeds={speeds!r} is invalid; valid range: {SIGNED_SPEED.text('U')} (negative: reverse)")
@@ -68,7 +71,8 @@ def _matrices(layout: Layout, speeds) -> tuple[np.ndarray, np.ndarray, np.ndarra
         idx = np.nonzero((U < 0) == reverse)[0]
         if len(idx) == 0:
             continue
-        M, K, Bm, Bf = linear_layout_matrices(layout.shape, reverse, U[idx], _args(layout, reverse))
+        M, K, Bm, Bf = linear_layout_matrices(layout.shape, reverse, U[idx],
+                                              _args(layout, reverse) if args is None else args[reverse])
         sol = np.linalg.solve(M, np.concatenate([K, Bm[..., None], Bf[..., None]], axis=-1))
         F, G = sol[..., :n], sol[..., n:]
         rows = [0, 1] + [3 + 2 * k for k in range(len(layout.casters))]
@@ -133,6 +137,7 @@ def growth_rates(layout: Layout, speeds) -> np.ndarray:
     return np.max(np.linalg.eigvals(state_matrices(layout, speeds)).real, axis=-1)
 
 
+@takes_layout
 def critical_speed(layout: Layout, reverse: bool = False) -> tuple[float, str]:
     """The first speed at which the layout's stability changes, forward or in reverse.
 
@@ -150,7 +155,12 @@ def critical_speed(layout: Layout, reverse: bool = False) -> tuple[float, str]:
     """
     sign = -1.0 if reverse else 1.0
     U = SEARCH_SPEEDS_M_S * sign
-    g = growth_rates(layout, U)
+    args = {reverse: _args(layout, reverse)}           # the same at every speed: built once for the search
+
+    def rates(speeds: np.ndarray) -> np.ndarray:
+        return np.max(np.linalg.eigvals(_matrices(layout, speeds, args)[0]).real, axis=-1)
+
+    g = rates(U)
     flips = np.nonzero(np.sign(g[1:]) != np.sign(g[:-1]))[0]
     if len(flips) == 0:
         return float(SEARCH_SPEEDS_M_S[-1]), "none-stable" if g[0] < 0 else "none-unstable"
@@ -159,7 +169,7 @@ def critical_speed(layout: Layout, reverse: bool = False) -> tuple[float, str]:
     glo = g[k]
     for _ in range(50):                                  # bisection to 1e-6 m/s
         mid = 0.5 * (lo + hi)
-        gm = growth_rates(layout, [sign * mid])[0]
+        gm = rates(np.array([sign * mid]))[0]
         if np.sign(gm) == np.sign(glo):
             lo = mid
         else:
