@@ -13,7 +13,7 @@ import sys
 
 
 def _layout() -> None:
-    """The layout kernel: one run (run_layout) and a stepped batch with a Python hook (step_layouts)."""
+    """The layout kernel (``step_layouts``): one run, stepped to its end, and a stepped batch with a Python hook."""
     import numpy as np
 
     from stability.layout.presets import layout_preset

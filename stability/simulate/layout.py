@@ -374,12 +374,14 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
     from stability.simulate import layout_kernel as k  # numba loads on first use
 
     nc = len(layout.casters)
-    rec = np.full((k.NREC + 2 * nc, nrec), np.nan)
-    status = np.zeros(2)
-    warn = np.zeros((3, 3))
-    mzrec = np.zeros(nrec)
-    m = k.run_layout(cfg, *consts, signed, run.lateral_velocity, delta0, rec, status, warn,  # type: ignore[call-arg]
-                     *ctl, mzrec)
+    # one run is a batch of one, stepped to its end in one call: the batch's compiled step, not a second entry
+    # point that numba would compile (and optimise the whole step in) again
+    states = k.initial_state(signed, run.lateral_velocity, delta0, ctl[3].shape[0])[None, :]
+    recs = np.full((1, k.NREC + 2 * nc, nrec), np.nan)
+    statuses, warns, mzrecs = np.zeros((1, 2)), np.zeros((1, 3, 3)), np.zeros((1, nrec))
+    k.step_layouts(0, int(cfg[1]), cfg, *consts, states, recs, statuses, warns, *ctl,  # type: ignore[call-arg]
+                   mzrecs)
+    m, rec, status, warn, mzrec = int(states[0, k.S_NREC]), recs[0], statuses[0], warns[0], mzrecs[0]
     if status[0] == k.STOPPED_NONFINITE:
         raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
                                  f"numbers at t = {status[1]:g} s")

@@ -81,10 +81,11 @@ def tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, pol
         if tire_push:
             fy = ftimp
         else:
-            fy, _bad = lateral_force(TK[j], TS[j], TL[j], LIM[j], slips[j], loads[j], policy)
+            fy, _bad = lateral_force(TK[j], TS[j], TL[j], LIM[j], slips[j], loads[j], policy, 0)
         fx = rolling_force(RK[j], RC[j], RS[j], loads[j], vel[2 * j])
         if CAM[j, 1] != 0.0:
-            cf, _bad = lateral_force(TK[nt + j], TS[nt + j], TL[nt + j], LIM[nt + j], CAM[j, 0], loads[j], policy)
+            cf, _bad = lateral_force(TK[nt + j], TS[nt + j], TL[nt + j], LIM[nt + j], CAM[j, 0], loads[j], policy,
+                                       0)
             fy += camber_force(CAM[j, 1], cf)
         if CAM[j, 3] != 0.0:
             c, s = CAM[j, 2], CAM[j, 3]
@@ -94,7 +95,7 @@ def tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, pol
         sum_fy += fy
     for kk in range(nc):
         i = nw + kk
-        fy, _bad = lateral_force(TK[i], TS[i], TL[i], LIM[i], slips[i], loads[i], policy)
+        fy, _bad = lateral_force(TK[i], TS[i], TL[i], LIM[i], slips[i], loads[i], policy, 0)
         fx = rolling_force(RK[i], RC[i], RS[i], loads[i], vel[2 * i])
         fc[2 * kk], fc[2 * kk + 1] = fx, fy
         sum_fx += fx * cs[kk] - fy * sn[kk]

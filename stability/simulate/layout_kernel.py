@@ -44,7 +44,7 @@ from stability.simulate.kernel_equations import (
     slip_angle,
 )
 
-__all__ = ["run_layout", "step_layouts", "advance", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
+__all__ = ["step_layouts", "advance", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
            "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
 
 _eq = compiled(_gn, tuple(_gn.__all__), _inl_rc)
@@ -123,7 +123,7 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
                 A[2 + line[i], m] = ys[i]
                 m += 1
         x = np.zeros(4)
-        _solve(A, b, 4, x)
+        _solve(A, b, np.int64(4), x)
         for j in range(4):
             out[sel[j]] = x[j]
         return
@@ -138,7 +138,7 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
                 A[0, m], A[1, m], A[2, m] = 1.0, xs[i], ys[i]
                 m += 1
         x = np.zeros(3)
-        _solve(A, b, 3, x)
+        _solve(A, b, np.int64(3), x)
         for j in range(3):
             out[sel[j]] = x[j]
         return
@@ -148,7 +148,7 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
             for c in range(3):
                 A[r, c] += k[i] * bi[r] * bi[c]
     q = np.zeros(3)
-    _solve(A, b, 3, q)
+    _solve(A, b, np.int64(3), q)
     for i in range(n):
         out[i] = k[i] * (q[0] + q[1] * xs[i] + q[2] * ys[i])
 
@@ -170,7 +170,7 @@ def _accelerations(Mm, F0, nc, mom, held, W, w, acc):
         for c in range(m):
             W[a, c] = Mm[free[a], free[c]]
     x = np.zeros(n)
-    _solve(W, w, m, x)
+    _solve(W, w, np.int64(m), x)
     for i in range(n):
         acc[i] = 0.0
     for a in range(m):
@@ -224,13 +224,13 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
                 nmax = max(nmax, loads[i])
                 smax = max(smax, abs(slips[i]))
     if nmax > maxload:
-        _note(warn, 1, t, nmax)
+        _note(warn, np.int64(1), t, nmax)
         if stop and warn[1, 0] > nwarn_limit:
             return STOPPED_LOAD
     if nmin < 0.0:
-        _note(warn, 2, t, nmin)
+        _note(warn, np.int64(2), t, nmin)
     if smax > maxslip:
-        _note(warn, 0, t, smax)
+        _note(warn, np.int64(0), t, smax)
         if stop and warn[0, 0] > nwarn_limit:
             return STOPPED_SLIP
     return 0.0
@@ -297,32 +297,23 @@ def initial_state(u0, v0, delta0, nz):
 
 
 @njit(cache=True, nogil=True)
-def run_layout(cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, u0, v0, delta0, rec,
-               status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
-    """One run: ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and
-    ``nc`` casters, per contact (fixed wheels, then casters) the tire slots (then each fixed wheel's camber tire)
-    and range check, the rolling-resistance slots (kind, coefficients, scale), per fixed wheel the camber
-    ``(deg, signed coefficient)`` and its angle's ``(cos, sin)``, the vertical
-    stiffness and support line, the lines' roll shares, per caster the Coulomb limit (N m) and viscous
-    coefficient (N m s/rad), the initial state; writes ``rec`` (:data:`NREC` + 2 nc, rows), ``status``
-    (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and returns the rows written.
-    With ``ctl_f[0] > 0`` the sampled controller of :mod:`stability.simulate.controller` (its arrays; the state it
-    measures is ``[x, y, heading, u, v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at
-    each sample, held until the next, through a first-order motor lag (``cfg[22]``, exact over each step); the
-    commanded (saturated) moment is recorded in ``mzrec`` (N m)."""
-    state = initial_state(u0, v0, delta0, Az.shape[0])
-    advance(0, int(cfg[1]), cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, state,
-            rec, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec)
-    return int(state[S_NREC])
-
-
-@njit(cache=True, nogil=True)
 def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, states,
                  recs, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
-    """Steps ``k0 .. k1 - 1`` of a batch of runs of one layout (:func:`run_layout`'s arguments, one row of
-    ``states`` (:func:`initial_state`), ``recs``, ``status``, ``warn`` and ``mzrec`` per run): each run still going
-    (``status[r, 0] == 0``) advances; without a sampled controller the yaw moment each run's command slot holds
-    (set by the caller between calls, N m) acts through the motor lag."""
+    """Steps ``k0 .. k1 - 1`` of a batch of runs of one layout (one run: a batch of one, stepped to its end).
+
+    ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and ``nc`` casters,
+    per contact (fixed wheels, then casters) the tire slots (then each fixed wheel's camber tire) and range check,
+    the rolling-resistance slots (kind, coefficients, scale), per fixed wheel the camber ``(deg, signed
+    coefficient)`` and its angle's ``(cos, sin)``, the vertical stiffness and support line, the lines' roll shares,
+    per caster the Coulomb limit (N m) and viscous coefficient (N m s/rad); one row per run of ``states``
+    (:func:`initial_state`; its slot :data:`S_NREC` counts the rows written), ``recs`` (:data:`NREC` + 2 nc,
+    rows), ``status`` (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and
+    ``mzrec``.  Each run still going (``status[r, 0] == 0``) advances.  With ``ctl_f[0] > 0`` the sampled
+    controller of :mod:`stability.simulate.controller` (its arrays; the state it measures is ``[x, y, heading, u,
+    v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at each sample, held until the next;
+    without one, the yaw moment each run's command slot holds (set by the caller between calls, N m) acts.  Either
+    goes through a first-order motor lag (``cfg[22]``, exact over each step); the commanded (saturated) moment is
+    recorded in ``mzrec`` (N m)."""
     for r in range(states.shape[0]):
         if status[r, 0] == 0.0:
             advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin,
@@ -345,7 +336,7 @@ def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl
 @njit(cache=True, nogil=True)
 def advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, state, rec,
             status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
-    """Steps ``k0 .. k1 - 1`` of one run (:func:`run_layout`'s arguments) from its ``state``
+    """Steps ``k0 .. k1 - 1`` of one run (:func:`step_layouts`' arguments, one run's rows) from its ``state``
     (:func:`initial_state`, updated in place); nothing when the run has stopped (``status[0] != 0``)."""
     if status[0] != 0.0:
         return

@@ -1,4 +1,4 @@
-"""What a first ``simulate`` compiles with an empty numba cache: each function's compile time (recorded, not
+"""What a first ``simulate`` (and a first layout run) compiles with an empty numba cache: each function's compile time (recorded, not
 asserted) and how many times each is compiled (asserted: docs/simulator.md, "Compile time", says every
 dispatcher is compiled for one signature except the two it names), and on the scalar kernel that only the
 package's functions are (none of numba's own).
@@ -33,11 +33,21 @@ import json, sys, time
 from numba.core import event
 t0 = time.process_time()
 with event.install_recorder("numba:compile") as rec:
-    from stability.chair import preset
     from stability.settings.run import RunSpec
-    from stability.simulate import engine, simulate
-    with engine.use_kernel(sys.argv[1]):
-        simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
+    if sys.argv[1] == "layout":
+        import numpy as np
+        from stability.layout.presets import layout_preset
+        from stability.simulate.layout import simulate_layout
+        from stability.simulate.layout_batch import simulate_layout_batch
+        spec = RunSpec(horizon=0.01, stop_on_warnings=False)
+        simulate_layout(layout_preset("mid-wheel-drive"), 1.0, spec)
+        simulate_layout_batch(layout_preset("mid-wheel-drive"), [1.0, -1.0], spec,
+                              yaw_moment=lambda t, s: np.zeros(len(s.run)))
+    else:
+        from stability.chair import preset
+        from stability.simulate import engine, simulate
+        with engine.use_kernel(sys.argv[1]):
+            simulate(preset("ej-premier"), 0.75, RunSpec(horizon=0.01))
 cpu = time.process_time() - t0
 stack, own, count = [], {}, {}
 for ts, ev in rec.buffer:
@@ -64,7 +74,11 @@ def bench(request):
     return request.getfixturevalue("benchmark")
 
 
-@pytest.mark.parametrize("kernel", ["scalar", "lanes"])
+#: ``layout``: the layout kernel's one run and its stepped batch with a Python hook (tests/kernel_warmup.py's layout
+#: group) share one compile of every function: one run is a batch of one (no second entry point that optimised the
+#: whole step again), and the solves' sizes and the warning kinds are passed as int64, not as literals that numba
+#: compiled once per value (34 -> 27 compiles)
+@pytest.mark.parametrize("kernel", ["scalar", "lanes", "layout"])
 def test_bench_what_first_use_compiles(bench, tmp_path, kernel):
     out = subprocess.run([sys.executable, "-c", _CHILD, kernel], check=True, capture_output=True, text=True,
                          env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache")))
