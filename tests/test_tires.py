@@ -703,7 +703,9 @@ def test_cart_statics_equal_independent_solution():
     Fsx, Fsy = Fs * sp.sin(al), Fs * sp.cos(al)
     eqs = [Rx - Fx - Fsx, Ry + Fy - Fsy, -Rz + W - T - Fz, Ry * h - Rz * d + W * d - T * s - Fsy * r,
            Rz * l_ - Rx * h - W * xc + Fsx * r + Fx * r, Ry * l_ - Rx * d, Fx - fr * Fz]
-    sol = sp.solve(eqs, [Rx, Ry, Rz, T, Fx, Fy, Fz], dict=True)[0]
+    unknowns = [Rx, Ry, Rz, T, Fx, Fy, Fz]
+    A, b = sp.linear_eq_to_matrix(eqs, unknowns)        # linear in the unknowns: LU gives the general solution
+    sol = dict(zip(unknowns, A.LUsolve(b), strict=True))      # (sp.solve took 4-8 s for the same)
     cart = tires.CartGeometry(half_width_m=0.26, wheel_radius_m=0.3, cg_offset_m=0.05, pin_distance_m=1.1,
                               pin_height_m=0.35, cable_offset_m=0.53, rolling_coefficient=0.02)
     vals = {W: 600.0, Fs: 90.0, al: math.radians(3.0), d: 0.26, r: 0.3, xc: 0.05, l_: 1.1, h: 0.35, s: 0.53,
