@@ -4,6 +4,7 @@ package placed (the rules are stated there; this test reads them from that page)
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from pathlib import Path
 
@@ -82,6 +83,13 @@ def imports(path: Path, known: set[str]) -> set[str]:
     return found
 
 
+@functools.lru_cache(maxsize=1)
+def graph() -> dict[str, frozenset[str]]:
+    """Every package module -> the package modules it imports (:func:`imports`), parsed once for the tests here."""
+    mods = modules()
+    return {m: frozenset(imports(path, set(mods))) for m, path in mods.items()}
+
+
 def layer_of(module: str, table: list[tuple[str, list[str]]]) -> int:
     """Index of ``module``'s layer (0 = bottom); the package facade ``stability`` is above every layer."""
     parts = module.split(".")
@@ -114,31 +122,27 @@ def test_every_package_is_placed_once():
 
 def test_imports_go_down_the_layers_only():
     table, allowed = layers(), exceptions()
-    mods = modules()
     wrong = []
-    for m, path in mods.items():
-        for t in imports(path, set(mods)):
+    for m, targets in graph().items():
+        for t in targets:
             if t != m and layer_of(t, table) > layer_of(m, table) and (m, t) not in allowed:
                 wrong.append(f"{m} ({_name(m, table)}) imports {t} ({_name(t, table)})")
     assert not wrong, "\n".join(wrong)
 
 
 def test_the_exceptions_are_still_needed():
-    mods = modules()
     for a, b in exceptions():
-        assert b in imports(mods[a], set(mods)), f"{a} -> {b} is listed but no longer imported: remove it"
+        assert b in graph()[a], f"{a} -> {b} is listed but no longer imported: remove it"
 
 
 def test_only_models_open_the_generated_code():
-    mods = modules()
-    wrong = [m for m, path in mods.items() if not m.startswith(("stability.models", "stability._generated"))
-             and any(t.startswith("stability._generated") for t in imports(path, set(mods)))]
+    wrong = [m for m, targets in graph().items() if not m.startswith(("stability.models", "stability._generated"))
+             and any(t.startswith("stability._generated") for t in targets)]
     assert not wrong, wrong
 
 
 def test_no_import_cycles():
-    mods = modules()
-    graph = {m: imports(p, set(mods)) - {m} for m, p in mods.items()}
+    deps = {m: targets - {m} for m, targets in graph().items()}
     index: dict[str, int] = {}
     low: dict[str, int] = {}
     stack: list[str] = []
@@ -149,7 +153,7 @@ def test_no_import_cycles():
         index[v] = low[v] = len(index)
         stack.append(v)
         on.add(v)
-        for w in graph[v]:
+        for w in deps[v]:
             if w not in index:
                 strong(w)
                 low[v] = min(low[v], low[w])
@@ -166,7 +170,7 @@ def test_no_import_cycles():
             if len(comp) > 1:
                 cycles.append(sorted(comp))
 
-    for v in graph:
+    for v in deps:
         if v not in index:
             strong(v)
     assert not cycles, cycles
