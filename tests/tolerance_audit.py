@@ -36,6 +36,7 @@ import io
 import re
 import sys
 import tokenize
+from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -183,17 +184,24 @@ def states_model(text: str) -> bool:
 
 
 class _FileScan:
-    def __init__(self, path: Path):
+    def __init__(self, path: Path, src: str | None = None):
         self.path = path
         self.rel = path.relative_to(ROOT).as_posix()
-        self.src = path.read_text(encoding="utf-8")
+        self.src = path.read_text(encoding="utf-8") if src is None else src
         self.tree = ast.parse(self.src, str(path))
         self.comments = _comments(self.src)
         self.parents: dict[ast.AST, ast.AST] = {}
-        for node in ast.walk(self.tree):
+        #: every node in ``ast.walk``'s order (breadth first), listed in the one walk that finds the parents: the
+        #: scans below read this list instead of walking the tree again (most of a scan's time)
+        self.nodes: list[ast.AST] = []
+        todo = deque([self.tree])
+        while todo:
+            node = todo.popleft()
+            self.nodes.append(node)
             for child in ast.iter_child_nodes(node):
                 self.parents[child] = node
-        self.numerics_names = {a.asname or a.name for n in ast.walk(self.tree) if isinstance(n, ast.ImportFrom)
+                todo.append(child)
+        self.numerics_names = {a.asname or a.name for n in self.nodes if isinstance(n, ast.ImportFrom)
                                and n.module == "numerics" for a in n.names}
         self.stated_names = self._stated_names()
 
@@ -247,7 +255,7 @@ class _FileScan:
 
     def _stated_names(self) -> set[str]:
         names: set[str] = set()
-        for node in ast.walk(self.tree):
+        for node in self.nodes:
             targets: list[ast.expr] = []
             if isinstance(node, ast.Assign):
                 targets = node.targets
@@ -287,7 +295,7 @@ class _FileScan:
 
     def tolerances(self) -> list[Tolerance]:
         out = []
-        for node in ast.walk(self.tree):
+        for node in self.nodes:
             exprs: list[ast.expr]
             if isinstance(node, ast.Call):
                 found = _call_tolerance(node)
@@ -320,16 +328,7 @@ def scan(paths: list[Path] | None = None) -> list[Tolerance]:
 
 def scan_source(src: str, name: str = "tests/test_example.py") -> list[Tolerance]:
     """The tolerances of one source text (for the scanner's own tests)."""
-    scanner = _FileScan.__new__(_FileScan)
-    scanner.path = ROOT / name
-    scanner.rel = name
-    scanner.src = src
-    scanner.tree = ast.parse(src)
-    scanner.comments = _comments(src)
-    scanner.parents = {c: n for n in ast.walk(scanner.tree) for c in ast.iter_child_nodes(n)}
-    scanner.numerics_names = {a.asname or a.name for n in ast.walk(scanner.tree) if isinstance(n, ast.ImportFrom)
-                              and n.module == "numerics" for a in n.names}
-    scanner.stated_names = scanner._stated_names()
+    scanner = _FileScan(ROOT / name, src)
     return scanner.tolerances()
 
 
