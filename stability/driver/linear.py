@@ -66,16 +66,36 @@ def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.nd
     -------
     ndarray (..., n + order, n + order)
     """
-    Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
-    g = np.asarray(gains, dtype=float)
-    Kc = g @ C                                          # (..., n): the operator's combination of the states
-    n, m = A.shape[0], Ad.shape[0]
-    out = np.zeros(g.shape[:-1] + (n + m, n + m))
-    out[..., :n, :n] = A - (B[:, 0] * float(Dd[0, 0]))[:, None] * Kc[..., None, :]
-    out[..., :n, n:] = -B @ Cd
-    out[..., n:, :n] = Bd[:, 0][:, None] * Kc[..., None, :]
-    out[..., n:, n:] = Ad
-    return out
+    return _Loop(A, B, C, tau, order).matrix(gains)
+
+
+class _Loop:
+    """The delayed loop's parts that do not depend on the gains, built once per plant (a best-gains search asks
+    for hundreds of gains on one plant); :meth:`matrix` is :func:`closed_loop_matrix`'s arithmetic, operation for
+    operation, so its answers are the same to the bit."""
+
+    def __init__(self, A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int) -> None:
+        Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
+        n, m = A.shape[0], Ad.shape[0]
+        self.A, self.C, self.n = A, C, n
+        self.direct = (B[:, 0] * float(Dd[0, 0]))[:, None]      # (n, 1): the delay's feed-through into the plant
+        self.into_delay = Bd[:, 0][:, None]                      # (m, 1)
+        self.fixed = np.zeros((n + m, n + m))                    # the gain-free blocks
+        self.fixed[:n, n:] = -B @ Cd
+        self.fixed[n:, n:] = Ad
+
+    def matrix(self, gains: np.ndarray) -> np.ndarray:
+        g = np.asarray(gains, dtype=float)
+        Kc = g @ self.C                                 # (..., n): the operator's combination of the states
+        n = self.n
+        out = np.empty(g.shape[:-1] + self.fixed.shape)
+        out[...] = self.fixed
+        out[..., :n, :n] = self.A - self.direct * Kc[..., None, :]
+        out[..., n:, :n] = self.into_delay * Kc[..., None, :]
+        return out
+
+    def abscissa(self, gains: np.ndarray) -> np.ndarray:
+        return np.max(np.linalg.eigvals(self.matrix(gains)).real, axis=-1)
 
 
 def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
@@ -92,7 +112,7 @@ def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau
     ndarray
         One per closed loop (shape ``gains.shape[:-1]``).
     """
-    return np.max(np.linalg.eigvals(closed_loop_matrix(A, B, C, gains, tau, order)).real, axis=-1)
+    return _Loop(A, B, C, tau, order).abscissa(gains)
 
 
 def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
@@ -121,14 +141,15 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
     """
     lo_b = np.array([lo for lo, _ in log_bounds])
     hi_b = np.array([hi for _, hi in log_bounds])
+    loop = _Loop(A, B, C, tau, order)
 
     def f(x: np.ndarray) -> float:
-        return float(abscissa(A, B, C, 10.0 ** np.clip(x, lo_b, hi_b)[None, :], tau, order)[0])
+        return float(loop.abscissa(10.0 ** np.clip(x, lo_b, hi_b)[None, :])[0])
 
     if start is None:
         axes = [np.linspace(lo, hi, grid) for lo, hi in log_bounds]
         mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
-        values = abscissa(A, B, C, 10.0**mesh, tau, order)
+        values = loop.abscissa(10.0**mesh)
         x0, v0 = mesh[int(np.argmin(values))], float(values.min())
     else:
         x0 = np.clip(np.log10(np.asarray(start, dtype=float)), lo_b, hi_b)
@@ -378,16 +399,15 @@ class _LoopAbscissa:
 
     def __call__(self, u: float) -> float:
         A, B, C = self.plant(u)
+        warm = None
         if self.gains is not None:          # the optimum moves smoothly with speed: start from the last one's
-            g, a = best_gains(A, B, C, self.tau, self.order, start=self.gains)
-            if a < 0:
-                self.gains = g
-                return a
+            warm = best_gains(A, B, C, self.tau, self.order, start=self.gains)
+            if warm[1] < 0:
+                self.gains = warm[0]
+                return warm[1]
         g, a = best_gains(A, B, C, self.tau, self.order)      # the grid: a crossing is never declared without it
-        if self.gains is not None:
-            g2, a2 = best_gains(A, B, C, self.tau, self.order, start=self.gains)
-            if a2 < a:
-                g, a = g2, a2
+        if warm is not None and warm[1] < a:                  # the warm start's search (the same, deterministic)
+            g, a = warm
         self.gains = g
         return a
 
