@@ -353,12 +353,18 @@ class HumanLimit:
                 "speed_range_m_s": list(self.speed_range_m_s)}
 
 
-def _first_crossing(f, grid: np.ndarray) -> tuple[float, str]:
+def _first_crossing(f, grid: np.ndarray, holds: Callable[[float], bool] | None = None) -> tuple[float, str]:
     """The first speed on ``grid`` where ``f`` turns >= 0, refined by bisection to :data:`SPEED_TOL_M_S`; or a
-    bound (``"<"``: already at the grid's start, ``">"``: not on the grid)."""
+    bound (``"<"``: already at the grid's start, ``">"``: not on the grid).
+
+    ``holds(u)``, if given, is a cheap test that proves ``f(u) < 0`` when it passes (it may fail where ``f(u) < 0``
+    too): the grid scan calls ``f`` only where it fails; the first grid speed and the bisection always call ``f``.
+    """
     if f(float(grid[0])) >= 0:
         return float(grid[0]), "<"
     for k in range(1, len(grid)):
+        if holds is not None and holds(float(grid[k])):
+            continue
         if f(float(grid[k])) >= 0:
             lo, hi = float(grid[k - 1]), float(grid[k])
             while hi - lo > SPEED_TOL_M_S:
@@ -411,6 +417,15 @@ class _LoopAbscissa:
         self.gains = g
         return a
 
+    def holds(self, u: float) -> bool:
+        """Whether the last gains found still make the loop stable at ``u``: then the best gains do too (their
+        abscissa is at most these gains'), so the limit lies above ``u``; one eigenvalue problem instead of a
+        search.  False before any search."""
+        if self.gains is None:
+            return False
+        A, B, C = self.plant(u)
+        return bool(abscissa(A, B, C, self.gains[None, :], self.tau, self.order)[0] < 0)
+
 
 def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]],
                 rate: Callable[[float], float], tau: float, order: int = PADE_ORDER) -> HumanLimit:
@@ -436,7 +451,7 @@ def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray
     """
     rule, rule_side = rule_crossing(rate, tau)
     f = _LoopAbscissa(plant, tau, order)
-    speed, side = _first_crossing(f, _GRID)
+    speed, side = _first_crossing(f, _GRID, f.holds)
     err = 0.0
     if side == "=":
         A, B, C = plant(speed)
