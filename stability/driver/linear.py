@@ -70,9 +70,8 @@ def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.nd
 
 
 class _Loop:
-    """The delayed loop's parts that do not depend on the gains, built once per plant (a best-gains search asks
-    for hundreds of gains on one plant); :meth:`matrix` is :func:`closed_loop_matrix`'s arithmetic, operation for
-    operation, so its answers are the same to the bit."""
+    """The delayed loop's gain-free parts, built once per plant (a gain search asks for hundreds of gains on one);
+    :meth:`matrix` is :func:`closed_loop_matrix`'s arithmetic, operation for operation (the same to the bit)."""
 
     def __init__(self, A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int) -> None:
         Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
@@ -87,9 +86,7 @@ class _Loop:
     def matrix(self, gains: np.ndarray) -> np.ndarray:
         g = np.asarray(gains, dtype=float)
         Kc = g @ self.C                                 # (..., n): the operator's combination of the states
-        n = self.n
-        out = np.empty(g.shape[:-1] + self.fixed.shape)
-        out[...] = self.fixed
+        n, out = self.n, np.broadcast_to(self.fixed, g.shape[:-1] + self.fixed.shape).copy()
         out[..., :n, :n] = self.A - self.direct * Kc[..., None, :]
         out[..., n:, :n] = self.into_delay * Kc[..., None, :]
         return out
@@ -358,8 +355,7 @@ def _first_crossing(f, grid: np.ndarray, holds: Callable[[float], bool] | None =
     bound (``"<"``: already at the grid's start, ``">"``: not on the grid).
 
     ``holds(u)``, if given, is a cheap test that proves ``f(u) < 0`` when it passes (it may fail where ``f(u) < 0``
-    too): the grid scan calls ``f`` only where it fails; the first grid speed and the bisection always call ``f``.
-    """
+    too): the grid scan calls ``f`` only where it fails; the first grid speed and the bisection always call ``f``."""
     if f(float(grid[0])) >= 0:
         return float(grid[0]), "<"
     for k in range(1, len(grid)):
@@ -418,13 +414,10 @@ class _LoopAbscissa:
         return a
 
     def holds(self, u: float) -> bool:
-        """Whether the last gains found still make the loop stable at ``u``: then the best gains do too (their
-        abscissa is at most these gains'), so the limit lies above ``u``; one eigenvalue problem instead of a
-        search.  False before any search."""
-        if self.gains is None:
-            return False
-        A, B, C = self.plant(u)
-        return bool(abscissa(A, B, C, self.gains[None, :], self.tau, self.order)[0] < 0)
+        """Whether the last gains found (none before a search) still make the loop stable at ``u``: then the best
+        gains do too (their abscissa is at most these gains'); one eigenvalue problem instead of a search."""
+        return self.gains is not None and bool(
+            abscissa(*self.plant(u), self.gains[None, :], self.tau, self.order)[0] < 0)
 
 
 def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]],
