@@ -183,6 +183,33 @@ def test_loop_limit_against_the_exact_delay(name):
         assert fit.holds == (factor < 1)
 
 
+def test_the_loop_scan_searches_only_where_the_last_gains_no_longer_hold():
+    """The delayed loop's grid scan skips the gain search at a speed where the last gains found still make the loop
+    stable (one eigenvalue problem: the best gains' abscissa is at most theirs, so the limit lies higher).  Against
+    the scan that searches at every speed: each skipped speed is one where the search finds the loop stable, and
+    the limit is the same to the bit (the bisection starts from the same crossing step and the same gains)."""
+    from stability.driver.linear import _GRID, _first_crossing, _LoopAbscissa
+
+    c, tau = preset("ej-premier"), 0.3
+
+    def plant(u):
+        return heading_plant(c, u)
+
+    def recorded(f, log):
+        def g(u):
+            log[u] = f(u)
+            return log[u]
+        return g
+
+    every, short = {}, {}
+    full = _first_crossing(recorded(_LoopAbscissa(plant, tau, 8), every), _GRID)
+    loop = _LoopAbscissa(plant, tau, 8)
+    quick = _first_crossing(recorded(loop, short), _GRID, loop.holds)
+    assert quick == full and full[1] == "="
+    skipped = [float(u) for u in _GRID if float(u) in every and float(u) not in short]
+    assert len(skipped) >= 2 and all(every[u] < 0 for u in skipped)     # observed: 0.35 and 0.59 m/s
+
+
 def test_slower_driver_lower_speed_and_a_bound_is_a_bound():
     """The rule's speed falls as the reaction time grows (the divergence rate rises with speed); a stable chair's
     limit is the searched range's end, a bound."""

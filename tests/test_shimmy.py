@@ -334,6 +334,30 @@ def test_critical_trail_tends_to_relaxation_length_for_a_stiff_pin():
     assert held[0] < held[1] < crit[0]                            # friction helps, less so at speed
 
 
+def test_friction_trail_is_the_largest_root_over_the_whole_trail_grid():
+    """The friction trail is the largest trail where the friction needed (describing function) equals the pin's
+    own: recomputed here from every grid trail's excess, a root per sign change (Brent in its grid step), the
+    largest kept.  The library searches from the grid's top down and stops at the highest sign change; the power
+    chair at 2 m/s has several sign changes (a band), so the skipped part of the grid holds roots too."""
+    from scipy.optimize import brentq
+
+    from stability.chair import preset
+    from stability.shimmy.chair import CasterCompliance, _trail_grid, caster_wheel, friction_trail
+
+    c, speed, amplitude, comp = preset("power-fwd"), 2.0, math.radians(5), CasterCompliance()
+
+    def excess(trail):
+        w = caster_wheel(c.replace(trail=trail), comp)
+        return min(df.suppressing_friction(w, speed, amplitude).friction, 1e3) - w.pin_friction
+
+    grid = _trail_grid(c)
+    values = np.array([excess(t) for t in grid])
+    steps = np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0]
+    assert len(steps) >= 2
+    roots = [brentq(excess, grid[i], grid[i + 1], xtol=1e-7) for i in steps]
+    assert friction_trail(c, speed, amplitude, comp) == max(roots)      # the same Brent call: equal to the bit
+
+
 def test_cli_json_and_errors(capsys):
     import json
 

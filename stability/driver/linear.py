@@ -66,16 +66,33 @@ def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.nd
     -------
     ndarray (..., n + order, n + order)
     """
-    Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
-    g = np.asarray(gains, dtype=float)
-    Kc = g @ C                                          # (..., n): the operator's combination of the states
-    n, m = A.shape[0], Ad.shape[0]
-    out = np.zeros(g.shape[:-1] + (n + m, n + m))
-    out[..., :n, :n] = A - (B[:, 0] * float(Dd[0, 0]))[:, None] * Kc[..., None, :]
-    out[..., :n, n:] = -B @ Cd
-    out[..., n:, :n] = Bd[:, 0][:, None] * Kc[..., None, :]
-    out[..., n:, n:] = Ad
-    return out
+    return _Loop(A, B, C, tau, order).matrix(gains)
+
+
+class _Loop:
+    """The delayed loop's gain-free parts, built once per plant (a gain search asks for hundreds of gains on one);
+    :meth:`matrix` is :func:`closed_loop_matrix`'s arithmetic, operation for operation (the same to the bit)."""
+
+    def __init__(self, A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int) -> None:
+        Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
+        n, m = A.shape[0], Ad.shape[0]
+        self.A, self.C, self.n = A, C, n
+        self.direct = (B[:, 0] * float(Dd[0, 0]))[:, None]      # (n, 1): the delay's feed-through into the plant
+        self.into_delay = Bd[:, 0][:, None]                      # (m, 1)
+        self.fixed = np.zeros((n + m, n + m))                    # the gain-free blocks
+        self.fixed[:n, n:] = -B @ Cd
+        self.fixed[n:, n:] = Ad
+
+    def matrix(self, gains: np.ndarray) -> np.ndarray:
+        g = np.asarray(gains, dtype=float)
+        Kc = g @ self.C                                 # (..., n): the operator's combination of the states
+        n, out = self.n, np.broadcast_to(self.fixed, g.shape[:-1] + self.fixed.shape).copy()
+        out[..., :n, :n] = self.A - self.direct * Kc[..., None, :]
+        out[..., n:, :n] = self.into_delay * Kc[..., None, :]
+        return out
+
+    def abscissa(self, gains: np.ndarray) -> np.ndarray:
+        return np.max(np.linalg.eigvals(self.matrix(gains)).real, axis=-1)
 
 
 def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
@@ -92,7 +109,7 @@ def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau
     ndarray
         One per closed loop (shape ``gains.shape[:-1]``).
     """
-    return np.max(np.linalg.eigvals(closed_loop_matrix(A, B, C, gains, tau, order)).real, axis=-1)
+    return _Loop(A, B, C, tau, order).abscissa(gains)
 
 
 def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
@@ -121,14 +138,15 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
     """
     lo_b = np.array([lo for lo, _ in log_bounds])
     hi_b = np.array([hi for _, hi in log_bounds])
+    loop = _Loop(A, B, C, tau, order)
 
     def f(x: np.ndarray) -> float:
-        return float(abscissa(A, B, C, 10.0 ** np.clip(x, lo_b, hi_b)[None, :], tau, order)[0])
+        return float(loop.abscissa(10.0 ** np.clip(x, lo_b, hi_b)[None, :])[0])
 
     if start is None:
         axes = [np.linspace(lo, hi, grid) for lo, hi in log_bounds]
         mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
-        values = abscissa(A, B, C, 10.0**mesh, tau, order)
+        values = loop.abscissa(10.0**mesh)
         x0, v0 = mesh[int(np.argmin(values))], float(values.min())
     else:
         x0 = np.clip(np.log10(np.asarray(start, dtype=float)), lo_b, hi_b)
@@ -332,12 +350,17 @@ class HumanLimit:
                 "speed_range_m_s": list(self.speed_range_m_s)}
 
 
-def _first_crossing(f, grid: np.ndarray) -> tuple[float, str]:
+def _first_crossing(f, grid: np.ndarray, holds: Callable[[float], bool] | None = None) -> tuple[float, str]:
     """The first speed on ``grid`` where ``f`` turns >= 0, refined by bisection to :data:`SPEED_TOL_M_S`; or a
-    bound (``"<"``: already at the grid's start, ``">"``: not on the grid)."""
+    bound (``"<"``: already at the grid's start, ``">"``: not on the grid).
+
+    ``holds(u)``, if given, is a cheap test that proves ``f(u) < 0`` when it passes (it may fail where ``f(u) < 0``
+    too): the grid scan calls ``f`` only where it fails; the first grid speed and the bisection always call ``f``."""
     if f(float(grid[0])) >= 0:
         return float(grid[0]), "<"
     for k in range(1, len(grid)):
+        if holds is not None and holds(float(grid[k])):
+            continue
         if f(float(grid[k])) >= 0:
             lo, hi = float(grid[k - 1]), float(grid[k])
             while hi - lo > SPEED_TOL_M_S:
@@ -378,18 +401,23 @@ class _LoopAbscissa:
 
     def __call__(self, u: float) -> float:
         A, B, C = self.plant(u)
+        warm = None
         if self.gains is not None:          # the optimum moves smoothly with speed: start from the last one's
-            g, a = best_gains(A, B, C, self.tau, self.order, start=self.gains)
-            if a < 0:
-                self.gains = g
-                return a
+            warm = best_gains(A, B, C, self.tau, self.order, start=self.gains)
+            if warm[1] < 0:
+                self.gains = warm[0]
+                return warm[1]
         g, a = best_gains(A, B, C, self.tau, self.order)      # the grid: a crossing is never declared without it
-        if self.gains is not None:
-            g2, a2 = best_gains(A, B, C, self.tau, self.order, start=self.gains)
-            if a2 < a:
-                g, a = g2, a2
+        if warm is not None and warm[1] < a:                  # the warm start's search (the same, deterministic)
+            g, a = warm
         self.gains = g
         return a
+
+    def holds(self, u: float) -> bool:
+        """Whether the last gains found (none before a search) still make the loop stable at ``u``: then the best
+        gains do too (their abscissa is at most these gains'); one eigenvalue problem instead of a search."""
+        return self.gains is not None and bool(
+            abscissa(*self.plant(u), self.gains[None, :], self.tau, self.order)[0] < 0)
 
 
 def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]],
@@ -416,7 +444,7 @@ def plant_limit(name: str, model: str, plant: Callable[[float], tuple[np.ndarray
     """
     rule, rule_side = rule_crossing(rate, tau)
     f = _LoopAbscissa(plant, tau, order)
-    speed, side = _first_crossing(f, _GRID)
+    speed, side = _first_crossing(f, _GRID, f.holds)
     err = 0.0
     if side == "=":
         A, B, C = plant(speed)

@@ -107,14 +107,6 @@ def caster_wheel(chair: CasterSource, compliance: CasterCompliance | None = None
                       pin_friction=chair.pin_friction_left if side == "A" else chair.pin_friction_right)
 
 
-def _roots(f, grid: np.ndarray) -> list[float]:
-    vals = np.array([f(x) for x in grid])
-    out = []
-    for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-        out.append(float(brentq(f, grid[i], grid[i + 1], xtol=1e-7)))
-    return out
-
-
 def _trail_grid(chair: CasterSource) -> np.ndarray:
     return np.linspace(max(1e-3, chair.l1 * 0.05), 0.2, 60)
 
@@ -178,8 +170,10 @@ def friction_trail(chair: CasterSource, speed: float, amplitude: float, complian
         Friction trail, m (0 or ``inf`` as above; for a layout's caster the trails searched end where the layout
         would no longer stand, NaN if it stands on fewer than two of them).
     """
-    def excess(trail: float) -> float:
-        w = caster_wheel(chair.replace(trail=trail), compliance)
+    def wheel(trail: float) -> TowedWheel:
+        return caster_wheel(chair.replace(trail=trail), compliance)
+
+    def excess(w: TowedWheel) -> float:
         need = describing.suppressing_friction(w, speed, amplitude).friction
         return min(need, 1e3) - w.pin_friction
 
@@ -190,10 +184,21 @@ def friction_trail(chair: CasterSource, speed: float, amplitude: float, complian
         grid = grid[np.isfinite(chair.loads(grid))]
         if grid.size < 2:
             return math.nan
-    if excess(float(grid[-1])) > 0:
+    upper = excess(wheel(float(grid[-1])))
+    if upper > 0:
         return math.inf
-    roots = _roots(excess, grid)
-    return max(roots) if roots else 0.0
+    # The largest root: the one in the highest grid step where the excess changes sign (a root per sign change,
+    # each refined by Brent's method in its own step, the highest the largest), so the search goes down from the
+    # top and stops there; the describing function below that step is not needed.  Every grid trail's caster is
+    # still built, bottom up (its tire's static load records the same tire-range notes, in the same order, and
+    # raises at the same trail under the "raise" policy, as a scan of the whole grid).
+    wheels = [wheel(t) for t in grid]
+    for i in range(grid.size - 2, -1, -1):
+        lower = excess(wheels[i])
+        if np.sign(lower) * np.sign(upper) < 0:
+            return float(brentq(lambda t: excess(wheel(t)), grid[i], grid[i + 1], xtol=1e-7))
+        upper = lower
+    return 0.0
 
 
 @dataclass(frozen=True)
