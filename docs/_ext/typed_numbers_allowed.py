@@ -565,7 +565,7 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ("page is built; the search's own 0.5 % brackets", 'parameter'),
         ('(imports, compile, a 10 ms run)', 'parameter'),
         ('Issue 36 asks for 0.4 ms of CPU', 'cited'),
-        ('one run and a first use under 5 s of CPU:', 'cited'),
+        ('one run and a first use under 5 s of CPU.', 'cited'),
         ('the speed study: 2,000 x 10 s runs, E&J Premier 0.3-1.5 m/s,', 'parameter'),
         ('compiler: in the 2,000-run speed study', 'parameter'),
         ("bracket (E&J 0.75 and 1.0 m/s,", 'parameter'),
