@@ -23,7 +23,7 @@ from stability.advise import advise
 from stability.advise import advisor as advisor_mod
 from stability.advise import combinations as combinations_mod
 from stability.advise.layout_measures import layout_linear, layout_linear_measures
-from stability.advise.lazy import Lazy
+from stability.advise.lazy import Lazy, reused
 from stability.advise.limits import MAX_PIN_FRICTION_N_M, MIN_SHIMMY_MARGIN_M, constraints, meets
 from stability.advise.measures import IMPULSE_SPEED, Interval, bench_score, chair_linear, cross_slope_effort
 from stability.advise.text import advice_mapping, advice_text
@@ -117,6 +117,40 @@ def test_a_lazy_value_is_computed_once_with_its_group_and_in_order_when_all_are_
         lazy.w  # noqa: B018
     with pytest.raises(AttributeError):
         lazy._hidden  # noqa: B018
+
+
+def test_the_values_of_the_same_design_with_the_same_inputs_are_reused():
+    """The same object with the same inputs gets the values made for it; an equal copy, or other inputs, new ones."""
+    cache: dict = {}
+    made = []
+
+    def make():
+        made.append(1)
+        return Lazy({})
+
+    a, copy = [1.0, 2.0], [1.0, 2.0]
+    first = reused(cache, a, (0.5,), make)
+    assert reused(cache, a, (0.5,), make) is first and len(made) == 1
+    assert reused(cache, copy, (0.5,), make) is not first and len(made) == 2
+    assert reused(cache, a, (0.75,), make) is not first and len(made) == 3
+
+
+def test_the_pairs_measured_are_not_measured_again_for_their_limits(monkeypatch):
+    """Every chair's measures that need no simulation are computed once in an advise call (the pairs the screening
+    chose reuse what it computed)."""
+    from stability.advise import measures as measures_mod
+
+    seen: list = []
+    tips = measures_mod.tip_angles
+
+    def counted(c):
+        seen.append(c)
+        return tips(c)
+
+    monkeypatch.setattr(measures_mod, "tip_angles", counted)
+    a = advise(chair_mod.preset("revised"), nonlinear=_proxy, time_to_correct=False)
+    assert a.pairs_measured > 0
+    assert len(seen) == len(set(seen))
 
 
 @pytest.mark.parametrize("name", ["ej-premier", "power-fwd"])

@@ -32,9 +32,11 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
+from functools import partial
+from typing import Any, cast
 
 from stability.advise.layout_levers import caster_rows, row_name
+from stability.advise.lazy import reused
 from stability.advise.measures import IMPULSE_SPEED, Interval, LazyLinear, Measures
 from stability.bench import run_bench
 from stability.driver.layout import layout_rule_speed
@@ -223,7 +225,8 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
         Use speeds, m/s (negative: reverse; the growth rate is taken at :data:`~.measures.IMPULSE_SPEED` in the
         direction of travel).
     cores : dict, optional
-        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
+        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`), and each layout's measures computed so
+        far (:func:`.lazy.reused`).
     cross_slope_deg : float
         deg: the cross-slope drive difference (:func:`layout_cross_slope_effort`; 0: none).
     reaction_time : float, optional
@@ -236,8 +239,10 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
     list of Linear (or of LazyLinear)
     """
     cores = {} if cores is None else cores
-    out = [layout_linear(lay, speeds=speeds, cores=cores, cross_slope_deg=cross_slope_deg,
-                         reaction_time=reaction_time) for lay in layouts]
+    inputs = (tuple(speeds), cross_slope_deg, reaction_time)
+    out = [cast(LazyLinear, reused(cores, lay, inputs, partial(layout_linear, lay, speeds=speeds, cores=cores,
+                                                              cross_slope_deg=cross_slope_deg,
+                                                              reaction_time=reaction_time))) for lay in layouts]
     return out if lazy else [x.linear() for x in out]
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-__all__ = ["Lazy"]
+__all__ = ["Lazy", "reused"]
 
 
 class Lazy:
@@ -55,3 +55,31 @@ class Lazy:
         for name in self._groups:
             out.update(self._group(name))
         return out
+
+
+def reused(cache: dict, subject: object, inputs: tuple, make: Callable[[], Lazy]) -> Lazy:
+    """The :class:`Lazy` values of ``subject`` with ``inputs`` kept in ``cache``, made the first time they are asked.
+
+    The same object asked again (the advisor measures the pairs it screened) gets the values computed so far;
+    keyed by the object's identity (a layout's lists are not hashable), which the entry keeps alive.
+
+    Parameters
+    ----------
+    cache : dict
+        Shared between calls; its entries are ``("lazy", id(subject), inputs) -> (subject, Lazy)``.
+    subject : object
+        The design.
+    inputs : tuple
+        Everything else the values depend on (hashable).
+    make : callable
+        ``make() -> Lazy``.
+
+    Returns
+    -------
+    Lazy
+    """
+    key = ("lazy", id(subject), inputs)
+    hit = cache.get(key)
+    if hit is None or hit[0] is not subject:
+        hit = cache[key] = (subject, make())
+    return hit[1]

@@ -24,11 +24,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from functools import partial
+from typing import Any, cast
 
 import numpy as np
 
-from stability.advise.lazy import Lazy
+from stability.advise.lazy import Lazy, reused
 from stability.bench import run_bench
 from stability.chair import Chair, preset
 from stability.chair.model import takes_chairs
@@ -425,8 +426,9 @@ def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_s
     cross_slope_deg : float
         deg.
     cores : dict, optional
-        Cache of shimmy band cores (the band search ignores the trail and the Coulomb pin friction); shared
-        between calls.
+        Cache of shimmy band cores (the band search ignores the trail and the Coulomb pin friction), and of each
+        chair's measures computed so far (:func:`.lazy.reused`: the advisor's screened pairs measured again);
+        shared between calls.
     reaction_time : float, optional
         A driver's effective delay, s: adds the human-limited speed (the divergence rule).
     lazy : bool
@@ -437,8 +439,10 @@ def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_s
     list of Linear (or of LazyLinear)
     """
     cores = {} if cores is None else cores
-    out = [chair_linear(c, speeds=speeds, cross_slope_deg=cross_slope_deg, cores=cores, reaction_time=reaction_time)
-           for c in chairs]
+    inputs = (tuple(speeds), cross_slope_deg, reaction_time)
+    out = [cast(LazyLinear, reused(cores, c, inputs, partial(chair_linear, c, speeds=speeds,
+                                                            cross_slope_deg=cross_slope_deg, cores=cores,
+                                                            reaction_time=reaction_time))) for c in chairs]
     return out if lazy else [x.linear() for x in out]
 
 
