@@ -232,6 +232,8 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
     _, a, _, _ = case
     d = advice_mapping(a)
     assert d["recommendations"][0]["label"] == a.recommendations[0].candidate.label
+    assert [r["rank"] for r in d["recommendations"]] == [r.rank for r in a.recommendations] == \
+        list(range(1, len(a.recommendations) + 1))
     assert [b["label"] for b in d["blocked"]] == [b.candidate.label for b in a.blocked]
     # each blocking limit with its value and limit as the constraint measured them (finite values as numbers)
     for b_json, b in zip(d["blocked"], a.blocked, strict=True):
