@@ -305,6 +305,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'f"({\'and gains\' if c.gain > 0 else \'at a cost of\'} {abs(c.gain) * 100:.0f} % on the robust "',
      'f"({\'and gains\' if c.gain >= 0 else \'at a cost of\'} {abs(c.gain) * 100:.0f} % on the robust "'):
         "the note's word differs only for a robust gain of exactly `0`, where the note says `0 %` either way (no gain, no cost)",
+    ('stability/advise/limits.py',
+     'return LIMIT_WORDS.get(name, (name.replace("_", " "), "", 1.0))[0]',
+     'return LIMIT_WORDS.get(name, (name.replace("_", " "), "", 2.0))[0]'):
+        "the default tuple's third element (a display scale) is never read: `limit_words` takes element `[0]`, the name",
 }
 
 
