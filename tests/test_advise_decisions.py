@@ -232,6 +232,8 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
     _, a, _, _ = case
     d = advice_mapping(a)
     assert d["recommendations"][0]["label"] == a.recommendations[0].candidate.label
+    assert [r["rank"] for r in d["recommendations"]] == [r.rank for r in a.recommendations] == \
+        list(range(1, len(a.recommendations) + 1))
     assert [b["label"] for b in d["blocked"]] == [b.candidate.label for b in a.blocked]
     # each blocking limit with its value and limit as the constraint measured them (finite values as numbers)
     for b_json, b in zip(d["blocked"], a.blocked, strict=True):
@@ -776,3 +778,49 @@ def test_the_shimmy_sentence_gives_the_trail_the_pin_friction_holds_in_cm():
         assert shimmy_sentence(m, trail, hold) == (
             "no shimmy boundary found; its 0.118 N m pin friction holds a shimmy of up to 5 deg at trails from "
             f"5.7 cm, so {word} at this one (describing function)")
+
+
+def test_the_cross_slope_limit_is_met_at_its_factor_and_not_above():
+    """The drive difference may reach HANDRIM_FACTOR x the chair's own (either sign) and no further; a value the
+    statics refused does not meet it."""
+    from types import SimpleNamespace
+
+    from stability.advise.limits import constraints
+
+    base = SimpleNamespace(turning_effort_N_m=0.1, cross_slope_effort=-20.0, bench_score=None)
+
+    def slope(v):
+        m = SimpleNamespace(static_stability_deg=SimpleNamespace(value=10.0), shimmy_margin_m=SimpleNamespace(
+            value=0.01), shimmy_straddles=False, turning_effort_N_m=0.1, cross_slope_effort=v,
+            effort_key="handrim_force_difference_N", bench_score=None)
+        (k,) = [k for k in constraints(m, base, 5.0, "test", 2.0) if k.name == "handrim_force_difference_N"]
+        assert k.limit == HANDRIM_FACTOR * 20.0
+        return k.met
+
+    assert slope(HANDRIM_FACTOR * 20.0) and slope(-HANDRIM_FACTOR * 20.0) and slope(5.0)
+    assert not slope(HANDRIM_FACTOR * 20.0 + 1e-6) and not slope(None)
+
+
+def test_what_allows_a_blocked_change_is_said_for_every_limit():
+    """The option (allow) and the plain words (allow_words) for each limit: the intended speed rounded down to the
+    cm/s, the cross-slope option, the bench and the driver's words."""
+    from stability.advise.limits import Constraint, allow, allow_words
+
+    human = Constraint("human_limited_speed_m_s", 1.237, 1.5, ">=", False)
+    assert allow(human) == ("--intended-speed 1.23 (a slower intended speed), or a driver who reacts faster "
+                            "(--reaction-time)")
+    assert allow(Constraint("handrim_force_difference_N", 40.0, 30.0, "<=", False)) == \
+        "--cross-slope 0 (drops the cross-slope limit)"
+    assert allow_words(human) == "driving no faster than 1.24 m/s, or a driver who reacts faster, would allow it"
+    assert allow_words(Constraint("bench_worst_score", 2.0, 1.0, "<=", False)) == \
+        "no setting allows it (the chair would tip in the ISO 7176-2 manoeuvres of the virtual bench)"
+
+
+def test_the_shimmy_sentence_says_when_the_pin_friction_holds_no_shimmy_at_any_trail():
+    from types import SimpleNamespace
+
+    from stability.advise.limits import ShimmyHold, shimmy_sentence
+
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=None, high=None), shimmy_straddles=False)
+    text = shimmy_sentence(m, 0.05, ShimmyHold(5.0, 0.1, math.inf, 0.05))
+    assert text.endswith("; its 0.1 N m pin friction does not hold a 5 deg shimmy at any trail (describing function)")

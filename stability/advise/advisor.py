@@ -45,7 +45,8 @@ from stability.advise.limits import (
     shimmy_sentence,
 )
 from stability.advise.limits import constraints as constraints_of
-from stability.advise.measures import Linear, Measures, nonlinear_measures, screening_measures
+from stability.advise.limits import meets as meets_of
+from stability.advise.measures import LazyLinear, Linear, Measures, nonlinear_measures, screening_measures
 from stability.advise.pruning import Pool, screening_of
 from stability.advise.subject import lever_changes, measure_chairs, shimmy_hold, use_speeds
 from stability.advise.subject import time_to_correct as correct_time
@@ -396,6 +397,10 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
         return constraints_of(m, base, min_tip, source, cross_slope_deg,
                               None if tau is None or intended is None else (tau, intended))
 
+    def meets(m: LazyLinear) -> bool:
+        return meets_of(m, base, min_tip, source, cross_slope_deg,
+                        None if tau is None or intended is None else (tau, intended))
+
     def candidate(changes: tuple, m: Measures, bounded: bool = False) -> Candidate:
         g, gs = _gain(m, base)
         return Candidate(changes, m, g, gs, constraints(m), bounded)
@@ -407,7 +412,7 @@ def advise(chair: Chair | Layout, *, speeds=DEFAULT_SPEEDS, min_tip_deg: float |
     cands = pool.cands[:]
     own = constraints(base)
     broken = {k.name for k in own if not k.met}            # what the chair as it is already breaks
-    chosen, n_screened = _screen(chair, cands, broken, constraints, use, cross_slope_deg, cores, tau,
+    chosen, n_screened = _screen(chair, cands, broken, meets, use, cross_slope_deg, cores, tau,
                                  pool=pool if prune else None)
     cm = measure_chairs([c for _, c in chosen], speeds=use, cross_slope_deg=cross_slope_deg, progress=progress,
                         nonlinear=nominal if prune else nonlinear, cores=cores, reaction_time=tau) if chosen else []

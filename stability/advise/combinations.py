@@ -54,7 +54,7 @@ def _predicted(combo: tuple) -> float:
     return worst
 
 
-def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constraints: Callable, use: tuple,
+def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, meets: Callable, use: tuple,
             cross_slope_deg: float, cores: dict, reaction_time: float | None = None,
             pool: Pool | None = None) -> tuple[list, int]:
     """The combinations worth simulating: the pairs of two levers that meet every limit (checked without
@@ -64,7 +64,9 @@ def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constrai
 
     The pairs are walked in the order of their predicted gain and checked on the limits only as far as these
     choices reach (:func:`.pruning.settle`; a pair further down cannot be chosen); with a ``pool`` of bounded
-    singles (:mod:`.pruning`) the singles that can reach the choices get their intervals first.
+    singles (:mod:`.pruning`) the singles that can reach the choices get their intervals first.  ``meets(m)`` says
+    whether a pair's measures meet every limit (:func:`.limits.meets`: a pair is measured only as far as its
+    first broken limit).
 
     Returns
     -------
@@ -83,11 +85,11 @@ def _screen(chair: Chair | Layout, cands: list[Candidate], broken: set, constrai
     parts = [[pool.index[x.changes] for x in combo] for combo, _ in screened]
     met_of: dict[int, bool] = {}
 
-    def met(j: int) -> bool:                  # the pair's limits, checked once, when the walk reaches it
-        if j not in met_of:
+    def met(j: int) -> bool:                  # the pair's limits, checked once, when the walk reaches it, and
+        if j not in met_of:                   # measured only as far as the first limit it breaks
             lin = linear_measures([screened[j][1]], speeds=use, cross_slope_deg=cross_slope_deg, cores=cores,
-                                  reaction_time=reaction_time)[0]
-            met_of[j] = all(k.met for k in constraints(lin))
+                                  reaction_time=reaction_time, lazy=True)[0]
+            met_of[j] = meets(lin)
         return met_of[j]
 
     def pred(j: int) -> float:

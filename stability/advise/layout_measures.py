@@ -32,9 +32,12 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable, Sequence
+from functools import partial
+from typing import Any, cast
 
 from stability.advise.layout_levers import caster_rows, row_name
-from stability.advise.measures import IMPULSE_SPEED, Interval, Linear, Measures
+from stability.advise.lazy import reused
+from stability.advise.measures import IMPULSE_SPEED, Interval, LazyLinear, Measures
 from stability.bench import run_bench
 from stability.driver.layout import layout_rule_speed
 from stability.layout.linear import growth_rates
@@ -53,7 +56,7 @@ from stability.study.layout_equal_instability import (
 from stability.study.layout_impulse_intervals import layout_critical_impulse_intervals
 from stability.study.runs import study_run
 
-__all__ = ["direction_of", "layout_linear_measures", "layout_nonlinear_measures", "measure_layouts",
+__all__ = ["direction_of", "layout_linear", "layout_linear_measures", "layout_nonlinear_measures", "measure_layouts",
            "layout_time_to_correct", "layout_shimmy_rows", "layout_cross_slope_effort", "layout_rule_speed"]
 
 
@@ -158,8 +161,61 @@ def layout_cross_slope_effort(layout: Layout, cross_slope_deg: float, reverse: b
     return float(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
 
 
+def layout_linear(lay: Layout, *, speeds: Sequence[float], cores: dict, cross_slope_deg: float = 0.0,
+                  reaction_time: float | None = None) -> LazyLinear:
+    """One layout's measures that need no simulation, each computed when first read (:func:`layout_linear_measures`).
+
+    Parameters
+    ----------
+    lay : Layout
+    speeds, cores, cross_slope_deg, reaction_time
+        As :func:`layout_linear_measures` (``cores`` is filled as the shimmy rows are read).
+
+    Returns
+    -------
+    LazyLinear
+    """
+    reverse = direction_of(speeds)
+    sign = -1.0 if reverse else 1.0
+    driven = any(w.driven for w in lay.wheels)
+
+    def tips() -> dict[str, Any]:
+        angles = {k.removesuffix("_deg"): float(v) for k, v in tip_angles(lay).items()}
+        smallest = min(angles.values())
+        return {"static_stability_deg": Interval(smallest, smallest, smallest), "tip_angles_deg": angles}
+
+    def rows() -> dict[str, Any]:
+        found = layout_shimmy_rows(lay, speeds, cores)
+        if not found:
+            return {"shimmy_margin_m": Interval(None, None, None), "shimmy_straddles": False, "shimmy_row": "",
+                    "shimmy_trail_m": None}
+        name, trail, band = min(found, key=lambda r: r[2].shimmy_margin_m)
+        low, high = band.shimmy_margin_interval_m
+        return {"shimmy_margin_m": Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low),
+                                            _finite_or_none(high)),
+                "shimmy_straddles": any(r[2].straddles for r in found), "shimmy_row": name, "shimmy_trail_m": trail}
+
+    def human() -> dict[str, Any]:
+        u, side = layout_rule_speed(lay, reaction_time, reverse) if reaction_time is not None else (None, "=")
+        return {"human_speed_m_s": u, "human_side": side}
+
+    return LazyLinear({               # the order of the eager measures before (tire-range warnings in that order)
+        "tips": (("static_stability_deg", "tip_angles_deg"), tips),
+        "rows": (("shimmy_margin_m", "shimmy_straddles", "shimmy_row", "shimmy_trail_m"), rows),
+        "human": (("human_speed_m_s", "human_side"), human),
+        "turning": (("turning_effort_N_m",),
+                    lambda: {"turning_effort_N_m": max((c.pin_friction for c in lay.casters), default=0.0)}),
+        "slope": (("cross_slope_effort",),
+                  lambda: {"cross_slope_effort": layout_cross_slope_effort(lay, cross_slope_deg, reverse)}),
+        "drive": (("drive",), lambda: {"drive": "motor" if driven else "handrim"}),
+        "growth": (("growth_rate_1_s",),
+                   lambda: {"growth_rate_1_s": float(growth_rates(lay, [sign * IMPULSE_SPEED])[0])}),
+        "bench": (("bench_score",), lambda: {"bench_score": run_bench(lay).worst_score if driven else None})})
+
+
 def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float], cores: dict | None = None,
-                           cross_slope_deg: float = 0.0, reaction_time: float | None = None) -> list[Linear]:
+                           cross_slope_deg: float = 0.0, reaction_time: float | None = None,
+                           lazy: bool = False) -> list:
     """The measures that need no simulation, for every layout (the constraints of the advisor).
 
     Parameters
@@ -169,40 +225,25 @@ def layout_linear_measures(layouts: Sequence[Layout], *, speeds: Sequence[float]
         Use speeds, m/s (negative: reverse; the growth rate is taken at :data:`~.measures.IMPULSE_SPEED` in the
         direction of travel).
     cores : dict, optional
-        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`).
+        Shimmy band cores shared between calls (:func:`layout_shimmy_rows`), and each layout's measures computed so
+        far (:func:`.lazy.reused`).
     cross_slope_deg : float
         deg: the cross-slope drive difference (:func:`layout_cross_slope_effort`; 0: none).
     reaction_time : float, optional
         A driver's effective delay, s: adds the human-limited speed (:func:`layout_rule_speed`).
+    lazy : bool
+        Return each layout's :class:`~.measures.LazyLinear` (a measure computed when read) instead of its Linear.
 
     Returns
     -------
-    list of Linear
+    list of Linear (or of LazyLinear)
     """
-    reverse = direction_of(speeds)
-    sign = -1.0 if reverse else 1.0
-    out = []
-    for lay in layouts:
-        tips = tip_angles(lay)
-        angles = {k.removesuffix("_deg"): float(v) for k, v in tips.items()}
-        smallest = min(angles.values())
-        rows = layout_shimmy_rows(lay, speeds, cores)
-        if rows:
-            name, trail, band = min(rows, key=lambda r: r[2].shimmy_margin_m)
-            low, high = band.shimmy_margin_interval_m
-            margin = Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low), _finite_or_none(high))
-            straddles = any(r[2].straddles for r in rows)
-        else:
-            name, trail, margin, straddles = "", None, Interval(None, None, None), False
-        driven = any(w.driven for w in lay.wheels)
-        human, side = layout_rule_speed(lay, reaction_time, reverse) if reaction_time is not None else (None, "=")
-        out.append(Linear(
-            Interval(smallest, smallest, smallest), angles, margin, straddles,
-            max((c.pin_friction for c in lay.casters), default=0.0),
-            layout_cross_slope_effort(lay, cross_slope_deg, reverse), "motor" if driven else "handrim",
-            float(growth_rates(lay, [sign * IMPULSE_SPEED])[0]), human, side,
-            run_bench(lay).worst_score if driven else None, shimmy_row=name, shimmy_trail_m=trail))
-    return out
+    cores = {} if cores is None else cores
+    inputs = (tuple(speeds), cross_slope_deg, reaction_time)
+    out = [cast(LazyLinear, reused(cores, lay, inputs, partial(layout_linear, lay, speeds=speeds, cores=cores,
+                                                              cross_slope_deg=cross_slope_deg,
+                                                              reaction_time=reaction_time))) for lay in layouts]
+    return out if lazy else [x.linear() for x in out]
 
 
 def _critical(layouts: list[Layout], speed: float) -> list[tuple[Interval, str, float | None]]:

@@ -11,12 +11,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from stability.advise.measures import Linear, Measures
+from stability.advise.measures import LazyLinear, Linear, Measures
 from stability.chair import Chair
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
 
-__all__ = ["Constraint", "ShimmyHold", "constraints", "allow", "allow_words", "constraint_text", "limit_words",
+__all__ = ["Constraint", "ShimmyHold", "constraints", "meets", "allow", "allow_words", "constraint_text", "limit_words",
            "LIMIT_WORDS", "shimmy_hold", "shimmy_sentence",
            "MAX_PIN_FRICTION_N_M", "MAX_BENCH_SCORE", "MIN_SHIMMY_MARGIN_M", "HANDRIM_FACTOR", "SHIMMY_AMPLITUDE_DEG"]
 
@@ -104,13 +104,13 @@ class ShimmyHold:
                 "trail_m": self.trail_m, "held": self.held}
 
 
-def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source: str, cross_slope: float,
+def constraints(m: Measures | Linear | LazyLinear, base: Measures, min_tip: float, tip_source: str, cross_slope: float,
                 driver: tuple[float, float] | None = None) -> tuple:
     """The constraints on a changed chair against the chair as it is (docs/advise.md).
 
     Parameters
     ----------
-    m : Measures or Linear
+    m : Measures, Linear or LazyLinear
         The changed chair's measures.
     base : Measures
         The chair as it is (the turning-effort and cross-slope limits are relative to it).
@@ -127,45 +127,98 @@ def constraints(m: Measures | Linear, base: Measures, min_tip: float, tip_source
     -------
     tuple of Constraint
     """
+    return tuple(k for limit in _LIMITS if (k := limit(m, base, min_tip, tip_source, cross_slope, driver)) is not None)
+
+
+def meets(m: Measures | Linear | LazyLinear, base: Measures, min_tip: float, tip_source: str, cross_slope: float,
+          driver: tuple[float, float] | None = None) -> bool:
+    """Whether a changed chair meets every one of :func:`constraints`, checked the cheapest first and no further
+    than the first it breaks.
+
+    The same constraints, so the same answer as ``all(k.met for k in constraints(...))``; a
+    :class:`~stability.advise.measures.LazyLinear` is measured only as far as they are read (the tip angles, the
+    pin friction and the cross-slope statics before the shimmy band and the bench).
+
+    Parameters
+    ----------
+    m, base, min_tip, tip_source, cross_slope, driver
+        As :func:`constraints`.
+
+    Returns
+    -------
+    bool
+    """
+    for limit in _CHEAP_FIRST:
+        k = limit(m, base, min_tip, tip_source, cross_slope, driver)
+        if k is not None and not k.met:
+            return False
+    return True
+
+
+def _tip(m, base, min_tip, tip_source, cross_slope, driver) -> Constraint | None:
     tip = m.static_stability_deg.value            # None: no tip angle (not met); 0 deg is a value
-    out = [Constraint("static_stability_deg", tip, min_tip, ">=", tip is not None and tip >= min_tip - 1e-9,
-                      tip_source)]
+    return Constraint("static_stability_deg", tip, min_tip, ">=", tip is not None and tip >= min_tip - 1e-9,
+                      tip_source)
+
+
+def _shimmy(m, base, min_tip, tip_source, cross_slope, driver) -> Constraint | None:
     sm = m.shimmy_margin_m.value
     ok = sm is not None and sm >= MIN_SHIMMY_MARGIN_M
-    out.append(Constraint("shimmy_margin_m", sm, MIN_SHIMMY_MARGIN_M, ">=", ok,
-                          "nominal estimates; over their range it straddles a boundary: measure pin lateral "
-                          "stiffness and caster relaxation length first" if m.shimmy_straddles else
-                          "nominal estimates, and met over their range"))
+    return Constraint("shimmy_margin_m", sm, MIN_SHIMMY_MARGIN_M, ">=", ok,
+                      "nominal estimates; over their range it straddles a boundary: measure pin lateral "
+                      "stiffness and caster relaxation length first" if m.shimmy_straddles else
+                      "nominal estimates, and met over their range")
+
+
+def _turning(m, base, min_tip, tip_source, cross_slope, driver) -> Constraint | None:
     limit = max(MAX_PIN_FRICTION_N_M, base.turning_effort_N_m)
     effort = m.turning_effort_N_m
-    out.append(Constraint("turning_effort_N_m", effort, limit, "<=", effort <= limit + 1e-12,
-                          "tolerable pin friction ~0.3 N m (Collins 1987, conclusion 6)"))
-    if cross_slope:
-        b, v = base.cross_slope_effort, m.cross_slope_effort
-        lim = HANDRIM_FACTOR * abs(b) if b is not None else math.inf
-        out.append(Constraint(m.effort_key, None if v is None else abs(v), lim, "<=",
-                              v is not None and abs(v) <= lim + 1e-9,
-                              f"on a {cross_slope:g} deg cross slope at {REFERENCE_SPEED:g} m/s; at most "
-                              f"{HANDRIM_FACTOR:g} x the chair's own"))
-    if m.bench_score is not None:
-        # ISO 7176-2's matrix on the virtual bench (issue 39: no case above score 1); a chair already above it may
-        # not get worse
-        own = base.bench_score if base.bench_score is not None else MAX_BENCH_SCORE
-        lim = max(MAX_BENCH_SCORE, own)
-        out.append(Constraint("bench_worst_score", float(m.bench_score), float(lim), "<=", m.bench_score <= lim,
-                              "the virtual ISO 7176-2 bench at the default drive settings (docs/bench.md): no case "
-                              f"above score {MAX_BENCH_SCORE} (a wheel may lift, the chair may not tip)"
-                              + (f"; the chair as it is scores {own}, so not worse than that" if own > MAX_BENCH_SCORE
-                                 else "")))
-    if driver is not None:
-        tau, intended = driver
-        u = m.human_speed_m_s
-        out.append(Constraint("human_limited_speed_m_s", u, intended, ">=", u is not None and u >= intended - 1e-9,
-                              f"a driver who corrects {tau:g} s late holds the chair up to this speed (the divergence "
-                              "rule lambda(U) tau = 1; docs/driver.md)"
-                              + ("; beyond the speeds checked" if m.human_side == ">" else "")))
-    return tuple(out)
+    return Constraint("turning_effort_N_m", effort, limit, "<=", effort <= limit + 1e-12,
+                      "tolerable pin friction ~0.3 N m (Collins 1987, conclusion 6)")
 
+
+def _slope(m, base, min_tip, tip_source, cross_slope, driver) -> Constraint | None:
+    if not cross_slope:
+        return None
+    b, v = base.cross_slope_effort, m.cross_slope_effort
+    lim = HANDRIM_FACTOR * abs(b) if b is not None else math.inf
+    return Constraint(m.effort_key, None if v is None else abs(v), lim, "<=", v is not None and abs(v) <= lim + 1e-9,
+                      f"on a {cross_slope:g} deg cross slope at {REFERENCE_SPEED:g} m/s; at most "
+                      f"{HANDRIM_FACTOR:g} x the chair's own")
+
+
+def _bench(m, base, min_tip, tip_source, cross_slope, driver) -> Constraint | None:
+    if m.bench_score is None:
+        return None
+    # ISO 7176-2's matrix on the virtual bench (issue 39: no case above score 1); a chair already above it may
+    # not get worse
+    own = base.bench_score if base.bench_score is not None else MAX_BENCH_SCORE
+    lim = max(MAX_BENCH_SCORE, own)
+    return Constraint("bench_worst_score", float(m.bench_score), float(lim), "<=", m.bench_score <= lim,
+                      "the virtual ISO 7176-2 bench at the default drive settings (docs/bench.md): no case "
+                      f"above score {MAX_BENCH_SCORE} (a wheel may lift, the chair may not tip)"
+                      + (f"; the chair as it is scores {own}, so not worse than that" if own > MAX_BENCH_SCORE
+                         else ""))
+
+
+def _driver(m, base, min_tip, tip_source, cross_slope, driver) -> Constraint | None:
+    if driver is None:
+        return None
+    tau, intended = driver
+    u = m.human_speed_m_s
+    return Constraint("human_limited_speed_m_s", u, intended, ">=", u is not None and u >= intended - 1e-9,
+                      f"a driver who corrects {tau:g} s late holds the chair up to this speed (the divergence "
+                      "rule lambda(U) tau = 1; docs/driver.md)"
+                      + ("; beyond the speeds checked" if m.human_side == ">" else ""))
+
+
+#: The limits, each ``limit(m, base, min_tip, tip_source, cross_slope, driver) -> Constraint or None`` (None: it
+#: does not apply), in the order :func:`constraints` lists them.
+_LIMITS = (_tip, _shimmy, _turning, _slope, _bench, _driver)
+#: The order :func:`meets` checks them: the measures cheapest to compute first (tip angles and pin friction are
+#: geometry, the cross-slope statics one solve; a new shimmy band core and the bench cost 30-180 ms and 40 ms a
+#: design, the driver's rule a sweep of the linear model).
+_CHEAP_FIRST = (_tip, _turning, _slope, _shimmy, _bench, _driver)
 
 
 def shimmy_sentence(m: Measures | Linear, trail: float, hold: ShimmyHold | None = None) -> str:

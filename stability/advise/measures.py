@@ -24,9 +24,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
+from typing import Any, cast
 
 import numpy as np
 
+from stability.advise.lazy import Lazy, reused
 from stability.bench import run_bench
 from stability.chair import Chair, preset
 from stability.chair.model import takes_chairs
@@ -43,9 +46,9 @@ from stability.study.impulse_intervals import CriticalImpulseInterval
 from stability.study.intervals import scale_friction
 from stability.tipping import tip_angles
 
-__all__ = ["Interval", "Measures", "Linear", "measure_chairs", "linear_measures", "nonlinear_measures",
-           "screening_measures", "SCREEN_FRICTION_FACTOR", "cross_slope_effort", "IMPULSE_SPEED", "EFFORT_KEYS",
-           "EFFORT_WORDS"]
+__all__ = ["Interval", "Measures", "Linear", "LazyLinear", "measure_chairs", "linear_measures", "chair_linear",
+           "nonlinear_measures", "screening_measures", "SCREEN_FRICTION_FACTOR", "cross_slope_effort", "IMPULSE_SPEED",
+           "EFFORT_KEYS", "EFFORT_WORDS"]
 
 #: Speed of the critical impulse the advisor weighs (the thesis's reference speed), m/s.
 IMPULSE_SPEED = REFERENCE_SPEED
@@ -341,8 +344,78 @@ def bench_score(chair: Chair) -> int | None:
     return run_bench(Layout.from_chair(chair)).worst_score if drive_kind(chair) == "motor" else None
 
 
+class LazyLinear(Lazy):
+    """A design's :class:`Linear` measures, each computed when first read (the same calls, so the same values).
+
+    The advisor's pair screening reads the measures only as far as a limit fails
+    (:func:`stability.advise.limits.meets`): a pair below the chair's tip angle needs neither its shimmy band nor
+    its bench.  :meth:`linear` reads every measure, in the order of the groups (:class:`.lazy.Lazy`).
+    """
+
+    @property
+    def effort_key(self) -> str:
+        """As :attr:`Measures.effort_key`."""
+        return EFFORT_KEYS[self.drive]
+
+    def linear(self) -> Linear:
+        """Every measure (the groups computed in their order).
+
+        Returns
+        -------
+        Linear
+        """
+        return Linear(**self.values())
+
+
+def chair_linear(c: Chair, *, speeds: Sequence[float], cross_slope_deg: float, cores: dict,
+                 reaction_time: float | None = None) -> LazyLinear:
+    """One chair's measures that need no simulation, each computed when first read (:func:`linear_measures`).
+
+    Parameters
+    ----------
+    c : Chair
+    speeds, cross_slope_deg, cores, reaction_time
+        As :func:`linear_measures` (``cores`` is filled as the shimmy band is read).
+
+    Returns
+    -------
+    LazyLinear
+    """
+    def band() -> dict[str, Any]:
+        key = c.replace(trail=0.05, pin_friction_left=0.0, pin_friction_right=0.0, name="-")
+        if key not in cores:
+            cores[key] = band_core(c, speeds)
+        b = shimmy_band(c, speeds, core=cores[key])
+        low, high = b.shimmy_margin_interval_m
+        return {"shimmy_margin_m": Interval(_finite_or_none(b.shimmy_margin_m), _finite_or_none(low),
+                                            _finite_or_none(high)), "shimmy_straddles": b.straddles}
+
+    def tips() -> dict[str, Any]:
+        t = tip_angles(c)
+        return {"static_stability_deg": Interval(t.smallest_deg, t.smallest_deg, t.smallest_deg),
+                "tip_angles_deg": {k: getattr(t, k + "_deg") for k in ("toward_main_wheels", "toward_casters",
+                                                                      "lateral_left", "lateral_right")}}
+
+    def human() -> dict[str, Any]:
+        u, side = rule_speed(c, reaction_time) if reaction_time is not None else (None, "=")
+        return {"human_speed_m_s": u, "human_side": side}
+
+    return LazyLinear({               # the order of the eager measures before (tire-range warnings in that order)
+        "band": (("shimmy_margin_m", "shimmy_straddles"), band),
+        "tips": (("static_stability_deg", "tip_angles_deg"), tips),
+        "human": (("human_speed_m_s", "human_side"), human),
+        "turning": (("turning_effort_N_m",),
+                    lambda: {"turning_effort_N_m": max(c.pin_friction_left, c.pin_friction_right)}),
+        "slope": (("cross_slope_effort",), lambda: {"cross_slope_effort": cross_slope_effort(c, cross_slope_deg)}),
+        "drive": (("drive",), lambda: {"drive": drive_kind(c)}),
+        "growth": (("growth_rate_1_s",), lambda: {"growth_rate_1_s": float(np.max(eigenvalues_vs_speed(
+            c, [IMPULSE_SPEED], track=False).real))}),
+        "bench": (("bench_score",), lambda: {"bench_score": bench_score(c)})})
+
+
 def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_slope_deg: float,
-                    cores: dict | None = None, reaction_time: float | None = None) -> list[Linear]:
+                    cores: dict | None = None, reaction_time: float | None = None,
+                    lazy: bool = False) -> list:
     """The measures that need no simulation, for every chair (about 4 ms a chair, 25 ms with a new band core).
 
     Parameters
@@ -353,34 +426,24 @@ def linear_measures(chairs: Sequence[Chair], *, speeds: Sequence[float], cross_s
     cross_slope_deg : float
         deg.
     cores : dict, optional
-        Cache of shimmy band cores (the band search ignores the trail and the Coulomb pin friction); shared
-        between calls.
+        Cache of shimmy band cores (the band search ignores the trail and the Coulomb pin friction), and of each
+        chair's measures computed so far (:func:`.lazy.reused`: the advisor's screened pairs measured again);
+        shared between calls.
     reaction_time : float, optional
         A driver's effective delay, s: adds the human-limited speed (the divergence rule).
+    lazy : bool
+        Return each chair's :class:`LazyLinear` (a measure computed when read) instead of its :class:`Linear`.
 
     Returns
     -------
-    list of Linear
+    list of Linear (or of LazyLinear)
     """
     cores = {} if cores is None else cores
-    out = []
-    for c in chairs:
-        key = c.replace(trail=0.05, pin_friction_left=0.0, pin_friction_right=0.0, name="-")
-        if key not in cores:
-            cores[key] = band_core(c, speeds)
-        band = shimmy_band(c, speeds, core=cores[key])
-        tips = tip_angles(c)
-        low, high = band.shimmy_margin_interval_m
-        angles = {k: getattr(tips, k + "_deg") for k in ("toward_main_wheels", "toward_casters", "lateral_left",
-                                                        "lateral_right")}
-        human, side = rule_speed(c, reaction_time) if reaction_time is not None else (None, "=")
-        out.append(Linear(
-            Interval(tips.smallest_deg, tips.smallest_deg, tips.smallest_deg), angles,
-            Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low), _finite_or_none(high)),
-            band.straddles, max(c.pin_friction_left, c.pin_friction_right), cross_slope_effort(c, cross_slope_deg),
-            drive_kind(c), float(np.max(eigenvalues_vs_speed(c, [IMPULSE_SPEED], track=False).real)), human, side,
-            bench_score(c)))
-    return out
+    inputs = (tuple(speeds), cross_slope_deg, reaction_time)
+    out = [cast(LazyLinear, reused(cores, c, inputs, partial(chair_linear, c, speeds=speeds,
+                                                            cross_slope_deg=cross_slope_deg, cores=cores,
+                                                            reaction_time=reaction_time))) for c in chairs]
+    return out if lazy else [x.linear() for x in out]
 
 
 @takes_chairs

@@ -175,25 +175,25 @@ def measure_chairs(subjects: Sequence, *, speeds: Sequence[float], cross_slope_d
 
 
 def linear_measures(subjects: Sequence, *, speeds: Sequence[float], cross_slope_deg: float,
-                    cores: dict | None = None, reaction_time: float | None = None) -> list:
+                    cores: dict | None = None, reaction_time: float | None = None, lazy: bool = False) -> list:
     """:func:`.measures.linear_measures`, or :func:`.layout_measures.layout_linear_measures` for layouts.
 
     Parameters
     ----------
     subjects : sequence of Chair, or of Layout
-    speeds, cross_slope_deg, cores, reaction_time
+    speeds, cross_slope_deg, cores, reaction_time, lazy
         As :func:`.measures.linear_measures`.
 
     Returns
     -------
-    list of Linear
+    list of Linear (or of LazyLinear)
     """
     subjects = list(subjects)
     if subjects and _all_layouts(subjects):
         return layout_linear_measures(subjects, speeds=speeds, cores=cores, cross_slope_deg=cross_slope_deg,
-                                      reaction_time=reaction_time)
+                                      reaction_time=reaction_time, lazy=lazy)
     return chair_linear_measures(subjects, speeds=speeds, cross_slope_deg=cross_slope_deg, cores=cores,
-                                 reaction_time=reaction_time)
+                                 reaction_time=reaction_time, lazy=lazy)
 
 
 def shimmy_hold(subject: Chair | Layout, speeds: tuple,
