@@ -112,7 +112,7 @@ ROOT = Path(__file__).resolve().parents[1]       # the source mutated (and, with
 #: The fast tests that judge each module's mutants (the default marker selection; slow tests excluded).
 ADVISE = ["tests/test_advise.py", "tests/test_advise_decisions.py", "tests/test_advise_combinations.py",
           "tests/test_advise_pruning.py", "tests/test_advise_lazy.py", "tests/test_api_hostile_modules.py",
-          "tests/test_one_range_table.py"]
+          "tests/test_one_range_table.py", "tests/test_advise_layout.py"]
 MODULES = {
     "stability/linear/critical.py": ["tests/test_linear.py", "tests/test_rootlocus.py"],
     "stability/linear/model.py": ["tests/test_linear.py", "tests/test_rootlocus.py", "tests/test_api_hostile_modules.py"],
