@@ -86,6 +86,7 @@ from stability.simulate.lanes_step import (
     LANES,
     MAX_LEVELS,
     NROWS,
+    cambered,
     checks,
     dynam,
     final_row,
@@ -186,13 +187,14 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
     vec_held = (sticks or locked) and L >= VEC_HELD_MIN
     lv = padded_levels(levels)
     _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks)
+    camber = cambered(W, L)
     for k in range(k0, min(k1, n)):
         if W[_ACT, :L].sum() == 0.0:
             break
         t = k * dt
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
         slip_statics(W, L, model, slope, cfg)
-        tire_forces(W, L, ftimp, imp, policy)
+        tire_forces(W, L, ftimp, imp, policy, camber)
         checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
                znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         dynam(W, L, model, imp, sticks, locked, vec_held)

@@ -53,8 +53,8 @@ from stability.simulate.lanes_physics import (
     l_tire_resultant,
 )
 
-__all__ = ["LANES", "MAX_LEVELS", "NROWS", "slip_statics", "tire_forces", "checks", "dynam", "held", "stops",
-           "final_row", "update", "padded_levels"]
+__all__ = ["LANES", "MAX_LEVELS", "NROWS", "slip_statics", "cambered", "tire_forces", "checks", "dynam", "held",
+           "stops", "final_row", "update", "padded_levels"]
 
 #: runs per block (measured: docs/simulator.md, "Runs as lanes"); the numbers do not depend on it
 LANES = 64
@@ -156,24 +156,50 @@ def slip_statics(W, L, model, slope, cfg):
         W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j] = n4
 
 
+#: a camber table of zeros: what :func:`tire_forces` passes MECHAN for a block none of whose runs has a camber angle
+#: (MECHAN looks the camber table up only where the angle is not zero, so its values there are never used)
+_NO_CAMBER = (0.0,) * 48
+
+
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def tire_forces(W, L, ftimp, imp, policy):
-    """MECHAN, vectorised: the tire forces (the lane's tables read as tuples, :func:`.lanes_physics.l_table`)."""
-    tire_imp = ftimp != 0.0 and imp
+def _mechan(W, j, ftimp, tire_imp, policy, seg_k):
+    """MECHAN for lane ``j`` on its rows of ``W`` (camber table ``seg_k``), its forces and refusal stored in ``W``."""
+    f8, refused, w = l_mechan(
+        (W[_VEL, j], W[_VEL + 1, j], W[_VEL + 2, j], W[_VEL + 3, j], W[_VEL + 4, j], W[_VEL + 5, j],
+         W[_VEL + 6, j], W[_VEL + 7, j]), (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j]),
+        (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy,
+        (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), l_table(W, _TAB + 0, j), l_table(W, _TAB + 48, j),
+        seg_k, (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
+        (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
+        (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
+        (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
+        _s(W, j), 0)   # rows as tuples: a helper taking the offset compiles once per offset (_TAB + 0: int64)
+    W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], W[_F + 7, j] = f8
+    W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def cambered(W, L):
+    """Whether a run of the block has a camber angle (``W[_CAM]`` not zero: MECHAN's own test)."""
+    n = 0
     for j in range(L):
-        f8, refused, w = l_mechan(
-            (W[_VEL, j], W[_VEL + 1, j], W[_VEL + 2, j], W[_VEL + 3, j], W[_VEL + 4, j], W[_VEL + 5, j],
-             W[_VEL + 6, j], W[_VEL + 7, j]), (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j]),
-            (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy,
-            (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), l_table(W, _TAB + 0, j), l_table(W, _TAB + 48, j),
-            l_table(W, _TAB + 96, j), (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
-            (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
-            (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
-            (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
-            _s(W, j), 0)   # rows as tuples: a helper taking the offset compiles once per offset (_TAB + 0: int64)
-        W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], \
-            W[_F + 7, j] = f8
-        W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
+        n += int(W[_CAM, j] != 0.0)
+    return n > 0
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def tire_forces(W, L, ftimp, imp, policy, camber):
+    """MECHAN, vectorised: the tire forces (the lane's tables read as tuples, :func:`.lanes_physics.l_table`).
+
+    A block without camber (``camber`` False: :func:`cambered`) passes a table of zeros for the camber table,
+    which MECHAN then never looks up: its 48 rows are not read, the same forces bit for bit."""
+    tire_imp = ftimp != 0.0 and imp
+    if camber:
+        for j in range(L):
+            _mechan(W, j, ftimp, tire_imp, policy, l_table(W, _TAB + 96, j))
+    else:
+        for j in range(L):
+            _mechan(W, j, ftimp, tire_imp, policy, _NO_CAMBER)
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
