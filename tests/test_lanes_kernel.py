@@ -120,6 +120,24 @@ def test_a_run_is_the_same_in_any_block_and_batch(monkeypatch, casters):
         np.testing.assert_array_equal(alone.x[::stride], ref[i].x)
 
 
+def test_a_run_is_the_same_beside_a_cambered_run():
+    """Bit for bit: a block none of whose runs has camber gives MECHAN a zero camber table (never looked up where
+    the camber angle is zero), a block with one cambered run every lane's own; an uncambered run is the same in
+    either, and a cambered run the same in a block of cambered runs only."""
+    cambered = dataclasses.replace(EJ, camber_deg=2.0)
+    speeds = np.linspace(0.4, 1.3, 16)
+    run = RunSpec(horizon=1.0, push_force=20.0, push_duration=0.1)
+    plain = simulate_batch(EJ, speeds, run=run, progress=False, record="states")
+    tilted = simulate_batch(cambered, speeds, run=run, progress=False, record="states")
+    mixed = simulate_batch([EJ, cambered] * 8, speeds, run=run, progress=False, record="states")
+    for i, m in enumerate(mixed):
+        ref = (plain if i % 2 == 0 else tilted)[i]
+        for name in ("yaw_rate", "eta", "fy"):
+            np.testing.assert_array_equal(np.asarray(getattr(ref, name)), np.asarray(getattr(m, name)))
+        assert ref.stats == m.stats
+    assert not np.array_equal(np.asarray(plain[1].fy), np.asarray(tilted[1].fy))     # the camber force acts
+
+
 def test_final_record_and_summaries_equal_the_full_record():
     """record="final" (kept in the block, written at the end) is the last row of record="all", bit for bit."""
     speeds = np.array([0.5, 0.9, 1.4])

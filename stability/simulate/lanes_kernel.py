@@ -33,11 +33,16 @@ vector and scalar forms of a loop round alike).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
 
+from stability.simulate import lanes_physics as _lp  # a module: its uncached dispatchers stay out of globals()
 from stability.simulate.cache_stamp import invalidate_stale_cache
 from stability.simulate.kernel import (
+    D1,
+    D2,
     EXTERNAL_MZ,
     MAF,
     MBF,
@@ -54,15 +59,28 @@ from stability.simulate.kernel import (
     ST_TPREV,
     ST_TRACK,
     STOP_LEVEL,
+    T1,
+    T2,
+    TRAIL,
+    X_M,
+    X_P,
 )
 from stability.simulate.kernel_equations import _NOWRAP
 from stability.simulate.lanes_physics import lane_physics
 from stability.simulate.lanes_step import (
+    _AC,
     _ACT,
+    _B,
+    _BD,
     _CAM,
     _CHK,
+    _E,
+    _ED,
+    _EXT,
+    _F,
     _FC1,
     _FC2,
+    _LD,
     _LIM,
     _MZH,
     _PR,
@@ -72,25 +90,32 @@ from stability.simulate.lanes_step import (
     _RC,
     _REC,
     _RECANY,
+    _RECF,
     _RK,
     _RS,
+    _SL,
     _SR,
     _STT,
     _TAB,
+    _THE,
+    _THED,
     _THEDD,
     _TK,
     _TL,
     _TPREV,
+    _TR,
     _TRK,
+    _UD,
+    _VD,
+    _X,
     _XR,
+    _Y,
     LANES,
     MAX_LEVELS,
     NROWS,
     checks,
     dynam,
-    final_row,
     held,
-    padded_levels,
     slip_statics,
     stops,
     tire_forces,
@@ -107,8 +132,18 @@ VEC_HELD_MIN = 4
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+def padded_levels(levels):
+    """The |yaw rate| levels (rad/s) as :data:`MAX_LEVELS` scalars, infinite beyond ``levels`` (never reached)."""
+    n, inf = levels.shape[0], math.inf          # no array operation: their error paths cost seconds to compile
+    return (levels[0] if n > 0 else inf, levels[1] if n > 1 else inf, levels[2] if n > 2 else inf,
+            levels[3] if n > 3 else inf, levels[4] if n > 4 else inf, levels[5] if n > 5 else inf)
+
+
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
 def _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks):
-    """The block's runs into ``W``'s rows (the tire tables too: row ``_TAB + 48 c + 8 r + q``)."""
+    """The block's runs into ``W``'s rows (the tire tables too: row ``_TAB + 48 c + 8 r + q``); whether a run of the
+    block has a camber angle (MECHAN's test: :func:`.lanes_step.tire_forces`)."""
+    camber = False
     for j in range(L):
         i = lo + j
         for c in range(18):
@@ -136,6 +171,37 @@ def _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, st
             W[_STT + (c if c < 2 + nlev else MAX_LEVELS + 2), j] = stats[i, c]
         for c in range(5):
             W[_TRK + c, j] = state[i, ST_TRACK + c]
+        camber = camber or CAM[i, 0] != 0.0
+    return camber
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def final_row(W, L, full):
+    """record="final": this step's row where it is recorded, vectorised (written when the call ends)."""
+    for j in range(L):
+        on = W[_RECF, j] != 0.0
+        W[_RECANY, j] = 1.0 if on else W[_RECANY, j]
+        W[_RECF, j] = 0.0
+        vals = (W[_X, j], W[_Y, j], W[_THE, j], W[_THED, j], W[_UD, j], W[_VD, j], W[_E, j], W[_ED, j],
+                W[_B, j], W[_BD, j])
+        for c in range(10):
+            W[_REC + c, j] = vals[c] if on else W[_REC + c, j]
+        if full:
+            for c in range(8):
+                W[_REC + 10 + c, j] = W[_F + c, j] if on else W[_REC + 10 + c, j]
+            for c in range(4):
+                W[_REC + 18 + c, j] = W[_LD + c, j] if on else W[_REC + 18 + c, j]
+                W[_REC + 22 + c, j] = W[_SL + c, j] if on else W[_REC + 22 + c, j]
+            mzt = _lp.l_tire_moment(W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j],
+                                    W[_F + 5, j], W[_F + 6, j], W[_F + 7, j], W[_TR, j], W[_TR + 1, j],
+                                    W[_TR + 2, j], W[_TR + 3, j], W[_PR + X_M, j], W[_PR + X_P, j],
+                                    W[_PR + D1, j], W[_PR + D2, j], W[_PR + T1, j], W[_PR + T2, j],
+                                    W[_PR + TRAIL, j])
+            W[_REC + 26, j] = mzt if on else W[_REC + 26, j]
+            W[_REC + 27, j] = W[_EXT + 1, j] if on else W[_REC + 27, j]
+            W[_REC + 28, j] = W[_AC + 2, j] if on else W[_REC + 28, j]
+            W[_REC + 29, j] = W[_AC + 5, j] if on else W[_REC + 29, j]
+            W[_REC + 30, j] = W[_AC + 6, j] if on else W[_REC + 30, j]
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
@@ -185,14 +251,15 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
     nrc = np.zeros(LANES, dtype=np.int64)
     vec_held = (sticks or locked) and L >= VEC_HELD_MIN
     lv = padded_levels(levels)
-    _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks)
+    camber = _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev,
+                   sticks)
     for k in range(k0, min(k1, n)):
         if W[_ACT, :L].sum() == 0.0:
             break
         t = k * dt
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
         slip_statics(W, L, model, slope, cfg)
-        tire_forces(W, L, ftimp, imp, policy)
+        tire_forces(W, L, ftimp, imp, policy, camber)
         checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
                znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         dynam(W, L, model, imp, sticks, locked, vec_held)

@@ -1,9 +1,10 @@
 """The lanes kernel's step, phase by phase: each phase one loop over a block's runs on its work array ``W``.
 
-The vectorised phases (:func:`slip_statics`, :func:`tire_forces`, :func:`dynam`, :func:`final_row`, :func:`update`,
-the masks of :func:`checks` and :func:`stops`) are arithmetic on ``W``'s rows (:mod:`.lanes_physics`); the lanes a
-mask picks go lane by lane through the scalar kernel's functions.  All are inlined into the lanes kernel's block,
-where ``W`` has a constant shape: the rows' distances are constants, and LLVM vectorises without aliasing checks."""
+The vectorised phases (:func:`slip_statics`, :func:`tire_forces`, :func:`dynam`, :func:`update`, the masks of
+:func:`checks` and :func:`stops`; the final row's copy is the block's, :mod:`.lanes_kernel`) are arithmetic on ``W``'s
+rows (:mod:`.lanes_physics`); the lanes a mask picks go lane by lane through the scalar kernel's functions.  All are
+inlined into the lanes kernel's block, where ``W`` has a constant shape: the rows' distances are constants, and LLVM
+vectorises without aliasing checks."""
 
 from __future__ import annotations
 
@@ -12,8 +13,6 @@ import math
 from numba import njit
 
 from stability.simulate.kernel import (
-    D1,
-    D2,
     FCIMP,
     MAF,
     MBF,
@@ -23,11 +22,6 @@ from stability.simulate.kernel import (
     STOPPED_NONFINITE,
     STOPPED_SETTLED,
     STOPPED_WARNINGS,
-    T1,
-    T2,
-    TRAIL,
-    X_M,
-    X_P,
     G,
     controlled,
     held_pins,
@@ -49,12 +43,11 @@ from stability.simulate.lanes_physics import (
     l_rest_rate,
     l_slip_angles,
     l_table,
-    l_tire_moment,
     l_tire_resultant,
 )
 
 __all__ = ["LANES", "MAX_LEVELS", "NROWS", "slip_statics", "tire_forces", "checks", "dynam", "held", "stops",
-           "final_row", "update", "padded_levels"]
+           "update"]
 
 #: runs per block (measured: docs/simulator.md, "Runs as lanes"); the numbers do not depend on it
 LANES = 64
@@ -156,24 +149,40 @@ def slip_statics(W, L, model, slope, cfg):
         W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j] = n4
 
 
+#: the camber table :func:`tire_forces` passes MECHAN in a block without camber (looked up only where the angle is 0)
+_NO_CAMBER = (0.0,) * 48
+
+
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def tire_forces(W, L, ftimp, imp, policy):
-    """MECHAN, vectorised: the tire forces (the lane's tables read as tuples, :func:`.lanes_physics.l_table`)."""
+def _mechan(W, j, ftimp, tire_imp, policy, seg_k):
+    """MECHAN for lane ``j`` on its rows of ``W`` (camber table ``seg_k``), its forces and refusal stored in ``W``."""
+    f8, refused, w = l_mechan(
+        (W[_VEL, j], W[_VEL + 1, j], W[_VEL + 2, j], W[_VEL + 3, j], W[_VEL + 4, j], W[_VEL + 5, j],
+         W[_VEL + 6, j], W[_VEL + 7, j]), (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j]),
+        (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy,
+        (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), l_table(W, _TAB + 0, j), l_table(W, _TAB + 48, j),
+        seg_k, (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
+        (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
+        (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
+        (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
+        _s(W, j), 0)   # rows as tuples: a helper taking the offset compiles once per offset (_TAB + 0: int64)
+    W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], W[_F + 7, j] = f8
+    W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def tire_forces(W, L, ftimp, imp, policy, camber):
+    """MECHAN, vectorised: the tire forces (the lane's tables read as tuples, :func:`.lanes_physics.l_table`).
+
+    A block no run of which has a camber angle (``camber`` False) passes a table of zeros for the camber table,
+    which MECHAN then never looks up: its 48 rows are not read, the same forces bit for bit."""
     tire_imp = ftimp != 0.0 and imp
-    for j in range(L):
-        f8, refused, w = l_mechan(
-            (W[_VEL, j], W[_VEL + 1, j], W[_VEL + 2, j], W[_VEL + 3, j], W[_VEL + 4, j], W[_VEL + 5, j],
-             W[_VEL + 6, j], W[_VEL + 7, j]), (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j]),
-            (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j]), tire_imp, ftimp, policy,
-            (W[_TK, j], W[_TK + 1, j], W[_TK + 2, j]), l_table(W, _TAB + 0, j), l_table(W, _TAB + 48, j),
-            l_table(W, _TAB + 96, j), (W[_TL, j], W[_TL + 1, j], W[_TL + 2, j]),
-            (W[_LIM, j], W[_LIM + 1, j]), (W[_LIM + 2, j], W[_LIM + 3, j]), (W[_LIM + 4, j], W[_LIM + 5, j]),
-            (W[_RK, j], W[_RK + 1, j]), (W[_RC, j], W[_RC + 1, j], W[_RC + 2, j]),
-            (W[_RC + 3, j], W[_RC + 4, j], W[_RC + 5, j]), (W[_RS, j], W[_RS + 1, j]), (W[_CAM, j], W[_CAM + 1, j]),
-            _s(W, j), 0)   # rows as tuples: a helper taking the offset compiles once per offset (_TAB + 0: int64)
-        W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j], W[_F + 5, j], W[_F + 6, j], \
-            W[_F + 7, j] = f8
-        W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
+    if camber:
+        for j in range(L):
+            _mechan(W, j, ftimp, tire_imp, policy, l_table(W, _TAB + 96, j))
+    else:
+        for j in range(L):
+            _mechan(W, j, ftimp, tire_imp, policy, _NO_CAMBER)
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
@@ -368,14 +377,6 @@ def held(W, L, model, locked, vec_held):
         W[_AC + 5, j], W[_AC + 6, j] = ma, mb
 
 
-@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
-def padded_levels(levels):
-    """The |yaw rate| levels (rad/s) as :data:`MAX_LEVELS` scalars, infinite beyond ``levels`` (never reached)."""
-    n, inf = levels.shape[0], math.inf          # no array operation: their error paths cost seconds to compile
-    return (levels[0] if n > 0 else inf, levels[1] if n > 1 else inf, levels[2] if n > 2 else inf,
-            levels[3] if n > 3 else inf, levels[4] if n > 4 else inf, levels[5] if n > 5 else inf)
-
-
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 def _quiet_step(W, L, k, t, lv, mode, settle):
     """The summaries of the running lanes without an event this step, vectorised: the peak |yaw rate| and its
@@ -443,35 +444,6 @@ def stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop
                                abs(W[_AC + 6, j])):
             status[i, 0], status[i, 1] = STOPPED_SETTLED, t
             W[_ACT, j] = 0.0
-
-
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
-def final_row(W, L, full):
-    """record="final": this step's row where it is recorded, vectorised (written when the call ends)."""
-    for j in range(L):
-        on = W[_RECF, j] != 0.0
-        W[_RECANY, j] = 1.0 if on else W[_RECANY, j]
-        W[_RECF, j] = 0.0
-        vals = (W[_X, j], W[_Y, j], W[_THE, j], W[_THED, j], W[_UD, j], W[_VD, j], W[_E, j], W[_ED, j],
-                W[_B, j], W[_BD, j])
-        for c in range(10):
-            W[_REC + c, j] = vals[c] if on else W[_REC + c, j]
-        if full:
-            for c in range(8):
-                W[_REC + 10 + c, j] = W[_F + c, j] if on else W[_REC + 10 + c, j]
-            for c in range(4):
-                W[_REC + 18 + c, j] = W[_LD + c, j] if on else W[_REC + 18 + c, j]
-                W[_REC + 22 + c, j] = W[_SL + c, j] if on else W[_REC + 22 + c, j]
-            mzt = l_tire_moment(W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j],
-                                W[_F + 5, j], W[_F + 6, j], W[_F + 7, j], W[_TR, j], W[_TR + 1, j],
-                                W[_TR + 2, j], W[_TR + 3, j], W[_PR + X_M, j], W[_PR + X_P, j],
-                                W[_PR + D1, j], W[_PR + D2, j], W[_PR + T1, j], W[_PR + T2, j],
-                                W[_PR + TRAIL, j])
-            W[_REC + 26, j] = mzt if on else W[_REC + 26, j]
-            W[_REC + 27, j] = W[_EXT + 1, j] if on else W[_REC + 27, j]
-            W[_REC + 28, j] = W[_AC + 2, j] if on else W[_REC + 28, j]
-            W[_REC + 29, j] = W[_AC + 5, j] if on else W[_REC + 29, j]
-            W[_REC + 30, j] = W[_AC + 6, j] if on else W[_REC + 30, j]
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
