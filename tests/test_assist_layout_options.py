@@ -188,11 +188,16 @@ def test_the_command_exports_a_layout_and_writes_its_figures(tmp_path, capsys):
             <= case["tolerance_N_m"]
 
 
-def test_the_command_gives_the_smallest_torque_each_way(capsys):
+#: The layout's --min-torque run with the checks, both directions: read by the smallest-torque test and the schema
+#: test (``shared_run``: stdout only, one run per worker; the rows of --min-torque do not depend on the checks).
+MIN_TORQUE_ARGV = ["--chair", "power-fwd-base", "--speeds", "1", "--reverse", "--min-torque", "--json"]
+
+
+def test_the_command_gives_the_smallest_torque_each_way(shared_run):
     """--min-torque at each direction's check speed; the JSON's value is the API's (the same call)."""
-    assert main(["--chair", "power-fwd-base", "--speeds", "1", "--reverse", "--no-check", "--min-torque",
-                 "--json"]) == 0
-    d = json.loads(capsys.readouterr().out)
+    status, out, _ = shared_run("assist", MIN_TORQUE_ARGV)
+    assert status == 0
+    d = json.loads(out)
     rows = d["minimum_torque_limits"]
     assert [r["speed_m_s"] for r in rows] == [1.0, -1.0]
     lay = layout_preset("power-fwd-base")
@@ -214,13 +219,14 @@ def test_what_a_layout_cannot_answer_is_refused_in_one_line(argv, words, tmp_pat
     assert not (tmp_path / "fw").exists()
 
 
-def test_the_layouts_json_matches_its_schema(tmp_path, capsys):
+def test_the_layouts_json_matches_its_schema(tmp_path, capsys, shared_run):
     """The layout's output (forward with the checks and --min-torque; reverse alone with the firmware) against
     stability/schemas/assist_layout.json; a renamed key is refused."""
     from stability import schemas
 
-    assert main(["--chair", "power-fwd-base", "--speeds", "1", "--reverse", "--min-torque", "--json"]) == 0
-    a = json.loads(capsys.readouterr().out)
+    status, out, _ = shared_run("assist", MIN_TORQUE_ARGV)
+    assert status == 0
+    a = json.loads(out)
     assert main(["--chair", "power-fwd", "--speeds=-1.5,-0.5", "--no-check", "--json", "--export-c",
                  str(tmp_path / "fw")]) == 0
     b = json.loads(capsys.readouterr().out)

@@ -3,6 +3,7 @@ the saturation, and the limit's order in the reaction time."""
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -15,14 +16,29 @@ from stability.simulate import simulate
 from stability.study.lane import (
     LANE_HALF_WIDTH_M,
     SAMPLE_TIME_S,
+    LaneLimit,
+    LaneRange,
     lane_controller,
     lane_gains,
     lane_limit,
     lane_plant,
+    lane_range,
     lane_run,
 )
 
 EJ = chair_mod.preset("ej-premier")
+
+
+@functools.cache
+def _ej_range() -> LaneRange:
+    """The E&J's lane range for the 0.3 s driver, computed once for the two tests that read it (frozen inputs)."""
+    return lane_range(EJ, Driver(0.3))
+
+
+def _ej_limit(tau: float) -> LaneLimit:
+    """``lane_limit(EJ, Driver(tau))``; at 0.3 s the range's nominal limit, which is that very call
+    (``lane_range`` takes ``lane_limit`` at the default run's push), so it is not computed twice."""
+    return _ej_range().nominal if tau == 0.3 else lane_limit(EJ, Driver(tau))
 
 
 def _kinematic_residual(dt: float) -> tuple[float, float]:
@@ -95,7 +111,7 @@ def test_lane_limit_falls_with_the_reaction_time():
     kept run lies within the lane while the first failure above the limit does not."""
     speeds = []
     for tau in (0.2, 0.3, 0.5):
-        lim = lane_limit(EJ, Driver(tau))
+        lim = _ej_limit(tau)
         assert lim.side == "="
         speeds.append(lim.speed_m_s)
         kept = [r for r in lim.runs if r.kept]
@@ -134,9 +150,9 @@ def test_a_gentle_driver_is_trapped_by_the_stuck_casters_and_a_firmer_one_is_not
 def test_a_harder_push_never_lets_the_driver_go_faster():
     """The lane limit over half, once and twice the reference push (the range ``critical_speed`` prints): a
     larger push frees the casters further, so the limit does not rise with it."""
-    from stability.study.lane import lane_range, lane_text
+    from stability.study.lane import lane_text
 
-    rng = lane_range(EJ, Driver(0.3))
+    rng = _ej_range()
     by = sorted((rng.nominal, *rng.others), key=lambda x: x.push_N_s)
     assert [x.push_N_s for x in by] == pytest.approx([2.0, 4.0, 8.0], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert by[0].speed_m_s >= by[1].speed_m_s >= by[2].speed_m_s

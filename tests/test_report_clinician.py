@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -64,12 +62,13 @@ def test_spring_scale_tip_angles_and_slope_numbers(sheet):
     assert "PEAK" in text and "sustained" in text
 
 
-def test_cli_clinician_writes_one_page(tmp_path):
+def test_cli_clinician_writes_one_page(tmp_path, capsys):
+    """The command's --clinician run (in process: the ``python -m stability.report`` entry point itself is run by
+    tests/test_cli_interrupt.py and tests/test_report_layout.py) writes a one-page PDF and its text."""
     out, txt = tmp_path / "c.pdf", tmp_path / "c.txt"
-    r = subprocess.run([sys.executable, "-m", "stability.report", "--chair", "ej-premier-front-caster",
-                        "--clinician", "--speeds", "0.75", "-o", str(out), "--text", str(txt)],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
+    status = report_command.main(["--chair", "ej-premier-front-caster", "--clinician", "--speeds", "0.75", "-o",
+                                  str(out), "--text", str(txt)])
+    assert status == 0, capsys.readouterr().err
     pages = txt.read_text().count("=== page")
     assert pages == 1 and out.read_bytes().startswith(b"%PDF")
     assert "keeps turning" in txt.read_text() or "returns to its line" in txt.read_text()
