@@ -451,7 +451,7 @@ def _note(w, t, value):
     w[0] += 1.0
 
 
-#: the arguments of :func:`run_batch` (after the variant and the steps) that hold one row per run
+#: the arguments of :func:`run_batch` (after the step, the variant and the steps) that hold one row per run
 PER_RUN_ARGS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 21, 22, 23, 24, 25)
 
 
