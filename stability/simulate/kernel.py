@@ -13,10 +13,11 @@ yaw moment, slip angles, pin friction) and the tire force law
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any
 
 import numpy as np
-from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads, typeof
+from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads, typeof
 from numba._dispatcher import compute_fingerprint
 from numba.core import config as _config
 from numba.core import types as _nbtypes
@@ -29,6 +30,7 @@ from stability.simulate.kernel_controller import controlled, controller_step, sc
 # and lanes kernels and the tests read them here too)
 from stability.simulate.kernel_equations import *  # noqa: F403
 from stability.simulate.kernel_equations import _NOREF, _NOWRAP, _OVERLOAD, _inl, _inl_py, _int  # noqa: F401
+from stability.simulate.native_call import address, call_at, row_types
 
 #: numba's largest thread count (set when numba is imported)
 NUMBA_NUM_THREADS: int = vars(_config)["NUMBA_NUM_THREADS"]
@@ -69,19 +71,17 @@ def call_model(entry: Any, var: tuple[int, int], *args: Any) -> Any:
     """``entry(*var, *args)`` (:func:`run_batch`, :func:`run_serial`, :func:`run_one`) through its specialisation
     for the variant ``var``.
 
-    The entry points take the variant as numba literals (``literally``), so
-    Python ints do not match their compiled signatures by type: numba's
-    dispatch would type the call again every time (about 8 ms) before it
-    finds the literal one.  The first call for a variant and argument types
-    compiles the specialisation (or loads it from the cache) for the literals
-    directly; later ones call it directly, found by the arguments' type
-    fingerprints (numba's own dispatch key, about 2 us for all of them;
-    ``numba.typeof`` would cost 0.2 ms).
+    :func:`run_one` takes the variant as numba literals, which Python ints do not match by type: numba's dispatch
+    would type the call again every time (about 8 ms).  The first call for a variant and argument types compiles
+    (or loads from the cache) :func:`run_one`'s literal specialisation directly; later ones call it directly, found
+    by the arguments' type fingerprints (numba's own dispatch key, about 2 us).  :func:`run_batch` and
+    :func:`run_serial` are compiled once for every variant and call that specialisation for each run's rows at its
+    address (:func:`~stability.simulate.native_call.call_at`).
 
     Parameters
     ----------
     entry : numba dispatcher
-        :func:`run_batch`, :func:`run_serial` or :func:`run_one`.
+        :func:`run_batch`, :func:`run_serial`, :func:`run_one` or a copy of it.
     var : tuple of int
         :func:`variant` of the runs.
     *args
@@ -94,9 +94,15 @@ def call_model(entry: Any, var: tuple[int, int], *args: Any) -> Any:
     """
     key = (entry, var, tuple(map(compute_fingerprint, args)))
     fn = _ENTRIES.get(key)
-    if fn is None:      # compiled, or loaded from the cache, for the literals directly
-        fn = _ENTRIES[key] = entry.compile((*map(_nbtypes.literal, var), *(typeof(a) for a in args)))
-    return fn(*var, *args)
+    if fn is None:
+        types_, lit = tuple(typeof(a) for a in args), tuple(map(_nbtypes.literal, var))
+        if entry is run_batch or entry is run_serial:     # the step for one run's rows (numba's types of a[i])
+            step = address(run_one, (*lit, *types_[:2], *row_types(types_[2:-1], PER_RUN_ARGS)))
+            fn = partial(entry.compile((typeof(step), *map(typeof, var), *types_)), step, *var)
+        else:
+            fn = partial(entry.compile((*lit, *types_)), *var)
+        _ENTRIES[key] = fn
+    return fn(*args)
 
 
 @_inl
@@ -311,13 +317,11 @@ def run_one(model, ctl, k0, k1, prow, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
     controller's states), with the chair's parameters ``prow``; writes ``rec`` (ncol, nrec), ``stats``, ``warn``
     (3, 3), ``status``; returns the rows recorded so far.  A stopped run (``status``) does nothing.
 
-    ``model, ctl``: the run's :func:`variant`, compile-time constants (numba literals: :func:`call_model`, or the
-    entry points), so that a run compiles its model's equations only, and the controller's step only with a
-    controller.  One run is called from Python directly (:func:`run_single`).  It calls no ``literally``:
-    :func:`call_model`, :func:`run_batch` and :func:`run_serial` pass the variant as literals already (a
-    ``literally`` here compiled numba's overload of it twice on the first use).  ``cfg[EXTERNAL_MZ]``: the yaw
-    moment is ``state[ST_MZ]``, set by the caller between calls (a Python input sampled at the step), else the
-    controller's."""
+    ``model, ctl``: the run's :func:`variant`, compile-time constants (numba literals, compiled by
+    :func:`call_model`, which the entry points call at its address), so that a run compiles its model's equations
+    only, and the controller's step only with a controller (a ``literally`` here compiled numba's overload of it
+    twice).  ``cfg[EXTERNAL_MZ]``: the yaw moment is ``state[ST_MZ]``, set by the caller between calls (a Python
+    input sampled at the step), else the controller's."""
     if status[0] != 0.0 or status[2] != 0.0:
         return np.int64(state[ST_NREC])
     # the arrays of the step without reference counts (kept atomically per call of a helper; borrowed), P as a tuple
@@ -447,7 +451,7 @@ def _note(w, t, value):
     w[0] += 1.0
 
 
-#: the arguments of :func:`run_batch` (after the variant and the steps) that hold one row per run
+#: the arguments of :func:`run_batch` (after the step, the variant and the steps) that hold one row per run
 PER_RUN_ARGS = (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 21, 22, 23, 24, 25)
 
 
@@ -472,28 +476,25 @@ def run_single(var: tuple[int, int], args: tuple, step: Any = None) -> None:
 
 
 @njit(cache=True, parallel=True)
-def run_batch(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
-              Cz, noise, state, rec, stats, warn, status, nrec):
+def run_batch(step, model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az,
+              Bu, By, Cz, noise, state, rec, stats, warn, status, nrec):
     """Steps ``k0 .. k1 - 1`` of all runs, one per thread (``prange``); every array has the run as its first axis.
-    ``model, ctl``: the runs' :func:`variant`, compiled as constants (one specialisation per variant)."""
-    literally(model)
-    literally(ctl)
+    ``step``: the address of :func:`run_one`'s specialisation for the runs' :func:`variant` ``model, ctl`` and
+    rows (:func:`call_model`), called, not compiled in: one compile of this entry serves every variant."""
     for i in prange(P.shape[0]):
-        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i],
-                          CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i],
-                          warn[i], status[i])
+        nrec[i] = call_at(step, model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i],
+                          CAM[i], CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i],
+                          stats[i], warn[i], status[i])
 
 
 @njit(cache=True, nogil=True)
-def run_serial(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
-               Cz, noise, state, rec, stats, warn, status, nrec):
+def run_serial(step, model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az,
+               Bu, By, Cz, noise, state, rec, stats, warn, status, nrec):
     """:func:`run_batch` on the calling thread: the step-by-step calls of a Python yaw-moment input."""
-    literally(model)
-    literally(ctl)
     for i in range(P.shape[0]):
-        nrec[i] = run_one(model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i], CAM[i],
-                          CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i], stats[i],
-                          warn[i], status[i])
+        nrec[i] = call_at(step, model, ctl, k0, k1, P[i], S[i], TK[i], TS[i], TL[i], LIM[i], RK[i], RC[i], RS[i],
+                          CAM[i], CHK[i], cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state[i], rec[i],
+                          stats[i], warn[i], status[i])
 
 
 invalidate_stale_cache(globals(), "kernel.equations.sha256")
