@@ -12,6 +12,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -249,3 +250,28 @@ def test_the_figures_and_the_json_file_are_written_all_or_none(module, argv, tmp
     made = {p.name: p.stat().st_size for p in tmp_path.iterdir()}
     want = {"f.json"} | ({"g.csv", "g.summary.json", "g.pdf"} if "g.csv" in argv else {argv[argv.index("-o") + 1]})
     assert want <= set(made) and all(made[n] > 0 for n in want)
+
+
+@pytest.mark.parametrize("then", [RuntimeError("no compiled object yet for <Library '_consistent'>"),
+                                  ValueError("speed=nan is invalid"), OSError("disk gone")])
+def test_a_signal_a_library_swallowed_still_exits_130(then, capsys):
+    """Ctrl-C during numba's first compile: its LLVM object-cache callback (a ctypes callback) swallows the
+    KeyboardInterrupt ("Exception ignored on calling ctypes callback function") and the compile then fails with
+    another error.  The command still ends as interrupted (status 130, the one line), not as a computation error
+    (status 2), because the signal was remembered (the slow test_cli_interrupt.py saw status 2 with a cold cache)."""
+    import argparse
+
+    from stability.cli.contract import run
+
+    def body(args):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)      # the contract's handler raises KeyboardInterrupt here ...
+            time.sleep(5)
+        except KeyboardInterrupt:                     # ... which a library swallows
+            pass
+        raise then                                    # and then fails with its own error
+
+    assert run(argparse.ArgumentParser(), [], body) == 130
+    assert capsys.readouterr().err == "error: interrupted\n"
+    # without a signal the same error is the computation's or the input's: status 2
+    assert run(argparse.ArgumentParser(), [], lambda a: (_ for _ in ()).throw(then)) == 2

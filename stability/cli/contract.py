@@ -288,6 +288,16 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
 _FLOAT_WARNINGS = r"(invalid value|divide by zero|overflow|underflow) encountered"
 
 
+def _interrupted(debug: bool) -> int:
+    """An interrupted command's line and status.  Also when a library turned the signal's KeyboardInterrupt into
+    another error: numba's LLVM object-cache callback, a ctypes callback, swallows it during a compile, and the
+    compile then fails with a RuntimeError; the signal was remembered (:func:`interrupts.pending`)."""
+    if debug:
+        traceback.print_exc()
+    print(interrupts.MESSAGE, file=sys.stderr)
+    return interrupts.EXIT_STATUS
+
+
 def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
          body: Callable[[argparse.Namespace], int | None], errors: tuple[type[BaseException], ...]) -> int:
     """:func:`run` inside the signal handlers and the input/output session."""
@@ -319,20 +329,23 @@ def _run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
         os.dup2(devnull, sys.stdout.fileno())
         return 1
     except KeyboardInterrupt:
-        if debug:
-            traceback.print_exc()
-        print(interrupts.MESSAGE, file=sys.stderr)
-        return interrupts.EXIT_STATUS
+        return _interrupted(debug)
     except COMPUTATION_ERRORS as exc:       # before ``errors``: LinAlgError is a ValueError
         if debug:
             traceback.print_exc()
+        if interrupts.pending():
+            return _interrupted(False)
         return error(exc, "could not compute the result for this chair and these options: ")
     except errors as exc:
         if debug:
             traceback.print_exc()
+        if interrupts.pending():
+            return _interrupted(False)
         return error(exc)
     except OSError as exc:
         if debug:
             traceback.print_exc()
+        if interrupts.pending():
+            return _interrupted(False)
         where = f" {exc.filename!r}" if exc.filename else ""
         return error(exc, f"file{where}: ") if not where else error(ValueError(f"{exc.strerror}"), f"file{where}: ")
