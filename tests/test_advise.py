@@ -93,6 +93,78 @@ def test_note_reconciles_a_worse_linear_rate():
     assert abs(rev.s1 - math.sqrt(ej.i_z / ej.m)) <= 2.5e-3
 
 
+def test_a_measure_the_chair_lacks_or_has_at_zero_gives_no_gain():
+    """The gain is relative to the chair's own low end: where that is zero (or missing) no change can be said to
+    raise it, so the measure's gain is -inf (not a division by zero); a change with no value at all likewise."""
+    base = _measures((3.0, 0.0, 4.0), (1.0, 0.8, 1.1))
+    g, gs = _gain(_measures((4.0, 3.0, 5.0), (1.1, 0.9, 1.2)), base)
+    assert gs["critical_impulse"] == -math.inf and g == -math.inf
+    assert gs["equal_instability_speed"] == pytest.approx(0.9 / 0.8 - 1, rel=1e-12)  # rounding: one quotient and one difference, a few ulp (observed 0)
+    g, gs = _gain(_measures((None, None, None), (1.1, 0.9, 1.2)), _measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1)))
+    assert gs["critical_impulse"] == -math.inf
+
+
+def test_the_worse_rate_note_needs_a_rise_beyond_its_threshold():
+    """The linear-vs-nonlinear note is for a growth rate that rises by more than RATE_NOTE_RISE (0.5 %): an
+    unchanged or lower rate, or a rise within the threshold, gets no note; just beyond it, the note."""
+    from stability.advise.advisor import RATE_NOTE_RISE
+
+    ej = chair_mod.preset("ej-premier")
+    base = _measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1), rate=1.45)
+
+    def noted(rate: float) -> bool:
+        c = Candidate((), _measures((4.0, 3.0, 5.0), (1.1, 0.9, 1.2), rate=rate), 0.1, {}, ())
+        return any("linear growth rate gets worse" in n for n in _notes(c, base, ej))
+
+    assert not noted(1.45) and not noted(1.40) and not noted(1.45 * (1 + 0.5 * RATE_NOTE_RISE))
+    assert noted(1.45 * (1 + 2 * RATE_NOTE_RISE))
+
+
+def test_a_chair_that_breaks_a_limit_is_told_the_runner_up_fixes_it_at_its_cost():
+    """When no change fixes a broken limit within the allowed cost and the best is to keep the chair, the note
+    names the runner-up that fixes it and its cost in per cent of the robust measures."""
+    from stability.advise.advisor import MAX_FIX_COST, Recommendation, _explain
+    from stability.advise.levers import lever_changes
+
+    ej = chair_mod.preset("ej-premier")
+    base = _measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1))
+    (ch, _), *_ = lever_changes(ej)[0]
+    keep = Candidate((), base, 0.0, {}, ())
+    fix = Candidate((ch,), base, -0.3, {}, ())
+    recs = [Recommendation(1, keep, (), ()), Recommendation(2, fix, (), ())]
+    out = _explain(recs, {"static_stability_deg"}, [], base)
+    note = " ".join(out[0].notes)
+    assert f"no change fixes it for less than {MAX_FIX_COST * 100:.0f} % of the robust measures; the runner-up " \
+           f"({fix.label}) fixes it at a cost of 30 %." in note, note
+
+
+def test_every_constraint_reads_as_its_comparison_and_the_bench_note_ends_where_the_chair_is_within_it():
+    """Each constraint's ``kind`` is the comparison its ``met`` makes of value and limit (``>=`` or ``<=``, printed
+    in the constraint's words); the bench constraint of a chair within the bench's score says no more than the
+    limit's source, and of a chair already above it, that the change may not make it worse."""
+    import dataclasses
+    import operator
+
+    from stability.advise.limits import MAX_BENCH_SCORE, constraint_text, constraints
+
+    ops = {">=": operator.ge, "<=": operator.le}
+    base = dataclasses.replace(_measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1)), bench_score=MAX_BENCH_SCORE,
+                               cross_slope_effort=10.0, human_speed_m_s=1.0)
+    for tip, friction, effort, score, human in ((30.0, 0.1, 10.5, 1, 1.2), (5.0, 0.5, 12.0, 3, 0.5)):
+        m = dataclasses.replace(base, static_stability_deg=Interval(tip, tip, tip), turning_effort_N_m=friction,
+                                cross_slope_effort=effort, bench_score=score, human_speed_m_s=human)
+        ks = constraints(m, base, 10.0, "the limit", 2.0, (0.3, 1.0))
+        assert len(ks) == 6
+        for k in ks:
+            assert k.kind in ops and k.met == ops[k.kind](k.value, k.limit), k
+            assert f"against the limit {k.kind} " in constraint_text(k)
+    bench = next(k for k in constraints(base, base, 10.0, "", 0.0) if k.name == "bench_worst_score")
+    assert bench.note.endswith("(a wheel may lift, the chair may not tip)"), bench.note
+    above = dataclasses.replace(base, bench_score=MAX_BENCH_SCORE + 2)
+    bench = next(k for k in constraints(above, above, 10.0, "", 0.0) if k.name == "bench_worst_score")
+    assert bench.note.endswith(f"; the chair as it is scores {MAX_BENCH_SCORE + 2}, so not worse than that")
+
+
 def test_note_names_a_critical_impulse_that_moves_with_the_step():
     """A critical impulse that differs by more than 10 % at half the 1 ms step gets the step note, quoting both
     values (power-fwd's trail-6 cm runner-up: 2.1 N s at 1 ms, 11.6 N s at 0.5 ms; tests/test_impulse_step.py);

@@ -91,7 +91,13 @@ for ``limits.meets``; "after" = ``--only-survivors``): ``advise/limits.py`` 2/8 
 its factor, the options and words that allow a blocked change, the shimmy sentence of a friction that holds at no
 trail; the default display scale of ``limit_words`` listed equivalent); ``advise/advisor.py`` 6/8 -> 7/8 (the JSON
 rank; left: a chair at negative speeds advised as its layout, which only ``tests/test_advise_layout.py`` checks,
-not one of the advisor's gate files).
+not one of the advisor's gate files).  That file then joined the gate's files: on main the same seed's sample of
+``advise/advisor.py`` is 8/8.
+
+Seed 44 (8 mutants per module, main after the merges of 2026-12-06): ``advise/limits.py`` 6/8 -> 8/8 (a
+constraint's comparison as printed, the bench note of a chair within the bench's score); ``advise/advisor.py``
+5/8 -> 8/8 (no gain over a chair's zero low end, the worse-rate note's threshold, the runner-up named with its
+cost); the tests are in tests/test_advise.py.
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
