@@ -57,11 +57,16 @@ def _work_entered(fn):
         mod = importlib.import_module(name)
         files[os.path.realpath(mod.__file__)] = name
     entered: set[str] = set()
+    seen: dict[str, str | None] = {}   # a code object's file name -> its work module (realpath once per file)
 
     def hook(frame, event, arg):
         if event == "call":
-            name = files.get(os.path.realpath(frame.f_code.co_filename))
-            if name is not None and frame.f_code.co_name != "<module>":
+            code = frame.f_code
+            filename = code.co_filename
+            if filename not in seen:
+                seen[filename] = files.get(os.path.realpath(filename))
+            name = seen[filename]
+            if name is not None and code.co_name != "<module>":
                 entered.add(name)
 
     previous = sys.getprofile()
