@@ -61,25 +61,40 @@ def unc_file(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def quick(tmp_path_factory, unc_file):
+def _quick_build(tmp_path_factory, unc_file):
+    """The quick report's build and the figures of its pages as they were written to the PDF (kept: the report's
+    pages are plain ``Figure`` objects, not pyplot's, so the writer's ``plt.close`` leaves them intact)."""
+    from stability.report import document
     from stability.report.uncertainty_data import UncertaintySpec
     from stability.uncertainty import load_uncertainty
 
     path = tmp_path_factory.mktemp("report") / "ej-premier-quick.pdf"
     spec = UncertaintySpec(str(unc_file), load_uncertainty(unc_file), SAMPLES, 0)
-    res = report.build(preset("ej-premier"), path, model="exact", quick=True, progress=False, uncertainty=spec)
-    return res
+    written = []
+
+    def pages(d, record=None):
+        for fig in real(d, record):
+            written.append(fig)
+            yield fig
+
+    real = document.pages
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(document, "pages", pages)
+        res = report.build(preset("ej-premier"), path, model="exact", quick=True, progress=False, uncertainty=spec)
+    return res, written
 
 
 @pytest.fixture(scope="module")
-def quick_figures(quick):
-    """Every page's figure of the quick report, built once for the tests that inspect figures."""
-    import matplotlib.pyplot as plt
+def quick(_quick_build):
+    return _quick_build[0]
 
-    figs = [(title, build()) for title, build in report.page_builders(quick.data)]
-    yield figs
-    for _, fig in figs:
-        plt.close(fig)
+
+@pytest.fixture(scope="module")
+def quick_figures(_quick_build):
+    """Every page's figure of the quick report, as written to its PDF, for the tests that inspect figures."""
+    res, figs = _quick_build
+    assert [p.title for p in res.pages] == [t for t, _ in report.page_builders(res.data)] and len(figs) == len(res.pages)
+    return [(p.title, fig) for p, fig in zip(res.pages, figs, strict=True)]
 
 
 def _page(res, title):
@@ -366,26 +381,32 @@ def test_compute_is_deterministic():
 
 
 def test_no_partial_file_when_a_page_fails(quick, tmp_path, monkeypatch):
+    """A page failing after the first was written leaves no file (nor a temporary one); a failing build leaves an
+    existing report untouched (failing at the first page: a writer that opened the path itself would already have
+    truncated it)."""
     real = report.page_builders
+    at = []
 
     def failing(d):
         pages = real(d)
 
         def boom():
-            raise RuntimeError("page 3 failed")
+            raise RuntimeError(f"page {at[-1] + 1} failed")
 
-        pages[2] = ("broken", boom)
+        pages[at[-1]] = ("broken", boom)
         return pages
 
     monkeypatch.setattr(report.builders, "page_builders", failing)
     out = tmp_path / "r.pdf"
-    with pytest.raises(RuntimeError, match="page 3 failed"):
+    at.append(1)
+    with pytest.raises(RuntimeError, match="page 2 failed"):
         report.build(preset("ej-premier"), out, data=quick.data, progress=False)
     assert not out.exists()
     assert os.listdir(tmp_path) == []
     # an existing report is left untouched
     out.write_bytes(b"old")
-    with pytest.raises(RuntimeError):
+    at.append(0)
+    with pytest.raises(RuntimeError, match="page 1 failed"):
         report.build(preset("ej-premier"), out, data=quick.data, progress=False)
     assert out.read_bytes() == b"old"
 
