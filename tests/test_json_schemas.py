@@ -41,10 +41,15 @@ def test_real_output_matches_its_schema_and_the_key_convention(name, tmp_path):
 
 
 def test_every_schema_is_a_valid_draft_2020_12_schema():
+    """Each shipped schema declares draft 2020-12 and passes its metaschema: the check ``schemas.validate`` makes once
+    per process (its cached validator, shared with the other tests here, which would otherwise check again)."""
     import jsonschema
 
     for name in schemas.schema_names():
-        jsonschema.Draft202012Validator.check_schema(schemas.schema(name))
+        s = schemas.schema(name)
+        assert s["$schema"] == "https://json-schema.org/draft/2020-12/schema", name
+        v = schemas._validator(name)          # raises jsonschema.SchemaError on an invalid schema
+        assert type(v) is jsonschema.Draft202012Validator and v.schema == s, name
 
 
 def test_key_checker_refuses_values_in_keys_and_raw_units():
