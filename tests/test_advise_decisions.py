@@ -30,7 +30,7 @@ from stability.advise.advisor import HANDRIM_FACTOR, MAX_FIX_COST, MAX_PIN_FRICT
 from stability.advise.levers import apply, lever_changes
 from stability.advise.text import advice_mapping, advice_text
 from stability.chair.power import drive_kind
-from stability.shimmy.band import shimmy_band
+from stability.shimmy.band import band_core, shimmy_band
 from stability.slope import drive_report, solve
 from stability.tipping import tip_angles
 
@@ -83,10 +83,24 @@ def _base_values(base, slope: float) -> tuple[float, float]:
     return tip_angles(base).smallest_deg, (_cross(base, slope) if slope else 0.0)
 
 
+@functools.cache
+def _core(key):
+    """The shimmy band search of ``key``'s caster at :data:`SPEEDS` (:func:`stability.shimmy.band.band_core`)."""
+    return band_core(key, SPEEDS)
+
+
+def _margin(c) -> float:
+    """The chair's shimmy margin at :data:`SPEEDS`, m: its band from the search of the same chair at a set trail and
+    no Coulomb pin friction, which the search does not read (``tests/test_shimmy_band.py`` asserts that sharing
+    exact), so that the grid's changes of trail and pin friction search once."""
+    key = c.replace(trail=0.05, pin_friction_left=0.0, pin_friction_right=0.0)
+    return shimmy_band(c, SPEEDS, core=_core(key)).shimmy_margin_m
+
+
 def _limits_met(c, base, slope: float) -> dict[str, bool]:
     """Every limit of the advisor, recomputed from the analysis functions."""
     tip = tip_angles(c).smallest_deg
-    margin = shimmy_band(c, SPEEDS).shimmy_margin_m
+    margin = _margin(c)
     effort = max(c.pin_friction_left, c.pin_friction_right)
     tip0, cross0 = _base_values(base, slope)
     return {"static_stability_deg": tip >= tip0 - 1e-9,
