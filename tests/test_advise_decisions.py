@@ -30,7 +30,7 @@ from stability.advise.advisor import HANDRIM_FACTOR, MAX_FIX_COST, MAX_PIN_FRICT
 from stability.advise.levers import apply, lever_changes
 from stability.advise.text import advice_mapping, advice_text
 from stability.chair.power import drive_kind
-from stability.shimmy.band import shimmy_band
+from stability.shimmy.band import band_core, shimmy_band
 from stability.slope import drive_report, solve
 from stability.tipping import tip_angles
 
@@ -69,22 +69,45 @@ def _low(c) -> tuple[float, float]:
     return 0.5 * _ci(c), 0.9 * min(_ei(c), 3.0)
 
 
+def _cross(x, slope: float) -> float:
+    """The cross-slope drive difference of ``x`` at 0.75 m/s on a ``slope`` deg cross slope (N or N m)."""
+    rep = drive_report(x, solve(x, slope, 0.75), drive_kind(x))
+    return abs(rep["handrim_force_difference_N"]) if drive_kind(x) == "handrim" else \
+        abs(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
+
+
+@functools.cache
+def _base_values(base, slope: float) -> tuple[float, float]:
+    """The chair's own tip angle (deg) and cross-slope drive difference (0 without a slope), computed once per
+    chair: every change of a grid is judged against them."""
+    return tip_angles(base).smallest_deg, (_cross(base, slope) if slope else 0.0)
+
+
+@functools.cache
+def _core(key):
+    """The shimmy band search of ``key``'s caster at :data:`SPEEDS` (:func:`stability.shimmy.band.band_core`)."""
+    return band_core(key, SPEEDS)
+
+
+def _margin(c) -> float:
+    """The chair's shimmy margin at :data:`SPEEDS`, m: its band from the search of the same chair at a set trail and
+    no Coulomb pin friction, which the search does not read (``tests/test_shimmy_band.py`` asserts that sharing
+    exact), so that the grid's changes of trail and pin friction search once."""
+    key = c.replace(trail=0.05, pin_friction_left=0.0, pin_friction_right=0.0)
+    return shimmy_band(c, SPEEDS, core=_core(key)).shimmy_margin_m
+
+
 def _limits_met(c, base, slope: float) -> dict[str, bool]:
     """Every limit of the advisor, recomputed from the analysis functions."""
     tip = tip_angles(c).smallest_deg
-    margin = shimmy_band(c, SPEEDS).shimmy_margin_m
+    margin = _margin(c)
     effort = max(c.pin_friction_left, c.pin_friction_right)
-
-    def cross(x):
-        rep = drive_report(x, solve(x, slope, 0.75), drive_kind(x))
-        return abs(rep["handrim_force_difference_N"]) if drive_kind(x) == "handrim" else \
-            abs(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
-
-    return {"static_stability_deg": tip >= tip_angles(base).smallest_deg - 1e-9,
+    tip0, cross0 = _base_values(base, slope)
+    return {"static_stability_deg": tip >= tip0 - 1e-9,
             "shimmy_margin_m": margin >= MIN_SHIMMY_MARGIN_M,
             "turning_effort_N_m": effort <= max(MAX_PIN_FRICTION_N_M, base.pin_friction_left,
                                                base.pin_friction_right) + 1e-12,
-            "cross_slope": slope == 0 or cross(c) <= HANDRIM_FACTOR * cross(base) + 1e-9}
+            "cross_slope": slope == 0 or _cross(c, slope) <= HANDRIM_FACTOR * cross0 + 1e-9}
 
 
 def _grid(chair):

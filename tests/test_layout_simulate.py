@@ -27,7 +27,7 @@ from stability.layout.presets import layout_preset
 from stability.layout.statics import load_rule, static_loads
 from stability.settings.run import RunSpec
 from stability.simulate import simulate
-from stability.simulate.layout import simulate_layout
+from stability.simulate.layout import simulate_layout, simulate_layout_runs
 
 SHORT = RunSpec(horizon=3.0)
 
@@ -208,6 +208,26 @@ def test_reverse_by_a_negative_speed_or_by_the_run_is_the_same_run():
     assert a.speed_m_s == b.speed_m_s == -0.8
     np.testing.assert_array_equal(a.heading_rad, b.heading_rad)
     assert a.u_m_s[0] == -0.8 and a.settings["reverse"] is True
+
+
+def test_runs_stepped_together_are_each_run_on_its_own():
+    """``simulate_layout_runs`` steps several runs of a layout in one kernel call: each is its own
+    ``simulate_layout`` run exactly (the kernel advances every run of a batch on its own; same arithmetic), whatever
+    its speed, direction and caster angles, including a run the warning rule stops early among runs that go on."""
+    from dataclasses import fields
+
+    layout = layout_preset("mid-wheel-drive")
+    run = SHORT.replace(horizon=1.0, push_force=200.0)
+    speeds, angles = [0.8, -3.0, 3.0, -0.8], [None, [0.0] * 4, [0.0] * 4, [180.0] * 4]
+    batch = simulate_layout_runs(layout, speeds, run, caster_angles_deg=angles)
+    assert [r.ended for r in batch] == ["horizon", "slip warnings", "horizon", "horizon"]   # the cases exercised
+    for r, u, a in zip(batch, speeds, angles, strict=True):
+        one = simulate_layout(layout, u, run, caster_angles_deg=a)
+        for f in fields(one):
+            x, y = getattr(r, f.name), getattr(one, f.name)
+            assert np.array_equal(x, y, equal_nan=True) if isinstance(x, np.ndarray) else x == y, f.name
+    with pytest.raises(ValueError, match="one row of angles per speed"):
+        simulate_layout_runs(layout, [0.8, 1.0], run, caster_angles_deg=[None])
 
 
 def test_the_simulate_command_runs_a_layout_in_reverse(capsys):

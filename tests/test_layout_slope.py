@@ -13,6 +13,7 @@ Independent statements used:
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 
@@ -158,3 +159,19 @@ def test_bad_input_is_refused_in_one_line(argv, words, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert words in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("name", ["mid-wheel-drive", "power-fwd-base"])
+def test_the_drive_forces_alone_are_the_equilibriums(name):
+    """``layout_drive_forces`` is the equilibrium's free-pin solve without the pin-friction range: the same drive
+    forces exactly (the same arithmetic), forward and in reverse, and the same refusal where no equilibrium holds."""
+    from stability.study.layout_slope import layout_drive_forces
+
+    lay = layout_preset(name)
+    for speed in (0.75, -0.75):
+        assert layout_drive_forces(lay, 4.0, speed) == layout_equilibrium(lay, 4.0, speed).drive_forces_N
+    toed = Layout(lay.name, lay.m, lay.i_z, lay.h, tuple(dataclasses.replace(w, angle_deg=1.0) for w in lay.wheels),
+                  lay.casters)
+    for f in (layout_drive_forces, layout_equilibrium):
+        with pytest.raises(ValueError, match="angle_deg=1.0 is invalid on a slope"):
+            f(toed, 4.0, 0.75)

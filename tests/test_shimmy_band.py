@@ -146,3 +146,17 @@ def test_describe_writes_each_band_in_cm_with_a_plus_at_the_search_end():
     assert numbers == [1.2, 4.6, 7.9, round(100 * end, 1)]
     assert text.count("+") == 1 and text.endswith("+") and text.count(",") == 1
     assert dataclasses.replace(band, intervals_m=[[]]).describe(0) == "none"
+
+
+@pytest.mark.parametrize("c", [MEASURED, chair_mod.preset("ej-premier")], ids=["measured", "ej-premier"])
+def test_a_band_core_serves_every_trail_and_coulomb_pin_friction(c):
+    """The band search covers every trail of the search range with the chair's own trail replaced, and the linear
+    towed wheel has no Coulomb pin friction: a core searched for one chair is the band of another that differs only
+    in trail and pin friction (exact: the same arithmetic on the same inputs).  The advisor and its decision tests
+    share cores on this."""
+    from stability.shimmy.band import band_core
+
+    a = c.replace(trail=0.03, pin_friction_left=0.0, pin_friction_right=0.0)
+    b = c.replace(trail=0.09, pin_friction_left=0.3, pin_friction_right=0.25)
+    speeds = (0.5, 1.0, 2.0)
+    assert shimmy_band(b, speeds, core=band_core(a, speeds)).to_mapping() == shimmy_band(b, speeds).to_mapping()

@@ -196,3 +196,26 @@ def test_the_memoised_loads_are_each_casters_own_statics():
         assert np.array_equal(c.loads(trails), want) and np.array_equal(c.loads(trails), want)
     # the heavier chair's casters carry 1.2 times the load: rounding of one product (a few ulp), asserted 1e-12
     assert LayoutCaster(heavy, 0).loads(trails) == pytest.approx(1.2 * LayoutCaster(lay, 0).loads(trails), rel=1e-12)
+
+
+def test_the_loads_without_a_layout_per_trail_are_the_replaced_layouts_statics():
+    """``LayoutCaster.loads`` moves the row's contacts in the contact list instead of building a layout per trail:
+    at every preset (forward and reverse), every caster and trails from below zero to beyond the caster's range
+    (0 to 0.5 m) and where the base no longer stands, its answer is the row's trail replaced and the statics solved
+    (exact: the same arithmetic), NaN exactly where that layout is refused (the trail's check or a load <= 0)."""
+    from stability.layout.presets import layout_preset_names
+
+    trails = np.concatenate([np.linspace(-0.01, 0.6, 62), [0.0, 0.5, np.nextafter(0.5, 1.0)]])
+    refused = 0
+    for name in layout_preset_names():
+        for reverse in (False, True):
+            for c in layout_casters(layout_preset(name), reverse):
+                want = []
+                for t in trails:
+                    try:
+                        want.append(c.replace(trail=float(t)).static_load())
+                    except ValueError:
+                        want.append(math.nan)
+                refused += int(np.isnan(want).sum())
+                assert np.array_equal(c.loads(trails), want, equal_nan=True)
+    assert refused > 0           # the refusals were exercised

@@ -147,14 +147,14 @@ def layout_cross_slope_effort(layout: Layout, cross_slope_deg: float, reverse: b
     from typing import Any, cast
 
     from stability.slope.equilibrium import drive_report
-    from stability.study.layout_slope import layout_equilibrium
+    from stability.study.layout_slope import layout_drive_forces
 
-    try:
-        eq = layout_equilibrium(layout, cross_slope_deg, -IMPULSE_SPEED if reverse else IMPULSE_SPEED)
+    try:    # the equilibrium's drive forces (layout_equilibrium's, without its pin-friction range)
+        forces = layout_drive_forces(layout, cross_slope_deg, -IMPULSE_SPEED if reverse else IMPULSE_SPEED)
     except ValueError:
         return None
     kind = "motor" if any(w.driven for w in layout.wheels) else "handrim"
-    shim = SimpleNamespace(drive_forces=eq.drive_forces_N, cross_slope_deg=eq.cross_slope_deg)
+    shim = SimpleNamespace(drive_forces=forces, cross_slope_deg=float(cross_slope_deg))
     rep = drive_report(cast(Any, None), cast(Any, shim), kind)
     if kind == "handrim":
         return float(rep["handrim_force_difference_N"])

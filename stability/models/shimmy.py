@@ -47,7 +47,23 @@ def _function(prefix: str, case: str) -> Callable[..., Any]:
 
 
 def _stack(entries, shape: tuple[int, ...]) -> np.ndarray:
-    return np.stack([np.broadcast_to(np.asarray(e, dtype=float), shape) for e in entries], axis=-1)
+    """The entries (scalars or arrays broadcasting to ``shape``) along a last axis, as floats: each written into its
+    slot (the same values as stacking their broadcasts, without an array view per entry)."""
+    entries = list(entries)
+    out = np.empty(shape + (len(entries),))
+    for i, e in enumerate(entries):
+        out[..., i] = e
+    return out
+
+
+def _matrix(rows, shape: tuple[int, ...]) -> np.ndarray:
+    """:func:`_stack` of each row along the second-last axis: shape ``shape + (rows, columns)``."""
+    rows = [list(r) for r in rows]
+    out = np.empty(shape + (len(rows), len(rows[0]) if rows else 0))
+    for i, r in enumerate(rows):
+        for j, e in enumerate(r):
+            out[..., i, j] = e
+    return out
 
 
 def _shape(params: dict[str, Any], U: np.ndarray) -> tuple[int, ...]:
@@ -79,8 +95,7 @@ def state_matrices(case: str, params: dict[str, float], speeds: Any) -> tuple[np
     U = np.asarray(speeds, dtype=float)
     rows, col = _function("state_space", case)(*(params[k] for k in ARGUMENTS), U)
     shape = _shape(params, U)
-    A = np.stack([_stack(r, shape) for r in rows], axis=-2)
-    return A, _stack(col, shape)
+    return _matrix(rows, shape), _stack(col, shape)
 
 
 def characteristic_coefficients(case: str, params: dict[str, float], speeds: Any) -> np.ndarray:

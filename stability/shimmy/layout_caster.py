@@ -20,16 +20,29 @@ than forwards.  ``LayoutCaster(layout, k, reverse=True)`` is that caster.
 
 from __future__ import annotations
 
+import math
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass, replace
-from functools import lru_cache
 
 import numpy as np
 
 from stability import tires
 from stability.chair import Chair
+from stability.chair.model import LIMITS
 from stability.layout import Layout, static_loads
+from stability.layout.model import Caster
+from stability.layout.statics import centre_of_mass, contacts, distribute
 
 __all__ = ["LayoutCaster", "layout_casters", "CasterSource", "leading_divergence_rate"]
+
+#: The trails a caster may have, m (:class:`~stability.layout.model.Caster`'s check: the short form's range).
+_TRAIL_RANGE = LIMITS["trail"][:2]
+#: Memo of :func:`_row_loads`: per caster (by value: its layout's every field, its index and direction), the load
+#: (N) at each trail asked (m); the casters least recently asked are dropped beyond :data:`_MEMO_CASTERS`.
+_MEMO: OrderedDict[LayoutCaster, dict[float, float]] = OrderedDict()
+_MEMO_CASTERS = 64
+_MEMO_LOCK = threading.Lock()
 
 
 @dataclass(frozen=True)
@@ -118,12 +131,15 @@ class LayoutCaster:
         unknown = sorted(set(changes) - {"trail"})
         if unknown:
             raise ValueError(f"a layout caster's {unknown} cannot be replaced here; valid: ['trail']")
-        me = self._c
-        # the caster's row (the casters on the same pin line with the same trail: a left-right pair) changes
-        # together, as a chair's trail does; changing one caster of a pair would tilt the base onto three lines
-        casters = tuple(replace(c, **changes) if abs(c.x - me.x) < 1e-9 and c.trail == me.trail else c
-                        for c in self.layout.casters)
+        casters = tuple(replace(c, **changes) if self._in_row(c) else c for c in self.layout.casters)
         return LayoutCaster(replace(self.layout, casters=casters), self.index, self.reverse)
+
+    def _in_row(self, c: Caster) -> bool:
+        """Whether caster ``c`` is on this caster's row: the same pin line (same ``x``) and the same trail (a
+        left-right pair changes together, as a chair's trail does; changing one caster of a pair would tilt the base
+        onto three lines)."""
+        me = self._c
+        return abs(c.x - me.x) < 1e-9 and c.trail == me.trail
 
     def static_load(self) -> float:
         """The caster's static load, N (casters trailing backwards in reverse)."""
@@ -143,32 +159,71 @@ class LayoutCaster:
         """
         t = np.asarray(trails, dtype=float)
         uniq, inv = np.unique(t, return_inverse=True)
-        out = np.array([_load_at_trail(self, float(tr)) for tr in uniq], dtype=float)
+        out = _row_loads(self, tuple(float(tr) for tr in uniq))
         return out[inv].reshape(t.shape)
 
 
-@lru_cache(maxsize=8192)
-def _load_at_trail(caster: LayoutCaster, trail: float) -> float:
-    """Static load of ``caster`` with its row's trail set to ``trail`` (m), N; NaN where the layout would not stand.
+def _row_loads(caster: LayoutCaster, trails: tuple[float, ...]) -> np.ndarray:
+    """Static load of ``caster`` (N) with its row's trail set to each of ``trails`` (m); NaN where the layout would
+    not stand.
 
-    Memoised: a band, a chart or a summary asks for the same trails of the same (frozen, hashable) caster many
-    times over (once per speed and per estimate corner), and each answer is a statics solve of the whole layout.
-    The key is the caster by value (its layout's every field, its index and direction) and the trail.
+    The answer of :meth:`LayoutCaster.replace` then :meth:`LayoutCaster.static_load` at each trail, bit for bit,
+    without building a layout per trail: the row's contacts move to ``x - trail`` (``x + trail`` in reverse) in the
+    contact list of :func:`stability.layout.statics.contacts`, whose loads :func:`~stability.layout.statics.
+    distribute` shares as :func:`~stability.layout.static_loads` does (the centre of mass does not move with the
+    trail); a trail outside a caster's range (:class:`~stability.layout.model.Caster`'s check) or a load that is not
+    positive gives NaN, as the layout's own checks refuse it.  Trails already asked of this caster are memoised
+    (:func:`_memo`).
 
     Parameters
     ----------
     caster : LayoutCaster
-    trail : float
+    trails : tuple of float
         m.
 
     Returns
     -------
-    float
+    ndarray
+        N, one per trail.
     """
-    try:
-        return caster.replace(trail=trail).static_load()
-    except ValueError:                    # out of the caster's range, or the layout no longer stands
-        return float("nan")
+    layout = caster.layout
+    nw = len(layout.wheels)
+    row = [nw + k for k, c in enumerate(layout.casters) if caster._in_row(c)]
+    pts = contacts(layout, caster.reverse)
+    weight, centre = layout.m * layout.g, centre_of_mass(layout, caster.reverse)
+    sign = -1.0 if caster.reverse else 1.0
+    lo, hi = _TRAIL_RANGE
+    memo = _memo(caster)
+    out = np.empty(len(trails))
+    for n, tr in enumerate(trails):
+        known = memo.get(tr)
+        if known is not None:
+            out[n] = known
+            continue
+        load = math.nan
+        if math.isfinite(tr) and lo <= tr <= hi:
+            for i in row:
+                label, _, y, kv = pts[i]
+                pts[i] = (label, layout.casters[i - nw].x - sign * tr, y, kv)
+            loads = distribute(pts, weight, centre)
+            if all(x > 0 for x in loads):
+                load = float(loads[nw + caster.index])
+        out[n] = memo[tr] = load
+    return out
+
+
+def _memo(caster: LayoutCaster) -> dict[float, float]:
+    """The memo of ``caster``'s loads by trail (:data:`_MEMO`): a band, a chart or a summary asks for the same
+    trails of the same caster many times over (once per speed and per estimate corner)."""
+    with _MEMO_LOCK:
+        memo = _MEMO.get(caster)
+        if memo is None:
+            memo = _MEMO[caster] = {}
+            if len(_MEMO) > _MEMO_CASTERS:
+                _MEMO.popitem(last=False)
+        else:
+            _MEMO.move_to_end(caster)
+        return memo
 
 
 def layout_casters(layout: Layout, reverse: bool = False) -> list[LayoutCaster]:

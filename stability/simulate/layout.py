@@ -47,8 +47,8 @@ from stability.settings.run import RunSpec
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
 from stability.simulate.packing import _rolling_slot, _tire_slot, policy_code, slope_slots
 
-__all__ = ["LayoutRun", "simulate_layout", "layout_state_order", "ENDINGS", "parameter_vector", "tire_slots",
-           "check_layout_run"]
+__all__ = ["LayoutRun", "simulate_layout", "simulate_layout_runs", "layout_state_order", "ENDINGS", "parameter_vector",
+           "tire_slots", "check_layout_run"]
 
 #: Why a run ends, by the kernel's status code.
 ENDINGS = {0.0: "horizon", 1.0: "slip warnings", 2.0: "load warnings", 3.0: "non-finite"}
@@ -367,29 +367,76 @@ def simulate_layout(layout: Layout, speed: float | None = None, run: RunSpec | N
         A bad argument (named, with its value and the valid range), a shape that is not generated, or a layout
         with fewer than three contacts on the ground.
     """
-    layout, signed, run = _check_run(layout, speed, run)
-    delta0 = _caster_angles(layout, run, caster_angles_deg)
-    cfg, nrec, consts = _kernel_inputs(layout, run, motor_lag_s)
+    return _runs(layout, [speed], run, [caster_angles_deg], controller, motor_lag_s)[0]
+
+
+def simulate_layout_runs(layout: Layout, speeds: Sequence[float], run: RunSpec | None = None, *,
+                         caster_angles_deg: Sequence[Sequence[float] | None] | None = None) -> list[LayoutRun]:
+    """Runs of one layout at several speeds under one run's settings, stepped to their ends in one kernel call.
+
+    Each run is :func:`simulate_layout`'s at its speed, bit for bit: the kernel advances every run of a batch on its
+    own (:func:`stability.simulate.layout_kernel.step_layouts`); only the per-call preparation is shared (the
+    layout's parameter vector and tire slots, the run's configuration row, which do not depend on the speed).
+
+    Parameters
+    ----------
+    layout : Layout
+    speeds : sequence of float
+        Initial forward speed of each run, m/s (negative: reverse).
+    run : RunSpec, optional
+        As :func:`simulate_layout`'s (one for all runs).
+    caster_angles_deg : sequence, optional
+        Each run's initial swivel angles, deg (an entry None: :func:`simulate_layout`'s default).
+
+    Returns
+    -------
+    list of LayoutRun
+        In the order of ``speeds``.
+
+    Raises
+    ------
+    ValueError, FloatingPointError
+        As :func:`simulate_layout` (the first run in order that leaves the finite numbers is named).
+    """
+    angles = [None] * len(speeds) if caster_angles_deg is None else list(caster_angles_deg)
+    if len(angles) != len(speeds) or not len(speeds):
+        raise ValueError(f"speeds has {len(speeds)} entries and caster_angles_deg {len(angles)}, which is invalid; "
+                         "valid: at least one speed, one row of angles per speed")
+    return _runs(layout, list(speeds), run, angles, None, 0.0)
+
+
+def _runs(layout: Layout, speeds: list, run: RunSpec | None, angles: list, controller: Any,
+          motor_lag_s: float) -> list[LayoutRun]:
+    """:func:`simulate_layout` at each of ``speeds`` (with each run's ``angles``), one kernel call for all."""
+    checked = [_check_run(layout, u, run) for u in speeds]
+    layout = checked[0][0]
+    deltas = [_caster_angles(layout, r, a) for (_, _, r), a in zip(checked, angles, strict=True)]
+    # the configuration row and the layout's arrays do not depend on the speed (make_options reads none)
+    cfg, nrec, consts = _kernel_inputs(layout, checked[0][2], motor_lag_s)
     ctl = _controller_arrays(layout, controller)
     from stability.simulate import layout_kernel as k  # numba loads on first use
 
-    nc = len(layout.casters)
+    nc, R = len(layout.casters), len(speeds)
     # one run is a batch of one, stepped to its end in one call: the batch's compiled step, not a second entry
     # point that numba would compile (and optimise the whole step in) again
-    states = k.initial_state(signed, run.lateral_velocity, delta0, ctl[3].shape[0])[None, :]
-    recs = np.full((1, k.NREC + 2 * nc, nrec), np.nan)
-    statuses, warns, mzrecs = np.zeros((1, 2)), np.zeros((1, 3, 3)), np.zeros((1, nrec))
+    states = np.array([k.initial_state(s, r.lateral_velocity, d, ctl[3].shape[0])
+                       for (_, s, r), d in zip(checked, deltas, strict=True)])
+    recs = np.full((R, k.NREC + 2 * nc, nrec), np.nan)
+    statuses, warns, mzrecs = np.zeros((R, 2)), np.zeros((R, 3, 3)), np.zeros((R, nrec))
     k.step_layouts(0, int(cfg[1]), cfg, *consts, states, recs, statuses, warns, *ctl,  # type: ignore[call-arg]
                    mzrecs)
-    m, rec, status, warn, mzrec = int(states[0, k.S_NREC]), recs[0], statuses[0], warns[0], mzrecs[0]
-    if status[0] == k.STOPPED_NONFINITE:
-        raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
-                                 f"numbers at t = {status[1]:g} s")
-    settings = dict(run.to_dict(), caster_angles_deg=[float(x) for x in np.degrees(delta0)], dt_s=float(cfg[0]))
-    if controller is not None:
-        settings.update(controller=controller.name, motor_lag_s=float(motor_lag_s))
-    return _layout_run(layout, signed, rec, m, status, warn, settings, mzrec if controller is not None else None,
-                       int(cfg[2]), float(cfg[0]))
+    out = []
+    for i, ((_, signed, r), delta0) in enumerate(zip(checked, deltas, strict=True)):
+        m, status = int(states[i, k.S_NREC]), statuses[i]
+        if status[0] == k.STOPPED_NONFINITE:
+            raise FloatingPointError(f"the simulation of layout {layout.name!r} at {signed:g} m/s left the finite "
+                                     f"numbers at t = {status[1]:g} s")
+        settings = dict(r.to_dict(), caster_angles_deg=[float(x) for x in np.degrees(delta0)], dt_s=float(cfg[0]))
+        if controller is not None:
+            settings.update(controller=controller.name, motor_lag_s=float(motor_lag_s))
+        out.append(_layout_run(layout, signed, recs[i], m, status, warns[i], settings,
+                               mzrecs[i] if controller is not None else None, int(cfg[2]), float(cfg[0])))
+    return out
 
 
 def _kernel_inputs(layout: Layout, run: RunSpec, motor_lag_s: float, batch: bool = False

@@ -30,7 +30,7 @@ from stability.chair import Chair, preset
 from stability.layout.model import Layout, check_layout
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.settings.run import RunSpec
-from stability.simulate.layout import check_layout_run, simulate_layout
+from stability.simulate.layout import check_layout_run, simulate_layout_runs
 from stability.simulate.signals import time_to_level
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
@@ -102,7 +102,9 @@ def layout_summaries(layouts: Sequence[Layout], speeds: Sequence[float] | np.nda
 
     Each run's step is the critical-impulse study's for a layout (``run.dt``, cut where the layout's linear model
     needs a smaller one); every step is recorded, so that the crossings are interpolated as the compiled engine
-    interpolates them; a run stopped by the warning rule reaches the level when it stopped.
+    interpolates them; a run stopped by the warning rule reaches the level when it stopped.  The runs of one layout
+    (the same object) under one push at one step are stepped in one kernel call
+    (:func:`stability.simulate.layout.simulate_layout_runs`: each run's arithmetic is its own run's, bit for bit).
 
     Parameters
     ----------
@@ -124,20 +126,37 @@ def layout_summaries(layouts: Sequence[Layout], speeds: Sequence[float] | np.nda
     """
     sign = -1.0 if reverse else 1.0
     dt = 0.001 if run.dt == "auto" else float(run.dt)
-    peak, t_half, t_level, sim_time = (np.empty(len(layouts)) for _ in range(4))
-    for i, (lay, u, f) in enumerate(zip(layouts, speeds, forces, strict=True)):
-        signed = sign * float(u)
-        limits, _ = layout_step_limits_and_growth(lay, np.array([signed]))
-        h = float(run_steps([], [signed], dt, "exact", run.casters, limits=limits)[0])
-        r = simulate_layout(lay, signed, run.replace(push_force=float(f), dt=h, sample=h),
-                            caster_angles_deg=trailing_angles(lay, signed))
-        t, y = r.t_s, r.yaw_rate_rad_s
-        t_level[i] = time_to_level(t, y, level)
-        if r.ended in ("slip warnings", "load warnings"):
-            t_level[i] = min(t_level[i], r.end_time_s)
-        peak[i] = float(np.max(np.abs(y)))
-        t_half[i] = time_to_level(t, y, 0.5 * level)
-        sim_time[i] = float(t[-1])
+    n = len(layouts)
+    signed = sign * np.asarray(speeds, dtype=float).reshape(-1)
+    force = np.asarray(forces, dtype=float).reshape(-1)
+    if not (signed.size == force.size == n):
+        raise ValueError(f"layouts, speeds and forces have {n}, {signed.size} and {force.size} entries, which is "
+                         "invalid; valid: one speed and one force per layout")
+    # the runs of one layout (one linear model for all its speeds), then of one push and step (one kernel call)
+    groups: dict[int, list[int]] = {}
+    for i, lay in enumerate(layouts):
+        groups.setdefault(id(lay), []).append(i)
+    h = np.empty(n)
+    for idx in groups.values():
+        limits, _ = layout_step_limits_and_growth(layouts[idx[0]], signed[idx])
+        h[idx] = run_steps([], signed[idx], dt, "exact", run.casters, limits=limits)
+    batches: dict[tuple[int, float, float], list[int]] = {}
+    for i in range(n):
+        batches.setdefault((id(layouts[i]), float(force[i]), float(h[i])), []).append(i)
+    peak, t_half, t_level, sim_time = (np.empty(n) for _ in range(4))
+    for (_, f, step), idx in batches.items():
+        lay = layouts[idx[0]]
+        runs_ = simulate_layout_runs(lay, [float(signed[i]) for i in idx], run.replace(push_force=f, dt=step,
+                                                                                        sample=step),
+                                     caster_angles_deg=[trailing_angles(lay, float(signed[i])) for i in idx])
+        for i, r in zip(idx, runs_, strict=True):
+            t, y = r.t_s, r.yaw_rate_rad_s
+            t_level[i] = time_to_level(t, y, level)
+            if r.ended in ("slip warnings", "load warnings"):
+                t_level[i] = min(t_level[i], r.end_time_s)
+            peak[i] = float(np.max(np.abs(y)))
+            t_half[i] = time_to_level(t, y, 0.5 * level)
+            sim_time[i] = float(t[-1])
     return Summaries(peak, t_half, t_level, sim_time)
 
 

@@ -38,8 +38,8 @@ from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG
 from stability.slope.model import Plane
 from stability.study.veer import MAX_CASTER_SWING_DEG, plane_seen_from
 
-__all__ = ["LayoutEquilibrium", "layout_equilibrium", "drive_wheels", "LayoutPath", "layout_uncorrected_path",
-           "layout_slope_report", "layout_drive_kind", "layout_drive_report"]
+__all__ = ["LayoutEquilibrium", "layout_equilibrium", "layout_drive_forces", "drive_wheels", "LayoutPath",
+           "layout_uncorrected_path", "layout_slope_report", "layout_drive_kind", "layout_drive_report"]
 
 def drive_wheels(layout: Layout) -> tuple[int, int]:
     """The two fixed wheels whose longitudinal forces hold the line: the driven ones, else every fixed wheel.
@@ -206,6 +206,30 @@ def _guess(st: _Statics) -> np.ndarray:
     return np.array([0.0] + [back] * st.nc + [f, -f])
 
 
+def _free_equilibrium(layout: Layout, cross_slope_deg: float, speed: float, grade_deg: float) -> tuple:
+    """The statics and the free pins' equilibrium ``(psi, delta..., F_left, F_right)``, arguments checked."""
+    check_layout(layout)
+    if isinstance(speed, bool) or not isinstance(speed, (int, float)) or not (
+            SIGNED_SPEED.holds(speed)):
+        raise ValueError(f"speed={speed!r} is invalid; valid range: {SIGNED_SPEED.text('speed')} (negative: reverse)")
+    check_layout_run(RunSpec(cross_slope_deg=cross_slope_deg, grade_deg=grade_deg))   # the plane's range
+    st = _Statics(layout, Plane(cross_slope_deg, grade_deg), float(speed))
+    z, ok = st.root(np.zeros(st.nc), _guess(st))
+    if not ok:
+        raise ValueError(f"cross_slope={cross_slope_deg!r} deg: no straight-running equilibrium found for layout "
+                         f"{layout.name!r} at {speed:g} m/s (the tires cannot hold the chair on this plane)")
+    return st, z
+
+
+def layout_drive_forces(layout: Layout, cross_slope_deg: float, speed: float, grade_deg: float = 0.0
+                        ) -> tuple[float, float]:
+    """``layout_equilibrium(...).drive_forces_N`` (N, left and right; deg, m/s, deg and refusals as there), bit for
+    bit, from its free-pin solve alone (without the pin-friction range's ``2^casters`` solves)."""
+    st, z = _free_equilibrium(layout, cross_slope_deg, speed, grade_deg)
+    left, right = (float(f) for f in z[1 + st.nc:])
+    return left, right
+
+
 def layout_equilibrium(layout: Layout, cross_slope_deg: float, speed: float, grade_deg: float = 0.0
                        ) -> LayoutEquilibrium:
     """Steady straight running of a layout along the path on a plane, forward or in reverse.
@@ -230,18 +254,8 @@ def layout_equilibrium(layout: Layout, cross_slope_deg: float, speed: float, gra
     ValueError
         A bad argument (named, with its value and the valid range), or no equilibrium found.
     """
-    check_layout(layout)
-    if isinstance(speed, bool) or not isinstance(speed, (int, float)) or not (
-            SIGNED_SPEED.holds(speed)):
-        raise ValueError(f"speed={speed!r} is invalid; valid range: {SIGNED_SPEED.text('speed')} (negative: reverse)")
-    check_layout_run(RunSpec(cross_slope_deg=cross_slope_deg, grade_deg=grade_deg))   # the plane's range
-    plane = Plane(cross_slope_deg, grade_deg)
-    st = _Statics(layout, plane, float(speed))
+    st, z = _free_equilibrium(layout, cross_slope_deg, speed, grade_deg)
     free = np.zeros(st.nc)
-    z, ok = st.root(free, _guess(st))
-    if not ok:
-        raise ValueError(f"cross_slope={cross_slope_deg!r} deg: no straight-running equilibrium found for layout "
-                         f"{layout.name!r} at {speed:g} m/s (the tires cannot hold the chair on this plane)")
     _, slips, lateral, loads, _ = st.state(z, free)
     held = []
     for signs in itertools.product((1.0, -1.0), repeat=st.nc):
