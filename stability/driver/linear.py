@@ -17,6 +17,7 @@ Everything here is linear and frictionless (free casters): docs/driver.md says w
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -94,6 +95,15 @@ class _Loop:
     def abscissa(self, gains: np.ndarray) -> np.ndarray:
         return np.max(np.linalg.eigvals(self.matrix(gains)).real, axis=-1)
 
+    def abscissa_one(self, gains: np.ndarray) -> float:
+        """:meth:`abscissa` of one gain vector ``(p,)``, without the batch machinery (a search's inner call: the
+        same arithmetic and the same LAPACK call on the same matrix, so the same value to the bit)."""
+        Kc = gains @ self.C
+        n, out = self.n, self.fixed.copy()
+        out[:n, :n] = self.A - self.direct * Kc
+        out[n:, :n] = self.into_delay * Kc
+        return float(np.linalg.eigvals(out).real.max())
+
 
 def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
              order: int = PADE_ORDER) -> np.ndarray:
@@ -112,6 +122,11 @@ def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau
     return _Loop(A, B, C, tau, order).abscissa(gains)
 
 
+#: Most recent :func:`best_gains` answers kept (an entry is a few kB); see :func:`best_gains`.
+_BEST_GAINS_KEPT = 512
+_best_gains_kept: OrderedDict[tuple, tuple[np.ndarray, float]] = OrderedDict()
+
+
 def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
                log_bounds: tuple[tuple[float, float], ...] = (_LOG_KP, _LOG_KD), grid: int = 21,
                start: np.ndarray | None = None) -> tuple[np.ndarray, float]:
@@ -119,6 +134,10 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
 
     A log-spaced grid over ``log_bounds`` (or a given start, e.g. the best gains at a nearby speed), then
     Nelder-Mead from the best point (the abscissa is not smooth where two roots tie).
+
+    The search is deterministic in its inputs, so the last :data:`_BEST_GAINS_KEPT` answers are kept, keyed by the
+    inputs' exact bytes: the same plant asked again (a lane limit at each push of its range, a command and a
+    reference computing one layout's limit) returns the identical answer without a second search.
 
     Parameters
     ----------
@@ -136,12 +155,34 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
     (ndarray, float)
         The gains and the abscissa they give (1/s).
     """
+    key = (*(_exact(a) for a in (A, B, C)), float(tau), int(order),
+           tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), None if start is None else _exact(start))
+    kept = _best_gains_kept.get(key)
+    if kept is None:
+        kept = _best_gains_kept[key] = _search_gains(A, B, C, tau, order, log_bounds, grid, start)
+        while len(_best_gains_kept) > _BEST_GAINS_KEPT:
+            _best_gains_kept.popitem(last=False)
+    else:
+        _best_gains_kept.move_to_end(key)
+    return kept[0].copy(), kept[1]
+
+
+def _exact(a: np.ndarray) -> tuple:
+    """An array's shape and exact float64 bytes: a cache key that only identical inputs share."""
+    x = np.asarray(a, dtype=float)
+    return x.shape, x.tobytes()
+
+
+def _search_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int,
+                  log_bounds: tuple[tuple[float, float], ...], grid: int,
+                  start: np.ndarray | None) -> tuple[np.ndarray, float]:
+    """:func:`best_gains`'s search (grid or start, then Nelder-Mead), without the kept answers."""
     lo_b = np.array([lo for lo, _ in log_bounds])
     hi_b = np.array([hi for _, hi in log_bounds])
     loop = _Loop(A, B, C, tau, order)
 
     def f(x: np.ndarray) -> float:
-        return float(loop.abscissa(10.0 ** np.clip(x, lo_b, hi_b)[None, :])[0])
+        return loop.abscissa_one(10.0 ** np.clip(x, lo_b, hi_b))
 
     if start is None:
         axes = [np.linspace(lo, hi, grid) for lo, hi in log_bounds]
