@@ -263,7 +263,7 @@ def test_a_searchs_single_loop_is_the_batchs_and_a_kept_answer_is_the_searchs():
     """The search's one-gain abscissa is the batch's to the bit (the same matrix, the same LAPACK call), and
     :func:`best_gains` asked twice returns the uncached search's answer both times, in a fresh array each time
     (a caller changing its copy does not change the next answer)."""
-    from stability.driver.linear import _Loop, _search_gains
+    from stability.driver.loop import _Loop, _search_gains
 
     A, B, C = heading_plant(preset("ej-premier"), 1.3)
     loop = _Loop(A, B, C, 0.3, 8)
