@@ -4,6 +4,7 @@ that make it most stable (:func:`best_gains`), shared by the heading limit (:mod
 
 from __future__ import annotations
 
+import threading
 from collections import OrderedDict
 
 import numpy as np
@@ -96,6 +97,7 @@ def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau
 #: Most recent :func:`best_gains` answers kept (an entry is a few kB); see :func:`best_gains`.
 _BEST_GAINS_KEPT = 512
 _best_gains_kept: OrderedDict[tuple, tuple[np.ndarray, float]] = OrderedDict()
+_kept_lock = threading.Lock()
 
 
 def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
@@ -128,13 +130,16 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
     """
     key = (*(_exact(a) for a in (A, B, C)), float(tau), int(order),
            tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), None if start is None else _exact(start))
-    kept = _best_gains_kept.get(key)
+    with _kept_lock:
+        kept = _best_gains_kept.get(key)
+        if kept is not None:
+            _best_gains_kept.move_to_end(key)
     if kept is None:
-        kept = _best_gains_kept[key] = _search_gains(A, B, C, tau, order, log_bounds, grid, start)
-        while len(_best_gains_kept) > _BEST_GAINS_KEPT:
-            _best_gains_kept.popitem(last=False)
-    else:
-        _best_gains_kept.move_to_end(key)
+        kept = _search_gains(A, B, C, tau, order, log_bounds, grid, start)      # outside the lock: threads search
+        with _kept_lock:                                                       # in parallel (an app's requests)
+            _best_gains_kept[key] = kept
+            while len(_best_gains_kept) > _BEST_GAINS_KEPT:
+                _best_gains_kept.popitem(last=False)
     return kept[0].copy(), kept[1]
 
 
