@@ -18,6 +18,13 @@ from pathlib import Path
 
 import pytest
 
+# One BLAS thread per process, set before anything imports numpy (OpenBLAS reads it when it loads; the workers and
+# the subprocesses the tests start inherit it).  The suite's matrices are small (at most a few dozen states), so a
+# second thread buys nothing and its busy-waiting doubles the CPU time: tests/test_assist_top_speed.py took
+# 19.4 s of CPU with OpenBLAS's default threads and 8.8 s with one (user time, -n 0, 2-core machine).  A value
+# the environment already gives is kept.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 #: Largest number of workers ``-n auto`` starts.
 MAX_AUTO_WORKERS = 4
 

@@ -320,3 +320,23 @@ def test_a_drive_axle_drawn_across_its_neutral_point_makes_the_stable_speeds_unc
     out = format_comparison(c)
     assert "[0, > 20]" in out and "[<= -20, +0] m/s: NOT distinguishable" in out
     assert "[the same over the interval]" in format_comparison(narrow)
+
+
+def test_a_kept_critical_speed_is_the_searchs_for_an_equal_layout():
+    """The critical speed is kept per equal (frozen) layout and direction: a layout rebuilt field by field gets
+    the uncached search's answer exactly, each way, from the kept one; a changed field is searched again."""
+    from stability.layout.linear import _critical_speed, critical_speed
+
+    lay = dc.replace(layout_preset("mid-wheel-drive"), name="kept")
+    again = dc.replace(lay, casters=tuple(dc.replace(c) for c in lay.casters))
+    moved = dc.replace(lay, casters=(dc.replace(lay.casters[0], trail=lay.casters[0].trail + 0.01),
+                                     *lay.casters[1:]))
+    assert again == lay and again is not lay and moved != lay
+    for reverse in (False, True):
+        first = critical_speed(lay, reverse)
+        hits = _critical_speed.cache_info().hits
+        assert critical_speed(again, reverse) == first == _critical_speed.__wrapped__(lay, reverse)
+        assert _critical_speed.cache_info().hits == hits + 1
+        misses = _critical_speed.cache_info().misses
+        assert critical_speed(moved, reverse) == _critical_speed.__wrapped__(moved, reverse)
+        assert _critical_speed.cache_info().misses == misses + 1

@@ -259,6 +259,25 @@ def test_abscissa_batches():
     assert np.allclose(batch, one, rtol=0, atol=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
 
 
+def test_a_searchs_single_loop_is_the_batchs_and_a_kept_answer_is_the_searchs():
+    """The search's one-gain abscissa is the batch's to the bit (the same matrix, the same LAPACK call), and
+    :func:`best_gains` asked twice returns the uncached search's answer both times, in a fresh array each time
+    (a caller changing its copy does not change the next answer)."""
+    from stability.driver.loop import _Loop, _search_gains
+
+    A, B, C = heading_plant(preset("ej-premier"), 1.3)
+    loop = _Loop(A, B, C, 0.3, 8)
+    rng = np.random.default_rng(45)
+    for g in 10.0 ** rng.uniform([-1.0, -2.0], [4.5, 3.5], size=(50, 2)):
+        assert loop.abscissa_one(g) == loop.abscissa(g[None, :])[0]
+    bounds = ((-1.0, 4.5), (-2.0, 3.5))
+    g0, a0 = _search_gains(A, B, C, 0.3, 8, bounds, 21, None)
+    g1, a1 = best_gains(A, B, C, 0.3)
+    g1[:] = 0.0
+    g2, a2 = best_gains(A, B, C, 0.3)
+    assert a0 == a1 == a2 and g2.tolist() == g0.tolist()
+
+
 def test_with_the_assist_the_driver_limit_is_the_assisted_loops_divergence(monkeypatch):
     """With the assist on, the divergence rule reads the assisted closed loop's slowest pole: power-fwd's default
     gyro design is Hurwitz at every schedule speed (its closed-loop matrix's spectrum, here through

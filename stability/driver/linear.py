@@ -21,11 +21,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize
 
 from stability.chair import Chair
 from stability.chair.model import takes_chair
 from stability.driver.delay import PADE_ORDER, pade
+from stability.driver.loop import abscissa, best_gains, closed_loop_matrix
 from stability.driver.model import Driver
 from stability.linear import input_matrices, state_matrices
 from stability.runtime.checks import check_model, check_speed
@@ -39,124 +39,8 @@ __all__ = ["PADE_ORDER", "SPEED_RANGE_M_S", "pade", "closed_loop_matrix", "absci
 SPEED_RANGE_M_S = (HUMAN_SPEED.lo, HUMAN_SPEED.hi)
 #: Speed grid of the search (the limit is then refined between two grid speeds).
 _GRID = np.round(np.linspace(SPEED_RANGE_M_S[0], SPEED_RANGE_M_S[1], 25), 4)
-#: Operator gain search box (log10): k_p in N m/rad, k_d in N m s/rad.
-_LOG_KP, _LOG_KD = (-1.0, 4.5), (-2.0, 3.5)
 #: Limit speeds are refined to this, m/s.
 SPEED_TOL_M_S = 1e-3
-
-
-def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
-                       order: int = PADE_ORDER) -> np.ndarray:
-    """State matrix of the plant ``x' = A x + B u`` closed by ``u(t) = -(gains . C x)(t - tau)`` (Pade delay).
-
-    Parameters
-    ----------
-    A : ndarray (n, n)
-    B : ndarray (n, 1)
-    C : ndarray (p, n)
-        What the operator sees.
-    gains : ndarray (..., p)
-        Operator gains; leading axes give a batch of closed loops.
-    tau : float
-        Delay, s.
-    order : int
-        Pade order.
-
-    Returns
-    -------
-    ndarray (..., n + order, n + order)
-    """
-    return _Loop(A, B, C, tau, order).matrix(gains)
-
-
-class _Loop:
-    """The delayed loop's gain-free parts, built once per plant (a gain search asks for hundreds of gains on one);
-    :meth:`matrix` is :func:`closed_loop_matrix`'s arithmetic, operation for operation (the same to the bit)."""
-
-    def __init__(self, A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int) -> None:
-        Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
-        n, m = A.shape[0], Ad.shape[0]
-        self.A, self.C, self.n = A, C, n
-        self.direct = (B[:, 0] * float(Dd[0, 0]))[:, None]      # (n, 1): the delay's feed-through into the plant
-        self.into_delay = Bd[:, 0][:, None]                      # (m, 1)
-        self.fixed = np.zeros((n + m, n + m))                    # the gain-free blocks
-        self.fixed[:n, n:] = -B @ Cd
-        self.fixed[n:, n:] = Ad
-
-    def matrix(self, gains: np.ndarray) -> np.ndarray:
-        g = np.asarray(gains, dtype=float)
-        Kc = g @ self.C                                 # (..., n): the operator's combination of the states
-        n, out = self.n, np.broadcast_to(self.fixed, g.shape[:-1] + self.fixed.shape).copy()
-        out[..., :n, :n] = self.A - self.direct * Kc[..., None, :]
-        out[..., n:, :n] = self.into_delay * Kc[..., None, :]
-        return out
-
-    def abscissa(self, gains: np.ndarray) -> np.ndarray:
-        return np.max(np.linalg.eigvals(self.matrix(gains)).real, axis=-1)
-
-
-def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
-             order: int = PADE_ORDER) -> np.ndarray:
-    """Largest real part of the closed loop's eigenvalues (1/s): negative means stable.
-
-    Parameters
-    ----------
-    A, B, C, gains, tau, order
-        As :func:`closed_loop_matrix`.
-
-    Returns
-    -------
-    ndarray
-        One per closed loop (shape ``gains.shape[:-1]``).
-    """
-    return _Loop(A, B, C, tau, order).abscissa(gains)
-
-
-def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
-               log_bounds: tuple[tuple[float, float], ...] = (_LOG_KP, _LOG_KD), grid: int = 21,
-               start: np.ndarray | None = None) -> tuple[np.ndarray, float]:
-    """The positive operator gains that make the delayed loop most stable (smallest abscissa).
-
-    A log-spaced grid over ``log_bounds`` (or a given start, e.g. the best gains at a nearby speed), then
-    Nelder-Mead from the best point (the abscissa is not smooth where two roots tie).
-
-    Parameters
-    ----------
-    A, B, C, tau, order
-        As :func:`closed_loop_matrix` (``C`` has one row per gain).
-    log_bounds : tuple of (float, float)
-        log10 range of each gain.
-    grid : int
-        Grid points per gain (without ``start``).
-    start : ndarray, optional
-        Gains to start from instead of the grid.
-
-    Returns
-    -------
-    (ndarray, float)
-        The gains and the abscissa they give (1/s).
-    """
-    lo_b = np.array([lo for lo, _ in log_bounds])
-    hi_b = np.array([hi for _, hi in log_bounds])
-    loop = _Loop(A, B, C, tau, order)
-
-    def f(x: np.ndarray) -> float:
-        return float(loop.abscissa(10.0 ** np.clip(x, lo_b, hi_b)[None, :])[0])
-
-    if start is None:
-        axes = [np.linspace(lo, hi, grid) for lo, hi in log_bounds]
-        mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
-        values = loop.abscissa(10.0**mesh)
-        x0, v0 = mesh[int(np.argmin(values))], float(values.min())
-    else:
-        x0 = np.clip(np.log10(np.asarray(start, dtype=float)), lo_b, hi_b)
-        v0 = f(x0)
-    res = minimize(f, x0, method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1e-6, "maxiter": 400})
-    best = np.clip(res.x, lo_b, hi_b)
-    value = f(best)
-    if value > v0:
-        best, value = x0, v0
-    return 10.0**best, value
 
 
 def heading_plant(chair: Chair, speed: float, model: str = "exact") -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -12,6 +12,7 @@ other way (``delta = pi``): the linearisation about that state.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -152,7 +153,22 @@ def critical_speed(layout: Layout, reverse: bool = False) -> tuple[float, str]:
         ``(speed m/s, kind)``: kind ``"destabilising"`` (stable below, unstable above), ``"stabilising"``, or
         ``"none-stable"`` / ``"none-unstable"`` with the speed the searched range's end (a bound: no change up
         to 20 m/s).
+
+    Notes
+    -----
+    A function of the (frozen) layout and the direction alone: the last answers are kept per equal layout, so
+    the same draws searched again (a comparison at another level, a report and its figure) cost nothing.
     """
+    try:
+        hash(layout)
+    except TypeError:                                    # a field holding a list: searched without keeping it
+        return _critical_speed.__wrapped__(layout, bool(reverse))
+    return _critical_speed(layout, bool(reverse))
+
+
+@functools.lru_cache(maxsize=4096)
+def _critical_speed(layout: Layout, reverse: bool) -> tuple[float, str]:
+    """:func:`critical_speed`'s search, kept per (layout, direction)."""
     sign = -1.0 if reverse else 1.0
     U = SEARCH_SPEEDS_M_S * sign
     args = {reverse: _args(layout, reverse)}           # the same at every speed: built once for the search

@@ -1,0 +1,176 @@
+"""The driver's delayed loop on a linear plant: the closed-loop matrix, its abscissa, and the search for the gains
+that make it most stable (:func:`best_gains`), shared by the heading limit (:mod:`.linear`), the lane operator
+(:mod:`stability.study.lane`) and the tracking task (:mod:`.tracking`)."""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+
+import numpy as np
+from scipy.optimize import minimize
+
+from stability.driver.delay import PADE_ORDER, pade
+
+__all__ = ["closed_loop_matrix", "abscissa", "best_gains"]
+
+#: Operator gain search box (log10): k_p in N m/rad, k_d in N m s/rad.
+_LOG_KP, _LOG_KD = (-1.0, 4.5), (-2.0, 3.5)
+
+
+def closed_loop_matrix(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
+                       order: int = PADE_ORDER) -> np.ndarray:
+    """State matrix of the plant ``x' = A x + B u`` closed by ``u(t) = -(gains . C x)(t - tau)`` (Pade delay).
+
+    Parameters
+    ----------
+    A : ndarray (n, n)
+    B : ndarray (n, 1)
+    C : ndarray (p, n)
+        What the operator sees.
+    gains : ndarray (..., p)
+        Operator gains; leading axes give a batch of closed loops.
+    tau : float
+        Delay, s.
+    order : int
+        Pade order.
+
+    Returns
+    -------
+    ndarray (..., n + order, n + order)
+    """
+    return _Loop(A, B, C, tau, order).matrix(gains)
+
+
+class _Loop:
+    """The delayed loop's gain-free parts, built once per plant (a gain search asks for hundreds of gains on one);
+    :meth:`matrix` is :func:`closed_loop_matrix`'s arithmetic, operation for operation (the same to the bit)."""
+
+    def __init__(self, A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int) -> None:
+        Ad, Bd, Cd, Dd = pade(tau, order, copy=False)
+        n, m = A.shape[0], Ad.shape[0]
+        self.A, self.C, self.n = A, C, n
+        self.direct = (B[:, 0] * float(Dd[0, 0]))[:, None]      # (n, 1): the delay's feed-through into the plant
+        self.into_delay = Bd[:, 0][:, None]                      # (m, 1)
+        self.fixed = np.zeros((n + m, n + m))                    # the gain-free blocks
+        self.fixed[:n, n:] = -B @ Cd
+        self.fixed[n:, n:] = Ad
+
+    def matrix(self, gains: np.ndarray) -> np.ndarray:
+        g = np.asarray(gains, dtype=float)
+        Kc = g @ self.C                                 # (..., n): the operator's combination of the states
+        n, out = self.n, np.broadcast_to(self.fixed, g.shape[:-1] + self.fixed.shape).copy()
+        out[..., :n, :n] = self.A - self.direct * Kc[..., None, :]
+        out[..., n:, :n] = self.into_delay * Kc[..., None, :]
+        return out
+
+    def abscissa(self, gains: np.ndarray) -> np.ndarray:
+        return np.max(np.linalg.eigvals(self.matrix(gains)).real, axis=-1)
+
+    def abscissa_one(self, gains: np.ndarray) -> float:
+        """:meth:`abscissa` of one gain vector ``(p,)``, without the batch machinery (a search's inner call: the
+        same arithmetic and the same LAPACK call on the same matrix, so the same value to the bit)."""
+        Kc = gains @ self.C
+        n, out = self.n, self.fixed.copy()
+        out[:n, :n] = self.A - self.direct * Kc
+        out[n:, :n] = self.into_delay * Kc
+        return float(np.linalg.eigvals(out).real.max())
+
+
+def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
+             order: int = PADE_ORDER) -> np.ndarray:
+    """Largest real part of the closed loop's eigenvalues (1/s): negative means stable.
+
+    Parameters
+    ----------
+    A, B, C, gains, tau, order
+        As :func:`closed_loop_matrix`.
+
+    Returns
+    -------
+    ndarray
+        One per closed loop (shape ``gains.shape[:-1]``).
+    """
+    return _Loop(A, B, C, tau, order).abscissa(gains)
+
+
+#: Most recent :func:`best_gains` answers kept (an entry is a few kB); see :func:`best_gains`.
+_BEST_GAINS_KEPT = 512
+_best_gains_kept: OrderedDict[tuple, tuple[np.ndarray, float]] = OrderedDict()
+_kept_lock = threading.Lock()
+
+
+def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
+               log_bounds: tuple[tuple[float, float], ...] = (_LOG_KP, _LOG_KD), grid: int = 21,
+               start: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+    """The positive operator gains that make the delayed loop most stable (smallest abscissa).
+
+    A log-spaced grid over ``log_bounds`` (or a given start, e.g. the best gains at a nearby speed), then
+    Nelder-Mead from the best point (the abscissa is not smooth where two roots tie).
+
+    The search is deterministic in its inputs, so the last :data:`_BEST_GAINS_KEPT` answers are kept, keyed by the
+    inputs' exact bytes: the same plant asked again (a lane limit at each push of its range, a command and a
+    reference computing one layout's limit) returns the identical answer without a second search.
+
+    Parameters
+    ----------
+    A, B, C, tau, order
+        As :func:`closed_loop_matrix` (``C`` has one row per gain).
+    log_bounds : tuple of (float, float)
+        log10 range of each gain.
+    grid : int
+        Grid points per gain (without ``start``).
+    start : ndarray, optional
+        Gains to start from instead of the grid.
+
+    Returns
+    -------
+    (ndarray, float)
+        The gains and the abscissa they give (1/s).
+    """
+    key = (*(_exact(a) for a in (A, B, C)), float(tau), int(order),
+           tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), None if start is None else _exact(start))
+    with _kept_lock:
+        kept = _best_gains_kept.get(key)
+        if kept is not None:
+            _best_gains_kept.move_to_end(key)
+    if kept is None:
+        kept = _search_gains(A, B, C, tau, order, log_bounds, grid, start)      # outside the lock: threads search
+        with _kept_lock:                                                       # in parallel (an app's requests)
+            _best_gains_kept[key] = kept
+            while len(_best_gains_kept) > _BEST_GAINS_KEPT:
+                _best_gains_kept.popitem(last=False)
+    return kept[0].copy(), kept[1]
+
+
+def _exact(a: np.ndarray) -> tuple:
+    """An array's shape and exact float64 bytes: a cache key that only identical inputs share."""
+    x = np.asarray(a, dtype=float)
+    return x.shape, x.tobytes()
+
+
+def _search_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int,
+                  log_bounds: tuple[tuple[float, float], ...], grid: int,
+                  start: np.ndarray | None) -> tuple[np.ndarray, float]:
+    """:func:`best_gains`'s search (grid or start, then Nelder-Mead), without the kept answers."""
+    lo_b = np.array([lo for lo, _ in log_bounds])
+    hi_b = np.array([hi for _, hi in log_bounds])
+    loop = _Loop(A, B, C, tau, order)
+
+    def f(x: np.ndarray) -> float:
+        return loop.abscissa_one(10.0 ** np.clip(x, lo_b, hi_b))
+
+    if start is None:
+        axes = [np.linspace(lo, hi, grid) for lo, hi in log_bounds]
+        mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
+        values = loop.abscissa(10.0**mesh)
+        x0, v0 = mesh[int(np.argmin(values))], float(values.min())
+    else:
+        x0 = np.clip(np.log10(np.asarray(start, dtype=float)), lo_b, hi_b)
+        v0 = f(x0)
+    res = minimize(f, x0, method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1e-6, "maxiter": 400})
+    best = np.clip(res.x, lo_b, hi_b)
+    value = f(best)
+    if value > v0:
+        best, value = x0, v0
+    return 10.0**best, value
