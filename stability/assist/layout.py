@@ -351,11 +351,17 @@ def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, 
         rows.append(LayoutAssistRow(float(s), open_g, closed, gains, margin_pair(d, d.sample_time)))
     torques, full = None, None
     if torque:      # the short form's torque rows and full joystick turns, in the layout simulator
+        from stability.assist.commands import MAX_YAW_RATE, reference_command
         from stability.assist.driving import torque_requirement
         from stability.assist.top_speed import full_turn_peaks
 
-        torques = [replace(t, speed_m_s=abs(t.speed_m_s)) for t in torque_requirement(sched, tuple(speeds))]
-        full = {abs(u): v for u, v in full_turn_peaks(sched, speeds).items()}
+        rows_t = torque_requirement(sched, tuple(speeds))
+        # up to LATERAL_ACCELERATION / MAX_YAW_RATE the reference turn is the full joystick turn (the same
+        # command_run: step, duration, filter): its peak is read, not simulated again
+        same = {t.speed_m_s: t.turn_peak_N_m for t in rows_t if reference_command(abs(t.speed_m_s)) == MAX_YAW_RATE}
+        rest = full_turn_peaks(sched, [u for u in speeds if u not in same])
+        full = {abs(u): same[u] if u in same else rest[u] for u in speeds}
+        torques = [replace(t, speed_m_s=abs(t.speed_m_s)) for t in rows_t]
     ts = top_speed(_Grid(gyro, drive), [_MarginRow(abs(r.speed_m_s), r.margin_pair) for r in rows],  # type: ignore[arg-type]
                    torques, None if faults is None else [replace(f, speed_m_s=abs(f.speed_m_s)) for f in faults], full)
     return tuple(rows), ts
