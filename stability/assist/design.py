@@ -440,12 +440,14 @@ def _margins(L: Any, gm: Any, pm: Any, sm: Any, wgc: Any, *, continuous: bool, d
     # the smallest delay tau > 0 that rotates L(jw_gc) onto -1: w tau = pm (mod 360 deg); a negative pm at a
     # crossing of a stable loop needs 360 + pm of lag there (it read inf before)
     delay = (np.mod(pm[ok], 360.0) * _DEG / wgc[ok]) if ok.any() else np.array([np.inf])
-    rd = return_difference
+    rd, resp = return_difference, None
     if rd is None:
         resp = frequency_response(L, w)
         rd = float(np.min(np.abs(1.0 + resp)))
     sm_c = np.atleast_1d(np.asarray(sm, dtype=float))
-    dk = disk_margins(L, w[::3])      # 2000 frequencies, the worst one refined
+    # 2000 frequencies, the worst one refined; the dense grid's response at them when computed above (each
+    # frequency is its own solve: the same numbers as solving at the subset)
+    dk = disk_margins(L, w[::3], None if resp is None else resp[::3])
     return LoopMargins(
         gain_margin_upper=float(upper.min()) if upper.size else math.inf,
         gain_margin_lower=float(lower.max()) if lower.size else 0.0,
