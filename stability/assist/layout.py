@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import control
@@ -305,6 +305,9 @@ class LayoutAssist:
     forward_faults, reverse_faults : tuple of stability.assist.faults.FaultRow or None
         The single sensor faults of each direction at every design speed (signed), counted in its safe top speed
         (None: not asked or no rows).
+    schedules : tuple of LayoutSchedule or None
+        The forward and reverse :func:`layout_schedule` the rows were read from (None: no rows); not compared, not
+        in the mapping.
     """
 
     layout: str
@@ -319,6 +322,7 @@ class LayoutAssist:
     reverse_checks: Any = None
     forward_faults: Any = None
     reverse_faults: Any = None
+    schedules: tuple = field(default=(None, None), repr=False, compare=False)
 
     def to_mapping(self) -> dict:
         """JSON-ready dict."""
@@ -435,7 +439,7 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
                            for u in check_speeds(grid)]
                 checks[i] = layout_checks(layout, designs, drive)
     return LayoutAssist(layout.name, kind, f_rows, r_rows, f_top, r_top, drive_lever(layout),
-                        float(drive.wheel_radius), checks[0], checks[1], bad[0], bad[1])
+                        float(drive.wheel_radius), checks[0], checks[1], bad[0], bad[1], tuple(scheds))
 
 
 def format_layout_assist(a: LayoutAssist) -> str:
