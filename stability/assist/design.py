@@ -14,6 +14,7 @@ import control
 import numpy as np
 
 from stability.assist._format import json_float
+from stability.assist._memo import memo
 from stability.assist.disk import disk_margins, frequency_response
 from stability.assist.plant import Plant, measurement_matrix, plant, standstill_plant, system_name
 from stability.assist.weights import (
@@ -410,6 +411,12 @@ def loop_margins(d: Design, true_plant: Plant | None = None) -> LoopMargins:
     -------
     LoopMargins
     """
+    if true_plant is None:
+        return memo(d, ("loop",), lambda: _loop_margins(d, None))
+    return _loop_margins(d, true_plant)
+
+
+def _loop_margins(d: Design, true_plant: Plant | None) -> LoopMargins:
     L = d.loop(true_plant)
     # python-control's search for the stability-margin frequency (_poly_iw_wstab) evaluates a polynomial's
     # derivative at each of its roots; at a root near the top of the floating-point range that overflows (a numpy
