@@ -91,6 +91,32 @@ def test_stepping_the_layout_kernel_with_a_python_moment_is_the_uninterrupted_ke
         assert b.speed_m_s == u and b.ended == "horizon"
 
 
+def test_a_run_that_ends_early_leaves_the_others_of_its_batch_as_they_run_alone():
+    """A batch's runs are independent: the middle one of three, pushed by a growing moment on a cross slope,
+    stops at its eleventh load warning; the hook then sees the other two alone (``state.run`` 0 and 2) and each
+    run, the stopped one too, is the run simulated in a batch of one, bit for bit (the same arithmetic per run:
+    the hook's moment is elementwise in the run's own state)."""
+    lay = layout_preset("mid-wheel-drive")
+    spec = RunSpec(horizon=2.0, stop_on_warnings=True, cross_slope_deg=3.0, sample=0.002)
+    speeds = [1.0, 3.0, -1.5]
+    seen = []
+
+    def hook(t, s):
+        seen.append(tuple(int(i) for i in s.run))
+        return np.where(np.abs(s.u) > 2.0, 400.0 * t, 0.0) + 3.0 * s.yaw_rate - 0.01 * s.delta.sum(axis=0)
+
+    angles = [trailing_angles(lay, u) for u in speeds]
+    batch = simulate_layout_batch(lay, speeds, spec, yaw_moment=hook, caster_angles_deg=angles, motor_lag_s=0.02)
+    assert [r.ended for r in batch] == ["horizon", "load warnings", "horizon"]
+    assert sorted(set(seen)) == [(0, 1, 2), (0, 2)] and seen[-1] == (0, 2)
+    for u, a, b in zip(speeds, angles, batch, strict=True):
+        (one,) = simulate_layout_batch(lay, [u], spec, yaw_moment=hook, caster_angles_deg=[a], motor_lag_s=0.02)
+        for name in ("t_s", "heading_rad", "yaw_rate_rad_s", "x_m", "y_m", "u_m_s", "v_m_s", "caster_angle_rad",
+                     "caster_rate_rad_s", "yaw_moment_N_m"):
+            assert np.array_equal(getattr(one, name), getattr(b, name)), (u, name)
+        assert (one.ended, one.end_time_s) == (b.ended, b.end_time_s)
+
+
 def test_settling_is_about_the_final_value():
     """``2 + 3 exp(-t / 0.5)`` over 10 s settles about 2 at ``0.5 ln(1 / 0.05)`` (to the 1 ms sample, plus the
     final mean's offset from 2, 3 exp(-16) ~ 3e-7); a constant drift of 1 deg/s over 10 s never settles (it departs

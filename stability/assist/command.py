@@ -22,7 +22,7 @@ import numpy as np
 
 from stability.assist.digital import margin_curves
 from stability.assist.export_run import FirmwareReport, run_export
-from stability.assist.layout import LayoutAssist
+from stability.assist.layout import LayoutAssist, LayoutSchedule
 from stability.assist.recovery import STRONG_FORCE, minimum_torque_json
 from stability.assist.settling import recovery_rule
 from stability.assist.weights import GyroSensor, Weights
@@ -134,8 +134,8 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
                            (res.reverse, res.reverse_top, res.reverse_faults)):
         if not rows:
             continue
-        sched = layout_schedule(layout, [r.speed_m_s for r in rows], res.kind, weights=weights, drive=drive,
-                                gyro=gyro)
+        sched = _schedule_of(res, rows, res.kind) or layout_schedule(layout, [r.speed_m_s for r in rows], res.kind,
+                                                                     weights=weights, drive=drive, gyro=gyro)
         figs.append(figures.figure_margin_pair(sched, margin_curves([r.speed_m_s for r in rows],
                                                                     [r.margin_pair for r in rows])))
         if top is not None:
@@ -148,6 +148,13 @@ def _write_layout_pdf(layout: Layout, res: LayoutAssist, weights: Weights, drive
     write_pdf(figs, path, title=f"stability.assist: {res.kind} LQR for {layout.name}")
 
 
+def _schedule_of(res: LayoutAssist, rows: tuple, kind: str) -> LayoutSchedule | None:
+    """The schedule ``res`` read ``rows`` (its forward or reverse rows) from, when it is of design ``kind`` (the
+    one :func:`~stability.assist.layout.layout_schedule` call on the same options; None: build it)."""
+    sched = res.schedules[0 if rows is res.forward else 1]
+    return sched if sched is not None and rows and res.kind == kind else None
+
+
 def _layout_firmware(args: argparse.Namespace, layout: Layout, res: LayoutAssist, weights: Weights,
                      drive: DriveTrain, gyro: GyroSensor) -> FirmwareReport:
     """``--export-c`` on a layout: the gyro schedule of the one direction asked
@@ -158,7 +165,8 @@ def _layout_firmware(args: argparse.Namespace, layout: Layout, res: LayoutAssist
     from stability.assist.layout_checks import layout_vector_loop
 
     rows, top = (res.forward, res.forward_top) if res.forward else (res.reverse, res.reverse_top)
-    sched = layout_schedule(layout, [r.speed_m_s for r in rows], "gyro", weights=weights, drive=drive, gyro=gyro)
+    sched = _schedule_of(res, rows, "gyro") or layout_schedule(layout, [r.speed_m_s for r in rows], "gyro",
+                                                               weights=weights, drive=drive, gyro=gyro)
     report = run_export(sched, args.export_c, args.q_format, seed=args.seed, top=top,
                         closed_loop=layout_vector_loop(layout, sched))
     if report.warning:

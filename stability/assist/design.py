@@ -14,6 +14,7 @@ import control
 import numpy as np
 
 from stability.assist._format import json_float
+from stability.assist._memo import memo
 from stability.assist.disk import disk_margins, frequency_response
 from stability.assist.plant import Plant, measurement_matrix, plant, standstill_plant, system_name
 from stability.assist.weights import (
@@ -410,6 +411,12 @@ def loop_margins(d: Design, true_plant: Plant | None = None) -> LoopMargins:
     -------
     LoopMargins
     """
+    if true_plant is None:
+        return memo(d, ("loop",), lambda: _loop_margins(d, None))
+    return _loop_margins(d, true_plant)
+
+
+def _loop_margins(d: Design, true_plant: Plant | None) -> LoopMargins:
     L = d.loop(true_plant)
     # python-control's search for the stability-margin frequency (_poly_iw_wstab) evaluates a polynomial's
     # derivative at each of its roots; at a root near the top of the floating-point range that overflows (a numpy
@@ -440,12 +447,14 @@ def _margins(L: Any, gm: Any, pm: Any, sm: Any, wgc: Any, *, continuous: bool, d
     # the smallest delay tau > 0 that rotates L(jw_gc) onto -1: w tau = pm (mod 360 deg); a negative pm at a
     # crossing of a stable loop needs 360 + pm of lag there (it read inf before)
     delay = (np.mod(pm[ok], 360.0) * _DEG / wgc[ok]) if ok.any() else np.array([np.inf])
-    rd = return_difference
+    rd, resp = return_difference, None
     if rd is None:
         resp = frequency_response(L, w)
         rd = float(np.min(np.abs(1.0 + resp)))
     sm_c = np.atleast_1d(np.asarray(sm, dtype=float))
-    dk = disk_margins(L, w[::3])      # 2000 frequencies, the worst one refined
+    # 2000 frequencies, the worst one refined; the dense grid's response at them when computed above (each
+    # frequency is its own solve: the same numbers as solving at the subset)
+    dk = disk_margins(L, w[::3], None if resp is None else resp[::3])
     return LoopMargins(
         gain_margin_upper=float(upper.min()) if upper.size else math.inf,
         gain_margin_lower=float(lower.max()) if lower.size else 0.0,

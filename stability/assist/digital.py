@@ -17,7 +17,7 @@ import control
 import numpy as np
 from scipy.linalg import expm
 
-from stability.assist.design import LOOP_INPUT, LOOP_OUTPUT, Design, LoopMargins, _margins, loop_margins
+from stability.assist.design import LOOP_INPUT, LOOP_OUTPUT, Design, LoopMargins, _margins, loop_margins, memo
 from stability.assist.disk import frequency_response
 from stability.assist.plant import system_name
 
@@ -117,6 +117,13 @@ def discrete_margins(d: Design, sample_time: float | None = None,
     -------
     LoopMargins
     """
+    if controller is None:      # the design's own sampled controller: once per design and sample time
+        return memo(d, ("discrete", None if sample_time is None else float(sample_time)),
+                    lambda: _discrete_margins(d, sample_time, None))
+    return _discrete_margins(d, sample_time, controller)
+
+
+def _discrete_margins(d: Design, sample_time: float | None, controller: control.StateSpace | None) -> LoopMargins:
     L = discrete_loop(d, sample_time, controller)
     T = float(L.dt)
     A, B, C = np.asarray(L.A), np.asarray(L.B)[:, 0], np.asarray(L.C)[0]

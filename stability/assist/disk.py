@@ -78,14 +78,14 @@ def frequency_response(L: Any, w: Any) -> np.ndarray:
     return (X[:, :, 0] @ C[0]) + D[0, 0]
 
 
-def _alpha(L: Any, w: np.ndarray) -> np.ndarray:
-    """``2 |1 + L| / |1 - L|`` at the frequencies ``w`` (inf where ``L = 1``)."""
-    Lw = frequency_response(L, w)
+def _alpha(L: Any, w: np.ndarray, response: np.ndarray | None = None) -> np.ndarray:
+    """``2 |1 + L| / |1 - L|`` at the frequencies ``w`` (inf where ``L = 1``; ``response``: ``L`` there if known)."""
+    Lw = frequency_response(L, w) if response is None else response
     with np.errstate(divide="ignore"):
         return 2.0 * np.abs(1.0 + Lw) / np.abs(1.0 - Lw)
 
 
-def disk_margins(L: Any, w: np.ndarray) -> DiskMargins:
+def disk_margins(L: Any, w: np.ndarray, response: np.ndarray | None = None) -> DiskMargins:
     """Balanced disk margin of the SISO loop ``L`` (nominal closed loop assumed stable).
 
     ``alpha = min 2 |1 + L| / |1 - L|`` (the module's closed form, python-control's :func:`control.disk_margins`
@@ -98,12 +98,14 @@ def disk_margins(L: Any, w: np.ndarray) -> DiskMargins:
         Continuous or discrete (then ``w`` up to the Nyquist frequency ``pi / dt``).
     w : ndarray
         Increasing frequencies (rad/s).
+    response : ndarray, optional
+        :func:`frequency_response` of ``L`` at ``w`` when the caller has it (complex, the shape of ``w``).
 
     Returns
     -------
     DiskMargins
     """
-    dm = _alpha(L, w)
+    dm = _alpha(L, w, response)
     i = int(np.argmin(dm))
     fine = np.linspace(w[max(i - 1, 0)], w[min(i + 1, len(w) - 1)], 401)
     dm_f = _alpha(L, fine)

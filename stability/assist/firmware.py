@@ -265,6 +265,7 @@ class FirmwareController:
     def __init__(self, tables: FirmwareTables, runs: int = 1) -> None:
         self.t = tables
         self.runs = int(runs)
+        self._at: tuple[np.ndarray, tuple[np.ndarray, ...]] | None = None    # the last speeds and their tables
         self.reset()
 
     def reset(self) -> None:
@@ -344,7 +345,10 @@ class FirmwareController:
             ``tau`` (left wheel ``+tau``, right ``-tau``), N m.
         """
         t = self.t
-        dphi, gam, kint, kpsi, ff = self.tables_at(speed)
+        sp = np.asarray(speed, dtype=float)
+        if self._at is None or not np.array_equal(sp, self._at[0]):     # the speeds changed: interpolate again
+            self._at = (sp.copy(), self.tables_at(sp))
+        dphi, gam, kint, kpsi, ff = self._at[1]
         g = np.broadcast_to(np.asarray(gyro, dtype=float), (self.runs,))
         w = np.broadcast_to(np.asarray(wheel, dtype=float), (self.runs,))
         c = np.broadcast_to(np.asarray(command, dtype=float), (self.runs,))

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import control
@@ -305,6 +305,9 @@ class LayoutAssist:
     forward_faults, reverse_faults : tuple of stability.assist.faults.FaultRow or None
         The single sensor faults of each direction at every design speed (signed), counted in its safe top speed
         (None: not asked or no rows).
+    schedules : tuple of LayoutSchedule or None
+        The forward and reverse :func:`layout_schedule` the rows were read from (None: no rows); not compared, not
+        in the mapping.
     """
 
     layout: str
@@ -319,6 +322,7 @@ class LayoutAssist:
     reverse_checks: Any = None
     forward_faults: Any = None
     reverse_faults: Any = None
+    schedules: tuple = field(default=(None, None), repr=False, compare=False)
 
     def to_mapping(self) -> dict:
         """JSON-ready dict."""
@@ -335,12 +339,10 @@ class LayoutAssist:
                 "reverse_faults": None if self.reverse_faults is None else [f.to_dict() for f in self.reverse_faults]}
 
 
-def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, drive: DriveTrain, gyro: GyroSensor,
-          estimator: EstimatorWeights, faults: Sequence[Any] | None = None, torque: bool = False
-          ) -> tuple[tuple[LayoutAssistRow, ...], TopSpeed | None]:
-    if not speeds:
+def _rows(sched: LayoutSchedule | None, speeds: Sequence[float], faults: Sequence[Any] | None = None,
+          torque: bool = False) -> tuple[tuple[LayoutAssistRow, ...], TopSpeed | None]:
+    if sched is None or not speeds:
         return (), None
-    sched = layout_schedule(layout, speeds, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
     by_speed = dict(zip((float(u) for u in sched.speeds), sched.designs, strict=True))
     rows = []
     for s in speeds:
@@ -351,12 +353,18 @@ def _rows(layout: Layout, speeds: Sequence[float], kind: str, weights: Weights, 
         rows.append(LayoutAssistRow(float(s), open_g, closed, gains, margin_pair(d, d.sample_time)))
     torques, full = None, None
     if torque:      # the short form's torque rows and full joystick turns, in the layout simulator
+        from stability.assist.commands import MAX_YAW_RATE, reference_command
         from stability.assist.driving import torque_requirement
         from stability.assist.top_speed import full_turn_peaks
 
-        torques = [replace(t, speed_m_s=abs(t.speed_m_s)) for t in torque_requirement(sched, tuple(speeds))]
-        full = {abs(u): v for u, v in full_turn_peaks(sched, speeds).items()}
-    ts = top_speed(_Grid(gyro, drive), [_MarginRow(abs(r.speed_m_s), r.margin_pair) for r in rows],  # type: ignore[arg-type]
+        rows_t = torque_requirement(sched, tuple(speeds))
+        # up to LATERAL_ACCELERATION / MAX_YAW_RATE the reference turn is the full joystick turn (the same
+        # command_run: step, duration, filter): its peak is read, not simulated again
+        same = {t.speed_m_s: t.turn_peak_N_m for t in rows_t if reference_command(abs(t.speed_m_s)) == MAX_YAW_RATE}
+        rest = full_turn_peaks(sched, [u for u in speeds if u not in same])
+        full = {abs(u): same[u] if u in same else rest[u] for u in speeds}
+        torques = [replace(t, speed_m_s=abs(t.speed_m_s)) for t in rows_t]
+    ts = top_speed(_Grid(sched.gyro, sched.drive), [_MarginRow(abs(r.speed_m_s), r.margin_pair) for r in rows],  # type: ignore[arg-type]
                    torques, None if faults is None else [replace(f, speed_m_s=abs(f.speed_m_s)) for f in faults], full)
     return tuple(rows), ts
 
@@ -407,27 +415,31 @@ def layout_assist(layout: Layout, speeds: Sequence[float], kind: str = "gyro", *
     drive = drive or DriveTrain()
     fwd = sorted(set(float(u) for u in U if u > 0))
     rev = sorted(set(float(u) for u in U if u < 0) | ({-u for u in fwd} if reverse else set()), key=abs)
+    # one schedule per direction, read by the fault runs, the rows and top speed, and the checks
+    scheds = [layout_schedule(layout, grid, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
+              if grid else None for grid in (fwd, rev)]
     bad: list[Any] = [None, None]
     if faults:
         from stability.assist.faults import fault_runs
 
-        for i, grid in enumerate((fwd, rev)):
-            if grid:
-                bad[i] = tuple(fault_runs(layout_schedule(layout, grid, kind, weights=weights, drive=drive, gyro=gyro,
-                                                          estimator=estimator), seed=seed))
-    f_rows, f_top = _rows(layout, fwd, kind, weights, drive, gyro, estimator, bad[0], check)
-    r_rows, r_top = _rows(layout, rev, kind, weights, drive, gyro, estimator, bad[1], check)
+        bad = [None if sc is None else tuple(fault_runs(sc, seed=seed)) for sc in scheds]
+    f_rows, f_top = _rows(scheds[0], fwd, bad[0], check)
+    r_rows, r_top = _rows(scheds[1], rev, bad[1], check)
     checks: list[Any] = [None, None]
     if check:
         from stability.assist.layout_checks import check_speeds, layout_checks
 
         for i, grid in enumerate((fwd, rev)):
-            if grid:
-                designs = [layout_design(layout, u, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
+            sc = scheds[i]
+            if sc is not None:
+                # a check speed on the grid has the schedule's design (the same layout_design call)
+                on_grid = dict(zip((float(u) for u in sc.speeds), sc.designs, strict=True))
+                designs = [on_grid[u] if u in on_grid else
+                           layout_design(layout, u, kind, weights=weights, drive=drive, gyro=gyro, estimator=estimator)
                            for u in check_speeds(grid)]
                 checks[i] = layout_checks(layout, designs, drive)
     return LayoutAssist(layout.name, kind, f_rows, r_rows, f_top, r_top, drive_lever(layout),
-                        float(drive.wheel_radius), checks[0], checks[1], bad[0], bad[1])
+                        float(drive.wheel_radius), checks[0], checks[1], bad[0], bad[1], tuple(scheds))
 
 
 def format_layout_assist(a: LayoutAssist) -> str:

@@ -37,14 +37,28 @@ class LayoutReading:
         The casters' trailing angle, rad (0 forward, pi in reverse).
     """
 
-    __slots__ = ("yaw_rate", "v", "chair_states")
+    __slots__ = ("_state", "_trail")
 
     def __init__(self, state: Any, trail: float) -> None:
-        self.yaw_rate = float(state.yaw_rate[0])
-        self.v = float(state.v[0])
-        deltas = np.asarray(state.delta, dtype=float)[:, 0] - trail
-        rates = np.asarray(state.delta_rate, dtype=float)[:, 0]
-        self.chair_states = [self.v, self.yaw_rate] + [x for pair in zip(deltas, rates, strict=True) for x in pair]
+        # read when the controller asks (at its samples, one step in several): the batch's arrays are its own
+        self._state, self._trail = state, trail
+
+    @property
+    def yaw_rate(self) -> float:
+        """rad/s."""
+        return float(self._state.yaw_rate[0])
+
+    @property
+    def v(self) -> float:
+        """m/s."""
+        return float(self._state.v[0])
+
+    @property
+    def chair_states(self) -> list[float]:
+        """``v, r``, then per caster its angle from its trailing angle (rad) and its rate (rad/s)."""
+        deltas = np.asarray(self._state.delta, dtype=float)[:, 0] - self._trail
+        rates = np.asarray(self._state.delta_rate, dtype=float)[:, 0]
+        return [self.v, self.yaw_rate] + [x for pair in zip(deltas, rates, strict=True) for x in pair]
 
 
 def layout_command_result(sched: Any, speed: float, ctl: DigitalController, *,
