@@ -223,8 +223,32 @@ def _free_equilibrium(layout: Layout, cross_slope_deg: float, speed: float, grad
 
 def layout_drive_forces(layout: Layout, cross_slope_deg: float, speed: float, grade_deg: float = 0.0
                         ) -> tuple[float, float]:
-    """``layout_equilibrium(...).drive_forces_N`` (N, left and right; deg, m/s, deg and refusals as there), bit for
-    bit, from its free-pin solve alone (without the pin-friction range's ``2^casters`` solves)."""
+    """The drive forces of :func:`layout_equilibrium`, bit for bit, from its free-pin solve alone.
+
+    The same numbers as ``layout_equilibrium(...).drive_forces_N`` without the pin-friction range's ``2^casters``
+    further root solves (the advisor's cross-slope effort reads only the forces).
+
+    Parameters
+    ----------
+    layout : Layout
+        Any generated shape with two drive wheels (:func:`drive_wheels`).
+    cross_slope_deg : float
+        Cross slope, deg (falling to the right +; |phi| <= 15).
+    speed : float
+        Speed along the path, m/s; negative: reverse.
+    grade_deg : float
+        Grade, deg (uphill +).
+
+    Returns
+    -------
+    tuple of float
+        Drive forces of the left and right wheels along the path, N.
+
+    Raises
+    ------
+    ValueError
+        As :func:`layout_equilibrium` (inputs out of range, no equilibrium).
+    """
     st, z = _free_equilibrium(layout, cross_slope_deg, speed, grade_deg)
     left, right = (float(f) for f in z[1 + st.nc:])
     return left, right
