@@ -24,9 +24,10 @@ from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
 from stability.settings.reference import LEVEL
 from stability.simulate import kernel_choice as _kc
 from stability.simulate.controller import SampledController
+from stability.simulate.hooked import hooked_steps
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, n_steps
 from stability.simulate.packing import Packed, policy_code, slope_slots
-from stability.simulate.results import ChairState, RunStats, SimulationResult, warning_table
+from stability.simulate.results import RunStats, SimulationResult, warning_table
 
 __all__ = ["RECORDS", "STATS_LEVELS", "PackedRuns", "run_compiled", "run_summaries", "raise_non_finite",
            "use_kernel"]
@@ -319,67 +320,16 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
         _launch(k, threads, n_runs, (0, n_steps(opts), *args))
         return rec, stats, warn, status, counts
     cfg[k.EXTERNAL_MZ] = 1.0
+    lanes = None if _kc.choice() == "scalar" else functools.partial(_lanes_step, args, n_runs)
     with first_use("wchair"):
-        _hooked_steps(k, opts, args, state, status, k.variant(cfg, ctl[0]), batch)
+        hooked_steps(k, opts, args, state, status, k.variant(cfg, ctl[0]), batch, lanes)
     return rec, stats, warn, status, counts
 
 
-def _hooked_steps(k: Any, opts: Options, args: tuple, state: np.ndarray, status: np.ndarray, var: tuple[int, int],
-                  batch: bool) -> None:
-    """The kernel stepped one step at a time on this thread, the Python ``opts.yaw_moment`` sampled in between
-    (:func:`_launch_runs`'s kernel arguments ``args`` after the steps, among them ``state`` and ``status``; ``var``:
-    the runs' :func:`kernel.variant`; ``batch``: as :func:`run_compiled`'s).
-
-    Per step only what changes is done: the runs still going are found again only when the kernel stopped one
-    (their count of set stop codes, which the kernel sets once, changed), the hook's moments are broadcast only
-    when their shape differs, and the scalar kernel's specialisation is found once (:func:`_serial_entry`); the
-    kernel's arithmetic and the hook's inputs are the same as stepping through :func:`kernel.call_model` each step.
-    """
-    hook, dt, n_runs = opts.yaw_moment, opts.dt, state.shape[0]
-    stop_codes = status[:, 0:3:2]       # a run's stop codes (the warning rule or a level; a refused tire input)
-    stopped, going = 0, np.arange(n_runs)
-    going.flags.writeable = False       # handed to the hook as ``state.run`` until a run stops
-    everyone = True
-    scalar = _kc.choice() == "scalar"
-    step_runs: Any = None
-    for step in range(n_steps(opts)):
-        n_stopped = int(np.count_nonzero(stop_codes))
-        if n_stopped != stopped:        # a run stopped at the last step: the runs still going change
-            stopped, going = n_stopped, np.flatnonzero((status[:, 0] == 0.0) & (status[:, 2] == 0.0))
-            going.flags.writeable = False
-            everyone = False
-            if going.size == 0:
-                break
-        if batch:
-            st = (state[:, :10] if everyone else state[going, :10]).T.copy()    # each state a row of a fresh copy
-            mz = np.asarray(hook(step * dt, ChairState._make([*st, going])), dtype=float)
-            if mz.shape != going.shape:
-                mz = np.broadcast_to(mz, going.shape)
-            if everyone:
-                state[:, k.ST_MZ] = mz
-            else:
-                state[going, k.ST_MZ] = mz
-        else:
-            state[0, k.ST_MZ] = float(hook(step * dt, ChairState._make([*state[going[0], :10].tolist(), 0])))
-        if not scalar:
-            with kernel_entry_guard():
-                _kc.run_lanes(step, step + 1, args, 1, n_runs)
-        elif step_runs is None:
-            k.call_model(k.run_serial, var, step, step + 1, *args)
-            step_runs = _serial_entry(k, var, (step, step + 1, *args))
-        else:
-            step_runs(step, step + 1, *args)
-
-
-def _serial_entry(k: Any, var: tuple[int, int], args: tuple) -> Any:
-    """:func:`kernel.run_serial`'s specialisation that ``kernel.call_model(run_serial, var, *args)`` has just
-    called (its memo of compiled entry points, by its own key: the variant and the arguments' numba type
-    fingerprints), to call with arguments of the same types without finding it again each step (~4 us of a
-    step); ``call_model`` itself when the memo does not hold it."""
-    from numba._dispatcher import compute_fingerprint
-
-    fn = getattr(k, "_ENTRIES", {}).get((k.run_serial, var, tuple(map(compute_fingerprint, args))))
-    return fn if fn is not None else functools.partial(k.call_model, k.run_serial, var)
+def _lanes_step(args: tuple, n_runs: int, step: int) -> None:
+    """Step ``step`` of every run on the lanes kernel (a Python yaw-moment input's steps), under the entry guard."""
+    with kernel_entry_guard():
+        _kc.run_lanes(step, step + 1, args, 1, n_runs)
 
 
 def run_summaries(chairs: Sequence[Chair], speeds: np.ndarray, opts: Options, *, forces: np.ndarray | None = None,
