@@ -45,3 +45,23 @@ def test_runs_stopping_at_different_times_leave_the_others_as_they_run_alone():
         expected = [i for i, s in enumerate(stops) if t <= s + 0.5 * dt]    # half a step: the times' rounding
         assert going.tolist() == expected, t
     assert seen[-1][0] == max(stops)
+
+
+def test_a_hooked_run_finds_the_kernels_specialisation_once(monkeypatch):
+    """The step-by-step loop resolves the scalar kernel's specialisation through ``kernel.call_model`` at the first
+    step only and calls it directly after (the per-step cost the loop was rid of); a change to call_model's memo
+    would silently fall back to one call_model per step, which this counts.  The run's numbers do not depend on it
+    (the first test)."""
+    from stability.simulate import kernel
+
+    calls = []
+    real = kernel.call_model
+
+    def counted(entry, var, *args):
+        calls.append(entry)
+        return real(entry, var, *args)
+
+    monkeypatch.setattr(kernel, "call_model", counted)
+    (run,) = simulate_batch(EJ, [1.0], RunSpec(horizon=0.05, model="thesis", friction_law="kinetic"),
+                            yaw_moment=lambda t, s: 0.0, progress=False)
+    assert len(run.t) == 6 and calls == [kernel.run_serial]     # 0.05 s recorded every 0.01 s (a batch)
