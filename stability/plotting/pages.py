@@ -99,7 +99,10 @@ def finish(fig: Figure, top: float = 0.90, *, left: float = 0.065, right: float 
 def plain_text(fig: Figure) -> Figure:
     """Draw every text of ``fig`` as typed, never as mathtext (a name from a user's file is never markup).
 
-    Call it once the figure is drawn (titles, labels, legends and captions made).
+    Call it once the figure is drawn (titles, labels, legends and captions made).  The walk makes each axis's
+    ticks for its current locations (the draw reuses them) so that their labels too are drawn as typed; a walk
+    that skips the ticks not yet made only moves their cost to the draw (a layout run's figure: plot and PDF
+    0.19 s either way) and leaves the labels made there parsing mathtext.
 
     Parameters
     ----------
