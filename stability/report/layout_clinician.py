@@ -12,7 +12,7 @@ The sheet's words and drawing are the short form's (:func:`stability.report.clin
 - the doubling time: ``ln 2`` over the layout's linear growth rate (:func:`stability.layout.linear.growth_rates`,
   free frictionless casters), as :func:`stability.linear.divergence` gives the short form's;
 - the cross slope: ``python -m stability.slope``'s answer for the layout
-  (:func:`stability.study.layout_slope.layout_slope_report`) at the reference speed, the uncorrected turn with
+  (:func:`stability.study.layout_slope_report.layout_slope_report`) at the reference speed, the uncorrected turn with
   frictionless pins as the short form's;
 - the pins: every caster's pin friction, row by row; the tip angles: the layout's ISO 7176-1 angles by direction
   (:func:`stability.layout.statics.tip_angles`);
@@ -92,7 +92,7 @@ def layout_slope_effort(layout: Layout, speed: float = REFERENCE_SPEED) -> Slope
     SlopeEffort or None
         None when the layout has no left and right drive wheel pair or the slope has no equilibrium.
     """
-    from stability.study.layout_slope import layout_slope_report
+    from stability.study.layout_slope_report import layout_slope_report
 
     try:
         data, _ = layout_slope_report(layout, CLINIC_SLOPE_DEG, speed)

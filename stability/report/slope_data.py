@@ -209,7 +209,7 @@ def layout_slope_section(layout: Any, speed: float, slopes=SLOPES, path_slope: f
     grade_deg : float
         Grade, deg (uphill +).
     drive : {"auto", "handrim", "motor"}
-        As :func:`stability.study.layout_slope.layout_drive_kind`.
+        As :func:`stability.study.layout_slope_report.layout_drive_kind`.
     sim_time : float
         Report time of the uncorrected run, s.
 
@@ -217,12 +217,8 @@ def layout_slope_section(layout: Any, speed: float, slopes=SLOPES, path_slope: f
     -------
     LayoutSlopeSection
     """
-    from stability.study.layout_slope import (
-        layout_drive_kind,
-        layout_drive_report,
-        layout_equilibrium,
-        layout_uncorrected_path,
-    )
+    from stability.study.layout_slope import layout_equilibrium, layout_uncorrected_path
+    from stability.study.layout_slope_report import layout_drive_kind, layout_drive_report
 
     kind = layout_drive_kind(layout, drive)
     ok, eqs, refused = [], [], []

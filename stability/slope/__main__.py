@@ -1,7 +1,7 @@
 """``python -m stability.slope``: holding moment, equilibrium and uncorrected turn on a cross slope.
 
 A wheel layout (``--chair mid-wheel-drive``, a ``[[wheel]]`` file) or a negative ``--speed`` (reverse, any chair)
-is answered by the layout model (:func:`stability.study.layout_slope.layout_slope_report`).
+is answered by the layout model (:func:`stability.study.layout_slope_report.layout_slope_report`).
 """
 
 from __future__ import annotations
@@ -99,7 +99,7 @@ def _schemes_verdict(sim: dict, t_end: float) -> str:
 def _run_layout(a: argparse.Namespace) -> int:
     """A wheel layout, or any chair in reverse: the layout model's statics and the layout simulator."""
     from stability import __version__
-    from stability.study.layout_slope import layout_slope_report
+    from stability.study.layout_slope_report import layout_slope_report
 
     layout = load_layout(a.chair, a.set)
     data, lines = layout_slope_report(layout, a.cross_slope, a.speed, a.grade, a.sim_time, a.drive,
