@@ -55,6 +55,8 @@ def hooked_steps(k: Any, opts: Options, args: tuple, state: np.ndarray, status: 
         ``lanes(step)`` steps every run one step on the lanes kernel; None: the scalar kernel.
     """
     hook, dt, n_runs = opts.yaw_moment, opts.dt, state.shape[0]
+    if hook is None:
+        raise ValueError("yaw_moment=None is invalid; valid: a callable yaw_moment(t, state) for a hooked run")
     stop_codes = status[:, 0:3:2]       # a run's stop codes (the warning rule or a level; a refused tire input)
     stopped, going = 0, np.arange(n_runs)
     going.flags.writeable = False       # handed to the hook as ``state.run`` until a run stops
@@ -70,7 +72,7 @@ def hooked_steps(k: Any, opts: Options, args: tuple, state: np.ndarray, status: 
                 break
         if batch:
             st = (state[:, :10] if everyone else state[going, :10]).T.copy()    # each state a row of a fresh copy
-            mz = np.asarray(hook(step * dt, ChairState._make([*st, going])), dtype=float)
+            mz = np.asarray(hook(step * dt, ChairState._make([*st, going])), dtype=np.float64)
             if mz.shape != going.shape:
                 mz = np.broadcast_to(mz, going.shape)
             if everyone:
