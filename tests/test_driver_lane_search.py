@@ -34,8 +34,15 @@ _HI = np.array([hi for _, hi in _LOG_BOUNDS])
 #: 0.25-3 m/s): at most 0.018 1/s, mean 0.001 (E&J 1.25 m/s: 0.004).
 _CUSP_RESIDUAL_1_S = 0.02
 
+#: The known defect (stability.study.lane.LANE_STARTS): the lane limits still use the single Nelder-Mead run,
+#: which misses the cusp; these invariants fail on it until the driver model's choice is made.
+_SINGLE_RUN = pytest.mark.xfail(strict=True, reason="known defect: lane_gains still uses the single-run search "
+                                "(LANE_STARTS, LANE_RESTARTS = 1, 0), which misses the most stable loop by up to "
+                                "0.54 1/s (E&J 1.25 m/s, 0.3 s)")
 
-@pytest.mark.parametrize(("name", "speed"), [("ej-premier", 1.25), ("revised", 0.5), ("power-fwd", 0.25)])
+
+@pytest.mark.parametrize(("name", "speed"), [pytest.param("ej-premier", 1.25, marks=_SINGLE_RUN), ("revised", 0.5),
+                                             ("power-fwd", 0.25)])
 def test_the_returned_abscissa_is_at_most_every_grid_points_and_random_points(name, speed):
     """The returned abscissa <= the abscissa at each of the 11^3 grid points and at 2000 seeded log-uniform random
     triples in the box.  Error model: the grid inequality is exact (the grid's best point starts a run, a run never
@@ -57,6 +64,7 @@ def test_the_returned_abscissa_is_at_most_every_grid_points_and_random_points(na
     assert np.all(g.gains > 0)
 
 
+@_SINGLE_RUN
 def test_the_search_finds_the_known_better_point():
     """E&J Premier, 1.25 m/s, 0.3 s: a point of abscissa -0.540 1/s exists (module docstring); the search returns
     at most that plus its residual at the cusp (0.02 1/s; observed 0.004), where the single run returned -0.0007."""
@@ -82,6 +90,7 @@ def test_the_restarted_search_reaches_the_double_root(lam, tau):
     assert g[0] == pytest.approx(math.exp(lam * tau - 1.0) / tau, rel=1e-5)
 
 
+@_SINGLE_RUN
 def test_the_linear_lane_limit_never_falls():
     """E&J Premier, 0.3 s, on the lane limit's speeds: the search's abscissa is at most the single run's at every
     speed (exactly: the single run is one of its candidates), so the first speed where it is >= 0 (the lane

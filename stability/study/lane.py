@@ -64,8 +64,13 @@ _LOG_BOUNDS = ((-1.0, 4.0), (-1.0, 4.5), (-2.0, 3.5))
 #: Nelder-Mead starts (the best grid points) and fresh-simplex restarts of the lane operator's gain search
 #: (:func:`stability.driver.loop.best_gains`): the most stable loop is a cusp a few hundredths of a decade wide
 #: that one run from the best point of the 11^3 grid missed by up to 0.54 1/s (E&J Premier, 1.25 m/s, 0.3 s);
-#: six starts restarted up to six times come within 0.02 1/s of a 60-start search on 27 cases.
-LANE_STARTS, LANE_RESTARTS = 6, 6
+#: six starts restarted up to six times come within 0.02 1/s of a 60-start search on 27 cases.  KNOWN DEFECT, left
+#: open: the lane limits still use the single run (1, 0), because the corrected gains move the nonlinear lane limits
+#: by up to 0.3 m/s either way (E&J 0.3 s 1.32 -> 1.50 m/s; power-fwd from above 3 to 0.94 m/s, its peaks at the
+#: lane's edge) and make the limit rise with the push (2 N s 1.15 < 4 N s 1.50 m/s): whether the driver is the
+#: sharp-notch optimum or a robust one is a modelling decision not yet made.  tests/test_driver_lane_search.py
+#: marks the invariants the single run breaks as strict expected failures.
+LANE_STARTS, LANE_RESTARTS = 1, 0
 
 
 def lane_plant(chair: Chair, speed: float, model: str = "exact") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -128,6 +133,9 @@ class LaneGains:
 def lane_gains(chair: Chair, speed: float, driver: Driver | None = None, model: str = "exact",
                order: int = PADE_ORDER) -> LaneGains:
     """The positive lane-operator gains that make the linear delayed loop most stable at ``speed``.
+
+    Known defect: with :data:`LANE_STARTS`, :data:`LANE_RESTARTS` = 1, 0 the search is one Nelder-Mead run from
+    the best grid point, which can miss the most stable loop (a narrow cusp) by up to 0.54 1/s; see there.
 
     Parameters
     ----------
