@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from stability.simulate.going import GoingRuns
 from stability.simulate.options import Options, n_steps
 from stability.simulate.results import ChairState
 
@@ -54,31 +55,18 @@ def hooked_steps(k: Any, opts: Options, args: tuple, state: np.ndarray, status: 
     lanes : callable, optional
         ``lanes(step)`` steps every run one step on the lanes kernel; None: the scalar kernel.
     """
-    hook, dt, n_runs = opts.yaw_moment, opts.dt, state.shape[0]
+    hook, dt = opts.yaw_moment, opts.dt
     if hook is None:
         raise ValueError("yaw_moment=None is invalid; valid: a callable yaw_moment(t, state) for a hooked run")
-    stop_codes = status[:, 0:3:2]       # a run's stop codes (the warning rule or a level; a refused tire input)
-    stopped, going = 0, np.arange(n_runs)
-    going.flags.writeable = False       # handed to the hook as ``state.run`` until a run stops
-    everyone = True
+    runs = GoingRuns(status[:, 0:3:2])  # a run's stop codes: the warning rule or a level; a refused tire input
     step_runs: Callable[..., Any] | None = None
     for step in range(n_steps(opts)):
-        n_stopped = int(np.count_nonzero(stop_codes))
-        if n_stopped != stopped:        # a run stopped at the last step: the runs still going change
-            stopped, going = n_stopped, np.flatnonzero((status[:, 0] == 0.0) & (status[:, 2] == 0.0))
-            going.flags.writeable = False
-            everyone = False
-            if going.size == 0:
-                break
+        if not runs.update():
+            break
+        going = runs.index
         if batch:
-            st = (state[:, :10] if everyone else state[going, :10]).T.copy()    # each state a row of a fresh copy
-            mz = np.asarray(hook(step * dt, ChairState._make([*st, going])), dtype=np.float64)
-            if mz.shape != going.shape:
-                mz = np.broadcast_to(mz, going.shape)
-            if everyone:
-                state[:, k.ST_MZ] = mz
-            else:
-                state[going, k.ST_MZ] = mz
+            st = (state[:, :10] if runs.everyone else state[going, :10]).T.copy()  # each state a row of a fresh copy
+            runs.store(state, k.ST_MZ, hook(step * dt, ChairState._make([*st, going])))
         else:
             state[0, k.ST_MZ] = float(hook(step * dt, ChairState._make([*state[going[0], :10].tolist(), 0])))
         if lanes is not None:

@@ -15,6 +15,7 @@ import numpy as np
 
 from stability.layout.model import Layout
 from stability.settings.run import RunSpec
+from stability.simulate.going import GoingRuns
 from stability.simulate.layout import (
     LayoutRun,
     _caster_angles,
@@ -108,31 +109,18 @@ def simulate_layout_batch(layout: Layout, speeds: Sequence[float], run: RunSpec 
     recs = np.full((R, k.NREC + 2 * nc, nrec), np.nan)
     status, warn, mzrec = np.zeros((R, 2)), np.zeros((R, 3, 3)), np.zeros((R, nrec))
     args = (cfg, *consts, states, recs, status, warn, *ctl, mzrec)
-    ended = status[:, 0]                # the kernel sets a run's code once, when it ends (0: still going)
-    going, stopped = np.arange(R), 0
-    going.flags.writeable = False     # handed to the hook as ``state.run`` at every step until a run ends
-    everyone = True
+    runs = GoingRuns(status[:, 0])     # the kernel sets a run's code once, when it ends (0: still going)
     d0, d1, d2 = k.NSTATE, k.NSTATE + nc, k.NSTATE + 2 * nc
     dt = float(cfg[0])
     step_layouts: Callable[..., Any] = k.step_layouts
     for step in range(int(cfg[1])):
-        n_stopped = int(np.count_nonzero(ended))
-        if n_stopped != stopped:        # a run ended at the last step: the runs still going change
-            stopped, going = n_stopped, np.flatnonzero(ended == 0.0)
-            going.flags.writeable = False
-            everyone = False
-            if going.size == 0:
-                break
+        if not runs.update():
+            break
+        going = runs.index
         # the hook's arrays: a copy of the rows still going each step (a hook may keep them)
-        st = states.copy() if everyone else states[going]
-        m = np.asarray(yaw_moment(step * dt, LayoutState(st[:, 0], st[:, 1], st[:, 2], st[:, 4], st[:, 5], st[:, 3],
-                                                         st[:, d0:d1].T, st[:, d1:d2].T, going)), dtype=float)
-        if m.shape != going.shape:
-            m = np.broadcast_to(m, going.shape)
-        if everyone:
-            states[:, k.S_CMD] = m
-        else:
-            states[going, k.S_CMD] = m
+        st = states.copy() if runs.everyone else states[going]
+        runs.store(states, k.S_CMD, yaw_moment(step * dt, LayoutState(st[:, 0], st[:, 1], st[:, 2], st[:, 4], st[:, 5],
+                                                                    st[:, 3], st[:, d0:d1].T, st[:, d1:d2].T, going)))
         step_layouts(step, step + 1, *args)
         if step == 0:
             step_layouts = _compiled(k.step_layouts, (0, 1, *args))
