@@ -21,9 +21,12 @@ import sys
 # Ctrl-C, SIGTERM and SIGHUP are handled from the first line (stability.runtime.interrupts)
 _argv0 = (sys.argv or [""])[0]
 if _argv0 == "-m" or _argv0.replace("\\", "/").rsplit("/", 1)[-1] in ("stability", "stability.exe"):
-    from stability.runtime import interrupts
+    import os
+
+    from stability.runtime import blas, interrupts
 
     interrupts.install_early()
+    blas.one_thread_for_commands(os.environ, sys.modules)   # before numpy loads OpenBLAS (stability.runtime.blas)
 
 from importlib import import_module  # noqa: E402
 from typing import Any  # noqa: E402
