@@ -335,8 +335,32 @@ def test_a_kept_critical_speed_is_the_searchs_for_an_equal_layout():
     for reverse in (False, True):
         first = critical_speed(lay, reverse)
         hits = _critical_speed.cache_info().hits
-        assert critical_speed(again, reverse) == first == _critical_speed.__wrapped__(lay, reverse)
+        assert critical_speed(again, reverse) == first == _critical_speed.__wrapped__(lay, reverse, ())
         assert _critical_speed.cache_info().hits == hits + 1
         misses = _critical_speed.cache_info().misses
-        assert critical_speed(moved, reverse) == _critical_speed.__wrapped__(moved, reverse)
+        assert critical_speed(moved, reverse) == _critical_speed.__wrapped__(moved, reverse, ())
         assert _critical_speed.cache_info().misses == misses + 1
+
+
+def test_a_kept_critical_speed_follows_a_replaced_registered_tire():
+    """A wheel's tire is a name: after the name is registered again with another tire, the critical speed is
+    searched again (the uncached search's answer), not read from the answer kept for the old tire."""
+    from stability import tires
+    from stability.layout.linear import _critical_speed, critical_speed
+
+    base = layout_preset("mid-wheel-drive")
+    soft, stiff = tires.get("linear:2"), tires.get("linear:20")
+    try:
+        tires.register("KEPT-TEST", soft)
+        lay = dc.replace(base, name="tire kept", casters=tuple(dc.replace(c, tire="KEPT-TEST") for c in base.casters))
+        critical_speed(lay)
+        critical_speed(lay)                         # the same tire: the kept answer
+        info = _critical_speed.cache_info()
+        tires.register("KEPT-TEST", stiff, replace=True)
+        assert critical_speed(lay) == _critical_speed.__wrapped__(lay, False, ())
+        # searched again, not read from the old tire's entry (on the presets the layout's linear stability change
+        # does not depend on the tires' stiffness, so the miss is what shows it)
+        assert _critical_speed.cache_info().misses == info.misses + 1
+        assert _critical_speed.cache_info().hits == info.hits
+    finally:
+        tires.unregister("KEPT-TEST")

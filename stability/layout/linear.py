@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from stability import tires
 from stability.layout.model import Layout, takes_layout
 from stability.layout.statics import cornering_stiffnesses
 from stability.models.layout import linear_layout_matrices, supported_shapes
@@ -162,13 +163,37 @@ def critical_speed(layout: Layout, reverse: bool = False) -> tuple[float, str]:
     try:
         hash(layout)
     except TypeError:                                    # a field holding a list: searched without keeping it
-        return _critical_speed.__wrapped__(layout, bool(reverse))
-    return _critical_speed(layout, bool(reverse))
+        return _critical_speed.__wrapped__(layout, bool(reverse), ())
+    # a wheel's tire is a name: what it names is part of the key (a registered name replaced, a tire file changed)
+    return _critical_speed(layout, bool(reverse), tuple(_TireKey(tires.get(w.tire))
+                                                        for w in (*layout.wheels, *layout.casters)))
+
+
+class _TireKey:
+    """A tire as a key part: equal to an equal tire when tires compare by value (hashable), else only to the
+    same object, held so that its identity is not reused while the key lives."""
+
+    __slots__ = ("tire", "by_value", "_hash")
+
+    def __init__(self, tire: object) -> None:
+        self.tire = tire
+        try:
+            self._hash, self.by_value = hash(tire), True
+        except TypeError:                                # a tire holding arrays: by identity
+            self._hash, self.by_value = id(tire), False
+
+    def __hash__(self) -> int:
+        return self._hash
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, _TireKey):
+            return NotImplemented
+        return other.tire is self.tire or (self.by_value and other.by_value and bool(other.tire == self.tire))
 
 
 @functools.lru_cache(maxsize=4096)
-def _critical_speed(layout: Layout, reverse: bool) -> tuple[float, str]:
-    """:func:`critical_speed`'s search, kept per (layout, direction)."""
+def _critical_speed(layout: Layout, reverse: bool, _tires: tuple) -> tuple[float, str]:
+    """:func:`critical_speed`'s search, kept per (layout, direction, the tires its names resolve to)."""
     sign = -1.0 if reverse else 1.0
     U = SEARCH_SPEEDS_M_S * sign
     args = {reverse: _args(layout, reverse)}           # the same at every speed: built once for the search
