@@ -17,7 +17,8 @@ import control
 import numpy as np
 from scipy.linalg import expm
 
-from stability.assist.design import LOOP_INPUT, LOOP_OUTPUT, Design, LoopMargins, _margins, loop_margins, memo
+from stability.assist._memo import memo
+from stability.assist.design import LOOP_INPUT, LOOP_OUTPUT, Design, LoopMargins, _margins, loop_margins
 from stability.assist.disk import frequency_response
 from stability.assist.plant import system_name
 
