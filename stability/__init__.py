@@ -23,10 +23,11 @@ _argv0 = (sys.argv or [""])[0]
 if _argv0 == "-m" or _argv0.replace("\\", "/").rsplit("/", 1)[-1] in ("stability", "stability.exe"):
     import os
 
-    from stability.runtime import blas, interrupts
+    from stability.runtime import blas, collector, interrupts
 
     interrupts.install_early()
     blas.one_thread_for_commands(os.environ, sys.modules)   # before numpy loads OpenBLAS (stability.runtime.blas)
+    collector.defer_for_imports()          # the imports' objects frozen when the command starts (runtime.collector)
 
 from importlib import import_module  # noqa: E402
 from typing import Any  # noqa: E402

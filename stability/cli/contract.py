@@ -58,7 +58,7 @@ from stability.cli.options import (
     run_from_args,
 )
 from stability.cli.options import subparsers as _subparsers
-from stability.runtime import interrupts, notes, progress, readfiles
+from stability.runtime import collector, interrupts, notes, progress, readfiles
 from stability.runtime.checks import MAX_SPEED, MIN_SPEED
 from stability.runtime.files import distinct_notes, json_text, with_tire_range
 
@@ -264,6 +264,9 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     * output piped into a reader that stops early (``| head``): quiet, status 1;
     * ``--debug`` (added to every parser): the traceback instead of the one line.
 
+    In a command line's process the objects the imports made are frozen out of the garbage collector's
+    traversals first (:func:`stability.runtime.collector.settle`; nothing in a library or test process).
+
     Parameters
     ----------
     parser : argparse.ArgumentParser
@@ -280,6 +283,7 @@ def run(parser: argparse.ArgumentParser, argv: Sequence[str] | None,
     int
         Exit status: ``body``'s (0 for ``None``), 1, 2 or 130 as listed above.
     """
+    collector.settle()
     with interrupts.interruptible(), readfiles.session():
         return _run(parser, argv, body, errors)
 
