@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import threading
 from collections import OrderedDict
+from collections.abc import Callable
 
 import numpy as np
 from scipy.optimize import minimize
@@ -102,11 +103,17 @@ _kept_lock = threading.Lock()
 
 def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int = PADE_ORDER,
                log_bounds: tuple[tuple[float, float], ...] = (_LOG_KP, _LOG_KD), grid: int = 21,
-               start: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+               start: np.ndarray | None = None, starts: int = 1, restarts: int = 0) -> tuple[np.ndarray, float]:
     """The positive operator gains that make the delayed loop most stable (smallest abscissa).
 
     A log-spaced grid over ``log_bounds`` (or a given start, e.g. the best gains at a nearby speed), then
-    Nelder-Mead from the best point (the abscissa is not smooth where two roots tie).
+    Nelder-Mead (in log10 of the gains) from the best ``starts`` points (the abscissa is not smooth where two
+    roots tie).  The most stable loop sits where several roots meet, a cusp of the abscissa only a few hundredths of
+    a decade wide that a coarse grid does not see and at which one Nelder-Mead run stalls, often far from the
+    cusp's bottom (three gains: the lane operator of :mod:`stability.study.lane`).  With ``restarts`` each run is
+    begun again from where it stopped, on a fresh simplex of half a grid step on every gain, while that improves
+    the abscissa; the best of all runs and of the single run without restarts (the search with ``starts=1,
+    restarts=0``) is returned, never worse than either, nor than the best grid point (or ``start``).
 
     The search is deterministic in its inputs, so the last :data:`_BEST_GAINS_KEPT` answers are kept, keyed by the
     inputs' exact bytes: the same plant asked again (a lane limit at each push of its range, a command and a
@@ -122,6 +129,11 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
         Grid points per gain (without ``start``).
     start : ndarray, optional
         Gains to start from instead of the grid.
+    starts : int
+        Grid points, best first, Nelder-Mead starts from (>= 1; ignored with ``start``).
+    restarts : int
+        Fresh-simplex restarts of each run at most (0: one run on scipy's default simplex, 5 % of each log10
+        gain).
 
     Returns
     -------
@@ -129,14 +141,16 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
         The gains and the abscissa they give (1/s).
     """
     key = (*(_exact(a) for a in (A, B, C)), float(tau), int(order),
-           tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), None if start is None else _exact(start))
+           tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), None if start is None else _exact(start),
+           int(starts), int(restarts))
     with _kept_lock:
         kept = _best_gains_kept.get(key)
         if kept is not None:
             _best_gains_kept.move_to_end(key)
     if kept is None:
-        kept = _search_gains(A, B, C, tau, order, log_bounds, grid, start)      # outside the lock: threads search
-        with _kept_lock:                                                       # in parallel (an app's requests)
+        # outside the lock: threads search in parallel (an app's requests)
+        kept = _search_gains(A, B, C, tau, order, log_bounds, grid, start, starts, restarts)
+        with _kept_lock:
             _best_gains_kept[key] = kept
             while len(_best_gains_kept) > _BEST_GAINS_KEPT:
                 _best_gains_kept.popitem(last=False)
@@ -151,8 +165,10 @@ def _exact(a: np.ndarray) -> tuple:
 
 def _search_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int,
                   log_bounds: tuple[tuple[float, float], ...], grid: int,
-                  start: np.ndarray | None) -> tuple[np.ndarray, float]:
+                  start: np.ndarray | None, starts: int = 1, restarts: int = 0) -> tuple[np.ndarray, float]:
     """:func:`best_gains`'s search (grid or start, then Nelder-Mead), without the kept answers."""
+    if int(starts) != starts or starts < 1 or int(restarts) != restarts or restarts < 0:
+        raise ValueError(f"starts={starts!r}, restarts={restarts!r} are invalid; valid: starts >= 1, restarts >= 0")
     lo_b = np.array([lo for lo, _ in log_bounds])
     hi_b = np.array([hi for _, hi in log_bounds])
     loop = _Loop(A, B, C, tau, order)
@@ -164,13 +180,34 @@ def _search_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order
         axes = [np.linspace(lo, hi, grid) for lo, hi in log_bounds]
         mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
         values = loop.abscissa(10.0**mesh)
-        x0, v0 = mesh[int(np.argmin(values))], float(values.min())
+        order_ = np.argsort(values, kind="stable")[:int(starts)]
+        firsts = [(mesh[i], float(values[i])) for i in order_]
     else:
         x0 = np.clip(np.log10(np.asarray(start, dtype=float)), lo_b, hi_b)
-        v0 = f(x0)
-    res = minimize(f, x0, method="Nelder-Mead", options={"xatol": 1e-3, "fatol": 1e-6, "maxiter": 400})
-    best = np.clip(res.x, lo_b, hi_b)
-    value = f(best)
-    if value > v0:
-        best, value = x0, v0
+        firsts = [(x0, f(x0))]
+    step = 0.5 * (hi_b - lo_b) / max(int(grid) - 1, 1)          # half a grid step per gain, log10
+    best, value = _polish(f, *firsts[0], lo_b, hi_b, step, 0)        # the single run's search, as it always was
+    for x0, v0 in firsts if restarts else ():                           # ... and never worse than it
+        x, v = _polish(f, x0, v0, lo_b, hi_b, step, int(restarts))
+        if v < value:
+            best, value = x, v
     return 10.0**best, value
+
+
+def _polish(f: Callable[[np.ndarray], float], x0: np.ndarray, v0: float, lo_b: np.ndarray, hi_b: np.ndarray,
+            step: np.ndarray, restarts: int) -> tuple[np.ndarray, float]:
+    """Nelder-Mead on ``f`` (log10 gains) from ``x0`` (where ``f`` is ``v0``), restarted up to ``restarts`` times
+    on a fresh simplex of edges ``step`` while that lowers ``f`` by more than the stopping tolerance; the best point
+    seen (``x0`` if nothing beats it) and its value."""
+    options = ({"xatol": 1e-3, "fatol": 1e-6, "maxiter": 400} if restarts == 0 else
+               {"xatol": 1e-4, "fatol": 1e-7, "maxiter": 400 * len(x0)})
+    x, v = x0, v0
+    for _ in range(restarts + 1):
+        simplex = None if restarts == 0 else np.vstack([x, x + np.diag(step)])
+        res = minimize(f, x, method="Nelder-Mead", options={**options, "initial_simplex": simplex})
+        xn = np.clip(res.x, lo_b, hi_b)
+        vn = f(xn)
+        if (vn > v) if restarts == 0 else not vn < v - options["fatol"]:     # restarted while it improves
+            break
+        x, v = xn, vn
+    return x, v
