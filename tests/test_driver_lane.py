@@ -139,7 +139,7 @@ def test_bad_speed_grid_is_refused():
 def test_a_gentle_driver_is_trapped_by_the_stuck_casters_and_a_firmer_one_is_not():
     """E&J Premier at 1 m/s, tau 0.3 s: the most stable linear gains (stable linear loop, abscissa < 0) cannot
     break the friction-held casters loose in time, and the chair weaves out of the lane; the same driver pushing
-    harder (the family's larger gains) keeps it.  Regression values for the peaks (0.95 m and 0.05 m today): the
+    harder (the family's larger gains) keeps it.  Regression values for the peaks (2.18 m and 0.29 m today): the
     assertion is the side of the lane each run ends on."""
     g = lane_gains(EJ, 1.0, Driver(0.3))
     assert g.abscissa_1_s < 0
