@@ -30,19 +30,12 @@ EJ = chair_mod.preset("ej-premier")
 _LO = np.array([lo for lo, _ in _LOG_BOUNDS])
 _HI = np.array([hi for _, hi in _LOG_BOUNDS])
 
-#: The search's residual at the cusp: its answer against the 60-start search's on 27 cases (3 chairs, 0.3 s,
-#: 0.25-3 m/s): at most 0.018 1/s, mean 0.001 (E&J 1.25 m/s: 0.004).
+#: The search's residual at the cusp: its answer against the 60-start search's on 60 cases (ej-premier, revised and
+#: power-fwd at 0.3 s, ej-premier at 0.2 and 0.5 s; 0.25-3 m/s): at most 0.018 1/s, mean 0.001 (E&J 1.25 m/s: 0.004).
 _CUSP_RESIDUAL_1_S = 0.02
 
-#: The known defect (stability.study.lane.LANE_STARTS): the lane limits still use the single Nelder-Mead run,
-#: which misses the cusp; these invariants fail on it until the driver model's choice is made.
-_SINGLE_RUN = pytest.mark.xfail(strict=True, reason="known defect: lane_gains still uses the single-run search "
-                                "(LANE_STARTS, LANE_RESTARTS = 1, 0), which misses the most stable loop by up to "
-                                "0.54 1/s (E&J 1.25 m/s, 0.3 s)")
 
-
-@pytest.mark.parametrize(("name", "speed"), [pytest.param("ej-premier", 1.25, marks=_SINGLE_RUN), ("revised", 0.5),
-                                             ("power-fwd", 0.25)])
+@pytest.mark.parametrize(("name", "speed"), [("ej-premier", 1.25), ("revised", 0.5), ("power-fwd", 0.25)])
 def test_the_returned_abscissa_is_at_most_every_grid_points_and_random_points(name, speed):
     """The returned abscissa <= the abscissa at each of the 11^3 grid points and at 2000 seeded log-uniform random
     triples in the box.  Error model: the grid inequality is exact (the grid's best point starts a run, a run never
@@ -64,7 +57,6 @@ def test_the_returned_abscissa_is_at_most_every_grid_points_and_random_points(na
     assert np.all(g.gains > 0)
 
 
-@_SINGLE_RUN
 def test_the_search_finds_the_known_better_point():
     """E&J Premier, 1.25 m/s, 0.3 s: a point of abscissa -0.540 1/s exists (module docstring); the search returns
     at most that plus its residual at the cusp (0.02 1/s; observed 0.004), where the single run returned -0.0007."""
@@ -86,13 +78,10 @@ def test_the_restarted_search_reaches_the_double_root(lam, tau):
     (~100x)."""
     A, B, C = np.array([[lam]]), np.array([[1.0]]), np.array([[1.0]])
     g, a = best_gains(A, B, C, tau, log_bounds=((-3.0, 3.0),), grid=11, starts=6, restarts=6)
-    # error model: the runs' xatol 1e-4 decade on the double-root cusp and the order-8 Pade approximant; observed
-    # 7e-8 1/s (root) and 4e-8 relative (gain); 1e-5 is ~100x that
     assert a == pytest.approx(lam - 1.0 / tau, abs=1e-5)
     assert g[0] == pytest.approx(math.exp(lam * tau - 1.0) / tau, rel=1e-5)
 
 
-@_SINGLE_RUN
 def test_the_linear_lane_limit_never_falls():
     """E&J Premier, 0.3 s, on the lane limit's speeds: the search's abscissa is at most the single run's at every
     speed (exactly: the single run is one of its candidates), so the first speed where it is >= 0 (the lane
