@@ -169,11 +169,12 @@ def lane_gains(chair: Chair, speed: float, driver: Driver | None = None, model: 
     speed = float(check_speed(speed))
     s = DELAY_SPREAD if spread is None else float(spread)
     A, B, C = lane_plant(chair, speed, model)
-    search = {"log_bounds": _LOG_BOUNDS, "grid": 11, "starts": LANE_STARTS, "restarts": LANE_RESTARTS}
     if s == 0.0:
-        g, a = best_gains(A, B, C, d.reaction_time_s, order, **search)
+        g, a = best_gains(A, B, C, d.reaction_time_s, order, log_bounds=_LOG_BOUNDS, grid=11, starts=LANE_STARTS,
+                          restarts=LANE_RESTARTS)
     else:
-        g, a = robust_gains(A, B, C, delay_spread(d.reaction_time_s, s), order, **search)
+        g, a = robust_gains(A, B, C, delay_spread(d.reaction_time_s, s), order, log_bounds=_LOG_BOUNDS, grid=11,
+                            starts=LANE_STARTS, restarts=LANE_RESTARTS)
     return LaneGains(speed, d.reaction_time_s, float(g[0]), float(g[1]), float(g[2]), float(a))
 
 
