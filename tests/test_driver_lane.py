@@ -175,12 +175,15 @@ def test_a_harder_push_never_lets_the_driver_go_faster():
     """The lane limit over half, once and twice the reference push (the range ``critical_speed`` prints): more
     disturbance is not easier, so the limit does not rise with the push.  E&J Premier, 0.5 s driver: the robust
     operator (``lane_gains``'s default) holds it; the notch operator (``spread=0``) failed it, 0.38 m/s after 2 N s
-    against 1.01 m/s after 4 N s."""
+    against 1.01 m/s after 4 N s.  Error model: each limit is resolved to the bisection's tolerance (the last kept
+    speed, within ``tol`` below the first failure), so two limits are ordered to within ``tol``."""
+    from stability.driver.linear import SPEED_TOL_M_S
     from stability.study.lane import lane_text
 
+    tol = 10 * SPEED_TOL_M_S                              # lane_limit's default bisection tolerance
     rng = _ej_range(0.5)
     by = _by_push(rng)
-    assert by[0].speed_m_s >= by[1].speed_m_s >= by[2].speed_m_s
+    assert by[0].speed_m_s >= by[1].speed_m_s - tol and by[1].speed_m_s >= by[2].speed_m_s - tol
     assert rng.low_m_s == by[2].speed_m_s and rng.high_m_s == by[0].speed_m_s
     assert "after 2 N s" in lane_text(rng) and "after 8 N s" in lane_text(rng)
 

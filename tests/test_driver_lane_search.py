@@ -117,8 +117,8 @@ def test_the_robust_search_returns_at_most_every_grid_points_and_random_points(n
     of its gains, and at most the worst abscissa at each of the 11^3 grid points and at 2000 seeded log-uniform
     random triples.  Error model: the first two are exact (the same arithmetic; the grid's best point starts a
     run and a run never returns worse than its start); the random points' best lies 0.17-0.79 1/s above the
-    answer on these cases, and the search's residual on this objective is 3e-7 1/s (six starts against 30 on 20
-    cases): no tolerance."""
+    answer on these cases, and the search's residual on this objective is 5e-7 1/s (two starts against 30 on 35
+    cases, stability.study.lane.ROBUST_STARTS): no tolerance."""
     chair = chair_mod.preset(name)
     g = lane_gains(chair, speed, Driver(tau))
     A, B, C = lane_plant(chair, speed)

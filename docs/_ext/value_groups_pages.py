@@ -255,6 +255,7 @@ LANE_OPERATOR_CASES = (*((n, t, f) for n, t in (("ej-premier", 0.3), ("ej-premie
 def driver_operator() -> dict:
     """The lane operator decision's measurements: the linear margin over the delay and the nonlinear lane limits
     of the three operators, with the push and delay monotonicity."""
+    import contextlib
     from unittest import mock
 
     from stability.driver.loop import _Loop, delay_spread
@@ -262,8 +263,8 @@ def driver_operator() -> dict:
     from stability.settings.run import RunSpec
     from stability.study import lane
 
-    out: dict = {"spread_pct": f"{100 * lane.DELAY_SPREAD:g}", "starts": str(lane.LANE_STARTS),
-                 "restarts": str(lane.LANE_RESTARTS)}
+    out: dict = {"spread_pct": f"{100 * lane.DELAY_SPREAD:g}", "starts": str(lane.ROBUST_STARTS),
+                 "restarts": str(lane.ROBUST_RESTARTS)}
     # the linear margin at tau and tau -+ LANE_OPERATOR_DTAU
     name, speed, tau = LANE_OPERATOR_LINEAR
     A, B, C = lane.lane_plant(_preset(name), speed)
@@ -279,7 +280,7 @@ def driver_operator() -> dict:
                 "notch": {"DELAY_SPREAD": 0.0}, "robust": {}}
     limits: dict = {}
     for key, patch in variants.items():
-        with mock.patch.multiple(lane, **patch):
+        with mock.patch.multiple(lane, **patch) if patch else contextlib.nullcontext():
             for name, tau, f in LANE_OPERATOR_CASES:
                 spec = RunSpec()
                 lim = lane.lane_limit(_preset(name), Driver(tau), spec.replace(push_force=f * spec.push_force))
