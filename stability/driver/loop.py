@@ -1,6 +1,7 @@
 """The driver's delayed loop on a linear plant: the closed-loop matrix, its abscissa, and the search for the gains
 that make it most stable (:func:`best_gains`), shared by the heading limit (:mod:`.linear`), the lane operator
-(:mod:`stability.study.lane`) and the tracking task (:mod:`.tracking`)."""
+(:mod:`stability.study.lane`) and the tracking task (:mod:`.tracking`); and the same search on the worst abscissa
+over a spread of the delay (:func:`robust_gains`, the lane operator's)."""
 
 from __future__ import annotations
 
