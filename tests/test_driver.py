@@ -271,7 +271,7 @@ def test_a_searchs_single_loop_is_the_batchs_and_a_kept_answer_is_the_searchs():
     for g in 10.0 ** rng.uniform([-1.0, -2.0], [4.5, 3.5], size=(50, 2)):
         assert loop.abscissa_one(g) == loop.abscissa(g[None, :])[0]
     bounds = ((-1.0, 4.5), (-2.0, 3.5))
-    g0, a0 = _search_gains(A, B, C, 0.3, 8, bounds, 21, None)
+    g0, a0 = _search_gains(loop, bounds, 21, None)
     g1, a1 = best_gains(A, B, C, 0.3)
     g1[:] = 0.0
     g2, a2 = best_gains(A, B, C, 0.3)

