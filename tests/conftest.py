@@ -10,6 +10,7 @@ everything in one process.
 from __future__ import annotations
 
 import contextlib
+import gc
 import io
 import os
 import subprocess
@@ -69,6 +70,15 @@ def pytest_sessionstart(session):
         if proc.returncode:
             tail = err.strip().splitlines()[-1:] or ["(no message)"]
             sys.stderr.write(f"kernel warm-up {group!r} failed (status {proc.returncode}): {tail[0]}\n")
+
+
+def pytest_collection_finish(session):
+    """After collection: move every object alive now (the imported stack, the collected items) to the collector's
+    permanent generation (:func:`gc.freeze`), so that the full collections the tests' allocations trigger, and
+    pytest's own at the end, no longer traverse them.  Nothing the tests compute changes (a collection only frees
+    unreachable cycles); full collections cost about half as much: 0.88 -> 0.38-0.49 s of CPU over six of the
+    heaviest test files in one process (gc.callbacks timing)."""
+    gc.freeze()
 
 
 @pytest.fixture(scope="session")
