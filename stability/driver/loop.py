@@ -206,8 +206,8 @@ def best_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, tau: float, order: i
     key = (*(_exact(a) for a in (A, B, C)), float(tau), int(order),
            tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), None if start is None else _exact(start),
            int(starts), int(restarts))
-    return _kept_search(key, lambda: _search_gains(_Loop(A, B, C, tau, order), log_bounds, grid, start, starts,
-                                                   restarts))
+    return _kept_search(key, lambda keep: _search_gains(_Loop(A, B, C, tau, order), log_bounds, grid, start, starts,
+                                                        restarts, keep))
 
 
 def delay_spread(tau: float, spread: float) -> tuple[float, float, float]:
@@ -279,23 +279,38 @@ def robust_gains(A: np.ndarray, B: np.ndarray, C: np.ndarray, taus: tuple[float,
         raise ValueError(f"taus={taus!r} is invalid; expected one or more delays > 0 s")
     key = ("worst", *(_exact(a) for a in (A, B, C)), taus, int(order),
            tuple((float(lo), float(hi)) for lo, hi in log_bounds), int(grid), int(starts), int(restarts))
-    return _kept_search(key, lambda: _search_gains(_WorstLoop(A, B, C, taus, order), log_bounds, grid, None, starts,
-                                                   restarts))
+    return _kept_search(key, lambda keep: _search_gains(_WorstLoop(A, B, C, taus, order), log_bounds, grid, None,
+                                                        starts, restarts, keep))
 
 
-def _kept_search(key: tuple, search: Callable[[], tuple[np.ndarray, float]]) -> tuple[np.ndarray, float]:
-    """``search()``'s answer, kept under ``key`` (the last :data:`_BEST_GAINS_KEPT`); a fresh copy of the gains."""
+_Keep = Callable[[np.ndarray, float], None]
+
+
+def _kept_search(key: tuple, search: Callable[[_Keep | None], tuple[np.ndarray, float]]) -> tuple[np.ndarray, float]:
+    """``search(keep)``'s answer, kept under ``key`` (the last :data:`_BEST_GAINS_KEPT`); a fresh copy of the gains.
+
+    ``key`` ends with ``(starts, restarts)``; a search with more starts or restarts computes the single run's answer
+    (``starts=1, restarts=0``) on its way, the same arithmetic to the bit, and hands it to ``keep`` to be kept
+    under that key too (``keep`` is None for the single run itself)."""
     with _kept_lock:
         kept = _best_gains_kept.get(key)
         if kept is not None:
             _best_gains_kept.move_to_end(key)
     if kept is None:
-        kept = search()          # outside the lock: threads search in parallel (an app's requests)
-        with _kept_lock:
-            _best_gains_kept[key] = kept
-            while len(_best_gains_kept) > _BEST_GAINS_KEPT:
-                _best_gains_kept.popitem(last=False)
+        single = (*key[:-2], 1, 0)
+        # outside the lock: threads search in parallel (an app's requests)
+        kept = search(None if single == key else lambda g, v: _keep(single, (g, v)))
+        _keep(key, kept)
     return kept[0].copy(), kept[1]
+
+
+def _keep(key: tuple, answer: tuple[np.ndarray, float]) -> None:
+    """Keep ``answer`` under ``key`` among the last :data:`_BEST_GAINS_KEPT`."""
+    with _kept_lock:
+        _best_gains_kept[key] = answer
+        _best_gains_kept.move_to_end(key)
+        while len(_best_gains_kept) > _BEST_GAINS_KEPT:
+            _best_gains_kept.popitem(last=False)
 
 
 def _exact(a: np.ndarray) -> tuple:
@@ -305,9 +320,10 @@ def _exact(a: np.ndarray) -> tuple:
 
 
 def _search_gains(loop: _Loop | _WorstLoop, log_bounds: tuple[tuple[float, float], ...], grid: int,
-                  start: np.ndarray | None, starts: int = 1, restarts: int = 0) -> tuple[np.ndarray, float]:
+                  start: np.ndarray | None, starts: int = 1, restarts: int = 0,
+                  keep_single: _Keep | None = None) -> tuple[np.ndarray, float]:
     """:func:`best_gains`'s search (grid or start, then Nelder-Mead) of the gains minimising ``loop``'s abscissa,
-    without the kept answers."""
+    without the kept answers; ``keep_single`` is given the single run's answer (``starts=1, restarts=0``)."""
     if int(starts) != starts or starts < 1 or int(restarts) != restarts or restarts < 0:
         raise ValueError(f"starts={starts!r}, restarts={restarts!r} are invalid; valid: starts >= 1, restarts >= 0")
     lo_b = np.array([lo for lo, _ in log_bounds])
@@ -326,6 +342,8 @@ def _search_gains(loop: _Loop | _WorstLoop, log_bounds: tuple[tuple[float, float
         firsts = [(x0, f(x0))]
     step = 0.5 * (hi_b - lo_b) / max(int(grid) - 1, 1)          # half a grid step per gain, log10
     best, value = _polish(f, *firsts[0], lo_b, hi_b, step, 0)        # the single run's search, as it always was
+    if keep_single is not None:
+        keep_single(10.0**best, value)
     for x0, v0 in firsts if restarts else ():                           # ... and never worse than it
         x, v = _polish(f, x0, v0, lo_b, hi_b, step, int(restarts))
         if v < value:
