@@ -31,8 +31,8 @@ from scipy.special import lambertw
 
 from stability import chair as chair_mod
 from stability.driver import Driver
-from stability.driver.loop import _Loop, best_gains, delay_spread, robust_gains, worst_abscissa
-from stability.study.lane import _LOG_BOUNDS, DELAY_SPREAD, LANE_SPEEDS_M_S, lane_gains, lane_plant
+from stability.driver.loop import _Loop, _WorstLoop, best_gains, delay_spread, robust_gains, worst_abscissa
+from stability.study.lane import _LOG_BOUNDS, DELAY_SPREAD, LANE_SPEEDS_M_S, ROBUST_STARTS, lane_gains, lane_plant
 
 EJ = chair_mod.preset("ej-premier")
 _LO = np.array([lo for lo, _ in _LOG_BOUNDS])
@@ -126,7 +126,13 @@ def test_the_robust_search_returns_at_most_every_grid_points_and_random_points(n
     assert worst_abscissa(A, B, C, g.gains, taus)[()] == g.abscissa_1_s
     axes = [np.linspace(lo, hi, 11) for lo, hi in _LOG_BOUNDS]
     mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
-    assert g.abscissa_1_s <= worst_abscissa(A, B, C, 10.0**mesh, taus).min()
+    worst = worst_abscissa(A, B, C, 10.0**mesh, taus)
+    assert g.abscissa_1_s <= worst.min()
+    # the search's bounded selection of its starts is the full grid's stable sort, to the bit (loop._WorstLoop)
+    for k in (1, ROBUST_STARTS, 50):
+        idx, val = _WorstLoop(A, B, C, taus, 8).smallest(10.0**mesh, k)
+        want = np.argsort(worst, kind="stable")[:k]
+        assert idx.tolist() == want.tolist() and val.tolist() == worst[want].tolist()
     rng = np.random.default_rng(47)
     assert g.abscissa_1_s <= worst_abscissa(A, B, C, 10.0 ** rng.uniform(_LO, _HI, size=(2000, 3)), taus).min()
     assert np.all(g.gains > 0)

@@ -42,7 +42,7 @@ from stability.driver.loop import delay_spread, robust_gains
 from stability.driver.model import Driver, yaw_moment_limit
 from stability.runtime.checks import check_model, check_speed
 from stability.settings.run import RunSpec
-from stability.simulate import SampledController, simulate
+from stability.simulate import SampledController, SimulationResult, simulate
 from stability.simulate.controller import STATE_ORDER
 
 __all__ = ["LANE_HALF_WIDTH_M", "LANE_LENGTH_M", "LANE_HEADING_LIMIT_DEG", "SAMPLE_TIME_S", "LANE_SPEEDS_M_S",
@@ -258,15 +258,22 @@ class LaneRun:
     gains: LaneGains
 
 
-def _one_run(chair: Chair, speed: float, d: Driver, spec: RunSpec, g: LaneGains,
-             lane_half_width: float) -> LaneRun:
+def _lane_simulation(chair: Chair, speed: float, d: Driver, spec: RunSpec,
+                     g: LaneGains) -> tuple[SimulationResult, SampledController, float]:
+    """The simulated run behind :func:`lane_run` (one operator): the result, the driver's controller and the
+    horizon (s: the push plus the lane's length of travel)."""
     horizon = spec.push_duration + LANE_LENGTH_M / speed
     # the default fixed step is unstable below about 0.3 m/s (the simulator's own limit): the step is chosen from
     # the chair's fastest mode unless the run names one
     dt = "auto" if spec.dt == RunSpec().dt else spec.dt
     spec = spec.replace(speed=speed, horizon=horizon, stop_on_warnings=False, dt=dt)
     ctl = lane_controller(chair, g, d)
-    res = simulate(chair, speed, spec, controller=ctl)
+    return simulate(chair, speed, spec, controller=ctl), ctl, horizon
+
+
+def _one_run(chair: Chair, speed: float, d: Driver, spec: RunSpec, g: LaneGains,
+             lane_half_width: float) -> LaneRun:
+    res, ctl, horizon = _lane_simulation(chair, speed, d, spec, g)
     y = np.asarray(res.y, dtype=float) - float(res.y[0])
     psi = np.asarray(res.heading, dtype=float) - float(res.heading[0])
     mz = np.abs(np.asarray(res.yaw_moment_input, dtype=float))
