@@ -44,7 +44,7 @@ from stability.simulate.kernel_equations import (
     slip_angle,
 )
 
-__all__ = ["step_layouts", "advance", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
+__all__ = ["step_layouts", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
            "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
 
 _eq = compiled(_gn, tuple(_gn.__all__), _inl_rc)
@@ -276,8 +276,8 @@ def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
         rec[NREC + 2 * kk, row], rec[NREC + 2 * kk + 1, row] = D[kk], DD[kk]
 
 
-#: the length of the head of a run's ``state`` between :func:`advance` calls, and its command and rows slots:
-#: the slots between :func:`advance` calls: x, y, heading, yaw rate, u, v, the last step's tire-force
+#: the length of the head of a run's ``state`` between :func:`step_layouts` calls, and its command and rows slots:
+#: the slots between :func:`step_layouts` calls: x, y, heading, yaw rate, u, v, the last step's tire-force
 #: sums (x, y), the controller's next sample, its held command (or the caller's, :func:`step_layouts`), the applied
 #: moment after the motor lag, the rows recorded; then each caster's angle, each caster's rate, the controller state
 NSTATE = 12
@@ -313,11 +313,95 @@ def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, 
     v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at each sample, held until the next;
     without one, the yaw moment each run's command slot holds (set by the caller between calls, N m) acts.  Either
     goes through a first-order motor lag (``cfg[22]``, exact over each step); the commanded (saturated) moment is
-    recorded in ``mzrec`` (N m)."""
+    recorded in ``mzrec`` (N m).
+
+    A run's steps are written in this loop, not in a jitted function of their own that it calls: numba compiles a
+    called function to machine code on its own and then, linked into its caller, optimises and emits it again, so
+    the whole step was compiled twice (about a fifth of the kernel's first use, measured)."""
     for r in range(states.shape[0]):
-        if status[r, 0] == 0.0:
-            advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin,
-                    states[r], recs[r], status[r], warn[r], ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec[r])
+        if status[r, 0] != 0.0:
+            continue
+        # the run's rows (views); the step's scalars and scratch arrays are the run's own
+        state, rec, run_status, run_warn, run_mz = states[r], recs[r], status[r], warn[r], mzrec[r]
+        dt, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[2]), cfg[3], cfg[4], cfg[5]
+        pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
+        maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
+                                                                 cfg[14], int(cfg[15]))
+        slope, c_phi, s_phi, c_theta, s_theta, grav = cfg[16] != 0.0, cfg[17], cfg[18], cfg[19], cfg[20], cfg[21]
+        g1 = g2 = 0.0
+        wn = weight
+        nt, n = nw + nc, 3 + nc
+        half_dt2 = 0.5 * dt * dt
+        X, Y, THE, THED, UD, VD = state[0], state[1], state[2], state[3], state[4], state[5]
+        FC1, FC2 = state[6], state[7]
+        next_k, cmd, mz, nrec = int(state[8]), state[S_CMD], state[10], int(state[S_NREC])
+        D, DD = state[NSTATE:NSTATE + nc].copy(), state[NSTATE + nc:NSTATE + 2 * nc].copy()
+        nz, ny = Az.shape[0], Cy.shape[0]
+        z = state[NSTATE + 2 * nc:NSTATE + 2 * nc + nz]          # a view: advanced in place
+        cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
+        held = np.zeros(nc, dtype=np.bool_)
+        rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
+        vel, slips, loads, xs, ys = np.zeros(2 * nt), np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
+        fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
+        Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
+        for j in range(nw):
+            xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
+        use_ctl = ctl_f[0] > 0.0
+        lag = cfg[22]
+        keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
+        znew, y, sv = np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
+        for k in range(k0, k1):
+            t = k * dt
+            if use_ctl:
+                next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy,
+                                       Az, Bu, By, Cz, noise)
+            if lag <= 0.0:
+                mz = cmd
+            _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
+            if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
+                g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
+                wn = weight * gn / grav
+            layout_loads(mode, xs, ys, kv, line, share, wn, h, FC1, FC2, loads)
+            code = _range_rules(run_warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
+            if code != 0.0:
+                run_status[0], run_status[1] = code, t
+                break
+            imp = t <= duimp * (1.0 + 1e-12) + 1e-15
+            sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy,
+                                          ftimp != 0.0 and imp, ftimp, cs, sn, fw, fc)
+            fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
+            equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, mz, g1, g2, Mm, F0)
+            _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
+            if not abs(THED) < math.inf:
+                run_status[0], run_status[1] = STOPPED_NONFINITE, t
+                break
+            if k % stride == 0:
+                _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
+                run_mz[k // stride] = cmd
+                nrec = k // stride + 1
+            # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
+            FC1, FC2 = sum_fx, sum_fy + fy_ext
+            du = UD * dt + acc[0] * half_dt2
+            dv = VD * dt + acc[1] * half_dt2
+            cost, sint = math.cos(THE), math.sin(THE)
+            X += du * cost - dv * sint
+            Y += du * sint + dv * cost
+            UD += acc[0] * dt
+            VD += acc[1] * dt
+            if pin_mode != 1:
+                for kk in range(nc):
+                    D[kk] += DD[kk] * dt + acc[3 + kk] * half_dt2
+                    DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
+            THE += THED * dt + acc[2] * half_dt2
+            THED += acc[2] * dt
+            if lag > 0.0:     # the motor lag, exact over the step for the held command
+                mz = cmd + (mz - cmd) * keep
+        state[0], state[1], state[2], state[3], state[4], state[5] = X, Y, THE, THED, UD, VD
+        state[6], state[7], state[8], state[S_CMD], state[10], state[S_NREC] = FC1, FC2, next_k, cmd, mz, nrec
+        for kk in range(nc):
+            state[NSTATE + kk], state[NSTATE + nc + kk] = D[kk], DD[kk]
+
+
 
 
 @_inl_rc
@@ -331,92 +415,6 @@ def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl
         cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         next_k += 1
     return next_k, cmd
-
-
-@njit(cache=True, nogil=True)
-def advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, state, rec,
-            status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
-    """Steps ``k0 .. k1 - 1`` of one run (:func:`step_layouts`' arguments, one run's rows) from its ``state``
-    (:func:`initial_state`, updated in place); nothing when the run has stopped (``status[0] != 0``)."""
-    if status[0] != 0.0:
-        return
-    dt, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[2]), cfg[3], cfg[4], cfg[5]
-    pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
-    maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
-                                                             cfg[14], int(cfg[15]))
-    slope, c_phi, s_phi, c_theta, s_theta, grav = cfg[16] != 0.0, cfg[17], cfg[18], cfg[19], cfg[20], cfg[21]
-    g1 = g2 = 0.0
-    wn = weight
-    nt, n = nw + nc, 3 + nc
-    half_dt2 = 0.5 * dt * dt
-    X, Y, THE, THED, UD, VD = state[0], state[1], state[2], state[3], state[4], state[5]
-    FC1, FC2 = state[6], state[7]
-    next_k, cmd, mz, nrec = int(state[8]), state[S_CMD], state[10], int(state[S_NREC])
-    D, DD = state[NSTATE:NSTATE + nc].copy(), state[NSTATE + nc:NSTATE + 2 * nc].copy()
-    nz, ny = Az.shape[0], Cy.shape[0]
-    z = state[NSTATE + 2 * nc:NSTATE + 2 * nc + nz]          # a view: advanced in place
-    cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
-    held = np.zeros(nc, dtype=np.bool_)
-    rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
-    vel, slips, loads, xs, ys = np.zeros(2 * nt), np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
-    fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
-    Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
-    for j in range(nw):
-        xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
-    use_ctl = ctl_f[0] > 0.0
-    lag = cfg[22]
-    keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
-    znew, y, sv = np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
-    for k in range(k0, k1):
-        t = k * dt
-        if use_ctl:
-            next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az,
-                                   Bu, By, Cz, noise)
-        if lag <= 0.0:
-            mz = cmd
-        _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
-        if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
-            g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
-            wn = weight * gn / grav
-        layout_loads(mode, xs, ys, kv, line, share, wn, h, FC1, FC2, loads)
-        code = _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
-        if code != 0.0:
-            status[0], status[1] = code, t
-            break
-        imp = t <= duimp * (1.0 + 1e-12) + 1e-15
-        sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy,
-                                      ftimp != 0.0 and imp, ftimp, cs, sn, fw, fc)
-        fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, mz, g1, g2, Mm, F0)
-        _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
-        if not abs(THED) < math.inf:
-            status[0], status[1] = STOPPED_NONFINITE, t
-            break
-        if k % stride == 0:
-            _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
-            mzrec[k // stride] = cmd
-            nrec = k // stride + 1
-        # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
-        FC1, FC2 = sum_fx, sum_fy + fy_ext
-        du = UD * dt + acc[0] * half_dt2
-        dv = VD * dt + acc[1] * half_dt2
-        cost, sint = math.cos(THE), math.sin(THE)
-        X += du * cost - dv * sint
-        Y += du * sint + dv * cost
-        UD += acc[0] * dt
-        VD += acc[1] * dt
-        if pin_mode != 1:
-            for kk in range(nc):
-                D[kk] += DD[kk] * dt + acc[3 + kk] * half_dt2
-                DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
-        THE += THED * dt + acc[2] * half_dt2
-        THED += acc[2] * dt
-        if lag > 0.0:     # the motor lag, exact over the step for the held command
-            mz = cmd + (mz - cmd) * keep
-    state[0], state[1], state[2], state[3], state[4], state[5] = X, Y, THE, THED, UD, VD
-    state[6], state[7], state[8], state[S_CMD], state[10], state[S_NREC] = FC1, FC2, next_k, cmd, mz, nrec
-    for kk in range(nc):
-        state[NSTATE + kk], state[NSTATE + nc + kk] = D[kk], DD[kk]
 
 
 @_inl_rc
