@@ -192,13 +192,15 @@ def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
     for kk in range(nc):
         mom[kk] = kinetic_pin_moment(dd[kk], mf[kk]) - cpin[kk] * dd[kk]
         held[kk] = dd[kk] == 0.0
-    for _ in range(nc + 1):
+    for it in range(nc + 2):      # one call of _accelerations (one inlined copy of the solve)
         anyheld = False
         for kk in range(nc):
+            if it > nc:           # decided nc + 1 times: every caster free
+                held[kk] = False
             anyheld = anyheld or held[kk]
-        if not anyheld:
-            break
         _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+        if not anyheld:
+            return
         released = False
         for kk in range(nc):
             if held[kk] and not pin_holds(mom[kk], mf[kk]):
@@ -207,9 +209,6 @@ def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
                 released = True
         if not released:
             return
-    for kk in range(nc):
-        held[kk] = False
-    _accelerations(Mm, F0, nc, mom, held, W, w, acc)
 
 
 @_inl_rc
@@ -240,17 +239,16 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
 def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
     """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
     with the viscous part ``-c_pin rate``)."""
-    if pin_mode == 1:
-        for kk in range(nc):
-            held[kk] = True
-        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
-    elif pin_mode == 2:
+    if pin_mode == 2:
         _stick_slip(Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
-    else:
-        for kk in range(nc):
+        return
+    for kk in range(nc):          # one call of _accelerations for both laws: one inlined copy of the solve
+        if pin_mode == 1:
+            held[kk] = True
+        else:
             mom[kk] = kinetic_pin_moment(DD[kk], mf[kk]) - cpin[kk] * DD[kk]
             held[kk] = False
-        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+    _accelerations(Mm, F0, nc, mom, held, W, w, acc)
 
 
 @_inl_rc
