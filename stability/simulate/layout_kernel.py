@@ -110,11 +110,12 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
     pitch, roll = -h * sum_fx, -h * sum_fy
     for i in range(n):
         out[i] = 0.0
+    # each rule's system in the leading m x m block, solved by one call (one inlined copy of the elimination)
+    A, b, x, sel = np.zeros((4, 4)), np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64)
+    b[0], b[1] = weight, pitch
+    m = 0
     if mode == _LEVER:
-        A = np.zeros((4, 4))
-        b = np.array([weight, pitch, share[0] * roll, share[1] * roll])
-        sel = np.zeros(4, dtype=np.int64)
-        m = 0
+        b[2], b[3] = share[0] * roll, share[1] * roll
         for i in range(n):
             if line[i] >= 0:
                 sel[m] = i
@@ -122,35 +123,30 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
                 A[1, m] = xs[i]
                 A[2 + line[i], m] = ys[i]
                 m += 1
-        x = np.zeros(4)
-        _solve(A, b, np.int64(4), x)
-        for j in range(4):
-            out[sel[j]] = x[j]
-        return
-    A = np.zeros((3, 3))
-    b = np.array([weight, pitch, roll])
-    if mode == _THREE:
-        sel = np.zeros(3, dtype=np.int64)
-        m = 0
+        m = 4
+    elif mode == _THREE:
+        b[2] = roll
         for i in range(n):
             if k[i] != 0.0:
                 sel[m] = i
                 A[0, m], A[1, m], A[2, m] = 1.0, xs[i], ys[i]
                 m += 1
-        x = np.zeros(3)
-        _solve(A, b, np.int64(3), x)
-        for j in range(3):
+        m = 3
+    else:
+        b[2] = roll
+        for i in range(n):                               # sum_i k_i b_i b_i^T q = (weight, pitch, roll)
+            bi = (1.0, xs[i], ys[i])
+            for r in range(3):
+                for c in range(3):
+                    A[r, c] += k[i] * bi[r] * bi[c]
+        m = 3
+    _solve(A, b, np.int64(m), x)
+    if mode == _LEVER or mode == _THREE:
+        for j in range(m):
             out[sel[j]] = x[j]
         return
-    for i in range(n):                                   # sum_i k_i b_i b_i^T q = (weight, pitch, roll)
-        bi = (1.0, xs[i], ys[i])
-        for r in range(3):
-            for c in range(3):
-                A[r, c] += k[i] * bi[r] * bi[c]
-    q = np.zeros(3)
-    _solve(A, b, np.int64(3), q)
     for i in range(n):
-        out[i] = k[i] * (q[0] + q[1] * xs[i] + q[2] * ys[i])
+        out[i] = k[i] * (x[0] + x[1] * xs[i] + x[2] * ys[i])
 
 
 @_inl_rc
