@@ -44,7 +44,7 @@ from stability.simulate.kernel_equations import (
     slip_angle,
 )
 
-__all__ = ["step_layouts", "advance", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
+__all__ = ["step_layouts", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
            "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
 
 _eq = compiled(_gn, tuple(_gn.__all__), _inl_rc)
@@ -110,11 +110,12 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
     pitch, roll = -h * sum_fx, -h * sum_fy
     for i in range(n):
         out[i] = 0.0
+    # each rule's system in the leading m x m block, solved by one call (one inlined copy of the elimination)
+    A, b, x, sel = np.zeros((4, 4)), np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64)
+    b[0], b[1] = weight, pitch
+    m = 0
     if mode == _LEVER:
-        A = np.zeros((4, 4))
-        b = np.array([weight, pitch, share[0] * roll, share[1] * roll])
-        sel = np.zeros(4, dtype=np.int64)
-        m = 0
+        b[2], b[3] = share[0] * roll, share[1] * roll
         for i in range(n):
             if line[i] >= 0:
                 sel[m] = i
@@ -122,35 +123,30 @@ def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
                 A[1, m] = xs[i]
                 A[2 + line[i], m] = ys[i]
                 m += 1
-        x = np.zeros(4)
-        _solve(A, b, np.int64(4), x)
-        for j in range(4):
-            out[sel[j]] = x[j]
-        return
-    A = np.zeros((3, 3))
-    b = np.array([weight, pitch, roll])
-    if mode == _THREE:
-        sel = np.zeros(3, dtype=np.int64)
-        m = 0
+        m = 4
+    elif mode == _THREE:
+        b[2] = roll
         for i in range(n):
             if k[i] != 0.0:
                 sel[m] = i
                 A[0, m], A[1, m], A[2, m] = 1.0, xs[i], ys[i]
                 m += 1
-        x = np.zeros(3)
-        _solve(A, b, np.int64(3), x)
-        for j in range(3):
+        m = 3
+    else:
+        b[2] = roll
+        for i in range(n):                               # sum_i k_i b_i b_i^T q = (weight, pitch, roll)
+            bi = (1.0, xs[i], ys[i])
+            for r in range(3):
+                for c in range(3):
+                    A[r, c] += k[i] * bi[r] * bi[c]
+        m = 3
+    _solve(A, b, np.int64(m), x)
+    if mode == _LEVER or mode == _THREE:
+        for j in range(m):
             out[sel[j]] = x[j]
         return
-    for i in range(n):                                   # sum_i k_i b_i b_i^T q = (weight, pitch, roll)
-        bi = (1.0, xs[i], ys[i])
-        for r in range(3):
-            for c in range(3):
-                A[r, c] += k[i] * bi[r] * bi[c]
-    q = np.zeros(3)
-    _solve(A, b, np.int64(3), q)
     for i in range(n):
-        out[i] = k[i] * (q[0] + q[1] * xs[i] + q[2] * ys[i])
+        out[i] = k[i] * (x[0] + x[1] * xs[i] + x[2] * ys[i])
 
 
 @_inl_rc
@@ -192,13 +188,15 @@ def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
     for kk in range(nc):
         mom[kk] = kinetic_pin_moment(dd[kk], mf[kk]) - cpin[kk] * dd[kk]
         held[kk] = dd[kk] == 0.0
-    for _ in range(nc + 1):
+    for it in range(nc + 2):      # one call of _accelerations (one inlined copy of the solve)
         anyheld = False
         for kk in range(nc):
+            if it > nc:           # decided nc + 1 times: every caster free
+                held[kk] = False
             anyheld = anyheld or held[kk]
-        if not anyheld:
-            break
         _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+        if not anyheld:
+            return
         released = False
         for kk in range(nc):
             if held[kk] and not pin_holds(mom[kk], mf[kk]):
@@ -207,9 +205,6 @@ def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
                 released = True
         if not released:
             return
-    for kk in range(nc):
-        held[kk] = False
-    _accelerations(Mm, F0, nc, mom, held, W, w, acc)
 
 
 @_inl_rc
@@ -240,17 +235,16 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
 def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
     """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
     with the viscous part ``-c_pin rate``)."""
-    if pin_mode == 1:
-        for kk in range(nc):
-            held[kk] = True
-        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
-    elif pin_mode == 2:
+    if pin_mode == 2:
         _stick_slip(Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
-    else:
-        for kk in range(nc):
+        return
+    for kk in range(nc):          # one call of _accelerations for both laws: one inlined copy of the solve
+        if pin_mode == 1:
+            held[kk] = True
+        else:
             mom[kk] = kinetic_pin_moment(DD[kk], mf[kk]) - cpin[kk] * DD[kk]
             held[kk] = False
-        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
+    _accelerations(Mm, F0, nc, mom, held, W, w, acc)
 
 
 @_inl_rc
@@ -276,8 +270,8 @@ def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
         rec[NREC + 2 * kk, row], rec[NREC + 2 * kk + 1, row] = D[kk], DD[kk]
 
 
-#: the length of the head of a run's ``state`` between :func:`advance` calls, and its command and rows slots:
-#: the slots between :func:`advance` calls: x, y, heading, yaw rate, u, v, the last step's tire-force
+#: the length of the head of a run's ``state`` between :func:`step_layouts` calls, and its command and rows slots:
+#: the slots between :func:`step_layouts` calls: x, y, heading, yaw rate, u, v, the last step's tire-force
 #: sums (x, y), the controller's next sample, its held command (or the caller's, :func:`step_layouts`), the applied
 #: moment after the motor lag, the rows recorded; then each caster's angle, each caster's rate, the controller state
 NSTATE = 12
@@ -313,11 +307,95 @@ def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, 
     v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at each sample, held until the next;
     without one, the yaw moment each run's command slot holds (set by the caller between calls, N m) acts.  Either
     goes through a first-order motor lag (``cfg[22]``, exact over each step); the commanded (saturated) moment is
-    recorded in ``mzrec`` (N m)."""
+    recorded in ``mzrec`` (N m).
+
+    A run's steps are written in this loop, not in a jitted function of their own that it calls: numba compiles a
+    called function to machine code on its own and then, linked into its caller, optimises and emits it again, so
+    the whole step was compiled twice (about a fifth of the kernel's first use, measured)."""
     for r in range(states.shape[0]):
-        if status[r, 0] == 0.0:
-            advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin,
-                    states[r], recs[r], status[r], warn[r], ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec[r])
+        if status[r, 0] != 0.0:
+            continue
+        # the run's rows (views); the step's scalars and scratch arrays are the run's own
+        state, rec, run_status, run_warn, run_mz = states[r], recs[r], status[r], warn[r], mzrec[r]
+        dt, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[2]), cfg[3], cfg[4], cfg[5]
+        pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
+        maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
+                                                                 cfg[14], int(cfg[15]))
+        slope, c_phi, s_phi, c_theta, s_theta, grav = cfg[16] != 0.0, cfg[17], cfg[18], cfg[19], cfg[20], cfg[21]
+        g1 = g2 = 0.0
+        wn = weight
+        nt, n = nw + nc, 3 + nc
+        half_dt2 = 0.5 * dt * dt
+        X, Y, THE, THED, UD, VD = state[0], state[1], state[2], state[3], state[4], state[5]
+        FC1, FC2 = state[6], state[7]
+        next_k, cmd, mz, nrec = int(state[8]), state[S_CMD], state[10], int(state[S_NREC])
+        D, DD = state[NSTATE:NSTATE + nc].copy(), state[NSTATE + nc:NSTATE + 2 * nc].copy()
+        nz, ny = Az.shape[0], Cy.shape[0]
+        z = state[NSTATE + 2 * nc:NSTATE + 2 * nc + nz]          # a view: advanced in place
+        cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
+        held = np.zeros(nc, dtype=np.bool_)
+        rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
+        vel, slips, loads, xs, ys = np.zeros(2 * nt), np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
+        fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
+        Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
+        for j in range(nw):
+            xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
+        use_ctl = ctl_f[0] > 0.0
+        lag = cfg[22]
+        keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
+        znew, y, sv = np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
+        for k in range(k0, k1):
+            t = k * dt
+            if use_ctl:
+                next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy,
+                                       Az, Bu, By, Cz, noise)
+            if lag <= 0.0:
+                mz = cmd
+            _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
+            if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
+                g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
+                wn = weight * gn / grav
+            layout_loads(mode, xs, ys, kv, line, share, wn, h, FC1, FC2, loads)
+            code = _range_rules(run_warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
+            if code != 0.0:
+                run_status[0], run_status[1] = code, t
+                break
+            imp = t <= duimp * (1.0 + 1e-12) + 1e-15
+            sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy,
+                                          ftimp != 0.0 and imp, ftimp, cs, sn, fw, fc)
+            fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
+            equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, mz, g1, g2, Mm, F0)
+            _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
+            if not abs(THED) < math.inf:
+                run_status[0], run_status[1] = STOPPED_NONFINITE, t
+                break
+            if k % stride == 0:
+                _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
+                run_mz[k // stride] = cmd
+                nrec = k // stride + 1
+            # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
+            FC1, FC2 = sum_fx, sum_fy + fy_ext
+            du = UD * dt + acc[0] * half_dt2
+            dv = VD * dt + acc[1] * half_dt2
+            cost, sint = math.cos(THE), math.sin(THE)
+            X += du * cost - dv * sint
+            Y += du * sint + dv * cost
+            UD += acc[0] * dt
+            VD += acc[1] * dt
+            if pin_mode != 1:
+                for kk in range(nc):
+                    D[kk] += DD[kk] * dt + acc[3 + kk] * half_dt2
+                    DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
+            THE += THED * dt + acc[2] * half_dt2
+            THED += acc[2] * dt
+            if lag > 0.0:     # the motor lag, exact over the step for the held command
+                mz = cmd + (mz - cmd) * keep
+        state[0], state[1], state[2], state[3], state[4], state[5] = X, Y, THE, THED, UD, VD
+        state[6], state[7], state[8], state[S_CMD], state[10], state[S_NREC] = FC1, FC2, next_k, cmd, mz, nrec
+        for kk in range(nc):
+            state[NSTATE + kk], state[NSTATE + nc + kk] = D[kk], DD[kk]
+
+
 
 
 @_inl_rc
@@ -331,92 +409,6 @@ def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl
         cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         next_k += 1
     return next_k, cmd
-
-
-@njit(cache=True, nogil=True)
-def advance(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, state, rec,
-            status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
-    """Steps ``k0 .. k1 - 1`` of one run (:func:`step_layouts`' arguments, one run's rows) from its ``state``
-    (:func:`initial_state`, updated in place); nothing when the run has stopped (``status[0] != 0``)."""
-    if status[0] != 0.0:
-        return
-    dt, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[2]), cfg[3], cfg[4], cfg[5]
-    pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
-    maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
-                                                             cfg[14], int(cfg[15]))
-    slope, c_phi, s_phi, c_theta, s_theta, grav = cfg[16] != 0.0, cfg[17], cfg[18], cfg[19], cfg[20], cfg[21]
-    g1 = g2 = 0.0
-    wn = weight
-    nt, n = nw + nc, 3 + nc
-    half_dt2 = 0.5 * dt * dt
-    X, Y, THE, THED, UD, VD = state[0], state[1], state[2], state[3], state[4], state[5]
-    FC1, FC2 = state[6], state[7]
-    next_k, cmd, mz, nrec = int(state[8]), state[S_CMD], state[10], int(state[S_NREC])
-    D, DD = state[NSTATE:NSTATE + nc].copy(), state[NSTATE + nc:NSTATE + 2 * nc].copy()
-    nz, ny = Az.shape[0], Cy.shape[0]
-    z = state[NSTATE + 2 * nc:NSTATE + 2 * nc + nz]          # a view: advanced in place
-    cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
-    held = np.zeros(nc, dtype=np.bool_)
-    rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
-    vel, slips, loads, xs, ys = np.zeros(2 * nt), np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
-    fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
-    Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
-    for j in range(nw):
-        xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
-    use_ctl = ctl_f[0] > 0.0
-    lag = cfg[22]
-    keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
-    znew, y, sv = np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
-    for k in range(k0, k1):
-        t = k * dt
-        if use_ctl:
-            next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az,
-                                   Bu, By, Cz, noise)
-        if lag <= 0.0:
-            mz = cmd
-        _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
-        if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
-            g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
-            wn = weight * gn / grav
-        layout_loads(mode, xs, ys, kv, line, share, wn, h, FC1, FC2, loads)
-        code = _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
-        if code != 0.0:
-            status[0], status[1] = code, t
-            break
-        imp = t <= duimp * (1.0 + 1e-12) + 1e-15
-        sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy,
-                                      ftimp != 0.0 and imp, ftimp, cs, sn, fw, fc)
-        fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-        equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, mz, g1, g2, Mm, F0)
-        _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
-        if not abs(THED) < math.inf:
-            status[0], status[1] = STOPPED_NONFINITE, t
-            break
-        if k % stride == 0:
-            _record(rec, k // stride, X, Y, THE, THED, UD, VD, D, DD)
-            mzrec[k // stride] = cmd
-            nrec = k // stride + 1
-        # UPDATE (the thesis engine's): positions with the half-step term, velocities forward, the rest rule
-        FC1, FC2 = sum_fx, sum_fy + fy_ext
-        du = UD * dt + acc[0] * half_dt2
-        dv = VD * dt + acc[1] * half_dt2
-        cost, sint = math.cos(THE), math.sin(THE)
-        X += du * cost - dv * sint
-        Y += du * sint + dv * cost
-        UD += acc[0] * dt
-        VD += acc[1] * dt
-        if pin_mode != 1:
-            for kk in range(nc):
-                D[kk] += DD[kk] * dt + acc[3 + kk] * half_dt2
-                DD[kk] = rest_rate(DD[kk], DD[kk] + acc[3 + kk] * dt, rest[kk])
-        THE += THED * dt + acc[2] * half_dt2
-        THED += acc[2] * dt
-        if lag > 0.0:     # the motor lag, exact over the step for the held command
-            mz = cmd + (mz - cmd) * keep
-    state[0], state[1], state[2], state[3], state[4], state[5] = X, Y, THE, THED, UD, VD
-    state[6], state[7], state[8], state[S_CMD], state[10], state[S_NREC] = FC1, FC2, next_k, cmd, mz, nrec
-    for kk in range(nc):
-        state[NSTATE + kk], state[NSTATE + nc + kk] = D[kk], DD[kk]
 
 
 @_inl_rc
