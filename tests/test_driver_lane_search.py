@@ -130,8 +130,9 @@ def test_the_robust_search_returns_at_most_every_grid_points_and_random_points(n
     mesh = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
     worst = worst_abscissa(A, B, C, 10.0**mesh, taus)
     assert g.abscissa_1_s <= worst.min()
-    # the search's bounded selection of its starts is the full grid's stable sort, to the bit (loop._WorstLoop)
-    for k in (1, ROBUST_STARTS, 50):
+    # the search's bounded selection of its starts is the full grid's stable sort, to the bit (loop._WorstLoop),
+    # also for k beyond its first chunk of 64 points, where the bound's order and the worst's part
+    for k in (1, ROBUST_STARTS, 50, 300, 900):
         idx, val = _WorstLoop(A, B, C, taus, 8).smallest(10.0**mesh, k)
         want = np.argsort(worst, kind="stable")[:k]
         assert idx.tolist() == want.tolist() and val.tolist() == worst[want].tolist()
@@ -190,6 +191,13 @@ def test_the_robust_search_reaches_the_exact_max_min(lam, tau):
     # error model: as above (the kink located to xatol 1e-12 in log10 k by the reference's Brent search)
     assert _exact_abscissa(k, lam, taus[0]) == pytest.approx(_exact_abscissa(k, lam, taus[2]), abs=1e-5)
     assert a > lam - 1.0 / tau                        # worse than the double root at tau alone: the price of the spread
+
+
+def test_the_delay_spread_is_the_documented_three_delays():
+    """``tau (1 - s), tau, tau (1 + s)`` (docs/driver.md, "The lane operator"), written out independently."""
+    # error model: rounding: one multiplication and one subtraction or addition each, well inside 1e-15 relative
+    assert delay_spread(0.3, 0.1) == pytest.approx((0.27, 0.3, 0.33), rel=1e-15)
+    assert delay_spread(0.5, 0.0) == (0.5, 0.5, 0.5)
 
 
 def test_bad_delay_spreads_are_refused():
