@@ -178,11 +178,13 @@ print(time.process_time() - t0, llvm[0], llvm[1], len(holders), len(ours))
 
 
 @group("kernel_first_use", "simulate(ej-premier, 0.75, RunSpec(horizon=0.01)) in a fresh process with an empty "
-       "NUMBA_CACHE_DIR, then again with that cache, under engine.use_kernel('scalar'|'lanes') (CPU time of the "
-       "child: user + sys); a scalar one timing numba's LLVM stages per code library (numba.core.codegen) and counting "
-       "the package's compiles (numba.core.event)")
+       "NUMBA_CACHE_DIR, then again with that cache, under engine.use_kernel('scalar'|'lanes'), and "
+       "simulate_layout(layout_preset('mid-wheel-drive'), 1.0, RunSpec(horizon=0.01, stop_on_warnings=False)) "
+       "likewise (CPU time of the child: user + sys); a scalar one timing numba's LLVM stages per code library "
+       "(numba.core.codegen) and counting the package's compiles (numba.core.event)")
 def kernel_first_use() -> dict:
-    """CPU time of a fresh process's first simulation on each kernel with an empty numba cache and with the cache."""
+    """CPU time of a fresh process's first simulation on each kernel (the WCHAIR kernel's scalar and lanes forms,
+    the layout kernel) with an empty numba cache and with the cache."""
     import os
     import resource
     import subprocess
@@ -196,6 +198,11 @@ def kernel_first_use() -> dict:
                 "from stability.settings.run import RunSpec\n"
                 f"with engine.use_kernel({kernel!r}):\n"
                 "    simulate(preset('ej-premier'), 0.75, RunSpec(horizon=0.01))")
+        if kernel == "layout":
+            code = ("from stability.layout.presets import layout_preset; from stability.settings.run import RunSpec; "
+                    "from stability.simulate.layout import simulate_layout\n"
+                    "simulate_layout(layout_preset('mid-wheel-drive'), 1.0, "
+                    "RunSpec(horizon=0.01, stop_on_warnings=False))")
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         subprocess.run([sys.executable, "-c", code], cwd=ROOT, check=True, capture_output=True,
                        env={**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)})
@@ -215,6 +222,10 @@ def kernel_first_use() -> dict:
             cached = child_cpu(kernel, cache)
         out[f"{kernel}_first_s"], out[f"{kernel}_cached_s"] = sig(first, 2), sig(cached, 2)
         out[f"{kernel}_first_verdict"] = verdict(first, TARGET_FIRST_S)
+    with tempfile.TemporaryDirectory() as cache:      # the layout kernel: a mid-wheel-drive base's first run
+        first = child_cpu("layout", cache)
+        cached = child_cpu("layout", cache)
+    out["layout_first_s"], out["layout_cached_s"] = sig(first, 2), sig(cached, 2)
     out["load_after"] = fixed(os.getloadavg()[0], 1)
     return out
 
