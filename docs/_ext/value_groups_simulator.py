@@ -177,11 +177,17 @@ print(time.process_time() - t0, llvm[0], llvm[1], len(holders), len(ours))
 """
 
 
+#: the first-use children's OpenBLAS as a command line runs it (stability.runtime.blas: one thread); a script that
+#: imports the library keeps OpenBLAS's own threads, whose busy-waiting adds CPU time, not wall time
+_ONE_BLAS_THREAD = {"OPENBLAS_NUM_THREADS": "1"}
+
+
 @group("kernel_first_use", "simulate(ej-premier, 0.75, RunSpec(horizon=0.01)) in a fresh process with an empty "
        "NUMBA_CACHE_DIR, then again with that cache, under engine.use_kernel('scalar'|'lanes'), and "
        "simulate_layout(layout_preset('mid-wheel-drive'), 1.0, RunSpec(horizon=0.01, stop_on_warnings=False)) "
-       "likewise (CPU time of the child: user + sys); a scalar one timing numba's LLVM stages per code library "
-       "(numba.core.codegen) and counting the package's compiles (numba.core.event)")
+       "likewise (CPU time of the child: user + sys; OpenBLAS on one thread, as the command lines run it); a "
+       "scalar one timing numba's LLVM stages per code library (numba.core.codegen) and counting the package's "
+       "compiles (numba.core.event)")
 def kernel_first_use() -> dict:
     """CPU time of a fresh process's first simulation on each kernel (the WCHAIR kernel's scalar and lanes forms,
     the layout kernel) with an empty numba cache and with the cache."""
@@ -205,14 +211,15 @@ def kernel_first_use() -> dict:
                     "RunSpec(horizon=0.01, stop_on_warnings=False))")
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         subprocess.run([sys.executable, "-c", code], cwd=ROOT, check=True, capture_output=True,
-                       env={**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)})
+                       env={**os.environ, **_ONE_BLAS_THREAD, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)})
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
     out = {"load_before": fixed(os.getloadavg()[0], 1)}
     with tempfile.TemporaryDirectory() as cache:
         llvm = subprocess.run([sys.executable, "-c", _LLVM_CHILD], cwd=ROOT, check=True, capture_output=True,
-                              text=True, env={**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": str(ROOT)})
+                              text=True, env={**os.environ, **_ONE_BLAS_THREAD, "NUMBA_CACHE_DIR": cache,
+                                              "PYTHONPATH": str(ROOT)})
     total, llvm_s, helpers_s, copies, compiles = (float(x) for x in llvm.stdout.split()[-5:])
     out.update(llvm_pct=pct(llvm_s / total), llvm_helpers_pct=pct(helpers_s / total), run_one_copies=f"{int(copies)}",
                compiles=f"{int(compiles)}")
