@@ -46,6 +46,7 @@ from stability.simulate import SampledController, SimulationResult, simulate
 from stability.simulate.controller import STATE_ORDER
 
 __all__ = ["LANE_HALF_WIDTH_M", "LANE_LENGTH_M", "LANE_HEADING_LIMIT_DEG", "SAMPLE_TIME_S", "LANE_SPEEDS_M_S",
+           "LANE_SPEED_TOL_M_S",
            "OPERATOR_SCALES", "DELAY_SPREAD", "lane_plant", "LaneGains", "lane_gains", "lane_controller", "LaneRun",
            "lane_run", "LaneLimit", "lane_limit", "PUSH_FACTORS", "LaneRange", "lane_range", "lane_text"]
 
@@ -62,6 +63,9 @@ SAMPLE_TIME_S = 0.005
 #: Speeds tried for the nonlinear limit, m/s: the first failure is refined by bisection; kept at the last one
 #: gives the bound "above".
 LANE_SPEEDS_M_S = tuple(np.round(np.arange(0.25, 3.001, 0.25), 3).tolist())
+#: The bisection's tolerance on the nonlinear lane limit, m/s (:func:`lane_limit`'s default: ten times the linear
+#: limits' speed tolerance, each bisection step being a set of simulator runs).
+LANE_SPEED_TOL_M_S = 10 * SPEED_TOL_M_S
 #: Multiples of the most stable linear loop's gains the driver may use (all three gains scaled alike).
 OPERATOR_SCALES = (1.0, 2.0, 4.0)
 #: The push the lane limit is also computed with, as factors on the run's push: the limit depends on whether the
@@ -359,7 +363,7 @@ class LaneLimit:
 
 
 def lane_limit(chair: Chair, driver: Driver | None = None, run: RunSpec | None = None,
-               speeds: tuple = LANE_SPEEDS_M_S, tol: float = 10 * SPEED_TOL_M_S,
+               speeds: tuple = LANE_SPEEDS_M_S, tol: float = LANE_SPEED_TOL_M_S,
                lane_half_width: float = LANE_HALF_WIDTH_M) -> LaneLimit:
     """The highest speed at which the driver keeps the chair within the lane after the run's push.
 
