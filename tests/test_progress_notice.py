@@ -26,18 +26,64 @@ def test_notice_only_when_slow_and_not_quiet():
 
 
 def test_simulator_says_compiling_once_per_process(monkeypatch):
-    from stability.simulate import engine
+    from stability.simulate import first_use
 
-    monkeypatch.setattr(engine, "_FIRST_USE", {"wchair": True, "wchair_load": True, "adaptive_load": True})
-    monkeypatch.setattr(engine, "NOTICE_AFTER_S", 0.05)
+    monkeypatch.setattr(first_use, "_FIRST_USE", {"wchair": True, "wchair_load": True, "adaptive_load": True,
+                                                  "layout": True})
+    monkeypatch.setattr(first_use, "NOTICE_AFTER_S", 0.05)
     said = []
-    monkeypatch.setattr(engine, "notice_if_slow", lambda msg, after: _Recorder(said, msg))
-    with engine.first_use("wchair_load"):
+    monkeypatch.setattr(first_use, "notice_if_slow", lambda msg, after: _Recorder(said, msg))
+    with first_use.first_use("wchair_load"):
         time.sleep(0.1)
-    with engine.first_use("wchair"):
+    with first_use.first_use("wchair"):
         time.sleep(0.1)
-    assert said == [engine.COMPILE_NOTICE]       # the second block is silent: one notice per process
-    assert "first use" in engine.COMPILE_NOTICE
+    with first_use.first_use("layout"):
+        time.sleep(0.1)
+    assert said == [first_use.COMPILE_NOTICE]       # the later blocks are silent: one notice per process
+    assert "first use" in first_use.COMPILE_NOTICE
+
+
+def test_a_kernels_load_is_watched_without_the_run_after_it(monkeypatch):
+    """The layout kernel is loaded (or compiled) under the notice before its first call, for the types numba gives
+    the call's arguments; a loaded kernel is not loaded again."""
+    import numba
+    import numpy as np
+
+    from stability.simulate import first_use
+
+    monkeypatch.setattr(first_use, "_FIRST_USE", {"layout": True})
+    said = []
+    monkeypatch.setattr(first_use, "notice_if_slow", lambda msg, after: _Recorder(said, msg))
+
+    class Dispatcher:
+        signatures: list = []
+
+        def compile(self, sig):
+            self.signatures = [sig]
+
+    d = Dispatcher()
+    first_use.load_kernel(d, (0, 1.5, np.zeros((2, 3))), "layout")
+    assert d.signatures == [(numba.int64, numba.float64, numba.float64[:, ::1])]
+    assert said == [first_use.COMPILE_NOTICE]
+    first_use.load_kernel(d, (0, 1.5, np.zeros((2, 3))), "layout")
+    assert d.signatures == [(numba.int64, numba.float64, numba.float64[:, ::1])] and len(said) == 1
+
+
+def test_one_layout_run_and_a_hooked_batch_share_the_kernel_they_load():
+    """The load before the first call types the arguments as the call does: the layout kernel has one signature
+    after a run and a stepped batch (a mismatch would compile it twice: about 11 s more on a first use)."""
+    import numpy as np
+
+    from stability.layout.presets import layout_preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import layout_kernel
+    from stability.simulate.layout import simulate_layout
+    from stability.simulate.layout_batch import simulate_layout_batch
+
+    lay, spec = layout_preset("mid-wheel-drive"), RunSpec(horizon=0.01, stop_on_warnings=False)
+    simulate_layout(lay, 1.0, spec)
+    simulate_layout_batch(lay, [1.0, -1.0], spec, yaw_moment=lambda t, s: np.zeros(len(s.run)))
+    assert len(layout_kernel.step_layouts.signatures) == 1
 
 
 class _Recorder:

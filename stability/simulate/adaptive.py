@@ -11,7 +11,8 @@ import numpy as np
 
 from stability.chair import Chair
 from stability.models.forces import pin_holds
-from stability.simulate.engine import _raise_refused, first_use
+from stability.simulate.engine import _raise_refused
+from stability.simulate.first_use import first_use
 from stability.simulate.options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,

@@ -7,12 +7,10 @@ with the same kernel, so the same run gives the same numbers either way.
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import math
 import threading
-import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from contextlib import AbstractContextManager, nullcontext
 from typing import Any
 
@@ -20,10 +18,10 @@ import numpy as np
 
 from stability import tires as _tires
 from stability.chair import Chair
-from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
 from stability.settings.reference import LEVEL
 from stability.simulate import kernel_choice as _kc
 from stability.simulate.controller import SampledController
+from stability.simulate.first_use import first_use
 from stability.simulate.hooked import hooked_steps
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, Options, n_steps
 from stability.simulate.packing import Packed, policy_code, slope_slots
@@ -41,28 +39,6 @@ RECORDS = ("all", "states", "final")
 STATS_LEVELS = (0.5, LEVEL)
 #: Runs stopped at a level (the searches) and with stick-slip friction also stop once settled (kernel.SETTLE).
 SETTLE_STOP = True
-
-
-_FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True}
-#: What the first call in a process says when it takes longer than progress.NOTICE_AFTER_S (numba compiles the
-#: kernels once per machine and caches them; docs/simulator.md gives the measured times).
-COMPILE_NOTICE = ("compiling the simulator (first use on this machine, about 10-20 s; later runs load it from "
-                  "numba's cache)")
-
-
-@contextlib.contextmanager
-def first_use(scheme: str) -> Iterator[None]:
-    """Around the first compiled call of ``scheme`` (a key of the first-use table: the kernel's load or its first
-    call) in a process: say so if it takes over 2 s (a compile)."""
-    if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False):
-        yield
-        return
-    start = time.perf_counter()
-    with notice_if_slow(COMPILE_NOTICE, after=NOTICE_AFTER_S):
-        yield
-    _FIRST_USE[scheme] = False
-    if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
-        _FIRST_USE["noticed"] = True
 
 
 _LOADED: dict[str, Any] = {}

@@ -44,6 +44,7 @@ from stability.models.layout import shape_index
 from stability.runtime.files import atomic_write_text
 from stability.settings.bounds import SIGNED_SPEED
 from stability.settings.run import RunSpec
+from stability.simulate.first_use import load_kernel
 from stability.simulate.options import LOAD_LIMIT_N, SLIP_LIMIT_DEG, WARNING_LIMIT, make_options, n_steps
 from stability.simulate.packing import _rolling_slot, _tire_slot, policy_code, slope_slots
 
@@ -423,8 +424,9 @@ def _runs(layout: Layout, speeds: list, run: RunSpec | None, angles: list, contr
                        for (_, s, r), d in zip(checked, deltas, strict=True)])
     recs = np.full((R, k.NREC + 2 * nc, nrec), np.nan)
     statuses, warns, mzrecs = np.zeros((R, 2)), np.zeros((R, 3, 3)), np.zeros((R, nrec))
-    k.step_layouts(0, int(cfg[1]), cfg, *consts, states, recs, statuses, warns, *ctl,  # type: ignore[call-arg]
-                   mzrecs)
+    args = (0, int(cfg[1]), cfg, *consts, states, recs, statuses, warns, *ctl, mzrecs)
+    load_kernel(k.step_layouts, args, "layout")
+    k.step_layouts(*args)
     out = []
     for i, ((_, signed, r), delta0) in enumerate(zip(checked, deltas, strict=True)):
         m, status = int(states[i, k.S_NREC]), statuses[i]

@@ -15,6 +15,7 @@ import numpy as np
 
 from stability.layout.model import Layout
 from stability.settings.run import RunSpec
+from stability.simulate.first_use import load_kernel
 from stability.simulate.going import GoingRuns
 from stability.simulate.layout import (
     LayoutRun,
@@ -121,6 +122,8 @@ def simulate_layout_batch(layout: Layout, speeds: Sequence[float], run: RunSpec 
         st = states.copy() if runs.everyone else states[going]
         runs.store(states, k.S_CMD, yaw_moment(step * dt, LayoutState(st[:, 0], st[:, 1], st[:, 2], st[:, 4], st[:, 5],
                                                                     st[:, 3], st[:, d0:d1].T, st[:, d1:d2].T, going)))
+        if step == 0:
+            load_kernel(k.step_layouts, (0, 1, *args), "layout")
         step_layouts(step, step + 1, *args)
         if step == 0:
             step_layouts = _compiled(k.step_layouts, (0, 1, *args))

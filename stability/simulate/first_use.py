@@ -1,0 +1,70 @@
+"""The first use of a compiled kernel in a process: one line on stderr when it compiles.
+
+numba compiles each kernel (the WCHAIR kernel, the adaptive scheme's, the layout kernel) the first time a machine
+runs it and caches the machine code; later processes load it.  A compile takes seconds of CPU with nothing to
+count, so :func:`first_use` prints :data:`COMPILE_NOTICE` once per process when the block around a kernel's load
+or first call runs past :data:`stability.runtime.progress.NOTICE_AFTER_S` (docs/simulator.md and docs/layouts.md
+give the measured first-use times, computed when the site is built)."""
+
+from __future__ import annotations
+
+import contextlib
+import time
+from collections.abc import Iterator
+from typing import Any
+
+from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
+
+__all__ = ["COMPILE_NOTICE", "first_use", "load_kernel"]
+
+#: The kernels' first uses in this process not yet passed (a kernel's load and its first call are separate keys),
+#: and whether the notice was said.
+_FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True, "layout": True}
+#: What the first call in a process says when it takes longer than ``NOTICE_AFTER_S``.
+COMPILE_NOTICE = "compiling the simulator (first use on this machine; later runs load it from numba's cache)"
+
+
+@contextlib.contextmanager
+def first_use(scheme: str) -> Iterator[None]:
+    """Around the first compiled call of ``scheme`` (a key of the first-use table: a kernel's load or its first
+    call) in a process: say so if it runs past ``NOTICE_AFTER_S`` s (a compile), once per process.
+
+    Parameters
+    ----------
+    scheme : str
+        The first-use table's key: ``"wchair"``, ``"wchair_load"``, ``"adaptive_load"`` or ``"layout"``; any other
+        key, or one whose first use has passed, watches nothing.
+    """
+    if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False):
+        yield
+        return
+    start = time.perf_counter()
+    with notice_if_slow(COMPILE_NOTICE, after=NOTICE_AFTER_S):
+        yield
+    _FIRST_USE[scheme] = False
+    if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
+        _FIRST_USE["noticed"] = True
+
+
+def load_kernel(dispatcher: Any, args: tuple, scheme: str) -> None:
+    """Load, or once per machine compile, ``dispatcher``'s machine code for ``args``' types before its first call.
+
+    Under :func:`first_use` (``scheme``), so that the notice times the load or compile alone, not the run that
+    follows it (a large first batch of a cached kernel says nothing).  numba types ``args`` as a call would, so the
+    call then finds this code.
+
+    Parameters
+    ----------
+    dispatcher : numba dispatcher
+        The kernel (``@njit``), with or without machine code in this process.
+    args : tuple
+        The arguments of its first call, typed as numba types them (``numba.typeof``).
+    scheme : str
+        The first-use key the load is watched under (:func:`first_use`).
+    """
+    if dispatcher.signatures:
+        return
+    import numba
+
+    with first_use(scheme):
+        dispatcher.compile(tuple(numba.typeof(a) for a in args))
