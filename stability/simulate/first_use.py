@@ -34,6 +34,11 @@ def first_use(scheme: str) -> Iterator[None]:
     scheme : str
         The first-use table's key: ``"wchair"``, ``"wchair_load"``, ``"adaptive_load"`` or ``"layout"``; any other
         key, or one whose first use has passed, watches nothing.
+
+    Yields
+    ------
+    None
+        The block runs inside; the notice, if any, is printed on stderr while it runs.
     """
     if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False):
         yield
