@@ -24,6 +24,7 @@ from numba.core import types as _nbtypes
 from numba.extending import overload
 
 from stability.simulate.cache_stamp import invalidate_stale_cache
+from stability.simulate.first_use import first_use
 from stability.simulate.kernel_controller import controlled, controller_step, scratch_columns  # noqa: F401
 
 # the layouts and the compiled physics as this module's globals, where numba resolves them (the engine, the adaptive
@@ -95,12 +96,13 @@ def call_model(entry: Any, var: tuple[int, int], *args: Any) -> Any:
     key = (entry, var, tuple(map(compute_fingerprint, args)))
     fn = _ENTRIES.get(key)
     if fn is None:
-        types_, lit = tuple(typeof(a) for a in args), tuple(map(_nbtypes.literal, var))
-        if entry is run_batch or entry is run_serial:     # the step for one run's rows (numba's types of a[i])
-            step = address(run_one, (*lit, *types_[:2], *row_types(types_[2:-1], PER_RUN_ARGS)))
-            fn = partial(entry.compile((typeof(step), *map(typeof, var), *types_)), step, *var)
-        else:
-            fn = partial(entry.compile((*lit, *types_)), *var)
+        with first_use("wchair"):       # numba loads it from its cache, or compiles it once per machine
+            types_, lit = tuple(typeof(a) for a in args), tuple(map(_nbtypes.literal, var))
+            if entry is run_batch or entry is run_serial:     # the step for one run's rows (numba's types of a[i])
+                step = address(run_one, (*lit, *types_[:2], *row_types(types_[2:-1], PER_RUN_ARGS)))
+                fn = partial(entry.compile((typeof(step), *map(typeof, var), *types_)), step, *var)
+            else:
+                fn = partial(entry.compile((*lit, *types_)), *var)
         _ENTRIES[key] = fn
     return fn(*args)
 
