@@ -121,3 +121,16 @@ def test_the_scalar_kernels_load_is_watched_apart_from_its_runs(monkeypatch):
     with engine.use_kernel("scalar"):
         simulate_batch(preset("ej-premier"), [0.5, 0.75], RunSpec(horizon=0.01), progress=False)
     assert [s for s in seen if s[1] == "wchair"] == [("kernel", "wchair")]
+
+
+def test_the_adaptive_schemes_kernels_are_loaded_as_their_calls_type_them():
+    """The adaptive scheme's right-hand side and samples are loaded under the notice before their first calls, for
+    the types the calls give: one signature each after runs of both models (a mismatch would compile them twice)."""
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import adaptive_kernel, simulate
+
+    simulate(preset("ej-premier"), 0.75, RunSpec(scheme="adaptive", horizon=0.05))
+    simulate(preset("ej-premier"), 1.0, RunSpec(scheme="adaptive", horizon=0.05, model="thesis"))
+    assert len(adaptive_kernel.evaluate.signatures) == 1
+    assert len(adaptive_kernel.samples.signatures) == 1

@@ -12,7 +12,7 @@ import numpy as np
 from stability.chair import Chair
 from stability.models.forces import pin_holds
 from stability.simulate.engine import _raise_refused
-from stability.simulate.first_use import first_use
+from stability.simulate.first_use import first_use, load_kernel
 from stability.simulate.options import (
     ADAPTIVE_METHOD,
     LOAD_LIMIT_N,
@@ -103,8 +103,10 @@ class AdaptiveModel:
     def point(self, t: float, y: np.ndarray, modes, imp: bool, mz: float) -> tuple[np.ndarray, tuple[float, float]]:
         """``(dy, (M_A, M_B))`` at ``(t, y)``: the derivatives and the pin moments, N m (the yaw moment ``mz``)."""
         dy, aux = np.empty(10), np.zeros(self.k.NAUX)
-        code = self.k.evaluate(float(t), y, int(modes[0]), int(modes[1]), bool(imp), float(mz), *self.head,
-                               *self.arrays, self.guess, dy, aux)
+        args = (float(t), y, int(modes[0]), int(modes[1]), bool(imp), float(mz), *self.head, *self.arrays, self.guess,
+                dy, aux)
+        load_kernel(self.k.evaluate, args, "adaptive")
+        code = self.k.evaluate(*args)
         self._check(code, aux, t)
         return dy, (float(aux[16]), float(aux[17]))
 
@@ -147,9 +149,11 @@ class AdaptiveModel:
     def samples(self, tt: np.ndarray, yy: np.ndarray, modes, imp: bool, mzs: np.ndarray) -> np.ndarray:
         """Columns ``COLUMNS[1:]`` at the samples, shape (31, m); ``mzs`` the yaw-moment input at each, N m."""
         out, dy, aux = np.empty((NCOLS - 1, tt.size)), np.empty(10), np.zeros(self.k.NAUX)
-        code = self.k.samples(np.ascontiguousarray(tt, dtype=float), np.ascontiguousarray(yy, dtype=float),
-                              np.ascontiguousarray(mzs, dtype=float), int(modes[0]), int(modes[1]), bool(imp),
-                              *self.head, *self.arrays, out, np.zeros(2), dy, aux)
+        args = (np.ascontiguousarray(tt, dtype=float), np.ascontiguousarray(yy, dtype=float),
+                np.ascontiguousarray(mzs, dtype=float), int(modes[0]), int(modes[1]), bool(imp), *self.head,
+                *self.arrays, out, np.zeros(2), dy, aux)
+        load_kernel(self.k.samples, args, "adaptive_samples")
+        code = self.k.samples(*args)
         self._check(code, aux, tt)
         return out
 

@@ -19,7 +19,8 @@ __all__ = ["COMPILE_NOTICE", "first_use", "load_kernel"]
 
 #: The kernels' first uses in this process not yet passed (a kernel's load and its first call are separate keys),
 #: and whether the notice was said.
-_FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True, "layout": True}
+_FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True, "adaptive": True, "adaptive_samples": True,
+              "layout": True}
 #: What the first call in a process says when it takes longer than ``NOTICE_AFTER_S``.
 COMPILE_NOTICE = "compiling the simulator (first use on this machine; later runs load it from numba's cache)"
 
@@ -32,8 +33,8 @@ def first_use(scheme: str) -> Iterator[None]:
     Parameters
     ----------
     scheme : str
-        The first-use table's key: ``"wchair"``, ``"wchair_load"``, ``"adaptive_load"`` or ``"layout"``; any other
-        key, or one whose first use has passed, watches nothing.
+        The first-use table's key: ``"wchair"``, ``"wchair_load"``, ``"adaptive_load"``, ``"adaptive"``,
+        ``"adaptive_samples"`` or ``"layout"``; any other key, or one whose first use has passed, watches nothing.
 
     Yields
     ------
