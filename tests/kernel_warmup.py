@@ -13,7 +13,11 @@ import sys
 
 
 def _layout() -> None:
-    """The layout kernel (``step_layouts``): one run, stepped to its end, and a stepped batch with a Python hook."""
+    """The layout kernel (``step_layouts``): one run, stepped to its end, and a stepped batch with a Python hook;
+    then one run of each other shape the tests run (two fixed wheels and one to four casters), whose equations are
+    compiled on their own (the kernel calls them at their addresses)."""
+    import dataclasses
+
     import numpy as np
 
     from stability.layout.presets import layout_preset
@@ -25,6 +29,8 @@ def _layout() -> None:
     spec = RunSpec(horizon=0.01, stop_on_warnings=False)
     simulate_layout(lay, 1.0, spec)
     simulate_layout_batch(lay, [1.0, -1.0], spec, yaw_moment=lambda t, s: np.zeros(len(s.run)))
+    for nc in (1, 2, 3):       # its first casters: the shapes (2, 1) to (2, 3)
+        simulate_layout(dataclasses.replace(lay, casters=lay.casters[:nc]), 1.0, spec)
 
 
 def _wchair() -> None:
