@@ -79,12 +79,14 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
     """Program WCHAIR's STATICS / MECHAN range rules on the tested tires on the ground: count the warnings;
     the stop code when a kind reaches its limit (``stop``), else 0."""
     nmax, smax, nmin = -math.inf, 0.0, math.inf
+    # min/max as numba's (Python's) selects, NaN included, without compiling numba's functions for them
     for i in range(loads.shape[0]):
         if kv[i] != 0.0:
-            nmin = min(nmin, loads[i])
+            nmin = loads[i] if loads[i] < nmin else nmin
             if CHK[i]:
-                nmax = max(nmax, loads[i])
-                smax = max(smax, abs(slips[i]))
+                nmax = loads[i] if loads[i] > nmax else nmax
+                si = abs(slips[i])
+                smax = si if si > smax else smax
     if nmax > maxload:
         _note(warn, np.int64(1), t, nmax)
         if stop and warn[1, 0] > nwarn_limit:
@@ -266,17 +268,17 @@ def step_layouts(k0, k1, eqf, cvf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC,
         # the run's rows (views); the step's scalars and scratch are the run's own
         state, rec, run_status, run_warn, run_mz = states[r], recs[r], status[r], warn[r], mzrec[r]
         _fresh(work, mats, free, held)
-        dt, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[2]), cfg[3], cfg[4], cfg[5]
-        pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
+        dt, stride, duimp, fcimp, ftimp = cfg[0], np.int64(cfg[2]), cfg[3], cfg[4], cfg[5]
+        pin_mode, stop, policy = np.int64(cfg[6]), cfg[7] != 0.0, np.int64(cfg[8])
         maxslip, maxload, nwarn_limit, weight, h, mode = (cfg[9], cfg[10], cfg[11], cfg[13], cfg[14],
-                                                          int(cfg[15]))
+                                                          np.int64(cfg[15]))
         slope, c_phi, s_phi, c_theta, s_theta, grav = cfg[16] != 0.0, cfg[17], cfg[18], cfg[19], cfg[20], cfg[21]
         g1 = g2 = 0.0
         wn = weight
         half_dt2 = 0.5 * dt * dt
         X, Y, THE, THED, UD, VD = state[0], state[1], state[2], state[3], state[4], state[5]
         FC1, FC2 = state[6], state[7]
-        next_k, cmd, mz, nrec = int(state[8]), state[S_CMD], state[10], int(state[S_NREC])
+        next_k, cmd, mz, nrec = np.int64(state[8]), state[S_CMD], state[10], np.int64(state[S_NREC])
         z = state[NSTATE + 2 * nc:NSTATE + 2 * nc + nz]          # a view: advanced in place
         _start(state, nw, nc, p, mf, pin_mode == 2, D, DD, rest, xs, ys)
         use_ctl = ctl_f[0] > 0.0
@@ -339,7 +341,7 @@ def step_layouts(k0, k1, eqf, cvf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC,
 @_inl
 def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """The sampled controller's samples due by ``t``: the next sample's index and the held command."""
-    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+    ks = math.floor(t / ctl_f[0] + 1e-9)         # an integer (numba's floor of a float)
     while next_k <= ks:
         sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
         for kk in range(D.shape[0]):
