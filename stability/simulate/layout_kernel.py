@@ -44,7 +44,7 @@ from stability.simulate.kernel_equations import (
     slip_angle,
 )
 from stability.simulate.layout_solve import _layout_loads, _pins, layout_loads
-from stability.simulate.native_call import address, call_none_at
+from stability.simulate.native_call import address, call_at, call_none_at
 
 __all__ = ["step_layouts", "initial_state", "arguments", "work_length", "NSTATE", "S_CMD", "S_NREC",
            "layout_loads", "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
@@ -169,22 +169,23 @@ def work_length(nw: int, nc: int, nz: int, ny: int) -> int:
     int
     """
     nt, n = nw + nc, 3 + nc
-    return 6 * nc + 6 * nt + 2 * nw + 2 * nc + 4 * n + nz + ny + 6 + 2 * nc + 8
+    return 6 * nc + 6 * nt + 2 * nw + 2 * nc + 4 * n + nz + ny + 6 + 2 * nc + 9
 
 
 #: the numba types of the shape's functions' arguments other than ``p``: floats, and :func:`step_layouts`' views
 #: of its scratch (contiguous rows and matrices)
 _F, _V, _M = _nbtypes.float64, _nbtypes.float64[::1], _nbtypes.float64[:, ::1]
-#: ``(shape, p's numba type)``: the addresses of the shape's equations and contact velocities
-_ADDRESSES: dict[tuple[int, Any], tuple[int, int]] = {}
+#: ``(shape, p's numba type)``: the addresses of the shape's equations and contact velocities; the controller's
+#: arrays' numba types: the address of :func:`_samples` for them
+_ADDRESSES: dict[tuple, Any] = {}
 
 
 def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarray, status: np.ndarray,
               warn: np.ndarray, ctl: tuple, mzrec: np.ndarray) -> tuple:
     """:func:`step_layouts`' arguments after ``k0, k1``: the addresses of the layout's shape's generated equations
-    and contact velocities (compiled, or loaded from numba's cache, the first time a process runs the shape), the
-    caller's arrays, and the step's scratch arrays (allocated here, once per call of :func:`step_layouts`' caller:
-    the compiled step allocates nothing).
+    and contact velocities (compiled, or loaded from numba's cache, the first time a process runs the shape) and of
+    the controller's sampling (with a controller, likewise; else 0), the caller's arrays, and the step's scratch
+    arrays (allocated here, once per call of :func:`step_layouts`' caller: the compiled step allocates nothing).
 
     Parameters
     ----------
@@ -202,7 +203,7 @@ def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarr
     Returns
     -------
     tuple
-        ``(eqf, cvf, cfg, *consts, states, recs, status, warn, *ctl, mzrec, work, mats, free, held)``.
+        ``(eqf, cvf, ctlf, cfg, *consts, states, recs, status, warn, *ctl, mzrec, work, mats, free, held)``.
     """
     p, nw, nc = consts[0], consts[1], consts[2]
     shape = int(cfg[12])
@@ -213,32 +214,40 @@ def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarr
         _ADDRESSES[key] = (address(eq, (_F, _F, _F, _V, _V, _V, key[1], _V, _V, _F, _F, _F, _F, _M, _V),
                                    _nbtypes.none),
                            address(cv, (_F, _F, _F, _V, _V, _V, key[1], _V), _nbtypes.none))
+    ctlf = 0
+    if ctl[0][0] > 0.0:           # a sampled controller (its state views are step_layouts' scratch rows)
+        ckey = tuple(map(typeof, ctl))
+        if ckey not in _ADDRESSES:
+            _ADDRESSES[ckey] = address(_samples, (_F, _nbtypes.int64, *(_F,) * 6, *(_V,) * 6, *ckey, _V))
+        ctlf = _ADDRESSES[ckey]
     n = 3 + nc
-    work = np.zeros(work_length(nw, nc, ctl[4].shape[0], ctl[1].shape[0]))
-    return (*_ADDRESSES[key], cfg, *consts, states, recs, status, warn, *ctl, mzrec, work, np.zeros((3, n, n)),
+    work = np.zeros(work_length(nw, nc, ctl[3].shape[0], ctl[1].shape[0]))
+    return (*_ADDRESSES[key], ctlf, cfg, *consts, states, recs, status, warn, *ctl, mzrec, work, np.zeros((3, n, n)),
             np.zeros(n, dtype=np.int64), np.zeros(nc, dtype=np.bool_))
 
 
 @njit(cache=True, nogil=True, _nrt=False)
-def step_layouts(k0, k1, eqf, cvf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin,
-                 states, recs, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec, work, mats, free, held):
+def step_layouts(k0, k1, eqf, cvf, ctlf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf,
+                 cpin, states, recs, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec, work, mats, free,
+                 held):
     """Steps ``k0 .. k1 - 1`` of a batch of runs of one layout (one run: a batch of one, stepped to its end).
 
-    ``eqf``, ``cvf`` the addresses of the layout's shape's generated equations and contact velocities
-    (:func:`arguments`), ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels
-    and ``nc`` casters, per contact (fixed wheels, then casters) the tire slots (then each fixed wheel's camber
-    tire) and range check, the rolling-resistance slots (kind, coefficients, scale), per fixed wheel the camber
-    ``(deg, signed coefficient)`` and its angle's ``(cos, sin)``, the vertical stiffness and support line, the
-    lines' roll shares, per caster the Coulomb limit (N m) and viscous coefficient (N m s/rad); one row per run of
-    ``states`` (:func:`initial_state`; its slot :data:`S_NREC` counts the rows written), ``recs`` (:data:`NREC` +
-    2 nc, rows), ``status`` (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and
-    ``mzrec``.  Each run still going (``status[r, 0] == 0``) advances.  With ``ctl_f[0] > 0`` the sampled
-    controller of :mod:`stability.simulate.controller` (its arrays; the state it measures is ``[x, y, heading, u,
-    v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at each sample, held until the next;
-    without one, the yaw moment each run's command slot holds (set by the caller between calls, N m) acts.  Either
-    goes through a first-order motor lag (``cfg[22]``, exact over each step); the commanded (saturated) moment is
-    recorded in ``mzrec`` (N m).  ``work`` (:func:`work_length`), ``mats`` (3, 3 + nc, 3 + nc), ``free`` (int,
-    3 + nc) and ``held`` (bool, nc) are scratch, zeroed for each run as fresh arrays were.
+    ``eqf``, ``cvf`` the addresses of the layout's shape's generated equations and contact velocities, ``ctlf`` the
+    controller's sampling (:func:`_samples`; 0: none) (:func:`arguments`), ``cfg`` (:data:`NCFG` slots), parameters
+    ``p`` (the generated order), ``nw`` fixed wheels and ``nc`` casters, per contact (fixed wheels, then casters)
+    the tire slots (then each fixed wheel's camber tire) and range check, the rolling-resistance slots (kind,
+    coefficients, scale), per fixed wheel the camber ``(deg, signed coefficient)`` and its angle's ``(cos, sin)``,
+    the vertical stiffness and support line, the lines' roll shares, per caster the Coulomb limit (N m) and viscous
+    coefficient (N m s/rad); one row per run of ``states`` (:func:`initial_state`; its slot :data:`S_NREC` counts
+    the rows written), ``recs`` (:data:`NREC` + 2 nc, rows), ``status`` (code, time), ``warn`` (3, 3: slip, load,
+    lift-off counts, first time, largest) and ``mzrec``. Each run still going (``status[r, 0] == 0``) advances. With
+    ``ctl_f[0] > 0`` the sampled controller of :mod:`stability.simulate.controller` (its arrays; the state it
+    measures is ``[x, y, heading, u, v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at
+    each sample, held until the next; without one, the yaw moment each run's command slot holds (set by the caller
+    between calls, N m) acts. Either goes through a first-order motor lag (``cfg[22]``, exact over each step); the
+    commanded (saturated) moment is recorded in ``mzrec`` (N m). ``work`` (:func:`work_length`), ``mats`` (3, 3 +
+    nc, 3 + nc), ``free`` (int, 3 + nc) and ``held`` (bool, nc) are scratch, zeroed for each run as fresh arrays
+    were.
 
     A run's steps are written in this loop, not in a jitted function of their own that it calls: numba compiles a
     called function to machine code on its own and then, linked into its caller, optimises and emits it again, so
@@ -260,7 +269,7 @@ def step_layouts(k0, k1, eqf, cvf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC,
     o += 4 * n
     znew, y, sv = work[o:o + nz], work[o + nz:o + nz + ny], work[o + nz + ny:o + nz + ny + 6 + 2 * nc]
     o += nz + ny + 6 + 2 * nc
-    lb, lx = work[o:o + 4], work[o + 4:o + 8]
+    lb, lx, io = work[o:o + 4], work[o + 4:o + 8], work[o + 8:o + 9]
     Mm, W, A = mats[0], mats[1], mats[2]
     for r in range(states.shape[0]):
         if status[r, 0] != 0.0:
@@ -287,8 +296,10 @@ def step_layouts(k0, k1, eqf, cvf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC,
         for k in range(k0, k1):
             t = k * dt
             if use_ctl:
-                next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy,
-                                       Az, Bu, By, Cz, noise)
+                io[0] = cmd
+                next_k = call_at(ctlf, t, next_k, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az,
+                                 Bu, By, Cz, noise, io)
+                cmd = io[0]
             if lag <= 0.0:
                 mz = cmd
             _kinematics(cvf, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
@@ -338,9 +349,12 @@ def step_layouts(k0, k1, eqf, cvf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC,
 
 
 
-@_inl
-def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    """The sampled controller's samples due by ``t``: the next sample's index and the held command."""
+@_int
+def _samples(t, next_k, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, io):
+    """The sampled controller's samples due by ``t``: returns the next sample's index; the held command in
+    ``io[0]``.  Compiled on its own, when a process first runs a layout with a controller, and called at its
+    address (:func:`arguments`): a run without one compiles no controller code."""
+    cmd = io[0]
     ks = math.floor(t / ctl_f[0] + 1e-9)         # an integer (numba's floor of a float)
     while next_k <= ks:
         sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
@@ -348,7 +362,8 @@ def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl
             sv[6 + 2 * kk], sv[7 + 2 * kk] = D[kk], DD[kk]
         cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         next_k += 1
-    return next_k, cmd
+    io[0] = cmd
+    return next_k
 
 
 @_inl
