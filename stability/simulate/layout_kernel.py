@@ -204,6 +204,11 @@ def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarr
     -------
     tuple
         ``(eqf, cvf, ctlf, cfg, *consts, states, recs, status, warn, *ctl, mzrec, work, mats, free, held)``.
+
+    Raises
+    ------
+    ValueError
+        With a controller, ``states`` not C-contiguous.
     """
     p, nw, nc = consts[0], consts[1], consts[2]
     shape = int(cfg[12])
@@ -215,7 +220,9 @@ def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarr
                                    _nbtypes.none),
                            address(cv, (_F, _F, _F, _V, _V, _V, key[1], _V), _nbtypes.none))
     ctlf = 0
-    if ctl[0][0] > 0.0:           # a sampled controller (its state views are step_layouts' scratch rows)
+    if ctl[0][0] > 0.0:           # a sampled controller: its state views are rows of states and of the scratch
+        if not states.flags.c_contiguous:      # the row types the address is taken for
+            raise ValueError("states must be C-contiguous (initial_state rows stacked by np.array)")
         ckey = tuple(map(typeof, ctl))
         if ckey not in _ADDRESSES:
             _ADDRESSES[ckey] = address(_samples, (_F, _nbtypes.int64, *(_F,) * 6, *(_V,) * 6, *ckey, _V))
