@@ -13,18 +13,29 @@ import sys
 
 
 def _layout() -> None:
-    """The layout kernel (``step_layouts``): one run, stepped to its end, and a stepped batch with a Python hook."""
+    """The layout kernel (``step_layouts``): one run, stepped to its end, and a stepped batch with a Python hook;
+    then one run of each other shape the tests run (two fixed wheels and one to four casters), whose equations are
+    compiled on their own (the kernel calls them at their addresses), and a run with a sampled controller."""
+    import dataclasses
+
     import numpy as np
 
     from stability.layout.presets import layout_preset
     from stability.settings.run import RunSpec
-    from stability.simulate.layout import simulate_layout
+    from stability.simulate.controller import SampledController
+    from stability.simulate.layout import layout_state_order, simulate_layout
     from stability.simulate.layout_batch import simulate_layout_batch
 
     lay = layout_preset("mid-wheel-drive")
     spec = RunSpec(horizon=0.01, stop_on_warnings=False)
     simulate_layout(lay, 1.0, spec)
     simulate_layout_batch(lay, [1.0, -1.0], spec, yaw_moment=lambda t, s: np.zeros(len(s.run)))
+    for nc in (1, 2, 3):       # its first casters: the shapes (2, 1) to (2, 3)
+        simulate_layout(dataclasses.replace(lay, casters=lay.casters[:nc]), 1.0, spec)
+    # a sampled controller (compiled on its own, called at its address: a run without one compiles none)
+    const = SampledController(0.005, np.zeros((1, len(layout_state_order(lay)))), np.array([1.0]),
+                              state_names=layout_state_order(lay))
+    simulate_layout(lay, 1.0, spec, controller=const, motor_lag_s=0.02)
 
 
 def _wchair() -> None:

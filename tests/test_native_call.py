@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from numba import literally, njit, typeof, types
 
-from stability.simulate.native_call import address, call_at, row_types
+from stability.simulate.native_call import address, call_at, call_none_at, row_types
 
 
 @njit(nogil=True)
@@ -64,6 +64,38 @@ def test_call_at_propagates_the_callee_exception():
     fp = _address(3, 5, A, A)
     with pytest.raises(ValueError, match="negative k"):
         _through(fp, 3, -1, A, np.empty_like(A))
+
+
+@njit(nogil=True)
+def _writer(k, a, out):
+    """Writes ``a + k`` into ``out``; raises for ``k < 0``; returns nothing."""
+    if k < 0:
+        raise ValueError("negative k")
+    for i in range(a.shape[0]):
+        out[i] = a[i] + k
+
+
+@njit
+def _through_none(fp, k, A, O):
+    for i in range(A.shape[0]):
+        call_none_at(fp, k, A[i], O[i])
+
+
+def test_call_none_at_is_the_direct_call():
+    """A function returning nothing (the layout kernel's generated equations) called at its address writes what
+    it writes when called directly, and its exception reaches the caller."""
+    A = np.linspace(-2.0, 3.0, 12).reshape(3, 4)
+    fp = address(_writer, (typeof(5), *row_types((typeof(A), typeof(A)), (0, 1))), types.none)
+    out_at, out_direct = np.full_like(A, np.nan), np.full_like(A, np.nan)
+    _through_none(fp, 5, A, out_at)
+    for i in range(3):
+        _writer(5, A[i], out_direct[i])
+    assert out_at.tobytes() == out_direct.tobytes()       # exact: the same compiled code
+    assert np.array_equal(out_at, A + 5)                  # numpy's one rounding of each add (IEEE)
+    with pytest.raises(ValueError, match="negative k"):
+        _through_none(fp, -1, A, np.empty_like(A))
+    with pytest.raises(TypeError, match="not int64"):     # call_at's return type is int64
+        address(_writer, (typeof(5), *row_types((typeof(A), typeof(A)), (0, 1))))
 
 
 def test_address_refuses_another_return_type():

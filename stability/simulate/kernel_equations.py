@@ -47,7 +47,6 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 _NOREF: dict[str, Any] = dict(_nrt=False)
 _int = njit(cache=True, nogil=True, **_NOWRAP, **_NOREF)                      # called from compiled code only
 _inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_NOREF)    # inlined into the step by LLVM
-_inl_rc = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)  # the same, counted: allocates (layout kernel)
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
 #: the per-model overloads' options: literal dispatch, and no wrappers for their implementations (numba's default
 #: gives each a C-callable wrapper that LLVM optimises and emits though nothing calls it), nor reference counts

@@ -424,7 +424,7 @@ def _runs(layout: Layout, speeds: list, run: RunSpec | None, angles: list, contr
                        for (_, s, r), d in zip(checked, deltas, strict=True)])
     recs = np.full((R, k.NREC + 2 * nc, nrec), np.nan)
     statuses, warns, mzrecs = np.zeros((R, 2)), np.zeros((R, 3, 3)), np.zeros((R, nrec))
-    args = (0, int(cfg[1]), cfg, *consts, states, recs, statuses, warns, *ctl, mzrecs)
+    args = (0, int(cfg[1]), *k.arguments(cfg, consts, states, recs, statuses, warns, ctl, mzrecs))
     load_kernel(k.step_layouts, args, "layout")
     k.step_layouts(*args)
     out = []

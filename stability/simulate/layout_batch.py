@@ -109,7 +109,7 @@ def simulate_layout_batch(layout: Layout, speeds: Sequence[float], run: RunSpec 
                                                                                             strict=True)])
     recs = np.full((R, k.NREC + 2 * nc, nrec), np.nan)
     status, warn, mzrec = np.zeros((R, 2)), np.zeros((R, 3, 3)), np.zeros((R, nrec))
-    args = (cfg, *consts, states, recs, status, warn, *ctl, mzrec)
+    args = k.arguments(cfg, consts, states, recs, status, warn, ctl, mzrec)
     runs = GoingRuns(status[:, 0])     # the kernel sets a run's code once, when it ends (0: still going)
     d0, d1, d2 = k.NSTATE, k.NSTATE + nc, k.NSTATE + 2 * nc
     dt = float(cfg[0])

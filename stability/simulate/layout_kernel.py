@@ -21,38 +21,43 @@ from __future__ import annotations
 
 import math
 import sys
+from typing import Any
 
 import numpy as np
-from numba import njit
+from numba import njit, typeof
+from numba.core import types as _nbtypes
 
 from stability.models.layout import nonlinear as _gn
 from stability.simulate import layout_forces as _lf
+from stability.simulate import layout_solve as _ls
 from stability.simulate.cache_stamp import invalidate_stale_cache
 from stability.simulate.kernel_controller import controller_output
 from stability.simulate.kernel_equations import (
-    _inl_py,
-    _inl_rc,
-    break_away_moment,
+    _inl,
+    _int,
     camber_force,
     compiled,
     gravity_body,
-    kinetic_pin_moment,
     lateral_force,
-    pin_holds,
     rest_rate,
     rolling_force,
     slip_angle,
 )
+from stability.simulate.layout_solve import _layout_loads, _pins, layout_loads
+from stability.simulate.native_call import address, call_at, call_none_at
 
-__all__ = ["step_layouts", "initial_state", "NSTATE", "S_CMD", "S_NREC", "layout_loads",
-           "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
+__all__ = ["step_layouts", "initial_state", "arguments", "work_length", "NSTATE", "S_CMD", "S_NREC",
+           "layout_loads", "STOPPED_SLIP", "STOPPED_LOAD", "STOPPED_NONFINITE", "NCFG", "NREC"]
 
-_eq = compiled(_gn, tuple(_gn.__all__), _inl_rc)
-equations = _eq.equations
-contact_velocities = _eq.contact_velocities
+#: each shape's generated equations and contact velocities, compiled on their own (no wrappers, no reference
+#: counts): :func:`step_layouts` calls its runs' shape's at their addresses (:func:`arguments`), so it is compiled
+#: once for every shape, and a process compiles (or loads) only the shapes it runs, not all of them inlined
+#: behind a branch on the shape
+_shapes = compiled(_gn, tuple(f"{kind}_{nw}w{nc}c" for nw, nc in _gn.SHAPES
+                              for kind in ("equations", "contact_velocities")), _int)
 #: MECHAN for any layout (:mod:`.layout_forces`, plain Python that the statics call too), compiled with the
 #: thesis engine's compiled tire law
-_lfc = compiled(_lf, ("tire_forces", "wheel_frames"), _inl_rc, {"lateral_force": lateral_force,
+_lfc = compiled(_lf, ("tire_forces", "wheel_frames"), _inl, {"lateral_force": lateral_force,
                                                                  "rolling_force": rolling_force,
                                                                  "camber_force": camber_force})
 _tire_forces, _wheel_frames = _lfc.tire_forces, _lfc.wheel_frames
@@ -67,157 +72,21 @@ STOPPED_SLIP, STOPPED_LOAD, STOPPED_NONFINITE = 1.0, 2.0, 3.0
 NCFG = 23
 #: recorded columns: x, y, heading, yaw rate, u, v, then each caster's angle and rate
 NREC = 6
-_LEVER, _THREE = 0, 1
 
 
-@_inl_rc
-def _solve(A, b, n, x):
-    """Solve the leading ``n x n`` system ``A x = b`` by Gaussian elimination with partial pivoting (``A``, ``b``
-    overwritten)."""
-    for c in range(n):
-        p = c
-        big = abs(A[c, c])
-        for r in range(c + 1, n):
-            if abs(A[r, c]) > big:
-                big, p = abs(A[r, c]), r
-        if p != c:
-            for cc in range(n):
-                A[c, cc], A[p, cc] = A[p, cc], A[c, cc]
-            b[c], b[p] = b[p], b[c]
-        for r in range(c + 1, n):
-            f = A[r, c] / A[c, c]
-            if f != 0.0:
-                for cc in range(c, n):
-                    A[r, cc] -= f * A[c, cc]
-                b[r] -= f * b[c]
-    for c in range(n - 1, -1, -1):
-        s = b[c]
-        for cc in range(c + 1, n):
-            s -= A[c, cc] * x[cc]
-        x[c] = s / A[c, c]
-
-
-@_inl_py
-def layout_loads(mode, xs, ys, k, line, share, weight, h, sum_fx, sum_fy, out):
-    """Normal loads of the contacts at ``(xs, ys)`` (m, about the c.g.) under the weight (N) and the tire forces'
-    resultant ``(sum_fx, sum_fy)`` (N) at the ground ``h`` (m) below the c.g.: ``sum N = weight``,
-    ``sum N x = -h sum_fx``, ``sum N y = -h sum_fy`` (:func:`stability.layout.statics.load_rule`).
-
-    ``mode`` LEVER: two lines of two contacts (``line`` 0 or 1), each carrying ``share[line]`` of the roll moment;
-    THREE: three contacts; COMPLIANT: ``N_i = k_i (z + theta x_i + phi y_i)``.  Contacts with ``k == 0`` carry
-    nothing.  Written into ``out`` (N)."""
-    n = xs.shape[0]
-    pitch, roll = -h * sum_fx, -h * sum_fy
-    for i in range(n):
-        out[i] = 0.0
-    # each rule's system in the leading m x m block, solved by one call (one inlined copy of the elimination)
-    A, b, x, sel = np.zeros((4, 4)), np.zeros(4), np.zeros(4), np.zeros(4, dtype=np.int64)
-    b[0], b[1] = weight, pitch
-    m = 0
-    if mode == _LEVER:
-        b[2], b[3] = share[0] * roll, share[1] * roll
-        for i in range(n):
-            if line[i] >= 0:
-                sel[m] = i
-                A[0, m] = 1.0
-                A[1, m] = xs[i]
-                A[2 + line[i], m] = ys[i]
-                m += 1
-        m = 4
-    elif mode == _THREE:
-        b[2] = roll
-        for i in range(n):
-            if k[i] != 0.0:
-                sel[m] = i
-                A[0, m], A[1, m], A[2, m] = 1.0, xs[i], ys[i]
-                m += 1
-        m = 3
-    else:
-        b[2] = roll
-        for i in range(n):                               # sum_i k_i b_i b_i^T q = (weight, pitch, roll)
-            bi = (1.0, xs[i], ys[i])
-            for r in range(3):
-                for c in range(3):
-                    A[r, c] += k[i] * bi[r] * bi[c]
-        m = 3
-    _solve(A, b, np.int64(m), x)
-    if mode == _LEVER or mode == _THREE:
-        for j in range(m):
-            out[sel[j]] = x[j]
-        return
-    for i in range(n):
-        out[i] = k[i] * (x[0] + x[1] * xs[i] + x[2] * ys[i])
-
-
-@_inl_rc
-def _accelerations(Mm, F0, nc, mom, held, W, w, acc):
-    """Accelerations with the pin moments ``mom`` on the free casters and the ``held`` casters' swivel
-    accelerations zero: the free rows of ``M acc = F0 + sum_k M_k e_(3+k)``; each held caster's moment (written
-    into ``mom``) is then its own row's balance."""
-    n = 3 + nc
-    free = np.zeros(n, dtype=np.int64)
-    m = 0
-    for i in range(n):
-        if i < 3 or not held[i - 3]:
-            free[m] = i
-            m += 1
-    for a in range(m):
-        w[a] = F0[free[a]] + (mom[free[a] - 3] if free[a] >= 3 else 0.0)
-        for c in range(m):
-            W[a, c] = Mm[free[a], free[c]]
-    x = np.zeros(n)
-    _solve(W, w, np.int64(m), x)
-    for i in range(n):
-        acc[i] = 0.0
-    for a in range(m):
-        acc[free[a]] = x[a]
-    for kk in range(nc):
-        if held[kk]:
-            s = -F0[3 + kk]
-            for c in range(n):
-                s += Mm[3 + kk, c] * acc[c]
-            mom[kk] = s
-
-
-@_inl_rc
-def _stick_slip(Mm, F0, nc, dd, mf, cpin, mom, held, W, w, acc):
-    """Stick-slip Coulomb pins (the thesis engine's ``stick_slip`` for any number of casters): a swivelling caster
-    gets the kinetic moment (plus its viscous part), a caster at rest is held while its holding moment is within
-    its friction limit, else it breaks away with the limit moment in the holding moment's direction; decided again
-    after each release (a held caster's moment changes the others')."""
-    for kk in range(nc):
-        mom[kk] = kinetic_pin_moment(dd[kk], mf[kk]) - cpin[kk] * dd[kk]
-        held[kk] = dd[kk] == 0.0
-    for it in range(nc + 2):      # one call of _accelerations (one inlined copy of the solve)
-        anyheld = False
-        for kk in range(nc):
-            if it > nc:           # decided nc + 1 times: every caster free
-                held[kk] = False
-            anyheld = anyheld or held[kk]
-        _accelerations(Mm, F0, nc, mom, held, W, w, acc)
-        if not anyheld:
-            return
-        released = False
-        for kk in range(nc):
-            if held[kk] and not pin_holds(mom[kk], mf[kk]):
-                mom[kk] = break_away_moment(mom[kk], mf[kk])
-                held[kk] = False
-                released = True
-        if not released:
-            return
-
-
-@_inl_rc
+@_inl
 def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit):
     """Program WCHAIR's STATICS / MECHAN range rules on the tested tires on the ground: count the warnings;
     the stop code when a kind reaches its limit (``stop``), else 0."""
     nmax, smax, nmin = -math.inf, 0.0, math.inf
+    # min/max as numba's (Python's) selects, NaN included, without compiling numba's functions for them
     for i in range(loads.shape[0]):
         if kv[i] != 0.0:
-            nmin = min(nmin, loads[i])
+            nmin = loads[i] if loads[i] < nmin else nmin
             if CHK[i]:
-                nmax = max(nmax, loads[i])
-                smax = max(smax, abs(slips[i]))
+                nmax = loads[i] if loads[i] > nmax else nmax
+                si = abs(slips[i])
+                smax = si if si > smax else smax
     if nmax > maxload:
         _note(warn, np.int64(1), t, nmax)
         if stop and warn[1, 0] > nwarn_limit:
@@ -231,29 +100,13 @@ def _range_rules(warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_l
     return 0.0
 
 
-@_inl_rc
-def _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc):
-    """Accelerations under the pin law: 1 every caster held (locked), 2 stick-slip, 0 WCHAIR's kinetic law (each
-    with the viscous part ``-c_pin rate``)."""
-    if pin_mode == 2:
-        _stick_slip(Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
-        return
-    for kk in range(nc):          # one call of _accelerations for both laws: one inlined copy of the solve
-        if pin_mode == 1:
-            held[kk] = True
-        else:
-            mom[kk] = kinetic_pin_moment(DD[kk], mf[kk]) - cpin[kk] * DD[kk]
-            held[kk] = False
-    _accelerations(Mm, F0, nc, mom, held, W, w, acc)
-
-
-@_inl_rc
-def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM):
-    """The caster angles' cosines and sines, the contact velocities (the fixed wheels' in their turned frames) and
-    slip angles (deg), the caster contacts."""
+@_inl
+def _kinematics(cvf, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM):
+    """The caster angles' cosines and sines, the contact velocities (the fixed wheels' in their turned frames; the
+    shape's generated ``contact_velocities`` at the address ``cvf``) and slip angles (deg), the caster contacts."""
     for kk in range(nc):
         cs[kk], sn[kk] = math.cos(D[kk]), math.sin(D[kk])
-    contact_velocities(shape, UD, VD, THED, cs, sn, DD, p, vel)
+    call_none_at(cvf, UD, VD, THED, cs, sn, DD, p, vel)
     _wheel_frames(nw, CAM, vel)
     for i in range(nw + nc):
         slips[i] = slip_angle(vel[2 * i], vel[2 * i + 1])
@@ -263,7 +116,7 @@ def _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, y
         ys[nw + kk] = p[base + 1] - p[base + 2] * sn[kk]
 
 
-@_inl_rc
+@_inl
 def _record(rec, row, X, Y, THE, THED, UD, VD, D, DD):
     rec[0, row], rec[1, row], rec[2, row], rec[3, row], rec[4, row], rec[5, row] = X, Y, THE, THED, UD, VD
     for kk in range(D.shape[0]):
@@ -278,84 +131,189 @@ NSTATE = 12
 S_CMD, S_NREC = 9, 11
 
 
-@njit(cache=True, nogil=True)
-def initial_state(u0, v0, delta0, nz):
+def initial_state(u0: float, v0: float, delta0: np.ndarray, nz: int) -> np.ndarray:
     """A run's :data:`NSTATE` + 2 nc + nz state at ``t = 0``: at rest in the plane, speeds ``u0``, ``v0`` (m/s), the
-    casters at ``delta0`` (rad), not swivelling, no command."""
+    casters at ``delta0`` (rad), not swivelling, no command.
+
+    Parameters
+    ----------
+    u0, v0 : float
+        Forward and lateral speed, m/s.
+    delta0 : ndarray
+        Each caster's swivel angle, rad.
+    nz : int
+        The controller's state length (0: none).
+
+    Returns
+    -------
+    ndarray
+        The state row :func:`step_layouts` advances.
+    """
     nc = delta0.shape[0]
     state = np.zeros(NSTATE + 2 * nc + nz)
     state[4], state[5] = u0, v0
-    for kk in range(nc):
-        state[NSTATE + kk] = delta0[kk]
+    state[NSTATE:NSTATE + nc] = delta0
     return state
 
 
-@njit(cache=True, nogil=True)
-def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf, cpin, states,
-                 recs, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec):
+def work_length(nw: int, nc: int, nz: int, ny: int) -> int:
+    """The length of :func:`step_layouts`' float scratch ``work`` (as it cuts it) for ``nw`` fixed wheels, ``nc``
+    casters and a controller of ``nz`` states and ``ny`` measurements.
+
+    Parameters
+    ----------
+    nw, nc, nz, ny : int
+
+    Returns
+    -------
+    int
+    """
+    nt, n = nw + nc, 3 + nc
+    return 6 * nc + 6 * nt + 2 * nw + 2 * nc + 4 * n + nz + ny + 6 + 2 * nc + 9
+
+
+#: the numba types of the shape's functions' arguments other than ``p``: floats, and :func:`step_layouts`' views
+#: of its scratch (contiguous rows and matrices)
+_F, _V, _M = _nbtypes.float64, _nbtypes.float64[::1], _nbtypes.float64[:, ::1]
+#: ``(shape, p's numba type)``: the addresses of the shape's equations and contact velocities; the controller's
+#: arrays' numba types: the address of :func:`_samples` for them
+_ADDRESSES: dict[tuple, Any] = {}
+
+
+def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarray, status: np.ndarray,
+              warn: np.ndarray, ctl: tuple, mzrec: np.ndarray) -> tuple:
+    """:func:`step_layouts`' arguments after ``k0, k1``: the addresses of the layout's shape's generated equations
+    and contact velocities (compiled, or loaded from numba's cache, the first time a process runs the shape) and of
+    the controller's sampling (with a controller, likewise; else 0), the caller's arrays, and the step's scratch
+    arrays (allocated here, once per call of :func:`step_layouts`' caller: the compiled step allocates nothing).
+
+    Parameters
+    ----------
+    cfg : ndarray
+        The :data:`NCFG` configuration row (its shape index, ``cfg[12]``, picks the equations).
+    consts : tuple
+        ``p`` to ``cpin`` (:func:`step_layouts`).
+    states, recs, status, warn : ndarray
+        The runs' rows.
+    ctl : tuple of ndarray
+        The controller's arrays ``ctl_f`` to ``noise``.
+    mzrec : ndarray
+        The runs' recorded commands.
+
+    Returns
+    -------
+    tuple
+        ``(eqf, cvf, ctlf, cfg, *consts, states, recs, status, warn, *ctl, mzrec, work, mats, free, held)``.
+
+    Raises
+    ------
+    ValueError
+        With a controller, ``states`` not C-contiguous.
+    """
+    p, nw, nc = consts[0], consts[1], consts[2]
+    shape = int(cfg[12])
+    key = (shape, typeof(p))
+    if key not in _ADDRESSES:
+        tag = "{}w{}c".format(*_gn.SHAPES[shape])
+        eq, cv = getattr(_shapes, f"equations_{tag}"), getattr(_shapes, f"contact_velocities_{tag}")
+        _ADDRESSES[key] = (address(eq, (_F, _F, _F, _V, _V, _V, key[1], _V, _V, _F, _F, _F, _F, _M, _V),
+                                   _nbtypes.none),
+                           address(cv, (_F, _F, _F, _V, _V, _V, key[1], _V), _nbtypes.none))
+    ctlf = 0
+    if ctl[0][0] > 0.0:           # a sampled controller: its state views are rows of states and of the scratch
+        if not states.flags.c_contiguous:      # the row types the address is taken for
+            raise ValueError("states must be C-contiguous (initial_state rows stacked by np.array)")
+        ckey = tuple(map(typeof, ctl))
+        if ckey not in _ADDRESSES:
+            _ADDRESSES[ckey] = address(_samples, (_F, _nbtypes.int64, *(_F,) * 6, *(_V,) * 6, *ckey, _V))
+        ctlf = _ADDRESSES[ckey]
+    n = 3 + nc
+    work = np.zeros(work_length(nw, nc, ctl[3].shape[0], ctl[1].shape[0]))
+    return (*_ADDRESSES[key], ctlf, cfg, *consts, states, recs, status, warn, *ctl, mzrec, work, np.zeros((3, n, n)),
+            np.zeros(n, dtype=np.int64), np.zeros(nc, dtype=np.bool_))
+
+
+@njit(cache=True, nogil=True, _nrt=False)
+def step_layouts(k0, k1, eqf, cvf, ctlf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf,
+                 cpin, states, recs, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec, work, mats, free,
+                 held):
     """Steps ``k0 .. k1 - 1`` of a batch of runs of one layout (one run: a batch of one, stepped to its end).
 
-    ``cfg`` (:data:`NCFG` slots), parameters ``p`` (the generated order), ``nw`` fixed wheels and ``nc`` casters,
-    per contact (fixed wheels, then casters) the tire slots (then each fixed wheel's camber tire) and range check,
-    the rolling-resistance slots (kind, coefficients, scale), per fixed wheel the camber ``(deg, signed
-    coefficient)`` and its angle's ``(cos, sin)``, the vertical stiffness and support line, the lines' roll shares,
-    per caster the Coulomb limit (N m) and viscous coefficient (N m s/rad); one row per run of ``states``
-    (:func:`initial_state`; its slot :data:`S_NREC` counts the rows written), ``recs`` (:data:`NREC` + 2 nc,
-    rows), ``status`` (code, time), ``warn`` (3, 3: slip, load, lift-off counts, first time, largest) and
-    ``mzrec``.  Each run still going (``status[r, 0] == 0``) advances.  With ``ctl_f[0] > 0`` the sampled
-    controller of :mod:`stability.simulate.controller` (its arrays; the state it measures is ``[x, y, heading, u,
-    v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at each sample, held until the next;
-    without one, the yaw moment each run's command slot holds (set by the caller between calls, N m) acts.  Either
-    goes through a first-order motor lag (``cfg[22]``, exact over each step); the commanded (saturated) moment is
-    recorded in ``mzrec`` (N m).
+    ``eqf``, ``cvf`` the addresses of the layout's shape's generated equations and contact velocities, ``ctlf`` the
+    controller's sampling (:func:`_samples`; 0: none) (:func:`arguments`), ``cfg`` (:data:`NCFG` slots), parameters
+    ``p`` (the generated order), ``nw`` fixed wheels and ``nc`` casters, per contact (fixed wheels, then casters)
+    the tire slots (then each fixed wheel's camber tire) and range check, the rolling-resistance slots (kind,
+    coefficients, scale), per fixed wheel the camber ``(deg, signed coefficient)`` and its angle's ``(cos, sin)``,
+    the vertical stiffness and support line, the lines' roll shares, per caster the Coulomb limit (N m) and viscous
+    coefficient (N m s/rad); one row per run of ``states`` (:func:`initial_state`; its slot :data:`S_NREC` counts
+    the rows written), ``recs`` (:data:`NREC` + 2 nc, rows), ``status`` (code, time), ``warn`` (3, 3: slip, load,
+    lift-off counts, first time, largest) and ``mzrec``. Each run still going (``status[r, 0] == 0``) advances. With
+    ``ctl_f[0] > 0`` the sampled controller of :mod:`stability.simulate.controller` (its arrays; the state it
+    measures is ``[x, y, heading, u, v, yaw rate, delta_1, delta_d_1, ...]``) commands a yaw moment on the body at
+    each sample, held until the next; without one, the yaw moment each run's command slot holds (set by the caller
+    between calls, N m) acts. Either goes through a first-order motor lag (``cfg[22]``, exact over each step); the
+    commanded (saturated) moment is recorded in ``mzrec`` (N m). ``work`` (:func:`work_length`), ``mats`` (3, 3 +
+    nc, 3 + nc), ``free`` (int, 3 + nc) and ``held`` (bool, nc) are scratch, zeroed for each run as fresh arrays
+    were.
 
     A run's steps are written in this loop, not in a jitted function of their own that it calls: numba compiles a
     called function to machine code on its own and then, linked into its caller, optimises and emits it again, so
-    the whole step was compiled twice (about a fifth of the kernel's first use, measured)."""
+    the whole step was compiled twice (about a fifth of the kernel's first use, measured).  Nothing here allocates
+    (no numpy allocation to type, no reference counts: compiled without numba's NRT), and the shape's equations are
+    called, not inlined: one compile serves every shape."""
+    nt, n = nw + nc, 3 + nc
+    nz, ny = Az.shape[0], Cy.shape[0]
+    # the scratch's views, cut in work_length's order
+    D, DD, cs, sn, mom, rest = (work[0:nc], work[nc:2 * nc], work[2 * nc:3 * nc], work[3 * nc:4 * nc],
+                                work[4 * nc:5 * nc], work[5 * nc:6 * nc])
+    o = 6 * nc
+    vel, slips, loads, xs, ys = (work[o:o + 2 * nt], work[o + 2 * nt:o + 3 * nt], work[o + 3 * nt:o + 4 * nt],
+                                 work[o + 4 * nt:o + 5 * nt], work[o + 5 * nt:o + 6 * nt])
+    o += 6 * nt
+    fw, fc = work[o:o + 2 * nw], work[o + 2 * nw:o + 2 * nw + 2 * nc]
+    o += 2 * nw + 2 * nc
+    F0, w, acc, x = work[o:o + n], work[o + n:o + 2 * n], work[o + 2 * n:o + 3 * n], work[o + 3 * n:o + 4 * n]
+    o += 4 * n
+    znew, y, sv = work[o:o + nz], work[o + nz:o + nz + ny], work[o + nz + ny:o + nz + ny + 6 + 2 * nc]
+    o += nz + ny + 6 + 2 * nc
+    lb, lx, io = work[o:o + 4], work[o + 4:o + 8], work[o + 8:o + 9]
+    Mm, W, A = mats[0], mats[1], mats[2]
     for r in range(states.shape[0]):
         if status[r, 0] != 0.0:
             continue
-        # the run's rows (views); the step's scalars and scratch arrays are the run's own
+        # the run's rows (views); the step's scalars and scratch are the run's own
         state, rec, run_status, run_warn, run_mz = states[r], recs[r], status[r], warn[r], mzrec[r]
-        dt, stride, duimp, fcimp, ftimp = cfg[0], int(cfg[2]), cfg[3], cfg[4], cfg[5]
-        pin_mode, stop, policy = int(cfg[6]), cfg[7] != 0.0, int(cfg[8])
-        maxslip, maxload, nwarn_limit, shape, weight, h, mode = (cfg[9], cfg[10], cfg[11], int(cfg[12]), cfg[13],
-                                                                 cfg[14], int(cfg[15]))
+        _fresh(work, mats, free, held)
+        dt, stride, duimp, fcimp, ftimp = cfg[0], np.int64(cfg[2]), cfg[3], cfg[4], cfg[5]
+        pin_mode, stop, policy = np.int64(cfg[6]), cfg[7] != 0.0, np.int64(cfg[8])
+        maxslip, maxload, nwarn_limit, weight, h, mode = (cfg[9], cfg[10], cfg[11], cfg[13], cfg[14],
+                                                          np.int64(cfg[15]))
         slope, c_phi, s_phi, c_theta, s_theta, grav = cfg[16] != 0.0, cfg[17], cfg[18], cfg[19], cfg[20], cfg[21]
         g1 = g2 = 0.0
         wn = weight
-        nt, n = nw + nc, 3 + nc
         half_dt2 = 0.5 * dt * dt
         X, Y, THE, THED, UD, VD = state[0], state[1], state[2], state[3], state[4], state[5]
         FC1, FC2 = state[6], state[7]
-        next_k, cmd, mz, nrec = int(state[8]), state[S_CMD], state[10], int(state[S_NREC])
-        D, DD = state[NSTATE:NSTATE + nc].copy(), state[NSTATE + nc:NSTATE + 2 * nc].copy()
-        nz, ny = Az.shape[0], Cy.shape[0]
+        next_k, cmd, mz, nrec = np.int64(state[8]), state[S_CMD], state[10], np.int64(state[S_NREC])
         z = state[NSTATE + 2 * nc:NSTATE + 2 * nc + nz]          # a view: advanced in place
-        cs, sn, mom = np.zeros(nc), np.zeros(nc), np.zeros(nc)
-        held = np.zeros(nc, dtype=np.bool_)
-        rest = mf.copy() if pin_mode == 2 else np.zeros(nc)      # stick-slip: a reversing rate comes to rest
-        vel, slips, loads, xs, ys = np.zeros(2 * nt), np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
-        fw, fc = np.zeros(2 * nw), np.zeros(2 * nc)
-        Mm, F0, W, w, acc = np.zeros((n, n)), np.zeros(n), np.zeros((n, n)), np.zeros(n), np.zeros(n)
-        for j in range(nw):
-            xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
+        _start(state, nw, nc, p, mf, pin_mode == 2, D, DD, rest, xs, ys)
         use_ctl = ctl_f[0] > 0.0
         lag = cfg[22]
         keep = math.exp(-dt / lag) if lag > 0.0 else 0.0
-        znew, y, sv = np.zeros(nz), np.zeros(ny), np.zeros(6 + 2 * nc)
         for k in range(k0, k1):
             t = k * dt
             if use_ctl:
-                next_k, cmd = _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy,
-                                       Az, Bu, By, Cz, noise)
+                io[0] = cmd
+                next_k = call_at(ctlf, t, next_k, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az,
+                                 Bu, By, Cz, noise, io)
+                cmd = io[0]
             if lag <= 0.0:
                 mz = cmd
-            _kinematics(shape, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
+            _kinematics(cvf, p, nw, nc, UD, VD, THED, D, DD, cs, sn, vel, slips, xs, ys, CAM)
             if slope:   # gravity in body axes at the step's heading; the loads under the normal weight
                 g1, g2, gn = gravity_body(grav, c_phi, s_phi, c_theta, s_theta, math.cos(THE), math.sin(THE))
                 wn = weight * gn / grav
-            layout_loads(mode, xs, ys, kv, line, share, wn, h, FC1, FC2, loads)
+            _layout_loads(mode, xs, ys, kv, line, share, wn, h, FC1, FC2, loads, A, lb, lx, free)
             code = _range_rules(run_warn, t, loads, slips, CHK, kv, maxload, maxslip, stop, nwarn_limit)
             if code != 0.0:
                 run_status[0], run_status[1] = code, t
@@ -364,8 +322,8 @@ def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, 
             sum_fx, sum_fy = _tire_forces(nw, nc, TK, TS, TL, LIM, RK, RC, RS, CAM, vel, slips, loads, policy,
                                           ftimp != 0.0 and imp, ftimp, cs, sn, fw, fc)
             fy_ext = fcimp if (fcimp != 0.0 and imp) else 0.0
-            equations(shape, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, mz, g1, g2, Mm, F0)
-            _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc)
+            call_none_at(eqf, UD, VD, THED, cs, sn, DD, p, fw, fc, fy_ext, mz, g1, g2, Mm, F0)
+            _pins(pin_mode, Mm, F0, nc, DD, mf, cpin, mom, held, W, w, acc, free, x)
             if not abs(THED) < math.inf:
                 run_status[0], run_status[1] = STOPPED_NONFINITE, t
                 break
@@ -398,20 +356,50 @@ def step_layouts(k0, k1, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, 
 
 
 
-@_inl_rc
-def _samples(t, next_k, cmd, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
-    """The sampled controller's samples due by ``t``: the next sample's index and the held command."""
-    ks = int(math.floor(t / ctl_f[0] + 1e-9))
+@_int
+def _samples(t, next_k, X, Y, THE, UD, VD, THED, D, DD, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, io):
+    """The sampled controller's samples due by ``t``: returns the next sample's index; the held command in
+    ``io[0]``.  Compiled on its own, when a process first runs a layout with a controller, and called at its
+    address (:func:`arguments`): a run without one compiles no controller code."""
+    cmd = io[0]
+    ks = math.floor(t / ctl_f[0] + 1e-9)         # an integer (numba's floor of a float)
     while next_k <= ks:
         sv[0], sv[1], sv[2], sv[3], sv[4], sv[5] = X, Y, THE, UD, VD, THED
         for kk in range(D.shape[0]):
             sv[6 + 2 * kk], sv[7 + 2 * kk] = D[kk], DD[kk]
         cmd = controller_output(next_k, z, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         next_k += 1
-    return next_k, cmd
+    io[0] = cmd
+    return next_k
 
 
-@_inl_rc
+@_inl
+def _fresh(work, mats, free, held):
+    """Zero a run's scratch, as the fresh arrays of each run were."""
+    for i in range(work.shape[0]):
+        work[i] = 0.0
+    for m in range(mats.shape[0]):
+        for i in range(mats.shape[1]):
+            for j in range(mats.shape[2]):
+                mats[m, i, j] = 0.0
+    for i in range(free.shape[0]):
+        free[i] = 0
+    for i in range(held.shape[0]):
+        held[i] = False
+
+
+@_inl
+def _start(state, nw, nc, p, mf, stick, D, DD, rest, xs, ys):
+    """A run's caster angles and rates from its ``state``, the rates that come to rest (``stick``: stick-slip, a
+    reversing rate), the fixed wheels' contacts."""
+    for kk in range(nc):
+        D[kk], DD[kk] = state[NSTATE + kk], state[NSTATE + nc + kk]
+        rest[kk] = mf[kk] if stick else 0.0
+    for j in range(nw):
+        xs[j], ys[j] = p[2 + 2 * j], p[3 + 2 * j]
+
+
+@_inl
 def _note(warn, kind, t, value):
     if warn[kind, 0] == 0.0 or abs(value) > abs(warn[kind, 2]):
         warn[kind, 2] = value
@@ -420,4 +408,7 @@ def _note(warn, kind, t, value):
     warn[kind, 0] += 1.0
 
 
-invalidate_stale_cache(globals(), "layout_kernel.equations.sha256", (_gn, _lf, sys.modules[__name__]))
+# the helpers of layout_solve and the shapes' functions are flushed with the kernel (a cached helper carries the
+# functions it calls)
+invalidate_stale_cache({**globals(), **vars(_ls), **vars(_shapes)}, "layout_kernel.equations.sha256",
+                       (_gn, _lf, _ls, sys.modules[__name__]))

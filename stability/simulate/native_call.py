@@ -19,7 +19,21 @@ from numba.core import cgutils
 from numba.core.registry import cpu_target
 from numba.extending import intrinsic
 
-__all__ = ["call_at", "address", "row_types"]
+__all__ = ["call_at", "call_none_at", "address", "row_types"]
+
+
+def _call(restype: Any) -> Any:
+    """The codegen of a call, returning ``restype``, of the function at the address in the first argument."""
+    def codegen(context, builder, signature, llargs):
+        argtys = tuple(signature.args[1])
+        fnty = context.call_conv.get_function_type(restype, argtys)
+        callee = builder.inttoptr(llargs[0], fnty.as_pointer())
+        values = cgutils.unpack_tuple(builder, llargs[1], len(argtys))
+        status, res = context.call_conv.call_function(builder, callee, restype, argtys, values)
+        with cgutils.if_unlikely(builder, status.is_error):
+            context.call_conv.return_status_propagate(builder, status)
+        return res
+    return codegen
 
 
 @intrinsic
@@ -30,18 +44,15 @@ def call_at(typingctx, fp, *args):
     ``f`` propagates.  Compiled code only."""
     if not isinstance(fp, types.Integer):
         return None
-    sig = types.int64(fp, types.StarArgTuple.from_types(args))
+    return types.int64(fp, types.StarArgTuple.from_types(args)), _call(types.int64)
 
-    def codegen(context, builder, signature, llargs):
-        argtys = tuple(signature.args[1])
-        fnty = context.call_conv.get_function_type(types.int64, argtys)
-        callee = builder.inttoptr(llargs[0], fnty.as_pointer())
-        values = cgutils.unpack_tuple(builder, llargs[1], len(argtys))
-        status, res = context.call_conv.call_function(builder, callee, types.int64, argtys, values)
-        with cgutils.if_unlikely(builder, status.is_error):
-            context.call_conv.return_status_propagate(builder, status)
-        return res
-    return sig, codegen
+
+@intrinsic
+def call_none_at(typingctx, fp, *args):
+    """:func:`call_at` for a function that returns nothing (``None``; :func:`address` with ``returns=none``)."""
+    if not isinstance(fp, types.Integer):
+        return None
+    return types.none(fp, types.StarArgTuple.from_types(args)), _call(types.none)
 
 
 def row_types(arg_types: tuple, per_run: tuple[int, ...]) -> tuple:
@@ -66,16 +77,18 @@ def row_types(arg_types: tuple, per_run: tuple[int, ...]) -> tuple:
                  for j, t in enumerate(arg_types))
 
 
-def address(dispatcher: Any, sig: tuple) -> int:
+def address(dispatcher: Any, sig: tuple, returns: Any = types.int64) -> int:
     """The address of ``dispatcher``'s machine code for the argument types ``sig`` (compiled, or loaded from the
-    cache, first), for :func:`call_at`.
+    cache, first), for :func:`call_at` (or :func:`call_none_at`: ``returns`` ``types.none``).
 
     Parameters
     ----------
     dispatcher : numba dispatcher
-        A jitted function returning ``int64``.
+        A jitted function returning ``returns``.
     sig : tuple of numba types
         Its argument types.
+    returns : numba type
+        What it returns: ``types.int64`` (:func:`call_at`) or ``types.none`` (:func:`call_none_at`).
 
     Returns
     -------
@@ -84,10 +97,10 @@ def address(dispatcher: Any, sig: tuple) -> int:
     """
     dispatcher.compile(sig)
     cres = dispatcher.overloads[tuple(sig)]
-    if cres.signature.return_type != types.int64:
-        raise TypeError(f"{dispatcher} returns {cres.signature.return_type}, not int64")
+    if cres.signature.return_type != returns:
+        raise TypeError(f"{dispatcher} returns {cres.signature.return_type}, not {returns}")
     ctx = cpu_target.target_context
-    ours = ctx.call_conv.get_function_type(types.int64, tuple(map(types.unliteral, sig)))
+    ours = ctx.call_conv.get_function_type(returns, tuple(map(types.unliteral, sig)))
     theirs = ctx.call_conv.get_function_type(cres.signature.return_type, cres.signature.args)
     if str(ours) != str(theirs):     # what call_at will call it with (literals as their integer type)
         raise TypeError(f"{dispatcher}'s compiled arguments {theirs} differ from {ours}")

@@ -1,7 +1,7 @@
 """What a first ``simulate`` (and a first layout run) compiles with an empty numba cache: each function's compile time (recorded, not
 asserted) and how many times each is compiled (asserted: docs/simulator.md, "Compile time", says every
-dispatcher is compiled for one signature except the two it names), and on the scalar kernel that only the
-package's functions are (none of numba's own).
+dispatcher is compiled for one signature except the two it names), on the scalar and layout kernels that only the
+package's functions are (none of numba's own), and that a first layout run compiles its own shape's equations only.
 
 Run with ``python -m pytest tests/benchmarks/test_bench_first_use.py --benchmark-enable -s -n 0``.  numba's
 compile events (``numba.core.event``, kind ``numba:compile``) give each compile's start and end in the fresh
@@ -87,11 +87,19 @@ def bench(request):
 #: whole step again), and the solves' sizes and the warning kinds are passed as int64, not as literals that numba
 #: compiled once per value (34 -> 27 compiles); a run's steps are written in ``step_layouts``' loop, not in a jitted
 #: ``advance`` compiled to machine code on its own and again inside it, and each pin law and load rule solves at one
-#: call site (65 -> 62 compiles of this test's count, 15.9 -> 11.8 s CPU measured once each)
+#: call site (65 -> 62 compiles of this test's count, 15.9 -> 11.8 s CPU measured once each).  Issue 36 again
+#: (62 -> 31 compiles, every one the package's): ``step_layouts`` calls the run's shape's generated equations and
+#: contact velocities at their addresses, so a first run compiles its own shape's two (``LAYOUT_FIRST_SHAPES``)
+#: instead of all four shapes' eight and their run-time ``equations`` / ``contact_velocities`` branches; the step
+#: allocates nothing (its scratch comes from Python), so numba compiles none of its own functions for it
+#: (``min``, ``max``, ``int()`` written as selects and casts, as in the scalar kernel)
 #: ``wchair``: tests/kernel_warmup.py's wchair group (every variant of the scalar kernel the default tests use, one
 #: run, a batch, a Python hook; and the adaptive scheme): the batch and step-by-step entries call the variant's
 #: ``run_one`` at its address, so each is compiled once for all variants, not once per model (91 -> 81 compiles),
 #: and ``run_one`` once per variant (thesis, exact, each with and without a controller, the slope)
+#: the generated functions a first mid-wheel-drive run (two fixed wheels, four casters) compiles: its shape's only
+LAYOUT_FIRST_SHAPES = {"stability._generated.layout_nonlinear.equations_2w4c",
+                       "stability._generated.layout_nonlinear.contact_velocities_2w4c"}
 WCHAIR_ONCE = {"stability.simulate.kernel.run_batch": 1, "stability.simulate.kernel.run_serial": 1,
                "stability.simulate.kernel.run_one": 5}
 
@@ -126,11 +134,15 @@ def test_bench_what_first_use_compiles(bench, tmp_path, kernel):
         assert {n: counts.get(n) for n in WCHAIR_ONCE} == WCHAIR_ONCE
         return
     assert not many, f"compiled for more than one signature: {many}"
+    if kernel == "layout":
+        compiled = {n.split("#")[0] for n in ours}
+        assert {n for n in compiled if ".layout_nonlinear." in n} == LAYOUT_FIRST_SHAPES
+    if kernel in ("scalar", "layout"):
+        # nothing of numba's own (its min, max and int() are functions compiled on a first use, each with a
+        # C-callable wrapper: the steps write them as selects and casts, docs/simulator.md "Compile time")
+        theirs = sorted(n.split("#")[0] for n in count if not n.startswith("stability."))
+        assert not theirs, f"numba's own functions compiled for the step: {theirs}"
     if kernel == "scalar":
         compiled = {n.split("#")[0] for n in ours}
         assert "stability.simulate.kernel.run_one" in compiled
         assert not compiled & NOT_FIRST, f"compiled though the first run does not run it: {compiled & NOT_FIRST}"
-        # nothing of numba's own (its min, max and int() are functions compiled on a first use, each with a
-        # C-callable wrapper: the step writes them as selects and casts, docs/simulator.md "Compile time")
-        theirs = sorted(n.split("#")[0] for n in count if not n.startswith("stability."))
-        assert not theirs, f"numba's own functions compiled for the step: {theirs}"
