@@ -1,13 +1,10 @@
 """The compiled WCHAIR-scheme kernel (numba): one run per thread, the same code for one run and for a batch.
 
-Imported only when a simulation runs (numba costs about 0.5 s to import; the
-compiled code is cached on disk, see ``docs/simulator.md``).  Every array
-layout is written by :mod:`stability.simulate.engine`.  The equations are the
-generated functions behind :mod:`stability.models.full_width` and
-:mod:`stability.models.slope`, compiled as they are, and so are the contact
-forces (:mod:`stability.models.forces`: normal loads, the tire resultant and
-yaw moment, slip angles, pin friction) and the tire force law
-(:mod:`stability.tires.law`): nothing is transcribed.
+Imported only when a simulation runs (numba costs about 0.5 s to import; the compiled code is cached on disk, see
+``docs/simulator.md``).  Every array layout is written by :mod:`stability.simulate.engine`.  The equations are the
+generated functions behind :mod:`stability.models.full_width` and :mod:`stability.models.slope`, compiled as they
+are, and so are the contact forces (:mod:`stability.models.forces`: normal loads, the tire resultant and yaw moment,
+slip angles, pin friction) and the tire force law (:mod:`stability.tires.law`): nothing is transcribed.
 """
 
 from __future__ import annotations
@@ -69,15 +66,14 @@ _ENTRIES: dict[tuple, Any] = {}
 
 
 def call_model(entry: Any, var: tuple[int, int], *args: Any) -> Any:
-    """``entry(*var, *args)`` (:func:`run_batch`, :func:`run_serial`, :func:`run_one`) through its specialisation
-    for the variant ``var``.
+    """``entry(*var, *args)`` (:func:`run_batch`, :func:`run_serial`, :func:`run_one`) for the variant ``var``.
 
     :func:`run_one` takes the variant as numba literals, which Python ints do not match by type: numba's dispatch
     would type the call again every time (about 8 ms).  The first call for a variant and argument types compiles
-    (or loads from the cache) :func:`run_one`'s literal specialisation directly; later ones call it directly, found
-    by the arguments' type fingerprints (numba's own dispatch key, about 2 us).  :func:`run_batch` and
-    :func:`run_serial` are compiled once for every variant and call that specialisation for each run's rows at its
-    address (:func:`~stability.simulate.native_call.call_at`).
+    (or loads from the cache, under the first-use notice) :func:`run_one`'s literal specialisation directly; later
+    ones call it directly, found by the arguments' type fingerprints (numba's own dispatch key, about 2 us).
+    :func:`run_batch` and :func:`run_serial` are compiled once for every variant and call that specialisation for
+    each run's rows at its address (:func:`~stability.simulate.native_call.call_at`).
 
     Parameters
     ----------
@@ -96,7 +92,7 @@ def call_model(entry: Any, var: tuple[int, int], *args: Any) -> Any:
     key = (entry, var, tuple(map(compute_fingerprint, args)))
     fn = _ENTRIES.get(key)
     if fn is None:
-        with first_use("wchair"):       # numba loads it from its cache, or compiles it once per machine
+        with first_use("wchair"):
             types_, lit = tuple(typeof(a) for a in args), tuple(map(_nbtypes.literal, var))
             if entry is run_batch or entry is run_serial:     # the step for one run's rows (numba's types of a[i])
                 step = address(run_one, (*lit, *types_[:2], *row_types(types_[2:-1], PER_RUN_ARGS)))

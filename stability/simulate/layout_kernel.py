@@ -33,6 +33,7 @@ from stability.simulate import layout_solve as _ls
 from stability.simulate.cache_stamp import invalidate_stale_cache
 from stability.simulate.kernel_controller import controller_output
 from stability.simulate.kernel_equations import (
+    _NOREF,
     _inl,
     _int,
     camber_force,
@@ -233,7 +234,7 @@ def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarr
             np.zeros(n, dtype=np.int64), np.zeros(nc, dtype=np.bool_))
 
 
-@njit(cache=True, nogil=True, _nrt=False)
+@njit(cache=True, nogil=True, **_NOREF)
 def step_layouts(k0, k1, eqf, cvf, ctlf, cfg, p, nw, nc, TK, TS, TL, LIM, CHK, RK, RC, RS, CAM, kv, line, share, mf,
                  cpin, states, recs, status, warn, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, mzrec, work, mats, free,
                  held):
