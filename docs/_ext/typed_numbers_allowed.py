@@ -262,7 +262,6 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('20 Hz: a closed-loop', 'parameter'),
         ('both chairs, both models, to 0.01 m/s),', 'parameter'),
         ('prints one line if it runs past 2 s', 'parameter'),
-        ('(first use on this machine, about 10-20 s; ...)".', 'example'),
     ],
     'docs/layouts.md': [
         ('reverse (casters trailing at 180 deg). It', 'parameter'),
