@@ -47,7 +47,8 @@ def test_every_change_is_a_set_assignment():
 
 def test_the_geometry_levers_descriptions_hold_of_their_changed_chairs():
     """Each geometry lever's description, read whole, names what its changes hold fixed and what they move: on the
-    E&J Premier's changed chairs the fixed quantity is the chair's own and the moved one differs from it."""
+    E&J Premier's changed chairs the fixed quantity is the chair's own and the moved one differs from it.  Each
+    caster lever's names the caster quantity its changes set."""
     import re
 
     c = chair_mod.preset("ej-premier")
@@ -68,6 +69,13 @@ def test_the_geometry_levers_descriptions_hold_of_their_changed_chairs():
             # 5e-7 each: a sum within 1e-6 m, the ratio s2/(s1+s2) of lengths near 0.2 m within about 5e-6
             assert quantity[fixed](x) == pytest.approx(quantity[fixed](c), abs=1e-5), (lever, fixed)
             assert abs(quantity[moved](x) - quantity[moved](c)) > 1e-3, (lever, moved)
+    # the caster levers' descriptions name the caster quantity their changes set (the fields of the changes)
+    fields = {"trail": {"trail"}, "pin friction": {"pin_friction_left", "pin_friction_right"},
+              "tire": {"caster_tire"}, "mass": {"m_c", "i_zp", "m"}}
+    for lever in ("trail", "pin_friction", "caster_tire", "caster_mass"):
+        m = re.fullmatch(r"caster (trail|pin friction|tire|mass)", LEVERS[lever][0])
+        assert m is not None, (lever, LEVERS[lever][0])
+        assert {f for ch, _ in ok if ch.lever == lever for f, _ in ch.fields} == fields[m.group(1)], lever
 
 
 def test_a_lighter_caster_lightens_the_chair_by_both_casters_and_scales_its_pin_inertia():
