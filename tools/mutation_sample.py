@@ -198,10 +198,6 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'kind = "complex" if abs(lam[i].imag) >= 1e-8 * max(1.0, abs(lam[i])) else "real"'):
         'an imaginary part exactly at the threshold does not occur',
     ('stability/linear/critical.py',
-     'kind = "complex" if abs(lam[i].imag) > 1e-8 * max(1.0, abs(lam[i])) else "real"',
-     'kind = "complex" if abs(lam[i].imag) > 1e-8 * max(2.0, abs(lam[i])) else "real"'):
-        'only an eigenvalue whose imaginary part lies between `1e-8` and `2e-8` would change its word; crossing eigenvalues are real to rounding or complex by far more',
-    ('stability/linear/critical.py',
      'direction = "destabilising" if alpha(hi) > alpha(lo) else "stabilising"',
      'direction = "destabilising" if alpha(hi) >= alpha(lo) else "stabilising"'):
         "a bracket's ends have opposite signs of `alpha`, so they are never equal",
