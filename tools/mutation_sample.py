@@ -139,7 +139,7 @@ MODULES = {
     "stability/measure/sheet.py": ["tests/test_measure.py"],
     "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py", "tests/test_assist_layout_options.py", "tests/test_api_hostile_modules.py"],
     "stability/assist/export_c.py": ["tests/test_assist_export.py", "tests/test_assist_layout_options.py"],
-    "stability/models/full_width.py": ["tests/test_linear.py", "tests/test_simulate.py"],
+    "stability/models/full_width.py": ["tests/test_linear.py", "tests/test_simulate.py", "tests/test_derivations.py"],
 }
 
 
@@ -278,6 +278,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd',
      'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=False)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd'):
         'the two accelerations compared always have the same five entries',
+    ('stability/study/intervals.py',
+     'found = dict(zip(jobs, res, strict=True))',
+     'found = dict(zip(jobs, res, strict=False))'):
+        '`bisect_speeds` returns one result per chair it is given (its memo keys, one per chair), and it is given one chair per job: always the same length',
     ('stability/sweep/run.py',
      'for sp, ranked in zip(per["speeds_m_s"], per["best"], strict=True):',
      'for sp, ranked in zip(per["speeds_m_s"], per["best"], strict=False):'):
