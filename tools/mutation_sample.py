@@ -209,6 +209,14 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'c_alpha = np.where(n_a > 0, c_alpha, np.nan)',
      'c_alpha = np.where(n_a >= 0, c_alpha, np.nan)'):
         "differs only where a caster's load is exactly `0.0` N, which the continuous trail search does not hit (a negative load gives NaN either way)",
+    ('stability/shimmy/band.py',
+     'zeta = np.where(osc, -ev.real / np.maximum(np.abs(ev), 1e-300), np.inf)',
+     'zeta = np.where(osc, -ev.real / np.maximum(np.abs(ev), 2e-300), np.inf)'):
+        "the floor only keeps a zero eigenvalue from dividing by zero (`0 / floor` is `0` either way); an oscillatory eigenvalue of magnitude between `1e-300` and `2e-300` 1/s does not occur (the caster's eigenvalues scale with the speed over the relaxation length and trail, `1e-2` to `1e3` 1/s, and an eigenvalue counts as oscillatory only with an imaginary part above `1e-9` of the largest)",
+    ('stability/shimmy/band.py',
+     'comp = CasterCompliance(lateral_stiffness=math.inf if rigid else 1.0, relaxation_length=1.0,',
+     'comp = CasterCompliance(lateral_stiffness=math.inf if rigid else 1.0, relaxation_length=2.0,'):
+        'a placeholder compliance that only picks the pivot case: `_abscissa_pairs` overwrites the relaxation length it gives (`params["sigma"] = sigmas`, and the pin stiffness `k` when the pivot is compliant) before any eigenvalue is taken',
     ('stability/slope/equilibrium.py',
      'for pins in ((1, 1), (-1, -1), (1, -1), (-1, 1)) if friction_range else ():',
      'for pins in ((1, 1), (-1, -1), (1, -1), (+1, 1)) if friction_range else ():'):
