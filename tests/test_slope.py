@@ -113,6 +113,26 @@ def test_mirror_symmetry(name):
     np.testing.assert_allclose(a.friction_range, [-x for x in b.friction_range[::-1]], rtol=1e-11)
 
 
+def test_mirror_symmetry_with_the_main_wheels_rolling_resistance():
+    """The presets roll without resistance (main_rolling_scale 0); with the main tires' rolling force on, the
+    main wheels' longitudinal forces enter the drive's moment balance, and the mirror image still swaps the two
+    drive forces (a chair on the mirrored slope is the mirrored chair: each wheel's rolling force moves to the
+    other side, so their moment about the c.g. changes sign with the slope)."""
+    c = chair_mod.preset("ej-premier").replace(main_rolling_scale=1.0)
+    a, b = eqm.solve(c, 3.0, 0.8, friction_range=False), eqm.solve(c, -3.0, 0.8, friction_range=False)
+    rolling_free = eqm.solve(c.replace(main_rolling_scale=0.0), 3.0, 0.8, friction_range=False)
+    assert abs(sum(a.drive_forces) - sum(rolling_free.drive_forces)) > 1.0     # the premise: the rolling forces act
+    # error model: as test_mirror_symmetry (mirror images in exact arithmetic; the root's xtol 1e-13), x100
+    np.testing.assert_allclose(a.drive_forces, b.drive_forces[::-1], rtol=1e-11, atol=1e-11)
+
+
+def test_neither_wheel_works_harder_without_a_difference_or_a_slope():
+    """A zero right-minus-left difference has no harder side, and on level ground (cross slope 0) neither side is
+    uphill: "neither" in both cases, whatever the other argument."""
+    assert eqm.harder_side(0.0, 2.0) == eqm.harder_side(0.0, -2.0) == "neither"
+    assert eqm.harder_side(5.0, 0.0) == eqm.harder_side(-5.0, 0.0) == "neither"
+
+
 @pytest.mark.parametrize("name", PRESETS)
 @pytest.mark.parametrize("phi", (1.0, 4.0))
 def test_frictionless_statics(name, phi):

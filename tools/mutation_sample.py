@@ -222,6 +222,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'for pins in ((1, 1), (-1, -1), (1, -1), (+1, 1)) if friction_range else ():'):
         "the mixed-sign pin moments give holding moments strictly between the same-sign pairs' (each pin moment moves the holding moment the same way; checked on every preset on three cross slopes and two grades), so the range's ends come from `(1, 1)` and `(-1, -1)` with or without `(-1, 1)`",
     ('stability/slope/equilibrium.py',
+     'mp = (pins[0] * chair.pin_friction_left, pins[1] * chair.pin_friction_right)',
+     'mp = (pins[1] * chair.pin_friction_left, pins[1] * chair.pin_friction_right)'):
+        "the four pin-moment pairs become `(1, 1)`, `(-1, -1)` twice each: only the mixed-sign pairs are lost, and their holding moments lie between the same-sign pairs' (as the entry above: each pin moment moves the holding moment the same way); checked with unequal pin frictions (0.1/0.3, 0.3/0.1, 0.05/0.5 N m) on every preset on four cross slopes and two grades, 114 equilibria: the range's ends identical",
+    ('stability/slope/equilibrium.py',
      'c_main = model.chair.main_tire_model().cornering_stiffness_per_rad(p.m * p.g / 4)',
      'c_main = model.chair.main_tire_model().cornering_stiffness_per_rad(p.m / p.g / 4)'):
         "the root finder's starting guess only (a crab angle from the main tires' stiffness): the root it converges to at the solver's `xtol` is the same; measured on every preset at four cross slopes, two grades and three speeds: the holding moments and crab angles bit-identical",
