@@ -98,6 +98,34 @@ Seed 44 (8 mutants per module, main after the merges of 2026-12-06): ``advise/li
 constraint's comparison as printed, the bench note of a chair within the bench's score); ``advise/advisor.py``
 5/8 -> 8/8 (no gain over a chair's zero low end, the worse-rate note's threshold, the runner-up named with its
 cost); the tests are in tests/test_advise.py.
+
+Seed 48 (8 mutants per module, every module of MODULES but ``advise/advisor.py`` and ``advise/limits.py``, mut48
+branch; "before" = the tests at the branch point 99a44d7 (``--tests-from``, except ``study/impulse.py`` and
+``study/censored.py``, run first on the same tests); "after" = ``--only-survivors``; killed / non-equivalent):
+``study/impulse.py`` 6/8 -> 8/8 (the linear critical impulse's 1 ms default sampling, which only a decaying
+response's early peak shows; the work check's estimate in minutes); ``study/censored.py`` 7/8 -> 8/8 (two found
+values compared smaller first); ``measure/sheet.py`` 4/8 -> 8/8 (the loaded sum's tolerance option and its
+refusal's words, the user estimate refused exactly where the de Leva model is, the provenance verb of a field
+weighed directly); ``study/search.py`` 5/8 -> 8/8 (``_far_below``'s 10 % rule and its floor, the bracket closed
+only within the contract ``high / low - 1 <= rel_tol (1 + 1e-9)``); ``linear/critical.py`` 6/8 -> 8/8 (a hidden
+crossing pair near an interval's end, a complex crossing pair of imaginary part 1.5e-8; that test also kills the
+listed ``max(2.0, |lambda|)`` mutant, now unlisted); ``advise/levers.py`` 4/8 -> 8/8 (the levers' descriptions
+read whole against their changed chairs, the caster-mass lever's total mass of two casters); ``sweep/run.py``
+7/8 -> 7/8 (left: ``summary``'s default ``top = 3``, a count stated nowhere, docs/sweep.md or the command's help,
+so a test could only copy it); ``uncertainty/propagation.py`` 3/8 -> 8/8 (the regression's p + 2 draws, a level
+of 1 refused by both propagations, the delta method's default step against a cubic's central difference);
+``assist/schedule.py`` 6/7 (1 equivalent, listed) -> 7/7 (an unknown design refused as the single design
+refuses it); ``assist/export_c.py`` 7/8 -> 8/8 (a Q31 README's per-case derived tolerances);
+``models/full_width.py`` 7/8 -> 8/8 (the tire yaw moment's unpacking, killed by the door's lever-arm test of
+tests/test_derivations.py, now one of the module's files); ``study/intervals.py`` 6/7 (1 equivalent, newly
+listed) -> 7/7 (each variant named by the one input it moves); ``study/impulse_intervals.py`` 7/8 -> 8/8 (the
+step variant halves the run's own step); ``tipping/angles.py`` 8/8; ``shimmy/band.py`` 5/6 (2 equivalent, newly
+listed) -> 6/6 (the band's JSON keys against the hand-written shimmy schema); ``slope/equilibrium.py`` 5/7 (1
+equivalent, newly listed) -> 7/7 (the drive's moment balance with the main wheels' rolling force on, by mirror
+symmetry; ``harder_side``'s "neither"); ``linear/model.py`` 8/8.  Of 136 mutants, 101 killed before; 5 of the 35
+survivors equivalent (4 newly listed): 101/131 (77 %) of the non-equivalent before, 130/131 (99 %) after.  None
+was a bug in its module: words, JSON keys, defaults, refusals at an edge, and two branches no test reached (the
+rolling force's moment, a dip near an interval's end).
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
