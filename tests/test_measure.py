@@ -432,3 +432,28 @@ def test_a_field_read_straight_from_one_reading_says_how_it_was_taken():
     for r in rows:
         verb = {("mass",): "weighed", ("length",): "measured"}[sheet.READINGS[r.readings[0]][0]]
         assert r.formula == f"{verb} directly", r.field
+
+
+def test_a_wheel_scale_may_read_zero_but_not_below():
+    """A loaded wheel scale reads 0 kg when its wheel carries nothing (a wheel about to lift): accepted, its weight
+    0 N; a negative reading is refused in one line naming the range (>= 0)."""
+    assert sheet._parse_reading("scales.loaded.left_main", {"value": 0.0, "unit": "kg"}).value == 0.0
+    with pytest.raises(ValueError, match=r"^sheet reading scales\.loaded\.left_main=-0\.1 kg is invalid; "
+                                         r"valid range: >= 0 and <= "):
+        sheet._parse_reading("scales.loaded.left_main", {"value": -0.1, "unit": "kg"})
+
+
+def test_tilt_readings_giving_an_impossible_height_are_refused_with_the_fall_a_real_one_gives():
+    """Raised-end readings that rise instead of falling (30 + 30 kg against the casters' 26.3 + 28.4 kg level) put
+    the c.g. below the axles: refused in one line naming the two readings, the valid heights and, as a guide, the
+    fall a 0.6 m c.g. would give.  The example sheet was made from a 0.60 m c.g. (its own test above), so that fall
+    is the example's own: level minus raised, (26.3 + 28.4) - (21.0 + 22.9) = 10.8 kg, as printed to 3 figures."""
+    import re
+
+    fall = (26.3 + 28.4) - (21.0 + 22.9)
+    with pytest.raises(ValueError, match=r"^sheet reading tilt\.raised_left \+ tilt\.raised_right=60 kg is invalid; "
+                                         r"valid range: readings giving a c\.g\. height above the wheel axles "
+                                         r"\(0\.305 m\) and below 2 m \(got h = -?[0-9.e-]+ m; for h = 0\.6 m the "
+                                         rf"raised end's load would fall by {re.escape(f'{fall:.3g}')} kg\)$"):
+        _read(**{"raised_left = { value = 21.0": "raised_left = { value = 30.0",
+                 "raised_right = { value = 22.9": "raised_right = { value = 30.0"})

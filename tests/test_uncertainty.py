@@ -119,6 +119,8 @@ def test_monte_carlo_interval_matches_delta_method_on_linear_function():
     assert r.high == pytest.approx(mean + 1.96 * sigma, abs=4 * se)
     # the sample standard deviation's relative standard error is 1/sqrt(2 n) = 0.005 for a normal output: 4 of them
     assert r.std == pytest.approx(sigma, rel=4 / math.sqrt(2 * n))
+    # error model: the sample mean's standard error sigma / sqrt(n), 4 of them
+    assert r.mean == pytest.approx(mean, abs=4 * sigma / math.sqrt(n))
     shares = {k: (COEF[k] * sds[k]) ** 2 / sigma**2 for k in COEF}
     for k, v in shares.items():
         assert r.shares[k] == pytest.approx(v, abs=0.02)

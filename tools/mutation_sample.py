@@ -350,6 +350,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'a_, b_ = j1 - 1e3 * (j3 - j1), j1 * (1.0 - 1e-12)',
      'a_, b_ = j1 - 1e3 * (j3 + j1), j1 * (1.0 - 1e-12)'):
         "the bisection for the law's threshold push starts further below the smallest push (the bracket only widens, and the law's difference `f` keeps its sign there): a hundred halvings reach the same root to float resolution; the prediction, a proposal for the next push only, moved by at most `2.2e-12` relative in log push over forty thousand sets of three points (twenty thousand of the law, twenty thousand arbitrary), never from a value to None, far below the search's bracket width",
+    ('stability/uncertainty/propagation.py',
+     'r_squared: Any = float("nan")',
+     'r_squared: Any = None'):
+        "`propagate`, the result's only maker, always passes `r_squared` (NaN where a column has no regression): the field's default is never read",
     ('stability/advise/levers.py',
      'return round(float(x), 6)',
      'return round(float(x), 7)'):
