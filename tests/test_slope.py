@@ -340,3 +340,35 @@ def test_the_holding_band_of_magnitudes_includes_zero_when_the_pins_alone_hold()
     # which case each slope is (not a pinned value): at 2 deg the signed range holds zero, at 6 deg it does not
     assert curve.friction_low[1] == 0.0 and curve.friction_high[1] > 0.0
     assert curve.friction_low[2] > 0.0
+
+
+def test_level_ground_has_no_uncorrected_turn():
+    """On level ground nothing pulls the chair sideways: no holding moment, and the turn the chair would make
+    without one is "none" (Equilibrium.uncorrected_turn)."""
+    e = eqm.solve(chair_mod.preset("ej-premier"), 0.0, 0.8, friction_range=False)
+    assert e.holding_moment == 0.0 and e.uncorrected_turn == "none"
+
+
+def test_a_slope_without_equilibrium_is_refused_with_the_largest_one_unless_not_strict():
+    """At 20 deg the E&J Premier's tires cannot hold it (no root).  Strict (the default), the refusal gives the
+    valid range, the largest cross slope with an equilibrium inside the tire data (max_cross_slope, the same
+    speed and grade); not strict, it says only that no equilibrium was found."""
+    import re
+
+    c = chair_mod.preset("ej-premier")
+    lim = eqm.max_cross_slope(c, 0.0, 0.8, 1.0, hi=20.0)
+    assert 0 < lim < 20
+    with pytest.raises(ValueError, match=r"^cross_slope=20\.0 deg is invalid for chair ej-premier: the tires cannot "
+                                         r"hold the chair \(no equilibrium\); valid range: \|cross_slope\| <= "
+                                         + re.escape(f"{lim:.2f} deg (grade 0 deg, 0.8 m/s)") + "$"):
+        eqm.solve(c, 20.0, 0.8)
+    with pytest.raises(ValueError, match=r"^cross_slope=20\.0 deg: no straight-running equilibrium found"):
+        eqm.solve(c, 20.0, 0.8, strict=False)
+
+
+def test_the_harder_side_is_the_sign_of_the_difference_however_small():
+    """The harder side depends only on the signs of the difference and of the slope: the smallest positive float
+    difference on a slope falling to the right is downhill, its negative uphill."""
+    tiny = 5e-324
+    assert eqm.harder_side(tiny, 2.0) == eqm.harder_side(-tiny, -2.0) == "downhill"
+    assert eqm.harder_side(-tiny, 2.0) == eqm.harder_side(tiny, -2.0) == "uphill"

@@ -254,6 +254,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'mp = (pins[1] * chair.pin_friction_left, pins[1] * chair.pin_friction_right)'):
         "the four pin-moment pairs become `(1, 1)`, `(-1, -1)` twice each: only the mixed-sign pairs are lost, and their holding moments lie between the same-sign pairs' (as the entry above: each pin moment moves the holding moment the same way); checked with unequal pin frictions (0.1/0.3, 0.3/0.1, 0.05/0.5 N m) on every preset on four cross slopes and two grades, 114 equilibria: the range's ends identical",
     ('stability/slope/equilibrium.py',
+     'friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if fr and not all(map(math.isnan, fr))',
+     'friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if fr or not all(map(math.isnan, fr))'):
+        'the same `(nan, nan)` either way: without pin runs (`friction_range=False`) `[] or not all([])` is false; with every pin run failed, `nanmin`/`nanmax` of an all-NaN list are NaN (numpy warns); otherwise both conditions are true',
+    ('stability/slope/equilibrium.py',
      'c_main = model.chair.main_tire_model().cornering_stiffness_per_rad(p.m * p.g / 4)',
      'c_main = model.chair.main_tire_model().cornering_stiffness_per_rad(p.m / p.g / 4)'):
         "the root finder's starting guess only (a crab angle from the main tires' stiffness): the root it converges to at the solver's `xtol` is the same; measured on every preset at four cross slopes, two grades and three speeds: the holding moments and crab angles bit-identical",
