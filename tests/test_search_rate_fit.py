@@ -244,3 +244,27 @@ def test_a_bracket_is_closed_only_when_its_ends_meet_the_relative_tolerance(exce
     assert meets is found                                            # the premise, from the ends themselves
     got = _close(p, -2.0, hi, width, _HORIZON, math.nan)
     assert (p.status == "found") is found and (got == []) is found
+
+
+def test_only_runs_that_reached_with_a_finite_time_are_fitted():
+    """``_reaching``'s definition: the runs that reached the level, with a finite time, smallest push first.  A run
+    that did not reach within the horizon (its time, 12 s, past the 10 s horizon) and a reached run without a time
+    are both left out."""
+    from stability.study.search import _reaching
+
+    p = Problem(x=[0.0, 1.0, 2.0, 0.5], g=[-0.1, 0.1, 0.2, 0.05], reached=[False, True, True, True],
+                t=[12.0, 5.0, math.inf, 6.0])
+    assert _reaching(p) == [(0.5, 6.0), (1.0, 5.0)]
+
+
+def test_the_step_up_of_a_linear_response_lands_eps_above_its_root():
+    """Nothing reaches yet and the margin is linear in the log push (``g = x - x*``, slope 1): the step up the
+    margin predicts is exact, so the next run lands ``eps = 0.45 width`` above the root, as the closing pair's
+    upper run ``x* + eps`` does (module docstring), here for a root 1.5 widths above the largest run."""
+    from stability.study.search import _go_up
+
+    top, root = 0.0, 1.5 * _WIDTH
+    p = Problem(x=[top], g=[top - root], reached=[False], t=[math.inf])
+    got = _go_up(p, math.log(40.0), _WIDTH, math.log(2.0))
+    # error model: a few roundings of values below 0.1 (at most 3 eps), margin 100
+    assert got == [pytest.approx(root + 0.45 * _WIDTH, abs=300 * EPS)] and p.status == "open"

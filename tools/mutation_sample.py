@@ -343,6 +343,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'if not (t1 >= t2 > t3 and j1 < j2 < j3):'):
         'differs only when two interpolated times to the level are equal to the last bit',
     ('stability/study/search.py',
+     'if not (t1 > t2 > t3 and j1 < j2 < j3):',
+     'if not (t1 > t2 >= t3 and j1 < j2 < j3):'):
+        "with `t2 == t3` the law's difference `f(J0) = (t1 - t2) / ln((j2 - J0) / (j1 - J0)) - 0` is positive at every `J0` below `j1` (`t1 > t2`, `j1 < j2`), so the bisection finds no sign change and the fit is None either way",
+    ('stability/study/search.py',
      'if x_start >= x_max - 1e-12:            # no prediction: the largest push and half of it, for _rate_fit',
      'if x_start > x_max - 1e-12:            # no prediction: the largest push and half of it, for _rate_fit'):
         'differs only for a start exactly `1e-12` below the largest push',
