@@ -308,7 +308,7 @@ def test_critical_speed_grid_is_checked_naming_the_problem():
         return np.asarray(U)[:, None, None] - 1.0
 
     assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 2.0])] == [1.0]
-    with pytest.raises(ValueError, match=r"at least 2 speeds, got shape \(1,\)"):
+    with pytest.raises(ValueError, match=r"^speeds must be a 1-D grid of at least 2 speeds, got shape \(1,\)$"):
         linear.critical_speeds(A, [0.5])
     with pytest.raises(ValueError, match="^speeds must be strictly increasing$"):
         linear.critical_speeds(A, [0.5, 1.5, 1.5, 2.0])
