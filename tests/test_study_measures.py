@@ -316,3 +316,15 @@ def test_each_variant_is_named_by_the_one_input_it_moves():
         moved = [name for i, name in inputs.items() if s[i] != nominal[i]]
         assert [s[0]] == (moved or ["nominal"]), s
     assert [s[0] for s in specs].count("model") == 1              # the other model variant only
+    # each label names the value the variant takes, as the describe line and the JSON print it
+    assert [s[1] for s in specs] == ["40 N, x1 friction, exact", "20 N (0.5x)", "80 N (2x)", "x1.5 pin friction",
+                                     "thesis model", "0.5 ms step"]
+
+
+def test_a_factor_s_width_is_its_range_and_zero_when_undefined():
+    """FactorRange.width: high - low (m/s) of a factor's speeds, 0 when the factor has no defined variant."""
+    from stability.study.intervals import FactorRange
+
+    # error model: one subtraction of values near 1, a few eps
+    assert FactorRange("pin friction", 0.8, 1.1, ()).width == pytest.approx(0.3, abs=1e-15)
+    assert FactorRange("pin friction", None, None, ()).width == 0.0
