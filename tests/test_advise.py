@@ -14,7 +14,7 @@ import pytest
 from stability import chair as chair_mod
 from stability.advise import Interval, advise, lever_changes, measure_chairs
 from stability.advise.advisor import Candidate, _gain, _notes
-from stability.advise.levers import apply
+from stability.advise.levers import LEVERS, apply
 from stability.advise.measures import IMPULSE_SPEED, Measures
 from stability.advise.text import advice_mapping, advice_text
 from stability.cli import load_chair
@@ -43,6 +43,56 @@ def test_every_change_is_a_set_assignment():
     assert all(x.s1 + x.s2 == pytest.approx(c.s1 + c.s2, abs=1e-12) for x in fixed_sum)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     assert all(x.s2 == c.s2 for ch, x in ok if ch.lever == "s1_fixed_s2")
     assert all(x.cg_ratio == pytest.approx(c.cg_ratio, abs=1e-6) for ch, x in ok if ch.lever == "wheelbase")  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
+
+
+def test_the_geometry_levers_descriptions_hold_of_their_changed_chairs():
+    """Each geometry lever's description, read whole, names what its changes hold fixed and what they move: on the
+    E&J Premier's changed chairs the fixed quantity is the chair's own and the moved one differs from it.  Each
+    caster lever's names the caster quantity its changes set."""
+    import re
+
+    c = chair_mod.preset("ej-premier")
+    ok, _ = lever_changes(c)
+    quantity = {"s1+s2": lambda x: x.s1 + x.s2, "s2": lambda x: x.s2, "c.g. ratio": lambda x: x.cg_ratio,
+                "wheelbase": lambda x: x.s1 + x.s2}
+    forms = {"s1_fixed_wheelbase": r"axle position s1 at fixed (s1\+s2) \(moves the (c\.g\. ratio)\)",
+             "s1_fixed_s2": r"axle position s1 at fixed (s2) \(changes the (wheelbase)\)",
+             "wheelbase": r"(wheelbase) at a fixed (c\.g\. ratio)"}
+    for lever, form in forms.items():
+        m = re.fullmatch(form, LEVERS[lever][0])
+        assert m is not None, (lever, LEVERS[lever][0])
+        fixed, moved = (m.groups() if lever != "wheelbase" else m.groups()[::-1])
+        changed = [x for ch, x in ok if ch.lever == lever]
+        assert changed
+        for x in changed:
+            # error model: a bound, not an estimate: the changed fields are rounded to 1e-6 m (levers._r), at most
+            # 5e-7 each: a sum within 1e-6 m, the ratio s2/(s1+s2) of lengths near 0.2 m within about 5e-6
+            assert quantity[fixed](x) == pytest.approx(quantity[fixed](c), abs=1e-5), (lever, fixed)
+            assert abs(quantity[moved](x) - quantity[moved](c)) > 1e-3, (lever, moved)
+    # the caster levers' descriptions name the caster quantity their changes set (the fields of the changes)
+    fields = {"trail": {"trail"}, "pin friction": {"pin_friction_left", "pin_friction_right"},
+              "tire": {"caster_tire"}, "mass": {"m_c", "i_zp", "m"}}
+    for lever in ("trail", "pin_friction", "caster_tire", "caster_mass"):
+        m = re.fullmatch(r"caster (trail|pin friction|tire|mass)", LEVERS[lever][0])
+        assert m is not None, (lever, LEVERS[lever][0])
+        assert {f for ch, _ in ok if ch.lever == lever for f, _ in ch.fields} == fields[m.group(1)], lever
+
+
+def test_a_lighter_caster_lightens_the_chair_by_both_casters_and_scales_its_pin_inertia():
+    """The caster-mass lever scales each caster's mass by k, and with it its inertia about the pin (the same
+    shape, lighter: I_zp is proportional to m_c); the chair carries two casters, so its total mass falls by twice
+    the mass taken off one, as the change's words say."""
+    c = chair_mod.preset("ej-premier")
+    ok, _ = lever_changes(c)
+    changed = [(ch, x) for ch, x in ok if ch.lever == "caster_mass"]
+    assert len(changed) == 2
+    for ch, x in changed:
+        k = x.m_c / c.m_c
+        # error model: a bound, not an estimate: the changed fields are rounded to 6 decimals (levers._r), at most
+        # 5e-7 each; k read back from the rounded m_c moves I_zp k by I_zp 5e-7 / m_c, below 1e-9 kg m^2
+        assert x.i_zp == pytest.approx(c.i_zp * k, abs=1e-6)
+        assert x.m == pytest.approx(c.m - 2.0 * (c.m_c - x.m_c), abs=1e-6)
+        assert ch.label.endswith(f"total mass {c.m:g} -> {x.m:g} kg)")
 
 
 @pytest.mark.slow       # about 11 s: four chairs' nonlinear intervals (batched and one at a time)

@@ -933,6 +933,21 @@ def test_a_schedule_of_no_speed_is_refused_in_one_line():
         assist.schedule(chair_mod.preset("power-fwd"), [], "gyro")
 
 
+def test_a_schedule_of_an_unknown_design_is_refused_as_a_single_design_is():
+    """The schedule's design kind is the one choice the single-speed design takes (the command's ``--design``): an
+    unknown kind is refused before any design, in the same one line :func:`stability.assist.design.design`
+    gives, naming ``design`` and the valid choices."""
+    from stability.assist.design import design
+
+    c = chair_mod.preset("power-fwd")
+    with pytest.raises(ValueError) as single:
+        design(c, 1.0, "pid")
+    assert str(single.value).startswith("design='pid' is invalid; valid choices: ")
+    with pytest.raises(ValueError) as scheduled:
+        assist.schedule(c, [1.0, 2.0], "pid")
+    assert str(scheduled.value) == str(single.value)
+
+
 def test_schedule_gains_and_their_interpolation():
     """``gains`` stacks the designs' LQR rows; ``gains_at`` is the straight line between two grid designs (the
     midpoint their mean, to round-off of one addition: 1e-12 relative) and holds beyond the grid; a one-speed

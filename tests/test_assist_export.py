@@ -257,6 +257,14 @@ def test_c_literals_sample_rate_and_anti_windup_scheme(tables):
 
 
 def test_export_reports_what_it_wrote(tmp_path, sched, vectors):
+    """What the export reports, and its README's derived tolerances: quantised (Q31) tables list each case's
+    derived output tolerance, the one assist_vectors.json gives the case (the coefficient rounding a port must
+    allow beyond the float allowance)."""
     info = export_c(sched, str(tmp_path / "fw"), "Q31", vectors=vectors)
     assert info["q_format"] == "Q31" and info["directory"] == str(tmp_path / "fw")
     assert info["files"] == ["README.txt", "assist.c", "assist.h", "assist_vectors.json"]
+    text = (tmp_path / "fw" / "README.txt").read_text()
+    cases = json.loads((tmp_path / "fw" / "assist_vectors.json").read_text())["cases"]
+    listed = text.split("Derived tolerance of these quantised tables", 1)[1].splitlines()[1:]
+    assert [x for x in listed if x] == [f"  {c['name']}: {c['tolerance_N_m']:.3g} N m" for c in cases]
+

@@ -98,3 +98,16 @@ def test_cli_refuses_too_many_samples(tmp_path, capsys):
     assert main(["--uncertainty", str(f), "--samples", "10000000"]) == 2
     err = capsys.readouterr().err
     assert "--samples" in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("dt, label", [(0.0005, "0.25 ms step"), ("auto", "0.5 ms step")])
+def test_the_critical_impulse_step_variant_halves_the_run_s_own_step(dt, label):
+    """The step variant multiplies the run's fixed step (``step_factors``, labelled by the step in ms): half of a
+    given 0.5 ms is 0.25 ms, and half of ``"auto"``, whose base is 1 ms (RunSpec's dt: "'auto': 1 ms, smaller
+    where the step is unstable"), is 0.5 ms.  Short runs (0.5 s, two rounds): only the variants' steps are read."""
+    from stability.settings.run import RunSpec
+    from stability.study.impulse_intervals import critical_impulse_intervals
+
+    iv = critical_impulse_intervals([preset("ej-premier")], 0.75, run=RunSpec(horizon=0.5, dt=dt),
+                                    friction_factors=(), models=("exact",), step_factors=(0.5,), max_rounds=2)[0]
+    assert [name for name, _ in iv.variants] == [label]

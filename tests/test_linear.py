@@ -308,7 +308,7 @@ def test_critical_speed_grid_is_checked_naming_the_problem():
         return np.asarray(U)[:, None, None] - 1.0
 
     assert [round(c.speed, 10) for c in linear.critical_speeds(A, [0.5, 2.0])] == [1.0]
-    with pytest.raises(ValueError, match=r"at least 2 speeds, got shape \(1,\)"):
+    with pytest.raises(ValueError, match=r"^speeds must be a 1-D grid of at least 2 speeds, got shape \(1,\)$"):
         linear.critical_speeds(A, [0.5])
     with pytest.raises(ValueError, match="^speeds must be strictly increasing$"):
         linear.critical_speeds(A, [0.5, 1.5, 1.5, 2.0])
@@ -380,6 +380,42 @@ def test_critical_speed_pair_hidden_where_only_the_interpolant_shows_it():
     assert [c.direction for c in cross] == ["destabilising", "stabilising", "destabilising"]
     # error model: bisection bracket: the guard's maximiser (xatol 1e-9) then brentq (xtol 1e-10); observed 6.1e-12
     np.testing.assert_allclose([c.speed for c in cross], [*roots, 1.105], rtol=0, atol=1e-9)
+
+
+def test_critical_speed_pair_hidden_near_an_end_of_a_grid_interval():
+    """alpha(U) = (U - 1.05)(U - 1.15): positive at every grid point (0.5, 1.0, 1.5, 2.0), negative only on
+    (1.05, 1.15), near the left end of the interval [1.0, 1.5] and far from its middle, where alpha is largest.
+    The guard looks for the dip by minimising alpha (the grid values are positive): the two crossings are the
+    quadratic's roots, a stabilising one at 1.05 and a destabilising one at 1.15."""
+    def A(U):
+        U = np.asarray(U, dtype=float)
+        return ((U - 1.05) * (U - 1.15))[..., None, None]
+
+    grid = np.linspace(0.5, 2.0, 4)
+    assert np.all(linear.max_real_part(A, grid) > 0)          # the premise: no sign change on the grid
+    cross = linear.critical_speeds(A, grid)
+    assert [c.direction for c in cross] == ["stabilising", "destabilising"]
+    # error model: bisection bracket: brentq's xtol 1e-10 (observed 4e-13 and 1.5e-11)
+    np.testing.assert_allclose([c.speed for c in cross], [1.05, 1.15], rtol=0, atol=1e-10)
+
+
+def test_a_crossing_pair_with_a_small_imaginary_part_is_complex():
+    """A(U) = [[U - 1, -b], [b, U - 1]] has the eigenvalues U - 1 +- i b exactly: a complex pair crossing at
+    U = 1.  With b = 1.5e-8 1/s (a period of 13 years, but a pair: LAPACK's rounding of this normal matrix is
+    eps ||A||, about 1e-16, eight orders below b) the crossing is complex; with b = 0 it is a real double
+    eigenvalue."""
+    def system(b):
+        def A(U):
+            U = np.asarray(U, dtype=float)
+            out = np.zeros(U.shape + (2, 2))
+            out[..., 0, 0] = out[..., 1, 1] = U - 1.0
+            out[..., 0, 1], out[..., 1, 0] = -b, b
+            return out
+        return A
+
+    grid = np.linspace(0.5, 2.0, 4)
+    assert [c.kind for c in linear.critical_speeds(system(1.5e-8), grid)] == ["complex"]
+    assert [c.kind for c in linear.critical_speeds(system(0.0), grid)] == ["real"]
 
 
 def test_mode_tracking_through_a_crossing_and_zero():

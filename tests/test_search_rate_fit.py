@@ -205,3 +205,66 @@ def test_going_down_from_a_late_reaching_push_proposes_the_pair_else_one_run(fra
     assert len(got) == runs and got[0] == pytest.approx(target, abs=300 * EPS)
     if runs == 2:
         assert got[1] == pytest.approx(target - 0.98 * _WIDTH, abs=300 * EPS)
+
+
+@pytest.mark.parametrize("t1, t2, fires", [
+    (2.0, 1.9, True),     # 0.1 s later per halving: 5 % of t1; the line reaches 10 s at 2 exp(-55.5) N s
+    (2.0, 1.7, False),    # 0.3 s later per halving: 15 % of t1, beyond the 10 % of the rule
+    (4.9, 4.45, False),   # 9 % of t1, but the line reaches 10 s at 7.7e-4 N s, above the floor of 1e-6 N s
+])
+def test_far_below_fires_only_for_nearly_equal_early_times_whose_line_passes_the_floor(t1, t2, fires):
+    """``_far_below``'s rule (its docstring): the two smallest reaching pushes, 2 and 4 N s (a factor 2, one
+    halving), reach before half the 10 s horizon; the rule fires when the smaller reaches less than 10 % of its
+    own time later and the straight line through the two (time against log push) reaches the horizon below the
+    floor ``x_min = ln 1e-6``.  The line's crossing is interpolated here from the two points directly."""
+    from stability.study.search import _far_below
+
+    x1, x2, x_min = math.log(2.0), math.log(4.0), math.log(1e-6)
+    p = Problem(x=[x2, x1], g=[1.0, 1.0], reached=[True, True], t=[t2, t1])
+    crossing = x1 + (_HORIZON - t1) * (x2 - x1) / (t2 - t1)          # t(x) linear through both points = horizon
+    later = (t1 - t2) / t1                                          # per halving (x2 - x1 = ln 2)
+    assert (later < 0.1 and crossing < x_min) is fires               # the premise, from the two points
+    assert _far_below(p, x_min, _HORIZON) is fires
+
+
+@pytest.mark.parametrize("excess, found", [(0.5e-9, True), (1.5e-9, False)])
+def test_a_bracket_is_closed_only_when_its_ends_meet_the_relative_tolerance(excess, found):
+    """The search's contract (tests/test_impulse_fast.py): the found bracket's ends satisfy ``high / low - 1 <=
+    rel_tol (1 + 1e-9)``, the allowance covering the rounding of log-push differences (about 1e-12 of a width
+    here).  With ``width = ln(1 + rel_tol)`` a bracket ``width (1 + excess)`` wide has ``high / low - 1 = rel_tol
+    + (1 + rel_tol) width excess``: inside the contract for an excess of 0.5e-9, outside for 1.5e-9, where the
+    bracket must stay open (another round proposed)."""
+    from stability.study.search import _close
+
+    rel_tol = 1e-3
+    width = math.log1p(rel_tol)
+    hi = -2.0 + width * (1.0 + excess)
+    p = Problem(x=[-2.0, hi], g=[-0.5 * width, 0.5 * width], reached=[False, True], t=[math.inf, 5.0], misses=1)
+    meets = math.expm1(hi + 2.0) <= rel_tol * (1.0 + 1e-9)
+    assert meets is found                                            # the premise, from the ends themselves
+    got = _close(p, -2.0, hi, width, _HORIZON, math.nan)
+    assert (p.status == "found") is found and (got == []) is found
+
+
+def test_only_runs_that_reached_with_a_finite_time_are_fitted():
+    """``_reaching``'s definition: the runs that reached the level, with a finite time, smallest push first.  A run
+    that did not reach within the horizon (its time, 12 s, past the 10 s horizon) and a reached run without a time
+    are both left out."""
+    from stability.study.search import _reaching
+
+    p = Problem(x=[0.0, 1.0, 2.0, 0.5], g=[-0.1, 0.1, 0.2, 0.05], reached=[False, True, True, True],
+                t=[12.0, 5.0, math.inf, 6.0])
+    assert _reaching(p) == [(0.5, 6.0), (1.0, 5.0)]
+
+
+def test_the_step_up_of_a_linear_response_lands_eps_above_its_root():
+    """Nothing reaches yet and the margin is linear in the log push (``g = x - x*``, slope 1): the step up the
+    margin predicts is exact, so the next run lands ``eps = 0.45 width`` above the root, as the closing pair's
+    upper run ``x* + eps`` does (module docstring), here for a root 1.5 widths above the largest run."""
+    from stability.study.search import _go_up
+
+    top, root = 0.0, 1.5 * _WIDTH
+    p = Problem(x=[top], g=[top - root], reached=[False], t=[math.inf])
+    got = _go_up(p, math.log(40.0), _WIDTH, math.log(2.0))
+    # error model: a few roundings of values below 0.1 (at most 3 eps), margin 100
+    assert got == [pytest.approx(root + 0.45 * _WIDTH, abs=300 * EPS)] and p.status == "open"

@@ -86,6 +86,7 @@ def test_rigid_pivot_with_pin_damping_has_a_shimmy_zone_between_two_closed_form_
 
 
 def test_margin_sign_and_corners():
+    """The margin to the nearest boundary, signed; the band over the compliance corners, and its JSON."""
     assert margin_to_boundaries(0.07, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(0.02, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
     assert margin_to_boundaries(0.04, [(0.05, 0.2)], [0.05, 0.2]) == pytest.approx(-0.01, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 1.7e-16)
     assert margin_to_boundaries(0.04, [(0.001, 0.25)], []) == math.inf
@@ -95,6 +96,13 @@ def test_margin_sign_and_corners():
     assert lo == -math.inf and hi > 0 and band.straddles     # the softest pin shimmies at every trail
     assert band.shimmy_margin_m == pytest.approx(0.05 - band.boundaries_m[0][0], abs=TOL_M)
     assert 0 < band.damping_ratio[0] < 0.01                  # half a millimetre inside: barely damped
+    # its JSON has the keys of the hand-written schema of the shimmy command (stability/schemas/shimmy.json), the
+    # corners' entries those of the schema's corner
+    schema = json.loads((ROOT / "stability" / "schemas" / "shimmy.json").read_text())["else"]["properties"]["shimmy_band"]
+    m = band.to_mapping()
+    assert set(m) == set(schema["required"]) == set(schema["properties"])
+    corner = schema["properties"]["corners"]["items"]
+    assert m["corners"] and all(set(c) == set(corner["required"]) for c in m["corners"])
 
 
 def _shimmy(*args: str) -> subprocess.CompletedProcess:

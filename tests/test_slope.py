@@ -113,6 +113,26 @@ def test_mirror_symmetry(name):
     np.testing.assert_allclose(a.friction_range, [-x for x in b.friction_range[::-1]], rtol=1e-11)
 
 
+def test_mirror_symmetry_with_the_main_wheels_rolling_resistance():
+    """The presets roll without resistance (main_rolling_scale 0); with the main tires' rolling force on, the
+    main wheels' longitudinal forces enter the drive's moment balance, and the mirror image still swaps the two
+    drive forces (a chair on the mirrored slope is the mirrored chair: each wheel's rolling force moves to the
+    other side, so their moment about the c.g. changes sign with the slope)."""
+    c = chair_mod.preset("ej-premier").replace(main_rolling_scale=1.0)
+    a, b = eqm.solve(c, 3.0, 0.8, friction_range=False), eqm.solve(c, -3.0, 0.8, friction_range=False)
+    rolling_free = eqm.solve(c.replace(main_rolling_scale=0.0), 3.0, 0.8, friction_range=False)
+    assert abs(sum(a.drive_forces) - sum(rolling_free.drive_forces)) > 1.0     # the premise: the rolling forces act
+    # error model: as test_mirror_symmetry (mirror images in exact arithmetic; the root's xtol 1e-13), x100
+    np.testing.assert_allclose(a.drive_forces, b.drive_forces[::-1], rtol=1e-11, atol=1e-11)
+
+
+def test_neither_wheel_works_harder_without_a_difference_or_a_slope():
+    """A zero right-minus-left difference has no harder side, and on level ground (cross slope 0) neither side is
+    uphill: "neither" in both cases, whatever the other argument."""
+    assert eqm.harder_side(0.0, 2.0) == eqm.harder_side(0.0, -2.0) == "neither"
+    assert eqm.harder_side(5.0, 0.0) == eqm.harder_side(-5.0, 0.0) == "neither"
+
+
 @pytest.mark.parametrize("name", PRESETS)
 @pytest.mark.parametrize("phi", (1.0, 4.0))
 def test_frictionless_statics(name, phi):
@@ -320,3 +340,35 @@ def test_the_holding_band_of_magnitudes_includes_zero_when_the_pins_alone_hold()
     # which case each slope is (not a pinned value): at 2 deg the signed range holds zero, at 6 deg it does not
     assert curve.friction_low[1] == 0.0 and curve.friction_high[1] > 0.0
     assert curve.friction_low[2] > 0.0
+
+
+def test_level_ground_has_no_uncorrected_turn():
+    """On level ground nothing pulls the chair sideways: no holding moment, and the turn the chair would make
+    without one is "none" (Equilibrium.uncorrected_turn)."""
+    e = eqm.solve(chair_mod.preset("ej-premier"), 0.0, 0.8, friction_range=False)
+    assert e.holding_moment == 0.0 and e.uncorrected_turn == "none"
+
+
+def test_a_slope_without_equilibrium_is_refused_with_the_largest_one_unless_not_strict():
+    """At 20 deg the E&J Premier's tires cannot hold it (no root).  Strict (the default), the refusal gives the
+    valid range, the largest cross slope with an equilibrium inside the tire data (max_cross_slope, the same
+    speed and grade); not strict, it says only that no equilibrium was found."""
+    import re
+
+    c = chair_mod.preset("ej-premier")
+    lim = eqm.max_cross_slope(c, 0.0, 0.8, 1.0, hi=20.0)
+    assert 0 < lim < 20
+    with pytest.raises(ValueError, match=r"^cross_slope=20\.0 deg is invalid for chair ej-premier: the tires cannot "
+                                         r"hold the chair \(no equilibrium\); valid range: \|cross_slope\| <= "
+                                         + re.escape(f"{lim:.2f} deg (grade 0 deg, 0.8 m/s)") + "$"):
+        eqm.solve(c, 20.0, 0.8)
+    with pytest.raises(ValueError, match=r"^cross_slope=20\.0 deg: no straight-running equilibrium found"):
+        eqm.solve(c, 20.0, 0.8, strict=False)
+
+
+def test_the_harder_side_is_the_sign_of_the_difference_however_small():
+    """The harder side depends only on the signs of the difference and of the slope: the smallest positive float
+    difference on a slope falling to the right is downhill, its negative uphill."""
+    tiny = 5e-324
+    assert eqm.harder_side(tiny, 2.0) == eqm.harder_side(-tiny, -2.0) == "downhill"
+    assert eqm.harder_side(-tiny, 2.0) == eqm.harder_side(tiny, -2.0) == "uphill"

@@ -300,3 +300,31 @@ def test_the_intervals_of_many_chairs_have_the_one_chairs_defaults():
     assert len(shared) >= 12
     for name in shared:
         assert one[name].default == many[name].default, name
+
+
+def test_each_variant_is_named_by_the_one_input_it_moves():
+    """The range's variants move one input each (RANGE_DEFINITION: one at a time) and are named by it, as the
+    describe line and the JSON list them: the push force ("disturbance"), the pin friction, the model or the step;
+    the nominal case moves none.  Read from the specs themselves: which of (model, force, friction, step) differs
+    from the nominal's."""
+    from stability.study.intervals import _variants
+
+    specs = _variants("exact", 40.0, (0.5, 2.0), (1.5,), ("exact", "thesis"), 0.001, (0.5,))
+    nominal = specs[0]
+    inputs = {2: "model", 3: "disturbance", 4: "pin friction", 5: "step"}     # the spec's fields
+    for s in specs:
+        moved = [name for i, name in inputs.items() if s[i] != nominal[i]]
+        assert [s[0]] == (moved or ["nominal"]), s
+    assert [s[0] for s in specs].count("model") == 1              # the other model variant only
+    # each label names the value the variant takes, as the describe line and the JSON print it
+    assert [s[1] for s in specs] == ["40 N, x1 friction, exact", "20 N (0.5x)", "80 N (2x)", "x1.5 pin friction",
+                                     "thesis model", "0.5 ms step"]
+
+
+def test_a_factor_s_width_is_its_range_and_zero_when_undefined():
+    """FactorRange.width: high - low (m/s) of a factor's speeds, 0 when the factor has no defined variant."""
+    from stability.study.intervals import FactorRange
+
+    # error model: one subtraction of values near 1, a few eps
+    assert FactorRange("pin friction", 0.8, 1.1, ()).width == pytest.approx(0.3, abs=1e-15)
+    assert FactorRange("pin friction", None, None, ()).width == 0.0

@@ -471,6 +471,28 @@ def test_censored_exact_value_against_a_bound_at_it():
     assert compare(3.0, "=", 3.0, "<", True) == "better"
 
 
+def test_censored_found_values_compare_both_ways():
+    """Two found values far apart (3 and 5, far outside the relative tolerance): the smaller is worse where higher
+    is better and better where lower is, whichever side of the comparison it is on (the two sets do not even
+    touch, so the exception for touching sets does not apply)."""
+    from stability.study.censored import compare
+
+    assert compare(3.0, "=", 5.0, "=", True) == compare(5.0, "=", 3.0, "=", False) == "worse"
+    assert compare(3.0, "=", 5.0, "=", False) == compare(5.0, "=", 3.0, "=", True) == "better"
+
+
+def test_censored_found_values_within_the_tolerance_are_equal_and_an_unknown_status_is_refused():
+    """Two found values closer than ``rel_tol`` of the larger are equal, in either order (3 and 3.0003 at 1e-3);
+    3 and 3.3 are not.  A search status other than the searches' four is refused naming them."""
+    from stability.study.censored import compare, side_of
+
+    assert compare(3.0, "=", 3.0003, "=", True, rel_tol=1e-3) == compare(3.0003, "=", 3.0, "=", False,
+                                                                           rel_tol=1e-3) == "equal"
+    assert compare(3.0, "=", 3.3, "=", True, rel_tol=1e-3) == "worse"
+    with pytest.raises(ValueError, match=r"^status='stalled' is invalid; valid: found, above, never, below$"):
+        side_of("stalled")
+
+
 def test_unfinished_chunks_are_refused_naming_both_ways_on(spec_dir):
     """An output whose chunk directory is left from an interrupted run is refused before any work, in one line
     naming the output, the directory and both ways on."""

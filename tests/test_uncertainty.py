@@ -119,6 +119,8 @@ def test_monte_carlo_interval_matches_delta_method_on_linear_function():
     assert r.high == pytest.approx(mean + 1.96 * sigma, abs=4 * se)
     # the sample standard deviation's relative standard error is 1/sqrt(2 n) = 0.005 for a normal output: 4 of them
     assert r.std == pytest.approx(sigma, rel=4 / math.sqrt(2 * n))
+    # error model: the sample mean's standard error sigma / sqrt(n), 4 of them
+    assert r.mean == pytest.approx(mean, abs=4 * sigma / math.sqrt(n))
     shares = {k: (COEF[k] * sds[k]) ** 2 / sigma**2 for k in COEF}
     for k, v in shares.items():
         assert r.shares[k] == pytest.approx(v, abs=0.02)
@@ -218,3 +220,40 @@ def test_delta_method_ranks_parameters_by_their_share_averaged_over_the_outputs(
     ranked = dict(delta_method(C, u, fn).dominant_parameters)
     assert ranked == pytest.approx({"pin_friction_left": 0.5, "s1": 0.0, "i_z": 0.0}, abs=1e-12)  # shares of exact zeros and one term over itself: rounding only
     assert list(ranked)[0] == "pin_friction_left"
+
+
+def test_the_regression_needs_one_draw_more_than_its_coefficients():
+    """The shares' regression fits p slopes and an intercept: p + 2 finite draws leave one residual degree of
+    freedom and are enough (p + 1 fit any data exactly, so R^2 would say nothing, and the column is skipped).  Three
+    draws of an output exactly linear in one parameter: its share is 1 and R^2 is 1."""
+    from stability.uncertainty.propagation import _regression_shares
+
+    x = {"a": np.array([0.0, 1.0, 2.0])}
+    shares, r2 = _regression_shares(x, (2.0 * x["a"] + 1.0)[:, None])
+    # error model: a least-squares fit of three exact points, rounding a few eps of values near 1
+    assert float(shares["a"][0]) == 1.0 and float(r2[0]) == pytest.approx(1.0, abs=1e-12)
+    shares, r2 = _regression_shares({"a": x["a"][:2]}, (2.0 * x["a"][:2] + 1.0)[:, None])
+    assert float(shares["a"][0]) == 0.0 and math.isnan(float(r2[0]))
+
+
+@pytest.mark.parametrize("method", [propagate, delta_method])
+def test_a_level_of_one_is_refused(method):
+    """A central interval of coverage 1 is the whole real line (the normal quantile of 1 is infinite): both
+    propagations refuse it, as they refuse 0, in one line naming the valid range, before calling fn."""
+    u = loads_uncertainty(LINEAR_U)
+    for level in (1.0, 0.0):
+        with pytest.raises(ValueError, match=rf"^level={level!r} is invalid; valid range: 0 < level < 1$"):
+            method(C, u, linear_fn, level=level)
+
+
+def test_delta_method_derivative_at_its_default_step_is_the_analytic_one():
+    """The delta method's derivative is a central difference of steps of 0.01 standard deviations (its documented
+    default).  For ``f = s1^3`` it is ``((mu + h sigma)^3 - (mu - h sigma)^3) / (2 h) = 3 mu^2 sigma + h^2
+    sigma^3``: the analytic first-order contribution ``3 mu^2 sigma`` to a relative ``h^2 sigma^2 / (3 mu^2)``."""
+    u = loads_uncertainty(LINEAR_U)
+    d = delta_method(C, u, lambda chairs: np.array([c.s1 ** 3 for c in chairs]))
+    mu, sigma, h = C.s1, 0.01, 0.01
+    truncation = h**2 * sigma**2 / (3 * mu**2)
+    # error model: the central difference's truncation at h = 0.01 (2.8e-9 relative) plus the rounding of a
+    # difference of cubes near 0.04 over 2 h (about 1e-13 relative); 100 x the truncation
+    assert float(d.contributions["s1"]) == pytest.approx(3 * mu**2 * sigma, rel=100 * truncation)
