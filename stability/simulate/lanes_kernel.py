@@ -36,7 +36,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
+from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads
 
 from stability.simulate import lanes_physics as _lp  # a module: its uncached dispatchers stay out of globals()
 from stability.simulate.cache_stamp import invalidate_stale_cache
@@ -47,7 +47,6 @@ from stability.simulate.kernel import (
     MAF,
     MBF,
     SETTLE,
-    SLOPE,
     SLOPE_MODEL,
     ST_FC1,
     ST_FC2,
@@ -64,6 +63,8 @@ from stability.simulate.kernel import (
     TRAIL,
     X_M,
     X_P,
+    call_model,
+    variant,
 )
 from stability.simulate.kernel_equations import _NOWRAP
 from stability.simulate.lanes_physics import lane_physics
@@ -243,22 +244,22 @@ def _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode):
 
 
 @njit(cache=True, nogil=True, error_model="numpy", **_NOWRAP)
-def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-           noise, state, rec, stats, warn, status, nrec):
+def _block(model, lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu,
+           By, Cz, noise, state, rec, stats, warn, status, nrec):
     """Steps ``k0 .. k1 - 1`` of runs ``lo .. hi - 1`` (at most :data:`LANES`) as lanes (see
-    :func:`stability.simulate.kernel.run_one`, whose arithmetic this is)."""
+    :func:`stability.simulate.kernel.run_one`, whose arithmetic this is); ``model`` (:func:`.kernel.variant`) a
+    numba literal: the vectorised loops compute that model's contact velocities and accelerations alone."""
+    literally(model)
     L = hi - lo
-    dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
-        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
-        int(cfg[8]), int(cfg[9]))
+    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
+        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0, int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0
     settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
     ext = cfg[EXTERNAL_MZ] != 0.0
     use_ctl = ctl_f[0] > 0.0 and not ext
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
-    slope = cfg[SLOPE] != 0.0
-    model = SLOPE_MODEL if slope else model
+    slope = model == SLOPE_MODEL
     nlev = levels.shape[0]
     nz = Az.shape[0]
     znew, y, sv = np.zeros(nz), np.zeros(Cy.shape[0]), np.zeros(10)
@@ -289,15 +290,36 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def run_lanes(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-              noise, state, rec, stats, warn, status, nrec, lanes):
-    """:func:`stability.simulate.kernel.run_batch` with the runs in blocks of ``lanes`` (at most :data:`LANES`)
-    stepped as lanes, one block per thread (``prange``); the same arguments, and the block size."""
+def _run_lanes(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
+               Cz, noise, state, rec, stats, warn, status, nrec, lanes):
+    """:func:`run_lanes` for the variant ``model, ctl`` (numba literals: :func:`.kernel.call_model`; ``ctl`` always 0:
+    the lanes kernel finds its controller's lanes at run time)."""
     nb = (P.shape[0] + lanes - 1) // lanes
     for b in prange(nb):
         lo = b * lanes
-        _block(lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels,
-               ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+        _block(model, lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg,
+               levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+
+
+def run_lanes(k0: int, k1: int, P: np.ndarray, *args: object) -> None:
+    """:func:`stability.simulate.kernel.run_batch` with the runs in blocks of ``lanes`` (at most :data:`LANES`)
+    stepped as lanes, one block per thread (``prange``); the same arguments, and the block size last.
+
+    The runs' model (:func:`stability.simulate.kernel.variant` of the configuration row) is compiled as a constant,
+    as the scalar kernel's (:func:`stability.simulate.kernel.call_model`): the first call for a model compiles (or
+    loads from the cache) its specialisation, later ones call it directly.
+
+    Parameters
+    ----------
+    k0, k1 : int
+        First step and the step after the last.
+    P : ndarray
+        The runs' chair parameters (``kernel.run_batch``'s).
+    *args
+        ``kernel.run_batch``'s other arrays, from ``S`` to ``nrec``, then the block size (int).
+    """
+    model = variant(args[10], args[12])[0]          # cfg, ctl_f; the controller is found at run time (ctl 0)
+    call_model(_run_lanes, (model, 0), k0, k1, P, *args)
 
 
 invalidate_stale_cache(globals(), "lanes_kernel.equations.sha256")
