@@ -36,7 +36,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import get_num_threads, njit, parallel_chunksize, prange, set_num_threads
+from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads
 
 from stability.simulate import lanes_physics as _lp  # a module: its uncached dispatchers stay out of globals()
 from stability.simulate.cache_stamp import invalidate_stale_cache
@@ -47,7 +47,6 @@ from stability.simulate.kernel import (
     MAF,
     MBF,
     SETTLE,
-    SLOPE,
     SLOPE_MODEL,
     ST_FC1,
     ST_FC2,
@@ -64,18 +63,17 @@ from stability.simulate.kernel import (
     TRAIL,
     X_M,
     X_P,
+    call_model,
+    variant,
 )
 from stability.simulate.kernel_equations import _NOWRAP
 from stability.simulate.lanes_physics import lane_physics
 from stability.simulate.lanes_step import (
     _AC,
     _ACT,
-    _B,
-    _BD,
     _CAM,
     _CHK,
     _E,
-    _ED,
     _EXT,
     _F,
     _FC1,
@@ -91,6 +89,7 @@ from stability.simulate.lanes_step import (
     _REC,
     _RECANY,
     _RECF,
+    _RECTR,
     _RK,
     _RS,
     _SL,
@@ -176,32 +175,44 @@ def _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, st
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+def _keep(W, dst, src, j, on):
+    """``W[dst, j] = W[src, j]`` where ``on``: a store under a condition (a masked store once vectorised; a select
+    of the two loads LLVM turns into a load at a selected address, which keeps the loop scalar)."""
+    if on:
+        W[dst, j] = W[src, j]
+
+
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
 def final_row(W, L, full):
-    """record="final": this step's row where it is recorded, vectorised (written when the call ends)."""
+    """record="final": this step's row where it is recorded, vectorised (written when the call ends).
+
+    Every column a select between constant rows (a tuple indexed by a loop variable, as this copy once had, kept
+    LLVM from vectorising it).  The tire yaw moment's column is not computed here every step: the caster angles'
+    cosines and sines are kept (rows ``_RECTR``) and :func:`_store` computes the moment once, by the same function
+    from the same numbers."""
     for j in range(L):
         on = W[_RECF, j] != 0.0
         W[_RECANY, j] = 1.0 if on else W[_RECANY, j]
         W[_RECF, j] = 0.0
-        vals = (W[_X, j], W[_Y, j], W[_THE, j], W[_THED, j], W[_UD, j], W[_VD, j], W[_E, j], W[_ED, j],
-                W[_B, j], W[_BD, j])
-        for c in range(10):
-            W[_REC + c, j] = vals[c] if on else W[_REC + c, j]
+        _keep(W, _REC, _X, j, on)
+        _keep(W, _REC + 1, _Y, j, on)
+        _keep(W, _REC + 2, _THE, j, on)
+        _keep(W, _REC + 3, _THED, j, on)
+        _keep(W, _REC + 4, _UD, j, on)
+        _keep(W, _REC + 5, _VD, j, on)
+        for c in range(4):                      # E, ED, B, BD: consecutive rows, as the record's columns
+            _keep(W, _REC + 6 + c, _E + c, j, on)
         if full:
             for c in range(8):
-                W[_REC + 10 + c, j] = W[_F + c, j] if on else W[_REC + 10 + c, j]
+                _keep(W, _REC + 10 + c, _F + c, j, on)
             for c in range(4):
-                W[_REC + 18 + c, j] = W[_LD + c, j] if on else W[_REC + 18 + c, j]
-                W[_REC + 22 + c, j] = W[_SL + c, j] if on else W[_REC + 22 + c, j]
-            mzt = _lp.l_tire_moment(W[_F, j], W[_F + 1, j], W[_F + 2, j], W[_F + 3, j], W[_F + 4, j],
-                                    W[_F + 5, j], W[_F + 6, j], W[_F + 7, j], W[_TR, j], W[_TR + 1, j],
-                                    W[_TR + 2, j], W[_TR + 3, j], W[_PR + X_M, j], W[_PR + X_P, j],
-                                    W[_PR + D1, j], W[_PR + D2, j], W[_PR + T1, j], W[_PR + T2, j],
-                                    W[_PR + TRAIL, j])
-            W[_REC + 26, j] = mzt if on else W[_REC + 26, j]
-            W[_REC + 27, j] = W[_EXT + 1, j] if on else W[_REC + 27, j]
-            W[_REC + 28, j] = W[_AC + 2, j] if on else W[_REC + 28, j]
-            W[_REC + 29, j] = W[_AC + 5, j] if on else W[_REC + 29, j]
-            W[_REC + 30, j] = W[_AC + 6, j] if on else W[_REC + 30, j]
+                _keep(W, _REC + 18 + c, _LD + c, j, on)
+                _keep(W, _REC + 22 + c, _SL + c, j, on)
+                _keep(W, _RECTR + c, _TR + c, j, on)
+            _keep(W, _REC + 27, _EXT + 1, j, on)
+            _keep(W, _REC + 28, _AC + 2, j, on)
+            _keep(W, _REC + 29, _AC + 5, j, on)
+            _keep(W, _REC + 30, _AC + 6, j, on)
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
@@ -222,27 +233,33 @@ def _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode):
         for c in range(5):
             state[i, ST_TRACK + c] = W[_TRK + c, j]
         if mode == 2 and W[_RECANY, j] != 0.0:
+            if rec.shape[1] > 10:                       # the tire yaw moment of the recorded step (final_row)
+                W[_REC + 26, j] = _lp.l_tire_moment(
+                    W[_REC + 10, j], W[_REC + 11, j], W[_REC + 12, j], W[_REC + 13, j], W[_REC + 14, j],
+                    W[_REC + 15, j], W[_REC + 16, j], W[_REC + 17, j], W[_RECTR, j], W[_RECTR + 1, j],
+                    W[_RECTR + 2, j], W[_RECTR + 3, j], W[_PR + X_M, j], W[_PR + X_P, j], W[_PR + D1, j],
+                    W[_PR + D2, j], W[_PR + T1, j], W[_PR + T2, j], W[_PR + TRAIL, j])
             for c in range(rec.shape[1]):
                 rec[i, c, 0] = W[_REC + c, j]
 
 
 @njit(cache=True, nogil=True, error_model="numpy", **_NOWRAP)
-def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-           noise, state, rec, stats, warn, status, nrec):
+def _block(model, lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu,
+           By, Cz, noise, state, rec, stats, warn, status, nrec):
     """Steps ``k0 .. k1 - 1`` of runs ``lo .. hi - 1`` (at most :data:`LANES`) as lanes (see
-    :func:`stability.simulate.kernel.run_one`, whose arithmetic this is)."""
+    :func:`stability.simulate.kernel.run_one`, whose arithmetic this is); ``model`` (:func:`.kernel.variant`) a
+    numba literal: the vectorised loops compute that model's contact velocities and accelerations alone."""
+    literally(model)
     L = hi - lo
-    dt, duimp, ftimp, n, stride, model, locked, stop, policy, mode = (
-        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), int(cfg[5]), cfg[6] == 1.0, cfg[7] != 0.0,
-        int(cfg[8]), int(cfg[9]))
+    dt, duimp, ftimp, n, stride, locked, stop, policy, mode = (
+        cfg[0], cfg[1], cfg[2], int(cfg[3]), int(cfg[4]), cfg[6] == 1.0, cfg[7] != 0.0, int(cfg[8]), int(cfg[9]))
     sticks = cfg[6] == 2.0
     settle = sticks and int(cfg[STOP_LEVEL]) >= 0 and cfg[SETTLE] != 0.0
     ext = cfg[EXTERNAL_MZ] != 0.0
     use_ctl = ctl_f[0] > 0.0 and not ext
     half_dt2 = 0.5 * dt * dt
     maxslip, maxload, nwarn_limit, stop_lvl = cfg[10], cfg[11], cfg[12], int(cfg[STOP_LEVEL])
-    slope = cfg[SLOPE] != 0.0
-    model = SLOPE_MODEL if slope else model
+    slope = model == SLOPE_MODEL
     nlev = levels.shape[0]
     nz = Az.shape[0]
     znew, y, sv = np.zeros(nz), np.zeros(Cy.shape[0]), np.zeros(10)
@@ -273,15 +290,36 @@ def _block(lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, lev
 
 
 @njit(cache=True, parallel=True, error_model="numpy")
-def run_lanes(k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz,
-              noise, state, rec, stats, warn, status, nrec, lanes):
-    """:func:`stability.simulate.kernel.run_batch` with the runs in blocks of ``lanes`` (at most :data:`LANES`)
-    stepped as lanes, one block per thread (``prange``); the same arguments, and the block size."""
+def _run_lanes(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
+               Cz, noise, state, rec, stats, warn, status, nrec, lanes):
+    """:func:`run_lanes` for the variant ``model, ctl`` (numba literals: :func:`.kernel.call_model`; ``ctl`` always 0:
+    the lanes kernel finds its controller's lanes at run time)."""
     nb = (P.shape[0] + lanes - 1) // lanes
     for b in prange(nb):
         lo = b * lanes
-        _block(lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels,
-               ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+        _block(model, lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg,
+               levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+
+
+def run_lanes(k0: int, k1: int, P: np.ndarray, *args: object) -> None:
+    """:func:`stability.simulate.kernel.run_batch` with the runs in blocks of ``lanes`` (at most :data:`LANES`)
+    stepped as lanes, one block per thread (``prange``); the same arguments, and the block size last.
+
+    The runs' model (:func:`stability.simulate.kernel.variant` of the configuration row) is compiled as a constant,
+    as the scalar kernel's (:func:`stability.simulate.kernel.call_model`): the first call for a model compiles (or
+    loads from the cache) its specialisation, later ones call it directly.
+
+    Parameters
+    ----------
+    k0, k1 : int
+        First step and the step after the last.
+    P : ndarray
+        The runs' chair parameters (``kernel.run_batch``'s).
+    *args
+        ``kernel.run_batch``'s other arrays, from ``S`` to ``nrec``, then the block size (int).
+    """
+    model = variant(args[10], args[12])[0]          # cfg, ctl_f; the controller is found at run time (ctl 0)
+    call_model(_run_lanes, (model, 0), k0, k1, P, *args)
 
 
 invalidate_stale_cache(globals(), "lanes_kernel.equations.sha256")

@@ -73,7 +73,10 @@ _REC, _RECF, _RECANY = 133, 164, 165
 #: a lane whose held caster breaks away this step (its stick-slip solve is the scalar kernel's, lane by lane)
 _HELD = 166
 _ATTN, _EVT = 167, 168        # the masks of checks and stops: a lane they take lane by lane this step
-_TAB, NROWS = 169, 169 + 3 * 48     # the tire tables (casters, main wheels, camber), 48 rows each (l_table)
+_TAB = 169     # the tire tables (casters, main wheels, camber), 48 rows each (l_table)
+# record="final": the recorded step's caster trig (its tire yaw moment is computed once, when the call ends)
+_RECTR = _TAB + 3 * 48
+NROWS = _RECTR + 4
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
