@@ -43,6 +43,20 @@ def test_simulator_says_compiling_once_per_process(monkeypatch):
     assert "first use" in first_use.COMPILE_NOTICE
 
 
+def test_a_watched_block_inside_another_adds_no_notice(monkeypatch):
+    """A kernel's load inside a block already watched (the lanes kernel's specialisation found inside a launch) is
+    covered by the outer block's notice: one watch, so one line at most."""
+    from stability.simulate import first_use
+
+    monkeypatch.setattr(first_use, "_FIRST_USE", {"wchair": True, "layout": True})
+    said = []
+    monkeypatch.setattr(first_use, "notice_if_slow", lambda msg, after: _Recorder(said, msg))
+    with first_use.first_use("wchair"), first_use.first_use("layout"):
+        pass
+    assert said == [first_use.COMPILE_NOTICE]
+    assert first_use._FIRST_USE["layout"]       # the inner key was not watched, so its own first use is still ahead
+
+
 def test_a_kernels_load_is_watched_without_the_run_after_it(monkeypatch):
     """The layout kernel is loaded (or compiled) under the notice before its first call, for the types numba gives
     the call's arguments; a loaded kernel is not loaded again."""
@@ -121,6 +135,7 @@ def test_the_scalar_kernels_load_is_watched_apart_from_its_runs(monkeypatch):
     with engine.use_kernel("scalar"):
         simulate_batch(preset("ej-premier"), [0.5, 0.75], RunSpec(horizon=0.01), progress=False)
     assert [s for s in seen if s[1] == "wchair"] == [("kernel", "wchair")]
+
 
 
 def test_the_adaptive_schemes_kernels_are_loaded_as_their_calls_type_them():

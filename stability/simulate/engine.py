@@ -297,9 +297,8 @@ def _launch_runs(k: Any, chairs: Sequence[Chair], speeds: np.ndarray, opts: Opti
         return rec, stats, warn, status, counts
     cfg[k.EXTERNAL_MZ] = 1.0
     lanes = None if _kc.choice() == "scalar" else functools.partial(_lanes_step, args, n_runs)
-    # the scalar kernel's specialisation is loaded under the first-use notice where it is found (kernel.call_model)
-    with first_use("wchair") if lanes is not None else nullcontext():
-        hooked_steps(k, opts, args, state, status, k.variant(cfg, ctl[0]), batch, lanes)
+    # each kernel's specialisation is loaded under the first-use notice where it is found (kernel.call_model)
+    hooked_steps(k, opts, args, state, status, k.variant(cfg, ctl[0]), batch, lanes)
     return rec, stats, warn, status, counts
 
 
@@ -373,10 +372,9 @@ def _launch_unguarded(k: Any, threads: int | None, n_runs: int, args: tuple) -> 
         k.set_num_threads(max(1, min(int(threads), k.NUMBA_NUM_THREADS)))
     try:
         nthreads = k.get_num_threads()
-        # the scalar kernel's specialisation is loaded under the first-use notice where it is found
+        # each kernel's specialisation (scalar or lanes) is loaded under the first-use notice where it is found
         # (kernel.call_model), apart from the runs: a large first batch of a cached kernel says nothing
-        with first_use("wchair") if _kc.choice() == "lanes" else nullcontext():
-            _launch_inner(k, threads, n_runs, args, nthreads)
+        _launch_inner(k, threads, n_runs, args, nthreads)
     finally:
         if threads is not None:     # a search's one-thread round must not leave later batches on one thread
             k.set_num_threads(before)

@@ -41,12 +41,16 @@ def first_use(scheme: str) -> Iterator[None]:
     None
         The block runs inside; the notice, if any, is printed on stderr while it runs.
     """
-    if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False):
-        yield
+    if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False) or _FIRST_USE.get("watching", False):
+        yield       # passed, said, or inside a watched block (whose notice covers this one: said once)
         return
     start = time.perf_counter()
-    with notice_if_slow(COMPILE_NOTICE, after=NOTICE_AFTER_S):
-        yield
+    _FIRST_USE["watching"] = True
+    try:
+        with notice_if_slow(COMPILE_NOTICE, after=NOTICE_AFTER_S):
+            yield
+    finally:
+        _FIRST_USE["watching"] = False
     _FIRST_USE[scheme] = False
     if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
         _FIRST_USE["noticed"] = True

@@ -34,6 +34,7 @@ vector and scalar forms of a loop round alike).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads
@@ -301,7 +302,7 @@ def _run_lanes(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, 
                levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
 
 
-def run_lanes(k0: int, k1: int, P: np.ndarray, *args: object) -> None:
+def run_lanes(k0: int, k1: int, P: np.ndarray, *args: Any) -> None:
     """:func:`stability.simulate.kernel.run_batch` with the runs in blocks of ``lanes`` (at most :data:`LANES`)
     stepped as lanes, one block per thread (``prange``); the same arguments, and the block size last.
 
