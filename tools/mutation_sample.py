@@ -267,7 +267,7 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
     ('stability/slope/equilibrium.py',
      'mp = (pins[0] * chair.pin_friction_left, pins[1] * chair.pin_friction_right)',
      'mp = (pins[1] * chair.pin_friction_left, pins[1] * chair.pin_friction_right)'):
-        "the four pin-moment pairs become `(1, 1)`, `(-1, -1)` twice each: only the mixed-sign pairs are lost, and their holding moments lie between the same-sign pairs' (as the entry above: each pin moment moves the holding moment the same way); checked with unequal pin frictions (0.1/0.3, 0.3/0.1, 0.05/0.5 N m) on every preset on four cross slopes and two grades, 114 equilibria: the range's ends identical",
+        "the four pin-moment pairs become `(1, 1)`, `(-1, -1)` twice each: only the mixed-sign pairs are lost, and their holding moments lie between the same-sign pairs' (as the entry above: each pin moment moves the holding moment the same way); checked with unequal pin frictions (0.1/0.3, 0.3/0.1, 0.05/0.5 N m) on every preset on four cross slopes and two grades: the range's ends identical at every equilibrium",
     ('stability/slope/equilibrium.py',
      'friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if fr and not all(map(math.isnan, fr))',
      'friction_range=(float(np.nanmin(fr)), float(np.nanmax(fr))) if fr or not all(map(math.isnan, fr))'):
