@@ -195,12 +195,13 @@ def final_row(W, L, full):
         on = W[_RECF, j] != 0.0
         W[_RECANY, j] = 1.0 if on else W[_RECANY, j]
         W[_RECF, j] = 0.0
-        _keep(W, _REC, _X, j, on)
-        _keep(W, _REC + 1, _Y, j, on)
-        _keep(W, _REC + 2, _THE, j, on)
-        _keep(W, _REC + 3, _THED, j, on)
-        _keep(W, _REC + 4, _UD, j, on)
-        _keep(W, _REC + 5, _VD, j, on)
+        # the rows as int64 (a bare global is a numba literal, and _keep would compile once per row: "+ 0")
+        _keep(W, _REC + 0, _X + 0, j, on)
+        _keep(W, _REC + 1, _Y + 0, j, on)
+        _keep(W, _REC + 2, _THE + 0, j, on)
+        _keep(W, _REC + 3, _THED + 0, j, on)
+        _keep(W, _REC + 4, _UD + 0, j, on)
+        _keep(W, _REC + 5, _VD + 0, j, on)
         for c in range(4):                      # E, ED, B, BD: consecutive rows, as the record's columns
             _keep(W, _REC + 6 + c, _E + c, j, on)
         if full:
