@@ -104,3 +104,33 @@ def shared_run():
         return done[key]
 
     return run
+
+
+@pytest.fixture
+def first_use_watches(monkeypatch):
+    """Run two short E&J Premier runs as a batch on a WCHAIR kernel (``"scalar"`` or ``"lanes"``) with the
+    kernel's specialisation found again, and return the first-use watches of key ``"wchair"`` they went through, as
+    ``(module, key)``: ``"engine"`` (the launch) or ``"kernel"`` (``kernel.call_model``, where it is loaded)."""
+    import contextlib
+
+    from stability.chair import preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import engine, kernel, simulate_batch
+
+    def run(which):
+        seen = []
+
+        def recorder(where):
+            @contextlib.contextmanager
+            def watch(scheme):
+                seen.append((where, scheme))
+                yield
+            return watch
+
+        monkeypatch.setattr(engine, "first_use", recorder("engine"))
+        monkeypatch.setattr(kernel, "first_use", recorder("kernel"))
+        monkeypatch.setattr(kernel, "_ENTRIES", {})      # the specialisation is found (loaded) again
+        with engine.use_kernel(which):
+            simulate_batch(preset("ej-premier"), [0.5, 0.75], RunSpec(horizon=0.01), progress=False)
+        return [s for s in seen if s[1] == "wchair"]
+    return run

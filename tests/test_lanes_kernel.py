@@ -170,27 +170,7 @@ def test_critical_impulse_is_the_same_with_either_kernel():
         assert a == pytest.approx(docs, rel=0.01)
 
 
-def test_the_lanes_kernels_load_is_watched_where_it_is_found(monkeypatch):
+def test_the_lanes_kernels_load_is_watched_where_it_is_found(first_use_watches):
     """The lanes kernel's specialisation for the runs' model is loaded through kernel.call_model too, under the same
     notice, and the launch itself is not watched."""
-    import contextlib
-
-    from stability.chair import preset
-    from stability.settings.run import RunSpec
-    from stability.simulate import engine, kernel, simulate_batch
-
-    seen = []
-
-    def recorder(where):
-        @contextlib.contextmanager
-        def watch(scheme):
-            seen.append((where, scheme))
-            yield
-        return watch
-
-    monkeypatch.setattr(engine, "first_use", recorder("engine"))
-    monkeypatch.setattr(kernel, "first_use", recorder("kernel"))
-    monkeypatch.setattr(kernel, "_ENTRIES", {})
-    with engine.use_kernel("lanes"):
-        simulate_batch(preset("ej-premier"), [0.5, 0.75], RunSpec(horizon=0.01), progress=False)
-    assert [s for s in seen if s[1] == "wchair"] == [("kernel", "wchair")]
+    assert first_use_watches("lanes") == [("kernel", "wchair")]

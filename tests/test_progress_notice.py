@@ -111,30 +111,10 @@ class _Recorder:
         return False
 
 
-def test_the_scalar_kernels_load_is_watched_apart_from_its_runs(monkeypatch):
+def test_the_scalar_kernels_load_is_watched_apart_from_its_runs(first_use_watches):
     """The WCHAIR kernel's first-use notice watches the load of its specialisation (kernel.call_model), not the
     launch that runs the batch: a large first batch of a cached kernel runs past the notice time without compiling."""
-    import contextlib
-
-    from stability.chair import preset
-    from stability.settings.run import RunSpec
-    from stability.simulate import engine, kernel, simulate_batch
-
-    seen = []
-
-    def recorder(where):
-        @contextlib.contextmanager
-        def watch(scheme):
-            seen.append((where, scheme))
-            yield
-        return watch
-
-    monkeypatch.setattr(engine, "first_use", recorder("engine"))
-    monkeypatch.setattr(kernel, "first_use", recorder("kernel"))
-    monkeypatch.setattr(kernel, "_ENTRIES", {})      # the specialisation is found (loaded) again
-    with engine.use_kernel("scalar"):
-        simulate_batch(preset("ej-premier"), [0.5, 0.75], RunSpec(horizon=0.01), progress=False)
-    assert [s for s in seen if s[1] == "wchair"] == [("kernel", "wchair")]
+    assert first_use_watches("scalar") == [("kernel", "wchair")]
 
 
 
