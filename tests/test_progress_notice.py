@@ -57,6 +57,24 @@ def test_a_watched_block_inside_another_adds_no_notice(monkeypatch):
     assert first_use._FIRST_USE["layout"]       # the inner key was not watched, so its own first use is still ahead
 
 
+def test_a_later_load_is_watched_while_nothing_has_been_said(monkeypatch):
+    """A quick load (from the cache) says nothing and leaves the notice armed: a later compile (another variant of
+    the kernel, the same key) that runs past the notice time says so, once."""
+    from stability.simulate import first_use
+
+    monkeypatch.setattr(first_use, "_FIRST_USE", {"wchair": True})
+    monkeypatch.setattr(first_use, "NOTICE_AFTER_S", 0.05)
+    with first_use.first_use("wchair"):
+        pass                                         # a load from the cache: no notice, nothing said
+    said = []
+    monkeypatch.setattr(first_use, "notice_if_slow", lambda msg, after: _Recorder(said, msg))
+    with first_use.first_use("wchair"):
+        time.sleep(0.1)                              # a later variant's compile
+    with first_use.first_use("wchair"):
+        time.sleep(0.1)
+    assert said == [first_use.COMPILE_NOTICE]
+
+
 def test_a_kernels_load_is_watched_without_the_run_after_it(monkeypatch):
     """The layout kernel is loaded (or compiled) under the notice before its first call, for the types numba gives
     the call's arguments; a loaded kernel is not loaded again."""

@@ -2,9 +2,10 @@
 
 numba compiles each kernel (the WCHAIR kernel, the adaptive scheme's, the layout kernel) the first time a machine
 runs it and caches the machine code; later processes load it.  A compile takes seconds of CPU with nothing to
-count, so :func:`first_use` prints :data:`COMPILE_NOTICE` once per process when the block around a kernel's load
-or first call runs past :data:`stability.runtime.progress.NOTICE_AFTER_S` (docs/simulator.md and docs/layouts.md
-give the measured first-use times, computed when the site is built)."""
+count, so :func:`first_use` prints :data:`COMPILE_NOTICE` once per process when a block around a kernel's load
+(every load, a first or a later variant's, until the notice has been said) runs past
+:data:`stability.runtime.progress.NOTICE_AFTER_S` (docs/simulator.md and docs/layouts.md give the measured
+first-use times, computed when the site is built)."""
 
 from __future__ import annotations
 
@@ -17,8 +18,8 @@ from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
 
 __all__ = ["COMPILE_NOTICE", "first_use", "load_kernel"]
 
-#: The kernels' first uses in this process not yet passed (a kernel's load and its first call are separate keys),
-#: and whether the notice was said.
+#: The kernels' loads that are watched (a kernel's module import and its machine code are separate keys), whether
+#: the notice was said, and whether a watched block is running.
 _FIRST_USE = {"wchair": True, "wchair_load": True, "adaptive_load": True, "adaptive": True, "adaptive_samples": True,
               "layout": True}
 #: What the first call in a process says when it takes longer than ``NOTICE_AFTER_S``.
@@ -27,14 +28,15 @@ COMPILE_NOTICE = "compiling the simulator (first use on this machine; later runs
 
 @contextlib.contextmanager
 def first_use(scheme: str) -> Iterator[None]:
-    """Around the first compiled call of ``scheme`` (a key of the first-use table: a kernel's load or its first
-    call) in a process: say so if it runs past ``NOTICE_AFTER_S`` s (a compile), once per process.
+    """Around a load of ``scheme``'s machine code (a key of the first-use table: from numba's cache, or compiled):
+    say so if it runs past ``NOTICE_AFTER_S`` s (a compile), once per process.  Every load is watched until the
+    notice has been said: a later variant's compile (a controller's, another model's) says so too.
 
     Parameters
     ----------
     scheme : str
         The first-use table's key: ``"wchair"``, ``"wchair_load"``, ``"adaptive_load"``, ``"adaptive"``,
-        ``"adaptive_samples"`` or ``"layout"``; any other key, or one whose first use has passed, watches nothing.
+        ``"adaptive_samples"`` or ``"layout"``; any other key watches nothing.
 
     Yields
     ------
@@ -42,7 +44,7 @@ def first_use(scheme: str) -> Iterator[None]:
         The block runs inside; the notice, if any, is printed on stderr while it runs.
     """
     if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False) or _FIRST_USE.get("watching", False):
-        yield       # passed, said, or inside a watched block (whose notice covers this one: said once)
+        yield       # not a kernel's load, said, or inside a watched block (whose notice covers this one)
         return
     start = time.perf_counter()
     _FIRST_USE["watching"] = True
@@ -51,7 +53,6 @@ def first_use(scheme: str) -> Iterator[None]:
             yield
     finally:
         _FIRST_USE["watching"] = False
-    _FIRST_USE[scheme] = False
     if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
         _FIRST_USE["noticed"] = True
 
