@@ -147,3 +147,26 @@ def test_the_adaptive_schemes_kernels_are_loaded_as_their_calls_type_them():
     simulate(preset("ej-premier"), 1.0, RunSpec(scheme="adaptive", horizon=0.05, model="thesis"))
     assert len(adaptive_kernel.evaluate.signatures) == 1
     assert len(adaptive_kernel.samples.signatures) == 1
+
+
+def test_a_layout_shapes_equations_load_under_the_notice(monkeypatch):
+    """A layout's shape compiles its generated equations on its own (at their addresses) the first time a process
+    runs it: that load is watched too, not only the step's."""
+    import contextlib
+
+    from stability.layout.presets import layout_preset
+    from stability.settings.run import RunSpec
+    from stability.simulate import layout_kernel
+    from stability.simulate.layout import simulate_layout
+
+    seen = []
+
+    @contextlib.contextmanager
+    def watch(scheme):
+        seen.append(scheme)
+        yield
+
+    monkeypatch.setattr(layout_kernel, "first_use", watch)
+    monkeypatch.setattr(layout_kernel, "_ADDRESSES", {})      # the shape's addresses are taken again
+    simulate_layout(layout_preset("mid-wheel-drive"), 1.0, RunSpec(horizon=0.01, stop_on_warnings=False))
+    assert seen == ["layout"]

@@ -31,6 +31,7 @@ from stability.models.layout import nonlinear as _gn
 from stability.simulate import layout_forces as _lf
 from stability.simulate import layout_solve as _ls
 from stability.simulate.cache_stamp import invalidate_stale_cache
+from stability.simulate.first_use import first_use
 from stability.simulate.kernel_controller import controller_output
 from stability.simulate.kernel_equations import (
     _NOREF,
@@ -217,16 +218,18 @@ def arguments(cfg: np.ndarray, consts: tuple, states: np.ndarray, recs: np.ndarr
     if key not in _ADDRESSES:
         tag = "{}w{}c".format(*_gn.SHAPES[shape])
         eq, cv = getattr(_shapes, f"equations_{tag}"), getattr(_shapes, f"contact_velocities_{tag}")
-        _ADDRESSES[key] = (address(eq, (_F, _F, _F, _V, _V, _V, key[1], _V, _V, _F, _F, _F, _F, _M, _V),
-                                   _nbtypes.none),
-                           address(cv, (_F, _F, _F, _V, _V, _V, key[1], _V), _nbtypes.none))
+        with first_use("layout"):       # the shape's equations load, or compile once per machine
+            _ADDRESSES[key] = (address(eq, (_F, _F, _F, _V, _V, _V, key[1], _V, _V, _F, _F, _F, _F, _M, _V),
+                                       _nbtypes.none),
+                               address(cv, (_F, _F, _F, _V, _V, _V, key[1], _V), _nbtypes.none))
     ctlf = 0
     if ctl[0][0] > 0.0:           # a sampled controller: its state views are rows of states and of the scratch
         if not states.flags.c_contiguous:      # the row types the address is taken for
             raise ValueError("states must be C-contiguous (initial_state rows stacked by np.array)")
         ckey = tuple(map(typeof, ctl))
         if ckey not in _ADDRESSES:
-            _ADDRESSES[ckey] = address(_samples, (_F, _nbtypes.int64, *(_F,) * 6, *(_V,) * 6, *ckey, _V))
+            with first_use("layout"):
+                _ADDRESSES[ckey] = address(_samples, (_F, _nbtypes.int64, *(_F,) * 6, *(_V,) * 6, *ckey, _V))
         ctlf = _ADDRESSES[ckey]
     n = 3 + nc
     work = np.zeros(work_length(nw, nc, ctl[3].shape[0], ctl[1].shape[0]))
