@@ -187,10 +187,10 @@ def _keep(W, dst, src, j, on):
 def final_row(W, L, full):
     """record="final": this step's row where it is recorded, vectorised (written when the call ends).
 
-    Every column a select between constant rows (a tuple indexed by a loop variable, as this copy once had, kept
-    LLVM from vectorising it).  The tire yaw moment's column is not computed here every step: the caster angles'
-    cosines and sines are kept (rows ``_RECTR``) and :func:`_store` computes the moment once, by the same function
-    from the same numbers."""
+    Every column is copied between constant rows by :func:`_keep`, a store under the lane's flag (a masked store
+    once vectorised; a select of the two loads, as this copy once had, kept LLVM from vectorising it).  The tire yaw
+    moment's column is not computed here every step: the caster angles' cosines and sines are kept (rows
+    ``_RECTR``) and :func:`_store` computes the moment once, by the same function from the same numbers."""
     for j in range(L):
         on = W[_RECF, j] != 0.0
         W[_RECANY, j] = 1.0 if on else W[_RECANY, j]
