@@ -94,7 +94,7 @@ def bench(request):
 #: allocates nothing (its scratch comes from Python), so numba compiles none of its own functions for it
 #: (``min``, ``max``, ``int()`` written as selects and casts, as in the scalar kernel)
 #: ``wchair``: tests/kernel_warmup.py's wchair group (every variant of the scalar kernel the default tests use, one
-#: run, a batch, a Python hook; and the adaptive scheme): the batch and step-by-step entries call the variant's
+#: run, a batch, a Python hook; the adaptive scheme is in the layout group): the batch and step-by-step entries call the variant's
 #: ``run_one`` at its address, so each is compiled once for all variants, not once per model (91 -> 81 compiles),
 #: and ``run_one`` once per variant (thesis, exact, each with and without a controller, the slope)
 #: the generated functions a first mid-wheel-drive run (two fixed wheels, four casters) compiles: its shape's only
