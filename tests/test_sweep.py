@@ -426,6 +426,9 @@ def test_censored_sides_are_every_side_a_status_can_have():
 
     assert set(SIDES) == {side_of(s) for s in ("found", "above", "never", "below")} and len(SIDES) == 3
     assert [describe(3.0, s, "m/s") for s in SIDES] == ["3 m/s", "> 3 m/s", "< 3 m/s"]
+    # class: words no test read (seed 50): a value that does not exist (NaN, or an infinite one) "has no value"
+    # (docs/studies.md), whatever its side and unit
+    assert {describe(v, s, "m/s") for v in (math.nan, math.inf) for s in SIDES} == {"no value"}
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, True)) == [">", "=", "<"]
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, False)) == ["<", "=", ">"]
 

@@ -389,6 +389,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'return LIMIT_WORDS.get(name, (name.replace("_", " "), "", 1.0))[0]',
      'return LIMIT_WORDS.get(name, (name.replace("_", " "), "", 2.0))[0]'):
         "the default tuple's third element (a display scale) is never read: `limit_words` takes element `[0]`, the name",
+    ('stability/study/impulse.py',
+     'return (f"constant force at the c.g.{toward} for {duration:g} s ({Push(1.0, duration).steps(h)} steps of "',
+     'return (f"constant force at the c.g.{toward} for {duration:g} s ({Push(2.0, duration).steps(h)} steps of "'):
+        'the step count of a push depends on its duration and the step only (`Push.steps`: `floor(duration / dt) + 1`): the force of the stand-in `Push` is never read',
 }
 
 
