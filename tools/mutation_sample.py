@@ -393,6 +393,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'return (f"constant force at the c.g.{toward} for {duration:g} s ({Push(1.0, duration).steps(h)} steps of "',
      'return (f"constant force at the c.g.{toward} for {duration:g} s ({Push(2.0, duration).steps(h)} steps of "'):
         'the step count of a push depends on its duration and the step only (`Push.steps`: `floor(duration / dt) + 1`): the force of the stand-in `Push` is never read',
+    ('stability/assist/schedule.py',
+     'if self.kind == "full-state":',
+     'if self.kind == "XXfull-stateXX":'):
+        "for a full-state design the other branch interpolates an estimator gain it does not use (NaN from the designs' `None`) and a model plant that `replace(d, plant=true_p)` then discards: `realise` of a full-state design keeps only the plant, its speed and `K`, so both branches give the same `Design` on the true plant",
 }
 
 
