@@ -397,6 +397,14 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'if self.kind == "full-state":',
      'if self.kind == "XXfull-stateXX":'):
         "for a full-state design the other branch interpolates an estimator gain it does not use (NaN from the designs' `None`) and a model plant that `replace(d, plant=true_p)` then discards: `realise` of a full-state design keeps only the plant, its speed and `K`, so both branches give the same `Design` on the true plant",
+    ('stability/shimmy/band.py',
+     'lateral_stiffness_range=(1.0, math.inf), relaxation_length_range=(1.0, 1.0))',
+     'lateral_stiffness_range=(2.0, math.inf), relaxation_length_range=(1.0, 1.0))'):
+        "the placeholder compliance's ranges are never read: `_wheel_params` takes only its lateral stiffness (which picks the pivot case) and its relaxation length, both overwritten by `_abscissa_pairs`; a range need only be valid (`0 < low <= high`)",
+    ('stability/linear/model.py',
+     'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd',
+     'd = [float(x1) + float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd'):
+        "straight running with no force is an equilibrium of the equations: the accelerations without the force, `a0`, are exactly zero (every term carries a lateral state, a caster angle's sine or a force; checked on the E&J, an asymmetric chair with both rolling resistances and no pin friction, camber 2 deg, toe 1 deg: `[0.0] * 5`), so adding or subtracting them gives the same column",
 }
 
 
