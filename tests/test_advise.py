@@ -341,3 +341,28 @@ def test_cli_refuses_bad_input_before_any_work(capsys):
         assert main(args) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and err.startswith("error:") and frag in err, err
+
+
+def test_the_advisor_warns_once_per_tire_group_even_when_it_stops(monkeypatch):
+    """Class: a behaviour whose test was outside the advisor's gate files (seed 50: ``advise`` without
+    ``summarised_warnings``; tests/test_tires.py runs the whole advisor for it).  Three out-of-range loads of one
+    caster tire recorded during the advice (here by a stand-in for the lever screening, which then stops the
+    advice) are one TireRangeWarning counting the three uses, not three warnings."""
+    import warnings
+
+    from stability.advise import advisor
+    from stability.tires import TireRangeWarning
+    from stability.tires.ranges import RangeNote, record
+
+    def screening(chair):
+        for load in (451.0, 480.5, 462.0):
+            record(RangeNote("ER", "load", load, 0.0, 450.0, "warn", "caster_left"))
+        raise RuntimeError("screening stopped")
+
+    monkeypatch.setattr(advisor, "lever_changes", screening)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(RuntimeError, match="screening stopped"):
+            advisor.advise(chair_mod.preset("power-fwd"), time_to_correct=False)
+    assert [w.category for w in caught] == [TireRangeWarning]
+    assert "(3 uses, 451-480.5 N" in str(caught[0].message)

@@ -405,6 +405,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'd = [float(x1) - float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd',
      'd = [float(x1) + float(x0) for x1, x0 in zip(a1, a0, strict=True)]  # u_dot, v_dot, r_dot, eta_dd, beta_dd'):
         "straight running with no force is an equilibrium of the equations: the accelerations without the force, `a0`, are exactly zero (every term carries a lateral state, a caster angle's sine or a force; checked on the E&J, an asymmetric chair with both rolling resistances and no pin friction, camber 2 deg, toe 1 deg: `[0.0] * 5`), so adding or subtracting them gives the same column",
+    ('stability/advise/advisor.py',
+     'driver: Driver | None = None',
+     'driver: Driver & None = None'):
+        'an annotation of a dataclass field: the module has `from __future__ import annotations`, so it is a string nobody evaluates (`dataclasses` reads only whether it names `ClassVar` or `InitVar`)',
 }
 
 
