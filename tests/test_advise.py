@@ -366,3 +366,14 @@ def test_the_advisor_warns_once_per_tire_group_even_when_it_stops(monkeypatch):
             advisor.advise(chair_mod.preset("power-fwd"), time_to_correct=False)
     assert [w.category for w in caught] == [TireRangeWarning]
     assert "(3 uses, 451-480.5 N" in str(caught[0].message)
+
+
+def test_a_limit_not_in_the_table_is_named_by_its_words():
+    """Class: a fallback branch no test gave (seed 50).  A constraint the table of limit words does not list (a
+    user's own, e.g. ``caster_flutter_margin``) is named by its identifier's words, underscores read as spaces;
+    a listed one by the table's words."""
+    from stability.advise.limits import LIMIT_WORDS, limit_words
+
+    assert "caster_flutter_margin" not in LIMIT_WORDS
+    assert limit_words("caster_flutter_margin") == "caster flutter margin"
+    assert limit_words("shimmy_margin_m") == "shimmy margin"
