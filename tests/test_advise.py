@@ -377,3 +377,20 @@ def test_a_limit_not_in_the_table_is_named_by_its_words():
     assert "caster_flutter_margin" not in LIMIT_WORDS
     assert limit_words("caster_flutter_margin") == "caster flutter margin"
     assert limit_words("shimmy_margin_m") == "shimmy margin"
+
+
+@pytest.mark.parametrize("value", [12.97, 10.0, 8.05, 15.123])
+def test_a_suggested_lower_tip_limit_allows_the_chair_as_printed(value):
+    """Class: numbers in words no test recomputed (seed 50: the report's wording of a lower static-stability
+    limit).  A change blocked by the tip limit would be allowed by a limit at or below its angle: the limit the
+    command line and the report suggest, as printed (0.1 deg), is at most the angle and less than 0.1 deg below
+    it, so that setting it as printed does allow the change."""
+    import re
+
+    from stability.advise.limits import Constraint, allow, allow_words
+
+    k = Constraint("static_stability_deg", value, 16.0, ">=", False, "the user's")
+    for text in (allow(k), allow_words(k)):
+        printed = float(re.search(r"(?:--min-tip-deg |limit \()(\d+\.\d) ?(?:deg)?", text).group(1))
+        # error model: value * 10 rounded once before the floor (1 ulp): exact at these tenths
+        assert printed <= value < printed + 0.1 + 1e-12, text
