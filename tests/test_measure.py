@@ -566,3 +566,27 @@ def test_the_raised_end_defaults_to_the_casters():
     """Class: a default no test omitted (seed 50).  ``tilt.end`` is ``"caster"`` unless given (docs/measure.md):
     the example sheet, which raises the casters, gives the same c.g. height without the line."""
     assert _read(**{'end = "caster"\n': ""}).chair.h == sheet.load_sheet(EXAMPLE).chair.h
+
+
+def test_every_reading_s_refusals_name_the_reading_its_value_and_what_is_valid():
+    """Class: refusal words no test read (seed 51: the non-finite value's and the wrong dimension's words).  Every
+    reading is refused in one line naming it, its value as written and what is valid: a value or std that is not
+    a finite number, a negative std, a unit of another dimension (a scale reading takes a mass, its weight, or a
+    force: docs/measure.md), keys other than value, unit, std and note."""
+    import re
+
+    for key, (dims, *_rest) in sheet.READINGS.items():
+        head = f"sheet reading {key}="
+        wrong = "m" if "time" in dims else "s"
+        wrong_dim = "length" if wrong == "m" else "time"
+        allowed = "mass or force" if "force" in dims else dims[0]
+        for raw, shown, valid in (
+                ({"value": math.inf}, repr({"value": math.inf}), "value must be a finite number"),
+                ({"value": 1.0, "std": math.nan}, repr({"value": 1.0, "std": math.nan}), "std must be a finite number"),
+                ({"value": 1.0, "std": -0.1}, repr({"value": 1.0, "std": -0.1}), "std >= 0"),
+                ({"value": 1.0, "unit": wrong}, f"1 {wrong}", f"a {allowed} unit, not a {wrong_dim} unit"),
+                ({"value": 1.0, "sd": 0.1}, str({"value": 1.0, "sd": 0.1}),
+                 "a table with keys value, unit, std, note (unknown ['sd'])")):
+            with pytest.raises(ValueError, match="^" + re.escape(f"{head}{shown} is invalid; valid range: {valid}")
+                               + "$"):
+                sheet._parse_reading(key, raw)
