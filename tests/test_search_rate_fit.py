@@ -298,3 +298,15 @@ def test_going_down_never_proposes_a_push_below_the_smallest_allowed():
     wide = Problem(x=list(p.x), g=list(p.g), reached=list(p.reached), t=list(p.t))
     got = _go_down(wide, hi, math.log(1e-6), _WIDTH, math.log(2.0), _HORIZON, sigma)
     assert len(got) == 2 and wide.fit_pair       # far from x_min the same state gets the pair
+
+
+def test_going_down_steps_at_least_two_eps():
+    """Class: a documented floor no test sat on (seed 51).  Going down without a fit, the step the margin predicts
+    is at least ``2 eps`` (``eps = 0.45 width``, the module's docstring): a margin of 1e-4 at the only reaching push
+    predicts a root just below it, and the round proposes ``hi - 2 eps + eps = hi - eps``."""
+    from stability.study.search import _go_down
+
+    p = Problem(x=[1.0], g=[1e-4], reached=[True], t=[0.5 * _HORIZON])
+    got = _go_down(p, 1.0, math.log(1e-6), _WIDTH, math.log(2.0), _HORIZON, math.nan)
+    # error model: a few roundings of values about 1 (at most 3 eps), margin 100
+    assert got == [pytest.approx(1.0 - 0.45 * _WIDTH, abs=300 * EPS)]
