@@ -434,6 +434,8 @@ def test_censored_sides_are_every_side_a_status_can_have():
     # class: words no test read (seed 50): a value that does not exist (NaN, or an infinite one) "has no value"
     # (docs/studies.md), whatever its side and unit
     assert {describe(v, s, "m/s") for v in (math.nan, math.inf) for s in SIDES} == {"no value"}
+    # class: a default no test omitted (seed 51): without a unit the value stands alone (no trailing space)
+    assert [describe(3.0, s) for s in SIDES] == ["3", "> 3", "< 3"]
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, True)) == [">", "=", "<"]
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, False)) == ["<", "=", ">"]
 
