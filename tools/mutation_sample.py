@@ -437,6 +437,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'driver: Driver | None = None',
      'driver: Driver & None = None'):
         'an annotation of a dataclass field: the module has `from __future__ import annotations`, so it is a string nobody evaluates (`dataclasses` reads only whether it names `ClassVar` or `InitVar`)',
+    ('stability/study/intervals.py',
+     'scheme, scope) for chair, vlist in zip(chairs, variants, strict=True)]',
+     'scheme, scope) for chair, vlist in zip(chairs, variants, strict=False)]'):
+        '`variants` is built with one list per chair (`[[None] * len(specs) for _ in chairs]`): always the same length',
 }
 
 
