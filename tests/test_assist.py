@@ -933,6 +933,15 @@ def test_a_schedule_of_no_speed_is_refused_in_one_line():
         assist.schedule(chair_mod.preset("power-fwd"), [], "gyro")
 
 
+@pytest.mark.parametrize("speeds", [[1.0, 1.0], [1.0, 2.0, 2.0], [2.0, 1.0]])
+def test_a_schedule_s_speeds_must_strictly_increase(speeds):
+    """Class: a boundary no test sat on (seed 50).  A schedule interpolates between its speeds, which must be
+    strictly increasing: a repeated speed (the edge of the rule: a difference of exactly 0) is refused as a
+    falling one is, before any design."""
+    with pytest.raises(ValueError, match="^speeds must be strictly increasing$"):
+        assist.schedule(chair_mod.preset("power-fwd"), speeds, "gyro")
+
+
 def test_a_schedule_of_an_unknown_design_is_refused_as_a_single_design_is():
     """The schedule's design kind is the one choice the single-speed design takes (the command's ``--design``): an
     unknown kind is refused before any design, in the same one line :func:`stability.assist.design.design`

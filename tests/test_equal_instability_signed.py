@@ -6,6 +6,9 @@ that keeps every interval ordered (low <= high) and turns "beyond the fast end" 
 
 from __future__ import annotations
 
+import numpy as np
+import pytest
+
 from stability.study.criteria import DEFAULT_CRITERION
 from stability.study.equal_instability import EqualInstability
 from stability.study.intervals import EqualInstabilityInterval, FactorRange, Variant
@@ -74,3 +77,21 @@ def test_the_json_and_the_line_of_an_interval():
     assert "over push force, pin friction; moved most by push force)" in two.describe()
     with pytest.raises(dataclasses.FrozenInstanceError):
         two.factors[0].low = 1.0                                      # type: ignore[misc]
+
+
+@pytest.mark.parametrize("on_reference, scope", [(True, "both the chair and the reference chair"),
+                                                 (False, "the chair only")])
+def test_the_interval_says_which_chairs_its_pin_friction_factors_move(monkeypatch, on_reference, scope):
+    """Class: words no gate test read (seed 51: the friction scope; tests/test_report.py reads it after a full
+    study).  The pin-friction variants scale both the chair and the reference chair (RANGE_DEFINITION), or the
+    chair only when asked: the interval says which.  The runs are stood in for (every reference time 3.1 s, every
+    chair at 0.85 m/s): the words do not depend on them."""
+    from stability.chair import preset
+    from stability.study import intervals
+
+    monkeypatch.setattr(intervals, "reference_times", lambda refs, *a, **k: np.full(len(refs), 3.1))
+    monkeypatch.setattr(intervals, "bisect_speeds", lambda chairs, *a, **k: [_point(0.85) for _ in chairs])
+    (iv,) = intervals.equal_instability_intervals([preset("ej-premier")], friction_on_reference=on_reference)
+    assert iv.friction_scope == scope
+    if on_reference:
+        assert "(on both the chair and the reference chair)" in intervals.RANGE_DEFINITION

@@ -218,6 +218,10 @@ def test_study_work_estimate_is_runs_times_steps_times_the_step_cost():
     minutes = 1.01 * WORK_BUDGET_S / 60.0
     with pytest.raises(ValueError, match=re.escape(f"would take about {minutes:.0f} min;")):
         check_study_work([ej], np.array([0.75]), "exact", allowed * 1.01, dt, runs, limits=np.array([1.0]))
+    # class: a number in a message printed too coarsely to tell its formula (seed 50: seconds / 61 also prints 10
+    # min at 1.01 budgets); at 10 budgets the estimate is 100 min, which a 2 % error in the conversion moves
+    with pytest.raises(ValueError, match=re.escape(f"would take about {10 * WORK_BUDGET_S / 60.0:.0f} min;")):
+        check_study_work([ej], np.array([0.75]), "exact", allowed * 10, dt, runs, limits=np.array([1.0]))
 
 
 def test_search_arguments_are_refused_by_name():
@@ -250,3 +254,34 @@ def test_study_work_check_computes_the_free_caster_steps_itself():
     check_study_work([ej], np.array([0.75]), "exact", allowed * 0.99, dt, runs)
     with pytest.raises(ValueError, match=re.escape(f"the largest allowed horizon is {allowed:.3g} s")):
         check_study_work([ej], np.array([0.75]), "exact", allowed * 1.01, dt, runs)
+
+
+def test_the_work_bound_s_defaults_are_the_search_s():
+    """Class: a default no test omitted (seed 51).  The work check bounds the runs of :func:`critical_impulses` at
+    its defaults by ``runs_per_speed()``'s defaults: two runs a round for the search's default number of rounds
+    (and the same range of pushes)."""
+    import inspect
+
+    from stability.study.impulse import critical_impulses, runs_per_speed
+
+    search = {k: v.default for k, v in inspect.signature(critical_impulses).parameters.items()}
+    bound = {k: v.default for k, v in inspect.signature(runs_per_speed).parameters.items()}
+    assert bound == {k: search[k] for k in ("min_impulse", "max_impulse", "max_rounds")}
+    assert runs_per_speed() == 2 * search["max_rounds"]
+
+
+def test_a_critical_impulse_curve_is_a_frozen_sequence_of_points_in_speed_order():
+    """Class: a public type no gate test built (seed 51: ``CriticalImpulseCurve`` without its dataclass).  A
+    curve of two points reads back their speeds, their impulses (NaN where none was found) and their kicks,
+    impulse over mass (m/s), and cannot be changed."""
+    import dataclasses
+
+    from stability.study.impulse import CriticalImpulseCurve
+
+    curve = CriticalImpulseCurve(points=(_impulse(), _impulse(speed=1.5, impulse_Ns=None, status="never")))
+    assert curve.speeds.tolist() == [0.75, 1.5]
+    assert curve.impulses[0] == 0.123456 and math.isnan(curve.impulses[1])
+    assert curve.kicks[0] == pytest.approx(0.123456 / 90.0, rel=1e-15) and math.isnan(curve.kicks[1])  # one division: exact to 1 ulp
+    assert [p["speed_m_s"] for p in curve.to_dict()["points"]] == [0.75, 1.5]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        curve.points = ()  # type: ignore[misc]

@@ -268,3 +268,45 @@ def test_the_step_up_of_a_linear_response_lands_eps_above_its_root():
     got = _go_up(p, math.log(40.0), _WIDTH, math.log(2.0))
     # error model: a few roundings of values below 0.1 (at most 3 eps), margin 100
     assert got == [pytest.approx(root + 0.45 * _WIDTH, abs=300 * EPS)] and p.status == "open"
+
+
+def test_a_threshold_that_rounds_to_the_smaller_push_gives_no_prediction():
+    """Class: a boundary no test sat on (seed 50: ``0 < J0 < J1``).  The law needs its threshold strictly below
+    the smaller reaching push (that push reached the level, so it is above the threshold).  Times 4 s apart at a
+    growth rate of 10 /s put ``J1 - J0 = (J2 - J1) / (exp(40) - 1)``, about 4e-18 N s, below the last bit of
+    J1 = 4 N s (8.9e-16): the threshold rounds to J1 itself, and no prediction is made (one at J1 would propose a
+    push already run)."""
+    p = Problem(x=[math.log(5.0), math.log(4.0)], g=[1.0, 1.0], reached=[True, True], t=[1.0, 5.0])
+    assert (4.0 * math.exp(40.0) - 5.0) / (math.exp(40.0) - 1.0) == 4.0      # the closed form rounds to J1
+    assert _rate_fit(p, 10.0, 10.0) is None
+
+
+def test_going_down_never_proposes_a_push_below_the_smallest_allowed():
+    """Class: a branch for an input no test gave (seed 50: the rate fit's pair near ``x_min``).  Two reaching runs
+    exactly on the escape law predict a threshold just below the smaller push (a trusted prediction, within
+    ``FIT_NEAR``); with the smallest allowed push half a width below that push, the pair ``target``,
+    ``target - 0.98 width`` would leave the allowed range, so one run is proposed, at or above ``x_min``."""
+    from stability.study.search import _go_down
+
+    j0, a, sigma = 3.25, 2.0, 1.451
+    t1, t2 = _law(3.4, j0, a, sigma), _law(4.0, j0, a, sigma)   # the threshold ln(3.4/3.25) = 0.045 below
+    p = Problem(x=[math.log(4.0), math.log(3.4)], g=[1.0, 1.0], reached=[True, True], t=[t2, t1])
+    hi = math.log(3.4)
+    x_min = hi - 0.5 * _WIDTH
+    got = _go_down(p, hi, x_min, _WIDTH, math.log(2.0), _HORIZON, sigma)
+    assert got and all(x >= x_min for x in got), got
+    wide = Problem(x=list(p.x), g=list(p.g), reached=list(p.reached), t=list(p.t))
+    got = _go_down(wide, hi, math.log(1e-6), _WIDTH, math.log(2.0), _HORIZON, sigma)
+    assert len(got) == 2 and wide.fit_pair       # far from x_min the same state gets the pair
+
+
+def test_going_down_steps_at_least_two_eps():
+    """Class: a documented floor no test sat on (seed 51).  Going down without a fit, the step the margin predicts
+    is at least ``2 eps`` (``eps = 0.45 width``, the module's docstring): a margin of 1e-4 at the only reaching push
+    predicts a root just below it, and the round proposes ``hi - 2 eps + eps = hi - eps``."""
+    from stability.study.search import _go_down
+
+    p = Problem(x=[1.0], g=[1e-4], reached=[True], t=[0.5 * _HORIZON])
+    got = _go_down(p, 1.0, math.log(1e-6), _WIDTH, math.log(2.0), _HORIZON, math.nan)
+    # error model: a few roundings of values about 1 (at most 3 eps), margin 100
+    assert got == [pytest.approx(1.0 - 0.45 * _WIDTH, abs=300 * EPS)]

@@ -168,3 +168,20 @@ def test_a_band_core_serves_every_trail_and_coulomb_pin_friction(c):
     b = c.replace(trail=0.09, pin_friction_left=0.3, pin_friction_right=0.25)
     speeds = (0.5, 1.0, 2.0)
     assert shimmy_band(b, speeds, core=band_core(a, speeds)).to_mapping() == shimmy_band(b, speeds).to_mapping()
+
+
+def test_a_caster_that_does_not_roll_neither_grows_nor_decays():
+    """Class: a boundary input no test gave (seed 50: speed 0 in the abscissa's trail-by-speed grid).  The tire's
+    lateral forces build up at the rate ``U / sigma`` (relaxation length sigma): at standstill nothing builds up
+    or decays, and with no pin damping (the E&J) every eigenvalue of the caster has zero real part, at any
+    trail; the same grid's rolling column is the moving caster's own."""
+    from stability.chair import preset
+    from stability.shimmy.band import abscissa
+
+    c = preset("ej-premier")
+    trails = [0.03, 0.05, 0.08]
+    got = abscissa(c, trails, [0.0, 1.0])
+    # error model: eigenvalues of a 5x5 state matrix with entries up to 1.8e5 (the tire's stiffness over the
+    # caster's inertia), rounding n eps ||A|| ~ 2e-10 (observed 2.7e-15): 1e-8, margin 50
+    assert np.all(np.abs(got[:, 0]) < 1e-8), got[:, 0]
+    assert np.array_equal(got[:, 1], abscissa(c, trails, [1.0])[:, 0])   # exact: the same eigenvalue problem

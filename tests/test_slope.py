@@ -372,3 +372,19 @@ def test_the_harder_side_is_the_sign_of_the_difference_however_small():
     tiny = 5e-324
     assert eqm.harder_side(tiny, 2.0) == eqm.harder_side(-tiny, -2.0) == "downhill"
     assert eqm.harder_side(-tiny, 2.0) == eqm.harder_side(tiny, -2.0) == "uphill"
+
+
+def test_the_linearisation_s_operating_point_is_mirror_symmetric():
+    """Class: a public function no file of the gate's tested (seed 50: ``operating_point``'s returned caster
+    angles; its callers' tests are the slope-stability study's).  On the mirror-image cross slope the crab angle
+    changes sign, the left and right casters swap with their signs changed and so do the drive forces: on the
+    E&J (mirror-symmetric, equal pin frictions) the two casters' angles differ by 2.9e-6 rad at 5 deg, which the
+    swap must carry."""
+    c = chair_mod.preset("ej-premier")
+    (psi, eta, beta, drive), (psi_m, eta_m, beta_m, drive_m) = (
+        eqm.operating_point(c, Plane(s, 2.0), 1.0) for s in (5.0, -5.0))
+    # error model: mirror images in exact arithmetic; the root's xtol 1e-13 of angles ~0.024 rad and rounding
+    # (observed 3.5e-18 rad, 7e-15 N): 1e-11 relative keeps a margin of 100 over the root's xtol
+    assert (psi, eta, beta) == pytest.approx((-psi_m, -beta_m, -eta_m), rel=1e-11)
+    assert drive == pytest.approx(drive_m[::-1], rel=1e-11)
+    assert abs(eta - beta) > 1e-6         # the swap is seen: the two casters do differ

@@ -328,3 +328,33 @@ def test_a_factor_s_width_is_its_range_and_zero_when_undefined():
     # error model: one subtraction of values near 1, a few eps
     assert FactorRange("pin friction", 0.8, 1.1, ()).width == pytest.approx(0.3, abs=1e-15)
     assert FactorRange("pin friction", None, None, ()).width == 0.0
+
+
+def test_reference_times_take_one_reference_chair_per_force_or_one_for_all():
+    """Class: an input no test gave (seed 50).  ``reference_times`` takes one reference chair per force, or one for
+    all: a list of two chairs for one force is refused before any run (not cut to the shorter)."""
+    from stability.study.criteria import DEFAULT_CRITERION
+    from stability.study.intervals import reference_times
+
+    ej = preset("ej-premier")
+    with pytest.raises(ValueError):
+        reference_times([ej, ej], 0.75, [40.0], RunSpec(), criterion=DEFAULT_CRITERION)
+
+
+def test_a_reference_case_that_never_reaches_the_level_is_refused_naming_the_criterion_and_the_push():
+    """Class: refusal words no test read (seed 50).  When the nominal reference case never reaches the level, the
+    interval is refused in one line naming the reference chair and speed, the criterion's level and time and the
+    push as :meth:`Push.describe` words it (the thesis's 40 N for 0.1 s on 1 ms steps: ``floor(0.1 / 0.001) + 1 =
+    101`` steps, 40 x 0.101 = 4.04 N s)."""
+    import re
+
+    from stability.study.criteria import Criterion
+    from stability.study.intervals import Variant, _assemble
+
+    ej = preset("ej-premier")
+    never = Variant("nominal", "40 N", "exact", 40.0, 1.0, float("inf"), None, 0.001)
+    msg = ("the reference case (ej-premier at 0.75 m/s) never reaches 0.5 rad/s within 7 s under 40 N for 0.1 s "
+           "(101 steps of 1 ms, 4.04 N s)")
+    with pytest.raises(ValueError, match="^" + re.escape(msg) + "$"):
+        _assemble(ej, (never,), ej, 0.75, Criterion(yaw_rate=0.5, duration=7.0), Push(40.0, 0.1), 0.001, "wchair",
+                  "the chair only")

@@ -300,6 +300,11 @@ def test_a_design_beyond_the_searched_range_ranks_first_as_its_bound(tmp_path):
     assert ranked[2]["conservative"] == pytest.approx(1.164, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     text = summary_text(spec, s)
     assert "> 3 m/s" in text and "{" not in text and "trail 0.05 m" in text     # a bound, no dict repr
+    # class: words no test read (seed 50): the heading states the interval (summary's level 0.95: 95 %) and the
+    # spec's 100 draws it ranks by, and how a bound ranks
+    assert text.splitlines()[0] == ("best designs by the conservative end of the 95 % interval over 100 draw(s); a "
+                                    "value beyond the searched range is ranked as its bound ('> 3 m/s' is at least "
+                                    "3 m/s)")
     # a higher speed is better, so the designs are ranked by their interval's low end, said in the heading
     assert "equal_instability_speed_m_s at 0.75 m/s (low end | median | design):" in text.splitlines()
     from stability.sweep.run import _grid_text
@@ -426,6 +431,11 @@ def test_censored_sides_are_every_side_a_status_can_have():
 
     assert set(SIDES) == {side_of(s) for s in ("found", "above", "never", "below")} and len(SIDES) == 3
     assert [describe(3.0, s, "m/s") for s in SIDES] == ["3 m/s", "> 3 m/s", "< 3 m/s"]
+    # class: words no test read (seed 50): a value that does not exist (NaN, or an infinite one) "has no value"
+    # (docs/studies.md), whatever its side and unit
+    assert {describe(v, s, "m/s") for v in (math.nan, math.inf) for s in SIDES} == {"no value"}
+    # class: a default no test omitted (seed 51): without a unit the value stands alone (no trailing space)
+    assert [describe(3.0, s) for s in SIDES] == ["3", "> 3", "< 3"]
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, True)) == [">", "=", "<"]
     assert sorted(SIDES, key=lambda s: sort_key(3.0, s, False)) == ["<", "=", ">"]
 

@@ -342,3 +342,21 @@ def test_the_slope_tip_json_keys_are_its_fields():
     mapping = tip.to_mapping()
     assert list(mapping) == [f.name for f in dataclasses.fields(tip)]
     assert all(mapping[k] == getattr(tip, k) for k in mapping)
+
+
+def test_a_tipping_line_through_a_wheel_tangent_to_a_caster_offset_by_its_trail():
+    """Class: a branch for an input no random draw gives (seed 50: the pair whose quadratic degenerates).  A wheel
+    at (1.0, 0.02) m and a caster pin at (1.2, -0.03) m with a 5 cm trail: across the fall line (+x) they are
+    exactly one trail apart, so the pair's equation for the tipping line is linear, not quadratic.  The line
+    through the wheel tangent to the caster's circle has the normal (8, 15)/17 (distance from the pin: (8 x 0.2
+    - 15 x 0.05)/17 = 0.05 m, the trail), and meets the fall line at 1.0 + (15/8) 0.02 = 1.0375 m; with the rear
+    wheels at (-0.3, +-0.25) m it is the tipping line, the caster on it pointing along its normal."""
+    from stability.tipping.angles import support_fall_distance
+
+    got = support_fall_distance([(1.0, 0.02, 0.0), (1.2, -0.03, 0.05), (-0.3, 0.25, 0.0), (-0.3, -0.25, 0.0)],
+                                0.5, 1.0, 0.0)
+    # error model: a few roundings of values about 1 (the offsets 0.02 and -0.03 m are not exact binary
+    # fractions): ~1e-15; 1e-12, margin ~1000
+    assert got.distance_m == pytest.approx(1.0375, abs=1e-12)
+    assert got.normal == pytest.approx((8 / 17, 15 / 17), abs=1e-12)
+    assert got.caster_angles_deg[0] == pytest.approx(math.degrees(math.atan2(15.0, 8.0)), abs=1e-9)  # error model: the normal's rounding, 1e-12 rad, in degrees x57: 6e-11

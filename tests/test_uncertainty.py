@@ -257,3 +257,20 @@ def test_delta_method_derivative_at_its_default_step_is_the_analytic_one():
     # error model: the central difference's truncation at h = 0.01 (2.8e-9 relative) plus the rounding of a
     # difference of cubes near 0.04 over 2 h (about 1e-13 relative); 100 x the truncation
     assert float(d.contributions["s1"]) == pytest.approx(3 * mu**2 * sigma, rel=100 * truncation)
+
+
+def test_a_parameter_without_spread_is_no_regressor():
+    """Class: a degenerate input no test gave (issue 34, seed 50).  A parameter whose distribution has no spread
+    (``std = 0``) does not move the chair, so it explains none of the output: its share is exactly 0 (not the
+    share its unit draws' chance correlation with the output would get), and in the regression a column that
+    does not vary takes no coefficient, so p varying columns still need only p + 2 draws (three exact points of
+    a line in the varying one: share 1, R^2 1)."""
+    from stability.uncertainty.propagation import _regression_shares
+
+    u = loads_uncertainty(LINEAR_U + '\n[trail]\ndistribution = "normal"\nstd = 0.0\n')
+    r = propagate(C, u, linear_fn, samples=40, seed=2)
+    assert float(r.shares["trail"]) == 0.0 and sum(float(s) for s in r.shares.values()) == pytest.approx(1.0, rel=1e-12)  # shares normalised: rounding of a 4-term sum, ~1e-16
+    x = {"a": np.array([0.0, 1.0, 2.0]), "b": np.array([5.0, 5.0, 5.0])}
+    shares, r2 = _regression_shares(x, (2.0 * x["a"] + 1.0)[:, None])
+    # error model: a least-squares fit of three exact points, rounding a few eps of values near 1
+    assert float(shares["a"][0]) == 1.0 and float(shares["b"][0]) == 0.0 and float(r2[0]) == pytest.approx(1.0, abs=1e-12)
