@@ -1,6 +1,6 @@
 """The garbage collector of a command line (stability.runtime.collector): the youngest generation's threshold raised
-while a command imports, the objects alive when it starts frozen and the thresholds put back, the collector still
-collecting what the computation makes; nothing in a library or test process.  Each process-changing case runs in
+while a command imports, the objects alive when it starts frozen and the threshold kept raised for its run, the
+collector still collecting what the computation makes; nothing in a library or test process.  Each process-changing case runs in
 its own interpreter (a freeze in this one would keep the test session's objects)."""
 
 from __future__ import annotations
@@ -24,11 +24,12 @@ def test_settle_without_a_deferral_does_nothing():
     assert gc.get_threshold() == before and gc.get_freeze_count() == frozen and gc.isenabled()
 
 
-def test_defer_then_settle_freezes_and_puts_the_thresholds_back():
+def test_defer_then_settle_freezes_and_sets_the_run_threshold():
     code = ("import gc; from stability.runtime import collector as c; t = gc.get_threshold(); "
             "print(c.defer_for_imports(), gc.get_threshold()[0] == max(c.IMPORT_THRESHOLD, t[0]), "
             "gc.get_threshold()[1:] == t[1:], c.defer_for_imports()); "
-            "print(c.settle(), gc.get_threshold() == t, gc.get_freeze_count() > 0, gc.isenabled(), c.settle())")
+            "print(c.settle(), gc.get_threshold() == (max(c.RUN_THRESHOLD, t[0]), *t[1:]), "
+            "gc.get_freeze_count() > 0, gc.isenabled(), c.settle())")
     assert _probe(code) == ["True", "True", "True", "False", "True", "True", "True", "True", "False"]
 
 
@@ -50,13 +51,14 @@ def test_a_cycle_made_after_settling_is_still_collected():
 
 def test_a_command_line_process_defers_and_its_command_settles():
     """``python -m stability.X`` imports the package with ``sys.argv[0] == "-m"``: the threshold is raised
-    then, and :func:`stability.cli.run` settles before the command's work (inside it the thresholds are the
-    default again and the imports' objects frozen); a plain ``import stability`` changes nothing."""
+    then, and :func:`stability.cli.run` settles before the command's work (inside it the youngest threshold is
+    the run's and the imports' objects frozen); a plain ``import stability`` changes nothing."""
     code = ("import gc, sys; t = gc.get_threshold(); sys.argv[0] = '-m'; import stability, argparse; "
-            "from stability.runtime.collector import IMPORT_THRESHOLD; "
+            "from stability.runtime.collector import IMPORT_THRESHOLD, RUN_THRESHOLD; "
             "print(gc.get_threshold()[0] == max(IMPORT_THRESHOLD, t[0]), gc.get_freeze_count() == 0); "
             "from stability.cli import run; seen = []; "
-            "status = run(argparse.ArgumentParser(), [], lambda a: seen.append((gc.get_threshold() == t, "
+            "status = run(argparse.ArgumentParser(), [], lambda a: seen.append((gc.get_threshold() == "
+            "(max(RUN_THRESHOLD, t[0]), *t[1:]), "
             "gc.get_freeze_count() > 0))); print(status, *seen[0])")
     assert _probe(code) == ["True", "True", "0", "True", "True"]
     plain = "import gc; t = gc.get_threshold(); import stability; print(gc.get_threshold() == t)"
