@@ -21,8 +21,8 @@ runs (the modules it imports later, numba's kernel, the PDF backend and fontTool
 are traversed by far fewer collections): the collections' own CPU time, measured with :data:`gc.callbacks` in the
 process, 0.16 -> 0.04 s in the quick report and 0.69 -> 0.24 s in the full one (five full collections of the
 unfrozen objects, about 0.1 s each, no longer run), the peak memory the same (245 MB and 314 MB).  A library
-user's process and the test
-suite's are not touched: :func:`settle` does nothing unless :func:`defer_for_imports` ran.
+user's process and the test suite's are not touched: :func:`settle` does nothing unless
+:func:`defer_for_imports` ran.
 
 This module imports only the standard library.
 """
