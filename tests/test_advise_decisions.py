@@ -795,12 +795,49 @@ def test_the_shimmy_sentence_gives_the_trail_the_pin_friction_holds_in_cm():
 
     from stability.advise.limits import ShimmyHold, shimmy_sentence
 
-    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=None, low=None, high=None), shimmy_straddles=False)
+    m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=math.inf, low=-math.inf, high=math.inf),
+                        shimmy_straddles=False)
     for trail, word in ((0.06, "also"), (0.05, "not")):
         hold = ShimmyHold(amplitude_deg=5.0, pin_friction_N_m=0.118, hold_trail_m=0.057, trail_m=trail)
         assert shimmy_sentence(m, trail, hold) == (
-            "no shimmy boundary found; its 0.118 N m pin friction holds a shimmy of up to 5 deg at trails from "
-            f"5.7 cm, so {word} at this one (describing function)")
+            "no shimmy boundary between 0.1 and 25 cm; its 0.118 N m pin friction holds a shimmy of up to 5 deg at "
+            f"trails from 5.7 cm, so {word} at this one (describing function)")
+
+
+def test_an_unbounded_shimmy_margin_is_said_and_judged_by_its_sign():
+    """The band's margin is +inf when no trail searched (TRAIL_SEARCH_M, 1 mm to 25 cm) has a shimmy boundary and
+    the chair's is shimmy-free, -inf when no trail searched is (stability.shimmy.band.margin_to_boundaries).  +inf
+    exceeds every finite limit, so the shimmy limit is met; -inf meets none.  The words follow the sign, whatever
+    the estimates' range (a corner's -inf low end does not make a nominal +inf shimmy, nor a finite low end a
+    nominal -inf shimmy-free; both mix-ups were the sentence's before), and the costs' JSON writes null."""
+    from types import SimpleNamespace
+
+    from stability.advise.decision import Cost
+    from stability.advise.limits import MIN_SHIMMY_MARGIN_M, constraint_text, constraints, shimmy_sentence
+    from stability.advise.measures import Interval
+    from stability.shimmy.band import TRAIL_SEARCH_M, margin_to_boundaries
+
+    lo_cm, hi_cm = 100 * TRAIL_SEARCH_M[0], 100 * TRAIL_SEARCH_M[1]
+    assert (lo_cm, hi_cm) == pytest.approx((0.1, 25.0), rel=1e-12)     # error model: m -> cm, one rounding
+    free, shimmies = margin_to_boundaries(0.05, [(0.001, 0.25)], []), margin_to_boundaries(0.05, [], [])
+    assert (free, shimmies) == (math.inf, -math.inf)
+    base = SimpleNamespace(turning_effort_N_m=0.1, cross_slope_effort=None, bench_score=None)
+    for value, low, words, met in ((free, -math.inf, "no shimmy boundary between 0.1 and 25 cm", True),
+                                   (free, 0.02, "no shimmy boundary between 0.1 and 25 cm", True),
+                                   (shimmies, shimmies, "it shimmies at every trail from 0.1 to 25 cm", False)):
+        m = SimpleNamespace(shimmy_margin_m=Interval(value, low, math.inf), shimmy_straddles=low < 0 < value,
+                            static_stability_deg=Interval(20.0, 20.0, 20.0), turning_effort_N_m=0.1,
+                            cross_slope_effort=None, bench_score=None, human_limited_speed_m_s=None)
+        assert shimmy_sentence(m, 0.05) == words
+        k = next(k for k in constraints(m, base, 10.0, "test", 0.0) if k.name == "shimmy_margin_m")
+        assert k.met is met and k.limit == MIN_SHIMMY_MARGIN_M and k.value == value
+        assert constraint_text(k) == f"shimmy margin: {words}, against the limit >= {100 * k.limit:.3g} cm"
+        assert k.to_mapping()["value"] is None
+        cost = Cost("shimmy_margin_m", "shimmy margin", "cm", 100 * value, 3.0, ">= 0.5 cm", True)
+        assert cost.to_mapping()["before"] is None and cost.to_mapping()["after"] == pytest.approx(0.03, rel=1e-15)
+        assert cost.text().startswith("shimmy margin " + ("no boundary found" if value > 0 else
+                                                          "shimmies at every trail") + " -> 3 cm")
+        assert cost.worse is (value > 0)          # from unbounded to 3 cm is worse; from shimmying everywhere not
 
 
 def test_the_cross_slope_limit_is_met_at_its_factor_and_not_above():

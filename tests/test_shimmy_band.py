@@ -185,3 +185,28 @@ def test_a_caster_that_does_not_roll_neither_grows_nor_decays():
     # caster's inertia), rounding n eps ||A|| ~ 2e-10 (observed 2.7e-15): 1e-8, margin 50
     assert np.all(np.abs(got[:, 0]) < 1e-8), got[:, 0]
     assert np.array_equal(got[:, 1], abscissa(c, trails, [1.0])[:, 0])   # exact: the same eigenvalue problem
+
+
+def test_a_margin_in_words_is_its_value_in_cm_or_what_its_infinity_means():
+    """``margin_words``: a finite margin in cm with its sign, 2 decimals (m x 100); +inf (no boundary on the trails
+    searched) and -inf (no trail searched is stable) as those statements, with the search range from
+    TRAIL_SEARCH_M in cm (1 mm -> 0.1 cm, 0.25 m -> 25 cm)."""
+    from stability.shimmy.band import margin_words
+
+    assert TRAIL_SEARCH_M == (0.001, 0.25)
+    assert margin_words(0.031426) == "+3.14 cm" and margin_words(-0.0057) == "-0.57 cm"
+    assert margin_words(math.inf) == "no shimmy boundary between 0.1 and 25 cm"
+    assert margin_words(-math.inf) == "it shimmies at every trail from 0.1 to 25 cm"
+
+
+def test_the_advisors_measures_keep_the_bands_infinities():
+    """The advisor's shimmy margin is the band's, unbounded ends included (an infinity is a value a limit is judged
+    on; JSON writes it as null): the E&J Premier's range over the estimates has a corner that shimmies at every
+    trail (its low end -inf, as ``shimmy_band`` gives it)."""
+    from stability.advise.measures import chair_linear
+
+    chair = chair_mod.preset("ej-premier")
+    band = shimmy_band(chair, [1.0])
+    sm = chair_linear(chair, speeds=[1.0], cross_slope_deg=0.0, cores={}).shimmy_margin_m
+    assert (sm.value, sm.low, sm.high) == (band.shimmy_margin_m, *band.shimmy_margin_interval_m)
+    assert sm.low == -math.inf and sm.to_mapping()["interval"][0] is None

@@ -58,6 +58,7 @@ from stability.runtime.checks import first_argument
 from stability.settings import defaults as D
 from stability.settings.bounds import ADVISE_CROSS_SLOPE, HUMAN_SPEED, MIN_TIP_ANGLE
 from stability.settings.reference import REFERENCE_SPEED
+from stability.shimmy.band import margin_words
 from stability.study.memo import memo_searches
 from stability.tires import summarised_warnings
 
@@ -292,7 +293,8 @@ def _notes(c: Candidate, base: Measures, chair: Chair | Layout) -> tuple:
         own = m.shimmy_trail_m if m.shimmy_trail_m is not None or not isinstance(chair, Chair) else chair.trail
         trail = float(dict(c.fields).get("trail", own) or 0.0)
         now = base.shimmy_margin_m.value             # the chair as it is (the verdict's margin), so the two differ
-        was = "" if now is None else f" As it is, the margin is {100 * now:+.2f} cm."
+        was = ("" if now is None else f" As it is, the margin is {100 * now:+.2f} cm." if math.isfinite(now) else
+               f" As it is: {margin_words(now)}.")
         notes.append(f"Shimmy with the change: {shimmy_sentence(m, trail)}.{was}")
     return tuple(notes)
 

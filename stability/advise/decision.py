@@ -88,8 +88,10 @@ class Cost:
 
     def text(self) -> str:
         """``"tips toward its casters on 21.9 -> 17.7 deg (limit >= 13.8 deg, met)"``."""
-        def f(x: float | None) -> str:
-            return "not computed" if x is None else f"{x:.3g}"
+        def f(x: float | None) -> str:          # an infinity: a shimmy margin with no boundary, or every trail
+            if x is None:
+                return "not computed"
+            return f"{x:.3g}" if math.isfinite(x) else ("no boundary found" if x > 0 else "shimmies at every trail")
 
         change = f(self.before) if self.before == self.after else f"{f(self.before)} -> {f(self.after)}"
         lim = "" if not self.limit else f" (limit {self.limit}, {'met' if self.met else 'NOT met'})"
@@ -100,7 +102,7 @@ class Cost:
         scale = 0.01 if self.unit == "cm" else 1.0
 
         def si(x: float | None) -> float | None:
-            return None if x is None else scale * x
+            return None if x is None or not math.isfinite(x) else scale * x     # JSON: an infinity as null
 
         return {"name": self.name, "before": si(self.before), "after": si(self.after), "limit": self.limit or None,
                 "met": self.met}

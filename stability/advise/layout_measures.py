@@ -119,10 +119,6 @@ def layout_shimmy_rows(layout: Layout, speeds: Sequence[float],
     return out
 
 
-def _finite_or_none(x: float) -> float | None:
-    return float(x) if math.isfinite(x) else None
-
-
 def layout_cross_slope_effort(layout: Layout, cross_slope_deg: float, reverse: bool = False) -> float | None:
     """The drive difference (right minus left) that holds ``layout`` on the cross slope at :data:`IMPULSE_SPEED`.
 
@@ -191,8 +187,7 @@ def layout_linear(lay: Layout, *, speeds: Sequence[float], cores: dict, cross_sl
                     "shimmy_trail_m": None}
         name, trail, band = min(found, key=lambda r: r[2].shimmy_margin_m)
         low, high = band.shimmy_margin_interval_m
-        return {"shimmy_margin_m": Interval(_finite_or_none(band.shimmy_margin_m), _finite_or_none(low),
-                                            _finite_or_none(high)),
+        return {"shimmy_margin_m": Interval(float(band.shimmy_margin_m), float(low), float(high)),
                 "shimmy_straddles": any(r[2].straddles for r in found), "shimmy_row": name, "shimmy_trail_m": trail}
 
     def human() -> dict[str, Any]:

@@ -15,6 +15,7 @@ from stability.advise.measures import LazyLinear, Linear, Measures
 from stability.chair import Chair
 from stability.settings import defaults as D
 from stability.settings.reference import REFERENCE_SPEED
+from stability.shimmy.band import margin_words
 
 __all__ = ["Constraint", "ShimmyHold", "constraints", "meets", "allow", "allow_words", "constraint_text", "limit_words",
            "LIMIT_WORDS", "shimmy_hold", "shimmy_sentence",
@@ -241,14 +242,16 @@ def shimmy_sentence(m: Measures | Linear, trail: float, hold: ShimmyHold | None 
         from 4.4 cm, so also at this one"``.
     """
     sm = m.shimmy_margin_m
-    if sm.value is None:
-        text = "no shimmy boundary found" if sm.low is None else "it shimmies at every trail checked"
+    value = math.nan if sm.value is None else sm.value       # every band has a margin (advise.measures)
+    if math.isinf(value):
+        # unbounded at the nominal estimates (+inf: no boundary on the trails searched; -inf: none is stable)
+        text = margin_words(value)
     else:
-        where = "clear of the nearest shimmy zone by" if sm.value > 0 else "inside a shimmy zone by"
-        rng = ("" if sm.low is None or sm.high is None else
+        where = "clear of the nearest shimmy zone by" if value > 0 else "inside a shimmy zone by"
+        rng = ("" if sm.low is None or sm.high is None or math.isinf(sm.low) or math.isinf(sm.high) else
                f"; over the estimates' ranges {100 * sm.low:+.2g} to {100 * sm.high:+.2g} cm")
         flag = ": it could shimmy, measure them first" if m.shimmy_straddles else ""
-        text = (f"the {trail * 100:g} cm trail is {where} {abs(sm.value) * 100:.2f} cm (frictionless caster at the "
+        text = (f"the {trail * 100:g} cm trail is {where} {abs(value) * 100:.2f} cm (frictionless caster at the "
                 f"estimated pin stiffness and relaxation length{rng}{flag})")
     if hold is not None and hold.pin_friction_N_m > 0:
         if math.isinf(hold.hold_trail_m):
@@ -301,6 +304,8 @@ def constraint_text(k: Constraint) -> str:
     words, unit, f = LIMIT_WORDS.get(k.name, (k.name.replace("_", " "), "", 1.0))
     if k.value is None:
         return f"{words} refused by the slope statics (tire data)"
+    if k.name == "shimmy_margin_m" and math.isinf(k.value):
+        return f"{words}: {margin_words(k.value)}, against the limit {k.kind} {f * k.limit:.3g} {unit}"
     u = f" {unit}" if unit else ""
     return f"{words} {f * k.value:.3g}{u} against the limit {k.kind} {f * k.limit:.3g}{u}"
 

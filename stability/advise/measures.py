@@ -61,9 +61,10 @@ class Interval:
     Attributes
     ----------
     value : float or None
-        Nominal value (None: undefined).
+        Nominal value (None: undefined; an infinity: unbounded, as a shimmy margin with no boundary on the trails
+        searched, ``+inf``, or no stable trail, ``-inf``).
     low, high : float or None
-        Interval ends (None: unbounded or undefined on that side).
+        Interval ends (None: unbounded or undefined on that side; the shimmy margin's are infinities there).
     """
 
     value: float | None
@@ -219,10 +220,6 @@ def cross_slope_effort(chair: Chair, cross_slope_deg: float) -> float | None:
     if kind == "handrim":
         return float(rep["handrim_force_difference_N"])
     return float(rep["motor_torque_right_N_m"] - rep["motor_torque_left_N_m"])
-
-
-def _finite_or_none(x: float) -> float | None:
-    return float(x) if math.isfinite(x) else None
 
 
 def nonlinear_measures(chairs: Sequence[Chair]) -> list[tuple[Interval, Interval, str, str, float | None]]:
@@ -387,8 +384,9 @@ def chair_linear(c: Chair, *, speeds: Sequence[float], cross_slope_deg: float, c
             cores[key] = band_core(c, speeds)
         b = shimmy_band(c, speeds, core=cores[key])
         low, high = b.shimmy_margin_interval_m
-        return {"shimmy_margin_m": Interval(_finite_or_none(b.shimmy_margin_m), _finite_or_none(low),
-                                            _finite_or_none(high)), "shimmy_straddles": b.straddles}
+        # the infinities kept (an unbounded margin is a value the limit can be met by; JSON writes null)
+        return {"shimmy_margin_m": Interval(float(b.shimmy_margin_m), float(low), float(high)),
+                "shimmy_straddles": b.straddles}
 
     def tips() -> dict[str, Any]:
         t = tip_angles(c)

@@ -83,7 +83,8 @@ def _cells(m: Measures, trail: float) -> list[str]:
              {"above": "> ", "below": "< "}.get(m.equal_instability_status, "")
              + f"{ei.value:.3g}{rng(ei, bound=ei_bound)}"]
             + [f"{m.tip_angles_deg[k]:.1f}" if k in m.tip_angles_deg else "-" for k in DIRECTION_WORDS]
-            + ["none found" if sm.value is None else f"{100 * sm.value:+.1f}",
+            + [f"{100 * sm.value:+.1f}" if sm.value is not None and math.isfinite(sm.value) else
+               "every trail" if sm.value is not None and sm.value < 0 else "none found",
                f"{m.turning_effort_N_m:.3g}",
                "-" if effort is None else f"{abs(effort):.3g}",
                f"{m.growth_rate_1_s:.3g}",
@@ -136,6 +137,10 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
 _HIGHER_IS_BETTER: tuple = ((True, True) + (True,) * len(DIRECTION_WORDS) + (True, False, False, False, None))
 
 
+def _finite(x: float | None) -> float | None:
+    return x if x is not None and math.isfinite(x) else None
+
+
 def _values(m: Measures, trail: float) -> list:
     """The numbers behind :func:`_cells` (None where a row has none, or where the value is a bound)."""
     ci, ei = m.critical_impulse_Ns, m.equal_instability_speed_m_s
@@ -143,7 +148,7 @@ def _values(m: Measures, trail: float) -> list:
     return ([None if m.critical_impulse_status == "never" else ci.value,
              ei.value if m.equal_instability_status == "found" else None]
             + [m.tip_angles_deg.get(k) for k in DIRECTION_WORDS]
-            + [m.shimmy_margin_m.value, m.turning_effort_N_m, None if effort is None else abs(effort),
+            + [_finite(m.shimmy_margin_m.value), m.turning_effort_N_m, None if effort is None else abs(effort),
                m.growth_rate_1_s, trail])
 
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from stability import cli
 from stability.settings import defaults as D
-from stability.shimmy.band import ShimmyBand, shimmy_band
+from stability.shimmy.band import ShimmyBand, margin_words, shimmy_band
 from stability.shimmy.chair import SECONDS_PER_SPEED, CasterCompliance, caster_summary, check_speed_count, trail_chart
 from stability.shimmy.chair_modes import chair_shimmy
 
@@ -243,7 +243,7 @@ def _print_band(band: ShimmyBand, speeds: np.ndarray | None = None) -> None:
     near = band.nearest_boundary_m
     k = int(np.argmin(band.margin_m))
     if near is None:
-        where = "no shimmy boundary between 0.1 and 25 cm" if m > 0 else "it shimmies at every trail up to 25 cm"
+        where = margin_words(m)
     else:
         side = "inside the shimmy-free band" if m > 0 else "inside a shimmy zone"
         where = (f"{abs(m) * 100:.2f} cm {side}, nearest boundary {near * 100:.2f} cm "

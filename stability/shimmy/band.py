@@ -27,7 +27,7 @@ from stability.shimmy.compliance import CasterCompliance
 from stability.shimmy.layout_caster import CasterSource, LayoutCaster
 
 __all__ = ["TRAIL_SEARCH_M", "GRID_POINTS", "ShimmyBand", "shimmy_band", "band_core", "shimmy_intervals", "abscissa",
-           "margin_to_boundaries"]
+           "margin_to_boundaries", "margin_words"]
 
 #: Trails searched for boundaries (m): 1 mm to 25 cm.
 TRAIL_SEARCH_M = (0.001, 0.25)
@@ -201,6 +201,28 @@ def margin_to_boundaries(trail: float, intervals, boundaries) -> float:
         return math.inf if inside else -math.inf
     d = min(abs(trail - x) for x in boundaries)
     return d if inside else -d
+
+
+def margin_words(margin: float) -> str:
+    """A shimmy margin in words, cm; an unbounded one (:func:`margin_to_boundaries`' infinities) as what it means.
+
+    Parameters
+    ----------
+    margin : float
+        Signed distance of the trail from the nearest shimmy boundary (m): + shimmy-free, - inside a shimmy zone,
+        ``+inf`` no boundary on the trails searched (:data:`TRAIL_SEARCH_M`), ``-inf`` no trail searched is stable.
+
+    Returns
+    -------
+    str
+        ``"+3.14 cm"``, ``"no shimmy boundary between 0.1 and 25 cm"`` or ``"it shimmies at every trail from 0.1 to
+        25 cm"``.
+    """
+    lo, hi = (f"{100 * x:g}" for x in TRAIL_SEARCH_M)
+    if math.isinf(margin):
+        return (f"no shimmy boundary between {lo} and {hi} cm" if margin > 0 else
+                f"it shimmies at every trail from {lo} to {hi} cm")
+    return f"{100 * margin:+.2f} cm"
 
 
 @dataclass(frozen=True)
