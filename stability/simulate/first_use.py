@@ -29,8 +29,10 @@ COMPILE_NOTICE = "compiling the simulator (first use on this machine; later runs
 @contextlib.contextmanager
 def first_use(scheme: str) -> Iterator[None]:
     """Around a load of ``scheme``'s machine code (a key of the first-use table: from numba's cache, or compiled):
-    say so if it runs past ``NOTICE_AFTER_S`` s (a compile), once per process.  Every load is watched until the
-    notice has been said: a later variant's compile (a controller's, another model's) says so too.
+    say so if it runs past ``NOTICE_AFTER_S`` s (a compile), once per process; a compile inside types scalar
+    operators without numpy's array rules (:func:`stability.simulate.kernel_link.scalar_operators`).  Every load
+    is watched until the notice has been said: a later variant's compile (a controller's, another model's) says so
+    too.
 
     Parameters
     ----------
@@ -43,18 +45,21 @@ def first_use(scheme: str) -> Iterator[None]:
     None
         The block runs inside; the notice, if any, is printed on stderr while it runs.
     """
-    if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False) or _FIRST_USE.get("watching", False):
-        yield       # not a kernel's load, said, or inside a watched block (whose notice covers this one)
-        return
-    start = time.perf_counter()
-    _FIRST_USE["watching"] = True
-    try:
-        with notice_if_slow(COMPILE_NOTICE, after=NOTICE_AFTER_S):
-            yield
-    finally:
-        _FIRST_USE["watching"] = False
-    if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
-        _FIRST_USE["noticed"] = True
+    from stability.simulate.kernel_link import scalar_operators  # imports numba, as the kernels do
+
+    with scalar_operators():        # a compile types the step's scalar operators without numpy's rules
+        if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False) or _FIRST_USE.get("watching", False):
+            yield       # not a kernel's load, said, or inside a watched block (whose notice covers this one)
+            return
+        start = time.perf_counter()
+        _FIRST_USE["watching"] = True
+        try:
+            with notice_if_slow(COMPILE_NOTICE, after=NOTICE_AFTER_S):
+                yield
+        finally:
+            _FIRST_USE["watching"] = False
+        if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
+            _FIRST_USE["noticed"] = True
 
 
 def load_kernel(dispatcher: Any, args: tuple, scheme: str) -> None:

@@ -18,13 +18,16 @@ bitcode (numba's own serialisation kind for it), which a later process loads by 
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from typing import Any
 
+from numba.core import types as _nbtypes
 from numba.core.codegen import JITCodeLibrary
 from numba.core.compiler import Compiler
 from numba.core.compiler_lock import global_compiler_lock, require_global_compiler_lock
 
-__all__ = ["LinkOnlyLibrary", "LinkOnlyCompiler"]
+__all__ = ["LinkOnlyLibrary", "LinkOnlyCompiler", "scalar_operators"]
 
 
 class _DeferredEnv:
@@ -117,3 +120,42 @@ class LinkOnlyCompiler(Compiler):
             library.enable_object_caching()
             self.state.library = library
         return super()._compile_core()
+
+
+def _arrays_only(generic: Any) -> Any:
+    """numba's typing of an operator by numpy's rules (``NumpyRulesArrayOperator.generic``), answering ``None`` at
+    once when no operand is an array, as it answers after matching the operands to a ufunc loop."""
+    def typed(self: Any, args: tuple, kws: dict) -> Any:
+        if not any(isinstance(a, _nbtypes.ArrayCompatible) for a in args):
+            return None
+        return generic(self, args, kws)
+    return typed
+
+
+@contextlib.contextmanager
+def scalar_operators() -> Iterator[None]:
+    """Around a compile of the kernels: numba types each arithmetic operator on scalars without trying numpy's
+    rules for it first.
+
+    numba types ``a + b`` by trying its operator templates in turn, numpy's array-operator rules among the first:
+    they match the operands to a ufunc loop (a search over numpy's loop table) and only then reject operands none
+    of which is an array (``NumpyRulesArrayOperator.generic``: "Only accept at least one array argument").  The
+    step's few thousand scalar operations paid that search each, about a twentieth of the first use (issue 36,
+    measured).  Inside this block that template rejects them before the search: the same answer (``None``, the
+    next template types the operator), sooner; the class's method is restored after the block.  Not reentrant
+    across threads' compiles in any way that matters: the answer is the same either way.
+    """
+    from numba.core.typing import npydecl
+
+    cls = npydecl.NumpyRulesArrayOperator
+    original = cls.__dict__.get("generic")
+    if original is None or getattr(original, "_arrays_only", False):
+        yield
+        return
+    patched = _arrays_only(original)
+    patched._arrays_only = True     # type: ignore[attr-defined]
+    cls.generic = patched
+    try:
+        yield
+    finally:
+        cls.generic = original
