@@ -10,6 +10,7 @@ first-use times, computed when the site is built)."""
 from __future__ import annotations
 
 import contextlib
+import gc
 import time
 from collections.abc import Iterator
 from typing import Any
@@ -47,7 +48,7 @@ def first_use(scheme: str) -> Iterator[None]:
     """
     from stability.simulate.kernel_link import scalar_operators  # imports numba, as the kernels do
 
-    with scalar_operators():        # a compile types the step's scalar operators without numpy's rules
+    with scalar_operators(), _collector_paused():   # numba's scalar shortcut; no cyclic collection while compiling
         if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False) or _FIRST_USE.get("watching", False):
             yield       # not a kernel's load, said, or inside a watched block (whose notice covers this one)
             return
@@ -60,6 +61,25 @@ def first_use(scheme: str) -> Iterator[None]:
             _FIRST_USE["watching"] = False
         if time.perf_counter() - start >= NOTICE_AFTER_S:       # said once per process
             _FIRST_USE["noticed"] = True
+
+
+@contextlib.contextmanager
+def _collector_paused() -> Iterator[None]:
+    """Python's cyclic garbage collector off inside the block (as it was before, after it).
+
+    A compile builds numba's IR, types and LLVM's Python objects by the hundred thousand, and the collector's passes
+    over them (with every object of the process in its oldest generation: numpy's, matplotlib's, the package's)
+    took about a tenth of a first use's CPU (issue 36, measured with ``gc.callbacks``).  Nothing is freed later
+    than the first collection after the block; the objects a compile leaves behind are a few tens of MB at most.
+    """
+    paused = gc.isenabled()
+    if paused:
+        gc.disable()
+    try:
+        yield
+    finally:
+        if paused:
+            gc.enable()
 
 
 def load_kernel(dispatcher: Any, args: tuple, scheme: str) -> None:
