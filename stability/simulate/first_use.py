@@ -17,7 +17,7 @@ from typing import Any
 
 from stability.runtime.progress import NOTICE_AFTER_S, notice_if_slow
 
-__all__ = ["COMPILE_NOTICE", "first_use", "load_kernel"]
+__all__ = ["COMPILE_NOTICE", "collector_paused", "first_use", "load_kernel"]
 
 #: The kernels' loads that are watched (a kernel's module import and its machine code are separate keys), whether
 #: the notice was said, and whether a watched block is running.
@@ -48,7 +48,7 @@ def first_use(scheme: str) -> Iterator[None]:
     """
     from stability.simulate.kernel_link import scalar_operators  # imports numba, as the kernels do
 
-    with scalar_operators(), _collector_paused():   # numba's scalar shortcut; no cyclic collection while compiling
+    with scalar_operators(), collector_paused():   # numba's scalar shortcut; no cyclic collection while compiling
         if not _FIRST_USE.get(scheme, False) or _FIRST_USE.get("noticed", False) or _FIRST_USE.get("watching", False):
             yield       # not a kernel's load, said, or inside a watched block (whose notice covers this one)
             return
@@ -64,7 +64,7 @@ def first_use(scheme: str) -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def _collector_paused() -> Iterator[None]:
+def collector_paused() -> Iterator[None]:
     """Python's cyclic garbage collector off inside the block (as it was before, after it).
 
     A compile builds numba's IR, types and LLVM's Python objects by the hundred thousand, and the collector's passes
