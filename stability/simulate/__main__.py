@@ -8,6 +8,7 @@ A layout (``--chair mid-wheel-drive``, a ``[[wheel]]`` file) runs the layout sim
 from __future__ import annotations
 
 import argparse
+import gc
 import sys
 from collections.abc import Sequence
 from typing import Any
@@ -140,4 +141,8 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 if __name__ == "__main__":  # pragma: no cover
+    # one run in a process that ends with it: no cyclic collection (its passes over numpy's, matplotlib's and numba's
+    # objects after a first use's compile and while the plot is drawn cost a few tenths of a second of CPU, for
+    # garbage the exit frees; issue 36)
+    gc.disable()
     sys.exit(main())

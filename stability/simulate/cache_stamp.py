@@ -18,8 +18,8 @@ from stability.tires import law as _tire_law
 __all__ = ["KERNEL_SOURCES", "COMPILED_MODULES", "invalidate_stale_cache"]
 
 #: The compiled modules whose functions other compiled modules call (a change to one recompiles them all).
-KERNEL_SOURCES = ("kernel.py", "kernel_equations.py", "kernel_controller.py", "adaptive_kernel.py", "lanes_kernel.py",
-                  "lanes_step.py", "lanes_physics.py", "lanemath.py")
+KERNEL_SOURCES = ("kernel.py", "kernel_equations.py", "kernel_controller.py", "kernel_link.py", "adaptive_kernel.py",
+                  "lanes_kernel.py", "lanes_step.py", "lanes_physics.py", "lanemath.py")
 #: The plain-Python modules the kernels compile as they are (the generated equations and contact forces, the tire law).
 COMPILED_MODULES = (_fw, _sl, _fo, _tire_law)
 

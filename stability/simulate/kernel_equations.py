@@ -22,6 +22,7 @@ from numba.extending import intrinsic, overload
 from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
+from stability.simulate.kernel_link import LinkOnlyCompiler
 from stability.tires import law as _tire_law
 
 __all__ = ["accelerations", "model_accelerations", "by_model", "leading", "borrowed", "held_pins", "stick_slip",
@@ -45,12 +46,15 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 #: views.  A function that allocates cannot be compiled so (numba refuses); one that returned an array would hand its
 #: caller a reference it never counted
 _NOREF: dict[str, Any] = dict(_nrt=False)
-_int = njit(cache=True, nogil=True, **_NOWRAP, **_NOREF)                      # called from compiled code only
-_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_NOREF)    # inlined into the step by LLVM
+#: compiled for linking into the entries only: no module-wide optimisation nor machine code of their own
+#: (:mod:`stability.simulate.kernel_link`)
+_LINK: dict[str, Any] = dict(pipeline_class=LinkOnlyCompiler)
+_int = njit(cache=True, nogil=True, **_NOWRAP, **_NOREF, **_LINK)                      # called from compiled code only
+_inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_NOREF, **_LINK)    # inlined into the step by LLVM
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)
 #: the per-model overloads' options: literal dispatch, and no wrappers for their implementations (numba's default
 #: gives each a C-callable wrapper that LLVM optimises and emits though nothing calls it), nor reference counts
-_OVERLOAD: dict[str, Any] = dict(prefer_literal=True, jit_options=dict(_NOWRAP, **_NOREF))
+_OVERLOAD: dict[str, Any] = dict(prefer_literal=True, jit_options=dict(_NOWRAP, **_NOREF, **_LINK))
 
 
 def compiled(module: types.ModuleType, names: tuple[str, ...], decorator: Any,
