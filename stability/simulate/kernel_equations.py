@@ -22,6 +22,7 @@ from numba.extending import intrinsic, overload
 from stability.models.forces import generated as _fo
 from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
+from stability.simulate import kernel_link
 from stability.simulate.kernel_link import LinkOnlyCompiler
 from stability.tires import law as _tire_law
 
@@ -48,7 +49,7 @@ _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)  
 _NOREF: dict[str, Any] = dict(_nrt=False)
 #: compiled for linking into the entries only: no module-wide optimisation nor machine code of their own
 #: (:mod:`stability.simulate.kernel_link`)
-_LINK: dict[str, Any] = dict(pipeline_class=LinkOnlyCompiler)
+_LINK: dict[str, Any] = dict(pipeline_class=LinkOnlyCompiler) if kernel_link.AVAILABLE else {}
 _int = njit(cache=True, nogil=True, **_NOWRAP, **_NOREF, **_LINK)                      # called from compiled code only
 _inl = njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_NOREF, **_LINK)    # inlined into the step by LLVM
 _inl_py = njit(cache=True, nogil=True, forceinline=True)             # the same, also called from Python (tests)

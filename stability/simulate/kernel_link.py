@@ -27,7 +27,14 @@ from numba.core.codegen import JITCodeLibrary
 from numba.core.compiler import Compiler
 from numba.core.compiler_lock import global_compiler_lock, require_global_compiler_lock
 
-__all__ = ["LinkOnlyLibrary", "LinkOnlyCompiler", "scalar_operators"]
+__all__ = ["LinkOnlyLibrary", "LinkOnlyCompiler", "AVAILABLE", "scalar_operators"]
+
+#: numba's code-library methods :class:`LinkOnlyLibrary` overrides or calls (written against numba 0.68; it also
+#: reads the library's ``_linking_libraries``, ``_final_module`` and ``_reload_init``, set by numba's constructor).
+#: A numba without one of them compiles the helpers as numba does by default (:data:`AVAILABLE` False): slower to
+#: compile, the same code.
+_INTERNALS = ("_get_module_for_linking", "_optimize_final_module", "_finalize_final_module", "_raise_if_finalized",
+              "_ensure_finalized", "serialize_using_object_code", "get_pointer_to_function", "enable_object_caching")
 
 
 class _DeferredEnv:
@@ -54,12 +61,17 @@ class LinkOnlyLibrary(JITCodeLibrary):
         self._envs: list[tuple[str, Any]] = []
 
     @property
+    def _codegen_any(self) -> Any:
+        """numba's JIT codegen (its ``set_env`` is not in the base class's type)."""
+        return self._codegen
+
+    @property
     def codegen(self) -> Any:
         return _DeferredEnv(self)
 
     def _set_env(self, env_name: str, env: Any) -> None:
         if self._emitted:
-            self._codegen.set_env(env_name, env)
+            self._codegen_any.set_env(env_name, env)
         else:
             self._envs.append((env_name, env))
 
@@ -87,7 +99,7 @@ class LinkOnlyLibrary(JITCodeLibrary):
             self._finalize_final_module()
             self._emitted = True
             for env_name, env in self._envs:
-                self._codegen.set_env(env_name, env)
+                self._codegen_any.set_env(env_name, env)
             self._envs.clear()
 
     def get_pointer_to_function(self, name: str) -> int:
@@ -109,6 +121,10 @@ class LinkOnlyLibrary(JITCodeLibrary):
             return super().serialize_using_object_code()
         self._ensure_finalized()
         return (self.name, "bitcode", self._final_module.as_bitcode())
+
+
+#: Whether the helpers compile for linking only (numba's internals as expected), else as numba does by default.
+AVAILABLE = all(hasattr(JITCodeLibrary, name) for name in _INTERNALS)
 
 
 class LinkOnlyCompiler(Compiler):
@@ -147,13 +163,13 @@ def scalar_operators() -> Iterator[None]:
     """
     from numba.core.typing import npydecl
 
-    cls = npydecl.NumpyRulesArrayOperator
+    cls: Any = npydecl.NumpyRulesArrayOperator      # its method replaced inside the block (typed as Any for it)
     original = cls.__dict__.get("generic")
     if original is None or getattr(original, "_arrays_only", False):
         yield
         return
     patched = _arrays_only(original)
-    patched._arrays_only = True     # type: ignore[attr-defined]
+    patched._arrays_only = True
     cls.generic = patched
     try:
         yield
