@@ -884,3 +884,30 @@ def test_the_shimmy_sentence_says_when_the_pin_friction_holds_no_shimmy_at_any_t
     m = SimpleNamespace(shimmy_margin_m=SimpleNamespace(value=0.0023, low=None, high=None), shimmy_straddles=False)
     text = shimmy_sentence(m, 0.05, ShimmyHold(5.0, 0.1, math.inf, 0.05))
     assert text.endswith("; its 0.1 N m pin friction does not hold a 5 deg shimmy at any trail (describing function)")
+
+
+def test_the_shimmy_limit_is_met_at_its_value_and_its_note_says_what_to_measure():
+    """The shimmy constraint's kind is '>=': a margin exactly at MIN_SHIMMY_MARGIN_M meets it, the next float
+    below does not; when the estimates' range straddles a boundary its note says which two estimates to measure
+    (pin lateral stiffness, caster relaxation length: the compliances of stability.shimmy.compliance), and
+    otherwise that the limit is met over their range.  ShimmyHold is a frozen result."""
+    import dataclasses
+    from types import SimpleNamespace
+
+    from stability.advise.limits import MIN_SHIMMY_MARGIN_M, ShimmyHold, constraints
+    from stability.advise.measures import Interval
+
+    base = SimpleNamespace(turning_effort_N_m=0.1, cross_slope_effort=None, bench_score=None)
+    for value, straddles, met in ((MIN_SHIMMY_MARGIN_M, False, True),
+                                  (math.nextafter(MIN_SHIMMY_MARGIN_M, 0.0), True, False)):
+        m = SimpleNamespace(shimmy_margin_m=Interval(value, -0.01, 0.02), shimmy_straddles=straddles,
+                            static_stability_deg=Interval(20.0, 20.0, 20.0), turning_effort_N_m=0.1,
+                            cross_slope_effort=None, bench_score=None, human_limited_speed_m_s=None)
+        k = next(k for k in constraints(m, base, 10.0, "test", 0.0) if k.name == "shimmy_margin_m")
+        assert k.kind == ">=" and k.met is met
+        assert k.note == ("nominal estimates; over their range it straddles a boundary: measure pin lateral "
+                          "stiffness and caster relaxation length first" if straddles else
+                          "nominal estimates, and met over their range")
+    hold = ShimmyHold(amplitude_deg=5.0, pin_friction_N_m=0.118, hold_trail_m=0.057, trail_m=0.06)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        hold.trail_m = 0.05      # type: ignore[misc]

@@ -181,6 +181,15 @@ the friction scope's words).  Of 66 mutants, 55 killed; 4 equivalent: 55/62 (89 
 (words, a default, a floor, a type built only outside the gate files) and are killed by the tests written after
 the run (``--only-survivors``: 7/7; the sheet's refusals now read for every reading, not only the two drawn).
 
+Seed 52 (``--changed --base e0a8aab --budget 400``: the three gated modules the shimmy-margin fix fcf1e3e touched,
+the mutants round-robin until the budget; "before" = main at 7f446b3): ``advise/advisor.py`` 16/17 (left: the
+"predicted" JSON key of a built-from entry, read by no gate file); ``shimmy/band.py`` 13/15 (1 equivalent, already
+listed; left: the oscillation threshold's scale ``1e-9 |lambda|`` and the placeholder ``C`` of an invalid trail);
+``advise/limits.py`` 11/17 -> 14/17 (a margin exactly at the shimmy limit meets it, the straddling note's words,
+``ShimmyHold`` frozen; left: the rounding allowances of three limits, ``min_tip - 1e-9``, ``limit + 1e-12`` and
+``lim + 1e-9``, whose ``>=``/``<=`` differ from ``>``/``<`` only at that exact float: constants below every
+tolerance).  40/49 (82 %) before, 43/49 (88 %) after.
+
 The classes of docs/testing.md, "Classes of survivors", counted (non-equivalent survivors; seeds 48-49's from the
 reasons recorded above, so approximate: 49 in all; seed 50's exact: 25): words no test read 16 / 6; a number
 printed too coarsely to tell its formula 2 / 2; a boundary no test sat on 14 / 3; a default or fallback no test
