@@ -71,6 +71,11 @@ def collector_paused() -> Iterator[None]:
     over them (with every object of the process in its oldest generation: numpy's, matplotlib's, the package's)
     took about a tenth of a first use's CPU (issue 36, measured with ``gc.callbacks``).  Nothing is freed later
     than the first collection after the block; the objects a compile leaves behind are a few tens of MB at most.
+
+    Yields
+    ------
+    None
+        The block runs inside, without cyclic collection.
     """
     paused = gc.isenabled()
     if paused:

@@ -160,6 +160,11 @@ def scalar_operators() -> Iterator[None]:
     measured).  Inside this block that template rejects them before the search: the same answer (``None``, the
     next template types the operator), sooner; the class's method is restored after the block.  Not reentrant
     across threads' compiles in any way that matters: the answer is the same either way.
+
+    Yields
+    ------
+    None
+        The block runs inside, with numpy's operator rule answering for arrays only.
     """
     from numba.core.typing import npydecl
 
