@@ -912,3 +912,25 @@ def test_the_shimmy_limit_is_met_at_its_value_and_its_note_says_what_to_measure(
     hold = ShimmyHold(amplitude_deg=5.0, pin_friction_N_m=0.118, hold_trail_m=0.057, trail_m=0.06)
     with pytest.raises(dataclasses.FrozenInstanceError):
         hold.trail_m = 0.05      # type: ignore[misc]
+
+
+def test_the_tables_print_an_unbounded_shimmy_margin_as_words_and_compare_it_as_a_bound():
+    """The advise table's shimmy column and the report's decision table: a finite margin in cm with its sign (m x
+    100); +inf (no boundary on the trails searched) as 'none' / 'none found', -inf (every trail searched shimmies)
+    as 'every' / 'every trail'; the report's comparison value of an infinite margin is None, as for every bound."""
+    from types import SimpleNamespace
+
+    from stability.advise.measures import Interval
+    from stability.advise.text import _margin_cell
+    from stability.report.decision import _cells, _values
+
+    assert [_margin_cell(x) for x in (0.0314, -0.0057, math.inf, -math.inf)] == ["+3.14", "-0.57", "none", "every"]
+    for value, cell in ((0.0314, "+3.1"), (math.inf, "none found"), (-math.inf, "every trail")):
+        m = SimpleNamespace(critical_impulse_Ns=Interval(3.0, 2.5, 3.5), critical_impulse_status="found",
+                            equal_instability_speed_m_s=Interval(1.0, 0.9, 1.1), equal_instability_status="found",
+                            tip_angles_deg={}, shimmy_margin_m=Interval(value, -math.inf, math.inf),
+                            turning_effort_N_m=0.1, cross_slope_effort=None, growth_rate_1_s=0.5)
+        assert cell in _cells(m, 0.05)
+        vals = _values(m, 0.05)
+        assert (value in vals) is math.isfinite(value)
+        assert not any(isinstance(v, float) and math.isinf(v) for v in vals)
