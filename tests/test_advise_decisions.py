@@ -836,8 +836,7 @@ def test_an_unbounded_shimmy_margin_is_said_and_judged_by_its_sign():
         cost = Cost("shimmy_margin_m", "shimmy margin", "cm", 100 * value, 3.0, ">= 0.5 cm", True)
         # error model: 3 cm x 0.01 is one rounded product, half an ulp (1.1e-16 relative); 1e-14 allows ~100x
         assert cost.to_mapping()["before"] is None and cost.to_mapping()["after"] == pytest.approx(0.03, rel=1e-14)
-        assert cost.text().startswith("shimmy margin " + ("no boundary found" if value > 0 else
-                                                          "shimmies at every trail") + " -> 3 cm")
+        assert cost.text().startswith("shimmy margin " + ("none found" if value > 0 else "every trail") + " -> 3 cm")
         assert cost.worse is (value > 0)          # from unbounded to 3 cm is worse; from shimmying everywhere not
 
 
@@ -915,16 +914,18 @@ def test_the_shimmy_limit_is_met_at_its_value_and_its_note_says_what_to_measure(
 
 
 def test_the_tables_print_an_unbounded_shimmy_margin_as_words_and_compare_it_as_a_bound():
-    """The advise table's shimmy column and the report's decision table: a finite margin in cm with its sign (m x
-    100); +inf (no boundary on the trails searched) as 'none' / 'none found', -inf (every trail searched shimmies)
-    as 'every' / 'every trail'; the report's comparison value of an infinite margin is None, as for every bound."""
+    """The tables' shimmy cells (``margin_cell``: the advise table, the costs, the report's decision table): a finite
+    margin in cm with its sign (m x 100); +inf (no boundary on the trails searched) as 'none found', -inf (every
+    trail searched shimmies) as 'every trail'; the report's comparison value of an infinite margin is None, as for
+    every bound."""
     from types import SimpleNamespace
 
     from stability.advise.measures import Interval
-    from stability.advise.text import _margin_cell
     from stability.report.decision import _cells, _values
+    from stability.shimmy.band import margin_cell
 
-    assert [_margin_cell(x) for x in (0.0314, -0.0057, math.inf, -math.inf)] == ["+3.14", "-0.57", "none", "every"]
+    assert [margin_cell(x) for x in (0.0314, -0.0057, math.inf, -math.inf)] == ["+3.14", "-0.57", "none found",
+                                                                                "every trail"]
     for value, cell in ((0.0314, "+3.1"), (math.inf, "none found"), (-math.inf, "every trail")):
         m = SimpleNamespace(critical_impulse_Ns=Interval(3.0, 2.5, 3.5), critical_impulse_status="found",
                             equal_instability_speed_m_s=Interval(1.0, 0.9, 1.1), equal_instability_status="found",

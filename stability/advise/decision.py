@@ -18,6 +18,7 @@ from stability.advise.measures import EFFORT_WORDS, Measures
 from stability.bench.loads import SCORE_WORDS
 from stability.layout.model import Layout
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED, THESIS_PUSH
+from stability.shimmy.band import margin_cell
 from stability.study.censored import describe, range_words, side_of
 
 __all__ = ["Cost", "Decision", "decide", "kmh", "DIRECTION_WORDS"]
@@ -88,10 +89,10 @@ class Cost:
 
     def text(self) -> str:
         """``"tips toward its casters on 21.9 -> 17.7 deg (limit >= 13.8 deg, met)"``."""
-        def f(x: float | None) -> str:          # an infinity: a shimmy margin with no boundary, or every trail
+        def f(x: float | None) -> str:          # an infinity: a shimmy margin (cm) with no boundary, or every trail
             if x is None:
                 return "not computed"
-            return f"{x:.3g}" if math.isfinite(x) else ("no boundary found" if x > 0 else "shimmies at every trail")
+            return f"{x:.3g}" if math.isfinite(x) else margin_cell(x)
 
         change = f(self.before) if self.before == self.after else f"{f(self.before)} -> {f(self.after)}"
         lim = "" if not self.limit else f" (limit {self.limit}, {'met' if self.met else 'NOT met'})"

@@ -12,6 +12,7 @@ from stability.advise.limits import limit_words
 from stability.advise.measures import Measures
 from stability.advise.subject import is_layout, levers_of
 from stability.settings.reference import REFERENCE_SPEED
+from stability.shimmy.band import margin_cell
 from stability.study.censored import describe, range_words, side_of
 
 __all__ = ["advice_text", "advice_mapping", "kmh"]
@@ -19,14 +20,6 @@ __all__ = ["advice_text", "advice_mapping", "kmh"]
 def _iv(x, unit: str, digits: int = 3, status: str = "found") -> str:
     value = {"above": "> ", "never": "> ", "below": "< "}.get(status, "") + f"{x.value:.{digits}g}"
     return f"{value} {unit}" + range_words(x.low, x.high, unit, digits=digits)
-
-
-def _margin_cell(x: float | None) -> str:
-    """A shimmy margin in the table's column, cm: ``none`` with no boundary on the trails searched (``+inf``),
-    ``every`` when every trail searched shimmies (``-inf``)."""
-    if x is None or math.isinf(x):
-        return "every" if x is not None and x < 0 else "none"
-    return format(x * 100, "+.2f")
 
 
 def _row(c: Candidate, base: Measures, broken: set) -> str:
@@ -45,7 +38,7 @@ def _row(c: Candidate, base: Measures, broken: set) -> str:
     gain = f"<={c.gain * 100:+4.0f} %" if c.bounded else f"{c.gain * 100:+6.1f} %"
     return (f"  {c.changes[0].label:<72} {impulse} "
             f"{ei:>6} {m.static_stability_deg.value:6.1f} "
-            f"{_margin_cell(sm):>7} {m.turning_effort_N_m:6.3f} "
+            f"{'none' if sm is None else margin_cell(sm):>7} {m.turning_effort_N_m:6.3f} "
             f"{'-' if hr is None else format(abs(hr), '.3g'):>5} {m.growth_rate_1_s:5.2f} {gain}"
             + flags
             + ("  (impulse and speed disagree)" if not c.bounded and min(c.gains.values()) < 0 < max(c.gains.values())

@@ -16,6 +16,7 @@ from stability.advise.measures import EFFORT_WORDS, Measures
 from stability.report.behaviour import better_word
 from stability.report.compute import ReportData
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
+from stability.shimmy.band import margin_cell
 
 __all__ = ["decision_paragraphs", "decision_rows", "decision_bars", "decision_beyond", "uncertainty_sentence"]
 
@@ -83,8 +84,7 @@ def _cells(m: Measures, trail: float) -> list[str]:
              {"above": "> ", "below": "< "}.get(m.equal_instability_status, "")
              + f"{ei.value:.3g}{rng(ei, bound=ei_bound)}"]
             + [f"{m.tip_angles_deg[k]:.1f}" if k in m.tip_angles_deg else "-" for k in DIRECTION_WORDS]
-            + [f"{100 * sm.value:+.1f}" if sm.value is not None and math.isfinite(sm.value) else
-               "every trail" if sm.value is not None and sm.value < 0 else "none found",
+            + ["none found" if sm.value is None else margin_cell(sm.value, "+.1f"),
                f"{m.turning_effort_N_m:.3g}",
                "-" if effort is None else f"{abs(effort):.3g}",
                f"{m.growth_rate_1_s:.3g}",

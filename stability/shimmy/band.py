@@ -27,7 +27,7 @@ from stability.shimmy.compliance import CasterCompliance
 from stability.shimmy.layout_caster import CasterSource, LayoutCaster
 
 __all__ = ["TRAIL_SEARCH_M", "GRID_POINTS", "ShimmyBand", "shimmy_band", "band_core", "shimmy_intervals", "abscissa",
-           "margin_to_boundaries", "margin_words"]
+           "margin_to_boundaries", "margin_words", "margin_cell"]
 
 #: Trails searched for boundaries (m): 1 mm to 25 cm.
 TRAIL_SEARCH_M = (0.001, 0.25)
@@ -223,6 +223,27 @@ def margin_words(margin: float) -> str:
         return (f"no shimmy boundary between {lo} and {hi} cm" if margin > 0 else
                 f"it shimmies at every trail from {lo} to {hi} cm")
     return f"{100 * margin:+.2f} cm"
+
+
+def margin_cell(margin: float, spec: str = "+.2f") -> str:
+    """A shimmy margin in a table's cell, cm without the unit; an unbounded one in two words.
+
+    Parameters
+    ----------
+    margin : float
+        As :func:`margin_words` (m).
+    spec : str
+        Format of a finite margin in cm.
+
+    Returns
+    -------
+    str
+        ``"+3.14"``, ``"none found"`` (``+inf``: no boundary on the trails searched) or ``"every trail"``
+        (``-inf``: every trail searched shimmies).
+    """
+    if math.isinf(margin):
+        return "none found" if margin > 0 else "every trail"
+    return format(100 * margin, spec)
 
 
 @dataclass(frozen=True)
