@@ -154,6 +154,10 @@ def test_describe_writes_each_band_in_cm_with_a_plus_at_the_search_end():
     assert numbers == [1.2, 4.6, 7.9, round(100 * end, 1)]
     assert text.count("+") == 1 and text.endswith("+") and text.count(",") == 1
     assert dataclasses.replace(band, intervals_m=[[]]).describe(0) == "none"
+    # the search's own last grid point is its end, exactly: a band found reaching it carries the '+'
+    from stability.shimmy.band import GRID_POINTS
+    assert np.linspace(*TRAIL_SEARCH_M, GRID_POINTS)[-1] == end
+    assert "+" not in dataclasses.replace(band, intervals_m=[[(0.01, np.nextafter(end, 0.0))]]).describe(0)
 
 
 @pytest.mark.parametrize("c", [MEASURED, chair_mod.preset("ej-premier")], ids=["measured", "ej-premier"])
@@ -210,3 +214,31 @@ def test_the_advisors_measures_keep_the_bands_infinities():
     sm = chair_linear(chair, speeds=[1.0], cross_slope_deg=0.0, cores={}).shimmy_margin_m
     assert (sm.value, sm.low, sm.high) == (band.shimmy_margin_m, *band.shimmy_margin_interval_m)
     assert sm.low == -math.inf and sm.to_mapping()["interval"][0] is None
+
+
+def test_a_margin_in_a_table_cell_is_cm_to_two_decimals_or_two_words():
+    """``margin_cell``: a finite margin x 100 (cm), signed, 2 decimals unless the caller asks another format; +inf
+    (no boundary on the trails searched) is "none found" and -inf (every trail searched shimmies) "every trail"."""
+    from stability.shimmy.band import margin_cell
+
+    assert margin_cell(0.031426) == "+3.14" and margin_cell(-0.0057) == "-0.57"
+    assert margin_cell(0.031426, ".1f") == "3.1"
+    assert margin_cell(math.inf) == "none found" and margin_cell(-math.inf) == "every trail"
+
+
+@pytest.mark.parametrize("i_zp, m_c", [(1.2 * 0.058**2, 1.2), (0.01, 0.0)], ids=["all-inertia-at-the-cg", "massless-caster"])
+def test_a_caster_without_inertia_about_its_centre_is_refused_naming_i_zp_and_its_bound(i_zp, m_c):
+    """The caster's yaw inertia about its own centre, ``i_zp - m_c l1^2`` (parallel axes), must be positive with a
+    positive caster mass; the refusal names ``i_zp``, its value and the bound ``m_c l1^2`` in kg m^2 (6 significant
+    figures), recomputed here from the chair's own fields.  (The chair itself refuses ``i_zp < m_c l1^2``; equality,
+    all the caster's mass at its c.g., passes it and is refused here.)"""
+    import re
+
+    from stability.shimmy.band import band_core
+
+    c = chair_mod.preset("ej-premier").replace(m_c=m_c, i_zp=i_zp)    # E&J: l1 = 0.058 m, m_c l1^2 = 0.0040 kg m^2
+    bound = c.m_c * c.l1 ** 2
+    with pytest.raises(ValueError, match=re.escape(
+            f"chair parameter i_zp={c.i_zp!r} is invalid for shimmy; valid range: > m_c*l1^2 = {bound:.6g} kg m^2 "
+            f"with m_c > 0")):
+        band_core(c, [1.0])

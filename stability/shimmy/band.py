@@ -313,8 +313,8 @@ class ShimmyBand:
         iv = self.intervals_m[k]
         if not iv:
             return "none"
-        return ", ".join(f"{a * 100:.1f}-{b * 100:.1f}{'+' if b >= TRAIL_SEARCH_M[1] - 1e-12 else ''}"
-                         for a, b in iv)
+        # an interval reaching the search end ends exactly at it: the grid's last point is linspace's stop
+        return ", ".join(f"{a * 100:.1f}-{b * 100:.1f}{'+' if b >= TRAIL_SEARCH_M[1] else ''}" for a, b in iv)
 
     def to_mapping(self) -> dict:
         """JSON-ready dict (m, m/s; infinite margins as null)."""
