@@ -1,6 +1,7 @@
 """Runs the advisor's searches spend: the equal-instability bisection's first round runs only the points that decide it."""
 
 import math
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -91,3 +92,38 @@ def test_front_caster_above_in_one_run():
     """The front-caster E&J Premier is more stable than the reference at 3 m/s: one run, not the grid's nine."""
     r = ei.equal_instability_speed(preset("ej-premier-front-caster"), progress=False)
     assert r.status == "above" and r.evaluations[0][0] == 3.0 and len(r.evaluations) == 1
+
+
+def test_pair_runs_its_faster_point_only_when_needed():
+    """A pair's slower point as unstable as the reference ends the bracket there: its faster point is not run."""
+    tol = 0.002
+
+    def steep(u):                  # 3.2 s at 0.75 m/s; regula falsi in log time approaches from above
+        return TARGET * math.exp(-4.0 * (u - 0.75) * abs(u - 0.75))
+
+    res, fake = search({"slow": monotone(0.75), "steep": steep}, tol=tol)
+    off = {name: sorted(u for c, u in fake.runs if c == name and not np.isclose(GRID, u, rtol=0, atol=1e-12).any())
+           for name in ("slow", "steep")}
+    # steep: every later round's slower point is already as unstable (above 0.75 m/s): one run a round, 0.9 tol
+    # faster never run; the bracket closes from above on its first point as unstable
+    assert len(off["steep"]) >= 3 and all(u > 0.75 for u in off["steep"])
+    assert all(v - u > 0.9 * tol + 1e-9 for u, v in pairwise(off["steep"]))
+    assert res["steep"].high == off["steep"][0] and res["steep"].low < 0.75
+    # exponential: a pair whose slower point is not as unstable runs its faster one too (0.9 tol apart)
+    pairs = [(u, v) for u, v in pairwise(off["slow"]) if abs(v - u - 0.9 * tol) < 1e-9]
+    assert any(u < 0.75 for u, _ in pairs)
+    r = res["slow"]
+    assert r.low <= 0.75 <= r.high and r.high - r.low <= tol + 1e-12
+
+
+def test_run_steps_split_per_job():
+    """One step call for a round gives each job the steps a call for it alone gives."""
+    from stability.study.summaries import run_steps
+
+    chairs = [preset("ej-premier"), preset("revised")]
+    speeds = {0: [0.2, 0.55, 3.0], 1: [0.9]}
+    got = ei._run_steps(chairs, speeds, RunSpec())
+    assert got is not None and list(got) == [0, 1]
+    for i, sp in speeds.items():
+        assert got[i] == run_steps([chairs[i]] * len(sp), sp, 0.001, "exact", "free").tolist()
+    assert ei._run_steps(chairs, speeds, RunSpec(scheme="adaptive")) is None

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, cast
 
@@ -208,22 +208,24 @@ def _decided(pts: list[tuple[float, float]], target: float, scanned: int, grid: 
     return any(done[float(s)] <= target for s in grid[:scanned])
 
 
-def _grid_steps(chairs: Sequence[Chair | Layout], grids: dict[int, np.ndarray],
-                run: RunSpec) -> dict[int, list[float]] | None:
-    """Each job's step at each grid speed, s, for :func:`stability.study.summaries.run_summaries` (None: not the
-    fixed-step kernel, which picks no step).
+def _run_steps(chairs: Sequence[Chair | Layout], speeds: Mapping[int, Sequence[float] | np.ndarray],
+               run: RunSpec) -> dict[int, list[float]] | None:
+    """Each job's step at each of its ``speeds``, s, for :func:`stability.study.summaries.run_summaries` (None: not
+    the fixed-step kernel, which picks no step).
 
-    One call for the whole grid, as when the grid ran in one launch: a chair's linear model is built once for all its
-    speeds (not once per launch of :func:`_first_round`), and every step is the one that launch gave.
+    One call for a round's runs, as when the round ran in one launch: a chair's linear model is built once for all
+    its speeds (not once per launch of :func:`_first_round` or of a pair), and every step is the one that launch gave.
     """
     if run.scheme != "wchair":
         return None
-    jobs = list(grids)
-    flat = run_steps([cast(Chair, chairs[i]) for i in jobs for _ in grids[i]],   # the thesis engine's: chairs
-                     [float(x) for i in jobs for x in grids[i]],
+    jobs = list(speeds)
+    flat = run_steps([cast(Chair, chairs[i]) for i in jobs for _ in speeds[i]],   # the thesis engine's: chairs
+                     [float(x) for i in jobs for x in speeds[i]],
                      0.001 if run.dt == "auto" else float(run.dt), run.model, run.casters).tolist()
-    m = len(grids[jobs[0]]) if jobs else 0
-    return {i: flat[k * m:(k + 1) * m] for k, i in enumerate(jobs)}
+    out, k = {}, 0
+    for i in jobs:
+        out[i], k = flat[k:k + len(speeds[i])], k + len(speeds[i])
+    return out
 
 
 def _pair(pts: list[tuple[float, float]], lo: float, hi: float, target: float, tol: float, end: float,
@@ -279,7 +281,8 @@ def equal_instability_speeds(chairs: Sequence[Chair], run: RunSpec | None = None
     The first round decides from ``candidates`` equally spaced speeds and the
     bracket's ends for every chair, run in up to three launches that leave out
     the speeds deciding nothing (:func:`_first_round`); each later round two speeds ``0.9 tol``
-    apart around the regula-falsi root of ``log t(U) - log t_ref`` between
+    apart (the faster one run only where the slower one is not as unstable as the reference: where it is,
+    the bracket ends there) around the regula-falsi root of ``log t(U) - log t_ref`` between
     the bracket's ends (Illinois-modified, so a one-sided approach cannot
     stall), all chairs' runs in one kernel call per round, every run stopped
     at the level.  When the bracket is narrower than ``tol`` the speed is
@@ -423,7 +426,7 @@ def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: 
                 break
             if rnd == 0:                    # the grid, in launches that skip the points deciding nothing
                 grids = {i: np.linspace(lo[i], hi[i], candidates + 2) for i in active}
-                steps = _grid_steps(chairs, grids, run) if summarise is None else None
+                steps = _run_steps(chairs, grids, run) if summarise is None else None
                 scanned = 0                 # the slowest grid points run so far
                 for k, part in enumerate(_first_round(candidates)):
                     todo = [i for i in active if k == 0 or not _decided(evals[i], float(target[i]), scanned, grids[i])]
@@ -435,8 +438,15 @@ def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: 
                 bar.update()
                 continue
             old_lo, old_hi = lo.copy(), hi.copy()
-            launch({i: _pair(evals[i], float(lo[i]), float(hi[i]), float(target[i]), tol, float(end[i]),
-                             int(kept[i])) for i in active})
+            # the pair's faster run only where the slower one is not as unstable: where it is, the new bracket ends
+            # there whatever the faster one does (the first point as unstable decides, _narrow)
+            pairs = {i: _pair(evals[i], float(lo[i]), float(hi[i]), float(target[i]), tol, float(end[i]),
+                              int(kept[i])) for i in active}
+            steps = _run_steps(chairs, pairs, run) if summarise is None else None
+            for k in (0, 1):
+                todo = [i for i in active if len(pairs[i]) > k and (k == 0 or dict(evals[i])[pairs[i][0]] > target[i])]
+                launch({i: pairs[i][k:k + 1] for i in todo}, None if steps is None else {i: steps[i][k:k + 1]
+                                                                                          for i in todo})
             for i in active:
                 status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), False)
                 if hi[i] == old_hi[i]:
