@@ -89,10 +89,12 @@ def test_equal_instability_bisection(fake):
     assert res[2].speed == pytest.approx(1.2, abs=0.002)
     assert res[3].status == "below" and res[3].speed is None and res[3].describe() == "< 0.2 m/s"
     assert res[4].status == "above" and res[4].describe() == "> 3 m/s"
-    # one batch per round (plus one for the reference), all chairs together
-    n_rounds = len(fake.calls) - 1
-    assert fake.calls[0] == 1 and n_rounds <= 5
-    assert fake.calls[1] == len(chairs) * 9
+    # one batch per launch (plus one for the reference), all chairs together; the first round's grid (0.2 to 3 m/s,
+    # 0.35 m/s apart) in two launches: the fastest point of every chair, then the slowest four of each chair not
+    # "above" (U* = 3.75 m/s is); none needs the rest: U* = 0.75, 0.6, 1.2 m/s and "below" are at or under 1.25 m/s
+    n_launches = len(fake.calls) - 1
+    assert fake.calls[0] == 1 and n_launches <= 6
+    assert fake.calls[1:3] == [len(chairs), 4 * (len(chairs) - 1)]
 
 
 def test_equal_instability_speed_single(fake):

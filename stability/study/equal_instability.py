@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -19,7 +19,7 @@ from stability.settings.run import RunSpec
 from stability.study import runs
 from stability.study.criteria import DEFAULT_CRITERION, Criterion, check_impulse
 from stability.study.memo import memoised
-from stability.study.summaries import Summaries, run_summaries
+from stability.study.summaries import Summaries, run_steps, run_summaries
 
 __all__ = ["EqualInstability", "reference_time", "interp_speed", "equal_instability_speeds", "bisect_speeds",
            "equal_instability_speed"]
@@ -172,16 +172,60 @@ def interp_speed(s0: float, t0: float, s1: float, t1: float, target: float) -> f
     return s0 + min(max(f, 0.0), 1.0) * (s1 - s0)
 
 
-def _round_runs(chairs: list[Chair | Layout], active: list[int], lo: np.ndarray, hi: np.ndarray, candidates: int,
-                first: bool) -> tuple[list[Chair | Layout], list[float], list[int]]:
-    run_chairs, run_speeds, owner = [], [], []
-    for i in active:
-        grid = np.linspace(lo[i], hi[i], candidates + 2)
-        for s in (grid if first else grid[1:-1]):
-            run_chairs.append(chairs[i])
-            run_speeds.append(float(s))
-            owner.append(i)
-    return run_chairs, run_speeds, owner
+#: Grid points of the first round run together after its fastest one (:func:`_first_round`): the slowest four
+#: (most chairs' and variants' first point at least as unstable as the reference is among them)
+FIRST_SCAN = 4
+
+
+def _first_round(candidates: int) -> list[list[int]]:
+    """The first round's grid indices, in the order of its launches (:func:`_bisect`).
+
+    The grid is ``numpy.linspace(lo, hi, candidates + 2)``.  Its decision (:func:`_narrow`) needs the fastest
+    point (not at least as unstable there: "above", nothing else needed) and then the points from the slowest up
+    to the first at least as unstable; the points above that one and below the fastest change nothing.  So the
+    fastest point runs alone, then the slowest :data:`FIRST_SCAN`, then the rest only when none of those was
+    at least as unstable: the same bracket and status as the whole grid run at once, from fewer runs.
+
+    Parameters
+    ----------
+    candidates : int
+        Grid points inside the bracket.
+
+    Returns
+    -------
+    list of list of int
+        Indices into the grid, one list per launch.
+    """
+    top = candidates + 1
+    return [[top], list(range(min(FIRST_SCAN, top))), list(range(min(FIRST_SCAN, top), top))]
+
+
+def _decided(pts: list[tuple[float, float]], target: float, scanned: int, grid: np.ndarray) -> bool:
+    """Whether the first round's points run so far (the fastest and the slowest ``scanned``) decide it."""
+    done = dict(pts)
+    if done[float(grid[-1])] > target:                    # "above": the fastest point alone decides
+        return True
+    return any(done[float(s)] <= target for s in grid[:scanned])
+
+
+def _run_steps(chairs: Sequence[Chair | Layout], speeds: Mapping[int, Sequence[float] | np.ndarray],
+               run: RunSpec) -> dict[int, list[float]] | None:
+    """Each job's step at each of its ``speeds``, s, for :func:`stability.study.summaries.run_summaries` (None: not
+    the fixed-step kernel, which picks no step).
+
+    One call for a round's runs, as when the round ran in one launch: a chair's linear model is built once for all
+    its speeds (not once per launch of :func:`_first_round` or of a pair), and every step is the one that launch gave.
+    """
+    if run.scheme != "wchair":
+        return None
+    jobs = list(speeds)
+    flat = run_steps([cast(Chair, chairs[i]) for i in jobs for _ in speeds[i]],   # the thesis engine's: chairs
+                     [float(x) for i in jobs for x in speeds[i]],
+                     0.001 if run.dt == "auto" else float(run.dt), run.model, run.casters).tolist()
+    out, k = {}, 0
+    for i in jobs:
+        out[i], k = flat[k:k + len(speeds[i])], k + len(speeds[i])
+    return out
 
 
 def _pair(pts: list[tuple[float, float]], lo: float, hi: float, target: float, tol: float, end: float,
@@ -234,9 +278,11 @@ def equal_instability_speeds(chairs: Sequence[Chair], run: RunSpec | None = None
                              reference: float | None = None, progress: bool = True) -> list[EqualInstability]:
     """:func:`equal_instability_speed` for many chairs at once.
 
-    The first round simulates ``candidates`` equally spaced speeds and the
-    bracket's ends for every chair; each later round two speeds ``0.9 tol``
-    apart around the regula-falsi root of ``log t(U) - log t_ref`` between
+    The first round decides from ``candidates`` equally spaced speeds and the
+    bracket's ends for every chair, run in up to three launches that leave out
+    the speeds deciding nothing (:func:`_first_round`); each later round two speeds ``0.9 tol``
+    apart (the faster one run only where the slower one is not as unstable as the reference: where it is,
+    the bracket ends there) around the regula-falsi root of ``log t(U) - log t_ref`` between
     the bracket's ends (Illinois-modified, so a one-sided approach cannot
     stall), all chairs' runs in one kernel call per round, every run stopped
     at the level.  When the bracket is narrower than ``tol`` the speed is
@@ -358,31 +404,54 @@ def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: 
     status = ["open"] * n
     kept = np.zeros(n, dtype=int)              # rounds the same end was kept (+: hi, -: lo), for Illinois
     rounds = 1 + max(0, int(math.ceil(math.log((hi0 - lo0) / tol) / math.log(candidates + 1))))
+
+    def launch(speeds: dict[int, list[float]], steps: dict[int, list[float]] | None = None) -> None:
+        """Run every job's ``speeds`` in one kernel call (each run stopped at the level) and keep their times.
+
+        ``steps``: each job's runs' steps, s, when known (:func:`stability.study.summaries.run_steps`).
+        """
+        owner = [i for i, sp in speeds.items() for _ in sp]
+        run_speeds = [x for sp in speeds.values() for x in sp]
+        if not run_speeds:
+            return
+        known = {} if steps is None else {"steps": [h for i in speeds for h in steps[i]]}
+        summ = summ_fn([chairs[i] for i in owner], run_speeds, force[owner], run, level=criterion.yaw_rate, **known)
+        for i, x, t in zip(owner, run_speeds, summ.t_level.tolist(), strict=True):
+            evals[i].append((x, t if t <= end[i] else math.inf))
+
     with ProgressBar(min(rounds, max_rounds), "equal-instability bisection", enabled=progress, unit="round") as bar:
         for rnd in range(max_rounds):
             active = [i for i in range(n) if status[i] == "open" and (rnd == 0 or hi[i] - lo[i] > tol)]
             if not active:
                 break
-            if rnd == 0:
-                run_chairs, run_speeds, owner = _round_runs(list(chairs), active, lo, hi, candidates, True)
-            else:
-                run_chairs, run_speeds, owner = [], [], []
+            if rnd == 0:                    # the grid, in launches that skip the points deciding nothing
+                grids = {i: np.linspace(lo[i], hi[i], candidates + 2) for i in active}
+                steps = _run_steps(chairs, grids, run) if summarise is None else None
+                scanned = 0                 # the slowest grid points run so far
+                for k, part in enumerate(_first_round(candidates)):
+                    todo = [i for i in active if k == 0 or not _decided(evals[i], float(target[i]), scanned, grids[i])]
+                    launch({i: [float(grids[i][j]) for j in part] for i in todo},
+                           None if steps is None else {i: [steps[i][j] for j in part] for i in todo})
+                    scanned = part[-1] + 1 if k and part else scanned
                 for i in active:
-                    for sp in _pair(evals[i], float(lo[i]), float(hi[i]), float(target[i]), tol, float(end[i]),
-                                    int(kept[i])):
-                        run_chairs.append(chairs[i])
-                        run_speeds.append(sp)
-                        owner.append(i)
+                    status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), True)
+                bar.update()
+                continue
             old_lo, old_hi = lo.copy(), hi.copy()
-            # every run stops when it reaches the level (its time is known then); one kernel call per round
-            summ = summ_fn(run_chairs, run_speeds, force[owner], run, level=criterion.yaw_rate)
-            for i, s, t in zip(owner, run_speeds, summ.t_level.tolist(), strict=True):
-                evals[i].append((s, t if t <= end[i] else math.inf))
+            # the pair's faster run only where the slower one is not as unstable: where it is, the new bracket ends
+            # there whatever the faster one does (the first point as unstable decides, _narrow)
+            pairs = {i: _pair(evals[i], float(lo[i]), float(hi[i]), float(target[i]), tol, float(end[i]),
+                              int(kept[i])) for i in active}
+            steps = _run_steps(chairs, pairs, run) if summarise is None else None
+            for k in (0, 1):
+                todo = [i for i in active if len(pairs[i]) > k and (k == 0 or dict(evals[i])[pairs[i][0]] > target[i])]
+                launch({i: pairs[i][k:k + 1] for i in todo}, None if steps is None else {i: steps[i][k:k + 1]
+                                                                                          for i in todo})
             for i in active:
-                status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), rnd == 0)
-                if rnd > 0 and hi[i] == old_hi[i]:
+                status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), False)
+                if hi[i] == old_hi[i]:
                     kept[i] = max(kept[i], 0) + 1
-                elif rnd > 0 and lo[i] == old_lo[i]:
+                elif lo[i] == old_lo[i]:
                     kept[i] = min(kept[i], 0) - 1
                 else:
                     kept[i] = 0
