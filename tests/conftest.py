@@ -72,6 +72,33 @@ def pytest_sessionstart(session):
             sys.stderr.write(f"kernel warm-up {group!r} failed (status {proc.returncode}): {tail[0]}\n")
 
 
+#: Test files whose every test is marked ``ui`` (each module's ``pytestmark``): the explorer's browser tests.
+#: Importing them imports panel, bokeh and playwright's API (about 1.5 s of CPU), in every process that collects
+#: them (each pytest-xdist worker collects every file), for tests a run that deselects ``ui`` never runs.
+UI_ONLY = ("ui", "benchmarks/test_bench_app_browser.py")
+
+
+def deselects_every(markexpr: str, mark: str) -> bool:
+    """True when ``-m markexpr`` deselects every test marked ``mark`` whatever its other marks: the expression is
+    a conjunction (``a and b and ...``, no ``or``, no parentheses) of which ``not mark`` is one term (the default
+    run's ``not slow and not docs and not ui and not scale``).  Any other expression is taken to select some."""
+    terms = markexpr.split(" and ")
+    if not markexpr.strip() or "(" in markexpr or any(" or " in f" {t} " for t in terms):
+        return False
+    return any(t.split() == ["not", mark] for t in terms)
+
+
+def pytest_ignore_collect(collection_path, config):
+    """The :data:`UI_ONLY` files are not collected (not imported) when the run's ``-m`` deselects every ``ui``
+    test; otherwise pytest decides (None)."""
+    here = Path(__file__).parent
+    if collection_path.is_relative_to(here) and \
+            collection_path.relative_to(here).as_posix() in UI_ONLY and \
+            deselects_every(config.getoption("markexpr") or "", "ui"):
+        return True
+    return None
+
+
 def pytest_collection_finish(session):
     """After collection: move every object alive now (the imported stack, the collected items) to the collector's
     permanent generation (:func:`gc.freeze`), so that the full collections the tests' allocations trigger, and

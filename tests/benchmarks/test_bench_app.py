@@ -27,8 +27,6 @@ import pytest
 
 import stability
 
-pytest.importorskip("panel")
-
 #: Largest update time in units of one bare ``stability.analyse`` (see the module docstring).
 RATIO = 0.45
 
@@ -42,6 +40,7 @@ def bench(request):
 
 
 def test_bench_linear_update(bench):
+    pytest.importorskip("panel")        # here, not at import: collecting this file (every run) needs no panel
     from stability.app.page import Explorer
 
     ex = Explorer(auto_nonlinear=False)
