@@ -10,7 +10,11 @@ from collections import OrderedDict
 from collections.abc import Callable
 
 import numpy as np
-from numpy.linalg import _umath_linalg
+
+try:                             # numpy's private gufunc module (numpy 1.8 to 2.4, the versions pyproject allows)
+    from numpy.linalg import _umath_linalg
+except ImportError:              # pragma: no cover - a numpy that moved it: the public wrapper, the same answers
+    _umath_linalg = None  # type: ignore[assignment]
 from scipy.optimize import minimize
 
 from stability.driver.delay import PADE_ORDER, pade
@@ -155,6 +159,8 @@ def _largest_real_part(m: np.ndarray) -> float:
     float
         1/s.
     """
+    if _umath_linalg is None:
+        return float(np.linalg.eigvals(m).real.max())
     if not np.isfinite(m).all():
         raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
     with np.errstate(invalid="ignore"):                  # a failed convergence: NaN, re-raised below
