@@ -245,6 +245,7 @@ MODULES = {
     "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py", "tests/test_assist_layout_options.py", "tests/test_api_hostile_modules.py"],
     "stability/assist/export_c.py": ["tests/test_assist_export.py", "tests/test_assist_layout_options.py"],
     "stability/models/full_width.py": ["tests/test_linear.py", "tests/test_simulate.py", "tests/test_derivations.py"],
+    "stability/study/equal_instability.py": ["tests/test_equal_instability_search.py", "tests/test_advisor_runs.py", "tests/test_study.py", "tests/test_equal_instability_signed.py", "tests/test_layout_equal_instability.py"],
 }
 
 
