@@ -496,6 +496,22 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'scheme, scope) for chair, vlist in zip(chairs, variants, strict=True)]',
      'scheme, scope) for chair, vlist in zip(chairs, variants, strict=False)]'):
         '`variants` is built with one list per chair (`[[None] * len(specs) for _ in chairs]`): always the same length',
+    ('stability/study/equal_instability.py',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s <= hi + 1e-12]',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s < hi + 1e-12]'):
+        "differs only for a speed exactly `1e-12` m/s above the bracket's high end: the bracket's ends are evaluated speeds themselves (stored exactly, so inside either way), and every other evaluated speed lies at least `0.05 tol` from an end (a pair stays that far inside its bracket and spans `0.9 tol`) or a first-round grid spacing, never `1e-12` m/s (`tol` would be below `2e-11` m/s, a speed step far below what the runs' 1 ms time step resolves)",
+    ('stability/study/equal_instability.py',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s <= hi + 1e-12]',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s <= hi + 2e-12]'):
+        "the allowance only admits speeds within `1e-12` (or `2e-12`) m/s outside the bracket: the bracket's ends are evaluated speeds themselves (stored exactly, so inside either way), and every other evaluated speed lies at least `0.05 tol` from an end (a pair stays that far inside its bracket and spans `0.9 tol`) or a first-round grid spacing, so none lies between `1e-12` and `2e-12` m/s outside unless `tol` is below `4e-11` m/s, a speed step far below what the runs' 1 ms time step resolves",
+    ('stability/study/equal_instability.py',
+     'for r in memoised("equal_instability", keys, batch)]',
+     'for r in memoised("XXequal_instabilityXX", keys, batch)]'):
+        "the kind only keeps this search's memo entries apart from another search's (`memoised` stores `(kind, key)`); the one other kind, `critical_impulse`, differs from either name, so the same jobs are found and reused",
+    ('stability/study/equal_instability.py',
+     'break',
+     'continue'):
+        "once no job is active none becomes active again (a job's status and bracket change only while it is active), so the remaining rounds find `active` empty and do nothing either way (the progress bar is updated only after a round that ran)",
 }
 
 
