@@ -14,6 +14,9 @@ from stability.study.summaries import Summaries
 
 GRID = np.linspace(0.2, 3.0, 9)      # the first round's grid: bracket (0.2, 3) m/s, 7 candidates inside
 TARGET = 3.2                         # the reference time, s
+# error model: a grid speed is linspace's, a few roundings of O(1) m/s values (1e-16 relative), and is compared with
+# the very same float when run; 1e-12 m/s is ~1e4 x that rounding yet ~1e9 x below the grid's spacing (0.35 m/s)
+ON_GRID = 1e-12
 
 
 class ClosedForm:
@@ -29,7 +32,7 @@ class ClosedForm:
 
     def first_round(self, chair):
         """The speeds of ``chair`` run in the first round (every run on the grid; later rounds' pairs are not)."""
-        return sorted(u for c, u in self.runs if c == chair and np.isclose(GRID, u, rtol=0, atol=1e-12).any())
+        return sorted(u for c, u in self.runs if c == chair and np.isclose(GRID, u, rtol=0, atol=ON_GRID).any())
 
 
 def monotone(u_star):
@@ -58,12 +61,12 @@ def test_first_round_runs_only_what_decides():
     assert [u for _, u in fake.runs if _ == "above"] == [3.0]
     assert res["above"].status == "above" and res["above"].describe() == "> 3 m/s"
     # below: the fastest and the slowest four (0.2 m/s is already as unstable)
-    assert fake.first_round("below") == pytest.approx(list(GRID[:4]) + [3.0], abs=1e-12)
+    assert fake.first_round("below") == pytest.approx(list(GRID[:4]) + [3.0], abs=ON_GRID)
     assert res["below"].status == "below" and res["below"].describe() == "< 0.2 m/s"
     # U* = 0.75: first point at least as unstable, 0.9 m/s, among the slowest four; 1.6-2.65 m/s not run
-    assert fake.first_round("slow") == pytest.approx(list(GRID[:4]) + [3.0], abs=1e-12)
+    assert fake.first_round("slow") == pytest.approx(list(GRID[:4]) + [3.0], abs=ON_GRID)
     # U* = 2.0: none of the slowest four; the rest of the grid then (the whole grid, 9 runs)
-    assert fake.first_round("fast") == pytest.approx(list(GRID), abs=1e-12)
+    assert fake.first_round("fast") == pytest.approx(list(GRID), abs=ON_GRID)
     # the final brackets hold U* and are at most tol wide (0.002 m/s); the interpolation in log time is exact for
     # this exponential (rounding only: 1e-12 m/s)
     for name, u_star in (("slow", 0.75), ("fast", 2.0)):
@@ -78,14 +81,14 @@ def test_first_round_keeps_the_whole_grids_decision():
         return 2.0 if 0.5 <= u <= 1.0 else 5.0
 
     def late(u):                                  # as unstable at 0.55 m/s only, and from 2.5 m/s on
-        return 2.0 if abs(u - GRID[1]) < 1e-9 or u >= 2.5 else 5.0
+        return 2.0 if abs(u - GRID[1]) < ON_GRID or u >= 2.5 else 5.0
 
     res, fake = search({"dip": dip, "late": late}, tol=0.5)
     # the whole grid: 3 m/s not as unstable -> "above", whatever 0.55-0.9 m/s do
     assert res["dip"].status == "above" and fake.first_round("dip") == [3.0]
     # the whole grid: the first point as unstable is 0.55 m/s -> bracket (0.2, 0.55); 0.35 m/s <= tol: no pairs
     assert (res["late"].status, res["late"].low, res["late"].high) == ("found", GRID[0], GRID[1])
-    assert fake.first_round("late") == pytest.approx(list(GRID[:4]) + [3.0], abs=1e-12)
+    assert fake.first_round("late") == pytest.approx(list(GRID[:4]) + [3.0], abs=ON_GRID)
 
 
 def test_front_caster_above_in_one_run():
@@ -102,7 +105,7 @@ def test_pair_runs_its_faster_point_only_when_needed():
         return TARGET * math.exp(-4.0 * (u - 0.75) * abs(u - 0.75))
 
     res, fake = search({"slow": monotone(0.75), "steep": steep}, tol=tol)
-    off = {name: sorted(u for c, u in fake.runs if c == name and not np.isclose(GRID, u, rtol=0, atol=1e-12).any())
+    off = {name: sorted(u for c, u in fake.runs if c == name and not np.isclose(GRID, u, rtol=0, atol=ON_GRID).any())
            for name in ("slow", "steep")}
     # steep: every later round's slower point is already as unstable (above 0.75 m/s): one run a round, 0.9 tol
     # faster never run; the bracket closes from above on its first point as unstable

@@ -203,6 +203,22 @@ reasons recorded above, so approximate: 49 in all; seed 50's exact: 25): words n
 printed too coarsely to tell its formula 2 / 2; a boundary no test sat on 14 / 3; a default or fallback no test
 omitted 6 / 2; a branch for an input no test gave 8 / 8; a behaviour tested only outside the module's gate files
 2 / 2; a constant below every tolerance or a branch only rounding reaches 1 / 2.
+
+Seed 34, equal_instability.py newly gated (``study/equal_instability.py`` joined MODULES with
+tests/test_equal_instability_search.py, test_advisor_runs.py, test_study.py, test_equal_instability_signed.py and
+test_layout_equal_instability.py; the gate's own draw, ``--sample 60 --seed 34 --budget 400``, eqi55 branch on main
+at 607e6a5): before -> after 41/56 (73 %) -> 56/56 (100 %) of the non-equivalent, 4 newly listed equivalent (the inside
+test's rounding allowance ``<=`` and ``1e-12`` -> ``2e-12``, the memo's kind, the last ``break``); on the shared
+machine (load 3-4) the 60 ran in 284 s before (40 of them within CI's 180 s) and in 149 s after (all 60: a
+mutant killed stops at its first failing test).  The 15 survivors by class: words 3 (the
+two refusals, the reference case's words); a default 1 (progress shown); a boundary 2 (a time exactly at the
+horizon plus one step, the floor of one candidate); a branch for an input no test gave 9 (the Illinois halving
+and its bookkeeping for the low end, the pair moved inside an end, the horizon's step for ``dt="auto"`` and the
+adaptive scheme, the result's immutability).  Six of them (the Illinois halving three times, its low-end
+bookkeeping, the pair moved inside an end twice) change only which speeds a later round runs, so the final bracket
+but never that it holds a crossing: killed by the pairs read against the documented rule (regula falsi in log
+time, Illinois, ``0.9 tol`` apart, ``0.05 tol`` inside an end) on closed-form laws.
+None was a bug in the module.
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
@@ -245,6 +261,7 @@ MODULES = {
     "stability/assist/schedule.py": ["tests/test_driver.py", "tests/test_assist.py", "tests/test_assist_layout_options.py", "tests/test_api_hostile_modules.py"],
     "stability/assist/export_c.py": ["tests/test_assist_export.py", "tests/test_assist_layout_options.py"],
     "stability/models/full_width.py": ["tests/test_linear.py", "tests/test_simulate.py", "tests/test_derivations.py"],
+    "stability/study/equal_instability.py": ["tests/test_equal_instability_search.py", "tests/test_advisor_runs.py", "tests/test_study.py", "tests/test_equal_instability_signed.py", "tests/test_layout_equal_instability.py"],
 }
 
 
@@ -495,6 +512,22 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'scheme, scope) for chair, vlist in zip(chairs, variants, strict=True)]',
      'scheme, scope) for chair, vlist in zip(chairs, variants, strict=False)]'):
         '`variants` is built with one list per chair (`[[None] * len(specs) for _ in chairs]`): always the same length',
+    ('stability/study/equal_instability.py',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s <= hi + 1e-12]',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s < hi + 1e-12]'):
+        "differs only for a speed exactly `1e-12` m/s above the bracket's high end: the bracket's ends are evaluated speeds themselves (stored exactly, so inside either way), and every other evaluated speed lies at least `0.05 tol` from an end (a pair stays that far inside its bracket and spans `0.9 tol`) or a first-round grid spacing, never `1e-12` m/s (`tol` would be below `2e-11` m/s, a speed step far below what the runs' 1 ms time step resolves)",
+    ('stability/study/equal_instability.py',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s <= hi + 1e-12]',
+     'inside = [(s, t) for s, t in sorted(pts) if lo - 1e-12 <= s <= hi + 2e-12]'):
+        "the allowance only admits speeds within `1e-12` (or `2e-12`) m/s outside the bracket: the bracket's ends are evaluated speeds themselves (stored exactly, so inside either way), and every other evaluated speed lies at least `0.05 tol` from an end (a pair stays that far inside its bracket and spans `0.9 tol`) or a first-round grid spacing, so none lies between `1e-12` and `2e-12` m/s outside unless `tol` is below `4e-11` m/s, a speed step far below what the runs' 1 ms time step resolves",
+    ('stability/study/equal_instability.py',
+     'for r in memoised("equal_instability", keys, batch)]',
+     'for r in memoised("XXequal_instabilityXX", keys, batch)]'):
+        "the kind only keeps this search's memo entries apart from another search's (`memoised` stores `(kind, key)`); the one other kind, `critical_impulse`, differs from either name, so the same jobs are found and reused",
+    ('stability/study/equal_instability.py',
+     'break',
+     'continue'):
+        "once no job is active none becomes active again (a job's status and bracket change only while it is active), so the remaining rounds find `active` empty and do nothing either way (the progress bar is updated only after a round that ran)",
 }
 
 
