@@ -172,19 +172,17 @@ def interp_speed(s0: float, t0: float, s1: float, t1: float, target: float) -> f
     return s0 + min(max(f, 0.0), 1.0) * (s1 - s0)
 
 
-#: Grid points of the first round run together after its fastest one (:func:`_first_round`): the slowest four
-#: (most chairs' and variants' first point at least as unstable as the reference is among them)
+#: The first round's slowest grid points run together after its fastest one (:func:`_first_round`)
 FIRST_SCAN = 4
 
 
 def _first_round(candidates: int) -> list[list[int]]:
     """The first round's grid indices, in the order of its launches (:func:`_bisect`).
 
-    The grid is ``numpy.linspace(lo, hi, candidates + 2)``.  Its decision (:func:`_narrow`) needs the fastest
-    point (not at least as unstable there: "above", nothing else needed) and then the points from the slowest up
-    to the first at least as unstable; the points above that one and below the fastest change nothing.  So the
-    fastest point runs alone, then the slowest :data:`FIRST_SCAN`, then the rest only when none of those was
-    at least as unstable: the same bracket and status as the whole grid run at once, from fewer runs.
+    The grid is ``numpy.linspace(lo, hi, candidates + 2)``.  Its decision (:func:`_narrow`) needs the fastest point
+    (not at least as unstable there: "above") and then the points from the slowest up to the first at least as
+    unstable.  So the fastest runs alone, then the slowest :data:`FIRST_SCAN` (most chairs' first point at least as
+    unstable is among them), then the rest only when none of those was: the whole grid's bracket and status.
 
     Parameters
     ----------
@@ -213,8 +211,8 @@ def _run_steps(chairs: Sequence[Chair | Layout], speeds: Mapping[int, Sequence[f
     """Each job's step at each of its ``speeds``, s, for :func:`stability.study.summaries.run_summaries` (None: not
     the fixed-step kernel, which picks no step).
 
-    One call for a round's runs, as when the round ran in one launch: a chair's linear model is built once for all
-    its speeds (not once per launch of :func:`_first_round` or of a pair), and every step is the one that launch gave.
+    One call for a round's runs: a chair's linear model is built once for all its speeds (not once per launch of
+    :func:`_first_round` or of a pair), and every step is the one a single launch of the round gave.
     """
     if run.scheme != "wchair":
         return None
@@ -236,7 +234,7 @@ def _pair(pts: list[tuple[float, float]], lo: float, hi: float, target: float, t
     between the bracket's ends (a time beyond the run's horizon counts as the
     horizon ``end``: the prediction then errs towards ``lo``, and the pair
     moves ``lo`` up to a finite time); when the same end has been kept for
-    ``kept >= 2`` rounds, the other end's log-time margin is halved for each
+    ``kept >= 2`` rounds, that kept end's log-time margin is halved for each
     further round (Illinois), so a one-sided approach cannot stall.  The two
     speeds ``0.9 tol`` apart close the bracket in that round when they straddle the root.
     """
@@ -406,10 +404,7 @@ def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: 
     rounds = 1 + max(0, int(math.ceil(math.log((hi0 - lo0) / tol) / math.log(candidates + 1))))
 
     def launch(speeds: dict[int, list[float]], steps: dict[int, list[float]] | None = None) -> None:
-        """Run every job's ``speeds`` in one kernel call (each run stopped at the level) and keep their times.
-
-        ``steps``: each job's runs' steps, s, when known (:func:`stability.study.summaries.run_steps`).
-        """
+        """Run every job's ``speeds`` in one kernel call (stopped at the level), with their ``steps`` (s) if known."""
         owner = [i for i, sp in speeds.items() for _ in sp]
         run_speeds = [x for sp in speeds.values() for x in sp]
         if not run_speeds:
@@ -445,8 +440,8 @@ def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: 
             steps = _run_steps(chairs, pairs, run) if summarise is None else None
             for k in (0, 1):
                 todo = [i for i in active if len(pairs[i]) > k and (k == 0 or dict(evals[i])[pairs[i][0]] > target[i])]
-                launch({i: pairs[i][k:k + 1] for i in todo}, None if steps is None else {i: steps[i][k:k + 1]
-                                                                                          for i in todo})
+                launch({i: pairs[i][k:k + 1] for i in todo},
+                       None if steps is None else {i: steps[i][k:k + 1] for i in todo})
             for i in active:
                 status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), False)
                 if hi[i] == old_hi[i]:
