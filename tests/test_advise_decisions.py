@@ -20,7 +20,10 @@ from __future__ import annotations
 
 import functools
 import itertools
+import json
 import math
+import re
+from pathlib import Path
 
 import pytest
 
@@ -34,6 +37,7 @@ from stability.shimmy.band import band_core, shimmy_band
 from stability.slope import drive_report, solve
 from stability.tipping import tip_angles
 
+ROOT = Path(__file__).resolve().parents[1]
 SPEEDS = (0.5, 0.75, 1.0)
 #: The decision cases: (chair changes, cross slope of the drive-difference limit in deg).  The first has no
 #: cross-slope limit, so that the tip limit alone blocks the best change; in the second the pin friction can be
@@ -276,9 +280,18 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
         for part in rec["built_from"]:
             single = singles[part["label"]]
             assert part["change"] == single.fields and part["robust_gain"] == single.gain, part["label"]
+            # and its predicted measures, the single change measured alone (json: NaN reads equal to itself)
+            assert json.dumps(part["predicted"]) == json.dumps(single.measures.to_mapping()), part["label"]
             merged.update(part["change"])
         if rec["built_from"]:
             assert merged == rec["change"], rec["label"]
+    # every key docs/advise.md lists for a recommendation is in each one (the JSON's words, read from the docs)
+    line = next(x for x in (ROOT / "docs" / "advise.md").read_text().split("\n- ")
+                if x.startswith("`recommendations`:"))
+    documented = re.findall(r"`(\w+)`", re.sub(r"\([^)]*\)", "", line.split(":", 1)[1].split(";")[0]))
+    assert {"rank", "predicted", "built_from", "notes"} <= set(documented)      # the premise: the list was read
+    for rec in d["recommendations"]:
+        assert set(documented) <= set(rec), set(documented) - set(rec)
 
 
 def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks():
