@@ -274,3 +274,17 @@ def test_a_parameter_without_spread_is_no_regressor():
     shares, r2 = _regression_shares(x, (2.0 * x["a"] + 1.0)[:, None])
     # error model: a least-squares fit of three exact points, rounding a few eps of values near 1
     assert float(shares["a"][0]) == 1.0 and float(shares["b"][0]) == 0.0 and float(r2[0]) == pytest.approx(1.0, abs=1e-12)
+
+
+def test_a_result_built_without_its_optional_fields_has_no_parameter_and_no_rejection():
+    """The result's optional fields, omitted: an empty dict of shares (the documented type, a dict), no dominant
+    parameter, and the dominant parameters are the shares ranked by their mean (the invariant ``propagate`` keeps,
+    here of the defaults), no rejected draw."""
+    from stability.uncertainty.propagation import PropagationResult
+
+    r = PropagationResult(samples=0, seed=0, level=0.95, low=0.0, high=0.0, median=0.0, mean=0.0, std=0.0,
+                          nominal=0.0, finite_fraction=1.0)
+    assert isinstance(r.shares, dict) and r.shares == {}
+    ranked = tuple(sorted(((n, float(np.mean(s))) for n, s in r.shares.items()), key=lambda kv: -kv[1]))
+    assert r.dominant_parameters == ranked == ()
+    assert r.rejected == 0

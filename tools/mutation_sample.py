@@ -495,6 +495,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'scheme, scope) for chair, vlist in zip(chairs, variants, strict=True)]',
      'scheme, scope) for chair, vlist in zip(chairs, variants, strict=False)]'):
         '`variants` is built with one list per chair (`[[None] * len(specs) for _ in chairs]`): always the same length',
+    ('stability/sweep/run.py',
+     'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)',
+     'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=2)'):
+        "the indentation of the chunk directory's `spec.json`, which `run_sweep` alone writes and compares, both with this line (the directory is removed when its run merges): the same spec reads back as the same JSON either way, and a directory is accepted or refused alike (only chunks left by a version with the other indentation would be refused, as another spec, which asks for them to be removed)",
 }
 
 
