@@ -499,6 +499,18 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)',
      'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=2)'):
         "the indentation of the chunk directory's `spec.json`, which `run_sweep` alone writes and compares, both with this line (the directory is removed when its run merges): the same spec reads back as the same JSON either way, and a directory is accepted or refused alike (only chunks left by a version with the other indentation would be refused, as another spec, which asks for them to be removed)",
+    ('stability/study/impulse.py',
+     'SCHEMES = ("wchair", "adaptive")',
+     'SCHEMES = ("XXwchairXX", "adaptive")'):
+        '`SCHEMES` of this module is read nowhere (not in its `__all__`; no module or test imports it from here: the schemes a run accepts are `stability.settings.run.SCHEMES`)',
+    ('stability/study/impulse.py',
+     'SCHEMES = ("wchair", "adaptive")',
+     'SCHEMES = ("wchair", "XXadaptiveXX")'):
+        '`SCHEMES` of this module is read nowhere (not in its `__all__`; no module or test imports it from here: the schemes a run accepts are `stability.settings.run.SCHEMES`)',
+    ('stability/study/impulse.py',
+     'SCHEMES = ("wchair", "adaptive")',
+     'SCHEMES = None'):
+        '`SCHEMES` of this module is read nowhere (not in its `__all__`; no module or test imports it from here: the schemes a run accepts are `stability.settings.run.SCHEMES`)',
 }
 
 
