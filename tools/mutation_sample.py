@@ -511,6 +511,14 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'SCHEMES = ("wchair", "adaptive")',
      'SCHEMES = None'):
         '`SCHEMES` of this module is read nowhere (not in its `__all__`; no module or test imports it from here: the schemes a run accepts are `stability.settings.run.SCHEMES`)',
+    ('stability/tipping/angles.py',
+     '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 1.0)}[key]',
+     '"lateral_left": (0.0, -2.0), "lateral_right": (0.0, 1.0)}[key]'):
+        '`support_fall_distance` divides the fall line by its length (`math.hypot(ex, ey)`) before using it: `(0, -2) / 2` is `(0, -1)` exactly, the same fall line',
+    ('stability/tipping/angles.py',
+     '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 1.0)}[key]',
+     '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 2.0)}[key]'):
+        '`support_fall_distance` divides the fall line by its length (`math.hypot(ex, ey)`) before using it: `(0, 2) / 2` is `(0, 1)` exactly, the same fall line',
 }
 
 
