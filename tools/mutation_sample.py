@@ -216,7 +216,7 @@ lines' length, newly listed equivalent); ``study/search.py`` 11/11 (3 listed equ
 fields; a result built without its optional fields); ``slope/equilibrium.py`` 14/17 -> 16/17 (mirror symmetry
 with unequal pin frictions; its records frozen; left: the residual's scale ``* 100`` -> ``/ 100``, which moves
 the acceptance of a root from ``1e-10`` to ``1e-6`` of the weight and differs only where the root finder stalls
-between the two: every preset at six cross slopes, three grades and three speeds gave one such start, at 9 deg
+between the two: every preset at six cross slopes, three grades and three speeds gave two such starts, at 9 deg (1 and 2 m/s)
 beyond the manual front-caster chair's limit, refused either way by its caster angle of ``9e8`` rad); ``measure/sheet.py`` 7/15 -> 11/15 (the readings of one instrument share its
 range: the four wheel scales' ten readings, the spring scale's two pulls; the example sheet without any one
 reading read or refused naming it; left: the caster assembly's 20 kg bound and the words of three optional
