@@ -401,16 +401,3 @@ def test_mirror_symmetry_with_unequal_pin_frictions():
     # error model: as test_mirror_symmetry (mirror images in exact arithmetic; the root's xtol 1e-13), x100
     np.testing.assert_allclose(a.friction_range, [-x for x in b.friction_range[::-1]], rtol=1e-11)
     assert a.holding_moment == pytest.approx(-b.holding_moment, rel=1e-11)
-
-
-def test_the_slope_records_are_frozen():
-    """A hand rim and an equilibrium are values (results compared and reused, a hand rim passed to every drive
-    report): assigning a field after they are made raises."""
-    import dataclasses
-
-    hr = eqm.HandRim()
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        hr.wheel_radius = 0.3                                      # type: ignore[misc]
-    e = eqm.solve(chair_mod.preset("ej-premier"), 0.0, 0.8, friction_range=False)
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        e.holding_moment = 0.0                                     # type: ignore[misc]
