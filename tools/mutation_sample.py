@@ -554,6 +554,14 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 1.0)}[key]',
      '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 2.0)}[key]'):
         '`support_fall_distance` divides the fall line by its length (`math.hypot(ex, ey)`) before using it: `(0, 2) / 2` is `(0, 1)` exactly, the same fall line',
+    ('stability/advise/advisor.py',
+     'own = m.shimmy_trail_m if m.shimmy_trail_m is not None or not isinstance(chair, Chair) else chair.trail',
+     'own = m.shimmy_trail_m if m.shimmy_trail_m is not None and not isinstance(chair, Chair) else chair.trail'):
+        "the two conditions pick the same branch wherever the line runs: a chair's measures carry no row trail (`shimmy_trail_m` None: the short form, `measures.py`), so both take `chair.trail`; a layout's carry its row's trail whenever the band straddles zero, the only case that reaches the line (a layout without caster rows has `shimmy_straddles` False), so both take `m.shimmy_trail_m`",
+    ('stability/advise/advisor.py',
+     'if isinstance(chair, Chair) and any(u < 0 for u in use):',
+     'if isinstance(chair, Chair) and any(u <= 0 for u in use):'):
+        '`use_speeds` has already refused every speed of size below `0.1` m/s (`ADVISE_SPEED`), so no use speed is `0`',
 }
 
 
