@@ -562,6 +562,22 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'if isinstance(chair, Chair) and any(u < 0 for u in use):',
      'if isinstance(chair, Chair) and any(u <= 0 for u in use):'):
         '`use_speeds` has already refused every speed of size below `0.1` m/s (`ADVISE_SPEED`), so no use speed is `0`',
+    ('stability/advise/limits.py',
+     'return Constraint("static_stability_deg", tip, min_tip, ">=", tip is not None and tip >= min_tip - 1e-9,',
+     'return Constraint("static_stability_deg", tip, min_tip, ">=", tip is not None and tip > min_tip - 1e-9,'):
+        "`tip >= min_tip - 1e-9` and `tip > min_tip - 1e-9` differ only for an angle exactly `1e-9` deg below the limit, the allowance's own float, which no computed angle lands on (the allowance only keeps an angle equal to the limit up to rounding on the allowed side)",
+    ('stability/advise/limits.py',
+     'return Constraint("turning_effort_N_m", effort, limit, "<=", effort <= limit + 1e-12,',
+     'return Constraint("turning_effort_N_m", effort, limit, "<=", effort < limit + 1e-12,'):
+        "`effort <= limit + 1e-12` and `effort < limit + 1e-12` differ only for an effort exactly `1e-12` N m above the limit, the allowance's own float, which no computed effort lands on (the allowance only keeps an effort equal to the limit up to rounding on the allowed side)",
+    ('stability/advise/limits.py',
+     'return Constraint(m.effort_key, None if v is None else abs(v), lim, "<=", v is not None and abs(v) <= lim + 1e-9,',
+     'return Constraint(m.effort_key, None if v is None else abs(v), lim, "<=", v is not None and abs(v) <= lim + 2e-09,'):
+        "`abs(v) <= lim + 1e-9` and `abs(v) < lim + 1e-9` differ only for a value exactly `1e-9` above the limit, the allowance's own float, which no computed value lands on (the allowance only keeps a value equal to the limit up to rounding on the allowed side)",
+    ('stability/advise/limits.py',
+     'return Constraint("human_limited_speed_m_s", u, intended, ">=", u is not None and u >= intended - 1e-9,',
+     'return Constraint("human_limited_speed_m_s", u, intended, ">=", u is not None and u > intended - 1e-9,'):
+        "`u >= intended - 1e-9` and `u > intended - 1e-9` differ only for a speed exactly `1e-9` m/s below the intended one, the allowance's own float, which no computed speed lands on (the allowance only keeps a speed equal to the intended one up to rounding on the allowed side)",
 }
 
 
