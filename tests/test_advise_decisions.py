@@ -370,11 +370,22 @@ def _peaked_at(base, sharpness: float = 1.0):
     return measures
 
 
-def test_a_chair_no_change_improves_is_kept_as_it_is():
+def test_a_chair_no_change_improves_is_kept_as_it_is(monkeypatch):
     """When every change loses on the measures (a stand-in peaked at the chair) and the chair breaks no limit, the
-    advice is 'no change': recommending the least bad change would make the chair worse on both low ends."""
+    advice is 'no change': recommending the least bad change would make the chair worse on both low ends.  Without
+    ``progress`` (its documented default: off) no bar is drawn, even on a terminal (a stderr that is a TTY)."""
+    import io
+
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    err = Terminal()
+    monkeypatch.setattr("sys.stderr", err)
     chair = chair_mod.preset("ej-premier").replace(trail=0.06)
     a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair), time_to_correct=False, cross_slope_deg=0.0)
+    monkeypatch.undo()
+    assert err.getvalue() == ""
     assert all(k.met for k in a.own_constraints)                 # the premise: nothing to fix
     assert a.candidates and all(c.gain < 0 for c in a.candidates + a.combinations), \
         [c.label for c in a.candidates if c.gain >= 0]
