@@ -394,3 +394,42 @@ def test_a_suggested_lower_tip_limit_allows_the_chair_as_printed(value):
         printed = float(re.search(r"(?:--min-tip-deg |limit \()(\d+\.\d) ?(?:deg)?", text).group(1))
         # error model: value * 10 rounded once before the floor (1 ulp): exact at these tenths
         assert printed <= value < printed + 0.1 + 1e-12, text
+
+
+def test_the_worse_rate_note_needs_a_change_that_gains():
+    """Class: a boundary no test sat on (seed 34: the note's ``gain > 0``).  The note says the push and speed
+    measures improve; a change whose robust gain is exactly 0 improves neither, so it gets no note however much
+    its linear rate rises, and one that gains does."""
+    ej = chair_mod.preset("ej-premier")
+    base = _measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1), rate=1.45)
+    m = _measures((4.0, 3.0, 5.0), (1.1, 0.9, 1.2), rate=1.6)
+
+    def noted(gain: float) -> bool:
+        return any("linear growth rate gets worse" in n for n in _notes(Candidate((), m, gain, {}, ()), base, ej))
+
+    assert noted(0.1) and not noted(0.0) and not noted(-0.1)
+
+
+@pytest.mark.parametrize("own", [0.05, math.inf, -math.inf])
+def test_the_shimmy_note_names_the_changed_trail_and_the_chairs_own_margin_in_words(own):
+    """Class: words and a fallback no test read (seed 34: a change to a trail of 0 read as missing, the words of an
+    unbounded margin as it is).  The note of a change whose margin straddles zero gives the shimmy sentence at the
+    changed chair's trail -- 0 m when the change sets the trail to 0 -- and ends with the chair's own margin: in
+    cm, or, unbounded, in :func:`stability.shimmy.band.margin_words`' words."""
+    import dataclasses
+
+    from stability.advise.levers import Change
+    from stability.advise.limits import shimmy_sentence
+    from stability.shimmy.band import margin_words
+
+    ej = chair_mod.preset("ej-premier")
+    base = _measures((3.0, 2.0, 4.0), (1.0, 0.8, 1.1))
+    base = dataclasses.replace(base, shimmy_margin_m=Interval(own, own, own))
+    m = _measures((4.0, 3.0, 5.0), (1.1, 0.9, 1.2))
+    assert m.shimmy_straddles                                     # the premise: the note is due
+    for trail, fields in ((0.0, (("trail", 0.0),)), (ej.trail, (("m_c", 1.0),))):
+        c = Candidate((Change("x", "x", fields),), m, 0.1, {}, ())
+        notes = [n for n in _notes(c, base, ej) if n.startswith("Shimmy")]
+        tail = f" As it is, the margin is {100 * own:+.2f} cm." if math.isfinite(own) else \
+            f" As it is: {margin_words(own)}."
+        assert notes == [f"Shimmy with the change: {shimmy_sentence(m, trail)}.{tail}"], notes

@@ -20,7 +20,10 @@ from __future__ import annotations
 
 import functools
 import itertools
+import json
 import math
+import re
+from pathlib import Path
 
 import pytest
 
@@ -34,6 +37,7 @@ from stability.shimmy.band import band_core, shimmy_band
 from stability.slope import drive_report, solve
 from stability.tipping import tip_angles
 
+ROOT = Path(__file__).resolve().parents[1]
 SPEEDS = (0.5, 0.75, 1.0)
 #: The decision cases: (chair changes, cross slope of the drive-difference limit in deg).  The first has no
 #: cross-slope limit, so that the tip limit alone blocks the best change; in the second the pin friction can be
@@ -276,9 +280,18 @@ def test_the_json_carries_the_decision_and_the_blocked_fixes(case):
         for part in rec["built_from"]:
             single = singles[part["label"]]
             assert part["change"] == single.fields and part["robust_gain"] == single.gain, part["label"]
+            # and its predicted measures, the single change measured alone (json: NaN reads equal to itself)
+            assert json.dumps(part["predicted"]) == json.dumps(single.measures.to_mapping()), part["label"]
             merged.update(part["change"])
         if rec["built_from"]:
             assert merged == rec["change"], rec["label"]
+    # every key docs/advise.md lists for a recommendation is in each one (the JSON's words, read from the docs)
+    line = next(x for x in (ROOT / "docs" / "advise.md").read_text().split("\n- ")
+                if x.startswith("`recommendations`:"))
+    documented = re.findall(r"`(\w+)`", re.sub(r"\([^)]*\)", "", line.split(":", 1)[1].split(";")[0]))
+    assert {"rank", "predicted", "built_from", "notes"} <= set(documented)      # the premise: the list was read
+    for rec in d["recommendations"]:
+        assert set(documented) <= set(rec), set(documented) - set(rec)
 
 
 def test_the_driver_limit_is_met_by_the_recommendation_and_names_what_it_blocks():
@@ -357,11 +370,22 @@ def _peaked_at(base, sharpness: float = 1.0):
     return measures
 
 
-def test_a_chair_no_change_improves_is_kept_as_it_is():
+def test_a_chair_no_change_improves_is_kept_as_it_is(monkeypatch):
     """When every change loses on the measures (a stand-in peaked at the chair) and the chair breaks no limit, the
-    advice is 'no change': recommending the least bad change would make the chair worse on both low ends."""
+    advice is 'no change': recommending the least bad change would make the chair worse on both low ends.  Without
+    ``progress`` (its documented default: off) no bar is drawn, even on a terminal (a stderr that is a TTY)."""
+    import io
+
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    err = Terminal()
+    monkeypatch.setattr("sys.stderr", err)
     chair = chair_mod.preset("ej-premier").replace(trail=0.06)
     a = advise(chair, speeds=SPEEDS, nonlinear=_peaked_at(chair), time_to_correct=False, cross_slope_deg=0.0)
+    monkeypatch.undo()
+    assert err.getvalue() == ""
     assert all(k.met for k in a.own_constraints)                 # the premise: nothing to fix
     assert a.candidates and all(c.gain < 0 for c in a.candidates + a.combinations), \
         [c.label for c in a.candidates if c.gain >= 0]

@@ -36,14 +36,19 @@ NOT_AN_OBJECT = {
 FIRST = ("chair", "chairs", "layout")
 
 
-def _public_functions():
-    seen = {}
+def _exported():
+    """Every object a scanned subpackage lists in its ``__all__``."""
     for info in pkgutil.walk_packages(stability.__path__, "stability."):
         if not info.ispkg or info.name.startswith(SKIP_PACKAGES):
             continue
         module = importlib.import_module(info.name)
         for attr in getattr(module, "__all__", ()):
-            f = getattr(module, attr, None)
+            yield getattr(module, attr, None)
+
+
+def _public_functions():
+    seen = {}
+    for f in _exported():
             if not inspect.isfunction(f):
                 continue
             key = f"{f.__module__}.{f.__qualname__}"
@@ -99,3 +104,22 @@ def test_speed_arguments_of_the_linear_helpers_are_checked(bad):
                  lambda: linear.massless_caster_rate(c, np.array([0.5, bad], dtype=object))):
         with pytest.raises(ValueError, match=r"^speed=.* is invalid; valid range: (every speed a number, )?0.01 <= speed"):
             call()
+
+
+#: Exported dataclasses that are not values, with the reason.
+MUTABLE = {"stability.study.search.Problem": "a search's state, filled point by point as the runs come back"}
+
+
+def test_the_exported_records_are_frozen():
+    """A result or an input record that a subpackage exports is a value: it is compared, cached and shared between
+    callers (a preset's derived tables, memoised measures), so assigning a field after it is made must raise
+    (``frozen=True``).  The scan guards itself: the records of the families the tests name are in it."""
+    import dataclasses
+
+    records = {f"{c.__module__}.{c.__qualname__}": c for c in _exported()
+               if isinstance(c, type) and dataclasses.is_dataclass(c)}
+    assert {"stability.slope.equilibrium.HandRim", "stability.study.impulse_intervals.CriticalImpulseInterval",
+            "stability.tipping.angles.TipAngles"} <= set(records)
+    mutable = sorted(k for k, c in records.items() if not c.__dataclass_params__.frozen)
+    assert mutable == sorted(k for k in MUTABLE if k in records), mutable
+

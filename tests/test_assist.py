@@ -986,3 +986,16 @@ def test_a_schedule_refuses_a_bad_speed_in_one_line_naming_it(schedules, bad):
             method(bad)
         msg = str(err.value)
         assert "\n" not in msg and msg.startswith("speed=") and "valid range: >= 0 (finite)" in msg, msg
+
+
+def test_a_schedule_and_its_designs_compare_by_identity(schedules):
+    """Class: a flag no test read (seed 34: the schedule's ``eq=False``).  A schedule, its designs and their plants
+    hold arrays (speeds, gains, state matrices), which a field-by-field ``==`` cannot compare (an array's truth
+    value is ambiguous), so they compare by identity and hash by identity: each can key a dict, and a shallow copy,
+    field for field the same objects, is another record."""
+    import copy
+
+    for sched in schedules.values():
+        for record in (sched, sched.designs[0], sched.designs[0].plant):
+            assert {record: 1}[record] == 1 and record == record
+            assert copy.copy(record) != record, type(record).__name__

@@ -608,3 +608,25 @@ def test_eigenvalue_slope_is_the_analytic_derivative_at_the_top_speed():
     # error model: cond(T) eps max|A| / h, the rounding of A's entries over the difference step (docstring); 100x
     tol = 100 * cond * EPS * 3.0 / (1e-6 * np.maximum(1.0, U))
     assert np.all(np.abs(slopes - 0.02) <= tol), (slopes - 0.02, tol)
+
+
+def test_a_hidden_crossing_pair_beside_a_defective_eigenvalue_is_found():
+    """The guard's slope at a grid point where the leading eigenvalue is defective (a Jordan block: no left-right
+    eigenvector product, so perturbation theory gives no slope) counts as unknown, and an interval whose other
+    slope rises is still searched.  ``A(U) = [[a, 1], [U - 2, a]]``, ``a = -0.01 + 0.05 sin(pi (U - 1))``: on
+    ``[1, 2]`` the pair ``a +- i sqrt(2 - U)`` has real part ``a``, which crosses zero twice between the grid
+    points 1 and 2, at ``1 + asin(0.2) / pi`` and ``2 - asin(0.2) / pi`` (closed form); at U = 2 the block is
+    defective."""
+    def A(U):
+        U = np.asarray(U, dtype=float)
+        a = -0.01 + 0.05 * np.sin(np.pi * (U - 1))
+        out = np.zeros((len(U), 2, 2))
+        out[:, 0, 0] = out[:, 1, 1] = a
+        out[:, 0, 1], out[:, 1, 0] = 1.0, U - 2.0
+        return out
+
+    found = [(c.speed, c.direction) for c in linear.critical_speeds(A, np.array([1.0, 2.0, 3.0])) if c.speed < 2]
+    d = math.asin(0.2) / math.pi
+    # error model: Brent's refinement to xtol = 1e-10 m/s (the default); 1e-8 leaves a margin of 100
+    assert [s for s, _ in found] == pytest.approx([1 + d, 2 - d], abs=1e-8)
+    assert [w for _, w in found] == ["destabilising", "stabilising"]

@@ -590,3 +590,49 @@ def test_every_reading_s_refusals_name_the_reading_its_value_and_what_is_valid()
             with pytest.raises(ValueError, match="^" + re.escape(f"{head}{shown} is invalid; valid range: {valid}")
                                + "$"):
                 sheet._parse_reading(key, raw)
+
+
+def test_readings_of_one_instrument_share_its_range():
+    """Class: a boundary no test sat on, in one reading of several (seed 34: the raised end's upper bound, the
+    empty chair's lower bound, one spring-scale pull's zero allowance).  The eight wheel-scale readings and the two
+    raised-end readings are the same four wheel scales (docs/measure.md: "the same scales"), and the two pin
+    pulls the same spring scale: each group has one dimension and one range."""
+    scales = [k for k in sheet.READINGS if k.startswith(("scales.loaded.", "scales.empty.", "tilt.raised_"))
+              and k != "scales.loaded.weight"]
+    pulls = [k for k in sheet.READINGS if k.startswith("pin_friction.") and k.endswith("_force")]
+    assert len(scales) == 10 and len(pulls) == 2                 # the premise: the groups were found
+    for group in (scales, pulls):
+        assert len({sheet.READINGS[k][:3] for k in group}) == 1, {k: sheet.READINGS[k][:3] for k in group}
+
+
+def test_a_sheet_without_a_reading_is_read_or_refused_naming_it():
+    """Class: a flag no test read (seed 34: ``caster.l1`` required).  The example sheet with any one reading
+    removed is either read (the reading is optional) or refused in one line naming that reading as missing
+    (docs/measure.md: every refusal names the reading) -- never a KeyError from deep in the derivation.  The
+    readings the derivation cannot do without (the caster's c.g. distance and period, the lever arm, the chair's
+    period) are among the refused."""
+    import copy
+
+    import tomllib
+
+    full = tomllib.loads(_sheet_text())
+    refused = set()
+    for key in sheet.READINGS:
+        *path, leaf = key.split(".")
+        data = copy.deepcopy(full)
+        table = data
+        for part in path:
+            table = table.get(part, {})
+        if leaf not in table:
+            continue
+        del table[leaf]
+        try:
+            sheet.read_sheet(data)
+        except ValueError as exc:
+            msg = str(exc)
+            # one line "sheet reading ... is missing" naming the reading: whole, by its leaf, or as the
+            # suffix of a group named with it ("inertia.calibration_mass, _radius and _period")
+            assert msg.startswith("sheet reading ") and " is missing" in msg and "\n" not in msg, (key, msg)
+            assert leaf in msg or "_" + leaf.split("_")[-1] in msg, (key, msg)
+            refused.add(key)
+    assert {"caster.l1", "caster.period", "pin_friction.lever_arm", "inertia.chair_period"} <= refused

@@ -388,3 +388,16 @@ def test_the_linearisation_s_operating_point_is_mirror_symmetric():
     assert (psi, eta, beta) == pytest.approx((-psi_m, -beta_m, -eta_m), rel=1e-11)
     assert drive == pytest.approx(drive_m[::-1], rel=1e-11)
     assert abs(eta - beta) > 1e-6         # the swap is seen: the two casters do differ
+
+
+def test_mirror_symmetry_with_unequal_pin_frictions():
+    """The pin friction's holding range on a mirror-symmetric chair with unequal pins: on the mirror-image slope,
+    with the pin frictions swapped left for right, the chair is the mirror image, so the range's ends change sign
+    and order.  Each pin's own friction must act at its own caster for this to hold (the same friction at both
+    breaks it: the ranges of 0.3 and 0.1 N m pins differ)."""
+    c = chair_mod.preset("ej-premier")
+    a = eqm.solve(c.replace(pin_friction_left=0.1, pin_friction_right=0.3), 3.0, 0.8)
+    b = eqm.solve(c.replace(pin_friction_left=0.3, pin_friction_right=0.1), -3.0, 0.8)
+    # error model: as test_mirror_symmetry (mirror images in exact arithmetic; the root's xtol 1e-13), x100
+    np.testing.assert_allclose(a.friction_range, [-x for x in b.friction_range[::-1]], rtol=1e-11)
+    assert a.holding_moment == pytest.approx(-b.holding_moment, rel=1e-11)

@@ -430,6 +430,9 @@ def test_censored_sides_are_every_side_a_status_can_have():
     from stability.study.censored import SIDES, describe, side_of, sort_key
 
     assert set(SIDES) == {side_of(s) for s in ("found", "above", "never", "below")} and len(SIDES) == 3
+    # class: an input no test gave (seed 34): an empty status cell, as a CSV writes it or as a CSV reader fills it
+    # (NaN), claims no bound: the value is taken as it is (and a NaN value then "has no value", below)
+    assert side_of("") == side_of(math.nan) == side_of(float("nan")) == "="
     assert [describe(3.0, s, "m/s") for s in SIDES] == ["3 m/s", "> 3 m/s", "< 3 m/s"]
     # class: words no test read (seed 50): a value that does not exist (NaN, or an infinite one) "has no value"
     # (docs/studies.md), whatever its side and unit

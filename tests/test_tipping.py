@@ -360,3 +360,33 @@ def test_a_tipping_line_through_a_wheel_tangent_to_a_caster_offset_by_its_trail(
     assert got.distance_m == pytest.approx(1.0375, abs=1e-12)
     assert got.normal == pytest.approx((8 / 17, 15 / 17), abs=1e-12)
     assert got.caster_angles_deg[0] == pytest.approx(math.degrees(math.atan2(15.0, 8.0)), abs=1e-9)  # error model: the normal's rounding, 1e-12 rad, in degrees x57: 6e-11
+
+
+def test_the_rear_stability_reference_is_the_mean_docs_cite_from_loane_and_kirby():
+    """Class: a cited constant no test read (seed 34).  The reference printed beside the angles is Loane & Kirby's
+    (1985) mean rear stability, as docs/tipping.md quotes the paper: "mean rear stability 28.6 (SD 2.7) deg"."""
+    import re
+    from pathlib import Path
+
+    from stability.tipping import LOANE_KIRBY_REAR_DEG
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "tipping.md").read_text(encoding="utf-8")
+    quoted = re.search(r"mean rear stability (\d+\.\d) \(SD", " ".join(page.split()))
+    assert quoted and LOANE_KIRBY_REAR_DEG == float(quoted.group(1))
+
+
+@pytest.mark.parametrize("name", ["ej-premier", "revised"])
+def test_the_json_tipping_lines_give_each_angle_by_the_tilt_closed_form(name):
+    """Class: JSON keys no test read (seed 34: a line's distance and normal, the least stable direction).  A rigid
+    chair tilted about a tipping line tips when its c.g. passes over the line: ``tan(angle) = distance / h``, with
+    ``distance`` the c.g.'s horizontal distance to the line; each line's normal is a unit vector in the ground
+    plane; and the least stable direction is the one with the smallest of the four angles, read from the JSON."""
+    c = chair_mod.preset(name)
+    m = json.loads(json.dumps(tip_angles(c).to_mapping()))
+    assert set(m["tipping_lines"]) == set(DIRECTIONS)
+    for k, line in m["tipping_lines"].items():
+        # error model: atan of a ratio of two stored lengths, rounding ~1e-16 relative; 1e-12 leaves a margin of 1e4
+        assert m[k + "_deg"] == pytest.approx(math.degrees(math.atan(line["distance_m"] / c.h)), rel=1e-12), k
+        assert math.hypot(*line["normal"]) == pytest.approx(1.0, abs=1e-12), k     # error model: as above
+    assert m["least_stable_direction"] == min(DIRECTIONS, key=lambda k: m[k + "_deg"])
+    assert m["static_stability_deg"] == m[m["least_stable_direction"] + "_deg"]

@@ -195,11 +195,20 @@ def test_shares_of_an_output_that_jumps_by_one_and_of_a_constant_output():
     their sample correlation gives: SRC^2 of a sampling noise ~1/n each); a constant output has no variance to share
     (every share 0, R^2 undefined)."""
     u = loads_uncertainty(LINEAR_U)
+    drawn: list = []
 
     def fn(chairs):
+        drawn[:] = [[getattr(c, n) for n in COEF] for c in chairs]      # the last call: the draws
         return np.array([[1.0 if c.pin_friction_left > 0.1 else 0.0, 7.0] for c in chairs])
 
     r = propagate(C, u, fn, samples=400, seed=3)
+    # R^2 by another route: the squared correlation of the output with its least-squares fit on the raw (not
+    # standardised) fields, an affine change of the regressors that leaves the fit's R^2 unchanged.  Error model:
+    # two least-squares solutions of a well-conditioned 400 x 4 system, ~1e-13 relative; asserted to 1e-9
+    x = np.column_stack([np.asarray(drawn), np.ones(len(drawn))])
+    y = np.array([1.0 if row[2] > 0.1 else 0.0 for row in drawn])
+    fit = x @ np.linalg.lstsq(x, y, rcond=None)[0]
+    assert float(np.asarray(r.r_squared)[0]) == pytest.approx(np.corrcoef(y, fit)[0, 1] ** 2, rel=1e-9)
     jump = {n: float(s[0]) for n, s in r.shares.items()}
     # the other parameters' SRC^2 is a squared sample correlation, ~1/400 each (observed 0.0019 together): 0.9
     # leaves a margin of ~50
@@ -274,3 +283,17 @@ def test_a_parameter_without_spread_is_no_regressor():
     shares, r2 = _regression_shares(x, (2.0 * x["a"] + 1.0)[:, None])
     # error model: a least-squares fit of three exact points, rounding a few eps of values near 1
     assert float(shares["a"][0]) == 1.0 and float(shares["b"][0]) == 0.0 and float(r2[0]) == pytest.approx(1.0, abs=1e-12)
+
+
+def test_a_result_built_without_its_optional_fields_has_no_parameter_and_no_rejection():
+    """The result's optional fields, omitted: an empty dict of shares (the documented type, a dict), no dominant
+    parameter, and the dominant parameters are the shares ranked by their mean (the invariant ``propagate`` keeps,
+    here of the defaults), no rejected draw."""
+    from stability.uncertainty.propagation import PropagationResult
+
+    r = PropagationResult(samples=0, seed=0, level=0.95, low=0.0, high=0.0, median=0.0, mean=0.0, std=0.0,
+                          nominal=0.0, finite_fraction=1.0)
+    assert isinstance(r.shares, dict) and r.shares == {}
+    ranked = tuple(sorted(((n, float(np.mean(s))) for n, s in r.shares.items()), key=lambda kv: -kv[1]))
+    assert r.dominant_parameters == ranked == ()
+    assert r.rejected == 0

@@ -198,6 +198,44 @@ two words, the refusal of a caster with no inertia about its own c.g. (the bound
 ending one float below the search end without ``+``.  Newly listed equivalent: the placeholders ``k`` (rigid
 pivot, twice) and ``C`` (unloaded trail), the oscillation threshold's scale, a ``zip`` over lists built together.
 
+Seed 34, the gate's own sample (60, budget 150 s): each module of MODULES but ``shimmy/band.py`` (above), drawn as
+CI draws it (``--sample 60 --seed 34``, the mutants in sorted order until the budget, so the prefix CI sees; mut55
+branch, the shared machine at load 4-6; "before" = the tests at the branch point 7636a6a (``--tests-from``); "after"
+= ``--only-survivors``; killed / non-equivalent): ``advise/advisor.py`` 4/5 -> 5/5 (a built-from part's
+``predicted``, read against the single change measured alone, and every recommendation key docs/advise.md lists);
+``advise/limits.py`` 5/5; ``advise/levers.py`` 4/4 (1 listed equivalent); ``linear/critical.py`` 17/18 -> 18/18
+(the guard's slope where the leading eigenvalue is defective: a hidden crossing pair beside a Jordan block, at
+``1 +- asin(0.2) / pi``); ``linear/model.py`` 23/23; ``study/impulse.py`` 6/7 -> 6/6 (the module's unused
+``SCHEMES``, newly listed equivalent); ``study/impulse_intervals.py`` 6/7 -> 7/7 (its record frozen: every record
+a subpackage exports, one scan); ``study/censored.py`` 5/6 -> 6/6 (an empty or NaN status claims no bound);
+``tipping/angles.py`` 13/18 -> 17/17 (Loane & Kirby's mean against docs/tipping.md's quotation; the JSON's tipping
+lines against ``tan(angle) = distance / h``, its least stable direction read from its own angles; the lateral fall
+lines' length, newly listed equivalent); ``study/search.py`` 11/11 (3 listed equivalent); ``study/intervals.py``
+11/11; ``sweep/run.py`` 10/11 -> 10/10 (the manifest's JSON indentation, newly listed equivalent);
+``uncertainty/propagation.py`` 17/21 -> 21/21 (R^2 recomputed as the squared correlation with a fit on the raw
+fields; a result built without its optional fields); ``slope/equilibrium.py`` 14/17 -> 16/17 (mirror symmetry
+with unequal pin frictions; its records frozen; left: the residual's scale ``* 100`` -> ``/ 100``, which moves
+the acceptance of a root from ``1e-10`` to ``1e-6`` of the weight and differs only where the root finder stalls
+between the two: every preset at six cross slopes, three grades and three speeds gave two such starts, at 9 deg (1 and 2 m/s)
+beyond the manual front-caster chair's limit, refused either way by its caster angle of ``9e8`` rad); ``measure/sheet.py`` 7/15 -> 11/15 (the readings of one instrument share its
+range: the four wheel scales' ten readings, the spring scale's two pulls; the example sheet without any one
+reading read or refused naming it; left: the caster assembly's 20 kg bound and the words of three optional
+readings, ``inertia.rigidity``, ``inertia.fixture_period``, ``user.stature``, which only the docs' generated
+table shows: a statement of them could only copy the table); ``assist/schedule.py`` 3/4 (1 listed equivalent)
+-> 4/4 (a schedule, its designs and their plants compare and hash by identity); ``assist/export_c.py`` 6/6 (2
+listed equivalent); ``models/full_width.py`` 15/15.  Of 214 mutants run, 177 killed before; 10 survivors listed
+equivalent before and 3 newly listed: 177/204 (87 %) of the non-equivalent before, 196/201 (98 %) after; every
+module at or above the 90 % target but ``measure/sheet.py``.  None was a bug in its module: words and keys, a
+cited constant, declarations (``frozen``, ``eq``, ``required``), one instrument's ranges, and two inputs no test
+gave (unequal pins, a defective eigenvalue).  A less loaded machine runs a longer prefix in the same budget, so
+the three advise modules (the most often changed) were run further (budget 300 s, on this branch's tests):
+``advise/advisor.py`` 26/32 -> 30/30 (the worse-rate note needs a change that gains, the shimmy note at a trail
+changed to 0 and with the chair's unbounded margin in words, no bar by default on a stderr that is a terminal;
+newly listed equivalent: the own-trail condition, a use speed of 0 already refused; the re-run of the survivors
+confirmed all 4 killed);
+``advise/limits.py`` 17/17 (the four limits' rounding allowances, ``>= x - 1e-9`` against ``>``, newly listed
+equivalent: they differ only at the allowance's own float, which seed 52 had left); ``advise/levers.py`` 21/23 -> 21/21 (the axle labels' ``d < 0`` against ``<=``, newly listed equivalent: the steps are literals, never 0).
+
 The classes of docs/testing.md, "Classes of survivors", counted (non-equivalent survivors; seeds 48-49's from the
 reasons recorded above, so approximate: 49 in all; seed 50's exact: 25): words no test read 16 / 6; a number
 printed too coarsely to tell its formula 2 / 2; a boundary no test sat on 14 / 3; a default or fallback no test
@@ -219,6 +257,12 @@ bookkeeping, the pair moved inside an end twice) change only which speeds a late
 but never that it holds a crossing: killed by the pairs read against the documented rule (regula falsi in log
 time, Illinois, ``0.9 tol`` apart, ``0.05 tol`` inside an end) on closed-form laws.
 None was a bug in the module.
+
+Seed 34's gate sample on the other gated modules, the classes (24 non-equivalent survivors): words or JSON keys no test read 7; a boundary no test sat on 4; a declaration no test
+read (``frozen`` twice, ``eq``, ``required``) 4, a class of its own since; a branch for an input no test gave 3;
+a default no test omitted 2; a value only bounded, never recomputed (``R^2``) 2; a cited constant 1; a root's
+acceptance threshold only a stall reaches 1.  ``study/impulse.py``'s unused ``SCHEMES`` constant, whose three
+mutants were listed equivalent, was then deleted instead (the run's schemes are ``stability.settings.run.SCHEMES``).
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
@@ -528,6 +572,50 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'break',
      'continue'):
         "once no job is active none becomes active again (a job's status and bracket change only while it is active), so the remaining rounds find `active` empty and do nothing either way (the progress bar is updated only after a round that ran)",
+    ('stability/sweep/run.py',
+     'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)',
+     'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=2)'):
+        "the indentation of the chunk directory's `spec.json`, which `run_sweep` alone writes and compares, both with this line (the directory is removed when its run merges): the same spec reads back as the same JSON either way, and a directory is accepted or refused alike (only chunks left by a version with the other indentation would be refused, as another spec, which asks for them to be removed)",
+    ('stability/tipping/angles.py',
+     '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 1.0)}[key]',
+     '"lateral_left": (0.0, -2.0), "lateral_right": (0.0, 1.0)}[key]'):
+        '`support_fall_distance` divides the fall line by its length (`math.hypot(ex, ey)`) before using it: `(0, -2) / 2` is `(0, -1)` exactly, the same fall line',
+    ('stability/tipping/angles.py',
+     '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 1.0)}[key]',
+     '"lateral_left": (0.0, -1.0), "lateral_right": (0.0, 2.0)}[key]'):
+        '`support_fall_distance` divides the fall line by its length (`math.hypot(ex, ey)`) before using it: `(0, 2) / 2` is `(0, 1)` exactly, the same fall line',
+    ('stability/advise/advisor.py',
+     'own = m.shimmy_trail_m if m.shimmy_trail_m is not None or not isinstance(chair, Chair) else chair.trail',
+     'own = m.shimmy_trail_m if m.shimmy_trail_m is not None and not isinstance(chair, Chair) else chair.trail'):
+        "the two conditions pick the same branch wherever the line runs: a chair's measures carry no row trail (`shimmy_trail_m` None: the short form, `measures.py`), so both take `chair.trail`; a layout's carry its row's trail whenever the band straddles zero, the only case that reaches the line (a layout without caster rows has `shimmy_straddles` False), so both take `m.shimmy_trail_m`",
+    ('stability/advise/advisor.py',
+     'if isinstance(chair, Chair) and any(u < 0 for u in use):',
+     'if isinstance(chair, Chair) and any(u <= 0 for u in use):'):
+        '`use_speeds` has already refused every speed of size below `0.1` m/s (`ADVISE_SPEED`), so no use speed is `0`',
+    ('stability/advise/limits.py',
+     'return Constraint("static_stability_deg", tip, min_tip, ">=", tip is not None and tip >= min_tip - 1e-9,',
+     'return Constraint("static_stability_deg", tip, min_tip, ">=", tip is not None and tip > min_tip - 1e-9,'):
+        "`tip >= min_tip - 1e-9` and `tip > min_tip - 1e-9` differ only for an angle exactly `1e-9` deg below the limit, the allowance's own float, which no computed angle lands on (the allowance only keeps an angle equal to the limit up to rounding on the allowed side)",
+    ('stability/advise/limits.py',
+     'return Constraint("turning_effort_N_m", effort, limit, "<=", effort <= limit + 1e-12,',
+     'return Constraint("turning_effort_N_m", effort, limit, "<=", effort < limit + 1e-12,'):
+        "`effort <= limit + 1e-12` and `effort < limit + 1e-12` differ only for an effort exactly `1e-12` N m above the limit, the allowance's own float, which no computed effort lands on (the allowance only keeps an effort equal to the limit up to rounding on the allowed side)",
+    ('stability/advise/limits.py',
+     'return Constraint(m.effort_key, None if v is None else abs(v), lim, "<=", v is not None and abs(v) <= lim + 1e-9,',
+     'return Constraint(m.effort_key, None if v is None else abs(v), lim, "<=", v is not None and abs(v) <= lim + 2e-09,'):
+        "`abs(v) <= lim + 1e-9` and `abs(v) <= lim + 2e-9` differ only for a value between `1e-9` and `2e-9` above the limit, a band below the rounding of any computed effort's inputs, which no computed value lands in (the allowance only keeps a value equal to the limit up to rounding on the allowed side)",
+    ('stability/advise/limits.py',
+     'return Constraint("human_limited_speed_m_s", u, intended, ">=", u is not None and u >= intended - 1e-9,',
+     'return Constraint("human_limited_speed_m_s", u, intended, ">=", u is not None and u > intended - 1e-9,'):
+        "`u >= intended - 1e-9` and `u > intended - 1e-9` differ only for a speed exactly `1e-9` m/s below the intended one, the allowance's own float, which no computed speed lands on (the allowance only keeps a speed equal to the intended one up to rounding on the allowed side)",
+    ('stability/advise/levers.py',
+     'return [Change("s1_fixed_wheelbase", f"axle {abs(d) * 100:g} cm {\'toward\' if d < 0 else \'away from\'} the c.g. "',
+     'return [Change("s1_fixed_wheelbase", f"axle {abs(d) * 100:g} cm {\'toward\' if d <= 0 else \'away from\'} the c.g. "'):
+        'the axle steps `d` are the literals `(-0.10, -0.05, 0.05)` m on the same line: never `0`, so `d < 0` and `d <= 0` name the same direction',
+    ('stability/advise/levers.py',
+     'return [Change("s1_fixed_s2", f"axle {abs(d) * 100:g} cm {\'toward\' if d < 0 else \'away from\'} the c.g. at fixed s2 "',
+     'return [Change("s1_fixed_s2", f"axle {abs(d) * 100:g} cm {\'toward\' if d <= 0 else \'away from\'} the c.g. at fixed s2 "'):
+        'the axle steps `d` are the literals `(-0.05, 0.05)` m on the same line: never `0`, so `d < 0` and `d <= 0` name the same direction',
 }
 
 

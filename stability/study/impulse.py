@@ -30,8 +30,6 @@ __all__ = ["runs_per_speed", "check_study_work", "STEP_SECONDS", "WORK_BUDGET_S"
            "CriticalImpulseCurve", "critical_impulses", "critical_impulse",
            "critical_impulse_curve", "linear_critical_impulse", "push_impulse"]
 
-SCHEMES = ("wchair", "adaptive")
-
 
 def push_impulse(force: float, duration: float, scheme: str = "wchair", dt: float = 0.001) -> float:
     """Impulse a push delivers in the simulator, N s.
