@@ -285,3 +285,53 @@ def test_a_critical_impulse_curve_is_a_frozen_sequence_of_points_in_speed_order(
     assert [p["speed_m_s"] for p in curve.to_dict()["points"]] == [0.75, 1.5]
     with pytest.raises(dataclasses.FrozenInstanceError):
         curve.points = ()  # type: ignore[misc]
+
+
+def test_a_push_by_default_is_the_1987_programs_steps():
+    """``push_impulse``'s default scheme is WCHAIR's: the force acts while ``t <= duration``, ``floor(duration/dt)
+    + 1`` steps of 1 ms, so 100 N for 0.1 s delivers 101 steps x 1 ms x 100 N = 10.1 N s (the adaptive scheme:
+    exactly 10 N s)."""
+    from stability.study.impulse import push_impulse
+
+    # error model: a sum of 101 products of exact binary fractions' roundings, ~101 eps relative; SAFETY margin
+    assert push_impulse(100.0, 0.1) == pytest.approx(101 * 0.001 * 100.0, rel=SAFETY * 101 * EPS)
+    assert push_impulse(100.0, 0.1, "adaptive") == pytest.approx(10.0, rel=SAFETY * EPS)
+
+
+def test_the_search_starts_at_the_linear_prediction_only_for_a_chair_without_pin_friction():
+    """``_start``: a frictionless chair's search starts at the linear critical impulse sampled every 10 ms, which
+    differs from the finely sampled one by a sampled peak's miss, about ``(omega dt)^2 / 8`` relative; a chair with
+    Coulomb friction on either pin (the linear model has none) starts at the largest push."""
+    from stability.study.impulse import _start, linear_critical_impulse
+
+    free = preset("ej-premier-front-caster").replace(pin_friction_left=0.0, pin_friction_right=0.0)
+    lo, hi = 1e-3, 1e3
+    fine = linear_critical_impulse(free, 0.75, duration=0.1, level=LEVEL, horizon=HORIZON, step=0.001)
+    got = math.exp(_start(free, 0.75, "exact", 0.1, LEVEL, HORIZON, lo, hi))
+    # error model: the peak missed between 10 ms samples, (omega dt)^2 / 8 with omega up to ~5 rad/s: 3e-4
+    # (observed 2.8e-4); margin 100.  (Sampling every 0.1 s would miss 6 %.)
+    assert got == pytest.approx(fine, rel=3e-2)
+    for one_pin in (dict(pin_friction_left=0.1), dict(pin_friction_right=0.1)):
+        assert _start(free.replace(**one_pin), 0.75, "exact", 0.1, LEVEL, HORIZON, lo, hi) == math.log(hi)
+
+
+def test_the_search_refuses_an_empty_push_range():
+    """``min_impulse`` must lie below ``max_impulse``: equal ends leave no push to search, refused naming both."""
+    from stability.study.impulse import critical_impulses
+
+    with pytest.raises(ValueError, match=r"min_impulse=5\.0 is invalid; valid range: < max_impulse=5\.0 N s"):
+        critical_impulses([preset("ej-premier")], [0.75], min_impulse=5.0, max_impulse=5.0)
+
+
+def test_an_automatic_step_brackets_the_event_driven_critical_impulse():
+    """``dt="auto"`` (the fixed 1 ms step, shortened only where a chair's own step limit asks): the E&J Premier at
+    0.75 m/s needs no shorter step, and the search's bracket holds the threshold an event-driven simulation of the
+    stick-slip pins finds, 3.2532-3.2547 N s (docs/studies.md; tests/test_stick_slip.py), within the search's
+    0.5 % relative tolerance."""
+    from stability.settings.run import RunSpec
+    from stability.study.impulse import critical_impulses
+
+    r = critical_impulses([preset("ej-premier")], [0.75], RunSpec(dt="auto"))[0]
+    assert r.status == "found" and r.high_Ns / r.low_Ns - 1 <= 0.005
+    # error model: another CPU's rounding may move a stick/slip event by a step (tests/test_stick_slip.py): 0.1 %
+    assert r.low_Ns <= 3.2547 * 1.001 and r.high_Ns >= 3.2532 / 1.001

@@ -345,8 +345,7 @@ def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec
         ``runs`` counts the simulations of each pair.
     """
     run = check_search(run, level, max_impulse, min_impulse, rel_tol)
-    chair_arr = np.atleast_1d(np.asarray(chairs, dtype=object)) if not isinstance(chairs, Chair) else np.array([chairs],
-                                                                                                              dtype=object)
+    chair_arr = np.atleast_1d(np.asarray(chairs, dtype=object))        # a Chair is one object: shape (1,)
     chair_b, speed_b = np.broadcast_arrays(chair_arr, check_speeds(speeds))
     run_list = [(c, float(s)) for c, s in zip(chair_b.ravel(), speed_b.ravel(), strict=True)]
 
