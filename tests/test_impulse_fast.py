@@ -329,9 +329,25 @@ def test_an_automatic_step_brackets_the_event_driven_critical_impulse():
     stick-slip pins finds, 3.2532-3.2547 N s (docs/studies.md; tests/test_stick_slip.py), within the search's
     0.5 % relative tolerance."""
     from stability.settings.run import RunSpec
-    from stability.study.impulse import critical_impulses
+    from stability.study.impulse import critical_impulse
 
-    r = critical_impulses([preset("ej-premier")], [0.75], RunSpec(dt="auto"))[0]
+    r = critical_impulse(preset("ej-premier"), 0.75, RunSpec(dt="auto"))
     assert r.status == "found" and r.high_Ns / r.low_Ns - 1 <= 0.005
     # error model: another CPU's rounding may move a stick/slip event by a step (tests/test_stick_slip.py): 0.1 %
     assert r.low_Ns <= 3.2547 * 1.001 and r.high_Ns >= 3.2532 / 1.001
+
+
+def test_a_search_whose_range_holds_no_threshold_says_which_end_and_gives_no_value():
+    """Outside the push range the answer is a bound, not a value: a stable chair (the E&J Premier with its casters
+    in front) not brought to the level by the largest push tried is "never", its bracket degenerate at that push;
+    an unstable one (the rear-caster E&J at 1.5 m/s) brought there by the smallest is "below", bracket from 0 to it.
+    The ends are pushes tried, exp(log push): equal to the range's ends to a few ulps."""
+    from stability.study.impulse import critical_impulse
+
+    never = critical_impulse(preset("ej-premier-front-caster"), 0.75, max_impulse=2.0)
+    assert never.status == "never" and never.impulse_Ns is None
+    # error model: exp(log(x)) rounds twice, a few eps relative; SAFETY margin
+    assert never.low_Ns == never.high_Ns == never.largest_tried_Ns == pytest.approx(2.0, rel=SAFETY * 4 * EPS)
+    below = critical_impulse(preset("ej-premier"), 1.5, min_impulse=20.0, max_impulse=40.0)
+    assert below.status == "below" and below.impulse_Ns is None and below.low_Ns == 0.0
+    assert below.high_Ns == below.smallest_tried_Ns == pytest.approx(20.0, rel=SAFETY * 4 * EPS)
