@@ -130,3 +130,16 @@ def test_run_steps_split_per_job():
     for i, sp in speeds.items():
         assert got[i] == run_steps([chairs[i]] * len(sp), sp, 0.001, "exact", "free").tolist()
     assert ei._run_steps(chairs, speeds, RunSpec(scheme="adaptive")) is None
+
+
+def test_as_unstable_exactly_at_the_fastest_point_is_a_crossing_not_above():
+    """"At least as unstable" is ``t <= t_ref``: a chair reaching the level in exactly the reference's time at
+    3 m/s (and later below it) crosses there, bracket (2.65, 3) m/s, not "above"."""
+    res, _ = search({"edge": lambda u: TARGET if u >= 3.0 else 5.0}, tol=0.5)
+    assert (res["edge"].status, res["edge"].low, res["edge"].high) == ("found", GRID[-2], GRID[-1])
+
+
+def test_an_empty_speed_bracket_is_refused():
+    """A bracket whose ends coincide holds no speed to search: refused, naming it."""
+    with pytest.raises(ValueError, match=r"bracket=\(1\.0, 1\.0\) is invalid; expected 0 < low < high \(m/s\)"):
+        ei.equal_instability_speeds([preset("ej-premier")], bracket=(1.0, 1.0), progress=False)

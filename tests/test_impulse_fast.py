@@ -351,3 +351,11 @@ def test_a_search_whose_range_holds_no_threshold_says_which_end_and_gives_no_val
     below = critical_impulse(preset("ej-premier"), 1.5, min_impulse=20.0, max_impulse=40.0)
     assert below.status == "below" and below.impulse_Ns is None and below.low_Ns == 0.0
     assert below.high_Ns == below.smallest_tried_Ns == pytest.approx(20.0, rel=SAFETY * 4 * EPS)
+
+
+def test_the_fixed_step_of_an_automatic_run_is_the_1987_programs():
+    """``RunSpec.fixed_step``, the one reading of ``dt`` every study uses: the program WCHAIR's 1 ms step for
+    ``"auto"`` (thesis, Appendix: DT = 0.001 s), else the step given, s."""
+    from stability.settings.run import RunSpec
+
+    assert RunSpec(dt="auto").fixed_step == 0.001 and RunSpec(dt=0.002).fixed_step == 0.002

@@ -51,6 +51,9 @@ def test_the_interval_includes_the_half_step_answer():
                                                    + [f"{f:g} ms step" for f in STEP_FACTORS])
     lower = critical_impulses(scale_friction(c, FRICTION_FACTORS[0]), [0.75], run=RunSpec(friction_law="kinetic"))[0]
     assert iv.variants[0][1].impulse_Ns == lower.impulse_Ns            # the same search on the changed chair
+    # the other model's variant is at nominal friction: the same search with only the model changed
+    other = critical_impulses(c, [0.75], run=RunSpec(friction_law="kinetic", model="thesis"))[0]
+    assert dict(iv.variants)["thesis model"].impulse_Ns == other.impulse_Ns
     half = dict(iv.variants)["0.5 ms step"]
     assert half.status == "found" and iv.point.status == "found"
     assert half.impulse_Ns > 4 * iv.point.impulse_Ns       # 11.6 vs 2.1 N s

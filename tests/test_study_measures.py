@@ -151,6 +151,8 @@ def test_equal_instability_interval_revised_design():
     # bisection bracket, as above
     assert v["80 N (2x)"].speed == pytest.approx(regression.value("revised_equal_instability_80N_m_s"), abs=0.01)
     assert v["20 N (0.5x)"].speed is None and not np.isfinite(v["20 N (0.5x)"].reference_time)
+    # the undefined variant is listed with its input's range, not dropped from it silently
+    assert {f.factor: f.undefined for f in r.factors}["disturbance"] == ("20 N (0.5x)",)
     assert v["thesis model"].speed > r.point.speed
     assert r.low <= r.point.speed <= r.high
     assert r.dominant in ("disturbance", "pin friction", "model")
@@ -270,6 +272,41 @@ def test_equal_instability_interval_variants_range_and_json_from_their_runs():
                                         for v in iv.variants]
     assert [x["label"] for x in d["variants"]] == ["40 N, x1 friction, exact", "80 N (2x)", "x0.5 pin friction",
                                                    f"{1e3 * spec.dt / 2:g} ms step"]
+    # one range per input moved, each over the nominal case and that input's one variant; the widest moves it most
+    nominal = iv.point.speed
+    assert [(f.factor, f.low, f.high, f.undefined) for f in iv.factors] == [
+        (v.factor, min(nominal, v.speed), max(nominal, v.speed), ()) for v in iv.variants[1:]]
+    assert iv.dominant == max(iv.factors, key=lambda f: f.high - f.low).factor
+    # the reference case every variant's speed is measured against, as the result states it
+    assert iv.point.reference == "ej-premier at 0.75 m/s"
+
+
+def test_the_factor_ranges_of_an_interval_and_the_nominal_case_alone():
+    """Assembled from given variants: one range per input, over the nominal case and that input's defined
+    variants, listing the undefined ones (a push beyond the bracket: no speed); the widest moves it most; the
+    interval's ends count "above" as the bracket's end.  With no input moved (every factor list empty) there is
+    no factor range, the range is the nominal speed alone and the input that moves it most is "nominal"."""
+    from dataclasses import replace
+
+    from stability.study.criteria import Criterion
+    from stability.study.equal_instability import EqualInstability
+    from stability.study.intervals import Variant, _assemble
+
+    ej = preset("ej-premier")
+    crit = Criterion(yaw_rate=1.0, duration=10.0)
+    point = EqualInstability(chair="revised", speed=1.0, status="found", low=0.99, high=1.01, reference_time=3.0,
+                             evaluations=((0.99, 3.1), (1.01, 2.9)), bracket=(0.2, 3.0), criterion=crit,
+                             model="exact", scheme="wchair", impulse=(40.0, 0.1))
+    nominal = Variant("nominal", "40 N", "exact", 40.0, 1.0, 3.0, point, 0.001)
+    above = Variant("disturbance", "80 N (2x)", "exact", 80.0, 1.0, 2.0,
+                    replace(point, speed=None, status="above", low=3.0, high=None), 0.001)
+    slower = Variant("pin friction", "x0.5 pin friction", "exact", 40.0, 0.5, 3.2, replace(point, speed=0.9), 0.001)
+    iv = _assemble(ej, (nominal, above, slower), ej, 0.75, crit, Push(40.0, 0.1), 0.001, "wchair", "the chair only")
+    assert [(f.factor, f.low, f.high, f.undefined) for f in iv.factors] == [
+        ("disturbance", 1.0, 1.0, ("80 N (2x)",)), ("pin friction", 0.9, 1.0, ())]
+    assert (iv.dominant, iv.low, iv.high) == ("pin friction", 0.9, 3.0)
+    alone = _assemble(ej, (nominal,), ej, 0.75, crit, Push(40.0, 0.1), 0.001, "wchair", "the chair only")
+    assert (alone.factors, alone.dominant, alone.low, alone.high) == ((), "nominal", 1.0, 1.0)
 
 
 def test_range_definition_words_are_the_factors_the_range_uses():

@@ -271,6 +271,17 @@ bracketing the event-driven critical impulse; ``critical_impulses``' two-way cha
 (``np.atleast_1d(np.asarray(chairs, dtype=object))`` is ``(1,)`` for one chair).  The whole draw, without the budget
 (a faster CI machine runs more of it): 54/59 (92 %) -> 59/59 (``--only-survivors``: the "never" and "below" answers
 as bounds with their brackets, ``critical_impulse`` itself called).
+
+Seed 34's whole draw again after ``RunSpec.fixed_step`` replaced every copy of ``WCHAIR_DT if run.dt == "auto" else
+float(run.dt)`` (the edited lines change the draw; ``--budget 1000``, no prefix cut): ``study/impulse.py`` 59/59
+(1 equivalent); ``study/equal_instability.py`` 55/57 -> 57/57 (3 equivalent: 1 listed before, 2 newly: a pair's
+length test ``>`` -> ``>=`` that only adds empty launches, the first-round flag of later rounds whose brackets
+already exclude "above" and "below"; killed: a crossing exactly at the fastest point, an empty speed bracket);
+``study/intervals.py`` 53/60 (88 %, 0 listed) -> 58/58 (2 newly equivalent: ``low`` and ``high`` None together,
+a local annotation; killed: the factor ranges, their undefined variants and the "nominal" dominant of an interval
+assembled from given variants, the factor ranges of a real interval whose every input has one variant, the
+reference case's words in the point); ``study/impulse_intervals.py`` 56/58 (1 listed) -> 57/57 (1 newly
+equivalent: a ``zip``'s ``strict`` over one result per job; killed: the other model's variant at nominal friction).
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
@@ -628,6 +639,26 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'return memoised("critical_impulse", [(c, s, run, level, max_impulse, min_impulse, rel_tol, max_rounds)',
      'return memoised("XXcritical_impulseXX", [(c, s, run, level, max_impulse, min_impulse, rel_tol, max_rounds)'):
         "the kind only keeps this search's memo entries apart from another search's (`memoised` stores `(kind, key)`); the one other kind, `equal_instability`, differs from either name, so the same jobs are found and reused",
+    ('stability/study/equal_instability.py',
+     'todo = [i for i in active if len(pairs[i]) > k and (k == 0 or dict(evals[i])[pairs[i][0]] > target[i])]',
+     'todo = [i for i in active if len(pairs[i]) >= k and (k == 0 or dict(evals[i])[pairs[i][0]] > target[i])]'):
+        "a pair is two speeds or one midpoint: with `>=`, a one-speed pair's job joins the second launch with the empty slice `pairs[i][1:2]` and runs nothing, and a launch with no speeds returns at once, so the same runs are made",
+    ('stability/study/equal_instability.py',
+     'status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), False)',
+     'status[i], lo[i], hi[i] = _narrow(evals[i], lo[i], hi[i], float(target[i]), True)'):
+        'after the first round an open job\'s `lo` has a time above the target and its `hi` one at or below it, and every later round keeps that (the new bracket is the first point as unstable and the one before it), so the first-round checks find neither "above" (the fastest point inside is `hi`) nor "below" (the slowest is `lo`)',
+    ('stability/study/intervals.py',
+     'if self.low is None or self.high is None:',
+     'if self.low is None and self.high is None:'):
+        "`low` and `high` are the smallest and largest of one list (the defined variants' speeds), so both are None or neither is; `signed` swaps them together, and either test picks the same branch",
+    ('stability/study/intervals.py',
+     'variants: list[list[Variant | None]] = [[None] * len(specs) for _ in chairs]',
+     'variants: list[list[Variant & None]] = [[None] * len(specs) for _ in chairs]'):
+        'an annotation of a local variable: Python never evaluates it (and the module has `from __future__ import annotations`); mypy, not a test, is what checks it',
+    ('stability/study/impulse_intervals.py',
+     'results.update(zip(jobs, res, strict=True))',
+     'results.update(zip(jobs, res, strict=False))'):
+        '`critical_impulses` returns one result per chair it is given, and it is given one chair per job: always the same length',
 }
 
 

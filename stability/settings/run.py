@@ -303,7 +303,7 @@ class RunSpec:
                              "for the exact model only)")
         if self.scheme != "wchair":
             return
-        dt = WCHAIR_DT if self.dt == "auto" else float(self.dt)
+        dt = self.fixed_step
         if dt > self.horizon:
             raise ValueError(f"dt={self.dt!r} is invalid; valid range: dt <= horizon = {self.horizon!r} s")
         if self.horizon / dt > MAX_STEPS:
@@ -335,6 +335,12 @@ class RunSpec:
     def slope(self) -> tuple[float, float]:
         """``(cross_slope_deg, grade_deg)``."""
         return (self.cross_slope_deg, self.grade_deg)
+
+    @property
+    def fixed_step(self) -> float:
+        """The WCHAIR scheme's step, s: ``dt``, or :data:`WCHAIR_DT` for ``"auto"`` (which a chair's own step limit
+        may shorten further, :mod:`stability.simulate.stepcheck`)."""
+        return WCHAIR_DT if self.dt == "auto" else float(self.dt)
 
     @property
     def on_slope(self) -> bool:

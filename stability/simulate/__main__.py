@@ -33,7 +33,7 @@ from stability.cli import (
 from stability.plotting.responses import plot_result
 from stability.settings.run import RunSpec
 from stability.simulate.api import simulate
-from stability.simulate.options import ADAPTIVE_SAMPLE, WCHAIR_DT
+from stability.simulate.options import ADAPTIVE_SAMPLE
 
 __all__ = ["main", "build_parser"]
 
@@ -63,7 +63,7 @@ MAX_OUTPUT_ROWS = 100_000
 
 def _check_output(args: argparse.Namespace, run: RunSpec) -> None:
     """The output's size (rows of --csv/--json) within :data:`MAX_OUTPUT_ROWS`, before any work."""
-    step = (WCHAIR_DT if run.dt == "auto" else float(run.dt)) if run.scheme == "wchair" else ADAPTIVE_SAMPLE
+    step = run.fixed_step if run.scheme == "wchair" else ADAPTIVE_SAMPLE
     interval = run.sample if run.sample is not None else step
     if args.csv or args.json or args.json_file:
         check_work(f"--horizon {run.horizon:g} s every {interval:g} s (output rows)", run.horizon / interval,

@@ -19,7 +19,6 @@ from stability.settings.run import (
     RUN_BYTES,
     RUN_SETTINGS,
     STEP_SECONDS,
-    WCHAIR_DT,
     WORK_BUDGET_S,
     RunSpec,
 )
@@ -281,7 +280,7 @@ def _check_batch_work(runs: int, run: RunSpec, record: str, name: str = "speeds"
     """
     interval = make_options(run, batch=True).sample       # the batch's own output interval (None: every step)
     if interval is None:
-        interval = WCHAIR_DT if run.dt == "auto" else float(run.dt)
+        interval = run.fixed_step
     rows = 1.0 if record == "final" else run.horizon / interval + 1.0
     per_run = RUN_BYTES + rows * ROW_BYTES
     largest = int(MAX_BATCH_BYTES // per_run)
@@ -291,7 +290,7 @@ def _check_batch_work(runs: int, run: RunSpec, record: str, name: str = "speeds"
                          f"the largest allowed is {largest} runs"
                          + ("" if record == "final" else " (or record='final', or a longer sample)"))
     if run.scheme == "wchair":
-        steps = run.horizon / (WCHAIR_DT if run.dt == "auto" else float(run.dt))
+        steps = run.horizon / run.fixed_step
         largest = int(WORK_BUDGET_S / STEP_SECONDS // steps)
         if runs > largest:
             raise ValueError(f"{name} asks for {runs} runs of {steps:.3g} steps (about "

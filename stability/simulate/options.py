@@ -135,7 +135,7 @@ def make_options(run: RunSpec, *, yaw_moment: Callable | None = None, batch: boo
     """
     if yaw_moment is not None and not callable(yaw_moment):
         raise ValueError(f"yaw_moment={yaw_moment!r} is invalid; expected a callable yaw_moment(t, state) -> N m")
-    step = float(dt if dt is not None else (WCHAIR_DT if run.dt == "auto" else run.dt))
+    step = float(dt if dt is not None else run.fixed_step)
     stop = run.scheme == "wchair" if run.stop_on_warnings is None else bool(run.stop_on_warnings)
     sample = run.sample
     if sample is None and run.scheme == "adaptive":

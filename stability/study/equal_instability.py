@@ -219,7 +219,7 @@ def _run_steps(chairs: Sequence[Chair | Layout], speeds: Mapping[int, Sequence[f
     jobs = list(speeds)
     flat = run_steps([cast(Chair, chairs[i]) for i in jobs for _ in speeds[i]],   # the thesis engine's: chairs
                      [float(x) for i in jobs for x in speeds[i]],
-                     0.001 if run.dt == "auto" else float(run.dt), run.model, run.casters).tolist()
+                     run.fixed_step, run.model, run.casters).tolist()
     out, k = {}, 0
     for i in jobs:
         out[i], k = flat[k:k + len(speeds[i])], k + len(speeds[i])
@@ -394,7 +394,7 @@ def _bisect(chairs: Sequence[Chair | Layout], targets: Sequence[float], forces: 
     horizons = np.minimum(criterion.duration, 1.5 * target + 0.5)
     horizon = float(horizons.max())
     run = run.replace(horizon=horizon)
-    dt = 0.0 if run.scheme != "wchair" else (0.001 if run.dt == "auto" else float(run.dt))
+    dt = 0.0 if run.scheme != "wchair" else run.fixed_step
     end = horizons + dt + 1e-12         # a run of a longer batch counts only up to its own horizon
     evals: list[list[tuple[float, float]]] = [[] for _ in range(n)]
     lo = np.full(n, lo0)

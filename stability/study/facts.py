@@ -127,7 +127,7 @@ def equal_friction_comparison(chair: Chair | None = None, run: RunSpec | None = 
 
     run = runs.study_run(run)
     model, push = run.model, run.push
-    dt = (0.001 if run.dt == "auto" else float(run.dt)) if run.scheme == "wchair" else None
+    dt = run.fixed_step if run.scheme == "wchair" else None
     t_ref = reference_times([at(ref, f) for f in frictions], REFERENCE_SPEED, [push.force] * len(frictions), run,
                             criterion=criterion)
     ok = [k for k, t in enumerate(t_ref) if math.isfinite(t)]
@@ -276,7 +276,7 @@ def steady_turn(chair: Chair, speeds: Sequence[float] = (0.3, 0.5), run: RunSpec
     """
     run = runs.study_run(run)
     model, push, duration = run.model, run.push, run.horizon
-    dt = (0.001 if run.dt == "auto" else float(run.dt)) if run.scheme == "wchair" else None
+    dt = run.fixed_step if run.scheme == "wchair" else None
     res = runs.simulate_runs([chair] * len(speeds), list(speeds), run)
     crit = Criterion(DEFAULT_CRITERION.yaw_rate, duration)
     out = []

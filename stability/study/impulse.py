@@ -361,7 +361,7 @@ def _searches(run_list: list[tuple[Chair, float]], run: RunSpec, level: float, m
               min_impulse: float, rel_tol: float, max_rounds: int) -> list[CriticalImpulse]:
     """The searches of :func:`critical_impulses` for ``(chair, speed)`` pairs, one batch."""
     model, scheme, duration, horizon = run.model, run.scheme, run.push_duration, run.horizon
-    dt = 0.001 if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     pair_steps = None
     chairs_l, speeds_a = [c for c, _ in run_list], np.array([s for _, s in run_list], dtype=float)
     limits, rates = step_limits_and_growth(chairs_l, speeds_a, model, run.casters)

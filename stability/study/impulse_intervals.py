@@ -23,7 +23,6 @@ from stability.chair import Chair
 from stability.chair.model import takes_chairs
 from stability.runtime.checks import VARIANTS
 from stability.settings.run import RunSpec
-from stability.simulate.options import WCHAIR_DT as DT
 from stability.study.impulse import CriticalImpulse, critical_impulses
 from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS, scale_friction
 from stability.study.runs import study_run
@@ -104,7 +103,7 @@ def critical_impulse_intervals(chairs: Sequence[Chair], speed: float, run: RunSp
     run = study_run(run)
     model = run.model
     chairs = list(chairs)
-    dt = DT if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     # (label, model, friction factor, step): one batch per (model, step)
     specs: list[tuple[str, str, float, float]] = [("nominal", model, 1.0, dt)]
     specs += [(f"x{f:g} pin friction", model, float(f), dt) for f in friction_factors]

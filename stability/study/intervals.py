@@ -354,7 +354,7 @@ def equal_instability_intervals(chairs: Sequence[Chair], run: RunSpec | None = N
         check_model(m)
     chairs = list(chairs)
     model, scheme, push = run.model, run.scheme, run.push
-    dt = (0.001 if run.dt == "auto" else float(run.dt)) if scheme == "wchair" else None
+    dt = run.fixed_step if scheme == "wchair" else None
     ref0 = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
     specs = _variants(model, push.force, force_factors, friction_factors, models, dt, step_factors)
     variants: list[list[Variant | None]] = [[None] * len(specs) for _ in chairs]

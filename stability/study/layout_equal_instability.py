@@ -125,7 +125,7 @@ def layout_summaries(layouts: Sequence[Layout], speeds: Sequence[float] | np.nda
     Summaries
     """
     sign = -1.0 if reverse else 1.0
-    dt = 0.001 if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     n = len(layouts)
     signed = sign * np.asarray(speeds, dtype=float).reshape(-1)
     force = np.asarray(forces, dtype=float).reshape(-1)
@@ -249,7 +249,7 @@ def layout_equal_instability_interval(layout: Layout, run: RunSpec | None = None
     """
     run = _check(layout, run)
     push = run.push
-    dt = 0.001 if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     ref0 = reference_chair if reference_chair is not None else preset(REFERENCE_CHAIR)
     specs = _variants("exact", push.force, force_factors, friction_factors, ("exact",), dt, step_factors)
     out: list[Variant] = []

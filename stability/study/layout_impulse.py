@@ -198,7 +198,7 @@ def layout_critical_impulses(layout: Layout, speeds: Any, run: RunSpec | None = 
         raise ValueError(f"side={side!r} is invalid; valid values: {', '.join(map(repr, SIDES))}")
     check_layout_run(run, level_only=True)
     u = _signed_speeds(speeds)
-    dt = 0.001 if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     limits, rates = layout_step_limits_and_growth(layout, u)
     steps = [float(h) for h in run_steps([], u, dt, run.model, run.casters, limits=limits)]
     check_layout_work(steps, run.horizon, runs_per_speed(min_impulse, max_impulse, max_rounds))
@@ -319,7 +319,7 @@ def slow_divergences(layout: Layout, points: Sequence[CriticalImpulse], run: Run
     u = np.array([p.speed for p in never])
     limits, rates = layout_step_limits_and_growth(layout, u)
     out = []
-    dt = 0.001 if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     for p, h, rate in zip(never, run_steps([], u, dt, run.model, run.casters, limits=limits), rates, strict=True):
         if not rate > 0.0:
             continue

@@ -17,7 +17,6 @@ from typing import Any
 
 from stability.layout.model import Layout
 from stability.settings.run import RunSpec
-from stability.simulate.options import WCHAIR_DT
 from stability.study.impulse_intervals import CriticalImpulseInterval
 from stability.study.intervals import FRICTION_FACTORS, STEP_FACTORS
 from stability.study.layout_equal_instability import scale_layout_friction
@@ -43,7 +42,7 @@ def layout_interval_specs(run: RunSpec | None = None, friction_factors: Sequence
         Labels as the short form's (``"x0.5 pin friction"``, ``"0.5 ms step"``).
     """
     run = study_run(run)
-    dt = WCHAIR_DT if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     specs = [("nominal", 1.0, dt)] + [(f"x{f:g} pin friction", float(f), dt) for f in friction_factors]
     return specs + [(f"{dt * f * 1e3:g} ms step", 1.0, dt * float(f)) for f in step_factors]
 

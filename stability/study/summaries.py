@@ -128,7 +128,7 @@ def run_summaries(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
         return _from_results(chairs, speeds, forces, run, level)
     from stability.simulate import engine  # numba and the compiled kernel load on first use
 
-    step = 0.001 if run.dt == "auto" else float(run.dt)
+    step = run.fixed_step
     run_h = np.asarray(run_steps(chairs, speeds, step, run.model, run.casters) if steps is None else steps)
     peak, t_half, t_level, sim_time = (np.empty(n) for _ in range(4))
     sp = np.asarray(speeds, dtype=float)
@@ -193,7 +193,7 @@ class SummaryRunner:
             return
         from stability.simulate import engine
 
-        step = 0.001 if run.dt == "auto" else float(run.dt)
+        step = run.fixed_step
         run_h = np.asarray(run_steps(self.chairs, self.speeds, step, run.model, run.casters)
                            if steps is None else steps, dtype=float)
         by_step = {float(h): _kernel_options(run, h) for h in np.unique(run_h)}
@@ -265,7 +265,7 @@ def _from_results(chairs: Sequence[Chair], speeds: Sequence[float] | np.ndarray,
                   run: RunSpec, level: float) -> Summaries:
     """The same summaries from full simulation results (adaptive scheme, the reference engine)."""
     if run.scheme == "wchair":      # every step, so that the crossing is interpolated as the kernel does
-        run = run.replace(sample=0.001 if run.dt == "auto" else run.dt)
+        run = run.replace(sample=run.fixed_step)
     res = runs.simulate_runs(list(chairs), [float(s) for s in speeds], run, push_forces=np.asarray(forces, float))
     horizon = run.horizon
     peak, t_half, t_level, sim_time = (np.empty(len(res)) for _ in range(4))

@@ -221,7 +221,7 @@ def nonlinear_intervals(chair: Chair, uncertainty: Uncertainty, run: RunSpec | N
     """
     run = study_run(run).replace(push_force=THESIS_PUSH.force, push_duration=THESIS_PUSH.duration)
     model, scheme, horizon = run.model, run.scheme, run.horizon
-    dt = 0.001 if run.dt == "auto" else float(run.dt)
+    dt = run.fixed_step
     check_speed(speed)
     samples = int(NONLINEAR_SAMPLES.check("samples", samples, integer=True))
     level = CONFIDENCE_LEVEL.check("level", level)
