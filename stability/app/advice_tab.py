@@ -20,6 +20,7 @@ from stability.app.markup import PRE_STYLESHEET, literal, pre
 from stability.app.measures import warning_lines
 from stability.app.nonlinear_tab import FRESH, STALE, busy_bar, show_busy
 from stability.app.tabtext import TabText
+from stability.app.widgets import widget
 from stability.chair import Chair
 
 __all__ = ["AdviceTab"]
@@ -43,11 +44,11 @@ class AdviceTab:
     def __init__(self, submit: Any, on_change: Any, current: Any, apply: Any) -> None:
         self.submit, self.current, self.apply = submit, current, apply
         self.advice: Any = None
-        self.button = pn.widgets.Button(name="advise this chair", button_type="primary", width=260,
+        self.button = widget(pn.widgets.Button, "advise this chair", kind="primary", width=260,
                                         stylesheets=BUTTON_WRAP,
                                         css_classes=["run-advice"])
         self.button.on_click(on_change(lambda e: self.start()))
-        self.apply_buttons = [pn.widgets.Button(name=name, disabled=True, css_classes=[css], button_type=kind,
+        self.apply_buttons = [widget(pn.widgets.Button, name, disabled=True, css_classes=[css], kind=kind,
                                                 sizing_mode="stretch_width", stylesheets=BUTTON_WRAP)
                               for name, css, kind in (("apply the recommendation", "apply-1", "success"),
                                                       ("apply the runner-up", "apply-2", "default"))]

@@ -25,6 +25,7 @@ from stability.app.measures import warning_lines
 from stability.app.nonlinear_tab import FRESH, STALE
 from stability.app.plots import BRANCH_COLOURS
 from stability.app.tabtext import TabText
+from stability.app.widgets import widget
 from stability.chair import Chair
 from stability.settings import defaults as D
 
@@ -74,7 +75,7 @@ class AssistTab:
 
     def __init__(self, submit: Any, on_change: Any, current: Any) -> None:
         self.submit, self.current = submit, current
-        self.button = pn.widgets.Button(name="design the motor assist", button_type="primary", width=220,
+        self.button = widget(pn.widgets.Button, "design the motor assist", kind="primary", width=220,
                                         css_classes=["run-assist"])
         self.button.on_click(on_change(lambda e: self.start()))
         self.texts = TabText()

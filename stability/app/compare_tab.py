@@ -19,6 +19,7 @@ from stability.app import plots
 from stability.app.markup import PRE_STYLESHEET, literal, pre
 from stability.app.tabtext import TabText
 from stability.app.views import LinearView
+from stability.app.widgets import widget
 
 __all__ = ["CompareTab", "NOTHING_PINNED", "COMPARE_MAX_SPEED"]
 
@@ -45,8 +46,8 @@ class CompareTab:
         self.texts = TabText()
         self.text = pn.pane.Markdown(NOTHING_PINNED, css_classes=["compare-text"], sizing_mode="stretch_width",
                                      stylesheets=[PRE_STYLESHEET])
-        self.unpin = pn.widgets.Select(name="pinned chairs", options=[], sizing_mode="stretch_width")
-        self.unpin_button = pn.widgets.Button(name="unpin the selected chair", width=190, align="end")
+        self.unpin = widget(pn.widgets.Select, "pinned chairs", options=[], sizing_mode="stretch_width")
+        self.unpin_button = widget(pn.widgets.Button, "unpin the selected chair", width=190, align="end")
         self._pinned: tuple[Any, list] = (None, [])
         self.panel = pn.Column(
             pn.pane.Markdown("Pin up to three chairs (the button under the presets); their curves are overlaid on "

@@ -19,6 +19,7 @@ import panel as pn
 from stability import chair as chair_mod
 from stability import tires
 from stability.app.text import FIELD_GROUPS, field_label, field_rows
+from stability.app.widgets import widget
 from stability.plotting.style import UNSTABLE
 
 __all__ = ["Editor", "EDITOR_WIDTH", "ERROR_STYLE", "BUTTON_WRAP"]
@@ -56,17 +57,17 @@ class Editor:
 
     def __init__(self, state: Any) -> None:
         presets = list(chair_mod.preset_names())
-        self.preset = pn.widgets.Select(name="preset", options=presets,
+        self.preset = widget(pn.widgets.Select, "preset", options=presets,
                                         value=state.current.base if state.current.base in presets else presets[0],
                                         css_classes=["preset"], sizing_mode="stretch_width")
-        self.model = pn.widgets.Select(name="equations", options=["exact", "thesis"], value=state.model, width=100,
+        self.model = widget(pn.widgets.Select, "equations", options=["exact", "thesis"], value=state.model, width=100,
                                        css_classes=["model"])
-        self.undo_button = pn.widgets.Button(name="undo the last change", button_type="default",
+        self.undo_button = widget(pn.widgets.Button, "undo the last change", kind="default",
                                              css_classes=["undo"], sizing_mode="stretch_width", stylesheets=BUTTON_WRAP)
-        self.reset_button = pn.widgets.Button(name="reset every field to the preset", button_type="default",
+        self.reset_button = widget(pn.widgets.Button, "reset every field to the preset", kind="default",
                                               css_classes=["reset"], sizing_mode="stretch_width",
                                               stylesheets=BUTTON_WRAP)
-        self.pin_button = pn.widgets.Button(name="pin this chair for the Compare tab", css_classes=["pin"],
+        self.pin_button = widget(pn.widgets.Button, "pin this chair for the Compare tab", css_classes=["pin"],
                                             sizing_mode="stretch_width", stylesheets=BUTTON_WRAP)
         self.upload = pn.widgets.FileInput(accept=".toml", css_classes=["upload-chair"], sizing_mode="stretch_width")
         self.upload_unc = pn.widgets.FileInput(accept=".toml", css_classes=["upload-uncertainty"],
@@ -80,13 +81,13 @@ class Editor:
             label = field_label(row)
             tip = row["doc"] + (f"; valid range {row['range']}" if row["range"] else "")
             w: Any
-            kw = {"name": label, "description": tip, "css_classes": [f"field-{name}"], "sizing_mode": "stretch_width"}
+            kw: dict[str, Any] = {"description": tip, "css_classes": [f"field-{name}"], "sizing_mode": "stretch_width"}
             if name == "caster_position":
-                w = pn.widgets.Select(options=["rear", "front"], **kw)
+                w = widget(pn.widgets.Select, label, options=["rear", "front"], **kw)
             elif name in ("main_tire", "caster_tire"):
-                w = pn.widgets.Select(options=tire_names, **kw)
+                w = widget(pn.widgets.Select, label, options=tire_names, **kw)
             else:
-                w = pn.widgets.TextInput(placeholder=row["range"], **kw)
+                w = widget(pn.widgets.TextInput, label, placeholder=row["range"], **kw)
             self.inputs[name] = w
             self.field_errors[name] = pn.pane.HTML("", visible=False, styles=ERROR_STYLE, sizing_mode="stretch_width",
                                                    css_classes=[f"error-{name}"], margin=(0, 10))

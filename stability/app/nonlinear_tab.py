@@ -20,6 +20,7 @@ from stability.app.jobs import warm_up_done
 from stability.app.markup import literal
 from stability.app.measures import NonlinearView, nonlinear_view
 from stability.app.tabtext import TabText
+from stability.app.widgets import widget
 from stability.chair import Chair
 from stability.plotting.style import UNSTABLE
 from stability.settings import defaults as D
@@ -120,12 +121,12 @@ class NonlinearTab:
 
     def __init__(self, submit: Any, on_change: Any, current: Any) -> None:
         self.submit, self.current = submit, current
-        self.push_force = pn.widgets.FloatInput(name="push force (N)", value=D.PUSH_FORCE, start=0.0, end=1000.0,
+        self.push_force = widget(pn.widgets.FloatInput, "push force (N)", value=D.PUSH_FORCE, start=0.0, end=1000.0,
                                                 width=130)
-        self.push_duration = pn.widgets.FloatInput(name="push duration (s)", value=D.PUSH_DURATION, start=0.001,
+        self.push_duration = widget(pn.widgets.FloatInput, "push duration (s)", value=D.PUSH_DURATION, start=0.001,
                                                    end=2.0, width=130)
-        self.push_speed = pn.widgets.FloatInput(name="speed (m/s)", value=D.SPEED, start=0.05, end=3.0, width=110)
-        self.run_button = pn.widgets.Button(name="compute again", button_type="primary", width=140,
+        self.push_speed = widget(pn.widgets.FloatInput, "speed (m/s)", value=D.SPEED, start=0.05, end=3.0, width=110)
+        self.run_button = widget(pn.widgets.Button, "compute again", kind="primary", width=140,
                                             css_classes=["run-nonlinear"], align="end")
         self.run_button.on_click(on_change(lambda e: self.start(*self.current())))
         self.busy = busy_bar()

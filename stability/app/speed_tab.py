@@ -22,6 +22,7 @@ from stability.app.markup import literal
 from stability.app.tabtext import TabText
 from stability.app.text import summary_html
 from stability.app.views import GRID, LinearView, mode_shape
+from stability.app.widgets import widget
 from stability.plotting.style import UNSTABLE
 from stability.settings import defaults as D
 
@@ -73,7 +74,7 @@ class SpeedTab:
         self.shape_src = ColumnDataSource({"component": [], "magnitude": [], "phase": []})
         self.shape_fig = plots.shape_figure(self.shape_src)
         self.summary, summary_pane = plots.text_div("summary")
-        self.speed = pn.widgets.FloatSlider(name="speed U (m/s) of the mode shape below", start=0.05, end=3.0,
+        self.speed = widget(pn.widgets.FloatSlider, "speed U (m/s) of the mode shape below", start=0.05, end=3.0,
                                             step=0.01, value=D.SPEED, css_classes=["speed"],
                                             sizing_mode="stretch_width")
         self.shape_text, shape_pane = plots.text_div("shape-text")

@@ -25,6 +25,7 @@ import param
 from panel.reactive import ReactiveHTML
 
 from stability.app.markup import literal
+from stability.app.widgets import widget
 from stability.driver.protocol import TrackingResult, TrialRecord, next_trial, tracking_result
 from stability.driver.tracking import MIN_VALID, PRACTICE_TRIALS, SCORED_TRIALS, browser_config
 
@@ -221,10 +222,10 @@ class TrackingTab:
         self.task = TrackingTask(config=browser_config(), plan=next_trial([]) or {}, sizing_mode="stretch_width",
                                  height=190, css_classes=["tracking-task"])
         self.task.param.watch(on_change(self._record), "record")
-        self.note = pn.widgets.TextInput(name="note saved with the result (who, when; plain text)", width=340,
+        self.note = widget(pn.widgets.TextInput, "note saved with the result (who, when; plain text)", width=340,
                                          css_classes=["tracking-note"], max_length=200)
         self.note.param.watch(on_change(lambda e: self._show()), "value")
-        self.restart = pn.widgets.Button(name="start over", width=120, css_classes=["tracking-restart"])
+        self.restart = widget(pn.widgets.Button, "start over", width=120, css_classes=["tracking-restart"])
         self.restart.on_click(on_change(lambda e: self.start_over()))
         self.text = pn.pane.HTML("", css_classes=["tracking-text"], sizing_mode="stretch_width")
         intro = pn.pane.Markdown(

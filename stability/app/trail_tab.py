@@ -22,6 +22,7 @@ from stability.app.markup import literal
 from stability.app.measures import TRAIL_SPEEDS, TrailWindow, trail_window
 from stability.app.nonlinear_tab import FRESH, STALE, warnings_text
 from stability.app.tabtext import TabText
+from stability.app.widgets import widget
 from stability.chair import Chair
 from stability.plotting.style import UNSTABLE
 
@@ -104,9 +105,9 @@ class TrailTab:
         self.submit = submit
         self.sources = [ColumnDataSource({"trail_cm": [], "yaw": [], "shimmy": []}) for _ in TRAIL_SPEEDS]
         self.fig = plots.trail_figure(self.sources, TRAIL_SPEEDS)
-        self.cross_slope = pn.widgets.FloatInput(name="cross slope (deg, falling to the right)", value=2.0,
+        self.cross_slope = widget(pn.widgets.FloatInput, "cross slope (deg, falling to the right)", value=2.0,
                                                  start=-10.0, end=10.0, step=0.5, width=230)
-        self.speed = pn.widgets.FloatInput(name="speed on the slope (m/s)", value=1.0, start=0.1, end=3.0,
+        self.speed = widget(pn.widgets.FloatInput, "speed on the slope (m/s)", value=1.0, start=0.1, end=3.0,
                                            step=0.1, width=180)
         self.text = pn.pane.Markdown("", css_classes=["trail-text"], sizing_mode="stretch_width")
         self.texts = TabText()
