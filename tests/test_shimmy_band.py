@@ -121,6 +121,14 @@ def test_cli_prints_the_band_and_the_margin(capsys):
     assert band.describe(0) in r.stdout and ">20" not in r.stdout and "inf" not in r.stdout
     assert f"{band.shimmy_margin_m * 100:.2f} cm inside the shimmy-free band" in r.stdout
     assert "measure pin lateral stiffness and caster relaxation length first" in r.stdout
+    # each corner of the estimate ranges: its bands in cm, or in words where it shimmies at every trail (a corner
+    # of this chair does: the margin interval below has no low end)
+    for c, iv in zip(band.compliance.corners(), band.corner_intervals_m, strict=True):
+        words = (f"shimmy-free {', '.join(f'{a * 100:.1f}-{b * 100:.1f}' for a, b in iv[0])} cm" if iv[0]
+                 else "no shimmy-free trail")
+        assert (f"relaxation {c.relaxation_length * 1000:g} mm, pin stiffness {c.lateral_stiffness / 1000:g} kN/m: "
+                f"{words} at 1 m/s") in r.stdout
+    assert "no shimmy-free trail at 1 m/s" in r.stdout and "none cm" not in r.stdout
     assert main(["--chair", chair, "--speeds", "0.5,1", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)["shimmy_band"]
     ref = shimmy_band(MEASURED, [0.5, 1.0])

@@ -258,9 +258,10 @@ def _print_band(band: ShimmyBand, speeds: np.ndarray | None = None) -> None:
           + ("; the range straddles a boundary: measure pin lateral stiffness and caster relaxation length first"
              if band.straddles else ""))
     for c, iv in zip(band.compliance.corners(), band.corner_intervals_m, strict=True):
-        text = ", ".join(f"{a * 100:.1f}-{b * 100:.1f}" for a, b in iv[0]) or "none"
+        bands = ", ".join(f"{a * 100:.1f}-{b * 100:.1f}" for a, b in iv[0])
+        text = f"shimmy-free {bands} cm" if bands else "no shimmy-free trail"
         print(f"  relaxation {c.relaxation_length * 1000:g} mm, pin stiffness {c.lateral_stiffness / 1000:g} kN/m: "
-              f"shimmy-free {text} cm at {shown[0]:g} m/s")
+              f"{text} at {shown[0]:g} m/s")
 
 
 def _print_chair_model(pin: str, m) -> None:
