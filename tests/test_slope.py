@@ -213,6 +213,23 @@ def test_grade_forward_component(theta):
         assert np.all(np.diff(run.max_real) > 0)
 
 
+def test_the_holding_line_gives_the_moment_signed_inside_its_pin_friction_band(capsys):
+    """The text's holding moment: its magnitude, the same value signed (clockwise +) and the Coulomb pin-friction
+    band on the same signed axis; the frictionless moment lies inside the band (the pins' friction only adds
+    moments of either sign), so the line cannot print a magnitude and a band that disagree in sign."""
+    import re
+
+    assert main(["--chair", "manual-front-caster", "--cross-slope", "2", "--speed", "1"]) == 0
+    line = next(t for t in capsys.readouterr().out.splitlines() if "holding yaw moment" in t)
+    m = re.search(r"holding yaw moment ([0-9.]+) N m \(([-+][0-9.]+) signed, clockwise \+; ([0-9.]+) N m/deg\); "
+                  r"with Coulomb pin friction any of ([-0-9.]+) \.\. ([-0-9.]+) N m$", line)
+    assert m, line
+    size, signed, per_deg, lo, hi = map(float, m.groups())
+    e = eqm.solve(chair_mod.preset("manual-front-caster"), 2.0, 1.0)
+    assert (size, signed) == (round(abs(e.holding_moment), 3), round(e.holding_moment, 3))
+    assert per_deg == round(abs(e.holding_moment) / 2, 3) and lo <= signed <= hi
+
+
 def test_cli_json_and_errors(tmp_path, capsys):
     assert main(["--chair", "manual-front-caster", "--cross-slope", "2", "--speed", "0.9", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)

@@ -176,8 +176,9 @@ def _body(a: argparse.Namespace) -> int:
         return 0
     turn = data["uncorrected_turn"]
     print(f"{chair.name}: cross slope {eq.cross_slope_deg:.3g} deg, grade {eq.grade_deg:.3g} deg, {eq.speed:g} m/s")
-    print(f"  holding yaw moment {abs(eq.holding_moment):.3f} N m ({per_deg:.3f} N m/deg); with Coulomb pin "
-          f"friction any of {eq.friction_range[0]:.3f} .. {eq.friction_range[1]:.3f} N m (signed, clockwise +)")
+    print(f"  holding yaw moment {abs(eq.holding_moment):.3f} N m ({eq.holding_moment:+.3f} signed, clockwise +; "
+          f"{per_deg:.3f} N m/deg); with Coulomb pin friction any of {eq.friction_range[0]:.3f} .. "
+          f"{eq.friction_range[1]:.3f} N m")
     extra = (f", heading {path.heading_change_deg:+.1f} deg (downhill +) after {path.report_time:.2f} s"
              if path else "")
     print(f"  uncorrected: turns {turn}{extra}" if why is None else f"  uncorrected: not run ({why})")
