@@ -911,6 +911,9 @@ def test_slope_hold_figure_and_text(schedules, slope_holds):
     text = tables.format_slope_holds(holds + [{"cross_slope_deg": 9.0, "skipped": "no equilibrium"}])
     assert "Cross slope" in text and (f"{holds[1].steady_torque_N_m:.2f} ({holds[1].harder_side} wheel harder) vs "
                                       f"{holds[1].holding_torque_N_m:.2f}") in text
+    # the steady torque's departure from the statics, to 3 significant figures like every other relative change
+    rel = holds[1].steady_torque_N_m / holds[1].holding_torque_N_m - 1.0      # the documented steady / holding - 1
+    assert f"N m ({100 * rel:+.3g} %) [" in text
     assert "9 deg: skipped (no equilibrium)" in text
 
 

@@ -397,7 +397,7 @@ def format_slope_holds(holds: Sequence[SlopeHold | dict[str, Any]]) -> str:
             f"{h.open_end_s:.2f} s; assist {h.closed_heading_deg:+.2f} deg at {h.duration_s:g} s (crab "
             f"{h.crab_deg:+.2f} deg, offset {1e3 * h.closed_offset_m:+.1f} mm); torque {h.steady_torque_N_m:.2f} "
             f"({h.harder_side} wheel harder) vs "
-            f"{h.holding_torque_N_m:.2f} N m ({h.relative_error:+.3%}) [{h.holding_band_N_m[0]:.2f}, "
+            f"{h.holding_torque_N_m:.2f} N m ({100 * h.relative_error:+.3g} %) [{h.holding_band_N_m[0]:.2f}, "
             f"{h.holding_band_N_m[1]:.2f}], peak {h.peak_torque_N_m:.1f} N m, "
             f"{'within' if h.within_limits else 'BEYOND'} the motor ({h.motor_limit_N_m:g} N m) and traction "
             f"({h.traction_limit_N_m:.0f} N m, friction use {h.friction_use:.0%}) limits")
