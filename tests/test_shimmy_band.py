@@ -250,3 +250,39 @@ def test_a_caster_without_inertia_about_its_centre_is_refused_naming_i_zp_and_it
             f"chair parameter i_zp={c.i_zp!r} is invalid for shimmy; valid range: > m_c*l1^2 = {bound:.6g} kg m^2 "
             f"with m_c > 0")):
         band_core(c, [1.0])
+
+
+def test_an_unbounded_margin_is_a_bound_at_the_searched_trails_nearer_end():
+    """margin_bound: a finite margin is itself; with no boundary on the trails searched (1 mm to 25 cm) any
+    boundary lies beyond them, so +inf is at least the trail's distance to the nearer end ("above") and -inf at
+    most minus it ("below"); a trail beyond the search gets 0; NaN stays missing."""
+    from stability.shimmy.band import margin_bound
+
+    assert TRAIL_SEARCH_M == (0.001, 0.25)
+    assert margin_bound(0.012, 0.08) == (0.012, "found") and margin_bound(-0.02, 0.08) == (-0.02, "found")
+    assert margin_bound(math.inf, 0.08) == (pytest.approx(0.079, abs=1e-15), "above")   # 8 cm - 1 mm
+    assert margin_bound(math.inf, 0.2) == (pytest.approx(0.05, abs=1e-15), "above")     # 25 cm - 20 cm
+    assert margin_bound(-math.inf, 0.08) == (pytest.approx(-0.079, abs=1e-15), "below")
+    assert margin_bound(math.inf, 0.3) == (0.0, "above")
+    v, st = margin_bound(math.nan, 0.08)
+    assert math.isnan(v) and st == ""
+
+
+def test_a_sweep_ranks_a_trail_with_no_shimmy_boundary_first():
+    """Viscous pin damping of 0.5 N m s/rad leaves the E&J Premier's caster shimmy-free on every trail searched at
+    0.75 m/s (its band is the whole search, 1 mm to 25 cm: no boundary, margin +inf), while without damping its 8 cm
+    trail is 3.14 cm from a boundary.  The sweep stores the damped design's margin as its bound (at least 7.9 cm,
+    "above") and ranks it first, not last as a missing value."""
+    from stability.sweep import columns, compute_chunk, loads_spec, summary
+
+    damped = shimmy_band(chair_mod.preset("ej-premier").replace(pin_damping=0.5), [0.75])
+    assert damped.intervals_m[0] == ((0.001, 0.25),) and damped.margin_m[0] == math.inf
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["shimmy_margin"]\n[grid]\npin_damping = [0.0, 0.5]\n')
+    rows = compute_chunk(spec, 0)
+    data = {c: [r[j] for r in rows] for j, c in enumerate(columns(spec))}
+    assert data["shimmy_margin_status"] == ["found", "above"]
+    ranked = summary(spec, data)["measures"]["shimmy_margin_m"]["best"][0]
+    assert [(e["design"], e["conservative_side"]) for e in ranked] == [(1, ">"), (0, "=")]
+    assert ranked[0]["conservative"] == pytest.approx(0.079, abs=1e-15)
+    assert ranked[1]["conservative"] == pytest.approx(shimmy_band(chair_mod.preset("ej-premier"), [0.75]).margin_m[0],
+                                                      abs=1e-15)

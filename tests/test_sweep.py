@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from stability.chair import preset
+from stability.linear import state_matrices
 from stability.linear.batch import ChairBatch
 from stability.settings.run import RunSpec
 from stability.study import critical_impulses
@@ -81,7 +82,15 @@ def test_rows_equal_the_library_and_a_bad_chair_is_a_row(spec_dir):
     from stability.linear import analyse
 
     s = analyse(c, "exact")
-    assert math.isnan(data["critical_speed_m_s"][i]) and not [x for x in s.free_crossings if x.speed <= 30.0]
+    # free casters: no crossing up to 30 m/s and unstable at the grid's first speed (0.01 m/s), so the chair is
+    # stable up to at most 0.01 m/s: a bound, stored as its value with the status "below"
+    assert not [x for x in s.free_crossings if x.speed <= 30.0]
+    assert float(np.max(np.linalg.eigvals(state_matrices(c, np.array([0.01]))[0]).real)) > 0
+    assert (data["critical_speed_m_s"][i], data["critical_speed_status"][i]) == (0.01, "below")
+    assert data["locked_critical_speed_status"][i] == "found"
+    # the bad design's rows: no chair, NaN values, the status "invalid" (their side "=": a missing value)
+    j = next(j for j in range(len(rows)) if data["error"][j])
+    assert math.isnan(data["critical_speed_m_s"][j]) and data["critical_speed_status"][j] == "invalid"
     locked = [x.speed for x in s.locked_crossings if x.direction == "destabilising"]
     # error model: bisection bracket: half the batch's xtol (5e-7 m/s) plus Brent's 1e-10 m/s
     assert data["locked_critical_speed_m_s"][i] == pytest.approx(locked[0], abs=5e-7 + 1e-10)
@@ -310,6 +319,33 @@ def test_a_design_beyond_the_searched_range_ranks_first_as_its_bound(tmp_path):
     from stability.sweep.run import _grid_text
 
     assert _grid_text({"cg_ratio": 0.5, "trail": 0.05}) == "cg_ratio 0.5, trail 0.05 m"   # a group has no unit
+
+
+def test_a_chair_stable_at_every_speed_searched_ranks_first_by_its_critical_speed(tmp_path):
+    """A bound is a value for the critical speeds too.  The E&J Premier with its c.g. 5 or 15 cm ahead of the main
+    axle (s1) is stable with locked casters at every speed up to the searched 30 m/s (zero-width model, eqs 5-15
+    and 5-16: no critical speed at 5 cm, k_us > 0; 62.5 m/s at 15 cm), while at s1 = 0.25 and 0.345 m it turns
+    unstable at 11.6 and 9.71 m/s: the two stable designs rank first as "> 30 m/s", not last as missing values.  With free casters every design is
+    unstable from the grid's first speed: "< 0.01 m/s" each, the chair is never stable."""
+    from stability.linear import zero_width
+
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["critical_speeds"]\n[grid]\ns1 = [0.345, 0.25, 0.15, 0.05]\n',
+                      tmp_path)
+    rows = compute_chunk(spec, 0)
+    cols = columns(spec)
+    data = {c: [r[j] for r in rows] for j, c in enumerate(cols)}
+    chairs = [preset("ej-premier").replace(s1=s1) for s1 in (0.345, 0.25, 0.15, 0.05)]
+    beyond = [zero_width(c).critical_speed is None or zero_width(c).critical_speed > 30.0 for c in chairs]
+    assert beyond == [False, False, True, True]                     # 9.71, 11.6, 62.5 m/s and none (k_us > 0)
+    s = summary(spec, data, top=4)
+    ranked = s["measures"]["locked_critical_speed_m_s"]["best"][0]
+    assert [(e["design"], e["conservative_side"]) for e in ranked[:2]] in ([(2, ">"), (3, ">")], [(3, ">"), (2, ">")])
+    assert [e["design"] for e in ranked[2:]] == [1, 0]                   # 11.6 m/s before 9.71 m/s
+    assert ranked[0]["conservative"] == 30.0 and ranked[2]["conservative_side"] == "="
+    free = s["measures"]["critical_speed_m_s"]["best"][0]
+    assert len(free) == 4 and {(e["conservative"], e["conservative_side"]) for e in free} == {(0.01, "<")}
+    text = summary_text(spec, s)
+    assert "> 30 m/s" in text and "< 0.01 m/s" in text and "no design has a value" not in text
 
 
 def test_a_critical_impulse_never_reached_is_at_least_the_largest_push_and_ranks_first(tmp_path):

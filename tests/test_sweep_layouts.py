@@ -177,3 +177,20 @@ def test_an_uncertainty_field_the_layout_does_not_have_is_refused_in_one_line(tm
     assert "uncertainty [trail] table='trail' is invalid; valid range: a numeric layout field" in msg
     assert "\n" not in msg
     assert "trail_front" in msg                                     # the valid axes named
+
+
+def test_a_layouts_critical_speed_is_a_value_or_a_bound_with_its_status():
+    """The rear-caster E&J Premier as a layout is unstable from the slowest speed searched forwards (the thesis's
+    finding with free casters) and, turned round (in reverse its casters lead), stable at every speed searched.
+    Each is stored as the search's end with its side (0.02 m/s "below", 20 m/s "above"), so a sweep ranks the
+    stable one first (the layout commands' search, SEARCH_SPEEDS_M_S, 0.02-20 m/s)."""
+    from stability.chair import preset
+    from stability.layout.linear import SEARCH_SPEEDS_M_S
+    from stability.layout.model import Layout
+
+    rates = growth_rates(Layout.from_chair(preset("ej-premier")), [0.02, -0.02, -20.0])
+    assert rates[0] > 0 and rates[1] < 0 and rates[2] < 0
+    rows = _rows('chair = "ej-premier"\nspeeds = [0.75, -0.75]\nmeasures = ["critical_speeds"]\n')
+    got = {r["speed_m_s"]: (r["critical_speed_m_s"], r["critical_speed_status"]) for r in rows}
+    assert got == {0.75: (float(SEARCH_SPEEDS_M_S[0]), "below"), -0.75: (float(SEARCH_SPEEDS_M_S[-1]), "above")}
+    assert all(math.isnan(r["locked_critical_speed_m_s"]) and r["locked_critical_speed_status"] == "" for r in rows)

@@ -664,7 +664,12 @@ ALLOWED: dict[str, list[tuple[str, str]]] = {
         ('on a 0.1 % grid of pushes over +-2 % around', 'parameter'),
     ],
     'docs/sweep.md': [
-        ('`ChairBatch.first_critical_speed` on 600 speeds 0.01-30', 'parameter'),
+        ('`ChairBatch.first_critical_speed_bounded` on 600 speeds 0.01-30', 'parameter'),
+        ("a bound at the grid's end: 30 with `above`", 'parameter'),
+        ('stable a design can be here) or 0.01 with `below`', 'parameter'),
+        ("the layout commands' search 0.02-20 m/s", 'parameter'),
+        ('on the trails searched (1 mm to 25 cm) a bound', 'parameter'),
+        ('a critical speed beyond the 0.01-30 m/s searched', 'parameter'),
         ('the nearest shimmy boundary (< 0: inside', 'parameter'),
         ('holds a straight line across a 1 deg cross', 'parameter'),
         ('rule, docs/driver.md); beyond 6 m/s a bound', 'parameter'),

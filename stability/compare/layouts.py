@@ -40,7 +40,7 @@ from stability.study.censored import quantile
 from stability.study.layout_impulse import layout_critical_impulses
 from stability.uncertainty import Uncertainty, propagate
 
-__all__ = ["compare_layouts", "stable_up_to", "stable_up_to_rows", "bounded_interval",
+__all__ = ["compare_layouts", "stable_up_to", "stable_up_to_bounded", "stable_up_to_rows", "bounded_interval",
            "bounded_difference", "linear_rows", "LAYOUT_NOTE"]
 
 #: What a layout comparison leaves out, in one line.
@@ -66,6 +66,29 @@ def stable_up_to(layout: Layout, reverse: bool = False) -> float:
     if kind == "destabilising":
         return float(speed)
     return math.inf if kind == "none-stable" else 0.0
+
+
+def stable_up_to_bounded(layout: Layout, reverse: bool = False) -> tuple[float, str]:
+    """:func:`stable_up_to` as a value and its status, the searched range's ends as bounds (a bound is a value).
+
+    Parameters
+    ----------
+    layout : Layout
+    reverse : bool
+
+    Returns
+    -------
+    (float, str)
+        ``(speed m/s, status)``: the destabilising critical speed and ``"found"``; the search's last speed
+        (20 m/s) and ``"above"`` when stable at every speed searched; its first speed (0.02 m/s) and ``"below"``
+        when unstable from the slowest speed or only stable above a speed.
+    """
+    speed, kind = critical_speed(layout, reverse)
+    if kind == "destabilising":
+        return float(speed), "found"
+    if kind == "none-stable":
+        return float(SEARCH_SPEEDS_M_S[-1]), "above"
+    return float(SEARCH_SPEEDS_M_S[0]), "below"
 
 
 def linear_rows(layouts: Sequence[Layout], speeds: Sequence[float] | np.ndarray) -> np.ndarray:

@@ -152,10 +152,49 @@ class ChairBatch:
         -------
         ndarray
             Shape (N,), m/s; NaN where no destabilising crossing lies in the grid's range
-            (stable throughout, or unstable from the first grid speed).
+            (stable throughout, or unstable from the first grid speed: :meth:`first_critical_speed_bounded` tells
+            which).
+        """
+        return self._first_crossing(grid, casters, xtol)[0]
+
+    def first_critical_speed_bounded(self, grid: Sequence[float] | np.ndarray, casters: str = "free",
+                                     xtol: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`first_critical_speed` with a bound where the grid holds no destabilising crossing.
+
+        A bound is a value: a chair stable at every grid speed is stable up to at least the grid's last speed
+        (status ``"above"``, the best a ranking can say), a chair already unstable at the first grid speed and
+        never turning unstable from stable on the grid is stable up to at most the first (``"below"``, the worst).
+
+        Parameters
+        ----------
+        grid : sequence of float
+            Increasing search speeds, m/s.
+        casters : {"free", "locked"}
+        xtol : float
+            Bisection tolerance, m/s.
+
+        Returns
+        -------
+        speeds : ndarray
+            Shape (N,), m/s: the crossing, or the bound (the grid's last speed for ``"above"``, its first for
+            ``"below"``).
+        statuses : ndarray of str
+            Shape (N,): ``"found"``, ``"above"`` or ``"below"``
+            (:func:`stability.study.censored.side_of` reads them).
         """
         U = np.asarray(grid, dtype=float)
+        out, stable_first = self._first_crossing(U, casters, xtol)
+        found = np.isfinite(out)
+        status = np.where(found, "found", np.where(stable_first, "above", "below")).astype(object)
+        return np.where(found, out, np.where(stable_first, U[-1], U[0])), status
+
+    def _first_crossing(self, grid: Sequence[float] | np.ndarray, casters: str,
+                        xtol: float) -> tuple[np.ndarray, np.ndarray]:
+        """The first destabilising crossing (NaN where none) and whether each chair is stable at the first grid
+        speed."""
+        U = np.asarray(grid, dtype=float)
         a = self.max_real_part(np.broadcast_to(U[:, None], (len(U), self.n)), casters)  # (G, N)
+        stable_first = a[0] < 0
         up = (a[:-1] < 0) & (a[1:] >= 0)
         has = up.any(axis=0)
         k = np.argmax(up, axis=0)
@@ -163,7 +202,7 @@ class ChairBatch:
         hi = np.where(has, U[np.minimum(k + 1, len(U) - 1)], np.nan)
         idx = np.flatnonzero(has)
         if idx.size == 0:
-            return np.full(self.n, np.nan)
+            return np.full(self.n, np.nan), stable_first
         lo_i, hi_i = lo[idx], hi[idx]
         sub = _SubBatch(self, idx)
         while np.max(hi_i - lo_i) > xtol:
@@ -174,7 +213,7 @@ class ChairBatch:
             hi_i = np.where(neg, hi_i, mid)
         out = np.full(self.n, np.nan)
         out[idx] = 0.5 * (lo_i + hi_i)
-        return out
+        return out, stable_first
 
 
 class _SubBatch(ChairBatch):

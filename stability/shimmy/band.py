@@ -27,7 +27,7 @@ from stability.shimmy.compliance import CasterCompliance
 from stability.shimmy.layout_caster import CasterSource, LayoutCaster
 
 __all__ = ["TRAIL_SEARCH_M", "GRID_POINTS", "ShimmyBand", "shimmy_band", "band_core", "shimmy_intervals", "abscissa",
-           "margin_to_boundaries", "margin_words", "margin_cell"]
+           "margin_to_boundaries", "margin_words", "margin_cell", "margin_bound"]
 
 #: Trails searched for boundaries (m): 1 mm to 25 cm.
 TRAIL_SEARCH_M = (0.001, 0.25)
@@ -244,6 +244,36 @@ def margin_cell(margin: float, spec: str = "+.2f") -> str:
     if math.isinf(margin):
         return "none found" if margin > 0 else "every trail"
     return format(100 * margin, spec)
+
+
+def margin_bound(margin: float, trail: float) -> tuple[float, str]:
+    """A shimmy margin as a value or a bound, for ranking (a bound is a value: :mod:`stability.study.censored`).
+
+    An infinite margin (:func:`margin_to_boundaries`) still says something: with no boundary on the trails
+    searched (:data:`TRAIL_SEARCH_M`) any boundary lies beyond the search's ends, so a shimmy-free trail is at
+    least its distance to the nearer end from one (``+inf``: ``"above"``), and a trail where every trail searched
+    shimmies is at least that far inside a shimmy zone (``-inf``: ``"below"``, minus the distance).
+
+    Parameters
+    ----------
+    margin : float
+        As :func:`margin_words` (m; NaN: none computed).
+    trail : float
+        The trail the margin is of (m).
+
+    Returns
+    -------
+    (float, str)
+        ``(margin m, "found")`` for a finite margin, ``(+-distance m, "above" / "below")`` for an infinite one (the
+        distance from ``trail`` to the nearer end of :data:`TRAIL_SEARCH_M`, 0 outside it), ``(nan, "")`` for NaN.
+    """
+    if math.isnan(margin):
+        return margin, ""
+    if math.isfinite(margin):
+        return margin, "found"
+    lo, hi = TRAIL_SEARCH_M
+    d = max(0.0, min(trail - lo, hi - trail))
+    return (d, "above") if margin > 0 else (-d, "below")
 
 
 @dataclass(frozen=True)

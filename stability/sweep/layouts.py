@@ -14,7 +14,8 @@ layout (outside a field's range, a base that no longer stands) is a row with the
 
 The measures are the layout commands' (each row in the direction of its speed's sign): ``growth_rate`` (the layout's
 linear model), ``critical_speeds`` (``critical_speed_m_s``: the speed up to which the layout is stable,
-:func:`stability.compare.layouts.stable_up_to`; no locked-caster model of a layout: NaN), ``critical_impulse``
+:func:`stability.compare.layouts.stable_up_to_bounded`, the search's ends as bounds with ``critical_speed_status``;
+no locked-caster model of a layout: NaN), ``critical_impulse``
 and ``equal_instability_speed`` (the layout studies), ``shimmy_margin`` (the smallest over the caster rows),
 ``tip_angles`` (the ISO 7176-1 angles over the outermost contacts: the smallest and the smaller lateral one; the
 short form's toward-casters and toward-main-wheels columns are NaN), ``bench``.  The human-limited speed and the holding
@@ -38,11 +39,11 @@ from stability.advise.layout_axes import (
 )
 from stability.advise.layout_levers import caster_rows
 from stability.bench import run_bench
-from stability.compare.layouts import stable_up_to
+from stability.compare.layouts import stable_up_to_bounded
 from stability.layout.linear import growth_rates
 from stability.layout.model import Layout
 from stability.layout.statics import tip_angles
-from stability.shimmy.band import shimmy_band
+from stability.shimmy.band import margin_bound, shimmy_band
 from stability.shimmy.layout_caster import LayoutCaster
 from stability.study.layout_equal_instability import layout_equal_instability
 from stability.study.layout_impulse import layout_critical_impulses
@@ -74,24 +75,29 @@ def bench_of(layout: Layout) -> tuple[float, float]:
                                      if c.family == "stop" and c.slope == "level")
 
 
-def _shimmy(layout: Layout, speeds: np.ndarray) -> np.ndarray:
-    """The smallest margin over the caster rows at each speed, m (NaN: none computable); a negative speed's at its
-    size with the casters swung round (the reversed statics' loads, as ``python -m stability.shimmy``)."""
-    out = np.full(len(speeds), math.nan)
+def _shimmy(layout: Layout, speeds: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The smallest margin over the caster rows at each speed, m, and its status (NaN and ``""``: none computable);
+    a negative speed's at its size with the casters swung round (the reversed statics' loads, as
+    ``python -m stability.shimmy``).  A row's margin without a boundary on the trails searched counts as its bound
+    (:func:`stability.shimmy.band.margin_bound`); the smallest row's value and status are the layout's (a lower
+    bound there holds for the smallest, which lies between it and the other rows' values)."""
+    out, status = np.full(len(speeds), math.nan), np.full(len(speeds), "", dtype=object)
     rows = caster_rows(layout)
     if not rows:
-        return out
+        return out, status
     for reverse in (False, True):
         sel = (speeds < 0) == reverse
         if not sel.any():
             continue
         try:
-            m = [np.asarray(shimmy_band(LayoutCaster(layout, r[0], reverse), np.abs(speeds[sel])).margin_m,
-                            dtype=float) for r in rows]
+            bands = [shimmy_band(LayoutCaster(layout, r[0], reverse), np.abs(speeds[sel])) for r in rows]
         except ValueError:
             continue
-        out[sel] = np.min(np.array(m), axis=0)
-    return out
+        per_row = [[margin_bound(float(m), b.trail_m) for m in b.margin_m] for b in bands]
+        worst = [min((row[j] for row in per_row), key=lambda p: p[0]) for j in range(int(sel.sum()))]
+        out[sel] = [v for v, _ in worst]
+        status[sel] = [st for _, st in worst]
+    return out, status
 
 
 def layout_chunk_values(measures: tuple, layouts: list[Layout], speeds: np.ndarray, run: Any) -> dict[str, np.ndarray]:
@@ -118,8 +124,11 @@ def layout_chunk_values(measures: tuple, layouts: list[Layout], speeds: np.ndarr
     if "growth_rate" in measures:
         out["growth_rate_1_s"] = np.array([growth_rates(lay, speeds) for lay in layouts])
     if "critical_speeds" in measures:
-        out["critical_speed_m_s"] = np.array([[stable_up_to(lay, bool(r)) for r in rev] for lay in layouts])
+        found = [[stable_up_to_bounded(lay, bool(r)) for r in rev] for lay in layouts]
+        out["critical_speed_m_s"] = np.array([[v for v, _ in row] for row in found]).reshape(n, k)
+        out["critical_speed_status"] = np.array([[st for _, st in row] for row in found], dtype=object).reshape(n, k)
         out["locked_critical_speed_m_s"] = np.full((n, k), math.nan)
+        out["locked_critical_speed_status"] = np.full((n, k), "", dtype=object)
     if "critical_impulse" in measures:
         res = [layout_critical_impulses(lay, speeds, run) for lay in layouts]
         out["critical_impulse_Ns"] = np.array([[r.bound_Ns for r in row] for row in res])
@@ -132,7 +141,9 @@ def layout_chunk_values(measures: tuple, layouts: list[Layout], speeds: np.ndarr
                 v[i, rev == reverse], st[i, rev == reverse] = r.value_or_bound, r.status
         out["equal_instability_speed_m_s"], out["equal_instability_status"] = v, st
     if "shimmy_margin" in measures:
-        out["shimmy_margin_m"] = np.array([_shimmy(lay, speeds) for lay in layouts])
+        margins = [_shimmy(lay, speeds) for lay in layouts]
+        out["shimmy_margin_m"] = np.array([v for v, _ in margins]).reshape(n, k)
+        out["shimmy_margin_status"] = np.array([st for _, st in margins], dtype=object).reshape(n, k)
     if "tip_angles" in measures:
         tips = [tip_angles(lay) for lay in layouts]
         for col, get in (("static_stability_deg", lambda t: min(t.values())),

@@ -26,11 +26,11 @@ from stability.layout.model import Layout
 from stability.linear.batch import ChairBatch
 from stability.models.statics import check_static_loads
 from stability.settings.defaults import MAX_SPEED
-from stability.shimmy.band import shimmy_band
+from stability.shimmy.band import margin_bound, shimmy_band
 from stability.slope import solve
 from stability.study import critical_impulses, equal_instability_speeds
 from stability.sweep.layouts import apply_layout_axis, bench_of, draw_layout, layout_chunk_values
-from stability.sweep.spec import _NUMERIC, MEASURES, SweepSpec, apply_axis
+from stability.sweep.spec import _NUMERIC, INVALID, MEASURES, SweepSpec, apply_axis
 from stability.tipping import tip_angles
 
 __all__ = ["CRITICAL_SPEED_GRID", "columns", "design_values", "chunk_pairs", "n_chunks", "compute_chunk"]
@@ -171,7 +171,7 @@ def compute_chunk(spec: SweepSpec, index: int) -> list[list[Any]]:
             for m in spec.measures:
                 for col in MEASURES[m][0]:
                     row.append(values[col][j, s_i] if j >= 0 else (math.nan if not col.endswith("status")
-                                                                      else "invalid"))
+                                                                      else INVALID))
             row.append(errors[i])
             rows.append(row)
     return rows
@@ -192,9 +192,12 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
     if "growth_rate" in spec.measures and batch is not None:
         out["growth_rate_1_s"] = batch.growth_rates(speeds)
     if "critical_speeds" in spec.measures and batch is not None:
-        out["critical_speed_m_s"] = np.repeat(batch.first_critical_speed(CRITICAL_SPEED_GRID)[:, None], k, axis=1)
-        out["locked_critical_speed_m_s"] = np.repeat(
-            batch.first_critical_speed(CRITICAL_SPEED_GRID, "locked")[:, None], k, axis=1)
+        # a bound is a value: "stable at every speed up to 30 m/s" is stored as 30 with the status "above" (the most
+        # stable a design can be here), "unstable from 0.01 m/s" as 0.01 with "below"
+        for col, casters in (("critical_speed", "free"), ("locked_critical_speed", "locked")):
+            v, st = batch.first_critical_speed_bounded(CRITICAL_SPEED_GRID, casters)
+            out[f"{col}_m_s"] = np.repeat(v[:, None], k, axis=1)
+            out[f"{col}_status"] = np.repeat(st[:, None], k, axis=1)
     if "critical_impulse" in spec.measures:
         pc, ps = [c for c in chairs for _ in speeds], np.tile(speeds, n)
         # one call per SEARCH_SLICE pairs: each call's worst-case work is checked against the studies' budget
@@ -212,7 +215,9 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
         out["equal_instability_status"] = np.repeat(np.array([r.status for r in res2], dtype=object)[:, None], k,
                                                     axis=1)
     if "shimmy_margin" in spec.measures:
-        out["shimmy_margin_m"] = np.array([_shimmy(c, speeds) for c in chairs])
+        margins = [_shimmy(c, speeds) for c in chairs]
+        out["shimmy_margin_m"] = np.array([v for v, _ in margins]).reshape(n, k)
+        out["shimmy_margin_status"] = np.array([st for _, st in margins], dtype=object).reshape(n, k)
     if "tip_angles" in spec.measures:
         tips = [tip_angles(c) for c in chairs]
         for col, get in (("static_stability_deg", lambda t: t.smallest_deg),
@@ -239,12 +244,16 @@ def _measures(spec: SweepSpec, chairs: list[Chair], speeds: np.ndarray) -> dict[
     return out
 
 
-def _shimmy(chair: Chair, speeds: np.ndarray) -> np.ndarray:
-    """Signed distance of the trail to the nearest shimmy boundary at each speed, m (NaN: not computable)."""
+def _shimmy(chair: Chair, speeds: np.ndarray) -> tuple[list[float], list[str]]:
+    """Signed distance of the trail to the nearest shimmy boundary at each speed, m, and its status: a margin
+    without a boundary on the trails searched as its bound (:func:`stability.shimmy.band.margin_bound`); NaN and
+    ``""`` where not computable."""
     try:
-        return np.asarray(shimmy_band(chair, speeds).margin_m, dtype=float)
+        band = shimmy_band(chair, speeds)
     except ValueError:
-        return np.full(len(speeds), math.nan)
+        return [math.nan] * len(speeds), [""] * len(speeds)
+    pairs = [margin_bound(float(m), band.trail_m) for m in band.margin_m]
+    return [v for v, _ in pairs], [st for _, st in pairs]
 
 
 def _bench(chair: Chair) -> tuple[float, float]:

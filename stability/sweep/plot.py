@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from stability.study.censored import quantile, side_of
-from stability.sweep.run import STATUS_OF
+from stability.study.censored import quantile
+from stability.sweep.run import STATUS_OF, row_sides
 from stability.sweep.spec import GRID_UNITS, MEASURES, SweepSpec
 
 __all__ = ["UNITS", "measure_figures"]
@@ -76,8 +76,7 @@ def measure_figures(spec: SweepSpec, data: dict[str, list]) -> list[Any]:
             if col not in UNITS:
                 continue
             vals = np.asarray(data[col], dtype=float)
-            status = data.get(STATUS_OF.get(col, ""), [""] * len(vals))
-            sides = np.array([side_of(x if isinstance(x, str) else "") for x in status], dtype=object)
+            sides = row_sides(data, col)
             fig = Figure(figsize=(4.0 * len(spec.speeds) + 1.0, 4.6), layout="constrained")
             panels = fig.subplots(1, len(spec.speeds), squeeze=False)[0]
             narrow = False

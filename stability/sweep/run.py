@@ -25,13 +25,14 @@ import numpy as np
 from stability.runtime.files import atomic_path, atomic_write_text
 from stability.study.censored import describe, quantile, side_of, sort_key
 from stability.sweep.measures import columns, compute_chunk, n_chunks
-from stability.sweep.spec import GRID_UNITS, MEASURES, SweepSpec
+from stability.sweep.spec import GRID_UNITS, INVALID, MEASURES, SweepSpec
 
 __all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TEXT_COLUMNS", "HIGHER_IS_BETTER",
-           "STATUS_OF", "COLUMN_UNITS"]
+           "STATUS_OF", "COLUMN_UNITS", "row_sides"]
 
 #: Columns holding text (everything else is a number).
-TEXT_COLUMNS = ("critical_impulse_status", "equal_instability_status", "human_limited_status", "error")
+TEXT_COLUMNS = ("critical_speed_status", "locked_critical_speed_status", "critical_impulse_status",
+                "equal_instability_status", "shimmy_margin_status", "human_limited_status", "error")
 #: Measures where a larger value is better (a chair that needs more to go wrong); growth rate: smaller is better.
 HIGHER_IS_BETTER = {"critical_speed_m_s": True, "locked_critical_speed_m_s": True, "critical_impulse_Ns": True,
                     "equal_instability_speed_m_s": True, "growth_rate_1_s": False, "shimmy_margin_m": True,
@@ -177,9 +178,30 @@ def read_rows(text: str) -> dict[str, list]:
 
 
 #: The status column of a measure whose searches can end beyond their range (a bound is a value).
-STATUS_OF = {"critical_impulse_Ns": "critical_impulse_status",
-             "equal_instability_speed_m_s": "equal_instability_status",
+STATUS_OF = {"critical_speed_m_s": "critical_speed_status", "locked_critical_speed_m_s": "locked_critical_speed_status",
+             "critical_impulse_Ns": "critical_impulse_status",
+             "equal_instability_speed_m_s": "equal_instability_status", "shimmy_margin_m": "shimmy_margin_status",
              "human_limited_speed_m_s": "human_limited_status"}
+def row_sides(data: dict[str, list], col: str) -> np.ndarray:
+    """The side of every row's value of measure ``col`` (:func:`stability.study.censored.side_of` of its status
+    column, :data:`STATUS_OF`): ``"="`` found, ``">"`` / ``"<"`` a bound; ``"="`` for a measure without bounds and
+    for a row without a chair (:data:`INVALID`, its value NaN).
+
+    Parameters
+    ----------
+    data : dict
+        Column -> values, as :func:`read_rows` gives them.
+    col : str
+        A measure column.
+
+    Returns
+    -------
+    ndarray of str
+    """
+    status = data.get(STATUS_OF.get(col, ""), [""] * len(data[col]))
+    return np.array([side_of(x) if isinstance(x, str) and x != INVALID else "=" for x in status], dtype=object)
+
+
 #: Units of the measure columns, as printed.
 COLUMN_UNITS = {"growth_rate_1_s": "1/s", "critical_speed_m_s": "m/s", "locked_critical_speed_m_s": "m/s",
                 "critical_impulse_Ns": "N s", "equal_instability_speed_m_s": "m/s", "shimmy_margin_m": "m",
@@ -228,8 +250,7 @@ def summary(spec: SweepSpec, data: dict[str, list], top: int = 3, level: float =
                 continue
             up = HIGHER_IS_BETTER[col]
             vals = np.asarray(data[col], dtype=float)
-            status = data.get(STATUS_OF.get(col, ""), [""] * len(vals))
-            sides = np.array([side_of(x if isinstance(x, str) else "") for x in status], dtype=object)
+            sides = row_sides(data, col)
             best = []
             for sp in spec.speeds:
                 ranked: list[dict[str, Any]] = []

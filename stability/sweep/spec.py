@@ -48,22 +48,25 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["MEASURES", "SCHEMA", "SweepSpec", "load_spec", "loads_spec", "MAX_ROWS"]
+__all__ = ["INVALID", "MEASURES", "SCHEMA", "SweepSpec", "load_spec", "loads_spec", "MAX_ROWS"]
 
 #: Measures a sweep can compute: name -> (columns it writes, cost class).  Per-speed measures fill
 #: every row; per-chair ones (critical speeds, equal-instability speed) repeat on a design-draw's rows.
 MEASURES: dict[str, tuple[tuple[str, ...], str]] = {
     "growth_rate": (("growth_rate_1_s",), "linear"),
-    "critical_speeds": (("critical_speed_m_s", "locked_critical_speed_m_s"), "linear"),
+    "critical_speeds": (("critical_speed_m_s", "critical_speed_status", "locked_critical_speed_m_s",
+                         "locked_critical_speed_status"), "linear"),
     "critical_impulse": (("critical_impulse_Ns", "critical_impulse_status"), "nonlinear"),
     "equal_instability_speed": (("equal_instability_speed_m_s", "equal_instability_status"), "nonlinear"),
-    "shimmy_margin": (("shimmy_margin_m",), "linear"),
+    "shimmy_margin": (("shimmy_margin_m", "shimmy_margin_status"), "linear"),
     "tip_angles": (("static_stability_deg", "tip_toward_casters_deg", "tip_toward_main_wheels_deg",
                     "tip_lateral_deg"), "statics"),
     "holding_moment": (("holding_moment_N_m_per_deg",), "statics"),
     "human_limited_speed": (("human_limited_speed_m_s", "human_limited_status"), "linear"),
     "bench": (("bench_worst_score", "level_braking_distance_m"), "statics"),
 }
+#: The status of a row whose chair could not be built (its measures are NaN, its ``error`` says why).
+INVALID = "invalid"
 #: Units of the grid's axes (chair fields), as printed and drawn.
 GRID_UNITS = {"pin_friction": "N m", "trail": "m", "s1": "m", "s2": "m", "l1": "m", "h": "m", "m": "kg",
               "i_z": "kg m^2", "d1": "m", "d2": "m", "t1": "m", "t2": "m", "pin_friction_left": "N m",
