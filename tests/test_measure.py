@@ -372,14 +372,17 @@ def test_a_reading_is_shown_as_written_with_its_std_only_when_given():
 
 def test_a_unit_of_the_wrong_dimension_and_a_lever_arm_beyond_a_metre_are_refused_in_one_line(tmp_path):
     """A trail in kg is refused naming the dimension it needs and the one it got; a spring-scale lever arm of
-    1.5 m is beyond the sheet's range for it (> 0 and <= 1 m: READINGS, docs/measure.md's table)."""
+    1.5 m is beyond the sheet's range for it (> 0 and <= 1 m: READINGS, docs/measure.md's table).  Each line ends
+    with what the reading measures, in docs/measure.md's words."""
     import re
 
     for old, new, message in (
             ('trail = { value = 7.5, unit = "cm"', 'trail = { value = 7.5, unit = "kg"',
-             "sheet reading geometry.trail=7.5 kg is invalid; valid range: a length unit, not a mass unit"),
+             "sheet reading geometry.trail=7.5 kg is invalid; valid range: a length unit, not a mass unit; "
+             "geometry.trail: caster pin axis to contact, horizontal"),
             ('lever_arm = { value = 10.0, unit = "cm"', 'lever_arm = { value = 150.0, unit = "cm"',
-             "sheet reading pin_friction.lever_arm=150 cm is invalid; valid range: > 0 and <= 1 (SI: length)")):
+             "sheet reading pin_friction.lever_arm=150 cm is invalid; valid range: > 0 and <= 1 (SI: length); "
+             "pin_friction.lever_arm: pin to the spring-scale hook")):
         bad = tmp_path / "s.toml"
         bad.write_text(_sheet_text(**{old: new}))
         with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
@@ -467,7 +470,7 @@ _SI_UNIT = {"length": "m", "mass": "kg", "time": "s", "angle": "rad", "torsional
 def _stated_range(key):
     """The range a reading's refusal states, as numbers in SI: (lower, lower inclusive, upper).  A far-off value
     (1e6 in the reading's SI unit; a scale reading in N) is refused in one line stating ``>= 0`` or ``> LO`` and
-    ``<= HI`` (a scale's upper bound in kg, with its weight in N)."""
+    ``<= HI`` (a scale's upper bound in kg, with its weight in N), then what the reading measures."""
     import re
 
     dims = sheet.READINGS[key][0]
@@ -476,7 +479,7 @@ def _stated_range(key):
         sheet._parse_reading(key, {"value": 1e6, "unit": unit})
     msg = str(err.value)
     m = re.fullmatch(rf"sheet reading {re.escape(key)}=1e\+06 {re.escape(unit)} is invalid; valid range: "
-                     r"(>= 0|> (\S+)) and <= (.*)", msg)
+                     rf"(>= 0|> (\S+)) and <= (.*); {re.escape(key)}: {re.escape(sheet.READINGS[key][4])}", msg)
     assert m, msg
     if "force" in dims:
         kg, newton = re.fullmatch(r"(\S+) kg \((\S+) N\)", m[3]).groups()
@@ -572,10 +575,11 @@ def test_every_reading_s_refusals_name_the_reading_its_value_and_what_is_valid()
     """Class: refusal words no test read (seed 51: the non-finite value's and the wrong dimension's words).  Every
     reading is refused in one line naming it, its value as written and what is valid: a value or std that is not
     a finite number, a negative std, a unit of another dimension (a scale reading takes a mass, its weight, or a
-    force: docs/measure.md), keys other than value, unit, std and note."""
+    force: docs/measure.md), keys other than value, unit, std and note; then what the reading measures, the words
+    of docs/measure.md's table (the next test reads some of them as written)."""
     import re
 
-    for key, (dims, *_rest) in sheet.READINGS.items():
+    for key, (dims, *_rest, what) in sheet.READINGS.items():
         head = f"sheet reading {key}="
         wrong = "m" if "time" in dims else "s"
         wrong_dim = "length" if wrong == "m" else "time"
@@ -587,8 +591,8 @@ def test_every_reading_s_refusals_name_the_reading_its_value_and_what_is_valid()
                 ({"value": 1.0, "unit": wrong}, f"1 {wrong}", f"a {allowed} unit, not a {wrong_dim} unit"),
                 ({"value": 1.0, "sd": 0.1}, str({"value": 1.0, "sd": 0.1}),
                  "a table with keys value, unit, std, note (unknown ['sd'])")):
-            with pytest.raises(ValueError, match="^" + re.escape(f"{head}{shown} is invalid; valid range: {valid}")
-                               + "$"):
+            with pytest.raises(ValueError, match="^" + re.escape(f"{head}{shown} is invalid; valid range: {valid}; "
+                                                                 f"{key}: {what}") + "$"):
                 sheet._parse_reading(key, raw)
 
 
@@ -636,3 +640,174 @@ def test_a_sheet_without_a_reading_is_read_or_refused_naming_it():
             assert leaf in msg or "_" + leaf.split("_")[-1] in msg, (key, msg)
             refused.add(key)
     assert {"caster.l1", "caster.period", "pin_friction.lever_arm", "inertia.chair_period"} <= refused
+
+
+# ---------------------------------------------------------------- issue 34, the gate's own draw (seed 34)
+def test_one_caster_assembly_may_weigh_up_to_20_kg():
+    """Class: a bound no test sat on (seed 34: ``caster.mass``'s upper bound 20 -> 21 kg survived; the test of
+    every stated range reads the bound from the refusal, so it moves with it).  ``caster.mass`` is one caster
+    assembly (wheel, fork, bearing) weighed off the chair.  Its 20 kg upper bound is a plausibility bound for that
+    one assembly, not a physical limit: the chairs the toolkit ships have assemblies of 0.5 to 1.6 kg (the manual
+    front-caster chair, the power chair), so 20 kg, over ten times the heaviest, takes any real caster and refuses
+    numbers no caster has (grams written without a unit: 1100); it stays below the chair's own limit for ``m_c``
+    (50 kg, ``stability.chair.LIMITS``), so every caster mass the sheet takes is a valid chair field.  The bound
+    from both sides, through the whole example sheet: 20 kg is read (the chair's ``m_c`` 20 kg), 20.5 kg refused in
+    one line with the range in SI units and what the reading is."""
+    import re
+
+    assert max(chair_mod.preset(n).m_c for n in chair_mod.preset_names()) * 10 < 20.0 <= chair_mod.LIMITS["m_c"][1]
+    assert _read(**{"mass = { value = 1.10": "mass = { value = 20.0"}).chair.m_c == 20.0
+    msg = ("sheet reading caster.mass=20.5 kg is invalid; valid range: > 0 and <= 20 (SI: mass); "
+           "caster.mass: one caster assembly (wheel, fork, bearing)")
+    with pytest.raises(ValueError, match="^" + re.escape(msg) + "$"):
+        _read(**{"mass = { value = 1.10": "mass = { value = 20.5"})
+
+
+@pytest.mark.parametrize("old, new, message", [
+    # a stature written in metres with the unit of centimetres: 1.78 cm is below any adult's
+    ('stature = { value = 1.78, unit = "m"', 'stature = { value = 1.78, unit = "cm"',
+     "sheet reading user.stature=1.78 cm is invalid; valid range: > 0.5 and <= 2.5 (SI: length); "
+     "user.stature: standing height (for the de Leva estimate)"),
+    # "m" for minutes: a length, not a time
+    ('fixture_period = { value = 1.49, unit = "s"', 'fixture_period = { value = 1.49, unit = "m"',
+     "sheet reading inertia.fixture_period=1.49 m is invalid; valid range: a time unit, not a length unit; "
+     "inertia.fixture_period: period of the clamps and bar alone"),
+    # the rod's rigidity given as a moment (N m), not per radian (N m/rad)
+    ('calibration_mass = { value = 50.0, unit = "lb", std = 0.1 }', 'rigidity = { value = 2.5, unit = "N m" }',
+     "sheet reading inertia.rigidity=2.5 N m is invalid; valid range: a torsional rigidity unit, not a moment "
+     "unit; inertia.rigidity: rod torsional rigidity K_t (if known)"),
+    # degrees and inches written without their units: read as radians and metres
+    ('amplitude = { value = 10, unit = "deg" }', "amplitude = 10",
+     "sheet reading caster.amplitude=10 is invalid; valid range: >= 0 and <= 1.5 (SI: angle); "
+     "caster.amplitude: release amplitude of the caster's swing"),
+    ('calibration_radius = { value = 5.9, unit = "in", std = 0.02 }', "calibration_radius = 5.9",
+     "sheet reading inertia.calibration_radius=5.9 is invalid; valid range: > 0 and <= 2 (SI: length); "
+     "inertia.calibration_radius: the calibration cylinder's radius"),
+    # a trail longer than the c.g.'s distance to the caster contacts, 0.585 (1 - (26.3 + 28.4) / 97) m
+    ('trail = { value = 7.5, unit = "cm"', 'trail = { value = 30, unit = "cm"',
+     f"sheet reading geometry.trail=0.3 m is invalid; valid range: < wheelbase - s1 = "
+     f"{0.585 * (1 - (26.3 + 28.4) / 97):.4g} m (c.g. behind the caster pins); "
+     "geometry.trail: caster pin axis to contact, horizontal"),
+])
+def test_a_refused_reading_is_named_with_what_it_measures(old, new, message):
+    """Words no test read (seed 34: the words of three optional readings, ``inertia.rigidity``,
+    ``inertia.fixture_period``, ``user.stature``, which only docs/measure.md's table showed).  A refusal names the
+    reading, its value as written and what is valid, and ends with what the reading measures, so that a measurer
+    who wrote a number in the wrong place or unit sees which measurement the sheet means: realistic slips on the
+    example sheet, optional readings among them, each refused in this one line (whole, as the user reads it)."""
+    import re
+
+    with pytest.raises(ValueError, match="^" + re.escape(message) + "$"):
+        _read(**{old: new})
+
+
+def test_the_main_wheels_may_be_the_raised_end():
+    """A branch for an input no test gave (seed 34: the level load of the raised main wheels, ``W - casters`` ->
+    ``W + casters``, survived).  ``tilt.end = "main"`` raises the main wheels instead of the casters
+    (docs/measure.md): the chair then pivots about the caster axles, the raised end's level load is the two main
+    wheels' (20.3 + 22.0 kg) and the radii swap.  The example chair's own c.g. height, tilted the other way by
+    :func:`stability.measure.scales.tilt_reading` (the inverse of the axle-lift formula) with the same 10 cm lift,
+    gives the same height back."""
+    h = sheet.load_sheet(EXAMPLE).chair.h
+    wheelbase, main, total = 0.585, 20.3 + 22.0, 97.0
+    tilted = scales.tilt_reading(total, wheelbase * main / total, h, 0.10, wheelbase, 4.0 * 0.0254, 12.0 * 0.0254)
+    assert 0 < tilted < main - 1.0             # the premise: a readable fall under the raised main wheels
+    left, right = tilted * 20.3 / main, tilted * 22.0 / main
+    res = _read(**{'end = "caster"': 'end = "main"', "raised_left = { value = 21.0": f"raised_left = {{ value = {left!r}",
+                   "raised_right = { value = 22.9": f"raised_right = {{ value = {right!r}"})
+    # error model: the readings are given with repr (exact); the tilt's inverse and the sheet's sum of the four
+    # loaded readings round a few ulp, amplified by 1 / tan(theta) ~ 6 in h: ~1e-14 relative; 1e-9
+    assert res.chair.h == pytest.approx(h, rel=1e-9)
+
+
+def test_the_loaded_sum_may_sit_on_either_edge_of_the_tolerance():
+    """A boundary no test sat on (seed 34: ``weight (1 - tol) <= sum`` -> ``<`` survived).  The loaded readings must
+    sum to ``scales.loaded.weight`` within the tolerance, both edges included (the refusal's "valid range: LO to
+    HI kg").  With a 96 kg weight and a tolerance of 1/16 the edges are 90 and 102 kg exactly in floating point,
+    and each reading below (whole kilograms) converts to newtons and back exactly: sums of 90 and 102 kg are
+    read.  (They were refused before: the check ran inside the uncertainty's finite differences, which step a
+    reading by 1e-3 of its std and so pushed a sum on the edge just outside, with a refusal naming a sum within
+    the range it printed.)"""
+    g0 = units.STANDARD_GRAVITY
+    edges = {90.0: (19.0, 21.0, 24.0, 26.0), 102.0: (20.0, 22.0, 26.0, 34.0)}
+    assert (96.0 * (1 - 0.0625), 96.0 * (1 + 0.0625)) == tuple(edges)           # the premise: exact edges
+    assert all(v * g0 / g0 == v for v in (96.0, *edges[90.0], *edges[102.0]))    # and exact conversions
+    for total, loads in edges.items():
+        changes = {f"{w} = {{ value = {old}": f"{w} = {{ value = {new!r}"
+                   for w, old, new in zip(("left_main", "right_main", "left_caster", "right_caster"),
+                                          (20.3, 22.0, 26.3, 28.4), loads, strict=True)}
+        res = _read(**changes, **{"weight = { value = 97.0": "weight = { value = 96.0",
+                                  "tolerance = 0.02": "tolerance = 0.0625"})
+        assert res.chair.m == total
+
+
+def test_a_chair_field_given_with_its_std_is_a_normal_uncertainty_and_a_provenance_row():
+    """A branch for an input no test gave (seed 34: the check of a ``[chair]`` table's value, and its refusal's
+    words, survived).  A field the sheet does not measure may be given in ``[chair]`` as ``{value, std}``
+    (docs/measure.md): the chair takes the value, the uncertainty a normal distribution of that std, and the
+    provenance a row "given in [chair]" with no readings.  A table whose value is not a number, or with another
+    key, is refused in one line naming the field and what is valid."""
+    import re
+
+    res = _read(**{'caster_tire = "ER"\n': 'caster_tire = "ER"\npin_damping = { value = 0.01, std = 0.002 }\n'})
+    assert res.chair.pin_damping == 0.01 and res.uncertainty["pin_damping"].std == 0.002
+    assert sheet.ProvenanceRow("pin_damping", 0.01, 0.002, (), "given in [chair]") in res.provenance
+    for table in ('{ value = "0.01" }', "{ value = 0.01, sd = 0.002 }"):
+        shown = {"value": "0.01"} if "sd" not in table else {"value": 0.01, "sd": 0.002}
+        with pytest.raises(ValueError, match="^" + re.escape(
+                f"sheet reading chair.pin_damping={shown} is invalid; valid range: a value or "
+                "{value = ..., std = ...} in chair-file units") + "$"):
+            _read(**{'caster_tire = "ER"\n': f'caster_tire = "ER"\npin_damping = {table}\n'})
+
+
+def test_a_raised_end_other_than_the_casters_or_the_main_wheels_is_refused():
+    """A branch for an input no test gave (seed 34: the option's name in the check of ``tilt.end``, mutated so
+    that any end passed as the main wheels, survived).  ``tilt.end`` is ``"caster"`` or ``"main"``
+    (docs/measure.md); another word is refused in one line, not read as the main wheels."""
+    with pytest.raises(ValueError, match=r"^sheet reading tilt\.end='wheels' is invalid; valid range: 'caster' or "
+                                         r"'main'$"):
+        _read(**{'end = "caster"': 'end = "wheels"'})
+
+
+def test_the_example_chair_file_is_what_the_sheet_gives():
+    """Words no test read (seed 34: the provenance formula of ``s2``).  docs/measure.md shows the worked example's
+    chair file, committed as docs/examples/measured_chair.toml: its provenance comment (each field's value,
+    uncertainty, readings and formula in words) and its chair are what the example sheet gives now."""
+    res = sheet.load_sheet(EXAMPLE)
+    with open(os.path.join(os.path.dirname(EXAMPLE), "measured_chair.toml"), encoding="utf-8") as fh:
+        committed = fh.read()
+    assert committed == sheet.provenance_comment(res, "measured_chair_sheet.toml") + chair_mod.dumps(res.chair)
+
+
+def test_a_bare_number_is_a_reading_in_si_units_without_an_uncertainty():
+    """A default no test omitted (seed 34: a bare number's std 0 -> 1 survived).  A reading may be a bare number
+    in SI units (module docstring, docs/measure.md); it has no std, so it is shown as written, with nothing
+    appended, and carries no standard uncertainty: the example's release amplitude written as 0.17 (rad) instead
+    of ``{value = 10, unit = "deg"}``."""
+    r = _read(**{'amplitude = { value = 10, unit = "deg" }': "amplitude = 0.17"}).readings["caster.amplitude"]
+    assert (r.value, r.std, r.shown) == (0.17, 0.0, "0.17")
+
+
+def test_loaded_readings_that_put_the_c_g_outside_the_wheelbase_are_refused_naming_them():
+    """Words no test read (seed 34: the refusal of loaded readings from which no c.g. follows).  Both caster
+    scales reading 0 kg (the casters off their scales) put the c.g. on the main axle, outside the wheelbase: the
+    sheet (without the independent weight, which would refuse the sum first) refuses the loaded readings in one
+    line naming them and what is wrong, with the c.g. position and the wheelbase (0.585 m)."""
+    import re
+
+    msg = ("sheet readings scales.loaded.*: c.g. x=0 m is outside the wheelbase; valid range: 0 < x < 0.585 m "
+           "(a wheel carries no load: is the chair on all four scales?)")
+    with pytest.raises(ValueError, match="^" + re.escape(msg) + "$"):
+        _read(**{'weight = { value = 97.0, unit = "kg", std = 0.3 }': "",
+                 "left_caster = { value = 26.3": "left_caster = { value = 0.0",
+                 "right_caster = { value = 28.4": "right_caster = { value = 0.0"})
+
+
+def test_the_provenance_comment_names_its_sheet_only_when_given():
+    """A default no test omitted (seed 34: the heading without a sheet name).  The provenance comment's first line
+    says which command derived the chair, and from which sheet when one is named (as the command does); without
+    one, it ends at the command."""
+    res = sheet.load_sheet(EXAMPLE)
+    assert sheet.provenance_comment(res).splitlines()[0] == "# derived by python -m stability.measure"
+    assert (sheet.provenance_comment(res, "s.toml").splitlines()[0]
+            == "# derived by python -m stability.measure from s.toml")

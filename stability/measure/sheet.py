@@ -53,14 +53,14 @@ READINGS: dict[str, tuple[tuple[str, ...], float, float, bool, str]] = {
     "caster.mass": (("mass",), 0.0, 20.0, True, "one caster assembly (wheel, fork, bearing)"),
     "caster.l1": (("length",), -1e-12, 0.5, True, "pin axis to caster c.g."),
     "caster.period": (("time",), 0.0, 60.0, True, "compound-pendulum period about the pin"),
-    "caster.amplitude": (("angle",), -1e-12, 1.5, False, "release amplitude of that swing"),
+    "caster.amplitude": (("angle",), -1e-12, 1.5, False, "release amplitude of the caster's swing"),
     "pin_friction.lever_arm": (("length",), 0.0, 1.0, True, "pin to the spring-scale hook"),
     "pin_friction.left_force": (_SCALE, -1e-12, 100.0, True, "pull that just turns the left caster"),
     "pin_friction.right_force": (_SCALE, -1e-12, 100.0, True, "pull that just turns the right caster"),
     "inertia.rigidity": (("torsional rigidity",), 0.0, 1e4, False, "rod torsional rigidity K_t (if known)"),
     "inertia.calibration_mass": (("mass",), 0.0, 1e3, False, "solid calibration cylinder mass"),
-    "inertia.calibration_radius": (("length",), 0.0, 2.0, False, "its radius"),
-    "inertia.calibration_period": (("time",), 0.0, 600.0, False, "its period on the rod"),
+    "inertia.calibration_radius": (("length",), 0.0, 2.0, False, "the calibration cylinder's radius"),
+    "inertia.calibration_period": (("time",), 0.0, 600.0, False, "the calibration cylinder's period on the rod"),
     "inertia.fixture_period": (("time",), 0.0, 600.0, False, "period of the clamps and bar alone"),
     "inertia.chair_period": (("time",), 0.0, 600.0, True, "period of the chair hung at its c.g."),
     "user.stature": (("length",), 0.5, 2.5, False, "standing height (for the de Leva estimate)"),
@@ -163,7 +163,26 @@ class SheetResult:
 
 
 def _bad(key: str, value: Any, valid: str) -> ValueError:
-    return ValueError(f"sheet reading {key}={value} is invalid; valid range: {valid}")
+    """The one-line refusal of a sheet entry; a reading of :data:`READINGS` is followed by what it measures.
+
+    Parameters
+    ----------
+    key : str
+        The reading (or entry) at fault, e.g. ``"caster.mass"``.
+    value : Any
+        Its value as written on the sheet (with its unit, if any).
+    valid : str
+        What is valid instead (a range in SI units, a unit's dimension, ...).
+
+    Returns
+    -------
+    ValueError
+        ``sheet reading KEY=VALUE is invalid; valid range: VALID``, then ``; KEY: WORDS`` with the
+        reading's words from :data:`READINGS` (the "what" column of docs/measure.md's table) when ``key`` is
+        a reading.
+    """
+    what = f"; {key}: {READINGS[key][4]}" if key in READINGS else ""
+    return ValueError(f"sheet reading {key}={value} is invalid; valid range: {valid}{what}")
 
 
 def _parse_reading(key: str, raw: Any) -> Reading:
@@ -221,12 +240,6 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
     g0 = STANDARD_GRAVITY
     geo = {k: r[f"geometry.{k}"] for k in ("wheelbase", "main_track", "caster_track", "trail")}
     loaded = WheelLoads(*(r[f"scales.loaded.{w}"] / g0 for w in _WHEELS))  # kg
-    weight = r["scales.loaded.weight"] / g0 if "scales.loaded.weight" in r else None
-    tol = float(opts.get("scales.loaded.tolerance", 0.02))
-    if weight is not None and not weight * (1 - tol) <= loaded.total <= weight * (1 + tol):
-        raise ValueError(f"sheet readings scales.loaded.* sum to {loaded.total:.4g} kg but scales.loaded.weight = "
-                         f"{weight:.4g} kg; valid range: {weight * (1 - tol):.4g} to {weight * (1 + tol):.4g} kg "
-                         f"(within scales.loaded.tolerance = {tol:.1%})")
     try:
         cg = cg_from_scales(loaded, geo["wheelbase"], geo["main_track"], geo["caster_track"])
     except ValueError as exc:
@@ -285,6 +298,35 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
                     Body(m_user, x_user, y_user, r["user.inertia"], "user")])
     out["i_z"] = both.i_z
     return out
+
+
+def _check_weight(r: Mapping[str, float], opts: Mapping[str, Any]) -> None:
+    """Refuse loaded readings whose sum is off ``scales.loaded.weight`` by more than the tolerance.
+
+    Checked once, on the readings as given: not inside :func:`_derive`, whose finite differences step a reading
+    by a fraction of its std and would refuse a sum lying on the tolerance's edge.
+
+    Parameters
+    ----------
+    r : Mapping of str to float
+        The readings in SI units (scale readings in N).
+    opts : Mapping of str to Any
+        The sheet's options; ``scales.loaded.tolerance`` (a fraction, default 0.02).
+
+    Raises
+    ------
+    ValueError
+        One line naming both sums (kg) and the valid range, weight x (1 -+ tolerance), edges included.
+    """
+    if "scales.loaded.weight" not in r:
+        return
+    total = WheelLoads(*(r[f"scales.loaded.{w}"] / STANDARD_GRAVITY for w in _WHEELS)).total  # kg
+    weight = r["scales.loaded.weight"] / STANDARD_GRAVITY
+    tol = float(opts.get("scales.loaded.tolerance", 0.02))
+    if not weight * (1 - tol) <= total <= weight * (1 + tol):
+        raise ValueError(f"sheet readings scales.loaded.* sum to {total:.4g} kg but scales.loaded.weight = "
+                         f"{weight:.4g} kg; valid range: {weight * (1 - tol):.4g} to {weight * (1 + tol):.4g} kg "
+                         f"(within scales.loaded.tolerance = {tol:.1%})")
 
 
 def _check_present(flat: Mapping[str, Any]) -> None:
@@ -394,6 +436,7 @@ def read_sheet(data: Mapping[str, Any]) -> SheetResult:
         raise ValueError("sheet reading tilt.lift is missing; give the axle-lift readings or [chair] h")
     readings = {k: _parse_reading(k, v) for k, v in flat.items()}
     values = {k: rd.value for k, rd in readings.items()}
+    _check_weight(values, opts)
     notes = [] if "user.inertia" in readings else [_estimate_user(readings, values)]
     derived = _derive(values, opts)
     clash = sorted(set(derived) & set(direct))
