@@ -2,6 +2,7 @@
 
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -309,7 +310,12 @@ def test_cli_writes_chair_that_loads_back(tmp_path, capsys):
     assert unc["s1"].std == pytest.approx(sheet.load_sheet(EXAMPLE).uncertainty["s1"].std, rel=1e-12)  # rounding: equivalent arithmetic, a few ulp (observed 0)
     text = out.read_text()
     assert "# derived by python -m stability.measure" in text and "scales.loaded.left_caster" in text
-    assert "wrote" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "wrote" in printed
+    # each derived field with its unit (the chair's SI units: mass kg, lengths m, inertias kg m^2, friction N m)
+    lines = {ln.split()[0]: ln for ln in printed.splitlines() if ln.startswith("  ") and "reading" in ln}
+    for field, unit in (("m", "kg"), ("s1", "m"), ("i_zp", "kg m^2"), ("i_z", "kg m^2"), ("pin_friction_left", "N m")):
+        assert re.search(rf"\+- \S+ +{re.escape(unit)} +\(\d+ readings?\)$", lines[field]), lines[field]
 
 
 @pytest.mark.parametrize("old, new, word", [

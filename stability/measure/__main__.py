@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import os
 import sys
 from collections.abc import Sequence
@@ -81,9 +82,12 @@ def _run(args: argparse.Namespace) -> int:
             return 0
     out = sys.stderr if args.json else sys.stdout
     print(f"wrote {args.output}: chair {result.chair.name!r} from {source}", file=out)
+    units = {f.name: f.metadata["unit"] for f in dataclasses.fields(chair_mod.Chair)}
     for row in result.provenance:
         n = len(row.readings)
-        print(f"  {row.field:<20s} {row.value:10.4g} +- {row.std:<8.2g} ({n} reading{'' if n == 1 else 's'})", file=out)
+        unit = units.get(row.field, "-")
+        print(f"  {row.field:<20s} {row.value:10.4g} +- {row.std:<8.2g} {'' if unit == '-' else unit:<7s}"
+              f"({n} reading{'' if n == 1 else 's'})", file=out)
     for note in result.notes:
         print(f"  note: {note}", file=out)
     print(f"wrote {unc_path}: {len(result.uncertainty.distributions)} uncertain parameters", file=out)
