@@ -17,7 +17,7 @@ from stability.study import critical_impulses
 from stability.sweep import columns, compute_chunk, loads_spec, n_chunks, read_rows, run_sweep, summary
 from stability.sweep.__main__ import main
 from stability.sweep.measures import design_values
-from stability.sweep.run import chunk_dir, summary_text
+from stability.sweep.run import TEXT_COLUMNS, chunk_dir, summary_text
 from stability.uncertainty import loads_uncertainty
 
 UNC = '''[pin_friction]
@@ -123,6 +123,7 @@ def test_resume_after_an_interruption_gives_the_same_file(spec_dir, monkeypatch)
     run_sweep(spec, spec_dir / "b.csv", resume=True, progress=lambda k, n, rows, t: done.append(k))
     assert done == [3, 4, 5] and (spec_dir / "b.csv").read_bytes() == whole
     assert not chunk_dir(spec_dir / "b.csv").exists()
+    assert chunk_dir(spec_dir / "b.csv") == spec_dir / "b.csv.chunks"     # docs/sweep.md: RESULTS.chunks/
 
 
 def test_parquet_equals_csv(spec_dir):
@@ -132,8 +133,34 @@ def test_parquet_equals_csv(spec_dir):
     b = pq.read_table(run_sweep(spec, spec_dir / "a.parquet")).to_pydict()
     assert list(b) == columns(spec)
     for c in a:
-        np.testing.assert_array_equal(np.asarray(b[c], dtype=object if c == "error" else float),
-                                      np.asarray(a[c], dtype=object if c == "error" else float))
+        kind = object if c in TEXT_COLUMNS else float
+        np.testing.assert_array_equal(np.asarray(b[c], dtype=kind), np.asarray(a[c], dtype=kind))
+    assert set(b["critical_speed_status"]) == {"below", "invalid"}       # text columns stay text
+
+
+def test_a_parquet_file_without_pyarrow_is_refused_before_any_work(spec_dir, monkeypatch):
+    """Without pyarrow, a .parquet results file is refused in one line naming -o and the alternative, by the API
+    as by the command, before a chunk is computed (compute_chunk is never called) and without leaving a chunk
+    directory; a .csv file goes on."""
+    import sys
+
+    import stability.sweep.run as run_mod
+
+    spec = loads_spec(LINEAR, spec_dir)
+    monkeypatch.setitem(sys.modules, "pyarrow", None)             # import pyarrow now raises ImportError
+    monkeypatch.setitem(sys.modules, "pyarrow.parquet", None)
+
+    def no_work(*a, **k):
+        raise AssertionError("a chunk was computed")
+
+    monkeypatch.setattr(run_mod, "compute_chunk", no_work)
+    msg = "-o: a .parquet file needs pyarrow (pip install 'stability[scale]'); valid: a .csv file without it"
+    with pytest.raises(ValueError) as exc:
+        run_sweep(spec, spec_dir / "a.parquet")
+    assert str(exc.value) == msg and not chunk_dir(spec_dir / "a.parquet").exists()
+    assert main([str(spec_dir / "lin.toml"), "-o", str(spec_dir / "b.parquet")]) == 2
+    assert not chunk_dir(spec_dir / "b.parquet").exists()
+    run_mod.check_output_format(spec_dir / "a.csv")                 # nothing needed for CSV
 
 
 def test_nonlinear_chunk_matches_the_batched_search(tmp_path):
@@ -347,6 +374,26 @@ def test_a_chair_stable_at_every_speed_searched_ranks_first_by_its_critical_spee
     text = summary_text(spec, s)
     assert "> 30 m/s" in text and "< 0.01 m/s" in text and "no design has a value" not in text
 
+
+def test_a_sweep_ranks_a_trail_with_no_shimmy_boundary_first():
+    """Viscous pin damping of 0.5 N m s/rad leaves the E&J Premier's caster shimmy-free on every trail searched at
+    0.75 m/s (its band is the whole search, 1 mm to 25 cm: no boundary, margin +inf), while without damping its 8 cm
+    trail is 3.14 cm from a boundary.  The sweep stores the damped design's margin as its bound (at least 7.9 cm,
+    "above") and ranks it first, not last as a missing value."""
+    from stability import chair as chair_mod
+    from stability.shimmy.band import shimmy_band
+
+    damped = shimmy_band(chair_mod.preset("ej-premier").replace(pin_damping=0.5), [0.75])
+    assert damped.intervals_m[0] == ((0.001, 0.25),) and damped.margin_m[0] == math.inf
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["shimmy_margin"]\n[grid]\npin_damping = [0.0, 0.5]\n')
+    rows = compute_chunk(spec, 0)
+    data = {c: [r[j] for r in rows] for j, c in enumerate(columns(spec))}
+    assert data["shimmy_margin_status"] == ["found", "above"]
+    ranked = summary(spec, data)["measures"]["shimmy_margin_m"]["best"][0]
+    assert [(e["design"], e["conservative_side"]) for e in ranked] == [(1, ">"), (0, "=")]
+    assert ranked[0]["conservative"] == pytest.approx(0.079, abs=1e-15)
+    assert ranked[1]["conservative"] == pytest.approx(shimmy_band(chair_mod.preset("ej-premier"), [0.75]).margin_m[0],
+                                                      abs=1e-15)
 
 def test_a_critical_impulse_never_reached_is_at_least_the_largest_push_and_ranks_first(tmp_path):
     spec = loads_spec('speeds = [0.75]\nmeasures = ["critical_impulse"]\n[grid]\ntrail = [0.04, 0.05, 0.06]\n',

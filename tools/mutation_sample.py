@@ -680,6 +680,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'results.update(zip(jobs, res, strict=True))',
      'results.update(zip(jobs, res, strict=False))'):
         '`critical_impulses` returns one result per chair it is given, and it is given one chair per job: always the same length',
+    ('stability/shimmy/band.py',
+     'return (d, "above") if margin > 0 else (-d, "below")',
+     'return (d, "above") if margin > 1 else (-d, "below")'):
+        'the line is reached only with an infinite margin (a finite or NaN one has returned above it), and `+inf` exceeds both 0 and 1 while `-inf` exceeds neither: the same branch',
 }
 
 

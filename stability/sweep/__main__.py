@@ -41,7 +41,7 @@ from stability.runtime.progress import is_quiet
 from stability.sweep.cluster import dask_mapper, parse_dask
 from stability.sweep.measures import n_chunks
 from stability.sweep.plot import measure_figures
-from stability.sweep.run import read_rows, run_sweep, summary, summary_text
+from stability.sweep.run import check_output_format, read_rows, run_sweep, summary, summary_text
 from stability.sweep.spec import SCHEMA, load_spec
 
 __all__ = ["main", "build_parser"]
@@ -83,12 +83,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.dask:
         parse_dask(args.dask)
     spec = load_spec(args.spec)
-    if out.suffix.lower() == ".parquet":
-        try:
-            import pyarrow  # noqa: F401
-        except ImportError:
-            raise ValueError("-o: a .parquet file needs pyarrow (pip install 'stability[scale]'); valid: a .csv "
-                             "file without it") from None
+    check_output_format(out)
     print(f"sweep: {spec.designs} design(s) x {spec.draws} draw(s) x {len(spec.speeds)} speed(s) = {spec.rows} "
           f"rows in {n_chunks(spec)} chunk(s); measures {', '.join(spec.measures)}", file=sys.stderr)
     with contextlib.ExitStack() as stack:

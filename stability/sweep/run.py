@@ -28,7 +28,7 @@ from stability.sweep.measures import columns, compute_chunk, n_chunks
 from stability.sweep.spec import GRID_UNITS, INVALID, MEASURES, SweepSpec
 
 __all__ = ["chunk_dir", "run_sweep", "read_rows", "summary", "summary_text", "TEXT_COLUMNS", "HIGHER_IS_BETTER",
-           "STATUS_OF", "COLUMN_UNITS", "row_sides"]
+           "STATUS_OF", "COLUMN_UNITS", "row_sides", "check_output_format"]
 
 #: Columns holding text (everything else is a number).
 TEXT_COLUMNS = ("critical_speed_status", "locked_critical_speed_status", "critical_impulse_status",
@@ -97,6 +97,7 @@ def run_sweep(spec: SweepSpec, out: str | os.PathLike[str], *, resume: bool = Fa
     Path
         ``out``.
     """
+    check_output_format(out)
     d = chunk_dir(out)
     manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)
     if d.exists():
@@ -141,13 +142,33 @@ def _merge(spec: SweepSpec, d: Path, total: int, out: Path) -> None:
         atomic_write_text(out, header + "".join(parts))
 
 
-def _write_parquet(spec: SweepSpec, text: str, out: Path) -> None:
+def check_output_format(out: str | os.PathLike[str]) -> None:
+    """Refuse a Parquet results file where pyarrow is not installed, before any chunk is computed.
+
+    Parameters
+    ----------
+    out : path
+        The results file (``.parquet`` needs pyarrow; ``.csv`` needs nothing).
+
+    Raises
+    ------
+    ValueError
+        In one line naming ``-o``, what it needs and the valid alternative.
+    """
+    if Path(out).suffix.lower() != ".parquet":
+        return
     try:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
+        import pyarrow  # noqa: F401
+        import pyarrow.parquet  # noqa: F401
     except ImportError:
         raise ValueError("-o: a .parquet file needs pyarrow (pip install 'stability[scale]'); valid: a .csv file "
                          "without it") from None
+
+
+def _write_parquet(spec: SweepSpec, text: str, out: Path) -> None:
+    import pyarrow as pa  # checked before the sweep ran (check_output_format)
+    import pyarrow.parquet as pq
+
     cols = columns(spec)
     data = read_rows(text)
     table = pa.table({c: pa.array(data[c], type=pa.string() if c in TEXT_COLUMNS else pa.float64()) for c in cols})
