@@ -245,6 +245,12 @@ def test_a_bound_found_by_every_variant_prints_no_degenerate_range():
                               time_to_correct=False))
     assert "> 40 N s" in text and "> 3 m/s" in text
     assert not re.search(r"range (\d[\d.]*)-\1\b", text), text
+    # nor the levers table's "40.00-40.00": a cell whose both ends are the bound is that bound
+    assert not re.search(r"\b(\d+\.\d+)-\1\b", text), text
+    lines = text.splitlines()
+    first = lines.index(next(ln for ln in lines if ln.startswith("LEVERS"))) + 3     # after the two header lines
+    rows = lines[first:next(k for k in range(first, len(lines)) if lines[k].startswith("  pairs of two levers"))]
+    assert rows and all(re.search(r" > 40 +> 3 ", ln) for ln in rows), rows
     ranged = advice_text(advise(layout_preset("power-rwd-base"), speeds=SPEEDS, nonlinear=_fake,
                                 time_to_correct=False))
     assert "15 N s (range 14-16 N s over pin friction and simulator step)" in ranged, ranged

@@ -9,8 +9,9 @@ import numpy as np
 from stability.advise.advisor import Advice, Candidate
 from stability.advise.decision import Decision, decide, kmh
 from stability.advise.limits import limit_words
-from stability.advise.measures import Measures
+from stability.advise.measures import Interval, Measures
 from stability.advise.subject import is_layout, levers_of
+from stability.settings.defaults import MAX_IMPULSE
 from stability.settings.reference import REFERENCE_SPEED
 from stability.shimmy.band import margin_cell
 from stability.study.censored import describe, range_words, side_of
@@ -20,6 +21,20 @@ __all__ = ["advice_text", "advice_mapping", "kmh"]
 def _iv(x, unit: str, digits: int = 3, status: str = "found") -> str:
     value = {"above": "> ", "never": "> ", "below": "< "}.get(status, "") + f"{x.value:.{digits}g}"
     return f"{value} {unit}" + range_words(x.low, x.high, unit, digits=digits)
+
+
+def _impulse_cell(j: Interval, bounded: bool) -> str:
+    """The levers table's critical-impulse cell: its interval, an end at the search's largest push (never reached:
+    a bound) as ``>40``, a range both of whose ends are that bound as one ``> 40``."""
+    def end(x: float) -> str:
+        return f">{MAX_IMPULSE:g}" if x >= MAX_IMPULSE else f"{x:.2f}"
+
+    lo, hi = float(j.low if j.low is not None else math.nan), float(j.high if j.high is not None else math.nan)
+    if bounded:
+        return f"{end(lo):>6} (x0.5)"
+    if lo >= MAX_IMPULSE:
+        return f"{'> ' + format(MAX_IMPULSE, 'g'):>13}"
+    return f"{lo:6.2f}-{hi:<6.2f}" if hi < MAX_IMPULSE else f"{lo:6.2f} to {end(hi):<3}"
 
 
 def _row(c: Candidate, base: Measures, broken: set) -> str:
@@ -33,8 +48,7 @@ def _row(c: Candidate, base: Measures, broken: set) -> str:
     still = [n for n in unmet if n in broken]
     flags = ("  breaks " + ", ".join(breaks) if breaks else "") + \
         ("  does not fix " + ", ".join(still) if still else "")
-    j = m.critical_impulse_Ns
-    impulse = f"{j.low:6.2f} (x0.5)" if c.bounded else f"{j.low:6.2f}-{j.high:<6.2f}"
+    impulse = _impulse_cell(m.critical_impulse_Ns, c.bounded)
     gain = f"<={c.gain * 100:+4.0f} %" if c.bounded else f"{c.gain * 100:+6.1f} %"
     return (f"  {c.changes[0].label:<72} {impulse} "
             f"{ei:>6} {m.static_stability_deg.value:6.1f} "
