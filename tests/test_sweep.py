@@ -96,6 +96,26 @@ def test_rows_equal_the_library_and_a_bad_chair_is_a_row(spec_dir):
     assert data["locked_critical_speed_m_s"][i] == pytest.approx(locked[0], abs=5e-7 + 1e-10)
 
 
+def test_the_api_writes_into_a_new_folder_and_reports_its_progress(spec_dir):
+    """run_sweep creates the results file's folders (the command checks its -o folder exists first) and calls
+    ``progress(chunks_done, chunks_total, rows_done, seconds)`` after each chunk: the chunks in order, the rows of
+    the chunks done (4 rows of 2 speeds per chunk here, 36 in all) and the seconds since the sweep started, never
+    decreasing and within the call's own duration."""
+    import time
+
+    spec = loads_spec(LINEAR, spec_dir)
+    calls = []
+    t0 = time.perf_counter()
+    out = run_sweep(spec, spec_dir / "new" / "deeper" / "r.csv", progress=lambda *a: calls.append(a))
+    elapsed = time.perf_counter() - t0
+    assert out == spec_dir / "new" / "deeper" / "r.csv" and len(read_rows(out.read_text())["design"]) == 36
+    total = n_chunks(spec)
+    assert [(c[0], c[1]) for c in calls] == [(k, total) for k in range(1, total + 1)]
+    assert [c[2] for c in calls] == [min(8 * k, 36) for k in range(1, total + 1)]
+    seconds = [c[3] for c in calls]
+    assert seconds == sorted(seconds) and 0 <= seconds[0] and seconds[-1] <= elapsed
+
+
 def test_resume_after_an_interruption_gives_the_same_file(spec_dir, monkeypatch):
     spec = loads_spec(LINEAR, spec_dir)
     whole = run_sweep(spec, spec_dir / "a.csv").read_bytes()
@@ -346,6 +366,17 @@ def test_a_design_beyond_the_searched_range_ranks_first_as_its_bound(tmp_path):
     from stability.sweep.run import _grid_text
 
     assert _grid_text({"cg_ratio": 0.5, "trail": 0.05}) == "cg_ratio 0.5, trail 0.05 m"   # a group has no unit
+    assert _grid_text({}) == "the base chair"                        # a spec without a grid: one design
+
+
+def test_a_design_with_bounds_and_missing_draws_says_both(tmp_path):
+    """A design's row notes how many of its draws were beyond the searched range and how many have no value (an
+    invalid chair), both, separated by a semicolon; its median of the defined draws is the bound."""
+    spec = loads_spec('speeds = [0.75]\nmeasures = ["equal_instability_speed"]\n[grid]\ntrail = [0.04]\n'
+                      '[draws]\nn = 4\nuncertainty = "u.toml"\n', _write(tmp_path, "u.toml", UNC))
+    data = _censored_data([[3.0, 3.0, 1.5, math.nan]], [["above", "above", "found", "invalid"]])
+    text = summary_text(spec, summary(spec, data))
+    assert "trail 0.04 m (2 draw(s) beyond the searched range; 1 draw(s) without a value)" in text, text
 
 
 def test_a_chair_stable_at_every_speed_searched_ranks_first_by_its_critical_speed(tmp_path):

@@ -303,6 +303,15 @@ among a field's readings (its share of the uncertainty is 0 either way) and diff
 about 5e-6 and 1e-5: a release amplitude of 0.3-0.35 deg without a std is listed for ``i_zp`` by the mutant, not
 by the module, although ``i_zp`` depends on it.  Not equivalent, and a test at that edge would only copy the
 constant; reported.
+
+Seed 34's whole draw after the sweep's bounds (critical speeds and shimmy margin stored as values or bounds with a
+status; ``--budget 1000``, no prefix cut): ``shimmy/band.py`` (``margin_bound`` added) 50/52 -> 52/52 of the
+non-equivalent, 8 equivalent (1 newly: ``margin_bound``'s sign test, reached only with an infinite margin; killed:
+two shimmy-free bands listed, the nearest boundary the trail's); ``sweep/run.py`` 53/58 (91 %) -> 57/57, 3
+equivalent (1 newly: the manifest's ``sort_keys``, compared only with a manifest of the same code; killed: a new
+results folder, the progress callback's chunks, rows and elapsed seconds, the base chair's words, a design's notes of
+bounds and missing draws together).  The Parquet path's mutants need pyarrow, which the README's test command does
+not install: CI's gate step installs the ``[scale]`` extra first.
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
@@ -684,6 +693,10 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'return (d, "above") if margin > 0 else (-d, "below")',
      'return (d, "above") if margin > 1 else (-d, "below")'):
         'the line is reached only with an infinite margin (a finite or NaN one has returned above it), and `+inf` exceeds both 0 and 1 while `-inf` exceeds neither: the same branch',
+    ('stability/sweep/run.py',
+     'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)',
+     'manifest = json.dumps(spec.to_dict(), sort_keys=False, indent=1)'):
+        "the manifest is only compared with one this code wrote (`--resume` refuses another spec's chunks), and `SweepSpec.to_dict` builds its keys in a fixed order, so sorted or not the same spec gives the same text and another spec another",
 }
 
 
