@@ -260,6 +260,7 @@ def test_an_unbounded_margin_is_a_bound_at_the_searched_trails_nearer_end():
 
     assert TRAIL_SEARCH_M == (0.001, 0.25)
     assert margin_bound(0.012, 0.08) == (0.012, "found") and margin_bound(-0.02, 0.08) == (-0.02, "found")
+    # rounding: one subtraction of two stored decimals, 1 ulp of 0.25 (2.8e-17); 1e-15 is ~40x that (observed 0)
     assert margin_bound(math.inf, 0.08) == (pytest.approx(0.079, abs=1e-15), "above")   # 8 cm - 1 mm
     assert margin_bound(math.inf, 0.2) == (pytest.approx(0.05, abs=1e-15), "above")     # 25 cm - 20 cm
     assert margin_bound(-math.inf, 0.08) == (pytest.approx(-0.079, abs=1e-15), "below")
@@ -278,4 +279,5 @@ def test_two_shimmy_free_bands_are_listed_and_the_nearest_boundary_is_the_trails
     assert a1 == TRAIL_SEARCH_M[0] and b1 < 0.01 < 0.02 < a2 < band.trail_m and b2 == TRAIL_SEARCH_M[1]
     assert band.describe(0) == f"{a1 * 100:.1f}-{b1 * 100:.1f}, {a2 * 100:.1f}-25.0+"
     assert band.nearest_boundary_m == a2
-    assert band.margin_m[0] == pytest.approx(band.trail_m - a2, abs=1e-15)   # same difference (observed 0)
+    # rounding: the same subtraction of the same two floats (0.5 ulp of 0.08, 7e-18), 1e-15 ~ 100x (observed 0)
+    assert band.margin_m[0] == pytest.approx(band.trail_m - a2, abs=1e-15)

@@ -692,7 +692,7 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
     ('stability/shimmy/band.py',
      'return (d, "above") if margin > 0 else (-d, "below")',
      'return (d, "above") if margin > 1 else (-d, "below")'):
-        'the line is reached only with an infinite margin (a finite or NaN one has returned above it), and `+inf` exceeds both 0 and 1 while `-inf` exceeds neither: the same branch',
+        'the line is reached only with an infinite margin (a finite or NaN one has returned above it), and `+inf` exceeds both `0` and `1` while `-inf` exceeds neither: the same branch',
     ('stability/sweep/run.py',
      'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)',
      'manifest = json.dumps(spec.to_dict(), sort_keys=False, indent=1)'):
