@@ -48,33 +48,15 @@ LAYOUT_NOTE = ("Compared as wheel layouts: the short form's zero-width and locke
                "single-parameter effects (a chair's named fields) do not apply to a layout.")
 
 
-def stable_up_to(layout: Layout, reverse: bool = False) -> float:
-    """The speed up to which ``layout`` is stable (linear model, free frictionless casters), m/s.
-
-    Parameters
-    ----------
-    layout : Layout
-    reverse : bool
-
-    Returns
-    -------
-    float
-        The destabilising critical speed; ``inf`` when stable up to the searched 20 m/s; 0 when unstable at the
-        slowest speed searched (0.02 m/s) or only stable above a speed.
-    """
-    speed, kind = critical_speed(layout, reverse)
-    if kind == "destabilising":
-        return float(speed)
-    return math.inf if kind == "none-stable" else 0.0
-
-
 def stable_up_to_bounded(layout: Layout, reverse: bool = False) -> tuple[float, str]:
-    """:func:`stable_up_to` as a value and its status, the searched range's ends as bounds (a bound is a value).
+    """The speed up to which ``layout`` is stable (linear model, free frictionless casters), and its status: the
+    searched range's ends as bounds (a bound is a value).
 
     Parameters
     ----------
     layout : Layout
     reverse : bool
+        In reverse (the casters leading).
 
     Returns
     -------
@@ -89,6 +71,24 @@ def stable_up_to_bounded(layout: Layout, reverse: bool = False) -> tuple[float, 
     if kind == "none-stable":
         return float(SEARCH_SPEEDS_M_S[-1]), "above"
     return float(SEARCH_SPEEDS_M_S[0]), "below"
+
+
+def stable_up_to(layout: Layout, reverse: bool = False) -> float:
+    """:func:`stable_up_to_bounded` as one number, m/s.
+
+    Parameters
+    ----------
+    layout, reverse
+        As :func:`stable_up_to_bounded`.
+
+    Returns
+    -------
+    float
+        The destabilising critical speed, m/s; ``inf`` for "above" (stable up to the searched 20 m/s), 0 for
+        "below" (unstable at the slowest speed searched, 0.02 m/s, or only stable above a speed).
+    """
+    speed, status = stable_up_to_bounded(layout, reverse)
+    return speed if status == "found" else (math.inf if status == "above" else 0.0)
 
 
 def linear_rows(layouts: Sequence[Layout], speeds: Sequence[float] | np.ndarray) -> np.ndarray:

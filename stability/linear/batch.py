@@ -167,11 +167,8 @@ class ChairBatch:
 
         Parameters
         ----------
-        grid : sequence of float
-            Increasing search speeds, m/s.
-        casters : {"free", "locked"}
-        xtol : float
-            Bisection tolerance, m/s.
+        grid, casters, xtol
+            As :meth:`first_critical_speed` (m/s, ``"free"`` or ``"locked"``, m/s).
 
         Returns
         -------

@@ -25,7 +25,8 @@ from collections.abc import Sequence
 from stability import __version__
 from stability import chair as chair_mod
 from stability.cli import OneLineErrorParser, add_json_options, check_directory, check_outputs, emit_json, run
-from stability.measure.sheet import load_sheet, provenance_comment
+from stability.measure.provenance import provenance_comment
+from stability.measure.sheet import load_sheet
 from stability.runtime.files import atomic_path
 
 __all__ = ["main", "build_parser", "default_uncertainty_path"]

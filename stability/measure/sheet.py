@@ -31,7 +31,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["READINGS", "Reading", "ProvenanceRow", "SheetResult", "read_sheet", "load_sheet", "provenance_comment"]
+__all__ = ["READINGS", "Reading", "ProvenanceRow", "SheetResult", "read_sheet", "load_sheet"]
 
 _SCALE = ("mass", "force")  # wheel scales and spring scales: a mass reading means mass x standard gravity
 _WHEELS = ("left_main", "right_main", "left_caster", "right_caster")
@@ -481,29 +481,3 @@ def load_sheet(path: str | os.PathLike[str]) -> SheetResult:
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"sheet {str(path)!r} is not valid TOML: {exc}") from None
     return read_sheet(data)
-
-
-def provenance_comment(result: SheetResult, source: str = "") -> str:
-    """The provenance table as TOML comment lines (field = value +- std <- readings: formula).
-
-    Parameters
-    ----------
-    result : SheetResult
-        An evaluated sheet.
-    source : str, optional
-        Name of the sheet file, shown in the first line; default none.
-
-    Returns
-    -------
-    str
-        Comment lines starting with ``#``, ending with a newline, then one
-        ``# note:`` line per note.
-    """
-    lines = [f"# derived by python -m stability.measure{' from ' + source if source else ''}",
-             "# field = value +- standard uncertainty (first order); readings used; formula"]
-    for row in result.provenance:
-        lines.append(f"#   {row.field} = {row.value:.6g} +- {row.std:.2g}  <- {', '.join(row.readings) or '-'}")
-        lines.append(f"#       {row.formula}")
-    for note in result.notes:
-        lines.append(f"# note: {note}")
-    return "\n".join(lines) + "\n"
