@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from numerics import growth_rate_tolerance
 
+from stability import chair as chair_mod
 from stability import linear
 from stability.chair import preset
 from stability.critical_speed import main
@@ -90,6 +91,35 @@ def test_cli_intervals_and_keys(tmp_path, capsys):
     assert lo < d["locked_casters"]["critical_speed_m_s"] < hi
     assert d["free_casters"]["critical_speed_m_s_interval"] == [None, None]
     assert not math.isnan(d["uncertainty"]["dominant_parameters"][0][1])
+    # the free casters of the rear-caster E&J Premier: no crossing in any draw, unstable from the slowest speed
+    # searched in every one (the thesis's finding); every locked-caster draw has its crossing
+    free, locked = d["free_casters"], d["locked_casters"]
+    assert (free["critical_speed_exists_fraction"], free["stable_at_all_speeds_fraction"],
+            free["unstable_at_the_slowest_speed_fraction"]) == (0.0, 0.0, 1.0)
+    assert (locked["critical_speed_exists_fraction"], locked["stable_at_all_speeds_fraction"]) == (1.0, 0.0)
+
+
+def test_draws_without_a_critical_speed_say_which_end_they_lie_beyond(capsys):
+    """The c.g. 16 cm ahead of the main axle: the locked-caster critical speed (zero-width closed form, eq 5-15,
+    26.7 m/s nominal) lies beyond the searched 30 m/s in some draws (the zero-width interval's high end is above
+    30 m/s).  Those draws are stable at every speed searched, and the text says so beside the share that has a
+    crossing; the shares of the three cases add up to 1."""
+    from stability.linear import zero_width
+
+    chair, unc = "docs/examples/measured_chair.toml", "docs/examples/measured_chair.uncertainty.toml"
+    assert 20.0 < zero_width(chair_mod.load(chair).replace(s1=0.16)).critical_speed < 30.0
+    assert main(["--chair", chair, "--uncertainty", unc, "--set", "s1=0.16", "--samples", "300", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    zw_high = d["zero_width"]["critical_speed_m_s_interval"][1]
+    locked = d["locked_casters"]
+    exists, above, below = (locked["critical_speed_exists_fraction"], locked["stable_at_all_speeds_fraction"],
+                            locked["unstable_at_the_slowest_speed_fraction"])
+    assert zw_high > 30.0 and 0 < above < 1 and below == 0.0
+    assert exists + above == pytest.approx(1.0, abs=1e-12)   # rounding: two shares of 300 draws (observed 0)
+    assert main(["--chair", chair, "--uncertainty", unc, "--set", "s1=0.16", "--samples", "300"]) == 0
+    text = capsys.readouterr().out
+    assert (f"(exists in {100 * exists:.0f} % of draws; stable at every speed searched in {100 * above:.0f} %)"
+            in text)
 
 
 def test_cli_refuses_too_many_samples(tmp_path, capsys):

@@ -61,6 +61,10 @@ class LinearIntervals:
         ``(low, high, fraction)`` of the zero-width, full-width locked-caster and
         free-caster critical speeds, m/s; ``fraction`` is the share of draws in
         which that critical speed exists in the searched range.
+    locked_beyond, free_beyond : tuple of (float, float)
+        Of the draws without a full-width critical speed in the searched range, the shares (of all draws) that are
+        stable at every speed searched (above its end: the critical speed is a bound, "> max_speed") and that are
+        unstable from its first speed ("< 0.01 m/s"): with the ``fraction`` above they add up to 1.
     dominant_parameters : tuple of (str, float)
         Uncertain parameters ranked by their first-order share of the variance.
     """
@@ -75,13 +79,24 @@ class LinearIntervals:
     locked_critical: tuple[float, float, float]
     free_critical: tuple[float, float, float]
     dominant_parameters: tuple[tuple[str, float], ...]
+    locked_beyond: tuple[float, float] = (0.0, 0.0)
+    free_beyond: tuple[float, float] = (0.0, 0.0)
 
 
-def _outputs(chairs: list[Chair], model: str, speeds: np.ndarray, grid: np.ndarray) -> np.ndarray:
+def _outputs(chairs: list[Chair], model: str, speeds: np.ndarray, grid: np.ndarray,
+             statuses: list | None = None) -> np.ndarray:
     b = ChairBatch(chairs, model)
     zw = np.array([zero_width(c).critical_speed or np.nan for c in chairs])
-    return np.column_stack([b.growth_rates(speeds), zw, b.first_critical_speed(grid, "locked"),
-                            b.first_critical_speed(grid, "free")])
+    (lv, ls), (fv, fs) = (b.first_critical_speed_bounded(grid, casters) for casters in ("locked", "free"))
+    if statuses is not None:                  # the statuses of this call's chairs (the bounds' sides)
+        statuses.append((ls, fs))
+    return np.column_stack([b.growth_rates(speeds), zw, np.where(ls == "found", lv, np.nan),
+                            np.where(fs == "found", fv, np.nan)])
+
+
+def _beyond(status: np.ndarray) -> tuple[float, float]:
+    """Shares of the draws stable at every speed searched ("above") and unstable from its first ("below")."""
+    return float(np.mean(status == "above")), float(np.mean(status == "below"))
 
 
 def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "exact",
@@ -120,10 +135,13 @@ def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "ex
     k = len(U)
     check_eigen_work("samples", int(samples), solves_per_draw(k, len(grid)))
 
+    statuses: list = []
+
     def fn(chairs: list[Chair]) -> np.ndarray:
-        return _outputs(chairs, model, U, grid)
+        return _outputs(chairs, model, U, grid, statuses)
 
     mc = propagate(chair, uncertainty, fn, samples=int(samples), seed=int(seed), level=level)
+    locked_status, free_status = statuses[-1]   # propagate calls fn with the nominal chair, then with the draws
     dm = delta_method(chair, uncertainty, lambda cs: fn(cs)[:, :k], level=level)
 
     def triple(j: int) -> tuple[float, float, float]:
@@ -135,4 +153,5 @@ def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "ex
         rate_delta=tuple((float(np.atleast_1d(dm.low)[j]), float(np.atleast_1d(dm.high)[j])) for j in range(k)),
         zero_width_critical=triple(k), locked_critical=triple(k + 1), free_critical=triple(k + 2),
         dominant_parameters=tuple((n, float(s)) for n, s in mc.dominant_parameters),
+        locked_beyond=_beyond(locked_status), free_beyond=_beyond(free_status),
     )

@@ -158,6 +158,10 @@ def summary_dict(s: StabilitySummary, checks: list | None = None, intervals: Lin
                           ("free_casters", intervals.free_critical)):
             out[key]["critical_speed_m_s_interval"] = _pair(trip[0], trip[1])
             out[key]["critical_speed_exists_fraction"] = trip[2]
+        for key, (above, below) in (("locked_casters", intervals.locked_beyond),
+                                    ("free_casters", intervals.free_beyond)):
+            out[key]["stable_at_all_speeds_fraction"] = above
+            out[key]["unstable_at_the_slowest_speed_fraction"] = below
         out["uncertainty"] = intervals_dict(intervals)
         if nonlinear is not None:
             out["uncertainty"].update(nonlinear_intervals_dict(nonlinear))
@@ -269,17 +273,24 @@ def format_summary(s: StabilitySummary, checks: list | None = None, intervals: L
 def _interval_lines(iv: LinearIntervals) -> list[str]:
     pct = f"{100 * iv.level:g} %"
 
-    def crit(name: str, trip: tuple[float, float, float]) -> str:
+    def crit(name: str, trip: tuple[float, float, float], beyond: tuple[float, float] = (0.0, 0.0)) -> str:
         lo, hi, frac = trip
+        # the draws without a crossing in the searched range, by which end they lie beyond
+        parts = [(w, f) for w, f in zip(("stable at every speed searched", "unstable at the slowest speed searched"),
+                                        beyond, strict=True) if f > 0]
+        rest = "; ".join(f"{w} in {100 * f:.0f} %" for w, f in parts)
         if frac == 0:
-            return f"  {name:42s} none in range in every draw"
+            if len(parts) == 1:
+                return f"  {name:42s} none in range: {parts[0][0]} in every draw"
+            return f"  {name:42s} none in range in every draw" + (f" ({rest})" if rest else "")
         rng = f"{lo:.4g} to {hi:.4g} m/s"
-        return f"  {name:42s} {rng}" + ("" if frac == 1 else f"   (exists in {100 * frac:.0f} % of draws)")
+        return f"  {name:42s} {rng}" + ("" if frac == 1 else f"   (exists in {100 * frac:.0f} % of draws"
+                                         + (f"; {rest})" if rest else ")"))
 
     out = ["", f"With the parameter uncertainty ({pct} intervals, {iv.samples} Monte Carlo draws, seed {iv.seed}):",
            crit("zero-width critical speed, locked casters", iv.zero_width_critical),
-           crit("full-width critical speed, locked casters", iv.locked_critical),
-           crit("full-width critical speed, free casters", iv.free_critical),
+           crit("full-width critical speed, locked casters", iv.locked_critical, iv.locked_beyond),
+           crit("full-width critical speed, free casters", iv.free_critical, iv.free_beyond),
            f"  {'speed (m/s)':>12s}{'rate interval (1/s)':>24s}{'delta method (1/s)':>24s}"]
     for u, (lo, hi), (dlo, dhi) in zip(iv.speeds, iv.rate, iv.rate_delta, strict=True):
         out.append(f"  {u:12.3g}{f'{lo:.4f} to {hi:.4f}':>24s}{f'{dlo:.4f} to {dhi:.4f}':>24s}")
