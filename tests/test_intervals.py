@@ -141,3 +141,23 @@ def test_the_critical_impulse_step_variant_halves_the_run_s_own_step(dt, label):
     iv = critical_impulse_intervals([preset("ej-premier")], 0.75, run=RunSpec(horizon=0.5, dt=dt),
                                     friction_factors=(), models=("exact",), step_factors=(0.5,), max_rounds=2)[0]
     assert [name for name, _ in iv.variants] == [label]
+
+
+def test_the_reports_uncertainty_page_says_which_end_draws_without_a_crossing_lie_beyond():
+    """The report's uncertainty paragraph states the same shares as the command: a critical speed found in some
+    draws, the rest stable at every speed searched; none found, every draw unstable at the slowest speed."""
+    from types import SimpleNamespace
+
+    from stability.linear.intervals import LinearIntervals
+    from stability.report.sections import uncertainty_text
+
+    iv = LinearIntervals(speeds=(0.75,), level=0.95, samples=100, seed=0, rate=((1.0, 2.0),),
+                         rate_delta=((1.0, 2.0),), zero_width_critical=(22.5, 33.9, 1.0),
+                         locked_critical=(22.4, 29.7, 0.87), free_critical=(float("nan"), float("nan"), 0.0),
+                         dominant_parameters=(("s1", 1.0),), locked_beyond=(0.13, 0.0), free_beyond=(0.0, 1.0))
+    d = SimpleNamespace(uncertainty=SimpleNamespace(intervals=iv, spec=SimpleNamespace(source="u.toml"),
+                                                    dominant=("s1", 1.0), nonlinear=None))
+    crit = next(p for p in uncertainty_text(d) if p.startswith("Critical speeds"))
+    assert "locked-caster 22.4-29.7 m/s (exists in 87 % of draws; stable at every speed searched in 13 %)" in crit
+    assert "free-caster: none in 0.01-30 m/s in any draw (unstable at the slowest speed in 100 %)" in crit
+    assert "zero-width locked-caster 22.5-33.9 m/s (exists in 100 % of draws)" in crit

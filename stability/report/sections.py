@@ -159,10 +159,13 @@ def uncertainty_text(d: ReportData) -> list[str]:
            f"(the same seed gives the same intervals); {lvl} central intervals; dotted: the first-order delta "
            "method as a check."]
     crit = []
-    for name, (a, b, frac) in (("zero-width locked-caster", iv.zero_width_critical),
-                               ("locked-caster", iv.locked_critical), ("free-caster", iv.free_critical)):
-        crit.append(f"{name} {a:.3g}-{b:.3g} m/s (exists in {100 * frac:.0f} % of draws)" if frac > 0
-                    else f"{name}: none in 0.01-30 m/s in any draw")
+    for name, (a, b, frac), (above, below) in (
+            ("zero-width locked-caster", iv.zero_width_critical, (0.0, 0.0)),
+            ("locked-caster", iv.locked_critical, iv.locked_beyond), ("free-caster", iv.free_critical, iv.free_beyond)):
+        beyond = "".join(f"; {w} in {100 * f:.0f} %" for w, f in (("stable at every speed searched", above),
+                                                                    ("unstable at the slowest speed", below)) if f > 0)
+        crit.append(f"{name} {a:.3g}-{b:.3g} m/s (exists in {100 * frac:.0f} % of draws{beyond})" if frac > 0
+                    else f"{name}: none in 0.01-30 m/s in any draw" + (f" ({beyond[2:]})" if beyond else ""))
     out.append("Critical speeds (" + lvl + "): " + "; ".join(crit) + ".")
     dom = u.dominant
     if dom is None:
