@@ -5,6 +5,14 @@ measure a product of powers of pin friction, trail and caster mass, so the gain 
 is exactly the product of their relative changes).  The limits are recomputed with the analysis functions
 (``tests/test_advise_decisions.py``'s ``_limits_met``, the tip limit at :data:`MIN_TIP`), the gains from the closed form, and every single change,
 pair and triple of three levers is enumerated here (:func:`stability.advise.levers.lever_changes`).
+
+The choices of :mod:`stability.advise.combinations` themselves are checked on hand-built changes (no chair, no
+simulation; the changed chair stood in by its changed fields, the limits looked up): the pairs measured against
+docs/advise.md's rule enumerated here (the six best predicted pairs that meet every limit above a 25 % cost, the
+two best a limit blocks that predict more than every passing pair, the three best acceptable levers), the same
+choice from upper bounds of the gains with the chosen parts computed, the recommendation, runner-up and blocked
+changes against the advisor's own rules with every change computed, and small cases where a change no choice can
+take keeps its bound.
 """
 
 from __future__ import annotations
@@ -14,7 +22,11 @@ import itertools
 import math
 import re
 import sys
+from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 
@@ -22,7 +34,9 @@ from test_advise_decisions import SPEEDS, _limits_met, _peaked_at  # noqa: E402
 
 from stability import chair as chair_mod  # noqa: E402
 from stability.advise import Interval, advise  # noqa: E402
-from stability.advise.levers import apply, lever_changes  # noqa: E402
+from stability.advise.advisor import Candidate  # noqa: E402
+from stability.advise.levers import Change, apply, lever_changes  # noqa: E402
+from stability.advise.limits import Constraint  # noqa: E402
 from stability.tipping import tip_angles  # noqa: E402
 
 #: Exponents of the stand-in: more pin friction, a longer trail and a lighter caster each raise both measures;
@@ -209,3 +223,363 @@ def test_a_chair_breaking_two_limits_is_told_both_in_the_note():
         note = next(n for n in r.notes if n.startswith("The chair as it is breaks the limit on "))
         listed = re.match(r"The chair as it is breaks the limit on (.*?)(?:;|, and no change)", note).group(1)
         assert sorted(listed.split(", ")) == sorted(limit_words(k) for k in broken), note
+
+
+# --- the choice of the pairs on hand-built singles: _screen against the rule enumerated here ---------------------
+
+@dataclass(frozen=True)
+class _Measured:
+    """The fields of :class:`stability.advise.measures.Measures` that :meth:`.pruning.Pool.refine` replaces."""
+
+    critical_impulse_Ns: Interval
+    equal_instability_speed_m_s: Interval
+    equal_instability_status: str = "found"
+    critical_impulse_status: str = "found"
+    critical_impulse_half_step_Ns: float | None = None
+
+
+def _hand_built(seed: int, low: float = -0.4, high: float = 0.6):
+    """Twelve single changes, two per lever of six, each touching its own field but for two that share one:
+    robust gains on the two measures drawn at random in ``[low, high)`` (distinct: no ties), a random quarter
+    breaking a limit (turning effort or shimmy margin); a random fifth of the pairs break a limit that neither
+    part breaks alone."""
+    rng = np.random.default_rng(seed)
+    singles = []
+    for k in range(12):
+        lever = f"lever{k // 2}"
+        field = "shared" if k in (4, 6) else f"field{k}"
+        ch = Change(lever, f"{lever}:{k}", ((field, float(k)),))
+        ci, ei = (float(x) for x in np.round(rng.uniform(low, high, 2), 6) + 1e-7 * k)
+        name = "shimmy_margin_m" if rng.random() < 0.5 else "turning_effort_N_m"
+        met = bool(rng.random() > 0.25)
+        m = _Measured(Interval(None, 1.0 + ci, None), Interval(None, 1.0 + ei, None))
+        singles.append(Candidate((ch,), m, min(ci, ei), {"critical_impulse": ci, "equal_instability_speed": ei},
+                                 (Constraint(name, None, 1.0, "<=", met),)))
+    pair_breaks = {frozenset((a, b)) for a, b in itertools.combinations(range(12), 2) if rng.random() < 0.2}
+    return singles, pair_breaks
+
+
+def _run_screen(monkeypatch, singles, pair_breaks, broken=frozenset(), pool=None, meets=None):
+    """``_screen`` with the changed chair stood in by its changed fields and the limits looked up: a pair meets
+    every limit when both parts do (or break only what the chair breaks) and the pair is not in ``pair_breaks``."""
+    from stability.advise import combinations as comb
+
+    index = {s.changes[0].fields[0][0] + str(s.changes[0].fields[0][1]): k for k, s in enumerate(singles)}
+    monkeypatch.setattr(comb, "apply", lambda chair, fields: tuple(fields))
+    monkeypatch.setattr(comb, "linear_measures", lambda chairs, **kw: list(chairs))
+
+    def table(fields) -> bool:
+        ks = [index[f + str(v)] for f, v in fields]
+        return (frozenset(ks) not in pair_breaks
+                and all(k.met or k.name in broken for s in ks for k in singles[s].constraints))
+
+    meets = meets or table
+    chosen, checked = comb._screen(None, singles, set(broken), meets, (1.0,), 0.0, {}, pool=pool)
+    return [tuple(x.changes[0].label for x in parts) for parts, _ in chosen], checked, meets
+
+
+def _expected_choice(singles, pair_breaks, broken=frozenset()) -> list:
+    """The rule of :func:`.combinations._screen`, enumerated: the pairs of different levers and fields by the
+    product of their parts' relative changes (the smaller over the two measures), the best six meeting every limit
+    above a 25 % cost, then the best two a limit blocks that predict more than every pair meeting the limits, then
+    the three best levers' best acceptable single changes (a gain, no limit broken beyond the chair's own)."""
+    pairs = []
+    for a, b in itertools.combinations(range(12), 2):
+        sa, sb = singles[a], singles[b]
+        if sa.changes[0].lever == sb.changes[0].lever or set(sa.fields) & set(sb.fields):
+            continue
+        pred = min((1 + sa.gains[k]) * (1 + sb.gains[k]) for k in sa.gains) - 1
+        ok = (frozenset((a, b)) not in pair_breaks
+              and all(k.met or k.name in broken for s in (sa, sb) for k in s.constraints))
+        pairs.append((pred, (sa.changes[0].label, sb.changes[0].label), ok))
+    pairs.sort(key=lambda p: -p[0])
+    best_met = max((p for p, _, ok in pairs if ok), default=-math.inf)
+    out = [lab for p, lab, ok in pairs if ok and p > -0.25][:6]
+    out += [lab for p, lab, ok in pairs if not ok and p > best_met][:2]
+    good = sorted((s for s in singles if s.gain > 0 and all(k.met or k.name in broken for k in s.constraints)),
+                  key=lambda s: -s.gain)
+    best: dict = {}
+    for s in good:
+        best.setdefault(s.changes[0].lever, s)
+    trio = list(best.values())[:3]
+    if len(trio) == 3 and len({k for s in trio for k in s.fields}) == 3:
+        out.append(tuple(s.changes[0].label for s in trio))
+    return out
+
+
+#: (seed, gain range, what the chair breaks): changes that mostly gain, and changes that mostly cost on a chair
+#: that breaks the shimmy margin (the 25 % cost cut and the chair's own broken limit then decide).
+HAND_BUILT = [(seed, -0.4, 0.6, frozenset()) for seed in range(4)] + \
+             [(seed, -0.45, 0.15, frozenset({"shimmy_margin_m"})) for seed in (4, 5)] + \
+             [(seed, -0.55, 0.0, frozenset({"shimmy_margin_m"})) for seed in (6, 7)]
+
+
+@pytest.mark.parametrize(("seed", "low", "high", "broken"), HAND_BUILT)
+def test_the_pairs_measured_are_the_rules_on_hand_built_singles(monkeypatch, seed, low, high, broken):
+    """Every single's intervals computed: the combinations measured are the rule's, in its order (the pairs a
+    limit blocks after the six, the triple last)."""
+    singles, pair_breaks = _hand_built(seed, low, high)
+    got, _, _ = _run_screen(monkeypatch, singles, pair_breaks, broken)
+    assert got == _expected_choice(singles, pair_breaks, broken)
+
+
+@pytest.mark.parametrize(("seed", "low", "high", "broken"), HAND_BUILT)
+def test_bounded_singles_give_the_same_pairs_with_their_parts_computed(monkeypatch, seed, low, high, broken):
+    """The same singles known first by upper bounds of their gains (a random margin above each measure's, as the
+    x0.5-pin-friction screening gives): the pairs chosen are the ones the exact gains give, and every part of a
+    chosen combination has its intervals computed (:mod:`stability.advise.pruning`)."""
+    from stability.advise.pruning import Pool
+
+    singles, pair_breaks = _hand_built(seed, low, high)
+    exact = {s.changes: s for s in singles}
+    rng = np.random.default_rng(100 + seed)
+
+    def make(changes, m, bounded):
+        g = {"critical_impulse": m.critical_impulse_Ns.robust - 1.0,
+             "equal_instability_speed": m.equal_instability_speed_m_s.robust - 1.0}
+        return Candidate(changes, m, min(g.values()), g, exact[changes].constraints, bounded)
+
+    def nonlinear(chairs):                     # a "chair" here is the single's changes: its exact low ends
+        return [(exact[c].measures.critical_impulse_Ns, exact[c].measures.equal_instability_speed_m_s, "found",
+                 "found", None) for c in chairs]
+
+    def above(x: Interval) -> Interval:
+        return Interval(None, x.robust + float(rng.exponential(0.2)), None)
+
+    screened = [make(s.changes, _Measured(above(s.measures.critical_impulse_Ns),
+                                          above(s.measures.equal_instability_speed_m_s)), True) for s in singles]
+    pool = Pool(make, nonlinear)
+    pool.add(screened, [s.changes for s in singles])
+    got, _, _ = _run_screen(monkeypatch, screened, pair_breaks, broken, pool=pool)
+    assert got == _expected_choice(singles, pair_breaks, broken)
+    labels = {s.changes[0].label: s.changes for s in singles}
+    assert all(not pool.current(exact[labels[lab]]).bounded for combo in got for lab in combo)
+
+
+def _settle_case(seed: int, broken: frozenset, low: float, high: float):
+    """Twelve singles and eight pairs of them, with random exact gains in ``[low, high)`` and, for the screening,
+    random upper bounds above them; two limits per change (shimmy margin, turning effort) met at random."""
+    from stability.advise.pruning import Pool
+
+    rng = np.random.default_rng(200 + seed)
+    changes = [(Change(f"lever{k // 2}", f"lever{k // 2}:{k}", ((f"field{k}", float(k)),)),) for k in range(12)]
+    two_levers = [(a, b) for a, b in itertools.combinations(range(12), 2) if a // 2 != b // 2]
+    changes += [changes[a] + changes[b] for a, b in (two_levers[k] for k in rng.choice(len(two_levers), 8, False))]
+    exact = {}
+    for k, ch in enumerate(changes):
+        ci, ei = (float(x) for x in np.round(rng.uniform(low, high, 2), 6) + 1e-7 * k)
+        cons = (Constraint("shimmy_margin_m", None, 0.005, ">=", bool(rng.random() < (0.3 if broken else 0.8))),
+                Constraint("turning_effort_N_m", None, 1.0, "<=", bool(rng.random() < 0.7)))
+        m = _Measured(Interval(None, 1.0 + ci, None), Interval(None, 1.0 + ei, None))
+        exact[ch] = Candidate(ch, m, min(ci, ei), {"critical_impulse": ci, "equal_instability_speed": ei}, cons)
+
+    def make(ch, m, bounded):
+        g = {"critical_impulse": m.critical_impulse_Ns.robust - 1.0,
+             "equal_instability_speed": m.equal_instability_speed_m_s.robust - 1.0}
+        return Candidate(ch, m, min(g.values()), g, exact[ch].constraints, bounded)
+
+    def nonlinear(chairs):
+        return [(exact[c].measures.critical_impulse_Ns, exact[c].measures.equal_instability_speed_m_s, "found",
+                 "found", None) for c in chairs]
+
+    def above(x: Interval) -> Interval:
+        return Interval(None, x.robust + float(rng.exponential(0.3)), None)
+
+    pool = Pool(make, nonlinear)
+    pool.add([make(ch, _Measured(above(exact[ch].measures.critical_impulse_Ns),
+                                 above(exact[ch].measures.equal_instability_speed_m_s)), True) for ch in changes],
+             changes)
+    return pool, [exact[ch] for ch in changes]
+
+
+def _advised(cands, broken):
+    """The advisor's choices from a list of measured changes (:func:`stability.advise.advisor.advise`, docs/advise.md
+    steps 3-5): the two best that meet every limit, and the changes a limit blocks that beat the recommendation
+    (the best feasible gain; "no change", 0, when that costs more than 25 % on a chair that breaks a limit or
+    gains nothing on one that does not) or fix what the chair breaks."""
+    from stability.advise.advisor import _blocked
+
+    feasible = sorted((c for c in cands if c.feasible), key=lambda c: -c.gain)
+    top = feasible[0].gain if feasible else None
+    best = top if top is not None and (top >= -0.25 if broken else top > 0) else 0.0
+    return [c.changes for c in feasible[:2]], [b.candidate.changes for b in _blocked(cands, set(broken), best)]
+
+
+@pytest.mark.parametrize("broken", [frozenset(), frozenset({"shimmy_margin_m"})], ids=["nothing", "shimmy"])
+@pytest.mark.parametrize(("seed", "low", "high"), [(0, -0.5, 0.5), (1, -0.5, 0.5), (2, -0.5, 0.5), (3, -0.5, 0.5),
+                                                   (4, -0.6, 0.02), (5, -0.6, 0.02)])
+def test_the_recommendation_and_the_blocked_are_computed_before_they_are_chosen(seed, low, high, broken):
+    """After :func:`.combinations._settle_choice` the pool's changes, some still known only by their bounds, give
+    the same two best feasible changes and the same blocked changes as every change computed, and those (and the
+    parts of a chosen pair) have their intervals."""
+    from stability.advise.combinations import _settle_choice
+
+    pool, exact = _settle_case(seed, broken, low, high)
+    _settle_choice(pool, set(broken))
+    want_top, want_blocked = _advised(exact, broken)
+    got_top, got_blocked = _advised(pool.cands, broken)
+    assert (got_top, got_blocked) == (want_top, want_blocked)
+    parts = [(x,) for pair in want_top if len(pair) > 1 for x in pair]
+    for ch in want_top + want_blocked + parts:
+        assert not pool.cands[pool.index[ch]].bounded, ch
+    assert pool.refined < len(exact)                   # the premise: the bounds spared some
+
+
+def _hand_pool(rows):
+    """A pool of single changes known by upper bounds: ``rows`` of (label, exact gain, bound, shimmy margin met,
+    turning effort met[, the fields it changes[, its lever]]), the gain the same on both measures; by default each
+    change its own lever and field; a label ``"a+b"`` is the pair of the earlier rows ``a`` and ``b``."""
+    from stability.advise.pruning import Pool
+
+    exact = {}
+    for label, g, _, shimmy, turning, *more in rows:
+        fields, lever = (more + [(label,), label][len(more):])
+        ch = (tuple(next(c for c in exact if c[0].label == x)[0] for x in label.split("+")) if "+" in label
+              else (Change(lever, label, tuple((f, 1.0) for f in fields)),))
+        cons = (Constraint("shimmy_margin_m", None, 0.005, ">=", shimmy),
+                Constraint("turning_effort_N_m", None, 1.0, "<=", turning))
+        exact[ch] = Candidate(ch, _Measured(Interval(None, 1 + g, None), Interval(None, 1 + g, None)), g,
+                              {"critical_impulse": g, "equal_instability_speed": g}, cons)
+
+    def make(ch, m, bounded):
+        g = m.critical_impulse_Ns.robust - 1.0
+        return Candidate(ch, m, g, {"critical_impulse": g, "equal_instability_speed": g}, exact[ch].constraints,
+                         bounded)
+
+    def nonlinear(chairs):
+        return [(exact[c].measures.critical_impulse_Ns, exact[c].measures.equal_instability_speed_m_s, "found",
+                 "found", None) for c in chairs]
+
+    pool = Pool(make, nonlinear)
+    pool.add([make(ch, _Measured(Interval(None, 1 + b, None), Interval(None, 1 + b, None)), True)
+              for ch, (_, _, b, *_) in zip(exact, rows, strict=True)], list(exact))
+    return pool
+
+
+def _computed(pool) -> set:
+    return {c.label for c in pool.cands if not c.bounded}
+
+
+def test_a_change_bounded_below_the_runner_up_is_not_computed():
+    """Four changes that meet every limit: the two best bounds computed are the recommendation (50 %) and the
+    runner-up (40 %); the third's bound (30 %) is below the runner-up's computed gain, so it cannot be either and
+    keeps its bound, as does the fourth."""
+    from stability.advise.combinations import _settle_choice
+
+    pool = _hand_pool([("a", 0.5, 0.6, True, True), ("b", 0.4, 0.45, True, True), ("c", 0.2, 0.3, True, True),
+                       ("d", 0.0, 0.1, True, True)])
+    _settle_choice(pool, set())
+    assert _computed(pool) == {"a", "b"}
+
+
+def test_only_the_three_blocked_changes_named_are_computed():
+    """A chair that breaks the shimmy margin; one change meets every limit (10 %), four fix the shimmy margin but
+    break the turning effort: the three named under BLOCKED BY A LIMIT are the three largest gains (30, 20, 10 %,
+    bounds 35, 25, 15 %); the fourth's bound (5 %) is below the third's gain, so it keeps its bound."""
+    from stability.advise.combinations import _settle_choice
+
+    pool = _hand_pool([("r", 0.1, 0.2, True, True), ("x1", 0.3, 0.35, True, False), ("x2", 0.2, 0.25, True, False),
+                       ("x3", 0.1, 0.15, True, False), ("x4", 0.0, 0.05, True, False)])
+    _settle_choice(pool, {"shimmy_margin_m"})
+    assert _computed(pool) == {"r", "x1", "x2", "x3"}
+
+
+def _screened(monkeypatch, rows) -> tuple[list, set]:
+    """``_screen`` on :func:`_hand_pool`'s changes, every pair meeting every limit: the combinations chosen and the
+    changes computed."""
+    pool = _hand_pool(rows)
+    got, _, _ = _run_screen(monkeypatch, pool.cands[:], set(), pool=pool, meets=lambda fields: True)
+    return got, _computed(pool)
+
+
+def test_a_fourth_lever_is_not_computed_for_the_triple(monkeypatch):
+    """The triple takes the best acceptable change of each of the three best levers: with bounds 55, 45, 35 and
+    20 % (gains 50, 40, 30 and 10 %) the fourth lever's change, whose bound is below the third's gain and which
+    pairs with no other (it changes all their fields), is not computed."""
+    got, computed = _screened(monkeypatch, [("a", 0.5, 0.55, True, True), ("b", 0.4, 0.45, True, True),
+                                            ("c", 0.3, 0.35, True, True),
+                                            ("d", 0.1, 0.2, True, True, ("a", "b", "c", "d"))])
+    assert got == [("a", "b"), ("a", "c"), ("b", "c"), ("a", "b", "c")]
+    assert computed == {"a", "b", "c"}
+
+
+def test_a_pair_that_no_choice_can_take_is_not_computed(monkeypatch):
+    """Two pairs meet every limit: a+b (gains 10 and 5 %: about 15.5 %) and c+d (-30 and -35 %: about -54 %, below
+    the 25 % cost cut; c is a lever of a and changes b's field, d a lever of b changing a's field, so neither
+    pairs with a or b; they cost, so are no lever of the triple): only a+b can be measured, so c and d keep their
+    bounds."""
+    got, computed = _screened(monkeypatch, [("a", 0.1, 0.15, True, True), ("b", 0.05, 0.1, True, True),
+                                            ("c", -0.3, -0.28, True, True, ("b", "c"), "a"),
+                                            ("d", -0.35, -0.3, True, True, ("a", "d"), "b")])
+    assert got == [("a", "b")]
+    assert computed == {"a", "b"}
+
+
+def test_a_seventh_pair_is_not_computed(monkeypatch):
+    """Four changes that gain 50, 45, 40 and 35 % make the six best pairs (the worst, c+d, about 89 %); e and f
+    (-5 and -6 %) pair with them above the 25 % cost cut, but every such pair's bound (at most 1.55 x 0.96 - 1,
+    about 49 %) is below the sixth pair's gain: e and f keep their bounds."""
+    four = ("a", "b", "c", "d")
+    got, computed = _screened(monkeypatch, [("a", 0.5, 0.55, True, True), ("b", 0.45, 0.5, True, True),
+                                            ("c", 0.4, 0.45, True, True), ("d", 0.35, 0.4, True, True),
+                                            ("e", -0.05, -0.04, True, True), ("f", -0.06, -0.05, True, True)])
+    assert got == [("a", "b"), ("a", "c"), ("b", "c"), ("a", "d"), ("b", "d"), ("c", "d"), ("a", "b", "c")]
+    assert computed == set(four)
+
+
+def test_a_blocked_pair_must_predict_more_than_every_passing_pair(monkeypatch):
+    """a+b meets every limit; c+d, which a limit blocks, predicts exactly as much (gains 20 and 10 %, 10 and 20 %:
+    1.2 x 1.1 and 1.1 x 1.2, the same float): it does not predict more, so it is not measured to be named; with d
+    at 21 % it is.  (a and c are one lever, b and d another, a and d share a field, b and c too: a+b and c+d are the
+    only pairs, and no three levers.)"""
+    for d, want in ((0.2, [("a", "b")]), (0.21, [("a", "b"), ("c", "d")])):
+        pool = _hand_pool([("a", 0.2, 0.2, True, True, ("fa", "s1"), "L1"),
+                           ("b", 0.1, 0.1, True, True, ("fb", "s2"), "L2"),
+                           ("c", 0.1, 0.1, True, True, ("fc", "s2"), "L1"),
+                           ("d", d, d, True, True, ("fd", "s1"), "L2")])
+        got, _, _ = _run_screen(monkeypatch, pool.cands[:], set(), pool=pool,
+                                meets=lambda fields: not {"fc", "fd"} <= {f for f, _ in fields})
+        assert got == want, d
+
+
+def test_a_recommended_pairs_parts_are_computed_in_its_batch():
+    """The recommendation is a pair, a+b (30 %; bound 35 %), whose parts gain little (5 and 4 %) and the runner-up a
+    single change, c (20 %): the parts are computed, for the pair's note, in the same batch as the pair and c (one
+    batch of simulations a round, :mod:`stability.advise.pruning`), not in a batch of their own afterwards."""
+    from stability.advise.combinations import _settle_choice
+
+    pool = _hand_pool([("a", 0.05, 0.1, True, True), ("b", 0.04, 0.08, True, True), ("c", 0.2, 0.25, True, True),
+                       ("a+b", 0.3, 0.35, True, True)])
+    nonlinear, batches = pool.nonlinear, []
+
+    def counted(chairs):
+        batches.append({" + ".join(ch.label for ch in c) for c in chairs})
+        return nonlinear(chairs)
+
+    pool.nonlinear = counted
+    _settle_choice(pool, set())
+    assert batches == [{"a + b", "c", "a", "b"}]
+
+
+def test_a_blocked_change_that_cannot_beat_the_recommendation_keeps_its_bound():
+    """Nothing to fix; the recommendation gains 30 % (its bound too).  Two changes a limit blocks are named only if
+    they beat it, which their bounds say they cannot: 20 %, and exactly 30 % (a tie does not beat it), so neither
+    is computed."""
+    from stability.advise.combinations import _settle_choice
+
+    pool = _hand_pool([("r", 0.3, 0.3, True, True), ("x", 0.1, 0.2, True, False), ("y", 0.25, 0.3, True, False)])
+    _settle_choice(pool, set())
+    assert _computed(pool) == {"r"}
+
+
+def test_only_the_two_blocked_pairs_named_are_computed(monkeypatch):
+    """Every pair but p+q (1 % each: about 2 %) breaks a limit, and the two that predict most, a+b and a+d (gains
+    50, 40 and 30 %), are measured to be named; the third, a+c (c: 10 %, bound 15 %: at most 1.5 x 1.15 - 1, about
+    72.5 %, below a+d's 95 %), is not, and c keeps its bound (b and d share a field: no a, b, d triple)."""
+    pool = _hand_pool([("a", 0.5, 0.55, True, True), ("b", 0.4, 0.45, True, True, ("b", "s")),
+                       ("c", 0.1, 0.15, True, True), ("d", 0.3, 0.35, True, True, ("d", "s")),
+                       ("p", 0.01, 0.02, True, True), ("q", 0.01, 0.02, True, True)])
+    got, _, _ = _run_screen(monkeypatch, pool.cands[:], set(), pool=pool,
+                            meets=lambda fields: {f for f, _ in fields} == {"p", "q"})
+    assert got == [("p", "q"), ("a", "b"), ("a", "d")]
+    assert _computed(pool) == {"a", "b", "d", "p", "q"}

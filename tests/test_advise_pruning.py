@@ -11,6 +11,7 @@ every preset and two random seeded chairs with the simulator (slow).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -20,7 +21,8 @@ from test_advise import _plausible, _proxy
 from stability import chair as chair_mod
 from stability.advise import advise
 from stability.advise.decision import decide
-from stability.advise.pruning import Choice, settle
+from stability.advise.measures import Interval
+from stability.advise.pruning import Choice, Pool, settle
 from stability.advise.text import advice_mapping, advice_text
 
 PRESETS = ["ej-premier", "revised", "ej-premier-front-caster", "power-fwd", "manual-front-caster"]
@@ -76,6 +78,120 @@ def test_settle_gives_the_prefix_of_the_full_sort(seed):
         full = [i for i in sorted(items, key=lambda i: -value[i]) if value[i] > threshold][:k]
         assert prefix == full
         assert known[prefix].all()
+
+
+def test_a_choice_is_a_value():
+    """``settle`` reads the same choices every round: a Choice cannot be changed once made (frozen)."""
+    c = Choice([0, 1], lambda i: (i,), lambda i: True, lambda i: True, lambda p: len(p) >= 1)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        c.items = [1]
+    assert c.pending() == ([0], [])
+
+
+@dataclasses.dataclass(frozen=True)
+class _Measured:
+    """The fields of :class:`stability.advise.measures.Measures` that :meth:`Pool.refine` replaces."""
+
+    critical_impulse_Ns: Interval
+    equal_instability_speed_m_s: Interval
+    equal_instability_status: str = "found"
+    critical_impulse_status: str = "found"
+    critical_impulse_half_step_Ns: float | None = None
+
+
+@dataclasses.dataclass(frozen=True)
+class _Cand:
+    changes: tuple
+    measures: _Measured
+    gains: dict
+    bounded: bool
+    label: str = ""
+
+
+def _make(changes, m, bounded):
+    """A candidate judged on the low ends against a chair whose low ends are both 1 (gain = low - 1)."""
+    return _Cand(changes, m, {"critical_impulse": m.critical_impulse_Ns.robust - 1.0,
+                              "equal_instability_speed": m.equal_instability_speed_m_s.robust - 1.0}, bounded,
+                 " + ".join(changes))
+
+
+def _intervals(chairs):
+    """A chair is a number x: critical impulse x with the interval [x/2, 2x], equal-instability speed [x/4, 4x]."""
+    return [(Interval(x, x / 2, 2 * x), Interval(x, x / 4, 4 * x), "found", "found", None) for x in chairs]
+
+
+def test_the_pool_pairs_each_candidate_with_its_chair_and_counts_what_it_refines():
+    """``add`` takes one chair per candidate (a candidate without its chair is refused, not dropped); ``refined``
+    counts the candidates computed, each once: a candidate asked for twice in a batch or again later, or one
+    already computed, is not computed again; a measurement that answers fewer chairs than it was given is
+    refused."""
+    pool = Pool(_make, _intervals)
+    screened = [_make((f"c{k}",), _Measured(*(Interval(None, x, None),) * 2), True) for k, x in enumerate((1, 2, 3))]
+    with pytest.raises(ValueError):
+        pool.add(screened[:1], [])
+    assert pool.cands == [] and pool.refined == 0
+    pool.add(screened, [1.0, 2.0, 3.0])
+    assert [pool.index[c.changes] for c in screened] == [0, 1, 2] and pool.refined == 0
+    pool.refine([2, 0, 2])
+    assert pool.refined == 2 and [c.bounded for c in pool.cands] == [False, True, False]
+    # the computed gains are those of the low ends of the candidate's own chair, x/2 and x/4
+    assert pool.cands[2].gains == {"critical_impulse": 3 / 2 - 1, "equal_instability_speed": 3 / 4 - 1}
+    pool.refine([0, 2])
+    assert pool.refined == 2
+    pool.refine([1])
+    assert pool.refined == 3 and not any(c.bounded for c in pool.cands)
+    # a measurement that answers fewer chairs than it was given is refused, not read as far as it goes
+    short = Pool(_make, lambda chairs: _intervals(chairs)[:-1])
+    short.add(screened, [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError):
+        short.refine([0, 1])
+
+
+def test_the_pool_reads_a_measurement_with_or_without_its_last_entries():
+    """A measurement is ``nonlinear_measures``' five entries, or a stand-in's first three or four: the critical
+    impulse's status is then "found" and its half-step value None; given, both are kept."""
+    for extra, status, half in (((), "found", None), (("below",), "below", None), (("below", 0.7), "below", 0.7),
+                                (("found", 0.7), "found", 0.7)):
+        pool = Pool(_make, lambda chairs, extra=extra: [(Interval(x, x / 2, 2 * x), Interval(x, x / 4, 4 * x),
+                                                         "above", *extra) for x in chairs])
+        screened = _Measured(*(Interval(None, 1.0, None),) * 2, "x0.5", "x0.5", 9.9)     # none of it kept
+        pool.add([_make(("c",), screened, True)], [1.0])
+        pool.refine([0])
+        m = pool.cands[0].measures
+        assert (m.equal_instability_status, m.critical_impulse_status, m.critical_impulse_half_step_Ns) == \
+            ("above", status, half), extra
+
+
+def test_the_candidates_a_bound_cannot_order_are_the_ones_computed_first():
+    """``unbounded``: the bounded candidates with a gain that is not finite or below -100 % (a low end below zero,
+    which the ratio to the chair's low end cannot order); -100 % itself (a low end of 0) and a computed
+    candidate are not among them."""
+    def cand(k, ci, ei, bounded=True):
+        m = _Measured(Interval(None, ci + 1.0, None), Interval(None, ei + 1.0, None))
+        return _Cand((f"c{k}",), m, {"critical_impulse": ci, "equal_instability_speed": ei}, bounded)
+
+    gains = [(0.2, -0.1), (-1.0, 0.3), (-1.5, 0.0), (0.1, math.inf), (-math.inf, 0.0), (0.0, math.nan), (-1.5, -2.0)]
+    pool = Pool(_make, _intervals)
+    pool.add([cand(k, *g) for k, g in enumerate(gains)] + [cand(7, -1.5, math.inf, bounded=False)], [0.0] * 8)
+    assert pool.unbounded() == [2, 3, 4, 5, 6]
+
+
+def test_a_bound_is_checked_when_the_intervals_arrive():
+    """A computed gain equal to its bound is the usual case (the x0.5-pin-friction run sets the low end) and is
+    accepted; one above it is refused, naming the change and both gains."""
+    def screened(label, ci, ei):
+        return _make((label,), _Measured(Interval(None, ci, None), Interval(None, ei, None)), True)
+
+    pool = Pool(_make, _intervals)           # chair 2: low ends 1 and 0.5, gains 0 and -50 %
+    pool.add([screened("equal", 1.0, 0.5)], [2.0])
+    pool.refine([0])
+    assert pool.cands[0].gains == {"critical_impulse": 0.0, "equal_instability_speed": -0.5}
+    pool.add([screened("below", 1.0, 0.25)], [2.0])
+    with pytest.raises(RuntimeError) as err:
+        pool.refine([1])
+    assert str(err.value) == ("screening bound broken for below: robust gains {'critical_impulse': 0.0, "
+                              "'equal_instability_speed': -0.5} above the nominal bound {'critical_impulse': 0.0, "
+                              "'equal_instability_speed': -0.75}")
 
 
 def test_a_bound_below_the_computed_gain_is_refused():

@@ -312,6 +312,27 @@ equivalent (1 newly: the manifest's ``sort_keys``, compared only with a manifest
 results folder, the progress callback's chunks, rows and elapsed seconds, the base chair's words, a design's notes of
 bounds and missing draws together).  The Parquet path's mutants need pyarrow, which the README's test command does
 not install: CI's gate step installs the ``[scale]`` extra first.
+
+Seed 34, ``advise/pruning.py`` and ``advise/combinations.py`` newly gated (the two modules that decide which pairs
+of changes the advisor measures and which changes get their intervals joined MODULES with ``ADVISE``; the gate's
+whole draw, ``--sample 60 --seed 34 --budget 1500``, advgate56 branch on main at da5e8b4; "before" = the tests of
+da5e8b4, "after" = ``--only-survivors``; killed / non-equivalent): ``advise/pruning.py`` (54 mutants, all drawn)
+36/53 (68 %) -> 53/53 (1 newly equivalent: a ``zip``'s ``strict`` over ``found``, built from ``choices``), killed
+by tests of ``Pool`` on hand-built candidates: ``refined`` counts each candidate computed once (now documented:
+``combinations._per_round`` keys its cache on it), a candidate without its chair and a measurement answering
+fewer chairs refused, a measurement of three, four or five entries, ``unbounded``'s rule (a gain of exactly
+-100 % is not below it), a bound met exactly accepted and a broken one's words, ``Choice`` frozen;
+``advise/combinations.py`` 41/58 (71 %) -> 58/58 (2 newly equivalent: the ``Candidate`` alias, read only in
+annotations; the triple's ``[:3]`` -> ``[:4]``, its walk stopping at the third lever), killed by hand-built
+changes with the changed chair stood in by its fields: the pairs measured against docs/advise.md's rule
+enumerated (``singles[i + 2:]`` skipped neighbours), the same choice from upper bounds of the gains, the
+recommendation, runner-up and blocked changes against the advisor's rules with every change computed, and small
+cases where a change no choice can take keeps its bound (a seventh pair, a second passing pair below the cost
+cut, a third blocked pair, a fourth lever, a third change a limit blocks, blocked changes whose bounds trail or
+tie the recommendation) and a recommended pair's parts computed in its own batch.  Most of the 34 non-equivalent
+survivors changed which changes get their intervals (more, fewer, or in another batch) rather than the choice,
+and the pruned and full advisors' decisions had been compared on one chair only.  5 mutants (``refine`` computing nothing, a
+candidate never exact) loop until the 300 s timeout, counted as killed.  None was a bug in its module.
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
@@ -339,6 +360,8 @@ MODULES = {
     "stability/advise/advisor.py": ADVISE,
     "stability/advise/levers.py": ADVISE,
     "stability/advise/limits.py": ADVISE,
+    "stability/advise/pruning.py": ADVISE,
+    "stability/advise/combinations.py": ADVISE,
     "stability/study/search.py": ["tests/test_search.py", "tests/test_search_rate_fit.py", "tests/test_impulse_fast.py"],
     "stability/study/intervals.py": ["tests/test_study_measures.py", "tests/test_impulse_step.py", "tests/test_api_hostile_modules.py",
                                     "tests/test_equal_instability_signed.py"],
@@ -697,6 +720,18 @@ EQUIVALENT: dict[tuple[str, str, str], str] = {
      'manifest = json.dumps(spec.to_dict(), sort_keys=True, indent=1)',
      'manifest = json.dumps(spec.to_dict(), sort_keys=False, indent=1)'):
         "the manifest is only compared with one this code wrote (`--resume` refuses another spec's chunks), and `SweepSpec.to_dict` builds its keys in a fixed order, so sorted or not the same spec gives the same text and another spec another",
+    ('stability/advise/pruning.py',
+     'todo = [k for c, (_, t) in zip(choices, found, strict=True) for i in t for k in c.needs(i)]',
+     'todo = [k for c, (_, t) in zip(choices, found, strict=False) for i in t for k in c.needs(i)]'):
+        '`found` is built from `choices` on the line above, one entry per choice (`[c.pending() for c in choices]`): always the same length',
+    ('stability/advise/combinations.py',
+     'Candidate = Any          # stability.advise.advisor.Candidate (defined there; this module is imported by it)',
+     'Candidate = None          # stability.advise.advisor.Candidate (defined there; this module is imported by it)'):
+        'a type alias read only in annotations: the module has `from __future__ import annotations`, so those of its signatures are strings nobody evaluates, and the one on a local variable is never evaluated; mypy, not a test, is what checks it',
+    ('stability/advise/combinations.py',
+     'trio = tuple(list(best.values())[:3])',
+     'trio = tuple(list(best.values())[:4])'):
+        "`best` holds one change per lever of the triple's walk, which stops at the entry that brings a third lever (its `enough`: three levers), so it never holds more than three: `[:4]` takes the same ones",
 }
 
 

@@ -138,7 +138,15 @@ class Pool:
     make : callable
         ``make(changes, measures, bounded)`` -> Candidate (the advisor's, with gain and constraints).
     nonlinear : callable
-        ``nonlinear(chairs)`` -> the interval tuples of :func:`.measures.nonlinear_measures`.
+        ``nonlinear(chairs)`` -> the interval tuples of :func:`.measures.nonlinear_measures`, one per chair (a
+        stand-in may give only their first three or four entries: the critical impulse's status is then
+        ``"found"``, its half-step value None).
+
+    Attributes
+    ----------
+    refined : int
+        How many candidates :meth:`refine` has computed so far (each once): it grows with every refinement, so a
+        value read from the pool can be kept until it changes (:func:`.combinations._per_round`).
     """
 
     def __init__(self, make: Callable, nonlinear: Callable) -> None:
@@ -149,7 +157,8 @@ class Pool:
         self.refined = 0
 
     def add(self, cands: Sequence, chairs: Sequence) -> None:
-        """Append candidates with the changed chairs they were measured on."""
+        """Append candidates with the changed chairs they were measured on (one chair per candidate: lists of
+        different lengths are refused, ValueError)."""
         for c, ch in zip(cands, chairs, strict=True):
             self.index[c.changes] = len(self.cands)
             self.cands.append(c)
@@ -163,7 +172,8 @@ class Pool:
         """Compute the intervals of the bounded candidates among ``idx`` in one batch.
 
         Raises RuntimeError when a computed robust gain exceeds its bound (an interval that does not contain its
-        nominal value: the screening's premise broken).
+        nominal value: the screening's premise broken), ValueError when ``nonlinear`` answers a different number
+        of chairs than it was given.
         """
         todo = [i for i in dict.fromkeys(idx) if self.cands[i].bounded]
         if not todo:
