@@ -395,3 +395,28 @@ def test_a_reference_case_that_never_reaches_the_level_is_refused_naming_the_cri
     with pytest.raises(ValueError, match="^" + re.escape(msg) + "$"):
         _assemble(ej, (never,), ej, 0.75, Criterion(yaw_rate=0.5, duration=7.0), Push(40.0, 0.1), 0.001, "wchair",
                   "the chair only")
+
+
+def test_an_interval_whose_ends_print_the_same_says_it_has_no_spread():
+    """The reference chair against itself (every variant 0.75 m/s by definition): "range 0.75-0.75 m/s" says
+    nothing (issue 35: degenerate ranges are not printed), so the words are "no spread: 0.75 m/s in every variant",
+    without a factor that "moves it most"; two ends printing apart at 3 significant figures are still a range."""
+    from dataclasses import replace
+
+    from stability.study.criteria import Criterion
+    from stability.study.equal_instability import EqualInstability
+    from stability.study.intervals import Variant, _assemble
+
+    ej = preset("ej-premier")
+    crit = Criterion(yaw_rate=1.0, duration=10.0)
+    point = EqualInstability(chair="ej-premier", speed=0.75, status="found", low=0.749, high=0.751,
+                             reference_time=3.0, evaluations=((0.749, 3.01), (0.751, 2.99)), bracket=(0.2, 3.0),
+                             criterion=crit, model="exact", scheme="wchair", impulse=(40.0, 0.1))
+    nominal = Variant("nominal", "40 N", "exact", 40.0, 1.0, 3.0, point, 0.001)
+    same = Variant("pin friction", "x0.5 pin friction", "exact", 40.0, 0.5, 3.2, replace(point, speed=0.7501), 0.001)
+    iv = _assemble(ej, (nominal, same), ej, 0.75, crit, Push(40.0, 0.1), 0.001, "wchair", "the chair only")
+    assert iv.range_text() == "no spread: 0.75 m/s in every variant"
+    assert iv.describe().endswith("(no spread: 0.75 m/s in every variant over pin friction)")
+    apart = _assemble(ej, (nominal, replace(same, result=replace(point, speed=0.76))), ej, 0.75, crit,
+                      Push(40.0, 0.1), 0.001, "wchair", "the chair only")
+    assert apart.range_text() == "range 0.75-0.76 m/s" and apart.describe().endswith("moved most by pin friction)")

@@ -138,8 +138,9 @@ class EqualInstabilityInterval:
     friction_scope: str = "both the chair and the reference chair"
 
     def range_text(self) -> str:
-        """``"range 0.779-1.11 m/s"`` (3 significant figures), or ``"no range: ..."`` when no variant is defined:
-        the words the study command and the report print."""
+        """``"range 0.779-1.11 m/s"`` (3 significant figures); ``"no spread: 0.75 m/s in every variant"`` when both
+        ends print the same; ``"no range: ..."`` when no variant is defined: the words the study command, the
+        report and the explorer print."""
         if self.low is None or self.high is None:
             return "no range: every variant is undefined"
         bound = {v.result.status for v in self.variants if v.result is not None and v.speed is None}
@@ -148,6 +149,8 @@ class EqualInstabilityInterval:
         below = "below" in bound and self.low == min(v.result.value_or_bound for v in self.variants
                                                         if v.result is not None)
         if not (above or below):
+            if f"{self.low:.3g}" == f"{self.high:.3g}":         # a degenerate range says nothing: say so
+                return f"no spread: {self.low:.3g} m/s in every variant"
             return f"range {self.low:.3g}{' to ' if self.low < 0 else '-'}{self.high:.3g} m/s"
         lo = f"below {self.low:.3g}" if below else f"{self.low:.3g}"
         hi = f"above {self.high:.3g}" if above else f"{self.high:.3g}"
@@ -157,8 +160,9 @@ class EqualInstabilityInterval:
         """One line: the point value, the interval and what drives it."""
         if self.low is None or self.high is None:
             return f"{self.point.describe()} (no interval: no variant defined)"
-        return (f"{self.point.describe()} ({self.range_text()} over "
-                + ", ".join(f.factor for f in self.factors) + f"; moved most by {self.dominant})")
+        text = self.range_text()
+        moved = "" if text.startswith("no spread") else f"; moved most by {self.dominant}"
+        return f"{self.point.describe()} ({text} over " + ", ".join(f.factor for f in self.factors) + moved + ")"
 
     def signed(self, reverse: bool) -> EqualInstabilityInterval:
         """This interval on the signed speed axis (negative: reverse), as every command reports a speed.
