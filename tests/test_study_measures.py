@@ -257,6 +257,11 @@ def test_equal_instability_interval_variants_range_and_json_from_their_runs():
     iv = study.equal_instability_interval(preset("revised"), force_factors=(2.0,), friction_factors=(0.5,),
                                           models=("exact",), step_factors=(0.5,))
     assert [v.factor for v in iv.variants] == ["nominal", "disturbance", "pin friction", "step"]
+    # each variant's inputs as asked: the push force, the pin-friction factor and the simulator step
+    spec0 = RunSpec(model="exact")
+    assert [(v.force, v.friction_factor, v.step_s) for v in iv.variants] == [
+        (40.0, 1.0, spec0.fixed_step), (80.0, 1.0, spec0.fixed_step), (40.0, 0.5, spec0.fixed_step),
+        (40.0, 1.0, spec0.fixed_step / 2)]
     spec = RunSpec(model="exact")
     expected = [reference_times(ej, 0.75, [40.0, 80.0], spec, criterion=crit),
                 reference_times(scale_friction(ej, 0.5), 0.75, [40.0], spec, criterion=crit),
@@ -416,6 +421,9 @@ def test_an_interval_whose_ends_print_the_same_says_it_has_no_spread():
     same = Variant("pin friction", "x0.5 pin friction", "exact", 40.0, 0.5, 3.2, replace(point, speed=0.7501), 0.001)
     iv = _assemble(ej, (nominal, same), ej, 0.75, crit, Push(40.0, 0.1), 0.001, "wchair", "the chair only")
     assert iv.range_text() == "no spread: 0.75 m/s in every variant"
+    undefined = replace(iv, low=None, high=None)                 # no variant defined: no interval, said so
+    assert undefined.describe() == f"{point.describe()} (no interval: no variant defined)"
+    assert undefined.range_text() == "no range: every variant is undefined"
     assert iv.describe().endswith("(no spread: 0.75 m/s in every variant over pin friction)")
     apart = _assemble(ej, (nominal, replace(same, result=replace(point, speed=0.76))), ej, 0.75, crit,
                       Push(40.0, 0.1), 0.001, "wchair", "the chair only")
