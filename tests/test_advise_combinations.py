@@ -22,7 +22,6 @@ import itertools
 import math
 import re
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +30,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).parent))
 
 from test_advise_decisions import SPEEDS, _limits_met, _peaked_at  # noqa: E402
+from test_advise_pruning import _Measured as _PoolMeasured  # noqa: E402
 
 from stability import chair as chair_mod  # noqa: E402
 from stability.advise import Interval, advise  # noqa: E402
@@ -227,15 +227,7 @@ def test_a_chair_breaking_two_limits_is_told_both_in_the_note():
 
 # --- the choice of the pairs on hand-built singles: _screen against the rule enumerated here ---------------------
 
-@dataclass(frozen=True)
-class _Measured:
-    """The fields of :class:`stability.advise.measures.Measures` that :meth:`.pruning.Pool.refine` replaces."""
-
-    critical_impulse_Ns: Interval
-    equal_instability_speed_m_s: Interval
-    equal_instability_status: str = "found"
-    critical_impulse_status: str = "found"
-    critical_impulse_half_step_Ns: float | None = None
+_Measured = _PoolMeasured          # the Measures stand-in of tests/test_advise_pruning.py
 
 
 def _hand_built(seed: int, low: float = -0.4, high: float = 0.6):
