@@ -18,6 +18,7 @@ import numpy as np
 from stability.chair import Chair
 from stability.chair.model import takes_chair, takes_chairs
 from stability.runtime.checks import check_positive, check_speeds
+from stability.settings.defaults import MAX_IMPULSE
 from stability.settings.reference import HORIZON, LEVEL, THESIS_PUSH, Push
 from stability.settings.run import STEP_SECONDS, WORK_BUDGET_S, RunSpec
 from stability.simulate.stepcheck import step_limits_and_growth
@@ -217,7 +218,7 @@ def _start(chair: Chair, speed: float, model: str, duration: float, level: float
 
 
 
-def runs_per_speed(min_impulse: float = 1e-6, max_impulse: float = 40.0, max_rounds: int = 40) -> int:
+def runs_per_speed(min_impulse: float = 1e-6, max_impulse: float = MAX_IMPULSE, max_rounds: int = 40) -> int:
     """Most runs :func:`critical_impulses` makes at one speed: at most two a round of the batched search.
 
     Parameters
@@ -305,7 +306,7 @@ def check_search(run: RunSpec | None, level: float, max_impulse: float, min_impu
 
 @takes_chairs
 def critical_impulses(chairs: Chair | Sequence[Chair], speeds: Any, run: RunSpec | None = None, *,
-                      level: float = LEVEL, max_impulse: float = 40.0, min_impulse: float = 1e-6,
+                      level: float = LEVEL, max_impulse: float = MAX_IMPULSE, min_impulse: float = 1e-6,
                       rel_tol: float = 0.005, max_rounds: int = 40) -> list[CriticalImpulse]:
     """:func:`critical_impulse` for many runs: chair i at speed i (broadcast), one kernel call per round.
 

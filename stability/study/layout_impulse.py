@@ -27,6 +27,7 @@ import numpy as np
 
 from stability.layout.linear import state_matrices
 from stability.layout.model import Layout, check_layout, takes_layout
+from stability.settings.defaults import MAX_IMPULSE
 from stability.settings.reference import LEVEL
 from stability.settings.run import RunSpec
 from stability.simulate.layout import check_layout_run, simulate_layout
@@ -158,7 +159,7 @@ def _summaries(layout: Layout, speed: float, angles: list[float], run: RunSpec, 
 
 @takes_layout
 def layout_critical_impulses(layout: Layout, speeds: Any, run: RunSpec | None = None, *, level: float = LEVEL,
-                             max_impulse: float = 40.0, min_impulse: float = 1e-6, rel_tol: float = 0.005,
+                             max_impulse: float = MAX_IMPULSE, min_impulse: float = 1e-6, rel_tol: float = 0.005,
                              max_rounds: int = 40, side: str = "right") -> list[CriticalImpulse]:
     """Critical impulse of a layout at each speed (negative: reverse), the thesis chair's search on its runs.
 

@@ -203,6 +203,8 @@ STATUS_OF = {"critical_speed_m_s": "critical_speed_status", "locked_critical_spe
              "critical_impulse_Ns": "critical_impulse_status",
              "equal_instability_speed_m_s": "equal_instability_status", "shimmy_margin_m": "shimmy_margin_status",
              "human_limited_speed_m_s": "human_limited_status"}
+
+
 def row_sides(data: dict[str, list], col: str) -> np.ndarray:
     """The side of every row's value of measure ``col`` (:func:`stability.study.censored.side_of` of its status
     column, :data:`STATUS_OF`): ``"="`` found, ``">"`` / ``"<"`` a bound; ``"="`` for a measure without bounds and
