@@ -210,10 +210,18 @@ def test_study_work_estimate_is_runs_times_steps_times_the_step_cost():
     runs, dt = 40, 0.001
     allowed = WORK_BUDGET_S / (runs * STEP_SECONDS) * dt           # one speed: runs x horizon / dt steps
     check_study_work([ej], np.array([0.75]), "exact", allowed * 0.99, dt, runs, limits=np.array([1.0]))
+    # exactly the budget is allowed ("above" refuses): 40 runs x 15,000 s / 1 ms x 1 us = 600 s, exact in binary
+    # for these inputs (the estimate's products round to the budget itself)
+    assert (runs, dt, STEP_SECONDS, WORK_BUDGET_S) == (40, 0.001, 1e-6, 600.0)
+    check_study_work([ej], np.array([0.75]), "exact", 15000.0, dt, runs, limits=np.array([1.0]))
     import re
 
     with pytest.raises(ValueError, match=re.escape(f"the largest allowed horizon is {allowed:.3g} s")):
         check_study_work([ej], np.array([0.75]), "exact", allowed * 1.01, dt, runs, limits=np.array([1.0]))
+    # the refusal starts with the argument it names and its value, then the work it would take
+    with pytest.raises(ValueError, match=r"^horizon=15150 s is invalid here: 1 speed\(s\) x 40 runs of up to 15150 s "
+                                         r"at steps down to 0\.001 s would take about 10 min;"):
+        check_study_work([ej], np.array([0.75]), "exact", 15150.0, dt, runs, limits=np.array([1.0]))
     # the estimate it states is in minutes: 1.01 budgets of ten minutes (WORK_BUDGET_S / 60 min) each
     minutes = 1.01 * WORK_BUDGET_S / 60.0
     with pytest.raises(ValueError, match=re.escape(f"would take about {minutes:.0f} min;")):
