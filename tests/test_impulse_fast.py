@@ -242,6 +242,10 @@ def test_search_arguments_are_refused_by_name():
             check_search(None, **dict(good, **{name: -1.0}))
     with pytest.raises(ValueError, match=r"^min_impulse=50\.0 is invalid; valid range: < max_impulse=40\.0 N s$"):
         check_search(None, **dict(good, min_impulse=50.0))
+    from stability.settings.run import RunSpec
+
+    with pytest.raises(ValueError, match=r"^push_duration="):                    # RunSpec itself allows 0 s
+        check_search(RunSpec(push_duration=0.0), **good)
 
 
 def test_study_work_check_computes_the_free_caster_steps_itself():
@@ -359,6 +363,14 @@ def test_a_search_whose_range_holds_no_threshold_says_which_end_and_gives_no_val
     below = critical_impulse(preset("ej-premier"), 1.5, min_impulse=20.0, max_impulse=40.0)
     assert below.status == "below" and below.impulse_Ns is None and below.low_Ns == 0.0
     assert below.high_Ns == below.smallest_tried_Ns == pytest.approx(20.0, rel=SAFETY * 4 * EPS)
+    # the push convention it states: the thesis's 0.1 s of constant force on WCHAIR's 1 ms steps, 101 steps
+    assert below.push == ("constant force at the c.g. for 0.1 s (101 steps of 1 ms: impulse = force x 0.101 s)")
+    # on the adaptive scheme the force acts for exactly its duration: impulse = force x 0.1 s
+    from stability.settings.run import RunSpec
+
+    adaptive = critical_impulse(preset("ej-premier"), 1.5, RunSpec(scheme="adaptive"), min_impulse=20.0,
+                                max_impulse=40.0)
+    assert adaptive.push == "constant force at the c.g. for 0.1 s (impulse = force x 0.1 s)"
 
 
 def test_the_fixed_step_of_an_automatic_run_is_the_1987_programs():
