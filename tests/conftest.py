@@ -137,7 +137,8 @@ def shared_run():
 def first_use_watches(monkeypatch):
     """Run two short E&J Premier runs as a batch on a WCHAIR kernel (``"scalar"`` or ``"lanes"``) with the
     kernel's specialisation found again, and return the first-use watches of key ``"wchair"`` they went through, as
-    ``(module, key)``: ``"engine"`` (the launch) or ``"kernel"`` (``kernel.call_model``, where it is loaded)."""
+    ``(module, key)``: ``"engine"`` (the launch) or ``"kernel"`` (``kernel.call_model`` or ``lanes_kernel._entry``, where it is
+    loaded)."""
     import contextlib
 
     from stability.chair import preset
@@ -157,6 +158,11 @@ def first_use_watches(monkeypatch):
         monkeypatch.setattr(engine, "first_use", recorder("engine"))
         monkeypatch.setattr(kernel, "first_use", recorder("kernel"))
         monkeypatch.setattr(kernel, "_ENTRIES", {})      # the specialisation is found (loaded) again
+        if which == "lanes":                             # its own entries, found at _block's address
+            from stability.simulate import lanes_kernel
+
+            monkeypatch.setattr(lanes_kernel, "first_use", recorder("kernel"))
+            monkeypatch.setattr(lanes_kernel, "_ENTRIES", {})
         with engine.use_kernel(which):
             simulate_batch(preset("ej-premier"), [0.5, 0.75], RunSpec(horizon=0.01), progress=False)
         return [s for s in seen if s[1] == "wchair"]

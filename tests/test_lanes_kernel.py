@@ -171,6 +171,24 @@ def test_critical_impulse_is_the_same_with_either_kernel():
 
 
 def test_the_lanes_kernels_load_is_watched_where_it_is_found(first_use_watches):
-    """The lanes kernel's specialisation for the runs' model is loaded through kernel.call_model too, under the same
-    notice, and the launch itself is not watched."""
+    """The lanes kernel's specialisation for the runs' model is loaded where it is found (lanes_kernel._entry), under
+    the same notice as the scalar kernel's, and the launch itself is not watched."""
     assert first_use_watches("lanes") == [("kernel", "wchair")]
+
+
+def test_one_block_runs_without_the_parallel_entry(monkeypatch):
+    """One block runs through the serial entry, so a first run does not compile the parallel one; three blocks on
+    two threads run through the parallel entry; both call the block at the same address, and a run is the same,
+    bit for bit, alone or in a batch (the block's arithmetic does not depend on the entry)."""
+    from stability.simulate import lanes_kernel
+
+    monkeypatch.setattr(lanes_kernel, "_ENTRIES", {})
+    run = RunSpec(horizon=0.2, push_force=40.0, push_duration=0.1)
+    alone = simulate_batch(EJ, [0.75], run=run, progress=False)[0]
+    assert [k[0] for k in lanes_kernel._ENTRIES] == [True]
+    speeds = np.array([0.5, 0.75] * 9)          # 18 runs: blocks of 8 on two threads (lane_block), three blocks
+    many = simulate_batch(EJ, speeds, run=run, progress=False, workers=2)
+    assert sorted(k[0] for k in lanes_kernel._ENTRIES) == ([False, True] if lanes_kernel.get_num_threads() > 1
+                                                           else [True])
+    assert len({step for (model, _), step in lanes_kernel._STEPS.items() if model == 1}) == 1
+    np.testing.assert_array_equal(np.asarray(alone.yaw_rate), np.asarray(many[1].yaw_rate))

@@ -384,14 +384,7 @@ def _launch_inner(k: Any, threads: int | None, n_runs: int, args: tuple, nthread
     if _kc.choice() == "lanes" and len(args[14]) <= _kc.lanes_kernel().MAX_LEVELS:
         lk = _kc.lanes_kernel()
         lanes = _kc.lane_block(n_runs, nthreads)
-        if -(-n_runs // lanes) == 1 and nthreads > 1:      # one block: on this thread (no team to wake)
-            lk.set_num_threads(1)
-            try:
-                lk.run_lanes(*args, lanes)
-            finally:
-                lk.set_num_threads(nthreads)
-            return
-        with lk.parallel_chunksize(1):
+        with lk.parallel_chunksize(1):      # one block (or thread) runs on this thread: lanes_kernel.run_lanes
             lk.run_lanes(*args, lanes)
         return
     var = k.variant(args[13], args[15])     # the model's (and controller's) own specialisation of the kernel

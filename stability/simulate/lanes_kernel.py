@@ -34,13 +34,17 @@ vector and scalar forms of a loop round alike).
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any
 
 import numpy as np
-from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads
+from numba import get_num_threads, literally, njit, parallel_chunksize, prange, set_num_threads, typeof
+from numba import types as _nbtypes
+from numba._dispatcher import compute_fingerprint
 
 from stability.simulate import lanes_physics as _lp  # a module: its uncached dispatchers stay out of globals()
 from stability.simulate.cache_stamp import invalidate_stale_cache
+from stability.simulate.first_use import first_use
 from stability.simulate.kernel import (
     D1,
     D2,
@@ -64,7 +68,6 @@ from stability.simulate.kernel import (
     TRAIL,
     X_M,
     X_P,
-    call_model,
     variant,
 )
 from stability.simulate.kernel_equations import _NOWRAP
@@ -121,6 +124,7 @@ from stability.simulate.lanes_step import (
     tire_forces,
     update,
 )
+from stability.simulate.native_call import address, call_none_at
 
 __all__ = ["LANES", "MAX_LEVELS", "run_lanes", "lane_physics", "get_num_threads", "set_num_threads",
            "parallel_chunksize"]
@@ -291,16 +295,52 @@ def _block(model, lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, c
     _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode)
 
 
-@njit(cache=True, parallel=True, error_model="numpy")
-def _run_lanes(model, ctl, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
+@njit(cache=True, parallel=True)
+def _run_lanes(step, model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By,
                Cz, noise, state, rec, stats, warn, status, nrec, lanes):
-    """:func:`run_lanes` for the variant ``model, ctl`` (numba literals: :func:`.kernel.call_model`; ``ctl`` always 0:
-    the lanes kernel finds its controller's lanes at run time)."""
+    """The blocks of ``lanes`` runs, one per thread (``prange``); ``step``: the address of :func:`_block`'s
+    specialisation for the runs' model and arrays (:func:`run_lanes`), called, not compiled in (numba would link the
+    block's code into this entry, its parfor body and their two wrappers, and LLVM would optimise it in each)."""
     nb = (P.shape[0] + lanes - 1) // lanes
     for b in prange(nb):
         lo = b * lanes
-        _block(model, lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg,
-               levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+        call_none_at(step, model, lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM,
+                     CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+
+
+@njit(cache=True, nogil=True)
+def _run_lanes_serial(step, model, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, cfg, levels, ctl_f, Cy, Dy, Az,
+                      Bu, By, Cz, noise, state, rec, stats, warn, status, nrec, lanes):
+    """:func:`_run_lanes` on the calling thread: one block, or one thread (no parallel entry to compile or wake)."""
+    nb = (P.shape[0] + lanes - 1) // lanes
+    for b in range(nb):
+        lo = b * lanes
+        call_none_at(step, model, lo, min(P.shape[0], lo + lanes), k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM,
+                     CHK, cfg, levels, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise, state, rec, stats, warn, status, nrec)
+
+
+#: the address of :func:`_block`'s specialisation, by model and the arrays' fingerprints (numba's dispatch key)
+_STEPS: dict[tuple, int] = {}
+#: the compiled entries found by :func:`run_lanes` (serial or not), by model and the arrays' fingerprints
+_ENTRIES: dict[tuple, Any] = {}
+
+
+def _entry(serial: bool, model: int, arrays: tuple) -> Any:
+    """The compiled entry (:func:`_run_lanes_serial` or :func:`_run_lanes`) with its step's address and ``model``
+    bound: compiled, or loaded from numba's cache, under the first-use notice the first time, apart from the runs."""
+    prints = tuple(map(compute_fingerprint, arrays))
+    fn = _ENTRIES.get((serial, model, prints))
+    if fn is None:
+        with first_use("wchair"):
+            types_ = tuple(map(typeof, arrays))
+            step = _STEPS.get((model, prints))
+            if step is None:
+                sig = (_nbtypes.literal(model), *(_nbtypes.int64,) * 4, *types_)
+                step = _STEPS[(model, prints)] = address(_block, sig, returns=_nbtypes.none)
+            entry = _run_lanes_serial if serial else _run_lanes
+            fn = partial(entry.compile((*(_nbtypes.int64,) * 4, *types_, _nbtypes.int64)), step, model)
+        _ENTRIES[(serial, model, prints)] = fn
+    return fn
 
 
 def run_lanes(k0: int, k1: int, P: np.ndarray, *args: Any) -> None:
@@ -309,7 +349,9 @@ def run_lanes(k0: int, k1: int, P: np.ndarray, *args: Any) -> None:
 
     The runs' model (:func:`stability.simulate.kernel.variant` of the configuration row) is compiled as a constant,
     as the scalar kernel's (:func:`stability.simulate.kernel.call_model`): the first call for a model compiles (or
-    loads from the cache) its specialisation, later ones call it directly.
+    loads from the cache) :func:`_block`'s specialisation, under the first-use notice, and the entries call it at its
+    address (:func:`~stability.simulate.native_call.call_none_at`), so that one compile of each entry serves every
+    model.  One block, or one thread, runs on the calling thread without the parallel entry.
 
     Parameters
     ----------
@@ -321,7 +363,9 @@ def run_lanes(k0: int, k1: int, P: np.ndarray, *args: Any) -> None:
         ``kernel.run_batch``'s other arrays, from ``S`` to ``nrec``, then the block size (int).
     """
     model = variant(args[10], args[12])[0]          # cfg, ctl_f; the controller is found at run time (ctl 0)
-    call_model(_run_lanes, (model, 0), k0, k1, P, *args)
+    arrays, lanes = (P, *args[:-1]), int(args[-1])
+    serial = -(-P.shape[0] // lanes) == 1 or get_num_threads() == 1
+    _entry(serial, model, arrays)(int(k0), int(k1), *arrays, lanes)
 
 
 invalidate_stale_cache(globals(), "lanes_kernel.equations.sha256")
