@@ -33,6 +33,8 @@ from typing import Any
 
 from numba import njit
 
+from stability.simulate.kernel_link import AVAILABLE, LinkOnlyCompiler
+
 __all__ = ["sin_cos", "sin", "cos", "atan2_pos", "atan2", "LANE_MATH", "SIN_COS_ULP", "SIN_COS_ABS", "ATAN2_ULP",
            "REDUCTION_LIMIT"]
 
@@ -48,7 +50,9 @@ ATAN2_ULP = 3.0
 REDUCTION_LIMIT = 2.0 ** 19 * math.pi / 2
 
 _NOWRAP: dict[str, Any] = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True)   # options numba's stubs omit
-_lane = njit(cache=False, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+#: compiled for linking into the lanes kernel only (:mod:`stability.simulate.kernel_link`: no machine code of its own)
+_LINK: dict[str, Any] = dict(pipeline_class=LinkOnlyCompiler) if AVAILABLE else {}
+_lane = njit(cache=False, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 
 # pi/2 in three 33-bit parts (fdlibm e_rem_pio2.c: pio2_1, pio2_2, pio2_3); n * part is exact for |n| < 2^20
 _PIO2_1 = 1.57079632673412561417e+00

@@ -70,7 +70,7 @@ from stability.simulate.kernel import (
     X_P,
     variant,
 )
-from stability.simulate.kernel_equations import _NOWRAP
+from stability.simulate.kernel_equations import _LINK, _NOWRAP
 from stability.simulate.lanes_physics import lane_physics
 from stability.simulate.lanes_step import (
     _AC,
@@ -135,7 +135,7 @@ __all__ = ["LANES", "MAX_LEVELS", "run_lanes", "lane_physics", "get_num_threads"
 VEC_HELD_MIN = 4
 
 
-@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_LINK)
 def padded_levels(levels):
     """The |yaw rate| levels (rad/s) as :data:`MAX_LEVELS` scalars, infinite beyond ``levels`` (never reached)."""
     n, inf = levels.shape[0], math.inf          # no array operation: their error paths cost seconds to compile
@@ -143,7 +143,7 @@ def padded_levels(levels):
             levels[3] if n > 3 else inf, levels[4] if n > 4 else inf, levels[5] if n > 5 else inf)
 
 
-@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_LINK)
 def _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev, sticks):
     """The block's runs into ``W``'s rows (the tire tables too: row ``_TAB + 48 c + 8 r + q``); whether a run of the
     block has a camber angle (MECHAN's test: :func:`.lanes_step.tire_forces`)."""
@@ -179,7 +179,7 @@ def _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, st
     return camber
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def _keep(W, dst, src, j, on):
     """``W[dst, j] = W[src, j]`` where ``on``: a store under a condition (a masked store once vectorised; a select
     of the two loads LLVM turns into a load at a selected address, which keeps the loop scalar)."""
@@ -187,7 +187,7 @@ def _keep(W, dst, src, j, on):
         W[dst, j] = W[src, j]
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def final_row(W, L, full):
     """record="final": this step's row where it is recorded, vectorised (written when the call ends).
 
@@ -221,7 +221,7 @@ def final_row(W, L, full):
             _keep(W, _REC + 30, _AC + 6, j, on)
 
 
-@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_LINK)
 def _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode):
     """The block's runs back from ``W``: states, summaries, the final row (``record="final"``)."""
     for j in range(L):

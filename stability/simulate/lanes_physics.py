@@ -21,14 +21,14 @@ from stability.models.full_width import generated as _fw
 from stability.models.slope import generated as _sl
 from stability.simulate import kernel as _k
 from stability.simulate import kernel_equations as _ke
-from stability.simulate.kernel_equations import _NOWRAP, compiled
+from stability.simulate.kernel_equations import _LINK, _NOWRAP, compiled
 from stability.simulate.lanemath import LANE_MATH
 from stability.tires import law as _tire_law
 
 __all__ = ["lane_physics", "l_accelerations", "l_plane", "l_contact_loads", "l_kinematics", "l_slip_angles",
            "l_tire_resultant", "l_kinetic", "l_rest_rate", "l_tire_moment", "l_mechan", "l_segment_force", "l_table"]
 
-_lane = njit(cache=False, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+_lane = njit(cache=False, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 
 # The generated physics, compiled again with the lane math (the same source; nothing re-typed)
 _lfo = compiled(_fo, tuple(_fo.__all__), _lane, {"math": LANE_MATH})

@@ -29,7 +29,7 @@ from stability.simulate.kernel import (
     stick_slip,
     tire_yaw_moment,
 )
-from stability.simulate.kernel_equations import _NOWRAP
+from stability.simulate.kernel_equations import _LINK, _NOWRAP
 from stability.simulate.lanemath import sin_cos
 from stability.simulate.lanes_physics import (
     _p,
@@ -79,7 +79,7 @@ _RECTR = _TAB + 3 * 48
 NROWS = _RECTR + 4
 
 
-@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_LINK)
 def _summaries(W, j, nlev, levels, k, t, a, prev_abs, t_prev):
     """:func:`stability.simulate.kernel.summaries` on the lane's rows of ``W`` (no per-run array view)."""
     if a > W[_STT, j] or k == 0:
@@ -90,7 +90,7 @@ def _summaries(W, j, nlev, levels, k, t, a, prev_abs, t_prev):
             W[r, j] = t if k == 0 else t_prev + (levels[m] - prev_abs) / (a - prev_abs) * (t - t_prev)
 
 
-@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_LINK)
 def _settled(W, j, t, held, a, ma, mb):
     """:func:`stability.simulate.kernel.settled` on the lane's tracker rows of ``W``."""
     r = _TRK
@@ -127,7 +127,7 @@ def _record(rec, i, row, W, j):
         rec[i, 29, row], rec[i, 30, row] = W[_AC + 5, j], W[_AC + 6, j]
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def slip_statics(W, L, model, slope, cfg):
     """SLIP and STATICS, vectorised: caster trig, contact velocities, slip angles, normal loads."""
     if slope:
@@ -156,7 +156,7 @@ def slip_statics(W, L, model, slope, cfg):
 _NO_CAMBER = (0.0,) * 48
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def _mechan(W, j, ftimp, tire_imp, policy, seg_k):
     """MECHAN for lane ``j`` on its rows of ``W`` (camber table ``seg_k``), its forces and refusal stored in ``W``."""
     f8, refused, w = l_mechan(
@@ -173,7 +173,7 @@ def _mechan(W, j, ftimp, tire_imp, policy, seg_k):
     W[_REF, j], W[_REF + 1, j] = float(refused), float(w)
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def tire_forces(W, L, ftimp, imp, policy, camber):
     """MECHAN, vectorised: the tire forces (the lane's tables read as tuples, :func:`.lanes_physics.l_table`).
 
@@ -188,7 +188,7 @@ def tire_forces(W, L, ftimp, imp, policy, camber):
             _mechan(W, j, ftimp, tire_imp, policy, _NO_CAMBER)
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def _attention(W, L, maxload, maxslip, ext, use_ctl):
     """Which lanes :func:`checks` takes lane by lane (``W[_ATTN]``), vectorised: a tested tire's load or slip beyond
     its limit or a negative load (the range rule counts), a refusal, or the controller; every lane's yaw moment
@@ -211,7 +211,7 @@ def _attention(W, L, maxload, maxslip, ext, use_ctl):
         W[_EXT + 1, j] = W[_MZH, j] if ext else 0.0
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
            znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """The range rules (counted where a limit is exceeded, by the scalar kernel's function), refusals, the
@@ -253,7 +253,7 @@ def checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, 
         W[_EXT + 1, j] = mz
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def _dynam_kinetic(W, L, model, imp):
     """DYNAM, vectorised: the resultant and the accelerations under the kinetic pin moments (no caster held)."""
     for j in range(L):
@@ -273,7 +273,7 @@ def _dynam_kinetic(W, L, model, imp):
         W[_AC + 5, j], W[_AC + 6, j] = ma, mb
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def _dynam_held(W, L, model, imp, sticks, locked):
     """DYNAM, vectorised: the resultant and the accelerations; held casters (locked, or at rest under stick-slip)
     solved here too, by :func:`stability.simulate.kernel_equations.held_pins`'s arithmetic on its three evaluations
@@ -331,7 +331,7 @@ def _dynam_held(W, L, model, imp, sticks, locked):
         W[_HELD, j] = 1.0 if free else 0.0
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def _held_lanes(W, L):
     """How many running lanes have a caster at rest (stick-slip: held this step), vectorised."""
     n = 0
@@ -340,7 +340,7 @@ def _held_lanes(W, L):
     return n
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def dynam(W, L, model, imp, sticks, locked, vec_held):
     """DYNAM, vectorised: the kinetic law's one evaluation of the accelerations, or (``vec_held``) the holding
     solve's three; without ``vec_held`` (a block too small to vectorise) :func:`held` solves held casters.  A
@@ -355,7 +355,7 @@ def dynam(W, L, model, imp, sticks, locked, vec_held):
                 W[_HELD, j] = 0.0
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def held(W, L, model, locked, vec_held):
     """Held casters lane by lane, the scalar kernel's solve: with ``vec_held`` only a caster breaking away under
     stick-slip (``W[_HELD]``), else every locked or resting caster (the same arithmetic as the vectorised solve)."""
@@ -380,7 +380,7 @@ def held(W, L, model, locked, vec_held):
         W[_AC + 5, j], W[_AC + 6, j] = ma, mb
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def _quiet_step(W, L, k, t, lv, mode, settle):
     """The summaries of the running lanes without an event this step, vectorised: the peak |yaw rate| and its
     time, the previous sample, the final row's flag and time (``record="final"``); ``W[_EVT]`` 1 for a lane with an
@@ -407,7 +407,7 @@ def _quiet_step(W, L, k, t, lv, mode, settle):
             W[_STT + MAX_LEVELS + 2, j] = t if quiet else W[_STT + MAX_LEVELS + 2, j]
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp):
     """The summaries, the record (every ``stride`` steps) and the stop rules: vectorised for the lanes without an
     event (:func:`_quiet_step`), lane by lane for the others and for a recorded step (``record`` not "final")."""
@@ -449,7 +449,7 @@ def stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop
             W[_ACT, j] = 0.0
 
 
-@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP)
+@njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
 def update(W, L, dt, half_dt2):
     """UPDATE / ITRATE, vectorised (a stopped lane keeps its state)."""
     for j in range(L):
