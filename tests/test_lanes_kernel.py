@@ -192,3 +192,28 @@ def test_one_block_runs_without_the_parallel_entry(monkeypatch):
                                                            else [True])
     assert len({step for (model, _), step in lanes_kernel._STEPS.items() if model == 1}) == 1
     np.testing.assert_array_equal(np.asarray(alone.yaw_rate), np.asarray(many[1].yaw_rate))
+
+
+@pytest.mark.parametrize("record", ["final", "states"])
+def test_a_block_whose_runs_stop_apart_steps_its_running_runs_only(monkeypatch, record):
+    """Bit for bit: 64 runs in random speed order in one block, where runs stop at different times (spin-outs at the
+    level, warnings, settled casters) and the block moves its running lanes to its first columns once a vector's
+    worth has stopped (lanes_kernel._compact), against each run in a block of its own (which never moves a lane);
+    summaries, stop times and the recorded rows alike."""
+    from stability.simulate import lanes_kernel
+
+    speeds = np.random.default_rng(36).permutation(np.linspace(0.3, 1.5, 64))
+    run = RunSpec(horizon=6.0)
+    monkeypatch.setattr(kernel_choice, "lane_block", lambda n, t: min(64, n))
+    block = simulate_batch(EJ, speeds, run=run, progress=False, record=record, workers=1)
+    monkeypatch.setattr(kernel_choice, "lane_block", lambda n, t: 1)
+    alone = simulate_batch(EJ, speeds, run=run, progress=False, record=record, workers=1)
+    stops = sorted(r.stop_time for r in alone if r.stop_time is not None)
+    # the case exercises the move twice: two vectors' worth stop at least a second (1,000 steps) before the
+    # horizon, to which a vector's worth of runs go on
+    assert len(stops) >= 2 * lanes_kernel.COMPACT_AFTER and stops[2 * lanes_kernel.COMPACT_AFTER - 1] < run.horizon - 1.0
+    assert sum(r.stop_time is None for r in alone) >= lanes_kernel.COMPACT_AFTER
+    for a, b in zip(alone, block, strict=True):
+        assert a.stop_time == b.stop_time and a.stats == b.stats and a.warnings == b.warnings
+        for name in ("t", "x", "heading", "yaw_rate", "eta", "beta_dot", "fy", "tire_yaw_moment", "pin_moment"):
+            np.testing.assert_array_equal(np.asarray(getattr(a, name)), np.asarray(getattr(b, name)))

@@ -44,7 +44,8 @@ def _cpu_best(fn, kernels: tuple[str, ...], repeats: int) -> tuple[dict[str, flo
 
 
 @group("kernel_speed", "engine.use_kernel('lanes'|'scalar') around simulate_batch(ej-premier, "
-       "linspace(0.3, 1.5, 2000), record='final') (3 times) and simulate(ej-premier, 0.75, "
+       "linspace(0.3, 1.5, 2000), record='final') (3 times; on the lanes kernel also in a seeded random order) and "
+       "simulate(ej-premier, 0.75, "
        "RunSpec(stop_on_warnings=False)) (20 times), alternately in one process; time.process_time, "
        "os.getloadavg")
 def kernel_speed() -> dict:
@@ -71,6 +72,11 @@ def kernel_speed() -> dict:
         load0 = os.getloadavg()[0]
         bcpu, _, bout = _cpu_best(lambda: simulate_batch(ej, speeds, progress=False, record="final"), kernels,
                                   BATCH_REPEATS)
+        # the same runs in a seeded random order, as a sweep's rows come: a block's runs stop at more different
+        # times, so its stopped lanes matter more (lanes_kernel.COMPACT_AFTER)
+        shuffled = np.random.default_rng(36).permutation(speeds)
+        rcpu, _, _ = _cpu_best(lambda: simulate_batch(ej, shuffled, progress=False, record="final"), ("lanes",),
+                               BATCH_REPEATS)
         one = RunSpec(stop_on_warnings=False)
         scpu, swall, _ = _cpu_best(lambda: simulate(ej, 0.75, run=one), kernels, SINGLE_REPEATS)
         load1 = os.getloadavg()[0]
@@ -85,6 +91,7 @@ def kernel_speed() -> dict:
     stopped = {k: np.array([r.stop_time is not None for r in bout[k]]) for k in kernels}
     per = {k: 1e3 * bcpu[k] / STUDY_RUNS for k in kernels}
     return {"lanes_ms": sig(per["lanes"], 2), "scalar_ms": sig(per["scalar"], 2),
+            "lanes_shuffled_ms": sig(1e3 * rcpu["lanes"] / STUDY_RUNS, 2),
             "batch_ratio": fixed(per["scalar"] / per["lanes"], 2),
             "steps": f"{steps['scalar']:,}", "steps_lanes": f"{steps['lanes']:,}",
             "steps_m": fixed(steps["scalar"] / 1e6, 1),

@@ -130,6 +130,11 @@ __all__ = ["LANES", "MAX_LEVELS", "run_lanes", "lane_physics", "get_num_threads"
            "parallel_chunksize"]
 
 
+#: stopped lanes that make a block move its running lanes to its first columns and step those only (:func:`_compact`):
+#: one vector of doubles on an AVX-512 machine, so that the vectorised loops run at least one iteration fewer (measured
+#: against a half, a quarter and two vectors: docs/simulator.md, "Runs as lanes")
+COMPACT_AFTER = 8
+
 #: smallest block whose holding solve is vectorised (three evaluations for every lane); a smaller block (one run)
 #: solves only its held lanes, lane by lane, with the same arithmetic (tested: blocks of 1, 8 and 64 agree bit for bit)
 VEC_HELD_MIN = 4
@@ -222,31 +227,49 @@ def final_row(W, L, full):
 
 
 @njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_LINK)
-def _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode):
-    """The block's runs back from ``W``: states, summaries, the final row (``record="final"``)."""
+def _store_lane(W, j, i, next_k, nrc, state, stats, rec, nrec, nlev, mode):
+    """Lane ``j`` of the block back from ``W`` into run ``i``: its state, summaries, the final row
+    (``record="final"``)."""
+    for c in range(10):
+        state[i, c] = W[_XR + c, j]
+    state[i, ST_THEDD], state[i, ST_FC1], state[i, ST_FC2] = W[_THEDD, j], W[_FC1, j], W[_FC2, j]
+    state[i, ST_PREV], state[i, ST_TPREV], state[i, ST_MZ] = W[_PREV, j], W[_TPREV, j], W[_MZH, j]
+    if mode == 2 and W[_RECANY, j] != 0.0:        # record="final": a step recorded in this call (final_row)
+        nrc[j] = 1
+    state[i, ST_NEXTK], state[i, ST_NREC] = next_k[j], nrc[j]
+    nrec[i] = nrc[j]
+    for c in range(3 + nlev):
+        stats[i, c] = W[_STT + (c if c < 2 + nlev else MAX_LEVELS + 2), j]
+    for c in range(5):
+        state[i, ST_TRACK + c] = W[_TRK + c, j]
+    if mode == 2 and W[_RECANY, j] != 0.0:
+        if rec.shape[1] > 10:                       # the tire yaw moment of the recorded step (final_row)
+            W[_REC + 26, j] = _lp.l_tire_moment(
+                W[_REC + 10, j], W[_REC + 11, j], W[_REC + 12, j], W[_REC + 13, j], W[_REC + 14, j],
+                W[_REC + 15, j], W[_REC + 16, j], W[_REC + 17, j], W[_RECTR, j], W[_RECTR + 1, j],
+                W[_RECTR + 2, j], W[_RECTR + 3, j], W[_PR + X_M, j], W[_PR + X_P, j], W[_PR + D1, j],
+                W[_PR + D2, j], W[_PR + T1, j], W[_PR + T2, j], W[_PR + TRAIL, j])
+        for c in range(rec.shape[1]):
+            rec[i, c, 0] = W[_REC + c, j]
+
+
+@njit(cache=True, nogil=True, forceinline=True, **_NOWRAP, **_LINK)
+def _compact(W, L, runs, next_k, nrc, state, stats, rec, nrec, nlev, mode):
+    """The block's stopped lanes written back (:func:`_store_lane`) and its running lanes moved, in order, to the
+    first columns (every row of ``W``, with ``runs``, ``next_k``, ``nrc``); returns how many run.  A lane's numbers do
+    not depend on its column (every lane executes the same instructions), and a stopped lane's rows no longer change,
+    so its numbers are those it would have at the end."""
+    m = 0
     for j in range(L):
-        i = lo + j
-        for c in range(10):
-            state[i, c] = W[_XR + c, j]
-        state[i, ST_THEDD], state[i, ST_FC1], state[i, ST_FC2] = W[_THEDD, j], W[_FC1, j], W[_FC2, j]
-        state[i, ST_PREV], state[i, ST_TPREV], state[i, ST_MZ] = W[_PREV, j], W[_TPREV, j], W[_MZH, j]
-        if mode == 2 and W[_RECANY, j] != 0.0:        # record="final": a step recorded in this call (final_row)
-            nrc[j] = 1
-        state[i, ST_NEXTK], state[i, ST_NREC] = next_k[j], nrc[j]
-        nrec[i] = nrc[j]
-        for c in range(3 + nlev):
-            stats[i, c] = W[_STT + (c if c < 2 + nlev else MAX_LEVELS + 2), j]
-        for c in range(5):
-            state[i, ST_TRACK + c] = W[_TRK + c, j]
-        if mode == 2 and W[_RECANY, j] != 0.0:
-            if rec.shape[1] > 10:                       # the tire yaw moment of the recorded step (final_row)
-                W[_REC + 26, j] = _lp.l_tire_moment(
-                    W[_REC + 10, j], W[_REC + 11, j], W[_REC + 12, j], W[_REC + 13, j], W[_REC + 14, j],
-                    W[_REC + 15, j], W[_REC + 16, j], W[_REC + 17, j], W[_RECTR, j], W[_RECTR + 1, j],
-                    W[_RECTR + 2, j], W[_RECTR + 3, j], W[_PR + X_M, j], W[_PR + X_P, j], W[_PR + D1, j],
-                    W[_PR + D2, j], W[_PR + T1, j], W[_PR + T2, j], W[_PR + TRAIL, j])
-            for c in range(rec.shape[1]):
-                rec[i, c, 0] = W[_REC + c, j]
+        if W[_ACT, j] == 0.0:
+            _store_lane(W, j, runs[j], next_k, nrc, state, stats, rec, nrec, nlev, mode)
+            continue
+        if m != j:                  # the columns m .. j - 1 are stopped lanes, already written back
+            for r in range(NROWS):
+                W[r, m] = W[r, j]
+            runs[m], next_k[m], nrc[m] = runs[j], next_k[j], nrc[j]
+        m += 1
+    return m
 
 
 @njit(cache=True, nogil=True, error_model="numpy", **_NOWRAP)
@@ -272,27 +295,35 @@ def _block(model, lo, hi, k0, k1, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, c
     W = np.zeros((NROWS, LANES))              # constant shape: LLVM sees the rows' distances (no aliasing checks)
     next_k = np.zeros(LANES, dtype=np.int64)
     nrc = np.zeros(LANES, dtype=np.int64)
+    runs = np.empty(LANES, dtype=np.int64)      # the run of each lane (columns move when stopped lanes leave)
+    for j in range(L):
+        runs[j] = lo + j
     vec_held = (sticks or locked) and L >= VEC_HELD_MIN
     lv = padded_levels(levels)
     camber = _load(W, next_k, nrc, lo, L, P, S, TK, TS, TL, LIM, RK, RC, RS, CAM, CHK, state, stats, status, nlev,
                    sticks)
     for k in range(k0, min(k1, n)):
-        if W[_ACT, :L].sum() == 0.0:
+        running = W[_ACT, :L].sum()
+        if running == 0.0:
             break
+        if running <= L - COMPACT_AFTER:            # a vector's worth of stopped lanes: step the running ones only
+            L = _compact(W, L, runs, next_k, nrc, state, stats, rec, nrec, nlev, mode)
+            vec_held = (sticks or locked) and L >= VEC_HELD_MIN
         t = k * dt
         imp = t <= duimp * (1.0 + 1e-12) + 1e-15
         slip_statics(W, L, model, slope, cfg)
         tire_forces(W, L, ftimp, imp, policy, camber)
-        checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
-               znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
+        checks(W, L, runs, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state,
+               nz, znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise)
         dynam(W, L, model, imp, sticks, locked, vec_held)
         if sticks or (locked and not vec_held):
             held(W, L, model, locked, vec_held)
-        stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp)
+        stops(W, L, runs, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp)
         if mode == 2:
             final_row(W, L, rec.shape[1] > 10)
         update(W, L, dt, half_dt2)
-    _store(W, next_k, nrc, lo, L, state, stats, rec, nrec, nlev, mode)
+    for j in range(L):
+        _store_lane(W, j, runs[j], next_k, nrc, state, stats, rec, nrec, nlev, mode)
 
 
 @njit(cache=True, parallel=True)

@@ -212,15 +212,16 @@ def _attention(W, L, maxload, maxslip, ext, use_ctl):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
-def checks(W, L, lo, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
+def checks(W, L, runs, t, warn, status, CAM, maxload, maxslip, stop, nwarn_limit, ext, use_ctl, next_k, state, nz,
            znew, y, sv, ctl_f, Cy, Dy, Az, Bu, By, Cz, noise):
     """The range rules (counted where a limit is exceeded, by the scalar kernel's function), refusals, the
-    controller: lane by lane for the lanes that need one (:func:`_attention`, vectorised)."""
+    controller: lane by lane for the lanes that need one (:func:`_attention`, vectorised); lane ``j`` is run
+    ``runs[j]``."""
     _attention(W, L, maxload, maxslip, ext, use_ctl)
     for j in range(L):
         if W[_ATTN, j] == 0.0:
             continue
-        i = lo + j
+        i = runs[j]
         loads = (W[_LD, j], W[_LD + 1, j], W[_LD + 2, j], W[_LD + 3, j])
         slips = (W[_SL, j], W[_SL + 1, j], W[_SL + 2, j], W[_SL + 3, j])
         nmax = -math.inf
@@ -408,20 +409,21 @@ def _quiet_step(W, L, k, t, lv, mode, settle):
 
 
 @njit(cache=True, nogil=True, forceinline=True, error_model="numpy", **_NOWRAP, **_LINK)
-def stops(W, L, lo, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp):
+def stops(W, L, runs, k, t, levels, lv, nlev, mode, stride, rec, nrc, status, stop_lvl, settle, duimp):
     """The summaries, the record (every ``stride`` steps) and the stop rules: vectorised for the lanes without an
-    event (:func:`_quiet_step`), lane by lane for the others and for a recorded step (``record`` not "final")."""
+    event (:func:`_quiet_step`), lane by lane for the others and for a recorded step (``record`` not "final");
+    lane ``j`` is run ``runs[j]``."""
     _quiet_step(W, L, k, t, lv, mode, settle)
     record_now = mode != 2 and k % stride == 0
     for j in range(L):
         if W[_EVT, j] == 0.0:
             if record_now and W[_ACT, j] != 0.0:
                 row = k // stride
-                _record(rec, lo + j, row, W, j)
+                _record(rec, runs[j], row, W, j)
                 nrc[j] = row + 1
                 W[_STT + MAX_LEVELS + 2, j] = t
             continue
-        i = lo + j
+        i = runs[j]
         a = abs(W[_THED, j])
         if not a < math.inf:
             W[_STT, j] = math.nan
