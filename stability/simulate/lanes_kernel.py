@@ -28,7 +28,9 @@ states the tolerance that follows and ``tests/test_lanes_kernel.py`` checks
 it.  A run's numbers do not depend on the block size, on its place in the
 block or on the other runs (every lane executes the same instructions; LLVM
 does not contract multiplies and adds into FMAs without fast-math, so the
-vector and scalar forms of a loop round alike).
+vector and scalar forms of a loop round alike), nor on the columns it moves
+to when other lanes of its block stop (:func:`_compact`: a block steps its
+running lanes only).
 """
 
 from __future__ import annotations
