@@ -93,6 +93,37 @@ def test_bench_lanes_batch_2000(bench):
           f"scalar {scalar_ms:.3f} ms -> x{scalar_ms / lanes_ms:.2f}; {wl[2]} steps (scalar {ws[2]})")
 
 
+def test_bench_lanes_batch_order(bench):
+    """The speed study on the lanes kernel in speed order and in a seeded random order (a sweep's order, where a
+    block's runs stop at more different times and its running lanes move together, lanes_kernel._compact),
+    alternately in one process.  The work is the same runs, so it is asserted exactly: each run's results do not
+    depend on its block or column (bit for bit), hence the same steps and the same runs reaching the level."""
+    kw = dict(progress=False, record="final")
+    order = np.random.default_rng(36).permutation(len(SPEEDS))
+    best = {"ordered": float("inf"), "shuffled": float("inf")}
+    out = {}
+    with engine.use_kernel("lanes"):
+        simulate_batch(EJ, SPEEDS[:4], run=RunSpec(horizon=0.1), **kw)      # compile / load the cache
+        for _ in range(3):
+            for name, speeds in (("ordered", SPEEDS), ("shuffled", SPEEDS[order])):
+                cpu, out[name] = _cpu(lambda s=speeds: simulate_batch(EJ, s, **kw))
+                best[name] = min(best[name], cpu)
+    bench.pedantic(lambda: None, rounds=1)
+    back = [None] * len(SPEEDS)
+    for k, r in zip(order, out["shuffled"], strict=True):
+        back[k] = r
+    for a, b in zip(out["ordered"], back, strict=True):
+        assert a.stats == b.stats and a.stop_time == b.stop_time
+        np.testing.assert_array_equal(np.asarray(a.yaw_rate), np.asarray(b.yaw_rate))
+    assert _work(out["ordered"]) == _work(back)
+    n = len(SPEEDS)
+    ordered_ms, shuffled_ms = best["ordered"] / n * 1e3, best["shuffled"] / n * 1e3
+    bench.extra_info.update(ordered_ms_per_run_cpu=ordered_ms, shuffled_ms_per_run_cpu=shuffled_ms,
+                            ratio=shuffled_ms / ordered_ms)
+    print(f"\nlanes, 2,000 x 10 s runs: in speed order {ordered_ms:.3f} ms CPU per run, in random order "
+          f"{shuffled_ms:.3f} ms (x{shuffled_ms / ordered_ms:.2f})")
+
+
 def test_bench_lanes_single_run(bench):
     run = RunSpec(stop_on_warnings=False)
     for name in ("lanes", "scalar"):
