@@ -218,3 +218,29 @@ def test_a_block_whose_runs_stop_apart_steps_its_running_runs_only(monkeypatch, 
         assert a.stop_time == b.stop_time and a.stats == b.stats and a.warnings == b.warnings
         for name in ("t", "x", "heading", "yaw_rate", "eta", "beta_dot", "fy", "tire_yaw_moment", "pin_moment"):
             np.testing.assert_array_equal(np.asarray(getattr(a, name)), np.asarray(getattr(b, name)))
+
+
+def test_moved_lanes_under_a_python_yaw_moment():
+    """A Python yaw-moment input steps the block one call per step (each call loads and writes back every run);
+    a block whose lanes stopped apart moves them in every call, and each run is still the same, bit for bit, as
+    in a block of its own."""
+    speeds = np.random.default_rng(36).permutation(np.linspace(0.3, 1.5, 64))
+    run = RunSpec(horizon=4.5)
+
+    def yaw_moment(t, s):
+        return 0.5 * np.sin(3.0 * t) * np.ones_like(s.yaw_rate)      # N m, the same on every run
+
+    kw = dict(run=run, progress=False, record="states", yaw_moment=yaw_moment)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(kernel_choice, "lane_block", lambda n, t: min(64, n))
+        block = simulate_batch(EJ, speeds, **kw)
+        mp.setattr(kernel_choice, "lane_block", lambda n, t: 1)
+        alone = simulate_batch(EJ, speeds, **kw)
+    from stability.simulate import lanes_kernel
+
+    assert sum(r.stop_time is not None and r.stop_time < run.horizon - 0.5 for r in alone) >= \
+        lanes_kernel.COMPACT_AFTER
+    for a, b in zip(alone, block, strict=True):
+        assert a.stop_time == b.stop_time and a.stats == b.stats
+        for name in ("t", "x", "yaw_rate", "eta", "beta_dot"):
+            np.testing.assert_array_equal(np.asarray(getattr(a, name)), np.asarray(getattr(b, name)))
