@@ -360,3 +360,19 @@ def test_trail_chart_crosses_zero_at_the_bands_boundary(name):
     # error model: bisection bracket: the chart's search stops at 1e-5 m, the band's at 1e-9 m; two widths of the
     # chart's (observed 2.5e-6 m)
     assert np.allclose(tw.chart.critical_trail, lower, rtol=0, atol=2e-5)
+
+
+def test_summary_verdict_names_the_speeds_searched():
+    """The summary's one-line verdict, for chairs whose free-caster rates keep one sign on the whole grid: rear
+    swivelling casters without pin friction are unstable at every speed (the thesis's free-caster result, docs and
+    ``critical_speed``: no stabilising speed), front casters stable at every speed; the words name the grid's ends
+    (settings.defaults.MAX_SPEED), not a typed range."""
+    from stability.app.text import summary_html
+    from stability.settings import defaults as D
+
+    searched = f"from {GRID[0]:g} to {D.MAX_SPEED:g} m/s"
+    rear = summary_html(linear_view(chair_mod.preset("ej-premier")))
+    front = summary_html(linear_view(chair_mod.preset("ej-premier-front-caster")))
+    assert f"Free casters: unstable at every speed {searched}." in rear
+    assert f"Free casters: stable at every speed {searched}." in front
+    assert searched == "from 0.01 to 30 m/s"     # what the page said before the words were computed

@@ -97,8 +97,9 @@ def summary_html(v: LinearView) -> str:
         t2 = "-" if r.time_to_double is None else f"{r.time_to_double:.3g}"
         rows.append(f"<tr><td>{r.speed:.3g}</td><td>{r.rate:.4f}</td><td>{t2}</td><td>{r.frequency:.3g}</td></tr>")
     g = v.growth_rate
-    verdict = ("unstable at every speed from 0.01 to 30 m/s" if np.all(g > 0) else
-               "stable at every speed from 0.01 to 30 m/s" if np.all(g < 0) else "stable in the shaded green "
+    searched = f"from {v.locus.speeds[0]:g} to {v.locus.speeds[-1]:g} m/s"      # the grid the rates are on
+    verdict = (f"unstable at every speed {searched}" if np.all(g > 0) else
+               f"stable at every speed {searched}" if np.all(g < 0) else "stable in the shaded green "
                "ranges, unstable in the vermillion ones")
     return (f"<p><b>Free casters: {verdict}.</b> Critical speeds: free casters {_fmt(first_free, 'm/s')}, locked "
             f"casters {_fmt(first_locked, 'm/s')}, zero-width model (eq 5-15) "

@@ -11,6 +11,7 @@ from stability.chair import Chair
 from stability.linear.batch import ChairBatch, check_eigen_work
 from stability.linear.summary import zero_width
 from stability.settings.bounds import CONFIDENCE_LEVEL, SAMPLES
+from stability.settings.defaults import MAX_SPEED
 from stability.uncertainty import Uncertainty, delta_method, propagate
 
 __all__ = ["LinearIntervals", "linear_intervals", "MAX_SAMPLES", "solves_per_draw", "GRID_POINTS",
@@ -20,8 +21,10 @@ __all__ = ["LinearIntervals", "linear_intervals", "MAX_SAMPLES", "solves_per_dra
 MAX_SAMPLES = int(SAMPLES.hi)
 
 
-#: Speeds of the critical-speed search grid (geometric from 0.01 m/s to ``max_speed``).
+#: Speeds of the critical-speed search grid (geometric from :data:`GRID_LOW` to ``max_speed``).
 GRID_POINTS = 600
+#: First speed of the critical-speed search grid, m/s.
+GRID_LOW = 0.01
 #: Bisection steps of a critical speed (grid spacing 1.3 % of at most 100 m/s down to 1e-6 m/s: 2^21 > 1.3e6).
 BISECTION_STEPS = 21
 
@@ -65,6 +68,8 @@ class LinearIntervals:
         Of the draws without a full-width critical speed in the searched range, the shares (of all draws) that are
         stable at every speed searched (above its end: the critical speed is a bound, "> max_speed") and that are
         unstable from its first speed ("< 0.01 m/s"): with the ``fraction`` above they add up to 1.
+    search_m_s : (float, float)
+        The first and last speeds of the critical-speed search, m/s.
     dominant_parameters : tuple of (str, float)
         Uncertain parameters ranked by their first-order share of the variance.
     """
@@ -81,6 +86,7 @@ class LinearIntervals:
     dominant_parameters: tuple[tuple[str, float], ...]
     locked_beyond: tuple[float, float] = (0.0, 0.0)
     free_beyond: tuple[float, float] = (0.0, 0.0)
+    search_m_s: tuple[float, float] = (GRID_LOW, MAX_SPEED)
 
 
 def _outputs(chairs: list[Chair], model: str, speeds: np.ndarray, grid: np.ndarray,
@@ -101,7 +107,7 @@ def _beyond(status: np.ndarray) -> tuple[float, float]:
 
 def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "exact",
                      speeds: Sequence[float] | np.ndarray = (0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0),
-                     max_speed: float = 30.0,
+                     max_speed: float = MAX_SPEED,
                      samples: int = 1000, seed: int = 0, level: float = 0.95) -> LinearIntervals:
     """Intervals of the growth rates and critical speeds over the parameter uncertainty.
 
@@ -131,7 +137,7 @@ def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "ex
     samples = int(SAMPLES.check("samples", samples, integer=True))
     level = CONFIDENCE_LEVEL.check("level", level)
     U = np.asarray(speeds, dtype=float)
-    grid = np.geomspace(0.01, max_speed, GRID_POINTS)
+    grid = np.geomspace(GRID_LOW, max_speed, GRID_POINTS)
     k = len(U)
     check_eigen_work("samples", int(samples), solves_per_draw(k, len(grid)))
 
@@ -154,4 +160,5 @@ def linear_intervals(chair: Chair, uncertainty: Uncertainty, *, model: str = "ex
         zero_width_critical=triple(k), locked_critical=triple(k + 1), free_critical=triple(k + 2),
         dominant_parameters=tuple((n, float(s)) for n, s in mc.dominant_parameters),
         locked_beyond=_beyond(locked_status), free_beyond=_beyond(free_status),
+        search_m_s=(float(grid[0]), float(grid[-1])),
     )

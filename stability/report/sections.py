@@ -165,7 +165,8 @@ def uncertainty_text(d: ReportData) -> list[str]:
         beyond = "".join(f"; {w} in {100 * f:.0f} %" for w, f in (("stable at every speed searched", above),
                                                                     ("unstable at the slowest speed", below)) if f > 0)
         crit.append(f"{name} {a:.3g}-{b:.3g} m/s (exists in {100 * frac:.0f} % of draws{beyond})" if frac > 0
-                    else f"{name}: none in 0.01-30 m/s in any draw" + (f" ({beyond[2:]})" if beyond else ""))
+                    else f"{name}: none in {iv.search_m_s[0]:g}-{iv.search_m_s[1]:g} m/s in any draw"
+                    + (f" ({beyond[2:]})" if beyond else ""))
     out.append("Critical speeds (" + lvl + "): " + "; ".join(crit) + ".")
     dom = u.dominant
     if dom is None:
