@@ -239,7 +239,7 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
     """Chair fields from SI readings ``r`` (pure; used for values and finite differences)."""
     g0 = STANDARD_GRAVITY
     geo = {k: r[f"geometry.{k}"] for k in ("wheelbase", "main_track", "caster_track", "trail")}
-    loaded = WheelLoads(*(r[f"scales.loaded.{w}"] / g0 for w in _WHEELS))  # kg
+    loaded = _scale_masses(r)
     try:
         cg = cg_from_scales(loaded, geo["wheelbase"], geo["main_track"], geo["caster_track"])
     except ValueError as exc:
@@ -286,7 +286,7 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
     i_chair = k_t * r["inertia.chair_period"] ** 2 / (4 * math.pi**2) - i_fix
     if i_chair <= 0:
         raise _bad("inertia.chair_period", f"{r['inertia.chair_period']:g} s", "longer than inertia.fixture_period")
-    empty = WheelLoads(*(r[f"scales.empty.{w}"] / g0 for w in _WHEELS))
+    empty = _scale_masses(r, "empty")
     cg_e = cg_from_scales(empty, geo["wheelbase"], geo["main_track"], geo["caster_track"])
     m_user = cg.total - cg_e.total
     if m_user <= 0:
@@ -298,6 +298,11 @@ def _derive(r: Mapping[str, float], opts: Mapping[str, Any]) -> dict[str, float]
                     Body(m_user, x_user, y_user, r["user.inertia"], "user")])
     out["i_z"] = both.i_z
     return out
+
+
+def _scale_masses(r: Mapping[str, float], which: str = "loaded") -> WheelLoads:
+    """The wheel scales' readings (N) of the ``"loaded"`` or ``"empty"`` chair as masses per wheel, kg."""
+    return WheelLoads(*(r[f"scales.{which}.{w}"] / STANDARD_GRAVITY for w in _WHEELS))
 
 
 def _check_weight(r: Mapping[str, float], opts: Mapping[str, Any]) -> None:
@@ -320,7 +325,7 @@ def _check_weight(r: Mapping[str, float], opts: Mapping[str, Any]) -> None:
     """
     if "scales.loaded.weight" not in r:
         return
-    total = WheelLoads(*(r[f"scales.loaded.{w}"] / STANDARD_GRAVITY for w in _WHEELS)).total  # kg
+    total = _scale_masses(r).total  # kg
     weight = r["scales.loaded.weight"] / STANDARD_GRAVITY
     tol = float(opts.get("scales.loaded.tolerance", 0.02))
     if not weight * (1 - tol) <= total <= weight * (1 + tol):
