@@ -818,3 +818,22 @@ def test_the_provenance_comment_names_its_sheet_only_when_given():
     assert provenance_comment(res).splitlines()[0] == "# derived by python -m stability.measure"
     assert (provenance_comment(res, "s.toml").splitlines()[0]
             == "# derived by python -m stability.measure from s.toml")
+
+
+def test_an_unknown_entry_and_a_missing_empty_weighing_are_refused_by_name():
+    """A misspelt reading is refused in one line naming it (not silently ignored, which would leave its field to a
+    default); a sheet without the empty chair's weighing is refused naming the wheel and why it is needed (the
+    user's c.g. for the inertia combination: docs/measure.md)."""
+    import re
+
+    # a reading table's unknown name is reported with its first key (".std" here, of value, unit, std)
+    with pytest.raises(ValueError, match=r"^sheet entry geometry\.wheelbas(\.\w+)? is unknown; valid readings: \["):
+        _read(**{"wheelbase =": "wheelbas ="})
+    import tomllib
+
+    data = tomllib.loads(_sheet_text())
+    del data["scales"]["empty"]["left_caster"]
+    with pytest.raises(ValueError, match=re.escape("sheet reading scales.empty.left_caster is missing; the chair "
+                                                   "alone must be weighed to place the user's c.g. for the inertia "
+                                                   "combination")):
+        sheet.read_sheet(data)
