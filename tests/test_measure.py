@@ -837,3 +837,21 @@ def test_an_unknown_entry_and_a_missing_empty_weighing_are_refused_by_name():
                                                    "alone must be weighed to place the user's c.g. for the inertia "
                                                    "combination")):
         sheet.read_sheet(data)
+
+
+def test_a_front_caster_sheet_puts_the_pins_a_trail_beyond_the_contacts():
+    """The caster pins from the measured contacts: rear casters trail back toward the c.g., so the pins lie a trail
+    nearer it (s2 = wheelbase - s1 - trail); front casters trail back toward it too, from the other side, so the
+    pins lie a trail farther (s2 = wheelbase - s1 + trail).  The same readings, the two caster positions."""
+    import tomllib
+
+    rear = sheet.read_sheet(tomllib.loads(_sheet_text())).chair
+    data = tomllib.loads(_sheet_text())
+    data.setdefault("chair", {})["caster_position"] = "front"
+    front = sheet.read_sheet(data).chair
+    wheelbase = 0.585                                      # the example sheet: 58.5 cm
+    assert front.caster_position == "front" and rear.caster_position == "rear"
+    assert front.s1 == rear.s1 and front.trail == rear.trail
+    # rounding: a sum of three lengths of about 0.5 m, a few ulp (observed 0 for both)
+    assert rear.s2 == pytest.approx(wheelbase - rear.s1 - rear.trail, abs=1e-14)
+    assert front.s2 == pytest.approx(wheelbase - front.s1 + front.trail, abs=1e-14)
