@@ -855,3 +855,23 @@ def test_a_front_caster_sheet_puts_the_pins_a_trail_beyond_the_contacts():
     # rounding: a sum of three lengths of about 0.5 m, a few ulp (observed 0 for both)
     assert rear.s2 == pytest.approx(wheelbase - rear.s1 - rear.trail, abs=1e-14)
     assert front.s2 == pytest.approx(wheelbase - front.s1 + front.trail, abs=1e-14)
+
+
+def test_docs_measure_page_shows_what_the_command_prints(tmp_path, capsys):
+    """docs/measure.md's example output (every derived field's value, std, unit and count of readings, the note, the
+    written files) is what ``python -m stability.measure`` prints for the example sheet, line for line: the page's
+    numbers are checked, not typed and left (the files' folders aside: the page writes into docs/examples)."""
+    from pathlib import Path
+
+    from stability.measure.__main__ import main
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "measure.md").read_text(encoding="utf-8")
+    block = re.search(r"^\$ python -m stability\.measure docs/examples/measured_chair_sheet\.toml [^\n]*\n(.*?)^```",
+                      page, re.M | re.S)
+    assert block is not None
+    assert main([EXAMPLE, "-o", str(tmp_path / "measured_chair.toml")]) == 0
+
+    def named(lines):
+        return [re.sub(r"^wrote (\S+):", lambda m: f"wrote {Path(m.group(1)).name}:", ln) for ln in lines]
+
+    assert named(capsys.readouterr().out.splitlines()) == named(block.group(1).splitlines())
