@@ -344,6 +344,13 @@ import moved its lines: a new draw; ``--budget 1000``): 56/59 (95 %) -> 58/58, 2
 check given no limits for free casters, which computes the same ones itself; killed: a study of exactly the work
 budget accepted and the refusal's opening words, a zero push duration refused by name, the push convention's
 words).
+
+Seed 34 on ``measure/sheet.py`` after ``_scale_masses`` (the loaded and empty scale readings as masses in one
+helper; its lines moved, so the gate drew new mutants; ``--changed``, ``--budget 400``): 55/60 (92 %) -> 58/60
+(97 %), 0 equivalent.  Killed by new tests: an unknown sheet entry refused by name (``unknown = None`` survived),
+the empty chair's weighing missing with its reason (the words survived), a front-caster sheet's pins a trail beyond
+the contacts (the caster position was read by no test).  Left: the finite-difference step's two constants for a
+reading without a std (reported above) and with one (``rd.std > 0`` -> ``> 1``: docs/testing.md).
 """
 
 # ruff: noqa: E501  (the equivalent mutants' source lines and reasons are quoted whole)
