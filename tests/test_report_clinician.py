@@ -156,12 +156,24 @@ def test_the_sheet_says_up_to_which_speed_this_user_holds_the_chair(tmp_path):
     assert "at 1.8 km/h, 3.6 km/h this user cannot hold it" in text          # both speeds above 0.291 m/s
 
 
-def test_the_quick_brief_carries_the_user_and_the_full_report_refuses_it(tmp_path, capsys):
-    """--quick's clinician sheet says up to which speed the user holds the chair; the full report does not use
-    --reaction-time yet and says so in one line (exit 2) instead of ignoring it."""
+def test_the_chair_files_user_reaches_the_reports_decision(tmp_path):
+    """A chair file's ``[user]`` (no option given) reaches the report's decision, as it reaches
+    ``python -m stability.advise``: page 1 has the advisor's driver line with the file as its source and the
+    recommendation this user can hold (tests/test_report_driver.py checks that decision); before, the report
+    ignored the file's user in its decision and the full report refused ``--reaction-time``."""
+    from stability.chair.io import save
+    from stability.driver.linear import rule_speed
     from stability.report.command import main as report_main
 
-    assert report_main(["--reaction-time", "0.3", "-o", str(tmp_path / "f.pdf")]) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "--reaction-time is for --clinician and --quick" in err
-    assert not (tmp_path / "f.pdf").exists()
+    chair = tmp_path / "ej.toml"
+    save(preset("ej-premier"), chair)
+    with open(chair, "a", encoding="utf-8") as fh:
+        fh.write('\n[user]\nreaction_time_s = 0.5\nsource = "clinic test"\n')
+    pdf, txt = tmp_path / "q.pdf", tmp_path / "q.txt"
+    assert report_main(["--chair", str(chair), "--quick", "--no-progress", "-o", str(pdf), "--text", str(txt)]) == 0
+    text = " ".join(txt.read_text().split())
+    u = rule_speed(preset("ej-premier"), 0.5)[0]
+    assert f"Driver: a driver who corrects the heading 0.5 s late can hold this chair straight up to {u:.3g} m/s" in text
+    # without the user the report recommends moving the axle, which this user cannot hold at 1 m/s
+    assert "RECOMMENDATION. " in text and "RECOMMENDATION. Axle 10 cm toward" not in text
+    assert "reaction time from clinic test;" in text            # the [user] table's own source

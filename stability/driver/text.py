@@ -5,7 +5,7 @@ from __future__ import annotations
 from stability.driver.linear import HumanLimit
 from stability.driver.model import Driver
 
-__all__ = ["human_text", "human_sentence", "held_where", "layout_human_text"]
+__all__ = ["human_text", "human_sentence", "held_where", "limits_words", "layout_human_text"]
 
 
 def human_sentence(h: HumanLimit, driver: Driver) -> str:
@@ -70,12 +70,31 @@ def human_text(h: HumanLimit, driver: Driver, lane_line: str | None = None) -> s
 
 
 
+def _bound(u: float, side: str) -> str:
+    """A limit as a value: ``"1.04 m/s"``, or a bound ``"> 6 m/s"`` (:mod:`stability.study.censored`)."""
+    return ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s"
+
+
+def limits_words(h: HumanLimit) -> str:
+    """Which limit binds and both values, for a sentence after :func:`human_sentence`.
+
+    Parameters
+    ----------
+    h : HumanLimit
+
+    Returns
+    -------
+    str
+        ``"limited by the delayed loop (divergence rule 1.04 m/s, delayed loop 1.02 m/s)"``; the advisor checks
+        its changes on the divergence rule alone (page 1's "Driver:" line), so both values are given.
+    """
+    return (f"limited by the {h.limited_by} (divergence rule {_bound(h.rule_speed_m_s, h.rule_side)}, delayed loop "
+            f"{_bound(h.loop_speed_m_s, h.loop_side)})")
+
+
 def _limits(h: HumanLimit, indent: str) -> str:
     """The divergence rule's and the delayed loop's lines."""
-    def bound(u: float, side: str) -> str:       # a bound is a value: "> 6 m/s" (stability.study.censored)
-        return ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s"
-
-    rule, loop = bound(h.rule_speed_m_s, h.rule_side), bound(h.loop_speed_m_s, h.loop_side)
+    rule, loop = _bound(h.rule_speed_m_s, h.rule_side), _bound(h.loop_speed_m_s, h.loop_side)
     return (f"{indent}divergence rule (the chair's divergence rate reaches 1/tau): {rule}\n"
             f"{indent}delayed loop (the driver's best delayed heading correction on the full linear chair): {loop}\n")
 

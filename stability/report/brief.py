@@ -27,7 +27,9 @@ def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driv
     model : {"exact", "thesis"}
     progress : bool
     driver : stability.driver.Driver, optional
-        The user's reaction time: the clinician sheet says up to which speed this user holds the chair.
+        The user's reaction time: the advisor weighs the speed this user can hold (as in the full report and
+        ``python -m stability.advise``), and page 1 and the clinician sheet say up to which speed this user holds
+        the chair.
 
     Returns
     -------
@@ -36,11 +38,11 @@ def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driv
     """
     s = Settings.for_mode(False)
     ref_chair = preset(REFERENCE_CHAIR)
-    advice = advise(c, progress=progress)
+    advice = advise(c, progress=progress, driver=driver)
     ref_m = None if c == ref_chair else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
                                                       cross_slope_deg=advice.cross_slope_deg)[0]
     sheet = clinician_sheet(c, tuple(advice.speeds_m_s), model, driver)
     return ReportData(c, model, s, None, None, {}, [], [], None, None, None, [], sheet.responses, None, None, None,
                       None, [], validity={"responses": sheet.validity}, slope=sheet.slope, tipping=sheet.tipping,
                       advice=advice, reference_measures=ref_m, reference_trail=ref_chair.trail, brief=True,
-                      sheet=sheet)
+                      sheet=sheet, driver=driver, human=sheet.human)

@@ -5,6 +5,7 @@ hand-rim effort on a cross slope against a typical push.  Every number from the 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -13,7 +14,7 @@ from stability.report.compute import ReportData
 from stability.report.quick import mark
 from stability.settings.reference import THESIS_PUSH
 
-__all__ = ["TABLE_8_2", "TYPICAL_PUSH_N", "clinician_text"]
+__all__ = ["TABLE_8_2", "TYPICAL_PUSH_N", "clinician_text", "user_sentence"]
 
 #: Collins (1987) Table 8-2: the thesis's by-eye "maximum response time" (s) before the yaw-rate curve of
 #: Figure 8-3a rises sharply, per speed (m/s); ``inf`` stands for "> 6 s".
@@ -77,4 +78,36 @@ def clinician_text(d: ReportData) -> str:
                        f"of {100 * f / mean:.0f} % of a typical PEAK stroke force of {mean:g} +/- {sd:g} N on the "
                        "level (hand-rim propulsion study, J NeuroEng Rehabil 2022), which a stroke holds only "
                        "briefly.")
+    if d.human is not None and d.driver is not None:
+        out.append(f"{user_sentence(d.human, d.driver, getattr(d.advice, 'intended_speed_m_s', None))}.")
     return " ".join(out)
+
+
+def user_sentence(h: Any, driver: Any, intended: float | None = None) -> str:
+    """The user's limit as page 1 and the clinician sheet state it (without a final full stop).
+
+    Parameters
+    ----------
+    h : stability.driver.HumanLimit
+        :func:`stability.driver.human_limit` of the chair for ``driver``.
+    driver : stability.driver.Driver
+    intended : float, optional
+        The advisor's intended speed, m/s: when the divergence rule (the advisor's check of every change) reaches
+        it but the delayed loop does not, the sentence says so.
+
+    Returns
+    -------
+    str
+        ``"A driver who corrects the heading 0.5 s late can hold this chair straight up to 1.02 m/s (3.7 km/h),
+        limited by the delayed loop (divergence rule 1.04 m/s, delayed loop 1.02 m/s; reaction time from
+        --reaction-time; linear model without pin friction: docs/driver.md)"``.
+    """
+    from stability.driver.text import human_sentence, limits_words
+
+    out = (f"{human_sentence(h, driver)}, {limits_words(h)[:-1]}; reaction time from {driver.source}; linear model "
+           "without pin friction: docs/driver.md)")
+    if (intended is not None and h.loop_side != ">" and h.loop_speed_m_s < intended
+            and (h.rule_side == ">" or h.rule_speed_m_s >= intended)):
+        out += (f": the advisor's check, the divergence rule, reaches the intended {intended:g} m/s but the delayed "
+                "loop does not, so take that speed as beyond this user")
+    return out

@@ -20,7 +20,7 @@ from stability import study
 from stability.chair import Chair
 from stability.linear import divergence
 from stability.report.behaviour import Motion, motion, sig3
-from stability.report.clinician import CLINIC_SLOPE_DEG, TABLE_8_2, TYPICAL_PUSH_N
+from stability.report.clinician import CLINIC_SLOPE_DEG, TABLE_8_2, TYPICAL_PUSH_N, user_sentence
 from stability.report.compute import report_run
 from stability.report.settings import Settings
 from stability.report.slope_data import SlopeSection, slope_section
@@ -206,10 +206,13 @@ def sheet_lines(s: ClinicianSheet) -> dict[str, Any]:
 
         back = s.human_reverse
         out = [u for u in s.speeds if over(s.human if u > 0 else back, u)]
-        both = "" if back is None else (f" forwards and {held_where(back.speed_m_s, back.side)} backwards (the "
-                                        "layout's linear model, casters trailing the direction of travel)")
-        paras.append(f"THE USER. {human_sentence(s.human, s.driver)}{both} (reaction time from {s.driver.source}; "
-                     "linear model without pin friction: docs/driver.md)"
+        if back is None:                  # a short-form chair: the sentence page 1 states
+            who = user_sentence(s.human, s.driver)
+        else:
+            who = (f"{human_sentence(s.human, s.driver)} forwards and {held_where(back.speed_m_s, back.side)} "
+                   "backwards (the layout's linear model, casters trailing the direction of travel) (reaction time "
+                   f"from {s.driver.source}; linear model without pin friction: docs/driver.md)")
+        paras.append(f"THE USER. {who}"
                      + (f"; at {', '.join(_speed_words(u) for u in out)} this user cannot hold it." if out else "."))
     if getattr(c, "caster_position", None) == "rear":
         paras.append("USE. The thesis advises rear-caster chairs primarily indoors, inclines only with another "

@@ -126,7 +126,7 @@ def _run_chair(args: argparse.Namespace) -> int:
     if args.speeds != D.ADVISE_SPEEDS:
         raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")
     baseline = None if args.compare is None else load_chair(args.compare, [])
-    driver = _brief_driver(args)
+    driver = driver_from_args(args)      # --reaction-time or the file's [user]: the decision weighs it, page 1 says it
     with output_files(outputs) as tmp:
         res = None
         if args.output:
@@ -134,7 +134,8 @@ def _run_chair(args: argparse.Namespace) -> int:
                                  uncertainty=spec, baseline=baseline, driver=driver)
             data = res.data
         else:
-            data = compute(c, args.model, progress=not args.no_progress, uncertainty=spec, baseline=baseline)
+            data = compute(c, args.model, progress=not args.no_progress, uncertainty=spec, baseline=baseline,
+                           driver=driver)
         if args.text:
             with open(tmp["--text"], "w", encoding="utf-8") as fh:
                 assert res is not None          # --text needs -o (checked above)
@@ -142,7 +143,8 @@ def _run_chair(args: argparse.Namespace) -> int:
         if args.json or args.json_file:
             options = {"quick": bool(args.quick), "uncertainty": args.uncertainty,
                        "samples": args.samples if spec else None, "seed": args.seed if spec else None,
-                       "compare": args.compare, "output": args.output}
+                       "compare": args.compare, "output": args.output,
+                       "reaction_time_s": None if driver is None else driver.reaction_time_s}
             emit_json({**json_header(c, args.model, options), **report_mapping(data)}, args,
                       write_to=tmp.get("--json-file"))
     if res is not None:
@@ -232,15 +234,6 @@ def _layout_baseline(spec: str):
     if is_layout_spec(spec):
         return resolve_layout(spec)
     return Layout.from_chair(load_chair(spec, []))
-
-
-def _brief_driver(args: argparse.Namespace):
-    """The user of ``--reaction-time`` (or the chair file's ``[user]``) for ``--quick``'s clinician sheet; the full
-    report refuses the option in one line (it does not use it yet)."""
-    if args.reaction_time is not None and not args.quick:
-        raise ValueError("--reaction-time is for --clinician and --quick (their clinician sheet says up to which "
-                         "speed this user holds the chair); the full report does not use it yet")
-    return driver_from_args(args) if args.quick else None
 
 
 def _clinician(args: argparse.Namespace, c, outputs: dict, make_sheet=None, signed: bool = False) -> int:

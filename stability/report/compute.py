@@ -14,6 +14,7 @@ from stability.advise import advise
 from stability.advise.measures import measure_chairs
 from stability.chair import Chair, preset
 from stability.chair.design import get_parameter
+from stability.driver import human_limit
 from stability.linear import analyse, divergence, massless_caster_rate
 from stability.linear.names import mode_names
 from stability.report.comparison import Baseline, baseline_summary
@@ -148,6 +149,12 @@ class ReportData:
         references only.
     sheet : stability.report.clinician_sheet.ClinicianSheet or None
         The clinician sheet (brief report only).
+    driver : stability.driver.Driver or None
+        The user (``--reaction-time`` or the chair file's ``[user]``): the advisor's decision weighs the speed this
+        driver can hold, as ``python -m stability.advise`` does with the same driver.
+    human : stability.driver.HumanLimit or None
+        That driver's limits on the chair's linear model (:func:`stability.driver.human_limit`; page 1's clinician
+        paragraph and the sheet state them).
     """
 
     chair: Chair
@@ -193,6 +200,8 @@ class ReportData:
     tip_limits_deg: float = LOANE_KIRBY_REAR_DEG
     brief: bool = False
     sheet: Any = None
+    driver: Any = None
+    human: Any = None
 
 
 def tip_limits(c: Chair, sweeps: Any, angle_deg: float = LOANE_KIRBY_REAR_DEG) -> dict:
@@ -342,7 +351,7 @@ def parameter_loci(c: Chair, model: str, n: int) -> list:
 def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bool = True,
             scheme: str = "wchair", settings: Settings | None = None,
             log: Callable[[str], None] | None = None, uncertainty: UncertaintySpec | None = None,
-            baseline: Chair | None = None) -> ReportData:
+            baseline: Chair | None = None, driver: Any = None) -> ReportData:
     """Run every analysis of the report for chair ``c``.
 
     Parameters
@@ -363,6 +372,9 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         Parameter distributions for the linear and nonlinear intervals (``--uncertainty FILE``).
     baseline : Chair, optional
         A chair to compare with: its key numbers are computed with the same settings, model and reference.
+    driver : stability.driver.Driver, optional
+        The user: the advisor weighs the speed this driver can hold (:func:`stability.advise.advise`'s
+        ``driver``), and page 1 states this driver's limits (:func:`stability.driver.human_limit`).
 
     Returns
     -------
@@ -464,7 +476,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         if shimmy_note is None and "trail" in chair_sweeps:
             window = trail_window(c.name, c.trail, chair_sweeps.get("trail"), shimmy_band(c, USE_SPEEDS))
         stage("slope, shimmy and uncertainty")
-        advice = advise(c, progress=progress)
+        advice = advise(c, progress=progress, driver=driver)
+        human = None if driver is None else human_limit(c, driver, model)
         base = None
         if baseline is not None:
             b_note = shimmy_unavailable(baseline)
@@ -482,5 +495,5 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                       impulses=impulses, figure_8_14=fig814, sensitivity=sensitivity, slope=slope, shimmy=shimmy,
                       shimmy_note=shimmy_note, uncertainty=unc, baseline=base, tipping=tipping,
                       trail_window=window, tip_limits=limits, advice=advice, reference_measures=ref_m,
-                      reference_trail=ref_chair.trail)
+                      reference_trail=ref_chair.trail, driver=driver, human=human)
 

@@ -172,8 +172,9 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         The quick report of ``python -m stability.report --quick``: page 1 (the same decision as the full
         report), the clinician sheet and the references (:func:`~stability.report.brief.compute_brief`).
     driver : stability.driver.Driver, optional
-        With ``brief``: the user's reaction time for the clinician sheet.
-        ``quick`` instead keeps every page and coarsens their grids.
+        The user's reaction time: the advisor's decision weighs the speed this user can hold (as
+        ``python -m stability.advise`` with the same driver), page 1 states the user's limits and, with ``brief``,
+        the clinician sheet too.
 
     Returns
     -------
@@ -194,7 +195,7 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         d = compute_brief(c, model, progress=progress, driver=driver)
     else:
         d = compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty,
-                    baseline=baseline)
+                    baseline=baseline, driver=driver)
     record: list[Page] = []
     n_pages = len(builders.page_builders(d))
     with ProgressBar(n_pages, "pages", enabled=progress, unit="page") as bar:

@@ -198,8 +198,12 @@ def report_mapping(d: ReportData) -> dict[str, Any]:
         ``decision`` (page 1: the advisor's verdict and recommendation with ranges, costs and
         constraints, the reference chair, the clinician's times), ``summary`` (growth rates, the
         equal-instability speed and its range, critical impulses, the reference time, what helps most,
-        slope, shimmy, uncertainty intervals) and each page's ``text``.
+        slope, shimmy, uncertainty intervals) and each page's ``text``; ``human_limit``: the user's limits
+        (``--reaction-time`` or the chair file's ``[user]``; null without a driver), as
+        ``python -m stability.critical_speed --json`` gives them.
     """
     return _safe({"quick": bool(d.settings.quick), "coarsened": coarsened(d.settings),
                   "coarsened_text": coarsened_text(d.settings) or None,
-                  "decision": _decision(d), "summary": _summary(d)})
+                  "decision": _decision(d), "summary": _summary(d),
+                  "human_limit": None if d.human is None or d.driver is None else {
+                      **d.human.to_mapping(), "driver": d.driver.to_mapping()}})

@@ -1,0 +1,110 @@
+"""The user in the short-form report (``report --reaction-time S`` or the chair file's ``[user]``).
+
+The report's decision must be the one ``python -m stability.advise`` gives the same user: the advisor weighs the
+speed this driver can hold.  Before, the report ignored the driver in its decision (and the full report refused the
+option), so for a user with a 0.5 s delay it recommended moving the axle 10 cm toward the c.g., a change this user
+cannot hold at the intended 1 m/s.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+import numpy as np
+import pytest
+
+from stability.advise.subject import apply
+from stability.chair import preset
+from stability.driver import Driver, HumanLimit, human_limit
+from stability.linear.modes import eigenvalues_vs_speed
+from stability.report.brief import compute_brief
+from stability.report.clinician import clinician_text, user_sentence
+from stability.report.clinician_sheet import sheet_lines
+from stability.report.decision import decision_paragraphs
+
+TAU = 0.5            # s: a slow user, whose limit (about 1.04 m/s by the divergence rule) is near the intended 1 m/s
+
+
+def _limit(rule: float, loop: float, rule_side: str = "=", loop_side: str = "=") -> HumanLimit:
+    return HumanLimit("x", "exact", 0.52, rule, rule_side, loop, loop_side, 2, 0.0)
+
+
+def test_the_user_sentence_names_the_binding_limit_and_flags_a_loop_below_the_intended_speed():
+    """Both limits are given and the lower one named; when the divergence rule (the advisor's check) reaches the
+    intended speed but the delayed loop does not, the sentence says the speed is beyond this user."""
+    d = Driver(0.52, source="--reaction-time")
+    s = user_sentence(_limit(1.0004, 0.9734), d, intended=1.0)
+    assert "up to 0.973 m/s (3.5 km/h), limited by the delayed loop (divergence rule 1 m/s, delayed loop 0.973 m/s" in s
+    assert "reaction time from --reaction-time" in s and "take that speed as beyond this user" in s
+    assert "beyond this user" not in user_sentence(_limit(1.0004, 0.9734), d)              # no intended speed
+    assert "beyond this user" not in user_sentence(_limit(1.04, 1.019), d, intended=1.0)    # the loop reaches it
+    assert "beyond this user" not in user_sentence(_limit(0.98, 0.95), d, intended=1.0)     # the rule fails too
+    assert "beyond this user" not in user_sentence(_limit(6.0, 6.0, ">", ">"), d, intended=1.0)
+    s = user_sentence(_limit(0.9, 1.1), d)
+    assert "limited by the divergence rule (divergence rule 0.9 m/s, delayed loop 1.1 m/s" in s
+    s = user_sentence(_limit(6.0, 6.0, ">", ">"), d)
+    assert "at every speed checked, up to 6 m/s" in s and "(divergence rule > 6 m/s, delayed loop > 6 m/s" in s
+
+
+@pytest.fixture(scope="module")
+def brief():
+    return compute_brief(preset("ej-premier"), driver=Driver(TAU, source="--reaction-time"), progress=False)
+
+
+def _rate(chair, u: float) -> float:
+    """The largest real part of the free-caster linear model at ``u`` (the batched eigenvalue path)."""
+    return float(np.max(eigenvalues_vs_speed(chair, [u], track=False).real))
+
+
+def test_the_quick_report_recommends_what_this_user_can_hold(brief):
+    """The decision weighs the driver: the recommended chair's divergence rate at the intended speed stays within
+    1/tau (the divergence rule, checked on the eigenvalues directly, not through the advisor's bisection), while the
+    recommendation of the committed report (no driver: axle 10 cm toward the c.g. + pin friction 0.3 N m) breaks it
+    for this user."""
+    a = brief.advice
+    assert a.driver is not None and a.intended_speed_m_s == pytest.approx(1.0)
+    rec = a.recommendations[0].candidate
+    chosen = apply(preset("ej-premier"), [f for ch in rec.changes for f in ch.fields])
+    assert _rate(chosen, a.intended_speed_m_s) * TAU <= 1.0
+    text = " ".join(open("reports/ej-premier.txt", encoding="utf-8").read().split())
+    m = re.search(r"RECOMMENDATION\. Axle 10 cm toward the c\.g\. at fixed s1\+s2 \(s1 ([\d.]+) -> ([\d.]+) cm\) \+ pin "
+                  r"friction 0\.1 -> ([\d.]+) N m \(both pins\)", text)
+    assert m, "the committed report's recommendation moved: read it again"
+    ej = preset("ej-premier")
+    s1, pins = float(m.group(2)) / 100, float(m.group(3))
+    committed = ej.replace(s1=s1, s2=ej.s1 + ej.s2 - s1, pin_friction_left=pins, pin_friction_right=pins)
+    assert _rate(committed, a.intended_speed_m_s) * TAU > 1.0
+    assert "axle" not in rec.label.lower()
+
+
+def test_page_one_and_the_sheet_state_the_same_user_limit(brief):
+    """Page 1's decision has the advisor's driver line (the divergence rule) and its clinician paragraph the user's
+    two limits; the clinician sheet states the same sentence: one value per measure in the PDF."""
+    h = human_limit(preset("ej-premier"), Driver(TAU))
+    assert brief.human.speed_m_s == h.speed_m_s and brief.human.limited_by == h.limited_by
+    page1 = " ".join(decision_paragraphs(brief)) + " " + clinician_text(brief)
+    assert f"Driver: a driver who corrects the heading {TAU:g} s late can hold this chair straight up to " \
+           f"{h.rule_speed_m_s:.3g} m/s" in page1
+    sentence = user_sentence(brief.human, brief.driver, brief.advice.intended_speed_m_s)
+    assert f"up to {h.speed_m_s:.3g} m/s" in sentence and f"limited by the {h.limited_by}" in sentence
+    assert sentence in page1
+    sheet = " ".join(sheet_lines(brief.sheet)["paragraphs"])
+    assert f"THE USER. {user_sentence(brief.human, brief.driver)}" in sheet
+
+
+@pytest.mark.slow
+def test_the_full_report_takes_the_user_and_its_json_gives_the_limits(tmp_path, capsys):
+    """``report --reaction-time 0.52 --json``: the full report no longer refuses the option; its JSON (valid against
+    the schema) has the option and the user's limits, the same as ``critical_speed --reaction-time``."""
+    from stability.report.command import main
+    from stability.schemas import validate
+
+    assert main(["--reaction-time", "0.52", "--json", "--no-progress"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    validate("report", d)
+    h = human_limit(preset("ej-premier"), Driver(0.52))
+    assert d["options"]["reaction_time_s"] == 0.52
+    assert d["human_limit"]["speed_m_s"] == pytest.approx(h.speed_m_s, rel=1e-12)
+    assert d["human_limit"]["limited_by"] == h.limited_by == "delayed loop"
+    assert d["human_limit"]["driver"]["source"] == "--reaction-time"
