@@ -36,11 +36,15 @@ def test_the_user_sentence_names_the_binding_limit_and_flags_a_loop_below_the_in
     d = Driver(0.52, source="--reaction-time")
     s = user_sentence(_limit(1.0004, 0.9734), d, intended=1.0)
     assert "up to 0.973 m/s (3.5 km/h), limited by the delayed loop (divergence rule 1 m/s, delayed loop 0.973 m/s" in s
-    assert "reaction time from --reaction-time" in s and "take that speed as beyond this user" in s
+    assert "delayed loop 0.973 m/s; reaction time from --reaction-time; linear model" in s
+    assert s.count("(") == s.count(")") and "take that speed as beyond this user" in s
     assert "beyond this user" not in user_sentence(_limit(1.0004, 0.9734), d)              # no intended speed
     assert "beyond this user" not in user_sentence(_limit(1.04, 1.019), d, intended=1.0)    # the loop reaches it
     assert "beyond this user" not in user_sentence(_limit(0.98, 0.95), d, intended=1.0)     # the rule fails too
     assert "beyond this user" not in user_sentence(_limit(6.0, 6.0, ">", ">"), d, intended=1.0)
+    assert "beyond this user" in user_sentence(_limit(6.0, 0.1, ">", "<"), d, intended=1.0)    # bounds as values
+    assert "beyond this user" not in user_sentence(_limit(1.2, 1.0), d, intended=1.0)     # the loop just reaches it
+    assert "beyond this user" in user_sentence(_limit(1.0, 0.9), d, intended=1.0)         # the rule just reaches it
     s = user_sentence(_limit(0.9, 1.1), d)
     assert "limited by the divergence rule (divergence rule 0.9 m/s, delayed loop 1.1 m/s" in s
     s = user_sentence(_limit(6.0, 6.0, ">", ">"), d)
@@ -108,3 +112,6 @@ def test_the_full_report_takes_the_user_and_its_json_gives_the_limits(tmp_path, 
     assert d["human_limit"]["speed_m_s"] == pytest.approx(h.speed_m_s, rel=1e-12)
     assert d["human_limit"]["limited_by"] == h.limited_by == "delayed loop"
     assert d["human_limit"]["driver"]["source"] == "--reaction-time"
+    # the decision weighed the driver: the advisor's verdict has the divergence rule's speed, and the limits list it
+    assert d["decision"]["verdict"]["human_limited_speed_m_s"] == pytest.approx(h.rule_speed_m_s, rel=1e-12)
+    assert "human_limited_speed_m_s" in [k["name"] for k in d["decision"]["recommendation"]["constraints"]]

@@ -106,8 +106,9 @@ def user_sentence(h: Any, driver: Any, intended: float | None = None) -> str:
 
     out = (f"{human_sentence(h, driver)}, {limits_words(h)[:-1]}; reaction time from {driver.source}; linear model "
            "without pin friction: docs/driver.md)")
-    if (intended is not None and h.loop_side != ">" and h.loop_speed_m_s < intended
-            and (h.rule_side == ">" or h.rule_speed_m_s >= intended)):
+    # a bound at the searched range's end (side ">") is that end, beyond every intended speed; below its start ("<")
+    # it is the start, below every one
+    if intended is not None and h.loop_speed_m_s < intended <= h.rule_speed_m_s:
         out += (f": the advisor's check, the divergence rule, reaches the intended {intended:g} m/s but the delayed "
                 "loop does not, so take that speed as beyond this user")
     return out
