@@ -2,7 +2,9 @@
 
 On request (the advisor simulates every lever: several seconds), on the
 background worker: :func:`stability.advise.advise` with the command line's
-defaults, shown as :func:`stability.advise.text.advice_text` (what
+defaults and the session's user (the Tracking tab's or the uploaded chair
+file's ``[user]`` table, as ``python -m stability.advise --chair FILE`` reads
+it), shown as :func:`stability.advise.text.advice_text` (what
 ``python -m stability.advise`` prints).  "Apply" sets the recommended fields
 on the chair as one edit (undo takes it back).
 """
@@ -39,10 +41,14 @@ class AdviceTab:
         ``current() -> Chair``: the session's chair now.
     apply : callable
         ``apply(texts) -> message or None``: sets fields on the session's chair (one edit) and redraws.
+    user : callable, optional
+        ``user() -> dict or None``: the session's ``[user]`` table; the advice weighs the speed that driver can
+        hold (:func:`stability.advise.advise`'s ``driver``), as the commands do with the downloaded chair file.
     """
 
-    def __init__(self, submit: Any, on_change: Any, current: Any, apply: Any) -> None:
+    def __init__(self, submit: Any, on_change: Any, current: Any, apply: Any, user: Any = None) -> None:
         self.submit, self.current, self.apply = submit, current, apply
+        self.user = user if user is not None else (lambda: None)
         self.advice: Any = None
         self.button = widget(pn.widgets.Button, "advise this chair", kind="primary", width=260,
                                         stylesheets=BUTTON_WRAP,
@@ -58,7 +64,9 @@ class AdviceTab:
         self.texts = TabText()
         self.text = pn.pane.Markdown("Press the button: the advisor weighs every lever (trail, axle position, "
                                      "wheelbase, pin friction, caster tire and mass) against shimmy, tipping, "
-                                     "turning effort and the cross-slope effort (`python -m stability.advise`, "
+                                     "turning effort, the cross-slope effort and, once the Tracking tab or an "
+                                     "uploaded chair file's [user] gives the user, the speed that user can hold "
+                                     "(`python -m stability.advise`, "
                                      "docs/advise.md). It runs simulations: several seconds.",
                                      css_classes=["advice-text"], sizing_mode="stretch_width",
                                      stylesheets=[PRE_STYLESHEET])
@@ -68,13 +76,18 @@ class AdviceTab:
     def start(self) -> None:
         """Queue the advice for the session's current chair."""
         chair: Chair = self.current()
+        table = self.user()
+        from stability.driver import Driver
+
+        driver = None if not table else Driver.from_mapping(table, source="the session's [user]")
         self.button.name = "advise this chair"
         self.advice = None
         for b in self.apply_buttons:
             b.disabled = True
         show_busy(self.progress, True)
         self.text.styles = FRESH
-        self.texts.set(self.text, f"advising on {literal(chair.name)} (simulating every lever)...")
+        who = "" if driver is None else f" for a user {driver.reaction_time_s:g} s late"
+        self.texts.set(self.text, f"advising on {literal(chair.name)}{who} (simulating every lever)...")
 
         def work() -> tuple[Any, str]:
             from stability.advise import advise
@@ -82,7 +95,7 @@ class AdviceTab:
 
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                a = advise(chair)
+                a = advise(chair, driver=driver)
             return a, advice_text(a) + "".join(f"\nnote: {line}" for line in warning_lines(caught))
 
         self.submit(work, self.show, self.failed)

@@ -156,7 +156,8 @@ class Explorer:
         self.compare = CompareTab(self.jobs.submit)
         self.compare.unpin_button.on_click(on(lambda e: self._unpin()))
         self.assist = AssistTab(self.jobs.submit, on, lambda: (self.state.chair, self.state.model))
-        self.advice = AdviceTab(self.jobs.submit, on, lambda: self.state.chair, self.apply_fields)
+        self.advice = AdviceTab(self.jobs.submit, on, lambda: self.state.chair, self.apply_fields,
+                                lambda: self.state.user)
         self.tracking = TrackingTab(on, self._measured)
         self.downloads = download_buttons(self.state, self._view)
         self.tabs = pn.Tabs(*zip(TAB_NAMES, (
