@@ -17,11 +17,12 @@ import pytest
 from stability.advise.subject import apply
 from stability.chair import preset
 from stability.driver import Driver, HumanLimit, human_limit
+from stability.driver.linear import rule_speed
 from stability.linear.modes import eigenvalues_vs_speed
 from stability.report.brief import compute_brief
 from stability.report.clinician import clinician_text, user_sentence
 from stability.report.clinician_sheet import sheet_lines
-from stability.report.decision import decision_paragraphs
+from stability.report.decision import decision_paragraphs, decision_rows
 
 TAU = 0.5            # s: a slow user, whose limit (about 1.04 m/s by the divergence rule) is near the intended 1 m/s
 
@@ -115,3 +116,63 @@ def test_the_full_report_takes_the_user_and_its_json_gives_the_limits(tmp_path, 
     # the decision weighed the driver: the advisor's verdict has the divergence rule's speed, and the limits list it
     assert d["decision"]["verdict"]["human_limited_speed_m_s"] == pytest.approx(h.rule_speed_m_s, rel=1e-12)
     assert "human_limited_speed_m_s" in [k["name"] for k in d["decision"]["recommendation"]["constraints"]]
+
+
+def test_page_ones_table_has_the_users_speed_for_each_column(brief):
+    """The key-numbers table's last row is the speed this user can hold by the divergence rule, for this chair, the
+    recommended chair and (not here: the chair is the reference) the reference chair, each from
+    :func:`stability.driver.linear.rule_speed` on that chair."""
+    header, rows = decision_rows(brief)
+    assert header == ["measure (range)", "this chair", "recommended"]
+    label, mine, rec = rows[-1]
+    assert label == f"speed a user {TAU:g} s late holds (m/s, divergence rule)"
+    ej = preset("ej-premier")
+    chosen = apply(ej, [f for ch in brief.advice.recommendations[0].candidate.changes for f in ch.fields])
+    assert mine == f"{rule_speed(ej, TAU)[0]:.3g}"
+    assert rec.split(" (")[0] == f"{rule_speed(chosen, TAU)[0]:.3g}"
+
+
+def test_a_bound_prints_as_a_bound_and_a_missing_speed_as_a_dash():
+    """The row's cells: a value at 3 significant figures, a bound as "> 6", no user speed as "-"."""
+    from stability.advise.measures import measure_chairs
+    from stability.report.decision import _user_cell
+
+    m = measure_chairs([preset("ej-premier")], speeds=(0.5, 0.75, 1.0), cross_slope_deg=2.0,
+                       nonlinear=lambda chairs: [(None, None, "found")] * len(chairs), reaction_time=TAU)[0]
+    assert _user_cell(m) == f"{rule_speed(preset('ej-premier'), TAU)[0]:.3g}"
+    assert _user_cell(m.__class__(**{**m.__dict__, "human_speed_m_s": 6.0, "human_side": ">"})) == "> 6"
+    assert _user_cell(m.__class__(**{**m.__dict__, "human_speed_m_s": None})) == "-"
+
+
+def test_the_recommended_cell_says_better_or_worse():
+    """As on every row of the table: the change's direction on the user's speed, a relative tolerance of 1e-3 (the
+    table's), nothing when either side is a bound."""
+    from stability.advise.measures import measure_chairs
+    from stability.report.decision import user_row
+
+    m = measure_chairs([preset("ej-premier")], speeds=(0.5, 0.75, 1.0), cross_slope_deg=2.0,
+                       nonlinear=lambda chairs: [(None, None, "found")] * len(chairs), reaction_time=TAU)[0]
+
+    def at(u, side="="):
+        return m.__class__(**{**m.__dict__, "human_speed_m_s": u, "human_side": side})
+
+    assert user_row(0.3, [at(1.794), at(1.689)], True) == ["speed a user 0.3 s late holds (m/s, divergence rule)",
+                                                           "1.79", "1.69 (worse)"]
+    assert user_row(0.3, [at(1.0), at(1.2)], True)[2] == "1.2 (better)"
+    assert user_row(0.3, [at(1.0), at(1.0005)], True)[2] == "1"                 # within the table's tolerance
+    assert user_row(0.3, [at(1.0), at(6.0, ">")], True)[2] == "> 6"             # a bound: no direction word
+    assert user_row(0.3, [at(1.0), at(1.2)], False)[2] == "1.2"                 # the reference column: none
+
+
+@pytest.mark.slow
+def test_the_reference_chair_column_has_the_users_speed_too():
+    """Another chair's quick report (the revised design, whose own user speed is below the intended 1 m/s for this
+    user, so the advisor recommends no change) has the reference chair's column, its user speed measured the
+    same way."""
+    d = compute_brief(preset("revised"), driver=Driver(0.52), progress=False)
+    header, rows = decision_rows(d)
+    assert header == ["measure (range)", "this chair", "ej-premier"]
+    assert rows[-1] == ["speed a user 0.52 s late holds (m/s, divergence rule)",
+                        f"{rule_speed(preset('revised'), 0.52)[0]:.3g}",
+                        f"{rule_speed(preset('ej-premier'), 0.52)[0]:.3g}"]
+    assert rule_speed(preset("revised"), 0.52)[0] < 1.0 and not d.advice.recommendations[0].candidate.changes

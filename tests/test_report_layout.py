@@ -69,10 +69,12 @@ def _random_chair(seed: int, caster_position: str):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("caster_position, extra", [("rear", ["--compare", "ej-premier"]), ("front", []),
-                                                    ("rear", ["--quick"]), ("rear", ["--clinician"])])
+                                                    ("rear", ["--quick"]), ("rear", ["--clinician"]),
+                                                    ("rear", ["--reaction-time", "0.52"]),
+                                                    ("front", ["--quick", "--reaction-time", "0.52"])])
 def test_random_chair_report_layout(caster_position, extra, tmp_path):
     """A seeded random valid chair, rear and front casters, with and without --compare, the quick report and
-    the clinician sheet."""
+    the clinician sheet, and with a user (--reaction-time: page 1's driver line and the user's limits)."""
     c = _random_chair(35, caster_position)
     from stability.chair.io import dumps
 
@@ -80,7 +82,7 @@ def test_random_chair_report_layout(caster_position, extra, tmp_path):
     toml.write_text(dumps(c))
     out, txt = tmp_path / "r.pdf", tmp_path / "r.txt"
     subprocess.run([sys.executable, "-m", "stability.report", "--chair", str(toml), "--no-progress", "-o", str(out),
-                    *extra, *([] if extra in (["--quick"], ["--clinician"]) else ["--text", str(txt)])], cwd=ROOT,
+                    *extra, *([] if {"--quick", "--clinician"} & set(extra) else ["--text", str(txt)])], cwd=ROOT,
                    check=True, capture_output=True)
     problems = layout_problems(out)
     assert not problems, "\n".join(problems[:30])

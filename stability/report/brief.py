@@ -39,8 +39,10 @@ def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driv
     s = Settings.for_mode(False)
     ref_chair = preset(REFERENCE_CHAIR)
     advice = advise(c, progress=progress, driver=driver)
+    tau = None if driver is None else driver.reaction_time_s        # the reference chair's user limit too
     ref_m = None if c == ref_chair else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
-                                                      cross_slope_deg=advice.cross_slope_deg)[0]
+                                                      cross_slope_deg=advice.cross_slope_deg,
+                                                      reaction_time=tau)[0]
     sheet = clinician_sheet(c, tuple(advice.speeds_m_s), model, driver)
     return ReportData(c, model, s, None, None, {}, [], [], None, None, None, [], sheet.responses, None, None, None,
                       None, [], validity={"responses": sheet.validity}, slope=sheet.slope, tipping=sheet.tipping,

@@ -478,6 +478,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         stage("slope, shimmy and uncertainty")
         advice = advise(c, progress=progress, driver=driver)
         human = None if driver is None else human_limit(c, driver, model)
+        tau = None if driver is None else driver.reaction_time_s    # the reference chair's user limit too
         base = None
         if baseline is not None:
             b_note = shimmy_unavailable(baseline)
@@ -486,7 +487,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
                             None if b_note else shimmy_section(baseline, s.shimmy_trails, s.shimmy_speeds),
                             None if b_note else shimmy_band(baseline, advice.speeds_m_s).shimmy_margin_m)
         ref_m = None if is_ej else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
-                                                  cross_slope_deg=advice.cross_slope_deg)[0]
+                                                  cross_slope_deg=advice.cross_slope_deg,
+                                                  reaction_time=tau)[0]
         stage("advice")
     return ReportData(c, model, s, summary, summary_other, loci, plocs, glocs, thesis, chair_sweeps, chair_speed,
                       list(chair_friction), responses, frictionless, paths, fmap, dmap, conclusions, scheme,

@@ -95,7 +95,8 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
     """Header and rows of page 1's table: this chair, the recommended chair, the thesis's reference chair.
 
     Every tip direction, the shimmy margin, the turning effort and the cross-slope drive difference are rows, so
-    the table shows before -> after of everything the change costs.
+    the table shows before -> after of everything the change costs; with a user (the advice's driver) the speed
+    that user can hold is the last row.
 
     Parameters
     ----------
@@ -126,11 +127,54 @@ def decision_rows(d: ReportData) -> tuple[list[str], list[list[str]]]:
                 word = better_word(b - a, higher, tolerance=1e-3 * max(abs(a), abs(b), 1e-12))
                 cells[1][i] += "" if word == "no change" else f" ({word})"
     rows = [[lab] + [c[i] for c in cells] for i, lab in enumerate(labels)]
+    driver = d.advice.driver            # (``a`` is reused by the loop above)
+    if driver is not None:              # the user's limit, the advisor's constraint on every change
+        rows.append(user_row(driver.reaction_time_s, [m for _, m, _ in cols],
+                             len(cols) > 1 and cols[1][0] == "recommended"))
     # a tip direction no column has (a chair's four, a wheel layout's four) is no row: it could only print dashes
     have = {k for _, m, _ in cols for k, v in m.tip_angles_deg.items() if v is not None}
     tips = {2 + j: k for j, k in enumerate(DIRECTION_WORDS)}
     rows = [r for i, r in enumerate(rows) if i not in tips or tips[i] in have]
     return ["measure (range)"] + [n for n, _, _ in cols], rows
+
+
+def user_row(tau: float, measures: list, recommended: bool) -> list[str]:
+    """Page 1's row of the speed a user with delay ``tau`` can hold (the divergence rule), one cell per column.
+
+    Parameters
+    ----------
+    tau : float
+        The user's delay, s.
+    measures : list of Measures
+        The table's columns: this chair, then the recommended chair (``recommended``) and/or the reference chair.
+    recommended : bool
+        The second column is the recommended chair: its cell says whether the change makes the speed better or
+        worse (as every other row does).
+
+    Returns
+    -------
+    list of str
+        The label and the cells.
+    """
+    cells = [_user_cell(m) for m in measures]
+    if recommended:
+        x, y = _user_value(measures[0]), _user_value(measures[1])
+        if x is not None and y is not None:
+            word = better_word(y - x, True, tolerance=1e-3 * max(abs(x), abs(y)))
+            cells[1] += "" if word == "no change" else f" ({word})"
+    return [f"speed a user {tau:g} s late holds (m/s, divergence rule)"] + cells
+
+
+def _user_value(m: Measures) -> float | None:
+    """The divergence rule's speed (m/s), or None where it is a bound or not computed."""
+    return m.human_speed_m_s if m.human_speed_m_s is not None and m.human_side == "=" else None
+
+
+def _user_cell(m: Measures) -> str:
+    """The divergence rule's speed as a value, a bound as a bound (``"> 6"``), ``"-"`` where not computed."""
+    if m.human_speed_m_s is None:
+        return "-"
+    return ("" if m.human_side == "=" else f"{m.human_side} ") + f"{m.human_speed_m_s:.3g}"
 
 
 #: Per row of :func:`decision_rows`: whether a higher value is better (None: neither, e.g. the trail itself).
