@@ -109,7 +109,7 @@ def test_the_full_report_takes_the_user_and_its_json_gives_the_limits(tmp_path, 
     d = json.loads(capsys.readouterr().out)
     validate("report", d)
     h = human_limit(preset("ej-premier"), Driver(0.52))
-    assert d["options"]["reaction_time_s"] == 0.52
+    assert d["options"]["reaction_time_s"] == 0.52 and d["options"]["intended_speed_m_s"] == 1.0   # the fastest use
     assert d["human_limit"]["speed_m_s"] == pytest.approx(h.speed_m_s, rel=1e-12)
     assert d["human_limit"]["limited_by"] == h.limited_by == "delayed loop"
     assert d["human_limit"]["driver"]["source"] == "--reaction-time"
@@ -176,3 +176,33 @@ def test_the_reference_chair_column_has_the_users_speed_too():
                         f"{rule_speed(preset('revised'), 0.52)[0]:.3g}",
                         f"{rule_speed(preset('ej-premier'), 0.52)[0]:.3g}"]
     assert rule_speed(preset("revised"), 0.52)[0] < 1.0 and not d.advice.recommendations[0].candidate.changes
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--intended-speed", "1.5", "--quick"], "--intended-speed needs --reaction-time (or a chair file with a [user]"),
+    (["--intended-speed", "9", "--reaction-time", "0.5"], "--intended-speed 9"),
+    (["--clinician", "--reaction-time", "0.5", "--intended-speed", "1"], "--clinician has no decision"),
+])
+def test_intended_speed_is_refused_in_one_line_where_it_cannot_apply(tmp_path, capsys, args, message):
+    """``--intended-speed`` as ``python -m stability.advise`` takes it: needs a driver, within its range; the
+    clinician sheet has no decision to weigh it. One line, exit 2, nothing written."""
+    from stability.report.command import main
+
+    out = tmp_path / "r.pdf"
+    assert main([*args, "-o", str(out), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err and not out.exists()
+
+
+@pytest.mark.slow
+def test_the_intended_speed_reaches_the_decision():
+    """A user 0.3 s late who wants 1.75 m/s: the chair as it is holds (divergence rule 1.79 m/s), the axle move the
+    report recommends without a user would not (1.69 m/s), so the recommended chair must keep lambda(1.75) tau <= 1
+    (on the eigenvalues)."""
+    ej = preset("ej-premier")
+    d = compute_brief(ej, driver=Driver(0.3), intended_speed=1.75, progress=False)
+    assert d.advice.intended_speed_m_s == 1.75
+    rec = d.advice.recommendations[0].candidate
+    chosen = apply(ej, [f for ch in rec.changes for f in ch.fields])
+    assert _rate(chosen, 1.75) * 0.3 <= 1.0
+    assert _rate(ej.replace(s1=0.245, s2=ej.s1 + ej.s2 - 0.245), 1.75) * 0.3 > 1.0

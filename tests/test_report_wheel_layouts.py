@@ -232,9 +232,11 @@ def test_the_command_takes_a_reaction_time_for_a_layout(monkeypatch, capsys):
         return real(layout, **{**kw, "nonlinear": _fake})
 
     monkeypatch.setattr(lr, "compute_layout_report", compute)
-    assert main(["--chair", "power-fwd-base", "--json", "--no-progress", "--reaction-time", "0.6"]) == 0
+    assert main(["--chair", "power-fwd-base", "--json", "--no-progress", "--reaction-time", "0.6",
+                 "--intended-speed", "0.8"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["options"]["reaction_time_s"] == 0.6 and seen["driver"].reaction_time_s == 0.6
+    assert d["options"]["intended_speed_m_s"] == 0.8 == seen["intended_speed"]
     assert d["driver"]["reaction_time_s"] == 0.6 and [x["direction"] for x in d["driver"]["limits"]] == [
         "forward", "reverse"]
 

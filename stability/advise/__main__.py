@@ -29,9 +29,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--cross-slope", type=float, default=D.ADVISE_CROSS_SLOPE_DEG, metavar="DEG",
                    help=f"cross slope of the hand-rim force constraint, deg (default {D.ADVISE_CROSS_SLOPE_DEG:g})")
     cli.add_driver_options(p)
-    p.add_argument("--intended-speed", type=float, default=None, metavar="U",
-                   help="the speed the user wants to drive at, m/s (with --reaction-time or the chair file's [user]: "
-                        "a change must keep it within what that driver can hold; default the fastest use speed)")
+    cli.add_intended_speed_option(p)
     p.add_argument("--no-progress", action="store_true", help="no progress bars on stderr")
     cli.add_json_options(p)
     return p
@@ -68,9 +66,7 @@ def _speeds(text: str) -> tuple[float, ...]:
 def _driver(a: argparse.Namespace):
     """The driver of ``--reaction-time`` (or the chair file's ``[user]``), with ``--intended-speed`` checked."""
     driver = cli.driver_from_args(a)
-    if a.intended_speed is not None:
-        if driver is None:
-            raise ValueError("--intended-speed needs --reaction-time (or a chair file with a [user] table)")
+    cli.intended_speed_from_args(a, driver)
     return driver
 
 

@@ -47,6 +47,7 @@ from stability.cli.options import (
     add_chair_options,
     add_common_options,
     add_driver_options,
+    add_intended_speed_option,
     add_json_options,
     add_model_option,
     add_output_option,
@@ -54,6 +55,7 @@ from stability.cli.options import (
     add_uncertainty_option,
     check_format,
     driver_from_args,
+    intended_speed_from_args,
     run_flag,
     run_from_args,
 )
@@ -63,7 +65,7 @@ from stability.runtime.checks import MAX_SPEED, MIN_SPEED
 from stability.runtime.files import distinct_notes, json_text, with_tire_range
 
 __all__ = ["OneLineErrorParser", "add_chair_options", "add_common_options", "add_model_option",
-           "add_driver_options", "driver_from_args",
+           "add_driver_options", "driver_from_args", "add_intended_speed_option", "intended_speed_from_args",
            "add_run_options", "run_from_args", "run_flag", "add_json_options",
            "load_chair", "load_layout", "apply_layout_assignments", "apply_assignments", "parse_speeds",
            "check_directory", "check_outputs",

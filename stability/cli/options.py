@@ -412,6 +412,39 @@ def add_driver_options(parser: argparse.ArgumentParser) -> None:
                              "file's [user] reaction_time_s, else not computed)")
 
 
+def add_intended_speed_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--intended-speed U``: the speed the user wants to drive at, the advisor's limit with a driver.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+    """
+    parser.add_argument("--intended-speed", type=float, default=None, metavar="U",
+                        help="the speed the user wants to drive at, m/s (with --reaction-time or the chair file's "
+                             "[user]: a change must keep it within what that driver can hold; default the fastest "
+                             "use speed)")
+
+
+def intended_speed_from_args(args: argparse.Namespace, driver: Any) -> float | None:
+    """``--intended-speed`` (parsed within its range, ``OPTION_BOUNDS``), refused in one line without a driver.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        With ``intended_speed``.
+    driver : stability.driver.Driver or None
+        :func:`driver_from_args`.
+
+    Returns
+    -------
+    float or None
+    """
+    value = getattr(args, "intended_speed", None)
+    if value is not None and driver is None:
+        raise ValueError("--intended-speed needs --reaction-time (or a chair file with a [user] table)")
+    return value
+
+
 def driver_from_args(args: argparse.Namespace) -> Any:
     """The driver of ``--reaction-time``, else of the chair file's ``[user]`` table, else None.
 

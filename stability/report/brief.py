@@ -16,7 +16,8 @@ from stability.settings.reference import REFERENCE_CHAIR
 __all__ = ["compute_brief"]
 
 
-def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driver: Any = None) -> ReportData:
+def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driver: Any = None,
+                  intended_speed: float | None = None) -> ReportData:
     """The quick report's data: the advisor's decision (as in the full report), the thesis's reference chair
     measured the same way, and the clinician sheet at the advisor's use speeds; nothing else is computed, so
     every measure the quick PDF prints has one value.
@@ -30,6 +31,8 @@ def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driv
         The user's reaction time: the advisor weighs the speed this user can hold (as in the full report and
         ``python -m stability.advise``), and page 1 and the clinician sheet say up to which speed this user holds
         the chair.
+    intended_speed : float, optional
+        With ``driver``: the speed the user wants to drive at, m/s (the advisor's ``intended_speed``).
 
     Returns
     -------
@@ -38,7 +41,7 @@ def compute_brief(c: Chair, model: str = "exact", *, progress: bool = True, driv
     """
     s = Settings.for_mode(False)
     ref_chair = preset(REFERENCE_CHAIR)
-    advice = advise(c, progress=progress, driver=driver)
+    advice = advise(c, progress=progress, driver=driver, intended_speed=intended_speed)
     tau = None if driver is None else driver.reaction_time_s        # the reference chair's user limit too
     ref_m = None if c == ref_chair else measure_chairs([ref_chair], speeds=advice.speeds_m_s,
                                                       cross_slope_deg=advice.cross_slope_deg,

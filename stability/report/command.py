@@ -10,12 +10,14 @@ from stability.cli import (
     OneLineErrorParser,
     add_chair_options,
     add_driver_options,
+    add_intended_speed_option,
     add_json_options,
     add_model_option,
     add_output_option,
     check_outputs,
     driver_from_args,
     emit_json,
+    intended_speed_from_args,
     json_header,
     load_chair,
     load_layout,
@@ -55,6 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help=f"the user's speeds for --clinician, m/s: START:STOP:STEP or a list, 0.1 to 3 m/s "
                         f"(default {D.ADVISE_SPEEDS}, the advisor's)")
     add_driver_options(p)
+    add_intended_speed_option(p)
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.add_argument("--text", metavar="FILE", help="also write the text of every page to FILE")
     p.add_argument("--uncertainty", metavar="FILE",
@@ -127,15 +130,16 @@ def _run_chair(args: argparse.Namespace) -> int:
         raise ValueError(f"--speeds {args.speeds!r} needs --clinician (the report's speeds are its own)")
     baseline = None if args.compare is None else load_chair(args.compare, [])
     driver = driver_from_args(args)      # --reaction-time or the file's [user]: the decision weighs it, page 1 says it
+    intended = intended_speed_from_args(args, driver)
     with output_files(outputs) as tmp:
         res = None
         if args.output:
             res = document.build(c, tmp["-o"], model=args.model, brief=args.quick, progress=not args.no_progress,
-                                 uncertainty=spec, baseline=baseline, driver=driver)
+                                 uncertainty=spec, baseline=baseline, driver=driver, intended_speed=intended)
             data = res.data
         else:
             data = compute(c, args.model, progress=not args.no_progress, uncertainty=spec, baseline=baseline,
-                           driver=driver)
+                           driver=driver, intended_speed=intended)
         if args.text:
             with open(tmp["--text"], "w", encoding="utf-8") as fh:
                 assert res is not None          # --text needs -o (checked above)
@@ -144,7 +148,8 @@ def _run_chair(args: argparse.Namespace) -> int:
             options = {"quick": bool(args.quick), "uncertainty": args.uncertainty,
                        "samples": args.samples if spec else None, "seed": args.seed if spec else None,
                        "compare": args.compare, "output": args.output,
-                       "reaction_time_s": None if driver is None else driver.reaction_time_s}
+                       "reaction_time_s": None if driver is None else driver.reaction_time_s,
+                       "intended_speed_m_s": data.advice.intended_speed_m_s}
             emit_json({**json_header(c, args.model, options), **report_mapping(data)}, args,
                       write_to=tmp.get("--json-file"))
     if res is not None:
@@ -180,8 +185,10 @@ def _layout(args: argparse.Namespace) -> int:
 
         unc = load_layout_uncertainty(args.uncertainty, layout)
     driver = driver_from_args(args)       # --reaction-time or the file's [user]: the layout's driver limit
+    intended = intended_speed_from_args(args, driver)
     r = compute_layout_report(layout, progress=not args.no_progress, quick=args.quick, baseline=baseline,
-                              uncertainty=unc, samples=args.samples, seed=args.seed, driver=driver)
+                              uncertainty=unc, samples=args.samples, seed=args.seed, driver=driver,
+                              intended_speed=intended)
     n = 0
     with output_files(outputs) as tmp:
         if args.output:
@@ -197,7 +204,8 @@ def _layout(args: argparse.Namespace) -> int:
                     "options": {"output": args.output, "quick": bool(args.quick), "compare": args.compare,
                                 "uncertainty": args.uncertainty, "samples": args.samples if unc else None,
                                 "seed": args.seed if unc else None,
-                                "reaction_time_s": None if driver is None else driver.reaction_time_s},
+                                "reaction_time_s": None if driver is None else driver.reaction_time_s,
+                                "intended_speed_m_s": r.intended_speed_m_s},
                     "schema": "stability.report.layout/1"}
             emit_json({**head, **r.data}, args, write_to=tmp.get("--json-file"))
     if args.output:
@@ -247,6 +255,9 @@ def _clinician(args: argparse.Namespace, c, outputs: dict, make_sheet=None, sign
                         ("--json-file", args.json_file), ("--quick", args.quick)):
         if given:
             raise ValueError(f"{flag} cannot be combined with --clinician (a one-page sheet at full resolution)")
+    if args.intended_speed is not None:
+        raise ValueError("--intended-speed is for the report's decision (the advisor's limit with a driver); "
+                         "--clinician has no decision: drop it, the sheet names the speeds this user cannot hold")
     if not args.output:
         raise ValueError("--clinician needs -o FILE.pdf")
     speeds = tuple(float(u) for u in parse_speeds(args.speeds, max_count=ADVISE_SPEED_COUNT, signed=signed))

@@ -351,7 +351,8 @@ def parameter_loci(c: Chair, model: str, n: int) -> list:
 def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bool = True,
             scheme: str = "wchair", settings: Settings | None = None,
             log: Callable[[str], None] | None = None, uncertainty: UncertaintySpec | None = None,
-            baseline: Chair | None = None, driver: Any = None) -> ReportData:
+            baseline: Chair | None = None, driver: Any = None,
+            intended_speed: float | None = None) -> ReportData:
     """Run every analysis of the report for chair ``c``.
 
     Parameters
@@ -375,6 +376,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
     driver : stability.driver.Driver, optional
         The user: the advisor weighs the speed this driver can hold (:func:`stability.advise.advise`'s
         ``driver``), and page 1 states this driver's limits (:func:`stability.driver.human_limit`).
+    intended_speed : float, optional
+        With ``driver``: the speed the user wants to drive at, m/s (the advisor's ``intended_speed``).
 
     Returns
     -------
@@ -476,7 +479,7 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         if shimmy_note is None and "trail" in chair_sweeps:
             window = trail_window(c.name, c.trail, chair_sweeps.get("trail"), shimmy_band(c, USE_SPEEDS))
         stage("slope, shimmy and uncertainty")
-        advice = advise(c, progress=progress, driver=driver)
+        advice = advise(c, progress=progress, driver=driver, intended_speed=intended_speed)
         human = None if driver is None else human_limit(c, driver, model)
         tau = None if driver is None else driver.reaction_time_s    # the reference chair's user limit too
         base = None

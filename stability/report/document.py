@@ -147,7 +147,7 @@ def pages(d: ReportData, record: list | None = None) -> Iterator[Figure]:
 def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick: bool = False, progress: bool = True,
           settings: Settings | None = None, data: ReportData | None = None,
           uncertainty: UncertaintySpec | None = None, baseline: Chair | None = None,
-          brief: bool = False, driver: Any = None) -> ReportResult:
+          brief: bool = False, driver: Any = None, intended_speed: float | None = None) -> ReportResult:
     """Compute and write the report for chair ``c`` to ``path`` (atomically, reproducibly).
 
     Parameters
@@ -175,6 +175,9 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         The user's reaction time: the advisor's decision weighs the speed this user can hold (as
         ``python -m stability.advise`` with the same driver), page 1 states the user's limits and, with ``brief``,
         the clinician sheet too.
+    intended_speed : float, optional
+        With ``driver``: the speed the user wants to drive at, m/s (the advisor's ``intended_speed``; default the
+        fastest use speed).
 
     Returns
     -------
@@ -192,10 +195,10 @@ def build(c: Chair, path: str | os.PathLike[str], *, model: str = "exact", quick
         if uncertainty is not None or baseline is not None:
             raise ValueError("the quick report is page 1, the clinician sheet and the references: drop --quick to "
                              "use --uncertainty or --compare")
-        d = compute_brief(c, model, progress=progress, driver=driver)
+        d = compute_brief(c, model, progress=progress, driver=driver, intended_speed=intended_speed)
     else:
         d = compute(c, model, quick=quick, progress=progress, settings=settings, uncertainty=uncertainty,
-                    baseline=baseline, driver=driver)
+                    baseline=baseline, driver=driver, intended_speed=intended_speed)
     record: list[Page] = []
     n_pages = len(builders.page_builders(d))
     with ProgressBar(n_pages, "pages", enabled=progress, unit="page") as bar:

@@ -95,6 +95,8 @@ class LayoutReport:
         The propagated intervals (``--uncertainty``).
     appendix : tuple of (str, tuple of str)
         Title and paragraphs of each appendix page (after every result, before :data:`NOT_APPLICABLE`'s page).
+    intended_speed_m_s : float or None
+        The advisor's intended speed with a driver (the option's, else the fastest use speed), m/s.
     """
 
     layout: Layout
@@ -105,6 +107,7 @@ class LayoutReport:
     comparison: Comparison | None = None
     uncertainty: Any = None
     appendix: tuple = ()
+    intended_speed_m_s: float | None = None
 
     def page_texts(self) -> list[tuple[str, list[str]]]:
         """Each page's title and text lines, in page order (what :func:`layout_report_pages` draws)."""
@@ -266,7 +269,7 @@ def _driver(layout: Layout, driver: Any) -> tuple[tuple[str, ...], dict]:
 def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), progress: bool = False,
                           nonlinear: Callable | None = None, quick: bool = False,
                           baseline: Layout | None = None, uncertainty: Any = None, samples: int = D.SAMPLES,
-                          seed: int = D.SEED, driver: Any = None) -> LayoutReport:
+                          seed: int = D.SEED, driver: Any = None, intended_speed: float | None = None) -> LayoutReport:
     """Every section of the layout's report.
 
     Parameters
@@ -288,6 +291,8 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     driver : stability.driver.Driver, optional
         The user (``--reaction-time`` or the file's ``[user]``): the advisor's decision weighs the speed this driver
         holds (:func:`stability.advise.advise`'s ``driver``) and a section gives that speed both ways.
+    intended_speed : float, optional
+        With ``driver``: the speed the user wants to drive at, m/s (the advisor's ``intended_speed``).
 
     Returns
     -------
@@ -296,7 +301,8 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
     if quick and (baseline is not None or uncertainty is not None):
         raise ValueError("baseline, uncertainty: the quick report is the decision and the clinician sheet; drop quick "
                          "to compare or to propagate an uncertainty")
-    a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear, driver=driver)
+    a = advise(layout, speeds=speeds, progress=progress, nonlinear=nonlinear, driver=driver,
+               intended_speed=intended_speed)
     d = decide(a)
     decision = ("The decision (forward driving)", tuple(d.paragraphs()) + (
         f"For the advice on reversing: python -m stability.advise --chair {layout.name} --speeds -0.5:1.",))
@@ -305,7 +311,7 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
 
         sheet = layout_clinician_sheet(layout, tuple(a.speeds_m_s), driver)
         data = {"layout": layout.name, "quick": True, "decision": d.to_mapping(), "clinician": _sheet_data(sheet)}
-        return LayoutReport(layout, (decision,), (), data, sheet=sheet)
+        return LayoutReport(layout, (decision,), (), data, sheet=sheet, intended_speed_m_s=a.intended_speed_m_s)
     summary = analyse_layout(layout)
     text = layout_text(layout, summary).split("\n")
     imp_lines, imp = _impulses(layout)
@@ -350,7 +356,7 @@ def compute_layout_report(layout: Layout, *, speeds: tuple = (0.5, 0.75, 1.0), p
         unc = layout_uncertainty(layout, uncertainty, COMPARE_SPEEDS, samples=samples, seed=seed)
         data["uncertainty"] = unc.to_mapping()
     return LayoutReport(layout, tuple(sections), not_applicable, data, comparison=comparison, uncertainty=unc,
-                        appendix=((WHEELS_TITLE, tuple(text)),))
+                        appendix=((WHEELS_TITLE, tuple(text)),), intended_speed_m_s=a.intended_speed_m_s)
 
 
 def _sheet_data(s: ClinicianSheet) -> dict:
