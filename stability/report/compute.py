@@ -149,12 +149,8 @@ class ReportData:
         references only.
     sheet : stability.report.clinician_sheet.ClinicianSheet or None
         The clinician sheet (brief report only).
-    driver : stability.driver.Driver or None
-        The user (``--reaction-time`` or the chair file's ``[user]``): the advisor's decision weighs the speed this
-        driver can hold, as ``python -m stability.advise`` does with the same driver.
-    human : stability.driver.HumanLimit or None
-        That driver's limits on the chair's linear model (:func:`stability.driver.human_limit`; page 1's clinician
-        paragraph and the sheet state them).
+    driver, human : stability.driver.Driver, stability.driver.HumanLimit or None
+        The user (``--reaction-time`` or the file's ``[user]``; the advice weighs it) and its two limits.
     """
 
     chair: Chair
@@ -373,11 +369,8 @@ def compute(c: Chair, model: str = "exact", *, quick: bool = False, progress: bo
         Parameter distributions for the linear and nonlinear intervals (``--uncertainty FILE``).
     baseline : Chair, optional
         A chair to compare with: its key numbers are computed with the same settings, model and reference.
-    driver : stability.driver.Driver, optional
-        The user: the advisor weighs the speed this driver can hold (:func:`stability.advise.advise`'s
-        ``driver``), and page 1 states this driver's limits (:func:`stability.driver.human_limit`).
-    intended_speed : float, optional
-        With ``driver``: the speed the user wants to drive at, m/s (the advisor's ``intended_speed``).
+    driver, intended_speed : stability.driver.Driver, float (m/s), optional
+        The user and the speed they want: :func:`stability.advise.advise`'s; page 1 gives the user's limits.
 
     Returns
     -------
