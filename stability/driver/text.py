@@ -5,7 +5,7 @@ from __future__ import annotations
 from stability.driver.linear import HumanLimit
 from stability.driver.model import Driver
 
-__all__ = ["human_text", "human_sentence", "held_where", "limits_words", "layout_human_text"]
+__all__ = ["human_text", "human_sentence", "held_where", "limit_values", "layout_human_text"]
 
 
 def human_sentence(h: HumanLimit, driver: Driver) -> str:
@@ -75,8 +75,8 @@ def _bound(u: float, side: str) -> str:
     return ("" if side == "=" else f"{side} ") + f"{u:.3g} m/s"
 
 
-def limits_words(h: HumanLimit) -> str:
-    """Which limit binds and both values, for a sentence after :func:`human_sentence`.
+def limit_values(h: HumanLimit) -> str:
+    """Both limits' values, for a sentence that names the lower (``h.limited_by``).
 
     Parameters
     ----------
@@ -85,11 +85,11 @@ def limits_words(h: HumanLimit) -> str:
     Returns
     -------
     str
-        ``"limited by the delayed loop (divergence rule 1.04 m/s, delayed loop 1.02 m/s)"``; the advisor checks
-        its changes on the divergence rule alone (page 1's "Driver:" line), so both values are given.
+        ``"divergence rule 1.04 m/s, delayed loop 1.02 m/s"`` (a bound as a bound: ``"> 6 m/s"``); the advisor
+        checks its changes on the divergence rule alone, so both are given.
     """
-    return (f"limited by the {h.limited_by} (divergence rule {_bound(h.rule_speed_m_s, h.rule_side)}, delayed loop "
-            f"{_bound(h.loop_speed_m_s, h.loop_side)})")
+    return (f"divergence rule {_bound(h.rule_speed_m_s, h.rule_side)}, "
+            f"delayed loop {_bound(h.loop_speed_m_s, h.loop_side)}")
 
 
 def _limits(h: HumanLimit, indent: str) -> str:

@@ -102,10 +102,10 @@ def user_sentence(h: Any, driver: Any, intended: float | None = None) -> str:
         limited by the delayed loop (divergence rule 1.04 m/s, delayed loop 1.02 m/s; reaction time from
         --reaction-time; linear model without pin friction: docs/driver.md)"``.
     """
-    from stability.driver.text import human_sentence, limits_words
+    from stability.driver.text import human_sentence, limit_values
 
-    out = (f"{human_sentence(h, driver)}, {limits_words(h)[:-1]}; reaction time from {driver.source}; linear model "
-           "without pin friction: docs/driver.md)")
+    out = (f"{human_sentence(h, driver)}, limited by the {h.limited_by} ({limit_values(h)}; reaction time from "
+           f"{driver.source}; linear model without pin friction: docs/driver.md)")
     # a bound at the searched range's end (side ">") is that end, beyond every intended speed; below its start ("<")
     # it is the start, below every one
     if intended is not None and h.loop_speed_m_s < intended <= h.rule_speed_m_s:
