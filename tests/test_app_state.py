@@ -376,3 +376,23 @@ def test_summary_verdict_names_the_speeds_searched():
     assert f"Free casters: unstable at every speed {searched}." in rear
     assert f"Free casters: stable at every speed {searched}." in front
     assert searched == "from 0.01 to 30 m/s"     # what the page said before the words were computed
+
+
+@pytest.mark.slow
+def test_results_json_with_the_sessions_user_equals_the_command_on_the_toml_download(tmp_path, capsys, monkeypatch):
+    """With a user (the Tracking tab's table, no source of its own), the results download is what
+    ``critical_speed --chair <the TOML download> --json`` prints: the user's linear limits, the assisted limit
+    (null: a manual chair) and the nonlinear lane limit, the source naming the downloaded file as the command does."""
+    from stability.app.downloads import file_names
+
+    s = AppState.from_query("chair=revised&trail=0.06")
+    s.user = {"reaction_time_s": 0.4}
+    monkeypatch.chdir(tmp_path)
+    name = file_names(s.chair.name)["toml"]
+    (tmp_path / name).write_text(s.chair_toml())
+    assert critical_speed_main(["--chair", name, "--json-file", "r.json"]) == 0
+    capsys.readouterr()
+    mine, theirs = json.loads(s.results_json()), json.loads((tmp_path / "r.json").read_text())
+    assert mine == theirs
+    assert mine["human_limit"]["driver"]["source"] == f"{name} [user]" and mine["options"]["reaction_time_s"] == 0.4
+    assert mine["human_limit"]["nonlinear"] is not None and mine["human_limit"]["with_assist"] is None

@@ -91,23 +91,30 @@ def chair_toml(chair: Chair, user: dict | None = None) -> str:
     return chair_mod.dumps(chair) + (user_toml(user) if user else "")
 
 
-def results_json(chair: Chair, model: str) -> str:
-    """The results JSON: what ``python -m stability.critical_speed --chair <this chair> --json`` prints.
+def results_json(chair: Chair, model: str, user: dict | None = None) -> str:
+    """The results JSON: what ``python -m stability.critical_speed --chair <the TOML download> --json`` prints.
 
     Computed with the command's own defaults (its parser's) and its own
-    document builder, so the two cannot drift apart.
+    document builder, so the two cannot drift apart.  With the session's
+    user (the ``[user]`` table the TOML download carries) it has the user's
+    limits, as the command reads them from that file: the linear limits,
+    the assisted limit of a powered chair and the nonlinear lane limit (a
+    second or two of simulation).
 
     Parameters
     ----------
     chair : Chair
     model : {"exact", "thesis"}
+    user : dict, optional
+        The session's ``[user]`` table (:attr:`stability.app.state.AppState.user`).
 
     Returns
     -------
     str
     """
     from stability.cli import parse_speeds
-    from stability.critical_speed.command import build_parser, document
+    from stability.critical_speed.command import build_parser, document, driver_limits, with_driver_extras
+    from stability.driver import Driver
     from stability.linear import analyse
     from stability.models.statics import static_loads
     from stability.study.summary_text import simulator_checks
@@ -118,7 +125,13 @@ def results_json(chair: Chair, model: str) -> str:
         warnings.simplefilter("ignore", tires.TireRangeWarning)
         tires.range_check(chair, static_loads(chair))
         summary = analyse(chair, model=model, speeds=speeds, max_speed=args.max_speed)
-        doc = document(summary, simulator_checks(summary), args, speeds)
+        driver = human = extras = None
+        if user:       # a table without its own source: the command names the file it read, the download's name
+            driver = Driver.from_mapping(user, source=f"{file_names(chair.name)['toml']} [user]")
+            human, extras = driver_limits(chair, driver, model)
+        doc = document(summary, simulator_checks(summary), args, speeds, human=human, driver=driver)
+        if extras is not None:
+            doc = with_driver_extras(doc, extras)
     return json_text(with_tire_range(doc, notes, args.tire_range)) + "\n"
 
 
@@ -168,8 +181,8 @@ def download_buttons(state: Any, view: Any) -> Any:
 
     from stability.app.views import eigenvalues_csv
 
-    work = {"toml": lambda: io.StringIO(chair_toml(state.chair, getattr(state, "user", None))),
-            "json": lambda: io.StringIO(results_json(state.chair, state.model)),
+    work = {"toml": lambda: io.StringIO(state.chair_toml()),
+            "json": lambda: io.StringIO(state.results_json()),
             "csv": lambda: io.StringIO(eigenvalues_csv(view())),
             "png": lambda: figure_file(view(), "png"), "svg": lambda: figure_file(view(), "svg")}
     labels = {"toml": "the chair (TOML)", "json": "results (JSON, as critical_speed --json)",

@@ -404,19 +404,20 @@ class AppState:
 
     # -- downloads (stability.app.downloads) --------------------------------
     def chair_toml(self) -> str:
-        """The chair as a TOML file (loading it gives the same chair).
+        """The chair as a TOML file (loading it gives the same chair), with the session's ``[user]`` table.
 
         Returns
         -------
         str
         """
-        return downloads.chair_toml(self.chair)
+        return downloads.chair_toml(self.chair, self.user)
 
     def results_json(self) -> str:
-        """The results JSON: what ``python -m stability.critical_speed --chair <this chair> --json`` prints.
+        """The results JSON: what ``python -m stability.critical_speed --chair <the TOML download> --json`` prints
+        (with the session's user, when there is one).
 
         Returns
         -------
         str
         """
-        return downloads.results_json(self.chair, self.model)
+        return downloads.results_json(self.chair, self.model, self.user)

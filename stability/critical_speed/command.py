@@ -56,7 +56,8 @@ if TYPE_CHECKING:
     from stability.linear.intervals import LinearIntervals
     from stability.study.uncertain import NonlinearIntervals
 
-__all__ = ["main", "build_parser", "document", "layout_summary", "layout_document", "layout_figure"]
+__all__ = ["main", "build_parser", "document", "driver_limits", "with_driver_extras", "layout_summary",
+           "layout_document", "layout_figure"]
 
 
 
@@ -182,12 +183,30 @@ def document(summary: StabilitySummary, checks: list, args: argparse.Namespace, 
 
 
 def _driver(c: Any, args: argparse.Namespace) -> tuple:
-    """The driver (``--reaction-time`` or the chair file's ``[user]``), the human-limited speed, and the extras:
-    for a powered chair the limit with the assist on (:mod:`stability.assist.human`), and the nonlinear lane
-    limit (:mod:`stability.driver.lane`); Nones without a driver."""
+    """The driver (``--reaction-time`` or the chair file's ``[user]``) and :func:`driver_limits`; Nones without."""
     driver = driver_from_args(args)
     if driver is None:
         return None, None, (None, None)
+    return (driver, *driver_limits(c, driver, args.model))
+
+
+def driver_limits(c: Any, driver: Driver, model: str) -> tuple:
+    """The human-limited speed and the extras: for a powered chair the limit with the assist on
+    (:mod:`stability.assist.human`), and the nonlinear lane limit (:mod:`stability.driver.lane`).
+
+    The explorer's results download computes a session's user with it (:mod:`stability.app.downloads`).
+
+    Parameters
+    ----------
+    c : Chair
+    driver : Driver
+    model : {"exact", "thesis"}
+
+    Returns
+    -------
+    tuple
+        ``(HumanLimit, (assisted or None, lane))``, as :func:`document` and :func:`with_driver_extras` take them.
+    """
     assisted = None
     if drive_kind(c) == "motor":
         from stability.assist.human import assisted_driver_limit
@@ -196,8 +215,8 @@ def _driver(c: Any, args: argparse.Namespace) -> tuple:
     from stability.settings.run import RunSpec
     from stability.study.lane import lane_range
 
-    lane = lane_range(c, driver, RunSpec(model=args.model))
-    return driver, human_limit(c, driver, args.model), (assisted, lane)
+    lane = lane_range(c, driver, RunSpec(model=model))
+    return human_limit(c, driver, model), (assisted, lane)
 
 
 def _print_driver(human: HumanLimit | None, driver: Driver | None, extras: tuple) -> None:
@@ -211,9 +230,22 @@ def _print_driver(human: HumanLimit | None, driver: Driver | None, extras: tuple
         print("  " + assisted.sentence() + ".")
 
 
-def _with_assist(doc: dict[str, Any], extras: tuple) -> dict[str, Any]:
+def with_driver_extras(doc: dict[str, Any], extras: tuple) -> dict[str, Any]:
     """``doc`` with the driver's limit under the assist (``human_limit.with_assist``; null for a manual chair)
-    and the nonlinear lane limit (``human_limit.nonlinear``)."""
+    and the nonlinear lane limit (``human_limit.nonlinear``).
+
+    Parameters
+    ----------
+    doc : dict
+        :func:`document`'s.
+    extras : tuple
+        :func:`driver_limits`' second item.
+
+    Returns
+    -------
+    dict
+        ``doc``, changed in place.
+    """
     assisted, lane = extras
     if doc["human_limit"] is not None:
         doc["human_limit"]["with_assist"] = None if assisted is None else assisted.to_mapping()
@@ -265,7 +297,7 @@ def _run(args: argparse.Namespace) -> int:
             save_figure(figure(summary), tmp["-o"], title=f"stability critical_speed: {c.name}, {args.model} model")
         if args.json or args.json_file:
             doc = document(summary, checks, args, speeds, intervals, nonlinear, human, driver)
-            emit_json(_with_assist(doc, assisted), args, write_to=tmp.get("--json-file"))
+            emit_json(with_driver_extras(doc, assisted), args, write_to=tmp.get("--json-file"))
     announce_written(args.output, args.json_file)
     if not args.json:
         print(format_summary(summary, checks, intervals, nonlinear))
