@@ -666,3 +666,22 @@ def test_censored_quantile_at_the_ends_of_draws_tied_with_a_bound():
     for sides in ([">", "="], ["=", ">"]):
         assert quantile([3.0, 3.0], sides, 1.0) == (3.0, ">"), sides
         assert quantile([3.0, 3.0], sides, 0.0) == (3.0, "="), sides
+
+
+def test_the_chair_files_user_is_the_sweeps_driver_unless_the_spec_names_one(spec_dir):
+    """A spec without ``reaction_time_s`` takes the chair file's ``[user]``, as every command's ``--chair`` does; the
+    spec's own value wins; a preset (no user) keeps the default driver.  Before, the file's user was ignored."""
+    from stability.chair.io import save
+    from stability.driver import REACTION_TIME_S
+
+    save(preset("revised"), spec_dir / "mine.toml")
+    with open(spec_dir / "mine.toml", "a", encoding="utf-8") as fh:
+        fh.write('\n[user]\nreaction_time_s = 0.45\nsource = "clinic"\n')
+    base = 'speeds = [1.0]\nmeasures = ["human_limited_speed"]\n'
+    assert loads_spec('chair = "mine.toml"\n' + base, spec_dir).reaction_time_s == 0.45
+    assert loads_spec('chair = "mine.toml"\nreaction_time_s = 0.6\n' + base, spec_dir).reaction_time_s == 0.6
+    assert loads_spec('chair = "revised"\n' + base, spec_dir).reaction_time_s == REACTION_TIME_S
+    with open(spec_dir / "mine.toml", "a", encoding="utf-8") as fh:
+        fh.write("hand_force_N = 0.0\n")                   # a bad [user] is refused as the commands refuse it
+    with pytest.raises(ValueError, match="hand_force_N"):
+        loads_spec('chair = "mine.toml"\n' + base, spec_dir)

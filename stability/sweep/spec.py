@@ -35,7 +35,7 @@ from typing import Any
 
 from stability import chair as chair_mod
 from stability.chair import Chair, design
-from stability.driver.model import REACTION_TIME_RANGE_S, REACTION_TIME_S
+from stability.driver.model import REACTION_TIME_RANGE_S, REACTION_TIME_S, Driver
 from stability.layout.io import is_layout_spec, resolve_layout
 from stability.layout.model import Layout
 from stability.settings.bounds import SIGNED_SPEED
@@ -131,7 +131,8 @@ class SweepSpec:
     friction_law : {"kinetic", "stick-slip"}
         Pin friction of the critical impulse's and equal-instability speed's runs.
     reaction_time_s : float
-        The driver's effective delay of the ``human_limited_speed`` measure, s (:mod:`stability.driver`).
+        The driver's effective delay of the ``human_limited_speed`` measure, s (:mod:`stability.driver`): the
+        spec's ``reaction_time_s``, else the chair file's ``[user]``, else :data:`stability.driver.REACTION_TIME_S`.
     """
 
     chair: Chair | Layout
@@ -263,7 +264,9 @@ def from_mapping(data: Mapping[str, Any], base: Path | None = None) -> SweepSpec
     chunk_rows = data.get("chunk_rows", 300)
     if isinstance(chunk_rows, bool) or not isinstance(chunk_rows, int) or chunk_rows < 1:
         raise _bad("chunk_rows", chunk_rows, "an integer >= 1")
-    tau = data.get("reaction_time_s", REACTION_TIME_S)
+    # the chair file's [user] when the spec names no driver, as every command's --chair reads it
+    user = chair_mod.user_table(where) if where.endswith(".toml") else None
+    tau = data.get("reaction_time_s", REACTION_TIME_S if user is None else Driver.from_mapping(user).reaction_time_s)
     lo, hi = REACTION_TIME_RANGE_S
     if isinstance(tau, bool) or not isinstance(tau, (int, float)) or not (math.isfinite(tau) and lo <= tau <= hi):
         raise _bad("reaction_time_s", tau, f"a number of s from {lo:g} to {hi:g}")
