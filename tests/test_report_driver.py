@@ -37,7 +37,7 @@ def test_the_user_sentence_names_the_binding_limit_and_flags_a_loop_below_the_in
     d = Driver(0.52, source="--reaction-time")
     s = user_sentence(_limit(1.0004, 0.9734), d, intended=1.0)
     assert "up to 0.973 m/s (3.5 km/h), limited by the delayed loop (divergence rule 1 m/s, delayed loop 0.973 m/s" in s
-    assert "delayed loop 0.973 m/s; reaction time from --reaction-time; linear model" in s
+    assert "delayed loop 0.973 m/s; reaction time from --reaction-time; the exact linear model" in s
     assert s.count("(") == s.count(")") and "take that speed as beyond this user" in s
     assert "beyond this user" not in user_sentence(_limit(1.0004, 0.9734), d)              # no intended speed
     assert "beyond this user" not in user_sentence(_limit(1.04, 1.019), d, intended=1.0)    # the loop reaches it
@@ -46,6 +46,8 @@ def test_the_user_sentence_names_the_binding_limit_and_flags_a_loop_below_the_in
     assert "beyond this user" in user_sentence(_limit(6.0, 0.1, ">", "<"), d, intended=1.0)    # bounds as values
     assert "beyond this user" not in user_sentence(_limit(1.2, 1.0), d, intended=1.0)     # the loop just reaches it
     assert "beyond this user" in user_sentence(_limit(1.0, 0.9), d, intended=1.0)         # the rule just reaches it
+    thesis = HumanLimit("x", "thesis", 0.52, 1.07, "=", 1.0, "=", 2, 0.0)     # the model is named (the advisor's is exact)
+    assert "the thesis linear model without pin friction" in user_sentence(thesis, d)
     s = user_sentence(_limit(0.9, 1.1), d)
     assert "limited by the divergence rule (divergence rule 0.9 m/s, delayed loop 1.1 m/s" in s
     s = user_sentence(_limit(6.0, 6.0, ">", ">"), d)

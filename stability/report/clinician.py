@@ -100,12 +100,13 @@ def user_sentence(h: Any, driver: Any, intended: float | None = None) -> str:
     str
         ``"A driver who corrects the heading 0.5 s late can hold this chair straight up to 1.02 m/s (3.7 km/h),
         limited by the delayed loop (divergence rule 1.04 m/s, delayed loop 1.02 m/s; reaction time from
-        --reaction-time; linear model without pin friction: docs/driver.md)"``.
+        --reaction-time; the exact linear model without pin friction: docs/driver.md)"``; the model is named, as
+        the advisor's "Driver:" line is the exact model's whatever the report's model.
     """
     from stability.driver.text import human_sentence, limit_values
 
     out = (f"{human_sentence(h, driver)}, limited by the {h.limited_by} ({limit_values(h)}; reaction time from "
-           f"{driver.source}; linear model without pin friction: docs/driver.md)")
+           f"{driver.source}; the {h.model} linear model without pin friction: docs/driver.md)")
     # a bound at the searched range's end (side ">") is that end, beyond every intended speed; below its start ("<")
     # it is the start, below every one
     if intended is not None and h.loop_speed_m_s < intended <= h.rule_speed_m_s:
