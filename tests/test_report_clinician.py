@@ -156,6 +156,7 @@ def test_the_sheet_says_up_to_which_speed_this_user_holds_the_chair(tmp_path):
     assert "at 1.8 km/h, 3.6 km/h this user cannot hold it" in text          # both speeds above 0.291 m/s
 
 
+@pytest.mark.slow               # a whole quick report through the command (the decision itself: test_report_driver.py)
 def test_the_chair_files_user_reaches_the_reports_decision(tmp_path):
     """A chair file's ``[user]`` (no option given) reaches the report's decision, as it reaches
     ``python -m stability.advise``: page 1 has the advisor's driver line with the file as its source and the
