@@ -221,3 +221,50 @@ def test_the_comparison_figure_as_png(tmp_path, capsys):
     assert main(["manual-front-caster", "ej-premier", "--speeds", "0.75", "-o", str(out)]) == 0
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "the growth rates" in capsys.readouterr().err
+
+
+def test_a_user_adds_the_speed_that_user_holds_on_each_chair():
+    """``reaction_time``: one user compared on every chair.  Each chair's value is where its divergence rate (the
+    linear model's eigenvalues, computed here directly) reaches 1/tau; the higher speed is the more stable chair for
+    this user; a chair stable everywhere checked is a bound (inf), which outranks any found speed."""
+    tau = 0.5
+    c = compare([chair.preset("ej-premier"), chair.preset("revised"), chair.preset("ej-premier-front-caster")],
+                reaction_time=tau)
+    q = next(x for x in c.quantities if x.key == "human_limited_speed_m_s")
+    assert q.higher_is_more_stable and q.unit == "m/s" and q.intervals == (None, None, None)
+    for ch, u in zip(c.chairs[:2], q.values[:2], strict=True):
+        rate = lambda v, ch=ch: float(np.max(np.linalg.eigvals(state_matrices(ch, v)[0]).real))   # noqa: E731
+        # the rule's bisection ends within its tolerance of the crossing (SPEED_TOL_M_S, below 0.01 m/s)
+        assert rate(u - 0.01) * tau < 1 < rate(u + 0.01) * tau
+    assert math.isinf(q.values[2])                                 # the front-caster chair: never diverges
+    d = {x.chair: x for x in c.differences if x.key == "human_limited_speed_m_s"}
+    assert d["revised"].more_stable == "ej-premier"                # 1.04 > 0.98 m/s for this user
+    assert d["ej-premier-front-caster"].more_stable == "ej-premier-front-caster"
+    text = format_comparison(c)
+    assert "speed a user 0.5 s late holds" in text and "held at every speed checked, up to 6 m/s" in text
+
+
+def test_the_cli_takes_a_user_or_the_first_chair_files(capsys, tmp_path):
+    """``--reaction-time`` (in the JSON's options), else the reference chair file's ``[user]``; refused in one line
+    for wheel layouts."""
+    from stability.chair.io import save
+    from stability.schemas import validate
+
+    assert main(["ej-premier", "revised", "--reaction-time", "0.5", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    validate("compare", d)
+    assert d["options"]["reaction_time_s"] == 0.5
+    assert any(m["measure"] == "human_limited_speed_m_s" for m in d["measures"])
+    f = tmp_path / "mine.toml"
+    save(chair.preset("ej-premier"), f)
+    with open(f, "a", encoding="utf-8") as fh:
+        fh.write('\n[user]\nreaction_time_s = 0.45\n')
+    assert main([str(f), "revised", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["options"]["reaction_time_s"] == 0.45
+    assert main(["ej-premier", "revised", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["options"]["reaction_time_s"] is None and all(m["measure"] != "human_limited_speed_m_s"
+                                                          for m in d["measures"])
+    assert main(["ej-premier", "mid-wheel-drive", "--reaction-time", "0.5"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--reaction-time is not compared across wheel layouts" in err

@@ -25,11 +25,13 @@ from stability.chair import Chair
 from stability.cli import (
     FIGURE_FORMATS,
     OneLineErrorParser,
+    add_driver_options,
     add_json_options,
     add_model_option,
     add_output_option,
     announce_written,
     check_outputs,
+    driver_from_args,
     emit_json,
     json_header,
     load_chair,
@@ -72,6 +74,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "independent: separate seeds (default shared)")
     p.add_argument("--nonlinear", action="store_true",
                    help="also the critical impulse by simulation (slower; states the push convention)")
+    add_driver_options(p)
     add_json_options(p)
     add_output_option(p, FIGURE_FORMATS, what="the figures (a PDF, one figure a page; a .png or .svg holds the "
                       "first, the growth rates against speed)", aliases=("--pdf",))
@@ -107,6 +110,12 @@ def _uncertainties(files: Sequence[str], n: int) -> list[Uncertainty | None] | N
     return [None if f == "-" else load_uncertainty(f) for f in files]
 
 
+def _driver(args: argparse.Namespace):
+    """The user of ``--reaction-time``, else of the reference (first) chair file's ``[user]``: one user compared
+    on every chair."""
+    return driver_from_args(argparse.Namespace(reaction_time=args.reaction_time, chair=args.chairs[0]))
+
+
 def _run(args: argparse.Namespace) -> int:
     if len(args.chairs) < 2:
         raise ValueError(f"CHAIR: {len(args.chairs)} given ({args.chairs[0]!r}); valid: at least two chairs")
@@ -126,12 +135,15 @@ def _run(args: argparse.Namespace) -> int:
     uncs = _uncertainties(args.uncertainty, len(chairs))
     n_uncertain = sum(u is not None for u in uncs) if uncs else 0
     check_eigen_work("--samples", args.samples, solves_per_sample(n_uncertain, len(speeds)))
+    driver = _driver(args)
     result = compare(chairs, labels=unique_labels(names), model=args.model, speeds=speeds.tolist(),
                      max_speed=args.max_speed, uncertainties=uncs, samples=args.samples, seed=args.seed,
-                     level=args.level, pairing=args.pairing, nonlinear=args.nonlinear)
+                     level=args.level, pairing=args.pairing, nonlinear=args.nonlinear,
+                     reaction_time=None if driver is None else driver.reaction_time_s)
     options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": args.max_speed, "set": args.set,
                "uncertainty": args.uncertainty, "samples": args.samples, "seed": args.seed,
-               "level": args.level, "pairing": args.pairing, "nonlinear": args.nonlinear}
+               "level": args.level, "pairing": args.pairing, "nonlinear": args.nonlinear,
+               "reaction_time_s": None if driver is None else driver.reaction_time_s}
     _write_outputs(result, args, lambda: comparison_dict(result, json_header(chairs[0], args.model, options)))
     if not args.json:
         print(format_comparison(result))
@@ -174,6 +186,9 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
     if args.model != "exact":
         raise ValueError(f"--model {args.model} is invalid for wheel layouts; valid values: exact (the layout's "
                          "equations are the exact model's)")
+    if args.reaction_time is not None:
+        raise ValueError("--reaction-time is not compared across wheel layouts yet; python -m "
+                         "stability.critical_speed --chair LAYOUT --reaction-time S gives each layout's limits")
     if not all(SIGNED_SPEED.holds(u) for u in speeds):
         raise ValueError(f"--speeds {args.speeds!r} is invalid for wheel layouts; valid range: "
                          f"{SIGNED_SPEED.text('speed')} (negative: reverse)")
@@ -208,7 +223,8 @@ def _run_layouts(args: argparse.Namespace, speeds) -> int:
     options = {"speeds_m_s": [float(x) for x in speeds], "max_speed_m_s": result.max_speed, "set": args.set,
                "uncertainty": args.uncertainty, "samples": args.samples if given else None,
                "seed": args.seed if given else None, "level": args.level if given else None,
-               "pairing": args.pairing if given else None, "nonlinear": args.nonlinear, "layouts": True}
+               "pairing": args.pairing if given else None, "nonlinear": args.nonlinear, "layouts": True,
+               "reaction_time_s": None}
     header = {"stability_version": __version__, "chair": layouts[0].name,
               "chair_parameters": dataclasses.asdict(layouts[0]), "model": "layout", "options": options}
     _write_outputs(result, args, lambda: comparison_dict(result, header))

@@ -240,12 +240,28 @@ def _nonlinear(chairs: Sequence[Chair], model: str, nonlinear_speeds: Sequence[f
     return qs, push
 
 
+def _user_speeds(chairs: Sequence[Chair], model: str, reaction_time: float) -> Quantity:
+    """The speed a user with delay ``reaction_time`` can hold on each chair: the divergence rule
+    (:func:`stability.driver.linear.rule_speed`, the advisor's limit), ``inf`` beyond the speeds it checks (a bound:
+    stable for this user everywhere checked), 0 below them (not even at the slowest); no interval (the rule is not
+    drawn over the uncertainty files)."""
+    from stability.driver.linear import SPEED_RANGE_M_S, rule_speed
+
+    vals = []
+    for c in chairs:
+        u, side = rule_speed(c, reaction_time, model)
+        vals.append(math.inf if side == ">" else 0.0 if side == "<" else float(u))
+    return Quantity("human_limited_speed_m_s", f"speed a user {reaction_time:g} s late holds", "m/s", True,
+                    tuple(vals), tuple(None for _ in chairs),
+                    f"held at every speed checked, up to {SPEED_RANGE_M_S[1]:g} m/s")
+
+
 @takes_chairs
 def compare(chairs: Sequence[Chair], *, labels: Sequence[str] | None = None, model: str = "exact",
             speeds: Sequence[float] = DEFAULT_SPEEDS, max_speed: float = 30.0,
             uncertainties: Sequence[Uncertainty | None] | None = None, samples: int = 1000, seed: int = 0,
             level: float = 0.95, pairing: str = "shared", nonlinear: bool = False,
-            nonlinear_speeds: Sequence[float] = (REFERENCE_SPEED,)) -> Comparison:
+            nonlinear_speeds: Sequence[float] = (REFERENCE_SPEED,), reaction_time: float | None = None) -> Comparison:
     """Compare two or more chairs on every measure, against the first.
 
     Parameters
@@ -274,6 +290,8 @@ def compare(chairs: Sequence[Chair], *, labels: Sequence[str] | None = None, mod
         Also compute the critical impulse (simulation; seconds per chair).
     nonlinear_speeds : sequence of float
         Speeds of the critical impulse, m/s.
+    reaction_time : float, optional
+        A user's effective delay, s: adds the speed that user can hold on each chair (:func:`_user_speeds`).
 
     Returns
     -------
@@ -307,6 +325,8 @@ def compare(chairs: Sequence[Chair], *, labels: Sequence[str] | None = None, mod
     if nonlinear:
         nq, push = _nonlinear(chairs, model, nonlinear_speeds)
         qs += nq
+    if reaction_time is not None:
+        qs.append(_user_speeds(chairs, model, reaction_time))
     diffs = []
     for i in range(1, len(chairs)):
         for j, q in enumerate(qs):

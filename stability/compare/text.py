@@ -153,8 +153,10 @@ def format_comparison(c: Comparison) -> str:
                 cell += f" [{_end(iv[0], c.max_speed)}, {_end(iv[1], c.max_speed)}]"
             cells.append(cell)
         lines.append(f"  {q.label:<{width}}" + " | ".join(cells))
+    user = any(q.key == "human_limited_speed_m_s" for q in c.quantities)
     lines += ["", f"Against the reference {ref} (lower growth rate, higher critical speed, "
-              "understeer coefficient and critical impulse = more stable):"]
+              "understeer coefficient" + (", critical impulse and speed the user holds" if user else
+                                          " and critical impulse") + " = more stable):"]
     qmap = {q.key: q for q in c.quantities}
     for label in c.labels[1:]:
         lines.append(f"  {label}:")
