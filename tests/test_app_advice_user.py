@@ -57,3 +57,29 @@ def test_the_explorers_advice_tab_reads_the_user_the_tracking_tab_measured():
     assert ex.advice.user() is None
     ex._measured({"reaction_time_s": 0.4})
     assert ex.advice.user() == {"reaction_time_s": 0.4}
+
+
+def test_the_compare_tab_compares_the_sessions_user_on_every_chair():
+    """The Compare tab's table, with the session's user, has the row ``compare --reaction-time`` adds."""
+    from stability.app.compare_tab import CompareTab
+    from stability.app.page import Explorer
+
+    ex = Explorer(auto_nonlinear=False)
+    out: list = []
+    tab = CompareTab(lambda work, show, failed: out.append(work()))
+    pinned = [preset("revised")]
+    tab.show(ex._view(), pinned, "exact", {"reaction_time_s": 0.5})
+    assert "speed a user 0.5 s late holds" in out[-1]
+    tab.show(ex._view(), pinned, "exact", None)
+    assert "s late holds" not in out[-1]
+
+
+def test_the_page_hands_the_compare_tab_the_sessions_user(monkeypatch):
+    from stability.app.page import Explorer
+
+    ex = Explorer(auto_nonlinear=False)
+    seen: list = []
+    monkeypatch.setattr(ex.compare, "show", lambda v, pinned, model, user=None: seen.append(user))
+    ex._measured({"reaction_time_s": 0.4})
+    ex._show_compare()
+    assert seen[-1] == {"reaction_time_s": 0.4}

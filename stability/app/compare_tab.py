@@ -3,7 +3,8 @@
 The pinned chairs' curves are computed when the pins change
 (:func:`stability.compare.growth_curves`); :func:`stability.compare.compare`'s
 table (which chair is more stable on each measure, by how much, and which
-parameter difference causes it) runs on the background worker.
+parameter difference causes it; with the session's user, the speed that user
+holds on each chair) runs on the background worker.
 """
 
 from __future__ import annotations
@@ -66,7 +67,7 @@ class CompareTab:
         """
         self.texts.set(self.text, f"error: could not compare these chairs: {literal(exc)}")
 
-    def show(self, v: LinearView, pinned: list, model: str) -> None:
+    def show(self, v: LinearView, pinned: list, model: str, user: dict | None = None) -> None:
         """Draw the current chair's curve with the pinned ones and queue the comparison table.
 
         Parameters
@@ -75,6 +76,9 @@ class CompareTab:
             The current chair's.
         pinned : list of Chair
         model : {"exact", "thesis"}
+        user : dict, optional
+            The session's ``[user]`` table: the table adds the speed that user holds on each chair, as
+            ``python -m stability.compare --reaction-time`` does.
         """
         from stability.compare import compare, format_comparison, growth_curves
 
@@ -101,7 +105,8 @@ class CompareTab:
         if pinned:
             labels = ["current", *[f"pinned {i + 1}" for i in range(len(pinned))]]
             self.texts.set(self.text, "comparing...")
-            self.submit(lambda: format_comparison(compare(chairs, labels=labels, model=model)),
+            tau = None if not user else float(user["reaction_time_s"])
+            self.submit(lambda: format_comparison(compare(chairs, labels=labels, model=model, reaction_time=tau)),
                         lambda text: self.texts.set(self.text, pre(text)), self.failed)
         else:
             self.texts.set(self.text, NOTHING_PINNED)

@@ -408,7 +408,7 @@ class Explorer:
             self.speed_tab.show_shape(self.view, float(self.speed_tab.speed.value or D.SPEED))
 
     def _show_compare(self) -> None:
-        self.compare.show(self._view(), self.state.pinned, self.state.model)
+        self.compare.show(self._view(), self.state.pinned, self.state.model, self.state.user)
 
     def _name_downloads(self) -> None:
         names = file_names(self.state.chair.name)
