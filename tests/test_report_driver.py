@@ -149,7 +149,7 @@ def test_a_bound_prints_as_a_bound_and_a_missing_speed_as_a_dash():
 
 def test_the_recommended_cell_says_better_or_worse():
     """As on every row of the table: the change's direction on the user's speed, a relative tolerance of 1e-3 (the
-    table's), nothing when either side is a bound."""
+    table's); a bound ranks as a value beyond every found speed, and two like bounds get no word."""
     from stability.advise.measures import measure_chairs
     from stability.report.decision import user_row
 
@@ -163,7 +163,10 @@ def test_the_recommended_cell_says_better_or_worse():
                                                            "1.79", "1.69 (worse)"]
     assert user_row(0.3, [at(1.0), at(1.2)], True)[2] == "1.2 (better)"
     assert user_row(0.3, [at(1.0), at(1.0005)], True)[2] == "1"                 # within the table's tolerance
-    assert user_row(0.3, [at(1.0), at(6.0, ">")], True)[2] == "> 6"             # a bound: no direction word
+    assert user_row(0.3, [at(1.0), at(6.0, ">")], True)[2] == "> 6 (better)"    # a bound ranks as a value
+    assert user_row(0.3, [at(6.0, ">"), at(1.0)], True)[2] == "1 (worse)"
+    assert user_row(0.3, [at(1.0), at(0.1, "<")], True)[2] == "< 0.1 (worse)"
+    assert user_row(0.3, [at(6.0, ">"), at(6.0, ">")], True)[2] == "> 6"         # two like bounds: not separable
     assert user_row(0.3, [at(1.0), at(1.2)], False)[2] == "1.2"                 # the reference column: none
 
 

@@ -159,15 +159,19 @@ def user_row(tau: float, measures: list, recommended: bool) -> list[str]:
     cells = [_user_cell(m) for m in measures]
     if recommended:
         x, y = _user_value(measures[0]), _user_value(measures[1])
-        if x is not None and y is not None:
-            word = better_word(y - x, True, tolerance=1e-3 * max(abs(x), abs(y)))
+        if x is not None and y is not None and not (math.isinf(x) and x == y):   # two like bounds: not separable
+            word = (better_word(y - x, True, tolerance=1e-3 * max(abs(x), abs(y))) if math.isfinite(x - y) else
+                    "better" if y > x else "worse")
             cells[1] += "" if word == "no change" else f" ({word})"
     return [f"speed a user {tau:g} s late holds (m/s, divergence rule)"] + cells
 
 
 def _user_value(m: Measures) -> float | None:
-    """The divergence rule's speed (m/s), or None where it is a bound or not computed."""
-    return m.human_speed_m_s if m.human_speed_m_s is not None and m.human_side == "=" else None
+    """The divergence rule's speed (m/s) for ranking: a bound as a value beyond every found speed (``inf`` above
+    the speeds checked, ``-inf`` below them); None where not computed."""
+    if m.human_speed_m_s is None:
+        return None
+    return {">": math.inf, "<": -math.inf}.get(m.human_side, m.human_speed_m_s)
 
 
 def _user_cell(m: Measures) -> str:
