@@ -105,7 +105,9 @@ class CompareTab:
         if pinned:
             labels = ["current", *[f"pinned {i + 1}" for i in range(len(pinned))]]
             self.texts.set(self.text, "comparing...")
-            tau = None if not user else float(user["reaction_time_s"])
+            from stability.driver import Driver
+
+            tau = None if not user else Driver.from_mapping(user).reaction_time_s     # read as the commands read it
             self.submit(lambda: format_comparison(compare(chairs, labels=labels, model=model, reaction_time=tau)),
                         lambda text: self.texts.set(self.text, pre(text)), self.failed)
         else:
