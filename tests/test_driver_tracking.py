@@ -197,6 +197,51 @@ def test_the_explorer_keeps_the_measured_user_with_the_chair(tmp_path):
     assert msg is not None and "reaction_time_s=9.0" in msg and "\n" not in msg
 
 
+def _measure_in_explorer(ex, lambdas=(3.9, 4.0, 4.1)):
+    """Play the Tracking tab's protocol as the browser sends it: the practice trials, then scored ``lambdas``."""
+    for _ in range(T.PRACTICE_TRIALS):
+        plan = ex.tracking.task.plan
+        ex.tracking.task.record = {"kind": "practice", "lambda_start_1_s": plan["lambda_start_1_s"],
+                                   "lambda_c_1_s": 5.0, "duration_s": 12.0, "input_range": 0.8, "device": "mouse"}
+    for lam in lambdas:
+        plan = ex.tracking.task.plan
+        ex.tracking.task.record = {"kind": "scored", "lambda_start_1_s": plan["lambda_start_1_s"],
+                                   "lambda_c_1_s": lam, "duration_s": 10.0, "input_range": 0.8}
+
+
+def test_what_the_measured_user_means_follows_the_chair_edited():
+    """The Tracking tab's sentence (the speed this user holds) is for the chair shown: after an edit it names the
+    edited chair's speed, not the one measured on; after a chair file with no [user] table it says the downloads
+    no longer carry the result (before, the sentence stayed as first written)."""
+    pytest.importorskip("panel")
+    import html
+
+    from stability.app.downloads import chair_toml
+    from stability.app.page import Explorer
+    from stability.chair import preset
+    from stability.driver.linear import rule_speed
+
+    ex = Explorer(auto_nonlinear=False)
+    _measure_in_explorer(ex)
+    tau = ex.state.user["reaction_time_s"]
+    before = rule_speed(ex.state.chair, tau)
+    assert ex.apply_fields({"trail": "0.03"}) is None
+    after = rule_speed(ex.state.chair, tau)
+    assert after[1] == before[1] == "=" and f"{after[0]:.3g}" != f"{before[0]:.3g}"   # the edit moves the speed
+    text = html.unescape(ex.tracking.text.object)
+    assert f"up to {after[0]:.3g} m/s" in text and f"up to {before[0]:.3g} m/s" not in text
+    assert "loaded since" not in text and ex.state.user["reaction_time_s"] == tau
+    ex._after(ex.state.load_toml(chair_toml(preset("ej-premier"), None), "plain.toml"))
+    text = html.unescape(ex.tracking.text.object)
+    assert ex.state.user is None and "carries no [user] table" in text
+    assert f"up to {rule_speed(preset('ej-premier'), tau)[0]:.3g} m/s" in text
+    ex._after(ex.state.load_toml(chair_toml(preset("ej-premier"), {"reaction_time_s": 0.35}), "theirs.toml"))
+    assert "its own [user] (reaction_time_s = 0.35 s)" in html.unescape(ex.tracking.text.object)
+    assert ex.state.user == {"reaction_time_s": 0.35}
+    _measure_in_explorer(ex, (4.0,))                       # the next trial keeps the session's result again
+    assert ex.state.user["reaction_time_s"] != 0.35 and "loaded since" not in ex.tracking.text.object
+
+
 def test_the_user_table_in_docs_driver_md_is_what_the_task_writes():
     """docs/driver.md's example [user] table is the one five such trials give (its numbers trace here)."""
     import pathlib

@@ -158,7 +158,7 @@ class Explorer:
         self.assist = AssistTab(self.jobs.submit, on, lambda: (self.state.chair, self.state.model))
         self.advice = AdviceTab(self.jobs.submit, on, lambda: self.state.chair, self.apply_fields,
                                 lambda: self.state.user)
-        self.tracking = TrackingTab(on, self._measured)
+        self.tracking = TrackingTab(on, self._measured, self._meaning)
         self.downloads = download_buttons(self.state, self._view)
         self.tabs = pn.Tabs(*zip(TAB_NAMES, (
             self.speed_tab.panel, self.geometry.panel, self.nonlinear.panel, self.trail.panel, self.advice.panel,
@@ -297,6 +297,11 @@ class Explorer:
         """The Tracking tab's result: the chair's ``[user]`` table (the TOML download carries it); returns what it
         means for the chair being edited (the human-limited speed of :mod:`stability.driver`, as plain text)."""
         self.state.user = user
+        return self._meaning(user)
+
+    def _meaning(self, user: dict | None) -> str:
+        """What a measured ``[user]`` table means for the chair and model being edited (plain text); when the
+        session's user is another (a chair file loaded since), says which one the other tabs and downloads use."""
         if not user:
             return ""
         from stability.driver.linear import rule_speed
@@ -304,8 +309,15 @@ class Explorer:
 
         c = self.state.chair
         where = held_where(*rule_speed(c, float(user["reaction_time_s"]), self.state.model))
-        return (f"With this delay, {c.name} can be held straight {where} (the divergence rule: its divergence rate "
+        text = (f"With this delay, {c.name} can be held straight {where} (the divergence rule: its divergence rate "
                 "reaches 1/tau there; critical_speed --reaction-time gives the delayed loop and the lane limit too).")
+        kept = self.state.user
+        if kept != user:
+            other = (f"its own [user] (reaction_time_s = {float(kept['reaction_time_s']):g} s)" if kept
+                     else "no [user] table")
+            text += (f" The chair file loaded since carries {other}, which the other tabs and the downloads use; "
+                     "the next trial keeps this result with the chair again.")
+        return text
 
     def _view(self) -> LinearView:
         assert self.view is not None
@@ -341,6 +353,7 @@ class Explorer:
         self._guarded("compare", self._show_compare)
         self._guarded("advice", partial(self.advice.chair_changed, chair))
         self._guarded("assist", partial(self.assist.chair_changed, chair, model))
+        self._guarded("tracking", self.tracking.chair_changed)
         self._guarded("downloads", self._name_downloads)
         if self.state.uncertainty is not None:
             self.speed_tab.show_band([], [], [])

@@ -213,10 +213,14 @@ class TrackingTab:
     measured : callable
         ``measured(user_table or None) -> str``: the page keeps the ``[user]`` table for the chair download and returns
         what the result means for the chair being edited (plain text, shown under the result).
+    meaning : callable, optional
+        ``meaning(user_table) -> str``: what the result means for the chair being edited, the page's user left as
+        it is (:meth:`chair_changed`: after an edit or a loaded file).  Default: ``measured``.
     """
 
-    def __init__(self, on_change: Any, measured: Any) -> None:
+    def __init__(self, on_change: Any, measured: Any, meaning: Any = None) -> None:
         self.measured = measured
+        self.meaning = meaning if meaning is not None else measured
         self.records: list[TrialRecord] = []
         self.result: TrackingResult | None = None
         self.task = TrackingTask(config=browser_config(), plan=next_trial([]) or {}, sizing_mode="stretch_width",
@@ -263,7 +267,13 @@ class TrackingTab:
         self.task.plan = next_trial([]) or {}
         self._show()
 
-    def _show(self) -> None:
+    def chair_changed(self) -> None:
+        """Say again what the result means, for the chair now edited (the page calls it after every edit and file):
+        the user the page keeps is not changed here (a loaded chair file's own ``[user]`` stays)."""
+        if self.result is not None and self.result.reaction_time_s is not None:
+            self._show(keep=False)
+
+    def _show(self, keep: bool = True) -> None:
         res = tracking_result(self.records) if self.records else None
         self.result = res
         rows = []
@@ -285,7 +295,7 @@ class TrackingTab:
                        f"<code>[user] reaction_time_s = {user['reaction_time_s']:.4f}</code>"
                        + (f"; note: {literal(self.note.value)}" if (self.note.value or '').strip() else "")
                        + "</p>")
-            meaning = self.measured(user)
+            meaning = self.measured(user) if keep else self.meaning(user)
             if meaning:
                 summary += f"<p class='tracking-meaning'>{literal(meaning)}</p>"
         else:
