@@ -54,7 +54,8 @@ def test_edit_shows_the_growth_rate_critical_speed_prints(page, explorer, artifa
     set_field(page, "trail", "0.05")
     want = printed_rate("ej-premier", "trail=0.05")
     row(page).locator("td", has_text=want).wait_for()
-    assert "chair=ej-premier&trail=0.05" in page.url          # the URL follows the chair
+    # the URL follows the chair (waited for: the address may arrive in a browser update of its own)
+    page.wait_for_function("() => location.search.includes('chair=ej-premier&trail=0.05')")
     page.screenshot(path=artifacts / "edited.png")
 
 
