@@ -17,6 +17,7 @@ from stability.report.behaviour import better_word
 from stability.report.compute import ReportData
 from stability.settings.reference import REFERENCE_CHAIR, REFERENCE_SPEED
 from stability.shimmy.band import margin_cell
+from stability.study import censored
 
 __all__ = ["decision_paragraphs", "decision_rows", "decision_bars", "decision_beyond", "uncertainty_sentence"]
 
@@ -157,28 +158,20 @@ def user_row(tau: float, measures: list, recommended: bool) -> list[str]:
         The label and the cells.
     """
     cells = [_user_cell(m) for m in measures]
-    if recommended:
-        x, y = _user_value(measures[0]), _user_value(measures[1])
-        if x is not None and y is not None and not (math.isinf(x) and x == y):   # two like bounds: not separable
-            word = (better_word(y - x, True, tolerance=1e-3 * max(abs(x), abs(y))) if math.isfinite(x - y) else
-                    "better" if y > x else "worse")
-            cells[1] += "" if word == "no change" else f" ({word})"
+    if recommended and measures[0].human_speed_m_s is not None and measures[1].human_speed_m_s is not None:
+        # a bound ranks as the set of speeds it allows (stability.study.censored, as the comparison page ranks):
+        # "> 6" beats every speed found, two like bounds are undecided, found speeds within the table's 1e-3 equal
+        word = censored.compare(measures[1].human_speed_m_s, measures[1].human_side, measures[0].human_speed_m_s,
+                                measures[0].human_side, True, rel_tol=1e-3)
+        cells[1] += f" ({word})" if word in ("better", "worse") else ""
     return [f"speed a user {tau:g} s late holds (m/s, divergence rule)"] + cells
-
-
-def _user_value(m: Measures) -> float | None:
-    """The divergence rule's speed (m/s) for ranking: a bound as a value beyond every found speed (``inf`` above
-    the speeds checked, ``-inf`` below them); None where not computed."""
-    if m.human_speed_m_s is None:
-        return None
-    return {">": math.inf, "<": -math.inf}.get(m.human_side, m.human_speed_m_s)
 
 
 def _user_cell(m: Measures) -> str:
     """The divergence rule's speed as a value, a bound as a bound (``"> 6"``), ``"-"`` where not computed."""
     if m.human_speed_m_s is None:
         return "-"
-    return ("" if m.human_side == "=" else f"{m.human_side} ") + f"{m.human_speed_m_s:.3g}"
+    return censored.describe(m.human_speed_m_s, m.human_side, digits=3)
 
 
 #: Per row of :func:`decision_rows`: whether a higher value is better (None: neither, e.g. the trail itself).
