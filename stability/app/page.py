@@ -304,16 +304,20 @@ class Explorer:
         session's user is another (a chair file loaded since), says which one the other tabs and downloads use."""
         if not user:
             return ""
+        from stability.driver import Driver
         from stability.driver.linear import rule_speed
         from stability.driver.text import held_where
 
+        def tau(table: dict) -> float:           # read as the commands and the other tabs read it
+            return Driver.from_mapping(table).reaction_time_s
+
         c = self.state.chair
-        where = held_where(*rule_speed(c, float(user["reaction_time_s"]), self.state.model))
+        where = held_where(*rule_speed(c, tau(user), self.state.model))
         text = (f"With this delay, {c.name} can be held straight {where} (the divergence rule: its divergence rate "
                 "reaches 1/tau there; critical_speed --reaction-time gives the delayed loop and the lane limit too).")
         kept = self.state.user
         if kept != user:
-            other = (f"its own [user] (reaction_time_s = {float(kept['reaction_time_s']):g} s)" if kept
+            other = (f"its own [user] (reaction_time_s = {tau(kept):g} s)" if kept
                      else "no [user] table")
             text += (f" The chair file loaded since carries {other}, which the other tabs and the downloads use; "
                      "the next trial keeps this result with the chair again.")
